@@ -1,0 +1,230 @@
+"""What a check sees: the trial object ``t``, verdicts, and failures.
+
+A check is a function of one argument, ``t`` (a :class:`Trial`). It calls the
+student's functions with ``t.call``, judges the results in the grader's process,
+and ends in one of three ways:
+
+- returns ``None`` (full points) or ``passed("what was verified")``;
+- returns ``partial(fraction, message, hint)`` for partial credit;
+- raises :class:`Fail` (through ``t.fail`` / ``t.expect_array``), for no points.
+
+If the student's code raises, hangs or crashes, ``t.call`` raises
+:class:`StudentFailure` and the check scores 0 with the student's own message.
+Anything else escaping a check is a grader error, reported as such.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import pictures
+from .registry import Check
+from .results import Artifact
+from .sandbox import CallOutcome, Sandbox
+
+# Failure kinds after which calling the same function again in this check is pointless.
+_FATAL_KINDS = {"timeout", "crashed", "memory", "output_too_large", "import_error",
+                "missing_module", "missing_function", "not_implemented", "forbidden_call"}
+
+
+@dataclass
+class Verdict:
+    fraction: float
+    message: str = ""
+    hint: str = ""
+
+
+def passed(message: str = "") -> Verdict:
+    return Verdict(1.0, message)
+
+
+def partial(fraction: float, message: str, hint: str = "") -> Verdict:
+    """Partial credit: ``fraction`` of the check's points (clipped to [0, 1])."""
+    return Verdict(float(min(max(fraction, 0.0), 1.0)), message, hint)
+
+
+class Fail(Exception):
+    """The student's answer is wrong: no points for this check."""
+
+    def __init__(self, message: str, hint: str = ""):
+        super().__init__(message)
+        self.message, self.hint = message, hint
+
+
+class StudentFailure(Exception):
+    """The student's function did not return normally (raised, hung, crashed, missing...)."""
+
+    def __init__(self, outcome: CallOutcome, message: str):
+        super().__init__(message)
+        self.outcome, self.message = outcome, message
+
+
+class Trial:
+    """The handle a check uses to call student code and attach pictures.
+
+    Parameters
+    ----------
+    sandbox : Sandbox
+        The submission's worker.
+    check : Check
+        The check being run (for its exercise, lab, timeout and forbidden calls).
+    """
+
+    def __init__(self, sandbox: Sandbox, check: Check, timed_out: dict[str, int]):
+        self.sandbox, self.check = sandbox, check
+        self.lab = check.exercise.lab
+        self.artifacts: list[Artifact] = []
+        self.outputs: list[str] = []
+        self.student_seconds = 0.0
+        self._fatal: dict[str, StudentFailure] = {}
+        self._timed_out = timed_out
+
+    # ------------------------------------------------------------ calling
+    def call(self, function: str, *args, **kwargs):
+        """Call the student's ``function`` and return its (plain-data) result.
+
+        Raises
+        ------
+        StudentFailure
+            If it raised, timed out, crashed, is missing or returned a forbidden type.
+        """
+        if function in self._fatal:  # a fresh exception: re-raising one object grows its traceback
+            earlier = self._fatal[function]
+            raise StudentFailure(earlier.outcome, earlier.message)
+        if self._timed_out.get(function, 0) >= 2:
+            raise StudentFailure(CallOutcome(ok=False, kind="timeout"),
+                                 f"{function}() timed out twice already; not called again")
+        outcome = self.sandbox.call(self.lab.module, function, args, kwargs,
+                                    timeout=self.check.timeout,
+                                    forbid=self.lab.forbidden.get(function, ()))
+        self.student_seconds += outcome.seconds
+        if outcome.output.strip():
+            self.outputs.append(outcome.output)
+        if outcome.ok:
+            return outcome.value
+        if outcome.kind == "timeout":
+            self._timed_out[function] = self._timed_out.get(function, 0) + 1
+        failure = StudentFailure(outcome, self._describe(function, outcome))
+        if outcome.kind in _FATAL_KINDS:
+            self._fatal[function] = failure
+        raise failure
+
+    def _describe(self, function: str, outcome: CallOutcome) -> str:
+        if outcome.kind == "missing_function":
+            return f"not found: def {self.lab.signature(function)}"
+        return outcome.message
+
+    # ------------------------------------------------------------ judging
+    def fail(self, message: str, hint: str = ""):
+        raise Fail(message, hint)
+
+    def expect_array(self, value, what: str, *, shape=None, dtype=None, kind=None,
+                     finite: bool = False) -> np.ndarray:
+        """Check that a returned value is an array of the documented form.
+
+        Parameters
+        ----------
+        value : object
+            What the student returned.
+        what : str
+            How to name it in messages, e.g. ``"translate()"``.
+        shape : tuple, optional
+            Expected shape; ``None`` entries match any length.
+        dtype : dtype, optional
+            Exact dtype required (e.g. ``np.uint8`` for images).
+        kind : str, optional
+            Required dtype kinds, e.g. ``"f"`` or ``"iuf"`` (numbers) or ``"b"``.
+        finite : bool
+            Require every value to be finite.
+
+        Returns
+        -------
+        ndarray
+            ``value`` (lists of numbers are accepted and converted when only
+            ``kind`` is constrained).
+        """
+        if isinstance(value, (list, tuple)) and dtype is None:
+            try:
+                value = np.asarray(value, dtype=float)
+            except (TypeError, ValueError):
+                pass
+        if not isinstance(value, np.ndarray):
+            self.fail(f"{what} returned {_type_name(value)}; expected a numpy array"
+                      + (f" of shape {_shape_text(shape)}" if shape is not None else ""))
+        if shape is not None:
+            if value.ndim != len(shape) or any(s is not None and s != v for s, v in zip(shape, value.shape)):
+                self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}")
+        if dtype is not None and value.dtype != np.dtype(dtype):
+            self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}",
+                      hint="images stay uint8: convert with np.clip(x, 0, 255).astype(np.uint8)"
+                      if np.dtype(dtype) == np.uint8 else "")
+        if kind is not None and value.dtype.kind not in kind:
+            names = {"f": "float", "i": "integer", "u": "unsigned integer", "b": "bool", "c": "complex"}
+            wanted = " or ".join(names[k] for k in kind)
+            self.fail(f"{what} returned dtype {value.dtype}; expected {wanted}")
+        if finite and value.dtype.kind in "fc" and not np.all(np.isfinite(value)):
+            self.fail(f"{what} returned NaN or infinite values")
+        return value
+
+    # ------------------------------------------------------------ properties
+    def for_all(self, strategy, body, *, max_examples: int | None = None, describe=repr):
+        """Run ``body(example)`` on examples drawn by Hypothesis (grading profile).
+
+        On failure the smallest failing example (after shrinking) is added to the
+        message; the examples are the same on every run and machine.
+        """
+        from hypothesis import errors, given, settings
+
+        from .properties import grading_settings
+
+        last = []
+
+        @settings(grading_settings(max_examples))
+        @given(strategy)
+        def property_holds(example):
+            last[:] = [example]
+            body(example)
+
+        try:
+            property_holds()
+        except StudentFailure as exc:
+            if exc.outcome.kind not in _FATAL_KINDS and last:  # fatal ones fail for every input
+                exc.message += f"\nSmallest failing input found: {describe(last[0])}"
+            raise
+        except Fail as exc:
+            if last:
+                exc.message += f"\nSmallest failing input found: {describe(last[0])}"
+            raise
+        except errors.Flaky:
+            self.fail("your function gave different answers for the same input "
+                      "(does it depend on randomness or on earlier calls?)")
+
+    # ------------------------------------------------------------ pictures
+    def images(self, title: str, caption: str = "", **labelled: np.ndarray):
+        """Attach images side by side, e.g. ``t.images("rotate", input=a, yours=b)``."""
+        items = [{"label": label.replace("_", " "), "png": pictures.png_base64(image)}
+                 for label, image in labelled.items() if image is not None]
+        self.artifacts.append(Artifact("images", title, items, caption))
+
+    def compare_images(self, title: str, source, expected, got, valid=None, caption: str = ""):
+        """Attach input, expected, the student's output and a difference heat map."""
+        heat = None
+        if isinstance(got, np.ndarray) and got.shape[:2] == expected.shape[:2]:
+            heat = pictures.difference_heatmap(expected, got, valid)
+        self.images(title, caption, input=source, expected=expected, yours=got, difference=heat)
+
+    def svg(self, title: str, svg: str, caption: str = ""):
+        self.artifacts.append(Artifact("svg", title, [{"label": "", "svg": svg}], caption))
+
+
+def _type_name(value) -> str:
+    if value is None:
+        return "None"
+    return f"a {type(value).__name__}"
+
+
+def _shape_text(shape) -> str:
+    inner = ", ".join("N" if s is None else str(s) for s in shape)
+    return f"({inner},)" if len(shape) == 1 else f"({inner})"

@@ -1,0 +1,115 @@
+"""Geometry-aware comparisons and mistake diagnosis, shared by every lab suite.
+
+Everything here is pure NumPy/OpenCV on values already in the grader's process.
+"""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+
+# Sub-pixel offsets tried when judging warped images, so that other interpolation
+# and pixel-centre conventions (x vs x + 0.5) are not penalised.
+HALF_PIXEL_OFFSETS = [(dx, dy) for dx in (-0.5, 0.0, 0.5) for dy in (-0.5, 0.0, 0.5)]
+
+
+# ---------------------------------------------------------------- matrices
+def projective_distance(a, b) -> float:
+    """Distance between two projective quantities (H, F, E, P), up to scale and sign.
+
+    Both are scaled to unit Frobenius norm; the smaller of ``|a - b|`` and
+    ``|a + b|`` is returned (0 = same, about 1.41 = unrelated).
+
+    >>> projective_distance(np.eye(3), -2 * np.eye(3))
+    0.0
+    """
+    a = np.asarray(a, dtype=np.float64)
+    b = np.asarray(b, dtype=np.float64)
+    if a.shape != b.shape:
+        raise ValueError(f"shapes differ: {a.shape} vs {b.shape}")
+    na, nb = np.linalg.norm(a), np.linalg.norm(b)
+    if na == 0 or nb == 0 or not (np.isfinite(na) and np.isfinite(nb)):
+        return float("inf")
+    a, b = a / na, b / nb
+    return float(min(np.linalg.norm(a - b), np.linalg.norm(a + b)))
+
+
+def max_abs_error(got, expected) -> float:
+    got = np.asarray(got, dtype=np.float64)
+    expected = np.asarray(expected, dtype=np.float64)
+    if got.shape != expected.shape:
+        return float("inf")
+    return float(np.max(np.abs(got - expected))) if got.size else 0.0
+
+
+def closest(got, candidates: dict, distance, tolerance: float):
+    """The name of the candidate nearest ``got``, if within ``tolerance``; else None.
+
+    Used for diagnosis: ``candidates`` maps a mistake ("tx and ty swapped") to
+    the answer that mistake produces.
+    """
+    best, best_distance = None, tolerance
+    for name, candidate in candidates.items():
+        try:
+            d = distance(got, candidate)
+        except (ValueError, np.linalg.LinAlgError):
+            continue
+        if d < best_distance:
+            best, best_distance = name, d
+    return best
+
+
+# ---------------------------------------------------------------- images
+def blurred_difference(got, expected, valid, sigma: float = 1.0) -> float:
+    """Mean absolute difference on ``valid`` after a light blur (max over channels).
+
+    The blur makes the measure tolerant of interpolation choices while keeping it
+    sensitive to content being in the wrong place.
+    """
+    a = cv2.GaussianBlur(np.asarray(expected, np.float32), (0, 0), sigma)
+    b = cv2.GaussianBlur(np.asarray(got, np.float32), (0, 0), sigma)
+    diff = np.abs(a - b)
+    if diff.ndim == 3:
+        diff = diff.max(axis=2)
+    valid = np.asarray(valid, dtype=bool)
+    return float(diff[valid].mean()) if valid.any() else 0.0
+
+
+def affine_image_error(got, source, A, dsize=None) -> float:
+    """How far ``got`` is from ``source`` warped by the affine ``A`` (best sub-pixel offset).
+
+    Parameters
+    ----------
+    got : (H, W[, 3]) array
+        The student's image, already checked for shape.
+    source : (h, w[, 3]) uint8 array
+    A : (2, 3) or (3, 3) array
+        The true source-to-output map.
+    dsize : (width, height), optional
+
+    Returns
+    -------
+    float
+        Mean blurred grey-level difference over the output pixels that are
+        well inside the warped source (about 1-3 for a correct warp, tens for
+        a wrong one).
+    """
+    from fixtures.images import affine_coverage, warp_affine
+
+    A = np.vstack([np.asarray(A, np.float64)[:2], [0, 0, 1]])
+    inside, _ = affine_coverage(A, source.shape, dsize)
+    errors = []
+    for dx, dy in HALF_PIXEL_OFFSETS:
+        shifted = np.array([[1, 0, dx], [0, 1, dy], [0, 0, 1]]) @ A
+        errors.append(blurred_difference(got, warp_affine(source, shifted, dsize), inside))
+    return min(errors)
+
+
+def fill_fraction(got, outside) -> float:
+    """Fraction of the pixels that should be black fill (``outside``) that are not 0."""
+    outside = np.asarray(outside, dtype=bool)
+    if not outside.any():
+        return 0.0
+    pixels = np.asarray(got)
+    nonzero = pixels != 0 if pixels.ndim == 2 else np.any(pixels != 0, axis=2)
+    return float(nonzero[outside].mean())

@@ -1,0 +1,1 @@
+"""Lab check suites. Each module registers one lab (see :mod:`autograder.registry`)."""

@@ -1,0 +1,330 @@
+"""Lab 7 - 2D transformations: the public checks.
+
+Each exercise is judged against ground truth from :mod:`fixtures.lab07`: true
+matrices by definition, true images by warping a photo with the true matrix.
+Wrong answers are compared with what the usual mistakes would give, so the
+feedback can name the mistake.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import strategies as st
+
+from fixtures import lab07 as truth
+from fixtures.images import affine_coverage, photo
+
+from ..checks import Trial, partial, passed
+from ..compare import affine_image_error, closest, fill_fraction, max_abs_error
+from ..registry import Lab
+
+lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
+
+IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
+FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
+
+
+# ================================================================== shared judges
+def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)):
+    """Compare a returned matrix with the truth; name the mistake when one fits."""
+    got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
+    tolerance = 1e-6 * max(1.0, float(np.abs(expected).max()))
+    if max_abs_error(got, expected) <= tolerance:
+        return got
+    mistake = closest(got, mistakes or {}, max_abs_error, tolerance)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    t.fail(f"{what} returned\n{_fmt(got)}\nexpected\n{_fmt(expected)}")
+
+
+def judge_warp(t: Trial, what: str, got, source, A, mistakes=None, dsize=None, show=True):
+    """Judge an image warped by the affine ``A`` against the oracle, with diagnosis.
+
+    Full credit when the covered area matches (any sensible interpolation) and
+    the uncovered area is black; half when only the fill is wrong.
+    """
+    width, height = dsize or (source.shape[1], source.shape[0])
+    expected_shape = (height, width) + source.shape[2:]
+    from fixtures.images import warp_affine
+
+    expected = warp_affine(source, A, dsize)
+    inside, outside = affine_coverage(A, source.shape, dsize)
+    if isinstance(got, np.ndarray) and show:
+        t.compare_images(what, source, expected, got, valid=inside | outside)
+    if isinstance(got, np.ndarray) and got.shape != expected_shape:
+        if got.shape[:2] == expected_shape[1::-1]:
+            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
+                   "width and height are swapped (shapes are (rows, columns), dsize is (width, height))")
+        if got.shape[:2] == expected_shape[:2]:
+            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
+                   "keep the input's channels (grey in, grey out)")
+        t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
+               "warps keep the input's size (content that leaves the frame is cut off)")
+    got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)
+    error = affine_image_error(got, source, A, dsize)
+    if error <= IMAGE_TOLERANCE:
+        nonblack = fill_fraction(got, outside)
+        if nonblack > FILL_TOLERANCE:
+            return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
+                                "pixels with no source pixel are not black.",
+                           hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)")
+        return passed(f"mean difference {error:.1f} grey levels on the covered area")
+    for mistake, wrong_A in (mistakes or {}).items():
+        if affine_image_error(got, source, wrong_A, dsize) <= IMAGE_TOLERANCE:
+            t.fail(f"{what} is wrong: it looks like {mistake}.")
+    t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
+           "(see the pictures).")
+
+
+def _fmt(matrix) -> str:
+    return np.array2string(np.asarray(matrix, float), precision=4, suppress_small=True)
+
+
+finite_floats = lambda lo, hi: st.floats(lo, hi, allow_nan=False, allow_infinity=False)  # noqa: E731
+
+
+# ================================================================== ex1 translation
+ex1 = lab.exercise("ex1", "Translation", functions=[
+    "translation_matrix(tx, ty)", "translate(image, tx=100, ty=50)"])
+
+
+@ex1.check("translation_matrix(100, 50)", points=2)
+def translation_matrix_example(t):
+    judge_matrix(t, "translation_matrix(100, 50)", t.call("translation_matrix", 100, 50),
+                 truth.translation(100, 50), truth.translation_mistakes(100, 50))
+
+
+@ex1.check("translation_matrix for any tx, ty", points=2)
+def translation_matrix_property(t):
+    def holds(shift):
+        tx, ty = shift
+        judge_matrix(t, f"translation_matrix({tx!r}, {ty!r})", t.call("translation_matrix", tx, ty),
+                     truth.translation(tx, ty), truth.translation_mistakes(tx, ty))
+
+    t.for_all(st.tuples(finite_floats(-1000, 1000), finite_floats(-1000, 1000)), holds)
+
+
+@ex1.check("translate(image) with the defaults tx=100, ty=50", points=4)
+def translate_defaults(t):
+    source = photo("astronaut", (240, 180))
+    return judge_warp(t, "translate(image)", t.call("translate", source), source,
+                      truth.translation(100, 50), truth.translation_mistakes(100, 50))
+
+
+@ex1.check("translate keeps a grey image grey", points=2)
+def translate_grey(t):
+    source = photo("camera", (160, 120), grey=True)
+    return judge_warp(t, "translate(grey image, tx=-30, ty=20)",
+                      t.call("translate", source, tx=-30, ty=20), source,
+                      truth.translation(-30, 20), truth.translation_mistakes(-30, 20))
+
+
+# ================================================================== ex2 rotation
+ex2 = lab.exercise("ex2", "Rotation", functions=[
+    "rotation_matrix(angle_deg, center=(0.0, 0.0))", "rotate(image, angle_deg=45)"])
+
+
+@ex2.check("rotation_matrix(30) about the origin", points=2)
+def rotation_matrix_example(t):
+    judge_matrix(t, "rotation_matrix(30)", t.call("rotation_matrix", 30),
+                 truth.rotation(30), truth.rotation_mistakes(30, (0.0, 0.0)))
+
+
+@ex2.check("rotation_matrix equals cv2.getRotationMatrix2D for any angle and centre", points=3)
+def rotation_matrix_property(t):
+    def holds(case):
+        angle, center = case
+        what = f"rotation_matrix({angle!r}, center={center!r})"
+        judge_matrix(t, what, t.call("rotation_matrix", angle, center=center),
+                     truth.rotation(angle, center), truth.rotation_mistakes(angle, center))
+
+    centres = st.tuples(finite_floats(-300, 300), finite_floats(-300, 300))
+    t.for_all(st.tuples(finite_floats(-360, 360), centres), holds)
+
+
+@ex2.check("rotate(image) by the default 45 degrees about the centre", points=3)
+def rotate_default(t):
+    source = photo("astronaut", (200, 150))
+    centre = truth.image_centre(source.shape)
+    return judge_warp(t, "rotate(image)", t.call("rotate", source), source,
+                      truth.rotation(45, centre), truth.rotation_mistakes(45, centre))
+
+
+@ex2.check("rotate keeps a grey image grey and its size", points=2)
+def rotate_grey(t):
+    source = photo("camera", (160, 120), grey=True)
+    centre = truth.image_centre(source.shape)
+    return judge_warp(t, "rotate(grey image, angle_deg=-30)",
+                      t.call("rotate", source, angle_deg=-30), source,
+                      truth.rotation(-30, centre), truth.rotation_mistakes(-30, centre))
+
+
+# ================================================================== ex3 scaling
+ex3 = lab.exercise("ex3", "Scaling", functions=[
+    "scaling_matrix(sx, sy)", "scale(image, sx=1.5, sy=1.5)"])
+
+
+@ex3.check("scaling_matrix(1.5, 0.5)", points=2)
+def scaling_matrix_example(t):
+    judge_matrix(t, "scaling_matrix(1.5, 0.5)", t.call("scaling_matrix", 1.5, 0.5),
+                 truth.scaling(1.5, 0.5), truth.scaling_mistakes(1.5, 0.5))
+
+
+@ex3.check("scaling_matrix for any sx, sy", points=1)
+def scaling_matrix_property(t):
+    def holds(factors):
+        sx, sy = factors
+        judge_matrix(t, f"scaling_matrix({sx!r}, {sy!r})", t.call("scaling_matrix", sx, sy),
+                     truth.scaling(sx, sy), truth.scaling_mistakes(sx, sy))
+
+    t.for_all(st.tuples(finite_floats(0.1, 10), finite_floats(0.1, 10)), holds)
+
+
+@ex3.check("scale(image) with the defaults: 1.5x about the top-left corner, same size", points=4)
+def scale_default(t):
+    source = photo("coffee", (200, 150))
+    return judge_warp(t, "scale(image)", t.call("scale", source), source,
+                      truth.scaling(1.5, 1.5), truth.scaling_mistakes(1.5, 1.5, source.shape))
+
+
+@ex3.check("scale with different sx and sy", points=3)
+def scale_anisotropic(t):
+    source = photo("chelsea", (200, 150))
+    return judge_warp(t, "scale(image, sx=2.0, sy=0.8)", t.call("scale", source, sx=2.0, sy=0.8),
+                      source, truth.scaling(2.0, 0.8), truth.scaling_mistakes(2.0, 0.8, source.shape))
+
+
+# ================================================================== ex4 shearing
+ex4 = lab.exercise("ex4", "Shearing", functions=["shear_matrix(s)", "shear(image, s=0.5)"])
+
+
+@ex4.check("shear_matrix(0.5)", points=2)
+def shear_matrix_example(t):
+    judge_matrix(t, "shear_matrix(0.5)", t.call("shear_matrix", 0.5),
+                 truth.shear(0.5), truth.shear_mistakes(0.5))
+
+
+@ex4.check("shear_matrix for any s", points=1)
+def shear_matrix_property(t):
+    def holds(s):
+        judge_matrix(t, f"shear_matrix({s!r})", t.call("shear_matrix", s),
+                     truth.shear(s), truth.shear_mistakes(s))
+
+    t.for_all(finite_floats(-5, 5).filter(lambda s: abs(s) > 1e-3), holds)
+
+
+@ex4.check("shear(image) with the default s=0.5", points=4)
+def shear_default(t):
+    source = photo("astronaut", (200, 150))
+    return judge_warp(t, "shear(image)", t.call("shear", source), source,
+                      truth.shear(0.5), truth.shear_mistakes(0.5))
+
+
+@ex4.check("shear keeps a grey image grey", points=3)
+def shear_grey(t):
+    source = photo("camera", (160, 120), grey=True)
+    return judge_warp(t, "shear(grey image, s=0.3)", t.call("shear", source, s=0.3), source,
+                      truth.shear(0.3), truth.shear_mistakes(0.3))
+
+
+# ================================================================== ex5 affine from 3 points
+ex5 = lab.exercise("ex5", "Affine transformation from three points", functions=[
+    "affine_from_points(src, dst)", "warp_affine(image, A, dsize=None)"])
+
+
+def judge_affine_fit(t: Trial, what: str, got, expected):
+    judge_matrix(t, what, got, expected, truth.affine_mistakes(expected), shape=(2, 3))
+
+
+@ex5.check("affine_from_points on a worked example", points=2)
+def affine_from_points_example(t):
+    src = np.array([[0.0, 0.0], [100.0, 0.0], [0.0, 100.0]])
+    A = np.array([[0.9, -0.2, 30.0], [0.3, 1.1, 20.0]])
+    judge_affine_fit(t, "affine_from_points(src, dst)",
+                     t.call("affine_from_points", src, truth.apply_affine(A, src)), A)
+
+
+@ex5.check("affine_from_points recovers any affine map exactly", points=3)
+def affine_from_points_property(t):
+    def holds(seed):
+        rng = np.random.default_rng(seed)
+        A, src = truth.random_affine(rng), truth.triangle(rng)
+        judge_affine_fit(t, "affine_from_points(src, dst)",
+                         t.call("affine_from_points", src, truth.apply_affine(A, src)), A)
+
+    t.for_all(st.integers(0, 2**32 - 1), holds, max_examples=20,
+              describe=lambda seed: f"fixtures.lab07 triangle/affine from seed {seed}")
+
+
+@ex5.check("warp_affine(image, A) keeps the input size", points=3)
+def warp_affine_default(t):
+    source = photo("rocket", (200, 150))
+    A = np.array([[0.8, 0.3, 10.0], [-0.2, 0.9, 40.0]])
+    return judge_warp(t, "warp_affine(image, A)", t.call("warp_affine", source, A), source, A,
+                      truth.affine_mistakes(A))
+
+
+@ex5.check("warp_affine with dsize=(width, height)", points=2)
+def warp_affine_dsize(t):
+    source = photo("chelsea", (160, 120))
+    A = np.array([[1.2, 0.1, 5.0], [0.0, 1.1, -10.0]])
+    return judge_warp(t, "warp_affine(image, A, dsize=(220, 100))",
+                      t.call("warp_affine", source, A, dsize=(220, 100)), source, A,
+                      truth.affine_mistakes(A), dsize=(220, 100))
+
+
+# ================================================================== ex6 least squares
+ex6 = lab.exercise("ex6", "Least-squares affine transformation", functions=["affine_lstsq(src, dst)"])
+lab.forbid("affine_lstsq", "cv2.estimateAffine2D", "cv2.estimateAffinePartial2D")
+
+
+def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
+    what = f"affine_lstsq(src, dst) with N={len(src)}"
+    got = t.expect_array(t.call("affine_lstsq", src, dst), what, shape=(2, 3), kind="iuf", finite=True)
+    if show:
+        from ..pictures import svg_points
+
+        t.svg("where your fit sends the source points", svg_points({
+            "target points (noisy)": dst,
+            "least-squares fit": truth.apply_affine(least_squares, src),
+            "your fit": truth.apply_affine(got, src)}))
+    scale = max(1.0, float(np.abs(least_squares).max()))
+    if max_abs_error(got, least_squares) <= 1e-6 * scale:
+        return
+    mistakes = truth.affine_mistakes(least_squares)
+    if len(src) > 3:
+        mistakes["only the first three points are used; least squares uses all N"] = \
+            truth.least_squares_affine(src[:3], dst[:3])
+    mistake = closest(got, mistakes, max_abs_error, 1e-3 * scale)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    residual = np.linalg.norm(truth.apply_affine(got, src) - dst, axis=1).mean()
+    best = np.linalg.norm(truth.apply_affine(least_squares, src) - dst, axis=1).mean()
+    t.fail(f"{what} is not the least-squares fit: mean residual {residual:.3g} px "
+           f"where the best fit has {best:.3g} px.")
+
+
+@ex6.check("affine_lstsq on exact correspondences (N=3 and N=12)", points=3)
+def lstsq_exact(t):
+    rng = np.random.default_rng(7)
+    A = truth.random_affine(rng)
+    for n in (3, 12):
+        src = rng.uniform(0, 400, size=(n, 2))
+        judge_lstsq(t, src, truth.apply_affine(A, src), A)
+
+
+@ex6.check("affine_lstsq is the least-squares fit to noisy points", points=4)
+def lstsq_noisy(t):
+    src, dst, _, least_squares = truth.noisy_correspondences(seed=11, n=40, noise=2.0)
+    judge_lstsq(t, src, dst, least_squares, show=True)
+
+
+@ex6.check("affine_lstsq property: any noisy affine problem", points=3)
+def lstsq_property(t):
+    def holds(case):
+        seed, n = case
+        src, dst, _, least_squares = truth.noisy_correspondences(seed, n, noise=1.5)
+        judge_lstsq(t, src, dst, least_squares)
+
+    t.for_all(st.tuples(st.integers(0, 2**32 - 1), st.integers(4, 60)), holds, max_examples=15,
+              describe=lambda c: f"fixtures.lab07.noisy_correspondences(seed={c[0]}, n={c[1]})")

@@ -1,0 +1,115 @@
+"""Pictures for feedback: PNG encoding, difference heat maps, point plots (SVG)."""
+
+from __future__ import annotations
+
+import base64
+import html
+
+import cv2
+import numpy as np
+
+MIN_SIDE = 160  # small images are enlarged (nearest neighbour) so pixels stay visible
+
+
+def as_displayable(image) -> np.ndarray:
+    """Any numeric 2-D/3-D array as a uint8 image that a browser can show."""
+    image = np.asarray(image)
+    if image.ndim == 3 and image.shape[2] == 1:
+        image = image[:, :, 0]
+    if image.ndim not in (2, 3) or (image.ndim == 3 and image.shape[2] not in (3, 4)):
+        raise ValueError(f"cannot display an array of shape {image.shape}")
+    if image.dtype != np.uint8:
+        finite = np.nan_to_num(image.astype(np.float64), nan=0.0, posinf=0.0, neginf=0.0)
+        if finite.min() >= 0 and finite.max() <= 255 and image.dtype.kind in "iub":
+            image = finite.astype(np.uint8)
+        else:
+            lo, hi = float(finite.min()), float(finite.max())
+            image = ((finite - lo) * (255.0 / (hi - lo if hi > lo else 1.0))).astype(np.uint8)
+    if 0 < min(image.shape[:2]) < MIN_SIDE:
+        factor = int(np.ceil(MIN_SIDE / min(image.shape[:2])))
+        image = cv2.resize(image, None, fx=factor, fy=factor, interpolation=cv2.INTER_NEAREST)
+    return image
+
+
+def png_base64(image) -> str:
+    """Encode an image (BGR or grey) as base64 PNG text for a data: URI."""
+    ok, data = cv2.imencode(".png", as_displayable(image))
+    if not ok:
+        raise ValueError("PNG encoding failed")
+    return base64.b64encode(data.tobytes()).decode("ascii")
+
+
+def difference_heatmap(expected, got, valid=None, full_scale: float = 64.0) -> np.ndarray:
+    """Colour-coded |expected - got| (dark = equal, bright = differ); grey outside ``valid``."""
+    a = np.asarray(expected, dtype=np.float32)
+    b = np.asarray(got, dtype=np.float32)
+    diff = np.abs(a - b)
+    if diff.ndim == 3:
+        diff = diff.max(axis=2)
+    scaled = np.clip(diff * (255.0 / full_scale), 0, 255).astype(np.uint8)
+    heat = cv2.applyColorMap(scaled, cv2.COLORMAP_INFERNO)
+    if valid is not None:
+        heat[~np.asarray(valid, dtype=bool)] = (96, 96, 96)
+    return heat
+
+
+def side_by_side(*images, gap: int = 4) -> np.ndarray:
+    """Images next to each other on a black strip (3 channels)."""
+    tiles = [cv2.cvtColor(i, cv2.COLOR_GRAY2BGR) if i.ndim == 2 else i
+             for i in (as_displayable(i) for i in images)]
+    height = max(t.shape[0] for t in tiles)
+    padded = []
+    for t in tiles:
+        pad = np.zeros((height, t.shape[1] + gap, 3), np.uint8)
+        pad[: t.shape[0], : t.shape[1]] = t
+        padded.append(pad)
+    return np.hstack(padded)[:, :-gap]
+
+
+def svg_points(series: dict[str, np.ndarray], width: int = 360, height: int = 300,
+               flip_y: bool = True, lines=()) -> str:
+    """A scatter plot of 2-D point sets as inline SVG.
+
+    Parameters
+    ----------
+    series : dict of label -> (N, 2) float array
+        At most four sets, drawn as circles in distinct colours with a legend.
+    flip_y : bool
+        Draw y downwards, as in image coordinates.
+    lines : iterable of ((x0, y0), (x1, y1))
+        Segments drawn in grey, e.g. from the true to the student's point.
+    """
+    colours = ["#1b9e77", "#d95f02", "#7570b3", "#e7298a"]
+    data = [np.asarray(p, float).reshape(-1, 2) for p in series.values()]
+    finite = np.vstack([p[np.all(np.isfinite(p), axis=1)] for p in data] + [np.zeros((0, 2))])
+    if len(finite) == 0:
+        finite = np.array([[0.0, 0.0], [1.0, 1.0]])
+    lo, hi = finite.min(axis=0), finite.max(axis=0)
+    span = np.where(hi - lo > 0, hi - lo, 1.0)
+    margin, legend = 16, 18 * len(series)
+    scale = min((width - 2 * margin) / span[0], (height - 2 * margin - legend) / span[1])
+
+    def xy(p):
+        x = margin + (p[0] - lo[0]) * scale
+        y = (p[1] - lo[1]) * scale
+        y = legend + margin + (y if flip_y else (span[1] * scale - y))
+        return x, y
+
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {width} {height}" '
+             f'width="{width}" height="{height}" role="img">',
+             f'<rect width="{width}" height="{height}" fill="#fff" stroke="#ccc"/>']
+    for (a, b) in lines:
+        if np.all(np.isfinite(a)) and np.all(np.isfinite(b)):
+            (x0, y0), (x1, y1) = xy(a), xy(b)
+            parts.append(f'<line x1="{x0:.1f}" y1="{y0:.1f}" x2="{x1:.1f}" y2="{y1:.1f}" stroke="#999"/>')
+    for i, ((label, _), points) in enumerate(zip(series.items(), data)):
+        colour = colours[i % len(colours)]
+        for p in points[np.all(np.isfinite(points), axis=1)][:2000]:
+            x, y = xy(p)
+            parts.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="{3 if i == 0 else 2}" '
+                         f'fill="{colour if i else "none"}" stroke="{colour}"/>')
+        parts.append(f'<circle cx="{margin}" cy="{12 + 18 * i}" r="4" fill="{colour}"/>'
+                     f'<text x="{margin + 10}" y="{16 + 18 * i}" font-size="12" '
+                     f'font-family="sans-serif">{html.escape(label)} ({len(points)})</text>')
+    parts.append("</svg>")
+    return "".join(parts)

@@ -1,0 +1,149 @@
+"""Labs, exercises and checks, and how lab suites register themselves.
+
+The engine knows no lab. A lab suite (``autograder/labs/lab07.py``) declares::
+
+    lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
+    ex1 = lab.exercise("ex1", "Translation",
+                       functions=["translation_matrix(tx, ty)",
+                                  "translate(image, tx=100, ty=50)"])
+
+    @ex1.check("the lab sheet's matrix", points=2)
+    def sheet_matrix(t):
+        ...
+
+Hidden checks live in ``autograder/labs/hidden/`` and add themselves to the same
+exercises with ``hidden=True``; the student bundle ships without that folder.
+Third-party suites can register through the ``autograder.labs`` entry-point group.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+import re
+from dataclasses import dataclass, field
+from importlib import metadata
+from typing import Callable
+
+REGISTRY: dict[str, "Lab"] = {}
+
+
+class SelectionError(ValueError):
+    """A selector like ``lab07.ex9`` names nothing that exists."""
+
+
+@dataclass
+class Check:
+    """One graded check: ``func(t)`` inspects the student's functions through ``t``."""
+
+    name: str
+    points: float
+    func: Callable
+    exercise: "Exercise"
+    hidden: bool = False
+    timeout: float | None = None
+
+    @property
+    def id(self) -> str:
+        return f"{self.exercise.id}::{self.func.__name__}"
+
+
+@dataclass
+class Exercise:
+    lab: "Lab"
+    key: str
+    title: str
+    signatures: dict[str, str]
+    checks: list[Check] = field(default_factory=list)
+
+    @property
+    def id(self) -> str:
+        return f"{self.lab.key}.{self.key}"
+
+    def check(self, name: str, points: float, *, hidden: bool = False, timeout: float | None = None):
+        """Decorator registering a check worth ``points`` on this exercise."""
+        if points <= 0:
+            raise ValueError(f"{self.id}: check {name!r} needs positive points")
+
+        def register(func):
+            if any(c.name == name for c in self.checks):
+                raise ValueError(f"{self.id}: duplicate check name {name!r}")
+            self.checks.append(Check(name, float(points), func, self, hidden, timeout))
+            return func
+
+        return register
+
+    def max_score(self, include_hidden: bool = True) -> float:
+        return sum(c.points for c in self.checks if include_hidden or not c.hidden)
+
+
+@dataclass
+class Lab:
+    key: str
+    module: str
+    title: str
+    exercises: dict[str, Exercise] = field(default_factory=dict)
+    forbidden: dict[str, tuple[str, ...]] = field(default_factory=dict)
+
+    def __post_init__(self):
+        if not re.fullmatch(r"lab\d\d", self.key):
+            raise ValueError(f"lab key must look like 'lab07', got {self.key!r}")
+        if self.key in REGISTRY:
+            raise ValueError(f"lab {self.key} is registered twice")
+        REGISTRY[self.key] = self
+
+    def exercise(self, key: str, title: str, functions: list[str]) -> Exercise:
+        """Declare an exercise and the student functions it grades, as signatures."""
+        if key in self.exercises:
+            return self.exercises[key]
+        signatures = {sig.split("(", 1)[0].strip(): sig for sig in functions}
+        self.exercises[key] = Exercise(self, key, title, signatures)
+        return self.exercises[key]
+
+    def forbid(self, function: str, *library_functions: str):
+        """Inside ``function``, calling any of ``library_functions`` fails the check."""
+        self.forbidden[function] = self.forbidden.get(function, ()) + library_functions
+
+    def signature(self, function: str) -> str:
+        for exercise in self.exercises.values():
+            if function in exercise.signatures:
+                return exercise.signatures[function]
+        return f"{function}(...)"
+
+
+def discover() -> dict[str, Lab]:
+    """Import every lab suite: ``autograder.labs.*``, then hidden checks, then plug-ins."""
+    from . import labs
+
+    for package_name in ("autograder.labs", "autograder.labs.hidden"):
+        try:
+            package = importlib.import_module(package_name)
+        except ModuleNotFoundError:
+            continue  # the student bundle has no hidden checks
+        for info in pkgutil.iter_modules(package.__path__):
+            if not info.ispkg and not info.name.startswith("_"):
+                importlib.import_module(f"{package_name}.{info.name}")
+    for entry in metadata.entry_points(group="autograder.labs"):
+        entry.load()
+    del labs
+    return REGISTRY
+
+
+def select(selectors=(), include_hidden: bool = True) -> list[Exercise]:
+    """Exercises named by selectors like ``lab07`` or ``lab07.ex2`` (all when empty)."""
+    labs = sorted(discover().values(), key=lambda lab: lab.key)
+    every = [ex for lab in labs for ex in lab.exercises.values()
+             if ex.max_score(include_hidden) > 0]
+    if not selectors:
+        return every
+    chosen = []
+    for selector in selectors:
+        selector = selector.strip().lower()
+        matches = [ex for ex in every if ex.id == selector or ex.lab.key == selector
+                   or ex.lab.module == selector]
+        if not matches:
+            available = ", ".join(lab.key for lab in labs) or "none"
+            raise SelectionError(f"nothing to grade matches {selector!r} "
+                                 f"(labs: {available}; exercises look like lab07.ex2)")
+        chosen += [ex for ex in matches if ex not in chosen]
+    return chosen

@@ -1,0 +1,154 @@
+"""The results model: one JSON-serialisable tree that every report renders.
+
+Keys other tools rely on (see DESIGN.md, "Results and reports")::
+
+    {"total": float, "max_total": float,
+     "exercises": [{"id": "lab08.ex2", "score": float, "max_score": float,
+                    "checks": [{"name": str, "passed": bool, "score": float,
+                                "max_score": float, "message": str}]}]}
+
+Timing fields are named ``seconds`` / ``student_seconds`` everywhere, so two
+gradings of the same submission compare equal once those are dropped.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+# Check statuses, in the words reports use.
+PASSED, PARTIAL, FAILED, NOT_IMPLEMENTED, ERROR = (
+    "passed", "partial", "failed", "not implemented", "grader error")
+TIMING_KEYS = {"seconds", "student_seconds"}
+
+
+@dataclass
+class Artifact:
+    """A picture for the feedback page.
+
+    ``kind`` is ``"images"`` (``items``: ``{"label", "png"}`` with base64 PNG data)
+    or ``"svg"`` (``items``: ``{"label", "svg"}`` with inline SVG markup).
+    """
+
+    kind: str
+    title: str
+    items: list[dict] = field(default_factory=list)
+    caption: str = ""
+
+
+@dataclass
+class CheckResult:
+    name: str
+    score: float
+    max_score: float
+    status: str
+    message: str = ""
+    hint: str = ""
+    hidden: bool = False
+    output: str = ""
+    traceback: str = ""
+    artifacts: list[Artifact] = field(default_factory=list)
+    seconds: float = 0.0
+    student_seconds: float = 0.0
+
+    @property
+    def passed(self) -> bool:
+        return self.status == PASSED
+
+    def to_dict(self) -> dict:
+        data = asdict(self)
+        data["passed"] = self.passed
+        return data
+
+
+@dataclass
+class ExerciseResult:
+    id: str
+    title: str
+    functions: list[str]
+    checks: list[CheckResult] = field(default_factory=list)
+    message: str = ""
+
+    @property
+    def score(self) -> float:
+        return round(sum(c.score for c in self.checks), 6)
+
+    @property
+    def max_score(self) -> float:
+        return round(sum(c.max_score for c in self.checks), 6)
+
+    def to_dict(self) -> dict:
+        return {"id": self.id, "title": self.title, "functions": self.functions,
+                "score": self.score, "max_score": self.max_score, "message": self.message,
+                "checks": [c.to_dict() for c in self.checks]}
+
+
+@dataclass
+class GradingResult:
+    submission: str
+    submission_hash: str
+    grader_version: str
+    exercises: list[ExerciseResult] = field(default_factory=list)
+    seconds: float = 0.0
+    student_seconds: float = 0.0
+    hidden_included: bool = True
+
+    @property
+    def total(self) -> float:
+        return round(sum(e.score for e in self.exercises), 6)
+
+    @property
+    def max_total(self) -> float:
+        return round(sum(e.max_score for e in self.exercises), 6)
+
+    def to_dict(self) -> dict:
+        return {"submission": self.submission, "submission_hash": self.submission_hash,
+                "grader_version": self.grader_version, "total": self.total,
+                "max_total": self.max_total, "hidden_included": self.hidden_included,
+                "seconds": self.seconds, "student_seconds": self.student_seconds,
+                "exercises": [e.to_dict() for e in self.exercises]}
+
+    @classmethod
+    def from_dict(cls, data: dict) -> "GradingResult":
+        exercises = []
+        for e in data["exercises"]:
+            checks = []
+            for c in e["checks"]:
+                c = {k: v for k, v in c.items() if k != "passed"}
+                c["artifacts"] = [Artifact(**a) for a in c.get("artifacts", [])]
+                checks.append(CheckResult(**c))
+            exercises.append(ExerciseResult(e["id"], e["title"], e.get("functions", []),
+                                            checks, e.get("message", "")))
+        return cls(data["submission"], data["submission_hash"], data["grader_version"],
+                   exercises, data.get("seconds", 0.0), data.get("student_seconds", 0.0),
+                   data.get("hidden_included", True))
+
+
+def without_timings(data):
+    """A copy of a results dict with every timing field removed (for comparisons)."""
+    if isinstance(data, dict):
+        return {k: without_timings(v) for k, v in data.items() if k not in TIMING_KEYS}
+    if isinstance(data, list):
+        return [without_timings(v) for v in data]
+    return data
+
+
+def write_atomically(path, text: str) -> None:
+    """Write ``text`` to ``path`` via a temporary file and a rename: never half a file."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def write_json(result: GradingResult, path) -> None:
+    write_atomically(path, json.dumps(result.to_dict(), indent=1, allow_nan=False) + "\n")

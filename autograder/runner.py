@@ -1,0 +1,122 @@
+"""Grading a submission: discovery, execution and scoring, kept apart from reporting.
+
+:func:`grade` selects exercises from the registry, loads the submission, starts
+one sandboxed worker, runs every check in the grader's process and returns a
+:class:`~autograder.results.GradingResult`. It never raises because of the
+submission; a failure inside a check is recorded as a grader error for that check.
+"""
+
+from __future__ import annotations
+
+import time
+import traceback
+from typing import Callable
+
+from . import __version__
+from .checks import Fail, StudentFailure, Trial, Verdict
+from .registry import Check, Exercise, select
+from .results import (ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
+                      ExerciseResult, GradingResult)
+from .sandbox import Limits, Sandbox
+from .submission import load_submission
+
+
+def grade(submission_path, selectors=(), *, limits: Limits | None = None,
+          include_hidden: bool = True,
+          on_check: Callable[[Exercise, CheckResult], None] | None = None) -> GradingResult:
+    """Grade the submission at ``submission_path``.
+
+    Parameters
+    ----------
+    submission_path : path
+        Folder, ``.py``, ``.zip`` or ``.ipynb`` (see :mod:`autograder.submission`).
+    selectors : list of str
+        ``lab07`` or ``lab07.ex2`` style names; all exercises when empty.
+    limits : Limits, optional
+        Sandbox limits.
+    include_hidden : bool
+        Run hidden checks (the instructor's copy and the container do).
+    on_check : callable, optional
+        Called after every check, e.g. to advance a progress bar.
+
+    Raises
+    ------
+    SelectionError, SubmissionError
+        For a selector that names nothing, or a path that is not a submission.
+    """
+    started = time.perf_counter()
+    exercises = select(selectors, include_hidden)
+    modules = sorted({ex.lab.module for ex in exercises})
+    with load_submission(submission_path, modules) as submission:
+        result = GradingResult(submission.name, submission.content_hash, __version__,
+                               hidden_included=include_hidden)
+        with Sandbox(submission.path, limits) as sandbox:
+            timed_out: dict[str, int] = {}
+            for exercise in exercises:
+                checks = [c for c in exercise.checks if include_hidden or not c.hidden]
+                result.exercises.append(
+                    _grade_exercise(sandbox, exercise, checks, timed_out, on_check))
+            result.student_seconds = round(sandbox.student_seconds, 6)
+    result.seconds = round(time.perf_counter() - started, 6)
+    return result
+
+
+def _grade_exercise(sandbox, exercise, checks, timed_out, on_check) -> ExerciseResult:
+    functions = list(exercise.signatures.values())
+    out = ExerciseResult(exercise.id, exercise.title, functions)
+    imported = sandbox.import_module(exercise.lab.module)
+    if not imported.ok:
+        # A missing or broken module: every check scores 0 with the same message.
+        out.message = imported.message
+        for check in checks:
+            out.checks.append(CheckResult(check.name, 0.0, check.points, FAILED,
+                                          imported.message, hidden=check.hidden,
+                                          traceback=imported.traceback, output=imported.output))
+            if on_check:
+                on_check(exercise, out.checks[-1])
+        return out
+    for check in checks:
+        out.checks.append(run_check(sandbox, check, timed_out))
+        if on_check:
+            on_check(exercise, out.checks[-1])
+    if out.checks and all(c.status == NOT_IMPLEMENTED for c in out.checks):
+        out.message = "not implemented yet"
+    return out
+
+
+def run_check(sandbox: Sandbox, check: Check, timed_out: dict[str, int]) -> CheckResult:
+    """Run one check and turn however it ends into a scored :class:`CheckResult`."""
+    trial = Trial(sandbox, check, timed_out)
+    started = time.perf_counter()
+    tb = ""
+    try:
+        verdict = check.func(trial)
+        if verdict is None:
+            verdict = Verdict(1.0)
+        elif not isinstance(verdict, Verdict):
+            raise TypeError(f"check returned {type(verdict).__name__}, not a Verdict")
+        status = PASSED if verdict.fraction >= 1.0 else (PARTIAL if verdict.fraction > 0 else FAILED)
+    except Fail as failure:
+        verdict, status = Verdict(0.0, failure.message, failure.hint), FAILED
+    except StudentFailure as failure:
+        verdict = Verdict(0.0, failure.message)
+        status = NOT_IMPLEMENTED if failure.outcome.kind == "not_implemented" else FAILED
+        tb = failure.outcome.traceback
+    except Exception as exc:  # noqa: BLE001 - a bug in the grader must not stop grading
+        verdict, status = Verdict(0.0, f"grader error in this check ({type(exc).__name__}: {exc}); "
+                                       "the rest was graded - please tell your instructor"), ERROR
+        tb = ""
+        _log_grader_error(check, exc)
+    return CheckResult(
+        name=check.name, score=round(verdict.fraction * check.points, 6), max_score=check.points,
+        status=status, message=verdict.message, hint=verdict.hint, hidden=check.hidden,
+        output="\n".join(trial.outputs)[-4000:], traceback=tb, artifacts=trial.artifacts,
+        seconds=round(time.perf_counter() - started, 6),
+        student_seconds=round(trial.student_seconds, 6))
+
+
+def _log_grader_error(check: Check, exc: Exception):
+    import logging
+
+    logging.getLogger("autograder").error(
+        "grader error in %s:\n%s", check.id, "".join(traceback.format_exception(exc)))

@@ -1,0 +1,252 @@
+"""Plain-data transport between the grader and the sandboxed worker.
+
+Values cross the process boundary as one *frame*: a JSON header describing the
+value tree, followed by the raw bytes of every array in it. Decoding builds only
+``None``, ``bool``, ``int``, ``float``, ``complex``, ``str``, ``list``,
+``tuple``, ``dict`` (string keys) and exact ``numpy.ndarray`` objects of numeric
+or boolean dtype. Nothing in a frame can name a class, a function or a module,
+so decoding can never execute code (this is why we do not use pickle), and an
+``ndarray`` subclass or an object whose ``__eq__`` always says yes cannot come
+back.
+
+This module imports only the standard library and NumPy: the worker runs a copy
+of it next to the student's code.
+
+Frame layout::
+
+    b"AGT1" | header length (8 bytes, big endian) | header JSON | array bytes...
+
+Examples
+--------
+>>> import numpy as np
+>>> frame = encode({"H": np.eye(3), "ok": True})
+>>> decode(frame)["H"].shape
+(3, 3)
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import struct
+
+import numpy as np
+
+MAGIC = b"AGT1"
+PREFIX = struct.Struct(">4sQ")
+DEFAULT_MAX_BYTES = 256 * 1024 * 1024
+MAX_DEPTH = 64
+MAX_NODES = 1_000_000
+
+# Dtypes that can cross: booleans and fixed-size numbers, in either byte order.
+_ALLOWED_KINDS = {"b", "i", "u", "f", "c"}
+
+
+class TransportError(ValueError):
+    """A value cannot be encoded, or a frame is malformed or too large."""
+
+
+# --------------------------------------------------------------------- encoding
+def encode(value, max_bytes: int = DEFAULT_MAX_BYTES) -> bytes:
+    """Encode plain data into one frame.
+
+    Parameters
+    ----------
+    value : plain data
+        ``None``, bool, int, float, complex, str, NumPy scalars, exact
+        ``numpy.ndarray`` of numeric/bool dtype, and lists, tuples and
+        string-keyed dicts of those.
+    max_bytes : int
+        Largest frame allowed.
+
+    Raises
+    ------
+    TransportError
+        For any other type (the message names it), or a frame over ``max_bytes``.
+    """
+    buffers: list[bytes] = []
+    size = [0]
+
+    def node(v, depth):
+        if depth > MAX_DEPTH:
+            raise TransportError(f"returned a value nested deeper than {MAX_DEPTH} levels")
+        t = type(v)
+        if v is None or t is bool or t is str:
+            return v
+        if t is int:
+            if abs(v) >= 2**63:
+                return {"big": str(v)}
+            return v
+        if t is float:
+            return _float_node(v)
+        if t is complex:
+            return {"c": [_float_node(v.real), _float_node(v.imag)]}
+        if isinstance(v, np.generic) and type(v).__module__ == "numpy":
+            if v.dtype.kind not in _ALLOWED_KINDS:
+                raise TransportError(f"returned a NumPy scalar of dtype {v.dtype}; return a number")
+            return node(v.item(), depth + 1)
+        if t is np.ndarray:
+            if v.dtype.kind not in _ALLOWED_KINDS:
+                raise TransportError(
+                    f"returned an array of dtype {v.dtype}; use a numeric or bool dtype"
+                )
+            data = np.ascontiguousarray(v).tobytes()
+            size[0] += len(data)
+            if size[0] > max_bytes:
+                raise TransportError(f"returned more than {max_bytes // 2**20} MiB")
+            buffers.append(data)
+            return {"a": len(buffers) - 1, "dtype": v.dtype.str, "shape": list(v.shape)}
+        if isinstance(v, np.ndarray):
+            raise TransportError(
+                f"returned a {t.__module__}.{t.__qualname__} (an ndarray subclass); "
+                "return a plain numpy.ndarray (np.asarray(x))"
+            )
+        if t is list:
+            return {"l": [node(x, depth + 1) for x in v]}
+        if t is tuple:
+            return {"t": [node(x, depth + 1) for x in v]}
+        if t is dict:
+            items = []
+            for k, x in v.items():
+                if type(k) is not str:
+                    raise TransportError("returned a dict with non-string keys")
+                items.append([k, node(x, depth + 1)])
+            return {"d": items}
+        raise TransportError(
+            f"returned a {t.__module__}.{t.__qualname__}; expected arrays, numbers, "
+            "strings, or lists/tuples/dicts of those"
+        )
+
+    header = json.dumps(node(value, 0), separators=(",", ":")).encode()
+    total = PREFIX.size + len(header) + size[0]
+    if total > max_bytes:
+        raise TransportError(f"returned more than {max_bytes // 2**20} MiB")
+    return b"".join([PREFIX.pack(MAGIC, len(header)), header, *buffers])
+
+
+def _float_node(x: float):
+    # JSON has no NaN/inf: tag them so the header stays strict JSON.
+    if math.isfinite(x):
+        return x
+    return {"f": "nan" if math.isnan(x) else ("inf" if x > 0 else "-inf")}
+
+
+# --------------------------------------------------------------------- decoding
+def decode(frame: bytes, max_bytes: int = DEFAULT_MAX_BYTES):
+    """Decode one frame made by :func:`encode`, trusting nothing in it.
+
+    Raises
+    ------
+    TransportError
+        If the frame is malformed, inconsistent or larger than ``max_bytes``.
+    """
+    if not isinstance(frame, (bytes, bytearray, memoryview)):
+        raise TransportError("frame must be bytes")
+    frame = bytes(frame)
+    if len(frame) > max_bytes:
+        raise TransportError("frame too large")
+    if len(frame) < PREFIX.size:
+        raise TransportError("frame truncated")
+    magic, header_len = PREFIX.unpack_from(frame)
+    if magic != MAGIC:
+        raise TransportError("bad frame magic")
+    body_start = PREFIX.size + header_len
+    if body_start > len(frame):
+        raise TransportError("frame header truncated")
+    try:
+        tree = json.loads(frame[PREFIX.size:body_start], parse_constant=_reject_constant)
+    except (ValueError, RecursionError) as exc:
+        raise TransportError(f"bad frame header: {exc}") from None
+
+    offset = [body_start]
+    expected_index = [0]
+    nodes = [0]
+
+    def value(n, depth):
+        nodes[0] += 1
+        if depth > MAX_DEPTH or nodes[0] > MAX_NODES:
+            raise TransportError("frame too deeply nested or too large")
+        if n is None or type(n) in (bool, str, float):
+            return n
+        if type(n) is int:
+            if abs(n) >= 2**63:
+                raise TransportError("integer out of range")
+            return n
+        if type(n) is not dict or len(n) == 0:
+            raise TransportError("bad node")
+        if "a" in n:
+            return array(n)
+        if len(n) != 1:
+            raise TransportError("bad node")
+        (tag, body), = n.items()
+        if tag == "l" and type(body) is list:
+            return [value(x, depth + 1) for x in body]
+        if tag == "t" and type(body) is list:
+            return tuple(value(x, depth + 1) for x in body)
+        if tag == "d" and type(body) is list:
+            out = {}
+            for item in body:
+                if type(item) is not list or len(item) != 2 or type(item[0]) is not str:
+                    raise TransportError("bad dict item")
+                out[item[0]] = value(item[1], depth + 1)
+            return out
+        if tag == "f" and body in ("nan", "inf", "-inf"):
+            return float(body)
+        if tag == "c" and type(body) is list and len(body) == 2:
+            re, im = (value(x, depth + 1) for x in body)
+            if type(re) not in (float, int) or type(im) not in (float, int):
+                raise TransportError("bad complex")
+            return complex(re, im)
+        if tag == "big" and type(body) is str and body.lstrip("-").isdigit() and len(body) < 400:
+            return int(body)
+        raise TransportError("bad node")
+
+    def array(n):
+        if set(n) != {"a", "dtype", "shape"}:
+            raise TransportError("bad array node")
+        index, dtype_str, shape = n["a"], n["dtype"], n["shape"]
+        if type(index) is not int or index != expected_index[0]:
+            raise TransportError("arrays out of order")
+        expected_index[0] += 1
+        if type(dtype_str) is not str or len(dtype_str) > 8:
+            raise TransportError("bad dtype")
+        try:
+            dtype = np.dtype(dtype_str)
+        except TypeError:
+            raise TransportError("bad dtype") from None
+        if dtype.kind not in _ALLOWED_KINDS or dtype.str != dtype_str or dtype.fields is not None:
+            raise TransportError(f"dtype {dtype_str!r} not allowed")
+        if type(shape) is not list or len(shape) > 32:
+            raise TransportError("bad shape")
+        count = 1
+        for s in shape:
+            if type(s) is not int or s < 0:
+                raise TransportError("bad shape")
+            count *= s
+        nbytes = count * dtype.itemsize
+        start = offset[0]
+        if nbytes > len(frame) - start:
+            raise TransportError("array data truncated")
+        offset[0] = start + nbytes
+        out = np.frombuffer(frame, dtype=dtype, count=count, offset=start).reshape(shape)
+        return np.array(out, copy=True)  # writeable, owns its data, exact ndarray
+
+    result = value(tree, 0)
+    if offset[0] != len(frame):
+        raise TransportError("trailing bytes after the last array")
+    return result
+
+
+def _reject_constant(name):
+    raise ValueError(f"non-standard JSON constant {name}")
+
+
+# ------------------------------------------------------------------ file streams
+def write_frame(fd: int, frame: bytes) -> None:
+    """Write a whole frame to a file descriptor (blocking)."""
+    import os
+
+    view = memoryview(frame)
+    while view:
+        written = os.write(fd, view)
+        view = view[written:]

@@ -1,0 +1,322 @@
+"""The sandboxed worker: imports student modules and calls one function per request.
+
+This file runs in its own process, as a copy placed in the submission's scratch
+directory next to a copy of ``transport.py``; it imports nothing else from the
+grader, so the worker never sees checks, fixtures or reference solutions.
+
+Protocol: the parent writes length-prefixed transport frames to the request pipe
+and reads one length-prefixed frame per request from the response pipe. A
+request is a dict ``{"op": "import" | "call", ...}``; the response is
+``{"ok": True, "value": ..., "seconds": float}`` or
+``{"ok": False, "kind": str, "message": str, "traceback": str, "seconds": float}``.
+The student's stdout and stderr go to a file the parent reads after each call.
+
+Usage (by the parent only)::
+
+    python -B worker.py REQUEST_FD RESPONSE_FD SUBMISSION_DIR OUTPUT_FILE LIMITS_JSON
+"""
+
+import importlib
+import json
+import os
+import resource
+import struct
+import sys
+import time
+import traceback
+
+_HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, _HERE)
+import transport  # noqa: E402  (the copy beside this file)
+
+sys.path.remove(_HERE)
+LENGTH = struct.Struct(">Q")
+
+
+class ForbiddenCall(BaseException):
+    """Raised by a tripwire; a BaseException so `except Exception` cannot swallow it."""
+
+
+# ------------------------------------------------------------------ set-up
+def apply_limits(limits):
+    """Resource limits of the worker process, set before any student code runs."""
+    def cap(which, value):
+        if value is None:
+            return
+        soft, hard = resource.getrlimit(which)
+        value = int(value)
+        if hard != resource.RLIM_INFINITY:
+            value = min(value, hard)
+        resource.setrlimit(which, (value, value))
+
+    cap(resource.RLIMIT_AS, limits.get("address_space"))
+    cap(resource.RLIMIT_FSIZE, limits.get("file_size"))
+    cap(resource.RLIMIT_CORE, 0)
+    cpu_total = limits.get("cpu_total")
+    if cpu_total is not None:
+        resource.setrlimit(resource.RLIMIT_CPU, (int(cpu_total), int(cpu_total) + 5))
+    extra = limits.get("extra_processes")
+    if extra is not None and hasattr(resource, "RLIMIT_NPROC"):
+        # RLIMIT_NPROC counts every task of this user, so allow what exists plus a margin.
+        cap(resource.RLIMIT_NPROC, _tasks_of_this_user() + int(extra))
+
+
+def _tasks_of_this_user():
+    uid, count = os.getuid(), 0
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/status") as status:
+                    fields = dict(line.split(":", 1) for line in status if ":" in line)
+                if int(fields["Uid"].split()[0]) == uid:
+                    count += int(fields["Threads"])
+            except (OSError, KeyError, ValueError):
+                pass
+    return count
+
+
+# ------------------------------------------------------------------ I/O
+def read_exact(fd, n):
+    chunks = []
+    while n:
+        chunk = os.read(fd, min(n, 1 << 20))
+        if not chunk:
+            raise EOFError
+        chunks.append(chunk)
+        n -= len(chunk)
+    return b"".join(chunks)
+
+
+def send(fd, message):
+    try:
+        frame = transport.encode(message)
+    except transport.TransportError as exc:
+        frame = transport.encode({"ok": False, "kind": "result_type", "message": str(exc),
+                                  "traceback": "", "seconds": message.get("seconds", 0.0)})
+    transport.write_frame(fd, LENGTH.pack(len(frame)) + frame)
+
+
+class CapturedOutput:
+    """Point fds 1 and 2 at a fresh output file for the duration of one request."""
+
+    def __init__(self, path):
+        self.path = path
+
+    def __enter__(self):
+        for stream in (sys.stdout, sys.stderr):
+            _flush(stream)
+        fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
+        os.dup2(fd, 1)
+        os.dup2(fd, 2)
+        os.close(fd)
+
+    def __exit__(self, *exc):
+        for stream in (sys.stdout, sys.stderr):
+            _flush(stream)
+
+
+def _flush(stream):
+    try:
+        stream.flush()
+    except Exception:
+        pass
+
+
+# ------------------------------------------------------------------ reporting
+def student_traceback(exc, submission_dir):
+    """The traceback restricted to frames from the student's files, paths relative."""
+    frames = [f for f in traceback.extract_tb(exc.__traceback__)
+              if os.path.abspath(f.filename).startswith(submission_dir + os.sep)]
+    lines = []
+    for f in frames:
+        rel = os.path.relpath(f.filename, submission_dir)
+        lines.append(f'  File "{rel}", line {f.lineno}, in {f.name}')
+        if f.line:
+            lines.append(f"    {f.line.strip()}")
+    head = "Traceback (your code):\n" if lines else ""
+    return head + "\n".join(lines + [_exception_line(exc)])
+
+
+def _exception_line(exc):
+    text = str(exc)
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+
+
+def failure(kind, message, tb="", seconds=0.0):
+    return {"ok": False, "kind": kind, "message": message, "traceback": tb, "seconds": seconds}
+
+
+# ------------------------------------------------------------------ the worker
+class Worker:
+    def __init__(self, submission_dir):
+        self.submission_dir = os.path.abspath(submission_dir)
+        self.modules = {}
+        self.forbidden_called = []
+
+    # -- import
+    def load(self, name):
+        if name in self.modules:
+            return self.modules[name]
+        path_py = os.path.join(self.submission_dir, name + ".py")
+        path_pkg = os.path.join(self.submission_dir, name, "__init__.py")
+        if not (os.path.isfile(path_py) or os.path.isfile(path_pkg)):
+            raise LookupError(name)
+        module = importlib.import_module(name)
+        self.modules[name] = module
+        return module
+
+    def handle_import(self, name):
+        start = time.perf_counter()
+        try:
+            self.load(name)
+        except LookupError:
+            return failure("missing_module", f"module {name}.py not found")
+        except SyntaxError as exc:
+            return failure("import_error", self._syntax_message(exc, name),
+                           seconds=time.perf_counter() - start)
+        except SystemExit as exc:
+            return failure("import_error",
+                           f"{name}.py called sys.exit({exc.code!r}) while being imported; "
+                           "remove top-level code that exits",
+                           seconds=time.perf_counter() - start)
+        except MemoryError as exc:
+            return failure("memory", f"{name}.py ran out of memory while being imported",
+                           student_traceback(exc, self.submission_dir),
+                           time.perf_counter() - start)
+        except BaseException as exc:  # noqa: BLE001 - anything the student's import raises
+            return failure("import_error",
+                           f"{name}.py failed to import: {_exception_line(exc)}",
+                           student_traceback(exc, self.submission_dir),
+                           time.perf_counter() - start)
+        return {"ok": True, "value": None, "seconds": time.perf_counter() - start}
+
+    def _syntax_message(self, exc, name):
+        filename = os.path.relpath(exc.filename, self.submission_dir) if exc.filename else name + ".py"
+        where = f"{filename}, line {exc.lineno}"
+        text = (exc.text or "").rstrip("\n")
+        pointer = ""
+        if text and exc.offset:
+            stripped = text.lstrip()
+            pointer = "\n    " + stripped + "\n    " + " " * max(exc.offset - 1 - (len(text) - len(stripped)), 0) + "^"
+        return f"{type(exc).__name__} in {where}: {exc.msg}{pointer}"
+
+    # -- call
+    def handle_call(self, request):
+        module_name, name = request["module"], request["function"]
+        try:
+            module = self.load(module_name)
+        except BaseException:  # the parent imports first; this is a fallback
+            return self.handle_import(module_name)
+        function = getattr(module, name, None)
+        if not callable(function):
+            return failure("missing_function", f"function {name} not found in {module_name}.py")
+        budget = request.get("cpu_seconds")
+        if budget:
+            used = resource.getrusage(resource.RUSAGE_SELF).ru_utime
+            soft, hard = resource.getrlimit(resource.RLIMIT_CPU)
+            new_soft = int(used + budget) + 1
+            if hard != resource.RLIM_INFINITY:
+                new_soft = min(new_soft, hard)
+            resource.setrlimit(resource.RLIMIT_CPU, (new_soft, hard))
+        self.forbidden_called = []
+        restore = self.install_tripwires(request.get("forbid") or [])
+        start = time.perf_counter()
+        try:
+            value = function(*request.get("args", ()), **request.get("kwargs", {}))
+        except ForbiddenCall as exc:
+            return failure("forbidden_call", self._forbidden_message(str(exc), name),
+                           seconds=time.perf_counter() - start)
+        except NotImplementedError:
+            return failure("not_implemented", f"{name}() is not implemented yet",
+                           seconds=time.perf_counter() - start)
+        except MemoryError as exc:
+            return failure("memory", f"{name}() ran out of memory",
+                           student_traceback(exc, self.submission_dir), time.perf_counter() - start)
+        except RecursionError as exc:
+            return failure("recursion", f"{name}() recursed too deeply (infinite recursion?)",
+                           student_traceback(exc, self.submission_dir), time.perf_counter() - start)
+        except SystemExit as exc:
+            return failure("exception", f"{name}() called sys.exit({exc.code!r})",
+                           student_traceback(exc, self.submission_dir), time.perf_counter() - start)
+        except BaseException as exc:  # noqa: BLE001
+            return failure("exception", f"{name}() raised {_exception_line(exc)}",
+                           student_traceback(exc, self.submission_dir), time.perf_counter() - start)
+        finally:
+            seconds = time.perf_counter() - start
+            restore()
+        if self.forbidden_called:  # the student swallowed the tripwire's exception
+            return failure("forbidden_call", self._forbidden_message(self.forbidden_called[0], name),
+                           seconds=seconds)
+        return {"ok": True, "value": value, "seconds": seconds}
+
+    @staticmethod
+    def _forbidden_message(qualified, function_name):
+        return (f"{function_name}() called {qualified}, which this exercise asks you "
+                "to implement yourself")
+
+    def install_tripwires(self, forbidden):
+        """Replace each forbidden library function by one that records and refuses the call.
+
+        Names the student imported directly (``from cv2 import findHomography``)
+        are replaced in the student's modules too. Returns an undo function.
+        """
+        undo = []
+        for qualified in forbidden:
+            module_name, _, attr = qualified.rpartition(".")
+            try:
+                library = importlib.import_module(module_name)
+                original = getattr(library, attr)
+            except (ImportError, AttributeError):
+                continue
+
+            def tripwire(*args, __name=qualified, **kwargs):
+                self.forbidden_called.append(__name)
+                raise ForbiddenCall(__name)
+
+            setattr(library, attr, tripwire)
+            undo.append((library, attr, original))
+            for module in self.modules.values():
+                for key, val in list(vars(module).items()):
+                    if val is original:
+                        setattr(module, key, tripwire)
+                        undo.append((module, key, original))
+
+        def restore():
+            for owner, attr, original in reversed(undo):
+                setattr(owner, attr, original)
+
+        return restore
+
+    def serve(self, request_fd, response_fd, output_path):
+        while True:
+            try:
+                length, = LENGTH.unpack(read_exact(request_fd, LENGTH.size))
+                request = transport.decode(read_exact(request_fd, length))
+            except EOFError:
+                return
+            with CapturedOutput(output_path):
+                if request.get("op") == "import":
+                    response = self.handle_import(request["module"])
+                elif request.get("op") == "call":
+                    response = self.handle_call(request)
+                else:
+                    response = failure("protocol", f"unknown op {request.get('op')!r}")
+            send(response_fd, response)
+
+
+def main(argv):
+    request_fd, response_fd = int(argv[1]), int(argv[2])
+    submission_dir, output_path = argv[3], argv[4]
+    apply_limits(json.loads(argv[5]))
+    os.environ.setdefault("MPLBACKEND", "Agg")
+    sys.path.insert(0, os.path.abspath(submission_dir))
+    import numpy  # noqa: F401  (warm: the first student call should not pay for it)
+    try:
+        import cv2  # noqa: F401
+    except ImportError:
+        pass
+    Worker(submission_dir).serve(request_fd, response_fd, output_path)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
