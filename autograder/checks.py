@@ -90,26 +90,32 @@ class Trial:
         StudentFailure
             If it raised, timed out, crashed, is missing or returned a forbidden type.
         """
-        if function in self._fatal:  # a fresh exception: re-raising one object grows its traceback
-            earlier = self._fatal[function]
-            raise StudentFailure(earlier.outcome, earlier.message)
+        failure = self._known_failure(function)
+        if failure is None:
+            outcome = self.sandbox.call(self.lab.module, function, args, kwargs,
+                                        timeout=self.check.timeout,
+                                        forbid=self.lab.forbidden.get(function, ()))
+            self.student_seconds += outcome.seconds
+            if outcome.output.strip():
+                self.outputs.append(outcome.output)
+            if outcome.ok:
+                return outcome.value
+            if outcome.kind == "timeout":
+                self._timed_out[function] = self._timed_out.get(function, 0) + 1
+            failure = StudentFailure(outcome, self._describe(function, outcome))
+            if outcome.kind in _FATAL_KINDS:
+                self._fatal[function] = failure
+        # One raise site, and a fresh exception each time: Hypothesis tells failures
+        # apart by where they are raised, and re-raising one object grows its traceback.
+        raise StudentFailure(failure.outcome, failure.message)
+
+    def _known_failure(self, function: str) -> StudentFailure | None:
+        if function in self._fatal:
+            return self._fatal[function]
         if self._timed_out.get(function, 0) >= 2:
-            raise StudentFailure(CallOutcome(ok=False, kind="timeout"),
-                                 f"{function}() timed out twice already; not called again")
-        outcome = self.sandbox.call(self.lab.module, function, args, kwargs,
-                                    timeout=self.check.timeout,
-                                    forbid=self.lab.forbidden.get(function, ()))
-        self.student_seconds += outcome.seconds
-        if outcome.output.strip():
-            self.outputs.append(outcome.output)
-        if outcome.ok:
-            return outcome.value
-        if outcome.kind == "timeout":
-            self._timed_out[function] = self._timed_out.get(function, 0) + 1
-        failure = StudentFailure(outcome, self._describe(function, outcome))
-        if outcome.kind in _FATAL_KINDS:
-            self._fatal[function] = failure
-        raise failure
+            return StudentFailure(CallOutcome(ok=False, kind="timeout"),
+                                  f"{function}() timed out twice already; not called again")
+        return None
 
     def _describe(self, function: str, outcome: CallOutcome) -> str:
         if outcome.kind == "missing_function":

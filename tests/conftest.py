@@ -1,0 +1,77 @@
+"""Shared helpers for the grader's own tests.
+
+The pattern every lab follows (see ``test_lab07.py``):
+
+- the reference solutions score full marks, the skeletons score 0 with
+  "not implemented yet" messages;
+- for each exercise, a realistic wrong implementation -- the reference module
+  with one function redefined (:func:`mutant`) -- loses points with the right
+  diagnosis.
+"""
+
+from __future__ import annotations
+
+import textwrap
+from pathlib import Path
+
+import pytest
+from hypothesis import settings
+
+from autograder.properties import GRADING
+from autograder.runner import grade
+
+settings.load_profile(GRADING)
+
+ROOT = Path(__file__).resolve().parents[1]
+REFERENCE = ROOT / "reference_solutions"
+SKELETON = ROOT / "assignments"
+
+
+def mutant(tmp_path: Path, module: str, source: str, base: Path = REFERENCE) -> Path:
+    """A submission: ``base``'s module with ``source`` appended (its ``def``s win).
+
+    Functions of the module that call a redefined function use the new one,
+    just as they would in a student's file.
+    """
+    folder = tmp_path / "submission"
+    folder.mkdir(exist_ok=True)
+    original = (base / f"{module}.py").read_text()
+    (folder / f"{module}.py").write_text(original + "\n\n# --- mutation\n" + textwrap.dedent(source))
+    return folder
+
+
+def submission_from_source(tmp_path: Path, module: str, source: str) -> Path:
+    """A submission whose module is exactly ``source``."""
+    folder = tmp_path / "submission"
+    folder.mkdir(exist_ok=True)
+    (folder / f"{module}.py").write_text(textwrap.dedent(source))
+    return folder
+
+
+def check_results(result, exercise_id: str):
+    [exercise] = [e for e in result.exercises if e.id == exercise_id]
+    return exercise.checks
+
+
+def assert_diagnosed(result, exercise_id: str, *fragments: str):
+    """Some check of the exercise failed, and one failure message contains every fragment."""
+    checks = check_results(result, exercise_id)
+    failed = [c for c in checks if not c.passed]
+    assert failed, f"{exercise_id}: every check passed, but the implementation is wrong"
+    messages = [c.message.lower() for c in failed]
+    assert any(all(f.lower() in m for f in fragments) for m in messages), \
+        f"{exercise_id}: no failure message mentions {fragments}; messages were:\n" + "\n".join(messages)
+    score = sum(c.score for c in checks)
+    maximum = sum(c.max_score for c in checks)
+    assert score < maximum
+
+
+@pytest.fixture(scope="session")
+def reference_result():
+    """The reference solutions graded once for the whole test session (all labs)."""
+    return grade(REFERENCE)
+
+
+@pytest.fixture(scope="session")
+def skeleton_result():
+    return grade(SKELETON)

@@ -1,0 +1,129 @@
+"""Lab 7: the reference passes, the skeleton scores 0, usual mistakes are named."""
+
+import pytest
+
+from autograder.runner import grade
+from conftest import assert_diagnosed, check_results, mutant
+
+MODULE = "lab07_transformations"
+
+
+def test_reference_scores_full_marks(reference_result):
+    for exercise in reference_result.exercises:
+        if exercise.id.startswith("lab07."):
+            for check in exercise.checks:
+                assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+
+
+def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
+    for exercise in skeleton_result.exercises:
+        if exercise.id.startswith("lab07."):
+            assert exercise.score == 0
+            assert exercise.message == "not implemented yet"
+            for check in exercise.checks:
+                assert "not implemented yet" in check.message
+                assert check.traceback == ""   # no traceback noise for a stub
+
+
+# Each case: exercise, the wrong code, fragments the diagnosis must contain.
+MISTAKES = {
+    "tx/ty swapped": ("lab07.ex1", """
+        def translation_matrix(tx, ty):
+            return np.array([[1.0, 0, ty], [0, 1.0, tx], [0, 0, 1.0]])
+        """, ["swapped"]),
+    "translate the wrong way": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            return _warp(image, translation_matrix(-tx, -ty))
+        """, ["opposite way"]),
+    "non-black fill": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            h, w = image.shape[:2]
+            return cv2.warpAffine(image, translation_matrix(tx, ty)[:2], (w, h),
+                                  borderMode=cv2.BORDER_REPLICATE)
+        """, ["not black"]),
+    "float image": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            return _warp(image.astype(np.float64), translation_matrix(tx, ty))
+        """, ["dtype float64", "uint8"]),
+    "rotation the wrong way": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            theta = np.deg2rad(angle_deg)
+            R = np.array([[np.cos(theta), -np.sin(theta)], [np.sin(theta), np.cos(theta)]])
+            c = np.asarray(center, float)
+            M = np.eye(3); M[:2, :2] = R; M[:2, 2] = c - R @ c
+            return M
+        """, ["opposite way"]),
+    "radians for degrees": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            theta = angle_deg
+            R = np.array([[np.cos(theta), np.sin(theta)], [-np.sin(theta), np.cos(theta)]])
+            c = np.asarray(center, float)
+            M = np.eye(3); M[:2, :2] = R; M[:2, 2] = c - R @ c
+            return M
+        """, ["radians"]),
+    "rotation about the origin": ("lab07.ex2", """
+        def rotate(image, angle_deg=45):
+            return _warp(image, rotation_matrix(angle_deg))
+        """, ["about the origin"]),
+    "inverse scale": ("lab07.ex3", """
+        def scaling_matrix(sx, sy):
+            return np.diag([1.0 / sx, 1.0 / sy, 1.0])
+        """, ["inverted"]),
+    "resize instead of scale": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            return cv2.resize(image, None, fx=sx, fy=sy)
+        """, ["keep the input's size"]),
+    "shear along y": ("lab07.ex4", """
+        def shear_matrix(s):
+            return np.array([[1.0, 0, 0], [s, 1.0, 0], [0, 0, 1.0]])
+        """, ["along y"]),
+    "affine from points inverted": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            S = np.hstack([np.asarray(dst, float), np.ones((3, 1))])
+            return np.linalg.solve(S, np.asarray(src, float)).T
+        """, ["swapped", "inverse"]),
+    "dsize as (height, width)": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            if dsize is not None:
+                dsize = (dsize[1], dsize[0])
+            return _warp(image, A, dsize)
+        """, ["width and height are swapped"]),
+    "lstsq unknowns in the wrong order": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            n = len(src)
+            M = np.zeros((2 * n, 6))
+            M[0::2, 0] = src[:, 0]; M[0::2, 2] = src[:, 1]; M[0::2, 4] = 1
+            M[1::2, 1] = src[:, 0]; M[1::2, 3] = src[:, 1]; M[1::2, 5] = 1
+            p, *_ = np.linalg.lstsq(M, dst.reshape(-1), rcond=None)
+            return p.reshape(2, 3)
+        """, ["wrong order"]),
+    "lstsq with three points only": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            return affine_from_points(np.asarray(src)[:3], np.asarray(dst)[:3])
+        """, ["first three points"]),
+    "lstsq with OpenCV": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            A, _ = cv2.estimateAffine2D(np.float32(src), np.float32(dst))
+            return A
+        """, ["cv2.estimateAffine2D", "yourself"]),
+}
+
+
+@pytest.mark.parametrize("case", sorted(MISTAKES))
+def test_mistake_is_caught_and_named(tmp_path, case):
+    exercise, source, fragments = MISTAKES[case]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    assert_diagnosed(result, exercise, *fragments)
+
+
+def test_other_exercises_unaffected_by_a_mistake(tmp_path):
+    result = grade(mutant(tmp_path, MODULE, """
+        def shear_matrix(s):
+            raise ValueError("oops")
+        """), ["lab07"])
+    for exercise in result.exercises:
+        assert (exercise.score == exercise.max_score) == (exercise.id != "lab07.ex4"), exercise.id
+    failing = [c for c in check_results(result, "lab07.ex4") if not c.passed]
+    assert any("ValueError: oops" in c.message for c in failing)
+    assert any('File "lab07_transformations.py"' in c.traceback for c in failing)
