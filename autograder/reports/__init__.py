@@ -1,0 +1,1 @@
+"""Renderers of a :class:`~autograder.results.GradingResult`: terminal, HTML, JSON, Gradescope."""
