@@ -113,3 +113,33 @@ def fill_fraction(got, outside) -> float:
     pixels = np.asarray(got)
     nonzero = pixels != 0 if pixels.ndim == 2 else np.any(pixels != 0, axis=2)
     return float(nonzero[outside].mean())
+
+
+# ---------------------------------------------------------------- disparity maps
+def bad_pixel_rate(got, truth, threshold: float = 1.0, valid=None) -> float:
+    """Fraction of pixels with a valid true disparity where ``got`` is off by more than ``threshold``.
+
+    Parameters
+    ----------
+    got, truth : (H, W) float arrays
+        Disparity maps. ``truth`` is valid where finite and > 0 (and ``valid``, if given).
+        A pixel where ``got`` is invalid (NaN, infinite or <= 0) counts as bad.
+    threshold : float
+        Largest accepted absolute error in pixels.
+
+    Returns
+    -------
+    float in [0, 1] (1.0 when the shapes differ; 0.0 when no pixel is judged)
+    """
+    got = np.asarray(got, dtype=np.float64)
+    truth = np.asarray(truth, dtype=np.float64)
+    if got.shape != truth.shape:
+        return 1.0
+    judged = np.isfinite(truth) & (truth > 0)
+    if valid is not None:
+        judged &= np.asarray(valid, dtype=bool)
+    if not judged.any():
+        return 0.0
+    with np.errstate(invalid="ignore"):
+        good = np.isfinite(got) & (got > 0) & (np.abs(got - truth) <= threshold)
+    return float(1.0 - good[judged].mean())

@@ -113,3 +113,34 @@ def svg_points(series: dict[str, np.ndarray], width: int = 360, height: int = 30
                      f'font-family="sans-serif">{html.escape(label)} ({len(points)})</text>')
     parts.append("</svg>")
     return "".join(parts)
+
+
+def disparity_picture(disparity, max_disparity=None) -> np.ndarray:
+    """A disparity (or depth) map in false colour; invalid pixels (<= 0, NaN) black."""
+    d = np.asarray(disparity, dtype=np.float64)
+    valid = np.isfinite(d) & (d > 0)
+    top = float(max_disparity) if max_disparity else (float(d[valid].max()) if valid.any() else 1.0)
+    scaled = np.clip(np.where(valid, d, 0.0) * (255.0 / max(top, 1e-9)), 0, 255).astype(np.uint8)
+    picture = cv2.applyColorMap(scaled, cv2.COLORMAP_TURBO)
+    picture[~valid] = 0
+    return picture
+
+
+def disparity_error_picture(truth, got, threshold: float = 1.0) -> np.ndarray:
+    """Colour-coded disparity error: green within ``threshold``, yellow to red beyond
+    (red = 4 x threshold or more), blue where ``got`` is invalid, grey where the truth is unknown."""
+    truth = np.asarray(truth, dtype=np.float64)
+    got = np.asarray(got, dtype=np.float64)
+    known = np.isfinite(truth) & (truth > 0)
+    answered = np.isfinite(got) & (got > 0)
+    error = np.abs(np.where(answered & known, got - truth, 0.0))
+    picture = np.empty(truth.shape + (3,), np.uint8)
+    picture[:] = (96, 96, 96)
+    good = known & answered & (error <= threshold)
+    picture[good] = (60, 170, 60)
+    bad = known & answered & (error > threshold)
+    amount = np.clip((error - threshold) / (3.0 * threshold), 0.0, 1.0)
+    green = (220 * (1.0 - amount)).astype(np.uint8)
+    picture[bad] = np.stack([np.zeros_like(green), green, np.full_like(green, 255)], axis=-1)[bad]
+    picture[known & ~answered] = (200, 80, 0)
+    return picture
