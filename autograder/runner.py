@@ -69,7 +69,8 @@ def _grade_exercise(sandbox, exercise, checks, timed_out, on_check) -> ExerciseR
         # A missing or broken module: every check scores 0 with the same message.
         out.message = imported.message
         for check in checks:
-            out.checks.append(CheckResult(check.name, 0.0, check.points, FAILED,
+            status = ERROR if imported.kind == "grader_error" else FAILED
+            out.checks.append(CheckResult(check.name, 0.0, check.points, status,
                                           imported.message, hidden=check.hidden,
                                           traceback=imported.traceback, output=imported.output))
             if on_check:
@@ -100,7 +101,7 @@ def run_check(sandbox: Sandbox, check: Check, timed_out: dict[str, int]) -> Chec
         verdict, status = Verdict(0.0, failure.message, failure.hint), FAILED
     except StudentFailure as failure:
         verdict = Verdict(0.0, failure.message)
-        status = NOT_IMPLEMENTED if failure.outcome.kind == "not_implemented" else FAILED
+        status = {"not_implemented": NOT_IMPLEMENTED, "grader_error": ERROR}.get(failure.outcome.kind, FAILED)
         tb = failure.outcome.traceback
     except Exception as exc:  # noqa: BLE001 - a bug in the grader must not stop grading
         verdict, status = Verdict(0.0, f"grader error in this check ({type(exc).__name__}: {exc}); "
@@ -110,7 +111,7 @@ def run_check(sandbox: Sandbox, check: Check, timed_out: dict[str, int]) -> Chec
     return CheckResult(
         name=check.name, score=round(verdict.fraction * check.points, 6), max_score=check.points,
         status=status, message=verdict.message, hint=verdict.hint, hidden=check.hidden,
-        output="\n".join(trial.outputs)[-4000:], traceback=tb, artifacts=trial.artifacts,
+        output="\n".join(trial.outputs)[:6000], traceback=tb, artifacts=trial.artifacts,
         seconds=round(time.perf_counter() - started, 6),
         student_seconds=round(trial.student_seconds, 6))
 

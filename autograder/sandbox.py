@@ -32,7 +32,7 @@ _WORKER_FILES = ("worker.py", "transport.py")
 FAILURE_KINDS = {
     "timeout", "crashed", "exception", "not_implemented", "missing_function",
     "missing_module", "import_error", "memory", "recursion", "result_type",
-    "forbidden_call", "output_too_large", "protocol",
+    "forbidden_call", "output_too_large", "protocol", "grader_error",
 }
 
 
@@ -48,6 +48,7 @@ class Limits:
     extra_processes: int = 64            # processes/threads beyond those the user already has
     max_result_bytes: int = 256 * 2**20  # largest result frame accepted
     max_output_chars: int = 4000         # captured stdout/stderr kept per call
+    startup_timeout: float = 60.0        # for the worker to import NumPy/OpenCV (not billed)
 
     def worker_json(self) -> str:
         return json.dumps({
@@ -56,6 +57,10 @@ class Limits:
             "cpu_total": self.cpu_total,
             "extra_processes": self.extra_processes,
         })
+
+
+class WorkerStartError(RuntimeError):
+    """The worker process could not be started: a problem of the grader's installation."""
 
 
 @dataclass
@@ -159,6 +164,18 @@ class Sandbox:
             os.close(response_w)
         self._request_fd, self._response_fd = request_w, response_r
         self._imported = set()
+        # Wait for the worker's "ready" (it imports NumPy and OpenCV first), so that
+        # start-up time is never billed to the student's first call.
+        try:
+            length, = LENGTH.unpack(self._read(LENGTH.size, time.monotonic() + self.limits.startup_timeout))
+            ready = transport.decode(self._read(length, time.monotonic() + 5))
+        except (TimeoutError, EOFError, transport.TransportError) as exc:
+            log = (self.scratch / "worker.log").read_text(errors="replace")[-2000:]
+            self._stop_worker()
+            raise WorkerStartError(f"the grading worker did not start ({type(exc).__name__}): {log}") from None
+        if ready != {"ok": True, "value": "ready", "seconds": 0.0}:
+            self._stop_worker()
+            raise WorkerStartError("the grading worker sent an unexpected greeting")
 
     def _stop_worker(self):
         if self.proc is None:
@@ -226,14 +243,17 @@ class Sandbox:
     # ------------------------------------------------------------ plumbing
     def _request(self, request: dict, timeout: float, what: str) -> CallOutcome:
         if self.proc is None:
-            self._start_worker()
+            try:
+                self._start_worker()
+            except WorkerStartError as exc:
+                return CallOutcome(ok=False, kind="grader_error", message=str(exc))
             if request["op"] == "call":
                 imported = self.import_module(request["module"])
                 if not imported.ok:
                     return imported
         frame = transport.encode(request)
         start = time.perf_counter()
-        deadline = time.monotonic() + timeout + self._startup_allowance()
+        deadline = time.monotonic() + timeout
         try:
             self._write(LENGTH.pack(len(frame)) + frame, deadline)
             length, = LENGTH.unpack(self._read(LENGTH.size, deadline))
@@ -255,10 +275,6 @@ class Sandbox:
         outcome = self._outcome_from_reply(reply, what)
         outcome.output = self._read_output()
         return outcome
-
-    def _startup_allowance(self) -> float:
-        # A freshly started worker first imports NumPy and OpenCV; do not bill that to the student.
-        return 15.0 if not self._imported else 0.0
 
     def _outcome_from_reply(self, reply, what) -> CallOutcome:
         if type(reply) is not dict or type(reply.get("ok")) is not bool:

@@ -315,6 +315,7 @@ def main(argv):
         import cv2  # noqa: F401
     except ImportError:
         pass
+    send(response_fd, {"ok": True, "value": "ready", "seconds": 0.0})  # start-up done
     Worker(submission_dir).serve(request_fd, response_fd, output_path)
 
 

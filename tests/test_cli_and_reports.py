@@ -1,0 +1,100 @@
+"""grade.py and the reports: exit codes, selection, JSON keys, a self-contained page."""
+
+import json
+import re
+import subprocess
+import sys
+import zipfile
+
+import pytest
+
+from autograder.reports import html
+from autograder.results import GradingResult
+from autograder.runner import grade
+from autograder.submission import notebook_to_source
+from conftest import REFERENCE, ROOT, mutant
+
+MODULE = "lab07_transformations"
+
+
+def run_grade_py(*args, cwd):
+    return subprocess.run([sys.executable, str(ROOT / "grade.py"), *args], cwd=cwd,
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_grade_py_writes_json_and_html_and_exits_zero(tmp_path):
+    run = run_grade_py("--submission", str(REFERENCE), "lab07.ex1", "--json", "r.json", cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    data = json.loads((tmp_path / "r.json").read_text())
+    assert data["total"] == data["max_total"] > 0
+    [exercise] = data["exercises"]
+    assert exercise["id"] == "lab07.ex1"
+    assert {"id", "score", "max_score", "checks"} <= exercise.keys()
+    for check in exercise["checks"]:
+        assert {"name", "passed", "score", "max_score", "message"} <= check.keys()
+    assert (tmp_path / "feedback.html").exists()
+    assert "lab07.ex1" in run.stdout and "total" in run.stdout
+
+
+def test_grade_py_defaults_to_assignments_and_a_zero_score_still_exits_zero(tmp_path):
+    run = run_grade_py("lab07.ex2", "--no-html", cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    assert "not implemented yet" in run.stdout
+    assert "Traceback" not in run.stdout + run.stderr
+    assert not (tmp_path / "feedback.html").exists()
+
+
+@pytest.mark.parametrize("args, fragment", [
+    (["lab99"], "nothing to grade matches 'lab99'"),
+    (["--submission", "/no/such/folder"], "submission not found"),
+])
+def test_usage_errors_exit_non_zero_with_a_message(tmp_path, args, fragment):
+    run = run_grade_py(*args, "--no-html", cwd=tmp_path)
+    assert run.returncode == 2
+    assert fragment in " ".join((run.stdout + run.stderr).split())
+
+
+def test_feedback_page_is_self_contained_and_escapes_student_output(tmp_path):
+    result = grade(mutant(tmp_path, MODULE, """
+        def translate(image, tx=100, ty=50):
+            print("<script>alert(1)</script>")
+            return image.astype(np.float64)
+        """), ["lab07.ex1"])
+    page = html.render(result)
+    assert "<script>alert(1)</script>" not in page
+    assert "&lt;script&gt;" in page
+    assert "<script" not in page.lower()
+    # Everything is embedded: no external stylesheets, scripts or images.
+    assert not re.search(r'(src|href)="(?!data:|#)', page)
+    assert "data:image/png;base64," in page
+    assert "dtype float64" in page
+
+
+def test_results_round_trip_through_json(tmp_path):
+    result = grade(REFERENCE, ["lab07.ex6"])
+    again = GradingResult.from_dict(json.loads(json.dumps(result.to_dict())))
+    assert again.to_dict() == result.to_dict()
+
+
+def test_zip_and_nested_folder_submissions(tmp_path):
+    archive = tmp_path / "handin.zip"
+    with zipfile.ZipFile(archive, "w") as zf:
+        zf.write(REFERENCE / f"{MODULE}.py", f"student123/{MODULE}.py")
+        zf.writestr("__MACOSX/._junk.py", "garbage")
+        zf.writestr("../evil.py", "print('outside')")
+    result = grade(archive, ["lab07.ex1"])
+    assert result.total == result.max_total
+
+
+def test_notebook_submission(tmp_path):
+    source = (REFERENCE / f"{MODULE}.py").read_text()
+    notebook = {"cells": [
+        {"cell_type": "markdown", "source": ["# Lab 7"]},
+        {"cell_type": "code", "source": ["%matplotlib inline\n", "!pip install nothing\n"]},
+        {"cell_type": "code", "source": source},
+    ]}
+    path = tmp_path / f"{MODULE}.ipynb"
+    path.write_text(json.dumps(notebook))
+    assert "# %matplotlib inline" in notebook_to_source(path.read_text())
+    result = grade(path, ["lab07.ex1"])
+    assert result.total == result.max_total

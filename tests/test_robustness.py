@@ -1,0 +1,174 @@
+"""A broken or hostile submission costs only its own exercise, with a clear message."""
+
+import json
+
+import numpy as np
+import pytest
+
+from autograder.results import without_timings
+from autograder.runner import grade
+from autograder.sandbox import Limits
+from conftest import REFERENCE, check_results, mutant, submission_from_source
+
+MODULE = "lab07_transformations"
+FAST = Limits(call_timeout=2.0, import_timeout=4.0)
+
+
+def scores(result):
+    return {e.id: (e.score, e.max_score) for e in result.exercises}
+
+
+def assert_only_exercise_lost(result, lost: str, *fragments: str):
+    for exercise in result.exercises:
+        if exercise.id == lost:
+            assert exercise.score == 0, exercise.id
+            messages = " ".join(c.message for c in exercise.checks)
+            for fragment in fragments:
+                assert fragment in messages, messages
+        else:
+            assert exercise.score == exercise.max_score, (exercise.id, exercise.checks)
+
+
+def test_infinite_loop_costs_only_its_exercise(tmp_path):
+    result = grade(mutant(tmp_path, MODULE, """
+        def shear_matrix(s):
+            while True:
+                pass
+        """), ["lab07"], limits=FAST)
+    assert_only_exercise_lost(result, "lab07.ex4", "did not finish within 2 s")
+
+
+def test_exception_costs_only_its_exercise_and_shows_student_frames_only(tmp_path):
+    result = grade(mutant(tmp_path, MODULE, """
+        def scaling_matrix(sx, sy):
+            return helper(sx)
+
+        def helper(sx):
+            raise ValueError("bad scale")
+        """), ["lab07"], limits=FAST)
+    assert_only_exercise_lost(result, "lab07.ex3", "ValueError: bad scale")
+    tb = check_results(result, "lab07.ex3")[0].traceback
+    assert "in helper" in tb and "in scaling_matrix" in tb
+    assert "autograder" not in tb and "worker.py" not in tb
+
+
+def test_huge_allocation_costs_only_its_exercise(tmp_path):
+    result = grade(mutant(tmp_path, MODULE, """
+        def shear_matrix(s):
+            return np.ones(10 * 2**30 // 8)  # 10 GB
+        """), ["lab07"], limits=FAST)
+    assert_only_exercise_lost(result, "lab07.ex4", "ran out of memory")
+
+
+def test_always_equal_ndarray_subclass_is_refused(tmp_path):
+    result = grade(mutant(tmp_path, MODULE, """
+        class Liar(np.ndarray):
+            def __eq__(self, other):
+                return True
+            __ne__ = lambda self, other: False
+
+        def translation_matrix(tx, ty):
+            return np.zeros((3, 3)).view(Liar)
+        """), ["lab07.ex1", "lab07.ex2"], limits=FAST)
+    checks = check_results(result, "lab07.ex1")
+    assert checks[0].score == 0 and "ndarray subclass" in checks[0].message
+    assert scores(result)["lab07.ex2"] == (10, 10)
+
+
+def test_crash_restarts_the_worker_for_the_next_exercise(tmp_path):
+    result = grade(mutant(tmp_path, MODULE, """
+        def scaling_matrix(sx, sy):
+            import os
+            os._exit(0)
+        """), ["lab07"], limits=FAST)
+    assert_only_exercise_lost(result, "lab07.ex3", "ended the worker process")
+
+
+def test_sys_exit_at_import_costs_the_module_with_a_clear_message(tmp_path):
+    result = grade(submission_from_source(tmp_path, MODULE, """
+        import sys
+        sys.exit(0)
+        """), ["lab07"], limits=FAST)
+    for exercise in result.exercises:
+        assert exercise.score == 0
+        assert "called sys.exit(0) while being imported" in exercise.message
+
+
+def test_infinite_loop_at_import(tmp_path):
+    result = grade(submission_from_source(tmp_path, MODULE, """
+        while True:
+            pass
+        """), ["lab07"], limits=FAST)
+    assert all(e.score == 0 for e in result.exercises)
+    assert "importing lab07_transformations.py did not finish" in result.exercises[0].message
+    assert result.seconds < 30  # the import is attempted once, not once per check
+
+
+def test_syntax_error_points_at_file_and_line(tmp_path):
+    result = grade(submission_from_source(tmp_path, MODULE, """
+        import numpy as np
+
+        def translation_matrix(tx, ty)
+            return np.eye(3)
+        """), ["lab07.ex1"], limits=FAST)
+    message = result.exercises[0].message
+    assert "SyntaxError in lab07_transformations.py, line 4" in message
+
+
+def test_missing_module_and_missing_function(tmp_path):
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    result = grade(empty, ["lab07.ex1"], limits=FAST)
+    assert result.exercises[0].message == "module lab07_transformations.py not found"
+    partial_source = (REFERENCE / f"{MODULE}.py").read_text().replace("def rotate(", "def rotate_image(")
+    folder = tmp_path / "partial"
+    folder.mkdir()
+    (folder / f"{MODULE}.py").write_text(partial_source)
+    result = grade(folder, ["lab07.ex2"], limits=FAST)
+    messages = [c.message for c in result.exercises[0].checks]
+    assert "not found: def rotate(image, angle_deg=45)" in messages
+
+
+def test_printed_output_is_captured_and_truncated(tmp_path):
+    result = grade(mutant(tmp_path, MODULE, """
+        _original_translation_matrix = translation_matrix
+
+        def translation_matrix(tx, ty):
+            print("debug: tx =", tx)
+            print("x" * 100000)
+            return _original_translation_matrix(tx, ty)
+        """), ["lab07.ex1"], limits=FAST)
+    check = check_results(result, "lab07.ex1")[0]
+    assert check.passed
+    assert "debug: tx = 100" in check.output
+    assert len(check.output) < 10000 and "more bytes of output not shown" in check.output
+
+
+def test_grading_twice_gives_identical_json_apart_from_timings():
+    first = grade(REFERENCE, ["lab07"]).to_dict()
+    second = grade(REFERENCE, ["lab07"]).to_dict()
+    assert json.dumps(without_timings(first)) == json.dumps(without_timings(second))
+
+
+def test_monkeypatching_numpy_in_the_submission_changes_nothing_judged(tmp_path):
+    result = grade(mutant(tmp_path, MODULE, """
+        np.allclose = lambda *a, **k: True
+        np.testing.assert_allclose = lambda *a, **k: None
+
+        def translation_matrix(tx, ty):
+            return np.zeros((3, 3))
+        """), ["lab07.ex1"], limits=FAST)
+    assert check_results(result, "lab07.ex1")[0].score == 0
+
+
+def test_the_original_submission_folder_is_left_untouched(tmp_path):
+    folder = mutant(tmp_path, MODULE, """
+        import os
+        for name in os.listdir("."):
+            os.remove(name)
+        with open("results.json", "w") as f:
+            f.write("{}")
+        """)
+    before = {p.name: p.read_bytes() for p in folder.iterdir()}
+    grade(folder, ["lab07.ex1"], limits=FAST)
+    assert {p.name: p.read_bytes() for p in folder.iterdir()} == before
