@@ -1,0 +1,626 @@
+"""Lab 11 - two-view geometry: the public checks.
+
+Ground truth comes from :mod:`fixtures.lab11`: two synthetic cameras with known
+``K, R, t`` and known 3-D points, so the correspondences are exact projections
+and ``F``, ``E``, the epipoles and the epipolar lines follow from the cameras by
+formula. Projective answers (F, E, epipoles) are compared up to scale and sign;
+3-D points by their distance to the truth relative to their depth; estimates
+from noisy data against what the textbook algorithm achieves on the same data.
+"""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+from hypothesis import strategies as st
+
+from fixtures import lab11 as truth
+
+from ..checks import Trial, partial, passed
+from ..compare import closest, projective_distance
+from ..pictures import side_by_side, svg_points
+from ..registry import Lab
+
+lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
+
+EXACT = 1e-6          # relative error accepted on exact data
+seeds = st.integers(0, 2**32 - 1)
+
+
+def _fmt(matrix) -> str:
+    return np.array2string(np.asarray(matrix, float), precision=4, suppress_small=True)
+
+
+def _unit(M) -> np.ndarray:
+    M = np.asarray(M, float)
+    M = M / np.linalg.norm(M)
+    index = np.unravel_index(np.argmax(np.abs(M)), M.shape)
+    return M * np.sign(M[index])
+
+
+def judge_projective(t: Trial, what: str, got, expected, mistakes=None, tolerance=EXACT,
+                     shape=(3, 3)) -> np.ndarray:
+    """A matrix or homogeneous vector equal to ``expected`` up to scale and sign."""
+    got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
+    if not np.any(got):
+        t.fail(f"{what} returned all zeros")
+    distance = projective_distance(got, expected)
+    if distance <= tolerance:
+        return got
+    mistake = closest(got, mistakes or {}, projective_distance, max(tolerance, 1e-4))
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    t.fail(f"{what} returned (scaled to unit norm)\n{_fmt(_unit(got))}\nexpected (up to scale and sign)\n"
+           f"{_fmt(_unit(expected))}")
+
+
+def epipolar_picture(F_true, F_got, views, pts1, pts2, count=8) -> np.ndarray:
+    """Both images with the true epipolar lines (green) and those of ``F_got`` (red)."""
+    canvases = []
+    pairs = [(views.cam1, pts1, pts2, lambda F: F.T), (views.cam2, pts2, pts1, lambda F: F)]
+    for cam, own, other, orient in pairs:
+        canvas = np.full((cam.height, cam.width, 3), 255, np.uint8)
+        for F, colour in ((F_true, (0, 160, 0)), (F_got, (0, 0, 230))):
+            if F is None or not np.all(np.isfinite(F)):
+                continue
+            lines = truth.homogeneous(other[:count]) @ orient(np.asarray(F, float)).T
+            for line in lines:
+                segment = truth.clip_line(line, cam.width, cam.height)
+                if segment is not None:
+                    p, q = np.round(segment).astype(int)
+                    cv2.line(canvas, tuple(map(int, p)), tuple(map(int, q)), colour, 1, cv2.LINE_AA)
+        for x, y in own[:count]:
+            cv2.circle(canvas, (int(round(x)), int(round(y))), 3, (0, 0, 0), 1, cv2.LINE_AA)
+        canvases.append(canvas)
+    return side_by_side(*canvases)
+
+
+def show_epipolar(t: Trial, title: str, F_got, views, pts1, pts2):
+    t.images(title, "green: the true epipolar lines; red: yours; circles: the matching points",
+             image_1_and_image_2=epipolar_picture(views.F, F_got, views, pts1, pts2))
+
+
+# ================================================================== ex1 triangulation
+ex1 = lab.exercise("ex1", "Triangulation", functions=["triangulate(P1, P2, pts1, pts2)"])
+lab.forbid("triangulate", "cv2.triangulatePoints")
+
+
+def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, show=False):
+    """3-D points against the truth (exact data) or the linear solution's accuracy (noisy)."""
+    P1, P2 = views.P1, views.P2
+    noisy = pts1 is not None
+    pts1 = views.pts1 if pts1 is None else pts1
+    pts2 = views.pts2 if pts2 is None else pts2
+    n = len(pts1)
+    if isinstance(got, np.ndarray) and got.shape == (3, n) and n != 3:
+        t.fail(f"{what} returned shape (3, {n}); expected ({n}, 3): one row per point")
+    if isinstance(got, np.ndarray) and got.shape == (n, 4):
+        t.fail(f"{what} returned shape ({n}, 4); expected ({n}, 3): divide the homogeneous "
+               "solution (X, Y, Z, w) by w and drop w")
+    got = t.expect_array(got, what, shape=(n, 3), kind="iuf")
+    if not np.all(np.isfinite(got)):
+        t.fail(f"{what} returned NaN or infinite values")
+    if show:
+        t.svg("top view (X-Z plane, camera 1 frame) of the triangulated points", svg_points({
+            "true points": _camera_xz(views.cam1, views.X),
+            "yours": _camera_xz(views.cam1, got)}, flip_y=False))
+    depth = np.linalg.norm(views.X - views.cam1.center, axis=1)
+    if not noisy:
+        error = np.linalg.norm(got - views.X, axis=1) / depth
+        if error.max() <= EXACT:
+            return passed(f"all {n} points within {error.max():.1e} of their distance to camera 1")
+        _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise=0.0)
+        worst = int(np.argmax(error))
+        t.fail(f"{what} is wrong: point {worst} should be {_fmt(views.X[worst])}, "
+               f"got {_fmt(got[worst])}")
+    linear = truth.linear_triangulation(P1, P2, pts1, pts2)
+    mine, best = _reprojection(P1, P2, got, pts1, pts2).mean(), _reprojection(P1, P2, linear, pts1, pts2).mean()
+    error = np.median(np.linalg.norm(got - views.X, axis=1) / depth)
+    best_error = np.median(np.linalg.norm(linear - views.X, axis=1) / depth)
+    if mine <= 1.25 * best + 0.05 and error <= 2 * best_error + 1e-3:
+        return passed(f"mean reprojection error {mine:.2f} px (linear triangulation: {best:.2f} px)")
+    _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise=1.0)
+    t.fail(f"{what}: your points reproject {mine:.2f} px from the noisy measurements on average, "
+           f"linear triangulation achieves {best:.2f} px (median 3-D error {error:.1%} of the depth, "
+           f"expected about {best_error:.1%}).")
+
+
+def _camera_xz(cam, X) -> np.ndarray:
+    Xc = np.asarray(X, float) @ cam.R.T + cam.t
+    return Xc[:, [0, 2]]
+
+
+def _reprojection(P1, P2, X, pts1, pts2) -> np.ndarray:
+    with np.errstate(all="ignore"):
+        return 0.5 * (np.linalg.norm(truth.project(P1, X) - pts1, axis=1)
+                      + np.linalg.norm(truth.project(P2, X) - pts2, axis=1))
+
+
+def _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise):
+    X = views.X
+    sine = np.linalg.norm(np.cross(got, X), axis=1) / (np.linalg.norm(got, axis=1) * np.linalg.norm(X, axis=1) + 1e-300)
+    scale = np.sum(got * X, axis=1) / np.sum(X * X, axis=1)
+    if np.quantile(sine, 0.9) <= 1e-6 + 0.05 * noise and np.median(np.abs(scale - 1)) > 0.1:
+        t.fail(f"{what} is wrong: each point is the true one times some factor (the first "
+               f"is {scale[0]:.3g}): it looks like the homogeneous solution (X, Y, Z, w) was "
+               "not divided by w.")
+    with np.errstate(all="ignore"):
+        error1 = np.linalg.norm(truth.project(P1, got) - pts1, axis=1)
+        error2 = np.linalg.norm(truth.project(P2, got) - pts2, axis=1)
+    tolerance = 1e-3 + 3 * noise
+    for mine, other, view in ((error1, error2, "first"), (error2, error1, "second")):
+        if np.median(mine) <= tolerance and np.median(other) > 10 * tolerance + 1:
+            t.fail(f"{what} is wrong: the points project exactly onto the {view} image but "
+                   f"miss the other one by {np.median(other):.1f} px: it looks like only the "
+                   f"{view} view's equations are used. Stack two rows from each view (4 x 4 system).")
+    mistake = closest(got, truth.triangulation_mistakes(P1, P2, pts1, pts2),
+                      lambda a, b: np.max(np.linalg.norm(a - b, axis=1) / np.linalg.norm(X - views.cam1.center, axis=1)),
+                      1e-4 + 0.05 * noise)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+
+
+@ex1.check("triangulate a worked example (5 exact correspondences)", points=3)
+def triangulate_example(t):
+    views = truth.two_views(seed=1, n=5)
+    got = t.call("triangulate", views.P1, views.P2, views.pts1, views.pts2)
+    return judge_triangulation(t, "triangulate(P1, P2, pts1, pts2)", got, views, show=True)
+
+
+@ex1.check("triangulate 300 points at once, near (depth 1-3) and far (depth 100-1000)", points=3)
+def triangulate_near_and_far(t):
+    near = truth.two_views(seed=2, n=150, depth_range=(1.0, 3.0))
+    far = truth.two_views(seed=2, n=150, depth_range=(100.0, 1000.0))
+    views = truth.TwoViews(near.cam1, near.cam2, np.vstack([near.X, far.X]),
+                           np.vstack([near.pts1, far.pts1]), np.vstack([near.pts2, far.pts2]))
+    got = t.call("triangulate", views.P1, views.P2, views.pts1, views.pts2)
+    return judge_triangulation(t, "triangulate(P1, P2, pts1, pts2) with N=300", got, views)
+
+
+@ex1.check("triangulate any exact two-view problem", points=2)
+def triangulate_property(t):
+    def holds(case):
+        seed, n = case
+        views = truth.two_views(seed, n=n)
+        judge_triangulation(t, f"triangulate(P1, P2, pts1, pts2) with N={n}",
+                            t.call("triangulate", views.P1, views.P2, views.pts1, views.pts2), views)
+
+    t.for_all(st.tuples(seeds, st.integers(1, 40)), holds, max_examples=15,
+              describe=lambda c: f"fixtures.lab11.two_views(seed={c[0]}, n={c[1]})")
+
+
+@ex1.check("triangulate noisy correspondences (0.5 px noise)", points=2)
+def triangulate_noisy(t):
+    views = truth.two_views(seed=4, n=60)
+    pts1, pts2 = truth.add_noise(40, views.pts1, 0.5), truth.add_noise(41, views.pts2, 0.5)
+    got = t.call("triangulate", views.P1, views.P2, pts1, pts2)
+    return judge_triangulation(t, "triangulate(P1, P2, noisy pts1, noisy pts2)", got, views,
+                               pts1, pts2, show=True)
+
+
+# ================================================================== ex2 epipolar lines
+ex2 = lab.exercise("ex2", "Epipolar lines", functions=[
+    "epipolar_lines(F, pts1)", "draw_epipolar_lines(image, lines)"])
+
+
+def _row_error(got, expected) -> float:
+    """Largest entry error between lines, each line up to its sign."""
+    got, expected = np.asarray(got, float), np.asarray(expected, float)
+    if got.shape != expected.shape:
+        return float("inf")
+    per_row = np.minimum(np.abs(got - expected).max(axis=1), np.abs(got + expected).max(axis=1))
+    return float(per_row.max() / max(1.0, np.abs(expected).max()))
+
+
+def judge_lines(t: Trial, what: str, got, F, pts1):
+    n = len(pts1)
+    got = t.expect_array(got, what, shape=(n, 3), kind="iuf")
+    expected = truth.epipolar_lines(F, pts1)
+    if _row_error(got, expected) <= EXACT:
+        return got
+    mistake = closest(got, truth.line_mistakes(F, pts1), _row_error, 1e-5)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    if np.all(np.isfinite(got)):
+        parallel = np.linalg.norm(np.cross(got, expected), axis=1) <= 1e-6 * np.linalg.norm(got, axis=1)
+        if np.all(parallel):
+            t.fail(f"{what}: the lines are right but not scaled so that a^2 + b^2 = 1 "
+                   "(divide each line by sqrt(a^2 + b^2)).")
+    t.fail(f"{what} returned\n{_fmt(got[:3])}\n... expected (each up to sign)\n{_fmt(expected[:3])}")
+
+
+@ex2.check("epipolar_lines on a worked example", points=2)
+def lines_example(t):
+    views = truth.two_views(seed=3, n=6)
+    F = 250.0 * views.F  # any scale of F gives the same lines
+    judge_lines(t, "epipolar_lines(F, pts1)", t.call("epipolar_lines", F, views.pts1), F, views.pts1)
+
+
+@ex2.check("epipolar_lines for any camera pair", points=2)
+def lines_property(t):
+    def holds(case):
+        seed, scale = case
+        views = truth.two_views(seed, n=10)
+        F = scale * views.F
+        judge_lines(t, "epipolar_lines(F, pts1)", t.call("epipolar_lines", F, views.pts1), F, views.pts1)
+
+    t.for_all(st.tuples(seeds, st.sampled_from([1.0, -3.0, 1e-3, 1e4])), holds, max_examples=10,
+              describe=lambda c: f"F = {c[1]} * fixtures.lab11.two_views(seed={c[0]}).F")
+
+
+@ex2.check("the epipolar lines pass through the corresponding points", points=1)
+def lines_through_points(t):
+    views = truth.two_views(seed=5, n=12)
+    got = t.expect_array(t.call("epipolar_lines", views.F, views.pts1), "epipolar_lines(F, pts1)",
+                         shape=(12, 3), kind="iuf", finite=True)
+    if np.any(np.linalg.norm(got[:, :2], axis=1) == 0):
+        t.fail("epipolar_lines(F, pts1) returned a line with a = b = 0")
+    distance = truth.line_distances(got, views.pts2)
+    if distance.max() <= 1e-6:
+        return passed("every x2 lies on its line l' = F x1")
+    transposed = truth.line_distances(got, views.pts1).max() <= 1e-6
+    hint = "F is transposed? The lines in image 2 are l' = F x1" if transposed else ""
+    t.fail(f"the corresponding points x2 are up to {distance.max():.1f} px from your lines "
+           "(they should lie on them)", hint=hint)
+
+
+def draw_judgement(got, base, lines, min_coverage=0.9):
+    """How well the changed pixels of ``got`` (vs ``base``) match the ``lines``.
+
+    Returns per-line coverage (fraction of the line's in-image length with a
+    changed pixel within 2 px), the fraction of changed pixels farther than
+    2.5 px from every line, and the changed-pixel mask.
+    """
+    base_bgr = cv2.cvtColor(base, cv2.COLOR_GRAY2BGR) if base.ndim == 2 else base
+    changed = np.any(np.abs(got.astype(np.int16) - base_bgr.astype(np.int16)) > 25, axis=2)
+    near = cv2.dilate(changed.astype(np.uint8), np.ones((5, 5), np.uint8)).astype(bool)
+    height, width = changed.shape
+    coverage = []
+    for line in lines:
+        samples = truth.line_samples(line, width, height, margin=2.0)
+        if len(samples) == 0:
+            coverage.append(1.0)
+            continue
+        xs, ys = np.round(samples).astype(int).T
+        coverage.append(float(near[ys, xs].mean()))
+    ys, xs = np.nonzero(changed)
+    if len(xs):
+        lines = np.asarray(lines, float)
+        distance = np.abs(np.column_stack([xs, ys, np.ones(len(xs))]) @ lines.T) / np.linalg.norm(lines[:, :2], axis=1)
+        stray = float((distance.min(axis=1) > 2.5).mean())
+    else:
+        stray = 0.0
+    return np.array(coverage), stray, changed
+
+
+def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
+    height, width = image.shape[:2]
+    if isinstance(got, np.ndarray) and got.shape == (height, width) and image.ndim == 2:
+        t.fail(f"{what} returned a grey image; as documented, the result is always BGR "
+               "(H, W, 3) so the coloured lines show: convert with cv2.cvtColor(image, cv2.COLOR_GRAY2BGR)")
+    got = t.expect_array(got, what, shape=(height, width, 3), dtype=np.uint8)
+    coverage, stray, changed = draw_judgement(got, image, lines)
+    if coverage.min() >= min_coverage and stray <= 0.05:
+        return got, coverage, stray
+    if not changed.any():
+        t.fail(f"{what} returned the image unchanged: no line was drawn (or in a colour too close "
+               "to the image's own)")
+    swapped_lines = np.asarray(lines, float)[:, [1, 0, 2]]
+    swapped_coverage, swapped_stray, _ = draw_judgement(got, image, swapped_lines)
+    if swapped_coverage.min() >= min_coverage and swapped_stray <= 0.05:
+        t.fail(f"{what} is wrong: the lines are drawn with x and y swapped "
+               "(a line (a, b, c) is a*x + b*y + c = 0 with x the column)")
+    if stray <= 0.05 and coverage.max() < min_coverage and coverage.mean() > 0.15:
+        t.fail(f"{what}: the lines are in the right place but stop short "
+               f"(only {coverage.mean():.0%} of their length inside the image is drawn): "
+               "draw each line across the whole image")
+    t.fail(f"{what}: {np.sum(coverage < min_coverage)} of {len(coverage)} lines are missing or "
+           f"incomplete, and {stray:.0%} of the changed pixels are away from every line "
+           "(see the picture)")
+
+
+@ex2.check("draw_epipolar_lines on a photo: the lines pass through the true matches", points=3)
+def draw_through_matches(t):
+    from fixtures.images import photo
+
+    views = truth.two_views(seed=6, n=40)
+    inside = truth.inside(views.pts2, views.cam2, margin=3)
+    pts1, pts2 = views.pts1[inside][:8], views.pts2[inside][:8]
+    image = photo("coffee", (views.cam2.width, views.cam2.height))
+    lines = truth.epipolar_lines(views.F, pts1)
+    got = t.call("draw_epipolar_lines", image, lines)
+    if isinstance(got, np.ndarray) and got.ndim == 3:
+        marked = np.ascontiguousarray(got.copy()) if got.dtype == np.uint8 else None
+        if marked is not None and marked.shape[2] == 3:
+            for x, y in pts2:
+                cv2.circle(marked, (int(round(x)), int(round(y))), 4, (255, 255, 255), 1)
+        t.images("draw_epipolar_lines(image 2, lines of 8 points of image 1)",
+                 "white circles: the true matches, which should lie on the lines",
+                 input=image, yours=marked)
+    got, coverage, _ = judge_drawing(t, "draw_epipolar_lines(image, lines)", got, image, lines,
+                                     min_coverage=0.85)
+    base = image.astype(np.int16)
+    changed = np.any(np.abs(got.astype(np.int16) - base) > 25, axis=2)
+    near = cv2.dilate(changed.astype(np.uint8), np.ones((5, 5), np.uint8)).astype(bool)
+    xs, ys = np.round(pts2).astype(int).T
+    hit = near[ys, xs]
+    if not hit.all():
+        t.fail(f"{np.sum(~hit)} of {len(hit)} true matches are not on a drawn line")
+    return passed(f"all {len(hit)} matches lie on drawn lines")
+
+
+@ex2.check("draw_epipolar_lines draws across the whole image, grey in -> BGR out", points=2)
+def draw_full_width(t):
+    image = np.zeros((120, 160), np.uint8)
+    lines = truth.normalise_lines(np.array([
+        [0.0, 1.0, -30.0],        # horizontal, y = 30
+        [0.2, 1.0, -90.0],        # gentle slope
+        [-0.6, 1.0, 10.0],        # 31 degrees
+        [3.0, -1.0, -200.0],      # steep
+        [-1.0, -0.05, 120.0],     # nearly vertical
+    ]))
+    got = t.call("draw_epipolar_lines", image, lines)
+    if isinstance(got, np.ndarray) and got.ndim in (2, 3):
+        t.images("draw_epipolar_lines(black 160 x 120 grey image, 5 lines)", input=image, yours=got)
+    judge_drawing(t, "draw_epipolar_lines(grey image, lines)", got, image, lines)
+
+
+@ex2.check("draw_epipolar_lines draws a vertical line (b = 0)", points=1)
+def draw_vertical(t):
+    image = np.zeros((120, 160, 3), np.uint8)
+    lines = np.array([[1.0, 0.0, -70.0], [0.0, 1.0, -60.0]])   # x = 70 and y = 60
+    got = t.call("draw_epipolar_lines", image, lines)
+    if isinstance(got, np.ndarray) and got.ndim in (2, 3):
+        t.images("draw_epipolar_lines(black image, lines x = 70 and y = 60)", yours=got)
+    judge_drawing(t, "draw_epipolar_lines(image, [[1, 0, -70], [0, 1, -60]])", got, image, lines)
+
+
+# ================================================================== ex3 essential matrix
+ex3 = lab.exercise("ex3", "Essential matrix", functions=[
+    "essential_from_fundamental(F, K1, K2)", "essential_8point(pts1, pts2, K1, K2)"])
+
+
+@ex3.check("essential_from_fundamental on a worked example (K1 != K2)", points=2)
+def essential_from_F_example(t):
+    views = truth.two_views(seed=7)
+    K1, K2 = views.cam1.K, views.cam2.K
+    judge_projective(t, "essential_from_fundamental(F, K1, K2)",
+                     t.call("essential_from_fundamental", views.F, K1, K2), views.E,
+                     truth.essential_mistakes(views.F, K1, K2))
+
+
+@ex3.check("essential_from_fundamental for any camera pair", points=1)
+def essential_from_F_property(t):
+    def holds(seed):
+        views = truth.two_views(seed, n=4)
+        K1, K2 = views.cam1.K, views.cam2.K
+        judge_projective(t, "essential_from_fundamental(F, K1, K2)",
+                         t.call("essential_from_fundamental", views.F, K1, K2), views.E,
+                         truth.essential_mistakes(views.F, K1, K2))
+
+    t.for_all(seeds, holds, max_examples=10,
+              describe=lambda s: f"fixtures.lab11.two_views(seed={s})")
+
+
+def _essential_8point_mistakes(views, pts1, pts2):
+    K1, K2 = views.cam1.K, views.cam2.K
+    x1, x2 = truth.normalised_points(K1, pts1), truth.normalised_points(K2, pts2)
+    gold = truth.essential_projection(truth.eight_point(x1[:, :2], x2[:, :2], False))
+    return {
+        "pts1 and pts2 are swapped (this is E^T)": gold.T,
+        "the fundamental matrix: the pixels were not normalised with K^-1 first": views.F,
+        "the pixels were not normalised with K^-1 first (this is F forced to singular values (1, 1, 0))":
+            truth.essential_projection(truth.eight_point_raw(pts1, pts2)),
+        "K1 and K2 are swapped (pts1 are normalised with K1^-1, pts2 with K2^-1)":
+            truth.essential_projection(truth.eight_point(truth.normalised_points(K2, pts1)[:, :2],
+                                                         truth.normalised_points(K1, pts2)[:, :2], False)),
+        "the singular values were not set to (s, s, 0)": truth.eight_point_raw(x1[:, :2], x2[:, :2]),
+    }
+
+
+@ex3.check("essential_8point recovers E from exact correspondences", points=2)
+def essential_8point_exact(t):
+    views = truth.two_views(seed=8, n=12)
+    got = t.call("essential_8point", views.pts1, views.pts2, views.cam1.K, views.cam2.K)
+    judge_projective(t, "essential_8point(pts1, pts2, K1, K2)", got, views.E,
+                     _essential_8point_mistakes(views, views.pts1, views.pts2), tolerance=1e-5)
+
+
+def _noisy_essential_problem(seed=10):
+    views = truth.two_views(seed=seed, n=100)
+    pts1 = truth.add_noise(seed + 100, views.pts1[:50], 0.5)
+    pts2 = truth.add_noise(seed + 200, views.pts2[:50], 0.5)
+    return views, pts1, pts2
+
+
+@ex3.check("essential_8point: singular values (s, s, 0) on noisy data", points=2)
+def essential_8point_singular_values(t):
+    views, pts1, pts2 = _noisy_essential_problem()
+    got = t.expect_array(t.call("essential_8point", pts1, pts2, views.cam1.K, views.cam2.K),
+                         "essential_8point(noisy pts1, pts2, K1, K2)", shape=(3, 3), kind="iuf", finite=True)
+    s = np.linalg.svd(got, compute_uv=False)
+    if s[0] == 0:
+        t.fail("essential_8point returned all zeros")
+    s = s / s[0]
+    if s[2] <= 1e-6 and s[1] >= 1 - 1e-6:
+        return passed(f"singular values proportional to (1, {s[1]:.6f}, {s[2]:.1e})")
+    if s[2] <= 1e-6:
+        t.fail(f"essential_8point: rank 2, but the singular values are proportional to "
+               f"(1, {s[1]:.4f}, 0): an essential matrix has two equal ones. Replace them by "
+               "(1, 1, 0) (U diag(1, 1, 0) V^T).")
+    t.fail(f"essential_8point: the singular values are proportional to (1, {s[1]:.4f}, {s[2]:.4f}); "
+           "an essential matrix has (s, s, 0): it looks like the singular values were not set "
+           "to (1, 1, 0) after the least-squares solution.")
+
+
+@ex3.check("essential_8point: the epipolar constraint holds on noisy normalised points", points=2)
+def essential_8point_noisy(t):
+    views, pts1, pts2 = _noisy_essential_problem()
+    K1, K2 = views.cam1.K, views.cam2.K
+    got = t.expect_array(t.call("essential_8point", pts1, pts2, K1, K2),
+                         "essential_8point(noisy pts1, pts2, K1, K2)", shape=(3, 3), kind="iuf", finite=True)
+    if not np.any(got):
+        t.fail("essential_8point returned all zeros")
+    x1, x2 = truth.normalised_points(K1, views.pts1[50:]), truth.normalised_points(K2, views.pts2[50:])
+    gold = truth.essential_projection(truth.eight_point(truth.normalised_points(K1, pts1)[:, :2],
+                                                        truth.normalised_points(K2, pts2)[:, :2], False))
+    residual = lambda E: np.abs(np.sum(x2 * (x1 @ (E / np.linalg.norm(E)).T), axis=1)).mean()  # noqa: E731
+    to_pixels = lambda E: np.linalg.inv(K2).T @ E @ np.linalg.inv(K1)  # noqa: E731
+    mine = truth.sampson_error(to_pixels(got), views.pts1[50:], views.pts2[50:]).mean()
+    best = truth.sampson_error(to_pixels(gold), views.pts1[50:], views.pts2[50:]).mean()
+    if mine <= 1.5 * best + 0.1:
+        return passed(f"|x2n^T E x1n| = {residual(got):.1e} on average over 50 exact held-out "
+                      f"correspondences (Sampson error {mine:.2f} px; the 8-point algorithm: {best:.2f} px)")
+    mistake = closest(got, _essential_8point_mistakes(views, pts1, pts2), projective_distance, 1e-3)
+    if mistake:
+        t.fail(f"essential_8point is wrong: it looks like {mistake}.")
+    t.fail(f"essential_8point from 50 noisy correspondences: the exact held-out correspondences "
+           f"are {mine:.2f} px from your epipolar geometry (Sampson error); the 8-point algorithm "
+           f"achieves {best:.2f} px. Mean |x2n^T E x1n| = {residual(got):.1e} "
+           f"(8-point: {residual(gold):.1e}).")
+
+
+# ================================================================== ex4 fundamental matrix
+ex4 = lab.exercise("ex4", "Fundamental matrix (8-point algorithm)", functions=["fundamental_8point(pts1, pts2)"])
+lab.forbid("fundamental_8point", "cv2.findFundamentalMat")
+
+
+def judge_exact_fundamental(t: Trial, views, n):
+    what = f"fundamental_8point(pts1, pts2) with N={n} exact correspondences"
+    got = t.call("fundamental_8point", views.pts1[:n], views.pts2[:n])
+    judge_projective(t, what, got, views.F, truth.fundamental_mistakes(views.F), tolerance=1e-4)
+
+
+@ex4.check("fundamental_8point from exact correspondences (N=8 and N=40)", points=3)
+def fundamental_exact(t):
+    views = truth.two_views(seed=10, n=40)
+    for n in (8, 40):
+        judge_exact_fundamental(t, views, n)
+
+
+@ex4.check("fundamental_8point returns a rank-2 matrix (noisy data)", points=2)
+def fundamental_rank2(t):
+    views = truth.two_views(seed=11, n=30)
+    pts1, pts2 = truth.add_noise(1, views.pts1, 1.0), truth.add_noise(2, views.pts2, 1.0)
+    got = t.expect_array(t.call("fundamental_8point", pts1, pts2), "fundamental_8point(noisy pts1, pts2)",
+                         shape=(3, 3), kind="iuf", finite=True)
+    s = np.linalg.svd(got, compute_uv=False)
+    if s[0] == 0:
+        t.fail("fundamental_8point returned all zeros")
+    if s[2] / s[0] <= 1e-7:
+        return passed(f"smallest singular value {s[2] / s[0]:.1e} of the largest")
+    t.fail(f"fundamental_8point(noisy pts1, pts2) has rank 3 (singular values proportional to "
+           f"(1, {s[1] / s[0]:.3g}, {s[2] / s[0]:.3g})): rank 2 was not enforced. Set the smallest "
+           "singular value to 0 (F = U diag(s1, s2, 0) V^T).")
+
+
+NOISY_SCENES = (12, 13, 14, 15, 16, 17)
+
+
+def noisy_fundamental_problem(seed):
+    """40 noisy (1 px) correspondences for the fit, 40 exact held-out ones for judging."""
+    views = truth.two_views(seed, n=80, width=640, height=480)
+    pts1, pts2 = truth.add_noise(seed + 1, views.pts1[:40], 1.0), truth.add_noise(seed + 2, views.pts2[:40], 1.0)
+    return views, pts1, pts2
+
+
+@ex4.check("fundamental_8point is accurate on noisy pixel coordinates (6 scenes)", points=3)
+def fundamental_noisy(t):
+    good, lines, unnormalised = 0, [], 0
+    for i, seed in enumerate(NOISY_SCENES):
+        views, pts1, pts2 = noisy_fundamental_problem(seed)
+        what = "fundamental_8point(noisy pts1, pts2)"
+        got = t.expect_array(t.call("fundamental_8point", pts1, pts2), what, shape=(3, 3), kind="iuf",
+                             finite=True)
+        if not np.any(got):
+            t.fail(f"{what} returned all zeros")
+        if i == 0:
+            show_epipolar(t, "epipolar lines of your F (1 px noise, 640 x 480 pixels)", got, views,
+                          views.pts1[40:], views.pts2[40:])
+        mistake = closest(got, truth.fundamental_mistakes(truth.eight_point(pts1, pts2)),
+                          projective_distance, 1e-3)
+        if mistake:
+            t.fail(f"{what} is wrong: it looks like {mistake}.")
+        mine = truth.symmetric_epipolar_distance(got, views.pts1[40:], views.pts2[40:]).mean()
+        best = truth.symmetric_epipolar_distance(truth.eight_point(pts1, pts2), views.pts1[40:],
+                                                 views.pts2[40:]).mean()
+        lines.append(f"{mine:.2f} px (normalised 8-point: {best:.2f} px)")
+        good += mine <= 1.5 * best + 0.1
+        unnormalised += projective_distance(got, truth.eight_point(pts1, pts2, normalise=False)) <= 1e-3
+    report = "; ".join(lines)
+    if good == len(NOISY_SCENES):
+        return passed(f"mean distance of exact held-out matches to your epipolar lines: {report}")
+    hint = ("normalise the points first (Hartley): move each image's centroid to the origin and "
+            "scale so the mean distance is sqrt(2); solve; then F = T2^T Fn T1")
+    message = (f"on {len(NOISY_SCENES) - good} of {len(NOISY_SCENES)} noisy scenes your F is far from the true "
+               f"epipolar geometry (mean distance of exact held-out matches to your lines: {report})")
+    if unnormalised >= len(NOISY_SCENES) - 1:
+        message += (". It looks like the 8-point algorithm on raw pixel coordinates, which is "
+                    "badly conditioned (entries x*x' ~ 1e5 next to 1)")
+    return partial(good / len(NOISY_SCENES), message, hint)
+
+
+# ================================================================== ex5 epipoles
+ex5 = lab.exercise("ex5", "Epipoles", functions=["epipoles(F)"])
+
+
+def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False):
+    e1, e2 = truth.epipoles(views.cam1, views.cam2)
+    if not isinstance(got, (tuple, list)) or len(got) != 2:
+        t.fail(f"{what} returned {type(got).__name__}; expected a pair (e1, e2)")
+    g1 = t.expect_array(got[0], f"{what}[0] (e1)", shape=None, kind="iuf")
+    g2 = t.expect_array(got[1], f"{what}[1] (e2)", shape=None, kind="iuf")
+    for g, name in ((g1, "e1"), (g2, "e2")):
+        if g.shape == (2,):
+            t.fail(f"{what}: {name} has shape (2,); return homogeneous 3-vectors (x, y, w) "
+                   "(an epipole may be at infinity, w = 0)")
+        if g.shape != (3,):
+            t.fail(f"{what}: {name} has shape {g.shape}; expected (3,)")
+        if not np.all(np.isfinite(g)):
+            t.fail(f"{what}: {name} = {g} is not finite: an epipole at infinity has w = 0, so "
+                   "do not divide by w (w = 0); return the homogeneous vector")
+        if not np.any(g):
+            t.fail(f"{what}: {name} is all zeros")
+        if at_infinity and abs(g[2]) == 1 and np.abs(g[:2]).max() > 1e8:
+            t.fail(f"{what}: {name} = {g}: it looks like it was divided by its last entry w, "
+                   "which is w = 0 (up to rounding) for an epipole at infinity; return the "
+                   "homogeneous vector without dividing")
+    d1, d2 = projective_distance(g1, e1), projective_distance(g2, e2)
+    if d1 <= EXACT and d2 <= EXACT:
+        return
+    if projective_distance(g1, e2) <= 1e-4 and projective_distance(g2, e1) <= 1e-4:
+        t.fail(f"{what} is wrong: e1 and e2 are swapped: F e1 = 0 (e1 is the right null vector, "
+               "the last row of V^T), F^T e2 = 0 (the last column of U).")
+    for d, g, e, name in ((d1, g1, e1, "e1"), (d2, g2, e2, "e2")):
+        if d > EXACT:
+            t.fail(f"{what}: {name} = {_fmt(g)}, expected a multiple of {_fmt(e)}")
+
+
+@ex5.check("epipoles of a general camera pair", points=2)
+def epipoles_general(t):
+    views = truth.two_views(seed=18)
+    judge_epipoles(t, "epipoles(F)", t.call("epipoles", views.F), views)
+
+
+@ex5.check("epipoles when camera 2 moves forward (both at the principal point)", points=1)
+def epipoles_forward(t):
+    views = truth.forward_views(seed=19)
+    judge_epipoles(t, "epipoles(F) for forward motion", t.call("epipoles", views.F), views)
+
+
+@ex5.check("epipoles at infinity (sideways motion), as homogeneous vectors", points=2)
+def epipoles_infinity(t):
+    views = truth.sideways_views(seed=20)
+    judge_epipoles(t, "epipoles(F) for sideways motion", t.call("epipoles", views.F), views,
+                   at_infinity=True)
+
+
+@ex5.check("epipoles for any camera pair and any scale of F", points=1)
+def epipoles_property(t):
+    def holds(case):
+        seed, scale = case
+        views = truth.two_views(seed, n=4)
+        judge_epipoles(t, "epipoles(F)", t.call("epipoles", scale * views.F), views)
+
+    t.for_all(st.tuples(seeds, st.sampled_from([1.0, -2.0, 1e-4, 1e3])), holds, max_examples=10,
+              describe=lambda c: f"{c[1]} * fixtures.lab11.two_views(seed={c[0]}).F")

@@ -1,0 +1,174 @@
+"""Lab 11: the reference passes, the skeleton scores 0, usual mistakes are named."""
+
+import pytest
+
+from autograder.runner import grade
+from conftest import assert_diagnosed, check_results, mutant
+
+MODULE = "lab11_two_view"
+
+
+def test_reference_scores_full_marks(reference_result):
+    exercises = [e for e in reference_result.exercises if e.id.startswith("lab11.")]
+    assert exercises
+    for exercise in exercises:
+        for check in exercise.checks:
+            assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+
+
+def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
+    exercises = [e for e in skeleton_result.exercises if e.id.startswith("lab11.")]
+    assert exercises
+    for exercise in exercises:
+        assert exercise.score == 0
+        assert exercise.message == "not implemented yet"
+        for check in exercise.checks:
+            assert "not implemented yet" in check.message
+            assert check.traceback == ""
+
+
+# Each case: exercise, the wrong code, fragments the diagnosis must contain.
+MISTAKES = {
+    # ---------------------------------------------------------------- ex1
+    "triangulation without dividing by w": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[1],
+                          pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
+            return np.linalg.svd(A)[2][:, -1, :3]
+        """, ["not divided by w"]),
+    "triangulation from one view only": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1 = np.asarray(P1, float)
+            pts1 = np.asarray(pts1, float)
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[1]], axis=1)
+            X = np.linalg.svd(A)[2][:, -1, :]
+            return X[:, :3] / X[:, 3:]
+        """, ["only the first view"]),
+    "triangulation with the cameras swapped": ("lab11.ex1", """
+        _triangulate = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            return _triangulate(P2, P1, pts1, pts2)
+        """, ["swapped"]),
+    "triangulation with OpenCV": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            X = cv2.triangulatePoints(np.float64(P1), np.float64(P2), np.float64(pts1).T, np.float64(pts2).T)
+            return (X[:3] / X[3]).T
+        """, ["cv2.triangulatePoints", "yourself"]),
+    # ---------------------------------------------------------------- ex2
+    "epipolar lines with F transposed": ("lab11.ex2", """
+        def epipolar_lines(F, pts1):
+            lines = _homogeneous(pts1) @ np.asarray(F, float)
+            return lines / np.linalg.norm(lines[:, :2], axis=1, keepdims=True)
+        """, ["transposed"]),
+    "epipolar lines not normalised": ("lab11.ex2", """
+        def epipolar_lines(F, pts1):
+            return _homogeneous(pts1) @ np.asarray(F, float).T
+        """, ["a^2 + b^2 = 1"]),
+    "draw keeps grey": ("lab11.ex2", """
+        _draw = draw_epipolar_lines
+        def draw_epipolar_lines(image, lines):
+            out = _draw(image, lines)
+            return cv2.cvtColor(out, cv2.COLOR_BGR2GRAY) if image.ndim == 2 else out
+        """, ["always bgr"]),
+    "draw short segments": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            canvas = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image.copy()
+            w = canvas.shape[1]
+            for a, b, c in np.asarray(lines, float):
+                if abs(b) < 1e-9:
+                    continue
+                x0, x1 = w // 3, 2 * w // 3
+                cv2.line(canvas, (x0, int(round(-(c + a * x0) / b))), (x1, int(round(-(c + a * x1) / b))),
+                         (0, 0, 255), 1)
+            return canvas
+        """, ["stop short"]),
+    "draw with x and y swapped": ("lab11.ex2", """
+        _draw = draw_epipolar_lines
+        def draw_epipolar_lines(image, lines):
+            return _draw(image, np.asarray(lines, float)[:, [1, 0, 2]])
+        """, ["x and y swapped"]),
+    # ---------------------------------------------------------------- ex3
+    "essential with K1 and K2 swapped": ("lab11.ex3", """
+        def essential_from_fundamental(F, K1, K2):
+            return np.asarray(K1).T @ np.asarray(F) @ np.asarray(K2)
+        """, ["swapped"]),
+    "essential 8-point without (s, s, 0)": ("lab11.ex3", """
+        def essential_8point(pts1, pts2, K1, K2):
+            x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
+            x2 = _homogeneous(pts2) @ np.linalg.inv(K2).T
+            return _eight_point_core(x1, x2)
+        """, ["not set", "(1, 1, 0)"]),
+    "essential 8-point with rank 2 only": ("lab11.ex3", """
+        def essential_8point(pts1, pts2, K1, K2):
+            x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
+            x2 = _homogeneous(pts2) @ np.linalg.inv(K2).T
+            U, s, Vt = np.linalg.svd(_eight_point_core(x1, x2))
+            return U @ np.diag([s[0], s[1], 0]) @ Vt
+        """, ["two equal"]),
+    "essential 8-point on pixels": ("lab11.ex3", """
+        def essential_8point(pts1, pts2, K1, K2):
+            U, _, Vt = np.linalg.svd(_eight_point_core(_homogeneous(pts1), _homogeneous(pts2)))
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+        """, ["not normalised with k^-1"]),
+    "essential 8-point with points swapped": ("lab11.ex3", """
+        _e8 = essential_8point
+        def essential_8point(pts1, pts2, K1, K2):
+            return _e8(pts1, pts2, K1, K2).T
+        """, ["swapped"]),
+    # ---------------------------------------------------------------- ex4
+    "un-normalised 8-point": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            F = _eight_point_core(_homogeneous(pts1), _homogeneous(pts2))
+            U, s, Vt = np.linalg.svd(F)
+            return U @ np.diag([s[0], s[1], 0.0]) @ Vt
+        """, ["raw pixel coordinates"]),
+    "8-point without rank 2": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            T1, T2 = _hartley_normalisation(pts1), _hartley_normalisation(pts2)
+            Fn = _eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T)
+            return T2.T @ Fn @ T1
+        """, ["rank 2 was not enforced"]),
+    "8-point with points swapped": ("lab11.ex4", """
+        _f8 = fundamental_8point
+        def fundamental_8point(pts1, pts2):
+            return _f8(pts2, pts1)
+        """, ["swapped", "f^t"]),
+    "8-point with OpenCV": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            F, _ = cv2.findFundamentalMat(np.float64(pts1), np.float64(pts2), cv2.FM_8POINT)
+            return F
+        """, ["cv2.findFundamentalMat", "yourself"]),
+    # ---------------------------------------------------------------- ex5
+    "epipoles swapped": ("lab11.ex5", """
+        _ep = epipoles
+        def epipoles(F):
+            e1, e2 = _ep(F)
+            return e2, e1
+        """, ["swapped"]),
+    "epipoles divided by w": ("lab11.ex5", """
+        _ep = epipoles
+        def epipoles(F):
+            e1, e2 = _ep(F)
+            return e1 / e1[2], e2 / e2[2]
+        """, ["w = 0"]),
+}
+
+
+@pytest.mark.parametrize("case", sorted(MISTAKES))
+def test_mistake_is_caught_and_named(tmp_path, case):
+    exercise, source, fragments = MISTAKES[case]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    assert_diagnosed(result, exercise, *fragments)
+
+
+def test_unnormalised_8point_gets_partial_credit(tmp_path):
+    exercise, source, _ = MISTAKES["un-normalised 8-point"]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    checks = {c.name: c for c in check_results(result, exercise)}
+    noisy = [c for name, c in checks.items() if "noisy pixel coordinates" in name]
+    assert noisy and 0 < noisy[0].score < noisy[0].max_score
+    exact = [c for name, c in checks.items() if "exact" in name]
+    assert exact and all(c.passed for c in exact)
