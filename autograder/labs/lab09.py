@@ -1,0 +1,567 @@
+"""Lab 9 - geometric camera models: the public checks.
+
+Ground truth comes from :mod:`fixtures.lab09` (projections by definition,
+chessboard views rendered by :mod:`fixtures.scene` from a known camera), and
+OpenCV's ``cv2.projectPoints`` for the distortion model. Wrong answers are
+compared with what the usual mistakes would give, so the feedback can name them.
+"""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+from hypothesis import strategies as st
+
+from fixtures import lab09 as truth
+from fixtures.images import photo
+
+from ..checks import Trial, partial, passed
+from ..compare import closest, max_abs_error, projective_distance
+from ..pictures import svg_points
+from ..registry import Lab
+
+lab = Lab("lab09", module="lab09_camera", title="Geometric camera models")
+
+seeds = st.integers(0, 2**32 - 1)
+
+
+# ================================================================== shared judges
+def _fmt(matrix) -> str:
+    return np.array2string(np.asarray(matrix, float), precision=4, suppress_small=True)
+
+
+def point_error(got, expected) -> float:
+    """Largest distance between corresponding points; NaN must meet NaN."""
+    got = np.asarray(got, dtype=np.float64)
+    expected = np.asarray(expected, dtype=np.float64)
+    if got.shape != expected.shape:
+        return float("inf")
+    nan_expected = np.isnan(expected).any(axis=-1)
+    nan_got = ~np.isfinite(got).all(axis=-1)
+    if np.any(nan_expected != nan_got):
+        return float("inf")
+    keep = ~nan_expected
+    if not keep.any():
+        return 0.0
+    return float(np.max(np.linalg.norm(got[keep] - expected[keep], axis=-1)))
+
+
+def expect_points(t: Trial, what: str, got, shape) -> np.ndarray:
+    """Shape-check a returned point array, naming a transposed result."""
+    if isinstance(got, np.ndarray) and got.ndim == 2 and len(shape) == 2 and got.shape == shape[::-1] \
+            and shape[0] != shape[1]:
+        t.fail(f"{what} returned shape {got.shape}; expected {shape}: one row (x, y) per point "
+               "(transpose your result)")
+    return t.expect_array(got, what, shape=shape, kind="iuf")
+
+
+def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e-6, show=None):
+    """Compare returned 2D points with the truth; name the mistake when one fits.
+
+    ``show`` (a title) attaches a plot of the true and the returned points.
+    """
+    expected = np.asarray(expected, dtype=np.float64)
+    got = expect_points(t, what, got, expected.shape)
+    scale = max(1.0, float(np.nanmax(np.abs(expected)))) if np.isfinite(expected).any() else 1.0
+    error = point_error(got, expected)
+    if show and got.ndim == 2:
+        truth_pts = expected.reshape(-1, 2)
+        got_pts = np.asarray(got, float).reshape(-1, 2)
+        t.svg(show, svg_points({"true projection": truth_pts, "yours": got_pts},
+                               lines=list(zip(truth_pts, got_pts))))
+    if error <= tolerance * scale:
+        return got
+    mistake = closest(got, mistakes or {}, point_error, 1e-4 * scale)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    if not np.isnan(expected).any() and np.isnan(got).any():
+        t.fail(f"{what} returned NaN for points in front of the camera (Z > 0).")
+    t.fail(f"{what} is off by up to {error:.4g} (pixels); for example point 0 should be "
+           f"{_fmt(expected.reshape(-1, 2)[0])}, yours is {_fmt(np.asarray(got, float).reshape(-1, 2)[0])}.")
+
+
+def judge_single_point(t: Trial, what: str, got, expected):
+    """A single (3,) point must give a single (2,) result."""
+    if isinstance(got, np.ndarray) and got.shape == (1, 2):
+        t.fail(f"{what} returned shape (1, 2) for a single (3,) point; expected (2,): "
+               "a (3,) point gives a (2,) result (np.atleast_2d in, [0] out)")
+    got = t.expect_array(got, what, shape=(2,), kind="iuf")
+    if point_error(got[None], np.asarray(expected)[None]) > 1e-6 * max(1.0, np.abs(expected).max()):
+        t.fail(f"{what} returned {_fmt(got)}; expected {_fmt(expected)}")
+
+
+def judge_behind(t: Trial, what: str, got, expected, behind):
+    """Points with Z <= 0 must give NaN, the others their projection."""
+    got = expect_points(t, what, got, expected.shape)
+    got = np.asarray(got, dtype=np.float64)
+    bad = behind & np.isfinite(got).all(axis=1)
+    if bad.any():
+        t.fail(f"{what}: the points with Z <= 0 (rows {np.nonzero(behind)[0].tolist()}) should give "
+               "NaN, as documented: they are behind the camera and have no image; yours gave finite "
+               "values (a point behind the pinhole would appear mirrored).")
+    front = ~behind
+    error = point_error(got[front], expected[front])
+    if error > 1e-6 * max(1.0, float(np.nanmax(np.abs(expected)))):
+        t.fail(f"{what}: with some points behind the camera, the points in front are off by {error:.3g}.")
+
+
+def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3), up_to_scale=False):
+    got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
+    if up_to_scale:
+        distance = projective_distance
+        tolerance = 1e-7
+    else:
+        distance = max_abs_error
+        tolerance = 1e-7 * max(1.0, float(np.abs(expected).max()))
+    if distance(got, expected) <= tolerance:
+        return got
+    mistake = closest(got, mistakes or {}, distance, 1e3 * tolerance)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    t.fail(f"{what} returned\n{_fmt(got)}\nexpected\n{_fmt(expected)}")
+
+
+# ================================================================== ex1 pinhole
+ex1 = lab.exercise("ex1", "The pinhole camera", functions=["pinhole_project(points, f)"])
+
+SHEET_POINTS = np.array([[1.0, 2.0, 10.0], [-3.0, 1.5, 5.0], [0.5, -0.5, 2.0], [4.0, 3.0, 20.0]])
+
+
+@ex1.check("pinhole_project on the lab sheet's points, f = 500", points=3)
+def pinhole_example(t):
+    judge_points(t, "pinhole_project(points, f=500)", t.call("pinhole_project", SHEET_POINTS, 500.0),
+                 truth.pinhole(SHEET_POINTS, 500.0), truth.projection_mistakes(500.0, SHEET_POINTS),
+                 show="pinhole projection, f = 500")
+
+
+@ex1.check("pinhole_project for any points in front and any f", points=3)
+def pinhole_property(t):
+    def holds(case):
+        seed, f = case
+        X = truth.points_in_front(seed, n=10)
+        judge_points(t, f"pinhole_project(points, f={f!r})", t.call("pinhole_project", X, f),
+                     truth.pinhole(X, f), truth.projection_mistakes(f, X))
+
+    t.for_all(st.tuples(seeds, st.floats(10.0, 2000.0)), holds, max_examples=15,
+              describe=lambda c: f"fixtures.lab09.points_in_front(seed={c[0]}, n=10), f={c[1]!r}")
+
+
+@ex1.check("a single (3,) point gives a single (2,) result", points=1)
+def pinhole_single(t):
+    X = np.array([0.3, -0.2, 4.0])
+    judge_single_point(t, "pinhole_project((3,) point, f=100)", t.call("pinhole_project", X, 100.0),
+                       truth.pinhole(X, 100.0)[0])
+
+
+@ex1.check("points behind the camera (Z <= 0) give NaN", points=1)
+def pinhole_behind(t):
+    X, behind = truth.with_points_behind(truth.points_in_front(5, n=10), seed=6)
+    judge_behind(t, "pinhole_project(points with some Z <= 0, f=300)",
+                 t.call("pinhole_project", X, 300.0), truth.pinhole(X, 300.0), behind)
+
+
+# ================================================================== ex2 intrinsics
+ex2 = lab.exercise("ex2", "The intrinsic matrix", functions=[
+    "intrinsic_matrix(f, px, py)", "project_with_intrinsics(K, points)"])
+
+
+@ex2.check("intrinsic_matrix(500, 320, 240)", points=2)
+def intrinsic_example(t):
+    judge_matrix(t, "intrinsic_matrix(500, 320, 240)", t.call("intrinsic_matrix", 500.0, 320.0, 240.0),
+                 truth.intrinsic(500, 320, 240), truth.intrinsic_mistakes(500, 320, 240))
+
+
+@ex2.check("intrinsic_matrix for any f, px, py", points=1)
+def intrinsic_property(t):
+    def holds(case):
+        f, px, py = case
+        judge_matrix(t, f"intrinsic_matrix({f!r}, {px!r}, {py!r})", t.call("intrinsic_matrix", f, px, py),
+                     truth.intrinsic(f, px, py), truth.intrinsic_mistakes(f, px, py))
+
+    t.for_all(st.tuples(st.floats(1.0, 3000.0), st.floats(0.0, 2000.0), st.floats(0.0, 2000.0))
+              .filter(lambda c: abs(c[1] - c[2]) > 1e-3), holds, max_examples=10)
+
+
+@ex2.check("project_with_intrinsics(K, points)", points=3)
+def project_intrinsics_example(t):
+    K = truth.intrinsic(500.0, 320.0, 240.0)
+    X = truth.points_in_front(21, n=12)
+    judge_points(t, "project_with_intrinsics(K, points)", t.call("project_with_intrinsics", K, X),
+                 truth.homogeneous_project(K, X), {
+                     **truth.projection_mistakes(500.0, X, principal=(320.0, 240.0)),
+                     "the principal point is left out (x = f X / Z + px)": truth.pinhole(X, 500.0),
+                     "K is transposed (use K @ X, i.e. points @ K.T)": truth.homogeneous_project(K.T, X),
+                     "the principal point is swapped (px belongs to x)":
+                         truth.homogeneous_project(truth.intrinsic(500.0, 240.0, 320.0), X),
+                 }, show="projection with K")
+
+
+@ex2.check("project_with_intrinsics with non-square pixels, skew, and a single point", points=1)
+def project_intrinsics_general(t):
+    K = np.array([[420.0, 2.0, 150.0], [0.0, 380.0, 110.0], [0.0, 0.0, 1.0]])
+    X = truth.points_in_front(22, n=8)
+    judge_points(t, "project_with_intrinsics(K with fx != fy and skew, points)",
+                 t.call("project_with_intrinsics", K, X), truth.homogeneous_project(K, X),
+                 {"K is transposed (use K @ X, i.e. points @ K.T)": truth.homogeneous_project(K.T, X)})
+    judge_single_point(t, "project_with_intrinsics(K, (3,) point)",
+                       t.call("project_with_intrinsics", K, X[0]), truth.homogeneous_project(K, X[0])[0])
+
+
+@ex2.check("project_with_intrinsics: points behind the camera give NaN", points=1)
+def project_intrinsics_behind(t):
+    K = truth.intrinsic(400.0, 160.0, 120.0)
+    X, behind = truth.with_points_behind(truth.points_in_front(23, n=10), seed=24)
+    judge_behind(t, "project_with_intrinsics(K, points with some Z <= 0)",
+                 t.call("project_with_intrinsics", K, X), truth.homogeneous_project(K, X), behind)
+
+
+# ================================================================== ex3 full camera
+ex3 = lab.exercise("ex3", "The full camera matrix", functions=[
+    "camera_matrix(K, R, t)", "project(P, points)"])
+
+
+def _example_camera(seed=31):
+    K = np.array([[400.0, 0.0, 160.0], [0.0, 410.0, 120.0], [0.0, 0.0, 1.0]])
+    R, tvec = truth.random_pose(seed)
+    return K, R, tvec
+
+
+@ex3.check("camera_matrix(K, R, t) = K [R | t]", points=2)
+def camera_matrix_example(t):
+    K, R, tvec = _example_camera()
+    judge_matrix(t, "camera_matrix(K, R, t)", t.call("camera_matrix", K, R, tvec),
+                 truth.camera(K, R, tvec), truth.camera_mistakes(K, R, tvec), shape=(3, 4))
+
+
+@ex3.check("camera_matrix for random cameras", points=1)
+def camera_matrix_property(t):
+    def holds(seed):
+        K, R, tvec = _example_camera(seed)
+        judge_matrix(t, "camera_matrix(K, R, t)", t.call("camera_matrix", K, R, tvec),
+                     truth.camera(K, R, tvec), truth.camera_mistakes(K, R, tvec), shape=(3, 4))
+
+    t.for_all(seeds, holds, max_examples=8, describe=lambda s: f"fixtures.lab09.random_pose({s})")
+
+
+def project_mistakes(P, X):
+    Xh = np.column_stack([X, np.ones(len(X))])
+    x = Xh @ P.T
+    right = truth.homogeneous_project(P, X)
+    return {
+        "the perspective division is missing (divide by the third coordinate)": x[:, :2],
+        "x and y are swapped": right[:, ::-1],
+        "the translation is dropped: append 1 to each point before applying P (P @ [X, Y, Z, 1])":
+            truth.homogeneous_project(P[:, :3], X),
+    }
+
+
+@ex3.check("project(P, points) for world points in view", points=3)
+def project_example(t):
+    K, R, tvec = _example_camera()
+    P = truth.camera(K, R, tvec)
+    X = truth.world_points_for(K, R, tvec, seed=32)
+    judge_points(t, "project(P, points)", t.call("project", P, X), truth.homogeneous_project(P, X),
+                 project_mistakes(P, X), show="projection with P = K [R | t]")
+
+
+@ex3.check("project accepts any scale of P, and a single (3,) point", points=1)
+def project_scale(t):
+    K, R, tvec = _example_camera(33)
+    P = truth.camera(K, R, tvec)
+    X = truth.world_points_for(K, R, tvec, seed=34, n=6)
+    judge_points(t, "project(2.5 * P, points)", t.call("project", 2.5 * P, X),
+                 truth.homogeneous_project(P, X), project_mistakes(2.5 * P, X))
+    judge_single_point(t, "project(P, (3,) point)", t.call("project", P, X[0]),
+                       truth.homogeneous_project(P, X[0])[0])
+
+
+@ex3.check("project: points behind the camera give NaN", points=1)
+def project_behind(t):
+    K, R, tvec = _example_camera(35)
+    P = truth.camera(K, R, tvec)
+    Xc, behind = truth.with_points_behind(truth.points_in_front(36, n=10), seed=37)
+    X = (Xc - tvec) @ R                       # camera-frame points to world points
+    judge_behind(t, "project(P, points with some behind the camera)", t.call("project", P, X),
+                 truth.homogeneous_project(P, X), behind)
+
+
+# ================================================================== ex4 focal length, aperture
+ex4 = lab.exercise("ex4", "Focal length and pinhole size", functions=[
+    "project_focal_lengths(points, focal_lengths)",
+    "simulate_aperture(points, f, aperture, n_rays=100, seed=None)"])
+
+
+@ex4.check("project_focal_lengths: one pinhole projection per focal length, (F, N, 2)", points=3)
+def focal_lengths(t):
+    X = truth.points_in_front(41, n=9)
+    fs = np.array([100.0, 500.0, 1000.0])
+    expected = np.stack([truth.pinhole(X, f) for f in fs])
+    got = t.call("project_focal_lengths", X, fs)
+    if isinstance(got, np.ndarray) and got.shape == (9, 3, 2):
+        t.fail("project_focal_lengths returned shape (N, F, 2) = (9, 3, 2); expected (F, N, 2) = (3, 9, 2): "
+               "one (N, 2) projection per focal length, stacked along the first axis")
+    got = t.expect_array(got, "project_focal_lengths(points, [100, 500, 1000])", shape=(3, 9, 2), kind="iuf")
+    t.svg("projections for f = 100, 500, 1000", svg_points(
+        {f"f = {f:g}": got[i] for i, f in enumerate(fs)}))
+    for i, f in enumerate(fs):
+        judge_points(t, f"project_focal_lengths(...)[{i}] (f = {f:g})", got[i], expected[i],
+                     truth.projection_mistakes(f, X))
+    return passed("the image grows in proportion to f")
+
+
+APERTURE_F = 200.0
+
+
+def _aperture_call(t: Trial, X, aperture, n_rays, seed):
+    what = f"simulate_aperture(points, f={APERTURE_F:g}, aperture={aperture:g}, n_rays={n_rays}, seed={seed})"
+    got = t.call("simulate_aperture", X, APERTURE_F, aperture, n_rays=n_rays, seed=seed)
+    if isinstance(got, np.ndarray) and got.shape == (n_rays, len(X), 2) and n_rays != len(X):
+        t.fail(f"{what} returned shape {got.shape}; expected (N, n_rays, 2) = ({len(X)}, {n_rays}, 2)")
+    return t.expect_array(got, what, shape=(len(X), n_rays, 2), kind="f", finite=True), what
+
+
+@ex4.check("simulate_aperture with aperture 0 is the ideal pinhole projection", points=2)
+def aperture_zero(t):
+    X = truth.points_in_front(42, n=6)
+    got, what = _aperture_call(t, X, 0.0, 20, 0)
+    ideal = truth.pinhole(X, APERTURE_F)
+    error = np.abs(got - ideal[:, None, :]).max()
+    if error > 1e-6:
+        mistake = closest(got.mean(axis=1), truth.projection_mistakes(APERTURE_F, X), point_error, 1e-3)
+        if mistake:
+            t.fail(f"{what} is not the ideal projection: it looks like {mistake}.")
+        t.fail(f"{what}: with a point-sized pinhole every ray should land on the ideal projection "
+               f"f X / Z; yours are up to {error:.3g} px away.")
+
+
+def _spread(got, ideal):
+    d = np.linalg.norm(got - ideal[:, None, :], axis=-1)     # (N, n_rays)
+    return d, np.sqrt((d ** 2).mean(axis=1))                 # distances, RMS per point
+
+
+@ex4.check("simulate_aperture: rays spread over the blur disc around the ideal projection", points=3)
+def aperture_statistics(t):
+    X = truth.points_in_front(43, n=6, z_range=(1.0, 8.0))
+    aperture, n = 0.5, 4000
+    got, what = _aperture_call(t, X, aperture, n, 7)
+    ideal = truth.pinhole(X, APERTURE_F)
+    radius = truth.blur_radius(X, APERTURE_F, aperture)           # a (1 + f / Z)
+    t.svg("rays of point 0 (first 300) around its ideal projection", svg_points(
+        {"ideal projection": ideal[:1], "rays": got[0, :300]}))
+    d, rms = _spread(got, ideal)
+    mean_error = np.linalg.norm(got.mean(axis=1) - ideal, axis=1) / radius
+    if np.all(rms < 1e-9):
+        t.fail(f"{what}: every ray lands on the ideal projection; the aperture is ignored.")
+    if np.any(mean_error > 0.1):
+        t.fail(f"{what}: the rays of a point are not centred on its ideal projection f X / Z "
+               f"(their mean is off by up to {mean_error.max():.2f} blur radii).")
+    ratio = d.max(axis=1) / radius
+    per_point = rms / radius
+    if np.all(np.abs(ratio - 2.0) < 0.1):
+        t.fail(f"{what}: the rays spread over twice the expected disc: it looks like the aperture "
+               "is used as the diameter; it is the radius.")
+    if np.ptp(rms / aperture) < 0.05 * np.mean(rms / aperture) and np.ptp(radius) > 0.2 * radius.mean():
+        t.fail(f"{what}: the spread is the same for every point, but it should depend on depth: "
+               "the blur disc has radius aperture * (1 + f / Z) (near points blur more).")
+    if np.any(ratio > 1.02):
+        t.fail(f"{what}: some rays land outside the blur disc of radius aperture * (1 + f / Z) "
+               f"(up to {ratio.max():.2f} radii from the ideal projection).")
+    if np.any(per_point < 0.5) or np.any(per_point > 0.8):
+        t.fail(f"{what}: the rays fill the blur disc unevenly (RMS distance {per_point.min():.2f}.."
+               f"{per_point.max():.2f} radii; uniform over the disc gives 0.71).",
+               hint="draw the aperture point uniformly over the disc: radius = aperture * sqrt(u)")
+    return passed(f"mean on the ideal projection, RMS spread {per_point.mean():.2f} blur radii")
+
+
+@ex4.check("simulate_aperture: the spread grows with the aperture", points=2)
+def aperture_growth(t):
+    X = truth.points_in_front(44, n=5)
+    ideal = truth.pinhole(X, APERTURE_F)
+    spreads = []
+    for aperture in (0.05, 0.2, 0.8):
+        got, what = _aperture_call(t, X, aperture, 1000, 3)
+        spreads.append(_spread(got, ideal)[1].mean())
+    spreads = np.array(spreads)
+    if not np.all(np.diff(spreads) > 0):
+        t.fail(f"the spread of the rays for apertures 0.05, 0.2, 0.8 is {_fmt(spreads)} px: "
+               "it should grow with the aperture.")
+    ratios = spreads[1:] / spreads[:-1]
+    if np.any(np.abs(ratios / 4.0 - 1) > 0.15):
+        t.fail(f"the spread for apertures 0.05, 0.2, 0.8 is {_fmt(spreads)} px: each aperture is 4x "
+               "the previous, so the spread should be about 4x too (it is proportional to the aperture).")
+    return passed(f"spread {_fmt(spreads)} px for apertures 0.05, 0.2, 0.8")
+
+
+@ex4.check("simulate_aperture is reproducible with a seed", points=1)
+def aperture_seed(t):
+    X = truth.points_in_front(45, n=4)
+    a, what = _aperture_call(t, X, 0.3, 50, 123)
+    b, _ = _aperture_call(t, X, 0.3, 50, 123)
+    c, _ = _aperture_call(t, X, 0.3, 50, 124)
+    if not np.array_equal(a, b):
+        t.fail(f"{what} gave different rays for the same seed: use rng = np.random.default_rng(seed) "
+               "and draw every random number from rng.")
+    if np.array_equal(a, c):
+        t.fail("simulate_aperture gave the same rays for seeds 123 and 124: the seed is ignored.")
+
+
+# ================================================================== ex5 points on a real image
+ex5 = lab.exercise("ex5", "Points on a real image", functions=[
+    "draw_points(image, pts, radius=3, color=(0, 0, 255))", "project_onto_image(image, P, points)"])
+
+
+def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 255), show=True):
+    expected = truth.expected_drawing(image, pts, radius, color)
+    if isinstance(got, np.ndarray) and show:
+        t.compare_images(what, image, expected, got)
+    got = t.expect_array(got, what, shape=image.shape, dtype=np.uint8)
+    core, far = truth.circle_regions(image.shape, pts, radius)
+    painted = np.all(got == np.asarray(color, np.uint8), axis=-1) if got.ndim == 3 else got == color[0]
+    changed = np.any(got != image, axis=-1) if got.ndim == 3 else got != image
+    untouched = 1.0 - changed[far].mean()
+    coverage = painted[core].mean() if core.any() else 1.0
+    if coverage >= 0.97 and untouched >= 0.999:
+        return passed(f"every circle drawn, {coverage:.0%} of the disc pixels in the colour {tuple(color)}")
+    pts = np.asarray(pts, float).reshape(-1, 2)
+    swapped_core, _ = truth.circle_regions(image.shape, pts[:, ::-1], radius)
+    if swapped_core.any() and painted[swapped_core].mean() > 0.9:
+        t.fail(f"{what}: the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = (column, row).")
+    if got.ndim == 3:
+        reversed_colour = np.all(got == np.asarray(color[::-1], np.uint8), axis=-1)
+        if core.any() and reversed_colour[core].mean() > 0.9:
+            t.fail(f"{what}: the circles have colour {tuple(color[::-1])}, not {tuple(color)}: "
+                   "OpenCV images are BGR; pass the colour as given.")
+    d = truth.distance_map(image.shape, pts)
+    inner, ring = d <= radius - 1.5, np.abs(d - radius) <= 0.5
+    if inner.any() and painted[inner].mean() < 0.5 and ring.any() and painted[ring].mean() > 0.5:
+        t.fail(f"{what}: the circles are outlines; they should be filled (thickness=-1).")
+    if coverage < 0.97:
+        t.fail(f"{what}: only {coverage:.0%} of the pixels that should be covered by the circles "
+               f"(radius {radius}, colour {tuple(color)}) are.")
+    t.fail(f"{what}: {1 - untouched:.1%} of the pixels far from every point were changed; "
+           "only the circles should be drawn (on a copy of the image).")
+
+
+@ex5.check("draw_points draws filled circles at the points", points=3)
+def draw_example(t):
+    image = photo("astronaut", (200, 150))
+    pts = np.array([[20.3, 30.7], [100.0, 75.0], [180.6, 20.2], [50.5, 120.4], [150.2, 130.9]])
+    return judge_drawing(t, "draw_points(image, pts)", t.call("draw_points", image, pts), image, pts)
+
+
+@ex5.check("draw_points with radius, colour, and points that are NaN or off the image", points=2)
+def draw_options(t):
+    image = photo("coffee", (160, 120))
+    pts = np.array([[40.0, 40.0], [np.nan, np.nan], [120.4, 80.6], [-30.0, 50.0], [500.0, 60.0]])
+    return judge_drawing(t, "draw_points(image, pts, radius=6, color=(0, 255, 0))",
+                         t.call("draw_points", image, pts, radius=6, color=(0, 255, 0)),
+                         image, pts, radius=6, color=(0, 255, 0))
+
+
+def _photo_scene(seed=51):
+    image = photo("chelsea", (240, 180))
+    K = np.array([[260.0, 0.0, 119.5], [0.0, 260.0, 89.5], [0.0, 0.0, 1.0]])
+    R, tvec = truth.random_pose(seed)
+    X = truth.world_points_for(K, R, tvec, seed=seed + 1, n=10, width=240, height=180)
+    return image, truth.camera(K, R, tvec), X
+
+
+@ex5.check("project_onto_image returns the projected points and the image with them drawn", points=4)
+def project_onto_image_check(t):
+    image, P, X = _photo_scene()
+    got = t.call("project_onto_image", image, P, X)
+    if not (isinstance(got, (tuple, list)) and len(got) == 2):
+        t.fail("project_onto_image should return a pair (image, pts)")
+    drawn, pts = got
+    expected = truth.homogeneous_project(P, X)
+    judge_points(t, "project_onto_image(...)[1] (the points)", pts, expected, project_mistakes(P, X),
+                 tolerance=1e-6, show="projected points")
+    return judge_drawing(t, "project_onto_image(...)[0] (the image)", drawn, image, expected)
+
+
+# ================================================================== ext1 calibration
+ext1 = lab.exercise("ext1", "Extension: camera calibration", functions=[
+    "calibrate(images, pattern_size, square_size)"])
+
+
+def judge_calibration(t: Trial, variant: int):
+    images, K_true, _ = truth.calibration_views(variant)
+    pattern, square = truth.CALIBRATION_PATTERN, truth.CALIBRATION_SQUARE
+    what = f"calibrate({len(images)} views, pattern_size={pattern}, square_size={square})"
+    got = t.call("calibrate", list(images), pattern, square)
+    if not (isinstance(got, (tuple, list)) and len(got) == 3):
+        t.fail(f"{what} should return a triple (K, dist, rms)")
+    K, dist, rms = got
+    K = t.expect_array(K, f"{what}[0] (K)", shape=(3, 3), kind="iuf", finite=True)
+    dist = t.expect_array(dist, f"{what}[1] (dist)", kind="iuf", finite=True)
+    if dist.size < 4:
+        t.fail(f"{what}[1] (dist) has {dist.size} values; expected OpenCV's (k1, k2, p1, p2, k3)")
+    if not isinstance(rms, (int, float)) and not (isinstance(rms, np.ndarray) and rms.size == 1):
+        t.fail(f"{what}[2] (rms) should be a number (the RMS reprojection error in pixels)")
+    rms = float(np.asarray(rms).ravel()[0])
+    if abs(K[2, 2]) > 1e-12:
+        K = K / K[2, 2]
+    if abs(K[2, 0]) > 1.0 and abs(K[0, 2]) < 1.0:
+        t.fail(f"{what}: K is transposed: the principal point belongs in the last column.")
+    f_error = np.abs(np.array([K[0, 0], K[1, 1]]) / np.array([K_true[0, 0], K_true[1, 1]]) - 1.0)
+    c_error = np.abs(K[:2, 2] - K_true[:2, 2])
+    if not np.isfinite(rms) or rms < 0:
+        t.fail(f"{what}: rms = {rms} is not a reprojection error")
+    if rms > 1.0:
+        t.fail(f"{what}: the reprojection error is {rms:.2f} px (a good calibration on these clean "
+               "views has < 0.1 px): the object points do not correspond to the detected corners; "
+               "build them row by row, x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.")
+    if np.abs(K[:2, 2] - K_true[1::-1, 2]).max() < 3.0 and c_error.max() > 3.0:
+        t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
+               "(rows, cols)? OpenCV wants (width, height).")
+    if f_error.max() > 0.015 or c_error.max() > 3.0:
+        t.fail(f"{what}: K is\n{_fmt(K)}\nbut the views were rendered with\n{_fmt(K_true)}\n"
+               f"(focal lengths off by {f_error.max():.1%}, principal point by {c_error.max():.1f} px).")
+    if rms > 0.5:
+        return partial(0.5, f"{what}: K is right, but the reported reprojection error is {rms:.2f} px; "
+                            "these clean views allow < 0.2 px.", hint="refine corners with cv2.cornerSubPix")
+    return passed(f"focal lengths within {f_error.max():.2%}, principal point within {c_error.max():.2f} px, "
+                  f"rms {rms:.3f} px")
+
+
+@ext1.check("calibrate on six rendered chessboard views recovers K", points=5)
+def calibrate_rendered(t):
+    images, _, _ = truth.calibration_views(0)
+    t.images("two of the calibration views", view_1=images[0], view_2=images[3])
+    return judge_calibration(t, 0)
+
+
+# ================================================================== ext2 lens distortion
+ext2 = lab.exercise("ext2", "Extension: lens distortion", functions=["distort_points(points, dist)"])
+lab.forbid("distort_points", "cv2.projectPoints", "cv2.undistortPoints")
+
+DIST_EXAMPLE = np.array([-0.28, 0.09, 0.0015, -0.002, -0.015])
+
+
+def judge_distortion(t: Trial, pts, dist, show=False):
+    what = f"distort_points(points, dist={_fmt(dist)})"
+    expected = truth.distort_truth(pts, dist)
+    got = t.call("distort_points", pts, dist)
+    if show and isinstance(got, np.ndarray) and got.shape == expected.shape:
+        t.svg("normalised points: ideal, OpenCV's distortion, yours", svg_points(
+            {"undistorted": pts, "OpenCV (truth)": expected, "yours": got}, lines=list(zip(expected, got))))
+    judge_points(t, what, got, expected, truth.distortion_mistakes(pts, dist), tolerance=1e-7)
+
+
+@ext2.check("distort_points matches OpenCV's model (cv2.projectPoints) on a grid", points=4)
+def distortion_grid(t):
+    xs, ys = np.meshgrid(np.linspace(-0.6, 0.6, 7), np.linspace(-0.45, 0.45, 5))
+    pts = np.column_stack([xs.ravel(), ys.ravel()])
+    judge_distortion(t, pts, DIST_EXAMPLE, show=True)
+
+
+@ext2.check("distort_points for any coefficients", points=3)
+def distortion_property(t):
+    def holds(seed):
+        rng = np.random.default_rng(seed)
+        pts = rng.uniform(-0.7, 0.7, size=(12, 2))
+        dist = rng.uniform([-0.4, -0.2, -0.01, -0.01, -0.1], [0.4, 0.2, 0.01, 0.01, 0.1])
+        judge_distortion(t, pts, dist)
+
+    t.for_all(seeds, holds, max_examples=12,
+              describe=lambda s: f"points = uniform(-0.7, 0.7, (12, 2)), dist random, from seed {s}")

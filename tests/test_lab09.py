@@ -1,0 +1,142 @@
+"""Lab 9: the reference passes, the skeleton scores 0, usual mistakes are named."""
+
+import pytest
+
+from autograder.runner import grade
+from conftest import assert_diagnosed, mutant
+
+MODULE = "lab09_camera"
+
+
+def test_reference_scores_full_marks(reference_result):
+    for exercise in reference_result.exercises:
+        if exercise.id.startswith("lab09."):
+            for check in exercise.checks:
+                assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+
+
+def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
+    for exercise in skeleton_result.exercises:
+        if exercise.id.startswith("lab09."):
+            assert exercise.score == 0
+            assert exercise.message == "not implemented yet"
+            for check in exercise.checks:
+                assert "not implemented yet" in check.message
+                assert check.traceback == ""
+
+
+# Each case: exercise, the wrong code, fragments the diagnosis must contain.
+MISTAKES = {
+    "x/y swapped": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            return _divide(np.column_stack([f * X[:, 1], f * X[:, 0], X[:, 2]]), single)
+        """, ["swapped"]),
+    "no division": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X = np.atleast_2d(np.asarray(points, float))
+            out = f * X[:, :2]
+            return out[0] if np.ndim(points) == 1 else out
+        """, ["division is missing"]),
+    "behind camera mirrored": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X = np.atleast_2d(np.asarray(points, float))
+            out = f * X[:, :2] / X[:, 2:3]
+            return out[0] if np.ndim(points) == 1 else out
+        """, ["z <= 0", "nan"]),
+    "single point keeps (1, 2)": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            return _divide(np.column_stack([f * X[:, 0], f * X[:, 1], X[:, 2]]), False)
+        """, ["(1, 2)", "(2,)"]),
+    "K transposed": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, 0.0, 0.0], [0.0, f, 0.0], [px, py, 1.0]])
+        """, ["transposed"]),
+    "principal point left out": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            K = np.asarray(K, float).copy(); K[:2, 2] = 0
+            return _divide(X @ K.T, single)
+        """, ["principal point is left out"]),
+    "t as camera centre": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            R = np.asarray(R, float)
+            return np.asarray(K, float) @ np.column_stack([R, -R @ np.asarray(t, float)])
+        """, ["camera centre"]),
+    "translation dropped": ("lab09.ex3", """
+        def project(P, points):
+            X, single = _points(points)
+            return _divide(X @ np.asarray(P, float)[:, :3].T, single)
+        """, ["translation is dropped"]),
+    "focal lengths axes": ("lab09.ex4", """
+        def project_focal_lengths(points, focal_lengths):
+            X, _ = _points(points)
+            return np.stack([pinhole_project(X, f) for f in focal_lengths], axis=1)
+        """, ["(f, n, 2)"]),
+    "aperture as diameter": ("lab09.ex4", """
+        _right = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return _right(points, f, 2 * aperture, n_rays, seed)
+        """, ["diameter"]),
+    "blur independent of depth": ("lab09.ex4", """
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            X, _ = _points(points)
+            rng = np.random.default_rng(seed)
+            r = aperture * np.sqrt(rng.uniform(size=(len(X), n_rays)))
+            a = rng.uniform(0, 2 * np.pi, size=(len(X), n_rays))
+            A = np.stack([r * np.cos(a), r * np.sin(a)], axis=-1)
+            return pinhole_project(X, f)[:, None, :] + 30 * A
+        """, ["depend on depth"]),
+    "seed ignored": ("lab09.ex4", """
+        _right = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return _right(points, f, aperture, n_rays, None)
+        """, ["same seed"]),
+    "hollow circles": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            for x, y in np.asarray(pts, float).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(out, (int(round(x)), int(round(y))), int(radius), tuple(color), 1)
+            return out
+        """, ["filled"]),
+    "circles at (y, x)": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            for x, y in np.asarray(pts, float).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(out, (int(round(y)), int(round(x))), int(radius), tuple(color), -1)
+            return out
+        """, ["(y, x)"]),
+    "wrong calibration object points": ("lab09.ext1", """
+        _right = calibrate
+        def calibrate(images, pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float32)
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].reshape(2, -1).T * square_size
+            pts = [cv2.findChessboardCorners(im, (cols, rows))[1] for im in images]
+            h, w = images[0].shape[:2]
+            rms, K, dist, _, _ = cv2.calibrateCamera([objp] * len(pts), pts, (w, h), None, None)
+            return K, dist.ravel(), rms
+        """, ["object points"]),
+    "tangential swapped": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            k1, k2, p1, p2, k3 = dist
+            return _right(points, [k1, k2, p2, p1, k3])
+        """, ["p1 and p2 are swapped"]),
+    "distortion via projectPoints": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, float)
+            obj = np.column_stack([pts, np.ones(len(pts))])
+            return cv2.projectPoints(obj, np.zeros(3), np.zeros(3), np.eye(3), np.asarray(dist, float))[0].reshape(-1, 2)
+        """, ["cv2.projectpoints", "yourself"]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(MISTAKES))
+def test_mistake_is_diagnosed(tmp_path, name):
+    exercise, source, fragments = MISTAKES[name]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    assert_diagnosed(result, exercise, *fragments)
