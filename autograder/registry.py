@@ -122,11 +122,21 @@ def discover() -> dict[str, Lab]:
             continue  # the student bundle has no hidden checks
         for info in pkgutil.iter_modules(package.__path__):
             if not info.ispkg and not info.name.startswith("_"):
-                importlib.import_module(f"{package_name}.{info.name}")
+                _import_suite(f"{package_name}.{info.name}")
     for entry in metadata.entry_points(group="autograder.labs"):
         entry.load()
     del labs
     return REGISTRY
+
+
+def _import_suite(name: str) -> None:
+    """Import one lab suite; a broken suite is logged and skipped, never fatal to grading."""
+    try:
+        importlib.import_module(name)
+    except Exception:  # noqa: BLE001
+        import logging
+
+        logging.getLogger("autograder").exception("lab suite %s failed to load; skipped", name)
 
 
 def select(selectors=(), include_hidden: bool = True) -> list[Exercise]:

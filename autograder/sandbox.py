@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import secrets
 import select
 import shutil
 import signal
@@ -24,7 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from . import transport
+from . import confine, transport
 
 LENGTH = struct.Struct(">Q")
 _WORKER_FILES = ("worker.py", "transport.py")
@@ -50,13 +51,34 @@ class Limits:
     max_output_chars: int = 4000         # captured stdout/stderr kept per call
     startup_timeout: float = 60.0        # for the worker to import NumPy/OpenCV (not billed)
 
-    def worker_json(self) -> str:
+    def worker_json(self, processes: int) -> str:
         return json.dumps({
             "address_space": self.address_space,
             "file_size": self.file_size,
             "cpu_total": self.cpu_total,
-            "extra_processes": self.extra_processes,
+            "processes": processes,
         })
+
+
+# Workers alive in this process, so reaping escaped daemons never touches a worker.
+_LIVE_WORKERS: set[int] = set()
+
+
+def default_hidden_paths() -> list[Path]:
+    """Folders the worker must not read: the grader, its fixtures, the answers, the tests.
+
+    ``AUTOGRADER_HIDE`` adds more (``os.pathsep``-separated), e.g. a container's
+    results folder.
+    """
+    import fixtures
+
+    package = Path(__file__).resolve().parent
+    root = package.parent
+    paths = [package, Path(fixtures.__file__).resolve().parent,
+             root / "reference_solutions", root / "tests"]
+    extra = os.environ.get("AUTOGRADER_HIDE", "")
+    paths += [Path(p) for p in extra.split(os.pathsep) if p]
+    return [p for p in dict.fromkeys(paths) if p.is_dir()]
 
 
 class WorkerStartError(RuntimeError):
@@ -114,9 +136,19 @@ class Sandbox:
     ...     box.call("lab07_transformations", "translation_matrix", (1, 2)).value
     """
 
-    def __init__(self, submission_dir, limits: Limits | None = None):
+    def __init__(self, submission_dir, limits: Limits | None = None,
+                 confinement: confine.Confinement | None = None, hide=None):
         self.limits = limits or Limits()
-        self.scratch = Path(tempfile.mkdtemp(prefix="autograder-"))
+        self.confinement = confinement or confine.detect()
+        self.hide = default_hidden_paths() if hide is None else list(hide)
+        if self.confinement.level == "process-group":
+            confine.become_subreaper()
+        # A private base (listable by the grader only) around a randomly named
+        # scratch folder, so workers of other submissions cannot find this one.
+        self._base = Path(tempfile.mkdtemp(prefix="autograder-"))
+        self._base.chmod(0o711)
+        self.scratch = self._base / secrets.token_hex(8)
+        self.scratch.mkdir()
         self.submission_dir = self.scratch / "submission"
         shutil.copytree(submission_dir, self.submission_dir,
                         ignore=shutil.ignore_patterns("__pycache__", "*.pyc", ".*"))
@@ -126,6 +158,7 @@ class Sandbox:
         for name in _WORKER_FILES:
             shutil.copy(here / name, self.scratch / "worker" / name)
         self.output_path = self.scratch / "output.txt"
+        self.confinement.prepare_scratch(self.scratch, private=("worker",))
         self.proc: subprocess.Popen | None = None
         self._request_fd = self._response_fd = -1
         self._imported: set[str] = set()
@@ -143,18 +176,21 @@ class Sandbox:
     def close(self):
         """Stop the worker and everything it started, then delete the scratch directory."""
         self._stop_worker()
-        shutil.rmtree(self.scratch, ignore_errors=True)
+        shutil.rmtree(self._base, ignore_errors=True)
 
     def _start_worker(self):
         request_r, request_w = os.pipe()
         response_r, response_w = os.pipe()
-        log = open(self.scratch / "worker.log", "ab")
+        log = open(self._base / "worker.log", "ab")
+        uid = self.confinement.uid if self.confinement.uid is not None else os.getuid()
+        processes = confine.count_tasks(uid) + self.limits.extra_processes
+        command = self.confinement.wrap(
+            [sys.executable, "-B", str(self.scratch / "worker" / "worker.py"),
+             str(request_r), str(response_w), str(self.submission_dir),
+             str(self.output_path), self.limits.worker_json(processes)], hide=self.hide)
         try:
             self.proc = subprocess.Popen(
-                [sys.executable, "-B", str(self.scratch / "worker" / "worker.py"),
-                 str(request_r), str(response_w), str(self.submission_dir),
-                 str(self.output_path), self.limits.worker_json()],
-                pass_fds=(request_r, response_w), stdin=subprocess.DEVNULL,
+                command, pass_fds=(request_r, response_w), stdin=subprocess.DEVNULL,
                 stdout=log, stderr=log, cwd=self.scratch / "work",
                 env=_scrubbed_environment(self.scratch), start_new_session=True,
             )
@@ -162,6 +198,7 @@ class Sandbox:
             log.close()
             os.close(request_r)
             os.close(response_w)
+        _LIVE_WORKERS.add(self.proc.pid)
         self._request_fd, self._response_fd = request_w, response_r
         self._imported = set()
         # Wait for the worker's "ready" (it imports NumPy and OpenCV first), so that
@@ -170,7 +207,7 @@ class Sandbox:
             length, = LENGTH.unpack(self._read(LENGTH.size, time.monotonic() + self.limits.startup_timeout))
             ready = transport.decode(self._read(length, time.monotonic() + 5))
         except (TimeoutError, EOFError, transport.TransportError) as exc:
-            log = (self.scratch / "worker.log").read_text(errors="replace")[-2000:]
+            log = (self._base / "worker.log").read_text(errors="replace")[-2000:]
             self._stop_worker()
             raise WorkerStartError(f"the grading worker did not start ({type(exc).__name__}): {log}") from None
         if ready != {"ok": True, "value": "ready", "seconds": 0.0}:
@@ -190,6 +227,9 @@ class Sandbox:
         except subprocess.TimeoutExpired:
             pass
         self._kill_process_group()
+        _LIVE_WORKERS.discard(self.proc.pid)
+        if self.confinement.level == "process-group":
+            confine.kill_adopted_orphans(keep=_LIVE_WORKERS)
         self.proc = None
         self._request_fd = self._response_fd = -1
 

@@ -55,24 +55,9 @@ def apply_limits(limits):
     cpu_total = limits.get("cpu_total")
     if cpu_total is not None:
         resource.setrlimit(resource.RLIMIT_CPU, (int(cpu_total), int(cpu_total) + 5))
-    extra = limits.get("extra_processes")
-    if extra is not None and hasattr(resource, "RLIMIT_NPROC"):
-        # RLIMIT_NPROC counts every task of this user, so allow what exists plus a margin.
-        cap(resource.RLIMIT_NPROC, _tasks_of_this_user() + int(extra))
-
-
-def _tasks_of_this_user():
-    uid, count = os.getuid(), 0
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open(f"/proc/{entry}/status") as status:
-                    fields = dict(line.split(":", 1) for line in status if ":" in line)
-                if int(fields["Uid"].split()[0]) == uid:
-                    count += int(fields["Threads"])
-            except (OSError, KeyError, ValueError):
-                pass
-    return count
+    processes = limits.get("processes")  # counted by the parent: RLIMIT_NPROC is per user
+    if processes is not None and hasattr(resource, "RLIMIT_NPROC"):
+        cap(resource.RLIMIT_NPROC, processes)
 
 
 # ------------------------------------------------------------------ I/O

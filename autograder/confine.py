@@ -1,0 +1,222 @@
+"""How the worker process is confined, chosen by what the platform allows.
+
+Three levels, strongest first; :func:`detect` probes them once per process and
+keeps the first that really starts Python:
+
+``namespaces+user``
+    The grader runs as root (a course container). The worker starts in new PID,
+    network and mount namespaces (``unshare``), with the grader's sources
+    (``autograder/``, ``fixtures/``, ``reference_solutions/``, results folders)
+    covered by empty read-only mounts, then drops to the unprivileged user
+    ``agworker`` (created if missing; ``nobody`` otherwise) with no capabilities.
+    It sees no grader process, has no network, cannot read the answers, and the
+    whole namespace (daemons included) dies with it.
+``namespaces``
+    The same namespaces and hidden folders, without changing user: as root when
+    the interpreter is not readable by another user (Python under ``/root``), or
+    through an unprivileged user namespace on a student's Linux laptop. Every
+    capability is dropped, so the hiding mounts cannot be undone.
+``process-group``
+    Best effort (macOS, or Linux without namespaces): the worker gets its own
+    session, the grader becomes a child subreaper so double-forked daemons are
+    re-parented to it and killed, and the resource limits still apply. No
+    network isolation, and the worker can read what the user can.
+
+``AUTOGRADER_CONFINEMENT=process-group`` (or another level) forces a level.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import pwd
+import shlex
+import shutil
+import signal
+import subprocess
+import sys
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+LEVELS = ("namespaces+user", "namespaces", "process-group")
+WORKER_USER = "agworker"
+_PR_SET_CHILD_SUBREAPER = 36
+
+
+@dataclass(frozen=True)
+class Confinement:
+    """A confinement level and, for ``namespaces+user``, the worker's uid/gid."""
+
+    level: str
+    uid: int | None = None
+    gid: int | None = None
+
+    def wrap(self, argv: list[str], hide=()) -> list[str]:
+        """The command that starts ``argv`` confined, with the folders ``hide`` covered."""
+        if self.level == "process-group":
+            return list(argv)
+        unshare = ["unshare", "--pid", "--fork", "--kill-child", "--mount-proc", "--net", "--mount"]
+        if os.geteuid() != 0:
+            unshare.insert(1, "--map-root-user")
+            unshare.insert(1, "--user")
+        mounts = [f"mount -t tmpfs -o ro,size=4k,mode=000 none {shlex.quote(str(p))}"
+                  for p in hide if Path(p).is_dir()]
+        drop = ["setpriv", "--no-new-privs", "--bounding-set=-all", "--inh-caps=-all"]
+        if self.level == "namespaces+user":
+            drop[1:1] = [f"--reuid={self.uid}", f"--regid={self.gid}", "--clear-groups"]
+        script = " && ".join(mounts + [f'exec {" ".join(drop)} -- "$@"'])
+        return unshare + ["--", "/bin/sh", "-c", script, "sh", *argv]
+
+    @property
+    def isolates_network(self) -> bool:
+        return self.level != "process-group"
+
+    @property
+    def hides_files(self) -> bool:
+        return self.level != "process-group"
+
+    def prepare_scratch(self, scratch: Path, private=("worker",)) -> None:
+        """Give the worker's user its scratch folder (all but ``private`` entries)."""
+        if self.uid is None:
+            return
+        os.chown(scratch, self.uid, self.gid)
+        for entry in scratch.iterdir():
+            if entry.name in private:
+                continue
+            for path in [entry, *entry.rglob("*")]:
+                os.chown(path, self.uid, self.gid, follow_symlinks=False)
+
+
+def detect() -> Confinement:
+    """The strongest confinement that works here (probed once per process)."""
+    forced = os.environ.get("AUTOGRADER_CONFINEMENT")
+    if forced:
+        if forced not in LEVELS:
+            raise ValueError(f"AUTOGRADER_CONFINEMENT must be one of {LEVELS}, got {forced!r}")
+        return _candidate(forced) or Confinement("process-group")
+    return _detect()
+
+
+@lru_cache(maxsize=1)
+def _detect() -> Confinement:
+    for level in LEVELS[:-1]:
+        candidate = _candidate(level)
+        if candidate is not None and _works(candidate):
+            return candidate
+    return Confinement("process-group")
+
+
+def _candidate(level: str) -> Confinement | None:
+    if level == "process-group":
+        return Confinement(level)
+    if sys.platform != "linux" or not (shutil.which("unshare") and shutil.which("setpriv")):
+        return None
+    if level == "namespaces+user":
+        if os.geteuid() != 0:
+            return None
+        uid, gid = worker_user()
+        return Confinement(level, uid, gid)
+    return Confinement(level)
+
+
+def _works(confinement: Confinement) -> bool:
+    probe = confinement.wrap([sys.executable, "-c", "import numpy"])
+    try:
+        return subprocess.run(probe, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL, timeout=30, cwd="/").returncode == 0
+    except (OSError, subprocess.TimeoutExpired):
+        return False
+
+
+def worker_user() -> tuple[int, int]:
+    """uid and gid of ``agworker``, created if missing (root only); ``nobody`` as a fallback."""
+    for attempt in range(2):
+        try:
+            entry = pwd.getpwnam(WORKER_USER)
+            return entry.pw_uid, entry.pw_gid
+        except KeyError:
+            if attempt == 0 and shutil.which("useradd"):
+                subprocess.run(["useradd", "--system", "--no-create-home", "--home-dir", "/nonexistent",
+                                "--shell", "/usr/sbin/nologin", "--user-group", WORKER_USER],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    nobody = pwd.getpwnam("nobody")
+    return nobody.pw_uid, nobody.pw_gid
+
+
+# ------------------------------------------------------------------ reaping
+@lru_cache(maxsize=1)
+def become_subreaper() -> bool:
+    """Make this process adopt orphaned descendants (Linux), so escaped daemons can be killed."""
+    if sys.platform != "linux":
+        return False
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        return libc.prctl(_PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
+    except (OSError, AttributeError):
+        return False
+
+
+def kill_adopted_orphans(keep: set[int]) -> int:
+    """SIGKILL the children of this process that escaped a worker (re-parented daemons).
+
+    A child counts as escaped when it is not in ``keep`` (the live workers) and
+    runs in another session than the grader's: workers and ``setsid`` daemons
+    do, while the grader's own helper processes stay in its session. Repeats
+    until none is left, since a killed daemon's children are re-parented to us
+    in turn. Returns how many were killed.
+    """
+    killed, own_session = 0, os.getsid(0)
+    for _ in range(50):
+        orphans = [pid for pid, session in _children_of(os.getpid())
+                   if pid not in keep and session != own_session]
+        if not orphans:
+            break
+        for pid in orphans:
+            try:
+                os.kill(pid, signal.SIGKILL)
+                killed += 1
+            except ProcessLookupError:
+                pass
+        for pid in orphans:
+            try:
+                os.waitpid(pid, 0)
+            except ChildProcessError:
+                pass
+    return killed
+
+
+def _children_of(parent: int) -> list[tuple[int, int]]:
+    """(pid, session id) of the children of ``parent``."""
+    if not os.path.isdir("/proc"):
+        return []
+    children = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            if int(fields[1]) == parent:
+                children.append((int(entry), int(fields[3])))
+        except (OSError, IndexError, ValueError):
+            pass
+    return children
+
+
+def count_tasks(uid: int) -> int:
+    """Processes and threads of ``uid`` (what RLIMIT_NPROC counts), from /proc."""
+    count = 0
+    if not os.path.isdir("/proc"):
+        return 0
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/status") as status:
+                fields = dict(line.split(":", 1) for line in status if ":" in line)
+            if int(fields["Uid"].split()[0]) == uid:
+                count += int(fields["Threads"])
+        except (OSError, KeyError, ValueError):
+            pass
+    return count
