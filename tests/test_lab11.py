@@ -154,6 +154,41 @@ MISTAKES = {
             e1, e2 = _ep(F)
             return e1 / e1[2], e2 / e2[2]
         """, ["w = 0"]),
+    # ---------------------------------------------------------------- ex6
+    "pipeline returns F transposed": ("lab11.ex6", """
+        _tvr = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            F, pts1, pts2, X = _tvr(img1, img2, K)
+            return F.T, pts1, pts2, X
+        """, ["transposed"]),
+    "pipeline points in camera 2's frame": ("lab11.ex6", """
+        _tvr = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            F, pts1, pts2, X = _tvr(img1, img2, K)
+            E = essential_from_fundamental(F, K, K)
+            _, R, t, _ = cv2.recoverPose(E, pts1, pts2, np.asarray(K, float))
+            return F, pts1, pts2, X @ R.T + t.reshape(3)
+        """, ["camera 2's frame"]),
+    "pipeline points mirrored": ("lab11.ex6", """
+        _tvr = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            F, pts1, pts2, X = _tvr(img1, img2, K)
+            return F, pts1, pts2, -X
+        """, ["behind camera 1"]),
+    "pipeline keeps every match": ("lab11.ex6", """
+        def two_view_reconstruction(img1, img2, K):
+            sift = cv2.SIFT_create()
+            kp1, des1 = sift.detectAndCompute(cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY), None)
+            kp2, des2 = sift.detectAndCompute(cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY), None)
+            matches = cv2.BFMatcher(cv2.NORM_L2).match(des1, des2)
+            pts1 = np.float64([kp1[m.queryIdx].pt for m in matches])
+            pts2 = np.float64([kp2[m.trainIdx].pt for m in matches])
+            F, _ = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
+            K = np.asarray(K, float)
+            _, R, t, _ = cv2.recoverPose(K.T @ F @ K, pts1, pts2, K)
+            X = triangulate(K @ np.eye(3, 4), K @ np.hstack([R, t]), pts1, pts2)
+            return F, pts1, pts2, X
+        """, ["of your matches are within 2 px"]),
 }
 
 

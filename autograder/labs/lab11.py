@@ -54,30 +54,40 @@ def judge_projective(t: Trial, what: str, got, expected, mistakes=None, toleranc
            f"{_fmt(_unit(expected))}")
 
 
-def epipolar_picture(F_true, F_got, views, pts1, pts2, count=8) -> np.ndarray:
-    """Both images with the true epipolar lines (green) and those of ``F_got`` (red)."""
+def epipolar_picture(F_true, F_got, images, pts1, pts2, count=8) -> np.ndarray:
+    """Both images with the true epipolar lines (green) and those of ``F_got`` (red).
+
+    ``images`` are the two images (or ``(width, height)`` sizes for blank canvases);
+    in image 1 the lines are ``F^T x2``, in image 2 ``F x1``; circles mark the points.
+    """
     canvases = []
-    pairs = [(views.cam1, pts1, pts2, lambda F: F.T), (views.cam2, pts2, pts1, lambda F: F)]
-    for cam, own, other, orient in pairs:
-        canvas = np.full((cam.height, cam.width, 3), 255, np.uint8)
-        for F, colour in ((F_true, (0, 160, 0)), (F_got, (0, 0, 230))):
+    pairs = [(images[0], pts1, pts2, lambda F: F.T), (images[1], pts2, pts1, lambda F: F)]
+    for image, own, other, orient in pairs:
+        if isinstance(image, np.ndarray):
+            canvas = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image.copy()
+        else:
+            canvas = np.full((image[1], image[0], 3), 255, np.uint8)
+        height, width = canvas.shape[:2]
+        for F, colour in ((F_true, (0, 200, 0)), (F_got, (0, 0, 255))):
             if F is None or not np.all(np.isfinite(F)):
                 continue
             lines = truth.homogeneous(other[:count]) @ orient(np.asarray(F, float)).T
             for line in lines:
-                segment = truth.clip_line(line, cam.width, cam.height)
+                segment = truth.clip_line(line, width, height)
                 if segment is not None:
                     p, q = np.round(segment).astype(int)
                     cv2.line(canvas, tuple(map(int, p)), tuple(map(int, q)), colour, 1, cv2.LINE_AA)
         for x, y in own[:count]:
+            cv2.circle(canvas, (int(round(x)), int(round(y))), 3, (255, 255, 255), 2, cv2.LINE_AA)
             cv2.circle(canvas, (int(round(x)), int(round(y))), 3, (0, 0, 0), 1, cv2.LINE_AA)
         canvases.append(canvas)
     return side_by_side(*canvases)
 
 
-def show_epipolar(t: Trial, title: str, F_got, views, pts1, pts2):
-    t.images(title, "green: the true epipolar lines; red: yours; circles: the matching points",
-             image_1_and_image_2=epipolar_picture(views.F, F_got, views, pts1, pts2))
+def show_epipolar(t: Trial, title: str, F_true, F_got, images, pts1, pts2):
+    t.images(title, "green: the true epipolar lines; red: those of your F; circles: the matching "
+             "points, which lie on the green lines",
+             image_1_and_image_2=epipolar_picture(F_true, F_got, images, pts1, pts2))
 
 
 # ================================================================== ex1 triangulation
@@ -535,8 +545,9 @@ def fundamental_noisy(t):
         if not np.any(got):
             t.fail(f"{what} returned all zeros")
         if i == 0:
-            show_epipolar(t, "epipolar lines of your F (1 px noise, 640 x 480 pixels)", got, views,
-                          views.pts1[40:], views.pts2[40:])
+            sizes = [(c.width, c.height) for c in (views.cam1, views.cam2)]
+            show_epipolar(t, "epipolar lines of your F (1 px noise, 640 x 480 pixels)", views.F, got,
+                          sizes, views.pts1[40:], views.pts2[40:])
         mistake = closest(got, truth.fundamental_mistakes(truth.eight_point(pts1, pts2)),
                           projective_distance, 1e-3)
         if mistake:
@@ -624,3 +635,148 @@ def epipoles_property(t):
 
     t.for_all(st.tuples(seeds, st.sampled_from([1.0, -2.0, 1e-4, 1e3])), holds, max_examples=10,
               describe=lambda c: f"{c[1]} * fixtures.lab11.two_views(seed={c[0]}).F")
+
+
+# ================================================================== ex6 real-world pipeline
+ex6 = lab.exercise("ex6", "Two-view reconstruction (real-world pipeline)", functions=[
+    "two_view_reconstruction(img1, img2, K)"])
+# Any OpenCV function is allowed here (SIFT, findFundamentalMat with RANSAC, recoverPose).
+
+PIPELINE_TIMEOUT = 20.0
+
+
+def call_reconstruction(t: Trial, pair):
+    """Call the student's pipeline on ``pair`` and check the form of its answer."""
+    what = "two_view_reconstruction(img1, img2, K)"
+    got = t.call("two_view_reconstruction", pair.img1, pair.img2, pair.K)
+    if not isinstance(got, (tuple, list)) or len(got) != 4:
+        t.fail(f"{what} returned {type(got).__name__}"
+               + (f" of length {len(got)}" if isinstance(got, (tuple, list)) else "")
+               + "; expected a tuple (F, pts1, pts2, points3d)")
+    F = t.expect_array(got[0], f"{what}: F", shape=(3, 3), kind="iuf", finite=True)
+    pts1 = t.expect_array(got[1], f"{what}: pts1", shape=(None, 2), kind="iuf", finite=True)
+    m = len(pts1)
+    pts2 = t.expect_array(got[2], f"{what}: pts2", shape=(m, 2), kind="iuf", finite=True)
+    points3d = t.expect_array(got[3], f"{what}: points3d", shape=(m, 3), kind="iuf")
+    if m < 20:
+        t.fail(f"{what} returned only {m} matches; keep at least 20 (the photos share plenty of texture)")
+    if not np.any(F):
+        t.fail(f"{what}: F is all zeros")
+    return F.astype(float), pts1.astype(float), pts2.astype(float), points3d.astype(float)
+
+
+def judge_pipeline_F(t: Trial, pair, F):
+    g1, g2 = truth.grid_correspondences(pair)
+    show_epipolar(t, "epipolar lines of your F on the two rendered photos", pair.F, F,
+                  (pair.img1, pair.img2), g1[::97], g2[::97])
+    distance = np.median(truth.symmetric_epipolar_distance(F, g1, g2))
+    if distance <= 1.0:
+        return passed(f"true correspondences are {distance:.2f} px from your epipolar lines (median "
+                      f"over {len(g1)} pixels with known depth)")
+    K = pair.K
+    candidates = {
+        "F is transposed (pts1 and pts2 swapped when estimating it?): x2^T F x1 = 0": F.T,
+        "this is E, not F: F = K^-T E K^-1 acts on pixels": np.linalg.inv(K).T @ F @ np.linalg.inv(K),
+    }
+    for mistake, corrected in candidates.items():
+        if np.median(truth.symmetric_epipolar_distance(corrected, g1, g2)) <= 1.0:
+            t.fail(f"your F is wrong: it looks like {mistake}.")
+    message = (f"true correspondences are {distance:.1f} px from your epipolar lines (median over "
+               f"{len(g1)} pixels with known depth; expected below 1 px)")
+    if distance <= 3.0:
+        return partial(0.5, message, "use RANSAC (cv2.FM_RANSAC) with a threshold of about 1 px")
+    t.fail(message)
+
+
+@ex6.check("two_view_reconstruction returns F, pts1, pts2, points3d of matching shapes", points=1,
+           timeout=PIPELINE_TIMEOUT)
+def pipeline_shapes(t):
+    pair = truth.rendered_pair(0)
+    t.images("the two rendered photos (three pictures hung at different depths)",
+             image_1=pair.img1, image_2=pair.img2)
+    _, pts1, _, points3d = call_reconstruction(t, pair)
+    if not np.all(np.isfinite(points3d)):
+        t.fail("two_view_reconstruction: points3d contains NaN or infinite values "
+               "(drop the points you cannot triangulate, together with their matches)")
+    return passed(f"{len(pts1)} matches")
+
+
+@ex6.check("two_view_reconstruction: F agrees with the true epipolar geometry", points=3,
+           timeout=PIPELINE_TIMEOUT)
+def pipeline_fundamental(t):
+    pair = truth.rendered_pair(0)
+    F, *_ = call_reconstruction(t, pair)
+    return judge_pipeline_F(t, pair, F)
+
+
+def judge_matches(t: Trial, pair, pts1, pts2):
+    _, true2, valid = truth.true_correspondences(pair, pts1)
+    if valid.sum() < 10:
+        t.fail(f"only {valid.sum()} of your {len(pts1)} points in image 1 lie on the scene away from "
+               "occlusion edges; are pts1 in image 1 pixel coordinates (x = column, y = row)?")
+    error = np.linalg.norm(pts2[valid] - true2[valid], axis=1)
+    correct = float(np.mean(error <= 2.0))
+    if correct >= 0.8:
+        return passed(f"{correct:.0%} of the matches are within 2 px of the true position")
+    _, true2_swapped, valid_swapped = truth.true_correspondences(pair, pts2)
+    if valid_swapped.sum() >= 10 and np.mean(np.linalg.norm(
+            pts1[valid_swapped] - true2_swapped[valid_swapped], axis=1) <= 2.0) >= 0.8:
+        t.fail("pts1 and pts2 are swapped: pts1 must be the points of img1")
+    message = f"only {correct:.0%} of your matches are within 2 px of the true position (need 80%)"
+    if correct >= 0.5:
+        return partial(0.5, message, "keep only the RANSAC inliers")
+    t.fail(message, hint="keep only the RANSAC inliers; use Lowe's ratio test when matching")
+
+
+@ex6.check("two_view_reconstruction: the matches are mostly correct", points=2, timeout=PIPELINE_TIMEOUT)
+def pipeline_matches(t):
+    pair = truth.rendered_pair(0)
+    _, pts1, pts2, _ = call_reconstruction(t, pair)
+    return judge_matches(t, pair, pts1, pts2)
+
+
+def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
+    X, true2, valid = truth.true_correspondences(pair, pts1)
+    good = valid & (np.linalg.norm(pts2 - np.nan_to_num(true2), axis=1) <= 2.0)
+    good &= np.all(np.isfinite(points3d), axis=1)
+    if good.sum() < 10:
+        t.fail(f"only {good.sum()} of your matches are correct, too few to judge the 3D points")
+    got, X = points3d[good], X[good]
+    ratios = np.linalg.norm(X, axis=1) / np.maximum(np.linalg.norm(got, axis=1), 1e-300)
+    scale = float(np.median(ratios)) * (1.0 if np.median(np.sum(got * X, axis=1)) >= 0 else -1.0)
+    error = np.linalg.norm(scale * got - X, axis=1) / np.linalg.norm(X, axis=1)
+    if show:
+        t.svg("top view (X-Z, camera 1 frame, Z up the page) of the true points and yours, "
+              f"scaled by {abs(scale):.3g}", svg_points({
+                  "true surface points": X[:, [0, 2]], "yours (scaled)": abs(scale) * got[:, [0, 2]]},
+                  flip_y=False))
+    median, p90 = float(np.median(error)), float(np.quantile(error, 0.9))
+    summary = (f"after one global scale ({abs(scale):.3g}), the median 3D error is {median:.1%} of the "
+               f"distance to camera 1 (90% of the points within {p90:.1%}) over {len(X)} correct matches")
+    frame2 = pair.cam2.to_camera(X)
+    s2 = np.median(np.linalg.norm(frame2, axis=1) / np.maximum(np.linalg.norm(got, axis=1), 1e-300))
+    median2 = np.median(np.linalg.norm(s2 * got - frame2, axis=1) / np.linalg.norm(frame2, axis=1))
+    if median2 < 0.5 * median:
+        t.fail("your 3D points are in camera 2's frame (they fit it better than camera 1's): return "
+               "them in camera 1's frame (P1 = K [I | 0], P2 = K [R | t])")
+    if scale > 0 and median <= 0.05 and p90 <= 0.12:
+        return passed(summary)
+    if scale < 0 or np.median(got[:, 2]) < 0:
+        t.fail("your 3D points are behind camera 1 (negative Z, or mirrored through its centre): "
+               "choose the pose with the points in front of both cameras (cv2.recoverPose does) and "
+               "divide by w")
+    sine = np.linalg.norm(np.cross(got, X), axis=1) / (np.linalg.norm(got, axis=1) * np.linalg.norm(X, axis=1) + 1e-300)
+    if np.median(sine) <= 0.02 and np.ptp(np.log(ratios[np.isfinite(ratios) & (ratios > 0)])) > 0.5:
+        t.fail("each 3D point is in the right direction but off by its own factor: it looks like the "
+               "homogeneous points were not divided by w")
+    if median <= 0.15:
+        return partial(0.5, summary + " (full marks below 5% and 12%)")
+    t.fail(summary)
+
+
+@ex6.check("two_view_reconstruction: the 3D points equal the true scene up to one global scale", points=4,
+           timeout=PIPELINE_TIMEOUT)
+def pipeline_structure(t):
+    pair = truth.rendered_pair(0)
+    _, pts1, pts2, points3d = call_reconstruction(t, pair)
+    return judge_structure(t, pair, pts1, pts2, points3d)

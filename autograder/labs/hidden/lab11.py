@@ -10,8 +10,9 @@ from hypothesis import strategies as st
 
 from fixtures import lab11 as truth
 
-from ..lab11 import (ex1, ex2, ex3, ex4, ex5, judge_epipoles, judge_lines, judge_projective,
-                     judge_triangulation)
+from ...checks import partial
+from ..lab11 import (PIPELINE_TIMEOUT, call_reconstruction, ex1, ex2, ex3, ex4, ex5, ex6, judge_epipoles,
+                     judge_lines, judge_pipeline_F, judge_projective, judge_structure, judge_triangulation)
 
 HIDDEN_SEEDS = st.integers(10**6, 2 * 10**6)
 
@@ -70,3 +71,14 @@ def hidden_epipoles_forward(t):
     judge_epipoles(t, "epipoles(1e-6 * F)", t.call("epipoles", 1e-6 * views.F), views)
 
 
+
+
+@ex6.check("hidden: two_view_reconstruction on another rendered pair", points=2, hidden=True,
+           timeout=PIPELINE_TIMEOUT)
+def hidden_pipeline_other_scene(t):
+    pair = truth.rendered_pair(seed=9601)
+    F, pts1, pts2, points3d = call_reconstruction(t, pair)
+    verdict = judge_pipeline_F(t, pair, F)
+    if verdict.fraction < 1:
+        return partial(0.0, verdict.message)
+    return judge_structure(t, pair, pts1, pts2, points3d, show=False)
