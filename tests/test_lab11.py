@@ -124,6 +124,19 @@ MISTAKES = {
             U, s, Vt = np.linalg.svd(F)
             return U @ np.diag([s[0], s[1], 0.0]) @ Vt
         """, ["raw pixel coordinates"]),
+    "8-point with rank 2 after denormalising": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            T1, T2 = _hartley_normalisation(pts1), _hartley_normalisation(pts2)
+            Fn = _eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T)
+            U, s, Vt = np.linalg.svd(T2.T @ Fn @ T1)
+            return U @ np.diag([s[0], s[1], 0.0]) @ Vt
+        """, ["after undoing the normalisation"]),
+    "8-point with a reduced SVD": ("lab11.ex4", """
+        def _eight_point_core(x1, x2):
+            A = (x2[:, :, None] * x1[:, None, :]).reshape(len(x1), 9)
+            return np.linalg.svd(A, full_matrices=False)[2][-1].reshape(3, 3)
+        """, ["n=8"]),
     "8-point without rank 2": ("lab11.ex4", """
         def fundamental_8point(pts1, pts2):
             pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
