@@ -144,3 +144,44 @@ def disparity_error_picture(truth, got, threshold: float = 1.0) -> np.ndarray:
     picture[bad] = np.stack([np.zeros_like(green), green, np.full_like(green, 255)], axis=-1)[bad]
     picture[known & ~answered] = (200, 80, 0)
     return picture
+
+
+def matches_picture(img1, img2, pts1, pts2, good=None, max_lines: int = 300) -> np.ndarray:
+    """Two images side by side with a line per match: green where ``good``, red elsewhere.
+
+    Parameters
+    ----------
+    img1, img2 : (H, W[, 3]) arrays
+    pts1, pts2 : (M, 2) float arrays
+        Matched points ``(x, y)`` in each image; ``pts2`` is drawn shifted right
+        by ``img1``'s width.
+    good : (M,) bool array, optional
+        Which matches are right (e.g. agree with a true homography). All green
+        when omitted.
+    """
+    a, b = (np.clip(np.asarray(i, dtype=np.float64), 0, 255).astype(np.uint8) for i in (img1, img2))
+    a = cv2.cvtColor(a, cv2.COLOR_GRAY2BGR) if a.ndim == 2 else a[:, :, :3]
+    b = cv2.cvtColor(b, cv2.COLOR_GRAY2BGR) if b.ndim == 2 else b[:, :, :3]
+    h1, w1 = a.shape[:2]
+    canvas = np.zeros((max(h1, b.shape[0]), w1 + b.shape[1], 3), np.uint8)
+    canvas[:h1, :w1] = a
+    canvas[: b.shape[0], w1:] = b
+    canvas = (canvas * 0.7).astype(np.uint8)  # dimmed, so the lines stand out
+    pts1 = np.asarray(pts1, dtype=np.float64).reshape(-1, 2)
+    pts2 = np.asarray(pts2, dtype=np.float64).reshape(-1, 2)
+    n = min(len(pts1), len(pts2))
+    good = np.ones(n, bool) if good is None else np.asarray(good, bool)[:n]
+    order = np.concatenate([np.flatnonzero(good), np.flatnonzero(~good)])  # bad ones on top
+    if len(order) > max_lines:
+        order = order[np.linspace(0, len(order) - 1, max_lines).astype(int)]
+    for i in order:
+        p, q = pts1[i], pts2[i]
+        if not (np.all(np.isfinite(p)) and np.all(np.isfinite(q))):
+            continue
+        colour = (0, 200, 0) if good[i] else (0, 0, 255)
+        a_pt = (int(round(np.clip(p[0], -1e4, 1e4))), int(round(np.clip(p[1], -1e4, 1e4))))
+        b_pt = (int(round(np.clip(q[0] + w1, -1e4, 1e4))), int(round(np.clip(q[1], -1e4, 1e4))))
+        cv2.line(canvas, a_pt, b_pt, colour, 1, cv2.LINE_AA)
+        cv2.circle(canvas, a_pt, 2, colour, -1)
+        cv2.circle(canvas, b_pt, 2, colour, -1)
+    return canvas
