@@ -1,0 +1,767 @@
+"""Lab 12 - stereo: the public checks.
+
+Ground truth comes from :mod:`fixtures.lab12`: rectified pairs rendered from
+textured planes with their exact disparity maps, the Middlebury motorcycle pair
+shipped with scikit-image with its measured disparities, unrectified pairs with
+exact correspondences, and the structured-light patterns and simulation exactly
+as the API defines them. Disparity maps are judged by their bad-pixel rate
+(error above a threshold, invalid pixels counted bad, measured where the truth
+is known) against the reference's rate on the same scene, precomputed by
+``fixtures/make_lab12_figures.py``.
+"""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+from hypothesis import strategies as st
+
+from fixtures import lab12 as truth
+
+from ..checks import Trial, partial, passed
+from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error
+from ..pictures import disparity_error_picture, disparity_picture, side_by_side
+from ..registry import Lab
+
+lab = Lab("lab12", module="lab12_stereo", title="Stereo")
+
+MARGIN = 0.05   # bad-pixel rate accepted above the reference's on the same scene
+FADE = 0.15     # partial credit fades out over this much more
+STEREO_TIMEOUT = 30.0
+
+
+# ================================================================== shared judges
+def _fmt(values) -> str:
+    return np.array2string(np.asarray(values, float), precision=4, suppress_small=True)
+
+
+def figures(scene_key: str, method: str) -> dict:
+    return truth.reference_figures()[scene_key][method]
+
+
+def show_disparity(t: Trial, title: str, scene, got, bad=None):
+    caption = (f"bad-pixel rate {bad:.1%} (error > {scene.threshold:g} px or invalid, where the "
+               "truth is known). Errors: green = good, yellow to red = wrong, blue = invalid, "
+               "grey = truth unknown") if bad is not None else ""
+    picture = None
+    if isinstance(got, np.ndarray) and got.shape == scene.disparity.shape and got.dtype.kind in "iuf":
+        picture = got
+    t.images(title, caption, left_image=scene.left,
+             true_disparity=disparity_picture(scene.disparity, scene.max_disparity),
+             yours=None if picture is None else disparity_picture(picture, scene.max_disparity),
+             errors=None if picture is None else disparity_error_picture(scene.disparity, picture,
+                                                                         scene.threshold))
+
+
+def expect_disparity(t: Trial, what: str, got, scene) -> np.ndarray:
+    """The returned map as an (H, W) number array, or a failure naming the shape mistake."""
+    shape = scene.disparity.shape
+    if isinstance(got, np.ndarray) and got.shape != shape:
+        if got.shape == shape[::-1]:
+            t.fail(f"{what} returned shape {got.shape}; expected {shape}: rows and columns are swapped")
+        if got.ndim == 2 and got.shape[0] == shape[0] and got.shape[1] < shape[1]:
+            t.fail(f"{what} returned shape {got.shape}; expected {shape}: keep the left image's size "
+                   "and mark pixels without a match as invalid (0)")
+    return t.expect_array(got, what, shape=shape, kind="iuf")
+
+
+def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, again=None,
+                    show: bool = True, threshold_name: str = "reference solution:"):
+    """Judge a disparity map by its bad-pixel rate against the reference's, naming mistakes.
+
+    ``again(left, right)`` calls the student's function on another pair (used to
+    recognise a search in the wrong direction, on the swapped views).
+    """
+    got = expect_disparity(t, what, got, scene)
+    bad = truth.bad_pixel_rate(got, scene.disparity, scene.threshold)
+    if show:
+        show_disparity(t, f"{what} on {scene.name}", scene, got, bad)
+    allowed = reference_bad + MARGIN
+    summary = f"bad-pixel rate {bad:.1%} ({threshold_name} {reference_bad:.1%})"
+    if bad <= allowed:
+        return passed(summary)
+    diagnose_disparity(t, what, got, scene, allowed, again)
+    if bad < allowed + FADE:
+        return partial((allowed + FADE - bad) / FADE, f"{what}: {summary}; up to {allowed:.1%} "
+                       "gets full marks (see the error map).")
+    t.fail(f"{what}: {summary} - most of the map is wrong (see the error map).",
+           hint="for left pixel (x, y) compare its block with the block around (x - d, y) in the "
+                "right image, d = 0..max_disparity, and keep the d with the lowest cost")
+
+
+def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None):
+    gt, thr = scene.disparity, scene.threshold
+    finite = np.nan_to_num(got.astype(np.float64), nan=0.0, posinf=0.0, neginf=0.0)
+    if truth.bad_pixel_rate(-finite, gt, thr) <= allowed:
+        t.fail(f"{what}: the disparities are negative. d = x_l - x_r is positive: the match "
+               "of left pixel x lies at x - d in the right image.")
+    for shift in (1, -1):
+        if truth.bad_pixel_rate(finite + shift, gt, 0.5) <= allowed:
+            t.fail(f"{what}: every disparity is off by {'-' if shift > 0 else '+'}1 - "
+                   "it looks like an off-by-one error in the disparity index (d runs from 0).")
+    known = (gt > 0) & (finite > 0)
+    if known.sum() > 10:
+        ratio = float(np.median(finite[known] / gt[known]))
+        if abs(ratio - 1) > 0.3 and truth.bad_pixel_rate(finite / ratio, gt, thr) <= allowed + 0.05:
+            t.fail(f"{what}: the disparities are scaled by about {ratio:.3g} "
+                   "(return them in pixels, not rescaled for display or as OpenCV's 16x fixed point).")
+    values = finite[gt > 0]
+    if values.size and np.ptp(values) < 1e-9:
+        t.fail(f"{what}: every pixel got the same disparity ({values[0]:g}).")
+    if again is not None and scene.disparity_right is not None:
+        flipped = again(scene.right, scene.left)
+        if isinstance(flipped, np.ndarray) and flipped.shape == gt.shape and flipped.dtype.kind in "iuf":
+            if truth.bad_pixel_rate(flipped, scene.disparity_right, thr) <= allowed:
+                t.fail(f"{what}: you search in the wrong direction. The match of left pixel x is "
+                       "at x - d in the right image (objects appear further left in the right view); "
+                       "your matcher finds the right image's disparities when given the views swapped.")
+
+
+finite_floats = lambda lo, hi: st.floats(lo, hi, allow_nan=False, allow_infinity=False)  # noqa: E731
+
+
+# ================================================================== ex1 triangulation
+ex1 = lab.exercise("ex1", "Triangulation revisited", functions=["triangulate(P1, P2, pts1, pts2)"])
+lab.forbid("triangulate", "cv2.triangulatePoints")
+
+
+def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, exact=True):
+    n = len(pts1)
+    if isinstance(got, np.ndarray) and got.shape == (n, 4):
+        t.fail(f"{what} returned homogeneous (N, 4) points: divide by the fourth coordinate "
+               "and return (N, 3).")
+    if isinstance(got, np.ndarray) and got.shape == (3, n) and n != 3:
+        t.fail(f"{what} returned shape {got.shape}; expected ({n}, 3): one row per point (transpose it).")
+    got = t.expect_array(got, what, shape=(n, 3), kind="iuf", finite=True)
+    linear = truth.linear_triangulation(P1, P2, pts1, pts2)
+    scale = max(1.0, float(np.abs(X_true).max()))
+    error = np.linalg.norm(got - (X_true if exact else linear), axis=1)
+    if exact and error.max() <= 1e-6 * scale:
+        return passed(f"largest 3D error {error.max():.2g}")
+    if not exact:
+        err_true = np.linalg.norm(got - X_true, axis=1).mean()
+        err_linear = np.linalg.norm(linear - X_true, axis=1).mean()
+        if err_true <= 1.25 * err_linear + 1e-9 * scale:
+            return passed(f"mean 3D error {err_true:.3g} (linear triangulation: {err_linear:.3g})")
+    mistake = closest(got, truth.triangulation_mistakes(P1, P2, pts1, pts2), max_abs_error, 1e-4 * scale)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    norms = np.linalg.norm(got, axis=1) * np.linalg.norm(X_true, axis=1)
+    cosine = np.abs(np.sum(got * X_true, axis=1)) / np.where(norms > 0, norms, 1.0)
+    if np.all(cosine > 1 - 1e-6) and np.ptp(np.linalg.norm(got, axis=1) / np.linalg.norm(X_true, axis=1)) > 1e-3:
+        t.fail(f"{what}: each point is right up to its own scale - divide the SVD's homogeneous "
+               "solution by its fourth coordinate.")
+    reprojection = np.linalg.norm(truth.project(P1, got) - pts1, axis=1).mean()
+    t.fail(f"{what}: 3D points are off by up to {error.max():.3g} (mean reprojection error in "
+           f"image 1: {reprojection:.3g} px).",
+           hint="each view gives two rows, x p3 - p1 and y p3 - p2 (p_i the rows of P); "
+                "X is the last right singular vector of the 4x4 matrix")
+
+
+@ex1.check("triangulate on a rectified rig recovers the points (Z = f b / d)", points=3)
+def triangulate_rig(t):
+    P1, P2, X, pts1, pts2 = truth.stereo_points(seed=3, n=12)
+    got = t.call("triangulate", P1, P2, pts1, pts2)
+    verdict = judge_triangulation(t, "triangulate(P1, P2, pts1, pts2)", got, P1, P2, pts1, pts2, X)
+    return verdict
+
+
+@ex1.check("triangulate: any two cameras, exact matches", points=3)
+def triangulate_property(t):
+    def holds(seed):
+        P1, P2, X, pts1, pts2 = truth.general_points(seed, n=15)
+        judge_triangulation(t, "triangulate(P1, P2, pts1, pts2)", t.call("triangulate", P1, P2, pts1, pts2),
+                            P1, P2, pts1, pts2, X)
+
+    t.for_all(st.integers(0, 2**32 - 1), holds, max_examples=12,
+              describe=lambda s: f"fixtures.lab12.general_points(seed={s}, n=15)")
+
+
+@ex1.check("triangulate is as accurate as linear triangulation on noisy matches", points=2)
+def triangulate_noisy(t):
+    P1, P2, X, pts1, pts2 = truth.general_points(seed=41, n=40)
+    rng = np.random.default_rng(42)
+    noisy1 = pts1 + rng.normal(0, 0.7, pts1.shape)
+    noisy2 = pts2 + rng.normal(0, 0.7, pts2.shape)
+    got = t.call("triangulate", P1, P2, noisy1, noisy2)
+    return judge_triangulation(t, "triangulate(P1, P2, noisy pts1, noisy pts2)", got,
+                               P1, P2, noisy1, noisy2, X, exact=False)
+
+
+# ================================================================== ex2 disparity and depth
+ex2 = lab.exercise("ex2", "Disparity and depth", functions=[
+    "disparity_from_matches(xl, xr)", "depth_from_disparity(disparity, f, baseline)"])
+
+
+def judge_disparities(t: Trial, what: str, got, xl, xr, n):
+    got = t.expect_array(got, what, shape=(n,), kind="iuf", finite=True)
+    expected = xl - xr
+    if max_abs_error(got, expected) <= 1e-9 * max(1.0, np.abs(expected).max()):
+        return
+    if max_abs_error(got, -expected) <= 1e-9 * max(1.0, np.abs(expected).max()):
+        t.fail(f"{what} has the wrong sign: d = x_l - x_r (positive for a point in front of the rig).")
+    t.fail(f"{what} returned {_fmt(got[:5])}...; expected {_fmt(expected[:5])}...")
+
+
+@ex2.check("disparity_from_matches on x coordinates", points=1)
+def disparities_from_x(t):
+    xl = np.array([120.5, 80.0, 33.25, 150.0])
+    xr = np.array([100.5, 72.0, 30.0, 110.0])
+    judge_disparities(t, "disparity_from_matches(xl, xr)", t.call("disparity_from_matches", xl, xr), xl, xr, 4)
+
+
+@ex2.check("disparity_from_matches on (N, 2) matched points of a rectified pair", points=2)
+def disparities_from_points(t):
+    P1, P2, X, pts1, pts2 = truth.stereo_points(seed=8, n=10)
+    what = "disparity_from_matches(pts_left, pts_right)"
+    got = t.call("disparity_from_matches", pts1, pts2)
+    if isinstance(got, np.ndarray) and got.shape == (10, 2):
+        t.fail(f"{what} returned shape (10, 2): for (N, 2) points subtract the x coordinates "
+               "(column 0) only and return (N,).")
+    got = t.expect_array(got, what, shape=(10,), kind="iuf", finite=True)
+    if max_abs_error(got, pts1[:, 1] - pts2[:, 1]) < 1e-9 and max_abs_error(got, pts1[:, 0] - pts2[:, 0]) > 1e-6:
+        t.fail(f"{what} subtracts the y coordinates; x (column 0) is what differs in a rectified pair.")
+    judge_disparities(t, what, got, pts1[:, 0], pts2[:, 0], 10)
+
+
+def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
+    disparity = np.asarray(disparity, dtype=np.float64)
+    valid = np.isfinite(disparity) & (disparity > 0)
+    expected = np.divide(f * baseline, disparity, out=np.zeros_like(disparity), where=valid)
+    got = t.expect_array(got, what, shape=disparity.shape, kind="iuf")
+    invalid = ~(np.isfinite(disparity) & (disparity > 0))
+    with np.errstate(invalid="ignore"):
+        if np.any(~np.isfinite(got[invalid])):
+            t.fail(f"{what} returned inf or NaN where the disparity is 0, negative or NaN; "
+                   "the depth there must be 0 (invalid).")
+        if np.any(got[invalid] != 0):
+            t.fail(f"{what} returned non-zero depths where the disparity is 0, negative or NaN; "
+                   "the depth there must be 0 (invalid).")
+    if not np.all(np.isfinite(got)):
+        t.fail(f"{what} returned NaN or infinite depths for valid disparities")
+    tolerance = 1e-9 * max(1.0, float(np.abs(expected).max()))
+    if max_abs_error(got, expected) <= tolerance:
+        return
+    mistake = closest(got, truth.depth_mistakes(disparity, f, baseline), max_abs_error,
+                      1e-6 * max(1.0, float(np.abs(expected).max())))
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    t.fail(f"{what}: largest depth error {max_abs_error(got, expected):.3g} (Z = f b / d).")
+
+
+@ex2.check("depth_from_disparity: Z = f b / d on a worked example", points=2)
+def depth_example(t):
+    d = np.array([10.0, 20.0, 40.0, 2.5])
+    judge_depth(t, "depth_from_disparity([10, 20, 40, 2.5], f=500, baseline=0.1)",
+                t.call("depth_from_disparity", d, 500.0, 0.1), d, 500.0, 0.1)
+
+
+@ex2.check("depth_from_disparity gives 0 for invalid disparities (<= 0 or NaN)", points=2)
+def depth_invalid(t):
+    d = np.array([[8.0, 0.0, -3.0], [np.nan, 16.0, 0.5]])
+    judge_depth(t, "depth_from_disparity(map with 0, negative and NaN disparities, f=400, baseline=0.2)",
+                t.call("depth_from_disparity", d, 400.0, 0.2), d, 400.0, 0.2)
+
+
+@ex2.check("depth_from_disparity works for arrays of any shape", points=2)
+def depth_any_shape(t):
+    def holds(case):
+        shape, seed = case
+        rng = np.random.default_rng(seed)
+        d = rng.uniform(-5, 60, size=shape)
+        f, b = rng.uniform(100, 2000), rng.uniform(0.05, 1.0)
+        judge_depth(t, f"depth_from_disparity(array of shape {shape}, f={f:.4g}, baseline={b:.4g})",
+                    t.call("depth_from_disparity", d, f, b), d, f, b)
+
+    shapes = st.lists(st.integers(1, 6), min_size=1, max_size=3).map(tuple)
+    t.for_all(st.tuples(shapes, st.integers(0, 2**32 - 1)), holds, max_examples=10,
+              describe=lambda c: f"shape {c[0]}, seed {c[1]}")
+
+
+@ex2.check("depth_from_disparity on a rendered scene's disparity map", points=1)
+def depth_scene(t):
+    scene = truth.scene("slanted")
+    got = t.call("depth_from_disparity", np.array(scene.disparity), scene.f, scene.baseline)
+    judge_depth(t, "depth_from_disparity(disparity map, f, baseline)", got, scene.disparity,
+                scene.f, scene.baseline)
+    t.images("depth from the true disparity", left_image=scene.left,
+             true_depth=disparity_picture(scene.depth), yours=disparity_picture(got))
+
+
+# ================================================================== ex3 rectification
+ex3 = lab.exercise("ex3", "Rectification", functions=["rectify(img_l, img_r, K1, K2, R, T)"])
+ROW_TOLERANCE = 0.5      # pixels: corresponding points on the same rectified row
+IN_VIEW = 0.5            # fraction of each image kept in view / of each frame covered
+
+
+def call_rectify(t: Trial, pair):
+    what = "rectify(img_l, img_r, K1, K2, R, T)"
+    result = t.call("rectify", pair.img_l, pair.img_r, pair.K1, pair.K2, pair.R, pair.T)
+    if not isinstance(result, (tuple, list)) or len(result) != 4:
+        t.fail(f"{what} must return four values (rect_l, rect_r, H1, H2)")
+    rect_l, rect_r, H1, H2 = result
+    H1 = t.expect_array(H1, f"{what}: H1", shape=(3, 3), kind="iuf", finite=True)
+    H2 = t.expect_array(H2, f"{what}: H2", shape=(3, 3), kind="iuf", finite=True)
+    shape = pair.img_l.shape
+    rect_l = t.expect_array(rect_l, f"{what}: rect_l", dtype=np.uint8)
+    rect_r = t.expect_array(rect_r, f"{what}: rect_r", dtype=np.uint8)
+    for name, image in (("rect_l", rect_l), ("rect_r", rect_r)):
+        if image.shape != shape:
+            t.fail(f"{what}: {name} has shape {image.shape}; expected {shape} (the input size)")
+    return rect_l, rect_r, H1.astype(np.float64), H2.astype(np.float64)
+
+
+def row_errors(H1, H2, pair):
+    a = truth.apply_homography(H1, pair.pts1)
+    b = truth.apply_homography(H2, pair.pts2)
+    return np.abs(a[:, 1] - b[:, 1]), a[:, 0] - b[:, 0]
+
+
+def rectified_picture(rect_l, rect_r, H1, H2, pair, count=10):
+    """The rectified pair side by side (enlarged 2x) with the true matches and their rows."""
+    scale = 2
+    tiles = []
+    a = truth.apply_homography(H1, pair.pts1[:count])
+    b = truth.apply_homography(H2, pair.pts2[:count])
+    for image, pts in ((rect_l, a), (rect_r, b)):
+        big = cv2.resize(image, None, fx=scale, fy=scale, interpolation=cv2.INTER_NEAREST)
+        big = cv2.cvtColor(big, cv2.COLOR_GRAY2BGR) if big.ndim == 2 else big.copy()
+        tiles.append((big, pts))
+    colours = [(0, 0, 255), (0, 200, 0), (255, 0, 0), (0, 200, 255), (255, 0, 255), (255, 255, 0)]
+    for i in range(min(count, len(a))):
+        colour = colours[i % len(colours)]
+        y_row = a[i, 1]
+        for big, pts in tiles:
+            if np.all(np.isfinite(pts[i])) and np.isfinite(y_row) and abs(y_row) < 1e4:
+                y = int(round((y_row + 0.5) * scale - 0.5))
+                cv2.line(big, (0, y), (big.shape[1] - 1, y), colour, 1)
+                centre = tuple(int(round((v + 0.5) * scale - 0.5)) for v in pts[i])
+                if all(abs(c) < 1e4 for c in centre):
+                    cv2.circle(big, centre, 4, colour, 1)
+    return side_by_side(tiles[0][0], tiles[1][0])
+
+
+def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
+    dy, dx = row_errors(H1, H2, pair)
+    worst = float(np.nanmax(dy)) if np.all(np.isfinite(dy)) else float("inf")
+    if worst <= ROW_TOLERANCE:
+        if np.median(dx) <= 0:
+            t.fail(f"{what}: matches are on the same rows, but the disparities x_l - x_r are "
+                   f"negative (median {np.median(dx):.3g} px): the left and right roles are "
+                   "swapped or the new x axis points from camera 2 to camera 1.",
+                   hint="camera 2's centre in camera-1 coordinates is -R^T T: the new x axis points towards it")
+        return worst, float(np.median(dx))
+    inv1, inv2 = np.linalg.pinv(H1), np.linalg.pinv(H2)
+    if np.nanmax(row_errors(inv1, inv2, pair)[0]) <= ROW_TOLERANCE:
+        t.fail(f"{what}: H1 and H2 map rectified pixels back to the originals; the API wants "
+               "them from original to rectified coordinates (invert them).")
+    if np.nanmax(row_errors(H2, H1, pair)[0]) <= ROW_TOLERANCE:
+        t.fail(f"{what}: H1 and H2 are swapped (H1 rectifies the left image).")
+    t.fail(f"{what}: true correspondences end up {np.nanmedian(dy):.3g} px apart vertically "
+           f"(up to {worst:.3g} px); after rectification they must share a row.",
+           hint="X2 = R X1 + T takes camera-1 coordinates to camera 2's; both cameras need the "
+                "same new rotation and the same new K")
+
+
+@ex3.check("rectify: true correspondences end up on the same row", points=4)
+def rectify_rows(t):
+    pair = truth.unrectified_pair(seed=4)
+    rect_l, rect_r, H1, H2 = call_rectify(t, pair)
+    t.images("rectified pair with true matches and their rows", "every circle should sit on its line",
+             rectified=rectified_picture(rect_l, rect_r, H1, H2, pair))
+    worst, median_dx = judge_rows(t, pair, H1, H2)
+    return passed(f"rows agree within {worst:.2g} px; median disparity {median_dx:.3g} px")
+
+
+@ex3.check("rectify: rows agree for other camera pairs", points=2)
+def rectify_property(t):
+    def holds(seed):
+        pair = truth.unrectified_pair(seed)
+        _, _, H1, H2 = call_rectify(t, pair)
+        judge_rows(t, pair, H1, H2)
+
+    t.for_all(st.integers(0, 2**32 - 1), holds, max_examples=4,
+              describe=lambda s: f"fixtures.lab12.unrectified_pair(seed={s})")
+
+
+def warped_error(image, H, got) -> float:
+    """Mean blurred difference between ``got`` and ``image`` warped by ``H`` (best half-pixel offset)."""
+    height, width = image.shape[:2]
+    ys, xs = np.mgrid[0:height, 0:width].astype(np.float64)
+    errors = []
+    for dx, dy in HALF_PIXEL_OFFSETS:
+        shifted = np.array([[1, 0, dx], [0, 1, dy], [0, 0, 1.0]]) @ H
+        expected = cv2.warpPerspective(image, shifted, (width, height), flags=cv2.INTER_LINEAR)
+        source = truth.apply_homography(np.linalg.inv(shifted), np.column_stack([xs.ravel(), ys.ravel()]))
+        inside = ((source[:, 0] >= 2) & (source[:, 0] <= width - 3) & (source[:, 1] >= 2)
+                  & (source[:, 1] <= height - 3)).reshape(height, width)
+        if inside.mean() < 0.05:
+            return float("inf")
+        errors.append(blurred_difference(got, expected, inside))
+    return min(errors)
+
+
+@ex3.check("rectify: the rectified images are the inputs warped by H1 and H2", points=2)
+def rectify_images(t):
+    pair = truth.unrectified_pair(seed=4)
+    rect_l, rect_r, H1, H2 = call_rectify(t, pair)
+    for name, image, H, got in (("rect_l", pair.img_l, H1, rect_l), ("rect_r", pair.img_r, H2, rect_r)):
+        try:
+            error = warped_error(image, H, got)
+        except np.linalg.LinAlgError:
+            t.fail(f"rectify: {'H1' if name == 'rect_l' else 'H2'} is singular")
+        if error > 8.0:
+            height, width = image.shape[:2]
+            expected = cv2.warpPerspective(image, H, (width, height))
+            t.compare_images(f"{name} against the input warped by your homography", image, expected, got)
+            t.fail(f"rectify: {name} differs from the input warped by your "
+                   f"{'H1' if name == 'rect_l' else 'H2'} by {error:.0f} grey levels on average "
+                   "(do the images and the homographies describe the same warp?)")
+    return passed("both images match their homographies")
+
+
+@ex3.check("rectify: most of each image stays in view", points=2)
+def rectify_in_view(t):
+    pair = truth.unrectified_pair(seed=4)
+    _, _, H1, H2 = call_rectify(t, pair)
+    height, width = pair.img_l.shape[:2]
+    for name, H in (("left", H1), ("right", H2)):
+        kept = truth.fraction_in_view(H, width, height)
+        covered = truth.frame_coverage(H, width, height)
+        if kept < IN_VIEW:
+            t.fail(f"rectify: only {kept:.0%} of the {name} image stays inside the rectified frame "
+                   f"(at least {IN_VIEW:.0%} should): choose the new principal point (and focal "
+                   "length) so the rectified images stay in view.")
+        if covered < IN_VIEW:
+            t.fail(f"rectify: the {name} image covers only {covered:.0%} of its rectified frame "
+                   f"(at least {IN_VIEW:.0%} should): the result is shrunk or pushed aside.")
+    return passed("both images stay mostly in view and fill their frames")
+
+
+# ================================================================== ex4 block matching (SSD)
+ex4 = lab.exercise("ex4", "Block matching", functions=[
+    "block_matching(left, right, max_disparity=64, block_size=9, cost=\"ssd\")"])
+lab.forbid("block_matching", "cv2.StereoBM_create", "cv2.StereoSGBM_create")
+
+
+def block_matcher(t: Trial, scene, **kwargs):
+    def again(left, right):
+        return t.call("block_matching", np.array(left), np.array(right),
+                      max_disparity=scene.max_disparity, **kwargs)
+    return again
+
+
+@ex4.check("block_matching returns an (H, W) float disparity map in 0..max_disparity", points=1,
+           timeout=STEREO_TIMEOUT)
+def block_matching_form(t):
+    scene = truth.scene("random_dots")
+    what = "block_matching(left, right, max_disparity=14)"
+    got = expect_disparity(t, what, t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                                           max_disparity=scene.max_disparity), scene)
+    got = t.expect_array(got, what, kind="f")
+    with np.errstate(invalid="ignore"):
+        if np.any(got > scene.max_disparity + 1e-9):
+            t.fail(f"{what} returned disparities up to {np.nanmax(got):g}; the search range is "
+                   f"0..{scene.max_disparity}")
+
+
+@ex4.check("block_matching (SSD, block_size=9) on random-dot planes", points=3, timeout=STEREO_TIMEOUT)
+def block_matching_dots(t):
+    scene = truth.scene("random_dots")
+    got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                 max_disparity=scene.max_disparity)
+    return judge_disparity(t, "block_matching(left, right)", got, scene,
+                           figures("random_dots", "bm_ssd_9")["bad"],
+                           again=block_matcher(t, scene))
+
+
+@ex4.check("block_matching (SSD, block_size=7) on a slanted textured plane", points=2,
+           timeout=STEREO_TIMEOUT)
+def block_matching_slanted(t):
+    scene = truth.scene("slanted")
+    got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                 max_disparity=scene.max_disparity, block_size=7, cost="ssd")
+    return judge_disparity(t, "block_matching(left, right, block_size=7)", got, scene,
+                           figures("slanted", "bm_ssd_7")["bad"], again=block_matcher(t, scene, block_size=7))
+
+
+@ex4.check("block_matching (SSD, block_size=9) on the Middlebury motorcycle", points=4,
+           timeout=STEREO_TIMEOUT)
+def block_matching_motorcycle(t):
+    scene = truth.scene("motorcycle")
+    got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                 max_disparity=scene.max_disparity, block_size=9)
+    return judge_disparity(t, "block_matching(left, right, block_size=9)", got, scene,
+                           figures("motorcycle", "bm_ssd_9")["bad"])
+
+
+# ================================================================== ext1 NCC
+NCC_HINT = ("NCC = sum((L - mean L)(R - mean R)) / (N std L std R) over the block; it is a "
+            "similarity: keep the disparity with the HIGHEST score")
+ext1 = lab.exercise("ext1", "Normalised cross-correlation", functions=[
+    "block_matching(left, right, max_disparity=64, block_size=9, cost=\"ncc\")"])
+
+
+@ext1.check("block_matching(cost=\"ncc\") on the Middlebury motorcycle", points=3, timeout=STEREO_TIMEOUT)
+def ncc_motorcycle(t):
+    scene = truth.scene("motorcycle")
+    got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                 max_disparity=scene.max_disparity, block_size=9, cost="ncc")
+    verdict = judge_disparity(t, "block_matching(left, right, cost=\"ncc\")", got, scene,
+                              figures("motorcycle", "bm_ncc_9")["bad"])
+    if verdict.fraction < 1:
+        verdict.hint = NCC_HINT
+    return verdict
+
+
+@ext1.check("NCC is robust to a brightness and contrast change between the views", points=4,
+            timeout=STEREO_TIMEOUT)
+def ncc_gain(t):
+    gain, offset = truth.reference_figures()["gain"]
+    scene = truth.with_gain(truth.scene("motorcycle"), gain, offset)
+    what = f"block_matching(left, {gain:g} * right {offset:+g}, cost=\"ncc\")"
+    got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                 max_disparity=scene.max_disparity, block_size=9, cost="ncc")
+    got = expect_disparity(t, what, got, scene)
+    bad = truth.bad_pixel_rate(got, scene.disparity, scene.threshold)
+    show_disparity(t, what, scene, got, bad)
+    reference = figures("motorcycle_gain", "bm_ncc_9")["bad"]
+    summary = (f"bad-pixel rate {bad:.1%} (reference NCC {reference:.1%}; "
+               f"SSD would give {figures('motorcycle_gain', 'bm_ssd_9')['bad']:.1%})")
+    if bad <= reference + MARGIN:
+        return passed(summary)
+    plain = truth.scene("motorcycle")
+    unchanged = t.call("block_matching", np.array(plain.left), np.array(plain.right),
+                       max_disparity=plain.max_disparity, block_size=9, cost="ncc")
+    ssd = t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                 max_disparity=scene.max_disparity, block_size=9, cost="ssd")
+    if isinstance(ssd, np.ndarray) and ssd.shape == got.shape and np.array_equal(ssd, got):
+        t.fail(f"{what} gives exactly the SSD result: the cost argument is ignored.")
+    if (isinstance(unchanged, np.ndarray) and unchanged.shape == plain.disparity.shape
+            and truth.bad_pixel_rate(unchanged, plain.disparity, plain.threshold)
+            <= figures("motorcycle", "bm_ncc_9")["bad"] + MARGIN):
+        t.fail(f"{what}: bad-pixel rate {bad:.1%} (reference {reference:.1%}), although it works "
+               "when the views have the same brightness: your NCC is not fully normalised. Subtract "
+               "each block's mean and divide by the product of the blocks' standard deviations.")
+    diagnose_disparity(t, what, got, scene, reference + MARGIN)
+    if bad < reference + MARGIN + FADE:
+        return partial((reference + MARGIN + FADE - bad) / FADE, f"{what}: {summary}.", hint=NCC_HINT)
+    t.fail(f"{what}: {summary}; it fails even when both views have the same brightness.",
+           hint=NCC_HINT)
+
+
+# ================================================================== ex5 dynamic programming
+ex5 = lab.exercise("ex5", "Smoothness: scanline dynamic programming", functions=[
+    "dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None)"])
+lab.forbid("dp_stereo", "cv2.StereoBM_create", "cv2.StereoSGBM_create")
+JUMPS_VS_BM = 0.4   # "far fewer jumps": at most this fraction of block matching's
+
+
+def call_dp(t: Trial, scene, **kwargs):
+    return t.call("dp_stereo", np.array(scene.left), np.array(scene.right),
+                  max_disparity=scene.max_disparity, **kwargs)
+
+
+def winner_take_all_message(what, jumps, wta_jumps):
+    return (f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px, as many as "
+            f"winner-take-all block matching ({wta_jumps:.1%}): it looks like the smoothness term "
+            "is ignored (with smoothness=None, use a default suited to your cost's scale).")
+
+
+@ex5.check("dp_stereo beats block matching where the texture is weak", points=4, timeout=STEREO_TIMEOUT)
+def dp_weak_texture(t):
+    scene = truth.scene("weak_texture")
+    what = "dp_stereo(left, right)"
+    got = expect_disparity(t, what, call_dp(t, scene), scene)
+    bad = truth.bad_pixel_rate(got, scene.disparity, scene.threshold)
+    show_disparity(t, f"{what} on {scene.name}", scene, got, bad)
+    reference, bm = figures("weak_texture", "dp_5"), figures("weak_texture", "bm_ssd_5")
+    summary = (f"bad-pixel rate {bad:.1%} (reference {reference['bad']:.1%}; block matching "
+               f"with the same block size {bm['bad']:.1%})")
+    if bad <= reference["bad"] + MARGIN:
+        return passed(summary)
+    jumps = truth.jump_rate(got, scene.disparity)
+    if jumps >= 0.6 * bm["jumps"]:
+        t.fail(winner_take_all_message(what, jumps, bm["jumps"]))
+    diagnose_disparity(t, what, got, scene, reference["bad"] + MARGIN)
+    if bad < bm["bad"] - MARGIN:
+        return partial(0.5, f"{what}: {summary}: better than block matching, but not yet as "
+                            "good as the reference.", hint="try another default smoothness")
+    t.fail(f"{what}: {summary}: no better than block matching.")
+
+
+@ex5.check("dp_stereo is smooth: far fewer disparity jumps along scanlines than block matching",
+           points=2, timeout=STEREO_TIMEOUT)
+def dp_smooth(t):
+    for key in ("weak_texture", "motorcycle"):
+        scene = truth.scene(key)
+        what = f"dp_stereo(left, right) on {scene.name}"
+        got = expect_disparity(t, what, call_dp(t, scene), scene)
+        jumps = truth.jump_rate(got, scene.disparity)
+        bm = figures(key, "bm_ssd_5")["jumps"]
+        if jumps > JUMPS_VS_BM * bm:
+            if jumps >= 0.6 * bm:
+                t.fail(winner_take_all_message(what, jumps, bm))
+            t.fail(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px; block "
+                   f"matching gives {bm:.1%} and at most {JUMPS_VS_BM * bm:.1%} is expected.")
+    return passed("far fewer jumps than block matching on both scenes")
+
+
+@ex5.check("dp_stereo on the Middlebury motorcycle", points=3, timeout=STEREO_TIMEOUT)
+def dp_motorcycle(t):
+    scene = truth.scene("motorcycle")
+    got = call_dp(t, scene)
+    return judge_disparity(t, "dp_stereo(left, right)", got, scene, figures("motorcycle", "dp_5")["bad"])
+
+
+@ex5.check("smoothness=0 is winner-take-all; a huge smoothness makes every row constant", points=2,
+           timeout=STEREO_TIMEOUT)
+def dp_smoothness_parameter(t):
+    scene = truth.scene("weak_texture")
+    wta = expect_disparity(t, "dp_stereo(left, right, smoothness=0)", call_dp(t, scene, smoothness=0), scene)
+    default = expect_disparity(t, "dp_stereo(left, right)", call_dp(t, scene), scene)
+    wta_jumps = truth.jump_rate(wta, scene.disparity)
+    default_jumps = truth.jump_rate(default, scene.disparity)
+    reference = figures("weak_texture", "dp_5_s0")["jumps"]
+    if wta_jumps < 0.5 * reference or wta_jumps < 3 * default_jumps:
+        t.fail(f"dp_stereo(left, right, smoothness=0): only {wta_jumps:.1%} jumps (default: "
+               f"{default_jumps:.1%}; winner-take-all gives about {reference:.1%}): with smoothness 0 "
+               "every pixel must take its best data cost.")
+    flat = expect_disparity(t, "dp_stereo(left, right, smoothness=1e7)",
+                            call_dp(t, scene, smoothness=1e7), scene)
+    rows_with_jumps = float(np.mean(np.any(np.diff(np.nan_to_num(flat), axis=1) != 0, axis=1)))
+    if rows_with_jumps > 0.1:
+        t.fail(f"dp_stereo(left, right, smoothness=1e7): {rows_with_jumps:.0%} of the rows still "
+               "change disparity; with a huge penalty each row should be constant.")
+    return passed(f"smoothness=0: {wta_jumps:.1%} jumps; smoothness=1e7: constant rows")
+
+
+# ================================================================== ex6 structured light
+ex6 = lab.exercise("ex6", "Structured light", functions=[
+    "gray_code_patterns(width, n_bits)", "simulate_structured_light(depth, f, baseline, n_bits)",
+    "depth_from_structured_light(images, f, baseline)"])
+
+
+def judge_patterns(t: Trial, width, n_bits):
+    what = f"gray_code_patterns({width}, {n_bits})"
+    got = t.call("gray_code_patterns", width, n_bits)
+    expected = truth.gray_code_patterns(width, n_bits)
+    if isinstance(got, np.ndarray) and got.shape == (width, n_bits) and width != n_bits:
+        t.fail(f"{what} returned shape {got.shape}; expected ({n_bits}, {width}): one row per bit")
+    got = t.expect_array(got, what, shape=(n_bits, width))
+    if got.dtype != np.uint8:
+        if np.array_equal(got, expected // 255):
+            t.fail(f"{what} returned 0/1 values as {got.dtype}; the patterns are uint8 images of 0 and 255")
+        t.expect_array(got, what, dtype=np.uint8)
+    if np.array_equal(got, expected):
+        return
+    mistakes = {
+        "plain binary code of k instead of its Gray code (g = k XOR (k >> 1))":
+            truth.binary_code_patterns(width, n_bits),
+        "the bits are in the wrong order: row 0 carries the most significant bit": expected[::-1],
+        "black and white are swapped (bit 1 is 255)": 255 - expected,
+        "the values are 0 and 1; use 0 and 255": expected // 255,
+    }
+    for mistake, wrong in mistakes.items():
+        if np.array_equal(got, wrong):
+            t.fail(f"{what} is wrong: it looks like {mistake}.")
+    stripes = truth._stripe(width, n_bits)
+    column = int(np.argmax(np.any(got != expected, axis=0)))
+    t.fail(f"{what}: column {column} (stripe k = {stripes[column]}) is {got[:, column].tolist()}; "
+           f"expected {expected[:, column].tolist()}",
+           hint="k = floor(u * 2**n_bits / width) with integer arithmetic: (u * 2**n_bits) // width")
+
+
+@ex6.check("gray_code_patterns(16, 4) bit for bit", points=2)
+def patterns_example(t):
+    judge_patterns(t, 16, 4)
+
+
+@ex6.check("gray_code_patterns for any width and number of bits", points=2)
+def patterns_property(t):
+    t.for_all(st.tuples(st.integers(1, 700), st.integers(1, 9)), lambda c: judge_patterns(t, *c),
+              max_examples=20, describe=lambda c: f"width={c[0]}, n_bits={c[1]}")
+
+
+@ex6.check("simulate_structured_light matches the projector model", points=3)
+def simulate_boxes(t):
+    depth, f, baseline = truth.structured_light_scene("boxes")
+    n_bits = 6
+    what = f"simulate_structured_light(depth, f={f:g}, baseline={baseline:g}, n_bits={n_bits})"
+    got = t.call("simulate_structured_light", np.array(depth), f, baseline, n_bits)
+    expected = truth.simulate_structured_light(depth, f, baseline, n_bits)
+    height, width = depth.shape
+    if isinstance(got, np.ndarray) and got.shape == (height, width, n_bits):
+        t.fail(f"{what} returned shape {got.shape}; expected {expected.shape}: the image index comes first")
+    got = t.expect_array(got, what, shape=expected.shape, dtype=np.uint8)
+    t.images(what, "most significant pattern, then the least significant", expected_first=expected[0],
+             yours_first=got[0], expected_last=expected[-1], yours_last=got[-1])
+    ties = truth.simulation_ties(depth, f, baseline)
+    wrong = np.any(got != expected, axis=0) & ~ties
+    if not wrong.any():
+        return passed("every lit pixel sees the right projector column")
+    mistakes = {
+        "the projector column is u + f b / Z; the projector is to the right, so it is u - f b / Z":
+            dict(sign=1.0),
+        "the columns are truncated (int/floor) instead of rounded": dict(rounding=np.floor),
+        "plain binary patterns are projected instead of Gray code":
+            dict(patterns=truth.binary_code_patterns(width, n_bits)),
+        "columns off the projector are clipped to its edge; those pixels must stay black (0)":
+            dict(clip=True),
+    }
+    for mistake, kwargs in mistakes.items():
+        candidate = truth.simulate_structured_light(depth, f, baseline, n_bits, **kwargs)
+        if not (np.any(got != candidate, axis=0) & ~ties).any():
+            t.fail(f"{what} is wrong: it looks like {mistake}.")
+    lit_expected = np.any(expected > 0, axis=0)
+    t.fail(f"{what}: {wrong.mean():.1%} of the pixels differ from the projector model "
+           f"({np.mean(wrong & ~lit_expected):.1%} should be black).",
+           hint="pixel (u, v) at depth Z sees projector column round(u - f*baseline/Z); black if "
+                "Z <= 0 or that column is not on the projector")
+
+
+def judge_sl_depth(t: Trial, what, got, images, f, baseline, true_depth):
+    expected = truth.depth_from_structured_light(images, f, baseline)
+    got = t.expect_array(got, what, shape=expected.shape, kind="iuf")
+    t.images(what, "depth maps (black = invalid)", true_depth=disparity_picture(true_depth),
+             expected=disparity_picture(expected), yours=disparity_picture(got))
+    with np.errstate(invalid="ignore"):
+        got_valid = np.isfinite(got) & (got > 0)
+    exp_valid = expected > 0
+    close = got_valid & exp_valid & (np.abs(got - expected) <= 1e-6 * np.maximum(expected, 1.0))
+    agree = np.mean(close | (~got_valid & ~exp_valid))
+    if agree >= 0.995:
+        judged = exp_valid & (true_depth > 0)
+        relative = np.median(np.abs(got[judged] - true_depth[judged]) / true_depth[judged])
+        return passed(f"decoded exactly; median depth error {relative:.1%} of the true depth")
+    for mistake, wrong in truth.structured_light_mistakes(images, f, baseline).items():
+        wrong_valid = wrong > 0
+        match = (got_valid & wrong_valid & (np.abs(got - wrong) <= 1e-6 * np.maximum(wrong, 1.0))) | \
+                (~got_valid & ~wrong_valid)
+        if match.mean() >= 0.995:
+            t.fail(f"{what} is wrong: it looks like {mistake}.")
+    if np.mean(got_valid & ~exp_valid) > 0.005 and np.all(got[~np.any(images > 127, axis=0)] != 0):
+        t.fail(f"{what}: pixels that are black in every image are undecodable: their depth must be 0.")
+    t.fail(f"{what}: only {agree:.1%} of the pixels agree with the decoded depth.",
+           hint="threshold each image at mid-grey, convert the Gray code to binary (most significant "
+                "bit first), projector column = (k + 0.5) * width / 2**n_bits - 0.5, Z = f b / (u - column)")
+
+
+@ex6.check("depth_from_structured_light decodes the patterns and triangulates", points=3)
+def sl_depth(t):
+    depth, f, baseline = truth.structured_light_scene("boxes")
+    images = truth.simulate_structured_light(depth, f, baseline, 6)
+    got = t.call("depth_from_structured_light", images, f, baseline)
+    return judge_sl_depth(t, f"depth_from_structured_light(6 images, f={f:g}, baseline={baseline:g})",
+                          got, images, f, baseline, depth)
+
+
+@ex6.check("depth_from_structured_light copes with a dim projector and sensor noise", points=1)
+def sl_depth_noisy(t):
+    depth, f, baseline = truth.structured_light_scene("boxes")
+    images = truth.simulate_structured_light(depth, f, baseline, 7)
+    rng = np.random.default_rng(9)
+    dim = np.where(images > 0, 205.0, 25.0) * (np.any(images > 0, axis=0)) + rng.normal(0, 12, images.shape)
+    dim = np.clip(np.rint(dim), 0, 255).astype(np.uint8)
+    got = t.call("depth_from_structured_light", dim, f, baseline)
+    return judge_sl_depth(t, "depth_from_structured_light(dim, noisy images)", got, dim, f, baseline, depth)

@@ -1,0 +1,348 @@
+"""Lab 12: the reference passes, the skeleton scores 0, usual mistakes are named."""
+
+import json
+import textwrap
+
+import numpy as np
+import pytest
+
+from autograder.runner import grade
+from conftest import assert_diagnosed, check_results, mutant
+
+MODULE = "lab12_stereo"
+
+
+def test_reference_scores_full_marks(reference_result):
+    seen = 0
+    for exercise in reference_result.exercises:
+        if exercise.id.startswith("lab12."):
+            for check in exercise.checks:
+                seen += 1
+                assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+    assert seen >= 25
+
+
+def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
+    for exercise in skeleton_result.exercises:
+        if exercise.id.startswith("lab12."):
+            assert exercise.score == 0
+            assert exercise.message == "not implemented yet"
+            for check in exercise.checks:
+                assert "not implemented yet" in check.message
+                assert check.traceback == ""
+
+
+def test_every_exercise_of_the_api_is_registered(reference_result):
+    ids = {e.id for e in reference_result.exercises if e.id.startswith("lab12.")}
+    assert ids == {f"lab12.ex{i}" for i in range(1, 7)} | {"lab12.ext1"}
+    assert any(c.hidden for e in reference_result.exercises if e.id.startswith("lab12.")
+               for c in e.checks)
+
+
+def test_stored_reference_figures_are_current():
+    """fixtures/data/lab12_figures.json is what make_lab12_figures.py computes now."""
+    from fixtures import lab12
+    from fixtures.make_lab12_figures import compute
+
+    assert json.loads(lab12.FIGURES_FILE.read_text()) == json.loads(json.dumps(compute()))
+
+
+def test_scenes_show_what_the_checks_rely_on():
+    """The premises: DP beats block matching on weak texture, SSD fails under a gain change."""
+    from fixtures import lab12
+
+    figures = lab12.reference_figures()
+    weak = figures["weak_texture"]
+    assert weak["dp_5"]["bad"] < weak["bm_ssd_5"]["bad"] - 0.15
+    assert weak["dp_5"]["jumps"] < 0.2 * weak["bm_ssd_5"]["jumps"]
+    gain = figures["motorcycle_gain"]
+    assert gain["bm_ssd_9"]["bad"] > gain["bm_ncc_9"]["bad"] + 0.15
+
+
+def test_structured_light_fixture_round_trip():
+    from fixtures import lab12
+
+    depth, f, baseline = lab12.structured_light_scene("boxes")
+    images = lab12.simulate_structured_light(depth, f, baseline, 7)
+    decoded = lab12.depth_from_structured_light(images, f, baseline)
+    both = (decoded > 0) & (depth > 0)
+    assert both.mean() > 0.5
+    stripe = depth.shape[1] / 2**7
+    disparity_error = np.abs(f * baseline / decoded[both] - f * baseline / depth[both])
+    # half a stripe, the -0.5 px centre convention, and the simulation's rounding
+    assert disparity_error.max() <= stripe / 2 + 1.0 + 1e-9
+
+
+# Each case: exercise, the wrong code, fragments the diagnosis must contain.
+MISTAKES = {
+    # ---------------------------------------------------------------- ex1
+    "triangulate with the images swapped": ("lab12.ex1", """
+        _triangulate = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            return _triangulate(P1, P2, pts2, pts1)
+        """, ["swapped"]),
+    "triangulate returns homogeneous points": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.asarray(pts1, float); pts2 = np.asarray(pts2, float)
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[1],
+                          pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
+            return np.linalg.svd(A)[2][:, -1]
+        """, ["homogeneous", "fourth coordinate"]),
+    "triangulate without the division": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.asarray(pts1, float); pts2 = np.asarray(pts2, float)
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[1],
+                          pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
+            return np.linalg.svd(A)[2][:, -1, :3]
+        """, ["fourth coordinate"]),
+    "triangulate with OpenCV": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            X = cv2.triangulatePoints(np.float64(P1), np.float64(P2),
+                                      np.float64(pts1).T, np.float64(pts2).T)
+            return (X[:3] / X[3]).T
+        """, ["cv2.triangulatePoints", "yourself"]),
+    # ---------------------------------------------------------------- ex2
+    "depth b / (f d)": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, float)
+            ok = np.isfinite(d) & (d > 0)
+            return np.where(ok, baseline / (f * np.where(ok, d, 1.0)), 0.0)
+        """, ["b / (f d)"]),
+    "depth inf where d = 0": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return f * baseline / np.asarray(disparity, float)
+        """, ["inf or nan", "must be 0"]),
+    "disparity xr - xl": ("lab12.ex2", """
+        def disparity_from_matches(xl, xr):
+            xl = np.asarray(xl, float); xr = np.asarray(xr, float)
+            if xl.ndim == 2:
+                xl, xr = xl[:, 0], xr[:, 0]
+            return xr - xl
+        """, ["wrong sign"]),
+    "disparity from the y column": ("lab12.ex2", """
+        def disparity_from_matches(xl, xr):
+            xl = np.asarray(xl, float); xr = np.asarray(xr, float)
+            if xl.ndim == 2:
+                xl, xr = xl[:, 1], xr[:, 1]
+            return xl - xr
+        """, ["y coordinates"]),
+    # ---------------------------------------------------------------- ex3
+    "rectify returns inverse homographies": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            return a, b, np.linalg.inv(H1), np.linalg.inv(H2)
+        """, ["back to the originals"]),
+    "rectify with the homographies swapped": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            return a, b, H2, H1
+        """, ["swapped"]),
+    "rectify with the pose read backwards": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            R = np.asarray(R, float)
+            return _rectify(img_l, img_r, K1, K2, R.T, -R.T @ np.asarray(T, float))
+        """, ["share a row"]),
+    "rectify with the baseline reversed": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            flip = np.diag([-1.0, -1.0, 1.0])
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            return a, b, flip @ H1, flip @ H2
+        """, ["negative"]),
+    "rectify pushes the images out of view": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            shift = np.array([[1.0, 0, 110], [0, 1, 0], [0, 0, 1]])
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            H1, H2 = shift @ H1, shift @ H2
+            size = (img_l.shape[1], img_l.shape[0])
+            return cv2.warpPerspective(img_l, H1, size), cv2.warpPerspective(img_r, H2, size), H1, H2
+        """, ["stays inside"]),
+    "rectified images do not match the homographies": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            return np.array(img_l), np.array(img_r), H1, H2
+        """, ["differs from the input warped"]),
+    # ---------------------------------------------------------------- ex4
+    "block matching in the wrong direction": ("lab12.ex4", """
+        def _shift_right(image, d):
+            if d == 0:
+                return image
+            out = np.empty_like(image)
+            out[:, :-d] = image[:, d:]
+            out[:, -d:] = image[:, -1:]
+            return out
+
+        def _ssd_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(max_disparity + 1):
+                costs[d] = _box_mean((left - _shift_right(right, d)) ** 2, block_size)
+                if d:
+                    costs[d, :, -d:] = np.inf
+            return costs
+        """, ["wrong direction"]),
+    "block matching with negative disparities": ("lab12.ex4", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return -_block_matching(left, right, max_disparity, block_size, cost)
+        """, ["negative"]),
+    "block matching off by one": ("lab12.ex4", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity, block_size, cost) + 1
+        """, ["off by"]),
+    "block matching with StereoBM": ("lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            bm = cv2.StereoBM_create(numDisparities=16 * ((max_disparity + 15) // 16), blockSize=block_size)
+            return bm.compute(left, right).astype(np.float64) / 16
+        """, ["cv2.StereoBM_create", "yourself"]),
+    # ---------------------------------------------------------------- ext1
+    "NCC without subtracting the means": ("lab12.ext1", """
+        def _ncc_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            energy_l = _box_mean(left * left, block_size)
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(max_disparity + 1):
+                shifted = _shift_right(right, d)
+                energy_r = _box_mean(shifted * shifted, block_size)
+                costs[d] = -_box_mean(left * shifted, block_size) / np.sqrt(energy_l * energy_r + 1e-9)
+                costs[d, :, :d] = np.inf
+            return costs
+        """, ["not fully normalised"]),
+    "NCC as a plain correlation": ("lab12.ext1", """
+        def _ncc_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(max_disparity + 1):
+                costs[d] = -_box_mean(left * _shift_right(right, d), block_size)
+                costs[d, :, :d] = np.inf
+            return costs
+        """, ["fails even when both views have the same brightness"]),
+    "cost argument ignored": ("lab12.ext1", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity, block_size, "ssd")
+        """, ["cost argument is ignored"]),
+    # ---------------------------------------------------------------- ex5
+    "DP without smoothness (winner-take-all)": ("lab12.ex5", """
+        DEFAULT_SMOOTHNESS = 0.0
+        """, ["winner-take-all"]),
+    "DP with SGBM": ("lab12.ex5", """
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            sgbm = cv2.StereoSGBM_create(0, 16 * ((max_disparity + 15) // 16), block_size)
+            return sgbm.compute(left, right).astype(np.float64) / 16
+        """, ["cv2.StereoSGBM_create", "yourself"]),
+    # ---------------------------------------------------------------- ex6
+    "plain binary patterns": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            k = (np.arange(width) * 2**n_bits) // width
+            shifts = np.arange(n_bits - 1, -1, -1)[:, None]
+            return (((k[None, :] >> shifts) & 1) * 255).astype(np.uint8)
+        """, ["plain binary"]),
+    "patterns least significant bit first": ("lab12.ex6", """
+        _gray_code_patterns = gray_code_patterns
+        def gray_code_patterns(width, n_bits):
+            return _gray_code_patterns(width, n_bits)[::-1]
+        """, ["wrong order"]),
+    "projector on the wrong side": ("lab12.ex6", """
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            depth = np.asarray(depth, float)
+            height, width = depth.shape
+            patterns = gray_code_patterns(width, n_bits)
+            valid = depth > 0
+            d = np.divide(f * baseline, depth, out=np.zeros_like(depth), where=valid)
+            column = np.floor(np.arange(width) + d + 0.5).astype(int)
+            lit = valid & (column >= 0) & (column < width)
+            images = np.zeros((n_bits, height, width), np.uint8)
+            images[:, lit] = patterns[:, column[lit]]
+            return images
+        """, ["u - f b / z"]),
+    "decoding without Gray to binary": ("lab12.ex6", """
+        def depth_from_structured_light(images, f, baseline):
+            images = np.asarray(images)
+            n, height, width = images.shape
+            k = np.zeros((height, width), int)
+            for image in images:
+                k = (k << 1) | (image > 127)
+            column = (k + 0.5) * width / 2**n - 0.5
+            z = depth_from_disparity(np.arange(width) - column, f, baseline)
+            return np.where((images > 127).any(axis=0), z, 0.0)
+        """, ["plain binary"]),
+    "decoding with the stripe edge": ("lab12.ex6", """
+        _depth_from_structured_light = depth_from_structured_light
+        def depth_from_structured_light(images, f, baseline):
+            images = np.asarray(images)
+            n, height, width = images.shape
+            bits = images > 127
+            k = np.zeros((height, width), int); b = np.zeros((height, width), bool)
+            for g in bits:
+                b = b ^ g
+                k = (k << 1) | b
+            z = depth_from_disparity(np.arange(width) - k * width / 2**n, f, baseline)
+            return np.where(bits.any(axis=0), z, 0.0)
+        """, ["left edge"]),
+}
+
+
+@pytest.mark.parametrize("case", sorted(MISTAKES))
+def test_mistake_is_caught_and_named(tmp_path, case):
+    exercise, source, fragments = MISTAKES[case]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    assert_diagnosed(result, exercise, *fragments)
+
+
+# Realistic correct variants that must keep full marks.
+STEREO_RECTIFY = """
+        def rectify(img_l, img_r, K1, K2, R, T):
+            h, w = img_l.shape[:2]
+            R1, R2, P1, P2, *_ = cv2.stereoRectify(np.float64(K1), None, np.float64(K2), None, (w, h),
+                                                   np.float64(R), np.float64(T).reshape(3, 1),
+                                                   flags=cv2.CALIB_ZERO_DISPARITY, alpha=ALPHA)
+            H1 = P1[:, :3] @ R1 @ np.linalg.inv(K1)
+            H2 = P2[:, :3] @ R2 @ np.linalg.inv(K2)
+            return (cv2.warpPerspective(img_l, H1, (w, h)), cv2.warpPerspective(img_r, H2, (w, h)), H1, H2)
+        """
+VARIANTS = {
+    "rectify with cv2.stereoRectify, alpha=-1": ("lab12.ex3", "ALPHA = -1\n" + textwrap.dedent(STEREO_RECTIFY)),
+    "rectify with cv2.stereoRectify, alpha=0": ("lab12.ex3", "ALPHA = 0\n" + textwrap.dedent(STEREO_RECTIFY)),
+    "rectify with cv2.stereoRectify, alpha=1": ("lab12.ex3", "ALPHA = 1\n" + textwrap.dedent(STEREO_RECTIFY)),
+    "block matching with summed SSD and sub-pixel refinement": ("lab12.ex4", """
+        _ssd = _ssd_volume
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            volume = _ssd(_grey_float(left), _grey_float(right), max_disparity, block_size) * block_size**2
+            d = np.argmin(volume, axis=0)
+            inner = (d > 0) & (d < max_disparity)
+            rows, cols = np.nonzero(inner)
+            c0 = volume[d[inner] - 1, rows, cols]; c1 = volume[d[inner], rows, cols]
+            c2 = volume[d[inner] + 1, rows, cols]
+            denom = c0 - 2 * c1 + c2
+            ok = np.isfinite(denom) & (denom > 0)
+            out = d.astype(float)
+            out[rows[ok], cols[ok]] += 0.5 * (c0[ok] - c2[ok]) / denom[ok]
+            return out
+        """),
+    "DP with a squared-difference cost and its own default": ("lab12.ex5", """
+        def _sad_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.empty((height, width, max_disparity + 1))
+            for d in range(max_disparity + 1):
+                costs[:, :, d] = _box_mean((left - _shift_right(right, d)) ** 2, block_size) * block_size**2
+                costs[:, :d, d] = 1e6
+            return costs
+        DEFAULT_SMOOTHNESS = 2000.0
+        """),
+}
+
+
+@pytest.mark.parametrize("case", sorted(VARIANTS))
+def test_correct_variants_keep_full_marks(tmp_path, case):
+    exercise, source = VARIANTS[case]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    for check in check_results(result, exercise):
+        assert check.passed, f"{check.name}: {check.message}"
