@@ -13,7 +13,7 @@ import numpy as np
 from hypothesis import strategies as st
 
 from fixtures import lab09 as truth
-from fixtures.images import photo
+from fixtures.lab09 import photo
 
 from ..checks import Trial, partial, passed
 from ..compare import closest, max_abs_error, projective_distance

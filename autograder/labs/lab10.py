@@ -1,0 +1,577 @@
+"""Lab 10 - geometric camera models, continued: the public checks.
+
+Ground truth comes from :mod:`fixtures.lab10`: projections by definition,
+camera matrices built from chosen ``K``, ``R``, ``t`` (so DLT and decomposition
+are judged against the exact camera), chessboard images rendered from known
+poses (with exactly simulated lens distortion), and a rendered sequence with a
+known trajectory. Poses are judged by rotation angle and translation error,
+accepting the half-turn ambiguity of a symmetric board.
+"""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+from hypothesis import strategies as st
+
+from fixtures import lab10 as truth
+from fixtures import scene
+
+from ..checks import Trial, partial, passed
+from ..compare import blurred_difference, closest, projective_distance
+from ..pictures import svg_points
+from ..registry import Lab
+from .lab09 import _fmt, expect_points, judge_behind, judge_points, judge_single_point, point_error
+
+lab = Lab("lab10", module="lab10_camera2", title="Geometric camera models (continued)")
+
+seeds = st.integers(0, 2**32 - 1)
+
+
+# ================================================================== ex1 perspective
+ex1 = lab.exercise("ex1", "Perspective projection and focal length", functions=[
+    "perspective_project(points, f)"])
+
+
+def perspective_mistakes(f, X):
+    right = truth.pinhole(X, f)
+    return {
+        "x and y are swapped (x = f X / Z is the column)": right[:, ::-1],
+        "the perspective division is missing (divide by Z)": f * X[:, :2],
+        "the focal length divides instead of multiplies (x = X / (f Z))": X[:, :2] / (f * X[:, 2:3]),
+        "every point is divided by the mean depth: that is weak perspective": truth.weak_perspective(X, f),
+    }
+
+
+@ex1.check("perspective_project with f = 100, 500 and 1000", points=4)
+def perspective_focal_lengths(t):
+    X = truth.scene_points(101, n=10, depth=8.0, relief=4.0)
+    plots = {}
+    for f in (100.0, 500.0, 1000.0):
+        got = t.call("perspective_project", X, f)
+        if isinstance(got, np.ndarray) and got.shape == (10, 2):
+            plots[f"f = {f:g}"] = got
+        judge_points(t, f"perspective_project(points, f={f:g})", got, truth.pinhole(X, f),
+                     perspective_mistakes(f, X))
+    t.svg("the same points with f = 100, 500, 1000", svg_points(plots))
+    return passed("the image scales with f")
+
+
+@ex1.check("perspective_project for any points and f; a single (3,) point", points=2)
+def perspective_property(t):
+    def holds(case):
+        seed, f = case
+        X = truth.points_in_front(seed, n=8)
+        judge_points(t, f"perspective_project(points, f={f!r})", t.call("perspective_project", X, f),
+                     truth.pinhole(X, f), perspective_mistakes(f, X))
+
+    t.for_all(st.tuples(seeds, st.floats(10.0, 2000.0)), holds, max_examples=12,
+              describe=lambda c: f"fixtures.lab09.points_in_front(seed={c[0]}, n=8), f={c[1]!r}")
+    X = np.array([0.4, -0.3, 5.0])
+    judge_single_point(t, "perspective_project((3,) point, f=500)", t.call("perspective_project", X, 500.0),
+                       truth.pinhole(X, 500.0)[0])
+
+
+@ex1.check("perspective_project: points behind the camera give NaN", points=1)
+def perspective_behind(t):
+    X, behind = truth.lab09.with_points_behind(truth.points_in_front(102, n=10), seed=103)
+    judge_behind(t, "perspective_project(points with some Z <= 0, f=500)",
+                 t.call("perspective_project", X, 500.0), truth.pinhole(X, 500.0), behind)
+
+
+# ================================================================== ex2 weak perspective
+ex2 = lab.exercise("ex2", "Weak perspective", functions=["weak_perspective_project(points, f, z_avg=None)"])
+
+
+def weak_mistakes(X, f, z_avg=None):
+    return {
+        "each point is divided by its own depth: that is full perspective; weak perspective divides "
+        "every point by one common depth z_avg": truth.pinhole(X, f),
+        "the given z_avg is ignored (the mean depth is used instead)": truth.weak_perspective(X, f),
+        "the default depth is the median; it is the mean depth": truth.weak_perspective(X, f, np.median(X[:, 2])),
+        "x and y are swapped": truth.weak_perspective(X, f, z_avg)[:, ::-1],
+        "f is not applied": truth.weak_perspective(X, 1.0, z_avg),
+    }
+
+
+@ex2.check("weak_perspective_project with the default z_avg (the mean depth)", points=3)
+def weak_default(t):
+    X = truth.scene_points(201, n=12, depth=20.0, relief=6.0)
+    expected = truth.weak_perspective(X, 500.0)
+    mistakes = weak_mistakes(X, 500.0)
+    del mistakes["the given z_avg is ignored (the mean depth is used instead)"]
+    got = t.call("weak_perspective_project", X, 500.0)
+    if isinstance(got, np.ndarray) and got.shape == expected.shape:
+        t.svg("weak perspective vs full perspective", svg_points(
+            {"weak perspective (truth)": expected, "yours": got, "full perspective": truth.pinhole(X, 500.0)}))
+    judge_points(t, "weak_perspective_project(points, f=500)", got, expected, mistakes)
+
+
+@ex2.check("weak_perspective_project with a given z_avg", points=2)
+def weak_given(t):
+    X = truth.scene_points(202, n=10, depth=15.0, relief=3.0)
+    judge_points(t, "weak_perspective_project(points, f=300, z_avg=12.0)",
+                 t.call("weak_perspective_project", X, 300.0, z_avg=12.0),
+                 truth.weak_perspective(X, 300.0, 12.0), weak_mistakes(X, 300.0, 12.0))
+
+
+@ex2.check("weak perspective approaches perspective for a shallow, distant object", points=1)
+def weak_property(t):
+    def holds(seed):
+        X = truth.scene_points(seed, n=10, depth=50.0, relief=0.5)
+        judge_points(t, "weak_perspective_project(points, f=400)", t.call("weak_perspective_project", X, 400.0),
+                     truth.weak_perspective(X, 400.0), weak_mistakes(X, 400.0))
+
+    t.for_all(seeds, holds, max_examples=6, describe=lambda s: f"fixtures.lab10.scene_points({s}, depth=50)")
+
+
+# ================================================================== ex3 orthographic
+ex3 = lab.exercise("ex3", "Orthographic projection", functions=["orthographic_project(points)"])
+
+
+@ex3.check("orthographic_project uses the lab sheet's 3x4 matrix: (X, Y)", points=3)
+def orthographic_example(t):
+    X = truth.scene_points(301, n=10, depth=10.0, relief=5.0)
+    got = t.call("orthographic_project", X)
+    if isinstance(got, np.ndarray) and got.shape == (10, 3):
+        t.fail("orthographic_project returned shape (10, 3); expected (10, 2): divide by the homogeneous "
+               "coordinate and drop it")
+    judge_points(t, "orthographic_project(points)", got, truth.orthographic(X), {
+        "the points are divided by Z: that is perspective; orthographic projection ignores depth":
+            X[:, :2] / X[:, 2:3],
+        "it returns (X, Z); the lab sheet's matrix keeps X and Y": X[:, [0, 2]],
+        "x and y are swapped": X[:, [1, 0]],
+    })
+
+
+@ex3.check("orthographic_project: depth changes nothing; a single (3,) point", points=2)
+def orthographic_property(t):
+    def holds(seed):
+        rng = np.random.default_rng(seed)
+        X = rng.uniform(-10, 10, size=(8, 3))
+        X[:, 2] = np.abs(X[:, 2]) + 0.5
+        judge_points(t, "orthographic_project(points)", t.call("orthographic_project", X), truth.orthographic(X),
+                     {"the points are divided by Z: that is perspective": X[:, :2] / X[:, 2:3]})
+
+    t.for_all(seeds, holds, max_examples=8, describe=lambda s: f"uniform(-10, 10, (8, 3)) from seed {s}")
+    judge_single_point(t, "orthographic_project((3,) point)", t.call("orthographic_project", np.array([1.0, 2.0, 7.0])),
+                       np.array([1.0, 2.0]))
+
+
+# ================================================================== ex4 DLT
+ex4 = lab.exercise("ex4", "Camera matrix by the DLT", functions=["camera_matrix_dlt(points3d, points2d)"])
+lab.forbid("camera_matrix_dlt", "cv2.calibrateCamera", "cv2.solvePnP", "cv2.solvePnPRansac",
+           "cv2.solvePnPGeneric", "cv2.initCameraMatrix2D", "cv2.calibrateCameraExtended")
+
+
+def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False):
+    P, X, x, X_test, x_test = truth.dlt_problem(seed, n=n, noise=noise)
+    what = f"camera_matrix_dlt(points3d, points2d) with N={n}" + (f", noise {noise:g} px" if noise else "")
+    got = t.expect_array(t.call("camera_matrix_dlt", X, x), what, shape=(3, 4), kind="iuf", finite=True)
+    if np.linalg.norm(got) == 0:
+        t.fail(f"{what} returned the zero matrix (the trivial solution of A p = 0)")
+    fresh = np.linalg.norm(truth.project_any_sign(got, X_test) - x_test, axis=1)
+    fresh = np.where(np.isfinite(fresh), fresh, np.inf)
+    if show:
+        t.svg("new points: true projection vs projected with your P", svg_points(
+            {"true": x_test[:40], "with your P": truth.project_any_sign(got, X_test[:40])},
+            lines=list(zip(x_test[:40], truth.project_any_sign(got, X_test[:40])))))
+    if noise == 0:
+        if projective_distance(got, P) < 1e-6 and fresh.max() < 1e-3:
+            return passed(f"P recovered up to scale (new points reprojected within {fresh.max():.1e} px)")
+    else:
+        residual = np.sqrt(np.mean(np.sum((truth.project_any_sign(got, X) - x) ** 2, axis=1)))
+        true_residual = np.sqrt(np.mean(np.sum((truth.project_any_sign(P, X) - x) ** 2, axis=1)))
+        if np.isfinite(residual) and residual <= 1.2 * true_residual and fresh.mean() <= 1.0:
+            return passed(f"RMS residual {residual:.2f} px (the true P: {true_residual:.2f} px); "
+                          f"new points within {fresh.mean():.2f} px on average")
+    mistake = closest(got, truth.dlt_mistakes(P, X, x), projective_distance, 0.05 if noise else 1e-4)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    t.fail(f"{what}: projecting new points with your P misses their true projections by "
+           f"{np.mean(fresh):.3g} px on average (P should equal the true camera up to scale).")
+
+
+@ex4.check("camera_matrix_dlt from exact correspondences (N = 6 and N = 20)", points=4)
+def dlt_exact(t):
+    judge_dlt(t, 401, 6, 0.0)
+    return judge_dlt(t, 402, 20, 0.0, show=True)
+
+
+@ex4.check("camera_matrix_dlt from noisy correspondences (0.5 px, N = 40)", points=3)
+def dlt_noisy(t):
+    return judge_dlt(t, 403, 40, 0.5, show=True)
+
+
+@ex4.check("camera_matrix_dlt for random cameras", points=2)
+def dlt_property(t):
+    t.for_all(seeds, lambda seed: judge_dlt(t, seed, 12, 0.0), max_examples=8,
+              describe=lambda s: f"fixtures.lab10.dlt_problem(seed={s}, n=12)")
+
+
+# ================================================================== ex5 decomposition
+ex5 = lab.exercise("ex5", "Decomposing the camera matrix", functions=[
+    "decompose_camera_matrix(P)", "camera_center(P)"])
+
+
+def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_camera_matrix(P)"):
+    got = t.call("decompose_camera_matrix", P)
+    if not (isinstance(got, (tuple, list)) and len(got) == 3):
+        t.fail(f"{what} should return a triple (K, R, t)")
+    K = t.expect_array(got[0], f"{what}[0] (K)", shape=(3, 3), kind="iuf", finite=True)
+    R = t.expect_array(got[1], f"{what}[1] (R)", shape=(3, 3), kind="iuf", finite=True)
+    tv = got[2]
+    if isinstance(tv, np.ndarray) and tv.shape in ((4,), (4, 1)):
+        t.fail(f"{what}[2] (t) has shape {tv.shape}: that looks like the homogeneous camera centre "
+               "(what cv2.decomposeProjectionMatrix returns as its 'translation'); t is the (3,) vector "
+               "in P = K [R | t], t = -R C.")
+    tv = t.expect_array(tv, f"{what}[2] (t)", kind="iuf", finite=True)
+    if tv.shape == (3, 1):
+        tv = tv.ravel()
+    tv = t.expect_array(tv, f"{what}[2] (t)", shape=(3,))
+    problems = []
+    if np.abs(np.tril(K, -1)).max() > 1e-6 * np.abs(K).max():
+        problems.append("K is not upper triangular (use an RQ decomposition of the left 3x3 block)")
+    if abs(K[2, 2] - 1) > 1e-6:
+        problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: divide K by K[2, 2] (P is only known up to scale)")
+    if np.any(np.diag(K) <= 0):
+        problems.append("K has a negative diagonal entry: RQ is unique only up to signs; multiply the "
+                        "offending columns of K and rows of R by -1")
+    if np.abs(R @ R.T - np.eye(3)).max() > 1e-6:
+        problems.append("R is not a rotation (R R^T != I)")
+    elif np.linalg.det(R) < 0:
+        problems.append("det(R) = -1: P is known only up to sign; if det of P's left 3x3 block is "
+                        "negative, negate P first")
+    if problems:
+        t.fail(f"{what}: " + "; ".join(problems) + ".")
+    Kn = K_true / K_true[2, 2]
+    ok = (np.abs(K - Kn).max() <= 1e-6 * np.abs(Kn).max() and np.abs(R - R_true).max() <= 1e-6
+          and np.abs(tv - t_true).max() <= 1e-6 * max(1.0, np.abs(t_true).max()))
+    if ok:
+        return
+    for mistake, (Km, Rm, tm) in truth.decomposition_mistakes(Kn, R_true, t_true).items():
+        if (np.abs(K - Km).max() <= 1e-4 * np.abs(Km).max() and np.abs(R - Rm).max() <= 1e-4
+                and np.abs(tv - tm).max() <= 1e-4 * max(1.0, np.abs(tm).max())):
+            t.fail(f"{what} is wrong: it looks like {mistake}.")
+    recomposed = K @ np.column_stack([R, tv])
+    if projective_distance(recomposed, P) > 1e-6:
+        t.fail(f"{what}: K [R | t] does not give back P (distance {projective_distance(recomposed, P):.2g} "
+               "after normalising scale).")
+    t.fail(f"{what}: K, R, t differ from the camera's: K\n{_fmt(K)}\nexpected\n{_fmt(Kn)}")
+
+
+@ex5.check("decompose_camera_matrix of P = K [R | t]", points=3)
+def decompose_example(t):
+    _, K, R, tv, _ = truth.random_camera_matrix(501)
+    judge_decomposition(t, truth.camera(K, R, tv), K, R, tv)
+
+
+@ex5.check("decompose_camera_matrix for P at any scale and sign", points=3)
+def decompose_property(t):
+    def holds(seed):
+        P, K, R, tv, _ = truth.random_camera_matrix(seed)
+        judge_decomposition(t, P, K, R, tv, what="decompose_camera_matrix(s * K [R | t])")
+
+    t.for_all(seeds, holds, max_examples=15,
+              describe=lambda s: f"fixtures.lab10.random_camera_matrix({s}) (negative scale included)")
+
+
+def judge_center(t: Trial, P, R, tv):
+    what = "camera_center(P)"
+    got = t.call("camera_center", P)
+    if isinstance(got, np.ndarray) and got.shape == (4,):
+        t.fail(f"{what} returned a (4,) homogeneous vector; expected the (3,) centre: divide by the "
+               "last coordinate and drop it")
+    got = t.expect_array(got, what, shape=(3,), kind="iuf", finite=True)
+    C = -R.T @ tv
+    scale = max(1.0, np.abs(C).max())
+    if np.abs(got - C).max() <= 1e-6 * scale:
+        return
+    if np.abs(got - tv).max() <= 1e-6 * scale:
+        t.fail(f"{what} returned t; the centre is C = -R^T t (the point with P [C, 1] = 0).")
+    if np.abs(got + tv).max() <= 1e-6 * scale:
+        t.fail(f"{what} returned -t; the centre is C = -R^T t (the rotation matters).")
+    residual = np.linalg.norm(P @ np.append(got, 1.0)) / np.linalg.norm(P)
+    t.fail(f"{what} returned {_fmt(got)}; expected {_fmt(C)} (|P [C, 1]| / |P| = {residual:.2g}, should be 0)")
+
+
+@ex5.check("camera_center(P) satisfies P [C, 1] = 0", points=2)
+def center_check(t):
+    for seed in (511, 512, 513):
+        P, K, R, tv, _ = truth.random_camera_matrix(seed)
+        judge_center(t, P, R, tv)
+
+
+# ================================================================== ex6 pose from a chessboard
+ex6 = lab.exercise("ex6", "Pose from a chessboard", functions=[
+    "estimate_pose(image, pattern_size, square_size, K, dist=None)"])
+
+ANGLE_TOLERANCE = 1.0        # degrees
+TRANSLATION_TOLERANCE = 0.01  # fraction of the distance
+REPROJECTION_TOLERANCE = 0.75  # pixels, max over the corners
+
+
+def draw_corners(image, true_corners, got_corners):
+    """The image with the true corners (green) and the student's reprojection (red)."""
+    canvas = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image.copy()
+    for x, y in np.asarray(true_corners, float).reshape(-1, 2):
+        cv2.circle(canvas, (int(round(x)), int(round(y))), 4, (0, 200, 0), 1)
+    for x, y in np.asarray(got_corners, float).reshape(-1, 2):
+        if np.isfinite(x) and np.isfinite(y) and abs(x) < 1e5 and abs(y) < 1e5:
+            cv2.circle(canvas, (int(round(x)), int(round(y))), 2, (0, 0, 255), -1)
+    return canvas
+
+
+def _unpack_pose(t: Trial, what, got, n_corners):
+    if not (isinstance(got, (tuple, list)) and len(got) == 3):
+        t.fail(f"{what} should return a triple (rvec, tvec, reprojected)")
+    rvec, tvec, reprojected = got
+    if isinstance(rvec, np.ndarray) and rvec.shape == (3, 3):
+        t.fail(f"{what} returned a 3x3 rotation matrix as rvec; return the (3,) Rodrigues vector "
+               "(what cv2.solvePnP gives; cv2.Rodrigues converts)")
+    rvec = t.expect_array(np.asarray(rvec).reshape(-1) if isinstance(rvec, np.ndarray) and rvec.size == 3 else rvec,
+                          f"{what}[0] (rvec)", shape=(3,), kind="f")
+    tvec = t.expect_array(np.asarray(tvec).reshape(-1) if isinstance(tvec, np.ndarray) and tvec.size == 3 else tvec,
+                          f"{what}[1] (tvec)", shape=(3,), kind="f")
+    if isinstance(reprojected, np.ndarray) and reprojected.shape == (n_corners, 1, 2):
+        reprojected = reprojected.reshape(-1, 2)
+    reprojected = expect_points(t, f"{what}[2] (reprojected)", reprojected, (n_corners, 2)) \
+        if n_corners else t.expect_array(reprojected, f"{what}[2] (reprojected)", shape=(0, 2))
+    return rvec, tvec, reprojected
+
+
+def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, dist=None, show=True):
+    """Judge (rvec, tvec, reprojected) against the true pose, up to the board's symmetry."""
+    rvec, tvec, reprojected = _unpack_pose(t, what, got, len(corners))
+    if show:
+        t.images(f"{what}: true corners (green rings) and your reprojection (red dots)",
+                 image=draw_corners(image, corners, reprojected))
+    if not (np.all(np.isfinite(rvec)) and np.all(np.isfinite(tvec))):
+        t.fail(f"{what}: no pose (NaN) although the whole board is visible: is pattern_size passed "
+               "as (cols, rows) of inner corners, exactly as given?")
+    angle, shift, alternative = truth.pose_error(rvec, tvec, R, tv, pattern, square)
+    distance = float(np.linalg.norm(tv))
+    rel = shift / distance
+    perm = truth.board_symmetries(pattern, square)[alternative][2]
+    reproj_error = np.linalg.norm(reprojected - corners[perm], axis=1).max()
+    if angle <= ANGLE_TOLERANCE and rel <= TRANSLATION_TOLERANCE:
+        if reproj_error > REPROJECTION_TOLERANCE:
+            return partial(0.5, f"{what}: the pose is right (rotation off by {angle:.2f} deg, translation by "
+                                f"{rel:.2%}), but the reprojected corners miss the corners by up to "
+                                f"{reproj_error:.1f} px: project the object points with rvec, tvec, K and dist "
+                                "(cv2.projectPoints), in the same order.")
+        return passed(f"rotation within {angle:.2f} deg, translation within {rel:.2%}, "
+                      f"reprojection within {reproj_error:.2f} px")
+    # diagnosis
+    R_got = scene.rotation_from_rvec(rvec)
+    if angle <= ANGLE_TOLERANCE:
+        M, c, _ = truth.board_symmetries(pattern, square)[alternative]
+        t_alt = R @ c + tv
+        for factor in (1.0 / square, square):
+            if np.linalg.norm(tvec - factor * t_alt) <= TRANSLATION_TOLERANCE * factor * distance:
+                t.fail(f"{what}: the rotation is right but tvec is {factor:.3g} times the true one: "
+                       "the object points must be in real units, i.e. multiplied by square_size.")
+    normal_angle = np.degrees(np.arccos(np.clip(abs(R_got[:, 2] @ R[:, 2]), -1.0, 1.0)))
+    in_plane = np.degrees(np.arccos(np.clip(abs(R_got[:, 0] @ R[:, 0]), -1.0, 1.0)))
+    if normal_angle < 2.0 and abs(in_plane - 90.0) < 2.0:
+        t.fail(f"{what}: the board plane is right but its x and y axes are exchanged (the pose is turned "
+               "by 90 degrees in the board plane): pattern_size is (cols, rows) = (inner corners per row, "
+               "per column), passed to cv2.findChessboardCorners as given, and the object points run "
+               "row by row with x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).")
+    C = -R.T @ tv
+    if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and np.linalg.norm(tvec - C) < 0.05 * distance:
+        t.fail(f"{what}: that is the camera's pose in the board's frame (R^T, -R^T t); the task wants "
+               "the board's pose in the camera frame, as cv2.solvePnP returns it.")
+    if dist is not None:
+        objp = scene.chessboard_object_points(pattern, square)
+        found, detected = cv2.findChessboardCorners(image, tuple(pattern))
+        if found:
+            _, r0, t0 = cv2.solvePnP(objp, detected, K, None)
+            a0, s0, _ = truth.pose_error(r0.ravel(), t0.ravel(), R, tv, pattern, square)
+            if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(r0.ravel())) < 0.3 and \
+                    np.linalg.norm(tvec - t0.ravel()) < 0.003 * distance:
+                t.fail(f"{what}: the lens distortion dist is ignored: pass it to cv2.solvePnP "
+                       "(and to cv2.projectPoints).")
+    t.fail(f"{what}: the pose is off by {angle:.1f} degrees and {rel:.1%} of the distance "
+           f"(reprojection off by up to {reproj_error:.1f} px).")
+
+
+def _call_pose(t: Trial, image, pattern, square, K, dist=None):
+    what = f"estimate_pose(image, pattern_size={pattern}, square_size={square}, K" + \
+           (", dist)" if dist is not None else ")")
+    kwargs = {} if dist is None else {"dist": dist}
+    return what, t.call("estimate_pose", image, pattern, square, K, **kwargs)
+
+
+@ex6.check("estimate_pose on three rendered views with known pose", points=5)
+def pose_views(t):
+    messages = []
+    for i, (image, R, tv, corners) in enumerate(truth.pose_views()):
+        what, got = _call_pose(t, image, truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K)
+        verdict = judge_pose(t, what, got, image, R, tv, corners, truth.POSE_PATTERN, truth.POSE_SQUARE,
+                             truth.POSE_K, show=(i == 0))
+        if verdict.fraction < 1:
+            return verdict
+        messages.append(verdict.message)
+    return passed(messages[-1])
+
+
+@ex6.check("estimate_pose on a symmetric board seen upside down (either corner order is accepted)", points=1)
+def pose_symmetric(t):
+    image, R, tv, corners = truth.symmetric_view()
+    what, got = _call_pose(t, image, truth.SYMMETRIC_PATTERN, truth.POSE_SQUARE, truth.POSE_K)
+    return judge_pose(t, what, got, image, R, tv, corners, truth.SYMMETRIC_PATTERN, truth.POSE_SQUARE,
+                      truth.POSE_K, show=False)
+
+
+@ex6.check("estimate_pose through a distorting lens (dist given)", points=2)
+def pose_distorted(t):
+    distorted, _, R, tv, corners = truth.distorted_view()
+    # the true corners as the distorting lens shows them
+    objp = scene.chessboard_object_points(truth.POSE_PATTERN, truth.POSE_SQUARE)
+    seen, _ = cv2.projectPoints(objp, scene.rvec_from_rotation(R), tv, truth.POSE_K, truth.DIST)
+    what, got = _call_pose(t, distorted, truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K, truth.DIST)
+    return judge_pose(t, what, got, distorted, R, tv, seen.reshape(-1, 2), truth.POSE_PATTERN,
+                      truth.POSE_SQUARE, truth.POSE_K, dist=truth.DIST)
+
+
+@ex6.check("estimate_pose without a board: NaN rvec and tvec, empty (0, 2) corners", points=1)
+def pose_no_board(t):
+    what, got = _call_pose(t, truth.empty_view(), truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K)
+    if got is None:
+        t.fail(f"{what} returned None when no board is visible; expected (NaN (3,), NaN (3,), (0, 2) array)")
+    rvec, tvec, reprojected = _unpack_pose(t, what, got, 0)
+    if np.isfinite(rvec).any() or np.isfinite(tvec).any():
+        t.fail(f"{what}: no board is visible, so rvec and tvec should be NaN; yours are finite.")
+
+
+# ================================================================== ext1 undistortion
+ext1 = lab.exercise("ext1", "Extension: undistortion", functions=["undistort_image(image, K, dist)"])
+UNDISTORT_TOLERANCE = 6.0
+
+
+@ext1.check("undistort_image straightens a view through a distorting lens", points=4)
+def undistort_check(t):
+    distorted, clean, _, _, _ = truth.distorted_view()
+    K, dist = truth.POSE_K, truth.DIST
+    what = "undistort_image(image, K, dist)"
+    got = t.call("undistort_image", distorted, K, dist)
+    valid = truth.undistortion_valid(K, dist, truth.POSE_SIZE)
+    if isinstance(got, np.ndarray):
+        t.compare_images(what, distorted, clean, got, valid=valid,
+                         caption="expected: the same view rendered without distortion")
+    got = t.expect_array(got, what, shape=distorted.shape, dtype=np.uint8)
+    error = blurred_difference(got, clean, valid)
+    if error <= UNDISTORT_TOLERANCE:
+        return passed(f"mean difference {error:.1f} grey levels from the distortion-free view")
+    if blurred_difference(got, distorted, valid) <= 1.0:
+        t.fail(f"{what} returned the image unchanged.")
+    twice = truth.distort_image(np.pad(distorted, truth.MARGIN), K, dist, truth.POSE_SIZE)
+    candidates = {
+        "the distortion is applied instead of removed (the lines bend even more)": twice,
+        "the sign of the coefficients is flipped (undistorting with -dist)": cv2.undistort(distorted, K, -dist),
+    }
+    for mistake, image in candidates.items():
+        if blurred_difference(got, image, valid) <= UNDISTORT_TOLERANCE:
+            t.fail(f"{what} is wrong: it looks like {mistake}.")
+    t.fail(f"{what} differs from the distortion-free view by {error:.0f} grey levels on average.")
+
+
+# ================================================================== ext2 dolly zoom
+ext2 = lab.exercise("ext2", "Extension: dolly zoom", functions=["dolly_zoom(points, f0, z0, distances)"])
+
+
+def dolly_scene():
+    rng = np.random.default_rng(601)
+    subject = np.column_stack([rng.uniform(-1, 1, 8), rng.uniform(-1.5, 1.5, 8), np.full(8, 5.0)])
+    background = np.column_stack([rng.uniform(-6, 6, 12), rng.uniform(-4, 4, 12), rng.uniform(12, 25, 12)])
+    return np.vstack([subject, background]), 8
+
+
+def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
+    what = f"dolly_zoom(points, f0={f0:g}, z0={z0:g}, distances={_fmt(distances)})"
+    got = t.call("dolly_zoom", X, f0, z0, distances)
+    if not (isinstance(got, (tuple, list)) and len(got) == 2):
+        t.fail(f"{what} should return a pair (focal_lengths, projections)")
+    fs_true, proj_true = truth.dolly_zoom(X, f0, z0, distances)
+    fs = t.expect_array(got[0], f"{what}[0] (focal lengths)", shape=fs_true.shape, kind="iuf", finite=True)
+    proj = got[1]
+    if isinstance(proj, np.ndarray) and proj.shape == (len(X), len(fs_true), 2) and len(X) != len(fs_true):
+        t.fail(f"{what}[1] has shape (N, F, 2); expected (F, N, 2): one (N, 2) projection per distance")
+    proj = t.expect_array(proj, f"{what}[1] (projections)", shape=proj_true.shape, kind="iuf")
+    if show and n_subject:
+        t.svg("frames of the dolly zoom: the subject (first 8 points) keeps its size", svg_points(
+            {f"d = {d:g}": proj[i] for i, d in enumerate(list(distances)[:4])}))
+    ok_f = np.abs(fs - fs_true).max() <= 1e-6 * np.abs(fs_true).max()
+    ok_p = point_error(proj.reshape(-1, 2), proj_true.reshape(-1, 2)) <= 1e-6 * np.nanmax(np.abs(proj_true))
+    if ok_f and ok_p:
+        return
+    for mistake, (fm, pm) in truth.dolly_mistakes(X, f0, z0, distances).items():
+        if np.abs(fs - fm).max() <= 1e-6 * np.abs(fm).max() and \
+                point_error(proj.reshape(-1, 2), pm.reshape(-1, 2)) <= 1e-6 * np.nanmax(np.abs(pm)):
+            t.fail(f"{what} is wrong: it looks like {mistake}.")
+    if not ok_f:
+        t.fail(f"{what}: the focal lengths are {_fmt(fs)}; expected f0 * d / z0 = {_fmt(fs_true)}")
+    if n_subject:
+        drift = np.abs(proj[:, :n_subject] - proj[:1, :n_subject]).max()
+        if drift > 1e-6:
+            t.fail(f"{what}: the subject (the points at depth z0) should keep its image across frames; "
+                   f"yours moves by up to {drift:.3g} px.")
+    t.fail(f"{what}: the focal lengths are right, but the projections are off by up to "
+           f"{point_error(proj.reshape(-1, 2), proj_true.reshape(-1, 2)):.3g} px.")
+
+
+@ext2.check("dolly_zoom keeps the subject's size while the background changes", points=4)
+def dolly_example(t):
+    X, n_subject = dolly_scene()
+    judge_dolly(t, X, 400.0, 5.0, np.array([5.0, 7.5, 10.0, 15.0]), n_subject, show=True)
+    return passed("subject fixed, background moving")
+
+
+@ext2.check("dolly_zoom for other focal lengths and distances", points=2)
+def dolly_property(t):
+    def holds(case):
+        seed, f0, z0 = case
+        rng = np.random.default_rng(seed)
+        X = np.column_stack([rng.uniform(-2, 2, 10), rng.uniform(-2, 2, 10), z0 + rng.uniform(0, 10, 10)])
+        judge_dolly(t, X, f0, z0, np.sort(rng.uniform(0.5 * z0, 3 * z0, 5)))
+
+    t.for_all(st.tuples(seeds, st.floats(50, 2000), st.floats(1, 20)), holds, max_examples=10)
+
+
+# ================================================================== ext3 tracking
+ext3 = lab.exercise("ext3", "Extension: tracking the pose over a sequence", functions=[
+    "track_pose(frames, pattern_size, square_size, K, dist=None)"])
+
+
+@ext3.check("track_pose follows a board along a known trajectory (NaN where it leaves the view)", points=4)
+def track_check(t):
+    frames, poses = truth.track_sequence()
+    pattern, square, K = truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K
+    what = "track_pose(frames, pattern_size, square_size, K)"
+    got = t.call("track_pose", list(frames), pattern, square, K)
+    if isinstance(got, np.ndarray) and got.shape == (len(frames) - 1, 6):
+        t.fail(f"{what} returned {got.shape[0]} rows for {len(frames)} frames: keep one row per frame, "
+               "NaN where the board is not found.")
+    got = t.expect_array(got, what, shape=(len(frames), 6), kind="f")
+    errors = []
+    for i, pose in enumerate(poses):
+        row = got[i]
+        if pose is None:
+            if np.isfinite(row).any():
+                t.fail(f"{what}: frame {i} shows no board, so its row should be NaN; yours is {_fmt(row)}.")
+            continue
+        R, tv = pose
+        if not np.isfinite(row).all():
+            t.fail(f"{what}: frame {i} shows the whole board, but its row is NaN.")
+        angle, shift, _ = truth.pose_error(row[:3], row[3:], R, tv, pattern, square)
+        if angle > ANGLE_TOLERANCE or shift > TRANSLATION_TOLERANCE * np.linalg.norm(tv):
+            swapped = truth.pose_error(row[3:], row[:3], R, tv, pattern, square)
+            if swapped[0] <= ANGLE_TOLERANCE and swapped[1] <= TRANSLATION_TOLERANCE * np.linalg.norm(tv):
+                t.fail(f"{what}: the rows are [tvec, rvec]; the API wants [rvec, tvec].")
+            t.fail(f"{what}: frame {i}: the pose is off by {angle:.1f} degrees and {shift:.3g} units.")
+        errors.append(angle)
+    trajectory = np.array([pose[1] if pose else [np.nan] * 3 for pose in poses])
+    t.svg("board position (x, z) along the sequence: truth vs yours", svg_points(
+        {"true": trajectory[:, [0, 2]], "yours": got[:, [3, 5]]}, flip_y=False))
+    return passed(f"every frame within {max(errors):.2f} degrees")

@@ -1,0 +1,137 @@
+"""Lab 10: the reference passes, the skeleton scores 0, usual mistakes are named."""
+
+import pytest
+
+from autograder.runner import grade
+from conftest import assert_diagnosed, mutant
+
+MODULE = "lab10_camera2"
+
+
+def test_reference_scores_full_marks(reference_result):
+    for exercise in reference_result.exercises:
+        if exercise.id.startswith("lab10."):
+            for check in exercise.checks:
+                assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+
+
+def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
+    for exercise in skeleton_result.exercises:
+        if exercise.id.startswith("lab10."):
+            assert exercise.score == 0
+            assert exercise.message == "not implemented yet"
+            for check in exercise.checks:
+                assert "not implemented yet" in check.message
+                assert check.traceback == ""
+
+
+# Each case: exercise, the wrong code, fragments the diagnosis must contain.
+MISTAKES = {
+    "perspective without division": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = f * X[:, :2]
+            return x[0] if single else x
+        """, ["division is missing"]),
+    "perspective by mean depth": ("lab10.ex1", """
+        def perspective_project(points, f):
+            return weak_perspective_project(points, f)
+        """, ["weak perspective"]),
+    "weak perspective = perspective": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            return perspective_project(points, f)
+        """, ["full perspective"]),
+    "z_avg ignored": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            x = (f / X[:, 2].mean()) * X[:, :2]
+            return x[0] if single else x
+        """, ["z_avg is ignored"]),
+    "orthographic divides by Z": ("lab10.ex3", """
+        def orthographic_project(points):
+            X, single = _points(points)
+            x = X[:, :2] / X[:, 2:3]
+            return x[0] if single else x
+        """, ["perspective"]),
+    "DLT largest singular vector": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
+            return np.linalg.svd(np.array(rows))[2][0].reshape(3, 4)
+        """, ["largest singular value"]),
+    "DLT with solvePnP": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            K = np.eye(3)
+            _, r, t = cv2.solvePnP(np.asarray(points3d, float), np.asarray(points2d, float), K, None)
+            return np.hstack([cv2.Rodrigues(r)[0], t])
+        """, ["cv2.solvepnp", "yourself"]),
+    "t as camera centre": ("lab10.ex5", """
+        _right = decompose_camera_matrix
+        def decompose_camera_matrix(P):
+            K, R, t = _right(P)
+            return K, R, -R.T @ t
+        """, ["camera centre"]),
+    "no sign fix": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            flip = np.eye(3)[::-1]
+            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
+            K = flip @ U.T @ flip
+            R = flip @ Q.T
+            t = np.linalg.solve(K, P[:, 3])
+            return K / K[2, 2], R, t
+        """, ["negative diagonal"]),
+    "centre is -t": ("lab10.ex5", """
+        def camera_center(P):
+            K, R, t = decompose_camera_matrix(P)
+            return -t
+        """, ["-r^t t"]),
+    "pose without square size": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            return _right(image, pattern_size, 1.0, K, dist)
+        """, ["square_size"]),
+    "pose ignores dist": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            return _right(image, pattern_size, square_size, K, None)
+        """, ["distortion", "ignored"]),
+    "pose pattern swapped": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            return _right(image, pattern_size[::-1], square_size, K, dist)
+        """, ["(cols, rows)"]),
+    "undistort the wrong way": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            return cv2.undistort(image, K, -np.asarray(dist, float))
+        """, ["sign"]),
+    "dolly moves the wrong way": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * distances / z0
+            return fs, np.stack([perspective_project(X - [0.0, 0.0, d - z0], f) for f, d in zip(fs, distances)])
+        """, ["wrong way"]),
+    "tracking rows [tvec, rvec]": ("lab10.ext3", """
+        _right = track_pose
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = _right(frames, pattern_size, square_size, K, dist)
+            return np.hstack([rows[:, 3:], rows[:, :3]])
+        """, ["[tvec, rvec]"]),
+    "tracking drops missing frames": ("lab10.ext3", """
+        _right = track_pose
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = _right(frames, pattern_size, square_size, K, dist)
+            return rows[np.isfinite(rows).all(axis=1)]
+        """, ["one row per frame"]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(MISTAKES))
+def test_mistake_is_diagnosed(tmp_path, name):
+    exercise, source, fragments = MISTAKES[name]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    assert_diagnosed(result, exercise, *fragments)
