@@ -1,0 +1,1044 @@
+"""Lab 8 - image homographies: the public checks.
+
+Ground truth comes from :mod:`fixtures.lab08`: homographies built from moved
+image corners, images warped by them with OpenCV, photo pairs related by a
+known H, and panorama views cut from a larger photo by known homographies.
+Estimates are judged geometrically (transfer error in pixels, up to scale),
+images on the well-covered interior with a tolerance for interpolation, and
+RANSAC over several seeds. Wrong answers are compared with what the usual
+mistakes produce, so the feedback can name the mistake.
+
+``cv2.findHomography`` and ``cv2.getPerspectiveTransform`` are forbidden inside
+``homography_dlt`` (the point of ex2), and ``cv2.findHomography`` inside
+``homography_ransac`` (ex4 asks for RANSAC itself; calling one's own
+``homography_dlt`` there is the intended route). ``stitch`` and
+``stitch_many`` may use anything.
+"""
+
+from __future__ import annotations
+
+import weakref
+
+import cv2
+import numpy as np
+from hypothesis import strategies as st
+
+from fixtures import lab08 as truth
+from fixtures.images import photo
+
+from ..checks import Trial, partial, passed
+from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, fill_fraction, projective_distance
+from ..pictures import difference_heatmap, matches_picture, svg_points
+from ..registry import Lab
+
+lab = Lab("lab08", module="lab08_homographies", title="Image homographies")
+lab.forbid("homography_dlt", "cv2.findHomography", "cv2.getPerspectiveTransform")
+lab.forbid("homography_ransac", "cv2.findHomography")
+
+IMAGE_TOLERANCE = 6.0      # mean blurred grey-level error accepted for a warp
+FILL_TOLERANCE = 0.02      # fraction of should-be-black pixels allowed to be non-zero
+PANORAMA_TOLERANCE = 9.0   # mean blurred error accepted on a panorama region
+MATCH_TOLERANCE = 3.0      # px: a match agrees with the true H
+RANSAC_H_TOLERANCE = 1.5   # px RMS transfer error over the image
+
+
+# ================================================================== shared helpers
+_RESULTS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def call_once(t: Trial, key: str, function: str, *args, **kwargs):
+    """``t.call``, but a successful result is reused by the other checks of this grading.
+
+    Several checks judge different aspects of one expensive call (a panorama);
+    the result is plain data kept in the grader's process, per sandbox (so per
+    submission). Failures are not kept: the next check calls again.
+    """
+    store = _RESULTS.setdefault(t.sandbox, {})
+    if key not in store:
+        store[key] = t.call(function, *args, **kwargs)
+    return store[key]
+
+
+def _fmt(matrix) -> str:
+    return np.array2string(np.asarray(matrix, float), precision=4, suppress_small=True)
+
+
+def homography_image_error(got, source, H, dsize=None) -> float:
+    """Mean blurred grey-level difference to ``source`` warped by H (best half-pixel offset)."""
+    inside, _ = truth.coverage(H, source.shape, dsize)
+    if inside.sum() < 0.05 * inside.size:
+        return float("inf")  # (a wrong H may send the image almost entirely out of view)
+    errors = []
+    for dx, dy in HALF_PIXEL_OFFSETS:
+        shifted = truth.translation(dx, dy) @ np.asarray(H, dtype=np.float64)
+        errors.append(blurred_difference(got, truth.warp(source, shifted, dsize), inside))
+    return min(errors)
+
+
+def judge_warp(t: Trial, what: str, got, source, H, dsize=None, show=True):
+    """Judge an image warped by H against the oracle, with diagnosis.
+
+    Full credit when the covered area matches (any sensible interpolation) and
+    the uncovered area is black; half when only the fill is wrong.
+    """
+    width, height = dsize or (source.shape[1], source.shape[0])
+    expected_shape = (height, width) + source.shape[2:]
+    expected = truth.warp(source, H, dsize)
+    inside, outside = truth.coverage(H, source.shape, dsize)
+    if isinstance(got, np.ndarray) and show:
+        t.compare_images(what, source, expected, got, valid=inside | outside,
+                         caption="the difference map is grey where the border is not judged")
+    if isinstance(got, np.ndarray) and got.shape != expected_shape:
+        if got.shape[:2] == expected_shape[1::-1]:
+            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: width and "
+                   "height are swapped (shapes are (rows, columns), dsize is (width, height))")
+        if got.shape[:2] == expected_shape[:2]:
+            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
+                   "keep the input's channels (grey in, grey out)")
+        t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}")
+    got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)
+    error = homography_image_error(got, source, H, dsize)
+    if error <= IMAGE_TOLERANCE:
+        nonblack = fill_fraction(got, outside)
+        if nonblack > FILL_TOLERANCE:
+            return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
+                                "pixels with no source pixel are not black.",
+                           hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)")
+        return passed(f"mean difference {error:.1f} grey levels on the covered area")
+    for mistake, wrong_H in truth.warp_mistakes(H).items():
+        try:
+            if homography_image_error(got, source, wrong_H, dsize) <= IMAGE_TOLERANCE:
+                t.fail(f"{what} is wrong: it looks like {mistake}.")
+        except np.linalg.LinAlgError:
+            continue
+    t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
+           "(see the pictures).")
+
+
+def relative_point_error(got, expected) -> float:
+    """Largest point error relative to the point's magnitude (at least 1 px)."""
+    got = np.asarray(got, dtype=np.float64)
+    expected = np.asarray(expected, dtype=np.float64)
+    if got.shape != expected.shape:
+        return float("inf")
+    scale = np.maximum(1.0, np.linalg.norm(expected, axis=1))
+    with np.errstate(invalid="ignore", over="ignore"):
+        err = np.linalg.norm(got - expected, axis=1) / scale
+    return float(np.nan_to_num(err, nan=np.inf).max()) if len(err) else 0.0
+
+
+def judge_points(t: Trial, what: str, got, H, pts):
+    n = len(pts)
+    if isinstance(got, np.ndarray) and got.shape == (n, 3):
+        t.fail(f"{what} returned homogeneous points of shape {got.shape}; expected ({n}, 2): "
+               "divide x and y by the third coordinate w and drop it")
+    if isinstance(got, np.ndarray) and got.shape == (2, n) and n != 2:
+        t.fail(f"{what} returned shape {got.shape}; expected ({n}, 2): one row per point")
+    got = t.expect_array(got, what, shape=(n, 2), kind="iuf")
+    expected = truth.apply_h(H, pts)
+    if relative_point_error(got, expected) <= 1e-6:
+        return
+    mistake = closest(got, truth.point_mistakes(H, pts), relative_point_error, 1e-4)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    t.fail(f"{what} returned\n{_fmt(got[:4])}\nexpected\n{_fmt(expected[:4])}"
+           + ("\n(first 4 rows shown)" if n > 4 else ""))
+
+
+# ================================================================== ex1 apply H
+ex1 = lab.exercise("ex1", "Applying a homography", functions=[
+    "apply_homography(image, H, dsize=None)", "transform_points(H, pts)"])
+
+SHEET_H = np.array([[1.2, 0.1, 30.0], [0.05, 0.9, -20.0], [0.001, 0.002, 1.0]])
+
+
+@ex1.check("transform_points on a worked example", points=2)
+def transform_points_example(t):
+    pts = np.array([[0.0, 0.0], [100.0, 50.0], [320.0, 240.0]])
+    judge_points(t, "transform_points(H, pts)", t.call("transform_points", SHEET_H, pts), SHEET_H, pts)
+
+
+@ex1.check("transform_points: strong perspective, points far away", points=3)
+def transform_points_property(t):
+    def holds(seed):
+        rng = np.random.default_rng(seed)
+        H = truth.strong_perspective(rng)
+        pts = rng.uniform(-5000, 5000, size=(40, 2))
+        pts = pts[np.abs(truth.third_coordinate(H, pts)) > 0.05][:20]
+        judge_points(t, "transform_points(H, pts)", t.call("transform_points", H, pts), H, pts)
+
+    t.for_all(st.integers(0, 2**32 - 1), holds, max_examples=8,
+              describe=lambda s: f"fixtures.lab08.strong_perspective(np.random.default_rng({s})) "
+                                 "and 20 points in [-5000, 5000]^2")
+
+
+@ex1.check("apply_homography(image, H) keeps the input size", points=3)
+def apply_homography_default(t):
+    source = photo("astronaut", (240, 180))
+    H = truth.corner_homography(np.random.default_rng(5), (240, 180), 0.15)
+    return judge_warp(t, "apply_homography(image, H)", t.call("apply_homography", source, H),
+                      source, H)
+
+
+@ex1.check("apply_homography on a grey image with dsize=(width, height)", points=2)
+def apply_homography_dsize(t):
+    source = photo("camera", (160, 120), grey=True)
+    H = truth.translation(20, 10) @ truth.corner_homography(np.random.default_rng(6), (160, 120), 0.2)
+    return judge_warp(t, "apply_homography(grey image, H, dsize=(200, 150))",
+                      t.call("apply_homography", source, H, dsize=(200, 150)), source, H,
+                      dsize=(200, 150))
+
+
+# ================================================================== ex2 DLT
+ex2 = lab.exercise("ex2", "Homography from point pairs (DLT)", functions=[
+    "homography_dlt(src, dst)", "warp_to_reference(reference, moving, H)"])
+
+IMAGE_REGION = (0, 0, 640, 480)
+PATCH_REGION = (800, 600, 160, 120)   # a small patch of a large photo, far from the origin
+PATCH_SEEDS = (100, 103, 109)
+
+
+def fitted_h(t: Trial, src, dst, what="homography_dlt(src, dst)"):
+    got = t.expect_array(t.call("homography_dlt", src, dst), what, shape=(3, 3), kind="iuf",
+                         finite=True)
+    if np.linalg.norm(got) == 0:
+        t.fail(f"{what} returned the zero matrix (the trivial solution of A h = 0): take the "
+               "right singular vector of the smallest singular value")
+    return got
+
+
+def diagnose_h(t: Trial, what: str, got, H_true, src=None, dst=None, tolerance=1e-3):
+    """Fail naming the mistake when ``got`` is a known wrong variant of the truth."""
+    mistakes = truth.matrix_mistakes(H_true)
+    if src is not None:
+        mistakes["the normalised H is returned without undoing the normalisation "
+                 "(return T_dst^-1 @ H_normalised @ T_src)"] = truth.unnormalised_return(src, dst)
+    mistake = closest(got, mistakes, projective_distance, tolerance)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+
+
+def judge_exact_fit(t: Trial, src, dst, H_true, region):
+    what = f"homography_dlt(src, dst) with N={len(src)} exact pairs"
+    got = fitted_h(t, src, dst, what)
+    error = truth.transfer_rms(got, H_true, region)
+    if error <= 1e-2:
+        return
+    diagnose_h(t, what, got, H_true, src, dst)
+    t.fail(f"{what} is off by {error:.3g} px (RMS over the image); from exact points the DLT "
+           f"recovers H exactly. Got\n{_fmt(truth.normalised(got))}\nexpected (up to scale)\n"
+           f"{_fmt(H_true)}")
+
+
+@ex2.check("homography_dlt from exactly 4 points", points=2)
+def dlt_four_points(t):
+    src = np.array([[10.0, 20.0], [600.0, 35.0], [580.0, 450.0], [25.0, 470.0]])
+    H = truth.corner_homography(np.random.default_rng(21), (640, 480), 0.15)
+    judge_exact_fit(t, src, truth.apply_h(H, src), H, IMAGE_REGION)
+
+
+@ex2.check("homography_dlt recovers any H from N exact pairs", points=3)
+def dlt_exact_property(t):
+    def holds(case):
+        seed, n = case
+        src, dst, H = truth.dlt_problem(seed, n, 0.0, IMAGE_REGION, 0.2)
+        judge_exact_fit(t, src, dst, H, IMAGE_REGION)
+
+    t.for_all(st.tuples(st.integers(0, 2**32 - 1), st.integers(4, 60)), holds, max_examples=8,
+              describe=lambda c: f"fixtures.lab08.dlt_problem(seed={c[0]}, n={c[1]}, noise=0, "
+                                 "region=(0, 0, 640, 480), strength=0.2)")
+
+
+@ex2.check("homography_dlt under 1 px noise on a 640x480 image (N=30)", points=3)
+def dlt_noisy(t):
+    src, dst, H = truth.dlt_problem(31, 30, 1.0, IMAGE_REGION)
+    what = "homography_dlt(src, dst) with noisy points"
+    got = fitted_h(t, src, dst, what)
+    error = truth.transfer_rms(got, H, IMAGE_REGION)
+    best = truth.transfer_rms(truth.dlt(src, dst), H, IMAGE_REGION)
+    g = truth.grid(IMAGE_REGION, 7)
+    t.svg("where your H sends a grid (compared with the true H)", svg_points({
+        "true H": truth.apply_h(H, g), "your H": truth.apply_h(got, g)},
+        lines=list(zip(truth.apply_h(H, g), truth.apply_h(got, g)))))
+    if error <= 1.5 * best + 0.1:
+        return passed(f"{error:.2f} px RMS from the true H (a normalised DLT: {best:.2f} px)")
+    diagnose_h(t, what, got, H, src, dst, tolerance=2e-2)
+    t.fail(f"{what} is {error:.3g} px (RMS over the image) from the true H, where a normalised "
+           f"DLT is {best:.2f} px away.")
+
+
+@ex2.check("homography_dlt normalises: a small patch far from the origin, 1 px noise", points=2)
+def dlt_normalised(t):
+    errors, best = [], []
+    for seed in PATCH_SEEDS:
+        src, dst, H = truth.dlt_problem(seed, 40, 1.0, PATCH_REGION, 0.05)
+        got = fitted_h(t, src, dst, "homography_dlt(src, dst) on a 160x120 patch at (800, 600)")
+        errors.append(truth.transfer_rms(got, H, PATCH_REGION))
+        best.append(truth.transfer_rms(truth.dlt(src, dst), H, PATCH_REGION))
+    error, reference = float(np.mean(errors)), float(np.mean(best))
+    if error <= 1.5 * reference:
+        return passed(f"{error:.2f} px RMS on average (a normalised DLT: {reference:.2f} px)")
+    hint = ("Normalise each point set first (Hartley: move the centroid to the origin and scale "
+            "so the mean distance is sqrt(2)), solve, then undo: H = T_dst^-1 @ H_n @ T_src.")
+    message = (f"On points with coordinates around 800-960 x 600-720 px your H is {error:.2f} px "
+               f"(RMS) from the truth on average, where a normalised DLT is {reference:.2f} px: "
+               "with raw pixel coordinates the x*x' terms (about 1e6) swamp the others and the "
+               "noise is weighted very unevenly.")
+    if error <= 3 * reference:
+        return partial(0.4, message + " Your normalisation helps, but not fully.", hint)
+    t.fail(message, hint)
+
+
+@ex2.check("warp_to_reference: moving image in the reference's frame and size", points=3)
+def warp_to_reference_check(t):
+    scene = truth.panorama_scene()
+    reference = scene.views[0]
+    moving = np.ascontiguousarray(scene.views[1][:150, :200])   # cropping keeps its coordinates
+    H = scene.h(1, 0)
+    what = "warp_to_reference(reference, moving, H)"
+    got = t.call("warp_to_reference", reference, moving, H)
+    h, w = reference.shape[:2]
+    if isinstance(got, np.ndarray) and got.shape[:2] == moving.shape[:2]:
+        t.fail(f"{what} returned shape {got.shape}, the moving image's size; expected "
+               f"{reference.shape}: the output has the reference's size (dsize=(W_ref, H_ref))")
+    verdict = judge_warp(t, what, got, moving, H, dsize=(w, h))
+    if isinstance(got, np.ndarray) and got.shape == reference.shape:
+        overlay = reference.copy()
+        covered = np.any(got > 0, axis=2)
+        overlay[covered] = (0.5 * reference[covered] + 0.5 * got[covered]).astype(np.uint8)
+        t.images("your warp over the reference (the overlap should look sharp, not doubled)",
+                 reference=reference, overlay=overlay)
+    return verdict
+
+
+# ================================================================== ex3 features
+ex3 = lab.exercise("ex3", "Feature matching", functions=[
+    'match_features(img1, img2, ratio=0.75, method="sift")', "draw_matches(img1, img2, pts1, pts2)"])
+
+
+def matched_points(t: Trial, what: str, result):
+    """Validate the (pts1, pts2) pair returned by match_features."""
+    if not isinstance(result, (tuple, list)) or len(result) != 2:
+        t.fail(f"{what} returned {type(result).__name__}; expected a pair (pts1, pts2)")
+    pts1 = t.expect_array(result[0], f"{what}[0] (pts1)", shape=(None, 2), kind="iuf", finite=True)
+    pts2 = t.expect_array(result[1], f"{what}[1] (pts2)", shape=(None, 2), kind="iuf", finite=True)
+    if len(pts1) != len(pts2):
+        t.fail(f"{what} returned {len(pts1)} points in pts1 but {len(pts2)} in pts2; "
+               "row i of each must be the two ends of match i")
+    return pts1.astype(np.float64), pts2.astype(np.float64)
+
+
+def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, min_fraction: float):
+    pts1, pts2 = matched_points(t, what, result)
+    good = truth.consistent(H, pts1, pts2, MATCH_TOLERANCE)
+    fraction = float(good.mean()) if len(good) else 0.0
+    t.images(f"{what}: green agrees with the true homography, red does not",
+             matches=matches_picture(img1, img2, pts1, pts2, good))
+    if len(pts1) >= min_matches and fraction >= min_fraction:
+        return passed(f"{len(pts1)} matches, {fraction:.0%} agree with the true homography")
+    if len(pts1) >= 4:
+        if truth.consistent(np.linalg.inv(H), pts1, pts2).mean() >= min_fraction:
+            t.fail(f"{what}: pts1 and pts2 are swapped: pts1 must be the points in img1 "
+                   "(queryIdx of a match of img1's descriptors against img2's)")
+        if truth.consistent(H, pts1[:, ::-1], pts2[:, ::-1]).mean() >= min_fraction:
+            t.fail(f"{what}: x and y are swapped: return (x, y) = (column, row), "
+                   "as cv2.KeyPoint.pt gives them")
+    if len(pts1) < min_matches:
+        t.fail(f"{what} returned {len(pts1)} matches; at least {min_matches} are expected on this "
+               "pair (the true homography is a mild change of view)")
+    t.fail(f"{what}: only {fraction:.0%} of the {len(pts1)} matches agree with the true "
+           f"homography (within {MATCH_TOLERANCE:g} px); at least {min_fraction:.0%} expected.",
+           hint="keep a match only when best.distance < ratio * second_best.distance "
+                "(knnMatch with k=2)")
+
+
+@ex3.check("match_features (SIFT): enough matches, nearly all consistent with the true H", points=4)
+def match_sift(t):
+    img1, img2, H = truth.matching_pair("astronaut", (240, 180), seed=1)
+    return judge_matches(t, "match_features(img1, img2)", img1, img2, H,
+                         t.call("match_features", img1, img2), min_matches=60, min_fraction=0.85)
+
+
+@ex3.check("the ratio test filters: a stricter ratio keeps fewer, cleaner matches", points=3)
+def match_ratio(t):
+    img1, img2, H = truth.matching_pair("chelsea", (240, 180), seed=2)
+    counts, fractions = {}, {}
+    for ratio in (0.5, 0.9):
+        what = f"match_features(img1, img2, ratio={ratio})"
+        pts1, pts2 = matched_points(t, what, t.call("match_features", img1, img2, ratio=ratio))
+        counts[ratio] = len(pts1)
+        fractions[ratio] = float(truth.consistent(H, pts1, pts2).mean()) if len(pts1) else 0.0
+    summary = (f"ratio=0.5 gave {counts[0.5]} matches ({fractions[0.5]:.0%} correct), "
+               f"ratio=0.9 gave {counts[0.9]} ({fractions[0.9]:.0%} correct)")
+    if counts[0.5] == counts[0.9]:
+        t.fail(f"{summary}: the ratio argument has no effect. Apply Lowe's ratio test with the "
+               "given ratio: keep a match when best.distance < ratio * second_best.distance.")
+    if counts[0.5] > counts[0.9]:
+        t.fail(f"{summary}: the stricter ratio kept more matches, so the test is reversed: keep a "
+               "match when best.distance < ratio * second_best.distance.")
+    if counts[0.5] < 10:
+        t.fail(f"{summary}: too few matches survive ratio=0.5 (at least 10 expected).")
+    if fractions[0.5] < 0.9 or fractions[0.5] < fractions[0.9] - 0.02:
+        t.fail(f"{summary}: the stricter ratio should give cleaner matches (at least 90% correct).")
+    return passed(summary)
+
+
+def drawing_case():
+    """Colour img1 (240x180), grey img2 (200x150) showing the same scene, 12 true matches."""
+    img1 = photo("chelsea", (240, 180))
+    H = truth.normalised(np.diag([200 / 240, 150 / 180, 1.0])
+                         @ truth.corner_homography(np.random.default_rng(8), (240, 180), 0.08))
+    img2 = truth.warp(cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY), H, (200, 150))
+    xs, ys = np.meshgrid(np.linspace(30, 210, 4), np.linspace(30, 150, 3))
+    pts1 = np.stack([xs.ravel(), ys.ravel()], axis=1) + np.random.default_rng(9).uniform(-8, 8, (12, 2))
+    return img1, img2, pts1, truth.apply_h(H, pts1)
+
+
+def plain_composite(left, right):
+    """The two images side by side with nothing drawn (3 channels, black padding)."""
+    bgr = [cv2.cvtColor(i, cv2.COLOR_GRAY2BGR) if i.ndim == 2 else i for i in (left, right)]
+    height = max(b.shape[0] for b in bgr)
+    canvas = np.zeros((height, bgr[0].shape[1] + bgr[1].shape[1], 3), np.uint8)
+    canvas[: bgr[0].shape[0], : bgr[0].shape[1]] = bgr[0]
+    canvas[: bgr[1].shape[0], bgr[0].shape[1]:] = bgr[1]
+    return canvas
+
+
+def segments_drawn(changed, starts, ends, samples: int = 15) -> np.ndarray:
+    """Fraction of points along each segment (away from its ends) with a changed pixel nearby."""
+    near = cv2.dilate(changed.astype(np.uint8), np.ones((5, 5), np.uint8)) > 0
+    h, w = changed.shape
+    fractions = []
+    for a, b in zip(starts, ends):
+        length = np.linalg.norm(b - a)
+        if length < 16:
+            fractions.append(1.0)
+            continue
+        s = np.linspace(6 / length, 1 - 6 / length, samples)
+        pts = np.round(a + s[:, None] * (b - a)).astype(int)
+        ok = (pts[:, 0] >= 0) & (pts[:, 0] < w) & (pts[:, 1] >= 0) & (pts[:, 1] < h)
+        hits = np.zeros(samples, bool)
+        hits[ok] = near[pts[ok, 1], pts[ok, 0]]
+        fractions.append(hits.mean())
+    return np.array(fractions)
+
+
+def far_from(shape, starts, ends, distance: int = 9) -> np.ndarray:
+    """Pixels more than ``distance`` px from every segment and end point."""
+    mask = np.zeros(shape, np.uint8)
+    for a, b in zip(starts, ends):
+        pa, pb = tuple(int(v) for v in np.round(a)), tuple(int(v) for v in np.round(b))
+        cv2.line(mask, pa, pb, 1, 2 * distance + 1)
+        cv2.circle(mask, pa, distance + 4, 1, -1)
+        cv2.circle(mask, pb, distance + 4, 1, -1)
+    return mask == 0
+
+
+@ex3.check("draw_matches: side by side, width W1+W2, height max(H1,H2), 3 channels", points=2)
+def draw_matches_shape(t):
+    img1, img2, pts1, pts2 = drawing_case()
+    what = "draw_matches(colour 240x180 img1, grey 200x150 img2, pts1, pts2)"
+    got = t.call("draw_matches", img1, img2, pts1, pts2)
+    expected = (180, 440, 3)
+    if isinstance(got, np.ndarray) and got.shape != expected:
+        t.images("your drawing", yours=got)
+        if got.shape[:2] == (330, 240):
+            t.fail(f"{what} returned shape {got.shape}; expected {expected}: the images go side by "
+                   "side (img2 to the right of img1), not one above the other")
+        if got.shape[:2] == expected[:2]:
+            t.fail(f"{what} returned shape {got.shape}; expected {expected}: always 3 channels "
+                   "(convert a grey image with cv2.cvtColor(img, cv2.COLOR_GRAY2BGR))")
+        if got.shape[:2] == expected[1::-1]:
+            t.fail(f"{what} returned shape {got.shape}; expected {expected}: width and height are "
+                   "swapped")
+        t.fail(f"{what} returned shape {got.shape}; expected {expected} (height max(H1, H2), "
+               "width W1 + W2)")
+    t.expect_array(got, what, shape=expected, dtype=np.uint8)
+    return passed("shape (180, 440, 3), uint8")
+
+
+@ex3.check("draw_matches shows both images and a line per match", points=3)
+def draw_matches_content(t):
+    img1, img2, pts1, pts2 = drawing_case()
+    what = "draw_matches(img1, img2, pts1, pts2)"
+    got = t.call("draw_matches", img1, img2, pts1, pts2)
+    got = t.expect_array(got, what, shape=(180, 440, 3), dtype=np.uint8)
+    plain = plain_composite(img1, img2)
+    t.images(what, yours=got, without_lines=plain)
+    starts, ends = pts1, pts2 + [240, 0]
+    changed = np.abs(got.astype(np.int16) - plain).max(axis=2) > 40
+    background = far_from(changed.shape, starts, ends)
+    stray = float(changed[background].mean())
+    if stray > 0.05:
+        swapped = plain_composite(cv2.cvtColor(img2, cv2.COLOR_GRAY2BGR), img1)
+        if swapped.shape == got.shape and \
+                (np.abs(got.astype(np.int16) - swapped).max(axis=2) > 40)[background].mean() < 0.05:
+            t.fail(f"{what}: img1 and img2 are swapped: img1 goes on the left")
+        t.fail(f"{what}: {stray:.0%} of the pixels away from the match lines differ from the two "
+               "images placed side by side (img1 at the left, img2 right after it, black "
+               "padding below the shorter one)")
+    drawn = segments_drawn(changed, starts, ends)
+    if (drawn >= 0.7).mean() >= 0.75:
+        return passed(f"{int((drawn >= 0.7).sum())} of {len(drawn)} match lines found")
+    unshifted = segments_drawn(changed, starts, pts2)
+    if (unshifted >= 0.7).mean() >= 0.75:
+        t.fail(f"{what}: the lines end at (x2, y2) in the left image; the second image starts at "
+               "x = W1, so draw each line to (x2 + W1, y2)")
+    t.fail(f"{what}: only {int((drawn >= 0.7).sum())} of the {len(drawn)} match lines were found "
+           "(a line from (x1, y1) to (x2 + W1, y2) per match, in a visible colour)")
+
+
+# ================================================================== ex4 RANSAC
+ex4 = lab.exercise("ex4", "Robust homography (RANSAC)", functions=[
+    "homography_ransac(src, dst, threshold=3.0, seed=None)"])
+RANSAC_REGION = (0, 0, 640, 480)
+
+
+def ransac_result(t: Trial, src, dst, what: str, **kwargs):
+    result = t.call("homography_ransac", src, dst, **kwargs)
+    if not isinstance(result, (tuple, list)) or len(result) != 2:
+        t.fail(f"{what} returned {type(result).__name__}; expected a pair (H, inliers)")
+    H = t.expect_array(result[0], f"{what}[0] (H)", shape=(3, 3), kind="iuf", finite=True)
+    inliers = result[1]
+    n = len(src)
+    if isinstance(inliers, np.ndarray) and inliers.ndim == 1 and inliers.dtype.kind in "iu" \
+            and len(inliers) != n:
+        t.fail(f"{what}[1] has {len(inliers)} entries: return a boolean mask of length N={n} "
+               "(True for inliers), not the indices of the inliers")
+    if isinstance(inliers, np.ndarray) and inliers.shape == (n,) and inliers.dtype.kind in "iu" \
+            and set(np.unique(inliers)) <= {0, 1}:
+        inliers = inliers.astype(bool)  # a 0/1 mask is accepted
+    inliers = t.expect_array(inliers, f"{what}[1] (inliers)", shape=(n,), kind="b")
+    return H, inliers
+
+
+def ransac_success(H, inliers, H_true, true_inliers):
+    error = truth.transfer_rms(H, H_true, RANSAC_REGION)
+    tp = int((inliers & true_inliers).sum())
+    recall = tp / max(true_inliers.sum(), 1)
+    precision = tp / max(inliers.sum(), 1)
+    return error, recall, precision
+
+
+def diagnose_ransac(t: Trial, what, H, inliers, src, dst, H_true, true_inliers, threshold=3.0):
+    if (~inliers == true_inliers).mean() >= 0.95:
+        t.fail(f"{what}: the inlier mask is inverted: True must mark the inliers "
+               "(transfer error below the threshold)")
+    mistakes = truth.matrix_mistakes(H_true)
+    mistakes["H is fitted to all the points, outliers included (RANSAC should pick the "
+             "consensus set and fit to it)"] = truth.dlt(src, dst)
+    mistake = closest(H, mistakes, projective_distance, 0.02)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    errors = np.linalg.norm(truth.apply_h(H, src) - dst, axis=1)
+    if (inliers == (errors ** 2 < threshold)).mean() >= 0.98 and \
+            (inliers == (errors < threshold)).mean() < 0.95:
+        t.fail(f"{what}: the inlier mask marks the pairs whose *squared* error is below the "
+               "threshold; compare the distance |H src - dst| itself with the threshold (pixels)")
+
+
+@ex4.check("homography_ransac with 30% outliers: H within 1.5 px of the truth", points=3)
+def ransac_h(t):
+    src, dst, H_true, true_inliers = truth.ransac_problem(10, 100, 0.3, 1.0)
+    what = "homography_ransac(src, dst, seed=0) with 30% outliers"
+    H, inliers = ransac_result(t, src, dst, what, seed=0)
+    error, _, _ = ransac_success(H, inliers, H_true, true_inliers)
+    t.svg("correspondences: true inliers, and where your H sends them", svg_points({
+        "dst (all)": dst, "true inliers": dst[true_inliers],
+        "your H applied to src (true inliers)": truth.apply_h(H, src[true_inliers])}))
+    if error <= RANSAC_H_TOLERANCE:
+        return passed(f"{error:.2f} px RMS from the true H over the image")
+    diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
+    t.fail(f"{what}: H is {error:.3g} px (RMS over the 640x480 image) from the true H; "
+           f"at most {RANSAC_H_TOLERANCE} px expected.")
+
+
+@ex4.check("homography_ransac with 30% outliers: the inlier mask", points=3)
+def ransac_mask(t):
+    src, dst, H_true, true_inliers = truth.ransac_problem(10, 100, 0.3, 1.0)
+    what = "homography_ransac(src, dst, seed=0) with 30% outliers"
+    H, inliers = ransac_result(t, src, dst, what, seed=0)
+    _, recall, precision = ransac_success(H, inliers, H_true, true_inliers)
+    if recall >= 0.93 and precision >= 0.95:
+        return passed(f"{recall:.0%} of the true inliers found, {precision:.0%} of the marked "
+                      "ones are true inliers")
+    diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
+    t.fail(f"{what}: the mask finds {recall:.0%} of the true inliers (at least 93% expected) "
+           f"and {precision:.0%} of what it marks are true inliers (at least 95% expected).",
+           hint="inliers = |H src - dst| < threshold, with the final H")
+
+
+@ex4.check("homography_ransac refits H on all its inliers", points=2)
+def ransac_refit(t):
+    src, dst, H_true, true_inliers = truth.ransac_problem(11, 120, 0.25, 1.0)
+    what = "homography_ransac(src, dst, seed=1)"
+    H, inliers = ransac_result(t, src, dst, what, seed=1)
+    error, _, _ = ransac_success(H, inliers, H_true, true_inliers)
+    best = truth.transfer_rms(truth.dlt(src[true_inliers], dst[true_inliers]), H_true, RANSAC_REGION)
+    if error <= 2 * best + 0.2:
+        return passed(f"{error:.2f} px RMS from the true H (a fit to the true inliers: {best:.2f} px)")
+    if inliers.sum() >= 4:
+        own = truth.transfer_rms(truth.dlt(src[inliers], dst[inliers]), H_true, RANSAC_REGION)
+        if own <= 2 * best + 0.2:
+            t.fail(f"{what}: H is {error:.2f} px from the truth, but a DLT fit to your own inliers "
+                   f"would be {own:.2f} px: after RANSAC, refit H on all the inliers (the best "
+                   "4-point sample is noisy)")
+    diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
+    t.fail(f"{what}: H is {error:.2f} px (RMS) from the true H; a least-squares fit to the "
+           f"true inliers is {best:.2f} px.")
+
+
+@ex4.check("homography_ransac with 50% outliers, judged over 5 seeds", points=3)
+def ransac_seeds(t):
+    wins, notes = 0, []
+    for k in range(5):
+        src, dst, H_true, true_inliers = truth.ransac_problem(40 + k, 80, 0.5, 0.7)
+        what = f"homography_ransac(src, dst, seed={k}) with 50% outliers"
+        H, inliers = ransac_result(t, src, dst, what, seed=k)
+        error, recall, precision = ransac_success(H, inliers, H_true, true_inliers)
+        ok = error <= RANSAC_H_TOLERANCE and recall >= 0.9 and precision >= 0.9
+        wins += ok
+        notes.append(f"seed {k}: {error:.2g} px, recall {recall:.0%}, precision {precision:.0%}"
+                     + ("" if ok else " (failed)"))
+    summary = "; ".join(notes)
+    if wins >= 4:
+        return passed(f"succeeded with {wins} of 5 seeds ({summary})")
+    message = (f"homography_ransac found the right homography and inliers with only {wins} of 5 "
+               f"seeds ({summary}).")
+    hint = ("With half the pairs wrong, a random 4-point sample is all inliers only 1 time in 16: "
+            "draw enough samples (log(1 - 0.99) / log(1 - 0.5**4) is about 72, more is safer), "
+            "keep the H with the most inliers, then refit on them.")
+    if wins == 0:
+        t.fail(message, hint)
+    return partial(wins / 5 * 0.5, message, hint)
+
+
+# ================================================================== ex5 panorama
+ex5 = lab.exercise("ex5", "Panorama stitching", functions=["stitch(img1, img2)"])
+
+
+def locate(panorama, image, margin: int = 12):
+    """Where ``image`` appears unwarped in ``panorama``.
+
+    The whole image and each of its quadrants are searched for (template
+    matching), so an image partly covered by a wrongly placed neighbour is still
+    found; the candidate position where most of the image agrees wins.
+
+    Returns
+    -------
+    offset : (x, y) or None
+        The panorama position of the image's top-left pixel.
+    error : float
+        Mean blurred grey-level difference over the image's area.
+    agreement : float
+        Fraction of the image's pixels that agree (blurred difference below 8).
+    """
+    h, w = image.shape[:2]
+    crops = [(margin, margin, w - margin, h - margin)]
+    crops += [(x0, y0, x0 + w // 2 - margin, y0 + h // 2 - margin)
+              for x0 in (margin, w // 2) for y0 in (margin, h // 2)]
+    pano_grey, image_grey = _grey32(panorama), _grey32(image)
+    best = (None, float("inf"), 0.0)
+    for x0, y0, x1, y1 in crops:
+        found = _find(pano_grey, image_grey[y0:y1, x0:x1])
+        if found is None:
+            continue
+        offset = (found[0] - x0, found[1] - y0)
+        error, agreement = _agreement(panorama, image, offset)
+        if agreement > best[2] + 1e-9 or (abs(agreement - best[2]) <= 1e-9 and error < best[1]):
+            best = (offset, error, agreement)
+        if best[2] >= 0.9:
+            break   # the whole image was found: no need to look for its parts
+    return best
+
+
+def _grey32(image):
+    image = np.asarray(image)
+    grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+    return grey.astype(np.float32)
+
+
+def _find(haystack, needle, factor: int = 4, window: int = 6):
+    """Top-left (x, y) where ``needle`` fits ``haystack`` best: coarse search, then refined."""
+    if haystack.shape[0] < needle.shape[0] or haystack.shape[1] < needle.shape[1]:
+        return None
+    small_h = cv2.resize(haystack, None, fx=1 / factor, fy=1 / factor, interpolation=cv2.INTER_AREA)
+    small_n = cv2.resize(needle, None, fx=1 / factor, fy=1 / factor, interpolation=cv2.INTER_AREA)
+    if small_h.shape[0] < small_n.shape[0] or small_h.shape[1] < small_n.shape[1]:
+        return None
+    _, _, (cx, cy), _ = cv2.minMaxLoc(cv2.matchTemplate(small_h, small_n, cv2.TM_SQDIFF))
+    x0 = max(0, cx * factor - window)
+    y0 = max(0, cy * factor - window)
+    x1 = min(haystack.shape[1], cx * factor + window + needle.shape[1])
+    y1 = min(haystack.shape[0], cy * factor + window + needle.shape[0])
+    _, _, (x, y), _ = cv2.minMaxLoc(cv2.matchTemplate(haystack[y0:y1, x0:x1], needle, cv2.TM_SQDIFF))
+    return int(x0 + x), int(y0 + y)
+
+
+def _agreement(panorama, image, offset):
+    ox, oy = offset
+    h, w = image.shape[:2]
+    place = np.zeros((h, w) + image.shape[2:], np.uint8)
+    x0, y0 = max(0, ox), max(0, oy)
+    x1, y1 = min(panorama.shape[1], ox + w), min(panorama.shape[0], oy + h)
+    if x1 <= x0 or y1 <= y0:
+        return float("inf"), 0.0
+    place[y0 - oy : y1 - oy, x0 - ox : x1 - ox] = panorama[y0:y1, x0:x1]
+    a = cv2.GaussianBlur(place.astype(np.float32), (0, 0), 1.0)
+    b = cv2.GaussianBlur(image.astype(np.float32), (0, 0), 1.0)
+    diff = np.abs(a - b)
+    if diff.ndim == 3:
+        diff = np.maximum(np.maximum(diff[:, :, 0], diff[:, :, 1]), diff[:, :, 2])
+    return float(diff.mean()), float((diff < 8).mean())
+
+
+def footprint_outside(M, view_shape, panorama_shape) -> dict[str, float]:
+    """How far (px) the view's corners, mapped by M, stick out of the panorama on each side."""
+    h, w = view_shape[:2]
+    corners = truth.apply_h(M, [[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]])
+    H, W = panorama_shape[:2]
+    return {"left": -corners[:, 0].min(), "top": -corners[:, 1].min(),
+            "right": corners[:, 0].max() - (W - 1), "bottom": corners[:, 1].max() - (H - 1)}
+
+
+class PanoramaJudge:
+    """Everything the panorama checks need, from one panorama and its reference view."""
+
+    def __init__(self, scene, panorama, reference: int, offset):
+        self.scene, self.panorama, self.reference = scene, panorama, reference
+        self.offset = ox, oy = offset
+        self.M = truth.translation(ox, oy) @ scene.G[reference]        # canvas -> panorama
+        size = (panorama.shape[1], panorama.shape[0])
+        self.expected = truth.warp(scene.canvas, self.M, size)
+        self.inside, self.outside = [], []
+        for k, G in enumerate(scene.G):
+            inside, outside = truth.coverage(self.M @ np.linalg.inv(G), scene.views[k].shape, size, 3.0)
+            self.inside.append(inside)
+            self.outside.append(outside)
+        union = np.any(self.inside, axis=0)
+        self.truth_picture = np.where(union[..., None], self.expected, 0).astype(np.uint8)
+
+    def view_to_panorama(self, k):
+        return self.M @ np.linalg.inv(self.scene.G[k])
+
+    def error(self, region) -> float:
+        return blurred_difference(self.panorama, self.expected, region)
+
+    def show(self, t: Trial, title: str):
+        valid = np.any(self.inside, axis=0)
+        t.images(title, yours=self.panorama, truth=self.truth_picture,
+                 difference=difference_heatmap(self.expected, self.panorama, valid))
+
+
+def panorama_result(t: Trial, key: str, what: str, function: str, images):
+    got = call_once(t, key, function, *images) if len(images) == 2 and function == "stitch" \
+        else call_once(t, key, function, list(images))
+    if isinstance(got, np.ndarray) and got.ndim == 3 and got.shape[2] == 3 and got.dtype != np.uint8:
+        t.fail(f"{what} returned dtype {got.dtype}; expected uint8",
+               hint="convert with np.clip(x, 0, 255).astype(np.uint8)")
+    return t.expect_array(got, what, shape=(None, None, 3), dtype=np.uint8)
+
+
+def stitch_judge(t: Trial, key: str, scene, what: str) -> PanoramaJudge:
+    img1, img2 = scene.views
+    panorama = panorama_result(t, key, what, "stitch", (img1, img2))
+    store = _RESULTS.setdefault(t.sandbox, {})
+    if key + "/judge" in store:
+        return store[key + "/judge"]
+    offset, error, agreement = locate(panorama, img1)
+    _, _, agreement2 = locate(panorama, img2)
+    if agreement < 0.5 or agreement2 > agreement:
+        t.images(what, yours=panorama, img1=img1, img2=img2)
+        if agreement2 >= 0.8 and agreement2 > agreement:
+            t.fail(f"{what}: img2 appears unwarped in your panorama, so img1 was warped: img1 is "
+                   "the reference frame (warp img2 with the H that maps img2's pixels onto img1's)")
+        t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs "
+               f"from img1 by {error:.0f} grey levels): img1 is the reference frame and must only "
+               "be shifted")
+    store[key + "/judge"] = PanoramaJudge(scene, panorama, 0, offset)
+    return store[key + "/judge"]
+
+
+def stitch_scene():
+    # img2 lies to the right of img1 and reaches above it (negative y in img1's frame)
+    return truth.panorama_scene("astronaut", (400, 260), ((20, 50), (130, 15)), (240, 180), 0.04, 2)
+
+
+STITCH_WHAT = "stitch(img1, img2)"
+
+
+def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
+    sticking = {}
+    for k, name in enumerate(names):
+        for side, amount in footprint_outside(judge.view_to_panorama(k), judge.scene.views[k].shape,
+                                              judge.panorama.shape).items():
+            if amount > 2.0:
+                sticking.setdefault(side, []).append((name, amount))
+    if sticking:
+        judge.show(t, what)
+        side, items = max(sticking.items(), key=lambda s: max(a for _, a in s[1]))
+        name, amount = max(items, key=lambda i: i[1])
+        if side in ("left", "top"):
+            t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: content that "
+                   "lands at negative coordinates must fit too, so shift everything by a "
+                   "translation T = [[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]] (applied to every "
+                   "homography) and size the canvas to the bounding box of all warped corners")
+        t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: the canvas must be "
+               "the bounding box of all the warped image corners, not the size of one image")
+    covered = np.any(judge.inside, axis=0)
+    ys, xs = np.nonzero(covered)
+    box = (xs.max() - xs.min() + 1) * (ys.max() - ys.min() + 1)
+    area = judge.panorama.shape[0] * judge.panorama.shape[1]
+    if area > 1.5 * box + 2000:
+        judge.show(t, what)
+        return partial(0.5, f"{what}: the panorama covers the images but is {area / box:.1f} times "
+                            "the area of their bounding box: crop the canvas to the bounding box")
+    return passed(f"{what}: {judge.panorama.shape[1]}x{judge.panorama.shape[0]}, every image inside")
+
+
+@ex5.check("stitch: the panorama covers both images", points=3)
+def stitch_coverage(t):
+    judge = stitch_judge(t, "stitch-public", stitch_scene(), STITCH_WHAT)
+    return judge_coverage(t, judge, STITCH_WHAT, ["img1", "img2"])
+
+
+@ex5.check("stitch: img1 appears unwarped, only shifted", points=3)
+def stitch_reference(t):
+    judge = stitch_judge(t, "stitch-public", stitch_scene(), STITCH_WHAT)
+    region = judge.inside[0] & judge.outside[1]
+    error = judge.error(region)
+    if error <= IMAGE_TOLERANCE:
+        return passed(f"img1 found with its top-left corner at {judge.offset}; "
+                      f"mean difference {error:.1f} grey levels")
+    judge.show(t, STITCH_WHAT)
+    t.fail(f"{STITCH_WHAT}: where only img1 is seen, the panorama differs from img1 by {error:.0f} "
+           "grey levels on average: copy img1 unchanged (only shifted)")
+
+
+def judge_region(t: Trial, judge: PanoramaJudge, what: str, region, name: str, hint: str = ""):
+    if region.sum() < 100:
+        t.fail(f"{what}: {name} is not inside the panorama")
+    error = judge.error(region)
+    if error <= PANORAMA_TOLERANCE:
+        return passed(f"{name}: mean difference {error:.1f} grey levels from the truth")
+    judge.show(t, what)
+    t.fail(f"{what}: {name} differs from the true panorama by {error:.0f} grey levels on average "
+           "(see the pictures).", hint)
+
+
+@ex5.check("stitch: the part only img2 sees is warped into place", points=3)
+def stitch_second(t):
+    scene = stitch_scene()
+    judge = stitch_judge(t, "stitch-public", scene, STITCH_WHAT)
+    region = judge.inside[1] & judge.outside[0]
+    if region.sum() < 100 or judge.error(region) > PANORAMA_TOLERANCE:
+        # img2 warped with the inverse homography?
+        size = (judge.panorama.shape[1], judge.panorama.shape[0])
+        inverse = truth.translation(*judge.offset) @ np.linalg.inv(scene.h(1, 0))
+        wrong = truth.warp(scene.views[1], inverse, size)
+        wrong_inside, _ = truth.coverage(inverse, scene.views[1].shape, size, 3.0)
+        check = wrong_inside & judge.outside[0]
+        if check.sum() >= 100 and blurred_difference(judge.panorama, wrong, check) <= PANORAMA_TOLERANCE:
+            judge.show(t, STITCH_WHAT)
+            t.fail(f"{STITCH_WHAT}: img2 was warped with the inverse homography: use the H that "
+                   "maps img2's pixels onto img1's (match img2 -> img1, or invert)")
+    return judge_region(t, judge, STITCH_WHAT, region, "the part only img2 sees",
+                        hint="warp img2 with T @ H, where H maps img2 onto img1 and T is the "
+                             "canvas shift")
+
+
+@ex5.check("stitch: the overlap matches the truth (any sensible blend)", points=3)
+def stitch_overlap(t):
+    judge = stitch_judge(t, "stitch-public", stitch_scene(), STITCH_WHAT)
+    return judge_region(t, judge, STITCH_WHAT, judge.inside[0] & judge.inside[1], "the overlap")
+
+
+# ================================================================== ext1 ORB
+ext1 = lab.exercise("ext1", "ORB features", functions=['match_features(img1, img2, ratio=0.75, method="orb")'])
+
+
+@ext1.check('match_features(..., method="orb"): enough matches, mostly consistent', points=4)
+def match_orb(t):
+    img1, img2, H = truth.matching_pair("chelsea", (240, 180), seed=3)
+    what = 'match_features(img1, img2, method="orb")'
+    result = t.call("match_features", img1, img2, method="orb")
+    pts1, pts2 = matched_points(t, what, result)
+    sift1, _ = matched_points(t, "match_features(img1, img2)", t.call("match_features", img1, img2))
+    if len(pts1) == len(sift1) and np.allclose(pts1, sift1):
+        t.fail(f"{what} returned exactly the SIFT matches: the method argument is ignored "
+               "(use cv2.ORB_create() for 'orb', and match its binary descriptors with "
+               "cv2.NORM_HAMMING)")
+    return judge_matches(t, what, img1, img2, H, result, min_matches=40, min_fraction=0.85)
+
+
+# ================================================================== ext2 many images
+ext2 = lab.exercise("ext2", "Panorama of many images", functions=["stitch_many(images)"])
+
+
+def many_scene():
+    return truth.panorama_scene("astronaut", (480, 250), ((10, 30), (115, 10), (225, 45)),
+                                (240, 180), 0.03, 34, False)
+
+
+def many_judge(t: Trial, key: str, scene, what: str) -> PanoramaJudge:
+    panorama = panorama_result(t, key, what, "stitch_many", scene.views)
+    store = _RESULTS.setdefault(t.sandbox, {})
+    if key + "/judge" in store:
+        return store[key + "/judge"]
+    found = [locate(panorama, view) for view in scene.views]
+    k = int(np.argmax([agreement for _, _, agreement in found]))
+    offset, error, agreement = found[k]
+    if agreement < 0.5:
+        t.images(what, yours=panorama)
+        t.fail(f"{what}: none of the images appears unwarped in your panorama (the closest "
+               f"differs by {error:.0f} grey levels): keep one image as the reference frame "
+               "(only shifted) and warp the others into it")
+    store[key + "/judge"] = PanoramaJudge(scene, panorama, k, offset)
+    return store[key + "/judge"]
+
+
+def many_names(n):
+    return [f"image {k + 1}" for k in range(n)]
+
+
+def judge_many_content(t: Trial, judge: PanoramaJudge, what: str):
+    n = len(judge.scene.views)
+    wrong = []
+    for k in range(n):
+        if k == judge.reference:
+            continue
+        others = np.any([judge.inside[j] for j in range(n) if j != k], axis=0)
+        own = judge.inside[k] & ~others
+        region = own if own.sum() >= 200 else judge.inside[k]
+        error = judge.error(region)
+        if error > PANORAMA_TOLERANCE:
+            wrong.append((k, error))
+    everything = judge.error(np.any(judge.inside, axis=0))
+    if not wrong and everything <= PANORAMA_TOLERANCE:
+        return passed(f"reference: image {judge.reference + 1}; mean difference {everything:.1f} "
+                      "grey levels from the truth")
+    judge.show(t, what)
+    if wrong:
+        names = ", ".join(f"image {k + 1} ({e:.0f} grey levels off)" for k, e in wrong)
+        far = [k for k, _ in wrong if abs(k - judge.reference) >= 2]
+        advice = (" Chain the pairwise homographies in the right order: H_3->1 = H_2->1 @ H_3->2 "
+                  "(first 3 -> 2, then 2 -> 1)." if far else "")
+        t.fail(f"{what} (reference frame: image {judge.reference + 1}): {names} "
+               f"not where it belongs.{advice}", hint="warp each image k with T @ H_k->reference")
+    t.fail(f"{what}: the panorama differs from the truth by {everything:.0f} grey levels on average.")
+
+
+@ext2.check("stitch_many(3 images): every image inside the panorama", points=2)
+def many_coverage(t):
+    scene = many_scene()
+    judge = many_judge(t, "many-public", scene, "stitch_many([img1, img2, img3])")
+    return judge_coverage(t, judge, "stitch_many([img1, img2, img3])", many_names(3))
+
+
+@ext2.check("stitch_many(3 images): every image in the right place", points=4)
+def many_content(t):
+    scene = many_scene()
+    judge = many_judge(t, "many-public", scene, "stitch_many([img1, img2, img3])")
+    return judge_many_content(t, judge, "stitch_many([img1, img2, img3])")
+
+
+# ================================================================== ext3 multi-band blending
+ext3 = lab.exercise("ext3", "Multi-band blending", functions=["blend_multiband(img1, img2, mask, levels=4)"])
+
+
+def blended(t: Trial, what: str, img1, img2, mask, **kwargs):
+    got = t.call("blend_multiband", img1, img2, mask, **kwargs)
+    if isinstance(got, np.ndarray) and got.shape == img1.shape and got.dtype != np.uint8:
+        t.fail(f"{what} returned dtype {got.dtype}; expected uint8",
+               hint="round and clip the collapsed pyramid: np.clip(x, 0, 255).astype(np.uint8)")
+    return t.expect_array(got, what, shape=img1.shape, dtype=np.uint8)
+
+
+@ext3.check("blending an image with itself leaves it unchanged", points=2)
+def blend_identity(t):
+    image = photo("astronaut", (256, 192))
+    ys, xs = np.mgrid[0:192, 0:256]
+    mask = np.clip((xs - 80) / 100.0 + 0.2 * np.sin(ys / 15.0), 0, 1)
+    what = "blend_multiband(img, img, mask)"
+    got = blended(t, what, image, image, mask)
+    error = np.abs(got.astype(np.int16) - image)
+    bad = float((error.max(axis=2) > 2).mean())
+    if bad <= 0.005:
+        return passed(f"largest change {int(error.max())} grey levels")
+    t.images(what, input=image, yours=got,
+             difference=difference_heatmap(image, got))
+    signed = got.astype(np.int16) - image
+    if (np.abs(signed).max(axis=2) > 100).mean() > 0.02 or (signed.mean() > 2 and (signed >= 0).mean() > 0.95):
+        t.fail(f"{what} changed {bad:.0%} of the pixels: the Laplacian levels are negative in "
+               "places, and uint8 arithmetic clips them to 0 or wraps them around; compute the "
+               "pyramids in float (img.astype(np.float32))")
+    t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels; a Laplacian "
+           "pyramid collapses back to the image exactly (up = cv2.pyrUp(coarser, dstsize=...), "
+           "band = finer - up, and collapse by adding back)")
+
+
+@ext3.check("the mask is respected: img1 where mask = 1, img2 where mask = 0", points=2)
+def blend_mask(t):
+    img1, img2 = photo("astronaut", (256, 192)), photo("coffee", (256, 192))
+    mask = truth.step_mask((256, 192), 128)
+    what = "blend_multiband(img1, img2, mask)"
+    got = blended(t, what, img1, img2, mask)
+    left, right = np.zeros((192, 256), bool), np.zeros((192, 256), bool)
+    left[:, :88], right[:, 168:] = True, True   # 40 px from the seam
+    err_left = blurred_difference(got, img1, left)
+    err_right = blurred_difference(got, img2, right)
+    if err_left <= 3 and err_right <= 3:
+        return passed(f"mean difference {err_left:.1f} (img1 side), {err_right:.1f} (img2 side)")
+    t.images(what, img1=img1, img2=img2, mask=(mask * 255).astype(np.uint8), yours=got)
+    if blurred_difference(got, img2, left) <= 3 and blurred_difference(got, img1, right) <= 3:
+        t.fail(f"{what}: the mask weights img2; it must weight img1 (mask * img1 + (1 - mask) * img2 "
+               "at every level)")
+    t.fail(f"{what}: away from the seam the result should be img1 where mask = 1 and img2 where "
+           f"mask = 0; it differs by {err_left:.0f} and {err_right:.0f} grey levels.")
+
+
+def seam_step(got, dark, columns) -> float:
+    """Largest jump (grey levels) between neighbouring columns of the mean difference to ``dark``."""
+    diff = got.astype(np.float64) - dark
+    profile = diff.mean(axis=tuple(i for i in range(diff.ndim) if i != 1))
+    return float(np.abs(np.diff(profile[columns[0] : columns[1]])).max())
+
+
+@ext3.check("no visible seam between differently exposed images (where a cut shows one)", points=3)
+def blend_seam(t):
+    dark, bright = truth.exposure_pair("coffee", (256, 192), 0.7, 60)
+    mask = truth.step_mask((256, 192), 128)
+    what = "blend_multiband(dark, bright, step mask)"
+    got = blended(t, what, dark, bright, mask)
+    step = seam_step(got, dark, (60, 196))
+    cut = seam_step(np.where(mask[..., None] > 0.5, dark, bright), dark, (60, 196))
+    ok_sides = blurred_difference(got, dark, np.pad(np.ones((192, 24), bool), ((0, 0), (0, 232)))) <= 3
+    if step <= 0.2 * cut and ok_sides:
+        return passed(f"the brightness changes by at most {step:.1f} grey levels per column "
+                      f"across the seam (a hard cut: {cut:.0f})")
+    t.images(what, dark=dark, bright=bright, yours=got)
+    if step > 0.8 * cut:
+        t.fail(f"{what}: the brightness jumps by {step:.0f} grey levels at the seam, as with a "
+               "plain cut mask * img1 + (1 - mask) * img2: blend each Laplacian level with the "
+               "mask's Gaussian pyramid at that level, so coarse levels blend over a wide band")
+    if step > 0.2 * cut:
+        t.fail(f"{what}: the brightness still jumps by {step:.0f} grey levels per column at the "
+               f"seam (a hard cut: {cut:.0f}); with 4 levels the coarsest level should spread the "
+               "difference over tens of pixels")
+    t.fail(f"{what}: far from the seam the result should equal the dark image.")
+
+
+@ext3.check("blend_multiband on sizes that are not multiples of 2**levels", points=1)
+def blend_odd_size(t):
+    img1, img2 = photo("chelsea", (250, 170)), photo("rocket", (250, 170))
+    mask = truth.step_mask((250, 170), 100)
+    what = "blend_multiband(img1, img2, mask) on 250x170 images"
+    got = blended(t, what, img1, img2, mask)
+    left, right = np.zeros((170, 250), bool), np.zeros((170, 250), bool)
+    left[:, :60], right[:, 140:] = True, True
+    e1, e2 = blurred_difference(got, img1, left), blurred_difference(got, img2, right)
+    if e1 <= 3 and e2 <= 3:
+        return passed("works for any size")
+    t.images(what, yours=got)
+    t.fail(f"{what}: away from the seam the result differs from the inputs by {e1:.0f} / {e2:.0f} "
+           "grey levels: pass dstsize=(width, height) of the finer level to cv2.pyrUp")

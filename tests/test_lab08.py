@@ -1,0 +1,296 @@
+"""Lab 8: the reference passes, the skeleton scores 0, usual mistakes are named."""
+
+import pytest
+
+from autograder.runner import grade
+from conftest import REFERENCE, assert_diagnosed, check_results, mutant
+
+MODULE = "lab08_homographies"
+
+
+def lab08(result):
+    return [e for e in result.exercises if e.id.startswith("lab08.")]
+
+
+def test_reference_scores_full_marks(reference_result):
+    exercises = lab08(reference_result)
+    assert {e.id for e in exercises} >= {f"lab08.ex{k}" for k in range(1, 6)} | {
+        "lab08.ext1", "lab08.ext2", "lab08.ext3"}
+    for exercise in exercises:
+        for check in exercise.checks:
+            assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+
+
+def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
+    for exercise in lab08(skeleton_result):
+        assert exercise.score == 0
+        assert exercise.message == "not implemented yet"
+        for check in exercise.checks:
+            assert "not implemented yet" in check.message
+            assert check.traceback == ""
+
+
+def test_grading_is_deterministic(reference_result):
+    """SIFT, ORB and RANSAC checks give the same scores and messages on every run."""
+    again = grade(REFERENCE, ["lab08"])
+    first = {(e.id, c.name): (c.score, c.message) for e in lab08(reference_result) for c in e.checks}
+    second = {(e.id, c.name): (c.score, c.message) for e in lab08(again) for c in e.checks}
+    assert first == second
+
+
+# Each case: exercise, the wrong code, fragments the diagnosis must contain.
+MISTAKES = {
+    # ---------------------------------------------------------------- ex1
+    "no perspective division": ("lab08.ex1", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, float)
+            return (np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H).T)[:, :2]
+        """, ["perspective division is missing"]),
+    "points times H": ("lab08.ex1", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, float)
+            q = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H)
+            return q[:, :2] / q[:, 2:]
+        """, ["transposed"]),
+    "homogeneous points returned": ("lab08.ex1", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, float)
+            q = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H).T
+            return q / q[:, 2:]
+        """, ["homogeneous", "drop it"]),
+    "warp with the inverse map": ("lab08.ex1", """
+        def apply_homography(image, H, dsize=None):
+            h, w = image.shape[:2]
+            return cv2.warpPerspective(image, H, dsize or (w, h),
+                                       flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
+        """, ["inverted"]),
+    "warpAffine for a homography": ("lab08.ex1", """
+        def apply_homography(image, H, dsize=None):
+            h, w = image.shape[:2]
+            H = np.asarray(H, float) / H[2, 2]
+            return cv2.warpAffine(image, H[:2], dsize or (w, h))
+        """, ["perspective row", "warpPerspective"]),
+    # ---------------------------------------------------------------- ex2
+    "DLT without normalisation": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            _, _, Vt = np.linalg.svd(_dlt_rows(src, dst))
+            H = Vt[-1].reshape(3, 3)
+            return H / H[2, 2]
+        """, ["normalised dlt", "raw pixel coordinates"]),
+    "DLT src and dst swapped": ("lab08.ex2", """
+        _reference_dlt = homography_dlt
+        def homography_dlt(src, dst):
+            return _reference_dlt(dst, src)
+        """, ["inverse homography"]),
+    "DLT h reshaped column-major": ("lab08.ex2", """
+        _reference_dlt = homography_dlt
+        def homography_dlt(src, dst):
+            return _reference_dlt(src, dst).T
+        """, ["transposed"]),
+    "DLT normalisation not undone": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            T1, T2 = _normalisation(src), _normalisation(dst)
+            s = src @ T1[:2, :2].T + T1[:2, 2]
+            d = dst @ T2[:2, :2].T + T2[:2, 2]
+            _, _, Vt = np.linalg.svd(_dlt_rows(s, d))
+            return Vt[-1].reshape(3, 3)
+        """, ["without undoing the normalisation"]),
+    "DLT with OpenCV": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            H, _ = cv2.findHomography(np.float64(src), np.float64(dst), 0)
+            return H
+        """, ["cv2.findHomography", "yourself"]),
+    "warp_to_reference keeps the moving size": ("lab08.ex2", """
+        def warp_to_reference(reference, moving, H):
+            return apply_homography(moving, H)
+        """, ["reference's size"]),
+    # ---------------------------------------------------------------- ex3
+    "no ratio test": ("lab08.ex3", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            return _reference_match(img1, img2, ratio=0.8, method=method)
+        """, ["no effect"]),
+    "ratio test reversed": ("lab08.ex3", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            return _reference_match(img1, img2, ratio=1.5 - ratio, method=method)
+        """, ["reversed"]),
+    "pts1 and pts2 swapped": ("lab08.ex3", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _reference_match(img1, img2, ratio, method)
+            return pts2, pts1
+        """, ["swapped"]),
+    "matches as (row, column)": ("lab08.ex3", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _reference_match(img1, img2, ratio, method)
+            return pts1[:, ::-1], pts2[:, ::-1]
+        """, ["x and y are swapped"]),
+    "lines not shifted by W1": ("lab08.ex3", """
+        _reference_draw = draw_matches
+        def draw_matches(img1, img2, pts1, pts2):
+            return _reference_draw(img1, img2, pts1, np.asarray(pts2) - [img1.shape[1], 0])
+        """, ["x2 + w1"]),
+    "images stacked vertically": ("lab08.ex3", """
+        def draw_matches(img1, img2, pts1, pts2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((h1 + h2, max(w1, w2), 3), np.uint8)
+            canvas[:h1, :w1] = _bgr(img1)
+            canvas[h1:, :w2] = _bgr(img2)
+            return canvas
+        """, ["side by side"]),
+    # ---------------------------------------------------------------- ex4
+    "RANSAC without the final refit": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            best, best_count = None, -1
+            for _ in range(500):
+                idx = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[idx], dst[idx])
+                count = (np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold).sum()
+                if count > best_count:
+                    best, best_count = H, count
+            return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
+        """, ["refit h on all the inliers"]),
+    "RANSAC with too few samples": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            best, best_count = None, -1
+            for _ in range(6):
+                idx = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[idx], dst[idx])
+                count = (np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold).sum()
+                if count > best_count:
+                    best, best_count = H, count
+            inliers = np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
+            H = homography_dlt(src[inliers], dst[inliers]) if inliers.sum() >= 4 else best
+            return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+        """, ["of 5", "seeds"]),
+    "RANSAC with squared distances": ("lab08.ex4", """
+        _reference_ransac = homography_ransac
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H, _ = _reference_ransac(src, dst, threshold, seed)
+            err = np.linalg.norm(transform_points(H, src) - np.asarray(dst), axis=1)
+            return H, err ** 2 < threshold
+        """, ["squared"]),
+    "RANSAC mask inverted": ("lab08.ex4", """
+        _reference_ransac = homography_ransac
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H, inliers = _reference_ransac(src, dst, threshold, seed)
+            return H, ~inliers
+        """, ["mask is inverted"]),
+    "RANSAC fits all points": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H = homography_dlt(src, dst)
+            return H, np.linalg.norm(transform_points(H, src) - np.asarray(dst), axis=1) < threshold
+        """, ["outliers included"]),
+    "RANSAC with OpenCV": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H, mask = cv2.findHomography(np.float64(src), np.float64(dst), cv2.RANSAC, threshold)
+            return H, mask.ravel() > 0
+        """, ["cv2.findHomography", "yourself"]),
+    # ---------------------------------------------------------------- ex5
+    "img2 as the reference": ("lab08.ex5", """
+        def stitch(img1, img2):
+            return _compose([img2, img1], [np.eye(3), _pairwise_homography(img1, img2)])
+        """, ["img1 is the reference frame"]),
+    "no shift for negative coordinates": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H = _pairwise_homography(img2, img1)
+            corners = transform_points(H, _corners(img2))
+            w = int(max(corners[:, 0].max(), img1.shape[1] - 1)) + 1
+            h = int(max(corners[:, 1].max(), img1.shape[0] - 1)) + 1
+            warped = apply_homography(img2, H, (w, h))
+            warped[: img1.shape[0], : img1.shape[1]] = img1
+            return warped
+        """, ["cut off at the top", "translation"]),
+    "canvas of img1's size": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H = _pairwise_homography(img2, img1)
+            warped = apply_homography(img2, H, (img1.shape[1], img1.shape[0]))
+            return np.where(img1 > 0, img1, warped)
+        """, ["cut off", "bounding box"]),
+    "img2 warped with the inverse": ("lab08.ex5", """
+        def stitch(img1, img2):
+            return _compose([img1, img2], [np.eye(3), np.linalg.inv(_pairwise_homography(img2, img1))])
+        """, ["inverse homography"]),
+    # ---------------------------------------------------------------- ext1
+    "method ignored": ("lab08.ext1", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            return _reference_match(img1, img2, ratio)
+        """, ["method argument is ignored"]),
+    # ---------------------------------------------------------------- ext2
+    "homographies chained in the wrong order": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            step = [_pairwise_homography(images[k + 1], images[k]) for k in range(len(images) - 1)]
+            homographies = [np.eye(3)]
+            for k in range(1, len(images)):
+                H = np.eye(3)
+                for j in range(k):
+                    H = H @ step[j] if j == 0 else step[j] @ H   # wrong order
+                homographies.append(H / H[2, 2])
+            return _compose(images, homographies)
+        """, ["chain"]),
+    "only the first two images": ("lab08.ext2", """
+        def stitch_many(images):
+            return stitch(images[0], images[1])
+        """, ["image 3", "cut off"]),
+    # ---------------------------------------------------------------- ext3
+    "plain alpha blend": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            m = np.asarray(mask, np.float64)
+            if img1.ndim == 3:
+                m = m[..., None]
+            return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
+        """, ["plain cut"]),
+    "pyramids in uint8": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            def lap(img):
+                g = [img]
+                for _ in range(levels - 1):
+                    g.append(cv2.pyrDown(g[-1]))
+                return [cv2.subtract(f, cv2.pyrUp(c, dstsize=(f.shape[1], f.shape[0])))
+                        for f, c in zip(g[:-1], g[1:])] + [g[-1]]
+            w = _gaussian_pyramid(np.asarray(mask, np.float32), levels)
+            bands = []
+            for a, b, m in zip(lap(img1), lap(img2), w):
+                m = m[..., None] if a.ndim == 3 else m
+                bands.append((m * a + (1 - m) * b).astype(np.uint8))
+            out = bands[-1]
+            for band in reversed(bands[:-1]):
+                out = cv2.add(cv2.pyrUp(out, dstsize=(band.shape[1], band.shape[0])), band)
+            return out
+        """, ["float"]),
+    "mask weights img2": ("lab08.ext3", """
+        _reference_blend = blend_multiband
+        def blend_multiband(img1, img2, mask, levels=4):
+            return _reference_blend(img2, img1, mask, levels)
+        """, ["weights img2"]),
+}
+
+
+@pytest.mark.parametrize("case", sorted(MISTAKES))
+def test_mistake_is_caught_and_named(tmp_path, case):
+    exercise, source, fragments = MISTAKES[case]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    assert_diagnosed(result, exercise, *fragments)
+
+
+def test_other_exercises_unaffected_by_a_mistake(tmp_path):
+    result = grade(mutant(tmp_path, MODULE, """
+        def draw_matches(img1, img2, pts1, pts2):
+            raise ValueError("oops")
+        """), ["lab08.ex3", "lab08.ex1"])
+    for exercise in result.exercises:
+        assert (exercise.score == exercise.max_score) == (exercise.id != "lab08.ex3"), exercise.id
+    failing = [c for c in check_results(result, "lab08.ex3") if not c.passed]
+    assert len(failing) == 2
+    assert all("ValueError: oops" in c.message for c in failing)
