@@ -251,18 +251,21 @@ def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
 
 
 # --------------------------------------------------------------------- ex5
-DEFAULT_SMOOTHNESS = 4.0   # grey levels (mean absolute difference) per disparity step
+DEFAULT_SMOOTHNESS = 6.0   # grey levels (mean absolute difference) per disparity step
 
 
 def _sad_volume(left, right, max_disparity, block_size):
-    """(H, W, D) mean absolute difference over the block; +big where x - d < 0."""
+    """(W, H, D) mean absolute difference over the block, column-major for the DP.
+
+    Built one disparity at a time as (D, H, W) maps, then transposed once so
+    that each column ``x`` is a contiguous (H, D) slab. Where ``x - d < 0`` no
+    match exists: the cost is 255, worse than any real one.
+    """
     height, width = left.shape
-    costs = np.empty((height, width, max_disparity + 1))
-    for d in range(max_disparity + 1):
-        if d < width:
-            costs[:, :, d] = _box_mean(np.abs(left - _shift_right(right, d)), block_size)
-        costs[:, :min(d, width), d] = 255.0   # no match possible: worse than any real cost
-    return costs
+    costs = np.full((max_disparity + 1, height, width), 255.0, dtype=np.float32)
+    for d in range(min(max_disparity, width - 1) + 1):
+        costs[d, :, d:] = _box_mean(np.abs(left - _shift_right(right, d)), block_size)[:, d:]
+    return np.ascontiguousarray(costs.transpose(2, 1, 0))
 
 
 def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
@@ -301,30 +304,28 @@ def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
     s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)
     left, right = _grey_float(left), _grey_float(right)
     D = int(max_disparity) + 1
-    costs = _sad_volume(left, right, D - 1, int(block_size))
-    height, width = left.shape
+    costs = _sad_volume(left, right, D - 1, int(block_size))      # (W, H, D)
     if s == 0:
-        return np.argmin(costs, axis=2).astype(np.float64)
+        return np.argmin(costs, axis=2).T.astype(np.float64)
 
-    ramp = s * np.arange(D)
-    energy = np.empty_like(costs)                  # M(x, d) for every row at once
-    energy[:, 0] = costs[:, 0]
+    width = costs.shape[0]
+    ramp = (s * np.arange(D)).astype(np.float32)
+    energy = np.empty_like(costs)                 # M(x, d) for every row at once
+    energy[0] = costs[0]
     for x in range(1, width):
-        previous = energy[:, x - 1]
+        previous = energy[x - 1]
         from_below = np.minimum.accumulate(previous - ramp, axis=1) + ramp
         from_above = np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)[:, ::-1] - ramp
         best = np.minimum(from_below, from_above)
-        energy[:, x] = costs[:, x] + best - best.min(axis=1, keepdims=True)
+        energy[x] = costs[x] + best - best.min(axis=1, keepdims=True)   # keep the numbers small
 
-    rows = np.arange(height)
-    disparity = np.empty((height, width), dtype=np.int64)
-    disparity[:, -1] = np.argmin(energy[:, -1], axis=1)
+    disparity = np.empty((width, costs.shape[1]), dtype=np.int64)
+    disparity[-1] = np.argmin(energy[-1], axis=1)
     candidates = np.arange(D)
     for x in range(width - 1, 0, -1):
-        jump = s * np.abs(candidates[None, :] - disparity[:, x][:, None])
-        disparity[:, x - 1] = np.argmin(energy[:, x - 1] + jump, axis=1)
-    del rows
-    return disparity.astype(np.float64)
+        jump = ramp[np.abs(candidates[None, :] - disparity[x][:, None])]
+        disparity[x - 1] = np.argmin(energy[x - 1] + jump, axis=1)
+    return disparity.T.astype(np.float64)
 
 
 # --------------------------------------------------------------------- ex6

@@ -330,12 +330,39 @@ VARIANTS = {
     "DP with a squared-difference cost and its own default": ("lab12.ex5", """
         def _sad_volume(left, right, max_disparity, block_size):
             height, width = left.shape
-            costs = np.empty((height, width, max_disparity + 1))
+            costs = np.empty((max_disparity + 1, height, width))
             for d in range(max_disparity + 1):
-                costs[:, :, d] = _box_mean((left - _shift_right(right, d)) ** 2, block_size) * block_size**2
-                costs[:, :d, d] = 1e6
-            return costs
+                costs[d] = _box_mean((left - _shift_right(right, d)) ** 2, block_size) * block_size**2
+                costs[d, :, :d] = 1e6
+            return np.ascontiguousarray(costs.transpose(2, 1, 0))
         DEFAULT_SMOOTHNESS = 2000.0
+        """),
+    "DP written the student way: a loop over rows and columns": ("lab12.ex5", """
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            L = np.asarray(left, float); R = np.asarray(right, float)
+            H, W = L.shape
+            D = max_disparity + 1
+            lam = 40.0 if smoothness is None else smoothness
+            C = np.full((H, W, D), 1e9)
+            for d in range(D):
+                diff = np.zeros_like(L)
+                diff[:, d:] = (L[:, d:] - R[:, :W - d]) ** 2
+                C[:, :, d] = cv2.boxFilter(diff, -1, (block_size, block_size))
+                C[:, :d, d] = 1e9
+            jumps = np.abs(np.arange(D)[:, None] - np.arange(D)[None, :])
+            out = np.zeros((H, W))
+            for y in range(H):
+                M = np.zeros((W, D)); back = np.zeros((W, D), int)
+                M[0] = C[y, 0]
+                for x in range(1, W):
+                    total = M[x - 1][None, :] + lam * jumps
+                    back[x] = np.argmin(total, axis=1)
+                    M[x] = C[y, x] + total[np.arange(D), back[x]]
+                d = int(np.argmin(M[-1]))
+                for x in range(W - 1, -1, -1):
+                    out[y, x] = d
+                    d = back[x, d]
+            return out
         """),
 }
 
