@@ -52,20 +52,32 @@ class Confinement:
     uid: int | None = None
     gid: int | None = None
 
-    def wrap(self, argv: list[str], hide=()) -> list[str]:
-        """The command that starts ``argv`` confined, with the folders ``hide`` covered."""
+    def wrap(self, argv: list[str], hide=(), writable=()) -> list[str]:
+        """The command that starts ``argv`` confined.
+
+        In the namespaced levels the folders ``hide`` are covered by empty
+        read-only mounts, and every file system is remounted read-only except
+        the folders ``writable`` (the worker's scratch) and a private ``/dev/shm``.
+        """
         if self.level == "process-group":
             return list(argv)
         unshare = ["unshare", "--pid", "--fork", "--kill-child", "--mount-proc", "--net", "--mount"]
         if os.geteuid() != 0:
-            unshare.insert(1, "--map-root-user")
-            unshare.insert(1, "--user")
-        mounts = [f"mount -t tmpfs -o ro,size=4k,mode=000 none {shlex.quote(str(p))}"
+            unshare[1:1] = ["--user", "--map-root-user"]
+        keep = [shlex.quote(str(p)) for p in writable]
+        steps = [f"mount --bind {p} {p}" for p in keep]
+        steps += [f"mount -t tmpfs -o ro,size=4k,mode=000 none {shlex.quote(str(p))}"
                   for p in hide if Path(p).is_dir()]
+        skip = "|".join(["/proc|/proc/*|/sys|/sys/*|/dev|/dev/*", *keep])
+        steps.append("while read -r _ mnt _; do case \"$mnt\" in " + skip + ") ;; "
+                     "*) mount -o remount,bind,ro \"$mnt\" 2>/dev/null || true ;; esac; "
+                     "done < /proc/self/mounts")
+        steps.append("{ mount -t tmpfs -o size=64m,mode=1777 none /dev/shm 2>/dev/null || true; }")
+        steps.append('cd -- "$PWD"')  # re-enter the working folder through the writable mount
         drop = ["setpriv", "--no-new-privs", "--bounding-set=-all", "--inh-caps=-all"]
         if self.level == "namespaces+user":
             drop[1:1] = [f"--reuid={self.uid}", f"--regid={self.gid}", "--clear-groups"]
-        script = " && ".join(mounts + [f'exec {" ".join(drop)} -- "$@"'])
+        script = " && ".join(steps + [f'exec {" ".join(drop)} -- "$@"'])
         return unshare + ["--", "/bin/sh", "-c", script, "sh", *argv]
 
     @property
@@ -82,10 +94,9 @@ class Confinement:
             return
         os.chown(scratch, self.uid, self.gid)
         for entry in scratch.iterdir():
-            if entry.name in private:
-                continue
-            for path in [entry, *entry.rglob("*")]:
-                os.chown(path, self.uid, self.gid, follow_symlinks=False)
+            if entry.name not in private:
+                for path in [entry, *entry.rglob("*")]:
+                    os.chown(path, self.uid, self.gid, follow_symlinks=False)
 
 
 def detect() -> Confinement:

@@ -16,6 +16,7 @@ import secrets
 import select
 import shutil
 import signal
+import stat
 import struct
 import subprocess
 import sys
@@ -75,7 +76,7 @@ def default_hidden_paths() -> list[Path]:
     package = Path(__file__).resolve().parent
     root = package.parent
     paths = [package, Path(fixtures.__file__).resolve().parent,
-             root / "reference_solutions", root / "tests"]
+             root / "reference_solutions", root / "tests", root / ".git"]
     extra = os.environ.get("AUTOGRADER_HIDE", "")
     paths += [Path(p) for p in extra.split(os.pathsep) if p]
     return [p for p in dict.fromkeys(paths) if p.is_dir()]
@@ -149,22 +150,35 @@ class Sandbox:
         self._base.chmod(0o711)
         self.scratch = self._base / secrets.token_hex(8)
         self.scratch.mkdir()
+        self._source = Path(submission_dir)
         self.submission_dir = self.scratch / "submission"
-        shutil.copytree(submission_dir, self.submission_dir,
-                        ignore=shutil.ignore_patterns("__pycache__", "*.pyc", ".*"))
-        for name in ("home", "tmp", "work", "worker"):
-            (self.scratch / name).mkdir(exist_ok=True)
-        here = Path(__file__).parent
-        for name in _WORKER_FILES:
-            shutil.copy(here / name, self.scratch / "worker" / name)
-        self.output_path = self.scratch / "output.txt"
-        self.confinement.prepare_scratch(self.scratch, private=("worker",))
+        self.output_path = self.scratch / "out" / "output.txt"
+        self._lay_out_scratch()
         self.proc: subprocess.Popen | None = None
         self._request_fd = self._response_fd = -1
         self._imported: set[str] = set()
         self._import_failures: dict[str, CallOutcome] = {}
         self.student_seconds = 0.0
         self.restarts = 0
+
+    # The worker may write only in these folders of its scratch (when namespaces
+    # allow): its copy of the submission and of the worker code stay intact.
+    WRITABLE = ("home", "tmp", "work", "out")
+
+    def _lay_out_scratch(self):
+        """(Re)create the scratch folder: fresh copies of the submission and the worker code."""
+        self.scratch.mkdir(parents=True, exist_ok=True)
+        for name in ("submission", "worker", *self.WRITABLE):
+            shutil.rmtree(self.scratch / name, ignore_errors=True)
+        shutil.copytree(self._source, self.submission_dir,
+                        ignore=shutil.ignore_patterns("__pycache__", "*.pyc", ".*"))
+        (self.scratch / "worker").mkdir()
+        here = Path(__file__).parent
+        for name in _WORKER_FILES:
+            shutil.copy(here / name, self.scratch / "worker" / name)
+        for name in self.WRITABLE:
+            (self.scratch / name).mkdir()
+        self.confinement.prepare_scratch(self.scratch, private=("worker",))
 
     # ------------------------------------------------------------ lifecycle
     def __enter__(self):
@@ -179,21 +193,29 @@ class Sandbox:
         shutil.rmtree(self._base, ignore_errors=True)
 
     def _start_worker(self):
+        try:
+            log = open(self._base / "worker.log", "ab")
+        except OSError as exc:
+            raise WorkerStartError(f"cannot write the worker log: {exc}") from None
         request_r, request_w = os.pipe()
         response_r, response_w = os.pipe()
-        log = open(self._base / "worker.log", "ab")
         uid = self.confinement.uid if self.confinement.uid is not None else os.getuid()
         processes = confine.count_tasks(uid) + self.limits.extra_processes
         command = self.confinement.wrap(
             [sys.executable, "-B", str(self.scratch / "worker" / "worker.py"),
              str(request_r), str(response_w), str(self.submission_dir),
-             str(self.output_path), self.limits.worker_json(processes)], hide=self.hide)
+             str(self.output_path), self.limits.worker_json(processes)],
+            hide=self.hide, writable=[self.scratch / name for name in self.WRITABLE])
         try:
             self.proc = subprocess.Popen(
                 command, pass_fds=(request_r, response_w), stdin=subprocess.DEVNULL,
                 stdout=log, stderr=log, cwd=self.scratch / "work",
                 env=_scrubbed_environment(self.scratch), start_new_session=True,
             )
+        except OSError as exc:
+            os.close(request_w)
+            os.close(response_r)
+            raise WorkerStartError(f"cannot start the worker: {exc}") from None
         finally:
             log.close()
             os.close(request_r)
@@ -230,6 +252,7 @@ class Sandbox:
         _LIVE_WORKERS.discard(self.proc.pid)
         if self.confinement.level == "process-group":
             confine.kill_adopted_orphans(keep=_LIVE_WORKERS)
+            self._lay_out_scratch()  # nothing stopped this worker from damaging it
         self.proc = None
         self._request_fd = self._response_fd = -1
 
@@ -389,12 +412,16 @@ class Sandbox:
 
     def _read_output(self) -> str:
         limit = self.limits.max_output_chars
-        try:
-            size = self.output_path.stat().st_size
-            with open(self.output_path, "rb") as f:
-                head = f.read(limit)
+        try:  # never follow a link the student put there (the grader may be root)
+            fd = os.open(self.output_path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
         except OSError:
             return ""
+        with os.fdopen(fd, "rb") as f:
+            info = os.fstat(f.fileno())
+            if not stat.S_ISREG(info.st_mode):
+                return ""
+            size = info.st_size
+            head = f.read(limit)
         text = head.decode("utf-8", errors="replace")
         if size > limit:
             text += f"\n... ({size - limit} more bytes of output not shown)"

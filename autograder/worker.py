@@ -16,6 +16,8 @@ Usage (by the parent only)::
     python -B worker.py REQUEST_FD RESPONSE_FD SUBMISSION_DIR OUTPUT_FILE LIMITS_JSON
 """
 
+import builtins
+import errno
 import importlib
 import json
 import os
@@ -133,8 +135,9 @@ def failure(kind, message, tb="", seconds=0.0):
 
 # ------------------------------------------------------------------ the worker
 class Worker:
-    def __init__(self, submission_dir):
+    def __init__(self, submission_dir, file_size_mb=None):
         self.submission_dir = os.path.abspath(submission_dir)
+        self.file_size_mb = file_size_mb
         self.modules = {}
         self.forbidden_called = []
 
@@ -214,6 +217,13 @@ class Worker:
         except NotImplementedError:
             return failure("not_implemented", f"{name}() is not implemented yet",
                            seconds=time.perf_counter() - start)
+        except OSError as exc:
+            if exc.errno == errno.EFBIG:  # RLIMIT_FSIZE: printed or wrote too much
+                return failure("output_too_large",
+                               f"{name}() printed or wrote more than {self.file_size_mb} MB",
+                               seconds=time.perf_counter() - start)
+            return failure("exception", f"{name}() raised {_exception_line(exc)}",
+                           student_traceback(exc, self.submission_dir), time.perf_counter() - start)
         except MemoryError as exc:
             return failure("memory", f"{name}() ran out of memory",
                            student_traceback(exc, self.submission_dir), time.perf_counter() - start)
@@ -273,6 +283,10 @@ class Worker:
         return restore
 
     def serve(self, request_fd, response_fd, output_path):
+        # The worker's own code must keep working whatever the submission does to
+        # builtins (isinstance, len...): restore them after every request.
+        namespace = builtins.__dict__
+        pristine_builtins = dict(namespace)
         while True:
             try:
                 length, = LENGTH.unpack(read_exact(request_fd, LENGTH.size))
@@ -286,13 +300,16 @@ class Worker:
                     response = self.handle_call(request)
                 else:
                     response = failure("protocol", f"unknown op {request.get('op')!r}")
+            namespace.clear()
+            namespace.update(pristine_builtins)
             send(response_fd, response)
 
 
 def main(argv):
     request_fd, response_fd = int(argv[1]), int(argv[2])
     submission_dir, output_path = argv[3], argv[4]
-    apply_limits(json.loads(argv[5]))
+    limits = json.loads(argv[5])
+    apply_limits(limits)
     os.environ.setdefault("MPLBACKEND", "Agg")
     sys.path.insert(0, os.path.abspath(submission_dir))
     import numpy  # noqa: F401  (warm: the first student call should not pay for it)
@@ -301,7 +318,8 @@ def main(argv):
     except ImportError:
         pass
     send(response_fd, {"ok": True, "value": "ready", "seconds": 0.0})  # start-up done
-    Worker(submission_dir).serve(request_fd, response_fd, output_path)
+    file_size_mb = (limits.get("file_size") or 0) // 2**20 or None
+    Worker(submission_dir, file_size_mb).serve(request_fd, response_fd, output_path)
 
 
 if __name__ == "__main__":

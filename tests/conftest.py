@@ -66,6 +66,18 @@ def assert_diagnosed(result, exercise_id: str, *fragments: str):
     assert score < maximum
 
 
+def assert_only_exercise_lost(result, lost: str, *fragments: str):
+    """Exercise ``lost`` scores 0 with every fragment in its messages; all others full marks."""
+    for exercise in result.exercises:
+        if exercise.id == lost:
+            assert exercise.score == 0, exercise.id
+            messages = " ".join([exercise.message] + [c.message for c in exercise.checks])
+            for fragment in fragments:
+                assert fragment in messages, messages
+        else:
+            assert exercise.score == exercise.max_score, (exercise.id, exercise.checks)
+
+
 @pytest.fixture(scope="session")
 def reference_result():
     """The reference solutions graded once for the whole test session (all labs)."""

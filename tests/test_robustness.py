@@ -8,7 +8,7 @@ import pytest
 from autograder.results import without_timings
 from autograder.runner import grade
 from autograder.sandbox import Limits
-from conftest import REFERENCE, check_results, mutant, submission_from_source
+from conftest import REFERENCE, assert_only_exercise_lost, check_results, mutant, submission_from_source
 
 MODULE = "lab07_transformations"
 FAST = Limits(call_timeout=2.0, import_timeout=4.0)
@@ -16,17 +16,6 @@ FAST = Limits(call_timeout=2.0, import_timeout=4.0)
 
 def scores(result):
     return {e.id: (e.score, e.max_score) for e in result.exercises}
-
-
-def assert_only_exercise_lost(result, lost: str, *fragments: str):
-    for exercise in result.exercises:
-        if exercise.id == lost:
-            assert exercise.score == 0, exercise.id
-            messages = " ".join(c.message for c in exercise.checks)
-            for fragment in fragments:
-                assert fragment in messages, messages
-        else:
-            assert exercise.score == exercise.max_score, (exercise.id, exercise.checks)
 
 
 def test_infinite_loop_costs_only_its_exercise(tmp_path):
