@@ -113,6 +113,12 @@ MISTAKES = {
             with np.errstate(divide="ignore", invalid="ignore"):
                 return f * baseline / np.asarray(disparity, float)
         """, ["inf or nan", "must be 0"]),
+    "depth negative for negative disparities": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, float)
+            ok = np.isfinite(d) & (d != 0)
+            return np.where(ok, f * baseline / np.where(ok, d, 1.0), 0.0)
+        """, ["non-zero depths", "negative"]),
     "disparity xr - xl": ("lab12.ex2", """
         def disparity_from_matches(xl, xr):
             xl = np.asarray(xl, float); xr = np.asarray(xr, float)
@@ -263,6 +269,19 @@ MISTAKES = {
             images[:, lit] = patterns[:, column[lit]]
             return images
         """, ["u - f b / z"]),
+    "projector column truncated": ("lab12.ex6", """
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            depth = np.asarray(depth, float)
+            height, width = depth.shape
+            patterns = gray_code_patterns(width, n_bits)
+            valid = depth > 0
+            d = np.divide(f * baseline, depth, out=np.zeros_like(depth), where=valid)
+            column = (np.arange(width) - d).astype(int)
+            lit = valid & (column >= 0) & (column < width)
+            images = np.zeros((n_bits, height, width), np.uint8)
+            images[:, lit] = patterns[:, column[lit]]
+            return images
+        """, ["truncated"]),
     "decoding without Gray to binary": ("lab12.ex6", """
         def depth_from_structured_light(images, f, baseline):
             images = np.asarray(images)
