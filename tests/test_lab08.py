@@ -3,13 +3,25 @@
 import pytest
 
 from autograder.runner import grade
-from conftest import REFERENCE, assert_diagnosed, check_results, mutant
+from conftest import REFERENCE, SKELETON, assert_diagnosed, check_results, mutant
 
 MODULE = "lab08_homographies"
 
 
 def lab08(result):
     return [e for e in result.exercises if e.id.startswith("lab08.")]
+
+
+# This lab's own gradings (not the all-labs session fixtures), so the file's run
+# time does not grow with the other labs.
+@pytest.fixture(scope="module")
+def reference_result():
+    return grade(REFERENCE, ["lab08"])
+
+
+@pytest.fixture(scope="module")
+def skeleton_result():
+    return grade(SKELETON, ["lab08"])
 
 
 def test_reference_scores_full_marks(reference_result):
@@ -269,6 +281,20 @@ MISTAKES = {
                 out = cv2.add(cv2.pyrUp(out, dstsize=(band.shape[1], band.shape[0])), band)
             return out
         """, ["float"]),
+    "wide feather instead of a pyramid": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            m = cv2.GaussianBlur(np.asarray(mask, np.float64), (0, 0), 8.0)
+            if img1.ndim == 3:
+                m = m[..., None]
+            return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
+        """, ["ghosting"]),
+    "narrow feather instead of a pyramid": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            m = cv2.GaussianBlur(np.asarray(mask, np.float64), (0, 0), 2.5)
+            if img1.ndim == 3:
+                m = m[..., None]
+            return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
+        """, ["narrow feather"]),
     "mask weights img2": ("lab08.ext3", """
         _reference_blend = blend_multiband
         def blend_multiband(img1, img2, mask, levels=4):
@@ -294,3 +320,67 @@ def test_other_exercises_unaffected_by_a_mistake(tmp_path):
     failing = [c for c in check_results(result, "lab08.ex3") if not c.passed]
     assert len(failing) == 2
     assert all("ValueError: oops" in c.message for c in failing)
+
+
+SENSIBLE_ALTERNATIVES = """
+    def transform_points(H, pts):   # float32 through OpenCV
+        return cv2.perspectiveTransform(np.float32(pts).reshape(-1, 1, 2), np.float32(H)).reshape(-1, 2)
+
+    def homography_dlt(src, dst):   # normalised per axis instead of Hartley's isotropic scaling
+        src = np.asarray(src, float); dst = np.asarray(dst, float)
+        def T(p):
+            c, s = p.mean(0), p.std(0)
+            return np.array([[1 / s[0], 0, -c[0] / s[0]], [0, 1 / s[1], -c[1] / s[1]], [0, 0, 1]])
+        T1, T2 = T(src), T(dst)
+        _, _, Vt = np.linalg.svd(_dlt_rows(transform_points(T1, src), transform_points(T2, dst)))
+        H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1
+        return H / H[2, 2]
+
+    def draw_matches(img1, img2, pts1, pts2):   # OpenCV's drawing, random colours
+        k1 = [cv2.KeyPoint(float(x), float(y), 1) for x, y in pts1]
+        k2 = [cv2.KeyPoint(float(x), float(y), 1) for x, y in pts2]
+        matches = [cv2.DMatch(i, i, 0) for i in range(len(k1))]
+        return cv2.drawMatches(_bgr(img1), k1, _bgr(img2), k2, matches, None)
+
+    def homography_ransac(src, dst, threshold=3.0, seed=None):   # loop, symmetric error
+        src = np.asarray(src, float); dst = np.asarray(dst, float)
+        rng = np.random.default_rng(seed)
+        def error(H):
+            forward = np.linalg.norm(transform_points(H, src) - dst, axis=1)
+            backward = np.linalg.norm(transform_points(np.linalg.inv(H), dst) - src, axis=1)
+            return np.maximum(forward, backward)
+        best = None
+        for _ in range(300):
+            sample = rng.choice(len(src), 4, replace=False)
+            try:
+                inliers = error(homography_dlt(src[sample], dst[sample])) < threshold
+            except np.linalg.LinAlgError:
+                continue
+            if best is None or inliers.sum() > best.sum():
+                best = inliers
+        H = homography_dlt(src[best], dst[best])
+        return H, error(H) < threshold
+
+    def stitch(img1, img2):   # plain average in the overlap, fractional canvas shift
+        H = _pairwise_homography(img2, img1)
+        corners = np.vstack([_corners(img1), transform_points(H, _corners(img2))])
+        x0, y0 = corners.min(0)
+        x1, y1 = corners.max(0)
+        T = _translation(-x0, -y0)
+        size = (int(np.ceil(x1 - x0)) + 1, int(np.ceil(y1 - y0)) + 1)
+        a = apply_homography(img1, T, size).astype(float)
+        b = apply_homography(img2, T @ H, size).astype(float)
+        ma = apply_homography(np.full(img1.shape[:2], 255, np.uint8), T, size) > 127
+        mb = apply_homography(np.full(img2.shape[:2], 255, np.uint8), T @ H, size) > 127
+        count = np.maximum(ma.astype(float) + mb, 1)[..., None]
+        return ((a * ma[..., None] + b * mb[..., None]) / count).astype(np.uint8)
+"""
+
+
+def test_sensible_alternatives_score_full_marks(tmp_path):
+    """Other reasonable implementations (OpenCV helpers, other conventions) are not penalised."""
+    exercises = [f"lab08.ex{k}" for k in range(1, 6)]
+    result = grade(mutant(tmp_path, MODULE, SENSIBLE_ALTERNATIVES), exercises)
+    for exercise in result.exercises:
+        for check in exercise.checks:
+            assert check.passed, f"{exercise.id} {check.name}: {check.message}"

@@ -136,9 +136,9 @@ def judge_points(t: Trial, what: str, got, H, pts):
         t.fail(f"{what} returned shape {got.shape}; expected ({n}, 2): one row per point")
     got = t.expect_array(got, what, shape=(n, 2), kind="iuf")
     expected = truth.apply_h(H, pts)
-    if relative_point_error(got, expected) <= 1e-6:
+    if relative_point_error(got, expected) <= 1e-5:   # float32 arithmetic is accepted
         return
-    mistake = closest(got, truth.point_mistakes(H, pts), relative_point_error, 1e-4)
+    mistake = closest(got, truth.point_mistakes(H, pts), relative_point_error, 1e-3)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.")
     t.fail(f"{what} returned\n{_fmt(got[:4])}\nexpected\n{_fmt(expected[:4])}"
@@ -164,7 +164,7 @@ def transform_points_property(t):
         rng = np.random.default_rng(seed)
         H = truth.strong_perspective(rng)
         pts = rng.uniform(-5000, 5000, size=(40, 2))
-        pts = pts[np.abs(truth.third_coordinate(H, pts)) > 0.05][:20]
+        pts = pts[np.abs(truth.third_coordinate(H, pts)) > 0.2][:20]
         judge_points(t, "transform_points(H, pts)", t.call("transform_points", H, pts), H, pts)
 
     t.for_all(st.integers(0, 2**32 - 1), holds, max_examples=8,
@@ -1004,16 +1004,21 @@ def seam_step(got, dark, columns) -> float:
     return float(np.abs(np.diff(profile[columns[0] : columns[1]])).max())
 
 
-@ext3.check("no visible seam between differently exposed images (where a cut shows one)", points=3)
+SEAM_STEP = 5.0   # grey levels per column accepted across the seam (a cut: 60; levels=5: 2)
+GHOSTING = 0.15   # detail error near the seam, relative to the detail itself
+
+
+@ext3.check("no visible seam between differently exposed images (levels=5)", points=2)
 def blend_seam(t):
     dark, bright = truth.exposure_pair("coffee", (256, 192), 0.7, 60)
     mask = truth.step_mask((256, 192), 128)
-    what = "blend_multiband(dark, bright, step mask)"
-    got = blended(t, what, dark, bright, mask)
+    what = "blend_multiband(dark, bright, step mask, levels=5)"
+    got = blended(t, what, dark, bright, mask, levels=5)
     step = seam_step(got, dark, (60, 196))
     cut = seam_step(np.where(mask[..., None] > 0.5, dark, bright), dark, (60, 196))
-    ok_sides = blurred_difference(got, dark, np.pad(np.ones((192, 24), bool), ((0, 0), (0, 232)))) <= 3
-    if step <= 0.2 * cut and ok_sides:
+    left = np.zeros((192, 256), bool)
+    left[:, :24] = True
+    if step <= SEAM_STEP and blurred_difference(got, dark, left) <= 3:
         return passed(f"the brightness changes by at most {step:.1f} grey levels per column "
                       f"across the seam (a hard cut: {cut:.0f})")
     t.images(what, dark=dark, bright=bright, yours=got)
@@ -1021,11 +1026,37 @@ def blend_seam(t):
         t.fail(f"{what}: the brightness jumps by {step:.0f} grey levels at the seam, as with a "
                "plain cut mask * img1 + (1 - mask) * img2: blend each Laplacian level with the "
                "mask's Gaussian pyramid at that level, so coarse levels blend over a wide band")
-    if step > 0.2 * cut:
+    if step > SEAM_STEP:
         t.fail(f"{what}: the brightness still jumps by {step:.0f} grey levels per column at the "
-               f"seam (a hard cut: {cut:.0f}); with 4 levels the coarsest level should spread the "
+               f"seam (a hard cut: {cut:.0f}, at most {SEAM_STEP:g} accepted): a narrow feather "
+               "leaves a visible seam; with 5 levels the coarsest level should spread the "
                "difference over tens of pixels")
     t.fail(f"{what}: far from the seam the result should equal the dark image.")
+
+
+def detail(image):
+    image = image.astype(np.float32)
+    return image - cv2.GaussianBlur(image, (0, 0), 2.0)
+
+
+@ext3.check("detail stays sharp at the seam: no ghosting (levels=5)", points=2)
+def blend_sharp(t):
+    img1, img2 = photo("brick", (256, 192)), photo("astronaut", (256, 192))
+    mask = truth.step_mask((256, 192), 128)
+    what = "blend_multiband(brick, astronaut, step mask, levels=5)"
+    got = blended(t, what, img1, img2, mask, levels=5)
+    selected = np.where(mask[..., None] > 0.5, img1, img2)
+    near = np.zeros((192, 256), bool)
+    near[:, 118:125], near[:, 131:138] = True, True      # 3 to 10 px from the seam
+    error = np.abs(detail(got) - detail(selected)).max(axis=2)[near].mean()
+    ghosting = error / np.abs(detail(selected)).max(axis=2)[near].mean()
+    if ghosting <= GHOSTING:
+        return passed(f"fine detail near the seam is {1 - ghosting:.0%} the selected image's")
+    t.images(what, img1=img1, img2=img2, yours=got)
+    t.fail(f"{what}: 3 to 10 px from the seam the fine detail differs from the image the mask "
+           f"selects by {ghosting:.0%} of its strength (at most {GHOSTING:.0%} accepted): both "
+           "images' detail shows through (ghosting), as with a wide feather. In multi-band blending "
+           "the finest level uses the sharp mask; only coarse levels blend over a wide band.")
 
 
 @ext3.check("blend_multiband on sizes that are not multiples of 2**levels", points=1)
