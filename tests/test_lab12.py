@@ -47,6 +47,22 @@ def test_stored_reference_figures_are_current():
     assert json.loads(lab12.FIGURES_FILE.read_text()) == json.loads(json.dumps(compute()))
 
 
+def test_hidden_reference_figures_are_current():
+    """The bad-pixel rates written in the hidden checks are the reference's on those scenes."""
+    from autograder.labs.hidden import lab12 as hidden
+    from fixtures import lab12
+    from fixtures.make_lab12_figures import load_reference
+
+    reference = load_reference()
+    cases = {"block_matching": (hidden.block_matching_scene(), "block_matching", dict(block_size=9)),
+             "ncc": (hidden.ncc_scene(), "block_matching", dict(block_size=9, cost="ncc")),
+             "dp_stereo": (hidden.dp_scene(), "dp_stereo", {})}
+    for key, (scene, function, kwargs) in cases.items():
+        got = getattr(reference, function)(scene.left, scene.right, max_disparity=scene.max_disparity, **kwargs)
+        rate = lab12.bad_pixel_rate(got, scene.judged, scene.threshold)
+        assert abs(rate - hidden.REFERENCE_BAD[key]) < 0.005, (key, rate)
+
+
 def test_scenes_show_what_the_checks_rely_on():
     """The premises: DP beats block matching on weak texture, SSD fails under a gain change."""
     from fixtures import lab12

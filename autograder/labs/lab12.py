@@ -41,15 +41,15 @@ def figures(scene_key: str, method: str) -> dict:
 
 def show_disparity(t: Trial, title: str, scene, got, bad=None):
     caption = (f"bad-pixel rate {bad:.1%} (error > {scene.threshold:g} px or invalid, where the "
-               "truth is known). Errors: green = good, yellow to red = wrong, blue = invalid, "
-               "grey = truth unknown") if bad is not None else ""
+               f"truth is known, ignoring the outer {truth.JUDGE_BORDER} pixels). Errors: green = good, "
+               "yellow to red = wrong, blue = invalid, grey = not judged") if bad is not None else ""
     picture = None
     if isinstance(got, np.ndarray) and got.shape == scene.disparity.shape and got.dtype.kind in "iuf":
         picture = got
     t.images(title, caption, left_image=scene.left,
              true_disparity=disparity_picture(scene.disparity, scene.max_disparity),
              yours=None if picture is None else disparity_picture(picture, scene.max_disparity),
-             errors=None if picture is None else disparity_error_picture(scene.disparity, picture,
+             errors=None if picture is None else disparity_error_picture(scene.judged, picture,
                                                                          scene.threshold))
 
 
@@ -73,7 +73,7 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     recognise a search in the wrong direction, on the swapped views).
     """
     got = expect_disparity(t, what, got, scene)
-    bad = truth.bad_pixel_rate(got, scene.disparity, scene.threshold)
+    bad = truth.bad_pixel_rate(got, scene.judged, scene.threshold)
     if show:
         show_disparity(t, f"{what} on {scene.name}", scene, got, bad)
     allowed = reference_bad + MARGIN
@@ -90,7 +90,7 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
 
 
 def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None):
-    gt, thr = scene.disparity, scene.threshold
+    gt, thr = scene.judged, scene.threshold
     finite = np.nan_to_num(got.astype(np.float64), nan=0.0, posinf=0.0, neginf=0.0)
     if truth.bad_pixel_rate(-finite, gt, thr) <= allowed:
         t.fail(f"{what}: the disparities are negative. d = x_l - x_r is positive: the match "
@@ -108,10 +108,10 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None):
     values = finite[gt > 0]
     if values.size and np.ptp(values) < 1e-9:
         t.fail(f"{what}: every pixel got the same disparity ({values[0]:g}).")
-    if again is not None and scene.disparity_right is not None:
+    if again is not None and scene.judged_right is not None:
         flipped = again(scene.right, scene.left)
         if isinstance(flipped, np.ndarray) and flipped.shape == gt.shape and flipped.dtype.kind in "iuf":
-            if truth.bad_pixel_rate(flipped, scene.disparity_right, thr) <= allowed:
+            if truth.bad_pixel_rate(flipped, scene.judged_right, thr) <= allowed:
                 t.fail(f"{what}: you search in the wrong direction. The match of left pixel x is "
                        "at x - d in the right image (objects appear further left in the right view); "
                        "your matcher finds the right image's disparities when given the views swapped.")
@@ -523,7 +523,7 @@ def ncc_gain(t):
     got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
                  max_disparity=scene.max_disparity, block_size=9, cost="ncc")
     got = expect_disparity(t, what, got, scene)
-    bad = truth.bad_pixel_rate(got, scene.disparity, scene.threshold)
+    bad = truth.bad_pixel_rate(got, scene.judged, scene.threshold)
     show_disparity(t, what, scene, got, bad)
     reference = figures("motorcycle_gain", "bm_ncc_9")["bad"]
     summary = (f"bad-pixel rate {bad:.1%} (reference NCC {reference:.1%}; "
@@ -538,7 +538,7 @@ def ncc_gain(t):
     if isinstance(ssd, np.ndarray) and ssd.shape == got.shape and np.array_equal(ssd, got):
         t.fail(f"{what} gives exactly the SSD result: the cost argument is ignored.")
     if (isinstance(unchanged, np.ndarray) and unchanged.shape == plain.disparity.shape
-            and truth.bad_pixel_rate(unchanged, plain.disparity, plain.threshold)
+            and truth.bad_pixel_rate(unchanged, plain.judged, plain.threshold)
             <= figures("motorcycle", "bm_ncc_9")["bad"] + MARGIN):
         t.fail(f"{what}: bad-pixel rate {bad:.1%} (reference {reference:.1%}), although it works "
                "when the views have the same brightness: your NCC is not fully normalised. Subtract "
@@ -573,14 +573,14 @@ def dp_weak_texture(t):
     scene = truth.scene("weak_texture")
     what = "dp_stereo(left, right)"
     got = expect_disparity(t, what, call_dp(t, scene), scene)
-    bad = truth.bad_pixel_rate(got, scene.disparity, scene.threshold)
+    bad = truth.bad_pixel_rate(got, scene.judged, scene.threshold)
     show_disparity(t, f"{what} on {scene.name}", scene, got, bad)
     reference, bm = figures("weak_texture", "dp_5"), figures("weak_texture", "bm_ssd_5")
     summary = (f"bad-pixel rate {bad:.1%} (reference {reference['bad']:.1%}; block matching "
                f"with the same block size {bm['bad']:.1%})")
     if bad <= reference["bad"] + MARGIN:
         return passed(summary)
-    jumps = truth.jump_rate(got, scene.disparity)
+    jumps = truth.jump_rate(got, scene.judged)
     if jumps >= 0.6 * bm["jumps"]:
         t.fail(winner_take_all_message(what, jumps, bm["jumps"]))
     diagnose_disparity(t, what, got, scene, reference["bad"] + MARGIN)
@@ -597,7 +597,7 @@ def dp_smooth(t):
         scene = truth.scene(key)
         what = f"dp_stereo(left, right) on {scene.name}"
         got = expect_disparity(t, what, call_dp(t, scene), scene)
-        jumps = truth.jump_rate(got, scene.disparity)
+        jumps = truth.jump_rate(got, scene.judged)
         bm = figures(key, "bm_ssd_5")["jumps"]
         if jumps > JUMPS_VS_BM * bm:
             if jumps >= 0.6 * bm:
@@ -620,8 +620,8 @@ def dp_smoothness_parameter(t):
     scene = truth.scene("weak_texture")
     wta = expect_disparity(t, "dp_stereo(left, right, smoothness=0)", call_dp(t, scene, smoothness=0), scene)
     default = expect_disparity(t, "dp_stereo(left, right)", call_dp(t, scene), scene)
-    wta_jumps = truth.jump_rate(wta, scene.disparity)
-    default_jumps = truth.jump_rate(default, scene.disparity)
+    wta_jumps = truth.jump_rate(wta, scene.judged)
+    default_jumps = truth.jump_rate(default, scene.judged)
     reference = figures("weak_texture", "dp_5_s0")["jumps"]
     if wta_jumps < 0.5 * reference:
         t.fail(f"dp_stereo(left, right, smoothness=0): only {wta_jumps:.1%} of neighbouring pixels "
