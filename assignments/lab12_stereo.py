@@ -184,7 +184,9 @@ def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
     (H, W) float array
         Disparities in ``0..max_disparity``, the left image's size. Pixels you
         cannot match (e.g. ``x - d`` outside the right image for every ``d``) may
-        be marked invalid (0 or NaN); the grader counts them as wrong.
+        be marked invalid (0 or NaN); the grader counts them as wrong, except in
+        the outer 4 pixels of the image, which it ignores (a block does not fit
+        there). It judges the fraction of pixels off by more than 1 pixel.
 
     Notes
     -----
