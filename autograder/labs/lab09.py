@@ -484,14 +484,8 @@ ext1 = lab.exercise("ext1", "Extension: camera calibration", functions=[
     "calibrate(images, pattern_size, square_size)"])
 
 
-def judge_calibration(t: Trial, variant):
-    """Calibrate on rendered views with known K: variant 0/1 (our boards), "skimage" (its chessboard)."""
-    if variant == "skimage":
-        images, K_true = truth.skimage_chessboard_views()
-        pattern = truth.SKIMAGE_PATTERN
-    else:
-        images, K_true, _ = truth.calibration_views(variant)
-        pattern = truth.CALIBRATION_PATTERN
+def judge_calibration(t: Trial, images, K_true, pattern):
+    """Calibrate on rendered views of a board with ``pattern`` inner corners, rendered with ``K_true``."""
     square = truth.CALIBRATION_SQUARE
     what = f"calibrate({len(images)} views, pattern_size={pattern}, square_size={square})"
     got = t.call("calibrate", list(images), pattern, square)
@@ -532,16 +526,16 @@ def judge_calibration(t: Trial, variant):
 
 @ext1.check("calibrate on six rendered chessboard views recovers K", points=5)
 def calibrate_rendered(t):
-    images, _, _ = truth.calibration_views(0)
+    images, K, _ = truth.calibration_views()
     t.images("two of the calibration views", view_1=images[0], view_2=images[3])
-    return judge_calibration(t, 0)
+    return judge_calibration(t, images, K, truth.CALIBRATION_PATTERN)
 
 
 @ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners)", points=1)
 def calibrate_skimage(t):
-    images, _ = truth.skimage_chessboard_views()
+    images, K = truth.skimage_chessboard_views()
     t.images("scikit-image's chessboard, in two of the poses", view_1=images[1], view_2=images[4])
-    return judge_calibration(t, "skimage")
+    return judge_calibration(t, images, K, truth.SKIMAGE_PATTERN)
 
 
 # ================================================================== ext2 lens distortion

@@ -41,6 +41,18 @@ def hidden_focal_lengths(t):
                      truth.projection_mistakes(f, X))
 
 
+HIDDEN_K = ((360.0, 0.0, 155.0), (0.0, 355.0, 124.0), (0.0, 0.0, 1.0))
+HIDDEN_VIEWS = (
+    ((-0.45, 0.0, 0.0), 0.0, 3.7, (0.0, 0.0)),
+    ((0.4, -0.25, 0.0), -10.0, 3.9, (0.2, 0.1)),
+    ((0.0, -0.5, 0.0), 8.0, 3.6, (-0.2, 0.0)),
+    ((-0.2, 0.45, -0.1), -5.0, 4.1, (0.1, -0.15)),
+    ((0.3, 0.3, 0.0), -15.0, 3.8, (-0.1, 0.15)),
+    ((-0.35, -0.35, 0.1), 12.0, 4.2, (0.0, -0.1)),
+)
+
+
 @ext1.check("hidden: calibrate on views of another camera", points=2, hidden=True)
 def hidden_calibration(t):
-    return judge_calibration(t, 1)
+    images, _ = truth.render_calibration_views(HIDDEN_K, HIDDEN_VIEWS)
+    return judge_calibration(t, images, np.array(HIDDEN_K), truth.CALIBRATION_PATTERN)
