@@ -70,7 +70,10 @@ def homography_dlt(src, dst):
     T1, T2 = _normalisation(src), _normalisation(dst)
     src_n = src @ T1[:2, :2].T + T1[:2, 2]
     dst_n = dst @ T2[:2, :2].T + T2[:2, 2]
-    _, _, Vt = np.linalg.svd(_dlt_rows(src_n, dst_n))
+    A = _dlt_rows(src_n, dst_n)
+    # A reduced SVD is enough for N >= 5 (2N >= 9 rows); with 4 pairs A is 8x9 and
+    # only the full SVD has the 9th right singular vector, the null vector.
+    _, _, Vt = np.linalg.svd(A, full_matrices=len(A) < 9)
     H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1
     return H / H[2, 2] if abs(H[2, 2]) > 1e-12 else H / np.linalg.norm(H)
 

@@ -109,6 +109,16 @@ MISTAKES = {
             _, _, Vt = np.linalg.svd(_dlt_rows(s, d))
             return Vt[-1].reshape(3, 3)
         """, ["without undoing the normalisation"]),
+    "DLT with a reduced SVD": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            T1, T2 = _normalisation(src), _normalisation(dst)
+            s = src @ T1[:2, :2].T + T1[:2, 2]
+            d = dst @ T2[:2, :2].T + T2[:2, 2]
+            _, _, Vt = np.linalg.svd(_dlt_rows(s, d), full_matrices=False)
+            H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1
+            return H / H[2, 2]
+        """, ["full_matrices=false", "null vector"]),
     "DLT with OpenCV": ("lab08.ex2", """
         def homography_dlt(src, dst):
             H, _ = cv2.findHomography(np.float64(src), np.float64(dst), 0)

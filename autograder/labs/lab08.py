@@ -213,6 +213,13 @@ def diagnose_h(t: Trial, what: str, got, H_true, src=None, dst=None, tolerance=1
     if src is not None:
         mistakes["the normalised H is returned without undoing the normalisation "
                  "(return T_dst^-1 @ H_normalised @ T_src)"] = truth.unnormalised_return(src, dst)
+    if src is not None and len(src) == 4:
+        reduced = ("the SVD is a reduced one: with 4 pairs A is 8x9, and np.linalg.svd(A, "
+                   "full_matrices=False) returns only 8 right singular vectors, none of them the "
+                   "null vector; use the full SVD (the default)")
+        mistakes[reduced] = truth.dlt(src, dst, reduced_svd=True)
+        mistakes[reduced + " (and normalise the points)"] = truth.dlt(src, dst, normalise=False,
+                                                                      reduced_svd=True)
     mistake = closest(got, mistakes, projective_distance, tolerance)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.")
