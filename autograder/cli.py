@@ -28,6 +28,19 @@ def build_parser() -> argparse.ArgumentParser:
     add_grading_options(grade)
 
     commands.add_parser("list", help="list the labs, exercises and checks")
+
+    gradescope = commands.add_parser("gradescope", help="Gradescope autograder: build the zip, or run inside it")
+    actions = gradescope.add_subparsers(dest="action", required=True)
+    build = actions.add_parser("build", help="write autograder.zip (setup.sh, run_autograder, sources)")
+    build.add_argument("--out", default="autograder.zip", help="zip to write (default: %(default)s)")
+    build.add_argument("--config", metavar="COURSE", help="course configuration (JSON)")
+    run = actions.add_parser("run", help="grade a submission and write results.json (used by run_autograder)")
+    run.add_argument("--submission", default="/autograder/submission")
+    run.add_argument("--results", default="/autograder/results/results.json")
+    run.add_argument("--config", metavar="COURSE", help="course configuration (JSON)")
+
+    bundle = commands.add_parser("bundle", help="write the repository students receive")
+    bundle.add_argument("--student", metavar="OUT", required=True, help="folder to create")
     return parser
 
 
@@ -103,9 +116,48 @@ def run_list(args) -> int:
     return 0
 
 
+def run_gradescope(args) -> int:
+    from . import gradescope
+    from .course import CourseConfig, CourseConfigError
+
+    try:
+        config = CourseConfig.load(args.config) if args.config else CourseConfig()
+    except CourseConfigError as exc:
+        if args.action == "build":
+            print(f"error: {exc}", file=sys.stderr)
+            return USAGE_ERROR
+        config = CourseConfig()  # inside the container results.json is written regardless
+        gradescope.log.error("%s; using the defaults", exc)
+    if args.action == "build":
+        try:
+            out = gradescope.build(args.out, config)
+        except SelectionError as exc:
+            print(f"error: {exc}", file=sys.stderr)
+            return USAGE_ERROR
+        print(f"wrote {out}: upload it as the Gradescope autograder")
+        return 0
+    data = gradescope.run(args.submission, args.results, config)
+    print(data["output"])
+    return 0
+
+
+def run_bundle(args) -> int:
+    from .bundle import write_student_bundle
+
+    try:
+        files = write_student_bundle(args.student)
+    except FileExistsError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return USAGE_ERROR
+    print(f"wrote {len(files)} files to {args.student}: the student repository "
+          "(no reference solutions, no hidden checks)")
+    return 0
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
-    return {"grade": run_grade, "list": run_list}[args.command](args)
+    commands = {"grade": run_grade, "list": run_list, "gradescope": run_gradescope, "bundle": run_bundle}
+    return commands[args.command](args)
 
 
 def grade_py_main(argv=None, root: Path | None = None) -> int:

@@ -129,6 +129,13 @@ def discover() -> dict[str, Lab]:
     return REGISTRY
 
 
+def hidden_checks_installed() -> bool:
+    """Whether this copy has the hidden checks (the student bundle does not)."""
+    import importlib.util
+
+    return importlib.util.find_spec("autograder.labs.hidden") is not None
+
+
 def _import_suite(name: str) -> None:
     """Import one lab suite; a broken suite is logged and skipped, never fatal to grading."""
     try:

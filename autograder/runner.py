@@ -14,7 +14,7 @@ from typing import Callable
 
 from . import __version__
 from .checks import Fail, StudentFailure, Trial, Verdict
-from .registry import Check, Exercise, select
+from .registry import Check, Exercise, hidden_checks_installed, select
 from .results import (ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
                       ExerciseResult, GradingResult)
 from .sandbox import Limits, Sandbox
@@ -49,7 +49,7 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
     modules = sorted({ex.lab.module for ex in exercises})
     with load_submission(submission_path, modules) as submission:
         result = GradingResult(submission.name, submission.content_hash, __version__,
-                               hidden_included=include_hidden)
+                               hidden_included=include_hidden and hidden_checks_installed())
         with Sandbox(submission.path, limits) as sandbox:
             timed_out: dict[str, int] = {}
             for exercise in exercises:

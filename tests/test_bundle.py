@@ -1,0 +1,100 @@
+"""The student bundle installs and grades on its own, and gives away no answers."""
+
+import ast
+import json
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from autograder.bundle import write_student_bundle
+from autograder.registry import discover
+from conftest import REFERENCE, ROOT
+
+
+@pytest.fixture(scope="module")
+def bundle(tmp_path_factory):
+    out = tmp_path_factory.mktemp("bundle") / "cv-labs"
+    write_student_bundle(out)
+    return out
+
+
+@pytest.fixture(scope="module")
+def bundle_python(bundle, tmp_path_factory):
+    """A fresh virtual environment with the bundle installed (dependencies from the system, offline)."""
+    venv = tmp_path_factory.mktemp("venv") / "venv"
+    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(venv)], check=True)
+    python = venv / "bin" / "python"
+    source = tmp_path_factory.mktemp("install") / "cv-labs"  # a copy: building writes build/
+    shutil.copytree(bundle, source)
+    subprocess.run([str(python), "-m", "pip", "install", "--quiet", "--no-index", "--no-build-isolation",
+                    str(source)], check=True, capture_output=True, timeout=300)
+    return python
+
+
+def grade_bundle(python, bundle, *args):
+    run = subprocess.run([str(python), "grade.py", "--no-html", *args], cwd=bundle,
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stdout + run.stderr
+    return run
+
+
+def test_bundle_has_the_student_files_and_nothing_else(bundle):
+    names = {p.relative_to(bundle).as_posix() for p in bundle.rglob("*") if p.is_file()}
+    assert {"grade.py", "pyproject.toml", "README.md", "assignments/lab07_transformations.py"} <= names
+    assert not any(n.startswith(("reference_solutions/", "tests/", "autograder/labs/hidden/")) for n in names)
+    assert "python grade.py" in (bundle / "README.md").read_text()
+
+
+def test_skeleton_scores_zero_with_helpful_messages(bundle_python, bundle):
+    run = grade_bundle(bundle_python, bundle, "lab07", "--json", "skeleton.json")
+    data = json.loads((bundle / "skeleton.json").read_text())
+    assert data["total"] == 0 and data["max_total"] > 0
+    assert data["hidden_included"] is False
+    assert "not implemented yet" in run.stdout and "Traceback" not in run.stdout + run.stderr
+
+
+def test_reference_placed_in_assignments_gets_full_marks_on_every_public_check(bundle_python, bundle, tmp_path):
+    student = tmp_path / "student"
+    shutil.copytree(bundle, student)
+    for module in REFERENCE.glob("*.py"):
+        shutil.copy(module, student / "assignments" / module.name)
+    grade_bundle(bundle_python, student, "--json", "full.json")
+    data = json.loads((student / "full.json").read_text())
+    failed = [(e["id"], c["name"], c["message"]) for e in data["exercises"] for c in e["checks"] if not c["passed"]]
+    assert failed == []
+    assert data["total"] == data["max_total"] > 0
+    assert all(not c["hidden"] for e in data["exercises"] for c in e["checks"])
+
+
+def _squeezed(text: str) -> str:
+    return re.sub(r"\s+", "", text)
+
+
+def reference_bodies():
+    """The body (docstring removed) of every student-facing reference function of two statements or more."""
+    for path in sorted(REFERENCE.glob("*.py")):
+        source = path.read_text()
+        for node in ast.walk(ast.parse(source)):
+            if isinstance(node, ast.FunctionDef) and not node.name.startswith("_"):
+                body = node.body[1:] if ast.get_docstring(node) else node.body
+                if len(body) >= 2:
+                    text = "\n".join(ast.get_source_segment(source, stmt) for stmt in body)
+                    yield f"{path.name}:{node.name}", _squeezed(text)
+
+
+def test_no_bundle_file_contains_reference_code_or_hidden_check_data(bundle):
+    files = {p: _squeezed(p.read_text(errors="ignore")) for p in bundle.rglob("*") if p.is_file()}
+    for name, body in reference_bodies():
+        leaks = [str(p.relative_to(bundle)) for p, text in files.items() if body in text]
+        assert leaks == [], f"the reference body of {name} appears in {leaks}"
+    hidden_names = [c.name for lab in discover().values() for e in lab.exercises.values()
+                    for c in e.checks if c.hidden]
+    assert hidden_names, "the instructor's copy should have hidden checks"
+    raw = {p: p.read_text(errors="ignore") for p in files}
+    for name in hidden_names:
+        leaks = [str(p.relative_to(bundle)) for p, text in raw.items() if name in text]
+        assert leaks == [], f"hidden check {name!r} appears in {leaks}"
