@@ -37,6 +37,12 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
     t.fail(f"{what} returned\n{_fmt(got)}\nexpected\n{_fmt(expected)}")
 
 
+def judge_matrix_call(t: Trial, function: str, args: tuple, true_matrix, mistakes):
+    """Call ``function(*args)`` and judge it against ``true_matrix(*args)`` and ``mistakes(*args)``."""
+    what = f"{function}({', '.join(repr(a) for a in args)})"
+    judge_matrix(t, what, t.call(function, *args), true_matrix(*args), mistakes(*args))
+
+
 def judge_warp(t: Trial, what: str, got, source, A, mistakes=None, dsize=None, show=True):
     """Judge an image warped by the affine ``A`` against the oracle, with diagnosis.
 
@@ -90,18 +96,13 @@ ex1 = lab.exercise("ex1", "Translation", functions=[
 
 @ex1.check("translation_matrix(100, 50)", points=2)
 def translation_matrix_example(t):
-    judge_matrix(t, "translation_matrix(100, 50)", t.call("translation_matrix", 100, 50),
-                 truth.translation(100, 50), truth.translation_mistakes(100, 50))
+    judge_matrix_call(t, "translation_matrix", (100, 50), truth.translation, truth.translation_mistakes)
 
 
 @ex1.check("translation_matrix for any tx, ty", points=2)
 def translation_matrix_property(t):
-    def holds(shift):
-        tx, ty = shift
-        judge_matrix(t, f"translation_matrix({tx!r}, {ty!r})", t.call("translation_matrix", tx, ty),
-                     truth.translation(tx, ty), truth.translation_mistakes(tx, ty))
-
-    t.for_all(st.tuples(finite_floats(-1000, 1000), finite_floats(-1000, 1000)), holds)
+    t.for_all(st.tuples(finite_floats(-1000, 1000), finite_floats(-1000, 1000)), lambda shift: judge_matrix_call(
+        t, "translation_matrix", shift, truth.translation, truth.translation_mistakes))
 
 
 @ex1.check("translate(image) with the defaults tx=100, ty=50", points=4)
@@ -166,18 +167,13 @@ ex3 = lab.exercise("ex3", "Scaling", functions=[
 
 @ex3.check("scaling_matrix(1.5, 0.5)", points=2)
 def scaling_matrix_example(t):
-    judge_matrix(t, "scaling_matrix(1.5, 0.5)", t.call("scaling_matrix", 1.5, 0.5),
-                 truth.scaling(1.5, 0.5), truth.scaling_mistakes(1.5, 0.5))
+    judge_matrix_call(t, "scaling_matrix", (1.5, 0.5), truth.scaling, truth.scaling_mistakes)
 
 
 @ex3.check("scaling_matrix for any sx, sy", points=1)
 def scaling_matrix_property(t):
-    def holds(factors):
-        sx, sy = factors
-        judge_matrix(t, f"scaling_matrix({sx!r}, {sy!r})", t.call("scaling_matrix", sx, sy),
-                     truth.scaling(sx, sy), truth.scaling_mistakes(sx, sy))
-
-    t.for_all(st.tuples(finite_floats(0.1, 10), finite_floats(0.1, 10)), holds)
+    t.for_all(st.tuples(finite_floats(0.1, 10), finite_floats(0.1, 10)), lambda factors: judge_matrix_call(
+        t, "scaling_matrix", factors, truth.scaling, truth.scaling_mistakes))
 
 
 @ex3.check("scale(image) with the defaults: 1.5x about the top-left corner, same size", points=4)
@@ -200,17 +196,13 @@ ex4 = lab.exercise("ex4", "Shearing", functions=["shear_matrix(s)", "shear(image
 
 @ex4.check("shear_matrix(0.5)", points=2)
 def shear_matrix_example(t):
-    judge_matrix(t, "shear_matrix(0.5)", t.call("shear_matrix", 0.5),
-                 truth.shear(0.5), truth.shear_mistakes(0.5))
+    judge_matrix_call(t, "shear_matrix", (0.5,), truth.shear, truth.shear_mistakes)
 
 
 @ex4.check("shear_matrix for any s", points=1)
 def shear_matrix_property(t):
-    def holds(s):
-        judge_matrix(t, f"shear_matrix({s!r})", t.call("shear_matrix", s),
-                     truth.shear(s), truth.shear_mistakes(s))
-
-    t.for_all(finite_floats(-5, 5).filter(lambda s: abs(s) > 1e-3), holds)
+    t.for_all(finite_floats(-5, 5).filter(lambda s: abs(s) > 1e-3), lambda s: judge_matrix_call(
+        t, "shear_matrix", (s,), truth.shear, truth.shear_mistakes))
 
 
 @ex4.check("shear(image) with the default s=0.5", points=4)
