@@ -220,3 +220,31 @@ def test_unnormalised_8point_gets_partial_credit(tmp_path):
     assert noisy and 0 < noisy[0].score < noisy[0].max_score
     exact = [c for name, c in checks.items() if "exact" in name]
     assert exact and all(c.passed for c in exact)
+
+
+def test_stored_figures_are_current():
+    """fixtures/data/lab11_figures.json and the hidden figures match the algorithms."""
+    import importlib.util
+
+    import numpy as np
+
+    from autograder.labs.hidden import lab11 as hidden
+    from conftest import ROOT
+    from fixtures import lab11
+
+    spec = importlib.util.spec_from_file_location("make_lab11_figures", ROOT / "fixtures" / "make_lab11_figures.py")
+    make = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(make)
+    fresh, stored = make.compute(), lab11.figures()
+
+    def compare(a, b, where):
+        if isinstance(a, dict):
+            assert set(a) == set(b), where
+            for key in a:
+                compare(a[key], b[key], f"{where}.{key}")
+        else:
+            assert np.allclose(np.asarray(a, float), np.asarray(b, float), rtol=1e-6, atol=1e-9), where
+
+    compare(fresh, stored, "figures")
+    assert make.HIDDEN_TRIANGULATION == hidden.HIDDEN_TRIANGULATION
+    compare(make.hidden(), hidden.HIDDEN_TRIANGULATION_GOLD, "hidden")

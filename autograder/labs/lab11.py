@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 from fixtures import lab11 as truth
 
-from ..checks import Fail, Trial, partial, passed
+from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import closest, projective_distance
 from ..pictures import side_by_side, svg_points
 from ..registry import Lab
@@ -95,8 +95,10 @@ ex1 = lab.exercise("ex1", "Triangulation", functions=["triangulate(P1, P2, pts1,
 lab.forbid("triangulate", "cv2.triangulatePoints")
 
 
-def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, show=False):
-    """3-D points against the truth (exact data) or the linear solution's accuracy (noisy)."""
+def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, gold=None, show=False):
+    """3-D points against the truth (exact data) or, for noisy ``pts1, pts2``, against
+    ``gold``: the mean reprojection error and median relative 3-D error that linear
+    triangulation reaches on the same data (precomputed, see make_lab11_figures.py)."""
     P1, P2 = views.P1, views.P2
     noisy = pts1 is not None
     pts1 = views.pts1 if pts1 is None else pts1
@@ -123,10 +125,9 @@ def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, s
         worst = int(np.argmax(error))
         t.fail(f"{what} is wrong: point {worst} should be {_fmt(views.X[worst])}, "
                f"got {_fmt(got[worst])}")
-    linear = truth.linear_triangulation(P1, P2, pts1, pts2)
-    mine, best = _reprojection(P1, P2, got, pts1, pts2).mean(), _reprojection(P1, P2, linear, pts1, pts2).mean()
+    mine, best = _reprojection(P1, P2, got, pts1, pts2).mean(), gold["reprojection"]
     error = np.median(np.linalg.norm(got - views.X, axis=1) / depth)
-    best_error = np.median(np.linalg.norm(linear - views.X, axis=1) / depth)
+    best_error = gold["median_error"]
     if mine <= 1.25 * best + 0.05 and error <= 2 * best_error + 1e-3:
         return passed(f"mean reprojection error {mine:.2f} px (linear triangulation: {best:.2f} px)")
     _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise=1.0)
@@ -163,11 +164,19 @@ def _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise):
             t.fail(f"{what} is wrong: the points project exactly onto the {view} image but "
                    f"miss the other one by {np.median(other):.1f} px: it looks like only the "
                    f"{view} view's equations are used. Stack two rows from each view (4 x 4 system).")
-    mistake = closest(got, truth.triangulation_mistakes(P1, P2, pts1, pts2),
-                      lambda a, b: np.max(np.linalg.norm(a - b, axis=1) / np.linalg.norm(X - views.cam1.center, axis=1)),
-                      1e-4 + 0.05 * noise)
-    if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    # Black-box test with the student's own function: does swapping the cameras back fix it?
+    depth = np.linalg.norm(X - views.cam1.center, axis=1)
+    allowed = 1e-6 if noise == 0 else 0.1
+    for args, mistake in (((P2, P1, pts1, pts2), "P1 and P2 are swapped"),
+                          ((P1, P2, pts2, pts1), "pts1 and pts2 are swapped")):
+        try:
+            other = np.asarray(t.call("triangulate", *args), dtype=float)
+        except StudentFailure:
+            return
+        if other.shape == X.shape and np.all(np.isfinite(other)) and \
+                np.median(np.linalg.norm(other - X, axis=1) / depth) <= allowed:
+            t.fail(f"{what} is wrong: it looks like {mistake} inside your function (called with "
+                   "them exchanged, it gives the right points). P1 belongs to pts1, P2 to pts2.")
 
 
 @ex1.check("triangulate a worked example (5 exact correspondences)", points=3)
@@ -201,11 +210,10 @@ def triangulate_property(t):
 
 @ex1.check("triangulate noisy correspondences (0.5 px noise)", points=2)
 def triangulate_noisy(t):
-    views = truth.two_views(seed=4, n=60)
-    pts1, pts2 = truth.add_noise(40, views.pts1, 0.5), truth.add_noise(41, views.pts2, 0.5)
+    views, pts1, pts2 = truth.noisy_triangulation_problem()
     got = t.call("triangulate", views.P1, views.P2, pts1, pts2)
     return judge_triangulation(t, "triangulate(P1, P2, noisy pts1, noisy pts2)", got, views,
-                               pts1, pts2, show=True)
+                               pts1, pts2, gold=truth.figures()["triangulation"], show=True)
 
 
 # ================================================================== ex2 epipolar lines
@@ -412,40 +420,29 @@ def essential_from_F_property(t):
               describe=lambda s: f"fixtures.lab11.two_views(seed={s})")
 
 
-def _essential_8point_mistakes(views, pts1, pts2):
-    K1, K2 = views.cam1.K, views.cam2.K
-    x1, x2 = truth.normalised_points(K1, pts1), truth.normalised_points(K2, pts2)
-    gold = truth.essential_projection(truth.eight_point(x1[:, :2], x2[:, :2], False))
+def _essential_8point_mistakes(views, figures):
+    """Named wrong answers; ``figures`` holds the variants' results on this problem."""
     return {
-        "pts1 and pts2 are swapped (this is E^T)": gold.T,
+        "pts1 and pts2 are swapped (this is E^T)": figures["gold"].T,
         "the fundamental matrix: the pixels were not normalised with K^-1 first": views.F,
         "the pixels were not normalised with K^-1 first (this is F forced to singular values (1, 1, 0))":
-            truth.essential_projection(truth.eight_point_raw(pts1, pts2)),
-        "K1 and K2 are swapped (pts1 are normalised with K1^-1, pts2 with K2^-1)":
-            truth.essential_projection(truth.eight_point(truth.normalised_points(K2, pts1)[:, :2],
-                                                         truth.normalised_points(K1, pts2)[:, :2], False)),
-        "the singular values were not set to (s, s, 0)": truth.eight_point_raw(x1[:, :2], x2[:, :2]),
+            figures["pixels"],
+        "K1 and K2 are swapped (pts1 are normalised with K1^-1, pts2 with K2^-1)": figures["swapped_K"],
+        "the singular values were not set to (s, s, 0)": figures["raw"],
     }
 
 
 @ex3.check("essential_8point recovers E from exact correspondences", points=2)
 def essential_8point_exact(t):
-    views = truth.two_views(seed=8, n=12)
-    got = t.call("essential_8point", views.pts1, views.pts2, views.cam1.K, views.cam2.K)
+    views, pts1, pts2 = truth.exact_essential_problem()
+    got = t.call("essential_8point", pts1, pts2, views.cam1.K, views.cam2.K)
     judge_projective(t, "essential_8point(pts1, pts2, K1, K2)", got, views.E,
-                     _essential_8point_mistakes(views, views.pts1, views.pts2), tolerance=1e-5)
-
-
-def _noisy_essential_problem(seed=10):
-    views = truth.two_views(seed=seed, n=100)
-    pts1 = truth.add_noise(seed + 100, views.pts1[:50], 0.5)
-    pts2 = truth.add_noise(seed + 200, views.pts2[:50], 0.5)
-    return views, pts1, pts2
+                     _essential_8point_mistakes(views, truth.figures()["essential_exact"]), tolerance=1e-5)
 
 
 @ex3.check("essential_8point: singular values (s, s, 0) on noisy data", points=2)
 def essential_8point_singular_values(t):
-    views, pts1, pts2 = _noisy_essential_problem()
+    views, pts1, pts2 = truth.noisy_essential_problem()
     got = t.expect_array(t.call("essential_8point", pts1, pts2, views.cam1.K, views.cam2.K),
                          "essential_8point(noisy pts1, pts2, K1, K2)", shape=(3, 3), kind="iuf", finite=True)
     s = np.linalg.svd(got, compute_uv=False)
@@ -465,15 +462,15 @@ def essential_8point_singular_values(t):
 
 @ex3.check("essential_8point: the epipolar constraint holds on noisy normalised points", points=2)
 def essential_8point_noisy(t):
-    views, pts1, pts2 = _noisy_essential_problem()
+    views, pts1, pts2 = truth.noisy_essential_problem()
     K1, K2 = views.cam1.K, views.cam2.K
     got = t.expect_array(t.call("essential_8point", pts1, pts2, K1, K2),
                          "essential_8point(noisy pts1, pts2, K1, K2)", shape=(3, 3), kind="iuf", finite=True)
     if not np.any(got):
         t.fail("essential_8point returned all zeros")
     x1, x2 = truth.normalised_points(K1, views.pts1[50:]), truth.normalised_points(K2, views.pts2[50:])
-    gold = truth.essential_projection(truth.eight_point(truth.normalised_points(K1, pts1)[:, :2],
-                                                        truth.normalised_points(K2, pts2)[:, :2], False))
+    figures = truth.figures()["essential_noisy"]
+    gold = figures["gold"]
     residual = lambda E: np.abs(np.sum(x2 * (x1 @ (E / np.linalg.norm(E)).T), axis=1)).mean()  # noqa: E731
     to_pixels = lambda E: np.linalg.inv(K2).T @ E @ np.linalg.inv(K1)  # noqa: E731
     mine = truth.sampson_error(to_pixels(got), views.pts1[50:], views.pts2[50:]).mean()
@@ -481,7 +478,7 @@ def essential_8point_noisy(t):
     if mine <= 1.5 * best + 0.1:
         return passed(f"|x2n^T E x1n| = {residual(got):.1e} on average over 50 exact held-out "
                       f"correspondences (Sampson error {mine:.2f} px; the 8-point algorithm: {best:.2f} px)")
-    mistake = closest(got, _essential_8point_mistakes(views, pts1, pts2), projective_distance, 1e-3)
+    mistake = closest(got, _essential_8point_mistakes(views, figures), projective_distance, 1e-3)
     if mistake:
         t.fail(f"essential_8point is wrong: it looks like {mistake}.")
     t.fail(f"essential_8point from 50 noisy correspondences: the exact held-out correspondences "
@@ -528,21 +525,15 @@ def fundamental_rank2(t):
            "singular value to 0 (F = U diag(s1, s2, 0) V^T).")
 
 
-NOISY_SCENES = (12, 13, 14, 15, 16, 17)
-
-
-def noisy_fundamental_problem(seed):
-    """40 noisy (1 px) correspondences for the fit, 40 exact held-out ones for judging."""
-    views = truth.two_views(seed, n=80, width=640, height=480)
-    pts1, pts2 = truth.add_noise(seed + 1, views.pts1[:40], 1.0), truth.add_noise(seed + 2, views.pts2[:40], 1.0)
-    return views, pts1, pts2
+NOISY_SCENES = truth.FUNDAMENTAL_SCENES
 
 
 @ex4.check("fundamental_8point is accurate on noisy pixel coordinates (6 scenes)", points=3)
 def fundamental_noisy(t):
     good, lines, unnormalised, late = 0, [], 0, 0
     for i, seed in enumerate(NOISY_SCENES):
-        views, pts1, pts2 = noisy_fundamental_problem(seed)
+        views, pts1, pts2 = truth.noisy_fundamental_problem(seed)
+        figures = truth.figures()["fundamental"][str(seed)]
         what = "fundamental_8point(noisy pts1, pts2)"
         got = t.expect_array(t.call("fundamental_8point", pts1, pts2), what, shape=(3, 3), kind="iuf",
                              finite=True)
@@ -552,12 +543,12 @@ def fundamental_noisy(t):
             sizes = [(c.width, c.height) for c in (views.cam1, views.cam2)]
             show_epipolar(t, "epipolar lines of your F (1 px noise, 640 x 480 pixels)", views.F, got,
                           sizes, views.pts1[40:], views.pts2[40:])
-        mistake = closest(got, truth.fundamental_mistakes(truth.eight_point(pts1, pts2)),
+        mistake = closest(got, truth.fundamental_mistakes(figures["gold"]),
                           projective_distance, 1e-3)
         if mistake:
             t.fail(f"{what} is wrong: it looks like {mistake}.")
         mine = truth.symmetric_epipolar_distance(got, views.pts1[40:], views.pts2[40:]).mean()
-        best = truth.symmetric_epipolar_distance(truth.eight_point(pts1, pts2), views.pts1[40:],
+        best = truth.symmetric_epipolar_distance(figures["gold"], views.pts1[40:],
                                                  views.pts2[40:]).mean()
         lines.append(f"{mine:.2f} px (normalised 8-point: {best:.2f} px)")
         good += mine <= 1.5 * best + 0.1
@@ -567,8 +558,8 @@ def fundamental_noisy(t):
             other = truth.symmetric_epipolar_distance(F, views.pts1[40:], views.pts2[40:])
             return np.abs(signature - other).max() <= 0.02
 
-        unnormalised += same_geometry(truth.eight_point(pts1, pts2, normalise=False))
-        late += same_geometry(truth.eight_point(pts1, pts2, late_rank2=True))
+        unnormalised += same_geometry(figures["unnormalised"])
+        late += same_geometry(figures["late_rank2"])
     report = "; ".join(lines)
     if good == len(NOISY_SCENES):
         return passed(f"mean distance of exact held-out matches to your epipolar lines: {report}")
