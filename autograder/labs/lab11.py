@@ -282,7 +282,7 @@ def lines_through_points(t):
            "(they should lie on them)", hint=hint)
 
 
-def draw_judgement(got, base, lines, min_coverage=0.9):
+def draw_judgement(got, base, lines):
     """How well the changed pixels of ``got`` (vs ``base``) match the ``lines``.
 
     Returns per-line coverage (fraction of the line's in-image length with a
@@ -673,7 +673,8 @@ def call_reconstruction(t: Trial, pair):
 
 def judge_pipeline_F(t: Trial, pair, F):
     g1, g2 = truth.grid_correspondences(pair)
-    show_epipolar(t, "epipolar lines of your F on the two rendered photos", pair.F, F,
+    show_epipolar(t, "epipolar lines of your F on the two rendered photos (three pictures hung "
+                  "at different depths)", pair.F, F,
                   (pair.img1, pair.img2), g1[::97], g2[::97])
     distance = np.median(truth.symmetric_epipolar_distance(F, g1, g2))
     if distance <= 1.5:
@@ -698,8 +699,6 @@ def judge_pipeline_F(t: Trial, pair, F):
            timeout=PIPELINE_TIMEOUT)
 def pipeline_shapes(t):
     pair = truth.rendered_pair(0)
-    t.images("the two rendered photos (three pictures hung at different depths)",
-             image_1=pair.img1, image_2=pair.img2)
     _, pts1, _, points3d = call_reconstruction(t, pair)
     if not np.all(np.isfinite(points3d)):
         t.fail("two_view_reconstruction: points3d contains NaN or infinite values "
