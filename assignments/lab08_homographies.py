@@ -108,7 +108,9 @@ def homography_dlt(src, dst):
         [0  0  0  x  y  1  -y'x  -y'y  -y']
 
     ``h`` is the right singular vector of ``A`` for the smallest singular value
-    (the last row of ``Vt`` from ``np.linalg.svd(A)``), reshaped to 3x3.
+    (the last row of ``Vt`` from ``np.linalg.svd(A)``), reshaped to 3x3. Keep the
+    full SVD: with 4 pairs A is 8x9, and ``full_matrices=False`` would drop the
+    9th right singular vector, the one you need.
 
     Normalise first (Hartley): for each point set, a similarity ``T`` moving the
     centroid to the origin and scaling so the mean distance to it is sqrt(2).

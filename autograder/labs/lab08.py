@@ -743,7 +743,14 @@ def panorama_result(t: Trial, key: str, what: str, function: str, images):
     if isinstance(got, np.ndarray) and got.ndim == 3 and got.shape[2] == 3 and got.dtype != np.uint8:
         t.fail(f"{what} returned dtype {got.dtype}; expected uint8",
                hint="convert with np.clip(x, 0, 255).astype(np.uint8)")
-    return t.expect_array(got, what, shape=(None, None, 3), dtype=np.uint8)
+    got = t.expect_array(got, what, shape=(None, None, 3), dtype=np.uint8)
+    if got.shape[0] * got.shape[1] > MAX_PANORAMA_PIXELS:
+        t.fail(f"{what} returned a {got.shape[1]}x{got.shape[0]} panorama, far larger than the "
+               "images' bounding box: size the canvas to the bounding box of the warped corners")
+    return got
+
+
+MAX_PANORAMA_PIXELS = 2_000_000   # the panoramas judged here are about 120 000 pixels
 
 
 def stitch_judge(t: Trial, key: str, scene, what: str) -> PanoramaJudge:
