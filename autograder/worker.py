@@ -39,6 +39,25 @@ class ForbiddenCall(BaseException):
     """Raised by a tripwire; a BaseException so `except Exception` cannot swallow it."""
 
 
+class Tripwire:
+    """Stands in for a forbidden function or class: calling it, or reaching into it
+    (``cv2.StereoBM.create``), records the use and raises :class:`ForbiddenCall`."""
+
+    def __init__(self, name, record):
+        object.__setattr__(self, "_name", name)
+        object.__setattr__(self, "_record", record)
+
+    def _refuse(self):
+        self._record.append(self._name)
+        raise ForbiddenCall(self._name)
+
+    def __call__(self, *args, **kwargs):
+        self._refuse()
+
+    def __getattr__(self, attribute):
+        self._refuse()
+
+
 # ------------------------------------------------------------------ set-up
 def apply_limits(limits):
     """Resource limits of the worker process, set before any student code runs."""
@@ -250,7 +269,7 @@ class Worker:
                 "to implement yourself")
 
     def install_tripwires(self, forbidden):
-        """Replace each forbidden library function by one that records and refuses the call.
+        """Replace each forbidden library function or class by a :class:`Tripwire`.
 
         Names the student imported directly (``from cv2 import findHomography``)
         are replaced in the student's modules too. Returns an undo function.
@@ -264,10 +283,7 @@ class Worker:
             except (ImportError, AttributeError):
                 continue
 
-            def tripwire(*args, __name=qualified, **kwargs):
-                self.forbidden_called.append(__name)
-                raise ForbiddenCall(__name)
-
+            tripwire = Tripwire(qualified, self.forbidden_called)
             setattr(library, attr, tripwire)
             undo.append((library, attr, original))
             for module in self.modules.values():

@@ -61,7 +61,8 @@ def test_always_equal_ndarray_subclass_is_refused(tmp_path):
         """), ["lab07.ex1", "lab07.ex2"], limits=FAST)
     checks = check_results(result, "lab07.ex1")
     assert checks[0].score == 0 and "ndarray subclass" in checks[0].message
-    assert scores(result)["lab07.ex2"] == (10, 10)
+    score, maximum = scores(result)["lab07.ex2"]
+    assert score == maximum > 0
 
 
 def test_crash_restarts_the_worker_for_the_next_exercise(tmp_path):

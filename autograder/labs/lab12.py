@@ -444,7 +444,7 @@ def rectify_in_view(t):
 # ================================================================== ex4 block matching (SSD)
 ex4 = lab.exercise("ex4", "Block matching", functions=[
     "block_matching(left, right, max_disparity=64, block_size=9, cost=\"ssd\")"])
-lab.forbid("block_matching", "cv2.StereoBM_create", "cv2.StereoSGBM_create")
+lab.forbid("block_matching", "cv2.StereoBM_create", "cv2.StereoSGBM_create", "cv2.StereoBM", "cv2.StereoSGBM")
 
 
 def block_matcher(t: Trial, scene, **kwargs):
@@ -556,7 +556,7 @@ def ncc_gain(t):
 # ================================================================== ex5 dynamic programming
 ex5 = lab.exercise("ex5", "Smoothness: scanline dynamic programming", functions=[
     "dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None)"])
-lab.forbid("dp_stereo", "cv2.StereoBM_create", "cv2.StereoSGBM_create")
+lab.forbid("dp_stereo", "cv2.StereoBM_create", "cv2.StereoSGBM_create", "cv2.StereoBM", "cv2.StereoSGBM")
 JUMPS_VS_BM = 0.4   # "far fewer jumps": at most this fraction of block matching's
 
 
