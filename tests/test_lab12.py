@@ -224,6 +224,11 @@ MISTAKES = {
             bm = cv2.StereoBM_create(numDisparities=16 * ((max_disparity + 15) // 16), blockSize=block_size)
             return bm.compute(left, right).astype(np.float64) / 16
         """, ["cv2.StereoBM_create", "yourself"]),
+    "block matching with the StereoBM class": ("lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            bm = cv2.StereoBM.create(numDisparities=16 * ((max_disparity + 15) // 16), blockSize=block_size)
+            return bm.compute(left, right).astype(np.float64) / 16
+        """, ["cv2.StereoBM", "yourself"]),
     # ---------------------------------------------------------------- ext1
     "NCC without subtracting the means": ("lab12.ext1", """
         def _ncc_volume(left, right, max_disparity, block_size):
