@@ -507,6 +507,8 @@ def ransac_result(t: Trial, src, dst, what: str, **kwargs):
         t.fail(f"{what} returned {type(result).__name__}; expected a pair (H, inliers)")
     H = t.expect_array(result[0], f"{what}[0] (H)", shape=(3, 3), kind="iuf", finite=True)
     inliers = result[1]
+    if isinstance(inliers, (list, tuple)):
+        inliers = np.asarray(inliers)
     n = len(src)
     if isinstance(inliers, np.ndarray) and inliers.ndim == 1 and inliers.dtype.kind in "iu" \
             and len(inliers) != n:
