@@ -75,7 +75,7 @@ class Trial:
     def __init__(self, sandbox: Sandbox, check: Check, timed_out: dict[str, int]):
         self.sandbox, self.check = sandbox, check
         self.lab = check.exercise.lab
-        self.artifacts: list[Artifact] = []
+        self._pictures: list = []  # made into Artifacts only for checks that lose points
         self.outputs: list[str] = []
         self.student_seconds = 0.0
         self._fatal: dict[str, StudentFailure] = {}
@@ -209,10 +209,17 @@ class Trial:
 
     # ------------------------------------------------------------ pictures
     def images(self, title: str, caption: str = "", **labelled: np.ndarray):
-        """Attach images side by side, e.g. ``t.images("rotate", input=a, yours=b)``."""
-        items = [{"label": label.replace("_", " "), "png": pictures.png_base64(image)}
-                 for label, image in labelled.items() if image is not None]
-        self.artifacts.append(Artifact("images", title, items, caption))
+        """Attach images side by side, e.g. ``t.images("rotate", input=a, yours=b)``.
+
+        Pictures are kept (and encoded) only if the check does not pass: a
+        student looks at pictures to see what went wrong.
+        """
+        def artifact():
+            items = [{"label": label.replace("_", " "), "png": pictures.png_base64(image)}
+                     for label, image in labelled.items() if image is not None]
+            return Artifact("images", title, items, caption)
+
+        self._pictures.append(artifact)
 
     def compare_images(self, title: str, source, expected, got, valid=None, caption: str = ""):
         """Attach input, expected, the student's output and a difference heat map."""
@@ -222,7 +229,31 @@ class Trial:
         self.images(title, caption, input=source, expected=expected, yours=got, difference=heat)
 
     def svg(self, title: str, svg: str, caption: str = ""):
-        self.artifacts.append(Artifact("svg", title, [{"label": "", "svg": svg}], caption))
+        """Attach an inline SVG plot (kept only if the check does not pass)."""
+        self._pictures.append(lambda: Artifact("svg", title, [{"label": "", "svg": svg}], caption))
+
+    def artifacts(self) -> list[Artifact]:
+        """The attached pictures, encoded now."""
+        return [make() for make in self._pictures]
+
+    # ------------------------------------------------------------ sharing
+    def shared(self, key, compute):
+        """``compute()`` once per grading, shared by every check that asks for ``key``.
+
+        For an expensive student call several checks judge (a panorama, a
+        calibration): the value, or the student's failure, is remembered on the
+        sandbox, so each check sees the same outcome.
+        """
+        cache = self.sandbox.shared
+        if key not in cache:
+            try:
+                cache[key] = (True, compute())
+            except StudentFailure as failure:
+                cache[key] = (False, failure)
+        ok, value = cache[key]
+        if ok:
+            return value
+        raise StudentFailure(value.outcome, value.message)
 
 
 def _type_name(value) -> str:

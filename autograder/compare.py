@@ -75,7 +75,7 @@ def blurred_difference(got, expected, valid, sigma: float = 1.0) -> float:
     return float(diff[valid].mean()) if valid.any() else 0.0
 
 
-def affine_image_error(got, source, A, dsize=None) -> float:
+def affine_image_error(got, source, A, dsize=None, good_enough: float = 0.0) -> float:
     """How far ``got`` is from ``source`` warped by the affine ``A`` (best sub-pixel offset).
 
     Parameters
@@ -86,6 +86,8 @@ def affine_image_error(got, source, A, dsize=None) -> float:
     A : (2, 3) or (3, 3) array
         The true source-to-output map.
     dsize : (width, height), optional
+    good_enough : float
+        Stop trying sub-pixel offsets once an error this small is found.
 
     Returns
     -------
@@ -98,11 +100,13 @@ def affine_image_error(got, source, A, dsize=None) -> float:
 
     A = np.vstack([np.asarray(A, np.float64)[:2], [0, 0, 1]])
     inside, _ = affine_coverage(A, source.shape, dsize)
-    errors = []
-    for dx, dy in HALF_PIXEL_OFFSETS:
+    best = np.inf
+    for dx, dy in sorted(HALF_PIXEL_OFFSETS, key=lambda o: abs(o[0]) + abs(o[1])):  # (0, 0) first
         shifted = np.array([[1, 0, dx], [0, 1, dy], [0, 0, 1]]) @ A
-        errors.append(blurred_difference(got, warp_affine(source, shifted, dsize), inside))
-    return min(errors)
+        best = min(best, blurred_difference(got, warp_affine(source, shifted, dsize), inside))
+        if best <= good_enough:
+            break
+    return best
 
 
 def fill_fraction(got, outside) -> float:

@@ -111,7 +111,8 @@ def run_check(sandbox: Sandbox, check: Check, timed_out: dict[str, int]) -> Chec
     return CheckResult(
         name=check.name, score=round(verdict.fraction * check.points, 6), max_score=check.points,
         status=status, message=verdict.message, hint=verdict.hint, hidden=check.hidden,
-        output="\n".join(trial.outputs)[:6000], traceback=tb, artifacts=trial.artifacts,
+        output="\n".join(trial.outputs)[:6000], traceback=tb,
+        artifacts=trial.artifacts() if status != PASSED else [],
         seconds=round(time.perf_counter() - started, 6),
         student_seconds=round(trial.student_seconds, 6))
 

@@ -160,6 +160,7 @@ class Sandbox:
         self._import_failures: dict[str, CallOutcome] = {}
         self.student_seconds = 0.0
         self.restarts = 0
+        self.shared: dict = {}  # values checks share within one grading (see Trial.shared)
 
     # The worker may write only in these folders of its scratch (when namespaces
     # allow): its copy of the submission and of the worker code stay intact.

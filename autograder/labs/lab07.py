@@ -67,7 +67,7 @@ def judge_warp(t: Trial, what: str, got, source, A, mistakes=None, dsize=None, s
         t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
                "warps keep the input's size (content that leaves the frame is cut off)")
     got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)
-    error = affine_image_error(got, source, A, dsize)
+    error = affine_image_error(got, source, A, dsize, good_enough=IMAGE_TOLERANCE / 2)
     if error <= IMAGE_TOLERANCE:
         nonblack = fill_fraction(got, outside)
         if nonblack > FILL_TOLERANCE:
@@ -76,7 +76,7 @@ def judge_warp(t: Trial, what: str, got, source, A, mistakes=None, dsize=None, s
                            hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)")
         return passed(f"mean difference {error:.1f} grey levels on the covered area")
     for mistake, wrong_A in (mistakes or {}).items():
-        if affine_image_error(got, source, wrong_A, dsize) <= IMAGE_TOLERANCE:
+        if affine_image_error(got, source, wrong_A, dsize, good_enough=IMAGE_TOLERANCE) <= IMAGE_TOLERANCE:
             t.fail(f"{what} is wrong: it looks like {mistake}.")
     t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
            "(see the pictures).")

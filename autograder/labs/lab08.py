@@ -17,7 +17,6 @@ mistakes produce, so the feedback can name the mistake.
 
 from __future__ import annotations
 
-import weakref
 
 import cv2
 import numpy as np
@@ -43,20 +42,11 @@ RANSAC_H_TOLERANCE = 1.5   # px RMS transfer error over the image
 
 
 # ================================================================== shared helpers
-_RESULTS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def call_once(t: Trial, key: str, function: str, *args, **kwargs):
-    """``t.call``, but a successful result is reused by the other checks of this grading.
-
-    Several checks judge different aspects of one expensive call (a panorama);
-    the result is plain data kept in the grader's process, per sandbox (so per
-    submission). Failures are not kept: the next check calls again.
-    """
-    store = _RESULTS.setdefault(t.sandbox, {})
-    if key not in store:
-        store[key] = t.call(function, *args, **kwargs)
-    return store[key]
+    """``t.call``, shared by every check of this grading that judges the same call (a panorama)."""
+    return t.shared(key, lambda: t.call(function, *args, **kwargs))
 
 
 def _fmt(matrix) -> str:
@@ -758,7 +748,7 @@ MAX_PANORAMA_PIXELS = 2_000_000   # the panoramas judged here are about 120 000 
 def stitch_judge(t: Trial, key: str, scene, what: str) -> PanoramaJudge:
     img1, img2 = scene.views
     panorama = panorama_result(t, key, what, "stitch", (img1, img2))
-    store = _RESULTS.setdefault(t.sandbox, {})
+    store = t.sandbox.shared  # judgements of the shared panorama, made once per grading
     if key + "/judge" in store:
         return store[key + "/judge"]
     offset, error, agreement = locate(panorama, img1)
@@ -898,7 +888,7 @@ def many_scene():
 
 def many_judge(t: Trial, key: str, scene, what: str) -> PanoramaJudge:
     panorama = panorama_result(t, key, what, "stitch_many", scene.views)
-    store = _RESULTS.setdefault(t.sandbox, {})
+    store = t.sandbox.shared  # judgements of the shared panorama, made once per grading
     if key + "/judge" in store:
         return store[key + "/judge"]
     found = [locate(panorama, view) for view in scene.views]
