@@ -66,6 +66,37 @@ def assert_diagnosed(result, exercise_id: str, *fragments: str):
     assert score < maximum
 
 
+def lab_exercises(result, lab: str):
+    """The graded exercises of ``lab`` (``"lab08"``); there must be some."""
+    exercises = [e for e in result.exercises if e.id.startswith(lab + ".")]
+    assert exercises, f"no exercise of {lab} was graded"
+    return exercises
+
+
+def assert_full_marks(result, lab: str):
+    """Every check of every exercise of ``lab`` passed."""
+    for exercise in lab_exercises(result, lab):
+        for check in exercise.checks:
+            assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+
+
+def assert_all_not_implemented(result, lab: str):
+    """Every exercise of ``lab`` scores 0 with "not implemented yet" and no traceback noise."""
+    for exercise in lab_exercises(result, lab):
+        assert exercise.score == 0
+        assert exercise.message == "not implemented yet"
+        for check in exercise.checks:
+            assert "not implemented yet" in check.message
+            assert check.traceback == ""
+
+
+def assert_mistake_named(tmp_path, module: str, exercise: str, source: str, fragments):
+    """The reference with ``source`` appended loses points on ``exercise``, named by ``fragments``."""
+    result = grade(mutant(tmp_path, module, source), [exercise])
+    assert_diagnosed(result, exercise, *fragments)
+    return result
+
+
 def assert_only_exercise_lost(result, lost: str, *fragments: str):
     """Exercise ``lost`` scores 0 with every fragment in its messages; all others full marks."""
     for exercise in result.exercises:

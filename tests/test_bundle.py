@@ -6,13 +6,12 @@ import re
 import shutil
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
 from autograder.bundle import write_student_bundle
 from autograder.registry import discover
-from conftest import REFERENCE, ROOT
+from conftest import REFERENCE
 
 
 @pytest.fixture(scope="module")

@@ -3,26 +3,17 @@
 import pytest
 
 from autograder.runner import grade
-from conftest import assert_diagnosed, check_results, mutant
+from conftest import assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
 
 MODULE = "lab07_transformations"
 
 
 def test_reference_scores_full_marks(reference_result):
-    for exercise in reference_result.exercises:
-        if exercise.id.startswith("lab07."):
-            for check in exercise.checks:
-                assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+    assert_full_marks(reference_result, "lab07")
 
 
 def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
-    for exercise in skeleton_result.exercises:
-        if exercise.id.startswith("lab07."):
-            assert exercise.score == 0
-            assert exercise.message == "not implemented yet"
-            for check in exercise.checks:
-                assert "not implemented yet" in check.message
-                assert check.traceback == ""   # no traceback noise for a stub
+    assert_all_not_implemented(skeleton_result, "lab07")
 
 
 # Each case: exercise, the wrong code, fragments the diagnosis must contain.
@@ -112,9 +103,7 @@ MISTAKES = {
 
 @pytest.mark.parametrize("case", sorted(MISTAKES))
 def test_mistake_is_caught_and_named(tmp_path, case):
-    exercise, source, fragments = MISTAKES[case]
-    result = grade(mutant(tmp_path, MODULE, source), [exercise])
-    assert_diagnosed(result, exercise, *fragments)
+    assert_mistake_named(tmp_path, MODULE, *MISTAKES[case])
 
 
 def test_other_exercises_unaffected_by_a_mistake(tmp_path):

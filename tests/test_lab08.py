@@ -3,7 +3,7 @@
 import pytest
 
 from autograder.runner import grade
-from conftest import REFERENCE, SKELETON, assert_diagnosed, check_results, mutant
+from conftest import REFERENCE, SKELETON, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
 
 MODULE = "lab08_homographies"
 
@@ -25,21 +25,11 @@ def skeleton_result():
 
 
 def test_reference_scores_full_marks(reference_result):
-    exercises = lab08(reference_result)
-    assert {e.id for e in exercises} >= {f"lab08.ex{k}" for k in range(1, 6)} | {
-        "lab08.ext1", "lab08.ext2", "lab08.ext3"}
-    for exercise in exercises:
-        for check in exercise.checks:
-            assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+    assert_full_marks(reference_result, "lab08")
 
 
 def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
-    for exercise in lab08(skeleton_result):
-        assert exercise.score == 0
-        assert exercise.message == "not implemented yet"
-        for check in exercise.checks:
-            assert "not implemented yet" in check.message
-            assert check.traceback == ""
+    assert_all_not_implemented(skeleton_result, "lab08")
 
 
 def test_grading_is_deterministic(reference_result):
@@ -315,9 +305,7 @@ MISTAKES = {
 
 @pytest.mark.parametrize("case", sorted(MISTAKES))
 def test_mistake_is_caught_and_named(tmp_path, case):
-    exercise, source, fragments = MISTAKES[case]
-    result = grade(mutant(tmp_path, MODULE, source), [exercise])
-    assert_diagnosed(result, exercise, *fragments)
+    assert_mistake_named(tmp_path, MODULE, *MISTAKES[case])
 
 
 def test_other_exercises_unaffected_by_a_mistake(tmp_path):

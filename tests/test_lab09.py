@@ -2,27 +2,17 @@
 
 import pytest
 
-from autograder.runner import grade
-from conftest import assert_diagnosed, mutant
+from conftest import assert_all_not_implemented, assert_full_marks, assert_mistake_named
 
 MODULE = "lab09_camera"
 
 
 def test_reference_scores_full_marks(reference_result):
-    for exercise in reference_result.exercises:
-        if exercise.id.startswith("lab09."):
-            for check in exercise.checks:
-                assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+    assert_full_marks(reference_result, "lab09")
 
 
 def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
-    for exercise in skeleton_result.exercises:
-        if exercise.id.startswith("lab09."):
-            assert exercise.score == 0
-            assert exercise.message == "not implemented yet"
-            for check in exercise.checks:
-                assert "not implemented yet" in check.message
-                assert check.traceback == ""
+    assert_all_not_implemented(skeleton_result, "lab09")
 
 
 # Each case: exercise, the wrong code, fragments the diagnosis must contain.
@@ -137,6 +127,4 @@ MISTAKES = {
 
 @pytest.mark.parametrize("name", sorted(MISTAKES))
 def test_mistake_is_diagnosed(tmp_path, name):
-    exercise, source, fragments = MISTAKES[name]
-    result = grade(mutant(tmp_path, MODULE, source), [exercise])
-    assert_diagnosed(result, exercise, *fragments)
+    assert_mistake_named(tmp_path, MODULE, *MISTAKES[name])

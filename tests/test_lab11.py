@@ -3,28 +3,17 @@
 import pytest
 
 from autograder.runner import grade
-from conftest import assert_diagnosed, check_results, mutant
+from conftest import assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
 
 MODULE = "lab11_two_view"
 
 
 def test_reference_scores_full_marks(reference_result):
-    exercises = [e for e in reference_result.exercises if e.id.startswith("lab11.")]
-    assert exercises
-    for exercise in exercises:
-        for check in exercise.checks:
-            assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+    assert_full_marks(reference_result, "lab11")
 
 
 def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
-    exercises = [e for e in skeleton_result.exercises if e.id.startswith("lab11.")]
-    assert exercises
-    for exercise in exercises:
-        assert exercise.score == 0
-        assert exercise.message == "not implemented yet"
-        for check in exercise.checks:
-            assert "not implemented yet" in check.message
-            assert check.traceback == ""
+    assert_all_not_implemented(skeleton_result, "lab11")
 
 
 # Each case: exercise, the wrong code, fragments the diagnosis must contain.
@@ -207,9 +196,7 @@ MISTAKES = {
 
 @pytest.mark.parametrize("case", sorted(MISTAKES))
 def test_mistake_is_caught_and_named(tmp_path, case):
-    exercise, source, fragments = MISTAKES[case]
-    result = grade(mutant(tmp_path, MODULE, source), [exercise])
-    assert_diagnosed(result, exercise, *fragments)
+    assert_mistake_named(tmp_path, MODULE, *MISTAKES[case])
 
 
 def test_unnormalised_8point_gets_partial_credit(tmp_path):

@@ -7,29 +7,17 @@ import numpy as np
 import pytest
 
 from autograder.runner import grade
-from conftest import assert_diagnosed, check_results, mutant
+from conftest import assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
 
 MODULE = "lab12_stereo"
 
 
 def test_reference_scores_full_marks(reference_result):
-    seen = 0
-    for exercise in reference_result.exercises:
-        if exercise.id.startswith("lab12."):
-            for check in exercise.checks:
-                seen += 1
-                assert check.passed, f"{exercise.id} {check.name}: {check.message}"
-    assert seen >= 25
+    assert_full_marks(reference_result, "lab12")
 
 
 def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
-    for exercise in skeleton_result.exercises:
-        if exercise.id.startswith("lab12."):
-            assert exercise.score == 0
-            assert exercise.message == "not implemented yet"
-            for check in exercise.checks:
-                assert "not implemented yet" in check.message
-                assert check.traceback == ""
+    assert_all_not_implemented(skeleton_result, "lab12")
 
 
 def test_every_exercise_of_the_api_is_registered(reference_result):
@@ -332,9 +320,7 @@ MISTAKES = {
 
 @pytest.mark.parametrize("case", sorted(MISTAKES))
 def test_mistake_is_caught_and_named(tmp_path, case):
-    exercise, source, fragments = MISTAKES[case]
-    result = grade(mutant(tmp_path, MODULE, source), [exercise])
-    assert_diagnosed(result, exercise, *fragments)
+    assert_mistake_named(tmp_path, MODULE, *MISTAKES[case])
 
 
 # Realistic correct variants that must keep full marks.

@@ -2,8 +2,6 @@
 
 import json
 
-import numpy as np
-import pytest
 
 from autograder.results import without_timings
 from autograder.runner import grade

@@ -4,7 +4,7 @@ import cv2
 import numpy as np
 import pytest
 
-from fixtures.scene import (Camera, TexturedPlane, chessboard_object_points, chessboard_plane,
+from fixtures.scene import (TexturedPlane, chessboard_object_points, chessboard_plane,
                             chessboard_texture, intrinsics, look_at, photo_plane, random_camera,
                             random_points_in_view, render, rotation_from_rvec)
 

@@ -8,7 +8,6 @@ compared with what the usual mistakes would give, so the feedback can name them.
 
 from __future__ import annotations
 
-import cv2
 import numpy as np
 from hypothesis import strategies as st
 

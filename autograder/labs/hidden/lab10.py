@@ -5,7 +5,6 @@ Inputs come only from seeds and parameters written here.
 
 from __future__ import annotations
 
-import numpy as np
 
 from fixtures import lab10 as truth
 
