@@ -75,15 +75,15 @@ def blurred_difference(got, expected, valid, sigma: float = 1.0) -> float:
     return float(diff[valid].mean()) if valid.any() else 0.0
 
 
-def affine_image_error(got, source, A, dsize=None, good_enough: float = 0.0) -> float:
-    """How far ``got`` is from ``source`` warped by the affine ``A`` (best sub-pixel offset).
+def warp_error(got, source, M, dsize=None, good_enough: float = 0.0) -> float:
+    """How far ``got`` is from ``source`` warped by ``M`` (best sub-pixel offset).
 
     Parameters
     ----------
     got : (H, W[, 3]) array
         The student's image, already checked for shape.
     source : (h, w[, 3]) uint8 array
-    A : (2, 3) or (3, 3) array
+    M : (2, 3) affine or (3, 3) homography
         The true source-to-output map.
     dsize : (width, height), optional
     good_enough : float
@@ -94,16 +94,18 @@ def affine_image_error(got, source, A, dsize=None, good_enough: float = 0.0) -> 
     float
         Mean blurred grey-level difference over the output pixels that are
         well inside the warped source (about 1-3 for a correct warp, tens for
-        a wrong one).
+        a wrong one); infinite when almost nothing of the source is in view.
     """
-    from fixtures.images import affine_coverage, warp_affine
+    from fixtures.images import as_homography, coverage, warp
 
-    A = np.vstack([np.asarray(A, np.float64)[:2], [0, 0, 1]])
-    inside, _ = affine_coverage(A, source.shape, dsize)
+    H = as_homography(M)
+    inside, _ = coverage(H, source.shape, dsize)
+    if inside.sum() < 0.05 * inside.size:
+        return float("inf")  # (a wrong map may send the image almost entirely out of view)
     best = np.inf
     for dx, dy in sorted(HALF_PIXEL_OFFSETS, key=lambda o: abs(o[0]) + abs(o[1])):  # (0, 0) first
-        shifted = np.array([[1, 0, dx], [0, 1, dy], [0, 0, 1]]) @ A
-        best = min(best, blurred_difference(got, warp_affine(source, shifted, dsize), inside))
+        shifted = np.array([[1, 0, dx], [0, 1, dy], [0, 0, 1]]) @ H
+        best = min(best, blurred_difference(got, warp(source, shifted, dsize), inside))
         if best <= good_enough:
             break
     return best

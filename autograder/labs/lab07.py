@@ -12,78 +12,20 @@ import numpy as np
 from hypothesis import strategies as st
 
 from fixtures import lab07 as truth
-from fixtures.images import affine_coverage, photo
+from fixtures.images import photo
 
-from ..checks import Trial, partial, passed
-from ..compare import affine_image_error, closest, fill_fraction, max_abs_error
+from ..checks import Trial
+from ..compare import closest, max_abs_error
+from ..judges import judge_matrix, judge_warp
 from ..registry import Lab
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
-
-IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
-FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
-
-
-# ================================================================== shared judges
-def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)):
-    """Compare a returned matrix with the truth; name the mistake when one fits."""
-    got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
-    tolerance = 1e-6 * max(1.0, float(np.abs(expected).max()))
-    if max_abs_error(got, expected) <= tolerance:
-        return got
-    mistake = closest(got, mistakes or {}, max_abs_error, tolerance)
-    if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
-    t.fail(f"{what} returned\n{_fmt(got)}\nexpected\n{_fmt(expected)}")
 
 
 def judge_matrix_call(t: Trial, function: str, args: tuple, true_matrix, mistakes):
     """Call ``function(*args)`` and judge it against ``true_matrix(*args)`` and ``mistakes(*args)``."""
     what = f"{function}({', '.join(repr(a) for a in args)})"
     judge_matrix(t, what, t.call(function, *args), true_matrix(*args), mistakes(*args))
-
-
-def judge_warp(t: Trial, what: str, got, source, A, mistakes=None, dsize=None, show=True):
-    """Judge an image warped by the affine ``A`` against the oracle, with diagnosis.
-
-    Full credit when the covered area matches (any sensible interpolation) and
-    the uncovered area is black; half when only the fill is wrong.
-    """
-    width, height = dsize or (source.shape[1], source.shape[0])
-    expected_shape = (height, width) + source.shape[2:]
-    from fixtures.images import warp_affine
-
-    expected = warp_affine(source, A, dsize)
-    inside, outside = affine_coverage(A, source.shape, dsize)
-    if isinstance(got, np.ndarray) and show:
-        t.compare_images(what, source, expected, got, valid=inside | outside)
-    if isinstance(got, np.ndarray) and got.shape != expected_shape:
-        if got.shape[:2] == expected_shape[1::-1]:
-            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
-                   "width and height are swapped (shapes are (rows, columns), dsize is (width, height))")
-        if got.shape[:2] == expected_shape[:2]:
-            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
-                   "keep the input's channels (grey in, grey out)")
-        t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
-               "warps keep the input's size (content that leaves the frame is cut off)")
-    got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)
-    error = affine_image_error(got, source, A, dsize, good_enough=IMAGE_TOLERANCE / 2)
-    if error <= IMAGE_TOLERANCE:
-        nonblack = fill_fraction(got, outside)
-        if nonblack > FILL_TOLERANCE:
-            return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
-                                "pixels with no source pixel are not black.",
-                           hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)")
-        return passed(f"mean difference {error:.1f} grey levels on the covered area")
-    for mistake, wrong_A in (mistakes or {}).items():
-        if affine_image_error(got, source, wrong_A, dsize, good_enough=IMAGE_TOLERANCE) <= IMAGE_TOLERANCE:
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
-    t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
-           "(see the pictures).")
-
-
-def _fmt(matrix) -> str:
-    return np.array2string(np.asarray(matrix, float), precision=4, suppress_small=True)
 
 
 finite_floats = lambda lo, hi: st.floats(lo, hi, allow_nan=False, allow_infinity=False)  # noqa: E731

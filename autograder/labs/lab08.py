@@ -23,10 +23,11 @@ import numpy as np
 from hypothesis import strategies as st
 
 from fixtures import lab08 as truth
-from fixtures.images import photo
+from fixtures.images import coverage, photo, warp
 
 from ..checks import Trial, partial, passed
-from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, fill_fraction, projective_distance
+from ..compare import blurred_difference, closest, projective_distance
+from ..judges import IMAGE_TOLERANCE, format_matrix, judge_warp
 from ..pictures import difference_heatmap, matches_picture, svg_points
 from ..registry import Lab
 
@@ -34,8 +35,6 @@ lab = Lab("lab08", module="lab08_homographies", title="Image homographies")
 lab.forbid("homography_dlt", "cv2.findHomography", "cv2.getPerspectiveTransform")
 lab.forbid("homography_ransac", "cv2.findHomography")
 
-IMAGE_TOLERANCE = 6.0      # mean blurred grey-level error accepted for a warp
-FILL_TOLERANCE = 0.02      # fraction of should-be-black pixels allowed to be non-zero
 PANORAMA_TOLERANCE = 9.0   # mean blurred error accepted on a panorama region
 MATCH_TOLERANCE = 3.0      # px: a match agrees with the true H
 RANSAC_H_TOLERANCE = 1.5   # px RMS transfer error over the image
@@ -49,60 +48,9 @@ def call_once(t: Trial, key: str, function: str, *args, **kwargs):
     return t.shared(key, lambda: t.call(function, *args, **kwargs))
 
 
-def _fmt(matrix) -> str:
-    return np.array2string(np.asarray(matrix, float), precision=4, suppress_small=True)
-
-
-def homography_image_error(got, source, H, dsize=None) -> float:
-    """Mean blurred grey-level difference to ``source`` warped by H (best half-pixel offset)."""
-    inside, _ = truth.coverage(H, source.shape, dsize)
-    if inside.sum() < 0.05 * inside.size:
-        return float("inf")  # (a wrong H may send the image almost entirely out of view)
-    errors = []
-    for dx, dy in HALF_PIXEL_OFFSETS:
-        shifted = truth.translation(dx, dy) @ np.asarray(H, dtype=np.float64)
-        errors.append(blurred_difference(got, truth.warp(source, shifted, dsize), inside))
-    return min(errors)
-
-
-def judge_warp(t: Trial, what: str, got, source, H, dsize=None, show=True):
-    """Judge an image warped by H against the oracle, with diagnosis.
-
-    Full credit when the covered area matches (any sensible interpolation) and
-    the uncovered area is black; half when only the fill is wrong.
-    """
-    width, height = dsize or (source.shape[1], source.shape[0])
-    expected_shape = (height, width) + source.shape[2:]
-    expected = truth.warp(source, H, dsize)
-    inside, outside = truth.coverage(H, source.shape, dsize)
-    if isinstance(got, np.ndarray) and show:
-        t.compare_images(what, source, expected, got, valid=inside | outside,
-                         caption="the difference map is grey where the border is not judged")
-    if isinstance(got, np.ndarray) and got.shape != expected_shape:
-        if got.shape[:2] == expected_shape[1::-1]:
-            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: width and "
-                   "height are swapped (shapes are (rows, columns), dsize is (width, height))")
-        if got.shape[:2] == expected_shape[:2]:
-            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
-                   "keep the input's channels (grey in, grey out)")
-        t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}")
-    got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)
-    error = homography_image_error(got, source, H, dsize)
-    if error <= IMAGE_TOLERANCE:
-        nonblack = fill_fraction(got, outside)
-        if nonblack > FILL_TOLERANCE:
-            return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
-                                "pixels with no source pixel are not black.",
-                           hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)")
-        return passed(f"mean difference {error:.1f} grey levels on the covered area")
-    for mistake, wrong_H in truth.warp_mistakes(H).items():
-        try:
-            if homography_image_error(got, source, wrong_H, dsize) <= IMAGE_TOLERANCE:
-                t.fail(f"{what} is wrong: it looks like {mistake}.")
-        except np.linalg.LinAlgError:
-            continue
-    t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
-           "(see the pictures).")
+def judge_homography_warp(t: Trial, what: str, got, source, H, dsize=None, show=True):
+    """:func:`~autograder.judges.judge_warp` with the usual homography mistakes."""
+    return judge_warp(t, what, got, source, H, truth.warp_mistakes(H), dsize, show)
 
 
 def relative_point_error(got, expected) -> float:
@@ -131,7 +79,7 @@ def judge_points(t: Trial, what: str, got, H, pts):
     mistake = closest(got, truth.point_mistakes(H, pts), relative_point_error, 1e-3)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.")
-    t.fail(f"{what} returned\n{_fmt(got[:4])}\nexpected\n{_fmt(expected[:4])}"
+    t.fail(f"{what} returned\n{format_matrix(got[:4])}\nexpected\n{format_matrix(expected[:4])}"
            + ("\n(first 4 rows shown)" if n > 4 else ""))
 
 
@@ -166,7 +114,7 @@ def transform_points_property(t):
 def apply_homography_default(t):
     source = photo("astronaut", (240, 180))
     H = truth.corner_homography(np.random.default_rng(5), (240, 180), 0.15)
-    return judge_warp(t, "apply_homography(image, H)", t.call("apply_homography", source, H),
+    return judge_homography_warp(t, "apply_homography(image, H)", t.call("apply_homography", source, H),
                       source, H)
 
 
@@ -174,7 +122,7 @@ def apply_homography_default(t):
 def apply_homography_dsize(t):
     source = photo("camera", (160, 120), grey=True)
     H = truth.translation(20, 10) @ truth.corner_homography(np.random.default_rng(6), (160, 120), 0.2)
-    return judge_warp(t, "apply_homography(grey image, H, dsize=(200, 150))",
+    return judge_homography_warp(t, "apply_homography(grey image, H, dsize=(200, 150))",
                       t.call("apply_homography", source, H, dsize=(200, 150)), source, H,
                       dsize=(200, 150))
 
@@ -223,8 +171,8 @@ def judge_exact_fit(t: Trial, src, dst, H_true, region):
         return
     diagnose_h(t, what, got, H_true, src, dst)
     t.fail(f"{what} is off by {error:.3g} px (RMS over the image); from exact points the DLT "
-           f"recovers H exactly. Got\n{_fmt(truth.normalised(got))}\nexpected (up to scale)\n"
-           f"{_fmt(H_true)}")
+           f"recovers H exactly. Got\n{format_matrix(truth.normalised(got))}\nexpected (up to scale)\n"
+           f"{format_matrix(H_true)}")
 
 
 @ex2.check("homography_dlt from exactly 4 points", points=2)
@@ -298,7 +246,7 @@ def warp_to_reference_check(t):
     if isinstance(got, np.ndarray) and got.shape[:2] == moving.shape[:2]:
         t.fail(f"{what} returned shape {got.shape}, the moving image's size; expected "
                f"{reference.shape}: the output has the reference's size (dsize=(W_ref, H_ref))")
-    verdict = judge_warp(t, what, got, moving, H, dsize=(w, h))
+    verdict = judge_homography_warp(t, what, got, moving, H, dsize=(w, h))
     if isinstance(got, np.ndarray) and got.shape == reference.shape:
         overlay = reference.copy()
         covered = np.any(got > 0, axis=2)
@@ -385,7 +333,7 @@ def drawing_case():
     img1 = photo("chelsea", (240, 180))
     H = truth.normalised(np.diag([200 / 240, 150 / 180, 1.0])
                          @ truth.corner_homography(np.random.default_rng(8), (240, 180), 0.08))
-    img2 = truth.warp(cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY), H, (200, 150))
+    img2 = warp(cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY), H, (200, 150))
     xs, ys = np.meshgrid(np.linspace(30, 210, 4), np.linspace(30, 150, 3))
     pts1 = np.stack([xs.ravel(), ys.ravel()], axis=1) + np.random.default_rng(9).uniform(-8, 8, (12, 2))
     return img1, img2, pts1, truth.apply_h(H, pts1)
@@ -708,10 +656,10 @@ class PanoramaJudge:
         self.offset = ox, oy = offset
         self.M = truth.translation(ox, oy) @ scene.G[reference]        # canvas -> panorama
         size = (panorama.shape[1], panorama.shape[0])
-        self.expected = truth.warp(scene.canvas, self.M, size)
+        self.expected = warp(scene.canvas, self.M, size)
         self.inside, self.outside = [], []
         for k, G in enumerate(scene.G):
-            inside, outside = truth.coverage(self.M @ np.linalg.inv(G), scene.views[k].shape, size, 3.0)
+            inside, outside = coverage(self.M @ np.linalg.inv(G), scene.views[k].shape, size, 3.0)
             self.inside.append(inside)
             self.outside.append(outside)
         union = np.any(self.inside, axis=0)
@@ -841,8 +789,8 @@ def stitch_second(t):
         # img2 warped with the inverse homography?
         size = (judge.panorama.shape[1], judge.panorama.shape[0])
         inverse = truth.translation(*judge.offset) @ np.linalg.inv(scene.h(1, 0))
-        wrong = truth.warp(scene.views[1], inverse, size)
-        wrong_inside, _ = truth.coverage(inverse, scene.views[1].shape, size, 3.0)
+        wrong = warp(scene.views[1], inverse, size)
+        wrong_inside, _ = coverage(inverse, scene.views[1].shape, size, 3.0)
         check = wrong_inside & judge.outside[0]
         if check.sum() >= 100 and blurred_difference(judge.panorama, wrong, check) <= PANORAMA_TOLERANCE:
             judge.show(t, STITCH_WHAT)

@@ -15,8 +15,10 @@ from fixtures import lab09 as truth
 from fixtures.lab09 import photo
 
 from ..checks import Trial, partial, passed
-from ..compare import closest, max_abs_error, projective_distance
+from ..compare import closest
 from ..pictures import svg_points
+from .. import judges
+from ..judges import format_matrix
 from ..registry import Lab
 
 lab = Lab("lab09", module="lab09_camera", title="Geometric camera models")
@@ -25,10 +27,6 @@ seeds = st.integers(0, 2**32 - 1)
 
 
 # ================================================================== shared judges
-def _fmt(matrix) -> str:
-    return np.array2string(np.asarray(matrix, float), precision=4, suppress_small=True)
-
-
 def point_error(got, expected) -> float:
     """Largest distance between corresponding points; NaN must meet NaN."""
     got = np.asarray(got, dtype=np.float64)
@@ -76,7 +74,7 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
     if not np.isnan(expected).any() and np.isnan(got).any():
         t.fail(f"{what} returned NaN for points in front of the camera (Z > 0).")
     t.fail(f"{what} is off by up to {error:.4g} (pixels); for example point 0 should be "
-           f"{_fmt(expected.reshape(-1, 2)[0])}, yours is {_fmt(np.asarray(got, float).reshape(-1, 2)[0])}.")
+           f"{format_matrix(expected.reshape(-1, 2)[0])}, yours is {format_matrix(np.asarray(got, float).reshape(-1, 2)[0])}.")
 
 
 def judge_single_point(t: Trial, what: str, got, expected):
@@ -86,7 +84,7 @@ def judge_single_point(t: Trial, what: str, got, expected):
                "a (3,) point gives a (2,) result (np.atleast_2d in, [0] out)")
     got = t.expect_array(got, what, shape=(2,), kind="iuf")
     if point_error(got[None], np.asarray(expected)[None]) > 1e-6 * max(1.0, np.abs(expected).max()):
-        t.fail(f"{what} returned {_fmt(got)}; expected {_fmt(expected)}")
+        t.fail(f"{what} returned {format_matrix(got)}; expected {format_matrix(expected)}")
 
 
 def judge_behind(t: Trial, what: str, got, expected, behind):
@@ -105,19 +103,8 @@ def judge_behind(t: Trial, what: str, got, expected, behind):
 
 
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3), up_to_scale=False):
-    got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
-    if up_to_scale:
-        distance = projective_distance
-        tolerance = 1e-7
-    else:
-        distance = max_abs_error
-        tolerance = 1e-7 * max(1.0, float(np.abs(expected).max()))
-    if distance(got, expected) <= tolerance:
-        return got
-    mistake = closest(got, mistakes or {}, distance, 1e3 * tolerance)
-    if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
-    t.fail(f"{what} returned\n{_fmt(got)}\nexpected\n{_fmt(expected)}")
+    """The shared matrix judge, with this lab's tighter tolerance."""
+    return judges.judge_matrix(t, what, got, expected, mistakes, shape, up_to_scale, rtol=1e-7)
 
 
 # ================================================================== ex1 pinhole
@@ -382,13 +369,13 @@ def aperture_growth(t):
         spreads.append(_spread(got, ideal)[1].mean())
     spreads = np.array(spreads)
     if not np.all(np.diff(spreads) > 0):
-        t.fail(f"the spread of the rays for apertures 0.05, 0.2, 0.8 is {_fmt(spreads)} px: "
+        t.fail(f"the spread of the rays for apertures 0.05, 0.2, 0.8 is {format_matrix(spreads)} px: "
                "it should grow with the aperture.")
     ratios = spreads[1:] / spreads[:-1]
     if np.any(np.abs(ratios / 4.0 - 1) > 0.15):
-        t.fail(f"the spread for apertures 0.05, 0.2, 0.8 is {_fmt(spreads)} px: each aperture is 4x "
+        t.fail(f"the spread for apertures 0.05, 0.2, 0.8 is {format_matrix(spreads)} px: each aperture is 4x "
                "the previous, so the spread should be about 4x too (it is proportional to the aperture).")
-    return passed(f"spread {_fmt(spreads)} px for apertures 0.05, 0.2, 0.8")
+    return passed(f"spread {format_matrix(spreads)} px for apertures 0.05, 0.2, 0.8")
 
 
 @ex4.check("simulate_aperture is reproducible with a seed", points=1)
@@ -514,7 +501,7 @@ def judge_calibration(t: Trial, images, K_true, pattern):
         t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
                "(rows, cols)? OpenCV wants (width, height).")
     if f_error.max() > 0.015 or c_error.max() > 3.0:
-        t.fail(f"{what}: K is\n{_fmt(K)}\nbut the views were rendered with\n{_fmt(K_true)}\n"
+        t.fail(f"{what}: K is\n{format_matrix(K)}\nbut the views were rendered with\n{format_matrix(K_true)}\n"
                f"(focal lengths off by {f_error.max():.1%}, principal point by {c_error.max():.1f} px).")
     if rms > 0.5:
         return partial(0.5, f"{what}: K is right, but the reported reprojection error is {rms:.2f} px; "
@@ -545,7 +532,7 @@ DIST_EXAMPLE = np.array([-0.28, 0.09, 0.0015, -0.002, -0.015])
 
 
 def judge_distortion(t: Trial, pts, dist, show=False):
-    what = f"distort_points(points, dist={_fmt(dist)})"
+    what = f"distort_points(points, dist={format_matrix(dist)})"
     expected = truth.distort_truth(pts, dist)
     got = t.call("distort_points", pts, dist)
     if show and isinstance(got, np.ndarray) and got.shape == expected.shape:

@@ -19,9 +19,10 @@ from fixtures import scene
 
 from ..checks import Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
+from ..judges import format_matrix
 from ..pictures import svg_points
 from ..registry import Lab
-from .lab09 import _fmt, expect_points, judge_behind, judge_points, judge_single_point, point_error
+from .lab09 import expect_points, judge_behind, judge_points, judge_single_point, point_error
 
 lab = Lab("lab10", module="lab10_camera2", title="Geometric camera models (continued)")
 
@@ -257,7 +258,7 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     if projective_distance(recomposed, P) > 1e-6:
         t.fail(f"{what}: K [R | t] does not give back P (distance {projective_distance(recomposed, P):.2g} "
                "after normalising scale).")
-    t.fail(f"{what}: K, R, t differ from the camera's: K\n{_fmt(K)}\nexpected\n{_fmt(Kn)}")
+    t.fail(f"{what}: K, R, t differ from the camera's: K\n{format_matrix(K)}\nexpected\n{format_matrix(Kn)}")
 
 
 @ex5.check("decompose_camera_matrix of P = K [R | t]", points=3)
@@ -292,7 +293,7 @@ def judge_center(t: Trial, P, R, tv):
     if np.abs(got + tv).max() <= 1e-6 * scale:
         t.fail(f"{what} returned -t; the centre is C = -R^T t (the rotation matters).")
     residual = np.linalg.norm(P @ np.append(got, 1.0)) / np.linalg.norm(P)
-    t.fail(f"{what} returned {_fmt(got)}; expected {_fmt(C)} (|P [C, 1]| / |P| = {residual:.2g}, should be 0)")
+    t.fail(f"{what} returned {format_matrix(got)}; expected {format_matrix(C)} (|P [C, 1]| / |P| = {residual:.2g}, should be 0)")
 
 
 @ex5.check("camera_center(P) satisfies P [C, 1] = 0", points=2)
@@ -489,7 +490,7 @@ def dolly_scene():
 
 
 def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
-    what = f"dolly_zoom(points, f0={f0:g}, z0={z0:g}, distances={_fmt(distances)})"
+    what = f"dolly_zoom(points, f0={f0:g}, z0={z0:g}, distances={format_matrix(distances)})"
     got = t.call("dolly_zoom", X, f0, z0, distances)
     if not (isinstance(got, (tuple, list)) and len(got) == 2):
         t.fail(f"{what} should return a pair (focal_lengths, projections)")
@@ -511,7 +512,7 @@ def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
                 point_error(proj.reshape(-1, 2), pm.reshape(-1, 2)) <= 1e-6 * np.nanmax(np.abs(pm)):
             t.fail(f"{what} is wrong: it looks like {mistake}.")
     if not ok_f:
-        t.fail(f"{what}: the focal lengths are {_fmt(fs)}; expected f0 * d / z0 = {_fmt(fs_true)}")
+        t.fail(f"{what}: the focal lengths are {format_matrix(fs)}; expected f0 * d / z0 = {format_matrix(fs_true)}")
     if n_subject:
         drift = np.abs(proj[:, :n_subject] - proj[:1, :n_subject]).max()
         if drift > 1e-6:
@@ -559,7 +560,7 @@ def track_check(t):
         row = got[i]
         if pose is None:
             if np.isfinite(row).any():
-                t.fail(f"{what}: frame {i} shows no board, so its row should be NaN; yours is {_fmt(row)}.")
+                t.fail(f"{what}: frame {i} shows no board, so its row should be NaN; yours is {format_matrix(row)}.")
             continue
         R, tv = pose
         if not np.isfinite(row).all():

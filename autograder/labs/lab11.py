@@ -18,6 +18,7 @@ from fixtures import lab11 as truth
 
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import closest, projective_distance
+from ..judges import format_matrix
 from ..pictures import side_by_side, svg_points
 from ..registry import Lab
 
@@ -25,10 +26,6 @@ lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
 
 EXACT = 1e-6          # relative error accepted on exact data
 seeds = st.integers(0, 2**32 - 1)
-
-
-def _fmt(matrix) -> str:
-    return np.array2string(np.asarray(matrix, float), precision=4, suppress_small=True)
 
 
 def _unit(M) -> np.ndarray:
@@ -50,8 +47,8 @@ def judge_projective(t: Trial, what: str, got, expected, mistakes=None, toleranc
     mistake = closest(got, mistakes or {}, projective_distance, max(tolerance, 1e-4))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.")
-    t.fail(f"{what} returned (scaled to unit norm)\n{_fmt(_unit(got))}\nexpected (up to scale and sign)\n"
-           f"{_fmt(_unit(expected))}")
+    t.fail(f"{what} returned (scaled to unit norm)\n{format_matrix(_unit(got))}\nexpected (up to scale and sign)\n"
+           f"{format_matrix(_unit(expected))}")
 
 
 def epipolar_picture(F_true, F_got, images, pts1, pts2, count=8) -> np.ndarray:
@@ -123,8 +120,8 @@ def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, g
             return passed(f"all {n} points within {error.max():.1e} of their distance to camera 1")
         _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise=0.0)
         worst = int(np.argmax(error))
-        t.fail(f"{what} is wrong: point {worst} should be {_fmt(views.X[worst])}, "
-               f"got {_fmt(got[worst])}")
+        t.fail(f"{what} is wrong: point {worst} should be {format_matrix(views.X[worst])}, "
+               f"got {format_matrix(got[worst])}")
     mine, best = _reprojection(P1, P2, got, pts1, pts2).mean(), gold["reprojection"]
     error = np.median(np.linalg.norm(got - views.X, axis=1) / depth)
     best_error = gold["median_error"]
@@ -244,7 +241,7 @@ def judge_lines(t: Trial, what: str, got, F, pts1):
         if np.all(parallel):
             t.fail(f"{what}: the lines are right but not scaled so that a^2 + b^2 = 1 "
                    "(divide each line by sqrt(a^2 + b^2)).")
-    t.fail(f"{what} returned\n{_fmt(got[:3])}\n... expected (each up to sign)\n{_fmt(expected[:3])}")
+    t.fail(f"{what} returned\n{format_matrix(got[:3])}\n... expected (each up to sign)\n{format_matrix(expected[:3])}")
 
 
 @ex2.check("epipolar_lines on a worked example", points=2)
@@ -610,7 +607,7 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False):
                "the last row of V^T), F^T e2 = 0 (the last column of U).")
     for d, g, e, name in ((d1, g1, e1, "e1"), (d2, g2, e2, "e2")):
         if d > EXACT:
-            t.fail(f"{what}: {name} = {_fmt(g)}, expected a multiple of {_fmt(e)}")
+            t.fail(f"{what}: {name} = {format_matrix(g)}, expected a multiple of {format_matrix(e)}")
 
 
 @ex5.check("epipoles of a general camera pair", points=2)

@@ -20,6 +20,7 @@ from fixtures import lab12 as truth
 
 from ..checks import StudentFailure, Trial, partial, passed
 from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error
+from ..judges import format_matrix
 from ..pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..registry import Lab
 
@@ -31,10 +32,6 @@ STEREO_TIMEOUT = 30.0
 
 
 # ================================================================== shared judges
-def _fmt(values) -> str:
-    return np.array2string(np.asarray(values, float), precision=4, suppress_small=True)
-
-
 def figures(scene_key: str, method: str) -> dict:
     return truth.reference_figures()[scene_key][method]
 
@@ -203,7 +200,7 @@ def judge_disparities(t: Trial, what: str, got, xl, xr, n):
         return
     if max_abs_error(got, -expected) <= 1e-9 * max(1.0, np.abs(expected).max()):
         t.fail(f"{what} has the wrong sign: d = x_l - x_r (positive for a point in front of the rig).")
-    t.fail(f"{what} returned {_fmt(got[:5])}...; expected {_fmt(expected[:5])}...")
+    t.fail(f"{what} returned {format_matrix(got[:5])}...; expected {format_matrix(expected[:5])}...")
 
 
 @ex2.check("disparity_from_matches on x coordinates", points=1)

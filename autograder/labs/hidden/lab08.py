@@ -14,7 +14,7 @@ from ...checks import partial, passed
 from ...compare import blurred_difference
 from ..lab08 import (RANSAC_H_TOLERANCE, blended, diagnose_ransac, ex1, ex2, ex3, ex4, ex5, ext1, ext2,
                      ext3, fitted_h, diagnose_h, judge_coverage, judge_many_content, judge_matches,
-                     judge_region, judge_warp, many_judge, many_names, matched_points, ransac_result,
+                     judge_homography_warp, judge_region, many_judge, many_names, matched_points, ransac_result,
                      ransac_success, stitch_judge)
 
 
@@ -22,7 +22,7 @@ from ..lab08 import (RANSAC_H_TOLERANCE, blended, diagnose_ransac, ex1, ex2, ex3
 def hidden_apply(t):
     source = photo("rocket", (200, 150))
     H = truth.translation(30, 25) @ truth.corner_homography(np.random.default_rng(1234), (200, 150), 0.22)
-    return judge_warp(t, "apply_homography(image, H, dsize=(260, 200))",
+    return judge_homography_warp(t, "apply_homography(image, H, dsize=(260, 200))",
                       t.call("apply_homography", source, H, dsize=(260, 200)), source, H,
                       dsize=(260, 200), show=False)
 

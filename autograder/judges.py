@@ -1,0 +1,97 @@
+"""Judgements several lab suites share: a returned matrix, a warped image.
+
+Each judge checks the form of the answer (with messages that name expected and
+got), compares it with the truth, and when it is wrong compares it with what the
+usual mistakes would give, so the feedback can name the mistake.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fixtures.images import coverage, warp
+
+from .checks import Trial, Verdict, partial, passed
+from .compare import closest, fill_fraction, max_abs_error, projective_distance, warp_error
+
+IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
+FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
+
+
+def format_matrix(matrix) -> str:
+    return np.array2string(np.asarray(matrix, float), precision=4, suppress_small=True)
+
+
+def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3),
+                 up_to_scale: bool = False, rtol: float = 1e-6) -> np.ndarray:
+    """Compare a returned matrix with the truth; name the mistake when one fits.
+
+    Parameters
+    ----------
+    what : str
+        The call, as the student reads it: ``"rotation_matrix(30)"``.
+    got : object
+        What the student returned.
+    expected : array
+        The true matrix.
+    mistakes : dict of str -> array, optional
+        What each usual mistake would return.
+    up_to_scale : bool
+        Compare projective matrices up to scale and sign.
+    rtol : float
+        Tolerance, relative to the largest entry (or to unit norm, up to scale).
+    """
+    got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
+    if up_to_scale:
+        distance, tolerance = projective_distance, rtol
+    else:
+        distance, tolerance = max_abs_error, rtol * max(1.0, float(np.abs(expected).max()))
+    if distance(got, expected) <= tolerance:
+        return got
+    mistake = closest(got, mistakes or {}, distance, 1e3 * tolerance)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.")
+    t.fail(f"{what} returned\n{format_matrix(got)}\nexpected\n{format_matrix(expected)}")
+
+
+def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, show=True) -> Verdict:
+    """Judge an image warped by ``M`` (affine or homography) against the oracle.
+
+    Full credit when the covered area matches (any sensible interpolation or
+    pixel-centre convention) and the uncovered area is black; half when only the
+    fill is wrong; otherwise the mistake is named when one of ``mistakes``
+    (name -> the map that mistake applies) explains the image.
+    """
+    width, height = dsize or (source.shape[1], source.shape[0])
+    expected_shape = (height, width) + source.shape[2:]
+    expected = warp(source, M, dsize)
+    inside, outside = coverage(M, source.shape, dsize)
+    if isinstance(got, np.ndarray) and show:
+        t.compare_images(what, source, expected, got, valid=inside | outside,
+                         caption="the difference map is grey where the border is not judged")
+    if isinstance(got, np.ndarray) and got.shape != expected_shape:
+        if got.shape[:2] == expected_shape[1::-1]:
+            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
+                   "width and height are swapped (shapes are (rows, columns), dsize is (width, height))")
+        if got.shape[:2] == expected_shape[:2]:
+            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
+                   "keep the input's channels (grey in, grey out)")
+        size_rule = "" if dsize else ": warps keep the input's size (content that leaves the frame is cut off)"
+        t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}{size_rule}")
+    got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)
+    error = warp_error(got, source, M, dsize, good_enough=IMAGE_TOLERANCE / 2)
+    if error <= IMAGE_TOLERANCE:
+        nonblack = fill_fraction(got, outside)
+        if nonblack > FILL_TOLERANCE:
+            return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
+                                "pixels with no source pixel are not black.",
+                           hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)")
+        return passed(f"mean difference {error:.1f} grey levels on the covered area")
+    for mistake, wrong_M in (mistakes or {}).items():
+        try:
+            if warp_error(got, source, wrong_M, dsize, good_enough=IMAGE_TOLERANCE) <= IMAGE_TOLERANCE:
+                t.fail(f"{what} is wrong: it looks like {mistake}.")
+        except np.linalg.LinAlgError:
+            continue
+    t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
+           "(see the pictures).")
