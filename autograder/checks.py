@@ -75,7 +75,7 @@ class Trial:
     def __init__(self, sandbox: Sandbox, check: Check, timed_out: dict[str, int]):
         self.sandbox, self.check = sandbox, check
         self.lab = check.exercise.lab
-        self._pictures: list = []  # made into Artifacts only for checks that lose points
+        self._pictures: list = []  # made into Artifacts only if the grading keeps them
         self.outputs: list[str] = []
         self.student_seconds = 0.0
         self._fatal: dict[str, StudentFailure] = {}
@@ -211,8 +211,8 @@ class Trial:
     def images(self, title: str, caption: str = "", **labelled: np.ndarray):
         """Attach images side by side, e.g. ``t.images("rotate", input=a, yours=b)``.
 
-        Pictures are kept (and encoded) only if the check does not pass: a
-        student looks at pictures to see what went wrong.
+        Pictures are encoded only if the grading keeps them (see
+        :func:`~autograder.runner.grade`'s ``pictures``).
         """
         def artifact():
             items = [{"label": label.replace("_", " "), "png": pictures.png_base64(image)}
@@ -229,7 +229,7 @@ class Trial:
         self.images(title, caption, input=source, expected=expected, yours=got, difference=heat)
 
     def svg(self, title: str, svg: str, caption: str = ""):
-        """Attach an inline SVG plot (kept only if the check does not pass)."""
+        """Attach an inline SVG plot."""
         self._pictures.append(lambda: Artifact("svg", title, [{"label": "", "svg": svg}], caption))
 
     def artifacts(self) -> list[Artifact]:

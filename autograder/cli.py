@@ -68,7 +68,9 @@ def run_grade(args) -> int:
     limits = Limits(call_timeout=args.timeout) if args.timeout else None
     try:
         with _progress(console) as advance:
-            result = grade(args.submission, args.select, limits=limits,
+            # Pictures cost time to encode: make them only for a page or a JSON file.
+            pictures = "all" if (args.json or not args.no_html) else "none"
+            result = grade(args.submission, args.select, limits=limits, pictures=pictures,
                            include_hidden=not args.public_only, on_check=advance)
     except (SelectionError, SubmissionError) as exc:
         console.print(f"[red]error:[/red] {exc}")

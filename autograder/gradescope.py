@@ -73,7 +73,8 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
     config = config or CourseConfig()
     started = time.monotonic()
     try:
-        result = grade(submission, config.select, limits=Limits(call_timeout=config.call_timeout))
+        result = grade(submission, config.select, limits=Limits(call_timeout=config.call_timeout),
+                       pictures="none")  # results.json carries text only
         data = results_json(result, config)
     except Exception as exc:  # noqa: BLE001 - results.json must be written whatever happens
         log.exception("grading failed")

@@ -21,8 +21,11 @@ from .sandbox import Limits, Sandbox
 from .submission import load_submission
 
 
+PICTURES = ("all", "failed", "none")
+
+
 def grade(submission_path, selectors=(), *, limits: Limits | None = None,
-          include_hidden: bool = True,
+          include_hidden: bool = True, pictures: str = "all",
           on_check: Callable[[Exercise, CheckResult], None] | None = None) -> GradingResult:
     """Grade the submission at ``submission_path``.
 
@@ -36,6 +39,9 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         Sandbox limits.
     include_hidden : bool
         Run hidden checks (the instructor's copy and the container do).
+    pictures : {"all", "failed", "none"}
+        Which checks keep their pictures (encoding them costs time; keep them
+        only where someone will look).
     on_check : callable, optional
         Called after every check, e.g. to advance a progress bar.
 
@@ -44,6 +50,8 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
     SelectionError, SubmissionError
         For a selector that names nothing, or a path that is not a submission.
     """
+    if pictures not in PICTURES:
+        raise ValueError(f"pictures must be one of {PICTURES}, got {pictures!r}")
     started = time.perf_counter()
     exercises = select(selectors, include_hidden)
     modules = sorted({ex.lab.module for ex in exercises})
@@ -55,13 +63,13 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
             for exercise in exercises:
                 checks = [c for c in exercise.checks if include_hidden or not c.hidden]
                 result.exercises.append(
-                    _grade_exercise(sandbox, exercise, checks, timed_out, on_check))
+                    _grade_exercise(sandbox, exercise, checks, timed_out, pictures, on_check))
             result.student_seconds = round(sandbox.student_seconds, 6)
     result.seconds = round(time.perf_counter() - started, 6)
     return result
 
 
-def _grade_exercise(sandbox, exercise, checks, timed_out, on_check) -> ExerciseResult:
+def _grade_exercise(sandbox, exercise, checks, timed_out, pictures, on_check) -> ExerciseResult:
     functions = list(exercise.signatures.values())
     out = ExerciseResult(exercise.id, exercise.title, functions)
     imported = sandbox.import_module(exercise.lab.module)
@@ -77,7 +85,7 @@ def _grade_exercise(sandbox, exercise, checks, timed_out, on_check) -> ExerciseR
                 on_check(exercise, out.checks[-1])
         return out
     for check in checks:
-        out.checks.append(run_check(sandbox, check, timed_out))
+        out.checks.append(run_check(sandbox, check, timed_out, pictures))
         if on_check:
             on_check(exercise, out.checks[-1])
     if out.checks and all(c.status == NOT_IMPLEMENTED for c in out.checks):
@@ -85,7 +93,7 @@ def _grade_exercise(sandbox, exercise, checks, timed_out, on_check) -> ExerciseR
     return out
 
 
-def run_check(sandbox: Sandbox, check: Check, timed_out: dict[str, int]) -> CheckResult:
+def run_check(sandbox: Sandbox, check: Check, timed_out: dict[str, int], pictures: str = "all") -> CheckResult:
     """Run one check and turn however it ends into a scored :class:`CheckResult`."""
     trial = Trial(sandbox, check, timed_out)
     started = time.perf_counter()
@@ -112,7 +120,7 @@ def run_check(sandbox: Sandbox, check: Check, timed_out: dict[str, int]) -> Chec
         name=check.name, score=round(verdict.fraction * check.points, 6), max_score=check.points,
         status=status, message=verdict.message, hint=verdict.hint, hidden=check.hidden,
         output="\n".join(trial.outputs)[:6000], traceback=tb,
-        artifacts=trial.artifacts() if status != PASSED else [],
+        artifacts=trial.artifacts() if pictures == "all" or (pictures == "failed" and status != PASSED) else [],
         seconds=round(time.perf_counter() - started, 6),
         student_seconds=round(trial.student_seconds, 6))
 

@@ -230,6 +230,20 @@ def test_object_whose_unpickling_runs_code(tmp_path):
     assert not flag.exists()
 
 
+@pytest.mark.parametrize("garbage", [
+    "struct.pack('>Q', 16) + bytes(range(16))",          # a frame of noise
+    "struct.pack('>Q', 2**62)",                           # an absurd length
+    "b'AGT1' + struct.pack('>Q', 10**9) + b'{}'",        # a lying header (no length prefix)
+])
+def test_garbage_written_on_the_result_pipe(tmp_path, garbage):
+    attack(tmp_path, f"""
+        def shear_matrix(s):
+            import os, struct, sys
+            os.write(int(sys.argv[2]), {garbage})       # the worker's response pipe
+            return None
+        """, "lab07.ex4")
+
+
 def test_monkeypatching_builtins_numpy_and_numpy_testing_at_import(tmp_path):
     attack(tmp_path, """
         import builtins
