@@ -43,16 +43,26 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
         console.print(f"Details and pictures: [bold]{html_path}[/bold]")
 
 
+NOT_STARTED = "not implemented yet"
+
+
 def _print_problems(result: GradingResult, console: Console) -> None:
     shown_tracebacks = set()
+    not_started: dict[str, list[str]] = {}  # lab -> exercises still stubs, said once per lab
     for exercise in result.exercises:
-        if exercise.score >= exercise.max_score:
+        if exercise.message == NOT_STARTED:
+            lab, key = exercise.id.split(".")
+            not_started.setdefault(lab, []).append(key)
+    for lab, keys in not_started.items():
+        console.print(Text(f"· {lab} {', '.join(keys)}: ", style="bold") + Text(NOT_STARTED))
+    for exercise in result.exercises:
+        if exercise.score >= exercise.max_score or exercise.message == NOT_STARTED:
             continue
-        if exercise.message:  # one message says it for every check (missing module, stub...)
-            icon = "·" if exercise.message == "not implemented yet" else "✗"
-            console.print(Text(f"{icon} {exercise.id}: ", style="bold") + Text(exercise.message.splitlines()[0]))
-            if exercise.message != "not implemented yet" and len(exercise.message.splitlines()) > 1:
-                console.print(Text("    " + "\n    ".join(exercise.message.splitlines()[1:]), style="dim"))
+        if exercise.message:  # one message says it for every check (missing module, syntax error...)
+            lines = exercise.message.splitlines()
+            console.print(Text(f"✗ {exercise.id}: ", style="bold") + Text(lines[0]))
+            if len(lines) > 1:
+                console.print(Text("    " + "\n    ".join(lines[1:]), style="dim"))
             continue
         for check in exercise.checks:
             if check.passed:
