@@ -35,6 +35,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -51,13 +52,16 @@ class Confinement:
     level: str
     uid: int | None = None
     gid: int | None = None
+    reexpose: tuple[Path, ...] = ()   # interpreter folders under a folder the worker's user cannot enter
 
-    def wrap(self, argv: list[str], hide=(), writable=()) -> list[str]:
+    def wrap(self, argv: list[str], hide=(), writable=(), hold=None) -> list[str]:
         """The command that starts ``argv`` confined.
 
         In the namespaced levels the folders ``hide`` are covered by empty
         read-only mounts, and every file system is remounted read-only except
         the folders ``writable`` (the worker's scratch) and a private ``/dev/shm``.
+        For ``namespaces+user``, ``hold`` is an empty folder of the grader's used
+        to re-expose :attr:`reexpose` (e.g. ``/root/.pyenv`` under ``/root``).
         """
         if self.level == "process-group":
             return list(argv)
@@ -65,7 +69,8 @@ class Confinement:
         if os.geteuid() != 0:
             unshare[1:1] = ["--user", "--map-root-user"]
         keep = [shlex.quote(str(p)) for p in writable]
-        steps = [f"mount --bind {p} {p}" for p in keep]
+        steps = self._reexpose_steps(hold) if self.level == "namespaces+user" else []
+        steps += [f"mount --bind {p} {p}" for p in keep]
         steps += [f"mount -t tmpfs -o ro,size=4k,mode=000 none {shlex.quote(str(p))}"
                   for p in hide if Path(p).is_dir()]
         skip = "|".join(["/proc|/proc/*|/sys|/sys/*|/dev|/dev/*", *keep])
@@ -79,6 +84,29 @@ class Confinement:
             drop[1:1] = [f"--reuid={self.uid}", f"--regid={self.gid}", "--clear-groups"]
         script = " && ".join(steps + [f'exec {" ".join(drop)} -- "$@"'])
         return unshare + ["--", "/bin/sh", "-c", script, "sh", *argv]
+
+    def _reexpose_steps(self, hold) -> list[str]:
+        """Shell steps making :attr:`reexpose` reachable for the worker's user.
+
+        Each folder is held at ``hold/i``, its closed parent (``/root``) covered
+        by an empty, traversable tmpfs, and the folder bound back in place: the
+        worker reaches the interpreter and nothing else of that parent.
+        """
+        if not self.reexpose or hold is None:
+            return []
+        steps, covered = [], set()
+        for i, folder in enumerate(self.reexpose):
+            held = shlex.quote(str(Path(hold) / str(i)))
+            steps += [f"mkdir -p {held}", f"mount --bind {shlex.quote(str(folder))} {held}"]
+        for folder in self.reexpose:
+            parent = shlex.quote(str(folder.parent))
+            if parent not in covered:
+                covered.add(parent)
+                steps.append(f"mount -t tmpfs -o mode=755,size=64k none {parent}")
+        for i, folder in enumerate(self.reexpose):
+            target = shlex.quote(str(folder))
+            steps += [f"mkdir -p {target}", f"mount --bind {shlex.quote(str(Path(hold) / str(i)))} {target}"]
+        return steps
 
     @property
     def isolates_network(self) -> bool:
@@ -127,17 +155,45 @@ def _candidate(level: str) -> Confinement | None:
         if os.geteuid() != 0:
             return None
         uid, gid = worker_user()
-        return Confinement(level, uid, gid)
+        return Confinement(level, uid, gid, reexpose=tuple(closed_interpreter_folders()))
     return Confinement(level)
 
 
 def _works(confinement: Confinement) -> bool:
-    probe = confinement.wrap([sys.executable, "-c", "import numpy"])
+    hold = tempfile.mkdtemp(prefix="autograder-probe-")
+    probe = confinement.wrap([sys.executable, "-c", "import numpy"], hold=hold)
     try:
         return subprocess.run(probe, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                               stderr=subprocess.DEVNULL, timeout=30, cwd="/").returncode == 0
     except (OSError, subprocess.TimeoutExpired):
         return False
+    finally:
+        shutil.rmtree(hold, ignore_errors=True)
+
+
+def closed_interpreter_folders() -> list[Path]:
+    """Folders holding the interpreter and its packages whose parent others cannot enter.
+
+    For Python installed under ``/root`` (pyenv: ``/root/.pyenv``), that is
+    ``/root/.pyenv``: the worker's user needs it, and nothing else of ``/root``.
+    """
+    needed = {Path(sys.executable).resolve().parent, Path(sys.prefix), Path(sys.base_prefix)}
+    needed |= {Path(p) for p in sys.path if p and Path(p).is_dir()}
+    found = []
+    for path in sorted(needed):
+        parts = path.resolve().parts
+        for depth in range(1, len(parts) - 1):
+            ancestor = Path(*parts[:depth])
+            try:
+                closed = not os.stat(ancestor).st_mode & 0o001
+            except OSError:
+                break
+            if closed:
+                child = Path(*parts[:depth + 1])
+                if child not in found:
+                    found.append(child)
+                break
+    return found
 
 
 def worker_user() -> tuple[int, int]:

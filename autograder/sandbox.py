@@ -206,7 +206,8 @@ class Sandbox:
             [sys.executable, "-B", str(self.scratch / "worker" / "worker.py"),
              str(request_r), str(response_w), str(self.submission_dir),
              str(self.output_path), self.limits.worker_json(processes)],
-            hide=self.hide, writable=[self.scratch / name for name in self.WRITABLE])
+            hide=self.hide, writable=[self.scratch / name for name in self.WRITABLE],
+            hold=self._base / "hold")
         try:
             self.proc = subprocess.Popen(
                 command, pass_fds=(request_r, response_w), stdin=subprocess.DEVNULL,

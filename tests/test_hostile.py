@@ -32,11 +32,15 @@ NAMESPACED = confine.detect().level != "process-group"
 needs_namespaces = pytest.mark.skipif(not NAMESPACED, reason="no namespaces on this platform")
 
 
-@pytest.fixture(params=["detected", "process-group"])
+WEAKER_LEVELS = [level for level in confine.LEVELS[1:]
+                 if level == "process-group" or NAMESPACED]  # "namespaces" needs them too
+
+
+@pytest.fixture(params=["detected", *WEAKER_LEVELS])
 def confinement(request, monkeypatch):
-    """Run a test under the detected confinement and under the weakest one."""
-    if request.param == "process-group":
-        monkeypatch.setenv("AUTOGRADER_CONFINEMENT", "process-group")
+    """Run a test under the detected confinement and under each weaker one."""
+    if request.param != "detected":
+        monkeypatch.setenv("AUTOGRADER_CONFINEMENT", request.param)
     return request.param
 
 
@@ -128,8 +132,8 @@ def test_double_forked_daemon_neither_survives_nor_rewrites_results(tmp_path, co
     data = json.loads(written[targets[0]])   # the grader's scores: ex4 lost, nothing else
     assert {e["id"]: e["score"] == e["max_score"] for e in data["exercises"]} == \
         {f"lab07.ex{i}": i != 4 for i in range(1, 7)}
-    if NAMESPACED and confinement == "detected":
-        assert not targets[2].exists()
+    if NAMESPACED and confinement != "process-group":
+        assert not targets[2].exists()   # nothing outside its scratch folder changed
 
 
 def test_sigterm_handler_that_ignores_termination(tmp_path, confinement):
