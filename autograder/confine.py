@@ -271,11 +271,11 @@ def _children_of(parent: int) -> list[tuple[int, int]]:
     return children
 
 
-def count_tasks(uid: int) -> int:
-    """Processes and threads of ``uid`` (what RLIMIT_NPROC counts), from /proc."""
+def count_tasks(uid: int) -> int | None:
+    """Processes and threads of ``uid`` (what RLIMIT_NPROC counts), from /proc; None without /proc."""
     count = 0
     if not os.path.isdir("/proc"):
-        return 0
+        return None
     for entry in os.listdir("/proc"):
         if not entry.isdigit():
             continue

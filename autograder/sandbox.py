@@ -52,7 +52,7 @@ class Limits:
     max_output_chars: int = 4000         # captured stdout/stderr kept per call
     startup_timeout: float = 60.0        # for the worker to import NumPy/OpenCV (not billed)
 
-    def worker_json(self, processes: int) -> str:
+    def worker_json(self, processes: int | None) -> str:
         return json.dumps({
             "address_space": self.address_space,
             "file_size": self.file_size,
@@ -201,7 +201,8 @@ class Sandbox:
         request_r, request_w = os.pipe()
         response_r, response_w = os.pipe()
         uid = self.confinement.uid if self.confinement.uid is not None else os.getuid()
-        processes = confine.count_tasks(uid) + self.limits.extra_processes
+        tasks = confine.count_tasks(uid)  # None where they cannot be counted (macOS): no limit
+        processes = None if tasks is None else tasks + self.limits.extra_processes
         command = self.confinement.wrap(
             [sys.executable, "-B", str(self.scratch / "worker" / "worker.py"),
              str(request_r), str(response_w), str(self.submission_dir),

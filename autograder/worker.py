@@ -60,25 +60,31 @@ class Tripwire:
 
 # ------------------------------------------------------------------ set-up
 def apply_limits(limits):
-    """Resource limits of the worker process, set before any student code runs."""
-    def cap(which, value):
-        if value is None:
-            return
-        soft, hard = resource.getrlimit(which)
-        value = int(value)
-        if hard != resource.RLIM_INFINITY:
-            value = min(value, hard)
-        resource.setrlimit(which, (value, value))
+    """Resource limits of the worker process, set before any student code runs.
 
-    cap(resource.RLIMIT_AS, limits.get("address_space"))
-    cap(resource.RLIMIT_FSIZE, limits.get("file_size"))
-    cap(resource.RLIMIT_CORE, 0)
+    Each limit is best effort: a platform that does not support one (macOS and
+    RLIMIT_AS) keeps the others, and the wall-clock timeout always applies.
+    """
+    def cap(name, soft, hard=None):
+        which = getattr(resource, name, None)
+        if which is None or soft is None:
+            return
+        hard = soft if hard is None else hard
+        _, current_hard = resource.getrlimit(which)
+        if current_hard != resource.RLIM_INFINITY:
+            soft, hard = min(soft, current_hard), min(hard, current_hard)
+        try:
+            resource.setrlimit(which, (int(soft), int(hard)))
+        except (ValueError, OSError):
+            pass
+
+    cap("RLIMIT_AS", limits.get("address_space"))
+    cap("RLIMIT_FSIZE", limits.get("file_size"))
+    cap("RLIMIT_CORE", 0)
     cpu_total = limits.get("cpu_total")
     if cpu_total is not None:
-        resource.setrlimit(resource.RLIMIT_CPU, (int(cpu_total), int(cpu_total) + 5))
-    processes = limits.get("processes")  # counted by the parent: RLIMIT_NPROC is per user
-    if processes is not None and hasattr(resource, "RLIMIT_NPROC"):
-        cap(resource.RLIMIT_NPROC, processes)
+        cap("RLIMIT_CPU", cpu_total, cpu_total + 5)
+    cap("RLIMIT_NPROC", limits.get("processes"))  # counted by the parent: RLIMIT_NPROC is per user
 
 
 # ------------------------------------------------------------------ I/O
@@ -224,7 +230,10 @@ class Worker:
             new_soft = int(used + budget) + 1
             if hard != resource.RLIM_INFINITY:
                 new_soft = min(new_soft, hard)
-            resource.setrlimit(resource.RLIMIT_CPU, (new_soft, hard))
+            try:
+                resource.setrlimit(resource.RLIMIT_CPU, (new_soft, hard))
+            except (ValueError, OSError):
+                pass  # the wall-clock timeout still applies
         self.forbidden_called = []
         restore = self.install_tripwires(request.get("forbid") or [])
         start = time.perf_counter()

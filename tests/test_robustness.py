@@ -6,7 +6,7 @@ import json
 from autograder.results import without_timings
 from autograder.runner import grade
 from autograder.sandbox import Limits
-from conftest import REFERENCE, assert_only_exercise_lost, check_results, mutant, submission_from_source
+from conftest import REFERENCE, ROOT, assert_only_exercise_lost, check_results, mutant, submission_from_source
 
 MODULE = "lab07_transformations"
 FAST = Limits(call_timeout=2.0, import_timeout=4.0)
@@ -160,3 +160,26 @@ def test_the_original_submission_folder_is_left_untouched(tmp_path):
     before = {p.name: p.read_bytes() for p in folder.iterdir()}
     grade(folder, ["lab07.ex1"], limits=FAST)
     assert {p.name: p.read_bytes() for p in folder.iterdir()} == before
+
+
+def test_worker_limits_are_best_effort_where_the_platform_refuses_one():
+    """macOS refuses RLIMIT_AS: the worker must still start, with the other limits set."""
+    import subprocess
+    import sys
+
+    script = f"""
+import resource, sys
+sys.path.insert(0, {str(ROOT / "autograder")!r})
+import worker
+real = resource.setrlimit
+def refuse_address_space(which, limits):
+    if which == resource.RLIMIT_AS:
+        raise ValueError("not supported on this platform")
+    return real(which, limits)
+resource.setrlimit = refuse_address_space
+worker.apply_limits({{"address_space": 2**33, "file_size": 2**26, "cpu_total": 100, "processes": None}})
+print(resource.getrlimit(resource.RLIMIT_FSIZE)[0], resource.getrlimit(resource.RLIMIT_CPU)[0])
+"""
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split() == [str(2**26), "100"]
