@@ -190,7 +190,7 @@ class Sandbox:
 
     def close(self):
         """Stop the worker and everything it started, then delete the scratch directory."""
-        self._stop_worker()
+        self._stop_worker(restarting=False)
         shutil.rmtree(self._base, ignore_errors=True)
 
     def _start_worker(self):
@@ -239,7 +239,7 @@ class Sandbox:
             self._stop_worker()
             raise WorkerStartError("the grading worker sent an unexpected greeting")
 
-    def _stop_worker(self):
+    def _stop_worker(self, restarting: bool = True):
         if self.proc is None:
             return
         for fd in (self._request_fd, self._response_fd):
@@ -255,7 +255,8 @@ class Sandbox:
         _LIVE_WORKERS.discard(self.proc.pid)
         if self.confinement.level == "process-group":
             confine.kill_adopted_orphans(keep=_LIVE_WORKERS)
-            self._lay_out_scratch()  # nothing stopped this worker from damaging it
+            if restarting:
+                self._lay_out_scratch()  # nothing stopped this worker from damaging it
         self.proc = None
         self._request_fd = self._response_fd = -1
 
