@@ -34,7 +34,7 @@ def mutant(tmp_path: Path, module: str, source: str, base: Path = REFERENCE) -> 
     just as they would in a student's file.
     """
     folder = tmp_path / "submission"
-    folder.mkdir(exist_ok=True)
+    folder.mkdir(parents=True, exist_ok=True)
     original = (base / f"{module}.py").read_text()
     (folder / f"{module}.py").write_text(original + "\n\n# --- mutation\n" + textwrap.dedent(source))
     return folder
@@ -43,7 +43,7 @@ def mutant(tmp_path: Path, module: str, source: str, base: Path = REFERENCE) -> 
 def submission_from_source(tmp_path: Path, module: str, source: str) -> Path:
     """A submission whose module is exactly ``source``."""
     folder = tmp_path / "submission"
-    folder.mkdir(exist_ok=True)
+    folder.mkdir(parents=True, exist_ok=True)
     (folder / f"{module}.py").write_text(textwrap.dedent(source))
     return folder
 

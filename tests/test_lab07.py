@@ -98,6 +98,11 @@ MISTAKES = {
             A, _ = cv2.estimateAffine2D(np.float32(src), np.float32(dst))
             return A
         """, ["cv2.estimateAffine2D", "yourself"]),
+    "default dsize from image.shape": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            dsize = dsize or image.shape[:2]          # (rows, cols), but OpenCV wants (width, height)
+            return cv2.warpAffine(image, np.asarray(A, float), tuple(dsize))
+        """, ['width and height are swapped']),
 }
 
 

@@ -300,6 +300,13 @@ MISTAKES = {
         def blend_multiband(img1, img2, mask, levels=4):
             return _reference_blend(img2, img1, mask, levels)
         """, ["weights img2"]),
+    "ORB only on colour images": ("lab08.ext1", """
+        _detect_right = _detect
+        def _detect(image, method):
+            if method == "orb":
+                image = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)   # assumes a colour image
+            return _detect_right(image, method)
+        """, ['raised']),
 }
 
 

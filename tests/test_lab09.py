@@ -122,6 +122,22 @@ MISTAKES = {
             obj = np.column_stack([pts, np.ones(len(pts))])
             return cv2.projectPoints(obj, np.zeros(3), np.zeros(3), np.eye(3), np.asarray(dist, float))[0].reshape(-1, 2)
         """, ["cv2.projectpoints", "yourself"]),
+    "inverted real image": ("lab09.ex4", """
+        _right = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return -_right(points, f, aperture, n_rays, seed)
+        """, ['aperture']),
+    "aperture used as an area": ("lab09.ex4", """
+        _right = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return _right(points, f, aperture ** 2, n_rays, seed)
+        """, ['spread']),
+    "calibration K transposed": ("lab09.ext1", """
+        _right = calibrate
+        def calibrate(images, pattern_size, square_size):
+            K, dist, rms = _right(images, pattern_size, square_size)
+            return K.T, dist, rms
+        """, ['transposed']),
 }
 
 

@@ -117,6 +117,17 @@ MISTAKES = {
             rows = _right(frames, pattern_size, square_size, K, dist)
             return rows[np.isfinite(rows).all(axis=1)]
         """, ["one row per frame"]),
+    "pose without checking the board was found": ("lab10.ex6", """
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+            found, corners = cv2.findChessboardCorners(grey, tuple(pattern_size))
+            objp = _object_points(pattern_size, square_size)
+            K = np.asarray(K, dtype=np.float64)
+            dist = None if dist is None else np.asarray(dist, dtype=np.float64)
+            _, rvec, tvec = cv2.solvePnP(objp, corners, K, dist)
+            reprojected, _ = cv2.projectPoints(objp, rvec, tvec, K, dist)
+            return rvec.ravel(), tvec.ravel(), reprojected.reshape(-1, 2)
+        """, ['raised']),
 }
 
 

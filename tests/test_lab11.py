@@ -191,6 +191,17 @@ MISTAKES = {
             X = triangulate(K @ np.eye(3, 4), K @ np.hstack([R, t]), pts1, pts2)
             return F, pts1, pts2, X
         """, ["of your matches are within 2 px"]),
+    "epipoles from the largest singular vectors": ("lab11.ex5", """
+        def epipoles(F):
+            U, _, Vt = np.linalg.svd(np.asarray(F, np.float64))
+            return Vt[0], U[:, 0]
+        """, ['not a null vector', 'smallest singular value']),
+    "reconstruction with points3d transposed": ("lab11.ex6", """
+        _right = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            F, pts1, pts2, X = _right(img1, img2, K)
+            return F, pts1, pts2, X.T
+        """, ['shape']),
 }
 
 

@@ -605,6 +605,12 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False):
     if projective_distance(g1, e2) <= 1e-4 and projective_distance(g2, e1) <= 1e-4:
         t.fail(f"{what} is wrong: e1 and e2 are swapped: F e1 = 0 (e1 is the right null vector, "
                "the last row of V^T), F^T e2 = 0 (the last column of U).")
+    F = np.asarray(views.F, float) / np.linalg.norm(views.F)
+    for g, M, name, where in ((g1, F, "e1", "F e1 = 0: the last row of V^T"),
+                              (g2, F.T, "e2", "F^T e2 = 0: the last column of U")):
+        if np.linalg.norm(M @ (g / np.linalg.norm(g))) > 1e-2:
+            t.fail(f"{what}: {name} = {format_matrix(g)} is not a null vector of F ({where}, the "
+                   "singular vector of the smallest singular value; the first one belongs to the largest)")
     for d, g, e, name in ((d1, g1, e1, "e1"), (d2, g2, e2, "e2")):
         if d > EXACT:
             t.fail(f"{what}: {name} = {format_matrix(g)}, expected a multiple of {format_matrix(e)}")

@@ -1,0 +1,28 @@
+"""Every check of every lab fails on at least one realistic wrong implementation.
+
+The lab test files hold the wrong implementations (``MISTAKES``: exercise, code,
+expected diagnosis); each is also graded there for its diagnosis. Here they are
+graded together to show that no check, hidden ones included, is one that cannot
+fail.
+"""
+
+import importlib
+
+from autograder.registry import discover
+from autograder.runner import grade
+from conftest import mutant
+
+
+def test_every_check_fails_on_some_realistic_mistake(tmp_path):
+    labs = discover()
+    failed = set()
+    for key, lab in labs.items():
+        mistakes = importlib.import_module(f"test_{key}").MISTAKES
+        for index, (exercise, source, _) in enumerate(mistakes.values()):
+            submission = mutant(tmp_path / f"{key}-{index}", lab.module, source)
+            result = grade(submission, [exercise], pictures="none")
+            failed |= {(e.id, c.name) for e in result.exercises for c in e.checks if not c.passed}
+    never = [(e.id, c.name) for lab in labs.values() for e in lab.exercises.values()
+             for c in e.checks if (e.id, c.name) not in failed]
+    assert never == [], "checks no realistic mistake in tests/test_labNN.py fails:\n" + \
+        "\n".join(f"  {exercise}: {name}" for exercise, name in never)
