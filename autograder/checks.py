@@ -197,15 +197,19 @@ class Trial:
             property_holds()
         except StudentFailure as exc:
             if exc.outcome.kind not in _FATAL_KINDS and last:  # fatal ones fail for every input
-                exc.message += f"\nSmallest failing input found: {describe(last[0])}"
+                exc.message += self._counterexample(describe(last[0]))
             raise
         except Fail as exc:
             if last:
-                exc.message += f"\nSmallest failing input found: {describe(last[0])}"
+                exc.message += self._counterexample(describe(last[0]))
             raise
         except errors.Flaky:
             self.fail("your function gave different answers for the same input "
                       "(does it depend on randomness or on earlier calls?)")
+
+    def _counterexample(self, example: str) -> str:
+        return (f"\nSmallest failing input found: {example}"
+                f"\n(the same inputs every run: re-run with python grade.py {self.check.exercise.id})")
 
     # ------------------------------------------------------------ pictures
     def images(self, title: str, caption: str = "", **labelled: np.ndarray):
