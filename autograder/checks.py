@@ -72,14 +72,13 @@ class Trial:
         The check being run (for its exercise, lab, timeout and forbidden calls).
     """
 
-    def __init__(self, sandbox: Sandbox, check: Check, timed_out: dict[str, int]):
+    def __init__(self, sandbox: Sandbox, check: Check):
         self.sandbox, self.check = sandbox, check
         self.lab = check.exercise.lab
         self._pictures: list = []  # made into Artifacts only if the grading keeps them
         self.outputs: list[str] = []
         self.student_seconds = 0.0
         self._fatal: dict[str, StudentFailure] = {}
-        self._timed_out = timed_out
 
     # ------------------------------------------------------------ calling
     def call(self, function: str, *args, **kwargs):
@@ -90,7 +89,7 @@ class Trial:
         StudentFailure
             If it raised, timed out, crashed, is missing or returned a forbidden type.
         """
-        failure = self._known_failure(function)
+        failure = self._fatal.get(function)
         if failure is None:
             outcome = self.sandbox.call(self.lab.module, function, args, kwargs,
                                         timeout=self.check.timeout,
@@ -100,22 +99,12 @@ class Trial:
                 self.outputs.append(outcome.output)
             if outcome.ok:
                 return outcome.value
-            if outcome.kind == "timeout":
-                self._timed_out[function] = self._timed_out.get(function, 0) + 1
             failure = StudentFailure(outcome, self._describe(function, outcome))
             if outcome.kind in _FATAL_KINDS:
                 self._fatal[function] = failure
         # One raise site, and a fresh exception each time: Hypothesis tells failures
         # apart by where they are raised, and re-raising one object grows its traceback.
         raise StudentFailure(failure.outcome, failure.message)
-
-    def _known_failure(self, function: str) -> StudentFailure | None:
-        if function in self._fatal:
-            return self._fatal[function]
-        if self._timed_out.get(function, 0) >= 2:
-            return StudentFailure(CallOutcome(ok=False, kind="timeout"),
-                                  f"{function}() timed out twice already; not called again")
-        return None
 
     def _describe(self, function: str, outcome: CallOutcome) -> str:
         if outcome.kind == "missing_function":

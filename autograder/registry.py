@@ -19,6 +19,8 @@ Third-party suites can register through the ``autograder.labs`` entry-point grou
 from __future__ import annotations
 
 import importlib
+import importlib.util
+import logging
 import pkgutil
 import re
 from dataclasses import dataclass, field
@@ -113,8 +115,6 @@ class Lab:
 
 def discover() -> dict[str, Lab]:
     """Import every lab suite: ``autograder.labs.*``, then hidden checks, then plug-ins."""
-    from . import labs
-
     for package_name in ("autograder.labs", "autograder.labs.hidden"):
         try:
             package = importlib.import_module(package_name)
@@ -122,27 +122,23 @@ def discover() -> dict[str, Lab]:
             continue  # the student bundle has no hidden checks
         for info in pkgutil.iter_modules(package.__path__):
             if not info.ispkg and not info.name.startswith("_"):
-                _import_suite(f"{package_name}.{info.name}")
+                name = f"{package_name}.{info.name}"
+                _load_suite(name, lambda: importlib.import_module(name))
     for entry in metadata.entry_points(group="autograder.labs"):
-        entry.load()
-    del labs
+        _load_suite(entry.name, entry.load)
     return REGISTRY
 
 
 def hidden_checks_installed() -> bool:
     """Whether this copy has the hidden checks (the student bundle does not)."""
-    import importlib.util
-
     return importlib.util.find_spec("autograder.labs.hidden") is not None
 
 
-def _import_suite(name: str) -> None:
-    """Import one lab suite; a broken suite is logged and skipped, never fatal to grading."""
+def _load_suite(name: str, load) -> None:
+    """Load one lab suite; a broken suite is logged and skipped, never fatal to grading."""
     try:
-        importlib.import_module(name)
+        load()
     except Exception:  # noqa: BLE001
-        import logging
-
         logging.getLogger("autograder").exception("lab suite %s failed to load; skipped", name)
 
 

@@ -8,6 +8,7 @@ submission; a failure inside a check is recorded as a grader error for that chec
 
 from __future__ import annotations
 
+import logging
 import time
 import traceback
 from typing import Callable
@@ -59,17 +60,16 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         result = GradingResult(submission.name, submission.content_hash, __version__,
                                hidden_included=include_hidden and hidden_checks_installed())
         with Sandbox(submission.path, limits) as sandbox:
-            timed_out: dict[str, int] = {}
             for exercise in exercises:
                 checks = [c for c in exercise.checks if include_hidden or not c.hidden]
                 result.exercises.append(
-                    _grade_exercise(sandbox, exercise, checks, timed_out, pictures, on_check))
+                    _grade_exercise(sandbox, exercise, checks, pictures, on_check))
             result.student_seconds = round(sandbox.student_seconds, 6)
     result.seconds = round(time.perf_counter() - started, 6)
     return result
 
 
-def _grade_exercise(sandbox, exercise, checks, timed_out, pictures, on_check) -> ExerciseResult:
+def _grade_exercise(sandbox, exercise, checks, pictures, on_check) -> ExerciseResult:
     functions = list(exercise.signatures.values())
     out = ExerciseResult(exercise.id, exercise.title, functions)
     imported = sandbox.import_module(exercise.lab.module)
@@ -85,7 +85,7 @@ def _grade_exercise(sandbox, exercise, checks, timed_out, pictures, on_check) ->
                 on_check(exercise, out.checks[-1])
         return out
     for check in checks:
-        out.checks.append(run_check(sandbox, check, timed_out, pictures))
+        out.checks.append(run_check(sandbox, check, pictures))
         if on_check:
             on_check(exercise, out.checks[-1])
     if out.checks and all(c.status == NOT_IMPLEMENTED for c in out.checks):
@@ -93,9 +93,9 @@ def _grade_exercise(sandbox, exercise, checks, timed_out, pictures, on_check) ->
     return out
 
 
-def run_check(sandbox: Sandbox, check: Check, timed_out: dict[str, int], pictures: str = "all") -> CheckResult:
+def run_check(sandbox: Sandbox, check: Check, pictures: str = "all") -> CheckResult:
     """Run one check and turn however it ends into a scored :class:`CheckResult`."""
-    trial = Trial(sandbox, check, timed_out)
+    trial = Trial(sandbox, check)
     started = time.perf_counter()
     tb = ""
     try:
@@ -126,7 +126,5 @@ def run_check(sandbox: Sandbox, check: Check, timed_out: dict[str, int], picture
 
 
 def _log_grader_error(check: Check, exc: Exception):
-    import logging
-
     logging.getLogger("autograder").error(
         "grader error in %s:\n%s", check.id, "".join(traceback.format_exception(exc)))

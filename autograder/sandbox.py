@@ -51,6 +51,7 @@ class Limits:
     max_result_bytes: int = 256 * 2**20  # largest result frame accepted
     max_output_chars: int = 4000         # captured stdout/stderr kept per call
     startup_timeout: float = 60.0        # for the worker to import NumPy/OpenCV (not billed)
+    timeouts_per_function: int = 2       # after this many timeouts a function is not called again
 
     def worker_json(self, processes: int | None) -> str:
         return json.dumps({
@@ -159,8 +160,8 @@ class Sandbox:
         self._imported: set[str] = set()
         self._import_failures: dict[str, CallOutcome] = {}
         self.student_seconds = 0.0
-        self.restarts = 0
         self.shared: dict = {}  # values checks share within one grading (see Trial.shared)
+        self._timeouts: dict[tuple[str, str], int] = {}
 
     # The worker may write only in these folders of its scratch (when namespaces
     # allow): its copy of the submission and of the worker code stay intact.
@@ -296,15 +297,21 @@ class Sandbox:
         imported = self.import_module(module)
         if not imported.ok:
             return imported
+        # A function that hung repeatedly would only cost every later check its full timeout.
+        if self._timeouts.get((module, function), 0) >= self.limits.timeouts_per_function:
+            return CallOutcome(ok=False, kind="timeout",
+                               message=f"{function}() timed out {self.limits.timeouts_per_function} "
+                                       "times already; not called again")
         timeout = timeout or self.limits.call_timeout
         request = {"op": "call", "module": module, "function": function,
                    "args": list(args), "kwargs": dict(kwargs or {}),
                    "forbid": list(forbid), "cpu_seconds": timeout + 1.0}
         outcome = self._request(request, timeout, what=f"{function}()")
-        if outcome.ok or outcome.kind not in ("timeout", "crashed"):
-            self.student_seconds += outcome.seconds
+        if outcome.kind == "timeout":
+            self._timeouts[(module, function)] = self._timeouts.get((module, function), 0) + 1
+            self.student_seconds += timeout
         else:
-            self.student_seconds += timeout if outcome.kind == "timeout" else outcome.seconds
+            self.student_seconds += outcome.seconds
         return outcome
 
     # ------------------------------------------------------------ plumbing
@@ -363,7 +370,6 @@ class Sandbox:
         """After a hang, crash or garbage: kill the worker; the next call starts a new one."""
         outcome.output = self._read_output()
         self._stop_worker()
-        self.restarts += 1
         return outcome
 
     def _crash_outcome(self, what, seconds) -> CallOutcome:

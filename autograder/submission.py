@@ -31,8 +31,8 @@ class Submission:
     Attributes
     ----------
     path : Path
-        Folder holding ``<module>.py`` files (a temporary copy when conversion
-        was needed; :meth:`cleanup` removes it).
+        A temporary folder holding the ``<module>.py`` files (converted from
+        notebooks where needed); :meth:`cleanup` removes it.
     name : str
         What to call it in reports (the folder or file name).
     content_hash : str
@@ -42,11 +42,9 @@ class Submission:
     path: Path
     name: str
     content_hash: str
-    _temporary: bool = False
 
     def cleanup(self):
-        if self._temporary:
-            shutil.rmtree(self.path, ignore_errors=True)
+        shutil.rmtree(self.path, ignore_errors=True)
 
     def __enter__(self):
         return self
@@ -94,7 +92,7 @@ def load_submission(path, modules: list[str]) -> Submission:
     except BaseException:
         shutil.rmtree(out, ignore_errors=True)
         raise
-    return Submission(out, source.name, _hash_folder(out), _temporary=True)
+    return Submission(out, source.name, _hash_folder(out))
 
 
 def _find_module(root: Path, module: str) -> Path | None:

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import struct
 
 import numpy as np
@@ -244,8 +245,6 @@ def _reject_constant(name):
 # ------------------------------------------------------------------ file streams
 def write_frame(fd: int, frame: bytes) -> None:
     """Write a whole frame to a file descriptor (blocking)."""
-    import os
-
     view = memoryview(frame)
     while view:
         written = os.write(fd, view)

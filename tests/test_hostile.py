@@ -7,7 +7,9 @@ process of the submission survives. Each attack bounds itself (loops, sleeps,
 sizes), so it is harmless even when run unconfined. Attacks that only the
 namespaced confinement can stop (network, reading the grader's files, killing the
 grader) are skipped where the platform offers no namespaces, as documented in
-the README's security model.
+the README's security model. The attacks at import time (an infinite loop,
+``sys.exit`` and ``os._exit``) and a multi-gigabyte allocation are in
+``test_robustness.py``, with the other failures issue 2 asks about.
 """
 
 import json
@@ -24,7 +26,7 @@ import pytest
 from autograder import confine
 from autograder.runner import grade
 from autograder.sandbox import Limits
-from conftest import ROOT, assert_only_exercise_lost, check_results, mutant, submission_from_source
+from conftest import ROOT, assert_only_exercise_lost, check_results, mutant
 
 MODULE = "lab07_transformations"
 FAST = Limits(call_timeout=2.0, import_timeout=4.0)
@@ -168,17 +170,7 @@ def test_killing_the_grader_is_impossible(tmp_path):
         """, "lab07.ex4", "returned None")
 
 
-# ---------------------------------------------------------------- exits, crashes, resources
-def test_os_exit_at_import(tmp_path):
-    result = grade(submission_from_source(tmp_path, MODULE, """
-        import os
-        os._exit(0)
-        """), ["lab07"], limits=FAST)
-    for exercise in result.exercises:
-        assert exercise.score == 0
-        assert "importing lab07_transformations.py ended the worker process" in exercise.message
-
-
+# ---------------------------------------------------------------- crashes, resources
 def test_segfault(tmp_path):
     attack(tmp_path, """
         def shear_matrix(s):
