@@ -75,7 +75,7 @@ def blurred_difference(got, expected, valid, sigma: float = 1.0) -> float:
     return float(diff[valid].mean()) if valid.any() else 0.0
 
 
-def warp_error(got, source, M, dsize=None, good_enough: float = 0.0) -> float:
+def warp_error(got, source, M, dsize=None, good_enough: float = 0.0, inside=None) -> float:
     """How far ``got`` is from ``source`` warped by ``M`` (best sub-pixel offset).
 
     Parameters
@@ -88,6 +88,9 @@ def warp_error(got, source, M, dsize=None, good_enough: float = 0.0) -> float:
     dsize : (width, height), optional
     good_enough : float
         Stop trying sub-pixel offsets once an error this small is found.
+    inside : (H, W) bool array, optional
+        The output pixels judged, when the caller has them already
+        (``fixtures.images.coverage(M, ...)[0]``).
 
     Returns
     -------
@@ -99,7 +102,8 @@ def warp_error(got, source, M, dsize=None, good_enough: float = 0.0) -> float:
     from fixtures.images import as_homography, coverage, warp
 
     H = as_homography(M)
-    inside, _ = coverage(H, source.shape, dsize)
+    if inside is None:
+        inside, _ = coverage(H, source.shape, dsize)
     if inside.sum() < 0.05 * inside.size:
         return float("inf")  # (a wrong map may send the image almost entirely out of view)
     best = np.inf

@@ -79,7 +79,7 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
         size_rule = "" if dsize else ": warps keep the input's size (content that leaves the frame is cut off)"
         t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}{size_rule}")
     got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)
-    error = warp_error(got, source, M, dsize, good_enough=IMAGE_TOLERANCE / 2)
+    error = warp_error(got, source, M, dsize, good_enough=IMAGE_TOLERANCE / 2, inside=inside)
     if error <= IMAGE_TOLERANCE:
         nonblack = fill_fraction(got, outside)
         if nonblack > FILL_TOLERANCE:
