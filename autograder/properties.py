@@ -2,11 +2,36 @@
 
 Grading must be reproducible: the same submission gets the same examples, and so
 the same score, on every run and machine. Hence derandomised generation, no
-example database (nothing written into the student's folder), no deadline (the
-worker's timeout governs time) and a bounded number of examples.
+example database and no storage in the working directory (nothing written into
+the student's folder), no deadline (the worker's timeout governs time) and a
+bounded number of examples.
 """
 
+import atexit
+import os
+import shutil
+import tempfile
+
 from hypothesis import HealthCheck, Phase, Verbosity, settings
+from hypothesis.configuration import set_hypothesis_home_dir
+
+
+def _private_storage() -> None:
+    """Keep Hypothesis's storage (its cache of constants found in source files,
+    written even without an example database) out of the working directory.
+
+    A private folder per process, removed at exit: a shared one in /tmp could be
+    planted by another user of the machine to steer the generated examples.
+    An explicit ``HYPOTHESIS_STORAGE_DIRECTORY`` is respected.
+    """
+    if os.environ.get("HYPOTHESIS_STORAGE_DIRECTORY"):
+        return
+    folder = tempfile.mkdtemp(prefix="autograder-hypothesis-")
+    atexit.register(shutil.rmtree, folder, ignore_errors=True)
+    set_hypothesis_home_dir(folder)
+
+
+_private_storage()
 
 GRADING = "grading"
 settings.register_profile(

@@ -6,6 +6,9 @@ import re
 import shutil
 import subprocess
 import sys
+import sysconfig
+import tempfile
+from pathlib import Path
 
 import pytest
 
@@ -22,11 +25,35 @@ def bundle(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def bundle_python(bundle, tmp_path_factory):
-    """A fresh virtual environment with the bundle installed (dependencies from the system, offline)."""
-    venv = tmp_path_factory.mktemp("venv") / "venv"
-    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(venv)], check=True)
+def open_folder():
+    """A folder others can enter, as a student's home is: when the tests run as
+    root the worker runs as an unprivileged user, who must be able to read the
+    virtual environment (pytest's own temporary folders are private to root)."""
+    folder = Path(tempfile.mkdtemp(prefix="autograder-bundle-test-"))
+    folder.chmod(0o755)
+    yield folder
+    shutil.rmtree(folder, ignore_errors=True)
+
+
+@pytest.fixture(scope="module")
+def bundle_python(bundle, open_folder, tmp_path_factory):
+    """A fresh virtual environment with the bundle installed offline.
+
+    Its dependencies are the ones of the interpreter running these tests, made
+    visible by a ``.pth`` file: ``--system-site-packages`` would expose the *base*
+    interpreter's packages instead, which inside a virtual environment are not
+    the ones installed for the tests (and may lack ``wheel``).
+    """
+    venv = open_folder / "venv"
+    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     python = venv / "bin" / "python"
+    nested_site = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                                 check=True, capture_output=True, text=True).stdout.strip()
+    ours = dict.fromkeys(sysconfig.get_paths()[key] for key in ("purelib", "platlib"))
+    # Plain path lines: the directories join sys.path after the bundle's own
+    # site-packages, and their own .pth files (this checkout's editable install of
+    # the grader) are not processed, so the bundle's copy of the grader is the one imported.
+    (Path(nested_site) / "test-dependencies.pth").write_text("".join(f"{path}\n" for path in ours))
     source = tmp_path_factory.mktemp("install") / "cv-labs"  # a copy: building writes build/
     shutil.copytree(bundle, source)
     subprocess.run([str(python), "-m", "pip", "install", "--quiet", "--no-index", "--no-build-isolation",

@@ -226,6 +226,7 @@ def test_stored_figures_are_current():
 
     import numpy as np
 
+    from autograder.compare import projective_distance
     from autograder.labs.hidden import lab11 as hidden
     from conftest import ROOT
     from fixtures import lab11
@@ -240,6 +241,10 @@ def test_stored_figures_are_current():
             assert set(a) == set(b), where
             for key in a:
                 compare(a[key], b[key], f"{where}.{key}")
+        elif np.shape(a) == (3, 3):
+            # E and F are projective: an SVD may return either sign (LAPACK builds differ),
+            # so they are compared as the grader compares them, up to scale and sign.
+            assert projective_distance(a, b) < 1e-6, where
         else:
             assert np.allclose(np.asarray(a, float), np.asarray(b, float), rtol=1e-6, atol=1e-9), where
 
