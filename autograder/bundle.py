@@ -43,7 +43,7 @@ def write_student_bundle(out, root: Path = PROJECT_ROOT) -> list[Path]:
                 copy(path, out / path.relative_to(root))
     for path in sorted((root / "assignments").glob("*.py")):
         copy(path, out / "assignments" / path.name)
-    for name in ("grade.py", "pyproject.toml", ".gitignore"):
+    for name in ("grade.py", "pyproject.toml", "constraints.txt", ".gitignore"):
         if (root / name).exists():
             copy(root / name, out / name)
     copy(STUDENT_README, out / "README.md")

@@ -22,6 +22,9 @@ from .sandbox import Limits
 
 log = logging.getLogger("autograder")
 PROJECT_ROOT = Path(__file__).resolve().parents[1]
+# The Python versions the grader is tested on (pyproject's requires-python);
+# setup.sh installs the second (the one CI runs) where the image has none of them.
+TESTED_PYTHONS = ("3.10", "3.11", "3.12", "3.13")
 
 
 # ------------------------------------------------------------------ results.json
@@ -89,19 +92,31 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
 
 # ------------------------------------------------------------------ autograder.zip
 SETUP_SH = """#!/usr/bin/env bash
-# Installs the autograder on Gradescope's Ubuntu image, with its system Python.
+# Installs the autograder on Gradescope's Ubuntu image with the pinned versions
+# of constraints.txt (the versions the grader is tested with), on a Python the
+# grader is tested on: the image's own python3 if it is one of them, otherwise
+# a tested Python installed by uv.
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 apt-get update
 apt-get install -y --no-install-recommends python3 python3-venv python3-pip util-linux
-python3 -m venv /autograder/venv
+TESTED="{tested}"
+version="$(python3 -c 'import sys; print("%d.%d" % sys.version_info[:2])')"
+if [[ " $TESTED " == *" $version "* ]]; then
+    python3 -m venv /autograder/venv
+else
+    echo "setup.sh: the image's Python $version is not one the grader is tested on ($TESTED); installing {preferred}"
+    python3 -m pip install --quiet uv || python3 -m pip install --quiet --break-system-packages uv
+    UV_PYTHON_INSTALL_DIR=/opt/python python3 -m uv venv --seed --python {preferred} /autograder/venv
+fi
 /autograder/venv/bin/python -m pip install --upgrade pip
-/autograder/venv/bin/python -m pip install /autograder/source
+/autograder/venv/bin/python -m pip install -c /autograder/source/constraints.txt /autograder/source
 chmod -R a+rX /autograder/venv
+if [ -d /opt/python ]; then chmod -R a+rX /opt/python; fi
 # Student code runs as this unprivileged user when grading as root.
 id agworker >/dev/null 2>&1 || useradd --system --no-create-home --home-dir /nonexistent \\
     --shell /usr/sbin/nologin --user-group agworker
-"""
+""".format(tested=" ".join(TESTED_PYTHONS), preferred=TESTED_PYTHONS[1])
 
 RUN_AUTOGRADER = """#!/usr/bin/env bash
 # Grades $ROOT/submission and writes $ROOT/results/results.json (always).
@@ -128,7 +143,7 @@ exit 0
 # What the container needs: the engine (hidden checks included) and the fixtures,
 # never the reference solutions or the grader's own tests.
 _SHIPPED = ("autograder", "fixtures")
-_SHIPPED_FILES = ("pyproject.toml", "README.md", "grade.py")
+_SHIPPED_FILES = ("pyproject.toml", "README.md", "grade.py", "constraints.txt")
 
 
 def _shipped_files(root: Path):
