@@ -102,13 +102,14 @@ def draw_epipolar_lines(image, lines):
 
     Returns
     -------
-    (H, W, 3) uint8 array
-        Always BGR, also for a grey input (convert it with
-        ``cv2.cvtColor(image, cv2.COLOR_GRAY2BGR)`` first) so that coloured
-        lines show. Each line is drawn from border to border of the image, 1 or
-        2 pixels thick (``cv2.line``), in a bright colour (for instance a
-        different colour per line; not black, not grey). Nothing else is
-        changed.
+    uint8 array with the input's channels
+        The API's rule for functions that take an image: grey in, grey out
+        (lines in white, 255); BGR in, BGR out (lines in bright colours, for
+        instance a different colour per line; not black, not grey). Returning a
+        BGR copy of a grey input (``cv2.cvtColor(image, cv2.COLOR_GRAY2BGR)``)
+        to show coloured lines is accepted too, with a tip about the rule. Each
+        line is drawn from border to border of the image, 1 or 2 pixels thick
+        (``cv2.line``). Nothing else is changed.
 
     Notes
     -----
