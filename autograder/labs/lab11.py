@@ -557,11 +557,16 @@ def fundamental_rank2(t):
 
 
 NOISY_SCENES = truth.FUNDAMENTAL_SCENES
+# The lab sheet's 8-point algorithm does not ask for Hartley's normalisation, so the textbook
+# variants on the same data set the accepted spread: normalised (rank 2 on Fn or after
+# undoing the normalisation) or on raw pixels (precomputed by make_lab11_figures.py).
+FUNDAMENTAL_VARIANTS = {"gold": "normalised 8-point", "late_rank2": "rank 2 after denormalising",
+                        "unnormalised": "8-point on raw pixels"}
 
 
 @ex4.check("fundamental_8point is accurate on noisy pixel coordinates (6 scenes)", points=3)
 def fundamental_noisy(t):
-    good, lines, unnormalised, late = 0, [], 0, 0
+    good, lines = 0, []
     for i, seed in enumerate(NOISY_SCENES):
         views, pts1, pts2 = truth.noisy_fundamental_problem(seed)
         figures = truth.figures()["fundamental"][str(seed)]
@@ -578,34 +583,23 @@ def fundamental_noisy(t):
                           projective_distance, 1e-3)
         if mistake:
             t.fail(f"{what} is wrong: it looks like {mistake}.")
-        mine = truth.symmetric_epipolar_distance(got, views.pts1[40:], views.pts2[40:]).mean()
-        best = truth.symmetric_epipolar_distance(figures["gold"], views.pts1[40:],
-                                                 views.pts2[40:]).mean()
-        lines.append(f"{mine:.2f} px (normalised 8-point: {best:.2f} px)")
-        good += mine <= 1.5 * best + 0.1
-        signature = truth.symmetric_epipolar_distance(got, views.pts1[40:], views.pts2[40:])
 
-        def same_geometry(F):
-            other = truth.symmetric_epipolar_distance(F, views.pts1[40:], views.pts2[40:])
-            return np.abs(signature - other).max() <= 0.02
+        def distance(F):
+            return truth.symmetric_epipolar_distance(F, views.pts1[40:], views.pts2[40:]).mean()
 
-        unnormalised += same_geometry(figures["unnormalised"])
-        late += same_geometry(figures["late_rank2"])
+        mine = distance(got)
+        spread = [distance(figures[key]) for key in FUNDAMENTAL_VARIANTS]
+        lines.append(f"{mine:.2f} px (textbook variants: {min(spread):.2f} to {max(spread):.2f} px)")
+        good += mine <= 1.1 * max(spread) + 0.1
     report = "; ".join(lines)
     if good == len(NOISY_SCENES):
         return passed(f"mean distance of exact held-out matches to your epipolar lines: {report}")
-    hint = ("normalise the points first (Hartley): move each image's centroid to the origin and "
-            "scale so the mean distance is sqrt(2); solve; then F = T2^T Fn T1")
-    message = (f"on {len(NOISY_SCENES) - good} of {len(NOISY_SCENES)} noisy scenes your F is far from the true "
-               f"epipolar geometry (mean distance of exact held-out matches to your lines: {report})")
-    if unnormalised >= len(NOISY_SCENES) - 1:
-        message += (". It looks like the 8-point algorithm on raw pixel coordinates, which is "
-                    "badly conditioned (entries x*x' ~ 1e5 next to 1)")
-    elif late >= len(NOISY_SCENES) - 1:
-        message += (". It looks like rank 2 is enforced after undoing the normalisation; enforce it "
-                    "on the normalised Fn, then F = T2^T Fn T1")
-        hint = "zero the smallest singular value of Fn (normalised coordinates), not of F"
-    return partial(good / len(NOISY_SCENES), message, hint)
+    message = (f"on {len(NOISY_SCENES) - good} of {len(NOISY_SCENES)} noisy scenes your F is farther from "
+               "the true epipolar geometry than any textbook 8-point variant (mean distance of exact "
+               f"held-out matches to your lines: {report})")
+    return partial(good / len(NOISY_SCENES), message,
+                   "solve A f = 0 by SVD (the last row of Vt), reshape to 3 x 3, enforce rank 2 "
+                   "(U diag(s1, s2, 0) V^T); normalising the points first (Hartley) makes it more accurate")
 
 
 # ================================================================== ex5 epipoles
