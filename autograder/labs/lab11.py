@@ -771,6 +771,12 @@ def pipeline_matches(t):
     return judge_matches(t, pair, pts1, pts2)
 
 
+# Full marks for the 3-D points: the worst legitimate pipeline (the lab sheet's recipe with
+# OpenCV's RANSAC defaults: 5.6% / 13.0%, benchmarks/spread_two_view_pipeline.py) with 40% to spare.
+STRUCTURE_MEDIAN = 0.08   # median relative 3-D error after one global scale
+STRUCTURE_P90 = 0.18      # its 90th percentile
+
+
 def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
     X, true2, valid = truth.true_correspondences(pair, pts1)
     good = valid & (np.linalg.norm(pts2 - np.nan_to_num(true2), axis=1) <= 2.0)
@@ -795,7 +801,7 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
     if median2 < 0.5 * median:
         t.fail("your 3D points are in camera 2's frame (they fit it better than camera 1's): return "
                "them in camera 1's frame (P1 = K [I | 0], P2 = K [R | t])")
-    if scale > 0 and median <= 0.05 and p90 <= 0.12:
+    if scale > 0 and median <= STRUCTURE_MEDIAN and p90 <= STRUCTURE_P90:
         return passed(summary)
     if scale < 0 or np.median(got[:, 2]) < 0:
         t.fail("your 3D points are behind camera 1 (negative Z, or mirrored through its centre): "
@@ -806,7 +812,7 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
         t.fail("each 3D point is in the right direction but off by its own factor: it looks like the "
                "homogeneous points were not divided by w")
     if median <= 0.15:
-        return partial(0.5, summary + " (full marks below 5% and 12%)")
+        return partial(0.5, summary + f" (full marks below {STRUCTURE_MEDIAN:.0%} and {STRUCTURE_P90:.0%})")
     t.fail(summary)
 
 
