@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from autograder.runner import grade
-from conftest import assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
+from conftest import (assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results,
+                      mutant)
 
 MODULE = "lab12_stereo"
 
@@ -455,3 +456,16 @@ def test_correct_variants_keep_full_marks(tmp_path, case):
     result = grade(mutant(tmp_path, MODULE, source), [exercise])
     for check in check_results(result, exercise):
         assert check.passed, f"{check.name}: {check.message}"
+
+
+def test_functions_writing_into_their_inputs_get_a_tip(tmp_path):
+    """Writing into the caller's array loses no points; the engine's advice names it."""
+    result = grade(mutant(tmp_path, MODULE, """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, dtype=np.float64)   # no copy for a float array
+            d[~(d > 0)] = np.inf                          # f b / inf = 0: invalid
+            return f * baseline / d
+        """), ["lab12.ex2"])
+    [exercise] = result.exercises
+    assert exercise.score == exercise.max_score
+    assert_advised(result, "lab12.ex2", "depth_from_disparity", "disparity", "in place")
