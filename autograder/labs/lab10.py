@@ -257,11 +257,11 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     if np.any(np.diag(K) <= 0):
         problems.append(f"K has a negative diagonal entry ({format_matrix(np.diag(K))}): "
                         + (sign_fix if negative else "RQ is unique only up to signs; multiply the offending "
-                           "columns of K and the same rows of R by -1 (det(R) stays +1 here, as "
-                           "det(P[:, :3]) > 0)"))
+                           "columns of K and the same rows of R by -1 (R then comes out with det +1, "
+                           "as det(P[:, :3]) > 0 here)"))
     if not rotation:
         problems.append("R is not a rotation (R R^T != I)")
-    elif np.linalg.det(R) < 0:
+    elif np.linalg.det(R) < 0 and sign_fix not in " ".join(problems):
         problems.append("det(R) = -1: " + (sign_fix if negative else "with det(P[:, :3]) > 0 that comes "
                         "from a sign flip of K's columns without the same rows of R"))
     if problems:
