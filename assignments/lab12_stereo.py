@@ -27,8 +27,11 @@ What you may use
   submission folder).
 - ``rectify``: you may use ``cv2.stereoRectify`` and ``cv2.warpPerspective``
   (or build the rotation yourself, as in the lecture).
-- ``block_matching`` and ``dp_stereo`` are *your own* matchers:
-  ``cv2.StereoBM_create`` / ``cv2.StereoSGBM_create`` are not allowed there.
+- ``block_matching`` with ``cost="ssd"``: the lab sheet's recipe, ``cv2.StereoBM``,
+  is allowed (see the function's notes for its fixed-point output and invalid
+  band), and so is your own matcher. ``cost="ncc"`` (extension) is your own.
+- ``dp_stereo`` is *your own* dynamic programming: ``cv2.StereoBM_create`` /
+  ``cv2.StereoSGBM_create`` are not allowed there.
   Filtering helpers (``cv2.blur``, ``cv2.boxFilter``, ``scipy.ndimage``) are fine.
 - Loop over disparities (or columns), not over pixels: the grader calls your
   matchers on images of about 185 x 125 pixels and gives each call 30 seconds.
@@ -157,7 +160,7 @@ def rectify(img_l, img_r, K1, K2, R, T):
 
 # --------------------------------------------------------------------- ex4 / ext1
 def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
-    """Winner-take-all block matching on a rectified grey pair (write it yourself).
+    """Winner-take-all block matching on a rectified grey pair.
 
     For every left pixel ``(x, y)`` and every candidate ``d = 0..max_disparity``,
     compare the ``block_size x block_size`` block around ``(x, y)`` in the left
@@ -182,19 +185,33 @@ def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
     Returns
     -------
     (H, W) float array
-        Disparities in ``0..max_disparity``, the left image's size. Pixels you
-        cannot match (e.g. ``x - d`` outside the right image for every ``d``) may
-        be marked invalid (0 or NaN); the grader counts them as wrong, except in
-        the outer 4 pixels of the image, which it ignores (a block does not fit
-        there). It judges the fraction of pixels off by more than 1 pixel.
+        Disparities in ``0..max_disparity``, the left image's size; ``d = 0``
+        (a point at infinity) is a disparity like any other. Pixels you cannot
+        match may be marked invalid (0 or NaN). The grader judges the fraction of
+        pixels off by more than 1 pixel (invalid ones count as wrong) where the
+        truth is known, ignoring the outer 4 pixels of the image (a block does
+        not fit there) and the band on the left where ``x - d`` leaves the right
+        image for some ``d`` (``16 * ceil((max_disparity + 1) / 16) + block_size // 2``
+        columns, where ``cv2.StereoBM`` gives no answer).
 
     Notes
     -----
-    Vectorise over pixels: for each ``d``, shift the right image by ``d``
-    columns, compute the per-pixel squared difference, and sum it over blocks
-    with a box filter (``cv2.boxFilter`` or ``cv2.blur``). That gives a cost
-    volume ``(max_disparity + 1, H, W)``; ``np.argmin`` over its first axis is
-    the disparity map. ``cv2.StereoBM`` is not allowed here.
+    Your own matcher: vectorise over pixels. For each ``d``, shift the right
+    image by ``d`` columns, compute the per-pixel squared difference, and sum it
+    over blocks with a box filter (``cv2.boxFilter`` or ``cv2.blur``). That gives
+    a cost volume ``(max_disparity + 1, H, W)``; ``np.argmin`` over its first
+    axis is the disparity map.
+
+    The lab sheet's ``cv2.StereoBM`` (``cost="ssd"`` only) needs three careful
+    steps: ``numDisparities`` must be a multiple of 16, so round
+    ``max_disparity + 1`` up and set what it finds above ``max_disparity`` to 0;
+    its output is fixed point (int16, 16 x the disparity), so divide by 16.0;
+    pixels it cannot match (the left band, low texture) come out negative: set
+    them to 0 (invalid)::
+
+        n = 16 * -(-(max_disparity + 1) // 16)
+        d = cv2.StereoBM_create(numDisparities=n, blockSize=block_size).compute(left, right) / 16.0
+        d[(d <= 0) | (d > max_disparity)] = 0
     """
     raise NotImplementedError("ex4: block_matching")
 

@@ -53,11 +53,12 @@ _PALETTE = [(0, 0, 255), (0, 255, 0), (255, 0, 0), (0, 255, 255), (255, 0, 255),
 
 
 def draw_epipolar_lines(image, lines):
-    """Draw each line ``a x + b y + c = 0`` across the whole image (1 px, a colour per line).
+    """Draw each line ``a x + b y + c = 0`` across the whole image (1 px).
 
-    The result is always a BGR copy (grey inputs are converted) so the colours show.
+    A copy with the input's channels (the API's rule): on a BGR image a colour
+    per line, on a grey one white lines.
     """
-    canvas = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image.copy()
+    canvas = np.array(image, dtype=np.uint8, copy=True)
     height, width = canvas.shape[:2]
     for i, (a, b, c) in enumerate(np.asarray(lines, np.float64).reshape(-1, 3)):
         if abs(b) >= abs(a):   # mostly horizontal: intersect with the left and right borders
@@ -67,7 +68,8 @@ def draw_epipolar_lines(image, lines):
         # Far-away end points can overflow cv2.line's integer coordinates: clip first.
         inside, p, q = cv2.clipLine((0, 0, width, height), _to_int(p, width, height), _to_int(q, width, height))
         if inside:
-            cv2.line(canvas, p, q, _PALETTE[i % len(_PALETTE)], 1, cv2.LINE_8)
+            colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 255
+            cv2.line(canvas, p, q, colour, 1, cv2.LINE_8)
     return canvas
 
 

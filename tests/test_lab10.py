@@ -1,8 +1,10 @@
 """Lab 10: the reference passes, the skeleton scores 0, usual mistakes are named."""
 
+import numpy as np
 import pytest
 
-from conftest import assert_all_not_implemented, assert_full_marks, assert_mistake_named
+from autograder.runner import grade
+from conftest import assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, mutant
 
 MODULE = "lab10_camera2"
 
@@ -58,6 +60,27 @@ MISTAKES = {
             _, r, t = cv2.solvePnP(np.asarray(points3d, float), np.asarray(points2d, float), K, None)
             return np.hstack([cv2.Rodrigues(r)[0], t])
         """, ["cv2.solvepnp", "yourself"]),
+    "DLT fixing P[2, 3] = 1": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            A, b = [], []
+            for (X, Y, Z), (u, v) in zip(np.asarray(points3d, float), np.asarray(points2d, float)):
+                A.append([X, Y, Z, 1, 0, 0, 0, 0, -u * X, -u * Y, -u * Z]); b.append(u)
+                A.append([0, 0, 0, 0, X, Y, Z, 1, -v * X, -v * Y, -v * Z]); b.append(v)
+            p = np.linalg.lstsq(np.array(A), np.array(b), rcond=None)[0]
+            return np.append(p, 1.0).reshape(3, 4)
+        """, ["t_z = 0", "fixed to 1", "svd"]),
+    "decomposition that fixes K's signs but never negates P": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            flip = np.eye(3)[::-1]
+            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
+            K = flip @ U.T @ flip
+            R = flip @ Q.T
+            signs = np.diag(np.sign(np.diag(K)))
+            K, R = K @ signs, signs @ R
+            t = np.linalg.solve(K, P[:, 3])
+            return K / K[2, 2], R, t
+        """, ["det(p[:, :3]) < 0", "multiply p by -1 first"]),
     "t as camera centre": ("lab10.ex5", """
         _right = decompose_camera_matrix
         def decompose_camera_matrix(P):
@@ -73,7 +96,7 @@ MISTAKES = {
             R = flip @ Q.T
             t = np.linalg.solve(K, P[:, 3])
             return K / K[2, 2], R, t
-        """, ["negative diagonal"]),
+        """, ["negative diagonal", "multiply p by -1 first"]),
     "centre is -t": ("lab10.ex5", """
         def camera_center(P):
             K, R, t = decompose_camera_matrix(P)
@@ -117,6 +140,11 @@ MISTAKES = {
             rows = _right(frames, pattern_size, square_size, K, dist)
             return rows[np.isfinite(rows).all(axis=1)]
         """, ["one row per frame"]),
+    "tracking fills frames without a board with zeros": ("lab10.ext3", """
+        _right = track_pose
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            return np.nan_to_num(_right(frames, pattern_size, square_size, K, dist))
+        """, ["should be nan", "zeros are a pose"]),
     "pose without checking the board was found": ("lab10.ex6", """
         def estimate_pose(image, pattern_size, square_size, K, dist=None):
             grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
@@ -134,3 +162,102 @@ MISTAKES = {
 @pytest.mark.parametrize("name", sorted(MISTAKES))
 def test_mistake_is_diagnosed(tmp_path, name):
     assert_mistake_named(tmp_path, MODULE, *MISTAKES[name])
+
+
+def test_projection_by_the_formula_alone_gets_full_marks_and_a_tip(tmp_path):
+    """Finite pixels behind the camera (the lab sheet's formula, cv2.projectPoints) lose no
+    points: NaN there is advice."""
+    result = grade(mutant(tmp_path, MODULE, """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = f * X[:, :2] / X[:, 2:3]
+            return x[0] if single else x
+        """), ["lab10.ex1"])
+    [exercise] = result.exercises
+    assert exercise.score == exercise.max_score
+    assert_advised(result, "lab10.ex1", "behind the camera", "nan")
+
+
+def test_decomposition_remedy_fits_the_input(tmp_path):
+    """With det(P[:, :3]) > 0 a negative diagonal of K is fixed by flipping signs, and the
+    message says so (not 'negate P', which would be wrong for that input)."""
+    from autograder.checks import Fail
+    from autograder.labs import lab10
+
+    class Probe:
+        def __init__(self, answer):
+            self.answer = answer
+
+        def call(self, *args):
+            return self.answer
+
+        def fail(self, message, hint=""):
+            raise Fail(message, hint)
+
+        def expect_array(self, value, what, **kwargs):
+            return np.asarray(value, dtype=float)
+
+    from fixtures import lab10 as truth
+    for seed in range(20):
+        P, K, R, tv, s = truth.random_camera_matrix(seed)
+        if s > 0:
+            break
+    flip = np.diag([-1.0, 1.0, 1.0])
+    with pytest.raises(Fail) as failure:
+        lab10.judge_decomposition(Probe((K @ flip, flip @ R, tv)), P, K, R, tv)
+    assert "negative diagonal" in failure.value.message
+    assert "multiply p by -1" not in failure.value.message.lower()
+    assert "flip" in failure.value.message.lower() or "multiply the offending" in failure.value.message
+
+
+# Textbook variants of the estimators: full marks.
+VARIANTS = {
+    "DLT on raw coordinates (the lab sheet does not ask for normalisation)": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            rows = []
+            for Xi, (u, v) in zip(np.column_stack([points3d, np.ones(len(points3d))]), points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+        """),
+    "decomposition with cv2.decomposeProjectionMatrix": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            if np.linalg.det(P[:, :3]) < 0:
+                P = -P
+            K, R, C = cv2.decomposeProjectionMatrix(P)[:3]
+            C = C[:3, 0] / C[3, 0]
+            return K / K[2, 2], R, -R @ C
+        """),
+    "decomposition by QR of M^-1 (the lab sheet's recipe)": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            if np.linalg.det(P[:, :3]) < 0:
+                P = -P
+            M = P[:, :3]
+            Q, U = np.linalg.qr(np.linalg.inv(M))
+            K, R = np.linalg.inv(U), Q.T
+            D = np.diag(np.sign(np.diag(K)))
+            K, R = K @ D, D @ R
+            return K / K[2, 2], R, -R @ (-np.linalg.inv(M) @ P[:, 3])
+        """),
+    "pose without sub-pixel corner refinement": ("lab10.ex6", """
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+            found, corners = cv2.findChessboardCorners(grey, tuple(pattern_size))
+            if not found:
+                return np.full(3, np.nan), np.full(3, np.nan), np.zeros((0, 2))
+            objp = _object_points(pattern_size, square_size)
+            _, rvec, tvec = cv2.solvePnP(objp, corners, K, dist)
+            reprojected, _ = cv2.projectPoints(objp, rvec, tvec, K, dist)
+            return rvec.ravel(), tvec.ravel(), reprojected.reshape(-1, 2)
+        """),
+}
+
+
+@pytest.mark.parametrize("case", sorted(VARIANTS))
+def test_correct_variants_keep_full_marks(tmp_path, case):
+    exercise, source = VARIANTS[case]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    [graded] = result.exercises
+    assert graded.score == graded.max_score, [(c.name, c.message) for c in graded.checks if not c.passed]

@@ -3,7 +3,8 @@
 import pytest
 
 from autograder.runner import grade
-from conftest import assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
+from conftest import (REFERENCE, advice_given, assert_advised, assert_all_not_implemented, assert_full_marks,
+                      assert_mistake_named, check_results, mutant)
 
 MODULE = "lab11_two_view"
 
@@ -55,12 +56,6 @@ MISTAKES = {
         def epipolar_lines(F, pts1):
             return _homogeneous(pts1) @ np.asarray(F, float).T
         """, ["a^2 + b^2 = 1"]),
-    "draw keeps grey": ("lab11.ex2", """
-        _draw = draw_epipolar_lines
-        def draw_epipolar_lines(image, lines):
-            out = _draw(image, lines)
-            return cv2.cvtColor(out, cv2.COLOR_BGR2GRAY) if image.ndim == 2 else out
-        """, ["always bgr"]),
     "draw short segments": ("lab11.ex2", """
         def draw_epipolar_lines(image, lines):
             canvas = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image.copy()
@@ -107,20 +102,6 @@ MISTAKES = {
             return _e8(pts1, pts2, K1, K2).T
         """, ["swapped"]),
     # ---------------------------------------------------------------- ex4
-    "un-normalised 8-point": ("lab11.ex4", """
-        def fundamental_8point(pts1, pts2):
-            F = _eight_point_core(_homogeneous(pts1), _homogeneous(pts2))
-            U, s, Vt = np.linalg.svd(F)
-            return U @ np.diag([s[0], s[1], 0.0]) @ Vt
-        """, ["raw pixel coordinates"]),
-    "8-point with rank 2 after denormalising": ("lab11.ex4", """
-        def fundamental_8point(pts1, pts2):
-            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
-            T1, T2 = _hartley_normalisation(pts1), _hartley_normalisation(pts2)
-            Fn = _eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T)
-            U, s, Vt = np.linalg.svd(T2.T @ Fn @ T1)
-            return U @ np.diag([s[0], s[1], 0.0]) @ Vt
-        """, ["after undoing the normalisation"]),
     "8-point with a reduced SVD": ("lab11.ex4", """
         def _eight_point_core(x1, x2):
             A = (x2[:, :, None] * x1[:, None, :]).reshape(len(x1), 9)
@@ -138,6 +119,23 @@ MISTAKES = {
         def fundamental_8point(pts1, pts2):
             return _f8(pts2, pts1)
         """, ["swapped", "f^t"]),
+    "8-point normalised by F[2, 2] (after rounding to 9 decimals)": ("lab11.ex4", """
+        _fundamental = fundamental_8point
+        def fundamental_8point(pts1, pts2):
+            F = np.round(_fundamental(pts1, pts2), 9)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return F / F[2, 2]
+        """, ["divided by f[2, 2]", "0 here"]),
+    "8-point with F[2, 2] fixed to 1": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            x1 = np.asarray(pts1, float); x2 = np.asarray(pts2, float)
+            T1, T2 = _hartley_normalisation(x1), _hartley_normalisation(x2)
+            a = _homogeneous(x1) @ T1.T; b = _homogeneous(x2) @ T2.T
+            A = (b[:, :, None] * a[:, None, :]).reshape(len(a), 9)
+            f = np.linalg.lstsq(A[:, :8], -A[:, 8], rcond=None)[0]
+            U, s, Vt = np.linalg.svd(np.append(f, 1.0).reshape(3, 3))
+            return T2.T @ U @ np.diag([s[0], s[1], 0.0]) @ Vt @ T1
+        """, ["f[2, 2] = 1 was fixed", "svd"]),
     "8-point with OpenCV": ("lab11.ex4", """
         def fundamental_8point(pts1, pts2):
             F, _ = cv2.findFundamentalMat(np.float64(pts1), np.float64(pts2), cv2.FM_8POINT)
@@ -210,14 +208,72 @@ def test_mistake_is_caught_and_named(tmp_path, case):
     assert_mistake_named(tmp_path, MODULE, *MISTAKES[case])
 
 
-def test_unnormalised_8point_gets_partial_credit(tmp_path):
-    exercise, source, _ = MISTAKES["un-normalised 8-point"]
+# Correct variants the lab sheet or the API allows: full marks (and, where stated, a tip).
+VARIANTS = {
+    "triangulation with all three rows of x × (P X) = 0, rows not scaled": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.atleast_2d(np.asarray(pts1, float)); pts2 = np.atleast_2d(np.asarray(pts2, float))
+            X = []
+            for (x1, y1), (x2, y2) in zip(pts1, pts2):
+                A = np.array([x1 * P1[2] - P1[0], y1 * P1[2] - P1[1], y1 * P1[0] - x1 * P1[1],
+                              x2 * P2[2] - P2[0], y2 * P2[2] - P2[1], y2 * P2[0] - x2 * P2[1]])
+                h = np.linalg.svd(A)[2][-1]
+                X.append(h[:3] / h[3])
+            return np.array(X)
+        """),
+    "triangulation with two rows per view, each scaled to unit norm": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.atleast_2d(np.asarray(pts1, float)); pts2 = np.atleast_2d(np.asarray(pts2, float))
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[1],
+                          pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
+            A /= np.linalg.norm(A, axis=2, keepdims=True)
+            h = np.linalg.svd(A)[2][:, -1]
+            return h[:, :3] / h[:, 3:]
+        """),
+    "draw_epipolar_lines returning BGR for a grey input (coloured lines)": ("lab11.ex2", """
+        _draw = draw_epipolar_lines
+        def draw_epipolar_lines(image, lines):
+            if image.ndim == 2:
+                image = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR)
+            return _draw(image, lines)
+        """),
+    "the lab sheet's 8-point on raw pixel coordinates (no normalisation asked)": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            F = _eight_point_core(_homogeneous(pts1), _homogeneous(pts2))
+            U, s, Vt = np.linalg.svd(F)
+            return U @ np.diag([s[0], s[1], 0.0]) @ Vt
+        """),
+    "normalised 8-point with rank 2 enforced after denormalising": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            T1, T2 = _hartley_normalisation(pts1), _hartley_normalisation(pts2)
+            Fn = _eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T)
+            U, s, Vt = np.linalg.svd(T2.T @ Fn @ T1)
+            return U @ np.diag([s[0], s[1], 0.0]) @ Vt
+        """),
+    "fundamental_8point scaled so that its largest entry is 1": ("lab11.ex4", """
+        _fundamental = fundamental_8point
+        def fundamental_8point(pts1, pts2):
+            F = _fundamental(pts1, pts2)
+            return F / np.abs(F).max()
+        """),
+}
+
+
+@pytest.mark.parametrize("case", sorted(VARIANTS))
+def test_correct_variants_keep_full_marks(tmp_path, case):
+    exercise, source = VARIANTS[case]
     result = grade(mutant(tmp_path, MODULE, source), [exercise])
-    checks = {c.name: c for c in check_results(result, exercise)}
-    noisy = [c for name, c in checks.items() if "noisy pixel coordinates" in name]
-    assert noisy and 0 < noisy[0].score < noisy[0].max_score
-    exact = [c for name, c in checks.items() if "exact" in name]
-    assert exact and all(c.passed for c in exact)
+    for check in check_results(result, exercise):
+        assert check.passed or check.advice, f"{check.name}: {check.message}"
+
+
+def test_grey_in_grey_out_is_the_reference_and_bgr_gets_a_tip(tmp_path):
+    exercise, source = VARIANTS["draw_epipolar_lines returning BGR for a grey input (coloured lines)"]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    assert_advised(result, exercise, "grey in, grey out")
+    reference = grade(REFERENCE, [exercise])
+    assert not any("grey in, grey out" in tip for tip in advice_given(reference, exercise))
 
 
 def test_stored_figures_are_current():

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from autograder.runner import grade
-from conftest import assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
+from conftest import (assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results,
+                      mutant)
 
 MODULE = "lab12_stereo"
 
@@ -41,9 +42,13 @@ def test_hidden_reference_figures_are_current():
     from fixtures import lab12
     from fixtures.make_lab12_figures import load_reference
 
+    from fixtures.make_lab12_figures import block_matching_figures
+
+    measured = block_matching_figures(hidden.block_matching_scene(), hidden.BLOCK_MATCHING["block_size"])
+    for key in ("reference", "legitimate", "far_legitimate"):
+        assert abs(measured[key] - hidden.BLOCK_MATCHING[key]) < 0.005, (key, measured[key])
     reference = load_reference()
-    cases = {"block_matching": (hidden.block_matching_scene(), "block_matching", dict(block_size=9)),
-             "ncc": (hidden.ncc_scene(), "block_matching", dict(block_size=9, cost="ncc")),
+    cases = {"ncc": (hidden.ncc_scene(), "block_matching", dict(block_size=9, cost="ncc")),
              "dp_stereo": (hidden.dp_scene(), "dp_stereo", {})}
     for key, (scene, function, kwargs) in cases.items():
         got = getattr(reference, function)(scene.left, scene.right, max_disparity=scene.max_disparity, **kwargs)
@@ -116,13 +121,18 @@ MISTAKES = {
         def depth_from_disparity(disparity, f, baseline):
             with np.errstate(divide="ignore", invalid="ignore"):
                 return f * baseline / np.asarray(disparity, float)
-        """, ["inf or nan", "must be 0"]),
+        """, ["where the disparity is 0, your depth is inf", "must be 0"]),
+    "depth f b / (d + eps): huge but finite where d = 0": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.nan_to_num(np.asarray(disparity, float))
+            return f * baseline / (np.abs(d) + 1e-9)
+        """, ["where the disparity is 0, your depth is 8e+10", "where the disparity is negative, your depth is"]),
     "depth negative for negative disparities": ("lab12.ex2", """
         def depth_from_disparity(disparity, f, baseline):
             d = np.asarray(disparity, float)
             ok = np.isfinite(d) & (d != 0)
             return np.where(ok, f * baseline / np.where(ok, d, 1.0), 0.0)
-        """, ["non-zero depths", "negative"]),
+        """, ["where the disparity is negative, your depth is -26.7", "must be 0"]),
     "disparity xr - xl": ("lab12.ex2", """
         def disparity_from_matches(xl, xr):
             xl = np.asarray(xl, float); xr = np.asarray(xr, float)
@@ -207,16 +217,19 @@ MISTAKES = {
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
             return _block_matching(left, right, max_disparity, block_size, cost) + 1
         """, ["off by"]),
-    "block matching with StereoBM": ("lab12.ex4", """
+    "block matching that never searches d = 0": ("lab12.ex4", """
+        _ssd = _ssd_volume
+        def _ssd_volume(left, right, max_disparity, block_size):
+            costs = _ssd(left, right, max_disparity, block_size)
+            costs[0] = np.inf
+            return costs
+        """, ["wall at infinity", "must include d = 0"]),
+    "block matching with StereoBM's fixed point kept": ("lab12.ex4", """
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
-            bm = cv2.StereoBM_create(numDisparities=16 * ((max_disparity + 15) // 16), blockSize=block_size)
-            return bm.compute(left, right).astype(np.float64) / 16
-        """, ["cv2.StereoBM_create", "yourself"]),
-    "block matching with the StereoBM class": ("lab12.ex4", """
-        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
-            bm = cv2.StereoBM.create(numDisparities=16 * ((max_disparity + 15) // 16), blockSize=block_size)
-            return bm.compute(left, right).astype(np.float64) / 16
-        """, ["cv2.StereoBM", "yourself"]),
+            n = 16 * -(-(max_disparity + 1) // 16)
+            d = cv2.StereoBM_create(numDisparities=n, blockSize=block_size).compute(left, right)
+            return np.where((d > 0) & (d <= 16 * max_disparity), d, 0).astype(np.float64)
+        """, ["scaled by about 16", "fixed point"]),
     # ---------------------------------------------------------------- ext1
     "NCC without subtracting the means": ("lab12.ext1", """
         def _ncc_volume(left, right, max_disparity, block_size):
@@ -248,6 +261,13 @@ MISTAKES = {
     "DP without smoothness (winner-take-all)": ("lab12.ex5", """
         DEFAULT_SMOOTHNESS = 0.0
         """, ["winner-take-all"]),
+    "DP whose last column is always 0": ("lab12.ex5", """
+        _dp_stereo = dp_stereo
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            disparity = _dp_stereo(left, right, max_disparity, block_size, smoothness)
+            disparity[:, -1] = 0
+            return disparity
+        """, ["the last column", "backtracking"]),
     "DP with SGBM": ("lab12.ex5", """
         def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
             sgbm = cv2.StereoSGBM_create(0, 16 * ((max_disparity + 15) // 16), block_size)
@@ -353,6 +373,43 @@ VARIANTS = {
             out[rows[ok], cols[ok]] += 0.5 * (c0[ok] - c2[ok]) / denom[ok]
             return out
         """),
+    "block matching with the lab sheet's cv2.StereoBM, as the skeleton says": ("lab12.ex4", """
+        _block_matching_own = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            if cost != "ssd":
+                return _block_matching_own(left, right, max_disparity, block_size, cost)
+            n = 16 * -(-(max_disparity + 1) // 16)
+            d = cv2.StereoBM_create(numDisparities=n, blockSize=block_size).compute(left, right) / 16.0
+            d[(d <= 0) | (d > max_disparity)] = 0
+            return d
+        """),
+    "block matching after a Gaussian prefilter": ("lab12.ex4", """
+        _block_matching_own = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            blur = lambda image: cv2.GaussianBlur(image, (5, 5), 0)
+            return _block_matching_own(blur(left), blur(right), max_disparity, block_size, cost)
+        """),
+    "block matching with SAD": ("lab12.ex4", """
+        def _ssd_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(max_disparity + 1):
+                costs[d] = cv2.boxFilter(np.abs(left - _shift_right(right, d)), -1, (block_size, block_size),
+                                         normalize=False)
+                costs[d, :, :d] = np.inf
+            return costs
+        """),
+    "triangulation with all three rows of x × (P X) = 0, rows not scaled": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.atleast_2d(np.asarray(pts1, float)); pts2 = np.atleast_2d(np.asarray(pts2, float))
+            X = []
+            for (x1, y1), (x2, y2) in zip(pts1, pts2):
+                A = np.array([x1 * P1[2] - P1[0], y1 * P1[2] - P1[1], y1 * P1[0] - x1 * P1[1],
+                              x2 * P2[2] - P2[0], y2 * P2[2] - P2[1], y2 * P2[0] - x2 * P2[1]])
+                h = np.linalg.svd(A)[2][-1]
+                X.append(h[:3] / h[3])
+            return np.array(X)
+        """),
     "DP with a squared-difference cost and its own default": ("lab12.ex5", """
         def _sad_volume(left, right, max_disparity, block_size):
             height, width = left.shape
@@ -399,3 +456,16 @@ def test_correct_variants_keep_full_marks(tmp_path, case):
     result = grade(mutant(tmp_path, MODULE, source), [exercise])
     for check in check_results(result, exercise):
         assert check.passed, f"{check.name}: {check.message}"
+
+
+def test_functions_writing_into_their_inputs_get_a_tip(tmp_path):
+    """Writing into the caller's array loses no points; the engine's advice names it."""
+    result = grade(mutant(tmp_path, MODULE, """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, dtype=np.float64)   # no copy for a float array
+            d[~(d > 0)] = np.inf                          # f b / inf = 0: invalid
+            return f * baseline / d
+        """), ["lab12.ex2"])
+    [exercise] = result.exercises
+    assert exercise.score == exercise.max_score
+    assert_advised(result, "lab12.ex2", "depth_from_disparity", "disparity", "in place")

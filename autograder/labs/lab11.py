@@ -15,6 +15,7 @@ import numpy as np
 from hypothesis import strategies as st
 
 from fixtures import lab11 as truth
+from fixtures.lab12 import triangulation_variants
 
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import closest, projective_distance
@@ -90,6 +91,7 @@ def show_epipolar(t: Trial, title: str, F_true, F_got, images, pts1, pts2):
 # ================================================================== ex1 triangulation
 ex1 = lab.exercise("ex1", "Triangulation", functions=["triangulate(P1, P2, pts1, pts2)"])
 lab.forbid("triangulate", "cv2.triangulatePoints")
+VARIANT_SLACK = 1.1   # noisy data: up to 10% above the least accurate textbook variant
 
 
 def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, gold=None, show=False):
@@ -124,13 +126,19 @@ def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, g
                f"got {format_matrix(got[worst])}")
     mine, best = _reprojection(P1, P2, got, pts1, pts2).mean(), gold["reprojection"]
     error = np.median(np.linalg.norm(got - views.X, axis=1) / depth)
-    best_error = gold["median_error"]
-    if mine <= 1.25 * best + 0.05 and error <= 2 * best_error + 1e-3:
-        return passed(f"mean reprojection error {mine:.2f} px (linear triangulation: {best:.2f} px)")
+    # The textbook variants (two or three rows of x × (P X) = 0 per view, rows scaled or
+    # not) on the same data set the accepted spread.
+    variants = triangulation_variants(P1, P2, pts1, pts2).values()
+    reprojections = [_reprojection(P1, P2, X, pts1, pts2).mean() for X in variants]
+    errors = [np.median(np.linalg.norm(X - views.X, axis=1) / depth) for X in variants]
+    if mine <= VARIANT_SLACK * max(reprojections) + 0.01 and error <= VARIANT_SLACK * max(errors) + 1e-3:
+        return passed(f"mean reprojection error {mine:.2f} px (linear triangulation, two or three rows per "
+                      f"view, rows scaled or not: {min(reprojections):.2f} to {max(reprojections):.2f} px)")
     _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise=1.0)
-    t.fail(f"{what}: your points reproject {mine:.2f} px from the noisy measurements on average, "
-           f"linear triangulation achieves {best:.2f} px (median 3-D error {error:.1%} of the depth, "
-           f"expected about {best_error:.1%}).")
+    t.fail(f"{what}: your points reproject {mine:.2f} px from the noisy measurements on average; "
+           f"linear triangulation achieves {min(reprojections):.2f} to {max(reprojections):.2f} px "
+           f"(two rows per view, unscaled: {best:.2f} px). Median 3-D error {error:.1%} of the depth; "
+           f"linear triangulation: {min(errors):.1%} to {max(errors):.1%}.")
 
 
 def _camera_xz(cam, X) -> np.ndarray:
@@ -309,10 +317,11 @@ def draw_judgement(got, base, lines):
 
 
 def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
+    """Judge the drawn lines. A grey input may come back grey (the API's rule: the input's
+    channel count) or BGR (to show colours; a tip reminds of the rule): both are judged."""
     height, width = image.shape[:2]
     if isinstance(got, np.ndarray) and got.shape == (height, width) and image.ndim == 2:
-        t.fail(f"{what} returned a grey image; as documented, the result is always BGR "
-               "(H, W, 3) so the coloured lines show: convert with cv2.cvtColor(image, cv2.COLOR_GRAY2BGR)")
+        got = cv2.cvtColor(t.expect_array(got, what, dtype=np.uint8), cv2.COLOR_GRAY2BGR)
     got = t.expect_array(got, what, shape=(height, width, 3), dtype=np.uint8)
     coverage, stray, changed = draw_judgement(got, image, lines)
     if coverage.min() >= min_coverage and stray <= 0.05:
@@ -364,7 +373,7 @@ def draw_through_matches(t):
     return passed(f"all {len(hit)} matches lie on drawn lines")
 
 
-@ex2.check("draw_epipolar_lines draws across the whole image, grey in -> BGR out", points=2)
+@ex2.check("draw_epipolar_lines draws across the whole image of a grey input", points=2)
 def draw_full_width(t):
     image = np.zeros((120, 160), np.uint8)
     lines = truth.normalise_lines(np.array([
@@ -378,6 +387,16 @@ def draw_full_width(t):
     if isinstance(got, np.ndarray) and got.ndim in (2, 3):
         t.images("draw_epipolar_lines(black 160 x 120 grey image, 5 lines)", input=image, yours=got)
     judge_drawing(t, "draw_epipolar_lines(grey image, lines)", got, image, lines)
+
+
+@ex2.advice("grey in, grey out (the API's rule for functions that take an image)")
+def draw_keeps_channels(t):
+    image = np.zeros((60, 80), np.uint8)
+    got = t.call("draw_epipolar_lines", image, np.array([[0.0, 1.0, -30.0]]))
+    if isinstance(got, np.ndarray) and got.shape == (60, 80, 3):
+        t.advise("draw_epipolar_lines(grey image, lines) returned a BGR image. That is accepted (it shows "
+                 "coloured lines), but the API's rule is that a function taking an image returns its "
+                 "channel count unless stated otherwise: grey in, grey out, lines in white (255).")
 
 
 @ex2.check("draw_epipolar_lines draws a vertical line (b = 0)", points=1)
@@ -489,16 +508,27 @@ ex4 = lab.exercise("ex4", "Fundamental matrix (8-point algorithm)", functions=["
 lab.forbid("fundamental_8point", "cv2.findFundamentalMat")
 
 
-def judge_exact_fundamental(t: Trial, views, n):
-    what = f"fundamental_8point(pts1, pts2) with N={n} exact correspondences"
+def judge_exact_fundamental(t: Trial, views, n, sideways=False):
+    what = f"fundamental_8point(pts1, pts2) with N={n} exact correspondences" + \
+        (" of a sideways motion (a rectified pair: the true F[2, 2] is 0)" if sideways else "")
     got = t.call("fundamental_8point", views.pts1[:n], views.pts2[:n])
+    if sideways and isinstance(got, np.ndarray) and got.shape == (3, 3) and got.dtype.kind in "iuf":
+        if not np.all(np.isfinite(got)):
+            t.fail(f"{what} returned NaN or infinite entries: it looks like F was divided by F[2, 2], "
+                   "which is 0 here. Any scale of F is accepted: leave it, or divide by its norm.")
+        size = np.linalg.norm(got)
+        if projective_distance(got, views.F) > 1e-4 and abs(got[2, 2]) > 1e-3 * size:
+            t.fail(f"{what}: your F[2, 2] is {got[2, 2] / size:.3g} of |F|, the true one is 0. It looks "
+                   "like F[2, 2] = 1 was fixed (8 unknowns), which cannot express this camera pair: "
+                   "solve A f = 0 for all 9 entries by SVD.")
     judge_projective(t, what, got, views.F, truth.fundamental_mistakes(views.F), tolerance=1e-4)
 
 
-@ex4.check("fundamental_8point from exact correspondences (N=8 and N=40)", points=3)
+@ex4.check("fundamental_8point from exact correspondences (N=8 and N=40; a sideways motion)", points=3)
 def fundamental_exact(t):
     views = truth.two_views(seed=10, n=40)
     judge_exact_fundamental(t, views, 40)
+    judge_exact_fundamental(t, truth.sideways_views(seed=21, n=20), 20, sideways=True)
     try:
         judge_exact_fundamental(t, views, 8)
     except Fail as failure:
@@ -523,11 +553,16 @@ def fundamental_rank2(t):
 
 
 NOISY_SCENES = truth.FUNDAMENTAL_SCENES
+# The lab sheet's 8-point algorithm does not ask for Hartley's normalisation, so the textbook
+# variants on the same data set the accepted spread: normalised (rank 2 on Fn or after
+# undoing the normalisation) or on raw pixels (precomputed by make_lab11_figures.py).
+FUNDAMENTAL_VARIANTS = {"gold": "normalised 8-point", "late_rank2": "rank 2 after denormalising",
+                        "unnormalised": "8-point on raw pixels"}
 
 
 @ex4.check("fundamental_8point is accurate on noisy pixel coordinates (6 scenes)", points=3)
 def fundamental_noisy(t):
-    good, lines, unnormalised, late = 0, [], 0, 0
+    good, lines = 0, []
     for i, seed in enumerate(NOISY_SCENES):
         views, pts1, pts2 = truth.noisy_fundamental_problem(seed)
         figures = truth.figures()["fundamental"][str(seed)]
@@ -544,34 +579,23 @@ def fundamental_noisy(t):
                           projective_distance, 1e-3)
         if mistake:
             t.fail(f"{what} is wrong: it looks like {mistake}.")
-        mine = truth.symmetric_epipolar_distance(got, views.pts1[40:], views.pts2[40:]).mean()
-        best = truth.symmetric_epipolar_distance(figures["gold"], views.pts1[40:],
-                                                 views.pts2[40:]).mean()
-        lines.append(f"{mine:.2f} px (normalised 8-point: {best:.2f} px)")
-        good += mine <= 1.5 * best + 0.1
-        signature = truth.symmetric_epipolar_distance(got, views.pts1[40:], views.pts2[40:])
 
-        def same_geometry(F):
-            other = truth.symmetric_epipolar_distance(F, views.pts1[40:], views.pts2[40:])
-            return np.abs(signature - other).max() <= 0.02
+        def distance(F):
+            return truth.symmetric_epipolar_distance(F, views.pts1[40:], views.pts2[40:]).mean()
 
-        unnormalised += same_geometry(figures["unnormalised"])
-        late += same_geometry(figures["late_rank2"])
+        mine = distance(got)
+        spread = [distance(figures[key]) for key in FUNDAMENTAL_VARIANTS]
+        lines.append(f"{mine:.2f} px (textbook variants: {min(spread):.2f} to {max(spread):.2f} px)")
+        good += mine <= 1.1 * max(spread) + 0.1
     report = "; ".join(lines)
     if good == len(NOISY_SCENES):
         return passed(f"mean distance of exact held-out matches to your epipolar lines: {report}")
-    hint = ("normalise the points first (Hartley): move each image's centroid to the origin and "
-            "scale so the mean distance is sqrt(2); solve; then F = T2^T Fn T1")
-    message = (f"on {len(NOISY_SCENES) - good} of {len(NOISY_SCENES)} noisy scenes your F is far from the true "
-               f"epipolar geometry (mean distance of exact held-out matches to your lines: {report})")
-    if unnormalised >= len(NOISY_SCENES) - 1:
-        message += (". It looks like the 8-point algorithm on raw pixel coordinates, which is "
-                    "badly conditioned (entries x*x' ~ 1e5 next to 1)")
-    elif late >= len(NOISY_SCENES) - 1:
-        message += (". It looks like rank 2 is enforced after undoing the normalisation; enforce it "
-                    "on the normalised Fn, then F = T2^T Fn T1")
-        hint = "zero the smallest singular value of Fn (normalised coordinates), not of F"
-    return partial(good / len(NOISY_SCENES), message, hint)
+    message = (f"on {len(NOISY_SCENES) - good} of {len(NOISY_SCENES)} noisy scenes your F is farther from "
+               "the true epipolar geometry than any textbook 8-point variant (mean distance of exact "
+               f"held-out matches to your lines: {report})")
+    return partial(good / len(NOISY_SCENES), message,
+                   "solve A f = 0 by SVD (the last row of Vt), reshape to 3 x 3, enforce rank 2 "
+                   "(U diag(s1, s2, 0) V^T); normalising the points first (Hartley) makes it more accurate")
 
 
 # ================================================================== ex5 epipoles
@@ -743,6 +767,12 @@ def pipeline_matches(t):
     return judge_matches(t, pair, pts1, pts2)
 
 
+# Full marks for the 3-D points: the worst legitimate pipeline (the lab sheet's recipe with
+# OpenCV's RANSAC defaults: 5.6% / 13.0%, benchmarks/spread_two_view_pipeline.py) with 40% to spare.
+STRUCTURE_MEDIAN = 0.08   # median relative 3-D error after one global scale
+STRUCTURE_P90 = 0.18      # its 90th percentile
+
+
 def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
     X, true2, valid = truth.true_correspondences(pair, pts1)
     good = valid & (np.linalg.norm(pts2 - np.nan_to_num(true2), axis=1) <= 2.0)
@@ -767,7 +797,7 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
     if median2 < 0.5 * median:
         t.fail("your 3D points are in camera 2's frame (they fit it better than camera 1's): return "
                "them in camera 1's frame (P1 = K [I | 0], P2 = K [R | t])")
-    if scale > 0 and median <= 0.05 and p90 <= 0.12:
+    if scale > 0 and median <= STRUCTURE_MEDIAN and p90 <= STRUCTURE_P90:
         return passed(summary)
     if scale < 0 or np.median(got[:, 2]) < 0:
         t.fail("your 3D points are behind camera 1 (negative Z, or mirrored through its centre): "
@@ -778,7 +808,7 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
         t.fail("each 3D point is in the right direction but off by its own factor: it looks like the "
                "homogeneous points were not divided by w")
     if median <= 0.15:
-        return partial(0.5, summary + " (full marks below 5% and 12%)")
+        return partial(0.5, summary + f" (full marks below {STRUCTURE_MEDIAN:.0%} and {STRUCTURE_P90:.0%})")
     t.fail(summary)
 
 
