@@ -1,0 +1,203 @@
+"""Which submissions look alike, lab by lab: leads for a person to read, never a verdict.
+
+Uses `copydetect <https://github.com/blingenf/copydetect>`_ (the optional
+``similarity`` extra): each lab module is tokenised (names, strings and
+comments filtered out, so renamed variables and rewritten comments do not hide
+a copy), fingerprinted by winnowing (so reordered functions do not either),
+and the skeleton's own code is removed as boilerplate. Every pair of students
+who handed in the same module is compared; a pair's score is the mean of the
+two files' shares of code found in the other.
+
+Sources are read per student from a folder with one entry per student (a
+folder, ``.zip`` or notebook, as :func:`autograder.submission.load_submission`
+reads them): the submissions folder, or a batch's RESULTS folder where each
+student's folder keeps the submitted modules.
+"""
+
+from __future__ import annotations
+
+import io
+import itertools
+import statistics
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from markupsafe import Markup, escape
+
+from ..bundle import PROJECT_ROOT
+from ..results import write_atomically
+from ..submission import SubmissionError, load_submission
+
+SKELETON_DIR = PROJECT_ROOT / "assignments"
+NOISE_THRESHOLD = 25        # shortest filtered token run that counts as a match (copydetect's default)
+GUARANTEE_THRESHOLD = 30    # runs this long are always found (copydetect's default)
+SHOWN_PER_LAB = 10          # pairs listed per lab even below the threshold, for comparison
+CODE_SHOWN_PER_LAB = 30     # pairs above the threshold shown side by side
+_NOT_STUDENTS = {"__MACOSX", "index.html", "similarity.html"}
+
+
+class SimilarityUnavailable(RuntimeError):
+    """copydetect is not installed (``pip install 'cv-autograder[similarity]'``)."""
+
+
+def _copydetect():
+    try:
+        import copydetect
+        from copydetect import utils
+    except ImportError:  # pragma: no cover - exercised where the extra is missing
+        raise SimilarityUnavailable(
+            "the similarity report needs copydetect: pip install 'cv-autograder[similarity]'") from None
+    return copydetect, utils
+
+
+# ---------------------------------------------------------------- finding the sources
+def lab_modules() -> dict[str, str]:
+    """Module name -> lab key, for every registered lab."""
+    from ..registry import discover
+
+    return {lab.module: lab.key for lab in discover().values()}
+
+
+def collect_sources(folder, modules) -> dict[str, dict[str, str]]:
+    """Student -> module -> source, for every entry of ``folder`` holding some of ``modules``.
+
+    An entry is a student's folder, ``.zip`` or ``.ipynb`` (named after the
+    student); entries holding none of the modules, and files that are not
+    submissions (CSV, HTML, the gradebook), are left out.
+    """
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise SubmissionError(f"not a folder of submissions: {folder}")
+    sources: dict[str, dict[str, str]] = {}
+    for entry in sorted(folder.iterdir()):
+        if entry.name.startswith(".") or entry.name in _NOT_STUDENTS:
+            continue
+        if not (entry.is_dir() or entry.suffix in (".zip", ".ipynb")):
+            continue
+        try:
+            with load_submission(entry, list(modules)) as submission:
+                found = {m: (submission.path / f"{m}.py").read_text(encoding="utf-8", errors="replace")
+                         for m in modules if (submission.path / f"{m}.py").exists()}
+        except SubmissionError:
+            continue  # the overview lists unreadable entries; nothing to compare here
+        if found:
+            sources[entry.stem if entry.is_file() else entry.name] = found
+    return sources
+
+
+def skeleton_sources(modules, skeleton_dir=SKELETON_DIR) -> dict[str, str]:
+    """The skeleton's code per module: what every student starts from, never a match."""
+    return {m: (Path(skeleton_dir) / f"{m}.py").read_text(encoding="utf-8")
+            for m in modules if (Path(skeleton_dir) / f"{m}.py").exists()}
+
+
+# ---------------------------------------------------------------- comparing
+@dataclass
+class SimilarPair:
+    """Two students' versions of one module, and how much of each is found in the other."""
+
+    module: str
+    student_a: str
+    student_b: str
+    share_a: float            # fraction of a's (non-skeleton) code matched in b
+    share_b: float
+    highlighted_a: Markup = field(repr=False, default=Markup(""))   # escaped source, <mark>ed matches
+    highlighted_b: Markup = field(repr=False, default=Markup(""))
+    slices: tuple = field(repr=False, compare=False, default=())   # copydetect's matched regions
+
+    @property
+    def score(self) -> float:
+        return (self.share_a + self.share_b) / 2
+
+
+@dataclass
+class LabSimilarity:
+    module: str
+    lab: str
+    students: int             # students whose module has code beyond the skeleton
+    pairs: list[SimilarPair]  # every compared pair, most similar first
+
+    @property
+    def median(self) -> float | None:
+        return statistics.median(p.score for p in self.pairs) if self.pairs else None
+
+
+def compare_module(module: str, sources: dict[str, str], skeleton: str = "", lab: str = "",
+                   noise: int = NOISE_THRESHOLD, guarantee: int = GUARANTEE_THRESHOLD) -> LabSimilarity:
+    """Compare every pair of ``sources`` (student -> source of ``module``), skeleton excluded."""
+    copydetect, utils = _copydetect()
+    window = guarantee - noise + 1
+    filename = f"{module}.py"   # the extension picks copydetect's Python tokeniser
+    boilerplate = []
+    if skeleton:
+        boilerplate = copydetect.CodeFingerprint(filename, noise, 1, fp=io.StringIO(skeleton)).hashes
+    boilerplate = sorted(boilerplate)
+    prints = {}
+    for student, source in sources.items():
+        fingerprint = copydetect.CodeFingerprint(filename, noise, window, boilerplate, fp=io.StringIO(source))
+        if fingerprint.token_coverage > 0:   # an untouched skeleton has nothing of its own
+            prints[student] = fingerprint
+    pairs = []
+    for a, b in itertools.combinations(sorted(prints), 2):
+        _, (share_a, share_b), slices = copydetect.compare_files(prints[a], prints[b])
+        pairs.append(SimilarPair(module, a, b, float(share_a), float(share_b), slices=slices))
+    pairs.sort(key=lambda p: (-p.score, p.student_a, p.student_b))
+    return LabSimilarity(module, lab or module, len(prints), pairs)
+
+
+def highlight(pair: SimilarPair, sources: dict[str, str]) -> None:
+    """Fill in the pair's escaped sources with the matching regions marked."""
+    _, utils = _copydetect()
+    slices_a, slices_b = pair.slices
+    for attr, student, slices in (("highlighted_a", pair.student_a, slices_a),
+                                  ("highlighted_b", pair.student_b, slices_b)):
+        code = sources[student]
+        if len(slices) and len(slices[0]):
+            marked, _ = utils.highlight_overlap(code, slices, "<mark>", "</mark>", escape_html=True)
+        else:
+            marked = str(escape(code))
+        setattr(pair, attr, Markup(marked))
+
+
+def compare_class(sources: dict[str, dict[str, str]], skeletons: dict[str, str] | None = None,
+                  labs: dict[str, str] | None = None, threshold: float = 0.6,
+                  code_shown: int = CODE_SHOWN_PER_LAB) -> list[LabSimilarity]:
+    """Compare the class lab by lab; pairs at or above ``threshold`` get their sources highlighted."""
+    skeletons = skeletons or {}
+    labs = labs or {}
+    modules = sorted({m for per_student in sources.values() for m in per_student},
+                     key=lambda m: (labs.get(m, m), m))
+    results = []
+    for module in modules:
+        module_sources = {s: per[module] for s, per in sources.items() if module in per}
+        result = compare_module(module, module_sources, skeletons.get(module, ""), labs.get(module, ""))
+        for pair in [p for p in result.pairs if p.score >= threshold][:code_shown]:
+            highlight(pair, module_sources)
+        results.append(result)
+    return results
+
+
+# ---------------------------------------------------------------- the page
+def similarity_html(results: list[LabSimilarity], threshold: float, course_title: str = "",
+                    shown: int = SHOWN_PER_LAB, code_shown: int = CODE_SHOWN_PER_LAB) -> str:
+    import datetime as dt
+
+    from .overview import environment
+
+    return environment().get_template("similarity.html.j2").render(
+        results=results, threshold=threshold, course_title=course_title, shown=shown,
+        code_shown=code_shown,
+        generated=dt.datetime.now(dt.timezone.utc).strftime("%Y-%m-%d %H:%M %Z"))
+
+
+def write_similarity_report(folder, out_path, threshold: float = 0.6, course_title: str = "",
+                            skeleton_dir=SKELETON_DIR) -> list[LabSimilarity]:
+    """Compare the submissions in ``folder`` and write ``similarity.html`` to ``out_path``.
+
+    The single entry point for ``autograder similarity`` and ``autograder batch --similarity``.
+    """
+    labs = lab_modules()
+    sources = collect_sources(folder, labs)
+    results = compare_class(sources, skeleton_sources(labs, skeleton_dir), labs, threshold)
+    write_atomically(out_path, similarity_html(results, threshold, course_title))
+    return results
