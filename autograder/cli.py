@@ -41,6 +41,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     bundle = commands.add_parser("bundle", help="write the repository students receive")
     bundle.add_argument("--student", metavar="OUT", required=True, help="folder to create")
+    add_class_commands(commands)
     return parser
 
 
@@ -156,9 +157,71 @@ def run_bundle(args) -> int:
     return 0
 
 
+def add_class_commands(commands) -> None:
+    """``autograder report`` and ``autograder similarity``: the class pages of a batch."""
+    report = commands.add_parser("report", help="write RESULTS/index.html, the class overview, from the gradebook")
+    report.add_argument("results", metavar="RESULTS", help="a batch's results folder")
+    report.add_argument("--course", metavar="COURSE", help="course configuration (JSON)")
+    report.add_argument("--title", default="", help="course title shown on the page")
+
+    similarity = commands.add_parser(
+        "similarity", help="write similarity.html: the most similar submissions, lab by lab (leads to read)")
+    similarity.add_argument("submissions", metavar="SUBMISSIONS_OR_RESULTS",
+                            help="the class's submissions (a batch's input), or a results folder keeping sources")
+    similarity.add_argument("--out", metavar="HTML", help="page to write (default: RESULTS/similarity.html for "
+                                                          "a results folder, else ./similarity.html)")
+    similarity.add_argument("--course", metavar="COURSE", help="course configuration (JSON): similarity_threshold")
+    similarity.add_argument("--threshold", type=float, help="show pairs scoring at least this (0-1), "
+                                                            "instead of the course's similarity_threshold")
+    similarity.add_argument("--title", default="", help="course title shown on the page")
+
+
+def run_report(args) -> int:
+    from .classreport.pages import NoGradebook, write_overview
+    from .course import CourseConfig, CourseConfigError
+
+    try:
+        course = CourseConfig.load(args.course) if args.course else CourseConfig()
+        out = write_overview(args.results, course_title=args.title or getattr(course, "assignment", ""))
+    except (CourseConfigError, NoGradebook) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return USAGE_ERROR
+    print(f"wrote {out}")
+    return 0
+
+
+def _default_similarity_page(folder: Path) -> Path:
+    from .classreport.pages import GRADEBOOK, SIMILARITY
+
+    return folder / SIMILARITY if (folder / GRADEBOOK).is_file() else Path(SIMILARITY)
+
+
+def run_similarity(args) -> int:
+    from .classreport.similarity import SimilarityUnavailable, write_similarity_report
+    from .course import CourseConfig, CourseConfigError
+
+    try:
+        course = CourseConfig.load(args.course) if args.course else CourseConfig()
+        threshold = args.threshold if args.threshold is not None else course.similarity_threshold
+        if not 0 < threshold <= 1:
+            raise CourseConfigError("--threshold must be in (0, 1]")
+        out = Path(args.out) if args.out else _default_similarity_page(Path(args.submissions))
+        results = write_similarity_report(args.submissions, out, threshold=threshold,
+                                          course_title=args.title or getattr(course, "assignment", ""))
+    except (CourseConfigError, SubmissionError, SimilarityUnavailable) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return USAGE_ERROR
+    for lab in results:
+        leads = sum(p.score >= threshold for p in lab.pairs)
+        print(f"{lab.lab}: {lab.students} students, {leads} pairs at or above {threshold:.0%}")
+    print(f"wrote {out} (leads to read, not findings)")
+    return 0
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
-    commands = {"grade": run_grade, "list": run_list, "gradescope": run_gradescope, "bundle": run_bundle}
+    commands = {"grade": run_grade, "list": run_list, "gradescope": run_gradescope, "bundle": run_bundle,
+                "report": run_report, "similarity": run_similarity}
     return commands[args.command](args)
 
 

@@ -6,6 +6,11 @@ Example ``course.json``::
      "hidden_visibility": "after_published", "call_timeout": 10}
 
 Every key is optional; unknown keys and bad values are refused with a message.
+
+``similarity_threshold`` (default 0.5): the similarity report (``autograder
+similarity``) shows pairs of submissions whose score -- the mean share of each
+file's own code (skeleton excluded) found in the other -- is at least this,
+side by side. Disguised copies score about 0.9, independent work about 0.1.
 """
 
 from __future__ import annotations
@@ -28,6 +33,7 @@ class CourseConfig:
     hidden_visibility: str = "after_published"          # ... and of hidden checks
     stdout_visibility: str = "hidden"                   # the grader's own log
     call_timeout: float = 10.0                          # seconds per call into student code
+    similarity_threshold: float = 0.5                   # similarity report: pairs shown side by side
 
     def __post_init__(self):
         for name in ("public_visibility", "hidden_visibility", "stdout_visibility"):
@@ -37,6 +43,8 @@ class CourseConfig:
             raise CourseConfigError("select must be a list of names like 'lab07' or 'lab07.ex2'")
         if not (isinstance(self.call_timeout, (int, float)) and self.call_timeout > 0):
             raise CourseConfigError("call_timeout must be a positive number of seconds")
+        if not (isinstance(self.similarity_threshold, (int, float)) and 0 < self.similarity_threshold <= 1):
+            raise CourseConfigError("similarity_threshold must be a number in (0, 1]")
 
     @classmethod
     def load(cls, path) -> "CourseConfig":

@@ -19,6 +19,7 @@ from __future__ import annotations
 import io
 import itertools
 import statistics
+import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -59,30 +60,60 @@ def lab_modules() -> dict[str, str]:
 
 
 def collect_sources(folder, modules) -> dict[str, dict[str, str]]:
-    """Student -> module -> source, for every entry of ``folder`` holding some of ``modules``.
+    """Student -> module -> source, for every student in ``folder`` with some of ``modules``.
 
-    An entry is a student's folder, ``.zip`` or ``.ipynb`` (named after the
-    student); entries holding none of the modules, and files that are not
-    submissions (CSV, HTML, the gradebook), are left out.
+    With the batch installed, ``folder`` is read as ``autograder batch`` reads a
+    class (Gradescope, Canvas and Moodle downloads too, with the same student
+    ids). Otherwise, and for a RESULTS folder, each entry -- a student's folder,
+    ``.zip`` or ``.ipynb`` -- is one student. Entries holding none of the
+    modules, and files that are not submissions (CSV, HTML, the gradebook), are
+    left out; unreadable ones are listed by the batch, not here.
     """
     folder = Path(folder)
+    if not folder.exists():
+        raise SubmissionError(f"not found: {folder}")
+    modules = list(modules)
+    sources: dict[str, dict[str, str]] = {}
+    with tempfile.TemporaryDirectory(prefix="similarity-") as scratch:
+        entries = None
+        if not (folder / "gradebook.sqlite").exists():
+            entries = _batch_entries(folder, modules, Path(scratch))
+        for student, entry in entries if entries is not None else _entries(folder):
+            try:
+                with load_submission(entry, modules) as submission:
+                    found = {m: (submission.path / f"{m}.py").read_text(encoding="utf-8", errors="replace")
+                             for m in modules if (submission.path / f"{m}.py").exists()}
+            except SubmissionError:
+                continue
+            if found:
+                sources[student] = found
+    return sources
+
+
+def _entries(folder: Path) -> list[tuple[str, Path]]:
+    """One student per folder, ``.zip`` or ``.ipynb`` at the top of ``folder``."""
     if not folder.is_dir():
         raise SubmissionError(f"not a folder of submissions: {folder}")
-    sources: dict[str, dict[str, str]] = {}
-    for entry in sorted(folder.iterdir()):
-        if entry.name.startswith(".") or entry.name in _NOT_STUDENTS:
+    return [(entry.stem if entry.is_file() else entry.name, entry) for entry in sorted(folder.iterdir())
+            if not entry.name.startswith(".") and entry.name not in _NOT_STUDENTS
+            and (entry.is_dir() or entry.suffix in (".zip", ".ipynb"))]
+
+
+def _batch_entries(folder: Path, modules: list[str], scratch: Path) -> list[tuple[str, Path]] | None:
+    """The class as ``autograder batch`` reads it, each student's files laid out under ``scratch``."""
+    try:
+        from ..batch.ingest import read_class
+    except ImportError:   # the batch is not part of this installation
+        return None
+    out = []
+    for entry in read_class(folder, modules, modules):
+        if entry.error:
             continue
-        if not (entry.is_dir() or entry.suffix in (".zip", ".ipynb")):
-            continue
-        try:
-            with load_submission(entry, list(modules)) as submission:
-                found = {m: (submission.path / f"{m}.py").read_text(encoding="utf-8", errors="replace")
-                         for m in modules if (submission.path / f"{m}.py").exists()}
-        except SubmissionError:
-            continue  # the overview lists unreadable entries; nothing to compare here
-        if found:
-            sources[entry.stem if entry.is_file() else entry.name] = found
-    return sources
+        target = scratch / entry.student_id
+        target.mkdir()
+        entry.write_files(target)
+        out.append((entry.student_id, target))
+    return out
 
 
 def skeleton_sources(modules, skeleton_dir=SKELETON_DIR) -> dict[str, str]:
