@@ -31,6 +31,7 @@ def histogram_svg(distribution: Distribution, what: str, bins: int = 10) -> Mark
     step = distribution.max_score / bins if distribution.max_score else 0.0
     description = ", ".join(
         f"{_num(i * step)} to {_num((i + 1) * step)}: {n}" for i, n in enumerate(counts))
+    labels = []   # drawn last, over the mean and median lines
     parts = [f'<svg class="hist" viewBox="0 0 {WIDTH} {HEIGHT}" role="img" '
              f'aria-label="{escape(what)}: {escape(description)}" xmlns="http://www.w3.org/2000/svg">',
              f"<title>{escape(what)}</title>"]
@@ -41,8 +42,8 @@ def histogram_svg(distribution: Distribution, what: str, bins: int = 10) -> Mark
         parts.append(f'<rect x="{x + 1:.1f}" y="{TOP + plot_h - h:.1f}" width="{bar_w - 2:.1f}" '
                      f'height="{h:.1f}" fill="{"#1a7f37" if full else "#0969da"}"/>')
         if n:
-            parts.append(f'<text x="{x + bar_w / 2:.1f}" y="{TOP + plot_h - h - 3:.1f}" '
-                         f'text-anchor="middle" font-size="11">{n}</text>')
+            labels.append(f'<text x="{x + bar_w / 2:.1f}" y="{TOP + plot_h - h - 3:.1f}" text-anchor="middle" '
+                          f'font-size="11" stroke="#fff" stroke-width="3" paint-order="stroke">{n}</text>')
     baseline = TOP + plot_h
     parts.append(f'<line x1="{LEFT}" y1="{baseline}" x2="{WIDTH - RIGHT}" y2="{baseline}" stroke="#57606a"/>')
     for value, anchor in ((0.0, "start"), (distribution.max_score / 2, "middle"), (distribution.max_score, "end")):
@@ -56,5 +57,6 @@ def histogram_svg(distribution: Distribution, what: str, bins: int = 10) -> Mark
         x = LEFT + plot_w * min(max(value / distribution.max_score, 0.0), 1.0)
         parts.append(f'<line x1="{x:.1f}" y1="{TOP - 6}" x2="{x:.1f}" y2="{baseline}" stroke="{colour}" '
                      f'stroke-width="2"{dash}/>')
+    parts += labels
     parts.append("</svg>")
     return Markup("".join(parts))
