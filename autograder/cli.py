@@ -212,8 +212,7 @@ def run_similarity(args) -> int:
         print(f"error: {exc}", file=sys.stderr)
         return USAGE_ERROR
     for lab in results:
-        leads = sum(p.score >= threshold for p in lab.pairs)
-        print(f"{lab.lab}: {lab.students} students, {leads} pairs at or above {threshold:.0%}")
+        print(f"{lab.lab}: {lab.students} students, {len(lab.leads(threshold))} pairs at or above {threshold:.0%}")
     print(f"wrote {out} (leads to read, not findings)")
     return 0
 

@@ -129,3 +129,11 @@ def test_skeleton_sources_found_for_every_lab():
     modules = lab_modules()
     assert set(skeleton_sources(modules)) == set(modules)
     assert all(a != b for a, b in itertools.combinations(modules.values(), 2))
+
+
+def test_aligning_only_candidates_finds_the_same_leads(lab07_class):
+    sources, _, quick = lab07_class
+    exhaustive = compare_module(LAB07, sources, SKELETON, "lab07", align_above=0.0, aligned_at_least=10**6)
+    assert all(p.aligned for p in exhaustive.pairs)
+    assert [(p.student_a, p.student_b, p.score) for p in quick.leads(THRESHOLD)] == \
+        [(p.student_a, p.student_b, p.score) for p in exhaustive.leads(THRESHOLD)]

@@ -34,6 +34,7 @@ NOISE_THRESHOLD = 25        # shortest filtered token run that counts as a match
 GUARANTEE_THRESHOLD = 30    # runs this long are always found (copydetect's default)
 SHOWN_PER_LAB = 10          # pairs listed per lab even below the threshold, for comparison
 CODE_SHOWN_PER_LAB = 30     # pairs above the threshold shown side by side
+ALIGN_ABOVE = 0.2           # pairs sharing fewer fingerprints than this are not aligned (see compare_module)
 _NOT_STUDENTS = {"__MACOSX", "index.html", "similarity.html"}
 
 
@@ -135,6 +136,7 @@ class SimilarPair:
     highlighted_a: Markup = field(repr=False, default=Markup(""))   # escaped source, <mark>ed matches
     highlighted_b: Markup = field(repr=False, default=Markup(""))
     slices: tuple = field(repr=False, compare=False, default=())   # copydetect's matched regions
+    aligned: bool = True      # shares measured by copydetect; else estimated from common fingerprints
 
     @property
     def score(self) -> float:
@@ -148,14 +150,26 @@ class LabSimilarity:
     students: int             # students whose module has code beyond the skeleton
     pairs: list[SimilarPair]  # every compared pair, most similar first
 
+    def leads(self, threshold: float) -> list[SimilarPair]:
+        """The aligned pairs scoring at least ``threshold``, most similar first."""
+        return [p for p in self.pairs if p.aligned and p.score >= threshold]
+
     @property
     def median(self) -> float | None:
         return statistics.median(p.score for p in self.pairs) if self.pairs else None
 
 
 def compare_module(module: str, sources: dict[str, str], skeleton: str = "", lab: str = "",
-                   noise: int = NOISE_THRESHOLD, guarantee: int = GUARANTEE_THRESHOLD) -> LabSimilarity:
-    """Compare every pair of ``sources`` (student -> source of ``module``), skeleton excluded."""
+                   noise: int = NOISE_THRESHOLD, guarantee: int = GUARANTEE_THRESHOLD,
+                   align_above: float = ALIGN_ABOVE, aligned_at_least: int = SHOWN_PER_LAB) -> LabSimilarity:
+    """Compare every pair of ``sources`` (student -> source of ``module``), skeleton excluded.
+
+    Every pair is first scored by the share of fingerprints the two files have
+    in common (a set intersection, microseconds); copydetect aligns the files
+    (exact shares, matching regions) for the pairs scoring at least
+    ``align_above`` and for the ``aligned_at_least`` best ones. A class of 300
+    has 44,850 pairs per lab, almost all of them far apart.
+    """
     copydetect, utils = _copydetect()
     window = guarantee - noise + 1
     filename = f"{module}.py"   # the extension picks copydetect's Python tokeniser
@@ -170,9 +184,16 @@ def compare_module(module: str, sources: dict[str, str], skeleton: str = "", lab
             prints[student] = fingerprint
     pairs = []
     for a, b in itertools.combinations(sorted(prints), 2):
-        _, (share_a, share_b), slices = copydetect.compare_files(prints[a], prints[b])
-        pairs.append(SimilarPair(module, a, b, float(share_a), float(share_b), slices=slices))
-    pairs.sort(key=lambda p: (-p.score, p.student_a, p.student_b))
+        common = len(prints[a].hashes & prints[b].hashes)
+        pairs.append(SimilarPair(module, a, b, common / max(len(prints[a].hashes), 1),
+                                 common / max(len(prints[b].hashes), 1), aligned=False))
+    pairs.sort(key=lambda p: -p.score)
+    for rank, pair in enumerate(pairs):
+        if rank >= aligned_at_least and pair.score < align_above:
+            break
+        _, (share_a, share_b), slices = copydetect.compare_files(prints[pair.student_a], prints[pair.student_b])
+        pair.share_a, pair.share_b, pair.slices, pair.aligned = float(share_a), float(share_b), slices, True
+    pairs.sort(key=lambda p: (-p.aligned, -p.score, p.student_a, p.student_b))
     return LabSimilarity(module, lab or module, len(prints), pairs)
 
 
@@ -201,8 +222,9 @@ def compare_class(sources: dict[str, dict[str, str]], skeletons: dict[str, str] 
     results = []
     for module in modules:
         module_sources = {s: per[module] for s, per in sources.items() if module in per}
-        result = compare_module(module, module_sources, skeletons.get(module, ""), labs.get(module, ""))
-        for pair in [p for p in result.pairs if p.score >= threshold][:code_shown]:
+        result = compare_module(module, module_sources, skeletons.get(module, ""), labs.get(module, ""),
+                                align_above=min(ALIGN_ABOVE, threshold))
+        for pair in result.leads(threshold)[:code_shown]:
             highlight(pair, module_sources)
         results.append(result)
     return results
