@@ -7,9 +7,9 @@ Tables
     identities and group members (JSON), submission time, and the key of the
     submission currently graded for the student (or the reason it is unreadable).
 ``submissions``
-    One row per graded submission, keyed by :func:`submission_key`: the content
-    hash of the student's files, the grader version, the dependency lock's hash
-    and the selection graded. ``status`` is ``graded`` or ``failed`` (the grader
+    One row per graded submission, keyed by :func:`submission_key`: the student,
+    the content hash of their files, the grader version, the dependency lock's
+    hash and the selection graded. ``status`` is ``graded`` or ``failed`` (the grader
     could not finish: a crash of the grading process, never the student's fault
     alone); ``result`` is the results model as JSON without pictures.
 ``exercises``, ``checks``
@@ -107,11 +107,16 @@ def lock_hash() -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def submission_key(content_hash: str, selection: str, grader_version: str = __version__,
+def submission_key(student_id: str, content_hash: str, selection: str, grader_version: str = __version__,
                    lock: str | None = None) -> str:
-    """The gradebook key of one submission graded one way."""
+    """The gradebook key of one student's submission graded one way.
+
+    Two students handing in the same files are two submissions: each is graded
+    (and timed, and shown) as their own.
+    """
     lock = lock if lock is not None else lock_hash()
-    return hashlib.sha256("\0".join((content_hash, grader_version, lock, selection)).encode()).hexdigest()
+    parts = (student_id, content_hash, grader_version, lock, selection)
+    return hashlib.sha256("\0".join(parts).encode()).hexdigest()
 
 
 def strip_pictures(data: dict) -> dict:

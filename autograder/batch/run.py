@@ -74,7 +74,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     entries = read_class(submissions, modules, [lab.module for lab in discover().values()])
 
     lock = lock_hash()
-    keys = {e.student_id: submission_key(e.content_hash, selection, lock=lock) for e in entries}
+    keys = {e.student_id: submission_key(e.student_id, e.content_hash, selection, lock=lock) for e in entries}
     summary = BatchSummary(students=len(entries))
     with Gradebook(out) as book:
         book.sync_students(entries, keys)
