@@ -252,6 +252,34 @@ def test_sigkill_half_way_then_restart_equals_an_uninterrupted_run(generated, gr
     assert len(counts) == len(readable)
 
 
+def test_dask_cluster_losing_a_worker_gives_the_same_gradebook_as_local(generated, graded, tmp_path):
+    distributed = pytest.importorskip("distributed", reason="the dask extra (distributed) is not installed")
+    submissions, expected = generated
+    reference_out, _ = graded
+    out = tmp_path / "dask"
+    killed = []
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        pids = client.run(os.getpid)
+
+        def kill_a_busy_worker(event, entry, summary):
+            # After the first result, SIGKILL a worker in the middle of a grading: the
+            # scheduler must hand its submissions to another worker.
+            if event == "done" and not killed:
+                busy = [w for w, tasks in client.processing().items() if tasks] or list(pids)
+                killed.append(busy[0])
+                os.kill(pids[busy[0]], signal.SIGKILL)
+
+        summary = run_batch(submissions, out, course=COURSE, dask_scheduler=cluster.scheduler_address,
+                            progress=kill_a_busy_worker)
+    assert killed
+    assert not summary.failed
+    assert summary.graded == len([1 for status, _ in expected.values() if status == "graded"])
+    assert_same_gradebook(out, reference_out)
+    with Gradebook(out) as book:
+        assert set(book.grading_counts().values()) == {1}
+
+
 def _gradings(out: Path) -> int:
     try:
         with sqlite3.connect(out / "gradebook.sqlite", timeout=5) as db:
