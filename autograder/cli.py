@@ -1,4 +1,4 @@
-"""Command line: ``autograder grade``, ``autograder list`` (and ``python grade.py``).
+"""Command line: ``autograder grade``, ``autograder batch``, ``autograder list`` (and ``python grade.py``).
 
 Exit status is 0 whenever grading completed, whatever the score; 2 for usage
 errors (an unknown selector, a submission path that does not exist).
@@ -28,6 +28,19 @@ def build_parser() -> argparse.ArgumentParser:
     add_grading_options(grade)
 
     commands.add_parser("list", help="list the labs, exercises and checks")
+
+    batch = commands.add_parser("batch", help="grade a class: a gradebook, every student's page, LMS CSVs")
+    batch.add_argument("submissions", metavar="SUBMISSIONS",
+                       help="folder or .zip: one entry per student, or a Gradescope/Canvas/Moodle download")
+    batch.add_argument("--out", metavar="RESULTS", required=True, help="results folder (created; reused to resume)")
+    batch.add_argument("--workers", type=int, metavar="N", help="parallel gradings (default: the number of cores)")
+    batch.add_argument("--pictures", choices=("none", "failing", "all"), default="failing",
+                       help="pictures on the feedback pages (default: %(default)s)")
+    batch.add_argument("--regrade", action="store_true", help="grade everything again, even if unchanged")
+    batch.add_argument("--course", metavar="COURSE", help="course configuration (JSON): labs, points, late rule")
+    batch.add_argument("--roster", metavar="CSV", help="roster mapping students to LMS identities")
+    batch.add_argument("--overrides", metavar="CSV", help="instructor overrides: student,exercise,points,penalty,comment")
+    batch.add_argument("--dask-scheduler", metavar="ADDRESS", help="grade on this Dask cluster (tcp://host:8786)")
 
     gradescope = commands.add_parser("gradescope", help="Gradescope autograder: build the zip, or run inside it")
     actions = gradescope.add_subparsers(dest="action", required=True)
@@ -67,6 +80,10 @@ def run_grade(args) -> int:
 
     console = Console(stderr=False)
     limits = Limits(call_timeout=args.timeout) if args.timeout else None
+    several = _several_students(args.submission)
+    if several:
+        console.print(f"[red]error:[/red] {several}")
+        return USAGE_ERROR
     try:
         with _progress(console) as advance:
             # Pictures cost time to encode: make them only for a page or a JSON file.
@@ -83,6 +100,12 @@ def run_grade(args) -> int:
         write_json(result, args.json)
     terminal.render(result, console, html_path=html_path, details=not args.quiet)
     return 0
+
+
+def _several_students(path) -> str | None:
+    from .batch.ingest import several_students
+
+    return several_students(path, sorted({lab.module for lab in discover().values()}))
 
 
 class _progress:
@@ -102,6 +125,68 @@ class _progress:
         self.bar.start()
         self.task = self.bar.add_task("", total=None)
         return lambda exercise, check: self.bar.update(self.task, advance=1, description=exercise.id)
+
+    def __exit__(self, *exc):
+        if self.bar:
+            self.bar.stop()
+
+
+def run_batch(args) -> int:
+    from rich.console import Console
+    from rich.text import Text
+
+    from .batch.exports import ExportError
+    from .batch.ingest import IngestError
+    from .batch.run import run_batch as batch
+    from .course import CourseConfig, CourseConfigError
+
+    console = Console()
+    try:
+        course = CourseConfig.load(args.course) if args.course else CourseConfig()
+        with _batch_progress(console) as progress:
+            summary = batch(args.submissions, args.out, course=course, workers=args.workers,
+                            pictures=args.pictures, regrade=args.regrade, roster=args.roster,
+                            overrides=args.overrides, dask_scheduler=args.dask_scheduler, progress=progress)
+    except (CourseConfigError, IngestError, ExportError, SelectionError) as exc:
+        console.print(f"[red]error:[/red] {exc}")
+        return USAGE_ERROR
+    console.print(f"{summary.students} students: {summary.graded} graded now, {summary.reused} unchanged "
+                  f"(kept from the gradebook), {len(summary.failed)} failed, {len(summary.unreadable)} unreadable")
+    for title, lines in (("unreadable", summary.unreadable), ("failed", summary.failed),
+                         ("roster", summary.unmatched), ("warning", summary.warnings)):
+        for line in lines:
+            console.print(Text.assemble("  ", (f"{title}:", "yellow"), f" {line}"), highlight=False)
+    console.print(f"wrote {args.out}/ : " + ", ".join(p.name for p in summary.files)
+                  + ", <student>/feedback.html, <student>/results.json, gradebook.sqlite")
+    return 0
+
+
+class _batch_progress:
+    """A progress bar with ETA and finished/failed counts on a terminal; nothing when redirected."""
+
+    def __init__(self, console):
+        self.console = console
+        self.bar = None
+
+    def __enter__(self):
+        if not self.console.is_terminal:
+            return None
+        from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn,
+                                   TimeRemainingColumn)
+
+        self.bar = Progress(TextColumn("[bold]grading[/bold]"), BarColumn(), MofNCompleteColumn(),
+                            TextColumn("{task.fields[counts]}"), TimeElapsedColumn(), TextColumn("ETA"),
+                            TimeRemainingColumn(), console=self.console)
+        self.bar.start()
+        self.task = None
+        return self.update
+
+    def update(self, event, entry, summary):
+        if event == "start":
+            self.task = self.bar.add_task("", total=summary.students, counts="")
+        else:
+            self.bar.update(self.task, advance=1,
+                            counts=f"{summary.graded} finished, {len(summary.failed)} failed")
 
     def __exit__(self, *exc):
         if self.bar:
@@ -219,8 +304,8 @@ def run_similarity(args) -> int:
 
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
-    commands = {"grade": run_grade, "list": run_list, "gradescope": run_gradescope, "bundle": run_bundle,
-                "report": run_report, "similarity": run_similarity}
+    commands = {"grade": run_grade, "list": run_list, "batch": run_batch, "gradescope": run_gradescope,
+                "bundle": run_bundle, "report": run_report, "similarity": run_similarity}
     return commands[args.command](args)
 
 
