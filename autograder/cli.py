@@ -41,6 +41,8 @@ def build_parser() -> argparse.ArgumentParser:
     batch.add_argument("--roster", metavar="CSV", help="roster mapping students to LMS identities")
     batch.add_argument("--overrides", metavar="CSV", help="instructor overrides: student,exercise,points,penalty,comment")
     batch.add_argument("--dask-scheduler", metavar="ADDRESS", help="grade on this Dask cluster (tcp://host:8786)")
+    batch.add_argument("--similarity", action="store_true",
+                       help="also write RESULTS/similarity.html: the most similar submissions, lab by lab")
 
     gradescope = commands.add_parser("gradescope", help="Gradescope autograder: build the zip, or run inside it")
     actions = gradescope.add_subparsers(dest="action", required=True)
@@ -156,9 +158,22 @@ def run_batch(args) -> int:
                          ("roster", summary.unmatched), ("warning", summary.warnings)):
         for line in lines:
             console.print(Text.assemble("  ", (f"{title}:", "yellow"), f" {line}"), highlight=False)
-    console.print(f"wrote {args.out}/ : " + ", ".join(p.name for p in summary.files)
+    if args.similarity:
+        summary.files.append(_batch_similarity(args, course, console))
+    console.print(f"wrote {args.out}/ : " + ", ".join(p.name for p in summary.files if p)
                   + ", <student>/feedback.html, <student>/results.json, gradebook.sqlite")
     return 0
+
+
+def _batch_similarity(args, course, console) -> Path | None:
+    from .classreport.pages import write_similarity
+    from .classreport.similarity import SimilarityUnavailable
+
+    try:
+        return write_similarity(args.submissions, args.out, course.similarity_threshold, course.assignment)
+    except SimilarityUnavailable as exc:
+        console.print(f"[yellow]similarity report skipped:[/yellow] {exc}")
+        return None
 
 
 class _batch_progress:

@@ -7,6 +7,8 @@ Layout of RESULTS::
     canvas_import.csv         Canvas gradebook import
     moodle_import.csv         Moodle offline grading worksheet
     roster_unmatched.csv      with --roster: who matched nobody
+    index.html                the class overview (see autograder.classreport)
+    similarity.html           with --similarity: the most similar submissions
     <student-id>/feedback.html
     <student-id>/results.json the results model, without pictures
 
@@ -112,6 +114,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     raw = [(e.id, e.max_score()) for e in exercises]
     grades, summary.warnings = exports.compute_grades(students, raw, course, stored, roster_rows)
     summary.files = exports.write_csvs(out, grades, raw, course, roster_given=bool(roster_rows))
+    summary.files.append(_write_overview(out, students, course))
     possible = exports.max_total(raw, course)
     for grade in grades:
         if grade.student.get("feedback"):
@@ -154,6 +157,15 @@ def _write_student(out: Path, student_id: str, result: dict) -> None:
     folder = out / student_id
     html.write(GradingResult.from_dict(result), folder / "feedback.html")
     write_atomically(folder / "results.json", json.dumps(strip_pictures(result), indent=1, allow_nan=False) + "\n")
+
+
+def _write_overview(out: Path, students: list[dict], course: CourseConfig) -> Path:
+    """``index.html``: what the class got wrong (the checks' own points, before overrides)."""
+    from ..classreport.overview import render_overview
+    from ..classreport.pages import OVERVIEW, records_from_class_results
+
+    render_overview(records_from_class_results(students), out / OVERVIEW, course_title=course.assignment)
+    return out / OVERVIEW
 
 
 def _refresh_page(out: Path, grade, possible: float) -> None:

@@ -251,6 +251,8 @@ def write_similarity_report(folder, out_path, threshold: float = 0.6, course_tit
     """
     labs = lab_modules()
     sources = collect_sources(folder, labs)
+    if not sources and (Path(folder) / "gradebook.sqlite").exists():
+        raise SubmissionError(f"{folder} keeps no student sources: give the SUBMISSIONS folder the batch read")
     results = compare_class(sources, skeleton_sources(labs, skeleton_dir), labs, threshold)
     write_atomically(out_path, similarity_html(results, threshold, course_title))
     return results
