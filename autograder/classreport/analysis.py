@@ -230,7 +230,7 @@ def _attempted(exercise: dict) -> bool:
 
 
 # ---------------------------------------------------------------- the class
-def summarise(students: list[StudentRecord], histogram_bins: int = 10) -> ClassSummary:
+def summarise(students: list[StudentRecord]) -> ClassSummary:
     """Statistics of a class; students without a result are listed in ``not_graded``."""
     graded = [s for s in students if s.result is not None]
     exercise_order: dict[str, dict] = {}           # first seen id -> {"title", "max_score"}
