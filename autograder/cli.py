@@ -149,6 +149,10 @@ def run_batch(args) -> int:
     except (CourseConfigError, IngestError, ExportError, SelectionError) as exc:
         console.print(f"[red]error:[/red] {exc}")
         return USAGE_ERROR
+    except KeyboardInterrupt:
+        console.print("interrupted: every finished grading is in the gradebook; "
+                      "run the same command again to resume")
+        return 130
     console.print(f"{summary.students} students: {summary.graded} graded now, {summary.reused} unchanged "
                   f"(kept from the gradebook), {len(summary.failed)} failed, {len(summary.unreadable)} unreadable")
     for title, lines in (("unreadable", summary.unreadable), ("failed", summary.failed),

