@@ -134,6 +134,7 @@ def run_batch(args) -> int:
     from rich.console import Console
     from rich.text import Text
 
+    from .batch.cluster import DaskUnavailable
     from .batch.exports import ExportError
     from .batch.ingest import IngestError
     from .batch.run import run_batch as batch
@@ -146,7 +147,7 @@ def run_batch(args) -> int:
             summary = batch(args.submissions, args.out, course=course, workers=args.workers,
                             pictures=args.pictures, regrade=args.regrade, roster=args.roster,
                             overrides=args.overrides, dask_scheduler=args.dask_scheduler, progress=progress)
-    except (CourseConfigError, IngestError, ExportError, SelectionError) as exc:
+    except (CourseConfigError, IngestError, ExportError, SelectionError, DaskUnavailable) as exc:
         console.print(f"[red]error:[/red] {exc}")
         return USAGE_ERROR
     except KeyboardInterrupt:

@@ -26,7 +26,7 @@ import pytest
 
 from autograder.batch import exports
 from autograder.batch.gradebook import Gradebook, lock_hash, submission_key
-from autograder.batch.ingest import read_class, several_students
+from autograder.batch.ingest import IngestError, read_class, several_students
 from autograder.batch.run import run_batch
 from autograder.cli import main
 from autograder.course import CourseConfig
@@ -508,3 +508,27 @@ def test_overrides_file_errors_are_reported(tmp_path):
     path.write_text("student,exercise,points,penalty,comment\nalice,lab07.ex1,lots,,\n")
     with pytest.raises(exports.ExportError, match="not a number"):
         exports.read_overrides(path)
+
+
+# ------------------------------------------------------------------ reading entries safely
+def test_links_in_a_student_folder_are_not_followed(tmp_path):
+    secret = tmp_path / "grader_secret.py"
+    secret.write_text("ANSWER = 42\n")
+    write(tmp_path / "class" / "alice" / f"{MODULE}.py", reference())
+    (tmp_path / "class" / "alice" / "answers.py").symlink_to(secret)
+    [alice] = read_class(tmp_path / "class", [MODULE])
+    assert sorted(alice.files) == [f"{MODULE}.py"]
+
+
+def test_results_inside_the_submissions_folder_are_refused(tmp_path):
+    write(tmp_path / "class" / "alice" / f"{MODULE}.py", reference())
+    with pytest.raises(IngestError, match="inside"):
+        run_batch(tmp_path / "class", tmp_path / "class" / "results", course=COURSE, workers=1)
+
+
+def test_ids_are_stable_slugs_and_unique(tmp_path):
+    write(tmp_path / "class" / "Élodie Durand" / f"{MODULE}.py", reference())
+    write(tmp_path / "class" / "elodie durand.py", reference())
+    ids = [e.student_id for e in read_class(tmp_path / "class", [MODULE])]
+    assert ids == ["elodie-durand", "elodie-durand-2"]
+    assert ids == [e.student_id for e in read_class(tmp_path / "class", [MODULE])]

@@ -308,7 +308,8 @@ def _read_into(entry: Entry, item: Path) -> None:
             files = {}
             for path in sorted(item.rglob("*")):
                 relative = path.relative_to(item)
-                if path.is_file() and not _ignored(relative.parts):
+                # A link could reach outside the entry (the grader's own files): never followed.
+                if path.is_file() and not path.is_symlink() and not _ignored(relative.parts):
                     files[relative.as_posix()] = path.read_bytes()
                     if sum(map(len, files.values())) > MAX_ARCHIVE_BYTES:
                         raise ValueError(f"more than {MAX_ARCHIVE_BYTES // 2**20} MB of files")

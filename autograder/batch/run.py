@@ -33,7 +33,7 @@ from ..reports import html
 from ..results import GradingResult, write_atomically
 from . import exports
 from .gradebook import Gradebook, lock_hash, strip_pictures, submission_key
-from .ingest import Entry, read_class
+from .ingest import Entry, IngestError, read_class
 from .task import grade_files
 
 PICTURES = {"none": "none", "failing": "failed", "all": "all"}
@@ -66,6 +66,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     if pictures not in PICTURES:
         raise ValueError(f"pictures must be one of {sorted(PICTURES)}")
     out = Path(out)
+    if Path(submissions).is_dir() and Path(submissions).resolve() in out.resolve().parents:
+        raise IngestError(f"--out {out} is inside {submissions}: it would be read as a student next time")
     exercises = select(course.select)
     selection = ",".join(e.id for e in exercises)
     modules = sorted({e.lab.module for e in exercises})
