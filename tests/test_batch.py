@@ -532,3 +532,14 @@ def test_ids_are_stable_slugs_and_unique(tmp_path):
     ids = [e.student_id for e in read_class(tmp_path / "class", [MODULE])]
     assert ids == ["elodie-durand", "elodie-durand-2"]
     assert ids == [e.student_id for e in read_class(tmp_path / "class", [MODULE])]
+
+
+def test_one_batch_at_a_time_writes_a_results_folder(tmp_path):
+    import fcntl
+
+    write(tmp_path / "class" / "alice" / f"{MODULE}.py", reference())
+    (tmp_path / "out").mkdir()
+    with open(tmp_path / "out" / ".batch.lock", "w") as held:
+        fcntl.flock(held, fcntl.LOCK_EX)
+        with pytest.raises(IngestError, match="another autograder batch"):
+            run_batch(tmp_path / "class", tmp_path / "out", course=COURSE, workers=1)

@@ -212,7 +212,9 @@ def _gradescope(root: Path) -> list[Entry]:
         first = members[0] if members else {"name": key, "sid": "", "email": ""}
         submission_id = key.removeprefix("submission_")
         name = " & ".join(m["name"] for m in members) or key
-        entry = Entry(slug(first["name"] or key, first["sid"] or submission_id), name, "gradescope", key,
+        # The sid (else the e-mail's user) keeps the id stable across resubmissions and exports.
+        stable = first["sid"] or first["email"].split("@")[0] or submission_id
+        entry = Entry(slug(first["name"] or key, stable), name, "gradescope", key,
                       lms={"gradescope_submission_id": submission_id, "sid": first["sid"], "email": first["email"]},
                       members=members, submitted_at=_iso(meta.get(":created_at")))
         folder = root / key
