@@ -85,7 +85,7 @@ def main():
                 print("  (Dask: distributed is not installed; pip install '.[dask]')")
             else:
                 with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster:
+                                  dashboard_address=":0") as cluster:
                     walls["dask"] = batch(tmp / "class", tmp / "out-dask", course,
                                           "--dask-scheduler", cluster.scheduler_address)
 

@@ -268,7 +268,7 @@ def test_dask_cluster_losing_a_worker_gives_the_same_gradebook_as_local(generate
     out = tmp_path / "dask"
     killed = []
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+                                  dashboard_address=":0") as cluster, distributed.Client(cluster) as client:
         pids = client.run(os.getpid)
 
         def kill_a_busy_worker(event, entry, summary):
