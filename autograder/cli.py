@@ -155,13 +155,14 @@ def run_batch(args) -> int:
                       "run the same command again to resume")
         return 130
     console.print(f"{summary.students} students: {summary.graded} graded now, {summary.reused} unchanged "
-                  f"(kept from the gradebook), {len(summary.failed)} failed, {len(summary.unreadable)} unreadable")
+                  f"(kept from the gradebook), {len(summary.failed)} failed, {len(summary.unreadable)} unreadable",
+                  highlight=False)
     for title, lines in (("unreadable", summary.unreadable), ("failed", summary.failed),
                          ("roster", summary.unmatched), ("warning", summary.warnings)):
         for line in lines:
             console.print(Text.assemble("  ", (f"{title}:", "yellow"), f" {line}"), highlight=False)
     console.print(f"wrote {args.out}/ : " + ", ".join(p.name for p in summary.files)
-                  + ", <student>/feedback.html, <student>/results.json, gradebook.sqlite")
+                  + ", <student>/feedback.html, <student>/results.json, gradebook.sqlite", highlight=False, markup=False)
     return 0
 
 

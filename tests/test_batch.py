@@ -395,8 +395,10 @@ def test_gradescope_export_with_a_group_and_a_late_submission(tmp_path):
             zf.write(path, path.relative_to(tmp_path))
     course = CourseConfig(select=SELECT, assignment="Lab 7",
                           late_penalty={"due": "2026-03-01T23:59:00+01:00", "per_day": 10, "max": 50})
+    overrides = tmp_path / "overrides.csv"
+    overrides.write_text("student,exercise,points,penalty,comment\ngrace@uni.edu,total,1,,presented in class\n")
     out = tmp_path / "out"
-    summary = run_batch(archive, out, course=course, workers=2)
+    summary = run_batch(archive, out, course=course, workers=2, overrides=overrides)
     by_id = {s["student_id"]: s for s in comparable(out)}
     assert sorted(by_id) == ["ada-lovelace-s001", "alan-turing-s002", "emmy-noether-s004", "submission-999"]
     ada, group = by_id["ada-lovelace-s001"], by_id["alan-turing-s002"]
@@ -408,10 +410,11 @@ def test_gradescope_export_with_a_group_and_a_late_submission(tmp_path):
     assert len(summary.unreadable) == 2
     grades = {r["Student ID"]: r for r in csv.DictReader((out / "grades.csv").open())}
     assert grades["alan-turing-s002"]["Late penalty"] == "0.8"     # 2 days late: 20% of 4 points
-    assert grades["alan-turing-s002"]["Total"] == "3.2"
+    assert grades["alan-turing-s002"]["Adjustments"] == "1"         # a member's override is the group's
+    assert grades["alan-turing-s002"]["Total"] == "4.2"
     assert grades["ada-lovelace-s001"]["Total"] == "12"           # on time
     canvas = list(csv.DictReader((out / "canvas_import.csv").open()))
-    assert [r["SIS User ID"] for r in canvas if r["Lab 7"] == "3.2"] == ["S002", "S003"]  # both group members
+    assert [r["SIS User ID"] for r in canvas if r["Lab 7"] == "4.2"] == ["S002", "S003"]  # both group members
     assert "Instructor adjustments" in (out / "alan-turing-s002" / "feedback.html").read_text()
 
 
