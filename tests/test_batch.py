@@ -322,14 +322,22 @@ def test_cli_batch_then_grade_refuses_the_class_folder(generated, tmp_path, caps
     for name in ("correct-00", "correct-01"):
         write(small / name / f"{MODULE}.py", reference())
     write(small / "dave" / "submission.zip", zipped({f"{MODULE}.py": reference()}))
+    # hangs in translate(): stopped by its own time limit, the batch goes on
+    write(small / "hangs" / f"{MODULE}.py",
+          reference() + "\ndef translate(image, tx=100, ty=50):\n    while True:\n        pass\n")
     assert main(["grade", str(small), "lab07.ex1", "--no-html"]) == 2
     assert "autograder batch" in " ".join(capsys.readouterr().out.split())
     out = tmp_path / "out"
-    assert main(["batch", str(small), "--out", str(out), "--course", str(class_course(tmp_path)),
-                 "--workers", "1", "--pictures", "none"]) == 0
+    course = tmp_path / "course.json"
+    course.write_text(json.dumps({"select": SELECT, "call_timeout": 1.5}))
+    assert main(["batch", str(small), "--out", str(out), "--course", str(course),
+                 "--workers", "2", "--pictures", "none"]) == 0
     printed = " ".join(capsys.readouterr().out.split())
-    assert "3 students: 3 graded now" in printed
+    assert "4 students: 4 graded now" in printed and "0 failed" in printed
     assert "data:image/png" not in (out / "dave" / "feedback.html").read_text()
+    hangs = json.loads((out / "hangs" / "results.json").read_text())
+    assert hangs["total"] == 4.0
+    assert any("timed out" in c["message"] for c in hangs["exercises"][0]["checks"])
 
 
 # ------------------------------------------------------------------ grade's guard
