@@ -137,6 +137,7 @@ def run_batch(args) -> int:
     from rich.console import Console
     from rich.text import Text
 
+    from .batch.cluster import DaskUnavailable
     from .batch.exports import ExportError
     from .batch.ingest import IngestError
     from .batch.run import run_batch as batch
@@ -149,11 +150,16 @@ def run_batch(args) -> int:
             summary = batch(args.submissions, args.out, course=course, workers=args.workers,
                             pictures=args.pictures, regrade=args.regrade, roster=args.roster,
                             overrides=args.overrides, dask_scheduler=args.dask_scheduler, progress=progress)
-    except (CourseConfigError, IngestError, ExportError, SelectionError) as exc:
+    except (CourseConfigError, IngestError, ExportError, SelectionError, DaskUnavailable) as exc:
         console.print(f"[red]error:[/red] {exc}")
         return USAGE_ERROR
+    except KeyboardInterrupt:
+        console.print("interrupted: every finished grading is in the gradebook; "
+                      "run the same command again to resume")
+        return 130
     console.print(f"{summary.students} students: {summary.graded} graded now, {summary.reused} unchanged "
-                  f"(kept from the gradebook), {len(summary.failed)} failed, {len(summary.unreadable)} unreadable")
+                  f"(kept from the gradebook), {len(summary.failed)} failed, {len(summary.unreadable)} unreadable",
+                  highlight=False)
     for title, lines in (("unreadable", summary.unreadable), ("failed", summary.failed),
                          ("roster", summary.unmatched), ("warning", summary.warnings)):
         for line in lines:
@@ -161,7 +167,7 @@ def run_batch(args) -> int:
     if args.similarity:
         summary.files.append(_batch_similarity(args, course, console))
     console.print(f"wrote {args.out}/ : " + ", ".join(p.name for p in summary.files if p)
-                  + ", <student>/feedback.html, <student>/results.json, gradebook.sqlite")
+                  + ", <student>/feedback.html, <student>/results.json, gradebook.sqlite", highlight=False, markup=False)
     return 0
 
 

@@ -15,12 +15,16 @@ from .task import grade_files
 RETRIES = 2
 
 
+class DaskUnavailable(RuntimeError):
+    """``distributed`` is not installed."""
+
+
 def grade_on_dask(address: str, todo, arguments, finished, client=None) -> None:
     """Grade ``todo`` (entries) on the cluster at ``address``; ``finished(entry, outcome)`` per result."""
     try:
         from distributed import Client, as_completed
     except ImportError:  # pragma: no cover - depends on the extra
-        raise SystemExit('--dask-scheduler needs Dask: pip install "cv-autograder[dask]"') from None
+        raise DaskUnavailable('--dask-scheduler needs Dask: pip install "cv-autograder[dask]"') from None
 
     own = client is None
     client = client or Client(address)

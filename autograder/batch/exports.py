@@ -257,6 +257,7 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
         grades.append(grade)
         keys = {student["student_id"].lower(), student["display_name"].lower(), _name_key(student["display_name"])}
         keys |= {v.lower() for v in student.get("lms", {}).values() if v}
+        keys |= {v.lower() for m in student.get("members", []) for v in m.values() if v}
         keys |= {v.lower() for k, v in grade.roster.items() if v and k in ("sid", "email", "login", "canvas_user_id")}
         for key in keys:
             by_identity.setdefault(key, grade)

@@ -113,12 +113,6 @@ class Entry:
             digest.update(name.encode() + b"\0" + self.files[name] + b"\0")
         return digest.hexdigest()
 
-    def write_files(self, folder: Path) -> None:
-        for name, data in self.files.items():
-            target = folder / name
-            target.parent.mkdir(parents=True, exist_ok=True)
-            target.write_bytes(data)
-
 
 # ------------------------------------------------------------------ reading a class
 def read_class(path, modules: list[str], every_module: list[str] = ()) -> list[Entry]:
@@ -155,7 +149,7 @@ def _class_root(path: Path):
         raise IngestError(f"{path.name}: expected a folder or a .zip holding the class's submissions")
     tmp = Path(tempfile.mkdtemp(prefix="class-"))
     try:
-        _extract(path.read_bytes(), tmp, MAX_CLASS_ARCHIVE_BYTES, sources_only=False)
+        _extract(path, tmp, MAX_CLASS_ARCHIVE_BYTES)
         yield _unwrap(tmp)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
@@ -212,7 +206,9 @@ def _gradescope(root: Path) -> list[Entry]:
         first = members[0] if members else {"name": key, "sid": "", "email": ""}
         submission_id = key.removeprefix("submission_")
         name = " & ".join(m["name"] for m in members) or key
-        entry = Entry(slug(first["name"] or key, first["sid"] or submission_id), name, "gradescope", key,
+        # The sid (else the e-mail's user) keeps the id stable across resubmissions and exports.
+        stable = first["sid"] or first["email"].split("@")[0] or submission_id
+        entry = Entry(slug(first["name"] or key, stable), name, "gradescope", key,
                       lms={"gradescope_submission_id": submission_id, "sid": first["sid"], "email": first["email"]},
                       members=members, submitted_at=_iso(meta.get(":created_at")))
         folder = root / key
@@ -308,7 +304,8 @@ def _read_into(entry: Entry, item: Path) -> None:
             files = {}
             for path in sorted(item.rglob("*")):
                 relative = path.relative_to(item)
-                if path.is_file() and not _ignored(relative.parts):
+                # A link could reach outside the entry (the grader's own files): never followed.
+                if path.is_file() and not path.is_symlink() and not _ignored(relative.parts):
                     files[relative.as_posix()] = path.read_bytes()
                     if sum(map(len, files.values())) > MAX_ARCHIVE_BYTES:
                         raise ValueError(f"more than {MAX_ARCHIVE_BYTES // 2**20} MB of files")
@@ -355,21 +352,21 @@ def _zip_sources(data: bytes, name: str) -> dict[str, bytes]:
         raise ValueError(f"{name} is not a readable zip archive ({exc})") from None
 
 
-def _extract(data: bytes, target: Path, limit: int, sources_only: bool) -> None:
+def _extract(archive: Path, target: Path, limit: int) -> None:
+    """Unpack the class's archive (every member: nested zips and metadata too), safely."""
     try:
-        with zipfile.ZipFile(io.BytesIO(data)) as zf:
+        with zipfile.ZipFile(archive) as zf:
             if sum(info.file_size for info in zf.infolist()) > limit:
-                raise IngestError(f"the archive unpacks to more than {limit // 2**20} MB")
+                raise IngestError(f"{archive.name} unpacks to more than {limit // 2**20} MB")
             for info in zf.infolist():
                 if info.is_dir() or not _safe_member(info.filename):
                     continue
-                if sources_only and PurePosixPath(info.filename).suffix not in SOURCE_SUFFIXES:
-                    continue
                 dest = target / info.filename
                 dest.parent.mkdir(parents=True, exist_ok=True)
-                dest.write_bytes(zf.read(info))
-    except zipfile.BadZipFile as exc:
-        raise IngestError(f"not a readable zip archive: {exc}") from None
+                with zf.open(info) as source, open(dest, "wb") as sink:
+                    shutil.copyfileobj(source, sink)
+    except (zipfile.BadZipFile, zipfile.LargeZipFile, EOFError, NotImplementedError) as exc:
+        raise IngestError(f"{archive.name} is not a readable zip archive: {exc}") from None
 
 
 def _safe_member(name: str) -> bool:

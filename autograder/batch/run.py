@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import json
 import os
+from contextlib import contextmanager
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
@@ -35,7 +36,7 @@ from ..reports import html
 from ..results import GradingResult, write_atomically
 from . import exports
 from .gradebook import Gradebook, lock_hash, strip_pictures, submission_key
-from .ingest import Entry, read_class
+from .ingest import Entry, IngestError, read_class
 from .task import grade_files
 
 PICTURES = {"none": "none", "failing": "failed", "all": "all"}
@@ -64,10 +65,13 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     Raises :class:`.ingest.IngestError` / :class:`.exports.ExportError` for
     unusable inputs, before anything is graded.
     """
+    # Inputs: everything is read, and refused if unusable, before anything is graded.
     course = course or CourseConfig()
     if pictures not in PICTURES:
         raise ValueError(f"pictures must be one of {sorted(PICTURES)}")
     out = Path(out)
+    if Path(submissions).is_dir() and Path(submissions).resolve() in out.resolve().parents:
+        raise IngestError(f"--out {out} is inside {submissions}: it would be read as a student next time")
     exercises = select(course.select)
     selection = ",".join(e.id for e in exercises)
     modules = sorted({e.lab.module for e in exercises})
@@ -75,10 +79,11 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     roster_rows = exports.read_roster(roster) if roster else []
     entries = read_class(submissions, modules, [lab.module for lab in discover().values()])
 
+    # Grading: only what the gradebook lacks, each grading committed as it lands.
     lock = lock_hash()
     keys = {e.student_id: submission_key(e.student_id, e.content_hash, selection, lock=lock) for e in entries}
     summary = BatchSummary(students=len(entries))
-    with Gradebook(out) as book:
+    with _only_writer(out), Gradebook(out) as book:
         book.sync_students(entries, keys)
         if overrides_rows is not None:
             book.set_overrides(overrides_rows)   # kept for later runs without --overrides
@@ -90,10 +95,13 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
         def finished(entry: Entry, outcome: dict):
             key = keys[entry.student_id]
             if "result" in outcome:
-                _write_student(out, entry.student_id, outcome["result"])   # files first, then the commit
-                book.record(key, entry.student_id, entry.content_hash, selection, outcome["result"], lock=lock)
-                summary.graded += 1
-            else:
+                try:
+                    _write_student(out, entry.student_id, outcome["result"])   # files first, then the commit
+                    book.record(key, entry.student_id, entry.content_hash, selection, outcome["result"], lock=lock)
+                    summary.graded += 1
+                except (OSError, ValueError, TypeError, KeyError) as exc:
+                    outcome = {"error": f"the results could not be stored: {type(exc).__name__}: {exc}"}
+            if "error" in outcome:
                 book.record(key, entry.student_id, entry.content_hash, selection, reason=outcome["error"], lock=lock)
                 summary.failed.append(f"{entry.student_id}: {outcome['error']}")
             if progress:
@@ -111,6 +119,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
 
         students = book.class_results()
         stored = [exports.Override(**o) for o in book.overrides()]
+
+    # Exports: grades with the course's points, overrides and late rule; the pages' adjustments.
     raw = [(e.id, e.max_score()) for e in exercises]
     grades, summary.warnings = exports.compute_grades(students, raw, course, stored, roster_rows)
     summary.files = exports.write_csvs(out, grades, raw, course, roster_given=bool(roster_rows))
@@ -125,6 +135,20 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
                                 else "not on the roster") for g in grades
                              if g.student["status"] == "no submission" or not g.roster]
     return summary
+
+
+@contextmanager
+def _only_writer(out: Path):
+    """One batch at a time writes RESULTS (the lock goes with the process, however it ends)."""
+    import fcntl
+
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / ".batch.lock", "w") as handle:
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            raise IngestError(f"another autograder batch is writing {out}; wait for it to finish") from None
+        yield
 
 
 def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None:

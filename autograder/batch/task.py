@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import tempfile
 import traceback
+import warnings
 from pathlib import Path
 
 
@@ -35,7 +36,11 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
     from ..sandbox import Limits
 
     try:
-        with tempfile.TemporaryDirectory(prefix="batch-") as tmp:
+        with tempfile.TemporaryDirectory(prefix="batch-") as tmp, warnings.catch_warnings():
+            # On a Dask worker other threads use the global `random` while a property
+            # check draws its (derandomised) examples; Hypothesis takes that for the
+            # strategy's doing and warns. The examples do not depend on it.
+            warnings.filterwarnings("ignore", message="Do not use the `random` module inside strategies")
             folder = Path(tmp) / name
             for relative, data in files.items():
                 target = folder / relative
