@@ -137,3 +137,14 @@ def test_aligning_only_candidates_finds_the_same_leads(lab07_class):
     assert all(p.aligned for p in exhaustive.pairs)
     assert [(p.student_a, p.student_b, p.score) for p in quick.leads(THRESHOLD)] == \
         [(p.student_a, p.student_b, p.score) for p in exhaustive.leads(THRESHOLD)]
+
+
+def test_sources_from_an_lms_download_use_the_batchs_student_ids(tmp_path):
+    ingest = pytest.importorskip("autograder.batch.ingest")
+    (tmp_path / f"smithjohn_12345_67890_{LAB07}.py").write_text(REFERENCE)
+    (tmp_path / f"doejane_LATE_23456_78901_{LAB07}-1.py").write_text(disguise(REFERENCE, 4))
+    sources = collect_sources(tmp_path, [LAB07])
+    ids = sorted(e.student_id for e in ingest.read_class(tmp_path, [LAB07], [LAB07]))
+    assert sorted(sources) == ids and len(ids) == 2
+    [result] = compare_class(sources, {LAB07: SKELETON}, {LAB07: "lab07"}, threshold=THRESHOLD)
+    assert [(p.student_a, p.student_b) for p in result.leads(THRESHOLD)] == [tuple(ids)]

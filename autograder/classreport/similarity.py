@@ -111,8 +111,11 @@ def _batch_entries(folder: Path, modules: list[str], scratch: Path) -> list[tupl
         if entry.error:
             continue
         target = scratch / entry.student_id
-        target.mkdir()
-        entry.write_files(target)
+        for relative, data in entry.files.items():   # relative POSIX paths, checked by the batch's reader
+            path = target / relative
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_bytes(data)
+        target.mkdir(exist_ok=True)
         out.append((entry.student_id, target))
     return out
 
