@@ -36,6 +36,10 @@ def lab07(student: int, planted: dict) -> list[ExerciseResult]:
     if student in planted["timeout"]:
         ex1[1] = failed("translate(image)", "translate() did not finish within 10 s (an infinite loop, or far too slow?)",
                         4.0, failure="timeout")
+        ex1.append(failed("translate(grey image)", "translate() timed out 2 times already; not called again",
+                          failure="timeout"))
+    else:
+        ex1.append(passed("translate(grey image)"))
     ex2 = [passed("rotation_matrix(30)"), passed("rotation_matrix property", 3.0), passed("rotate(image)", 3.0)]
     if student in planted["rotation"]:
         # The same mistake seen by two checks counts once for the student.
@@ -122,6 +126,7 @@ def test_incidents_per_student_and_who_submitted(planted_class):
                 | {(f"s{i:02d}", "forbidden_call") for i in PLANTED["forbidden"]})
     assert set(incidents) == expected   # a lab not handed in is no incident
     assert incidents[("s10", "import_error")].where == ["lab08.ex1"]   # both checks, one incident
+    assert "did not finish" in incidents[("s05", "timeout")].message   # two timeouts, one line, the first message
     timeouts_are_not_mistakes = [g for e in summary.exercises for g in e.mistakes + e.other_failures
                                  if "did not finish" in g.label]
     assert not timeouts_are_not_mistakes

@@ -240,7 +240,7 @@ def summarise(students: list[StudentRecord]) -> ClassSummary:
     check_stats: dict[tuple[str, str], CheckSummary] = {}
     lab_scores: dict[str, dict[str, float]] = {}    # lab -> student id -> score
     lab_max: dict[str, float] = {}
-    incidents: dict[tuple[str, str, str], Incident] = {}
+    incidents: dict[tuple[str, str], Incident] = {}
     totals, max_total = [], 0.0
 
     for student in graded:
@@ -269,7 +269,9 @@ def summarise(students: list[StudentRecord]) -> ClassSummary:
                 stats.passed += check.get("status") == PASSED
                 kind = failure_kind(check)
                 if kind in INCIDENT_KINDS:
-                    incident = incidents.setdefault((student.student_id, kind, check.get("message", "")), Incident(
+                    # One line per student and kind, with the first message ("timed out 2 times
+                    # already" after a timeout says nothing new).
+                    incident = incidents.setdefault((student.student_id, kind), Incident(
                         student, kind, check.get("message", "")))
                     if eid not in incident.where:
                         incident.where.append(eid)
