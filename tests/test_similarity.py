@@ -11,8 +11,8 @@ import pytest
 
 pytest.importorskip("copydetect")
 
-from autograder.classreport.similarity import (collect_sources, compare_class, compare_module,  # noqa: E402
-                                               similarity_html, skeleton_sources)
+from autograder.classreport.similarity import (MAX_SOURCE_CHARS, collect_sources, compare_class,  # noqa: E402
+                                               compare_module, similarity_html, skeleton_sources)
 from autograder.cli import main  # noqa: E402
 from autograder.course import CourseConfig  # noqa: E402
 from classreport_disguise import disguise  # noqa: E402
@@ -94,8 +94,11 @@ def test_sources_from_folders_zips_and_notebooks(tmp_path):
     (tmp_path / "cleo" / f"{LAB07}.ipynb").write_text(_notebook(disguise(REFERENCE, 1)))
     (tmp_path / "grades.csv").write_text("not a student\n")
     (tmp_path / "dan").mkdir()   # handed in nothing
+    (tmp_path / "eve").mkdir()
+    (tmp_path / "eve" / f"{LAB07}.py").write_text("x = 1\n" * 10**6)   # 6 MB: compared by its start
     sources = collect_sources(tmp_path, [LAB07, "lab08_homographies"])
-    assert sorted(sources) == ["ada", "ben", "cleo"]
+    assert sorted(sources) == ["ada", "ben", "cleo", "eve"]
+    assert len(sources["eve"][LAB07]) == MAX_SOURCE_CHARS
     assert sources["ben"][LAB07] == INDEPENDENT and "def rotation_matrix" in sources["cleo"][LAB07]
 
 

@@ -34,6 +34,7 @@ NOISE_THRESHOLD = 25        # shortest filtered token run that counts as a match
 GUARANTEE_THRESHOLD = 30    # runs this long are always found (copydetect's default)
 SHOWN_PER_LAB = 10          # pairs listed per lab even below the threshold, for comparison
 CODE_SHOWN_PER_LAB = 30     # pairs above the threshold shown side by side
+MAX_SOURCE_CHARS = 200_000  # a lab module is a few hundred lines; a huge file is compared by its start
 ALIGN_ABOVE = 0.2           # pairs sharing fewer fingerprints than this are not aligned (see compare_module)
 _NOT_STUDENTS = {"__MACOSX", "index.html", "similarity.html"}
 
@@ -82,13 +83,18 @@ def collect_sources(folder, modules) -> dict[str, dict[str, str]]:
         for student, entry in entries if entries is not None else _entries(folder):
             try:
                 with load_submission(entry, modules) as submission:
-                    found = {m: (submission.path / f"{m}.py").read_text(encoding="utf-8", errors="replace")
+                    found = {m: _read_source(submission.path / f"{m}.py")
                              for m in modules if (submission.path / f"{m}.py").exists()}
             except SubmissionError:
                 continue
             if found:
                 sources[student] = found
     return sources
+
+
+def _read_source(path: Path) -> str:
+    with open(path, encoding="utf-8", errors="replace") as f:
+        return f.read(MAX_SOURCE_CHARS)
 
 
 def _entries(folder: Path) -> list[tuple[str, Path]]:
