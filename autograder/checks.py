@@ -38,23 +38,28 @@ class Verdict:
     fraction: float
     message: str = ""
     hint: str = ""
+    mistake: str = ""  # the named mistake, when the check recognised one (class reports count them)
 
 
 def passed(message: str = "") -> Verdict:
     return Verdict(1.0, message)
 
 
-def partial(fraction: float, message: str, hint: str = "") -> Verdict:
+def partial(fraction: float, message: str, hint: str = "", mistake: str = "") -> Verdict:
     """Partial credit: ``fraction`` of the check's points (clipped to [0, 1])."""
-    return Verdict(float(min(max(fraction, 0.0), 1.0)), message, hint)
+    return Verdict(float(min(max(fraction, 0.0), 1.0)), message, hint, mistake)
 
 
 class Fail(Exception):
-    """The student's answer is wrong: no points for this check."""
+    """The student's answer is wrong: no points for this check.
 
-    def __init__(self, message: str, hint: str = ""):
+    ``mistake`` names the recognised mistake in a few words ("the rotation goes
+    the opposite way ..."), the same for every student who makes it.
+    """
+
+    def __init__(self, message: str, hint: str = "", mistake: str = ""):
         super().__init__(message)
-        self.message, self.hint = message, hint
+        self.message, self.hint, self.mistake = message, hint, mistake
 
 
 class StudentFailure(Exception):
@@ -122,8 +127,8 @@ class Trial:
         return outcome.message
 
     # ------------------------------------------------------------ judging
-    def fail(self, message: str, hint: str = ""):
-        raise Fail(message, hint)
+    def fail(self, message: str, hint: str = "", mistake: str = ""):
+        raise Fail(message, hint, mistake)
 
     def advise(self, message: str, hint: str = ""):
         """Give a tip (advice checks only): shown with its reason, worth no points."""

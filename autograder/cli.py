@@ -1,4 +1,4 @@
-"""Command line: ``autograder grade``, ``autograder list`` (and ``python grade.py``).
+"""Command line: ``autograder grade``, ``autograder batch``, ``autograder list`` (and ``python grade.py``).
 
 Exit status is 0 whenever grading completed, whatever the score; 2 for usage
 errors (an unknown selector, a submission path that does not exist).
@@ -29,6 +29,21 @@ def build_parser() -> argparse.ArgumentParser:
 
     commands.add_parser("list", help="list the labs, exercises and checks")
 
+    batch = commands.add_parser("batch", help="grade a class: a gradebook, every student's page, LMS CSVs")
+    batch.add_argument("submissions", metavar="SUBMISSIONS",
+                       help="folder or .zip: one entry per student, or a Gradescope/Canvas/Moodle download")
+    batch.add_argument("--out", metavar="RESULTS", required=True, help="results folder (created; reused to resume)")
+    batch.add_argument("--workers", type=int, metavar="N", help="parallel gradings (default: the number of cores)")
+    batch.add_argument("--pictures", choices=("none", "failing", "all"), default="failing",
+                       help="pictures on the feedback pages (default: %(default)s)")
+    batch.add_argument("--regrade", action="store_true", help="grade everything again, even if unchanged")
+    batch.add_argument("--course", metavar="COURSE", help="course configuration (JSON): labs, points, late rule")
+    batch.add_argument("--roster", metavar="CSV", help="roster mapping students to LMS identities")
+    batch.add_argument("--overrides", metavar="CSV", help="instructor overrides: student,exercise,points,penalty,comment")
+    batch.add_argument("--dask-scheduler", metavar="ADDRESS", help="grade on this Dask cluster (tcp://host:8786)")
+    batch.add_argument("--similarity", action="store_true",
+                       help="also write RESULTS/similarity.html: the most similar submissions, lab by lab")
+
     gradescope = commands.add_parser("gradescope", help="Gradescope autograder: build the zip, or run inside it")
     actions = gradescope.add_subparsers(dest="action", required=True)
     build = actions.add_parser("build", help="write autograder.zip (setup.sh, run_autograder, sources)")
@@ -41,6 +56,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     bundle = commands.add_parser("bundle", help="write the repository students receive")
     bundle.add_argument("--student", metavar="OUT", required=True, help="folder to create")
+    add_class_commands(commands)
     return parser
 
 
@@ -66,6 +82,10 @@ def run_grade(args) -> int:
 
     console = Console(stderr=False)
     limits = Limits(call_timeout=args.timeout) if args.timeout else None
+    several = _several_students(args.submission)
+    if several:
+        console.print(f"[red]error:[/red] {several}")
+        return USAGE_ERROR
     try:
         with _progress(console) as advance:
             # Pictures cost time to encode: make them only for a page or a JSON file.
@@ -82,6 +102,12 @@ def run_grade(args) -> int:
         write_json(result, args.json)
     terminal.render(result, console, html_path=html_path, details=not args.quiet)
     return 0
+
+
+def _several_students(path) -> str | None:
+    from .batch.ingest import several_students
+
+    return several_students(path, sorted({lab.module for lab in discover().values()}))
 
 
 class _progress:
@@ -101,6 +127,87 @@ class _progress:
         self.bar.start()
         self.task = self.bar.add_task("", total=None)
         return lambda exercise, check: self.bar.update(self.task, advance=1, description=exercise.id)
+
+    def __exit__(self, *exc):
+        if self.bar:
+            self.bar.stop()
+
+
+def run_batch(args) -> int:
+    from rich.console import Console
+    from rich.text import Text
+
+    from .batch.cluster import DaskUnavailable
+    from .batch.exports import ExportError
+    from .batch.ingest import IngestError
+    from .batch.run import run_batch as batch
+    from .course import CourseConfig, CourseConfigError
+
+    console = Console()
+    try:
+        course = CourseConfig.load(args.course) if args.course else CourseConfig()
+        with _batch_progress(console) as progress:
+            summary = batch(args.submissions, args.out, course=course, workers=args.workers,
+                            pictures=args.pictures, regrade=args.regrade, roster=args.roster,
+                            overrides=args.overrides, dask_scheduler=args.dask_scheduler, progress=progress)
+    except (CourseConfigError, IngestError, ExportError, SelectionError, DaskUnavailable) as exc:
+        console.print(f"[red]error:[/red] {exc}")
+        return USAGE_ERROR
+    except KeyboardInterrupt:
+        console.print("interrupted: every finished grading is in the gradebook; "
+                      "run the same command again to resume")
+        return 130
+    console.print(f"{summary.students} students: {summary.graded} graded now, {summary.reused} unchanged "
+                  f"(kept from the gradebook), {len(summary.failed)} failed, {len(summary.unreadable)} unreadable",
+                  highlight=False)
+    for title, lines in (("unreadable", summary.unreadable), ("failed", summary.failed),
+                         ("roster", summary.unmatched), ("warning", summary.warnings)):
+        for line in lines:
+            console.print(Text.assemble("  ", (f"{title}:", "yellow"), f" {line}"), highlight=False)
+    if args.similarity:
+        summary.files.append(_batch_similarity(args, course, console))
+    console.print(f"wrote {args.out}/ : " + ", ".join(p.name for p in summary.files if p)
+                  + ", <student>/feedback.html, <student>/results.json, gradebook.sqlite", highlight=False, markup=False)
+    return 0
+
+
+def _batch_similarity(args, course, console) -> Path | None:
+    from .classreport.pages import write_similarity
+    from .classreport.similarity import SimilarityUnavailable
+
+    try:
+        return write_similarity(args.submissions, args.out, course.similarity_threshold, course.assignment)
+    except SimilarityUnavailable as exc:
+        console.print(f"[yellow]similarity report skipped:[/yellow] {exc}")
+        return None
+
+
+class _batch_progress:
+    """A progress bar with ETA and finished/failed counts on a terminal; nothing when redirected."""
+
+    def __init__(self, console):
+        self.console = console
+        self.bar = None
+
+    def __enter__(self):
+        if not self.console.is_terminal:
+            return None
+        from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn,
+                                   TimeRemainingColumn)
+
+        self.bar = Progress(TextColumn("[bold]grading[/bold]"), BarColumn(), MofNCompleteColumn(),
+                            TextColumn("{task.fields[counts]}"), TimeElapsedColumn(), TextColumn("ETA"),
+                            TimeRemainingColumn(), console=self.console)
+        self.bar.start()
+        self.task = None
+        return self.update
+
+    def update(self, event, entry, summary):
+        if event == "start":
+            self.task = self.bar.add_task("", total=summary.students, counts="")
+        else:
+            self.bar.update(self.task, advance=1,
+                            counts=f"{summary.graded} finished, {len(summary.failed)} failed")
 
     def __exit__(self, *exc):
         if self.bar:
@@ -156,9 +263,70 @@ def run_bundle(args) -> int:
     return 0
 
 
+def add_class_commands(commands) -> None:
+    """``autograder report`` and ``autograder similarity``: the class pages of a batch."""
+    report = commands.add_parser("report", help="write RESULTS/index.html, the class overview, from the gradebook")
+    report.add_argument("results", metavar="RESULTS", help="a batch's results folder")
+    report.add_argument("--course", metavar="COURSE", help="course configuration (JSON)")
+    report.add_argument("--title", default="", help="course title shown on the page")
+
+    similarity = commands.add_parser(
+        "similarity", help="write similarity.html: the most similar submissions, lab by lab (leads to read)")
+    similarity.add_argument("submissions", metavar="SUBMISSIONS_OR_RESULTS",
+                            help="the class's submissions (a batch's input), or a results folder keeping sources")
+    similarity.add_argument("--out", metavar="HTML", help="page to write (default: RESULTS/similarity.html for "
+                                                          "a results folder, else ./similarity.html)")
+    similarity.add_argument("--course", metavar="COURSE", help="course configuration (JSON): similarity_threshold")
+    similarity.add_argument("--threshold", type=float, help="show pairs scoring at least this (0-1), "
+                                                            "instead of the course's similarity_threshold")
+    similarity.add_argument("--title", default="", help="course title shown on the page")
+
+
+def run_report(args) -> int:
+    from .classreport.pages import NoGradebook, write_overview
+    from .course import CourseConfig, CourseConfigError
+
+    try:
+        course = CourseConfig.load(args.course) if args.course else CourseConfig()
+        out = write_overview(args.results, course_title=args.title or getattr(course, "assignment", ""))
+    except (CourseConfigError, NoGradebook) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return USAGE_ERROR
+    print(f"wrote {out}")
+    return 0
+
+
+def _default_similarity_page(folder: Path) -> Path:
+    from .classreport.pages import GRADEBOOK, SIMILARITY
+
+    return folder / SIMILARITY if (folder / GRADEBOOK).is_file() else Path(SIMILARITY)
+
+
+def run_similarity(args) -> int:
+    from .classreport.similarity import SimilarityUnavailable, write_similarity_report
+    from .course import CourseConfig, CourseConfigError
+
+    try:
+        course = CourseConfig.load(args.course) if args.course else CourseConfig()
+        threshold = args.threshold if args.threshold is not None else course.similarity_threshold
+        if not 0 < threshold <= 1:
+            raise CourseConfigError("--threshold must be in (0, 1]")
+        out = Path(args.out) if args.out else _default_similarity_page(Path(args.submissions))
+        results = write_similarity_report(args.submissions, out, threshold=threshold,
+                                          course_title=args.title or getattr(course, "assignment", ""))
+    except (CourseConfigError, SubmissionError, SimilarityUnavailable) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return USAGE_ERROR
+    for lab in results:
+        print(f"{lab.lab}: {lab.students} students, {len(lab.leads(threshold))} pairs at or above {threshold:.0%}")
+    print(f"wrote {out} (leads to read, not findings)")
+    return 0
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
-    commands = {"grade": run_grade, "list": run_list, "gradescope": run_gradescope, "bundle": run_bundle}
+    commands = {"grade": run_grade, "list": run_list, "batch": run_batch, "gradescope": run_gradescope,
+                "bundle": run_bundle, "report": run_report, "similarity": run_similarity}
     return commands[args.command](args)
 
 

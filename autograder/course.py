@@ -6,12 +6,39 @@ Example ``course.json``::
      "hidden_visibility": "after_published", "call_timeout": 10}
 
 Every key is optional; unknown keys and bad values are refused with a message.
+
+Keys read by ``autograder batch`` (instructor grading):
+
+``select``
+    The labs/exercises making up the assignment (default: every lab, every exercise).
+``assignment``
+    The assignment's name: the grade column of the Canvas and Moodle CSVs.
+``points``
+    Rescaled points, by lab or exercise: ``{"lab07": 20, "lab08.ex2": 5}``. A lab's
+    entry scales all its exercises alike; an exercise's entry wins over its lab's.
+    Default: the checks' own points.
+``late_penalty``
+    ``{"due": "2026-03-01T23:59:00+01:00", "grace_minutes": 15, "per_day": 10,
+    "max": 50}``. A submission ``d`` started days late (after the grace period)
+    loses ``min(max, per_day * d)`` percent of the points it earned. The time comes
+    from the download (Gradescope's ``:created_at:``); where only a late flag is
+    known (Canvas's ``_LATE_``) it counts as one day late. No ``late_penalty``, no
+    penalty. An override row with exercise ``late`` replaces the penalty.
+
+Read by ``autograder similarity`` (and ``autograder batch --similarity``):
+
+``similarity_threshold``
+    Default 0.5. Pairs of submissions whose score -- the mean share of each
+    file's own code (skeleton excluded) found in the other -- is at least this
+    are shown side by side. Disguised copies score about 0.9, independent work
+    about 0.1.
 """
 
 from __future__ import annotations
 
 import json
 from dataclasses import asdict, dataclass, field, fields
+from datetime import datetime
 from pathlib import Path
 
 VISIBILITIES = ("visible", "hidden", "after_due_date", "after_published")
@@ -28,6 +55,10 @@ class CourseConfig:
     hidden_visibility: str = "after_published"          # ... and of hidden checks
     stdout_visibility: str = "hidden"                   # the grader's own log
     call_timeout: float = 10.0                          # seconds per call into student code
+    assignment: str = "Computer vision labs"            # grade column name in LMS exports
+    points: dict[str, float] = field(default_factory=dict)   # "lab07" / "lab07.ex2" -> points
+    late_penalty: dict = field(default_factory=dict)    # due, grace_minutes, per_day, max (percent)
+    similarity_threshold: float = 0.5                   # similarity report: pairs shown side by side
 
     def __post_init__(self):
         for name in ("public_visibility", "hidden_visibility", "stdout_visibility"):
@@ -37,6 +68,33 @@ class CourseConfig:
             raise CourseConfigError("select must be a list of names like 'lab07' or 'lab07.ex2'")
         if not (isinstance(self.call_timeout, (int, float)) and self.call_timeout > 0):
             raise CourseConfigError("call_timeout must be a positive number of seconds")
+        if not (isinstance(self.assignment, str) and self.assignment.strip()):
+            raise CourseConfigError("assignment must be a non-empty name")
+        if not (isinstance(self.points, dict) and all(
+                isinstance(k, str) and isinstance(v, (int, float)) and v >= 0 for k, v in self.points.items())):
+            raise CourseConfigError("points must map 'lab07' or 'lab07.ex2' to a number of points")
+        self._check_late_penalty()
+        if not (isinstance(self.similarity_threshold, (int, float)) and 0 < self.similarity_threshold <= 1):
+            raise CourseConfigError("similarity_threshold must be a number in (0, 1]")
+
+    def _check_late_penalty(self):
+        rule = self.late_penalty
+        if not isinstance(rule, dict):
+            raise CourseConfigError("late_penalty must be an object (due, grace_minutes, per_day, max)")
+        unknown = sorted(set(rule) - {"due", "grace_minutes", "per_day", "max"})
+        if unknown:
+            raise CourseConfigError(f"late_penalty: unknown keys {unknown}")
+        for key in ("grace_minutes", "per_day", "max"):
+            if key in rule and not (isinstance(rule[key], (int, float)) and rule[key] >= 0):
+                raise CourseConfigError(f"late_penalty.{key} must be a non-negative number")
+        if "due" in rule:
+            try:
+                due = parse_time(str(rule["due"]))
+            except ValueError:
+                raise CourseConfigError("late_penalty.due must be an ISO 8601 time, "
+                                        "e.g. 2026-03-01T23:59:00+01:00") from None
+            if due.tzinfo is None:
+                raise CourseConfigError("late_penalty.due needs a time zone, e.g. +01:00 or Z")
 
     @classmethod
     def load(cls, path) -> "CourseConfig":
@@ -54,3 +112,16 @@ class CourseConfig:
 
     def to_json(self) -> str:
         return json.dumps(asdict(self), indent=2) + "\n"
+
+
+def parse_time(text: str) -> datetime:
+    """An ISO 8601 time; ``Z`` and Gradescope's ``2026-03-01 23:59:00.1 -08:00`` too (Python 3.10)."""
+    text = text.strip().replace(" -", "-").replace(" +", "+")
+    if text.endswith(("Z", "z")):
+        text = text[:-1] + "+00:00"
+    date, _, rest = text.partition("T") if "T" in text else text.partition(" ")
+    if "." in rest:  # Python 3.10 accepts 3 or 6 fraction digits only
+        clock, _, fraction = rest.partition(".")
+        digits = len(fraction) - len(fraction.lstrip("0123456789"))
+        rest = f"{clock}.{fraction[:digits][:6].ljust(6, '0')}{fraction[digits:]}"
+    return datetime.fromisoformat(f"{date}T{rest}" if rest else date)

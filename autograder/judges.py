@@ -50,7 +50,7 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
         return got
     mistake = closest(got, mistakes or {}, distance, 1e3 * tolerance)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} returned\n{format_matrix(got)}\nexpected\n{format_matrix(expected)}")
 
 
@@ -72,10 +72,11 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
     if isinstance(got, np.ndarray) and got.shape != expected_shape:
         if got.shape[:2] == expected_shape[1::-1]:
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
-                   "width and height are swapped (shapes are (rows, columns), dsize is (width, height))")
+                   "width and height are swapped (shapes are (rows, columns), dsize is (width, height))",
+                   mistake="width and height are swapped")
         if got.shape[:2] == expected_shape[:2]:
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
-                   "keep the input's channels (grey in, grey out)")
+                   "keep the input's channels (grey in, grey out)", mistake="the channels are not kept")
         size_rule = "" if dsize else ": warps keep the input's size (content that leaves the frame is cut off)"
         t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}{size_rule}")
     got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)
@@ -85,12 +86,13 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
         if nonblack > FILL_TOLERANCE:
             return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
                                 "pixels with no source pixel are not black.",
-                           hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)")
+                           hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)",
+                           mistake="the fill is not black")
         return passed(f"mean difference {error:.1f} grey levels on the covered area")
     for mistake, wrong_M in (mistakes or {}).items():
         try:
             if warp_error(got, source, wrong_M, dsize, good_enough=IMAGE_TOLERANCE) <= IMAGE_TOLERANCE:
-                t.fail(f"{what} is wrong: it looks like {mistake}.")
+                t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
         except np.linalg.LinAlgError:
             continue
     t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "

@@ -54,6 +54,8 @@ class CheckResult:
     message: str = ""
     hint: str = ""
     hidden: bool = False
+    mistake: str = ""   # the named mistake, if the check recognised one
+    failure: str = ""   # how the student's code failed, if it did: "timeout", "crashed", ...
     output: str = ""
     traceback: str = ""
     artifacts: list[Artifact] = field(default_factory=list)

@@ -79,7 +79,7 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check) -> ExerciseRe
         for check in checks:
             status = ERROR if imported.kind == "grader_error" else FAILED
             out.checks.append(CheckResult(check.name, 0.0, check.points, status,
-                                          imported.message, hidden=check.hidden,
+                                          imported.message, hidden=check.hidden, failure=imported.kind,
                                           traceback=imported.traceback, output=imported.output))
             if on_check:
                 on_check(exercise, out.checks[-1])
@@ -116,7 +116,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         return _run_advice(sandbox, check, modified)
     trial = Trial(sandbox, check)
     started = time.perf_counter()
-    tb = ""
+    tb, student_failure = "", ""
     try:
         verdict = check.func(trial)
         if verdict is None:
@@ -125,11 +125,11 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
             raise TypeError(f"check returned {type(verdict).__name__}, not a Verdict")
         status = PASSED if verdict.fraction >= 1.0 else (PARTIAL if verdict.fraction > 0 else FAILED)
     except Fail as failure:
-        verdict, status = Verdict(0.0, failure.message, failure.hint), FAILED
+        verdict, status = Verdict(0.0, failure.message, failure.hint, failure.mistake), FAILED
     except StudentFailure as failure:
         verdict = Verdict(0.0, failure.message)
         status = {"not_implemented": NOT_IMPLEMENTED, "grader_error": ERROR}.get(failure.outcome.kind, FAILED)
-        tb = failure.outcome.traceback
+        tb, student_failure = failure.outcome.traceback, failure.outcome.kind
     except Exception as exc:  # noqa: BLE001 - a bug in the grader must not stop grading
         verdict, status = Verdict(0.0, f"grader error in this check ({type(exc).__name__}: {exc}); "
                                        "the rest was graded - please tell your instructor"), ERROR
@@ -139,7 +139,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     return CheckResult(
         name=check.name, score=round(verdict.fraction * check.points, 6), max_score=check.points,
         status=status, message=verdict.message, hint=verdict.hint, hidden=check.hidden,
-        output="\n".join(trial.outputs)[:6000], traceback=tb,
+        mistake=verdict.mistake, failure=student_failure, output="\n".join(trial.outputs)[:6000], traceback=tb,
         artifacts=trial.artifacts() if pictures == "all" or (pictures == "failed" and status != PASSED) else [],
         seconds=round(time.perf_counter() - started, 6),
         student_seconds=round(trial.student_seconds, 6))

@@ -1,0 +1,405 @@
+"""From the gradebook to grades: course points, overrides, late penalties, the roster, the CSVs.
+
+Files written in RESULTS (every one parses with :mod:`csv`; UTF-8, comma-separated):
+
+``grades.csv``
+    ``Student ID,Name,Status,<exercise>...,Late penalty,Adjustments,Total`` -- one
+    row per student (``Status``: graded, unreadable: <reason>, failed: <reason>,
+    pending, no submission), exercise columns in course points.
+``canvas_import.csv``
+    ``Student,ID,SIS User ID,SIS Login ID,Section,<assignment>`` then the
+    ``Points Possible`` row: Canvas's gradebook import.
+``moodle_import.csv``
+    ``Identifier,Full name,Email address,Grade``: Moodle's offline grading
+    worksheet (``Identifier`` is ``Participant <id>``).
+``roster_unmatched.csv``
+    ``Student ID,Name,Problem``: students with no roster row and roster rows with
+    no submission (written when a roster is given). Nobody is dropped: they are
+    in the other files too, with the identities known.
+
+Overrides file (``--overrides``), columns ``student,exercise,points,penalty,comment``:
+``student`` is a derived id, an LMS id (sid, e-mail, Canvas user id) or the name;
+``exercise`` is an exercise id (``points`` replaces its score, ``penalty``
+subtracts), ``late`` (``points`` replaces the late penalty: 0 waives it) or
+``total``/empty (``penalty`` subtracts, ``points`` adds a bonus). Exactly one of
+points/penalty per row; points are course points.
+
+Roster file (``--roster``): a CSV with any of the columns ``Student ID`` (derived
+id), ``Student``/``Name``/``Full name``, ``ID`` (Canvas user id), ``SIS User ID``,
+``SIS Login ID``, ``Section``, ``Identifier`` (Moodle ``Participant N``),
+``Email``/``Email address`` -- Canvas's own gradebook export works as it is.
+A student matches the first row agreeing on the derived id, Canvas id, SIS user
+id, e-mail or login, Moodle participant, then the name.
+"""
+
+from __future__ import annotations
+
+import csv
+import html
+import io
+import math
+import re
+from dataclasses import dataclass, field
+from datetime import timedelta
+from pathlib import Path
+
+from ..course import CourseConfig, parse_time
+from ..results import write_atomically
+
+GRADES_HEADER = ["Student ID", "Name", "Status"]
+GRADES_TAIL = ["Late penalty", "Adjustments", "Total"]
+CANVAS_HEADER = ["Student", "ID", "SIS User ID", "SIS Login ID", "Section"]
+MOODLE_HEADER = ["Identifier", "Full name", "Email address", "Grade"]
+UNMATCHED_HEADER = ["Student ID", "Name", "Problem"]
+OVERRIDES_HEADER = ["student", "exercise", "points", "penalty", "comment"]
+
+
+class ExportError(ValueError):
+    """An overrides or roster file that cannot be used as it is."""
+
+
+@dataclass(frozen=True)
+class Override:
+    student: str
+    exercise: str
+    points: float | None
+    penalty: float | None
+    comment: str = ""
+
+
+@dataclass
+class Adjustment:
+    """One line of the "instructor adjustments" on a student's page."""
+
+    what: str          # exercise id, "late" or "total"
+    change: str        # "set to 4", "-2", "+1"
+    comment: str
+
+
+@dataclass
+class StudentGrade:
+    student: dict                        # a Gradebook.class_results() row (or a roster-only stub)
+    exercises: dict[str, float | None]   # course points per exercise (None: not graded)
+    late_penalty: float = 0.0
+    bonus: float = 0.0                   # total-level overrides (bonus minus penalties)
+    adjustments: list[Adjustment] = field(default_factory=list)
+    roster: dict = field(default_factory=dict)
+
+    @property
+    def graded(self) -> bool:
+        return self.student["status"] in ("graded", "unreadable")
+
+    @property
+    def total(self) -> float | None:
+        if not self.graded:
+            return None
+        return round(max(0.0, sum(v or 0.0 for v in self.exercises.values()) - self.late_penalty + self.bonus), 2)
+
+
+# ------------------------------------------------------------------ reading the instructor's files
+def read_overrides(path) -> list[Override]:
+    rows = _read_csv(path)
+    out = []
+    for number, row in enumerate(rows, 2):
+        row = {k.strip().lower(): (v or "").strip() for k, v in row.items() if k}
+        if not row.get("student"):
+            raise ExportError(f"{path}:{number}: no student")
+        points, penalty = _number(row.get("points"), path, number), _number(row.get("penalty"), path, number)
+        if (points is None) == (penalty is None):
+            raise ExportError(f"{path}:{number}: give exactly one of points or penalty")
+        out.append(Override(row["student"], row.get("exercise", "").lower() or "total", points, penalty,
+                            row.get("comment", "")))
+    return out
+
+
+def read_roster(path) -> list[dict]:
+    rows = []
+    for row in _read_csv(path):
+        row = {_roster_key(k): (v or "").strip() for k, v in row.items() if k}
+        if "points possible" in row.get("name", "").lower():
+            continue  # Canvas's export carries the points possible as a row
+        if any(row.values()):
+            rows.append(row)
+    return rows
+
+
+_ROSTER_KEYS = {"student id": "student_id", "student_id": "student_id", "student": "name", "name": "name",
+                "full name": "name", "id": "canvas_user_id", "sis user id": "sid", "sis login id": "login",
+                "section": "section", "identifier": "identifier", "email": "email", "email address": "email"}
+
+
+def _roster_key(key: str) -> str:
+    return _ROSTER_KEYS.get(key.strip().lower(), key.strip().lower())
+
+
+def _read_csv(path) -> list[dict]:
+    try:
+        text = Path(path).read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ExportError(f"cannot read {path}: {exc}") from None
+    return list(csv.DictReader(io.StringIO(text)))
+
+
+def _number(text, path, line) -> float | None:
+    if not text:
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        raise ExportError(f"{path}:{line}: {text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise ExportError(f"{path}:{line}: {text!r} is not a number")
+    return value
+
+
+# ------------------------------------------------------------------ matching
+def _name_key(name: str) -> str:
+    """``"Smith, John"``, ``"John Smith"`` and ``"smithjohn"`` all agree."""
+    return "".join(sorted(re.sub(r"[^a-z0-9 ]", " ", name.lower()).split()))
+
+
+def _identities(student: dict) -> set[str]:
+    lms = student.get("lms", {})
+    ids = {f"student_id:{student['student_id']}"}
+    for key, prefix in (("canvas_user_id", "canvas_user_id"), ("sid", "sid"), ("email", "email"),
+                        ("moodle_participant_id", "moodle")):
+        if lms.get(key):
+            ids.add(f"{prefix}:{lms[key].lower()}")
+    return ids
+
+
+def _roster_identities(row: dict) -> set[str]:
+    ids = set()
+    for key, prefix in (("student_id", "student_id"), ("canvas_user_id", "canvas_user_id"), ("sid", "sid")):
+        if row.get(key):
+            ids.add(f"{prefix}:{row[key].lower()}")
+    for key in ("email", "login"):
+        if row.get(key):
+            ids.add(f"email:{row[key].lower()}")
+    if row.get("identifier"):
+        ids.add("moodle:" + re.sub(r"\D", "", row["identifier"]))
+    return ids
+
+
+def match_roster(students: list[dict], roster: list[dict]) -> tuple[dict[str, dict], list[dict], list[dict]]:
+    """(roster row by student id, students with no row, rows with no student)."""
+    matched, used = {}, set()
+    for student in students:
+        ids = _identities(student)
+        candidates = [i for i, row in enumerate(roster) if i not in used and ids & _roster_identities(row)]
+        if not candidates:
+            name = _name_key(student["display_name"])
+            candidates = [i for i, row in enumerate(roster)
+                          if i not in used and name and _name_key(row.get("name", "")) == name]
+        if candidates:
+            used.add(candidates[0])
+            matched[student["student_id"]] = roster[candidates[0]]
+    unmatched = [s for s in students if s["student_id"] not in matched]
+    absent = [row for i, row in enumerate(roster) if i not in used]
+    return matched, unmatched, absent
+
+
+# ------------------------------------------------------------------ grades
+def exercise_factors(exercises, course: CourseConfig) -> dict[str, float]:
+    """Course points per raw point, by exercise id (``exercises``: (id, raw max) pairs)."""
+    lab_max: dict[str, float] = {}
+    for exercise_id, maximum in exercises:
+        lab = exercise_id.split(".")[0]
+        lab_max[lab] = lab_max.get(lab, 0.0) + maximum
+    factors = {}
+    for exercise_id, maximum in exercises:
+        lab = exercise_id.split(".")[0]
+        if exercise_id in course.points:
+            factors[exercise_id] = course.points[exercise_id] / maximum if maximum else 0.0
+        elif lab in course.points:
+            factors[exercise_id] = course.points[lab] / lab_max[lab] if lab_max[lab] else 0.0
+        else:
+            factors[exercise_id] = 1.0
+    return factors
+
+
+def late_days(student: dict, rule: dict) -> int:
+    """Days late (started days count whole) by the course's rule; 0 when on time or unknown."""
+    if not rule:
+        return 0
+    if rule.get("due") and student.get("submitted_at"):
+        try:
+            submitted = parse_time(student["submitted_at"])
+        except ValueError:
+            submitted = None
+        if submitted is not None:
+            over = submitted - parse_time(str(rule["due"])) - timedelta(minutes=rule.get("grace_minutes", 0))
+            return max(0, math.ceil(over / timedelta(days=1)))
+    return 1 if student.get("late") else 0
+
+
+def compute_grades(students: list[dict], exercises, course: CourseConfig,
+                   overrides: list[Override] = (), roster: list[dict] = ()) -> tuple[list[StudentGrade], list[str]]:
+    """Every student's grade, plus warnings (overrides naming nobody).
+
+    ``students`` are :meth:`Gradebook.class_results` rows; ``exercises`` the
+    selection's ``(id, raw max)`` pairs in order. Roster rows with no submission
+    are added with status ``no submission``.
+    """
+    factors = exercise_factors(exercises, course)
+    matched, _, absent = match_roster(students, list(roster))
+    grades, warnings = [], []
+    by_identity: dict[str, StudentGrade] = {}
+    for student in students:
+        scores: dict[str, float | None] = {e: None for e, _ in exercises}
+        if student["status"] == "graded":
+            for e in student["result"]["exercises"]:
+                if e["id"] in scores:
+                    scores[e["id"]] = round(e["score"] * factors[e["id"]], 4)
+        elif student["status"] == "unreadable":
+            scores = {e: 0.0 for e in scores}
+        grade = StudentGrade(student, scores, roster=matched.get(student["student_id"], {}))
+        grades.append(grade)
+        keys = {student["student_id"].lower(), student["display_name"].lower(), _name_key(student["display_name"])}
+        keys |= {v.lower() for v in student.get("lms", {}).values() if v}
+        keys |= {v.lower() for m in student.get("members", []) for v in m.values() if v}
+        keys |= {v.lower() for k, v in grade.roster.items() if v and k in ("sid", "email", "login", "canvas_user_id")}
+        for key in keys:
+            by_identity.setdefault(key, grade)
+    for grade in grades:
+        days = late_days(grade.student, course.late_penalty)
+        if days and grade.graded:
+            percent = min(course.late_penalty.get("max", 100), course.late_penalty.get("per_day", 0) * days)
+            earned = sum(v or 0.0 for v in grade.exercises.values())
+            grade.late_penalty = round(earned * percent / 100, 2)
+            if grade.late_penalty:
+                grade.adjustments.append(Adjustment("late", f"-{grade.late_penalty:g}",
+                                                    f"{days} day(s) late: {percent:g}% of the points earned"))
+    for o in overrides:
+        grade = by_identity.get(o.student.lower()) or by_identity.get(_name_key(o.student))
+        if grade is None:
+            warnings.append(f"override for {o.student!r} names no student; ignored")
+            continue
+        _apply(grade, o, warnings)
+    for row in absent:
+        stub = {"student_id": row.get("student_id", ""), "display_name": row.get("name", ""), "lms": {},
+                "members": [], "status": "no submission", "reason": "", "result": None, "feedback": None}
+        grades.append(StudentGrade(stub, {e: None for e, _ in exercises}, roster=row))
+    return grades, warnings
+
+
+def _apply(grade: StudentGrade, o: Override, warnings: list[str]) -> None:
+    if o.exercise == "late":
+        change = o.points if o.points is not None else grade.late_penalty + o.penalty
+        grade.late_penalty = change
+        grade.adjustments = [a for a in grade.adjustments if a.what != "late"]
+        grade.adjustments.append(Adjustment("late", f"penalty set to {change:g}", o.comment))
+    elif o.exercise == "total":
+        delta = o.points if o.points is not None else -o.penalty
+        grade.bonus += delta
+        grade.adjustments.append(Adjustment("total", f"{delta:+g}", o.comment))
+    elif o.exercise in grade.exercises:
+        current = grade.exercises[o.exercise] or 0.0
+        if o.points is not None:
+            grade.exercises[o.exercise] = o.points
+            grade.adjustments.append(Adjustment(o.exercise, f"set to {o.points:g}", o.comment))
+        else:
+            grade.exercises[o.exercise] = current - o.penalty
+            grade.adjustments.append(Adjustment(o.exercise, f"-{o.penalty:g}", o.comment))
+    else:
+        warnings.append(f"override for {o.student!r} names exercise {o.exercise!r}, "
+                        "which the assignment does not grade; ignored")
+
+
+def max_total(exercises, course: CourseConfig) -> float:
+    factors = exercise_factors(exercises, course)
+    return round(sum(maximum * factors[e] for e, maximum in exercises), 2)
+
+
+# ------------------------------------------------------------------ CSV files
+def _status(grade: StudentGrade) -> str:
+    status, reason = grade.student["status"], grade.student.get("reason", "")
+    return f"{status}: {reason}" if reason else status
+
+
+def _fmt(value) -> str:
+    return "" if value is None else f"{round(value, 4):g}"
+
+
+def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig, roster_given: bool) -> list[Path]:
+    out = Path(out)
+    ids = [e for e, _ in exercises]
+    files = []
+
+    rows = [GRADES_HEADER + ids + GRADES_TAIL]
+    for g in grades:
+        rows.append([g.student["student_id"], g.student["display_name"], _status(g)]
+                    + [_fmt(g.exercises[e]) for e in ids]
+                    + [_fmt(g.late_penalty if g.graded else None), _fmt(g.bonus if g.graded else None),
+                       _fmt(g.total)])
+    files.append(_write(out / "grades.csv", rows))
+
+    rows = [CANVAS_HEADER + [course.assignment], ["Points Possible", "", "", "", "", _fmt(max_total(exercises, course))]]
+    for g, member in _members(grades):
+        lms, r = g.student.get("lms", {}), g.roster
+        rows.append([r.get("name") or member.get("name") or g.student["display_name"],
+                     r.get("canvas_user_id") or lms.get("canvas_user_id", ""),
+                     r.get("sid") or member.get("sid", ""), r.get("login") or member.get("email", ""),
+                     r.get("section", ""), _fmt(g.total)])
+    files.append(_write(out / "canvas_import.csv", rows))
+
+    rows = [MOODLE_HEADER]
+    for g, member in _members(grades):
+        lms, r = g.student.get("lms", {}), g.roster
+        participant = lms.get("moodle_participant_id")
+        rows.append([r.get("identifier") or (f"Participant {participant}" if participant else ""),
+                     r.get("name") or member.get("name") or g.student["display_name"],
+                     r.get("email") or member.get("email", ""), _fmt(g.total)])
+    files.append(_write(out / "moodle_import.csv", rows))
+
+    if roster_given:
+        rows = [UNMATCHED_HEADER]
+        for g in grades:
+            if g.student["status"] == "no submission":
+                rows.append([g.student["student_id"], g.student["display_name"], "on the roster, no submission"])
+            elif not g.roster:
+                rows.append([g.student["student_id"], g.student["display_name"], "submitted, not on the roster"])
+        files.append(_write(out / "roster_unmatched.csv", rows))
+    return files
+
+
+def _members(grades):
+    """(grade, member) pairs: every submitter of a group gets the group's grade."""
+    for g in grades:
+        members = g.student.get("members") or [{"name": "", "sid": g.student.get("lms", {}).get("sid", ""),
+                                                "email": g.student.get("lms", {}).get("email", "")}]
+        for member in members:
+            yield g, member
+
+
+def _write(path: Path, rows) -> Path:
+    buffer = io.StringIO()
+    csv.writer(buffer, lineterminator="\n").writerows(rows)
+    write_atomically(path, buffer.getvalue())
+    return path
+
+
+# ------------------------------------------------------------------ the student's page
+BEGIN, END = "<!-- instructor-adjustments -->", "<!-- /instructor-adjustments -->"
+
+
+def adjustments_html(grade: StudentGrade, possible: float) -> str:
+    """The block shown on a student's page: final grade and every adjustment, or nothing."""
+    if not grade.adjustments and not grade.late_penalty:
+        return f"{BEGIN}{END}"
+    rows = "".join(f"<tr><td>{html.escape(a.what)}</td><td>{html.escape(a.change)}</td>"
+                   f"<td>{html.escape(a.comment)}</td></tr>" for a in grade.adjustments)
+    return (f'{BEGIN}<section class="exercise" id="adjustments"><header><h2>Instructor adjustments</h2>'
+            f'<span class="score">final grade {_fmt(grade.total)} / {possible:g}</span></header>'
+            f'<table class="overview"><tr><th>what</th><th>change</th><th>comment</th></tr>{rows}</table>'
+            f"</section>{END}")
+
+
+def with_adjustments(page: str, block: str) -> str:
+    """``page`` with its adjustments block replaced (inserted after the summary the first time)."""
+    start, stop = page.find(BEGIN), page.find(END)
+    if start >= 0 and stop > start:
+        return page[:start] + block + page[stop + len(END):]
+    anchor = page.find("</header>")
+    at = anchor + len("</header>") if anchor >= 0 else page.find("<main>") + len("<main>")
+    return page[:at] + "\n" + block + page[at:]

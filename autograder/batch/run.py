@@ -1,0 +1,204 @@
+"""``autograder batch``: read the class, grade what is new, write every student's page and the CSVs.
+
+Layout of RESULTS::
+
+    gradebook.sqlite          scores and messages (see .gradebook)
+    grades.csv                one row per student, one column per exercise
+    canvas_import.csv         Canvas gradebook import
+    moodle_import.csv         Moodle offline grading worksheet
+    roster_unmatched.csv      with --roster: who matched nobody
+    index.html                the class overview (see autograder.classreport)
+    similarity.html           with --similarity: the most similar submissions
+    <student-id>/feedback.html
+    <student-id>/results.json the results model, without pictures
+
+Gradings run in parallel, one sandboxed grading per submission: in a local
+process pool (``workers``), or on a Dask cluster (``dask_scheduler``). Each one
+is written to the student's folder first and then committed to the gradebook
+in one transaction, so a run killed at any moment resumes where it stopped.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from contextlib import contextmanager
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass, field
+from multiprocessing import get_context
+from pathlib import Path
+from typing import Callable
+
+from ..course import CourseConfig
+from ..registry import discover, select
+from ..reports import html
+from ..results import GradingResult, write_atomically
+from . import exports
+from .gradebook import Gradebook, lock_hash, strip_pictures, submission_key
+from .ingest import Entry, IngestError, read_class
+from .task import grade_files
+
+PICTURES = {"none": "none", "failing": "failed", "all": "all"}
+POOL_ATTEMPTS = 3   # a submission whose grading kills the grading process this often is recorded as failed
+
+
+@dataclass
+class BatchSummary:
+    students: int = 0
+    graded: int = 0          # graded in this run
+    reused: int = 0          # already in the gradebook
+    failed: list[str] = field(default_factory=list)       # "id: reason"
+    unreadable: list[str] = field(default_factory=list)   # "origin: reason"
+    unmatched: list[str] = field(default_factory=list)    # roster problems
+    warnings: list[str] = field(default_factory=list)
+    files: list[Path] = field(default_factory=list)
+
+
+def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: int | None = None,
+              pictures: str = "failing", regrade: bool = False, roster=None, overrides=None,
+              dask_scheduler: str | None = None, progress: Callable | None = None) -> BatchSummary:
+    """Grade the class at ``submissions`` into the folder ``out``; see the module docstring.
+
+    ``progress(event, entry, summary)`` is called with ``"start"`` (entry None,
+    with the number to grade in ``summary.students``) and ``"done"`` per grading.
+    Raises :class:`.ingest.IngestError` / :class:`.exports.ExportError` for
+    unusable inputs, before anything is graded.
+    """
+    # Inputs: everything is read, and refused if unusable, before anything is graded.
+    course = course or CourseConfig()
+    if pictures not in PICTURES:
+        raise ValueError(f"pictures must be one of {sorted(PICTURES)}")
+    out = Path(out)
+    if Path(submissions).is_dir() and Path(submissions).resolve() in out.resolve().parents:
+        raise IngestError(f"--out {out} is inside {submissions}: it would be read as a student next time")
+    exercises = select(course.select)
+    selection = ",".join(e.id for e in exercises)
+    modules = sorted({e.lab.module for e in exercises})
+    overrides_rows = exports.read_overrides(overrides) if overrides else None
+    roster_rows = exports.read_roster(roster) if roster else []
+    entries = read_class(submissions, modules, [lab.module for lab in discover().values()])
+
+    # Grading: only what the gradebook lacks, each grading committed as it lands.
+    lock = lock_hash()
+    keys = {e.student_id: submission_key(e.student_id, e.content_hash, selection, lock=lock) for e in entries}
+    summary = BatchSummary(students=len(entries))
+    with _only_writer(out), Gradebook(out) as book:
+        book.sync_students(entries, keys)
+        if overrides_rows is not None:
+            book.set_overrides(overrides_rows)   # kept for later runs without --overrides
+        readable = [e for e in entries if not e.error]
+        summary.unreadable = [f"{e.origin}: {e.error}" for e in entries if e.error]
+        todo = [e for e in readable if regrade or not book.is_graded(keys[e.student_id])]
+        summary.reused = len(readable) - len(todo)
+
+        def finished(entry: Entry, outcome: dict):
+            key = keys[entry.student_id]
+            if "result" in outcome:
+                try:
+                    _write_student(out, entry.student_id, outcome["result"])   # files first, then the commit
+                    book.record(key, entry.student_id, entry.content_hash, selection, outcome["result"], lock=lock)
+                    summary.graded += 1
+                except (OSError, ValueError, TypeError, KeyError) as exc:
+                    outcome = {"error": f"the results could not be stored: {type(exc).__name__}: {exc}"}
+            if "error" in outcome:
+                book.record(key, entry.student_id, entry.content_hash, selection, reason=outcome["error"], lock=lock)
+                summary.failed.append(f"{entry.student_id}: {outcome['error']}")
+            if progress:
+                progress("done", entry, summary)
+
+        if progress:
+            progress("start", None, BatchSummary(students=len(todo)))
+        arguments = (selection.split(","), course.call_timeout, PICTURES[pictures])
+        if dask_scheduler:
+            from .cluster import grade_on_dask
+
+            grade_on_dask(dask_scheduler, todo, arguments, finished)
+        else:
+            _grade_locally(todo, arguments, finished, workers or os.cpu_count() or 1)
+
+        students = book.class_results()
+        stored = [exports.Override(**o) for o in book.overrides()]
+
+    # Exports: grades with the course's points, overrides and late rule; the pages' adjustments.
+    raw = [(e.id, e.max_score()) for e in exercises]
+    grades, summary.warnings = exports.compute_grades(students, raw, course, stored, roster_rows)
+    summary.files = exports.write_csvs(out, grades, raw, course, roster_given=bool(roster_rows))
+    summary.files.append(_write_overview(out, students, course))
+    possible = exports.max_total(raw, course)
+    for grade in grades:
+        if grade.student.get("feedback"):
+            _refresh_page(out, grade, possible)
+    if roster_rows:
+        summary.unmatched = [f"{g.student['student_id'] or g.student['display_name']}: "
+                             + ("on the roster, no submission" if g.student["status"] == "no submission"
+                                else "not on the roster") for g in grades
+                             if g.student["status"] == "no submission" or not g.roster]
+    return summary
+
+
+@contextmanager
+def _only_writer(out: Path):
+    """One batch at a time writes RESULTS (the lock goes with the process, however it ends)."""
+    import fcntl
+
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / ".batch.lock", "w") as handle:
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            raise IngestError(f"another autograder batch is writing {out}; wait for it to finish") from None
+        yield
+
+
+def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None:
+    """A process pool; a pool broken by a dying grader is replaced and its work retried."""
+    attempts = {e.student_id: 0 for e in todo}
+    pending = list(todo)
+    while pending:
+        # spawn: the children start clean, with no copy of the gradebook's connection.
+        with ProcessPoolExecutor(max_workers=min(workers, len(pending)), mp_context=get_context("spawn")) as pool:
+            futures = {pool.submit(grade_files, e.files, *arguments, e.student_id): e for e in pending}
+            pending = []
+            while futures:
+                done, _ = wait(futures, return_when=FIRST_COMPLETED)
+                for future in done:
+                    entry = futures.pop(future)
+                    try:
+                        outcome = future.result()
+                    except BrokenProcessPool:
+                        attempts[entry.student_id] += 1
+                        if attempts[entry.student_id] < POOL_ATTEMPTS:
+                            pending.append(entry)
+                            continue
+                        outcome = {"error": f"the grading process died {POOL_ATTEMPTS} times"}
+                    except Exception as exc:  # noqa: BLE001
+                        outcome = {"error": f"the grader could not finish: {type(exc).__name__}: {exc}"}
+                    finished(entry, outcome)
+
+
+def _write_student(out: Path, student_id: str, result: dict) -> None:
+    folder = out / student_id
+    html.write(GradingResult.from_dict(result), folder / "feedback.html")
+    write_atomically(folder / "results.json", json.dumps(strip_pictures(result), indent=1, allow_nan=False) + "\n")
+
+
+def _write_overview(out: Path, students: list[dict], course: CourseConfig) -> Path:
+    """``index.html``: what the class got wrong (the checks' own points, before overrides)."""
+    from ..classreport.overview import render_overview
+    from ..classreport.pages import OVERVIEW, records_from_class_results
+
+    render_overview(records_from_class_results(students), out / OVERVIEW, course_title=course.assignment)
+    return out / OVERVIEW
+
+
+def _refresh_page(out: Path, grade, possible: float) -> None:
+    """Show the current adjustments on the student's page (re-rendered, without pictures, if lost)."""
+    folder = out / grade.student["student_id"]
+    page_path = folder / "feedback.html"
+    if not page_path.exists():
+        _write_student(out, grade.student["student_id"], grade.student["result"])
+    page = page_path.read_text(encoding="utf-8")
+    updated = exports.with_adjustments(page, exports.adjustments_html(grade, possible))
+    if updated != page:
+        write_atomically(page_path, updated)

@@ -1,0 +1,54 @@
+"""One submission's grading as a task: plain data in, plain data out.
+
+The same function runs in a local process pool and on a Dask worker. It writes
+the files it is given into a fresh temporary folder, grades them with
+:func:`autograder.runner.grade` (one sandboxed worker, as a single
+``autograder grade`` does), and returns the results model as a dict -- never an
+object of the student's making, and never raising.
+"""
+
+from __future__ import annotations
+
+import tempfile
+import traceback
+import warnings
+from pathlib import Path
+
+
+def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: float,
+                pictures: str, name: str) -> dict:
+    """``{"result": <results-model dict>}`` or ``{"error": <reason>}``.
+
+    Parameters
+    ----------
+    files : dict of str to bytes
+        Relative POSIX paths (``.py``/``.ipynb``) to their contents.
+    selectors : list of str
+        What to grade (``lab07``, ``lab07.ex1``); all when empty.
+    call_timeout : float
+        Seconds per call into student code.
+    pictures : {"all", "failed", "none"}
+        Which checks keep their pictures.
+    name : str
+        The submission's name in the results (the student id).
+    """
+    from ..runner import grade
+    from ..sandbox import Limits
+
+    try:
+        with tempfile.TemporaryDirectory(prefix="batch-") as tmp, warnings.catch_warnings():
+            # On a Dask worker other threads use the global `random` while a property
+            # check draws its (derandomised) examples; Hypothesis takes that for the
+            # strategy's doing and warns. The examples do not depend on it.
+            warnings.filterwarnings("ignore", message="Do not use the `random` module inside strategies")
+            folder = Path(tmp) / name
+            for relative, data in files.items():
+                target = folder / relative
+                target.parent.mkdir(parents=True, exist_ok=True)
+                target.write_bytes(data)
+            folder.mkdir(exist_ok=True)
+            result = grade(folder, selectors, limits=Limits(call_timeout=call_timeout), pictures=pictures)
+            return {"result": result.to_dict()}
+    except Exception as exc:  # noqa: BLE001 - one submission never stops the batch
+        return {"error": f"the grader could not finish: {type(exc).__name__}: {exc}",
+                "traceback": traceback.format_exc()[-4000:]}

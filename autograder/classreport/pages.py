@@ -1,0 +1,60 @@
+"""The class pages of a batch's RESULTS folder, from its gradebook (no regrading).
+
+Entry points for ``autograder report RESULTS``, ``autograder similarity`` and
+the end of ``autograder batch``:
+
+- :func:`write_overview` writes ``RESULTS/index.html`` from
+  ``Gradebook.class_results()`` (see :mod:`autograder.batch.gradebook`);
+- :func:`write_similarity` writes ``RESULTS/similarity.html``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .analysis import StudentRecord
+from .overview import render_overview
+
+OVERVIEW = "index.html"
+SIMILARITY = "similarity.html"
+GRADEBOOK = "gradebook.sqlite"
+
+
+class NoGradebook(FileNotFoundError):
+    """The folder holds no batch gradebook."""
+
+
+def records_from_class_results(rows: list[dict]) -> list[StudentRecord]:
+    """``Gradebook.class_results()`` rows as overview records (links relative to RESULTS)."""
+    return [StudentRecord(student_id=row["student_id"], name=row.get("display_name") or "",
+                          status=row.get("status", "graded"), reason=row.get("reason") or "",
+                          result=row.get("result"), feedback_href=row.get("feedback") or "")
+            for row in rows]
+
+
+def class_records(results_dir) -> list[StudentRecord]:
+    """The class as the gradebook in ``results_dir`` holds it."""
+    results_dir = Path(results_dir)
+    if not (results_dir / GRADEBOOK).is_file():
+        raise NoGradebook(f"{results_dir} holds no {GRADEBOOK}: run autograder batch SUBMISSIONS --out {results_dir}")
+    from ..batch.gradebook import Gradebook
+
+    with Gradebook(results_dir) as book:
+        return records_from_class_results(book.class_results())
+
+
+def write_overview(results_dir, course_title: str = "") -> Path:
+    """Write ``RESULTS/index.html`` from the gradebook; returns its path."""
+    out = Path(results_dir) / OVERVIEW
+    render_overview(class_records(results_dir), out, course_title=course_title)
+    return out
+
+
+def write_similarity(submissions, results_dir, threshold: float, course_title: str = "") -> Path:
+    """Compare the class's submissions (the SUBMISSIONS folder, or RESULTS where it keeps
+    each student's sources) and write ``RESULTS/similarity.html``; returns its path."""
+    from .similarity import write_similarity_report
+
+    out = Path(results_dir) / SIMILARITY
+    write_similarity_report(submissions, out, threshold=threshold, course_title=course_title)
+    return out
