@@ -33,7 +33,7 @@ def build_parser() -> argparse.ArgumentParser:
     batch.add_argument("submissions", metavar="SUBMISSIONS",
                        help="folder or .zip: one entry per student, or a Gradescope/Canvas/Moodle download")
     batch.add_argument("--out", metavar="RESULTS", required=True, help="results folder (created; reused to resume)")
-    batch.add_argument("--workers", type=int, metavar="N", help="parallel gradings (default: the number of cores)")
+    batch.add_argument("--workers", type=_positive, metavar="N", help="parallel gradings (default: the number of cores)")
     batch.add_argument("--pictures", choices=("none", "failing", "all"), default="failing",
                        help="pictures on the feedback pages (default: %(default)s)")
     batch.add_argument("--regrade", action="store_true", help="grade everything again, even if unchanged")
@@ -60,6 +60,12 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _positive(text: str) -> int:
+    if not text.isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"expected a positive whole number, got {text!r}")
+    return int(text)
+
+
 def add_grading_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("select", nargs="*", metavar="SELECT",
                         help="what to grade: lab07, lab07.ex2 ... (default: everything)")
@@ -75,6 +81,7 @@ def add_grading_options(parser: argparse.ArgumentParser) -> None:
 
 def run_grade(args) -> int:
     from rich.console import Console
+    from rich.markup import escape
 
     from .reports import html, terminal
     from .results import write_json
@@ -84,7 +91,7 @@ def run_grade(args) -> int:
     limits = Limits(call_timeout=args.timeout) if args.timeout else None
     several = _several_students(args.submission)
     if several:
-        console.print(f"[red]error:[/red] {several}")
+        console.print(f"[red]error:[/red] {escape(several)}")
         return USAGE_ERROR
     try:
         with _progress(console) as advance:
@@ -135,6 +142,7 @@ class _progress:
 
 def run_batch(args) -> int:
     from rich.console import Console
+    from rich.markup import escape
     from rich.text import Text
 
     from .batch.cluster import DaskUnavailable
@@ -151,7 +159,7 @@ def run_batch(args) -> int:
                             pictures=args.pictures, regrade=args.regrade, roster=args.roster,
                             overrides=args.overrides, dask_scheduler=args.dask_scheduler, progress=progress)
     except (CourseConfigError, IngestError, ExportError, SelectionError, DaskUnavailable) as exc:
-        console.print(f"[red]error:[/red] {exc}")
+        console.print(f"[red]error:[/red] {escape(str(exc))}")
         return USAGE_ERROR
     except KeyboardInterrupt:
         console.print("interrupted: every finished grading is in the gradebook; "

@@ -97,6 +97,9 @@ def main():
         print(f"  batch cost per submission, 1 worker: {per_submission:.2f} s "
               f"= {per_submission / single:.2f}x a single grade.py run")
         print(f"  re-run with nothing changed: {rerun:.2f} s (the gradebook resumes, grades nothing)")
+        size = sum(f.stat().st_size for f in (tmp / "out-1").rglob("*") if f.is_file())
+        print(f"  RESULTS with --pictures failing: {size / 2**20:.1f} MB, {size / args.students / 2**10:.0f} KB "
+              f"per student (x300 students: {300 * size / args.students / 2**30:.2f} GB)")
 
 
 if __name__ == "__main__":

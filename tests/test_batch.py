@@ -133,7 +133,7 @@ def graded(generated, tmp_path_factory):
 
 
 def comparable(out: Path) -> list[dict]:
-    with Gradebook(out) as book:
+    with Gradebook(out, readonly=True) as book:
         return without_timings(book.class_results())
 
 

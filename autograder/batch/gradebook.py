@@ -131,13 +131,21 @@ class Gradebook:
     """The gradebook in ``folder`` (created on first use).
 
     Only one process writes (the batch's coordinator); readers -- ``autograder
-    report``, the class overview -- may read at any time.
+    report``, the class overview -- may read at any time, best with
+    ``Gradebook(folder, readonly=True)`` (which never creates anything).
     """
 
-    def __init__(self, folder):
+    def __init__(self, folder, readonly: bool = False):
         self.folder = Path(folder)
-        self.folder.mkdir(parents=True, exist_ok=True)
         self.path = self.folder / GRADEBOOK
+        if readonly:
+            if not self.path.is_file():
+                raise FileNotFoundError(f"no gradebook in {self.folder}: run autograder batch first")
+            self.db = sqlite3.connect(f"{self.path.resolve().as_uri()}?mode=ro", uri=True, timeout=60,
+                                      isolation_level=None)
+            self.db.row_factory = sqlite3.Row
+            return
+        self.folder.mkdir(parents=True, exist_ok=True)
         self.db = sqlite3.connect(self.path, timeout=60, isolation_level=None)
         self.db.row_factory = sqlite3.Row
         self.db.execute("PRAGMA journal_mode=WAL")
