@@ -37,13 +37,28 @@ def _environment() -> Environment:
     env.filters["status_class"] = lambda c: _STATUS.get(c.status, ("failed", "✗"))[0]
     env.filters["status_icon"] = lambda c: _STATUS.get(c.status, ("failed", "✗"))[1]
     env.filters["safe_svg"] = _safe_svg
+    env.filters["check_name"] = lambda c: c.name.removesuffix(" (hidden)").rstrip()
     return env
+
+
+def what_was_graded(result: GradingResult) -> str:
+    """``lab07 ex1, ex2 · lab11 ex3``: the exercises on this page, per lab."""
+    labs: dict[str, list[str]] = {}
+    for exercise in result.exercises:
+        lab, key = exercise.id.split(".", 1)
+        labs.setdefault(lab, []).append(key)
+    return " · ".join(f"{lab} {', '.join(keys)}" for lab, keys in labs.items())
+
+
+def _graded_at(result: GradingResult) -> str:
+    return result.graded_at.replace("T", " ").replace("+00:00", " UTC") if result.graded_at else ""
 
 
 def render(result: GradingResult) -> str:
     """The feedback page as a string."""
     percent = round(100 * result.total / result.max_total) if result.max_total else 0
-    return _environment().get_template("feedback.html.j2").render(result=result, percent=percent)
+    return _environment().get_template("feedback.html.j2").render(
+        result=result, percent=percent, graded=what_was_graded(result), graded_at=_graded_at(result))
 
 
 def write(result: GradingResult, path) -> None:
