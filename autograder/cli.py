@@ -104,7 +104,7 @@ def run_grade(args) -> int:
             result = grade(args.submission, args.select, limits=limits, pictures=pictures,
                            include_hidden=not args.public_only, on_check=advance)
     except (SelectionError, SubmissionError) as exc:
-        errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False)
+        errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         return USAGE_ERROR
     html_path = None if args.no_html else _report_path(args.html, "feedback.html")
     replaced_full_page = bool(args.select) and html_path is not None and html_path.is_file()
@@ -119,13 +119,13 @@ def run_grade(args) -> int:
             written.append((what, path))
         except OSError as exc:
             errors.print(f"[red]error:[/red] cannot write {escape(str(path))}: "
-                         f"{escape(exc.strerror or str(exc))}", highlight=False)
+                         f"{escape(exc.strerror or str(exc))}", highlight=False, soft_wrap=True)
             status = USAGE_ERROR
     terminal.render_written(console, written)
     if replaced_full_page and any(path == html_path for _, path in written):
         errors.print(f"[yellow]note:[/yellow] {escape(str(html_path))} now shows only "
                      f"{escape(' '.join(args.select))}; run without a selection for the whole page "
-                     "(or keep a partial page apart with --html other.html)", highlight=False)
+                     "(or keep a partial page apart with --html other.html)", highlight=False, soft_wrap=True)
     return status
 
 

@@ -66,7 +66,8 @@ def printed_output_line(result: GradingResult, page=None) -> str:
 def render_written(console: Console, written) -> None:
     """One line per report file written: ``(what, path)`` pairs."""
     for what, path in written:
-        console.print(Text(f"{what[0].upper()}{what[1:]}: ") + Text(str(path), style="bold"))
+        console.print(Text(f"{what[0].upper()}{what[1:]}: ") + Text(str(path), style="bold"),
+                      soft_wrap=True)  # a path stays whole, to copy and paste
 
 
 NOT_STARTED = "not implemented yet"
