@@ -149,6 +149,26 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True) ->
     return converted
 
 
+def convert_history(cells: list[str]) -> str:
+    """The definitions among cells a kernel has run (IPython's ``In``), in order, as one module.
+
+    Unlike :func:`convert`, a cell that does not parse is skipped: in the kernel it
+    defined nothing, and the student has usually run the mended cell since.
+    """
+    lines: list[str] = []
+    for number, source in enumerate(cells, 1):
+        cell_lines = _without_magics(source.splitlines())
+        try:
+            ast.parse("\n".join(cell_lines))
+        except SyntaxError:
+            continue
+        keep = _definition_lines(cell_lines)
+        lines.append(f"# --- run {number}")
+        lines += [line for line, kept in zip(cell_lines, keep) if kept]
+        lines.append("")
+    return "\n".join(lines) + "\n"
+
+
 def _without_magics(lines: list[str]) -> list[str]:
     """IPython's ``%magic``, ``%%cell magic`` and ``!shell`` lines, commented out."""
     return [("# " + line) if line.lstrip().startswith(("%", "!")) else line for line in lines]
@@ -171,8 +191,11 @@ def _definition_lines(lines: list[str]) -> list[bool]:
 
 
 def _is_definition(node: ast.stmt) -> bool:
-    if isinstance(node, (ast.Import, ast.ImportFrom, ast.FunctionDef, ast.AsyncFunctionDef,
-                         ast.ClassDef)):
+    if isinstance(node, (ast.Import, ast.ImportFrom)):
+        # `from autograder import check` is for the notebook, not for the graded module.
+        names = [node.module or ""] if isinstance(node, ast.ImportFrom) else [a.name for a in node.names]
+        return not any(name.split(".")[0] == "autograder" for name in names)
+    if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
         return True
     if isinstance(node, ast.Try):  # try: import cv2 / except ImportError: ...
         body = node.body + node.orelse + node.finalbody + [s for h in node.handlers for s in h.body]

@@ -63,3 +63,8 @@ def render(result: GradingResult) -> str:
 
 def write(result: GradingResult, path) -> None:
     write_atomically(path, render(result))
+
+
+def render_selfcheck(result: GradingResult, source: str) -> str:
+    """The result of ``check(...)`` as an HTML fragment for a notebook's output area."""
+    return _environment().get_template("selfcheck.html.j2").render(result=result, source=source)
