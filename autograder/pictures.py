@@ -218,13 +218,25 @@ def compact_encoding(png: str, max_width: int = 1000, max_height: int = 360) -> 
         image = cv2.resize(image, (max(1, round(width * factor)), max(1, round(height * factor))),
                            interpolation=cv2.INTER_AREA)
     size = image.shape[1], image.shape[0]
-    as_png = cv2.imencode(".png", image, [cv2.IMWRITE_PNG_COMPRESSION, 9])[1]
-    if image.ndim == 3 and image.shape[2] == 4:  # transparency: PNG only
-        return "image/png", base64.b64encode(as_png.tobytes()).decode("ascii"), *size
-    as_jpeg = cv2.imencode(".jpg", image, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])[1]
-    if len(as_png) <= 1.5 * len(as_jpeg):
-        return "image/png", base64.b64encode(as_png.tobytes()).decode("ascii"), *size
+    if (image.ndim == 3 and image.shape[2] == 4) or _mostly_flat(image):
+        # Transparency, or a drawing, mask or enlarged small image: PNG, unless JPEG is far smaller.
+        as_png = cv2.imencode(".png", image, [cv2.IMWRITE_PNG_COMPRESSION, 6])[1]
+        if image.ndim == 3 and image.shape[2] == 4:
+            return "image/png", base64.b64encode(as_png.tobytes()).decode("ascii"), *size
+        as_jpeg = cv2.imencode(".jpg", image, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])[1]
+        if len(as_png) <= 1.5 * len(as_jpeg):
+            return "image/png", base64.b64encode(as_png.tobytes()).decode("ascii"), *size
+    else:  # a photo: PNG would be several times larger (and slow to compress)
+        as_jpeg = cv2.imencode(".jpg", image, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])[1]
     return "image/jpeg", base64.b64encode(as_jpeg.tobytes()).decode("ascii"), *size
+
+
+def _mostly_flat(image: np.ndarray, share: float = 0.5) -> bool:
+    """Whether most pixels equal their left neighbour: drawings, yes; photos, no."""
+    same = image[:, 1:] == image[:, :-1]
+    if same.ndim == 3:
+        same = same.all(axis=2)
+    return bool(same.mean() >= share) if same.size else True
 
 
 def heat_scale_stops(count: int = 6) -> list[str]:
