@@ -60,6 +60,9 @@ def add_grading_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--timeout", type=_positive_seconds, metavar="SECONDS",
                         help=f"default time limit per call (default {Limits.call_timeout:g})")
     parser.add_argument("--quiet", action="store_true", help="print only the table")
+    parser.add_argument("--figures", metavar="DIR",
+                        help="also write the lab sheet's output pictures, made by your functions, "
+                             "as DIR/<exercise>.png (and show them on the feedback page)")
 
 
 def _positive_seconds(text: str) -> float:
@@ -110,7 +113,9 @@ def run_grade(args) -> int:
     replaced_full_page = bool(args.select) and html_path is not None and html_path.is_file()
     terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first
     written, status = [], 0
-    for path, write, what in ((html_path, html.write, "details and pictures"),
+    figures = _write_figures(args, limits, console, errors, written) if getattr(args, "figures", None) else {}
+    for path, write, what in ((html_path, lambda r, p: html.write(r, p, figures=figures),
+                               "details and pictures"),
                               (args.json and _report_path(args.json, "results.json"), write_json, "results")):
         if not path:
             continue
@@ -127,6 +132,25 @@ def run_grade(args) -> int:
                      f"{escape(' '.join(args.select))}; run without a selection for the whole page "
                      "(or keep a partial page apart with --html other.html)", highlight=False, soft_wrap=True)
     return status
+
+
+def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
+    """``--figures DIR``: the lab sheet's pictures made by the student's functions; returns
+    the PNG bytes by exercise for the page, and notes each file (or why there is none)."""
+    from .figures import make_figures
+
+    try:
+        outcomes = make_figures(args.submission, args.select, args.figures, limits)
+    except OSError as exc:
+        errors.print(f"[red]error:[/red] cannot write figures to {escape(str(args.figures))}: "
+                     f"{escape(exc.strerror or str(exc))}", highlight=False, soft_wrap=True)
+        return {}
+    for outcome in outcomes:
+        if outcome.path is None:
+            console.print(f"[yellow]no figure for {outcome.exercise_id}:[/yellow] {escape(outcome.reason)}",
+                          highlight=False)
+    written += [(f"figure {o.exercise_id}", o.path) for o in outcomes if o.path is not None]
+    return {o.exercise_id: o.path.read_bytes() for o in outcomes if o.path is not None}
 
 
 class _progress:
