@@ -84,14 +84,14 @@ def read_notebook(text: str, name: str = "notebook"):
     import json
     import warnings
 
-    import nbformat
-
     try:
         data = json.loads(text)
         if not isinstance(data, dict) or not isinstance(data.get("cells"), list):
             raise TypeError("no list of cells")
         if "nbformat" not in data:
             return data  # a bare {"cells": [...]} (hand-made or exported by a tool): usable as is
+        import nbformat
+
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # missing cell ids and the like: harmless here
             notebook = nbformat.reads(text, as_version=4)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import difflib
 import hashlib
+import os
 import re
 import shutil
 import tempfile
@@ -152,11 +153,17 @@ def _plain_name(stem: str) -> str:
     return re.sub(r"[\s-]+", "_", _COPY_SUFFIX.sub("", stem.strip())).lower()
 
 
-def _source_files(root: Path) -> list[Path]:
-    """The .py and .ipynb files of a submission, as _find_module would search them."""
-    return sorted(p for p in root.rglob("*") if p.suffix.lower() in (".py", ".ipynb") and p.is_file()
-                  and "__MACOSX" not in p.parts and len(p.relative_to(root).parts) <= 3
-                  and not any(part.startswith(".") for part in p.relative_to(root).parts))
+def _source_files(root: Path, depth: int = 3, suffixes=(".py", ".ipynb")) -> list[Path]:
+    """The .py and .ipynb files of a submission, as _find_module would search them (at most
+    ``depth`` levels down, hidden folders and __MACOSX left out, never a whole tree)."""
+    found = []
+    for folder, subfolders, files in os.walk(root):
+        level = len(Path(folder).relative_to(root).parts)
+        subfolders[:] = [] if level + 1 >= depth else sorted(
+            d for d in subfolders if not d.startswith(".") and d != "__MACOSX")
+        found += [Path(folder) / f for f in files
+                  if Path(f).suffix.lower() in suffixes and not f.startswith(".")]
+    return sorted(found)
 
 
 def _find_misnamed(root: Path, module: str, out: Path, submission: Submission) -> Path | None:
@@ -164,7 +171,7 @@ def _find_misnamed(root: Path, module: str, out: Path, submission: Submission) -
     also inside a .zip handed in within the folder; else None, with the problem recorded:
     what was found, and the rename to make when one name is close."""
     files = _source_files(root)
-    archives = [p for p in sorted(root.rglob("*.zip")) if "__MACOSX" not in p.parts]
+    archives = _source_files(root, suffixes=(".zip",))
     broken = []
     for index, archive in enumerate(archives):
         try:
