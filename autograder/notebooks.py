@@ -64,6 +64,10 @@ class ConvertedNotebook:
     source: str
     cells: list[tuple[int, int, int]] = field(default_factory=list)
     left_out: list[str] = field(default_factory=list)
+    cell_label: str = "cell {number}"  # "In [{number}]" for a kernel's history (see selfcheck)
+
+    def label(self, number: int) -> str:
+        return self.cell_label.format(number=number)
 
     def where(self, line: int) -> tuple[int, int] | None:
         """``(cell_number, line_in_cell)`` of a converted module's ``line``; None for a header."""
@@ -122,6 +126,9 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True) ->
     notebook = read_notebook(text, name)
     lines: list[str] = []
     converted = ConvertedNotebook("")
+    settings = (notebook.get("metadata") or {}).get("autograder") or {}
+    if isinstance(settings.get("cell_label"), str) and "{number}" in settings["cell_label"]:
+        converted.cell_label = settings["cell_label"]
     for number, cell in enumerate(notebook["cells"], 1):
         if cell.get("cell_type") != "code":
             continue
@@ -142,31 +149,11 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True) ->
         dropped = [line.strip() for line, kept in zip(cell_lines, keep) if not kept and line.strip()
                    and not line.lstrip().startswith("#")]
         if dropped:
-            converted.left_out.append(f"cell {number}: {dropped[0][:60]}"
+            converted.left_out.append(f"{converted.label(number)}: {dropped[0][:60]}"
                                       + (f" (+{len(dropped) - 1} lines)" if len(dropped) > 1 else ""))
         lines.append("")
     converted.source = "\n".join(lines) + "\n"
     return converted
-
-
-def convert_history(cells: list[str]) -> str:
-    """The definitions among cells a kernel has run (IPython's ``In``), in order, as one module.
-
-    Unlike :func:`convert`, a cell that does not parse is skipped: in the kernel it
-    defined nothing, and the student has usually run the mended cell since.
-    """
-    lines: list[str] = []
-    for number, source in enumerate(cells, 1):
-        cell_lines = _without_magics(source.splitlines())
-        try:
-            ast.parse("\n".join(cell_lines))
-        except SyntaxError:
-            continue
-        keep = _definition_lines(cell_lines)
-        lines.append(f"# --- run {number}")
-        lines += [line for line, kept in zip(cell_lines, keep) if kept]
-        lines.append("")
-    return "\n".join(lines) + "\n"
 
 
 def _without_magics(lines: list[str]) -> list[str]:
@@ -242,7 +229,7 @@ def point_into_notebook(text: str, module: str, notebook_name: str, converted: C
 
     def spot(line: str) -> str:
         found = converted.where(int(line))
-        return f"cell {found[0]}, line {found[1]}" if found else f"line {line}"
+        return f"{converted.label(found[0])}, line {found[1]}" if found else f"line {line}"
 
     text = re.sub(rf'File "{filename}", line (\d+)',
                   lambda m: f'File "{notebook_name}", {spot(m.group(1))}', text)

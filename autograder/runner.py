@@ -132,9 +132,10 @@ def _reading_notes(submission) -> list[str]:
              for module, found in submission.renamed.items()]
     for module, (name, converted) in submission.notebooks.items():
         if converted.left_out:
-            cells = ", ".join(note.split(":")[0].removeprefix("cell ") for note in converted.left_out)
+            cells = ", ".join(note.split(":")[0] for note in converted.left_out[:8])
+            cells += " ..." if len(converted.left_out) > 8 else ""
             notes.append(f"{name}: only definitions (imports, functions, classes, constants) are graded; "
-                         f"the other statements of cells {cells} were left out. Tag a cell "
+                         f"the other statements of {cells} were left out. Tag a cell "
                          f"'{GRADE_TAG}' to grade it whole, '{SKIP_TAG}' to leave it out.")
     return notes
 

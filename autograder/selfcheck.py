@@ -28,7 +28,9 @@ import shutil
 import tempfile
 from pathlib import Path
 
-from .notebooks import convert_history
+import nbformat
+import nbformat.v4
+
 from .registry import select
 from .results import GradingResult
 
@@ -105,9 +107,8 @@ def _what_to_grade(modules: list[str], notebook, submission):
     history = _kernel_history()
     if history is not None:
         folder = Path(tempfile.mkdtemp(prefix="selfcheck-"))
-        converted = convert_history(history)
         for module in modules:
-            (folder / f"{module}.py").write_text(converted, encoding="utf-8")
+            nbformat.write(_history_notebook(history), folder / f"{module}.ipynb")
         return folder, "the code this notebook's kernel has run", folder
     for folder in (Path.cwd(), Path.cwd() / "assignments"):
         if any((folder / f"{module}{suffix}").exists() for module in modules for suffix in (".py", ".ipynb")):
@@ -115,6 +116,23 @@ def _what_to_grade(modules: list[str], notebook, submission):
     raise FileNotFoundError(
         f"no {' or '.join(m + '.py' for m in modules)} in {Path.cwd()} or its assignments/ folder; "
         "name what to grade: check(..., submission='path/to/folder') or check(..., notebook='lab.ipynb')")
+
+
+def _history_notebook(history: list[str]):
+    """The kernel's inputs as a notebook whose cell N is ``In [N]`` (messages say so). An
+    input that did not parse defined nothing in the kernel, so it is left out (an empty
+    cell keeps the numbering): the student has usually run the mended cell since."""
+    import ast
+
+    cells = []
+    for source in history:
+        try:
+            ast.parse("\n".join(("# " + line) if line.lstrip().startswith(("%", "!")) else line
+                                for line in source.splitlines()))
+        except SyntaxError:
+            source = ""
+        cells.append(nbformat.v4.new_code_cell(source))
+    return nbformat.v4.new_notebook(cells=cells, metadata={"autograder": {"cell_label": "In [{number}]"}})
 
 
 def _kernel_history() -> list[str] | None:

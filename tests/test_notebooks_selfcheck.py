@@ -75,3 +75,18 @@ def test_check_names_what_to_grade_when_it_finds_nothing(tmp_path):
                          cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert run.returncode != 0
     assert f"no {MODULE}.py in" in run.stderr and "submission=" in run.stderr
+
+
+def test_check_points_to_the_kernels_input_numbers(monkeypatch):
+    from autograder import selfcheck
+
+    source = (REFERENCE / f"{MODULE}.py").read_text()
+    history = [source, "def rotation_matrix(angle_deg:\n    pass",  # a typo, mended in In [3]
+               "def rotation_matrix(angle_deg, center=(0.0, 0.0)):\n    offset = 1\n    return undefined_name",
+               "translate(image)  # a demo: never run at grading"]
+    monkeypatch.setattr(selfcheck, "_kernel_history", lambda: history)
+    report = selfcheck.check("lab07.ex1", "lab07.ex2")
+    tracebacks = [c.traceback for e in report.result.exercises for c in e.checks if c.traceback]
+    assert tracebacks and "In [3], line 3, in rotation_matrix" in tracebacks[0]
+    assert 0 < report.score < report.max_score  # translation still passes
+    assert "In [4]" in " ".join(report.result.notes)
