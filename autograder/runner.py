@@ -108,7 +108,7 @@ def _import(sandbox: Sandbox, module: str, submission) -> CallOutcome:
         return CallOutcome(ok=False, kind="missing_module", message=problem)
     outcome = sandbox.import_module(module)
     if not outcome.ok and outcome.kind == "import_error" and ", line " not in outcome.message:
-        where = _innermost_frame(outcome.traceback, module)
+        where = _innermost_frame(outcome.traceback)
         if where:
             outcome = replace(outcome, message=f"{outcome.message}\n  at {where}")
     return outcome
@@ -117,7 +117,7 @@ def _import(sandbox: Sandbox, module: str, submission) -> CallOutcome:
 _FRAME = re.compile(r'File "([^"]+)", line (\d+)(?:, in \S+)?\n(?:    (.*))?')
 
 
-def _innermost_frame(traceback_text: str, module: str) -> str:
+def _innermost_frame(traceback_text: str) -> str:
     """``lab07_transformations.py, line 12: x = undefined_name`` from a student traceback."""
     frames = _FRAME.findall(traceback_text or "")
     if not frames:

@@ -3,8 +3,15 @@
 A submission may be a folder (the modules at its top or one level down, as
 unzipped archives often are), a single ``.py`` file, a ``.zip`` archive, or
 Jupyter notebooks named like the modules (``lab07_transformations.ipynb``, whose
-code cells become the module). The result is a plain folder of ``.py`` modules
-that the sandbox copies, plus a content hash identifying the submission.
+definitions become the module, see :mod:`autograder.notebooks`). The result is a
+plain folder of ``.py`` modules that the sandbox copies, plus a content hash
+identifying the submission.
+
+Nothing the student handed in stops the others from being graded: a file
+plainly meant as a module (``Lab07_Transformations.py``, ``lab07_transformations (1).py``,
+or one inside a ``.zip`` within the folder) is taken, and noted; a module that is
+missing, ambiguous or unreadable becomes a *problem* of that module only
+(:attr:`Submission.problems`), naming the files found and the rename to make.
 """
 
 from __future__ import annotations
