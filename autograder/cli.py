@@ -242,8 +242,10 @@ def grade_py_main(argv=None, root: Path | None = None) -> int:
     """``python grade.py [SELECT...] [--submission PATH]``: grade the student's own work."""
     root = root or Path.cwd()
     parser = argparse.ArgumentParser(
-        prog="grade.py", description="Grade your labs: python grade.py [lab07 | lab07.ex2 ...]")
-    parser.add_argument("--submission", default=str(root / "assignments"),
+        prog="grade.py", description="Grade your labs: python grade.py [lab07 | lab07.ex2 ...]",
+        epilog="In a notebook, check one exercise as you work: "
+               "from autograder import check; check(\"lab07.ex2\")")
+    parser.add_argument("--submission", metavar="PATH", default=str(root / "assignments"),
                         help="folder to grade (default: assignments/)")
     add_grading_options(parser)
     return run_grade(parser.parse_args(argv))
