@@ -230,7 +230,7 @@ class Trial:
         :func:`~autograder.runner.grade`'s ``pictures``).
         """
         def artifact():
-            items = [{"label": label.replace("_", " "), "png": pictures.png_base64(image)}
+            items = [pictures.picture_item(label.replace("_", " "), image)
                      for label, image in labelled.items() if image is not None]
             return Artifact("images", title, items, caption)
 

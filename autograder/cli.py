@@ -1,7 +1,8 @@
 """Command line: ``autograder grade``, ``autograder batch``, ``autograder list`` (and ``python grade.py``).
 
 Exit status is 0 whenever grading completed, whatever the score; 2 for usage
-errors (an unknown selector, a submission path that does not exist).
+errors (an unknown selector, a submission path that does not exist, a bad
+option value, a report that cannot be written). Errors go to stderr.
 """
 
 from __future__ import annotations
@@ -9,6 +10,8 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+
+from rich.markup import escape
 
 from . import __version__
 from .registry import SelectionError, discover
@@ -19,12 +22,14 @@ USAGE_ERROR = 2
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="autograder", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(
+        prog="autograder", description="Grade computer-vision lab submissions: autograder grade, "
+                                       "autograder list (students: python grade.py).")
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
 
     grade = commands.add_parser("grade", help="grade one submission")
-    grade.add_argument("submission", help="folder, .py, .zip or .ipynb")
+    grade.add_argument("submission", nargs="?", help="folder, .py, .zip or .ipynb")
     add_grading_options(grade)
 
     commands.add_parser("list", help="list the labs, exercises and checks")
@@ -69,14 +74,40 @@ def _positive(text: str) -> int:
 def add_grading_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("select", nargs="*", metavar="SELECT",
                         help="what to grade: lab07, lab07.ex2 ... (default: everything)")
-    parser.add_argument("--json", metavar="FILE", help="write the results as JSON")
+    parser.add_argument("--json", metavar="FILE", help="write the results as JSON (a folder: FOLDER/results.json)")
     parser.add_argument("--html", metavar="FILE", default="feedback.html",
-                        help="write the feedback page (default: %(default)s)")
+                        help="write the feedback page (default: %(default)s; a folder: FOLDER/feedback.html)")
     parser.add_argument("--no-html", action="store_true", help="do not write the feedback page")
     parser.add_argument("--public-only", action="store_true", help="skip hidden checks")
-    parser.add_argument("--timeout", type=float, metavar="SECONDS",
+    parser.add_argument("--timeout", type=_positive_seconds, metavar="SECONDS",
                         help=f"default time limit per call (default {Limits.call_timeout:g})")
     parser.add_argument("--quiet", action="store_true", help="print only the table")
+    parser.add_argument("--figures", metavar="DIR",
+                        help="also write the lab sheet's output pictures, made by your functions, "
+                             "as DIR/<exercise>.png (and show them on the feedback page)")
+
+
+def _positive_seconds(text: str) -> float:
+    """``--timeout``: a positive, finite number of seconds."""
+    try:
+        seconds = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+    if not (0 < seconds < float("inf")):
+        raise argparse.ArgumentTypeError(f"must be a positive number of seconds, got {text}")
+    return seconds
+
+
+def _report_path(path, default_name: str) -> Path:
+    """An output path; an existing folder means ``folder/default_name``."""
+    path = Path(path)
+    return path / default_name if path.is_dir() else path
+
+
+NO_SUBMISSION = ("autograder grade needs the submission to grade: a folder, .py, .zip or .ipynb.\n"
+                 "  autograder grade path/to/submission            everything\n"
+                 "  autograder grade path/to/submission lab07.ex2  one exercise\n"
+                 "Students grade their own work with: python grade.py")
 
 
 def run_grade(args) -> int:
@@ -87,28 +118,66 @@ def run_grade(args) -> int:
     from .results import write_json
     from .runner import grade
 
-    console = Console(stderr=False)
+    console, errors = Console(stderr=False), Console(stderr=True)
+    if args.submission is None:
+        errors.print(NO_SUBMISSION, markup=False, highlight=False)
+        return USAGE_ERROR
     limits = Limits(call_timeout=args.timeout) if args.timeout else None
     several = _several_students(args.submission)
     if several:
         console.print(f"[red]error:[/red] {escape(several)}")
         return USAGE_ERROR
     try:
-        with _progress(console) as advance:
+        with _progress(errors) as advance:
             # Pictures cost time to encode: make them only for a page or a JSON file.
             pictures = "all" if (args.json or not args.no_html) else "none"
             result = grade(args.submission, args.select, limits=limits, pictures=pictures,
                            include_hidden=not args.public_only, on_check=advance)
     except (SelectionError, SubmissionError) as exc:
-        console.print(f"[red]error:[/red] {exc}")
+        errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         return USAGE_ERROR
-    html_path = None if args.no_html else args.html
-    if html_path:
-        html.write(result, html_path)
-    if args.json:
-        write_json(result, args.json)
-    terminal.render(result, console, html_path=html_path, details=not args.quiet)
-    return 0
+    html_path = None if args.no_html else _report_path(args.html, "feedback.html")
+    replaced_full_page = bool(args.select) and html_path is not None and html_path.is_file()
+    terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first
+    written, status = [], 0
+    figures = _write_figures(args, limits, console, errors, written) if getattr(args, "figures", None) else {}
+    for path, write, what in ((html_path, lambda r, p: html.write(r, p, figures=figures),
+                               "details and pictures"),
+                              (args.json and _report_path(args.json, "results.json"), write_json, "results")):
+        if not path:
+            continue
+        try:
+            write(result, path)
+            written.append((what, path))
+        except OSError as exc:
+            errors.print(f"[red]error:[/red] cannot write {escape(str(path))}: "
+                         f"{escape(exc.strerror or str(exc))}", highlight=False, soft_wrap=True)
+            status = USAGE_ERROR
+    terminal.render_written(console, written)
+    if replaced_full_page and any(path == html_path for _, path in written):
+        errors.print(f"[yellow]note:[/yellow] {escape(str(html_path))} now shows only "
+                     f"{escape(' '.join(args.select))}; run without a selection for the whole page "
+                     "(or keep a partial page apart with --html other.html)", highlight=False, soft_wrap=True)
+    return status
+
+
+def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
+    """``--figures DIR``: the lab sheet's pictures made by the student's functions; returns
+    the PNG bytes by exercise for the page, and notes each file (or why there is none)."""
+    from .figures import make_figures
+
+    try:
+        outcomes = make_figures(args.submission, args.select, args.figures, limits)
+    except OSError as exc:
+        errors.print(f"[red]error:[/red] cannot write figures to {escape(str(args.figures))}: "
+                     f"{escape(exc.strerror or str(exc))}", highlight=False, soft_wrap=True)
+        return {}
+    for outcome in outcomes:
+        if outcome.path is None:
+            console.print(f"[yellow]no figure for {outcome.exercise_id}:[/yellow] {escape(outcome.reason)}",
+                          highlight=False)
+    written += [(f"figure {o.exercise_id}", o.path) for o in outcomes if o.path is not None]
+    return {o.exercise_id: o.path.read_bytes() for o in outcomes if o.path is not None}
 
 
 def _several_students(path) -> str | None:
@@ -118,7 +187,8 @@ def _several_students(path) -> str | None:
 
 
 class _progress:
-    """A transient progress bar on a terminal; nothing when output is redirected."""
+    """A transient progress line on stderr when it is a terminal (nothing when redirected):
+    the exercise being graded, checks done, and time so far."""
 
     def __init__(self, console):
         self.console = console
@@ -127,10 +197,11 @@ class _progress:
     def __enter__(self):
         if not self.console.is_terminal:
             return None
-        from rich.progress import BarColumn, Progress, TextColumn
+        from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
         self.bar = Progress(TextColumn("[bold]grading[/bold] {task.description}"), BarColumn(),
-                            TextColumn("{task.completed} checks"), console=self.console, transient=True)
+                            TextColumn("{task.completed} checks"), TimeElapsedColumn(),
+                            console=self.console, transient=True)
         self.bar.start()
         self.task = self.bar.add_task("", total=None)
         return lambda exercise, check: self.bar.update(self.task, advance=1, description=exercise.id)
@@ -228,9 +299,14 @@ def run_list(args) -> int:
         for exercise in lab.exercises.values():
             print(f"  {exercise.id:<12} {exercise.max_score():>5g} pts  {exercise.title}")
             for check in exercise.checks:
-                flag = " (hidden)" if check.hidden else ""
-                print(f"      {check.points:>4g}  {check.name}{flag}")
+                print(f"      {check.points:>4g}  {check_label(check.name, check.hidden)}")
     return 0
+
+
+def check_label(name: str, hidden: bool) -> str:
+    """A check's name with "(hidden)" once when it is hidden (some names already say so)."""
+    name = name.removesuffix(" (hidden)").rstrip()
+    return f"{name} (hidden)" if hidden else name
 
 
 def run_gradescope(args) -> int:
@@ -342,8 +418,10 @@ def grade_py_main(argv=None, root: Path | None = None) -> int:
     """``python grade.py [SELECT...] [--submission PATH]``: grade the student's own work."""
     root = root or Path.cwd()
     parser = argparse.ArgumentParser(
-        prog="grade.py", description="Grade your labs: python grade.py [lab07 | lab07.ex2 ...]")
-    parser.add_argument("--submission", default=str(root / "assignments"),
+        prog="grade.py", description="Grade your labs: python grade.py [lab07 | lab07.ex2 ...]",
+        epilog="In a notebook, check one exercise as you work: "
+               "from autograder import check; check(\"lab07.ex2\")")
+    parser.add_argument("--submission", metavar="PATH", default=str(root / "assignments"),
                         help="folder to grade (default: assignments/)")
     add_grading_options(parser)
     return run_grade(parser.parse_args(argv))

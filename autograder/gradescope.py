@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import logging
+import re
 import time
 import zipfile
 from pathlib import Path
@@ -19,6 +20,7 @@ from pathlib import Path
 from .course import CourseConfig
 from .results import GradingResult, write_atomically
 from .sandbox import Limits
+from .submission import SubmissionError
 
 log = logging.getLogger("autograder")
 PROJECT_ROOT = Path(__file__).resolve().parents[1]
@@ -41,31 +43,61 @@ def results_json(result: GradingResult, config: CourseConfig) -> dict:
                 "score": check.score,
                 "max_score": check.max_score,
                 "status": "passed" if check.passed or check.max_score == 0 else "failed",  # advice never fails
-                "output": _check_output(check),
-                "output_format": "text",
+                "output": _check_markdown(check),
+                "output_format": "md",
                 "visibility": config.hidden_visibility if check.hidden else config.public_visibility,
             })
-    lines = [f"Total: {result.total:g} / {result.max_total:g}"]
-    lines += [f"{e.id} {e.title}: {e.score:g} / {e.max_score:g}" + (f" - {e.message.splitlines()[0]}" if e.message else "")
-              for e in result.exercises]
-    return {"score": result.total, "output": "\n".join(lines), "output_format": "text",
+    return {"score": result.total, "output": _summary(result), "output_format": "text",
             "stdout_visibility": config.stdout_visibility, "tests": tests}
 
 
-def _check_output(check) -> str:
+def _summary(result: GradingResult) -> str:
+    """The top of the results page: notes on how the files were read, the total, each
+    exercise's score, and a module-wide problem said once per lab."""
+    lines = [f"Note: {note}" for note in result.notes]
+    lines.append(f"Total: {result.total:g} / {result.max_total:g}")
+    said = set()
+    for e in result.exercises:
+        line = f"{e.id} {e.title}: {e.score:g} / {e.max_score:g}"
+        if e.message and e.message not in said:
+            said.add(e.message)
+            line += f" - {e.message.splitlines()[0]}"
+        elif e.message:
+            line += " - as above"
+        lines.append(line)
+    return "\n".join(lines)
+
+
+def _fenced(text: str) -> str:
+    """``text`` in a Markdown code block that no backtick run inside it can close."""
+    longest = max((len(run) for run in re.findall(r"`+", text)), default=0)
+    fence = "`" * max(3, longest + 1)
+    return f"{fence}\n{text}\n{fence}"
+
+
+def _check_markdown(check) -> str:
+    """A check's output for Gradescope's ``md`` format: the message keeps its lines and
+    column layout (matrices) in a code block; what the student's code printed is quoted
+    verbatim, never rendered."""
     if check.advice:
-        parts = [f"Tip (no points): {check.message}"]
+        message = f"Tip (no points): {check.message}"
     elif check.max_score == 0:
-        parts = [check.message or "Advice: nothing to suggest."]
+        message = check.message or "Advice: nothing to suggest."
     else:
-        parts = [check.message or ("Passed." if check.passed else check.status)]
+        message = check.message or ("Passed." if check.passed else check.status)
+    parts = [_fenced(message) if "\n" in message else _escape_markdown(message)]
     if check.hint:
-        parts.append(f"Hint: {check.hint}")
+        parts.append("**Hint:** " + _escape_markdown(check.hint))
     if check.traceback:
-        parts.append(check.traceback)
+        parts.append("Traceback (your code):\n\n" + _fenced(check.traceback))
     if check.output:
-        parts.append("What your code printed:\n" + check.output)
+        parts.append("What your code printed:\n\n" + _fenced(check.output))
     return "\n\n".join(parts)
+
+
+def _escape_markdown(text: str) -> str:
+    """Plain text in Markdown: no emphasis, links, code or HTML (intraword _ is safe)."""
+    return re.sub(r"([\\`*\[\]<>])", r"\\\1", text)
 
 
 def failure_json(message: str, config: CourseConfig) -> dict:
@@ -84,11 +116,15 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
         result = grade(submission, config.select, limits=Limits(call_timeout=config.call_timeout),
                        pictures="none")  # results.json carries text only
         data = results_json(result, config)
+    except SubmissionError as exc:  # nothing in the upload can be read as a submission
+        data = failure_json(f"The autograder could not grade this submission: {exc}. "
+                            "Upload the lab modules themselves (e.g. lab07_transformations.py, "
+                            "or lab07_transformations.ipynb).", config)
     except Exception as exc:  # noqa: BLE001 - results.json must be written whatever happens
         log.exception("grading failed")
-        data = failure_json(f"The autograder could not grade this submission: {exc}. "
-                            "Your instructor has been notified through the autograder log; "
-                            "check that you uploaded the lab modules (e.g. lab07_transformations.py).",
+        data = failure_json(f"The autograder could not grade this submission because of an error in "
+                            f"the autograder itself ({type(exc).__name__}), not in your files. "
+                            "Please tell your instructor; the details are in the autograder's log.",
                             config)
     data["execution_time"] = round(time.monotonic() - started, 3)
     write_atomically(results_path, json.dumps(data, indent=1, allow_nan=False) + "\n")

@@ -185,3 +185,62 @@ def matches_picture(img1, img2, pts1, pts2, good=None, max_lines: int = 300) -> 
         cv2.circle(canvas, a_pt, 2, colour, -1)
         cv2.circle(canvas, b_pt, 2, colour, -1)
     return canvas
+
+
+# ------------------------------------------------------------------ presentation
+def picture_item(label: str, image) -> dict:
+    """One picture of an artifact: ``{"label", "png", "width", "height"}``, the size being
+    the array's own (before any enlargement for display), so a page can draw pictures
+    at their relative sizes and say how large each is."""
+    shape = np.shape(image)
+    return {"label": label, "png": png_base64(image),
+            "width": int(shape[1]) if len(shape) > 1 else 0, "height": int(shape[0]) if shape else 0}
+
+
+JPEG_QUALITY = 82
+
+
+def compact_encoding(png: str, max_width: int = 1000, max_height: int = 360) -> tuple[str, str, int, int]:
+    """``(mime type, base64 data, width, height)``: a picture made small enough for a page
+    that stays small.
+
+    Shrunk (area averaging) to fit ``max_width`` x ``max_height`` pixels -- about twice
+    the size it is drawn at -- then kept as PNG when that is about as small (drawings,
+    masks, enlarged small images stay crisp), else JPEG (photos are several times
+    smaller so).
+    """
+    image = cv2.imdecode(np.frombuffer(base64.b64decode(png), np.uint8), cv2.IMREAD_UNCHANGED)
+    if image is None:
+        return "image/png", png, 1, 1
+    height, width = image.shape[:2]
+    factor = min(1.0, max_width / max(width, 1), max_height / max(height, 1))
+    if factor < 1.0:
+        image = cv2.resize(image, (max(1, round(width * factor)), max(1, round(height * factor))),
+                           interpolation=cv2.INTER_AREA)
+    size = image.shape[1], image.shape[0]
+    if (image.ndim == 3 and image.shape[2] == 4) or _mostly_flat(image):
+        # Transparency, or a drawing, mask or enlarged small image: PNG, unless JPEG is far smaller.
+        as_png = cv2.imencode(".png", image, [cv2.IMWRITE_PNG_COMPRESSION, 6])[1]
+        if image.ndim == 3 and image.shape[2] == 4:
+            return "image/png", base64.b64encode(as_png.tobytes()).decode("ascii"), *size
+        as_jpeg = cv2.imencode(".jpg", image, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])[1]
+        if len(as_png) <= 1.5 * len(as_jpeg):
+            return "image/png", base64.b64encode(as_png.tobytes()).decode("ascii"), *size
+    else:  # a photo: PNG would be several times larger (and slow to compress)
+        as_jpeg = cv2.imencode(".jpg", image, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])[1]
+    return "image/jpeg", base64.b64encode(as_jpeg.tobytes()).decode("ascii"), *size
+
+
+def _mostly_flat(image: np.ndarray, share: float = 0.5) -> bool:
+    """Whether most pixels equal their left neighbour: drawings, yes; photos, no."""
+    same = image[:, 1:] == image[:, :-1]
+    if same.ndim == 3:
+        same = same.all(axis=2)
+    return bool(same.mean() >= share) if same.size else True
+
+
+def heat_scale_stops(count: int = 6) -> list[str]:
+    """CSS colours of the difference heat map's scale, from equal (0) to ``full_scale``."""
+    levels = np.linspace(0, 255, count).astype(np.uint8).reshape(-1, 1)
+    colours = cv2.applyColorMap(levels, cv2.COLORMAP_INFERNO).reshape(-1, 3)
+    return [f"rgb({r},{g},{b})" for b, g, r in colours]

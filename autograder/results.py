@@ -28,7 +28,7 @@ from pathlib import Path
 # modified in place): never a failure, never part of a score.
 PASSED, PARTIAL, FAILED, NOT_IMPLEMENTED, ERROR, ADVICE = (
     "passed", "partial", "failed", "not implemented", "grader error", "advice")
-TIMING_KEYS = {"seconds", "student_seconds"}
+TIMING_KEYS = {"seconds", "student_seconds", "graded_at"}
 
 
 @dataclass
@@ -113,6 +113,8 @@ class GradingResult:
     seconds: float = 0.0
     student_seconds: float = 0.0
     hidden_included: bool = True
+    notes: list[str] = field(default_factory=list)  # how the submission was read (renames...)
+    graded_at: str = ""  # ISO 8601 time of the grading, UTC
 
     @property
     def total(self) -> float:
@@ -127,6 +129,7 @@ class GradingResult:
                 "grader_version": self.grader_version, "total": self.total,
                 "max_total": self.max_total, "hidden_included": self.hidden_included,
                 "seconds": self.seconds, "student_seconds": self.student_seconds,
+                "notes": self.notes, "graded_at": self.graded_at,
                 "exercises": [e.to_dict() for e in self.exercises]}
 
     @classmethod
@@ -142,7 +145,7 @@ class GradingResult:
                                             checks, e.get("message", "")))
         return cls(data["submission"], data["submission_hash"], data["grader_version"],
                    exercises, data.get("seconds", 0.0), data.get("student_seconds", 0.0),
-                   data.get("hidden_included", True))
+                   data.get("hidden_included", True), data.get("notes", []), data.get("graded_at", ""))
 
 
 def without_timings(data):

@@ -9,16 +9,20 @@ submission; a failure inside a check is recorded as a grader error for that chec
 from __future__ import annotations
 
 import logging
+import re
 import time
 import traceback
+from dataclasses import replace
+from datetime import datetime, timezone
 from typing import Callable
 
 from . import __version__
 from .checks import Fail, StudentFailure, Trial, Verdict
+from .notebooks import GRADE_TAG, SKIP_TAG, point_into_notebook
 from .registry import Check, Exercise, hidden_checks_installed, select
 from .results import (ADVICE, ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
                       ExerciseResult, GradingResult)
-from .sandbox import Limits, Sandbox
+from .sandbox import CallOutcome, Limits, Sandbox
 from .submission import load_submission
 
 
@@ -58,21 +62,24 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
     modules = sorted({ex.lab.module for ex in exercises})
     with load_submission(submission_path, modules) as submission:
         result = GradingResult(submission.name, submission.content_hash, __version__,
-                               hidden_included=include_hidden and hidden_checks_installed())
+                               hidden_included=include_hidden and hidden_checks_installed(),
+                               notes=_reading_notes(submission),
+                               graded_at=datetime.now(timezone.utc).isoformat(timespec="seconds"))
         with Sandbox(submission.path, limits) as sandbox:
             for exercise in exercises:
                 checks = [c for c in exercise.checks if include_hidden or not c.hidden]
                 result.exercises.append(
-                    _grade_exercise(sandbox, exercise, checks, pictures, on_check))
+                    _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission))
             result.student_seconds = round(sandbox.student_seconds, 6)
+        _point_into_notebooks(result, exercises, submission)
     result.seconds = round(time.perf_counter() - started, 6)
     return result
 
 
-def _grade_exercise(sandbox, exercise, checks, pictures, on_check) -> ExerciseResult:
+def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=None) -> ExerciseResult:
     functions = list(exercise.signatures.values())
     out = ExerciseResult(exercise.id, exercise.title, functions)
-    imported = sandbox.import_module(exercise.lab.module)
+    imported = _import(sandbox, exercise.lab.module, submission)
     if not imported.ok:
         # A missing or broken module: every check scores 0 with the same message.
         out.message = imported.message
@@ -95,6 +102,61 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check) -> ExerciseRe
     if modified:
         out.checks.append(_in_place_advice(modified))
     return out
+
+
+def _import(sandbox: Sandbox, module: str, submission) -> CallOutcome:
+    """Import the module in the worker, unless loading already found why it cannot be
+    (not found, unreadable notebook); an import error names the file and line."""
+    problem = submission.problems.get(module) if submission is not None else None
+    if problem:
+        return CallOutcome(ok=False, kind="missing_module", message=problem)
+    outcome = sandbox.import_module(module)
+    if not outcome.ok and outcome.kind == "import_error" and ", line " not in outcome.message:
+        where = _innermost_frame(outcome.traceback)
+        if where:
+            outcome = replace(outcome, message=f"{outcome.message}\n  at {where}")
+    return outcome
+
+
+_FRAME = re.compile(r'File "([^"]+)", line (\d+)(?:, in \S+)?\n(?:    (.*))?')
+
+
+def _innermost_frame(traceback_text: str) -> str:
+    """``lab07_transformations.py, line 12: x = undefined_name`` from a student traceback."""
+    frames = _FRAME.findall(traceback_text or "")
+    if not frames:
+        return ""
+    filename, line, code = frames[-1]
+    return f"{filename}, line {line}" + (f": {code.strip()}" if code.strip() else "")
+
+
+def _reading_notes(submission) -> list[str]:
+    """What the student should know about how their files were read."""
+    notes = [f"graded {found} as {module}.py (the name the grader looks for); rename it to be sure"
+             for module, found in submission.renamed.items()]
+    for module, (name, converted) in submission.notebooks.items():
+        if converted.left_out:
+            cells = ", ".join(note.split(":")[0] for note in converted.left_out[:8])
+            cells += " ..." if len(converted.left_out) > 8 else ""
+            notes.append(f"{name}: only definitions (imports, functions, classes, constants) are graded; "
+                         f"the other statements of {cells} were left out. Tag a cell "
+                         f"'{GRADE_TAG}' to grade it whole, '{SKIP_TAG}' to leave it out.")
+    return notes
+
+
+def _point_into_notebooks(result: GradingResult, exercises, submission) -> None:
+    """Messages and tracebacks about a module converted from a notebook name the
+    notebook's cell and line instead of the converted module's line."""
+    modules = {ex.id: ex.lab.module for ex in exercises}
+    for exercise in result.exercises:
+        module = modules.get(exercise.id)
+        if module not in submission.notebooks:
+            continue
+        name, converted = submission.notebooks[module]
+        exercise.message = point_into_notebook(exercise.message, module, name, converted)
+        for check in exercise.checks:
+            check.message = point_into_notebook(check.message, module, name, converted)
+            check.traceback = point_into_notebook(check.traceback, module, name, converted)
 
 
 def _in_place_advice(modified) -> CheckResult:

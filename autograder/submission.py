@@ -3,19 +3,30 @@
 A submission may be a folder (the modules at its top or one level down, as
 unzipped archives often are), a single ``.py`` file, a ``.zip`` archive, or
 Jupyter notebooks named like the modules (``lab07_transformations.ipynb``, whose
-code cells become the module). The result is a plain folder of ``.py`` modules
-that the sandbox copies, plus a content hash identifying the submission.
+definitions become the module, see :mod:`autograder.notebooks`). The result is a
+plain folder of ``.py`` modules that the sandbox copies, plus a content hash
+identifying the submission.
+
+Nothing the student handed in stops the others from being graded: a file
+plainly meant as a module (``Lab07_Transformations.py``, ``lab07_transformations (1).py``,
+or one inside a ``.zip`` within the folder) is taken, and noted; a module that is
+missing, ambiguous or unreadable becomes a *problem* of that module only
+(:attr:`Submission.problems`), naming the files found and the rename to make.
 """
 
 from __future__ import annotations
 
+import difflib
 import hashlib
-import json
+import os
+import re
 import shutil
 import tempfile
 import zipfile
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
+
+from .notebooks import ConvertedNotebook, NotebookError, convert
 
 MAX_ARCHIVE_BYTES = 50 * 2**20
 
@@ -42,6 +53,11 @@ class Submission:
     path: Path
     name: str
     content_hash: str
+    # Per module: why it cannot be graded (not found, unreadable notebook...), the
+    # notebooks it came from, and the files accepted under another name.
+    problems: dict[str, str] = field(default_factory=dict)
+    notebooks: dict[str, tuple[str, ConvertedNotebook]] = field(default_factory=dict)
+    renamed: dict[str, str] = field(default_factory=dict)
 
     def cleanup(self):
         shutil.rmtree(self.path, ignore_errors=True)
@@ -79,20 +95,24 @@ def load_submission(path, modules: list[str]) -> Submission:
             shutil.copy(source, root / source.name)
         else:
             raise SubmissionError(f"cannot grade {source.name}: expected a folder, .py, .zip or .ipynb")
+        submission = Submission(out, source.name, "")
         for module in modules:
-            found = _find_module(root, module)
+            found = _find_module(root, module) or _find_misnamed(root, module, out, submission)
             if found is not None:
-                _materialise(found, out / f"{module}.py")
+                _materialise_module(found, module, out, submission)
                 # Helper modules the student keeps beside the lab module come along.
                 for helper in found.parent.glob("*.py"):
-                    if not (out / helper.name).exists() and helper.stem not in modules:
+                    if not (out / helper.name).exists() and helper.stem not in modules \
+                            and helper != found:
                         shutil.copy(helper, out / helper.name)
-        if root.parent == out:
-            shutil.rmtree(root, ignore_errors=True)
+        for folder in (root, out / "_zips"):
+            if folder.parent == out:
+                shutil.rmtree(folder, ignore_errors=True)
     except BaseException:
         shutil.rmtree(out, ignore_errors=True)
         raise
-    return Submission(out, source.name, _hash_folder(out))
+    submission.content_hash = _hash_folder(out)
+    return submission
 
 
 def _find_module(root: Path, module: str) -> Path | None:
@@ -106,30 +126,103 @@ def _find_module(root: Path, module: str) -> Path | None:
     return None
 
 
-def _materialise(found: Path, target: Path):
+def _materialise_module(found: Path, module: str, out: Path, submission: Submission):
+    """``out/<module>.py`` from the file found; a notebook that cannot be read becomes a
+    problem of that module only, so the other modules are still graded."""
+    target = out / f"{module}.py"
     if found.suffix == ".py":
         shutil.copy(found, target)
-    else:
-        target.write_text(notebook_to_source(found.read_text(encoding="utf-8")), encoding="utf-8")
+        return
+    try:
+        converted = convert(found.read_bytes().decode("utf-8"), found.name)
+    except (NotebookError, UnicodeDecodeError) as exc:
+        submission.problems[module] = (str(exc) if isinstance(exc, NotebookError)
+                                       else f"{found.name} is not a readable notebook (not UTF-8 text)")
+        return
+    target.write_text(converted.source, encoding="utf-8")
+    submission.notebooks[module] = (found.name, converted)
 
 
 def notebook_to_source(text: str) -> str:
-    """The code cells of a notebook as one module; IPython magics are commented out."""
+    """The graded part of a notebook as one module (see :mod:`autograder.notebooks`)."""
     try:
-        notebook = json.loads(text)
-        cells = notebook["cells"]
-    except (ValueError, KeyError, TypeError) as exc:
-        raise SubmissionError(f"not a readable notebook: {exc}") from None
-    chunks = []
-    for number, cell in enumerate(cells, 1):
-        if cell.get("cell_type") != "code":
+        return convert(text).source
+    except NotebookError as exc:
+        raise SubmissionError(str(exc)) from None
+
+
+# ------------------------------------------------------------------ misnamed files
+_COPY_SUFFIX = re.compile(r"(\s*\(\d+\)|[\s_-]*copy(\s*\d+)?|[\s_-]+\d+)$", re.IGNORECASE)
+
+
+def _plain_name(stem: str) -> str:
+    """``Lab07_Transformations (1)`` -> ``lab07_transformations``: how a name was meant."""
+    return re.sub(r"[\s-]+", "_", _COPY_SUFFIX.sub("", stem.strip())).lower()
+
+
+def _source_files(root: Path, depth: int = 3, suffixes=(".py", ".ipynb")) -> list[Path]:
+    """The .py and .ipynb files of a submission, as _find_module would search them (at most
+    ``depth`` levels down, hidden folders and __MACOSX left out, never a whole tree)."""
+    found = []
+    for folder, subfolders, files in os.walk(root):
+        level = len(Path(folder).relative_to(root).parts)
+        subfolders[:] = [] if level + 1 >= depth else sorted(
+            d for d in subfolders if not d.startswith(".") and d != "__MACOSX")
+        found += [Path(folder) / f for f in files
+                  if Path(f).suffix.lower() in suffixes and not f.startswith(".")]
+    return sorted(found)
+
+
+def _find_misnamed(root: Path, module: str, out: Path, submission: Submission) -> Path | None:
+    """The module under a name that was plainly meant (another case, `` (1)``, ``-copy``),
+    also inside a .zip handed in within the folder; else None, with the problem recorded:
+    what was found, and the rename to make when one name is close."""
+    files = _source_files(root)
+    archives = _source_files(root, suffixes=(".zip",))
+    broken = []
+    for index, archive in enumerate(archives):
+        try:
+            _safe_unzip(archive, out / "_zips" / str(index))
+        except FileExistsError:
+            pass  # unpacked for an earlier module
+        except SubmissionError as exc:
+            broken.append(str(exc))
             continue
-        source = cell.get("source", "")
-        source = "".join(source) if isinstance(source, list) else str(source)
-        lines = [("# " + line) if line.lstrip().startswith(("%", "!")) else line
-                 for line in source.splitlines()]
-        chunks.append(f"# --- notebook cell {number}\n" + "\n".join(lines))
-    return "\n\n".join(chunks) + "\n"
+        files += [p for p in _source_files(out / "_zips" / str(index)) if p not in files]
+    meant = [p for p in files if _plain_name(p.stem) == module]
+    for suffix in (".py", ".ipynb"):
+        matches = [p for p in meant if p.suffix.lower() == suffix]
+        if len(matches) == 1:
+            submission.renamed[module] = _shown(matches[0], root, out)
+            return matches[0]
+        if len(matches) > 1:
+            names = ", ".join(_shown(p, root, out) for p in matches)
+            submission.problems[module] = (f"module {module}.py not found, but several files look "
+                                           f"meant to be it: {names}; keep one and name it {module}{suffix}")
+            return None
+    problem = f"module {module}.py not found"
+    if broken:
+        problem += "; " + "; ".join(broken)
+    python_files = [p for p in files if p.suffix.lower() in (".py", ".ipynb")]
+    if python_files:
+        shown = [_shown(p, root, out) for p in python_files]
+        problem += f" (found: {', '.join(shown[:12])}{', ...' if len(shown) > 12 else ''})"
+        close = difflib.get_close_matches(module, [_plain_name(p.stem) for p in python_files], n=1, cutoff=0.75)
+        if close:
+            [near] = [p for p in python_files if _plain_name(p.stem) == close[0]][:1]
+            problem += f"; if {near.name} is this lab, rename it {module}{near.suffix.lower()}"
+    submission.problems[module] = problem
+    return None
+
+
+def _shown(path: Path, root: Path, out: Path) -> str:
+    for base in (root, out / "_zips"):
+        try:
+            relative = path.relative_to(base)
+            return relative.as_posix() if base == root else "/".join(relative.parts[1:])
+        except ValueError:
+            continue
+    return path.name
 
 
 def _safe_unzip(archive: Path, target: Path):

@@ -7,6 +7,7 @@ import re
 from jinja2 import Environment, PackageLoader, select_autoescape
 from markupsafe import Markup, escape
 
+from .. import pictures
 from ..results import ADVICE, ERROR, NOT_IMPLEMENTED, PARTIAL, PASSED, GradingResult, write_atomically
 
 _UNSAFE_SVG = re.compile(r"<\s*(script|foreignObject|iframe)|\bon\w+\s*=|javascript:", re.IGNORECASE)
@@ -37,14 +38,105 @@ def _environment() -> Environment:
     env.filters["status_class"] = lambda c: _STATUS.get(c.status, ("failed", "✗"))[0]
     env.filters["status_icon"] = lambda c: _STATUS.get(c.status, ("failed", "✗"))[1]
     env.filters["safe_svg"] = _safe_svg
+    env.filters["check_name"] = lambda c: c.name.removesuffix(" (hidden)").rstrip()
     return env
 
 
-def render(result: GradingResult) -> str:
-    """The feedback page as a string."""
+def what_was_graded(result: GradingResult) -> str:
+    """``lab07 ex1, ex2 · lab11 ex3``: the exercises on this page, per lab."""
+    labs: dict[str, list[str]] = {}
+    for exercise in result.exercises:
+        lab, key = exercise.id.split(".", 1)
+        labs.setdefault(lab, []).append(key)
+    return " · ".join(f"{lab} {', '.join(keys)}" for lab, keys in labs.items())
+
+
+def _graded_at(result: GradingResult) -> str:
+    return result.graded_at.replace("T", " ").replace("+00:00", " UTC") if result.graded_at else ""
+
+
+class PictureSheet:
+    """Every distinct picture of a page once, compactly encoded, drawn wherever it is
+    used by reference (``<use href="#id">``): pages show the same input in many checks.
+
+    :meth:`figure` lays out one artifact: its pictures drawn at their relative sizes
+    (the tallest at :data:`DRAWN_HEIGHT` CSS pixels, small ones enlarged at most
+    :data:`MAX_ENLARGEMENT` times), each labelled with its size in pixels.
+    """
+
+    DRAWN_HEIGHT = 170   # four 4:3 pictures to a row on a laptop, two on a phone
+    WIDE_FIGURE = 1.8    # a single picture this much wider than tall is a composite (a pair
+    FIGURE_WIDTH = 900   # side by side): drawn as wide as the page allows, so it can be read
+    MAX_ENLARGEMENT = 3.0
+
+    def __init__(self, prefix: str = "pic"):
+        self.prefix = prefix
+        self.entries: dict[str, dict] = {}
+
+    def _entry(self, png: str) -> dict:
+        if png not in self.entries:
+            mime, data, width, height = pictures.compact_encoding(png)
+            self.entries[png] = {"id": f"{self.prefix}{len(self.entries)}", "mime": mime, "data": data,
+                                 "width": width, "height": height}
+        return self.entries[png]
+
+    def figure(self, artifact) -> dict:
+        items = [dict(item, entry=self._entry(item["png"])) for item in artifact.items if item.get("png")]
+        for item in items:  # results written before sizes were recorded: the picture's own
+            item.setdefault("width", item["entry"]["width"])
+            item.setdefault("height", item["entry"]["height"])
+        tallest = max([item["height"] for item in items] + [1])
+        scale = min(self.MAX_ENLARGEMENT, self.DRAWN_HEIGHT / tallest)
+        if len(items) == 1 and items[0]["width"] > self.WIDE_FIGURE * items[0]["height"]:
+            scale = min(self.MAX_ENLARGEMENT, self.FIGURE_WIDTH / items[0]["width"], 2.4 * scale)
+        drawn = [{"label": item["label"], "id": item["entry"]["id"], "view": (item["entry"]["width"],
+                                                                            item["entry"]["height"]),
+                  "width": max(24, round(item["width"] * scale)),
+                  "size": f"{item['width']} × {item['height']}",
+                  "heat": item["label"] == "difference"} for item in items]
+        return {"pictures": drawn, "caption": _figure_caption(artifact, items)}
+
+
+def _figure_caption(artifact, items) -> str:
+    """The artifact's caption, plus why a comparison has no difference map when it has none."""
+    by_label = {item["label"]: item for item in items}
+    caption = artifact.caption
+    expected, yours = by_label.get("expected"), by_label.get("yours")
+    if expected and yours and "difference" not in by_label:
+        sizes = [(i["width"], i["height"]) for i in (yours, expected)]
+        if sizes[0] != sizes[1]:
+            note = (f"No difference map: your image is {sizes[0][0]} × {sizes[0][1]} pixels and the "
+                    f"expected one {sizes[1][0]} × {sizes[1][1]} (width × height), so they cannot be "
+                    "compared pixel by pixel.")
+            caption = f"{caption} {note}".strip()
+    return caption
+
+
+def render(result: GradingResult, figures: dict[str, bytes] | None = None) -> str:
+    """The feedback page as a string; ``figures`` (exercise id -> PNG bytes, from
+    :mod:`autograder.figures`) are shown at the top of their exercise."""
+    import base64
+
     percent = round(100 * result.total / result.max_total) if result.max_total else 0
-    return _environment().get_template("feedback.html.j2").render(result=result, percent=percent)
+    encoded = {}
+    for exercise_id, png in (figures or {}).items():
+        mime, data, width, height = pictures.compact_encoding(base64.b64encode(png).decode("ascii"),
+                                                              max_width=1400, max_height=900)
+        encoded[exercise_id] = {"mime": mime, "data": data, "width": width, "height": height}
+    return _environment().get_template("feedback.html.j2").render(
+        result=result, percent=percent, graded=what_was_graded(result), graded_at=_graded_at(result),
+        sheet=PictureSheet(), heat_scale=", ".join(pictures.heat_scale_stops()), figures=encoded)
 
 
-def write(result: GradingResult, path) -> None:
-    write_atomically(path, render(result))
+def write(result: GradingResult, path, figures: dict[str, bytes] | None = None) -> None:
+    write_atomically(path, render(result, figures))
+
+
+def render_selfcheck(result: GradingResult, source: str) -> str:
+    """The result of ``check(...)`` as an HTML fragment for a notebook's output area
+    (picture ids unique to it: a notebook shows many such fragments)."""
+    import secrets
+
+    return _environment().get_template("selfcheck.html.j2").render(
+        result=result, source=source, sheet=PictureSheet(f"ag{secrets.token_hex(4)}-"),
+        heat_scale=", ".join(pictures.heat_scale_stops()))

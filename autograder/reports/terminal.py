@@ -16,7 +16,7 @@ def _score_style(score: float, maximum: float) -> str:
 
 
 def render(result: GradingResult, console: Console | None = None, html_path=None,
-           details: bool = True) -> None:
+           details: bool = True, page=None) -> None:
     """Print the score table and, under it, one line per check that lost points."""
     console = console or Console()
     table = Table(title=f"Grading {result.submission}", title_justify="left", expand=False)
@@ -33,18 +33,60 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
     table.add_section()
     table.add_row("total", "", Text(f"{result.total:g} / {result.max_total:g}",
                                     style=_score_style(result.total, result.max_total)), "")
+    for note in result.notes:
+        console.print(Text("note: ", style="yellow") + Text(note))
     console.print(table)
 
     if details:
         _print_problems(result, console)
         _print_advice(result, console)
+    printed = printed_output_line(result, page or html_path)
+    if printed:
+        console.print(Text(printed, style="magenta"))
     if not result.hidden_included:
         console.print("[dim]Hidden checks are not part of this copy; your instructor runs them.[/dim]")
     if html_path:
-        console.print(f"Details and pictures: [bold]{html_path}[/bold]")
+        render_written(console, [("details and pictures", html_path)])
+
+
+def printed_output_line(result: GradingResult, page=None) -> str:
+    """One line saying that the student's code printed, how much, and where to read it."""
+    checks = [(e, c) for e in result.exercises for c in e.checks if c.output]
+    if not checks:
+        return ""
+    size = sum(len(c.output) for _, c in checks)
+    amount = f"{size / 1024:.1f} KB" if size >= 1024 else f"{size} characters"
+    exercises = list(dict.fromkeys(e.id for e, _ in checks))
+    where = (f"read it in {page} under \"what your code printed\"" if page
+             else "write the feedback page (drop --no-html) to read it")
+    return (f"Your code printed output in {len(checks)} checks ({amount} kept, at most 4 KB per call) of"
+            f" {', '.join(exercises[:6])}{' ...' if len(exercises) > 6 else ''}; "
+            f"{where}. Printing slows grading: remove debugging prints when done.")
+
+
+def render_written(console: Console, written) -> None:
+    """One line per report file written: ``(what, path)`` pairs."""
+    for what, path in written:
+        console.print(Text(f"{what[0].upper()}{what[1:]}: ") + Text(str(path), style="bold"),
+                      soft_wrap=True)  # a path stays whole, to copy and paste
 
 
 NOT_STARTED = "not implemented yet"
+
+
+def _module_messages(result: GradingResult, console: Console) -> None:
+    """A message that holds for every check of a module (not found, does not import) is
+    printed once per lab, naming the exercises it costs."""
+    grouped: dict[tuple[str, str], list[str]] = {}
+    for exercise in result.exercises:
+        if exercise.message and exercise.message != NOT_STARTED and exercise.score < exercise.max_score:
+            lab, key = exercise.id.split(".")
+            grouped.setdefault((lab, exercise.message), []).append(key)
+    for (lab, message), keys in grouped.items():
+        first, *rest = message.splitlines()
+        console.print(Text(f"✗ {lab} {', '.join(keys)}: ", style="bold") + Text(first))
+        if rest:
+            console.print(Text("    " + "\n    ".join(rest), style="dim"))
 
 
 def _print_problems(result: GradingResult, console: Console) -> None:
@@ -56,14 +98,11 @@ def _print_problems(result: GradingResult, console: Console) -> None:
             not_started.setdefault(lab, []).append(key)
     for lab, keys in not_started.items():
         console.print(Text(f"· {lab} {', '.join(keys)}: ", style="bold") + Text(NOT_STARTED))
+    _module_messages(result, console)
     for exercise in result.exercises:
         if exercise.score >= exercise.max_score or exercise.message == NOT_STARTED:
             continue
-        if exercise.message:  # one message says it for every check (missing module, syntax error...)
-            lines = exercise.message.splitlines()
-            console.print(Text(f"✗ {exercise.id}: ", style="bold") + Text(lines[0]))
-            if len(lines) > 1:
-                console.print(Text("    " + "\n    ".join(lines[1:]), style="dim"))
+        if exercise.message:  # said once per module, above
             continue
         for check in exercise.checks:
             if check.passed or check.max_score == 0:  # advice is printed apart, as tips
