@@ -26,7 +26,8 @@ from .sandbox import CallOutcome, Sandbox
 
 # Failure kinds after which calling the same function again in this check is pointless.
 _FATAL_KINDS = {"timeout", "crashed", "memory", "output_too_large", "import_error",
-                "missing_module", "missing_function", "not_implemented", "forbidden_call"}
+                "missing_module", "missing_function", "not_implemented", "forbidden_call",
+                "budget"}
 
 
 @dataclass

@@ -6,11 +6,19 @@ happens -- a value, an exception, a hang, a crash, garbage on the pipe -- into a
 :class:`CallOutcome`. It never raises because of what the student's code did.
 A worker that hangs or dies is killed with its whole process group and started
 again for the next call.
+
+Nothing the worker sends is trusted: every reply must carry the id of the
+request it answers (a stray frame fails the call that produced it), call
+durations are measured here, and a worker that reports a suspect state after a
+call (threads or children alive, descriptors exhausted) is replaced before the
+next one. Time is billed against budgets per exercise and per submission
+(:meth:`Sandbox.set_budget`); restarts are billed and capped.
 """
 
 from __future__ import annotations
 
 import json
+import logging
 import os
 import secrets
 import select
@@ -27,6 +35,7 @@ from pathlib import Path
 from typing import Any
 
 from . import confine, transport
+from .submission import copy_regular_files
 
 LENGTH = struct.Struct(">Q")
 _WORKER_FILES = ("worker.py", "transport.py")
@@ -34,8 +43,10 @@ _WORKER_FILES = ("worker.py", "transport.py")
 FAILURE_KINDS = {
     "timeout", "crashed", "exception", "not_implemented", "missing_function",
     "missing_module", "import_error", "memory", "recursion", "result_type",
-    "forbidden_call", "output_too_large", "protocol", "grader_error",
+    "forbidden_call", "output_too_large", "protocol", "grader_error", "budget",
 }
+# What a worker may say about its own call; the rest only the grader decides.
+WORKER_KINDS = FAILURE_KINDS - {"timeout", "crashed", "grader_error", "budget"}
 
 
 @dataclass(frozen=True)
@@ -52,6 +63,9 @@ class Limits:
     max_output_chars: int = 4000         # captured stdout/stderr kept per call
     startup_timeout: float = 60.0        # for the worker to import NumPy/OpenCV (not billed)
     timeouts_per_function: int = 2       # after this many timeouts a function is not called again
+    exercise_budget: float = 120.0       # student seconds per exercise (calls, timeouts, restarts)
+    submission_budget: float = 900.0     # student seconds per submission
+    max_restarts: int = 12               # worker restarts per submission (each billed its start-up)
 
     def worker_json(self, processes: int | None) -> str:
         return json.dumps({
@@ -160,6 +174,9 @@ class Sandbox:
         self._imported: set[str] = set()
         self._import_failures: dict[str, CallOutcome] = {}
         self.student_seconds = 0.0
+        self.restarts = -1  # the first start is not a restart
+        self._budget: float | None = None
+        self._request_id = secrets.randbits(48)
         self.shared: dict = {}  # values checks share within one grading (see Trial.shared)
         self._timeouts: dict[tuple[str, str], int] = {}
 
@@ -172,8 +189,10 @@ class Sandbox:
         self.scratch.mkdir(parents=True, exist_ok=True)
         for name in ("submission", "worker", *self.WRITABLE):
             shutil.rmtree(self.scratch / name, ignore_errors=True)
-        shutil.copytree(self._source, self.submission_dir,
-                        ignore=shutil.ignore_patterns("__pycache__", "*.pyc", ".*"))
+        self.submission_dir.mkdir()
+        refused = copy_regular_files(self._source, self.submission_dir, suffixes=(".py",))
+        if refused:
+            logging.getLogger("autograder").warning("not copied into the sandbox: %s", refused)
         (self.scratch / "worker").mkdir()
         here = Path(__file__).parent
         for name in _WORKER_FILES:
@@ -205,7 +224,7 @@ class Sandbox:
         tasks = confine.count_tasks(uid)  # None where they cannot be counted (macOS): no limit
         processes = None if tasks is None else tasks + self.limits.extra_processes
         command = self.confinement.wrap(
-            [sys.executable, "-B", str(self.scratch / "worker" / "worker.py"),
+            [sys.executable, "-I", "-B", str(self.scratch / "worker" / "worker.py"),
              str(request_r), str(response_w), str(self.submission_dir),
              str(self.output_path), self.limits.worker_json(processes)],
             hide=self.hide, writable=[self.scratch / name for name in self.WRITABLE],
@@ -233,9 +252,12 @@ class Sandbox:
             length, = LENGTH.unpack(self._read(LENGTH.size, time.monotonic() + self.limits.startup_timeout))
             ready = transport.decode(self._read(length, time.monotonic() + 5))
         except (TimeoutError, EOFError, transport.TransportError) as exc:
+            # The log goes to the instructor's log, never into a message: it is no grader's word.
             log = (self._base / "worker.log").read_text(errors="replace")[-2000:]
+            logging.getLogger("autograder").error("the grading worker did not start:\n%s", log)
             self._stop_worker()
-            raise WorkerStartError(f"the grading worker did not start ({type(exc).__name__}): {log}") from None
+            raise WorkerStartError(f"the grading worker did not start ({type(exc).__name__}); "
+                                   "see the autograder's log") from None
         if ready != {"ok": True, "value": "ready", "seconds": 0.0}:
             self._stop_worker()
             raise WorkerStartError("the grading worker sent an unexpected greeting")
@@ -271,6 +293,18 @@ class Sandbox:
         except subprocess.TimeoutExpired:
             pass
 
+    # ------------------------------------------------------------ budgets
+    def set_budget(self, until: float | None) -> None:
+        """Stop calling once :attr:`student_seconds` reaches ``until`` (None: no budget)."""
+        self._budget = until
+
+    def remaining(self) -> float:
+        return float("inf") if self._budget is None else self._budget - self.student_seconds
+
+    def _over_budget(self, what: str) -> CallOutcome:
+        return CallOutcome(ok=False, kind="budget",
+                           message=f"{what} was not run: time budget exhausted")
+
     # ------------------------------------------------------------ public API
     def import_module(self, module: str, timeout: float | None = None) -> CallOutcome:
         """Import a student module in the worker (once); failures are remembered."""
@@ -278,13 +312,24 @@ class Sandbox:
             return self._import_failures[module]
         if module in self._imported and self.proc is not None:
             return CallOutcome(ok=True)
-        outcome = self._request({"op": "import", "module": module},
-                                timeout or self.limits.import_timeout,
-                                what=f"importing {module}.py")
+        what = f"importing {module}.py"
+        timeout = timeout or self.limits.import_timeout
+        if self.remaining() <= 0:
+            return self._over_budget(what)
+        outcome = self._billed({"op": "import", "module": module}, timeout, what)
         if outcome.ok:
             self._imported.add(module)
-        else:
+        elif outcome.kind not in ("budget", "grader_error"):
             self._import_failures[module] = outcome
+        return outcome
+
+    def _billed(self, request: dict, timeout: float, what: str) -> CallOutcome:
+        """:meth:`_request` within the budget; its time (a timeout's in full) is billed."""
+        clipped = timeout > self.remaining()
+        outcome = self._request(request, min(timeout, self.remaining()), what)
+        self.student_seconds += outcome.seconds
+        if clipped and outcome.kind == "timeout":
+            outcome.kind, outcome.message = "budget", f"{what} was stopped: time budget exhausted"
         return outcome
 
     def call(self, module: str, function: str, args=(), kwargs=None, *,
@@ -303,28 +348,47 @@ class Sandbox:
                                message=f"{function}() timed out {self.limits.timeouts_per_function} "
                                        "times already; not called again")
         timeout = timeout or self.limits.call_timeout
+        if self.remaining() <= 0:
+            return self._over_budget(f"{function}()")
         request = {"op": "call", "module": module, "function": function,
                    "args": list(args), "kwargs": dict(kwargs or {}),
                    "forbid": list(forbid), "cpu_seconds": timeout + 1.0}
-        outcome = self._request(request, timeout, what=f"{function}()")
+        outcome = self._billed(request, timeout, what=f"{function}()")
         if outcome.kind == "timeout":
             self._timeouts[(module, function)] = self._timeouts.get((module, function), 0) + 1
-            self.student_seconds += timeout
-        else:
-            self.student_seconds += outcome.seconds
         return outcome
 
     # ------------------------------------------------------------ plumbing
+    def _restart(self) -> CallOutcome | None:
+        """Start the worker; a restart is billed its start-up time and capped."""
+        self.restarts += 1
+        if self.restarts > self.limits.max_restarts:
+            return CallOutcome(ok=False, kind="crashed",
+                               message=f"the worker was restarted {self.limits.max_restarts} times "
+                                       "after crashes, hangs or suspect states; not started again")
+        started = time.perf_counter()
+        try:
+            self._start_worker()
+        except WorkerStartError as exc:
+            return CallOutcome(ok=False, kind="grader_error", message=str(exc))
+        if self.restarts > 0:
+            self.student_seconds += time.perf_counter() - started
+        return None
+
     def _request(self, request: dict, timeout: float, what: str) -> CallOutcome:
         if self.proc is None:
-            try:
-                self._start_worker()
-            except WorkerStartError as exc:
-                return CallOutcome(ok=False, kind="grader_error", message=str(exc))
+            failed = self._restart()
+            if failed is not None:
+                return failed
             if request["op"] == "call":
                 imported = self.import_module(request["module"])
                 if not imported.ok:
                     return imported
+                timeout = min(timeout, self.remaining())
+                if timeout <= 0:
+                    return self._over_budget(what)
+        self._request_id += 1
+        request = {**request, "id": self._request_id}
         frame = transport.encode(request)
         start = time.perf_counter()
         deadline = time.monotonic() + timeout
@@ -333,9 +397,12 @@ class Sandbox:
             length, = LENGTH.unpack(self._read(LENGTH.size, deadline))
             if length > self.limits.max_result_bytes:
                 return self._abandon(CallOutcome(
-                    ok=False, kind="result_type",
+                    ok=False, kind="result_type", seconds=time.perf_counter() - start,
                     message=f"{what} returned more than {self.limits.max_result_bytes // 2**20} MiB"))
             reply = transport.decode(self._read(length, deadline), max_bytes=self.limits.max_result_bytes)
+            seconds = time.perf_counter() - start  # measured here: the worker's word is not taken
+            if self._pending_reply():
+                raise transport.TransportError("more than one reply to one call")
         except TimeoutError:
             return self._abandon(CallOutcome(
                 ok=False, kind="timeout", seconds=time.perf_counter() - start,
@@ -346,19 +413,29 @@ class Sandbox:
             return self._abandon(CallOutcome(
                 ok=False, kind="protocol", seconds=time.perf_counter() - start,
                 message=f"{what}: the worker sent back something that is not a valid result ({exc})"))
-        outcome = self._outcome_from_reply(reply, what)
-        outcome.output = self._read_output()
+        outcome = self._outcome_from_reply(reply, what, request["id"], seconds)
+        if self.proc is not None:
+            outcome.output = self._read_output()
+            if type(reply.get("suspect")) is str:
+                self._stop_worker()  # the next call gets a clean worker
         return outcome
 
-    def _outcome_from_reply(self, reply, what) -> CallOutcome:
+    def _pending_reply(self) -> bool:
+        readable, _, _ = select.select([self._response_fd], [], [], 0)
+        return bool(readable)
+
+    def _outcome_from_reply(self, reply, what, request_id, seconds) -> CallOutcome:
         if type(reply) is not dict or type(reply.get("ok")) is not bool:
-            return self._abandon(CallOutcome(ok=False, kind="protocol",
+            return self._abandon(CallOutcome(ok=False, kind="protocol", seconds=seconds,
                                              message=f"{what}: malformed reply from the worker"))
-        seconds = reply.get("seconds")
-        seconds = float(seconds) if type(seconds) in (int, float) and seconds >= 0 else 0.0
+        if reply.get("id") != request_id:
+            return self._abandon(CallOutcome(
+                ok=False, kind="protocol", seconds=seconds,
+                message=f"{what}: the worker's reply does not answer this call (a stray reply "
+                        "written by a thread or process the submission left behind?)"))
         if reply["ok"]:
             return CallOutcome(ok=True, value=reply.get("value"), seconds=seconds)
-        kind = reply.get("kind") if reply.get("kind") in FAILURE_KINDS else "exception"
+        kind = reply.get("kind") if reply.get("kind") in WORKER_KINDS else "exception"
         message = reply.get("message") if type(reply.get("message")) is str else ""
         tb = reply.get("traceback") if type(reply.get("traceback")) is str else ""
         if kind == "result_type" and message.startswith("returned"):
