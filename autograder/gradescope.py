@@ -18,7 +18,6 @@ from pathlib import Path
 
 from .course import CourseConfig
 from .results import GradingResult, write_atomically
-from .sandbox import Limits
 
 log = logging.getLogger("autograder")
 PROJECT_ROOT = Path(__file__).resolve().parents[1]
@@ -73,7 +72,7 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
     config = config or CourseConfig()
     started = time.monotonic()
     try:
-        result = grade(submission, config.select, limits=Limits(call_timeout=config.call_timeout),
+        result = grade(submission, config.select, limits=config.limits(),
                        pictures="none")  # results.json carries text only
         data = results_json(result, config)
     except Exception as exc:  # noqa: BLE001 - results.json must be written whatever happens

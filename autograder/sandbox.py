@@ -55,7 +55,9 @@ class Limits:
 
     call_timeout: float = 10.0           # wall seconds per call, unless a check says otherwise
     import_timeout: float = 20.0         # wall seconds to import one student module
-    address_space: int = 6 * 2**30       # bytes of virtual memory
+    address_space: int = 6 * 2**30       # bytes of virtual memory, per process
+    memory: int = 6 * 2**30              # bytes for the worker and all its children (cgroup, where available)
+    scratch_bytes: int = 256 * 2**20     # writable scratch, and again /tmp (tmpfs, namespaced levels)
     file_size: int = 64 * 2**20          # bytes in any file written, printed output included
     cpu_total: int = 1800                # CPU seconds over the worker's life
     extra_processes: int = 64            # processes/threads beyond those the user already has
@@ -63,8 +65,8 @@ class Limits:
     max_output_chars: int = 4000         # captured stdout/stderr kept per call
     startup_timeout: float = 60.0        # for the worker to import NumPy/OpenCV (not billed)
     timeouts_per_function: int = 2       # after this many timeouts a function is not called again
-    exercise_budget: float = 120.0       # student seconds per exercise (calls, timeouts, restarts)
-    submission_budget: float = 900.0     # student seconds per submission
+    exercise_budget: float = 60.0        # student seconds per exercise (calls, timeouts, restarts)
+    submission_budget: float = 480.0     # student seconds per submission (under a Gradescope timeout of 10 min)
     max_restarts: int = 12               # worker restarts per submission (each billed its start-up)
 
     def worker_json(self, processes: int | None) -> str:
@@ -159,6 +161,9 @@ class Sandbox:
         self.hide = default_hidden_paths() if hide is None else list(hide)
         if self.confinement.level == "process-group":
             confine.become_subreaper()
+        # One memory and process budget for the worker and everything it starts.
+        self.cgroup = confine.Cgroup.create(self.limits.memory, self.limits.extra_processes + 16)
+        self._oom_kills = 0
         # A private base (listable by the grader only) around a randomly named
         # scratch folder, so workers of other submissions cannot find this one.
         self._base = Path(tempfile.mkdtemp(prefix="autograder-"))
@@ -199,6 +204,7 @@ class Sandbox:
             shutil.copy(here / name, self.scratch / "worker" / name)
         for name in self.WRITABLE:
             (self.scratch / name).mkdir()
+        self.output_path.touch()  # bound into the worker's view: it must exist
         self.confinement.prepare_scratch(self.scratch, private=("worker",))
 
     # ------------------------------------------------------------ lifecycle
@@ -211,6 +217,8 @@ class Sandbox:
     def close(self):
         """Stop the worker and everything it started, then delete the scratch directory."""
         self._stop_worker(restarting=False)
+        if self.cgroup is not None:
+            self.cgroup.remove()
         shutil.rmtree(self._base, ignore_errors=True)
 
     def _start_worker(self):
@@ -223,12 +231,16 @@ class Sandbox:
         uid = self.confinement.uid if self.confinement.uid is not None else os.getuid()
         tasks = confine.count_tasks(uid)  # None where they cannot be counted (macOS): no limit
         processes = None if tasks is None else tasks + self.limits.extra_processes
+        view = confine.View(scratch=self.scratch, read_only=(self.submission_dir, self.scratch / "worker"),
+                            files=(self.output_path,), size=self.limits.scratch_bytes,
+                            hide=tuple(Path(p) for p in self.hide))
         command = self.confinement.wrap(
             [sys.executable, "-I", "-B", str(self.scratch / "worker" / "worker.py"),
              str(request_r), str(response_w), str(self.submission_dir),
              str(self.output_path), self.limits.worker_json(processes)],
-            hide=self.hide, writable=[self.scratch / name for name in self.WRITABLE],
-            hold=self._base / "hold")
+            view=view, hold=self._base / "hold")
+        if self.cgroup is not None:
+            command = self.cgroup.wrap(command)
         try:
             self.proc = subprocess.Popen(
                 command, pass_fds=(request_r, response_w), stdin=subprocess.DEVNULL,
@@ -275,6 +287,8 @@ class Sandbox:
         except subprocess.TimeoutExpired:
             pass
         self._kill_process_group()
+        if self.cgroup is not None:
+            self.cgroup.kill()  # whatever left the process group (setsid) is still in the cgroup
         _LIVE_WORKERS.discard(self.proc.pid)
         if self.confinement.level == "process-group":
             confine.kill_adopted_orphans(keep=_LIVE_WORKERS)
@@ -451,9 +465,15 @@ class Sandbox:
 
     def _crash_outcome(self, what, seconds) -> CallOutcome:
         try:
-            code = self.proc.wait(timeout=2)
+            code = self.confinement.exit_signal(self.proc.wait(timeout=2))
         except subprocess.TimeoutExpired:
             code = None
+        oom_kills = self.cgroup.oom_kills() if self.cgroup is not None else 0
+        if oom_kills > self._oom_kills:
+            self._oom_kills = oom_kills
+            return CallOutcome(ok=False, kind="memory", seconds=seconds,
+                               message=f"{what} ran out of memory (the submission's processes together "
+                                       f"may use {self.limits.memory / 2**30:g} GiB)")
         if code is not None and code < 0:
             signame = signal.Signals(-code).name if -code in signal.valid_signals() else str(-code)
             reasons = {

@@ -1,4 +1,9 @@
-"""The terminal report: a table of per-exercise scores, then what to fix."""
+"""The terminal report: a table of per-exercise scores, then what to fix.
+
+Every string that may hold a submission's words goes through
+:func:`~autograder.text.printable` first, so nothing it prints can move the
+cursor, clear the screen or redraw the table.
+"""
 
 from __future__ import annotations
 
@@ -7,6 +12,7 @@ from rich.table import Table
 from rich.text import Text
 
 from ..results import ERROR, NOT_IMPLEMENTED, GradingResult
+from ..text import printable
 
 
 def _score_style(score: float, maximum: float) -> str:
@@ -19,7 +25,7 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
            details: bool = True) -> None:
     """Print the score table and, under it, one line per check that lost points."""
     console = console or Console()
-    table = Table(title=f"Grading {result.submission}", title_justify="left", expand=False)
+    table = Table(title=f"Grading {printable(result.submission)}", title_justify="left", expand=False)
     table.add_column("exercise", style="bold")
     table.add_column("title")
     table.add_column("score", justify="right")
@@ -59,7 +65,7 @@ def _print_problems(result: GradingResult, console: Console) -> None:
         if exercise.score >= exercise.max_score or exercise.message == NOT_STARTED:
             continue
         if exercise.message:  # one message says it for every check (missing module, syntax error...)
-            lines = exercise.message.splitlines()
+            lines = printable(exercise.message).splitlines()
             console.print(Text(f"✗ {exercise.id}: ", style="bold") + Text(lines[0]))
             if len(lines) > 1:
                 console.print(Text("    " + "\n    ".join(lines[1:]), style="dim"))
@@ -68,16 +74,16 @@ def _print_problems(result: GradingResult, console: Console) -> None:
             if check.passed:
                 continue
             icon = {NOT_IMPLEMENTED: "·", ERROR: "!"}.get(check.status, "✗")
-            first, *rest = (check.message or check.status).splitlines() or [""]
-            line = Text(f"{icon} {exercise.id} ", style="bold") + Text(check.name, style="italic")
+            first, *rest = printable(check.message or check.status).splitlines() or [""]
+            line = Text(f"{icon} {exercise.id} ", style="bold") + Text(printable(check.name), style="italic")
             line += Text(f" ({check.score:g}/{check.max_score:g}): {first}")
             console.print(line)
             for extra in rest[:6]:
                 console.print(Text(f"    {extra}", style="dim"))
             if check.hint:
-                console.print(Text(f"    hint: {check.hint}", style="cyan"))
+                console.print(Text(f"    hint: {printable(check.hint)}", style="cyan"))
             if check.traceback and check.traceback in shown_tracebacks:
                 console.print(Text("    (same traceback as above)", style="dim"))
             elif check.traceback:
                 shown_tracebacks.add(check.traceback)
-                console.print(Text("    " + check.traceback.replace("\n", "\n    "), style="dim"))
+                console.print(Text("    " + printable(check.traceback).replace("\n", "\n    "), style="dim"))
