@@ -55,7 +55,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
@@ -91,7 +91,6 @@ class View:
     files: tuple[Path, ...] = ()
     writable: tuple[str, ...] = ("home", "tmp", "work")
     size: int = 256 * 2**20
-    hide: tuple[Path, ...] = field(default=())
 
 
 @dataclass(frozen=True)
@@ -107,7 +106,8 @@ class Confinement:
 
         In the namespaced levels the worker's file system is built in ``hold``
         (an empty folder of the grader's) from the allowlist described in this
-        module's documentation plus ``view``, then made the root.
+        module's documentation plus ``view``, then made the root, by
+        ``namespace_init.py``, which stays as PID 1 and waits for the worker.
         """
         if self.level == "process-group":
             return list(argv)
@@ -116,86 +116,70 @@ class Confinement:
         unshare = ["unshare", "--pid", "--fork", "--kill-child", "--net", "--mount", "--ipc", "--uts"]
         if os.geteuid() != 0:
             unshare[1:1] = ["--user", "--map-root-user"]
-        # The tools live in sbin folders the worker's PATH leaves out: the worker gets its own back.
-        steps = ["set -e", "umask 022", 'WORKER_PATH="$PATH"', "PATH=/usr/sbin:/usr/bin:/sbin:/bin",
-                 *self._root_steps(Path(hold) / "root", view)]
-        drop = [shutil.which("setpriv") or "setpriv", "--no-new-privs", "--bounding-set=-all", "--inh-caps=-all"]
+        drop = [shutil.which("setpriv") or "setpriv", "--no-new-privs", "--bounding-set=-all",
+                "--inh-caps=-all"]
         if self.level == "namespaces+user":
             drop[1:1] = [f"--reuid={self.uid}", f"--regid={self.gid}", "--clear-groups"]
-        # PID 1 stays a shell that waits: when it ends, the kernel ends the namespace.
-        # A signal that ended the worker comes back as an exit status of 128 + signal.
-        steps += ['cd -- "$PWD"', "set +e", 'PATH="$WORKER_PATH"', f'{" ".join(drop)} -- "$@"', 'exit "$?"']
-        return unshare + ["--", "/bin/sh", "-c", "\n".join(steps), "sh", *argv]
+        spec = json.dumps(self._root_ops(str(Path(hold) / "root"), view))
+        init = str(Path(__file__).with_name("namespace_init.py"))
+        return unshare + ["--", sys.executable, "-I", "-S", init, spec, "--", *drop, "--", *argv]
 
-    def _root_steps(self, root: Path, view: View | None) -> list[str]:
-        q = lambda p: shlex.quote(str(p))  # noqa: E731
-        r = lambda p: q(f"{root}{p}")      # noqa: E731  (``p`` inside the new root)
-        steps = [f"mkdir -p {q(root)}", f"mount -t tmpfs -o mode=755,size=8m,nosuid,nodev none {q(root)}"]
+    def _root_ops(self, root: str, view: View | None) -> list:
+        """The operations building the worker's root in ``root``, ending with the switch to it."""
+        at = lambda p: f"{root}{p}"  # noqa: E731  (``p`` inside the new root)
+        ops: list = [("tmpfs", root, "mode=755,size=8m")]
 
-        def bind(source, read_only=True) -> list[str]:
-            """Steps binding ``source`` at the same path in the new root."""
-            source = Path(source)
-            made = [f"mkdir -p {r(source)}" if source.is_dir() else
-                    f"mkdir -p {r(source.parent)} && touch {r(source)}",
-                    f"mount --bind {q(source)} {r(source)}"]
-            if read_only:
-                made.append(f"{{ mount -o remount,bind,ro,nosuid,nodev {r(source)} 2>/dev/null"
-                            f" || mount -o remount,bind,ro,nosuid,nodev,noexec {r(source)}; }}")
-            return made
+        def bind(source, read_only=True):
+            ops.append(("bind", str(source), at(source), read_only))
 
         for top in SYSTEM_FOLDERS:
-            path = Path(top)
-            if path.is_symlink():
-                steps.append(f"ln -s {q(os.readlink(path))} {r(path)}")
-            elif path.is_dir():
-                steps += bind(path)
+            if os.path.islink(top):
+                ops.append(("symlink", os.readlink(top), at(top)))
+            elif os.path.isdir(top):
+                bind(top)
         for entry in ETC_ENTRIES:
             if os.path.exists(entry):
-                steps += bind(entry)
+                bind(entry)
         folders, sites = interpreter_layout()
         for folder in folders:
-            steps += bind(folder)
+            bind(folder)
         for site, entries in sites:
-            steps += [f"mkdir -p {r(site)}", f"mount -t tmpfs -o mode=755,size=1m,nosuid,nodev none {r(site)}"]
+            ops.append(("tmpfs", at(site), "mode=755,size=1m"))
             for entry in entries:
-                path = Path(site) / entry
-                if path.is_symlink():
-                    steps.append(f"ln -s {q(os.readlink(path))} {r(path)}")
+                path = os.path.join(site, entry)
+                if os.path.islink(path):
+                    ops.append(("symlink", os.readlink(path), at(path)))
                 else:
-                    steps += bind(path)
-            steps.append(f"mount -o remount,ro {r(site)}")
-        steps += [f"mkdir -p {r('/dev')}", f"mount -t tmpfs -o mode=755,size=64k,nosuid none {r('/dev')}"]
+                    bind(path)
+            ops.append(("remount_ro", at(site)))
+        ops.append(("tmpfs", at("/dev"), "mode=755,size=64k"))
         for device in DEVICES:
-            steps += bind(f"/dev/{device}", read_only=False)
+            bind(f"/dev/{device}", read_only=False)
         for name, target in (("fd", "/proc/self/fd"), ("stdin", "/proc/self/fd/0"),
                              ("stdout", "/proc/self/fd/1"), ("stderr", "/proc/self/fd/2")):
-            steps.append(f"ln -s {target} {r('/dev/' + name)}")
-        steps += [f"mkdir -p {r('/proc')}", f"mount -t proc -o nosuid,nodev,noexec proc {r('/proc')}"]
+            ops.append(("symlink", target, at("/dev/" + name)))
+        ops.append(("proc", at("/proc")))
         size = view.size if view is not None else 16 * 2**20
-        steps += [f"mkdir -p {r('/tmp')}", f"mount -t tmpfs -o mode=1777,size={size},nosuid,nodev none {r('/tmp')}"]
+        ops += [("tmpfs", at("/tmp"), f"mode=1777,size={size}")]
         if view is not None:
-            steps += self._scratch_steps(view, r, bind)
-        steps += [f"mkdir {r('/.old')}", f"mount -o remount,ro {r('/dev')}", f"mount -o remount,ro {q(root)}",
-                  f"pivot_root {q(root)} {r('/.old')}", "cd /", "umount -l /.old"]
-        return steps
+            ops += self._scratch_ops(view, at)
+        ops += [("mkdir", at("/.old")), ("remount_ro", at("/dev")), ("remount_ro", root),
+                ("pivot", root, at("/.old"))]
+        return ops
 
-    def _scratch_steps(self, view: View, r, bind) -> list[str]:
+    def _scratch_ops(self, view: View, at) -> list:
         owner = f",uid={self.uid},gid={self.gid}" if self.uid is not None else ""
-        steps = [f"mkdir -p {r(view.scratch)}",
-                 f"mount -t tmpfs -o mode=755,size={view.size},nosuid,nodev{owner} none {r(view.scratch)}"]
-        writable = [f"{view.scratch}/{name}" for name in (*view.writable, "shm")]
-        steps.append("mkdir -p " + " ".join(r(w) for w in writable))
-        if self.uid is not None:
-            steps.append(f"chown {self.uid}:{self.gid} " + " ".join(r(w) for w in writable))
-        steps.append(f"chmod 1777 {r(view.scratch / 'shm')}")
-        for folder in view.read_only:
-            steps += bind(folder)
-        for file in view.files:
-            steps += bind(file, read_only=False)
-        steps.append(f"mkdir -p {r('/dev/shm')} && mount --bind {r(view.scratch / 'shm')} {r('/dev/shm')}")
-        for hidden in view.hide:  # belt and braces: a hidden folder that is somehow in the view
-            steps.append(f"if [ -d {r(hidden)} ]; then mount -t tmpfs -o ro,size=4k,mode=000 none {r(hidden)}; fi")
-        return steps
+        scratch = str(view.scratch)
+        ops: list = [("tmpfs", at(scratch), f"mode=755,size={view.size}{owner}")]
+        for name in (*view.writable, "shm"):
+            ops.append(("mkdir", at(f"{scratch}/{name}")))
+            if self.uid is not None:
+                ops.append(("chown", at(f"{scratch}/{name}"), self.uid, self.gid))
+        ops.append(("chmod", at(f"{scratch}/shm"), 0o1777))
+        ops += [("bind", str(folder), at(folder), True) for folder in view.read_only]
+        ops += [("bind", str(file), at(file), False) for file in view.files]
+        ops.append(("bind", at(f"{scratch}/shm"), at("/dev/shm"), False))
+        return ops
 
     @property
     def isolates_network(self) -> bool:

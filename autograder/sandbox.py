@@ -82,23 +82,6 @@ class Limits:
 _LIVE_WORKERS: set[int] = set()
 
 
-def default_hidden_paths() -> list[Path]:
-    """Folders the worker must not read: the grader, its fixtures, the answers, the tests.
-
-    ``AUTOGRADER_HIDE`` adds more (``os.pathsep``-separated), e.g. a container's
-    results folder.
-    """
-    import fixtures
-
-    package = Path(__file__).resolve().parent
-    root = package.parent
-    paths = [package, Path(fixtures.__file__).resolve().parent,
-             root / "reference_solutions", root / "tests", root / ".git"]
-    extra = os.environ.get("AUTOGRADER_HIDE", "")
-    paths += [Path(p) for p in extra.split(os.pathsep) if p]
-    return [p for p in dict.fromkeys(paths) if p.is_dir()]
-
-
 class WorkerStartError(RuntimeError):
     """The worker process could not be started: a problem of the grader's installation."""
 
@@ -155,10 +138,9 @@ class Sandbox:
     """
 
     def __init__(self, submission_dir, limits: Limits | None = None,
-                 confinement: confine.Confinement | None = None, hide=None):
+                 confinement: confine.Confinement | None = None):
         self.limits = limits or Limits()
         self.confinement = confinement or confine.detect()
-        self.hide = default_hidden_paths() if hide is None else list(hide)
         if self.confinement.level == "process-group":
             confine.become_subreaper()
         # One memory and process budget for the worker and everything it starts.
@@ -232,8 +214,7 @@ class Sandbox:
         tasks = confine.count_tasks(uid)  # None where they cannot be counted (macOS): no limit
         processes = None if tasks is None else tasks + self.limits.extra_processes
         view = confine.View(scratch=self.scratch, read_only=(self.submission_dir, self.scratch / "worker"),
-                            files=(self.output_path,), size=self.limits.scratch_bytes,
-                            hide=tuple(Path(p) for p in self.hide))
+                            files=(self.output_path,), size=self.limits.scratch_bytes)
         command = self.confinement.wrap(
             [sys.executable, "-I", "-B", str(self.scratch / "worker" / "worker.py"),
              str(request_r), str(response_w), str(self.submission_dir),
