@@ -27,7 +27,7 @@ from .sandbox import CallOutcome, Sandbox
 # Failure kinds after which calling the same function again in this check is pointless.
 _FATAL_KINDS = {"timeout", "crashed", "memory", "output_too_large", "import_error",
                 "missing_module", "missing_function", "not_implemented", "forbidden_call",
-                "budget"}
+                "budget", "protocol"}
 
 
 @dataclass
@@ -209,8 +209,14 @@ class Trial:
         :func:`~autograder.runner.grade`'s ``pictures``).
         """
         def artifact():
-            items = [{"label": label.replace("_", " "), "png": pictures.png_base64(image)}
-                     for label, image in labelled.items() if image is not None]
+            items = []
+            for label, image in labelled.items():
+                try:  # what the student returned may not be drawable (a 0-d array): leave it out
+                    png = pictures.png_base64(image) if image is not None else None
+                except ValueError:
+                    png = None
+                if png is not None:
+                    items.append({"label": label.replace("_", " "), "png": png})
             return Artifact("images", title, items, caption)
 
         self._pictures.append(artifact)

@@ -44,6 +44,7 @@ from __future__ import annotations
 import ctypes
 import importlib.metadata
 import json
+import logging
 import os
 import pwd
 import re
@@ -127,7 +128,9 @@ class Confinement:
     def _root_ops(self, root: str, view: View | None) -> list:
         """The operations building the worker's root in ``root``, ending with the switch to it."""
         at = lambda p: f"{root}{p}"  # noqa: E731  (``p`` inside the new root)
-        ops: list = [("tmpfs", root, "mode=755,size=8m")]
+        size = view.size if view is not None else 16 * 2**20
+        # /tmp first: an interpreter or scratch folder under /tmp is bound on top of it.
+        ops: list = [("tmpfs", root, "mode=755,size=8m"), ("tmpfs", at("/tmp"), f"mode=1777,size={size}")]
 
         def bind(source, read_only=True):
             ops.append(("bind", str(source), at(source), read_only))
@@ -140,9 +143,12 @@ class Confinement:
         for entry in ETC_ENTRIES:
             if os.path.exists(entry):
                 bind(entry)
-        folders, sites = interpreter_layout()
-        for folder in folders:
-            bind(folder)
+        interpreter, sites = interpreter_layout()
+        for kind, *args in interpreter:
+            if kind == "symlink":
+                ops.append(("symlink", args[0], at(args[1])))
+            else:
+                bind(args[0])
         for site, entries in sites:
             ops.append(("tmpfs", at(site), "mode=755,size=1m"))
             for entry in entries:
@@ -159,8 +165,6 @@ class Confinement:
                              ("stdout", "/proc/self/fd/1"), ("stderr", "/proc/self/fd/2")):
             ops.append(("symlink", target, at("/dev/" + name)))
         ops.append(("proc", at("/proc")))
-        size = view.size if view is not None else 16 * 2**20
-        ops += [("tmpfs", at("/tmp"), f"mode=1777,size={size}")]
         if view is not None:
             ops += self._scratch_ops(view, at)
         ops += [("mkdir", at("/.old")), ("remount_ro", at("/dev")), ("remount_ro", root),
@@ -212,30 +216,55 @@ class Confinement:
 
 # ------------------------------------------------------------------ the allowlist
 @lru_cache(maxsize=1)
-def interpreter_layout() -> tuple[tuple[str, ...], tuple[tuple[str, tuple[str, ...]], ...]]:
-    """What the worker's interpreter needs: folders bound whole, and site-packages filtered.
+def interpreter_layout() -> tuple[tuple, tuple[tuple[str, tuple[str, ...]], ...]]:
+    """What the worker's interpreter needs, asked of the interpreter itself (started ``-I``).
 
-    Asked of the interpreter itself, started as the worker is (``-I``). Returns
-    the interpreter's folders outside the system folders (its prefixes and
-    standard library), and for each site-packages folder the entries of
-    :data:`ALLOWED_LIBRARIES` and their requirements in it.
+    Returns the operations exposing the interpreter outside the system folders
+    -- its installation (``base_prefix``: standard library, shared library)
+    bound whole; of a virtual environment only ``pyvenv.cfg`` and the
+    ``bin/python*`` entries, never its scripts -- and for each site-packages
+    folder the entries of :data:`ALLOWED_LIBRARIES` and their requirements in it.
     """
     probe = ("import json, sys; print(json.dumps([sys.prefix, sys.base_prefix, sys.exec_prefix, "
              "sys.base_exec_prefix, sys.executable, sys.path]))")
     out = subprocess.run([sys.executable, "-I", "-c", probe], capture_output=True, text=True,
                          timeout=60, check=True).stdout
-    *prefixes, executable, path = json.loads(out)
+    prefix, base_prefix, exec_prefix, base_exec_prefix, executable, path = json.loads(out)
     sites = [p for p in path if Path(p).name in ("site-packages", "dist-packages") and Path(p).is_dir()]
-    needed = {*prefixes, str(Path(executable).parent), str(Path(executable).resolve().parent)}
-    needed |= {p for p in path if p not in sites and os.path.exists(p)}
     covered = lambda p: any(p == s or p.startswith(s + "/") for s in SYSTEM_FOLDERS)  # noqa: E731
-    folders = []
-    for folder in sorted(needed, key=len):
-        folder = os.path.realpath(folder) if not Path(folder).is_symlink() else folder
+    folders: list[str] = []
+    wanted = [base_prefix, base_exec_prefix, str(Path(executable).resolve().parent)]
+    wanted += [p for p in path if p not in sites and os.path.exists(p) and not p.startswith(prefix + "/")
+               and not _holds_grader(p)]
+    for folder in sorted({os.path.realpath(p) for p in wanted}, key=len):
         if not covered(folder) and not any(folder == f or folder.startswith(f + "/") for f in folders):
             folders.append(folder)
+    ops: list = [("bind", folder) for folder in folders]
+    for venv in dict.fromkeys([prefix, exec_prefix]):
+        if venv in (base_prefix, base_exec_prefix) or covered(venv):
+            continue
+        if os.path.exists(f"{venv}/pyvenv.cfg"):
+            ops.append(("bind", f"{venv}/pyvenv.cfg"))
+        for entry in sorted(Path(venv, "bin").glob("python*")):
+            ops.append(("symlink", os.readlink(entry), str(entry)) if entry.is_symlink() else ("bind", str(entry)))
     allowed = tuple((site, tuple(sorted(allowed_entries(Path(site))))) for site in sites)
-    return tuple(folders), allowed
+    return tuple(ops), allowed
+
+
+def _holds_grader(folder: str) -> bool:
+    """Whether ``folder`` is, or holds, the grader's own sources (an editable install's path)."""
+    package = Path(__file__).resolve().parent
+    folder_path = Path(folder).resolve()
+    return (folder_path / "autograder").is_dir() or package.is_relative_to(folder_path)
+
+
+def _plain_path_file(path: Path) -> bool:
+    """A ``.pth`` file that only adds folders (no ``import`` line: nothing runs)."""
+    try:
+        lines = path.read_text(errors="replace").splitlines()
+    except OSError:
+        return False
+    return all(not line.startswith(("import ", "import\t")) for line in lines)
 
 
 def allowed_entries(site: Path) -> set[str]:
@@ -266,7 +295,7 @@ def allowed_entries(site: Path) -> set[str]:
         else:
             entries |= {f.parts[0] for f in files if f.parts and f.parts[0] not in ("..", "__pycache__")}
     entries = {e for e in entries if "/" not in e and e not in (".", "")}
-    found = set()
+    found = {p.name for p in site.glob("*.pth") if _plain_path_file(p)}
     for entry in entries:
         for candidate in (entry, entry + ".py"):
             if (site / candidate).exists() or (site / candidate).is_symlink():
@@ -288,8 +317,12 @@ def detect() -> Confinement:
 def _detect() -> Confinement:
     for level in LEVELS[:-1]:
         candidate = _candidate(level)
-        if candidate is not None and _works(candidate):
-            return candidate
+        if candidate is not None:
+            if _works(candidate):
+                return candidate
+            # Never silently weaker: the instructor's log says which level failed.
+            logging.getLogger("autograder").warning(
+                "confinement level %s is available here but could not start Python; trying a weaker one", level)
     return Confinement("process-group")
 
 

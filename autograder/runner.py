@@ -86,7 +86,7 @@ class _Budget:
 
     def start_exercise(self):
         spent = self.sandbox.student_seconds
-        self.sandbox.set_budget(min(spent + self.limits.exercise_budget, self.limits.submission_budget))
+        self.sandbox.start_exercise(min(spent + self.limits.exercise_budget, self.limits.submission_budget))
 
     def exhausted(self) -> str:
         """Which budget is spent ("" while there is time left)."""

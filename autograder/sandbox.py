@@ -12,7 +12,7 @@ request it answers (a stray frame fails the call that produced it), call
 durations are measured here, and a worker that reports a suspect state after a
 call (threads or children alive, descriptors exhausted) is replaced before the
 next one. Time is billed against budgets per exercise and per submission
-(:meth:`Sandbox.set_budget`); restarts are billed and capped.
+(:meth:`Sandbox.start_exercise`); restarts are billed and capped per exercise.
 """
 
 from __future__ import annotations
@@ -67,7 +67,7 @@ class Limits:
     timeouts_per_function: int = 2       # after this many timeouts a function is not called again
     exercise_budget: float = 60.0        # student seconds per exercise (calls, timeouts, restarts)
     submission_budget: float = 480.0     # student seconds per submission (under a Gradescope timeout of 10 min)
-    max_restarts: int = 12               # worker restarts per submission (each billed its start-up)
+    max_restarts: int = 12               # worker restarts per exercise (each billed its start-up)
 
     def worker_json(self, processes: int | None) -> str:
         return json.dumps({
@@ -161,7 +161,9 @@ class Sandbox:
         self._imported: set[str] = set()
         self._import_failures: dict[str, CallOutcome] = {}
         self.student_seconds = 0.0
-        self.restarts = -1  # the first start is not a restart
+        self.restarts = 0       # in the current exercise
+        self._started = False   # the first start is not a restart
+        self._restart_refused = False
         self._budget: float | None = None
         self._request_id = secrets.randbits(48)
         self.shared: dict = {}  # values checks share within one grading (see Trial.shared)
@@ -289,9 +291,11 @@ class Sandbox:
             pass
 
     # ------------------------------------------------------------ budgets
-    def set_budget(self, until: float | None) -> None:
-        """Stop calling once :attr:`student_seconds` reaches ``until`` (None: no budget)."""
+    def start_exercise(self, until: float | None) -> None:
+        """A new exercise: stop calling once :attr:`student_seconds` reaches ``until``
+        (None: no budget), and count its worker restarts afresh."""
         self._budget = until
+        self.restarts = 0
 
     def remaining(self) -> float:
         return float("inf") if self._budget is None else self._budget - self.student_seconds
@@ -314,8 +318,8 @@ class Sandbox:
         outcome = self._billed({"op": "import", "module": module}, timeout, what)
         if outcome.ok:
             self._imported.add(module)
-        elif outcome.kind not in ("budget", "grader_error"):
-            self._import_failures[module] = outcome
+        elif outcome.kind not in ("budget", "grader_error") and not self._restart_refused:
+            self._import_failures[module] = outcome  # the module's own failure, not the sandbox's
         return outcome
 
     def _billed(self, request: dict, timeout: float, what: str) -> CallOutcome:
@@ -356,17 +360,20 @@ class Sandbox:
     # ------------------------------------------------------------ plumbing
     def _restart(self) -> CallOutcome | None:
         """Start the worker; a restart is billed its start-up time and capped."""
-        self.restarts += 1
-        if self.restarts > self.limits.max_restarts:
+        restart = self._started
+        self._restart_refused = restart and self.restarts >= self.limits.max_restarts
+        if self._restart_refused:
             return CallOutcome(ok=False, kind="crashed",
-                               message=f"the worker was restarted {self.limits.max_restarts} times "
-                                       "after crashes, hangs or suspect states; not started again")
+                               message=f"the worker was restarted {self.limits.max_restarts} times in this "
+                                       "exercise after crashes, hangs or suspect states; not started again")
         started = time.perf_counter()
         try:
             self._start_worker()
         except WorkerStartError as exc:
             return CallOutcome(ok=False, kind="grader_error", message=str(exc))
-        if self.restarts > 0:
+        self._started = True
+        if restart:
+            self.restarts += 1
             self.student_seconds += time.perf_counter() - started
         return None
 
@@ -394,7 +401,13 @@ class Sandbox:
                 return self._abandon(CallOutcome(
                     ok=False, kind="result_type", seconds=time.perf_counter() - start,
                     message=f"{what} returned more than {self.limits.max_result_bytes // 2**20} MiB"))
-            reply = transport.decode(self._read(length, deadline), max_bytes=self.limits.max_result_bytes)
+            head = self._read(min(length, transport.PREFIX.size), deadline)
+            if len(head) == transport.PREFIX.size:  # refuse an oversized header before reading it
+                _, header_length = transport.PREFIX.unpack(head)
+                if header_length > transport.MAX_HEADER_BYTES:
+                    raise transport.TransportError(f"frame header larger than {transport.MAX_HEADER_BYTES} bytes")
+            frame = head + self._read(length - len(head), deadline)
+            reply = transport.decode(frame, max_bytes=self.limits.max_result_bytes)
             seconds = time.perf_counter() - start  # measured here: the worker's word is not taken
             if self._pending_reply():
                 raise transport.TransportError("more than one reply to one call")
