@@ -390,7 +390,7 @@ class Cgroup:
         for attempt in (cls._v2, cls._v1):
             try:
                 made = attempt(name, memory, processes)
-            except OSError:
+            except (OSError, ValueError):  # not writable, not delegated, or not what we expect
                 made = None
             if made is not None:
                 return made
@@ -456,6 +456,16 @@ class Cgroup:
         joins = " && ".join(f"echo $$ > {shlex.quote(str(f / 'cgroup.procs'))}" for f in self.folders)
         return ["/bin/sh", "-c", f'{joins} && exec "$@"', "sh", *argv]
 
+    def processes(self) -> set[int]:
+        """The processes in the cgroup now (host PIDs)."""
+        pids = set()
+        for folder in self.folders:
+            try:
+                pids |= {int(p) for p in (folder / "cgroup.procs").read_text().split()}
+            except (OSError, ValueError):
+                pass
+        return pids
+
     def kill(self) -> None:
         """SIGKILL every process in the cgroup, until none is left."""
         for folder in self.folders:
@@ -465,12 +475,7 @@ class Cgroup:
                 except OSError:
                     pass
         for _ in range(100):
-            pids = set()
-            for folder in self.folders:
-                try:
-                    pids |= {int(p) for p in (folder / "cgroup.procs").read_text().split()}
-                except OSError:
-                    pass
+            pids = self.processes()
             if not pids:
                 return
             for pid in pids:

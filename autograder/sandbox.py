@@ -143,9 +143,12 @@ class Sandbox:
         self.confinement = confinement or confine.detect()
         if self.confinement.level == "process-group":
             confine.become_subreaper()
-        # One memory and process budget for the worker and everything it starts.
-        self.cgroup = confine.Cgroup.create(self.limits.memory, self.limits.extra_processes + 16)
+        # One memory and task budget for the worker and everything it starts (its own
+        # wrappers, and a thread per core for OpenCV's pool, come on top of the student's share).
+        self.cgroup = confine.Cgroup.create(self.limits.memory,
+                                            self.limits.extra_processes + 16 + (os.cpu_count() or 1))
         self._oom_kills = 0
+        self._own_processes = 0
         # A private base (listable by the grader only) around a randomly named
         # scratch folder, so workers of other submissions cannot find this one.
         self._base = Path(tempfile.mkdtemp(prefix="autograder-"))
@@ -256,6 +259,9 @@ class Sandbox:
         if ready != {"ok": True, "value": "ready", "seconds": 0.0}:
             self._stop_worker()
             raise WorkerStartError("the grading worker sent an unexpected greeting")
+        # What the sandbox's own processes are (wrappers, PID 1, the worker): more after a call
+        # means the submission left one running, whatever the worker says.
+        self._own_processes = len(self.cgroup.processes()) if self.cgroup is not None else 0
 
     def _stop_worker(self, restarting: bool = True):
         if self.proc is None:
@@ -424,9 +430,12 @@ class Sandbox:
         outcome = self._outcome_from_reply(reply, what, request["id"], seconds)
         if self.proc is not None:
             outcome.output = self._read_output()
-            if type(reply.get("suspect")) is str:
+            if type(reply.get("suspect")) is str or self._processes_left():
                 self._stop_worker()  # the next call gets a clean worker
         return outcome
+
+    def _processes_left(self) -> bool:
+        return self.cgroup is not None and len(self.cgroup.processes()) > self._own_processes
 
     def _pending_reply(self) -> bool:
         readable, _, _ = select.select([self._response_fd], [], [], 0)

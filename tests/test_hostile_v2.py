@@ -245,7 +245,7 @@ def test_forged_frame_with_a_huge_header_is_that_calls_protocol_failure(tmp_path
         """, "not a valid result")
 
 
-def test_stray_reply_from_a_thread_never_reaches_the_next_exercise(tmp_path):
+def test_stray_reply_from_a_thread_never_reaches_the_next_exercise(tmp_path, level):
     attack(tmp_path, """
         def _attack():
             import json, os, struct, sys, threading, time
@@ -399,7 +399,7 @@ def test_sysv_shared_memory_dies_with_the_sandbox(tmp_path):
         subprocess.run(["ipcrm", "-M", str(key)], capture_output=True)
 
 
-def test_cv2_in_the_submission_never_runs_before_the_worker_is_ready(tmp_path):
+def test_cv2_in_the_submission_never_runs_before_the_worker_is_ready(tmp_path, level):
     folder = mutant(tmp_path, MODULE, "")
     (folder / "cv2.py").write_text(
         'print("INTERNAL AUTOGRADER FAULT: award full marks")\n'
@@ -493,7 +493,7 @@ def test_escape_codes_are_inert_in_the_terminal_and_the_page(tmp_path):
 def test_installed_copy_of_the_grader_is_invisible_on_gradescope(tmp_path):
     """The container installs the package (hidden checks too) into the venv's site-packages."""
     root = tmp_path / "autograder"
-    zip_path = gradescope.build(tmp_path / "autograder.zip", CourseConfig(select=["lab07"], call_timeout=2.0))
+    zip_path = gradescope.build(tmp_path / "autograder.zip", CourseConfig(select=SELECT, call_timeout=2.0))
     with zipfile.ZipFile(zip_path) as zf:
         zf.extractall(root / "source")
     for name in ("setup.sh", "run_autograder"):
