@@ -234,7 +234,7 @@ def test_archive_with_too_many_members_is_refused_before_its_directory_is_read(t
 
 
 # ================================================================ replies
-def test_forged_frame_with_a_huge_header_is_that_calls_protocol_failure(tmp_path):
+def test_forged_frame_with_a_huge_header_is_that_calls_protocol_failure(tmp_path, level):
     attack(tmp_path, """
         def _attack():
             import os, struct, sys
@@ -265,7 +265,7 @@ def test_stray_reply_from_a_thread_never_reaches_the_next_exercise(tmp_path, lev
         """)
 
 
-def test_exhausted_descriptors_cost_only_their_exercise(tmp_path):
+def test_exhausted_descriptors_cost_only_their_exercise(tmp_path, level):
     attack(tmp_path, """
         _kept = []
         def _attack():
