@@ -167,8 +167,8 @@ class Confinement:
         ops.append(("proc", at("/proc")))
         if view is not None:
             ops += self._scratch_ops(view, at)
-        ops += [("mkdir", at("/.old")), ("remount_ro", at("/dev")), ("remount_ro", root),
-                ("pivot", root, at("/.old"))]
+        ops += [("remount_ro", at("/dev")), ("pivot", root, at("/.old")), ("rmdir", "/.old"),
+                ("remount_ro", "/")]
         return ops
 
     def _scratch_ops(self, view: View, at) -> list:

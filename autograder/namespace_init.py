@@ -23,6 +23,7 @@ import sys
 
 MS_RDONLY, MS_NOSUID, MS_NODEV, MS_NOEXEC = 1, 2, 4, 8
 MS_REMOUNT, MS_BIND, MS_REC, MS_PRIVATE = 32, 4096, 16384, 1 << 18
+MS_NOATIME, MS_NODIRATIME, MS_RELATIME = 1024, 2048, 1 << 21
 MNT_DETACH = 2
 SYS_PIVOT_ROOT = {"x86_64": 155, "aarch64": 41, "arm64": 41, "ppc64le": 203, "s390x": 217}
 _libc = ctypes.CDLL(None, use_errno=True)
@@ -41,9 +42,14 @@ def mount(source, target, fstype, flags, data=None):
 
 
 def locked_flags(path):
-    """The flags of the mount holding ``path`` that a bind in a user namespace must keep."""
+    """The flags of the mount holding ``path`` that a remount in a user namespace must keep."""
     flag = os.statvfs(path).f_flag
-    return flag & (MS_NOSUID | MS_NODEV | MS_NOEXEC)  # ST_* values equal the MS_* ones
+    kept = flag & (MS_NOSUID | MS_NODEV | MS_NOEXEC)  # these ST_* values equal the MS_* ones
+    for st, ms in ((os.ST_NOATIME, MS_NOATIME), (os.ST_NODIRATIME, MS_NODIRATIME),
+                   (os.ST_RELATIME, MS_RELATIME)):
+        if flag & st:
+            kept |= ms
+    return kept
 
 
 def run(op):
@@ -74,6 +80,8 @@ def run(op):
     elif kind == "proc":
         os.makedirs(args[0], mode=0o755, exist_ok=True)
         mount("proc", args[0], "proc", MS_NOSUID | MS_NODEV | MS_NOEXEC)
+    elif kind == "rmdir":
+        os.rmdir(args[0])
     elif kind == "chown":
         os.chown(args[0], args[1], args[2])
     elif kind == "chmod":
