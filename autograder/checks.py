@@ -30,7 +30,8 @@ from .sandbox import CallOutcome, Sandbox
 
 # Failure kinds after which calling the same function again in this check is pointless.
 _FATAL_KINDS = {"timeout", "crashed", "memory", "output_too_large", "import_error",
-                "missing_module", "missing_function", "not_implemented", "forbidden_call"}
+                "missing_module", "missing_function", "not_implemented", "forbidden_call",
+                "budget", "protocol"}
 
 
 @dataclass
@@ -230,8 +231,14 @@ class Trial:
         :func:`~autograder.runner.grade`'s ``pictures``).
         """
         def artifact():
-            items = [pictures.picture_item(label.replace("_", " "), image)
-                     for label, image in labelled.items() if image is not None]
+            items = []
+            for label, image in labelled.items():
+                if image is None:
+                    continue
+                try:  # what the student returned may not be drawable (a 0-d array): leave it out
+                    items.append(pictures.picture_item(label.replace("_", " "), image))
+                except ValueError:
+                    pass
             return Artifact("images", title, items, caption)
 
         self._pictures.append(artifact)

@@ -5,22 +5,36 @@ keeps the first that really starts Python:
 
 ``namespaces+user``
     The grader runs as root (a course container). The worker starts in new PID,
-    network and mount namespaces (``unshare``), with the grader's sources
-    (``autograder/``, ``fixtures/``, ``reference_solutions/``, results folders)
-    covered by empty read-only mounts, then drops to the unprivileged user
-    ``agworker`` (created if missing; ``nobody`` otherwise) with no capabilities.
-    It sees no grader process, has no network, cannot read the answers, and the
-    whole namespace (daemons included) dies with it.
+    network, IPC, UTS and mount namespaces (``unshare``) and its file system is
+    *built*, not hidden (:meth:`Confinement.wrap`): a fresh root holding only the
+    system folders (``/usr``, ``/bin``, ``/lib*``: programs and shared libraries),
+    a few files of ``/etc`` the dynamic loader needs, the interpreter's own
+    folders, the site-packages entries of the libraries a student may use
+    (:data:`ALLOWED_LIBRARIES` and what they require), ``/dev/null`` and friends,
+    a fresh ``/proc``, a private size-limited ``/tmp``, and the worker's scratch
+    folder (its copy of the submission and of the worker code read-only, a
+    size-limited writable area, its output file). Everything else -- the grader's
+    sources, any installed copy of the grader (hidden checks included), home
+    folders, other submissions -- does not exist there. It then drops to the
+    unprivileged user ``agworker`` (created if missing; ``nobody`` otherwise)
+    with no capabilities. PID 1 of the namespace is a small shell that waits for
+    the worker: when the worker ends, or the grader kills it, every process left
+    in the namespace ends too, however it regrouped (``setsid``).
 ``namespaces``
-    The same namespaces and hidden folders, without changing user: as root when
-    the interpreter is not readable by another user (Python under ``/root``), or
-    through an unprivileged user namespace on a student's Linux laptop. Every
-    capability is dropped, so the hiding mounts cannot be undone.
+    The same namespaces and the same built file system, without changing user:
+    as root when no unprivileged user exists, or through an unprivileged user
+    namespace on a student's Linux laptop. Every capability is dropped, so the
+    mounts cannot be undone.
 ``process-group``
     Best effort (macOS, or Linux without namespaces): the worker gets its own
     session, the grader becomes a child subreaper so double-forked daemons are
     re-parented to it and killed, and the resource limits still apply. No
     network isolation, and the worker can read what the user can.
+
+In every level a :class:`Cgroup` (cgroup v2, or the v1 ``memory`` and ``pids``
+controllers) bounds the memory and processes of the worker and all its children
+together, where the grader may create one; otherwise the per-process limits
+(``RLIMIT_AS``, ``RLIMIT_NPROC``) are all there is.
 
 ``AUTOGRADER_CONFINEMENT=process-group`` (or another level) forces a level.
 """
@@ -28,14 +42,20 @@ keeps the first that really starts Python:
 from __future__ import annotations
 
 import ctypes
+import importlib.metadata
+import json
+import logging
 import os
 import pwd
+import re
+import secrets
 import shlex
 import shutil
 import signal
 import subprocess
 import sys
 import tempfile
+import time
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -43,6 +63,35 @@ from pathlib import Path
 LEVELS = ("namespaces+user", "namespaces", "process-group")
 WORKER_USER = "agworker"
 _PR_SET_CHILD_SUBREAPER = 36
+
+# Distributions a submission may import (with everything they require): the lab
+# sheet's NumPy, OpenCV and Matplotlib, and SciPy and scikit-image as courtesy.
+ALLOWED_LIBRARIES = ("numpy", "opencv-python", "opencv-python-headless", "opencv-contrib-python",
+                     "opencv-contrib-python-headless", "matplotlib", "scipy", "scikit-image")
+# System folders bound read-only (programs and shared libraries), and the few
+# files of /etc the dynamic loader and the C library read.
+SYSTEM_FOLDERS = ("/usr", "/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32")
+ETC_ENTRIES = ("/etc/ld.so.cache", "/etc/ld.so.conf", "/etc/ld.so.conf.d", "/etc/alternatives",
+               "/etc/localtime", "/etc/passwd", "/etc/group", "/etc/nsswitch.conf", "/etc/fonts")
+DEVICES = ("null", "zero", "full", "random", "urandom")
+
+
+@dataclass(frozen=True)
+class View:
+    """The worker's own part of its file system: the scratch folder.
+
+    Inside the namespace ``scratch`` is a tmpfs of ``size`` bytes holding the
+    ``writable`` folders (owned by the worker), with the grader's ``read_only``
+    folders and ``files`` bound at the same paths (read-only, resp. writable:
+    the output file the grader reads). ``/tmp`` is another tmpfs of ``size``
+    bytes; ``/dev/shm`` is a folder of the scratch.
+    """
+
+    scratch: Path
+    read_only: tuple[Path, ...] = ()
+    files: tuple[Path, ...] = ()
+    writable: tuple[str, ...] = ("home", "tmp", "work")
+    size: int = 256 * 2**20
 
 
 @dataclass(frozen=True)
@@ -52,61 +101,89 @@ class Confinement:
     level: str
     uid: int | None = None
     gid: int | None = None
-    reexpose: tuple[Path, ...] = ()   # interpreter folders under a folder the worker's user cannot enter
 
-    def wrap(self, argv: list[str], hide=(), writable=(), hold=None) -> list[str]:
+    def wrap(self, argv: list[str], view: View | None = None, hold=None) -> list[str]:
         """The command that starts ``argv`` confined.
 
-        In the namespaced levels the folders ``hide`` are covered by empty
-        read-only mounts, and every file system is remounted read-only except
-        the folders ``writable`` (the worker's scratch) and a private ``/dev/shm``.
-        For ``namespaces+user``, ``hold`` is an empty folder of the grader's used
-        to re-expose :attr:`reexpose` (e.g. ``/root/.pyenv`` under ``/root``).
+        In the namespaced levels the worker's file system is built in ``hold``
+        (an empty folder of the grader's) from the allowlist described in this
+        module's documentation plus ``view``, then made the root, by
+        ``namespace_init.py``, which stays as PID 1 and waits for the worker.
         """
         if self.level == "process-group":
             return list(argv)
-        unshare = ["unshare", "--pid", "--fork", "--kill-child", "--mount-proc", "--net", "--mount"]
+        if hold is None:
+            raise ValueError("the namespaced levels need a folder to build the worker's root in")
+        unshare = ["unshare", "--pid", "--fork", "--kill-child", "--net", "--mount", "--ipc", "--uts"]
         if os.geteuid() != 0:
             unshare[1:1] = ["--user", "--map-root-user"]
-        keep = [shlex.quote(str(p)) for p in writable]
-        steps = self._reexpose_steps(hold) if self.level == "namespaces+user" else []
-        steps += [f"mount --bind {p} {p}" for p in keep]
-        steps += [f"mount -t tmpfs -o ro,size=4k,mode=000 none {shlex.quote(str(p))}"
-                  for p in hide if Path(p).is_dir()]
-        skip = "|".join(["/proc|/proc/*|/sys|/sys/*|/dev|/dev/*", *keep])
-        steps.append("while read -r _ mnt _; do case \"$mnt\" in " + skip + ") ;; "
-                     "*) mount -o remount,bind,ro \"$mnt\" 2>/dev/null || true ;; esac; "
-                     "done < /proc/self/mounts")
-        steps.append("{ mount -t tmpfs -o size=64m,mode=1777 none /dev/shm 2>/dev/null || true; }")
-        steps.append('cd -- "$PWD"')  # re-enter the working folder through the writable mount
-        drop = ["setpriv", "--no-new-privs", "--bounding-set=-all", "--inh-caps=-all"]
+        drop = [shutil.which("setpriv") or "setpriv", "--no-new-privs", "--bounding-set=-all",
+                "--inh-caps=-all"]
         if self.level == "namespaces+user":
             drop[1:1] = [f"--reuid={self.uid}", f"--regid={self.gid}", "--clear-groups"]
-        script = " && ".join(steps + [f'exec {" ".join(drop)} -- "$@"'])
-        return unshare + ["--", "/bin/sh", "-c", script, "sh", *argv]
+        spec = json.dumps(self._root_ops(str(Path(hold) / "root"), view))
+        init = str(Path(__file__).with_name("namespace_init.py"))
+        return unshare + ["--", sys.executable, "-I", "-S", init, spec, "--", *drop, "--", *argv]
 
-    def _reexpose_steps(self, hold) -> list[str]:
-        """Shell steps making :attr:`reexpose` reachable for the worker's user.
+    def _root_ops(self, root: str, view: View | None) -> list:
+        """The operations building the worker's root in ``root``, ending with the switch to it."""
+        at = lambda p: f"{root}{p}"  # noqa: E731  (``p`` inside the new root)
+        size = view.size if view is not None else 16 * 2**20
+        # /tmp first: an interpreter or scratch folder under /tmp is bound on top of it.
+        ops: list = [("tmpfs", root, "mode=755,size=8m"), ("tmpfs", at("/tmp"), f"mode=1777,size={size}")]
 
-        Each folder is held at ``hold/i``, its closed parent (``/root``) covered
-        by an empty, traversable tmpfs, and the folder bound back in place: the
-        worker reaches the interpreter and nothing else of that parent.
-        """
-        if not self.reexpose or hold is None:
-            return []
-        steps, covered = [], set()
-        for i, folder in enumerate(self.reexpose):
-            held = shlex.quote(str(Path(hold) / str(i)))
-            steps += [f"mkdir -p {held}", f"mount --bind {shlex.quote(str(folder))} {held}"]
-        for folder in self.reexpose:
-            parent = shlex.quote(str(folder.parent))
-            if parent not in covered:
-                covered.add(parent)
-                steps.append(f"mount -t tmpfs -o mode=755,size=64k none {parent}")
-        for i, folder in enumerate(self.reexpose):
-            target = shlex.quote(str(folder))
-            steps += [f"mkdir -p {target}", f"mount --bind {shlex.quote(str(Path(hold) / str(i)))} {target}"]
-        return steps
+        def bind(source, read_only=True):
+            ops.append(("bind", str(source), at(source), read_only))
+
+        for top in SYSTEM_FOLDERS:
+            if os.path.islink(top):
+                ops.append(("symlink", os.readlink(top), at(top)))
+            elif os.path.isdir(top):
+                bind(top)
+        for entry in ETC_ENTRIES:
+            if os.path.exists(entry):
+                bind(entry)
+        interpreter, sites = interpreter_layout()
+        for kind, *args in interpreter:
+            if kind == "symlink":
+                ops.append(("symlink", args[0], at(args[1])))
+            else:
+                bind(args[0])
+        for site, entries in sites:
+            ops.append(("tmpfs", at(site), "mode=755,size=1m"))
+            for entry in entries:
+                path = os.path.join(site, entry)
+                if os.path.islink(path):
+                    ops.append(("symlink", os.readlink(path), at(path)))
+                else:
+                    bind(path)
+            ops.append(("remount_ro", at(site)))
+        ops.append(("tmpfs", at("/dev"), "mode=755,size=64k"))
+        for device in DEVICES:
+            bind(f"/dev/{device}", read_only=False)
+        for name, target in (("fd", "/proc/self/fd"), ("stdin", "/proc/self/fd/0"),
+                             ("stdout", "/proc/self/fd/1"), ("stderr", "/proc/self/fd/2")):
+            ops.append(("symlink", target, at("/dev/" + name)))
+        ops.append(("proc", at("/proc")))
+        if view is not None:
+            ops += self._scratch_ops(view, at)
+        ops += [("remount_ro", at("/dev")), ("pivot", root, at("/.old")), ("rmdir", "/.old"),
+                ("remount_ro", "/")]
+        return ops
+
+    def _scratch_ops(self, view: View, at) -> list:
+        owner = f",uid={self.uid},gid={self.gid}" if self.uid is not None else ""
+        scratch = str(view.scratch)
+        ops: list = [("tmpfs", at(scratch), f"mode=755,size={view.size}{owner}")]
+        for name in (*view.writable, "shm"):
+            ops.append(("mkdir", at(f"{scratch}/{name}")))
+            if self.uid is not None:
+                ops.append(("chown", at(f"{scratch}/{name}"), self.uid, self.gid))
+        ops.append(("chmod", at(f"{scratch}/shm"), 0o1777))
+        ops += [("bind", str(folder), at(folder), True) for folder in view.read_only]
+        ops += [("bind", str(file), at(file), False) for file in view.files]
+        ops.append(("bind", at(f"{scratch}/shm"), at("/dev/shm"), False))
+        return ops
 
     @property
     def isolates_network(self) -> bool:
@@ -115,6 +192,16 @@ class Confinement:
     @property
     def hides_files(self) -> bool:
         return self.level != "process-group"
+
+    def exit_signal(self, code: int | None) -> int | None:
+        """The worker's exit status as :attr:`subprocess.Popen.returncode` would be unconfined.
+
+        In the namespaced levels PID 1 is a shell, which reports a worker killed by
+        signal ``n`` as exit status ``128 + n``.
+        """
+        if code is not None and self.level != "process-group" and 128 < code < 128 + 65:
+            return -(code - 128)
+        return code
 
     def prepare_scratch(self, scratch: Path, private=("worker",)) -> None:
         """Give the worker's user its scratch folder (all but ``private`` entries)."""
@@ -125,6 +212,95 @@ class Confinement:
             if entry.name not in private:
                 for path in [entry, *entry.rglob("*")]:
                     os.chown(path, self.uid, self.gid, follow_symlinks=False)
+
+
+# ------------------------------------------------------------------ the allowlist
+@lru_cache(maxsize=1)
+def interpreter_layout() -> tuple[tuple, tuple[tuple[str, tuple[str, ...]], ...]]:
+    """What the worker's interpreter needs, asked of the interpreter itself (started ``-I``).
+
+    Returns the operations exposing the interpreter outside the system folders
+    -- its installation (``base_prefix``: standard library, shared library)
+    bound whole; of a virtual environment only ``pyvenv.cfg`` and the
+    ``bin/python*`` entries, never its scripts -- and for each site-packages
+    folder the entries of :data:`ALLOWED_LIBRARIES` and their requirements in it.
+    """
+    probe = ("import json, sys; print(json.dumps([sys.prefix, sys.base_prefix, sys.exec_prefix, "
+             "sys.base_exec_prefix, sys.executable, sys.path]))")
+    out = subprocess.run([sys.executable, "-I", "-c", probe], capture_output=True, text=True,
+                         timeout=60, check=True).stdout
+    prefix, base_prefix, exec_prefix, base_exec_prefix, executable, path = json.loads(out)
+    sites = [p for p in path if Path(p).name in ("site-packages", "dist-packages") and Path(p).is_dir()]
+    covered = lambda p: any(p == s or p.startswith(s + "/") for s in SYSTEM_FOLDERS)  # noqa: E731
+    folders: list[str] = []
+    wanted = [base_prefix, base_exec_prefix, str(Path(executable).resolve().parent)]
+    wanted += [p for p in path if p not in sites and os.path.exists(p) and not p.startswith(prefix + "/")
+               and not _holds_grader(p)]
+    for folder in sorted({os.path.realpath(p) for p in wanted}, key=len):
+        if not covered(folder) and not any(folder == f or folder.startswith(f + "/") for f in folders):
+            folders.append(folder)
+    ops: list = [("bind", folder) for folder in folders]
+    for venv in dict.fromkeys([prefix, exec_prefix]):
+        if venv in (base_prefix, base_exec_prefix) or covered(venv):
+            continue
+        if os.path.exists(f"{venv}/pyvenv.cfg"):
+            ops.append(("bind", f"{venv}/pyvenv.cfg"))
+        for entry in sorted(Path(venv, "bin").glob("python*")):
+            ops.append(("symlink", os.readlink(entry), str(entry)) if entry.is_symlink() else ("bind", str(entry)))
+    allowed = tuple((site, tuple(sorted(allowed_entries(Path(site))))) for site in sites)
+    return tuple(ops), allowed
+
+
+def _holds_grader(folder: str) -> bool:
+    """Whether ``folder`` is, or holds, the grader's own sources (an editable install's path)."""
+    package = Path(__file__).resolve().parent
+    folder_path = Path(folder).resolve()
+    return (folder_path / "autograder").is_dir() or package.is_relative_to(folder_path)
+
+
+def _plain_path_file(path: Path) -> bool:
+    """A ``.pth`` file that only adds folders (no ``import`` line: nothing runs)."""
+    try:
+        lines = path.read_text(errors="replace").splitlines()
+    except OSError:
+        return False
+    return all(not line.startswith(("import ", "import\t")) for line in lines)
+
+
+def allowed_entries(site: Path) -> set[str]:
+    """Top-level entries of ``site`` belonging to :data:`ALLOWED_LIBRARIES` or their requirements."""
+    by_name = {}
+    for dist in importlib.metadata.distributions(path=[str(site)]):
+        name = (dist.metadata["Name"] or "").lower().replace("_", "-")
+        by_name.setdefault(name, dist)
+    wanted, todo = set(), [n.lower() for n in ALLOWED_LIBRARIES]
+    while todo:
+        name = todo.pop()
+        if name in wanted or name not in by_name:
+            continue
+        wanted.add(name)
+        for requirement in by_name[name].requires or ():
+            if "extra ==" in requirement:
+                continue
+            match = re.match(r"\s*([A-Za-z0-9][A-Za-z0-9._-]*)", requirement)
+            if match:
+                todo.append(match.group(1).lower().replace("_", "-"))
+    entries = set()
+    for name in wanted:
+        dist = by_name[name]
+        files = dist.files
+        if files is None:
+            top = dist.read_text("top_level.txt") or ""
+            entries |= {line.strip() for line in top.splitlines() if line.strip()}
+        else:
+            entries |= {f.parts[0] for f in files if f.parts and f.parts[0] not in ("..", "__pycache__")}
+    entries = {e for e in entries if "/" not in e and e not in (".", "")}
+    found = {p.name for p in site.glob("*.pth") if _plain_path_file(p)}
+    for entry in entries:
+        for candidate in (entry, entry + ".py"):
+            if (site / candidate).exists() or (site / candidate).is_symlink():
+                found.add(candidate)
+    return found
 
 
 def detect() -> Confinement:
@@ -141,8 +317,12 @@ def detect() -> Confinement:
 def _detect() -> Confinement:
     for level in LEVELS[:-1]:
         candidate = _candidate(level)
-        if candidate is not None and _works(candidate):
-            return candidate
+        if candidate is not None:
+            if _works(candidate):
+                return candidate
+            # Never silently weaker: the instructor's log says which level failed.
+            logging.getLogger("autograder").warning(
+                "confinement level %s is available here but could not start Python; trying a weaker one", level)
     return Confinement("process-group")
 
 
@@ -155,13 +335,13 @@ def _candidate(level: str) -> Confinement | None:
         if os.geteuid() != 0:
             return None
         uid, gid = worker_user()
-        return Confinement(level, uid, gid, reexpose=tuple(closed_interpreter_folders()))
+        return Confinement(level, uid, gid)
     return Confinement(level)
 
 
 def _works(confinement: Confinement) -> bool:
     hold = tempfile.mkdtemp(prefix="autograder-probe-")
-    probe = confinement.wrap([sys.executable, "-c", "import numpy"], hold=hold)
+    probe = confinement.wrap([sys.executable, "-I", "-c", "import numpy"], hold=hold)
     try:
         return subprocess.run(probe, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                               stderr=subprocess.DEVNULL, timeout=30, cwd="/").returncode == 0
@@ -169,31 +349,6 @@ def _works(confinement: Confinement) -> bool:
         return False
     finally:
         shutil.rmtree(hold, ignore_errors=True)
-
-
-def closed_interpreter_folders() -> list[Path]:
-    """Folders holding the interpreter and its packages whose parent others cannot enter.
-
-    For Python installed under ``/root`` (pyenv: ``/root/.pyenv``), that is
-    ``/root/.pyenv``: the worker's user needs it, and nothing else of ``/root``.
-    """
-    needed = {Path(sys.executable).resolve().parent, Path(sys.prefix), Path(sys.base_prefix)}
-    needed |= {Path(p) for p in sys.path if p and Path(p).is_dir()}
-    found = []
-    for path in sorted(needed):
-        parts = path.resolve().parts
-        for depth in range(1, len(parts) - 1):
-            ancestor = Path(*parts[:depth])
-            try:
-                closed = not os.stat(ancestor).st_mode & 0o001
-            except OSError:
-                break
-            if closed:
-                child = Path(*parts[:depth + 1])
-                if child not in found:
-                    found.append(child)
-                break
-    return found
 
 
 def worker_user() -> tuple[int, int]:
@@ -209,6 +364,152 @@ def worker_user() -> tuple[int, int]:
                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     nobody = pwd.getpwnam("nobody")
     return nobody.pw_uid, nobody.pw_gid
+
+
+# ------------------------------------------------------------------ one budget for all processes
+class Cgroup:
+    """A cgroup bounding the memory and the number of processes of a worker and all its children.
+
+    cgroup v2 where the grader may create a child of its own cgroup with the
+    ``memory`` and ``pids`` controllers enabled, else the cgroup v1 ``memory``
+    and ``pids`` hierarchies; :meth:`create` returns None where neither is
+    writable (macOS, most unprivileged setups, containers with a read-only
+    ``/sys/fs/cgroup``): the per-process limits then stand alone. Memory counts
+    every process's pages and the worker's tmpfs; going over it kills the
+    process the kernel picks (reported as killed, out of memory).
+    """
+
+    def __init__(self, folders: list[Path]):
+        self.folders = folders
+
+    @classmethod
+    def create(cls, memory: int | None, processes: int | None) -> "Cgroup | None":
+        if sys.platform != "linux" or os.environ.get("AUTOGRADER_CGROUP") == "off":
+            return None
+        name = f"autograder-{os.getpid()}-{secrets.token_hex(4)}"
+        for attempt in (cls._v2, cls._v1):
+            try:
+                made = attempt(name, memory, processes)
+            except (OSError, ValueError):  # not writable, not delegated, or not what we expect
+                made = None
+            if made is not None:
+                return made
+        return None
+
+    @staticmethod
+    def _own(controller: str) -> str | None:
+        """This process's cgroup path in the hierarchy of ``controller`` ("" for v2)."""
+        with open("/proc/self/cgroup") as f:
+            for line in f:
+                _, controllers, path = line.rstrip("\n").split(":", 2)
+                if controllers.split(",") == [controller] or (controller == "" and controllers == ""):
+                    return path
+        return None
+
+    @classmethod
+    def _v2(cls, name, memory, processes):
+        path = cls._own("")
+        mounts = [Path("/sys/fs/cgroup"), Path("/sys/fs/cgroup/unified")]
+        for mount in mounts:
+            if path is None or not (mount / "cgroup.controllers").exists():
+                continue
+            parent = mount / path.lstrip("/")
+            if not {"memory", "pids"} <= set((parent / "cgroup.subtree_control").read_text().split()):
+                (parent / "cgroup.subtree_control").write_text("+memory +pids")
+            folder = parent / name
+            folder.mkdir()
+            try:
+                if memory:
+                    (folder / "memory.max").write_text(str(memory))
+                    (folder / "memory.swap.max").write_text("0") if (folder / "memory.swap.max").exists() else None
+                if processes:
+                    (folder / "pids.max").write_text(str(processes))
+            except OSError:
+                folder.rmdir()
+                raise
+            return cls([folder])
+        return None
+
+    @classmethod
+    def _v1(cls, name, memory, processes):
+        folders = []
+        try:
+            for controller, key, value in (("memory", "memory.limit_in_bytes", memory),
+                                           ("pids", "pids.max", processes)):
+                own = cls._own(controller)
+                root = Path("/sys/fs/cgroup") / controller
+                if own is None or not (root / "cgroup.procs").exists():
+                    raise OSError(f"no cgroup v1 {controller} hierarchy")
+                folder = root / own.lstrip("/") / name
+                folder.mkdir()
+                folders.append(folder)
+                if value:
+                    (folder / key).write_text(str(value))
+        except OSError:
+            for folder in folders:
+                folder.rmdir()
+            raise
+        return cls(folders)
+
+    def wrap(self, argv: list[str]) -> list[str]:
+        """``argv`` started inside the cgroup (it joins before it runs anything else)."""
+        joins = " && ".join(f"echo $$ > {shlex.quote(str(f / 'cgroup.procs'))}" for f in self.folders)
+        return ["/bin/sh", "-c", f'{joins} && exec "$@"', "sh", *argv]
+
+    def processes(self) -> set[int]:
+        """The processes in the cgroup now (host PIDs)."""
+        pids = set()
+        for folder in self.folders:
+            try:
+                pids |= {int(p) for p in (folder / "cgroup.procs").read_text().split()}
+            except (OSError, ValueError):
+                pass
+        return pids
+
+    def kill(self) -> None:
+        """SIGKILL every process in the cgroup, until none is left."""
+        for folder in self.folders:
+            if (folder / "cgroup.kill").exists():
+                try:
+                    (folder / "cgroup.kill").write_text("1")
+                except OSError:
+                    pass
+        for _ in range(100):
+            pids = self.processes()
+            if not pids:
+                return
+            for pid in pids:
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+            time.sleep(0.01)
+
+    def remove(self) -> None:
+        self.kill()
+        for folder in self.folders:
+            for _ in range(50):
+                try:
+                    folder.rmdir()
+                    break
+                except FileNotFoundError:
+                    break
+                except OSError:
+                    time.sleep(0.02)  # the last processes are still exiting
+
+    def oom_kills(self) -> int:
+        """How many processes of this cgroup the kernel killed for going over its memory."""
+        count = 0
+        for folder in self.folders:
+            for name in ("memory.events", "memory.oom_control"):
+                try:
+                    for line in (folder / name).read_text().splitlines():
+                        key, _, value = line.partition(" ")
+                        if key == "oom_kill":
+                            count += int(value)
+                except (OSError, ValueError):
+                    pass
+        return count
 
 
 # ------------------------------------------------------------------ reaping

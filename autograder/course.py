@@ -3,7 +3,14 @@
 Example ``course.json``::
 
     {"select": ["lab07", "lab08"], "public_visibility": "visible",
-     "hidden_visibility": "after_published", "call_timeout": 10}
+     "hidden_visibility": "after_published", "call_timeout": 10,
+     "exercise_budget": 60, "submission_budget": 480}
+
+``call_timeout`` bounds one call into the student's code, ``exercise_budget`` and
+``submission_budget`` the student time (calls, timeouts and worker restarts)
+of one exercise and of the whole submission; checks left when a budget is spent
+score 0 as "time budget exhausted". Keep ``submission_budget`` below the
+Gradescope assignment's own timeout, so results are always written.
 
 Every key is optional; unknown keys and bad values are refused with a message.
 
@@ -59,6 +66,8 @@ class CourseConfig:
     points: dict[str, float] = field(default_factory=dict)   # "lab07" / "lab07.ex2" -> points
     late_penalty: dict = field(default_factory=dict)    # due, grace_minutes, per_day, max (percent)
     similarity_threshold: float = 0.5                   # similarity report: pairs shown side by side
+    exercise_budget: float = 60.0                       # student seconds per exercise
+    submission_budget: float = 480.0                    # student seconds per submission
 
     def __post_init__(self):
         for name in ("public_visibility", "hidden_visibility", "stdout_visibility"):
@@ -66,8 +75,10 @@ class CourseConfig:
                 raise CourseConfigError(f"{name} must be one of {VISIBILITIES}, got {getattr(self, name)!r}")
         if not (isinstance(self.select, list) and all(isinstance(s, str) for s in self.select)):
             raise CourseConfigError("select must be a list of names like 'lab07' or 'lab07.ex2'")
-        if not (isinstance(self.call_timeout, (int, float)) and self.call_timeout > 0):
-            raise CourseConfigError("call_timeout must be a positive number of seconds")
+        for name in ("call_timeout", "exercise_budget", "submission_budget"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not (isinstance(value, (int, float)) and value > 0):
+                raise CourseConfigError(f"{name} must be a positive number of seconds")
         if not (isinstance(self.assignment, str) and self.assignment.strip()):
             raise CourseConfigError("assignment must be a non-empty name")
         if not (isinstance(self.points, dict) and all(
@@ -76,6 +87,13 @@ class CourseConfig:
         self._check_late_penalty()
         if not (isinstance(self.similarity_threshold, (int, float)) and 0 < self.similarity_threshold <= 1):
             raise CourseConfigError("similarity_threshold must be a number in (0, 1]")
+
+    def limits(self):
+        """The sandbox limits this course asks for."""
+        from .sandbox import Limits
+
+        return Limits(call_timeout=self.call_timeout, exercise_budget=self.exercise_budget,
+                      submission_budget=self.submission_budget)
 
     def _check_late_penalty(self):
         rule = self.late_penalty

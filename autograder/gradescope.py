@@ -19,7 +19,6 @@ from pathlib import Path
 
 from .course import CourseConfig
 from .results import GradingResult, write_atomically
-from .sandbox import Limits
 from .submission import SubmissionError
 
 log = logging.getLogger("autograder")
@@ -113,7 +112,7 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
     config = config or CourseConfig()
     started = time.monotonic()
     try:
-        result = grade(submission, config.select, limits=Limits(call_timeout=config.call_timeout),
+        result = grade(submission, config.select, limits=config.limits(),
                        pictures="none")  # results.json carries text only
         data = results_json(result, config)
     except SubmissionError as exc:  # nothing in the upload can be read as a submission
@@ -167,8 +166,6 @@ ROOT="${AUTOGRADER_ROOT:-/autograder}"
 PYTHON="${AUTOGRADER_PYTHON:-$ROOT/venv/bin/python}"
 RESULTS="$ROOT/results/results.json"
 mkdir -p "$ROOT/results"
-# The worker never sees the grader's sources or the results folder.
-export AUTOGRADER_HIDE="$ROOT/source:$ROOT/results"
 cd "$ROOT/source"
 status=0
 "$PYTHON" -m autograder gradescope run --submission "$ROOT/submission" \\

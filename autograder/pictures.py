@@ -1,4 +1,10 @@
-"""Pictures for feedback: PNG encoding, difference heat maps, point plots (SVG)."""
+"""Pictures for feedback: PNG encoding, difference heat maps, point plots (SVG).
+
+Arrays drawn here may come from a submission: every entry point first checks
+shape and dtype and thins the input to at most :data:`MAX_SIDE` pixels a side
+(:func:`bounded`, a strided view: no copy), so no picture costs more than a few
+megabytes whatever the submission returned.
+"""
 
 from __future__ import annotations
 
@@ -9,11 +15,34 @@ import cv2
 import numpy as np
 
 MIN_SIDE = 160  # small images are enlarged (nearest neighbour) so pixels stay visible
+MAX_SIDE = 1024  # longest side of any picture, in pixels (larger inputs are thinned)
+
+
+def _steps(shape, max_side: int = MAX_SIDE) -> tuple[int, int]:
+    return tuple(max(1, -(-int(side) // max_side)) for side in shape[:2])
+
+
+def bounded(image, steps=None) -> np.ndarray:
+    """``image`` as a drawable array: numeric (not complex), 2-D or 3-D with at most 4
+    channels, not empty, thinned by ``steps`` (default: to at most :data:`MAX_SIDE` a side).
+
+    Raises
+    ------
+    ValueError
+        For anything else; the picture is then left out, never the verdict.
+    """
+    image = np.asarray(image)
+    if image.dtype.kind not in "biuf":
+        raise ValueError(f"cannot draw an array of dtype {image.dtype}")
+    if image.ndim not in (2, 3) or image.size == 0 or (image.ndim == 3 and image.shape[2] > 4):
+        raise ValueError(f"cannot draw an array of shape {image.shape}")
+    rows, cols = steps or _steps(image.shape)
+    return image[::rows, ::cols]
 
 
 def as_displayable(image) -> np.ndarray:
     """Any numeric 2-D/3-D array as a uint8 image that a browser can show."""
-    image = np.asarray(image)
+    image = bounded(image)
     if image.ndim == 3 and image.shape[2] == 1:
         image = image[:, :, 0]
     if image.ndim not in (2, 3) or (image.ndim == 3 and image.shape[2] not in (3, 4)):
@@ -27,6 +56,7 @@ def as_displayable(image) -> np.ndarray:
             image = ((finite - lo) * (255.0 / (hi - lo if hi > lo else 1.0))).astype(np.uint8)
     if 0 < min(image.shape[:2]) < MIN_SIDE:
         factor = int(np.ceil(MIN_SIDE / min(image.shape[:2])))
+        factor = max(1, min(factor, MAX_SIDE // max(image.shape[:2])))  # a 1 x 20000 strip stays small
         image = cv2.resize(image, None, fx=factor, fy=factor, interpolation=cv2.INTER_NEAREST)
     return image
 
@@ -41,15 +71,20 @@ def png_base64(image) -> str:
 
 def difference_heatmap(expected, got, valid=None, full_scale: float = 64.0) -> np.ndarray:
     """Colour-coded |expected - got| (dark = equal, bright = differ); grey outside ``valid``."""
-    a = np.asarray(expected, dtype=np.float32)
-    b = np.asarray(got, dtype=np.float32)
+    steps = _steps(np.shape(expected))
+    a = bounded(expected, steps).astype(np.float32)
+    b = bounded(got, steps).astype(np.float32)
+    if a.shape != b.shape:
+        raise ValueError(f"cannot compare arrays of shapes {np.shape(expected)} and {np.shape(got)}")
+    if valid is not None:
+        valid = np.asarray(valid, dtype=bool)[::steps[0], ::steps[1]]
     diff = np.abs(a - b)
     if diff.ndim == 3:
         diff = diff.max(axis=2)
     scaled = np.clip(diff * (255.0 / full_scale), 0, 255).astype(np.uint8)
     heat = cv2.applyColorMap(scaled, cv2.COLORMAP_INFERNO)
     if valid is not None:
-        heat[~np.asarray(valid, dtype=bool)] = (96, 96, 96)
+        heat[~valid] = (96, 96, 96)
     return heat
 
 
@@ -117,7 +152,9 @@ def svg_points(series: dict[str, np.ndarray], width: int = 360, height: int = 30
 
 def disparity_picture(disparity, max_disparity=None) -> np.ndarray:
     """A disparity (or depth) map in false colour; invalid pixels (<= 0, NaN) black."""
-    d = np.asarray(disparity, dtype=np.float64)
+    d = bounded(disparity).astype(np.float64)
+    if d.ndim != 2:
+        raise ValueError(f"a disparity map is 2-D, not of shape {d.shape}")
     valid = np.isfinite(d) & (d > 0)
     top = float(max_disparity) if max_disparity else (float(d[valid].max()) if valid.any() else 1.0)
     scaled = np.clip(np.where(valid, d, 0.0) * (255.0 / max(top, 1e-9)), 0, 255).astype(np.uint8)
@@ -129,8 +166,11 @@ def disparity_picture(disparity, max_disparity=None) -> np.ndarray:
 def disparity_error_picture(truth, got, threshold: float = 1.0) -> np.ndarray:
     """Colour-coded disparity error: green within ``threshold``, yellow to red beyond
     (red = 4 x threshold or more), blue where ``got`` is invalid, grey where the truth is unknown."""
-    truth = np.asarray(truth, dtype=np.float64)
-    got = np.asarray(got, dtype=np.float64)
+    steps = _steps(np.shape(truth))
+    truth = bounded(truth, steps).astype(np.float64)
+    got = bounded(got, steps).astype(np.float64)
+    if truth.ndim != 2 or truth.shape != got.shape:
+        raise ValueError(f"cannot compare disparity maps of shapes {truth.shape} and {got.shape}")
     known = np.isfinite(truth) & (truth > 0)
     answered = np.isfinite(got) & (got > 0)
     error = np.abs(np.where(answered & known, got - truth, 0.0))
@@ -159,7 +199,9 @@ def matches_picture(img1, img2, pts1, pts2, good=None, max_lines: int = 300) -> 
         Which matches are right (e.g. agree with a true homography). All green
         when omitted.
     """
-    a, b = (np.clip(np.asarray(i, dtype=np.float64), 0, 255).astype(np.uint8) for i in (img1, img2))
+    step = max(_steps(np.shape(img1)) + _steps(np.shape(img2)))  # one scale for both, and the points
+    a, b = (np.clip(bounded(i, (step, step)).astype(np.float64), 0, 255).astype(np.uint8)
+            for i in (img1, img2))
     a = cv2.cvtColor(a, cv2.COLOR_GRAY2BGR) if a.ndim == 2 else a[:, :, :3]
     b = cv2.cvtColor(b, cv2.COLOR_GRAY2BGR) if b.ndim == 2 else b[:, :, :3]
     h1, w1 = a.shape[:2]
@@ -167,8 +209,8 @@ def matches_picture(img1, img2, pts1, pts2, good=None, max_lines: int = 300) -> 
     canvas[:h1, :w1] = a
     canvas[: b.shape[0], w1:] = b
     canvas = (canvas * 0.7).astype(np.uint8)  # dimmed, so the lines stand out
-    pts1 = np.asarray(pts1, dtype=np.float64).reshape(-1, 2)
-    pts2 = np.asarray(pts2, dtype=np.float64).reshape(-1, 2)
+    pts1 = np.asarray(pts1, dtype=np.float64).reshape(-1, 2) / step
+    pts2 = np.asarray(pts2, dtype=np.float64).reshape(-1, 2) / step
     n = min(len(pts1), len(pts2))
     good = np.ones(n, bool) if good is None else np.asarray(good, bool)[:n]
     order = np.concatenate([np.flatnonzero(good), np.flatnonzero(~good)])  # bad ones on top

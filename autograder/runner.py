@@ -4,6 +4,11 @@
 one sandboxed worker, runs every check in the grader's process and returns a
 :class:`~autograder.results.GradingResult`. It never raises because of the
 submission; a failure inside a check is recorded as a grader error for that check.
+
+Student time is budgeted per exercise and per submission (``Limits.exercise_budget``,
+``Limits.submission_budget``): once a budget is spent, the checks left are marked
+"time budget exhausted" (0 points) without calling anything, and the results are
+still complete.
 """
 
 from __future__ import annotations
@@ -66,34 +71,68 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
                                notes=_reading_notes(submission),
                                graded_at=datetime.now(timezone.utc).isoformat(timespec="seconds"))
         with Sandbox(submission.path, limits) as sandbox:
+            budget = _Budget(sandbox)
             for exercise in exercises:
                 checks = [c for c in exercise.checks if include_hidden or not c.hidden]
+                budget.start_exercise()
                 result.exercises.append(
-                    _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission))
+                    _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission, budget))
             result.student_seconds = round(sandbox.student_seconds, 6)
         _point_into_notebooks(result, exercises, submission)
     result.seconds = round(time.perf_counter() - started, 6)
     return result
 
 
-def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=None) -> ExerciseResult:
+class _Budget:
+    """The per-exercise and per-submission time budgets, as limits on the sandbox's billed time."""
+
+    def __init__(self, sandbox: Sandbox):
+        self.sandbox = sandbox
+        self.limits = sandbox.limits
+
+    def start_exercise(self):
+        spent = self.sandbox.student_seconds
+        self.sandbox.start_exercise(min(spent + self.limits.exercise_budget, self.limits.submission_budget))
+
+    def exhausted(self) -> str:
+        """Which budget is spent ("" while there is time left)."""
+        if self.sandbox.student_seconds >= self.limits.submission_budget:
+            return f"time budget exhausted (the submission's {self.limits.submission_budget:g} s)"
+        if self.sandbox.remaining() <= 0:
+            return f"time budget exhausted (this exercise's {self.limits.exercise_budget:g} s)"
+        return ""
+
+
+def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=None,
+                    budget=None) -> ExerciseResult:
     functions = list(exercise.signatures.values())
     out = ExerciseResult(exercise.id, exercise.title, functions)
     imported = _import(sandbox, exercise.lab.module, submission)
+    refusal = submission.refusal_for(exercise.lab.module) if submission is not None else ""
     if not imported.ok:
         # A missing or broken module: every check scores 0 with the same message.
-        out.message = imported.message
+        message = imported.message
+        if imported.kind == "missing_module" and refusal:
+            message = refusal
+        elif imported.kind == "budget" and budget is not None:
+            message = budget.exhausted() or message
+        out.message = message
         for check in checks:
             status = ERROR if imported.kind == "grader_error" else FAILED
             out.checks.append(CheckResult(check.name, 0.0, check.points, status,
-                                          imported.message, hidden=check.hidden, failure=imported.kind,
+                                          message, hidden=check.hidden, failure=imported.kind,
                                           traceback=imported.traceback, output=imported.output))
             if on_check:
                 on_check(exercise, out.checks[-1])
         return out
     modified: list[tuple[str, str]] = []  # (function, argument) changed in place
     for check in checks:
-        out.checks.append(run_check(sandbox, check, pictures, modified))
+        spent = budget.exhausted() if budget is not None else ""
+        if spent:
+            out.checks.append(CheckResult(check.name, 0.0, check.points, FAILED, spent,
+                                          hidden=check.hidden, failure="budget"))
+        else:
+            out.checks.append(run_check(sandbox, check, pictures, modified))
         if on_check:
             on_check(exercise, out.checks[-1])
     graded = [c for c in out.checks if c.max_score > 0]
@@ -197,12 +236,20 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
                                        "the rest was graded - please tell your instructor"), ERROR
         tb = ""
         _log_grader_error(check, exc)
+    artifacts = []
+    if pictures == "all" or (pictures == "failed" and status != PASSED):
+        try:
+            artifacts = trial.artifacts()
+        except Exception as exc:  # noqa: BLE001 - a picture never costs the check its verdict
+            _log_grader_error(check, exc)
+    fraction = verdict.fraction if isinstance(verdict.fraction, (int, float)) else 0.0
+    fraction = min(max(float(fraction), 0.0), 1.0) if fraction == fraction else 0.0
     _collect(modified, trial)
     return CheckResult(
-        name=check.name, score=round(verdict.fraction * check.points, 6), max_score=check.points,
-        status=status, message=verdict.message, hint=verdict.hint, hidden=check.hidden,
-        mistake=verdict.mistake, failure=student_failure, output="\n".join(trial.outputs)[:6000], traceback=tb,
-        artifacts=trial.artifacts() if pictures == "all" or (pictures == "failed" and status != PASSED) else [],
+        name=check.name, score=round(fraction * check.points, 6), max_score=check.points,
+        status=status, message=str(verdict.message), hint=str(verdict.hint), hidden=check.hidden,
+        mistake=verdict.mistake, failure=student_failure, output="\n".join(trial.outputs)[:6000],
+        traceback=tb, artifacts=artifacts,
         seconds=round(time.perf_counter() - started, 6),
         student_seconds=round(trial.student_seconds, 6))
 

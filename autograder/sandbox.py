@@ -6,11 +6,19 @@ happens -- a value, an exception, a hang, a crash, garbage on the pipe -- into a
 :class:`CallOutcome`. It never raises because of what the student's code did.
 A worker that hangs or dies is killed with its whole process group and started
 again for the next call.
+
+Nothing the worker sends is trusted: every reply must carry the id of the
+request it answers (a stray frame fails the call that produced it), call
+durations are measured here, and a worker that reports a suspect state after a
+call (threads or children alive, descriptors exhausted) is replaced before the
+next one. Time is billed against budgets per exercise and per submission
+(:meth:`Sandbox.start_exercise`); restarts are billed and capped per exercise.
 """
 
 from __future__ import annotations
 
 import json
+import logging
 import os
 import secrets
 import select
@@ -27,6 +35,7 @@ from pathlib import Path
 from typing import Any
 
 from . import confine, transport
+from .submission import copy_regular_files
 
 LENGTH = struct.Struct(">Q")
 _WORKER_FILES = ("worker.py", "transport.py")
@@ -34,8 +43,10 @@ _WORKER_FILES = ("worker.py", "transport.py")
 FAILURE_KINDS = {
     "timeout", "crashed", "exception", "not_implemented", "missing_function",
     "missing_module", "import_error", "memory", "recursion", "result_type",
-    "forbidden_call", "output_too_large", "protocol", "grader_error",
+    "forbidden_call", "output_too_large", "protocol", "grader_error", "budget",
 }
+# What a worker may say about its own call; the rest only the grader decides.
+WORKER_KINDS = FAILURE_KINDS - {"timeout", "crashed", "grader_error", "budget"}
 
 
 @dataclass(frozen=True)
@@ -44,7 +55,9 @@ class Limits:
 
     call_timeout: float = 10.0           # wall seconds per call, unless a check says otherwise
     import_timeout: float = 20.0         # wall seconds to import one student module
-    address_space: int = 6 * 2**30       # bytes of virtual memory
+    address_space: int = 6 * 2**30       # bytes of virtual memory, per process
+    memory: int = 6 * 2**30              # bytes for the worker and all its children (cgroup, where available)
+    scratch_bytes: int = 256 * 2**20     # writable scratch, and again /tmp (tmpfs, namespaced levels)
     file_size: int = 64 * 2**20          # bytes in any file written, printed output included
     cpu_total: int = 1800                # CPU seconds over the worker's life
     extra_processes: int = 64            # processes/threads beyond those the user already has
@@ -52,6 +65,9 @@ class Limits:
     max_output_chars: int = 4000         # captured stdout/stderr kept per call
     startup_timeout: float = 60.0        # for the worker to import NumPy/OpenCV (not billed)
     timeouts_per_function: int = 2       # after this many timeouts a function is not called again
+    exercise_budget: float = 60.0        # student seconds per exercise (calls, timeouts, restarts)
+    submission_budget: float = 480.0     # student seconds per submission (under a Gradescope timeout of 10 min)
+    max_restarts: int = 12               # worker restarts per exercise (each billed its start-up)
 
     def worker_json(self, processes: int | None) -> str:
         return json.dumps({
@@ -64,23 +80,6 @@ class Limits:
 
 # Workers alive in this process, so reaping escaped daemons never touches a worker.
 _LIVE_WORKERS: set[int] = set()
-
-
-def default_hidden_paths() -> list[Path]:
-    """Folders the worker must not read: the grader, its fixtures, the answers, the tests.
-
-    ``AUTOGRADER_HIDE`` adds more (``os.pathsep``-separated), e.g. a container's
-    results folder.
-    """
-    import fixtures
-
-    package = Path(__file__).resolve().parent
-    root = package.parent
-    paths = [package, Path(fixtures.__file__).resolve().parent,
-             root / "reference_solutions", root / "tests", root / ".git"]
-    extra = os.environ.get("AUTOGRADER_HIDE", "")
-    paths += [Path(p) for p in extra.split(os.pathsep) if p]
-    return [p for p in dict.fromkeys(paths) if p.is_dir()]
 
 
 class WorkerStartError(RuntimeError):
@@ -141,12 +140,17 @@ class Sandbox:
     """
 
     def __init__(self, submission_dir, limits: Limits | None = None,
-                 confinement: confine.Confinement | None = None, hide=None):
+                 confinement: confine.Confinement | None = None):
         self.limits = limits or Limits()
         self.confinement = confinement or confine.detect()
-        self.hide = default_hidden_paths() if hide is None else list(hide)
         if self.confinement.level == "process-group":
             confine.become_subreaper()
+        # One memory and task budget for the worker and everything it starts (its own
+        # wrappers, and a thread per core for OpenCV's pool, come on top of the student's share).
+        self.cgroup = confine.Cgroup.create(self.limits.memory,
+                                            self.limits.extra_processes + 16 + (os.cpu_count() or 1))
+        self._oom_kills = 0
+        self._own_processes = 0
         # A private base (listable by the grader only) around a randomly named
         # scratch folder, so workers of other submissions cannot find this one.
         self._base = Path(tempfile.mkdtemp(prefix="autograder-"))
@@ -162,6 +166,11 @@ class Sandbox:
         self._imported: set[str] = set()
         self._import_failures: dict[str, CallOutcome] = {}
         self.student_seconds = 0.0
+        self.restarts = 0       # in the current exercise
+        self._started = False   # the first start is not a restart
+        self._restart_refused = False
+        self._budget: float | None = None
+        self._request_id = secrets.randbits(48)
         self.shared: dict = {}  # values checks share within one grading (see Trial.shared)
         self._timeouts: dict[tuple[str, str], int] = {}
 
@@ -174,14 +183,17 @@ class Sandbox:
         self.scratch.mkdir(parents=True, exist_ok=True)
         for name in ("submission", "worker", *self.WRITABLE):
             shutil.rmtree(self.scratch / name, ignore_errors=True)
-        shutil.copytree(self._source, self.submission_dir,
-                        ignore=shutil.ignore_patterns("__pycache__", "*.pyc", ".*"))
+        self.submission_dir.mkdir()
+        refused = copy_regular_files(self._source, self.submission_dir, suffixes=(".py",))
+        if refused:
+            logging.getLogger("autograder").warning("not copied into the sandbox: %s", refused)
         (self.scratch / "worker").mkdir()
         here = Path(__file__).parent
         for name in _WORKER_FILES:
             shutil.copy(here / name, self.scratch / "worker" / name)
         for name in self.WRITABLE:
             (self.scratch / name).mkdir()
+        self.output_path.touch()  # bound into the worker's view: it must exist
         self.confinement.prepare_scratch(self.scratch, private=("worker",))
 
     # ------------------------------------------------------------ lifecycle
@@ -194,6 +206,8 @@ class Sandbox:
     def close(self):
         """Stop the worker and everything it started, then delete the scratch directory."""
         self._stop_worker(restarting=False)
+        if self.cgroup is not None:
+            self.cgroup.remove()
         shutil.rmtree(self._base, ignore_errors=True)
 
     def _start_worker(self):
@@ -206,12 +220,15 @@ class Sandbox:
         uid = self.confinement.uid if self.confinement.uid is not None else os.getuid()
         tasks = confine.count_tasks(uid)  # None where they cannot be counted (macOS): no limit
         processes = None if tasks is None else tasks + self.limits.extra_processes
+        view = confine.View(scratch=self.scratch, read_only=(self.submission_dir, self.scratch / "worker"),
+                            files=(self.output_path,), size=self.limits.scratch_bytes)
         command = self.confinement.wrap(
-            [sys.executable, "-B", str(self.scratch / "worker" / "worker.py"),
+            [sys.executable, "-I", "-B", str(self.scratch / "worker" / "worker.py"),
              str(request_r), str(response_w), str(self.submission_dir),
              str(self.output_path), self.limits.worker_json(processes)],
-            hide=self.hide, writable=[self.scratch / name for name in self.WRITABLE],
-            hold=self._base / "hold")
+            view=view, hold=self._base / "hold")
+        if self.cgroup is not None:
+            command = self.cgroup.wrap(command)
         try:
             self.proc = subprocess.Popen(
                 command, pass_fds=(request_r, response_w), stdin=subprocess.DEVNULL,
@@ -235,12 +252,18 @@ class Sandbox:
             length, = LENGTH.unpack(self._read(LENGTH.size, time.monotonic() + self.limits.startup_timeout))
             ready = transport.decode(self._read(length, time.monotonic() + 5))
         except (TimeoutError, EOFError, transport.TransportError) as exc:
+            # The log goes to the instructor's log, never into a message: it is no grader's word.
             log = (self._base / "worker.log").read_text(errors="replace")[-2000:]
+            logging.getLogger("autograder").error("the grading worker did not start:\n%s", log)
             self._stop_worker()
-            raise WorkerStartError(f"the grading worker did not start ({type(exc).__name__}): {log}") from None
+            raise WorkerStartError(f"the grading worker did not start ({type(exc).__name__}); "
+                                   "see the autograder's log") from None
         if ready != {"ok": True, "value": "ready", "seconds": 0.0}:
             self._stop_worker()
             raise WorkerStartError("the grading worker sent an unexpected greeting")
+        # What the sandbox's own processes are (wrappers, PID 1, the worker): more after a call
+        # means the submission left one running, whatever the worker says.
+        self._own_processes = len(self.cgroup.processes()) if self.cgroup is not None else 0
 
     def _stop_worker(self, restarting: bool = True):
         if self.proc is None:
@@ -255,6 +278,8 @@ class Sandbox:
         except subprocess.TimeoutExpired:
             pass
         self._kill_process_group()
+        if self.cgroup is not None:
+            self.cgroup.kill()  # whatever left the process group (setsid) is still in the cgroup
         _LIVE_WORKERS.discard(self.proc.pid)
         if self.confinement.level == "process-group":
             confine.kill_adopted_orphans(keep=_LIVE_WORKERS)
@@ -273,6 +298,20 @@ class Sandbox:
         except subprocess.TimeoutExpired:
             pass
 
+    # ------------------------------------------------------------ budgets
+    def start_exercise(self, until: float | None) -> None:
+        """A new exercise: stop calling once :attr:`student_seconds` reaches ``until``
+        (None: no budget), and count its worker restarts afresh."""
+        self._budget = until
+        self.restarts = 0
+
+    def remaining(self) -> float:
+        return float("inf") if self._budget is None else self._budget - self.student_seconds
+
+    def _over_budget(self, what: str) -> CallOutcome:
+        return CallOutcome(ok=False, kind="budget",
+                           message=f"{what} was not run: time budget exhausted")
+
     # ------------------------------------------------------------ public API
     def import_module(self, module: str, timeout: float | None = None) -> CallOutcome:
         """Import a student module in the worker (once); failures are remembered."""
@@ -280,13 +319,24 @@ class Sandbox:
             return self._import_failures[module]
         if module in self._imported and self.proc is not None:
             return CallOutcome(ok=True)
-        outcome = self._request({"op": "import", "module": module},
-                                timeout or self.limits.import_timeout,
-                                what=f"importing {module}.py")
+        what = f"importing {module}.py"
+        timeout = timeout or self.limits.import_timeout
+        if self.remaining() <= 0:
+            return self._over_budget(what)
+        outcome = self._billed({"op": "import", "module": module}, timeout, what)
         if outcome.ok:
             self._imported.add(module)
-        else:
-            self._import_failures[module] = outcome
+        elif outcome.kind not in ("budget", "grader_error") and not self._restart_refused:
+            self._import_failures[module] = outcome  # the module's own failure, not the sandbox's
+        return outcome
+
+    def _billed(self, request: dict, timeout: float, what: str) -> CallOutcome:
+        """:meth:`_request` within the budget; its time (a timeout's in full) is billed."""
+        clipped = timeout > self.remaining()
+        outcome = self._request(request, min(timeout, self.remaining()), what)
+        self.student_seconds += outcome.seconds
+        if clipped and outcome.kind == "timeout":
+            outcome.kind, outcome.message = "budget", f"{what} was stopped: time budget exhausted"
         return outcome
 
     def call(self, module: str, function: str, args=(), kwargs=None, *,
@@ -305,28 +355,50 @@ class Sandbox:
                                message=f"{function}() timed out {self.limits.timeouts_per_function} "
                                        "times already; not called again")
         timeout = timeout or self.limits.call_timeout
+        if self.remaining() <= 0:
+            return self._over_budget(f"{function}()")
         request = {"op": "call", "module": module, "function": function,
                    "args": list(args), "kwargs": dict(kwargs or {}),
                    "forbid": list(forbid), "cpu_seconds": timeout + 1.0}
-        outcome = self._request(request, timeout, what=f"{function}()")
+        outcome = self._billed(request, timeout, what=f"{function}()")
         if outcome.kind == "timeout":
             self._timeouts[(module, function)] = self._timeouts.get((module, function), 0) + 1
-            self.student_seconds += timeout
-        else:
-            self.student_seconds += outcome.seconds
         return outcome
 
     # ------------------------------------------------------------ plumbing
+    def _restart(self) -> CallOutcome | None:
+        """Start the worker; a restart is billed its start-up time and capped."""
+        restart = self._started
+        self._restart_refused = restart and self.restarts >= self.limits.max_restarts
+        if self._restart_refused:
+            return CallOutcome(ok=False, kind="crashed",
+                               message=f"the worker was restarted {self.limits.max_restarts} times in this "
+                                       "exercise after crashes, hangs or suspect states; not started again")
+        started = time.perf_counter()
+        try:
+            self._start_worker()
+        except WorkerStartError as exc:
+            return CallOutcome(ok=False, kind="grader_error", message=str(exc))
+        self._started = True
+        if restart:
+            self.restarts += 1
+            self.student_seconds += time.perf_counter() - started
+        return None
+
     def _request(self, request: dict, timeout: float, what: str) -> CallOutcome:
         if self.proc is None:
-            try:
-                self._start_worker()
-            except WorkerStartError as exc:
-                return CallOutcome(ok=False, kind="grader_error", message=str(exc))
+            failed = self._restart()
+            if failed is not None:
+                return failed
             if request["op"] == "call":
                 imported = self.import_module(request["module"])
                 if not imported.ok:
                     return imported
+                timeout = min(timeout, self.remaining())
+                if timeout <= 0:
+                    return self._over_budget(what)
+        self._request_id += 1
+        request = {**request, "id": self._request_id}
         frame = transport.encode(request)
         start = time.perf_counter()
         deadline = time.monotonic() + timeout
@@ -335,9 +407,18 @@ class Sandbox:
             length, = LENGTH.unpack(self._read(LENGTH.size, deadline))
             if length > self.limits.max_result_bytes:
                 return self._abandon(CallOutcome(
-                    ok=False, kind="result_type",
+                    ok=False, kind="result_type", seconds=time.perf_counter() - start,
                     message=f"{what} returned more than {self.limits.max_result_bytes // 2**20} MiB"))
-            reply = transport.decode(self._read(length, deadline), max_bytes=self.limits.max_result_bytes)
+            head = self._read(min(length, transport.PREFIX.size), deadline)
+            if len(head) == transport.PREFIX.size:  # refuse an oversized header before reading it
+                _, header_length = transport.PREFIX.unpack(head)
+                if header_length > transport.MAX_HEADER_BYTES:
+                    raise transport.TransportError(f"frame header larger than {transport.MAX_HEADER_BYTES} bytes")
+            frame = head + self._read(length - len(head), deadline)
+            reply = transport.decode(frame, max_bytes=self.limits.max_result_bytes)
+            seconds = time.perf_counter() - start  # measured here: the worker's word is not taken
+            if self._pending_reply():
+                raise transport.TransportError("more than one reply to one call")
         except TimeoutError:
             return self._abandon(CallOutcome(
                 ok=False, kind="timeout", seconds=time.perf_counter() - start,
@@ -348,22 +429,35 @@ class Sandbox:
             return self._abandon(CallOutcome(
                 ok=False, kind="protocol", seconds=time.perf_counter() - start,
                 message=f"{what}: the worker sent back something that is not a valid result ({exc})"))
-        outcome = self._outcome_from_reply(reply, what)
-        outcome.output = self._read_output()
+        outcome = self._outcome_from_reply(reply, what, request["id"], seconds)
+        if self.proc is not None:
+            outcome.output = self._read_output()
+            if type(reply.get("suspect")) is str or self._processes_left():
+                self._stop_worker()  # the next call gets a clean worker
         return outcome
 
-    def _outcome_from_reply(self, reply, what) -> CallOutcome:
+    def _processes_left(self) -> bool:
+        return self.cgroup is not None and len(self.cgroup.processes()) > self._own_processes
+
+    def _pending_reply(self) -> bool:
+        readable, _, _ = select.select([self._response_fd], [], [], 0)
+        return bool(readable)
+
+    def _outcome_from_reply(self, reply, what, request_id, seconds) -> CallOutcome:
         if type(reply) is not dict or type(reply.get("ok")) is not bool:
-            return self._abandon(CallOutcome(ok=False, kind="protocol",
+            return self._abandon(CallOutcome(ok=False, kind="protocol", seconds=seconds,
                                              message=f"{what}: malformed reply from the worker"))
-        seconds = reply.get("seconds")
-        seconds = float(seconds) if type(seconds) in (int, float) and seconds >= 0 else 0.0
+        if reply.get("id") != request_id:
+            return self._abandon(CallOutcome(
+                ok=False, kind="protocol", seconds=seconds,
+                message=f"{what}: the worker's reply does not answer this call (a stray reply "
+                        "written by a thread or process the submission left behind?)"))
         modified = reply.get("modified")
         modified = tuple(name[:100] for name in modified[:20] if type(name) is str) \
             if type(modified) is list else ()
         if reply["ok"]:
             return CallOutcome(ok=True, value=reply.get("value"), seconds=seconds, modified=modified)
-        kind = reply.get("kind") if reply.get("kind") in FAILURE_KINDS else "exception"
+        kind = reply.get("kind") if reply.get("kind") in WORKER_KINDS else "exception"
         message = reply.get("message") if type(reply.get("message")) is str else ""
         tb = reply.get("traceback") if type(reply.get("traceback")) is str else ""
         if kind == "result_type" and message.startswith("returned"):
@@ -379,9 +473,15 @@ class Sandbox:
 
     def _crash_outcome(self, what, seconds) -> CallOutcome:
         try:
-            code = self.proc.wait(timeout=2)
+            code = self.confinement.exit_signal(self.proc.wait(timeout=2))
         except subprocess.TimeoutExpired:
             code = None
+        oom_kills = self.cgroup.oom_kills() if self.cgroup is not None else 0
+        if oom_kills > self._oom_kills:
+            self._oom_kills = oom_kills
+            return CallOutcome(ok=False, kind="memory", seconds=seconds,
+                               message=f"{what} ran out of memory (the submission's processes together "
+                                       f"may use {self.limits.memory / 2**30:g} GiB)")
         if code is not None and code < 0:
             signame = signal.Signals(-code).name if -code in signal.valid_signals() else str(-code)
             reasons = {

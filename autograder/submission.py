@@ -7,6 +7,12 @@ definitions become the module, see :mod:`autograder.notebooks`). The result is a
 plain folder of ``.py`` modules that the sandbox copies, plus a content hash
 identifying the submission.
 
+Reading is deny-by-default (the grader may run as root): only regular files
+from inside the submission are copied, never what a symbolic link points to,
+and every cap (:class:`Caps`) is checked before a byte is read or inflated.
+A file that breaks a rule is refused with a message naming it
+(:attr:`Submission.refused`).
+
 Nothing the student handed in stops the others from being graded: a file
 plainly meant as a module (``Lab07_Transformations.py``, ``lab07_transformations (1).py``,
 or one inside a ``.zip`` within the folder) is taken, and noted; a module that is
@@ -21,18 +27,36 @@ import hashlib
 import os
 import re
 import shutil
+import stat
+import struct
 import tempfile
 import zipfile
+import zlib
 from dataclasses import dataclass, field
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 
 from .notebooks import ConvertedNotebook, NotebookError, convert
-
-MAX_ARCHIVE_BYTES = 50 * 2**20
 
 
 class SubmissionError(ValueError):
     """The submission path does not exist or cannot be read as a submission."""
+
+
+@dataclass(frozen=True)
+class Caps:
+    """What loading a submission reads at most; each checked before reading or inflating."""
+
+    file_bytes: int = 2 * 2**20         # one .py file
+    notebook_bytes: int = 8 * 2**20     # one .ipynb (parsing JSON costs ~25x its size at worst)
+    entries: int = 2000                 # folder entries or archive members looked at
+    total_bytes: int = 50 * 2**20       # everything copied or inflated together
+    depth: int = 4                      # folders below the submission's top
+
+
+CAPS = Caps()
+MAX_ARCHIVE_BYTES = CAPS.total_bytes
+SOURCE_SUFFIXES = (".py", ".ipynb")
+_SKIPPED_FOLDERS = ("__MACOSX", "__pycache__")
 
 
 @dataclass
@@ -48,19 +72,30 @@ class Submission:
         What to call it in reports (the folder or file name).
     content_hash : str
         SHA-256 over the module files' names and bytes.
+    refused : dict
+        Files that were not read, by path inside the submission, with the reason.
+    problems, notebooks, renamed : dict
+        Per module: why it cannot be graded (not found, unreadable notebook...),
+        the notebook it came from, and the file accepted under another name.
     """
 
     path: Path
     name: str
     content_hash: str
-    # Per module: why it cannot be graded (not found, unreadable notebook...), the
-    # notebooks it came from, and the files accepted under another name.
+    refused: dict[str, str] = field(default_factory=dict)
     problems: dict[str, str] = field(default_factory=dict)
     notebooks: dict[str, tuple[str, ConvertedNotebook]] = field(default_factory=dict)
     renamed: dict[str, str] = field(default_factory=dict)
 
     def cleanup(self):
         shutil.rmtree(self.path, ignore_errors=True)
+
+    def refusal_for(self, module: str) -> str:
+        """Why ``module`` (``.py`` or ``.ipynb``) was refused, or ``""``."""
+        for name, reason in self.refused.items():
+            if PurePosixPath(name).stem == module:
+                return f"{name} was not read: {reason}"
+        return ""
 
     def __enter__(self):
         return self
@@ -69,7 +104,7 @@ class Submission:
         self.cleanup()
 
 
-def load_submission(path, modules: list[str]) -> Submission:
+def load_submission(path, modules: list[str], caps: Caps = CAPS) -> Submission:
     """Materialise the submission at ``path`` as a folder holding ``modules``.
 
     Parameters
@@ -78,36 +113,39 @@ def load_submission(path, modules: list[str]) -> Submission:
         Folder, ``.py`` file, ``.zip`` archive or ``.ipynb`` notebook.
     modules : list of str
         Module names the grader looks for (``lab07_transformations`` ...).
+    caps : Caps
+        Limits on what is read.
     """
     source = Path(path)
     if not source.exists():
         raise SubmissionError(f"submission not found: {source}")
     out = Path(tempfile.mkdtemp(prefix="submission-"))
+    refused: dict[str, str] = {}
     try:
+        root = out / "_read"
+        root.mkdir()
         if source.is_dir():
-            root = source
+            copy_regular_files(source, root, refused, caps, SOURCE_SUFFIXES + (".zip",))
         elif source.suffix == ".zip":
-            root = out / "_unzipped"
-            _safe_unzip(source, root)
-        elif source.suffix in (".py", ".ipynb"):
-            root = out / "_single"
-            root.mkdir()
-            shutil.copy(source, root / source.name)
+            unzip_regular_files(source, root, refused, caps)
+        elif source.suffix in SOURCE_SUFFIXES:
+            _copy_one(source, root / _display_name(source.name), source.name, refused, caps, [0])
         else:
-            raise SubmissionError(f"cannot grade {source.name}: expected a folder, .py, .zip or .ipynb")
-        submission = Submission(out, source.name, "")
+            raise SubmissionError(f"cannot grade {_display_name(source.name)}: "
+                                  "expected a folder, .py, .zip or .ipynb")
+        submission = Submission(out, _display_name(source.name), "", refused)
         for module in modules:
-            found = _find_module(root, module) or _find_misnamed(root, module, out, submission)
-            if found is not None:
-                _materialise_module(found, module, out, submission)
-                # Helper modules the student keeps beside the lab module come along.
-                for helper in found.parent.glob("*.py"):
-                    if not (out / helper.name).exists() and helper.stem not in modules \
-                            and helper != found:
-                        shutil.copy(helper, out / helper.name)
+            found = _find_module(root, module) or _find_misnamed(root, module, out, submission, caps)
+            if found is None:
+                continue
+            _materialise_module(found, module, out, submission)
+            # Helper modules the student keeps beside the lab module come along.
+            for helper in found.parent.glob("*.py"):
+                if helper.stem.isidentifier() and helper.stem not in modules \
+                        and helper != found and not (out / helper.name).exists():
+                    shutil.copyfile(helper, out / helper.name)
         for folder in (root, out / "_zips"):
-            if folder.parent == out:
-                shutil.rmtree(folder, ignore_errors=True)
+            shutil.rmtree(folder, ignore_errors=True)
     except BaseException:
         shutil.rmtree(out, ignore_errors=True)
         raise
@@ -115,9 +153,224 @@ def load_submission(path, modules: list[str]) -> Submission:
     return submission
 
 
+# ------------------------------------------------------------------ reading, deny by default
+class _Refused(Exception):
+    """One file is not read; the message says why."""
+
+
+def _display_name(name: str) -> str:
+    """A file name safe to show and to encode (undecodable bytes replaced)."""
+    return name.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
+
+
+def _check_name(relative: str, caps: Caps) -> None:
+    try:
+        relative.encode("utf-8")
+    except UnicodeEncodeError:
+        raise _Refused("its name is not valid UTF-8; rename it") from None
+    if any(ord(c) < 32 or ord(c) == 127 for c in relative):
+        raise _Refused("its name holds control characters; rename it")
+    parts = PurePosixPath(relative).parts
+    if relative.startswith("/") or ".." in parts:
+        raise _Refused("its name points outside the submission")
+    if len(parts) - 1 > caps.depth:
+        raise _Refused(f"it is more than {caps.depth} folders deep")
+
+
+def _read_regular(path: Path, limit: int) -> bytes:
+    """The bytes of a regular file, never following a link, refusing what is over ``limit``."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+    except OSError as exc:
+        raise _Refused("it is a symbolic link" if os.path.islink(path)
+                       else f"it cannot be read ({exc.strerror})") from None
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            raise _Refused("it is not a regular file")
+        if info.st_size > limit:
+            raise _Refused(f"it is larger than {_mib(limit)}")
+        chunks, size = [], 0
+        while size <= limit:
+            chunk = os.read(fd, min(1 << 20, limit + 1 - size))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+        if size > limit:
+            raise _Refused(f"it is larger than {_mib(limit)}")
+        return b"".join(chunks)
+    finally:
+        os.close(fd)
+
+
+def _mib(n: int) -> str:
+    return f"{n / 2**20:g} MiB"
+
+
+def _limit_for(name: str, caps: Caps) -> int:
+    if name.endswith(".zip"):  # an archive handed in within a folder: its members are capped again
+        return caps.total_bytes
+    return caps.notebook_bytes if name.endswith(".ipynb") else caps.file_bytes
+
+
+def _copy_one(path: Path, target: Path, relative: str, refused, caps, total) -> None:
+    try:
+        _check_name(relative, caps)
+        data = _read_regular(path, _limit_for(relative, caps))
+        if total[0] + len(data) > caps.total_bytes:
+            raise _Refused(f"the submission holds more than {_mib(caps.total_bytes)} of sources")
+    except _Refused as exc:
+        refused[_display_name(relative)] = str(exc)
+        return
+    total[0] += len(data)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.write_bytes(data)
+
+
+def copy_regular_files(source: Path, target: Path, refused: dict | None = None,
+                       caps: Caps = CAPS, suffixes=SOURCE_SUFFIXES) -> dict[str, str]:
+    """Copy the regular ``suffixes`` files under ``source`` into ``target``.
+
+    Symbolic links (to files or folders), devices, pipes and sockets are refused,
+    never followed; so are hidden entries, ``__pycache__`` and what breaks a cap.
+    Returns ``refused``: path inside ``source`` -> reason.
+    """
+    refused = {} if refused is None else refused
+    source, target = Path(source), Path(target)
+    seen, total = 0, [0]
+    pending = [(source, 0)]
+    while pending:
+        folder, depth = pending.pop()
+        try:
+            entries = sorted(os.scandir(folder), key=lambda e: e.name)
+        except OSError as exc:
+            refused[_display_name(os.path.relpath(folder, source))] = f"cannot be listed ({exc.strerror})"
+            continue
+        for entry in entries:
+            seen += 1
+            relative = os.path.relpath(entry.path, source).replace(os.sep, "/")
+            if seen > caps.entries:
+                refused[_display_name(relative)] = (f"the submission holds more than {caps.entries} "
+                                                    "files; the rest was not read")
+                return refused
+            if entry.name.startswith(".") or entry.name in _SKIPPED_FOLDERS:
+                continue
+            if entry.is_symlink():
+                if entry.name.endswith(suffixes) or _points_to_folder(entry):
+                    refused[_display_name(relative)] = "it is a symbolic link"
+                continue
+            if entry.is_dir(follow_symlinks=False):
+                if depth < caps.depth:
+                    pending.append((Path(entry.path), depth + 1))
+                continue
+            if entry.name.endswith(suffixes):
+                _copy_one(Path(entry.path), target / relative, relative, refused, caps, total)
+    return refused
+
+
+def _points_to_folder(entry) -> bool:
+    try:
+        return entry.is_dir(follow_symlinks=True)
+    except OSError:
+        return False
+
+
+def unzip_regular_files(archive: Path, target: Path, refused: dict | None = None,
+                        caps: Caps = CAPS, suffixes=SOURCE_SUFFIXES) -> dict[str, str]:
+    """Extract the regular ``suffixes`` members of a zip archive into ``target``, streaming.
+
+    The member count is read from the archive's end record before the directory
+    is parsed; encrypted members, links, names outside the archive and members
+    that inflate beyond what they declare or beyond the caps are refused.
+    """
+    refused = {} if refused is None else refused
+    name = _display_name(Path(archive).name)
+    count = _zip_member_count(archive)
+    if count is None or count > caps.entries:
+        raise SubmissionError(f"{name} holds more than {caps.entries} files" if count
+                              else f"{name} is not a valid zip archive")
+    try:
+        with zipfile.ZipFile(archive) as zf:
+            members = zf.infolist()
+            if len(members) > caps.entries:
+                raise SubmissionError(f"{name} holds more than {caps.entries} files")
+            total = 0
+            for info in members:
+                relative = info.filename.replace("\\", "/")
+                parts = PurePosixPath(relative).parts
+                if info.is_dir() or not relative.endswith(suffixes) or any(
+                        (p.startswith(".") and p != "..") or p in _SKIPPED_FOLDERS for p in parts):
+                    continue
+                try:
+                    _check_name(relative, caps)
+                    total += _extract_member(zf, info, target / relative, caps, total)
+                except _Refused as exc:
+                    refused[_display_name(relative)] = str(exc)
+    except (zipfile.BadZipFile, OSError, UnicodeDecodeError, ValueError, EOFError) as exc:
+        if isinstance(exc, SubmissionError):
+            raise
+        raise SubmissionError(f"{name} is not a valid zip archive ({type(exc).__name__})") from None
+    return refused
+
+
+def _extract_member(zf: zipfile.ZipFile, info: zipfile.ZipInfo, dest: Path, caps: Caps,
+                    total: int) -> int:
+    mode = info.external_attr >> 16
+    if stat.S_ISLNK(mode):
+        raise _Refused("it is a symbolic link")
+    if mode and stat.S_IFMT(mode) and not stat.S_ISREG(mode):
+        raise _Refused("it is not a regular file")
+    if info.flag_bits & 0x1:
+        raise _Refused("it is encrypted; zip it without a password")
+    limit = min(_limit_for(info.filename, caps), caps.total_bytes - total)
+    if info.file_size > limit:
+        raise _Refused(f"it unpacks to more than {_mib(limit)}")
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    written = 0
+    try:
+        with zf.open(info) as member, open(dest, "wb") as out:
+            while True:
+                chunk = member.read(1 << 16)  # bounded memory, whatever the compression ratio
+                if not chunk:
+                    break
+                written += len(chunk)
+                if written > info.file_size or written > limit:
+                    raise _Refused("it unpacks to more than it declares")
+                out.write(chunk)
+    except (zipfile.BadZipFile, zlib.error, EOFError, NotImplementedError, RuntimeError, OSError) as exc:
+        dest.unlink(missing_ok=True)
+        raise _Refused(f"it cannot be unpacked ({type(exc).__name__})") from None
+    except _Refused:
+        dest.unlink(missing_ok=True)
+        raise
+    return written
+
+
+_END_RECORD = struct.Struct("<4s4H2LH")
+
+
+def _zip_member_count(archive: Path) -> int | None:
+    """How many members the archive's end record declares (None if it has none)."""
+    try:
+        with open(archive, "rb") as f:
+            f.seek(0, os.SEEK_END)
+            size = f.tell()
+            f.seek(max(0, size - (_END_RECORD.size + 65535)))
+            tail = f.read()
+    except OSError:
+        return None
+    at = tail.rfind(b"PK\x05\x06")
+    if at < 0 or len(tail) - at < _END_RECORD.size:
+        return None
+    total = _END_RECORD.unpack_from(tail, at)[4]
+    return 2**31 if total == 0xFFFF else total  # ZIP64: more than we would ever read
+
+
+# ------------------------------------------------------------------ finding modules
 def _find_module(root: Path, module: str) -> Path | None:
     """``module.py`` (or ``.ipynb``) at the top of ``root``, else the shallowest one below."""
-    for suffix in (".py", ".ipynb"):
+    for suffix in SOURCE_SUFFIXES:
         candidates = [p for p in root.rglob(module + suffix)
                       if "__MACOSX" not in p.parts and not any(part.startswith(".") for part in p.relative_to(root).parts)
                       and len(p.relative_to(root).parts) <= 3]
@@ -131,7 +384,7 @@ def _materialise_module(found: Path, module: str, out: Path, submission: Submiss
     problem of that module only, so the other modules are still graded."""
     target = out / f"{module}.py"
     if found.suffix == ".py":
-        shutil.copy(found, target)
+        shutil.copyfile(found, target)
         return
     try:
         converted = convert(found.read_bytes().decode("utf-8"), found.name)
@@ -173,7 +426,8 @@ def _source_files(root: Path, depth: int = 3, suffixes=(".py", ".ipynb")) -> lis
     return sorted(found)
 
 
-def _find_misnamed(root: Path, module: str, out: Path, submission: Submission) -> Path | None:
+def _find_misnamed(root: Path, module: str, out: Path, submission: Submission,
+                   caps: Caps = CAPS) -> Path | None:
     """The module under a name that was plainly meant (another case, `` (1)``, ``-copy``),
     also inside a .zip handed in within the folder; else None, with the problem recorded:
     what was found, and the rename to make when one name is close."""
@@ -181,13 +435,14 @@ def _find_misnamed(root: Path, module: str, out: Path, submission: Submission) -
     archives = _source_files(root, suffixes=(".zip",))
     broken = []
     for index, archive in enumerate(archives):
-        try:
-            _safe_unzip(archive, out / "_zips" / str(index))
-        except FileExistsError:
-            pass  # unpacked for an earlier module
-        except SubmissionError as exc:
-            broken.append(str(exc))
-            continue
+        unpacked = out / "_zips" / str(index)
+        if not unpacked.exists():  # else unpacked for an earlier module
+            unpacked.mkdir(parents=True)
+            try:
+                unzip_regular_files(archive, unpacked, submission.refused, caps)
+            except SubmissionError as exc:
+                broken.append(str(exc))
+                continue
         files += [p for p in _source_files(out / "_zips" / str(index)) if p not in files]
     meant = [p for p in files if _plain_name(p.stem) == module]
     for suffix in (".py", ".ipynb"):
@@ -223,26 +478,6 @@ def _shown(path: Path, root: Path, out: Path) -> str:
         except ValueError:
             continue
     return path.name
-
-
-def _safe_unzip(archive: Path, target: Path):
-    try:
-        with zipfile.ZipFile(archive) as zf:
-            total = sum(info.file_size for info in zf.infolist())
-            if total > MAX_ARCHIVE_BYTES:
-                raise SubmissionError(f"{archive.name} unpacks to more than {MAX_ARCHIVE_BYTES // 2**20} MB")
-            target.mkdir(parents=True)
-            for info in zf.infolist():
-                name = Path(info.filename)
-                if name.is_absolute() or ".." in name.parts:
-                    continue  # no path traversal out of the target
-                if info.is_dir() or name.suffix not in (".py", ".ipynb"):
-                    continue
-                dest = target / name
-                dest.parent.mkdir(parents=True, exist_ok=True)
-                dest.write_bytes(zf.read(info))
-    except zipfile.BadZipFile:
-        raise SubmissionError(f"{archive.name} is not a valid zip archive") from None
 
 
 def _hash_folder(folder: Path) -> str:

@@ -36,6 +36,7 @@ import numpy as np
 MAGIC = b"AGT1"
 PREFIX = struct.Struct(">4sQ")
 DEFAULT_MAX_BYTES = 256 * 1024 * 1024
+MAX_HEADER_BYTES = 4 * 1024 * 1024  # checked before parsing: JSON costs ~25x its size in objects
 MAX_DEPTH = 64
 MAX_NODES = 1_000_000
 
@@ -133,14 +134,24 @@ def _float_node(x: float):
 
 
 # --------------------------------------------------------------------- decoding
-def decode(frame: bytes, max_bytes: int = DEFAULT_MAX_BYTES):
+def decode(frame: bytes, max_bytes: int = DEFAULT_MAX_BYTES, max_header: int = MAX_HEADER_BYTES):
     """Decode one frame made by :func:`encode`, trusting nothing in it.
 
     Raises
     ------
     TransportError
-        If the frame is malformed, inconsistent or larger than ``max_bytes``.
+        If the frame is malformed, inconsistent, larger than ``max_bytes`` or
+        its header larger than ``max_header``; never any other exception.
     """
+    try:
+        return _decode(frame, max_bytes, max_header)
+    except TransportError:
+        raise
+    except (Exception, RecursionError) as exc:  # noqa: BLE001 - a frame must never crash the grader
+        raise TransportError(f"undecodable frame ({type(exc).__name__})") from None
+
+
+def _decode(frame, max_bytes, max_header):
     if not isinstance(frame, (bytes, bytearray, memoryview)):
         raise TransportError("frame must be bytes")
     frame = bytes(frame)
@@ -151,6 +162,8 @@ def decode(frame: bytes, max_bytes: int = DEFAULT_MAX_BYTES):
     magic, header_len = PREFIX.unpack_from(frame)
     if magic != MAGIC:
         raise TransportError("bad frame magic")
+    if header_len > max_header:
+        raise TransportError(f"frame header larger than {max_header} bytes")
     body_start = PREFIX.size + header_len
     if body_start > len(frame):
         raise TransportError("frame header truncated")

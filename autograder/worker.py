@@ -11,9 +11,14 @@ request is a dict ``{"op": "import" | "call", ...}``; the response is
 ``{"ok": False, "kind": str, "message": str, "traceback": str, "seconds": float}``.
 The student's stdout and stderr go to a file the parent reads after each call.
 
+Every response carries the request's ``"id"``, so the parent can tell a reply
+from a stray frame, and a ``"suspect"`` reason when the call left the worker in a
+state the next call should not inherit (threads or child processes still
+alive, file descriptors exhausted): the parent then starts a fresh worker.
+
 Usage (by the parent only)::
 
-    python -B worker.py REQUEST_FD RESPONSE_FD SUBMISSION_DIR OUTPUT_FILE LIMITS_JSON
+    python -I -B worker.py REQUEST_FD RESPONSE_FD SUBMISSION_DIR OUTPUT_FILE LIMITS_JSON
 """
 
 import builtins
@@ -24,6 +29,7 @@ import os
 import resource
 import struct
 import sys
+import threading
 import time
 import traceback
 
@@ -33,6 +39,9 @@ import transport  # noqa: E402  (the copy beside this file)
 
 sys.path.remove(_HERE)
 LENGTH = struct.Struct(">Q")
+# Kept before any student code runs: the submission may replace the modules' own.
+_active_threads, _listdir = threading.active_count, os.listdir
+_open, _read, _close = os.open, os.read, os.close
 
 
 class ForbiddenCall(BaseException):
@@ -103,8 +112,11 @@ def send(fd, message):
     try:
         frame = transport.encode(message)
     except transport.TransportError as exc:
-        frame = transport.encode({"ok": False, "kind": "result_type", "message": str(exc),
-                                  "traceback": "", "seconds": message.get("seconds", 0.0)})
+        reply = {"ok": False, "kind": "result_type", "message": str(exc), "traceback": "",
+                 "seconds": message.get("seconds", 0.0), "id": message.get("id")}
+        if "suspect" in message:
+            reply["suspect"] = message["suspect"]
+        frame = transport.encode(reply)
     transport.write_frame(fd, LENGTH.pack(len(frame)) + frame)
 
 
@@ -356,9 +368,45 @@ class Worker:
                     response = self.handle_call(request)
                 else:
                     response = failure("protocol", f"unknown op {request.get('op')!r}")
+                close_figures()
             namespace.clear()
             namespace.update(pristine_builtins)
+            response["id"] = request.get("id")
+            reason = suspect_state()
+            if reason:
+                response["suspect"] = reason
             send(response_fd, response)
+
+
+def close_figures():
+    """Figures a call left open would pile up over the grading (Matplotlib runs headless: Agg)."""
+    pyplot = sys.modules.get("matplotlib.pyplot")
+    if pyplot is not None:
+        try:
+            pyplot.close("all")
+        except Exception:  # noqa: BLE001 - the submission may have broken pyplot
+            pass
+
+
+def suspect_state():
+    """Why the next call should not run in this process, or ``""``."""
+    if _active_threads() > 1:
+        return "threads still running after the call"
+    try:
+        for task in _listdir("/proc/self/task"):
+            fd = _open(f"/proc/self/task/{task}/children", os.O_RDONLY)
+            try:
+                if _read(fd, 64).strip():
+                    return "child processes still running after the call"
+            finally:
+                _close(fd)
+    except OSError:
+        pass  # no /proc (macOS): threads and descriptors are still checked
+    try:
+        _close(_open(os.devnull, os.O_RDONLY))
+    except OSError:
+        return "file descriptors exhausted"
+    return ""
 
 
 def main(argv):
@@ -367,12 +415,14 @@ def main(argv):
     limits = json.loads(argv[5])
     apply_limits(limits)
     os.environ.setdefault("MPLBACKEND", "Agg")
-    sys.path.insert(0, os.path.abspath(submission_dir))
+    # The worker's own imports come first, while the submission is not on sys.path:
+    # a cv2.py or numpy.py handed in cannot run before the worker is ready.
     import numpy  # noqa: F401  (warm: the first student call should not pay for it)
     try:
         import cv2  # noqa: F401
     except ImportError:
         pass
+    sys.path.insert(0, os.path.abspath(submission_dir))
     send(response_fd, {"ok": True, "value": "ready", "seconds": 0.0})  # start-up done
     file_size_mb = (limits.get("file_size") or 0) // 2**20 or None
     Worker(submission_dir, file_size_mb).serve(request_fd, response_fd, output_path)

@@ -186,3 +186,37 @@ print(resource.getrlimit(resource.RLIMIT_FSIZE)[0], resource.getrlimit(resource.
     run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
     assert run.returncode == 0, run.stderr
     assert run.stdout.split() == [str(2**26), "100"]
+
+
+def test_an_exception_while_judging_is_that_checks_grader_error_only():
+    import dataclasses
+
+    import numpy as np
+
+    from autograder.registry import select
+    from autograder.runner import run_check
+    from autograder.sandbox import Sandbox
+
+    [exercise] = select(["lab07.ex4"])
+    check = exercise.checks[0]
+
+    def broken(t):
+        t.images("undrawable", yours=np.zeros(()))   # a 0-d array: left out of the page
+        raise KeyError("a bug in the check")
+
+    with Sandbox(REFERENCE, FAST) as sandbox:
+        failed = run_check(sandbox, dataclasses.replace(check, func=broken))
+        after = run_check(sandbox, check)
+    assert failed.status == "grader error" and "KeyError" in failed.message
+    assert failed.artifacts == [] or all(a.items == [] for a in failed.artifacts)
+    assert after.passed
+
+
+def test_course_budgets_reach_the_sandbox():
+    from autograder.course import CourseConfig, CourseConfigError
+
+    limits = CourseConfig(call_timeout=3, exercise_budget=30, submission_budget=200).limits()
+    assert (limits.call_timeout, limits.exercise_budget, limits.submission_budget) == (3, 30, 200)
+    for key in ("exercise_budget", "submission_budget"):
+        with pytest.raises(CourseConfigError, match=key):
+            CourseConfig(**{key: 0})

@@ -8,7 +8,8 @@ import pytest
 from hypothesis import given, strategies as st
 from hypothesis.extra import numpy as hnp
 
-from autograder.transport import TransportError, decode, encode
+from autograder.text import printable
+from autograder.transport import MAX_HEADER_BYTES, TransportError, decode, encode
 
 scalars = st.one_of(st.none(), st.booleans(), st.integers(-2**70, 2**70), st.floats(),
                     st.text(max_size=20), st.complex_numbers(allow_nan=False))
@@ -120,3 +121,30 @@ def test_hand_made_hostile_frames(header):
     frame = struct.pack(">4sQ", b"AGT1", len(header)) + header + b"\0" * 8
     with pytest.raises(TransportError):
         decode(frame)
+
+
+def test_oversized_header_is_refused_before_it_is_parsed():
+    header = b"[" * (MAX_HEADER_BYTES + 1)   # parsing this would recurse, then cost ~25x
+    frame = struct.pack(">4sQ", b"AGT1", len(header)) + header
+    with pytest.raises(TransportError, match="header larger than"):
+        decode(frame)
+    claimed = struct.pack(">4sQ", b"AGT1", 90 * 2**20) + b"[1]"  # a header longer than the frame
+    with pytest.raises(TransportError):
+        decode(claimed)
+
+
+@pytest.mark.parametrize("header", [
+    b'{"a":0,"dtype":"<f8","shape":[99999999999,99999999999,99999999999]}',  # size overflow
+    b'{"a":0,"dtype":"<M8[s]","shape":[1]}',                                  # datetime
+    b'{"a":0,"dtype":"\\u0000","shape":[1]}',                                 # nonsense dtype
+    b'{"c":[{"f":"nan"},{"l":[]}]}',                                          # bad complex part
+])
+def test_any_decoding_error_is_a_transport_error(header):
+    frame = struct.pack(">4sQ", b"AGT1", len(header)) + header + b"\0" * 8
+    with pytest.raises(TransportError):
+        decode(frame)
+
+
+def test_control_characters_are_stripped_for_the_terminal():
+    shown = printable("\x1b[2J\x1b[Hok\x1b]0;title\x07 \u202eevil\r\nnext\tcolumn\x9b")
+    assert shown == "[2J[Hok]0;title evil\nnext\tcolumn"

@@ -1,4 +1,9 @@
-"""The terminal report: a table of per-exercise scores, then what to fix, then tips."""
+"""The terminal report: a table of per-exercise scores, then what to fix, then tips.
+
+Every string that may hold a submission's words goes through
+:func:`~autograder.text.printable` first, so nothing it prints can move the
+cursor, clear the screen or redraw the table.
+"""
 
 from __future__ import annotations
 
@@ -7,6 +12,7 @@ from rich.table import Table
 from rich.text import Text
 
 from ..results import ERROR, NOT_IMPLEMENTED, GradingResult
+from ..text import printable
 
 
 def _score_style(score: float, maximum: float) -> str:
@@ -19,7 +25,7 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
            details: bool = True, page=None) -> None:
     """Print the score table and, under it, one line per check that lost points."""
     console = console or Console()
-    table = Table(title=f"Grading {result.submission}", title_justify="left", expand=False)
+    table = Table(title=f"Grading {printable(result.submission)}", title_justify="left", expand=False)
     table.add_column("exercise", style="bold")
     table.add_column("title")
     table.add_column("score", justify="right")
@@ -108,19 +114,19 @@ def _print_problems(result: GradingResult, console: Console) -> None:
             if check.passed or check.max_score == 0:  # advice is printed apart, as tips
                 continue
             icon = {NOT_IMPLEMENTED: "·", ERROR: "!"}.get(check.status, "✗")
-            first, *rest = (check.message or check.status).splitlines() or [""]
-            line = Text(f"{icon} {exercise.id} ", style="bold") + Text(check.name, style="italic")
+            first, *rest = printable(check.message or check.status).splitlines() or [""]
+            line = Text(f"{icon} {exercise.id} ", style="bold") + Text(printable(check.name), style="italic")
             line += Text(f" ({check.score:g}/{check.max_score:g}): {first}")
             console.print(line)
             for extra in rest[:6]:
                 console.print(Text(f"    {extra}", style="dim"))
             if check.hint:
-                console.print(Text(f"    hint: {check.hint}", style="cyan"))
+                console.print(Text(f"    hint: {printable(check.hint)}", style="cyan"))
             if check.traceback and check.traceback in shown_tracebacks:
                 console.print(Text("    (same traceback as above)", style="dim"))
             elif check.traceback:
                 shown_tracebacks.add(check.traceback)
-                console.print(Text("    " + check.traceback.replace("\n", "\n    "), style="dim"))
+                console.print(Text("    " + printable(check.traceback).replace("\n", "\n    "), style="dim"))
 
 
 def _print_advice(result: GradingResult, console: Console) -> None:
@@ -129,10 +135,10 @@ def _print_advice(result: GradingResult, console: Console) -> None:
         for check in exercise.checks:
             if not check.advice:
                 continue
-            first, *rest = check.message.splitlines() or [""]
-            line = Text(f"tip {exercise.id} ", style="bold blue") + Text(check.name, style="italic")
+            first, *rest = printable(check.message).splitlines() or [""]
+            line = Text(f"tip {exercise.id} ", style="bold blue") + Text(printable(check.name), style="italic")
             console.print(line + Text(f" (no points): {first}"))
             for extra in rest[:6]:
                 console.print(Text(f"    {extra}", style="dim"))
             if check.hint:
-                console.print(Text(f"    hint: {check.hint}", style="cyan"))
+                console.print(Text(f"    hint: {printable(check.hint)}", style="cyan"))
