@@ -46,6 +46,8 @@ def build_parser() -> argparse.ArgumentParser:
     batch.add_argument("--roster", metavar="CSV", help="roster mapping students to LMS identities")
     batch.add_argument("--overrides", metavar="CSV", help="instructor overrides: student,exercise,points,penalty,comment")
     batch.add_argument("--dask-scheduler", metavar="ADDRESS", help="grade on this Dask cluster (tcp://host:8786)")
+    batch.add_argument("--allow-unconfined", action="store_true",
+                       help="grade even where student code cannot be confined (each submission could read the others)")
     batch.add_argument("--similarity", action="store_true",
                        help="also write RESULTS/similarity.html: the most similar submissions, lab by lab")
 
@@ -228,7 +230,8 @@ def run_batch(args) -> int:
         with _batch_progress(console) as progress:
             summary = batch(args.submissions, args.out, course=course, workers=args.workers,
                             pictures=args.pictures, regrade=args.regrade, roster=args.roster,
-                            overrides=args.overrides, dask_scheduler=args.dask_scheduler, progress=progress)
+                            overrides=args.overrides, dask_scheduler=args.dask_scheduler, progress=progress,
+                            allow_unconfined=args.allow_unconfined)
     except (CourseConfigError, IngestError, ExportError, SelectionError, DaskUnavailable) as exc:
         console.print(f"[red]error:[/red] {escape(str(exc))}")
         return USAGE_ERROR

@@ -554,3 +554,23 @@ def test_one_batch_at_a_time_writes_a_results_folder(tmp_path):
         fcntl.flock(held, fcntl.LOCK_EX)
         with pytest.raises(IngestError, match="another autograder batch"):
             run_batch(tmp_path / "class", tmp_path / "out", course=COURSE, workers=1)
+
+
+def test_batch_refuses_a_class_where_student_code_cannot_be_confined(tmp_path, monkeypatch, capsys):
+    """On a machine without namespaces one submission could read the others: refused
+    unless the instructor says so, before anything is graded."""
+    from autograder import confine
+    from autograder.batch.run import Unconfined
+
+    class Unconfining:
+        level = "process-group"
+
+    monkeypatch.setattr(confine, "detect", lambda: Unconfining())
+    students = tmp_path / "class"
+    (students / "alice").mkdir(parents=True)
+    shutil.copy(SKELETON / "lab07_transformations.py", students / "alice")
+    with pytest.raises(Unconfined, match="--allow-unconfined"):
+        run_batch(students, tmp_path / "results", course=CourseConfig(select=["lab07.ex1"]), workers=1)
+    assert not (tmp_path / "results" / "gradebook.sqlite").exists()
+    assert main(["batch", str(students), "--out", str(tmp_path / "results")]) == 2
+    assert "cannot confine student code" in capsys.readouterr().out

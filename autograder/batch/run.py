@@ -30,6 +30,7 @@ from multiprocessing import get_context
 from pathlib import Path
 from typing import Callable
 
+from .. import confine
 from ..course import CourseConfig
 from ..registry import discover, select
 from ..reports import html
@@ -41,6 +42,20 @@ from .task import grade_files
 
 PICTURES = {"none": "none", "failing": "failed", "all": "all"}
 POOL_ATTEMPTS = 3   # a submission whose grading kills the grading process this often is recorded as failed
+
+
+class Unconfined(IngestError):
+    """Grading a class here would let each submission read the others' work."""
+
+
+def _refuse_unconfined() -> None:
+    level = confine.detect().level
+    if level == "process-group":
+        raise Unconfined(
+            "this machine cannot confine student code (confinement level 'process-group': no Linux "
+            "namespaces), so each submission could read the other students' work and your files, and "
+            "print them into its feedback. Grade the class on Linux as root or with unprivileged user "
+            "namespaces (see the README's security model), or pass --allow-unconfined to accept that.")
 
 
 @dataclass
@@ -57,13 +72,16 @@ class BatchSummary:
 
 def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: int | None = None,
               pictures: str = "failing", regrade: bool = False, roster=None, overrides=None,
-              dask_scheduler: str | None = None, progress: Callable | None = None) -> BatchSummary:
+              dask_scheduler: str | None = None, progress: Callable | None = None,
+              allow_unconfined: bool = False) -> BatchSummary:
     """Grade the class at ``submissions`` into the folder ``out``; see the module docstring.
 
     ``progress(event, entry, summary)`` is called with ``"start"`` (entry None,
     with the number to grade in ``summary.students``) and ``"done"`` per grading.
     Raises :class:`.ingest.IngestError` / :class:`.exports.ExportError` for
-    unusable inputs, before anything is graded.
+    unusable inputs, before anything is graded, and :class:`Unconfined` where this
+    machine cannot keep one student's code from reading the others' work (the
+    ``process-group`` level) unless ``allow_unconfined`` says that is acceptable.
     """
     # Inputs: everything is read, and refused if unusable, before anything is graded.
     course = course or CourseConfig()
@@ -72,6 +90,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     out = Path(out)
     if Path(submissions).is_dir() and Path(submissions).resolve() in out.resolve().parents:
         raise IngestError(f"--out {out} is inside {submissions}: it would be read as a student next time")
+    if dask_scheduler is None and not allow_unconfined:
+        _refuse_unconfined()
     exercises = select(course.select)
     selection = ",".join(e.id for e in exercises)
     modules = sorted({e.lab.module for e in exercises})
