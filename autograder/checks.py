@@ -11,6 +11,10 @@ and ends in one of three ways:
 If the student's code raises, hangs or crashes, ``t.call`` raises
 :class:`StudentFailure` and the check scores 0 with the student's own message.
 Anything else escaping a check is a grader error, reported as such.
+
+An advice check (registered with ``@exercise.advice(name)``, 0 points) calls
+``t.advise(message)`` when it has a tip and returns normally otherwise; a
+failure inside it is silent (the graded checks report it).
 """
 
 from __future__ import annotations
@@ -79,6 +83,9 @@ class Trial:
         self.outputs: list[str] = []
         self.student_seconds = 0.0
         self._fatal: dict[str, StudentFailure] = {}
+        self.tips: list[tuple[str, str]] = []  # (message, hint) from t.advise
+        # (function, argument) pairs the student's function modified in place.
+        self.modified_inputs: list[tuple[str, str]] = []
 
     # ------------------------------------------------------------ calling
     def call(self, function: str, *args, **kwargs):
@@ -97,6 +104,9 @@ class Trial:
             self.student_seconds += outcome.seconds
             if outcome.output.strip():
                 self.outputs.append(outcome.output)
+            for argument in outcome.modified:
+                if (function, argument) not in self.modified_inputs:
+                    self.modified_inputs.append((function, argument))
             if outcome.ok:
                 return outcome.value
             failure = StudentFailure(outcome, self._describe(function, outcome))
@@ -114,6 +124,13 @@ class Trial:
     # ------------------------------------------------------------ judging
     def fail(self, message: str, hint: str = ""):
         raise Fail(message, hint)
+
+    def advise(self, message: str, hint: str = ""):
+        """Give a tip (advice checks only): shown with its reason, worth no points."""
+        if not self.check.advice:
+            raise TypeError(f"t.advise() in graded check {self.check.name!r}; "
+                            "register advice with @exercise.advice(name)")
+        self.tips.append((message, hint))
 
     def expect_array(self, value, what: str, *, shape=None, dtype=None, kind=None,
                      finite: bool = False) -> np.ndarray:

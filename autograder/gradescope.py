@@ -37,7 +37,7 @@ def results_json(result: GradingResult, config: CourseConfig) -> dict:
                 "number": f"{int(lab[3:])}.{position[lab]}.{index}",
                 "score": check.score,
                 "max_score": check.max_score,
-                "status": "passed" if check.passed else "failed",
+                "status": "passed" if check.passed or check.max_score == 0 else "failed",  # advice never fails
                 "output": _check_output(check),
                 "output_format": "text",
                 "visibility": config.hidden_visibility if check.hidden else config.public_visibility,
@@ -50,7 +50,12 @@ def results_json(result: GradingResult, config: CourseConfig) -> dict:
 
 
 def _check_output(check) -> str:
-    parts = [check.message or ("Passed." if check.passed else check.status)]
+    if check.advice:
+        parts = [f"Tip (no points): {check.message}"]
+    elif check.max_score == 0:
+        parts = [check.message or "Advice: nothing to suggest."]
+    else:
+        parts = [check.message or ("Passed." if check.passed else check.status)]
     if check.hint:
         parts.append(f"Hint: {check.hint}")
     if check.traceback:

@@ -13,6 +13,24 @@ The engine knows no lab. A lab suite (``autograder/labs/lab07.py``) declares::
 
 Hidden checks live in ``autograder/labs/hidden/`` and add themselves to the same
 exercises with ``hidden=True``; the student bundle ships without that folder.
+
+Advice: a convention worth following that neither the lab sheet nor the API
+asks for (NaN for points behind the camera, ...) is never worth points. A suite
+registers it as an advice check, worth 0 points, whose body calls ``t.advise``
+when the student's code does something worth a tip and returns normally
+otherwise::
+
+    @ex1.advice("NaN for points behind the camera")
+    def nan_behind_camera(t):
+        uv = t.call("project_points", P, X_behind)
+        if np.all(np.isfinite(uv)):
+            t.advise("project_points() returned finite pixels for points behind "
+                     "the camera; NaN tells the caller they are not visible")
+
+Reports show each tip with its reason; it never fails and never lowers a score.
+If the student's function raises or is missing, an advice check says nothing
+(the graded checks report that). The engine adds advice of its own, e.g. when a
+student function modifies its input arrays in place.
 Third-party suites can register through the ``autograder.labs`` entry-point group.
 """
 
@@ -44,6 +62,7 @@ class Check:
     exercise: "Exercise"
     hidden: bool = False
     timeout: float | None = None
+    advice: bool = False  # an advice check: 0 points, a tip when it has something to say
 
     @property
     def id(self) -> str:
@@ -66,11 +85,21 @@ class Exercise:
         """Decorator registering a check worth ``points`` on this exercise."""
         if points <= 0:
             raise ValueError(f"{self.id}: check {name!r} needs positive points")
+        return self._register(name, float(points), hidden, timeout, advice=False)
 
+    def advice(self, name: str, *, hidden: bool = False, timeout: float | None = None):
+        """Decorator registering an advice check (0 points) on this exercise.
+
+        Its body calls ``t.advise(message)`` when there is a tip to give, and
+        returns normally otherwise (see the module docstring).
+        """
+        return self._register(name, 0.0, hidden, timeout, advice=True)
+
+    def _register(self, name, points, hidden, timeout, advice):
         def register(func):
             if any(c.name == name for c in self.checks):
                 raise ValueError(f"{self.id}: duplicate check name {name!r}")
-            self.checks.append(Check(name, float(points), func, self, hidden, timeout))
+            self.checks.append(Check(name, points, func, self, hidden, timeout, advice))
             return func
 
         return register

@@ -5,7 +5,11 @@ Keys other tools rely on (see DESIGN.md, "Results and reports")::
     {"total": float, "max_total": float,
      "exercises": [{"id": "lab08.ex2", "score": float, "max_score": float,
                     "checks": [{"name": str, "passed": bool, "score": float,
-                                "max_score": float, "message": str}]}]}
+                                "max_score": float, "message": str,
+                                "status": str, "advice": bool}]}]}
+
+A check whose ``status`` is ``"advice"`` (``advice: true``) is a tip worth 0
+points: ``message`` says what to change and why; it is never a failure.
 
 Timing fields are named ``seconds`` / ``student_seconds`` everywhere, so two
 gradings of the same submission compare equal once those are dropped.
@@ -19,9 +23,11 @@ import tempfile
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-# Check statuses, in the words reports use.
-PASSED, PARTIAL, FAILED, NOT_IMPLEMENTED, ERROR = (
-    "passed", "partial", "failed", "not implemented", "grader error")
+# Check statuses, in the words reports use. ADVICE is a tip worth 0 points (an
+# advice check that had something to say, or the engine's own, e.g. inputs
+# modified in place): never a failure, never part of a score.
+PASSED, PARTIAL, FAILED, NOT_IMPLEMENTED, ERROR, ADVICE = (
+    "passed", "partial", "failed", "not implemented", "grader error", "advice")
 TIMING_KEYS = {"seconds", "student_seconds"}
 
 
@@ -58,9 +64,19 @@ class CheckResult:
     def passed(self) -> bool:
         return self.status == PASSED
 
+    @property
+    def advice(self) -> bool:
+        """A tip (0 points) rather than a verdict."""
+        return self.status == ADVICE
+
+    @property
+    def lost_points(self) -> bool:
+        return self.score < self.max_score
+
     def to_dict(self) -> dict:
         data = asdict(self)
         data["passed"] = self.passed
+        data["advice"] = self.advice
         return data
 
 
@@ -117,7 +133,7 @@ class GradingResult:
         for e in data["exercises"]:
             checks = []
             for c in e["checks"]:
-                c = {k: v for k, v in c.items() if k != "passed"}
+                c = {k: v for k, v in c.items() if k not in ("passed", "advice")}
                 c["artifacts"] = [Artifact(**a) for a in c.get("artifacts", [])]
                 checks.append(CheckResult(**c))
             exercises.append(ExerciseResult(e["id"], e["title"], e.get("functions", []),

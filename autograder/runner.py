@@ -16,7 +16,7 @@ from typing import Callable
 from . import __version__
 from .checks import Fail, StudentFailure, Trial, Verdict
 from .registry import Check, Exercise, hidden_checks_installed, select
-from .results import (ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
+from .results import (ADVICE, ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
                       ExerciseResult, GradingResult)
 from .sandbox import Limits, Sandbox
 from .submission import load_submission
@@ -84,17 +84,36 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check) -> ExerciseRe
             if on_check:
                 on_check(exercise, out.checks[-1])
         return out
+    modified: list[tuple[str, str]] = []  # (function, argument) changed in place
     for check in checks:
-        out.checks.append(run_check(sandbox, check, pictures))
+        out.checks.append(run_check(sandbox, check, pictures, modified))
         if on_check:
             on_check(exercise, out.checks[-1])
-    if out.checks and all(c.status == NOT_IMPLEMENTED for c in out.checks):
+    graded = [c for c in out.checks if c.max_score > 0]
+    if graded and all(c.status == NOT_IMPLEMENTED for c in graded):
         out.message = "not implemented yet"
+    if modified:
+        out.checks.append(_in_place_advice(modified))
     return out
 
 
-def run_check(sandbox: Sandbox, check: Check, pictures: str = "all") -> CheckResult:
-    """Run one check and turn however it ends into a scored :class:`CheckResult`."""
+def _in_place_advice(modified) -> CheckResult:
+    """The engine's own advice: a function that writes into its caller's arrays."""
+    lines = [f"{function}() modified its input array `{argument}` in place; callers do not expect that"
+             for function, argument in modified]
+    return CheckResult("inputs left unchanged", 0.0, 0.0, ADVICE, "\n".join(lines),
+                       hint="work on a copy (e.g. image = image.copy()) or write into a new array")
+
+
+def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
+              modified: list | None = None) -> CheckResult:
+    """Run one check and turn however it ends into a scored :class:`CheckResult`.
+
+    ``modified`` collects the (function, argument) pairs the student's calls
+    changed in place.
+    """
+    if check.advice:
+        return _run_advice(sandbox, check, modified)
     trial = Trial(sandbox, check)
     started = time.perf_counter()
     tb = ""
@@ -116,6 +135,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all") -> CheckRes
                                        "the rest was graded - please tell your instructor"), ERROR
         tb = ""
         _log_grader_error(check, exc)
+    _collect(modified, trial)
     return CheckResult(
         name=check.name, score=round(verdict.fraction * check.points, 6), max_score=check.points,
         status=status, message=verdict.message, hint=verdict.hint, hidden=check.hidden,
@@ -123,6 +143,36 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all") -> CheckRes
         artifacts=trial.artifacts() if pictures == "all" or (pictures == "failed" and status != PASSED) else [],
         seconds=round(time.perf_counter() - started, 6),
         student_seconds=round(trial.student_seconds, 6))
+
+
+def _run_advice(sandbox: Sandbox, check: Check, modified) -> CheckResult:
+    """An advice check: a tip if it gave one, else silence; never a failure, never points."""
+    trial = Trial(sandbox, check)
+    started = time.perf_counter()
+    status, message, hint = PASSED, "", ""
+    try:
+        check.func(trial)
+    except StudentFailure as failure:  # the graded checks report the student's failure
+        status = NOT_IMPLEMENTED if failure.outcome.kind == "not_implemented" else PASSED
+    except Fail:
+        pass  # a tip is given with t.advise, not by failing
+    except Exception as exc:  # noqa: BLE001
+        status, message = ERROR, f"grader error in this advice ({type(exc).__name__}: {exc}); no points depend on it"
+        _log_grader_error(check, exc)
+    if trial.tips and status == PASSED:
+        status = ADVICE
+        message = "\n".join(tip for tip, _ in trial.tips)
+        hint = " ".join(h for _, h in trial.tips if h)
+    _collect(modified, trial)
+    return CheckResult(name=check.name, score=0.0, max_score=0.0, status=status, message=message,
+                       hint=hint, hidden=check.hidden, output="\n".join(trial.outputs)[:6000],
+                       seconds=round(time.perf_counter() - started, 6),
+                       student_seconds=round(trial.student_seconds, 6))
+
+
+def _collect(modified, trial: Trial) -> None:
+    if modified is not None:
+        modified += [pair for pair in trial.modified_inputs if pair not in modified]
 
 
 def _log_grader_error(check: Check, exc: Exception):

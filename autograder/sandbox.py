@@ -93,7 +93,8 @@ class CallOutcome:
 
     ``ok`` with ``value``, or not ``ok`` with a failure ``kind`` (one of
     :data:`FAILURE_KINDS`), a ``message`` for the student, and the student-only
-    ``traceback``. ``output`` is what the call printed (truncated).
+    ``traceback``. ``output`` is what the call printed (truncated); ``modified``
+    names the argument arrays the call changed in place.
     """
 
     ok: bool
@@ -103,6 +104,7 @@ class CallOutcome:
     traceback: str = ""
     output: str = ""
     seconds: float = 0.0
+    modified: tuple[str, ...] = ()
 
 
 def _scrubbed_environment(scratch: Path) -> dict[str, str]:
@@ -356,8 +358,11 @@ class Sandbox:
                                              message=f"{what}: malformed reply from the worker"))
         seconds = reply.get("seconds")
         seconds = float(seconds) if type(seconds) in (int, float) and seconds >= 0 else 0.0
+        modified = reply.get("modified")
+        modified = tuple(name[:100] for name in modified[:20] if type(name) is str) \
+            if type(modified) is list else ()
         if reply["ok"]:
-            return CallOutcome(ok=True, value=reply.get("value"), seconds=seconds)
+            return CallOutcome(ok=True, value=reply.get("value"), seconds=seconds, modified=modified)
         kind = reply.get("kind") if reply.get("kind") in FAILURE_KINDS else "exception"
         message = reply.get("message") if type(reply.get("message")) is str else ""
         tb = reply.get("traceback") if type(reply.get("traceback")) is str else ""

@@ -158,6 +158,34 @@ def failure(kind, message, tb="", seconds=0.0):
     return {"ok": False, "kind": kind, "message": message, "traceback": tb, "seconds": seconds}
 
 
+# ------------------------------------------------------------------ around each call
+def snapshot_arrays(args, kwargs):
+    """``(position or keyword, array, copy)`` for each argument array, to compare after the call."""
+    import numpy
+    named = list(enumerate(args)) + list(kwargs.items())
+    return [(key, value, value.copy()) for key, value in named if isinstance(value, numpy.ndarray)]
+
+
+def modified_arguments(function, snapshot):
+    """Names of the argument arrays the call changed in place (callers do not expect that)."""
+    try:  # the student's code may have broken anything; this is advice, never a failure
+        changed = [key for key, value, before in snapshot
+                   if value.shape != before.shape or value.tobytes() != before.tobytes()]
+        if not changed:
+            return []
+        import inspect
+        try:
+            parameters = [p.name for p in inspect.signature(function).parameters.values()
+                          if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+        except (TypeError, ValueError):
+            parameters = []
+        return [key if isinstance(key, str) else
+                parameters[key] if key < len(parameters) else f"argument {key + 1}"
+                for key in changed]
+    except BaseException:  # noqa: BLE001
+        return []
+
+
 # ------------------------------------------------------------------ the worker
 class Worker:
     def __init__(self, submission_dir, file_size_mb=None):
@@ -235,10 +263,12 @@ class Worker:
             except (ValueError, OSError):
                 pass  # the wall-clock timeout still applies
         self.forbidden_called = []
+        args, kwargs = request.get("args", ()), request.get("kwargs", {})
+        inputs = snapshot_arrays(args, kwargs)
         restore = self.install_tripwires(request.get("forbid") or [])
         start = time.perf_counter()
         try:
-            value = function(*request.get("args", ()), **request.get("kwargs", {}))
+            value = function(*args, **kwargs)
         except ForbiddenCall as exc:
             return failure("forbidden_call", self._forbidden_message(str(exc), name),
                            seconds=time.perf_counter() - start)
@@ -270,7 +300,8 @@ class Worker:
         if self.forbidden_called:  # the student swallowed the tripwire's exception
             return failure("forbidden_call", self._forbidden_message(self.forbidden_called[0], name),
                            seconds=seconds)
-        return {"ok": True, "value": value, "seconds": seconds}
+        return {"ok": True, "value": value, "seconds": seconds,
+                "modified": modified_arguments(function, inputs)}
 
     @staticmethod
     def _forbidden_message(qualified, function_name):

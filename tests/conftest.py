@@ -56,7 +56,7 @@ def check_results(result, exercise_id: str):
 def assert_diagnosed(result, exercise_id: str, *fragments: str):
     """Some check of the exercise failed, and one failure message contains every fragment."""
     checks = check_results(result, exercise_id)
-    failed = [c for c in checks if not c.passed]
+    failed = [c for c in checks if not c.passed and c.max_score > 0]  # advice is no failure
     assert failed, f"{exercise_id}: every check passed, but the implementation is wrong"
     messages = [c.message.lower() for c in failed]
     assert any(all(f.lower() in m for f in fragments) for m in messages), \
@@ -77,7 +77,20 @@ def assert_full_marks(result, lab: str):
     """Every check of every exercise of ``lab`` passed."""
     for exercise in lab_exercises(result, lab):
         for check in exercise.checks:
-            assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+            assert check.passed or check.max_score == 0, f"{exercise.id} {check.name}: {check.message}"
+        assert exercise.score == exercise.max_score
+
+
+def advice_given(result, exercise_id: str) -> list[str]:
+    """The tips (0-point advice) an exercise's report gives, lower-cased."""
+    return [c.message.lower() for c in check_results(result, exercise_id) if c.advice]
+
+
+def assert_advised(result, exercise_id: str, *fragments: str):
+    """The exercise lost no points for it, and one tip contains every fragment."""
+    tips = advice_given(result, exercise_id)
+    assert any(all(f.lower() in tip for f in fragments) for tip in tips), \
+        f"{exercise_id}: no tip mentions {fragments}; tips were:\n" + "\n".join(tips)
 
 
 def assert_all_not_implemented(result, lab: str):

@@ -7,7 +7,7 @@ import re
 from jinja2 import Environment, PackageLoader, select_autoescape
 from markupsafe import Markup, escape
 
-from ..results import ERROR, NOT_IMPLEMENTED, PARTIAL, PASSED, GradingResult, write_atomically
+from ..results import ADVICE, ERROR, NOT_IMPLEMENTED, PARTIAL, PASSED, GradingResult, write_atomically
 
 _UNSAFE_SVG = re.compile(r"<\s*(script|foreignObject|iframe)|\bon\w+\s*=|javascript:", re.IGNORECASE)
 
@@ -26,7 +26,7 @@ def _grade_class(exercise) -> str:
 
 
 _STATUS = {PASSED: ("passed", "✓"), PARTIAL: ("partial", "◐"), NOT_IMPLEMENTED: ("notimpl", "·"),
-           ERROR: ("error", "!")}
+           ERROR: ("error", "!"), ADVICE: ("advice", "tip")}
 
 
 def _environment() -> Environment:

@@ -1,4 +1,4 @@
-"""The terminal report: a table of per-exercise scores, then what to fix."""
+"""The terminal report: a table of per-exercise scores, then what to fix, then tips."""
 
 from __future__ import annotations
 
@@ -25,11 +25,11 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
     table.add_column("score", justify="right")
     table.add_column("checks passed", justify="right")
     for exercise in result.exercises:
-        passed = sum(c.passed for c in exercise.checks)
+        graded = [c for c in exercise.checks if c.max_score > 0]  # advice is not a check to pass
         table.add_row(exercise.id, exercise.title,
                       Text(f"{exercise.score:g} / {exercise.max_score:g}",
                            style=_score_style(exercise.score, exercise.max_score)),
-                      f"{passed} / {len(exercise.checks)}")
+                      f"{sum(c.passed for c in graded)} / {len(graded)}")
     table.add_section()
     table.add_row("total", "", Text(f"{result.total:g} / {result.max_total:g}",
                                     style=_score_style(result.total, result.max_total)), "")
@@ -37,6 +37,7 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
 
     if details:
         _print_problems(result, console)
+        _print_advice(result, console)
     if not result.hidden_included:
         console.print("[dim]Hidden checks are not part of this copy; your instructor runs them.[/dim]")
     if html_path:
@@ -65,7 +66,7 @@ def _print_problems(result: GradingResult, console: Console) -> None:
                 console.print(Text("    " + "\n    ".join(lines[1:]), style="dim"))
             continue
         for check in exercise.checks:
-            if check.passed:
+            if check.passed or check.max_score == 0:  # advice is printed apart, as tips
                 continue
             icon = {NOT_IMPLEMENTED: "·", ERROR: "!"}.get(check.status, "✗")
             first, *rest = (check.message or check.status).splitlines() or [""]
@@ -81,3 +82,18 @@ def _print_problems(result: GradingResult, console: Console) -> None:
             elif check.traceback:
                 shown_tracebacks.add(check.traceback)
                 console.print(Text("    " + check.traceback.replace("\n", "\n    "), style="dim"))
+
+
+def _print_advice(result: GradingResult, console: Console) -> None:
+    """Tips (0 points, never failures), for every exercise whatever its score."""
+    for exercise in result.exercises:
+        for check in exercise.checks:
+            if not check.advice:
+                continue
+            first, *rest = check.message.splitlines() or [""]
+            line = Text(f"tip {exercise.id} ", style="bold blue") + Text(check.name, style="italic")
+            console.print(line + Text(f" (no points): {first}"))
+            for extra in rest[:6]:
+                console.print(Text(f"    {extra}", style="dim"))
+            if check.hint:
+                console.print(Text(f"    hint: {check.hint}", style="cyan"))

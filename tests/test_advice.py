@@ -1,0 +1,125 @@
+"""Advice: 0-point tips shown in every report, never a failure, never a lost point.
+
+A toy lab registered for the duration of each test exercises the engine: an
+advice check (``@exercise.advice``) and the worker's own detection of student
+functions that modify their input arrays in place.
+"""
+
+import json
+
+import jsonschema
+import numpy as np
+import pytest
+from rich.console import Console
+
+from autograder import gradescope
+from autograder.course import CourseConfig
+from autograder.registry import REGISTRY, Lab
+from autograder.reports import html, terminal
+from autograder.results import ADVICE, GradingResult
+from autograder.runner import grade
+from conftest import submission_from_source
+from test_gradescope import SCHEMA
+
+
+@pytest.fixture
+def toy_lab():
+    lab = Lab("lab98", module="toy_scaling", title="Toy")
+    ex1 = lab.exercise("ex1", "Scaling", functions=["scale(values, factor)"])
+
+    @ex1.check("scale([1, 2, 3], 2)", points=2)
+    def doubles(t):
+        got = t.expect_array(t.call("scale", np.array([1.0, 2.0, 3.0]), 2.0), "scale()", shape=(3,))
+        if not np.allclose(got, [2, 4, 6]):
+            t.fail(f"scale() returned {got}")
+
+    @ex1.advice("float64 results")
+    def float64(t):
+        got = t.call("scale", np.array([1.0, 2.0]), 2.0)
+        if getattr(got, "dtype", None) != np.float64:
+            t.advise(f"scale() returned dtype {got.dtype}; float64 keeps full precision",
+                     hint="np.asarray(values, dtype=float)")
+
+    yield lab
+    REGISTRY.pop("lab98")
+
+
+CORRECT = "def scale(values, factor):\n    return values * factor\n"
+IN_PLACE_FLOAT32 = """
+import numpy as np
+
+def scale(values, factor):
+    values *= factor
+    return values.astype(np.float32)
+"""
+
+
+def test_a_correct_function_gets_no_advice(toy_lab, tmp_path):
+    result = grade(submission_from_source(tmp_path, "toy_scaling", CORRECT), ["lab98"])
+    [exercise] = result.exercises
+    assert (exercise.score, exercise.max_score) == (2, 2)
+    assert [c.status for c in exercise.checks] == ["passed", "passed"]
+
+
+def test_advice_is_shown_in_every_report_and_costs_nothing(toy_lab, tmp_path):
+    result = grade(submission_from_source(tmp_path, "toy_scaling", IN_PLACE_FLOAT32), ["lab98"])
+    [exercise] = result.exercises
+    assert (exercise.score, exercise.max_score) == (2, 2)
+    tips = {c.name: c for c in exercise.checks if c.advice}
+    assert set(tips) == {"float64 results", "inputs left unchanged"}
+    assert all(c.status == ADVICE and c.score == c.max_score == 0 for c in tips.values())
+    assert "dtype float32" in tips["float64 results"].message
+    assert tips["float64 results"].hint == "np.asarray(values, dtype=float)"
+    in_place = tips["inputs left unchanged"].message
+    assert in_place == "scale() modified its input array `values` in place; callers do not expect that"
+
+    data = json.loads(json.dumps(result.to_dict()))
+    [advice] = [c for c in data["exercises"][0]["checks"] if c["name"] == "inputs left unchanged"]
+    assert advice["advice"] and advice["status"] == "advice" and not advice["passed"]
+    assert GradingResult.from_dict(data).to_dict() == result.to_dict()
+
+    console = Console(record=True, width=200)
+    terminal.render(result, console)
+    text = console.export_text()
+    assert "2 / 2" in text and "✗" not in text
+    assert "tip lab98.ex1 inputs left unchanged (no points): scale() modified its input array `values`" in text
+
+    page = html.render(result)
+    assert "advice, no points" in page and "modified its input array <code>" not in page
+    assert "scale() modified its input array `values` in place" in page
+
+    results = gradescope.results_json(result, CourseConfig())
+    jsonschema.validate(results, SCHEMA)
+    assert results["score"] == 2
+    assert {t["status"] for t in results["tests"]} == {"passed"}
+    [tip] = [t for t in results["tests"] if t["name"].endswith("inputs left unchanged")]
+    assert tip["max_score"] == 0 and tip["output"].startswith("Tip (no points): scale() modified")
+
+
+def test_advice_says_nothing_when_the_function_fails(toy_lab, tmp_path):
+    broken = "def scale(values, factor):\n    raise ValueError('no')\n"
+    result = grade(submission_from_source(tmp_path, "toy_scaling", broken), ["lab98"])
+    [graded, advice] = result.exercises[0].checks
+    assert graded.status == "failed" and "ValueError" in graded.message
+    assert advice.status == "passed" and advice.message == "" and advice.max_score == 0
+
+
+def test_a_stub_is_not_implemented_yet_whatever_its_advice_checks(toy_lab, tmp_path):
+    stub = "def scale(values, factor):\n    raise NotImplementedError\n"
+    result = grade(submission_from_source(tmp_path, "toy_scaling", stub), ["lab98"])
+    assert result.exercises[0].message == "not implemented yet"
+
+
+def test_advise_belongs_in_advice_checks(toy_lab, tmp_path):
+    @toy_lab.exercises["ex1"].check("misplaced tip", points=1)
+    def misplaced(t):
+        t.advise("a graded check cannot give advice")
+
+    result = grade(submission_from_source(tmp_path, "toy_scaling", CORRECT), ["lab98"])
+    [check] = [c for c in result.exercises[0].checks if c.name == "misplaced tip"]
+    assert check.status == "grader error" and "@exercise.advice" in check.message
+
+
+def test_an_advice_check_is_worth_no_points(toy_lab):
+    assert [c.points for c in toy_lab.exercises["ex1"].checks if c.advice] == [0.0]
+    assert toy_lab.exercises["ex1"].max_score() == 2
