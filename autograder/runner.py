@@ -153,7 +153,8 @@ def _run_advice(sandbox: Sandbox, check: Check, modified) -> CheckResult:
     try:
         check.func(trial)
     except StudentFailure as failure:  # the graded checks report the student's failure
-        status = NOT_IMPLEMENTED if failure.outcome.kind == "not_implemented" else PASSED
+        if failure.outcome.kind == "not_implemented":
+            status, message = NOT_IMPLEMENTED, failure.message
     except Fail:
         pass  # a tip is given with t.advise, not by failing
     except Exception as exc:  # noqa: BLE001

@@ -108,6 +108,8 @@ def test_a_stub_is_not_implemented_yet_whatever_its_advice_checks(toy_lab, tmp_p
     stub = "def scale(values, factor):\n    raise NotImplementedError\n"
     result = grade(submission_from_source(tmp_path, "toy_scaling", stub), ["lab98"])
     assert result.exercises[0].message == "not implemented yet"
+    assert [c.status for c in result.exercises[0].checks] == ["not implemented"] * 2
+    assert all("not implemented yet" in c.message for c in result.exercises[0].checks)
 
 
 def test_advise_belongs_in_advice_checks(toy_lab, tmp_path):
