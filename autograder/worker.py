@@ -19,6 +19,7 @@ Usage (by the parent only)::
 import builtins
 import errno
 import importlib
+import importlib.util
 import json
 import os
 import resource
@@ -186,6 +187,50 @@ def modified_arguments(function, snapshot):
         return []
 
 
+def close_figures():
+    """Close every Matplotlib figure the call opened: the sheet asks for plots, the grader
+    shows none (the backend is Agg, so ``plt.show()`` opens no window), and open figures
+    would only accumulate memory over hundreds of calls."""
+    pyplot = sys.modules.get("matplotlib.pyplot")
+    if pyplot is not None:
+        try:
+            pyplot.close("all")
+        except BaseException:  # noqa: BLE001 - a student's broken pyplot is not the grader's error
+            pass
+
+
+def headless_matplotlib():
+    """Agg backend whatever the environment or the student says, ``plt.show()`` silent.
+
+    There is no display here: ``matplotlib.use("TkAgg")`` in a student's module
+    would make pyplot raise, so once Matplotlib is imported (lazily: importing it
+    costs most of a second) ``matplotlib.use`` keeps Agg.
+    """
+    import warnings
+    os.environ["MPLBACKEND"] = "Agg"
+    warnings.filterwarnings("ignore", message=r".*(non-GUI backend|non-interactive)")
+    sys.meta_path.insert(0, _KeepAgg())
+
+
+class _KeepAgg:
+    """Import hook: the imported ``matplotlib`` gets a ``use`` that changes nothing."""
+
+    def find_spec(self, name, path=None, target=None):
+        if name != "matplotlib":
+            return None
+        sys.meta_path.remove(self)  # once, and no recursion through the lookup below
+        spec = importlib.util.find_spec(name)
+        if spec is not None and spec.loader is not None:
+            execute = spec.loader.exec_module
+
+            def exec_module(module):
+                execute(module)
+                module.use = lambda backend, *args, **kwargs: None
+
+            spec.loader.exec_module = exec_module
+        return spec
+
+
 # ------------------------------------------------------------------ the worker
 class Worker:
     def __init__(self, submission_dir, file_size_mb=None):
@@ -297,6 +342,7 @@ class Worker:
         finally:
             seconds = time.perf_counter() - start
             restore()
+            close_figures()
         if self.forbidden_called:  # the student swallowed the tripwire's exception
             return failure("forbidden_call", self._forbidden_message(self.forbidden_called[0], name),
                            seconds=seconds)
@@ -366,7 +412,7 @@ def main(argv):
     submission_dir, output_path = argv[3], argv[4]
     limits = json.loads(argv[5])
     apply_limits(limits)
-    os.environ.setdefault("MPLBACKEND", "Agg")
+    headless_matplotlib()
     sys.path.insert(0, os.path.abspath(submission_dir))
     import numpy  # noqa: F401  (warm: the first student call should not pay for it)
     try:
