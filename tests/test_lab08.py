@@ -202,11 +202,20 @@ MISTAKES = {
             H = homography_dlt(src, dst)
             return H, np.linalg.norm(transform_points(H, src) - np.asarray(dst), axis=1) < threshold
         """, ["outliers included"]),
-    "RANSAC with OpenCV": ("lab08.ex4", """
+    "RANSAC returning its best 4-point H (many samples, no refit)": ("lab08.ex4", """
         def homography_ransac(src, dst, threshold=3.0, seed=None):
-            H, mask = cv2.findHomography(np.float64(src), np.float64(dst), cv2.RANSAC, threshold)
-            return H, mask.ravel() > 0
-        """, ["cv2.findHomography", "yourself"]),
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            samples = np.array([rng.choice(len(src), 4, replace=False) for _ in range(1500)])
+            best, best_count, best_spread = None, -1, np.inf
+            for idx in samples:
+                H = homography_dlt(src[idx], dst[idx])
+                err = np.linalg.norm(transform_points(H, src) - dst, axis=1)
+                count, spread = (err < threshold).sum(), err[err < threshold].sum()
+                if (count, -spread) > (best_count, -best_spread):
+                    best, best_count, best_spread = H, count, spread
+            return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
+        """, ["not the fit to its own inliers", "refit h on all the inliers"]),
     # ---------------------------------------------------------------- ex5
     "img2 as the reference": ("lab08.ex5", """
         def stitch(img1, img2):

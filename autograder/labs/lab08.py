@@ -9,9 +9,10 @@ RANSAC over several seeds. Wrong answers are compared with what the usual
 mistakes produce, so the feedback can name the mistake.
 
 ``cv2.findHomography`` and ``cv2.getPerspectiveTransform`` are forbidden inside
-``homography_dlt`` (the point of ex2), and ``cv2.findHomography`` inside
-``homography_ransac`` (ex4 asks for RANSAC itself; calling one's own
-``homography_dlt`` there is the intended route). ``stitch`` and
+``homography_dlt`` (the point of ex2: DLT by SVD). ``homography_ransac`` may
+use ``cv2.findHomography`` with ``cv2.RANSAC`` -- the lab sheet's own recipe
+for ex4 -- or the student's own loop; an instructor who wants RANSAC written
+by hand forbids it in the course configuration (``"forbid"``). ``stitch`` and
 ``stitch_many`` may use anything.
 """
 
@@ -33,7 +34,6 @@ from ..registry import Lab
 
 lab = Lab("lab08", module="lab08_homographies", title="Image homographies")
 lab.forbid("homography_dlt", "cv2.findHomography", "cv2.getPerspectiveTransform")
-lab.forbid("homography_ransac", "cv2.findHomography")
 
 PANORAMA_TOLERANCE = 9.0   # mean blurred error accepted on a panorama region
 MATCH_TOLERANCE = 3.0      # px: a match agrees with the true H
@@ -515,24 +515,48 @@ def ransac_mask(t):
            hint="inliers = |H src - dst| < threshold, with the final H")
 
 
+# RANSAC ends by re-estimating H on its inliers (the textbook algorithm, and
+# cv2.findHomography with cv2.RANSAC). Judged by how far the returned H sends the
+# returned inliers from where a least-squares refit on that mask sends them, in
+# units of the refit's RMS residual (the noise level), averaged over the public
+# RANSAC problems. Measured (benchmarks/fairness_lab08.py), mean over these 7
+# problems: cv2.findHomography RANSAC 0.096, an own loop with an unnormalised
+# DLT refit 0.068, the reference 0; the best 4-point H without a refit 0.79
+# (per problem, legitimate at most 0.33 and the mistake at least 0.41 over 30).
+RANSAC_REFIT_TOLERANCE = 0.35
+REFIT_PROBLEMS = [((10, 100, 0.3, 1.0), 0), ((11, 120, 0.25, 1.0), 1)] + \
+    [((40 + k, 80, 0.5, 0.7), k) for k in range(5)]
+
+
+def refit_distance(H, inliers, src, dst) -> float:
+    """RMS distance (px) at the inliers between H and a DLT refit on them, over the refit's residual."""
+    refit = truth.dlt(src[inliers], dst[inliers])
+    apart = np.linalg.norm(truth.apply_h(H, src[inliers]) - truth.apply_h(refit, src[inliers]), axis=1)
+    residual = np.linalg.norm(truth.apply_h(refit, src[inliers]) - dst[inliers], axis=1)
+    return float(np.sqrt(np.mean(apart ** 2)) / max(np.sqrt(np.mean(residual ** 2)), 1e-9))
+
+
 @ex4.check("homography_ransac refits H on all its inliers", points=2)
 def ransac_refit(t):
-    src, dst, H_true, true_inliers = truth.ransac_problem(11, 120, 0.25, 1.0)
-    what = "homography_ransac(src, dst, seed=1)"
-    H, inliers = ransac_result(t, src, dst, what, seed=1)
-    error, _, _ = ransac_success(H, inliers, H_true, true_inliers)
-    best = truth.transfer_rms(truth.dlt(src[true_inliers], dst[true_inliers]), H_true, RANSAC_REGION)
-    if error <= 2 * best + 0.2:
-        return passed(f"{error:.2f} px RMS from the true H (a fit to the true inliers: {best:.2f} px)")
-    if inliers.sum() >= 4:
-        own = truth.transfer_rms(truth.dlt(src[inliers], dst[inliers]), H_true, RANSAC_REGION)
-        if own <= 2 * best + 0.2:
-            t.fail(f"{what}: H is {error:.2f} px from the truth, but a DLT fit to your own inliers "
-                   f"would be {own:.2f} px: after RANSAC, refit H on all the inliers (the best "
-                   "4-point sample is noisy)")
-    diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
-    t.fail(f"{what}: H is {error:.2f} px (RMS) from the true H; a least-squares fit to the "
-           f"true inliers is {best:.2f} px.")
+    distances = []
+    for (seed, n, fraction, noise), k in REFIT_PROBLEMS:
+        src, dst, H_true, true_inliers = truth.ransac_problem(seed, n, fraction, noise)
+        what = f"homography_ransac(src, dst, seed={k})"
+        H, inliers = ransac_result(t, src, dst, what, seed=k)
+        if inliers.sum() < 4:
+            diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
+            t.fail(f"{what} marks {int(inliers.sum())} inliers; a homography needs at least 4")
+        distances.append(refit_distance(H, inliers, src, dst))
+    mean = float(np.mean(distances))
+    if mean <= RANSAC_REFIT_TOLERANCE:
+        return passed(f"H agrees with a refit on its own inliers: {mean:.3f} noise levels apart on average")
+    t.fail(f"homography_ransac's H is not the fit to its own inliers: it sends them on average "
+           f"{mean:.3f} times the noise level (the refit's RMS residual) away from where a "
+           f"least-squares refit on the same inliers sends them (at most {RANSAC_REFIT_TOLERANCE} "
+           "expected, over 7 problems): after RANSAC, refit H on all the inliers (the best "
+           "4-point sample is noisy)",
+           hint="H = homography_dlt(src[inliers], dst[inliers]) at the end; "
+                "cv2.findHomography(src, dst, cv2.RANSAC, threshold) does it for you")
 
 
 @ex4.check("homography_ransac with 50% outliers, judged over 5 seeds", points=3)
