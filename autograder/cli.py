@@ -55,11 +55,14 @@ def add_grading_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--timeout", type=float, metavar="SECONDS",
                         help=f"default time limit per call (default {Limits.call_timeout:g})")
     parser.add_argument("--quiet", action="store_true", help="print only the table")
+    parser.add_argument("--config", metavar="COURSE",
+                        help="course configuration (JSON); its 'forbid' rules apply")
 
 
 def run_grade(args) -> int:
     from rich.console import Console
 
+    from .course import CourseConfig, CourseConfigError
     from .reports import html, terminal
     from .results import write_json
     from .runner import grade
@@ -70,9 +73,10 @@ def run_grade(args) -> int:
         with _progress(console) as advance:
             # Pictures cost time to encode: make them only for a page or a JSON file.
             pictures = "all" if (args.json or not args.no_html) else "none"
+            forbid = CourseConfig.load(args.config).forbid if args.config else None
             result = grade(args.submission, args.select, limits=limits, pictures=pictures,
-                           include_hidden=not args.public_only, on_check=advance)
-    except (SelectionError, SubmissionError) as exc:
+                           include_hidden=not args.public_only, on_check=advance, forbid=forbid)
+    except (SelectionError, SubmissionError, CourseConfigError) as exc:
         console.print(f"[red]error:[/red] {exc}")
         return USAGE_ERROR
     html_path = None if args.no_html else args.html

@@ -45,6 +45,7 @@ def results_json(result: GradingResult, config: CourseConfig) -> dict:
     lines = [f"Total: {result.total:g} / {result.max_total:g}"]
     lines += [f"{e.id} {e.title}: {e.score:g} / {e.max_score:g}" + (f" - {e.message.splitlines()[0]}" if e.message else "")
               for e in result.exercises]
+    lines += [f"Rule for {e.id}: {rule}" for e in result.exercises for rule in e.rules]
     return {"score": result.total, "output": "\n".join(lines), "output_format": "text",
             "stdout_visibility": config.stdout_visibility, "tests": tests}
 
@@ -79,7 +80,7 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
     started = time.monotonic()
     try:
         result = grade(submission, config.select, limits=Limits(call_timeout=config.call_timeout),
-                       pictures="none")  # results.json carries text only
+                       pictures="none", forbid=config.forbid)  # results.json carries text only
         data = results_json(result, config)
     except Exception as exc:  # noqa: BLE001 - results.json must be written whatever happens
         log.exception("grading failed")
@@ -153,6 +154,7 @@ def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) ->
     out = Path(out)
     config = config or CourseConfig()
     select(config.select)  # a course that names a missing lab fails now, not at the deadline
+    _check_forbidden_functions(config)
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_name(out.name + ".tmp")
     with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as zf:
@@ -163,6 +165,18 @@ def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) ->
             _add(zf, path.relative_to(root).as_posix(), path.read_bytes())
     tmp.replace(out)
     return out
+
+
+def _check_forbidden_functions(config: CourseConfig) -> None:
+    """Every ``forbid`` key names a student function some exercise grades."""
+    from .course import CourseConfigError
+    from .registry import discover
+
+    labs = discover()
+    for key in config.forbid:
+        lab, function = key.split(".", 1)
+        if lab not in labs or not any(function in e.signatures for e in labs[lab].exercises.values()):
+            raise CourseConfigError(f"forbid: {key} is not a function any exercise grades")
 
 
 def _add(zf: zipfile.ZipFile, name: str, data, executable: bool = False):

@@ -27,7 +27,8 @@ PICTURES = ("all", "failed", "none")
 
 def grade(submission_path, selectors=(), *, limits: Limits | None = None,
           include_hidden: bool = True, pictures: str = "all",
-          on_check: Callable[[Exercise, CheckResult], None] | None = None) -> GradingResult:
+          on_check: Callable[[Exercise, CheckResult], None] | None = None,
+          forbid: dict[str, list[str]] | None = None) -> GradingResult:
     """Grade the submission at ``submission_path``.
 
     Parameters
@@ -45,6 +46,9 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         only where someone will look).
     on_check : callable, optional
         Called after every check, e.g. to advance a progress bar.
+    forbid : dict, optional
+        The instructor's extra rules (course configuration ``forbid``):
+        ``{"lab08.homography_ransac": ["cv2.findHomography"]}``.
 
     Raises
     ------
@@ -62,16 +66,26 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         with Sandbox(submission.path, limits) as sandbox:
             for exercise in exercises:
                 checks = [c for c in exercise.checks if include_hidden or not c.hidden]
+                rules = _rules_for(exercise, forbid or {})
                 result.exercises.append(
-                    _grade_exercise(sandbox, exercise, checks, pictures, on_check))
+                    _grade_exercise(sandbox, exercise, checks, pictures, on_check, rules))
             result.student_seconds = round(sandbox.student_seconds, 6)
     result.seconds = round(time.perf_counter() - started, 6)
     return result
 
 
-def _grade_exercise(sandbox, exercise, checks, pictures, on_check) -> ExerciseResult:
+def _rules_for(exercise: Exercise, forbid: dict) -> dict[str, tuple[str, ...]]:
+    """The instructor's forbids that concern this exercise's functions."""
+    return {function: tuple(forbid[f"{exercise.lab.key}.{function}"]) for function in exercise.signatures
+            if f"{exercise.lab.key}.{function}" in forbid}
+
+
+def _grade_exercise(sandbox, exercise, checks, pictures, on_check, rules=None) -> ExerciseResult:
     functions = list(exercise.signatures.values())
-    out = ExerciseResult(exercise.id, exercise.title, functions)
+    rules = rules or {}
+    out = ExerciseResult(exercise.id, exercise.title, functions, rules=[
+        f"{function}() may not call {', '.join(names)} (your instructor's rule for this course)"
+        for function, names in rules.items()])
     imported = sandbox.import_module(exercise.lab.module)
     if not imported.ok:
         # A missing or broken module: every check scores 0 with the same message.
@@ -86,7 +100,7 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check) -> ExerciseRe
         return out
     modified: list[tuple[str, str]] = []  # (function, argument) changed in place
     for check in checks:
-        out.checks.append(run_check(sandbox, check, pictures, modified))
+        out.checks.append(run_check(sandbox, check, pictures, modified, rules))
         if on_check:
             on_check(exercise, out.checks[-1])
     graded = [c for c in out.checks if c.max_score > 0]
@@ -106,15 +120,15 @@ def _in_place_advice(modified) -> CheckResult:
 
 
 def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
-              modified: list | None = None) -> CheckResult:
+              modified: list | None = None, rules: dict | None = None) -> CheckResult:
     """Run one check and turn however it ends into a scored :class:`CheckResult`.
 
     ``modified`` collects the (function, argument) pairs the student's calls
-    changed in place.
+    changed in place; ``rules`` are the instructor's extra forbids.
     """
     if check.advice:
-        return _run_advice(sandbox, check, modified)
-    trial = Trial(sandbox, check)
+        return _run_advice(sandbox, check, modified, rules)
+    trial = Trial(sandbox, check, rules)
     started = time.perf_counter()
     tb = ""
     try:
@@ -145,9 +159,9 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         student_seconds=round(trial.student_seconds, 6))
 
 
-def _run_advice(sandbox: Sandbox, check: Check, modified) -> CheckResult:
+def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None) -> CheckResult:
     """An advice check: a tip if it gave one, else silence; never a failure, never points."""
-    trial = Trial(sandbox, check)
+    trial = Trial(sandbox, check, rules)
     started = time.perf_counter()
     status, message, hint = PASSED, "", ""
     try:

@@ -35,6 +35,9 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
                                     style=_score_style(result.total, result.max_total)), "")
     console.print(table)
 
+    for exercise in result.exercises:
+        for rule in exercise.rules:
+            console.print(Text(f"rule {exercise.id}: ", style="bold yellow") + Text(rule))
     if details:
         _print_problems(result, console)
         _print_advice(result, console)
