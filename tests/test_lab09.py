@@ -159,6 +159,13 @@ MIRRORED = """
     """
 ADVICE = {f"behind the camera mirrored ({ex})": (f"lab09.{ex}", MIRRORED, ["z <= 0", "nan", "no points"])
           for ex in ("ex1", "ex2", "ex3")}
+ADVICE["draw_points on NaN points raises"] = ("lab09.ex5", """
+    def draw_points(image, pts, radius=3, color=(0, 0, 255)):    # the sheet: cv2.circle per point
+        out = image.copy()
+        for x, y in np.asarray(pts, float).reshape(-1, 2):
+            cv2.circle(out, (int(round(x)), int(round(y))), radius, color, -1)
+        return out
+    """, ["draw_points(image, pts with a nan row) failed", "skip the rows that are not finite"])
 
 
 @pytest.mark.parametrize("name", sorted(ADVICE))

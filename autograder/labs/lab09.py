@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from fixtures import lab09 as truth
 from fixtures.lab09 import photo
 
-from ..checks import Trial, partial, passed
+from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import closest
 from ..pictures import svg_points
 from .. import judges
@@ -500,13 +500,30 @@ def draw_example(t):
     return judge_drawing(t, "draw_points(image, pts)", t.call("draw_points", image, pts), image, pts)
 
 
-@ex5.check("draw_points with radius, colour, and points that are NaN or off the image", points=2)
+@ex5.check("draw_points with radius, colour, and points off the image", points=2)
 def draw_options(t):
     image = photo("coffee", (160, 120))
-    pts = np.array([[40.0, 40.0], [np.nan, np.nan], [120.4, 80.6], [-30.0, 50.0], [500.0, 60.0]])
+    pts = np.array([[40.0, 40.0], [120.4, 80.6], [-30.0, 50.0], [500.0, 60.0]])
     return judge_drawing(t, "draw_points(image, pts, radius=6, color=(0, 255, 0))",
                          t.call("draw_points", image, pts, radius=6, color=(0, 255, 0)),
                          image, pts, radius=6, color=(0, 255, 0))
+
+
+# The API does not say what draw_points does with a NaN point (a projection
+# behind the camera, if the student follows the NaN advice): advice.
+@ex5.advice("draw_points skips NaN points")
+def draw_nan(t):
+    image = photo("coffee", (160, 120))
+    pts = np.array([[40.0, 40.0], [np.nan, np.nan], [120.4, 80.6]])
+    what = "draw_points(image, pts with a NaN row)"
+    try:
+        got = t.call("draw_points", image, pts)
+        judge_drawing(t, what, got, image, pts, radius=3, color=(0, 0, 255))
+    except (StudentFailure, Fail) as failure:
+        t.advise(f"{what} failed: {failure.message.splitlines()[0]} -- projections of points "
+                 "behind the camera are NaN if you follow that advice, so skip the rows that "
+                 "are not finite. No points depend on it.",
+                 hint="if np.isfinite(x) and np.isfinite(y): cv2.circle(...)")
 
 
 def _photo_scene(seed=51):
