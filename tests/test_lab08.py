@@ -3,7 +3,7 @@
 import pytest
 
 from autograder.runner import grade
-from conftest import REFERENCE, SKELETON, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
+from conftest import REFERENCE, SKELETON, assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
 
 MODULE = "lab08_homographies"
 
@@ -73,13 +73,6 @@ MISTAKES = {
             return cv2.warpAffine(image, H[:2], dsize or (w, h))
         """, ["perspective row", "warpPerspective"]),
     # ---------------------------------------------------------------- ex2
-    "DLT without normalisation": ("lab08.ex2", """
-        def homography_dlt(src, dst):
-            src = np.asarray(src, float); dst = np.asarray(dst, float)
-            _, _, Vt = np.linalg.svd(_dlt_rows(src, dst))
-            H = Vt[-1].reshape(3, 3)
-            return H / H[2, 2]
-        """, ["normalised dlt", "raw pixel coordinates"]),
     "DLT src and dst swapped": ("lab08.ex2", """
         _reference_dlt = homography_dlt
         def homography_dlt(src, dst):
@@ -398,3 +391,24 @@ def test_sensible_alternatives_score_full_marks(tmp_path):
     for exercise in result.exercises:
         for check in exercise.checks:
             assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+
+
+# Conventions the lab sheet leaves open: advice (0 points), never a lost point.
+ADVICE = {
+    "DLT without normalisation (the lab sheet's DLT on raw pixels)": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            _, _, Vt = np.linalg.svd(_dlt_rows(src, dst))
+            H = Vt[-1].reshape(3, 3)
+            return H / H[2, 2]
+        """, ["normalised dlt", "raw pixel coordinates", "no points"]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(ADVICE))
+def test_convention_is_advice_not_points(tmp_path, name):
+    exercise, source, fragments = ADVICE[name]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    assert_advised(result, exercise, *fragments)
+    [graded] = result.exercises
+    assert graded.score == graded.max_score, [c.message for c in graded.checks if not c.passed]

@@ -212,26 +212,47 @@ def dlt_noisy(t):
            f"DLT is {best:.2f} px away.")
 
 
-@ex2.check("homography_dlt normalises: a small patch far from the origin, 1 px noise", points=2)
-def dlt_normalised(t):
-    errors, best = [], []
+# The lab sheet prescribes the DLT rows and SVD, not Hartley's normalisation, so
+# the graded check accepts the sheet's DLT on raw pixels; normalising is advice.
+# Measured on these three problems (RMS px from the true H, mean): normalised
+# DLT 0.50, cv2.findHomography(method=0) 0.49, the sheet's DLT on raw pixels 4.18
+# (float32 input the same). Full marks up to 1.5 times the worse of the two DLTs.
+def patch_errors(t: Trial):
+    """(yours, normalised DLT, raw-pixel DLT): mean RMS px from the true H over the patch problems."""
+    errors = []
     for seed in PATCH_SEEDS:
         src, dst, H = truth.dlt_problem(seed, 40, 1.0, PATCH_REGION, 0.05)
         got = fitted_h(t, src, dst, "homography_dlt(src, dst) on a 160x120 patch at (800, 600)")
-        errors.append(truth.transfer_rms(got, H, PATCH_REGION))
-        best.append(truth.transfer_rms(truth.dlt(src, dst), H, PATCH_REGION))
-    error, reference = float(np.mean(errors)), float(np.mean(best))
-    if error <= 1.5 * reference:
-        return passed(f"{error:.2f} px RMS on average (a normalised DLT: {reference:.2f} px)")
-    hint = ("Normalise each point set first (Hartley: move the centroid to the origin and scale "
-            "so the mean distance is sqrt(2)), solve, then undo: H = T_dst^-1 @ H_n @ T_src.")
-    message = (f"On points with coordinates around 800-960 x 600-720 px your H is {error:.2f} px "
-               f"(RMS) from the truth on average, where a normalised DLT is {reference:.2f} px: "
-               "with raw pixel coordinates the x*x' terms (about 1e6) swamp the others and the "
-               "noise is weighted very unevenly.")
-    if error <= 3 * reference:
-        return partial(0.4, message + " Your normalisation helps, but not fully.", hint)
-    t.fail(message, hint)
+        errors.append([truth.transfer_rms(got, H, PATCH_REGION),
+                       truth.transfer_rms(truth.dlt(src, dst), H, PATCH_REGION),
+                       truth.transfer_rms(truth.dlt(src, dst, normalise=False), H, PATCH_REGION)])
+    return np.mean(errors, axis=0)
+
+
+@ex2.check("homography_dlt on a small patch far from the origin, 1 px noise", points=2)
+def dlt_normalised(t):
+    error, normalised, raw = patch_errors(t)
+    tolerance = 1.5 * max(normalised, raw)
+    if error <= tolerance:
+        return passed(f"{error:.2f} px RMS on average (a normalised DLT: {normalised:.2f} px, "
+                      f"the DLT on raw pixels: {raw:.2f} px)")
+    t.fail(f"On points with coordinates around 800-960 x 600-720 px your H is {error:.2f} px (RMS) "
+           f"from the truth on average, where the lab sheet's DLT on raw pixels is {raw:.2f} px "
+           f"and a normalised DLT {normalised:.2f} px (at most {tolerance:.2f} px expected).")
+
+
+@ex2.advice("homography_dlt normalises its points")
+def dlt_normalisation_advice(t):
+    error, normalised, raw = patch_errors(t)
+    if error > 1.5 * normalised:
+        t.advise(f"On points with coordinates around 800-960 x 600-720 px your H is {error:.2f} px "
+                 f"(RMS) from the truth on average, where a normalised DLT is {normalised:.2f} px: "
+                 "with raw pixel coordinates the x*x' terms (about 1e6) swamp the others and the "
+                 "noise is weighted very unevenly. The lab sheet does not ask for it: no points "
+                 "depend on it.",
+                 hint="Normalise each point set first (Hartley: move the centroid to the origin and "
+                      "scale so the mean distance is sqrt(2)), solve, then undo: "
+                      "H = T_dst^-1 @ H_n @ T_src.")
 
 
 @ex2.check("warp_to_reference: moving image in the reference's frame and size", points=3)
