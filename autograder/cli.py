@@ -118,7 +118,8 @@ def run_list(args) -> int:
             print(f"  {exercise.id:<12} {exercise.max_score():>5g} pts  {exercise.title}")
             for check in exercise.checks:
                 flag = " (hidden)" if check.hidden else ""
-                print(f"      {check.points:>4g}  {check.name}{flag}")
+                points = "tip" if check.advice else f"{check.points:g}"  # advice: 0 points
+                print(f"      {points:>4}  {check.name}{flag}")
     return 0
 
 
