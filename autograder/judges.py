@@ -22,6 +22,13 @@ def format_matrix(matrix, precision: int = 4) -> str:
     return np.array2string(np.asarray(matrix, float), precision=precision, suppress_small=True)
 
 
+def digits_apart(value: float, limit: float, digits: int = 3) -> str:
+    """``value`` with enough significant digits that it never reads as ``limit``."""
+    while digits < 12 and f"{value:.{digits}g}" == f"{limit:.{digits}g}":
+        digits += 1
+    return f"{value:.{digits}g}"
+
+
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3),
                  up_to_scale: bool = False, rtol: float = 1e-6) -> np.ndarray:
     """Compare a returned matrix with the truth; name the mistake when one fits.

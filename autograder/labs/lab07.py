@@ -16,7 +16,7 @@ from fixtures.images import photo
 
 from ..checks import Trial, passed
 from ..compare import closest
-from ..judges import format_matrix, judge_matrix, judge_warp
+from ..judges import digits_apart, format_matrix, judge_matrix, judge_warp
 from ..registry import Lab
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
@@ -208,8 +208,8 @@ def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
                       max(1.0, 100 * tolerance))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.")
-    t.fail(f"{what} sends the points up to {error:.3g} px away from where the true map sends them "
-           f"(at most {tolerance:.2g} px expected). It returned\n{format_matrix(got, 6)}\n"
+    t.fail(f"{what} sends the points up to {digits_apart(error, tolerance)} px away from where the "
+           f"true map sends them (at most {tolerance:.3g} px expected). It returned\n{format_matrix(got, 6)}\n"
            f"expected\n{format_matrix(expected, 6)}")
 
 
@@ -282,8 +282,9 @@ def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
     # The residual grows only to second order in the error: quoted only when the digits show it.
     residuals = f"; RMS residual {residual:.4f} px where the least-squares fit has {best:.4f} px" \
         if f"{residual:.4f}" != f"{best:.4f}" else ""
-    t.fail(f"{what} is not the least-squares fit: it sends a source point {error:.3g} px away "
-           f"from where the least-squares fit sends it (at most {tolerance:.2g} px expected)"
+    t.fail(f"{what} is not the least-squares fit: it sends a source point "
+           f"{digits_apart(error, tolerance)} px away from where the least-squares fit sends it "
+           f"(at most {tolerance:.3g} px expected)"
            f"{residuals}.")
 
 

@@ -28,7 +28,7 @@ from fixtures.images import coverage, photo, warp
 
 from ..checks import Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
-from ..judges import IMAGE_TOLERANCE, format_matrix, judge_warp
+from ..judges import IMAGE_TOLERANCE, digits_apart, format_matrix, judge_warp
 from ..pictures import difference_heatmap, matches_picture, svg_points
 from ..registry import Lab
 
@@ -236,9 +236,10 @@ def dlt_normalised(t):
     if error <= tolerance:
         return passed(f"{error:.2f} px RMS on average (a normalised DLT: {normalised:.2f} px, "
                       f"the DLT on raw pixels: {raw:.2f} px)")
-    t.fail(f"On points with coordinates around 800-960 x 600-720 px your H is {error:.2f} px (RMS) "
-           f"from the truth on average, where the lab sheet's DLT on raw pixels is {raw:.2f} px "
-           f"and a normalised DLT {normalised:.2f} px (at most {tolerance:.2f} px expected).")
+    t.fail(f"On points with coordinates around 800-960 x 600-720 px your H is "
+           f"{digits_apart(error, tolerance)} px (RMS) from the truth on average, where the lab "
+           f"sheet's DLT on raw pixels is {raw:.2f} px and a normalised DLT {normalised:.2f} px "
+           f"(at most {tolerance:.3g} px expected).")
 
 
 @ex2.advice("homography_dlt normalises its points")
@@ -572,7 +573,7 @@ def ransac_refit(t):
     if mean <= RANSAC_REFIT_TOLERANCE:
         return passed(f"H agrees with a refit on its own inliers: {mean:.3f} noise levels apart on average")
     t.fail(f"homography_ransac's H is not the fit to its own inliers: it sends them on average "
-           f"{mean:.3f} times the noise level (the refit's RMS residual) away from where a "
+           f"{digits_apart(mean, RANSAC_REFIT_TOLERANCE)} times the noise level (the refit's RMS residual) away from where a "
            f"least-squares refit on the same inliers sends them (at most {RANSAC_REFIT_TOLERANCE} "
            "expected, over 7 problems): after RANSAC, refit H on all the inliers (the best "
            "4-point sample is noisy)",
