@@ -161,16 +161,21 @@ def failure(kind, message, tb="", seconds=0.0):
 
 # ------------------------------------------------------------------ around each call
 def snapshot_arrays(args, kwargs):
-    """``(position or keyword, array, copy)`` for each argument array, to compare after the call."""
+    """``(position or keyword, index in a list or None, array, copy)`` for each argument array
+    (and each array in a list argument, e.g. ``images``), to compare after the call."""
     import numpy
-    named = list(enumerate(args)) + list(kwargs.items())
-    return [(key, value, value.copy()) for key, value in named if isinstance(value, numpy.ndarray)]
+    snapshot = []
+    for key, value in list(enumerate(args)) + list(kwargs.items()):
+        items = enumerate(value) if isinstance(value, (list, tuple)) else [(None, value)]
+        snapshot += [(key, index, item, item.copy()) for index, item in items
+                     if isinstance(item, numpy.ndarray)]
+    return snapshot
 
 
 def modified_arguments(function, snapshot):
     """Names of the argument arrays the call changed in place (callers do not expect that)."""
     try:  # the student's code may have broken anything; this is advice, never a failure
-        changed = [key for key, value, before in snapshot
+        changed = [(key, index) for key, index, value, before in snapshot
                    if value.shape != before.shape or value.tobytes() != before.tobytes()]
         if not changed:
             return []
@@ -180,9 +185,10 @@ def modified_arguments(function, snapshot):
                           if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
         except (TypeError, ValueError):
             parameters = []
-        return [key if isinstance(key, str) else
-                parameters[key] if key < len(parameters) else f"argument {key + 1}"
-                for key in changed]
+        names = [(key if isinstance(key, str) else
+                  parameters[key] if key < len(parameters) else f"argument {key + 1}", index)
+                 for key, index in changed]
+        return [name if index is None else f"{name}[{index}]" for name, index in names]
     except BaseException:  # noqa: BLE001
         return []
 
