@@ -19,6 +19,9 @@ Conventions used throughout
 - Warps use bilinear interpolation (``cv2.INTER_LINEAR``). You may use
   ``cv2.warpAffine`` to apply a matrix to an image, with
   ``borderMode=cv2.BORDER_CONSTANT, borderValue=0``.
+- Matplotlib is welcome for looking at your results (``import
+  matplotlib.pyplot as plt``, ``plt.imshow``, ``plt.show()``): the grader runs
+  it without a window and closes your figures after each call.
 """
 
 import cv2  # noqa: F401  (you will need it)
@@ -161,8 +164,9 @@ def affine_from_points(src, dst):
     -------
     A : (2, 3) float array
         ``dst[i] = A @ [src[i, 0], src[i, 1], 1]`` for i = 0, 1, 2.
-        Solve the 6x6 (or two 3x3) linear systems yourself (``np.linalg.solve``);
-        do not use ``cv2.getAffineTransform``.
+        The lab sheet's recipe is ``cv2.getAffineTransform`` (it wants float32
+        points: ``np.float32(src)``); solving the 6x6 (or two 3x3) linear
+        systems yourself (``np.linalg.solve``) is just as good.
     """
     raise NotImplementedError("ex5: affine_from_points")
 

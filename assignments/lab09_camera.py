@@ -14,8 +14,12 @@ Conventions used throughout
   ``Y`` down in the image. A world point ``X`` has camera coordinates
   ``R @ X + t``.
 - **Points behind the camera** (camera-frame ``Z <= 0``, i.e. third homogeneous
-  coordinate ``<= 0``) have no image: their projection is ``[nan, nan]``.
-  (Without this rule a point behind the pinhole would appear mirrored.)
+  coordinate ``<= 0``) have no image. Recommended: return ``[nan, nan]`` for
+  them (without it a point behind the pinhole appears mirrored). The lab sheet
+  does not ask for it, so it earns no points: the grader gives it as advice.
+  Whatever you return there, return one row per input point.
+- Matplotlib is welcome for the visualisations the lab sheet asks for; the
+  grader runs it without a window and closes your figures after each call.
 - Images are ``uint8`` arrays ``(H, W, 3)`` in BGR order, as ``cv2.imread``
   gives them.
 """
@@ -39,7 +43,7 @@ def pinhole_project(points, f):
     -------
     (N, 2) or (2,) float array
         ``x = f X / Z``, ``y = f Y / Z`` (the image origin is on the optical
-        axis; no principal point yet). NaN for points with ``Z <= 0``.
+        axis; no principal point yet). NaN for points with ``Z <= 0`` (recommended).
 
     Examples
     --------
@@ -76,7 +80,8 @@ def project_with_intrinsics(K, points):
     Returns
     -------
     (N, 2) or (2,) float array
-        ``(u, v, w) = K @ (X, Y, Z)``, then ``(u / w, v / w)``. NaN where ``w <= 0``.
+        ``(u, v, w) = K @ (X, Y, Z)``, then ``(u / w, v / w)``. NaN where ``w <= 0``
+        (recommended).
 
     Examples
     --------
@@ -120,8 +125,8 @@ def project(P, points):
     Returns
     -------
     (N, 2) or (2,) float array
-        ``(u, v, w) = P @ (X, Y, Z, 1)``, then ``(u / w, v / w)``. NaN where
-        ``w`` has not the sign of the camera's depth, i.e. for points behind
+        ``(u, v, w) = P @ (X, Y, Z, 1)``, then ``(u / w, v / w)``. NaN
+        (recommended) where ``w`` has not the sign of the camera's depth, i.e. for points behind
         the camera: for ``P = s K [R | t]`` with ``s > 0`` that is ``w <= 0``.
         (The checks only use ``s > 0`` for points behind the camera.)
     """

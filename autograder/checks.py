@@ -80,11 +80,14 @@ class Trial:
         The submission's worker.
     check : Check
         The check being run (for its exercise, lab, timeout and forbidden calls).
+    forbid : dict, optional
+        The instructor's extra forbidden calls, per student function.
     """
 
-    def __init__(self, sandbox: Sandbox, check: Check):
+    def __init__(self, sandbox: Sandbox, check: Check, forbid: dict | None = None):
         self.sandbox, self.check = sandbox, check
         self.lab = check.exercise.lab
+        self.forbid = forbid or {}
         self._pictures: list = []  # made into Artifacts only if the grading keeps them
         self.outputs: list[str] = []
         self.student_seconds = 0.0
@@ -106,7 +109,8 @@ class Trial:
         if failure is None:
             outcome = self.sandbox.call(self.lab.module, function, args, kwargs,
                                         timeout=self.check.timeout,
-                                        forbid=self.lab.forbidden.get(function, ()))
+                                        forbid=self.lab.forbidden.get(function, ())
+                                        + self.forbid.get(function, ()))
             self.student_seconds += outcome.seconds
             if outcome.output.strip():
                 self.outputs.append(outcome.output)
@@ -130,6 +134,13 @@ class Trial:
     # ------------------------------------------------------------ judging
     def fail(self, message: str, hint: str = "", mistake: str = ""):
         raise Fail(message, hint, mistake)
+
+    def advise(self, message: str, hint: str = ""):
+        """Give a tip (advice checks only): shown with its reason, worth no points."""
+        if not self.check.advice:
+            raise TypeError(f"t.advise() in graded check {self.check.name!r}; "
+                            "register advice with @exercise.advice(name)")
+        self.tips.append((message, hint))
 
     def advise(self, message: str, hint: str = ""):
         """Give a tip (advice checks only): shown with its reason, worth no points."""

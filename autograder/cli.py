@@ -84,6 +84,8 @@ def add_grading_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--timeout", type=_positive_seconds, metavar="SECONDS",
                         help=f"default time limit per call (default {Limits.call_timeout:g})")
     parser.add_argument("--quiet", action="store_true", help="print only the table")
+    parser.add_argument("--config", metavar="COURSE",
+                        help="course configuration (JSON); its 'forbid' rules apply")
     parser.add_argument("--figures", metavar="DIR",
                         help="also write the lab sheet's output pictures, made by your functions, "
                              "as DIR/<exercise>.png (and show them on the feedback page)")
@@ -116,6 +118,7 @@ def run_grade(args) -> int:
     from rich.console import Console
     from rich.markup import escape
 
+    from .course import CourseConfig, CourseConfigError
     from .reports import html, terminal
     from .results import write_json
     from .runner import grade
@@ -133,9 +136,10 @@ def run_grade(args) -> int:
         with _progress(errors) as advance:
             # Pictures cost time to encode: make them only for a page or a JSON file.
             pictures = "all" if (args.json or not args.no_html) else "none"
+            forbid = CourseConfig.load(args.config).forbid if args.config else None
             result = grade(args.submission, args.select, limits=limits, pictures=pictures,
-                           include_hidden=not args.public_only, on_check=advance)
-    except (SelectionError, SubmissionError) as exc:
+                           include_hidden=not args.public_only, on_check=advance, forbid=forbid)
+    except (SelectionError, SubmissionError, CourseConfigError) as exc:
         errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         return USAGE_ERROR
     html_path = None if args.no_html else _report_path(args.html, "feedback.html")
@@ -302,7 +306,8 @@ def run_list(args) -> int:
         for exercise in lab.exercises.values():
             print(f"  {exercise.id:<12} {exercise.max_score():>5g} pts  {exercise.title}")
             for check in exercise.checks:
-                print(f"      {check.points:>4g}  {check_label(check.name, check.hidden)}")
+                points = "tip" if check.advice else f"{check.points:g}"  # advice: 0 points
+                print(f"      {points:>4}  {check_label(check.name, check.hidden)}")
     return 0
 
 

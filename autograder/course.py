@@ -4,7 +4,8 @@ Example ``course.json``::
 
     {"select": ["lab07", "lab08"], "public_visibility": "visible",
      "hidden_visibility": "after_published", "call_timeout": 10,
-     "exercise_budget": 60, "submission_budget": 480}
+     "exercise_budget": 60, "submission_budget": 480,
+     "forbid": {"lab08.homography_ransac": ["cv2.findHomography"]}}
 
 ``call_timeout`` bounds one call into the student's code, ``exercise_budget`` and
 ``submission_budget`` the student time (calls, timeouts and worker restarts)
@@ -13,6 +14,12 @@ score 0 as "time budget exhausted". Keep ``submission_budget`` below the
 Gradescope assignment's own timeout, so results are always written.
 
 Every key is optional; unknown keys and bad values are refused with a message.
+
+``forbid`` (off by default) adds the instructor's own rules to the lab sheet's:
+inside the student function ``labNN.function``, calling any of the listed
+library functions (``module.name``) fails the check with "... which this
+exercise asks you to implement yourself". The feedback lists the rule under
+the exercise, so students see it before they lose a point.
 
 Keys read by ``autograder batch`` (instructor grading):
 
@@ -44,11 +51,14 @@ Read by ``autograder similarity`` (and ``autograder batch --similarity``):
 from __future__ import annotations
 
 import json
+import re
 from dataclasses import asdict, dataclass, field, fields
 from datetime import datetime
 from pathlib import Path
 
 VISIBILITIES = ("visible", "hidden", "after_due_date", "after_published")
+_STUDENT_FUNCTION = re.compile(r"lab\d\d\.[A-Za-z_]\w*")          # lab08.homography_ransac
+_LIBRARY_FUNCTION = re.compile(r"[A-Za-z_]\w*(\.[A-Za-z_]\w*)+")   # cv2.findHomography
 
 
 class CourseConfigError(ValueError):
@@ -68,6 +78,7 @@ class CourseConfig:
     similarity_threshold: float = 0.5                   # similarity report: pairs shown side by side
     exercise_budget: float = 60.0                       # student seconds per exercise
     submission_budget: float = 480.0                    # student seconds per submission
+    forbid: dict = field(default_factory=dict)          # "lab08.homography_ransac": ["cv2.findHomography"]
 
     def __post_init__(self):
         for name in ("public_visibility", "hidden_visibility", "stdout_visibility"):
@@ -87,6 +98,7 @@ class CourseConfig:
         self._check_late_penalty()
         if not (isinstance(self.similarity_threshold, (int, float)) and 0 < self.similarity_threshold <= 1):
             raise CourseConfigError("similarity_threshold must be a number in (0, 1]")
+        self._check_forbid()
 
     def limits(self):
         """The sandbox limits this course asks for."""
@@ -94,6 +106,24 @@ class CourseConfig:
 
         return Limits(call_timeout=self.call_timeout, exercise_budget=self.exercise_budget,
                       submission_budget=self.submission_budget)
+
+    def _check_forbid(self):
+        example = '{"lab08.homography_ransac": ["cv2.findHomography"]}'
+        if not isinstance(self.forbid, dict):
+            raise CourseConfigError(f"forbid must be an object like {example}")
+        for function, libraries in self.forbid.items():
+            if not (isinstance(function, str) and _STUDENT_FUNCTION.fullmatch(function)):
+                raise CourseConfigError(f"forbid: {function!r} is not a student function like "
+                                        f"'lab08.homography_ransac' (example: {example})")
+            if not (isinstance(libraries, list) and libraries
+                    and all(isinstance(n, str) and _LIBRARY_FUNCTION.fullmatch(n) for n in libraries)):
+                raise CourseConfigError(f"forbid[{function!r}] must be a non-empty list of library "
+                                        f"functions like 'cv2.findHomography' (example: {example})")
+
+    def forbidden(self, lab: str) -> dict[str, tuple[str, ...]]:
+        """The instructor's extra forbids for one lab: student function -> library functions."""
+        return {key.split(".", 1)[1]: tuple(names) for key, names in self.forbid.items()
+                if key.split(".", 1)[0] == lab}
 
     def _check_late_penalty(self):
         rule = self.late_penalty

@@ -64,6 +64,7 @@ def _summary(result: GradingResult) -> str:
         elif e.message:
             line += " - as above"
         lines.append(line)
+    lines += [f"Rule for {e.id}: {rule}" for e in result.exercises for rule in e.rules]
     return "\n".join(lines)
 
 
@@ -113,7 +114,7 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
     started = time.monotonic()
     try:
         result = grade(submission, config.select, limits=config.limits(),
-                       pictures="none")  # results.json carries text only
+                       pictures="none", forbid=config.forbid)  # results.json carries text only
         data = results_json(result, config)
     except SubmissionError as exc:  # nothing in the upload can be read as a submission
         data = failure_json(f"The autograder could not grade this submission: {exc}. "
@@ -201,6 +202,7 @@ def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) ->
     out = Path(out)
     config = config or CourseConfig()
     select(config.select)  # a course that names a missing lab fails now, not at the deadline
+    _check_forbidden_functions(config)
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_name(out.name + ".tmp")
     with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as zf:
@@ -211,6 +213,18 @@ def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) ->
             _add(zf, path.relative_to(root).as_posix(), path.read_bytes())
     tmp.replace(out)
     return out
+
+
+def _check_forbidden_functions(config: CourseConfig) -> None:
+    """Every ``forbid`` key names a student function some exercise grades."""
+    from .course import CourseConfigError
+    from .registry import discover
+
+    labs = discover()
+    for key in config.forbid:
+        lab, function = key.split(".", 1)
+        if lab not in labs or not any(function in e.signatures for e in labs[lab].exercises.values()):
+            raise CourseConfigError(f"forbid: {key} is not a function any exercise grades")
 
 
 def _add(zf: zipfile.ZipFile, name: str, data, executable: bool = False):

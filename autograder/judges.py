@@ -18,8 +18,15 @@ IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered 
 FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
 
 
-def format_matrix(matrix) -> str:
-    return np.array2string(np.asarray(matrix, float), precision=4, suppress_small=True)
+def format_matrix(matrix, precision: int = 4) -> str:
+    return np.array2string(np.asarray(matrix, float), precision=precision, suppress_small=True)
+
+
+def digits_apart(value: float, limit: float, digits: int = 3) -> str:
+    """``value`` with enough significant digits that it never reads as ``limit``."""
+    while digits < 12 and f"{value:.{digits}g}" == f"{limit:.{digits}g}":
+        digits += 1
+    return f"{value:.{digits}g}"
 
 
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3),

@@ -89,6 +89,7 @@ class ExerciseResult:
     functions: list[str]
     checks: list[CheckResult] = field(default_factory=list)
     message: str = ""
+    rules: list[str] = field(default_factory=list)  # the instructor's extra rules, for the student
 
     @property
     def score(self) -> float:
@@ -101,7 +102,7 @@ class ExerciseResult:
     def to_dict(self) -> dict:
         return {"id": self.id, "title": self.title, "functions": self.functions,
                 "score": self.score, "max_score": self.max_score, "message": self.message,
-                "checks": [c.to_dict() for c in self.checks]}
+                "rules": list(self.rules), "checks": [c.to_dict() for c in self.checks]}
 
 
 @dataclass
@@ -142,7 +143,7 @@ class GradingResult:
                 c["artifacts"] = [Artifact(**a) for a in c.get("artifacts", [])]
                 checks.append(CheckResult(**c))
             exercises.append(ExerciseResult(e["id"], e["title"], e.get("functions", []),
-                                            checks, e.get("message", "")))
+                                            checks, e.get("message", ""), e.get("rules", [])))
         return cls(data["submission"], data["submission_hash"], data["grader_version"],
                    exercises, data.get("seconds", 0.0), data.get("student_seconds", 0.0),
                    data.get("hidden_included", True), data.get("notes", []), data.get("graded_at", ""))

@@ -36,7 +36,8 @@ PICTURES = ("all", "failed", "none")
 
 def grade(submission_path, selectors=(), *, limits: Limits | None = None,
           include_hidden: bool = True, pictures: str = "all",
-          on_check: Callable[[Exercise, CheckResult], None] | None = None) -> GradingResult:
+          on_check: Callable[[Exercise, CheckResult], None] | None = None,
+          forbid: dict[str, list[str]] | None = None) -> GradingResult:
     """Grade the submission at ``submission_path``.
 
     Parameters
@@ -54,6 +55,9 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         only where someone will look).
     on_check : callable, optional
         Called after every check, e.g. to advance a progress bar.
+    forbid : dict, optional
+        The instructor's extra rules (course configuration ``forbid``):
+        ``{"lab08.homography_ransac": ["cv2.findHomography"]}``.
 
     Raises
     ------
@@ -75,8 +79,9 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
             for exercise in exercises:
                 checks = [c for c in exercise.checks if include_hidden or not c.hidden]
                 budget.start_exercise()
-                result.exercises.append(
-                    _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission, budget))
+                rules = _rules_for(exercise, forbid or {})
+                result.exercises.append(_grade_exercise(
+                    sandbox, exercise, checks, pictures, on_check, submission, budget, rules))
             result.student_seconds = round(sandbox.student_seconds, 6)
         _point_into_notebooks(result, exercises, submission)
     result.seconds = round(time.perf_counter() - started, 6)
@@ -103,10 +108,19 @@ class _Budget:
         return ""
 
 
+def _rules_for(exercise: Exercise, forbid: dict) -> dict[str, tuple[str, ...]]:
+    """The instructor's forbids that concern this exercise's functions."""
+    return {function: tuple(forbid[f"{exercise.lab.key}.{function}"]) for function in exercise.signatures
+            if f"{exercise.lab.key}.{function}" in forbid}
+
+
 def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=None,
-                    budget=None) -> ExerciseResult:
+                    budget=None, rules=None) -> ExerciseResult:
     functions = list(exercise.signatures.values())
-    out = ExerciseResult(exercise.id, exercise.title, functions)
+    rules = rules or {}
+    out = ExerciseResult(exercise.id, exercise.title, functions, rules=[
+        f"{function}() may not call {', '.join(names)} (your instructor's rule for this course)"
+        for function, names in rules.items()])
     imported = _import(sandbox, exercise.lab.module, submission)
     refusal = submission.refusal_for(exercise.lab.module) if submission is not None else ""
     if not imported.ok:
@@ -132,7 +146,7 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
             out.checks.append(CheckResult(check.name, 0.0, check.points, FAILED, spent,
                                           hidden=check.hidden, failure="budget"))
         else:
-            out.checks.append(run_check(sandbox, check, pictures, modified))
+            out.checks.append(run_check(sandbox, check, pictures, modified, rules))
         if on_check:
             on_check(exercise, out.checks[-1])
     graded = [c for c in out.checks if c.max_score > 0]
@@ -207,15 +221,15 @@ def _in_place_advice(modified) -> CheckResult:
 
 
 def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
-              modified: list | None = None) -> CheckResult:
+              modified: list | None = None, rules: dict | None = None) -> CheckResult:
     """Run one check and turn however it ends into a scored :class:`CheckResult`.
 
     ``modified`` collects the (function, argument) pairs the student's calls
-    changed in place.
+    changed in place; ``rules`` are the instructor's extra forbids.
     """
     if check.advice:
-        return _run_advice(sandbox, check, modified)
-    trial = Trial(sandbox, check)
+        return _run_advice(sandbox, check, modified, rules)
+    trial = Trial(sandbox, check, rules)
     started = time.perf_counter()
     tb, student_failure = "", ""
     try:
@@ -254,9 +268,9 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         student_seconds=round(trial.student_seconds, 6))
 
 
-def _run_advice(sandbox: Sandbox, check: Check, modified) -> CheckResult:
+def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None) -> CheckResult:
     """An advice check: a tip if it gave one, else silence; never a failure, never points."""
-    trial = Trial(sandbox, check)
+    trial = Trial(sandbox, check, rules)
     started = time.perf_counter()
     status, message, hint = PASSED, "", ""
     try:

@@ -24,6 +24,7 @@ Usage (by the parent only)::
 import builtins
 import errno
 import importlib
+import importlib.util
 import json
 import os
 import resource
@@ -172,16 +173,21 @@ def failure(kind, message, tb="", seconds=0.0):
 
 # ------------------------------------------------------------------ around each call
 def snapshot_arrays(args, kwargs):
-    """``(position or keyword, array, copy)`` for each argument array, to compare after the call."""
+    """``(position or keyword, index in a list or None, array, copy)`` for each argument array
+    (and each array in a list argument, e.g. ``images``), to compare after the call."""
     import numpy
-    named = list(enumerate(args)) + list(kwargs.items())
-    return [(key, value, value.copy()) for key, value in named if isinstance(value, numpy.ndarray)]
+    snapshot = []
+    for key, value in list(enumerate(args)) + list(kwargs.items()):
+        items = enumerate(value) if isinstance(value, (list, tuple)) else [(None, value)]
+        snapshot += [(key, index, item, item.copy()) for index, item in items
+                     if isinstance(item, numpy.ndarray)]
+    return snapshot
 
 
 def modified_arguments(function, snapshot):
     """Names of the argument arrays the call changed in place (callers do not expect that)."""
     try:  # the student's code may have broken anything; this is advice, never a failure
-        changed = [key for key, value, before in snapshot
+        changed = [(key, index) for key, index, value, before in snapshot
                    if value.shape != before.shape or value.tobytes() != before.tobytes()]
         if not changed:
             return []
@@ -191,11 +197,56 @@ def modified_arguments(function, snapshot):
                           if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
         except (TypeError, ValueError):
             parameters = []
-        return [key if isinstance(key, str) else
-                parameters[key] if key < len(parameters) else f"argument {key + 1}"
-                for key in changed]
+        names = [(key if isinstance(key, str) else
+                  parameters[key] if key < len(parameters) else f"argument {key + 1}", index)
+                 for key, index in changed]
+        return [name if index is None else f"{name}[{index}]" for name, index in names]
     except BaseException:  # noqa: BLE001
         return []
+
+
+def close_figures():
+    """Close every Matplotlib figure the call opened: the sheet asks for plots, the grader
+    shows none (the backend is Agg, so ``plt.show()`` opens no window), and open figures
+    would only accumulate memory over hundreds of calls."""
+    pyplot = sys.modules.get("matplotlib.pyplot")
+    if pyplot is not None:
+        try:
+            pyplot.close("all")
+        except BaseException:  # noqa: BLE001 - a student's broken pyplot is not the grader's error
+            pass
+
+
+def headless_matplotlib():
+    """Agg backend whatever the environment or the student says, ``plt.show()`` silent.
+
+    There is no display here: ``matplotlib.use("TkAgg")`` in a student's module
+    would make pyplot raise, so once Matplotlib is imported (lazily: importing it
+    costs most of a second) ``matplotlib.use`` keeps Agg.
+    """
+    import warnings
+    os.environ["MPLBACKEND"] = "Agg"
+    warnings.filterwarnings("ignore", message=r".*(non-GUI backend|non-interactive)")
+    sys.meta_path.insert(0, _KeepAgg())
+
+
+class _KeepAgg:
+    """Import hook: the imported ``matplotlib`` gets a ``use`` that changes nothing."""
+
+    def find_spec(self, name, path=None, target=None):
+        if name != "matplotlib":
+            return None
+        sys.meta_path.remove(self)  # once, and no recursion through the lookup below
+        spec = importlib.util.find_spec(name)
+        if spec is not None and spec.loader is not None:
+            execute = spec.loader.exec_module
+
+            def exec_module(module):
+                execute(module)
+                module.use = lambda backend, *args, **kwargs: None
+
+            spec.loader.exec_module = exec_module
+        return spec
 
 
 # ------------------------------------------------------------------ the worker
@@ -378,16 +429,6 @@ class Worker:
             send(response_fd, response)
 
 
-def close_figures():
-    """Figures a call left open would pile up over the grading (Matplotlib runs headless: Agg)."""
-    pyplot = sys.modules.get("matplotlib.pyplot")
-    if pyplot is not None:
-        try:
-            pyplot.close("all")
-        except Exception:  # noqa: BLE001 - the submission may have broken pyplot
-            pass
-
-
 def suspect_state():
     """Why the next call should not run in this process, or ``""``."""
     if _active_threads() > 1:
@@ -414,7 +455,7 @@ def main(argv):
     submission_dir, output_path = argv[3], argv[4]
     limits = json.loads(argv[5])
     apply_limits(limits)
-    os.environ.setdefault("MPLBACKEND", "Agg")
+    headless_matplotlib()
     # The worker's own imports come first, while the submission is not on sys.path:
     # a cv2.py or numpy.py handed in cannot run before the worker is ready.
     import numpy  # noqa: F401  (warm: the first student call should not pay for it)

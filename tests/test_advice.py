@@ -125,3 +125,20 @@ def test_advise_belongs_in_advice_checks(toy_lab, tmp_path):
 def test_an_advice_check_is_worth_no_points(toy_lab):
     assert [c.points for c in toy_lab.exercises["ex1"].checks if c.advice] == [0.0]
     assert toy_lab.exercises["ex1"].max_score() == 2
+
+
+def test_arrays_inside_a_list_argument_are_watched_too(toy_lab, tmp_path):
+    @toy_lab.exercises["ex1"].check("scale a list", points=1)
+    def scales_a_list(t):
+        t.call("scale", [np.zeros(2), np.ones(2)], 2.0)
+
+    source = CORRECT + "\n_scale = scale\n" + """
+def scale(values, factor):
+    if isinstance(values, list):
+        values[1] *= factor
+        return values
+    return _scale(values, factor)
+"""
+    result = grade(submission_from_source(tmp_path, "toy_scaling", source), ["lab98"])
+    [tip] = [c for c in result.exercises[0].checks if c.name == "inputs left unchanged"]
+    assert tip.message == "scale() modified its input array `values[1]` in place; callers do not expect that"

@@ -3,7 +3,8 @@
 The lab test files hold the wrong implementations (``MISTAKES``: exercise, code,
 expected diagnosis); each is also graded there for its diagnosis. Here they are
 graded together to show that no check, hidden ones included, is one that cannot
-fail.
+fail. An advice check (0 points) counts when some submission gets its advice:
+the lab test files may list such submissions in ``ADVICE`` (same form).
 """
 
 import importlib
@@ -17,8 +18,9 @@ def test_every_check_fails_on_some_realistic_mistake(tmp_path):
     labs = discover()
     failed = set()
     for key, lab in labs.items():
-        mistakes = importlib.import_module(f"test_{key}").MISTAKES
-        for index, (exercise, source, _) in enumerate(mistakes.values()):
+        tests = importlib.import_module(f"test_{key}")
+        cases = [*tests.MISTAKES.values(), *getattr(tests, "ADVICE", {}).values()]
+        for index, (exercise, source, _) in enumerate(cases):
             submission = mutant(tmp_path / f"{key}-{index}", lab.module, source)
             result = grade(submission, [exercise], pictures="none")
             failed |= {(e.id, c.name) for e in result.exercises for c in e.checks if not c.passed}

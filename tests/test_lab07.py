@@ -98,6 +98,12 @@ MISTAKES = {
             A, _ = cv2.estimateAffine2D(np.float32(src), np.float32(dst))
             return A
         """, ["cv2.estimateAffine2D", "yourself"]),
+    "lstsq that drops the last pair": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            S = np.hstack([src[:-1], np.ones((len(src) - 1, 1))])
+            return np.linalg.lstsq(S, dst[:-1], rcond=None)[0].T
+        """, ["not the least-squares fit", "px away", "at most 0.01 px expected"]),
     "default dsize from image.shape": ("lab07.ex5", """
         def warp_affine(image, A, dsize=None):
             dsize = dsize or image.shape[:2]          # (rows, cols), but OpenCV wants (width, height)
@@ -121,3 +127,53 @@ def test_other_exercises_unaffected_by_a_mistake(tmp_path):
     failing = [c for c in check_results(result, "lab07.ex4") if not c.passed]
     assert any("ValueError: oops" in c.message for c in failing)
     assert any('File "lab07_transformations.py"' in c.traceback for c in failing)
+
+
+# Textbook variants of the estimators: each scores full marks on its exercise.
+VARIANTS = {
+    "ex5 by the 6x6 system": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            M = np.zeros((6, 6))
+            M[0::2, 0:2] = src; M[0::2, 2] = 1; M[1::2, 3:5] = src; M[1::2, 5] = 1
+            return np.linalg.solve(M, np.asarray(dst, float).reshape(-1)).reshape(2, 3)
+        """),
+    "ex5 by the inverse of [src 1]": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            S = np.hstack([np.asarray(src, float), np.ones((3, 1))])
+            return (np.linalg.inv(S) @ np.asarray(dst, float)).T
+        """),
+    "ex5 by cv2.getAffineTransform, float32 (the lab sheet)": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            return cv2.getAffineTransform(np.float32(src), np.float32(dst))
+        """),
+    "ex6 by the normal equations": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            n = len(src)
+            M = np.zeros((2 * n, 6))
+            M[0::2, 0:2] = src; M[0::2, 2] = 1; M[1::2, 3:5] = src; M[1::2, 5] = 1
+            b = np.asarray(dst, float).reshape(-1)
+            return (np.linalg.inv(M.T @ M) @ M.T @ b).reshape(2, 3)
+        """),
+    "ex6 on centred points": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            ms, md = src.mean(0), dst.mean(0)
+            L = np.linalg.lstsq(src - ms, dst - md, rcond=None)[0].T
+            return np.hstack([L, (md - L @ ms)[:, None]])
+        """),
+    "ex6 by pinv of a float32 system": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            n = len(src)
+            M = np.zeros((2 * n, 6), np.float32)
+            M[0::2, 0:2] = src; M[0::2, 2] = 1; M[1::2, 3:5] = src; M[1::2, 5] = 1
+            return (np.linalg.pinv(M) @ np.float32(dst).reshape(-1)).reshape(2, 3)
+        """),
+}
+
+
+@pytest.mark.parametrize("case", sorted(VARIANTS))
+def test_textbook_variant_scores_full_marks(tmp_path, case):
+    exercise, source = VARIANTS[case]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    for check in check_results(result, exercise):
+        assert check.passed or check.max_score == 0, f"{check.name}: {check.message}"

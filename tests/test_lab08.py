@@ -3,7 +3,7 @@
 import pytest
 
 from autograder.runner import grade
-from conftest import REFERENCE, SKELETON, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
+from conftest import REFERENCE, SKELETON, assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
 
 MODULE = "lab08_homographies"
 
@@ -73,13 +73,6 @@ MISTAKES = {
             return cv2.warpAffine(image, H[:2], dsize or (w, h))
         """, ["perspective row", "warpPerspective"]),
     # ---------------------------------------------------------------- ex2
-    "DLT without normalisation": ("lab08.ex2", """
-        def homography_dlt(src, dst):
-            src = np.asarray(src, float); dst = np.asarray(dst, float)
-            _, _, Vt = np.linalg.svd(_dlt_rows(src, dst))
-            H = Vt[-1].reshape(3, 3)
-            return H / H[2, 2]
-        """, ["normalised dlt", "raw pixel coordinates"]),
     "DLT src and dst swapped": ("lab08.ex2", """
         _reference_dlt = homography_dlt
         def homography_dlt(src, dst):
@@ -202,11 +195,20 @@ MISTAKES = {
             H = homography_dlt(src, dst)
             return H, np.linalg.norm(transform_points(H, src) - np.asarray(dst), axis=1) < threshold
         """, ["outliers included"]),
-    "RANSAC with OpenCV": ("lab08.ex4", """
+    "RANSAC returning its best 4-point H (many samples, no refit)": ("lab08.ex4", """
         def homography_ransac(src, dst, threshold=3.0, seed=None):
-            H, mask = cv2.findHomography(np.float64(src), np.float64(dst), cv2.RANSAC, threshold)
-            return H, mask.ravel() > 0
-        """, ["cv2.findHomography", "yourself"]),
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            samples = np.array([rng.choice(len(src), 4, replace=False) for _ in range(1500)])
+            best, best_count, best_spread = None, -1, np.inf
+            for idx in samples:
+                H = homography_dlt(src[idx], dst[idx])
+                err = np.linalg.norm(transform_points(H, src) - dst, axis=1)
+                count, spread = (err < threshold).sum(), err[err < threshold].sum()
+                if (count, -spread) > (best_count, -best_spread):
+                    best, best_count, best_spread = H, count, spread
+            return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
+        """, ["not the fit to its own inliers", "refit h on all the inliers"]),
     # ---------------------------------------------------------------- ex5
     "img2 as the reference": ("lab08.ex5", """
         def stitch(img1, img2):
@@ -389,3 +391,24 @@ def test_sensible_alternatives_score_full_marks(tmp_path):
     for exercise in result.exercises:
         for check in exercise.checks:
             assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+
+
+# Conventions the lab sheet leaves open: advice (0 points), never a lost point.
+ADVICE = {
+    "DLT without normalisation (the lab sheet's DLT on raw pixels)": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            _, _, Vt = np.linalg.svd(_dlt_rows(src, dst))
+            H = Vt[-1].reshape(3, 3)
+            return H / H[2, 2]
+        """, ["normalised dlt", "raw pixel coordinates", "no points"]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(ADVICE))
+def test_convention_is_advice_not_points(tmp_path, name):
+    exercise, source, fragments = ADVICE[name]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    assert_advised(result, exercise, *fragments)
+    [graded] = result.exercises
+    assert graded.score == graded.max_score, [c.message for c in graded.checks if not c.passed]

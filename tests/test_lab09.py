@@ -2,7 +2,9 @@
 
 import pytest
 
-from conftest import assert_all_not_implemented, assert_full_marks, assert_mistake_named
+from autograder.runner import grade
+from conftest import (assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named,
+                      mutant)
 
 MODULE = "lab09_camera"
 
@@ -16,7 +18,16 @@ def test_skeleton_scores_zero_with_not_implemented(skeleton_result):
 
 
 # Each case: exercise, the wrong code, fragments the diagnosis must contain.
+DROPS_BEHIND = """
+    def _divide(homogeneous, single):       # keeps only the points in front
+        front = homogeneous[:, 2] > 0
+        pts = homogeneous[front, :2] / homogeneous[front, 2:3]
+        return pts[0] if single else pts
+    """
+
 MISTAKES = {
+    **{f"drops the points behind the camera ({ex})": (f"lab09.{ex}", DROPS_BEHIND, ["drops the points behind"])
+       for ex in ("ex1", "ex2", "ex3")},
     "x/y swapped": ("lab09.ex1", """
         def pinhole_project(points, f):
             X, single = _points(points)
@@ -28,12 +39,6 @@ MISTAKES = {
             out = f * X[:, :2]
             return out[0] if np.ndim(points) == 1 else out
         """, ["division is missing"]),
-    "behind camera mirrored": ("lab09.ex1", """
-        def pinhole_project(points, f):
-            X = np.atleast_2d(np.asarray(points, float))
-            out = f * X[:, :2] / X[:, 2:3]
-            return out[0] if np.ndim(points) == 1 else out
-        """, ["z <= 0", "nan"]),
     "single point keeps (1, 2)": ("lab09.ex1", """
         def pinhole_project(points, f):
             X, single = _points(points)
@@ -144,3 +149,29 @@ MISTAKES = {
 @pytest.mark.parametrize("name", sorted(MISTAKES))
 def test_mistake_is_diagnosed(tmp_path, name):
     assert_mistake_named(tmp_path, MODULE, *MISTAKES[name])
+
+
+# Conventions the API leaves open: advice (0 points), never a lost point.
+MIRRORED = """
+    def _divide(homogeneous, single):       # the sheet's formula everywhere, no NaN
+        pts = homogeneous[:, :2] / homogeneous[:, 2:3]
+        return pts[0] if single else pts
+    """
+ADVICE = {f"behind the camera mirrored ({ex})": (f"lab09.{ex}", MIRRORED, ["z <= 0", "nan", "no points"])
+          for ex in ("ex1", "ex2", "ex3")}
+ADVICE["draw_points on NaN points raises"] = ("lab09.ex5", """
+    def draw_points(image, pts, radius=3, color=(0, 0, 255)):    # the sheet: cv2.circle per point
+        out = image.copy()
+        for x, y in np.asarray(pts, float).reshape(-1, 2):
+            cv2.circle(out, (int(round(x)), int(round(y))), radius, color, -1)
+        return out
+    """, ["draw_points(image, pts with a nan row) failed", "skip the rows that are not finite"])
+
+
+@pytest.mark.parametrize("name", sorted(ADVICE))
+def test_convention_is_advice_not_points(tmp_path, name):
+    exercise, source, fragments = ADVICE[name]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise])
+    assert_advised(result, exercise, *fragments)
+    [graded] = result.exercises
+    assert graded.score == graded.max_score, [c.message for c in graded.checks if not c.passed]

@@ -9,9 +9,10 @@ RANSAC over several seeds. Wrong answers are compared with what the usual
 mistakes produce, so the feedback can name the mistake.
 
 ``cv2.findHomography`` and ``cv2.getPerspectiveTransform`` are forbidden inside
-``homography_dlt`` (the point of ex2), and ``cv2.findHomography`` inside
-``homography_ransac`` (ex4 asks for RANSAC itself; calling one's own
-``homography_dlt`` there is the intended route). ``stitch`` and
+``homography_dlt`` (the point of ex2: DLT by SVD). ``homography_ransac`` may
+use ``cv2.findHomography`` with ``cv2.RANSAC`` -- the lab sheet's own recipe
+for ex4 -- or the student's own loop; an instructor who wants RANSAC written
+by hand forbids it in the course configuration (``"forbid"``). ``stitch`` and
 ``stitch_many`` may use anything.
 """
 
@@ -27,13 +28,12 @@ from fixtures.images import coverage, photo, warp
 
 from ..checks import Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
-from ..judges import IMAGE_TOLERANCE, format_matrix, judge_warp
+from ..judges import IMAGE_TOLERANCE, digits_apart, format_matrix, judge_warp
 from ..pictures import difference_heatmap, matches_picture, svg_points
 from ..registry import Lab
 
 lab = Lab("lab08", module="lab08_homographies", title="Image homographies")
 lab.forbid("homography_dlt", "cv2.findHomography", "cv2.getPerspectiveTransform")
-lab.forbid("homography_ransac", "cv2.findHomography")
 
 PANORAMA_TOLERANCE = 9.0   # mean blurred error accepted on a panorama region
 MATCH_TOLERANCE = 3.0      # px: a match agrees with the true H
@@ -212,26 +212,48 @@ def dlt_noisy(t):
            f"DLT is {best:.2f} px away.")
 
 
-@ex2.check("homography_dlt normalises: a small patch far from the origin, 1 px noise", points=2)
-def dlt_normalised(t):
-    errors, best = [], []
+# The lab sheet prescribes the DLT rows and SVD, not Hartley's normalisation, so
+# the graded check accepts the sheet's DLT on raw pixels; normalising is advice.
+# Measured on these three problems (RMS px from the true H, mean): normalised
+# DLT 0.50, cv2.findHomography(method=0) 0.49, the sheet's DLT on raw pixels 4.18
+# (float32 input the same). Full marks up to 1.5 times the worse of the two DLTs.
+def patch_errors(t: Trial):
+    """(yours, normalised DLT, raw-pixel DLT): mean RMS px from the true H over the patch problems."""
+    errors = []
     for seed in PATCH_SEEDS:
         src, dst, H = truth.dlt_problem(seed, 40, 1.0, PATCH_REGION, 0.05)
         got = fitted_h(t, src, dst, "homography_dlt(src, dst) on a 160x120 patch at (800, 600)")
-        errors.append(truth.transfer_rms(got, H, PATCH_REGION))
-        best.append(truth.transfer_rms(truth.dlt(src, dst), H, PATCH_REGION))
-    error, reference = float(np.mean(errors)), float(np.mean(best))
-    if error <= 1.5 * reference:
-        return passed(f"{error:.2f} px RMS on average (a normalised DLT: {reference:.2f} px)")
-    hint = ("Normalise each point set first (Hartley: move the centroid to the origin and scale "
-            "so the mean distance is sqrt(2)), solve, then undo: H = T_dst^-1 @ H_n @ T_src.")
-    message = (f"On points with coordinates around 800-960 x 600-720 px your H is {error:.2f} px "
-               f"(RMS) from the truth on average, where a normalised DLT is {reference:.2f} px: "
-               "with raw pixel coordinates the x*x' terms (about 1e6) swamp the others and the "
-               "noise is weighted very unevenly.")
-    if error <= 3 * reference:
-        return partial(0.4, message + " Your normalisation helps, but not fully.", hint)
-    t.fail(message, hint)
+        errors.append([truth.transfer_rms(got, H, PATCH_REGION),
+                       truth.transfer_rms(truth.dlt(src, dst), H, PATCH_REGION),
+                       truth.transfer_rms(truth.dlt(src, dst, normalise=False), H, PATCH_REGION)])
+    return np.mean(errors, axis=0)
+
+
+@ex2.check("homography_dlt on a small patch far from the origin, 1 px noise", points=2)
+def dlt_normalised(t):
+    error, normalised, raw = patch_errors(t)
+    tolerance = 1.5 * max(normalised, raw)
+    if error <= tolerance:
+        return passed(f"{error:.2f} px RMS on average (a normalised DLT: {normalised:.2f} px, "
+                      f"the DLT on raw pixels: {raw:.2f} px)")
+    t.fail(f"On points with coordinates around 800-960 x 600-720 px your H is "
+           f"{digits_apart(error, tolerance)} px (RMS) from the truth on average, where the lab "
+           f"sheet's DLT on raw pixels is {raw:.2f} px and a normalised DLT {normalised:.2f} px "
+           f"(at most {tolerance:.3g} px expected).")
+
+
+@ex2.advice("homography_dlt normalises its points")
+def dlt_normalisation_advice(t):
+    error, normalised, raw = patch_errors(t)
+    if error > 1.5 * normalised:
+        t.advise(f"On points with coordinates around 800-960 x 600-720 px your H is {error:.2f} px "
+                 f"(RMS) from the truth on average, where a normalised DLT is {normalised:.2f} px: "
+                 "with raw pixel coordinates the x*x' terms (about 1e6) swamp the others and the "
+                 "noise is weighted very unevenly. The lab sheet does not ask for it: no points "
+                 "depend on it.",
+                 hint="Normalise each point set first (Hartley: move the centroid to the origin and "
+                      "scale so the mean distance is sqrt(2)), solve, then undo: "
+                      "H = T_dst^-1 @ H_n @ T_src.")
 
 
 @ex2.check("warp_to_reference: moving image in the reference's frame and size", points=3)
@@ -515,24 +537,48 @@ def ransac_mask(t):
            hint="inliers = |H src - dst| < threshold, with the final H")
 
 
+# RANSAC ends by re-estimating H on its inliers (the textbook algorithm, and
+# cv2.findHomography with cv2.RANSAC). Judged by how far the returned H sends the
+# returned inliers from where a least-squares refit on that mask sends them, in
+# units of the refit's RMS residual (the noise level), averaged over the public
+# RANSAC problems. Measured (benchmarks/fairness_lab08.py), mean over these 7
+# problems: cv2.findHomography RANSAC 0.096, an own loop with an unnormalised
+# DLT refit 0.068, the reference 0; the best 4-point H without a refit 0.79
+# (per problem, legitimate at most 0.33 and the mistake at least 0.41 over 30).
+RANSAC_REFIT_TOLERANCE = 0.35
+REFIT_PROBLEMS = [((10, 100, 0.3, 1.0), 0), ((11, 120, 0.25, 1.0), 1)] + \
+    [((40 + k, 80, 0.5, 0.7), k) for k in range(5)]
+
+
+def refit_distance(H, inliers, src, dst) -> float:
+    """RMS distance (px) at the inliers between H and a DLT refit on them, over the refit's residual."""
+    refit = truth.dlt(src[inliers], dst[inliers])
+    apart = np.linalg.norm(truth.apply_h(H, src[inliers]) - truth.apply_h(refit, src[inliers]), axis=1)
+    residual = np.linalg.norm(truth.apply_h(refit, src[inliers]) - dst[inliers], axis=1)
+    return float(np.sqrt(np.mean(apart ** 2)) / max(np.sqrt(np.mean(residual ** 2)), 1e-9))
+
+
 @ex4.check("homography_ransac refits H on all its inliers", points=2)
 def ransac_refit(t):
-    src, dst, H_true, true_inliers = truth.ransac_problem(11, 120, 0.25, 1.0)
-    what = "homography_ransac(src, dst, seed=1)"
-    H, inliers = ransac_result(t, src, dst, what, seed=1)
-    error, _, _ = ransac_success(H, inliers, H_true, true_inliers)
-    best = truth.transfer_rms(truth.dlt(src[true_inliers], dst[true_inliers]), H_true, RANSAC_REGION)
-    if error <= 2 * best + 0.2:
-        return passed(f"{error:.2f} px RMS from the true H (a fit to the true inliers: {best:.2f} px)")
-    if inliers.sum() >= 4:
-        own = truth.transfer_rms(truth.dlt(src[inliers], dst[inliers]), H_true, RANSAC_REGION)
-        if own <= 2 * best + 0.2:
-            t.fail(f"{what}: H is {error:.2f} px from the truth, but a DLT fit to your own inliers "
-                   f"would be {own:.2f} px: after RANSAC, refit H on all the inliers (the best "
-                   "4-point sample is noisy)")
-    diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
-    t.fail(f"{what}: H is {error:.2f} px (RMS) from the true H; a least-squares fit to the "
-           f"true inliers is {best:.2f} px.")
+    distances = []
+    for (seed, n, fraction, noise), k in REFIT_PROBLEMS:
+        src, dst, H_true, true_inliers = truth.ransac_problem(seed, n, fraction, noise)
+        what = f"homography_ransac(src, dst, seed={k})"
+        H, inliers = ransac_result(t, src, dst, what, seed=k)
+        if inliers.sum() < 4:
+            diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
+            t.fail(f"{what} marks {int(inliers.sum())} inliers; a homography needs at least 4")
+        distances.append(refit_distance(H, inliers, src, dst))
+    mean = float(np.mean(distances))
+    if mean <= RANSAC_REFIT_TOLERANCE:
+        return passed(f"H agrees with a refit on its own inliers: {mean:.3f} noise levels apart on average")
+    t.fail(f"homography_ransac's H is not the fit to its own inliers: it sends them on average "
+           f"{digits_apart(mean, RANSAC_REFIT_TOLERANCE)} times the noise level (the refit's RMS residual) away from where a "
+           f"least-squares refit on the same inliers sends them (at most {RANSAC_REFIT_TOLERANCE} "
+           "expected, over 7 problems): after RANSAC, refit H on all the inliers (the best "
+           "4-point sample is noisy)",
+           hint="H = homography_dlt(src[inliers], dst[inliers]) at the end; "
+                "cv2.findHomography(src, dst, cv2.RANSAC, threshold) does it for you")
 
 
 @ex4.check("homography_ransac with 50% outliers, judged over 5 seeds", points=3)

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from fixtures import lab09 as truth
 from fixtures.lab09 import photo
 
-from ..checks import Trial, partial, passed
+from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import closest
 from ..pictures import svg_points
 from .. import judges
@@ -87,8 +87,32 @@ def judge_single_point(t: Trial, what: str, got, expected):
         t.fail(f"{what} returned {format_matrix(got)}; expected {format_matrix(expected)}")
 
 
+def judge_in_front(t: Trial, what: str, got, expected, behind):
+    """With some points behind the camera (Z <= 0), one row per point and those in front right.
+
+    The lab sheet's formulas give *some* value behind the camera; what it is
+    earns no points either way (NaN is advice: :func:`advise_nan_behind`).
+    """
+    if isinstance(got, np.ndarray) and got.ndim == 2 and got.shape[1:] == (2,) \
+            and len(got) == int((~behind).sum()) != len(behind):
+        t.fail(f"{what} returned {len(got)} rows for {len(behind)} points: it drops the points "
+               "behind the camera; return one row per input point (NaN is the usual value for "
+               "a point with no image)")
+    got = np.asarray(expect_points(t, what, got, expected.shape), dtype=np.float64)
+    front = ~behind
+    error = point_error(got[front], expected[front])
+    tolerance = 1e-6 * max(1.0, float(np.nanmax(np.abs(expected[front]))))
+    if error > tolerance:
+        t.fail(f"{what}: with some points behind the camera, the points in front are off by "
+               f"up to {error:.4g} px.")
+
+
 def judge_behind(t: Trial, what: str, got, expected, behind):
-    """Points with Z <= 0 must give NaN, the others their projection."""
+    """NaN required behind the camera: kept only for suites that still import it (lab 10).
+
+    Lab 9 gives no points for it (NaN is advice): use :func:`judge_in_front`
+    and :func:`advise_nan_behind`.
+    """
     got = expect_points(t, what, got, expected.shape)
     got = np.asarray(got, dtype=np.float64)
     bad = behind & np.isfinite(got).all(axis=1)
@@ -96,10 +120,21 @@ def judge_behind(t: Trial, what: str, got, expected, behind):
         t.fail(f"{what}: the points with Z <= 0 (rows {np.nonzero(behind)[0].tolist()}) should give "
                "NaN, as documented: they are behind the camera and have no image; yours gave finite "
                "values (a point behind the pinhole would appear mirrored).")
-    front = ~behind
-    error = point_error(got[front], expected[front])
-    if error > 1e-6 * max(1.0, float(np.nanmax(np.abs(expected)))):
-        t.fail(f"{what}: with some points behind the camera, the points in front are off by {error:.3g}.")
+    judge_in_front(t, what, got, expected, behind)
+
+
+def advise_nan_behind(t: Trial, what: str, got, behind):
+    """Advice: a point behind the camera (Z <= 0) has no image; NaN says so."""
+    got = np.asarray(got, dtype=np.float64) if isinstance(got, np.ndarray) else None
+    if got is None or got.shape != (len(behind), 2):
+        return  # the graded check says what is wrong with the shape
+    finite = behind & np.isfinite(got).all(axis=1)
+    if finite.any():
+        t.advise(f"{what} gave finite pixels for the points with Z <= 0 (rows "
+                 f"{np.nonzero(finite)[0].tolist()}): they are behind the camera and have no "
+                 "image (the formula mirrors them through the pinhole); NaN tells the caller so. "
+                 "No points depend on it.",
+                 hint="e.g. np.where(Z[:, None] > 0, projected, np.nan)")
 
 
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3), up_to_scale=False):
@@ -139,11 +174,21 @@ def pinhole_single(t):
                        truth.pinhole(X, 100.0)[0])
 
 
-@ex1.check("points behind the camera (Z <= 0) give NaN", points=1)
-def pinhole_behind(t):
+def pinhole_behind_case():
     X, behind = truth.with_points_behind(truth.points_in_front(5, n=10), seed=6)
-    judge_behind(t, "pinhole_project(points with some Z <= 0, f=300)",
-                 t.call("pinhole_project", X, 300.0), truth.pinhole(X, 300.0), behind)
+    return "pinhole_project(points with some Z <= 0, f=300)", X, behind
+
+
+@ex1.check("with points behind the camera (Z <= 0), those in front stay right", points=1)
+def pinhole_behind(t):
+    what, X, behind = pinhole_behind_case()
+    judge_in_front(t, what, t.call("pinhole_project", X, 300.0), truth.pinhole(X, 300.0), behind)
+
+
+@ex1.advice("NaN for points behind the camera")
+def pinhole_behind_nan(t):
+    what, X, behind = pinhole_behind_case()
+    advise_nan_behind(t, what, t.call("pinhole_project", X, 300.0), behind)
 
 
 # ================================================================== ex2 intrinsics
@@ -193,12 +238,22 @@ def project_intrinsics_general(t):
                        t.call("project_with_intrinsics", K, X[0]), truth.homogeneous_project(K, X[0])[0])
 
 
-@ex2.check("project_with_intrinsics: points behind the camera give NaN", points=1)
-def project_intrinsics_behind(t):
+def intrinsics_behind_case():
     K = truth.intrinsic(400.0, 160.0, 120.0)
     X, behind = truth.with_points_behind(truth.points_in_front(23, n=10), seed=24)
-    judge_behind(t, "project_with_intrinsics(K, points with some Z <= 0)",
-                 t.call("project_with_intrinsics", K, X), truth.homogeneous_project(K, X), behind)
+    return "project_with_intrinsics(K, points with some Z <= 0)", K, X, behind
+
+
+@ex2.check("project_with_intrinsics: with points behind the camera, those in front stay right", points=1)
+def project_intrinsics_behind(t):
+    what, K, X, behind = intrinsics_behind_case()
+    judge_in_front(t, what, t.call("project_with_intrinsics", K, X), truth.homogeneous_project(K, X), behind)
+
+
+@ex2.advice("NaN for points behind the camera")
+def project_intrinsics_behind_nan(t):
+    what, K, X, behind = intrinsics_behind_case()
+    advise_nan_behind(t, what, t.call("project_with_intrinsics", K, X), behind)
 
 
 # ================================================================== ex3 full camera
@@ -261,14 +316,24 @@ def project_scale(t):
                        truth.homogeneous_project(P, X[0])[0])
 
 
-@ex3.check("project: points behind the camera give NaN", points=1)
-def project_behind(t):
+def project_behind_case():
     K, R, tvec = _example_camera(35)
     P = truth.camera(K, R, tvec)
     Xc, behind = truth.with_points_behind(truth.points_in_front(36, n=10), seed=37)
     X = (Xc - tvec) @ R                       # camera-frame points to world points
-    judge_behind(t, "project(P, points with some behind the camera)", t.call("project", P, X),
-                 truth.homogeneous_project(P, X), behind)
+    return "project(P, points with some behind the camera)", P, X, behind
+
+
+@ex3.check("project: with points behind the camera, those in front stay right", points=1)
+def project_behind(t):
+    what, P, X, behind = project_behind_case()
+    judge_in_front(t, what, t.call("project", P, X), truth.homogeneous_project(P, X), behind)
+
+
+@ex3.advice("NaN for points behind the camera")
+def project_behind_nan(t):
+    what, P, X, behind = project_behind_case()
+    advise_nan_behind(t, what, t.call("project", P, X), behind)
 
 
 # ================================================================== ex4 focal length, aperture
@@ -435,13 +500,30 @@ def draw_example(t):
     return judge_drawing(t, "draw_points(image, pts)", t.call("draw_points", image, pts), image, pts)
 
 
-@ex5.check("draw_points with radius, colour, and points that are NaN or off the image", points=2)
+@ex5.check("draw_points with radius, colour, and points off the image", points=2)
 def draw_options(t):
     image = photo("coffee", (160, 120))
-    pts = np.array([[40.0, 40.0], [np.nan, np.nan], [120.4, 80.6], [-30.0, 50.0], [500.0, 60.0]])
+    pts = np.array([[40.0, 40.0], [120.4, 80.6], [-30.0, 50.0], [500.0, 60.0]])
     return judge_drawing(t, "draw_points(image, pts, radius=6, color=(0, 255, 0))",
                          t.call("draw_points", image, pts, radius=6, color=(0, 255, 0)),
                          image, pts, radius=6, color=(0, 255, 0))
+
+
+# The API does not say what draw_points does with a NaN point (a projection
+# behind the camera, if the student follows the NaN advice): advice.
+@ex5.advice("draw_points skips NaN points")
+def draw_nan(t):
+    image = photo("coffee", (160, 120))
+    pts = np.array([[40.0, 40.0], [np.nan, np.nan], [120.4, 80.6]])
+    what = "draw_points(image, pts with a NaN row)"
+    try:
+        got = t.call("draw_points", image, pts)
+        judge_drawing(t, what, got, image, pts, radius=3, color=(0, 0, 255))
+    except (StudentFailure, Fail) as failure:
+        t.advise(f"{what} failed: {failure.message.splitlines()[0]} -- projections of points "
+                 "behind the camera are NaN if you follow that advice, so skip the rows that "
+                 "are not finite. No points depend on it.",
+                 hint="if np.isfinite(x) and np.isfinite(y): cv2.circle(...)")
 
 
 def _photo_scene(seed=51):

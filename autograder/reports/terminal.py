@@ -43,6 +43,9 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
         console.print(Text("note: ", style="yellow") + Text(note))
     console.print(table)
 
+    for exercise in result.exercises:
+        for rule in exercise.rules:
+            console.print(Text(f"rule {exercise.id}: ", style="bold yellow") + Text(rule))
     if details:
         _print_problems(result, console)
         _print_advice(result, console)

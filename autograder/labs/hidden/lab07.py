@@ -47,8 +47,8 @@ def affine_large_coordinates(t):
     rng = np.random.default_rng(20240607)
     A = truth.random_affine(rng)
     src = truth.triangle(rng, extent=5000.0) + 1000.0
-    judge_affine_fit(t, "affine_from_points(src, dst)",
-                     t.call("affine_from_points", src, truth.apply_affine(A, src)), A)
+    dst = truth.apply_affine(A, src)
+    judge_affine_fit(t, "affine_from_points(src, dst)", t.call("affine_from_points", src, dst), A, src, dst)
 
 
 @ex6.check("affine_lstsq on 500 noisy points far from the origin", points=3, hidden=True)

@@ -9,7 +9,7 @@ import numpy as np
 
 from fixtures import lab09 as truth
 
-from ..lab09 import (ex3, ex4, ext1, judge_behind, judge_calibration, judge_matrix, judge_points,
+from ..lab09 import (ex3, ex4, ext1, judge_in_front, judge_calibration, judge_matrix, judge_points,
                      project_mistakes)
 
 
@@ -26,7 +26,7 @@ def hidden_project(t):
                      project_mistakes(P, X))
     Xc, behind = truth.with_points_behind(truth.points_in_front(9004, n=16), seed=9005)
     X = (Xc - tvec) @ R
-    judge_behind(t, "project(P, points, some behind)", t.call("project", P, X),
+    judge_in_front(t, "project(P, points, some behind)", t.call("project", P, X),
                  truth.homogeneous_project(P, X), behind)
 
 

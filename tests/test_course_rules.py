@@ -1,0 +1,72 @@
+"""An instructor's extra rules (course configuration ``forbid``): validated, off by
+default, enforced in the worker and shown to students in every report."""
+
+import json
+
+import numpy as np
+import pytest
+
+from autograder import gradescope
+from autograder.course import CourseConfig, CourseConfigError
+from autograder.registry import REGISTRY, Lab
+from autograder.reports import html
+from autograder.runner import grade
+from conftest import submission_from_source
+
+SOLVER = """
+import numpy as np
+
+def solve(A, b):
+    return np.linalg.solve(A, b)
+"""
+
+
+@pytest.fixture
+def solver_lab():
+    lab = Lab("lab96", module="toy_solver", title="Toy")
+    ex1 = lab.exercise("ex1", "Solving", functions=["solve(A, b)"])
+
+    @ex1.check("solve a 2x2 system", points=1)
+    def solves(t):
+        got = t.call("solve", np.eye(2) * 2, np.ones(2))
+        if not np.allclose(got, 0.5):
+            t.fail(f"solve returned {got}")
+
+    yield lab
+    REGISTRY.pop("lab96")
+
+
+def test_no_rules_by_default(solver_lab, tmp_path):
+    assert CourseConfig().forbid == {}
+    result = grade(submission_from_source(tmp_path, "toy_solver", SOLVER), ["lab96"])
+    assert result.total == 1 and result.exercises[0].rules == []
+
+
+def test_a_rule_is_enforced_and_shown(solver_lab, tmp_path):
+    config = CourseConfig(forbid={"lab96.solve": ["numpy.linalg.solve"]})
+    result = grade(submission_from_source(tmp_path, "toy_solver", SOLVER), ["lab96"], forbid=config.forbid)
+    [exercise] = result.exercises
+    assert exercise.score == 0
+    assert "solve() called numpy.linalg.solve" in exercise.checks[0].message
+    assert exercise.rules == ["solve() may not call numpy.linalg.solve (your instructor's rule for this course)"]
+    assert "Rule: solve() may not call numpy.linalg.solve" in html.render(result)
+    assert "Rule for lab96.ex1: solve() may not call numpy.linalg.solve" in \
+        gradescope.results_json(result, config)["output"]
+    assert json.loads(json.dumps(result.to_dict()))["exercises"][0]["rules"] == exercise.rules
+
+
+@pytest.mark.parametrize("forbid, fragment", [
+    ({"homography_ransac": ["cv2.findHomography"]}, "not a student function"),
+    ({"lab08.homography_ransac": "cv2.findHomography"}, "non-empty list"),
+    ({"lab08.homography_ransac": ["findHomography"]}, "library functions"),
+    (["lab08.homography_ransac"], "must be an object"),
+])
+def test_rules_are_validated(forbid, fragment):
+    with pytest.raises(CourseConfigError, match=fragment):
+        CourseConfig(forbid=forbid)
+
+
+def test_a_rule_for_a_function_no_exercise_grades_fails_the_build(tmp_path):
+    with pytest.raises(CourseConfigError, match="lab08.homography_ransack"):
+        gradescope.build(tmp_path / "autograder.zip",
+                         CourseConfig(forbid={"lab08.homography_ransack": ["cv2.findHomography"]}))
