@@ -145,7 +145,7 @@ def test_devices_pipes_and_undecodable_names_are_refused_and_the_rest_graded(tmp
     [lab07] = [e for e in result.exercises if e.id == "lab07.ex4"]
     [lab08] = [e for e in result.exercises if e.id == "lab08.ex1"]
     assert lab07.score == lab07.max_score
-    assert lab08.score == 0 and "lab08_homographies.ipynb was not read" in lab08.message
+    assert lab08.score == 0 and "lab08_homographies.ipynb is not a readable notebook" in lab08.message
     assert "no list of cells" in lab08.message
     write_json(result, tmp_path / "results.json")      # every name in it encodes
     loaded = load_submission(folder, [MODULE])
