@@ -142,13 +142,6 @@ class Trial:
                             "register advice with @exercise.advice(name)")
         self.tips.append((message, hint))
 
-    def advise(self, message: str, hint: str = ""):
-        """Give a tip (advice checks only): shown with its reason, worth no points."""
-        if not self.check.advice:
-            raise TypeError(f"t.advise() in graded check {self.check.name!r}; "
-                            "register advice with @exercise.advice(name)")
-        self.tips.append((message, hint))
-
     def expect_array(self, value, what: str, *, shape=None, dtype=None, kind=None,
                      finite: bool = False) -> np.ndarray:
         """Check that a returned value is an array of the documented form.

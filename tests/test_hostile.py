@@ -19,14 +19,14 @@ import subprocess
 import sys
 import threading
 import time
-import uuid
 
 import pytest
 
 from autograder import confine
 from autograder.runner import grade
 from autograder.sandbox import Limits
-from conftest import ROOT, assert_only_exercise_lost, check_results, mutant
+from conftest import (NAME_PROCESS, ROOT, assert_only_exercise_lost, check_results, marker, mutant,
+                      processes_named)
 
 MODULE = "lab07_transformations"
 FAST = Limits(call_timeout=2.0, import_timeout=4.0)
@@ -44,31 +44,6 @@ def confinement(request, monkeypatch):
     if request.param != "detected":
         monkeypatch.setenv("AUTOGRADER_CONFINEMENT", request.param)
     return request.param
-
-
-def marker() -> str:
-    """A process name (15 chars max) that survivors of an attack would carry."""
-    return "agh" + uuid.uuid4().hex[:12]
-
-
-def processes_named(name: str) -> list[int]:
-    found = []
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open(f"/proc/{entry}/comm") as f:
-                    if f.read().strip() == name:
-                        found.append(int(entry))
-            except OSError:
-                pass
-    return found
-
-
-NAME_PROCESS = """
-        import ctypes
-        def _name_this_process(name):
-            ctypes.CDLL(None).prctl(15, name.encode(), 0, 0, 0)   # PR_SET_NAME
-        """
 
 
 def attack(tmp_path, body: str, lost="lab07.ex4", *fragments, limits=FAST):

@@ -23,7 +23,6 @@ import subprocess
 import sys
 import textwrap
 import tracemalloc
-import uuid
 import zipfile
 from pathlib import Path
 
@@ -37,7 +36,8 @@ from autograder.results import write_json
 from autograder.runner import grade
 from autograder.sandbox import Limits
 from autograder.submission import Caps, load_submission
-from conftest import REFERENCE, ROOT, assert_only_exercise_lost, mutant
+from conftest import (NAME_PROCESS, REFERENCE, ROOT, assert_only_exercise_lost, marker, mutant,
+                      processes_named)
 
 MODULE = "lab07_transformations"
 SELECT = ["lab07.ex4", "lab07.ex5"]
@@ -76,30 +76,6 @@ def attack(tmp_path, body, *fragments, limits=FAST, select=SELECT, pictures="non
     result = grade(submission, select, limits=limits, pictures=pictures)
     assert_only_exercise_lost(result, "lab07.ex4", *fragments)
     return result
-
-
-def marker() -> str:
-    return "agv" + uuid.uuid4().hex[:12]
-
-
-def processes_named(name: str) -> list[int]:
-    found = []
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open(f"/proc/{entry}/comm") as f:
-                    if f.read().strip() == name:
-                        found.append(int(entry))
-            except OSError:
-                pass
-    return found
-
-
-NAME_PROCESS = """
-        import ctypes
-        def _name_this_process(name):
-            ctypes.CDLL(None).prctl(15, name.encode(), 0, 0, 0)   # PR_SET_NAME
-        """
 
 
 def outputs(result, exercise="lab07.ex4") -> str:
