@@ -161,3 +161,18 @@ NAME_PROCESS = """
         def _name_this_process(name):
             ctypes.CDLL(None).prctl(15, name.encode(), 0, 0, 0)   # PR_SET_NAME
         """
+
+
+# Linear triangulation with all three rows of x × (P X) = 0 per view (the lab
+# sheet's words), rows not scaled: a textbook variant labs 11 and 12 must accept.
+THREE_ROW_TRIANGULATION = """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.atleast_2d(np.asarray(pts1, float)); pts2 = np.atleast_2d(np.asarray(pts2, float))
+            X = []
+            for (x1, y1), (x2, y2) in zip(pts1, pts2):
+                A = np.array([x1 * P1[2] - P1[0], y1 * P1[2] - P1[1], y1 * P1[0] - x1 * P1[1],
+                              x2 * P2[2] - P2[0], y2 * P2[2] - P2[1], y2 * P2[0] - x2 * P2[1]])
+                h = np.linalg.svd(A)[2][-1]
+                X.append(h[:3] / h[3])
+            return np.array(X)
+        """

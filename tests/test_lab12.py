@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from autograder.runner import grade
-from conftest import (assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results,
+from conftest import (THREE_ROW_TRIANGULATION, assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results,
                       mutant)
 
 MODULE = "lab12_stereo"
@@ -399,17 +399,7 @@ VARIANTS = {
                 costs[d, :, :d] = np.inf
             return costs
         """),
-    "triangulation with all three rows of x × (P X) = 0, rows not scaled": ("lab12.ex1", """
-        def triangulate(P1, P2, pts1, pts2):
-            pts1 = np.atleast_2d(np.asarray(pts1, float)); pts2 = np.atleast_2d(np.asarray(pts2, float))
-            X = []
-            for (x1, y1), (x2, y2) in zip(pts1, pts2):
-                A = np.array([x1 * P1[2] - P1[0], y1 * P1[2] - P1[1], y1 * P1[0] - x1 * P1[1],
-                              x2 * P2[2] - P2[0], y2 * P2[2] - P2[1], y2 * P2[0] - x2 * P2[1]])
-                h = np.linalg.svd(A)[2][-1]
-                X.append(h[:3] / h[3])
-            return np.array(X)
-        """),
+    "triangulation with all three rows of x × (P X) = 0, rows not scaled": ("lab12.ex1", THREE_ROW_TRIANGULATION),
     "DP with a squared-difference cost and its own default": ("lab12.ex5", """
         def _sad_volume(left, right, max_disparity, block_size):
             height, width = left.shape
