@@ -96,9 +96,14 @@ def read_notebook(text: str, name: str = "notebook"):
             return data  # a bare {"cells": [...]} (hand-made or exported by a tool): usable as is
         import nbformat
 
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # missing cell ids and the like: harmless here
-            notebook = nbformat.reads(text, as_version=4)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # missing cell ids and the like: harmless here
+                notebook = nbformat.reads(text, as_version=4)
+        except Exception:  # noqa: BLE001 - strict schema; the code may still be plainly readable
+            if not _plainly_readable(data["cells"]):
+                raise
+            return data  # cells without metadata/outputs (written by a tool): their code is all we need
         if not isinstance(notebook["cells"], list):
             raise TypeError("'cells' is not a list")
     except Exception as exc:  # noqa: BLE001 - nbformat raises many types for a damaged file
@@ -108,6 +113,19 @@ def read_notebook(text: str, name: str = "notebook"):
             f"{name} is not a readable notebook ({reason[:200]}); open it in Jupyter and save it "
             "again, or hand in the code as a .py file") from None
     return notebook
+
+
+def _mapping(value) -> dict:
+    """``value`` if it is a dict, else an empty one (a hand-edited notebook may hold anything)."""
+    return value if isinstance(value, dict) else {}
+
+
+def _plainly_readable(cells) -> bool:
+    """Every cell a dict with a ``cell_type`` and its source as text or a list of lines."""
+    def text(source):
+        return isinstance(source, str) or (isinstance(source, list) and all(isinstance(s, str) for s in source))
+    return all(isinstance(c, dict) and isinstance(c.get("cell_type"), str) and text(c.get("source", ""))
+               for c in cells)
 
 
 def convert(text: str, name: str = "notebook", definitions_only: bool = True) -> ConvertedNotebook:
@@ -126,15 +144,16 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True) ->
     notebook = read_notebook(text, name)
     lines: list[str] = []
     converted = ConvertedNotebook("")
-    settings = (notebook.get("metadata") or {}).get("autograder") or {}
+    settings = _mapping(_mapping(notebook.get("metadata")).get("autograder"))
     if isinstance(settings.get("cell_label"), str) and "{number}" in settings["cell_label"]:
         converted.cell_label = settings["cell_label"]
     for number, cell in enumerate(notebook["cells"], 1):
-        if cell.get("cell_type") != "code":
+        if not isinstance(cell, dict) or cell.get("cell_type") != "code":
             continue
         source = cell.get("source", "")
-        source = "".join(source) if isinstance(source, list) else str(source)
-        tags = set(cell.get("metadata", {}).get("tags", []) or [])
+        source = "".join(map(str, source)) if isinstance(source, list) else str(source)
+        tags = _mapping(cell.get("metadata")).get("tags")
+        tags = {t for t in tags if isinstance(t, str)} if isinstance(tags, list) else set()
         cell_lines = _without_magics(source.splitlines())
         if SKIP_TAG in tags:
             keep = [False] * len(cell_lines)

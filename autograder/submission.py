@@ -435,14 +435,16 @@ def _find_misnamed(root: Path, module: str, out: Path, submission: Submission,
     archives = _source_files(root, suffixes=(".zip",))
     broken = []
     for index, archive in enumerate(archives):
-        unpacked = out / "_zips" / str(index)
-        if not unpacked.exists():  # else unpacked for an earlier module
+        unpacked, why_not = out / "_zips" / str(index), out / "_zips" / f"{index}.broken"
+        if not unpacked.exists():  # else unpacked (or found broken) for an earlier module
             unpacked.mkdir(parents=True)
             try:
                 unzip_regular_files(archive, unpacked, submission.refused, caps)
             except SubmissionError as exc:
-                broken.append(str(exc))
-                continue
+                why_not.write_text(str(exc), encoding="utf-8")
+        if why_not.exists():
+            broken.append(why_not.read_text(encoding="utf-8"))
+            continue
         files += [p for p in _source_files(out / "_zips" / str(index)) if p not in files]
     meant = [p for p in files if _plain_name(p.stem) == module]
     for suffix in (".py", ".ipynb"):

@@ -102,3 +102,17 @@ def test_an_error_in_a_function_points_to_its_cell(tmp_path):
     tracebacks = [c.traceback for c in result.exercises[0].checks if c.traceback]
     assert tracebacks
     assert f'File "{MODULE}.ipynb", cell {number}, line 3, in translation_matrix' in tracebacks[0]
+
+
+def test_hand_edited_notebooks_with_odd_metadata_still_give_their_code():
+    """Cells without metadata or outputs, metadata that is not an object, junk cells:
+    the code is still read, and nothing in them can crash the grader."""
+    import json
+
+    from autograder.notebooks import convert
+
+    odd = {"cells": [42, {"cell_type": "code", "source": "def f():\n    return 1\n", "metadata": 42},
+                     {"cell_type": "code", "source": ["x = 2\n"], "metadata": {"tags": [1, "grade"]}}],
+           "metadata": [], "nbformat": 4, "nbformat_minor": 5}
+    source = convert(json.dumps(odd)).source
+    assert "def f():" in source and "x = 2" in source
