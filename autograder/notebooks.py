@@ -121,11 +121,10 @@ def _mapping(value) -> dict:
 
 
 def _plainly_readable(cells) -> bool:
-    """Every cell a dict with a ``cell_type`` and its source as text or a list of lines."""
+    """Every code cell's source is text or a list of lines (other entries are passed over)."""
     def text(source):
         return isinstance(source, str) or (isinstance(source, list) and all(isinstance(s, str) for s in source))
-    return all(isinstance(c, dict) and isinstance(c.get("cell_type"), str) and text(c.get("source", ""))
-               for c in cells)
+    return all(text(c.get("source", "")) for c in cells if isinstance(c, dict) and c.get("cell_type") == "code")
 
 
 def convert(text: str, name: str = "notebook", definitions_only: bool = True) -> ConvertedNotebook:
