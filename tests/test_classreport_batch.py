@@ -42,5 +42,8 @@ def test_batch_writes_the_overview_and_report_rewrites_it(tmp_path, capsys):
     assert main(["report", str(results)]) == 0
     assert "1 of 3: tx and ty are swapped" in (results / "index.html").read_text()
     assert main(["report", str(tmp_path)]) == 2   # no gradebook there
-    assert main(["similarity", str(results)]) == 2   # RESULTS keeps no sources: a clear error
-    assert "SUBMISSIONS" in capsys.readouterr().err
+    # RESULTS keeps the sources it graded: the similarity report can be made from it alone.
+    assert (results / "ben" / "sources" / f"{LAB07}.py").read_text() == students["ben"]
+    (results / "similarity.html").unlink()
+    assert main(["similarity", str(results)]) == 0
+    assert "ada · cleo" in (results / "similarity.html").read_text()

@@ -11,6 +11,7 @@ Layout of RESULTS::
     similarity.html           with --similarity: the most similar submissions
     <student-id>/feedback.html
     <student-id>/results.json the results model, without pictures
+    <student-id>/sources/     the files graded (read by ``autograder similarity RESULTS``)
 
 Gradings run in parallel, one sandboxed grading per submission: in a local
 process pool (``workers``), or on a Dask cluster (``dask_scheduler``). Each one
@@ -22,12 +23,13 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 from contextlib import contextmanager
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from multiprocessing import get_context
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 from typing import Callable
 
 from .. import confine
@@ -116,7 +118,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
             key = keys[entry.student_id]
             if "result" in outcome:
                 try:
-                    _write_student(out, entry.student_id, outcome["result"])   # files first, then the commit
+                    _write_student(out, entry, outcome["result"])   # files first, then the commit
                     book.record(key, entry.student_id, entry.content_hash, selection, outcome["result"], lock=lock)
                     summary.graded += 1
                 except (OSError, ValueError, TypeError, KeyError) as exc:
@@ -197,10 +199,19 @@ def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None
                     finished(entry, outcome)
 
 
-def _write_student(out: Path, student_id: str, result: dict) -> None:
-    folder = out / student_id
+def _write_student(out: Path, entry: Entry, result: dict) -> None:
+    """The student's page, results and the sources graded (``sources/``, for the similarity report)."""
+    folder = out / entry.student_id
     html.write(GradingResult.from_dict(result), folder / "feedback.html")
     write_atomically(folder / "results.json", json.dumps(strip_pictures(result), indent=1, allow_nan=False) + "\n")
+    sources = folder / "sources"
+    shutil.rmtree(sources, ignore_errors=True)
+    for relative, data in entry.files.items():
+        parts = PurePosixPath(relative).parts
+        if parts and not any(part in ("", ".", "..") for part in parts) and not relative.startswith("/"):
+            target = sources.joinpath(*parts)
+            target.parent.mkdir(parents=True, exist_ok=True)
+            target.write_bytes(data)
 
 
 def _write_overview(out: Path, students: list[dict], course: CourseConfig) -> Path:
