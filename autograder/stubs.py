@@ -4,13 +4,15 @@ A skeleton function whose body is nothing but ``raise NotImplementedError(...)``
 (after its docstring) answers every call the same way. A check whose only
 student call is such a function therefore scores 0 with "``name()`` is not
 implemented yet", whatever ground truth, scene or pictures it would build first.
-The runner uses the two facts below to record that verdict without running the
-check (see :func:`autograder.runner.run_check`); everything else runs as usual.
+The runner records that verdict without running the check when every function
+of the exercise is such a stub and the check names exactly one student function
+(see :func:`autograder.runner._grade_exercise`); advice checks, and everything
+else, run as usual. It uses two facts:
 
 - :func:`stub_functions` reads the student's module source (``ast`` only, never
   executed) for such stubs;
-- :func:`functions_called` reads a check's source (and its helpers' in the same
-  suite) for the student functions it names (``t.call("translate", ...)``,
+- :func:`functions_called` reads a check's code (and its helpers' in the same
+  package) for the student functions it names (``t.call("translate", ...)``,
   ``judge_matrix_call(t, "translation_matrix", ...)``).
 """
 
@@ -18,6 +20,7 @@ from __future__ import annotations
 
 import ast
 import inspect
+import types
 from functools import lru_cache
 from pathlib import Path
 
@@ -29,9 +32,18 @@ _DYNAMIC = ("globals(", "setattr(", "__dict__", "sys.modules", "exec(", "eval(",
 
 
 def stub_functions(module_file: Path) -> frozenset[str]:
-    """Top-level functions of ``module_file`` that can only raise ``NotImplementedError``.
+    """Top-level functions of ``module_file`` that can only raise ``NotImplementedError``
+    (read once per version of the file)."""
+    try:
+        stat = Path(module_file).stat()
+    except OSError:
+        return frozenset()
+    return _stub_functions(str(module_file), stat.st_mtime_ns, stat.st_size)
 
-    A function counts when it is undecorated, its body is an optional docstring
+
+@lru_cache(maxsize=64)
+def _stub_functions(module_file: str, mtime_ns: int, size: int) -> frozenset[str]:
+    """A function counts when it is undecorated, its body is an optional docstring
     followed by ``raise NotImplementedError`` (with constant arguments, if any),
     and nothing else in the module binds its name or ``NotImplementedError``.
     """
@@ -89,8 +101,8 @@ def _is_stub(function: ast.FunctionDef) -> bool:
 
 
 def functions_called(check: Check) -> frozenset[str]:
-    """The lab's student functions named in ``check``'s source or in the source of
-    the module-level helpers it uses (empty when a source cannot be read)."""
+    """The lab's student functions named (as string constants) in ``check``'s code
+    or in the code of the module-level helpers it uses."""
     names = frozenset(name for exercise in check.exercise.lab.exercises.values()
                       for name in exercise.signatures)
     return _named_in(check.func, names)
@@ -104,8 +116,6 @@ def _named_in(func, names: frozenset[str]) -> frozenset[str]:
             continue
         seen.add(function)
         strings, helpers = _mentions(function)
-        if strings is None:
-            return frozenset()  # source unknown: claim nothing
         found |= strings & names
         todo += helpers
     return frozenset(found)
@@ -113,39 +123,26 @@ def _named_in(func, names: frozenset[str]) -> frozenset[str]:
 
 @lru_cache(maxsize=None)
 def _mentions(function):
-    """The string constants in ``function``'s source, and the module-level functions
-    of the same package it refers to (helpers that may call students too)."""
-    node = _definitions(function.__code__.co_filename).get(function.__code__.co_firstlineno)
-    if node is None:
-        return None, []
-    strings, helpers = set(), []
+    """The string constants in ``function``'s code (its lambdas and inner functions
+    included), and the module-level functions of the same package it refers to
+    (helpers that may call students too)."""
+    strings, names, codes = set(), set(), [function.__code__]
+    while codes:
+        code = codes.pop()
+        names.update(code.co_names)
+        constants = list(code.co_consts)
+        while constants:
+            constant = constants.pop()
+            if isinstance(constant, str):
+                strings.add(constant)
+            elif isinstance(constant, (tuple, frozenset)):
+                constants += constant
+            elif isinstance(constant, types.CodeType):
+                codes.append(constant)
     namespace = function.__globals__
-    for inner in ast.walk(node):
-        if isinstance(inner, ast.Constant) and isinstance(inner.value, str):
-            strings.add(inner.value)
-        elif isinstance(inner, ast.Name):
-            helper = namespace.get(inner.id)
-            if inspect.isfunction(helper) and _package(helper) == _package(function):
-                helpers.append(helper)
+    helpers = [namespace[name] for name in names if inspect.isfunction(namespace.get(name))
+               and _package(namespace[name]) == _package(function)]
     return strings, helpers
-
-
-@lru_cache(maxsize=None)
-def _definitions(filename: str) -> dict[int, ast.AST]:
-    """Every function (and lambda) of a source file, by the first line of its code
-    object (its first decorator's line when decorated)."""
-    try:
-        tree = ast.parse(Path(filename).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, SyntaxError, ValueError):
-        return {}
-    definitions = {}
-    for node in ast.walk(tree):
-        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
-            first = min([node.lineno] + [d.lineno for d in node.decorator_list])
-            definitions[first] = node
-        elif isinstance(node, ast.Lambda):
-            definitions.setdefault(node.lineno, node)
-    return definitions
 
 
 def _package(function) -> str:
