@@ -139,7 +139,7 @@ def report(f: dict):
     for lab, figures in f["labs"].items():
         print(f"    {lab}                         {figures['wall_s']:6.2f} s wall, "
               f"{figures['student_s']:.2f} s in student functions, overhead {figures['overhead_share']:.0%}")
-    print(f"  skeleton ({skel['score']})           {skel['wall_s']:6.2f} s wall, "
+    print(f"  skeleton ({skel['score']})                {skel['wall_s']:6.2f} s wall, "
           f"{skel['ratio']:.2f}x the reference")
     trip = f["worker_round_trip_1mpx"]
     print(f"  worker call with a 1-megapixel image  {trip['call_ms']:.1f} ms "
