@@ -9,6 +9,11 @@ Student time is budgeted per exercise and per submission (``Limits.exercise_budg
 ``Limits.submission_budget``): once a budget is spent, the checks left are marked
 "time budget exhausted" (0 points) without calling anything, and the results are
 still complete.
+
+An exercise whose functions are all stubs (bodies that only raise
+``NotImplementedError``, see :mod:`autograder.stubs`) costs almost nothing: a check
+that can only call one of them gets that function's "not implemented yet" without
+running, so no ground truth or pictures are built for it.
 """
 
 from __future__ import annotations
