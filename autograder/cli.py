@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import argparse
 import sys
+import threading
 from pathlib import Path
 
 from rich.markup import escape
 
-from . import __version__
+from . import __version__, confine
 from .registry import SelectionError, discover
 from .sandbox import Limits
 from .submission import SubmissionError
@@ -128,7 +129,9 @@ def run_grade(args) -> int:
         errors.print(NO_SUBMISSION, markup=False, highlight=False)
         return USAGE_ERROR
     limits = Limits(call_timeout=args.timeout) if args.timeout else None
+    probing = _probe_confinement()
     several = _several_students(args.submission)
+    probing.join()
     if several:
         console.print(f"[red]error:[/red] {escape(several)}")
         return USAGE_ERROR
@@ -184,6 +187,20 @@ def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
                           highlight=False)
     written += [(f"figure {o.exercise_id}", o.path) for o in outcomes if o.path is not None]
     return {o.exercise_id: o.path.read_bytes() for o in outcomes if o.path is not None}
+
+
+def _probe_confinement() -> threading.Thread:
+    """Find the sandbox's confinement level (a second or so of waiting on probe
+    processes) while the lab suites load; the sandbox then finds it cached."""
+    def probe():
+        try:
+            confine.detect()
+        except Exception:  # noqa: BLE001 - the sandbox asks again and reports it
+            pass
+
+    thread = threading.Thread(target=probe, name="confinement probe", daemon=True)
+    thread.start()
+    return thread
 
 
 def _several_students(path) -> str | None:

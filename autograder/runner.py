@@ -9,6 +9,11 @@ Student time is budgeted per exercise and per submission (``Limits.exercise_budg
 ``Limits.submission_budget``): once a budget is spent, the checks left are marked
 "time budget exhausted" (0 points) without calling anything, and the results are
 still complete.
+
+An exercise whose functions are all stubs (bodies that only raise
+``NotImplementedError``, see :mod:`autograder.stubs`) costs almost nothing: a check
+that can only call one of them gets that function's "not implemented yet" without
+running, so no ground truth or pictures are built for it.
 """
 
 from __future__ import annotations
@@ -28,6 +33,7 @@ from .registry import Check, Exercise, hidden_checks_installed, select
 from .results import (ADVICE, ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
                       ExerciseResult, GradingResult)
 from .sandbox import CallOutcome, Limits, Sandbox
+from .stubs import functions_called, stub_functions
 from .submission import load_submission
 
 
@@ -140,11 +146,15 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
                 on_check(exercise, out.checks[-1])
         return out
     modified: list[tuple[str, str]] = []  # (function, argument) changed in place
+    stubs = _stubs(exercise, submission)
     for check in checks:
         spent = budget.exhausted() if budget is not None else ""
+        stub = _only_stub_called(check, stubs)
         if spent:
             out.checks.append(CheckResult(check.name, 0.0, check.points, FAILED, spent,
                                           hidden=check.hidden, failure="budget"))
+        elif stub:
+            out.checks.append(_not_implemented(check, stub))
         else:
             out.checks.append(run_check(sandbox, check, pictures, modified, rules))
         if on_check:
@@ -155,6 +165,33 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
     if modified:
         out.checks.append(_in_place_advice(modified))
     return out
+
+
+def _stubs(exercise: Exercise, submission) -> frozenset[str]:
+    """The submission's stubs (functions that only raise NotImplementedError), when
+    every function of ``exercise`` is one; else none: a check might call a real one."""
+    if submission is None:
+        return frozenset()
+    stubs = stub_functions(submission.path / f"{exercise.lab.module}.py")
+    return stubs if set(exercise.signatures) <= stubs else frozenset()
+
+
+def _only_stub_called(check: Check, stubs: frozenset[str]) -> str:
+    """The stub ``check`` calls, when it names exactly one student function and that
+    one is a stub (its verdict is then known without running it); else ``""``.
+    Advice checks always run: they may turn a failure into a tip."""
+    if not stubs or check.advice:
+        return ""
+    called = functions_called(check)
+    return next(iter(called)) if len(called) == 1 and called <= stubs else ""
+
+
+def _not_implemented(check: Check, function: str) -> CheckResult:
+    """The verdict ``check`` would reach by calling the stub ``function``, without
+    building its ground truth, scenes or pictures."""
+    message = f"{function}() is not implemented yet"  # the worker's words for NotImplementedError
+    return CheckResult(check.name, 0.0, check.points, NOT_IMPLEMENTED, message,
+                       hidden=check.hidden, failure="not_implemented")
 
 
 def _import(sandbox: Sandbox, module: str, submission) -> CallOutcome:
