@@ -209,6 +209,11 @@ MISTAKES = {
                     best, best_count, best_spread = H, count, spread
             return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
         """, ["not the fit to its own inliers", "refit h on all the inliers"]),
+    "RANSAC with a fixed threshold (the argument ignored)": ("lab08.ex4", """
+        _reference_ransac = homography_ransac
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            return _reference_ransac(src, dst, 1.0, seed)
+        """, ["threshold=1.0 and threshold=20.0 give the same h and inlier mask: threshold is ignored"]),
     # ---------------------------------------------------------------- ex5
     "img2 as the reference": ("lab08.ex5", """
         def stitch(img1, img2):

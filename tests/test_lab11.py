@@ -78,6 +78,10 @@ MISTAKES = {
         def essential_from_fundamental(F, K1, K2):
             return np.asarray(K1).T @ np.asarray(F) @ np.asarray(K2)
         """, ["swapped"]),
+    "essential with K1 used for both images": ("lab11.ex3", """
+        def essential_from_fundamental(F, K1, K2):
+            return K1.T @ np.asarray(F, float) @ K1
+        """, ["k1 is used for both images"]),
     "essential 8-point without (s, s, 0)": ("lab11.ex3", """
         def essential_8point(pts1, pts2, K1, K2):
             x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T

@@ -28,7 +28,8 @@ from fixtures.images import coverage, photo, warp
 
 from ..checks import Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
-from ..judges import IMAGE_TOLERANCE, digits_apart, format_matrix, judge_warp
+from ..judges import (IMAGE_TOLERANCE, digits_apart, format_matrix, judge_parameter_used, judge_warp,
+                      where_matrices_differ)
 from ..pictures import difference_heatmap, matches_picture, svg_points
 from ..registry import Lab
 
@@ -170,7 +171,8 @@ def judge_exact_fit(t: Trial, src, dst, H_true, region):
     if error <= 1e-2:
         return
     diagnose_h(t, what, got, H_true, src, dst)
-    t.fail(f"{what} is off by {error:.3g} px (RMS over the image); from exact points the DLT "
+    t.fail(f"{what} is off by {error:.3g} px (RMS over the image), wrong "
+           f"{where_matrices_differ(got, H_true, up_to_scale=True)}; from exact points the DLT "
            f"recovers H exactly. Got\n{format_matrix(truth.normalised(got))}\nexpected (up to scale)\n"
            f"{format_matrix(H_true)}")
 
@@ -489,10 +491,18 @@ def ransac_success(H, inliers, H_true, true_inliers):
     return error, recall, precision
 
 
-def diagnose_ransac(t: Trial, what, H, inliers, src, dst, H_true, true_inliers, threshold=3.0):
+def probe_ransac_threshold(t: Trial, src, dst, seed):
+    """Fail naming ``threshold`` as ignored when 1 px and 20 px give the same H and mask."""
+    judge_parameter_used(t, f"homography_ransac(src, dst, seed={seed})",
+                         lambda **kw: t.call("homography_ransac", src, dst, seed=seed, **kw),
+                         "threshold", (1.0, 20.0), "H and inlier mask")
+
+
+def diagnose_ransac(t: Trial, what, H, inliers, src, dst, H_true, true_inliers, threshold=3.0, seed=0):
     if (~inliers == true_inliers).mean() >= 0.95:
         t.fail(f"{what}: the inlier mask is inverted: True must mark the inliers "
                "(transfer error below the threshold)")
+    probe_ransac_threshold(t, src, dst, seed)
     mistakes = truth.matrix_mistakes(H_true)
     mistakes["H is fitted to all the points, outliers included (RANSAC should pick the "
              "consensus set and fit to it)"] = truth.dlt(src, dst)
@@ -566,7 +576,7 @@ def ransac_refit(t):
         what = f"homography_ransac(src, dst, seed={k})"
         H, inliers = ransac_result(t, src, dst, what, seed=k)
         if inliers.sum() < 4:
-            diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
+            diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers, seed=k)
             t.fail(f"{what} marks {int(inliers.sum())} inliers; a homography needs at least 4")
         distances.append(refit_distance(H, inliers, src, dst))
     mean = float(np.mean(distances))
@@ -596,6 +606,7 @@ def ransac_seeds(t):
     summary = "; ".join(notes)
     if wins >= 4:
         return passed(f"succeeded with {wins} of 5 seeds ({summary})")
+    probe_ransac_threshold(t, src, dst, seed=4)
     message = (f"homography_ransac found the right homography and inliers with only {wins} of 5 "
                f"seeds ({summary}).")
     hint = ("With half the pairs wrong, a random 4-point sample is all inliers only 1 time in 16: "

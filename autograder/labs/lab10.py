@@ -19,7 +19,7 @@ from fixtures import scene
 
 from ..checks import Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
-from ..judges import format_matrix
+from ..judges import format_matrix, where_matrices_differ
 from ..pictures import svg_points
 from ..registry import Lab
 from .lab09 import expect_points, judge_points, judge_single_point, point_error
@@ -279,7 +279,13 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     if projective_distance(recomposed, P) > 1e-6:
         t.fail(f"{what}: K [R | t] does not give back P (distance {projective_distance(recomposed, P):.2g} "
                "after normalising scale).")
-    t.fail(f"{what}: K, R, t differ from the camera's: K\n{format_matrix(K)}\nexpected\n{format_matrix(Kn)}")
+    wrong = [name for name, part, right, tolerance in (
+        ("K", K, Kn, 1e-6 * np.abs(Kn).max()), ("R", R, R_true, 1e-6),
+        ("t", tv, t_true, 1e-6 * max(1.0, np.abs(t_true).max()))) if np.abs(part - right).max() > tolerance]
+    first = f"{what}: {' and '.join(wrong)} differ{'s' if len(wrong) == 1 else ''} from the camera's"
+    if "K" in wrong:
+        first += f" (K is wrong {where_matrices_differ(K, Kn)})"
+    t.fail(f"{first}.\nK\n{format_matrix(K)}\nexpected\n{format_matrix(Kn)}")
 
 
 @ex5.check("decompose_camera_matrix of P = K [R | t]", points=3)
@@ -400,6 +406,9 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
                "by 90 degrees in the board plane): pattern_size is (cols, rows) = (inner corners per row, "
                "per column), passed to cv2.findChessboardCorners as given, and the object points run "
                "row by row with x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).")
+    if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and rel <= TRANSLATION_TOLERANCE:
+        t.fail(f"{what}: the translation is right but the rotation is transposed (rvec has the wrong "
+               "sign): return rvec as cv2.solvePnP gives it, the board's rotation into the camera frame.")
     C = -R.T @ tv
     if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and np.linalg.norm(tvec - C) < 0.05 * distance:
         t.fail(f"{what}: that is the camera's pose in the board's frame (R^T, -R^T t); the task wants "

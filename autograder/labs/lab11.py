@@ -19,7 +19,7 @@ from fixtures.lab12 import triangulation_variants
 
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import closest, projective_distance
-from ..judges import format_matrix
+from ..judges import format_matrix, where_matrices_differ
 from ..pictures import side_by_side, svg_points
 from ..registry import Lab
 
@@ -48,7 +48,8 @@ def judge_projective(t: Trial, what: str, got, expected, mistakes=None, toleranc
     mistake = closest(got, mistakes or {}, projective_distance, max(tolerance, 1e-4))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.")
-    t.fail(f"{what} returned (scaled to unit norm)\n{format_matrix(_unit(got))}\nexpected (up to scale and sign)\n"
+    t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale=True)}.\n"
+           f"It returned (scaled to unit norm)\n{format_matrix(_unit(got))}\nexpected (up to scale and sign)\n"
            f"{format_matrix(_unit(expected))}")
 
 

@@ -24,7 +24,7 @@ from fixtures import lab12 as truth
 
 from ..checks import StudentFailure, Trial, partial, passed
 from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error
-from ..judges import format_matrix
+from ..judges import format_matrix, judge_parameter_used
 from ..pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..registry import Lab
 
@@ -70,11 +70,13 @@ def expect_disparity(t: Trial, what: str, got, scene) -> np.ndarray:
 
 def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, again=None,
                     show: bool = True, threshold_name: str = "reference solution:",
-                    judged=None, allowed=None, accepted_by: str = ""):
+                    judged=None, allowed=None, accepted_by: str = "", probe=None):
     """Judge a disparity map by its bad-pixel rate against the reference's, naming mistakes.
 
     ``again(left, right)`` calls the student's function on another pair (used to
-    recognise a search in the wrong direction, on the swapped views). ``judged``
+    recognise a search in the wrong direction, on the swapped views). ``probe()``
+    looks, for a failing map only, for the mistakes only another call can show (a
+    parameter ignored); it fails naming one, or returns. ``judged``
     replaces the scene's judged truth, ``allowed`` the accepted rate (default: the
     reference's plus :data:`MARGIN`), explained by ``accepted_by``.
     """
@@ -88,6 +90,8 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     if bad <= allowed:
         return passed(summary)
     diagnose_disparity(t, what, got, scene, allowed, again, judged)
+    if probe is not None:
+        probe()
     if bad < allowed + FADE:
         return partial((allowed + FADE - bad) / FADE, f"{what}: {summary}; up to {allowed:.1%} "
                        "gets full marks (see the error map).")
@@ -480,12 +484,20 @@ def block_matcher(t: Trial, scene, **kwargs):
     return again
 
 
+def block_size_probe(t: Trial, what: str, scene, **kwargs):
+    """A probe (see :func:`judge_disparity`): does ``block_size`` change the map at all?"""
+    def match(**size):
+        return t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                      max_disparity=scene.max_disparity, **kwargs, **size)
+    return lambda: judge_parameter_used(t, what, match, "block_size", (5, 15), "disparity map")
+
+
 def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, again=None, show=True):
     """Judge an SSD disparity map against the legitimate matchers' rates on ``scene``.
 
     ``figures`` are :func:`fixtures.make_lab12_figures.block_matching_figures` of the
     scene. Pixels at infinity (true d rounds to 0) are judged apart: the search must
-    include d = 0.
+    include d = 0. A failing map is probed for an ignored ``block_size``.
     """
     got = expect_disparity(t, what, got, scene)
     far, near = truth.far_and_near(truth.band(scene.judged, scene.max_disparity, figures["block_size"]))
@@ -501,7 +513,8 @@ def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, agai
     return judge_disparity(t, what, got, scene, figures["reference"], again=again, show=show, judged=near,
                            allowed=figures["legitimate"] + SLACK,
                            accepted_by=f"; the legitimate SSD matchers, cv2.StereoBM included, up to "
-                                       f"{figures['legitimate']:.1%}")
+                                       f"{figures['legitimate']:.1%}",
+                           probe=block_size_probe(t, what, scene, cost="ssd"))
 
 
 def bm_figures(key: str) -> dict:
@@ -575,8 +588,9 @@ def ncc_motorcycle(t):
     scene = truth.scene("motorcycle")
     got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
                  max_disparity=scene.max_disparity, block_size=9, cost="ncc")
-    verdict = judge_disparity(t, "block_matching(left, right, cost=\"ncc\")", got, scene,
-                              figures("motorcycle", "bm_ncc_9")["bad"])
+    what = "block_matching(left, right, cost=\"ncc\")"
+    verdict = judge_disparity(t, what, got, scene, figures("motorcycle", "bm_ncc_9")["bad"],
+                              probe=block_size_probe(t, what, scene, cost="ncc"))
     if verdict.fraction < 1:
         verdict.hint = NCC_HINT
     return verdict
@@ -612,6 +626,7 @@ def ncc_gain(t):
                "when the views have the same brightness: your NCC is not fully normalised. Subtract "
                "each block's mean and divide by the product of the blocks' standard deviations.")
     diagnose_disparity(t, what, got, scene, reference + MARGIN)
+    block_size_probe(t, what, scene, cost="ncc")()
     if bad < reference + MARGIN + FADE:
         return partial((reference + MARGIN + FADE - bad) / FADE, f"{what}: {summary}.", hint=NCC_HINT)
     t.fail(f"{what}: {summary}; it fails even when both views have the same brightness.",
@@ -628,6 +643,12 @@ JUMPS_VS_BM = 0.4   # "far fewer jumps": at most this fraction of block matching
 def call_dp(t: Trial, scene, **kwargs):
     return t.call("dp_stereo", np.array(scene.left), np.array(scene.right),
                   max_disparity=scene.max_disparity, **kwargs)
+
+
+def smoothness_probe(t: Trial, scene):
+    """Fail naming ``smoothness`` as ignored when 0 and a huge penalty give the same map."""
+    judge_parameter_used(t, "dp_stereo(left, right)", lambda **kw: call_dp(t, scene, **kw),
+                         "smoothness", (0, 1e7), "disparity map")
 
 
 def winner_take_all_message(what, jumps, wta_jumps):
@@ -676,6 +697,7 @@ def dp_weak_texture(t):
         return passed(summary)
     jumps = truth.jump_rate(got, scene.judged)
     if jumps >= 0.6 * bm["jumps"]:
+        smoothness_probe(t, scene)
         t.fail(winner_take_all_message(what, jumps, bm["jumps"]))
     diagnose_disparity(t, what, got, scene, reference["bad"] + MARGIN)
     if bad < bm["bad"] - MARGIN:
@@ -694,6 +716,7 @@ def dp_smooth(t):
         jumps = truth.jump_rate(got, scene.judged)
         bm = figures(key, "bm_ssd_5")["jumps"]
         if jumps > JUMPS_VS_BM * bm:
+            smoothness_probe(t, scene)
             if jumps >= 0.6 * bm:
                 t.fail(winner_take_all_message(what, jumps, bm))
             t.fail(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px; block "
@@ -717,6 +740,8 @@ def dp_smoothness_parameter(t):
     wta_jumps = truth.jump_rate(wta, scene.judged)
     default_jumps = truth.jump_rate(default, scene.judged)
     reference = figures("weak_texture", "dp_5_s0")["jumps"]
+    if wta_jumps < 0.5 * reference or default_jumps * 3 > wta_jumps:
+        smoothness_probe(t, scene)
     if wta_jumps < 0.5 * reference:
         t.fail(f"dp_stereo(left, right, smoothness=0): only {wta_jumps:.1%} of neighbouring pixels "
                f"jump by more than 1 px (winner-take-all gives about {reference:.1%}): with "
@@ -728,6 +753,7 @@ def dp_smoothness_parameter(t):
                             call_dp(t, scene, smoothness=1e7), scene)
     rows_with_jumps = float(np.mean(np.any(np.diff(np.nan_to_num(flat), axis=1) != 0, axis=1)))
     if rows_with_jumps > 0.1:
+        smoothness_probe(t, scene)
         t.fail(f"dp_stereo(left, right, smoothness=1e7): {rows_with_jumps:.0%} of the rows still "
                "change disparity; with a huge penalty each row should be constant.")
     return passed(f"smoothness=0: {wta_jumps:.1%} jumps; smoothness=1e7: constant rows")
