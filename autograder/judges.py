@@ -62,6 +62,26 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
            f"It returned\n{format_matrix(got)}\nexpected\n{format_matrix(expected)}")
 
 
+def where_points_differ(got, expected, tolerance: float, names=("x", "y")) -> str:
+    """Which points, and which coordinates of them, are wrong, in words.
+
+    ``got`` and ``expected`` are (N, D) arrays; a coordinate is wrong when it is
+    off by more than ``tolerance`` (or not finite). ``names`` name the columns.
+    """
+    got, expected = np.asarray(got, np.float64), np.asarray(expected, np.float64)
+    with np.errstate(invalid="ignore"):
+        wrong = ~(np.abs(got - expected) <= tolerance)
+    rows = np.flatnonzero(wrong.any(axis=1))
+    if rows.size == 0:
+        return "nowhere beyond the tolerance"
+    columns = [name for name, bad in zip(names, wrong.any(axis=0)) if bad]
+    which = "every point" if rows.size == len(got) else \
+        f"{rows.size} of {len(got)} points (the first is row {rows[0]})"
+    if len(columns) < len(names):
+        return f"for {which}, in {' and '.join(columns)} only"
+    return f"for {which}"
+
+
 _ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
 
 

@@ -63,6 +63,15 @@ MISTAKES = {
                 rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
             return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
         """, ["the x rows have the wrong sign"]),
+    "DLT with u in the y rows": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -u * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+        """, ["the y rows use u where v belongs"]),
     "DLT with solvePnP": ("lab10.ex4", """
         def camera_matrix_dlt(points3d, points2d):
             K = np.eye(3)

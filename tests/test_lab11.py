@@ -52,6 +52,13 @@ MISTAKES = {
             lines = _homogeneous(pts1) @ np.asarray(F, float)
             return lines / np.linalg.norm(lines[:, :2], axis=1, keepdims=True)
         """, ["transposed"]),
+    "epipolar lines with c = 1 (the third coordinate dropped)": ("lab11.ex2", """
+        _right_lines = epipolar_lines
+        def epipolar_lines(F, pts1):
+            lines = np.array(_right_lines(F, pts1), float)
+            lines[:, 2] = 1.0
+            return lines
+        """, ["is wrong for every line, in c only.\nit returned"]),
     "epipolar lines not normalised": ("lab11.ex2", """
         def epipolar_lines(F, pts1):
             return _homogeneous(pts1) @ np.asarray(F, float).T

@@ -224,6 +224,11 @@ MISTAKES = {
             costs[0] = np.inf
             return costs
         """, ["wall at infinity", "must include d = 0"]),
+    "block matching searching half the range (max_disparity // 2)": ("lab12.ex4", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity // 2, block_size, cost)
+        """, ["of the wrong disparities are too small", "your largest disparity is"]),
     "block matching with StereoBM's fixed point kept": ("lab12.ex4", """
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
             n = 16 * -(-(max_disparity + 1) // 16)

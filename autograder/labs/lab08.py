@@ -29,7 +29,7 @@ from fixtures.images import coverage, photo, warp
 from ..checks import Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
 from ..judges import (IMAGE_TOLERANCE, digits_apart, format_matrix, judge_parameter_used, judge_warp,
-                      where_matrices_differ)
+                      where_matrices_differ, where_points_differ)
 from ..pictures import difference_heatmap, matches_picture, svg_points
 from ..registry import Lab
 
@@ -80,8 +80,9 @@ def judge_points(t: Trial, what: str, got, H, pts):
     mistake = closest(got, truth.point_mistakes(H, pts), relative_point_error, 1e-3)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.")
-    t.fail(f"{what} returned\n{format_matrix(got[:4])}\nexpected\n{format_matrix(expected[:4])}"
-           + ("\n(first 4 rows shown)" if n > 4 else ""))
+    where = where_points_differ(got, expected, 1e-3 * np.maximum(1.0, np.abs(expected)))
+    t.fail(f"{what} is wrong {where}.\nIt returned\n{format_matrix(got[:4])}\nexpected\n"
+           f"{format_matrix(expected[:4])}" + ("\n(first 4 rows shown)" if n > 4 else ""))
 
 
 # ================================================================== ex1 apply H

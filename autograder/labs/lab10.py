@@ -203,8 +203,9 @@ def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_p
                f"yours is {got[2, 3] / np.linalg.norm(got):.3g} of |P|. It looks like P[2, 3] was fixed "
                "to 1 (11 unknowns, least squares), which cannot express this camera: solve A p = 0 "
                "for all 12 entries by SVD (the last row of Vt).")
-    t.fail(f"{what}: projecting new points with your P misses their true projections by "
-           f"{np.mean(fresh):.3g} px on average (P should equal the true camera up to scale).")
+    t.fail(f"{what}: P is wrong {where_matrices_differ(got, P, up_to_scale=True)} (compared with the "
+           f"true camera up to scale): projecting new points with it misses their true projections by "
+           f"{np.mean(fresh):.3g} px on average.")
 
 
 @ex4.check("camera_matrix_dlt from exact correspondences (N = 6, N = 20, and t_z = 0)", points=4)

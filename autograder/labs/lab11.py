@@ -19,7 +19,7 @@ from fixtures.lab12 import triangulation_variants
 
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import closest, projective_distance
-from ..judges import format_matrix, where_matrices_differ
+from ..judges import format_matrix, where_matrices_differ, where_points_differ
 from ..pictures import side_by_side, svg_points
 from ..registry import Lab
 
@@ -250,7 +250,11 @@ def judge_lines(t: Trial, what: str, got, F, pts1):
         if np.all(parallel):
             t.fail(f"{what}: the lines are right but not scaled so that a^2 + b^2 = 1 "
                    "(divide each line by sqrt(a^2 + b^2)).")
-    t.fail(f"{what} returned\n{format_matrix(got[:3])}\n... expected (each up to sign)\n{format_matrix(expected[:3])}")
+    signs = np.where(np.sum(np.nan_to_num(got) * expected, axis=1) < 0, -1.0, 1.0)[:, None]
+    where = where_points_differ(got * signs, expected, 1e-5 * max(1.0, np.abs(expected).max()),
+                                names=("a", "b", "c"))
+    t.fail(f"{what} is wrong {where.replace('point', 'line')}.\nIt returned\n{format_matrix(got[:3])}\n"
+           f"... expected (each up to sign)\n{format_matrix(expected[:3])}")
 
 
 @ex2.check("epipolar_lines on a worked example", points=2)

@@ -92,12 +92,48 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     diagnose_disparity(t, what, got, scene, allowed, again, judged)
     if probe is not None:
         probe()
+    where = where_disparities_wrong(got, judged, scene.threshold)
     if bad < allowed + FADE:
-        return partial((allowed + FADE - bad) / FADE, f"{what}: {summary}; up to {allowed:.1%} "
-                       "gets full marks (see the error map).")
-    t.fail(f"{what}: {summary} - most of the map is wrong (see the error map).",
+        return partial((allowed + FADE - bad) / FADE, f"{what}: {where}. {summary}; up to "
+                       f"{allowed:.1%} gets full marks (see the error map).")
+    t.fail(f"{what}: most of the map is wrong: {where}. {summary} (see the error map).",
            hint="for left pixel (x, y) compare its block with the block around (x - d, y) in the "
                 "right image, d = 0..max_disparity, and keep the d with the lowest cost")
+
+
+def where_disparities_wrong(got, judged, threshold) -> str:
+    """What the wrong pixels of a disparity map have in common, measured, in words.
+
+    No cause is guessed: the sentence says whether the wrong pixels are mostly
+    invalid, mostly too small or too large, or gathered in one part of the image.
+    """
+    got, judged = np.asarray(got, np.float64), np.asarray(judged, np.float64)
+    known = judged > 0
+    with np.errstate(invalid="ignore"):
+        valid = np.isfinite(got) & (got > 0)
+        bad = known & ~(valid & (np.abs(got - judged) <= threshold))
+    if not bad.any():
+        return "no pixel is wrong"
+    invalid = float(np.mean(~valid[bad]))
+    if invalid >= 0.6:
+        return f"{invalid:.0%} of the wrong pixels have no disparity (0, negative or NaN)"
+    height, width = got.shape
+    columns, rows = np.mgrid[0:height, 0:width][::-1]
+    for name, region in (("leftmost quarter", columns < width / 4), ("rightmost quarter", columns >= 3 * width / 4),
+                         ("top quarter", rows < height / 4), ("bottom quarter", rows >= 3 * height / 4)):
+        in_region = float(np.mean(region[bad]))
+        if in_region >= 0.5 and np.mean(region[known]) <= 0.3:
+            return f"{in_region:.0%} of the wrong pixels are in the {name} of the image"
+    error = (got - judged)[bad & valid]
+    too_small = float(np.mean(error < 0))
+    if too_small >= 0.8 or too_small <= 0.2:
+        side = "too small" if too_small >= 0.8 else "too large"
+        share = too_small if too_small >= 0.8 else 1 - too_small
+        return (f"{share:.0%} of the wrong disparities are {side} (median error "
+                f"{np.median(error):+.3g} px; your largest disparity is {np.max(got[valid]):.3g}, "
+                f"the true ones reach {judged[known].max():.3g})")
+    return (f"the wrong pixels are spread over the map ({invalid:.0%} of them invalid, the others "
+            f"off by {np.median(np.abs(error)):.3g} px in the median)")
 
 
 def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=None):
