@@ -174,6 +174,19 @@ def _same_result(first, second) -> bool:
     return bool(np.array_equal(first, second, equal_nan=first.dtype.kind == "f" == second.dtype.kind))
 
 
+def parameter_ignored(call, parameter: str, values) -> bool:
+    """Whether ``call(**{parameter: value})`` gives exactly the same, non-constant result for
+    both ``values`` (False when a call fails)."""
+    try:
+        first, second = (call(**{parameter: value}) for value in values)
+    except StudentFailure:
+        return False
+    # A constant output ignores every parameter: that is not this parameter's mistake.
+    constant = isinstance(first, np.ndarray) and (
+        first.size == 0 or np.ptp(np.nan_to_num(first.astype(float))) == 0)
+    return _same_result(first, second) and not constant
+
+
 def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, result: str = "result"):
     """Fail naming ``parameter`` as ignored when two values of it give exactly the same result.
 
@@ -182,16 +195,8 @@ def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, resu
     ``values``. For checks that already fail: passing work never pays for the
     probe. Returns quietly when the results differ, or when a call fails.
     """
-    first_value, second_value = values
-    try:
-        first = call(**{parameter: first_value})
-        second = call(**{parameter: second_value})
-    except StudentFailure:
-        return
-    # A constant output ignores every parameter: that is not this parameter's mistake.
-    constant = isinstance(first, np.ndarray) and (
-        first.size == 0 or np.ptp(np.nan_to_num(first.astype(float))) == 0)
-    if _same_result(first, second) and not constant:
+    if parameter_ignored(call, parameter, values):
+        first_value, second_value = values
         t.fail(f"{what}: {parameter}={first_value!r} and {parameter}={second_value!r} give the same "
                f"{result}: {parameter} is ignored.",
                hint=f"use the {parameter} argument instead of a fixed value",

@@ -308,6 +308,11 @@ MISTAKES = {
                 m = m[..., None]
             return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
         """, ["narrow feather"]),
+    "multi-band blend with a fixed 2-level pyramid (levels ignored)": ("lab08.ext3", """
+        _reference_blend = blend_multiband
+        def blend_multiband(img1, img2, mask, levels=4):
+            return _reference_blend(img1, img2, mask, 2)
+        """, ["levels=1 and levels=6 give the same image: levels is ignored"]),
     "mask weights img2": ("lab08.ext3", """
         _reference_blend = blend_multiband
         def blend_multiband(img1, img2, mask, levels=4):

@@ -29,7 +29,7 @@ from fixtures.images import coverage, photo, warp
 from ..checks import Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
 from ..judges import (IMAGE_TOLERANCE, digits_apart, format_matrix, judge_parameter_used, judge_warp,
-                      where_matrices_differ, where_points_differ)
+                      parameter_ignored, where_matrices_differ, where_points_differ)
 from ..pictures import difference_heatmap, matches_picture, svg_points
 from ..registry import Lab
 
@@ -1043,6 +1043,13 @@ def blend_seam(t):
         t.fail(f"{what}: the brightness jumps by {step:.0f} grey levels at the seam, as with a "
                "plain cut mask * img1 + (1 - mask) * img2: blend each Laplacian level with the "
                "mask's Gaussian pyramid at that level, so coarse levels blend over a wide band")
+    if step > SEAM_STEP and parameter_ignored(
+            lambda **kw: t.call("blend_multiband", dark, bright, mask, **kw), "levels", (1, 6)):
+        t.fail(f"{what}: levels=1 and levels=6 give the same image: levels is ignored. The "
+               f"brightness still jumps by {step:.0f} grey levels per column at the seam (a hard "
+               f"cut: {cut:.0f}, at most {SEAM_STEP:g} accepted): a narrow feather or a pyramid of "
+               "fixed depth leaves a visible seam; with levels=5 the coarsest level should spread "
+               "the difference over tens of pixels", mistake="levels is ignored")
     if step > SEAM_STEP:
         t.fail(f"{what}: the brightness still jumps by {step:.0f} grey levels per column at the "
                f"seam (a hard cut: {cut:.0f}, at most {SEAM_STEP:g} accepted): a narrow feather "
