@@ -180,6 +180,14 @@ MISTAKES = {
             _, R, t, _ = cv2.recoverPose(E, pts1, pts2, np.asarray(K, float))
             return F, pts1, pts2, X @ R.T + t.reshape(3)
         """, ["camera 2's frame"]),
+    "pipeline with camera 2's rotation transposed": ("lab11.ex6", """
+        _tvr = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            F, pts1, pts2, _ = _tvr(img1, img2, K)
+            K = np.asarray(K, float)
+            _, R, t, _ = cv2.recoverPose(essential_from_fundamental(F, K, K), pts1, pts2, K)
+            return F, pts1, pts2, triangulate(K @ np.eye(3, 4), K @ np.hstack([R.T, t]), pts1, pts2)
+        """, ["rotation transposed"]),
     "pipeline points mirrored": ("lab11.ex6", """
         _tvr = two_view_reconstruction
         def two_view_reconstruction(img1, img2, K):

@@ -15,7 +15,7 @@ import numpy as np
 from hypothesis import strategies as st
 
 from fixtures import lab11 as truth
-from fixtures.lab12 import triangulation_variants
+from fixtures.lab12 import linear_triangulation, triangulation_variants
 
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import closest, projective_distance
@@ -778,6 +778,42 @@ STRUCTURE_MEDIAN = 0.08   # median relative 3-D error after one global scale
 STRUCTURE_P90 = 0.18      # its 90th percentile
 
 
+def structure_error(got, X) -> float:
+    """Median distance of ``got`` to ``X`` after one global scale (sign included), relative to |X|."""
+    ratios = np.linalg.norm(X, axis=1) / np.maximum(np.linalg.norm(got, axis=1), 1e-300)
+    scale = float(np.median(ratios)) * (1.0 if np.median(np.sum(got * X, axis=1)) >= 0 else -1.0)
+    return float(np.median(np.linalg.norm(scale * got - X, axis=1) / np.linalg.norm(X, axis=1)))
+
+
+def pose_mistakes(pair, pts1, pts2) -> dict[str, np.ndarray]:
+    """The 3D points the usual mistakes in building camera 2 triangulate from the same matches."""
+    K1, K2, R, t = pair.cam1.K, pair.cam2.K, pair.cam2.R, pair.cam2.t.reshape(3, 1)
+    P1 = K1 @ np.eye(3, 4)
+    return {
+        "camera 2 is built with the rotation transposed: P2 = K [R | t] with recoverPose's R as "
+        "it is (it takes camera-1 coordinates to camera 2's)":
+            linear_triangulation(P1, K2 @ np.hstack([R.T, t]), pts1, pts2),
+        "camera 2's translation has the wrong sign: P2 = K [R | t] with recoverPose's t as it is":
+            linear_triangulation(P1, K2 @ np.hstack([R, -t]), pts1, pts2),
+        "pts1 and pts2 are exchanged in the triangulation (pts1 belongs to P1)":
+            linear_triangulation(P1, K2 @ np.hstack([R, t]), pts2, pts1),
+    }
+
+
+def name_pose_mistake(got, candidates: dict, truth_error: float):
+    """The candidate ``got`` matches, when unambiguous: within :data:`STRUCTURE_MEDIAN`, and at
+    most half as far as the next candidate and as the truth."""
+    errors = sorted((structure_error(got, X), name) for name, X in candidates.items()
+                    if np.all(np.isfinite(X)))
+    if not errors:
+        return None
+    best, name = errors[0]
+    runner_up = errors[1][0] if len(errors) > 1 else np.inf
+    if best <= STRUCTURE_MEDIAN and best <= 0.5 * runner_up and best <= 0.5 * truth_error:
+        return name
+    return None
+
+
 def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
     X, true2, valid = truth.true_correspondences(pair, pts1)
     good = valid & (np.linalg.norm(pts2 - np.nan_to_num(true2), axis=1) <= 2.0)
@@ -804,6 +840,9 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
                "them in camera 1's frame (P1 = K [I | 0], P2 = K [R | t])")
     if scale > 0 and median <= STRUCTURE_MEDIAN and p90 <= STRUCTURE_P90:
         return passed(summary)
+    mistake = name_pose_mistake(got, pose_mistakes(pair, pts1[good], pts2[good]), median)
+    if mistake:
+        t.fail(f"your 3D points are wrong: it looks like {mistake}. ({summary})", mistake=mistake)
     if scale < 0 or np.median(got[:, 2]) < 0:
         t.fail("your 3D points are behind camera 1 (negative Z, or mirrored through its centre): "
                "choose the pose with the points in front of both cameras (cv2.recoverPose does) and "
