@@ -90,6 +90,11 @@ MISTAKES = {
         def triangulate(P1, P2, pts1, pts2):
             return _triangulate(P1, P2, pts2, pts1)
         """, ["swapped"]),
+    "triangulate with P1 used for both views": ("lab12.ex1", """
+        _triangulate = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            return _triangulate(P1, P1, pts1, pts2)
+        """, ["p1 is used for both views"]),
     "triangulate returns homogeneous points": ("lab12.ex1", """
         def triangulate(P1, P2, pts1, pts2):
             pts1 = np.asarray(pts1, float); pts2 = np.asarray(pts2, float)

@@ -79,7 +79,7 @@ def judge_points(t: Trial, what: str, got, H, pts):
         return
     mistake = closest(got, truth.point_mistakes(H, pts), relative_point_error, 1e-3)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     where = where_points_differ(got, expected, 1e-3 * np.maximum(1.0, np.abs(expected)))
     t.fail(f"{what} is wrong {where}.\nIt returned\n{format_matrix(got[:4])}\nexpected\n"
            f"{format_matrix(expected[:4])}" + ("\n(first 4 rows shown)" if n > 4 else ""))
@@ -162,7 +162,7 @@ def diagnose_h(t: Trial, what: str, got, H_true, src=None, dst=None, tolerance=1
                                                                       reduced_svd=True)
     mistake = closest(got, mistakes, projective_distance, tolerance)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
 
 
 def judge_exact_fit(t: Trial, src, dst, H_true, region):
@@ -509,7 +509,7 @@ def diagnose_ransac(t: Trial, what, H, inliers, src, dst, H_true, true_inliers, 
              "consensus set and fit to it)"] = truth.dlt(src, dst)
     mistake = closest(H, mistakes, projective_distance, 0.02)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     errors = np.linalg.norm(truth.apply_h(H, src) - dst, axis=1)
     if (inliers == (errors ** 2 < threshold)).mean() >= 0.98 and \
             (inliers == (errors < threshold)).mean() < 0.95:

@@ -197,7 +197,7 @@ def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_p
                           f"new points within {fresh.mean():.2f} px on average")
     mistake = closest(got, truth.dlt_mistakes(P, X, x), projective_distance, 0.05 if noise else 1e-4)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if origin_on_principal_plane and abs(got[2, 3]) > 1e-3 * np.linalg.norm(got):
         t.fail(f"{what}: here the true P[2, 3] is 0 (P[2, 3] = t_z, the depth of the world origin), "
                f"yours is {got[2, 3] / np.linalg.norm(got):.3g} of |P|. It looks like P[2, 3] was fixed "
@@ -275,7 +275,7 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     for mistake, (Km, Rm, tm) in truth.decomposition_mistakes(Kn, R_true, t_true).items():
         if (np.abs(K - Km).max() <= 1e-4 * np.abs(Km).max() and np.abs(R - Rm).max() <= 1e-4
                 and np.abs(tv - tm).max() <= 1e-4 * max(1.0, np.abs(tm).max())):
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     recomposed = K @ np.column_stack([R, tv])
     if projective_distance(recomposed, P) > 1e-6:
         t.fail(f"{what}: K [R | t] does not give back P (distance {projective_distance(recomposed, P):.2g} "
@@ -505,7 +505,7 @@ def undistort_check(t):
     }
     for mistake, image in candidates.items():
         if blurred_difference(got, image, valid) <= UNDISTORT_TOLERANCE:
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} differs from the distortion-free view by {error:.0f} grey levels on average.")
 
 
@@ -541,7 +541,7 @@ def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
     for mistake, (fm, pm) in truth.dolly_mistakes(X, f0, z0, distances).items():
         if np.abs(fs - fm).max() <= 1e-6 * np.abs(fm).max() and \
                 point_error(proj.reshape(-1, 2), pm.reshape(-1, 2)) <= 1e-6 * np.nanmax(np.abs(pm)):
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if not ok_f:
         t.fail(f"{what}: the focal lengths are {format_matrix(fs)}; expected f0 * d / z0 = {format_matrix(fs_true)}")
     if n_subject:

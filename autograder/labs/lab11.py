@@ -47,7 +47,7 @@ def judge_projective(t: Trial, what: str, got, expected, mistakes=None, toleranc
         return got
     mistake = closest(got, mistakes or {}, projective_distance, max(tolerance, 1e-4))
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale=True)}.\n"
            f"It returned (scaled to unit norm)\n{format_matrix(_unit(got))}\nexpected (up to scale and sign)\n"
            f"{format_matrix(_unit(expected))}")
@@ -244,7 +244,7 @@ def judge_lines(t: Trial, what: str, got, F, pts1):
         return got
     mistake = closest(got, truth.line_mistakes(F, pts1), _row_error, 1e-5)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if np.all(np.isfinite(got)):
         parallel = np.linalg.norm(np.cross(got, expected), axis=1) <= 1e-6 * np.linalg.norm(got, axis=1)
         if np.all(parallel):
@@ -501,7 +501,7 @@ def essential_8point_noisy(t):
                       f"correspondences (Sampson error {mine:.2f} px; the 8-point algorithm: {best:.2f} px)")
     mistake = closest(got, _essential_8point_mistakes(views, figures), projective_distance, 1e-3)
     if mistake:
-        t.fail(f"essential_8point is wrong: it looks like {mistake}.")
+        t.fail(f"essential_8point is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"essential_8point from 50 noisy correspondences: the exact held-out correspondences "
            f"are {mine:.2f} px from your epipolar geometry (Sampson error); the 8-point algorithm "
            f"achieves {best:.2f} px. Mean |x2n^T E x1n| = {residual(got):.1e} "
@@ -583,7 +583,7 @@ def fundamental_noisy(t):
         mistake = closest(got, truth.fundamental_mistakes(figures["gold"]),
                           projective_distance, 1e-3)
         if mistake:
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
 
         def distance(F):
             return truth.symmetric_epipolar_distance(F, views.pts1[40:], views.pts2[40:]).mean()
@@ -719,7 +719,7 @@ def judge_pipeline_F(t: Trial, pair, F):
     }
     for mistake, corrected in candidates.items():
         if np.median(truth.symmetric_epipolar_distance(corrected, g1, g2)) <= 1.5:
-            t.fail(f"your F is wrong: it looks like {mistake}.")
+            t.fail(f"your F is wrong: it looks like {mistake}.", mistake=mistake)
     message = (f"true correspondences are {distance:.1f} px from your epipolar lines (median over "
                f"{len(g1)} pixels with known depth; expected below 1.5 px)")
     if distance <= 4.0:

@@ -198,7 +198,7 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
                           f"per view, rows scaled or not: {min(spread):.3g} to {max(spread):.3g})")
     mistake = closest(got, truth.triangulation_mistakes(P1, P2, pts1, pts2), max_abs_error, 1e-4 * scale)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     norms = np.linalg.norm(got, axis=1) * np.linalg.norm(X_true, axis=1)
     cosine = np.abs(np.sum(got * X_true, axis=1)) / np.where(norms > 0, norms, 1.0)
     if np.all(cosine > 1 - 1e-6) and np.ptp(np.linalg.norm(got, axis=1) / np.linalg.norm(X_true, axis=1)) > 1e-3:
@@ -312,7 +312,7 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     mistake = closest(got, truth.depth_mistakes(disparity, f, baseline), max_abs_error,
                       1e-6 * max(1.0, float(np.abs(expected).max())))
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what}: largest depth error {max_abs_error(got, expected):.3g} (Z = f b / d).")
 
 
@@ -823,7 +823,7 @@ def judge_patterns(t: Trial, width, n_bits):
     }
     for mistake, wrong in mistakes.items():
         if np.array_equal(got, wrong):
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     stripes = truth._stripe(width, n_bits)
     column = int(np.argmax(np.any(got != expected, axis=0)))
     t.fail(f"{what}: column {column} (stripe k = {stripes[column]}) is {got[:, column].tolist()}; "
@@ -871,7 +871,7 @@ def simulate_boxes(t):
     for mistake, kwargs in mistakes.items():
         candidate = truth.simulate_structured_light(depth, f, baseline, n_bits, **kwargs)
         if not (np.any(got != candidate, axis=0) & ~ties).any():
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     lit_expected = np.any(expected > 0, axis=0)
     t.fail(f"{what}: {wrong.mean():.1%} of the pixels differ from the projector model "
            f"({np.mean(wrong & ~lit_expected):.1%} should be black).",
@@ -898,7 +898,7 @@ def judge_sl_depth(t: Trial, what, got, images, f, baseline, true_depth):
         match = (got_valid & wrong_valid & (np.abs(got - wrong) <= 1e-6 * np.maximum(wrong, 1.0))) | \
                 (~got_valid & ~wrong_valid)
         if match.mean() >= 0.995:
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if np.mean(got_valid & ~exp_valid) > 0.005 and np.all(got[~np.any(images > 127, axis=0)] != 0):
         t.fail(f"{what}: pixels that are black in every image are undecodable: their depth must be 0.")
     t.fail(f"{what}: only {agree:.1%} of the pixels agree with the decoded depth.",
