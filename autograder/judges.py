@@ -11,7 +11,7 @@ import numpy as np
 
 from fixtures.images import coverage, warp
 
-from .checks import Trial, Verdict, partial, passed
+from .checks import StudentFailure, Trial, Verdict, partial, passed
 from .compare import closest, fill_fraction, max_abs_error, projective_distance, warp_error
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
@@ -58,7 +58,64 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
     mistake = closest(got, mistakes or {}, distance, 1e3 * tolerance)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
-    t.fail(f"{what} returned\n{format_matrix(got)}\nexpected\n{format_matrix(expected)}")
+    t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale)}.\n"
+           f"It returned\n{format_matrix(got)}\nexpected\n{format_matrix(expected)}")
+
+
+def where_points_differ(got, expected, tolerance: float, names=("x", "y")) -> str:
+    """Which points, and which coordinates of them, are wrong, in words.
+
+    ``got`` and ``expected`` are (N, D) arrays; a coordinate is wrong when it is
+    off by more than ``tolerance`` (or not finite). ``names`` name the columns.
+    """
+    got, expected = np.asarray(got, np.float64), np.asarray(expected, np.float64)
+    with np.errstate(invalid="ignore"):
+        wrong = ~(np.abs(got - expected) <= tolerance)
+    rows = np.flatnonzero(wrong.any(axis=1))
+    if rows.size == 0:
+        return "nowhere beyond the tolerance"
+    columns = [name for name, bad in zip(names, wrong.any(axis=0)) if bad]
+    which = "every point" if rows.size == len(got) else \
+        f"{rows.size} of {len(got)} points (the first is row {rows[0]})"
+    if len(columns) < len(names):
+        return f"for {which}, in {' and '.join(columns)} only"
+    return f"for {which}"
+
+
+_ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
+
+
+def where_matrices_differ(got, expected, up_to_scale: bool = False) -> str:
+    """Where the error of ``got`` lies, in words: "in its third row", "in every entry"...
+
+    The entries carrying the error are those at least a tenth of the largest
+    entry error (up to scale, both matrices at unit norm and the same sign); the
+    rows or the columns holding them are named, whichever are fewer.
+    """
+    got, expected = np.asarray(got, np.float64), np.asarray(expected, np.float64)
+    if got.ndim == 1:
+        got, expected = got[None, :], expected[None, :]
+    if up_to_scale and np.linalg.norm(got) > 0 and np.linalg.norm(expected) > 0:
+        got, expected = got / np.linalg.norm(got), expected / np.linalg.norm(expected)
+        if np.linalg.norm(got + expected) < np.linalg.norm(got - expected):
+            got = -got
+    error = np.abs(got - expected)
+    wrong = error >= 0.1 * error.max()
+    if wrong.all() or got.ndim != 2 or max(got.shape) > len(_ORDINALS):
+        return "in every entry"
+    if wrong.sum() == 1:
+        (row, column), = zip(*np.nonzero(wrong))
+        return f"in entry [{row}, {column}] only" if got.shape[0] > 1 else f"in entry [{column}] only"
+    rows, columns = np.flatnonzero(wrong.any(axis=1)), np.flatnonzero(wrong.any(axis=0))
+    kind, where, count = ("row", rows, got.shape[0]) if len(rows) <= len(columns) \
+        else ("column", columns, got.shape[1])
+    if len(where) == count:  # spread over every row and every column
+        if wrong.sum() > 3:
+            return "in every row and every column"
+        return "in entries " + ", ".join(f"[{i}, {j}]" for i, j in zip(*np.nonzero(wrong)))
+    names = [_ORDINALS[i] for i in where]
+    listed = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+    return f"in its {listed} {kind}{'s' if len(names) > 1 else ''}"
 
 
 def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, show=True) -> Verdict:
@@ -104,3 +161,43 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
             continue
     t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
            "(see the pictures).")
+
+
+def _same_result(first, second) -> bool:
+    """Whether two returned values are exactly equal (arrays, or tuples/lists of arrays)."""
+    if isinstance(first, (tuple, list)) and isinstance(second, (tuple, list)):
+        return len(first) == len(second) and all(_same_result(a, b) for a, b in zip(first, second))
+    if not (isinstance(first, np.ndarray) and isinstance(second, np.ndarray)):
+        return False
+    if first.shape != second.shape or first.dtype.kind not in "biuf" or second.dtype.kind not in "biuf":
+        return False
+    return bool(np.array_equal(first, second, equal_nan=first.dtype.kind == "f" == second.dtype.kind))
+
+
+def parameter_ignored(call, parameter: str, values) -> bool:
+    """Whether ``call(**{parameter: value})`` gives exactly the same, non-constant result for
+    both ``values`` (False when a call fails)."""
+    try:
+        first, second = (call(**{parameter: value}) for value in values)
+    except StudentFailure:
+        return False
+    # A constant output ignores every parameter: that is not this parameter's mistake.
+    constant = isinstance(first, np.ndarray) and (
+        first.size == 0 or np.ptp(np.nan_to_num(first.astype(float))) == 0)
+    return _same_result(first, second) and not constant
+
+
+def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, result: str = "result"):
+    """Fail naming ``parameter`` as ignored when two values of it give exactly the same result.
+
+    The output alone cannot show an ignored parameter, so the student's function
+    is called again, ``call(**{parameter: value})`` for each of the two
+    ``values``. For checks that already fail: passing work never pays for the
+    probe. Returns quietly when the results differ, or when a call fails.
+    """
+    if parameter_ignored(call, parameter, values):
+        first_value, second_value = values
+        t.fail(f"{what}: {parameter}={first_value!r} and {parameter}={second_value!r} give the same "
+               f"{result}: {parameter} is ignored.",
+               hint=f"use the {parameter} argument instead of a fixed value",
+               mistake=f"{parameter} is ignored")

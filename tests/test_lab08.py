@@ -48,6 +48,12 @@ MISTAKES = {
             pts = np.asarray(pts, float)
             return (np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H).T)[:, :2]
         """, ["perspective division is missing"]),
+    "only x divided by w (a typo in the y column)": ("lab08.ex1", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, float)
+            q = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H).T
+            return np.column_stack([q[:, 0] / q[:, 2], q[:, 1] / q[:, 0]])
+        """, ["is wrong for every point, in y only.\nit returned"]),
     "points times H": ("lab08.ex1", """
         def transform_points(H, pts):
             pts = np.asarray(pts, float)
@@ -209,6 +215,11 @@ MISTAKES = {
                     best, best_count, best_spread = H, count, spread
             return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
         """, ["not the fit to its own inliers", "refit h on all the inliers"]),
+    "RANSAC with a fixed threshold (the argument ignored)": ("lab08.ex4", """
+        _reference_ransac = homography_ransac
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            return _reference_ransac(src, dst, 1.0, seed)
+        """, ["threshold=1.0 and threshold=20.0 give the same h and inlier mask: threshold is ignored"]),
     # ---------------------------------------------------------------- ex5
     "img2 as the reference": ("lab08.ex5", """
         def stitch(img1, img2):
@@ -297,6 +308,11 @@ MISTAKES = {
                 m = m[..., None]
             return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
         """, ["narrow feather"]),
+    "multi-band blend with a fixed 2-level pyramid (levels ignored)": ("lab08.ext3", """
+        _reference_blend = blend_multiband
+        def blend_multiband(img1, img2, mask, levels=4):
+            return _reference_blend(img1, img2, mask, 2)
+        """, ["levels=1 and levels=6 give the same image: levels is ignored"]),
     "mask weights img2": ("lab08.ext3", """
         _reference_blend = blend_multiband
         def blend_multiband(img1, img2, mask, levels=4):

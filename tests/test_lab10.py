@@ -54,6 +54,24 @@ MISTAKES = {
                 rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
             return np.linalg.svd(np.array(rows))[2][0].reshape(3, 4)
         """, ["largest singular value"]),
+    "DLT with a sign error in the x rows": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+        """, ["the x rows have the wrong sign"]),
+    "DLT with u in the y rows": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -u * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+        """, ["the y rows use u where v belongs"]),
     "DLT with solvePnP": ("lab10.ex4", """
         def camera_matrix_dlt(points3d, points2d):
             K = np.eye(3)
@@ -112,6 +130,12 @@ MISTAKES = {
         def estimate_pose(image, pattern_size, square_size, K, dist=None):
             return _right(image, pattern_size, square_size, K, None)
         """, ["distortion", "ignored"]),
+    "pose with the rotation transposed (rvec negated)": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            rvec, tvec, reprojected = _right(image, pattern_size, square_size, K, dist)
+            return -np.asarray(rvec), tvec, reprojected
+        """, ["the rotation is transposed"]),
     "pose pattern swapped": ("lab10.ex6", """
         _right = estimate_pose
         def estimate_pose(image, pattern_size, square_size, K, dist=None):

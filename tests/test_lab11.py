@@ -52,6 +52,13 @@ MISTAKES = {
             lines = _homogeneous(pts1) @ np.asarray(F, float)
             return lines / np.linalg.norm(lines[:, :2], axis=1, keepdims=True)
         """, ["transposed"]),
+    "epipolar lines with c = 1 (the third coordinate dropped)": ("lab11.ex2", """
+        _right_lines = epipolar_lines
+        def epipolar_lines(F, pts1):
+            lines = np.array(_right_lines(F, pts1), float)
+            lines[:, 2] = 1.0
+            return lines
+        """, ["is wrong for every line, in c only.\nit returned"]),
     "epipolar lines not normalised": ("lab11.ex2", """
         def epipolar_lines(F, pts1):
             return _homogeneous(pts1) @ np.asarray(F, float).T
@@ -78,6 +85,10 @@ MISTAKES = {
         def essential_from_fundamental(F, K1, K2):
             return np.asarray(K1).T @ np.asarray(F) @ np.asarray(K2)
         """, ["swapped"]),
+    "essential with K1 used for both images": ("lab11.ex3", """
+        def essential_from_fundamental(F, K1, K2):
+            return K1.T @ np.asarray(F, float) @ K1
+        """, ["k1 is used for both images"]),
     "essential 8-point without (s, s, 0)": ("lab11.ex3", """
         def essential_8point(pts1, pts2, K1, K2):
             x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
@@ -169,6 +180,14 @@ MISTAKES = {
             _, R, t, _ = cv2.recoverPose(E, pts1, pts2, np.asarray(K, float))
             return F, pts1, pts2, X @ R.T + t.reshape(3)
         """, ["camera 2's frame"]),
+    "pipeline with camera 2's rotation transposed": ("lab11.ex6", """
+        _tvr = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            F, pts1, pts2, _ = _tvr(img1, img2, K)
+            K = np.asarray(K, float)
+            _, R, t, _ = cv2.recoverPose(essential_from_fundamental(F, K, K), pts1, pts2, K)
+            return F, pts1, pts2, triangulate(K @ np.eye(3, 4), K @ np.hstack([R.T, t]), pts1, pts2)
+        """, ["rotation transposed"]),
     "pipeline points mirrored": ("lab11.ex6", """
         _tvr = two_view_reconstruction
         def two_view_reconstruction(img1, img2, K):

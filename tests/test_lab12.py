@@ -90,6 +90,11 @@ MISTAKES = {
         def triangulate(P1, P2, pts1, pts2):
             return _triangulate(P1, P2, pts2, pts1)
         """, ["swapped"]),
+    "triangulate with P1 used for both views": ("lab12.ex1", """
+        _triangulate = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            return _triangulate(P1, P1, pts1, pts2)
+        """, ["p1 is used for both views"]),
     "triangulate returns homogeneous points": ("lab12.ex1", """
         def triangulate(P1, P2, pts1, pts2):
             pts1 = np.asarray(pts1, float); pts2 = np.asarray(pts2, float)
@@ -224,12 +229,22 @@ MISTAKES = {
             costs[0] = np.inf
             return costs
         """, ["wall at infinity", "must include d = 0"]),
+    "block matching searching half the range (max_disparity // 2)": ("lab12.ex4", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity // 2, block_size, cost)
+        """, ["of the wrong disparities are too small", "your largest disparity is"]),
     "block matching with StereoBM's fixed point kept": ("lab12.ex4", """
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
             n = 16 * -(-(max_disparity + 1) // 16)
             d = cv2.StereoBM_create(numDisparities=n, blockSize=block_size).compute(left, right)
             return np.where((d > 0) & (d <= 16 * max_disparity), d, 0).astype(np.float64)
         """, ["scaled by about 16", "fixed point"]),
+    "block_size ignored (a fixed 31 x 31 block)": ("lab12.ex4", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity, 31, cost)
+        """, ["block_size=5 and block_size=15 give the same disparity map: block_size is ignored"]),
     # ---------------------------------------------------------------- ext1
     "NCC without subtracting the means": ("lab12.ext1", """
         def _ncc_volume(left, right, max_disparity, block_size):
@@ -252,6 +267,11 @@ MISTAKES = {
                 costs[d, :, :d] = np.inf
             return costs
         """, ["fails even when both views have the same brightness"]),
+    "NCC with block_size ignored (a fixed 21 x 21 block)": ("lab12.ext1", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity, 21, cost)
+        """, ["block_size=5 and block_size=15 give the same disparity map: block_size is ignored"]),
     "cost argument ignored": ("lab12.ext1", """
         _block_matching = block_matching
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
@@ -261,6 +281,11 @@ MISTAKES = {
     "DP without smoothness (winner-take-all)": ("lab12.ex5", """
         DEFAULT_SMOOTHNESS = 0.0
         """, ["winner-take-all"]),
+    "DP that ignores the smoothness argument": ("lab12.ex5", """
+        _dp_stereo = dp_stereo
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            return _dp_stereo(left, right, max_disparity, block_size, None)
+        """, ["smoothness=0 and smoothness=10000000.0 give the same disparity map: smoothness is ignored"]),
     "DP whose last column is always 0": ("lab12.ex5", """
         _dp_stereo = dp_stereo
         def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):

@@ -28,7 +28,8 @@ from fixtures.images import coverage, photo, warp
 
 from ..checks import Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
-from ..judges import IMAGE_TOLERANCE, digits_apart, format_matrix, judge_warp
+from ..judges import (IMAGE_TOLERANCE, digits_apart, format_matrix, judge_parameter_used, judge_warp,
+                      parameter_ignored, where_matrices_differ, where_points_differ)
 from ..pictures import difference_heatmap, matches_picture, svg_points
 from ..registry import Lab
 
@@ -78,9 +79,10 @@ def judge_points(t: Trial, what: str, got, H, pts):
         return
     mistake = closest(got, truth.point_mistakes(H, pts), relative_point_error, 1e-3)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
-    t.fail(f"{what} returned\n{format_matrix(got[:4])}\nexpected\n{format_matrix(expected[:4])}"
-           + ("\n(first 4 rows shown)" if n > 4 else ""))
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    where = where_points_differ(got, expected, 1e-3 * np.maximum(1.0, np.abs(expected)))
+    t.fail(f"{what} is wrong {where}.\nIt returned\n{format_matrix(got[:4])}\nexpected\n"
+           f"{format_matrix(expected[:4])}" + ("\n(first 4 rows shown)" if n > 4 else ""))
 
 
 # ================================================================== ex1 apply H
@@ -160,7 +162,7 @@ def diagnose_h(t: Trial, what: str, got, H_true, src=None, dst=None, tolerance=1
                                                                       reduced_svd=True)
     mistake = closest(got, mistakes, projective_distance, tolerance)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
 
 
 def judge_exact_fit(t: Trial, src, dst, H_true, region):
@@ -170,7 +172,8 @@ def judge_exact_fit(t: Trial, src, dst, H_true, region):
     if error <= 1e-2:
         return
     diagnose_h(t, what, got, H_true, src, dst)
-    t.fail(f"{what} is off by {error:.3g} px (RMS over the image); from exact points the DLT "
+    t.fail(f"{what} is off by {error:.3g} px (RMS over the image), wrong "
+           f"{where_matrices_differ(got, H_true, up_to_scale=True)}; from exact points the DLT "
            f"recovers H exactly. Got\n{format_matrix(truth.normalised(got))}\nexpected (up to scale)\n"
            f"{format_matrix(H_true)}")
 
@@ -489,16 +492,24 @@ def ransac_success(H, inliers, H_true, true_inliers):
     return error, recall, precision
 
 
-def diagnose_ransac(t: Trial, what, H, inliers, src, dst, H_true, true_inliers, threshold=3.0):
+def probe_ransac_threshold(t: Trial, src, dst, seed):
+    """Fail naming ``threshold`` as ignored when 1 px and 20 px give the same H and mask."""
+    judge_parameter_used(t, f"homography_ransac(src, dst, seed={seed})",
+                         lambda **kw: t.call("homography_ransac", src, dst, seed=seed, **kw),
+                         "threshold", (1.0, 20.0), "H and inlier mask")
+
+
+def diagnose_ransac(t: Trial, what, H, inliers, src, dst, H_true, true_inliers, threshold=3.0, seed=0):
     if (~inliers == true_inliers).mean() >= 0.95:
         t.fail(f"{what}: the inlier mask is inverted: True must mark the inliers "
                "(transfer error below the threshold)")
+    probe_ransac_threshold(t, src, dst, seed)
     mistakes = truth.matrix_mistakes(H_true)
     mistakes["H is fitted to all the points, outliers included (RANSAC should pick the "
              "consensus set and fit to it)"] = truth.dlt(src, dst)
     mistake = closest(H, mistakes, projective_distance, 0.02)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     errors = np.linalg.norm(truth.apply_h(H, src) - dst, axis=1)
     if (inliers == (errors ** 2 < threshold)).mean() >= 0.98 and \
             (inliers == (errors < threshold)).mean() < 0.95:
@@ -566,7 +577,7 @@ def ransac_refit(t):
         what = f"homography_ransac(src, dst, seed={k})"
         H, inliers = ransac_result(t, src, dst, what, seed=k)
         if inliers.sum() < 4:
-            diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
+            diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers, seed=k)
             t.fail(f"{what} marks {int(inliers.sum())} inliers; a homography needs at least 4")
         distances.append(refit_distance(H, inliers, src, dst))
     mean = float(np.mean(distances))
@@ -596,6 +607,7 @@ def ransac_seeds(t):
     summary = "; ".join(notes)
     if wins >= 4:
         return passed(f"succeeded with {wins} of 5 seeds ({summary})")
+    probe_ransac_threshold(t, src, dst, seed=4)
     message = (f"homography_ransac found the right homography and inliers with only {wins} of 5 "
                f"seeds ({summary}).")
     hint = ("With half the pairs wrong, a random 4-point sample is all inliers only 1 time in 16: "
@@ -1031,6 +1043,13 @@ def blend_seam(t):
         t.fail(f"{what}: the brightness jumps by {step:.0f} grey levels at the seam, as with a "
                "plain cut mask * img1 + (1 - mask) * img2: blend each Laplacian level with the "
                "mask's Gaussian pyramid at that level, so coarse levels blend over a wide band")
+    if step > SEAM_STEP and parameter_ignored(
+            lambda **kw: t.call("blend_multiband", dark, bright, mask, **kw), "levels", (1, 6)):
+        t.fail(f"{what}: levels=1 and levels=6 give the same image: levels is ignored. The "
+               f"brightness still jumps by {step:.0f} grey levels per column at the seam (a hard "
+               f"cut: {cut:.0f}, at most {SEAM_STEP:g} accepted): a narrow feather or a pyramid of "
+               "fixed depth leaves a visible seam; with levels=5 the coarsest level should spread "
+               "the difference over tens of pixels", mistake="levels is ignored")
     if step > SEAM_STEP:
         t.fail(f"{what}: the brightness still jumps by {step:.0f} grey levels per column at the "
                f"seam (a hard cut: {cut:.0f}, at most {SEAM_STEP:g} accepted): a narrow feather "

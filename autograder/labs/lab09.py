@@ -70,7 +70,7 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
         return got
     mistake = closest(got, mistakes or {}, point_error, 1e-4 * scale)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if not np.isnan(expected).any() and np.isnan(got).any():
         t.fail(f"{what} returned NaN for points in front of the camera (Z > 0).")
     t.fail(f"{what} is off by up to {error:.4g} (pixels); for example point 0 should be "
@@ -380,7 +380,7 @@ def aperture_zero(t):
     if error > 1e-6:
         mistake = closest(got.mean(axis=1), truth.projection_mistakes(APERTURE_F, X), point_error, 1e-3)
         if mistake:
-            t.fail(f"{what} is not the ideal projection: it looks like {mistake}.")
+            t.fail(f"{what} is not the ideal projection: it looks like {mistake}.", mistake=mistake)
         t.fail(f"{what}: with a point-sized pinhole every ray should land on the ideal projection "
                f"f X / Z; yours are up to {error:.3g} px away.")
 

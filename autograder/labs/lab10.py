@@ -19,7 +19,7 @@ from fixtures import scene
 
 from ..checks import Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
-from ..judges import format_matrix
+from ..judges import format_matrix, where_matrices_differ
 from ..pictures import svg_points
 from ..registry import Lab
 from .lab09 import expect_points, judge_points, judge_single_point, point_error
@@ -197,14 +197,15 @@ def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_p
                           f"new points within {fresh.mean():.2f} px on average")
     mistake = closest(got, truth.dlt_mistakes(P, X, x), projective_distance, 0.05 if noise else 1e-4)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if origin_on_principal_plane and abs(got[2, 3]) > 1e-3 * np.linalg.norm(got):
         t.fail(f"{what}: here the true P[2, 3] is 0 (P[2, 3] = t_z, the depth of the world origin), "
                f"yours is {got[2, 3] / np.linalg.norm(got):.3g} of |P|. It looks like P[2, 3] was fixed "
                "to 1 (11 unknowns, least squares), which cannot express this camera: solve A p = 0 "
                "for all 12 entries by SVD (the last row of Vt).")
-    t.fail(f"{what}: projecting new points with your P misses their true projections by "
-           f"{np.mean(fresh):.3g} px on average (P should equal the true camera up to scale).")
+    t.fail(f"{what}: P is wrong {where_matrices_differ(got, P, up_to_scale=True)} (compared with the "
+           f"true camera up to scale): projecting new points with it misses their true projections by "
+           f"{np.mean(fresh):.3g} px on average.")
 
 
 @ex4.check("camera_matrix_dlt from exact correspondences (N = 6, N = 20, and t_z = 0)", points=4)
@@ -274,12 +275,18 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     for mistake, (Km, Rm, tm) in truth.decomposition_mistakes(Kn, R_true, t_true).items():
         if (np.abs(K - Km).max() <= 1e-4 * np.abs(Km).max() and np.abs(R - Rm).max() <= 1e-4
                 and np.abs(tv - tm).max() <= 1e-4 * max(1.0, np.abs(tm).max())):
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     recomposed = K @ np.column_stack([R, tv])
     if projective_distance(recomposed, P) > 1e-6:
         t.fail(f"{what}: K [R | t] does not give back P (distance {projective_distance(recomposed, P):.2g} "
                "after normalising scale).")
-    t.fail(f"{what}: K, R, t differ from the camera's: K\n{format_matrix(K)}\nexpected\n{format_matrix(Kn)}")
+    wrong = [name for name, part, right, tolerance in (
+        ("K", K, Kn, 1e-6 * np.abs(Kn).max()), ("R", R, R_true, 1e-6),
+        ("t", tv, t_true, 1e-6 * max(1.0, np.abs(t_true).max()))) if np.abs(part - right).max() > tolerance]
+    first = f"{what}: {' and '.join(wrong)} differ{'s' if len(wrong) == 1 else ''} from the camera's"
+    if "K" in wrong:
+        first += f" (K is wrong {where_matrices_differ(K, Kn)})"
+    t.fail(f"{first}.\nK\n{format_matrix(K)}\nexpected\n{format_matrix(Kn)}")
 
 
 @ex5.check("decompose_camera_matrix of P = K [R | t]", points=3)
@@ -400,6 +407,9 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
                "by 90 degrees in the board plane): pattern_size is (cols, rows) = (inner corners per row, "
                "per column), passed to cv2.findChessboardCorners as given, and the object points run "
                "row by row with x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).")
+    if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and rel <= TRANSLATION_TOLERANCE:
+        t.fail(f"{what}: the translation is right but the rotation is transposed (rvec has the wrong "
+               "sign): return rvec as cv2.solvePnP gives it, the board's rotation into the camera frame.")
     C = -R.T @ tv
     if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and np.linalg.norm(tvec - C) < 0.05 * distance:
         t.fail(f"{what}: that is the camera's pose in the board's frame (R^T, -R^T t); the task wants "
@@ -495,7 +505,7 @@ def undistort_check(t):
     }
     for mistake, image in candidates.items():
         if blurred_difference(got, image, valid) <= UNDISTORT_TOLERANCE:
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} differs from the distortion-free view by {error:.0f} grey levels on average.")
 
 
@@ -531,7 +541,7 @@ def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
     for mistake, (fm, pm) in truth.dolly_mistakes(X, f0, z0, distances).items():
         if np.abs(fs - fm).max() <= 1e-6 * np.abs(fm).max() and \
                 point_error(proj.reshape(-1, 2), pm.reshape(-1, 2)) <= 1e-6 * np.nanmax(np.abs(pm)):
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if not ok_f:
         t.fail(f"{what}: the focal lengths are {format_matrix(fs)}; expected f0 * d / z0 = {format_matrix(fs_true)}")
     if n_subject:

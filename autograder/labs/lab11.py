@@ -15,11 +15,11 @@ import numpy as np
 from hypothesis import strategies as st
 
 from fixtures import lab11 as truth
-from fixtures.lab12 import triangulation_variants
+from fixtures.lab12 import linear_triangulation, triangulation_variants
 
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import closest, projective_distance
-from ..judges import format_matrix
+from ..judges import format_matrix, where_matrices_differ, where_points_differ
 from ..pictures import side_by_side, svg_points
 from ..registry import Lab
 
@@ -47,8 +47,9 @@ def judge_projective(t: Trial, what: str, got, expected, mistakes=None, toleranc
         return got
     mistake = closest(got, mistakes or {}, projective_distance, max(tolerance, 1e-4))
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
-    t.fail(f"{what} returned (scaled to unit norm)\n{format_matrix(_unit(got))}\nexpected (up to scale and sign)\n"
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale=True)}.\n"
+           f"It returned (scaled to unit norm)\n{format_matrix(_unit(got))}\nexpected (up to scale and sign)\n"
            f"{format_matrix(_unit(expected))}")
 
 
@@ -243,13 +244,17 @@ def judge_lines(t: Trial, what: str, got, F, pts1):
         return got
     mistake = closest(got, truth.line_mistakes(F, pts1), _row_error, 1e-5)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if np.all(np.isfinite(got)):
         parallel = np.linalg.norm(np.cross(got, expected), axis=1) <= 1e-6 * np.linalg.norm(got, axis=1)
         if np.all(parallel):
             t.fail(f"{what}: the lines are right but not scaled so that a^2 + b^2 = 1 "
                    "(divide each line by sqrt(a^2 + b^2)).")
-    t.fail(f"{what} returned\n{format_matrix(got[:3])}\n... expected (each up to sign)\n{format_matrix(expected[:3])}")
+    signs = np.where(np.sum(np.nan_to_num(got) * expected, axis=1) < 0, -1.0, 1.0)[:, None]
+    where = where_points_differ(got * signs, expected, 1e-5 * max(1.0, np.abs(expected).max()),
+                                names=("a", "b", "c"))
+    t.fail(f"{what} is wrong {where.replace('point', 'line')}.\nIt returned\n{format_matrix(got[:3])}\n"
+           f"... expected (each up to sign)\n{format_matrix(expected[:3])}")
 
 
 @ex2.check("epipolar_lines on a worked example", points=2)
@@ -496,7 +501,7 @@ def essential_8point_noisy(t):
                       f"correspondences (Sampson error {mine:.2f} px; the 8-point algorithm: {best:.2f} px)")
     mistake = closest(got, _essential_8point_mistakes(views, figures), projective_distance, 1e-3)
     if mistake:
-        t.fail(f"essential_8point is wrong: it looks like {mistake}.")
+        t.fail(f"essential_8point is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"essential_8point from 50 noisy correspondences: the exact held-out correspondences "
            f"are {mine:.2f} px from your epipolar geometry (Sampson error); the 8-point algorithm "
            f"achieves {best:.2f} px. Mean |x2n^T E x1n| = {residual(got):.1e} "
@@ -578,7 +583,7 @@ def fundamental_noisy(t):
         mistake = closest(got, truth.fundamental_mistakes(figures["gold"]),
                           projective_distance, 1e-3)
         if mistake:
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
 
         def distance(F):
             return truth.symmetric_epipolar_distance(F, views.pts1[40:], views.pts2[40:]).mean()
@@ -714,7 +719,7 @@ def judge_pipeline_F(t: Trial, pair, F):
     }
     for mistake, corrected in candidates.items():
         if np.median(truth.symmetric_epipolar_distance(corrected, g1, g2)) <= 1.5:
-            t.fail(f"your F is wrong: it looks like {mistake}.")
+            t.fail(f"your F is wrong: it looks like {mistake}.", mistake=mistake)
     message = (f"true correspondences are {distance:.1f} px from your epipolar lines (median over "
                f"{len(g1)} pixels with known depth; expected below 1.5 px)")
     if distance <= 4.0:
@@ -773,6 +778,42 @@ STRUCTURE_MEDIAN = 0.08   # median relative 3-D error after one global scale
 STRUCTURE_P90 = 0.18      # its 90th percentile
 
 
+def structure_error(got, X) -> float:
+    """Median distance of ``got`` to ``X`` after one global scale (sign included), relative to |X|."""
+    ratios = np.linalg.norm(X, axis=1) / np.maximum(np.linalg.norm(got, axis=1), 1e-300)
+    scale = float(np.median(ratios)) * (1.0 if np.median(np.sum(got * X, axis=1)) >= 0 else -1.0)
+    return float(np.median(np.linalg.norm(scale * got - X, axis=1) / np.linalg.norm(X, axis=1)))
+
+
+def pose_mistakes(pair, pts1, pts2) -> dict[str, np.ndarray]:
+    """The 3D points the usual mistakes in building camera 2 triangulate from the same matches."""
+    K1, K2, R, t = pair.cam1.K, pair.cam2.K, pair.cam2.R, pair.cam2.t.reshape(3, 1)
+    P1 = K1 @ np.eye(3, 4)
+    return {
+        "camera 2 is built with the rotation transposed: P2 = K [R | t] with recoverPose's R as "
+        "it is (it takes camera-1 coordinates to camera 2's)":
+            linear_triangulation(P1, K2 @ np.hstack([R.T, t]), pts1, pts2),
+        "camera 2's translation has the wrong sign: P2 = K [R | t] with recoverPose's t as it is":
+            linear_triangulation(P1, K2 @ np.hstack([R, -t]), pts1, pts2),
+        "pts1 and pts2 are exchanged in the triangulation (pts1 belongs to P1)":
+            linear_triangulation(P1, K2 @ np.hstack([R, t]), pts2, pts1),
+    }
+
+
+def name_pose_mistake(got, candidates: dict, truth_error: float):
+    """The candidate ``got`` matches, when unambiguous: within :data:`STRUCTURE_MEDIAN`, and at
+    most half as far as the next candidate and as the truth."""
+    errors = sorted((structure_error(got, X), name) for name, X in candidates.items()
+                    if np.all(np.isfinite(X)))
+    if not errors:
+        return None
+    best, name = errors[0]
+    runner_up = errors[1][0] if len(errors) > 1 else np.inf
+    if best <= STRUCTURE_MEDIAN and best <= 0.5 * runner_up and best <= 0.5 * truth_error:
+        return name
+    return None
+
+
 def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
     X, true2, valid = truth.true_correspondences(pair, pts1)
     good = valid & (np.linalg.norm(pts2 - np.nan_to_num(true2), axis=1) <= 2.0)
@@ -799,6 +840,9 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
                "them in camera 1's frame (P1 = K [I | 0], P2 = K [R | t])")
     if scale > 0 and median <= STRUCTURE_MEDIAN and p90 <= STRUCTURE_P90:
         return passed(summary)
+    mistake = name_pose_mistake(got, pose_mistakes(pair, pts1[good], pts2[good]), median)
+    if mistake:
+        t.fail(f"your 3D points are wrong: it looks like {mistake}. ({summary})", mistake=mistake)
     if scale < 0 or np.median(got[:, 2]) < 0:
         t.fail("your 3D points are behind camera 1 (negative Z, or mirrored through its centre): "
                "choose the pose with the points in front of both cameras (cv2.recoverPose does) and "

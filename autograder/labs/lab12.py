@@ -24,7 +24,7 @@ from fixtures import lab12 as truth
 
 from ..checks import StudentFailure, Trial, partial, passed
 from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error
-from ..judges import format_matrix
+from ..judges import format_matrix, judge_parameter_used
 from ..pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..registry import Lab
 
@@ -70,11 +70,13 @@ def expect_disparity(t: Trial, what: str, got, scene) -> np.ndarray:
 
 def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, again=None,
                     show: bool = True, threshold_name: str = "reference solution:",
-                    judged=None, allowed=None, accepted_by: str = ""):
+                    judged=None, allowed=None, accepted_by: str = "", probe=None):
     """Judge a disparity map by its bad-pixel rate against the reference's, naming mistakes.
 
     ``again(left, right)`` calls the student's function on another pair (used to
-    recognise a search in the wrong direction, on the swapped views). ``judged``
+    recognise a search in the wrong direction, on the swapped views). ``probe()``
+    looks, for a failing map only, for the mistakes only another call can show (a
+    parameter ignored); it fails naming one, or returns. ``judged``
     replaces the scene's judged truth, ``allowed`` the accepted rate (default: the
     reference's plus :data:`MARGIN`), explained by ``accepted_by``.
     """
@@ -88,12 +90,50 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     if bad <= allowed:
         return passed(summary)
     diagnose_disparity(t, what, got, scene, allowed, again, judged)
+    if probe is not None:
+        probe()
+    where = where_disparities_wrong(got, judged, scene.threshold)
     if bad < allowed + FADE:
-        return partial((allowed + FADE - bad) / FADE, f"{what}: {summary}; up to {allowed:.1%} "
-                       "gets full marks (see the error map).")
-    t.fail(f"{what}: {summary} - most of the map is wrong (see the error map).",
+        return partial((allowed + FADE - bad) / FADE, f"{what}: {where}. {summary}; up to "
+                       f"{allowed:.1%} gets full marks (see the error map).")
+    t.fail(f"{what}: most of the map is wrong: {where}. {summary} (see the error map).",
            hint="for left pixel (x, y) compare its block with the block around (x - d, y) in the "
                 "right image, d = 0..max_disparity, and keep the d with the lowest cost")
+
+
+def where_disparities_wrong(got, judged, threshold) -> str:
+    """What the wrong pixels of a disparity map have in common, measured, in words.
+
+    No cause is guessed: the sentence says whether the wrong pixels are mostly
+    invalid, mostly too small or too large, or gathered in one part of the image.
+    """
+    got, judged = np.asarray(got, np.float64), np.asarray(judged, np.float64)
+    known = judged > 0
+    with np.errstate(invalid="ignore"):
+        valid = np.isfinite(got) & (got > 0)
+        bad = known & ~(valid & (np.abs(got - judged) <= threshold))
+    if not bad.any():
+        return "no pixel is wrong"
+    invalid = float(np.mean(~valid[bad]))
+    if invalid >= 0.6:
+        return f"{invalid:.0%} of the wrong pixels have no disparity (0, negative or NaN)"
+    height, width = got.shape
+    columns, rows = np.mgrid[0:height, 0:width][::-1]
+    for name, region in (("leftmost quarter", columns < width / 4), ("rightmost quarter", columns >= 3 * width / 4),
+                         ("top quarter", rows < height / 4), ("bottom quarter", rows >= 3 * height / 4)):
+        in_region = float(np.mean(region[bad]))
+        if in_region >= 0.5 and np.mean(region[known]) <= 0.3:
+            return f"{in_region:.0%} of the wrong pixels are in the {name} of the image"
+    error = (got - judged)[bad & valid]
+    too_small = float(np.mean(error < 0))
+    if too_small >= 0.8 or too_small <= 0.2:
+        side = "too small" if too_small >= 0.8 else "too large"
+        share = too_small if too_small >= 0.8 else 1 - too_small
+        return (f"{share:.0%} of the wrong disparities are {side} (median error "
+                f"{np.median(error):+.3g} px; your largest disparity is {np.max(got[valid]):.3g}, "
+                f"the true ones reach {judged[known].max():.3g})")
+    return (f"the wrong pixels are spread over the map ({invalid:.0%} of them invalid, the others "
+            f"off by {np.median(np.abs(error)):.3g} px in the median)")
 
 
 def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=None):
@@ -158,7 +198,7 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
                           f"per view, rows scaled or not: {min(spread):.3g} to {max(spread):.3g})")
     mistake = closest(got, truth.triangulation_mistakes(P1, P2, pts1, pts2), max_abs_error, 1e-4 * scale)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     norms = np.linalg.norm(got, axis=1) * np.linalg.norm(X_true, axis=1)
     cosine = np.abs(np.sum(got * X_true, axis=1)) / np.where(norms > 0, norms, 1.0)
     if np.all(cosine > 1 - 1e-6) and np.ptp(np.linalg.norm(got, axis=1) / np.linalg.norm(X_true, axis=1)) > 1e-3:
@@ -272,7 +312,7 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     mistake = closest(got, truth.depth_mistakes(disparity, f, baseline), max_abs_error,
                       1e-6 * max(1.0, float(np.abs(expected).max())))
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what}: largest depth error {max_abs_error(got, expected):.3g} (Z = f b / d).")
 
 
@@ -480,12 +520,20 @@ def block_matcher(t: Trial, scene, **kwargs):
     return again
 
 
+def block_size_probe(t: Trial, what: str, scene, **kwargs):
+    """A probe (see :func:`judge_disparity`): does ``block_size`` change the map at all?"""
+    def match(**size):
+        return t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                      max_disparity=scene.max_disparity, **kwargs, **size)
+    return lambda: judge_parameter_used(t, what, match, "block_size", (5, 15), "disparity map")
+
+
 def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, again=None, show=True):
     """Judge an SSD disparity map against the legitimate matchers' rates on ``scene``.
 
     ``figures`` are :func:`fixtures.make_lab12_figures.block_matching_figures` of the
     scene. Pixels at infinity (true d rounds to 0) are judged apart: the search must
-    include d = 0.
+    include d = 0. A failing map is probed for an ignored ``block_size``.
     """
     got = expect_disparity(t, what, got, scene)
     far, near = truth.far_and_near(truth.band(scene.judged, scene.max_disparity, figures["block_size"]))
@@ -501,7 +549,8 @@ def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, agai
     return judge_disparity(t, what, got, scene, figures["reference"], again=again, show=show, judged=near,
                            allowed=figures["legitimate"] + SLACK,
                            accepted_by=f"; the legitimate SSD matchers, cv2.StereoBM included, up to "
-                                       f"{figures['legitimate']:.1%}")
+                                       f"{figures['legitimate']:.1%}",
+                           probe=block_size_probe(t, what, scene, cost="ssd"))
 
 
 def bm_figures(key: str) -> dict:
@@ -575,8 +624,9 @@ def ncc_motorcycle(t):
     scene = truth.scene("motorcycle")
     got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
                  max_disparity=scene.max_disparity, block_size=9, cost="ncc")
-    verdict = judge_disparity(t, "block_matching(left, right, cost=\"ncc\")", got, scene,
-                              figures("motorcycle", "bm_ncc_9")["bad"])
+    what = "block_matching(left, right, cost=\"ncc\")"
+    verdict = judge_disparity(t, what, got, scene, figures("motorcycle", "bm_ncc_9")["bad"],
+                              probe=block_size_probe(t, what, scene, cost="ncc"))
     if verdict.fraction < 1:
         verdict.hint = NCC_HINT
     return verdict
@@ -612,6 +662,7 @@ def ncc_gain(t):
                "when the views have the same brightness: your NCC is not fully normalised. Subtract "
                "each block's mean and divide by the product of the blocks' standard deviations.")
     diagnose_disparity(t, what, got, scene, reference + MARGIN)
+    block_size_probe(t, what, scene, cost="ncc")()
     if bad < reference + MARGIN + FADE:
         return partial((reference + MARGIN + FADE - bad) / FADE, f"{what}: {summary}.", hint=NCC_HINT)
     t.fail(f"{what}: {summary}; it fails even when both views have the same brightness.",
@@ -628,6 +679,12 @@ JUMPS_VS_BM = 0.4   # "far fewer jumps": at most this fraction of block matching
 def call_dp(t: Trial, scene, **kwargs):
     return t.call("dp_stereo", np.array(scene.left), np.array(scene.right),
                   max_disparity=scene.max_disparity, **kwargs)
+
+
+def smoothness_probe(t: Trial, scene):
+    """Fail naming ``smoothness`` as ignored when 0 and a huge penalty give the same map."""
+    judge_parameter_used(t, "dp_stereo(left, right)", lambda **kw: call_dp(t, scene, **kw),
+                         "smoothness", (0, 1e7), "disparity map")
 
 
 def winner_take_all_message(what, jumps, wta_jumps):
@@ -676,6 +733,7 @@ def dp_weak_texture(t):
         return passed(summary)
     jumps = truth.jump_rate(got, scene.judged)
     if jumps >= 0.6 * bm["jumps"]:
+        smoothness_probe(t, scene)
         t.fail(winner_take_all_message(what, jumps, bm["jumps"]))
     diagnose_disparity(t, what, got, scene, reference["bad"] + MARGIN)
     if bad < bm["bad"] - MARGIN:
@@ -694,6 +752,7 @@ def dp_smooth(t):
         jumps = truth.jump_rate(got, scene.judged)
         bm = figures(key, "bm_ssd_5")["jumps"]
         if jumps > JUMPS_VS_BM * bm:
+            smoothness_probe(t, scene)
             if jumps >= 0.6 * bm:
                 t.fail(winner_take_all_message(what, jumps, bm))
             t.fail(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px; block "
@@ -717,6 +776,8 @@ def dp_smoothness_parameter(t):
     wta_jumps = truth.jump_rate(wta, scene.judged)
     default_jumps = truth.jump_rate(default, scene.judged)
     reference = figures("weak_texture", "dp_5_s0")["jumps"]
+    if wta_jumps < 0.5 * reference or default_jumps * 3 > wta_jumps:
+        smoothness_probe(t, scene)
     if wta_jumps < 0.5 * reference:
         t.fail(f"dp_stereo(left, right, smoothness=0): only {wta_jumps:.1%} of neighbouring pixels "
                f"jump by more than 1 px (winner-take-all gives about {reference:.1%}): with "
@@ -728,6 +789,7 @@ def dp_smoothness_parameter(t):
                             call_dp(t, scene, smoothness=1e7), scene)
     rows_with_jumps = float(np.mean(np.any(np.diff(np.nan_to_num(flat), axis=1) != 0, axis=1)))
     if rows_with_jumps > 0.1:
+        smoothness_probe(t, scene)
         t.fail(f"dp_stereo(left, right, smoothness=1e7): {rows_with_jumps:.0%} of the rows still "
                "change disparity; with a huge penalty each row should be constant.")
     return passed(f"smoothness=0: {wta_jumps:.1%} jumps; smoothness=1e7: constant rows")
@@ -761,7 +823,7 @@ def judge_patterns(t: Trial, width, n_bits):
     }
     for mistake, wrong in mistakes.items():
         if np.array_equal(got, wrong):
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     stripes = truth._stripe(width, n_bits)
     column = int(np.argmax(np.any(got != expected, axis=0)))
     t.fail(f"{what}: column {column} (stripe k = {stripes[column]}) is {got[:, column].tolist()}; "
@@ -809,7 +871,7 @@ def simulate_boxes(t):
     for mistake, kwargs in mistakes.items():
         candidate = truth.simulate_structured_light(depth, f, baseline, n_bits, **kwargs)
         if not (np.any(got != candidate, axis=0) & ~ties).any():
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     lit_expected = np.any(expected > 0, axis=0)
     t.fail(f"{what}: {wrong.mean():.1%} of the pixels differ from the projector model "
            f"({np.mean(wrong & ~lit_expected):.1%} should be black).",
@@ -836,7 +898,7 @@ def judge_sl_depth(t: Trial, what, got, images, f, baseline, true_depth):
         match = (got_valid & wrong_valid & (np.abs(got - wrong) <= 1e-6 * np.maximum(wrong, 1.0))) | \
                 (~got_valid & ~wrong_valid)
         if match.mean() >= 0.995:
-            t.fail(f"{what} is wrong: it looks like {mistake}.")
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if np.mean(got_valid & ~exp_valid) > 0.005 and np.all(got[~np.any(images > 127, axis=0)] != 0):
         t.fail(f"{what}: pixels that are black in every image are undecodable: their depth must be 0.")
     t.fail(f"{what}: only {agree:.1%} of the pixels agree with the decoded depth.",

@@ -13,9 +13,9 @@ import numpy as np
 from fixtures import lab12 as truth
 
 from ...checks import passed
-from ..lab12 import (STEREO_TIMEOUT, block_matcher, call_rectify, ex1, ex2, ex3, ex4, ex5, ex6, ext1,
+from ..lab12 import (STEREO_TIMEOUT, block_matcher, block_size_probe, call_rectify, ex1, ex2, ex3, ex4, ex5, ex6, ext1,
                      judge_block_matching, judge_depth, judge_disparity, judge_last_column, judge_patterns,
-                     judge_rows, judge_sl_depth, judge_triangulation)
+                     judge_rows, judge_sl_depth, judge_triangulation, smoothness_probe)
 
 
 # The reference solution's bad-pixel rates on the scenes below, and for block matching the
@@ -83,8 +83,9 @@ def hidden_ncc(t):
     scene = ncc_scene()
     got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
                  max_disparity=scene.max_disparity, block_size=9, cost="ncc")
-    return judge_disparity(t, "block_matching(left, 0.5 * right + 30, cost=\"ncc\")", got, scene,
-                           REFERENCE_BAD["ncc"], show=False)
+    what = "block_matching(left, 0.5 * right + 30, cost=\"ncc\")"
+    return judge_disparity(t, what, got, scene, REFERENCE_BAD["ncc"], show=False,
+                           probe=block_size_probe(t, what, scene, cost="ncc"))
 
 
 @ex5.check("hidden: dp_stereo on a weakly textured square over random dots", points=2, hidden=True,
@@ -95,7 +96,7 @@ def hidden_dp(t):
                  max_disparity=scene.max_disparity)
     judge_last_column(t, "dp_stereo(left, right)", got, scene)
     return judge_disparity(t, "dp_stereo(left, right)", got, scene, REFERENCE_BAD["dp_stereo"],
-                           show=False)
+                           show=False, probe=lambda: smoothness_probe(t, scene))
 
 
 @ex6.check("hidden: 10-bit patterns for a 1024-pixel projector, and decoding them", points=2,
