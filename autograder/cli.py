@@ -78,6 +78,8 @@ def add_grading_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("select", nargs="*", metavar="SELECT",
                         help="what to grade: lab07, lab07.ex2 ... (default: everything)")
     parser.add_argument("--json", metavar="FILE", help="write the results as JSON (a folder: FOLDER/results.json)")
+    parser.add_argument("--json-pictures", action="store_true",
+                        help="keep the pictures (base64 PNG/JPEG) in the JSON file too")
     parser.add_argument("--html", metavar="FILE", default="feedback.html",
                         help="write the feedback page (default: %(default)s; a folder: FOLDER/feedback.html)")
     parser.add_argument("--no-html", action="store_true", help="do not write the feedback page")
@@ -137,8 +139,8 @@ def run_grade(args) -> int:
         return USAGE_ERROR
     try:
         with _progress(errors) as advance:
-            # Pictures cost time to encode: make them only for a page or a JSON file.
-            pictures = "all" if (args.json or not args.no_html) else "none"
+            # Pictures cost time to encode: make them only for a page (or a JSON file asking for them).
+            pictures = "all" if (args.json_pictures or not args.no_html) else "none"
             forbid = CourseConfig.load(args.config).forbid if args.config else None
             result = grade(args.submission, args.select, limits=limits, pictures=pictures,
                            include_hidden=not args.public_only, on_check=advance, forbid=forbid)
@@ -152,7 +154,8 @@ def run_grade(args) -> int:
     figures = _write_figures(args, limits, console, errors, written) if getattr(args, "figures", None) else {}
     for path, write, what in ((html_path, lambda r, p: html.write(r, p, figures=figures),
                                "details and pictures"),
-                              (args.json and _report_path(args.json, "results.json"), write_json, "results")):
+                              (args.json and _report_path(args.json, "results.json"),
+                               lambda r, p: write_json(r, p, pictures=args.json_pictures), "results")):
         if not path:
             continue
         try:

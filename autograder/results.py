@@ -175,5 +175,15 @@ def write_atomically(path, text: str) -> None:
         raise
 
 
-def write_json(result: GradingResult, path) -> None:
-    write_atomically(path, json.dumps(result.to_dict(), indent=1, allow_nan=False) + "\n")
+def strip_pictures(data: dict) -> dict:
+    """A results-model dict without pictures (``artifacts`` emptied), for storage and results.json."""
+    data = dict(data)
+    data["exercises"] = [
+        {**e, "checks": [{**c, "artifacts": []} for c in e["checks"]]} for e in data.get("exercises", [])]
+    return data
+
+
+def write_json(result: GradingResult, path, pictures: bool = False) -> None:
+    """The results model as JSON; pictures (base64, megabytes) only when asked for."""
+    data = result.to_dict()
+    write_atomically(path, json.dumps(data if pictures else strip_pictures(data), indent=1, allow_nan=False) + "\n")

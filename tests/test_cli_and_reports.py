@@ -98,3 +98,20 @@ def test_notebook_submission(tmp_path):
     assert "# %matplotlib inline" in notebook_to_source(path.read_text())
     result = grade(path, ["lab07.ex1"])
     assert result.total == result.max_total
+
+
+def test_json_leaves_pictures_out_unless_asked(tmp_path):
+    """A JSON file is for programs: no base64 pictures by default (megabytes each)."""
+    from autograder.cli import main
+
+    plain, with_pictures = tmp_path / "plain.json", tmp_path / "pictures.json"
+    mutant_dir = tmp_path / "handin"
+    mutant_dir.mkdir()
+    (mutant_dir / "lab07_transformations.py").write_text(
+        (REFERENCE / "lab07_transformations.py").read_text().replace("[0.0, 1.0, ty]", "[0.0, 1.0, -ty]"))
+    for path, extra in ((plain, []), (with_pictures, ["--json-pictures"])):
+        assert main(["grade", str(mutant_dir), "lab07.ex1", "--no-html", "--json", str(path), *extra]) == 0
+
+    def artifacts(path):
+        return [a for e in json.loads(path.read_text())["exercises"] for c in e["checks"] for a in c["artifacts"]]
+    assert artifacts(plain) == [] and artifacts(with_pictures) != []

@@ -35,6 +35,7 @@ from importlib import metadata
 from pathlib import Path
 
 from .. import __version__
+from ..results import strip_pictures
 
 GRADEBOOK = "gradebook.sqlite"
 SCHEMA_VERSION = 1
@@ -117,14 +118,6 @@ def submission_key(student_id: str, content_hash: str, selection: str, grader_ve
     lock = lock if lock is not None else lock_hash()
     parts = (student_id, content_hash, grader_version, lock, selection)
     return hashlib.sha256("\0".join(parts).encode()).hexdigest()
-
-
-def strip_pictures(data: dict) -> dict:
-    """A results-model dict without pictures (``artifacts`` emptied), for storage and results.json."""
-    data = dict(data)
-    data["exercises"] = [
-        {**e, "checks": [{**c, "artifacts": []} for c in e["checks"]]} for e in data.get("exercises", [])]
-    return data
 
 
 class Gradebook:

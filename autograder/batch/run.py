@@ -36,9 +36,9 @@ from .. import confine
 from ..course import CourseConfig
 from ..registry import discover, select
 from ..reports import html
-from ..results import GradingResult, write_atomically
+from ..results import GradingResult, strip_pictures, write_atomically
 from . import exports
-from .gradebook import Gradebook, lock_hash, strip_pictures, submission_key
+from .gradebook import Gradebook, lock_hash, submission_key
 from .ingest import Entry, IngestError, read_class
 from .task import grade_files
 
