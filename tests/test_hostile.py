@@ -227,7 +227,7 @@ def test_monkeypatching_builtins_numpy_and_numpy_testing_at_import(tmp_path):
 
         def shear_matrix(s):
             return np.zeros((3, 3))
-        """, "lab07.ex4", "shear_matrix(0.5) returned")
+        """, "lab07.ex4", "shear_matrix(0.5) is wrong")
 
 
 # ---------------------------------------------------------------- files and network
