@@ -246,7 +246,10 @@ def interpreter_layout() -> tuple[tuple, tuple[tuple[str, tuple[str, ...]], ...]
         if os.path.exists(f"{venv}/pyvenv.cfg"):
             ops.append(("bind", f"{venv}/pyvenv.cfg"))
         for entry in sorted(Path(venv, "bin").glob("python*")):
-            ops.append(("symlink", os.readlink(entry), str(entry)) if entry.is_symlink() else ("bind", str(entry)))
+            # A link is laid again pointing at its final target (inside the bound installation):
+            # a venv made from another venv links to that venv's python, which is not in the view.
+            ops.append(("symlink", os.path.realpath(entry), str(entry)) if entry.is_symlink()
+                       else ("bind", str(entry)))
     allowed = tuple((site, tuple(sorted(allowed_entries(Path(site))))) for site in sites)
     return tuple(ops), allowed
 
