@@ -184,7 +184,7 @@ def _definition_lines(lines: list[str]) -> list[bool]:
     whole, so that its syntax error is reported (with its cell and line) at grading."""
     try:
         tree = ast.parse("\n".join(lines))
-    except SyntaxError:
+    except (SyntaxError, ValueError, RecursionError, MemoryError):  # ValueError: NUL bytes (Python 3.10)
         return [True] * len(lines)
     keep = [False] * len(lines)
     for statement in tree.body:

@@ -112,7 +112,8 @@ def test_hand_edited_notebooks_with_odd_metadata_still_give_their_code():
     from autograder.notebooks import convert
 
     odd = {"cells": [42, {"cell_type": "code", "source": "def f():\n    return 1\n", "metadata": 42},
-                     {"cell_type": "code", "source": ["x = 2\n"], "metadata": {"tags": [1, "grade"]}}],
+                     {"cell_type": "code", "source": ["x = 2\n"], "metadata": {"tags": [1, "grade"]}},
+                     {"cell_type": "code", "source": "y = '\x00'\n"}],   # NUL: not parsable on 3.10
            "metadata": [], "nbformat": 4, "nbformat_minor": 5}
     source = convert(json.dumps(odd)).source
     assert "def f():" in source and "x = 2" in source
