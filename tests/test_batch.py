@@ -574,3 +574,19 @@ def test_batch_refuses_a_class_where_student_code_cannot_be_confined(tmp_path, m
     assert not (tmp_path / "results" / "gradebook.sqlite").exists()
     assert main(["batch", str(students), "--out", str(tmp_path / "results")]) == 2
     assert "cannot confine student code" in capsys.readouterr().out
+
+
+def test_reports_and_pictures_beside_the_code_are_never_read_and_links_never_followed(tmp_path):
+    """Students hand in reports with their code: a 60 MB PDF costs nothing and refuses
+    nothing; a link to a file outside the student's folder is not read."""
+    secret = tmp_path / "instructor-only.py"
+    secret.write_text("ANSWERS = 42\n")
+    ada = tmp_path / "class" / "ada"
+    ada.mkdir(parents=True)
+    shutil.copy(SKELETON / "lab07_transformations.py", ada)
+    with open(ada / "report.pdf", "wb") as f:
+        f.truncate(60 * 2**20)   # sparse: nothing is written, and nothing must be read
+    (ada / "helper.py").symlink_to(secret)
+    [entry] = read_class(tmp_path / "class", ["lab07_transformations"], ["lab07_transformations"])
+    assert not entry.error
+    assert set(entry.files) == {"lab07_transformations.py"}

@@ -48,7 +48,7 @@ from datetime import datetime
 from pathlib import Path, PurePosixPath
 
 from ..course import parse_time
-from ..submission import MAX_ARCHIVE_BYTES
+from ..submission import MAX_ARCHIVE_BYTES, copy_regular_files
 
 SOURCE_SUFFIXES = (".py", ".ipynb")
 MAX_CLASS_ARCHIVE_BYTES = 4 * 2**30   # a whole class's zip, unpacked
@@ -246,10 +246,14 @@ def _canvas(root: Path) -> list[Entry]:
         entry.late = entry.late or bool(match["late"])
         original, number = _undo_canvas_renaming(match["file"])
         if original not in uploads[user] or number > uploads[user][original][0]:
-            uploads[user][original] = (number, item.read_bytes())
+            try:
+                uploads[user][original] = (number, _upload_bytes(item))
+            except (OSError, ValueError) as exc:
+                entry.error = str(exc)
     for user, entry in by_user.items():
         files = {name: data for name, (_, data) in uploads[user].items()}
-        _read_files_into(entry, files)
+        if not entry.error:
+            _read_files_into(entry, files)
         entries.append(entry)
     return entries
 
@@ -288,7 +292,10 @@ def _moodle(root: Path) -> list[Entry]:
                 entry.error = part.error
             files[participant].update(part.files)
         else:
-            files[participant][match["file"]] = item.read_bytes()
+            try:
+                files[participant][match["file"]] = _upload_bytes(item)
+            except (OSError, ValueError) as exc:
+                entry.error = str(exc)
     for participant, entry in by_participant.items():
         if not entry.error:
             _read_files_into(entry, files[participant])
@@ -301,22 +308,41 @@ def _read_into(entry: Entry, item: Path) -> None:
     """Collect ``item``'s source files (a folder, zip, .py or .ipynb) into ``entry``."""
     try:
         if item.is_dir():
-            files = {}
-            for path in sorted(item.rglob("*")):
-                relative = path.relative_to(item)
-                # A link could reach outside the entry (the grader's own files): never followed.
-                if path.is_file() and not path.is_symlink() and not _ignored(relative.parts):
-                    files[relative.as_posix()] = path.read_bytes()
-                    if sum(map(len, files.values())) > MAX_ARCHIVE_BYTES:
-                        raise ValueError(f"more than {MAX_ARCHIVE_BYTES // 2**20} MB of files")
+            files = _folder_sources(item)
         elif item.suffix in SOURCE_SUFFIXES + (".zip",):
-            files = {item.name: item.read_bytes()}
+            files = {item.name: _upload_bytes(item)}
         else:
             raise ValueError(f"not a submission: expected a folder, .zip, .py or .ipynb, got {item.name}")
     except (OSError, ValueError) as exc:
         entry.error = str(exc)
         return
     _read_files_into(entry, files)
+
+
+def _folder_sources(folder: Path) -> dict[str, bytes]:
+    """The source files and zips of a student's folder, read as loading reads a submission:
+    regular files only (a link is never followed), within the caps; reports, images and
+    the like are never read."""
+    with tempfile.TemporaryDirectory(prefix="ingest-") as scratch:
+        refused = copy_regular_files(folder, Path(scratch), suffixes=SOURCE_SUFFIXES + (".zip",))
+        files = {p.relative_to(scratch).as_posix(): p.read_bytes()
+                 for p in sorted(Path(scratch).rglob("*")) if p.is_file()}
+    if not files and refused:
+        name, reason = next(iter(refused.items()))
+        raise ValueError(f"{name} was not read: {reason}")
+    return files
+
+
+def _upload_bytes(item: Path) -> bytes:
+    """A flat upload's bytes when it can hold code (.py, .ipynb, .zip); other uploads
+    (a report PDF, pictures) are kept by name only, never read."""
+    if PurePosixPath(item.name).suffix not in SOURCE_SUFFIXES + (".zip",):
+        return b""
+    if item.is_symlink() or not item.is_file():
+        raise ValueError(f"{item.name} is not a regular file")
+    if item.stat().st_size > MAX_ARCHIVE_BYTES:
+        raise ValueError(f"{item.name} is larger than {MAX_ARCHIVE_BYTES // 2**20} MB")
+    return item.read_bytes()
 
 
 def _read_files_into(entry: Entry, files: dict[str, bytes]) -> None:
