@@ -42,21 +42,55 @@ def max_abs_error(got, expected) -> float:
     return float(np.max(np.abs(got - expected))) if got.size else 0.0
 
 
-def closest(got, candidates: dict, distance, tolerance: float):
-    """The name of the candidate nearest ``got``, if within ``tolerance``; else None.
+def closest(got, candidates: dict, distance, tolerance: float, truth=None, margin: float = 3.0):
+    """The name of the mistake that explains ``got``, when exactly one does; else None.
 
-    Used for diagnosis: ``candidates`` maps a mistake ("tx and ty swapped") to
-    the answer that mistake produces.
+    ``candidates`` maps a mistake ("tx and ty swapped") to the answer that
+    mistake produces on the same input. A mistake is named only when the match
+    is unambiguous: its answer is within ``tolerance`` of ``got``, and ``margin``
+    times closer than the answer of any other mistake and than ``truth`` (when
+    given). Mistakes that give the same answer here cannot be told apart: they
+    are named together ("A or B").
+
+    Never guessing is the point: a wrong name misleads more than none, and the
+    caller then says what is measurably wrong instead.
     """
-    best, best_distance = None, tolerance
-    for name, candidate in candidates.items():
+    scored = []
+    for name, answer in candidates.items():
         try:
-            d = distance(got, candidate)
+            d = float(distance(got, answer))
         except (ValueError, np.linalg.LinAlgError):
             continue
-        if d < best_distance:
-            best, best_distance = name, d
-    return best
+        if np.isfinite(d):
+            scored.append((d, name, answer))
+    if not scored:
+        return None
+    scored.sort(key=lambda item: item[0])
+    best, name, answer = scored[0]
+    if not best <= tolerance:
+        return None
+    names, rivals = [name], []
+    for d, other, other_answer in scored[1:]:
+        if _same_answer(distance, answer, other_answer, best):
+            names.append(other)
+        else:
+            rivals.append(d)
+    if truth is not None:
+        try:
+            rivals.append(float(distance(got, truth)))
+        except (ValueError, np.linalg.LinAlgError):
+            pass
+    if any(d <= margin * best for d in rivals):
+        return None
+    return " or ".join(names)
+
+
+def _same_answer(distance, first, second, resolution: float) -> bool:
+    """Whether two mistakes' answers are indistinguishable at ``resolution``."""
+    try:
+        return float(distance(first, second)) <= max(resolution, 1e-12)
+    except (ValueError, np.linalg.LinAlgError):
+        return False
 
 
 # ---------------------------------------------------------------- images
