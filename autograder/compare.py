@@ -50,7 +50,7 @@ def closest(got, candidates: dict, distance, tolerance: float, truth=None, margi
     is unambiguous: its answer is within ``tolerance`` of ``got``, and ``margin``
     times closer than the answer of any other mistake and than ``truth`` (when
     given). Mistakes that give the same answer here cannot be told apart: they
-    are named together ("A or B").
+    are named together ("A; or, the same answer here, B").
 
     Never guessing is the point: a wrong name misleads more than none, and the
     caller then says what is measurably wrong instead.
@@ -82,7 +82,7 @@ def closest(got, candidates: dict, distance, tolerance: float, truth=None, margi
             pass
     if any(d <= margin * best for d in rivals):
         return None
-    return " or ".join(names)
+    return "; or, the same answer here, ".join(names)
 
 
 def _same_answer(distance, first, second, resolution: float) -> bool:
