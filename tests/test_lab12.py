@@ -280,7 +280,7 @@ MISTAKES = {
     # ---------------------------------------------------------------- ex5
     "DP without smoothness (winner-take-all)": ("lab12.ex5", """
         DEFAULT_SMOOTHNESS = 0.0
-        """, ["winner-take-all"]),
+        """, ["the smoothness term is ignored (winner-take-all)"]),
     "DP that ignores the smoothness argument": ("lab12.ex5", """
         _dp_stereo = dp_stereo
         def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):

@@ -23,7 +23,7 @@ from hypothesis import strategies as st
 from fixtures import lab12 as truth
 
 from ..checks import StudentFailure, Trial, partial, passed
-from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error
+from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error, nearest_variants
 from ..judges import format_matrix, judge_parameter_used
 from ..pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..registry import Lab
@@ -196,7 +196,10 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
         if err_true <= VARIANT_SLACK * max(spread) + 1e-9 * scale:
             return passed(f"mean 3D error {err_true:.3g} (linear triangulation with two or three rows "
                           f"per view, rows scaled or not: {min(spread):.3g} to {max(spread):.3g})")
-    mistake = closest(got, truth.triangulation_mistakes(P1, P2, pts1, pts2), max_abs_error, 1e-4 * scale)
+    depth = np.maximum(np.linalg.norm(X_true, axis=1), 1e-9 * scale)
+    distance = truth.triangulation_distance(depth)
+    mistakes = nearest_variants(got, truth.triangulation_mistakes(P1, P2, pts1, pts2), distance)
+    mistake = closest(got, mistakes, distance, 1e-3, truth=X_true)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     norms = np.linalg.norm(got, axis=1) * np.linalg.norm(X_true, axis=1)
@@ -687,10 +690,15 @@ def smoothness_probe(t: Trial, scene):
                          "smoothness", (0, 1e7), "disparity map")
 
 
-def winner_take_all_message(what, jumps, wta_jumps):
-    return (f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px, as many as "
-            f"winner-take-all block matching ({wta_jumps:.1%}): it looks like the smoothness term "
-            "is ignored (with smoothness=None, use a default suited to your cost's scale).")
+SMOOTHNESS_IGNORED = "the smoothness term is ignored"
+
+
+def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, compared_with="winner-take-all block matching"):
+    """The map is as jumpy as winner-take-all matching: no smoothness acts by default."""
+    t.fail(f"{what}: it looks like {SMOOTHNESS_IGNORED} (winner-take-all): {jumps:.1%} of "
+           f"neighbouring pixels jump by more than 1 px, as many as {compared_with} ({wta_jumps:.1%}).",
+           hint="with smoothness=None, use a default penalty suited to your cost's scale",
+           mistake=SMOOTHNESS_IGNORED)
 
 
 LAST_COLUMN_TOLERANCE = 0.2   # bad fraction of the last column (the references: 0 on synthetic scenes)
@@ -734,7 +742,7 @@ def dp_weak_texture(t):
     jumps = truth.jump_rate(got, scene.judged)
     if jumps >= 0.6 * bm["jumps"]:
         smoothness_probe(t, scene)
-        t.fail(winner_take_all_message(what, jumps, bm["jumps"]))
+        fail_winner_take_all(t, what, jumps, bm["jumps"])
     diagnose_disparity(t, what, got, scene, reference["bad"] + MARGIN)
     if bad < bm["bad"] - MARGIN:
         return partial(0.5, f"{what}: {summary}: better than block matching, but not yet as "
@@ -754,7 +762,7 @@ def dp_smooth(t):
         if jumps > JUMPS_VS_BM * bm:
             smoothness_probe(t, scene)
             if jumps >= 0.6 * bm:
-                t.fail(winner_take_all_message(what, jumps, bm))
+                fail_winner_take_all(t, what, jumps, bm)
             t.fail(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px; block "
                    f"matching gives {bm:.1%} and at most {JUMPS_VS_BM * bm:.1%} is expected.")
     return passed("far fewer jumps than block matching on both scenes")
@@ -783,8 +791,7 @@ def dp_smoothness_parameter(t):
                f"jump by more than 1 px (winner-take-all gives about {reference:.1%}): with "
                "smoothness 0 every pixel must take its best data cost.")
     if default_jumps * 3 > wta_jumps:
-        t.fail(winner_take_all_message("dp_stereo(left, right)", default_jumps, wta_jumps)
-               .replace("winner-take-all block matching", "your smoothness=0 result"))
+        fail_winner_take_all(t, "dp_stereo(left, right)", default_jumps, wta_jumps, "your smoothness=0 result")
     flat = expect_disparity(t, "dp_stereo(left, right, smoothness=1e7)",
                             call_dp(t, scene, smoothness=1e7), scene)
     rows_with_jumps = float(np.mean(np.any(np.diff(np.nan_to_num(flat), axis=1) != 0, axis=1)))
