@@ -261,7 +261,7 @@ def judge_lines(t: Trial, what: str, got, F, pts1):
         parallel = np.linalg.norm(np.cross(got, expected), axis=1) <= 1e-6 * np.linalg.norm(got, axis=1)
         if np.all(parallel):
             t.fail(f"{what}: the lines are right but not scaled so that a^2 + b^2 = 1 "
-                   "(divide each line by sqrt(a^2 + b^2)).")
+                   "(divide each line by sqrt(a^2 + b^2)).", mistake="the lines are not scaled so that a^2 + b^2 = 1")
     signs = np.where(np.sum(np.nan_to_num(got) * expected, axis=1) < 0, -1.0, 1.0)[:, None]
     where = where_points_differ(got * signs, expected, 1e-5 * max(1.0, np.abs(expected).max()),
                                 names=("a", "b", "c"))
@@ -350,11 +350,12 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     swapped_coverage, swapped_stray, _ = draw_judgement(got, image, swapped_lines)
     if swapped_coverage.min() >= min_coverage and swapped_stray <= 0.05:
         t.fail(f"{what} is wrong: the lines are drawn with x and y swapped "
-               "(a line (a, b, c) is a*x + b*y + c = 0 with x the column)")
+               "(a line (a, b, c) is a*x + b*y + c = 0 with x the column)",
+               mistake="the lines are drawn with x and y swapped")
     if stray <= 0.05 and coverage.max() < min_coverage and coverage.mean() > 0.15:
         t.fail(f"{what}: the lines are in the right place but stop short "
                f"(only {coverage.mean():.0%} of their length inside the image is drawn): "
-               "draw each line across the whole image")
+               "draw each line across the whole image", mistake="the lines stop short")
     t.fail(f"{what}: {np.sum(coverage < min_coverage)} of {len(coverage)} lines are missing or "
            f"incomplete, and {stray:.0%} of the changed pixels are away from every line "
            "(see the picture)")
@@ -630,10 +631,6 @@ def fundamental_noisy(t):
             sizes = [(c.width, c.height) for c in (views.cam1, views.cam2)]
             show_epipolar(t, "epipolar lines of your F (1 px noise, 640 x 480 pixels)", views.F, got,
                           sizes, views.pts1[40:], views.pts2[40:])
-        candidates = nearest_variants(got, fundamental_8point_mistakes(figures["mistakes"]), projective_distance)
-        mistake = closest(got, candidates, projective_distance, 1e-3, truth=figures["gold"])
-        if mistake:
-            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
 
         def distance(F):
             return truth.symmetric_epipolar_distance(F, views.pts1[40:], views.pts2[40:]).mean()
@@ -641,7 +638,16 @@ def fundamental_noisy(t):
         mine = distance(got)
         spread = [distance(figures[key]) for key in FUNDAMENTAL_VARIANTS]
         lines.append(f"{mine:.2f} px (textbook variants: {min(spread):.2f} to {max(spread):.2f} px)")
-        good += mine <= 1.1 * max(spread) + 0.1
+        if mine <= 1.1 * max(spread) + 0.1:
+            good += 1
+            continue
+        # A mistake is named only for an F worse than every textbook variant, the nearest of
+        # which stands for the truth.
+        candidates = nearest_variants(got, fundamental_8point_mistakes(figures["mistakes"]), projective_distance)
+        variant = min((figures[key] for key in FUNDAMENTAL_VARIANTS), key=lambda F: projective_distance(got, F))
+        mistake = closest(got, candidates, projective_distance, 1e-3, truth=variant)
+        if mistake:
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     report = "; ".join(lines)
     if good == len(NOISY_SCENES):
         return passed(f"mean distance of exact held-out matches to your epipolar lines: {report}")
@@ -686,7 +692,7 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=N
         if at_infinity and abs(g[2]) == 1 and np.abs(g[:2]).max() > 1e8:
             t.fail(f"{what}: {name} = {g}: it looks like it was divided by its last entry w, "
                    "which is w = 0 (up to rounding) for an epipole at infinity; return the "
-                   "homogeneous vector without dividing")
+                   "homogeneous vector without dividing", mistake="the epipole was divided by w = 0")
     d1, d2 = projective_distance(g1, e1), projective_distance(g2, e2)
     if d1 <= EXACT and d2 <= EXACT:
         return
@@ -819,7 +825,8 @@ def judge_matches(t: Trial, pair, pts1, pts2):
     _, true2_swapped, valid_swapped = truth.true_correspondences(pair, pts2)
     if valid_swapped.sum() >= 10 and np.mean(np.linalg.norm(
             pts1[valid_swapped] - true2_swapped[valid_swapped], axis=1) <= 2.0) >= 0.8:
-        t.fail("pts1 and pts2 are swapped: pts1 must be the points of img1")
+        t.fail("pts1 and pts2 are swapped: pts1 must be the points of img1",
+               mistake="pts1 and pts2 are swapped")
     message = f"only {correct:.0%} of your matches are within 2 px of the true position (need 80%)"
     if correct >= 0.5:
         return partial(0.5, message, "keep only the RANSAC inliers")
@@ -846,19 +853,32 @@ def structure_error(got, X) -> float:
     return float(np.median(np.linalg.norm(scale * got - X, axis=1) / np.linalg.norm(X, axis=1)))
 
 
-def pose_mistakes(pair, pts1, pts2) -> dict[str, np.ndarray]:
-    """The 3D points the usual mistakes in building camera 2 triangulate from the same matches."""
+def pose_mistakes(pair, pts1, pts2, F=None) -> dict[str, np.ndarray]:
+    """The 3D points the usual mistakes in building the cameras triangulate from the same matches
+    (``F``, the student's, gives the pose recoverPose finds when handed F instead of E)."""
     K1, K2, R, t = pair.cam1.K, pair.cam2.K, pair.cam2.R, pair.cam2.t.reshape(3, 1)
     P1 = K1 @ np.eye(3, 4)
-    return {
+    mistakes = {
         "camera 2 is built with the rotation transposed: P2 = K [R | t] with recoverPose's R as "
         "it is (it takes camera-1 coordinates to camera 2's)":
             linear_triangulation(P1, K2 @ np.hstack([R.T, t]), pts1, pts2),
-        "camera 2's translation has the wrong sign: P2 = K [R | t] with recoverPose's t as it is":
-            linear_triangulation(P1, K2 @ np.hstack([R, -t]), pts1, pts2),
         "pts1 and pts2 are exchanged in the triangulation (pts1 belongs to P1)":
             linear_triangulation(P1, K2 @ np.hstack([R, t]), pts2, pts1),
+        "the cameras are built without K: P1 = K [I | 0] and P2 = K [R | t] act on pixels":
+            linear_triangulation(np.eye(3, 4), np.hstack([R, t]), pts1, pts2),
     }
+    if F is not None and len(pts1) >= 5:
+        try:
+            _, R_F, t_F, _ = cv2.recoverPose(np.asarray(F, float), pts1, pts2, np.asarray(K1, float))
+        except cv2.error:
+            return mistakes
+        mistakes["the pose is recovered from F instead of E = K^T F K (recoverPose needs the essential "
+                 "matrix)"] = linear_triangulation(P1, K2 @ np.hstack([R_F, t_F.reshape(3, 1)]), pts1, pts2)
+    return mistakes
+
+
+MIRRORED = ("camera 2's translation has the wrong sign (P2 = K [R | -t]) or the pose was not chosen with "
+            "the points in front of both cameras")
 
 
 def name_pose_mistake(got, candidates: dict, truth_error: float):
@@ -875,7 +895,7 @@ def name_pose_mistake(got, candidates: dict, truth_error: float):
     return None
 
 
-def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
+def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
     X, true2, valid = truth.true_correspondences(pair, pts1)
     good = valid & (np.linalg.norm(pts2 - np.nan_to_num(true2), axis=1) <= 2.0)
     good &= np.all(np.isfinite(points3d), axis=1)
@@ -901,7 +921,11 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
                "them in camera 1's frame (P1 = K [I | 0], P2 = K [R | t])")
     if scale > 0 and median <= STRUCTURE_MEDIAN and p90 <= STRUCTURE_P90:
         return passed(summary)
-    mistake = name_pose_mistake(got, pose_mistakes(pair, pts1[good], pts2[good]), median)
+    if scale < 0 and median <= STRUCTURE_MEDIAN:
+        t.fail(f"your 3D points are wrong: it looks like {MIRRORED}: every point is mirrored through "
+               "camera 1's centre, behind camera 1 (cv2.recoverPose picks the pose with the points in "
+               f"front of both cameras; use its R and t as they are). ({summary})", mistake=MIRRORED)
+    mistake = name_pose_mistake(got, pose_mistakes(pair, pts1[good], pts2[good], F), median)
     if mistake:
         t.fail(f"your 3D points are wrong: it looks like {mistake}. ({summary})", mistake=mistake)
     if scale < 0 or np.median(got[:, 2]) < 0:
@@ -921,5 +945,5 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
            timeout=PIPELINE_TIMEOUT)
 def pipeline_structure(t):
     pair = truth.rendered_pair(0)
-    _, pts1, pts2, points3d = call_reconstruction(t, pair)
-    return judge_structure(t, pair, pts1, pts2, points3d)
+    F, pts1, pts2, points3d = call_reconstruction(t, pair)
+    return judge_structure(t, pair, pts1, pts2, points3d, F=F)

@@ -70,7 +70,7 @@ def expect_disparity(t: Trial, what: str, got, scene) -> np.ndarray:
 
 def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, again=None,
                     show: bool = True, threshold_name: str = "reference solution:",
-                    judged=None, allowed=None, accepted_by: str = "", probe=None):
+                    judged=None, allowed=None, accepted_by: str = "", probe=None, mistakes=None):
     """Judge a disparity map by its bad-pixel rate against the reference's, naming mistakes.
 
     ``again(left, right)`` calls the student's function on another pair (used to
@@ -78,7 +78,8 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     looks, for a failing map only, for the mistakes only another call can show (a
     parameter ignored); it fails naming one, or returns. ``judged``
     replaces the scene's judged truth, ``allowed`` the accepted rate (default: the
-    reference's plus :data:`MARGIN`), explained by ``accepted_by``.
+    reference's plus :data:`MARGIN`), explained by ``accepted_by``. ``mistakes()`` gives,
+    for a failing map only, the maps the usual mistakes give (name -> map).
     """
     got = expect_disparity(t, what, got, scene)
     judged = scene.judged if judged is None else judged
@@ -89,7 +90,7 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     summary = f"bad-pixel rate {bad:.1%} ({threshold_name} {reference_bad:.1%}{accepted_by})"
     if bad <= allowed:
         return passed(summary)
-    diagnose_disparity(t, what, got, scene, allowed, again, judged)
+    diagnose_disparity(t, what, got, scene, allowed, again, judged, mistakes)
     if probe is not None:
         probe()
     where = where_disparities_wrong(got, judged, scene.threshold)
@@ -136,7 +137,17 @@ def where_disparities_wrong(got, judged, threshold) -> str:
             f"off by {np.median(np.abs(error)):.3g} px in the median)")
 
 
-def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=None):
+def name_matching_mistake(t: Trial, what, got, scene, judged, mistakes):
+    """Fail naming the mistake whose map ``got`` is, where every disparity can be searched."""
+    candidates = mistakes()
+    columns = np.arange(got.shape[1])[None, :] >= scene.max_disparity
+    mask = (judged > 0) & columns
+    mistake = closest(got, candidates, truth.map_disagreement(mask), 0.2, truth=judged)
+    if mistake:
+        t.fail(f"{what}: it looks like {mistake}.", mistake=mistake)
+
+
+def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=None, mistakes=None):
     gt, thr = (scene.judged if judged is None else judged), scene.threshold
     finite = np.nan_to_num(got.astype(np.float64), nan=0.0, posinf=0.0, neginf=0.0)
     if truth.bad_pixel_rate(-finite, gt, thr) <= allowed:
@@ -155,6 +166,8 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=N
     values = finite[gt > 0]
     if values.size and np.ptp(values) < 1e-9:
         t.fail(f"{what}: every pixel got the same disparity ({values[0]:g}).")
+    if mistakes is not None:
+        name_matching_mistake(t, what, got, scene, gt, mistakes)
     if again is not None and scene.judged_right is not None:
         try:
             flipped = again(scene.right, scene.left)
@@ -313,7 +326,7 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     if max_abs_error(got, expected) <= tolerance:
         return
     mistake = closest(got, truth.depth_mistakes(disparity, f, baseline), max_abs_error,
-                      1e-6 * max(1.0, float(np.abs(expected).max())))
+                      1e-6 * max(1.0, float(np.abs(expected).max())), truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what}: largest depth error {max_abs_error(got, expected):.3g} (Z = f b / d).")
@@ -411,6 +424,41 @@ def rectified_picture(rect_l, rect_r, H1, H2, pair, count=10):
     return side_by_side(tiles[0][0], tiles[1][0])
 
 
+POSE_FIXES = {   # a mistake inside rectify -> the arguments that undo it (R, T and K1, K2 as given)
+    "R is transposed inside your function (X2 = R X1 + T: R takes camera-1 coordinates to camera 2's)":
+        lambda K1, K2, R, T: (K1, K2, R.T, T),
+    "the pose is read backwards: X2 = R X1 + T takes camera-1 coordinates to camera 2's, so camera 2's "
+    "centre is -R^T T": lambda K1, K2, R, T: (K1, K2, R.T, -R.T @ T),
+    "K1 and K2 are swapped inside your function (K1 belongs to the left image)":
+        lambda K1, K2, R, T: (K2, K1, R, T),
+}
+
+
+def name_pose_mistake(t: Trial, pair, what):
+    """Fail naming the mistake inside ``rectify`` that changing its arguments undoes, when
+    exactly one does: the output alone cannot tell a transposed R from other errors."""
+    undone = []
+    for mistake, fix in POSE_FIXES.items():
+        K1, K2, R, T = fix(np.asarray(pair.K1, float), np.asarray(pair.K2, float),
+                           np.asarray(pair.R, float), np.asarray(pair.T, float).reshape(3))
+        try:
+            result = t.call("rectify", pair.img_l, pair.img_r, K1, K2, R, T)
+        except StudentFailure:
+            return
+        if not isinstance(result, (tuple, list)) or len(result) != 4:
+            return
+        H1, H2 = (np.asarray(H, dtype=float) if isinstance(H, np.ndarray) and H.shape == (3, 3) else None
+                  for H in result[2:])
+        if H1 is None or H2 is None or not (np.all(np.isfinite(H1)) and np.all(np.isfinite(H2))):
+            continue
+        dy, _ = row_errors(H1, H2, pair)
+        if np.all(np.isfinite(dy)) and dy.max() <= ROW_TOLERANCE:
+            undone.append(mistake)
+    if len(undone) == 1:
+        t.fail(f"{what}: it looks like {undone[0]}: called with that undone, your function rectifies "
+               "the pair.", mistake=undone[0])
+
+
 def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
     dy, dx = row_errors(H1, H2, pair)
     worst = float(np.nanmax(dy)) if np.all(np.isfinite(dy)) else float("inf")
@@ -424,9 +472,12 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
     inv1, inv2 = np.linalg.pinv(H1), np.linalg.pinv(H2)
     if np.nanmax(row_errors(inv1, inv2, pair)[0]) <= ROW_TOLERANCE:
         t.fail(f"{what}: H1 and H2 map rectified pixels back to the originals; the API wants "
-               "them from original to rectified coordinates (invert them).")
+               "them from original to rectified coordinates (invert them).",
+               mistake="H1 and H2 are inverted (rectified to original)")
     if np.nanmax(row_errors(H2, H1, pair)[0]) <= ROW_TOLERANCE:
-        t.fail(f"{what}: H1 and H2 are swapped (H1 rectifies the left image).")
+        t.fail(f"{what}: H1 and H2 are swapped (H1 rectifies the left image).",
+               mistake="H1 and H2 are swapped")
+    name_pose_mistake(t, pair, what)
     t.fail(f"{what}: true correspondences end up {np.nanmedian(dy):.3g} px apart vertically "
            f"(up to {worst:.3g} px); after rectification they must share a row.",
            hint="X2 = R X1 + T takes camera-1 coordinates to camera 2's; both cameras need the "
@@ -481,6 +532,24 @@ def rectify_images(t):
         except np.linalg.LinAlgError:
             t.fail(f"rectify: {'H1' if name == 'rect_l' else 'H2'} is singular")
         if error > 8.0:
+            other_image, other_H = (pair.img_r, H2) if name == "rect_l" else (pair.img_l, H1)
+            # The images agree with the other homography: the returned H1 and H2 are swapped
+            # when they rectify the pair that way round, else the images were warped wrongly.
+            h_swapped = np.nanmax(row_errors(H2, H1, pair)[0]) <= ROW_TOLERANCE
+            alternatives = {
+                "rect_l and rect_r are swapped": (other_image, other_H),
+                "H1 and H2 are swapped" if h_swapped else
+                "each image is warped with the other one's homography (rect_l = img_l warped by H1)":
+                    (image, other_H),
+            }
+            for mistake, (source, homography) in alternatives.items():
+                try:
+                    if warped_error(source, homography, got) <= 8.0:
+                        t.fail(f"rectify: it looks like {mistake}: {name} is "
+                               f"{'img_r' if source is pair.img_r else 'img_l'} warped by "
+                               f"{'H2' if homography is H2 else 'H1'}.", mistake=mistake)
+                except np.linalg.LinAlgError:
+                    continue
             height, width = image.shape[:2]
             expected = cv2.warpPerspective(image, H, (width, height))
             t.compare_images(f"{name} against the input warped by your homography", image, expected, got)
@@ -540,16 +609,19 @@ def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, agai
     """
     got = expect_disparity(t, what, got, scene)
     far, near = truth.far_and_near(truth.band(scene.judged, scene.max_disparity, figures["block_size"]))
+    mistakes = lambda: truth.matching_mistakes(scene, figures["block_size"], "ssd")  # noqa: E731
     if far.any():
         wrong = truth.far_wrong_rate(got, far)
         if wrong > figures["far_legitimate"] + FAR_SLACK:
             if show:
                 show_disparity(t, f"{what} on {scene.name}", scene, got)
+            name_matching_mistake(t, what, got, scene, scene.judged, mistakes)
             t.fail(f"{what}: the wall at infinity (true disparity {scene.judged[far].max():.2g} px, "
                    f"i.e. d = 0) gets a disparity of 1 or more at {wrong:.0%} of its pixels "
                    f"(legitimate matchers: at most {figures['far_legitimate']:.0%}): the search "
                    "must include d = 0 (d = 0..max_disparity).")
     return judge_disparity(t, what, got, scene, figures["reference"], again=again, show=show, judged=near,
+                           mistakes=mistakes,
                            allowed=figures["legitimate"] + SLACK,
                            accepted_by=f"; the legitimate SSD matchers, cv2.StereoBM included, up to "
                                        f"{figures['legitimate']:.1%}",
@@ -629,7 +701,8 @@ def ncc_motorcycle(t):
                  max_disparity=scene.max_disparity, block_size=9, cost="ncc")
     what = "block_matching(left, right, cost=\"ncc\")"
     verdict = judge_disparity(t, what, got, scene, figures("motorcycle", "bm_ncc_9")["bad"],
-                              probe=block_size_probe(t, what, scene, cost="ncc"))
+                              probe=block_size_probe(t, what, scene, cost="ncc"),
+                              mistakes=lambda: truth.matching_mistakes(scene, 9, "ncc"))
     if verdict.fraction < 1:
         verdict.hint = NCC_HINT
     return verdict
@@ -664,7 +737,8 @@ def ncc_gain(t):
         t.fail(f"{what}: bad-pixel rate {bad:.1%} (reference {reference:.1%}), although it works "
                "when the views have the same brightness: your NCC is not fully normalised. Subtract "
                "each block's mean and divide by the product of the blocks' standard deviations.")
-    diagnose_disparity(t, what, got, scene, reference + MARGIN)
+    diagnose_disparity(t, what, got, scene, reference + MARGIN,
+                       mistakes=lambda: truth.matching_mistakes(scene, 9, "ncc"))
     block_size_probe(t, what, scene, cost="ncc")()
     if bad < reference + MARGIN + FADE:
         return partial((reference + MARGIN + FADE - bad) / FADE, f"{what}: {summary}.", hint=NCC_HINT)
@@ -701,6 +775,7 @@ def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, compared_with="winner
            mistake=SMOOTHNESS_IGNORED)
 
 
+BACKTRACKING = "the backtracking is off by one column (the last column is never filled in)"
 LAST_COLUMN_TOLERANCE = 0.2   # bad fraction of the last column (the references: 0 on synthetic scenes)
 
 
@@ -720,10 +795,11 @@ def judge_last_column(t: Trial, what: str, got, scene):
     if bad > LAST_COLUMN_TOLERANCE:
         values = np.unique(np.round(column[known], 2))
         shown = ", ".join(f"{v:g}" for v in values[:3]) + (", ..." if len(values) > 3 else "")
-        t.fail(f"{what}: the last column (x = {got.shape[1] - 1}) is wrong in {bad:.0%} of the rows "
-               f"(your values there: {shown}; true disparities {truth_column[known].min():.1f} to "
-               f"{truth_column[known].max():.1f}): is the backtracking started at the last column, "
-               "from the disparity with the lowest total energy there?")
+        t.fail(f"{what}: it looks like {BACKTRACKING}: the last column (x = {got.shape[1] - 1}) is wrong "
+               f"in {bad:.0%} of the rows (your values there: {shown}; true disparities "
+               f"{truth_column[known].min():.1f} to {truth_column[known].max():.1f}). Start at the last "
+               "column, from the disparity with the lowest total energy there, and fill every column "
+               "down to x = 0.", mistake=BACKTRACKING)
 
 
 @ex5.check("dp_stereo beats block matching where the texture is weak", points=4, timeout=STEREO_TIMEOUT)

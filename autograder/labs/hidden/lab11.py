@@ -84,6 +84,6 @@ def hidden_pipeline_other_scene(t):
     pair = truth.rendered_pair(seed=9601)
     F, pts1, pts2, points3d = call_reconstruction(t, pair)
     epipolar = judge_pipeline_F(t, pair, F)
-    structure = judge_structure(t, pair, pts1, pts2, points3d, show=False)
+    structure = judge_structure(t, pair, pts1, pts2, points3d, show=False, F=F)
     return partial(min(epipolar.fraction, structure.fraction), f"F: {epipolar.message}; 3D points: "
                    f"{structure.message}")
