@@ -336,7 +336,7 @@ MISTAKES = {
             shifted = np.zeros_like(disparity)
             shifted[:, :-1] = disparity[:, 1:]
             return shifted
-        """, ["the backtracking is off by one column"]),
+        """, ["the backtracking does not start right"]),
     # ---------------------------------------------------------------- ex6
     "plain binary patterns": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):

@@ -37,19 +37,36 @@ def _unit(M) -> np.ndarray:
     return M * np.sign(M[index])
 
 
+def conditioned_distance(pts1, pts2):
+    """:func:`projective_distance` between two F's after moving them to well-conditioned
+    coordinates (each image's points centred, mean distance sqrt(2)): on pixels a few entries
+    dominate F, and unrelated wrong estimates would look alike."""
+    def similarity(pts):
+        pts = np.asarray(pts, float)
+        centre = pts.mean(axis=0)
+        scale = np.sqrt(2.0) / max(np.mean(np.linalg.norm(pts - centre, axis=1)), 1e-300)
+        return np.array([[scale, 0, -scale * centre[0]], [0, scale, -scale * centre[1]], [0, 0, 1.0]])
+
+    undo1, undo2 = np.linalg.inv(similarity(pts1)), np.linalg.inv(similarity(pts2))
+
+    def distance(a, b) -> float:
+        return projective_distance(undo2.T @ np.asarray(a, float) @ undo1, undo2.T @ np.asarray(b, float) @ undo1)
+    return distance
+
+
 def judge_projective(t: Trial, what: str, got, expected, mistakes=None, tolerance=EXACT,
-                     shape=(3, 3)) -> np.ndarray:
+                     shape=(3, 3), distance=projective_distance) -> np.ndarray:
     """A matrix or homogeneous vector equal to ``expected`` up to scale and sign; ``mistakes``
-    map a mistake to its answer (a matrix, or a stack of its textbook variants)."""
+    map a mistake to its answer (a matrix, or a stack of its textbook variants), compared
+    with ``distance``."""
     got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
     if not np.any(got):
         t.fail(f"{what} returned all zeros")
-    distance = projective_distance(got, expected)
-    if distance <= tolerance:
+    if projective_distance(got, expected) <= tolerance:
         return got
     mistakes = nearest_variants(got, {name: answer if np.ndim(answer) > len(shape) else [answer]
-                                      for name, answer in (mistakes or {}).items()}, projective_distance)
-    mistake = closest(got, mistakes, projective_distance, max(tolerance, 1e-4), truth=expected)
+                                      for name, answer in (mistakes or {}).items()}, distance)
+    mistake = closest(got, mistakes, distance, max(tolerance, 1e-4), truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale=True)}.\n"
@@ -554,6 +571,8 @@ FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores fo
     "undo_inverse": "the normalisation is undone with the inverses: F = T2^T Fn T1, not T2^-1 Fn T1^-1",
     "not_undone": "the normalisation is not undone: F = T2^T Fn T1",
     "same_T": "both images' points are normalised with T1; each image needs its own T",
+    "untransposed": "the normalisation is applied as x @ T to row vectors; it is x @ T^T (T x for a "
+                    "column vector)",
 }
 
 
@@ -577,7 +596,8 @@ def judge_exact_fundamental(t: Trial, views, n, sideways=False):
                    "solve A f = 0 for all 9 entries by SVD.")
     stored = truth.figures()["fundamental_exact"]["sideways" if sideways else str(n)]
     judge_projective(t, what, got, views.F, {**truth.fundamental_mistakes(views.F),
-                                             **fundamental_8point_mistakes(stored)}, tolerance=1e-4)
+                                             **fundamental_8point_mistakes(stored)}, tolerance=1e-4,
+                     distance=conditioned_distance(views.pts1[:n], views.pts2[:n]))
 
 
 @ex4.check("fundamental_8point from exact correspondences (N=8 and N=40; a sideways motion)", points=3)
@@ -643,9 +663,10 @@ def fundamental_noisy(t):
             continue
         # A mistake is named only for an F worse than every textbook variant, the nearest of
         # which stands for the truth.
-        candidates = nearest_variants(got, fundamental_8point_mistakes(figures["mistakes"]), projective_distance)
-        variant = min((figures[key] for key in FUNDAMENTAL_VARIANTS), key=lambda F: projective_distance(got, F))
-        mistake = closest(got, candidates, projective_distance, 1e-3, truth=variant)
+        conditioned = conditioned_distance(pts1, pts2)
+        candidates = nearest_variants(got, fundamental_8point_mistakes(figures["mistakes"]), conditioned)
+        variant = min((figures[key] for key in FUNDAMENTAL_VARIANTS), key=lambda F: conditioned(got, F))
+        mistake = closest(got, candidates, conditioned, 1e-3, truth=variant)
         if mistake:
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     report = "; ".join(lines)
@@ -866,6 +887,10 @@ def pose_mistakes(pair, pts1, pts2, F=None) -> dict[str, np.ndarray]:
             linear_triangulation(P1, K2 @ np.hstack([R, t]), pts2, pts1),
         "the cameras are built without K: P1 = K [I | 0] and P2 = K [R | t] act on pixels":
             linear_triangulation(np.eye(3, 4), np.hstack([R, t]), pts1, pts2),
+        "camera 1 is built without K: P1 = K [I | 0] acts on pixels":
+            linear_triangulation(np.eye(3, 4), K2 @ np.hstack([R, t]), pts1, pts2),
+        "camera 2 is built without K: P2 = K [R | t] acts on pixels":
+            linear_triangulation(P1, np.hstack([R, t]), pts1, pts2),
     }
     if F is not None and len(pts1) >= 5:
         try:

@@ -775,7 +775,8 @@ def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, compared_with="winner
            mistake=SMOOTHNESS_IGNORED)
 
 
-BACKTRACKING = "the backtracking is off by one column (the last column is never filled in)"
+BACKTRACKING = ("the backtracking does not start right: at the last column, from the disparity with "
+                "the lowest total energy there (or it never fills that column)")
 LAST_COLUMN_TOLERANCE = 0.2   # bad fraction of the last column (the references: 0 on synthetic scenes)
 
 
@@ -797,8 +798,7 @@ def judge_last_column(t: Trial, what: str, got, scene):
         shown = ", ".join(f"{v:g}" for v in values[:3]) + (", ..." if len(values) > 3 else "")
         t.fail(f"{what}: it looks like {BACKTRACKING}: the last column (x = {got.shape[1] - 1}) is wrong "
                f"in {bad:.0%} of the rows (your values there: {shown}; true disparities "
-               f"{truth_column[known].min():.1f} to {truth_column[known].max():.1f}). Start at the last "
-               "column, from the disparity with the lowest total energy there, and fill every column "
+               f"{truth_column[known].min():.1f} to {truth_column[known].max():.1f}). Fill every column "
                "down to x = 0.", mistake=BACKTRACKING)
 
 
