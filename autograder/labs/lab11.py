@@ -477,6 +477,10 @@ ESSENTIAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for 
     "K_not_inverted": "the points are multiplied by K instead of K^-1",
     "K_inverse_untransposed": "the points are normalised as x @ K^-1; for row vectors it is x @ K^-T "
                               "(K^-1 x for a column vector)",
+    "K1_inverse_untransposed": "pts1 are normalised as x @ K1^-1; for row vectors it is x @ K1^-T "
+                               "(K1^-1 x for a column vector)",
+    "K2_inverse_untransposed": "pts2 are normalised as x @ K2^-1; for row vectors it is x @ K2^-T "
+                               "(K2^-1 x for a column vector)",
     "rank2_only": "the singular values were set to (s1, s2, 0): an essential matrix has two equal "
                   "ones, (1, 1, 0)",
     "v_not_transposed": "E = U diag(1, 1, 0) V: np.linalg.svd returns V^T already (E = U diag(1, 1, 0) Vt)",
@@ -565,6 +569,8 @@ FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores fo
     "design_columns": "two columns of A are exchanged (x2 y1 and y2 x1): each row is "
                       "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]",
     "no_rank2": "rank 2 was not enforced",
+    "largest_zeroed": "the largest singular value was set to 0; rank 2 is enforced by zeroing the "
+                      "smallest (U diag(s1, s2, 0) V^T)",
     "largest": "the singular vector of the largest singular value is taken (Vt[0]); f is the last "
                "row of Vt",
     "undo_order": "the normalisation is undone the wrong way round: F = T2^T Fn T1",
@@ -595,8 +601,7 @@ def judge_exact_fundamental(t: Trial, views, n, sideways=False):
                    "like F[2, 2] = 1 was fixed (8 unknowns), which cannot express this camera pair: "
                    "solve A f = 0 for all 9 entries by SVD.")
     stored = truth.figures()["fundamental_exact"]["sideways" if sideways else str(n)]
-    judge_projective(t, what, got, views.F, {**truth.fundamental_mistakes(views.F),
-                                             **fundamental_8point_mistakes(stored)}, tolerance=1e-4,
+    judge_projective(t, what, got, views.F, fundamental_8point_mistakes(stored), tolerance=1e-4,
                      distance=conditioned_distance(views.pts1[:n], views.pts2[:n]))
 
 
@@ -957,10 +962,16 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
         t.fail("your 3D points are behind camera 1 (negative Z, or mirrored through its centre): "
                "choose the pose with the points in front of both cameras (cv2.recoverPose does) and "
                "divide by w")
-    sine = np.linalg.norm(np.cross(got, X), axis=1) / (np.linalg.norm(got, axis=1) * np.linalg.norm(X, axis=1) + 1e-300)
-    if np.median(sine) <= 0.02 and np.ptp(np.log(ratios[np.isfinite(ratios) & (ratios > 0)])) > 0.5:
-        t.fail("each 3D point is in the right direction but off by its own factor: it looks like the "
-               "homogeneous points were not divided by w")
+    # With camera 1 right, every point lies on its true ray whatever else is wrong: only the
+    # first three entries of unit homogeneous vectors (norm below 1, and w = sqrt(1 - |X|^2))
+    # tell that w was not divided out.
+    norms = np.linalg.norm(got, axis=1)
+    if np.all(norms < 1):
+        divided = got / np.sqrt(1.0 - norms ** 2)[:, None]
+        if structure_error(divided, X) <= STRUCTURE_MEDIAN:
+            t.fail("your 3D points are wrong: it looks like the homogeneous points were not divided by "
+                   "w: each point is in the right direction but off by its own factor.",
+                   mistake="the homogeneous points were not divided by w")
     if median <= 0.15:
         return partial(0.5, summary + f" (full marks below {STRUCTURE_MEDIAN:.0%} and {STRUCTURE_P90:.0%})")
     t.fail(summary)

@@ -374,6 +374,7 @@ def depth_scene(t):
 # ================================================================== ex3 rectification
 ex3 = lab.exercise("ex3", "Rectification", functions=["rectify(img_l, img_r, K1, K2, R, T)"])
 ROW_TOLERANCE = 0.5      # pixels: corresponding points on the same rectified row
+EXACT_ROWS = 1e-3        # pixels: rows agree to rounding error (a mistake undone exactly)
 IN_VIEW = 0.5            # fraction of each image kept in view / of each frame covered
 
 
@@ -469,15 +470,23 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                    "swapped or the new x axis points from camera 2 to camera 1.",
                    hint="camera 2's centre in camera-1 coordinates is -R^T T: the new x axis points towards it")
         return worst, float(np.median(dx))
+    name_pose_mistake(t, pair, what)
+    # Undoing a mistake of the construction must rectify exactly (the rows agree to rounding
+    # error): nearly rectified pairs leave room for other wrong maps to come close by chance.
+    # H = K_new R_rect K, with K where K^-1 belongs, times K^-2 is a rectifying homography.
+    undo1 = np.linalg.matrix_power(np.linalg.inv(np.asarray(pair.K1, float)), 2)
+    undo2 = np.linalg.matrix_power(np.linalg.inv(np.asarray(pair.K2, float)), 2)
+    if np.nanmax(row_errors(H1 @ undo1, H2 @ undo2, pair)[0]) <= EXACT_ROWS:
+        t.fail(f"{what}: it looks like K is used where K^-1 belongs: H = K_new R_rect K^-1 (a pixel is "
+               "turned into a ray by K^-1 before the rotation).", mistake="K is used where K^-1 belongs")
     inv1, inv2 = np.linalg.pinv(H1), np.linalg.pinv(H2)
-    if np.nanmax(row_errors(inv1, inv2, pair)[0]) <= ROW_TOLERANCE:
+    if np.nanmax(row_errors(inv1, inv2, pair)[0]) <= EXACT_ROWS:
         t.fail(f"{what}: H1 and H2 map rectified pixels back to the originals; the API wants "
                "them from original to rectified coordinates (invert them).",
                mistake="H1 and H2 are inverted (rectified to original)")
-    if np.nanmax(row_errors(H2, H1, pair)[0]) <= ROW_TOLERANCE:
+    if np.nanmax(row_errors(H2, H1, pair)[0]) <= EXACT_ROWS:
         t.fail(f"{what}: H1 and H2 are swapped (H1 rectifies the left image).",
                mistake="H1 and H2 are swapped")
-    name_pose_mistake(t, pair, what)
     t.fail(f"{what}: true correspondences end up {np.nanmedian(dy):.3g} px apart vertically "
            f"(up to {worst:.3g} px); after rectification they must share a row.",
            hint="X2 = R X1 + T takes camera-1 coordinates to camera 2's; both cameras need the "
@@ -535,7 +544,7 @@ def rectify_images(t):
             other_image, other_H = (pair.img_r, H2) if name == "rect_l" else (pair.img_l, H1)
             # The images agree with the other homography: the returned H1 and H2 are swapped
             # when they rectify the pair that way round, else the images were warped wrongly.
-            h_swapped = np.nanmax(row_errors(H2, H1, pair)[0]) <= ROW_TOLERANCE
+            h_swapped = np.nanmax(row_errors(H2, H1, pair)[0]) <= EXACT_ROWS
             alternatives = {
                 "rect_l and rect_r are swapped": (other_image, other_H),
                 "H1 and H2 are swapped" if h_swapped else
@@ -777,6 +786,22 @@ def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, compared_with="winner
 
 BACKTRACKING = ("the backtracking does not start right: at the last column, from the disparity with "
                 "the lowest total energy there (or it never fills that column)")
+OVERSMOOTHED = "the default smoothness is far too large for your cost's scale"
+
+
+def name_oversmoothing(t: Trial, what: str, got, scene, allowed: float):
+    """Fail naming a default penalty so large that the rows come out flat, for a failing map."""
+    got = np.nan_to_num(np.asarray(got, np.float64))
+    if got.shape != scene.disparity.shape or truth.bad_pixel_rate(got, scene.judged, scene.threshold) <= allowed:
+        return
+    inner = got[truth.JUDGE_BORDER:-truth.JUDGE_BORDER, truth.JUDGE_BORDER:-truth.JUDGE_BORDER]
+    flat = float(np.mean(np.all(np.diff(inner, axis=1) == 0, axis=1)))
+    if flat >= 0.9:
+        t.fail(f"{what}: it looks like {OVERSMOOTHED}: {flat:.0%} of the rows have a single disparity "
+               "(with smoothness=None, use a penalty of the order of your data cost's differences).",
+               mistake=OVERSMOOTHED)
+
+
 LAST_COLUMN_TOLERANCE = 0.2   # bad fraction of the last column (the references: 0 on synthetic scenes)
 
 
@@ -819,6 +844,7 @@ def dp_weak_texture(t):
     if jumps >= 0.6 * bm["jumps"]:
         smoothness_probe(t, scene)
         fail_winner_take_all(t, what, jumps, bm["jumps"])
+    name_oversmoothing(t, what, got, scene, reference["bad"] + MARGIN)
     diagnose_disparity(t, what, got, scene, reference["bad"] + MARGIN)
     if bad < bm["bad"] - MARGIN:
         return partial(0.5, f"{what}: {summary}: better than block matching, but not yet as "
@@ -848,7 +874,9 @@ def dp_smooth(t):
 def dp_motorcycle(t):
     scene = truth.scene("motorcycle")
     got = call_dp(t, scene)
-    return judge_disparity(t, "dp_stereo(left, right)", got, scene, figures("motorcycle", "dp_5")["bad"])
+    reference = figures("motorcycle", "dp_5")["bad"]
+    name_oversmoothing(t, "dp_stereo(left, right)", got, scene, reference + MARGIN)
+    return judge_disparity(t, "dp_stereo(left, right)", got, scene, reference)
 
 
 @ex5.check("smoothness=0 is winner-take-all; a huge smoothness makes every row constant", points=2,
@@ -903,6 +931,8 @@ def judge_patterns(t: Trial, width, n_bits):
         "the bits are in the wrong order: row 0 carries the most significant bit": expected[::-1],
         "black and white are swapped (bit 1 is 255)": 255 - expected,
         "the values are 0 and 1; use 0 and 255": expected // 255,
+        "the stripe index is rounded; it is floor(u * 2**n_bits / width), (u * 2**n_bits) // width":
+            truth.rounded_stripe_patterns(width, n_bits),
     }
     for mistake, wrong in mistakes.items():
         if np.array_equal(got, wrong):
