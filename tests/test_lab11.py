@@ -219,6 +219,13 @@ MISTAKES = {
             U, s, Vt = np.linalg.svd(_eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T))
             return T1.T @ U @ np.diag([s[0], s[1], 0.0]) @ Vt @ T2
         """, ["undone the wrong way round"]),
+    "8-point zeroing the largest singular value": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            T1, T2 = _hartley_normalisation(pts1), _hartley_normalisation(pts2)
+            U, s, Vt = np.linalg.svd(_eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T))
+            return T2.T @ U @ np.diag([0.0, s[1], s[2]]) @ Vt @ T1
+        """, ["the largest singular value was set to 0"]),
     # ---------------------------------------------------------------- ex5
     "epipoles swapped": ("lab11.ex5", """
         _ep = epipoles

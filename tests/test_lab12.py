@@ -210,6 +210,19 @@ MISTAKES = {
         def rectify(img_l, img_r, K1, K2, R, T):
             return _rectify(img_l, img_r, K1, K2, np.asarray(R, float).T, T)
         """, ["r is transposed inside your function"]),
+    "rectify with K where K^-1 belongs": ("lab12.ex3", """
+        def rectify(img_l, img_r, K1, K2, R, T):
+            K1 = np.asarray(K1, float); K2 = np.asarray(K2, float)
+            R = np.asarray(R, float); T = np.asarray(T, float).reshape(3)
+            h, w = np.asarray(img_l).shape[:2]
+            e1 = -R.T @ T / np.linalg.norm(T)
+            e2 = np.cross(np.array([0, 0, 1.0]) + R.T @ np.array([0, 0, 1.0]), e1)
+            e2 /= np.linalg.norm(e2)
+            R_rect = np.vstack([e1, e2, np.cross(e1, e2)])
+            K_new = np.array([[K1[0, 0], 0, w / 2], [0, K1[0, 0], h / 2], [0, 0, 1.0]])
+            H1, H2 = K_new @ R_rect @ K1, K_new @ R_rect @ R.T @ K2
+            return cv2.warpPerspective(img_l, H1, (w, h)), cv2.warpPerspective(img_r, H2, (w, h)), H1, H2
+        """, ["k is used where k^-1 belongs"]),
     # ---------------------------------------------------------------- ex4
     "block matching in the wrong direction": ("lab12.ex4", """
         def _shift_right(image, d):
@@ -337,6 +350,9 @@ MISTAKES = {
             shifted[:, :-1] = disparity[:, 1:]
             return shifted
         """, ["the backtracking does not start right"]),
+    "DP with a default smoothness far too large": ("lab12.ex5", """
+        DEFAULT_SMOOTHNESS = 400.0
+        """, ["the default smoothness is far too large"]),
     # ---------------------------------------------------------------- ex6
     "plain binary patterns": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
@@ -410,6 +426,12 @@ MISTAKES = {
             column = (k + 0.5) * width / 2**n - 0.5
             return depth_from_disparity(np.arange(width) - column, f, baseline)
         """, ["undecodable pixels"]),
+    "patterns with the stripe index rounded": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            k = np.minimum(np.round(np.arange(width) * 2**n_bits / width).astype(int), 2**n_bits - 1)
+            g = k ^ (k >> 1)
+            return (((g[None, :] >> np.arange(n_bits - 1, -1, -1)[:, None]) & 1) * 255).astype(np.uint8)
+        """, ["the stripe index is rounded"]),
 }
 
 

@@ -143,9 +143,10 @@ def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, g
         if error.max() <= EXACT:
             return passed(f"all {n} points within {error.max():.1e} of their distance to camera 1")
         _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise=0.0)
-        worst = int(np.argmax(error))
-        t.fail(f"{what} is wrong: point {worst} should be {format_matrix(views.X[worst])}, "
-               f"got {format_matrix(got[worst])}")
+        worst, wrong = int(np.argmax(error)), int(np.sum(error > EXACT))
+        t.fail(f"{what} is wrong for {'every point' if wrong == n else f'{wrong} of {n} points'} "
+               f"(off by up to {error.max():.1%} of their distance to camera 1): point {worst} should be "
+               f"{format_matrix(views.X[worst])}, got {format_matrix(got[worst])}")
     mine, best = _reprojection(P1, P2, got, pts1, pts2).mean(), gold["reprojection"]
     error = np.median(np.linalg.norm(got - views.X, axis=1) / depth)
     # The textbook variants (two or three rows of x × (P X) = 0 per view, rows scaled or
