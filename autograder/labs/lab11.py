@@ -577,6 +577,8 @@ FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores fo
     "undo_order": "the normalisation is undone the wrong way round: F = T2^T Fn T1",
     "undo_inverse": "the normalisation is undone with the inverses: F = T2^T Fn T1, not T2^-1 Fn T1^-1",
     "not_undone": "the normalisation is not undone: F = T2^T Fn T1",
+    "undo_T1_twice": "the normalisation is undone with T1 on both sides: F = T2^T Fn T1",
+    "undo_T2_twice": "the normalisation is undone with T2 on both sides: F = T2^T Fn T1",
     "same_T": "both images' points are normalised with T1; each image needs its own T",
     "untransposed": "the normalisation is applied as x @ T to row vectors; it is x @ T^T (T x for a "
                     "column vector)",

@@ -739,13 +739,15 @@ def ncc_gain(t):
     ssd = t.call("block_matching", np.array(scene.left), np.array(scene.right),
                  max_disparity=scene.max_disparity, block_size=9, cost="ssd")
     if isinstance(ssd, np.ndarray) and ssd.shape == got.shape and np.array_equal(ssd, got):
-        t.fail(f"{what} gives exactly the SSD result: the cost argument is ignored.")
+        t.fail(f"{what} gives exactly the SSD result: the cost argument is ignored.",
+               mistake="the cost argument is ignored")
     if (isinstance(unchanged, np.ndarray) and unchanged.shape == plain.disparity.shape
             and truth.bad_pixel_rate(unchanged, plain.judged, plain.threshold)
             <= figures("motorcycle", "bm_ncc_9")["bad"] + MARGIN):
         t.fail(f"{what}: bad-pixel rate {bad:.1%} (reference {reference:.1%}), although it works "
                "when the views have the same brightness: your NCC is not fully normalised. Subtract "
-               "each block's mean and divide by the product of the blocks' standard deviations.")
+               "each block's mean and divide by the product of the blocks' standard deviations.",
+               mistake="the NCC is not fully normalised")
     diagnose_disparity(t, what, got, scene, reference + MARGIN,
                        mistakes=lambda: truth.matching_mistakes(scene, 9, "ncc"))
     block_size_probe(t, what, scene, cost="ncc")()
@@ -876,7 +878,10 @@ def dp_motorcycle(t):
     got = call_dp(t, scene)
     reference = figures("motorcycle", "dp_5")["bad"]
     name_oversmoothing(t, "dp_stereo(left, right)", got, scene, reference + MARGIN)
-    return judge_disparity(t, "dp_stereo(left, right)", got, scene, reference)
+    return judge_disparity(t, "dp_stereo(left, right)", got, scene, reference,
+                           probe=lambda: judge_parameter_used(
+                               t, "dp_stereo(left, right)", lambda **kw: call_dp(t, scene, **kw),
+                               "block_size", (3, 9), "disparity map"))
 
 
 @ex5.check("smoothness=0 is winner-take-all; a huge smoothness makes every row constant", points=2,
