@@ -126,6 +126,10 @@ MISTAKES = {
         def essential_from_fundamental(F, K1, K2):
             return np.asarray(K1).T @ np.asarray(F) @ np.asarray(K2)
         """, ["swapped"]),
+    "essential with K2 inverted": ("lab11.ex3", """
+        def essential_from_fundamental(F, K1, K2):
+            return np.linalg.inv(K2).T @ np.asarray(F, float) @ np.asarray(K1, float)
+        """, ["k2 is inverted"]),
     "essential with K1 used for both images": ("lab11.ex3", """
         def essential_from_fundamental(F, K1, K2):
             return K1.T @ np.asarray(F, float) @ K1

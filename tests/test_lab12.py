@@ -321,6 +321,22 @@ MISTAKES = {
             costs[~np.isfinite(costs)] = np.inf
             return costs
         """, ["the disparity with the lowest ncc is kept"]),
+    "NCC divided by the variances": ("lab12.ext1", """
+        def _ncc_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            mean_l = _box_mean(left, block_size)
+            var_l = np.maximum(_box_mean(left * left, block_size) - mean_l ** 2, 0.0)
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(max_disparity + 1):
+                shifted = _shift_right(right, d)
+                mean_r = _box_mean(shifted, block_size)
+                var_r = np.maximum(_box_mean(shifted * shifted, block_size) - mean_r ** 2, 0.0)
+                covariance = _box_mean(left * shifted, block_size) - mean_l * mean_r
+                costs[d] = -np.divide(covariance, var_l * var_r, out=np.zeros_like(covariance),
+                                      where=var_l * var_r > 1e-6)
+                costs[d, :, :d] = np.inf
+            return costs
+        """, ["the ncc is divided by the right block's variance"]),
     # ---------------------------------------------------------------- ex5
     "DP without smoothness (winner-take-all)": ("lab12.ex5", """
         DEFAULT_SMOOTHNESS = 0.0
@@ -432,6 +448,11 @@ MISTAKES = {
             g = k ^ (k >> 1)
             return (((g[None, :] >> np.arange(n_bits - 1, -1, -1)[:, None]) & 1) * 255).astype(np.uint8)
         """, ["the stripe index is rounded"]),
+    "simulation with the images in reverse order": ("lab12.ex6", """
+        _simulate = simulate_structured_light
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            return _simulate(depth, f, baseline, n_bits)[::-1]
+        """, ["the images are in the wrong order"]),
 }
 
 

@@ -564,6 +564,8 @@ lab.forbid("fundamental_8point", "cv2.findFundamentalMat")
 
 FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for each problem
     "swapped": "pts1 and pts2 are swapped (this is F^T: x2^T F x1 = 0 has pts2 on the left)",
+    "xy": "x and y are swapped in the rows of A (x is the column: each row is "
+          "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1])",
     "design_x1x2": "the rows of A are kron(x1, x2); x2^T F x1 = 0 gives kron(x2, x1) = "
                    "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]",
     "column_order": "the null vector f was reshaped column by column (order='F'): F = f.reshape(3, 3)",

@@ -985,9 +985,13 @@ def simulate_boxes(t):
             dict(patterns=truth.binary_code_patterns(width, n_bits)),
         "columns off the projector are clipped to its edge; those pixels must stay black (0)":
             dict(clip=True),
+        "the images are in the wrong order: image 0 is lit by the most significant pattern (row 0)":
+            dict(reverse=True),
     }
     for mistake, kwargs in mistakes.items():
+        reverse = kwargs.pop("reverse", False)
         candidate = truth.simulate_structured_light(depth, f, baseline, n_bits, **kwargs)
+        candidate = candidate[::-1] if reverse else candidate
         if not (np.any(got != candidate, axis=0) & ~ties).any():
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     lit_expected = np.any(expected > 0, axis=0)
