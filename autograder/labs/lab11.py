@@ -956,6 +956,16 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
                "them in camera 1's frame (P1 = K [I | 0], P2 = K [R | t])")
     if scale > 0 and median <= STRUCTURE_MEDIAN and p90 <= STRUCTURE_P90:
         return passed(summary)
+    # With camera 1 right, every point lies on its true ray whatever else is wrong (even when
+    # mirrored): only the first three entries of unit homogeneous vectors (norm below 1, and
+    # |w| = sqrt(1 - |X|^2)) tell that w was not divided out.
+    norms = np.linalg.norm(got, axis=1)
+    if np.all(norms < 1):
+        divided = got / np.sqrt(1.0 - norms ** 2)[:, None]
+        if structure_error(divided, X) <= STRUCTURE_MEDIAN:
+            t.fail("your 3D points are wrong: it looks like the homogeneous points were not divided by "
+                   "w: each point is in the right direction but off by its own factor.",
+                   mistake="the homogeneous points were not divided by w")
     if scale < 0 and median <= STRUCTURE_MEDIAN:
         t.fail(f"your 3D points are wrong: it looks like {MIRRORED}: every point is mirrored through "
                "camera 1's centre, behind camera 1 (cv2.recoverPose picks the pose with the points in "
@@ -967,16 +977,6 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
         t.fail("your 3D points are behind camera 1 (negative Z, or mirrored through its centre): "
                "choose the pose with the points in front of both cameras (cv2.recoverPose does) and "
                "divide by w")
-    # With camera 1 right, every point lies on its true ray whatever else is wrong: only the
-    # first three entries of unit homogeneous vectors (norm below 1, and w = sqrt(1 - |X|^2))
-    # tell that w was not divided out.
-    norms = np.linalg.norm(got, axis=1)
-    if np.all(norms < 1):
-        divided = got / np.sqrt(1.0 - norms ** 2)[:, None]
-        if structure_error(divided, X) <= STRUCTURE_MEDIAN:
-            t.fail("your 3D points are wrong: it looks like the homogeneous points were not divided by "
-                   "w: each point is in the right direction but off by its own factor.",
-                   mistake="the homogeneous points were not divided by w")
     if median <= 0.15:
         return partial(0.5, summary + f" (full marks below {STRUCTURE_MEDIAN:.0%} and {STRUCTURE_P90:.0%})")
     t.fail(summary)

@@ -917,6 +917,41 @@ ex6 = lab.exercise("ex6", "Structured light", functions=[
     "depth_from_structured_light(images, f, baseline)"])
 
 
+def pattern_mistakes(width, n_bits) -> dict:
+    expected = truth.gray_code_patterns(width, n_bits)
+    return {
+        "plain binary code of k instead of its Gray code (g = k XOR (k >> 1))":
+            truth.binary_code_patterns(width, n_bits),
+        "the bits are in the wrong order: row 0 carries the most significant bit": expected[::-1],
+        "black and white are swapped (bit 1 is 255)": 255 - expected,
+        "the values are 0 and 1; use 0 and 255": expected // 255,
+        "the stripe index is rounded; it is floor(u * 2**n_bits / width), (u * 2**n_bits) // width":
+            truth.rounded_stripe_patterns(width, n_bits),
+    }
+
+
+PATTERN_PROBE = (97, 5)   # a size on which every mistake of pattern_mistakes shows in many columns
+
+
+def name_pattern_mistake(t: Trial, what, got, width, n_bits):
+    """Fail naming the mistake whose patterns ``got`` are, on evidence: on a few columns
+    different mistakes give the same patterns, so a small example is checked again at
+    :data:`PATTERN_PROBE` with the student's function."""
+    expected = truth.gray_code_patterns(width, n_bits)
+    for mistake, wrong in pattern_mistakes(width, n_bits).items():
+        if not np.array_equal(got, wrong):
+            continue
+        if int(np.sum(np.any(wrong != expected, axis=0))) < 3:
+            try:
+                again = t.call("gray_code_patterns", *PATTERN_PROBE)
+            except StudentFailure:
+                return
+            if not (isinstance(again, np.ndarray) and again.shape == PATTERN_PROBE[::-1]
+                    and np.array_equal(again, pattern_mistakes(*PATTERN_PROBE)[mistake])):
+                return
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+
+
 def judge_patterns(t: Trial, width, n_bits):
     what = f"gray_code_patterns({width}, {n_bits})"
     got = t.call("gray_code_patterns", width, n_bits)
@@ -926,22 +961,12 @@ def judge_patterns(t: Trial, width, n_bits):
     got = t.expect_array(got, what, shape=(n_bits, width))
     if got.dtype != np.uint8:
         if np.array_equal(got, expected // 255):
-            t.fail(f"{what} returned 0/1 values as {got.dtype}; the patterns are uint8 images of 0 and 255")
+            t.fail(f"{what} returned 0/1 values as {got.dtype}; the patterns are uint8 images of 0 and 255",
+                   mistake="the values are 0 and 1; use 0 and 255")
         t.expect_array(got, what, dtype=np.uint8)
     if np.array_equal(got, expected):
         return
-    mistakes = {
-        "plain binary code of k instead of its Gray code (g = k XOR (k >> 1))":
-            truth.binary_code_patterns(width, n_bits),
-        "the bits are in the wrong order: row 0 carries the most significant bit": expected[::-1],
-        "black and white are swapped (bit 1 is 255)": 255 - expected,
-        "the values are 0 and 1; use 0 and 255": expected // 255,
-        "the stripe index is rounded; it is floor(u * 2**n_bits / width), (u * 2**n_bits) // width":
-            truth.rounded_stripe_patterns(width, n_bits),
-    }
-    for mistake, wrong in mistakes.items():
-        if np.array_equal(got, wrong):
-            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    name_pattern_mistake(t, what, got, width, n_bits)
     stripes = truth._stripe(width, n_bits)
     column = int(np.argmax(np.any(got != expected, axis=0)))
     t.fail(f"{what}: column {column} (stripe k = {stripes[column]}) is {got[:, column].tolist()}; "
