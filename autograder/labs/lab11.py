@@ -478,6 +478,8 @@ ESSENTIAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for 
     "K_not_inverted": "the points are multiplied by K instead of K^-1",
     "K_inverse_untransposed": "the points are normalised as x @ K^-1; for row vectors it is x @ K^-T "
                               "(K^-1 x for a column vector)",
+    "pts1_pixels": "pts1 are not normalised with K1^-1 (only pts2 are)",
+    "pts2_pixels": "pts2 are not normalised with K2^-1 (only pts1 are)",
     "K1_inverse_untransposed": "pts1 are normalised as x @ K1^-1; for row vectors it is x @ K1^-T "
                                "(K1^-1 x for a column vector)",
     "K2_inverse_untransposed": "pts2 are normalised as x @ K2^-1; for row vectors it is x @ K2^-T "
@@ -574,6 +576,8 @@ FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores fo
     "no_rank2": "rank 2 was not enforced",
     "largest_zeroed": "the largest singular value was set to 0; rank 2 is enforced by zeroing the "
                       "smallest (U diag(s1, s2, 0) V^T)",
+    "middle_zeroed": "the middle singular value was set to 0; rank 2 is enforced by zeroing the "
+                     "smallest (U diag(s1, s2, 0) V^T)",
     "largest": "the singular vector of the largest singular value is taken (Vt[0]); f is the last "
                "row of Vt",
     "undo_order": "the normalisation is undone the wrong way round: F = T2^T Fn T1",
