@@ -187,3 +187,25 @@ def bad_pixel_rate(got, truth, threshold: float = 1.0, valid=None) -> float:
     with np.errstate(invalid="ignore"):
         good = np.isfinite(got) & (got > 0) & (np.abs(got - truth) <= threshold)
     return float(1.0 - good[judged].mean())
+
+
+def nearest_variants(got, candidates: dict, distance) -> dict:
+    """Each candidate's answer nearest to ``got``, for candidates given as several answers.
+
+    A mistake's answer may depend on a legitimate textbook choice (rows scaled or not,
+    Hartley's normalisation or not): such a candidate is a sequence of answers, and the one
+    the student's choice gives is the one nearest to ``got``. Reducing every candidate
+    first keeps :func:`closest`'s "same answer" test to the answers actually compared.
+    """
+    reduced = {}
+    for name, answers in candidates.items():
+        scored = []
+        for answer in answers:
+            try:
+                scored.append((float(distance(got, answer)), answer))
+            except (ValueError, np.linalg.LinAlgError):
+                continue
+        scored = [(d, answer) for d, answer in scored if np.isfinite(d)]
+        if scored:
+            reduced[name] = min(scored, key=lambda item: item[0])[1]
+    return reduced
