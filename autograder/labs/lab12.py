@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 
 from fixtures import lab12 as truth
 
-from ..checks import StudentFailure, Trial, partial, passed
+from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error, nearest_variants
 from ..judges import format_matrix, judge_parameter_used
 from ..pictures import disparity_error_picture, disparity_picture, side_by_side
@@ -90,12 +90,20 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     summary = f"bad-pixel rate {bad:.1%} ({threshold_name} {reference_bad:.1%}{accepted_by})"
     if bad <= allowed:
         return passed(summary)
-    diagnose_disparity(t, what, got, scene, allowed, again, judged, mistakes)
-    if probe is not None:
-        probe()
+    fraction = (allowed + FADE - bad) / FADE  # partial credit near the accepted rate
+    try:
+        diagnose_disparity(t, what, got, scene, allowed, again, judged, mistakes)
+        if probe is not None:
+            probe()
+    except Fail as named:
+        if fraction <= 0:
+            raise
+        # A named mistake says why the map falls short; it does not take the credit the map earns.
+        return partial(fraction, f"{named.message} {summary}; up to {allowed:.1%} gets full marks.",
+                       hint=named.hint, mistake=named.mistake)
     where = where_disparities_wrong(got, judged, scene.threshold)
-    if bad < allowed + FADE:
-        return partial((allowed + FADE - bad) / FADE, f"{what}: {where}. {summary}; up to "
+    if fraction > 0:
+        return partial(fraction, f"{what}: {where}. {summary}; up to "
                        f"{allowed:.1%} gets full marks (see the error map).")
     t.fail(f"{what}: most of the map is wrong: {where}. {summary} (see the error map).",
            hint="for left pixel (x, y) compare its block with the block around (x - d, y) in the "
