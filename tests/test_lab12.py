@@ -501,6 +501,14 @@ VARIANTS = {
             d[(d <= 0) | (d > max_disparity)] = 0
             return d
         """),
+    "block matching with cv2.StereoBM, numDisparities rounded up to 16, nothing clipped": ("lab12.ex4", """
+        _block_matching_own = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            if cost != "ssd":
+                return _block_matching_own(left, right, max_disparity, block_size, cost)
+            n = 16 * int(np.ceil(max_disparity / 16))
+            return cv2.StereoBM_create(numDisparities=n, blockSize=block_size).compute(left, right) / 16.0
+        """),
     "block matching after a Gaussian prefilter": ("lab12.ex4", """
         _block_matching_own = block_matching
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
