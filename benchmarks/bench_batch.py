@@ -101,7 +101,8 @@ def report(f: dict) -> None:
         print(f"  {name:<28} {wall:7.2f} s   {f['per_minute'][label]:6.1f} submissions/min")
     if f["dask_note"]:
         print(f"  (Dask: {f['dask_note']})")
-    print(f"  2 workers vs 1: {f['ratio_2_vs_1']:.2f}x   (budget: at least 1.8x on 2 cores)")
+    verdict = "met" if f["ratio_2_vs_1"] >= 1.8 else "NOT met"
+    print(f"  2 workers vs 1: {f['ratio_2_vs_1']:.2f}x   (budget: at least 1.8x on 2 cores, {verdict})")
     print(f"  batch cost per submission, 1 worker: {f['per_submission_s']:.2f} s "
           f"= {f['per_submission_vs_single']:.2f}x a single grade.py run")
     print(f"  re-run with nothing changed: {f['rerun_s']:.2f} s (the gradebook resumes, grades nothing)")
