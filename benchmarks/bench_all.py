@@ -183,6 +183,8 @@ def main() -> int:
                         help="labs graded in the batch section (default: lab07)")
     parser.add_argument("--dask", action="store_true", help="batch section: also a local Dask cluster")
     parser.add_argument("--json", metavar="FILE", help="write the figures as JSON")
+    parser.add_argument("--markdown", action="store_true",
+                        help="also print the figures as the README's Markdown tables")
     args = parser.parse_args()
     sections = args.only or SECTIONS
     if args.otter and "grade" not in sections:
@@ -213,6 +215,8 @@ def main() -> int:
     figures["finished"] = machine_state()
 
     report(figures)
+    if args.markdown:
+        print("\n" + markdown(figures))
     if args.json:
         Path(args.json).write_text(json.dumps(figures, indent=2) + "\n")
     return 0
@@ -262,6 +266,63 @@ def report(f: dict) -> None:
     if "stereo" in f:
         print("\nstereo, lab 12")
         bench_stereo.report(f["stereo"])
+
+
+def markdown(f: dict) -> str:
+    """The figures as the README quotes them: one table, each budget beside its figure."""
+    def verdict(ok: bool) -> str:
+        return "met" if ok else "**not met**"
+
+    start, end = f["started"], f["finished"]
+    lines = [f"Measured {start['utc']}-{end['utc'][-5:]} UTC, load average {start['load_average'][0]:.1f} "
+             f"at the start and {end['load_average'][0]:.1f} at the end ({start['cores']} cores), "
+             f"medians of {f['runs']} runs:", "",
+             "| figure | measured | budget (issue 16) |", "|---|---|---|"]
+
+    def row(*cells: str) -> None:
+        lines.append("| " + " | ".join(cells) + " |")
+
+    if "reference" in f:
+        ref, skel, out = f["reference"], f["skeleton"], f["outputs"]
+        row(f"complete reference submission ({ref['score']}, public and hidden), wall", f"{ref['wall_s']:.2f} s", "")
+        if "otter_anchor" in f:
+            anchor = f["otter_anchor"]
+            row(f"Otter-Grader {anchor['otter_version']} `otter run`, trivial notebook "
+                f"({anchor['notebook']}), wall", f"{anchor['otter_wall_s']:.2f} s", "")
+            row("reference / Otter", f"{anchor['ratio']:.2f}x", f"below 1x: {verdict(anchor['ratio'] < 1)}")
+        row("time inside student functions / grader overhead", f"{ref['student_s']:.2f} s / "
+            f"{ref['overhead_share']:.0%}", f"overhead at most 50%: {verdict(ref['overhead_share'] <= 0.5)}")
+        row(f"untouched skeleton ({skel['score']}), wall", f"{skel['wall_s']:.2f} s = {skel['ratio']:.2f}x "
+            "the reference", f"at most 0.2x: {verdict(skel['ratio'] <= 0.2)}")
+    if "labs" in f:
+        labs = f["labs"]
+        row(" / ".join(labs) + " alone, wall", " / ".join(f"{lab['wall_s']:.1f}" for lab in labs.values()) + " s",
+            "")
+    if "worker_round_trip_1mpx" in f:
+        trip = f["worker_round_trip_1mpx"]
+        row("worker call with a 1-megapixel image (1000 x 1000 x 3 uint8, out and back)",
+            f"{trip['call_ms']:.0f} ms, of which {trip['round_trip_ms']:.1f} ms round trip", "")
+    if "reference" in f:
+        row("peak RSS, grader / worker", f"{ref['grader_peak_mb']:.0f} MB / {ref['worker_peak_mb']:.0f} MB", "")
+        row("reference outputs: JSON / `feedback.html`",
+            f"{out['json_bytes'] / 1e6:.2f} MB ({out['json_pictures']} pictures) / {out['html_bytes'] / 1e6:.2f} MB",
+            f"JSON without pictures: {verdict(out['json_pictures'] == 0)}; page at most 2 MB: "
+            f"{verdict(out['html_bytes'] <= 2e6)}")
+    if "batch" in f:
+        batch = f["batch"]
+        row(f"`autograder batch`, {batch['students']} students, {' '.join(batch['select'])}: 1 / 2 workers",
+            f"{batch['wall_s']['1']:.1f} s / {batch['wall_s']['2']:.1f} s ({batch['per_minute']['1']:.0f} / "
+            f"{batch['per_minute']['2']:.0f} submissions/min)", "")
+        row("2 workers vs 1", f"{batch['ratio_2_vs_1']:.2f}x", f"at least 1.8x: {verdict(batch['ratio_2_vs_1'] >= 1.8)}")
+    if "stereo" in f:
+        stereo = f["stereo"]
+        lines += ["", f"Stereo, Middlebury motorcycle {stereo['resolution']}, disparities 0-{stereo['max_disparity']} "
+                  f"(bad pixel: error over {stereo['threshold_px']:g} px or invalid, over the "
+                  f"{stereo['ground_truth_share']:.0%} of pixels with ground truth), in the same run:", "",
+                  "| method | bad pixels | seconds |", "|---|---|---|"]
+        for name, method in stereo["methods"].items():
+            row(name, f"{method['bad_pixels']:.1%}", f"{method['seconds']:.2f}")
+    return "\n".join(lines)
 
 
 if __name__ == "__main__":
