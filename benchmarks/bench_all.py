@@ -105,14 +105,14 @@ def median(runs: list[dict], key: str) -> float:
     return statistics.median(r[key] for r in runs)
 
 
-def measure_grade(runs: int, otter: tuple | None) -> dict:
+def measure_grade(runs: int, anchor: tuple | None) -> dict:
     """Reference, skeleton (and ``otter run`` on the anchor, if given) alternating."""
     reference, skeleton, otter_runs = [], [], []
     for _ in range(runs):
         reference.append(grade_once("reference_solutions", html=True))
         skeleton.append(grade_once("assignments", html=True))
-        if otter:
-            otter_runs.append(otter_anchor.time_otter(*otter))
+        if anchor:
+            otter_runs.append(otter_anchor.time_otter(*anchor))
     wall, student = median(reference, "wall"), median(reference, "student")
     figures = {
         "reference": {"wall_s": wall, "grading_s": median(reference, "grading"), "student_s": student,
@@ -125,7 +125,7 @@ def measure_grade(runs: int, otter: tuple | None) -> dict:
         "outputs": {"json_bytes": reference[0]["json_bytes"], "json_pictures": reference[0]["json_pictures"],
                     "html_bytes": reference[0]["html_bytes"]},
     }
-    if otter:
+    if anchor:
         otter_wall = median(otter_runs, "wall")
         figures["otter_anchor"] = {
             "otter_version": otter_anchor.OTTER_VERSION,
@@ -190,20 +190,19 @@ def main() -> int:
     if args.otter and "grade" not in sections:
         parser.error("--otter runs in the grade section's rotation: add 'grade' to --only")
 
-    otter = None
-    folder = tempfile.TemporaryDirectory(prefix="otter-anchor-")
-    if args.otter:
-        try:
-            command = otter_anchor.otter_environment()
-            otter = (command, *otter_anchor.build_anchor(command, Path(folder.name)))
-        except otter_anchor.OtterUnavailable as error:
-            print(f"bench_all: {error}", file=sys.stderr)
-            return 2
-
-    figures = {"runs": args.runs, "started": machine_state()}
-    with folder:
+    figures = {"runs": args.runs}
+    with tempfile.TemporaryDirectory(prefix="otter-anchor-") as folder:
+        anchor = None  # (otter command, autograder zip, correct student notebook)
+        if args.otter:
+            try:
+                otter = otter_anchor.otter_environment()
+                anchor = (otter, *otter_anchor.build_anchor(otter, Path(folder)))
+            except otter_anchor.OtterUnavailable as error:
+                print(f"bench_all: {error}", file=sys.stderr)
+                return 2
+        figures["started"] = machine_state()
         if "grade" in sections:
-            figures.update(measure_grade(args.runs, otter))
+            figures.update(measure_grade(args.runs, anchor))
     if "labs" in sections:
         figures["labs"] = measure_labs(args.runs)
     if "trip" in sections:
@@ -313,7 +312,8 @@ def markdown(f: dict) -> str:
         row(f"`autograder batch`, {batch['students']} students, {' '.join(batch['select'])}: 1 / 2 workers",
             f"{batch['wall_s']['1']:.1f} s / {batch['wall_s']['2']:.1f} s ({batch['per_minute']['1']:.0f} / "
             f"{batch['per_minute']['2']:.0f} submissions/min)", "")
-        row("2 workers vs 1", f"{batch['ratio_2_vs_1']:.2f}x", f"at least 1.8x: {verdict(batch['ratio_2_vs_1'] >= 1.8)}")
+        ratio = batch["ratio_2_vs_1"]
+        row("2 workers vs 1", f"{ratio:.2f}x", f"at least 1.8x: {verdict(ratio >= 1.8)}")
     if "stereo" in f:
         stereo = f["stereo"]
         lines += ["", f"Stereo, Middlebury motorcycle {stereo['resolution']}, disparities 0-{stereo['max_disparity']} "
