@@ -18,8 +18,9 @@ notebook. This script measures both side by side, in one run:
    runner: no Docker, no sandbox) and ``python grade.py --submission
    reference_solutions`` of this repository (all labs, JSON and the HTML page,
    as a student runs it);
-5. prints the medians and their ratio (below 1 meets the budget), and writes
-   them with ``--json``.
+5. prints the medians of wall time (the budget: a ratio below 1) and of the
+   CPU time of each process tree (far less sensitive to other jobs on a shared
+   machine), and their ratios, and writes them with ``--json``.
 
     python benchmarks/otter_anchor.py                  # medians of 3 alternating runs
     python benchmarks/otter_anchor.py --runs 5 --json anchor.json
