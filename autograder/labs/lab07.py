@@ -204,10 +204,10 @@ def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
     error = point_error(got, expected, region)
     if error <= tolerance:
         return
-    mistake = closest(got, truth.affine_mistakes(expected), lambda a, b: point_error(a, b, region),
-                      max(1.0, 100 * tolerance))
+    mistake = closest(got, truth.affine_fit_mistakes(src, dst), lambda a, b: point_error(a, b, region),
+                      max(1.0, 100 * tolerance), truth=expected)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} sends the points up to {digits_apart(error, tolerance)} px away from where the "
            f"true map sends them (at most {tolerance:.3g} px expected). It returned\n{format_matrix(got, 6)}\n"
            f"expected\n{format_matrix(expected, 6)}")
@@ -270,13 +270,10 @@ def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
     error = point_error(got, least_squares, src)
     if error <= tolerance:
         return passed(f"within {error:.2g} px of the least-squares fit at every point")
-    mistakes = truth.affine_mistakes(least_squares)
-    if len(src) > 3:
-        mistakes["only the first three points are used; least squares uses all N"] = \
-            truth.least_squares_affine(src[:3], dst[:3])
-    mistake = closest(got, mistakes, lambda a, b: point_error(a, b, src), max(0.5, 100 * tolerance))
+    mistake = closest(got, truth.affine_fit_mistakes(src, dst), lambda a, b: point_error(a, b, src),
+                      max(0.5, 100 * tolerance), truth=least_squares)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     residual = float(np.sqrt(np.mean(np.sum((truth.apply_affine(got, src) - dst) ** 2, axis=1))))
     best = float(np.sqrt(np.mean(np.sum((truth.apply_affine(least_squares, src) - dst) ** 2, axis=1))))
     # The residual grows only to second order in the error: quoted only when the digits show it.
