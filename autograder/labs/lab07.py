@@ -204,7 +204,7 @@ def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
     error = point_error(got, expected, region)
     if error <= tolerance:
         return
-    mistake = closest(got, truth.affine_mistakes(expected), lambda a, b: point_error(a, b, region),
+    mistake = closest(got, truth.affine_fit_mistakes(src, dst), lambda a, b: point_error(a, b, region),
                       max(1.0, 100 * tolerance), truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
@@ -270,9 +270,8 @@ def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
     error = point_error(got, least_squares, src)
     if error <= tolerance:
         return passed(f"within {error:.2g} px of the least-squares fit at every point")
-    mistakes = {**truth.affine_mistakes(least_squares), **truth.lstsq_mistakes(src, dst)}
-    mistake = closest(got, mistakes, lambda a, b: point_error(a, b, src), max(0.5, 100 * tolerance),
-                      truth=least_squares)
+    mistake = closest(got, truth.affine_fit_mistakes(src, dst), lambda a, b: point_error(a, b, src),
+                      max(0.5, 100 * tolerance), truth=least_squares)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     residual = float(np.sqrt(np.mean(np.sum((truth.apply_affine(got, src) - dst) ** 2, axis=1))))
