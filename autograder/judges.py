@@ -190,10 +190,22 @@ def parameter_ignored(call, parameter: str, values) -> bool:
         first, second = (call(**{parameter: value}) for value in values)
     except StudentFailure:
         return False
+    return _same_informative_result(first, second)
+
+
+def _same_informative_result(first, second) -> bool:
     # A constant output ignores every parameter: that is not this parameter's mistake.
     constant = isinstance(first, np.ndarray) and (
         first.size == 0 or np.ptp(np.nan_to_num(first.astype(float))) == 0)
     return _same_result(first, second) and not constant
+
+
+def _ignored(t: Trial, what: str, parameter: str, values, result: str):
+    first_value, second_value = values
+    t.fail(f"{what}: {parameter}={first_value!r} and {parameter}={second_value!r} give the same "
+           f"{result}: {parameter} is ignored.",
+           hint=f"use the {parameter} argument instead of a fixed value",
+           mistake=f"{parameter} is ignored")
 
 
 def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, result: str = "result"):
@@ -205,8 +217,20 @@ def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, resu
     probe. Returns quietly when the results differ, or when a call fails.
     """
     if parameter_ignored(call, parameter, values):
-        first_value, second_value = values
-        t.fail(f"{what}: {parameter}={first_value!r} and {parameter}={second_value!r} give the same "
-               f"{result}: {parameter} is ignored.",
-               hint=f"use the {parameter} argument instead of a fixed value",
-               mistake=f"{parameter} is ignored")
+        _ignored(t, what, parameter, values, result)
+
+
+def judge_parameter_changes_result(t: Trial, what: str, call, parameter: str, values,
+                                   result: str = "result") -> Verdict:
+    """A check of its own that ``parameter`` is used: ``call(**{parameter: value})`` for the two
+    ``values`` must not give exactly the same result.
+
+    For parameters whose effect the quality checks cannot see (a block size fixed at
+    its default still matches well). Unlike :func:`judge_parameter_used`, a failing
+    call fails the check (a stub is "not implemented", never "uses its parameter").
+    """
+    first, second = (call(**{parameter: value}) for value in values)
+    if _same_informative_result(first, second):
+        _ignored(t, what, parameter, values, result)
+    first_value, second_value = values
+    return passed(f"{parameter}={first_value!r} and {parameter}={second_value!r} give different {result}s")

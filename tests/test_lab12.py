@@ -84,6 +84,11 @@ def test_structured_light_fixture_round_trip():
 
 # Each case: exercise, the wrong code, fragments the diagnosis must contain.
 MISTAKES = {
+    "block matching with block_size ignored": ("lab12.ex4", """
+        _block_matching_own = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching_own(left, right, max_disparity, 9, cost)
+        """, ["block_size is ignored"]),
     # ---------------------------------------------------------------- ex1
     "triangulate with the images swapped": ("lab12.ex1", """
         _triangulate = triangulate

@@ -24,7 +24,7 @@ from fixtures import lab12 as truth
 
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error, nearest_variants
-from ..judges import format_matrix, judge_parameter_used
+from ..judges import format_matrix, judge_parameter_changes_result, judge_parameter_used
 from ..pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..registry import Lab
 
@@ -687,7 +687,19 @@ def block_matching_slanted(t):
                                 bm_figures("slanted"), again=block_matcher(t, scene, block_size=7))
 
 
-@ex4.check("block_matching (SSD, block_size=9) on the Middlebury motorcycle", points=3,
+@ex4.check("block_size is used: block_size=5 and 15 give different maps", points=1, timeout=STEREO_TIMEOUT)
+def block_matching_uses_block_size(t):
+    # Quality checks cannot see an ignored block_size (a fixed 9 matches as well as 7).
+    scene = truth.scene("random_dots")
+
+    def match(**size):
+        return t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                      max_disparity=scene.max_disparity, **size)
+    return judge_parameter_changes_result(t, "block_matching(left, right)", match, "block_size", (5, 15),
+                                          "disparity map")
+
+
+@ex4.check("block_matching (SSD, block_size=9) on the Middlebury motorcycle", points=2,
            timeout=STEREO_TIMEOUT)
 def block_matching_motorcycle(t):
     scene = truth.scene("motorcycle")
