@@ -51,7 +51,7 @@ MISTAKES = {
     "K with px typed for py": ("lab09.ex2", """
         def intrinsic_matrix(f, px, py):
             return np.array([[f, 0.0, px], [0.0, f, px], [0.0, 0.0, 1.0]])
-        """, ["intrinsic_matrix(500, 320, 240) is wrong in entry [1, 2] only.\nit returned"]),
+        """, ["py is replaced by px"]),
     "principal point left out": ("lab09.ex2", """
         def project_with_intrinsics(K, points):
             X, single = _points(points)

@@ -215,7 +215,7 @@ def test_decomposition_remedy_fits_the_input(tmp_path):
         def call(self, *args):
             return self.answer
 
-        def fail(self, message, hint=""):
+        def fail(self, message, hint="", mistake=""):
             raise Fail(message, hint)
 
         def expect_array(self, value, what, **kwargs):

@@ -52,10 +52,13 @@ def expect_points(t: Trial, what: str, got, shape) -> np.ndarray:
     return t.expect_array(got, what, shape=shape, kind="iuf")
 
 
-def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e-6, show=None):
+def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e-6, show=None,
+                 mistake_tolerance=1e-4):
     """Compare returned 2D points with the truth; name the mistake when one fits.
 
     ``show`` (a title) attaches a plot of the true and the returned points.
+    A mistake is named when its answer is within ``mistake_tolerance`` (relative
+    to the largest coordinate) and clearly closer than any other and than the truth.
     """
     expected = np.asarray(expected, dtype=np.float64)
     got = expect_points(t, what, got, expected.shape)
@@ -68,13 +71,32 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
                                lines=list(zip(truth_pts, got_pts))))
     if error <= tolerance * scale:
         return got
-    mistake = closest(got, mistakes or {}, point_error, 1e-4 * scale)
+    mistake = closest(got, mistakes or {}, point_error, mistake_tolerance * scale, truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if not np.isnan(expected).any() and np.isnan(got).any():
         t.fail(f"{what} returned NaN for points in front of the camera (Z > 0).")
-    t.fail(f"{what} is off by up to {error:.4g} (pixels); for example point 0 should be "
-           f"{format_matrix(expected.reshape(-1, 2)[0])}, yours is {format_matrix(np.asarray(got, float).reshape(-1, 2)[0])}.")
+    t.fail(f"{what} is off {where_points_wrong(got, expected, tolerance * scale)}, by up to {error:.4g}; "
+           f"for example point 0 should be {format_matrix(expected.reshape(-1, 2)[0])}, yours is "
+           f"{format_matrix(np.asarray(got, float).reshape(-1, 2)[0])}.")
+
+
+def where_points_wrong(got, expected, tolerance) -> str:
+    """Which points and coordinates are off, and whether by a common shift or a common factor."""
+    got = np.asarray(got, np.float64).reshape(-1, 2)
+    expected = np.asarray(expected, np.float64).reshape(-1, 2)
+    where = judges.where_points_differ(got, expected, tolerance)
+    keep = np.isfinite(got).all(axis=1) & np.isfinite(expected).all(axis=1)
+    if keep.sum() >= 2:
+        shift = got[keep] - expected[keep]
+        if np.ptp(shift, axis=0).max() <= tolerance:
+            return f"{where} by the same shift {format_matrix(shift[0])} (an offset is added or missing)"
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = got[keep] / expected[keep]
+        ratio = ratio[np.abs(expected[keep]) > tolerance]
+        if ratio.size and np.ptp(ratio) <= 1e-6 * max(1.0, np.abs(ratio).max()):
+            return f"{where} by the same factor {ratio[0]:.4g} (a scale is applied wrongly)"
+    return where
 
 
 def judge_single_point(t: Trial, what: str, got, expected):
@@ -218,13 +240,8 @@ def project_intrinsics_example(t):
     K = truth.intrinsic(500.0, 320.0, 240.0)
     X = truth.points_in_front(21, n=12)
     judge_points(t, "project_with_intrinsics(K, points)", t.call("project_with_intrinsics", K, X),
-                 truth.homogeneous_project(K, X), {
-                     **truth.projection_mistakes(500.0, X, principal=(320.0, 240.0)),
-                     "the principal point is left out (x = f X / Z + px)": truth.pinhole(X, 500.0),
-                     "K is transposed (use K @ X, i.e. points @ K.T)": truth.homogeneous_project(K.T, X),
-                     "the principal point is swapped (px belongs to x)":
-                         truth.homogeneous_project(truth.intrinsic(500.0, 240.0, 320.0), X),
-                 }, show="projection with K")
+                 truth.homogeneous_project(K, X), truth.intrinsics_projection_mistakes(K, X),
+                 show="projection with K")
 
 
 @ex2.check("project_with_intrinsics with non-square pixels, skew, and a single point", points=1)
@@ -233,7 +250,7 @@ def project_intrinsics_general(t):
     X = truth.points_in_front(22, n=8)
     judge_points(t, "project_with_intrinsics(K with fx != fy and skew, points)",
                  t.call("project_with_intrinsics", K, X), truth.homogeneous_project(K, X),
-                 {"K is transposed (use K @ X, i.e. points @ K.T)": truth.homogeneous_project(K.T, X)})
+                 truth.intrinsics_projection_mistakes(K, X))
     judge_single_point(t, "project_with_intrinsics(K, (3,) point)",
                        t.call("project_with_intrinsics", K, X[0]), truth.homogeneous_project(K, X[0])[0])
 
@@ -293,6 +310,8 @@ def project_mistakes(P, X):
         "x and y are swapped": right[:, ::-1],
         "the translation is dropped: append 1 to each point before applying P (P @ [X, Y, Z, 1])":
             truth.homogeneous_project(P[:, :3], X),
+        "the division is by the world point's Z; divide P [X, 1] by its own third coordinate":
+            x[:, :2] / X[:, 2:3],
     }
 
 
@@ -378,7 +397,8 @@ def aperture_zero(t):
     ideal = truth.pinhole(X, APERTURE_F)
     error = np.abs(got - ideal[:, None, :]).max()
     if error > 1e-6:
-        mistake = closest(got.mean(axis=1), truth.projection_mistakes(APERTURE_F, X), point_error, 1e-3)
+        mistake = closest(got.mean(axis=1), truth.projection_mistakes(APERTURE_F, X), point_error, 1e-3,
+                          truth=ideal)
         if mistake:
             t.fail(f"{what} is not the ideal projection: it looks like {mistake}.", mistake=mistake)
         t.fail(f"{what}: with a point-sized pinhole every ray should land on the ideal projection "
@@ -410,10 +430,12 @@ def aperture_statistics(t):
     per_point = rms / radius
     if np.all(np.abs(ratio - 2.0) < 0.1):
         t.fail(f"{what}: the rays spread over twice the expected disc: it looks like the aperture "
-               "is used as the diameter; it is the radius.")
+               "is used as the diameter; it is the radius.", mistake="the aperture is used as the diameter")
     if np.ptp(rms / aperture) < 0.05 * np.mean(rms / aperture) and np.ptp(radius) > 0.2 * radius.mean():
         t.fail(f"{what}: the spread is the same for every point, but it should depend on depth: "
-               "the blur disc has radius aperture * (1 + f / Z) (near points blur more).")
+               "the offsets through the aperture are not scaled by (1 + f / Z): the blur disc has radius "
+               "aperture * (1 + f / Z) (near points blur more).",
+               mistake="the aperture offsets are not scaled by (1 + f / Z)")
     if np.any(ratio > 1.02):
         t.fail(f"{what}: some rays land outside the blur disc of radius aperture * (1 + f / Z) "
                f"(up to {ratio.max():.2f} radii from the ideal projection).")
@@ -450,10 +472,12 @@ def aperture_seed(t):
     b, _ = _aperture_call(t, X, 0.3, 50, 123)
     c, _ = _aperture_call(t, X, 0.3, 50, 124)
     if not np.array_equal(a, b):
-        t.fail(f"{what} gave different rays for the same seed: use rng = np.random.default_rng(seed) "
-               "and draw every random number from rng.")
+        t.fail(f"{what} gave different rays for the same seed: the seed is ignored; use "
+               "rng = np.random.default_rng(seed) and draw every random number from rng.",
+               mistake="the seed is ignored")
     if np.array_equal(a, c):
-        t.fail("simulate_aperture gave the same rays for seeds 123 and 124: the seed is ignored.")
+        t.fail("simulate_aperture gave the same rays for seeds 123 and 124: the seed is ignored.",
+               mistake="the seed is ignored")
 
 
 # ================================================================== ex5 points on a real image
@@ -476,21 +500,45 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     pts = np.asarray(pts, float).reshape(-1, 2)
     swapped_core, _ = truth.circle_regions(image.shape, pts[:, ::-1], radius)
     if swapped_core.any() and painted[swapped_core].mean() > 0.9:
-        t.fail(f"{what}: the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = (column, row).")
+        t.fail(f"{what}: the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = (column, row).",
+               mistake="x and y (column and row) are swapped")
     if got.ndim == 3:
         reversed_colour = np.all(got == np.asarray(color[::-1], np.uint8), axis=-1)
         if core.any() and reversed_colour[core].mean() > 0.9:
-            t.fail(f"{what}: the circles have colour {tuple(color[::-1])}, not {tuple(color)}: "
-                   "OpenCV images are BGR; pass the colour as given.")
+            t.fail(f"{what}: the circles have colour {tuple(color[::-1])}, not {tuple(color)}: the colour is "
+                   "reversed (RGB for BGR); OpenCV images are BGR, so pass the colour as given.",
+                   mistake="the colour is reversed (RGB vs BGR)")
+        default_colour = np.all(got == np.array([0, 0, 255], np.uint8), axis=-1)
+        if tuple(color) != (0, 0, 255) and core.any() and default_colour[core].mean() > 0.9:
+            t.fail(f"{what}: the circles are red (0, 0, 255), not {tuple(color)}: the color argument is "
+                   "ignored.", mistake="color is ignored")
     d = truth.distance_map(image.shape, pts)
     inner, ring = d <= radius - 1.5, np.abs(d - radius) <= 0.5
     if inner.any() and painted[inner].mean() < 0.5 and ring.any() and painted[ring].mean() > 0.5:
-        t.fail(f"{what}: the circles are outlines; they should be filled (thickness=-1).")
+        t.fail(f"{what}: the circles are outlines; they should be filled (thickness=-1).",
+               mistake="the circles are outlines, not filled")
+    drawn_radius = _drawn_radius(got, image, pts, color)
+    if drawn_radius is not None and drawn_radius != radius:
+        ignored = "the radius argument is ignored" if drawn_radius == 3 else "the radius is used wrongly"
+        t.fail(f"{what}: the circles have radius {drawn_radius}, not {radius}: {ignored}.",
+               mistake="radius is ignored" if drawn_radius == 3 else "the radius is used wrongly")
     if coverage < 0.97:
         t.fail(f"{what}: only {coverage:.0%} of the pixels that should be covered by the circles "
                f"(radius {radius}, colour {tuple(color)}) are.")
     t.fail(f"{what}: {1 - untouched:.1%} of the pixels far from every point were changed; "
            "only the circles should be drawn (on a copy of the image).")
+
+
+def _drawn_radius(got, image, pts, color):
+    """The radius r in 1..12 whose filled circles (in ``color``) give exactly ``got``, if one does."""
+    differences = []
+    for r in range(1, 13):
+        expected = truth.expected_drawing(image, pts, r, color)
+        if got.shape != expected.shape:
+            return None
+        differences.append(np.mean(np.any(got != expected, axis=-1) if got.ndim == 3 else got != expected))
+    best = int(np.argmin(differences))
+    return best + 1 if differences[best] < 2e-3 else None
 
 
 @ex5.check("draw_points draws filled circles at the points", points=3)
@@ -542,8 +590,15 @@ def project_onto_image_check(t):
         t.fail("project_onto_image should return a pair (image, pts)")
     drawn, pts = got
     expected = truth.homogeneous_project(P, X)
+    if isinstance(drawn, np.ndarray) and drawn.shape == expected.shape and isinstance(pts, np.ndarray) \
+            and pts.shape == image.shape:
+        t.fail("project_onto_image returned (pts, image); the API wants the pair the other way round: "
+               "(image, pts).", mistake="the pair is returned in the wrong order")
     judge_points(t, "project_onto_image(...)[1] (the points)", pts, expected, project_mistakes(P, X),
                  tolerance=1e-6, show="projected points")
+    if isinstance(drawn, np.ndarray) and drawn.shape == image.shape and np.array_equal(drawn, image):
+        t.fail("project_onto_image(...)[0] is the image unchanged: the projected points are not drawn on it "
+               "(draw_points(image, pts)).", mistake="the points are not drawn on the image")
     return judge_drawing(t, "project_onto_image(...)[0] (the image)", drawn, image, expected)
 
 
@@ -570,18 +625,21 @@ def judge_calibration(t: Trial, images, K_true, pattern):
     if abs(K[2, 2]) > 1e-12:
         K = K / K[2, 2]
     if abs(K[2, 0]) > 1.0 and abs(K[0, 2]) < 1.0:
-        t.fail(f"{what}: K is transposed: the principal point belongs in the last column.")
+        t.fail(f"{what}: K is transposed: the principal point belongs in the last column.",
+               mistake="K is transposed")
     f_error = np.abs(np.array([K[0, 0], K[1, 1]]) / np.array([K_true[0, 0], K_true[1, 1]]) - 1.0)
     c_error = np.abs(K[:2, 2] - K_true[:2, 2])
     if not np.isfinite(rms) or rms < 0:
         t.fail(f"{what}: rms = {rms} is not a reprojection error")
     if rms > 1.0:
         t.fail(f"{what}: the reprojection error is {rms:.2f} px (a good calibration on these clean "
-               "views has < 0.1 px): the object points do not correspond to the detected corners; "
-               "build them row by row, x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.")
+               "views has < 0.1 px): the object points do not correspond to the detected corners "
+               "(they are in the wrong order, e.g. column by column, or for another pattern_size); "
+               "build them row by row, x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.",
+               mistake="the object points are in the wrong order")
     if np.abs(K[:2, 2] - K_true[1::-1, 2]).max() < 3.0 and c_error.max() > 3.0:
         t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
-               "(rows, cols)? OpenCV wants (width, height).")
+               "(rows, cols)? OpenCV wants (width, height).", mistake="the principal point is swapped")
     if f_error.max() > 0.015 or c_error.max() > 3.0:
         t.fail(f"{what}: K is\n{format_matrix(K)}\nbut the views were rendered with\n{format_matrix(K_true)}\n"
                f"(focal lengths off by {f_error.max():.1%}, principal point by {c_error.max():.1f} px).")
@@ -620,7 +678,8 @@ def judge_distortion(t: Trial, pts, dist, show=False):
     if show and isinstance(got, np.ndarray) and got.shape == expected.shape:
         t.svg("normalised points: ideal, OpenCV's distortion, yours", svg_points(
             {"undistorted": pts, "OpenCV (truth)": expected, "yours": got}, lines=list(zip(expected, got))))
-    judge_points(t, what, got, expected, truth.distortion_mistakes(pts, dist), tolerance=1e-7)
+    judge_points(t, what, got, expected, truth.distortion_mistakes(pts, dist), tolerance=1e-7,
+                 mistake_tolerance=1e-6)
 
 
 @ext2.check("distort_points matches OpenCV's model (cv2.projectPoints) on a grid", points=4)

@@ -35,11 +35,8 @@ ex1 = lab.exercise("ex1", "Perspective projection and focal length", functions=[
 
 
 def perspective_mistakes(f, X):
-    right = truth.pinhole(X, f)
     return {
-        "x and y are swapped (x = f X / Z is the column)": right[:, ::-1],
-        "the perspective division is missing (divide by Z)": f * X[:, :2],
-        "the focal length divides instead of multiplies (x = X / (f Z))": X[:, :2] / (f * X[:, 2:3]),
+        **truth.lab09.projection_mistakes(f, X),
         "every point is divided by the mean depth: that is weak perspective": truth.weak_perspective(X, f),
     }
 
@@ -92,6 +89,7 @@ ex2 = lab.exercise("ex2", "Weak perspective", functions=["weak_perspective_proje
 
 
 def weak_mistakes(X, f, z_avg=None):
+    X = np.atleast_2d(np.asarray(X, dtype=np.float64))
     return {
         "each point is divided by its own depth: that is full perspective; weak perspective divides "
         "every point by one common depth z_avg": truth.pinhole(X, f),
@@ -99,6 +97,11 @@ def weak_mistakes(X, f, z_avg=None):
         "the default depth is the median; it is the mean depth": truth.weak_perspective(X, f, np.median(X[:, 2])),
         "x and y are swapped": truth.weak_perspective(X, f, z_avg)[:, ::-1],
         "f is not applied": truth.weak_perspective(X, 1.0, z_avg),
+        "the default depth is the mean of every coordinate (X.mean()); it is the mean depth, "
+        "X[:, 2].mean()": truth.weak_perspective(X, f, X.mean() if z_avg is None else z_avg),
+        "the points are not scaled by f / z_avg (that is orthographic projection)": truth.orthographic(X),
+        "the scale is inverted: it is f / z_avg, not z_avg / f":
+            X[:, :2] * ((X[:, 2].mean() if z_avg is None else z_avg) / f),
     }
 
 
@@ -142,13 +145,19 @@ def orthographic_example(t):
     X = truth.scene_points(301, n=10, depth=10.0, relief=5.0)
     got = t.call("orthographic_project", X)
     if isinstance(got, np.ndarray) and got.shape == (10, 3):
-        t.fail("orthographic_project returned shape (10, 3); expected (10, 2): divide by the homogeneous "
-               "coordinate and drop it")
+        t.fail("orthographic_project returned shape (10, 3); expected (10, 2): Z is kept; divide by the "
+               "homogeneous coordinate and drop it", mistake="Z is kept")
+    if isinstance(got, np.ndarray) and got.shape == (2, 3):
+        t.fail("orthographic_project returned shape (2, 3); expected (10, 2): points[:2] takes the first two "
+               "points (rows); X and Y are the first two columns, points[:, :2].",
+               mistake="rows are taken instead of columns")
     judge_points(t, "orthographic_project(points)", got, truth.orthographic(X), {
         "the points are divided by Z: that is perspective; orthographic projection ignores depth":
             X[:, :2] / X[:, 2:3],
         "it returns (X, Z); the lab sheet's matrix keeps X and Y": X[:, [0, 2]],
+        "it returns (Y, Z); the lab sheet's matrix keeps X and Y": X[:, [1, 2]],
         "x and y are swapped": X[:, [1, 0]],
+        "the points are scaled by 1 / mean depth (weak perspective with f = 1)": truth.weak_perspective(X, 1.0),
     })
 
 
@@ -202,7 +211,7 @@ def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_p
         t.fail(f"{what}: here the true P[2, 3] is 0 (P[2, 3] = t_z, the depth of the world origin), "
                f"yours is {got[2, 3] / np.linalg.norm(got):.3g} of |P|. It looks like P[2, 3] was fixed "
                "to 1 (11 unknowns, least squares), which cannot express this camera: solve A p = 0 "
-               "for all 12 entries by SVD (the last row of Vt).")
+               "for all 12 entries by SVD (the last row of Vt).", mistake="P[2, 3] is fixed to 1")
     t.fail(f"{what}: P is wrong {where_matrices_differ(got, P, up_to_scale=True)} (compared with the "
            f"true camera up to scale): projecting new points with it misses their true projections by "
            f"{np.mean(fresh):.3g} px on average.")
@@ -246,16 +255,19 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     if tv.shape == (3, 1):
         tv = tv.ravel()
     tv = t.expect_array(tv, f"{what}[2] (t)", shape=(3,))
-    problems = []
+    problems, labels = [], []
     negative = np.linalg.det(np.asarray(P, float)[:, :3]) < 0
     sign_fix = ("for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): multiply P by -1 first, "
                 "then decompose; flipping signs of K's columns alone would leave det(R) = -1")
     if np.abs(np.tril(K, -1)).max() > 1e-6 * np.abs(K).max():
         problems.append("K is not upper triangular (use an RQ decomposition of the left 3x3 block)")
     if abs(K[2, 2] - 1) > 1e-6:
-        problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: divide K by K[2, 2] (P is only known up to scale)")
+        problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: K is not normalised; divide K by K[2, 2] "
+                        "(P is only known up to scale)")
+        labels.append("K is not normalised (K[2, 2] != 1)")
     rotation = np.abs(R @ R.T - np.eye(3)).max() <= 1e-6
     if np.any(np.diag(K) <= 0):
+        labels.append("P is not negated when det(P[:, :3]) < 0" if negative else "the signs of K's diagonal are not fixed")
         problems.append(f"K has a negative diagonal entry ({format_matrix(np.diag(K))}): "
                         + (sign_fix if negative else "RQ is unique only up to signs; multiply the offending "
                            "columns of K and the same rows of R by -1 (R then comes out with det +1, "
@@ -263,10 +275,13 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     if not rotation:
         problems.append("R is not a rotation (R R^T != I)")
     elif np.linalg.det(R) < 0 and sign_fix not in " ".join(problems):
+        labels.append("P is not negated when det(P[:, :3]) < 0" if negative
+                      else "K's columns are flipped without R's rows")
         problems.append("det(R) = -1: " + (sign_fix if negative else "with det(P[:, :3]) > 0 that comes "
                         "from a sign flip of K's columns without the same rows of R"))
     if problems:
-        t.fail(f"{what}: " + "; ".join(problems) + ".")
+        # a named mistake only when the problems point to one cause
+        t.fail(f"{what}: " + "; ".join(problems) + ".", mistake=labels[0] if len(set(labels)) == 1 else "")
     Kn = K_true / K_true[2, 2]
     ok = (np.abs(K - Kn).max() <= 1e-6 * np.abs(Kn).max() and np.abs(R - R_true).max() <= 1e-6
           and np.abs(tv - t_true).max() <= 1e-6 * max(1.0, np.abs(t_true).max()))
@@ -316,10 +331,15 @@ def judge_center(t: Trial, P, R, tv):
     scale = max(1.0, np.abs(C).max())
     if np.abs(got - C).max() <= 1e-6 * scale:
         return
-    if np.abs(got - tv).max() <= 1e-6 * scale:
-        t.fail(f"{what} returned t; the centre is C = -R^T t (the point with P [C, 1] = 0).")
-    if np.abs(got + tv).max() <= 1e-6 * scale:
-        t.fail(f"{what} returned -t; the centre is C = -R^T t (the rotation matters).")
+    mistakes = {
+        "it returned t; the centre is C = -R^T t (the point with P [C, 1] = 0)": tv,
+        "it returned -t; the centre is C = -R^T t (the rotation matters)": -tv,
+        "it returned -R t; the centre is C = -R^T t (R transposed)": -R @ tv,
+        "it returned R^T t; the centre is C = -R^T t (the sign is wrong)": R.T @ tv,
+    }
+    mistake = closest(got, mistakes, lambda a, b: float(np.abs(a - b).max()), 1e-6 * scale, truth=C)
+    if mistake:
+        t.fail(f"{what} is wrong: {mistake}.", mistake=mistake)
     residual = np.linalg.norm(P @ np.append(got, 1.0)) / np.linalg.norm(P)
     t.fail(f"{what} returned {format_matrix(got)}; expected {format_matrix(C)} (|P [C, 1]| / |P| = {residual:.2g}, should be 0)")
 
@@ -399,21 +419,25 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
         for factor in (1.0 / square, square):
             if np.linalg.norm(tvec - factor * t_alt) <= TRANSLATION_TOLERANCE * factor * distance:
                 t.fail(f"{what}: the rotation is right but tvec is {factor:.3g} times the true one: "
-                       "the object points must be in real units, i.e. multiplied by square_size.")
+                       "square_size is ignored: the object points must be in real units, i.e. multiplied "
+                       "by square_size.", mistake="square_size is ignored")
     normal_angle = np.degrees(np.arccos(np.clip(abs(R_got[:, 2] @ R[:, 2]), -1.0, 1.0)))
     in_plane = np.degrees(np.arccos(np.clip(abs(R_got[:, 0] @ R[:, 0]), -1.0, 1.0)))
     if normal_angle < 2.0 and abs(in_plane - 90.0) < 2.0:
         t.fail(f"{what}: the board plane is right but its x and y axes are exchanged (the pose is turned "
                "by 90 degrees in the board plane): pattern_size is (cols, rows) = (inner corners per row, "
                "per column), passed to cv2.findChessboardCorners as given, and the object points run "
-               "row by row with x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).")
+               "row by row with x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).",
+               mistake="pattern_size's cols and rows are exchanged")
     if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and rel <= TRANSLATION_TOLERANCE:
         t.fail(f"{what}: the translation is right but the rotation is transposed (rvec has the wrong "
-               "sign): return rvec as cv2.solvePnP gives it, the board's rotation into the camera frame.")
+               "sign): return rvec as cv2.solvePnP gives it, the board's rotation into the camera frame.",
+               mistake="the rotation is transposed")
     C = -R.T @ tv
     if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and np.linalg.norm(tvec - C) < 0.05 * distance:
-        t.fail(f"{what}: that is the camera's pose in the board's frame (R^T, -R^T t); the task wants "
-               "the board's pose in the camera frame, as cv2.solvePnP returns it.")
+        t.fail(f"{what}: that is the camera's pose in the board's frame (R^T, -R^T t): the pose is inverted; "
+               "the task wants the board's pose in the camera frame, as cv2.solvePnP returns it.",
+               mistake="the pose is inverted (the camera's pose in the board's frame)")
     if dist is not None:
         objp = scene.chessboard_object_points(pattern, square)
         found, detected = cv2.findChessboardCorners(image, tuple(pattern))
@@ -423,9 +447,26 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
             if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(r0.ravel())) < 0.3 and \
                     np.linalg.norm(tvec - t0.ravel()) < 0.003 * distance:
                 t.fail(f"{what}: the lens distortion dist is ignored: pass it to cv2.solvePnP "
-                       "(and to cv2.projectPoints).")
+                       "(and to cv2.projectPoints).", mistake="dist is ignored")
+    column_order = _pose_from_column_order(pattern, square, corners, K, dist)
+    if column_order is not None:
+        if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(column_order[0])) < 2 * ANGLE_TOLERANCE and \
+                np.linalg.norm(tvec - column_order[1]) < 2 * TRANSLATION_TOLERANCE * distance:
+            t.fail(f"{what}: the object points are in column order (y fastest), but OpenCV gives the corners "
+                   "row by row, x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) (the .T matters).",
+                   mistake="the object points are in the wrong (column) order")
     t.fail(f"{what}: the pose is off by {angle:.1f} degrees and {rel:.1%} of the distance "
            f"(reprojection off by up to {reproj_error:.1f} px).")
+
+
+def _pose_from_column_order(pattern, square, corners, K, dist):
+    """(rvec, tvec) that cv2.solvePnP gives for the true corners with object points in column order."""
+    cols, rows = pattern
+    objp = np.zeros((cols * rows, 3))
+    objp[:, :2] = np.mgrid[0:cols, 0:rows].reshape(2, -1).T * square
+    ok, r, tv = cv2.solvePnP(objp, np.asarray(corners, np.float64).reshape(-1, 1, 2), np.asarray(K, float),
+                             None if dist is None else np.asarray(dist, float))
+    return (r.ravel(), tv.ravel()) if ok else None
 
 
 def _call_pose(t: Trial, image, pattern, square, K, dist=None):
@@ -497,15 +538,17 @@ def undistort_check(t):
     if error <= UNDISTORT_TOLERANCE:
         return passed(f"mean difference {error:.1f} grey levels from the distortion-free view")
     if blurred_difference(got, distorted, valid) <= 1.0:
-        t.fail(f"{what} returned the image unchanged.")
+        t.fail(f"{what} returned the image unchanged: dist is not used (cv2.undistort(image, K, dist)).",
+               mistake="the image is returned unchanged (dist is not used)")
     twice = truth.distort_image(np.pad(distorted, truth.MARGIN), K, dist, truth.POSE_SIZE)
     candidates = {
         "the distortion is applied instead of removed (the lines bend even more)": twice,
         "the sign of the coefficients is flipped (undistorting with -dist)": cv2.undistort(distorted, K, -dist),
     }
-    for mistake, image in candidates.items():
-        if blurred_difference(got, image, valid) <= UNDISTORT_TOLERANCE:
-            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    mistake = closest(got, candidates, lambda a, b: blurred_difference(a, b, valid), UNDISTORT_TOLERANCE,
+                      truth=clean)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} differs from the distortion-free view by {error:.0f} grey levels on average.")
 
 
@@ -538,10 +581,16 @@ def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
     ok_p = point_error(proj.reshape(-1, 2), proj_true.reshape(-1, 2)) <= 1e-6 * np.nanmax(np.abs(proj_true))
     if ok_f and ok_p:
         return
-    for mistake, (fm, pm) in truth.dolly_mistakes(X, f0, z0, distances).items():
-        if np.abs(fs - fm).max() <= 1e-6 * np.abs(fm).max() and \
-                point_error(proj.reshape(-1, 2), pm.reshape(-1, 2)) <= 1e-6 * np.nanmax(np.abs(pm)):
-            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    def dolly_distance(a, b):
+        """Relative error of the focal lengths and of the projections, the larger."""
+        (fa, pa), (fb, pb) = a, b
+        return max(float(np.abs(fa - fb).max() / np.abs(fb).max()),
+                   point_error(pa.reshape(-1, 2), pb.reshape(-1, 2)) / float(np.nanmax(np.abs(pb))))
+
+    mistake = closest((fs, proj), truth.dolly_mistakes(X, f0, z0, distances), dolly_distance, 1e-6,
+                      truth=(fs_true, proj_true))
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if not ok_f:
         t.fail(f"{what}: the focal lengths are {format_matrix(fs)}; expected f0 * d / z0 = {format_matrix(fs_true)}")
     if n_subject:
@@ -576,6 +625,24 @@ ext3 = lab.exercise("ext3", "Extension: tracking the pose over a sequence", func
     "track_pose(frames, pattern_size, square_size, K, dist=None)"])
 
 
+def _track_rows_match(rows, candidate, poses, pattern, square) -> bool:
+    """Whether ``rows`` are ``candidate``'s poses (NaN for None) wherever the true ``poses`` differ from it."""
+    differs = False
+    for row, pose, true_pose in zip(rows, candidate, poses):
+        if pose is None:
+            if np.isfinite(row).any() and true_pose is None:
+                return False
+            continue
+        if not np.isfinite(row).all():
+            return False
+        R, tv = pose
+        angle, shift, _ = truth.pose_error(row[:3], row[3:], R, tv, pattern, square)
+        if angle > ANGLE_TOLERANCE or shift > TRANSLATION_TOLERANCE * np.linalg.norm(tv):
+            return False
+        differs = differs or true_pose is None or truth.rotation_angle_deg(R, true_pose[0]) > ANGLE_TOLERANCE
+    return differs
+
+
 @ext3.check("track_pose follows a board along a known trajectory (NaN where it leaves the view)", points=4)
 def track_check(t):
     frames, poses = truth.track_sequence()
@@ -586,6 +653,16 @@ def track_check(t):
         t.fail(f"{what} returned {got.shape[0]} rows for {len(frames)} frames: keep one row per frame, "
                "NaN where the board is not found.")
     got = t.expect_array(got, what, shape=(len(frames), 6), kind="f")
+    shifted = {
+        "the rows are off by one frame (one frame late): row i must be the pose in frame i (frames[i])": (None,) + poses[:-1],
+        "the rows are off by one frame (one frame early): row i must be the pose in frame i (frames[i])": poses[1:] + (None,),
+        "each row is the camera's pose in the board's frame (R^T, -R^T t): the pose is inverted; "
+        "the rows are the board's pose in the camera frame, as cv2.solvePnP gives it":
+            tuple(None if p is None else (p[0].T, -p[0].T @ p[1]) for p in poses),
+    }
+    for mistake, candidate in shifted.items():
+        if _track_rows_match(got, candidate, poses, pattern, square):
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake.split(":")[0])
     errors = []
     for i, pose in enumerate(poses):
         row = got[i]
