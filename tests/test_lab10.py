@@ -180,6 +180,198 @@ MISTAKES = {
             reprojected, _ = cv2.projectPoints(objp, rvec, tvec, K, dist)
             return rvec.ravel(), tvec.ravel(), reprojected.reshape(-1, 2)
         """, ['raised']),
+    # ---- the wider families of each exercise (issue 17)
+    "perspective with f applied twice": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = f * f * X[:, :2] / X[:, 2:3]
+            return x[0] if single else x
+        """, ["focal length is applied twice"]),
+    "perspective without f": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = X[:, :2] / X[:, 2:3]
+            return x[0] if single else x
+        """, ["focal length is not applied"]),
+    "perspective with x and y swapped": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = f * X[:, 1::-1] / X[:, 2:3]
+            return x[0] if single else x
+        """, ["x and y are swapped"]),
+    "weak perspective with the mean of every coordinate": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = X.mean() if z_avg is None else float(z_avg)
+            x = (f / z) * X[:, :2]
+            return x[0] if single else x
+        """, ["mean of every coordinate"]),
+    "weak perspective with the median depth": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = np.median(X[:, 2]) if z_avg is None else float(z_avg)
+            x = (f / z) * X[:, :2]
+            return x[0] if single else x
+        """, ["median"]),
+    "weak perspective without f": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = X[:, 2].mean() if z_avg is None else float(z_avg)
+            x = X[:, :2] / z
+            return x[0] if single else x
+        """, ["f is not applied"]),
+    "weak perspective with the scale inverted": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = X[:, 2].mean() if z_avg is None else float(z_avg)
+            x = (z / f) * X[:, :2]
+            return x[0] if single else x
+        """, ["scale is inverted"]),
+    "orthographic keeps Z": ("lab10.ex3", """
+        def orthographic_project(points):
+            X, single = _points(points)
+            return X[0] if single else X
+        """, ["z is kept"]),
+    "orthographic takes rows": ("lab10.ex3", """
+        def orthographic_project(points):
+            X, single = _points(points)
+            return X[0, :2] if single else X[:2]
+        """, ["points[:2] takes the first two points"]),
+    "orthographic returns (X, Z)": ("lab10.ex3", """
+        def orthographic_project(points):
+            X, single = _points(points)
+            x = X[:, [0, 2]]
+            return x[0] if single else x
+        """, ["(x, z)"]),
+    "orthographic with x and y swapped": ("lab10.ex3", """
+        def orthographic_project(points):
+            X, single = _points(points)
+            x = X[:, [1, 0]]
+            return x[0] if single else x
+        """, ["x and y are swapped"]),
+    "DLT with u and v swapped": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -v * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -u * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+        """, ["u and v (x and y) are swapped"]),
+    "DLT reshaped column by column": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(4, 3).T
+        """, ["reshaped in the wrong order"]),
+    "decomposition with R transposed": ("lab10.ex5", """
+        _right = decompose_camera_matrix
+        def decompose_camera_matrix(P):
+            K, R, t = _right(P)
+            return K, R.T, t
+        """, ["r is transposed"]),
+    "decomposition without normalising K": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            if np.linalg.det(P[:, :3]) < 0:
+                P = -P
+            flip = np.eye(3)[::-1]
+            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
+            K = flip @ U.T @ flip
+            R = flip @ Q.T
+            signs = np.diag(np.sign(np.diag(K)))
+            K, R = K @ signs, signs @ R
+            return K, R, np.linalg.solve(K, P[:, 3])
+        """, ["k is not normalised"]),
+    "centre is -R t": ("lab10.ex5", """
+        def camera_center(P):
+            K, R, t = decompose_camera_matrix(P)
+            return -R @ t
+        """, ["returned -r t"]),
+    "pose with object points in column order": ("lab10.ex6", """
+        def _object_points(pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float64)
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].reshape(2, -1).T * square_size
+            return objp
+        """, ["column order"]),
+    "pose inverted (camera in the board's frame)": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            rvec, tvec, reprojected = _right(image, pattern_size, square_size, K, dist)
+            R = cv2.Rodrigues(np.asarray(rvec, float))[0]
+            return -np.asarray(rvec), -R.T @ tvec, reprojected
+        """, ["pose is inverted"]),
+    "undistort without dist": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            return cv2.undistort(image, np.asarray(K, np.float64), None)
+        """, ["unchanged"]),
+    "undistort maps the wrong way (distorts again)": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            K = np.asarray(K, np.float64)
+            h, w = image.shape[:2]
+            ys, xs = np.mgrid[0:h, 0:w].astype(np.float64)
+            pix = np.column_stack([xs.ravel(), ys.ravel()]).reshape(-1, 1, 2)
+            src = cv2.undistortPoints(pix, K, np.asarray(dist, np.float64), P=K).reshape(h, w, 2)
+            return cv2.remap(image, src[..., 0].astype(np.float32), src[..., 1].astype(np.float32),
+                             cv2.INTER_LINEAR)
+        """, ["applied instead of removed"]),
+    "dolly zoom with the focal length inverted": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * z0 / distances
+            return fs, np.stack([perspective_project(X + [0.0, 0.0, d - z0], f) for f, d in zip(fs, distances)])
+        """, ["focal length is inverted"]),
+    "plain dolly (f fixed)": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = np.full(len(distances), float(f0))
+            return fs, np.stack([perspective_project(X + [0.0, 0.0, d - z0], f) for f, d in zip(fs, distances)])
+        """, ["plain dolly"]),
+    "dolly scales every depth": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * distances / z0
+            return fs, np.stack([perspective_project(X * [1.0, 1.0, d / z0], f) for f, d in zip(fs, distances)])
+        """, ["scaled by d / z0"]),
+    "dolly puts every point at depth d": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * distances / z0
+            return fs, np.stack([f * X[:, :2] / d for f, d in zip(fs, distances)])
+        """, ["every point is put at depth d"]),
+    "tracking rows one frame early": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = []
+            for i in range(1, len(frames)):
+                rvec, tvec, _ = estimate_pose(frames[i], pattern_size, square_size, K, dist)
+                rows.append(np.concatenate([rvec, tvec]))
+            rows.append(np.full(6, np.nan))
+            return np.array(rows)
+        """, ["off by one frame"]),
+    "tracking the camera's pose": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = []
+            for frame in frames:
+                rvec, tvec, _ = estimate_pose(frame, pattern_size, square_size, K, dist)
+                R = cv2.Rodrigues(rvec)[0] if np.isfinite(rvec).all() else np.eye(3)
+                rows.append(np.concatenate([-rvec, -R.T @ tvec]))
+            return np.array(rows)
+        """, ["pose is inverted"]),
+}
+
+# cv2.undistort does the work from the given K and dist: a student can skip dist, or
+# map the wrong way (by hand or with -dist); there is little else to get wrong.
+FEWER_MISTAKES = {
+    "lab10.ext1": "undistortion is one OpenCV call on the given K and dist: the realistic slips are "
+                  "dist not used, the mapping direction (distorting again) and the sign of dist",
 }
 
 
