@@ -158,7 +158,7 @@ MISTAKES = {
             X, single = _points(points)
             out = np.column_stack([f * X[:, 0] / X[:, 2], f * X[:, 1]])
             return out[0] if single else out
-        """, ["only x is divided by z"]),
+        """, ["y is not divided by z"]),
     "real (inverted) image": ("lab09.ex1", """
         def pinhole_project(points, f):
             X, single = _points(points)

@@ -95,6 +95,14 @@ def weak_mistakes(X, f, z_avg=None):
         "every point by one common depth z_avg": truth.pinhole(X, f),
         "the given z_avg is ignored (the mean depth is used instead)": truth.weak_perspective(X, f),
         "the default depth is the median; it is the mean depth": truth.weak_perspective(X, f, np.median(X[:, 2])),
+        "the default depth is the largest depth; it is the mean depth":
+            truth.weak_perspective(X, f, X[:, 2].max() if z_avg is None else z_avg),
+        "the default depth is the smallest depth; it is the mean depth":
+            truth.weak_perspective(X, f, X[:, 2].min() if z_avg is None else z_avg),
+        "the default depth is the first point's; it is the mean depth of all points":
+            truth.weak_perspective(X, f, X[0, 2] if z_avg is None else z_avg),
+        "the default depth is the mean distance |X| from the camera; it is the mean depth Z":
+            truth.weak_perspective(X, f, np.linalg.norm(X, axis=1).mean() if z_avg is None else z_avg),
         "x and y are swapped": truth.weak_perspective(X, f, z_avg)[:, ::-1],
         "f is not applied": truth.weak_perspective(X, 1.0, z_avg),
         "the default depth is the mean of every coordinate (X.mean()); it is the mean depth, "
@@ -337,6 +345,10 @@ def judge_center(t: Trial, P, R, tv):
         "it returned -R t; the centre is C = -R^T t (R transposed)": -R @ tv,
         "it returned R^T t; the centre is C = -R^T t (the sign is wrong)": R.T @ tv,
     }
+    null = np.append(C, 1.0) / np.linalg.norm(np.append(C, 1.0))      # the SVD's null vector, up to sign
+    if min(np.abs(got - null[:3]).max(), np.abs(got + null[:3]).max()) <= 1e-6:
+        t.fail(f"{what} is wrong: it returned the first three entries of the null vector of P without "
+               "dividing by the fourth (C = v[:3] / v[3]).", mistake="the null vector is not de-homogenised")
     mistake = closest(got, mistakes, lambda a, b: float(np.abs(a - b).max()), 1e-6 * scale, truth=C)
     if mistake:
         t.fail(f"{what} is wrong: {mistake}.", mistake=mistake)
@@ -405,6 +417,10 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
     reproj_error = np.linalg.norm(reprojected - corners[perm], axis=1).max()
     if angle <= ANGLE_TOLERANCE and rel <= TRANSLATION_TOLERANCE:
         if reproj_error > REPROJECTION_TOLERANCE:
+            slip = _reprojection_slip(reprojected, rvec, tvec, pattern, square, K, dist)
+            if slip:
+                return partial(0.5, f"{what}: the pose is right, but the reprojected corners are wrong: "
+                                    f"it looks like {slip}.", mistake=slip)
             return partial(0.5, f"{what}: the pose is right (rotation off by {angle:.2f} deg, translation by "
                                 f"{rel:.2%}), but the reprojected corners miss the corners by up to "
                                 f"{reproj_error:.1f} px: project the object points with rvec, tvec, K and dist "
@@ -467,6 +483,22 @@ def _pose_from_column_order(pattern, square, corners, K, dist):
     ok, r, tv = cv2.solvePnP(objp, np.asarray(corners, np.float64).reshape(-1, 1, 2), np.asarray(K, float),
                              None if dist is None else np.asarray(dist, float))
     return (r.ravel(), tv.ravel()) if ok else None
+
+
+def _reprojection_slip(reprojected, rvec, tvec, pattern, square, K, dist):
+    """The name of the slip that gives ``reprojected`` from a right pose, if one does."""
+    objp = scene.chessboard_object_points(pattern, square)
+
+    def projected(dist_used):
+        out, _ = cv2.projectPoints(objp, np.asarray(rvec, float), np.asarray(tvec, float), np.asarray(K, float),
+                                   None if dist_used is None else np.asarray(dist_used, float))
+        return out.reshape(-1, 2)
+
+    candidates = {"the corners are projected without dist (pass dist to cv2.projectPoints too)": projected(None)} \
+        if dist is not None else {}
+    right = projected(dist)
+    candidates["the reprojected corners have x and y swapped"] = right[:, ::-1]
+    return closest(reprojected, candidates, point_error, 0.05, truth=right)
 
 
 def _call_pose(t: Trial, image, pattern, square, K, dist=None):
@@ -660,6 +692,12 @@ def track_check(t):
         "the rows are the board's pose in the camera frame, as cv2.solvePnP gives it":
             tuple(None if p is None else (p[0].T, -p[0].T @ p[1]) for p in poses),
     }
+    for k, pose in enumerate(poses):
+        if pose is not None:
+            shifted[f"every row is the pose in frame {k}: the same frame is used for every row (use each "
+                    "frame of the loop, not frames[0])" if k == 0 else
+                    f"every row is the pose in frame {k}: the same frame is used for every row"] = \
+                (pose,) * len(poses)
     for mistake, candidate in shifted.items():
         if _track_rows_match(got, candidate, poses, pattern, square):
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake.split(":")[0])
