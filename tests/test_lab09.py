@@ -273,6 +273,41 @@ MISTAKES = {
         def distort_points(points, dist):
             return _right(points, list(dist[:4]) + [0.0])
         """, ["k3 is ignored"]),
+    "pixels rounded to integers": ("lab09.ex1", """
+        _right = pinhole_project
+        def pinhole_project(points, f):
+            return np.round(_right(points, f))
+        """, ["rounded to integers"]),
+    "principal point added twice": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            K = np.asarray(K, float)
+            out = _divide(X @ K.T, False) + K[:2, 2]
+            return out[0] if single else out
+        """, ["principal point is added twice"]),
+    "K[2, 2] = f": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, 0.0, px], [0.0, f, py], [0.0, 0.0, f]])
+        """, ["k[2, 2] holds f"]),
+    "P = [K R | t]": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            return np.column_stack([np.asarray(K, float) @ np.asarray(R, float), np.asarray(t, float)])
+        """, ["the last column is t (it is k t)"]),
+    "focal-length stack with its axes in the wrong order": ("lab09.ex4", """
+        def project_focal_lengths(points, focal_lengths):
+            X, _ = _points(points)
+            return np.stack([pinhole_project(X, f) for f in focal_lengths], axis=-1).T
+        """, ["axes are in the wrong order"]),
+    "k2 with r2 * 2": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64)
+            k1, k2, p1, p2, k3 = dist
+            x, y = pts[:, 0], pts[:, 1]
+            r2 = x * x + y * y
+            radial = 1 + k1 * r2 + k2 * r2 * 2 + k3 * r2 ** 3
+            return np.column_stack([x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x),
+                                    y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y])
+        """, ["k2 multiplies r2 * 2"]),
 }
 
 # Calibration is one OpenCV call; K does not depend on square_size or on the image

@@ -365,6 +365,70 @@ MISTAKES = {
                 rows.append(np.concatenate([-rvec, -R.T @ tvec]))
             return np.array(rows)
         """, ["pose is inverted"]),
+    "perspective with the first point's depth for all": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = f * X[:, :2] / X[0, 2]
+            return x[0] if single else x
+        """, ["divided by one depth, the first point's"]),
+    "weak perspective with the largest depth": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = X[:, 2].max() if z_avg is None else float(z_avg)
+            x = (f / z) * X[:, :2]
+            return x[0] if single else x
+        """, ["largest depth"]),
+    "centre not de-homogenised": ("lab10.ex5", """
+        def camera_center(P):
+            return np.linalg.svd(np.asarray(P, dtype=np.float64))[2][-1][:3]
+        """, ["without dividing by the fourth"]),
+    "pose with the grid built for (rows, cols)": ("lab10.ex6", """
+        def _object_points(pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float64)
+            objp[:, :2] = np.mgrid[0:rows, 0:cols].T.reshape(-1, 2) * square_size
+            return objp
+        """, ["built for (rows, cols)"]),
+    "dolly returns (projections, focal_lengths)": ("lab10.ext2", """
+        _right = dolly_zoom
+        def dolly_zoom(points, f0, z0, distances):
+            fs, proj = _right(points, f0, z0, distances)
+            return proj, fs
+        """, ["(focal_lengths, projections)"]),
+    "dolly projections with f0": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * distances / z0
+            return fs, np.stack([perspective_project(X + [0.0, 0.0, d - z0], f0) for d in distances])
+        """, ["projections use f0"]),
+    "tracking carries the last pose over": ("lab10.ext3", """
+        _right = track_pose
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = _right(frames, pattern_size, square_size, K, dist)
+            for i in range(1, len(rows)):
+                if not np.isfinite(rows[i]).all():
+                    rows[i] = rows[i - 1]
+            return rows
+        """, ["last pose is carried over"]),
+    "tracking frames[0] every time": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = []
+            for frame in frames:
+                rvec, tvec, _ = estimate_pose(frames[0], pattern_size, square_size, K, dist)
+                rows.append(np.concatenate([rvec, tvec]))
+            return np.array(rows)
+        """, ["same frame is used for every row"]),
+    "pose reprojected without dist": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            rvec, tvec, _ = _right(image, pattern_size, square_size, K, dist)
+            if not np.isfinite(rvec).all():
+                return rvec, tvec, np.zeros((0, 2))
+            reprojected, _ = cv2.projectPoints(_object_points(pattern_size, square_size), rvec, tvec,
+                                               np.asarray(K, float), None)
+            return rvec, tvec, reprojected.reshape(-1, 2)
+        """, ["projected without dist"]),
 }
 
 # cv2.undistort does the work from the given K and dist: a student can skip dist, or

@@ -48,8 +48,27 @@ def expect_points(t: Trial, what: str, got, shape) -> np.ndarray:
     if isinstance(got, np.ndarray) and got.ndim == 2 and len(shape) == 2 and got.shape == shape[::-1] \
             and shape[0] != shape[1]:
         t.fail(f"{what} returned shape {got.shape}; expected {shape}: one row (x, y) per point "
-               "(transpose your result)")
+               "(transpose your result)", mistake="the result is transposed")
+    expect_shape(t, what, got, shape)
     return t.expect_array(got, what, shape=shape, kind="iuf")
+
+
+def expect_shape(t: Trial, what: str, got, shape, axes=None):
+    """Name the usual shape slips of an array result: axes in another order, a third
+    (homogeneous or Z) coordinate kept. ``axes`` names the expected axes ("F", "N", "2")."""
+    if not isinstance(got, np.ndarray) or got.shape == tuple(shape):
+        return
+    shape = tuple(shape)
+    if got.ndim == len(shape) and sorted(got.shape) == sorted(shape) and len(set(shape)) == len(shape):
+        if axes:
+            order = ", ".join(axes[shape.index(n)] for n in got.shape)
+            t.fail(f"{what} returned shape {got.shape}, i.e. ({order}); expected {shape} = ({', '.join(axes)}): "
+                   "the axes are in the wrong order.", mistake="the axes are in the wrong order")
+        t.fail(f"{what} returned shape {got.shape}; expected {shape}: the axes are in the wrong order.",
+               mistake="the axes are in the wrong order")
+    if got.shape == shape[:-1] + (3,) and shape[-1] == 2:
+        t.fail(f"{what} returned shape {got.shape}; expected {shape}: a third coordinate is kept (Z is kept, "
+               "or the homogeneous one); return only (x, y).", mistake="a third coordinate is kept")
 
 
 def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e-6, show=None,
@@ -71,6 +90,12 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
                                lines=list(zip(truth_pts, got_pts))))
     if error <= tolerance * scale:
         return got
+    rounded = {"the pixels are rounded to integers; return the exact (float) projection": np.round(expected),
+               "the pixels are truncated to integers; return the exact (float) projection": np.trunc(expected)}
+    if np.isfinite(expected).all():
+        slip = closest(got, rounded, point_error, 1e-9, truth=expected, margin=1.0)
+        if slip:
+            t.fail(f"{what} is wrong: {slip}.", mistake="the pixels are rounded to integers")
     mistake = closest(got, mistakes or {}, point_error, mistake_tolerance * scale, truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
@@ -370,6 +395,7 @@ def focal_lengths(t):
     if isinstance(got, np.ndarray) and got.shape == (9, 3, 2):
         t.fail("project_focal_lengths returned shape (N, F, 2) = (9, 3, 2); expected (F, N, 2) = (3, 9, 2): "
                "one (N, 2) projection per focal length, stacked along the first axis")
+    expect_shape(t, "project_focal_lengths(points, [100, 500, 1000])", got, (3, 9, 2), axes=("F", "N", "2"))
     got = t.expect_array(got, "project_focal_lengths(points, [100, 500, 1000])", shape=(3, 9, 2), kind="iuf")
     t.svg("projections for f = 100, 500, 1000", svg_points(
         {f"f = {f:g}": got[i] for i, f in enumerate(fs)}))

@@ -35,9 +35,14 @@ ex1 = lab.exercise("ex1", "Perspective projection and focal length", functions=[
 
 
 def perspective_mistakes(f, X):
+    Z = X[:, 2]
+    common = {"the first point's": Z[0], "the last point's": Z[-1], "the median": np.median(Z),
+              "the largest": Z.max(), "the smallest": Z.min()}
     return {
         **truth.lab09.projection_mistakes(f, X),
         "every point is divided by the mean depth: that is weak perspective": truth.weak_perspective(X, f),
+        **{f"every point is divided by one depth, {name} depth; each point has its own depth Z":
+           truth.weak_perspective(X, f, z) for name, z in common.items()},
     }
 
 
@@ -153,8 +158,8 @@ def orthographic_example(t):
     X = truth.scene_points(301, n=10, depth=10.0, relief=5.0)
     got = t.call("orthographic_project", X)
     if isinstance(got, np.ndarray) and got.shape == (10, 3):
-        t.fail("orthographic_project returned shape (10, 3); expected (10, 2): Z is kept; divide by the "
-               "homogeneous coordinate and drop it", mistake="Z is kept")
+        t.fail("orthographic_project returned shape (10, 3); expected (10, 2): a third coordinate is kept "
+               "(Z is kept); divide by the homogeneous coordinate and drop it", mistake="a third coordinate is kept")
     if isinstance(got, np.ndarray) and got.shape == (2, 3):
         t.fail("orthographic_project returned shape (2, 3); expected (10, 2): points[:2] takes the first two "
                "points (rows); X and Y are the first two columns, points[:, :2].",
@@ -464,25 +469,37 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
                     np.linalg.norm(tvec - t0.ravel()) < 0.003 * distance:
                 t.fail(f"{what}: the lens distortion dist is ignored: pass it to cv2.solvePnP "
                        "(and to cv2.projectPoints).", mistake="dist is ignored")
-    column_order = _pose_from_column_order(pattern, square, corners, K, dist)
-    if column_order is not None:
-        if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(column_order[0])) < 2 * ANGLE_TOLERANCE and \
-                np.linalg.norm(tvec - column_order[1]) < 2 * TRANSLATION_TOLERANCE * distance:
-            t.fail(f"{what}: the object points are in column order (y fastest), but OpenCV gives the corners "
-                   "row by row, x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) (the .T matters).",
-                   mistake="the object points are in the wrong (column) order")
+    for (slip, label), (r_slip, t_slip) in _poses_from_wrong_grids(pattern, square, corners, K, dist).items():
+        if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(r_slip)) < 2 * ANGLE_TOLERANCE and \
+                np.linalg.norm(tvec - t_slip) < 2 * TRANSLATION_TOLERANCE * distance:
+            t.fail(f"{what}: {slip}; OpenCV gives the corners row by row, x fastest: "
+                   "np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.", mistake=label)
     t.fail(f"{what}: the pose is off by {angle:.1f} degrees and {rel:.1%} of the distance "
            f"(reprojection off by up to {reproj_error:.1f} px).")
 
 
-def _pose_from_column_order(pattern, square, corners, K, dist):
-    """(rvec, tvec) that cv2.solvePnP gives for the true corners with object points in column order."""
+def _poses_from_wrong_grids(pattern, square, corners, K, dist) -> dict:
+    """{(slip, label): (rvec, tvec)}: what cv2.solvePnP gives for the true corners with the
+    object points built in the usual wrong ways."""
     cols, rows = pattern
-    objp = np.zeros((cols * rows, 3))
-    objp[:, :2] = np.mgrid[0:cols, 0:rows].reshape(2, -1).T * square
-    ok, r, tv = cv2.solvePnP(objp, np.asarray(corners, np.float64).reshape(-1, 1, 2), np.asarray(K, float),
-                             None if dist is None else np.asarray(dist, float))
-    return (r.ravel(), tv.ravel()) if ok else None
+    grids = {
+        ("the object points are in column order (y fastest)", "the object points are in the wrong (column) order"):
+            np.mgrid[0:cols, 0:rows].reshape(2, -1).T,
+        ("the object points are built for (rows, cols): np.mgrid[0:rows, 0:cols]",
+         "the object points are built for (rows, cols)"): np.mgrid[0:rows, 0:cols].T.reshape(-1, 2),
+        ("the object points are built for (rows, cols) and in column order",
+         "the object points are built for (rows, cols)"): np.mgrid[0:rows, 0:cols].reshape(2, -1).T,
+        ("the object points have x and y exchanged (each is (row, column))",
+         "the object points have x and y exchanged"): np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)[:, ::-1],
+    }
+    out = {}
+    for key, grid in grids.items():
+        objp = np.column_stack([grid * square, np.zeros(len(grid))]).astype(np.float64)
+        ok, r, tv = cv2.solvePnP(objp, np.asarray(corners, np.float64).reshape(-1, 1, 2), np.asarray(K, float),
+                                 None if dist is None else np.asarray(dist, float))
+        if ok:
+            out[key] = (r.ravel(), tv.ravel())
+    return out
 
 
 def _reprojection_slip(reprojected, rvec, tvec, pattern, square, K, dist):
@@ -601,6 +618,10 @@ def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
     if not (isinstance(got, (tuple, list)) and len(got) == 2):
         t.fail(f"{what} should return a pair (focal_lengths, projections)")
     fs_true, proj_true = truth.dolly_zoom(X, f0, z0, distances)
+    if all(isinstance(g, np.ndarray) for g in got) and got[0].shape == proj_true.shape \
+            and got[1].shape == fs_true.shape:
+        t.fail(f"{what} returned (projections, focal_lengths); the API's order is (focal_lengths, projections).",
+               mistake="the pair is returned in the wrong order")
     fs = t.expect_array(got[0], f"{what}[0] (focal lengths)", shape=fs_true.shape, kind="iuf", finite=True)
     proj = got[1]
     if isinstance(proj, np.ndarray) and proj.shape == (len(X), len(fs_true), 2) and len(X) != len(fs_true):
@@ -705,6 +726,10 @@ def track_check(t):
     for i, pose in enumerate(poses):
         row = got[i]
         if pose is None:
+            if i > 0 and np.isfinite(row).all() and np.allclose(row, got[i - 1]):
+                t.fail(f"{what}: frame {i} shows no board, but its row repeats the pose of frame {i - 1}: the "
+                       "last pose is carried over; a frame without a board gets a NaN row.",
+                       mistake="the last pose is carried over to frames without a board")
             if np.isfinite(row).any():
                 zeros = " Zeros are a pose (the board at the camera centre), not 'not found'." \
                     if np.all(row == 0) else ""
