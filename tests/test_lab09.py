@@ -308,6 +308,32 @@ MISTAKES = {
             return np.column_stack([x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x),
                                     y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y])
         """, ["k2 multiplies r2 * 2"]),
+    "columns 1:3 taken for (X, Y)": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            out = f * X[:, 1:3] / X[:, 2:3]
+            return out[0] if single else out
+        """, ["x is computed as f y / z; it should be f x / z"]),
+    "fx used for y": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            K = np.asarray(K, float)
+            out = np.column_stack([K[0, 0] * X[:, 0] / X[:, 2] + K[0, 2] + K[0, 1] * X[:, 1] / X[:, 2],
+                                   K[0, 0] * X[:, 1] / X[:, 2] + K[1, 2]])
+            return out[0] if single else out
+        """, ["y is computed as fx y / z + py; it should be fy y / z + py"]),
+    "P rescaled so that P[2, 3] = 1": ("lab09.ex3", """
+        _right = camera_matrix
+        def camera_matrix(K, R, t):
+            P = _right(K, R, t)
+            return P / P[2, 3]
+        """, ["right only up to scale"]),
+    "tangential terms with the wrong sign": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            k1, k2, p1, p2, k3 = dist
+            return _right(points, [k1, k2, -p1, -p2, k3])
+        """, ["tangential terms have the wrong sign"]),
 }
 
 # Calibration is one OpenCV call; K does not depend on square_size or on the image

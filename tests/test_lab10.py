@@ -429,13 +429,50 @@ MISTAKES = {
                                                np.asarray(K, float), None)
             return rvec, tvec, reprojected.reshape(-1, 2)
         """, ["projected without dist"]),
+    "DLT normalised but not denormalised": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.asarray(points3d, float); x = np.asarray(points2d, float)
+            T3, T2 = _normalising_transform(X), _normalising_transform(x)
+            Xn = np.column_stack([X, np.ones(len(X))]) @ T3.T
+            xn = (np.column_stack([x, np.ones(len(x))]) @ T2.T)[:, :2]
+            rows = []
+            for Xi, (u, v) in zip(Xn, xn):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+        """, ["normalisation is not undone"]),
+    "decomposition by QR instead of RQ": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            if np.linalg.det(P[:, :3]) < 0:
+                P = -P
+            R, K = np.linalg.qr(P[:, :3])
+            D = np.diag(np.sign(np.diag(K)))
+            K, R = D @ K, R @ D
+            return K / K[2, 2], R, np.linalg.solve(K, P[:, 3])
+        """, ["qr decomposition"]),
+    "undistort with K transposed": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            return cv2.undistort(image, np.asarray(K, np.float64).T, np.asarray(dist, np.float64))
+        """, ["k is transposed"]),
+    "dolly moves X and Y too": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * distances / z0
+            return fs, np.stack([perspective_project(X + (d - z0), f) for f, d in zip(fs, distances)])
+        """, ["added to x and y too"]),
+    "tracking rows not flattened": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            return np.array([np.array(estimate_pose(f, pattern_size, square_size, K, dist)[:2]) for f in frames])
+        """, ["not flattened"]),
 }
 
 # cv2.undistort does the work from the given K and dist: a student can skip dist, or
 # map the wrong way (by hand or with -dist); there is little else to get wrong.
 FEWER_MISTAKES = {
     "lab10.ext1": "undistortion is one OpenCV call on the given K and dist: the realistic slips are "
-                  "dist not used, the mapping direction (distorting again) and the sign of dist",
+                  "dist not used, the mapping direction (distorting again), the sign of dist and K transposed",
 }
 
 

@@ -72,12 +72,14 @@ def expect_shape(t: Trial, what: str, got, shape, axes=None):
 
 
 def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e-6, show=None,
-                 mistake_tolerance=1e-4):
+                 mistake_tolerance=1e-4, formulas=None):
     """Compare returned 2D points with the truth; name the mistake when one fits.
 
     ``show`` (a title) attaches a plot of the true and the returned points.
     A mistake is named when its answer is within ``mistake_tolerance`` (relative
     to the largest coordinate) and clearly closer than any other and than the truth.
+    Otherwise ``formulas`` (see :func:`fixtures.lab09.coordinate_formulas`) may say
+    which formula each coordinate was computed with.
     """
     expected = np.asarray(expected, dtype=np.float64)
     got = expect_points(t, what, got, expected.shape)
@@ -99,11 +101,42 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
     mistake = closest(got, mistakes or {}, point_error, mistake_tolerance * scale, truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    explained = explain_coordinates(got, expected, formulas or {})
+    if explained:
+        t.fail(f"{what} is wrong: {explained}.", mistake=explained)
     if not np.isnan(expected).any() and np.isnan(got).any():
         t.fail(f"{what} returned NaN for points in front of the camera (Z > 0).")
     t.fail(f"{what} is off {where_points_wrong(got, expected, tolerance * scale)}, by up to {error:.4g}; "
            f"for example point 0 should be {format_matrix(expected.reshape(-1, 2)[0])}, yours is "
            f"{format_matrix(np.asarray(got, float).reshape(-1, 2)[0])}.")
+
+
+def explain_coordinates(got, expected, formulas: dict) -> str:
+    """"y = fx Y / Z + py; it should be fy Y / Z + py": the one formula each wrong coordinate
+    equals, when every wrong coordinate equals exactly one (else "")."""
+    got = np.asarray(got, np.float64).reshape(-1, 2)
+    expected = np.asarray(expected, np.float64).reshape(-1, 2)
+    keep = np.isfinite(expected).all(axis=1)
+    if not formulas or not keep.any() or not np.isfinite(got[keep]).all():
+        return ""
+
+    def matching(column):
+        scale = max(1.0, float(np.abs(column).max()))
+        return [words for words, value in formulas.items()
+                if np.all(np.abs(np.broadcast_to(value, got.shape[:1])[keep] - column) <= 1e-7 * scale)]
+
+    parts = []
+    for j, name in enumerate("xy"):
+        right = matching(expected[keep, j])
+        if np.allclose(got[keep, j], expected[keep, j], rtol=0, atol=1e-7 * max(1.0, np.abs(expected[keep, j]).max())):
+            continue
+        found = matching(got[keep, j])
+        if not found or not right or any(not np.allclose(np.broadcast_to(formulas[w], got.shape[:1])[keep],
+                                                           np.broadcast_to(formulas[found[0]], got.shape[:1])[keep])
+                                         for w in found[1:]):
+            return ""           # unexplained, or explained by formulas that differ elsewhere: no guess
+        parts.append(f"{name} is computed as {found[0]}; it should be {right[0]}")
+    return "; ".join(parts)
 
 
 def where_points_wrong(got, expected, tolerance) -> str:
@@ -185,7 +218,16 @@ def advise_nan_behind(t: Trial, what: str, got, behind):
 
 
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3), up_to_scale=False):
-    """The shared matrix judge, with this lab's tighter tolerance."""
+    """The shared matrix judge, with this lab's tighter tolerance; a matrix right only up
+    to a factor is named as such (K and P here are defined exactly, not up to scale)."""
+    if not up_to_scale and isinstance(got, np.ndarray) and got.shape == tuple(shape) and got.dtype.kind in "iuf" \
+            and np.isfinite(got).all() and np.abs(got - expected).max() > 1e-7 * max(1.0, np.abs(expected).max()):
+        from ..compare import projective_distance
+        if projective_distance(got, expected) <= 1e-9:
+            i = np.unravel_index(np.argmax(np.abs(expected)), expected.shape)
+            factor = got[i] / expected[i]
+            t.fail(f"{what} is wrong: it is {factor:.4g} times the right matrix: it is right only up to "
+                   "scale; return the matrix itself, not a rescaled one.", mistake="the matrix is rescaled")
     return judges.judge_matrix(t, what, got, expected, mistakes, shape, up_to_scale, rtol=1e-7)
 
 
@@ -195,10 +237,24 @@ ex1 = lab.exercise("ex1", "The pinhole camera", functions=["pinhole_project(poin
 SHEET_POINTS = np.array([[1.0, 2.0, 10.0], [-3.0, 1.5, 5.0], [0.5, -0.5, 2.0], [4.0, 3.0, 20.0]])
 
 
+def pinhole_formulas(X, f):
+    """The formulas one coordinate of a pinhole projection may have been computed with."""
+    return truth.coordinate_formulas(X, {"f": f, "": 1.0, "f^2": f * f, "-f": -f, "1 / f": 1.0 / f}, {"": 0.0})
+
+
+def intrinsics_formulas(K, X):
+    """The formulas one coordinate of ``K X`` (divided) may have been computed with."""
+    K = np.asarray(K, float)
+    gains = {"fx": K[0, 0], "fy": K[1, 1], "": 1.0}
+    offsets = {"": 0.0, "+ px": K[0, 2], "+ py": K[1, 2], "- px": -K[0, 2], "- py": -K[1, 2]}
+    return truth.coordinate_formulas(X, gains, offsets, skew=K[0, 1])
+
+
 @ex1.check("pinhole_project on the lab sheet's points, f = 500", points=3)
 def pinhole_example(t):
     judge_points(t, "pinhole_project(points, f=500)", t.call("pinhole_project", SHEET_POINTS, 500.0),
                  truth.pinhole(SHEET_POINTS, 500.0), truth.projection_mistakes(500.0, SHEET_POINTS),
+                 formulas=pinhole_formulas(SHEET_POINTS, 500.0),
                  show="pinhole projection, f = 500")
 
 
@@ -208,7 +264,7 @@ def pinhole_property(t):
         seed, f = case
         X = truth.points_in_front(seed, n=10)
         judge_points(t, f"pinhole_project(points, f={f!r})", t.call("pinhole_project", X, f),
-                     truth.pinhole(X, f), truth.projection_mistakes(f, X))
+                     truth.pinhole(X, f), truth.projection_mistakes(f, X), formulas=pinhole_formulas(X, f))
 
     t.for_all(st.tuples(seeds, st.floats(10.0, 2000.0)), holds, max_examples=15,
               describe=lambda c: f"fixtures.lab09.points_in_front(seed={c[0]}, n=10), f={c[1]!r}")
@@ -266,7 +322,7 @@ def project_intrinsics_example(t):
     X = truth.points_in_front(21, n=12)
     judge_points(t, "project_with_intrinsics(K, points)", t.call("project_with_intrinsics", K, X),
                  truth.homogeneous_project(K, X), truth.intrinsics_projection_mistakes(K, X),
-                 show="projection with K")
+                 show="projection with K", formulas=intrinsics_formulas(K, X))
 
 
 @ex2.check("project_with_intrinsics with non-square pixels, skew, and a single point", points=1)
@@ -275,7 +331,7 @@ def project_intrinsics_general(t):
     X = truth.points_in_front(22, n=8)
     judge_points(t, "project_with_intrinsics(K with fx != fy and skew, points)",
                  t.call("project_with_intrinsics", K, X), truth.homogeneous_project(K, X),
-                 truth.intrinsics_projection_mistakes(K, X))
+                 truth.intrinsics_projection_mistakes(K, X), formulas=intrinsics_formulas(K, X))
     judge_single_point(t, "project_with_intrinsics(K, (3,) point)",
                        t.call("project_with_intrinsics", K, X[0]), truth.homogeneous_project(K, X[0])[0])
 

@@ -110,6 +110,7 @@ def weak_mistakes(X, f, z_avg=None):
             truth.weak_perspective(X, f, np.linalg.norm(X, axis=1).mean() if z_avg is None else z_avg),
         "x and y are swapped": truth.weak_perspective(X, f, z_avg)[:, ::-1],
         "f is not applied": truth.weak_perspective(X, 1.0, z_avg),
+        "f is applied twice (x = f^2 X / z_avg)": f * truth.weak_perspective(X, f, z_avg),
         "the default depth is the mean of every coordinate (X.mean()); it is the mean depth, "
         "X[:, 2].mean()": truth.weak_perspective(X, f, X.mean() if z_avg is None else z_avg),
         "the points are not scaled by f / z_avg (that is orthographic projection)": truth.orthographic(X),
@@ -305,6 +306,10 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
                 and np.abs(tv - tm).max() <= 1e-4 * max(1.0, np.abs(tm).max())):
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     recomposed = K @ np.column_stack([R, tv])
+    if projective_distance(R @ K, np.asarray(P, float)[:, :3]) <= 1e-6 < projective_distance(recomposed, P):
+        t.fail(f"{what} is wrong: R K gives back P[:, :3], not K R: it looks like a QR decomposition "
+               "(M = Q U) was used where P = K [R | t] needs an RQ decomposition (M = K R).",
+               mistake="QR was used instead of RQ")
     if projective_distance(recomposed, P) > 1e-6:
         t.fail(f"{what}: K [R | t] does not give back P (distance {projective_distance(recomposed, P):.2g} "
                "after normalising scale).")
@@ -491,6 +496,8 @@ def _poses_from_wrong_grids(pattern, square, corners, K, dist) -> dict:
          "the object points are built for (rows, cols)"): np.mgrid[0:rows, 0:cols].reshape(2, -1).T,
         ("the object points have x and y exchanged (each is (row, column))",
          "the object points have x and y exchanged"): np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)[:, ::-1],
+        ("the object points (or the corners) are in reverse order",
+         "the corners are in reverse order"): np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)[::-1],
     }
     out = {}
     for key, grid in grids.items():
@@ -593,6 +600,7 @@ def undistort_check(t):
     candidates = {
         "the distortion is applied instead of removed (the lines bend even more)": twice,
         "the sign of the coefficients is flipped (undistorting with -dist)": cv2.undistort(distorted, K, -dist),
+        "K is transposed (cv2.undistort wants K as given)": cv2.undistort(distorted, K.T, dist),
     }
     mistake = closest(got, candidates, lambda a, b: blurred_difference(a, b, valid), UNDISTORT_TOLERANCE,
                       truth=clean)
@@ -702,6 +710,9 @@ def track_check(t):
     pattern, square, K = truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K
     what = "track_pose(frames, pattern_size, square_size, K)"
     got = t.call("track_pose", list(frames), pattern, square, K)
+    if isinstance(got, np.ndarray) and got.ndim > 2 and got.shape[0] == len(frames) and got.size == 6 * len(frames):
+        t.fail(f"{what} returned shape {got.shape}; expected ({len(frames)}, 6): the rows are not flattened: "
+               "each row is np.concatenate([rvec, tvec]).", mistake="the rows are not flattened to [rvec, tvec]")
     if isinstance(got, np.ndarray) and got.shape == (len(frames) - 1, 6):
         t.fail(f"{what} returned {got.shape[0]} rows for {len(frames)} frames: keep one row per frame, "
                "NaN where the board is not found.")
