@@ -334,6 +334,24 @@ MISTAKES = {
             k1, k2, p1, p2, k3 = dist
             return _right(points, [k1, k2, -p1, -p2, k3])
         """, ["tangential terms have the wrong sign"]),
+    "draw_points returns inside its loop": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                cv2.circle(out, (int(round(x)), int(round(y))), int(radius), tuple(int(c) for c in color), -1)
+                return out
+        """, ["only the first point is drawn"]),
+    "px in the skew entry": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, px, 0.0], [0.0, f, py], [0.0, 0.0, 1.0]])
+        """, ["px is in k[0, 1]"]),
+    "K X with its columns swapped": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            h = X @ np.asarray(K, float).T
+            out = h[:, 1::-1] / h[:, 2:3]
+            return out[0] if single else out
+        """, ["x and y are swapped"]),
 }
 
 # Calibration is one OpenCV call; K does not depend on square_size or on the image

@@ -466,6 +466,28 @@ MISTAKES = {
         def track_pose(frames, pattern_size, square_size, K, dist=None):
             return np.array([np.array(estimate_pose(f, pattern_size, square_size, K, dist)[:2]) for f in frames])
         """, ["not flattened"]),
+    "perspective divided by the distance": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = f * X[:, :2] / np.linalg.norm(X, axis=1, keepdims=True)
+            return x[0] if single else x
+        """, ["distance |x|"]),
+    "DLT takes a column of Vt": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
+            return np.linalg.svd(np.array(rows))[2][:, -1].reshape(3, 4)
+        """, ["last column of vt"]),
+    "tracking marks missing frames with -1": ("lab10.ext3", """
+        _right = track_pose
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = _right(frames, pattern_size, square_size, K, dist)
+            rows[~np.isfinite(rows)] = -1
+            return rows
+        """, ["should be nan"]),
 }
 
 # cv2.undistort does the work from the given K and dist: a student can skip dist, or

@@ -125,7 +125,7 @@ def explain_coordinates(got, expected, formulas: dict) -> str:
         return [words for words, value in formulas.items()
                 if np.all(np.abs(np.broadcast_to(value, got.shape[:1])[keep] - column) <= 1e-7 * scale)]
 
-    parts = []
+    parts, computed, wanted = [], [], []
     for j, name in enumerate("xy"):
         right = matching(expected[keep, j])
         if np.allclose(got[keep, j], expected[keep, j], rtol=0, atol=1e-7 * max(1.0, np.abs(expected[keep, j]).max())):
@@ -136,6 +136,10 @@ def explain_coordinates(got, expected, formulas: dict) -> str:
                                          for w in found[1:]):
             return ""           # unexplained, or explained by formulas that differ elsewhere: no guess
         parts.append(f"{name} is computed as {found[0]}; it should be {right[0]}")
+        computed.append(found[0])
+        wanted.append(right[0])
+    if len(parts) == 2 and computed == wanted[::-1]:
+        return f"x and y are swapped (x should be {wanted[0]}, y {wanted[1]})"
     return "; ".join(parts)
 
 
@@ -599,6 +603,12 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     if inner.any() and painted[inner].mean() < 0.5 and ring.any() and painted[ring].mean() > 0.5:
         t.fail(f"{what}: the circles are outlines; they should be filled (thickness=-1).",
                mistake="the circles are outlines, not filled")
+    missing = _points_not_drawn(painted, image.shape, pts, radius)
+    if missing:
+        only = sorted(set(range(len(pts))) - set(missing) - set(_off_image(image.shape, pts)))
+        first = " (only the first point is drawn: is the return inside the loop?)" if only == [0] else ""
+        t.fail(f"{what}: no circle at point(s) {missing} (of {len(pts)}){first}.",
+               mistake="only the first point is drawn" if first else "some points are not drawn")
     drawn_radius = _drawn_radius(got, image, pts, color)
     if drawn_radius is not None and drawn_radius != radius:
         ignored = "the radius argument is ignored" if drawn_radius == 3 else "the radius is used wrongly"
@@ -611,6 +621,24 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
            "only the circles should be drawn (on a copy of the image).")
 
 
+def _off_image(shape, pts):
+    h, w = shape[:2]
+    return [i for i, (x, y) in enumerate(pts) if not (0 <= x < w and 0 <= y < h)]
+
+
+def _points_not_drawn(painted, shape, pts, radius):
+    """Indices of the points on the image with no painted pixel within their disc."""
+    off = set(_off_image(shape, pts))
+    missing = []
+    for i, (x, y) in enumerate(pts):
+        if i in off or not (np.isfinite(x) and np.isfinite(y)):
+            continue
+        disc = truth.distance_map(shape, np.array([[x, y]])) <= radius + 1.0     # anything drawn there
+        if disc.any() and not painted[disc].any():
+            missing.append(i)
+    return missing
+
+
 def _drawn_radius(got, image, pts, color):
     """The radius r in 1..12 whose filled circles (in ``color``) give exactly ``got``, if one does."""
     differences = []
@@ -620,7 +648,9 @@ def _drawn_radius(got, image, pts, color):
             return None
         differences.append(np.mean(np.any(got != expected, axis=-1) if got.ndim == 3 else got != expected))
     best = int(np.argmin(differences))
-    return best + 1 if differences[best] < 2e-3 else None
+    others = [d for i, d in enumerate(differences) if i != best]
+    # near-exact (rounding of the centre), and clearly better than every other radius
+    return best + 1 if differences[best] < 2e-4 and differences[best] * 3 < min(others) else None
 
 
 @ex5.check("draw_points draws filled circles at the points", points=3)

@@ -41,6 +41,8 @@ def perspective_mistakes(f, X):
     return {
         **truth.lab09.projection_mistakes(f, X),
         "every point is divided by the mean depth: that is weak perspective": truth.weak_perspective(X, f),
+        "the division is by the distance |X| from the camera; it is by the depth Z":
+            f * X[:, :2] / np.linalg.norm(X, axis=1, keepdims=True),
         **{f"every point is divided by one depth, {name} depth; each point has its own depth Z":
            truth.weak_perspective(X, f, z) for name, z in common.items()},
     }
@@ -745,7 +747,8 @@ def track_check(t):
                 zeros = " Zeros are a pose (the board at the camera centre), not 'not found'." \
                     if np.all(row == 0) else ""
                 t.fail(f"{what}: frame {i} shows no board, so its row should be NaN (the API's marker for "
-                       f"'not found'); yours is {format_matrix(row)}.{zeros}")
+                       f"'not found'); yours is {format_matrix(row)}.{zeros}",
+                       mistake="a frame without a board does not get a NaN row")
             continue
         R, tv = pose
         if not np.isfinite(row).all():
