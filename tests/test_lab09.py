@@ -352,6 +352,39 @@ MISTAKES = {
             out = h[:, 1::-1] / h[:, 2:3]
             return out[0] if single else out
         """, ["x and y are swapped"]),
+    "radius doubled (used as a diameter)": ("lab09.ex5", """
+        _right = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            return _right(image, pts, 2 * radius, color)
+        """, ["radius is doubled"]),
+    "K's inverse applied": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            return _divide(X @ np.linalg.inv(np.asarray(K, float)).T, single)
+        """, ["inverse is applied"]),
+    "P's last column R t": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            R, t = np.asarray(R, float), np.asarray(t, float)
+            return np.column_stack([np.asarray(K, float) @ R, R @ t])
+        """, ["the last column is r t"]),
+    "project divides by the second coordinate": ("lab09.ex3", """
+        def project(P, points):
+            X, single = _points(points)
+            h = np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, float).T
+            x = h[:, :2] / h[:, 1:2]
+            return x[0] if single else x
+        """, ["x is computed as (p x)[0] / (p x)[1]"]),
+    "focal lengths in reverse order": ("lab09.ex4", """
+        def project_focal_lengths(points, focal_lengths):
+            X, _ = _points(points)
+            return np.stack([pinhole_project(X, f) for f in np.asarray(focal_lengths)[::-1]])
+        """, ["another order"]),
+    "k2 ignored": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            k1, k2, p1, p2, k3 = dist
+            return _right(points, [k1, 0.0, p1, p2, k3])
+        """, ["k2 is ignored"]),
 }
 
 # Calibration is one OpenCV call; K does not depend on square_size or on the image

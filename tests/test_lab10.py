@@ -488,6 +488,19 @@ MISTAKES = {
             rows[~np.isfinite(rows)] = -1
             return rows
         """, ["should be nan"]),
+    "decomposition with t of the wrong sign": ("lab10.ex5", """
+        _right = decompose_camera_matrix
+        def decompose_camera_matrix(P):
+            K, R, t = _right(P)
+            return K, R, -t
+        """, ["t has the wrong sign"]),
+    "pose grid divided by square_size": ("lab10.ex6", """
+        def _object_points(pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float64)
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) / square_size
+            return objp
+        """, ["not in the units of square_size"]),
 }
 
 # cv2.undistort does the work from the given K and dist: a student can skip dist, or

@@ -386,6 +386,17 @@ def camera_matrix_property(t):
     t.for_all(seeds, holds, max_examples=8, describe=lambda s: f"fixtures.lab09.random_pose({s})")
 
 
+def project_formulas(P, X):
+    """The formulas one coordinate of ``project`` may have been computed with, in terms of
+    the entries of ``P [X, 1]``: ``(P X)[0] / (P X)[2]``, ``(P X)[2]``..."""
+    h = np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, float).T
+    parts = {f"(P X)[{i}]": h[:, i] for i in range(3)}
+    out = {f"{a} / {b}": parts[a] / parts[b] for a in parts for b in parts if a != b}
+    out.update(parts)
+    out["1 (a coordinate divided by itself)"] = np.ones(len(X))
+    return out
+
+
 def project_mistakes(P, X):
     Xh = np.column_stack([X, np.ones(len(X))])
     x = Xh @ P.T
@@ -406,7 +417,7 @@ def project_example(t):
     P = truth.camera(K, R, tvec)
     X = truth.world_points_for(K, R, tvec, seed=32)
     judge_points(t, "project(P, points)", t.call("project", P, X), truth.homogeneous_project(P, X),
-                 project_mistakes(P, X), show="projection with P = K [R | t]")
+                 project_mistakes(P, X), show="projection with P = K [R | t]", formulas=project_formulas(P, X))
 
 
 @ex3.check("project accepts any scale of P, and a single (3,) point", points=1)
@@ -459,6 +470,12 @@ def focal_lengths(t):
     got = t.expect_array(got, "project_focal_lengths(points, [100, 500, 1000])", shape=(3, 9, 2), kind="iuf")
     t.svg("projections for f = 100, 500, 1000", svg_points(
         {f"f = {f:g}": got[i] for i, f in enumerate(fs)}))
+    order = [next((j for j in range(len(fs)) if point_error(got[i], expected[j]) <= 1e-6 * np.abs(expected).max()),
+                  None) for i in range(len(fs))]
+    if None not in order and order != list(range(len(fs))):
+        t.fail(f"project_focal_lengths: projection i is the one for f = {format_matrix(fs[order])}: the focal "
+               "lengths are used in another order (reversed?); projection i belongs to focal_lengths[i].",
+               mistake="the focal lengths are used in another order")
     for i, f in enumerate(fs):
         judge_points(t, f"project_focal_lengths(...)[{i}] (f = {f:g})", got[i], expected[i],
                      truth.projection_mistakes(f, X))
@@ -590,7 +607,7 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
                mistake="x and y (column and row) are swapped")
     if got.ndim == 3:
         reversed_colour = np.all(got == np.asarray(color[::-1], np.uint8), axis=-1)
-        if core.any() and reversed_colour[core].mean() > 0.9:
+        if tuple(color[::-1]) != tuple(color) and core.any() and reversed_colour[core].mean() > 0.9:
             t.fail(f"{what}: the circles have colour {tuple(color[::-1])}, not {tuple(color)}: the colour is "
                    "reversed (RGB for BGR); OpenCV images are BGR, so pass the colour as given.",
                    mistake="the colour is reversed (RGB vs BGR)")
@@ -611,9 +628,12 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
                mistake="only the first point is drawn" if first else "some points are not drawn")
     drawn_radius = _drawn_radius(got, image, pts, color)
     if drawn_radius is not None and drawn_radius != radius:
-        ignored = "the radius argument is ignored" if drawn_radius == 3 else "the radius is used wrongly"
+        ignored = "the radius argument is ignored" if drawn_radius == 3 else \
+            "the radius is doubled (it is the radius, not the diameter)" if drawn_radius == 2 * radius else \
+            "the radius is halved (it is the radius, not the diameter)" if 2 * drawn_radius in (radius, radius - 1, radius + 1) \
+            else "the radius is used wrongly"
         t.fail(f"{what}: the circles have radius {drawn_radius}, not {radius}: {ignored}.",
-               mistake="radius is ignored" if drawn_radius == 3 else "the radius is used wrongly")
+               mistake=ignored)
     if coverage < 0.97:
         t.fail(f"{what}: only {coverage:.0%} of the pixels that should be covered by the circles "
                f"(radius {radius}, colour {tuple(color)}) are.")

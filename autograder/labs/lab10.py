@@ -444,11 +444,16 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
     if angle <= ANGLE_TOLERANCE:
         M, c, _ = truth.board_symmetries(pattern, square)[alternative]
         t_alt = R @ c + tv
-        for factor in (1.0 / square, square):
-            if np.linalg.norm(tvec - factor * t_alt) <= TRANSLATION_TOLERANCE * factor * distance:
-                t.fail(f"{what}: the rotation is right but tvec is {factor:.3g} times the true one: "
-                       "square_size is ignored: the object points must be in real units, i.e. multiplied "
-                       "by square_size.", mistake="square_size is ignored")
+        factor = float(tvec @ t_alt / (t_alt @ t_alt))
+        # a scale slip changes tvec by a clear factor (1 / square_size, 1 / square_size^2...),
+        # not by the few percent other slips (such as an ignored dist) give
+        if factor > 0 and abs(np.log(factor)) > np.log(1.5) and \
+                np.linalg.norm(tvec - factor * t_alt) <= TRANSLATION_TOLERANCE * factor * distance:
+            ignored = "square_size is ignored" if abs(factor * square - 1) < 0.02 else \
+                "the object points are not in the units of square_size"
+            t.fail(f"{what}: the rotation is right but tvec is {factor:.3g} times the true one: {ignored}: "
+                   "the object points must be in real units, i.e. the grid multiplied by square_size.",
+                   mistake=ignored)
     normal_angle = np.degrees(np.arccos(np.clip(abs(R_got[:, 2] @ R[:, 2]), -1.0, 1.0)))
     in_plane = np.degrees(np.arccos(np.clip(abs(R_got[:, 0] @ R[:, 0]), -1.0, 1.0)))
     if normal_angle < 2.0 and abs(in_plane - 90.0) < 2.0:
