@@ -564,6 +564,18 @@ def test_decomposition_remedy_fits_the_input(tmp_path):
 
 # Textbook variants of the estimators: full marks.
 VARIANTS = {
+    "undistortion with the tutorial's new camera matrix (alpha=1)": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            h, w = image.shape[:2]
+            new_K, _ = cv2.getOptimalNewCameraMatrix(np.asarray(K, float), np.asarray(dist, float), (w, h), 1, (w, h))
+            return cv2.undistort(image, np.asarray(K, float), np.asarray(dist, float), None, new_K)
+        """),
+    "undistortion with the tutorial's new camera matrix (alpha=0)": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            h, w = image.shape[:2]
+            new_K, _ = cv2.getOptimalNewCameraMatrix(np.asarray(K, float), np.asarray(dist, float), (w, h), 0, (w, h))
+            return cv2.undistort(image, np.asarray(K, float), np.asarray(dist, float), None, new_K)
+        """),
     "DLT on raw coordinates (the lab sheet does not ask for normalisation)": ("lab10.ex4", """
         def camera_matrix_dlt(points3d, points2d):
             rows = []

@@ -600,6 +600,10 @@ def undistort_check(t):
     error = blurred_difference(got, clean, valid)
     if error <= UNDISTORT_TOLERANCE:
         return passed(f"mean difference {error:.1f} grey levels from the distortion-free view")
+    # The API does not pin the output camera matrix: OpenCV's tutorial recipe passes a new one.
+    for name, (expected, judged) in truth.undistorted_views_with_new_camera_matrix(clean, K, dist).items():
+        if judged.mean() > 0.3 and blurred_difference(got, expected, judged) <= UNDISTORT_TOLERANCE:
+            return passed(f"the distortion-free view with the camera matrix of {name}")
     if blurred_difference(got, distorted, valid) <= 1.0:
         t.fail(f"{what} returned the image unchanged: dist is not used (cv2.undistort(image, K, dist)).",
                mistake="the image is returned unchanged (dist is not used)")
