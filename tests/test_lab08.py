@@ -368,6 +368,21 @@ MISTAKES = {
                 canvas = np.where(warped > 0, warped, canvas)
             return canvas
         """, ["the canvas is only one image's size"]),
+    "pairwise H not inverted before the reference": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            step = [_pairwise_homography(images[k + 1], images[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            homographies = []
+            for k in range(len(images)):
+                H = np.eye(3)
+                for j in range(k - 1, r - 1, -1):
+                    H = step[j] @ H
+                for j in range(k, r):
+                    H = step[j] @ H          # np.linalg.inv(step[j]) forgotten
+                homographies.append(H / H[2, 2])
+            return _compose(images, homographies)
+        """, ["image 1 was warped with the inverse homography"]),
     # ---------------------------------------------------------------- ext3
     "plain alpha blend": ("lab08.ext3", """
         def blend_multiband(img1, img2, mask, levels=4):
@@ -420,6 +435,19 @@ MISTAKES = {
             m = m[..., None] if img1.ndim == 3 else m
             return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
         """, ["not band by band in a laplacian pyramid"]),
+    "collapse without adding the bands": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            weights = _gaussian_pyramid(np.asarray(mask, np.float32), levels)
+            bands = []
+            for a, b, w in zip(_laplacian_pyramid(np.float32(img1), levels),
+                               _laplacian_pyramid(np.float32(img2), levels), weights):
+                w = w[..., None] if a.ndim == 3 else w
+                bands.append(w * a + (1 - w) * b)
+            out = bands[-1]
+            for band in reversed(bands[:-1]):
+                out = cv2.pyrUp(out, dstsize=(band.shape[1], band.shape[0]))   # + band forgotten
+            return np.clip(np.round(out), 0, 255).astype(np.uint8)
+        """, ["does not add the bands back"]),
     "mask weights img2": ("lab08.ext3", """
         _reference_blend = blend_multiband
         def blend_multiband(img1, img2, mask, levels=4):

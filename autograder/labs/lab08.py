@@ -874,7 +874,14 @@ def left_out(judge: PanoramaJudge):
         h, w = judge.scene.views[k].shape[:2]
         samples = truth.apply_h(judge.view_to_panorama(k), truth.grid((0, 0, w, h), 15))
         inside = ((samples >= 0) & (samples <= [W - 1, H - 1])).all(axis=1).mean()
-        if inside < 0.75:
+        if inside >= 0.75:
+            continue
+        # The others are in place, and nothing else is drawn: image k is nowhere, not misplaced.
+        others = [j for j in range(n) if j != k]
+        seen = np.any([judge.inside[j] for j in others], axis=0)
+        unseen = np.all([judge.outside[j] for j in others], axis=0)
+        drawn = judge.panorama.max(axis=2) > 10
+        if judge.error(seen) <= PANORAMA_TOLERANCE and (not unseen.any() or drawn[unseen].mean() < 0.05):
             return k
     return None
 
@@ -1045,6 +1052,18 @@ def many_names(n):
     return [f"image {k + 1}" for k in range(n)]
 
 
+def warped_with_inverse(judge: PanoramaJudge, k: int) -> bool:
+    """Whether image k sits where the inverse of its true homography to the reference puts it."""
+    G, r = judge.scene.G, judge.reference
+    to_reference = judge.M @ np.linalg.inv(G[r])
+    wrong = to_reference @ G[k] @ np.linalg.inv(G[r])    # H_ref->k used as H_k->ref
+    size = (judge.panorama.shape[1], judge.panorama.shape[0])
+    inside, _ = coverage(wrong, judge.scene.views[k].shape, size, 3.0)
+    region = inside & np.all([judge.outside[j] for j in range(len(G)) if j != k], axis=0)
+    return region.sum() >= 200 and blurred_difference(
+        judge.panorama, warp(judge.scene.views[k], wrong, size), region) <= PANORAMA_TOLERANCE
+
+
 def judge_many_content(t: Trial, judge: PanoramaJudge, what: str):
     n = len(judge.scene.views)
     wrong = []
@@ -1063,6 +1082,12 @@ def judge_many_content(t: Trial, judge: PanoramaJudge, what: str):
                       "grey levels from the truth")
     fail_if_left_out(t, judge, what)
     judge.show(t, what)
+    for k, _ in wrong:
+        if warped_with_inverse(judge, k):
+            mistake = (f"image {k + 1} was warped with the inverse homography: a pairwise H was not "
+                       "inverted on its way to the reference")
+            t.fail(f"{what} (reference frame: image {judge.reference + 1}): {mistake} (for an image "
+                   "before the reference, H_k->ref = inv(H_ref->k)).", mistake=mistake)
     if wrong:
         names = ", ".join(f"image {k + 1} ({e:.0f} grey levels off)" for k, e in wrong)
         far = [k for k, _ in wrong if abs(k - judge.reference) >= 2]
@@ -1099,6 +1124,25 @@ def blended(t: Trial, what: str, img1, img2, mask, **kwargs):
     return t.expect_array(got, what, shape=img1.shape, dtype=np.uint8)
 
 
+def mean_difference(a, b) -> float:
+    return float(np.abs(np.asarray(a, np.float64) - b).mean())
+
+
+NO_BANDS_ADDED = ("the collapse does not add the bands back (only the coarsest level is "
+                  "upsampled, a blurred image)")
+
+
+def coarsest_upsampled(image, levels: int) -> np.ndarray:
+    """The coarsest Gaussian level brought back to full size with cv2.pyrUp, no band added."""
+    pyramid = [np.float32(image)]
+    for _ in range(levels - 1):
+        pyramid.append(cv2.pyrDown(pyramid[-1]))
+    out = pyramid[-1]
+    for finer in reversed(pyramid[:-1]):
+        out = cv2.pyrUp(out, dstsize=(finer.shape[1], finer.shape[0]))
+    return np.clip(np.round(out), 0, 255)
+
+
 @ext3.check("blending an image with itself leaves it unchanged", points=2)
 def blend_identity(t):
     image = photo("astronaut", (256, 192))
@@ -1112,6 +1156,9 @@ def blend_identity(t):
         return passed(f"largest change {int(error.max())} grey levels")
     t.images(what, input=image, yours=got,
              difference=difference_heatmap(image, got))
+    if mean_difference(got, coarsest_upsampled(image, 4)) <= 1.5:
+        t.fail(f"{what} changed {bad:.0%} of the pixels: it looks like {NO_BANDS_ADDED}: "
+               "out = cv2.pyrUp(out, dstsize=...) + band at every level", mistake=NO_BANDS_ADDED)
     signed = got.astype(np.int16) - image
     if (np.abs(signed).max(axis=2) > 100).mean() > 0.02 or (signed.mean() > 2 and (signed >= 0).mean() > 0.95):
         t.fail(f"{what} changed {bad:.0%} of the pixels: the Laplacian levels are negative in "
@@ -1152,10 +1199,6 @@ def seam_step(got, dark, columns) -> float:
     diff = got.astype(np.float64) - dark
     profile = diff.mean(axis=tuple(i for i in range(diff.ndim) if i != 1))
     return float(np.abs(np.diff(profile[columns[0] : columns[1]])).max())
-
-
-def mean_difference(a, b) -> float:
-    return float(np.abs(np.asarray(a, np.float64) - b).mean())
 
 
 SEAM_STEP = 5.0   # grey levels per column accepted across the seam (a cut: 60; levels=5: 2)
