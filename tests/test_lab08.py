@@ -146,6 +146,14 @@ MISTAKES = {
             H = T2 @ Vt[-1].reshape(3, 3) @ np.linalg.inv(T1)
             return H / H[2, 2]
         """, ["undone the wrong way round"]),
+    "DLT takes the largest singular vector": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            T1, T2 = _normalisation(src), _normalisation(dst)
+            _, _, Vt = np.linalg.svd(_dlt_rows(transform_points(T1, src), transform_points(T2, dst)))
+            H = np.linalg.inv(T2) @ Vt[0].reshape(3, 3) @ T1
+            return H / H[2, 2]
+        """, ["largest singular value"]),
     "warp_to_reference keeps the moving size": ("lab08.ex2", """
         def warp_to_reference(reference, moving, H):
             return apply_homography(moving, H)
