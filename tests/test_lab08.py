@@ -72,6 +72,12 @@ MISTAKES = {
             return cv2.warpPerspective(image, H, dsize or (w, h),
                                        flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
         """, ["inverted"]),
+    "divided by x instead of w": ("lab08.ex1", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, float).reshape(-1, 2)
+            q = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H, float).T
+            return q[:, :2] / q[:, 0:1]
+        """, ["divided by x, the wrong coordinate"]),
     "warpAffine for a homography": ("lab08.ex1", """
         def apply_homography(image, H, dsize=None):
             h, w = image.shape[:2]
@@ -113,6 +119,41 @@ MISTAKES = {
             H, _ = cv2.findHomography(np.float64(src), np.float64(dst), 0)
             return H
         """, ["cv2.findHomography", "yourself"]),
+    "DLT with a sign error in the u rows": ("lab08.ex2", """
+        _reference_rows = _dlt_rows
+        def _dlt_rows(src, dst):
+            A = _reference_rows(src, dst)
+            A[0::2, 6:9] *= -1
+            return A
+        """, ["sign error in the u rows"]),
+    "DLT v rows built with u": ("lab08.ex2", """
+        _reference_rows = _dlt_rows
+        def _dlt_rows(src, dst):
+            A = _reference_rows(src, dst)
+            A[1::2, 6:9] = A[0::2, 6:9]
+            return A
+        """, ["the v rows use u"]),
+    "DLT with u and v swapped in the rows": ("lab08.ex2", """
+        _reference_rows = _dlt_rows
+        def _dlt_rows(src, dst):
+            return _reference_rows(src, np.asarray(dst)[:, ::-1])
+        """, ["u and v are swapped"]),
+    "DLT normalisation undone the wrong way round": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            T1, T2 = _normalisation(src), _normalisation(dst)
+            _, _, Vt = np.linalg.svd(_dlt_rows(transform_points(T1, src), transform_points(T2, dst)))
+            H = T2 @ Vt[-1].reshape(3, 3) @ np.linalg.inv(T1)
+            return H / H[2, 2]
+        """, ["undone the wrong way round"]),
+    "DLT takes the largest singular vector": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            T1, T2 = _normalisation(src), _normalisation(dst)
+            _, _, Vt = np.linalg.svd(_dlt_rows(transform_points(T1, src), transform_points(T2, dst)))
+            H = np.linalg.inv(T2) @ Vt[0].reshape(3, 3) @ T1
+            return H / H[2, 2]
+        """, ["largest singular value"]),
     "warp_to_reference keeps the moving size": ("lab08.ex2", """
         def warp_to_reference(reference, moving, H):
             return apply_homography(moving, H)
@@ -140,6 +181,10 @@ MISTAKES = {
             pts1, pts2 = _reference_match(img1, img2, ratio, method)
             return pts1[:, ::-1], pts2[:, ::-1]
         """, ["x and y are swapped"]),
+    "matcher fed the same image twice": ("lab08.ex3", """
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            return _match(_detect(img1, method), _detect(img1, method), ratio, method)
+        """, ["same image twice"]),
     "lines not shifted by W1": ("lab08.ex3", """
         _reference_draw = draw_matches
         def draw_matches(img1, img2, pts1, pts2):
@@ -182,7 +227,7 @@ MISTAKES = {
             inliers = np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
             H = homography_dlt(src[inliers], dst[inliers]) if inliers.sum() >= 4 else best
             return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
-        """, ["of 5", "seeds"]),
+        """, ["draws too few samples"]),
     "RANSAC with squared distances": ("lab08.ex4", """
         _reference_ransac = homography_ransac
         def homography_ransac(src, dst, threshold=3.0, seed=None):
@@ -220,6 +265,18 @@ MISTAKES = {
         def homography_ransac(src, dst, threshold=3.0, seed=None):
             return _reference_ransac(src, dst, 1.0, seed)
         """, ["threshold=1.0 and threshold=20.0 give the same h and inlier mask: threshold is ignored"]),
+    "RANSAC keeping the last model drawn": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            for _ in range(200):
+                idx = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[idx], dst[idx])
+                inliers = np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+            if inliers.sum() >= 4:
+                H = homography_dlt(src[inliers], dst[inliers])
+            return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+        """, ["returns the last model drawn rather than the best one"]),
     # ---------------------------------------------------------------- ex5
     "img2 as the reference": ("lab08.ex5", """
         def stitch(img1, img2):
@@ -234,7 +291,7 @@ MISTAKES = {
             warped = apply_homography(img2, H, (w, h))
             warped[: img1.shape[0], : img1.shape[1]] = img1
             return warped
-        """, ["cut off at the top", "translation"]),
+        """, ["not shifted for negative coordinates"]),
     "canvas of img1's size": ("lab08.ex5", """
         def stitch(img1, img2):
             H = _pairwise_homography(img2, img1)
@@ -267,6 +324,11 @@ MISTAKES = {
             first, second = apply_homography(img1, T, size), apply_homography(img2, H, size)
             return np.where(first > 0, first, second)
         """, ["shift is not applied to img2"]),
+    "img2 as the reference (img1 warped onto img2)": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H12 = _pairwise_homography(img1, img2)
+            return _compose([img1, img2], [H12, np.eye(3)])
+        """, ["img2 is used as the reference frame"]),
     # ---------------------------------------------------------------- ext1
     "ORB matcher fed img1 twice": ("lab08.ext1", """
         _reference_match = match_features
@@ -292,6 +354,23 @@ MISTAKES = {
         def match_features(img1, img2, ratio=0.75, method="sift"):
             return _reference_match(img1, img2, ratio)
         """, ["method argument is ignored"]),
+    "ORB branch: pts1 and pts2 swapped": ("lab08.ext1", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _reference_match(img1, img2, ratio, method)
+            return (pts2, pts1) if method == "orb" else (pts1, pts2)
+        """, ["pts1 and pts2 are swapped"]),
+    "ORB branch: img1 matched with itself": ("lab08.ext1", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            return _reference_match(img1, img1 if method == "orb" else img2, ratio, method)
+        """, ["same image twice"]),
+    "ORB branch: keypoints as (row, column)": ("lab08.ext1", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _reference_match(img1, img2, ratio, method)
+            return (pts1[:, ::-1], pts2[:, ::-1]) if method == "orb" else (pts1, pts2)
+        """, ["x and y are swapped"]),
     # ---------------------------------------------------------------- ext2
     "homographies chained in the wrong order": ("lab08.ext2", """
         def stitch_many(images):
@@ -319,7 +398,7 @@ MISTAKES = {
                     H = np.linalg.inv(step[j]) @ H
                 homographies.append(H / H[2, 2])
             return _compose(images[:-1], homographies)
-        """, ["the last of the images", "left out"]),
+        """, ["the last one, is left out"]),
     "first image skipped (loop starts at 1)": ("lab08.ext2", """
         def stitch_many(images):
             images = list(images)
@@ -348,7 +427,51 @@ MISTAKES = {
     "only the first two images": ("lab08.ext2", """
         def stitch_many(images):
             return stitch(images[0], images[1])
-        """, ["image 3", "left out"]),
+        """, ["image 3, the last one, is left out"]),
+    "the last image left out (range(len(images) - 1))": ("lab08.ext2", """
+        _reference_many = stitch_many
+        def stitch_many(images):
+            images = list(images)
+            return _reference_many([images[k] for k in range(len(images) - 1)])
+        """, ["the last one, is left out"]),
+    "the first image left out (range(1, len(images)))": ("lab08.ext2", """
+        _reference_many = stitch_many
+        def stitch_many(images):
+            images = list(images)
+            return _reference_many([images[k] for k in range(1, len(images))])
+        """, ["the first one, is left out"]),
+    "canvas of the middle image's size": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            step = [_pairwise_homography(images[k + 1], images[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            h, w = images[r].shape[:2]
+            canvas = np.zeros((h, w, 3), np.uint8)
+            for k, image in enumerate(images):
+                H = np.eye(3)
+                for j in range(k - 1, r - 1, -1):
+                    H = step[j] @ H
+                for j in range(k, r):
+                    H = np.linalg.inv(step[j]) @ H
+                warped = apply_homography(_bgr(image), H, (w, h))
+                canvas = np.where(warped > 0, warped, canvas)
+            return canvas
+        """, ["the canvas is only one image's size"]),
+    "pairwise H not inverted before the reference": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            step = [_pairwise_homography(images[k + 1], images[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            homographies = []
+            for k in range(len(images)):
+                H = np.eye(3)
+                for j in range(k - 1, r - 1, -1):
+                    H = step[j] @ H
+                for j in range(k, r):
+                    H = step[j] @ H          # np.linalg.inv(step[j]) forgotten
+                homographies.append(H / H[2, 2])
+            return _compose(images, homographies)
+        """, ["image 1 was warped with the inverse homography"]),
     # ---------------------------------------------------------------- ext3
     "plain alpha blend": ("lab08.ext3", """
         def blend_multiband(img1, img2, mask, levels=4):
@@ -394,6 +517,26 @@ MISTAKES = {
         def blend_multiband(img1, img2, mask, levels=4):
             return _reference_blend(img1, img2, mask, 2)
         """, ["levels=1 and levels=6 give the same image: levels is ignored"]),
+    "one smoothed mask for the whole image (no Laplacian pyramid)": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            weights = _gaussian_pyramid(np.asarray(mask, np.float32), levels)
+            m = cv2.resize(weights[-1], (img1.shape[1], img1.shape[0]))
+            m = m[..., None] if img1.ndim == 3 else m
+            return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
+        """, ["not band by band in a laplacian pyramid"]),
+    "collapse without adding the bands": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            weights = _gaussian_pyramid(np.asarray(mask, np.float32), levels)
+            bands = []
+            for a, b, w in zip(_laplacian_pyramid(np.float32(img1), levels),
+                               _laplacian_pyramid(np.float32(img2), levels), weights):
+                w = w[..., None] if a.ndim == 3 else w
+                bands.append(w * a + (1 - w) * b)
+            out = bands[-1]
+            for band in reversed(bands[:-1]):
+                out = cv2.pyrUp(out, dstsize=(band.shape[1], band.shape[0]))   # + band forgotten
+            return np.clip(np.round(out), 0, 255).astype(np.uint8)
+        """, ["does not add the bands back"]),
     "mask weights img2": ("lab08.ext3", """
         _reference_blend = blend_multiband
         def blend_multiband(img1, img2, mask, levels=4):

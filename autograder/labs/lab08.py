@@ -26,9 +26,9 @@ from hypothesis import strategies as st
 from fixtures import lab08 as truth
 from fixtures.images import coverage, photo, warp
 
-from ..checks import Trial, partial, passed
+from ..checks import StudentFailure, Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
-from ..judges import (IMAGE_TOLERANCE, digits_apart, format_matrix, judge_parameter_used, judge_warp,
+from ..judges import (IMAGE_TOLERANCE, digits_apart, format_matrix, judge_warp,
                       parameter_ignored, where_matrices_differ, where_points_differ)
 from ..pictures import difference_heatmap, matches_picture, svg_points
 from ..registry import Lab
@@ -77,7 +77,8 @@ def judge_points(t: Trial, what: str, got, H, pts):
     expected = truth.apply_h(H, pts)
     if relative_point_error(got, expected) <= 1e-5:   # float32 arithmetic is accepted
         return
-    mistake = closest(got, truth.point_mistakes(H, pts), relative_point_error, 1e-3)
+    mistake = closest(got, truth.point_mistakes(H, pts), relative_point_error, 1e-3,
+                      truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     where = where_points_differ(got, expected, 1e-3 * np.maximum(1.0, np.abs(expected)))
@@ -160,9 +161,13 @@ def diagnose_h(t: Trial, what: str, got, H_true, src=None, dst=None, tolerance=1
         mistakes[reduced] = truth.dlt(src, dst, reduced_svd=True)
         mistakes[reduced + " (and normalise the points)"] = truth.dlt(src, dst, normalise=False,
                                                                       reduced_svd=True)
-    mistake = closest(got, mistakes, projective_distance, tolerance)
-    if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    for normalise in (True, False):   # students make the DLT's mistakes with and without it
+        candidates = dict(mistakes)
+        if src is not None:
+            candidates.update(truth.dlt_mistakes(src, dst, normalise))
+        mistake = closest(got, candidates, projective_distance, tolerance, truth=H_true)
+        if mistake:
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
 
 
 def judge_exact_fit(t: Trial, src, dst, H_true, region):
@@ -298,6 +303,15 @@ def matched_points(t: Trial, what: str, result):
     return pts1.astype(np.float64), pts2.astype(np.float64)
 
 
+SWAPPED = "pts1 and pts2 are swapped"
+SAME_IMAGE = "the matcher was fed the same image twice (img1 matched with itself)"
+
+
+def same_image_twice(pts1, pts2) -> bool:
+    """Whether nearly every match joins a point to the same position (img1 matched with img1)."""
+    return len(pts1) >= 4 and float((np.linalg.norm(pts1 - pts2, axis=1) < 0.5).mean()) >= 0.9
+
+
 def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, min_fraction: float):
     pts1, pts2 = matched_points(t, what, result)
     good = truth.consistent(H, pts1, pts2, MATCH_TOLERANCE)
@@ -307,15 +321,12 @@ def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, 
     if len(pts1) >= min_matches and fraction >= min_fraction:
         return passed(f"{len(pts1)} matches, {fraction:.0%} agree with the true homography")
     if len(pts1) >= 4:
-        # The same image twice: every keypoint matches itself, exactly where it is.
-        if np.mean(np.all(np.abs(pts1 - pts2) < 1e-3, axis=1)) >= 0.9:
-            t.fail(f"{what}: it looks like the same image is matched against itself: every match "
-                   "joins a point to the same position (pts1 equals pts2); detect in img1 and "
-                   "in img2", mistake="the same image is matched twice")
+        if same_image_twice(pts1, pts2):
+            t.fail(f"{what}: {SAME_IMAGE}: every match joins a point to itself (pts1 == pts2)",
+                   mistake=SAME_IMAGE)
         if truth.consistent(np.linalg.inv(H), pts1, pts2).mean() >= min_fraction:
-            t.fail(f"{what}: pts1 and pts2 are swapped: pts1 must be the points in img1 "
-                   "(queryIdx of a match of img1's descriptors against img2's)",
-                   mistake="pts1 and pts2 are swapped")
+            t.fail(f"{what}: {SWAPPED}: pts1 must be the points in img1 "
+                   "(queryIdx of a match of img1's descriptors against img2's)", mistake=SWAPPED)
         if truth.consistent(H, pts1[:, ::-1], pts2[:, ::-1]).mean() >= min_fraction:
             t.fail(f"{what}: x and y are swapped: return (x, y) = (column, row), "
                    "as cv2.KeyPoint.pt gives them", mistake="x and y are swapped")
@@ -342,16 +353,23 @@ def match_ratio(t):
     for ratio in (0.5, 0.9):
         what = f"match_features(img1, img2, ratio={ratio})"
         pts1, pts2 = matched_points(t, what, t.call("match_features", img1, img2, ratio=ratio))
+        if same_image_twice(pts1, pts2):
+            t.fail(f"{what}: {SAME_IMAGE}: every match joins a point to itself (pts1 == pts2)",
+                   mistake=SAME_IMAGE)
+        if len(pts1) >= 10 and truth.consistent(np.linalg.inv(H), pts1, pts2).mean() >= 0.85:
+            t.fail(f"{what}: {SWAPPED}: pts1 must be the points in img1", mistake=SWAPPED)
         counts[ratio] = len(pts1)
         fractions[ratio] = float(truth.consistent(H, pts1, pts2).mean()) if len(pts1) else 0.0
     summary = (f"ratio=0.5 gave {counts[0.5]} matches ({fractions[0.5]:.0%} correct), "
                f"ratio=0.9 gave {counts[0.9]} ({fractions[0.9]:.0%} correct)")
     if counts[0.5] == counts[0.9]:
-        t.fail(f"{summary}: the ratio argument has no effect. Apply Lowe's ratio test with the "
-               "given ratio: keep a match when best.distance < ratio * second_best.distance.")
+        t.fail(f"{summary}: the ratio argument has no effect (ratio is ignored). Apply Lowe's "
+               "ratio test with the given ratio: keep a match when best.distance < ratio * "
+               "second_best.distance.", mistake="ratio is ignored")
     if counts[0.5] > counts[0.9]:
-        t.fail(f"{summary}: the stricter ratio kept more matches, so the test is reversed: keep a "
-               "match when best.distance < ratio * second_best.distance.")
+        t.fail(f"{summary}: the stricter ratio kept more matches, so the ratio test is reversed "
+               "(it keeps the ambiguous matches): keep a match when best.distance < ratio * "
+               "second_best.distance.", mistake="the ratio test is reversed")
     if counts[0.5] < 10:
         t.fail(f"{summary}: too few matches survive ratio=0.5 (at least 10 expected).")
     if fractions[0.5] < 0.9 or fractions[0.5] < fractions[0.9] - 0.02:
@@ -499,41 +517,76 @@ def ransac_success(H, inliers, H_true, true_inliers):
 
 
 def probe_ransac_threshold(t: Trial, src, dst, seed):
-    """Fail naming ``threshold`` as ignored when 1 px and 20 px give the same H and mask."""
-    judge_parameter_used(t, f"homography_ransac(src, dst, seed={seed})",
-                         lambda **kw: t.call("homography_ransac", src, dst, seed=seed, **kw),
-                         "threshold", (1.0, 20.0), "H and inlier mask")
+    """Fail naming ``threshold`` as ignored when 1 px and 20 px give the same H and mask.
 
-
-FITS_ALL_POINTS = "H is fitted to all the points, outliers included"
-
-
-def name_fit_to_all_points(t: Trial, what: str, H, src, dst, H_true):
-    """Fail naming the fit to every pair (no RANSAC at all) when ``H`` is that fit.
-
-    Such an H does not depend on the threshold either, so the threshold probe
-    would also (rightly) report it ignored: one message says both, the cause first.
+    A mask that marks every pair, or none, at both thresholds says nothing about the
+    threshold (an H far off the data has no inliers at any threshold): no name then.
     """
-    if closest(H, {FITS_ALL_POINTS: truth.dlt(src, dst)}, projective_distance, 0.02, truth=H_true):
-        t.fail(f"{what} is wrong: it looks like {FITS_ALL_POINTS} (RANSAC should pick the consensus "
-               "set and fit to it), so the threshold is ignored too.", mistake=FITS_ALL_POINTS)
+    try:
+        results = [t.call("homography_ransac", src, dst, threshold=value, seed=seed)
+                   for value in (1.0, 20.0)]
+    except StudentFailure:
+        return
+    if not all(isinstance(r, (tuple, list)) and len(r) == 2 for r in results):
+        return
+    (H1, mask1), (H20, mask20) = [(np.asarray(H), np.asarray(mask)) for H, mask in results]
+    if mask1.shape != (len(src),) or mask20.shape != mask1.shape or len(np.unique(mask1)) < 2:
+        return
+    if H1.shape == H20.shape and np.array_equal(H1, H20) and np.array_equal(mask1, mask20):
+        t.fail(f"homography_ransac(src, dst, seed={seed}): threshold=1.0 and threshold=20.0 give "
+               "the same H and inlier mask: threshold is ignored.",
+               hint="use the threshold argument instead of a fixed value",
+               mistake="threshold is ignored")
+
+
+ALL_POINTS = ("H is fitted to all the points, outliers included, and threshold is ignored "
+              "(RANSAC should pick the consensus set within the threshold and fit to it)")
+
+
+def name_ransac_h(t: Trial, what, H, src, dst, H_true, seed=0, threshold=3.0):
+    """Fail naming the mistake when the returned H is a known wrong one, or ``threshold`` is ignored.
+
+    A fit to all the points ignores the threshold too: it is named first, as one mistake.
+    """
+    mistakes = truth.matrix_mistakes(H_true)
+    mistakes[ALL_POINTS] = truth.dlt(src, dst)
+    mistake = closest(H, mistakes, projective_distance, 0.02, truth=H_true)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    consensus = int((np.linalg.norm(truth.apply_h(H, src) - dst, axis=1) < threshold).sum())
+    best = int((np.linalg.norm(truth.apply_h(H_true, src) - dst, axis=1) < threshold).sum())
+    if consensus < 0.5 * best and dlt_works(t, src, dst, H_true):
+        t.fail(f"{what}: your H agrees with only {consensus} of the {len(src)} pairs within the "
+               f"threshold, where the true H agrees with {best}, and your homography_dlt is right: "
+               f"it looks like {NOT_THE_BEST}.", mistake=NOT_THE_BEST)
+    probe_ransac_threshold(t, src, dst, seed)
+
+
+NOT_THE_BEST = ("RANSAC does not keep the model with the most inliers: it returns the last model "
+                "drawn rather than the best one, or draws too few samples")
+
+
+def dlt_works(t: Trial, src, dst, H_true) -> bool:
+    """Whether the student's homography_dlt fits the true inliers (then RANSAC's choice is to blame)."""
+    good = np.linalg.norm(truth.apply_h(H_true, src) - dst, axis=1) < 3.0
+    try:
+        H = np.asarray(t.call("homography_dlt", src[good], dst[good]), dtype=np.float64)
+    except StudentFailure:
+        return False
+    return H.shape == (3, 3) and truth.transfer_rms(H, H_true, RANSAC_REGION) < 3.0
 
 
 def diagnose_ransac(t: Trial, what, H, inliers, src, dst, H_true, true_inliers, threshold=3.0, seed=0):
     if (~inliers == true_inliers).mean() >= 0.95:
         t.fail(f"{what}: the inlier mask is inverted: True must mark the inliers "
                "(transfer error below the threshold)", mistake="the inlier mask is inverted")
-    name_fit_to_all_points(t, what, H, src, dst, H_true)
-    probe_ransac_threshold(t, src, dst, seed)
-    mistakes = truth.matrix_mistakes(H_true)
-    mistake = closest(H, mistakes, projective_distance, 0.02, truth=H_true)
-    if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    name_ransac_h(t, what, H, src, dst, H_true, seed, threshold)
     errors = np.linalg.norm(truth.apply_h(H, src) - dst, axis=1)
     if (inliers == (errors ** 2 < threshold)).mean() >= 0.98 and \
             (inliers == (errors < threshold)).mean() < 0.95:
         t.fail(f"{what}: the inlier mask marks the pairs whose *squared* error is below the "
-               "threshold; compare the distance |H src - dst| itself with the threshold (pixels)")
+               "threshold; compare the distance |H src - dst| itself with the threshold (pixels)",
+               mistake="the squared error is compared with the threshold")
 
 
 @ex4.check("homography_ransac with 30% outliers: H within 1.5 px of the truth", points=3)
@@ -626,8 +679,7 @@ def ransac_seeds(t):
     summary = "; ".join(notes)
     if wins >= 4:
         return passed(f"succeeded with {wins} of 5 seeds ({summary})")
-    name_fit_to_all_points(t, what, H, src, dst, H_true)
-    probe_ransac_threshold(t, src, dst, seed=4)
+    name_ransac_h(t, what, H, src, dst, H_true, seed=4)
     message = (f"homography_ransac found the right homography and inliers with only {wins} of 5 "
                f"seeds ({summary}).")
     hint = ("With half the pairs wrong, a random 4-point sample is all inliers only 1 time in 16: "
@@ -771,6 +823,9 @@ def panorama_result(t: Trial, key: str, what: str, function: str, images):
 MAX_PANORAMA_PIXELS = 2_000_000   # the panoramas judged here are about 120 000 pixels
 
 
+IMG2_REFERENCE = "img2 is used as the reference frame instead of img1"
+
+
 def stitch_judge(t: Trial, key: str, scene, what: str) -> PanoramaJudge:
     img1, img2 = scene.views
     panorama = panorama_result(t, key, what, "stitch", (img1, img2))
@@ -782,8 +837,9 @@ def stitch_judge(t: Trial, key: str, scene, what: str) -> PanoramaJudge:
     if agreement < 0.5 or agreement2 > agreement:
         t.images(what, yours=panorama, img1=img1, img2=img2)
         if agreement2 >= 0.8 and agreement2 > agreement:
-            t.fail(f"{what}: img2 appears unwarped in your panorama, so img1 was warped: img1 is "
-                   "the reference frame (warp img2 with the H that maps img2's pixels onto img1's)")
+            t.fail(f"{what}: img2 appears unwarped in your panorama, so img1 was warped: "
+                   f"{IMG2_REFERENCE}; img1 is the reference frame (warp img2 with the H that maps "
+                   "img2's pixels onto img1's)", mistake=IMG2_REFERENCE)
         t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs "
                f"from img1 by {error:.0f} grey levels): img1 is the reference frame and must only "
                "be shifted")
@@ -799,7 +855,61 @@ def stitch_scene():
 STITCH_WHAT = "stitch(img1, img2)"
 
 
+def left_out(judge: PanoramaJudge):
+    """The first or last image of a list when the panorama is exactly the other images' one.
+
+    The canvas is the bounding box of the others' footprints, and most of that image
+    falls outside it: the loop over the images stopped one short (or started one late).
+    """
+    n = len(judge.scene.views)
+    if n < 3:
+        return None
+    H, W = judge.panorama.shape[:2]
+    for k in (n - 1, 0):
+        corners = np.vstack([truth.apply_h(judge.view_to_panorama(j), _view_corners(judge.scene.views[j]))
+                             for j in range(n) if j != k])
+        low, high = corners.min(axis=0), corners.max(axis=0)
+        if low.min() < -3 or abs(high[0] - (W - 1)) > 3 or abs(high[1] - (H - 1)) > 3:
+            continue
+        h, w = judge.scene.views[k].shape[:2]
+        samples = truth.apply_h(judge.view_to_panorama(k), truth.grid((0, 0, w, h), 15))
+        inside = ((samples >= 0) & (samples <= [W - 1, H - 1])).all(axis=1).mean()
+        if inside >= 0.75:
+            continue
+        # The others are in place, and nothing else is drawn: image k is nowhere, not misplaced.
+        others = [j for j in range(n) if j != k]
+        seen = np.any([judge.inside[j] for j in others], axis=0)
+        unseen = np.all([judge.outside[j] for j in others], axis=0)
+        drawn = judge.panorama.max(axis=2) > 10
+        if judge.error(seen) <= PANORAMA_TOLERANCE and (not unseen.any() or drawn[unseen].mean() < 0.05):
+            return k
+    return None
+
+
+def _view_corners(view):
+    h, w = view.shape[:2]
+    return np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], dtype=np.float64)
+
+
+def fail_if_left_out(t: Trial, judge: PanoramaJudge, what: str):
+    k = left_out(judge)
+    if k is None:
+        return
+    n = len(judge.scene.views)
+    which = "last" if k == n - 1 else "first"
+    loop = "range(len(images) - 1)" if k == n - 1 else "range(1, len(images))"
+    mistake = f"image {k + 1}, the {which} one, is left out: the loop over the images is off by one"
+    judge.show(t, what)
+    t.fail(f"{what}: {mistake} (the panorama is exactly the one of the other images; loop over "
+           f"every image, not {loop}).", mistake=mistake)
+
+
+ONE_IMAGE_CANVAS = "the canvas is only one image's size"
+NOT_SHIFTED = "the canvas is not shifted for negative coordinates"
+
+
 def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
+    fail_if_left_out(t, judge, what)
     sticking = {}
     for k, name in enumerate(names):
         for side, amount in footprint_outside(judge.view_to_panorama(k), judge.scene.views[k].shape,
@@ -811,13 +921,21 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
         name_image_left_out(t, judge, what, names, sticking)
         side, items = max(sticking.items(), key=lambda s: max(a for _, a in s[1]))
         name, amount = max(items, key=lambda i: i[1])
-        if side in ("left", "top"):
-            t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: content that "
-                   "lands at negative coordinates must fit too, so shift everything by a "
+        # A canvas mistake only when what is inside the canvas is in the right place.
+        placed = judge.error(np.any(judge.inside, axis=0)) <= PANORAMA_TOLERANCE
+        if placed and any(judge.panorama.shape[:2] == view.shape[:2] for view in judge.scene.views):
+            t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: {ONE_IMAGE_CANVAS}; "
+                   "it must be the bounding box of all the warped image corners, shifted by a "
+                   "translation so that negative coordinates fit", mistake=ONE_IMAGE_CANVAS)
+        if placed and side in ("left", "top"):
+            t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: {NOT_SHIFTED}: "
+                   "content that lands at negative coordinates must fit too, so shift everything by a "
                    "translation T = [[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]] (applied to every "
-                   "homography) and size the canvas to the bounding box of all warped corners")
+                   "homography) and size the canvas to the bounding box of all warped corners",
+                   mistake=NOT_SHIFTED)
         t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: the canvas must be "
-               "the bounding box of all the warped image corners, not the size of one image")
+               "the bounding box of all the warped image corners, shifted by a translation so that "
+               "negative coordinates fit")
     covered = np.any(judge.inside, axis=0)
     ys, xs = np.nonzero(covered)
     box = (xs.max() - xs.min() + 1) * (ys.max() - ys.min() + 1)
@@ -932,6 +1050,17 @@ def stitch_second(t):
     judge = stitch_judge(t, "stitch-public", scene, STITCH_WHAT)
     region = judge.inside[1] & judge.outside[0]
     if region.sum() < 100 or judge.error(region) > PANORAMA_TOLERANCE:
+        # img2 warped with the inverse homography?
+        size = (judge.panorama.shape[1], judge.panorama.shape[0])
+        inverse = truth.translation(*judge.offset) @ np.linalg.inv(scene.h(1, 0))
+        wrong = warp(scene.views[1], inverse, size)
+        wrong_inside, _ = coverage(inverse, scene.views[1].shape, size, 3.0)
+        check = wrong_inside & judge.outside[0]
+        if check.sum() >= 100 and blurred_difference(judge.panorama, wrong, check) <= PANORAMA_TOLERANCE:
+            judge.show(t, STITCH_WHAT)
+            t.fail(f"{STITCH_WHAT}: img2 was warped with the inverse homography: use the H that "
+                   "maps img2's pixels onto img1's (match img2 -> img1, or invert)",
+                   mistake="img2 was warped with the inverse homography")
         name_second_warp_mistake(t, judge, scene)
     return judge_region(t, judge, STITCH_WHAT, region, "the part only img2 sees",
                         hint="warp img2 with T @ H, where H maps img2 onto img1 and T is the "
@@ -992,6 +1121,18 @@ def many_names(n):
     return [f"image {k + 1}" for k in range(n)]
 
 
+def warped_with_inverse(judge: PanoramaJudge, k: int) -> bool:
+    """Whether image k sits where the inverse of its true homography to the reference puts it."""
+    G, r = judge.scene.G, judge.reference
+    to_reference = judge.M @ np.linalg.inv(G[r])
+    wrong = to_reference @ G[k] @ np.linalg.inv(G[r])    # H_ref->k used as H_k->ref
+    size = (judge.panorama.shape[1], judge.panorama.shape[0])
+    inside, _ = coverage(wrong, judge.scene.views[k].shape, size, 3.0)
+    region = inside & np.all([judge.outside[j] for j in range(len(G)) if j != k], axis=0)
+    return region.sum() >= 200 and blurred_difference(
+        judge.panorama, warp(judge.scene.views[k], wrong, size), region) <= PANORAMA_TOLERANCE
+
+
 def judge_many_content(t: Trial, judge: PanoramaJudge, what: str):
     n = len(judge.scene.views)
     wrong = []
@@ -1008,7 +1149,14 @@ def judge_many_content(t: Trial, judge: PanoramaJudge, what: str):
     if not wrong and everything <= PANORAMA_TOLERANCE:
         return passed(f"reference: image {judge.reference + 1}; mean difference {everything:.1f} "
                       "grey levels from the truth")
+    fail_if_left_out(t, judge, what)
     judge.show(t, what)
+    for k, _ in wrong:
+        if warped_with_inverse(judge, k):
+            mistake = (f"image {k + 1} was warped with the inverse homography: a pairwise H was not "
+                       "inverted on its way to the reference")
+            t.fail(f"{what} (reference frame: image {judge.reference + 1}): {mistake} (for an image "
+                   "before the reference, H_k->ref = inv(H_ref->k)).", mistake=mistake)
     if wrong:
         names = ", ".join(f"image {k + 1} ({e:.0f} grey levels off)" for k, e in wrong)
         far = [k for k, _ in wrong if abs(k - judge.reference) >= 2]
@@ -1045,6 +1193,25 @@ def blended(t: Trial, what: str, img1, img2, mask, **kwargs):
     return t.expect_array(got, what, shape=img1.shape, dtype=np.uint8)
 
 
+def mean_difference(a, b) -> float:
+    return float(np.abs(np.asarray(a, np.float64) - b).mean())
+
+
+NO_BANDS_ADDED = ("the collapse does not add the bands back (only the coarsest level is "
+                  "upsampled, a blurred image)")
+
+
+def coarsest_upsampled(image, levels: int) -> np.ndarray:
+    """The coarsest Gaussian level brought back to full size with cv2.pyrUp, no band added."""
+    pyramid = [np.float32(image)]
+    for _ in range(levels - 1):
+        pyramid.append(cv2.pyrDown(pyramid[-1]))
+    out = pyramid[-1]
+    for finer in reversed(pyramid[:-1]):
+        out = cv2.pyrUp(out, dstsize=(finer.shape[1], finer.shape[0]))
+    return np.clip(np.round(out), 0, 255)
+
+
 @ext3.check("blending an image with itself leaves it unchanged", points=2)
 def blend_identity(t):
     image = photo("astronaut", (256, 192))
@@ -1058,6 +1225,9 @@ def blend_identity(t):
         return passed(f"largest change {int(error.max())} grey levels")
     t.images(what, input=image, yours=got,
              difference=difference_heatmap(image, got))
+    if mean_difference(got, coarsest_upsampled(image, 4)) <= 1.5:
+        t.fail(f"{what} changed {bad:.0%} of the pixels: it looks like {NO_BANDS_ADDED}: "
+               "out = cv2.pyrUp(out, dstsize=...) + band at every level", mistake=NO_BANDS_ADDED)
     signed = got.astype(np.int16) - image
     if (np.abs(signed).max(axis=2) > 100).mean() > 0.02 or (signed.mean() > 2 and (signed >= 0).mean() > 0.95):
         t.fail(f"{what} changed {bad:.0%} of the pixels: the Laplacian levels are negative in "
@@ -1130,6 +1300,14 @@ def blend_seam(t):
                "fixed depth leaves a visible seam; with levels=5 the coarsest level should spread "
                "the difference over tens of pixels", mistake="levels is ignored")
     if step > SEAM_STEP:
+        depth = closest(got, {f"the pyramid has {k} levels where levels=5 asks for 5 (off by "
+                              f"{5 - k}; levels counts the full-resolution level too)": truth.multiband(
+                                  dark, bright, mask, k) for k in (2, 3, 4)},
+                        mean_difference, 0.3, truth=truth.multiband(dark, bright, mask, 5))
+        if depth:
+            t.fail(f"{what}: it looks like {depth}. The brightness still jumps by {step:.0f} grey "
+                   f"levels per column at the seam (at most {SEAM_STEP:g} accepted).", mistake=depth)
+    if step > SEAM_STEP:
         t.fail(f"{what}: the brightness still jumps by {step:.0f} grey levels per column at the "
                f"seam (a hard cut: {cut:.0f}, at most {SEAM_STEP:g} accepted): a narrow feather "
                "leaves a visible seam; with 5 levels the coarsest level should spread the "
@@ -1140,6 +1318,29 @@ def blend_seam(t):
 def detail(image):
     image = image.astype(np.float32)
     return image - cv2.GaussianBlur(image, (0, 0), 2.0)
+
+
+NO_LAPLACIAN = ("it looks like the images are blended with one smoothed mask for all detail (a "
+                "wide or narrow feather, or an alpha blend), not band by band in a Laplacian pyramid")
+
+
+def one_weight_per_pixel(got, img1, img2, seam: int, reach: int = 32) -> bool:
+    """Whether, near the seam, ``got`` is ``m * img1 + (1 - m) * img2`` with one weight m per pixel.
+
+    A feather or alpha blend is (residual about 0.3 grey levels, measured); a multi-band
+    blend weights each band differently (levels=4: 1.8, levels=5: 4.0 on brick/astronaut).
+    """
+    a, b, g = (np.asarray(x, dtype=np.float64) for x in (img1, img2, got))
+    if a.ndim != 3:
+        return False
+    d = a - b
+    strength = (d * d).sum(axis=2)
+    m = np.clip((d * (g - b)).sum(axis=2) / np.maximum(strength, 1e-9), 0, 1)
+    residual = np.abs(m[..., None] * d + b - g).max(axis=2)
+    near = np.zeros(strength.shape, bool)
+    near[:, seam - reach : seam + reach] = True
+    near &= strength > 30 ** 2
+    return near.sum() > 500 and float(residual[near].mean()) < 0.8
 
 
 @ext3.check("detail stays sharp at the seam: no ghosting (levels=5)", points=2)
@@ -1156,6 +1357,15 @@ def blend_sharp(t):
     if ghosting <= GHOSTING:
         return passed(f"fine detail near the seam is {1 - ghosting:.0%} the selected image's")
     t.images(what, img1=img1, img2=img2, yours=got)
+    if parameter_ignored(lambda **kw: t.call("blend_multiband", img1, img2, mask, **kw), "levels", (1, 6)):
+        t.fail(f"{what}: levels=1 and levels=6 give the same image: levels is ignored. 3 to 10 px "
+               f"from the seam both images' detail shows through ({ghosting:.0%} ghosting).",
+               mistake="levels is ignored")
+    if one_weight_per_pixel(got, img1, img2, seam=128):
+        t.fail(f"{what}: 3 to 10 px from the seam the fine detail differs from the image the mask "
+               f"selects by {ghosting:.0%} of its strength (ghosting): {NO_LAPLACIAN}. In multi-band "
+               "blending the finest level uses the sharp mask; only coarse levels blend over a "
+               "wide band.", mistake=NO_LAPLACIAN)
     t.fail(f"{what}: 3 to 10 px from the seam the fine detail differs from the image the mask "
            f"selects by {ghosting:.0%} of its strength (at most {GHOSTING:.0%} accepted): both "
            "images' detail shows through (ghosting), as with a wide feather. In multi-band blending "
