@@ -26,7 +26,7 @@ from hypothesis import strategies as st
 from fixtures import lab08 as truth
 from fixtures.images import coverage, photo, warp
 
-from ..checks import Trial, partial, passed
+from ..checks import StudentFailure, Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
 from ..judges import (IMAGE_TOLERANCE, digits_apart, format_matrix, judge_parameter_used, judge_warp,
                       parameter_ignored, where_matrices_differ, where_points_differ)
@@ -153,6 +153,8 @@ def diagnose_h(t: Trial, what: str, got, H_true, src=None, dst=None, tolerance=1
     if src is not None:
         mistakes["the normalised H is returned without undoing the normalisation "
                  "(return T_dst^-1 @ H_normalised @ T_src)"] = truth.unnormalised_return(src, dst)
+    if src is not None:
+        mistakes.update(truth.dlt_row_mistakes(src, dst))
     if src is not None and len(src) == 4:
         reduced = ("the SVD is a reduced one: with 4 pairs A is 8x9, and np.linalg.svd(A, "
                    "full_matrices=False) returns only 8 right singular vectors, none of them the "
@@ -160,7 +162,7 @@ def diagnose_h(t: Trial, what: str, got, H_true, src=None, dst=None, tolerance=1
         mistakes[reduced] = truth.dlt(src, dst, reduced_svd=True)
         mistakes[reduced + " (and normalise the points)"] = truth.dlt(src, dst, normalise=False,
                                                                       reduced_svd=True)
-    mistake = closest(got, mistakes, projective_distance, tolerance)
+    mistake = closest(got, mistakes, projective_distance, tolerance, truth=H_true)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
 
@@ -499,10 +501,40 @@ def ransac_success(H, inliers, H_true, true_inliers):
 
 
 def probe_ransac_threshold(t: Trial, src, dst, seed):
-    """Fail naming ``threshold`` as ignored when 1 px and 20 px give the same H and mask."""
-    judge_parameter_used(t, f"homography_ransac(src, dst, seed={seed})",
-                         lambda **kw: t.call("homography_ransac", src, dst, seed=seed, **kw),
+    """Fail naming ``threshold`` as ignored when 1 px and 20 px give the same H and mask.
+
+    Only when the 20 px mask is not what 20 px gives with that H: a model no pair
+    but its own sample agrees with (the last sample kept, say) has the same mask
+    at any threshold, and that is not the threshold's fault.
+    """
+    call = lambda **kw: t.call("homography_ransac", src, dst, seed=seed, **kw)  # noqa: E731
+    try:
+        H, mask = call(threshold=20.0)
+        errors = np.linalg.norm(truth.apply_h(np.asarray(H, float), src) - dst, axis=1)
+        if np.array_equal(np.asarray(mask, bool), errors < 20.0):
+            return
+    except (StudentFailure, TypeError, ValueError, IndexError):
+        return
+    judge_parameter_used(t, f"homography_ransac(src, dst, seed={seed})", call,
                          "threshold", (1.0, 20.0), "H and inlier mask")
+
+
+LAST_MODEL = "the last sample's model is kept, not the best"
+
+
+def name_last_model(t: Trial, what: str, H, src, dst, true_inliers, threshold):
+    """Fail naming a kept 4-point model that is far from the best one RANSAC should find.
+
+    An unrefined sample fits 4 pairs exactly; when few other pairs agree with it,
+    it was not the model with the most inliers (the true model has many more).
+    """
+    errors = np.linalg.norm(truth.apply_h(H, src) - dst, axis=1)
+    exact, agree = int((errors < 1e-6).sum()), int((errors < threshold).sum())
+    if exact >= 4 and agree < 0.5 * true_inliers.sum():
+        t.fail(f"{what}: it looks like {LAST_MODEL} (or far too few samples are drawn): the "
+               f"returned H fits 4 pairs exactly but only {agree} pairs agree with it, where the "
+               f"true model has {int(true_inliers.sum())}. Keep the model with the most inliers.",
+               mistake=LAST_MODEL)
 
 
 FITS_ALL_POINTS = "H is fitted to all the points, outliers included"
@@ -524,6 +556,7 @@ def diagnose_ransac(t: Trial, what, H, inliers, src, dst, H_true, true_inliers, 
         t.fail(f"{what}: the inlier mask is inverted: True must mark the inliers "
                "(transfer error below the threshold)", mistake="the inlier mask is inverted")
     name_fit_to_all_points(t, what, H, src, dst, H_true)
+    name_last_model(t, what, H, src, dst, true_inliers, threshold)
     probe_ransac_threshold(t, src, dst, seed)
     mistakes = truth.matrix_mistakes(H_true)
     mistake = closest(H, mistakes, projective_distance, 0.02, truth=H_true)
@@ -627,6 +660,7 @@ def ransac_seeds(t):
     if wins >= 4:
         return passed(f"succeeded with {wins} of 5 seeds ({summary})")
     name_fit_to_all_points(t, what, H, src, dst, H_true)
+    name_last_model(t, what, H, src, dst, true_inliers, 3.0)
     probe_ransac_threshold(t, src, dst, seed=4)
     message = (f"homography_ransac found the right homography and inliers with only {wins} of 5 "
                f"seeds ({summary}).")
