@@ -211,6 +211,12 @@ MISTAKES = {
         def shear(image, s=0.5):
             return _warp(image, shear_matrix(0.5))
         """, ["s is ignored"]),
+    "shear about the centre": ("lab07.ex4", """
+        def shear(image, s=0.5):
+            h, w = image.shape[:2]
+            c = np.array([(w - 1) / 2, (h - 1) / 2])
+            return _warp(image, translation_matrix(*c) @ shear_matrix(s) @ translation_matrix(*-c))
+        """, ["about the image centre"]),
     "affine with the targets as (row, column)": ("lab07.ex5", """
         def affine_from_points(src, dst):
             S = np.hstack([np.asarray(src, float), np.ones((3, 1))])

@@ -117,6 +117,11 @@ MISTAKES = {
         def warp_to_reference(reference, moving, H):
             return apply_homography(moving, H)
         """, ["reference's size"]),
+    "every point divided by the first point's w": ("lab08.ex1", """
+        def transform_points(H, pts):
+            q = np.hstack([np.asarray(pts, float), np.ones((len(pts), 1))]) @ np.asarray(H, float).T
+            return q[:, :2] / q[0, 2]
+        """, ["first point's w"]),
     "DLT with a sign error in the second row": ("lab08.ex2", """
         def _dlt_rows(src, dst):
             n = len(src)

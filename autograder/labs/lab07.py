@@ -164,7 +164,7 @@ def shear_matrix_property(t):
 def shear_default(t):
     source = photo("astronaut", (200, 150))
     return judge_warp(t, "shear(image)", t.call("shear", source), source,
-                      truth.shear(0.5), truth.shear_mistakes(0.5))
+                      truth.shear(0.5), truth.shear_mistakes(0.5, source.shape))
 
 
 @ex4.check("shear keeps a grey image grey", points=3)
@@ -172,7 +172,7 @@ def shear_grey(t):
     source = photo("camera", (160, 120), grey=True)
     return judge_warp_using(t, "shear", "s", (0.3, -0.4), lambda: judge_warp(
         t, "shear(grey image, s=0.3)", t.call("shear", source, s=0.3), source,
-        truth.shear(0.3), truth.shear_mistakes(0.3)))
+        truth.shear(0.3), truth.shear_mistakes(0.3, source.shape)))
 
 
 # ================================================================== ex5 affine from 3 points
