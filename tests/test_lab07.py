@@ -254,6 +254,33 @@ MISTAKES = {
             S = np.hstack([np.asarray(dst, float), np.ones((len(dst), 1))])
             return np.linalg.lstsq(S, np.asarray(src, float), rcond=None)[0].T
         """, ["src and dst are swapped"]),
+    "scale ignores sy": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            return _warp(image, scaling_matrix(sx, sx))
+        """, ["sy is ignored"]),
+    "shear(image) ignores s": ("lab07.ex4", """
+        def shear(image, s=0.5):
+            return _warp(image, shear_matrix(0.5))
+        """, ["s is ignored"]),
+    "shear about the centre": ("lab07.ex4", """
+        def shear(image, s=0.5):
+            h, w = image.shape[:2]
+            c = np.array([(w - 1) / 2, (h - 1) / 2])
+            return _warp(image, translation_matrix(*c) @ shear_matrix(s) @ translation_matrix(*-c))
+        """, ["about the image centre"]),
+    "affine with the targets as (row, column)": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            S = np.hstack([np.asarray(src, float), np.ones((3, 1))])
+            return np.linalg.solve(S, np.asarray(dst, float)[:, ::-1]).T
+        """, ["target points are exchanged"]),
+    "lstsq y rows read x twice": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            M = np.zeros((2 * len(src), 6))
+            M[0::2, 0:2] = src; M[0::2, 2] = 1
+            M[1::2, 3] = src[:, 0]; M[1::2, 4] = src[:, 0]; M[1::2, 5] = 1
+            return np.linalg.lstsq(M, dst.reshape(-1), rcond=None)[0].reshape(2, 3)
+        """, ["index error in the y' rows", "[0, 0, 0, x, x, 1]"]),
     "lstsq rows interleaved, targets stacked": ("lab07.ex6", """
         def affine_lstsq(src, dst):
             src = np.asarray(src, float); dst = np.asarray(dst, float)

@@ -158,6 +158,26 @@ MISTAKES = {
         def warp_to_reference(reference, moving, H):
             return apply_homography(moving, H)
         """, ["reference's size"]),
+    "every point divided by the first point's w": ("lab08.ex1", """
+        def transform_points(H, pts):
+            q = np.hstack([np.asarray(pts, float), np.ones((len(pts), 1))]) @ np.asarray(H, float).T
+            return q[:, :2] / q[0, 2]
+        """, ["first point's w"]),
+    "DLT with a sign error in the second row": ("lab08.ex2", """
+        def _dlt_rows(src, dst):
+            n = len(src)
+            A = np.zeros((2 * n, 9))
+            sh = np.hstack([src, np.ones((n, 1))])
+            A[0::2, 0:3] = sh; A[0::2, 6:9] = -dst[:, :1] * sh
+            A[1::2, 3:6] = sh; A[1::2, 6:9] = dst[:, 1:] * sh        # sign error
+            return A
+        """, ["sign error in the v rows"]),
+    "DLT with the largest singular vector": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            A = _dlt_rows(np.asarray(src, float), np.asarray(dst, float))
+            H = np.linalg.svd(A)[2][0].reshape(3, 3)
+            return H / H[2, 2]
+        """, ["largest singular value"]),
     # ---------------------------------------------------------------- ex3
     "no ratio test": ("lab08.ex3", """
         _reference_match = match_features
@@ -241,6 +261,16 @@ MISTAKES = {
             H, inliers = _reference_ransac(src, dst, threshold, seed)
             return H, ~inliers
         """, ["mask is inverted"]),
+    "RANSAC keeps the last sample's model": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            for _ in range(200):
+                idx = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[idx], dst[idx])
+                inliers = np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+            return H, inliers
+        """, ["does not keep the model with the most inliers"]),
     "RANSAC fits all points": ("lab08.ex4", """
         def homography_ransac(src, dst, threshold=3.0, seed=None):
             H = homography_dlt(src, dst)
