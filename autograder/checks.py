@@ -237,6 +237,8 @@ class Trial:
         def artifact():
             items = []
             for label, image in labelled.items():
+                if callable(image):  # drawn only now (see compare_images)
+                    image = image()
                 if image is None:
                     continue
                 try:  # what the student returned may not be drawable (a 0-d array): leave it out
@@ -251,7 +253,7 @@ class Trial:
         """Attach input, expected, the student's output and a difference heat map."""
         heat = None
         if isinstance(got, np.ndarray) and got.shape[:2] == expected.shape[:2]:
-            heat = pictures.difference_heatmap(expected, got, valid)
+            heat = pictures.deferred_heatmap(expected, got, valid)  # drawn only if pictures are kept
         self.images(title, caption, input=source, expected=expected, yours=got, difference=heat)
 
     def svg(self, title: str, svg: str, caption: str = ""):

@@ -122,7 +122,7 @@ def run_grade(args) -> int:
     from rich.markup import escape
 
     from .course import CourseConfig, CourseConfigError
-    from .reports import html, terminal
+    from .reports import terminal
     from .results import write_json
     from .runner import grade
 
@@ -152,8 +152,7 @@ def run_grade(args) -> int:
     terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first
     written, status = [], 0
     figures = _write_figures(args, limits, console, errors, written) if getattr(args, "figures", None) else {}
-    for path, write, what in ((html_path, lambda r, p: html.write(r, p, figures=figures),
-                               "details and pictures"),
+    for path, write, what in ((html_path, lambda r, p: _write_page(r, p, figures), "details and pictures"),
                               (args.json and _report_path(args.json, "results.json"),
                                lambda r, p: write_json(r, p, pictures=args.json_pictures), "results")):
         if not path:
@@ -171,6 +170,12 @@ def run_grade(args) -> int:
                      f"{escape(' '.join(args.select))}; run without a selection for the whole page "
                      "(or keep a partial page apart with --html other.html)", highlight=False, soft_wrap=True)
     return status
+
+
+def _write_page(result, path, figures) -> None:
+    from .reports import html  # Jinja2 is imported only when a page is written
+
+    html.write(result, path, figures=figures)
 
 
 def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:

@@ -26,7 +26,7 @@ from dataclasses import replace
 from datetime import datetime, timezone
 from typing import Callable
 
-from . import __version__
+from . import __version__, cache
 from .checks import Fail, StudentFailure, Trial, Verdict
 from .notebooks import GRADE_TAG, SKIP_TAG, point_into_notebook
 from .registry import Check, Exercise, hidden_checks_installed, select
@@ -80,7 +80,8 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
                                hidden_included=include_hidden and hidden_checks_installed(),
                                notes=_reading_notes(submission),
                                graded_at=datetime.now(timezone.utc).isoformat(timespec="seconds"))
-        with Sandbox(submission.path, limits) as sandbox:
+        with Sandbox(submission.path, limits) as sandbox, cache.enabled(sandbox.confinement.hides_files):
+            # Ground truth is kept between gradings only where the worker cannot write it.
             budget = _Budget(sandbox)
             for exercise in exercises:
                 checks = [c for c in exercise.checks if include_hidden or not c.hidden]
