@@ -59,6 +59,10 @@ def enabled(flag: bool = True):
         _enabled = before
 
 
+def is_enabled() -> bool:
+    return _enabled
+
+
 def location() -> Path | None:
     """The store's folder (which may not exist yet), or None when switched off."""
     configured = os.environ.get("AUTOGRADER_CACHE_DIR")
@@ -82,7 +86,7 @@ def persistent(function):
         if not _enabled:
             return function(*args, **kwargs)
         try:
-            folder, key = _folder(name, sources), _key(name, args, kwargs)
+            folder, key = _folder(name, _code_version(name, tuple(sources))), _key(name, args, kwargs)
         except (TypeError, OSError, ValueError):
             return function(*args, **kwargs)
         found = _read(folder, key) if folder is not None else None
@@ -94,6 +98,24 @@ def persistent(function):
         return result
 
     return stored
+
+
+def load(name: str, version: str, key: str):
+    """The value saved under ``key`` for this ``version`` of ``name``, or None
+    (also when the store is not enabled)."""
+    folder = _folder(name, version) if _enabled else None
+    return _read(folder, _hashed(key)) if folder is not None else None
+
+
+def save(name: str, version: str, key: str, value) -> None:
+    """Keep ``value`` (plain data) under ``key``, when the store is enabled."""
+    folder = _folder(name, version) if _enabled else None
+    if folder is not None:
+        _write(folder, _hashed(key), value)
+
+
+def _hashed(key: str) -> str:
+    return hashlib.sha256(key.encode()).hexdigest()
 
 
 # ------------------------------------------------------------------ keys
@@ -162,11 +184,11 @@ def _folder_for(root: Path, name: str, version: str) -> Path | None:
     return folder
 
 
-def _folder(name: str, sources) -> Path | None:
+def _folder(name: str, version: str) -> Path | None:
     root = location()
     if root is None:
         return None
-    return _folder_for(root, name, _code_version(name, tuple(sources)))
+    return _folder_for(root, name, version)
 
 
 def _read(folder: Path, key: str):
