@@ -72,12 +72,16 @@ def location() -> Path | None:
     return Path(base) / "cv-autograder" if base else None
 
 
-def persistent(function):
+def persistent(function=None, *, libraries: tuple[str, ...] = ()):
     """Keep ``function``'s results (plain data: arrays, numbers, tuples...) in the store.
 
     ``function`` must be deterministic: the same arguments, code and libraries give
-    the same result. While the store is not :func:`enabled` it is simply called.
+    the same result. ``libraries`` names further distributions it reads data or code
+    from (``("scikit-image",)``); Python, NumPy and OpenCV always count. While the
+    store is not :func:`enabled` it is simply called.
     """
+    if function is None:
+        return functools.partial(persistent, libraries=libraries)
     name = f"{function.__module__}.{function.__qualname__}"
     sources = [Path(inspect.getfile(function))]
 
@@ -86,7 +90,8 @@ def persistent(function):
         if not _enabled:
             return function(*args, **kwargs)
         try:
-            folder, key = _folder(name, _code_version(name, tuple(sources))), _key(name, args, kwargs)
+            folder = _folder(name, _code_version(name, tuple(sources), libraries))
+            key = _key(name, args, kwargs)
         except (TypeError, OSError, ValueError):
             return function(*args, **kwargs)
         found = _read(folder, key) if folder is not None else None
@@ -120,14 +125,20 @@ def _hashed(key: str) -> str:
 
 # ------------------------------------------------------------------ keys
 @functools.lru_cache(maxsize=None)
-def _code_version(name: str, sources: tuple[Path, ...]) -> str:
+def _code_version(name: str, sources: tuple[Path, ...], libraries: tuple[str, ...] = ()) -> str:
     """What a stored result of ``name`` depends on besides its arguments."""
     import cv2
+    from importlib import metadata
 
     digest = hashlib.sha256(name.encode())
     for source in sources:
         digest.update(source.read_bytes())
     digest.update(f"{sys.version}|{np.__version__}|{cv2.__version__}".encode())
+    for library in libraries:
+        try:
+            digest.update(f"|{library} {metadata.version(library)}".encode())
+        except metadata.PackageNotFoundError:
+            digest.update(f"|{library} missing".encode())
     return digest.hexdigest()[:24]
 
 

@@ -32,19 +32,29 @@ from . import cache, transport
 NAME = "property-examples"
 
 
-@functools.lru_cache(maxsize=None)
-def _version(suite_file: str) -> str:
+_ROOTS = (Path(__file__).resolve().parent, Path(__file__).resolve().parents[1] / "fixtures")
+
+
+@functools.lru_cache(maxsize=1)
+def _grader_version() -> str:
     """What examples depend on besides the check and its strategy: the grader's code
-    (lab suites, fixtures, this engine), the check's own file, and the libraries."""
+    (lab suites, fixtures, this engine) and the libraries."""
     import hypothesis
 
     digest = hashlib.sha256(f"{sys.version}|{hypothesis.__version__}|{np.__version__}".encode())
-    roots = [Path(__file__).resolve().parent, Path(__file__).resolve().parents[1] / "fixtures"]
-    files = sorted({p for root in roots if root.is_dir() for p in root.rglob("*.py")} | {Path(suite_file)})
-    for path in files:
-        digest.update(str(path.name).encode())
+    for path in sorted(p for root in _ROOTS if root.is_dir() for p in root.rglob("*.py")):
+        digest.update(str(path.relative_to(path.parents[1])).encode())
         digest.update(path.read_bytes())
     return digest.hexdigest()[:24]
+
+
+@functools.lru_cache(maxsize=None)
+def _version(suite_file: str) -> str:
+    """:func:`_grader_version`, and the suite's own file when it is a plug-in's."""
+    suite = Path(suite_file).resolve()
+    if any(root in suite.parents for root in _ROOTS):
+        return _grader_version()
+    return hashlib.sha256((_grader_version() + "|").encode() + suite.read_bytes()).hexdigest()[:24]
 
 
 def key(check, index: int, strategy, max_examples) -> tuple[str, str] | None:

@@ -52,6 +52,11 @@ with open(os.environ["BENCH_RUSAGE"], "w") as out:
 """
 
 
+# A student's Python caches the grader's bytecode after the first run; an inherited
+# PYTHONDONTWRITEBYTECODE would make every measured run compile it all again.
+_AS_A_STUDENT = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+
+
 def grade_once(submission: str, selectors=(), html: bool = False) -> dict:
     """One ``grade.py`` process: wall time, the result's own timings, peak memory, sizes."""
     with tempfile.TemporaryDirectory() as tmp:
@@ -62,7 +67,7 @@ def grade_once(submission: str, selectors=(), html: bool = False) -> dict:
         command += ["--html", str(page)] if html else ["--no-html"]
         started = time.perf_counter()
         subprocess.run(command, check=True, cwd=tmp, stdout=subprocess.DEVNULL,
-                       env={**os.environ, "BENCH_RUSAGE": str(usage)})
+                       env={**_AS_A_STUDENT, "BENCH_RUSAGE": str(usage)})
         wall = time.perf_counter() - started
         result = json.loads(results.read_text())
         memory = json.loads(usage.read_text())
