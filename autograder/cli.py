@@ -131,10 +131,15 @@ def run_grade(args) -> int:
         errors.print(NO_SUBMISSION, markup=False, highlight=False)
         return USAGE_ERROR
     limits = Limits(call_timeout=args.timeout) if args.timeout else None
-    probing = _probe_confinement()
-    several = _several_students(args.submission)
-    probing.join()
+    worker = _start_worker_early(limits)
+    try:
+        several = _several_students(args.submission)
+    except BaseException:
+        worker.close()
+        raise
+    sandbox = worker.sandbox()
     if several:
+        sandbox and sandbox.close()
         console.print(f"[red]error:[/red] {escape(several)}")
         return USAGE_ERROR
     try:
@@ -143,10 +148,13 @@ def run_grade(args) -> int:
             pictures = "all" if (args.json_pictures or not args.no_html) else "none"
             forbid = CourseConfig.load(args.config).forbid if args.config else None
             result = grade(args.submission, args.select, limits=limits, pictures=pictures,
-                           include_hidden=not args.public_only, on_check=advance, forbid=forbid)
+                           include_hidden=not args.public_only, on_check=advance, forbid=forbid,
+                           sandbox=sandbox)
     except (SelectionError, SubmissionError, CourseConfigError) as exc:
         errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         return USAGE_ERROR
+    finally:
+        sandbox and sandbox.close()
     html_path = None if args.no_html else _report_path(args.html, "feedback.html")
     replaced_full_page = bool(args.select) and html_path is not None and html_path.is_file()
     terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first
@@ -197,18 +205,41 @@ def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
     return {o.exercise_id: o.path.read_bytes() for o in outcomes if o.path is not None}
 
 
-def _probe_confinement() -> threading.Thread:
-    """Find the sandbox's confinement level (a second or so of waiting on probe
-    processes) while the lab suites load; the sandbox then finds it cached."""
-    def probe():
+class _start_worker_early:
+    """While the lab suites load: find the sandbox's confinement level (half a second
+    or so of waiting on probe processes), then start the worker, which imports NumPy
+    and OpenCV meanwhile. :meth:`sandbox` waits for both and gives the sandbox
+    (without a submission yet), or None if it could not be made: grading then
+    makes its own and reports why."""
+
+    def __init__(self, limits):
+        self._sandbox = None
+        self._thread = threading.Thread(target=self._start, args=(limits,), name="worker start", daemon=True)
+        self._thread.start()
+
+    def _start(self, limits):
+        from .sandbox import Sandbox
+
         try:
             confine.detect()
-        except Exception:  # noqa: BLE001 - the sandbox asks again and reports it
-            pass
+            sandbox = Sandbox(None, limits)
+        except Exception:  # noqa: BLE001 - the runner tries again and reports it
+            return
+        try:
+            sandbox.start()
+        except Exception:  # noqa: BLE001
+            sandbox.close()
+            return
+        self._sandbox = sandbox
 
-    thread = threading.Thread(target=probe, name="confinement probe", daemon=True)
-    thread.start()
-    return thread
+    def sandbox(self):
+        self._thread.join()
+        return self._sandbox
+
+    def close(self):
+        sandbox = self.sandbox()
+        if sandbox is not None:
+            sandbox.close()
 
 
 def _several_students(path) -> str | None:

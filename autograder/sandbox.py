@@ -148,9 +148,11 @@ class Sandbox:
 
     Parameters
     ----------
-    submission_dir : path
+    submission_dir : path or None
         Folder holding the student's modules (``lab07_transformations.py`` ...).
         It is copied into the scratch directory; the original is never touched.
+        None: the submission comes later (:meth:`admit`), so that the worker can be
+        started (:meth:`start`) while the grader is still loading.
     limits : Limits
 
     Examples
@@ -177,11 +179,13 @@ class Sandbox:
         self._base.chmod(0o711)
         self.scratch = self._base / secrets.token_hex(8)
         self.scratch.mkdir()
-        self._source = Path(submission_dir)
+        self._source = None if submission_dir is None else Path(submission_dir)
         self.submission_dir = self.scratch / "submission"
         self.output_path = self.scratch / "out" / "output.txt"
         self._lay_out_scratch()
         self.proc: subprocess.Popen | None = None
+        self._ready = False     # the worker said it is ready
+        self._closed = False
         self._request_fd = self._response_fd = -1
         self._imported: set[str] = set()
         self._import_failures: dict[str, CallOutcome] = {}
@@ -204,9 +208,7 @@ class Sandbox:
         for name in ("submission", "worker", *self.WRITABLE):
             shutil.rmtree(self.scratch / name, ignore_errors=True)
         self.submission_dir.mkdir()
-        refused = copy_regular_files(self._source, self.submission_dir, suffixes=(".py",))
-        if refused:
-            logging.getLogger("autograder").warning("not copied into the sandbox: %s", refused)
+        self._copy_submission()
         (self.scratch / "worker").mkdir()
         here = Path(__file__).parent
         for name in _WORKER_FILES:
@@ -216,21 +218,59 @@ class Sandbox:
         self.output_path.touch()  # bound into the worker's view: it must exist
         self.confinement.prepare_scratch(self.scratch, private=("worker",))
 
+    def _copy_submission(self):
+        if self._source is None:
+            return
+        refused = copy_regular_files(self._source, self.submission_dir, suffixes=(".py",))
+        if refused:
+            logging.getLogger("autograder").warning("not copied into the sandbox: %s", refused)
+
+    def admit(self, submission_dir) -> None:
+        """Copy in the submission of a sandbox made without one, before its first request.
+
+        The worker, if already started, has run nothing of the submission: its
+        folder, empty until now, is part of the worker's view from the start."""
+        if self._source is not None or self._started:
+            raise RuntimeError("a sandbox admits one submission, before its first request")
+        self._source = Path(submission_dir)
+        self._copy_submission()
+        self.confinement.prepare_scratch(self.scratch, private=("worker",))
+
     # ------------------------------------------------------------ lifecycle
     def __enter__(self):
         return self
+
+    def start(self) -> None:
+        """Start the worker and return at once: it imports NumPy and OpenCV while the
+        grader goes on; the first request waits until it is ready (never billed).
+
+        Raises
+        ------
+        WorkerStartError
+            If the process cannot be started at all.
+        """
+        if self.proc is None and not self._closed:
+            self._spawn_worker()
 
     def __exit__(self, *exc):
         self.close()
 
     def close(self):
         """Stop the worker and everything it started, then delete the scratch directory."""
+        if self._closed:
+            return
+        self._closed = True
         self._stop_worker(restarting=False)
         if self.cgroup is not None:
             self.cgroup.remove()
         shutil.rmtree(self._base, ignore_errors=True)
 
     def _start_worker(self):
+        if self.proc is None:
+            self._spawn_worker()
+        self._await_ready()
+
+    def _spawn_worker(self):
         try:
             log = open(self._base / "worker.log", "ab")
         except OSError as exc:
@@ -268,6 +308,9 @@ class Sandbox:
         _LIVE_WORKERS.add(self.proc.pid)
         self._request_fd, self._response_fd = request_w, response_r
         self._imported = set()
+        self._ready = False
+
+    def _await_ready(self):
         # Wait for the worker's "ready" (it imports NumPy and OpenCV first), so that
         # start-up time is never billed to the student's first call.
         try:
@@ -283,6 +326,7 @@ class Sandbox:
         if ready != {"ok": True, "value": "ready", "seconds": 0.0}:
             self._stop_worker()
             raise WorkerStartError("the grading worker sent an unexpected greeting")
+        self._ready = True
         # What the sandbox's own processes are (wrappers, PID 1, the worker): more after a call
         # means the submission left one running, whatever the worker says.
         self._own_processes = len(self.cgroup.processes()) if self.cgroup is not None else 0
@@ -308,6 +352,7 @@ class Sandbox:
             if restarting:
                 self._lay_out_scratch()  # nothing stopped this worker from damaging it
         self.proc = None
+        self._ready = False
         self._request_fd = self._response_fd = -1
 
     def _kill_process_group(self):
@@ -408,7 +453,7 @@ class Sandbox:
         return None
 
     def _request(self, request: dict, timeout: float, what: str) -> CallOutcome:
-        if self.proc is None:
+        if self.proc is None or not self._ready:
             failed = self._restart()
             if failed is not None:
                 return failed
