@@ -263,12 +263,14 @@ class Trial:
         """Attach images side by side, e.g. ``t.images("rotate", input=a, yours=b)``.
 
         Pictures are encoded only if the grading keeps them (see
-        :func:`~autograder.runner.grade`'s ``pictures``).
+        :func:`~autograder.runner.grade`'s ``pictures``); an image may also be given
+        as a function that draws it (``matches=lambda: matches_picture(...)``), then
+        drawn only in that case.
         """
         def artifact():
             items = []
             for label, image in labelled.items():
-                if callable(image):  # drawn only now (see compare_images)
+                if callable(image):  # drawn only now that it is kept
                     image = image()
                 if image is None:
                     continue
