@@ -11,7 +11,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent
 sys.path.insert(0, str(ROOT))  # works from a fresh clone even before `pip install -e .`
 
-from autograder.cli import exit_now, grade_py_main  # noqa: E402
+from autograder.cli import grade_py_main  # noqa: E402
 
 if __name__ == "__main__":
-    exit_now(grade_py_main(root=ROOT))
+    sys.exit(grade_py_main(root=ROOT))

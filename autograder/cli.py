@@ -8,7 +8,6 @@ option value, a report that cannot be written). Errors go to stderr.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 import threading
 from pathlib import Path
@@ -490,26 +489,6 @@ def grade_py_main(argv=None, root: Path | None = None) -> int:
                         help="folder to grade (default: assignments/)")
     add_grading_options(parser)
     return run_grade(parser.parse_args(argv))
-
-
-def exit_now(status: int):
-    """End a finished command at once: flush the output, run the exit handlers (which
-    remove temporary folders), and skip the interpreter's teardown, which frees every
-    module and array one by one (a few hundred milliseconds that change nothing)."""
-    import atexit
-    import logging
-
-    for stream in (sys.stdout, sys.stderr):
-        try:
-            stream.flush()
-        except (OSError, ValueError):
-            pass
-    logging.shutdown()
-    run_exit_handlers = getattr(atexit, "_run_exitfuncs", None)
-    if run_exit_handlers is None:  # not CPython: let the interpreter end as usual
-        sys.exit(status)
-    run_exit_handlers()
-    os._exit(status)
 
 
 if __name__ == "__main__":
