@@ -206,11 +206,12 @@ def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
 
 
 class _start_worker_early:
-    """While the lab suites load: find the sandbox's confinement level (half a second
-    or so of waiting on probe processes), then start the worker, which imports NumPy
-    and OpenCV meanwhile. :meth:`sandbox` waits for both and gives the sandbox
-    (without a submission yet), or None if it could not be made: grading then
-    makes its own and reports why."""
+    """While the lab suites load: start the worker (it imports NumPy and OpenCV) at the
+    strongest confinement level the platform offers and meanwhile probe which level
+    really works (half a second or so of waiting on probe processes); a worker started
+    at another level than the probe's is replaced. :meth:`sandbox` waits for both and
+    gives the sandbox (without a submission yet), or None if it could not be made:
+    grading then makes its own and reports why."""
 
     def __init__(self, limits):
         self._sandbox = None
@@ -218,19 +219,33 @@ class _start_worker_early:
         self._thread.start()
 
     def _start(self, limits):
+        early = self._started(limits, confine.strongest_candidate)
+        try:
+            level = confine.detect()
+        except Exception:  # noqa: BLE001 - the runner tries again and reports it
+            level = None
+        if early is not None and early.confinement == level:
+            self._sandbox = early
+            return
+        if early is not None:
+            early.close()  # nothing of the submission ever reached it
+        if level is not None:
+            self._sandbox = self._started(limits, lambda: level)
+
+    @staticmethod
+    def _started(limits, confinement):
         from .sandbox import Sandbox
 
         try:
-            confine.detect()
-            sandbox = Sandbox(None, limits)
-        except Exception:  # noqa: BLE001 - the runner tries again and reports it
-            return
+            sandbox = Sandbox(None, limits, confinement=confinement())
+        except Exception:  # noqa: BLE001
+            return None
         try:
             sandbox.start()
         except Exception:  # noqa: BLE001
             sandbox.close()
-            return
-        self._sandbox = sandbox
+            return None
+        return sandbox
 
     def sandbox(self):
         self._thread.join()

@@ -339,10 +339,13 @@ class Sandbox:
                 os.close(fd)
             except OSError:
                 pass
-        try:
-            self.proc.wait(timeout=0.5)   # a healthy worker exits on EOF
-        except subprocess.TimeoutExpired:
-            pass
+        if restarting:
+            try:
+                self.proc.wait(timeout=0.5)   # a healthy worker exits on EOF
+            except subprocess.TimeoutExpired:
+                pass
+        # When closing, nothing the worker could still do matters: it is not left to
+        # tear its interpreter down (a tenth of a second), it is killed with the rest.
         self._kill_process_group()
         if self.cgroup is not None:
             self.cgroup.kill()  # whatever left the process group (setsid) is still in the cgroup
