@@ -7,7 +7,7 @@ class) computes them once:
 
 - the key is a SHA-256 of everything the result depends on: the decorated
   function's name, its arguments (arrays by dtype, shape and bytes; dataclasses
-  field by field), the source files of its module, and the versions of Python,
+  field by field), the source files of its package, and the versions of Python,
   NumPy and OpenCV. Anything else in the arguments (an object it cannot
   digest) means no caching for that call;
 - values are plain data written with :mod:`autograder.transport` (never pickle)
@@ -83,7 +83,8 @@ def persistent(function=None, *, libraries: tuple[str, ...] = ()):
     if function is None:
         return functools.partial(persistent, libraries=libraries)
     name = f"{function.__module__}.{function.__qualname__}"
-    sources = [Path(inspect.getfile(function))]
+    # The code of its whole package counts: it may call helpers in the package's other modules.
+    sources = sorted(Path(inspect.getfile(function)).parent.glob("*.py"))
 
     @functools.wraps(function)
     def stored(*args, **kwargs):
