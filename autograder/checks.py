@@ -178,6 +178,10 @@ class Trial:
                       + (f" of shape {_shape_text(shape)}" if shape is not None else ""))
         if shape is not None:
             if value.ndim != len(shape) or any(s is not None and s != v for s, v in zip(shape, value.shape)):
+                if len(shape) == 2 and None not in shape and shape[0] != shape[1] and value.shape == shape[::-1]:
+                    self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
+                              "it looks transposed (rows and columns exchanged)",
+                              mistake="the result is transposed")
                 self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}")
         if dtype is not None and value.dtype != np.dtype(dtype):
             self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}",

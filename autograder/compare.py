@@ -42,21 +42,55 @@ def max_abs_error(got, expected) -> float:
     return float(np.max(np.abs(got - expected))) if got.size else 0.0
 
 
-def closest(got, candidates: dict, distance, tolerance: float):
-    """The name of the candidate nearest ``got``, if within ``tolerance``; else None.
+def closest(got, candidates: dict, distance, tolerance: float, truth=None, margin: float = 3.0):
+    """The name of the mistake that explains ``got``, when exactly one does; else None.
 
-    Used for diagnosis: ``candidates`` maps a mistake ("tx and ty swapped") to
-    the answer that mistake produces.
+    ``candidates`` maps a mistake ("tx and ty swapped") to the answer that
+    mistake produces on the same input. A mistake is named only when the match
+    is unambiguous: its answer is within ``tolerance`` of ``got``, and ``margin``
+    times closer than the answer of any other mistake and than ``truth`` (when
+    given). Mistakes that give the same answer here cannot be told apart: they
+    are named together ("A; or, the same answer here, B").
+
+    Never guessing is the point: a wrong name misleads more than none, and the
+    caller then says what is measurably wrong instead.
     """
-    best, best_distance = None, tolerance
-    for name, candidate in candidates.items():
+    scored = []
+    for name, answer in candidates.items():
         try:
-            d = distance(got, candidate)
+            d = float(distance(got, answer))
         except (ValueError, np.linalg.LinAlgError):
             continue
-        if d < best_distance:
-            best, best_distance = name, d
-    return best
+        if np.isfinite(d):
+            scored.append((d, name, answer))
+    if not scored:
+        return None
+    scored.sort(key=lambda item: item[0])
+    best, name, answer = scored[0]
+    if not best <= tolerance:
+        return None
+    names, rivals = [name], []
+    for d, other, other_answer in scored[1:]:
+        if _same_answer(distance, answer, other_answer, best):
+            names.append(other)
+        else:
+            rivals.append(d)
+    if truth is not None:
+        try:
+            rivals.append(float(distance(got, truth)))
+        except (ValueError, np.linalg.LinAlgError):
+            pass
+    if any(d <= margin * best for d in rivals):
+        return None
+    return "; or, the same answer here, ".join(names)
+
+
+def _same_answer(distance, first, second, resolution: float) -> bool:
+    """Whether two mistakes' answers are indistinguishable at ``resolution``."""
+    try:
+        return float(distance(first, second)) <= max(resolution, 1e-12)
+    except (ValueError, np.linalg.LinAlgError):
+        return False
 
 
 # ---------------------------------------------------------------- images
@@ -153,3 +187,25 @@ def bad_pixel_rate(got, truth, threshold: float = 1.0, valid=None) -> float:
     with np.errstate(invalid="ignore"):
         good = np.isfinite(got) & (got > 0) & (np.abs(got - truth) <= threshold)
     return float(1.0 - good[judged].mean())
+
+
+def nearest_variants(got, candidates: dict, distance) -> dict:
+    """Each candidate's answer nearest to ``got``, for candidates given as several answers.
+
+    A mistake's answer may depend on a legitimate textbook choice (rows scaled or not,
+    Hartley's normalisation or not): such a candidate is a sequence of answers, and the one
+    the student's choice gives is the one nearest to ``got``. Reducing every candidate
+    first keeps :func:`closest`'s "same answer" test to the answers actually compared.
+    """
+    reduced = {}
+    for name, answers in candidates.items():
+        scored = []
+        for answer in answers:
+            try:
+                scored.append((float(distance(got, answer)), answer))
+            except (ValueError, np.linalg.LinAlgError):
+                continue
+        scored = [(d, answer) for d, answer in scored if np.isfinite(d)]
+        if scored:
+            reduced[name] = min(scored, key=lambda item: item[0])[1]
+    return reduced

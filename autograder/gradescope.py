@@ -76,8 +76,9 @@ def _fenced(text: str) -> str:
 
 
 def _check_markdown(check) -> str:
-    """A check's output for Gradescope's ``md`` format: the message keeps its lines and
-    column layout (matrices) in a code block; what the student's code printed is quoted
+    """A check's output for Gradescope's ``md`` format: the message's first line (the
+    diagnosis) as text, the lines after it in a code block that keeps their column
+    layout (matrices); what the student's code printed is quoted
     verbatim, never rendered."""
     if check.advice:
         message = f"Tip (no points): {check.message}"
@@ -85,7 +86,9 @@ def _check_markdown(check) -> str:
         message = check.message or "Advice: nothing to suggest."
     else:
         message = check.message or ("Passed." if check.passed else check.status)
-    parts = [_fenced(message) if "\n" in message else _escape_markdown(message)]
+    # The diagnosis (the first line) reads as text; what follows keeps its layout.
+    first, _, details = message.partition("\n")
+    parts = [_escape_markdown(first)] + ([_fenced(details)] if details.strip() else [])
     if check.hint:
         parts.append("**Hint:** " + _escape_markdown(check.hint))
     if check.traceback:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fixtures.images import coverage, warp
+from fixtures.images import as_homography, coverage, warp
 
 from .checks import StudentFailure, Trial, Verdict, partial, passed
 from .compare import closest, fill_fraction, max_abs_error, projective_distance, warp_error
@@ -55,7 +55,7 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
         distance, tolerance = max_abs_error, rtol * max(1.0, float(np.abs(expected).max()))
     if distance(got, expected) <= tolerance:
         return got
-    mistake = closest(got, mistakes or {}, distance, 1e3 * tolerance)
+    mistake = closest(got, mistakes or {}, distance, 1e3 * tolerance, truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale)}.\n"
@@ -153,14 +153,23 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
                            hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)",
                            mistake="the fill is not black")
         return passed(f"mean difference {error:.1f} grey levels on the covered area")
+    explained = []  # the mistakes whose map explains the image (a name only when one does)
     for mistake, wrong_M in (mistakes or {}).items():
         try:
             if warp_error(got, source, wrong_M, dsize, good_enough=IMAGE_TOLERANCE) <= IMAGE_TOLERANCE:
-                t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+                explained.append((mistake, wrong_M))
         except np.linalg.LinAlgError:
             continue
+    if explained and all(_same_map(explained[0][1], wrong_M) for _, wrong_M in explained):
+        mistake = " or ".join(name for name, _ in explained)
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
            "(see the pictures).")
+
+
+def _same_map(first, second) -> bool:
+    """Whether two pixel maps (affine or homography) are the same map, up to scale."""
+    return projective_distance(as_homography(first), as_homography(second)) < 1e-6
 
 
 def _same_result(first, second) -> bool:
@@ -181,10 +190,22 @@ def parameter_ignored(call, parameter: str, values) -> bool:
         first, second = (call(**{parameter: value}) for value in values)
     except StudentFailure:
         return False
+    return _same_informative_result(first, second)
+
+
+def _same_informative_result(first, second) -> bool:
     # A constant output ignores every parameter: that is not this parameter's mistake.
     constant = isinstance(first, np.ndarray) and (
         first.size == 0 or np.ptp(np.nan_to_num(first.astype(float))) == 0)
     return _same_result(first, second) and not constant
+
+
+def _ignored(t: Trial, what: str, parameter: str, values, result: str):
+    first_value, second_value = values
+    t.fail(f"{what}: {parameter}={first_value!r} and {parameter}={second_value!r} give the same "
+           f"{result}: {parameter} is ignored.",
+           hint=f"use the {parameter} argument instead of a fixed value",
+           mistake=f"{parameter} is ignored")
 
 
 def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, result: str = "result"):
@@ -196,8 +217,20 @@ def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, resu
     probe. Returns quietly when the results differ, or when a call fails.
     """
     if parameter_ignored(call, parameter, values):
-        first_value, second_value = values
-        t.fail(f"{what}: {parameter}={first_value!r} and {parameter}={second_value!r} give the same "
-               f"{result}: {parameter} is ignored.",
-               hint=f"use the {parameter} argument instead of a fixed value",
-               mistake=f"{parameter} is ignored")
+        _ignored(t, what, parameter, values, result)
+
+
+def judge_parameter_changes_result(t: Trial, what: str, call, parameter: str, values,
+                                   result: str = "result") -> Verdict:
+    """A check of its own that ``parameter`` is used: ``call(**{parameter: value})`` for the two
+    ``values`` must not give exactly the same result.
+
+    For parameters whose effect the quality checks cannot see (a block size fixed at
+    its default still matches well). Unlike :func:`judge_parameter_used`, a failing
+    call fails the check (a stub is "not implemented", never "uses its parameter").
+    """
+    first, second = (call(**{parameter: value}) for value in values)
+    if _same_informative_result(first, second):
+        _ignored(t, what, parameter, values, result)
+    first_value, second_value = values
+    return passed(f"{parameter}={first_value!r} and {parameter}={second_value!r} give different {result}s")

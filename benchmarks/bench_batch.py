@@ -56,50 +56,68 @@ def single_grade(submission: Path, selectors: list[str], tmp: Path) -> float:
     return time.perf_counter() - start
 
 
+def measure(students: int = 24, select=("lab07",), dask: bool = True) -> dict:
+    """Grade a generated class with 1 and 2 local workers (and a local Dask cluster):
+    wall times, the 2-vs-1 ratio, the cost per submission and the results' size."""
+    select = list(select)
+    with tempfile.TemporaryDirectory(prefix="bench-batch-") as tmp:
+        tmp = Path(tmp)
+        make_class(tmp / "class", students)
+        course = tmp / "course.json"
+        course.write_text(json.dumps({"select": select}))
+
+        single = single_grade(tmp / "class" / "student-000", select, tmp)
+        walls = {}
+        for workers in (1, 2):
+            walls[str(workers)] = batch(tmp / "class", tmp / f"out-{workers}", course, "--workers", str(workers))
+        rerun = batch(tmp / "class", tmp / "out-2", course, "--workers", "2")
+
+        dask_note = None
+        if dask:
+            try:
+                from distributed import LocalCluster
+            except ImportError:
+                dask_note = "distributed is not installed; pip install '.[dask]'"
+            else:
+                with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster:
+                    walls["dask"] = batch(tmp / "class", tmp / "out-dask", course,
+                                          "--dask-scheduler", cluster.scheduler_address)
+        size = sum(f.stat().st_size for f in (tmp / "out-1").rglob("*") if f.is_file())
+    return {"students": students, "select": select, "single_grade_s": single,
+            "wall_s": walls, "per_minute": {label: 60 * students / wall for label, wall in walls.items()},
+            "ratio_2_vs_1": walls["1"] / walls["2"],
+            "per_submission_s": walls["1"] / students,
+            "per_submission_vs_single": walls["1"] / students / single,
+            "rerun_s": rerun, "results_bytes": size, "dask_note": dask_note}
+
+
+def report(f: dict) -> None:
+    print(f"class of {f['students']} students, grading {' '.join(f['select'])}")
+    print(f"  one grade.py run (fresh process, page and JSON) {f['single_grade_s']:7.2f} s")
+    for label, wall in f["wall_s"].items():
+        name = ("Dask LocalCluster (2x1)" if label == "dask"
+                else f"{label} local worker{'s' if label != '1' else ''}")
+        print(f"  {name:<28} {wall:7.2f} s   {f['per_minute'][label]:6.1f} submissions/min")
+    if f["dask_note"]:
+        print(f"  (Dask: {f['dask_note']})")
+    verdict = "met" if f["ratio_2_vs_1"] >= 1.8 else "NOT met"
+    print(f"  2 workers vs 1: {f['ratio_2_vs_1']:.2f}x   (budget: at least 1.8x on 2 cores, {verdict})")
+    print(f"  batch cost per submission, 1 worker: {f['per_submission_s']:.2f} s "
+          f"= {f['per_submission_vs_single']:.2f}x a single grade.py run")
+    print(f"  re-run with nothing changed: {f['rerun_s']:.2f} s (the gradebook resumes, grades nothing)")
+    size, students = f["results_bytes"], f["students"]
+    print(f"  RESULTS with --pictures failing: {size / 2**20:.1f} MB, {size / students / 2**10:.0f} KB "
+          f"per student (x300 students: {300 * size / students / 2**30:.2f} GB)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--students", type=int, default=24)
     parser.add_argument("--select", nargs="*", default=["lab07"], help="lab07 ... (default: lab07)")
     parser.add_argument("--no-dask", action="store_true", help="skip the local Dask cluster")
     args = parser.parse_args()
-
-    with tempfile.TemporaryDirectory(prefix="bench-batch-") as tmp:
-        tmp = Path(tmp)
-        make_class(tmp / "class", args.students)
-        course = tmp / "course.json"
-        course.write_text(json.dumps({"select": args.select}))
-        print(f"class of {args.students} students, grading {' '.join(args.select)}")
-
-        single = single_grade(tmp / "class" / "student-000", args.select, tmp)
-        print(f"  one grade.py run (fresh process, page and JSON) {single:7.2f} s")
-
-        walls = {}
-        for workers in (1, 2):
-            walls[workers] = batch(tmp / "class", tmp / f"out-{workers}", course, "--workers", str(workers))
-        rerun = batch(tmp / "class", tmp / "out-2", course, "--workers", "2")
-
-        if not args.no_dask:
-            try:
-                from distributed import LocalCluster
-            except ImportError:
-                print("  (Dask: distributed is not installed; pip install '.[dask]')")
-            else:
-                with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=":0") as cluster:
-                    walls["dask"] = batch(tmp / "class", tmp / "out-dask", course,
-                                          "--dask-scheduler", cluster.scheduler_address)
-
-        for label, wall in walls.items():
-            name = f"{label} local worker{'s' if label != 1 else ''}" if label != "dask" else "Dask LocalCluster (2x1)"
-            print(f"  {name:<28} {wall:7.2f} s   {60 * args.students / wall:6.1f} submissions/min")
-        print(f"  2 workers vs 1: {walls[1] / walls[2]:.2f}x   (budget: at least 1.8x on 2 cores)")
-        per_submission = walls[1] / args.students
-        print(f"  batch cost per submission, 1 worker: {per_submission:.2f} s "
-              f"= {per_submission / single:.2f}x a single grade.py run")
-        print(f"  re-run with nothing changed: {rerun:.2f} s (the gradebook resumes, grades nothing)")
-        size = sum(f.stat().st_size for f in (tmp / "out-1").rglob("*") if f.is_file())
-        print(f"  RESULTS with --pictures failing: {size / 2**20:.1f} MB, {size / args.students / 2**10:.0f} KB "
-              f"per student (x300 students: {300 * size / args.students / 2**30:.2f} GB)")
+    report(measure(args.students, args.select, dask=not args.no_dask))
 
 
 if __name__ == "__main__":

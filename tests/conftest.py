@@ -63,9 +63,18 @@ def assert_diagnosed(result, exercise_id: str, *fragments: str):
     messages = [c.message.lower() for c in failed]
     assert any(all(f.lower() in m for f in fragments) for m in messages), \
         f"{exercise_id}: no failure message mentions {fragments}; messages were:\n" + "\n".join(messages)
+    misnamed = [m for label, m in named_mistakes(result, exercise_id)
+                if not all(f.lower() in m.lower() for f in fragments)]
+    assert not misnamed, f"{exercise_id}: named as a different mistake than {fragments}:\n" + "\n".join(misnamed)
     score = sum(c.score for c in checks)
     maximum = sum(c.max_score for c in checks)
     assert score < maximum
+
+
+def named_mistakes(result, exercise_id: str) -> list[tuple[str, str]]:
+    """(label, message) of each failing check of the exercise that names a mistake."""
+    return [(c.mistake, c.message) for c in check_results(result, exercise_id)
+            if not c.passed and c.max_score > 0 and (c.mistake or "looks like" in c.message.lower())]
 
 
 def lab_exercises(result, lab: str):

@@ -9,22 +9,24 @@ the lab test files may list such submissions in ``ADVICE`` (same form).
 
 import importlib
 
+import pytest
+
 from autograder.registry import discover
 from autograder.runner import grade
 from conftest import mutant
 
 
-def test_every_check_fails_on_some_realistic_mistake(tmp_path):
-    labs = discover()
+@pytest.mark.parametrize("key", sorted(discover()))
+def test_every_check_fails_on_some_realistic_mistake(tmp_path, key):
+    lab = discover()[key]
+    tests = importlib.import_module(f"test_{key}")
+    cases = [*tests.MISTAKES.values(), *getattr(tests, "ADVICE", {}).values()]
     failed = set()
-    for key, lab in labs.items():
-        tests = importlib.import_module(f"test_{key}")
-        cases = [*tests.MISTAKES.values(), *getattr(tests, "ADVICE", {}).values()]
-        for index, (exercise, source, _) in enumerate(cases):
-            submission = mutant(tmp_path / f"{key}-{index}", lab.module, source)
-            result = grade(submission, [exercise], pictures="none")
-            failed |= {(e.id, c.name) for e in result.exercises for c in e.checks if not c.passed}
-    never = [(e.id, c.name) for lab in labs.values() for e in lab.exercises.values()
+    for index, (exercise, source, _) in enumerate(cases):
+        submission = mutant(tmp_path / f"{key}-{index}", lab.module, source)
+        result = grade(submission, [exercise], pictures="none")
+        failed |= {(e.id, c.name) for e in result.exercises for c in e.checks if not c.passed}
+    never = [(e.id, c.name) for e in lab.exercises.values()
              for c in e.checks if (e.id, c.name) not in failed]
     assert never == [], "checks no realistic mistake in tests/test_labNN.py fails:\n" + \
         "\n".join(f"  {exercise}: {name}" for exercise, name in never)

@@ -132,3 +132,14 @@ def test_course_config_is_validated(tmp_path):
         CourseConfig.load(bad)
     with pytest.raises(CourseConfigError, match="public_visibility"):
         CourseConfig(public_visibility="sometimes")
+
+
+def test_the_diagnosis_reads_as_text_and_the_matrices_keep_their_layout():
+    from autograder.results import CheckResult
+
+    message = ("homography_dlt(src, dst) is wrong: it looks like the rows of the design matrix "
+               "have a sign error.\nIt returned\n[[1. 0.]\n [0. 1.]]")
+    output = gradescope._check_markdown(CheckResult("H is right", 0.0, 5.0, "failed", message))
+    first, rest = output.split("\n", 1)
+    assert first == message.splitlines()[0]
+    assert "```" not in first and "```" in rest and " [0. 1.]]" in rest

@@ -245,7 +245,48 @@ MISTAKES = {
         def stitch(img1, img2):
             return _compose([img1, img2], [np.eye(3), np.linalg.inv(_pairwise_homography(img2, img1))])
         """, ["inverse homography"]),
+    "canvas shift on the wrong side of H": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H = _pairwise_homography(img2, img1)
+            corners = np.vstack([_corners(img1), transform_points(H, _corners(img2))])
+            x_min, y_min = np.floor(corners.min(axis=0))
+            x_max, y_max = np.ceil(corners.max(axis=0))
+            T = _translation(-x_min, -y_min)
+            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
+            first, second = apply_homography(img1, T, size), apply_homography(img2, H @ T, size)
+            return np.where(first > 0, first, second)
+        """, ["shift is on the wrong side"]),
+    "canvas shift not applied to img2": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H = _pairwise_homography(img2, img1)
+            corners = np.vstack([_corners(img1), transform_points(H, _corners(img2))])
+            x_min, y_min = np.floor(corners.min(axis=0))
+            x_max, y_max = np.ceil(corners.max(axis=0))
+            T = _translation(-x_min, -y_min)
+            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
+            first, second = apply_homography(img1, T, size), apply_homography(img2, H, size)
+            return np.where(first > 0, first, second)
+        """, ["shift is not applied to img2"]),
     # ---------------------------------------------------------------- ext1
+    "ORB matcher fed img1 twice": ("lab08.ext1", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            if method == "orb":
+                return _match(_detect(img1, method), _detect(img1, method), ratio, method)
+            return _reference_match(img1, img2, ratio, method)
+        """, ["same image"]),
+    "ORB pts1 and pts2 exchanged": ("lab08.ext1", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _reference_match(img1, img2, ratio, method)
+            return (pts2, pts1) if method == "orb" else (pts1, pts2)
+        """, ["pts1 and pts2 are swapped"]),
+    "ORB points as (row, column)": ("lab08.ext1", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _reference_match(img1, img2, ratio, method)
+            return (pts1[:, ::-1], pts2[:, ::-1]) if method == "orb" else (pts1, pts2)
+        """, ["x and y are swapped"]),
     "method ignored": ("lab08.ext1", """
         _reference_match = match_features
         def match_features(img1, img2, ratio=0.75, method="sift"):
@@ -264,10 +305,50 @@ MISTAKES = {
                 homographies.append(H / H[2, 2])
             return _compose(images, homographies)
         """, ["chain"]),
+    "last image skipped (loop stops one short)": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            step = [_pairwise_homography(images[k + 1], images[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            homographies = []
+            for k in range(len(images) - 1):                      # one short
+                H = np.eye(3)
+                for j in range(k - 1, r - 1, -1):
+                    H = step[j] @ H
+                for j in range(k, r):
+                    H = np.linalg.inv(step[j]) @ H
+                homographies.append(H / H[2, 2])
+            return _compose(images[:-1], homographies)
+        """, ["the last of the images", "left out"]),
+    "first image skipped (loop starts at 1)": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            step = [_pairwise_homography(images[k + 1], images[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            homographies = []
+            for k in range(1, len(images)):                       # starts one late
+                H = np.eye(3)
+                for j in range(k - 1, r - 1, -1):
+                    H = step[j] @ H
+                for j in range(k, r):
+                    H = np.linalg.inv(step[j]) @ H
+                homographies.append(H / H[2, 2])
+            return _compose(images[1:], homographies)
+        """, ["image 1", "left out"]),
+    "many images without the canvas shift": ("lab08.ext2", """
+        def _compose(images, homographies):          # no shift: the canvas starts at (0, 0)
+            corners = np.vstack([transform_points(H, _corners(im)) for im, H in zip(images, homographies)])
+            w, h = (np.ceil(corners.max(axis=0)) + 1).astype(int)
+            out = np.zeros((h, w, 3), np.uint8)
+            for image, H in zip(images, homographies):
+                warped = apply_homography(_bgr(image), H, (int(w), int(h)))
+                out = np.where(warped > 0, warped, out)
+            return out
+        """, ["cut off at the left", "translation"]),
     "only the first two images": ("lab08.ext2", """
         def stitch_many(images):
             return stitch(images[0], images[1])
-        """, ["image 3", "cut off"]),
+        """, ["image 3", "left out"]),
     # ---------------------------------------------------------------- ext3
     "plain alpha blend": ("lab08.ext3", """
         def blend_multiband(img1, img2, mask, levels=4):

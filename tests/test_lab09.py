@@ -51,7 +51,7 @@ MISTAKES = {
     "K with px typed for py": ("lab09.ex2", """
         def intrinsic_matrix(f, px, py):
             return np.array([[f, 0.0, px], [0.0, f, px], [0.0, 0.0, 1.0]])
-        """, ["intrinsic_matrix(500, 320, 240) is wrong in entry [1, 2] only.\nit returned"]),
+        """, ["py is replaced by px"]),
     "principal point left out": ("lab09.ex2", """
         def project_with_intrinsics(K, points):
             X, single = _points(points)
@@ -147,6 +147,252 @@ MISTAKES = {
             K, dist, rms = _right(images, pattern_size, square_size)
             return K.T, dist, rms
         """, ['transposed']),
+    # ---- the wider families of each exercise (issue 17)
+    "focal length applied twice": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            return _divide(np.column_stack([f * f * X[:, 0], f * f * X[:, 1], X[:, 2]]), single)
+        """, ["focal length is applied twice"]),
+    "only x divided by Z": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            out = np.column_stack([f * X[:, 0] / X[:, 2], f * X[:, 1]])
+            return out[0] if single else out
+        """, ["y is not divided by z"]),
+    "real (inverted) image": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            return _divide(np.column_stack([-f * X[:, 0], -f * X[:, 1], X[:, 2]]), single)
+        """, ["image is inverted"]),
+    "px and py swapped in K": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, 0.0, py], [0.0, f, px], [0.0, 0.0, 1.0]])
+        """, ["px and py are swapped"]),
+    "principal point subtracted": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            K = np.asarray(K, float).copy(); K[:2, 2] *= -1
+            return _divide(X @ K.T, single)
+        """, ["principal point has the wrong sign"]),
+    "K X without the division": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            x = (X @ np.asarray(K, float).T)[:, :2]
+            return x[0] if single else x
+        """, ["division is missing"]),
+    "camera_matrix with R transposed": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            return np.asarray(K, float) @ np.column_stack([np.asarray(R, float).T, np.asarray(t, float)])
+        """, ["r is transposed"]),
+    "project without de-homogenisation": ("lab09.ex3", """
+        def project(P, points):
+            X, single = _points(points)
+            x = (np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, float).T)[:, :2]
+            return x[0] if single else x
+        """, ["perspective division is missing"]),
+    "project divides by the world Z": ("lab09.ex3", """
+        def project(P, points):
+            X, single = _points(points)
+            h = np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, float).T
+            x = h[:, :2] / X[:, 2:3]
+            return x[0] if single else x
+        """, ["world point's z"]),
+    "aperture offsets not scaled by depth": ("lab09.ex4", """
+        _right = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            X, _ = _points(points)
+            rays = _right(points, f, aperture, n_rays, seed)
+            ideal = pinhole_project(X, f)[:, None, :]
+            return ideal + (rays - ideal) / (1.0 + f / X[:, 2])[:, None, None]
+        """, ["not scaled by (1 + f / z)"]),
+    "colour reversed (RGB)": ("lab09.ex5", """
+        _right = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            return _right(image, pts, radius, tuple(color)[::-1])
+        """, ["colour is reversed"]),
+    "radius ignored": ("lab09.ex5", """
+        _right = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            return _right(image, pts, 3, color)
+        """, ["radius argument is ignored"]),
+    "color ignored": ("lab09.ex5", """
+        _right = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            return _right(image, pts, radius)
+        """, ["color argument is ignored"]),
+    "project_onto_image returns (pts, image)": ("lab09.ex5", """
+        def project_onto_image(image, P, points):
+            pts = project(P, points).reshape(-1, 2)
+            return pts, draw_points(image, pts)
+        """, ["(image, pts)"]),
+    "project_onto_image forgets to draw": ("lab09.ex5", """
+        def project_onto_image(image, P, points):
+            return image.copy(), project(P, points).reshape(-1, 2)
+        """, ["not drawn"]),
+    "calibration grid built as (rows, cols)": ("lab09.ext1", """
+        _right = calibrate
+        def calibrate(images, pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float32)
+            objp[:, :2] = np.mgrid[0:rows, 0:cols].T.reshape(-1, 2) * square_size
+            pts = [cv2.findChessboardCorners(im, (cols, rows))[1] for im in images]
+            h, w = images[0].shape[:2]
+            rms, K, dist, _, _ = cv2.calibrateCamera([objp] * len(pts), pts, (w, h), None, None)
+            return K, dist.ravel(), rms
+        """, ["object points"]),
+    "k3 with r^4": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            k1, k2, p1, p2, k3 = dist
+            pts = np.asarray(points, float)
+            r2 = (pts ** 2).sum(axis=1, keepdims=True)
+            return _right(points, [k1, k2, p1, p2, 0.0]) + pts * k3 * r2 ** 2
+        """, ["k3 multiplies r^4"]),
+    "x's tangential term with y": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64)
+            k1, k2, p1, p2, k3 = dist
+            x, y = pts[:, 0], pts[:, 1]
+            r2 = x * x + y * y
+            radial = 1 + k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
+            return np.column_stack([x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * y * y),
+                                    y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y])
+        """, ["x's tangential term uses y"]),
+    "radial factor without its 1": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64)
+            k1, k2, p1, p2, k3 = dist
+            x, y = pts[:, 0], pts[:, 1]
+            r2 = x * x + y * y
+            radial = k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
+            return np.column_stack([x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x),
+                                    y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y])
+        """, ["misses its 1"]),
+    "k3 ignored": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            return _right(points, list(dist[:4]) + [0.0])
+        """, ["k3 is ignored"]),
+    "pixels rounded to integers": ("lab09.ex1", """
+        _right = pinhole_project
+        def pinhole_project(points, f):
+            return np.round(_right(points, f))
+        """, ["rounded to integers"]),
+    "principal point added twice": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            K = np.asarray(K, float)
+            out = _divide(X @ K.T, False) + K[:2, 2]
+            return out[0] if single else out
+        """, ["principal point is added twice"]),
+    "K[2, 2] = f": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, 0.0, px], [0.0, f, py], [0.0, 0.0, f]])
+        """, ["k[2, 2] holds f"]),
+    "P = [K R | t]": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            return np.column_stack([np.asarray(K, float) @ np.asarray(R, float), np.asarray(t, float)])
+        """, ["the last column is t (it is k t)"]),
+    "focal-length stack with its axes in the wrong order": ("lab09.ex4", """
+        def project_focal_lengths(points, focal_lengths):
+            X, _ = _points(points)
+            return np.stack([pinhole_project(X, f) for f in focal_lengths], axis=-1).T
+        """, ["axes are in the wrong order"]),
+    "k2 with r2 * 2": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64)
+            k1, k2, p1, p2, k3 = dist
+            x, y = pts[:, 0], pts[:, 1]
+            r2 = x * x + y * y
+            radial = 1 + k1 * r2 + k2 * r2 * 2 + k3 * r2 ** 3
+            return np.column_stack([x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x),
+                                    y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y])
+        """, ["k2 multiplies r2 * 2"]),
+    "columns 1:3 taken for (X, Y)": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            out = f * X[:, 1:3] / X[:, 2:3]
+            return out[0] if single else out
+        """, ["x is computed as f y / z; it should be f x / z"]),
+    "fx used for y": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            K = np.asarray(K, float)
+            out = np.column_stack([K[0, 0] * X[:, 0] / X[:, 2] + K[0, 2] + K[0, 1] * X[:, 1] / X[:, 2],
+                                   K[0, 0] * X[:, 1] / X[:, 2] + K[1, 2]])
+            return out[0] if single else out
+        """, ["y is computed as fx y / z + py; it should be fy y / z + py"]),
+    "P rescaled so that P[2, 3] = 1": ("lab09.ex3", """
+        _right = camera_matrix
+        def camera_matrix(K, R, t):
+            P = _right(K, R, t)
+            return P / P[2, 3]
+        """, ["right only up to scale"]),
+    "tangential terms with the wrong sign": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            k1, k2, p1, p2, k3 = dist
+            return _right(points, [k1, k2, -p1, -p2, k3])
+        """, ["tangential terms have the wrong sign"]),
+    "draw_points returns inside its loop": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                cv2.circle(out, (int(round(x)), int(round(y))), int(radius), tuple(int(c) for c in color), -1)
+                return out
+        """, ["only the first point is drawn"]),
+    "px in the skew entry": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, px, 0.0], [0.0, f, py], [0.0, 0.0, 1.0]])
+        """, ["px is in k[0, 1]"]),
+    "K X with its columns swapped": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            h = X @ np.asarray(K, float).T
+            out = h[:, 1::-1] / h[:, 2:3]
+            return out[0] if single else out
+        """, ["x and y are swapped"]),
+    "radius doubled (used as a diameter)": ("lab09.ex5", """
+        _right = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            return _right(image, pts, 2 * radius, color)
+        """, ["radius is doubled"]),
+    "K's inverse applied": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            return _divide(X @ np.linalg.inv(np.asarray(K, float)).T, single)
+        """, ["inverse is applied"]),
+    "P's last column R t": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            R, t = np.asarray(R, float), np.asarray(t, float)
+            return np.column_stack([np.asarray(K, float) @ R, R @ t])
+        """, ["the last column is r t"]),
+    "project divides by the second coordinate": ("lab09.ex3", """
+        def project(P, points):
+            X, single = _points(points)
+            h = np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, float).T
+            x = h[:, :2] / h[:, 1:2]
+            return x[0] if single else x
+        """, ["x is computed as (p x)[0] / (p x)[1]"]),
+    "focal lengths in reverse order": ("lab09.ex4", """
+        def project_focal_lengths(points, focal_lengths):
+            X, _ = _points(points)
+            return np.stack([pinhole_project(X, f) for f in np.asarray(focal_lengths)[::-1]])
+        """, ["another order"]),
+    "k2 ignored": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            k1, k2, p1, p2, k3 = dist
+            return _right(points, [k1, 0.0, p1, p2, k3])
+        """, ["k2 is ignored"]),
+}
+
+# Calibration is one OpenCV call; K does not depend on square_size or on the image
+# size passed (it only seeds the solver), so those slips cannot change the answer.
+FEWER_MISTAKES = {
+    "lab09.ext1": "cv2.calibrateCamera does the estimation: what a student can get wrong and the "
+                  "answer shows is the object-point grid (its order, its (cols, rows)) and the layout "
+                  "of K; square_size and the image size passed do not change K",
 }
 
 

@@ -46,6 +46,47 @@ MISTAKES = {
             X = cv2.triangulatePoints(np.float64(P1), np.float64(P2), np.float64(pts1).T, np.float64(pts2).T)
             return (X[:3] / X[3]).T
         """, ["cv2.triangulatePoints", "yourself"]),
+    "triangulation with x and y swapped in the rows": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            A = np.stack([pts1[:, 1:] * P1[2] - P1[0], pts1[:, :1] * P1[2] - P1[1],
+                          pts2[:, 1:] * P2[2] - P2[0], pts2[:, :1] * P2[2] - P2[1]], axis=1)
+            X = np.linalg.svd(A)[2][:, -1]
+            return X[:, :3] / X[:, 3:]
+        """, ["x and y are swapped"]),
+    "triangulation with a sign error in the rows (x p3 + p1)": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            A = np.stack([pts1[:, :1] * P1[2] + P1[0], pts1[:, 1:] * P1[2] + P1[1],
+                          pts2[:, :1] * P2[2] + P2[0], pts2[:, 1:] * P2[2] + P2[1]], axis=1)
+            X = np.linalg.svd(A)[2][:, -1]
+            return X[:, :3] / X[:, 3:]
+        """, ["a sign error in the rows"]),
+    "triangulation with P1 used for both views": ("lab11.ex1", """
+        _triangulate = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            return _triangulate(P1, P1, pts1, pts2)
+        """, ["p1 is used for both views"]),
+    "triangulation whose second row uses p1 again": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[0],
+                          pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[0]], axis=1)
+            X = np.linalg.svd(A)[2][:, -1]
+            return X[:, :3] / X[:, 3:]
+        """, ["second row of each view uses p1 again"]),
+    "triangulation with the largest singular vector": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[1],
+                          pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
+            X = np.linalg.svd(A)[2][:, 0]
+            return X[:, :3] / X[:, 3:]
+        """, ["largest singular value"]),
     # ---------------------------------------------------------------- ex2
     "epipolar lines with F transposed": ("lab11.ex2", """
         def epipolar_lines(F, pts1):
@@ -85,6 +126,10 @@ MISTAKES = {
         def essential_from_fundamental(F, K1, K2):
             return np.asarray(K1).T @ np.asarray(F) @ np.asarray(K2)
         """, ["swapped"]),
+    "essential with K2 inverted": ("lab11.ex3", """
+        def essential_from_fundamental(F, K1, K2):
+            return np.linalg.inv(K2).T @ np.asarray(F, float) @ np.asarray(K1, float)
+        """, ["k2 is inverted"]),
     "essential with K1 used for both images": ("lab11.ex3", """
         def essential_from_fundamental(F, K1, K2):
             return K1.T @ np.asarray(F, float) @ K1
@@ -112,6 +157,20 @@ MISTAKES = {
         def essential_8point(pts1, pts2, K1, K2):
             return _e8(pts1, pts2, K1, K2).T
         """, ["swapped"]),
+    "essential 8-point with K1 for both images": ("lab11.ex3", """
+        def essential_8point(pts1, pts2, K1, K2):
+            x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
+            x2 = _homogeneous(pts2) @ np.linalg.inv(K1).T
+            U, _, Vt = np.linalg.svd(_eight_point_core(x1, x2))
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+        """, ["k1 is used for both images"]),
+    "essential 8-point with V transposed back": ("lab11.ex3", """
+        def essential_8point(pts1, pts2, K1, K2):
+            x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
+            x2 = _homogeneous(pts2) @ np.linalg.inv(K2).T
+            U, _, Vt = np.linalg.svd(_eight_point_core(x1, x2))
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt.T
+        """, ["returns v^t already"]),
     # ---------------------------------------------------------------- ex4
     "8-point with a reduced SVD": ("lab11.ex4", """
         def _eight_point_core(x1, x2):
@@ -152,6 +211,25 @@ MISTAKES = {
             F, _ = cv2.findFundamentalMat(np.float64(pts1), np.float64(pts2), cv2.FM_8POINT)
             return F
         """, ["cv2.findFundamentalMat", "yourself"]),
+    "8-point with the design rows kron(x1, x2)": ("lab11.ex4", """
+        def _eight_point_core(x1, x2):
+            A = (x1[:, :, None] * x2[:, None, :]).reshape(len(x1), 9)
+            return np.linalg.svd(A)[2][-1].reshape(3, 3)
+        """, ["kron(x1, x2)"]),
+    "8-point undoing the normalisation the wrong way round": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            T1, T2 = _hartley_normalisation(pts1), _hartley_normalisation(pts2)
+            U, s, Vt = np.linalg.svd(_eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T))
+            return T1.T @ U @ np.diag([s[0], s[1], 0.0]) @ Vt @ T2
+        """, ["undone the wrong way round"]),
+    "8-point zeroing the largest singular value": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            T1, T2 = _hartley_normalisation(pts1), _hartley_normalisation(pts2)
+            U, s, Vt = np.linalg.svd(_eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T))
+            return T2.T @ U @ np.diag([0.0, s[1], s[2]]) @ Vt @ T1
+        """, ["the largest singular value was set to 0"]),
     # ---------------------------------------------------------------- ex5
     "epipoles swapped": ("lab11.ex5", """
         _ep = epipoles
@@ -165,6 +243,21 @@ MISTAKES = {
             e1, e2 = _ep(F)
             return e1 / e1[2], e2 / e2[2]
         """, ["w = 0"]),
+    "epipoles from the rows of U and the columns of V^T": ("lab11.ex5", """
+        def epipoles(F):
+            U, _, Vt = np.linalg.svd(np.asarray(F, np.float64))
+            return Vt[:, -1], U[-1]
+        """, ["rows and columns of u and v^t are mixed up"]),
+    "epipole e2 from the last row of U": ("lab11.ex5", """
+        def epipoles(F):
+            U, _, Vt = np.linalg.svd(np.asarray(F, np.float64))
+            return Vt[-1], U[-1]
+        """, ["e2 is the last row of u"]),
+    "epipoles both from F": ("lab11.ex5", """
+        def epipoles(F):
+            Vt = np.linalg.svd(np.asarray(F, np.float64))[2]
+            return Vt[-1], Vt[-1]
+        """, ["e2 is computed from f like e1"]),
     # ---------------------------------------------------------------- ex6
     "pipeline returns F transposed": ("lab11.ex6", """
         _tvr = two_view_reconstruction
@@ -194,6 +287,22 @@ MISTAKES = {
             F, pts1, pts2, X = _tvr(img1, img2, K)
             return F, pts1, pts2, -X
         """, ["behind camera 1"]),
+    "pipeline with the pose recovered from F": ("lab11.ex6", """
+        _tvr = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            F, pts1, pts2, _ = _tvr(img1, img2, K)
+            K = np.asarray(K, float)
+            _, R, t, _ = cv2.recoverPose(F, pts1, pts2, K)
+            return F, pts1, pts2, triangulate(K @ np.eye(3, 4), K @ np.hstack([R, t]), pts1, pts2)
+        """, ["recovered from f instead of e"]),
+    "pipeline with camera 2's translation negated": ("lab11.ex6", """
+        _tvr = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            F, pts1, pts2, _ = _tvr(img1, img2, K)
+            K = np.asarray(K, float)
+            _, R, t, _ = cv2.recoverPose(essential_from_fundamental(F, K, K), pts1, pts2, K)
+            return F, pts1, pts2, triangulate(K @ np.eye(3, 4), K @ np.hstack([R, -t]), pts1, pts2)
+        """, ["translation has the wrong sign", "behind camera 1"]),
     "pipeline keeps every match": ("lab11.ex6", """
         def two_view_reconstruction(img1, img2, K):
             sift = cv2.SIFT_create()
@@ -212,7 +321,7 @@ MISTAKES = {
         def epipoles(F):
             U, _, Vt = np.linalg.svd(np.asarray(F, np.float64))
             return Vt[0], U[:, 0]
-        """, ['not a null vector', 'smallest singular value']),
+        """, ['singular vectors of the largest singular value are taken']),
     "reconstruction with points3d transposed": ("lab11.ex6", """
         _right = two_view_reconstruction
         def two_view_reconstruction(img1, img2, K):

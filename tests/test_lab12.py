@@ -84,6 +84,11 @@ def test_structured_light_fixture_round_trip():
 
 # Each case: exercise, the wrong code, fragments the diagnosis must contain.
 MISTAKES = {
+    "block matching with block_size ignored": ("lab12.ex4", """
+        _block_matching_own = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching_own(left, right, max_disparity, 9, cost)
+        """, ["block_size is ignored"]),
     # ---------------------------------------------------------------- ex1
     "triangulate with the images swapped": ("lab12.ex1", """
         _triangulate = triangulate
@@ -152,6 +157,12 @@ MISTAKES = {
                 xl, xr = xl[:, 1], xr[:, 1]
             return xl - xr
         """, ["y coordinates"]),
+    "depth with d and b swapped (f d / b)": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, float)
+            ok = np.isfinite(d) & (d > 0)
+            return np.where(ok, f * np.where(ok, d, 1.0) / baseline, 0.0)
+        """, ["d and b are swapped"]),
     # ---------------------------------------------------------------- ex3
     "rectify returns inverse homographies": ("lab12.ex3", """
         _rectify = rectify
@@ -170,7 +181,7 @@ MISTAKES = {
         def rectify(img_l, img_r, K1, K2, R, T):
             R = np.asarray(R, float)
             return _rectify(img_l, img_r, K1, K2, R.T, -R.T @ np.asarray(T, float))
-        """, ["share a row"]),
+        """, ["the pose is read backwards"]),
     "rectify with the baseline reversed": ("lab12.ex3", """
         _rectify = rectify
         def rectify(img_l, img_r, K1, K2, R, T):
@@ -193,6 +204,30 @@ MISTAKES = {
             a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
             return np.array(img_l), np.array(img_r), H1, H2
         """, ["differs from the input warped"]),
+    "rectify with the rectified images swapped": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            return b, a, H1, H2
+        """, ["rect_l and rect_r are swapped"]),
+    "rectify with R transposed": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            return _rectify(img_l, img_r, K1, K2, np.asarray(R, float).T, T)
+        """, ["r is transposed inside your function"]),
+    "rectify with K where K^-1 belongs": ("lab12.ex3", """
+        def rectify(img_l, img_r, K1, K2, R, T):
+            K1 = np.asarray(K1, float); K2 = np.asarray(K2, float)
+            R = np.asarray(R, float); T = np.asarray(T, float).reshape(3)
+            h, w = np.asarray(img_l).shape[:2]
+            e1 = -R.T @ T / np.linalg.norm(T)
+            e2 = np.cross(np.array([0, 0, 1.0]) + R.T @ np.array([0, 0, 1.0]), e1)
+            e2 /= np.linalg.norm(e2)
+            R_rect = np.vstack([e1, e2, np.cross(e1, e2)])
+            K_new = np.array([[K1[0, 0], 0, w / 2], [0, K1[0, 0], h / 2], [0, 0, 1.0]])
+            H1, H2 = K_new @ R_rect @ K1, K_new @ R_rect @ R.T @ K2
+            return cv2.warpPerspective(img_l, H1, (w, h)), cv2.warpPerspective(img_r, H2, (w, h)), H1, H2
+        """, ["k is used where k^-1 belongs"]),
     # ---------------------------------------------------------------- ex4
     "block matching in the wrong direction": ("lab12.ex4", """
         def _shift_right(image, d):
@@ -245,6 +280,13 @@ MISTAKES = {
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
             return _block_matching(left, right, max_disparity, 31, cost)
         """, ["block_size=5 and block_size=15 give the same disparity map: block_size is ignored"]),
+    "block matching keeping the highest SSD (argmax)": ("lab12.ex4", """
+        _ssd = _ssd_volume
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            volume = _ssd(_grey_float(left), _grey_float(right), int(max_disparity), int(block_size))
+            volume[~np.isfinite(volume)] = -np.inf
+            return np.argmax(volume, axis=0).astype(np.float64)
+        """, ["the disparity with the highest ssd is kept"]),
     # ---------------------------------------------------------------- ext1
     "NCC without subtracting the means": ("lab12.ext1", """
         def _ncc_volume(left, right, max_disparity, block_size):
@@ -277,10 +319,33 @@ MISTAKES = {
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
             return _block_matching(left, right, max_disparity, block_size, "ssd")
         """, ["cost argument is ignored"]),
+    "NCC keeping the lowest score (argmin of the similarity)": ("lab12.ext1", """
+        _ncc = _ncc_volume
+        def _ncc_volume(left, right, max_disparity, block_size):
+            costs = -_ncc(left, right, max_disparity, block_size)
+            costs[~np.isfinite(costs)] = np.inf
+            return costs
+        """, ["the disparity with the lowest ncc is kept"]),
+    "NCC divided by the variances": ("lab12.ext1", """
+        def _ncc_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            mean_l = _box_mean(left, block_size)
+            var_l = np.maximum(_box_mean(left * left, block_size) - mean_l ** 2, 0.0)
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(max_disparity + 1):
+                shifted = _shift_right(right, d)
+                mean_r = _box_mean(shifted, block_size)
+                var_r = np.maximum(_box_mean(shifted * shifted, block_size) - mean_r ** 2, 0.0)
+                covariance = _box_mean(left * shifted, block_size) - mean_l * mean_r
+                costs[d] = -np.divide(covariance, var_l * var_r, out=np.zeros_like(covariance),
+                                      where=var_l * var_r > 1e-6)
+                costs[d, :, :d] = np.inf
+            return costs
+        """, ["the ncc is divided by the right block's variance"]),
     # ---------------------------------------------------------------- ex5
     "DP without smoothness (winner-take-all)": ("lab12.ex5", """
         DEFAULT_SMOOTHNESS = 0.0
-        """, ["winner-take-all"]),
+        """, ["the smoothness term is ignored (winner-take-all)"]),
     "DP that ignores the smoothness argument": ("lab12.ex5", """
         _dp_stereo = dp_stereo
         def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
@@ -298,6 +363,17 @@ MISTAKES = {
             sgbm = cv2.StereoSGBM_create(0, 16 * ((max_disparity + 15) // 16), block_size)
             return sgbm.compute(left, right).astype(np.float64) / 16
         """, ["cv2.StereoSGBM_create", "yourself"]),
+    "DP backtracking that never fills the last column": ("lab12.ex5", """
+        _dp_stereo = dp_stereo
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            disparity = _dp_stereo(left, right, max_disparity, block_size, smoothness)
+            shifted = np.zeros_like(disparity)
+            shifted[:, :-1] = disparity[:, 1:]
+            return shifted
+        """, ["the backtracking does not start right"]),
+    "DP with a default smoothness far too large": ("lab12.ex5", """
+        DEFAULT_SMOOTHNESS = 400.0
+        """, ["the default smoothness is far too large"]),
     # ---------------------------------------------------------------- ex6
     "plain binary patterns": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
@@ -360,6 +436,28 @@ MISTAKES = {
             z = depth_from_disparity(np.arange(width) - k * width / 2**n, f, baseline)
             return np.where(bits.any(axis=0), z, 0.0)
         """, ["left edge"]),
+    "decoding that leaves undecodable pixels with a depth": ("lab12.ex6", """
+        def depth_from_structured_light(images, f, baseline):
+            images = np.asarray(images)
+            n, height, width = images.shape
+            k = np.zeros((height, width), int); b = np.zeros((height, width), bool)
+            for g in images > 127:
+                b = b ^ g
+                k = (k << 1) | b
+            column = (k + 0.5) * width / 2**n - 0.5
+            return depth_from_disparity(np.arange(width) - column, f, baseline)
+        """, ["undecodable pixels"]),
+    "patterns with the stripe index rounded": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            k = np.minimum(np.round(np.arange(width) * 2**n_bits / width).astype(int), 2**n_bits - 1)
+            g = k ^ (k >> 1)
+            return (((g[None, :] >> np.arange(n_bits - 1, -1, -1)[:, None]) & 1) * 255).astype(np.uint8)
+        """, ["the stripe index is rounded"]),
+    "simulation with the images in reverse order": ("lab12.ex6", """
+        _simulate = simulate_structured_light
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            return _simulate(depth, f, baseline, n_bits)[::-1]
+        """, ["the images are in the wrong order"]),
 }
 
 
@@ -407,6 +505,14 @@ VARIANTS = {
             d = cv2.StereoBM_create(numDisparities=n, blockSize=block_size).compute(left, right) / 16.0
             d[(d <= 0) | (d > max_disparity)] = 0
             return d
+        """),
+    "block matching with cv2.StereoBM, numDisparities rounded up to 16, nothing clipped": ("lab12.ex4", """
+        _block_matching_own = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            if cost != "ssd":
+                return _block_matching_own(left, right, max_disparity, block_size, cost)
+            n = 16 * int(np.ceil(max_disparity / 16))
+            return cv2.StereoBM_create(numDisparities=n, blockSize=block_size).compute(left, right) / 16.0
         """),
     "block matching after a Gaussian prefilter": ("lab12.ex4", """
         _block_matching_own = block_matching

@@ -36,7 +36,6 @@ LMS id, ``alice`` from a folder) and stay the same between runs.
 from __future__ import annotations
 
 import hashlib
-import io
 import re
 import shutil
 import tempfile
@@ -48,7 +47,7 @@ from datetime import datetime
 from pathlib import Path, PurePosixPath
 
 from ..course import parse_time
-from ..submission import MAX_ARCHIVE_BYTES, copy_regular_files
+from ..submission import MAX_ARCHIVE_BYTES, SubmissionError, copy_regular_files, unzip_regular_files
 
 SOURCE_SUFFIXES = (".py", ".ipynb")
 MAX_CLASS_ARCHIVE_BYTES = 4 * 2**30   # a whole class's zip, unpacked
@@ -367,15 +366,18 @@ def _read_files_into(entry: Entry, files: dict[str, bytes]) -> None:
 
 
 def _zip_sources(data: bytes, name: str) -> dict[str, bytes]:
-    try:
-        with zipfile.ZipFile(io.BytesIO(data)) as zf:
-            if sum(info.file_size for info in zf.infolist()) > MAX_ARCHIVE_BYTES:
-                raise ValueError(f"{name} unpacks to more than {MAX_ARCHIVE_BYTES // 2**20} MB")
-            return {info.filename: zf.read(info) for info in zf.infolist()
-                    if not info.is_dir() and PurePosixPath(info.filename).suffix in SOURCE_SUFFIXES
-                    and _safe_member(info.filename)}
-    except (zipfile.BadZipFile, zipfile.LargeZipFile, EOFError, NotImplementedError) as exc:
-        raise ValueError(f"{name} is not a readable zip archive ({exc})") from None
+    """The source files of a student's zip, unpacked by the loader's own deny-by-default
+    reader (regular members only, caps, inflation checked as it streams)."""
+    with tempfile.TemporaryDirectory(prefix="ingest-zip-") as scratch:
+        archive, target = Path(scratch) / "upload.zip", Path(scratch) / "files"
+        archive.write_bytes(data)
+        target.mkdir()
+        try:
+            unzip_regular_files(archive, target)
+        except SubmissionError as exc:
+            raise ValueError(str(exc).replace("upload.zip", name)) from None
+        return {p.relative_to(target).as_posix(): p.read_bytes()
+                for p in sorted(target.rglob("*")) if p.is_file()}
 
 
 def _extract(archive: Path, target: Path, limit: int) -> None:

@@ -151,14 +151,14 @@ def shear_matrix_property(t):
 def shear_default(t):
     source = photo("astronaut", (200, 150))
     return judge_warp(t, "shear(image)", t.call("shear", source), source,
-                      truth.shear(0.5), truth.shear_mistakes(0.5))
+                      truth.shear(0.5), truth.shear_mistakes(0.5, source.shape))
 
 
 @ex4.check("shear keeps a grey image grey", points=3)
 def shear_grey(t):
     source = photo("camera", (160, 120), grey=True)
     return judge_warp(t, "shear(grey image, s=0.3)", t.call("shear", source, s=0.3), source,
-                      truth.shear(0.3), truth.shear_mistakes(0.3))
+                      truth.shear(0.3), truth.shear_mistakes(0.3, source.shape))
 
 
 # ================================================================== ex5 affine from 3 points
@@ -204,10 +204,10 @@ def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
     error = point_error(got, expected, region)
     if error <= tolerance:
         return
-    mistake = closest(got, truth.affine_mistakes(expected), lambda a, b: point_error(a, b, region),
-                      max(1.0, 100 * tolerance))
+    mistake = closest(got, truth.affine_fit_mistakes(src, dst), lambda a, b: point_error(a, b, region),
+                      max(1.0, 100 * tolerance), truth=expected)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} sends the points up to {digits_apart(error, tolerance)} px away from where the "
            f"true map sends them (at most {tolerance:.3g} px expected). It returned\n{format_matrix(got, 6)}\n"
            f"expected\n{format_matrix(expected, 6)}")
@@ -239,7 +239,7 @@ def warp_affine_default(t):
     source = photo("rocket", (200, 150))
     A = np.array([[0.8, 0.3, 10.0], [-0.2, 0.9, 40.0]])
     return judge_warp(t, "warp_affine(image, A)", t.call("warp_affine", source, A), source, A,
-                      truth.affine_mistakes(A))
+                      truth.warp_mistakes(A))
 
 
 @ex5.check("warp_affine with dsize=(width, height)", points=2)
@@ -248,7 +248,7 @@ def warp_affine_dsize(t):
     A = np.array([[1.2, 0.1, 5.0], [0.0, 1.1, -10.0]])
     return judge_warp(t, "warp_affine(image, A, dsize=(220, 100))",
                       t.call("warp_affine", source, A, dsize=(220, 100)), source, A,
-                      truth.affine_mistakes(A), dsize=(220, 100))
+                      truth.warp_mistakes(A), dsize=(220, 100))
 
 
 # ================================================================== ex6 least squares
@@ -270,13 +270,10 @@ def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
     error = point_error(got, least_squares, src)
     if error <= tolerance:
         return passed(f"within {error:.2g} px of the least-squares fit at every point")
-    mistakes = truth.affine_mistakes(least_squares)
-    if len(src) > 3:
-        mistakes["only the first three points are used; least squares uses all N"] = \
-            truth.least_squares_affine(src[:3], dst[:3])
-    mistake = closest(got, mistakes, lambda a, b: point_error(a, b, src), max(0.5, 100 * tolerance))
+    mistake = closest(got, truth.affine_fit_mistakes(src, dst), lambda a, b: point_error(a, b, src),
+                      max(0.5, 100 * tolerance), truth=least_squares)
     if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.")
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     residual = float(np.sqrt(np.mean(np.sum((truth.apply_affine(got, src) - dst) ** 2, axis=1))))
     best = float(np.sqrt(np.mean(np.sum((truth.apply_affine(least_squares, src) - dst) ** 2, axis=1))))
     # The residual grows only to second order in the error: quoted only when the digits show it.

@@ -307,12 +307,18 @@ def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, 
     if len(pts1) >= min_matches and fraction >= min_fraction:
         return passed(f"{len(pts1)} matches, {fraction:.0%} agree with the true homography")
     if len(pts1) >= 4:
+        # The same image twice: every keypoint matches itself, exactly where it is.
+        if np.mean(np.all(np.abs(pts1 - pts2) < 1e-3, axis=1)) >= 0.9:
+            t.fail(f"{what}: it looks like the same image is matched against itself: every match "
+                   "joins a point to the same position (pts1 equals pts2); detect in img1 and "
+                   "in img2", mistake="the same image is matched twice")
         if truth.consistent(np.linalg.inv(H), pts1, pts2).mean() >= min_fraction:
             t.fail(f"{what}: pts1 and pts2 are swapped: pts1 must be the points in img1 "
-                   "(queryIdx of a match of img1's descriptors against img2's)")
+                   "(queryIdx of a match of img1's descriptors against img2's)",
+                   mistake="pts1 and pts2 are swapped")
         if truth.consistent(H, pts1[:, ::-1], pts2[:, ::-1]).mean() >= min_fraction:
             t.fail(f"{what}: x and y are swapped: return (x, y) = (column, row), "
-                   "as cv2.KeyPoint.pt gives them")
+                   "as cv2.KeyPoint.pt gives them", mistake="x and y are swapped")
     if len(pts1) < min_matches:
         t.fail(f"{what} returned {len(pts1)} matches; at least {min_matches} are expected on this "
                "pair (the true homography is a mild change of view)")
@@ -499,15 +505,28 @@ def probe_ransac_threshold(t: Trial, src, dst, seed):
                          "threshold", (1.0, 20.0), "H and inlier mask")
 
 
+FITS_ALL_POINTS = "H is fitted to all the points, outliers included"
+
+
+def name_fit_to_all_points(t: Trial, what: str, H, src, dst, H_true):
+    """Fail naming the fit to every pair (no RANSAC at all) when ``H`` is that fit.
+
+    Such an H does not depend on the threshold either, so the threshold probe
+    would also (rightly) report it ignored: one message says both, the cause first.
+    """
+    if closest(H, {FITS_ALL_POINTS: truth.dlt(src, dst)}, projective_distance, 0.02, truth=H_true):
+        t.fail(f"{what} is wrong: it looks like {FITS_ALL_POINTS} (RANSAC should pick the consensus "
+               "set and fit to it), so the threshold is ignored too.", mistake=FITS_ALL_POINTS)
+
+
 def diagnose_ransac(t: Trial, what, H, inliers, src, dst, H_true, true_inliers, threshold=3.0, seed=0):
     if (~inliers == true_inliers).mean() >= 0.95:
         t.fail(f"{what}: the inlier mask is inverted: True must mark the inliers "
-               "(transfer error below the threshold)")
+               "(transfer error below the threshold)", mistake="the inlier mask is inverted")
+    name_fit_to_all_points(t, what, H, src, dst, H_true)
     probe_ransac_threshold(t, src, dst, seed)
     mistakes = truth.matrix_mistakes(H_true)
-    mistakes["H is fitted to all the points, outliers included (RANSAC should pick the "
-             "consensus set and fit to it)"] = truth.dlt(src, dst)
-    mistake = closest(H, mistakes, projective_distance, 0.02)
+    mistake = closest(H, mistakes, projective_distance, 0.02, truth=H_true)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     errors = np.linalg.norm(truth.apply_h(H, src) - dst, axis=1)
@@ -607,6 +626,7 @@ def ransac_seeds(t):
     summary = "; ".join(notes)
     if wins >= 4:
         return passed(f"succeeded with {wins} of 5 seeds ({summary})")
+    name_fit_to_all_points(t, what, H, src, dst, H_true)
     probe_ransac_threshold(t, src, dst, seed=4)
     message = (f"homography_ransac found the right homography and inliers with only {wins} of 5 "
                f"seeds ({summary}).")
@@ -788,6 +808,7 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
                 sticking.setdefault(side, []).append((name, amount))
     if sticking:
         judge.show(t, what)
+        name_image_left_out(t, judge, what, names, sticking)
         side, items = max(sticking.items(), key=lambda s: max(a for _, a in s[1]))
         name, amount = max(items, key=lambda i: i[1])
         if side in ("left", "top"):
@@ -806,6 +827,46 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
         return partial(0.5, f"{what}: the panorama covers the images but is {area / box:.1f} times "
                             "the area of their bounding box: crop the canvas to the bounding box")
     return passed(f"{what}: {judge.panorama.shape[1]}x{judge.panorama.shape[0]}, every image inside")
+
+
+def name_image_left_out(t: Trial, judge: PanoramaJudge, what: str, names, sticking):
+    """Fail naming an image left out of the panorama, when that explains what sticks out.
+
+    A canvas built wrongly cuts off parts of several images, or parts only; an image
+    left out (a loop over the images stopping one short) sticks out alone, and the
+    panorama is then exactly the bounding box of all the *other* images.
+    """
+    outside = {name for items in sticking.values() for name, _ in items}
+    if len(outside) != 1 or len(names) < 2:
+        return
+    k = names.index(outside.pop())
+    others = [truth.apply_h(judge.view_to_panorama(j), corners_of(judge.scene.views[j].shape))
+              for j in range(len(names)) if j != k]
+    corners = np.vstack(others)
+    H, W = judge.panorama.shape[:2]
+    box = np.array([corners[:, 0].min(), corners[:, 1].min(),
+                    corners[:, 0].max() - (W - 1), corners[:, 1].max() - (H - 1)])
+    # More than a third of the image missing, and the canvas fits the others to 3 px.
+    own_fraction = judge.inside[k].sum() / np.prod(judge.scene.views[k].shape[:2])
+    if np.abs(box).max() > 3.0 or own_fraction > 0.67:
+        return
+    # Its part that no other image covers, where inside the panorama, must be missing
+    # too: a canvas that merely cuts the image off still shows that part. When no such
+    # part is inside, a canvas of the others' size explains the panorama as well.
+    own = judge.inside[k] & ~np.any([judge.inside[j] for j in range(len(names)) if j != k], axis=0)
+    if own.sum() < 200 or judge.error(own) <= PANORAMA_TOLERANCE:
+        return
+    place = "the last" if k == len(names) - 1 else "the first" if k == 0 else "one"
+    mistake = f"{names[k]} is left out"
+    t.fail(f"{what}: it looks like {names[k]} ({place} of the images) is left out of the panorama: "
+           "the panorama is exactly the other images' bounding box. Warp and compose every image "
+           "(a loop over the images that stops one short leaves the last one out).",
+           mistake=mistake)
+
+
+def corners_of(shape) -> np.ndarray:
+    h, w = shape[:2]
+    return np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], float)
 
 
 @ex5.check("stitch: the panorama covers both images", points=3)
@@ -838,22 +899,40 @@ def judge_region(t: Trial, judge: PanoramaJudge, what: str, region, name: str, h
            "(see the pictures).", hint)
 
 
+def second_warp_mistakes(scene, offset) -> dict[str, np.ndarray]:
+    """The map (img2 -> panorama) each usual mistake of the second warp applies."""
+    H, T = scene.h(1, 0), truth.translation(*offset)
+    return {
+        "img2 was warped with the inverse homography: use the H that maps img2's pixels onto "
+        "img1's (match img2 -> img1, or invert)": T @ np.linalg.inv(H),
+        "the canvas shift is on the wrong side: warp img2 with T @ H (first H, then the shift), "
+        "not H @ T": H @ T,
+        "the canvas shift is not applied to img2: warp it with T @ H, as img1 is shifted by T": H,
+    }
+
+
+def name_second_warp_mistake(t: Trial, judge: PanoramaJudge, scene):
+    """Fail naming the mistake when exactly one wrong map explains where img2 landed."""
+    size = (judge.panorama.shape[1], judge.panorama.shape[0])
+    explained = []
+    for mistake, M in second_warp_mistakes(scene, judge.offset).items():
+        wrong_inside, _ = coverage(M, scene.views[1].shape, size, 3.0)
+        check = wrong_inside & judge.outside[0]
+        if check.sum() >= 100 and blurred_difference(judge.panorama, warp(scene.views[1], M, size),
+                                                     check) <= PANORAMA_TOLERANCE:
+            explained.append(mistake)
+    if len(explained) == 1:
+        judge.show(t, STITCH_WHAT)
+        t.fail(f"{STITCH_WHAT}: it looks like {explained[0]}", mistake=explained[0].split(":")[0])
+
+
 @ex5.check("stitch: the part only img2 sees is warped into place", points=3)
 def stitch_second(t):
     scene = stitch_scene()
     judge = stitch_judge(t, "stitch-public", scene, STITCH_WHAT)
     region = judge.inside[1] & judge.outside[0]
     if region.sum() < 100 or judge.error(region) > PANORAMA_TOLERANCE:
-        # img2 warped with the inverse homography?
-        size = (judge.panorama.shape[1], judge.panorama.shape[0])
-        inverse = truth.translation(*judge.offset) @ np.linalg.inv(scene.h(1, 0))
-        wrong = warp(scene.views[1], inverse, size)
-        wrong_inside, _ = coverage(inverse, scene.views[1].shape, size, 3.0)
-        check = wrong_inside & judge.outside[0]
-        if check.sum() >= 100 and blurred_difference(judge.panorama, wrong, check) <= PANORAMA_TOLERANCE:
-            judge.show(t, STITCH_WHAT)
-            t.fail(f"{STITCH_WHAT}: img2 was warped with the inverse homography: use the H that "
-                   "maps img2's pixels onto img1's (match img2 -> img1, or invert)")
+        name_second_warp_mistake(t, judge, scene)
     return judge_region(t, judge, STITCH_WHAT, region, "the part only img2 sees",
                         hint="warp img2 with T @ H, where H maps img2 onto img1 and T is the "
                              "canvas shift")

@@ -48,14 +48,38 @@ def expect_points(t: Trial, what: str, got, shape) -> np.ndarray:
     if isinstance(got, np.ndarray) and got.ndim == 2 and len(shape) == 2 and got.shape == shape[::-1] \
             and shape[0] != shape[1]:
         t.fail(f"{what} returned shape {got.shape}; expected {shape}: one row (x, y) per point "
-               "(transpose your result)")
+               "(transpose your result)", mistake="the result is transposed")
+    expect_shape(t, what, got, shape)
     return t.expect_array(got, what, shape=shape, kind="iuf")
 
 
-def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e-6, show=None):
+def expect_shape(t: Trial, what: str, got, shape, axes=None):
+    """Name the usual shape slips of an array result: axes in another order, a third
+    (homogeneous or Z) coordinate kept. ``axes`` names the expected axes ("F", "N", "2")."""
+    if not isinstance(got, np.ndarray) or got.shape == tuple(shape):
+        return
+    shape = tuple(shape)
+    if got.ndim == len(shape) and sorted(got.shape) == sorted(shape) and len(set(shape)) == len(shape):
+        if axes:
+            order = ", ".join(axes[shape.index(n)] for n in got.shape)
+            t.fail(f"{what} returned shape {got.shape}, i.e. ({order}); expected {shape} = ({', '.join(axes)}): "
+                   "the axes are in the wrong order.", mistake="the axes are in the wrong order")
+        t.fail(f"{what} returned shape {got.shape}; expected {shape}: the axes are in the wrong order.",
+               mistake="the axes are in the wrong order")
+    if got.shape == shape[:-1] + (3,) and shape[-1] == 2:
+        t.fail(f"{what} returned shape {got.shape}; expected {shape}: a third coordinate is kept (Z is kept, "
+               "or the homogeneous one); return only (x, y).", mistake="a third coordinate is kept")
+
+
+def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e-6, show=None,
+                 mistake_tolerance=1e-4, formulas=None):
     """Compare returned 2D points with the truth; name the mistake when one fits.
 
     ``show`` (a title) attaches a plot of the true and the returned points.
+    A mistake is named when its answer is within ``mistake_tolerance`` (relative
+    to the largest coordinate) and clearly closer than any other and than the truth.
+    Otherwise ``formulas`` (see :func:`fixtures.lab09.coordinate_formulas`) may say
+    which formula each coordinate was computed with.
     """
     expected = np.asarray(expected, dtype=np.float64)
     got = expect_points(t, what, got, expected.shape)
@@ -68,13 +92,73 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
                                lines=list(zip(truth_pts, got_pts))))
     if error <= tolerance * scale:
         return got
-    mistake = closest(got, mistakes or {}, point_error, 1e-4 * scale)
+    rounded = {"the pixels are rounded to integers; return the exact (float) projection": np.round(expected),
+               "the pixels are truncated to integers; return the exact (float) projection": np.trunc(expected)}
+    if np.isfinite(expected).all():
+        slip = closest(got, rounded, point_error, 1e-9, truth=expected, margin=1.0)
+        if slip:
+            t.fail(f"{what} is wrong: {slip}.", mistake="the pixels are rounded to integers")
+    mistake = closest(got, mistakes or {}, point_error, mistake_tolerance * scale, truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    explained = explain_coordinates(got, expected, formulas or {})
+    if explained:
+        t.fail(f"{what} is wrong: {explained}.", mistake=explained)
     if not np.isnan(expected).any() and np.isnan(got).any():
         t.fail(f"{what} returned NaN for points in front of the camera (Z > 0).")
-    t.fail(f"{what} is off by up to {error:.4g} (pixels); for example point 0 should be "
-           f"{format_matrix(expected.reshape(-1, 2)[0])}, yours is {format_matrix(np.asarray(got, float).reshape(-1, 2)[0])}.")
+    t.fail(f"{what} is off {where_points_wrong(got, expected, tolerance * scale)}, by up to {error:.4g}; "
+           f"for example point 0 should be {format_matrix(expected.reshape(-1, 2)[0])}, yours is "
+           f"{format_matrix(np.asarray(got, float).reshape(-1, 2)[0])}.")
+
+
+def explain_coordinates(got, expected, formulas: dict) -> str:
+    """"y = fx Y / Z + py; it should be fy Y / Z + py": the one formula each wrong coordinate
+    equals, when every wrong coordinate equals exactly one (else "")."""
+    got = np.asarray(got, np.float64).reshape(-1, 2)
+    expected = np.asarray(expected, np.float64).reshape(-1, 2)
+    keep = np.isfinite(expected).all(axis=1)
+    if not formulas or not keep.any() or not np.isfinite(got[keep]).all():
+        return ""
+
+    def matching(column):
+        scale = max(1.0, float(np.abs(column).max()))
+        return [words for words, value in formulas.items()
+                if np.all(np.abs(np.broadcast_to(value, got.shape[:1])[keep] - column) <= 1e-7 * scale)]
+
+    parts, computed, wanted = [], [], []
+    for j, name in enumerate("xy"):
+        right = matching(expected[keep, j])
+        if np.allclose(got[keep, j], expected[keep, j], rtol=0, atol=1e-7 * max(1.0, np.abs(expected[keep, j]).max())):
+            continue
+        found = matching(got[keep, j])
+        if not found or not right or any(not np.allclose(np.broadcast_to(formulas[w], got.shape[:1])[keep],
+                                                           np.broadcast_to(formulas[found[0]], got.shape[:1])[keep])
+                                         for w in found[1:]):
+            return ""           # unexplained, or explained by formulas that differ elsewhere: no guess
+        parts.append(f"{name} is computed as {found[0]}; it should be {right[0]}")
+        computed.append(found[0])
+        wanted.append(right[0])
+    if len(parts) == 2 and computed == wanted[::-1]:
+        return f"x and y are swapped (x should be {wanted[0]}, y {wanted[1]})"
+    return "; ".join(parts)
+
+
+def where_points_wrong(got, expected, tolerance) -> str:
+    """Which points and coordinates are off, and whether by a common shift or a common factor."""
+    got = np.asarray(got, np.float64).reshape(-1, 2)
+    expected = np.asarray(expected, np.float64).reshape(-1, 2)
+    where = judges.where_points_differ(got, expected, tolerance)
+    keep = np.isfinite(got).all(axis=1) & np.isfinite(expected).all(axis=1)
+    if keep.sum() >= 2:
+        shift = got[keep] - expected[keep]
+        if np.ptp(shift, axis=0).max() <= tolerance:
+            return f"{where} by the same shift {format_matrix(shift[0])} (an offset is added or missing)"
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = got[keep] / expected[keep]
+        ratio = ratio[np.abs(expected[keep]) > tolerance]
+        if ratio.size and np.ptp(ratio) <= 1e-6 * max(1.0, np.abs(ratio).max()):
+            return f"{where} by the same factor {ratio[0]:.4g} (a scale is applied wrongly)"
+    return where
 
 
 def judge_single_point(t: Trial, what: str, got, expected):
@@ -138,7 +222,16 @@ def advise_nan_behind(t: Trial, what: str, got, behind):
 
 
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3), up_to_scale=False):
-    """The shared matrix judge, with this lab's tighter tolerance."""
+    """The shared matrix judge, with this lab's tighter tolerance; a matrix right only up
+    to a factor is named as such (K and P here are defined exactly, not up to scale)."""
+    if not up_to_scale and isinstance(got, np.ndarray) and got.shape == tuple(shape) and got.dtype.kind in "iuf" \
+            and np.isfinite(got).all() and np.abs(got - expected).max() > 1e-7 * max(1.0, np.abs(expected).max()):
+        from ..compare import projective_distance
+        if projective_distance(got, expected) <= 1e-9:
+            i = np.unravel_index(np.argmax(np.abs(expected)), expected.shape)
+            factor = got[i] / expected[i]
+            t.fail(f"{what} is wrong: it is {factor:.4g} times the right matrix: it is right only up to "
+                   "scale; return the matrix itself, not a rescaled one.", mistake="the matrix is rescaled")
     return judges.judge_matrix(t, what, got, expected, mistakes, shape, up_to_scale, rtol=1e-7)
 
 
@@ -148,10 +241,24 @@ ex1 = lab.exercise("ex1", "The pinhole camera", functions=["pinhole_project(poin
 SHEET_POINTS = np.array([[1.0, 2.0, 10.0], [-3.0, 1.5, 5.0], [0.5, -0.5, 2.0], [4.0, 3.0, 20.0]])
 
 
+def pinhole_formulas(X, f):
+    """The formulas one coordinate of a pinhole projection may have been computed with."""
+    return truth.coordinate_formulas(X, {"f": f, "": 1.0, "f^2": f * f, "-f": -f, "1 / f": 1.0 / f}, {"": 0.0})
+
+
+def intrinsics_formulas(K, X):
+    """The formulas one coordinate of ``K X`` (divided) may have been computed with."""
+    K = np.asarray(K, float)
+    gains = {"fx": K[0, 0], "fy": K[1, 1], "": 1.0}
+    offsets = {"": 0.0, "+ px": K[0, 2], "+ py": K[1, 2], "- px": -K[0, 2], "- py": -K[1, 2]}
+    return truth.coordinate_formulas(X, gains, offsets, skew=K[0, 1])
+
+
 @ex1.check("pinhole_project on the lab sheet's points, f = 500", points=3)
 def pinhole_example(t):
     judge_points(t, "pinhole_project(points, f=500)", t.call("pinhole_project", SHEET_POINTS, 500.0),
                  truth.pinhole(SHEET_POINTS, 500.0), truth.projection_mistakes(500.0, SHEET_POINTS),
+                 formulas=pinhole_formulas(SHEET_POINTS, 500.0),
                  show="pinhole projection, f = 500")
 
 
@@ -161,7 +268,7 @@ def pinhole_property(t):
         seed, f = case
         X = truth.points_in_front(seed, n=10)
         judge_points(t, f"pinhole_project(points, f={f!r})", t.call("pinhole_project", X, f),
-                     truth.pinhole(X, f), truth.projection_mistakes(f, X))
+                     truth.pinhole(X, f), truth.projection_mistakes(f, X), formulas=pinhole_formulas(X, f))
 
     t.for_all(st.tuples(seeds, st.floats(10.0, 2000.0)), holds, max_examples=15,
               describe=lambda c: f"fixtures.lab09.points_in_front(seed={c[0]}, n=10), f={c[1]!r}")
@@ -218,13 +325,8 @@ def project_intrinsics_example(t):
     K = truth.intrinsic(500.0, 320.0, 240.0)
     X = truth.points_in_front(21, n=12)
     judge_points(t, "project_with_intrinsics(K, points)", t.call("project_with_intrinsics", K, X),
-                 truth.homogeneous_project(K, X), {
-                     **truth.projection_mistakes(500.0, X, principal=(320.0, 240.0)),
-                     "the principal point is left out (x = f X / Z + px)": truth.pinhole(X, 500.0),
-                     "K is transposed (use K @ X, i.e. points @ K.T)": truth.homogeneous_project(K.T, X),
-                     "the principal point is swapped (px belongs to x)":
-                         truth.homogeneous_project(truth.intrinsic(500.0, 240.0, 320.0), X),
-                 }, show="projection with K")
+                 truth.homogeneous_project(K, X), truth.intrinsics_projection_mistakes(K, X),
+                 show="projection with K", formulas=intrinsics_formulas(K, X))
 
 
 @ex2.check("project_with_intrinsics with non-square pixels, skew, and a single point", points=1)
@@ -233,7 +335,7 @@ def project_intrinsics_general(t):
     X = truth.points_in_front(22, n=8)
     judge_points(t, "project_with_intrinsics(K with fx != fy and skew, points)",
                  t.call("project_with_intrinsics", K, X), truth.homogeneous_project(K, X),
-                 {"K is transposed (use K @ X, i.e. points @ K.T)": truth.homogeneous_project(K.T, X)})
+                 truth.intrinsics_projection_mistakes(K, X), formulas=intrinsics_formulas(K, X))
     judge_single_point(t, "project_with_intrinsics(K, (3,) point)",
                        t.call("project_with_intrinsics", K, X[0]), truth.homogeneous_project(K, X[0])[0])
 
@@ -284,6 +386,17 @@ def camera_matrix_property(t):
     t.for_all(seeds, holds, max_examples=8, describe=lambda s: f"fixtures.lab09.random_pose({s})")
 
 
+def project_formulas(P, X):
+    """The formulas one coordinate of ``project`` may have been computed with, in terms of
+    the entries of ``P [X, 1]``: ``(P X)[0] / (P X)[2]``, ``(P X)[2]``..."""
+    h = np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, float).T
+    parts = {f"(P X)[{i}]": h[:, i] for i in range(3)}
+    out = {f"{a} / {b}": parts[a] / parts[b] for a in parts for b in parts if a != b}
+    out.update(parts)
+    out["1 (a coordinate divided by itself)"] = np.ones(len(X))
+    return out
+
+
 def project_mistakes(P, X):
     Xh = np.column_stack([X, np.ones(len(X))])
     x = Xh @ P.T
@@ -293,6 +406,8 @@ def project_mistakes(P, X):
         "x and y are swapped": right[:, ::-1],
         "the translation is dropped: append 1 to each point before applying P (P @ [X, Y, Z, 1])":
             truth.homogeneous_project(P[:, :3], X),
+        "the division is by the world point's Z; divide P [X, 1] by its own third coordinate":
+            x[:, :2] / X[:, 2:3],
     }
 
 
@@ -302,7 +417,7 @@ def project_example(t):
     P = truth.camera(K, R, tvec)
     X = truth.world_points_for(K, R, tvec, seed=32)
     judge_points(t, "project(P, points)", t.call("project", P, X), truth.homogeneous_project(P, X),
-                 project_mistakes(P, X), show="projection with P = K [R | t]")
+                 project_mistakes(P, X), show="projection with P = K [R | t]", formulas=project_formulas(P, X))
 
 
 @ex3.check("project accepts any scale of P, and a single (3,) point", points=1)
@@ -351,9 +466,16 @@ def focal_lengths(t):
     if isinstance(got, np.ndarray) and got.shape == (9, 3, 2):
         t.fail("project_focal_lengths returned shape (N, F, 2) = (9, 3, 2); expected (F, N, 2) = (3, 9, 2): "
                "one (N, 2) projection per focal length, stacked along the first axis")
+    expect_shape(t, "project_focal_lengths(points, [100, 500, 1000])", got, (3, 9, 2), axes=("F", "N", "2"))
     got = t.expect_array(got, "project_focal_lengths(points, [100, 500, 1000])", shape=(3, 9, 2), kind="iuf")
     t.svg("projections for f = 100, 500, 1000", svg_points(
         {f"f = {f:g}": got[i] for i, f in enumerate(fs)}))
+    order = [next((j for j in range(len(fs)) if point_error(got[i], expected[j]) <= 1e-6 * np.abs(expected).max()),
+                  None) for i in range(len(fs))]
+    if None not in order and order != list(range(len(fs))):
+        t.fail(f"project_focal_lengths: projection i is the one for f = {format_matrix(fs[order])}: the focal "
+               "lengths are used in another order (reversed?); projection i belongs to focal_lengths[i].",
+               mistake="the focal lengths are used in another order")
     for i, f in enumerate(fs):
         judge_points(t, f"project_focal_lengths(...)[{i}] (f = {f:g})", got[i], expected[i],
                      truth.projection_mistakes(f, X))
@@ -378,7 +500,8 @@ def aperture_zero(t):
     ideal = truth.pinhole(X, APERTURE_F)
     error = np.abs(got - ideal[:, None, :]).max()
     if error > 1e-6:
-        mistake = closest(got.mean(axis=1), truth.projection_mistakes(APERTURE_F, X), point_error, 1e-3)
+        mistake = closest(got.mean(axis=1), truth.projection_mistakes(APERTURE_F, X), point_error, 1e-3,
+                          truth=ideal)
         if mistake:
             t.fail(f"{what} is not the ideal projection: it looks like {mistake}.", mistake=mistake)
         t.fail(f"{what}: with a point-sized pinhole every ray should land on the ideal projection "
@@ -410,10 +533,12 @@ def aperture_statistics(t):
     per_point = rms / radius
     if np.all(np.abs(ratio - 2.0) < 0.1):
         t.fail(f"{what}: the rays spread over twice the expected disc: it looks like the aperture "
-               "is used as the diameter; it is the radius.")
+               "is used as the diameter; it is the radius.", mistake="the aperture is used as the diameter")
     if np.ptp(rms / aperture) < 0.05 * np.mean(rms / aperture) and np.ptp(radius) > 0.2 * radius.mean():
         t.fail(f"{what}: the spread is the same for every point, but it should depend on depth: "
-               "the blur disc has radius aperture * (1 + f / Z) (near points blur more).")
+               "the offsets through the aperture are not scaled by (1 + f / Z): the blur disc has radius "
+               "aperture * (1 + f / Z) (near points blur more).",
+               mistake="the aperture offsets are not scaled by (1 + f / Z)")
     if np.any(ratio > 1.02):
         t.fail(f"{what}: some rays land outside the blur disc of radius aperture * (1 + f / Z) "
                f"(up to {ratio.max():.2f} radii from the ideal projection).")
@@ -450,10 +575,12 @@ def aperture_seed(t):
     b, _ = _aperture_call(t, X, 0.3, 50, 123)
     c, _ = _aperture_call(t, X, 0.3, 50, 124)
     if not np.array_equal(a, b):
-        t.fail(f"{what} gave different rays for the same seed: use rng = np.random.default_rng(seed) "
-               "and draw every random number from rng.")
+        t.fail(f"{what} gave different rays for the same seed: the seed is ignored; use "
+               "rng = np.random.default_rng(seed) and draw every random number from rng.",
+               mistake="the seed is ignored")
     if np.array_equal(a, c):
-        t.fail("simulate_aperture gave the same rays for seeds 123 and 124: the seed is ignored.")
+        t.fail("simulate_aperture gave the same rays for seeds 123 and 124: the seed is ignored.",
+               mistake="the seed is ignored")
 
 
 # ================================================================== ex5 points on a real image
@@ -476,21 +603,74 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     pts = np.asarray(pts, float).reshape(-1, 2)
     swapped_core, _ = truth.circle_regions(image.shape, pts[:, ::-1], radius)
     if swapped_core.any() and painted[swapped_core].mean() > 0.9:
-        t.fail(f"{what}: the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = (column, row).")
+        t.fail(f"{what}: the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = (column, row).",
+               mistake="x and y (column and row) are swapped")
     if got.ndim == 3:
         reversed_colour = np.all(got == np.asarray(color[::-1], np.uint8), axis=-1)
-        if core.any() and reversed_colour[core].mean() > 0.9:
-            t.fail(f"{what}: the circles have colour {tuple(color[::-1])}, not {tuple(color)}: "
-                   "OpenCV images are BGR; pass the colour as given.")
+        if tuple(color[::-1]) != tuple(color) and core.any() and reversed_colour[core].mean() > 0.9:
+            t.fail(f"{what}: the circles have colour {tuple(color[::-1])}, not {tuple(color)}: the colour is "
+                   "reversed (RGB for BGR); OpenCV images are BGR, so pass the colour as given.",
+                   mistake="the colour is reversed (RGB vs BGR)")
+        default_colour = np.all(got == np.array([0, 0, 255], np.uint8), axis=-1)
+        if tuple(color) != (0, 0, 255) and core.any() and default_colour[core].mean() > 0.9:
+            t.fail(f"{what}: the circles are red (0, 0, 255), not {tuple(color)}: the color argument is "
+                   "ignored.", mistake="color is ignored")
     d = truth.distance_map(image.shape, pts)
     inner, ring = d <= radius - 1.5, np.abs(d - radius) <= 0.5
     if inner.any() and painted[inner].mean() < 0.5 and ring.any() and painted[ring].mean() > 0.5:
-        t.fail(f"{what}: the circles are outlines; they should be filled (thickness=-1).")
+        t.fail(f"{what}: the circles are outlines; they should be filled (thickness=-1).",
+               mistake="the circles are outlines, not filled")
+    missing = _points_not_drawn(painted, image.shape, pts, radius)
+    if missing:
+        only = sorted(set(range(len(pts))) - set(missing) - set(_off_image(image.shape, pts)))
+        first = " (only the first point is drawn: is the return inside the loop?)" if only == [0] else ""
+        t.fail(f"{what}: no circle at point(s) {missing} (of {len(pts)}){first}.",
+               mistake="only the first point is drawn" if first else "some points are not drawn")
+    drawn_radius = _drawn_radius(got, image, pts, color)
+    if drawn_radius is not None and drawn_radius != radius:
+        ignored = "the radius argument is ignored" if drawn_radius == 3 else \
+            "the radius is doubled (it is the radius, not the diameter)" if drawn_radius == 2 * radius else \
+            "the radius is halved (it is the radius, not the diameter)" if 2 * drawn_radius in (radius, radius - 1, radius + 1) \
+            else "the radius is used wrongly"
+        t.fail(f"{what}: the circles have radius {drawn_radius}, not {radius}: {ignored}.",
+               mistake=ignored)
     if coverage < 0.97:
         t.fail(f"{what}: only {coverage:.0%} of the pixels that should be covered by the circles "
                f"(radius {radius}, colour {tuple(color)}) are.")
     t.fail(f"{what}: {1 - untouched:.1%} of the pixels far from every point were changed; "
            "only the circles should be drawn (on a copy of the image).")
+
+
+def _off_image(shape, pts):
+    h, w = shape[:2]
+    return [i for i, (x, y) in enumerate(pts) if not (0 <= x < w and 0 <= y < h)]
+
+
+def _points_not_drawn(painted, shape, pts, radius):
+    """Indices of the points on the image with no painted pixel within their disc."""
+    off = set(_off_image(shape, pts))
+    missing = []
+    for i, (x, y) in enumerate(pts):
+        if i in off or not (np.isfinite(x) and np.isfinite(y)):
+            continue
+        disc = truth.distance_map(shape, np.array([[x, y]])) <= radius + 1.0     # anything drawn there
+        if disc.any() and not painted[disc].any():
+            missing.append(i)
+    return missing
+
+
+def _drawn_radius(got, image, pts, color):
+    """The radius r in 1..12 whose filled circles (in ``color``) give exactly ``got``, if one does."""
+    differences = []
+    for r in range(1, 13):
+        expected = truth.expected_drawing(image, pts, r, color)
+        if got.shape != expected.shape:
+            return None
+        differences.append(np.mean(np.any(got != expected, axis=-1) if got.ndim == 3 else got != expected))
+    best = int(np.argmin(differences))
+    others = [d for i, d in enumerate(differences) if i != best]
+    # near-exact (rounding of the centre), and clearly better than every other radius
+    return best + 1 if differences[best] < 2e-4 and differences[best] * 3 < min(others) else None
 
 
 @ex5.check("draw_points draws filled circles at the points", points=3)
@@ -542,8 +722,15 @@ def project_onto_image_check(t):
         t.fail("project_onto_image should return a pair (image, pts)")
     drawn, pts = got
     expected = truth.homogeneous_project(P, X)
+    if isinstance(drawn, np.ndarray) and drawn.shape == expected.shape and isinstance(pts, np.ndarray) \
+            and pts.shape == image.shape:
+        t.fail("project_onto_image returned (pts, image); the API wants the pair the other way round: "
+               "(image, pts).", mistake="the pair is returned in the wrong order")
     judge_points(t, "project_onto_image(...)[1] (the points)", pts, expected, project_mistakes(P, X),
                  tolerance=1e-6, show="projected points")
+    if isinstance(drawn, np.ndarray) and drawn.shape == image.shape and np.array_equal(drawn, image):
+        t.fail("project_onto_image(...)[0] is the image unchanged: the projected points are not drawn on it "
+               "(draw_points(image, pts)).", mistake="the points are not drawn on the image")
     return judge_drawing(t, "project_onto_image(...)[0] (the image)", drawn, image, expected)
 
 
@@ -570,18 +757,21 @@ def judge_calibration(t: Trial, images, K_true, pattern):
     if abs(K[2, 2]) > 1e-12:
         K = K / K[2, 2]
     if abs(K[2, 0]) > 1.0 and abs(K[0, 2]) < 1.0:
-        t.fail(f"{what}: K is transposed: the principal point belongs in the last column.")
+        t.fail(f"{what}: K is transposed: the principal point belongs in the last column.",
+               mistake="K is transposed")
     f_error = np.abs(np.array([K[0, 0], K[1, 1]]) / np.array([K_true[0, 0], K_true[1, 1]]) - 1.0)
     c_error = np.abs(K[:2, 2] - K_true[:2, 2])
     if not np.isfinite(rms) or rms < 0:
         t.fail(f"{what}: rms = {rms} is not a reprojection error")
     if rms > 1.0:
         t.fail(f"{what}: the reprojection error is {rms:.2f} px (a good calibration on these clean "
-               "views has < 0.1 px): the object points do not correspond to the detected corners; "
-               "build them row by row, x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.")
+               "views has < 0.1 px): the object points do not correspond to the detected corners "
+               "(they are in the wrong order, e.g. column by column, or for another pattern_size); "
+               "build them row by row, x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.",
+               mistake="the object points are in the wrong order")
     if np.abs(K[:2, 2] - K_true[1::-1, 2]).max() < 3.0 and c_error.max() > 3.0:
         t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
-               "(rows, cols)? OpenCV wants (width, height).")
+               "(rows, cols)? OpenCV wants (width, height).", mistake="the principal point is swapped")
     if f_error.max() > 0.015 or c_error.max() > 3.0:
         t.fail(f"{what}: K is\n{format_matrix(K)}\nbut the views were rendered with\n{format_matrix(K_true)}\n"
                f"(focal lengths off by {f_error.max():.1%}, principal point by {c_error.max():.1f} px).")
@@ -620,7 +810,8 @@ def judge_distortion(t: Trial, pts, dist, show=False):
     if show and isinstance(got, np.ndarray) and got.shape == expected.shape:
         t.svg("normalised points: ideal, OpenCV's distortion, yours", svg_points(
             {"undistorted": pts, "OpenCV (truth)": expected, "yours": got}, lines=list(zip(expected, got))))
-    judge_points(t, what, got, expected, truth.distortion_mistakes(pts, dist), tolerance=1e-7)
+    judge_points(t, what, got, expected, truth.distortion_mistakes(pts, dist), tolerance=1e-7,
+                 mistake_tolerance=1e-6)
 
 
 @ext2.check("distort_points matches OpenCV's model (cv2.projectPoints) on a grid", points=4)

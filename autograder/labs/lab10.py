@@ -35,12 +35,16 @@ ex1 = lab.exercise("ex1", "Perspective projection and focal length", functions=[
 
 
 def perspective_mistakes(f, X):
-    right = truth.pinhole(X, f)
+    Z = X[:, 2]
+    common = {"the first point's": Z[0], "the last point's": Z[-1], "the median": np.median(Z),
+              "the largest": Z.max(), "the smallest": Z.min()}
     return {
-        "x and y are swapped (x = f X / Z is the column)": right[:, ::-1],
-        "the perspective division is missing (divide by Z)": f * X[:, :2],
-        "the focal length divides instead of multiplies (x = X / (f Z))": X[:, :2] / (f * X[:, 2:3]),
+        **truth.lab09.projection_mistakes(f, X),
         "every point is divided by the mean depth: that is weak perspective": truth.weak_perspective(X, f),
+        "the division is by the distance |X| from the camera; it is by the depth Z":
+            f * X[:, :2] / np.linalg.norm(X, axis=1, keepdims=True),
+        **{f"every point is divided by one depth, {name} depth; each point has its own depth Z":
+           truth.weak_perspective(X, f, z) for name, z in common.items()},
     }
 
 
@@ -92,13 +96,28 @@ ex2 = lab.exercise("ex2", "Weak perspective", functions=["weak_perspective_proje
 
 
 def weak_mistakes(X, f, z_avg=None):
+    X = np.atleast_2d(np.asarray(X, dtype=np.float64))
     return {
         "each point is divided by its own depth: that is full perspective; weak perspective divides "
         "every point by one common depth z_avg": truth.pinhole(X, f),
         "the given z_avg is ignored (the mean depth is used instead)": truth.weak_perspective(X, f),
         "the default depth is the median; it is the mean depth": truth.weak_perspective(X, f, np.median(X[:, 2])),
+        "the default depth is the largest depth; it is the mean depth":
+            truth.weak_perspective(X, f, X[:, 2].max() if z_avg is None else z_avg),
+        "the default depth is the smallest depth; it is the mean depth":
+            truth.weak_perspective(X, f, X[:, 2].min() if z_avg is None else z_avg),
+        "the default depth is the first point's; it is the mean depth of all points":
+            truth.weak_perspective(X, f, X[0, 2] if z_avg is None else z_avg),
+        "the default depth is the mean distance |X| from the camera; it is the mean depth Z":
+            truth.weak_perspective(X, f, np.linalg.norm(X, axis=1).mean() if z_avg is None else z_avg),
         "x and y are swapped": truth.weak_perspective(X, f, z_avg)[:, ::-1],
         "f is not applied": truth.weak_perspective(X, 1.0, z_avg),
+        "f is applied twice (x = f^2 X / z_avg)": f * truth.weak_perspective(X, f, z_avg),
+        "the default depth is the mean of every coordinate (X.mean()); it is the mean depth, "
+        "X[:, 2].mean()": truth.weak_perspective(X, f, X.mean() if z_avg is None else z_avg),
+        "the points are not scaled by f / z_avg (that is orthographic projection)": truth.orthographic(X),
+        "the scale is inverted: it is f / z_avg, not z_avg / f":
+            X[:, :2] * ((X[:, 2].mean() if z_avg is None else z_avg) / f),
     }
 
 
@@ -142,13 +161,19 @@ def orthographic_example(t):
     X = truth.scene_points(301, n=10, depth=10.0, relief=5.0)
     got = t.call("orthographic_project", X)
     if isinstance(got, np.ndarray) and got.shape == (10, 3):
-        t.fail("orthographic_project returned shape (10, 3); expected (10, 2): divide by the homogeneous "
-               "coordinate and drop it")
+        t.fail("orthographic_project returned shape (10, 3); expected (10, 2): a third coordinate is kept "
+               "(Z is kept); divide by the homogeneous coordinate and drop it", mistake="a third coordinate is kept")
+    if isinstance(got, np.ndarray) and got.shape == (2, 3):
+        t.fail("orthographic_project returned shape (2, 3); expected (10, 2): points[:2] takes the first two "
+               "points (rows); X and Y are the first two columns, points[:, :2].",
+               mistake="rows are taken instead of columns")
     judge_points(t, "orthographic_project(points)", got, truth.orthographic(X), {
         "the points are divided by Z: that is perspective; orthographic projection ignores depth":
             X[:, :2] / X[:, 2:3],
         "it returns (X, Z); the lab sheet's matrix keeps X and Y": X[:, [0, 2]],
+        "it returns (Y, Z); the lab sheet's matrix keeps X and Y": X[:, [1, 2]],
         "x and y are swapped": X[:, [1, 0]],
+        "the points are scaled by 1 / mean depth (weak perspective with f = 1)": truth.weak_perspective(X, 1.0),
     })
 
 
@@ -202,7 +227,7 @@ def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_p
         t.fail(f"{what}: here the true P[2, 3] is 0 (P[2, 3] = t_z, the depth of the world origin), "
                f"yours is {got[2, 3] / np.linalg.norm(got):.3g} of |P|. It looks like P[2, 3] was fixed "
                "to 1 (11 unknowns, least squares), which cannot express this camera: solve A p = 0 "
-               "for all 12 entries by SVD (the last row of Vt).")
+               "for all 12 entries by SVD (the last row of Vt).", mistake="P[2, 3] is fixed to 1")
     t.fail(f"{what}: P is wrong {where_matrices_differ(got, P, up_to_scale=True)} (compared with the "
            f"true camera up to scale): projecting new points with it misses their true projections by "
            f"{np.mean(fresh):.3g} px on average.")
@@ -246,16 +271,19 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     if tv.shape == (3, 1):
         tv = tv.ravel()
     tv = t.expect_array(tv, f"{what}[2] (t)", shape=(3,))
-    problems = []
+    problems, labels = [], []
     negative = np.linalg.det(np.asarray(P, float)[:, :3]) < 0
     sign_fix = ("for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): multiply P by -1 first, "
                 "then decompose; flipping signs of K's columns alone would leave det(R) = -1")
     if np.abs(np.tril(K, -1)).max() > 1e-6 * np.abs(K).max():
         problems.append("K is not upper triangular (use an RQ decomposition of the left 3x3 block)")
     if abs(K[2, 2] - 1) > 1e-6:
-        problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: divide K by K[2, 2] (P is only known up to scale)")
+        problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: K is not normalised; divide K by K[2, 2] "
+                        "(P is only known up to scale)")
+        labels.append("K is not normalised (K[2, 2] != 1)")
     rotation = np.abs(R @ R.T - np.eye(3)).max() <= 1e-6
     if np.any(np.diag(K) <= 0):
+        labels.append("P is not negated when det(P[:, :3]) < 0" if negative else "the signs of K's diagonal are not fixed")
         problems.append(f"K has a negative diagonal entry ({format_matrix(np.diag(K))}): "
                         + (sign_fix if negative else "RQ is unique only up to signs; multiply the offending "
                            "columns of K and the same rows of R by -1 (R then comes out with det +1, "
@@ -263,10 +291,13 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     if not rotation:
         problems.append("R is not a rotation (R R^T != I)")
     elif np.linalg.det(R) < 0 and sign_fix not in " ".join(problems):
+        labels.append("P is not negated when det(P[:, :3]) < 0" if negative
+                      else "K's columns are flipped without R's rows")
         problems.append("det(R) = -1: " + (sign_fix if negative else "with det(P[:, :3]) > 0 that comes "
                         "from a sign flip of K's columns without the same rows of R"))
     if problems:
-        t.fail(f"{what}: " + "; ".join(problems) + ".")
+        # a named mistake only when the problems point to one cause
+        t.fail(f"{what}: " + "; ".join(problems) + ".", mistake=labels[0] if len(set(labels)) == 1 else "")
     Kn = K_true / K_true[2, 2]
     ok = (np.abs(K - Kn).max() <= 1e-6 * np.abs(Kn).max() and np.abs(R - R_true).max() <= 1e-6
           and np.abs(tv - t_true).max() <= 1e-6 * max(1.0, np.abs(t_true).max()))
@@ -277,6 +308,10 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
                 and np.abs(tv - tm).max() <= 1e-4 * max(1.0, np.abs(tm).max())):
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     recomposed = K @ np.column_stack([R, tv])
+    if projective_distance(R @ K, np.asarray(P, float)[:, :3]) <= 1e-6 < projective_distance(recomposed, P):
+        t.fail(f"{what} is wrong: R K gives back P[:, :3], not K R: it looks like a QR decomposition "
+               "(M = Q U) was used where P = K [R | t] needs an RQ decomposition (M = K R).",
+               mistake="QR was used instead of RQ")
     if projective_distance(recomposed, P) > 1e-6:
         t.fail(f"{what}: K [R | t] does not give back P (distance {projective_distance(recomposed, P):.2g} "
                "after normalising scale).")
@@ -316,10 +351,19 @@ def judge_center(t: Trial, P, R, tv):
     scale = max(1.0, np.abs(C).max())
     if np.abs(got - C).max() <= 1e-6 * scale:
         return
-    if np.abs(got - tv).max() <= 1e-6 * scale:
-        t.fail(f"{what} returned t; the centre is C = -R^T t (the point with P [C, 1] = 0).")
-    if np.abs(got + tv).max() <= 1e-6 * scale:
-        t.fail(f"{what} returned -t; the centre is C = -R^T t (the rotation matters).")
+    mistakes = {
+        "it returned t; the centre is C = -R^T t (the point with P [C, 1] = 0)": tv,
+        "it returned -t; the centre is C = -R^T t (the rotation matters)": -tv,
+        "it returned -R t; the centre is C = -R^T t (R transposed)": -R @ tv,
+        "it returned R^T t; the centre is C = -R^T t (the sign is wrong)": R.T @ tv,
+    }
+    null = np.append(C, 1.0) / np.linalg.norm(np.append(C, 1.0))      # the SVD's null vector, up to sign
+    if min(np.abs(got - null[:3]).max(), np.abs(got + null[:3]).max()) <= 1e-6:
+        t.fail(f"{what} is wrong: it returned the first three entries of the null vector of P without "
+               "dividing by the fourth (C = v[:3] / v[3]).", mistake="the null vector is not de-homogenised")
+    mistake = closest(got, mistakes, lambda a, b: float(np.abs(a - b).max()), 1e-6 * scale, truth=C)
+    if mistake:
+        t.fail(f"{what} is wrong: {mistake}.", mistake=mistake)
     residual = np.linalg.norm(P @ np.append(got, 1.0)) / np.linalg.norm(P)
     t.fail(f"{what} returned {format_matrix(got)}; expected {format_matrix(C)} (|P [C, 1]| / |P| = {residual:.2g}, should be 0)")
 
@@ -385,6 +429,10 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
     reproj_error = np.linalg.norm(reprojected - corners[perm], axis=1).max()
     if angle <= ANGLE_TOLERANCE and rel <= TRANSLATION_TOLERANCE:
         if reproj_error > REPROJECTION_TOLERANCE:
+            slip = _reprojection_slip(reprojected, rvec, tvec, pattern, square, K, dist)
+            if slip:
+                return partial(0.5, f"{what}: the pose is right, but the reprojected corners are wrong: "
+                                    f"it looks like {slip}.", mistake=slip)
             return partial(0.5, f"{what}: the pose is right (rotation off by {angle:.2f} deg, translation by "
                                 f"{rel:.2%}), but the reprojected corners miss the corners by up to "
                                 f"{reproj_error:.1f} px: project the object points with rvec, tvec, K and dist "
@@ -396,24 +444,33 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
     if angle <= ANGLE_TOLERANCE:
         M, c, _ = truth.board_symmetries(pattern, square)[alternative]
         t_alt = R @ c + tv
-        for factor in (1.0 / square, square):
-            if np.linalg.norm(tvec - factor * t_alt) <= TRANSLATION_TOLERANCE * factor * distance:
-                t.fail(f"{what}: the rotation is right but tvec is {factor:.3g} times the true one: "
-                       "the object points must be in real units, i.e. multiplied by square_size.")
+        factor = float(tvec @ t_alt / (t_alt @ t_alt))
+        # a scale slip changes tvec by a clear factor (1 / square_size, 1 / square_size^2...),
+        # not by the few percent other slips (such as an ignored dist) give
+        if factor > 0 and abs(np.log(factor)) > np.log(1.5) and \
+                np.linalg.norm(tvec - factor * t_alt) <= TRANSLATION_TOLERANCE * factor * distance:
+            ignored = "square_size is ignored" if abs(factor * square - 1) < 0.02 else \
+                "the object points are not in the units of square_size"
+            t.fail(f"{what}: the rotation is right but tvec is {factor:.3g} times the true one: {ignored}: "
+                   "the object points must be in real units, i.e. the grid multiplied by square_size.",
+                   mistake=ignored)
     normal_angle = np.degrees(np.arccos(np.clip(abs(R_got[:, 2] @ R[:, 2]), -1.0, 1.0)))
     in_plane = np.degrees(np.arccos(np.clip(abs(R_got[:, 0] @ R[:, 0]), -1.0, 1.0)))
     if normal_angle < 2.0 and abs(in_plane - 90.0) < 2.0:
         t.fail(f"{what}: the board plane is right but its x and y axes are exchanged (the pose is turned "
                "by 90 degrees in the board plane): pattern_size is (cols, rows) = (inner corners per row, "
                "per column), passed to cv2.findChessboardCorners as given, and the object points run "
-               "row by row with x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).")
+               "row by row with x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).",
+               mistake="pattern_size's cols and rows are exchanged")
     if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and rel <= TRANSLATION_TOLERANCE:
         t.fail(f"{what}: the translation is right but the rotation is transposed (rvec has the wrong "
-               "sign): return rvec as cv2.solvePnP gives it, the board's rotation into the camera frame.")
+               "sign): return rvec as cv2.solvePnP gives it, the board's rotation into the camera frame.",
+               mistake="the rotation is transposed")
     C = -R.T @ tv
     if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and np.linalg.norm(tvec - C) < 0.05 * distance:
-        t.fail(f"{what}: that is the camera's pose in the board's frame (R^T, -R^T t); the task wants "
-               "the board's pose in the camera frame, as cv2.solvePnP returns it.")
+        t.fail(f"{what}: that is the camera's pose in the board's frame (R^T, -R^T t): the pose is inverted; "
+               "the task wants the board's pose in the camera frame, as cv2.solvePnP returns it.",
+               mistake="the pose is inverted (the camera's pose in the board's frame)")
     if dist is not None:
         objp = scene.chessboard_object_points(pattern, square)
         found, detected = cv2.findChessboardCorners(image, tuple(pattern))
@@ -423,9 +480,56 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
             if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(r0.ravel())) < 0.3 and \
                     np.linalg.norm(tvec - t0.ravel()) < 0.003 * distance:
                 t.fail(f"{what}: the lens distortion dist is ignored: pass it to cv2.solvePnP "
-                       "(and to cv2.projectPoints).")
+                       "(and to cv2.projectPoints).", mistake="dist is ignored")
+    for (slip, label), (r_slip, t_slip) in _poses_from_wrong_grids(pattern, square, corners, K, dist).items():
+        if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(r_slip)) < 2 * ANGLE_TOLERANCE and \
+                np.linalg.norm(tvec - t_slip) < 2 * TRANSLATION_TOLERANCE * distance:
+            t.fail(f"{what}: {slip}; OpenCV gives the corners row by row, x fastest: "
+                   "np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.", mistake=label)
     t.fail(f"{what}: the pose is off by {angle:.1f} degrees and {rel:.1%} of the distance "
            f"(reprojection off by up to {reproj_error:.1f} px).")
+
+
+def _poses_from_wrong_grids(pattern, square, corners, K, dist) -> dict:
+    """{(slip, label): (rvec, tvec)}: what cv2.solvePnP gives for the true corners with the
+    object points built in the usual wrong ways."""
+    cols, rows = pattern
+    grids = {
+        ("the object points are in column order (y fastest)", "the object points are in the wrong (column) order"):
+            np.mgrid[0:cols, 0:rows].reshape(2, -1).T,
+        ("the object points are built for (rows, cols): np.mgrid[0:rows, 0:cols]",
+         "the object points are built for (rows, cols)"): np.mgrid[0:rows, 0:cols].T.reshape(-1, 2),
+        ("the object points are built for (rows, cols) and in column order",
+         "the object points are built for (rows, cols)"): np.mgrid[0:rows, 0:cols].reshape(2, -1).T,
+        ("the object points have x and y exchanged (each is (row, column))",
+         "the object points have x and y exchanged"): np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)[:, ::-1],
+        ("the object points (or the corners) are in reverse order",
+         "the corners are in reverse order"): np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)[::-1],
+    }
+    out = {}
+    for key, grid in grids.items():
+        objp = np.column_stack([grid * square, np.zeros(len(grid))]).astype(np.float64)
+        ok, r, tv = cv2.solvePnP(objp, np.asarray(corners, np.float64).reshape(-1, 1, 2), np.asarray(K, float),
+                                 None if dist is None else np.asarray(dist, float))
+        if ok:
+            out[key] = (r.ravel(), tv.ravel())
+    return out
+
+
+def _reprojection_slip(reprojected, rvec, tvec, pattern, square, K, dist):
+    """The name of the slip that gives ``reprojected`` from a right pose, if one does."""
+    objp = scene.chessboard_object_points(pattern, square)
+
+    def projected(dist_used):
+        out, _ = cv2.projectPoints(objp, np.asarray(rvec, float), np.asarray(tvec, float), np.asarray(K, float),
+                                   None if dist_used is None else np.asarray(dist_used, float))
+        return out.reshape(-1, 2)
+
+    candidates = {"the corners are projected without dist (pass dist to cv2.projectPoints too)": projected(None)} \
+        if dist is not None else {}
+    right = projected(dist)
+    candidates["the reprojected corners have x and y swapped"] = right[:, ::-1]
+    return closest(reprojected, candidates, point_error, 0.05, truth=right)
 
 
 def _call_pose(t: Trial, image, pattern, square, K, dist=None):
@@ -496,16 +600,23 @@ def undistort_check(t):
     error = blurred_difference(got, clean, valid)
     if error <= UNDISTORT_TOLERANCE:
         return passed(f"mean difference {error:.1f} grey levels from the distortion-free view")
+    # The API does not pin the output camera matrix: OpenCV's tutorial recipe passes a new one.
+    for name, (expected, judged) in truth.undistorted_views_with_new_camera_matrix(clean, K, dist).items():
+        if judged.mean() > 0.3 and blurred_difference(got, expected, judged) <= UNDISTORT_TOLERANCE:
+            return passed(f"the distortion-free view with the camera matrix of {name}")
     if blurred_difference(got, distorted, valid) <= 1.0:
-        t.fail(f"{what} returned the image unchanged.")
+        t.fail(f"{what} returned the image unchanged: dist is not used (cv2.undistort(image, K, dist)).",
+               mistake="the image is returned unchanged (dist is not used)")
     twice = truth.distort_image(np.pad(distorted, truth.MARGIN), K, dist, truth.POSE_SIZE)
     candidates = {
         "the distortion is applied instead of removed (the lines bend even more)": twice,
         "the sign of the coefficients is flipped (undistorting with -dist)": cv2.undistort(distorted, K, -dist),
+        "K is transposed (cv2.undistort wants K as given)": cv2.undistort(distorted, K.T, dist),
     }
-    for mistake, image in candidates.items():
-        if blurred_difference(got, image, valid) <= UNDISTORT_TOLERANCE:
-            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    mistake = closest(got, candidates, lambda a, b: blurred_difference(a, b, valid), UNDISTORT_TOLERANCE,
+                      truth=clean)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} differs from the distortion-free view by {error:.0f} grey levels on average.")
 
 
@@ -526,6 +637,10 @@ def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
     if not (isinstance(got, (tuple, list)) and len(got) == 2):
         t.fail(f"{what} should return a pair (focal_lengths, projections)")
     fs_true, proj_true = truth.dolly_zoom(X, f0, z0, distances)
+    if all(isinstance(g, np.ndarray) for g in got) and got[0].shape == proj_true.shape \
+            and got[1].shape == fs_true.shape:
+        t.fail(f"{what} returned (projections, focal_lengths); the API's order is (focal_lengths, projections).",
+               mistake="the pair is returned in the wrong order")
     fs = t.expect_array(got[0], f"{what}[0] (focal lengths)", shape=fs_true.shape, kind="iuf", finite=True)
     proj = got[1]
     if isinstance(proj, np.ndarray) and proj.shape == (len(X), len(fs_true), 2) and len(X) != len(fs_true):
@@ -538,10 +653,16 @@ def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
     ok_p = point_error(proj.reshape(-1, 2), proj_true.reshape(-1, 2)) <= 1e-6 * np.nanmax(np.abs(proj_true))
     if ok_f and ok_p:
         return
-    for mistake, (fm, pm) in truth.dolly_mistakes(X, f0, z0, distances).items():
-        if np.abs(fs - fm).max() <= 1e-6 * np.abs(fm).max() and \
-                point_error(proj.reshape(-1, 2), pm.reshape(-1, 2)) <= 1e-6 * np.nanmax(np.abs(pm)):
-            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    def dolly_distance(a, b):
+        """Relative error of the focal lengths and of the projections, the larger."""
+        (fa, pa), (fb, pb) = a, b
+        return max(float(np.abs(fa - fb).max() / np.abs(fb).max()),
+                   point_error(pa.reshape(-1, 2), pb.reshape(-1, 2)) / float(np.nanmax(np.abs(pb))))
+
+    mistake = closest((fs, proj), truth.dolly_mistakes(X, f0, z0, distances), dolly_distance, 1e-6,
+                      truth=(fs_true, proj_true))
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if not ok_f:
         t.fail(f"{what}: the focal lengths are {format_matrix(fs)}; expected f0 * d / z0 = {format_matrix(fs_true)}")
     if n_subject:
@@ -576,25 +697,67 @@ ext3 = lab.exercise("ext3", "Extension: tracking the pose over a sequence", func
     "track_pose(frames, pattern_size, square_size, K, dist=None)"])
 
 
+def _track_rows_match(rows, candidate, poses, pattern, square) -> bool:
+    """Whether ``rows`` are ``candidate``'s poses (NaN for None) wherever the true ``poses`` differ from it."""
+    differs = False
+    for row, pose, true_pose in zip(rows, candidate, poses):
+        if pose is None:
+            if np.isfinite(row).any() and true_pose is None:
+                return False
+            continue
+        if not np.isfinite(row).all():
+            return False
+        R, tv = pose
+        angle, shift, _ = truth.pose_error(row[:3], row[3:], R, tv, pattern, square)
+        if angle > ANGLE_TOLERANCE or shift > TRANSLATION_TOLERANCE * np.linalg.norm(tv):
+            return False
+        differs = differs or true_pose is None or truth.rotation_angle_deg(R, true_pose[0]) > ANGLE_TOLERANCE
+    return differs
+
+
 @ext3.check("track_pose follows a board along a known trajectory (NaN where it leaves the view)", points=4)
 def track_check(t):
     frames, poses = truth.track_sequence()
     pattern, square, K = truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K
     what = "track_pose(frames, pattern_size, square_size, K)"
     got = t.call("track_pose", list(frames), pattern, square, K)
+    if isinstance(got, np.ndarray) and got.ndim > 2 and got.shape[0] == len(frames) and got.size == 6 * len(frames):
+        t.fail(f"{what} returned shape {got.shape}; expected ({len(frames)}, 6): the rows are not flattened: "
+               "each row is np.concatenate([rvec, tvec]).", mistake="the rows are not flattened to [rvec, tvec]")
     if isinstance(got, np.ndarray) and got.shape == (len(frames) - 1, 6):
         t.fail(f"{what} returned {got.shape[0]} rows for {len(frames)} frames: keep one row per frame, "
                "NaN where the board is not found.")
     got = t.expect_array(got, what, shape=(len(frames), 6), kind="f")
+    shifted = {
+        "the rows are off by one frame (one frame late): row i must be the pose in frame i (frames[i])": (None,) + poses[:-1],
+        "the rows are off by one frame (one frame early): row i must be the pose in frame i (frames[i])": poses[1:] + (None,),
+        "each row is the camera's pose in the board's frame (R^T, -R^T t): the pose is inverted; "
+        "the rows are the board's pose in the camera frame, as cv2.solvePnP gives it":
+            tuple(None if p is None else (p[0].T, -p[0].T @ p[1]) for p in poses),
+    }
+    for k, pose in enumerate(poses):
+        if pose is not None:
+            shifted[f"every row is the pose in frame {k}: the same frame is used for every row (use each "
+                    "frame of the loop, not frames[0])" if k == 0 else
+                    f"every row is the pose in frame {k}: the same frame is used for every row"] = \
+                (pose,) * len(poses)
+    for mistake, candidate in shifted.items():
+        if _track_rows_match(got, candidate, poses, pattern, square):
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake.split(":")[0])
     errors = []
     for i, pose in enumerate(poses):
         row = got[i]
         if pose is None:
+            if i > 0 and np.isfinite(row).all() and np.allclose(row, got[i - 1]):
+                t.fail(f"{what}: frame {i} shows no board, but its row repeats the pose of frame {i - 1}: the "
+                       "last pose is carried over; a frame without a board gets a NaN row.",
+                       mistake="the last pose is carried over to frames without a board")
             if np.isfinite(row).any():
                 zeros = " Zeros are a pose (the board at the camera centre), not 'not found'." \
                     if np.all(row == 0) else ""
                 t.fail(f"{what}: frame {i} shows no board, so its row should be NaN (the API's marker for "
-                       f"'not found'); yours is {format_matrix(row)}.{zeros}")
+                       f"'not found'); yours is {format_matrix(row)}.{zeros}",
+                       mistake="a frame without a board does not get a NaN row")
             continue
         R, tv = pose
         if not np.isfinite(row).all():

@@ -15,10 +15,11 @@ import numpy as np
 from hypothesis import strategies as st
 
 from fixtures import lab11 as truth
-from fixtures.lab12 import linear_triangulation, triangulation_variants
+from fixtures.lab12 import (linear_triangulation, triangulation_distance, triangulation_mistakes,
+                            triangulation_variants)
 
 from ..checks import Fail, StudentFailure, Trial, partial, passed
-from ..compare import closest, projective_distance
+from ..compare import closest, nearest_variants, projective_distance
 from ..judges import format_matrix, where_matrices_differ, where_points_differ
 from ..pictures import side_by_side, svg_points
 from ..registry import Lab
@@ -36,16 +37,36 @@ def _unit(M) -> np.ndarray:
     return M * np.sign(M[index])
 
 
+def conditioned_distance(pts1, pts2):
+    """:func:`projective_distance` between two F's after moving them to well-conditioned
+    coordinates (each image's points centred, mean distance sqrt(2)): on pixels a few entries
+    dominate F, and unrelated wrong estimates would look alike."""
+    def similarity(pts):
+        pts = np.asarray(pts, float)
+        centre = pts.mean(axis=0)
+        scale = np.sqrt(2.0) / max(np.mean(np.linalg.norm(pts - centre, axis=1)), 1e-300)
+        return np.array([[scale, 0, -scale * centre[0]], [0, scale, -scale * centre[1]], [0, 0, 1.0]])
+
+    undo1, undo2 = np.linalg.inv(similarity(pts1)), np.linalg.inv(similarity(pts2))
+
+    def distance(a, b) -> float:
+        return projective_distance(undo2.T @ np.asarray(a, float) @ undo1, undo2.T @ np.asarray(b, float) @ undo1)
+    return distance
+
+
 def judge_projective(t: Trial, what: str, got, expected, mistakes=None, tolerance=EXACT,
-                     shape=(3, 3)) -> np.ndarray:
-    """A matrix or homogeneous vector equal to ``expected`` up to scale and sign."""
+                     shape=(3, 3), distance=projective_distance) -> np.ndarray:
+    """A matrix or homogeneous vector equal to ``expected`` up to scale and sign; ``mistakes``
+    map a mistake to its answer (a matrix, or a stack of its textbook variants), compared
+    with ``distance``."""
     got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
     if not np.any(got):
         t.fail(f"{what} returned all zeros")
-    distance = projective_distance(got, expected)
-    if distance <= tolerance:
+    if projective_distance(got, expected) <= tolerance:
         return got
-    mistake = closest(got, mistakes or {}, projective_distance, max(tolerance, 1e-4))
+    mistakes = nearest_variants(got, {name: answer if np.ndim(answer) > len(shape) else [answer]
+                                      for name, answer in (mistakes or {}).items()}, distance)
+    mistake = closest(got, mistakes, distance, max(tolerance, 1e-4), truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale=True)}.\n"
@@ -122,9 +143,10 @@ def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, g
         if error.max() <= EXACT:
             return passed(f"all {n} points within {error.max():.1e} of their distance to camera 1")
         _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise=0.0)
-        worst = int(np.argmax(error))
-        t.fail(f"{what} is wrong: point {worst} should be {format_matrix(views.X[worst])}, "
-               f"got {format_matrix(got[worst])}")
+        worst, wrong = int(np.argmax(error)), int(np.sum(error > EXACT))
+        t.fail(f"{what} is wrong for {'every point' if wrong == n else f'{wrong} of {n} points'} "
+               f"(off by up to {error.max():.1%} of their distance to camera 1): point {worst} should be "
+               f"{format_matrix(views.X[worst])}, got {format_matrix(got[worst])}")
     mine, best = _reprojection(P1, P2, got, pts1, pts2).mean(), gold["reprojection"]
     error = np.median(np.linalg.norm(got - views.X, axis=1) / depth)
     # The textbook variants (two or three rows of x × (P X) = 0 per view, rows scaled or
@@ -158,18 +180,25 @@ def _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise):
     sine = np.linalg.norm(np.cross(got, X), axis=1) / (np.linalg.norm(got, axis=1) * np.linalg.norm(X, axis=1) + 1e-300)
     scale = np.sum(got * X, axis=1) / np.sum(X * X, axis=1)
     if np.quantile(sine, 0.9) <= 1e-6 + 0.05 * noise and np.median(np.abs(scale - 1)) > 0.1:
-        t.fail(f"{what} is wrong: each point is the true one times some factor (the first "
-               f"is {scale[0]:.3g}): it looks like the homogeneous solution (X, Y, Z, w) was "
-               "not divided by w.")
+        t.fail(f"{what} is wrong: it looks like the homogeneous solution (X, Y, Z, w) was not "
+               f"divided by w: each point is the true one times some factor (the first is {scale[0]:.3g}).",
+               mistake="the homogeneous solution was not divided by w")
+    depth = np.linalg.norm(X - views.cam1.center, axis=1)
+    distance = triangulation_distance(depth)
+    mistake = closest(got, nearest_variants(got, triangulation_mistakes(P1, P2, pts1, pts2), distance),
+                      distance, 1e-3 + 0.02 * noise, truth=X)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     with np.errstate(all="ignore"):
         error1 = np.linalg.norm(truth.project(P1, got) - pts1, axis=1)
         error2 = np.linalg.norm(truth.project(P2, got) - pts2, axis=1)
     tolerance = 1e-3 + 3 * noise
     for mine, other, view in ((error1, error2, "first"), (error2, error1, "second")):
         if np.median(mine) <= tolerance and np.median(other) > 10 * tolerance + 1:
-            t.fail(f"{what} is wrong: the points project exactly onto the {view} image but "
-                   f"miss the other one by {np.median(other):.1f} px: it looks like only the "
-                   f"{view} view's equations are used. Stack two rows from each view (4 x 4 system).")
+            t.fail(f"{what} is wrong: it looks like only the {view} view's equations are used: the "
+                   f"points project exactly onto the {view} image but miss the other one by "
+                   f"{np.median(other):.1f} px. Stack two rows from each view (4 x 4 system).",
+                   mistake=f"only the {view} view's equations are used")
     # Black-box test with the student's own function: does swapping the cameras back fix it?
     depth = np.linalg.norm(X - views.cam1.center, axis=1)
     allowed = 1e-6 if noise == 0 else 0.1
@@ -182,7 +211,8 @@ def _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise):
         if other.shape == X.shape and np.all(np.isfinite(other)) and \
                 np.median(np.linalg.norm(other - X, axis=1) / depth) <= allowed:
             t.fail(f"{what} is wrong: it looks like {mistake} inside your function (called with "
-                   "them exchanged, it gives the right points). P1 belongs to pts1, P2 to pts2.")
+                   "them exchanged, it gives the right points). P1 belongs to pts1, P2 to pts2.",
+                   mistake=mistake)
 
 
 @ex1.check("triangulate a worked example (5 exact correspondences)", points=3)
@@ -249,7 +279,7 @@ def judge_lines(t: Trial, what: str, got, F, pts1):
         parallel = np.linalg.norm(np.cross(got, expected), axis=1) <= 1e-6 * np.linalg.norm(got, axis=1)
         if np.all(parallel):
             t.fail(f"{what}: the lines are right but not scaled so that a^2 + b^2 = 1 "
-                   "(divide each line by sqrt(a^2 + b^2)).")
+                   "(divide each line by sqrt(a^2 + b^2)).", mistake="the lines are not scaled so that a^2 + b^2 = 1")
     signs = np.where(np.sum(np.nan_to_num(got) * expected, axis=1) < 0, -1.0, 1.0)[:, None]
     where = where_points_differ(got * signs, expected, 1e-5 * max(1.0, np.abs(expected).max()),
                                 names=("a", "b", "c"))
@@ -338,11 +368,12 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     swapped_coverage, swapped_stray, _ = draw_judgement(got, image, swapped_lines)
     if swapped_coverage.min() >= min_coverage and swapped_stray <= 0.05:
         t.fail(f"{what} is wrong: the lines are drawn with x and y swapped "
-               "(a line (a, b, c) is a*x + b*y + c = 0 with x the column)")
+               "(a line (a, b, c) is a*x + b*y + c = 0 with x the column)",
+               mistake="the lines are drawn with x and y swapped")
     if stray <= 0.05 and coverage.max() < min_coverage and coverage.mean() > 0.15:
         t.fail(f"{what}: the lines are in the right place but stop short "
                f"(only {coverage.mean():.0%} of their length inside the image is drawn): "
-               "draw each line across the whole image")
+               "draw each line across the whole image", mistake="the lines stop short")
     t.fail(f"{what}: {np.sum(coverage < min_coverage)} of {len(coverage)} lines are missing or "
            f"incomplete, and {stray:.0%} of the changed pixels are away from every line "
            "(see the picture)")
@@ -441,6 +472,25 @@ def essential_from_F_property(t):
               describe=lambda s: f"fixtures.lab11.two_views(seed={s})")
 
 
+ESSENTIAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for each problem
+    "K1_both": "K1 is used for both images (pts2 are normalised with K2^-1)",
+    "K2_both": "K2 is used for both images (pts1 are normalised with K1^-1)",
+    "K_not_inverted": "the points are multiplied by K instead of K^-1",
+    "K_inverse_untransposed": "the points are normalised as x @ K^-1; for row vectors it is x @ K^-T "
+                              "(K^-1 x for a column vector)",
+    "pts1_pixels": "pts1 are not normalised with K1^-1 (only pts2 are)",
+    "pts2_pixels": "pts2 are not normalised with K2^-1 (only pts1 are)",
+    "K1_inverse_untransposed": "pts1 are normalised as x @ K1^-1; for row vectors it is x @ K1^-T "
+                               "(K1^-1 x for a column vector)",
+    "K2_inverse_untransposed": "pts2 are normalised as x @ K2^-1; for row vectors it is x @ K2^-T "
+                               "(K2^-1 x for a column vector)",
+    "rank2_only": "the singular values were set to (s1, s2, 0): an essential matrix has two equal "
+                  "ones, (1, 1, 0)",
+    "v_not_transposed": "E = U diag(1, 1, 0) V: np.linalg.svd returns V^T already (E = U diag(1, 1, 0) Vt)",
+    "design_x1x2": "the rows of A are kron(x1, x2); x2^T E x1 = 0 gives kron(x2, x1) (this is E^T)",
+}
+
+
 def _essential_8point_mistakes(views, figures):
     """Named wrong answers; ``figures`` holds the variants' results on this problem."""
     return {
@@ -449,7 +499,8 @@ def _essential_8point_mistakes(views, figures):
         "the pixels were not normalised with K^-1 first (this is F forced to singular values (1, 1, 0))":
             figures["pixels"],
         "K1 and K2 are swapped (pts1 are normalised with K1^-1, pts2 with K2^-1)": figures["swapped_K"],
-        "the singular values were not set to (s, s, 0)": figures["raw"],
+        "the singular values were not set to (1, 1, 0)": figures["raw"],
+        **{name: figures["mistakes"][key] for key, name in ESSENTIAL_MISTAKES.items()},
     }
 
 
@@ -473,12 +524,12 @@ def essential_8point_singular_values(t):
     if s[2] <= 1e-6 and s[1] >= 1 - 1e-6:
         return passed(f"singular values proportional to (1, {s[1]:.6f}, {s[2]:.1e})")
     if s[2] <= 1e-6:
-        t.fail(f"essential_8point: rank 2, but the singular values are proportional to "
-               f"(1, {s[1]:.4f}, 0): an essential matrix has two equal ones. Replace them by "
-               "(1, 1, 0) (U diag(1, 1, 0) V^T).")
-    t.fail(f"essential_8point: the singular values are proportional to (1, {s[1]:.4f}, {s[2]:.4f}); "
-           "an essential matrix has (s, s, 0): it looks like the singular values were not set "
-           "to (1, 1, 0) after the least-squares solution.")
+        t.fail(f"essential_8point: it looks like the singular values were set to (s1, s2, 0): they are "
+               f"proportional to (1, {s[1]:.4f}, 0), and an essential matrix has two equal ones. Replace "
+               "them by (1, 1, 0) (U diag(1, 1, 0) V^T).", mistake=ESSENTIAL_MISTAKES["rank2_only"])
+    t.fail(f"essential_8point: it looks like the singular values were not set to (1, 1, 0) after the "
+           f"least-squares solution: they are proportional to (1, {s[1]:.4f}, {s[2]:.4f}); an essential "
+           "matrix has (s, s, 0).", mistake="the singular values were not set to (1, 1, 0)")
 
 
 @ex3.check("essential_8point: the epipolar constraint holds on noisy normalised points", points=2)
@@ -499,7 +550,7 @@ def essential_8point_noisy(t):
     if mine <= 1.5 * best + 0.1:
         return passed(f"|x2n^T E x1n| = {residual(got):.1e} on average over 50 exact held-out "
                       f"correspondences (Sampson error {mine:.2f} px; the 8-point algorithm: {best:.2f} px)")
-    mistake = closest(got, _essential_8point_mistakes(views, figures), projective_distance, 1e-3)
+    mistake = closest(got, _essential_8point_mistakes(views, figures), projective_distance, 1e-3, truth=gold)
     if mistake:
         t.fail(f"essential_8point is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"essential_8point from 50 noisy correspondences: the exact held-out correspondences "
@@ -511,6 +562,38 @@ def essential_8point_noisy(t):
 # ================================================================== ex4 fundamental matrix
 ex4 = lab.exercise("ex4", "Fundamental matrix (8-point algorithm)", functions=["fundamental_8point(pts1, pts2)"])
 lab.forbid("fundamental_8point", "cv2.findFundamentalMat")
+
+
+FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for each problem
+    "swapped": "pts1 and pts2 are swapped (this is F^T: x2^T F x1 = 0 has pts2 on the left)",
+    "xy": "x and y are swapped in the rows of A (x is the column: each row is "
+          "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1])",
+    "design_x1x2": "the rows of A are kron(x1, x2); x2^T F x1 = 0 gives kron(x2, x1) = "
+                   "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]",
+    "column_order": "the null vector f was reshaped column by column (order='F'): F = f.reshape(3, 3)",
+    "design_columns": "two columns of A are exchanged (x2 y1 and y2 x1): each row is "
+                      "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]",
+    "no_rank2": "rank 2 was not enforced",
+    "largest_zeroed": "the largest singular value was set to 0; rank 2 is enforced by zeroing the "
+                      "smallest (U diag(s1, s2, 0) V^T)",
+    "middle_zeroed": "the middle singular value was set to 0; rank 2 is enforced by zeroing the "
+                     "smallest (U diag(s1, s2, 0) V^T)",
+    "largest": "the singular vector of the largest singular value is taken (Vt[0]); f is the last "
+               "row of Vt",
+    "undo_order": "the normalisation is undone the wrong way round: F = T2^T Fn T1",
+    "undo_inverse": "the normalisation is undone with the inverses: F = T2^T Fn T1, not T2^-1 Fn T1^-1",
+    "not_undone": "the normalisation is not undone: F = T2^T Fn T1",
+    "undo_T1_twice": "the normalisation is undone with T1 on both sides: F = T2^T Fn T1",
+    "undo_T2_twice": "the normalisation is undone with T2 on both sides: F = T2^T Fn T1",
+    "same_T": "both images' points are normalised with T1; each image needs its own T",
+    "untransposed": "the normalisation is applied as x @ T to row vectors; it is x @ T^T (T x for a "
+                    "column vector)",
+}
+
+
+def fundamental_8point_mistakes(stored: dict) -> dict:
+    """Mistake name -> the stack of its answers (with and without Hartley's normalisation)."""
+    return {name: np.stack(list(stored[key].values())) for key, name in FUNDAMENTAL_MISTAKES.items()}
 
 
 def judge_exact_fundamental(t: Trial, views, n, sideways=False):
@@ -526,7 +609,9 @@ def judge_exact_fundamental(t: Trial, views, n, sideways=False):
             t.fail(f"{what}: your F[2, 2] is {got[2, 2] / size:.3g} of |F|, the true one is 0. It looks "
                    "like F[2, 2] = 1 was fixed (8 unknowns), which cannot express this camera pair: "
                    "solve A f = 0 for all 9 entries by SVD.")
-    judge_projective(t, what, got, views.F, truth.fundamental_mistakes(views.F), tolerance=1e-4)
+    stored = truth.figures()["fundamental_exact"]["sideways" if sideways else str(n)]
+    judge_projective(t, what, got, views.F, fundamental_8point_mistakes(stored), tolerance=1e-4,
+                     distance=conditioned_distance(views.pts1[:n], views.pts2[:n]))
 
 
 @ex4.check("fundamental_8point from exact correspondences (N=8 and N=40; a sideways motion)", points=3)
@@ -580,10 +665,6 @@ def fundamental_noisy(t):
             sizes = [(c.width, c.height) for c in (views.cam1, views.cam2)]
             show_epipolar(t, "epipolar lines of your F (1 px noise, 640 x 480 pixels)", views.F, got,
                           sizes, views.pts1[40:], views.pts2[40:])
-        mistake = closest(got, truth.fundamental_mistakes(figures["gold"]),
-                          projective_distance, 1e-3)
-        if mistake:
-            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
 
         def distance(F):
             return truth.symmetric_epipolar_distance(F, views.pts1[40:], views.pts2[40:]).mean()
@@ -591,7 +672,17 @@ def fundamental_noisy(t):
         mine = distance(got)
         spread = [distance(figures[key]) for key in FUNDAMENTAL_VARIANTS]
         lines.append(f"{mine:.2f} px (textbook variants: {min(spread):.2f} to {max(spread):.2f} px)")
-        good += mine <= 1.1 * max(spread) + 0.1
+        if mine <= 1.1 * max(spread) + 0.1:
+            good += 1
+            continue
+        # A mistake is named only for an F worse than every textbook variant, the nearest of
+        # which stands for the truth.
+        conditioned = conditioned_distance(pts1, pts2)
+        candidates = nearest_variants(got, fundamental_8point_mistakes(figures["mistakes"]), conditioned)
+        variant = min((figures[key] for key in FUNDAMENTAL_VARIANTS), key=lambda F: conditioned(got, F))
+        mistake = closest(got, candidates, conditioned, 1e-3, truth=variant)
+        if mistake:
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     report = "; ".join(lines)
     if good == len(NOISY_SCENES):
         return passed(f"mean distance of exact held-out matches to your epipolar lines: {report}")
@@ -607,8 +698,17 @@ def fundamental_noisy(t):
 ex5 = lab.exercise("ex5", "Epipoles", functions=["epipoles(F)"])
 
 
-def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False):
+def epipole_pair_distance(a, b) -> float:
+    """Distance between two pairs (e1, e2), up to scale and the sign of each entry: an SVD may
+    flip the sign of any singular vector, which flips single entries of a row of U or a column of Vt."""
+    return max(projective_distance(np.abs(np.asarray(x, float)), np.abs(np.asarray(y, float)))
+               for x, y in zip(a, b))
+
+
+def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=None):
+    """``F_given`` is the F passed to the student (default ``views.F``), for the mistakes' answers."""
     e1, e2 = truth.epipoles(views.cam1, views.cam2)
+    F_given = views.F if F_given is None else F_given
     if not isinstance(got, (tuple, list)) or len(got) != 2:
         t.fail(f"{what} returned {type(got).__name__}; expected a pair (e1, e2)")
     g1 = t.expect_array(got[0], f"{what}[0] (e1)", shape=None, kind="iuf")
@@ -627,19 +727,21 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False):
         if at_infinity and abs(g[2]) == 1 and np.abs(g[:2]).max() > 1e8:
             t.fail(f"{what}: {name} = {g}: it looks like it was divided by its last entry w, "
                    "which is w = 0 (up to rounding) for an epipole at infinity; return the "
-                   "homogeneous vector without dividing")
+                   "homogeneous vector without dividing", mistake="the epipole was divided by w = 0")
     d1, d2 = projective_distance(g1, e1), projective_distance(g2, e2)
     if d1 <= EXACT and d2 <= EXACT:
         return
-    if projective_distance(g1, e2) <= 1e-4 and projective_distance(g2, e1) <= 1e-4:
-        t.fail(f"{what} is wrong: e1 and e2 are swapped: F e1 = 0 (e1 is the right null vector, "
-               "the last row of V^T), F^T e2 = 0 (the last column of U).")
+    mistake = closest((g1, g2), truth.epipole_mistakes(F_given), epipole_pair_distance, 1e-4,
+                      truth=(e1, e2))
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}. F e1 = 0: e1 is the last row of V^T; "
+               "F^T e2 = 0: e2 is the last column of U.", mistake=mistake)
     F = np.asarray(views.F, float) / np.linalg.norm(views.F)
     for g, M, name, where in ((g1, F, "e1", "F e1 = 0: the last row of V^T"),
                               (g2, F.T, "e2", "F^T e2 = 0: the last column of U")):
         if np.linalg.norm(M @ (g / np.linalg.norm(g))) > 1e-2:
             t.fail(f"{what}: {name} = {format_matrix(g)} is not a null vector of F ({where}, the "
-                   "singular vector of the smallest singular value; the first one belongs to the largest)")
+                   "singular vector of the smallest singular value)")
     for d, g, e, name in ((d1, g1, e1, "e1"), (d2, g2, e2, "e2")):
         if d > EXACT:
             t.fail(f"{what}: {name} = {format_matrix(g)}, expected a multiple of {format_matrix(e)}")
@@ -669,7 +771,7 @@ def epipoles_property(t):
     def holds(case):
         seed, scale = case
         views = truth.two_views(seed, n=4)
-        judge_epipoles(t, "epipoles(F)", t.call("epipoles", scale * views.F), views)
+        judge_epipoles(t, "epipoles(F)", t.call("epipoles", scale * views.F), views, F_given=scale * views.F)
 
     t.for_all(st.tuples(seeds, st.sampled_from([1.0, -2.0, 1e-4, 1e3])), holds, max_examples=10,
               describe=lambda c: f"{c[1]} * fixtures.lab11.two_views(seed={c[0]}).F")
@@ -758,7 +860,8 @@ def judge_matches(t: Trial, pair, pts1, pts2):
     _, true2_swapped, valid_swapped = truth.true_correspondences(pair, pts2)
     if valid_swapped.sum() >= 10 and np.mean(np.linalg.norm(
             pts1[valid_swapped] - true2_swapped[valid_swapped], axis=1) <= 2.0) >= 0.8:
-        t.fail("pts1 and pts2 are swapped: pts1 must be the points of img1")
+        t.fail("pts1 and pts2 are swapped: pts1 must be the points of img1",
+               mistake="pts1 and pts2 are swapped")
     message = f"only {correct:.0%} of your matches are within 2 px of the true position (need 80%)"
     if correct >= 0.5:
         return partial(0.5, message, "keep only the RANSAC inliers")
@@ -785,19 +888,36 @@ def structure_error(got, X) -> float:
     return float(np.median(np.linalg.norm(scale * got - X, axis=1) / np.linalg.norm(X, axis=1)))
 
 
-def pose_mistakes(pair, pts1, pts2) -> dict[str, np.ndarray]:
-    """The 3D points the usual mistakes in building camera 2 triangulate from the same matches."""
+def pose_mistakes(pair, pts1, pts2, F=None) -> dict[str, np.ndarray]:
+    """The 3D points the usual mistakes in building the cameras triangulate from the same matches
+    (``F``, the student's, gives the pose recoverPose finds when handed F instead of E)."""
     K1, K2, R, t = pair.cam1.K, pair.cam2.K, pair.cam2.R, pair.cam2.t.reshape(3, 1)
     P1 = K1 @ np.eye(3, 4)
-    return {
+    mistakes = {
         "camera 2 is built with the rotation transposed: P2 = K [R | t] with recoverPose's R as "
         "it is (it takes camera-1 coordinates to camera 2's)":
             linear_triangulation(P1, K2 @ np.hstack([R.T, t]), pts1, pts2),
-        "camera 2's translation has the wrong sign: P2 = K [R | t] with recoverPose's t as it is":
-            linear_triangulation(P1, K2 @ np.hstack([R, -t]), pts1, pts2),
         "pts1 and pts2 are exchanged in the triangulation (pts1 belongs to P1)":
             linear_triangulation(P1, K2 @ np.hstack([R, t]), pts2, pts1),
+        "the cameras are built without K: P1 = K [I | 0] and P2 = K [R | t] act on pixels":
+            linear_triangulation(np.eye(3, 4), np.hstack([R, t]), pts1, pts2),
+        "camera 1 is built without K: P1 = K [I | 0] acts on pixels":
+            linear_triangulation(np.eye(3, 4), K2 @ np.hstack([R, t]), pts1, pts2),
+        "camera 2 is built without K: P2 = K [R | t] acts on pixels":
+            linear_triangulation(P1, np.hstack([R, t]), pts1, pts2),
     }
+    if F is not None and len(pts1) >= 5:
+        try:
+            _, R_F, t_F, _ = cv2.recoverPose(np.asarray(F, float), pts1, pts2, np.asarray(K1, float))
+        except cv2.error:
+            return mistakes
+        mistakes["the pose is recovered from F instead of E = K^T F K (recoverPose needs the essential "
+                 "matrix)"] = linear_triangulation(P1, K2 @ np.hstack([R_F, t_F.reshape(3, 1)]), pts1, pts2)
+    return mistakes
+
+
+MIRRORED = ("camera 2's translation has the wrong sign (P2 = K [R | -t]) or the pose was not chosen with "
+            "the points in front of both cameras")
 
 
 def name_pose_mistake(got, candidates: dict, truth_error: float):
@@ -814,7 +934,7 @@ def name_pose_mistake(got, candidates: dict, truth_error: float):
     return None
 
 
-def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
+def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
     X, true2, valid = truth.true_correspondences(pair, pts1)
     good = valid & (np.linalg.norm(pts2 - np.nan_to_num(true2), axis=1) <= 2.0)
     good &= np.all(np.isfinite(points3d), axis=1)
@@ -840,17 +960,27 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
                "them in camera 1's frame (P1 = K [I | 0], P2 = K [R | t])")
     if scale > 0 and median <= STRUCTURE_MEDIAN and p90 <= STRUCTURE_P90:
         return passed(summary)
-    mistake = name_pose_mistake(got, pose_mistakes(pair, pts1[good], pts2[good]), median)
+    # With camera 1 right, every point lies on its true ray whatever else is wrong (even when
+    # mirrored): only the first three entries of unit homogeneous vectors (norm below 1, and
+    # |w| = sqrt(1 - |X|^2)) tell that w was not divided out.
+    norms = np.linalg.norm(got, axis=1)
+    if np.all(norms < 1):
+        divided = got / np.sqrt(1.0 - norms ** 2)[:, None]
+        if structure_error(divided, X) <= STRUCTURE_MEDIAN:
+            t.fail("your 3D points are wrong: it looks like the homogeneous points were not divided by "
+                   "w: each point is in the right direction but off by its own factor.",
+                   mistake="the homogeneous points were not divided by w")
+    if scale < 0 and median <= STRUCTURE_MEDIAN:
+        t.fail(f"your 3D points are wrong: it looks like {MIRRORED}: every point is mirrored through "
+               "camera 1's centre, behind camera 1 (cv2.recoverPose picks the pose with the points in "
+               f"front of both cameras; use its R and t as they are). ({summary})", mistake=MIRRORED)
+    mistake = name_pose_mistake(got, pose_mistakes(pair, pts1[good], pts2[good], F), median)
     if mistake:
         t.fail(f"your 3D points are wrong: it looks like {mistake}. ({summary})", mistake=mistake)
     if scale < 0 or np.median(got[:, 2]) < 0:
         t.fail("your 3D points are behind camera 1 (negative Z, or mirrored through its centre): "
                "choose the pose with the points in front of both cameras (cv2.recoverPose does) and "
                "divide by w")
-    sine = np.linalg.norm(np.cross(got, X), axis=1) / (np.linalg.norm(got, axis=1) * np.linalg.norm(X, axis=1) + 1e-300)
-    if np.median(sine) <= 0.02 and np.ptp(np.log(ratios[np.isfinite(ratios) & (ratios > 0)])) > 0.5:
-        t.fail("each 3D point is in the right direction but off by its own factor: it looks like the "
-               "homogeneous points were not divided by w")
     if median <= 0.15:
         return partial(0.5, summary + f" (full marks below {STRUCTURE_MEDIAN:.0%} and {STRUCTURE_P90:.0%})")
     t.fail(summary)
@@ -860,5 +990,5 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True):
            timeout=PIPELINE_TIMEOUT)
 def pipeline_structure(t):
     pair = truth.rendered_pair(0)
-    _, pts1, pts2, points3d = call_reconstruction(t, pair)
-    return judge_structure(t, pair, pts1, pts2, points3d)
+    F, pts1, pts2, points3d = call_reconstruction(t, pair)
+    return judge_structure(t, pair, pts1, pts2, points3d, F=F)

@@ -22,9 +22,9 @@ from hypothesis import strategies as st
 
 from fixtures import lab12 as truth
 
-from ..checks import StudentFailure, Trial, partial, passed
-from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error
-from ..judges import format_matrix, judge_parameter_used
+from ..checks import Fail, StudentFailure, Trial, partial, passed
+from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error, nearest_variants
+from ..judges import format_matrix, judge_parameter_changes_result, judge_parameter_used
 from ..pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..registry import Lab
 
@@ -70,7 +70,7 @@ def expect_disparity(t: Trial, what: str, got, scene) -> np.ndarray:
 
 def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, again=None,
                     show: bool = True, threshold_name: str = "reference solution:",
-                    judged=None, allowed=None, accepted_by: str = "", probe=None):
+                    judged=None, allowed=None, accepted_by: str = "", probe=None, mistakes=None):
     """Judge a disparity map by its bad-pixel rate against the reference's, naming mistakes.
 
     ``again(left, right)`` calls the student's function on another pair (used to
@@ -78,7 +78,8 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     looks, for a failing map only, for the mistakes only another call can show (a
     parameter ignored); it fails naming one, or returns. ``judged``
     replaces the scene's judged truth, ``allowed`` the accepted rate (default: the
-    reference's plus :data:`MARGIN`), explained by ``accepted_by``.
+    reference's plus :data:`MARGIN`), explained by ``accepted_by``. ``mistakes()`` gives,
+    for a failing map only, the maps the usual mistakes give (name -> map).
     """
     got = expect_disparity(t, what, got, scene)
     judged = scene.judged if judged is None else judged
@@ -89,12 +90,20 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     summary = f"bad-pixel rate {bad:.1%} ({threshold_name} {reference_bad:.1%}{accepted_by})"
     if bad <= allowed:
         return passed(summary)
-    diagnose_disparity(t, what, got, scene, allowed, again, judged)
-    if probe is not None:
-        probe()
+    fraction = (allowed + FADE - bad) / FADE  # partial credit near the accepted rate
+    try:
+        diagnose_disparity(t, what, got, scene, allowed, again, judged, mistakes)
+        if probe is not None:
+            probe()
+    except Fail as named:
+        if fraction <= 0:
+            raise
+        # A named mistake says why the map falls short; it does not take the credit the map earns.
+        return partial(fraction, f"{named.message} {summary}; up to {allowed:.1%} gets full marks.",
+                       hint=named.hint, mistake=named.mistake)
     where = where_disparities_wrong(got, judged, scene.threshold)
-    if bad < allowed + FADE:
-        return partial((allowed + FADE - bad) / FADE, f"{what}: {where}. {summary}; up to "
+    if fraction > 0:
+        return partial(fraction, f"{what}: {where}. {summary}; up to "
                        f"{allowed:.1%} gets full marks (see the error map).")
     t.fail(f"{what}: most of the map is wrong: {where}. {summary} (see the error map).",
            hint="for left pixel (x, y) compare its block with the block around (x - d, y) in the "
@@ -136,7 +145,17 @@ def where_disparities_wrong(got, judged, threshold) -> str:
             f"off by {np.median(np.abs(error)):.3g} px in the median)")
 
 
-def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=None):
+def name_matching_mistake(t: Trial, what, got, scene, judged, mistakes):
+    """Fail naming the mistake whose map ``got`` is, where every disparity can be searched."""
+    candidates = mistakes()
+    columns = np.arange(got.shape[1])[None, :] >= scene.max_disparity
+    mask = (judged > 0) & columns
+    mistake = closest(got, candidates, truth.map_disagreement(mask), 0.2, truth=judged)
+    if mistake:
+        t.fail(f"{what}: it looks like {mistake}.", mistake=mistake)
+
+
+def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=None, mistakes=None):
     gt, thr = (scene.judged if judged is None else judged), scene.threshold
     finite = np.nan_to_num(got.astype(np.float64), nan=0.0, posinf=0.0, neginf=0.0)
     if truth.bad_pixel_rate(-finite, gt, thr) <= allowed:
@@ -155,6 +174,8 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=N
     values = finite[gt > 0]
     if values.size and np.ptp(values) < 1e-9:
         t.fail(f"{what}: every pixel got the same disparity ({values[0]:g}).")
+    if mistakes is not None:
+        name_matching_mistake(t, what, got, scene, gt, mistakes)
     if again is not None and scene.judged_right is not None:
         try:
             flipped = again(scene.right, scene.left)
@@ -196,7 +217,10 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
         if err_true <= VARIANT_SLACK * max(spread) + 1e-9 * scale:
             return passed(f"mean 3D error {err_true:.3g} (linear triangulation with two or three rows "
                           f"per view, rows scaled or not: {min(spread):.3g} to {max(spread):.3g})")
-    mistake = closest(got, truth.triangulation_mistakes(P1, P2, pts1, pts2), max_abs_error, 1e-4 * scale)
+    depth = np.maximum(np.linalg.norm(X_true, axis=1), 1e-9 * scale)
+    distance = truth.triangulation_distance(depth)
+    mistakes = nearest_variants(got, truth.triangulation_mistakes(P1, P2, pts1, pts2), distance)
+    mistake = closest(got, mistakes, distance, 1e-3, truth=X_true)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     norms = np.linalg.norm(got, axis=1) * np.linalg.norm(X_true, axis=1)
@@ -310,7 +334,7 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     if max_abs_error(got, expected) <= tolerance:
         return
     mistake = closest(got, truth.depth_mistakes(disparity, f, baseline), max_abs_error,
-                      1e-6 * max(1.0, float(np.abs(expected).max())))
+                      1e-6 * max(1.0, float(np.abs(expected).max())), truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what}: largest depth error {max_abs_error(got, expected):.3g} (Z = f b / d).")
@@ -358,6 +382,7 @@ def depth_scene(t):
 # ================================================================== ex3 rectification
 ex3 = lab.exercise("ex3", "Rectification", functions=["rectify(img_l, img_r, K1, K2, R, T)"])
 ROW_TOLERANCE = 0.5      # pixels: corresponding points on the same rectified row
+EXACT_ROWS = 1e-3        # pixels: rows agree to rounding error (a mistake undone exactly)
 IN_VIEW = 0.5            # fraction of each image kept in view / of each frame covered
 
 
@@ -408,6 +433,41 @@ def rectified_picture(rect_l, rect_r, H1, H2, pair, count=10):
     return side_by_side(tiles[0][0], tiles[1][0])
 
 
+POSE_FIXES = {   # a mistake inside rectify -> the arguments that undo it (R, T and K1, K2 as given)
+    "R is transposed inside your function (X2 = R X1 + T: R takes camera-1 coordinates to camera 2's)":
+        lambda K1, K2, R, T: (K1, K2, R.T, T),
+    "the pose is read backwards: X2 = R X1 + T takes camera-1 coordinates to camera 2's, so camera 2's "
+    "centre is -R^T T": lambda K1, K2, R, T: (K1, K2, R.T, -R.T @ T),
+    "K1 and K2 are swapped inside your function (K1 belongs to the left image)":
+        lambda K1, K2, R, T: (K2, K1, R, T),
+}
+
+
+def name_pose_mistake(t: Trial, pair, what):
+    """Fail naming the mistake inside ``rectify`` that changing its arguments undoes, when
+    exactly one does: the output alone cannot tell a transposed R from other errors."""
+    undone = []
+    for mistake, fix in POSE_FIXES.items():
+        K1, K2, R, T = fix(np.asarray(pair.K1, float), np.asarray(pair.K2, float),
+                           np.asarray(pair.R, float), np.asarray(pair.T, float).reshape(3))
+        try:
+            result = t.call("rectify", pair.img_l, pair.img_r, K1, K2, R, T)
+        except StudentFailure:
+            return
+        if not isinstance(result, (tuple, list)) or len(result) != 4:
+            return
+        H1, H2 = (np.asarray(H, dtype=float) if isinstance(H, np.ndarray) and H.shape == (3, 3) else None
+                  for H in result[2:])
+        if H1 is None or H2 is None or not (np.all(np.isfinite(H1)) and np.all(np.isfinite(H2))):
+            continue
+        dy, _ = row_errors(H1, H2, pair)
+        if np.all(np.isfinite(dy)) and dy.max() <= ROW_TOLERANCE:
+            undone.append(mistake)
+    if len(undone) == 1:
+        t.fail(f"{what}: it looks like {undone[0]}: called with that undone, your function rectifies "
+               "the pair.", mistake=undone[0])
+
+
 def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
     dy, dx = row_errors(H1, H2, pair)
     worst = float(np.nanmax(dy)) if np.all(np.isfinite(dy)) else float("inf")
@@ -418,12 +478,23 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                    "swapped or the new x axis points from camera 2 to camera 1.",
                    hint="camera 2's centre in camera-1 coordinates is -R^T T: the new x axis points towards it")
         return worst, float(np.median(dx))
+    name_pose_mistake(t, pair, what)
+    # Undoing a mistake of the construction must rectify exactly (the rows agree to rounding
+    # error): nearly rectified pairs leave room for other wrong maps to come close by chance.
+    # H = K_new R_rect K, with K where K^-1 belongs, times K^-2 is a rectifying homography.
+    undo1 = np.linalg.matrix_power(np.linalg.inv(np.asarray(pair.K1, float)), 2)
+    undo2 = np.linalg.matrix_power(np.linalg.inv(np.asarray(pair.K2, float)), 2)
+    if np.nanmax(row_errors(H1 @ undo1, H2 @ undo2, pair)[0]) <= EXACT_ROWS:
+        t.fail(f"{what}: it looks like K is used where K^-1 belongs: H = K_new R_rect K^-1 (a pixel is "
+               "turned into a ray by K^-1 before the rotation).", mistake="K is used where K^-1 belongs")
     inv1, inv2 = np.linalg.pinv(H1), np.linalg.pinv(H2)
-    if np.nanmax(row_errors(inv1, inv2, pair)[0]) <= ROW_TOLERANCE:
+    if np.nanmax(row_errors(inv1, inv2, pair)[0]) <= EXACT_ROWS:
         t.fail(f"{what}: H1 and H2 map rectified pixels back to the originals; the API wants "
-               "them from original to rectified coordinates (invert them).")
-    if np.nanmax(row_errors(H2, H1, pair)[0]) <= ROW_TOLERANCE:
-        t.fail(f"{what}: H1 and H2 are swapped (H1 rectifies the left image).")
+               "them from original to rectified coordinates (invert them).",
+               mistake="H1 and H2 are inverted (rectified to original)")
+    if np.nanmax(row_errors(H2, H1, pair)[0]) <= EXACT_ROWS:
+        t.fail(f"{what}: H1 and H2 are swapped (H1 rectifies the left image).",
+               mistake="H1 and H2 are swapped")
     t.fail(f"{what}: true correspondences end up {np.nanmedian(dy):.3g} px apart vertically "
            f"(up to {worst:.3g} px); after rectification they must share a row.",
            hint="X2 = R X1 + T takes camera-1 coordinates to camera 2's; both cameras need the "
@@ -478,6 +549,24 @@ def rectify_images(t):
         except np.linalg.LinAlgError:
             t.fail(f"rectify: {'H1' if name == 'rect_l' else 'H2'} is singular")
         if error > 8.0:
+            other_image, other_H = (pair.img_r, H2) if name == "rect_l" else (pair.img_l, H1)
+            # The images agree with the other homography: the returned H1 and H2 are swapped
+            # when they rectify the pair that way round, else the images were warped wrongly.
+            h_swapped = np.nanmax(row_errors(H2, H1, pair)[0]) <= EXACT_ROWS
+            alternatives = {
+                "rect_l and rect_r are swapped": (other_image, other_H),
+                "H1 and H2 are swapped" if h_swapped else
+                "each image is warped with the other one's homography (rect_l = img_l warped by H1)":
+                    (image, other_H),
+            }
+            for mistake, (source, homography) in alternatives.items():
+                try:
+                    if warped_error(source, homography, got) <= 8.0:
+                        t.fail(f"rectify: it looks like {mistake}: {name} is "
+                               f"{'img_r' if source is pair.img_r else 'img_l'} warped by "
+                               f"{'H2' if homography is H2 else 'H1'}.", mistake=mistake)
+                except np.linalg.LinAlgError:
+                    continue
             height, width = image.shape[:2]
             expected = cv2.warpPerspective(image, H, (width, height))
             t.compare_images(f"{name} against the input warped by your homography", image, expected, got)
@@ -537,16 +626,19 @@ def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, agai
     """
     got = expect_disparity(t, what, got, scene)
     far, near = truth.far_and_near(truth.band(scene.judged, scene.max_disparity, figures["block_size"]))
+    mistakes = lambda: truth.matching_mistakes(scene, figures["block_size"], "ssd")  # noqa: E731
     if far.any():
         wrong = truth.far_wrong_rate(got, far)
         if wrong > figures["far_legitimate"] + FAR_SLACK:
             if show:
                 show_disparity(t, f"{what} on {scene.name}", scene, got)
+            name_matching_mistake(t, what, got, scene, scene.judged, mistakes)
             t.fail(f"{what}: the wall at infinity (true disparity {scene.judged[far].max():.2g} px, "
                    f"i.e. d = 0) gets a disparity of 1 or more at {wrong:.0%} of its pixels "
                    f"(legitimate matchers: at most {figures['far_legitimate']:.0%}): the search "
                    "must include d = 0 (d = 0..max_disparity).")
     return judge_disparity(t, what, got, scene, figures["reference"], again=again, show=show, judged=near,
+                           mistakes=mistakes,
                            allowed=figures["legitimate"] + SLACK,
                            accepted_by=f"; the legitimate SSD matchers, cv2.StereoBM included, up to "
                                        f"{figures['legitimate']:.1%}",
@@ -561,14 +653,17 @@ def bm_figures(key: str) -> dict:
            timeout=STEREO_TIMEOUT)
 def block_matching_form(t):
     scene = truth.scene("random_dots")
-    what = "block_matching(left, right, max_disparity=14)"
+    # A multiple of 16, so the lab sheet's cv2.StereoBM (numDisparities % 16 == 0) meets the
+    # range as it is; the scene's disparities stay below it.
+    max_disparity = 16
+    what = f"block_matching(left, right, max_disparity={max_disparity})"
     got = expect_disparity(t, what, t.call("block_matching", np.array(scene.left), np.array(scene.right),
-                                           max_disparity=scene.max_disparity), scene)
+                                           max_disparity=max_disparity), scene)
     got = t.expect_array(got, what, kind="f")
     with np.errstate(invalid="ignore"):
-        if np.any(got > scene.max_disparity + 1e-9):
+        if np.any(got > max_disparity + 1e-9):
             t.fail(f"{what} returned disparities up to {np.nanmax(got):g}; the search range is "
-                   f"0..{scene.max_disparity}",
+                   f"0..{max_disparity}",
                    hint="cv2.StereoBM rounds numDisparities up to a multiple of 16: set what it finds "
                         "above max_disparity to 0 (invalid)")
 
@@ -592,7 +687,19 @@ def block_matching_slanted(t):
                                 bm_figures("slanted"), again=block_matcher(t, scene, block_size=7))
 
 
-@ex4.check("block_matching (SSD, block_size=9) on the Middlebury motorcycle", points=3,
+@ex4.check("block_size is used: block_size=5 and 15 give different maps", points=1, timeout=STEREO_TIMEOUT)
+def block_matching_uses_block_size(t):
+    # Quality checks cannot see an ignored block_size (a fixed 9 matches as well as 7).
+    scene = truth.scene("random_dots")
+
+    def match(**size):
+        return t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                      max_disparity=scene.max_disparity, **size)
+    return judge_parameter_changes_result(t, "block_matching(left, right)", match, "block_size", (5, 15),
+                                          "disparity map")
+
+
+@ex4.check("block_matching (SSD, block_size=9) on the Middlebury motorcycle", points=2,
            timeout=STEREO_TIMEOUT)
 def block_matching_motorcycle(t):
     scene = truth.scene("motorcycle")
@@ -626,7 +733,8 @@ def ncc_motorcycle(t):
                  max_disparity=scene.max_disparity, block_size=9, cost="ncc")
     what = "block_matching(left, right, cost=\"ncc\")"
     verdict = judge_disparity(t, what, got, scene, figures("motorcycle", "bm_ncc_9")["bad"],
-                              probe=block_size_probe(t, what, scene, cost="ncc"))
+                              probe=block_size_probe(t, what, scene, cost="ncc"),
+                              mistakes=lambda: truth.matching_mistakes(scene, 9, "ncc"))
     if verdict.fraction < 1:
         verdict.hint = NCC_HINT
     return verdict
@@ -654,14 +762,17 @@ def ncc_gain(t):
     ssd = t.call("block_matching", np.array(scene.left), np.array(scene.right),
                  max_disparity=scene.max_disparity, block_size=9, cost="ssd")
     if isinstance(ssd, np.ndarray) and ssd.shape == got.shape and np.array_equal(ssd, got):
-        t.fail(f"{what} gives exactly the SSD result: the cost argument is ignored.")
+        t.fail(f"{what} gives exactly the SSD result: the cost argument is ignored.",
+               mistake="the cost argument is ignored")
     if (isinstance(unchanged, np.ndarray) and unchanged.shape == plain.disparity.shape
             and truth.bad_pixel_rate(unchanged, plain.judged, plain.threshold)
             <= figures("motorcycle", "bm_ncc_9")["bad"] + MARGIN):
         t.fail(f"{what}: bad-pixel rate {bad:.1%} (reference {reference:.1%}), although it works "
                "when the views have the same brightness: your NCC is not fully normalised. Subtract "
-               "each block's mean and divide by the product of the blocks' standard deviations.")
-    diagnose_disparity(t, what, got, scene, reference + MARGIN)
+               "each block's mean and divide by the product of the blocks' standard deviations.",
+               mistake="the NCC is not fully normalised")
+    diagnose_disparity(t, what, got, scene, reference + MARGIN,
+                       mistakes=lambda: truth.matching_mistakes(scene, 9, "ncc"))
     block_size_probe(t, what, scene, cost="ncc")()
     if bad < reference + MARGIN + FADE:
         return partial((reference + MARGIN + FADE - bad) / FADE, f"{what}: {summary}.", hint=NCC_HINT)
@@ -687,10 +798,33 @@ def smoothness_probe(t: Trial, scene):
                          "smoothness", (0, 1e7), "disparity map")
 
 
-def winner_take_all_message(what, jumps, wta_jumps):
-    return (f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px, as many as "
-            f"winner-take-all block matching ({wta_jumps:.1%}): it looks like the smoothness term "
-            "is ignored (with smoothness=None, use a default suited to your cost's scale).")
+SMOOTHNESS_IGNORED = "the smoothness term is ignored"
+
+
+def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, compared_with="winner-take-all block matching"):
+    """The map is as jumpy as winner-take-all matching: no smoothness acts by default."""
+    t.fail(f"{what}: it looks like {SMOOTHNESS_IGNORED} (winner-take-all): {jumps:.1%} of "
+           f"neighbouring pixels jump by more than 1 px, as many as {compared_with} ({wta_jumps:.1%}).",
+           hint="with smoothness=None, use a default penalty suited to your cost's scale",
+           mistake=SMOOTHNESS_IGNORED)
+
+
+BACKTRACKING = ("the backtracking does not start right: at the last column, from the disparity with "
+                "the lowest total energy there (or it never fills that column)")
+OVERSMOOTHED = "the default smoothness is far too large for your cost's scale"
+
+
+def name_oversmoothing(t: Trial, what: str, got, scene, allowed: float):
+    """Fail naming a default penalty so large that the rows come out flat, for a failing map."""
+    got = np.nan_to_num(np.asarray(got, np.float64))
+    if got.shape != scene.disparity.shape or truth.bad_pixel_rate(got, scene.judged, scene.threshold) <= allowed:
+        return
+    inner = got[truth.JUDGE_BORDER:-truth.JUDGE_BORDER, truth.JUDGE_BORDER:-truth.JUDGE_BORDER]
+    flat = float(np.mean(np.all(np.diff(inner, axis=1) == 0, axis=1)))
+    if flat >= 0.9:
+        t.fail(f"{what}: it looks like {OVERSMOOTHED}: {flat:.0%} of the rows have a single disparity "
+               "(with smoothness=None, use a penalty of the order of your data cost's differences).",
+               mistake=OVERSMOOTHED)
 
 
 LAST_COLUMN_TOLERANCE = 0.2   # bad fraction of the last column (the references: 0 on synthetic scenes)
@@ -712,10 +846,10 @@ def judge_last_column(t: Trial, what: str, got, scene):
     if bad > LAST_COLUMN_TOLERANCE:
         values = np.unique(np.round(column[known], 2))
         shown = ", ".join(f"{v:g}" for v in values[:3]) + (", ..." if len(values) > 3 else "")
-        t.fail(f"{what}: the last column (x = {got.shape[1] - 1}) is wrong in {bad:.0%} of the rows "
-               f"(your values there: {shown}; true disparities {truth_column[known].min():.1f} to "
-               f"{truth_column[known].max():.1f}): is the backtracking started at the last column, "
-               "from the disparity with the lowest total energy there?")
+        t.fail(f"{what}: it looks like {BACKTRACKING}: the last column (x = {got.shape[1] - 1}) is wrong "
+               f"in {bad:.0%} of the rows (your values there: {shown}; true disparities "
+               f"{truth_column[known].min():.1f} to {truth_column[known].max():.1f}). Fill every column "
+               "down to x = 0.", mistake=BACKTRACKING)
 
 
 @ex5.check("dp_stereo beats block matching where the texture is weak", points=4, timeout=STEREO_TIMEOUT)
@@ -734,7 +868,8 @@ def dp_weak_texture(t):
     jumps = truth.jump_rate(got, scene.judged)
     if jumps >= 0.6 * bm["jumps"]:
         smoothness_probe(t, scene)
-        t.fail(winner_take_all_message(what, jumps, bm["jumps"]))
+        fail_winner_take_all(t, what, jumps, bm["jumps"])
+    name_oversmoothing(t, what, got, scene, reference["bad"] + MARGIN)
     diagnose_disparity(t, what, got, scene, reference["bad"] + MARGIN)
     if bad < bm["bad"] - MARGIN:
         return partial(0.5, f"{what}: {summary}: better than block matching, but not yet as "
@@ -754,7 +889,7 @@ def dp_smooth(t):
         if jumps > JUMPS_VS_BM * bm:
             smoothness_probe(t, scene)
             if jumps >= 0.6 * bm:
-                t.fail(winner_take_all_message(what, jumps, bm))
+                fail_winner_take_all(t, what, jumps, bm)
             t.fail(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px; block "
                    f"matching gives {bm:.1%} and at most {JUMPS_VS_BM * bm:.1%} is expected.")
     return passed("far fewer jumps than block matching on both scenes")
@@ -764,7 +899,12 @@ def dp_smooth(t):
 def dp_motorcycle(t):
     scene = truth.scene("motorcycle")
     got = call_dp(t, scene)
-    return judge_disparity(t, "dp_stereo(left, right)", got, scene, figures("motorcycle", "dp_5")["bad"])
+    reference = figures("motorcycle", "dp_5")["bad"]
+    name_oversmoothing(t, "dp_stereo(left, right)", got, scene, reference + MARGIN)
+    return judge_disparity(t, "dp_stereo(left, right)", got, scene, reference,
+                           probe=lambda: judge_parameter_used(
+                               t, "dp_stereo(left, right)", lambda **kw: call_dp(t, scene, **kw),
+                               "block_size", (3, 9), "disparity map"))
 
 
 @ex5.check("smoothness=0 is winner-take-all; a huge smoothness makes every row constant", points=2,
@@ -783,8 +923,7 @@ def dp_smoothness_parameter(t):
                f"jump by more than 1 px (winner-take-all gives about {reference:.1%}): with "
                "smoothness 0 every pixel must take its best data cost.")
     if default_jumps * 3 > wta_jumps:
-        t.fail(winner_take_all_message("dp_stereo(left, right)", default_jumps, wta_jumps)
-               .replace("winner-take-all block matching", "your smoothness=0 result"))
+        fail_winner_take_all(t, "dp_stereo(left, right)", default_jumps, wta_jumps, "your smoothness=0 result")
     flat = expect_disparity(t, "dp_stereo(left, right, smoothness=1e7)",
                             call_dp(t, scene, smoothness=1e7), scene)
     rows_with_jumps = float(np.mean(np.any(np.diff(np.nan_to_num(flat), axis=1) != 0, axis=1)))
@@ -801,6 +940,41 @@ ex6 = lab.exercise("ex6", "Structured light", functions=[
     "depth_from_structured_light(images, f, baseline)"])
 
 
+def pattern_mistakes(width, n_bits) -> dict:
+    expected = truth.gray_code_patterns(width, n_bits)
+    return {
+        "plain binary code of k instead of its Gray code (g = k XOR (k >> 1))":
+            truth.binary_code_patterns(width, n_bits),
+        "the bits are in the wrong order: row 0 carries the most significant bit": expected[::-1],
+        "black and white are swapped (bit 1 is 255)": 255 - expected,
+        "the values are 0 and 1; use 0 and 255": expected // 255,
+        "the stripe index is rounded; it is floor(u * 2**n_bits / width), (u * 2**n_bits) // width":
+            truth.rounded_stripe_patterns(width, n_bits),
+    }
+
+
+PATTERN_PROBE = (97, 5)   # a size on which every mistake of pattern_mistakes shows in many columns
+
+
+def name_pattern_mistake(t: Trial, what, got, width, n_bits):
+    """Fail naming the mistake whose patterns ``got`` are, on evidence: on a few columns
+    different mistakes give the same patterns, so a small example is checked again at
+    :data:`PATTERN_PROBE` with the student's function."""
+    expected = truth.gray_code_patterns(width, n_bits)
+    for mistake, wrong in pattern_mistakes(width, n_bits).items():
+        if not np.array_equal(got, wrong):
+            continue
+        if int(np.sum(np.any(wrong != expected, axis=0))) < 3:
+            try:
+                again = t.call("gray_code_patterns", *PATTERN_PROBE)
+            except StudentFailure:
+                return
+            if not (isinstance(again, np.ndarray) and again.shape == PATTERN_PROBE[::-1]
+                    and np.array_equal(again, pattern_mistakes(*PATTERN_PROBE)[mistake])):
+                return
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+
+
 def judge_patterns(t: Trial, width, n_bits):
     what = f"gray_code_patterns({width}, {n_bits})"
     got = t.call("gray_code_patterns", width, n_bits)
@@ -810,20 +984,12 @@ def judge_patterns(t: Trial, width, n_bits):
     got = t.expect_array(got, what, shape=(n_bits, width))
     if got.dtype != np.uint8:
         if np.array_equal(got, expected // 255):
-            t.fail(f"{what} returned 0/1 values as {got.dtype}; the patterns are uint8 images of 0 and 255")
+            t.fail(f"{what} returned 0/1 values as {got.dtype}; the patterns are uint8 images of 0 and 255",
+                   mistake="the values are 0 and 1; use 0 and 255")
         t.expect_array(got, what, dtype=np.uint8)
     if np.array_equal(got, expected):
         return
-    mistakes = {
-        "plain binary code of k instead of its Gray code (g = k XOR (k >> 1))":
-            truth.binary_code_patterns(width, n_bits),
-        "the bits are in the wrong order: row 0 carries the most significant bit": expected[::-1],
-        "black and white are swapped (bit 1 is 255)": 255 - expected,
-        "the values are 0 and 1; use 0 and 255": expected // 255,
-    }
-    for mistake, wrong in mistakes.items():
-        if np.array_equal(got, wrong):
-            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    name_pattern_mistake(t, what, got, width, n_bits)
     stripes = truth._stripe(width, n_bits)
     column = int(np.argmax(np.any(got != expected, axis=0)))
     t.fail(f"{what}: column {column} (stripe k = {stripes[column]}) is {got[:, column].tolist()}; "
@@ -867,9 +1033,13 @@ def simulate_boxes(t):
             dict(patterns=truth.binary_code_patterns(width, n_bits)),
         "columns off the projector are clipped to its edge; those pixels must stay black (0)":
             dict(clip=True),
+        "the images are in the wrong order: image 0 is lit by the most significant pattern (row 0)":
+            dict(reverse=True),
     }
     for mistake, kwargs in mistakes.items():
+        reverse = kwargs.pop("reverse", False)
         candidate = truth.simulate_structured_light(depth, f, baseline, n_bits, **kwargs)
+        candidate = candidate[::-1] if reverse else candidate
         if not (np.any(got != candidate, axis=0) & ~ties).any():
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     lit_expected = np.any(expected > 0, axis=0)

@@ -39,7 +39,7 @@ def scale_shrink(t):
 def shear_negative(t):
     source = photo("coffee", (200, 150))
     return judge_warp(t, "shear(image, s=-0.4)", t.call("shear", source, s=-0.4), source,
-                      truth.shear(-0.4), truth.shear_mistakes(-0.4))
+                      truth.shear(-0.4), truth.shear_mistakes(-0.4, source.shape))
 
 
 @ex5.check("affine_from_points with coordinates in the thousands", points=2, hidden=True)

@@ -85,7 +85,8 @@ def hidden_ncc(t):
                  max_disparity=scene.max_disparity, block_size=9, cost="ncc")
     what = "block_matching(left, 0.5 * right + 30, cost=\"ncc\")"
     return judge_disparity(t, what, got, scene, REFERENCE_BAD["ncc"], show=False,
-                           probe=block_size_probe(t, what, scene, cost="ncc"))
+                           probe=block_size_probe(t, what, scene, cost="ncc"),
+                           mistakes=lambda: truth.matching_mistakes(scene, 9, "ncc"))
 
 
 @ex5.check("hidden: dp_stereo on a weakly textured square over random dots", points=2, hidden=True,
