@@ -95,6 +95,7 @@ class Trial:
         self.tips: list[tuple[str, str]] = []  # (message, hint) from t.advise
         # (function, argument) pairs the student's function modified in place.
         self.modified_inputs: list[tuple[str, str]] = []
+        self._properties = 0  # t.for_all calls so far (each has its recorded examples)
 
     # ------------------------------------------------------------ calling
     def call(self, function: str, *args, **kwargs):
@@ -199,18 +200,30 @@ class Trial:
         """Run ``body(example)`` on examples drawn by Hypothesis (grading profile).
 
         On failure the smallest failing example (after shrinking) is added to the
-        message; the examples are the same on every run and machine.
+        message; the examples are the same on every run and machine. Examples of a
+        property that passed are replayed without Hypothesis's engine the next time
+        (:mod:`autograder.examples`); Hypothesis takes over at the first one that fails.
         """
         from hypothesis import errors, given, settings
 
+        from . import examples
         from .properties import grading_settings
 
-        last = []
+        where = examples.key(self.check, self._properties, strategy, max_examples)
+        self._properties += 1
+        passed = self._replay(examples.recorded(where), body)
+        if passed is None:
+            return
+        last, seen = [], []
 
         @settings(grading_settings(max_examples))
         @given(strategy)
         def property_holds(example):
             last[:] = [example]
+            seen.append(example)
+            if len(seen) <= len(passed) and examples.same(example, passed[len(seen) - 1]):
+                return  # it passed a moment ago, in the replay: Hypothesis draws the same examples
+            passed.clear()  # from here on, every example is really run
             body(example)
 
         try:
@@ -226,6 +239,24 @@ class Trial:
         except errors.Flaky:
             self.fail("your function gave different answers for the same input "
                       "(does it depend on randomness or on earlier calls?)")
+        examples.record(where, seen)
+
+    def _replay(self, recorded: list | None, body) -> list | None:
+        """Run ``body`` on recorded examples: None if every one passed, else those
+        that passed before the first that did not (Hypothesis then takes over)."""
+        for index, example in enumerate(recorded or ()):
+            before = (len(self.outputs), len(self.modified_inputs), len(self.tips),
+                      len(self._pictures), set(self._fatal))
+            try:
+                body(example)
+            except Exception:  # noqa: BLE001 - Hypothesis runs it again and reports it its own way
+                # It runs this example again: what the call printed or changed is recorded
+                # then (unless the function may not be called again: then it is not).
+                if set(self._fatal) == before[4]:
+                    del self.outputs[before[0]:], self.modified_inputs[before[1]:]
+                    del self.tips[before[2]:], self._pictures[before[3]:]
+                return list(recorded[:index])
+        return None if recorded else []
 
     def _counterexample(self, example: str) -> str:
         return (f"\nSmallest failing input found: {example}"
@@ -236,11 +267,15 @@ class Trial:
         """Attach images side by side, e.g. ``t.images("rotate", input=a, yours=b)``.
 
         Pictures are encoded only if the grading keeps them (see
-        :func:`~autograder.runner.grade`'s ``pictures``).
+        :func:`~autograder.runner.grade`'s ``pictures``); an image may also be given
+        as a function that draws it (``matches=lambda: matches_picture(...)``), then
+        drawn only in that case.
         """
         def artifact():
             items = []
             for label, image in labelled.items():
+                if callable(image):  # drawn only now that it is kept
+                    image = image()
                 if image is None:
                     continue
                 try:  # what the student returned may not be drawable (a 0-d array): leave it out
@@ -255,7 +290,7 @@ class Trial:
         """Attach input, expected, the student's output and a difference heat map."""
         heat = None
         if isinstance(got, np.ndarray) and got.shape[:2] == expected.shape[:2]:
-            heat = pictures.difference_heatmap(expected, got, valid)
+            heat = pictures.deferred_heatmap(expected, got, valid)  # drawn only if pictures are kept
         self.images(title, caption, input=source, expected=expected, yours=got, difference=heat)
 
     def svg(self, title: str, svg: str, caption: str = ""):

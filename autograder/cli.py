@@ -122,7 +122,7 @@ def run_grade(args) -> int:
     from rich.markup import escape
 
     from .course import CourseConfig, CourseConfigError
-    from .reports import html, terminal
+    from .reports import terminal
     from .results import write_json
     from .runner import grade
 
@@ -131,10 +131,15 @@ def run_grade(args) -> int:
         errors.print(NO_SUBMISSION, markup=False, highlight=False)
         return USAGE_ERROR
     limits = Limits(call_timeout=args.timeout) if args.timeout else None
-    probing = _probe_confinement()
-    several = _several_students(args.submission)
-    probing.join()
+    worker = _start_worker_early(limits)
+    try:
+        several = _several_students(args.submission)
+    except BaseException:
+        worker.close()
+        raise
+    sandbox = worker.sandbox()
     if several:
+        sandbox and sandbox.close()
         console.print(f"[red]error:[/red] {escape(several)}")
         return USAGE_ERROR
     try:
@@ -143,17 +148,19 @@ def run_grade(args) -> int:
             pictures = "all" if (args.json_pictures or not args.no_html) else "none"
             forbid = CourseConfig.load(args.config).forbid if args.config else None
             result = grade(args.submission, args.select, limits=limits, pictures=pictures,
-                           include_hidden=not args.public_only, on_check=advance, forbid=forbid)
+                           include_hidden=not args.public_only, on_check=advance, forbid=forbid,
+                           sandbox=sandbox)
     except (SelectionError, SubmissionError, CourseConfigError) as exc:
         errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         return USAGE_ERROR
+    finally:
+        sandbox and sandbox.close()
     html_path = None if args.no_html else _report_path(args.html, "feedback.html")
     replaced_full_page = bool(args.select) and html_path is not None and html_path.is_file()
     terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first
     written, status = [], 0
     figures = _write_figures(args, limits, console, errors, written) if getattr(args, "figures", None) else {}
-    for path, write, what in ((html_path, lambda r, p: html.write(r, p, figures=figures),
-                               "details and pictures"),
+    for path, write, what in ((html_path, lambda r, p: _write_page(r, p, figures), "details and pictures"),
                               (args.json and _report_path(args.json, "results.json"),
                                lambda r, p: write_json(r, p, pictures=args.json_pictures), "results")):
         if not path:
@@ -171,6 +178,12 @@ def run_grade(args) -> int:
                      f"{escape(' '.join(args.select))}; run without a selection for the whole page "
                      "(or keep a partial page apart with --html other.html)", highlight=False, soft_wrap=True)
     return status
+
+
+def _write_page(result, path, figures) -> None:
+    from .reports import html  # Jinja2 is imported only when a page is written
+
+    html.write(result, path, figures=figures)
 
 
 def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
@@ -192,18 +205,56 @@ def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
     return {o.exercise_id: o.path.read_bytes() for o in outcomes if o.path is not None}
 
 
-def _probe_confinement() -> threading.Thread:
-    """Find the sandbox's confinement level (a second or so of waiting on probe
-    processes) while the lab suites load; the sandbox then finds it cached."""
-    def probe():
-        try:
-            confine.detect()
-        except Exception:  # noqa: BLE001 - the sandbox asks again and reports it
-            pass
+class _start_worker_early:
+    """While the lab suites load: start the worker (it imports NumPy and OpenCV) at the
+    strongest confinement level the platform offers and meanwhile probe which level
+    really works (half a second or so of waiting on probe processes); a worker started
+    at another level than the probe's is replaced. :meth:`sandbox` waits for both and
+    gives the sandbox (without a submission yet), or None if it could not be made:
+    grading then makes its own and reports why."""
 
-    thread = threading.Thread(target=probe, name="confinement probe", daemon=True)
-    thread.start()
-    return thread
+    def __init__(self, limits):
+        self._sandbox = None
+        self._thread = threading.Thread(target=self._start, args=(limits,), name="worker start", daemon=True)
+        self._thread.start()
+
+    def _start(self, limits):
+        early = self._started(limits, confine.strongest_candidate)
+        try:
+            level = confine.detect()
+        except Exception:  # noqa: BLE001 - the runner tries again and reports it
+            level = None
+        if early is not None and early.confinement == level:
+            self._sandbox = early
+            return
+        if early is not None:
+            early.close()  # nothing of the submission ever reached it
+        if level is not None:
+            self._sandbox = self._started(limits, lambda: level)
+
+    @staticmethod
+    def _started(limits, confinement):
+        from .sandbox import Sandbox
+
+        try:
+            sandbox = Sandbox(None, limits, confinement=confinement())
+        except Exception:  # noqa: BLE001
+            return None
+        try:
+            sandbox.start()
+        except Exception:  # noqa: BLE001
+            sandbox.close()
+            return None
+        return sandbox
+
+    def sandbox(self):
+        self._thread.join()
+        return self._sandbox
+
+    def close(self):
+        sandbox = self.sandbox()
+        if sandbox is not None:
+            sandbox.close()
 
 
 def _several_students(path) -> str | None:

@@ -316,6 +316,19 @@ def detect() -> Confinement:
     return _detect()
 
 
+def strongest_candidate() -> Confinement:
+    """The level :func:`detect` tries first, known without starting anything (so a
+    worker can start at it while the probe runs; only :func:`detect` says it works)."""
+    forced = os.environ.get("AUTOGRADER_CONFINEMENT")
+    if forced:
+        return detect()
+    for level in LEVELS[:-1]:
+        candidate = _candidate(level)
+        if candidate is not None:
+            return candidate
+    return Confinement("process-group")
+
+
 @lru_cache(maxsize=1)
 def _detect() -> Confinement:
     for level in LEVELS[:-1]:

@@ -71,14 +71,23 @@ def png_base64(image) -> str:
 
 def difference_heatmap(expected, got, valid=None, full_scale: float = 64.0) -> np.ndarray:
     """Colour-coded |expected - got| (dark = equal, bright = differ); grey outside ``valid``."""
+    return deferred_heatmap(expected, got, valid, full_scale)()
+
+
+def deferred_heatmap(expected, got, valid=None, full_scale: float = 64.0):
+    """:func:`difference_heatmap` in two steps: the inputs are checked now (raising
+    ValueError as it would), the picture is drawn when the returned function is called."""
     steps = _steps(np.shape(expected))
-    a = bounded(expected, steps).astype(np.float32)
-    b = bounded(got, steps).astype(np.float32)
+    a, b = bounded(expected, steps), bounded(got, steps)  # strided views: no copy yet
     if a.shape != b.shape:
         raise ValueError(f"cannot compare arrays of shapes {np.shape(expected)} and {np.shape(got)}")
     if valid is not None:
         valid = np.asarray(valid, dtype=bool)[::steps[0], ::steps[1]]
-    diff = np.abs(a - b)
+    return lambda: _heatmap(a, b, valid, full_scale)
+
+
+def _heatmap(a, b, valid, full_scale: float) -> np.ndarray:
+    diff = np.abs(a.astype(np.float32) - b.astype(np.float32))
     if diff.ndim == 3:
         diff = diff.max(axis=2)
     scaled = np.clip(diff * (255.0 / full_scale), 0, 255).astype(np.uint8)

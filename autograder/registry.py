@@ -42,6 +42,7 @@ import logging
 import pkgutil
 import re
 from dataclasses import dataclass, field
+from functools import lru_cache
 from importlib import metadata
 from typing import Callable
 
@@ -153,9 +154,16 @@ def discover() -> dict[str, Lab]:
             if not info.ispkg and not info.name.startswith("_"):
                 name = f"{package_name}.{info.name}"
                 _load_suite(name, lambda: importlib.import_module(name))
-    for entry in metadata.entry_points(group="autograder.labs"):
+    for entry in _plugins():
         _load_suite(entry.name, entry.load)
     return REGISTRY
+
+
+@lru_cache(maxsize=1)
+def _plugins() -> tuple:
+    """Lab suites installed as plug-ins (entry points ``autograder.labs``), looked up once:
+    the lookup reads every installed distribution's metadata."""
+    return tuple(metadata.entry_points(group="autograder.labs"))
 
 
 def hidden_checks_installed() -> bool:

@@ -18,6 +18,7 @@ running, so no ground truth or pictures are built for it.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import re
 import time
@@ -26,7 +27,7 @@ from dataclasses import replace
 from datetime import datetime, timezone
 from typing import Callable
 
-from . import __version__
+from . import __version__, cache
 from .checks import Fail, StudentFailure, Trial, Verdict
 from .notebooks import GRADE_TAG, SKIP_TAG, point_into_notebook
 from .registry import Check, Exercise, hidden_checks_installed, select
@@ -43,7 +44,7 @@ PICTURES = ("all", "failed", "none")
 def grade(submission_path, selectors=(), *, limits: Limits | None = None,
           include_hidden: bool = True, pictures: str = "all",
           on_check: Callable[[Exercise, CheckResult], None] | None = None,
-          forbid: dict[str, list[str]] | None = None) -> GradingResult:
+          forbid: dict[str, list[str]] | None = None, sandbox: Sandbox | None = None) -> GradingResult:
     """Grade the submission at ``submission_path``.
 
     Parameters
@@ -64,12 +65,23 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
     forbid : dict, optional
         The instructor's extra rules (course configuration ``forbid``):
         ``{"lab08.homography_ransac": ["cv2.findHomography"]}``.
+    sandbox : Sandbox, optional
+        A sandbox made without a submission, perhaps already started
+        (:meth:`Sandbox.start`, so the worker boots while the caller loads):
+        the submission is admitted into it, and it is closed at the end, whatever happens.
 
     Raises
     ------
     SelectionError, SubmissionError
         For a selector that names nothing, or a path that is not a submission.
     """
+    with contextlib.ExitStack() as closing:
+        if sandbox is not None:
+            closing.enter_context(sandbox)
+        return _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid, sandbox)
+
+
+def _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid, sandbox):
     if pictures not in PICTURES:
         raise ValueError(f"pictures must be one of {PICTURES}, got {pictures!r}")
     started = time.perf_counter()
@@ -80,7 +92,12 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
                                hidden_included=include_hidden and hidden_checks_installed(),
                                notes=_reading_notes(submission),
                                graded_at=datetime.now(timezone.utc).isoformat(timespec="seconds"))
-        with Sandbox(submission.path, limits) as sandbox:
+        if sandbox is None:
+            sandbox = Sandbox(submission.path, limits)
+        else:
+            sandbox.admit(submission.path)
+        with sandbox, cache.enabled(sandbox.confinement.hides_files):
+            # Ground truth is kept between gradings only where the worker cannot write it.
             budget = _Budget(sandbox)
             for exercise in exercises:
                 checks = [c for c in exercise.checks if include_hidden or not c.hidden]

@@ -17,6 +17,7 @@ next one. Time is billed against budgets per exercise and per submission
 
 from __future__ import annotations
 
+import fcntl
 import json
 import logging
 import os
@@ -78,6 +79,25 @@ class Limits:
         })
 
 
+PIPE_BYTES = 1 << 20  # pipe capacity asked for: an image crosses in a few writes, not hundreds
+
+
+def _widen_pipe(fd: int) -> None:
+    """Enlarge a pipe's buffer (Linux; best effort: the default 64 KiB still works).
+
+    With 64 KiB, a megapixel image needs some fifty wake-ups of each process, and
+    on a busy machine every one waits for a time slice."""
+    setsize = getattr(fcntl, "F_SETPIPE_SZ", 1031) if sys.platform.startswith("linux") else None
+    if setsize is None:
+        return
+    for size in (PIPE_BYTES, PIPE_BYTES // 4):
+        try:
+            fcntl.fcntl(fd, setsize, size)
+            return
+        except OSError:
+            continue
+
+
 # Workers alive in this process, so reaping escaped daemons never touches a worker.
 _LIVE_WORKERS: set[int] = set()
 
@@ -128,9 +148,11 @@ class Sandbox:
 
     Parameters
     ----------
-    submission_dir : path
+    submission_dir : path or None
         Folder holding the student's modules (``lab07_transformations.py`` ...).
         It is copied into the scratch directory; the original is never touched.
+        None: the submission comes later (:meth:`admit`), so that the worker can be
+        started (:meth:`start`) while the grader is still loading.
     limits : Limits
 
     Examples
@@ -157,11 +179,13 @@ class Sandbox:
         self._base.chmod(0o711)
         self.scratch = self._base / secrets.token_hex(8)
         self.scratch.mkdir()
-        self._source = Path(submission_dir)
+        self._source = None if submission_dir is None else Path(submission_dir)
         self.submission_dir = self.scratch / "submission"
         self.output_path = self.scratch / "out" / "output.txt"
         self._lay_out_scratch()
         self.proc: subprocess.Popen | None = None
+        self._ready = False     # the worker said it is ready
+        self._closed = False
         self._request_fd = self._response_fd = -1
         self._imported: set[str] = set()
         self._import_failures: dict[str, CallOutcome] = {}
@@ -184,9 +208,7 @@ class Sandbox:
         for name in ("submission", "worker", *self.WRITABLE):
             shutil.rmtree(self.scratch / name, ignore_errors=True)
         self.submission_dir.mkdir()
-        refused = copy_regular_files(self._source, self.submission_dir, suffixes=(".py",))
-        if refused:
-            logging.getLogger("autograder").warning("not copied into the sandbox: %s", refused)
+        self._copy_submission()
         (self.scratch / "worker").mkdir()
         here = Path(__file__).parent
         for name in _WORKER_FILES:
@@ -196,27 +218,67 @@ class Sandbox:
         self.output_path.touch()  # bound into the worker's view: it must exist
         self.confinement.prepare_scratch(self.scratch, private=("worker",))
 
+    def _copy_submission(self):
+        if self._source is None:
+            return
+        refused = copy_regular_files(self._source, self.submission_dir, suffixes=(".py",))
+        if refused:
+            logging.getLogger("autograder").warning("not copied into the sandbox: %s", refused)
+
+    def admit(self, submission_dir) -> None:
+        """Copy in the submission of a sandbox made without one, before its first request.
+
+        The worker, if already started, has run nothing of the submission: its
+        folder, empty until now, is part of the worker's view from the start."""
+        if self._source is not None or self._started:
+            raise RuntimeError("a sandbox admits one submission, before its first request")
+        self._source = Path(submission_dir)
+        self._copy_submission()
+        self.confinement.prepare_scratch(self.scratch, private=("worker",))
+
     # ------------------------------------------------------------ lifecycle
     def __enter__(self):
         return self
+
+    def start(self) -> None:
+        """Start the worker and return at once: it imports NumPy and OpenCV while the
+        grader goes on; the first request waits until it is ready (never billed).
+
+        Raises
+        ------
+        WorkerStartError
+            If the process cannot be started at all.
+        """
+        if self.proc is None and not self._closed:
+            self._spawn_worker()
 
     def __exit__(self, *exc):
         self.close()
 
     def close(self):
         """Stop the worker and everything it started, then delete the scratch directory."""
+        if self._closed:
+            return
+        self._closed = True
         self._stop_worker(restarting=False)
         if self.cgroup is not None:
             self.cgroup.remove()
         shutil.rmtree(self._base, ignore_errors=True)
 
     def _start_worker(self):
+        if self.proc is None:
+            self._spawn_worker()
+        self._await_ready()
+
+    def _spawn_worker(self):
         try:
             log = open(self._base / "worker.log", "ab")
         except OSError as exc:
             raise WorkerStartError(f"cannot write the worker log: {exc}") from None
         request_r, request_w = os.pipe()
         response_r, response_w = os.pipe()
+        for fd in (request_w, response_r):
+            _widen_pipe(fd)
         uid = self.confinement.uid if self.confinement.uid is not None else os.getuid()
         tasks = confine.count_tasks(uid)  # None where they cannot be counted (macOS): no limit
         processes = None if tasks is None else tasks + self.limits.extra_processes
@@ -246,6 +308,9 @@ class Sandbox:
         _LIVE_WORKERS.add(self.proc.pid)
         self._request_fd, self._response_fd = request_w, response_r
         self._imported = set()
+        self._ready = False
+
+    def _await_ready(self):
         # Wait for the worker's "ready" (it imports NumPy and OpenCV first), so that
         # start-up time is never billed to the student's first call.
         try:
@@ -261,6 +326,7 @@ class Sandbox:
         if ready != {"ok": True, "value": "ready", "seconds": 0.0}:
             self._stop_worker()
             raise WorkerStartError("the grading worker sent an unexpected greeting")
+        self._ready = True
         # What the sandbox's own processes are (wrappers, PID 1, the worker): more after a call
         # means the submission left one running, whatever the worker says.
         self._own_processes = len(self.cgroup.processes()) if self.cgroup is not None else 0
@@ -273,10 +339,13 @@ class Sandbox:
                 os.close(fd)
             except OSError:
                 pass
-        try:
-            self.proc.wait(timeout=0.5)   # a healthy worker exits on EOF
-        except subprocess.TimeoutExpired:
-            pass
+        if restarting:
+            try:
+                self.proc.wait(timeout=0.5)   # a healthy worker exits on EOF
+            except subprocess.TimeoutExpired:
+                pass
+        # When closing, nothing the worker could still do matters: it is not left to
+        # tear its interpreter down (a tenth of a second), it is killed with the rest.
         self._kill_process_group()
         if self.cgroup is not None:
             self.cgroup.kill()  # whatever left the process group (setsid) is still in the cgroup
@@ -286,6 +355,7 @@ class Sandbox:
             if restarting:
                 self._lay_out_scratch()  # nothing stopped this worker from damaging it
         self.proc = None
+        self._ready = False
         self._request_fd = self._response_fd = -1
 
     def _kill_process_group(self):
@@ -386,7 +456,7 @@ class Sandbox:
         return None
 
     def _request(self, request: dict, timeout: float, what: str) -> CallOutcome:
-        if self.proc is None:
+        if self.proc is None or not self._ready:
             failed = self._restart()
             if failed is not None:
                 return failed
@@ -507,7 +577,7 @@ class Sandbox:
                 raise TimeoutError
             _, writable, _ = select.select([], [self._request_fd], [], remaining)
             if writable:
-                view = view[os.write(self._request_fd, view[: 1 << 16]):]
+                view = view[os.write(self._request_fd, view[:PIPE_BYTES]):]
 
     def _read(self, n: int, deadline: float) -> bytes:
         chunks = []

@@ -265,6 +265,7 @@ class Worker:
         path_pkg = os.path.join(self.submission_dir, name, "__init__.py")
         if not (os.path.isfile(path_py) or os.path.isfile(path_pkg)):
             raise LookupError(name)
+        importlib.invalidate_caches()  # the files may have arrived after this worker started
         module = importlib.import_module(name)
         self.modules[name] = module
         return module

@@ -79,6 +79,11 @@ with open(os.environ["BENCH_RUSAGE"], "w") as out:
 """
 
 
+# A student's Python caches the grader's bytecode after the first run; an inherited
+# PYTHONDONTWRITEBYTECODE would make every measured run compile it all again.
+_AS_A_STUDENT = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+
+
 def grade_once(submission: str, selectors=(), html: bool = False) -> dict:
     """One ``grade.py`` process: wall time, the result's own timings, peak memory, sizes."""
     with tempfile.TemporaryDirectory() as tmp:
@@ -88,7 +93,7 @@ def grade_once(submission: str, selectors=(), html: bool = False) -> dict:
                    str(ROOT / submission), *selectors, "--json", str(results), "--quiet"]
         command += ["--html", str(page)] if html else ["--no-html"]
         _, wall, cpu = otter_anchor.run_timed(command, check=True, cwd=tmp, stdout=subprocess.DEVNULL,
-                                              env={**os.environ, "BENCH_RUSAGE": str(usage)})
+                                              env={**_AS_A_STUDENT, "BENCH_RUSAGE": str(usage)})
         result = json.loads(results.read_text())
         memory = json.loads(usage.read_text())
         return {"wall": wall, "cpu": cpu, "grading": result["seconds"], "student": result["student_seconds"],

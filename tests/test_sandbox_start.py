@@ -1,0 +1,33 @@
+"""A worker started before its submission is known (grade.py starts it while the lab suites load)."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from autograder.sandbox import Sandbox
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_the_submission_admitted_after_the_worker_started_is_graded():
+    with Sandbox(None) as sandbox:
+        sandbox.start()
+        assert not sandbox._ready  # booting while the caller goes on
+        sandbox.admit(ROOT / "reference_solutions")
+        outcome = sandbox.call("lab07_transformations", "translation_matrix", (2.0, 3.0))
+        assert outcome.ok, outcome.message
+        np.testing.assert_array_equal(outcome.value, [[1, 0, 2], [0, 1, 3], [0, 0, 1]])
+        assert sandbox.student_seconds < 5  # the start-up itself is not billed
+        with pytest.raises(RuntimeError):
+            sandbox.admit(ROOT / "assignments")  # one submission, before the first request
+
+
+def test_a_module_missing_from_the_admitted_submission_is_reported(tmp_path):
+    (tmp_path / "lab07_transformations.py").write_text("def translation_matrix(tx, ty):\n    return 1\n")
+    with Sandbox(None) as sandbox:
+        sandbox.start()
+        sandbox.admit(tmp_path)
+        assert sandbox.call("lab07_transformations", "translation_matrix", (1, 2)).value == 1
+        outcome = sandbox.import_module("lab08_homographies")
+        assert not outcome.ok and outcome.kind == "missing_module"
