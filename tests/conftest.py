@@ -11,7 +11,10 @@ The pattern every lab follows (see ``test_lab07.py``):
 
 from __future__ import annotations
 
+import atexit
 import os
+import shutil
+import tempfile
 import textwrap
 import uuid
 from pathlib import Path
@@ -23,6 +26,13 @@ from autograder.properties import GRADING
 from autograder.runner import grade
 
 settings.load_profile(GRADING)
+
+# The grader's store of ground truth and recorded examples (autograder/cache.py) is a
+# folder of this test run, shared by its workers and removed at the end: the suite
+# writes nothing outside temporary folders.
+if "AUTOGRADER_CACHE_DIR" not in os.environ:
+    os.environ["AUTOGRADER_CACHE_DIR"] = tempfile.mkdtemp(prefix="autograder-test-store-")
+    atexit.register(shutil.rmtree, os.environ["AUTOGRADER_CACHE_DIR"], ignore_errors=True)
 
 ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = ROOT / "reference_solutions"
@@ -114,9 +124,27 @@ def assert_all_not_implemented(result, lab: str):
             assert check.traceback == ""
 
 
+_GRADED_CASES: dict = {}
+
+
+def graded_case(module: str, exercise: str, source: str):
+    """The reference with ``source`` appended, graded on ``exercise`` (no pictures), once per
+    test process: a lab's mistake table is graded by its own tests and, for the checks it
+    fails, by ``test_every_check_is_tested``; both carry the lab's ``xdist_group``, so each
+    case is graded once per run."""
+    key = (module, exercise, source)
+    if key not in _GRADED_CASES:
+        folder = Path(tempfile.mkdtemp(prefix="mistake-case-"))
+        try:
+            _GRADED_CASES[key] = grade(mutant(folder, module, source), [exercise], pictures="none")
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
+    return _GRADED_CASES[key]
+
+
 def assert_mistake_named(tmp_path, module: str, exercise: str, source: str, fragments):
     """The reference with ``source`` appended loses points on ``exercise``, named by ``fragments``."""
-    result = grade(mutant(tmp_path, module, source), [exercise])
+    result = graded_case(module, exercise, source)
     assert_diagnosed(result, exercise, *fragments)
     return result
 

@@ -293,6 +293,7 @@ MISTAKES = {
 
 
 @pytest.mark.parametrize("case", sorted(MISTAKES))
+@pytest.mark.xdist_group("lab07")
 def test_mistake_is_caught_and_named(tmp_path, case):
     assert_mistake_named(tmp_path, MODULE, *MISTAKES[case])
 

@@ -397,6 +397,7 @@ FEWER_MISTAKES = {
 
 
 @pytest.mark.parametrize("name", sorted(MISTAKES))
+@pytest.mark.xdist_group("lab09")
 def test_mistake_is_diagnosed(tmp_path, name):
     assert_mistake_named(tmp_path, MODULE, *MISTAKES[name])
 
