@@ -384,23 +384,6 @@ MISTAKES = {
         def match_features(img1, img2, ratio=0.75, method="sift"):
             return _reference_match(img1, img2, ratio)
         """, ["method argument is ignored"]),
-    "ORB branch: pts1 and pts2 swapped": ("lab08.ext1", """
-        _reference_match = match_features
-        def match_features(img1, img2, ratio=0.75, method="sift"):
-            pts1, pts2 = _reference_match(img1, img2, ratio, method)
-            return (pts2, pts1) if method == "orb" else (pts1, pts2)
-        """, ["pts1 and pts2 are swapped"]),
-    "ORB branch: img1 matched with itself": ("lab08.ext1", """
-        _reference_match = match_features
-        def match_features(img1, img2, ratio=0.75, method="sift"):
-            return _reference_match(img1, img1 if method == "orb" else img2, ratio, method)
-        """, ["same image twice"]),
-    "ORB branch: keypoints as (row, column)": ("lab08.ext1", """
-        _reference_match = match_features
-        def match_features(img1, img2, ratio=0.75, method="sift"):
-            pts1, pts2 = _reference_match(img1, img2, ratio, method)
-            return (pts1[:, ::-1], pts2[:, ::-1]) if method == "orb" else (pts1, pts2)
-        """, ["x and y are swapped"]),
     # ---------------------------------------------------------------- ext2
     "homographies chained in the wrong order": ("lab08.ext2", """
         def stitch_many(images):
