@@ -26,6 +26,11 @@ DROPS_BEHIND = """
     """
 
 MISTAKES = {
+    "aperture halved (taken as a diameter)": ("lab09.ex4", """
+        _reference_aperture = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return _reference_aperture(points, f, aperture / 2.0, n_rays, seed)
+        """, ["halved"]),
     **{f"drops the points behind the camera ({ex})": (f"lab09.{ex}", DROPS_BEHIND, ["drops the points behind"])
        for ex in ("ex1", "ex2", "ex3")},
     "x/y swapped": ("lab09.ex1", """
@@ -140,7 +145,7 @@ MISTAKES = {
         _right = simulate_aperture
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
             return _right(points, f, aperture ** 2, n_rays, seed)
-        """, ['spread']),
+        """, ['squared']),
     "calibration K transposed": ("lab09.ext1", """
         _right = calibrate
         def calibrate(images, pattern_size, square_size):

@@ -542,6 +542,13 @@ def aperture_statistics(t):
     if np.any(ratio > 1.02):
         t.fail(f"{what}: some rays land outside the blur disc of radius aperture * (1 + f / Z) "
                f"(up to {ratio.max():.2f} radii from the ideal projection).")
+    if np.all(np.abs(ratio - 0.5) < 0.05):
+        # At aperture 0.5, halving it and squaring it give the same disc: both are said.
+        squared = ", or squared (the same disc at this aperture)" if np.isclose(aperture ** 2, aperture / 2) else ""
+        t.fail(f"{what}: the rays fill only the inner half of the blur disc (at most {ratio.max():.2f} "
+               f"radii from the ideal projection): it looks like the aperture is halved (taken as a "
+               f"diameter){squared}; it is the pinhole's radius.",
+               mistake="the aperture is halved (taken as a diameter)" + squared)
     if np.any(per_point < 0.5) or np.any(per_point > 0.8):
         t.fail(f"{what}: the rays fill the blur disc unevenly (RMS distance {per_point.min():.2f}.."
                f"{per_point.max():.2f} radii; uniform over the disc gives 0.71).",
