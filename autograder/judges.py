@@ -12,7 +12,8 @@ import numpy as np
 from fixtures.images import as_homography, coverage, warp
 
 from .checks import StudentFailure, Trial, Verdict, partial, passed
-from .compare import closest, fill_fraction, max_abs_error, projective_distance, warp_error
+from .compare import (blurred_difference, closest, fill_fraction, max_abs_error, projective_distance,
+                      warp_error)
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
 FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
@@ -156,15 +157,32 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
     explained = []  # the mistakes whose map explains the image (a name only when one does)
     for mistake, wrong_M in (mistakes or {}).items():
         try:
-            if warp_error(got, source, wrong_M, dsize, good_enough=IMAGE_TOLERANCE) <= IMAGE_TOLERANCE:
+            if _explains(got, source, wrong_M, dsize):
                 explained.append((mistake, wrong_M))
         except np.linalg.LinAlgError:
             continue
     if explained and all(_same_map(explained[0][1], wrong_M) for _, wrong_M in explained):
-        mistake = " or ".join(name for name, _ in explained)
+        mistake = "; or, the same map here, ".join(name for name, _ in explained)
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
            "(see the pictures).")
+
+
+def _explains(got, source, wrong_M, dsize) -> bool:
+    """Whether ``got`` is ``source`` warped by ``wrong_M`` (a mistake's map).
+
+    A wrong homography may send most of the image behind the camera (w < 0), where
+    :func:`fixtures.images.coverage` sees nothing but OpenCV still samples (it divides
+    by w whatever its sign): such a map is judged where its own warp has content.
+    """
+    error = warp_error(got, source, wrong_M, dsize, good_enough=IMAGE_TOLERANCE)
+    if np.isfinite(error):
+        return error <= IMAGE_TOLERANCE
+    expected = warp(source, wrong_M, dsize)
+    content = expected != 0 if expected.ndim == 2 else np.any(expected != 0, axis=2)
+    inner = np.zeros_like(content)  # away from the content's edges (interpolation differs there)
+    inner[2:-2, 2:-2] = content[:-4, 2:-2] & content[4:, 2:-2] & content[2:-2, :-4] & content[2:-2, 4:]
+    return bool(inner.mean() >= 0.05) and blurred_difference(got, expected, inner) <= IMAGE_TOLERANCE
 
 
 def _same_map(first, second) -> bool:

@@ -42,6 +42,11 @@ def test_grading_is_deterministic(reference_result):
 
 # Each case: exercise, the wrong code, fragments the diagnosis must contain.
 MISTAKES = {
+    "apply_homography with H transposed": ("lab08.ex1", """
+        def apply_homography(image, H, dsize=None):
+            h, w = image.shape[:2]
+            return cv2.warpPerspective(image, np.asarray(H, float).T, dsize or (w, h))
+        """, ["h is transposed"]),
     # ---------------------------------------------------------------- ex1
     "no perspective division": ("lab08.ex1", """
         def transform_points(H, pts):
