@@ -191,22 +191,6 @@ def judge_in_front(t: Trial, what: str, got, expected, behind):
                f"up to {error:.4g} px.")
 
 
-def judge_behind(t: Trial, what: str, got, expected, behind):
-    """NaN required behind the camera: kept only for suites that still import it (lab 10).
-
-    Lab 9 gives no points for it (NaN is advice): use :func:`judge_in_front`
-    and :func:`advise_nan_behind`.
-    """
-    got = expect_points(t, what, got, expected.shape)
-    got = np.asarray(got, dtype=np.float64)
-    bad = behind & np.isfinite(got).all(axis=1)
-    if bad.any():
-        t.fail(f"{what}: the points with Z <= 0 (rows {np.nonzero(behind)[0].tolist()}) should give "
-               "NaN, as documented: they are behind the camera and have no image; yours gave finite "
-               "values (a point behind the pinhole would appear mirrored).")
-    judge_in_front(t, what, got, expected, behind)
-
-
 def advise_nan_behind(t: Trial, what: str, got, behind):
     """Advice: a point behind the camera (Z <= 0) has no image; NaN says so."""
     got = np.asarray(got, dtype=np.float64) if isinstance(got, np.ndarray) else None
