@@ -201,12 +201,15 @@ def _same_result(first, second) -> bool:
     return bool(np.array_equal(first, second, equal_nan=first.dtype.kind == "f" == second.dtype.kind))
 
 
-def parameter_ignored(call, parameter: str, values) -> bool:
+def parameter_ignored(call, parameter: str, values, informative=None) -> bool:
     """Whether ``call(**{parameter: value})`` gives exactly the same, non-constant result for
-    both ``values`` (False when a call fails)."""
+    both ``values`` (False when a call fails, or when ``informative(result)`` says the
+    result could not show the parameter anyway)."""
     try:
         first, second = (call(**{parameter: value}) for value in values)
     except StudentFailure:
+        return False
+    if informative is not None and not informative(first):
         return False
     return _same_informative_result(first, second)
 
@@ -226,15 +229,17 @@ def _ignored(t: Trial, what: str, parameter: str, values, result: str):
            mistake=f"{parameter} is ignored")
 
 
-def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, result: str = "result"):
+def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, result: str = "result",
+                         informative=None):
     """Fail naming ``parameter`` as ignored when two values of it give exactly the same result.
 
     The output alone cannot show an ignored parameter, so the student's function
     is called again, ``call(**{parameter: value})`` for each of the two
     ``values``. For checks that already fail: passing work never pays for the
-    probe. Returns quietly when the results differ, or when a call fails.
+    probe. Returns quietly when the results differ, or when a call fails, or when
+    ``informative(result)`` is False (a result that cannot show the parameter).
     """
-    if parameter_ignored(call, parameter, values):
+    if parameter_ignored(call, parameter, values, informative):
         _ignored(t, what, parameter, values, result)
 
 

@@ -609,12 +609,19 @@ def block_matcher(t: Trial, scene, **kwargs):
     return again
 
 
+BLOCK_SIZES = (5, 15)  # two block sizes any matcher (cv2.StereoBM included) accepts
+
+
+def matcher_on(t: Trial, scene, **kwargs):
+    """``block_matching`` on ``scene``'s pair, the keyword arguments left open."""
+    return lambda **more: t.call("block_matching", np.array(scene.left), np.array(scene.right),
+                                 max_disparity=scene.max_disparity, **kwargs, **more)
+
+
 def block_size_probe(t: Trial, what: str, scene, **kwargs):
     """A probe (see :func:`judge_disparity`): does ``block_size`` change the map at all?"""
-    def match(**size):
-        return t.call("block_matching", np.array(scene.left), np.array(scene.right),
-                      max_disparity=scene.max_disparity, **kwargs, **size)
-    return lambda: judge_parameter_used(t, what, match, "block_size", (5, 15), "disparity map")
+    return lambda: judge_parameter_used(t, what, matcher_on(t, scene, **kwargs), "block_size", BLOCK_SIZES,
+                                        "disparity map")
 
 
 def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, again=None, show=True):
@@ -690,13 +697,9 @@ def block_matching_slanted(t):
 @ex4.check("block_size is used: block_size=5 and 15 give different maps", points=1, timeout=STEREO_TIMEOUT)
 def block_matching_uses_block_size(t):
     # Quality checks cannot see an ignored block_size (a fixed 9 matches as well as 7).
-    scene = truth.scene("random_dots")
-
-    def match(**size):
-        return t.call("block_matching", np.array(scene.left), np.array(scene.right),
-                      max_disparity=scene.max_disparity, **size)
-    return judge_parameter_changes_result(t, "block_matching(left, right)", match, "block_size", (5, 15),
-                                          "disparity map")
+    return judge_parameter_changes_result(t, "block_matching(left, right)",
+                                          matcher_on(t, truth.scene("random_dots")), "block_size",
+                                          BLOCK_SIZES, "disparity map")
 
 
 @ex4.check("block_matching (SSD, block_size=9) on the Middlebury motorcycle", points=2,
