@@ -142,7 +142,7 @@ def graded_case(module: str, exercise: str, source: str):
     return _GRADED_CASES[key]
 
 
-def assert_mistake_named(tmp_path, module: str, exercise: str, source: str, fragments):
+def assert_mistake_named(module: str, exercise: str, source: str, fragments):
     """The reference with ``source`` appended loses points on ``exercise``, named by ``fragments``."""
     result = graded_case(module, exercise, source)
     assert_diagnosed(result, exercise, *fragments)

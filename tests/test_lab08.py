@@ -572,8 +572,8 @@ MISTAKES = {
 
 @pytest.mark.parametrize("case", sorted(MISTAKES))
 @pytest.mark.xdist_group("lab08")
-def test_mistake_is_caught_and_named(tmp_path, case):
-    assert_mistake_named(tmp_path, MODULE, *MISTAKES[case])
+def test_mistake_is_caught_and_named(case):
+    assert_mistake_named(MODULE, *MISTAKES[case])
 
 
 def test_other_exercises_unaffected_by_a_mistake(tmp_path):

@@ -403,8 +403,8 @@ FEWER_MISTAKES = {
 
 @pytest.mark.parametrize("name", sorted(MISTAKES))
 @pytest.mark.xdist_group("lab09")
-def test_mistake_is_diagnosed(tmp_path, name):
-    assert_mistake_named(tmp_path, MODULE, *MISTAKES[name])
+def test_mistake_is_diagnosed(name):
+    assert_mistake_named(MODULE, *MISTAKES[name])
 
 
 # Conventions the API leaves open: advice (0 points), never a lost point.

@@ -513,8 +513,8 @@ FEWER_MISTAKES = {
 
 @pytest.mark.parametrize("name", sorted(MISTAKES))
 @pytest.mark.xdist_group("lab10")
-def test_mistake_is_diagnosed(tmp_path, name):
-    assert_mistake_named(tmp_path, MODULE, *MISTAKES[name])
+def test_mistake_is_diagnosed(name):
+    assert_mistake_named(MODULE, *MISTAKES[name])
 
 
 def test_projection_by_the_formula_alone_gets_full_marks_and_a_tip(tmp_path):

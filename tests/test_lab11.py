@@ -333,8 +333,8 @@ MISTAKES = {
 
 @pytest.mark.parametrize("case", sorted(MISTAKES))
 @pytest.mark.xdist_group("lab11")
-def test_mistake_is_caught_and_named(tmp_path, case):
-    assert_mistake_named(tmp_path, MODULE, *MISTAKES[case])
+def test_mistake_is_caught_and_named(case):
+    assert_mistake_named(MODULE, *MISTAKES[case])
 
 
 # Correct variants the lab sheet or the API allows: full marks (and, where stated, a tip).

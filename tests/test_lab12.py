@@ -463,8 +463,8 @@ MISTAKES = {
 
 @pytest.mark.parametrize("case", sorted(MISTAKES))
 @pytest.mark.xdist_group("lab12")
-def test_mistake_is_caught_and_named(tmp_path, case):
-    assert_mistake_named(tmp_path, MODULE, *MISTAKES[case])
+def test_mistake_is_caught_and_named(case):
+    assert_mistake_named(MODULE, *MISTAKES[case])
 
 
 # Realistic correct variants that must keep full marks.
