@@ -19,6 +19,7 @@ failure inside it is silent (the graded checks report it).
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -87,6 +88,7 @@ class Trial:
     def __init__(self, sandbox: Sandbox, check: Check, forbid: dict | None = None):
         self.sandbox, self.check = sandbox, check
         self.lab = check.exercise.lab
+        self._thread = threading.get_ident()  # the sandbox's one caller
         self.forbid = forbid or {}
         self._pictures: list = []  # made into Artifacts only if the grading keeps them
         self.outputs: list[str] = []
@@ -106,6 +108,9 @@ class Trial:
         StudentFailure
             If it raised, timed out, crashed, is missing or returned a forbidden type.
         """
+        if threading.get_ident() != self._thread:
+            raise RuntimeError("student code is called from the check itself, never while a picture is "
+                               "drawn (pictures are drawn on other threads)")
         failure = self._fatal.get(function)
         if failure is None:
             outcome = self.sandbox.call(self.lab.module, function, args, kwargs,
@@ -204,16 +209,20 @@ class Trial:
         property that passed are replayed without Hypothesis's engine the next time
         (:mod:`autograder.examples`); Hypothesis takes over at the first one that fails.
         """
-        from hypothesis import errors, given, settings
-
         from . import examples
-        from .properties import grading_settings
 
         where = examples.key(self.check, self._properties, strategy, max_examples)
         self._properties += 1
         passed = self._replay(examples.recorded(where), body)
         if passed is None:
             return
+        # Only now, with examples to draw, is Hypothesis needed (see autograder.strategies).
+        from hypothesis import errors, given, settings
+
+        from .properties import grading_settings
+        from .strategies import build
+
+        strategy = build(strategy)
         last, seen = [], []
 
         @settings(grading_settings(max_examples))
@@ -267,9 +276,11 @@ class Trial:
         """Attach images side by side, e.g. ``t.images("rotate", input=a, yours=b)``.
 
         Pictures are encoded only if the grading keeps them (see
-        :func:`~autograder.runner.grade`'s ``pictures``); an image may also be given
-        as a function that draws it (``matches=lambda: matches_picture(...)``), then
-        drawn only in that case.
+        :func:`~autograder.runner.grade`'s ``pictures``), on another thread while
+        grading goes on; an image may also be given as a function that draws it
+        (``matches=lambda: matches_picture(...)``), then drawn only in that case. So
+        the arrays must not change after the check, and a drawing function must not
+        call student code.
         """
         def artifact():
             items = []

@@ -207,11 +207,11 @@ def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
 
 class _start_worker_early:
     """While the lab suites load: start the worker (it imports NumPy and OpenCV) at the
-    strongest confinement level the platform offers and meanwhile probe which level
-    really works (half a second or so of waiting on probe processes); a worker started
-    at another level than the probe's is replaced. :meth:`sandbox` waits for both and
-    gives the sandbox (without a submission yet), or None if it could not be made:
-    grading then makes its own and reports why."""
+    strongest confinement level the platform offers. A worker that gets ready there
+    shows that the level works (what :func:`confine.detect` would probe with a process
+    of its own); else the probe says which level does, and a worker is started there.
+    :meth:`sandbox` waits for it and gives the sandbox (without a submission yet), or
+    None if it could not be made: grading then makes its own and reports why."""
 
     def __init__(self, limits):
         self._sandbox = None
@@ -220,15 +220,15 @@ class _start_worker_early:
 
     def _start(self, limits):
         early = self._started(limits, confine.strongest_candidate)
-        try:
-            level = confine.detect()
-        except Exception:  # noqa: BLE001 - the runner tries again and reports it
-            level = None
-        if early is not None and early.confinement == level:
+        if early is not None and early.ready():
             self._sandbox = early
             return
         if early is not None:
             early.close()  # nothing of the submission ever reached it
+        try:
+            level = confine.detect()
+        except Exception:  # noqa: BLE001 - the runner tries again and reports it
+            level = None
         if level is not None:
             self._sandbox = self._started(limits, lambda: level)
 

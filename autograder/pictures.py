@@ -9,7 +9,10 @@ megabytes whatever the submission returned.
 from __future__ import annotations
 
 import base64
+import collections
+import hashlib
 import html
+import threading
 
 import cv2
 import numpy as np
@@ -239,30 +242,66 @@ def matches_picture(img1, img2, pts1, pts2, good=None, max_lines: int = 300) -> 
 
 
 # ------------------------------------------------------------------ presentation
-def picture_item(label: str, image) -> dict:
-    """One picture of an artifact: ``{"label", "png", "width", "height"}``, the size being
-    the array's own (before any enlargement for display), so a page can draw pictures
-    at their relative sizes and say how large each is."""
-    shape = np.shape(image)
-    return {"label": label, "png": png_base64(image),
-            "width": int(shape[1]) if len(shape) > 1 else 0, "height": int(shape[0]) if shape else 0}
-
-
 JPEG_QUALITY = 82
+PAGE_SIZE = (1000, 360)  # largest encoded picture (width, height): about twice the size it is drawn at
 
 
-def compact_encoding(png: str, max_width: int = 1000, max_height: int = 360) -> tuple[str, str, int, int]:
-    """``(mime type, base64 data, width, height)``: a picture made small enough for a page
-    that stays small.
+def picture_item(label: str, image) -> dict:
+    """One picture of an artifact, encoded once, in the form a page embeds:
+    ``{"label", "mime", "data", "width", "height", "encoded_size"}``.
 
-    Shrunk (area averaging) to fit ``max_width`` x ``max_height`` pixels -- about twice
-    the size it is drawn at -- then kept as PNG when that is about as small (drawings,
-    masks, enlarged small images stay crisp), else JPEG (photos are several times
-    smaller so).
+    ``width`` and ``height`` are the array's own size (before any enlargement or
+    shrinking), so a page can draw pictures at their relative sizes and say how large
+    each is; ``encoded_size`` is ``[width, height]`` of the encoded picture (see
+    :func:`compact`).
     """
+    shape = np.shape(image)
+    mime, data, width, height = compact(as_displayable(image))
+    return {"label": label, "mime": mime, "data": data,
+            "width": int(shape[1]) if len(shape) > 1 else 0, "height": int(shape[0]) if shape else 0,
+            "encoded_size": [width, height]}
+
+
+def compact_encoding(png: str, max_width: int = PAGE_SIZE[0], max_height: int = PAGE_SIZE[1]
+                     ) -> tuple[str, str, int, int]:
+    """:func:`compact` of a base64 PNG (a figure, or a picture of results written before
+    pictures were encoded once)."""
     image = cv2.imdecode(np.frombuffer(base64.b64decode(png), np.uint8), cv2.IMREAD_UNCHANGED)
     if image is None:
         return "image/png", png, 1, 1
+    return compact(image, max_width, max_height)
+
+
+def compact(image: np.ndarray, max_width: int = PAGE_SIZE[0], max_height: int = PAGE_SIZE[1]
+            ) -> tuple[str, str, int, int]:
+    """``(mime type, base64 data, width, height)``: a displayable image (uint8, grey, BGR
+    or BGRA) made small enough for a page that stays small.
+
+    Shrunk (area averaging) to fit ``max_width`` x ``max_height`` pixels, then kept
+    as PNG when that is about as small (drawings, masks, enlarged small images stay
+    crisp), else JPEG (photos are several times smaller so). The same image is
+    encoded once per process (pages show the same input in many checks).
+    """
+    key = (hashlib.blake2b(np.ascontiguousarray(image).data, digest_size=16).digest(),
+           image.shape, image.dtype.str, max_width, max_height)
+    with _ENCODED_LOCK:
+        if key in _ENCODED:
+            _ENCODED.move_to_end(key)
+            return _ENCODED[key]
+    encoded = _compact(image, max_width, max_height)
+    with _ENCODED_LOCK:
+        _ENCODED[key] = encoded
+        while len(_ENCODED) > _ENCODED_KEPT:
+            _ENCODED.popitem(last=False)
+    return encoded
+
+
+_ENCODED: collections.OrderedDict = collections.OrderedDict()  # the last few encodings, by content
+_ENCODED_KEPT = 64
+_ENCODED_LOCK = threading.Lock()
+
+
+def _compact(image: np.ndarray, max_width: int, max_height: int) -> tuple[str, str, int, int]:
     height, width = image.shape[:2]
     factor = min(1.0, max_width / max(width, 1), max_height / max(height, 1))
     if factor < 1.0:

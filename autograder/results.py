@@ -35,8 +35,10 @@ TIMING_KEYS = {"seconds", "student_seconds", "graded_at"}
 class Artifact:
     """A picture for the feedback page.
 
-    ``kind`` is ``"images"`` (``items``: ``{"label", "png"}`` with base64 PNG data)
-    or ``"svg"`` (``items``: ``{"label", "svg"}`` with inline SVG markup).
+    ``kind`` is ``"images"`` (``items``: ``{"label", "mime", "data", "width", "height",
+    "encoded_size"}``, base64 PNG or JPEG data made small for a page, see
+    :func:`autograder.pictures.picture_item`) or ``"svg"`` (``items``: ``{"label",
+    "svg"}`` with inline SVG markup).
     """
 
     kind: str

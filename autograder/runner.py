@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import contextlib
 import logging
+import os
 import re
 import time
 import traceback
@@ -96,16 +97,17 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
             sandbox = Sandbox(submission.path, limits)
         else:
             sandbox.admit(submission.path)
-        with sandbox, cache.enabled(sandbox.confinement.hides_files):
-            # Ground truth is kept between gradings only where the worker cannot write it.
+        # Ground truth is kept between gradings only where the worker cannot write it.
+        with sandbox, cache.enabled(sandbox.confinement.hides_files), Painter() as painter:
             budget = _Budget(sandbox)
             for exercise in exercises:
                 checks = [c for c in exercise.checks if include_hidden or not c.hidden]
                 budget.start_exercise()
                 rules = _rules_for(exercise, forbid or {})
                 result.exercises.append(_grade_exercise(
-                    sandbox, exercise, checks, pictures, on_check, submission, budget, rules))
+                    sandbox, exercise, checks, pictures, on_check, submission, budget, rules, painter))
             result.student_seconds = round(sandbox.student_seconds, 6)
+            painter.finish()
         _point_into_notebooks(result, exercises, submission)
     result.seconds = round(time.perf_counter() - started, 6)
     return result
@@ -138,7 +140,7 @@ def _rules_for(exercise: Exercise, forbid: dict) -> dict[str, tuple[str, ...]]:
 
 
 def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=None,
-                    budget=None, rules=None) -> ExerciseResult:
+                    budget=None, rules=None, painter=None) -> ExerciseResult:
     functions = list(exercise.signatures.values())
     rules = rules or {}
     out = ExerciseResult(exercise.id, exercise.title, functions, rules=[
@@ -173,7 +175,7 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
         elif stub:
             out.checks.append(_not_implemented(check, stub))
         else:
-            out.checks.append(run_check(sandbox, check, pictures, modified, rules))
+            out.checks.append(run_check(sandbox, check, pictures, modified, rules, painter))
         if on_check:
             on_check(exercise, out.checks[-1])
     graded = [c for c in out.checks if c.max_score > 0]
@@ -275,11 +277,14 @@ def _in_place_advice(modified) -> CheckResult:
 
 
 def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
-              modified: list | None = None, rules: dict | None = None) -> CheckResult:
+              modified: list | None = None, rules: dict | None = None,
+              painter: "Painter | None" = None) -> CheckResult:
     """Run one check and turn however it ends into a scored :class:`CheckResult`.
 
     ``modified`` collects the (function, argument) pairs the student's calls
-    changed in place; ``rules`` are the instructor's extra forbids.
+    changed in place; ``rules`` are the instructor's extra forbids. With a
+    ``painter`` the check's pictures are drawn on its threads (the result's
+    ``artifacts`` are filled in by :meth:`Painter.finish`), else at once.
     """
     if check.advice:
         return _run_advice(sandbox, check, modified, rules)
@@ -306,10 +311,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         _log_grader_error(check, exc)
     artifacts = []
     if pictures == "all" or (pictures == "failed" and status != PASSED):
-        try:
-            artifacts = trial.artifacts()
-        except Exception as exc:  # noqa: BLE001 - a picture never costs the check its verdict
-            _log_grader_error(check, exc)
+        artifacts = (painter or Painter.at_once).draw(check, trial.artifacts)
     fraction = verdict.fraction if isinstance(verdict.fraction, (int, float)) else 0.0
     fraction = min(max(float(fraction), 0.0), 1.0) if fraction == fraction else 0.0
     _collect(modified, trial)
@@ -320,6 +322,53 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         traceback=tb, artifacts=artifacts,
         seconds=round(time.perf_counter() - started, 6),
         student_seconds=round(trial.student_seconds, 6))
+
+
+class Painter:
+    """Draws and encodes the checks' pictures on other threads while grading goes on:
+    the grader mostly waits for the worker meanwhile, and OpenCV's drawing and
+    encoding release the GIL. A picture never costs a check its verdict: one that
+    cannot be drawn is left out (and logged)."""
+
+    def __init__(self, threads: int | None = None):
+        from concurrent.futures import ThreadPoolExecutor
+
+        if threads is None:
+            threads = max(1, min(2, os.cpu_count() or 1))
+        self._pool = ThreadPoolExecutor(threads, thread_name_prefix="pictures") if threads else None
+        self._pending: list = []
+
+    def draw(self, check: Check, make: Callable[[], list]) -> list:
+        """A list that :meth:`finish` fills with ``make()``'s artifacts."""
+        artifacts: list = []
+        if self._pool is None:
+            self._fill(check, artifacts, make)
+        else:
+            self._pending.append((check, artifacts, self._pool.submit(make)))
+        return artifacts
+
+    def finish(self) -> None:
+        """Wait for every picture asked for so far."""
+        pending, self._pending = self._pending, []
+        for check, artifacts, future in pending:
+            self._fill(check, artifacts, future.result)
+
+    @staticmethod
+    def _fill(check, artifacts, make):
+        try:
+            artifacts.extend(make())
+        except Exception as exc:  # noqa: BLE001 - a picture never costs the check its verdict
+            _log_grader_error(check, exc)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc_info):
+        if self._pool is not None:
+            self._pool.shutdown(cancel_futures=True)
+
+
+Painter.at_once = Painter(threads=0)  # draws in the caller's thread (a check run on its own)
 
 
 def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None) -> CheckResult:

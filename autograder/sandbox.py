@@ -252,6 +252,20 @@ class Sandbox:
         if self.proc is None and not self._closed:
             self._spawn_worker()
 
+    def ready(self) -> bool:
+        """Start the worker if it is not running and wait until it is ready (it has
+        imported NumPy and OpenCV at this confinement level); False if it could not
+        start (it is stopped then, and the reason logged)."""
+        if self._closed:
+            return False
+        if self.proc is not None and self._ready:
+            return True
+        try:
+            self._start_worker()
+        except WorkerStartError:
+            return False
+        return True
+
     def __exit__(self, *exc):
         self.close()
 
@@ -467,6 +481,7 @@ class Sandbox:
                 timeout = min(timeout, self.remaining())
                 if timeout <= 0:
                     return self._over_budget(what)
+        self._started = True  # (a worker made ready before this request is started too)
         self._request_id += 1
         request = {**request, "id": self._request_id}
         frame = transport.encode(request)

@@ -29,13 +29,13 @@ def main():
     parser.add_argument("--submission", default=str(ROOT / "reference_solutions"))
     args = parser.parse_args()
     result = grade(args.submission, args.select)
-    raw = sum(len(item.get("png", "")) for e in result.exercises for c in e.checks
+    raw = sum(len(item.get("data", "")) for e in result.exercises for c in e.checks
               for a in c.artifacts for item in a.items)
     start = time.perf_counter()
     page = html.render(result)
     seconds = time.perf_counter() - start
     print(f"score                 {result.total:g} / {result.max_total:g}")
-    print(f"pictures as graded    {raw / 2**20:6.2f} MB of base64 PNG")
+    print(f"pictures as graded    {raw / 2**20:6.2f} MB of base64 PNG/JPEG (each picture of each check)")
     for mime in ("image/jpeg", "image/png"):
         data = re.findall(rf"data:{mime};base64,([^\"]+)", page)
         print(f"  on the page, {mime[6:]:<5}  {len(data):4d} pictures, {sum(map(len, data)) / 2**20:6.2f} MB")

@@ -31,3 +31,19 @@ def test_a_module_missing_from_the_admitted_submission_is_reported(tmp_path):
         assert sandbox.call("lab07_transformations", "translation_matrix", (1, 2)).value == 1
         outcome = sandbox.import_module("lab08_homographies")
         assert not outcome.ok and outcome.kind == "missing_module"
+
+
+def test_a_worker_made_ready_first_grades_the_submission_and_its_restarts_count(tmp_path):
+    (tmp_path / "lab07_transformations.py").write_text(
+        "import os\ndef translation_matrix(tx, ty):\n    return tx + ty\n"
+        "def rotation_matrix(angle, center=None):\n    os._exit(3)\n")
+    with Sandbox(None) as sandbox:
+        sandbox.start()
+        assert sandbox.ready() and sandbox.ready()  # the level works: the worker imported NumPy there
+        sandbox.admit(tmp_path)
+        assert sandbox.call("lab07_transformations", "translation_matrix", (1, 2)).value == 3
+        assert sandbox.call("lab07_transformations", "rotation_matrix", (1,)).kind == "crashed"
+        assert sandbox.call("lab07_transformations", "translation_matrix", (2, 2)).value == 4
+        assert sandbox.restarts == 1  # billed and capped like any restart
+        with pytest.raises(RuntimeError):
+            sandbox.admit(ROOT / "assignments")

@@ -9,11 +9,11 @@ feedback can name the mistake.
 from __future__ import annotations
 
 import numpy as np
-from hypothesis import strategies as st
 
 from fixtures import lab07 as truth
 from fixtures.images import photo
 
+from .. import strategies as st
 from ..checks import Fail, Trial, passed
 from ..compare import closest
 from ..judges import digits_apart, format_matrix, judge_matrix, judge_parameter_used, judge_warp

@@ -18,14 +18,13 @@ by hand forbids it in the course configuration (``"forbid"``). ``stitch`` and
 
 from __future__ import annotations
 
-
 import cv2
 import numpy as np
-from hypothesis import strategies as st
 
 from fixtures import lab08 as truth
 from fixtures.images import coverage, photo, warp
 
+from .. import strategies as st
 from ..checks import StudentFailure, Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
 from ..judges import (IMAGE_TOLERANCE, digits_apart, format_matrix, judge_parameter_used, judge_warp,

@@ -9,11 +9,11 @@ compared with what the usual mistakes would give, so the feedback can name them.
 from __future__ import annotations
 
 import numpy as np
-from hypothesis import strategies as st
 
 from fixtures import lab09 as truth
 from fixtures.lab09 import photo
 
+from .. import strategies as st
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import closest
 from ..pictures import svg_points

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import cv2
 import numpy as np
-from hypothesis import strategies as st
 
 from fixtures import lab10 as truth
 from fixtures import scene
 
+from .. import strategies as st
 from ..checks import Trial, partial, passed
 from ..compare import blurred_difference, closest, projective_distance
 from ..judges import format_matrix, where_matrices_differ

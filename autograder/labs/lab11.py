@@ -12,12 +12,12 @@ from __future__ import annotations
 
 import cv2
 import numpy as np
-from hypothesis import strategies as st
 
 from fixtures import lab11 as truth
 from fixtures.lab12 import (linear_triangulation, triangulation_distance, triangulation_mistakes,
                             triangulation_variants)
 
+from .. import strategies as st
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import closest, nearest_variants, projective_distance
 from ..judges import format_matrix, where_matrices_differ, where_points_differ

@@ -18,10 +18,10 @@ from __future__ import annotations
 
 import cv2
 import numpy as np
-from hypothesis import strategies as st
 
 from fixtures import lab12 as truth
 
+from .. import strategies as st
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error, nearest_variants
 from ..judges import format_matrix, judge_parameter_changes_result, judge_parameter_used

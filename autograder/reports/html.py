@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import re
 
 from jinja2 import Environment, PackageLoader, select_autoescape
@@ -70,33 +69,26 @@ class PictureSheet:
     FIGURE_WIDTH = 900   # side by side): drawn as wide as the page allows, so it can be read
     MAX_ENLARGEMENT = 3.0
 
-    def __init__(self, prefix: str = "pic", result: GradingResult | None = None):
+    def __init__(self, prefix: str = "pic"):
         self.prefix = prefix
         self.entries: dict[str, dict] = {}
-        self._encoded = self._encode_all(result) if result is not None else {}
 
-    @staticmethod
-    def _encode_all(result: GradingResult) -> dict:
-        """Every picture of ``result`` compactly encoded, on every core at once (OpenCV's
-        encoders release the GIL); the page then draws them in its own order."""
-        from concurrent.futures import ThreadPoolExecutor
-
-        pngs = sorted({item["png"] for exercise in result.exercises for check in exercise.checks
-                       for artifact in check.artifacts for item in artifact.items if item.get("png")})
-        if len(pngs) < 2:
-            return {}
-        with ThreadPoolExecutor(min(len(pngs), os.cpu_count() or 1)) as pool:
-            return dict(zip(pngs, pool.map(pictures.compact_encoding, pngs)))
-
-    def _entry(self, png: str) -> dict:
-        if png not in self.entries:
-            mime, data, width, height = self._encoded.get(png) or pictures.compact_encoding(png)
-            self.entries[png] = {"id": f"{self.prefix}{len(self.entries)}", "mime": mime, "data": data,
+    def _entry(self, item: dict) -> dict:
+        if "data" in item:  # encoded when the check drew it (pictures.picture_item)
+            (width, height), key = item["encoded_size"], item["data"]
+            encoded = lambda: (item["mime"], item["data"], width, height)  # noqa: E731
+        else:  # a results file written before pictures were encoded once: base64 PNG
+            key = item["png"]
+            encoded = lambda: pictures.compact_encoding(key)  # noqa: E731
+        if key not in self.entries:
+            mime, data, width, height = encoded()
+            self.entries[key] = {"id": f"{self.prefix}{len(self.entries)}", "mime": mime, "data": data,
                                  "width": width, "height": height}
-        return self.entries[png]
+        return self.entries[key]
 
     def figure(self, artifact) -> dict:
-        items = [dict(item, entry=self._entry(item["png"])) for item in artifact.items if item.get("png")]
+        items = [dict(item, entry=self._entry(item)) for item in artifact.items
+                 if item.get("data") or item.get("png")]
         for item in items:  # results written before sizes were recorded: the picture's own
             item.setdefault("width", item["entry"]["width"])
             item.setdefault("height", item["entry"]["height"])
@@ -140,7 +132,7 @@ def render(result: GradingResult, figures: dict[str, bytes] | None = None) -> st
         encoded[exercise_id] = {"mime": mime, "data": data, "width": width, "height": height}
     return _environment().get_template("feedback.html.j2").render(
         result=result, percent=percent, graded=what_was_graded(result), graded_at=_graded_at(result),
-        sheet=PictureSheet(result=result), heat_scale=", ".join(pictures.heat_scale_stops()), figures=encoded)
+        sheet=PictureSheet(), heat_scale=", ".join(pictures.heat_scale_stops()), figures=encoded)
 
 
 def write(result: GradingResult, path, figures: dict[str, bytes] | None = None) -> None:

@@ -6,7 +6,7 @@ as the public checks.
 
 from __future__ import annotations
 
-from hypothesis import strategies as st
+from ... import strategies as st
 
 from fixtures import lab11 as truth
 
