@@ -41,8 +41,8 @@ together, where the grader may create one; otherwise the per-process limits
 
 from __future__ import annotations
 
+import csv
 import ctypes
-import importlib.metadata
 import json
 import logging
 import os
@@ -271,39 +271,77 @@ def _plain_path_file(path: Path) -> bool:
 
 
 def allowed_entries(site: Path) -> set[str]:
-    """Top-level entries of ``site`` belonging to :data:`ALLOWED_LIBRARIES` or their requirements."""
-    by_name = {}
-    for dist in importlib.metadata.distributions(path=[str(site)]):
-        name = (dist.metadata["Name"] or "").lower().replace("_", "-")
-        by_name.setdefault(name, dist)
-    wanted, todo = set(), [n.lower() for n in ALLOWED_LIBRARIES]
+    """Top-level entries of ``site`` belonging to :data:`ALLOWED_LIBRARIES` or their requirements.
+
+    Read from the distributions' metadata folders directly (their names, then the
+    ``Requires-Dist`` headers and ``RECORD`` of the wanted ones only): a site with a
+    hundred distributions costs milliseconds, not the third of a second that parsing
+    every distribution's metadata with :mod:`importlib.metadata` takes, on the path
+    to the worker's start.
+    """
+    folders: dict[str, Path] = {}
+    for folder in sorted(site.glob("*.dist-info")) + sorted(site.glob("*.egg-info")):
+        folders.setdefault(_normalized(folder.name.split("-", 1)[0]), folder)
+    wanted, todo = set(), [_normalized(n) for n in ALLOWED_LIBRARIES]
     while todo:
         name = todo.pop()
-        if name in wanted or name not in by_name:
+        if name in wanted or name not in folders:
             continue
         wanted.add(name)
-        for requirement in by_name[name].requires or ():
-            if "extra ==" in requirement:
-                continue
-            match = re.match(r"\s*([A-Za-z0-9][A-Za-z0-9._-]*)", requirement)
-            if match:
-                todo.append(match.group(1).lower().replace("_", "-"))
+        todo += [_normalized(r) for r in _requirements(folders[name])]
     entries = set()
     for name in wanted:
-        dist = by_name[name]
-        files = dist.files
-        if files is None:
-            top = dist.read_text("top_level.txt") or ""
-            entries |= {line.strip() for line in top.splitlines() if line.strip()}
-        else:
-            entries |= {f.parts[0] for f in files if f.parts and f.parts[0] not in ("..", "__pycache__")}
-    entries = {e for e in entries if "/" not in e and e not in (".", "")}
+        entries |= _top_level_entries(folders[name])
+    entries = {e for e in entries if "/" not in e and e not in (".", "", "..", "__pycache__")}
     found = {p.name for p in site.glob("*.pth") if _plain_path_file(p)}
     for entry in entries:
         for candidate in (entry, entry + ".py"):
             if (site / candidate).exists() or (site / candidate).is_symlink():
                 found.add(candidate)
     return found
+
+
+def _normalized(name: str) -> str:
+    """A distribution's name as PEP 503 compares names (``Scikit_Image`` -> ``scikit-image``)."""
+    return re.sub(r"[-_.]+", "-", name).lower()
+
+
+def _requirements(folder: Path) -> list[str]:
+    """The names a distribution requires unconditionally (not only for an extra)."""
+    metadata = folder / ("METADATA" if folder.suffix == ".dist-info" else "PKG-INFO")
+    try:
+        headers = metadata.read_text(errors="replace").split("\n\n", 1)[0]
+    except OSError:
+        return []
+    names = []
+    for line in headers.splitlines():
+        if line.lower().startswith("requires-dist:") and "extra ==" not in line:
+            match = re.match(r"\s*([A-Za-z0-9][A-Za-z0-9._-]*)", line.split(":", 1)[1])
+            if match:
+                names.append(match.group(1))
+    if folder.suffix == ".egg-info":  # setuptools' older format
+        try:
+            names += [line.split(";")[0].strip() for line in (folder / "requires.txt").read_text().split("\n[")[0]
+                      .splitlines() if line.strip()]
+        except OSError:
+            pass
+        names = [re.match(r"[A-Za-z0-9._-]*", n).group(0) for n in names]
+    return [n for n in names if n]
+
+
+def _top_level_entries(folder: Path) -> set[str]:
+    """The first path component of every file a distribution installed (its ``RECORD``),
+    else the names in ``top_level.txt``."""
+    try:
+        record = (folder / "RECORD").read_text(errors="replace")
+    except OSError:
+        record = None
+    if record is not None:
+        return {row[0].split("/", 1)[0] for row in csv.reader(record.splitlines()) if row}
+    try:
+        return {line.strip() for line in (folder / "top_level.txt").read_text().splitlines() if line.strip()}
+    except OSError:
+        return set()
 
 
 def detect() -> Confinement:
