@@ -72,6 +72,11 @@ class StudentFailure(Exception):
         self.outcome, self.message = outcome, message
 
 
+# Hypothesis's engine runs one property at a time, whatever the lanes (runner.grade): the
+# examples it draws never depend on another lane's property.
+_ONE_ENGINE = threading.Lock()
+
+
 class Trial:
     """The handle a check uses to call student code and attach pictures.
 
@@ -236,7 +241,8 @@ class Trial:
             body(example)
 
         try:
-            property_holds()
+            with _ONE_ENGINE:
+                property_holds()
         except StudentFailure as exc:
             if exc.outcome.kind not in _FATAL_KINDS and last:  # fatal ones fail for every input
                 exc.message += self._counterexample(describe(last[0]))

@@ -8,6 +8,7 @@ option value, a report that cannot be written). Errors go to stderr.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import threading
 from pathlib import Path
@@ -131,15 +132,16 @@ def run_grade(args) -> int:
         errors.print(NO_SUBMISSION, markup=False, highlight=False)
         return USAGE_ERROR
     limits = Limits(call_timeout=args.timeout) if args.timeout else None
-    worker = _start_worker_early(limits)
+    lanes = lanes_for(args.select)
+    workers = _start_worker_early(limits, lanes)
     try:
         several = _several_students(args.submission)
     except BaseException:
-        worker.close()
+        workers.close()
         raise
-    sandbox = worker.sandbox()
+    sandboxes = workers.sandboxes()
     if several:
-        sandbox and sandbox.close()
+        workers.close()
         console.print(f"[red]error:[/red] {escape(several)}")
         return USAGE_ERROR
     try:
@@ -149,12 +151,12 @@ def run_grade(args) -> int:
             forbid = CourseConfig.load(args.config).forbid if args.config else None
             result = grade(args.submission, args.select, limits=limits, pictures=pictures,
                            include_hidden=not args.public_only, on_check=advance, forbid=forbid,
-                           sandbox=sandbox)
+                           lanes=lanes, sandboxes=sandboxes)
     except (SelectionError, SubmissionError, CourseConfigError) as exc:
         errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         return USAGE_ERROR
     finally:
-        sandbox and sandbox.close()
+        workers.close()
     html_path = None if args.no_html else _report_path(args.html, "feedback.html")
     replaced_full_page = bool(args.select) and html_path is not None and html_path.is_file()
     terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first
@@ -206,55 +208,68 @@ def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
 
 
 class _start_worker_early:
-    """While the lab suites load: start the worker (it imports NumPy and OpenCV) at the
-    strongest confinement level the platform offers. A worker that gets ready there
-    shows that the level works (what :func:`confine.detect` would probe with a process
-    of its own); else the probe says which level does, and a worker is started there.
-    :meth:`sandbox` waits for it and gives the sandbox (without a submission yet), or
-    None if it could not be made: grading then makes its own and reports why."""
+    """While the lab suites load: start the workers, one per lane (each imports NumPy and
+    OpenCV), at the strongest confinement level the platform offers. A worker that gets
+    ready there shows that the level works (what :func:`confine.detect` would probe
+    with a process of its own); else the probe says which level does, and the workers
+    are started there. :meth:`sandboxes` waits for that and gives the sandboxes (without
+    a submission yet), or none if they could not be made: grading then makes its own
+    and reports why."""
 
-    def __init__(self, limits):
-        self._sandbox = None
-        self._thread = threading.Thread(target=self._start, args=(limits,), name="worker start", daemon=True)
+    def __init__(self, limits, lanes: int = 1):
+        self._sandboxes = []
+        self._thread = threading.Thread(target=self._start, args=(limits, lanes), name="worker start",
+                                        daemon=True)
         self._thread.start()
 
-    def _start(self, limits):
-        early = self._started(limits, confine.strongest_candidate)
-        if early is not None and early.ready():
-            self._sandbox = early
+    def _start(self, limits, lanes):
+        early = self._started(limits, confine.strongest_candidate(), lanes)
+        if early and early[0].ready():
+            self._sandboxes = early
             return
-        if early is not None:
-            early.close()  # nothing of the submission ever reached it
+        for sandbox in early:
+            sandbox.close()  # nothing of the submission ever reached them
         try:
             level = confine.detect()
         except Exception:  # noqa: BLE001 - the runner tries again and reports it
-            level = None
-        if level is not None:
-            self._sandbox = self._started(limits, lambda: level)
+            return
+        self._sandboxes = self._started(limits, level, lanes)
 
     @staticmethod
-    def _started(limits, confinement):
+    def _started(limits, confinement, lanes) -> list:
         from .sandbox import Sandbox
 
-        try:
-            sandbox = Sandbox(None, limits, confinement=confinement())
-        except Exception:  # noqa: BLE001
-            return None
-        try:
-            sandbox.start()
-        except Exception:  # noqa: BLE001
-            sandbox.close()
-            return None
-        return sandbox
+        started = []
+        for _ in range(lanes):
+            try:
+                sandbox = Sandbox(None, limits, confinement=confinement)
+            except Exception:  # noqa: BLE001
+                break
+            try:
+                sandbox.start()
+            except Exception:  # noqa: BLE001
+                sandbox.close()
+                break
+            started.append(sandbox)
+        return started
 
-    def sandbox(self):
+    def sandboxes(self) -> list:
         self._thread.join()
-        return self._sandbox
+        return self._sandboxes
 
     def close(self):
-        sandbox = self.sandbox()
-        if sandbox is not None:
+        for sandbox in self.sandboxes():
             sandbox.close()
+
+
+def lanes_for(selectors) -> int:
+    """How many lanes ``grade.py`` grades with: a lab per core at once, up to 4 (a worker
+    each), and no more than the labs selected (``lab07``, ``lab07.ex2``; none: all, and
+    grading gives up lanes it has no lab for)."""
+    lanes = min(os.cpu_count() or 1, 4)
+    if selectors:
+        lanes = min(lanes, len({selector.split(".", 1)[0] for selector in selectors}))
+    return max(1, lanes)
 
 
 def _several_students(path) -> str | None:

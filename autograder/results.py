@@ -11,8 +11,10 @@ Keys other tools rely on (see DESIGN.md, "Results and reports")::
 A check whose ``status`` is ``"advice"`` (``advice: true``) is a tip worth 0
 points: ``message`` says what to change and why; it is never a failure.
 
-Timing fields are named ``seconds`` / ``student_seconds`` everywhere, so two
-gradings of the same submission compare equal once those are dropped.
+Timing fields are named ``seconds`` / ``student_seconds`` everywhere (and
+``student_wall_seconds``: the wall time during which the student's code ran in
+some lane, which is ``student_seconds`` when labs are graded one at a time), so
+two gradings of the same submission compare equal once those are dropped.
 """
 
 from __future__ import annotations
@@ -28,7 +30,7 @@ from pathlib import Path
 # modified in place): never a failure, never part of a score.
 PASSED, PARTIAL, FAILED, NOT_IMPLEMENTED, ERROR, ADVICE = (
     "passed", "partial", "failed", "not implemented", "grader error", "advice")
-TIMING_KEYS = {"seconds", "student_seconds", "graded_at"}
+TIMING_KEYS = {"seconds", "student_seconds", "student_wall_seconds", "graded_at"}
 
 
 @dataclass
@@ -121,6 +123,7 @@ class GradingResult:
     hidden_included: bool = True
     notes: list[str] = field(default_factory=list)  # how the submission was read (renames...)
     graded_at: str = ""  # ISO 8601 time of the grading, UTC
+    student_wall_seconds: float = 0.0  # wall time during which student code ran (in any lane)
 
     @property
     def total(self) -> float:
@@ -135,7 +138,7 @@ class GradingResult:
                 "grader_version": self.grader_version, "total": self.total,
                 "max_total": self.max_total, "hidden_included": self.hidden_included,
                 "seconds": self.seconds, "student_seconds": self.student_seconds,
-                "notes": self.notes, "graded_at": self.graded_at,
+                "student_wall_seconds": self.student_wall_seconds, "notes": self.notes, "graded_at": self.graded_at,
                 "exercises": [e.to_dict() for e in self.exercises]}
 
     @classmethod
@@ -151,7 +154,8 @@ class GradingResult:
                                             checks, e.get("message", ""), e.get("rules", [])))
         return cls(data["submission"], data["submission_hash"], data["grader_version"],
                    exercises, data.get("seconds", 0.0), data.get("student_seconds", 0.0),
-                   data.get("hidden_included", True), data.get("notes", []), data.get("graded_at", ""))
+                   data.get("hidden_included", True), data.get("notes", []), data.get("graded_at", ""),
+                   data.get("student_wall_seconds", data.get("student_seconds", 0.0)))
 
 
 def without_timings(data):

@@ -26,7 +26,8 @@ import time
 import traceback
 from dataclasses import replace
 from datetime import datetime, timezone
-from typing import Callable
+from concurrent.futures import ThreadPoolExecutor
+from typing import Callable, Sequence
 
 from . import __version__, cache
 from .checks import Fail, StudentFailure, Trial, Verdict
@@ -45,7 +46,8 @@ PICTURES = ("all", "failed", "none")
 def grade(submission_path, selectors=(), *, limits: Limits | None = None,
           include_hidden: bool = True, pictures: str = "all",
           on_check: Callable[[Exercise, CheckResult], None] | None = None,
-          forbid: dict[str, list[str]] | None = None, sandbox: Sandbox | None = None) -> GradingResult:
+          forbid: dict[str, list[str]] | None = None, lanes: int = 1,
+          sandboxes: Sequence[Sandbox] = ()) -> GradingResult:
     """Grade the submission at ``submission_path``.
 
     Parameters
@@ -62,14 +64,23 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         Which checks keep their pictures (encoding them costs time; keep them
         only where someone will look).
     on_check : callable, optional
-        Called after every check, e.g. to advance a progress bar.
+        Called after every check, e.g. to advance a progress bar (from the lanes'
+        threads when there are several).
     forbid : dict, optional
         The instructor's extra rules (course configuration ``forbid``):
         ``{"lab08.homography_ransac": ["cv2.findHomography"]}``.
-    sandbox : Sandbox, optional
-        A sandbox made without a submission, perhaps already started
-        (:meth:`Sandbox.start`, so the worker boots while the caller loads):
-        the submission is admitted into it, and it is closed at the end, whatever happens.
+    lanes : int
+        How many labs are graded at once, each lane with a worker of its own.
+        Labs are separate modules of the submission, so while one lane waits for the
+        student's code another judges: on two cores, two lanes grade a whole
+        submission in about two thirds of the time. Each lab is graded whole in one
+        lane, its exercises in order; the labs with the most checks are started
+        first. A batch grades several submissions at once instead (one lane each).
+    sandboxes : sequence of Sandbox, optional
+        Sandboxes made without a submission, perhaps already started
+        (:meth:`Sandbox.start`, so the workers boot while the caller loads), one per
+        lane (lanes without one get their own): the submission is admitted into
+        each, and all are closed at the end, whatever happens.
 
     Raises
     ------
@@ -77,12 +88,14 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         For a selector that names nothing, or a path that is not a submission.
     """
     with contextlib.ExitStack() as closing:
-        if sandbox is not None:
+        for sandbox in sandboxes:
             closing.enter_context(sandbox)
-        return _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid, sandbox)
+        return _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid,
+                      lanes, list(sandboxes), closing)
 
 
-def _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid, sandbox):
+def _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid,
+           lanes, sandboxes, closing):
     if pictures not in PICTURES:
         raise ValueError(f"pictures must be one of {PICTURES}, got {pictures!r}")
     started = time.perf_counter()
@@ -93,40 +106,88 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                                hidden_included=include_hidden and hidden_checks_installed(),
                                notes=_reading_notes(submission),
                                graded_at=datetime.now(timezone.utc).isoformat(timespec="seconds"))
-        if sandbox is None:
-            sandbox = Sandbox(submission.path, limits)
-        else:
+        labs = _labs_heaviest_first(exercises)
+        for sandbox in sandboxes:
             sandbox.admit(submission.path)
+        if not sandboxes:
+            sandboxes.append(closing.enter_context(Sandbox(submission.path, limits)))
+        while len(sandboxes) < min(max(1, lanes), len(labs)):
+            sandboxes.append(closing.enter_context(
+                Sandbox(submission.path, limits, confinement=sandboxes[0].confinement)))
+            sandboxes[-1].start()  # it boots while the first lane grades
+        sandboxes = sandboxes[:max(1, len(labs))]
+        graded: dict[str, ExerciseResult] = {}
+
+        def lane(sandbox: Sandbox):
+            budget = _Budget(sandbox, sandboxes)
+            while labs:
+                try:
+                    lab = labs.pop(0)  # atomic: each lab goes to one lane
+                except IndexError:
+                    return
+                for exercise in lab:
+                    checks = [c for c in exercise.checks if include_hidden or not c.hidden]
+                    budget.start_exercise()
+                    rules = _rules_for(exercise, forbid or {})
+                    graded[exercise.id] = _grade_exercise(
+                        sandbox, exercise, checks, pictures, on_check, submission, budget, rules, painter)
+
         # Ground truth is kept between gradings only where the worker cannot write it.
-        with sandbox, cache.enabled(sandbox.confinement.hides_files), Painter() as painter:
-            budget = _Budget(sandbox)
-            for exercise in exercises:
-                checks = [c for c in exercise.checks if include_hidden or not c.hidden]
-                budget.start_exercise()
-                rules = _rules_for(exercise, forbid or {})
-                result.exercises.append(_grade_exercise(
-                    sandbox, exercise, checks, pictures, on_check, submission, budget, rules, painter))
-            result.student_seconds = round(sandbox.student_seconds, 6)
+        with cache.enabled(sandboxes[0].confinement.hides_files), Painter() as painter:
+            if len(sandboxes) == 1:
+                lane(sandboxes[0])
+            else:
+                with ThreadPoolExecutor(len(sandboxes), thread_name_prefix="lane") as pool:
+                    for finished in [pool.submit(lane, sandbox) for sandbox in sandboxes]:
+                        finished.result()
             painter.finish()
+        result.exercises = [graded[exercise.id] for exercise in exercises]
+        result.student_seconds = round(sum(sandbox.student_seconds for sandbox in sandboxes), 6)
+        result.student_wall_seconds = round(_covered([span for s in sandboxes for span in s.billed_spans]), 6)
         _point_into_notebooks(result, exercises, submission)
     result.seconds = round(time.perf_counter() - started, 6)
     return result
 
 
-class _Budget:
-    """The per-exercise and per-submission time budgets, as limits on the sandbox's billed time."""
+def _covered(spans: list[tuple[float, float]]) -> float:
+    """The length of the union of the ``(start, end)`` spans."""
+    covered, reached = 0.0, float("-inf")
+    for start, end in sorted(spans):
+        if end > reached:
+            covered += end - max(start, reached)
+            reached = end
+    return covered
 
-    def __init__(self, sandbox: Sandbox):
-        self.sandbox = sandbox
+
+def _labs_heaviest_first(exercises: list[Exercise]) -> list[list[Exercise]]:
+    """The exercises grouped by lab (in their order), the labs with the most checks first:
+    the order in which lanes take them (the longest first, so that lanes end together)."""
+    labs: dict[str, list[Exercise]] = {}
+    for exercise in exercises:
+        labs.setdefault(exercise.lab.key, []).append(exercise)
+    return sorted(labs.values(), key=lambda lab: -sum(len(exercise.checks) for exercise in lab))
+
+
+class _Budget:
+    """The per-exercise and per-submission time budgets, as limits on the sandbox's billed time
+    (the submission's budget counts the time billed in every lane)."""
+
+    def __init__(self, sandbox: Sandbox, lanes: list[Sandbox]):
+        self.sandbox, self.lanes = sandbox, lanes
         self.limits = sandbox.limits
+        if len(lanes) > 1:  # within a check too: another lane may spend the submission's time meanwhile
+            sandbox.share_budget(self.spent, self.limits.submission_budget)
+
+    def spent(self) -> float:
+        return sum(sandbox.student_seconds for sandbox in self.lanes)
 
     def start_exercise(self):
-        spent = self.sandbox.student_seconds
-        self.sandbox.start_exercise(min(spent + self.limits.exercise_budget, self.limits.submission_budget))
+        left = self.limits.submission_budget - self.spent()
+        self.sandbox.start_exercise(self.sandbox.student_seconds + min(self.limits.exercise_budget, left))
 
     def exhausted(self) -> str:
         """Which budget is spent ("" while there is time left)."""
-        if self.sandbox.student_seconds >= self.limits.submission_budget:
+        if self.spent() >= self.limits.submission_budget:
             return f"time budget exhausted (the submission's {self.limits.submission_budget:g} s)"
         if self.sandbox.remaining() <= 0:
             return f"time budget exhausted (this exercise's {self.limits.exercise_budget:g} s)"

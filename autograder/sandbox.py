@@ -33,7 +33,7 @@ import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 from . import confine, transport
 from .submission import copy_regular_files
@@ -190,10 +190,12 @@ class Sandbox:
         self._imported: set[str] = set()
         self._import_failures: dict[str, CallOutcome] = {}
         self.student_seconds = 0.0
+        self.billed_spans: list[tuple[float, float]] = []  # (start, end) of each billed time, perf_counter
         self.restarts = 0       # in the current exercise
         self._started = False   # the first start is not a restart
         self._restart_refused = False
         self._budget: float | None = None
+        self._shared_budget: tuple[Callable[[], float], float] | None = None
         self._request_id = secrets.randbits(48)
         self.shared: dict = {}  # values checks share within one grading (see Trial.shared)
         self._timeouts: dict[tuple[str, str], int] = {}
@@ -389,8 +391,23 @@ class Sandbox:
         self._budget = until
         self.restarts = 0
 
+    def _bill(self, seconds: float) -> None:
+        """Bill ``seconds`` that just ended to the student."""
+        self.student_seconds += seconds
+        end = time.perf_counter()
+        self.billed_spans.append((end - seconds, end))
+
+    def share_budget(self, spent: Callable[[], float], limit: float) -> None:
+        """Also stop calling once ``spent()`` (the seconds billed in this sandbox and the
+        others it shares a submission's budget with) reaches ``limit``."""
+        self._shared_budget = (spent, limit)
+
     def remaining(self) -> float:
-        return float("inf") if self._budget is None else self._budget - self.student_seconds
+        left = float("inf") if self._budget is None else self._budget - self.student_seconds
+        if self._shared_budget is not None:
+            spent, limit = self._shared_budget
+            left = min(left, limit - spent())
+        return left
 
     def _over_budget(self, what: str) -> CallOutcome:
         return CallOutcome(ok=False, kind="budget",
@@ -418,7 +435,7 @@ class Sandbox:
         """:meth:`_request` within the budget; its time (a timeout's in full) is billed."""
         clipped = timeout > self.remaining()
         outcome = self._request(request, min(timeout, self.remaining()), what)
-        self.student_seconds += outcome.seconds
+        self._bill(outcome.seconds)
         if clipped and outcome.kind == "timeout":
             outcome.kind, outcome.message = "budget", f"{what} was stopped: time budget exhausted"
         return outcome
@@ -466,7 +483,7 @@ class Sandbox:
         self._started = True
         if restart:
             self.restarts += 1
-            self.student_seconds += time.perf_counter() - started
+            self._bill(time.perf_counter() - started)
         return None
 
     def _request(self, request: dict, timeout: float, what: str) -> CallOutcome:

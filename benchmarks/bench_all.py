@@ -13,8 +13,9 @@ Sections (all by default; ``--only`` picks some):
   submission (all labs, public and hidden) and the untouched skeleton
   ALTERNATING, so both see the same load; with ``--otter`` Otter-Grader's
   ``otter run`` on a trivial notebook takes its turn in the same rotation
-  (``otter_anchor.py``: built once in its own venv). Wall time, time inside
-  the student's functions and the grader's overhead as a share, the skeleton's
+  (``otter_anchor.py``: built once in its own venv). Wall time, the wall time
+  during which student functions ran (in any lane: grade.py grades labs side by
+  side, a worker per core) and the grader's overhead, the rest, as a share; the skeleton's
   ratio to the reference, peak memory (RSS) of the grader process and of its
   largest child (the worker), the size of the JSON results and of
   ``feedback.html`` and whether the JSON holds pictures;
@@ -96,7 +97,11 @@ def grade_once(submission: str, selectors=(), html: bool = False) -> dict:
                                               env={**_AS_A_STUDENT, "BENCH_RUSAGE": str(usage)})
         result = json.loads(results.read_text())
         memory = json.loads(usage.read_text())
-        return {"wall": wall, "cpu": cpu, "grading": result["seconds"], "student": result["student_seconds"],
+        # Overhead is the wall time during which no student code ran in any lane (the labs are
+        # graded side by side, a lane per core): the summed student time would hide it.
+        return {"wall": wall, "cpu": cpu, "grading": result["seconds"],
+                "student": result.get("student_wall_seconds", result["student_seconds"]),
+                "student_sum": result["student_seconds"],
                 "score": result["total"], "max": result["max_total"],
                 "grader_mb": memory["grader_kb"] / 1024, "worker_mb": memory["worker_kb"] / 1024,
                 "json_bytes": results.stat().st_size,
@@ -120,7 +125,7 @@ def measure_grade(runs: int, anchor: tuple | None) -> dict:
     wall, student = median(reference, "wall"), median(reference, "student")
     figures = {
         "reference": {"wall_s": wall, "cpu_s": median(reference, "cpu"), "grading_s": median(reference, "grading"),
-                      "student_s": student,
+                      "student_s": student, "student_summed_over_lanes_s": median(reference, "student_sum"),
                       "overhead_share": 1 - student / wall,
                       "score": f"{reference[0]['score']:g}/{reference[0]['max']:g}",
                       "grader_peak_mb": max(r["grader_mb"] for r in reference),
@@ -247,7 +252,8 @@ def report(f: dict) -> None:
         print(f"\ngrade.py as a student runs it (fresh processes, JSON and page), alternating, "
               f"medians of {f['runs']} runs")
         print(f"  reference, all labs ({ref['score']})  {ref['wall_s']:6.2f} s wall ({ref['cpu_s']:.2f} s CPU), "
-              f"{ref['student_s']:.2f} s in student functions, overhead {ref['overhead_share']:.0%}"
+              f"{ref['student_s']:.2f} s with student functions running "
+              f"({ref['student_summed_over_lanes_s']:.2f} s summed over the lanes), overhead {ref['overhead_share']:.0%}"
               f"   [{BUDGETS['overhead']}: {met(ref['overhead_share'] <= 0.5)}]")
         print(f"  skeleton ({skel['score']})                {skel['wall_s']:6.2f} s wall ({skel['cpu_s']:.2f} s CPU), "
               f"{skel['ratio']:.2f}x the reference   [{BUDGETS['skeleton']}: {met(skel['ratio'] <= 0.2)}]")
@@ -305,8 +311,10 @@ def markdown(f: dict) -> str:
                 f"{anchor['otter_wall_s']:.2f} s ({anchor['otter_cpu_s']:.2f} s)", "")
             row("reference / Otter, wall (CPU)", f"{anchor['ratio']:.2f}x ({anchor['cpu_ratio']:.2f}x)",
                 f"wall below 1x: {verdict(anchor['ratio'] < 1)}")
-        row("time inside student functions / grader overhead", f"{ref['student_s']:.2f} s / "
-            f"{ref['overhead_share']:.0%}", f"overhead at most 50%: {verdict(ref['overhead_share'] <= 0.5)}")
+        row("wall time with student functions running in some lane (summed over the lanes) / "
+            "grader overhead (the rest of the wall time)", f"{ref['student_s']:.2f} s "
+            f"({ref['student_summed_over_lanes_s']:.2f} s) / {ref['overhead_share']:.0%}",
+            f"overhead at most 50%: {verdict(ref['overhead_share'] <= 0.5)}")
         row(f"untouched skeleton ({skel['score']}), wall (CPU)", f"{skel['wall_s']:.2f} s ({skel['cpu_s']:.2f} s) "
             f"= {skel['ratio']:.2f}x the reference", f"at most 0.2x: {verdict(skel['ratio'] <= 0.2)}")
     if "labs" in f:

@@ -1,0 +1,65 @@
+"""Labs graded side by side in lanes, a worker each (runner.grade(lanes=...)): the same results as
+one lane, in the same order, and the submission's time budget counted over every lane."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+from autograder.cli import lanes_for
+from autograder.registry import select
+from autograder.results import without_timings
+from autograder.runner import grade
+from autograder.sandbox import Limits
+
+ROOT = Path(__file__).resolve().parents[1]
+SELECT = ["lab07", "lab09.ex1", "lab10.ex1"]
+
+
+def _graded(submission, lanes, **options):
+    result = grade(submission, SELECT, pictures="none", lanes=lanes, **options)
+    data = without_timings(result.to_dict())
+    return result, data
+
+
+def test_lanes_give_the_results_of_one_lane_in_the_same_order(tmp_path):
+    submission = tmp_path / "submission"
+    shutil.copytree(ROOT / "reference_solutions", submission)
+    with open(submission / "lab09_camera.py", "a") as module:  # one exercise wrong, with a message
+        module.write("\ndef pinhole_project(points, f):\n    return points[:, :2] * f\n")
+    one, one_data = _graded(submission, lanes=1)
+    three, three_data = _graded(submission, lanes=3)
+    assert three_data == one_data
+    assert [e.id for e in three.exercises] == [e.id for e in one.exercises] == \
+        [e.id for e in select(SELECT)]
+    [wrong] = [e for e in three.exercises if e.id == "lab09.ex1"]
+    assert wrong.score < wrong.max_score
+    assert three.student_seconds > 0
+
+
+def test_the_submission_budget_counts_every_lane(tmp_path):
+    submission = tmp_path / "slow"
+    shutil.copytree(ROOT / "reference_solutions", submission)
+    for module in ("lab07_transformations.py", "lab09_camera.py", "lab10_camera2.py"):
+        with open(submission / module, "a") as source:
+            source.write("\nimport time as _time\nimport functools as _functools\n"
+                         "for _name, _f in list(globals().items()):\n"
+                         "    if callable(_f) and not _name.startswith('_') and getattr(_f, '__module__', '') "
+                         "== __name__:\n"
+                         "        globals()[_name] = (lambda f: _functools.wraps(f)(lambda *a, **k: "
+                         "(_time.sleep(0.4), f(*a, **k))[1]))(_f)\n")
+    limits = Limits(call_timeout=2.0, exercise_budget=30.0, submission_budget=3.0)
+    result, _ = _graded(submission, lanes=3, limits=limits)
+    messages = [c.message for e in result.exercises for c in e.checks]
+    assert sum("time budget exhausted" in m for m in messages) > 10
+    assert result.student_seconds < limits.submission_budget + 3 * limits.call_timeout
+
+
+def test_grade_py_grades_with_a_lane_per_core_and_selected_lab(monkeypatch):
+    monkeypatch.setattr("os.cpu_count", lambda: 2)
+    assert (lanes_for([]), lanes_for(["lab07"]), lanes_for(["lab07.ex1", "lab07.ex2"]),
+            lanes_for(["lab07", "lab08.ex1", "lab11"])) == (2, 1, 1, 2)
+    monkeypatch.setattr("os.cpu_count", lambda: 16)
+    assert (lanes_for([]), lanes_for(["lab07", "lab08.ex1", "lab11"])) == (4, 3)
+    monkeypatch.setattr("os.cpu_count", lambda: None)
+    assert lanes_for([]) == 1
