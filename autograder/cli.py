@@ -119,6 +119,9 @@ NO_SUBMISSION = ("autograder grade needs the submission to grade: a folder, .py,
 
 
 def run_grade(args) -> int:
+    limits = Limits(call_timeout=args.timeout) if args.timeout else None
+    workers = _start_worker_early(limits) if args.submission is not None else None  # first: it boots meanwhile
+
     from rich.console import Console
     from rich.markup import escape
 
@@ -128,12 +131,9 @@ def run_grade(args) -> int:
     from .runner import grade
 
     console, errors = Console(stderr=False), Console(stderr=True)
-    if args.submission is None:
+    if workers is None:
         errors.print(NO_SUBMISSION, markup=False, highlight=False)
         return USAGE_ERROR
-    limits = Limits(call_timeout=args.timeout) if args.timeout else None
-    lanes = lanes_for(args.select)
-    workers = _start_worker_early(limits, lanes)
     try:
         several = _several_students(args.submission)
     except BaseException:
@@ -151,7 +151,7 @@ def run_grade(args) -> int:
             forbid = CourseConfig.load(args.config).forbid if args.config else None
             result = grade(args.submission, args.select, limits=limits, pictures=pictures,
                            include_hidden=not args.public_only, on_check=advance, forbid=forbid,
-                           lanes=lanes, sandboxes=sandboxes)
+                           lanes=lanes_for(args.select), sandboxes=sandboxes)
     except (SelectionError, SubmissionError, CourseConfigError) as exc:
         errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
         return USAGE_ERROR
@@ -208,50 +208,48 @@ def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
 
 
 class _start_worker_early:
-    """While the lab suites load: start the workers, one per lane (each imports NumPy and
-    OpenCV), at the strongest confinement level the platform offers. A worker that gets
+    """While the lab suites load: start the first lane's worker (it imports NumPy and
+    OpenCV) at the strongest confinement level the platform offers. A worker that gets
     ready there shows that the level works (what :func:`confine.detect` would probe
-    with a process of its own); else the probe says which level does, and the workers
-    are started there. :meth:`sandboxes` waits for that and gives the sandboxes (without
-    a submission yet), or none if they could not be made: grading then makes its own
-    and reports why."""
+    with a process of its own); else the probe says which level does, and the worker
+    is started there. :meth:`sandboxes` waits for that and gives the sandbox (without a
+    submission yet), or none if it could not be made: grading then makes its own and
+    reports why. Other lanes' workers are started by grading, once it knows which labs
+    have work to do (a skeleton's labs have none)."""
 
-    def __init__(self, limits, lanes: int = 1):
+    def __init__(self, limits):
         self._sandboxes = []
-        self._thread = threading.Thread(target=self._start, args=(limits, lanes), name="worker start",
-                                        daemon=True)
+        self._thread = threading.Thread(target=self._start, args=(limits,), name="worker start", daemon=True)
         self._thread.start()
 
-    def _start(self, limits, lanes):
-        early = self._started(limits, confine.strongest_candidate(), lanes)
-        if early and early[0].ready():
-            self._sandboxes = early
+    def _start(self, limits):
+        early = self._started(limits, confine.strongest_candidate())
+        if early is not None and early.ready():
+            self._sandboxes = [early]
             return
-        for sandbox in early:
-            sandbox.close()  # nothing of the submission ever reached them
+        if early is not None:
+            early.close()  # nothing of the submission ever reached it
         try:
             level = confine.detect()
         except Exception:  # noqa: BLE001 - the runner tries again and reports it
             return
-        self._sandboxes = self._started(limits, level, lanes)
+        started = self._started(limits, level)
+        self._sandboxes = [started] if started is not None else []
 
     @staticmethod
-    def _started(limits, confinement, lanes) -> list:
+    def _started(limits, confinement):
         from .sandbox import Sandbox
 
-        started = []
-        for _ in range(lanes):
-            try:
-                sandbox = Sandbox(None, limits, confinement=confinement)
-            except Exception:  # noqa: BLE001
-                break
-            try:
-                sandbox.start()
-            except Exception:  # noqa: BLE001
-                sandbox.close()
-                break
-            started.append(sandbox)
-        return started
+        try:
+            sandbox = Sandbox(None, limits, confinement=confinement)
+        except Exception:  # noqa: BLE001
+            return None
+        try:
+            sandbox.start()
+        except Exception:  # noqa: BLE001
+            sandbox.close()
+            return None
+        return sandbox
 
     def sandboxes(self) -> list:
         self._thread.join()

@@ -631,11 +631,15 @@ def count_tasks(uid: int) -> int | None:
     count = 0
     if not os.path.isdir("/proc"):
         return None
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
+    for entry in os.scandir("/proc"):
+        if not entry.name.isdigit():
             continue
         try:
-            with open(f"/proc/{entry}/status") as status:
+            # /proc/PID belongs to the process's effective uid: a cheap first sieve (the
+            # worker user's processes have one uid); the status file says the real one.
+            if entry.stat().st_uid != uid:
+                continue
+            with open(f"/proc/{entry.name}/status") as status:
                 fields = dict(line.split(":", 1) for line in status if ":" in line)
             if int(fields["Uid"].split()[0]) == uid:
                 count += int(fields["Threads"])

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from . import confine, transport
+from . import confine
 from .submission import copy_regular_files
 
 LENGTH = struct.Struct(">Q")
@@ -329,6 +329,7 @@ class Sandbox:
     def _await_ready(self):
         # Wait for the worker's "ready" (it imports NumPy and OpenCV first), so that
         # start-up time is never billed to the student's first call.
+        from . import transport  # with NumPy: not needed to start a worker, only to talk to it
         try:
             length, = LENGTH.unpack(self._read(LENGTH.size, time.monotonic() + self.limits.startup_timeout))
             ready = transport.decode(self._read(length, time.monotonic() + 5))
@@ -487,6 +488,7 @@ class Sandbox:
         return None
 
     def _request(self, request: dict, timeout: float, what: str) -> CallOutcome:
+        from . import transport  # with NumPy: not needed to start a worker, only to talk to it
         if self.proc is None or not self._ready:
             failed = self._restart()
             if failed is not None:
