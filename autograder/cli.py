@@ -139,6 +139,8 @@ def run_grade(args) -> int:
     except BaseException:
         workers.close()
         raise
+    if not several and not args.no_html:
+        _prepare_page()  # while the worker boots
     sandboxes = workers.sandboxes()
     if several:
         workers.close()
@@ -188,6 +190,13 @@ def _write_page(result, path, figures) -> None:
     html.write(result, path, figures=figures)
 
 
+def _prepare_page() -> None:
+    """Jinja2 imported and the page's templates compiled (a tenth of a second)."""
+    from .reports import html
+
+    html.prepare()
+
+
 def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
     """``--figures DIR``: the lab sheet's pictures made by the student's functions; returns
     the PNG bytes by exercise for the page, and notes each file (or why there is none)."""
@@ -219,11 +228,14 @@ class _start_worker_early:
 
     def __init__(self, limits):
         self._sandboxes = []
-        self._thread = threading.Thread(target=self._start, args=(limits,), name="worker start", daemon=True)
+        # Spawned here, before the grader's own imports compete for the interpreter; its
+        # readiness is awaited on a thread while they run.
+        early = self._started(limits, confine.strongest_candidate())
+        self._thread = threading.Thread(target=self._start, args=(limits, early), name="worker start",
+                                        daemon=True)
         self._thread.start()
 
-    def _start(self, limits):
-        early = self._started(limits, confine.strongest_candidate())
+    def _start(self, limits, early):
         if early is not None and early.ready():
             self._sandboxes = [early]
             return
