@@ -29,7 +29,7 @@ from datetime import datetime, timezone
 from concurrent.futures import ThreadPoolExecutor
 from typing import Callable, Sequence
 
-from . import __version__, cache
+from . import __version__, cache, confine
 from .checks import Fail, StudentFailure, Trial, Verdict
 from .notebooks import GRADE_TAG, SKIP_TAG, point_into_notebook
 from .registry import Check, Exercise, hidden_checks_installed, select
@@ -110,7 +110,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         for sandbox in sandboxes:
             sandbox.admit(submission.path)
         if not sandboxes:
-            sandboxes.append(closing.enter_context(Sandbox(submission.path, limits)))
+            sandboxes.append(closing.enter_context(_first_sandbox(submission.path, limits)))
         # A lab of stubs only costs next to nothing: it needs no lane of its own.
         with_work = [lab for lab in labs if not all(_stubs(exercise, submission) for exercise in lab)]
         while len(sandboxes) < min(max(1, lanes), len(with_work)):
@@ -149,6 +149,17 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         _point_into_notebooks(result, exercises, submission)
     result.seconds = round(time.perf_counter() - started, 6)
     return result
+
+
+def _first_sandbox(submission_dir, limits) -> Sandbox:
+    """A sandbox at the strongest confinement level that works here: a worker that gets
+    ready at the strongest level shows that it works (what :func:`confine.detect` would
+    probe with a process of its own, once per process); else the level the probe finds."""
+    sandbox = Sandbox(submission_dir, limits, confinement=confine.strongest_candidate())
+    if sandbox.ready():
+        return sandbox
+    sandbox.close()
+    return Sandbox(submission_dir, limits)
 
 
 def _covered(spans: list[tuple[float, float]]) -> float:

@@ -7,7 +7,7 @@ minute, the 2-vs-1 worker ratio (budget: at least 1.8x on 2 cores), and the
 batch's cost per submission against a single ``grade.py`` run of one submission.
 A benchmark, not a test: it prints figures, it asserts nothing.
 
-    python benchmarks/bench_batch.py                     # 24 students, lab07
+    python benchmarks/bench_batch.py                     # 48 students, lab07
     python benchmarks/bench_batch.py --students 60 --select lab07 lab08
     python benchmarks/bench_batch.py --no-dask
 """
@@ -56,7 +56,7 @@ def single_grade(submission: Path, selectors: list[str], tmp: Path) -> float:
     return time.perf_counter() - start
 
 
-def measure(students: int = 24, select=("lab07",), dask: bool = True) -> dict:
+def measure(students: int = 48, select=("lab07",), dask: bool = True) -> dict:
     """Grade a generated class with 1 and 2 local workers (and a local Dask cluster):
     wall times, the 2-vs-1 ratio, the cost per submission and the results' size."""
     select = list(select)
@@ -113,7 +113,7 @@ def report(f: dict) -> None:
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--students", type=int, default=24)
+    parser.add_argument("--students", type=int, default=48)
     parser.add_argument("--select", nargs="*", default=["lab07"], help="lab07 ... (default: lab07)")
     parser.add_argument("--no-dask", action="store_true", help="skip the local Dask cluster")
     args = parser.parse_args()
