@@ -273,13 +273,21 @@ class _start_worker_early:
 
 
 def lanes_for(selectors) -> int:
-    """How many lanes ``grade.py`` grades with: a lab per core at once, up to 4 (a worker
-    each), and no more than the labs selected (``lab07``, ``lab07.ex2``; none: all, and
-    grading gives up lanes it has no lab for)."""
-    lanes = min(os.cpu_count() or 1, 4)
+    """How many lanes ``grade.py`` grades with: a lab per core this process may use at once,
+    up to 4 (a worker each), and no more than the labs selected (``lab07``, ``lab07.ex2``;
+    none: all, and grading gives up lanes it has no lab with work for)."""
+    lanes = min(usable_cores(), 4)
     if selectors:
         lanes = min(lanes, len({selector.split(".", 1)[0] for selector in selectors}))
     return max(1, lanes)
+
+
+def usable_cores() -> int:
+    """The cores this process may run on (its CPU affinity where the platform says)."""
+    try:
+        return len(os.sched_getaffinity(0)) or 1
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
 
 
 def _several_students(path) -> str | None:
