@@ -65,18 +65,20 @@ BUDGETS = {  # issue 16, on the 2-core machine
     "json": "no pictures by default",
 }
 
-# Runs grade.py in this process and reports the peak RSS of the grader (self) and of
-# its largest finished descendant (the worker, through its sandbox wrapper).
+# Runs grade.py in this process and reports, as it exits (grade.py leaves with os._exit
+# once its exit handlers have run), the peak RSS of the grader (self) and of its largest
+# finished descendant (the worker, through its sandbox wrapper).
 _MEASURED = """
-import json, os, resource, runpy, sys
+import atexit, json, os, resource, runpy, sys
+
+def dump():
+    with open(os.environ["BENCH_RUSAGE"], "w") as out:
+        json.dump({"grader_kb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss,
+                   "worker_kb": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss}, out)
+
+atexit.register(dump)
 sys.argv = sys.argv[1:]
-try:
-    runpy.run_path(sys.argv[0], run_name="__main__")
-except SystemExit:
-    pass
-with open(os.environ["BENCH_RUSAGE"], "w") as out:
-    json.dump({"grader_kb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss,
-               "worker_kb": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss}, out)
+runpy.run_path(sys.argv[0], run_name="__main__")
 """
 
 
