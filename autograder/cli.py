@@ -19,14 +19,25 @@ from pathlib import Path
 # command line does this: importing the package in a notebook changes nothing.)
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from rich.markup import escape  # noqa: E402
-
 from . import __version__, confine  # noqa: E402
-from .registry import SelectionError, discover  # noqa: E402
 from .sandbox import Limits  # noqa: E402
 from .submission import SubmissionError  # noqa: E402
 
 USAGE_ERROR = 2
+
+
+# Imported when first used: grade.py starts its worker before the grader's heavier imports.
+def escape(text: str) -> str:
+    """Rich markup in ``text`` shown as written."""
+    from rich.markup import escape as rich_escape
+
+    return rich_escape(text)
+
+
+def discover():
+    from .registry import discover as load_suites
+
+    return load_suites()
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -132,6 +143,7 @@ def run_grade(args) -> int:
     from rich.markup import escape
 
     from .course import CourseConfig, CourseConfigError
+    from .registry import SelectionError
     from .reports import terminal
     from .results import write_json
     from .runner import grade
@@ -337,6 +349,7 @@ def run_batch(args) -> int:
     from .batch.ingest import IngestError
     from .batch.run import run_batch as batch
     from .course import CourseConfig, CourseConfigError
+    from .registry import SelectionError
 
     console = Console()
     try:
@@ -430,6 +443,7 @@ def check_label(name: str, hidden: bool) -> str:
 def run_gradescope(args) -> int:
     from . import gradescope
     from .course import CourseConfig, CourseConfigError
+    from .registry import SelectionError
 
     try:
         config = CourseConfig.load(args.config) if args.config else CourseConfig()
