@@ -227,10 +227,15 @@ def interpreter_layout() -> tuple[tuple, tuple[tuple[str, tuple[str, ...]], ...]
     """
     probe = ("import json, sys; print(json.dumps([sys.prefix, sys.base_prefix, sys.exec_prefix, "
              "sys.base_exec_prefix, sys.executable, sys.path]))")
-    out = subprocess.run([sys.executable, "-I", "-c", probe], capture_output=True, text=True,
-                         timeout=60, check=True).stdout
+    with subprocess.Popen([sys.executable, "-I", "-c", probe], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                          stdin=subprocess.DEVNULL, text=True) as asked:
+        # Meanwhile, the entries of the site folders this interpreter has (almost always the probe's).
+        guessed = {site: allowed_entries(Path(site)) for site in _site_folders(sys.path)}
+        out, _ = asked.communicate(timeout=60)
+    if asked.returncode:
+        raise subprocess.CalledProcessError(asked.returncode, asked.args)
     prefix, base_prefix, exec_prefix, base_exec_prefix, executable, path = json.loads(out)
-    sites = [p for p in path if Path(p).name in ("site-packages", "dist-packages") and Path(p).is_dir()]
+    sites = _site_folders(path)
     covered = lambda p: any(p == s or p.startswith(s + "/") for s in SYSTEM_FOLDERS)  # noqa: E731
     folders: list[str] = []
     wanted = [base_prefix, base_exec_prefix, str(Path(executable).resolve().parent)]
@@ -250,8 +255,13 @@ def interpreter_layout() -> tuple[tuple, tuple[tuple[str, tuple[str, ...]], ...]
             # a venv made from another venv links to that venv's python, which is not in the view.
             ops.append(("symlink", os.path.realpath(entry), str(entry)) if entry.is_symlink()
                        else ("bind", str(entry)))
-    allowed = tuple((site, tuple(sorted(allowed_entries(Path(site))))) for site in sites)
+    allowed = tuple((site, tuple(sorted(guessed[site] if site in guessed else allowed_entries(Path(site)))))
+                    for site in sites)
     return tuple(ops), allowed
+
+
+def _site_folders(path: list[str]) -> list[str]:
+    return [p for p in path if Path(p).name in ("site-packages", "dist-packages") and Path(p).is_dir()]
 
 
 def _holds_grader(folder: str) -> bool:
