@@ -22,6 +22,7 @@ import contextlib
 import logging
 import os
 import re
+import threading
 import time
 import traceback
 from dataclasses import replace
@@ -120,14 +121,18 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         sandboxes = sandboxes[:max(1, len(labs))]
         graded: dict[str, ExerciseResult] = {}
 
+        stopping = threading.Event()  # set when grading ends early (an interrupt, a grader bug)
+
         def lane(sandbox: Sandbox):
             budget = _Budget(sandbox, sandboxes)
-            while labs:
+            while labs and not stopping.is_set():
                 try:
                     lab = labs.pop(0)  # atomic: each lab goes to one lane
                 except IndexError:
                     return
                 for exercise in lab:
+                    if stopping.is_set():
+                        return
                     checks = [c for c in exercise.checks if include_hidden or not c.hidden]
                     budget.start_exercise()
                     rules = _rules_for(exercise, forbid or {})
@@ -140,8 +145,15 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                 lane(sandboxes[0])
             else:
                 with ThreadPoolExecutor(len(sandboxes), thread_name_prefix="lane") as pool:
-                    for finished in [pool.submit(lane, sandbox) for sandbox in sandboxes]:
-                        finished.result()
+                    lanes_running = [pool.submit(lane, sandbox) for sandbox in sandboxes]
+                    try:
+                        for finished in lanes_running:
+                            finished.result()
+                    except BaseException:  # Ctrl-C included: the other lanes stop too, at once
+                        stopping.set()
+                        for sandbox in sandboxes:
+                            sandbox.close()
+                        raise
             painter.finish()
         result.exercises = [graded[exercise.id] for exercise in exercises]
         result.student_seconds = round(sum(sandbox.student_seconds for sandbox in sandboxes), 6)

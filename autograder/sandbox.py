@@ -470,6 +470,8 @@ class Sandbox:
     # ------------------------------------------------------------ plumbing
     def _restart(self) -> CallOutcome | None:
         """Start the worker; a restart is billed its start-up time and capped."""
+        if self._closed:
+            return CallOutcome(ok=False, kind="grader_error", message="the sandbox was closed")
         restart = self._started
         self._restart_refused = restart and self.restarts >= self.limits.max_restarts
         if self._restart_refused:

@@ -6,6 +6,8 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
+import pytest
+
 from autograder.cli import lanes_for
 from autograder.registry import select
 from autograder.results import without_timings
@@ -63,3 +65,28 @@ def test_grade_py_grades_with_a_lane_per_core_and_selected_lab(monkeypatch):
     assert (lanes_for([]), lanes_for(["lab07", "lab08.ex1", "lab11"])) == (4, 3)
     monkeypatch.setattr("autograder.cli.usable_cores", lambda: 1)
     assert lanes_for([]) == 1
+
+
+def test_a_lane_that_fails_stops_the_others_at_once(tmp_path, monkeypatch):
+    import time
+
+    from autograder import runner
+
+    submission = tmp_path / "slow"
+    shutil.copytree(ROOT / "reference_solutions", submission)
+    with open(submission / "lab09_camera.py", "a") as source:  # every call of lab 9 takes a second
+        source.write("\nimport time as _time\n_project = pinhole_project\n"
+                     "def pinhole_project(points, f):\n    _time.sleep(1.0)\n    return _project(points, f)\n")
+    grade_exercise = runner._grade_exercise
+
+    def broken_for_lab07(sandbox, exercise, *args, **kwargs):
+        if exercise.lab.key == "lab07":
+            time.sleep(0.5)  # lab 9's lane is well into its slow calls by now
+            raise RuntimeError("a bug in the grader")
+        return grade_exercise(sandbox, exercise, *args, **kwargs)
+
+    monkeypatch.setattr(runner, "_grade_exercise", broken_for_lab07)
+    started = time.perf_counter()
+    with pytest.raises(RuntimeError, match="a bug in the grader"):
+        grade(submission, ["lab07.ex1", "lab09.ex1"], pictures="none", lanes=2)
+    assert time.perf_counter() - started < 6  # lab 9's checks alone would take well over 10 s
