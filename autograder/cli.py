@@ -8,9 +8,9 @@ option value, a report that cannot be written). Errors go to stderr.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import sys
-import threading
 from pathlib import Path
 
 # The grader's matrices are small: one BLAS thread is as fast, NumPy starts a tenth of a
@@ -137,7 +137,7 @@ NO_SUBMISSION = ("autograder grade needs the submission to grade: a folder, .py,
 
 def run_grade(args) -> int:
     limits = Limits(call_timeout=args.timeout) if args.timeout else None
-    workers = _start_worker_early(limits) if args.submission is not None else None  # first: it boots meanwhile
+    early = _early_sandbox(limits) if args.submission is not None else None  # first: it boots meanwhile
 
     from rich.console import Console
     from rich.markup import escape
@@ -149,34 +149,29 @@ def run_grade(args) -> int:
     from .runner import grade
 
     console, errors = Console(stderr=False), Console(stderr=True)
-    if workers is None:
+    if args.submission is None:
         errors.print(NO_SUBMISSION, markup=False, highlight=False)
         return USAGE_ERROR
-    try:
+    with contextlib.ExitStack() as closing:
+        if early is not None:
+            closing.enter_context(early)
         several = _several_students(args.submission)
-    except BaseException:
-        workers.close()
-        raise
-    if not several and not args.no_html:
-        _prepare_page()  # while the worker boots
-    sandboxes = workers.sandboxes()
-    if several:
-        workers.close()
-        console.print(f"[red]error:[/red] {escape(several)}")
-        return USAGE_ERROR
-    try:
-        with _progress(errors) as advance:
-            # Pictures cost time to encode: make them only for a page (or a JSON file asking for them).
-            pictures = "all" if (args.json_pictures or not args.no_html) else "none"
-            forbid = CourseConfig.load(args.config).forbid if args.config else None
-            result = grade(args.submission, args.select, limits=limits, pictures=pictures,
-                           include_hidden=not args.public_only, on_check=advance, forbid=forbid,
-                           lanes=lanes_for(args.select), sandboxes=sandboxes)
-    except (SelectionError, SubmissionError, CourseConfigError) as exc:
-        errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
-        return USAGE_ERROR
-    finally:
-        workers.close()
+        if several:
+            console.print(f"[red]error:[/red] {escape(several)}")
+            return USAGE_ERROR
+        if not args.no_html:
+            _prepare_page()  # while the worker boots
+        try:
+            with _progress(errors) as advance:
+                # Pictures cost time to encode: make them only for a page (or a JSON file asking for them).
+                pictures = "all" if (args.json_pictures or not args.no_html) else "none"
+                forbid = CourseConfig.load(args.config).forbid if args.config else None
+                result = grade(args.submission, args.select, limits=limits, pictures=pictures,
+                               include_hidden=not args.public_only, on_check=advance, forbid=forbid,
+                               lanes=lanes_for(args.select), sandboxes=[early] if early else [])
+        except (SelectionError, SubmissionError, CourseConfigError) as exc:
+            errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
+            return USAGE_ERROR
     html_path = None if args.no_html else _report_path(args.html, "feedback.html")
     replaced_full_page = bool(args.select) and html_path is not None and html_path.is_file()
     terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first
@@ -234,60 +229,23 @@ def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
     return {o.exercise_id: o.path.read_bytes() for o in outcomes if o.path is not None}
 
 
-class _start_worker_early:
-    """While the lab suites load: start the first lane's worker (it imports NumPy and
-    OpenCV) at the strongest confinement level the platform offers. A worker that gets
-    ready there shows that the level works (what :func:`confine.detect` would probe
-    with a process of its own); else the probe says which level does, and the worker
-    is started there. :meth:`sandboxes` waits for that and gives the sandbox (without a
-    submission yet), or none if it could not be made: grading then makes its own and
-    reports why. Other lanes' workers are started by grading, once it knows which labs
-    have work to do (a skeleton's labs have none)."""
+def _early_sandbox(limits):
+    """A sandbox without a submission yet, its worker spawned (it imports NumPy and OpenCV
+    while the grader loads) at the strongest confinement level the platform offers, or
+    None if it could not be made: grading then makes its own and reports why. Grading
+    checks that the level works (the worker gets ready) before relying on it."""
+    from .sandbox import Sandbox
 
-    def __init__(self, limits):
-        self._sandboxes = []
-        # Spawned here, before the grader's own imports compete for the interpreter; its
-        # readiness is awaited on a thread while they run.
-        early = self._started(limits, confine.strongest_candidate())
-        self._thread = threading.Thread(target=self._start, args=(limits, early), name="worker start",
-                                        daemon=True)
-        self._thread.start()
-
-    def _start(self, limits, early):
-        if early is not None and early.ready():
-            self._sandboxes = [early]
-            return
-        if early is not None:
-            early.close()  # nothing of the submission ever reached it
-        try:
-            level = confine.detect()
-        except Exception:  # noqa: BLE001 - the runner tries again and reports it
-            return
-        started = self._started(limits, level)
-        self._sandboxes = [started] if started is not None else []
-
-    @staticmethod
-    def _started(limits, confinement):
-        from .sandbox import Sandbox
-
-        try:
-            sandbox = Sandbox(None, limits, confinement=confinement)
-        except Exception:  # noqa: BLE001
-            return None
-        try:
-            sandbox.start()
-        except Exception:  # noqa: BLE001
-            sandbox.close()
-            return None
-        return sandbox
-
-    def sandboxes(self) -> list:
-        self._thread.join()
-        return self._sandboxes
-
-    def close(self):
-        for sandbox in self.sandboxes():
-            sandbox.close()
+    try:
+        sandbox = Sandbox(None, limits, confinement=confine.strongest_candidate())
+    except Exception:  # noqa: BLE001
+        return None
+    try:
+        sandbox.start()
+    except Exception:  # noqa: BLE001
+        sandbox.close()
+        return None
+    return sandbox
 
 
 def lanes_for(selectors) -> int:

@@ -110,10 +110,10 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         labs = _labs_heaviest_first(exercises)
         for sandbox in sandboxes:
             sandbox.admit(submission.path)
-        if not sandboxes:
-            sandboxes.append(closing.enter_context(_first_sandbox(submission.path, limits)))
         # A lab of stubs only costs next to nothing: it needs no lane of its own.
         with_work = [lab for lab in labs if not all(_stubs(exercise, submission) for exercise in lab)]
+        if not sandboxes or not sandboxes[0].ready():  # none given, or its level does not work here
+            sandboxes[:1] = [closing.enter_context(_first_sandbox(submission.path, limits, sandboxes[:1]))]
         while len(sandboxes) < min(max(1, lanes), len(with_work)):
             sandboxes.append(closing.enter_context(
                 Sandbox(submission.path, limits, confinement=sandboxes[0].confinement)))
@@ -163,14 +163,18 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
     return result
 
 
-def _first_sandbox(submission_dir, limits) -> Sandbox:
+def _first_sandbox(submission_dir, limits, tried=()) -> Sandbox:
     """A sandbox at the strongest confinement level that works here: a worker that gets
     ready at the strongest level shows that it works (what :func:`confine.detect` would
-    probe with a process of its own, once per process); else the level the probe finds."""
-    sandbox = Sandbox(submission_dir, limits, confinement=confine.strongest_candidate())
-    if sandbox.ready():
-        return sandbox
-    sandbox.close()
+    probe with a process of its own, once per process); else the level the probe finds.
+    ``tried``: a sandbox whose worker did not get ready (closed here)."""
+    for failed in tried:
+        failed.close()
+    if not tried:
+        sandbox = Sandbox(submission_dir, limits, confinement=confine.strongest_candidate())
+        if sandbox.ready():
+            return sandbox
+        sandbox.close()
     return Sandbox(submission_dir, limits)
 
 
