@@ -229,9 +229,13 @@ def interpreter_layout() -> tuple[tuple, tuple[tuple[str, tuple[str, ...]], ...]
              "sys.base_exec_prefix, sys.executable, sys.path]))")
     with subprocess.Popen([sys.executable, "-I", "-c", probe], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
                           stdin=subprocess.DEVNULL, text=True) as asked:
-        # Meanwhile, the entries of the site folders this interpreter has (almost always the probe's).
-        guessed = {site: allowed_entries(Path(site)) for site in _site_folders(sys.path)}
-        out, _ = asked.communicate(timeout=60)
+        try:
+            # Meanwhile, the entries of the site folders this interpreter has (almost always the probe's).
+            guessed = {site: allowed_entries(Path(site)) for site in _site_folders(sys.path)}
+            out, _ = asked.communicate(timeout=60)
+        except BaseException:
+            asked.kill()  # never left behind (a timeout included)
+            raise
     if asked.returncode:
         raise subprocess.CalledProcessError(asked.returncode, asked.args)
     prefix, base_prefix, exec_prefix, base_exec_prefix, executable, path = json.loads(out)
@@ -322,21 +326,27 @@ def _requirements(folder: Path) -> list[str]:
     try:
         headers = metadata.read_text(errors="replace").split("\n\n", 1)[0]
     except OSError:
-        return []
+        headers = ""
     names = []
     for line in headers.splitlines():
         if line.lower().startswith("requires-dist:") and "extra ==" not in line:
             match = re.match(r"\s*([A-Za-z0-9][A-Za-z0-9._-]*)", line.split(":", 1)[1])
             if match:
                 names.append(match.group(1))
-    if folder.suffix == ".egg-info":  # setuptools' older format
+    if folder.suffix == ".egg-info":  # setuptools' older format: requires.txt, in [sections]
         try:
-            names += [line.split(";")[0].strip() for line in (folder / "requires.txt").read_text().split("\n[")[0]
-                      .splitlines() if line.strip()]
+            lines = (folder / "requires.txt").read_text(errors="replace").splitlines()
         except OSError:
-            pass
-        names = [re.match(r"[A-Za-z0-9._-]*", n).group(0) for n in names]
-    return [n for n in names if n]
+            lines = []
+        for_an_extra = False
+        for line in lines:
+            if line.startswith("["):  # "[extra]", "[extra:marker]": an extra's; "[:marker]": everyone's
+                for_an_extra = not line.startswith("[:")
+                continue
+            match = re.match(r"\s*([A-Za-z0-9][A-Za-z0-9._-]*)", line)
+            if match and not for_an_extra:
+                names.append(match.group(1))
+    return names
 
 
 def _top_level_entries(folder: Path) -> set[str]:
