@@ -84,14 +84,12 @@ class PictureSheet:
         self.entries: dict[str, dict] = {}
 
     def _entry(self, item: dict) -> dict:
-        if "data" in item:  # encoded when the check drew it (pictures.picture_item)
-            (width, height), key = item["encoded_size"], item["data"]
-            encoded = lambda: (item["mime"], item["data"], width, height)  # noqa: E731
-        else:  # a results file written before pictures were encoded once: base64 PNG
-            key = item["png"]
-            encoded = lambda: pictures.compact_encoding(key)  # noqa: E731
+        key = item.get("data") or item["png"]
         if key not in self.entries:
-            mime, data, width, height = encoded()
+            if "data" in item:  # encoded when the check drew it (pictures.picture_item)
+                mime, data, (width, height) = item["mime"], item["data"], item["encoded_size"]
+            else:  # results written before pictures were encoded once: a base64 PNG
+                mime, data, width, height = pictures.compact_encoding(item["png"])
             self.entries[key] = {"id": f"{self.prefix}{len(self.entries)}", "mime": mime, "data": data,
                                  "width": width, "height": height}
         return self.entries[key]
