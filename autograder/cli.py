@@ -136,11 +136,12 @@ NO_SUBMISSION = ("autograder grade needs the submission to grade: a folder, .py,
 
 
 def run_grade(args) -> int:
-    limits = Limits(call_timeout=args.timeout) if args.timeout else None
-    early = _early_sandbox(limits) if args.submission is not None else None  # first: it boots meanwhile
+    limits = Limits(call_timeout=args.timeout) if args.timeout else Limits()
+    lanes = lanes_for(args.select)
+    # First: the worker boots meanwhile.
+    early = _early_sandbox(limits.shared_by(lanes)) if args.submission is not None else None
 
     from rich.console import Console
-    from rich.markup import escape
 
     from .course import CourseConfig, CourseConfigError
     from .registry import SelectionError
@@ -168,7 +169,7 @@ def run_grade(args) -> int:
                 forbid = CourseConfig.load(args.config).forbid if args.config else None
                 result = grade(args.submission, args.select, limits=limits, pictures=pictures,
                                include_hidden=not args.public_only, on_check=advance, forbid=forbid,
-                               lanes=lanes_for(args.select), sandboxes=[early] if early else [])
+                               lanes=lanes, sandboxes=[early] if early else [])
         except (SelectionError, SubmissionError, CourseConfigError) as exc:
             errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
             return USAGE_ERROR
@@ -299,7 +300,6 @@ class _progress:
 
 def run_batch(args) -> int:
     from rich.console import Console
-    from rich.markup import escape
     from rich.text import Text
 
     from .batch.cluster import DaskUnavailable

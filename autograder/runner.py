@@ -80,8 +80,9 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
     sandboxes : sequence of Sandbox, optional
         Sandboxes made without a submission, perhaps already started
         (:meth:`Sandbox.start`, so the workers boot while the caller loads), one per
-        lane (lanes without one get their own): the submission is admitted into
-        each, and all are closed at the end, whatever happens.
+        lane (lanes without one get their own), with ``limits.shared_by(lanes)``
+        (the lanes' workers share the submission's memory): the submission is
+        admitted into each, and all are closed at the end, whatever happens.
 
     Raises
     ------
@@ -112,13 +113,14 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
             sandbox.admit(submission.path)
         # A lab of stubs only costs next to nothing: it needs no lane of its own.
         with_work = [lab for lab in labs if not all(_stubs(exercise, submission) for exercise in lab)]
+        lane_limits = (limits or Limits()).shared_by(max(1, lanes))
         if not sandboxes or not sandboxes[0].ready():  # none given, or its level does not work here
-            sandboxes[:1] = [closing.enter_context(_first_sandbox(submission.path, limits, sandboxes[:1]))]
+            sandboxes[:1] = [closing.enter_context(_first_sandbox(submission.path, lane_limits, sandboxes[:1]))]
         while len(sandboxes) < min(max(1, lanes), len(with_work)):
             sandboxes.append(closing.enter_context(
-                Sandbox(submission.path, limits, confinement=sandboxes[0].confinement)))
+                Sandbox(submission.path, lane_limits, confinement=sandboxes[0].confinement)))
             sandboxes[-1].start()  # it boots while the first lane grades
-        sandboxes = sandboxes[:max(1, len(labs))]
+        sandboxes = sandboxes[:max(1, min(lanes, len(labs)))]
         graded: dict[str, ExerciseResult] = {}
 
         stopping = threading.Event()  # set when grading ends early (an interrupt, a grader bug)
@@ -152,7 +154,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                     except BaseException:  # Ctrl-C included: the other lanes stop too, at once
                         stopping.set()
                         for sandbox in sandboxes:
-                            sandbox.close()
+                            sandbox.interrupt()
                         raise
             painter.finish()
         result.exercises = [graded[exercise.id] for exercise in exercises]
@@ -401,7 +403,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         _log_grader_error(check, exc)
     artifacts = []
     if pictures == "all" or (pictures == "failed" and status != PASSED):
-        artifacts = (painter or Painter.at_once).draw(check, trial.artifacts)
+        artifacts = painter.draw(check, trial.artifacts) if painter else drawn(check, trial.artifacts)
     fraction = verdict.fraction if isinstance(verdict.fraction, (int, float)) else 0.0
     fraction = min(max(float(fraction), 0.0), 1.0) if fraction == fraction else 0.0
     _collect(modified, trial)
@@ -421,44 +423,37 @@ class Painter:
     cannot be drawn is left out (and logged)."""
 
     def __init__(self, threads: int | None = None):
-        from concurrent.futures import ThreadPoolExecutor
-
-        if threads is None:
-            threads = max(1, min(2, os.cpu_count() or 1))
-        self._pool = ThreadPoolExecutor(threads, thread_name_prefix="pictures") if threads else None
+        threads = threads or max(1, min(2, os.cpu_count() or 1))
+        self._pool = ThreadPoolExecutor(threads, thread_name_prefix="pictures")
         self._pending: list = []
 
     def draw(self, check: Check, make: Callable[[], list]) -> list:
         """A list that :meth:`finish` fills with ``make()``'s artifacts."""
         artifacts: list = []
-        if self._pool is None:
-            self._fill(check, artifacts, make)
-        else:
-            self._pending.append((check, artifacts, self._pool.submit(make)))
+        self._pending.append((check, artifacts, self._pool.submit(make)))
         return artifacts
 
     def finish(self) -> None:
         """Wait for every picture asked for so far."""
         pending, self._pending = self._pending, []
         for check, artifacts, future in pending:
-            self._fill(check, artifacts, future.result)
-
-    @staticmethod
-    def _fill(check, artifacts, make):
-        try:
-            artifacts.extend(make())
-        except Exception as exc:  # noqa: BLE001 - a picture never costs the check its verdict
-            _log_grader_error(check, exc)
+            artifacts.extend(drawn(check, future.result))
 
     def __enter__(self):
         return self
 
     def __exit__(self, *exc_info):
-        if self._pool is not None:
-            self._pool.shutdown(cancel_futures=True)
+        self._pool.shutdown(cancel_futures=True)
 
 
-Painter.at_once = Painter(threads=0)  # draws in the caller's thread (a check run on its own)
+def drawn(check: Check, make: Callable[[], list]) -> list:
+    """``make()``'s artifacts, or none if they cannot be drawn (logged): a picture never
+    costs a check its verdict."""
+    try:
+        return list(make())
+    except Exception as exc:  # noqa: BLE001
+        _log_grader_error(check, exc)
+        return []
 
 
 def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None) -> CheckResult:

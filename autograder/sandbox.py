@@ -31,7 +31,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Callable
 
@@ -69,6 +69,12 @@ class Limits:
     exercise_budget: float = 60.0        # student seconds per exercise (calls, timeouts, restarts)
     submission_budget: float = 480.0     # student seconds per submission (under a Gradescope timeout of 10 min)
     max_restarts: int = 12               # worker restarts per exercise (each billed its start-up)
+
+    def shared_by(self, lanes: int) -> "Limits":
+        """These limits for each of ``lanes`` workers grading one submission side by side
+        (:func:`autograder.runner.grade`): the memory of all its processes together stays
+        within :attr:`memory`."""
+        return replace(self, memory=self.memory // lanes) if lanes > 1 else self
 
     def worker_json(self, processes: int | None) -> str:
         return json.dumps({
@@ -186,6 +192,7 @@ class Sandbox:
         self.proc: subprocess.Popen | None = None
         self._ready = False     # the worker said it is ready
         self._closed = False
+        self._interrupted = False  # see interrupt(): no worker is started again
         self._request_fd = self._response_fd = -1
         self._imported: set[str] = set()
         self._import_failures: dict[str, CallOutcome] = {}
@@ -251,14 +258,28 @@ class Sandbox:
         WorkerStartError
             If the process cannot be started at all.
         """
-        if self.proc is None and not self._closed:
+        if self.proc is None and not (self._closed or self._interrupted):
             self._spawn_worker()
+
+    def interrupt(self) -> None:
+        """Abandon this sandbox from another thread: its worker's processes are killed and
+        no worker is started again. The thread using it sees its call fail and releases
+        what it holds itself (its pipes are never closed under it), then :meth:`close`."""
+        self._interrupted = True
+        proc = self.proc
+        if proc is not None:
+            try:
+                os.killpg(proc.pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+        if self.cgroup is not None:
+            self.cgroup.kill()
 
     def ready(self) -> bool:
         """Start the worker if it is not running and wait until it is ready (it has
         imported NumPy and OpenCV at this confinement level); False if it could not
         start (it is stopped then, and the reason logged)."""
-        if self._closed:
+        if self._closed or self._interrupted:
             return False
         if self.proc is not None and self._ready:
             return True
@@ -470,8 +491,8 @@ class Sandbox:
     # ------------------------------------------------------------ plumbing
     def _restart(self) -> CallOutcome | None:
         """Start the worker; a restart is billed its start-up time and capped."""
-        if self._closed:
-            return CallOutcome(ok=False, kind="grader_error", message="the sandbox was closed")
+        if self._closed or self._interrupted:
+            return CallOutcome(ok=False, kind="grader_error", message="grading was stopped")
         restart = self._started
         self._restart_refused = restart and self.restarts >= self.limits.max_restarts
         if self._restart_refused:

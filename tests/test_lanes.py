@@ -90,3 +90,19 @@ def test_a_lane_that_fails_stops_the_others_at_once(tmp_path, monkeypatch):
     with pytest.raises(RuntimeError, match="a bug in the grader"):
         grade(submission, ["lab07.ex1", "lab09.ex1"], pictures="none", lanes=2)
     assert time.perf_counter() - started < 6  # lab 9's checks alone would take well over 10 s
+
+
+def test_the_lanes_workers_share_the_submissions_memory(tmp_path, monkeypatch):
+    from autograder import runner
+
+    made = []
+
+    class Recorded(runner.Sandbox):
+        def __init__(self, submission_dir, limits=None, **options):
+            made.append(limits)
+            super().__init__(submission_dir, limits, **options)
+
+    monkeypatch.setattr(runner, "Sandbox", Recorded)
+    grade(ROOT / "reference_solutions", SELECT, pictures="none", lanes=3)
+    assert len(made) == 3 and {limits.memory for limits in made} == {Limits().memory // 3}
+    assert Limits().shared_by(1) == Limits()
