@@ -441,6 +441,16 @@ def worker_user() -> tuple[int, int]:
 
 
 # ------------------------------------------------------------------ one budget for all processes
+def _pauses(seconds: float, first: float = 0.0005, longest: float = 0.01):
+    """Pauses between polls of something the kernel finishes in a moment (killed processes
+    leaving a cgroup): short at first, doubling up to ``longest``, ``seconds`` in all."""
+    pause, waited = first, 0.0
+    while waited < seconds:
+        yield pause
+        waited += pause
+        pause = min(2 * pause, longest)
+
+
 class Cgroup:
     """A cgroup bounding the memory and the number of processes of a worker and all its children.
 
@@ -548,7 +558,7 @@ class Cgroup:
                     (folder / "cgroup.kill").write_text("1")
                 except OSError:
                     pass
-        for _ in range(100):
+        for pause in _pauses(seconds=1.0):
             pids = self.processes()
             if not pids:
                 return
@@ -557,19 +567,19 @@ class Cgroup:
                     os.kill(pid, signal.SIGKILL)
                 except ProcessLookupError:
                     pass
-            time.sleep(0.01)
+            time.sleep(pause)
 
     def remove(self) -> None:
         self.kill()
         for folder in self.folders:
-            for _ in range(50):
+            for pause in _pauses(seconds=1.0):
                 try:
                     folder.rmdir()
                     break
                 except FileNotFoundError:
                     break
                 except OSError:
-                    time.sleep(0.02)  # the last processes are still exiting
+                    time.sleep(pause)  # the last processes are still exiting
 
     def oom_kills(self) -> int:
         """How many processes of this cgroup the kernel killed for going over its memory."""

@@ -475,6 +475,12 @@ def test_canvas_download_groups_files_strips_prefixes_and_undoes_renaming(tmp_pa
     assert grades["leeann-3456"]["Total"] == "10"
     assert page.count("Instructor adjustments") == (out / "leeann-3456" / "feedback.html").read_text().count(
         "Instructor adjustments") == 1
+    # a page lost since is written again from the gradebook, adjustments and all (its pictures are gone)
+    assert "data:image/" in page
+    (out / "leeann-3456" / "feedback.html").unlink()
+    assert run_batch(download, out, course=course, workers=2, roster=roster).graded == 0
+    page = (out / "leeann-3456" / "feedback.html").read_text()
+    assert "regraded by hand" in page and "lab07.ex1" in page and "data:image/" not in page
 
 
 def test_moodle_download_zipped_with_file_and_online_text_folders(tmp_path):

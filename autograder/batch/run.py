@@ -118,7 +118,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
             key = keys[entry.student_id]
             if "result" in outcome:
                 try:
-                    _write_student(out, entry, outcome["result"])   # files first, then the commit
+                    _write_student(out, entry, outcome["result"], outcome["page"])   # files first, then the commit
                     book.record(key, entry.student_id, entry.content_hash, selection, outcome["result"], lock=lock)
                     summary.graded += 1
                 except (OSError, ValueError, TypeError, KeyError) as exc:
@@ -199,10 +199,10 @@ def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None
                     finished(entry, outcome)
 
 
-def _write_student(out: Path, entry: Entry, result: dict) -> None:
+def _write_student(out: Path, entry: Entry, result: dict, page: str) -> None:
     """The student's page, results and the sources graded (``sources/``, for the similarity report)."""
     folder = out / entry.student_id
-    html.write(GradingResult.from_dict(result), folder / "feedback.html")
+    write_atomically(folder / "feedback.html", page)
     write_atomically(folder / "results.json", json.dumps(strip_pictures(result), indent=1, allow_nan=False) + "\n")
     sources = folder / "sources"
     shutil.rmtree(sources, ignore_errors=True)
@@ -227,9 +227,10 @@ def _refresh_page(out: Path, grade, possible: float) -> None:
     """Show the current adjustments on the student's page (re-rendered, without pictures, if lost)."""
     folder = out / grade.student["student_id"]
     page_path = folder / "feedback.html"
-    if not page_path.exists():
-        _write_student(out, grade.student["student_id"], grade.student["result"])
-    page = page_path.read_text(encoding="utf-8")
+    if page_path.exists():
+        page = page_path.read_text(encoding="utf-8")
+    else:
+        page = html.render(GradingResult.from_dict(grade.student["result"]))
     updated = exports.with_adjustments(page, exports.adjustments_html(grade, possible))
     if updated != page:
         write_atomically(page_path, updated)

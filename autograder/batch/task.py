@@ -17,7 +17,11 @@ from pathlib import Path
 
 def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: float,
                 pictures: str, name: str) -> dict:
-    """``{"result": <results-model dict>}`` or ``{"error": <reason>}``.
+    """``{"result": <results-model dict, without pictures>, "page": <feedback page>}``
+    or ``{"error": <reason>}``.
+
+    The page is rendered here, where the pictures are: only text travels back, and
+    the process that collects the class (one for any number of workers) just writes it.
 
     Parameters
     ----------
@@ -32,6 +36,8 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
     name : str
         The submission's name in the results (the student id).
     """
+    from ..reports import html
+    from ..results import strip_pictures
     from ..runner import grade
     from ..sandbox import Limits
 
@@ -48,7 +54,7 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
                 target.write_bytes(data)
             folder.mkdir(exist_ok=True)
             result = grade(folder, selectors, limits=Limits(call_timeout=call_timeout), pictures=pictures)
-            return {"result": result.to_dict()}
+            return {"result": strip_pictures(result.to_dict()), "page": html.render(result)}
     except Exception as exc:  # noqa: BLE001 - one submission never stops the batch
         return {"error": f"the grader could not finish: {type(exc).__name__}: {exc}",
                 "traceback": traceback.format_exc()[-4000:]}
