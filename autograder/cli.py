@@ -20,7 +20,7 @@ from pathlib import Path
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from . import __version__, confine  # noqa: E402
-from .sandbox import Limits  # noqa: E402
+from .sandbox import Limits, usable_cores  # noqa: E402
 from .submission import SubmissionError  # noqa: E402
 
 USAGE_ERROR = 2
@@ -257,14 +257,6 @@ def lanes_for(selectors) -> int:
     if selectors:
         lanes = min(lanes, len({selector.split(".", 1)[0] for selector in selectors}))
     return max(1, lanes)
-
-
-def usable_cores() -> int:
-    """The cores this process may run on (its CPU affinity where the platform says)."""
-    try:
-        return len(os.sched_getaffinity(0)) or 1
-    except (AttributeError, OSError):
-        return os.cpu_count() or 1
 
 
 def _several_students(path) -> str | None:

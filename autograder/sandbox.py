@@ -69,12 +69,15 @@ class Limits:
     exercise_budget: float = 60.0        # student seconds per exercise (calls, timeouts, restarts)
     submission_budget: float = 480.0     # student seconds per submission (under a Gradescope timeout of 10 min)
     max_restarts: int = 12               # worker restarts per exercise (each billed its start-up)
+    threads: int | None = None           # OpenCV's threads in the worker (None: OpenCV's own, one per core)
 
     def shared_by(self, lanes: int) -> "Limits":
         """These limits for each of ``lanes`` workers grading one submission side by side
         (:func:`autograder.runner.grade`): the memory of all its processes together stays
-        within :attr:`memory`."""
-        return replace(self, memory=self.memory // lanes) if lanes > 1 else self
+        within :attr:`memory`, and the workers share the cores out."""
+        if lanes <= 1:
+            return self
+        return replace(self, memory=self.memory // lanes, threads=cores_each(lanes))
 
     def worker_json(self, processes: int | None) -> str:
         return json.dumps({
@@ -82,7 +85,22 @@ class Limits:
             "file_size": self.file_size,
             "cpu_total": self.cpu_total,
             "processes": processes,
+            "threads": self.threads,
         })
+
+
+def usable_cores() -> int:
+    """The cores this process may run on (its CPU affinity where the platform says)."""
+    try:
+        return len(os.sched_getaffinity(0)) or 1
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
+
+
+def cores_each(workers: int) -> int:
+    """Threads each of ``workers`` processes running side by side may use: more than
+    one per core would only make them take turns (and evict each other's caches)."""
+    return max(1, usable_cores() // max(1, workers))
 
 
 PIPE_BYTES = 1 << 20  # pipe capacity asked for: an image crosses in a few writes, not hundreds

@@ -25,7 +25,7 @@ import json
 import os
 import shutil
 from contextlib import contextmanager
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, ThreadPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from multiprocessing import get_context
@@ -37,6 +37,7 @@ from ..course import CourseConfig
 from ..registry import discover, select
 from ..reports import html
 from ..results import GradingResult, strip_pictures, write_atomically
+from ..sandbox import cores_each
 from . import exports
 from .gradebook import Gradebook, lock_hash, submission_key
 from .ingest import Entry, IngestError, read_class
@@ -50,9 +51,8 @@ class Unconfined(IngestError):
     """Grading a class here would let each submission read the others' work."""
 
 
-def _refuse_unconfined() -> None:
-    level = confine.detect().level
-    if level == "process-group":
+def _refuse_unconfined(confinement: confine.Confinement) -> None:
+    if confinement.level == "process-group":
         raise Unconfined(
             "this machine cannot confine student code (confinement level 'process-group': no Linux "
             "namespaces), so each submission could read the other students' work and your files, and "
@@ -92,14 +92,16 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     out = Path(out)
     if Path(submissions).is_dir() and Path(submissions).resolve() in out.resolve().parents:
         raise IngestError(f"--out {out} is inside {submissions}: it would be read as a student next time")
-    if dask_scheduler is None and not allow_unconfined:
-        _refuse_unconfined()
+    # Probing the confinement starts a process of its own: it runs while the class is read.
+    probing = _in_background(confine.detect) if dask_scheduler is None and not allow_unconfined else None
     exercises = select(course.select)
     selection = ",".join(e.id for e in exercises)
     modules = sorted({e.lab.module for e in exercises})
     overrides_rows = exports.read_overrides(overrides) if overrides else None
     roster_rows = exports.read_roster(roster) if roster else []
     entries = read_class(submissions, modules, [lab.module for lab in discover().values()])
+    if probing is not None:
+        _refuse_unconfined(probing.result())
 
     # Grading: only what the gradebook lacks, each grading committed as it lands.
     lock = lock_hash()
@@ -159,6 +161,15 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     return summary
 
 
+def _in_background(function) -> Future:
+    """``function()`` running on a thread of its own."""
+    thread = ThreadPoolExecutor(max_workers=1)
+    try:
+        return thread.submit(function)
+    finally:
+        thread.shutdown(wait=False)
+
+
 @contextmanager
 def _only_writer(out: Path):
     """One batch at a time writes RESULTS (the lock goes with the process, however it ends)."""
@@ -174,13 +185,16 @@ def _only_writer(out: Path):
 
 
 def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None:
-    """A process pool; a pool broken by a dying grader is replaced and its work retried."""
+    """A process pool, the cores shared out among its processes; a pool broken by a dying
+    grader is replaced and its work retried."""
     attempts = {e.student_id: 0 for e in todo}
     pending = list(todo)
     while pending:
+        workers = min(workers, len(pending))
+        threads = cores_each(workers)
         # spawn: the children start clean, with no copy of the gradebook's connection.
-        with ProcessPoolExecutor(max_workers=min(workers, len(pending)), mp_context=get_context("spawn")) as pool:
-            futures = {pool.submit(grade_files, e.files, *arguments, e.student_id): e for e in pending}
+        with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
+            futures = {pool.submit(grade_files, e.files, *arguments, e.student_id, threads): e for e in pending}
             pending = []
             while futures:
                 done, _ = wait(futures, return_when=FIRST_COMPLETED)

@@ -16,7 +16,7 @@ from pathlib import Path
 
 
 def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: float,
-                pictures: str, name: str) -> dict:
+                pictures: str, name: str, threads: int | None = None) -> dict:
     """``{"result": <results-model dict, without pictures>, "page": <feedback page>}``
     or ``{"error": <reason>}``.
 
@@ -35,6 +35,9 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
         Which checks keep their pictures.
     name : str
         The submission's name in the results (the student id).
+    threads : int, optional
+        OpenCV's threads in this process and in the submission's worker, where
+        several gradings share the machine's cores (None: OpenCV's default).
     """
     from ..reports import html
     from ..results import strip_pictures
@@ -53,7 +56,12 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
                 target.parent.mkdir(parents=True, exist_ok=True)
                 target.write_bytes(data)
             folder.mkdir(exist_ok=True)
-            result = grade(folder, selectors, limits=Limits(call_timeout=call_timeout), pictures=pictures)
+            if threads:
+                import cv2
+
+                cv2.setNumThreads(threads)
+            result = grade(folder, selectors, limits=Limits(call_timeout=call_timeout, threads=threads),
+                           pictures=pictures)
             return {"result": strip_pictures(result.to_dict()), "page": html.render(result)}
     except Exception as exc:  # noqa: BLE001 - one submission never stops the batch
         return {"error": f"the grader could not finish: {type(exc).__name__}: {exc}",
