@@ -28,7 +28,8 @@ from contextlib import contextmanager
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, ThreadPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
-from multiprocessing import get_context
+from functools import lru_cache
+from multiprocessing import forkserver, get_context
 from pathlib import Path, PurePosixPath
 from typing import Callable
 
@@ -92,8 +93,11 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     out = Path(out)
     if Path(submissions).is_dir() and Path(submissions).resolve() in out.resolve().parents:
         raise IngestError(f"--out {out} is inside {submissions}: it would be read as a student next time")
-    # Probing the confinement starts a process of its own: it runs while the class is read.
+    # Probing the confinement starts a process of its own: it runs while the class is read,
+    # and so does the process the local gradings will be forked from, importing the grader.
     probing = _in_background(confine.detect) if dask_scheduler is None and not allow_unconfined else None
+    if dask_scheduler is None:
+        _grading_processes()
     exercises = select(course.select)
     selection = ",".join(e.id for e in exercises)
     modules = sorted({e.lab.module for e in exercises})
@@ -161,6 +165,16 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     return summary
 
 
+@lru_cache(maxsize=1)
+def _grading_processes():
+    """Where local gradings run: processes forked from a server that has imported the grader
+    (and nothing else: no copy of the gradebook's connection, nothing of this process's)."""
+    context = get_context("forkserver")
+    context.set_forkserver_preload(["autograder.batch.task", "autograder.runner", "autograder.reports.html"])
+    forkserver.ensure_running()
+    return context
+
+
 def _in_background(function) -> Future:
     """``function()`` running on a thread of its own."""
     thread = ThreadPoolExecutor(max_workers=1)
@@ -192,8 +206,7 @@ def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None
     while pending:
         workers = min(workers, len(pending))
         threads = cores_each(workers)
-        # spawn: the children start clean, with no copy of the gradebook's connection.
-        with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
+        with ProcessPoolExecutor(max_workers=workers, mp_context=_grading_processes()) as pool:
             futures = {pool.submit(grade_files, e.files, *arguments, e.student_id, threads): e for e in pending}
             pending = []
             while futures:
