@@ -73,11 +73,13 @@ class Limits:
 
     def shared_by(self, lanes: int) -> "Limits":
         """These limits for each of ``lanes`` workers grading one submission side by side
-        (:func:`autograder.runner.grade`): the memory of all its processes together stays
-        within :attr:`memory`, and the workers share the cores out."""
+        (:func:`autograder.runner.grade`): the memory of all its processes together, and the
+        replies the grader may be holding at once, stay within :attr:`memory` and
+        :attr:`max_result_bytes`; the workers share the cores out."""
         if lanes <= 1:
             return self
-        return replace(self, memory=self.memory // lanes, threads=cores_each(lanes))
+        return replace(self, memory=self.memory // lanes, max_result_bytes=self.max_result_bytes // lanes,
+                       threads=cores_each(lanes))
 
     def worker_json(self, processes: int | None) -> str:
         return json.dumps({

@@ -92,7 +92,7 @@ def test_a_lane_that_fails_stops_the_others_at_once(tmp_path, monkeypatch):
     assert time.perf_counter() - started < 6  # lab 9's checks alone would take well over 10 s
 
 
-def test_the_lanes_workers_share_the_submissions_memory(tmp_path, monkeypatch):
+def test_the_lanes_workers_share_the_submissions_memory_and_the_cores(tmp_path, monkeypatch):
     from autograder import runner
 
     made = []
@@ -105,4 +105,8 @@ def test_the_lanes_workers_share_the_submissions_memory(tmp_path, monkeypatch):
     monkeypatch.setattr(runner, "Sandbox", Recorded)
     grade(ROOT / "reference_solutions", SELECT, pictures="none", lanes=3)
     assert len(made) == 3 and {limits.memory for limits in made} == {Limits().memory // 3}
+    # what the grader holds of the lanes' replies at once is what it would hold of one
+    assert {limits.max_result_bytes for limits in made} == {Limits().max_result_bytes // 3}
     assert Limits().shared_by(1) == Limits()
+    monkeypatch.setattr("autograder.sandbox.usable_cores", lambda: 4)
+    assert (Limits().shared_by(2).threads, Limits().shared_by(3).threads, Limits().shared_by(8).threads) == (2, 1, 1)

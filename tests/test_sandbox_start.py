@@ -47,3 +47,13 @@ def test_a_worker_made_ready_first_grades_the_submission_and_its_restarts_count(
         assert sandbox.restarts == 1  # billed and capped like any restart
         with pytest.raises(RuntimeError):
             sandbox.admit(ROOT / "assignments")
+
+
+def test_a_worker_uses_the_opencv_threads_it_is_given(tmp_path):
+    """Workers side by side (lanes, a batch's gradings) share the cores: one thread each here."""
+    from autograder.sandbox import Limits
+
+    (tmp_path / "threads_probe.py").write_text("import cv2\n\n\ndef threads():\n    return cv2.getNumThreads()\n")
+    with Sandbox(tmp_path, Limits(threads=1)) as sandbox:
+        outcome = sandbox.call("threads_probe", "threads")
+        assert outcome.ok and outcome.value == 1, outcome.message
