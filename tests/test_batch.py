@@ -596,3 +596,15 @@ def test_reports_and_pictures_beside_the_code_are_never_read_and_links_never_fol
     [entry] = read_class(tmp_path / "class", ["lab07_transformations"], ["lab07_transformations"])
     assert not entry.error
     assert set(entry.files) == {"lab07_transformations.py"}
+
+
+def test_each_batch_of_a_program_grades_in_its_own_environment(tmp_path, monkeypatch):
+    """A program running several batches: the gradings of each see the environment it runs
+    in (here, the store of ground truth they fill), not the one the first batch ran in."""
+    students = tmp_path / "class"
+    write(students / "alice" / f"{MODULE}.py", reference())
+    course = CourseConfig(select=["lab07.ex5"])   # ground truth: photos, kept in the store
+    run_batch(students, tmp_path / "first", course=course, workers=1)
+    monkeypatch.setenv("AUTOGRADER_CACHE_DIR", str(tmp_path / "store"))
+    run_batch(students, tmp_path / "second", course=course, workers=1)
+    assert any(path.is_file() for path in (tmp_path / "store").rglob("*"))

@@ -14,8 +14,10 @@ Layout of RESULTS::
     <student-id>/sources/     the files graded (read by ``autograder similarity RESULTS``)
 
 Gradings run in parallel, one sandboxed grading per submission: in a local
-process pool (``workers``), or on a Dask cluster (``dask_scheduler``). Each one
-is written to the student's folder first and then committed to the gradebook
+process pool (``workers``, forked from a server that imports the grader while
+the class is read, the cores shared out among them), or on a Dask cluster
+(``dask_scheduler``). The process that grades a submission renders its page; this
+one writes it to the student's folder and then commits the grading to the gradebook
 in one transaction, so a run killed at any moment resumes where it stopped.
 """
 
@@ -28,7 +30,6 @@ from contextlib import contextmanager
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, ThreadPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
-from functools import lru_cache
 from multiprocessing import forkserver, get_context
 from pathlib import Path, PurePosixPath
 from typing import Callable
@@ -165,14 +166,21 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     return summary
 
 
-@lru_cache(maxsize=1)
+_server_environment: dict | None = None   # the environment the fork server started with
+
+
 def _grading_processes():
     """Where local gradings run: processes forked from a server that has imported the grader
-    (and nothing else: no copy of the gradebook's connection, nothing of this process's)."""
-    context = get_context("forkserver")
-    context.set_forkserver_preload(["autograder.batch.task", "autograder.runner", "autograder.reports.html"])
-    forkserver.ensure_running()
-    return context
+    (and nothing else: no copy of the gradebook's connection, nothing of this process's).
+    The server keeps the environment it started with: where this process's has changed
+    since (a program running several batches), gradings are spawned afresh instead."""
+    global _server_environment
+    if _server_environment is None:
+        get_context("forkserver").set_forkserver_preload(
+            ["autograder.batch.task", "autograder.runner", "autograder.reports.html"])
+        forkserver.ensure_running()
+        _server_environment = dict(os.environ)
+    return get_context("forkserver" if dict(os.environ) == _server_environment else "spawn")
 
 
 def _in_background(function) -> Future:
