@@ -5,6 +5,8 @@ Everything here is pure NumPy/OpenCV on values already in the grader's process.
 
 from __future__ import annotations
 
+import functools
+
 import cv2
 import numpy as np
 
@@ -102,11 +104,19 @@ def blurred_difference(got, expected, valid, sigma: float = 1.0) -> float:
     """
     a = cv2.GaussianBlur(np.asarray(expected, np.float32), (0, 0), sigma)
     b = cv2.GaussianBlur(np.asarray(got, np.float32), (0, 0), sigma)
-    diff = np.abs(a - b)
-    if diff.ndim == 3:
-        diff = diff.max(axis=2)
+    diff = largest_channel(cv2.absdiff(a, b))
     valid = np.asarray(valid, dtype=bool)
     return float(diff[valid].mean()) if valid.any() else 0.0
+
+
+def largest_channel(image: np.ndarray) -> np.ndarray:
+    """(H, W, C) -> (H, W): the largest value over the channels (a 2-D image as it is).
+
+    A channel at a time: NumPy's reduction over a last axis of length 3 is ten times slower.
+    """
+    if image.ndim != 3:
+        return image
+    return functools.reduce(np.maximum, (image[..., channel] for channel in range(image.shape[2])))
 
 
 def warp_error(got, source, M, dsize=None, good_enough: float = 0.0, inside=None) -> float:

@@ -17,6 +17,8 @@ import threading
 import cv2
 import numpy as np
 
+from .compare import largest_channel
+
 MIN_SIDE = 160  # small images are enlarged (nearest neighbour) so pixels stay visible
 MAX_SIDE = 1024  # longest side of any picture, in pixels (larger inputs are thinned)
 
@@ -90,9 +92,7 @@ def deferred_heatmap(expected, got, valid=None, full_scale: float = 64.0):
 
 
 def _heatmap(a, b, valid, full_scale: float) -> np.ndarray:
-    diff = np.abs(a.astype(np.float32) - b.astype(np.float32))
-    if diff.ndim == 3:
-        diff = diff.max(axis=2)
+    diff = largest_channel(cv2.absdiff(a.astype(np.float32), b.astype(np.float32)))
     scaled = np.clip(diff * (255.0 / full_scale), 0, 255).astype(np.uint8)
     heat = cv2.applyColorMap(scaled, cv2.COLORMAP_INFERNO)
     if valid is not None:
