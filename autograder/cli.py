@@ -291,6 +291,13 @@ class _progress:
 
 
 def run_batch(args) -> int:
+    from .batch.task import grading_processes
+
+    # What takes a process of its own starts before the rest of the batch is imported.
+    if args.dask_scheduler is None:
+        grading_processes()
+        if not args.allow_unconfined:
+            confine.detect_in_background()
     from rich.console import Console
     from rich.text import Text
 

@@ -55,6 +55,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from dataclasses import dataclass
 from functools import lru_cache
@@ -371,7 +372,23 @@ def detect() -> Confinement:
         if forced not in LEVELS:
             raise ValueError(f"AUTOGRADER_CONFINEMENT must be one of {LEVELS}, got {forced!r}")
         return _candidate(forced) or Confinement("process-group")
-    return _detect()
+    with _probing:  # one probe, however many threads ask at once
+        return _detect()
+
+
+def detect_in_background() -> None:
+    """Start :func:`detect` now on a thread of its own (its probe is a process: the caller
+    goes on meanwhile); a later :func:`detect` returns the answer once it is there."""
+    def probe():
+        try:
+            detect()
+        except Exception:  # noqa: BLE001 - the caller's own detect() raises it again
+            pass
+
+    threading.Thread(target=probe, name="confinement-probe").start()
+
+
+_probing = threading.Lock()
 
 
 def strongest_candidate() -> Confinement:

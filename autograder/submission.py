@@ -129,7 +129,9 @@ def load_submission(path, modules: list[str], caps: Caps = CAPS) -> Submission:
         elif source.suffix == ".zip":
             unzip_regular_files(source, root, refused, caps)
         elif source.suffix in SOURCE_SUFFIXES:
-            _copy_one(source, root / _display_name(source.name), source.name, refused, caps, [0])
+            data = _read_one(source, source.name, refused, caps, [0])
+            if data is not None:
+                _write(root / _display_name(source.name), data)
         else:
             raise SubmissionError(f"cannot grade {_display_name(source.name)}: "
                                   "expected a folder, .py, .zip or .ipynb")
@@ -214,7 +216,9 @@ def _limit_for(name: str, caps: Caps) -> int:
     return caps.notebook_bytes if name.endswith(".ipynb") else caps.file_bytes
 
 
-def _copy_one(path: Path, target: Path, relative: str, refused, caps, total) -> None:
+def _read_one(path: Path, relative: str, refused, caps, total) -> bytes | None:
+    """``path``'s bytes, counted in ``total`` (a one-item list); None, and the reason in
+    ``refused``, when it is not read."""
     try:
         _check_name(relative, caps)
         data = _read_regular(path, _limit_for(relative, caps))
@@ -222,22 +226,37 @@ def _copy_one(path: Path, target: Path, relative: str, refused, caps, total) -> 
             raise _Refused(f"the submission holds more than {_mib(caps.total_bytes)} of sources")
     except _Refused as exc:
         refused[_display_name(relative)] = str(exc)
-        return
+        return None
     total[0] += len(data)
+    return data
+
+
+def _write(target: Path, data: bytes) -> None:
     target.parent.mkdir(parents=True, exist_ok=True)
     target.write_bytes(data)
 
 
 def copy_regular_files(source: Path, target: Path, refused: dict | None = None,
                        caps: Caps = CAPS, suffixes=SOURCE_SUFFIXES) -> dict[str, str]:
-    """Copy the regular ``suffixes`` files under ``source`` into ``target``.
+    """Copy the regular ``suffixes`` files under ``source`` into ``target``
+    (as :func:`read_regular_files` reads them). Returns ``refused``: path inside
+    ``source`` -> reason."""
+    refused = {} if refused is None else refused
+    for relative, data in read_regular_files(source, refused, caps, suffixes).items():
+        _write(Path(target) / relative, data)
+    return refused
+
+
+def read_regular_files(source: Path, refused: dict | None = None,
+                       caps: Caps = CAPS, suffixes=SOURCE_SUFFIXES) -> dict[str, bytes]:
+    """The regular ``suffixes`` files under ``source``: relative POSIX path -> bytes.
 
     Symbolic links (to files or folders), devices, pipes and sockets are refused,
     never followed; so are hidden entries, ``__pycache__`` and what breaks a cap.
-    Returns ``refused``: path inside ``source`` -> reason.
+    What is refused goes into ``refused``: path inside ``source`` -> reason.
     """
     refused = {} if refused is None else refused
-    source, target = Path(source), Path(target)
+    source, files = Path(source), {}
     seen, total = 0, [0]
     pending = [(source, 0)]
     while pending:
@@ -253,7 +272,7 @@ def copy_regular_files(source: Path, target: Path, refused: dict | None = None,
             if seen > caps.entries:
                 refused[_display_name(relative)] = (f"the submission holds more than {caps.entries} "
                                                     "files; the rest was not read")
-                return refused
+                return files
             if entry.name.startswith(".") or entry.name in _SKIPPED_FOLDERS:
                 continue
             if entry.is_symlink():
@@ -265,8 +284,10 @@ def copy_regular_files(source: Path, target: Path, refused: dict | None = None,
                     pending.append((Path(entry.path), depth + 1))
                 continue
             if entry.name.endswith(suffixes):
-                _copy_one(Path(entry.path), target / relative, relative, refused, caps, total)
-    return refused
+                data = _read_one(Path(entry.path), relative, refused, caps, total)
+                if data is not None:
+                    files[relative] = data
+    return files
 
 
 def _points_to_folder(entry) -> bool:

@@ -2,13 +2,14 @@
 
 Generates a class (copies of the reference solutions, skeletons and one wrong
 exercise, in equal thirds), grades it from scratch with ``autograder batch`` as an
-instructor would (a fresh process each time), and prints submissions per
+instructor would (a fresh process each time; 1 and 2 workers take turns, so both
+see the same load, medians over the rounds), and prints submissions per
 minute, the 2-vs-1 worker ratio (budget: at least 1.8x on 2 cores), and the
 batch's cost per submission against a single ``grade.py`` run of one submission.
 A benchmark, not a test: it prints figures, it asserts nothing.
 
-    python benchmarks/bench_batch.py                     # 48 students, lab07
-    python benchmarks/bench_batch.py --students 60 --select lab07 lab08
+    python benchmarks/bench_batch.py                     # 48 students, lab07, 3 rounds
+    python benchmarks/bench_batch.py --students 60 --select lab07 lab08 --rounds 5
     python benchmarks/bench_batch.py --no-dask
 """
 
@@ -16,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -56,9 +58,10 @@ def single_grade(submission: Path, selectors: list[str], tmp: Path) -> float:
     return time.perf_counter() - start
 
 
-def measure(students: int = 48, select=("lab07",), dask: bool = True) -> dict:
-    """Grade a generated class with 1 and 2 local workers (and a local Dask cluster):
-    wall times, the 2-vs-1 ratio, the cost per submission and the results' size."""
+def measure(students: int = 48, select=("lab07",), dask: bool = True, rounds: int = 3) -> dict:
+    """Grade a generated class with 1 and 2 local workers, taking turns for ``rounds``
+    rounds (and once on a local Dask cluster): median wall times, the 2-vs-1 ratio,
+    the cost per submission and the results' size."""
     select = list(select)
     with tempfile.TemporaryDirectory(prefix="bench-batch-") as tmp:
         tmp = Path(tmp)
@@ -67,10 +70,13 @@ def measure(students: int = 48, select=("lab07",), dask: bool = True) -> dict:
         course.write_text(json.dumps({"select": select}))
 
         single = single_grade(tmp / "class" / "student-000", select, tmp)
-        walls = {}
-        for workers in (1, 2):
-            walls[str(workers)] = batch(tmp / "class", tmp / f"out-{workers}", course, "--workers", str(workers))
-        rerun = batch(tmp / "class", tmp / "out-2", course, "--workers", "2")
+        runs = {"1": [], "2": []}
+        for round_ in range(rounds):
+            for workers in runs:
+                out = tmp / f"out-{workers}-{round_}"
+                runs[workers].append(batch(tmp / "class", out, course, "--workers", workers))
+        walls = {workers: statistics.median(times) for workers, times in runs.items()}
+        rerun = batch(tmp / "class", tmp / "out-2-0", course, "--workers", "2")
 
         dask_note = None
         if dask:
@@ -83,9 +89,10 @@ def measure(students: int = 48, select=("lab07",), dask: bool = True) -> dict:
                                   dashboard_address=":0") as cluster:
                     walls["dask"] = batch(tmp / "class", tmp / "out-dask", course,
                                           "--dask-scheduler", cluster.scheduler_address)
-        size = sum(f.stat().st_size for f in (tmp / "out-1").rglob("*") if f.is_file())
-    return {"students": students, "select": select, "single_grade_s": single,
-            "wall_s": walls, "per_minute": {label: 60 * students / wall for label, wall in walls.items()},
+        size = sum(f.stat().st_size for f in (tmp / "out-1-0").rglob("*") if f.is_file())
+    return {"students": students, "select": select, "single_grade_s": single, "rounds": rounds,
+            "runs_s": runs, "wall_s": walls,
+            "per_minute": {label: 60 * students / wall for label, wall in walls.items()},
             "ratio_2_vs_1": walls["1"] / walls["2"],
             "per_submission_s": walls["1"] / students,
             "per_submission_vs_single": walls["1"] / students / single,
@@ -93,7 +100,8 @@ def measure(students: int = 48, select=("lab07",), dask: bool = True) -> dict:
 
 
 def report(f: dict) -> None:
-    print(f"class of {f['students']} students, grading {' '.join(f['select'])}")
+    print(f"class of {f['students']} students, grading {' '.join(f['select'])}; "
+          f"1 and 2 workers taking turns, medians of {f['rounds']} rounds")
     print(f"  one grade.py run (fresh process, page and JSON) {f['single_grade_s']:7.2f} s")
     for label, wall in f["wall_s"].items():
         name = ("Dask LocalCluster (2x1)" if label == "dask"
@@ -115,9 +123,10 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--students", type=int, default=48)
     parser.add_argument("--select", nargs="*", default=["lab07"], help="lab07 ... (default: lab07)")
+    parser.add_argument("--rounds", type=int, default=3, help="rounds of 1 then 2 workers (medians)")
     parser.add_argument("--no-dask", action="store_true", help="skip the local Dask cluster")
     args = parser.parse_args()
-    report(measure(args.students, args.select, dask=not args.no_dask))
+    report(measure(args.students, args.select, dask=not args.no_dask, rounds=args.rounds))
 
 
 if __name__ == "__main__":

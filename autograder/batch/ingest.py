@@ -47,7 +47,7 @@ from datetime import datetime
 from pathlib import Path, PurePosixPath
 
 from ..course import parse_time
-from ..submission import MAX_ARCHIVE_BYTES, SubmissionError, copy_regular_files, unzip_regular_files
+from ..submission import MAX_ARCHIVE_BYTES, SubmissionError, read_regular_files, unzip_regular_files
 
 SOURCE_SUFFIXES = (".py", ".ipynb")
 MAX_CLASS_ARCHIVE_BYTES = 4 * 2**30   # a whole class's zip, unpacked
@@ -322,10 +322,8 @@ def _folder_sources(folder: Path) -> dict[str, bytes]:
     """The source files and zips of a student's folder, read as loading reads a submission:
     regular files only (a link is never followed), within the caps; reports, images and
     the like are never read."""
-    with tempfile.TemporaryDirectory(prefix="ingest-") as scratch:
-        refused = copy_regular_files(folder, Path(scratch), suffixes=SOURCE_SUFFIXES + (".zip",))
-        files = {p.relative_to(scratch).as_posix(): p.read_bytes()
-                 for p in sorted(Path(scratch).rglob("*")) if p.is_file()}
+    refused: dict[str, str] = {}
+    files = dict(sorted(read_regular_files(folder, refused, suffixes=SOURCE_SUFFIXES + (".zip",)).items()))
     if not files and refused:
         name, reason = next(iter(refused.items()))
         raise ValueError(f"{name} was not read: {reason}")

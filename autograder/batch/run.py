@@ -27,10 +27,9 @@ import json
 import os
 import shutil
 from contextlib import contextmanager
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, ThreadPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
-from multiprocessing import forkserver, get_context
 from pathlib import Path, PurePosixPath
 from typing import Callable
 
@@ -43,7 +42,7 @@ from ..sandbox import cores_each
 from . import exports
 from .gradebook import Gradebook, lock_hash, submission_key
 from .ingest import Entry, IngestError, read_class
-from .task import grade_files
+from .task import grade_files, grading_processes
 
 PICTURES = {"none": "none", "failing": "failed", "all": "all"}
 POOL_ATTEMPTS = 3   # a submission whose grading kills the grading process this often is recorded as failed
@@ -96,17 +95,19 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
         raise IngestError(f"--out {out} is inside {submissions}: it would be read as a student next time")
     # Probing the confinement starts a process of its own: it runs while the class is read,
     # and so does the process the local gradings will be forked from, importing the grader.
-    probing = _in_background(confine.detect) if dask_scheduler is None and not allow_unconfined else None
+    probing = dask_scheduler is None and not allow_unconfined
+    if probing:
+        confine.detect_in_background()
     if dask_scheduler is None:
-        _grading_processes()
+        grading_processes()
     exercises = select(course.select)
     selection = ",".join(e.id for e in exercises)
     modules = sorted({e.lab.module for e in exercises})
     overrides_rows = exports.read_overrides(overrides) if overrides else None
     roster_rows = exports.read_roster(roster) if roster else []
     entries = read_class(submissions, modules, [lab.module for lab in discover().values()])
-    if probing is not None:
-        _refuse_unconfined(probing.result())
+    if probing:
+        _refuse_unconfined(confine.detect())
 
     # Grading: only what the gradebook lacks, each grading committed as it lands.
     lock = lock_hash()
@@ -166,32 +167,6 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     return summary
 
 
-_server_environment: dict | None = None   # the environment the fork server started with
-
-
-def _grading_processes():
-    """Where local gradings run: processes forked from a server that has imported the grader
-    (and nothing else: no copy of the gradebook's connection, nothing of this process's).
-    The server keeps the environment it started with: where this process's has changed
-    since (a program running several batches), gradings are spawned afresh instead."""
-    global _server_environment
-    if _server_environment is None:
-        get_context("forkserver").set_forkserver_preload(
-            ["autograder.batch.task", "autograder.runner", "autograder.reports.html"])
-        forkserver.ensure_running()
-        _server_environment = dict(os.environ)
-    return get_context("forkserver" if dict(os.environ) == _server_environment else "spawn")
-
-
-def _in_background(function) -> Future:
-    """``function()`` running on a thread of its own."""
-    thread = ThreadPoolExecutor(max_workers=1)
-    try:
-        return thread.submit(function)
-    finally:
-        thread.shutdown(wait=False)
-
-
 @contextmanager
 def _only_writer(out: Path):
     """One batch at a time writes RESULTS (the lock goes with the process, however it ends)."""
@@ -214,7 +189,7 @@ def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None
     while pending:
         workers = min(workers, len(pending))
         threads = cores_each(workers)
-        with ProcessPoolExecutor(max_workers=workers, mp_context=_grading_processes()) as pool:
+        with ProcessPoolExecutor(max_workers=workers, mp_context=grading_processes()) as pool:
             futures = {pool.submit(grade_files, e.files, *arguments, e.student_id, threads): e for e in pending}
             pending = []
             while futures:

@@ -9,10 +9,29 @@ object of the student's making, and never raising.
 
 from __future__ import annotations
 
+import os
 import tempfile
 import traceback
 import warnings
+from multiprocessing import forkserver, get_context
 from pathlib import Path
+
+_server_environment: dict | None = None   # the environment the fork server started with
+
+
+def grading_processes():
+    """Where local gradings run (a multiprocessing context): processes forked from a server
+    that has imported the grader (and nothing else: no copy of the gradebook's connection,
+    nothing of the batch's process), started at the first call. The server keeps the
+    environment it started with: where the caller's has changed since (a program running
+    several batches), gradings are spawned afresh instead."""
+    global _server_environment
+    if _server_environment is None:
+        get_context("forkserver").set_forkserver_preload(
+            ["autograder.batch.task", "autograder.runner", "autograder.reports.html"])
+        forkserver.ensure_running()
+        _server_environment = dict(os.environ)
+    return get_context("forkserver" if dict(os.environ) == _server_environment else "spawn")
 
 
 def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: float,
