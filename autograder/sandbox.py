@@ -336,9 +336,14 @@ class Sandbox:
         response_r, response_w = os.pipe()
         for fd in (request_w, response_r):
             _widen_pipe(fd)
-        uid = self.confinement.uid if self.confinement.uid is not None else os.getuid()
-        tasks = confine.count_tasks(uid)  # None where they cannot be counted (macOS): no limit
-        processes = None if tasks is None else tasks + self.limits.extra_processes
+        # The worker's own process budget: its cgroup's where there is one. RLIMIT_NPROC, the
+        # fallback, counts every process of the user: workers side by side (a batch's gradings,
+        # lanes) would share it, and one submission's fork bomb would starve the other.
+        processes = None
+        if self.cgroup is None:
+            uid = self.confinement.uid if self.confinement.uid is not None else os.getuid()
+            tasks = confine.count_tasks(uid)  # None where they cannot be counted (macOS): no limit
+            processes = None if tasks is None else tasks + self.limits.extra_processes
         view = confine.View(scratch=self.scratch, read_only=(self.submission_dir, self.scratch / "worker"),
                             files=(self.output_path,), size=self.limits.scratch_bytes)
         command = self.confinement.wrap(

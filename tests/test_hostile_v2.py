@@ -22,6 +22,7 @@ import struct
 import subprocess
 import sys
 import textwrap
+import time
 import tracemalloc
 import zipfile
 from pathlib import Path
@@ -512,3 +513,62 @@ def test_installed_copy_of_the_grader_is_invisible_on_gradescope(tmp_path):
     if NAMESPACED:
         assert "READ" not in shear[0]["output"] and "IMPORTED" not in shear[0]["output"], shear[0]["output"]
         assert "NO IMPORT" in shear[0]["output"]
+
+
+def test_a_fork_bomb_does_not_starve_a_worker_running_beside_it(tmp_path):
+    """Two workers at once (a batch's gradings, a submission's lanes) run as one user: each has
+    a process budget of its own (its cgroup's), so one student's fork bomb cannot stop the
+    threads of another student's code."""
+    import threading
+
+    from autograder.sandbox import Limits, Sandbox
+
+    cgroup = confine.Cgroup.create(1 << 30, 8)
+    if cgroup is None:
+        pytest.skip("no writable cgroup here: workers of one user share RLIMIT_NPROC (README)")
+    cgroup.remove()
+    (tmp_path / "bomb").mkdir()
+    (tmp_path / "bomb" / "bomb.py").write_text(textwrap.dedent("""
+        import os, time
+
+        def explode(seconds):
+            children = []
+            for _ in range(500):
+                try:
+                    pid = os.fork()
+                except OSError:
+                    break
+                if pid == 0:
+                    time.sleep(seconds)
+                    os._exit(0)
+                children.append(pid)
+            for pid in children:
+                os.waitpid(pid, 0)
+            return len(children)
+        """))
+    (tmp_path / "calm").mkdir()
+    (tmp_path / "calm" / "calm.py").write_text(textwrap.dedent("""
+        import threading, time
+
+        def threads(n):
+            started = []
+            for _ in range(n):
+                thread = threading.Thread(target=time.sleep, args=(0.2,))
+                thread.start()
+                started.append(thread)
+            for thread in started:
+                thread.join()
+            return len(started)
+        """))
+    limits = Limits(call_timeout=20.0)
+    with Sandbox(tmp_path / "bomb", limits) as bomb, Sandbox(tmp_path / "calm", limits) as calm:
+        assert bomb.ready() and calm.ready()
+        exploded = {}
+        explosion = threading.Thread(target=lambda: exploded.update(
+            outcome=bomb.call("bomb", "explode", (3.0,))))
+        explosion.start()
+        time.sleep(1.0)  # the bomb has used all it may by now
+        outcome = calm.call("calm", "threads", (40,))
+        explosion.join()
+    assert outcome.ok and outcome.value == 40, outcome.message
+    assert exploded["outcome"].ok and 0 < exploded["outcome"].value < 500  # bounded by its own budget
