@@ -16,7 +16,7 @@ import warnings
 from multiprocessing import forkserver, get_context
 from pathlib import Path
 
-_server_environment: dict | None = None   # the environment the fork server started with
+_server_environment: dict | None = None   # the fork server's environment; {} where it could not start
 
 
 def grading_processes():
@@ -27,10 +27,14 @@ def grading_processes():
     several batches), gradings are spawned afresh instead."""
     global _server_environment
     if _server_environment is None:
-        get_context("forkserver").set_forkserver_preload(
-            ["autograder.batch.task", "autograder.runner", "autograder.reports.html"])
-        forkserver.ensure_running()
-        _server_environment = dict(os.environ)
+        try:
+            get_context("forkserver").set_forkserver_preload(
+                ["autograder.batch.task", "autograder.runner", "autograder.reports.html"])
+            forkserver.ensure_running()
+        except (OSError, ValueError):  # no server here (no socket, no fork): spawn each process
+            _server_environment = {}
+        else:
+            _server_environment = dict(os.environ)
     return get_context("forkserver" if dict(os.environ) == _server_environment else "spawn")
 
 
