@@ -18,6 +18,7 @@ import signal
 import sqlite3
 import subprocess
 import sys
+import textwrap
 import time
 import zipfile
 from pathlib import Path
@@ -608,3 +609,27 @@ def test_each_batch_of_a_program_grades_in_its_own_environment(tmp_path, monkeyp
     monkeypatch.setenv("AUTOGRADER_CACHE_DIR", str(tmp_path / "store"))
     run_batch(students, tmp_path / "second", course=course, workers=1)
     assert any(path.is_file() for path in (tmp_path / "store").rglob("*"))
+
+
+def test_the_grading_processes_fork_from_a_single_threaded_server():
+    """Forking a process with other threads may copy a lock another thread holds: the server
+    the gradings fork from starts no thread (NumPy's OpenBLAS would, unless told), even for
+    a program that calls the batch without the command line's settings."""
+    if not Path("/proc/self/task").is_dir():
+        pytest.skip("no /proc here to count a process's threads")
+    probe = textwrap.dedent("""
+        import os, time
+        from multiprocessing import forkserver
+        from autograder.batch.task import grading_processes
+        grading_processes()
+        server = forkserver._forkserver._forkserver_pid  # private, but the only way to find it
+        deadline = time.monotonic() + 20
+        while "cv2" not in open(f"/proc/{server}/maps").read() and time.monotonic() < deadline:
+            time.sleep(0.05)  # the server imports the grader (NumPy, OpenCV) first
+        time.sleep(0.5)
+        print(len(os.listdir(f"/proc/{server}/task")), "OPENBLAS_NUM_THREADS" in os.environ)
+        """)
+    environment = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    run = subprocess.run([sys.executable, "-c", probe], env=environment, capture_output=True, text=True,
+                         timeout=60, cwd=ROOT)
+    assert run.stdout.split() == ["1", "False"], run.stderr  # one thread; the caller's environment kept

@@ -27,6 +27,9 @@ def grading_processes():
     several batches), gradings are spawned afresh instead."""
     global _server_environment
     if _server_environment is None:
+        environment = dict(os.environ)
+        # A process that forks must have no other threads: NumPy's OpenBLAS would start them.
+        os.environ["OPENBLAS_NUM_THREADS"] = "1"
         try:
             get_context("forkserver").set_forkserver_preload(
                 ["autograder.batch.task", "autograder.runner", "autograder.reports.html"])
@@ -34,7 +37,12 @@ def grading_processes():
         except (OSError, ValueError):  # no server here (no socket, no fork): spawn each process
             _server_environment = {}
         else:
-            _server_environment = dict(os.environ)
+            _server_environment = environment
+        finally:
+            if "OPENBLAS_NUM_THREADS" in environment:
+                os.environ["OPENBLAS_NUM_THREADS"] = environment["OPENBLAS_NUM_THREADS"]
+            else:
+                del os.environ["OPENBLAS_NUM_THREADS"]
     return get_context("forkserver" if dict(os.environ) == _server_environment else "spawn")
 
 
