@@ -4,7 +4,8 @@ The same function runs in a local process pool and on a Dask worker. It writes
 the files it is given into a fresh temporary folder, grades them with
 :func:`autograder.runner.grade` (one sandboxed worker, as a single
 ``autograder grade`` does), and returns the results model as a dict -- never an
-object of the student's making, and never raising.
+object of the student's making, and never raising. Locally, the processes that run
+it are forked from a server that has imported the grader (:func:`grading_processes`).
 """
 
 from __future__ import annotations
