@@ -195,4 +195,9 @@ def strip_pictures(data: dict) -> dict:
 def write_json(result: GradingResult, path, pictures: bool = False) -> None:
     """The results model as JSON; pictures (base64, megabytes) only when asked for."""
     data = result.to_dict()
-    write_atomically(path, json.dumps(data if pictures else strip_pictures(data), indent=1, allow_nan=False) + "\n")
+    write_atomically(path, json_text(data if pictures else strip_pictures(data)))
+
+
+def json_text(data: dict) -> str:
+    """A results-model dict as the text of a ``results.json`` file (indented: people read it)."""
+    return json.dumps(data, indent=1, allow_nan=False) + "\n"

@@ -23,7 +23,6 @@ in one transaction, so a run killed at any moment resumes where it stopped.
 
 from __future__ import annotations
 
-import json
 import os
 import shutil
 from contextlib import contextmanager
@@ -37,7 +36,7 @@ from .. import confine
 from ..course import CourseConfig
 from ..registry import discover, select
 from ..reports import html
-from ..results import GradingResult, strip_pictures, write_atomically
+from ..results import GradingResult, write_atomically
 from ..sandbox import cores_each
 from . import exports
 from .gradebook import Gradebook, lock_hash, submission_key
@@ -126,7 +125,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
             key = keys[entry.student_id]
             if "result" in outcome:
                 try:
-                    _write_student(out, entry, outcome["result"], outcome["page"])   # files first, then the commit
+                    _write_student(out, entry, outcome["json"], outcome["page"])   # files first, then the commit
                     book.record(key, entry.student_id, entry.content_hash, selection, outcome["result"], lock=lock)
                     summary.graded += 1
                 except (OSError, ValueError, TypeError, KeyError) as exc:
@@ -209,11 +208,11 @@ def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None
                     finished(entry, outcome)
 
 
-def _write_student(out: Path, entry: Entry, result: dict, page: str) -> None:
+def _write_student(out: Path, entry: Entry, results_json: str, page: str) -> None:
     """The student's page, results and the sources graded (``sources/``, for the similarity report)."""
     folder = out / entry.student_id
     write_atomically(folder / "feedback.html", page)
-    write_atomically(folder / "results.json", json.dumps(strip_pictures(result), indent=1, allow_nan=False) + "\n")
+    write_atomically(folder / "results.json", results_json)
     sources = folder / "sources"
     shutil.rmtree(sources, ignore_errors=True)
     for relative, data in entry.files.items():

@@ -49,11 +49,11 @@ def grading_processes():
 
 def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: float,
                 pictures: str, name: str, threads: int | None = None) -> dict:
-    """``{"result": <results-model dict, without pictures>, "page": <feedback page>}``
-    or ``{"error": <reason>}``.
+    """``{"result": <results-model dict, without pictures>, "json": <its results.json text>,
+    "page": <feedback page>}`` or ``{"error": <reason>}``.
 
-    The page is rendered here, where the pictures are: only text travels back, and
-    the process that collects the class (one for any number of workers) just writes it.
+    The page is rendered here, where the pictures are, and the JSON written out here too:
+    the process that collects the class (one for any number of workers) just stores them.
 
     Parameters
     ----------
@@ -72,7 +72,7 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
         several gradings share the machine's cores (None: OpenCV's default).
     """
     from ..reports import html
-    from ..results import strip_pictures
+    from ..results import json_text, strip_pictures
     from ..runner import grade
     from ..sandbox import Limits
 
@@ -94,7 +94,8 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
                 cv2.setNumThreads(threads)
             result = grade(folder, selectors, limits=Limits(call_timeout=call_timeout, threads=threads),
                            pictures=pictures)
-            return {"result": strip_pictures(result.to_dict()), "page": html.render(result)}
+            data = strip_pictures(result.to_dict())
+            return {"result": data, "json": json_text(data), "page": html.render(result)}
     except Exception as exc:  # noqa: BLE001 - one submission never stops the batch
         return {"error": f"the grader could not finish: {type(exc).__name__}: {exc}",
                 "traceback": traceback.format_exc()[-4000:]}
