@@ -188,7 +188,8 @@ def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None
     while pending:
         workers = min(workers, len(pending))
         threads = cores_each(workers)
-        with ProcessPoolExecutor(max_workers=workers, mp_context=grading_processes()) as pool:
+        pool = ProcessPoolExecutor(max_workers=workers, mp_context=grading_processes())
+        try:
             futures = {pool.submit(grade_files, e.files, *arguments, e.student_id, threads): e for e in pending}
             pending = []
             while futures:
@@ -206,6 +207,10 @@ def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None
                     except Exception as exc:  # noqa: BLE001
                         outcome = {"error": f"the grader could not finish: {type(exc).__name__}: {exc}"}
                     finished(entry, outcome)
+        finally:
+            # Every grading has landed (or the batch stops): the processes end while the
+            # exports are written (the interpreter waits for them before it exits).
+            pool.shutdown(wait=False, cancel_futures=True)
 
 
 def _write_student(out: Path, entry: Entry, results_json: str, page: str) -> None:
