@@ -1,14 +1,15 @@
 """Class throughput of ``autograder batch``: 1 and 2 local workers, and a local Dask cluster.
 
-Generates a class (copies of the reference solutions, skeletons and one wrong
-exercise, in equal thirds), grades it from scratch with ``autograder batch`` as an
-instructor would (a fresh process each time; 1 and 2 workers take turns, so both
-see the same load, medians over the rounds), and prints submissions per
-minute, the 2-vs-1 worker ratio (budget: at least 1.8x on 2 cores), and the
+Generates a class of the size the grader is built for (300 submissions: copies
+of the reference solutions, skeletons and one wrong exercise, in equal thirds),
+grades it from scratch with ``autograder batch`` as an instructor would (a fresh
+process each time; 1 and 2 workers take turns, so both see the same load,
+medians over the rounds), and prints submissions per minute, the 2-vs-1 worker ratio (budget: at least 1.8x on 2 cores), and the
 batch's cost per submission against a single ``grade.py`` run of one submission.
 A benchmark, not a test: it prints figures, it asserts nothing.
 
-    python benchmarks/bench_batch.py                     # 48 students, lab07, 3 rounds
+    python benchmarks/bench_batch.py                     # 300 students, lab07, 3 rounds
+    python benchmarks/bench_batch.py --students 48       # a small class: start-up weighs more
     python benchmarks/bench_batch.py --students 60 --select lab07 lab08 --rounds 5
     python benchmarks/bench_batch.py --no-dask
 """
@@ -58,7 +59,7 @@ def single_grade(submission: Path, selectors: list[str], tmp: Path) -> float:
     return time.perf_counter() - start
 
 
-def measure(students: int = 48, select=("lab07",), dask: bool = True, rounds: int = 3) -> dict:
+def measure(students: int = 300, select=("lab07",), dask: bool = True, rounds: int = 3) -> dict:
     """Grade a generated class with 1 and 2 local workers, taking turns for ``rounds``
     rounds (and once on a local Dask cluster): median wall times, the 2-vs-1 ratio,
     the cost per submission and the results' size."""
@@ -121,7 +122,7 @@ def report(f: dict) -> None:
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--students", type=int, default=48)
+    parser.add_argument("--students", type=int, default=300)
     parser.add_argument("--select", nargs="*", default=["lab07"], help="lab07 ... (default: lab07)")
     parser.add_argument("--rounds", type=int, default=3, help="rounds of 1 then 2 workers (medians)")
     parser.add_argument("--no-dask", action="store_true", help="skip the local Dask cluster")
