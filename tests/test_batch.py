@@ -622,7 +622,9 @@ def test_the_grading_processes_fork_from_a_single_threaded_server():
         from multiprocessing import forkserver
         from autograder.batch.task import grading_processes
         grading_processes()
-        server = forkserver._forkserver._forkserver_pid  # private, but the only way to find it
+        server = getattr(forkserver._forkserver, "_forkserver_pid", None)  # private: the only way to find it
+        if server is None:
+            raise SystemExit("no server pid")
         deadline = time.monotonic() + 20
         while "cv2" not in open(f"/proc/{server}/maps").read() and time.monotonic() < deadline:
             time.sleep(0.05)  # the server imports the grader (NumPy, OpenCV) first
@@ -632,4 +634,6 @@ def test_the_grading_processes_fork_from_a_single_threaded_server():
     environment = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
     run = subprocess.run([sys.executable, "-c", probe], env=environment, capture_output=True, text=True,
                          timeout=60, cwd=ROOT)
+    if "no server pid" in run.stderr:
+        pytest.skip("this Python's multiprocessing does not say which process is the fork server")
     assert run.stdout.split() == ["1", "False"], run.stderr  # one thread; the caller's environment kept
