@@ -336,11 +336,13 @@ class Sandbox:
         response_r, response_w = os.pipe()
         for fd in (request_w, response_r):
             _widen_pipe(fd)
-        # The worker's own process budget: its cgroup's where there is one. RLIMIT_NPROC, the
-        # fallback, counts every process of the user: workers side by side (a batch's gradings,
-        # lanes) would share it, and one submission's fork bomb would starve the other.
+        # The worker's own process budget: its cgroup's where there is one and the worker cannot
+        # see the cgroup file system (the namespaced levels). RLIMIT_NPROC, the fallback, counts
+        # every process of the user: workers side by side (a batch's gradings, lanes) share it,
+        # and one submission's fork bomb could starve the other. At the process-group level the
+        # worker is the grader's user and could leave a cgroup the grader made: it keeps both.
         processes = None
-        if self.cgroup is None:
+        if self.cgroup is None or not self.confinement.hides_files:
             uid = self.confinement.uid if self.confinement.uid is not None else os.getuid()
             tasks = confine.count_tasks(uid)  # None where they cannot be counted (macOS): no limit
             processes = None if tasks is None else tasks + self.limits.extra_processes
