@@ -579,6 +579,10 @@ def test_batch_refuses_a_class_where_student_code_cannot_be_confined(tmp_path, m
     with pytest.raises(Unconfined, match="--allow-unconfined"):
         run_batch(students, tmp_path / "results", course=CourseConfig(select=["lab07.ex1"]), workers=1)
     assert not (tmp_path / "results" / "gradebook.sqlite").exists()
+    # where no namespaced level is even available, refused before the class is read at all
+    monkeypatch.setattr(confine, "strongest_candidate", lambda: Unconfining())
+    with pytest.raises(Unconfined):
+        run_batch(tmp_path / "not-read", tmp_path / "results", course=CourseConfig(select=["lab07.ex1"]))
     assert main(["batch", str(students), "--out", str(tmp_path / "results")]) == 2
     assert "cannot confine student code" in capsys.readouterr().out
 

@@ -524,9 +524,10 @@ def test_a_fork_bomb_does_not_starve_a_worker_running_beside_it(tmp_path):
     from autograder.sandbox import Limits, Sandbox
 
     cgroup = confine.Cgroup.create(1 << 30, 8)
-    if cgroup is None:
-        pytest.skip("no writable cgroup here: workers of one user share RLIMIT_NPROC (README)")
-    cgroup.remove()
+    if cgroup is not None:
+        cgroup.remove()
+    if cgroup is None or not confine.detect().hides_files:
+        pytest.skip("no writable cgroup, or no namespaces: workers of one user share RLIMIT_NPROC (README)")
     (tmp_path / "bomb").mkdir()
     (tmp_path / "bomb" / "bomb.py").write_text(textwrap.dedent("""
         import os, time

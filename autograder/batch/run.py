@@ -94,8 +94,10 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
         raise IngestError(f"--out {out} is inside {submissions}: it would be read as a student next time")
     # Probing the confinement starts a process of its own: it runs while the class is read,
     # and so does the process the local gradings will be forked from, importing the grader.
+    # Where no namespaced level is even available there is nothing to probe: refused at once.
     probing = dask_scheduler is None and not allow_unconfined
     if probing:
+        _refuse_unconfined(confine.strongest_candidate())
         confine.detect_in_background()
     if dask_scheduler is None:
         grading_processes()

@@ -17,7 +17,8 @@ import warnings
 from multiprocessing import forkserver, get_context
 from pathlib import Path
 
-_server_environment: dict | None = None   # the fork server's environment; {} where it could not start
+_server_environment: dict | None = None   # the environment the fork server started with
+_no_server = False                        # it could not start here: each process is spawned
 
 
 def grading_processes():
@@ -26,8 +27,8 @@ def grading_processes():
     nothing of the batch's process), started at the first call. The server keeps the
     environment it started with: where the caller's has changed since (a program running
     several batches), gradings are spawned afresh instead."""
-    global _server_environment
-    if _server_environment is None:
+    global _server_environment, _no_server
+    if _server_environment is None and not _no_server:
         environment = dict(os.environ)
         # A process that forks must have no other threads: NumPy's OpenBLAS would start them.
         os.environ["OPENBLAS_NUM_THREADS"] = "1"
@@ -35,16 +36,15 @@ def grading_processes():
             get_context("forkserver").set_forkserver_preload(
                 ["autograder.batch.task", "autograder.runner", "autograder.reports.html"])
             forkserver.ensure_running()
-        except (OSError, ValueError):  # no server here (no socket, no fork): spawn each process
-            _server_environment = {}
-        else:
             _server_environment = environment
-        finally:
+        except (OSError, ValueError):  # no server here (no socket, no fork)
+            _no_server = True
+        finally:  # the caller's environment as it was
+            os.environ.pop("OPENBLAS_NUM_THREADS")
             if "OPENBLAS_NUM_THREADS" in environment:
                 os.environ["OPENBLAS_NUM_THREADS"] = environment["OPENBLAS_NUM_THREADS"]
-            else:
-                del os.environ["OPENBLAS_NUM_THREADS"]
-    return get_context("forkserver" if dict(os.environ) == _server_environment else "spawn")
+    forked = not _no_server and dict(os.environ) == _server_environment
+    return get_context("forkserver" if forked else "spawn")
 
 
 def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: float,
