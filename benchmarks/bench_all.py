@@ -187,7 +187,8 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter,
                                      epilog="sections: " + ", ".join(SECTIONS))
-    parser.add_argument("--runs", type=int, default=3, help="runs per grade.py figure, rounds of the batch section (medians)")
+    parser.add_argument("--runs", type=int, default=3,
+                        help="runs per grade.py figure, rounds of the batch section (medians)")
     parser.add_argument("--only", nargs="+", choices=SECTIONS, metavar="SECTION",
                         help="measure only these sections (default: all)")
     parser.add_argument("--otter", action="store_true",

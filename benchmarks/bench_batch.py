@@ -4,8 +4,9 @@ Generates a class of the size the grader is built for (300 submissions: copies
 of the reference solutions, skeletons and one wrong exercise, in equal thirds),
 grades it from scratch with ``autograder batch`` as an instructor would (a fresh
 process each time; 1 and 2 workers take turns, so both see the same load,
-medians over the rounds), and prints submissions per minute, the 2-vs-1 worker ratio (budget: at least 1.8x on 2 cores), and the
-batch's cost per submission against a single ``grade.py`` run of one submission.
+medians over the rounds), and prints submissions per minute, the 2-vs-1 worker
+ratio (budget: at least 1.8x on 2 cores), and the batch's cost per submission
+against a single ``grade.py`` run of one submission.
 A benchmark, not a test: it prints figures, it asserts nothing.
 
     python benchmarks/bench_batch.py                     # 300 students, lab07, 3 rounds
