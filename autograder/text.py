@@ -16,3 +16,27 @@ def printable(text) -> str:
     'ok[2J[H73/73\\n'
     """
     return _CONTROL.sub("", str(text).replace("\r\n", "\n"))
+
+
+_SURROGATE = re.compile("[\udc80-\udcff]")
+
+
+def shown(name, limit: int = 160) -> str:
+    """A name from an upload, safe to store and show: the bytes that are not UTF-8 and
+    every control character written as escapes (``\\xff``), at most ``limit`` characters.
+
+    >>> shown("ali\\x1bce\\udcff.py")
+    'ali\\\\x1bce\\\\xff.py'
+    """
+    text = _SURROGATE.sub(lambda m: f"\\x{ord(m.group()) - 0xDC00:02x}", str(name))
+    text = re.sub("[\x00-\x1f]|" + _CONTROL.pattern, lambda m: f"\\x{ord(m.group()):02x}"
+                  if ord(m.group()) < 256 else f"\\u{ord(m.group()):04x}", text)
+    return text if len(text) <= limit else text[:limit - 1] + "…"
+
+
+def one_line(text, limit: int = 100) -> str:
+    """``text`` as one short line for a name: controls removed, whitespace runs made one space,
+    undecodable bytes replaced, at most ``limit`` characters."""
+    text = _SURROGATE.sub("\ufffd", str(text))
+    text = " ".join(printable(text).split())
+    return text if len(text) <= limit else text[:limit - 1] + "…"

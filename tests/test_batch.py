@@ -106,7 +106,7 @@ def make_class(root: Path, copies: int = 8) -> dict[str, tuple[str, float | None
     student("zip-in-folder", {"zip-in-folder/upload.zip": zipped({f"{MODULE}.py": reference()})})
     student("bad-zip", {"bad-zip.zip": b"PK\x03\x04 this is not a zip"}, status="unreadable", points=None)
     student("empty-folder", {"empty-folder/README.txt": "I forgot"}, status="unreadable", points=None)
-    student("notes", {"notes.pdf": b"%PDF-1.4"}, status="unreadable", points=None)
+    write(root / "notes.pdf", b"%PDF-1.4")  # a stray file is listed (ignored.csv), no student
     write(root / ".DS_Store", b"\0")  # hidden files are no students
     return expected
 
@@ -182,7 +182,9 @@ def test_generated_class_grades_to_the_expected_gradebook(generated, graded):
     assert_matches_expectations(students, expected)
     readable = [s for s, (status, _) in expected.items() if status == "graded"]
     assert summary.graded == len(readable) and not summary.failed
-    assert len(summary.unreadable) == 3
+    assert len(summary.unreadable) == 2
+    assert [line.split(":")[0] for line in summary.ignored] == ["notes.pdf"]
+    assert list(csv.reader((out / "ignored.csv").open()))[1][0] == "notes.pdf"
     by_id = {s["student_id"]: s for s in students}
     assert "no .py or .ipynb" in by_id["empty-folder"]["reason"]
     assert "zip" in by_id["bad-zip"]["reason"]
@@ -308,7 +310,7 @@ def test_grades_csv_and_lms_imports_parse_with_the_documented_headers(generated,
     assert rows[0] == ["Student ID", "Name", "Status", "lab07.ex1", "Late penalty", "Adjustments", "Total"]
     by_id = {r[0]: r for r in rows[1:]}
     assert by_id["correct-00"][-1] == "12" and by_id["partly-wrong"][-1] == "4"
-    assert by_id["notes"][2].startswith("unreadable: ")
+    assert by_id["bad-zip"][2].startswith("unreadable: ")
     canvas = list(csv.reader((out / "canvas_import.csv").open(newline="")))
     assert canvas[0] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Lab 7"]
     assert canvas[1] == ["Points Possible", "", "", "", "", "12"]
@@ -409,14 +411,14 @@ def test_gradescope_export_with_a_group_and_a_late_submission(tmp_path):
     out = tmp_path / "out"
     summary = run_batch(archive, out, course=course, workers=2, overrides=overrides)
     by_id = {s["student_id"]: s for s in comparable(out)}
-    assert sorted(by_id) == ["ada-lovelace-s001", "alan-turing-s002", "emmy-noether-s004", "submission-999"]
+    assert sorted(by_id) == ["ada-lovelace-s001", "alan-turing-s002", "emmy-noether-s004"]
     ada, group = by_id["ada-lovelace-s001"], by_id["alan-turing-s002"]
     assert ada["result"]["total"] == FULL and ada["lms"]["sid"] == "S001"
     assert [m["name"] for m in group["members"]] == ["Alan Turing", "Grace Hopper"]
     assert group["result"]["total"] == 4.0 and group["submitted_at"].startswith("2026-03-03T09:30")
     assert by_id["emmy-noether-s004"]["status"] == "unreadable"    # in the metadata, no folder
-    assert by_id["submission-999"]["status"] == "unreadable"       # a folder, not in the metadata
-    assert len(summary.unreadable) == 2
+    assert summary.ignored == ["submission_999: not listed in submission_metadata.yml; not graded"]
+    assert len(summary.unreadable) == 1
     grades = {r["Student ID"]: r for r in csv.DictReader((out / "grades.csv").open())}
     assert grades["alan-turing-s002"]["Late penalty"] == "0.8"     # 2 days late: 20% of 4 points
     assert grades["alan-turing-s002"]["Adjustments"] == "1"         # a member's override is the group's
@@ -434,14 +436,13 @@ def test_canvas_download_groups_files_strips_prefixes_and_undoes_renaming(tmp_pa
     write(download / f"doejane_LATE_2345_6789_{MODULE}.py", skeleton())        # first upload
     write(download / f"doejane_LATE_2345_6789_{MODULE}-1.py", reference())     # re-upload: Canvas renamed it
     write(download / "leeann_3456_7890_Lab7.zip", zipped({f"Lab7/{MODULE}.py": reference() + WRONG_WAY}))
-    write(download / "readme.txt", "instructions")
+    write(download / "readme.txt", "instructions")   # no Canvas name: listed, never a student
     entries = {e.student_id: e for e in read_class(download, [MODULE])}
-    assert sorted(entries) == ["doejane-2345", "leeann-3456", "readme", "smithjohn-1234"]
+    assert sorted(entries) == ["doejane-2345", "leeann-3456", "smithjohn-1234"]
     assert sorted(entries["smithjohn-1234"].files) == ["helpers.py", f"{MODULE}.py"]
     assert entries["doejane-2345"].files == {f"{MODULE}.py": reference().encode()}
     assert entries["doejane-2345"].late is True and entries["smithjohn-1234"].late is False
     assert entries["smithjohn-1234"].lms == {"canvas_user_id": "1234", "canvas_submission_id": "5678"}
-    assert entries["readme"].error
 
     roster = tmp_path / "roster.csv"
     roster.write_text("Student,ID,SIS User ID,SIS Login ID,Section,Lab 7\n"
@@ -467,7 +468,9 @@ def test_canvas_download_groups_files_strips_prefixes_and_undoes_renaming(tmp_pa
     assert canvas["1234"]["Student"] == "Smith, John" and canvas["1234"]["SIS Login ID"] == "jsmith"
     assert canvas["3456"]["Lab 7"] == "10"
     unmatched = list(csv.DictReader((out / "roster_unmatched.csv").open()))
-    assert {r["Name"] for r in unmatched} == {"leeann", "readme.txt", "Nobody, Ned"}
+    assert {r["Name"] for r in unmatched} == {"leeann", "Nobody, Ned"}
+    assert summary.ignored == ["readme.txt: not named like a Canvas download (name_userid_submissionid_file); "
+                               "not graded"]
     page = (out / "leeann-3456" / "feedback.html").read_text()
     assert "regraded by hand" in page
     # the overrides are kept in the gradebook: a later run without --overrides still applies them

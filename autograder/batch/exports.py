@@ -16,6 +16,14 @@ Files written in RESULTS (every one parses with :mod:`csv`; UTF-8, comma-separat
     ``Student ID,Name,Problem``: students with no roster row and roster rows with
     no submission (written when a roster is given). Nobody is dropped: they are
     in the other files too, with the identities known.
+``ignored.csv``
+    ``Item,Reason``: what the upload held that is no student's submission (a
+    stray file, a link, a name no LMS gives), written when there is any.
+
+Every cell a spreadsheet would read as a formula (a leading ``=``, ``+``, ``-``,
+``@``, TAB or CR, OWASP's rule) is written with a ``'`` before it
+(:func:`spreadsheet_safe`), in every CSV the batch writes; plain numbers
+(``-2``, ``+1.5``) are left as they are.
 
 Overrides file (``--overrides``), columns ``student,exercise,points,penalty,comment``:
 ``student`` is a derived id, an LMS id (sid, e-mail, Canvas user id) or the name;
@@ -332,7 +340,7 @@ def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig,
                     + [_fmt(g.exercises[e]) for e in ids]
                     + [_fmt(g.late_penalty if g.graded else None), _fmt(g.bonus if g.graded else None),
                        _fmt(g.total)])
-    files.append(_write(out / "grades.csv", rows))
+    files.append(write_csv(out / "grades.csv", rows))
 
     rows = [CANVAS_HEADER + [course.assignment], ["Points Possible", "", "", "", "", _fmt(max_total(exercises, course))]]
     for g, member in _members(grades):
@@ -341,7 +349,7 @@ def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig,
                      r.get("canvas_user_id") or lms.get("canvas_user_id", ""),
                      r.get("sid") or member.get("sid", ""), r.get("login") or member.get("email", ""),
                      r.get("section", ""), _fmt(g.total)])
-    files.append(_write(out / "canvas_import.csv", rows))
+    files.append(write_csv(out / "canvas_import.csv", rows))
 
     rows = [MOODLE_HEADER]
     for g, member in _members(grades):
@@ -350,7 +358,7 @@ def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig,
         rows.append([r.get("identifier") or (f"Participant {participant}" if participant else ""),
                      r.get("name") or member.get("name") or g.student["display_name"],
                      r.get("email") or member.get("email", ""), _fmt(g.total)])
-    files.append(_write(out / "moodle_import.csv", rows))
+    files.append(write_csv(out / "moodle_import.csv", rows))
 
     if roster_given:
         rows = [UNMATCHED_HEADER]
@@ -359,7 +367,7 @@ def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig,
                 rows.append([g.student["student_id"], g.student["display_name"], "on the roster, no submission"])
             elif not g.roster:
                 rows.append([g.student["student_id"], g.student["display_name"], "submitted, not on the roster"])
-        files.append(_write(out / "roster_unmatched.csv", rows))
+        files.append(write_csv(out / "roster_unmatched.csv", rows))
     return files
 
 
@@ -372,11 +380,40 @@ def _members(grades):
             yield g, member
 
 
-def _write(path: Path, rows) -> Path:
+IGNORED_HEADER = ["Item", "Reason"]
+_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+_PLAIN_NUMBER = re.compile(r"[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?")
+
+
+def spreadsheet_safe(cell) -> str:
+    """``cell`` as text a spreadsheet shows and never evaluates: a leading ``=``, ``+``,
+    ``-``, ``@``, TAB or CR gets a ``'`` before it, unless the cell is a plain number.
+
+    >>> spreadsheet_safe("=1+1"), spreadsheet_safe("@SUM(A1)"), spreadsheet_safe("-2.5")
+    ("'=1+1", "'@SUM(A1)", '-2.5')
+    """
+    text = "" if cell is None else str(cell)
+    if text.startswith(_FORMULA_START) and not _PLAIN_NUMBER.fullmatch(text):
+        return "'" + text
+    return text
+
+
+def write_csv(path: Path, rows) -> Path:
+    """Write ``rows`` to the CSV file at ``path`` (atomically), every cell made :func:`spreadsheet_safe`."""
     buffer = io.StringIO()
-    csv.writer(buffer, lineterminator="\n").writerows(rows)
+    csv.writer(buffer, lineterminator="\n").writerows([spreadsheet_safe(cell) for cell in row] for row in rows)
     write_atomically(path, buffer.getvalue())
     return path
+
+
+
+def write_ignored(out, ignored: list[tuple[str, str]]) -> list[Path]:
+    """``ignored.csv`` listing what the upload held that is no submission (removed when nothing is)."""
+    path = Path(out) / "ignored.csv"
+    if not ignored:
+        path.unlink(missing_ok=True)
+        return []
+    return [write_csv(path, [IGNORED_HEADER] + [list(item) for item in ignored])]
 
 
 # ------------------------------------------------------------------ the student's page

@@ -5,9 +5,11 @@ through). Four layouts are recognised, in this order:
 
 Gradescope "Export Submissions"
     ``submission_metadata.yml`` beside ``submission_<id>/`` folders. Names,
-    student ids (``:sid:``), e-mails and submission times come from the metadata
-    (read with ``yaml.safe_load``). A group submission is one entry whose
-    ``members`` lists every submitter.
+    student ids (``:sid:``), e-mails and submission times come from the metadata,
+    read by a safe YAML loader with bounded size, nesting and aliases; only plain
+    text fields are taken. A key names a folder at the export's top, or nothing:
+    a key with ``/`` or ``..`` in it is refused. A group submission is one entry
+    whose ``members`` lists every submitter.
 Canvas "Download Submissions"
     Flat files ``name_userid_submissionid_filename`` (``name_LATE_userid_...`` when
     late). Files are grouped per user id, the prefix is stripped, and Canvas's
@@ -22,40 +24,61 @@ One entry per student
     Anything else: each folder, ``.zip``, ``.py`` or ``.ipynb`` at the top is one
     student, named by it.
 
+**The upload is untrusted input** (students write the names, the archives and part of
+the metadata), so every item is read alone and fails alone:
+
+- Ownership follows the LMS's own prefix: Canvas's ``name_userid_`` and Moodle's
+  *first* ``_<participant>_assignsubmission_``; a name that holds a second such
+  prefix, or files of one LMS id under two names, is ambiguous and refused, never
+  filed under another student. Gradescope's own folder names its submission.
+- Nothing outside the upload is read: links, devices, pipes and sockets are never
+  followed or opened, at any depth, the top level included
+  (:mod:`autograder.batch.tree`); a class zip is read in memory, only the members
+  that can hold code, within their declared sizes and the caps.
+- Whatever goes wrong in one entry becomes that entry's :attr:`Entry.error`
+  ("unreadable" in the gradebook); items that are no student's submission (a
+  stray PDF beside the folders, a link, a file not named as the LMS names files)
+  are listed in :attr:`ClassUpload.ignored` with the reason, never made students.
+- Names are made safe before anything stores them: the display name on one line,
+  without control characters, at most 100 characters; the origin (the item's own
+  name) with undecodable bytes and control characters escaped. Student ids are
+  slugs unique by construction (checked against every id already given, case
+  folded), stable between runs; LMS ids shared by two entries are reported.
+
 Inside an entry only ``.py`` and ``.ipynb`` files count; a ``.zip`` inside is
 unpacked where it lies. A single file that is named after no lab module is taken
 as the module when the selection grades one lab (``alice.py`` for lab07).
-Hidden files and ``__MACOSX`` are ignored; every other top-level item becomes an
-entry, and one that cannot be read carries the reason in :attr:`Entry.error`:
-nothing is skipped silently.
-
-Student ids are derived from the entry (``smith-john-12345`` from a name and an
-LMS id, ``alice`` from a folder) and stay the same between runs.
 """
 
 from __future__ import annotations
 
 import hashlib
 import re
-import shutil
-import tempfile
 import unicodedata
 import zipfile
-from contextlib import contextmanager
 from dataclasses import dataclass, field
 from datetime import datetime
 from pathlib import Path, PurePosixPath
 
 from ..course import parse_time
-from ..submission import MAX_ARCHIVE_BYTES, SubmissionError, read_regular_files, unzip_regular_files
+from ..submission import CAPS, SOURCE_SUFFIXES, _limit_for
+from ..text import one_line, shown
+from .tree import (FILE, FOLDER, LINK, Budget, FolderTree, Unreadable, UploadTree, ZipTree, _zip_sources,
+                   is_hidden, source_files)
 
-SOURCE_SUFFIXES = (".py", ".ipynb")
-MAX_CLASS_ARCHIVE_BYTES = 4 * 2**30   # a whole class's zip, unpacked
+MAX_CLASS_SOURCE_BYTES = 2 * 2**30   # every student's sources together, held in memory
+MAX_TOP_ITEMS = 20_000               # items looked at at the top of an upload
+MAX_METADATA_BYTES = 32 * 2**20      # submission_metadata.yml
+NAME_LENGTH = 100                    # characters of a display name
 
 CANVAS_NAME = re.compile(r"^(?P<name>.+?)(?P<late>_LATE)?_(?P<user>\d+)_(?P<submission>\d+)_(?P<file>.+)$")
 CANVAS_RENAMED = re.compile(r"^(?P<stem>.+)-(?P<n>\d+)(?P<suffix>\.[^.]+)$")
-MOODLE_NAME = re.compile(r"^(?P<name>.+)_(?P<participant>\d+)_assignsubmission_(?P<plugin>[a-z]+)_(?P<file>.*)$")
+# The first "_<id>_assignsubmission_<plugin>_" is Moodle's; what follows is the student's file name.
+MOODLE_NAME = re.compile(r"^(?P<name>.+?)_(?P<participant>\d+)_assignsubmission_(?P<plugin>[a-z]+)_(?P<file>.*)$",
+                         re.DOTALL)
+MOODLE_PREFIX = re.compile(r"_\d+_assignsubmission_[a-z]+_")
 GRADESCOPE_METADATA = "submission_metadata.yml"
+GRADESCOPE_KEY = re.compile(r"^[A-Za-z0-9_-]{1,100}$")
 
 
 class IngestError(ValueError):
@@ -69,13 +92,15 @@ class Entry:
     Attributes
     ----------
     student_id : str
-        Stable derived id (a slug), unique within the class.
+        Stable derived id (a slug of ``[a-z0-9-]``, at most 80 characters), unique
+        within the class whatever the case.
     display_name : str
-        The name to show (from LMS metadata where there is some).
+        The name to show (from LMS metadata where there is some): one line, no
+        control characters, at most 100 characters.
     source : str
         ``"gradescope"``, ``"canvas"``, ``"moodle"`` or ``"entry"``.
     origin : str
-        Where in SUBMISSIONS it came from (for messages).
+        Where in SUBMISSIONS it came from (for messages), escaped as :func:`autograder.text.shown` does.
     files : dict of str to bytes
         Relative POSIX path to content, ``.py``/``.ipynb`` only.
     lms : dict of str to str
@@ -113,148 +138,343 @@ class Entry:
         return digest.hexdigest()
 
 
+@dataclass
+class ClassUpload:
+    """What :func:`read_upload` found: the students, what is no one's submission, and warnings."""
+
+    entries: list[Entry] = field(default_factory=list)
+    ignored: list[tuple[str, str]] = field(default_factory=list)   # (item, why it is not a submission)
+    warnings: list[str] = field(default_factory=list)
+
+    def ignore(self, item: str, reason: str) -> None:
+        self.ignored.append((shown(item), reason))
+
+
 # ------------------------------------------------------------------ reading a class
 def read_class(path, modules: list[str], every_module: list[str] = ()) -> list[Entry]:
-    """Every student entry in the class folder or zip at ``path``, sorted by id.
+    """Every student entry in the class folder or zip at ``path``, sorted by id (see :func:`read_upload`)."""
+    return read_upload(path, modules, every_module).entries
+
+
+def read_upload(path, modules: list[str], every_module: list[str] = ()) -> ClassUpload:
+    """Read the class folder or zip at ``path``: entries sorted by id, ignored items, warnings.
 
     ``modules`` are the lab modules the selection grades, ``every_module`` those
     of all labs (for the lone-file rule: a file named after another lab's module
-    is not renamed).
+    is not renamed). Raises :class:`IngestError` only when ``path`` itself cannot
+    be read; anything wrong inside it is one entry's error or one ignored item.
     """
-    with _class_root(Path(path)) as root:
-        if (root / GRADESCOPE_METADATA).is_file():
-            entries = _gradescope(root)
-        elif _looks_like(root, MOODLE_NAME):
-            entries = _moodle(root)
-        elif _looks_like(root, CANVAS_NAME, files_only=True):
-            entries = _canvas(root)
-        else:
-            entries = _one_per_entry(root)
-    for entry in entries:
+    upload = ClassUpload()
+    with _open_tree(Path(path)) as tree:
+        for name in getattr(tree, "outside", []):
+            upload.ignore(name, "its name points outside the archive; not read")
+        _Reader(tree, _unwrap(tree, ()), upload).read()
+    every = set(every_module) | set(modules)
+    for entry in upload.entries:
         if not entry.error:
-            _name_lone_file(entry, modules, set(every_module) | set(modules))
-    _make_ids_unique(entries)
-    return sorted(entries, key=lambda e: e.student_id)
+            _name_lone_file(entry, modules, every)
+        _make_safe(entry)
+    _assign_ids(upload.entries)
+    upload.warnings += _shared_identities(upload.entries)
+    upload.entries.sort(key=lambda e: e.student_id)
+    return upload
 
 
-@contextmanager
-def _class_root(path: Path):
+def _open_tree(path: Path) -> UploadTree:
+    if path.is_symlink():
+        raise IngestError(f"{shown(path)} is a symbolic link; give the class folder or zip itself")
     if not path.exists():
-        raise IngestError(f"submissions not found: {path}")
+        raise IngestError(f"submissions not found: {shown(path)}")
     if path.is_dir():
-        yield _unwrap(path)
-        return
-    if not zipfile.is_zipfile(path):
-        raise IngestError(f"{path.name}: expected a folder or a .zip holding the class's submissions")
-    tmp = Path(tempfile.mkdtemp(prefix="class-"))
+        return FolderTree(path)
     try:
-        _extract(path, tmp, MAX_CLASS_ARCHIVE_BYTES)
-        yield _unwrap(tmp)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+        return ZipTree.open(path, shown(path.name))
+    except Unreadable as exc:
+        raise IngestError(f"{exc}: expected a folder or a .zip holding the class's submissions") from None
 
 
-def _unwrap(root: Path) -> Path:
+def _unwrap(tree: UploadTree, root: tuple) -> tuple:
     """A folder holding just one folder (``export/``) is looked through."""
-    children = _visible(root)
-    if len(children) == 1 and children[0].is_dir() and not _is_student_folder(children[0]):
-        return _unwrap(children[0])
+    names = _visible(tree, root)
+    if len(names) == 1 and tree.kind(root + (names[0],)) == FOLDER and not _is_student_folder(tree, root + (names[0],)):
+        return _unwrap(tree, root + (names[0],))
     return root
 
 
-def _is_student_folder(folder: Path) -> bool:
-    return any(p.suffix in SOURCE_SUFFIXES for p in folder.iterdir() if p.is_file())
+def _is_student_folder(tree: UploadTree, folder: tuple) -> bool:
+    return any(n.endswith(SOURCE_SUFFIXES) and tree.kind(folder + (n,)) == FILE for n in _visible(tree, folder))
 
 
-def _visible(folder: Path) -> list[Path]:
-    return sorted(p for p in folder.iterdir() if not p.name.startswith(".") and p.name != "__MACOSX")
+def _visible(tree: UploadTree, folder: tuple) -> list[str]:
+    try:
+        return [n for n in tree.children(folder) if not is_hidden(n)]
+    except Unreadable:
+        return []
 
 
-def _looks_like(root: Path, pattern: re.Pattern, files_only: bool = False) -> bool:
-    children = [p for p in _visible(root) if p.is_file() or not files_only]
-    return bool(children) and sum(bool(pattern.match(p.name)) for p in children) >= max(1, len(children) // 2)
+def _layout(tree: UploadTree, root: tuple, names: list[str]) -> str:
+    if GRADESCOPE_METADATA in names and tree.kind(root + (GRADESCOPE_METADATA,)) == FILE:
+        return "gradescope"
+    if _mostly(names, MOODLE_NAME):
+        return "moodle"
+    if _mostly([n for n in names if tree.kind(root + (n,)) == FILE], CANVAS_NAME):
+        return "canvas"
+    return "entry"
+
+
+def _mostly(names: list[str], pattern: re.Pattern) -> bool:
+    return bool(names) and sum(bool(pattern.match(n)) for n in names) >= max(1, len(names) // 2)
 
 
 # ------------------------------------------------------------------ layouts
-def _one_per_entry(root: Path) -> list[Entry]:
-    entries = []
-    for item in _visible(root):
-        name = item.stem if item.is_file() else item.name
-        entry = Entry(slug(name), name, "entry", item.name)
-        _read_into(entry, item)
-        entries.append(entry)
-    return entries
+class _Reader:
+    """Reads one upload's entries into ``upload``; each item alone, whatever happens to it."""
 
+    def __init__(self, tree: UploadTree, root: tuple, upload: ClassUpload):
+        self.tree, self.root, self.upload = tree, root, upload
+        self.budget = Budget(MAX_CLASS_SOURCE_BYTES)
 
-def _gradescope(root: Path) -> list[Entry]:
-    import yaml
+    def read(self) -> None:
+        names = _visible(self.tree, self.root)
+        if len(names) > MAX_TOP_ITEMS:
+            self.upload.ignore(f"{len(names) - MAX_TOP_ITEMS} items after {shown(names[MAX_TOP_ITEMS - 1])}",
+                               f"the upload holds more than {MAX_TOP_ITEMS} items; these were not looked at")
+            names = names[:MAX_TOP_ITEMS]
+        layouts = {"gradescope": self.gradescope, "canvas": self.canvas, "moodle": self.moodle,
+                   "entry": self.one_per_entry}
+        layouts[_layout(self.tree, self.root, names)](names)
 
-    try:
-        metadata = yaml.safe_load((root / GRADESCOPE_METADATA).read_text(encoding="utf-8")) or {}
-        if not isinstance(metadata, dict):
-            raise ValueError("expected a mapping of submission_<id> to its metadata")
-    except (OSError, ValueError, yaml.YAMLError) as exc:
-        raise IngestError(f"{GRADESCOPE_METADATA} is not readable: {exc}") from None
-    entries, seen = [], set()
-    for key, meta in sorted(metadata.items(), key=lambda kv: str(kv[0])):
-        key = str(key)
-        meta = meta if isinstance(meta, dict) else {}
-        members = [{"name": str(s.get(":name", "")), "sid": str(s.get(":sid") or ""),
-                    "email": str(s.get(":email") or "")}
-                   for s in meta.get(":submitters") or [] if isinstance(s, dict)]
-        first = members[0] if members else {"name": key, "sid": "", "email": ""}
-        submission_id = key.removeprefix("submission_")
-        name = " & ".join(m["name"] for m in members) or key
-        # The sid (else the e-mail's user) keeps the id stable across resubmissions and exports.
-        stable = first["sid"] or first["email"].split("@")[0] or submission_id
-        entry = Entry(slug(first["name"] or key, stable), name, "gradescope", key,
-                      lms={"gradescope_submission_id": submission_id, "sid": first["sid"], "email": first["email"]},
-                      members=members, submitted_at=_iso(meta.get(":created_at")))
-        folder = root / key
-        if folder.is_dir():
-            _read_into(entry, folder)
+    def kind(self, name: str) -> str | None:
+        return self.tree.kind(self.root + (name,))
+
+    def _not_followed(self, name: str) -> bool:
+        """Links and special files at the top are listed and never looked into."""
+        kind = self.kind(name)
+        if kind in (FILE, FOLDER):
+            return False
+        self.upload.ignore(name, "a symbolic link; links are never followed" if kind == LINK
+                           else "not a regular file or folder; not read")
+        return True
+
+    def add(self, entry: Entry, read) -> Entry:
+        """Run ``read()`` to fill ``entry``; whatever it raises becomes the entry's error."""
+        try:
+            read()
+        except Unreadable as exc:
+            entry.error = str(exc)
+        except Exception as exc:  # noqa: BLE001 - one student's upload never stops the class
+            entry.error = f"it could not be read ({type(exc).__name__}: {exc})"
+        self.upload.entries.append(entry)
+        return entry
+
+    # -------------------------------------------------------------- one entry per student
+    def one_per_entry(self, names: list[str]) -> None:
+        for name in names:
+            if self._not_followed(name):
+                continue
+            if self.kind(name) == FILE and not name.endswith(SOURCE_SUFFIXES + (".zip",)):
+                self.upload.ignore(name, "not a submission: expected a folder, .zip, .py or .ipynb")
+                continue
+            stem = PurePosixPath(name).stem if self.kind(name) == FILE else name
+            entry = Entry(slug(stem), stem, "entry", name)
+            self.add(entry, lambda: self.read_item(entry, name))
+
+    def read_item(self, entry: Entry, name: str) -> None:
+        """A folder's sources, or one top-level file (a zip unpacked in memory)."""
+        path = self.root + (name,)
+        if self.tree.problem(path):
+            raise Unreadable(self.tree.problem(path))
+        if self.kind(name) == FOLDER:
+            entry.files = self.folder_sources(path)
         else:
-            entry.error = f"{key} is listed in {GRADESCOPE_METADATA} but has no folder in the export"
-        seen.add(key)
-        entries.append(entry)
-    for item in _visible(root):
-        if item.name not in seen and item.name != GRADESCOPE_METADATA:
-            entry = Entry(slug(item.name), item.name, "gradescope", item.name,
-                          error=f"{item.name} is not listed in {GRADESCOPE_METADATA}")
-            entries.append(entry)
-    return entries
+            entry.files = self.file_sources(path, name)
 
+    def folder_sources(self, path: tuple) -> dict[str, bytes]:
+        refused: dict[str, str] = {}
+        files = source_files(self.tree, path, refused, self.budget)
+        if files:
+            return files
+        if refused:
+            item, reason = next(iter(refused.items()))
+            raise Unreadable(f"{item} was not read: {reason}")
+        found = _visible(self.tree, path)
+        raise Unreadable("no .py or .ipynb file in it" + (f" (found: {shown(', '.join(found[:10]), 200)})"
+                                                          if found else " (it is empty)"))
 
-def _canvas(root: Path) -> list[Entry]:
-    by_user: dict[str, Entry] = {}
-    uploads: dict[str, dict[str, tuple[int, bytes]]] = {}
-    entries = []
-    for item in _visible(root):
-        match = CANVAS_NAME.match(item.name) if item.is_file() else None
-        if not match:
-            entries.append(Entry(slug(item.stem), item.name, "canvas", item.name,
-                                 error="not named like a Canvas download (name_userid_submissionid_file)"))
-            continue
-        user = match["user"]
-        entry = by_user.get(user)
-        if entry is None:
-            entry = by_user[user] = Entry(slug(match["name"], user), match["name"], "canvas", item.name,
-                                          lms={"canvas_user_id": user, "canvas_submission_id": match["submission"]},
-                                          late=False)
-            uploads[user] = {}
-        entry.late = entry.late or bool(match["late"])
-        original, number = _undo_canvas_renaming(match["file"])
-        if original not in uploads[user] or number > uploads[user][original][0]:
+    def file_sources(self, path: tuple, name: str, as_name: str | None = None) -> dict[str, bytes]:
+        """One uploaded file: a source file as it is, a zip's sources in a folder named after it."""
+        as_name = as_name or name
+        if name.endswith(".zip"):
+            data = self.tree.read(path, CAPS.total_bytes)
+            folder = PurePosixPath(as_name).with_suffix("")
+            return {(folder / inner).as_posix(): d for inner, d in _zip_sources(data, name, CAPS, self.budget).items()}
+        data = self.tree.read(path, _limit_for(name, CAPS))
+        self.budget.take(len(data))
+        return {as_name: data}
+
+    # -------------------------------------------------------------- Gradescope
+    def gradescope(self, names: list[str]) -> None:
+        metadata = self.gradescope_metadata()
+        listed = set()
+        for key, meta in sorted(metadata.items(), key=lambda kv: str(kv[0])[:200]):
+            key = _text(key)
+            if not GRADESCOPE_KEY.match(key) or key in listed:
+                self.upload.ignore(key or "(an empty key)", f"a key of {GRADESCOPE_METADATA} that names no "
+                                   "submission folder of the export (folder names only); not read")
+                continue
+            listed.add(key)
+            if not isinstance(meta, dict):
+                self.upload.ignore(key, f"its entry in {GRADESCOPE_METADATA} is no submission's metadata; "
+                                   "not read")
+                continue
+            submitters = meta.get(":submitters")
+            members = [{"name": one_line(_text(s.get(":name")), NAME_LENGTH), "sid": _text(s.get(":sid"))[:100],
+                        "email": _text(s.get(":email"))[:200]}
+                       for s in (submitters if isinstance(submitters, list) else [])[:50] if isinstance(s, dict)]
+            first = members[0] if members else {"name": key, "sid": "", "email": ""}
+            submission_id = key.removeprefix("submission_")
+            name = " & ".join(m["name"] for m in members if m["name"]) or key
+            # The sid (else the e-mail's user) keeps the id stable across resubmissions and exports.
+            stable = first["sid"] or first["email"].split("@")[0] or submission_id
+            entry = Entry(slug(first["name"] or key, stable), name, "gradescope", key,
+                          lms={"gradescope_submission_id": submission_id, "sid": first["sid"],
+                               "email": first["email"]},
+                          members=members, submitted_at=_iso(meta.get(":created_at")))
+
+            def read(entry=entry, key=key):
+                if key not in names or self.kind(key) != FOLDER or self.tree.problem(self.root + (key,)):
+                    kind = self.kind(key) if key in names else None
+                    raise Unreadable(f"{key} is listed in {GRADESCOPE_METADATA} but "
+                                     + ("is a symbolic link, not followed" if kind == LINK else
+                                        "is not a folder of the export" if kind else "has no folder in the export"))
+                entry.files = self.folder_sources(self.root + (key,))
+
+            self.add(entry, read)
+        for name in names:
+            if name not in listed and name != GRADESCOPE_METADATA and not self._not_followed(name):
+                self.upload.ignore(name, f"not listed in {GRADESCOPE_METADATA}; not graded")
+
+    def gradescope_metadata(self) -> dict:
+        try:
+            text = self.tree.read(self.root + (GRADESCOPE_METADATA,), MAX_METADATA_BYTES).decode("utf-8")
+            metadata = safe_yaml(text)
+        except (Unreadable, UnicodeDecodeError, ValueError) as exc:
+            raise IngestError(f"{GRADESCOPE_METADATA} is not readable: {one_line(exc, 300)}") from None
+        if not isinstance(metadata, dict):
+            raise IngestError(f"{GRADESCOPE_METADATA} is not readable: expected a mapping of "
+                              "submission_<id> to its metadata")
+        return metadata
+
+    # -------------------------------------------------------------- Canvas
+    def canvas(self, names: list[str]) -> None:
+        by_user: dict[str, list[tuple[str, re.Match]]] = {}
+        for name in names:
+            if self._not_followed(name):
+                continue
+            match = CANVAS_NAME.match(name) if self.kind(name) == FILE else None
+            if not match:
+                self.upload.ignore(name, "not named like a Canvas download (name_userid_submissionid_file); "
+                                   "not graded")
+                continue
+            by_user.setdefault(match["user"], []).append((name, match))
+        for user, uploads in sorted(by_user.items()):
+            first = uploads[0][1]
+            entry = Entry(slug(first["name"], user), first["name"], "canvas", uploads[0][0],
+                          lms={"canvas_user_id": user, "canvas_submission_id": first["submission"]},
+                          late=any(m["late"] for _, m in uploads))
+            self.add(entry, lambda entry=entry, uploads=uploads: self.canvas_files(entry, uploads))
+
+    def canvas_files(self, entry: Entry, uploads) -> None:
+        named = sorted({m["name"] for _, m in uploads})
+        if len(named) > 1:
+            raise Unreadable(f"files of Canvas user {entry.lms['canvas_user_id']} carry different names "
+                             f"({shown(', '.join(named), 200)}): check the download")
+        latest: dict[str, tuple[int, str]] = {}
+        for name, match in uploads:
+            original, number = _undo_canvas_renaming(match["file"])
+            if original not in latest or number > latest[original][0]:
+                latest[original] = (number, name)
+        self.flat_files(entry, {original: name for original, (_, name) in latest.items()})
+
+    def flat_files(self, entry: Entry, uploads: dict[str, str]) -> None:
+        """An entry from flat uploads (file name in the entry -> item at the top)."""
+        files: dict[str, bytes] = {}
+        refused: dict[str, str] = {}
+        for as_name, name in sorted(uploads.items()):
+            if not as_name.endswith(SOURCE_SUFFIXES + (".zip",)):
+                continue   # a report, a picture: kept by name only, never read
             try:
-                uploads[user][original] = (number, _upload_bytes(item))
-            except (OSError, ValueError) as exc:
-                entry.error = str(exc)
-    for user, entry in by_user.items():
-        files = {name: data for name, (_, data) in uploads[user].items()}
-        if not entry.error:
-            _read_files_into(entry, files)
-        entries.append(entry)
-    return entries
+                for key, data in self.file_sources(self.root + (name,), name, as_name).items():
+                    if key in files:
+                        refused[shown(key)] = "two uploads give a file of that name"
+                    else:
+                        files[key] = data
+            except Unreadable as exc:
+                refused[shown(name)] = str(exc)
+        if not files:
+            if refused:
+                item, reason = next(iter(refused.items()))
+                raise Unreadable(f"{item} was not read: {reason}")
+            raise Unreadable("no .py or .ipynb file in it (found: "
+                             f"{shown(', '.join(sorted(uploads)[:10]), 200)})")
+        entry.files = files
+
+    # -------------------------------------------------------------- Moodle
+    def moodle(self, names: list[str]) -> None:
+        by_participant: dict[str, list[tuple[str, re.Match]]] = {}
+        for name in names:
+            if self._not_followed(name):
+                continue
+            match = MOODLE_NAME.match(name)
+            if not match:
+                self.upload.ignore(name, "not named like a Moodle download (Full Name_id_assignsubmission_file_); "
+                                   "not graded")
+                continue
+            if MOODLE_PREFIX.search(match["file"]) or (self.kind(name) == FOLDER and match["file"]):
+                self.upload.ignore(name, "ambiguous: the name holds a second Moodle prefix "
+                                   "(_<id>_assignsubmission_); filed under nobody, not graded")
+                continue
+            by_participant.setdefault(match["participant"], []).append((name, match))
+        for participant, items in sorted(by_participant.items()):
+            first = items[0][1]
+            entry = Entry(slug(first["name"], participant), first["name"], "moodle", items[0][0],
+                          lms={"moodle_participant_id": participant})
+            self.add(entry, lambda entry=entry, items=items: self.moodle_files(entry, items))
+
+    def moodle_files(self, entry: Entry, items) -> None:
+        named = sorted({m["name"] for _, m in items})
+        if len(named) > 1:
+            raise Unreadable(f"items of Moodle participant {entry.lms['moodle_participant_id']} carry different "
+                             f"names ({shown(', '.join(named), 200)}): check the download")
+        flat: dict[str, str] = {}
+        folders = []
+        for name, match in items:
+            if match["plugin"] != "file":
+                continue   # online text, comments: nothing to grade
+            if self.kind(name) == FOLDER:
+                folders.append(name)
+            elif match["file"] in flat:
+                raise Unreadable(f"two uploads are named {shown(match['file'])}")
+            else:
+                flat[match["file"]] = name
+        files: dict[str, bytes] = {}
+        for folder in folders:
+            files.update(self.folder_sources(self.root + (folder,)))
+        if flat:
+            part = Entry("", "", "", "")
+            try:
+                self.flat_files(part, flat)
+            except Unreadable:
+                if not files:
+                    raise
+            clashes = sorted(set(files) & set(part.files))
+            if clashes:
+                raise Unreadable(f"two uploads are named {shown(clashes[0])}")
+            files.update(part.files)
+        if not files:
+            raise Unreadable("no file submission in it (online text only)" if not folders
+                             else "no .py or .ipynb file in it")
+        entry.files = files
 
 
 def _undo_canvas_renaming(filename: str) -> tuple[str, int]:
@@ -265,145 +485,62 @@ def _undo_canvas_renaming(filename: str) -> tuple[str, int]:
     return filename, 0
 
 
-def _moodle(root: Path) -> list[Entry]:
-    by_participant: dict[str, Entry] = {}
-    files: dict[str, dict[str, bytes]] = {}
-    entries = []
-    for item in _visible(root):
-        match = MOODLE_NAME.match(item.name)
-        if not match:
-            entries.append(Entry(slug(item.stem), item.name, "moodle", item.name,
-                                 error="not named like a Moodle download (Full Name_id_assignsubmission_file_)"))
-            continue
-        participant = match["participant"]
-        entry = by_participant.get(participant)
-        if entry is None:
-            entry = by_participant[participant] = Entry(
-                slug(match["name"], participant), match["name"], "moodle", item.name,
-                lms={"moodle_participant_id": participant})
-            files[participant] = {}
-        if match["plugin"] != "file":
-            continue  # online text, comments: nothing to grade
-        if item.is_dir():
-            part = Entry("", "", "", item.name)
-            _read_into(part, item)
-            if part.error and not part.files:
-                entry.error = part.error
-            files[participant].update(part.files)
-        else:
+# ------------------------------------------------------------------ metadata
+def safe_yaml(text: str, max_aliases: int = 1000, max_depth: int = 20):
+    """``yaml.safe_load`` with bounded nesting and aliases (:class:`ValueError` beyond them).
+
+    Only plain values are ever taken from the result (:func:`_text`), so an alias,
+    however often repeated, never becomes a long string.
+    """
+    import yaml
+
+    class Loader(yaml.SafeLoader):
+        aliases = depth = 0
+
+        def compose_node(self, parent, index):
+            if self.check_event(yaml.AliasEvent):
+                self.aliases += 1
+                if self.aliases > max_aliases:
+                    raise ValueError(f"more than {max_aliases} YAML aliases")
+            self.depth += 1
             try:
-                files[participant][match["file"]] = _upload_bytes(item)
-            except (OSError, ValueError) as exc:
-                entry.error = str(exc)
-    for participant, entry in by_participant.items():
-        if not entry.error:
-            _read_files_into(entry, files[participant])
-        entries.append(entry)
-    return entries
+                if self.depth > max_depth:
+                    raise ValueError(f"nested more than {max_depth} levels deep")
+                return super().compose_node(parent, index)
+            finally:
+                self.depth -= 1
 
-
-# ------------------------------------------------------------------ one entry's files
-def _read_into(entry: Entry, item: Path) -> None:
-    """Collect ``item``'s source files (a folder, zip, .py or .ipynb) into ``entry``."""
+    loader = Loader(text)
     try:
-        if item.is_dir():
-            files = _folder_sources(item)
-        elif item.suffix in SOURCE_SUFFIXES + (".zip",):
-            files = {item.name: _upload_bytes(item)}
-        else:
-            raise ValueError(f"not a submission: expected a folder, .zip, .py or .ipynb, got {item.name}")
-    except (OSError, ValueError) as exc:
-        entry.error = str(exc)
-        return
-    _read_files_into(entry, files)
+        return loader.get_single_data()
+    except yaml.YAMLError as exc:
+        raise ValueError(str(exc)) from None
+    finally:
+        loader.dispose()
 
 
-def _folder_sources(folder: Path) -> dict[str, bytes]:
-    """The source files and zips of a student's folder, read as loading reads a submission:
-    regular files only (a link is never followed), within the caps; reports, images and
-    the like are never read."""
-    refused: dict[str, str] = {}
-    files = dict(sorted(read_regular_files(folder, refused, suffixes=SOURCE_SUFFIXES + (".zip",)).items()))
-    if not files and refused:
-        name, reason = next(iter(refused.items()))
-        raise ValueError(f"{name} was not read: {reason}")
-    return files
+def _text(value) -> str:
+    """A plain text or number from metadata as text; anything else (lists, maps, huge numbers) is ''."""
+    if isinstance(value, str):
+        return value[:1000]
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and abs(value) < 1e30:
+        return str(value)
+    return ""
 
 
-def _upload_bytes(item: Path) -> bytes:
-    """A flat upload's bytes when it can hold code (.py, .ipynb, .zip); other uploads
-    (a report PDF, pictures) are kept by name only, never read."""
-    if PurePosixPath(item.name).suffix not in SOURCE_SUFFIXES + (".zip",):
-        return b""
-    if item.is_symlink() or not item.is_file():
-        raise ValueError(f"{item.name} is not a regular file")
-    if item.stat().st_size > MAX_ARCHIVE_BYTES:
-        raise ValueError(f"{item.name} is larger than {MAX_ARCHIVE_BYTES // 2**20} MB")
-    return item.read_bytes()
-
-
-def _read_files_into(entry: Entry, files: dict[str, bytes]) -> None:
-    """Keep the source files; unpack zips where they lie; record why when nothing is left."""
+def _iso(value) -> str | None:
+    if value is None or value == "":
+        return None
+    if isinstance(value, datetime):
+        return value.isoformat()
+    text = _text(value)
     try:
-        kept: dict[str, bytes] = {}
-        for name, data in sorted(files.items()):
-            path = PurePosixPath(name)
-            if path.suffix == ".zip":
-                folder = path.parent / path.stem
-                for inner, inner_data in _zip_sources(data, name).items():
-                    kept[(folder / inner).as_posix()] = inner_data
-            elif path.suffix in SOURCE_SUFFIXES:
-                kept[name] = data
-        if not kept:
-            raise ValueError("no .py or .ipynb file in it" + (f" (found: {', '.join(sorted(files))[:200]})"
-                                                              if files else " (it is empty)"))
-    except ValueError as exc:
-        entry.error = str(exc)
-        return
-    entry.files = kept
+        return parse_time(text).isoformat()
+    except (ValueError, OverflowError):
+        return shown(text, 40) or None
 
 
-def _zip_sources(data: bytes, name: str) -> dict[str, bytes]:
-    """The source files of a student's zip, unpacked by the loader's own deny-by-default
-    reader (regular members only, caps, inflation checked as it streams)."""
-    with tempfile.TemporaryDirectory(prefix="ingest-zip-") as scratch:
-        archive, target = Path(scratch) / "upload.zip", Path(scratch) / "files"
-        archive.write_bytes(data)
-        target.mkdir()
-        try:
-            unzip_regular_files(archive, target)
-        except SubmissionError as exc:
-            raise ValueError(str(exc).replace("upload.zip", name)) from None
-        return {p.relative_to(target).as_posix(): p.read_bytes()
-                for p in sorted(target.rglob("*")) if p.is_file()}
-
-
-def _extract(archive: Path, target: Path, limit: int) -> None:
-    """Unpack the class's archive (every member: nested zips and metadata too), safely."""
-    try:
-        with zipfile.ZipFile(archive) as zf:
-            if sum(info.file_size for info in zf.infolist()) > limit:
-                raise IngestError(f"{archive.name} unpacks to more than {limit // 2**20} MB")
-            for info in zf.infolist():
-                if info.is_dir() or not _safe_member(info.filename):
-                    continue
-                dest = target / info.filename
-                dest.parent.mkdir(parents=True, exist_ok=True)
-                with zf.open(info) as source, open(dest, "wb") as sink:
-                    shutil.copyfileobj(source, sink)
-    except (zipfile.BadZipFile, zipfile.LargeZipFile, EOFError, NotImplementedError) as exc:
-        raise IngestError(f"{archive.name} is not a readable zip archive: {exc}") from None
-
-
-def _safe_member(name: str) -> bool:
-    path = PurePosixPath(name.replace("\\", "/"))
-    return not path.is_absolute() and ".." not in path.parts and not _ignored(path.parts)
-
-
-def _ignored(parts) -> bool:
-    return any(part.startswith(".") or part == "__MACOSX" or part == "__pycache__" for part in parts)
-
-
+# ------------------------------------------------------------------ names and ids
 def _name_lone_file(entry: Entry, modules: list[str], every_module: set[str]) -> None:
     """A single source file named after no module is the module, when one lab is graded."""
     names = {PurePosixPath(n).stem for n in entry.files}
@@ -416,33 +553,59 @@ def _name_lone_file(entry: Entry, modules: list[str], every_module: set[str]) ->
     entry.files = {modules[0] + PurePosixPath(name).suffix: data}
 
 
-# ------------------------------------------------------------------ ids
+def _make_safe(entry: Entry) -> None:
+    """Every text of the entry fit to store (valid UTF-8) and to show (one line, bounded)."""
+    entry.display_name = one_line(entry.display_name, NAME_LENGTH) or shown(entry.origin, NAME_LENGTH)
+    entry.origin = shown(entry.origin)
+    entry.error = one_line(entry.error, 500)
+    entry.lms = {key: one_line(value, 200) for key, value in entry.lms.items()}
+    entry.members = [{key: one_line(value, NAME_LENGTH if key == "name" else 200) for key, value in m.items()}
+                     for m in entry.members]
+
+
 def slug(*parts: str) -> str:
     """A stable, readable id: ``slug("Élodie Durand", "123")`` is ``elodie-durand-123``."""
     text = " ".join(p for p in parts if p)
     text = unicodedata.normalize("NFKD", text).encode("ascii", "ignore").decode()
     text = re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-")
-    return text[:80] or "student"
+    return text[:80].strip("-") or "student"
 
 
-def _make_ids_unique(entries: list[Entry]) -> None:
-    seen: dict[str, int] = {}
-    for entry in sorted(entries, key=lambda e: (e.student_id, e.origin)):
-        count = seen.get(entry.student_id, 0)
-        seen[entry.student_id] = count + 1
-        if count:
-            entry.student_id = f"{entry.student_id}-{count + 1}"
+def _assign_ids(entries: list[Entry]) -> None:
+    """Unique ids by construction: an entry whose slug is its alone keeps it; the others,
+    in the order of their origins, take ``slug-2``, ``slug-3``, ... skipping every id
+    already given (so ``alice``, ``Alice`` and a folder ``alice-2`` never collide)."""
+    wanted: dict[str, list[Entry]] = {}
+    for entry in entries:
+        wanted.setdefault(entry.student_id, []).append(entry)
+    taken = {base for base, group in wanted.items() if len(group) == 1}
+    for base, group in sorted(wanted.items()):
+        if len(group) == 1:
+            continue
+        number = 1
+        for entry in sorted(group, key=lambda e: (e.origin, e.source)):
+            candidate = base
+            while candidate in taken:
+                number += 1
+                candidate = f"{base[:72]}-{number}"
+            taken.add(candidate)
+            entry.student_id = candidate
 
 
-def _iso(value) -> str | None:
-    if value is None or value == "":
-        return None
-    if isinstance(value, datetime):
-        return value.isoformat()
-    try:
-        return parse_time(str(value)).isoformat()
-    except ValueError:
-        return str(value)
+def _shared_identities(entries: list[Entry]) -> list[str]:
+    """One warning per LMS identity (sid, e-mail, Canvas or Moodle id) found in several entries."""
+    holders: dict[tuple[str, str], list[str]] = {}
+    for entry in entries:
+        identities = {("Canvas user id", entry.lms.get("canvas_user_id", "")),
+                      ("Moodle participant", entry.lms.get("moodle_participant_id", ""))}
+        for person in entry.members or [entry.lms]:
+            identities |= {("SIS id", person.get("sid", "")), ("e-mail", person.get("email", "").lower())}
+        for kind, value in identities:
+            if value:
+                holders.setdefault((kind, value), []).append(entry.student_id)
+    return [f"{kind} {value} appears in {len(ids)} submissions ({', '.join(sorted(ids)[:5])}): "
+            "each is graded on its own; check the download"
+            for (kind, value), ids in sorted(holders.items()) if len(ids) > 1]
 
 
 # ------------------------------------------------------------------ grade's guard
@@ -457,11 +620,13 @@ def several_students(path, modules: list[str]) -> str | None:
     if not root.is_dir():
         return None
     hint = f"to grade a class, run: autograder batch {path} --out RESULTS"
-    if (root / GRADESCOPE_METADATA).is_file():
+    tree = FolderTree(root)
+    names = _visible(tree, ())
+    layout = _layout(tree, (), names)
+    if layout == "gradescope":
         return f"{path} is a Gradescope export; {hint}"
-    for pattern, lms in ((MOODLE_NAME, "Moodle"), (CANVAS_NAME, "Canvas")):
-        if _looks_like(root, pattern, files_only=lms == "Canvas") and len(_visible(root)) > 1:
-            return f"{path} looks like a {lms} download of several students' work; {hint}"
+    if layout in ("moodle", "canvas") and len(names) > 1:
+        return f"{path} looks like a {layout.capitalize()} download of several students' work; {hint}"
     wanted = {m + s for m in modules for s in SOURCE_SUFFIXES}
     found: dict[str, list[Path]] = {}
     for file in root.rglob("*"):
@@ -480,3 +645,7 @@ def several_students(path, modules: list[str]) -> str | None:
         return (f"{path} holds submissions in {len(holders)} places ({', '.join(sorted(holders)[:4])}, ...); "
                 f"{hint}")
     return None
+
+
+def _ignored(parts) -> bool:
+    return any(is_hidden(part) for part in parts)
