@@ -165,11 +165,11 @@ def read_upload(path, modules: list[str], every_module: list[str] = ()) -> Class
     be read; anything wrong inside it is one entry's error or one ignored item.
     """
     upload = ClassUpload()
+    every = set(every_module) | set(modules)
     with _open_tree(Path(path)) as tree:
         for name in getattr(tree, "outside", []):
             upload.ignore(name, "its name points outside the archive; not read")
-        _Reader(tree, _unwrap(tree, ()), upload).read()
-    every = set(every_module) | set(modules)
+        _Reader(tree, _unwrap(tree, (), every), upload).read()
     for entry in upload.entries:
         if not entry.error:
             _name_lone_file(entry, modules, every)
@@ -193,16 +193,19 @@ def _open_tree(path: Path) -> UploadTree:
         raise IngestError(f"{exc}: expected a folder or a .zip holding the class's submissions") from None
 
 
-def _unwrap(tree: UploadTree, root: tuple) -> tuple:
-    """A folder holding just one folder (``export/``) is looked through."""
+def _unwrap(tree: UploadTree, root: tuple, modules: set[str]) -> tuple:
+    """A folder holding just one folder (``export/``) is looked through, unless that folder
+    is one student's work (it holds a lab module)."""
     names = _visible(tree, root)
-    if len(names) == 1 and tree.kind(root + (names[0],)) == FOLDER and not _is_student_folder(tree, root + (names[0],)):
-        return _unwrap(tree, root + (names[0],))
+    if len(names) == 1 and tree.kind(root + (names[0],)) == FOLDER \
+            and not _holds_a_module(tree, root + (names[0],), modules):
+        return _unwrap(tree, root + (names[0],), modules)
     return root
 
 
-def _is_student_folder(tree: UploadTree, folder: tuple) -> bool:
-    return any(n.endswith(SOURCE_SUFFIXES) and tree.kind(folder + (n,)) == FILE for n in _visible(tree, folder))
+def _holds_a_module(tree: UploadTree, folder: tuple, modules: set[str]) -> bool:
+    return any(PurePosixPath(n).stem in modules and n.endswith(SOURCE_SUFFIXES) and tree.kind(folder + (n,)) == FILE
+               for n in _visible(tree, folder))
 
 
 def _visible(tree: UploadTree, folder: tuple) -> list[str]:
@@ -215,15 +218,24 @@ def _visible(tree: UploadTree, folder: tuple) -> list[str]:
 def _layout(tree: UploadTree, root: tuple, names: list[str]) -> str:
     if GRADESCOPE_METADATA in names and tree.kind(root + (GRADESCOPE_METADATA,)) == FILE:
         return "gradescope"
-    if _mostly(names, MOODLE_NAME):
+    kinds = {n: tree.kind(root + (n,)) for n in names}
+    if _mostly(kinds, MOODLE_NAME, (FILE, FOLDER)):
         return "moodle"
-    if _mostly([n for n in names if tree.kind(root + (n,)) == FILE], CANVAS_NAME):
+    if _mostly(kinds, CANVAS_NAME, (FILE,)):
         return "canvas"
     return "entry"
 
 
-def _mostly(names: list[str], pattern: re.Pattern) -> bool:
-    return bool(names) and sum(bool(pattern.match(n)) for n in names) >= max(1, len(names) // 2)
+def _mostly(kinds: dict[str, str | None], pattern: re.Pattern, named: tuple) -> bool:
+    """Whether at least half the items that could be someone's work are named by the LMS's
+    pattern. Strays (a PDF, a link) are left out of the count, so thousands of them never
+    turn an LMS download into a folder of entries; folders and code files that the pattern
+    does not name count against it, so one student's oddly named file never turns a folder
+    of entries into an LMS download."""
+    matches = [n for n, kind in kinds.items() if kind in named and pattern.match(n)]
+    work = [n for n, kind in kinds.items()
+            if kind == FOLDER or (kind == FILE and n.endswith(SOURCE_SUFFIXES + (".zip",)))]
+    return bool(matches) and len(matches) >= max(1, len(set(work) | set(matches)) // 2)
 
 
 # ------------------------------------------------------------------ layouts
@@ -486,37 +498,57 @@ def _undo_canvas_renaming(filename: str) -> tuple[str, int]:
 
 
 # ------------------------------------------------------------------ metadata
-def safe_yaml(text: str, max_aliases: int = 1000, max_depth: int = 20):
-    """``yaml.safe_load`` with bounded nesting and aliases (:class:`ValueError` beyond them).
+def safe_yaml(text: str, max_expanded: int = 100_000, max_depth: int = 20):
+    """``yaml.safe_load`` with bounded nesting and aliases: :class:`ValueError` when the
+    aliases would expand to more than ``max_expanded`` values (a "billion laughs")
+    or the nesting goes deeper than ``max_depth``.
 
-    Only plain values are ever taken from the result (:func:`_text`), so an alias,
-    however often repeated, never becomes a long string.
+    Only plain values are ever taken from the result (:func:`_text`) besides.
     """
     import yaml
 
     class Loader(yaml.SafeLoader):
-        aliases = depth = 0
+        expanded = depth = 0
 
         def compose_node(self, parent, index):
-            if self.check_event(yaml.AliasEvent):
-                self.aliases += 1
-                if self.aliases > max_aliases:
-                    raise ValueError(f"more than {max_aliases} YAML aliases")
+            alias = self.check_event(yaml.AliasEvent)
             self.depth += 1
             try:
                 if self.depth > max_depth:
                     raise ValueError(f"nested more than {max_depth} levels deep")
-                return super().compose_node(parent, index)
+                node = super().compose_node(parent, index)
             finally:
                 self.depth -= 1
+            if alias:
+                self.expanded += _node_count(node, self.sizes)
+                if self.expanded > max_expanded:
+                    raise ValueError(f"its aliases expand to more than {max_expanded} values")
+            return node
 
     loader = Loader(text)
+    loader.sizes = {}
     try:
         return loader.get_single_data()
     except yaml.YAMLError as exc:
         raise ValueError(str(exc)) from None
+    except RecursionError:
+        raise ValueError("nested too deep") from None
     finally:
         loader.dispose()
+
+
+def _node_count(node, sizes: dict) -> int:
+    """How many values a YAML node stands for once its aliases are expanded (memoised by node)."""
+    import yaml
+
+    key = id(node)
+    if key not in sizes:
+        sizes[key] = 1   # a node that holds itself counts once
+        if isinstance(node, yaml.SequenceNode):
+            sizes[key] = 1 + sum(_node_count(child, sizes) for child in node.value)
+        elif isinstance(node, yaml.MappingNode):
+            sizes[key] = 1 + sum(_node_count(k, sizes) + _node_count(v, sizes) for k, v in node.value)
+    return sizes[key]
 
 
 def _text(value) -> str:
