@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import pictures
+from .inputs import NO_SUBMISSION
 from .registry import Check
 from .results import Artifact
 from .sandbox import CallOutcome, Sandbox
@@ -88,10 +89,14 @@ class Trial:
         The check being run (for its exercise, lab, timeout and forbidden calls).
     forbid : dict, optional
         The instructor's extra forbidden calls, per student function.
+    inputs : Inputs, optional
+        Where the submission's properties draw their inputs (see
+        :mod:`autograder.inputs`); by default those of no submission.
     """
 
-    def __init__(self, sandbox: Sandbox, check: Check, forbid: dict | None = None):
+    def __init__(self, sandbox: Sandbox, check: Check, forbid: dict | None = None, inputs=None):
         self.sandbox, self.check = sandbox, check
+        self.inputs = inputs if inputs is not None else NO_SUBMISSION
         self.lab = check.exercise.lab
         self._thread = threading.get_ident()  # the sandbox's one caller
         self.forbid = forbid or {}
@@ -210,19 +215,22 @@ class Trial:
         """Run ``body(example)`` on examples drawn by Hypothesis (grading profile).
 
         On failure the smallest failing example (after shrinking) is added to the
-        message; the examples are the same on every run and machine. Examples of a
-        property that passed are replayed without Hypothesis's engine the next time
-        (:mod:`autograder.examples`); Hypothesis takes over at the first one that fails.
+        message. The examples are drawn for this submission (:attr:`inputs`): the
+        same files meet the same ones on every run and machine, other files other
+        ones. Examples of a property that passed are replayed without Hypothesis's
+        engine the next time (:mod:`autograder.examples`); Hypothesis takes over at
+        the first one that fails.
         """
         from . import examples
 
-        where = examples.key(self.check, self._properties, strategy, max_examples)
+        seed = self.inputs.seed(self.check.id, self._properties)
+        where = examples.key(self.check, self._properties, strategy, max_examples, seed)
         self._properties += 1
         passed = self._replay(examples.recorded(where), body)
         if passed is None:
             return
         # Only now, with examples to draw, is Hypothesis needed (see autograder.strategies).
-        from hypothesis import errors, given, settings
+        from hypothesis import errors, given, seed as seeded, settings
 
         from .properties import grading_settings
         from .strategies import build
@@ -230,6 +238,7 @@ class Trial:
         strategy = build(strategy)
         last, seen = [], []
 
+        @seeded(seed)
         @settings(grading_settings(max_examples))
         @given(strategy)
         def property_holds(example):
@@ -274,8 +283,13 @@ class Trial:
         return None if recorded else []
 
     def _counterexample(self, example: str) -> str:
+        if self.inputs.secret:  # the course's inputs: a student's own run draws others
+            return (f"\nSmallest failing input found: {example}"
+                    "\n(inputs drawn for this submission: try this one directly, "
+                    "your own runs draw others)")
         return (f"\nSmallest failing input found: {example}"
-                f"\n(the same inputs every run: re-run with python grade.py {self.check.exercise.id})")
+                f"\n(the same inputs every run of these files: re-run with python grade.py "
+                f"{self.check.exercise.id})")
 
     # ------------------------------------------------------------ pictures
     def images(self, title: str, caption: str = "", **labelled: np.ndarray):

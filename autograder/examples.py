@@ -1,12 +1,13 @@
 """Property examples recorded once and replayed: Hypothesis's verdict without its engine.
 
-With the grading profile (derandomised, no database) Hypothesis draws the same
-examples for the same strategy on every run, as long as every example passes:
-its engine sees nothing of the test but "passed". Drawing them costs about a
-millisecond and a half each, more than most student calls. So a property that
-passed keeps the list of examples its body was called with (in
-:mod:`autograder.cache`, keyed by the check, the strategy, the bound on
-examples and the grader's code and library versions), and the next grading calls
+With the grading profile (no database) and one seed (the submission's, see
+:class:`autograder.properties.Inputs`) Hypothesis draws the same examples for the
+same strategy on every run, as long as every example passes: its engine sees
+nothing of the test but "passed". Drawing them costs about a millisecond and a
+half each, more than most student calls. So a property that passed keeps the list
+of examples its body was called with (in :mod:`autograder.cache`, keyed by the
+check, the strategy, the bound on examples, the seed and the grader's code and
+library versions), and the next grading of the same files calls
 the body with that list directly. If every example passes again, that is exactly
 what Hypothesis would have found. At the first example that does not, Hypothesis
 runs as usual (it finds the same examples up to that one: the body is not called
@@ -68,16 +69,16 @@ def _version(suite_file: str) -> str:
     return hashlib.sha256((_grader_version() + "|").encode() + suite.read_bytes()).hexdigest()[:24]
 
 
-def key(check, index: int, strategy, max_examples) -> tuple[str, str] | None:
-    """``(version, key)`` naming the examples of the ``index``-th property of ``check``,
-    or None when nothing may be stored."""
+def key(check, index: int, strategy, max_examples, seed: int) -> tuple[str, str] | None:
+    """``(version, key)`` naming the examples of the ``index``-th property of ``check``
+    drawn with Hypothesis's ``seed``, or None when nothing may be stored."""
     if not cache.is_enabled():
         return None
     try:
         import inspect
 
         version = _version(inspect.getfile(check.func))
-        return version, f"{check.id}|{index}|{max_examples}|{strategy!r}"
+        return version, f"{check.id}|{index}|{max_examples}|{seed}|{strategy!r}"
     except (OSError, TypeError, ValueError):
         return None
 

@@ -1,10 +1,11 @@
 """The Hypothesis profile used for grading (and for the grader's own tests).
 
 Grading must be reproducible: the same submission gets the same examples, and so
-the same score, on every run and machine. Hence derandomised generation, no
-example database and no storage in the working directory (nothing written into
-the student's folder), no deadline (the worker's timeout governs time) and a
-bounded number of examples.
+the same score, on every run and machine. Hence derandomised generation (each
+property's seed is the submission's, :class:`autograder.inputs.Inputs`: other
+files draw other examples), no example database and no storage in the working
+directory (nothing written into the student's folder), no deadline (the worker's
+timeout governs time) and a bounded number of examples.
 """
 
 import atexit

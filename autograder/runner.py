@@ -32,6 +32,7 @@ from typing import Callable, Sequence
 
 from . import __version__, cache, confine
 from .checks import Fail, StudentFailure, Trial, Verdict
+from .inputs import Inputs
 from .notebooks import GRADE_TAG, SKIP_TAG, point_into_notebook
 from .registry import Check, Exercise, hidden_checks_installed, select
 from .results import (ADVICE, ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
@@ -48,7 +49,7 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
           include_hidden: bool = True, pictures: str = "all",
           on_check: Callable[[Exercise, CheckResult], None] | None = None,
           forbid: dict[str, list[str]] | None = None, lanes: int = 1,
-          sandboxes: Sequence[Sandbox] = ()) -> GradingResult:
+          sandboxes: Sequence[Sandbox] = (), inputs_secret: str | None = None) -> GradingResult:
     """Grade the submission at ``submission_path``.
 
     Parameters
@@ -83,6 +84,10 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         lane (lanes without one get their own), with ``limits.shared_by(lanes)``
         (the lanes' workers share the submission's memory): the submission is
         admitted into each, and all are closed at the end, whatever happens.
+    inputs_secret : str, optional
+        The course's secret, from which with the submission's content its property
+        checks draw their inputs (:class:`~autograder.inputs.Inputs`); None:
+        ``$AUTOGRADER_INPUTS_SECRET``, else the content alone.
 
     Raises
     ------
@@ -93,11 +98,11 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         for sandbox in sandboxes:
             closing.enter_context(sandbox)
         return _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid,
-                      lanes, list(sandboxes), closing)
+                      lanes, list(sandboxes), closing, inputs_secret)
 
 
 def _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid,
-           lanes, sandboxes, closing):
+           lanes, sandboxes, closing, inputs_secret=None):
     if pictures not in PICTURES:
         raise ValueError(f"pictures must be one of {PICTURES}, got {pictures!r}")
     started = time.perf_counter()
@@ -109,6 +114,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                                notes=_reading_notes(submission),
                                graded_at=datetime.now(timezone.utc).isoformat(timespec="seconds"))
         labs = _labs_heaviest_first(exercises)
+        inputs = Inputs.for_submission(submission.content_hash, inputs_secret)
         for sandbox in sandboxes:
             sandbox.admit(submission.path)
         # A lab of stubs only costs next to nothing: it needs no lane of its own.
@@ -139,7 +145,8 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                     budget.start_exercise()
                     rules = _rules_for(exercise, forbid or {})
                     graded[exercise.id] = _grade_exercise(
-                        sandbox, exercise, checks, pictures, on_check, submission, budget, rules, painter)
+                        sandbox, exercise, checks, pictures, on_check, submission, budget, rules, painter,
+                        inputs)
 
         # Ground truth is kept between gradings only where the worker cannot write it.
         with cache.enabled(sandboxes[0].confinement.hides_files), Painter() as painter:
@@ -232,7 +239,7 @@ def _rules_for(exercise: Exercise, forbid: dict) -> dict[str, tuple[str, ...]]:
 
 
 def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=None,
-                    budget=None, rules=None, painter=None) -> ExerciseResult:
+                    budget=None, rules=None, painter=None, inputs=None) -> ExerciseResult:
     functions = list(exercise.signatures.values())
     rules = rules or {}
     out = ExerciseResult(exercise.id, exercise.title, functions, rules=[
@@ -267,7 +274,7 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
         elif stub:
             out.checks.append(_not_implemented(check, stub))
         else:
-            out.checks.append(run_check(sandbox, check, pictures, modified, rules, painter))
+            out.checks.append(run_check(sandbox, check, pictures, modified, rules, painter, inputs))
         if on_check:
             on_check(exercise, out.checks[-1])
     graded = [c for c in out.checks if c.max_score > 0]
@@ -370,17 +377,18 @@ def _in_place_advice(modified) -> CheckResult:
 
 def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
               modified: list | None = None, rules: dict | None = None,
-              painter: "Painter | None" = None) -> CheckResult:
+              painter: "Painter | None" = None, inputs: Inputs | None = None) -> CheckResult:
     """Run one check and turn however it ends into a scored :class:`CheckResult`.
 
     ``modified`` collects the (function, argument) pairs the student's calls
-    changed in place; ``rules`` are the instructor's extra forbids. With a
+    changed in place; ``rules`` are the instructor's extra forbids; ``inputs``
+    where its properties draw their inputs (the submission's). With a
     ``painter`` the check's pictures are drawn on its threads (the result's
     ``artifacts`` are filled in by :meth:`Painter.finish`), else at once.
     """
     if check.advice:
-        return _run_advice(sandbox, check, modified, rules)
-    trial = Trial(sandbox, check, rules)
+        return _run_advice(sandbox, check, modified, rules, inputs)
+    trial = Trial(sandbox, check, rules, inputs)
     started = time.perf_counter()
     tb, student_failure = "", ""
     try:
@@ -456,9 +464,9 @@ def drawn(check: Check, make: Callable[[], list]) -> list:
         return []
 
 
-def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None) -> CheckResult:
+def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None, inputs=None) -> CheckResult:
     """An advice check: a tip if it gave one, else silence; never a failure, never points."""
-    trial = Trial(sandbox, check, rules)
+    trial = Trial(sandbox, check, rules, inputs)
     started = time.perf_counter()
     status, message, hint = PASSED, "", ""
     try:
