@@ -255,7 +255,22 @@ def everything_read(entries) -> bytes:
 @settings(max_examples=60, suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 @given(upload=uploads())
 def test_a_hostile_upload_is_read_entry_by_entry(upload, tmp_path_factory):
-    where = tmp_path_factory.mktemp("upload")
+    assert_read_safely(upload, tmp_path_factory.mktemp("upload"))
+
+
+@pytest.mark.parametrize("layout,kind,zipped", [
+    (layout, kind, zipped) for layout in LAYOUTS for kind in HOSTILE[layout] for zipped in (False, True)
+    if not (kind in FOLDER_ONLY and zipped or kind in ZIP_ONLY and not zipped)])
+def test_every_hostile_item_in_every_layout(layout, kind, zipped, tmp_path):
+    """Each hostile item alone, beside two students with case-twin names (the property
+    above mixes them; this makes sure none is left untried)."""
+    upload = Upload(layout, zipped, [Student("Alice", "student-0"), Student("alice", "student-1")])
+    builders[layout](upload, lambda strategy: True)
+    add_hostile(upload, kind)
+    assert_read_safely(upload, tmp_path)
+
+
+def assert_read_safely(upload: Upload, where: Path) -> None:
     path = write_upload(upload, where)
     result = read_upload(path, [MODULE], [MODULE])
     entries = result.entries
