@@ -50,6 +50,9 @@ def build_parser() -> argparse.ArgumentParser:
     grade = commands.add_parser("grade", help="grade one submission")
     grade.add_argument("submission", nargs="?", help="folder, .py, .zip or .ipynb")
     add_grading_options(grade)
+    grade.add_argument("--show-hidden", action="store_true",
+                       help="report hidden checks in full: their inputs, messages and pictures (for "
+                            "instructors; by default they show as students see them, a verdict only)")
 
     commands.add_parser("list", help="list the labs, exercises and checks")
 
@@ -106,7 +109,7 @@ def add_grading_options(parser: argparse.ArgumentParser) -> None:
                         help=f"default time limit per call (default {Limits.call_timeout:g})")
     parser.add_argument("--quiet", action="store_true", help="print only the table")
     parser.add_argument("--config", metavar="COURSE",
-                        help="course configuration (JSON); its 'forbid' rules apply")
+                        help="course configuration (JSON); its 'forbid' and 'hidden_points_visible' apply")
     parser.add_argument("--figures", metavar="DIR",
                         help="also write the lab sheet's output pictures, made by your functions, "
                              "as DIR/<exercise>.png (and show them on the feedback page)")
@@ -166,13 +169,15 @@ def run_grade(args) -> int:
             with _progress(errors) as advance:
                 # Pictures cost time to encode: make them only for a page (or a JSON file asking for them).
                 pictures = "all" if (args.json_pictures or not args.no_html) else "none"
-                forbid = CourseConfig.load(args.config).forbid if args.config else None
+                course = CourseConfig.load(args.config) if args.config else CourseConfig()
                 result = grade(args.submission, args.select, limits=limits, pictures=pictures,
-                               include_hidden=not args.public_only, on_check=advance, forbid=forbid,
+                               include_hidden=not args.public_only, on_check=advance, forbid=course.forbid,
                                lanes=lanes, sandboxes=[early] if early else [])
         except (SelectionError, SubmissionError, CourseConfigError) as exc:
             errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
             return USAGE_ERROR
+    if not getattr(args, "show_hidden", False):  # every report below is one a student may read
+        result = result.for_students(course.hidden_points_visible)
     html_path = None if args.no_html else _report_path(args.html, "feedback.html")
     replaced_full_page = bool(args.select) and html_path is not None and html_path.is_file()
     terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first

@@ -15,6 +15,18 @@ Gradescope assignment's own timeout, so results are always written.
 
 Every key is optional; unknown keys and bad values are refused with a message.
 
+Hidden checks stay hidden from students until the instructor releases them: in
+every report a student reads (terminal, feedback page, ``results.json``, check(),
+Gradescope's text) a hidden check is "hidden check N" with "passed" or "not
+passed", never its inputs, messages, output or pictures. ``hidden_points_visible``
+(default false) also shows its points; while false, the scores students see leave
+the hidden checks out. On Gradescope the hidden tests carry their points anyway
+(the grade needs them) and Gradescope keeps them, and the total, from students
+until the tests' ``hidden_visibility`` allows (``after_published``: until the
+grades are published; ``after_due_date``: until the due date). With ``visible``
+students see them at once, and with ``hidden`` Gradescope shows the total with
+their points in it: either needs ``hidden_points_visible: true``.
+
 ``forbid`` (off by default) adds the instructor's own rules to the lab sheet's:
 inside the student function ``labNN.function``, calling any of the listed
 library functions (``module.name``) fails the check with "... which this
@@ -79,6 +91,7 @@ class CourseConfig:
     exercise_budget: float = 60.0                       # student seconds per exercise
     submission_budget: float = 480.0                    # student seconds per submission
     forbid: dict = field(default_factory=dict)          # "lab08.homography_ransac": ["cv2.findHomography"]
+    hidden_points_visible: bool = False                 # students see hidden checks' points before release
 
     def __post_init__(self):
         for name in ("public_visibility", "hidden_visibility", "stdout_visibility"):
@@ -99,6 +112,14 @@ class CourseConfig:
         if not (isinstance(self.similarity_threshold, (int, float)) and 0 < self.similarity_threshold <= 1):
             raise CourseConfigError("similarity_threshold must be a number in (0, 1]")
         self._check_forbid()
+        if not isinstance(self.hidden_points_visible, bool):
+            raise CourseConfigError("hidden_points_visible must be true or false")
+        if self.hidden_visibility in ("visible", "hidden") and not self.hidden_points_visible:
+            # Gradescope hides a student's total only while some test is after_due_date/after_published.
+            raise CourseConfigError(
+                f'hidden_visibility "{self.hidden_visibility}" lets students see what the hidden checks '
+                'scored on Gradescope at once (their tests, or the total): set "hidden_points_visible": '
+                'true too, or keep hidden_visibility "after_published"')
 
     def limits(self):
         """The sandbox limits this course asks for."""

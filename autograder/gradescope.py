@@ -30,9 +30,13 @@ TESTED_PYTHONS = ("3.10", "3.11", "3.12", "3.13")
 
 # ------------------------------------------------------------------ results.json
 def results_json(result: GradingResult, config: CourseConfig) -> dict:
-    """The Gradescope results for a grading."""
+    """The Gradescope results for a grading: what students may see of it (hidden checks
+    as verdicts, :meth:`~autograder.results.GradingResult.for_students`). The hidden tests
+    keep their points (the grade needs them; Gradescope keeps them from students until
+    their ``visibility`` allows); the text at the top counts them only where the course
+    shows hidden checks' points (``hidden_points_visible``)."""
     tests, position = [], {}
-    for exercise in result.exercises:
+    for exercise in result.for_students(points_visible=True).exercises:
         lab = exercise.id.split(".")[0]
         position[lab] = position.get(lab, 0) + 1  # ex1..exN then the extensions, as registered
         for index, check in enumerate(exercise.checks, 1):
@@ -46,7 +50,8 @@ def results_json(result: GradingResult, config: CourseConfig) -> dict:
                 "output_format": "md",
                 "visibility": config.hidden_visibility if check.hidden else config.public_visibility,
             })
-    return {"score": result.total, "output": _summary(result), "output_format": "text",
+    return {"score": result.total, "output": _summary(result.for_students(config.hidden_points_visible)),
+            "output_format": "text",
             "stdout_visibility": config.stdout_visibility, "tests": tests}
 
 
@@ -65,6 +70,9 @@ def _summary(result: GradingResult) -> str:
             line += " - as above"
         lines.append(line)
     lines += [f"Rule for {e.id}: {rule}" for e in result.exercises for rule in e.rules]
+    if result.hidden_points_withheld:
+        lines.append("Hidden checks are not counted above: their points appear here once your "
+                     "instructor releases them.")
     return "\n".join(lines)
 
 

@@ -11,6 +11,10 @@ Keys other tools rely on (see DESIGN.md, "Results and reports")::
 A check whose ``status`` is ``"advice"`` (``advice: true``) is a tip worth 0
 points: ``message`` says what to change and why; it is never a failure.
 
+What students see of hidden checks before the instructor releases them is made in
+one place, :meth:`GradingResult.for_students`: a verdict per check and nothing of
+its inputs (``redacted: true``); every report a student reads renders that view.
+
 Timing fields are named ``seconds`` / ``student_seconds`` everywhere (and
 ``student_wall_seconds``: the wall time during which the student's code ran in
 some lane, which is ``student_seconds`` when labs are graded one at a time), so
@@ -65,6 +69,7 @@ class CheckResult:
     artifacts: list[Artifact] = field(default_factory=list)
     seconds: float = 0.0
     student_seconds: float = 0.0
+    redacted: bool = False  # a hidden check as students see it before release: its verdict only
 
     @property
     def passed(self) -> bool:
@@ -124,6 +129,7 @@ class GradingResult:
     notes: list[str] = field(default_factory=list)  # how the submission was read (renames...)
     graded_at: str = ""  # ISO 8601 time of the grading, UTC
     student_wall_seconds: float = 0.0  # wall time during which student code ran (in any lane)
+    hidden_points_withheld: bool = False  # a students' view whose scores leave hidden checks out
 
     @property
     def total(self) -> float:
@@ -139,6 +145,7 @@ class GradingResult:
                 "max_total": self.max_total, "hidden_included": self.hidden_included,
                 "seconds": self.seconds, "student_seconds": self.student_seconds,
                 "student_wall_seconds": self.student_wall_seconds, "notes": self.notes, "graded_at": self.graded_at,
+                "hidden_points_withheld": self.hidden_points_withheld,
                 "exercises": [e.to_dict() for e in self.exercises]}
 
     @classmethod
@@ -155,7 +162,61 @@ class GradingResult:
         return cls(data["submission"], data["submission_hash"], data["grader_version"],
                    exercises, data.get("seconds", 0.0), data.get("student_seconds", 0.0),
                    data.get("hidden_included", True), data.get("notes", []), data.get("graded_at", ""),
-                   data.get("student_wall_seconds", data.get("student_seconds", 0.0)))
+                   data.get("student_wall_seconds", data.get("student_seconds", 0.0)),
+                   data.get("hidden_points_withheld", False))
+
+    def for_students(self, points_visible: bool = False) -> "GradingResult":
+        """What a student may see before the instructor releases the hidden checks.
+
+        The one place where hidden checks are kept from students: every report a
+        student reads (terminal, feedback page, ``results.json``, Gradescope's text,
+        ``check()``) renders this view, never the grading itself. Each hidden check
+        becomes ``"hidden check N"`` (its own name may hold its inputs) with a verdict,
+        ``"passed"`` or ``"not passed"``, and nothing else: no message, hint, printed
+        output, traceback, picture, named mistake or timing of its own.
+        Hidden advice (tips) is left out. With ``points_visible`` the hidden checks keep
+        their points; otherwise they count for nothing here (``max_score`` 0), so no
+        exercise score or total tells what they earned (``hidden_points_withheld``).
+        The grading itself is not changed; a view of a view is the same view.
+        """
+        exercises = []
+        for exercise in self.exercises:
+            checks, hidden = [], 0
+            for check in exercise.checks:
+                if not (check.hidden or check.redacted):
+                    checks.append(check)
+                elif check.max_score > 0 or check.redacted:  # hidden advice: left out
+                    hidden += 1
+                    checks.append(_redacted(check, hidden, points_visible, exercise.message))
+            exercises.append(ExerciseResult(exercise.id, exercise.title, list(exercise.functions), checks,
+                                            exercise.message, list(exercise.rules)))
+        withheld = self.hidden_points_withheld or (
+            not points_visible and any(c.redacted for e in exercises for c in e.checks))
+        return GradingResult(self.submission, self.submission_hash, self.grader_version, exercises,
+                             self.seconds, self.student_seconds, self.hidden_included, list(self.notes),
+                             self.graded_at, self.student_wall_seconds, withheld)
+
+
+# All a student reads of a hidden check before release, besides its points where shown.
+HIDDEN_PASSED, HIDDEN_NOT_PASSED = "passed", "not passed"
+HIDDEN_NOT_GRADED = "not graded: an error in the grader, not in your code"
+
+
+def _redacted(check: CheckResult, number: int, points_visible: bool, module_message: str) -> CheckResult:
+    """Hidden check ``number`` of its exercise as a student sees it (see :meth:`GradingResult.for_students`).
+    ``module_message`` is the exercise's own (the module was not found, did not import...):
+    the reason of every check, hidden or not, it says nothing of any."""
+    if check.status == ERROR:
+        status, message = ERROR, HIDDEN_NOT_GRADED
+    elif check.passed:
+        status, message = PASSED, HIDDEN_PASSED
+    else:  # a partial score is told by the points, where they are shown
+        status = PARTIAL if points_visible and check.score > 0 else FAILED
+        message = HIDDEN_NOT_PASSED
+    if module_message and check.message == module_message:
+        message = module_message
+    score, max_score = (check.score, check.max_score) if points_visible else (0.0, 0.0)
+    return CheckResult(f"hidden check {number}", score, max_score, status, message, hidden=True, redacted=True)
 
 
 def without_timings(data):

@@ -83,7 +83,8 @@ def check(*selectors: str, notebook=None, submission=None, public_only: bool = F
     Returns
     -------
     CheckReport
-        ``.score``, ``.max_score``, ``.result`` (the full results); displays itself.
+        ``.score``, ``.max_score``, ``.result`` (the results as students see them: hidden
+        checks as verdicts only, see :meth:`GradingResult.for_students`); displays itself.
     """
     from .runner import grade
 
@@ -95,6 +96,7 @@ def check(*selectors: str, notebook=None, submission=None, public_only: bool = F
     finally:
         if temporary:
             shutil.rmtree(temporary, ignore_errors=True)
+    result = result.for_students()
     result.submission = source
     return CheckReport(result, source)
 

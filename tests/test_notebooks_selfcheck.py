@@ -9,6 +9,7 @@ import pytest
 from nbclient import NotebookClient
 from nbformat.v4 import new_code_cell, new_notebook
 
+from autograder.registry import select
 from autograder.runner import grade
 from conftest import REFERENCE
 
@@ -51,7 +52,7 @@ def test_check_in_a_kernel_gives_the_score_grade_py_gives(tmp_path):
 
     path = tmp_path / f"{MODULE}.ipynb"
     nbformat.write(notebook, path)
-    by_grade_py = grade(path, SELECTED)
+    by_grade_py = grade(path, SELECTED).for_students()  # what grade.py shows: hidden points withheld
     assert (score, maximum) == (by_grade_py.total, by_grade_py.max_total)
     assert 0 < score < maximum  # the wrong rotation loses points, translation keeps them
     assert 'class="ag-check"' in page and "lab07.ex2" in page
@@ -67,7 +68,8 @@ def test_check_from_a_plain_shell_grades_the_module_in_the_folder(tmp_path):
     run = subprocess.run([sys.executable, "-c", "from autograder import check; print(check('lab07.ex1'))"],
                          cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stderr
-    assert "lab07.ex1" in run.stdout and "12 / 12" in run.stdout
+    public = sum(c.points for c in select(["lab07.ex1"])[0].checks if not c.hidden)  # hidden points withheld
+    assert "lab07.ex1" in run.stdout and f"{public:g} / {public:g}" in run.stdout
 
 
 def test_check_names_what_to_grade_when_it_finds_nothing(tmp_path):

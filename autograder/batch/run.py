@@ -9,8 +9,8 @@ Layout of RESULTS::
     roster_unmatched.csv      with --roster: who matched nobody
     index.html                the class overview (see autograder.classreport)
     similarity.html           with --similarity: the most similar submissions
-    <student-id>/feedback.html
-    <student-id>/results.json the results model, without pictures
+    <student-id>/feedback.html the student's page (hidden checks as verdicts only)
+    <student-id>/results.json the results model as the student may see it, without pictures
     <student-id>/sources/     the files graded (read by ``autograder similarity RESULTS``)
 
 Gradings run in parallel, one sandboxed grading per submission: in a local
@@ -140,7 +140,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
 
         if progress:
             progress("start", None, BatchSummary(students=len(todo)))
-        arguments = (selection.split(","), course.call_timeout, PICTURES[pictures])
+        arguments = (selection.split(","), course.call_timeout, PICTURES[pictures], course.hidden_points_visible)
         if dask_scheduler:
             from .cluster import grade_on_dask
 
@@ -159,7 +159,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     possible = exports.max_total(raw, course)
     for grade in grades:
         if grade.student.get("feedback"):
-            _refresh_page(out, grade, possible)
+            _refresh_page(out, grade, possible, course)
     if roster_rows:
         summary.unmatched = [f"{g.student['student_id'] or g.student['display_name']}: "
                              + ("on the roster, no submission" if g.student["status"] == "no submission"
@@ -239,14 +239,16 @@ def _write_overview(out: Path, students: list[dict], course: CourseConfig) -> Pa
     return out / OVERVIEW
 
 
-def _refresh_page(out: Path, grade, possible: float) -> None:
-    """Show the current adjustments on the student's page (re-rendered, without pictures, if lost)."""
+def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> None:
+    """Show the current adjustments on the student's page (re-rendered, without pictures, if lost:
+    from the gradebook's whole grading, as the student may see it)."""
     folder = out / grade.student["student_id"]
     page_path = folder / "feedback.html"
     if page_path.exists():
         page = page_path.read_text(encoding="utf-8")
     else:
-        page = html.render(GradingResult.from_dict(grade.student["result"]))
+        page = html.render(GradingResult.from_dict(grade.student["result"]).for_students(
+            course.hidden_points_visible))
     updated = exports.with_adjustments(page, exports.adjustments_html(grade, possible))
     if updated != page:
         write_atomically(page_path, updated)

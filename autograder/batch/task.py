@@ -48,12 +48,14 @@ def grading_processes():
 
 
 def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: float,
-                pictures: str, name: str, threads: int | None = None) -> dict:
-    """``{"result": <results-model dict, without pictures>, "json": <its results.json text>,
-    "page": <feedback page>}`` or ``{"error": <reason>}``.
+                pictures: str, hidden_points_visible: bool, name: str, threads: int | None = None) -> dict:
+    """``{"result": <results-model dict, without pictures>, "json": <the student's results.json
+    text>, "page": <the student's feedback page>}`` or ``{"error": <reason>}``.
 
     The page is rendered here, where the pictures are, and the JSON written out here too:
     the process that collects the class (one for any number of workers) just stores them.
+    ``result`` is the whole grading (for the gradebook: the instructor's); the page and the
+    JSON are what the student may see of it (:meth:`GradingResult.for_students`).
 
     Parameters
     ----------
@@ -65,6 +67,8 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
         Seconds per call into student code.
     pictures : {"all", "failed", "none"}
         Which checks keep their pictures.
+    hidden_points_visible : bool
+        Whether the student's page and JSON show what the hidden checks scored.
     name : str
         The submission's name in the results (the student id).
     threads : int, optional
@@ -94,8 +98,9 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
                 cv2.setNumThreads(threads)
             result = grade(folder, selectors, limits=Limits(call_timeout=call_timeout, threads=threads),
                            pictures=pictures)
-            data = strip_pictures(result.to_dict())
-            return {"result": data, "json": json_text(data), "page": html.render(result)}
+            student = result.for_students(hidden_points_visible)
+            return {"result": strip_pictures(result.to_dict()),
+                    "json": json_text(strip_pictures(student.to_dict())), "page": html.render(student)}
     except Exception as exc:  # noqa: BLE001 - one submission never stops the batch
         return {"error": f"the grader could not finish: {type(exc).__name__}: {exc}",
                 "traceback": traceback.format_exc()[-4000:]}

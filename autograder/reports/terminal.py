@@ -31,7 +31,7 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
     table.add_column("score", justify="right")
     table.add_column("checks passed", justify="right")
     for exercise in result.exercises:
-        graded = [c for c in exercise.checks if c.max_score > 0]  # advice is not a check to pass
+        graded = [c for c in exercise.checks if _graded(c)]  # advice is not a check to pass
         table.add_row(exercise.id, exercise.title,
                       Text(f"{exercise.score:g} / {exercise.max_score:g}",
                            style=_score_style(exercise.score, exercise.max_score)),
@@ -54,6 +54,9 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
         console.print(Text(printed, style="magenta"))
     if not result.hidden_included:
         console.print("[dim]Hidden checks are not part of this copy; your instructor runs them.[/dim]")
+    if result.hidden_points_withheld:
+        console.print("[dim]Hidden checks show only whether they passed; their points are not in these "
+                      "scores until your instructor releases them.[/dim]")
     if html_path:
         render_written(console, [("details and pictures", html_path)])
 
@@ -83,6 +86,11 @@ def render_written(console: Console, written) -> None:
 NOT_STARTED = "not implemented yet"
 
 
+def _graded(check) -> bool:
+    """A check to pass (not advice): one with points, or a hidden one whose points are withheld."""
+    return check.max_score > 0 or check.redacted
+
+
 def _module_messages(result: GradingResult, console: Console) -> None:
     """A message that holds for every check of a module (not found, does not import) is
     printed once per lab, naming the exercises it costs."""
@@ -109,17 +117,16 @@ def _print_problems(result: GradingResult, console: Console) -> None:
         console.print(Text(f"· {lab} {', '.join(keys)}: ", style="bold") + Text(NOT_STARTED))
     _module_messages(result, console)
     for exercise in result.exercises:
-        if exercise.score >= exercise.max_score or exercise.message == NOT_STARTED:
-            continue
-        if exercise.message:  # said once per module, above
+        if exercise.message:  # said once per module, above (or "not implemented yet", once per lab)
             continue
         for check in exercise.checks:
-            if check.passed or check.max_score == 0:  # advice is printed apart, as tips
+            if check.passed or not _graded(check):  # advice is printed apart, as tips
                 continue
             icon = {NOT_IMPLEMENTED: "·", ERROR: "!"}.get(check.status, "✗")
             first, *rest = printable(check.message or check.status).splitlines() or [""]
             line = Text(f"{icon} {exercise.id} ", style="bold") + Text(printable(check.name), style="italic")
-            line += Text(f" ({check.score:g}/{check.max_score:g}): {first}")
+            points = f" ({check.score:g}/{check.max_score:g})" if check.max_score else ""
+            line += Text(f"{points}: {first}")
             console.print(line)
             for extra in rest[:6]:
                 console.print(Text(f"    {extra}", style="dim"))
