@@ -43,6 +43,16 @@ Keys read by ``autograder batch`` (instructor grading):
     Rescaled points, by lab or exercise: ``{"lab07": 20, "lab08.ex2": 5}``. A lab's
     entry scales all its exercises alike; an exercise's entry wins over its lab's.
     Default: the checks' own points.
+``canvas_assignment_id``
+    The assignment's number in Canvas (``.../assignments/12345``). Canvas fills an
+    existing assignment from an import only when its column is named
+    ``"<assignment> (<id>)"``; without this key the id is taken from the roster
+    when the roster is Canvas's own gradebook export holding a column for the
+    assignment.
+``lms_exports``
+    Which LMS imports to write: ``["canvas", "moodle"]``. Default: the Canvas
+    import always, Moodle's worksheet only for a Moodle download or a roster with
+    Moodle's ``Identifier`` column.
 ``late_penalty``
     ``{"due": "2026-03-01T23:59:00+01:00", "grace_minutes": 15, "per_day": 10,
     "max": 50}``. A submission ``d`` started days late (after the grace period)
@@ -58,6 +68,16 @@ Read by ``autograder similarity`` (and ``autograder batch --similarity``):
     file's own code (skeleton excluded) found in the other -- is at least this
     are shown side by side. Disguised copies score about 0.9, independent work
     about 0.1.
+
+Read by every grading (``autograder batch``, Gradescope, ``grade --config``):
+
+``inputs_secret``
+    Default none. The course's secret from which, with each submission's content,
+    the property checks draw their inputs (see :mod:`autograder.inputs`): the same
+    files always meet the same inputs, and nobody without the secret knows which.
+    Keep it out of the student bundle (it never ships there) and out of anything
+    students see; ``$AUTOGRADER_INPUTS_SECRET`` works too. ``gradescope build``
+    makes one when the configuration has none.
 """
 
 from __future__ import annotations
@@ -77,6 +97,9 @@ class CourseConfigError(ValueError):
     """The course configuration file is malformed."""
 
 
+LMS_EXPORTS = ("canvas", "moodle")
+
+
 @dataclass(frozen=True)
 class CourseConfig:
     select: list[str] = field(default_factory=list)     # labs/exercises graded; empty = all
@@ -88,10 +111,13 @@ class CourseConfig:
     points: dict[str, float] = field(default_factory=dict)   # "lab07" / "lab07.ex2" -> points
     late_penalty: dict = field(default_factory=dict)    # due, grace_minutes, per_day, max (percent)
     similarity_threshold: float = 0.5                   # similarity report: pairs shown side by side
+    inputs_secret: str = ""                             # property inputs: HMAC(secret, content); see inputs.py
     exercise_budget: float = 60.0                       # student seconds per exercise
     submission_budget: float = 480.0                    # student seconds per submission
     forbid: dict = field(default_factory=dict)          # "lab08.homography_ransac": ["cv2.findHomography"]
     hidden_points_visible: bool = False                 # students see hidden checks' points before release
+    canvas_assignment_id: str = ""                      # Canvas's id of the assignment: "Lab 7 (12345)"
+    lms_exports: list[str] = field(default_factory=list)  # "canvas", "moodle"; empty: as the upload says
 
     def __post_init__(self):
         for name in ("public_visibility", "hidden_visibility", "stdout_visibility"):
@@ -109,9 +135,16 @@ class CourseConfig:
                 isinstance(k, str) and isinstance(v, (int, float)) and v >= 0 for k, v in self.points.items())):
             raise CourseConfigError("points must map 'lab07' or 'lab07.ex2' to a number of points")
         self._check_late_penalty()
+        if not isinstance(self.inputs_secret, str):
+            raise CourseConfigError("inputs_secret must be a string (the course's secret, e.g. 32 random hex digits)")
         if not (isinstance(self.similarity_threshold, (int, float)) and 0 < self.similarity_threshold <= 1):
             raise CourseConfigError("similarity_threshold must be a number in (0, 1]")
         self._check_forbid()
+        if not (isinstance(self.canvas_assignment_id, str) and re.fullmatch(r"\d*", self.canvas_assignment_id)):
+            raise CourseConfigError("canvas_assignment_id must be the assignment's number in Canvas, "
+                                    'as text: "12345" (from the assignment\'s address, .../assignments/12345)')
+        if not (isinstance(self.lms_exports, list) and set(self.lms_exports) <= set(LMS_EXPORTS)):
+            raise CourseConfigError(f"lms_exports must be a list of {list(LMS_EXPORTS)}")
         if not isinstance(self.hidden_points_visible, bool):
             raise CourseConfigError("hidden_points_visible must be true or false")
         if self.hidden_visibility in ("visible", "hidden") and not self.hidden_points_visible:

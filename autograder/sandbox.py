@@ -108,6 +108,16 @@ def cores_each(workers: int) -> int:
 PIPE_BYTES = 1 << 20  # pipe capacity asked for: an image crosses in a few writes, not hundreds
 
 
+def _distrust_store() -> None:
+    """A worker that runs as the grader's user (``process-group``) can read the store of
+    ground truth and recorded examples, key included, and write it: its key is revoked
+    (:func:`autograder.cache.revoke`) before the worker runs student code and after it
+    stopped, so nothing it saw or wrote is trusted by a later grading."""
+    from . import cache  # with NumPy: imported only here, once the worker is on its way
+
+    cache.revoke()
+
+
 def _widen_pipe(fd: int) -> None:
     """Enlarge a pipe's buffer (Linux; best effort: the default 64 KiB still works).
 
@@ -349,7 +359,7 @@ class Sandbox:
         view = confine.View(scratch=self.scratch, read_only=(self.submission_dir, self.scratch / "worker"),
                             files=(self.output_path,), size=self.limits.scratch_bytes)
         command = self.confinement.wrap(
-            [sys.executable, "-I", "-B", str(self.scratch / "worker" / "worker.py"),
+            [confine.INTERPRETER, "-I", "-B", str(self.scratch / "worker" / "worker.py"),
              str(request_r), str(response_w), str(self.submission_dir),
              str(self.output_path), self.limits.worker_json(processes)],
             view=view, hold=self._base / "hold")
@@ -371,6 +381,8 @@ class Sandbox:
             os.close(response_w)
         _LIVE_WORKERS.add(self.proc.pid)
         self._request_fd, self._response_fd = request_w, response_r
+        if not self.confinement.hides_files:
+            _distrust_store()  # before its first request: no student code has run yet
         self._imported = set()
         self._ready = False
 
@@ -417,6 +429,7 @@ class Sandbox:
         _LIVE_WORKERS.discard(self.proc.pid)
         if self.confinement.level == "process-group":
             confine.kill_adopted_orphans(keep=_LIVE_WORKERS)
+            _distrust_store()  # now that nothing of it runs: what it wrote there is never read
             if restarting:
                 self._lay_out_scratch()  # nothing stopped this worker from damaging it
         self.proc = None

@@ -8,10 +8,15 @@ Files written in RESULTS (every one parses with :mod:`csv`; UTF-8, comma-separat
     pending, no submission), exercise columns in course points.
 ``canvas_import.csv``
     ``Student,ID,SIS User ID,SIS Login ID,Section,<assignment>`` then the
-    ``Points Possible`` row: Canvas's gradebook import.
+    ``Points Possible`` row: Canvas's gradebook import. The grade column is
+    ``"<assignment> (<Canvas id>)"`` when the id is known (course
+    ``canvas_assignment_id``, or the roster's column of that name in a Canvas
+    export), so Canvas fills the existing assignment.
 ``moodle_import.csv``
     ``Identifier,Full name,Email address,Grade``: Moodle's offline grading
-    worksheet (``Identifier`` is ``Participant <id>``).
+    worksheet (``Identifier`` is ``Participant <id>``), for a Moodle download,
+    a roster with Moodle's ``Identifier`` column, or when the course's
+    ``lms_exports`` asks for it (which also turns the Canvas import off unless listed).
 ``roster_unmatched.csv``
     ``Student ID,Name,Problem``: students with no roster row and roster rows with
     no submission (written when a roster is given). Nobody is dropped: they are
@@ -26,7 +31,10 @@ Every cell a spreadsheet would read as a formula (a leading ``=``, ``+``, ``-``,
 (``-2``, ``+1.5``) are left as they are.
 
 Overrides file (``--overrides``), columns ``student,exercise,points,penalty,comment``:
-``student`` is a derived id, an LMS id (sid, e-mail, Canvas user id) or the name;
+``student`` is a derived id, an LMS id (sid, e-mail, login, Canvas user id, Moodle
+participant) of the student, a group member or the roster row, or a name (the
+download's, a member's or the roster's; ``"Kim, Bo"`` and ``"Bo Kim"`` agree); a
+row that names several students is refused with their ids;
 ``exercise`` is an exercise id (``points`` replaces its score, ``penalty``
 subtracts), ``late`` (``points`` replaces the late penalty: 0 waives it) or
 ``total``/empty (``penalty`` subtracts, ``points`` adds a bonus). Exactly one of
@@ -120,15 +128,49 @@ def read_overrides(path) -> list[Override]:
     return out
 
 
-def read_roster(path) -> list[dict]:
-    rows = []
-    for row in _read_csv(path):
+class Roster(list):
+    """The roster's rows (dicts with the keys below), and the CSV's own column names in
+    :attr:`columns` (a Canvas export names each assignment ``"Lab 7 (12345)"``)."""
+
+    columns: list[str] = []
+
+
+def read_roster(path) -> Roster:
+    rows = Roster()
+    reader_rows = _read_csv(path)
+    rows.columns = [k.strip() for k in (reader_rows[0].keys() if reader_rows else []) if k]
+    for row in reader_rows:
         row = {_roster_key(k): (v or "").strip() for k, v in row.items() if k}
         if "points possible" in row.get("name", "").lower():
             continue  # Canvas's export carries the points possible as a row
         if any(row.values()):
             rows.append(row)
     return rows
+
+
+_CANVAS_ASSIGNMENT = re.compile(r"^(?P<name>.*\S)\s*\((?P<id>\d+)\)$")
+
+
+def canvas_assignment_column(course: CourseConfig, roster_columns=()) -> tuple[str, str]:
+    """The Canvas import's grade column, and a warning ('' when none).
+
+    Canvas fills an existing assignment only from a column named ``"Lab 7 (12345)"``:
+    the id comes from ``canvas_assignment_id``, else from the column of the roster
+    (Canvas's own gradebook export) whose name is the assignment's.
+    """
+    if course.canvas_assignment_id:
+        return f"{course.assignment} ({course.canvas_assignment_id})", ""
+    assignments = [c for c in roster_columns if _CANVAS_ASSIGNMENT.match(c)]
+    same = [c for c in assignments if _CANVAS_ASSIGNMENT.match(c)["name"].casefold() == course.assignment.casefold()]
+    if len(same) == 1:
+        return same[0], ""
+    if assignments:
+        return course.assignment, (
+            f"the roster (a Canvas export) has {'several columns' if same else 'no column'} for the assignment "
+            f"{course.assignment!r} (it has: {', '.join(assignments[:6])}); canvas_import.csv names its column "
+            f"{course.assignment!r}, which Canvas would add as a new assignment: set the course's "
+            "'assignment' to the Canvas name or give 'canvas_assignment_id'")
+    return course.assignment, ""
 
 
 _ROSTER_KEYS = {"student id": "student_id", "student_id": "student_id", "student": "name", "name": "name",
@@ -252,7 +294,9 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
     factors = exercise_factors(exercises, course)
     matched, _, absent = match_roster(students, list(roster))
     grades, warnings = [], []
-    by_identity: dict[str, StudentGrade] = {}
+    if not course.lms_exports or "canvas" in course.lms_exports:
+        _, warning = canvas_assignment_column(course, getattr(roster, "columns", ()))
+        warnings += [warning] if warning else []
     for student in students:
         scores: dict[str, float | None] = {e: None for e, _ in exercises}
         if student["status"] == "graded":
@@ -261,14 +305,7 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
                     scores[e["id"]] = round(e["score"] * factors[e["id"]], 4)
         elif student["status"] == "unreadable":
             scores = {e: 0.0 for e in scores}
-        grade = StudentGrade(student, scores, roster=matched.get(student["student_id"], {}))
-        grades.append(grade)
-        keys = {student["student_id"].lower(), student["display_name"].lower(), _name_key(student["display_name"])}
-        keys |= {v.lower() for v in student.get("lms", {}).values() if v}
-        keys |= {v.lower() for m in student.get("members", []) for v in m.values() if v}
-        keys |= {v.lower() for k, v in grade.roster.items() if v and k in ("sid", "email", "login", "canvas_user_id")}
-        for key in keys:
-            by_identity.setdefault(key, grade)
+        grades.append(StudentGrade(student, scores, roster=matched.get(student["student_id"], {})))
     for grade in grades:
         days = late_days(grade.student, course.late_penalty)
         if days and grade.graded:
@@ -278,17 +315,51 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
             if grade.late_penalty:
                 grade.adjustments.append(Adjustment("late", f"-{grade.late_penalty:g}",
                                                     f"{days} day(s) late: {percent:g}% of the points earned"))
+    index = _identity_index(grades)
     for o in overrides:
-        grade = by_identity.get(o.student.lower()) or by_identity.get(_name_key(o.student))
-        if grade is None:
+        candidates = _named_by(o.student, grades, index)
+        if not candidates:
             warnings.append(f"override for {o.student!r} names no student; ignored")
-            continue
-        _apply(grade, o, warnings)
+        elif len(candidates) > 1:
+            warnings.append(f"override for {o.student!r} is ambiguous: it names "
+                            f"{', '.join(g.student['student_id'] for g in candidates)}; ignored "
+                            "(name the student by id)")
+        else:
+            _apply(candidates[0], o, warnings)
     for row in absent:
         stub = {"student_id": row.get("student_id", ""), "display_name": row.get("name", ""), "lms": {},
                 "members": [], "status": "no submission", "reason": "", "result": None, "feedback": None}
         grades.append(StudentGrade(stub, {e: None for e, _ in exercises}, roster=row))
     return grades, warnings
+
+
+def _identity_index(grades: list[StudentGrade]) -> dict[str, list[StudentGrade]]:
+    """Every identity an override may use -> the grades it names: the derived id, LMS ids
+    and e-mails (the student's, each group member's, the roster's), and the names (the
+    download's, each member's, the roster's) as written and in any order of their words."""
+    index: dict[str, list[StudentGrade]] = {}
+    for grade in grades:
+        student, roster = grade.student, grade.roster
+        members = student.get("members", [])
+        ids = [student["student_id"], *student.get("lms", {}).values(),
+               *(v for m in members for k, v in m.items() if k != "name"),
+               *(v for k, v in roster.items() if k in ("student_id", "sid", "email", "login", "canvas_user_id"))]
+        names = [student["display_name"], roster.get("name", ""), *(m.get("name", "") for m in members)]
+        keys = {f"id:{v.strip().lower()}" for v in ids if v and v.strip()}
+        keys |= {f"name:{_name_key(n)}" for n in names if _name_key(n)}
+        for key in keys:
+            index.setdefault(key, []).append(grade)
+    return index
+
+
+def _named_by(who: str, grades: list[StudentGrade], index) -> list[StudentGrade]:
+    """The graded students an override's ``student`` names (a derived id is never ambiguous)."""
+    exact = [g for g in grades if g.student["student_id"] == who.strip()]
+    if exact:
+        return exact
+    found = index.get(f"id:{who.strip().lower()}", []) + index.get(f"name:{_name_key(who)}", [])
+    unique = list({id(g): g for g in found if g.student["status"] != "no submission"}.values())
+    return unique
 
 
 def _apply(grade: StudentGrade, o: Override, warnings: list[str]) -> None:
@@ -322,6 +393,10 @@ def max_total(exercises, course: CourseConfig) -> float:
 # ------------------------------------------------------------------ CSV files
 def _status(grade: StudentGrade) -> str:
     status, reason = grade.student["status"], grade.student.get("reason", "")
+    if grade.student.get("missing_from_download"):   # kept from an earlier download (see Gradebook)
+        graded_at = grade.student.get("graded_at")
+        return f"not in this download; last graded {graded_at[:10]}" if status == "graded" and graded_at \
+            else f"{status} (not in this download)"
     return f"{status}: {reason}" if reason else status
 
 
@@ -329,28 +404,39 @@ def _fmt(value) -> str:
     return "" if value is None else f"{round(value, 4):g}"
 
 
-def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig, roster_given: bool) -> list[Path]:
+def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig, roster_given: bool,
+               roster_columns=()) -> list[Path]:
+    """Write grades.csv, the LMS imports that apply (see ``lms_exports`` in the course) and,
+    with a roster, roster_unmatched.csv; returns the files written."""
     out = Path(out)
     ids = [e for e, _ in exercises]
     files = []
 
     rows = [GRADES_HEADER + ids + GRADES_TAIL]
     for g in grades:
-        rows.append([g.student["student_id"], g.student["display_name"], _status(g)]
+        rows.append([g.student["student_id"], g.roster.get("name") or g.student["display_name"], _status(g)]
                     + [_fmt(g.exercises[e]) for e in ids]
                     + [_fmt(g.late_penalty if g.graded else None), _fmt(g.bonus if g.graded else None),
                        _fmt(g.total)])
     files.append(write_csv(out / "grades.csv", rows))
 
-    rows = [CANVAS_HEADER + [course.assignment], ["Points Possible", "", "", "", "", _fmt(max_total(exercises, course))]]
+    canvas = out / "canvas_import.csv"
+    column, _ = canvas_assignment_column(course, roster_columns)
+    rows = [CANVAS_HEADER + [column], ["Points Possible", "", "", "", "", _fmt(max_total(exercises, course))]]
     for g, member in _members(grades):
         lms, r = g.student.get("lms", {}), g.roster
         rows.append([r.get("name") or member.get("name") or g.student["display_name"],
                      r.get("canvas_user_id") or lms.get("canvas_user_id", ""),
                      r.get("sid") or member.get("sid", ""), r.get("login") or member.get("email", ""),
                      r.get("section", ""), _fmt(g.total)])
-    files.append(write_csv(out / "canvas_import.csv", rows))
+    if not course.lms_exports or "canvas" in course.lms_exports:
+        files.append(write_csv(canvas, rows))
+    else:
+        canvas.unlink(missing_ok=True)
 
+    moodle = out / "moodle_import.csv"
+    if not _moodle_wanted(grades, course, roster_columns):
+        moodle.unlink(missing_ok=True)   # a worksheet from an earlier run would be taken for this one's
     rows = [MOODLE_HEADER]
     for g, member in _members(grades):
         lms, r = g.student.get("lms", {}), g.roster
@@ -358,7 +444,8 @@ def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig,
         rows.append([r.get("identifier") or (f"Participant {participant}" if participant else ""),
                      r.get("name") or member.get("name") or g.student["display_name"],
                      r.get("email") or member.get("email", ""), _fmt(g.total)])
-    files.append(write_csv(out / "moodle_import.csv", rows))
+    if _moodle_wanted(grades, course, roster_columns):
+        files.append(write_csv(moodle, rows))
 
     if roster_given:
         rows = [UNMATCHED_HEADER]
@@ -369,6 +456,14 @@ def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig,
                 rows.append([g.student["student_id"], g.student["display_name"], "submitted, not on the roster"])
         files.append(write_csv(out / "roster_unmatched.csv", rows))
     return files
+
+
+def _moodle_wanted(grades, course: CourseConfig, roster_columns) -> bool:
+    """Moodle's worksheet when asked for, for a Moodle download, or with a Moodle roster."""
+    if course.lms_exports:
+        return "moodle" in course.lms_exports
+    return (any(g.student.get("source") == "moodle" for g in grades)
+            or any(c.strip().lower() == "identifier" for c in roster_columns))
 
 
 def _members(grades):

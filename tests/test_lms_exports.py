@@ -1,0 +1,139 @@
+"""Each LMS in its own terms (issue 28): the exports, from gradebook rows, without grading.
+
+Canvas fills an existing assignment from an import only when the grade column is
+named ``"<assignment> (<id>)"`` as in Canvas's own gradebook export; Moodle's
+worksheet identifies each row by ``Participant <id>``; every cell is safe to open
+in a spreadsheet; overrides find a student by any identity the README promises
+and refuse a row that names two.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+
+import pytest
+
+from autograder.batch import exports
+from autograder.course import CourseConfig, CourseConfigError
+
+RAW = [("lab07.ex1", 12.0)]
+
+# Canvas's "Export" of the gradebook, as an instructor downloads it.
+CANVAS_EXPORT = (
+    "Student,ID,SIS User ID,SIS Login ID,Section,Lab 7 (12345),Lab 8 (12346),Current Score,Final Score\n"
+    "    Points Possible,,,,,12,20,(read only),(read only)\n"
+    '"Kim, Bo",1001,S1,bkim,A,,,,\n'
+    '"Lee, Ann",1002,S2,alee,A,,,,\n'
+    '"Nobody, Ned",1003,S3,nned,B,,,,\n')
+
+
+def student(student_id, name, total=12.0, source="canvas", **lms):
+    return {"student_id": student_id, "display_name": name, "source": source, "origin": student_id,
+            "lms": lms, "members": [], "submitted_at": None, "late": None, "status": "graded", "reason": "",
+            "result": {"total": total, "max_total": 12.0,
+                       "exercises": [{"id": "lab07.ex1", "score": total, "max_score": 12.0}]},
+            "feedback": f"{student_id}/feedback.html"}
+
+
+CLASS = [student("kimbo-1001", "kimbo", canvas_user_id="1001"),
+         student("leeann-1002", "leeann", 4.0, canvas_user_id="1002"),
+         student("=evil-1004", "=HYPERLINK(\"http://x\",\"click\")", 1.0, canvas_user_id="1004")]
+
+
+def roster(tmp_path, text=CANVAS_EXPORT):
+    path = tmp_path / "roster.csv"
+    path.write_text(text)
+    return exports.read_roster(path)
+
+
+def written(tmp_path, course, students=CLASS, rows=None, overrides=()):
+    rows = rows if rows is not None else exports.Roster()
+    grades, warnings = exports.compute_grades(students, RAW, course, overrides, rows)
+    exports.write_csvs(tmp_path, grades, RAW, course, roster_given=bool(rows),
+                       roster_columns=getattr(rows, "columns", ()))
+    tables = {p.name: list(csv.reader(p.open(newline="", encoding="utf-8"))) for p in tmp_path.glob("*.csv")
+              if p.name != "roster.csv"}
+    return tables, warnings
+
+
+def test_the_canvas_import_fills_the_assignment_of_the_canvas_export_it_came_from(tmp_path):
+    tables, warnings = written(tmp_path, CourseConfig(assignment="Lab 7"), rows=roster(tmp_path))
+    assert not [w for w in warnings if "Canvas" in w]
+    header, points, *body = tables["canvas_import.csv"]
+    assert header == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Lab 7 (12345)"]
+    assert points[0] == "Points Possible" and points[-1] == "12"
+    by_id = {row[1]: row for row in body}
+    # the round trip: the roster's identities come back as Canvas wrote them
+    assert by_id["1001"][:5] == ["Kim, Bo", "1001", "S1", "bkim", "A"] and by_id["1001"][-1] == "12"
+    assert by_id["1002"][-1] == "4"
+    # grades.csv names students as the roster does
+    names = {row[0]: row[1] for row in tables["grades.csv"][1:]}
+    assert names["kimbo-1001"] == "Kim, Bo" and names["leeann-1002"] == "Lee, Ann"
+
+
+def test_the_canvas_id_from_the_course_and_a_warning_when_the_export_has_no_such_assignment(tmp_path):
+    tables, _ = written(tmp_path / "a", CourseConfig(assignment="Lab 7", canvas_assignment_id="777"))
+    assert tables["canvas_import.csv"][0][-1] == "Lab 7 (777)"
+    _, warnings = written(tmp_path / "b", CourseConfig(assignment="Lab 9"), rows=roster(tmp_path))
+    assert any("no column for the assignment 'Lab 9'" in w and "Lab 7 (12345)" in w for w in warnings)
+    with pytest.raises(CourseConfigError, match="canvas_assignment_id"):
+        CourseConfig(canvas_assignment_id="Lab 7")
+
+
+@pytest.fixture(autouse=True)
+def _folders(tmp_path):
+    for name in ("a", "b", "c", "d"):
+        (tmp_path / name).mkdir()
+
+
+def test_moodle_worksheet_only_where_moodle_applies(tmp_path):
+    tables, _ = written(tmp_path / "a", CourseConfig(assignment="Lab 7"))
+    assert "moodle_import.csv" not in tables and "canvas_import.csv" in tables
+    moodle_class = [student("ann-lee-501", "Ann Lee", source="moodle", moodle_participant_id="501")]
+    tables, _ = written(tmp_path / "b", CourseConfig(assignment="Lab 7"), students=moodle_class)
+    assert tables["moodle_import.csv"][1] == ["Participant 501", "Ann Lee", "", "12"]
+    tables, _ = written(tmp_path / "c", CourseConfig(assignment="Lab 7", lms_exports=["moodle"]))
+    assert "moodle_import.csv" in tables and "canvas_import.csv" not in tables
+    moodle_roster = roster(tmp_path / "d", "Identifier,Full name,Email address\nParticipant 7,Kim Bo,bo@x\n")
+    tables, _ = written(tmp_path / "d", CourseConfig(assignment="Lab 7"), rows=moodle_roster)
+    assert "moodle_import.csv" in tables
+
+
+def test_every_cell_of_every_export_is_safe_to_open_in_a_spreadsheet(tmp_path):
+    tables, _ = written(tmp_path, CourseConfig(assignment="Lab 7", lms_exports=["canvas", "moodle"]))
+    cells = [cell for rows in tables.values() for row in rows for cell in row]
+    assert "'=HYPERLINK(\"http://x\",\"click\")" in cells and "'=evil-1004" in cells
+    assert not [c for c in cells if c[:1] in ("=", "+", "@", "\t", "\r")]
+    assert not [c for c in cells if c.startswith("-") and not c[1:].replace(".", "").isdigit()]
+
+
+@pytest.mark.parametrize("who", ["kimbo-1001", "Kim, Bo", "Bo Kim", "bo kim", "bkim", "S1", "1001"])
+def test_an_override_finds_the_student_by_every_identity(tmp_path, who):
+    override = exports.Override(who, "total", 1.0, None, "presented in class")
+    grades, warnings = exports.compute_grades(CLASS, RAW, CourseConfig(), [override], roster(tmp_path))
+    assert not [w for w in warnings if "override" in w]
+    [kim] = [g for g in grades if g.student["student_id"] == "kimbo-1001"]
+    assert kim.total == 13.0
+
+
+def test_an_ambiguous_override_is_refused_naming_the_candidates(tmp_path):
+    twins = [student("ann-lee-1", "Ann Lee"), student("ann-lee-2", "Lee Ann")]
+    override = exports.Override("Ann Lee", "total", 1.0, None, "")
+    grades, warnings = exports.compute_grades(twins, RAW, CourseConfig(), [override])
+    assert [w for w in warnings if "ambiguous" in w and "ann-lee-1" in w and "ann-lee-2" in w]
+    assert [g.total for g in grades] == [12.0, 12.0]
+    # the derived id is never ambiguous
+    grades, warnings = exports.compute_grades(twins, RAW, CourseConfig(), [exports.Override("ann-lee-2", "total",
+                                                                                            1.0, None, "")])
+    assert [g.total for g in grades] == [12.0, 13.0] and not warnings
+
+
+def test_spreadsheet_safe_leaves_numbers_and_text_alone():
+    assert [exports.spreadsheet_safe(c) for c in ["12", "-2", "+1.5", "1e-3", "Ann", "", None]] == \
+        ["12", "-2", "+1.5", "1e-3", "Ann", "", ""]
+    assert [exports.spreadsheet_safe(c) for c in ["=1+1", "-1+1", "@A1", "\tx", "\rx", "+cmd"]] == \
+        ["'=1+1", "'-1+1", "'@A1", "'\tx", "'\rx", "'+cmd"]
+    buffer = io.StringIO()
+    csv.writer(buffer).writerow([exports.spreadsheet_safe("=1+1")])
+    assert buffer.getvalue().startswith("'=1+1")
