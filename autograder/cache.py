@@ -11,12 +11,21 @@ class) computes them once:
   NumPy and OpenCV. Anything else in the arguments (an object it cannot
   digest) means no caching for that call;
 - values are plain data written with :mod:`autograder.transport` (never pickle)
-  behind a SHA-256 of the frame: a truncated, corrupt or foreign file is a miss,
-  never an error, and the value is computed again;
+  behind an HMAC-SHA256 of the frame and of the entry's place in the store, under
+  the store's key (the file ``key`` in it: 32 random bytes, readable by the
+  grader's user only). A checksum anyone can recompute would prove nothing: an
+  entry whose MAC fails (truncated, corrupt, moved, or written by anything that
+  does not hold the key) is a miss, never an error, and the value is computed
+  again;
 - the store is used only while :func:`enabled` says so. The runner enables it
   while grading where the worker cannot reach the grader's files (the
-  namespaced confinement levels): a submission can never write ground truth.
-  Outside a grading (the grader's own tests, scripts) results are computed;
+  namespaced confinement levels): a submission can neither read the key nor
+  write ground truth. A worker at the ``process-group`` level runs as the
+  grader's user and could do both, so the store is off for its grading, and the
+  sandbox :func:`revokes <revoke>` the key before such a worker starts and again
+  once it has stopped: whatever it may have learnt or written is never trusted
+  afterwards (the next grading makes a new key and computes afresh). Outside a
+  grading (the grader's own tests, scripts) results are computed;
 - it lives in ``$AUTOGRADER_CACHE_DIR``, else ``$XDG_CACHE_HOME/cv-autograder``,
   else ``~/.cache/cv-autograder`` (never in the repository), in folders only
   the grader's user may enter; ``AUTOGRADER_CACHE_DIR=off`` switches it off.
@@ -31,13 +40,16 @@ import contextlib
 import dataclasses
 import functools
 import hashlib
+import hmac
 import inspect
 import logging
 import os
+import secrets
 import shutil
 import stat
 import sys
 import tempfile
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -45,7 +57,10 @@ import numpy as np
 from . import transport
 
 _MAX_ENTRY_BYTES = 64 * 2**20
+_KEY_FILE, _KEY_BYTES = "key", 32
 _enabled = False
+_keys: dict[Path, bytes] = {}   # store folder -> its key, read once per process (see revoke)
+_keys_lock = threading.Lock()
 
 
 @contextlib.contextmanager
@@ -124,6 +139,22 @@ def _hashed(key: str) -> str:
     return hashlib.sha256(key.encode()).hexdigest()
 
 
+def revoke() -> None:
+    """Stop trusting the store as it is: its key is deleted (here and on disk), so no entry
+    written until now is read again; the next grading that uses the store makes a new key.
+
+    Called around every worker that could read or write the grader's files (the
+    ``process-group`` level): what it saw of the key, or wrote, is worth nothing.
+    """
+    root = location()
+    with _keys_lock:
+        _keys.clear()
+        _folder_for.cache_clear()
+        if root is not None:
+            with contextlib.suppress(FileNotFoundError, NotADirectoryError):
+                os.unlink(root / _KEY_FILE)
+
+
 # ------------------------------------------------------------------ keys
 @functools.lru_cache(maxsize=None)
 def _code_version(name: str, sources: tuple[Path, ...], libraries: tuple[str, ...] = ()) -> str:
@@ -196,6 +227,61 @@ def _folder_for(root: Path, name: str, version: str) -> Path | None:
     return folder
 
 
+def _key_of(root: Path) -> bytes | None:
+    """The store's key: ``root/key``, made now if there is none or it is not a private
+    file of ours of the right size; None if none can be made (then nothing is stored)."""
+    with _keys_lock:
+        if root not in _keys:
+            key = _read_key(root / _KEY_FILE)
+            if key is None:
+                with contextlib.suppress(OSError):
+                    os.unlink(root / _KEY_FILE)  # not one we made: replaced
+                key = _make_key(root)
+            if key is None:
+                return None
+            _keys[root] = key
+        return _keys[root]
+
+
+def _read_key(path: Path) -> bytes | None:
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW)
+    except OSError:
+        return None
+    with os.fdopen(fd, "rb") as file:
+        info = os.fstat(file.fileno())
+        if (not stat.S_ISREG(info.st_mode) or info.st_uid != os.geteuid()
+                or info.st_mode & (stat.S_IRWXG | stat.S_IRWXO) or info.st_size != _KEY_BYTES):
+            return None
+        key = file.read(_KEY_BYTES + 1)
+    return key if len(key) == _KEY_BYTES else None
+
+
+def _make_key(root: Path) -> bytes | None:
+    """A new key, written whole before it appears under its name (another process making
+    one at the same moment wins or loses as a whole: then its key is read)."""
+    try:
+        with tempfile.NamedTemporaryFile(dir=root, prefix=".key-", delete=False) as file:
+            os.fchmod(file.fileno(), 0o600)
+            file.write(secrets.token_bytes(_KEY_BYTES))
+        try:
+            os.link(file.name, root / _KEY_FILE)
+        finally:
+            os.unlink(file.name)
+    except FileExistsError:
+        pass
+    except OSError as exc:
+        logging.getLogger("autograder").debug("no store key: %s", exc)
+        return None
+    return _read_key(root / _KEY_FILE)
+
+
+def _mac(key: bytes, folder: Path, entry: str, frame: bytes) -> bytes:
+    """The entry's MAC: its frame and its place (an entry moved to another name fails)."""
+    place = f"{folder.parent.name}/{folder.name}/{entry}\0".encode()
+    return hmac.new(key, place + frame, hashlib.sha256).digest()
+
+
 def _folder(name: str, version: str) -> Path | None:
     root = location()
     if root is None:
@@ -204,6 +290,9 @@ def _folder(name: str, version: str) -> Path | None:
 
 
 def _read(folder: Path, key: str):
+    secret = _key_of(folder.parents[1])
+    if secret is None:
+        return None
     try:
         fd = os.open(folder / key, os.O_RDONLY | os.O_NOFOLLOW)
     except OSError:
@@ -215,8 +304,8 @@ def _read(folder: Path, key: str):
                     or info.st_size > _MAX_ENTRY_BYTES + 32):
                 return None
             data = file.read()
-        checksum, frame = data[:32], data[32:]
-        if hashlib.sha256(frame).digest() != checksum:
+        mac, frame = data[:32], data[32:]
+        if not hmac.compare_digest(_mac(secret, folder, key, frame), mac):
             return None
         return transport.decode(frame, max_bytes=_MAX_ENTRY_BYTES)
     except (OSError, transport.TransportError):
@@ -224,6 +313,9 @@ def _read(folder: Path, key: str):
 
 
 def _write(folder: Path, key: str, value) -> None:
+    secret = _key_of(folder.parents[1])
+    if secret is None:
+        return
     try:
         frame = transport.encode(value, max_bytes=_MAX_ENTRY_BYTES)
     except transport.TransportError:
@@ -231,7 +323,7 @@ def _write(folder: Path, key: str, value) -> None:
     try:
         _remove_other_versions(folder)
         with tempfile.NamedTemporaryFile(dir=folder, prefix=".tmp-", delete=False) as file:
-            file.write(hashlib.sha256(frame).digest() + frame)
+            file.write(_mac(secret, folder, key, frame) + frame)
         os.replace(file.name, folder / key)
     except OSError as exc:
         logging.getLogger("autograder").debug("cache not written: %s", exc)

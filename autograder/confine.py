@@ -77,6 +77,21 @@ ETC_ENTRIES = ("/etc/ld.so.cache", "/etc/ld.so.conf", "/etc/ld.so.conf.d", "/etc
 DEVICES = ("null", "zero", "full", "random", "urandom")
 
 
+def _absolute(executable: str) -> str:
+    """``executable`` as an absolute path, against the folder this process started in.
+
+    Python started through a relative ``PATH`` entry (``PATH=.venv/bin:$PATH python
+    grade.py``) has a relative ``sys.executable``, which names nothing once a worker
+    starts in its scratch folder or in its own root: every namespaced level would
+    fail its probe and the grading fall to ``process-group``.
+    """
+    return os.path.abspath(executable) if executable and not os.path.isabs(executable) else executable
+
+
+# Resolved at import, before anything could change the working folder.
+INTERPRETER = _absolute(sys.executable)
+
+
 @dataclass(frozen=True)
 class View:
     """The worker's own part of its file system: the scratch folder.
@@ -124,7 +139,7 @@ class Confinement:
             drop[1:1] = [f"--reuid={self.uid}", f"--regid={self.gid}", "--clear-groups"]
         spec = json.dumps(self._root_ops(str(Path(hold) / "root"), view))
         init = str(Path(__file__).with_name("namespace_init.py"))
-        return unshare + ["--", sys.executable, "-I", "-S", init, spec, "--", *drop, "--", *argv]
+        return unshare + ["--", INTERPRETER, "-I", "-S", init, spec, "--", *drop, "--", *argv]
 
     def _root_ops(self, root: str, view: View | None) -> list:
         """The operations building the worker's root in ``root``, ending with the switch to it."""
@@ -228,7 +243,7 @@ def interpreter_layout() -> tuple[tuple, tuple[tuple[str, tuple[str, ...]], ...]
     """
     probe = ("import json, sys; print(json.dumps([sys.prefix, sys.base_prefix, sys.exec_prefix, "
              "sys.base_exec_prefix, sys.executable, sys.path]))")
-    with subprocess.Popen([sys.executable, "-I", "-c", probe], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+    with subprocess.Popen([INTERPRETER, "-I", "-c", probe], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
                           stdin=subprocess.DEVNULL, text=True) as asked:
         try:
             # Meanwhile, the entries of the site folders this interpreter has (almost always the probe's).
@@ -432,7 +447,7 @@ def _candidate(level: str) -> Confinement | None:
 
 def _works(confinement: Confinement) -> bool:
     hold = tempfile.mkdtemp(prefix="autograder-probe-")
-    probe = confinement.wrap([sys.executable, "-I", "-c", "import numpy"], hold=hold)
+    probe = confinement.wrap([INTERPRETER, "-I", "-c", "import numpy"], hold=hold)
     try:
         return subprocess.run(probe, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                               stderr=subprocess.DEVNULL, timeout=30, cwd="/").returncode == 0
