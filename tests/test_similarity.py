@@ -76,7 +76,9 @@ def test_page_highlights_and_escapes_student_text(lab07_class):
     html = similarity_html(results, THRESHOLD, course_title="CV <b>")
     assert "<script" not in html and "</td><script>" not in html and "CV <b>" not in html
     assert "leads to read" in html and "Nobody is accused" in html
-    assert html.count('<details class="pair"') == 4 + 2   # every copy pair, the hostile one copies ben and eve
+    # every copy pair; the hostile one is ben's code with a comment: one cluster with ben, listed once
+    assert html.count('<details class="pair"') == 4 and "mal&lt;/td&gt;&lt;script&gt;" in html
+    assert results[0].clusters == [["ben", "mal</td><script>"]]
     assert "<mark>" in html
 
 
@@ -151,3 +153,16 @@ def test_sources_from_an_lms_download_use_the_batchs_student_ids(tmp_path):
     assert sorted(sources) == ids and len(ids) == 2
     [result] = compare_class(sources, {LAB07: SKELETON}, {LAB07: "lab07"}, threshold=THRESHOLD)
     assert [(p.student_a, p.student_b) for p in result.leads(THRESHOLD)] == [tuple(ids)]
+
+
+def test_identical_submissions_are_one_cluster_listed_once(lab07_class):
+    """A class where many hand in the same file: one line per cluster, not one per pair."""
+    sources, _, _ = lab07_class
+    same = {f"twin{i:02d}": INDEPENDENT for i in range(23)}            # 253 identical pairs
+    same["ada"] = REFERENCE
+    result = compare_module(LAB07, same, SKELETON, "lab07")
+    assert result.clusters == [[f"twin{i:02d}" for i in range(23)]]
+    assert result.students == 24 and len(result.pairs) == 1
+    assert result.identical_to("twin00") == [f"twin{i:02d}" for i in range(1, 23)]
+    page = similarity_html([result], THRESHOLD)
+    assert "23 students:" in page and "twin00 (+22 identical)" in page and "twin05 ·" not in page

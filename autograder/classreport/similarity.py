@@ -158,6 +158,14 @@ class LabSimilarity:
     lab: str
     students: int             # students whose module has code beyond the skeleton
     pairs: list[SimilarPair]  # every compared pair, most similar first
+    clusters: list[list[str]] = field(default_factory=list)   # students with identical code, 2 or more each
+
+    def identical_to(self, student: str) -> list[str]:
+        """The others in ``student``'s cluster of identical code (who stands for them in ``pairs``)."""
+        for cluster in self.clusters:
+            if student in cluster:
+                return [s for s in cluster if s != student]
+        return []
 
     def leads(self, threshold: float) -> list[SimilarPair]:
         """The aligned pairs scoring at least ``threshold``, most similar first."""
@@ -191,6 +199,16 @@ def compare_module(module: str, sources: dict[str, str], skeleton: str = "", lab
         fingerprint = copydetect.CodeFingerprint(filename, noise, window, boilerplate, fp=io.StringIO(source))
         if fingerprint.token_coverage > 0:   # an untouched skeleton has nothing of its own
             prints[student] = fingerprint
+    students = len(prints)
+    # Identical code (the same fingerprints: names and comments aside) is one cluster, listed once;
+    # its first student stands for it among the pairs (253 identical pairs are one line, not 253).
+    by_code: dict[frozenset, list[str]] = {}
+    for student in sorted(prints):
+        by_code.setdefault(frozenset(prints[student].hashes), []).append(student)
+    clusters = [members for members in by_code.values() if len(members) > 1]
+    for members in clusters:
+        for student in members[1:]:
+            del prints[student]
     pairs = []
     for a, b in itertools.combinations(sorted(prints), 2):
         common = len(prints[a].hashes & prints[b].hashes)
@@ -203,7 +221,7 @@ def compare_module(module: str, sources: dict[str, str], skeleton: str = "", lab
         _, (share_a, share_b), slices = copydetect.compare_files(prints[pair.student_a], prints[pair.student_b])
         pair.share_a, pair.share_b, pair.slices, pair.aligned = float(share_a), float(share_b), slices, True
     pairs.sort(key=lambda p: (-p.aligned, -p.score, p.student_a, p.student_b))
-    return LabSimilarity(module, lab or module, len(prints), pairs)
+    return LabSimilarity(module, lab or module, students, pairs, sorted(clusters, key=lambda c: (-len(c), c)))
 
 
 def highlight(pair: SimilarPair, sources: dict[str, str]) -> None:
