@@ -2,7 +2,10 @@
 
 Exit status is 0 whenever grading completed, whatever the score; 2 for usage
 errors (an unknown selector, a submission path that does not exist, a bad
-option value, a report that cannot be written). Errors go to stderr.
+option value, a report that cannot be written). ``batch`` and ``report`` exit
+with 1 when the results folder cannot be read or written (a full disk, a
+read-only folder, a damaged gradebook, the folder deleted mid-run): one line
+naming the file and what to do; finished gradings are kept. Errors go to stderr.
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ from .sandbox import Limits, usable_cores  # noqa: E402
 from .submission import SubmissionError  # noqa: E402
 
 USAGE_ERROR = 2
+STORAGE_ERROR = 1   # batch/report: RESULTS cannot be read or written (see StorageError)
 
 
 # Imported when first used: grade.py starts its worker before the grader's heavier imports.
@@ -308,6 +312,7 @@ def run_batch(args) -> int:
 
     from .batch.cluster import DaskUnavailable
     from .batch.exports import ExportError
+    from .batch.gradebook import StorageError
     from .batch.ingest import IngestError
     from .batch.run import run_batch as batch
     from .course import CourseConfig, CourseConfigError
@@ -324,6 +329,8 @@ def run_batch(args) -> int:
     except (CourseConfigError, IngestError, ExportError, SelectionError, DaskUnavailable) as exc:
         console.print(f"[red]error:[/red] {escape(str(exc))}")
         return USAGE_ERROR
+    except StorageError as exc:
+        return _storage_failed(exc)
     except KeyboardInterrupt:
         console.print("interrupted: every finished grading is in the gradebook; "
                       "run the same command again to resume")
@@ -332,25 +339,40 @@ def run_batch(args) -> int:
                   f"(kept from the gradebook), {len(summary.failed)} failed, {len(summary.unreadable)} unreadable",
                   highlight=False)
     for title, lines in (("unreadable", summary.unreadable), ("failed", summary.failed),
+                         ("no longer in SUBMISSIONS", [f"{i} (kept, with their last grading)" for i in summary.missing]),
                          ("roster", summary.unmatched), ("warning", summary.warnings)):
         for line in lines:
             console.print(Text.assemble("  ", (f"{title}:", "yellow"), f" {line}"), highlight=False)
     if args.similarity:
-        summary.files.append(_batch_similarity(args, course, console))
+        try:
+            summary.files.append(_batch_similarity(args, course, console))
+        except StorageError as exc:
+            return _storage_failed(exc)
     console.print(f"wrote {args.out}/ : " + ", ".join(p.name for p in summary.files if p)
                   + ", <student>/feedback.html, <student>/results.json, gradebook.sqlite", highlight=False, markup=False)
     return 0
 
 
 def _batch_similarity(args, course, console) -> Path | None:
-    from .classreport.pages import write_similarity
+    from .batch.gradebook import StorageError
+    from .classreport.pages import SIMILARITY, write_similarity
     from .classreport.similarity import SimilarityUnavailable
 
+    page = str(Path(args.out) / SIMILARITY)
     try:
         return write_similarity(args.submissions, args.out, course.similarity_threshold, course.assignment)
     except SimilarityUnavailable as exc:
         console.print(f"[yellow]similarity report skipped:[/yellow] {exc}")
         return None
+    except OSError as exc:   # the page (or a submission gone since it was graded)
+        named = exc.filename or page
+        raise StorageError.from_exception(exc, named, "write" if str(named) == page else "read") from exc
+
+
+def _storage_failed(exc) -> int:
+    """A StorageError: its one line (the file, what to do) on stderr."""
+    print(f"error: {exc}", file=sys.stderr)
+    return STORAGE_ERROR
 
 
 class _batch_progress:
@@ -461,17 +483,32 @@ def add_class_commands(commands) -> None:
 
 
 def run_report(args) -> int:
+    """``autograder report RESULTS``: the class overview again, and each student's page and
+    results.json written again from the gradebook where they were lost (1 if some cannot be)."""
+    from .batch.gradebook import StorageError
+    from .batch.run import restore_student_files
     from .classreport.pages import NoGradebook, write_overview
     from .course import CourseConfig, CourseConfigError
+    from .registry import SelectionError
 
     try:
-        course = CourseConfig.load(args.course) if args.course else CourseConfig()
-        out = write_overview(args.results, course_title=args.title or getattr(course, "assignment", ""))
-    except (CourseConfigError, NoGradebook) as exc:
+        course = CourseConfig.load(args.course) if args.course else None
+        out = write_overview(args.results, course_title=args.title or (course.assignment if course else None))
+        restored, problems = restore_student_files(args.results, course)
+    except (CourseConfigError, NoGradebook, SelectionError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return USAGE_ERROR
+    except StorageError as exc:
+        return _storage_failed(exc)
+    for path in restored:
+        print(f"restored {path} (from the gradebook)")
+    for problem in problems:
+        student, _, why = problem.partition(": ")
+        print(f"error: cannot restore the files of {student}: {why}; "
+              f"grade them again with autograder batch SUBMISSIONS --out {args.results} --regrade",
+              file=sys.stderr)
     print(f"wrote {out}")
-    return 0
+    return STORAGE_ERROR if problems else 0
 
 
 def _default_similarity_page(folder: Path) -> Path:

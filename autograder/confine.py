@@ -419,6 +419,38 @@ def strongest_candidate() -> Confinement:
     return Confinement("process-group")
 
 
+class WeakerConfinement(RuntimeError):
+    """Student code would run less confined than this machine allows (see :func:`shortfall`)."""
+
+
+def shortfall(confinement: Confinement) -> str:
+    """Why student code confined at ``confinement`` is less confined than this machine
+    allows, or ``""`` when it is not.
+
+    Weaker than the level :func:`detect`'s probe finds working (forced by
+    ``AUTOGRADER_CONFINEMENT`` or asked for by a caller); or, as root (a course
+    container, an instructor's batch), weaker than a namespaced level whose tools are
+    here but whose worker could not start Python, which there means something is
+    broken. A student's laptop without user namespaces is not short of anything.
+    Probes (one process, once per process) only when the level is not the strongest
+    one the machine has the tools for.
+    """
+    rank = LEVELS.index(confinement.level)
+    present = next((level for level in LEVELS if _candidate(level) is not None), LEVELS[-1])
+    if rank <= LEVELS.index(present):
+        return ""
+    with _probing:
+        works = _detect().level
+    if rank > LEVELS.index(works):
+        forced = os.environ.get("AUTOGRADER_CONFINEMENT")
+        why = f"AUTOGRADER_CONFINEMENT={forced} forces it" if forced == confinement.level else "it was asked for"
+        return f"student code ran at the {confinement.level} level though {works} works here ({why})"
+    if os.geteuid() == 0:
+        return (f"student code ran at the {confinement.level} level: {present} is available here but its "
+                "worker could not start Python (see the log)")
+    return ""
+
+
 @lru_cache(maxsize=1)
 def _detect() -> Confinement:
     for level in LEVELS[:-1]:

@@ -78,6 +78,12 @@ Read by every grading (``autograder batch``, Gradescope, ``grade --config``):
     Keep it out of the student bundle (it never ships there) and out of anything
     students see; ``$AUTOGRADER_INPUTS_SECRET`` works too. ``gradescope build``
     makes one when the configuration has none.
+
+``allow_weaker_confinement``
+    Default false: Gradescope does not run a submission where student code would
+    be less confined than the machine allows (a namespaced level that is there but
+    fails, a level forced weaker); the student is told to ask the instructor and the
+    log says why. True accepts grading at the weaker level.
 """
 
 from __future__ import annotations
@@ -112,6 +118,7 @@ class CourseConfig:
     late_penalty: dict = field(default_factory=dict)    # due, grace_minutes, per_day, max (percent)
     similarity_threshold: float = 0.5                   # similarity report: pairs shown side by side
     inputs_secret: str = ""                             # property inputs: HMAC(secret, content); see inputs.py
+    allow_weaker_confinement: bool = False              # Gradescope grades below the machine's strongest level
     exercise_budget: float = 60.0                       # student seconds per exercise
     submission_budget: float = 480.0                    # student seconds per submission
     forbid: dict = field(default_factory=dict)          # "lab08.homography_ransac": ["cv2.findHomography"]
@@ -137,6 +144,8 @@ class CourseConfig:
         self._check_late_penalty()
         if not isinstance(self.inputs_secret, str):
             raise CourseConfigError("inputs_secret must be a string (the course's secret, e.g. 32 random hex digits)")
+        if not isinstance(self.allow_weaker_confinement, bool):
+            raise CourseConfigError("allow_weaker_confinement must be true or false")
         if not (isinstance(self.similarity_threshold, (int, float)) and 0 < self.similarity_threshold <= 1):
             raise CourseConfigError("similarity_threshold must be a number in (0, 1]")
         self._check_forbid()

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import logging
+import math
 import re
 import time
 import zipfile
@@ -138,8 +139,38 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
                             "Please tell your instructor; the details are in the autograder's log.",
                             config)
     data["execution_time"] = round(time.monotonic() - started, 3)
-    write_atomically(results_path, json.dumps(data, indent=1, allow_nan=False) + "\n")
-    return data
+    return write_results(results_path, data, config)
+
+
+def write_results(path, data: dict, config: CourseConfig) -> dict:
+    """Write ``data`` as ``results.json``, atomically: the whole file or none, never a partial or
+    empty one. If the whole cannot be written (a full disk), a small valid file still keeps
+    the score and says why the rest is missing. Returns what was written (None-free)."""
+    try:
+        write_atomically(path, json.dumps(data, indent=1, allow_nan=False) + "\n")
+        return data
+    except (OSError, ValueError) as exc:  # ValueError: a score that is not a number
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        log.error("cannot write %s: %s; writing the score alone", path, reason)
+    score = data.get("score")
+    score = float(score) if isinstance(score, (int, float)) and math.isfinite(score) else 0.0
+    tests = data.get("tests", [])
+    # The score travels in one test as hidden as the hidden checks were, so it shows no sooner.
+    hidden = any(t.get("visibility") == config.hidden_visibility for t in tests)
+    minimal = {"score": score, "execution_time": data.get("execution_time", 0.0), "output_format": "text",
+               "output": f"The autograder graded this submission but could not write its full results "
+                         f"({reason}): only the score is here. Please tell your instructor.",
+               "stdout_visibility": config.stdout_visibility, "tests": []}
+    if tests:
+        possible = sum(t["max_score"] for t in tests if isinstance(t.get("max_score"), (int, float)))
+        minimal["tests"] = [{"name": "Total (the full results could not be written)", "score": score,
+                             "max_score": possible if math.isfinite(possible) else score, "output": "",
+                             "visibility": config.hidden_visibility if hidden else config.public_visibility}]
+    try:
+        write_atomically(path, json.dumps(minimal, indent=1) + "\n")
+    except OSError as exc:  # no results.json at all rather than a broken one; run_autograder tries too
+        log.error("cannot write %s at all: %s", path, exc.strerror or exc)
+    return minimal
 
 
 # ------------------------------------------------------------------ autograder.zip
@@ -184,8 +215,13 @@ status=0
     --results "$RESULTS" --config "$ROOT/source/course.json" || status=$?
 if [ ! -s "$RESULTS" ]; then
     # Only if the grader itself could not start: still give Gradescope valid results.
-    printf '{"score": 0, "execution_time": 0, "output": "The autograder failed to start (exit status %s). Please tell your instructor.", "stdout_visibility": "hidden", "tests": []}\\n' "$status" > "$RESULTS.tmp"
-    mv "$RESULTS.tmp" "$RESULTS"
+    # Written whole and renamed, or not at all: never an empty or partial results.json.
+    if printf '{"score": 0, "execution_time": 0, "output": "The autograder failed to start (exit status %s). Please tell your instructor.", "stdout_visibility": "hidden", "tests": []}\\n' "$status" > "$RESULTS.tmp" \\
+            && sync "$RESULTS.tmp"; then
+        mv "$RESULTS.tmp" "$RESULTS"
+    else
+        rm -f "$RESULTS.tmp"
+    fi
 fi
 exit 0
 """

@@ -49,7 +49,8 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
           include_hidden: bool = True, pictures: str = "all",
           on_check: Callable[[Exercise, CheckResult], None] | None = None,
           forbid: dict[str, list[str]] | None = None, lanes: int = 1,
-          sandboxes: Sequence[Sandbox] = (), inputs_secret: str | None = None) -> GradingResult:
+          sandboxes: Sequence[Sandbox] = (), inputs_secret: str | None = None,
+          refuse_weaker: bool = False) -> GradingResult:
     """Grade the submission at ``submission_path``.
 
     Parameters
@@ -88,21 +89,29 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         The course's secret, from which with the submission's content its property
         checks draw their inputs (:class:`~autograder.inputs.Inputs`); None:
         ``$AUTOGRADER_INPUTS_SECRET``, else the content alone.
+    refuse_weaker : bool
+        Raise :class:`~autograder.confine.WeakerConfinement` rather than run student
+        code less confined than this machine allows (Gradescope, a batch). Otherwise
+        the result says so (``confinement_warning``) and the log warns.
+
+    The result names the confinement level the student code ran at (``confinement``).
 
     Raises
     ------
     SelectionError, SubmissionError
         For a selector that names nothing, or a path that is not a submission.
+    WeakerConfinement
+        With ``refuse_weaker``, before any student code runs.
     """
     with contextlib.ExitStack() as closing:
         for sandbox in sandboxes:
             closing.enter_context(sandbox)
         return _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid,
-                      lanes, list(sandboxes), closing, inputs_secret)
+                      lanes, list(sandboxes), closing, inputs_secret, refuse_weaker)
 
 
 def _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid,
-           lanes, sandboxes, closing, inputs_secret=None):
+           lanes, sandboxes, closing, inputs_secret=None, refuse_weaker=False):
     if pictures not in PICTURES:
         raise ValueError(f"pictures must be one of {PICTURES}, got {pictures!r}")
     started = time.perf_counter()
@@ -122,6 +131,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         lane_limits = (limits or Limits()).shared_by(max(1, lanes))
         if not sandboxes or not sandboxes[0].ready():  # none given, or its level does not work here
             sandboxes[:1] = [closing.enter_context(_first_sandbox(submission.path, lane_limits, sandboxes[:1]))]
+        _confinement_of(sandboxes[0], result, refuse_weaker)  # the worker is ready: no student code ran yet
         while len(sandboxes) < min(max(1, lanes), len(with_work)):
             sandboxes.append(closing.enter_context(
                 Sandbox(submission.path, lane_limits, confinement=sandboxes[0].confinement)))
@@ -185,6 +195,17 @@ def _first_sandbox(submission_dir, limits, tried=()) -> Sandbox:
             return sandbox
         sandbox.close()
     return Sandbox(submission_dir, limits)
+
+
+def _confinement_of(sandbox: Sandbox, result: GradingResult, refuse_weaker: bool) -> None:
+    """Record the level ``sandbox`` confines at; a level weaker than this machine allows is
+    refused (``refuse_weaker``) or said loudly: in the result, and in the log."""
+    result.confinement = sandbox.confinement.level
+    result.confinement_warning = confine.shortfall(sandbox.confinement)
+    if result.confinement_warning and refuse_weaker:
+        raise confine.WeakerConfinement(result.confinement_warning)
+    if result.confinement_warning:
+        logging.getLogger("autograder").warning("%s", result.confinement_warning)
 
 
 def _covered(spans: list[tuple[float, float]]) -> float:

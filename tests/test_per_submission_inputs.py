@@ -29,13 +29,20 @@ def recorded(monkeypatch):
                 gradings[-1].append((tuple(args), dict(kwargs or {})))
             return super().call(module, function, args, kwargs, **options)
 
+    real_grade = runner.grade
+
+    def grading(*args, **options):  # every grading, also one started elsewhere (Gradescope's run)
+        gradings.append([])
+        return real_grade(*args, **options)
+
     monkeypatch.setattr(runner, "Sandbox", Recording)
+    monkeypatch.setattr(runner, "grade", grading)
 
     def grade(submission, **options):
-        gradings.append([])
         result = runner.grade(submission, ["lab07.ex1"], pictures="none", **options)
         return result, gradings[-1]
 
+    grade.gradings = gradings
     return grade
 
 
@@ -153,3 +160,32 @@ def test_a_check_run_outside_a_grading_draws_the_inputs_of_no_submission():
     check.func(outside)
     check.func(Trial(sandbox, check, inputs=Inputs.for_submission("", "")))
     assert sandbox.calls == outside.sandbox.calls > 20
+
+
+def test_the_official_grading_draws_with_the_courses_secret(recorded, tmp_path, monkeypatch):
+    import json
+    import zipfile
+
+    from autograder import gradescope
+    from autograder.course import CourseConfig, CourseConfigError
+
+    with pytest.raises(CourseConfigError, match="inputs_secret"):
+        CourseConfig(inputs_secret=1234)
+    monkeypatch.delenv(SECRET_VARIABLE, raising=False)
+    for secret in ("one course", "another course"):
+        results = tmp_path / f"{secret}.json"
+        gradescope.run(REFERENCE, results, CourseConfig(select=["lab07.ex1"], inputs_secret=secret))
+        assert json.loads(results.read_text())["score"] == 12
+    recorded(REFERENCE)  # a student's own run: no secret
+    assert len(recorded.gradings) == 3 and all(len(calls) > 20 for calls in recorded.gradings)
+    assert len({repr(calls) for calls in recorded.gradings}) == 3  # each secret, and none, its own inputs
+
+    # A zip built without a secret carries a new one; a configured one is kept.
+    secrets_shipped = []
+    for config in (CourseConfig(select=["lab07"]), CourseConfig(select=["lab07"]),
+                   CourseConfig(select=["lab07"], inputs_secret="kept")):
+        built = gradescope.build(tmp_path / "autograder.zip", config)
+        with zipfile.ZipFile(built) as archive:
+            secrets_shipped.append(json.loads(archive.read("course.json"))["inputs_secret"])
+    new, other, kept = secrets_shipped
+    assert len(new) == 32 and new != other and kept == "kept"

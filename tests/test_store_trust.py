@@ -6,6 +6,7 @@ later grading trusts. And a grader started through a relative interpreter path s
 from __future__ import annotations
 
 import hashlib
+import json
 import os
 import subprocess
 import sys
@@ -19,6 +20,7 @@ from autograder import cache, confine, examples, runner, sandbox, transport
 from autograder.checks import Fail, Trial
 from autograder.inputs import Inputs
 from autograder.registry import select
+from autograder.results import GradingResult
 from autograder.submission import load_submission
 from conftest import REFERENCE, ROOT, mutant
 from test_cache import InProcess, _reference
@@ -245,19 +247,84 @@ def test_an_interpreter_path_is_made_absolute():
 
 
 @needs_namespaces
-def test_a_grader_started_through_a_relative_path_confines_at_the_strongest_level():
+def test_a_grader_started_through_a_relative_path_confines_at_the_strongest_level(tmp_path):
     interpreter = Path(sys.executable)
-    probe = textwrap.dedent("""
-        import os, sys
-        from autograder import confine
-        assert not os.path.isabs(sys.executable), sys.executable
-        print(confine.INTERPRETER, confine.detect().level, confine.strongest_candidate().level)
-        """)
-    environment = {**os.environ, "PATH": f"{interpreter.parent.name}:{os.environ.get('PATH', '')}",
-                   "PYTHONPATH": str(ROOT)}
+    # Found through a relative PATH entry, Python's sys.executable is relative ("bin/python").
+    environment = {**os.environ, "PATH": f"{interpreter.parent.name}:{os.environ.get('PATH', '')}"}
     environment.pop("AUTOGRADER_CONFINEMENT", None)
-    done = subprocess.run([interpreter.name, "-c", probe], cwd=interpreter.parent.parent, env=environment,
-                          capture_output=True, text=True, timeout=120)
+    asked = subprocess.run([interpreter.name, "-c", "import sys; print(sys.executable)"], env=environment,
+                           cwd=interpreter.parent.parent, capture_output=True, text=True, timeout=60)
+    assert not os.path.isabs(asked.stdout.strip())
+    done = subprocess.run([interpreter.name, str(ROOT / "grade.py"), "lab07.ex1", "--submission", str(REFERENCE),
+                           "--no-html", "--quiet", "--json", str(tmp_path / "results.json")],
+                          cwd=interpreter.parent.parent, env=environment, capture_output=True, text=True,
+                          timeout=300)
     assert done.returncode == 0, done.stderr
-    absolute, level, strongest = done.stdout.split()
-    assert absolute == str(interpreter.parent / interpreter.name) and level == strongest
+    results = json.loads((tmp_path / "results.json").read_text())
+    assert results["confinement"] == confine.strongest_candidate().level
+    assert results["confinement_warning"] == "" and results["total"] == results["max_total"]
+
+
+# ------------------------------------------------------------------ the level, always said
+def _marking(tmp_path: Path) -> Path:
+    """A submission that leaves a file behind as soon as any of it runs."""
+    return mutant(tmp_path / "marking", MODULE, f"""
+        open({str(tmp_path / "ran")!r}, "w").close()
+        """)
+
+
+@needs_namespaces
+def test_a_grading_names_its_level_and_warns_loudly_when_it_is_forced_weaker(tmp_path, monkeypatch):
+    strongest = runner.grade(REFERENCE, ["lab07.ex1"], pictures="none")
+    assert strongest.confinement == confine.strongest_candidate().level and strongest.confinement_warning == ""
+    monkeypatch.setenv("AUTOGRADER_CONFINEMENT", "process-group")
+    weaker = runner.grade(REFERENCE, ["lab07.ex1"], pictures="none")
+    assert weaker.confinement == "process-group"
+    assert "AUTOGRADER_CONFINEMENT=process-group" in weaker.confinement_warning
+    assert strongest.confinement in weaker.confinement_warning
+    data = weaker.to_dict()
+    assert (data["confinement"], data["confinement_warning"]) == ("process-group", weaker.confinement_warning)
+    assert GradingResult.from_dict(data).for_students().confinement_warning == weaker.confinement_warning
+
+    from rich.console import Console
+
+    from autograder.reports import terminal
+
+    console = Console(record=True, width=200)
+    terminal.render(weaker, console)
+    printed = console.export_text()
+    assert f"warning: {weaker.confinement_warning}" in printed
+    assert "confined at the process-group level" in printed
+    console = Console(record=True, width=200)
+    terminal.render(strongest, console)
+    printed = console.export_text()
+    assert "warning" not in printed and f"confined at the {strongest.confinement} level" in printed
+
+    with pytest.raises(confine.WeakerConfinement, match="process-group"):
+        runner.grade(_marking(tmp_path), ["lab07.ex1"], pictures="none", refuse_weaker=True)
+    assert not (tmp_path / "ran").exists()                      # refused before any of it ran
+
+
+@needs_namespaces
+def test_gradescope_refuses_a_weaker_level_unless_the_course_accepts_it(tmp_path, monkeypatch):
+    from autograder import gradescope
+    from autograder.course import CourseConfig
+
+    monkeypatch.setenv("AUTOGRADER_CONFINEMENT", "process-group")
+    refused = gradescope.run(_marking(tmp_path), tmp_path / "results.json", CourseConfig(select=["lab07.ex1"]))
+    assert refused["score"] == 0 and refused["tests"] == [] and "tell your instructor" in refused["output"]
+    assert not (tmp_path / "ran").exists()
+    accepted = gradescope.run(REFERENCE, tmp_path / "results.json",
+                              CourseConfig(select=["lab07.ex1"], allow_weaker_confinement=True))
+    assert accepted["score"] > 0 and accepted["tests"]
+
+
+@needs_namespaces
+def test_a_batch_refuses_a_level_forced_weaker_than_this_machine_allows(tmp_path, monkeypatch):
+    from autograder.batch.run import Unconfined, run_batch
+
+    levels = [level for level in confine.LEVELS[:-1] if level != confine.strongest_candidate().level]
+    for forced in levels[-1:] + ["process-group"]:
+        monkeypatch.setenv("AUTOGRADER_CONFINEMENT", forced)
+        with pytest.raises(Unconfined, match="allow-unconfined"):
+            run_batch(tmp_path / "class", tmp_path / "out")

@@ -23,6 +23,7 @@ in one transaction, so a run killed at any moment resumes where it stopped.
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 from contextlib import contextmanager
@@ -36,10 +37,10 @@ from .. import confine
 from ..course import CourseConfig
 from ..registry import discover, select
 from ..reports import html
-from ..results import GradingResult, write_atomically
+from ..results import GradingResult, json_text, strip_pictures, write_atomically
 from ..sandbox import cores_each
 from . import exports
-from .gradebook import Gradebook, lock_hash, submission_key
+from .gradebook import STORAGE_ERRNOS, Gradebook, StorageError, lock_hash, storing, submission_key
 from .ingest import Entry, IngestError, read_class
 from .task import grade_files, grading_processes
 
@@ -67,6 +68,7 @@ class BatchSummary:
     reused: int = 0          # already in the gradebook
     failed: list[str] = field(default_factory=list)       # "id: reason"
     unreadable: list[str] = field(default_factory=list)   # "origin: reason"
+    missing: list[str] = field(default_factory=list)      # ids graded before, no longer in SUBMISSIONS (kept)
     unmatched: list[str] = field(default_factory=list)    # roster problems
     warnings: list[str] = field(default_factory=list)
     files: list[Path] = field(default_factory=list)
@@ -84,6 +86,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     unusable inputs, before anything is graded, and :class:`Unconfined` where this
     machine cannot keep one student's code from reading the others' work (the
     ``process-group`` level) unless ``allow_unconfined`` says that is acceptable.
+    A fault of RESULTS -- full, read-only, deleted mid-run, a damaged gradebook --
+    stops the batch with :class:`.gradebook.StorageError` (finished gradings kept).
     """
     # Inputs: everything is read, and refused if unusable, before anything is graded.
     course = course or CourseConfig()
@@ -115,7 +119,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     keys = {e.student_id: submission_key(e.student_id, e.content_hash, selection, lock=lock) for e in entries}
     summary = BatchSummary(students=len(entries))
     with _only_writer(out), Gradebook(out) as book:
-        book.sync_students(entries, keys)
+        summary.missing = book.sync_students(entries, keys)
+        book.set_meta("course", _course_record(course))   # for `autograder report`
         if overrides_rows is not None:
             book.set_overrides(overrides_rows)   # kept for later runs without --overrides
         readable = [e for e in entries if not e.error]
@@ -124,8 +129,11 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
         summary.reused = len(readable) - len(todo)
 
         def finished(entry: Entry, outcome: dict):
+            # A fault of RESULTS (full, read-only, deleted) stops the batch with a StorageError;
+            # only what is this submission's own (a result that cannot be stored) fails it alone.
             key = keys[entry.student_id]
             if "result" in outcome:
+                book.check_in_place()   # a deleted RESULTS is not written again piecemeal
                 try:
                     _write_student(out, entry, outcome["json"], outcome["page"])   # files first, then the commit
                     book.record(key, entry.student_id, entry.content_hash, selection, outcome["result"], lock=lock)
@@ -151,15 +159,20 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
         students = book.class_results()
         stored = [exports.Override(**o) for o in book.overrides()]
 
+        book.check_in_place()   # not the exports of a gradebook that is gone
+
     # Exports: grades with the course's points, overrides and late rule; the pages' adjustments.
-    raw = [(e.id, e.max_score()) for e in exercises]
-    grades, summary.warnings = exports.compute_grades(students, raw, course, stored, roster_rows)
-    summary.files = exports.write_csvs(out, grades, raw, course, roster_given=bool(roster_rows))
-    summary.files.append(_write_overview(out, students, course))
-    possible = exports.max_total(raw, course)
-    for grade in grades:
-        if grade.student.get("feedback"):
-            _refresh_page(out, grade, possible, course)
+    # A full disk or a read-only folder: a StorageError naming the file (the gradings are kept).
+    with storing(out):
+        raw = [(e.id, e.max_score()) for e in exercises]
+        grades, summary.warnings = exports.compute_grades(students, raw, course, stored, roster_rows)
+        summary.files = exports.write_csvs(out, grades, raw, course, roster_given=bool(roster_rows))
+        summary.files.append(_write_overview(out, students, course))
+        possible = exports.max_total(raw, course)
+        for grade in grades:
+            if grade.student.get("feedback"):
+                _refresh_page(out, grade, possible, course)
+    book.check_in_place()   # RESULTS deleted while the exports were written
     if roster_rows:
         summary.unmatched = [f"{g.student['student_id'] or g.student['display_name']}: "
                              + ("on the roster, no submission" if g.student["status"] == "no submission"
@@ -170,11 +183,14 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
 
 @contextmanager
 def _only_writer(out: Path):
-    """One batch at a time writes RESULTS (the lock goes with the process, however it ends)."""
+    """One batch at a time writes RESULTS (the lock goes with the process, however it ends).
+    A folder that cannot be written is refused here, before anything is graded."""
     import fcntl
 
-    out.mkdir(parents=True, exist_ok=True)
-    with open(out / ".batch.lock", "w") as handle:
+    with storing(out / ".batch.lock"):
+        out.mkdir(parents=True, exist_ok=True)
+        handle = open(out / ".batch.lock", "w")
+    with handle:
         try:
             fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
@@ -216,18 +232,28 @@ def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None
 
 
 def _write_student(out: Path, entry: Entry, results_json: str, page: str) -> None:
-    """The student's page, results and the sources graded (``sources/``, for the similarity report)."""
+    """The student's page, results and the sources graded (``sources/``, for the similarity report).
+
+    Raises :class:`StorageError` when RESULTS cannot be written (full, read-only...);
+    an ``OSError`` only for what is the submission's own (a file name this file
+    system refuses)."""
     folder = out / entry.student_id
-    write_atomically(folder / "feedback.html", page)
-    write_atomically(folder / "results.json", results_json)
-    sources = folder / "sources"
-    shutil.rmtree(sources, ignore_errors=True)
+    with storing(folder):
+        write_atomically(folder / "feedback.html", page)
+        write_atomically(folder / "results.json", results_json)
+        sources = folder / "sources"
+        shutil.rmtree(sources, ignore_errors=True)
     for relative, data in entry.files.items():
         parts = PurePosixPath(relative).parts
         if parts and not any(part in ("", ".", "..") for part in parts) and not relative.startswith("/"):
             target = sources.joinpath(*parts)
-            target.parent.mkdir(parents=True, exist_ok=True)
-            target.write_bytes(data)
+            try:
+                target.parent.mkdir(parents=True, exist_ok=True)
+                target.write_bytes(data)
+            except OSError as exc:
+                if exc.errno in STORAGE_ERRNOS:
+                    raise StorageError.from_exception(exc, exc.filename or target) from exc
+                raise
 
 
 def _write_overview(out: Path, students: list[dict], course: CourseConfig) -> Path:
@@ -235,20 +261,88 @@ def _write_overview(out: Path, students: list[dict], course: CourseConfig) -> Pa
     from ..classreport.overview import render_overview
     from ..classreport.pages import OVERVIEW, records_from_class_results
 
-    render_overview(records_from_class_results(students), out / OVERVIEW, course_title=course.assignment)
+    with storing(out / OVERVIEW):
+        render_overview(records_from_class_results(students), out / OVERVIEW, course_title=course.assignment)
     return out / OVERVIEW
 
 
-def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> None:
-    """Show the current adjustments on the student's page (re-rendered, without pictures, if lost:
-    from the gradebook's whole grading, as the student may see it)."""
+def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> list[Path]:
+    """Show the current adjustments on the student's page, and write again what was lost of the
+    student's folder, from the gradebook's whole grading as the student may see it: the page
+    (without its pictures) and ``results.json``. Returns the files written again.
+
+    Raises :class:`StorageError` if RESULTS cannot be written, ``ValueError`` if the stored
+    grading cannot be rendered."""
     folder = out / grade.student["student_id"]
-    page_path = folder / "feedback.html"
-    if page_path.exists():
-        page = page_path.read_text(encoding="utf-8")
-    else:
-        page = html.render(GradingResult.from_dict(grade.student["result"]).for_students(
-            course.hidden_points_visible))
+    page_path, results_path = folder / "feedback.html", folder / "results.json"
+    restored, view = [], None
+    with storing(page_path, "read"):
+        try:
+            page = page_path.read_text(encoding="utf-8")
+        except (FileNotFoundError, UnicodeDecodeError):   # lost, or damaged beyond reading
+            page = None
+    results_lost = not results_path.is_file()
+    if page is None or results_lost:
+        try:
+            view = GradingResult.from_dict(grade.student["result"]).for_students(course.hidden_points_visible)
+        except (KeyError, TypeError, ValueError) as exc:
+            raise ValueError(f"its stored grading cannot be read ({type(exc).__name__}: {exc})") from None
+    if page is None:
+        page = html.render(view)
+        restored.append(page_path)
     updated = exports.with_adjustments(page, exports.adjustments_html(grade, possible))
-    if updated != page:
-        write_atomically(page_path, updated)
+    with storing(folder):
+        if updated != page or restored:
+            write_atomically(page_path, updated)
+        if results_lost:
+            write_atomically(results_path, json_text(strip_pictures(view.to_dict())))
+            restored.append(results_path)
+    return restored
+
+
+# What `autograder report` needs of the batch's course to write a student's files as the batch
+# did (never the inputs secret, nor the grading limits).
+_REPORTED_COURSE = ("select", "assignment", "points", "late_penalty", "hidden_points_visible")
+
+
+def _course_record(course: CourseConfig) -> str:
+    return json.dumps({name: getattr(course, name) for name in _REPORTED_COURSE if hasattr(course, name)})
+
+
+def batch_course(book: Gradebook) -> CourseConfig:
+    """The course of the batch that last wrote ``book`` (the defaults for a gradebook without one)."""
+    try:
+        return CourseConfig(**json.loads(book.get_meta("course") or "{}"))
+    except (TypeError, ValueError):   # written by another version; CourseConfigError is a ValueError
+        return CourseConfig()
+
+
+def restore_student_files(out, course: CourseConfig | None = None) -> tuple[list[Path], list[str]]:
+    """Write again each graded student's ``feedback.html`` and ``results.json`` lost from RESULTS,
+    from the gradebook, as the batch writes them (the page without its pictures, with the
+    instructor's adjustments); ``course`` is the batch's own (kept in the gradebook) unless given.
+
+    Returns the files written and, for each student whose files could not be, ``"id: why"``.
+    Raises :class:`StorageError` if RESULTS cannot be read or written.
+    """
+    out = Path(out)
+    with Gradebook(out, readonly=True) as book:
+        students = book.class_results()
+        stored = [exports.Override(**o) for o in book.overrides()]
+        course = course or batch_course(book)
+    lost = [s for s in students if s.get("feedback") and not all(
+        (out / s["student_id"] / name).is_file() for name in ("feedback.html", "results.json"))]
+    if not lost:
+        return [], []
+    raw = [(e.id, e.max_score()) for e in select(course.select)]
+    grades, _ = exports.compute_grades(students, raw, course, stored)
+    possible = exports.max_total(raw, course)
+    restored, problems = [], []
+    wanted = {s["student_id"] for s in lost}
+    for grade in grades:
+        if grade.student["student_id"] in wanted:
+            try:
+                restored += _refresh_page(out, grade, possible, course)
+            except ValueError as exc:
+                problems.append(f"{grade.student['student_id']}: {exc}")
+    return restored, problems

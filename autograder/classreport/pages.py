@@ -43,10 +43,26 @@ def class_records(results_dir) -> list[StudentRecord]:
         return records_from_class_results(book.class_results())
 
 
-def write_overview(results_dir, course_title: str = "") -> Path:
-    """Write ``RESULTS/index.html`` from the gradebook; returns its path."""
-    out = Path(results_dir) / OVERVIEW
-    render_overview(class_records(results_dir), out, course_title=course_title)
+def write_overview(results_dir, course_title: str | None = None) -> Path:
+    """Write ``RESULTS/index.html`` from the gradebook; returns its path.
+
+    ``course_title`` None: the assignment of the batch that wrote the gradebook. Raises
+    :class:`NoGradebook`, or :class:`~autograder.batch.gradebook.StorageError` when the
+    gradebook is damaged or the page cannot be written.
+    """
+    from ..batch.gradebook import storing
+
+    results_dir = Path(results_dir)
+    records = class_records(results_dir)
+    if course_title is None:
+        from ..batch.gradebook import Gradebook
+        from ..batch.run import batch_course
+
+        with Gradebook(results_dir, readonly=True) as book:
+            course_title = batch_course(book).assignment
+    out = results_dir / OVERVIEW
+    with storing(out):
+        render_overview(records, out, course_title=course_title)
     return out
 
 

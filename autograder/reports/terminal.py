@@ -25,7 +25,9 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
            details: bool = True, page=None) -> None:
     """Print the score table and, under it, one line per check that lost points."""
     console = console or Console()
-    table = Table(title=f"Grading {printable(result.submission)}", title_justify="left", expand=False)
+    table = Table(title=f"Grading {printable(result.submission)}", title_justify="left", expand=False,
+                  caption=f"student code confined at the {result.confinement} level" if result.confinement else None,
+                  caption_justify="left")
     table.add_column("exercise", style="bold")
     table.add_column("title")
     table.add_column("score", justify="right")
@@ -41,6 +43,8 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
                                     style=_score_style(result.total, result.max_total)), "")
     for note in result.notes:
         console.print(Text("note: ", style="yellow") + Text(note))
+    if result.confinement_warning:  # never quietly weaker than the machine allows
+        console.print(Text("warning: ", style="bold red") + Text(result.confinement_warning, style="bold"))
     console.print(table)
 
     for exercise in result.exercises:
