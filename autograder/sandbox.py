@@ -32,6 +32,7 @@ import sys
 import tempfile
 import time
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from pathlib import Path
 from typing import Any, Callable
 
@@ -116,6 +117,30 @@ def _distrust_store() -> None:
     from . import cache  # with NumPy: imported only here, once the worker is on its way
 
     cache.revoke()
+
+
+def _ends_with_this_thread(command: list[str]) -> list[str]:
+    """``command`` started so that the kernel kills it (SIGKILL) when the thread starting it
+    ends: a grader killed with no chance to stop its worker (``kill -9``, the OOM killer, a
+    batch's grading process) leaves no worker running student code. Linux's parent-death
+    signal, set by ``setpriv``, is kept across the wrappers' ``exec``; ``unshare
+    --kill-child`` passes it on to the namespace, whose end ends every process in it. The
+    thread is the grader's main one, or a lane's, which outlives its worker's use."""
+    setpriv = _pdeathsig_setpriv()
+    return [setpriv, "--pdeathsig", "KILL", "--", *command] if setpriv else command
+
+
+@lru_cache(maxsize=1)
+def _pdeathsig_setpriv() -> str | None:
+    """``setpriv`` where it sets the parent-death signal (Linux, util-linux 2.33 or later)."""
+    setpriv = shutil.which("setpriv") if sys.platform.startswith("linux") else None
+    if setpriv is None:
+        return None
+    try:
+        usage = subprocess.run([setpriv, "--help"], capture_output=True, text=True, timeout=10).stdout
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return setpriv if "--pdeathsig" in usage else None
 
 
 def _widen_pipe(fd: int) -> None:
@@ -365,6 +390,7 @@ class Sandbox:
             view=view, hold=self._base / "hold")
         if self.cgroup is not None:
             command = self.cgroup.wrap(command)
+        command = _ends_with_this_thread(command)
         try:
             self.proc = subprocess.Popen(
                 command, pass_fds=(request_r, response_w), stdin=subprocess.DEVNULL,

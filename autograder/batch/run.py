@@ -27,8 +27,6 @@ import json
 import os
 import shutil
 from contextlib import contextmanager
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from typing import Callable
@@ -42,6 +40,7 @@ from ..sandbox import cores_each
 from . import exports
 from .gradebook import STORAGE_ERRNOS, Gradebook, StorageError, lock_hash, storing, submission_key
 from .ingest import Entry, IngestError, read_class
+from .processes import GradingPool, ProcessDeath, batch_process
 from .task import grade_files, grading_processes
 
 PICTURES = {"none": "none", "failing": "failed", "all": "all"}
@@ -74,6 +73,7 @@ class BatchSummary:
     files: list[Path] = field(default_factory=list)
 
 
+@batch_process
 def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: int | None = None,
               pictures: str = "failing", regrade: bool = False, roster=None, overrides=None,
               dask_scheduler: str | None = None, progress: Callable | None = None,
@@ -199,36 +199,31 @@ def _only_writer(out: Path):
 
 
 def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None:
-    """A process pool, the cores shared out among its processes; a pool broken by a dying
-    grader is replaced and its work retried."""
-    attempts = {e.student_id: 0 for e in todo}
-    pending = list(todo)
-    while pending:
-        workers = min(workers, len(pending))
-        threads = cores_each(workers)
-        pool = ProcessPoolExecutor(max_workers=workers, mp_context=grading_processes())
-        try:
-            futures = {pool.submit(grade_files, e.files, *arguments, e.student_id, threads): e for e in pending}
-            pending = []
-            while futures:
-                done, _ = wait(futures, return_when=FIRST_COMPLETED)
-                for future in done:
-                    entry = futures.pop(future)
-                    try:
-                        outcome = future.result()
-                    except BrokenProcessPool:
-                        attempts[entry.student_id] += 1
-                        if attempts[entry.student_id] < POOL_ATTEMPTS:
-                            pending.append(entry)
-                            continue
-                        outcome = {"error": f"the grading process died {POOL_ATTEMPTS} times"}
-                    except Exception as exc:  # noqa: BLE001
-                        outcome = {"error": f"the grader could not finish: {type(exc).__name__}: {exc}"}
-                    finished(entry, outcome)
-        finally:
-            # Every grading has landed (or the batch stops): the processes end while the
-            # exports are written (the interpreter waits for them before it exits).
-            pool.shutdown(wait=False, cancel_futures=True)
+    """A pool of grading processes, the cores shared out among them. A process that dies is
+    charged to the submission it was grading alone (the others go on; it is replaced), and
+    a submission whose grading kills its process ``POOL_ATTEMPTS`` times is failed."""
+    if not todo:
+        return
+    workers = min(workers, len(todo))
+    threads = cores_each(workers)
+    entries = {e.student_id: e for e in todo}
+    deaths: dict[str, list[str]] = {}
+    # Every grading has landed (or the batch stops): the processes end while the exports
+    # are written; on Ctrl-C or SIGTERM they stop their gradings before this returns.
+    with GradingPool(workers, grade_files) as pool:
+        for entry in todo:
+            pool.submit(entry.student_id, (entry.files, *arguments, entry.student_id, threads))
+        for student_id, outcome in pool.outcomes():
+            entry = entries[student_id]
+            if isinstance(outcome, ProcessDeath):
+                deaths.setdefault(student_id, []).append(outcome.how)
+                if len(deaths[student_id]) < POOL_ATTEMPTS:
+                    pool.submit(student_id, (entry.files, *arguments, student_id, threads))
+                    continue
+                how = ", ".join(dict.fromkeys(deaths[student_id]))   # each way it died, once
+                outcome = {"error": f"the grading process died while grading this submission, "
+                                    f"{POOL_ATTEMPTS} times: {how}"}
+            finished(entry, outcome)
 
 
 def _write_student(out: Path, entry: Entry, results_json: str, page: str) -> None:

@@ -5,46 +5,17 @@ the files it is given into a fresh temporary folder, grades them with
 :func:`autograder.runner.grade` (one sandboxed worker, as a single
 ``autograder grade`` does), and returns the results model as a dict -- never an
 object of the student's making, and never raising. Locally, the processes that run
-it are forked from a server that has imported the grader (:func:`grading_processes`).
+it are forked from a server that has imported the grader (:mod:`.processes`).
 """
 
 from __future__ import annotations
 
-import os
 import tempfile
 import traceback
 import warnings
-from multiprocessing import forkserver, get_context
 from pathlib import Path
 
-_server_environment: dict | None = None   # the environment the fork server started with
-_no_server = False                        # it could not start here: each process is spawned
-
-
-def grading_processes():
-    """Where local gradings run (a multiprocessing context): processes forked from a server
-    that has imported the grader (and nothing else: no copy of the gradebook's connection,
-    nothing of the batch's process), started at the first call. The server keeps the
-    environment it started with: where the caller's has changed since (a program running
-    several batches), gradings are spawned afresh instead."""
-    global _server_environment, _no_server
-    if _server_environment is None and not _no_server:
-        environment = dict(os.environ)
-        # A process that forks must have no other threads: NumPy's OpenBLAS would start them.
-        os.environ["OPENBLAS_NUM_THREADS"] = "1"
-        try:
-            get_context("forkserver").set_forkserver_preload(
-                ["autograder.batch.task", "autograder.runner", "autograder.reports.html"])
-            forkserver.ensure_running()
-            _server_environment = environment
-        except (OSError, ValueError):  # no server here (no socket, no fork)
-            _no_server = True
-        finally:  # the caller's environment as it was
-            os.environ.pop("OPENBLAS_NUM_THREADS")
-            if "OPENBLAS_NUM_THREADS" in environment:
-                os.environ["OPENBLAS_NUM_THREADS"] = environment["OPENBLAS_NUM_THREADS"]
-    forked = not _no_server and dict(os.environ) == _server_environment
-    return get_context("forkserver" if forked else "spawn")
+from .processes import grading_processes  # noqa: F401 - where the command line starts it
 
 
 def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: float,
