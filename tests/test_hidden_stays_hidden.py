@@ -245,7 +245,7 @@ def test_batch_student_files(gradings, graded_as, kind, points_visible, tmp_path
     folder, result = gradings[kind]
     graded_as(result)
     files = {path.name: path.read_bytes() for path in folder.glob("*.py")}
-    outcome = task.grade_files(files, [], 10.0, "all", points_visible, "student1")
+    outcome = task.grade_files(files, [], 10.0, "all", points_visible, "", "student1")
     assert "error" not in outcome, outcome
     data = json.loads(outcome["json"])
     # The batch re-renders a lost page from the gradebook, which keeps the whole grading.

@@ -189,3 +189,27 @@ def test_the_official_grading_draws_with_the_courses_secret(recorded, tmp_path, 
             secrets_shipped.append(json.loads(archive.read("course.json"))["inputs_secret"])
     new, other, kept = secrets_shipped
     assert len(new) == 32 and new != other and kept == "kept"
+
+
+def test_a_batch_grades_with_the_courses_secret(tmp_path):
+    import json
+
+    from autograder.batch import task
+
+    # A submission that prints what it is asked: its output tells the inputs it met.
+    source = (mutant(tmp_path, MODULE, """
+        _reference_translation = translation_matrix
+
+
+        def translation_matrix(tx, ty):
+            print(repr((tx, ty)))
+            return _reference_translation(tx, ty)
+        """) / f"{MODULE}.py").read_bytes()
+
+    def printed(secret):
+        outcome = task.grade_files({f"{MODULE}.py": source}, ["lab07.ex1"], 10.0, "none", True, secret, "student")
+        [exercise] = json.loads(outcome["json"])["exercises"]
+        return next(c for c in exercise["checks"] if c["name"] == PROPERTY)["output"]
+
+    course, again, other = printed("course"), printed("course"), printed("another course")
+    assert course.count("\n") > 20 and course == again != other

@@ -148,7 +148,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
 
         if progress:
             progress("start", None, BatchSummary(students=len(todo)))
-        arguments = (selection.split(","), course.call_timeout, PICTURES[pictures], course.hidden_points_visible)
+        arguments = (selection.split(","), course.call_timeout, PICTURES[pictures], course.hidden_points_visible,
+                     course.inputs_secret)
         if dask_scheduler:
             from .cluster import grade_on_dask
 

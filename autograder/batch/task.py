@@ -19,7 +19,8 @@ from .processes import grading_processes  # noqa: F401 - where the command line 
 
 
 def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: float,
-                pictures: str, hidden_points_visible: bool, name: str, threads: int | None = None) -> dict:
+                pictures: str, hidden_points_visible: bool, inputs_secret: str, name: str,
+                threads: int | None = None) -> dict:
     """``{"result": <results-model dict, without pictures>, "json": <the student's results.json
     text>, "page": <the student's feedback page>}`` or ``{"error": <reason>}``.
 
@@ -40,6 +41,8 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
         Which checks keep their pictures.
     hidden_points_visible : bool
         Whether the student's page and JSON show what the hidden checks scored.
+    inputs_secret : str
+        The course's secret for the property checks' inputs ("": ``$AUTOGRADER_INPUTS_SECRET``).
     name : str
         The submission's name in the results (the student id).
     threads : int, optional
@@ -68,7 +71,7 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
 
                 cv2.setNumThreads(threads)
             result = grade(folder, selectors, limits=Limits(call_timeout=call_timeout, threads=threads),
-                           pictures=pictures)
+                           pictures=pictures, inputs_secret=inputs_secret or None)
             student = result.for_students(hidden_points_visible)
             return {"result": strip_pictures(result.to_dict()),
                     "json": json_text(strip_pictures(student.to_dict())), "page": html.render(student)}
