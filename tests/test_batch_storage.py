@@ -301,10 +301,15 @@ def test_a_gradebook_of_a_newer_autograder_is_refused(uninterrupted, tmp_path):
     out = copy_results(uninterrupted, tmp_path / "results")
     with sqlite3.connect(out / "gradebook.sqlite") as db:
         db.execute("UPDATE meta SET value='99' WHERE name='schema_version'")
+        db.execute("DROP TABLE overrides")   # a schema 99 without it
     db.close()
     with pytest.raises(StorageError, match="newer autograder") as raised:
         Gradebook(out).close()
     assert raised.value.kind == "newer"
+    with sqlite3.connect(out / "gradebook.sqlite") as db:
+        tables = {row[0] for row in db.execute("SELECT name FROM sqlite_master WHERE type='table'")}
+    db.close()
+    assert "overrides" not in tables, "nothing of this schema created in a newer one"
 
 
 # ------------------------------------------------------------------ restoring a student's files

@@ -269,6 +269,14 @@ class Gradebook:
         if size % page_size:
             raise StorageError.corrupt(self.path, f"cut short: {size} bytes is not a whole number of "
                                                   f"{page_size}-byte pages")
+        # Refused before anything is created in it: a newer schema may have other tables.
+        has_meta = self.db.execute("SELECT 1 FROM sqlite_master WHERE type='table' AND name='meta'").fetchone()
+        version = self.get_meta("schema_version") if has_meta else None
+        if version is not None and int(version) > SCHEMA_VERSION:
+            raise StorageError(self.path, "newer",
+                               f"{self.path} was written by a newer autograder (gradebook schema {version}; "
+                               f"this one, {__version__}, knows up to {SCHEMA_VERSION}). Use that version, "
+                               "or write the results elsewhere.")
         if not readonly:
             self.db.execute("BEGIN IMMEDIATE")
             try:
@@ -281,12 +289,6 @@ class Gradebook:
             except BaseException:
                 self._rollback()
                 raise
-        version = self.get_meta("schema_version")
-        if version is not None and int(version) > SCHEMA_VERSION:
-            raise StorageError(self.path, "newer",
-                               f"{self.path} was written by a newer autograder (gradebook schema {version}; "
-                               f"this one, {__version__}, knows up to {SCHEMA_VERSION}). Use that version, "
-                               "or write the results elsewhere.")
         columns = {row["name"] for row in self.db.execute("PRAGMA table_info(students)")}
         self._present = "s.present" if "present" in columns else "1"   # a schema-1 gradebook read as it is
         stat = os.stat(self.path)
