@@ -2,22 +2,26 @@
 
 A notebook is written to be run from the top, with demo, plotting and
 ``plt.show()`` cells between the definitions. Grading imports the module, so by
-default only the *definitions* of a notebook are taken:
-
-- ``import`` / ``from ... import`` statements (also inside ``try``),
-- ``def`` and ``class`` statements (with their decorators),
-- assignments of constants: literals, arithmetic on them, names and attributes
-  (``ANGLE = np.pi / 4``), and a few pure NumPy constructors of literals
-  (``K = np.array([[800, 0, 320], [0, 800, 240], [0, 0, 1]])``).
-
-Everything else (loading images, calling functions, plotting, printing) is
-left out of grading. Two cell tags give control where that guess is wrong
-(in Jupyter: View > Cell toolbar > Tags, or the property inspector):
+default it takes what running the notebook from the top *defines*: imports,
+functions, classes, and values computed from them and from constants
+(``K = np.array([[800, 0, 320], ...])``, ``H = K @ R``, ``to_h = lambda p: ...``),
+each statement exactly when everything it needs is taken too; demo code
+(loading images, plotting, printing, calling your functions on examples) and
+whatever depends on it is left out, and so is an import only demo code uses
+(see :mod:`autograder.definitions` for the rules). One line per notebook names
+the statements left out and why. Two cell tags give control where that guess is
+wrong (in Jupyter: View > Cell toolbar > Tags, or the property inspector):
 
 - ``skip-grading``: the whole cell is left out;
 - ``grade``: the whole cell is taken as written, statements and all.
 
-IPython magics (``%matplotlib inline``, ``!pip install ...``) are commented out.
+Only these two tags count; every other tag, and every other piece of metadata, is
+passed over. A notebook is data: nothing in it (metadata, tags, names) ever becomes a
+format string, a template or a path, and what a message quotes of it is bounded.
+
+IPython syntax is commented out: magics (``%matplotlib inline``), shell commands
+(``!pip install ...``, ``files = !ls``), help (``np.array?``), and the whole of a
+cell whose ``%%`` magic makes it other than Python (``%%bash``, ``%%writefile``).
 Left-out lines stay in the module as comments, so every line keeps its place:
 a converted module's line numbers map back to the notebook's cell and line
 (:meth:`ConvertedNotebook.where`, :func:`point_into_notebook`). Cells are
@@ -29,18 +33,23 @@ from __future__ import annotations
 import ast
 import re
 from dataclasses import dataclass, field
+from typing import Callable
+
+from .definitions import CellCode, Omission, analyse
+from .text import one_line
 
 SKIP_TAG = "skip-grading"
 GRADE_TAG = "grade"
-HEADER = "# --- notebook cell {number}"
+HEADER = "# --- notebook cell "   # + the cell's number
 LEFT_OUT = "# (not graded) "
-
-# Calls that only build constants, safe to run at import when their arguments are constants.
-_CONSTANT_CALLS = {
-    "array", "asarray", "float32", "float64", "int32", "int64", "uint8", "eye", "zeros", "ones",
-    "diag", "deg2rad", "rad2deg", "radians", "degrees", "sqrt", "cos", "sin", "tan", "arctan2",
-    "float", "int", "tuple", "list", "dict", "set", "frozenset", "range",
-}
+# How messages name a cell: "cell 7" (its place in the notebook), or "In [7]" for a kernel's
+# input history (see selfcheck), asked for by the notebook's metadata ``autograder.cell_label``.
+CELL_LABELS = ("cell", "input")
+# Cell magics whose body is Python, run as it is (the magic only times or captures it).
+_PYTHON_CELL_MAGICS = {"time", "timeit", "capture", "prun", "debug", "memit"}
+# A line of IPython syntax: %magic, !shell, ?help, x = !ls / x = %magic, obj? / obj??.
+_IPYTHON_LINE = re.compile(r"\s*[%!?]|\s*[\w., ]+=\s*[%!]|[^#'\"]*[\w)\]]\?\??\s*$")
+NOTE_STATEMENTS = 5   # statements a notebook's note names (the rest are counted)
 
 
 class NotebookError(ValueError):
@@ -57,17 +66,37 @@ class ConvertedNotebook:
         The module text: one block per code cell, left-out lines commented.
     cells : list of (module_line, cell_number, line_count)
         Where each code cell sits in the module (first line, 1-based).
-    left_out : list of str
-        ``"cell 7: plt.show()"``-style notes of the statements not graded.
+    omissions : list of Omission
+        The statements left out, in notebook order, with why
+        (:class:`autograder.definitions.Omission`).
     """
 
     source: str
     cells: list[tuple[int, int, int]] = field(default_factory=list)
-    left_out: list[str] = field(default_factory=list)
-    cell_label: str = "cell {number}"  # "In [{number}]" for a kernel's history (see selfcheck)
+    omissions: list[Omission] = field(default_factory=list)
+    cell_label: str = "cell"  # one of CELL_LABELS
 
     def label(self, number: int) -> str:
-        return self.cell_label.format(number=number)
+        """``"cell 7"`` or ``"In [7]"``: the words are the grader's, never the notebook's."""
+        return f"In [{int(number)}]" if self.cell_label == "input" else f"cell {int(number)}"
+
+    def left_out_note(self, name: str) -> str:
+        """One line naming the statements left out and why (those that would have done
+        something: a value shown at a cell's end is not named), or ``""``. Statements whose
+        names a kept function reads come first: that function fails when called."""
+        listed = [o for o in self.omissions if o.listed]
+        if not listed:
+            return ""
+        listed.sort(key=lambda o: not o.users)
+        named = []
+        for omission in listed[:NOTE_STATEMENTS]:
+            why = omission.reason
+            if omission.users:
+                why += "; " + ", ".join(f"{f}() uses {n}" for f, n in omission.users[:2])
+            named.append(f"{self.label(omission.cell)} `{one_line(omission.text, 50)}` ({one_line(why, 120)})")
+        more = f", and {len(listed) - NOTE_STATEMENTS} more" if len(listed) > NOTE_STATEMENTS else ""
+        return (f"{one_line(name, 80)}: left out at grading: {', '.join(named)}{more}. "
+                f"Tag a cell '{GRADE_TAG}' to grade it whole, '{SKIP_TAG}' to leave it out.")
 
     def where(self, line: int) -> tuple[int, int] | None:
         """``(cell_number, line_in_cell)`` of a converted module's ``line``; None for a header."""
@@ -77,8 +106,15 @@ class ConvertedNotebook:
         return None
 
 
-def read_notebook(text: str, name: str = "notebook"):
-    """Parse a notebook's JSON (any nbformat version, upgraded to v4).
+def read_notebook(text: str, name: str = "notebook") -> dict:
+    """Parse a notebook's JSON: a dict whose ``cells`` is a list (nbformat 4, or a bare
+    ``{"cells": [...]}`` written by a tool).
+
+    Only the JSON parser reads it: nothing is validated against nbformat's schema,
+    converted or copied, and :func:`convert` picks out what grading uses (each code
+    cell's source and the two known tags) defensively. So metadata of any shape or
+    size costs its parsing (bounded by the loader's cap on a notebook's size) and
+    nothing more, and a cell may hold anything besides its code.
 
     Raises
     ------
@@ -86,33 +122,24 @@ def read_notebook(text: str, name: str = "notebook"):
         Naming ``name`` and saying what is wrong and how to mend it.
     """
     import json
-    import warnings
 
     try:
         data = json.loads(text)
-        if not isinstance(data, dict) or not isinstance(data.get("cells"), list):
-            raise TypeError("no list of cells")
-        if "nbformat" not in data:
-            return data  # a bare {"cells": [...]} (hand-made or exported by a tool): usable as is
-        import nbformat
+    except RecursionError:  # nested deeper than the parser goes
+        raise _unreadable(name, "nested too deeply") from None
+    except ValueError:
+        raise _unreadable(name, "not valid JSON") from None
+    if not isinstance(data, dict) or not isinstance(data.get("cells"), list):
+        raise _unreadable(name, "no list of cells")
+    for number, cell in enumerate(data["cells"], 1):
+        if isinstance(cell, dict) and cell.get("cell_type") == "code" and not _is_text(cell.get("source", "")):
+            raise _unreadable(name, f"the code of cell {number} is not text")
+    return data
 
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # missing cell ids and the like: harmless here
-                notebook = nbformat.reads(text, as_version=4)
-        except Exception:  # noqa: BLE001 - strict schema; the code may still be plainly readable
-            if not _plainly_readable(data["cells"]):
-                raise
-            return data  # cells without metadata/outputs (written by a tool): their code is all we need
-        if not isinstance(notebook["cells"], list):
-            raise TypeError("'cells' is not a list")
-    except Exception as exc:  # noqa: BLE001 - nbformat raises many types for a damaged file
-        reason = ("not valid JSON" if isinstance(exc, ValueError) and not str(exc).startswith("Notebook")
-                  else (str(exc).splitlines() or [type(exc).__name__])[0])
-        raise NotebookError(
-            f"{name} is not a readable notebook ({reason[:200]}); open it in Jupyter and save it "
-            "again, or hand in the code as a .py file") from None
-    return notebook
+
+def _unreadable(name: str, reason: str) -> NotebookError:
+    return NotebookError(f"{name} is not a readable notebook ({reason}); open it in Jupyter and save it "
+                         "again, or hand in the code as a .py file")
 
 
 def _mapping(value) -> dict:
@@ -120,14 +147,26 @@ def _mapping(value) -> dict:
     return value if isinstance(value, dict) else {}
 
 
-def _plainly_readable(cells) -> bool:
-    """Every code cell's source is text or a list of lines (other entries are passed over)."""
-    def text(source):
-        return isinstance(source, str) or (isinstance(source, list) and all(isinstance(s, str) for s in source))
-    return all(text(c.get("source", "")) for c in cells if isinstance(c, dict) and c.get("cell_type") == "code")
+def _text(source) -> str:
+    """A code cell's source (text, see :func:`read_notebook`) as one string."""
+    return source if isinstance(source, str) else "".join(source)
 
 
-def convert(text: str, name: str = "notebook", definitions_only: bool = True) -> ConvertedNotebook:
+def _known_tags(tags) -> set[str]:
+    """The tags grading knows of (:data:`SKIP_TAG`, :data:`GRADE_TAG`) among a cell's ``tags``,
+    which count only as a list of strings."""
+    if not isinstance(tags, list):
+        return set()
+    return {tag for tag in tags if isinstance(tag, str) and tag in (SKIP_TAG, GRADE_TAG)}
+
+
+def _is_text(source) -> bool:
+    """A cell's source as nbformat writes it: a string, or a list of lines."""
+    return isinstance(source, str) or (isinstance(source, list) and all(isinstance(s, str) for s in source))
+
+
+def convert(text: str, name: str = "notebook", definitions_only: bool = True,
+            importable: Callable[[str], bool] | None = None) -> ConvertedNotebook:
     """The code cells of a notebook as one module (see the module docstring for the rules).
 
     Parameters
@@ -137,105 +176,59 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True) ->
     name : str
         The file name, for error messages.
     definitions_only : bool
-        Take only definitions from untagged cells (the default); False takes
-        every code cell whole, as running the notebook top to bottom would.
+        Take only what running the notebook defines from untagged cells (the
+        default); False takes every code cell whole.
+    importable : callable, optional
+        ``importable("seaborn")``: whether an import can succeed where grading runs
+        (default :func:`autograder.definitions.available_at_grading`).
     """
     notebook = read_notebook(text, name)
     lines: list[str] = []
     converted = ConvertedNotebook("")
     settings = _mapping(_mapping(notebook.get("metadata")).get("autograder"))
-    if isinstance(settings.get("cell_label"), str) and "{number}" in settings["cell_label"]:
-        converted.cell_label = settings["cell_label"]
+    if settings.get("cell_label") == "input":  # compared, never used: the words are ours
+        converted.cell_label = "input"
+    code = []
     for number, cell in enumerate(notebook["cells"], 1):
         if not isinstance(cell, dict) or cell.get("cell_type") != "code":
             continue
-        source = cell.get("source", "")
-        source = "".join(map(str, source)) if isinstance(source, list) else str(source)
-        tags = _mapping(cell.get("metadata")).get("tags")
-        tags = {t for t in tags if isinstance(t, str)} if isinstance(tags, list) else set()
+        source = _text(cell.get("source", ""))
+        tags = _known_tags(_mapping(cell.get("metadata")).get("tags"))
         cell_lines = _without_magics(source.splitlines())
-        if SKIP_TAG in tags:
-            keep = [False] * len(cell_lines)
-        elif GRADE_TAG in tags or not definitions_only:
-            keep = [True] * len(cell_lines)
-        else:
-            keep = _definition_lines(cell_lines)
-        lines.append(HEADER.format(number=number))
-        converted.cells.append((len(lines) + 1, number, len(cell_lines)))
+        mode = "skip" if SKIP_TAG in tags else "keep" if GRADE_TAG in tags or not definitions_only else "analyse"
+        code.append(CellCode(number, cell_lines, mode))
+    selection = analyse(code, importable)
+    for cell in code:
+        cell_lines, keep = selection.lines[cell.number], selection.kept[cell.number]
+        lines.append(f"{HEADER}{cell.number}")
+        converted.cells.append((len(lines) + 1, cell.number, len(cell_lines)))
         for text_line, kept in zip(cell_lines, keep):
             lines.append(text_line if kept or not text_line.strip() else LEFT_OUT + text_line)
-        dropped = [line.strip() for line, kept in zip(cell_lines, keep) if not kept and line.strip()
-                   and not line.lstrip().startswith("#")]
-        if dropped:
-            converted.left_out.append(f"{converted.label(number)}: {dropped[0][:60]}"
-                                      + (f" (+{len(dropped) - 1} lines)" if len(dropped) > 1 else ""))
         lines.append("")
+    converted.omissions = selection.omissions
     converted.source = "\n".join(lines) + "\n"
     return converted
 
 
 def _without_magics(lines: list[str]) -> list[str]:
-    """IPython's ``%magic``, ``%%cell magic`` and ``!shell`` lines, commented out."""
-    return [("# " + line) if line.lstrip().startswith(("%", "!")) else line for line in lines]
-
-
-def _definition_lines(lines: list[str]) -> list[bool]:
-    """Which lines of a cell belong to definitions. A cell that does not parse is kept
-    whole, so that its syntax error is reported (with its cell and line) at grading."""
-    try:
-        tree = ast.parse("\n".join(lines))
-    except (SyntaxError, ValueError, RecursionError, MemoryError):  # ValueError: NUL bytes (Python 3.10)
-        return [True] * len(lines)
-    keep = [False] * len(lines)
-    for statement in tree.body:
-        if _is_definition(statement):
-            first = min([statement.lineno] + [d.lineno for d in getattr(statement, "decorator_list", [])])
-            for i in range(first - 1, statement.end_lineno):
-                keep[i] = True
-    return keep
-
-
-def _is_definition(node: ast.stmt) -> bool:
-    if isinstance(node, (ast.Import, ast.ImportFrom)):
-        # `from autograder import check` is for the notebook, not for the graded module.
-        names = [node.module or ""] if isinstance(node, ast.ImportFrom) else [a.name for a in node.names]
-        return not any(name.split(".")[0] == "autograder" for name in names)
-    if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
-        return True
-    if isinstance(node, ast.Try):  # try: import cv2 / except ImportError: ...
-        body = node.body + node.orelse + node.finalbody + [s for h in node.handlers for s in h.body]
-        return all(_is_definition(s) or isinstance(s, ast.Pass) for s in body)
-    if isinstance(node, ast.Assign):
-        return all(isinstance(t, (ast.Name, ast.Tuple)) for t in node.targets) and _is_constant(node.value)
-    if isinstance(node, ast.AnnAssign):
-        return isinstance(node.target, ast.Name) and (node.value is None or _is_constant(node.value))
-    if isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant):
-        return True  # a docstring
-    return False
-
-
-def _is_constant(node: ast.expr) -> bool:
-    """An expression that only combines constants: cheap, silent and safe to evaluate at import."""
-    if isinstance(node, ast.Constant):
-        return True
-    if isinstance(node, ast.Name):
-        return True
-    if isinstance(node, ast.Attribute):
-        return _is_constant(node.value)
-    if isinstance(node, (ast.Tuple, ast.List, ast.Set)):
-        return all(_is_constant(e) for e in node.elts)
-    if isinstance(node, ast.Dict):
-        return all(k is None or _is_constant(k) for k in node.keys) and all(_is_constant(v) for v in node.values)
-    if isinstance(node, ast.UnaryOp):
-        return _is_constant(node.operand)
-    if isinstance(node, ast.BinOp):
-        return _is_constant(node.left) and _is_constant(node.right)
-    if isinstance(node, ast.Call):
-        func = node.func
-        called = func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", None)
-        return (called in _CONSTANT_CALLS and all(_is_constant(a) for a in node.args)
-                and all(_is_constant(k.value) for k in node.keywords))
-    return False
+    """A cell's IPython syntax commented out (see the module docstring); an indented line
+    of it becomes ``pass`` (and the comment), so its block stays a block."""
+    first = next((line.strip() for line in lines if line.strip()), "")
+    if first.startswith("%%") and (first[2:].split() or [""])[0] not in _PYTHON_CELL_MAGICS:
+        return [("# " + line) if line.strip() else line for line in lines]  # %%bash, %%writefile...
+    commented, passed = [], []
+    for line in lines:
+        code = line.lstrip()
+        magic = bool(_IPYTHON_LINE.match(line))
+        commented.append("# " + line if magic else line)
+        passed.append(f"{line[:len(line) - len(code)]}pass  # {code}" if magic and code != line else commented[-1])
+    if passed == commented:
+        return commented
+    try:  # `pass` where a magic was the body of a block; else (an indented cell) a comment
+        ast.parse("\n".join(passed))
+    except (SyntaxError, ValueError, RecursionError, MemoryError):
+        return commented
+    return passed
 
 
 def point_into_notebook(text: str, module: str, notebook_name: str, converted: ConvertedNotebook) -> str:
@@ -249,8 +242,9 @@ def point_into_notebook(text: str, module: str, notebook_name: str, converted: C
         found = converted.where(int(line))
         return f"{converted.label(found[0])}, line {found[1]}" if found else f"line {line}"
 
-    text = re.sub(rf'File "{filename}", line (\d+)',
+    # A line number has at most 9 digits (longer runs are text the student wrote, left as it is).
+    text = re.sub(rf'File "{filename}", line (\d{{1,9}})(?!\d)',
                   lambda m: f'File "{notebook_name}", {spot(m.group(1))}', text)
-    text = re.sub(rf"(?<![\w/.]){filename}, line (\d+)",
+    text = re.sub(rf"(?<![\w/.]){filename}, line (\d{{1,9}})(?!\d)",
                   lambda m: f"{notebook_name}, {spot(m.group(1))}", text)
-    return re.sub(rf"(?<![\w/.\"]){filename}", notebook_name, text)
+    return re.sub(rf"(?<![\w/.\"]){filename}", lambda m: notebook_name, text)  # a name, never a template

@@ -134,7 +134,7 @@ def _history_notebook(history: list[str]):
         except SyntaxError:
             source = ""
         cells.append(nbformat.v4.new_code_cell(source))
-    return nbformat.v4.new_notebook(cells=cells, metadata={"autograder": {"cell_label": "In [{number}]"}})
+    return nbformat.v4.new_notebook(cells=cells, metadata={"autograder": {"cell_label": "input"}})
 
 
 def _kernel_history() -> list[str] | None:
