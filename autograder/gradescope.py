@@ -77,6 +77,21 @@ def _summary(result: GradingResult) -> str:
     return "\n".join(lines)
 
 
+def hidden_checks_log(result: GradingResult) -> str:
+    """The hidden checks that lost points, in full (names, messages, hints, tracebacks), for the
+    autograder's log: Gradescope shows it to instructors only, while ``stdout_visibility`` is
+    ``hidden``; results.json shows students a verdict only."""
+    lines = []
+    for exercise in result.exercises:
+        for check in exercise.checks:
+            if check.hidden and check.score < check.max_score:
+                lines.append(f"hidden {exercise.id} {check.name} ({check.score:g}/{check.max_score:g}): "
+                             f"{check.message}" + (f"\n  hint: {check.hint}" if check.hint else ""))
+                if check.traceback:
+                    lines.append(check.traceback.rstrip())
+    return "\n".join(lines)
+
+
 def _fenced(text: str) -> str:
     """``text`` in a Markdown code block that no backtick run inside it can close."""
     longest = max((len(run) for run in re.findall(r"`+", text)), default=0)
@@ -128,6 +143,9 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
         result = grade(submission, config.select, limits=config.limits(),
                        pictures="none", forbid=config.forbid)  # results.json carries text only
         data = results_json(result, config)
+        instructors_only = hidden_checks_log(result) if config.stdout_visibility == "hidden" else ""
+        if instructors_only:  # the autograder's output, which students never see
+            print(instructors_only, flush=True)
     except SubmissionError as exc:  # nothing in the upload can be read as a submission
         data = failure_json(f"The autograder could not grade this submission: {exc}. "
                             "Upload the lab modules themselves (e.g. lab07_transformations.py, "

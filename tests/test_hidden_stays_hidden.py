@@ -286,6 +286,18 @@ def test_gradescope_results(gradings, graded_as, kind, points_visible, tmp_path)
         assert f"{e.id} {e.title}: {scores[e.id][0]:g} / {scores[e.id][1]:g}" in data["output"]
 
 
+@pytest.mark.parametrize("stdout_visibility", ["hidden", "visible"])
+def test_gradescope_log_tells_instructors_only(gradings, graded_as, stdout_visibility, tmp_path, capsys):
+    """Gradescope shows the autograder's output to instructors only while stdout_visibility is
+    hidden: then it holds the hidden checks in full, else nothing of them."""
+    folder, result = gradings["raising"]
+    graded_as(result)
+    gradescope.run(folder, tmp_path / "results.json", CourseConfig(stdout_visibility=stdout_visibility))
+    log = _squeezed(capsys.readouterr().out)
+    for (exercise_id, name), lines in hidden_text(result).items():
+        assert any(line in log for line in lines) is (stdout_visibility == "hidden"), (exercise_id, name)
+
+
 @pytest.mark.parametrize("kind", KINDS)
 def test_check_in_a_notebook(gradings, graded_as, kind):
     folder, result = gradings[kind]
