@@ -69,11 +69,14 @@ class ConvertedNotebook:
     omissions : list of Omission
         The statements left out, in notebook order, with why
         (:class:`autograder.definitions.Omission`).
+    left_out : list of str
+        Per cell with lines left out: ``"cell 7: plt.show() (+2 lines)"``.
     """
 
     source: str
     cells: list[tuple[int, int, int]] = field(default_factory=list)
     omissions: list[Omission] = field(default_factory=list)
+    left_out: list[str] = field(default_factory=list)
     cell_label: str = "cell"  # one of CELL_LABELS
 
     def label(self, number: int) -> str:
@@ -204,6 +207,11 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True,
         converted.cells.append((len(lines) + 1, cell.number, len(cell_lines)))
         for text_line, kept in zip(cell_lines, keep):
             lines.append(text_line if kept or not text_line.strip() else LEFT_OUT + text_line)
+        dropped = [line.strip() for line, kept in zip(cell_lines, keep) if not kept and line.strip()
+                   and not line.lstrip().startswith("#")]
+        if dropped:
+            converted.left_out.append(f"{converted.label(cell.number)}: {dropped[0][:60]}"
+                                      + (f" (+{len(dropped) - 1} lines)" if len(dropped) > 1 else ""))
         lines.append("")
     converted.omissions = selection.omissions
     converted.source = "\n".join(lines) + "\n"

@@ -33,8 +33,8 @@ from typing import Callable, Sequence
 from . import __version__, cache, confine
 from .checks import Fail, StudentFailure, Trial, Verdict
 from .inputs import Inputs
-from .notebooks import GRADE_TAG, SKIP_TAG, point_into_notebook
-from .registry import Check, Exercise, hidden_checks_installed, select
+from .notebooks import point_into_notebook
+from .registry import Check, Exercise, discover, hidden_checks_installed, select
 from .results import (ADVICE, ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
                       ExerciseResult, GradingResult)
 from .sandbox import CallOutcome, Limits, Sandbox
@@ -117,7 +117,8 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
     started = time.perf_counter()
     exercises = select(selectors, include_hidden)
     modules = sorted({ex.lab.module for ex in exercises})
-    with load_submission(submission_path, modules) as submission:
+    every_module = {lab.module for lab in discover().values()}  # a lone file is never another lab's
+    with load_submission(submission_path, modules, every_module=every_module) as submission:
         result = GradingResult(submission.name, submission.content_hash, __version__,
                                hidden_included=include_hidden and hidden_checks_installed(),
                                notes=_reading_notes(submission),
@@ -364,12 +365,9 @@ def _reading_notes(submission) -> list[str]:
     notes = [f"graded {found} as {module}.py (the name the grader looks for); rename it to be sure"
              for module, found in submission.renamed.items()]
     for module, (name, converted) in submission.notebooks.items():
-        if converted.left_out:
-            cells = ", ".join(note.split(":")[0] for note in converted.left_out[:8])
-            cells += " ..." if len(converted.left_out) > 8 else ""
-            notes.append(f"{name}: only definitions (imports, functions, classes, constants) are graded; "
-                         f"the other statements of {cells} were left out. Tag a cell "
-                         f"'{GRADE_TAG}' to grade it whole, '{SKIP_TAG}' to leave it out.")
+        note = converted.left_out_note(name)  # one line: the statements left out, and why
+        if note:
+            notes.append(note)
     return notes
 
 

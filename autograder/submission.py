@@ -15,7 +15,9 @@ A file that breaks a rule is refused with a message naming it
 
 Nothing the student handed in stops the others from being graded: a file
 plainly meant as a module (``Lab07_Transformations.py``, ``lab07_transformations (1).py``,
-or one inside a ``.zip`` within the folder) is taken, and noted; a module that is
+or one inside a ``.zip`` within the folder) is taken, and noted; so is a lone
+source file with any name (``lab7.py``) when one module is looked for, unless it
+is named after another lab's module (as the batch does); a module that is
 missing, ambiguous or unreadable becomes a *problem* of that module only
 (:attr:`Submission.problems`), naming the files found and the rename to make.
 """
@@ -34,6 +36,7 @@ import zipfile
 import zlib
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
+from typing import Collection
 
 from .notebooks import ConvertedNotebook, NotebookError, convert
 
@@ -104,7 +107,8 @@ class Submission:
         self.cleanup()
 
 
-def load_submission(path, modules: list[str], caps: Caps = CAPS) -> Submission:
+def load_submission(path, modules: list[str], caps: Caps = CAPS,
+                    every_module: Collection[str] = ()) -> Submission:
     """Materialise the submission at ``path`` as a folder holding ``modules``.
 
     Parameters
@@ -115,6 +119,9 @@ def load_submission(path, modules: list[str], caps: Caps = CAPS) -> Submission:
         Module names the grader looks for (``lab07_transformations`` ...).
     caps : Caps
         Limits on what is read.
+    every_module : collection of str
+        Every lab's module name: a lone file named after one of them is that module,
+        never taken for another (see :func:`_lone_file`).
     """
     source = Path(path)
     if not source.exists():
@@ -136,9 +143,17 @@ def load_submission(path, modules: list[str], caps: Caps = CAPS) -> Submission:
             raise SubmissionError(f"cannot grade {_display_name(source.name)}: "
                                   "expected a folder, .py, .zip or .ipynb")
         submission = Submission(out, _display_name(source.name), "", refused)
+        lone = _lone_file(root, set(modules) | set(every_module))
         for module in modules:
-            found = _find_module(root, module) or _find_misnamed(root, module, out, submission, caps)
+            found = _find_module(root, module)
+            if found is None and lone is not None and len(modules) == 1:
+                found = lone
+                submission.renamed[module] = _shown(lone, root, out)
+            found = found or _find_misnamed(root, module, out, submission, caps)
             if found is None:
+                if lone is not None:
+                    submission.problems[module] += ("; a single file is graded as a lab's module "
+                                                    "when only that lab is selected")
                 continue
             _materialise_module(found, module, out, submission)
             # Helper modules the student keeps beside the lab module come along.
@@ -398,6 +413,15 @@ def _find_module(root: Path, module: str) -> Path | None:
         if candidates:
             return min(candidates, key=lambda p: (len(p.parts), str(p)))
     return None
+
+
+def _lone_file(root: Path, modules: set[str]) -> Path | None:
+    """The submission's one source file, when it holds exactly one (no archive beside it)
+    and its name is not meant as any of ``modules`` (``lab7.py``, ``my_work.ipynb``)."""
+    files = _source_files(root, suffixes=(".py", ".ipynb", ".zip"))
+    if len(files) != 1 or files[0].suffix.lower() == ".zip" or _plain_name(files[0].stem) in modules:
+        return None
+    return files[0]
 
 
 def _materialise_module(found: Path, module: str, out: Path, submission: Submission):
