@@ -104,6 +104,16 @@ class CourseConfigError(ValueError):
 
 
 LMS_EXPORTS = ("canvas", "moodle")
+_GRADING = {"select", "call_timeout", "exercise_budget", "submission_budget", "forbid", "inputs_secret",
+            "hidden_points_visible"}
+# What each mode applies; the rest of a course is refused or warned about there (CourseConfig.ignored_by).
+_APPLIED_BY = {
+    "grade": _GRADING,
+    "gradescope": _GRADING | {"points", "public_visibility", "hidden_visibility", "stdout_visibility",
+                              "allow_weaker_confinement"},
+    "batch": _GRADING | {"assignment", "points", "late_penalty", "similarity_threshold", "canvas_assignment_id",
+                         "lms_exports"},
+}
 
 
 @dataclass(frozen=True)
@@ -162,6 +172,32 @@ class CourseConfig:
                 f'hidden_visibility "{self.hidden_visibility}" lets students see what the hidden checks '
                 'scored on Gradescope at once (their tests, or the total): set "hidden_points_visible": '
                 'true too, or keep hidden_visibility "after_published"')
+
+    def point_factors(self, exercises) -> dict[str, float]:
+        """Course points per raw point, by exercise id (``exercises``: (id, raw max) pairs):
+        ``points`` rescales a lab's exercises alike, or one exercise; 1 elsewhere."""
+        lab_max: dict[str, float] = {}
+        for exercise_id, maximum in exercises:
+            lab = exercise_id.split(".")[0]
+            lab_max[lab] = lab_max.get(lab, 0.0) + maximum
+        factors = {}
+        for exercise_id, maximum in exercises:
+            lab = exercise_id.split(".")[0]
+            if exercise_id in self.points:
+                factors[exercise_id] = self.points[exercise_id] / maximum if maximum else 0.0
+            elif lab in self.points:
+                factors[exercise_id] = self.points[lab] / lab_max[lab] if lab_max[lab] else 0.0
+            else:
+                factors[exercise_id] = 1.0
+        return factors
+
+    def ignored_by(self, mode: str) -> list[str]:
+        """The keys set in this course (not left at their defaults) that ``mode`` -- ``"grade"``
+        (a student's or an instructor's single grading), ``"gradescope"`` or ``"batch"`` --
+        does not apply, so the command can say so instead of ignoring them silently."""
+        default = CourseConfig()
+        return [f.name for f in fields(self)
+                if f.name not in _APPLIED_BY[mode] and getattr(self, f.name) != getattr(default, f.name)]
 
     def limits(self):
         """The sandbox limits this course asks for."""

@@ -252,20 +252,7 @@ def match_roster(students: list[dict], roster: list[dict]) -> tuple[dict[str, di
 # ------------------------------------------------------------------ grades
 def exercise_factors(exercises, course: CourseConfig) -> dict[str, float]:
     """Course points per raw point, by exercise id (``exercises``: (id, raw max) pairs)."""
-    lab_max: dict[str, float] = {}
-    for exercise_id, maximum in exercises:
-        lab = exercise_id.split(".")[0]
-        lab_max[lab] = lab_max.get(lab, 0.0) + maximum
-    factors = {}
-    for exercise_id, maximum in exercises:
-        lab = exercise_id.split(".")[0]
-        if exercise_id in course.points:
-            factors[exercise_id] = course.points[exercise_id] / maximum if maximum else 0.0
-        elif lab in course.points:
-            factors[exercise_id] = course.points[lab] / lab_max[lab] if lab_max[lab] else 0.0
-        else:
-            factors[exercise_id] = 1.0
-    return factors
+    return course.point_factors(exercises)
 
 
 def late_days(student: dict, rule: dict) -> int:

@@ -39,7 +39,7 @@ from ..results import GradingResult, json_text, strip_pictures, write_atomically
 from ..sandbox import cores_each
 from . import exports
 from .gradebook import STORAGE_ERRNOS, Gradebook, StorageError, lock_hash, storing, submission_key
-from .ingest import Entry, IngestError, read_class
+from .ingest import Entry, IngestError, read_upload
 from .processes import GradingPool, ProcessDeath, batch_process
 from .task import grade_files, grading_processes
 
@@ -58,6 +58,10 @@ def _refuse_unconfined(confinement: confine.Confinement) -> None:
             "namespaces), so each submission could read the other students' work and your files, and "
             "print them into its feedback. Grade the class on Linux as root or with unprivileged user "
             "namespaces (see the README's security model), or pass --allow-unconfined to accept that.")
+    weaker = confine.shortfall(confinement)  # e.g. AUTOGRADER_CONFINEMENT=namespaces where +user works
+    if weaker:
+        raise Unconfined(f"{weaker}: grade the class at the strongest level this machine allows, "
+                         "or pass --allow-unconfined to accept that.")
 
 
 @dataclass
@@ -67,6 +71,7 @@ class BatchSummary:
     reused: int = 0          # already in the gradebook
     failed: list[str] = field(default_factory=list)       # "id: reason"
     unreadable: list[str] = field(default_factory=list)   # "origin: reason"
+    ignored: list[str] = field(default_factory=list)      # "item: why it is no submission"
     missing: list[str] = field(default_factory=list)      # ids graded before, no longer in SUBMISSIONS (kept)
     unmatched: list[str] = field(default_factory=list)    # roster problems
     warnings: list[str] = field(default_factory=list)
@@ -110,14 +115,16 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     modules = sorted({e.lab.module for e in exercises})
     overrides_rows = exports.read_overrides(overrides) if overrides else None
     roster_rows = exports.read_roster(roster) if roster else []
-    entries = read_class(submissions, modules, [lab.module for lab in discover().values()])
+    upload = read_upload(submissions, modules, [lab.module for lab in discover().values()])
+    entries = upload.entries
     if probing:
         _refuse_unconfined(confine.detect())
 
     # Grading: only what the gradebook lacks, each grading committed as it lands.
     lock = lock_hash()
     keys = {e.student_id: submission_key(e.student_id, e.content_hash, selection, lock=lock) for e in entries}
-    summary = BatchSummary(students=len(entries))
+    summary = BatchSummary(students=len(entries), ignored=[f"{item}: {why}" for item, why in upload.ignored],
+                           warnings=list(upload.warnings))
     with _only_writer(out), Gradebook(out) as book:
         summary.missing = book.sync_students(entries, keys)
         book.set_meta("course", _course_record(course))   # for `autograder report`
@@ -159,15 +166,17 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
 
         students = book.class_results()
         stored = [exports.Override(**o) for o in book.overrides()]
-
         book.check_in_place()   # not the exports of a gradebook that is gone
 
     # Exports: grades with the course's points, overrides and late rule; the pages' adjustments.
     # A full disk or a read-only folder: a StorageError naming the file (the gradings are kept).
     with storing(out):
         raw = [(e.id, e.max_score()) for e in exercises]
-        grades, summary.warnings = exports.compute_grades(students, raw, course, stored, roster_rows)
-        summary.files = exports.write_csvs(out, grades, raw, course, roster_given=bool(roster_rows))
+        grades, warnings = exports.compute_grades(students, raw, course, stored, roster_rows)
+        summary.warnings += warnings
+        summary.files = exports.write_csvs(out, grades, raw, course, roster_given=bool(roster_rows),
+                                           roster_columns=getattr(roster_rows, "columns", ()))
+        summary.files += exports.write_ignored(out, upload.ignored)
         summary.files.append(_write_overview(out, students, course))
         possible = exports.max_total(raw, course)
         for grade in grades:
