@@ -398,7 +398,7 @@ def api_page(lab: LabFacts) -> str:
                 continue
             documented.add(name)
             function = skeleton.functions[name]
-            out += [f"### {name}", "", "```python", f"def {function.signature}", "```", ""]
+            out += [f"### {name}", "", "```python", f"def {function.signature}: ...", "```", ""]
             out += [docstring_markdown(function.docstring, heading="####").rstrip(), ""]
     others = [f for f in skeleton.functions if f not in documented]
     if others:
@@ -406,7 +406,7 @@ def api_page(lab: LabFacts) -> str:
                 "Not graded on their own; the graded functions may use them.", ""]
         for name in others:
             function = skeleton.functions[name]
-            out += [f"### {name}", "", "```python", f"def {function.signature}", "```", "",
+            out += [f"### {name}", "", "```python", f"def {function.signature}: ...", "```", "",
                     docstring_markdown(function.docstring, heading="####").rstrip(), ""]
     return _tidy(out)
 
