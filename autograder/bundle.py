@@ -1,4 +1,5 @@
-"""The repository students receive: skeletons, ``grade.py``, public checks and fixtures.
+"""The repository students receive: skeletons, ``grade.py``, public checks and fixtures,
+the contract (``docs/contract/``, ``docs/api/``) and the student guide (``docs/students/``).
 
 Left out: ``reference_solutions/``, the hidden checks (``autograder/labs/hidden/``),
 the grader's own tests, and the scripts that measure the reference solutions.
@@ -11,6 +12,10 @@ from pathlib import Path
 
 PROJECT_ROOT = Path(__file__).resolve().parents[1]
 STUDENT_README = Path(__file__).resolve().parent / "templates" / "README_student.md"
+# The documentation students get: the contract (what each lab asks, the assignment API
+# generated from the skeletons and the registry: public checks only) and the student guide.
+# Their links stay among these folders (tests/test_bundle.py).
+STUDENT_DOCS = ("students", "contract", "api")
 
 
 def _public(path: Path, root: Path) -> bool:
@@ -43,6 +48,9 @@ def write_student_bundle(out, root: Path = PROJECT_ROOT) -> list[Path]:
                 copy(path, out / path.relative_to(root))
     for path in sorted((root / "assignments").glob("*.py")):
         copy(path, out / "assignments" / path.name)
+    for folder in STUDENT_DOCS:
+        for path in sorted((root / "docs" / folder).glob("*.md")):
+            copy(path, out / "docs" / folder / path.name)
     for name in ("grade.py", "pyproject.toml", "constraints.txt", ".gitignore"):
         if (root / name).exists():
             copy(root / name, out / name)

@@ -114,6 +114,7 @@ def reference_bodies():
 
 def test_no_bundle_file_contains_reference_code_or_hidden_check_data(bundle):
     files = {p: _squeezed(p.read_text(errors="ignore")) for p in bundle.rglob("*") if p.is_file()}
+    assert any(p.parts[-3:-1] == ("docs", "api") for p in files), "the scan covers the shipped documentation"
     for name, body in reference_bodies():
         leaks = [str(p.relative_to(bundle)) for p, text in files.items() if body in text]
         assert leaks == [], f"the reference body of {name} appears in {leaks}"
@@ -124,3 +125,35 @@ def test_no_bundle_file_contains_reference_code_or_hidden_check_data(bundle):
     for name in hidden_names:
         leaks = [str(p.relative_to(bundle)) for p, text in raw.items() if name in text]
         assert leaks == [], f"hidden check {name!r} appears in {leaks}"
+
+
+def test_bundle_ships_the_contract_and_the_student_guide(bundle):
+    """The contract students are judged by, generated for every lab, in the bundle; its
+    links and the README's paths stay inside the bundle; no hidden check is named there,
+    even in the generated pages' Markdown escaping."""
+    from autograder import apidoc
+
+    docs = bundle / "docs"
+    labs = sorted(discover())
+    assert labs, "no labs registered"
+    for lab in labs:
+        assert (docs / "api" / f"{lab}.md").is_file() and (docs / "contract" / f"{lab}.md").is_file(), lab
+    assert {"assignment-api.md", "labs.md"} <= {p.name for p in (docs / "contract").glob("*.md")}
+    assert {"index.md", "grading.md", "notebooks.md", "check.md", "figures.md", "feedback.md"} <= {
+        p.name for p in (docs / "students").glob("*.md")}
+    for page in docs.rglob("*.md"):
+        for target in re.findall(r"\]\(([^)#\s]+\.md)(?:#[^)]*)?\)", page.read_text()):
+            if "://" not in target:
+                assert (page.parent / target).resolve().is_file(), f"{page.relative_to(bundle)} links to {target}"
+    readme = (bundle / "README.md").read_text()
+    for words in ("hand in", "notebook", "check(", "--figures", "skip-grading"):
+        assert words in readme, words
+    for path in re.findall(r"`(docs/[\w/.-]+\.md)`", readme):
+        assert (bundle / path).is_file(), f"the README names {path}, which the bundle lacks"
+    hidden = {c.name for lab in discover().values() for e in lab.exercises.values() for c in e.checks if c.hidden}
+    public = {c.name for lab in discover().values() for e in lab.exercises.values() for c in e.checks
+              if not c.hidden}
+    for page in docs.rglob("*.md"):
+        text = page.read_text()
+        leaked = [name for name in hidden - public if name in text or apidoc._plain(name) in text]
+        assert leaked == [], f"{page.relative_to(bundle)} names hidden checks {leaked}"
