@@ -28,6 +28,14 @@ kept exactly when it is a definition and everything it needs is kept:
 - a statement that reads a name whose latest binding was left out is left out
   ("needs img"), and so is one reading a name no earlier cell defines.
 
+A kept statement computing a value may still fail when run (``ratio = 1 / 0``,
+``Kinv = np.linalg.inv(K)`` of a singular K): it is *guarded*, written
+``with <suppress Exception>: ratio = 1 / 0`` on its own line (lines keep their
+numbers), so that it is skipped, as Jupyter goes on after a failing cell, instead
+of failing the import; what reads it then fails as it would in the notebook
+(``autograder validate`` names such a statement). Definitions and imports are not
+guarded: their errors are reported at their cell and line.
+
 Running the notebook top to bottom defines the same names with the same values,
 except those left out: a notebook that runs cleanly never loses a definition it
 needs, unless a function reads a global computed by demo code (the notes name it).
@@ -122,6 +130,9 @@ _PLOTTING = ("matplotlib", "pylab", "seaborn", "plotly", "bokeh", "IPython", "ip
 _FILES = ("read", "load", "open", "imread", "VideoCapture", "urlopen", "urlretrieve", "get", "fetch",
           "download", "listdir", "glob", "scandir", "walk")
 _AUTOGRADER = "autograder"
+# Written before a line of kept values: a statement that raises is skipped (no new name is bound).
+GUARD = 'with __import__("contextlib").suppress(Exception): '
+_GUARDED = (ast.Assign, ast.AugAssign, ast.AnnAssign, ast.Expr, ast.Delete)
 _UNAVAILABLE = " is not available where grading runs"
 
 
@@ -167,12 +178,14 @@ class CellCode:
 @dataclass
 class Selection:
     """What :func:`analyse` decided: per cell, its lines as the module holds them (a line
-    shared by kept and left-out statements rewritten, ``pass`` for the latter) and
-    whether each is kept; and the statements left out, in notebook order."""
+    shared by kept and left-out statements rewritten, ``pass`` for the latter; a line of
+    kept values guarded, see the module docstring) and whether each is kept; and the
+    statements left out, in notebook order."""
 
     lines: dict[int, list[str]]
     kept: dict[int, list[bool]]
     omissions: list[Omission]
+    guarded: dict[int, set[int]] = field(default_factory=dict)   # per cell: indices of its guarded lines
 
 
 # ------------------------------------------------------------------ availability
@@ -855,9 +868,11 @@ def analyse(cells: list[CellCode], importable: Callable[[str], bool] | None = No
         if statements is None:  # kept whole (unless tagged skip-grading): the import reports it
             selection.lines[cell.number] = list(cell.lines)
             selection.kept[cell.number] = [cell.mode != "skip"] * len(cell.lines)
+            selection.guarded[cell.number] = set()
             continue
         lines, kept = _cell_lines(cell.lines, statements)
         selection.lines[cell.number], selection.kept[cell.number] = lines, kept
+        selection.guarded[cell.number] = _guarded_lines(statements) if cell.mode == "analyse" else set()
         for statement, node in statements:
             if statement.kept:
                 continue
@@ -907,6 +922,21 @@ def _cell_lines(lines: list[str], statements) -> tuple[list[str], list[bool]]:
             out[index] = _without_statements(lines[index], index + 1, [n for k, n in owned if not k])
             kept[index] = True
     return out, kept
+
+
+def _guarded_lines(statements) -> set[int]:
+    """The indices of the lines to guard: those starting a line of simple statements (the
+    left-out ones are ``pass``) of which one is a kept value."""
+    starting: dict[int, list[tuple[bool, ast.stmt]]] = {}
+    for statement, node in statements:
+        starting.setdefault(node.lineno - 1, []).append((statement.kept, node))
+    return {index for index, found in starting.items()
+            if any(n.col_offset == 0 and (not k or isinstance(n, _GUARDED)) for k, n in found)
+            and any(k and isinstance(n, _GUARDED) and not _is_docstring(n) for k, n in found)}
+
+
+def _is_docstring(node: ast.stmt) -> bool:
+    return isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant)
 
 
 def _without_statements(line: str, number: int, left_out: list[ast.stmt]) -> str:

@@ -35,7 +35,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Callable
 
-from .definitions import CellCode, Omission, analyse
+from .definitions import GUARD, CellCode, Omission, analyse
 from .text import one_line
 
 SKIP_TAG = "skip-grading"
@@ -64,6 +64,9 @@ class ConvertedNotebook:
     ----------
     source : str
         The module text: one block per code cell, left-out lines commented.
+    guarded_source : str
+        What grading imports: ``source`` with each line of kept values guarded, so that
+        one raising is skipped rather than failing the import (see :mod:`autograder.definitions`).
     cells : list of (module_line, cell_number, line_count)
         Where each code cell sits in the module (first line, 1-based).
     omissions : list of Omission
@@ -77,6 +80,7 @@ class ConvertedNotebook:
     cells: list[tuple[int, int, int]] = field(default_factory=list)
     omissions: list[Omission] = field(default_factory=list)
     left_out: list[str] = field(default_factory=list)
+    guarded_source: str = ""
     cell_label: str = "cell"  # one of CELL_LABELS
 
     def label(self, number: int) -> str:
@@ -201,20 +205,25 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True,
         mode = "skip" if SKIP_TAG in tags else "keep" if GRADE_TAG in tags or not definitions_only else "analyse"
         code.append(CellCode(number, cell_lines, mode))
     selection = analyse(code, importable)
+    guarded: list[str] = []  # the module's lines again, lines of kept values guarded
     for cell in code:
         cell_lines, keep = selection.lines[cell.number], selection.kept[cell.number]
         lines.append(f"{HEADER}{cell.number}")
         converted.cells.append((len(lines) + 1, cell.number, len(cell_lines)))
-        for text_line, kept in zip(cell_lines, keep):
+        guarded.append(lines[-1])
+        for index, (text_line, kept) in enumerate(zip(cell_lines, keep)):
             lines.append(text_line if kept or not text_line.strip() else LEFT_OUT + text_line)
+            guarded.append(GUARD + text_line if index in selection.guarded[cell.number] else lines[-1])
         dropped = [line.strip() for line, kept in zip(cell_lines, keep) if not kept and line.strip()
                    and not line.lstrip().startswith("#")]
         if dropped:
             converted.left_out.append(f"{converted.label(cell.number)}: {dropped[0][:60]}"
                                       + (f" (+{len(dropped) - 1} lines)" if len(dropped) > 1 else ""))
         lines.append("")
+        guarded.append("")
     converted.omissions = selection.omissions
     converted.source = "\n".join(lines) + "\n"
+    converted.guarded_source = "\n".join(guarded) + "\n"
     return converted
 
 

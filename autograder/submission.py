@@ -437,7 +437,7 @@ def _materialise_module(found: Path, module: str, out: Path, submission: Submiss
         submission.problems[module] = (str(exc) if isinstance(exc, NotebookError)
                                        else f"{found.name} is not a readable notebook (not UTF-8 text)")
         return
-    target.write_text(converted.source, encoding="utf-8")
+    target.write_text(converted.guarded_source, encoding="utf-8")  # a failing value is skipped, as in Jupyter
     submission.notebooks[module] = (found.name, converted)
 
 
