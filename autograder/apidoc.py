@@ -238,13 +238,12 @@ def docstring_markdown(text: str, heading: str = "####") -> str:
     i = 0
     while i < len(lines):
         line = lines[i]
-        if i + 1 < len(lines) and line.strip() and _SECTION_RULE.fullmatch(lines[i + 1].strip()) \
-                and not line.startswith(" "):
+        if _section_title(lines, i):
             section = line.strip()
             out += ["", f"{heading} {_plain(section)}", ""]
             i += 2
             continue
-        if section in _FIELD_SECTIONS and line.strip() and not line.startswith(" "):
+        if section in _FIELD_SECTIONS and _at_margin(line):
             j = i + 1
             while j < len(lines) and (not lines[j].strip() or lines[j].startswith(" ")):
                 j += 1
@@ -254,16 +253,22 @@ def docstring_markdown(text: str, heading: str = "####") -> str:
                 out += [""] + ["    " + row if row else "" for row in _blocks(description)]
             i = j
             continue
-        j = i
-        while j < len(lines) and not (j + 1 < len(lines) and lines[j].strip()
-                                      and _SECTION_RULE.fullmatch(lines[j + 1].strip())
-                                      and not lines[j].startswith(" ")):
-            if section in _FIELD_SECTIONS and lines[j].strip() and not lines[j].startswith(" "):
-                break
+        j = i + 1  # free text, up to the next section (or, in a field section, the next entry)
+        while j < len(lines) and not _section_title(lines, j) \
+                and not (section in _FIELD_SECTIONS and _at_margin(lines[j])):
             j += 1
         out += _blocks(lines[i:j])
-        i = max(j, i + 1)
+        i = j
     return _tidy(out)
+
+
+def _at_margin(line: str) -> bool:
+    return bool(line.strip()) and not line.startswith(" ")
+
+
+def _section_title(lines: list[str], i: int) -> bool:
+    """Whether ``lines[i]`` is a section's title: at the margin, underlined with dashes."""
+    return i + 1 < len(lines) and _at_margin(lines[i]) and bool(_SECTION_RULE.fullmatch(lines[i + 1].strip()))
 
 
 def _field(line: str) -> str:
