@@ -25,6 +25,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 from . import __version__, confine  # noqa: E402
 from .sandbox import Limits, usable_cores  # noqa: E402
 from .submission import SubmissionError  # noqa: E402
+from .text import printable  # noqa: E402
 
 USAGE_ERROR = 2
 STORAGE_ERROR = 1   # batch/report: RESULTS cannot be read or written (see StorageError)
@@ -73,7 +74,8 @@ def build_parser() -> argparse.ArgumentParser:
     batch.add_argument("--overrides", metavar="CSV", help="instructor overrides: student,exercise,points,penalty,comment")
     batch.add_argument("--dask-scheduler", metavar="ADDRESS", help="grade on this Dask cluster (tcp://host:8786)")
     batch.add_argument("--allow-unconfined", action="store_true",
-                       help="grade even where student code cannot be confined (each submission could read the others)")
+                       help="grade even where student code cannot be confined (each submission could read the "
+                            "others), or only less than this machine allows")
     batch.add_argument("--similarity", action="store_true",
                        help="also write RESULTS/similarity.html: the most similar submissions, lab by lab")
 
@@ -174,9 +176,13 @@ def run_grade(args) -> int:
                 # Pictures cost time to encode: make them only for a page (or a JSON file asking for them).
                 pictures = "all" if (args.json_pictures or not args.no_html) else "none"
                 course = CourseConfig.load(args.config) if args.config else CourseConfig()
+                if ignored_keys_note(course, "grade"):
+                    errors.print(f"[yellow]note:[/yellow] {escape(ignored_keys_note(course, 'grade'))}",
+                                 highlight=False)
                 result = grade(args.submission, args.select, limits=limits, pictures=pictures,
                                include_hidden=not args.public_only, on_check=advance, forbid=course.forbid,
-                               lanes=lanes, sandboxes=[early] if early else [])
+                               lanes=lanes, sandboxes=[early] if early else [],
+                               inputs_secret=course.inputs_secret or None)
         except (SelectionError, SubmissionError, CourseConfigError) as exc:
             errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
             return USAGE_ERROR
@@ -299,6 +305,9 @@ class _progress:
             self.bar.stop()
 
 
+BATCH_LINES = 20   # lines of each kind the batch prints (a stray-filled upload lists thousands)
+
+
 def run_batch(args) -> int:
     from .batch.task import grading_processes
 
@@ -321,6 +330,8 @@ def run_batch(args) -> int:
     console = Console()
     try:
         course = CourseConfig.load(args.course) if args.course else CourseConfig()
+        if ignored_keys_note(course, "batch"):
+            console.print(f"[yellow]note:[/yellow] {escape(ignored_keys_note(course, 'batch'))}", highlight=False)
         with _batch_progress(console) as progress:
             summary = batch(args.submissions, args.out, course=course, workers=args.workers,
                             pictures=args.pictures, regrade=args.regrade, roster=args.roster,
@@ -339,13 +350,22 @@ def run_batch(args) -> int:
                   f"(kept from the gradebook), {len(summary.failed)} failed, {len(summary.unreadable)} unreadable",
                   highlight=False)
     for title, lines in (("unreadable", summary.unreadable), ("failed", summary.failed),
+                         ("ignored", summary.ignored),
                          ("no longer in SUBMISSIONS", [f"{i} (kept, with their last grading)" for i in summary.missing]),
-                         ("roster", summary.unmatched), ("warning", summary.warnings)):
-        for line in lines:
-            console.print(Text.assemble("  ", (f"{title}:", "yellow"), f" {line}"), highlight=False)
+                         ("roster", summary.unmatched),
+                         ("warning", summary.warnings)):
+        for line in lines[:BATCH_LINES]:
+            console.print(Text.assemble("  ", (f"{title}:", "yellow"), f" {printable(line)}"), highlight=False)
+        if len(lines) > BATCH_LINES:
+            more = " (all in ignored.csv)" if title == "ignored" else ""
+            console.print(f"  ... and {len(lines) - BATCH_LINES} more {title}{more}", highlight=False, markup=False)
     if args.similarity:
         try:
             summary.files.append(_batch_similarity(args, course, console))
+            if summary.files[-1]:   # the class overview links it
+                from .classreport.pages import write_overview
+
+                write_overview(args.out)
         except StorageError as exc:
             return _storage_failed(exc)
     console.print(f"wrote {args.out}/ : " + ", ".join(p.name for p in summary.files if p)
@@ -362,7 +382,7 @@ def _batch_similarity(args, course, console) -> Path | None:
     try:
         return write_similarity(args.submissions, args.out, course.similarity_threshold, course.assignment)
     except SimilarityUnavailable as exc:
-        console.print(f"[yellow]similarity report skipped:[/yellow] {exc}")
+        console.print(f"[yellow]similarity report skipped:[/yellow] {escape(str(exc))}")
         return None
     except OSError as exc:   # the page (or a submission gone since it was graded)
         named = exc.filename or page
@@ -424,6 +444,24 @@ def check_label(name: str, hidden: bool) -> str:
     return f"{name} (hidden)" if hidden else name
 
 
+_NOT_APPLIED = {
+    "grade": "a single grading applies only what judges the code (select, limits, forbid, inputs)",
+    "batch": "Gradescope's visibility settings apply only on Gradescope",
+    "gradescope": "Gradescope applies its own late policy and exports (set them in the assignment's settings)",
+}
+
+
+def ignored_keys_note(course, mode: str) -> str:
+    """One sentence naming the course keys ``mode`` does not apply ('' when it applies them all)."""
+    keys = course.ignored_by(mode)
+    if not keys:
+        return ""
+    return f"the course sets {', '.join(keys)}, which {_COMMAND[mode]} does not apply: {_NOT_APPLIED[mode]}"
+
+
+_COMMAND = {"grade": "grading one submission", "batch": "autograder batch", "gradescope": "Gradescope"}
+
+
 def run_gradescope(args) -> int:
     from . import gradescope
     from .course import CourseConfig, CourseConfigError
@@ -438,6 +476,8 @@ def run_gradescope(args) -> int:
         config = CourseConfig()  # inside the container results.json is written regardless
         gradescope.log.error("%s; using the defaults", exc)
     if args.action == "build":
+        if ignored_keys_note(config, "gradescope"):
+            print(f"warning: {ignored_keys_note(config, 'gradescope')}", file=sys.stderr)
         try:
             out = gradescope.build(args.out, config)
         except SelectionError as exc:

@@ -502,16 +502,51 @@ def write_ignored(out, ignored: list[tuple[str, str]]) -> list[Path]:
 BEGIN, END = "<!-- instructor-adjustments -->", "<!-- /instructor-adjustments -->"
 
 
-def adjustments_html(grade: StudentGrade, possible: float) -> str:
-    """The block shown on a student's page: final grade and every adjustment, or nothing."""
+def shows_final(grade: StudentGrade, course: CourseConfig) -> bool:
+    """Whether the student's page may show the final grade: not while it holds points of
+    hidden checks the course keeps from students (their page shows a verdict only)."""
+    result = grade.student.get("result") or {}
+    hidden = any(c.get("hidden") for e in result.get("exercises", []) for c in e.get("checks", []))
+    return course.hidden_points_visible or not hidden
+
+
+def adjustments_html(grade: StudentGrade, possible: float, show_final: bool = True) -> str:
+    """The block shown on a student's page: every adjustment and the final grade (or, while
+    hidden checks' points are withheld, when it will be shown), or nothing."""
     if not grade.adjustments and not grade.late_penalty:
         return f"{BEGIN}{END}"
     rows = "".join(f"<tr><td>{html.escape(a.what)}</td><td>{html.escape(a.change)}</td>"
                    f"<td>{html.escape(a.comment)}</td></tr>" for a in grade.adjustments)
+    final = (f"final grade {_fmt(grade.total)} / {possible:g}" if show_final
+             else "final grade: shown when the hidden checks are released")
     return (f'{BEGIN}<section class="exercise" id="adjustments"><header><h2>Instructor adjustments</h2>'
-            f'<span class="score">final grade {_fmt(grade.total)} / {possible:g}</span></header>'
+            f'<span class="score">{final}</span></header>'
             f'<table class="overview"><tr><th>what</th><th>change</th><th>comment</th></tr>{rows}</table>'
             f"</section>{END}")
+
+
+HEADLINE, HEADLINE_END = "<!-- headline -->", "<!-- /headline -->"
+
+
+def headline(grade: StudentGrade, possible: float) -> str:
+    """The page's headline (HTML): the final grade, with the checks' own points beside it,
+    labelled, where the two differ (course points, late penalty, overrides). Only for a page
+    that may show the final grade (:func:`shows_final`)."""
+    result = grade.student.get("result") or {}
+    raw, raw_max = result.get("total"), result.get("max_total")
+    final = f"{_fmt(grade.total)} / {possible:g}"
+    if raw == grade.total and raw_max == possible:
+        return f"{final} points"
+    return (f'final grade {final} <span class="muted" style="font-size: 1rem; font-weight: normal">'
+            f"(checks: {_fmt(raw)} / {_fmt(raw_max)} points)</span>")
+
+
+def with_headline(page: str, text: str) -> str:
+    """``page`` with its headline (between the template's markers) replaced; unchanged without them."""
+    start, stop = page.find(HEADLINE), page.find(HEADLINE_END)
+    if start < 0 or stop < start:
+        return page
+    return page[:start + len(HEADLINE)] + text + page[stop:]
 
 
 def with_adjustments(page: str, block: str) -> str:

@@ -130,6 +130,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
         book.set_meta("course", _course_record(course))   # for `autograder report`
         if overrides_rows is not None:
             book.set_overrides(overrides_rows)   # kept for later runs without --overrides
+        if roster:
+            book.set_meta("roster", json.dumps({"columns": roster_rows.columns, "rows": list(roster_rows)}))
         readable = [e for e in entries if not e.error]
         summary.unreadable = [f"{e.origin}: {e.error}" for e in entries if e.error]
         todo = [e for e in readable if regrade or not book.is_graded(keys[e.student_id])]
@@ -164,31 +166,70 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
         else:
             _grade_locally(todo, arguments, finished, workers or os.cpu_count() or 1)
 
-        students = book.class_results()
-        stored = [exports.Override(**o) for o in book.overrides()]
+        standing = class_grades(book, course)
         book.check_in_place()   # not the exports of a gradebook that is gone
 
-    # Exports: grades with the course's points, overrides and late rule; the pages' adjustments.
+    # Exports: every page and file shows the one final grade (course points, overrides, late rule).
     # A full disk or a read-only folder: a StorageError naming the file (the gradings are kept).
+    summary.warnings += standing.warnings
     with storing(out):
-        raw = [(e.id, e.max_score()) for e in exercises]
-        grades, warnings = exports.compute_grades(students, raw, course, stored, roster_rows)
-        summary.warnings += warnings
-        summary.files = exports.write_csvs(out, grades, raw, course, roster_given=bool(roster_rows),
-                                           roster_columns=getattr(roster_rows, "columns", ()))
+        summary.files = exports.write_csvs(out, standing.grades, standing.exercises, course,
+                                           roster_given=bool(standing.roster),
+                                           roster_columns=standing.roster.columns)
         summary.files += exports.write_ignored(out, upload.ignored)
-        summary.files.append(_write_overview(out, students, course))
-        possible = exports.max_total(raw, course)
-        for grade in grades:
+        for grade in standing.grades:
             if grade.student.get("feedback"):
-                _refresh_page(out, grade, possible, course)
+                _refresh_page(out, grade, standing.possible, course)
+        summary.files.append(_write_overview(out, standing))
     book.check_in_place()   # RESULTS deleted while the exports were written
-    if roster_rows:
+    if standing.roster:
         summary.unmatched = [f"{g.student['student_id'] or g.student['display_name']}: "
                              + ("on the roster, no submission" if g.student["status"] == "no submission"
-                                else "not on the roster") for g in grades
+                                else "not on the roster") for g in standing.grades
                              if g.student["status"] == "no submission" or not g.roster]
     return summary
+
+
+@dataclass
+class ClassGrades:
+    """The class's final grades, as every page and export shows them (see :func:`class_grades`)."""
+
+    students: list[dict]                   # Gradebook.class_results()
+    grades: list                           # exports.StudentGrade, roster-only students last
+    exercises: list[tuple[str, float]]     # (exercise id, the checks' own maximum)
+    course: CourseConfig
+    roster: exports.Roster
+    warnings: list[str]
+
+    @property
+    def possible(self) -> float:
+        return exports.max_total(self.exercises, self.course)
+
+
+def class_grades(book: Gradebook, course: CourseConfig | None = None) -> ClassGrades:
+    """Every student's final grade, computed in this one place for the batch's exports, the
+    students' pages, ``autograder report`` and the class overview: the checks' scores in the
+    course's points, the late rule, the instructor's overrides (kept in the gradebook) and the
+    roster (the last one given, kept there too). ``course``: the batch's own unless given."""
+    course = course or batch_course(book)
+    students = book.class_results()
+    overrides = [exports.Override(**o) for o in book.overrides()]
+    roster = stored_roster(book)
+    exercises = [(e.id, e.max_score()) for e in select(course.select)]
+    grades, warnings = exports.compute_grades(students, exercises, course, overrides, roster)
+    return ClassGrades(students, grades, exercises, course, roster, warnings)
+
+
+def stored_roster(book: Gradebook) -> exports.Roster:
+    """The roster the batch was last given (an empty one when it never was)."""
+    roster = exports.Roster()
+    try:
+        data = json.loads(book.get_meta("roster") or "{}")
+        roster.extend(row for row in data.get("rows", []) if isinstance(row, dict))
+        roster.columns = [str(c) for c in data.get("columns", [])]
+    except (TypeError, ValueError, AttributeError):   # written by another version: no roster
+        return exports.Roster()
+    return roster
 
 
 @contextmanager
@@ -261,14 +302,11 @@ def _write_student(out: Path, entry: Entry, results_json: str, page: str) -> Non
                 raise
 
 
-def _write_overview(out: Path, students: list[dict], course: CourseConfig) -> Path:
-    """``index.html``: what the class got wrong (the checks' own points, before overrides)."""
-    from ..classreport.overview import render_overview
-    from ..classreport.pages import OVERVIEW, records_from_class_results
+def _write_overview(out: Path, standing: ClassGrades) -> Path:
+    """``index.html``: the class's final grades, what it got wrong, and every report written."""
+    from ..classreport.pages import write_overview_of
 
-    with storing(out / OVERVIEW):
-        render_overview(records_from_class_results(students), out / OVERVIEW, course_title=course.assignment)
-    return out / OVERVIEW
+    return write_overview_of(out, standing)
 
 
 def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> list[Path]:
@@ -295,7 +333,10 @@ def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> li
     if page is None:
         page = html.render(view)
         restored.append(page_path)
-    updated = exports.with_adjustments(page, exports.adjustments_html(grade, possible))
+    show_final = exports.shows_final(grade, course)
+    updated = exports.with_adjustments(page, exports.adjustments_html(grade, possible, show_final))
+    if show_final:   # the headline is the final grade (never while it holds withheld hidden points)
+        updated = exports.with_headline(updated, exports.headline(grade, possible))
     with storing(folder):
         if updated != page or restored:
             write_atomically(page_path, updated)
@@ -307,7 +348,8 @@ def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> li
 
 # What `autograder report` needs of the batch's course to write a student's files as the batch
 # did (never the inputs secret, nor the grading limits).
-_REPORTED_COURSE = ("select", "assignment", "points", "late_penalty", "hidden_points_visible")
+_REPORTED_COURSE = ("select", "assignment", "points", "late_penalty", "hidden_points_visible",
+                    "canvas_assignment_id", "lms_exports")
 
 
 def _course_record(course: CourseConfig) -> str:
@@ -332,22 +374,14 @@ def restore_student_files(out, course: CourseConfig | None = None) -> tuple[list
     """
     out = Path(out)
     with Gradebook(out, readonly=True) as book:
-        students = book.class_results()
-        stored = [exports.Override(**o) for o in book.overrides()]
-        course = course or batch_course(book)
-    lost = [s for s in students if s.get("feedback") and not all(
-        (out / s["student_id"] / name).is_file() for name in ("feedback.html", "results.json"))]
-    if not lost:
-        return [], []
-    raw = [(e.id, e.max_score()) for e in select(course.select)]
-    grades, _ = exports.compute_grades(students, raw, course, stored)
-    possible = exports.max_total(raw, course)
+        standing = class_grades(book, course)
+    lost = {s["student_id"] for s in standing.students if s.get("feedback") and not all(
+        (out / s["student_id"] / name).is_file() for name in ("feedback.html", "results.json"))}
     restored, problems = [], []
-    wanted = {s["student_id"] for s in lost}
-    for grade in grades:
-        if grade.student["student_id"] in wanted:
+    for grade in standing.grades:
+        if grade.student["student_id"] in lost:
             try:
-                restored += _refresh_page(out, grade, possible, course)
+                restored += _refresh_page(out, grade, standing.possible, standing.course)
             except ValueError as exc:
                 problems.append(f"{grade.student['student_id']}: {exc}")
     return restored, problems

@@ -53,6 +53,8 @@ class StudentRecord:
         The results model as JSON (``GradingResult.to_dict()``), pictures optional.
     feedback_href : str
         Link to the student's ``feedback.html``, relative to the class page.
+    final, final_max : float or None
+        The final grade (course points, late penalty, overrides) where one is known.
     """
 
     student_id: str
@@ -61,6 +63,8 @@ class StudentRecord:
     reason: str = ""
     result: dict | None = None
     feedback_href: str = ""
+    final: float | None = None
+    final_max: float | None = None
 
     @property
     def label(self) -> str:

@@ -51,17 +51,17 @@ def environment() -> Environment:
 
 
 def overview_html(students: list[StudentRecord], course_title: str = "",
-                  generated: _dt.datetime | None = None) -> str:
-    """The class overview page as a string."""
+                  generated: _dt.datetime | None = None, reports=()) -> str:
+    """The class overview page as a string; ``reports`` are (label, relative link) pairs."""
     summary: ClassSummary = summarise(students)
     generated = generated or _dt.datetime.now(_dt.timezone.utc)
     return environment().get_template("class_overview.html.j2").render(
-        summary=summary, course_title=course_title,
+        summary=summary, course_title=course_title, reports=list(reports),
         generated=generated.strftime("%Y-%m-%d %H:%M %Z").strip())
 
 
 def render_overview(students: list[StudentRecord], out_path, course_title: str = "",
-                    generated: _dt.datetime | None = None) -> None:
+                    generated: _dt.datetime | None = None, reports=()) -> None:
     """Write the class overview page to ``out_path`` (atomically).
 
     Parameters
@@ -74,4 +74,4 @@ def render_overview(students: list[StudentRecord], out_path, course_title: str =
     course_title : str
         Shown in the heading.
     """
-    write_atomically(out_path, overview_html(students, course_title, generated))
+    write_atomically(out_path, overview_html(students, course_title, generated, reports))
