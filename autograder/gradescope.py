@@ -10,14 +10,17 @@ test ``name``, ``number``, ``score``, ``max_score``, ``status``, ``output``,
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import logging
 import math
 import re
+import secrets
 import time
 import zipfile
 from pathlib import Path
 
+from .confine import WeakerConfinement
 from .course import CourseConfig
 from .results import GradingResult, write_atomically
 from .submission import SubmissionError
@@ -140,12 +143,18 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
     config = config or CourseConfig()
     started = time.monotonic()
     try:
-        result = grade(submission, config.select, limits=config.limits(),
-                       pictures="none", forbid=config.forbid)  # results.json carries text only
+        result = grade(submission, config.select, limits=config.limits(), pictures="none",  # text only
+                       forbid=config.forbid, inputs_secret=config.inputs_secret or None,
+                       refuse_weaker=not config.allow_weaker_confinement)
         data = results_json(result, config)
         instructors_only = hidden_checks_log(result) if config.stdout_visibility == "hidden" else ""
         if instructors_only:  # the autograder's output, which students never see
             print(instructors_only, flush=True)
+    except WeakerConfinement as exc:  # before any student code ran
+        log.error("not graded: %s; set allow_weaker_confinement in the course configuration to accept it", exc)
+        data = failure_json("The autograder did not run this submission: it could not confine student code "
+                            "as strongly as this machine allows. Please tell your instructor; the details "
+                            "are in the autograder's log.", config)
     except SubmissionError as exc:  # nothing in the upload can be read as a submission
         data = failure_json(f"The autograder could not grade this submission: {exc}. "
                             "Upload the lab modules themselves (e.g. lab07_transformations.py, "
@@ -261,11 +270,16 @@ def _shipped_files(root: Path):
 
 
 def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) -> Path:
-    """Write ``autograder.zip``: ``setup.sh`` and ``run_autograder`` at its root, plus sources."""
+    """Write ``autograder.zip``: ``setup.sh`` and ``run_autograder`` at its root, plus sources.
+
+    Its ``course.json`` is ``config``, with a new ``inputs_secret`` where ``config`` has
+    none (set one in the course configuration to keep the same inputs across builds)."""
     from .registry import select
 
     out = Path(out)
     config = config or CourseConfig()
+    if not config.inputs_secret:  # the official grading's inputs: known to no one who lacks the zip
+        config = dataclasses.replace(config, inputs_secret=secrets.token_hex(16))
     select(config.select)  # a course that names a missing lab fails now, not at the deadline
     _check_forbidden_functions(config)
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -131,6 +131,8 @@ class GradingResult:
     graded_at: str = ""  # ISO 8601 time of the grading, UTC
     student_wall_seconds: float = 0.0  # wall time during which student code ran (in any lane)
     hidden_points_withheld: bool = False  # a students' view whose scores leave hidden checks out
+    confinement: str = ""  # the level student code ran at (autograder.confine.LEVELS)
+    confinement_warning: str = ""  # why that is weaker than this machine allows ("" when it is not)
 
     @property
     def total(self) -> float:
@@ -147,6 +149,7 @@ class GradingResult:
                 "seconds": self.seconds, "student_seconds": self.student_seconds,
                 "student_wall_seconds": self.student_wall_seconds, "notes": self.notes, "graded_at": self.graded_at,
                 "hidden_points_withheld": self.hidden_points_withheld,
+                "confinement": self.confinement, "confinement_warning": self.confinement_warning,
                 "exercises": [e.to_dict() for e in self.exercises]}
 
     @classmethod
@@ -164,7 +167,8 @@ class GradingResult:
                    exercises, data.get("seconds", 0.0), data.get("student_seconds", 0.0),
                    data.get("hidden_included", True), data.get("notes", []), data.get("graded_at", ""),
                    data.get("student_wall_seconds", data.get("student_seconds", 0.0)),
-                   data.get("hidden_points_withheld", False))
+                   data.get("hidden_points_withheld", False), data.get("confinement", ""),
+                   data.get("confinement_warning", ""))
 
     def for_students(self, points_visible: bool = False) -> "GradingResult":
         """What a student may see before the instructor releases the hidden checks.
@@ -195,7 +199,8 @@ class GradingResult:
             not points_visible and any(c.redacted for e in exercises for c in e.checks))
         return GradingResult(self.submission, self.submission_hash, self.grader_version, exercises,
                              self.seconds, self.student_seconds, self.hidden_included, list(self.notes),
-                             self.graded_at, self.student_wall_seconds, withheld)
+                             self.graded_at, self.student_wall_seconds, withheld, self.confinement,
+                             self.confinement_warning)
 
 
 # All a student reads of a hidden check before release, besides its points where shown.
