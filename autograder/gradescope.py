@@ -39,6 +39,8 @@ def results_json(result: GradingResult, config: CourseConfig) -> dict:
     keep their points (the grade needs them; Gradescope keeps them from students until
     their ``visibility`` allows); the text at the top counts them only where the course
     shows hidden checks' points (``hidden_points_visible``)."""
+    # In the course's points (``points``), as every other grade of the course is.
+    result = result.in_points(config.point_factors([(e.id, e.max_score) for e in result.exercises]))
     tests, position = [], {}
     for exercise in result.for_students(points_visible=True).exercises:
         lab = exercise.id.split(".")[0]

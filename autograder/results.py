@@ -23,6 +23,8 @@ two gradings of the same submission compare equal once those are dropped.
 
 from __future__ import annotations
 
+import dataclasses
+
 import contextlib
 import json
 import os
@@ -169,6 +171,18 @@ class GradingResult:
                    data.get("student_wall_seconds", data.get("student_seconds", 0.0)),
                    data.get("hidden_points_withheld", False), data.get("confinement", ""),
                    data.get("confinement_warning", ""))
+
+    def in_points(self, factors: dict[str, float]) -> "GradingResult":
+        """This grading in the course's points: each check's score and maximum times its
+        exercise's factor (``CourseConfig.point_factors``; 1 for an exercise not named)."""
+        if all(f == 1.0 for f in factors.values()):
+            return self
+        exercises = [ExerciseResult(e.id, e.title, list(e.functions),
+                                    [dataclasses.replace(c, score=round(c.score * factors.get(e.id, 1.0), 4),
+                                                         max_score=round(c.max_score * factors.get(e.id, 1.0), 4))
+                                     for c in e.checks], e.message, list(e.rules))
+                     for e in self.exercises]
+        return dataclasses.replace(self, exercises=exercises)
 
     def for_students(self, points_visible: bool = False) -> "GradingResult":
         """What a student may see before the instructor releases the hidden checks.

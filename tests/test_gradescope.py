@@ -143,3 +143,28 @@ def test_the_diagnosis_reads_as_text_and_the_matrices_keep_their_layout():
     first, rest = output.split("\n", 1)
     assert first == message.splitlines()[0]
     assert "```" not in first and "```" in rest and " [0. 1.]]" in rest
+
+
+def test_results_are_in_the_course_points_like_every_other_grade():
+    """A course that rescales a lab gets the same grade on Gradescope as in the batch's exports."""
+    from autograder.batch.exports import compute_grades
+    from autograder.runner import grade
+
+    result = grade(REFERENCE, ["lab07.ex1"])
+    course = CourseConfig(select=["lab07.ex1"], points={"lab07": 30}, hidden_points_visible=True)
+    data = gradescope.results_json(result, course)
+    jsonschema.validate(data, SCHEMA)
+    assert data["score"] == sum(t["score"] for t in data["tests"]) == 30
+    assert sum(t["max_score"] for t in data["tests"]) == 30 and "Total: 30 / 30" in data["output"]
+    row = {"student_id": "s", "display_name": "s", "status": "graded", "result": result.to_dict(), "lms": {}}
+    [batch_grade], _ = compute_grades([row], [("lab07.ex1", result.max_total)], course)
+    assert batch_grade.total == data["score"]
+
+
+def test_gradescope_build_names_the_course_keys_it_does_not_apply(tmp_path, capsys):
+    from autograder.cli import main
+
+    course = tmp_path / "course.json"
+    course.write_text(json.dumps({"select": ["lab07.ex1"], "late_penalty": {"per_day": 10}}))
+    assert main(["gradescope", "build", "--out", str(tmp_path / "a.zip"), "--config", str(course)]) == 0
+    assert "late_penalty" in capsys.readouterr().err
