@@ -15,6 +15,125 @@ import numpy as np
 HALF_PIXEL_OFFSETS = [(dx, dy) for dx in (-0.5, 0.0, 0.5) for dy in (-0.5, 0.0, 0.5)]
 
 
+# ---------------------------------------------------------------- precision
+# Checks judge meaning, not representation. The API pins no float dtype, and float32 is what
+# many OpenCV recipes give (cv2.getAffineTransform with float32 points, cv2.findHomography's
+# float32 inputs...): float32 is the coarsest legitimate precision, whatever dtype the array
+# finally has (float64 arrays may hold float32 work). float16 is not a precision for geometry
+# (a 1000 px coordinate is off by up to 0.25 px in it): no tolerance grows for it.
+FLOAT32_EPS = float(np.finfo(np.float32).eps)   # 1.19e-7
+# float32 work differs from exact arithmetic by its roundings: half an ulp when the result is
+# stored, one more for each of a short chain of float32 operations (a 3x3 product, a division,
+# a difference of two coordinates). Measured: the reference solutions returning float32 are at
+# most 0.3 ulp of the data's magnitude away (tests/test_precision.py grades them); computed
+# wholly in float32 from float32 inputs, a few ulps. 16 ulps (1.9e-6 relative) covers that
+# and stays far below the nearest named mistake (1e-4 relative and more; the lab tests'
+# mistake tables check that every one still loses points).
+PRECISION_ULPS = 16
+
+
+def precision_floor(scale=1.0):
+    """The difference float32 work may show in numbers of magnitude ``scale``.
+
+    ``scale`` is the magnitude of the data the result is computed from (for
+    ``d = x_l - x_r``, the coordinates, not the disparity): float32 rounds at that scale.
+    A number gives a float, an array of scales (one per point) an array.
+    """
+    floor = PRECISION_ULPS * FLOAT32_EPS * np.abs(np.asarray(scale, dtype=np.float64))
+    return float(floor) if floor.ndim == 0 else floor
+
+
+def at_precision(tolerance, scale=1.0):
+    """``tolerance``, raised to :func:`precision_floor` of ``scale`` where it is tighter.
+
+    Every comparison of a returned number with the truth uses this, so no check can ask
+    for more digits than float32 holds. Numbers give a float; arrays (per-point
+    tolerances or scales) an array.
+
+    >>> at_precision(1e-9, 100.0) == precision_floor(100.0)
+    True
+    """
+    raised = np.maximum(np.asarray(tolerance, dtype=np.float64), precision_floor(scale))
+    return float(raised) if raised.ndim == 0 else raised
+
+
+def magnitude(*values) -> float:
+    """The largest finite absolute value in ``values`` (arrays or numbers), at least 1.
+
+    The scale float32 rounds at, for :func:`at_precision`.
+    """
+    largest = 1.0
+    for value in values:
+        array = np.asarray(value, dtype=np.float64)
+        finite = np.abs(array[np.isfinite(array)])
+        if finite.size:
+            largest = max(largest, float(finite.max()))
+    return largest
+
+
+def format_apart(value: float, other: float, digits: int = 3, percent: bool = False) -> str:
+    """``value`` with the fewest significant digits (``digits`` at least) that never read as ``other``.
+
+    For messages that put a measured figure beside a limit or an expected value: a
+    difference that fails a check never prints as the value it was compared with (nor a
+    non-zero error as 0). ``percent`` prints a fraction as a percentage.
+
+    >>> format_apart(0.30000001, 0.3)
+    '0.30000001'
+    >>> format_apart(0.081, 0.0809, digits=2, percent=True)
+    '8.1%'
+    """
+    value, other = float(value), float(other)
+    factor, suffix = (100.0, "%") if percent else (1.0, "")
+    if np.isfinite(value) and value != other:
+        while digits < 17 and f"{factor * value:.{digits}g}" == f"{factor * other:.{digits}g}":
+            digits += 1
+    return f"{factor * value:.{digits}g}{suffix}"
+
+
+def format_arrays_apart(got, expected, precision: int = 4) -> tuple[str, str]:
+    """Both arrays as text (NumPy's layout), with enough decimals that arrays that differ
+    read differently: ``returned [3.5707 9.1915]; expected [3.5707 9.1915]`` cannot happen.
+
+    Arrays of different shapes, or equal ones, are printed at ``precision``.
+    """
+    got, expected = np.asarray(got, dtype=np.float64), np.asarray(expected, dtype=np.float64)
+
+    def text(array, decimals):
+        return np.array2string(array, precision=decimals, suppress_small=True)
+
+    differ = got.shape == expected.shape and not np.array_equal(got, expected, equal_nan=True)
+    for decimals in range(precision, 18 if differ else precision + 1):
+        shown = text(got, decimals), text(expected, decimals)
+        if shown[0] != shown[1]:
+            return shown
+    if differ:  # every digit NumPy prints agrees: each number's shortest exact form
+        return (np.array2string(got, floatmode="unique"), np.array2string(expected, floatmode="unique"))
+    return shown
+
+
+def describe_difference(got, expected, unit: str = "", tolerance: float | None = None) -> str:
+    """The largest difference between ``got`` and ``expected`` in words, absolute and relative
+    to the largest expected value: ``"up to 4.25e-08 m (6e-08 of the largest value)"``, and
+    ``"; at most 1.9e-06 m accepted"`` when ``tolerance`` is given. The figures have the
+    digits that tell them from the tolerance; a non-zero difference never reads as 0.
+    """
+    got, expected = np.asarray(got, dtype=np.float64), np.asarray(expected, dtype=np.float64)
+    with np.errstate(invalid="ignore"):
+        difference = np.abs(got - expected) if got.shape == expected.shape else np.array([np.inf])
+    largest = float(np.nanmax(difference)) if difference.size else 0.0
+    if difference.size and np.isnan(difference).any():
+        largest = float("nan")
+    unit = f" {unit}" if unit else ""
+    limit = 0.0 if tolerance is None else tolerance
+    text = f"up to {format_apart(largest, limit, 2)}{unit}"
+    if np.isfinite(largest) and largest > 0:
+        text += f" ({format_apart(largest / magnitude(expected), 0.0, 2)} of the largest value)"
+    if tolerance is not None:
+        text += f"; at most {format_apart(tolerance, largest, 2)}{unit} accepted"
+    return text
+
+
 # ---------------------------------------------------------------- matrices
 def projective_distance(a, b) -> float:
     """Distance between two projective quantities (H, F, E, P), up to scale and sign.

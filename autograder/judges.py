@@ -12,8 +12,8 @@ import numpy as np
 from fixtures.images import as_homography, coverage, warp
 
 from .checks import StudentFailure, Trial, Verdict, partial, passed
-from .compare import (blurred_difference, closest, fill_fraction, max_abs_error, projective_distance,
-                      warp_error)
+from .compare import (at_precision, blurred_difference, closest, fill_fraction, format_apart,
+                      format_arrays_apart, max_abs_error, projective_distance, warp_error)
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
 FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
@@ -24,10 +24,9 @@ def format_matrix(matrix, precision: int = 4) -> str:
 
 
 def digits_apart(value: float, limit: float, digits: int = 3) -> str:
-    """``value`` with enough significant digits that it never reads as ``limit``."""
-    while digits < 12 and f"{value:.{digits}g}" == f"{limit:.{digits}g}":
-        digits += 1
-    return f"{value:.{digits}g}"
+    """``value`` with enough significant digits that it never reads as ``limit``
+    (:func:`autograder.compare.format_apart`)."""
+    return format_apart(value, limit, digits)
 
 
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3),
@@ -47,20 +46,21 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
     up_to_scale : bool
         Compare projective matrices up to scale and sign.
     rtol : float
-        Tolerance, relative to the largest entry (or to unit norm, up to scale).
+        Tolerance, relative to the largest entry (or to unit norm, up to scale), raised to
+        float32's precision where it is tighter (:func:`autograder.compare.at_precision`).
     """
     got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
-    if up_to_scale:
-        distance, tolerance = projective_distance, rtol
-    else:
-        distance, tolerance = max_abs_error, rtol * max(1.0, float(np.abs(expected).max()))
+    scale = 1.0 if up_to_scale else max(1.0, float(np.abs(expected).max()))
+    distance = projective_distance if up_to_scale else max_abs_error
+    tolerance = at_precision(rtol * scale, scale)
     if distance(got, expected) <= tolerance:
         return got
-    mistake = closest(got, mistakes or {}, distance, 1e3 * tolerance, truth=expected)
+    mistake = closest(got, mistakes or {}, distance, 1e3 * rtol * scale, truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    shown, wanted = format_arrays_apart(got, expected)
     t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale)}.\n"
-           f"It returned\n{format_matrix(got)}\nexpected\n{format_matrix(expected)}")
+           f"It returned\n{shown}\nexpected\n{wanted}")
 
 
 def where_points_differ(got, expected, tolerance: float, names=("x", "y")) -> str:

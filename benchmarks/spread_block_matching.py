@@ -16,6 +16,9 @@ rate and the spread above the reference:
 
 Pixels left of the search band (``x < numDisparities + block_size // 2``), where
 no matcher can search the whole range, are not judged (``fixtures.lab12.band``).
+The ends of the range are judged apart: pixels at infinity (the fraction given
+d >= 1) and pixels at d = max_disparity (the fraction given it: ``cv2.StereoBM``'s
+recipe sets its sub-pixel estimates above max_disparity invalid, half of them).
 
     python benchmarks/spread_block_matching.py
 
@@ -66,6 +69,9 @@ def main() -> None:
         if figures["far_legitimate"] or key == "zero_disparity":
             print(f"{'  pixels at infinity given d >= 1':<42}"
                   + "".join(f"{figures['far_wrong'][n]:>20.1%}" for n in names))
+        if figures["top_legitimate"] < 1:
+            print(f"{'  pixels at d = max_disparity given it':<42}"
+                  + "".join(f"{figures['top_found'][n]:>20.1%}" for n in names))
     print(f"largest spread above the reference: {worst:+.1%}")
 
 

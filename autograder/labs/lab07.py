@@ -15,8 +15,8 @@ from fixtures.images import photo
 
 from .. import strategies as st
 from ..checks import Fail, Trial, passed
-from ..compare import closest
-from ..judges import digits_apart, format_matrix, judge_matrix, judge_parameter_used, judge_warp
+from ..compare import closest, format_arrays_apart
+from ..judges import digits_apart, judge_matrix, judge_parameter_used, judge_warp
 from ..registry import Lab
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
@@ -222,9 +222,10 @@ def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
                       max(1.0, 100 * tolerance), truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    shown, wanted = format_arrays_apart(got, expected, 6)
     t.fail(f"{what} sends the points up to {digits_apart(error, tolerance)} px away from where the "
-           f"true map sends them (at most {tolerance:.3g} px expected). It returned\n{format_matrix(got, 6)}\n"
-           f"expected\n{format_matrix(expected, 6)}")
+           f"true map sends them (at most {tolerance:.3g} px expected). It returned\n{shown}\n"
+           f"expected\n{wanted}")
 
 
 @ex5.check("affine_from_points on a worked example", points=2)

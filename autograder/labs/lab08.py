@@ -26,8 +26,8 @@ from fixtures.images import coverage, photo, warp
 
 from .. import strategies as st
 from ..checks import StudentFailure, Trial, partial, passed
-from ..compare import blurred_difference, closest, projective_distance
-from ..judges import (IMAGE_TOLERANCE, digits_apart, format_matrix, judge_parameter_used, judge_warp,
+from ..compare import blurred_difference, closest, format_apart, format_arrays_apart, projective_distance
+from ..judges import (IMAGE_TOLERANCE, digits_apart, judge_parameter_used, judge_warp,
                       parameter_ignored, where_matrices_differ, where_points_differ)
 from ..pictures import difference_heatmap, matches_picture, svg_points
 from ..registry import Lab
@@ -81,8 +81,9 @@ def judge_points(t: Trial, what: str, got, H, pts):
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     where = where_points_differ(got, expected, 1e-3 * np.maximum(1.0, np.abs(expected)))
-    t.fail(f"{what} is wrong {where}.\nIt returned\n{format_matrix(got[:4])}\nexpected\n"
-           f"{format_matrix(expected[:4])}" + ("\n(first 4 rows shown)" if n > 4 else ""))
+    shown, wanted = format_arrays_apart(got[:4], expected[:4])
+    t.fail(f"{what} is wrong {where}.\nIt returned\n{shown}\nexpected\n"
+           f"{wanted}" + ("\n(first 4 rows shown)" if n > 4 else ""))
 
 
 # ================================================================== ex1 apply H
@@ -176,10 +177,10 @@ def judge_exact_fit(t: Trial, src, dst, H_true, region):
     if error <= 1e-2:
         return
     diagnose_h(t, what, got, H_true, src, dst)
+    shown, wanted = format_arrays_apart(truth.normalised(got), truth.normalised(H_true))
     t.fail(f"{what} is off by {error:.3g} px (RMS over the image), wrong "
            f"{where_matrices_differ(got, H_true, up_to_scale=True)}; from exact points the DLT "
-           f"recovers H exactly. Got\n{format_matrix(truth.normalised(got))}\nexpected (up to scale)\n"
-           f"{format_matrix(H_true)}")
+           f"recovers H exactly. Got\n{shown}\nexpected (up to scale)\n{wanted}")
 
 
 @ex2.check("homography_dlt from exactly 4 points", points=2)
@@ -332,8 +333,9 @@ def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, 
     if len(pts1) < min_matches:
         t.fail(f"{what} returned {len(pts1)} matches; at least {min_matches} are expected on this "
                "pair (the true homography is a mild change of view)")
-    t.fail(f"{what}: only {fraction:.0%} of the {len(pts1)} matches agree with the true "
-           f"homography (within {MATCH_TOLERANCE:g} px); at least {min_fraction:.0%} expected.",
+    t.fail(f"{what}: only {format_apart(fraction, min_fraction, 2, percent=True)} of the {len(pts1)} "
+           f"matches agree with the true homography (within {MATCH_TOLERANCE:g} px); at least "
+           f"{min_fraction:.0%} expected.",
            hint="keep a match only when best.distance < ratio * second_best.distance "
                 "(knnMatch with k=2)")
 
@@ -359,7 +361,8 @@ def match_ratio(t):
             t.fail(f"{what}: {SWAPPED}: pts1 must be the points in img1", mistake=SWAPPED)
         counts[ratio] = len(pts1)
         fractions[ratio] = float(truth.consistent(H, pts1, pts2).mean()) if len(pts1) else 0.0
-    summary = (f"ratio=0.5 gave {counts[0.5]} matches ({fractions[0.5]:.0%} correct), "
+    summary = (f"ratio=0.5 gave {counts[0.5]} matches ({format_apart(fractions[0.5], 0.9, 2, percent=True)} "
+               "correct), "
                f"ratio=0.9 gave {counts[0.9]} ({fractions[0.9]:.0%} correct)")
     if counts[0.5] == counts[0.9]:
         t.fail(f"{summary}: the ratio argument has no effect (ratio is ignored). Apply Lowe's "
@@ -594,8 +597,8 @@ def ransac_h(t):
     if error <= RANSAC_H_TOLERANCE:
         return passed(f"{error:.2f} px RMS from the true H over the image")
     diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
-    t.fail(f"{what}: H is {error:.3g} px (RMS over the 640x480 image) from the true H; "
-           f"at most {RANSAC_H_TOLERANCE} px expected.")
+    t.fail(f"{what}: H is {format_apart(error, RANSAC_H_TOLERANCE)} px (RMS over the 640x480 image) "
+           f"from the true H; at most {RANSAC_H_TOLERANCE} px expected.")
 
 
 @ex4.check("homography_ransac with 30% outliers: the inlier mask", points=3)
@@ -608,8 +611,9 @@ def ransac_mask(t):
         return passed(f"{recall:.0%} of the true inliers found, {precision:.0%} of the marked "
                       "ones are true inliers")
     diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
-    t.fail(f"{what}: the mask finds {recall:.0%} of the true inliers (at least 93% expected) "
-           f"and {precision:.0%} of what it marks are true inliers (at least 95% expected).",
+    t.fail(f"{what}: the mask finds {format_apart(recall, 0.93, 2, percent=True)} of the true inliers "
+           f"(at least 93% expected) and {format_apart(precision, 0.95, 2, percent=True)} of what it "
+           "marks are true inliers (at least 95% expected).",
            hint="inliers = |H src - dst| < threshold, with the final H")
 
 
@@ -1288,7 +1292,8 @@ def blend_seam(t):
     if step > SEAM_STEP and parameter_ignored(
             lambda **kw: t.call("blend_multiband", dark, bright, mask, **kw), "levels", (1, 6)):
         t.fail(f"{what}: levels=1 and levels=6 give the same image: levels is ignored. The "
-               f"brightness still jumps by {step:.0f} grey levels per column at the seam (a hard "
+               f"brightness still jumps by {format_apart(step, SEAM_STEP, 1)} grey levels per column at the "
+               "seam (a hard "
                f"cut: {cut:.0f}, at most {SEAM_STEP:g} accepted): a narrow feather or a pyramid of "
                "fixed depth leaves a visible seam; with levels=5 the coarsest level should spread "
                "the difference over tens of pixels", mistake="levels is ignored")
@@ -1298,10 +1303,12 @@ def blend_seam(t):
                                   dark, bright, mask, k) for k in (2, 3, 4)},
                         mean_difference, 0.3, truth=truth.multiband(dark, bright, mask, 5))
         if depth:
-            t.fail(f"{what}: it looks like {depth}. The brightness still jumps by {step:.0f} grey "
+            t.fail(f"{what}: it looks like {depth}. The brightness still jumps by "
+                   f"{format_apart(step, SEAM_STEP, 1)} grey "
                    f"levels per column at the seam (at most {SEAM_STEP:g} accepted).", mistake=depth)
     if step > SEAM_STEP:
-        t.fail(f"{what}: the brightness still jumps by {step:.0f} grey levels per column at the "
+        t.fail(f"{what}: the brightness still jumps by {format_apart(step, SEAM_STEP, 1)} grey levels "
+               "per column at the "
                f"seam (a hard cut: {cut:.0f}, at most {SEAM_STEP:g} accepted): a narrow feather "
                "leaves a visible seam; with 5 levels the coarsest level should spread the "
                "difference over tens of pixels")
@@ -1360,7 +1367,8 @@ def blend_sharp(t):
                "blending the finest level uses the sharp mask; only coarse levels blend over a "
                "wide band.", mistake=NO_LAPLACIAN)
     t.fail(f"{what}: 3 to 10 px from the seam the fine detail differs from the image the mask "
-           f"selects by {ghosting:.0%} of its strength (at most {GHOSTING:.0%} accepted): both "
+           f"selects by {format_apart(ghosting, GHOSTING, 2, percent=True)} of its strength (at most "
+           f"{GHOSTING:.0%} accepted): both "
            "images' detail shows through (ghosting), as with a wide feather. In multi-band blending "
            "the finest level uses the sharp mask; only coarse levels blend over a wide band.")
 

@@ -15,7 +15,7 @@ from fixtures.lab09 import photo
 
 from .. import strategies as st
 from ..checks import Fail, StudentFailure, Trial, partial, passed
-from ..compare import closest
+from ..compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
 from ..pictures import svg_points
 from .. import judges
 from ..judges import format_matrix
@@ -76,6 +76,7 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
     """Compare returned 2D points with the truth; name the mistake when one fits.
 
     ``show`` (a title) attaches a plot of the true and the returned points.
+    ``tolerance`` is relative to the largest coordinate, raised to float32's precision.
     A mistake is named when its answer is within ``mistake_tolerance`` (relative
     to the largest coordinate) and clearly closer than any other and than the truth.
     Otherwise ``formulas`` (see :func:`fixtures.lab09.coordinate_formulas`) may say
@@ -83,7 +84,8 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
     """
     expected = np.asarray(expected, dtype=np.float64)
     got = expect_points(t, what, got, expected.shape)
-    scale = max(1.0, float(np.nanmax(np.abs(expected)))) if np.isfinite(expected).any() else 1.0
+    scale = magnitude(expected)
+    tolerance = at_precision(tolerance * scale, scale) / scale
     error = point_error(got, expected)
     if show and got.ndim == 2:
         truth_pts = expected.reshape(-1, 2)
@@ -106,9 +108,21 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
         t.fail(f"{what} is wrong: {explained}.", mistake=explained)
     if not np.isnan(expected).any() and np.isnan(got).any():
         t.fail(f"{what} returned NaN for points in front of the camera (Z > 0).")
-    t.fail(f"{what} is off {where_points_wrong(got, expected, tolerance * scale)}, by up to {error:.4g}; "
-           f"for example point 0 should be {format_matrix(expected.reshape(-1, 2)[0])}, yours is "
-           f"{format_matrix(np.asarray(got, float).reshape(-1, 2)[0])}.")
+    worst = _worst_point(got, expected)
+    wanted, shown = format_arrays_apart(expected.reshape(-1, 2)[worst], np.asarray(got, float).reshape(-1, 2)[worst])
+    t.fail(f"{what} is off {where_points_wrong(got, expected, tolerance * scale)}, by up to "
+           f"{format_apart(error, tolerance * scale, 4)}; for example point {worst} should be {wanted}, "
+           f"yours is {shown}.")
+
+
+def _worst_point(got, expected) -> int:
+    """The index of the point farthest from the truth (a non-finite one first)."""
+    got = np.asarray(got, np.float64).reshape(-1, 2)
+    expected = np.asarray(expected, np.float64).reshape(-1, 2)
+    with np.errstate(invalid="ignore"):
+        distance = np.linalg.norm(got - expected, axis=1)
+    distance = np.where(np.isfinite(expected).all(axis=1), np.nan_to_num(distance, nan=np.inf), -1.0)
+    return int(np.argmax(distance))
 
 
 def explain_coordinates(got, expected, formulas: dict) -> str:
@@ -123,12 +137,14 @@ def explain_coordinates(got, expected, formulas: dict) -> str:
     def matching(column):
         scale = max(1.0, float(np.abs(column).max()))
         return [words for words, value in formulas.items()
-                if np.all(np.abs(np.broadcast_to(value, got.shape[:1])[keep] - column) <= 1e-7 * scale)]
+                if np.all(np.abs(np.broadcast_to(value, got.shape[:1])[keep] - column)
+                          <= at_precision(1e-7 * scale, scale))]
 
     parts, computed, wanted = [], [], []
     for j, name in enumerate("xy"):
         right = matching(expected[keep, j])
-        if np.allclose(got[keep, j], expected[keep, j], rtol=0, atol=1e-7 * max(1.0, np.abs(expected[keep, j]).max())):
+        column_scale = max(1.0, np.abs(expected[keep, j]).max())
+        if np.allclose(got[keep, j], expected[keep, j], rtol=0, atol=at_precision(1e-7 * column_scale, column_scale)):
             continue
         found = matching(got[keep, j])
         if not found or not right or any(not np.allclose(np.broadcast_to(formulas[w], got.shape[:1])[keep],
@@ -167,8 +183,10 @@ def judge_single_point(t: Trial, what: str, got, expected):
         t.fail(f"{what} returned shape (1, 2) for a single (3,) point; expected (2,): "
                "a (3,) point gives a (2,) result (np.atleast_2d in, [0] out)")
     got = t.expect_array(got, what, shape=(2,), kind="iuf")
-    if point_error(got[None], np.asarray(expected)[None]) > 1e-6 * max(1.0, np.abs(expected).max()):
-        t.fail(f"{what} returned {format_matrix(got)}; expected {format_matrix(expected)}")
+    scale = magnitude(expected)
+    if point_error(got[None], np.asarray(expected)[None]) > at_precision(1e-6 * scale, scale):
+        shown, wanted = format_arrays_apart(got, expected)
+        t.fail(f"{what} returned {shown}; expected {wanted}")
 
 
 def judge_in_front(t: Trial, what: str, got, expected, behind):
@@ -185,10 +203,11 @@ def judge_in_front(t: Trial, what: str, got, expected, behind):
     got = np.asarray(expect_points(t, what, got, expected.shape), dtype=np.float64)
     front = ~behind
     error = point_error(got[front], expected[front])
-    tolerance = 1e-6 * max(1.0, float(np.nanmax(np.abs(expected[front]))))
+    scale = magnitude(expected[front])
+    tolerance = at_precision(1e-6 * scale, scale)
     if error > tolerance:
         t.fail(f"{what}: with some points behind the camera, the points in front are off by "
-               f"up to {error:.4g} px.")
+               f"up to {format_apart(error, tolerance, 4)} px (at most {tolerance:.2g} px accepted).")
 
 
 def advise_nan_behind(t: Trial, what: str, got, behind):
@@ -208,10 +227,11 @@ def advise_nan_behind(t: Trial, what: str, got, behind):
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3), up_to_scale=False):
     """The shared matrix judge, with this lab's tighter tolerance; a matrix right only up
     to a factor is named as such (K and P here are defined exactly, not up to scale)."""
+    scale = magnitude(expected)
     if not up_to_scale and isinstance(got, np.ndarray) and got.shape == tuple(shape) and got.dtype.kind in "iuf" \
-            and np.isfinite(got).all() and np.abs(got - expected).max() > 1e-7 * max(1.0, np.abs(expected).max()):
+            and np.isfinite(got).all() and np.abs(got - expected).max() > at_precision(1e-7 * scale, scale):
         from ..compare import projective_distance
-        if projective_distance(got, expected) <= 1e-9:
+        if projective_distance(got, expected) <= precision_floor():
             i = np.unravel_index(np.argmax(np.abs(expected)), expected.shape)
             factor = got[i] / expected[i]
             t.fail(f"{what} is wrong: it is {factor:.4g} times the right matrix: it is right only up to "
@@ -454,7 +474,8 @@ def focal_lengths(t):
     got = t.expect_array(got, "project_focal_lengths(points, [100, 500, 1000])", shape=(3, 9, 2), kind="iuf")
     t.svg("projections for f = 100, 500, 1000", svg_points(
         {f"f = {f:g}": got[i] for i, f in enumerate(fs)}))
-    order = [next((j for j in range(len(fs)) if point_error(got[i], expected[j]) <= 1e-6 * np.abs(expected).max()),
+    scale = magnitude(expected)
+    order = [next((j for j in range(len(fs)) if point_error(got[i], expected[j]) <= at_precision(1e-6 * scale, scale)),
                   None) for i in range(len(fs))]
     if None not in order and order != list(range(len(fs))):
         t.fail(f"project_focal_lengths: projection i is the one for f = {format_matrix(fs[order])}: the focal "
@@ -483,13 +504,15 @@ def aperture_zero(t):
     got, what = _aperture_call(t, X, 0.0, 20, 0)
     ideal = truth.pinhole(X, APERTURE_F)
     error = np.abs(got - ideal[:, None, :]).max()
-    if error > 1e-6:
+    tolerance = at_precision(1e-6, magnitude(ideal))
+    if error > tolerance:
         mistake = closest(got.mean(axis=1), truth.projection_mistakes(APERTURE_F, X), point_error, 1e-3,
                           truth=ideal)
         if mistake:
             t.fail(f"{what} is not the ideal projection: it looks like {mistake}.", mistake=mistake)
         t.fail(f"{what}: with a point-sized pinhole every ray should land on the ideal projection "
-               f"f X / Z; yours are up to {error:.3g} px away.")
+               f"f X / Z; yours are up to {format_apart(error, tolerance)} px away (at most "
+               f"{tolerance:.2g} px accepted).")
 
 
 def _spread(got, ideal):
@@ -508,7 +531,7 @@ def aperture_statistics(t):
         {"ideal projection": ideal[:1], "rays": got[0, :300]}))
     d, rms = _spread(got, ideal)
     mean_error = np.linalg.norm(got.mean(axis=1) - ideal, axis=1) / radius
-    if np.all(rms < 1e-9):
+    if np.all(rms < at_precision(1e-9, magnitude(ideal))):
         t.fail(f"{what}: every ray lands on the ideal projection; the aperture is ignored.")
     if np.any(mean_error > 0.1):
         t.fail(f"{what}: the rays of a point are not centred on its ideal projection f X / Z "

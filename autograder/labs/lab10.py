@@ -18,7 +18,8 @@ from fixtures import scene
 
 from .. import strategies as st
 from ..checks import Trial, partial, passed
-from ..compare import blurred_difference, closest, projective_distance
+from ..compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
+                       projective_distance)
 from ..judges import format_matrix, where_matrices_differ
 from ..pictures import svg_points
 from ..registry import Lab
@@ -212,7 +213,7 @@ def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_p
             {"true": x_test[:40], "with your P": truth.project_any_sign(got, X_test[:40])},
             lines=list(zip(x_test[:40], truth.project_any_sign(got, X_test[:40])))))
     if noise == 0:
-        if projective_distance(got, P) < 1e-6 and fresh.max() < 1e-3:
+        if projective_distance(got, P) < at_precision(1e-6) and fresh.max() < 1e-3:
             return passed(f"P recovered up to scale (new points reprojected within {fresh.max():.1e} px)")
     else:
         residual = np.sqrt(np.mean(np.sum((truth.project_any_sign(got, X) - x) ** 2, axis=1)))
@@ -275,13 +276,14 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     negative = np.linalg.det(np.asarray(P, float)[:, :3]) < 0
     sign_fix = ("for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): multiply P by -1 first, "
                 "then decompose; flipping signs of K's columns alone would leave det(R) = -1")
-    if np.abs(np.tril(K, -1)).max() > 1e-6 * np.abs(K).max():
+    K_scale = magnitude(K)
+    if np.abs(np.tril(K, -1)).max() > at_precision(1e-6 * np.abs(K).max(), K_scale):
         problems.append("K is not upper triangular (use an RQ decomposition of the left 3x3 block)")
-    if abs(K[2, 2] - 1) > 1e-6:
+    if abs(K[2, 2] - 1) > at_precision(1e-6):
         problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: K is not normalised; divide K by K[2, 2] "
                         "(P is only known up to scale)")
         labels.append("K is not normalised (K[2, 2] != 1)")
-    rotation = np.abs(R @ R.T - np.eye(3)).max() <= 1e-6
+    rotation = np.abs(R @ R.T - np.eye(3)).max() <= at_precision(1e-6)
     if np.any(np.diag(K) <= 0):
         labels.append("P is not negated when det(P[:, :3]) < 0" if negative else "the signs of K's diagonal are not fixed")
         problems.append(f"K has a negative diagonal entry ({format_matrix(np.diag(K))}): "
@@ -299,8 +301,10 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
         # a named mistake only when the problems point to one cause
         t.fail(f"{what}: " + "; ".join(problems) + ".", mistake=labels[0] if len(set(labels)) == 1 else "")
     Kn = K_true / K_true[2, 2]
-    ok = (np.abs(K - Kn).max() <= 1e-6 * np.abs(Kn).max() and np.abs(R - R_true).max() <= 1e-6
-          and np.abs(tv - t_true).max() <= 1e-6 * max(1.0, np.abs(t_true).max()))
+    tolerances = {"K": at_precision(1e-6 * np.abs(Kn).max(), magnitude(Kn)), "R": at_precision(1e-6),
+                  "t": at_precision(1e-6 * magnitude(t_true), magnitude(t_true))}
+    ok = (np.abs(K - Kn).max() <= tolerances["K"] and np.abs(R - R_true).max() <= tolerances["R"]
+          and np.abs(tv - t_true).max() <= tolerances["t"])
     if ok:
         return
     for mistake, (Km, Rm, tm) in truth.decomposition_mistakes(Kn, R_true, t_true).items():
@@ -308,20 +312,20 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
                 and np.abs(tv - tm).max() <= 1e-4 * max(1.0, np.abs(tm).max())):
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     recomposed = K @ np.column_stack([R, tv])
-    if projective_distance(R @ K, np.asarray(P, float)[:, :3]) <= 1e-6 < projective_distance(recomposed, P):
+    if projective_distance(R @ K, np.asarray(P, float)[:, :3]) <= at_precision(1e-6) < projective_distance(recomposed, P):
         t.fail(f"{what} is wrong: R K gives back P[:, :3], not K R: it looks like a QR decomposition "
                "(M = Q U) was used where P = K [R | t] needs an RQ decomposition (M = K R).",
                mistake="QR was used instead of RQ")
-    if projective_distance(recomposed, P) > 1e-6:
+    if projective_distance(recomposed, P) > at_precision(1e-6):
         t.fail(f"{what}: K [R | t] does not give back P (distance {projective_distance(recomposed, P):.2g} "
                "after normalising scale).")
-    wrong = [name for name, part, right, tolerance in (
-        ("K", K, Kn, 1e-6 * np.abs(Kn).max()), ("R", R, R_true, 1e-6),
-        ("t", tv, t_true, 1e-6 * max(1.0, np.abs(t_true).max()))) if np.abs(part - right).max() > tolerance]
+    wrong = [name for name, part, right in (("K", K, Kn), ("R", R, R_true), ("t", tv, t_true))
+             if np.abs(part - right).max() > tolerances[name]]
     first = f"{what}: {' and '.join(wrong)} differ{'s' if len(wrong) == 1 else ''} from the camera's"
     if "K" in wrong:
         first += f" (K is wrong {where_matrices_differ(K, Kn)})"
-    t.fail(f"{first}.\nK\n{format_matrix(K)}\nexpected\n{format_matrix(Kn)}")
+    shown, wanted = format_arrays_apart(K, Kn)
+    t.fail(f"{first}.\nK\n{shown}\nexpected\n{wanted}")
 
 
 @ex5.check("decompose_camera_matrix of P = K [R | t]", points=3)
@@ -348,8 +352,8 @@ def judge_center(t: Trial, P, R, tv):
                "last coordinate and drop it")
     got = t.expect_array(got, what, shape=(3,), kind="iuf", finite=True)
     C = -R.T @ tv
-    scale = max(1.0, np.abs(C).max())
-    if np.abs(got - C).max() <= 1e-6 * scale:
+    scale = magnitude(C)
+    if np.abs(got - C).max() <= at_precision(1e-6 * scale, scale):
         return
     mistakes = {
         "it returned t; the centre is C = -R^T t (the point with P [C, 1] = 0)": tv,
@@ -358,14 +362,15 @@ def judge_center(t: Trial, P, R, tv):
         "it returned R^T t; the centre is C = -R^T t (the sign is wrong)": R.T @ tv,
     }
     null = np.append(C, 1.0) / np.linalg.norm(np.append(C, 1.0))      # the SVD's null vector, up to sign
-    if min(np.abs(got - null[:3]).max(), np.abs(got + null[:3]).max()) <= 1e-6:
+    if min(np.abs(got - null[:3]).max(), np.abs(got + null[:3]).max()) <= at_precision(1e-6):
         t.fail(f"{what} is wrong: it returned the first three entries of the null vector of P without "
                "dividing by the fourth (C = v[:3] / v[3]).", mistake="the null vector is not de-homogenised")
     mistake = closest(got, mistakes, lambda a, b: float(np.abs(a - b).max()), 1e-6 * scale, truth=C)
     if mistake:
         t.fail(f"{what} is wrong: {mistake}.", mistake=mistake)
     residual = np.linalg.norm(P @ np.append(got, 1.0)) / np.linalg.norm(P)
-    t.fail(f"{what} returned {format_matrix(got)}; expected {format_matrix(C)} (|P [C, 1]| / |P| = {residual:.2g}, should be 0)")
+    shown, wanted = format_arrays_apart(got, C)
+    t.fail(f"{what} returned {shown}; expected {wanted} (|P [C, 1]| / |P| = {residual:.2g}, should be 0)")
 
 
 @ex5.check("camera_center(P) satisfies P [C, 1] = 0", points=2)
@@ -435,7 +440,7 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
                                     f"it looks like {slip}.", mistake=slip)
             return partial(0.5, f"{what}: the pose is right (rotation off by {angle:.2f} deg, translation by "
                                 f"{rel:.2%}), but the reprojected corners miss the corners by up to "
-                                f"{reproj_error:.1f} px: project the object points with rvec, tvec, K and dist "
+                                f"{format_apart(reproj_error, REPROJECTION_TOLERANCE, 2)} px: project the object points with rvec, tvec, K and dist "
                                 "(cv2.projectPoints), in the same order.")
         return passed(f"rotation within {angle:.2f} deg, translation within {rel:.2%}, "
                       f"reprojection within {reproj_error:.2f} px")
@@ -486,8 +491,10 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
                 np.linalg.norm(tvec - t_slip) < 2 * TRANSLATION_TOLERANCE * distance:
             t.fail(f"{what}: {slip}; OpenCV gives the corners row by row, x fastest: "
                    "np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.", mistake=label)
-    t.fail(f"{what}: the pose is off by {angle:.1f} degrees and {rel:.1%} of the distance "
-           f"(reprojection off by up to {reproj_error:.1f} px).")
+    t.fail(f"{what}: the pose is off by {format_apart(angle, ANGLE_TOLERANCE, 2)} degrees and "
+           f"{format_apart(rel, TRANSLATION_TOLERANCE, 2, percent=True)} of the distance (at most "
+           f"{ANGLE_TOLERANCE:g} degrees and {TRANSLATION_TOLERANCE:.0%} accepted; reprojection off by up to "
+           f"{reproj_error:.1f} px).")
 
 
 def _poses_from_wrong_grids(pattern, square, corners, K, dist) -> dict:
@@ -649,8 +656,10 @@ def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
     if show and n_subject:
         t.svg("frames of the dolly zoom: the subject (first 8 points) keeps its size", svg_points(
             {f"d = {d:g}": proj[i] for i, d in enumerate(list(distances)[:4])}))
-    ok_f = np.abs(fs - fs_true).max() <= 1e-6 * np.abs(fs_true).max()
-    ok_p = point_error(proj.reshape(-1, 2), proj_true.reshape(-1, 2)) <= 1e-6 * np.nanmax(np.abs(proj_true))
+    f_scale, p_scale = magnitude(fs_true), magnitude(proj_true)
+    ok_f = np.abs(fs - fs_true).max() <= at_precision(1e-6 * np.abs(fs_true).max(), f_scale)
+    ok_p = point_error(proj.reshape(-1, 2), proj_true.reshape(-1, 2)) <= \
+        at_precision(1e-6 * np.nanmax(np.abs(proj_true)), p_scale)
     if ok_f and ok_p:
         return
     def dolly_distance(a, b):
@@ -664,10 +673,11 @@ def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if not ok_f:
-        t.fail(f"{what}: the focal lengths are {format_matrix(fs)}; expected f0 * d / z0 = {format_matrix(fs_true)}")
+        shown, wanted = format_arrays_apart(fs, fs_true)
+        t.fail(f"{what}: the focal lengths are {shown}; expected f0 * d / z0 = {wanted}")
     if n_subject:
         drift = np.abs(proj[:, :n_subject] - proj[:1, :n_subject]).max()
-        if drift > 1e-6:
+        if drift > at_precision(1e-6, p_scale):
             t.fail(f"{what}: the subject (the points at depth z0) should keep its image across frames; "
                    f"yours moves by up to {drift:.3g} px.")
     t.fail(f"{what}: the focal lengths are right, but the projections are off by up to "
@@ -767,7 +777,9 @@ def track_check(t):
             swapped = truth.pose_error(row[3:], row[:3], R, tv, pattern, square)
             if swapped[0] <= ANGLE_TOLERANCE and swapped[1] <= TRANSLATION_TOLERANCE * np.linalg.norm(tv):
                 t.fail(f"{what}: the rows are [tvec, rvec]; the API wants [rvec, tvec].")
-            t.fail(f"{what}: frame {i}: the pose is off by {angle:.1f} degrees and {shift:.3g} units.")
+            t.fail(f"{what}: frame {i}: the pose is off by {format_apart(angle, ANGLE_TOLERANCE, 2)} degrees "
+                   f"and {format_apart(shift / np.linalg.norm(tv), TRANSLATION_TOLERANCE, 2, percent=True)} of "
+                   f"the distance (at most {ANGLE_TOLERANCE:g} degrees and {TRANSLATION_TOLERANCE:.0%} accepted).")
         errors.append(angle)
     trajectory = np.array([pose[1] if pose else [np.nan] * 3 for pose in poses])
     t.svg("board position (x, z) along the sequence: truth vs yours", svg_points(

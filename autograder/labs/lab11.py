@@ -19,14 +19,15 @@ from fixtures.lab12 import (linear_triangulation, triangulation_distance, triang
 
 from .. import strategies as st
 from ..checks import Fail, StudentFailure, Trial, partial, passed
-from ..compare import closest, nearest_variants, projective_distance
+from ..compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
+                       projective_distance)
 from ..judges import format_matrix, where_matrices_differ, where_points_differ
 from ..pictures import side_by_side, svg_points
 from ..registry import Lab
 
 lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
 
-EXACT = 1e-6          # relative error accepted on exact data
+EXACT = 1e-6          # relative error accepted on exact data (raised to float32's precision: at_precision)
 seeds = st.integers(0, 2**32 - 1)
 
 
@@ -62,16 +63,16 @@ def judge_projective(t: Trial, what: str, got, expected, mistakes=None, toleranc
     got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
     if not np.any(got):
         t.fail(f"{what} returned all zeros")
-    if projective_distance(got, expected) <= tolerance:
+    if projective_distance(got, expected) <= at_precision(tolerance):
         return got
     mistakes = nearest_variants(got, {name: answer if np.ndim(answer) > len(shape) else [answer]
                                       for name, answer in (mistakes or {}).items()}, distance)
     mistake = closest(got, mistakes, distance, max(tolerance, 1e-4), truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    shown, wanted = format_arrays_apart(_unit(got), _unit(expected))
     t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale=True)}.\n"
-           f"It returned (scaled to unit norm)\n{format_matrix(_unit(got))}\nexpected (up to scale and sign)\n"
-           f"{format_matrix(_unit(expected))}")
+           f"It returned (scaled to unit norm)\n{shown}\nexpected (up to scale and sign)\n{wanted}")
 
 
 def epipolar_picture(F_true, F_got, images, pts1, pts2, count=8) -> np.ndarray:
@@ -140,13 +141,16 @@ def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, g
     depth = np.linalg.norm(views.X - views.cam1.center, axis=1)
     if not noisy:
         error = np.linalg.norm(got - views.X, axis=1) / depth
-        if error.max() <= EXACT:
+        # float32 rounds each point at its coordinates' magnitude, which may exceed its depth
+        allowed = at_precision(EXACT * depth, np.abs(views.X).max(axis=1)) / depth
+        if np.all(error <= allowed):
             return passed(f"all {n} points within {error.max():.1e} of their distance to camera 1")
         _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise=0.0)
-        worst, wrong = int(np.argmax(error)), int(np.sum(error > EXACT))
+        worst, wrong = int(np.argmax(error / allowed)), int(np.sum(error > allowed))
+        wanted, shown = format_arrays_apart(views.X[worst], got[worst])
         t.fail(f"{what} is wrong for {'every point' if wrong == n else f'{wrong} of {n} points'} "
-               f"(off by up to {error.max():.1%} of their distance to camera 1): point {worst} should be "
-               f"{format_matrix(views.X[worst])}, got {format_matrix(got[worst])}")
+               f"(off by up to {format_apart(error.max(), 0.0, 2, percent=True)} of their distance to camera 1): "
+               f"point {worst} should be {wanted}, got {shown}")
     mine, best = _reprojection(P1, P2, got, pts1, pts2).mean(), gold["reprojection"]
     error = np.median(np.linalg.norm(got - views.X, axis=1) / depth)
     # The textbook variants (two or three rows of x × (P X) = 0 per view, rows scaled or
@@ -201,7 +205,7 @@ def _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise):
                    mistake=f"only the {view} view's equations are used")
     # Black-box test with the student's own function: does swapping the cameras back fix it?
     depth = np.linalg.norm(X - views.cam1.center, axis=1)
-    allowed = 1e-6 if noise == 0 else 0.1
+    allowed = at_precision(EXACT, magnitude(X) / depth.min()) if noise == 0 else 0.1
     for args, mistake in (((P2, P1, pts1, pts2), "P1 and P2 are swapped"),
                           ((P1, P2, pts2, pts1), "pts1 and pts2 are swapped")):
         try:
@@ -270,21 +274,22 @@ def judge_lines(t: Trial, what: str, got, F, pts1):
     n = len(pts1)
     got = t.expect_array(got, what, shape=(n, 3), kind="iuf")
     expected = truth.epipolar_lines(F, pts1)
-    if _row_error(got, expected) <= EXACT:
+    if _row_error(got, expected) <= at_precision(EXACT):
         return got
     mistake = closest(got, truth.line_mistakes(F, pts1), _row_error, 1e-5)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if np.all(np.isfinite(got)):
-        parallel = np.linalg.norm(np.cross(got, expected), axis=1) <= 1e-6 * np.linalg.norm(got, axis=1)
+        parallel = np.linalg.norm(np.cross(got, expected), axis=1) <= at_precision(1e-6) * np.linalg.norm(got, axis=1)
         if np.all(parallel):
             t.fail(f"{what}: the lines are right but not scaled so that a^2 + b^2 = 1 "
                    "(divide each line by sqrt(a^2 + b^2)).", mistake="the lines are not scaled so that a^2 + b^2 = 1")
     signs = np.where(np.sum(np.nan_to_num(got) * expected, axis=1) < 0, -1.0, 1.0)[:, None]
     where = where_points_differ(got * signs, expected, 1e-5 * max(1.0, np.abs(expected).max()),
                                 names=("a", "b", "c"))
-    t.fail(f"{what} is wrong {where.replace('point', 'line')}.\nIt returned\n{format_matrix(got[:3])}\n"
-           f"... expected (each up to sign)\n{format_matrix(expected[:3])}")
+    shown, wanted = format_arrays_apart((got * signs)[:3], expected[:3])
+    t.fail(f"{what} is wrong {where.replace('point', 'line')}.\nIt returned\n{shown}\n"
+           f"... expected (each up to sign)\n{wanted}")
 
 
 @ex2.check("epipolar_lines on a worked example", points=2)
@@ -314,12 +319,14 @@ def lines_through_points(t):
     if np.any(np.linalg.norm(got[:, :2], axis=1) == 0):
         t.fail("epipolar_lines(F, pts1) returned a line with a = b = 0")
     distance = truth.line_distances(got, views.pts2)
-    if distance.max() <= 1e-6:
+    # a x + b y + c rounds at the coordinates' magnitude in float32
+    tolerance = at_precision(1e-6, magnitude(views.pts1, views.pts2))
+    if distance.max() <= tolerance:
         return passed("every x2 lies on its line l' = F x1")
-    transposed = truth.line_distances(got, views.pts1).max() <= 1e-6
+    transposed = truth.line_distances(got, views.pts1).max() <= tolerance
     hint = "F is transposed? The lines in image 2 are l' = F x1" if transposed else ""
-    t.fail(f"the corresponding points x2 are up to {distance.max():.1f} px from your lines "
-           "(they should lie on them)", hint=hint)
+    t.fail(f"the corresponding points x2 are up to {format_apart(distance.max(), tolerance, 2)} px from your "
+           f"lines (they should lie on them; at most {tolerance:.2g} px accepted)", hint=hint)
 
 
 def draw_judgement(got, base, lines):
@@ -521,9 +528,9 @@ def essential_8point_singular_values(t):
     if s[0] == 0:
         t.fail("essential_8point returned all zeros")
     s = s / s[0]
-    if s[2] <= 1e-6 and s[1] >= 1 - 1e-6:
+    if s[2] <= at_precision(1e-6) and s[1] >= 1 - at_precision(1e-6):
         return passed(f"singular values proportional to (1, {s[1]:.6f}, {s[2]:.1e})")
-    if s[2] <= 1e-6:
+    if s[2] <= at_precision(1e-6):
         t.fail(f"essential_8point: it looks like the singular values were set to (s1, s2, 0): they are "
                f"proportional to (1, {s[1]:.4f}, 0), and an essential matrix has two equal ones. Replace "
                "them by (1, 1, 0) (U diag(1, 1, 0) V^T).", mistake=ESSENTIAL_MISTAKES["rank2_only"])
@@ -635,6 +642,9 @@ def fundamental_rank2(t):
     s = np.linalg.svd(got, compute_uv=False)
     if s[0] == 0:
         t.fail("fundamental_8point returned all zeros")
+    # 1e-7 is float32's own bound: rounding moves each entry by at most half an ulp, so a rank-2
+    # F stored in float32 has s3 / s1 <= eps32 / sqrt(2) = 8.4e-8 (the reference's: 1e-12); the
+    # unnormalised 8-point F without rank 2 on these points has 3.6e-6, too close for a floor.
     if s[2] / s[0] <= 1e-7:
         return passed(f"smallest singular value {s[2] / s[0]:.1e} of the largest")
     t.fail(f"fundamental_8point(noisy pts1, pts2) has rank 3 (singular values proportional to "
@@ -729,7 +739,8 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=N
                    "which is w = 0 (up to rounding) for an epipole at infinity; return the "
                    "homogeneous vector without dividing", mistake="the epipole was divided by w = 0")
     d1, d2 = projective_distance(g1, e1), projective_distance(g2, e2)
-    if d1 <= EXACT and d2 <= EXACT:
+    tolerance = at_precision(EXACT)
+    if d1 <= tolerance and d2 <= tolerance:
         return
     mistake = closest((g1, g2), truth.epipole_mistakes(F_given), epipole_pair_distance, 1e-4,
                       truth=(e1, e2))
@@ -743,8 +754,11 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=N
             t.fail(f"{what}: {name} = {format_matrix(g)} is not a null vector of F ({where}, the "
                    "singular vector of the smallest singular value)")
     for d, g, e, name in ((d1, g1, e1, "e1"), (d2, g2, e2, "e2")):
-        if d > EXACT:
-            t.fail(f"{what}: {name} = {format_matrix(g)}, expected a multiple of {format_matrix(e)}")
+        if d > tolerance:
+            shown, wanted = format_arrays_apart(_unit(g), _unit(e))
+            t.fail(f"{what}: {name} = {format_matrix(g)}, expected a multiple of {format_matrix(e)} (at unit "
+                   f"norm: {shown} and {wanted}, {format_apart(d, tolerance, 2)} apart; at most "
+                   f"{tolerance:.2g} accepted)")
 
 
 @ex5.check("epipoles of a general camera pair", points=2)
@@ -822,7 +836,7 @@ def judge_pipeline_F(t: Trial, pair, F):
     for mistake, corrected in candidates.items():
         if np.median(truth.symmetric_epipolar_distance(corrected, g1, g2)) <= 1.5:
             t.fail(f"your F is wrong: it looks like {mistake}.", mistake=mistake)
-    message = (f"true correspondences are {distance:.1f} px from your epipolar lines (median over "
+    message = (f"true correspondences are {format_apart(distance, 1.5, 2)} px from your epipolar lines (median over "
                f"{len(g1)} pixels with known depth; expected below 1.5 px)")
     if distance <= 4.0:
         return partial(0.5, message, "use RANSAC (cv2.FM_RANSAC) with a threshold of about 1 px")
@@ -862,7 +876,8 @@ def judge_matches(t: Trial, pair, pts1, pts2):
             pts1[valid_swapped] - true2_swapped[valid_swapped], axis=1) <= 2.0) >= 0.8:
         t.fail("pts1 and pts2 are swapped: pts1 must be the points of img1",
                mistake="pts1 and pts2 are swapped")
-    message = f"only {correct:.0%} of your matches are within 2 px of the true position (need 80%)"
+    message = (f"only {format_apart(correct, 0.8, 2, percent=True)} of your matches are within 2 px of the "
+               "true position (need 80%)")
     if correct >= 0.5:
         return partial(0.5, message, "keep only the RANSAC inliers")
     t.fail(message, hint="keep only the RANSAC inliers; use Lowe's ratio test when matching")
@@ -950,8 +965,10 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
                   "true surface points": X[:, [0, 2]], "yours (scaled)": abs(scale) * got[:, [0, 2]]},
                   flip_y=False))
     median, p90 = float(np.median(error)), float(np.quantile(error, 0.9))
-    summary = (f"after one global scale ({abs(scale):.3g}), the median 3D error is {median:.1%} of the "
-               f"distance to camera 1 (90% of the points within {p90:.1%}) over {len(X)} correct matches")
+    summary = (f"after one global scale ({abs(scale):.3g}), the median 3D error is "
+               f"{format_apart(median, STRUCTURE_MEDIAN, 2, percent=True)} of the distance to camera 1 (90% of "
+               f"the points within {format_apart(p90, STRUCTURE_P90, 2, percent=True)}) over {len(X)} correct "
+               "matches")
     frame2 = pair.cam2.to_camera(X)
     s2 = np.median(np.linalg.norm(frame2, axis=1) / np.maximum(np.linalg.norm(got, axis=1), 1e-300))
     median2 = np.median(np.linalg.norm(s2 * got - frame2, axis=1) / np.linalg.norm(frame2, axis=1))

@@ -23,7 +23,8 @@ from fixtures import lab12 as truth
 
 from .. import strategies as st
 from ..checks import Fail, StudentFailure, Trial, partial, passed
-from ..compare import HALF_PIXEL_OFFSETS, blurred_difference, closest, max_abs_error, nearest_variants
+from ..compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, closest, describe_difference,
+                       format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
 from ..judges import format_matrix, judge_parameter_changes_result, judge_parameter_used
 from ..pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..registry import Lab
@@ -33,6 +34,7 @@ lab = Lab("lab12", module="lab12_stereo", title="Stereo")
 MARGIN = 0.05   # bad-pixel rate accepted above the reference's on the same scene (DP, NCC)
 SLACK = 0.03    # block matching (SSD): accepted above the worst legitimate matcher's rate
 FAR_SLACK = 0.1  # pixels at infinity given d >= 1, accepted above the worst legitimate matcher's
+TOP_SLACK = 0.1  # pixels at d = max_disparity given it: accepted below the worst legitimate matcher's
 FADE = 0.15     # partial credit fades out over this much more
 STEREO_TIMEOUT = 30.0
 
@@ -87,9 +89,10 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     if show:
         show_disparity(t, f"{what} on {scene.name}", scene, got, bad, judged)
     allowed = reference_bad + MARGIN if allowed is None else allowed
-    summary = f"bad-pixel rate {bad:.1%} ({threshold_name} {reference_bad:.1%}{accepted_by})"
     if bad <= allowed:
-        return passed(summary)
+        return passed(f"bad-pixel rate {bad:.1%} ({threshold_name} {reference_bad:.1%}{accepted_by})")
+    summary = (f"bad-pixel rate {format_apart(bad, allowed, 2, percent=True)} ({threshold_name} "
+               f"{reference_bad:.1%}{accepted_by})")
     fraction = (allowed + FADE - bad) / FADE  # partial credit near the accepted rate
     try:
         diagnose_disparity(t, what, got, scene, allowed, again, judged, mistakes)
@@ -208,7 +211,7 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
     linear = truth.linear_triangulation(P1, P2, pts1, pts2)
     scale = max(1.0, float(np.abs(X_true).max()))
     error = np.linalg.norm(got - (X_true if exact else linear), axis=1)
-    if exact and error.max() <= 1e-6 * scale:
+    if exact and error.max() <= at_precision(1e-6 * scale, scale):
         return passed(f"largest 3D error {error.max():.2g}")
     if not exact:
         err_true = np.linalg.norm(got - X_true, axis=1).mean()
@@ -273,11 +276,14 @@ ex2 = lab.exercise("ex2", "Disparity and depth", functions=[
 def judge_disparities(t: Trial, what: str, got, xl, xr, n):
     got = t.expect_array(got, what, shape=(n,), kind="iuf", finite=True)
     expected = xl - xr
-    if max_abs_error(got, expected) <= 1e-9 * max(1.0, np.abs(expected).max()):
+    # float32 rounds d = x_l - x_r at the coordinates' magnitude, not the disparity's
+    tolerance = at_precision(1e-9 * max(1.0, np.abs(expected).max()), magnitude(xl, xr))
+    if max_abs_error(got, expected) <= tolerance:
         return
-    if max_abs_error(got, -expected) <= 1e-9 * max(1.0, np.abs(expected).max()):
+    if max_abs_error(got, -expected) <= tolerance:
         t.fail(f"{what} has the wrong sign: d = x_l - x_r (positive for a point in front of the rig).")
-    t.fail(f"{what} returned {format_matrix(got[:5])}...; expected {format_matrix(expected[:5])}...")
+    shown, wanted = format_arrays_apart(got[:5], expected[:5])
+    t.fail(f"{what} returned {shown}...; expected {wanted}... ({describe_difference(got, expected, 'px', tolerance)})")
 
 
 @ex2.check("disparity_from_matches on x coordinates", points=1)
@@ -296,7 +302,8 @@ def disparities_from_points(t):
         t.fail(f"{what} returned shape (10, 2): for (N, 2) points subtract the x coordinates "
                "(column 0) only and return (N,).")
     got = t.expect_array(got, what, shape=(10,), kind="iuf", finite=True)
-    if max_abs_error(got, pts1[:, 1] - pts2[:, 1]) < 1e-9 and max_abs_error(got, pts1[:, 0] - pts2[:, 0]) > 1e-6:
+    tolerance = at_precision(1e-9, magnitude(pts1, pts2))
+    if max_abs_error(got, pts1[:, 1] - pts2[:, 1]) <= tolerance < max_abs_error(got, pts1[:, 0] - pts2[:, 0]):
         t.fail(f"{what} subtracts the y coordinates; x (column 0) is what differs in a rectified pair.")
     judge_disparities(t, what, got, pts1[:, 0], pts2[:, 0], 10)
 
@@ -330,14 +337,16 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
                hint="np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0) (NaN > 0 is False)")
     if not np.all(np.isfinite(got)):
         t.fail(f"{what} returned NaN or infinite depths for valid disparities")
-    tolerance = 1e-9 * max(1.0, float(np.abs(expected).max()))
+    scale = magnitude(expected)
+    tolerance = at_precision(1e-9 * scale, scale)
     if max_abs_error(got, expected) <= tolerance:
         return
     mistake = closest(got, truth.depth_mistakes(disparity, f, baseline), max_abs_error,
-                      1e-6 * max(1.0, float(np.abs(expected).max())), truth=expected)
+                      1e-6 * scale, truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
-    t.fail(f"{what}: largest depth error {max_abs_error(got, expected):.3g} (Z = f b / d).")
+    t.fail(f"{what}: the depths are off by {describe_difference(got, expected, tolerance=tolerance)} "
+           "(Z = f b / d).")
 
 
 @ex2.check("depth_from_disparity: Z = f b / d on a worked example", points=2)
@@ -585,11 +594,13 @@ def rectify_in_view(t):
         kept = truth.fraction_in_view(H, width, height)
         covered = truth.frame_coverage(H, width, height)
         if kept < IN_VIEW:
-            t.fail(f"rectify: only {kept:.0%} of the {name} image stays inside the rectified frame "
+            t.fail(f"rectify: only {format_apart(kept, IN_VIEW, 2, percent=True)} of the {name} image stays "
+                   "inside the rectified frame "
                    f"(at least {IN_VIEW:.0%} should): choose the new principal point (and focal "
                    "length) so the rectified images stay in view.")
         if covered < IN_VIEW:
-            t.fail(f"rectify: the {name} image covers only {covered:.0%} of its rectified frame "
+            t.fail(f"rectify: the {name} image covers only {format_apart(covered, IN_VIEW, 2, percent=True)} of "
+                   "its rectified frame "
                    f"(at least {IN_VIEW:.0%} should): the result is shrunk or pushed aside.")
     return passed("both images stay mostly in view and fill their frames")
 
@@ -628,11 +639,14 @@ def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, agai
     """Judge an SSD disparity map against the legitimate matchers' rates on ``scene``.
 
     ``figures`` are :func:`fixtures.make_lab12_figures.block_matching_figures` of the
-    scene. Pixels at infinity (true d rounds to 0) are judged apart: the search must
-    include d = 0. A failing map is probed for an ignored ``block_size``.
+    scene. The ends of the search range are judged apart: pixels at infinity (true d
+    rounds to 0: the search must include d = 0) and pixels at d = max_disparity (the
+    search must include it; :func:`judge_top_of_range`). A failing map is probed for an
+    ignored ``block_size``.
     """
     got = expect_disparity(t, what, got, scene)
     far, near = truth.far_and_near(truth.band(scene.judged, scene.max_disparity, figures["block_size"]))
+    top = truth.top_of_range(near, scene.max_disparity)
     mistakes = lambda: truth.matching_mistakes(scene, figures["block_size"], "ssd")  # noqa: E731
     if far.any():
         wrong = truth.far_wrong_rate(got, far)
@@ -644,12 +658,52 @@ def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, agai
                    f"i.e. d = 0) gets a disparity of 1 or more at {wrong:.0%} of its pixels "
                    f"(legitimate matchers: at most {figures['far_legitimate']:.0%}): the search "
                    "must include d = 0 (d = 0..max_disparity).")
-    return judge_disparity(t, what, got, scene, figures["reference"], again=again, show=show, judged=near,
-                           mistakes=mistakes,
-                           allowed=figures["legitimate"] + SLACK,
-                           accepted_by=f"; the legitimate SSD matchers, cv2.StereoBM included, up to "
-                                       f"{figures['legitimate']:.1%}",
-                           probe=block_size_probe(t, what, scene, cost="ssd"))
+    # The pixels at the top of the range are judged apart (cv2.StereoBM's recipe leaves half
+    # of them invalid), once the rest of the map is right: a wrong map gets its own diagnosis.
+    verdict = judge_disparity(t, what, got, scene, figures["reference"], again=again, show=show,
+                              judged=np.where(top, 0.0, near),
+                              mistakes=mistakes,
+                              allowed=figures["legitimate"] + SLACK,
+                              accepted_by=f"; the legitimate SSD matchers, cv2.StereoBM included, up to "
+                                          f"{figures['legitimate']:.1%}",
+                              probe=block_size_probe(t, what, scene, cost="ssd"))
+    if verdict.fraction == 1:
+        # (figures of a scene with no pixel at the top of the range may leave it out)
+        judge_top_of_range(t, what, got, scene, top, figures.get("top_legitimate", 1.0), "legitimate SSD matchers, "
+                           "cv2.StereoBM included", mistakes=mistakes, show=False)
+    return verdict
+
+
+TOP_MISSED = "the search stops at max_disparity - 1"
+
+
+def judge_top_of_range(t: Trial, what: str, got, scene, top, legitimate: float, legitimate_name: str,
+                       mistakes=None, show=True):
+    """Fail when the pixels whose true disparity is ``max_disparity`` itself (mask ``top``)
+    do not get it, at fewer than ``legitimate`` (the worst legitimate method's fraction, by
+    ``legitimate_name``) minus :data:`TOP_SLACK`. A search that stops at ``max_disparity - 1``
+    gives that there, within the bad-pixel threshold: only this judgement tells it."""
+    if not np.any(top):
+        return
+    found = truth.top_found_rate(got, top, scene.max_disparity)
+    allowed = legitimate - TOP_SLACK
+    if found >= allowed:
+        return
+    if show:
+        show_disparity(t, f"{what} on {scene.name}", scene, got)
+    top_d = scene.max_disparity
+    with np.errstate(invalid="ignore"):
+        one_below = float(np.mean(np.abs(np.asarray(got, np.float64)[top] - (top_d - 1)) <= truth.TOP_THRESHOLD))
+    hint = "d = 0..max_disparity includes max_disparity itself: range(max_disparity + 1)"
+    if one_below >= 0.5:
+        t.fail(f"{what}: it looks like {TOP_MISSED}: the square at the top of the search range (true "
+               f"disparity {top_d} = max_disparity) gets {top_d - 1} at {one_below:.0%} of its pixels.",
+               hint=hint, mistake=TOP_MISSED)
+    if mistakes is not None:
+        name_matching_mistake(t, what, got, scene, scene.judged, mistakes)
+    t.fail(f"{what}: the square at the top of the search range (true disparity {top_d} = max_disparity) "
+           f"gets it at only {format_apart(found, allowed, 2, percent=True)} of its pixels ({legitimate_name}: "
+           f"at least {legitimate:.0%}): the search must include d = max_disparity.", hint=hint)
 
 
 def bm_figures(key: str) -> dict:
@@ -712,8 +766,8 @@ def block_matching_motorcycle(t):
                                 bm_figures("motorcycle"))
 
 
-@ex4.check("block_matching finds d = 0 on a wall at infinity (and the squares in front of it)", points=1,
-           timeout=STEREO_TIMEOUT)
+@ex4.check("block_matching searches the whole range: d = 0 on a wall at infinity, d = max_disparity on "
+           "the nearest square", points=1, timeout=STEREO_TIMEOUT)
 def block_matching_zero_disparity(t):
     scene = truth.scene("zero_disparity")
     got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
@@ -867,6 +921,13 @@ def dp_weak_texture(t):
     summary = (f"bad-pixel rate {bad:.1%} (reference {reference['bad']:.1%}; block matching "
                f"with the same block size {bm['bad']:.1%})")
     if bad <= reference["bad"] + MARGIN:
+        # the square is at the top of the search range: within 1 px, d = max_disparity - 1 would pass;
+        # the map is otherwise right, so a miss there takes half the points
+        try:
+            judge_top_of_range(t, what, got, scene, truth.top_of_range(scene.judged, scene.max_disparity),
+                               reference["top_found"], "the reference", show=False)
+        except Fail as missed:
+            return partial(0.5, f"{missed.message} {summary}.", hint=missed.hint, mistake=missed.mistake)
         return passed(summary)
     jumps = truth.jump_rate(got, scene.judged)
     if jumps >= 0.6 * bm["jumps"]:
@@ -893,15 +954,16 @@ def dp_smooth(t):
             smoothness_probe(t, scene)
             if jumps >= 0.6 * bm:
                 fail_winner_take_all(t, what, jumps, bm)
-            t.fail(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px; block "
-                   f"matching gives {bm:.1%} and at most {JUMPS_VS_BM * bm:.1%} is expected.")
+            t.fail(f"{what}: {format_apart(jumps, JUMPS_VS_BM * bm, 2, percent=True)} of neighbouring pixels "
+                   f"jump by more than 1 px; block matching gives {bm:.1%} and at most "
+                   f"{JUMPS_VS_BM * bm:.1%} is expected.")
     return passed("far fewer jumps than block matching on both scenes")
 
 
 @ex5.check("dp_stereo on the Middlebury motorcycle", points=3, timeout=STEREO_TIMEOUT)
 def dp_motorcycle(t):
     scene = truth.scene("motorcycle")
-    got = call_dp(t, scene)
+    got = expect_disparity(t, "dp_stereo(left, right)", call_dp(t, scene), scene)
     reference = figures("motorcycle", "dp_5")["bad"]
     name_oversmoothing(t, "dp_stereo(left, right)", got, scene, reference + MARGIN)
     return judge_disparity(t, "dp_stereo(left, right)", got, scene, reference,
@@ -1046,7 +1108,7 @@ def simulate_boxes(t):
         if not (np.any(got != candidate, axis=0) & ~ties).any():
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     lit_expected = np.any(expected > 0, axis=0)
-    t.fail(f"{what}: {wrong.mean():.1%} of the pixels differ from the projector model "
+    t.fail(f"{what}: {format_apart(wrong.mean(), 0.0, 2, percent=True)} of the pixels differ from the projector model "
            f"({np.mean(wrong & ~lit_expected):.1%} should be black).",
            hint="pixel (u, v) at depth Z sees projector column round(u - f*baseline/Z); black if "
                 "Z <= 0 or that column is not on the projector")
@@ -1060,7 +1122,8 @@ def judge_sl_depth(t: Trial, what, got, images, f, baseline, true_depth):
     with np.errstate(invalid="ignore"):
         got_valid = np.isfinite(got) & (got > 0)
     exp_valid = expected > 0
-    close = got_valid & exp_valid & (np.abs(got - expected) <= 1e-6 * np.maximum(expected, 1.0))
+    close = got_valid & exp_valid & (np.abs(got - expected) <= at_precision(1e-6 * np.maximum(expected, 1.0),
+                                                                               np.maximum(expected, 1.0)))
     agree = np.mean(close | (~got_valid & ~exp_valid))
     if agree >= 0.995:
         judged = exp_valid & (true_depth > 0)
@@ -1068,13 +1131,15 @@ def judge_sl_depth(t: Trial, what, got, images, f, baseline, true_depth):
         return passed(f"decoded exactly; median depth error {relative:.1%} of the true depth")
     for mistake, wrong in truth.structured_light_mistakes(images, f, baseline).items():
         wrong_valid = wrong > 0
-        match = (got_valid & wrong_valid & (np.abs(got - wrong) <= 1e-6 * np.maximum(wrong, 1.0))) | \
+        match = (got_valid & wrong_valid & (np.abs(got - wrong) <= at_precision(1e-6 * np.maximum(wrong, 1.0),
+                                                                                 np.maximum(wrong, 1.0)))) | \
                 (~got_valid & ~wrong_valid)
         if match.mean() >= 0.995:
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if np.mean(got_valid & ~exp_valid) > 0.005 and np.all(got[~np.any(images > 127, axis=0)] != 0):
         t.fail(f"{what}: pixels that are black in every image are undecodable: their depth must be 0.")
-    t.fail(f"{what}: only {agree:.1%} of the pixels agree with the decoded depth.",
+    t.fail(f"{what}: only {format_apart(agree, 0.995, 3, percent=True)} of the pixels agree with the decoded "
+           "depth (at least 99.5% needed).",
            hint="threshold each image at mid-grey, convert the Gray code to binary (most significant "
                 "bit first), projector column = (k + 0.5) * width / 2**n_bits - 0.5, Z = f b / (u - column)")
 
