@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import pictures
+from .beginner import uint8_wraps
 from .inputs import NO_SUBMISSION
 from .registry import Check
 from .results import Artifact
@@ -205,7 +206,11 @@ class Trial:
         if kind is not None and value.dtype.kind not in kind:
             names = {"f": "float", "i": "integer", "u": "unsigned integer", "b": "bool", "c": "complex"}
             wanted = " or ".join(names[k] for k in kind)
-            self.fail(f"{what} returned dtype {value.dtype}; expected {wanted}")
+            hint = ""
+            if "f" in kind and value.dtype.kind in "iub":  # a beginner's integer (or uint8) array
+                hint = (uint8_wraps(value) or "build it with dtype=float (an array of whole numbers is an "
+                        "integer array) or convert it with .astype(np.float64)")
+            self.fail(f"{what} returned dtype {value.dtype}; expected {wanted}", hint=hint)
         if finite and value.dtype.kind in "fc" and not np.all(np.isfinite(value)):
             self.fail(f"{what} returned NaN or infinite values")
         return value

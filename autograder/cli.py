@@ -61,6 +61,16 @@ def build_parser() -> argparse.ArgumentParser:
 
     commands.add_parser("list", help="list the labs, exercises and checks")
 
+    validate = commands.add_parser(
+        "validate", help="before hand-in: what would lose points for reasons other than the algorithm",
+        description="Read the submission as grading does, import it in a clean sandboxed worker and run the "
+                    "public checks, then name what would cost points for reasons other than the algorithm: "
+                    "files and names, imports, notebook cells left out, signatures, dtypes of returned values. "
+                    "Exit status: 0 when nothing was found, 1 when problems were, 2 for a usage error.")
+    validate.add_argument("submission", help="folder, .py, .zip or .ipynb")
+    validate.add_argument("select", nargs="*", metavar="SELECT",
+                          help="what to validate: lab07, lab07.ex2 ... (default: everything)")
+
     batch = commands.add_parser("batch", help="grade a class: a gradebook, every student's page, LMS CSVs")
     batch.add_argument("submissions", metavar="SUBMISSIONS",
                        help="folder or .zip: one entry per student, or a Gradescope/Canvas/Moodle download")
@@ -427,6 +437,23 @@ class _batch_progress:
             self.bar.stop()
 
 
+VALIDATE_PROBLEMS = 1   # validate: problems found
+
+
+def run_validate(args) -> int:
+    """``autograder validate PATH [SELECT...]``: 0 clean, 1 problems found, 2 usage."""
+    from .registry import SelectionError
+    from .validate import validate
+
+    try:
+        report = validate(args.submission, args.select)
+    except (SelectionError, SubmissionError) as exc:
+        print(f"error: {printable(str(exc))}", file=sys.stderr)
+        return USAGE_ERROR
+    print(printable(str(report)))
+    return 0 if report.ok else VALIDATE_PROBLEMS
+
+
 def run_list(args) -> int:
     for lab in sorted(discover().values(), key=lambda lab: lab.key):
         print(f"{lab.key}  {lab.module}.py  {lab.title}")
@@ -580,7 +607,8 @@ def run_similarity(args) -> int:
 
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
-    commands = {"grade": run_grade, "list": run_list, "batch": run_batch, "gradescope": run_gradescope,
+    commands = {"grade": run_grade, "list": run_list, "validate": run_validate, "batch": run_batch,
+                "gradescope": run_gradescope,
                 "bundle": run_bundle, "report": run_report, "similarity": run_similarity}
     return commands[args.command](args)
 

@@ -11,6 +11,7 @@ import numpy as np
 
 from fixtures.images import as_homography, coverage, warp
 
+from .beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, partial, passed
 from .compare import (at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
@@ -55,6 +56,9 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
     tolerance = at_precision(rtol * scale, scale)
     if distance(got, expected) <= tolerance:
         return got
+    integers = integer_entries(got, expected)
+    if integers:
+        t.fail(f"{what} is wrong: {integers}", mistake="an integer matrix: its fractions are cut off")
     mistake = closest(got, mistakes or {}, distance, 1e3 * rtol * scale, truth=expected)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
@@ -154,6 +158,8 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
                            hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)",
                            mistake="the fill is not black")
         return passed(f"mean difference {error:.1f} grey levels on the covered area")
+    if channels_reversed(got, expected):
+        t.fail(f"{what} is wrong: {RGB_FOR_BGR}.", mistake="the colour channels are reversed (RGB for BGR)")
     explained = []  # the mistakes whose map explains the image (a name only when one does)
     for mistake, wrong_M in (mistakes or {}).items():
         try:

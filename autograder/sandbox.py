@@ -36,11 +36,11 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any, Callable
 
-from . import confine
+from . import confine, evidence
 from .submission import copy_regular_files
 
 LENGTH = struct.Struct(">Q")
-_WORKER_FILES = ("worker.py", "transport.py")
+_WORKER_FILES = ("worker.py", "transport.py", "beginner.py")
 
 FAILURE_KINDS = {
     "timeout", "crashed", "exception", "not_implemented", "missing_function",
@@ -68,18 +68,20 @@ class Limits:
     startup_timeout: float = 60.0        # for the worker to import NumPy/OpenCV (not billed)
     timeouts_per_function: int = 2       # after this many timeouts a function is not called again
     exercise_budget: float = 60.0        # student seconds per exercise (calls, timeouts, restarts)
-    submission_budget: float = 480.0     # student seconds per submission (under a Gradescope timeout of 10 min)
+    submission_budget: float = 240.0     # wall seconds for grading the whole submission, whatever runs
     max_restarts: int = 12               # worker restarts per exercise (each billed its start-up)
     threads: int | None = None           # OpenCV's threads in the worker (None: OpenCV's own, one per core)
 
     def shared_by(self, lanes: int) -> "Limits":
         """These limits for each of ``lanes`` workers grading one submission side by side
-        (:func:`autograder.runner.grade`): the memory of all its processes together, and the
-        replies the grader may be holding at once, stay within :attr:`memory` and
-        :attr:`max_result_bytes`; the workers share the cores out."""
+        (:func:`autograder.runner.grade`): each worker has a fixed share of :attr:`memory` (and
+        of the machine's, :func:`memory_for_workers`) that no other can borrow, so one lane's
+        memory bomb leaves the others theirs; the replies the grader may be holding at once
+        stay within :attr:`max_result_bytes`; the workers share the cores out."""
         if lanes <= 1:
             return self
-        return replace(self, memory=self.memory // lanes, max_result_bytes=self.max_result_bytes // lanes,
+        memory = min(self.memory, memory_for_workers() or self.memory)
+        return replace(self, memory=memory // lanes, max_result_bytes=self.max_result_bytes // lanes,
                        threads=cores_each(lanes))
 
     def worker_json(self, processes: int | None) -> str:
@@ -89,7 +91,49 @@ class Limits:
             "cpu_total": self.cpu_total,
             "processes": processes,
             "threads": self.threads,
+            "max_result_bytes": self.max_result_bytes,
         })
+
+
+@lru_cache(maxsize=1)
+def memory_for_workers() -> int | None:
+    """Bytes the workers of this process may hold together: three quarters of what this
+    process's cgroup (each of its ancestors), or else the machine, has -- the rest is the
+    grader's, and the page cache's that keeps the libraries' code in memory. None where
+    unknown (no ``/proc``).
+
+    A worker's :attr:`Limits.memory` larger than this would not be a limit: the machine
+    would run out first, and its OOM killer, or thrashing, would hit any process, another
+    lane's worker or the grader included."""
+    meminfo = evidence._read("/proc/meminfo") or ""
+    total = next((int(line.split()[1]) * 1024 for line in meminfo.splitlines()
+                  if line.startswith("MemTotal:")), None)
+    for limit in _cgroup_memory_limits():
+        total = limit if total is None else min(total, limit)
+    return None if total is None else total * 3 // 4
+
+
+def _cgroup_memory_limits() -> list[int]:
+    """The memory limits of this process's cgroup and its ancestors (v2 ``memory.max``,
+    v1 ``memory.limit_in_bytes``), those that are set."""
+    limits = []
+    for line in (evidence._read("/proc/self/cgroup") or "").splitlines():
+        _, controllers, path = line.split(":", 2)
+        if controllers == "":
+            root, name = Path("/sys/fs/cgroup"), "memory.max"
+        elif "memory" in controllers.split(","):
+            root, name = Path("/sys/fs/cgroup/memory"), "memory.limit_in_bytes"
+        else:
+            continue
+        folder = root / path.lstrip("/")
+        while True:
+            value = (evidence._read(str(folder / name)) or "").strip()
+            if value.isdigit() and int(value) < 2**60:  # "max", or v1's "unlimited" (a huge number)
+                limits.append(int(value))
+            if folder == root or root not in folder.parents:
+                break
+            folder = folder.parent
+    return limits
 
 
 def usable_cores() -> int:
@@ -204,6 +248,41 @@ def _scrubbed_environment(scratch: Path) -> dict[str, str]:
     }
 
 
+class _Stopped(Exception):
+    """The grader stopped a request on evidence it measured (``reason``: "memory", "processes"
+    or "pipe"), see :meth:`Sandbox._check_in`."""
+
+    def __init__(self, reason: str):
+        super().__init__(reason)
+        self.reason = reason
+
+
+@dataclass
+class _Measures:
+    """What the grader measured of the worker during one request: its cgroup's counters when
+    the request began, and the most memory it saw the worker's processes hold."""
+
+    oom_kills: int = 0
+    limit_hits: int = 0
+    peak: int = 0
+
+    @classmethod
+    def now(cls, cgroup) -> "_Measures":
+        if cgroup is None:
+            return cls()
+        return cls(cgroup.oom_kills(), cgroup.memory_limit_hits())
+
+    def oom_killed(self, cgroup) -> bool:
+        """The kernel killed a process of the cgroup for its memory since the request began."""
+        return cgroup is not None and cgroup.oom_kills() > self.oom_kills
+
+    def pressed(self, cgroup, memory: int) -> bool:
+        """The worker's processes reached their memory limit since the request began."""
+        if cgroup is not None:
+            return cgroup.memory_limit_hits() > self.limit_hits
+        return self.peak >= memory * 9 // 10
+
+
 class Sandbox:
     """Run functions of a submission in a separate, limited worker process.
 
@@ -228,12 +307,19 @@ class Sandbox:
         self.confinement = confinement or confine.detect()
         if self.confinement.level == "process-group":
             confine.become_subreaper()
-        # One memory and task budget for the worker and everything it starts (its own
-        # wrappers, and a thread per core for OpenCV's pool, come on top of the student's share).
-        self.cgroup = confine.Cgroup.create(self.limits.memory,
-                                            self.limits.extra_processes + 16 + (os.cpu_count() or 1))
-        self._oom_kills = 0
+        # The memory the worker and everything it starts may hold: enforced by the kernel in
+        # its cgroup, else measured by the grader while a request runs (Sandbox._check_in).
+        self.memory = min(self.limits.memory, memory_for_workers() or self.limits.memory)
+        self.cgroup = self._new_cgroup()
         self._own_processes = 0
+        self._own_pids: set[int] = set()      # the sandbox's own processes (wrappers, PID 1, the worker)
+        self._worker_pid: int | None = None   # the worker's process (host PID), once it is ready
+        self._pidfd = -1
+        self._spawned = 0                     # workers started so far
+        self._worker_alive: Callable[[], bool] = lambda: False
+        self._worker_pipes: tuple[tuple[int, int], ...] = ()  # (descriptor in the worker, pipe inode)
+        self._watching = False  # a request runs: look at the worker while waiting (see _check_in)
+        self._measured = _Measures()
         # A private base (listable by the grader only) around a randomly named
         # scratch folder, so workers of other submissions cannot find this one.
         self._base = Path(tempfile.mkdtemp(prefix="autograder-"))
@@ -257,7 +343,7 @@ class Sandbox:
         self._started = False   # the first start is not a restart
         self._restart_refused = False
         self._budget: float | None = None
-        self._shared_budget: tuple[Callable[[], float], float] | None = None
+        self._deadline: float | None = None  # time.monotonic() at which the submission's time is up
         self._request_id = secrets.randbits(48)
         self.shared: dict = {}  # values checks share within one grading (see Trial.shared)
         self._timeouts: dict[tuple[str, str], int] = {}
@@ -362,7 +448,19 @@ class Sandbox:
             self._spawn_worker()
         self._await_ready()
 
+    def _new_cgroup(self) -> confine.Cgroup | None:
+        # One memory and task budget for the worker and everything it starts (its own
+        # wrappers, and a thread per core for OpenCV's pool, come on top of the student's share).
+        return confine.Cgroup.create(self.memory, self.limits.extra_processes + 16 + (os.cpu_count() or 1))
+
     def _spawn_worker(self):
+        if self.cgroup is not None and self._spawned:
+            # A fresh account for each worker: what an earlier one left charged (files in a
+            # tmpfs, shared memory) never counts against the next call, and the counters of
+            # out-of-memory kills start from nothing.
+            self.cgroup.remove()
+            self.cgroup = self._new_cgroup()
+        self._spawned += 1
         try:
             log = open(self._base / "worker.log", "ab")
         except OSError as exc:
@@ -407,17 +505,19 @@ class Sandbox:
             os.close(response_w)
         _LIVE_WORKERS.add(self.proc.pid)
         self._request_fd, self._response_fd = request_w, response_r
+        self._worker_pipes = ((request_r, os.fstat(request_w).st_ino), (response_w, os.fstat(response_r).st_ino))
         if not self.confinement.hides_files:
             _distrust_store()  # before its first request: no student code has run yet
         self._imported = set()
         self._ready = False
 
-    def _await_ready(self):
+    def _await_ready(self, timeout: float | None = None):
         # Wait for the worker's "ready" (it imports NumPy and OpenCV first), so that
         # start-up time is never billed to the student's first call.
         from . import transport  # with NumPy: not needed to start a worker, only to talk to it
+        timeout = self.limits.startup_timeout if timeout is None else min(timeout, self.limits.startup_timeout)
         try:
-            length, = LENGTH.unpack(self._read(LENGTH.size, time.monotonic() + self.limits.startup_timeout))
+            length, = LENGTH.unpack(self._read(LENGTH.size, time.monotonic() + timeout))
             ready = transport.decode(self._read(length, time.monotonic() + 5))
         except (TimeoutError, EOFError, transport.TransportError) as exc:
             # The log goes to the instructor's log, never into a message: it is no grader's word.
@@ -433,6 +533,25 @@ class Sandbox:
         # What the sandbox's own processes are (wrappers, PID 1, the worker): more after a call
         # means the submission left one running, whatever the worker says.
         self._own_processes = len(self.cgroup.processes()) if self.cgroup is not None else 0
+        self._own_pids = {self.proc.pid, *evidence.descendants(self.proc.pid)}
+        self._find_worker()
+
+    def _find_worker(self) -> None:
+        """Find the worker's own process among the sandbox's (the last of the wrappers' line, as
+        the host numbers it), to look at its descriptors later; held by a pidfd where Linux has
+        them, so a number reused after it ended is never mistaken for it."""
+        script = str(self.scratch / "worker" / "worker.py")
+        found = [pid for pid in [self.proc.pid, *evidence.descendants(self.proc.pid)]
+                 if evidence.command_line(pid)[1:4] == ["-I", "-B", script]]
+        self._worker_pid = found[-1] if found else None
+        self._worker_alive = lambda: self.proc is not None and self.proc.poll() is None
+        if self._worker_pid is not None and hasattr(os, "pidfd_open"):
+            try:
+                pidfd = os.pidfd_open(self._worker_pid)
+            except OSError:
+                return
+            self._pidfd = pidfd
+            self._worker_alive = lambda: not select.select([pidfd], [], [], 0)[0]
 
     def _stop_worker(self, restarting: bool = True):
         if self.proc is None:
@@ -453,6 +572,7 @@ class Sandbox:
         if self.cgroup is not None:
             self.cgroup.kill()  # whatever left the process group (setsid) is still in the cgroup
         _LIVE_WORKERS.discard(self.proc.pid)
+        self._forget_worker()
         if self.confinement.level == "process-group":
             confine.kill_adopted_orphans(keep=_LIVE_WORKERS)
             _distrust_store()  # now that nothing of it runs: what it wrote there is never read
@@ -461,6 +581,12 @@ class Sandbox:
         self.proc = None
         self._ready = False
         self._request_fd = self._response_fd = -1
+
+    def _forget_worker(self) -> None:
+        if self._pidfd >= 0:
+            os.close(self._pidfd)
+        self._pidfd = -1
+        self._worker_pid, self._worker_alive, self._worker_pipes = None, (lambda: False), ()
 
     def _kill_process_group(self):
         try:
@@ -485,16 +611,16 @@ class Sandbox:
         end = time.perf_counter()
         self.billed_spans.append((end - seconds, end))
 
-    def share_budget(self, spent: Callable[[], float], limit: float) -> None:
-        """Also stop calling once ``spent()`` (the seconds billed in this sandbox and the
-        others it shares a submission's budget with) reaches ``limit``."""
-        self._shared_budget = (spent, limit)
+    def set_deadline(self, at: float | None) -> None:
+        """Also stop calling once ``time.monotonic()`` reaches ``at``: the submission's wall-clock
+        deadline, which holds whatever runs meanwhile (calls, restarts, other lanes, the grader's
+        own judging). A request running then is stopped at it."""
+        self._deadline = at
 
     def remaining(self) -> float:
         left = float("inf") if self._budget is None else self._budget - self.student_seconds
-        if self._shared_budget is not None:
-            spent, limit = self._shared_budget
-            left = min(left, limit - spent())
+        if self._deadline is not None:
+            left = min(left, self._deadline - time.monotonic())
         return left
 
     def _over_budget(self, what: str) -> CallOutcome:
@@ -567,8 +693,12 @@ class Sandbox:
                                        "exercise after crashes, hangs or suspect states; not started again")
         started = time.perf_counter()
         try:
-            self._start_worker()
+            if self.proc is None:
+                self._spawn_worker()
+            self._await_ready(self.remaining() if restart else None)  # a restart is billed
         except WorkerStartError as exc:
+            if self.remaining() <= 0:
+                return self._over_budget("the next call")
             return CallOutcome(ok=False, kind="grader_error", message=str(exc))
         self._started = True
         if restart:
@@ -586,6 +716,8 @@ class Sandbox:
                 imported = self.import_module(request["module"])
                 if not imported.ok:
                     return imported
+                if self.proc is None:  # (an import that leaves the worker unusable fails)
+                    return CallOutcome(ok=False, kind="crashed", message=f"{what}: the worker stopped")
                 timeout = min(timeout, self.remaining())
                 if timeout <= 0:
                     return self._over_budget(what)
@@ -593,8 +725,10 @@ class Sandbox:
         self._request_id += 1
         request = {**request, "id": self._request_id}
         frame = transport.encode(request)
+        self._measured = _Measures.now(self.cgroup)
         start = time.perf_counter()
         deadline = time.monotonic() + timeout
+        self._watching = True
         try:
             self._write(LENGTH.pack(len(frame)) + frame, deadline)
             length, = LENGTH.unpack(self._read(LENGTH.size, deadline))
@@ -613,24 +747,48 @@ class Sandbox:
             if self._pending_reply():
                 raise transport.TransportError("more than one reply to one call")
         except TimeoutError:
-            return self._abandon(CallOutcome(
-                ok=False, kind="timeout", seconds=time.perf_counter() - start,
-                message=f"{what} did not finish within {timeout:g} s (an infinite loop, or far too slow?)"))
-        except (EOFError, BrokenPipeError, ConnectionError):
-            return self._abandon(self._crash_outcome(what, time.perf_counter() - start))
+            return self._abandon(self._fault(what, time.perf_counter() - start, timeout=timeout))
+        except _Stopped as stopped:
+            return self._abandon(self._fault(what, time.perf_counter() - start, stopped=stopped.reason))
+        except (EOFError, OSError):  # the pipe ended, or broke (EPIPE; a descriptor gone)
+            return self._abandon(self._fault(what, time.perf_counter() - start))
         except transport.TransportError as exc:
             return self._abandon(CallOutcome(
                 ok=False, kind="protocol", seconds=time.perf_counter() - start,
                 message=f"{what}: the worker sent back something that is not a valid result ({exc})"))
+        finally:
+            self._watching = False
         outcome = self._outcome_from_reply(reply, what, request["id"], seconds)
         if self.proc is not None:
             outcome.output = self._read_output()
-            if type(reply.get("suspect")) is str or self._processes_left():
-                self._stop_worker()  # the next call gets a clean worker
+            if self._pipe_taken():  # it answered, then the next request could not reach it
+                return self._abandon(self._fault(what, seconds, stopped="pipe"))
+            left = self._left_running(reply)
+            if left:
+                self._stop_worker()  # the next call gets a clean worker, nothing of this one's running
+                if request["op"] == "import" and outcome.ok:  # each new worker would import it again
+                    return CallOutcome(ok=False, kind="import_error", seconds=seconds, output=outcome.output,
+                                       message=f"{what} left {left} running; the module's top-level code "
+                                               "must finish its work (start threads and processes inside "
+                                               "your functions, and wait for them there)")
         return outcome
 
-    def _processes_left(self) -> bool:
-        return self.cgroup is not None and len(self.cgroup.processes()) > self._own_processes
+    def _left_running(self, reply) -> str:
+        """What the request left running besides the worker (``""``: nothing). Child processes as
+        the grader counts them (in the cgroup, else among the worker's descendants); threads, which
+        only the worker sees, as it says (its word can only make the grader stricter)."""
+        if self.cgroup is not None:
+            if len(self.cgroup.processes()) > self._own_processes:
+                return "processes"
+        elif set(evidence.descendants(self.proc.pid)) - self._own_pids:
+            return "processes"
+        if self.cgroup is None and self.confinement.level == "process-group":
+            confine.kill_adopted_orphans(keep=_LIVE_WORKERS)  # re-parented to the grader: no one's now
+        suspect = reply.get("suspect") if type(reply) is dict else None
+        if type(suspect) is not str:
+            return ""
+        return "threads" if suspect.startswith("threads") else \
+            "processes" if suspect.startswith("child") else "the worker without file descriptors"
 
     def _pending_reply(self) -> bool:
         readable, _, _ = select.select([self._response_fd], [], [], 0)
@@ -655,6 +813,9 @@ class Sandbox:
         tb = reply.get("traceback") if type(reply.get("traceback")) is str else ""
         if kind == "result_type" and message.startswith("returned"):
             message = f"{what} {message}"
+        if kind == "memory":  # a MemoryError: an allocation refused by RLIMIT_AS, in the worker's process
+            message = (f"{what} asked for more than {self.limits.address_space // 2**20} MB of memory "
+                       "(MemoryError)")
         return CallOutcome(ok=False, kind=kind, message=message[:2000], traceback=tb[-4000:],
                            seconds=seconds)
 
@@ -664,53 +825,123 @@ class Sandbox:
         self._stop_worker()
         return outcome
 
-    def _crash_outcome(self, what, seconds) -> CallOutcome:
+    def _fault(self, what, seconds, timeout: float | None = None, stopped: str = "") -> CallOutcome:
+        """Why the worker stopped answering a request, decided from what the grader measured
+        (before the worker is stopped): its own reason to stop it (``stopped``, see
+        :meth:`_check_in`), the cgroup's counters, whether the worker still holds the grader's
+        pipe, how it ended. Never from what the worker said."""
+        def fault(kind, message):
+            return CallOutcome(ok=False, kind=kind, message=message, seconds=seconds)
+
+        if self._interrupted:
+            return fault("grader_error", "grading was stopped")
+        if stopped == "processes":
+            return fault("crashed", f"{what} started more than {self.limits.extra_processes} processes "
+                                    "(a fork bomb?)")
+        if stopped == "memory" or self._measured.oom_killed(self.cgroup):
+            return fault("memory", self._memory_words(what))
+        if stopped == "pipe" or self._pipe_taken():
+            return fault("crashed", f"{what} closed the grader's pipe to the worker; do not close or "
+                                    "replace file descriptors your code did not open")
+        if timeout is not None:
+            if self._measured.pressed(self.cgroup, self.memory):  # it thrashed at its limit meanwhile
+                return fault("memory", f"{self._memory_words(what)} (and was stopped after {timeout:g} s)")
+            held = max(self._measured.peak, evidence.memory_in_use(
+                [self.proc.pid, *evidence.descendants(self.proc.pid)]) or 0)
+            if held >= self.memory // 2:  # not an infinite loop: an allocation that was not done yet
+                return fault("timeout", f"{what} did not finish within {timeout:g} s, holding "
+                                        f"{held // 2**20} MB of memory by then (it may use "
+                                        f"{self.memory // 2**20} MB)")
+            return fault("timeout", f"{what} did not finish within {timeout:g} s "
+                                    "(an infinite loop, or far too slow?)")
         try:
             code = self.confinement.exit_signal(self.proc.wait(timeout=2))
-        except subprocess.TimeoutExpired:
-            code = None
-        oom_kills = self.cgroup.oom_kills() if self.cgroup is not None else 0
-        if oom_kills > self._oom_kills:
-            self._oom_kills = oom_kills
-            return CallOutcome(ok=False, kind="memory", seconds=seconds,
-                               message=f"{what} ran out of memory (the submission's processes together "
-                                       f"may use {self.limits.memory / 2**30:g} GiB)")
+        except subprocess.TimeoutExpired:  # alive, but the pipe ended: it closed the grader's
+            return fault("crashed", f"{what} closed the grader's pipe to the worker; do not close or "
+                                    "replace file descriptors your code did not open")
+        if self._measured.oom_killed(self.cgroup):
+            return fault("memory", self._memory_words(what))
         if code is not None and code < 0:
             signame = signal.Signals(-code).name if -code in signal.valid_signals() else str(-code)
+            if signame == "SIGKILL" and self.cgroup is None and self._measured.peak >= self.memory // 2:
+                # No cgroup to count out-of-memory kills: the system's OOM killer picks the process
+                # holding the most memory, and this one held half its limit or more.
+                return fault("memory", f"{what} was killed by the system while holding "
+                                       f"{self._measured.peak // 2**20} MB of memory (out of memory)")
             reasons = {
                 "SIGXCPU": "used up its CPU time limit",
                 "SIGXFSZ": f"wrote more than {self.limits.file_size // 2**20} MB (printed output counts)",
                 "SIGSEGV": "crashed with a segmentation fault",
-                "SIGKILL": "was killed (out of memory?)",
+                "SIGKILL": "was killed (SIGKILL), not by the grader; do not kill processes",
                 "SIGABRT": "aborted",
             }
             kind = "output_too_large" if signame == "SIGXFSZ" else "crashed"
-            message = f"{what} {reasons.get(signame, f'was stopped by {signame}')}"
-        else:
-            kind = "crashed"
-            message = (f"{what} ended the worker process (exit code {code}); "
-                       "do not call os._exit() or kill processes")
-        return CallOutcome(ok=False, kind=kind, message=message, seconds=seconds)
+            return fault(kind, f"{what} {reasons.get(signame, f'was stopped by {signame}')}")
+        return fault("crashed", f"{what} ended the worker process (exit code {code}); "
+                                "do not call os._exit() or kill processes")
+
+    def _memory_words(self, what: str) -> str:
+        return f"{what} used more than {self.memory // 2**20} MB of memory"
+
+    def _pipe_taken(self) -> bool:
+        """Whether the worker, alive, no longer holds the grader's pipe at its descriptor (the
+        submission closed it, or put another file there), as ``/proc`` shows the grader."""
+        pid = self._worker_pid
+        if pid is None or not self._worker_pipes:
+            return False
+        if not any(evidence.holds_pipe(pid, fd, inode) is False for fd, inode in self._worker_pipes):
+            return False
+        # A process that is ending closes its descriptors a moment before it is gone: one
+        # that has not ended a little later has let the pipe go itself.
+        for pause in confine._pauses(seconds=0.2, longest=0.02):
+            if not self._worker_alive():
+                return False
+            time.sleep(pause)
+        return self._worker_alive()
+
+    TICK = 0.05  # seconds between looks at the worker while a request runs
+
+    def _check_in(self) -> None:
+        """While a request runs, every :attr:`TICK`: raise :class:`_Stopped` as soon as the grader
+        sees the worker without its pipe, ended (its children may hold the pipe open), or -- where
+        no cgroup makes the kernel enforce them -- over its memory or its processes."""
+        if not self._watching or self.proc is None:
+            return
+        if self._pipe_taken():
+            raise _Stopped("pipe")
+        if self._worker_pid is not None and not self._worker_alive():
+            raise EOFError
+        if self.cgroup is None:
+            pids = [self.proc.pid, *evidence.descendants(self.proc.pid)]
+            if len(set(pids) - self._own_pids) > self.limits.extra_processes:
+                raise _Stopped("processes")
+            used = evidence.memory_in_use(pids)
+            if used is not None:
+                self._measured.peak = max(self._measured.peak, used)
+                if used > self.memory:
+                    raise _Stopped("memory")
+
+    def _wait(self, fd: int, write: bool, deadline: float) -> None:
+        """Wait until ``fd`` is ready, looking at the worker meanwhile; TimeoutError at ``deadline``."""
+        while True:
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                raise TimeoutError
+            ready = select.select([] if write else [fd], [fd] if write else [], [], min(remaining, self.TICK))
+            if ready[0] or ready[1]:
+                return
+            self._check_in()
 
     def _write(self, data: bytes, deadline: float):
         view = memoryview(data)
         while view:
-            remaining = deadline - time.monotonic()
-            if remaining <= 0:
-                raise TimeoutError
-            _, writable, _ = select.select([], [self._request_fd], [], remaining)
-            if writable:
-                view = view[os.write(self._request_fd, view[:PIPE_BYTES]):]
+            self._wait(self._request_fd, True, deadline)
+            view = view[os.write(self._request_fd, view[:PIPE_BYTES]):]
 
     def _read(self, n: int, deadline: float) -> bytes:
         chunks = []
         while n:
-            remaining = deadline - time.monotonic()
-            if remaining <= 0:
-                raise TimeoutError
-            readable, _, _ = select.select([self._response_fd], [], [], remaining)
-            if not readable:
-                continue
+            self._wait(self._response_fd, False, deadline)
             chunk = os.read(self._response_fd, min(n, 1 << 20))
             if not chunk:
                 raise EOFError

@@ -68,7 +68,8 @@ class CheckReport:
     __repr__ = __str__
 
 
-def check(*selectors: str, notebook=None, submission=None, public_only: bool = False) -> CheckReport:
+def check(*selectors: str, notebook=None, submission=None, public_only: bool = False,
+          validate: bool = False):
     """Grade ``selectors`` (``"lab07.ex2"``, ``"lab07"``; everything when none) now.
 
     Parameters
@@ -79,6 +80,10 @@ def check(*selectors: str, notebook=None, submission=None, public_only: bool = F
         Grade this folder, ``.py``, ``.zip`` or notebook, as ``grade.py --submission`` does.
     public_only : bool
         Skip hidden checks (a student's copy has none anyway).
+    validate : bool
+        Instead of grading, say what would lose points for reasons other than the
+        algorithm (names, imports, cells left out, signatures, dtypes): returns a
+        :class:`~autograder.validate.Validation` (see ``autograder validate``).
 
     Returns
     -------
@@ -91,6 +96,16 @@ def check(*selectors: str, notebook=None, submission=None, public_only: bool = F
     exercises = select(selectors)
     modules = sorted({ex.lab.module for ex in exercises})
     path, source, temporary = _what_to_grade(modules, notebook, submission)
+    if validate:
+        from .validate import validate as validated
+
+        try:
+            report = validated(path, list(selectors))
+        finally:
+            if temporary:
+                shutil.rmtree(temporary, ignore_errors=True)
+        report.submission = source
+        return report
     try:
         result = grade(path, list(selectors), pictures="failed", include_hidden=not public_only)
     finally:

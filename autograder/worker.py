@@ -1,8 +1,9 @@
 """The sandboxed worker: imports student modules and calls one function per request.
 
 This file runs in its own process, as a copy placed in the submission's scratch
-directory next to a copy of ``transport.py``; it imports nothing else from the
-grader, so the worker never sees checks, fixtures or reference solutions.
+directory next to copies of ``transport.py`` and ``beginner.py`` (the sentences for
+a beginner's mistakes); it imports nothing else from the grader, so the worker
+never sees checks, fixtures or reference solutions.
 
 Protocol: the parent writes length-prefixed transport frames to the request pipe
 and reads one length-prefixed frame per request from the response pipe. A
@@ -36,6 +37,7 @@ import traceback
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, _HERE)
+import beginner  # noqa: E402  (the copy beside this file)
 import transport  # noqa: E402  (the copy beside this file)
 
 sys.path.remove(_HERE)
@@ -167,6 +169,18 @@ def _exception_line(exc):
     return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
 
 
+def explained(exc, arguments=()):
+    """The beginner's sentence for ``exc`` and a newline (an OpenCV error explained from the
+    arguments given, ``image[x, y]`` for ``image[y, x]``...), or ``""``; never raises."""
+    try:
+        sentence = beginner.sentence_of(exc)
+        if not sentence and isinstance(exc, IndexError):
+            sentence = beginner.explain_index_error(str(exc), list(arguments))
+    except BaseException:  # noqa: BLE001 - the student's code may have broken anything
+        return ""
+    return sentence + "\n" if sentence else ""
+
+
 def failure(kind, message, tb="", seconds=0.0):
     return {"ok": False, "kind": kind, "message": message, "traceback": tb, "seconds": seconds}
 
@@ -290,7 +304,7 @@ class Worker:
                            time.perf_counter() - start)
         except BaseException as exc:  # noqa: BLE001 - anything the student's import raises
             return failure("import_error",
-                           f"{name}.py failed to import: {_exception_line(exc)}",
+                           f"{explained(exc)}{name}.py failed to import: {_exception_line(exc)}",
                            student_traceback(exc, self.submission_dir),
                            time.perf_counter() - start)
         return {"ok": True, "value": None, "seconds": time.perf_counter() - start}
@@ -356,7 +370,8 @@ class Worker:
             return failure("exception", f"{name}() called sys.exit({exc.code!r})",
                            student_traceback(exc, self.submission_dir), time.perf_counter() - start)
         except BaseException as exc:  # noqa: BLE001
-            return failure("exception", f"{name}() raised {_exception_line(exc)}",
+            sentence = explained(exc, list(args) + list(kwargs.values()))
+            return failure("exception", f"{sentence}{name}() raised {_exception_line(exc)}",
                            student_traceback(exc, self.submission_dir), time.perf_counter() - start)
         finally:
             seconds = time.perf_counter() - start
@@ -467,6 +482,7 @@ def main(argv):
     else:
         if limits.get("threads"):
             cv2.setNumThreads(limits["threads"])  # the cores are shared with other workers
+        beginner.watch(cv2)  # an error inside an OpenCV function then says what was wrong with its arguments
     sys.path.insert(0, os.path.abspath(submission_dir))
     send(response_fd, {"ok": True, "value": "ready", "seconds": 0.0})  # start-up done
     file_size_mb = (limits.get("file_size") or 0) // 2**20 or None

@@ -1,0 +1,213 @@
+"""A beginner's mistakes get a sentence before the library's trace (issue 27).
+
+OpenCV's own errors are raised here by calling it wrongly, as students do, and the
+sentence :mod:`autograder.beginner` gives for each is checked for what it must
+name: the function, the argument, what it got, and the fix. End to end, graded
+submissions with the issue's integer matrix, ``image[x, y]``, a rotation matrix
+built as integers and an RGB result get that sentence first; what a student's
+code does with OpenCV (results, caught errors, forbidden functions) is unchanged.
+"""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+import pytest
+
+from autograder import beginner
+from autograder.checks import Fail, Trial
+from autograder.registry import select
+from autograder.runner import grade
+from conftest import mutant
+
+IMAGE = np.zeros((40, 60, 3), np.uint8)
+GREY = np.zeros((40, 60), np.uint8)
+
+
+def sentence(function_name: str, *args, **kwargs) -> str:
+    """The sentence for calling ``cv2.<function_name>`` so, as the worker's watched OpenCV gives it."""
+    watched = beginner._watched(getattr(cv2, function_name), f"cv2.{function_name}")  # noqa: SLF001
+    with pytest.raises(cv2.error) as raised:
+        watched(*args, **kwargs)
+    return beginner.sentence_of(raised.value)
+
+
+CASES = [
+    # (function, args, kwargs, what the sentence must say)
+    ("warpAffine", (IMAGE, np.array([[1, 0, 5], [0, 1, 3]]), (60, 40)), {},
+     ["cv2.warpAffine needs M as a float32 or float64 matrix", "yours is int64", "dtype=float"]),
+    ("warpAffine", (IMAGE, np.eye(3), (60, 40)), {},
+     ["cv2.warpAffine needs M of shape (2, 3); yours is (3, 3)", "M[:2]"]),
+    ("warpPerspective", (IMAGE, np.eye(3)[:2], (60, 40)), {},
+     ["cv2.warpPerspective needs M of shape (3, 3); yours is (2, 3)", "[0, 0, 1]"]),
+    ("warpPerspective", (IMAGE, np.eye(3, dtype=int), (60, 40)), {}, ["float32 or float64", "int64"]),
+    ("warpAffine", (IMAGE.astype(np.int64), np.eye(3)[:2], (60, 40)), {},
+     ["cannot work on src, a int64 image", "astype(np.uint8)"]),
+    ("warpAffine", (IMAGE, np.eye(3)[:2], (60.0, 40)), {}, ["dsize as whole numbers", "(width, height)", "60.0"]),
+    ("warpAffine", (None, np.eye(3)[:2], (60, 40)), {}, ["got None for src", "cv2.imread"]),
+    ("warpAffine", ([[1, 2], [3, 4]], np.eye(3)[:2], (60, 40)), {}, ["needs a numpy array for src; yours is a list, [[1, 2], [3, 4]]", "np.asarray"]),
+    ("circle", (IMAGE, (12.5, 20.0), 3, (0, 0, 255)), {},
+     ["cv2.circle needs center as whole numbers, pixel coordinates", "(12.5, 20.0)", "int(round(x))"]),
+    ("circle", (IMAGE, (12, 20), 2.5, (0, 0, 255)), {}, ["whole number for radius", "2.5"]),
+    ("line", (IMAGE, (np.float64(1.5), 2), (3, 4), (255, 0, 0)), {}, ["pt1 as whole numbers", "1.5"]),
+    ("circle", (IMAGE, (1, 2, 3), 2, (255, 0, 0)), {}, ["center as 2 numbers; yours has 3"]),
+    ("cvtColor", (GREY, cv2.COLOR_BGR2GRAY), {}, ["cannot convert src with 1 channel", "already grey"]),
+    ("cvtColor", (IMAGE.astype(np.int64), cv2.COLOR_BGR2GRAY), {}, ["int64 image", "astype"]),
+    ("getPerspectiveTransform", (np.zeros((4, 2)), np.zeros((4, 2))), {},
+     ["exactly 4 points of 2 float32 coordinates", "float64", "np.float32(src)"]),
+    ("perspectiveTransform", (np.zeros((4, 2)), np.eye(3)), {}, ["(N, 1, 2)", "reshape(-1, 1, 2)"]),
+    ("findHomography", (np.zeros((3, 2)), np.zeros((3, 2))), {}, ["at least 4 point pairs; yours has 3"]),
+    ("Rodrigues", (np.zeros((3, 3), int),), {}, ["float", "int64"]),
+    ("imshow", ("result", IMAGE), {}, ["cv2.imshow opens a window", "without a screen", "plt.imshow"]),
+    ("GaussianBlur", (GREY, (4, 4), 0), {}, ["odd, positive kernel size; yours is (4, 4)"]),
+    ("triangulatePoints", (np.eye(3, 4), np.eye(3, 4), np.zeros((2, 5), int), np.zeros((2, 5), int)), {},
+     ["as float32 or float64; yours are int64"]),
+]
+
+
+@pytest.mark.parametrize("function, args, kwargs, words", CASES, ids=[f"{c[0]}-{i}" for i, c in enumerate(CASES)])
+def test_an_opencv_error_gets_a_sentence_naming_the_argument_and_the_fix(function, args, kwargs, words):
+    said = sentence(function, *args, **kwargs)
+    assert said.startswith(f"cv2.{function}"), said
+    for word in words:
+        assert word in said, (word, said)
+    assert "\n" not in said and "Assertion" not in said
+
+
+def test_an_error_of_an_opencv_method_is_explained_from_its_message():
+    stereo = cv2.StereoBM_create(16, 5)
+    with pytest.raises(cv2.error) as raised:
+        stereo.compute(GREY.astype(np.float64), GREY.astype(np.float64))
+    said = beginner.sentence_of(raised.value)
+    assert said.startswith("OpenCV's compute needs grey uint8 images"), said
+
+
+def test_watching_opencv_changes_nothing_the_students_code_sees():
+    class Library:  # a stand-in for the cv2 module, with two of its functions
+        warpAffine, add, error = cv2.warpAffine, cv2.add, cv2.error
+
+    beginner.watch(Library)
+    moved = Library.warpAffine(IMAGE + 7, np.float64([[1, 0, 2], [0, 1, 1]]), (60, 40))
+    assert np.array_equal(moved, cv2.warpAffine(IMAGE + 7, np.float64([[1, 0, 2], [0, 1, 1]]), (60, 40)))
+    assert Library.warpAffine.__wrapped__ is cv2.warpAffine and Library.warpAffine.__name__ == "warpAffine"
+    try:  # a student catching OpenCV's error still catches it
+        Library.add(IMAGE, GREY)
+    except cv2.error as caught:
+        assert "Sizes" in str(caught) or "size" in str(caught).lower()
+    else:
+        pytest.fail("cv2.add of different sizes raised nothing")
+
+
+def test_an_index_error_from_x_y_order_is_named():
+    image = np.zeros((40, 60), np.uint8)
+    try:
+        image[50, 10]
+    except IndexError as exc:
+        said = beginner.explain_index_error(str(exc), [image])
+    assert "[row, column], that is [y, x]" in said and "width (60)" in said and "height (40)" in said
+    assert beginner.explain_index_error("index 80 is out of bounds for axis 0 with size 40", [image]) == ""
+
+
+def test_integer_entries_and_reversed_channels_are_recognised():
+    rotation = np.array([[0.866, 0.5, 0.0], [-0.5, 0.866, 0.0], [0.0, 0.0, 1.0]])
+    assert "cut off" in beginner.integer_entries(rotation.astype(int), rotation)
+    assert beginner.integer_entries(rotation, rotation) == ""
+    assert beginner.integer_entries(np.eye(3, dtype=int), np.eye(3)) == ""  # whole numbers: nothing lost
+    colour = np.random.default_rng(0).integers(0, 255, (30, 40, 3)).astype(np.uint8)
+    assert beginner.channels_reversed(colour[..., ::-1], colour)
+    assert not beginner.channels_reversed(colour, colour)
+    grey_as_colour = np.repeat(colour[..., :1], 3, axis=2)
+    assert not beginner.channels_reversed(grey_as_colour, grey_as_colour)
+
+
+def test_an_integer_array_where_floats_are_expected_gets_the_fix_as_hint():
+    check = select(["lab07.ex1"])[0].checks[0]
+    trial = Trial(None, check)
+    with pytest.raises(Fail) as failed:
+        trial.expect_array(np.arange(4), "f()", kind="f")
+    assert "dtype=float" in failed.value.hint
+    with pytest.raises(Fail) as failed:
+        trial.expect_array(np.arange(4, dtype=np.uint8), "f()", kind="f")
+    assert "wraps around at 256" in failed.value.hint
+
+
+# ------------------------------------------------------------------ graded end to end
+INTEGER_MATRIX = '''
+def translation_matrix(tx, ty):
+    return np.array([[1, 0, tx], [0, 1, ty], [0, 0, 1]])
+
+
+def translate(image, tx=100, ty=50):
+    height, width = image.shape[:2]
+    return cv2.warpAffine(image, translation_matrix(tx, ty)[:2], (width, height))
+'''
+
+
+def test_the_issues_integer_matrix_is_named_before_opencvs_assertion(tmp_path):
+    result = grade(mutant(tmp_path, "lab07_transformations", INTEGER_MATRIX), ["lab07.ex1"], pictures="none")
+    failed = [c for e in result.exercises for c in e.checks if c.score < c.max_score]
+    assert failed and all(c.message.startswith("cv2.warpAffine needs M as a float32 or float64 matrix; "
+                                               "yours is int64") for c in failed), [c.message for c in failed]
+    assert "Assertion failed" in failed[0].message  # OpenCV's words follow, for whoever wants them
+
+
+X_Y_ORDER = '''
+def translate(image, tx=100, ty=50):
+    height, width = image.shape[:2]
+    out = np.zeros_like(image)
+    for x in range(width):
+        for y in range(height):
+            if 0 <= x - tx < width and 0 <= y - ty < height:
+                out[x, y] = image[x - tx, y - ty]
+    return out
+'''
+
+
+def test_indexing_an_image_x_first_is_named(tmp_path):
+    result = grade(mutant(tmp_path, "lab07_transformations", X_Y_ORDER), ["lab07.ex1"], pictures="none")
+    messages = [c.message for e in result.exercises for c in e.checks if c.score < c.max_score]
+    assert messages and messages[0].startswith("an image is indexed [row, column], that is [y, x]"), messages
+
+
+INTEGER_ROTATION = '''
+def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+    theta = np.deg2rad(angle_deg)
+    c, s = np.cos(theta), np.sin(theta)
+    M = np.eye(3, dtype=int)
+    M[:2, :2] = [[c, s], [-s, c]]
+    M[:2, 2] = np.asarray(center) - M[:2, :2] @ np.asarray(center)
+    return M
+'''
+
+RGB_RESULT = '''
+def translate(image, tx=100, ty=50):
+    height, width = image.shape[:2]
+    moved = cv2.warpAffine(image, translation_matrix(tx, ty)[:2], (width, height))
+    return cv2.cvtColor(moved, cv2.COLOR_BGR2RGB) if moved.ndim == 3 else moved
+'''
+
+
+def test_values_built_as_integers_or_as_rgb_are_named_where_they_are_judged(tmp_path):
+    result = grade(mutant(tmp_path, "lab07_transformations", INTEGER_ROTATION), ["lab07.ex2"], pictures="none")
+    messages = [c.message for e in result.exercises for c in e.checks if c.score < c.max_score]
+    assert messages and "holds integers (int64)" in messages[0] and "dtype=float" in messages[0], messages
+    result = grade(mutant(tmp_path / "rgb", "lab07_transformations", RGB_RESULT), ["lab07.ex1"], pictures="none")
+    failed = [c for e in result.exercises for c in e.checks if c.score < c.max_score]
+    assert failed and all("the colour channels are reversed (RGB for BGR)" in c.message for c in failed)
+    assert "translate keeps a grey image grey" not in [c.name for c in failed]  # grey: nothing to reverse
+
+
+FORBIDDEN_IMPORTED = '''
+from cv2 import estimateAffine2D
+
+
+def affine_lstsq(src, dst):
+    M, _ = estimateAffine2D(np.float32(src), np.float32(dst))
+    return M
+'''
+
+
+def test_a_forbidden_function_imported_by_name_is_still_caught(tmp_path):
+    result = grade(mutant(tmp_path, "lab07_transformations", FORBIDDEN_IMPORTED), ["lab07.ex6"], pictures="none")
+    failures = {c.failure for e in result.exercises for c in e.checks if c.max_score}
+    assert failures == {"forbidden_call"}
