@@ -659,6 +659,24 @@ class Cgroup:
                     pass
         return count
 
+    def memory_limit_hits(self) -> int:
+        """How many times the memory of this cgroup reached its limit (each time the kernel
+        had to reclaim pages to go on): a process pressing against its limit thrashes,
+        slowly, before anything is killed."""
+        count = 0
+        for folder in self.folders:
+            try:
+                if (folder / "memory.events").exists():
+                    for line in (folder / "memory.events").read_text().splitlines():
+                        key, _, value = line.partition(" ")
+                        if key == "max":
+                            count += int(value)
+                elif (folder / "memory.failcnt").exists():
+                    count += int((folder / "memory.failcnt").read_text())
+            except (OSError, ValueError):
+                pass
+        return count
+
 
 # ------------------------------------------------------------------ reaping
 @lru_cache(maxsize=1)

@@ -5,10 +5,12 @@ one sandboxed worker, runs every check in the grader's process and returns a
 :class:`~autograder.results.GradingResult`. It never raises because of the
 submission; a failure inside a check is recorded as a grader error for that check.
 
-Student time is budgeted per exercise and per submission (``Limits.exercise_budget``,
-``Limits.submission_budget``): once a budget is spent, the checks left are marked
-"time budget exhausted" (0 points) without calling anything, and the results are
-still complete.
+Student time is budgeted per exercise (``Limits.exercise_budget``, the seconds billed
+to its calls), and the whole grading has a wall-clock deadline (``Limits.submission_budget``
+after it began, whatever runs meanwhile: calls, restarts, other lanes, the grader's own
+judging; a call running then is stopped at it): once either is spent, the checks left
+are marked "time budget exhausted" (0 points) without calling anything, and the results
+are still complete.
 
 An exercise whose functions are all stubs (bodies that only raise
 ``NotImplementedError``, see :mod:`autograder.stubs`) costs almost nothing: a check
@@ -115,6 +117,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
     if pictures not in PICTURES:
         raise ValueError(f"pictures must be one of {PICTURES}, got {pictures!r}")
     started = time.perf_counter()
+    deadline = time.monotonic() + (limits or Limits()).submission_budget
     exercises = select(selectors, include_hidden)
     modules = sorted({ex.lab.module for ex in exercises})
     every_module = {lab.module for lab in discover().values()}  # a lone file is never another lab's
@@ -143,7 +146,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         stopping = threading.Event()  # set when grading ends early (an interrupt, a grader bug)
 
         def lane(sandbox: Sandbox):
-            budget = _Budget(sandbox, sandboxes)
+            budget = _Budget(sandbox, deadline)
             while labs and not stopping.is_set():
                 try:
                     lab = labs.pop(0)  # atomic: each lab goes to one lane
@@ -229,25 +232,20 @@ def _labs_heaviest_first(exercises: list[Exercise]) -> list[list[Exercise]]:
 
 
 class _Budget:
-    """The per-exercise and per-submission time budgets, as limits on the sandbox's billed time
-    (the submission's budget counts the time billed in every lane)."""
+    """A lane's time: each exercise's budget of billed student seconds, and the submission's
+    wall-clock deadline (``time.monotonic()``), the same for every lane."""
 
-    def __init__(self, sandbox: Sandbox, lanes: list[Sandbox]):
-        self.sandbox, self.lanes = sandbox, lanes
+    def __init__(self, sandbox: Sandbox, deadline: float):
+        self.sandbox, self.deadline = sandbox, deadline
         self.limits = sandbox.limits
-        if len(lanes) > 1:  # within a check too: another lane may spend the submission's time meanwhile
-            sandbox.share_budget(self.spent, self.limits.submission_budget)
-
-    def spent(self) -> float:
-        return sum(sandbox.student_seconds for sandbox in self.lanes)
+        sandbox.set_deadline(deadline)  # within a check too: a call running then is stopped at it
 
     def start_exercise(self):
-        left = self.limits.submission_budget - self.spent()
-        self.sandbox.start_exercise(self.sandbox.student_seconds + min(self.limits.exercise_budget, left))
+        self.sandbox.start_exercise(self.sandbox.student_seconds + self.limits.exercise_budget)
 
     def exhausted(self) -> str:
         """Which budget is spent ("" while there is time left)."""
-        if self.spent() >= self.limits.submission_budget:
+        if time.monotonic() >= self.deadline:
             return f"time budget exhausted (the submission's {self.limits.submission_budget:g} s)"
         if self.sandbox.remaining() <= 0:
             return f"time budget exhausted (this exercise's {self.limits.exercise_budget:g} s)"

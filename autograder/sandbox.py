@@ -58,7 +58,7 @@ class Limits:
     call_timeout: float = 10.0           # wall seconds per call, unless a check says otherwise
     import_timeout: float = 20.0         # wall seconds to import one student module
     address_space: int = 6 * 2**30       # bytes of virtual memory, per process
-    memory: int = 6 * 2**30              # bytes for the worker and all its children (cgroup, where available)
+    memory: int = 6 * 2**30              # bytes for the worker and all its children (see Sandbox.memory)
     scratch_bytes: int = 256 * 2**20     # writable scratch, and again /tmp (tmpfs, namespaced levels)
     file_size: int = 64 * 2**20          # bytes in any file written, printed output included
     cpu_total: int = 1800                # CPU seconds over the worker's life

@@ -2,9 +2,12 @@
 
 Values cross the process boundary as one *frame*: a JSON header describing the
 value tree, followed by the raw bytes of every array in it. Decoding builds only
-``None``, ``bool``, ``int``, ``float``, ``complex``, ``str``, ``list``,
-``tuple``, ``dict`` (string keys) and exact ``numpy.ndarray`` objects of numeric
-or boolean dtype. Nothing in a frame can name a class, a function or a module,
+``None``, ``bool``, ``int`` (64-bit), ``float``, ``complex``, ``str`` (valid
+Unicode), ``list``, ``tuple``, ``dict`` (string keys) and exact ``numpy.ndarray``
+objects of boolean, integer, float32/64 or complex64/128 dtype in the machine's
+byte order: what the grader's checks compute with. An integer beyond 64 bits
+crosses as the nearest float (infinite beyond a float's range), as NumPy would
+hold it. Nothing in a frame can name a class, a function or a module,
 so decoding can never execute code (this is why we do not use pickle), and an
 ``ndarray`` subclass or an object whose ``__eq__`` always says yes cannot come
 back.
@@ -40,8 +43,11 @@ MAX_HEADER_BYTES = 4 * 1024 * 1024  # checked before parsing: JSON costs ~25x it
 MAX_DEPTH = 64
 MAX_NODES = 1_000_000
 
-# Dtypes that can cross: booleans and fixed-size numbers, in either byte order.
+# Dtypes that can cross: booleans, integers, and the floats and complex numbers NumPy's
+# linear algebra and OpenCV compute with (not float16 or long double), in either byte order.
 _ALLOWED_KINDS = {"b", "i", "u", "f", "c"}
+_ALLOWED_SIZES = {"f": (4, 8), "c": (8, 16)}
+INT64 = 2**63
 
 
 class TransportError(ValueError):
@@ -76,9 +82,7 @@ def encode(value, max_bytes: int = DEFAULT_MAX_BYTES) -> bytes:
         if v is None or t is bool or t is str:
             return v
         if t is int:
-            if abs(v) >= 2**63:
-                return {"big": str(v)}
-            return v
+            return v if -INT64 <= v < INT64 else _float_node(_int_as_float(v))
         if t is float:
             return _float_node(v)
         if t is complex:
@@ -86,17 +90,21 @@ def encode(value, max_bytes: int = DEFAULT_MAX_BYTES) -> bytes:
         if isinstance(v, np.generic) and type(v).__module__ == "numpy":
             if v.dtype.kind not in _ALLOWED_KINDS:
                 raise TransportError(f"returned a NumPy scalar of dtype {v.dtype}; return a number")
-            return node(v.item(), depth + 1)
+            item = v.item()  # a long double stays one: it crosses as the nearest float
+            if isinstance(item, np.generic):
+                item = complex(item) if v.dtype.kind == "c" else float(item)
+            return node(item, depth + 1)
         if t is np.ndarray:
-            if v.dtype.kind not in _ALLOWED_KINDS:
-                raise TransportError(
-                    f"returned an array of dtype {v.dtype}; use a numeric or bool dtype"
-                )
-            data = np.ascontiguousarray(v).tobytes()
-            size[0] += len(data)
+            if not _allowed(v.dtype):
+                use = {"f": "float32 or float64", "c": "complex64 or complex128"}.get(
+                    v.dtype.kind, "a numeric or bool dtype")
+                raise TransportError(f"returned an array of dtype {v.dtype}; use {use}")
+            # Counted before the bytes are made: a broadcast view (zero strides) of a few
+            # bytes can stand for gigabytes.
+            size[0] += v.nbytes
             if size[0] > max_bytes:
                 raise TransportError(f"returned more than {max_bytes // 2**20} MiB")
-            buffers.append(data)
+            buffers.append(np.ascontiguousarray(v).tobytes())
             return {"a": len(buffers) - 1, "dtype": v.dtype.str, "shape": list(v.shape)}
         if isinstance(v, np.ndarray):
             raise TransportError(
@@ -120,10 +128,26 @@ def encode(value, max_bytes: int = DEFAULT_MAX_BYTES) -> bytes:
         )
 
     header = json.dumps(node(value, 0), separators=(",", ":")).encode()
+    if len(header) > MAX_HEADER_BYTES:
+        raise TransportError(f"returned more than {MAX_HEADER_BYTES // 2**20} MiB of numbers and text "
+                             "outside arrays (return an array)")
     total = PREFIX.size + len(header) + size[0]
     if total > max_bytes:
         raise TransportError(f"returned more than {max_bytes // 2**20} MiB")
     return b"".join([PREFIX.pack(MAGIC, len(header)), header, *buffers])
+
+
+def _int_as_float(n: int) -> float:
+    """The float nearest ``n``, infinite beyond a float's range."""
+    try:
+        return float(n)
+    except OverflowError:
+        return math.inf if n > 0 else -math.inf
+
+
+def _allowed(dtype: np.dtype) -> bool:
+    return (dtype.kind in _ALLOWED_KINDS and dtype.fields is None
+            and dtype.itemsize in _ALLOWED_SIZES.get(dtype.kind, (dtype.itemsize,)))
 
 
 def _float_node(x: float):
@@ -180,10 +204,12 @@ def _decode(frame, max_bytes, max_header):
         nodes[0] += 1
         if depth > MAX_DEPTH or nodes[0] > MAX_NODES:
             raise TransportError("frame too deeply nested or too large")
-        if n is None or type(n) in (bool, str, float):
+        if n is None or type(n) in (bool, float):
             return n
+        if type(n) is str:
+            return _unicode(n)
         if type(n) is int:
-            if abs(n) >= 2**63:
+            if not -INT64 <= n < INT64:
                 raise TransportError("integer out of range")
             return n
         if type(n) is not dict or len(n) == 0:
@@ -202,7 +228,7 @@ def _decode(frame, max_bytes, max_header):
             for item in body:
                 if type(item) is not list or len(item) != 2 or type(item[0]) is not str:
                     raise TransportError("bad dict item")
-                out[item[0]] = value(item[1], depth + 1)
+                out[_unicode(item[0])] = value(item[1], depth + 1)
             return out
         if tag == "f" and body in ("nan", "inf", "-inf"):
             return float(body)
@@ -211,8 +237,6 @@ def _decode(frame, max_bytes, max_header):
             if type(re) not in (float, int) or type(im) not in (float, int):
                 raise TransportError("bad complex")
             return complex(re, im)
-        if tag == "big" and type(body) is str and body.lstrip("-").isdigit() and len(body) < 400:
-            return int(body)
         raise TransportError("bad node")
 
     def array(n):
@@ -228,13 +252,13 @@ def _decode(frame, max_bytes, max_header):
             dtype = np.dtype(dtype_str)
         except TypeError:
             raise TransportError("bad dtype") from None
-        if dtype.kind not in _ALLOWED_KINDS or dtype.str != dtype_str or dtype.fields is not None:
+        if not _allowed(dtype) or dtype.str != dtype_str:
             raise TransportError(f"dtype {dtype_str!r} not allowed")
         if type(shape) is not list or len(shape) > 32:
             raise TransportError("bad shape")
         count = 1
         for s in shape:
-            if type(s) is not int or s < 0:
+            if type(s) is not int or not 0 <= s < INT64:
                 raise TransportError("bad shape")
             count *= s
         nbytes = count * dtype.itemsize
@@ -243,12 +267,24 @@ def _decode(frame, max_bytes, max_header):
             raise TransportError("array data truncated")
         offset[0] = start + nbytes
         out = np.frombuffer(frame, dtype=dtype, count=count, offset=start).reshape(shape)
-        return np.array(out, copy=True)  # writeable, owns its data, exact ndarray
+        # Writeable, owning its data, an exact ndarray, in the machine's byte order (which
+        # OpenCV needs; the values are the same).
+        return np.array(out, dtype=dtype.newbyteorder("="), copy=True)
 
     result = value(tree, 0)
     if offset[0] != len(frame):
         raise TransportError("trailing bytes after the last array")
     return result
+
+
+def _unicode(text: str) -> str:
+    """``text``, with any lone surrogate (valid JSON, not valid Unicode) replaced: every
+    string of a reply can be written to a page or a UTF-8 file."""
+    try:
+        text.encode("utf-8")
+        return text
+    except UnicodeEncodeError:
+        return text.encode("utf-8", "replace").decode("utf-8")
 
 
 def _reject_constant(name):

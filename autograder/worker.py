@@ -111,16 +111,40 @@ def read_exact(fd, n):
     return b"".join(chunks)
 
 
-def send(fd, message):
+def send(fd, message, max_bytes=transport.DEFAULT_MAX_BYTES):
+    """Write one reply; a value that cannot cross is that call's failure, never the worker's end."""
     try:
-        frame = transport.encode(message)
+        frame = transport.encode(message, max_bytes)
     except transport.TransportError as exc:
-        reply = {"ok": False, "kind": "result_type", "message": str(exc), "traceback": "",
-                 "seconds": message.get("seconds", 0.0), "id": message.get("id")}
-        if "suspect" in message:
-            reply["suspect"] = message["suspect"]
-        frame = transport.encode(reply)
-    transport.write_frame(fd, LENGTH.pack(len(frame)) + frame)
+        frame = _failure_frame(message, "result_type", str(exc))
+    except MemoryError:  # the copy of a result made for the pipe did not fit (RLIMIT_AS)
+        frame = _failure_frame(message, "memory", "its result could not be copied out (MemoryError)")
+    except (Exception, RecursionError) as exc:  # noqa: BLE001 - whatever the value does while encoded
+        frame = _failure_frame(message, "result_type",
+                               f"returned a value that cannot be sent back ({type(exc).__name__})")
+    try:
+        transport.write_frame(fd, LENGTH.pack(len(frame)) + frame)
+    except OSError:
+        hold_still()
+
+
+def _failure_frame(message, kind, text):
+    reply = {"ok": False, "kind": kind, "message": text, "traceback": "",
+             "seconds": message.get("seconds", 0.0), "id": message.get("id")}
+    if "suspect" in message:
+        reply["suspect"] = message["suspect"]
+    return transport.encode(reply)
+
+
+def hold_still():
+    """The grader's pipe is gone from this process (the submission closed it, or put another
+    file at its descriptor). Say nothing and wait to be stopped: the grader sees the pipe
+    missing from this process's descriptors, which is its evidence, and the call that did it
+    is charged (a worker that ended instead could not be told from one that called exit)."""
+    end = time.monotonic() + 600  # bounded: if the grader is gone too, do not stay forever
+    while time.monotonic() < end:
+        time.sleep(1)
+    os._exit(70)
 
 
 class CapturedOutput:
@@ -265,9 +289,10 @@ class _KeepAgg:
 
 # ------------------------------------------------------------------ the worker
 class Worker:
-    def __init__(self, submission_dir, file_size_mb=None):
+    def __init__(self, submission_dir, file_size_mb=None, max_result_bytes=transport.DEFAULT_MAX_BYTES):
         self.submission_dir = os.path.abspath(submission_dir)
         self.file_size_mb = file_size_mb
+        self.max_result_bytes = max_result_bytes
         self.modules = {}
         self.forbidden_called = []
 
@@ -428,6 +453,8 @@ class Worker:
                 request = transport.decode(read_exact(request_fd, length))
             except EOFError:
                 return
+            except OSError:  # the request pipe was closed under the worker
+                hold_still()
             with CapturedOutput(output_path):
                 if request.get("op") == "import":
                     response = self.handle_import(request["module"])
@@ -442,7 +469,7 @@ class Worker:
             reason = suspect_state()
             if reason:
                 response["suspect"] = reason
-            send(response_fd, response)
+            send(response_fd, response, self.max_result_bytes)
 
 
 def suspect_state():
@@ -486,7 +513,8 @@ def main(argv):
     sys.path.insert(0, os.path.abspath(submission_dir))
     send(response_fd, {"ok": True, "value": "ready", "seconds": 0.0})  # start-up done
     file_size_mb = (limits.get("file_size") or 0) // 2**20 or None
-    Worker(submission_dir, file_size_mb).serve(request_fd, response_fd, output_path)
+    max_result_bytes = limits.get("max_result_bytes") or transport.DEFAULT_MAX_BYTES
+    Worker(submission_dir, file_size_mb, max_result_bytes).serve(request_fd, response_fd, output_path)
 
 
 if __name__ == "__main__":
