@@ -149,10 +149,15 @@ def revoke() -> None:
     root = location()
     with _keys_lock:
         _keys.clear()
-        _folder_for.cache_clear()
-        if root is not None:
-            with contextlib.suppress(FileNotFoundError, NotADirectoryError):
-                os.unlink(root / _KEY_FILE)
+        _folder_for.cache_clear()  # its folders are checked again too: the worker could have swapped them
+        if root is None:
+            return
+        try:
+            os.unlink(root / _KEY_FILE)
+        except (FileNotFoundError, NotADirectoryError):
+            pass
+        except OSError as exc:  # a store the worker cannot write either (read-only): nothing to undo
+            logging.getLogger("autograder").warning("the store's key %s was not deleted: %s", root / _KEY_FILE, exc)
 
 
 # ------------------------------------------------------------------ keys
