@@ -82,9 +82,13 @@ def format_apart(value: float, other: float, digits: int = 3, percent: bool = Fa
     '0.30000001'
     >>> format_apart(0.081, 0.0809, digits=2, percent=True)
     '8.1%'
+    >>> format_apart(1.0, 0.22, digits=2, percent=True)
+    '100%'
     """
     value, other = float(value), float(other)
     factor, suffix = (100.0, "%") if percent else (1.0, "")
+    if np.isfinite(value) and 1 <= abs(factor * value) < 1e15:   # every digit before the point: 100%, not 1e+02%
+        digits = max(digits, int(np.floor(np.log10(abs(factor * value)))) + 1)
     if np.isfinite(value) and value != other:
         while digits < 17 and f"{factor * value:.{digits}g}" == f"{factor * other:.{digits}g}":
             digits += 1

@@ -638,7 +638,11 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     if missing:
         only = sorted(set(range(len(pts))) - set(missing) - set(_off_image(image.shape, pts)))
         first = " (only the first point is drawn: is the return inside the loop?)" if only == [0] else ""
-        t.fail(f"{what}: no circle at point(s) {missing} (of {len(pts)}){first}.",
+        h, w = image.shape[:2]
+        border = "" if first or not all(x in (0, w - 1) or y in (0, h - 1) for x, y in np.round(pts[missing])) \
+            else (f" (on the image's border: x = 0 and {w - 1}, y = 0 and {h - 1} are pixels of the image, "
+                  f"0 <= x < {w}: check the bounds)")
+        t.fail(f"{what}: no circle at point(s) {missing} (of {len(pts)}){first}{border}.",
                mistake="only the first point is drawn" if first else "some points are not drawn")
     drawn_radius = _drawn_radius(got, image, pts, color)
     if drawn_radius is not None and drawn_radius != radius:
@@ -694,10 +698,11 @@ def draw_example(t):
     return judge_drawing(t, "draw_points(image, pts)", t.call("draw_points", image, pts), image, pts)
 
 
-@ex5.check("draw_points with radius, colour, and points off the image", points=2)
+@ex5.check("draw_points with radius, colour, and points off the image and on its border", points=2)
 def draw_options(t):
     image = photo("coffee", (160, 120))
-    pts = np.array([[40.0, 40.0], [120.4, 80.6], [-30.0, 50.0], [500.0, 60.0]])
+    # off the image, then on its first and last columns and rows (the ends of 0..W-1, 0..H-1)
+    pts = np.array([[40.0, 40.0], [120.4, 80.6], [-30.0, 50.0], [500.0, 60.0], [0.0, 119.0], [159.0, 0.0]])
     return judge_drawing(t, "draw_points(image, pts, radius=6, color=(0, 255, 0))",
                          t.call("draw_points", image, pts, radius=6, color=(0, 255, 0)),
                          image, pts, radius=6, color=(0, 255, 0))

@@ -706,6 +706,23 @@ def judge_top_of_range(t: Trial, what: str, got, scene, top, legitimate: float, 
            f"at least {legitimate:.0%}): the search must include d = max_disparity.", hint=hint)
 
 
+def judge_range_ends(t: Trial, what: str, got, scene, reference: dict, show=True):
+    """The ends of the search range on ``scene`` (``zero_disparity``: a wall at infinity, d = 0,
+    and a square at d = max_disparity), against ``reference``, the reference's figures of the
+    same method there (``far_wrong``, ``top_found``): fail saying which end the search misses."""
+    far, _ = truth.far_and_near(scene.judged)
+    wrong = truth.far_wrong_rate(got, far)
+    if wrong > reference["far_wrong"] + FAR_SLACK:
+        if show:
+            show_disparity(t, f"{what} on {scene.name}", scene, got)
+        t.fail(f"{what}: the wall at infinity (true disparity {scene.judged[far].max():.2g} px, i.e. d = 0) "
+               f"gets a disparity of 1 or more at {format_apart(wrong, reference['far_wrong'] + FAR_SLACK, 2, True)} "
+               f"of its pixels (the reference: {reference['far_wrong']:.0%}): the search must include d = 0 "
+               "(d = 0..max_disparity).")
+    judge_top_of_range(t, what, got, scene, truth.top_of_range(scene.judged, scene.max_disparity),
+                       reference["top_found"], "the reference", show=show)
+
+
 def bm_figures(key: str) -> dict:
     return truth.reference_figures()["block_matching"][key]
 
@@ -783,7 +800,8 @@ ext1 = lab.exercise("ext1", "Normalised cross-correlation", functions=[
     "block_matching(left, right, max_disparity=64, block_size=9, cost=\"ncc\")"])
 
 
-@ext1.check("block_matching(cost=\"ncc\") on the Middlebury motorcycle", points=3, timeout=STEREO_TIMEOUT)
+@ext1.check("block_matching(cost=\"ncc\") on the Middlebury motorcycle, and at the ends of the search range",
+            points=3, timeout=STEREO_TIMEOUT)
 def ncc_motorcycle(t):
     scene = truth.scene("motorcycle")
     got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
@@ -794,6 +812,17 @@ def ncc_motorcycle(t):
                               mistakes=lambda: truth.matching_mistakes(scene, 9, "ncc"))
     if verdict.fraction < 1:
         verdict.hint = NCC_HINT
+        return verdict
+    # The motorcycle has no pixel at either end of the range: d = 0 and d = max_disparity are
+    # judged on the range-ends scene; a map right but for one end takes half the points.
+    ends = truth.scene("zero_disparity")
+    got = expect_disparity(t, what, t.call("block_matching", np.array(ends.left), np.array(ends.right),
+                                           max_disparity=ends.max_disparity, block_size=9, cost="ncc"), ends)
+    try:
+        judge_range_ends(t, what, got, ends, figures("zero_disparity", "bm_ncc_9"))
+    except Fail as missed:
+        return partial(0.5, f"{missed.message} On the motorcycle: {verdict.message}.", hint=missed.hint,
+                       mistake=missed.mistake)
     return verdict
 
 
