@@ -134,6 +134,7 @@ _AUTOGRADER = "autograder"
 GUARD = 'with __import__("contextlib").suppress(Exception): '
 _GUARDED = (ast.Assign, ast.AugAssign, ast.AnnAssign, ast.Expr, ast.Delete)
 _UNAVAILABLE = " is not available where grading runs"
+_FOR_THE_NOTEBOOK = "for the notebook: grading needs no autograder import"
 
 
 @dataclass
@@ -235,6 +236,7 @@ class _Statement:
     listed: bool = True
     used_by_kept: bool = False
     used_by_left_out: bool = False
+    for_notebook: bool = False   # left out as the notebook's own use of autograder (check())
 
 
 class _Analysis:
@@ -296,6 +298,10 @@ class _Analysis:
         else:
             statement.reason, statement.listed = self.judge(node, reads)
             statement.kept = not statement.reason
+        if not statement.kept and (statement.reason == _FOR_THE_NOTEBOOK or any(
+                getattr(self.lookup(name), "why", "") == _FOR_THE_NOTEBOOK for name in reads)):
+            # check("lab07.ex1"), its import and what uses its report: expected, not worth a note
+            statement.listed, statement.for_notebook = False, True
         if isinstance(node, ast.ImportFrom) and node.module == "__future__":
             if not self.future_allowed:
                 statement.kept, statement.reason = False, "allowed only at the top of a module"
@@ -338,7 +344,7 @@ class _Analysis:
         if isinstance(node, ast.ImportFrom) and node.level:
             return ""  # relative: reported at grading as it would be
         if any(m.split(".")[0] == _AUTOGRADER for m in modules):
-            return "for the notebook: grading needs no autograder import"
+            return _FOR_THE_NOTEBOOK
         missing = [m for m in modules if m != "__future__" and not self.importable(m)]
         if missing:
             return f"{missing[0]}{_UNAVAILABLE}"
@@ -433,7 +439,7 @@ class _Analysis:
 
     # -------------------------------------------------------------- bindings made
     def record_bindings(self, node: ast.stmt, index: int, statement: _Statement) -> None:
-        kept, why = statement.kept, statement.reason
+        kept, why = statement.kept, _FOR_THE_NOTEBOOK if statement.for_notebook else statement.reason
         if isinstance(node, ast.Import):
             for alias in node.names:
                 name = alias.asname or alias.name.split(".")[0]
@@ -592,6 +598,13 @@ class _Pure:
         return self.each(parts, frozenset(inner))
 
     def call(self, node: ast.Call, local) -> str:
+        reason = self._call(node, local)
+        if reason:  # what it reads all the same: imports it uses, names it depends on
+            for value in list(node.args) + [k.value for k in node.keywords]:
+                self.why_not(value, local)
+        return reason
+
+    def _call(self, node: ast.Call, local) -> str:
         analysis = self.analysis
         func = node.func
         if isinstance(func, ast.Call):   # functools.lru_cache(maxsize=None)(f)
@@ -642,10 +655,12 @@ class _Pure:
         return ""
 
     def _runs_student_code(self, value: ast.expr) -> bool:
+        """A function or class of the notebook, or a lambda calling one (``key=lambda p: p[1]``
+        computes; ``key=lambda p: f(p)`` runs the notebook's ``f``)."""
         if isinstance(value, ast.Starred):
             value = value.value
         if isinstance(value, ast.Lambda):
-            return True
+            return any(isinstance(n, ast.Call) and self._runs_student_code(n.func) for n in ast.walk(value.body))
         chain = _chain(value)
         if chain and len(chain) == 1:
             binding = self.analysis.lookup(chain[0])

@@ -203,9 +203,10 @@ def _parameter_problems(declared: str, arguments: ast.arguments) -> list[str]:
     if len(theirs) < len(names) and arguments.vararg is None:
         problems.append(f"takes {len(theirs)} argument{'s' * (len(theirs) != 1)} ({', '.join(theirs) or 'none'}); "
                         f"the grader calls it as {declared}")
-    renamed = [n for n in names if n not in keywords_too] if arguments.kwarg is None else []
+    # Parameters with a default are the ones passed by name (rotation_matrix(30, center=c)).
+    renamed = [n for n in wanted_defaults if n not in keywords_too] if arguments.kwarg is None else []
     if renamed and len(theirs) >= len(names):
-        problems.append(f"the grader may pass {', '.join(n + '=' for n in renamed)} by name: name the parameters "
+        problems.append(f"the grader passes {', '.join(n + '=' for n in renamed)} by name: name the parameters "
                         f"as the lab does, {declared} (yours: {', '.join(theirs)})")
     for name, default in wanted_defaults.items():
         if name in theirs and name not in their_defaults:

@@ -119,6 +119,21 @@ def test_calls_that_run_the_notebooks_own_code_are_demo():
                                                             "runs your code: demo code"]
 
 
+def test_a_lambda_that_only_computes_may_be_handed_to_a_library_call():
+    converted = convert(notebook("def f(p):\n    raise NotImplementedError",
+                                 "ORDER = sorted([(2, 'b'), (1, 'a')], key=lambda p: p[0])",
+                                 "BY_F = sorted([(2, 'b'), (1, 'a')], key=lambda p: f(p))"))
+    namespace = module_namespace(converted)
+    assert namespace["ORDER"] == [(1, "a"), (2, "b")] and "BY_F" not in namespace
+
+
+def test_the_notebooks_own_check_calls_are_not_worth_a_note():
+    converted = convert(notebook("import numpy as np\nK = np.eye(3)", "from autograder import check",
+                                 "report = check('lab07.ex1')\nprint(report.score)\nreport"))
+    assert [o.listed for o in converted.omissions] == [False, False, False, False]
+    assert converted.left_out_note("n.ipynb") == ""
+
+
 def test_imports_go_with_the_statements_that_use_them():
     converted = convert(notebook(
         "import numpy as np\nimport matplotlib.pyplot as plt\nimport seaborn as sns\n"
