@@ -183,6 +183,12 @@ def test_a_dying_grading_process_is_charged_to_its_own_submission_alone(uninterr
     noted = [tuple(map(int, line.split())) for line in (notes / "hangs.pids").read_text().splitlines()]
     assert sum(worker for *_, worker in noted) == POOL_ATTEMPTS, "a worker ran under each killed process"
     assert wait_until_gone({(pid, started) for pid, started, _ in noted}) == []
+    # and the files of the killed processes (their gradings' and sandboxes') are gone: those of
+    # the processes that ended normally go as they end.
+    deadline = time.monotonic() + 30
+    while list(processes.batch_folder().glob("grading-*")) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert list(processes.batch_folder().glob("grading-*")) == []
 
 
 # ------------------------------------------------------------------ signals

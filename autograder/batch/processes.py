@@ -123,7 +123,7 @@ class GradingPool:
     Examples
     --------
     >>> with GradingPool(2, grade_files) as pool:                  # doctest: +SKIP
-    ...     pool.submit("alice", (files, selectors, 10.0, "failed", False, "alice", 1))
+    ...     pool.submit("alice", (files, selectors, ..., "alice", threads))
     ...     for key, outcome in pool.outcomes():
     ...         ...
     """
