@@ -4,14 +4,15 @@ Example ``course.json``::
 
     {"select": ["lab07", "lab08"], "public_visibility": "visible",
      "hidden_visibility": "after_published", "call_timeout": 10,
-     "exercise_budget": 60, "submission_budget": 480,
+     "exercise_budget": 60, "submission_budget": 240,
      "forbid": {"lab08.homography_ransac": ["cv2.findHomography"]}}
 
-``call_timeout`` bounds one call into the student's code, ``exercise_budget`` and
-``submission_budget`` the student time (calls, timeouts and worker restarts)
-of one exercise and of the whole submission; checks left when a budget is spent
-score 0 as "time budget exhausted". Keep ``submission_budget`` below the
-Gradescope assignment's own timeout, so results are always written.
+``call_timeout`` bounds one call into the student's code, ``exercise_budget`` the
+student time of one exercise (calls, timeouts and worker restarts), and
+``submission_budget`` the wall-clock time of the whole grading of a submission
+(whatever runs: calls, restarts, the grader's judging); checks left when a budget
+is spent score 0 as "time budget exhausted". Keep ``submission_budget`` well below
+the Gradescope assignment's own timeout, so results are always written.
 
 Every key is optional; unknown keys and bad values are refused with a message.
 
@@ -130,7 +131,7 @@ class CourseConfig:
     inputs_secret: str = ""                             # property inputs: HMAC(secret, content); see inputs.py
     allow_weaker_confinement: bool = False              # Gradescope grades below the machine's strongest level
     exercise_budget: float = 60.0                       # student seconds per exercise
-    submission_budget: float = 480.0                    # student seconds per submission
+    submission_budget: float = 240.0                    # wall seconds for grading a submission
     forbid: dict = field(default_factory=dict)          # "lab08.homography_ransac": ["cv2.findHomography"]
     hidden_points_visible: bool = False                 # students see hidden checks' points before release
     canvas_assignment_id: str = ""                      # Canvas's id of the assignment: "Lab 7 (12345)"

@@ -177,9 +177,11 @@ _LOOKS_LIKE = re.compile(r"it looks like (.+?)(?: inside your function\b.*)?(?:\
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:e[-+]?\d+)?", re.I)
 _INCIDENT_MESSAGES = [   # for results without a ``failure`` field
     ("timeout", re.compile(r"did not finish within|timed out")),
+    ("memory", re.compile(r"ran out of memory|(?:used|asked for) more than \d+ MB of memory|"
+                          r"was killed by the system while holding")),
     ("crashed", re.compile(r"segmentation fault|ended the worker process|was killed|aborted\b|"
-                           r"CPU time limit|was stopped by SIG")),
-    ("memory", re.compile(r"ran out of memory")),
+                           r"CPU time limit|was stopped by SIG|closed the grader's pipe|"
+                           r"started more than \d+ processes")),
     ("recursion", re.compile(r"recursed too deeply")),
     ("forbidden_call", re.compile(r"which this exercise asks you to implement yourself")),
     (NOT_HANDED_IN, re.compile(r"^module \S+\.py not found")),
