@@ -143,6 +143,11 @@ class Trial:
         # apart by where they are raised, and re-raising one object grows its traceback.
         raise StudentFailure(failure.outcome, failure.message)
 
+    def not_implemented(self) -> str:
+        """The message of a call in this trial that met a function not implemented yet, or ``""``
+        (also when the check caught the failure itself, as advice does)."""
+        return next((f.message for f in self._fatal.values() if f.outcome.kind == "not_implemented"), "")
+
     def _describe(self, function: str, outcome: CallOutcome) -> str:
         if outcome.kind == "missing_function":
             return f"not found: def {self.lab.signature(function)}"

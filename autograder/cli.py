@@ -610,7 +610,19 @@ def main(argv=None) -> int:
     commands = {"grade": run_grade, "list": run_list, "validate": run_validate, "batch": run_batch,
                 "gradescope": run_gradescope,
                 "bundle": run_bundle, "report": run_report, "similarity": run_similarity}
-    return commands[args.command](args)
+    return _until_the_reader_goes(commands[args.command], args)
+
+
+def _until_the_reader_goes(command, args) -> int:
+    """``command(args)``, and its status; a reader that stops early (``autograder list | head``)
+    ends the output, not with a traceback: what is left to print goes nowhere."""
+    status = 0
+    try:
+        status = command(args)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # also for the flush at exit
+    return status
 
 
 def grade_py_main(argv=None, root: Path | None = None) -> int:
@@ -623,7 +635,7 @@ def grade_py_main(argv=None, root: Path | None = None) -> int:
     parser.add_argument("--submission", metavar="PATH", default=str(root / "assignments"),
                         help="folder to grade (default: assignments/)")
     add_grading_options(parser)
-    return run_grade(parser.parse_args(argv))
+    return _until_the_reader_goes(run_grade, parser.parse_args(argv))
 
 
 if __name__ == "__main__":

@@ -496,6 +496,10 @@ def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None, inputs=Non
     except Exception as exc:  # noqa: BLE001
         status, message = ERROR, f"grader error in this advice ({type(exc).__name__}: {exc}); no points depend on it"
         _log_grader_error(check, exc)
+    unimplemented = trial.not_implemented()
+    if unimplemented and status == PASSED:  # the advice caught it: a tip about a stub is no tip
+        status, message = NOT_IMPLEMENTED, unimplemented
+        trial.tips.clear()
     if trial.tips and status == PASSED:
         status = ADVICE
         message = "\n".join(tip for tip, _ in trial.tips)

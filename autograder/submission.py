@@ -142,7 +142,8 @@ def load_submission(path, modules: list[str], caps: Caps = CAPS,
         else:
             raise SubmissionError(f"cannot grade {_display_name(source.name)}: "
                                   "expected a folder, .py, .zip or .ipynb")
-        submission = Submission(out, _display_name(source.name), "", refused)
+        named = source.name if source.name not in ("", ".", "..") else source.resolve().name  # "." is its folder
+        submission = Submission(out, _display_name(named), "", refused)
         lone = _lone_file(root, set(modules) | set(every_module))
         for module in modules:
             found = _find_module(root, module)
