@@ -416,6 +416,13 @@ def test_stored_figures_are_current():
             assert set(a) == set(b), where
             for key in a:
                 compare(a[key], b[key], f"{where}.{key}")
+        elif np.shape(a) == (3, 3) and ".sideways." in where and "_zeroed" in where:
+            # Sideways motion gives an F whose two non-zero singular values are equal, so
+            # zeroing "the largest" or "the middle" one leaves any rank-1 matrix of that plane:
+            # which one depends on the LAPACK build and CPU. Only its rank is defined.
+            for m in (a, b):
+                values = np.linalg.svd(np.asarray(m, float), compute_uv=False)
+                assert values[1] < 1e-9 * values[0], where
         elif np.shape(a) == (3, 3):
             # E and F are projective: an SVD may return either sign (LAPACK builds differ),
             # so they are compared as the grader compares them, up to scale and sign.

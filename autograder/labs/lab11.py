@@ -617,7 +617,12 @@ def judge_exact_fundamental(t: Trial, views, n, sideways=False):
                    "like F[2, 2] = 1 was fixed (8 unknowns), which cannot express this camera pair: "
                    "solve A f = 0 for all 9 entries by SVD.")
     stored = truth.figures()["fundamental_exact"]["sideways" if sideways else str(n)]
-    judge_projective(t, what, got, views.F, fundamental_8point_mistakes(stored), tolerance=1e-4,
+    mistakes = fundamental_8point_mistakes(stored)
+    if sideways:  # F's two singular values are equal: zeroing "the largest" or "the middle" one
+        # leaves any rank-1 matrix of their plane (the LAPACK build picks which), nothing to recognise
+        mistakes = {name: answers for name, answers in mistakes.items() if name not in (
+            FUNDAMENTAL_MISTAKES["largest_zeroed"], FUNDAMENTAL_MISTAKES["middle_zeroed"])}
+    judge_projective(t, what, got, views.F, mistakes, tolerance=1e-4,
                      distance=conditioned_distance(views.pts1[:n], views.pts2[:n]))
 
 
