@@ -296,7 +296,11 @@ class _Analysis:
         elif mode == "keep":
             _Reads(self, reads).statement(node)
         else:
-            statement.reason, statement.listed = self.judge(node, reads)
+            try:
+                statement.reason, statement.listed = self.judge(node, reads)
+            except RecursionError:  # an expression nested deeper than the judging recursion goes
+                reads.clear()
+                statement.reason, statement.listed = self.judge_flat(node, reads), True
             statement.kept = not statement.reason
         if not statement.kept and (statement.reason == _FOR_THE_NOTEBOOK or any(
                 getattr(self.lookup(name), "why", "") == _FOR_THE_NOTEBOOK for name in reads)):
@@ -338,6 +342,19 @@ class _Analysis:
         kinds = {ast.Assert: "a test: demo code", ast.Raise: "raises: demo code",
                  ast.While: "a loop: demo code", ast.With: "a with block: demo code"}
         return kinds.get(type(node), "demo code"), True
+
+    def judge_flat(self, node: ast.stmt, reads: set[str]) -> str:
+        """A statement too deeply nested for :meth:`judge` (``x = 1 + 1 + ... + 1``), read without
+        recursion: an assignment or expression without a call is kept when its names are."""
+        if not isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign, ast.Expr)):
+            return "too deeply nested to read: demo code"
+        for inner in ast.walk(node):
+            if isinstance(inner, (ast.Call, ast.Await, ast.Yield, ast.YieldFrom, ast.Lambda, ast.NamedExpr,
+                                  ast.ListComp, ast.SetComp, ast.GeneratorExp, ast.DictComp)):
+                return "a call: demo code"
+            if isinstance(inner, ast.Name) and not isinstance(inner.ctx, ast.Store):
+                reads.add(inner.id)
+        return self.missing(reads)
 
     def judge_import(self, node) -> str:
         modules = ([node.module or ""] if isinstance(node, ast.ImportFrom) else [a.name for a in node.names])
@@ -692,7 +709,6 @@ class _Reads:
 
     def __init__(self, analysis: _Analysis, reads: set[str]):
         self.analysis, self.reads = analysis, reads
-        self.pure = _Pure(analysis, reads)
 
     def expression(self, node) -> None:
         for inner in _evaluated(node):
@@ -874,9 +890,15 @@ def analyse(cells: list[CellCode], importable: Callable[[str], bool] | None = No
             parsed[cell.number] = None
             analysis.future_allowed = analysis.future_allowed and cell.mode == "skip"
             continue
-        parsed[cell.number] = [(analysis.add(node, cell.number, cell.mode), node) for node in tree.body]
+        try:
+            parsed[cell.number] = [(analysis.add(node, cell.number, cell.mode), node) for node in tree.body]
+        except RecursionError:  # nested beyond reading anywhere: kept whole, for the import to report
+            parsed[cell.number] = None
     analysis.finish()
-    readers = analysis.readers()
+    read_by: dict[str, list[str]] = {}  # name -> the kept functions whose bodies read it
+    for function, names in analysis.readers().items():
+        for name in names:
+            read_by.setdefault(name, []).append(function)
     selection = Selection({}, {}, [])
     for cell in cells:
         statements = parsed[cell.number]
@@ -893,7 +915,7 @@ def analyse(cells: list[CellCode], importable: Callable[[str], bool] | None = No
                 continue
             first, _ = _statement_lines(node)
             defined = _defined_by(node)
-            users = sorted((function, name) for function, reads in readers.items() for name in reads & defined)
+            users = sorted((function, name) for name in defined for function in read_by.get(name, ()))
             selection.omissions.append(Omission(cell.number, first, cell.lines[first - 1].strip(),
                                                 statement.reason, users, statement.listed))
     return selection
@@ -901,6 +923,8 @@ def analyse(cells: list[CellCode], importable: Callable[[str], bool] | None = No
 
 def _defined_by(node: ast.stmt) -> set[str]:
     """The top-level names a statement binds (not the local names of functions it defines)."""
+    if isinstance(node, ast.Assign) and all(isinstance(t, (ast.Name, ast.Tuple, ast.List)) for t in node.targets):
+        return set().union(*(_targets(t) for t in node.targets))  # the common case, without a walk
     names, pending = set(), [node]
     while pending:
         inner = pending.pop()

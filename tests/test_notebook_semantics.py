@@ -211,6 +211,15 @@ def test_a_kept_value_that_raises_is_skipped_at_grading_as_jupyter_goes_on():
     assert "def f():" in converted.guarded_source.splitlines()  # definitions are not guarded
 
 
+def test_expressions_nested_too_deep_to_judge_are_read_flat_never_a_grader_crash():
+    sums = "+".join(["1"] * 900)
+    converted = convert(notebook(f"x = {sums}", "import numpy as np\ny = np.sum(" + "+".join(["np.eye(2)"] * 600) + ")",
+                                 "if True:\n" + "".join("    " * (i + 1) + "if True:\n" for i in range(90))
+                                 + "    " * 92 + "z = 1"))
+    assert kept_code(converted)[0] == f"x = {sums}"
+    assert [o.reason for o in converted.omissions][0] == "a call: demo code"
+
+
 def test_tags_still_decide_where_given():
     converted = convert(notebook("import numpy as np", "K = np.load('K.npy')", "H = K @ np.eye(3)",
                                  tags={1: ["grade"], 2: ["skip-grading"]}))
