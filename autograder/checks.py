@@ -297,9 +297,9 @@ class Trial:
             return (f"\nSmallest failing input found: {example}"
                     "\n(inputs drawn for this submission: try this one directly, "
                     "your own runs draw others)")
+        before, after = self.inputs.rerun
         return (f"\nSmallest failing input found: {example}"
-                f"\n(the same inputs every run of these files: re-run with python grade.py "
-                f"{self.check.exercise.id})")
+                f"\n(the same inputs every run of these files: re-run with {before}{self.check.exercise.id}{after})")
 
     # ------------------------------------------------------------ pictures
     def images(self, title: str, caption: str = "", **labelled: np.ndarray):

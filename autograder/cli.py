@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import os
+import shlex
 import sys
 from pathlib import Path
 
@@ -189,7 +190,7 @@ def run_grade(args) -> int:
                 if ignored_keys_note(course, "grade"):
                     errors.print(f"[yellow]note:[/yellow] {escape(ignored_keys_note(course, 'grade'))}",
                                  highlight=False)
-                result = grade(args.submission, args.select, limits=limits, pictures=pictures,
+                result = grade(args.submission, args.select, limits=limits, pictures=pictures, rerun=_rerun(args),
                                include_hidden=not args.public_only, on_check=advance, forbid=course.forbid,
                                lanes=lanes, sandboxes=[early] if early else [],
                                inputs_secret=course.inputs_secret or None)
@@ -221,6 +222,13 @@ def run_grade(args) -> int:
                      f"{escape(' '.join(args.select))}; run without a selection for the whole page "
                      "(or keep a partial page apart with --html other.html)", highlight=False, soft_wrap=True)
     return status
+
+
+def _rerun(args) -> tuple[str, str]:
+    """How to grade these files again, around an exercise's id (the words property failures give)."""
+    if getattr(args, "rerun", None):
+        return args.rerun
+    return f"autograder grade {shlex.quote(str(args.submission))} ", ""
 
 
 def _write_page(result, path, figures) -> None:
@@ -635,7 +643,10 @@ def grade_py_main(argv=None, root: Path | None = None) -> int:
     parser.add_argument("--submission", metavar="PATH", default=str(root / "assignments"),
                         help="folder to grade (default: assignments/)")
     add_grading_options(parser)
-    return _until_the_reader_goes(run_grade, parser.parse_args(argv))
+    args = parser.parse_args(argv)
+    default = args.submission == str(root / "assignments")
+    args.rerun = ("python grade.py " + ("" if default else f"--submission {shlex.quote(args.submission)} "), "")
+    return _until_the_reader_goes(run_grade, args)
 
 
 if __name__ == "__main__":

@@ -33,11 +33,14 @@ class Inputs:
 
     ``key`` is 32 bytes (HMAC-SHA256 of the submission's content hash under the
     course secret); ``secret`` says whether a course secret went into it (then the
-    student's own run of the same files draws other inputs).
+    student's own run of the same files draws other inputs); ``rerun`` is how to
+    draw them again, the text before and after an exercise's id (``("python grade.py ", "")``,
+    ``('check("', '")')``): what a failing property's message tells the student to run.
     """
 
     key: bytes
     secret: bool = False
+    rerun: tuple[str, str] = ("python grade.py ", "")
 
     @classmethod
     def for_submission(cls, content_hash: str, secret: str | bytes | None = None) -> "Inputs":

@@ -52,7 +52,7 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
           on_check: Callable[[Exercise, CheckResult], None] | None = None,
           forbid: dict[str, list[str]] | None = None, lanes: int = 1,
           sandboxes: Sequence[Sandbox] = (), inputs_secret: str | None = None,
-          refuse_weaker: bool = False) -> GradingResult:
+          refuse_weaker: bool = False, rerun: tuple[str, str] | None = None) -> GradingResult:
     """Grade the submission at ``submission_path``.
 
     Parameters
@@ -98,6 +98,11 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
 
     The result names the confinement level the student code ran at (``confinement``).
 
+    rerun : (str, str), optional
+        How the student grades these files again, the text before and after an
+        exercise's id (``("python grade.py --submission lab7.py ", "")``): property
+        failures say it (:attr:`Inputs.rerun`; default ``python grade.py <id>``).
+
     Raises
     ------
     SelectionError, SubmissionError
@@ -109,11 +114,11 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         for sandbox in sandboxes:
             closing.enter_context(sandbox)
         return _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid,
-                      lanes, list(sandboxes), closing, inputs_secret, refuse_weaker)
+                      lanes, list(sandboxes), closing, inputs_secret, refuse_weaker, rerun)
 
 
 def _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid,
-           lanes, sandboxes, closing, inputs_secret=None, refuse_weaker=False):
+           lanes, sandboxes, closing, inputs_secret=None, refuse_weaker=False, rerun=None):
     if pictures not in PICTURES:
         raise ValueError(f"pictures must be one of {PICTURES}, got {pictures!r}")
     started = time.perf_counter()
@@ -128,6 +133,8 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                                graded_at=datetime.now(timezone.utc).isoformat(timespec="seconds"))
         labs = _labs_heaviest_first(exercises)
         inputs = Inputs.for_submission(submission.content_hash, inputs_secret)
+        if rerun is not None:
+            inputs = replace(inputs, rerun=tuple(rerun))
         for sandbox in sandboxes:
             sandbox.admit(submission.path)
         # A lab of stubs only costs next to nothing: it needs no lane of its own.

@@ -107,7 +107,11 @@ def check(*selectors: str, notebook=None, submission=None, public_only: bool = F
         report.submission = source
         return report
     try:
-        result = grade(path, list(selectors), pictures="failed", include_hidden=not public_only)
+        # A failing property says how to meet its input again: this same call.
+        named = "" if notebook is None and submission is None else \
+            f", {'notebook' if notebook is not None else 'submission'}={str(path)!r}"
+        result = grade(path, list(selectors), pictures="failed", include_hidden=not public_only,
+                       rerun=('check("', f'"{named})'))
     finally:
         if temporary:
             shutil.rmtree(temporary, ignore_errors=True)
