@@ -219,6 +219,24 @@ class Confinement:
             return -(code - 128)
         return code
 
+    def with_own_user(self) -> "Confinement":
+        """This level, its worker running as a user id of its own (``namespaces+user`` only).
+
+        Where no cgroup bounds a worker's processes, ``RLIMIT_NPROC`` does, and it counts
+        every process of the worker's user: workers graded side by side as one user (a
+        submission's lanes, a batch's gradings) would share one budget, and one fork bomb
+        would keep the others from starting threads. A user id nothing else runs as --
+        from a range no account uses, with no name, owning nothing but the worker's
+        scratch -- gives each worker a budget of its own (and no way to signal another).
+        """
+        if self.level != "namespaces+user":
+            return self
+        for _ in range(32):
+            uid = OWN_USERS + secrets.randbelow(OWN_USERS_COUNT)
+            if _unused_id(uid):
+                return Confinement(self.level, uid, uid)
+        return self
+
     def prepare_scratch(self, scratch: Path, private=("worker",)) -> None:
         """Give the worker's user its scratch folder (all but ``private`` entries)."""
         if self.uid is None:
@@ -487,6 +505,28 @@ def _works(confinement: Confinement) -> bool:
         return False
     finally:
         shutil.rmtree(hold, ignore_errors=True)
+
+
+# Numeric user ids for workers of their own (Confinement.with_own_user): far above the
+# accounts of any system (and below the 2**31 some tools take as negative).
+OWN_USERS, OWN_USERS_COUNT = 1_900_000_000, 100_000_000
+
+
+def _unused_id(uid: int) -> bool:
+    """No account and no process has ``uid`` (nor a group ``uid``)."""
+    import grp
+
+    try:
+        pwd.getpwuid(uid)
+        return False
+    except KeyError:
+        pass
+    try:
+        grp.getgrgid(uid)
+        return False
+    except KeyError:
+        pass
+    return not count_tasks(uid)
 
 
 def worker_user() -> tuple[int, int]:

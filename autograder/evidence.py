@@ -51,8 +51,9 @@ def children(pid: int) -> list[int]:
     return found
 
 
-def descendants(pid: int) -> list[int]:
-    """``pid``'s children, their children and so on (not ``pid``), parents before children.
+def descendants(pid: int, limit: int = MAX_PROCESSES) -> list[int]:
+    """``pid``'s children, their children and so on (not ``pid``), parents before children;
+    at most ``limit`` of them (a fork bomb's are not all walked to know there are too many).
 
     A process that left its process group or session (``setsid``) is still found
     while its parent lives; an orphan is re-parented away from the tree (to PID 1
@@ -60,7 +61,7 @@ def descendants(pid: int) -> list[int]:
     subreaper or init, and is lost here).
     """
     found, todo, seen = [], [pid], {pid}
-    while todo and len(found) < MAX_PROCESSES:
+    while todo and len(found) < limit:
         for child in children(todo.pop(0)):
             if child not in seen:
                 seen.add(child)

@@ -311,6 +311,8 @@ class Sandbox:
         # its cgroup, else measured by the grader while a request runs (Sandbox._check_in).
         self.memory = min(self.limits.memory, memory_for_workers() or self.limits.memory)
         self.cgroup = self._new_cgroup()
+        if self.cgroup is None:  # RLIMIT_NPROC bounds its processes: a budget no other worker shares
+            self.confinement = self.confinement.with_own_user()
         self._own_processes = 0
         self._own_pids: set[int] = set()      # the sandbox's own processes (wrappers, PID 1, the worker)
         self._worker_pid: int | None = None   # the worker's process (host PID), once it is ready
@@ -912,7 +914,8 @@ class Sandbox:
         if self._worker_pid is not None and not self._worker_alive():
             raise EOFError
         if self.cgroup is None:
-            pids = [self.proc.pid, *evidence.descendants(self.proc.pid)]
+            budget = len(self._own_pids) + self.limits.extra_processes
+            pids = [self.proc.pid, *evidence.descendants(self.proc.pid, limit=budget + 1)]
             if len(set(pids) - self._own_pids) > self.limits.extra_processes:
                 raise _Stopped("processes")
             used = evidence.memory_in_use(pids)

@@ -55,7 +55,7 @@ def attack(tmp_path, body: str, lost="lab07.ex4", *fragments, limits=FAST):
 # ---------------------------------------------------------------- processes
 def test_fork_bomb(tmp_path, confinement):
     name = marker()
-    attack(tmp_path, NAME_PROCESS + f"""
+    result = attack(tmp_path, NAME_PROCESS + f"""
         def shear_matrix(s):
             import os, time
             for _ in range(300):                 # bounded
@@ -69,7 +69,11 @@ def test_fork_bomb(tmp_path, confinement):
                     os._exit(0)
             while True:
                 pass
-        """, "lab07.ex4", "did not finish")
+        """, "lab07.ex4")
+    # Stopped by its timeout, or, where no cgroup bounds its processes, by the grader's own count.
+    [shear] = [e for e in result.exercises if e.id == "lab07.ex4"]
+    words = " ".join(c.message for c in shear.checks)
+    assert "did not finish" in words or "started more than 64 processes" in words, words
     assert processes_named(name) == []
 
 

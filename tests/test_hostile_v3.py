@@ -263,6 +263,59 @@ def test_a_fork_bomb_in_one_lane_leaves_the_other_lane_alone(tmp_path, level, cg
     assert processes_named(name) == []
 
 
+def test_a_fork_bomb_does_not_starve_a_worker_beside_it(tmp_path, level, cgroup):
+    """Two workers at once (lanes, a batch's gradings): each has a process budget of its own --
+    its cgroup's, else (as root) a user id of its own for RLIMIT_NPROC, or the grader's count --
+    so one's fork bomb never keeps the other from starting threads."""
+    import threading
+    import time
+
+    bomb_source = """
+        import os, time
+
+        def explode(seconds):
+            children = []
+            for _ in range(500):                         # bounded
+                try:
+                    pid = os.fork()
+                except OSError:
+                    break
+                if pid == 0:
+                    time.sleep(seconds)
+                    os._exit(0)
+                children.append(pid)
+            for pid in children:
+                os.waitpid(pid, 0)
+            return len(children)
+        """
+    calm_source = """
+        import threading, time
+
+        def threads(n):
+            started = [threading.Thread(target=time.sleep, args=(0.2,)) for _ in range(n)]
+            for thread in started:
+                thread.start()
+            for thread in started:
+                thread.join()
+            return len(started)
+        """
+    (tmp_path / "bomb").mkdir()
+    (tmp_path / "calm").mkdir()
+    with sandbox_for(tmp_path / "bomb", bomb_source, Limits(call_timeout=20.0)) as bomb, \
+            sandbox_for(tmp_path / "calm", calm_source, Limits(call_timeout=20.0)) as calm:
+        assert bomb.ready() and calm.ready()
+        exploded = {}
+        explosion = threading.Thread(target=lambda: exploded.update(outcome=bomb.call("m", "explode", (3.0,))))
+        explosion.start()
+        time.sleep(1.0)                                  # the bomb has taken all it may by now
+        outcome = calm.call("m", "threads", (40,))
+        explosion.join()
+    assert (outcome.ok, outcome.value) == (True, 40), outcome.message
+    bombed = exploded["outcome"]
+    assert (bombed.ok and 0 < bombed.value < 500) or bombed.message == \
+        "explode() started more than 64 processes (a fork bomb?)", bombed.message
+
+
 def test_an_import_that_leaves_a_thread_running_fails_once_without_a_grader_error(tmp_path, level):
     """Each new worker would import the module, and the thread, again: the import is charged."""
     result = attacked(tmp_path, """
