@@ -85,7 +85,7 @@ def grade(submission_path, selectors=(), *, limits: Limits | None = None,
         Sandboxes made without a submission, perhaps already started
         (:meth:`Sandbox.start`, so the workers boot while the caller loads), one per
         lane (lanes without one get their own), with ``limits.shared_by(lanes)``
-        (the lanes' workers share the submission's memory): the submission is
+        (each lane's worker a fixed share of the submission's memory): the submission is
         admitted into each, and all are closed at the end, whatever happens.
     inputs_secret : str, optional
         The course's secret, from which with the submission's content its property

@@ -11,8 +11,16 @@ Nothing the worker sends is trusted: every reply must carry the id of the
 request it answers (a stray frame fails the call that produced it), call
 durations are measured here, and a worker that reports a suspect state after a
 call (threads or children alive, descriptors exhausted) is replaced before the
-next one. Time is billed against budgets per exercise and per submission
-(:meth:`Sandbox.start_exercise`); restarts are billed and capped per exercise.
+next one. Time is billed against a budget per exercise (:meth:`Sandbox.start_exercise`),
+within the submission's wall-clock deadline (:meth:`Sandbox.set_deadline`); restarts
+are billed and capped per exercise.
+
+Why a request failed is decided from what the grader measures, never from what the
+worker says (:meth:`Sandbox._fault`, :mod:`autograder.evidence`): the cgroup's
+out-of-memory kills and limit hits, the memory and processes of the worker's tree
+(watched while a request runs where no cgroup enforces them), whether the worker
+still holds the grader's pipe, how it ended. What a request leaves running is gone
+before the next one.
 """
 
 from __future__ import annotations
@@ -683,7 +691,7 @@ class Sandbox:
         return outcome
 
     # ------------------------------------------------------------ plumbing
-    def _restart(self) -> CallOutcome | None:
+    def _restart(self, what: str) -> CallOutcome | None:
         """Start the worker; a restart is billed its start-up time and capped."""
         if self._closed or self._interrupted:
             return CallOutcome(ok=False, kind="grader_error", message="grading was stopped")
@@ -700,7 +708,7 @@ class Sandbox:
             self._await_ready(self.remaining() if restart else None)  # a restart is billed
         except WorkerStartError as exc:
             if self.remaining() <= 0:
-                return self._over_budget("the next call")
+                return self._over_budget(what)
             return CallOutcome(ok=False, kind="grader_error", message=str(exc))
         self._started = True
         if restart:
@@ -711,7 +719,7 @@ class Sandbox:
     def _request(self, request: dict, timeout: float, what: str) -> CallOutcome:
         from . import transport  # with NumPy: not needed to start a worker, only to talk to it
         if self.proc is None or not self._ready:
-            failed = self._restart()
+            failed = self._restart(what)
             if failed is not None:
                 return failed
             if request["op"] == "call":
