@@ -135,7 +135,8 @@ def grade_or_die(*arguments, ways: dict[str, str], notes: str):
     elif way == "segfault":
         os.kill(os.getpid(), signal.SIGSEGV)
     elif way == "beside-its-worker":
-        threading.Thread(target=_die_once_the_worker_runs, args=(Path(notes) / f"{name}.pids",), daemon=True).start()
+        threading.Thread(target=_die_once_the_worker_runs, args=(Path(notes) / f"{name}.pids",),
+                         daemon=True).start()
     return grade_files(*arguments)
 
 
@@ -199,8 +200,8 @@ def _batch_folders(pid: int) -> list[Path]:
 def _run_until_graded(command, out: Path, at_least: int) -> tuple[subprocess.Popen, dict]:
     """Start ``command`` (a batch), noting every process under it, until the gradebook holds
     ``at_least`` gradings; returns the batch's process and what was seen under it."""
-    batch = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, start_new_session=True,
-                             cwd=ROOT)
+    batch = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                             start_new_session=True, cwd=ROOT)
     seen: dict = {}
     deadline = time.monotonic() + 120
     try:
@@ -280,7 +281,8 @@ def test_the_grading_processes_are_forked_from_the_server_after_opencv_is_import
         process.join()
         print(context.get_start_method(), parent == server)
         """)
-    result = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=60, cwd=ROOT)
+    result = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=60,
+                            cwd=ROOT)
     if "no server pid" in result.stderr:
         pytest.skip("this Python's multiprocessing does not say which process is the fork server")
     assert result.stdout.split() == ["forkserver", "True"], result.stderr

@@ -424,7 +424,8 @@ def remove_dead_batch_folders(system: Path) -> list[Path]:
     removed = []
     for folder in system.glob(FOLDER_PREFIX + "*"):
         try:
-            if folder == _folder or folder.is_symlink() or not folder.is_dir() or folder.stat().st_uid != os.getuid():
+            if (folder == _folder or folder.is_symlink() or not folder.is_dir()
+                    or folder.stat().st_uid != os.getuid()):
                 continue
             owner = os.open(folder / _OWNER, os.O_RDONLY | os.O_NOFOLLOW)
         except FileNotFoundError:   # its owner was killed before it locked it, or is locking it now
