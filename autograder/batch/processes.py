@@ -403,9 +403,12 @@ def batch_folder() -> Path:
         remove_dead_batch_folders(system)
         folder = Path(tempfile.mkdtemp(prefix=f"{FOLDER_PREFIX}{os.getpid()}-", dir=system))
         folder.chmod(0o711)   # as the system's: a worker may pass through to its scratch
-        # Not inherited (the lock is this process's alone), nobody else's to open and lock.
-        owner = os.open(folder / _OWNER, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_CLOEXEC, 0o600)
+        # Not inherited (the lock is this process's alone), nobody else's to open and lock,
+        # and under its name only once locked: a batch sweeping meanwhile never takes it.
+        locking = folder / f"{_OWNER}.new"
+        owner = os.open(locking, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_CLOEXEC, 0o600)
         fcntl.flock(owner, fcntl.LOCK_EX)
+        os.rename(locking, folder / _OWNER)
         _OWNER_FILES.append(owner)
         # After multiprocessing's own files (which may be in the folder) are removed at exit.
         util.Finalize(None, shutil.rmtree, args=(str(folder),), kwargs={"ignore_errors": True},
