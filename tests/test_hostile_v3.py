@@ -616,6 +616,7 @@ def test_what_cannot_cross_is_refused_where_it_is_made(value, kind):
 
 def test_huge_and_odd_numbers_cross_as_the_numbers_checks_compute_with():
     value = transport.decode(transport.encode([10**400, -10**400, 2**70, 2**63 - 1, np.longdouble(0.5),
-                                               np.ones(2, ">f4")]))
+                                               np.ones(2, ">f4"), {"\ud800": "x\udfff"}]))
     assert value[:5] == [math.inf, -math.inf, float(2**70), 2**63 - 1, 0.5]
     assert value[5].dtype == np.float32 and value[5].dtype.isnative
+    assert value[6] == {"?": "x?"}  # lone surrogates: valid JSON, not text a page or a file can hold
