@@ -35,7 +35,7 @@ CASES = [
             M[:2, 2] = center - R.T @ center
             return M
         """, "the translation column uses R^T where (I - R) c needs R: a wrong operand",
-         ("translation column", "(i - r)", "r^t c", "r.t @")),
+         ("r^t c", "r.t @", "uses r^t", "r transposed in the translation")),
 
     Case("degrees to radians with 360 for 180", "lab07.ex2", """
         def rotation_matrix(angle_deg, center=(0.0, 0.0)):
