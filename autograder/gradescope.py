@@ -6,15 +6,22 @@ fails. The format follows Gradescope's published autograder specification: per
 test ``name``, ``number``, ``score``, ``max_score``, ``status``, ``output``,
 ``output_format`` and ``visibility``; at the top ``score``, ``execution_time``,
 ``output`` and ``stdout_visibility``.
+
+A check's output is HTML (``output_format: "html"``): the diagnosis, the details in
+``<pre>``, and for a public check that lost points small copies of its pictures as
+``data:`` PNG/JPEG images, within :data:`PICTURES_BUDGET` for the whole file. Every
+word in it is escaped; it uses only tags Gradescope's sanitiser keeps (see
+:data:`HTML_TAGS`). Students cannot download files from Gradescope, so the
+full-size feedback page stays the one ``python grade.py`` writes on their own copy.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import html
 import json
 import logging
 import math
-import re
 import secrets
 import time
 import zipfile
@@ -24,6 +31,7 @@ from .confine import WeakerConfinement
 from .course import CourseConfig
 from .results import GradingResult, write_atomically
 from .submission import SubmissionError
+from .text import printable
 
 log = logging.getLogger("autograder")
 PROJECT_ROOT = Path(__file__).resolve().parents[1]
@@ -41,8 +49,10 @@ def results_json(result: GradingResult, config: CourseConfig) -> dict:
     shows hidden checks' points (``hidden_points_visible``)."""
     # In the course's points (``points``), as every other grade of the course is.
     result = result.in_points(config.point_factors([(e.id, e.max_score) for e in result.exercises]))
+    shown = result.for_students(points_visible=True)  # hidden checks: a verdict, no pictures
+    figures, left_out = pictures_within_budget(shown)
     tests, position = [], {}
-    for exercise in result.for_students(points_visible=True).exercises:
+    for exercise in shown.exercises:
         lab = exercise.id.split(".")[0]
         position[lab] = position.get(lab, 0) + 1  # ex1..exN then the extensions, as registered
         for index, check in enumerate(exercise.checks, 1):
@@ -52,8 +62,9 @@ def results_json(result: GradingResult, config: CourseConfig) -> dict:
                 "score": check.score,
                 "max_score": check.max_score,
                 "status": "passed" if check.passed or check.max_score == 0 else "failed",  # advice never fails
-                "output": _check_markdown(check),
-                "output_format": "md",
+                "output": check_html(check, figures.get((exercise.id, index - 1), []),
+                                     exercise.id if (exercise.id, index - 1) in left_out else ""),
+                "output_format": "html",
                 "visibility": config.hidden_visibility if check.hidden else config.public_visibility,
             })
     return {"score": result.total, "output": _summary(result.for_students(config.hidden_points_visible)),
@@ -63,7 +74,8 @@ def results_json(result: GradingResult, config: CourseConfig) -> dict:
 
 def _summary(result: GradingResult) -> str:
     """The top of the results page: notes on how the files were read, the total, each
-    exercise's score, and a module-wide problem said once per lab."""
+    exercise's score, a module-wide problem said once per lab, and where the full
+    feedback page is."""
     lines = [f"Note: {note}" for note in result.notes]
     lines.append(f"Total: {result.total:g} / {result.max_total:g}")
     said = set()
@@ -79,7 +91,14 @@ def _summary(result: GradingResult) -> str:
     if result.hidden_points_withheld:
         lines.append("Hidden checks are not counted above: their points appear here once your "
                      "instructor releases them.")
+    if any(c.lost_points and not c.hidden for e in result.exercises for c in e.checks):
+        lines.append(FULL_PAGE)
     return "\n".join(lines)
+
+
+FULL_PAGE = ("Each check below shows small copies of its pictures (some are left out to keep these "
+             "results small). The full feedback page, every picture at full size: run python grade.py "
+             "in your copy of the labs (it writes feedback.html; the public checks are the same).")
 
 
 def hidden_checks_log(result: GradingResult) -> str:
@@ -97,39 +116,131 @@ def hidden_checks_log(result: GradingResult) -> str:
     return "\n".join(lines)
 
 
-def _fenced(text: str) -> str:
-    """``text`` in a Markdown code block that no backtick run inside it can close."""
-    longest = max((len(run) for run in re.findall(r"`+", text)), default=0)
-    fence = "`" * max(3, longest + 1)
-    return f"{fence}\n{text}\n{fence}"
+# ------------------------------------------------------------------ a check's HTML
+# Gradescope renders a test's "html" output after sanitising it and documents neither the
+# tags it keeps nor a size limit for results.json. The output uses only tags of Rails'
+# default safe list (Gradescope is a Rails application), with no style attributes, and
+# pictures as data: URIs of PNG or JPEG, the image types every version of Rails' sanitiser
+# (Loofah) lets through; SVG, inline or as a data: URI, is not relied on.
+HTML_TAGS = frozenset({"p", "pre", "strong", "em", "br", "div", "img"})
+THUMBNAIL = (480, 180)      # largest copy of an image (width, height): a row of four fits a page
+PLOT = (360, 300)           # largest copy of a point plot: its own size, so its labels stay legible
+PICTURES_BUDGET = 750_000   # characters of base64 pictures in one results.json, all checks together
+_SMALLEST_PICTURE = 2_000   # below this much budget left, no further check's pictures can fit
 
 
-def _check_markdown(check) -> str:
-    """A check's output for Gradescope's ``md`` format: the message's first line (the
-    diagnosis) as text, the lines after it in a code block that keeps their column
-    layout (matrices); what the student's code printed is quoted
-    verbatim, never rendered."""
+@dataclasses.dataclass
+class Figure:
+    """One artifact of a check, in small copies: ``pictures`` are ``(label, mime, base64
+    data, width, height)``."""
+
+    title: str
+    caption: str
+    pictures: list[tuple[str, str, str, int, int]]
+
+    @property
+    def size(self) -> int:
+        return sum(len(data) for _, _, data, _, _ in self.pictures)
+
+
+def figures_of(check) -> list[Figure]:
+    """Small copies of ``check``'s pictures: images at most :data:`THUMBNAIL`, point plots
+    drawn as PNG (at most :data:`PLOT`); a picture that cannot be drawn is left out."""
+    import cv2
+
+    from . import pictures
+
+    figures = []
+    for artifact in check.artifacts:
+        drawn = []
+        for item in artifact.items:
+            try:
+                if artifact.kind == "svg":
+                    mime, data, width, height = pictures.compact(pictures.rasterise_svg(item["svg"]), *PLOT)
+                else:
+                    mime, data, width, height = pictures.compact_encoding(item.get("data") or item["png"],
+                                                                          *THUMBNAIL)
+            except (KeyError, ValueError, cv2.error):
+                continue
+            if mime in ("image/png", "image/jpeg"):
+                drawn.append((item.get("label", ""), mime, data, width, height))
+        if drawn:
+            figures.append(Figure(artifact.title, artifact.caption, drawn))
+    return figures
+
+
+def pictures_within_budget(result: GradingResult, budget: int | None = None
+                           ) -> tuple[dict[tuple[str, int], list[Figure]], set[tuple[str, int]]]:
+    """Which checks of ``result`` show their pictures: ``(shown, left_out)``, keyed by
+    ``(exercise id, index of the check)``. Only public checks that lost points have
+    pictures shown, each check's whole or none, within ``budget`` characters of base64
+    (default :data:`PICTURES_BUDGET`); ``left_out`` are those that did not fit.
+
+    The budget goes round the exercises: each exercise's first such check first, then
+    each one's second, and so on; so a submission wrong everywhere shows pictures in as
+    many exercises as fit rather than all of the first lab's."""
+    queues = [[((e.id, index), check) for index, check in enumerate(e.checks)
+               if check.artifacts and check.lost_points and not check.advice
+               and not check.hidden and not check.redacted] for e in result.exercises]
+    budget = PICTURES_BUDGET if budget is None else budget
+    shown: dict[tuple[str, int], list[Figure]] = {}
+    left_out: set[tuple[str, int]] = set()
+    for rank in range(max((len(q) for q in queues), default=0)):
+        for key, check in (queue[rank] for queue in queues if rank < len(queue)):
+            if budget < _SMALLEST_PICTURE:
+                left_out.add(key)
+                continue
+            figures = figures_of(check)
+            cost = sum(f.size for f in figures)
+            if figures and cost <= budget:
+                shown[key] = figures
+                budget -= cost
+            elif figures:
+                left_out.add(key)
+    return shown, left_out
+
+
+# What a picture's label alone does not say (the feedback page draws a colour scale).
+_LABELS = {"difference": "difference (dark where equal, bright where 64 or more grey levels apart)"}
+
+
+def _text(text) -> str:
+    """Student or grader text as HTML: control characters removed, everything escaped."""
+    return html.escape(printable(text), quote=True)
+
+
+def check_html(check, figures: list[Figure] = (), left_out: str = "") -> str:
+    """A check's output for Gradescope's ``html`` format: the message's first line (the
+    diagnosis) as a paragraph, the lines after it in ``<pre>`` (matrices keep their
+    columns), the hint, the traceback and what the student's code printed (verbatim,
+    escaped, never rendered), then ``figures``. ``left_out``: the exercise id of a check
+    whose pictures did not fit in the budget; the output says how to see them."""
     if check.advice:
         message = f"Tip (no points): {check.message}"
     elif check.max_score == 0:
         message = check.message or "Advice: nothing to suggest."
     else:
         message = check.message or ("Passed." if check.passed else check.status)
-    # The diagnosis (the first line) reads as text; what follows keeps its layout.
     first, _, details = message.partition("\n")
-    parts = [_escape_markdown(first)] + ([_fenced(details)] if details.strip() else [])
+    parts = [f"<p>{_text(first)}</p>"] + ([f"<pre>{_text(details)}</pre>"] if details.strip() else [])
     if check.hint:
-        parts.append("**Hint:** " + _escape_markdown(check.hint))
+        parts.append(f"<p><strong>Hint:</strong> {_text(check.hint)}</p>")
     if check.traceback:
-        parts.append("Traceback (your code):\n\n" + _fenced(check.traceback))
+        parts.append(f"<p>Traceback (your code):</p><pre>{_text(check.traceback)}</pre>")
     if check.output:
-        parts.append("What your code printed:\n\n" + _fenced(check.output))
-    return "\n\n".join(parts)
-
-
-def _escape_markdown(text: str) -> str:
-    """Plain text in Markdown: no emphasis, links, code or HTML (intraword _ is safe)."""
-    return re.sub(r"([\\`*\[\]<>])", r"\\\1", text)
+        parts.append(f"<p>What your code printed:</p><pre>{_text(check.output)}</pre>")
+    for figure in figures:
+        title = figure.title + (f" - {figure.caption}" if figure.caption else "")
+        images = " ".join(f'<img src="data:{mime};base64,{data}" alt="{_text(label)}" title="{_text(label)}" '
+                          f'width="{width}" height="{height}">'
+                          for label, mime, data, width, height in figure.pictures)
+        labels = ", ".join(_text(_LABELS.get(label, label)) for label, *_ in figure.pictures if label)
+        parts.append(f"<p><strong>{_text(title)}</strong></p><div>{images}</div>"
+                     + (f"<p><em>Left to right: {labels}.</em></p>" if len(figure.pictures) > 1 and labels else ""))
+    if left_out:
+        parts.append(f"<p><em>Pictures left out here to keep these results small: python grade.py "
+                     f"{_text(left_out)} on your own copy shows them on your feedback page.</em></p>")
+    return "\n".join(parts)
 
 
 def failure_json(message: str, config: CourseConfig) -> dict:
@@ -145,7 +256,7 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
     config = config or CourseConfig()
     started = time.monotonic()
     try:
-        result = grade(submission, config.select, limits=config.limits(), pictures="none",  # text only
+        result = grade(submission, config.select, limits=config.limits(), pictures="failed",
                        forbid=config.forbid, inputs_secret=config.inputs_secret or None,
                        refuse_weaker=not config.allow_weaker_confinement)
         data = results_json(result, config)

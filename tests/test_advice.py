@@ -93,7 +93,7 @@ def test_advice_is_shown_in_every_report_and_costs_nothing(toy_lab, tmp_path):
     assert results["score"] == 2
     assert {t["status"] for t in results["tests"]} == {"passed"}
     [tip] = [t for t in results["tests"] if t["name"].endswith("inputs left unchanged")]
-    assert tip["max_score"] == 0 and tip["output"].startswith("Tip (no points): scale() modified")
+    assert tip["max_score"] == 0 and tip["output"].startswith("<p>Tip (no points): scale() modified")
 
 
 def test_advice_says_nothing_when_the_function_fails(toy_lab, tmp_path):

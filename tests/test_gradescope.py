@@ -5,19 +5,24 @@
 so these tests need no root paths and no network.
 """
 
+import base64
 import json
 import os
+import re
 import shutil
 import stat
 import subprocess
 import sys
 import zipfile
+from html.parser import HTMLParser
 from pathlib import Path
 
+import cv2
 import jsonschema
+import numpy as np
 import pytest
 
-from autograder import confine, gradescope
+from autograder import confine, gradescope, pictures
 from autograder.course import CourseConfig, CourseConfigError
 from conftest import REFERENCE, mutant, submission_from_source
 
@@ -139,10 +144,10 @@ def test_the_diagnosis_reads_as_text_and_the_matrices_keep_their_layout():
 
     message = ("homography_dlt(src, dst) is wrong: it looks like the rows of the design matrix "
                "have a sign error.\nIt returned\n[[1. 0.]\n [0. 1.]]")
-    output = gradescope._check_markdown(CheckResult("H is right", 0.0, 5.0, "failed", message))
+    output = gradescope.check_html(CheckResult("H is right", 0.0, 5.0, "failed", message))
     first, rest = output.split("\n", 1)
-    assert first == message.splitlines()[0]
-    assert "```" not in first and "```" in rest and " [0. 1.]]" in rest
+    assert first == f"<p>{message.splitlines()[0]}</p>"
+    assert rest == "<pre>It returned\n[[1. 0.]\n [0. 1.]]</pre>"
 
 
 def test_results_are_in_the_course_points_like_every_other_grade():
@@ -168,3 +173,171 @@ def test_gradescope_build_names_the_course_keys_it_does_not_apply(tmp_path, caps
     course.write_text(json.dumps({"select": ["lab07.ex1"], "late_penalty": {"per_day": 10}}))
     assert main(["gradescope", "build", "--out", str(tmp_path / "a.zip"), "--config", str(course)]) == 0
     assert "late_penalty" in capsys.readouterr().err
+
+
+# ------------------------------------------------------------------ pictures in results.json
+class _Tags(HTMLParser):
+    """Every tag and attribute of an HTML fragment, and the text of its <img> sources."""
+
+    def __init__(self, text: str):
+        super().__init__(convert_charrefs=True)
+        self.tags, self.attributes, self.sources = [], set(), []
+        self.feed(text)
+        self.close()
+
+    def handle_starttag(self, tag, attrs):
+        self.tags.append(tag)
+        self.attributes |= {name for name, _ in attrs}
+        self.sources += [value for name, value in attrs if tag == "img" and name == "src"]
+
+
+def pictures_of(output: str) -> list[np.ndarray]:
+    """The <img> of a test's output, decoded; each must be a PNG or JPEG data: URI."""
+    decoded = []
+    for source in _Tags(output).sources:
+        match = re.fullmatch(r"data:image/(png|jpeg);base64,([A-Za-z0-9+/]+=*)", source)
+        assert match, source[:80]
+        image = cv2.imdecode(np.frombuffer(base64.b64decode(match[2]), np.uint8), cv2.IMREAD_UNCHANGED)
+        assert image is not None
+        decoded.append(image)
+    return decoded
+
+
+def assert_sanitiser_safe(output: str):
+    """Only the tags the output promises (those a sanitiser keeps) and no attribute that runs
+    anything or styles: student text can add none."""
+    parsed = _Tags(output)
+    assert set(parsed.tags) <= gradescope.HTML_TAGS, set(parsed.tags) - gradescope.HTML_TAGS
+    assert parsed.attributes <= {"src", "alt", "title", "width", "height"}, parsed.attributes
+
+
+def test_a_failed_public_check_shows_its_pictures_small_and_nothing_student_made_is_markup(
+        autograder_zip, tmp_path):
+    submission = mutant(tmp_path, MODULE, """
+        _translate = translate
+        def translate(image, tx=100, ty=50):
+            print("<script>alert('printed')</script> & <b>bold</b>")
+            return _translate(image, ty, tx)
+        """)
+    results = run_container(autograder_zip, tmp_path, submission)
+    assert all(t["output_format"] == "html" for t in results["tests"])
+    for test in results["tests"]:
+        assert_sanitiser_safe(test["output"])
+        shown = pictures_of(test["output"])
+        if test["status"] == "passed" or test["visibility"] != "visible":  # hidden checks: a verdict only
+            assert shown == [], test["name"]
+        for image in shown:
+            assert image.shape[1] <= gradescope.THUMBNAIL[0] and image.shape[0] <= gradescope.THUMBNAIL[1]
+    failed = [t for t in results["tests"] if t["status"] == "failed" and t["visibility"] == "visible"]
+    assert failed and all(len(pictures_of(t["output"])) >= 3 for t in failed if "translate(image)" in t["name"])
+    printed = next(t["output"] for t in failed if "What your code printed" in t["output"])
+    assert "&lt;script&gt;alert(&#x27;printed&#x27;)&lt;/script&gt; &amp; &lt;b&gt;bold&lt;/b&gt;" in printed
+    assert gradescope.FULL_PAGE in results["output"]
+
+
+def test_hostile_text_in_every_field_stays_text():
+    from autograder.results import Artifact, CheckResult
+
+    hostile = "<img src=x onerror=alert(1)><a href='javascript:x'>\x1b[2J</a>\u202e"
+    picture = pictures.picture_item(hostile, np.full((40, 60, 3), 200, np.uint8))
+    check = CheckResult(hostile, 0.0, 1.0, "failed", f"{hostile}\n{hostile}", hint=hostile, output=hostile,
+                        traceback=hostile, artifacts=[Artifact("images", hostile, [picture, picture], hostile)])
+    output = gradescope.check_html(check, gradescope.figures_of(check), left_out=hostile)
+    assert_sanitiser_safe(output)
+    assert len(pictures_of(output)) == 2 and "\x1b" not in output and "\u202e" not in output
+    # Escaped wherever it appears: the message's two lines, hint, traceback, printed output, the
+    # figure's title and caption, each picture's alt and title, the labels' line (twice), left_out.
+    assert output.count("&lt;img src=x onerror=alert(1)&gt;") == 14
+
+
+def test_point_plots_become_png_pictures_with_their_points_in_place():
+    truth, yours = np.array([[0.0, 0.0], [10.0, 5.0]]), np.array([[10.0, 0.0], [0.0, 5.0]])
+    svg = pictures.svg_points({"truth": truth, "yours": yours})
+    image = pictures.rasterise_svg(svg)
+    assert image.shape == (300, 360, 3)
+    yours_drawn = re.findall(r'<circle cx="([\d.]+)" cy="([\d.]+)" r="2"', svg)  # the second series' points
+    orange = np.array([2, 95, 217])  # its colour, "#d95f02", in BGR
+    assert len(yours_drawn) == 2
+    for x, y in ((float(x), float(y)) for x, y in yours_drawn):
+        assert np.abs(image[round(y), round(x)].astype(int) - orange).max() < 40, (x, y)
+    assert (image == 255).all(axis=2).mean() > 0.9  # a white page with a few marks
+    with pytest.raises(ValueError):
+        pictures.rasterise_svg("<p>not a plot</p>")
+    with pytest.raises(ValueError):
+        pictures.rasterise_svg('<svg width="100000" height="10"/>')
+
+
+def test_the_budget_goes_round_the_exercises_and_says_what_it_left_out(monkeypatch):
+    from autograder.results import Artifact, CheckResult, ExerciseResult, GradingResult
+
+    noise = np.random.default_rng(0).integers(0, 255, (120, 160, 3), dtype=np.uint8)
+
+    def failed(name):
+        return CheckResult(name, 0.0, 1.0, "failed", "wrong",
+                           artifacts=[Artifact("images", name, [pictures.picture_item("yours", noise)])])
+
+    exercises = [ExerciseResult(f"lab07.ex{n}", "T", [], [failed("first"), failed("second")]) for n in (1, 2, 3)]
+    result = GradingResult("s", "h", "0", exercises)
+    cost = sum(f.size for f in gradescope.figures_of(exercises[0].checks[0]))
+    shown, left_out = gradescope.pictures_within_budget(result, budget=3 * cost + cost // 2)
+    assert set(shown) == {(f"lab07.ex{n}", 0) for n in (1, 2, 3)}
+    assert left_out == {(f"lab07.ex{n}", 1) for n in (1, 2, 3)}
+    outputs = [t["output"] for t in gradescope.results_json(result, CourseConfig())["tests"]]
+    assert all("<img" in output and "left out" not in output for output in outputs)  # all fit the real budget
+    monkeypatch.setattr(gradescope, "PICTURES_BUDGET", 3 * cost + cost // 2)
+    outputs = [t["output"] for t in gradescope.results_json(result, CourseConfig())["tests"]]
+    assert ["<img" in output for output in outputs] == [True, False] * 3
+    assert "python grade.py lab07.ex2 on your own copy shows them" in outputs[3]
+
+
+# A submission wrong everywhere: every function's array, tuple or float result is off.
+WRONG_EVERYWHERE = '''
+
+import functools as _functools, inspect as _inspect
+import numpy as _np
+
+
+def _off(value):
+    if isinstance(value, _np.ndarray) and value.dtype.kind == "f":
+        return value * 1.07 + 2.5
+    if isinstance(value, _np.ndarray) and value.dtype == _np.uint8:
+        return _np.ascontiguousarray(255 - value)
+    if isinstance(value, _np.ndarray) and value.dtype.kind in "iu":
+        return value + 3
+    if isinstance(value, tuple):
+        return tuple(_off(v) for v in value)
+    return value * 1.07 + 2.5 if isinstance(value, float) else value
+
+
+def _wrong(function):
+    @_functools.wraps(function)
+    def wrong(*args, **kwargs):
+        return _off(function(*args, **kwargs))
+    return wrong
+
+
+for _name, _value in list(globals().items()):
+    if _inspect.isfunction(_value) and _value.__module__ == __name__ and not _name.startswith("_"):
+        globals()[_name] = _wrong(_value)
+'''
+
+
+@pytest.mark.slow
+def test_a_submission_wrong_in_every_lab_stays_within_the_budget(tmp_path):
+    folder = tmp_path / "wrong"
+    folder.mkdir()
+    for module in REFERENCE.glob("*.py"):
+        (folder / module.name).write_text(module.read_text() + WRONG_EVERYWHERE)
+    data = gradescope.run(folder, tmp_path / "results.json", CourseConfig())
+    jsonschema.validate(data, SCHEMA)
+    size = (tmp_path / "results.json").stat().st_size
+    pictures_chars = sum(len(source) for t in data["tests"] for source in _Tags(t["output"]).sources)
+    with_pictures = [t for t in data["tests"] if "<img" in t["output"]]
+    print(f"results.json: {size} bytes, {pictures_chars} of pictures in {len(with_pictures)} tests")
+    assert pictures_chars <= gradescope.PICTURES_BUDGET + 40 * len(with_pictures)  # + the "data:...," prefixes
+    assert size < 1_000_000
+    labs = {t["name"][:5] for t in with_pictures}
+    assert len(labs) >= 5 and len(with_pictures) >= 20, labs
+    left_out = [t for t in data["tests"] if "Pictures left out here" in t["output"]]
+    assert left_out and all(t["status"] == "failed" and t["visibility"] == "visible" for t in left_out)
+    assert not any("<img" in t["output"] for t in data["tests"] if t["visibility"] != "visible")

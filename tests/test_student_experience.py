@@ -242,12 +242,12 @@ def translation_matrix(tx, ty):
     assert "printed" not in terminal_text(grade(REFERENCE, ["lab07.ex1"], pictures="none"))
 
 
-def test_gradescope_output_keeps_matrices_in_a_code_block(tmp_path):
+def test_gradescope_output_keeps_matrices_in_a_preformatted_block(tmp_path):
     folder = submission_from_source(tmp_path, LAB07, (REFERENCE / f"{LAB07}.py").read_text() + """
 def translation_matrix(tx, ty):
-    return np.array([[1.0, 0, ty], [0, 1, tx], [0, 0, 1]])
+    return np.array([[1.0, 0.5, tx], [0, 1, ty], [0, 0, 1]])
 """)
     data = gradescope.run(folder, tmp_path / "r.json", CourseConfig(select=["lab07.ex1"]))
     failed = [t for t in data["tests"] if t["status"] == "failed"]
-    assert failed and all(t["output_format"] == "md" for t in data["tests"])
-    assert any("```\n" in t["output"] for t in failed)
+    assert failed and all(t["output_format"] == "html" for t in data["tests"])
+    assert any("<pre>It returned\n[[" in t["output"] for t in failed)
