@@ -20,6 +20,9 @@ source file with any name (``lab7.py``) when one module is looked for, unless it
 is named after another lab's module (as the batch does); a module that is
 missing, ambiguous or unreadable becomes a *problem* of that module only
 (:attr:`Submission.problems`), naming the files found and the rename to make.
+An archive handed in as the whole submission that cannot be read (not a zip,
+too many members) is every module's problem: the submission is graded 0 with
+the reason, as a folder without the modules is.
 """
 
 from __future__ import annotations
@@ -122,19 +125,30 @@ def load_submission(path, modules: list[str], caps: Caps = CAPS,
     every_module : collection of str
         Every lab's module name: a lone file named after one of them is that module,
         never taken for another (see :func:`_lone_file`).
+
+    Raises
+    ------
+    SubmissionError
+        For a path that does not exist or is no folder, ``.py``, ``.zip`` or
+        ``.ipynb``. What is handed in but cannot be read, a broken archive included,
+        is a module's problem instead (a grade of 0 with the reason).
     """
     source = Path(path)
     if not source.exists():
         raise SubmissionError(f"submission not found: {source}")
     out = Path(tempfile.mkdtemp(prefix="submission-"))
     refused: dict[str, str] = {}
+    unreadable = ""  # why the archive that is the whole submission cannot be read
     try:
         root = out / "_read"
         root.mkdir()
         if source.is_dir():
             copy_regular_files(source, root, refused, caps, SOURCE_SUFFIXES + (".zip",))
         elif source.suffix == ".zip":
-            unzip_regular_files(source, root, refused, caps)
+            try:
+                unzip_regular_files(source, root, refused, caps)
+            except SubmissionError as exc:
+                unreadable = str(exc)
         elif source.suffix in SOURCE_SUFFIXES:
             data = _read_one(source, source.name, refused, caps, [0])
             if data is not None:
@@ -146,6 +160,10 @@ def load_submission(path, modules: list[str], caps: Caps = CAPS,
         submission = Submission(out, _display_name(named), "", refused)
         lone = _lone_file(root, set(modules) | set(every_module))
         for module in modules:
+            if unreadable:
+                submission.problems[module] = (f"{unreadable}, so {module}.py could not be read from it: "
+                                               f"zip your files again, or hand in {module}.py itself")
+                continue
             found = _find_module(root, module)
             if found is None and lone is not None and len(modules) == 1:
                 found = lone

@@ -91,21 +91,38 @@ def test_a_zip_inside_the_folder_is_graded_and_a_broken_one_is_named(tmp_path):
     assert "lab11.zip is not a valid zip archive" in message and f"{LAB11}.py not found" in message
 
 
-def test_a_broken_zip_as_the_whole_submission_is_a_usage_error_naming_it(tmp_path, capsys):
+def test_a_broken_zip_as_the_whole_submission_is_graded_zero_naming_it(tmp_path, capsys):
     archive = tmp_path / "handin.zip"
     archive.write_bytes(b"not a zip at all")
-    assert cli.main(["grade", str(archive), "lab07.ex1", "--no-html"]) == cli.USAGE_ERROR
+    report = tmp_path / "results.json"
+    assert cli.grade_py_main(["--submission", str(archive), "lab07.ex1", "lab11.ex1", "--no-html",
+                              "--json", str(report)], root=ROOT) == 0
     captured = capsys.readouterr()
-    assert "handin.zip is not a valid zip archive" in captured.err
+    data = json.loads(report.read_text())
+    assert data["total"] == 0 and data["max_total"] > 0
+    for e in data["exercises"]:
+        assert e["message"].startswith("handin.zip is not a valid zip archive, so ")
+        assert all(c["score"] == 0 for c in e["checks"])
+    assert "hand in lab07_transformations.py itself" in data["exercises"][0]["message"]
+    assert "handin.zip is not a valid zip archive" in " ".join(captured.out.split())
     assert "Traceback" not in captured.out + captured.err
+    # A path that is not there is still the caller's mistake.
+    assert cli.main(["grade", str(tmp_path / "nowhere.zip"), "lab07.ex1", "--no-html"]) == cli.USAGE_ERROR
+    assert "submission not found" in capsys.readouterr().err
 
 
-def test_gradescope_says_what_to_upload_when_nothing_is_a_submission(tmp_path):
+def test_gradescope_grades_a_broken_zip_zero_and_says_what_to_upload_when_nothing_is_a_submission(tmp_path):
     archive = tmp_path / "handin.zip"
     archive.write_bytes(b"not a zip at all")
     data = gradescope.run(archive, tmp_path / "results.json", CourseConfig(select=["lab07.ex1"]))
+    assert data["score"] == 0 and data["tests"]
+    assert all("handin.zip is not a valid zip archive" in t["output"] for t in data["tests"] if not t["score"])
+    assert "handin.zip is not a valid zip archive" in data["output"] and "notified" not in data["output"]
+    notes = tmp_path / "handin.txt"
+    notes.write_text("my answers")
+    data = gradescope.run(notes, tmp_path / "results.json", CourseConfig(select=["lab07.ex1"]))
     assert data["score"] == 0 and data["tests"] == []
-    assert "handin.zip is not a valid zip archive" in data["output"]
+    assert "cannot grade handin.txt" in data["output"]
     assert "notified" not in data["output"] and "lab07_transformations.py" in data["output"]
 
 
