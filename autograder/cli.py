@@ -341,6 +341,7 @@ def run_batch(args) -> int:
     from .batch.exports import ExportError
     from .batch.gradebook import StorageError
     from .batch.ingest import IngestError
+    from .batch.processes import GradingProcessesFailed
     from .batch.run import run_batch as batch
     from .course import CourseConfig, CourseConfigError
     from .registry import SelectionError
@@ -358,6 +359,10 @@ def run_batch(args) -> int:
     except (CourseConfigError, IngestError, ExportError, SelectionError, DaskUnavailable) as exc:
         console.print(f"[red]error:[/red] {escape(str(exc))}")
         return USAGE_ERROR
+    except GradingProcessesFailed as exc:   # this machine's fault: every finished grading is kept
+        print(f"error: {exc}; every finished grading is in the gradebook: run the same command again",
+              file=sys.stderr)
+        return STORAGE_ERROR
     except StorageError as exc:
         return _storage_failed(exc)
     except KeyboardInterrupt:
@@ -413,6 +418,30 @@ def _storage_failed(exc) -> int:
     return STORAGE_ERROR
 
 
+def _running_column():
+    from rich.progress import ProgressColumn
+    from rich.text import Text
+
+    class RunningColumn(ProgressColumn):
+        """The students being graded, the longest first, with how long each has run: a slow
+        one is named while the ETA waits for it."""
+
+        def __init__(self, since: dict):
+            super().__init__()
+            self.since = since
+
+        def render(self, task):
+            import time
+
+            now = time.monotonic()
+            longest = sorted(self.since.items(), key=lambda item: item[1])[:3]
+            shown = ", ".join(f"{key} {int(now - start) // 60}:{int(now - start) % 60:02d}" for key, start in longest)
+            more = f" +{len(self.since) - 3}" if len(self.since) > 3 else ""
+            return Text(f"running: {shown}{more}" if shown else "", style="dim")
+
+    return RunningColumn
+
+
 class _batch_progress:
     """A progress bar with ETA and finished/failed counts on a terminal; nothing when redirected."""
 
@@ -426,19 +455,23 @@ class _batch_progress:
         from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn,
                                    TimeRemainingColumn)
 
+        self.since: dict[str, float] = {}   # student id -> when the batch saw them running
         self.bar = Progress(TextColumn("[bold]grading[/bold]"), BarColumn(), MofNCompleteColumn(),
                             TextColumn("{task.fields[counts]}"), TimeElapsedColumn(), TextColumn("ETA"),
-                            TimeRemainingColumn(), console=self.console)
+                            TimeRemainingColumn(), _running_column()(self.since), console=self.console)
         self.bar.start()
         self.task = None
         return self.update
 
     def update(self, event, entry, summary):
+        import time
+
         if event == "start":
             self.task = self.bar.add_task("", total=summary.students, counts="")
-        else:
-            self.bar.update(self.task, advance=1,
-                            counts=f"{summary.graded} finished, {len(summary.failed)} failed")
+            return
+        now = time.monotonic()
+        self.since = {key: self.since.get(key, now) for key in summary.running}
+        self.bar.update(self.task, advance=1, counts=f"{summary.graded} finished, {len(summary.failed)} failed")
 
     def __exit__(self, *exc):
         if self.bar:

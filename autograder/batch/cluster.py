@@ -19,7 +19,7 @@ class DaskUnavailable(RuntimeError):
     """``distributed`` is not installed."""
 
 
-def grade_on_dask(address: str, todo, arguments, finished, client=None) -> None:
+def grade_on_dask(address: str, todo, arguments, finished, client=None, rules: dict | None = None) -> None:
     """Grade ``todo`` (entries) on the cluster at ``address``; ``finished(entry, outcome)`` per result."""
     try:
         from distributed import Client, as_completed
@@ -29,7 +29,7 @@ def grade_on_dask(address: str, todo, arguments, finished, client=None) -> None:
     own = client is None
     client = client or Client(address)
     try:
-        futures = {client.submit(grade_files, entry.files, *arguments, entry.student_id,
+        futures = {client.submit(grade_files, entry.files, *arguments, entry.student_id, None, rules,
                                  key=f"grade-{entry.student_id}-{entry.content_hash[:16]}",
                                  pure=False, retries=RETRIES): entry
                    for entry in todo}

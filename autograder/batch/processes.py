@@ -148,6 +148,11 @@ class GradingPool:
         else:
             self.stop()
 
+    @property
+    def running(self) -> list[str]:
+        """The keys of the tasks handed out and not ended yet (one per busy process)."""
+        return [m.key for m in self._members if m.key is not None]
+
     def submit(self, key: str, arguments: tuple) -> None:
         """Run ``task(*arguments)``; its outcome comes out of :meth:`outcomes` with ``key``."""
         self._queue.append((key, arguments))

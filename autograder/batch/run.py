@@ -74,6 +74,7 @@ class BatchSummary:
     ignored: list[str] = field(default_factory=list)      # "item: why it is no submission"
     missing: list[str] = field(default_factory=list)      # ids graded before, no longer in SUBMISSIONS (kept)
     unmatched: list[str] = field(default_factory=list)    # roster problems
+    running: list[str] = field(default_factory=list)      # ids being graded now (local gradings)
     warnings: list[str] = field(default_factory=list)
     files: list[Path] = field(default_factory=list)
 
@@ -121,7 +122,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
         _refuse_unconfined(confine.detect())
 
     # Grading: only what the gradebook lacks, each grading committed as it lands.
-    lock = lock_hash()
+    lock = f"{lock_hash()}/{_grading_fingerprint(course)}"   # a changed rule regrades everyone
     keys = {e.student_id: submission_key(e.student_id, e.content_hash, selection, lock=lock) for e in entries}
     summary = BatchSummary(students=len(entries), ignored=[f"{item}: {why}" for item, why in upload.ignored],
                            warnings=list(upload.warnings))
@@ -141,6 +142,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
             # A fault of RESULTS (full, read-only, deleted) stops the batch with a StorageError;
             # only what is this submission's own (a result that cannot be stored) fails it alone.
             key = keys[entry.student_id]
+            if "storage" in outcome:   # this machine's temporary folder is full or read-only
+                raise StorageError.from_exception(OSError(outcome["errno"], outcome["storage"]), outcome["path"])
             if "result" in outcome:
                 book.check_in_place()   # a deleted RESULTS is not written again piecemeal
                 try:
@@ -159,12 +162,16 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
             progress("start", None, BatchSummary(students=len(todo)))
         arguments = (selection.split(","), course.call_timeout, PICTURES[pictures], course.hidden_points_visible,
                      course.inputs_secret)
+        rules = {"forbid": course.forbid, "exercise_budget": course.exercise_budget,
+                 "submission_budget": course.submission_budget,
+                 "gradings": 1 if dask_scheduler else min(workers or os.cpu_count() or 1, max(len(todo), 1))}
         if dask_scheduler:
             from .cluster import grade_on_dask
 
-            grade_on_dask(dask_scheduler, todo, arguments, finished)
+            grade_on_dask(dask_scheduler, todo, arguments, finished, rules=rules)
         else:
-            _grade_locally(todo, arguments, finished, workers or os.cpu_count() or 1)
+            _grade_locally(todo, arguments, finished, workers or os.cpu_count() or 1, rules,
+                           running=lambda ids: setattr(summary, "running", ids))
 
         standing = class_grades(book, course)
         book.check_in_place()   # not the exports of a gradebook that is gone
@@ -232,6 +239,16 @@ def stored_roster(book: Gradebook) -> exports.Roster:
     return roster
 
 
+def _grading_fingerprint(course: CourseConfig) -> str:
+    """What of the course changes a grading (its time limits, forbidden calls, the inputs'
+    secret, what the student's page shows), hashed: never the secret itself."""
+    import hashlib
+
+    rules = {name: getattr(course, name) for name in ("call_timeout", "exercise_budget", "submission_budget",
+                                                       "forbid", "inputs_secret", "hidden_points_visible")}
+    return hashlib.sha256(json.dumps(rules, sort_keys=True).encode()).hexdigest()[:16]
+
+
 @contextmanager
 def _only_writer(out: Path):
     """One batch at a time writes RESULTS (the lock goes with the process, however it ends).
@@ -249,7 +266,8 @@ def _only_writer(out: Path):
         yield
 
 
-def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None:
+def _grade_locally(todo: list[Entry], arguments, finished, workers: int, rules: dict | None = None,
+                   running: Callable[[list[str]], None] | None = None) -> None:
     """A pool of grading processes, the cores shared out among them. A process that dies is
     charged to the submission it was grading alone (the others go on; it is replaced), and
     a submission whose grading kills its process ``POOL_ATTEMPTS`` times is failed."""
@@ -263,13 +281,15 @@ def _grade_locally(todo: list[Entry], arguments, finished, workers: int) -> None
     # are written; on Ctrl-C or SIGTERM they stop their gradings before this returns.
     with GradingPool(workers, grade_files) as pool:
         for entry in todo:
-            pool.submit(entry.student_id, (entry.files, *arguments, entry.student_id, threads))
+            pool.submit(entry.student_id, (entry.files, *arguments, entry.student_id, threads, rules))
         for student_id, outcome in pool.outcomes():
             entry = entries[student_id]
+            if running:
+                running(pool.running)
             if isinstance(outcome, ProcessDeath):
                 deaths.setdefault(student_id, []).append(outcome.how)
                 if len(deaths[student_id]) < POOL_ATTEMPTS:
-                    pool.submit(student_id, (entry.files, *arguments, student_id, threads))
+                    pool.submit(student_id, (entry.files, *arguments, student_id, threads, rules))
                     continue
                 how = ", ".join(dict.fromkeys(deaths[student_id]))   # each way it died, once
                 outcome = {"error": f"the grading process died while grading this submission, "

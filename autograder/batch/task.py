@@ -15,14 +15,17 @@ import traceback
 import warnings
 from pathlib import Path
 
+from .gradebook import STORAGE_ERRNOS
 from .processes import grading_processes  # noqa: F401 - where the command line starts it
 
 
 def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: float,
                 pictures: str, hidden_points_visible: bool, inputs_secret: str, name: str,
-                threads: int | None = None) -> dict:
+                threads: int | None = None, rules: dict | None = None) -> dict:
     """``{"result": <results-model dict, without pictures>, "json": <the student's results.json
-    text>, "page": <the student's feedback page>}`` or ``{"error": <reason>}``.
+    text>, "page": <the student's feedback page>}``, ``{"error": <reason>}``, or
+    ``{"storage": <reason>, "path": <file>, "errno": <n>}`` when this machine's temporary
+    folder is full or read-only (no fault of the submission: the batch stops).
 
     The page is rendered here, where the pictures are, and the JSON written out here too:
     the process that collects the class (one for any number of workers) just stores them.
@@ -48,6 +51,11 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
     threads : int, optional
         OpenCV's threads in this process and in the submission's worker, where
         several gradings share the machine's cores (None: OpenCV's default).
+    rules : dict, optional
+        The course's other grading rules, as a single grading applies them:
+        ``forbid`` (library functions a student function may not call),
+        ``exercise_budget`` and ``submission_budget`` (seconds); and ``gradings``,
+        how many gradings share this machine at once (their memory: :func:`_sharing_the_machine`).
     """
     from ..reports import html
     from ..results import json_text, strip_pictures
@@ -61,20 +69,43 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
             # strategy's doing and warns. The examples do not depend on it.
             warnings.filterwarnings("ignore", message="Do not use the `random` module inside strategies")
             folder = Path(tmp) / name
-            for relative, data in files.items():
-                target = folder / relative
-                target.parent.mkdir(parents=True, exist_ok=True)
-                target.write_bytes(data)
-            folder.mkdir(exist_ok=True)
+            try:
+                for relative, data in files.items():
+                    target = folder / relative
+                    target.parent.mkdir(parents=True, exist_ok=True)
+                    target.write_bytes(data)
+                folder.mkdir(exist_ok=True)
+            except OSError as exc:
+                if exc.errno in STORAGE_ERRNOS:   # the machine's fault, not the submission's
+                    return {"storage": exc.strerror or str(exc), "path": str(exc.filename or tmp),
+                            "errno": exc.errno}
+                raise
             if threads:
                 import cv2
 
                 cv2.setNumThreads(threads)
-            result = grade(folder, selectors, limits=Limits(call_timeout=call_timeout, threads=threads),
-                           pictures=pictures, inputs_secret=inputs_secret or None)
+            rules = rules or {}
+            budgets = {k: rules[k] for k in ("exercise_budget", "submission_budget") if rules.get(k)}
+            limits = Limits(call_timeout=call_timeout, threads=threads, **budgets)
+            result = grade(folder, selectors, limits=_sharing_the_machine(limits, rules.get("gradings", 1)),
+                           pictures=pictures, inputs_secret=inputs_secret or None, forbid=rules.get("forbid"))
             student = result.for_students(hidden_points_visible)
             return {"result": strip_pictures(result.to_dict()),
                     "json": json_text(strip_pictures(student.to_dict())), "page": html.render(student)}
     except Exception as exc:  # noqa: BLE001 - one submission never stops the batch
         return {"error": f"the grader could not finish: {type(exc).__name__}: {exc}",
                 "traceback": traceback.format_exc()[-4000:]}
+
+
+def _sharing_the_machine(limits, gradings: int):
+    """``limits`` for one of ``gradings`` submissions graded side by side on this machine: each
+    keeps its own memory limit, but never more than its share of what the machine can give
+    the workers together, so one submission's memory bomb never takes another's memory."""
+    from dataclasses import replace
+
+    from ..sandbox import memory_for_workers
+
+    machine = memory_for_workers()
+    if gradings <= 1 or not machine:
+        return limits
+    return replace(limits, memory=min(limits.memory, machine // gradings))
