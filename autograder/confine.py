@@ -555,6 +555,28 @@ def _pauses(seconds: float, first: float = 0.0005, longest: float = 0.01):
         pause = min(2 * pause, longest)
 
 
+_CGROUP_NAME = re.compile(r"^autograder-(\d+)-[0-9a-f]{8}$")
+
+
+def _remove_left_behind(parent: Path) -> None:
+    """Remove the cgroups beside ours whose creating process is dead (it was killed before it
+    could remove them: a batch's grading process killed outright), their processes first."""
+    try:
+        names = [p.name for p in parent.iterdir() if _CGROUP_NAME.match(p.name)]
+    except OSError:
+        return
+    for name in names:
+        pid = int(_CGROUP_NAME.match(name)[1])
+        try:
+            os.kill(pid, 0)
+            continue   # its creator lives: its own to remove
+        except ProcessLookupError:
+            pass
+        except PermissionError:
+            continue   # another user's live process
+        Cgroup([parent / name]).remove()
+
+
 class Cgroup:
     """A cgroup bounding the memory and the number of processes of a worker and all its children.
 
@@ -604,6 +626,7 @@ class Cgroup:
             parent = mount / path.lstrip("/")
             if not {"memory", "pids"} <= set((parent / "cgroup.subtree_control").read_text().split()):
                 (parent / "cgroup.subtree_control").write_text("+memory +pids")
+            _remove_left_behind(parent)
             folder = parent / name
             folder.mkdir()
             try:
@@ -628,6 +651,7 @@ class Cgroup:
                 root = Path("/sys/fs/cgroup") / controller
                 if own is None or not (root / "cgroup.procs").exists():
                     raise OSError(f"no cgroup v1 {controller} hierarchy")
+                _remove_left_behind(root / own.lstrip("/"))
                 folder = root / own.lstrip("/") / name
                 folder.mkdir()
                 folders.append(folder)

@@ -315,3 +315,30 @@ def test_only_the_folders_of_dead_batches_are_removed(tmp_path):
             owner.kill()
     assert sorted(removed) == sorted([dead, stale])
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([live.name, starting.name, "unrelated"])
+
+
+def test_cgroups_left_by_a_killed_grading_process_are_removed_by_the_next():
+    """A grading process killed outright cannot remove its sandboxes' cgroups: the next cgroup
+    made beside them removes those whose creator is dead (never a live process's)."""
+    from autograder.confine import Cgroup
+
+    def made(name):
+        for attempt in (Cgroup._v2, Cgroup._v1):   # as Cgroup.create tries them
+            try:
+                group = attempt(name, None, None)
+            except (OSError, ValueError):
+                group = None
+            if group is not None:
+                return group
+        pytest.skip("no cgroup can be made here")
+
+    dead = subprocess.Popen(["true"])
+    dead.wait()
+    left, alive = made(f"autograder-{dead.pid}-0badcafe"), made(f"autograder-{os.getpid()}-00c0ffee")
+    try:
+        Cgroup.create(memory=None, processes=None).remove()
+        assert not any(folder.exists() for folder in left.folders), "a dead creator's cgroup was left"
+        assert all(folder.exists() for folder in alive.folders), "a live process's cgroup was removed"
+    finally:
+        left.remove()
+        alive.remove()
