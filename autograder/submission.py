@@ -409,10 +409,20 @@ def _zip_member_count(archive: Path) -> int | None:
     """How many members the archive's end record declares (None if it has none)."""
     try:
         with open(archive, "rb") as f:
-            f.seek(0, os.SEEK_END)
-            size = f.tell()
-            f.seek(max(0, size - (_END_RECORD.size + 65535)))
-            tail = f.read()
+            return declared_members(f)
+    except OSError:
+        return None
+
+
+def declared_members(handle) -> int | None:
+    """How many members a zip's end record declares, read from the open file ``handle``
+    (rewound after), before anything parses the archive's directory; None without one."""
+    try:
+        handle.seek(0, os.SEEK_END)
+        size = handle.tell()
+        handle.seek(max(0, size - (_END_RECORD.size + 65535)))
+        tail = handle.read()
+        handle.seek(0)
     except OSError:
         return None
     at = tail.rfind(b"PK\x05\x06")

@@ -21,13 +21,13 @@ from __future__ import annotations
 import io
 import os
 import stat
-import struct
 import zipfile
 import zlib
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
-from ..submission import CAPS, SOURCE_SUFFIXES, Caps, _check_name, _limit_for, _read_regular, _Refused
+from ..submission import (CAPS, SOURCE_SUFFIXES, Caps, _check_name, _limit_for, _read_regular, _Refused,
+                          declared_members)
 from ..text import shown
 
 FOLDER, FILE, LINK, SPECIAL = "folder", "file", "link", "special"
@@ -247,26 +247,6 @@ def read_member(archive: zipfile.ZipFile, info: zipfile.ZipInfo, limit: int) -> 
             ValueError) as exc:
         raise Unreadable(f"it cannot be unpacked ({type(exc).__name__})") from None
     return b"".join(chunks)
-
-
-_END_RECORD = struct.Struct("<4s4H2LH")
-
-
-def declared_members(handle) -> int | None:
-    """How many members a zip's end record declares (None without one); ``handle`` is rewound."""
-    try:
-        handle.seek(0, os.SEEK_END)
-        size = handle.tell()
-        handle.seek(max(0, size - (_END_RECORD.size + 65535)))
-        tail = handle.read()
-        handle.seek(0)
-    except OSError:
-        return None
-    at = tail.rfind(b"PK\x05\x06")
-    if at < 0 or len(tail) - at < _END_RECORD.size:
-        return None
-    total = _END_RECORD.unpack_from(tail, at)[4]
-    return 2**31 if total == 0xFFFF else total   # ZIP64: more than is ever read
 
 
 def source_files(tree: UploadTree, path: tuple[str, ...], refused: dict[str, str], budget: Budget,
