@@ -14,7 +14,12 @@ import pytest
 
 from autograder.bundle import write_student_bundle
 from autograder.registry import discover
-from conftest import REFERENCE
+from conftest import REFERENCE, ROOT
+
+try:
+    import tomllib
+except ImportError:  # Python 3.10
+    import tomli as tomllib
 
 
 @pytest.fixture(scope="module")
@@ -47,6 +52,10 @@ def bundle_python(bundle, open_folder, tmp_path_factory):
     venv = open_folder / "venv"
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     python = venv / "bin" / "python"
+    # Python 3.11's venv seeds an old setuptools that would build the bundle instead of ours
+    # (too old for the SPDX license string): the pinned one comes with the .pth below.
+    subprocess.run([str(python), "-m", "pip", "uninstall", "--quiet", "--yes", "setuptools"],
+                   check=True, capture_output=True)
     nested_site = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
                                  check=True, capture_output=True, text=True).stdout.strip()
     ours = dict.fromkeys(sysconfig.get_paths()[key] for key in ("purelib", "platlib"))
@@ -157,3 +166,23 @@ def test_bundle_ships_the_contract_and_the_student_guide(bundle):
         text = page.read_text()
         leaked = [name for name in hidden - public if name in text or apidoc._plain(name) in text]
         assert leaked == [], f"{page.relative_to(bundle)} names hidden checks {leaked}"
+
+
+def test_the_build_backend_is_pinned_to_the_constraints_and_the_license_is_an_spdx_expression():
+    """pip applies no constraints file to a build's own environment: the pin in pyproject.toml is
+    what makes every build (and an offline one from a wheelhouse) use the constrained backend."""
+    from packaging.requirements import Requirement
+    from packaging.version import Version
+
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())
+    pins = {}
+    for line in (ROOT / "constraints.txt").read_text().splitlines():
+        if line and not line.startswith("#"):
+            name, _, version = line.partition("==")
+            pins[name.strip().lower().replace("_", "-")] = version.strip()
+    for text in project["build-system"]["requires"]:
+        requirement = Requirement(text)
+        [spec] = requirement.specifier
+        assert spec.operator == "==" and pins[requirement.name.lower()] == spec.version, text
+    assert project["project"]["license"] == "MIT"  # an SPDX expression: setuptools 77 or later
+    assert Version(pins["setuptools"]) >= Version("77")
