@@ -109,6 +109,7 @@ class Trial:
         # (function, argument) pairs the student's function modified in place.
         self.modified_inputs: list[tuple[str, str]] = []
         self._properties = 0  # t.for_all calls so far (each has its recorded examples)
+        self._probed: dict = {}  # confirmation probes' answers, asked once per trial (see probe)
 
     # ------------------------------------------------------------ calling
     def call(self, function: str, *args, **kwargs):
@@ -142,6 +143,21 @@ class Trial:
         # One raise site, and a fresh exception each time: Hypothesis tells failures
         # apart by where they are raised, and re-raising one object grows its traceback.
         raise StudentFailure(failure.outcome, failure.message)
+
+    def probe(self, key: str, answer):
+        """The student's answer on a confirmation probe's input, ``answer()``, asked once per
+        trial (a property shrinking a failing example names it again at every step): None
+        when the call failed or its answer was not of the documented form.
+
+        A probe is a second input chosen to tell candidate mistakes apart; see
+        :class:`autograder.judges.Probe`.
+        """
+        if key not in self._probed:
+            try:
+                self._probed[key] = answer()
+            except (StudentFailure, Fail):
+                self._probed[key] = None
+        return self._probed[key]
 
     def not_implemented(self) -> str:
         """The message of a call in this trial that met a function not implemented yet, or ``""``

@@ -167,6 +167,9 @@ def max_abs_error(got, expected) -> float:
     return float(np.max(np.abs(got - expected))) if got.size else 0.0
 
 
+SAME_ANSWER = "; or, the same answer here, "   # joins mistakes that answer an input alike
+
+
 def closest(got, candidates: dict, distance, tolerance: float, truth=None, margin: float = 3.0):
     """The name of the mistake that explains ``got``, when exactly one does; else None.
 
@@ -207,7 +210,7 @@ def closest(got, candidates: dict, distance, tolerance: float, truth=None, margi
             pass
     if any(d <= margin * best for d in rivals):
         return None
-    return "; or, the same answer here, ".join(names)
+    return SAME_ANSWER.join(names)
 
 
 def _same_answer(distance, first, second, resolution: float) -> bool:

@@ -3,21 +3,133 @@
 Each judge checks the form of the answer (with messages that name expected and
 got), compares it with the truth, and when it is wrong compares it with what the
 usual mistakes would give, so the feedback can name the mistake.
+
+A mistake is named only when it is confirmed (:func:`name_mistake`): its answer
+reproduces the student's on the failing input *and* on a second input chosen to
+tell the candidates apart (a :class:`Probe`, whose student answer is asked for
+through ``t.call``). Otherwise the message says what is measurably wrong.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
+from typing import Any, Callable
+
+import cv2
 import numpy as np
 
 from fixtures.images import as_homography, coverage, warp
 
 from .beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, partial, passed
-from .compare import (at_precision, blurred_difference, closest, fill_fraction, format_apart,
+from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
 FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
+
+
+# ---------------------------------------------------------------- naming, confirmed
+@dataclass(frozen=True)
+class Probe:
+    """A second input, independent of the failing one, on which the candidate mistakes
+    answer differently: a name stands only if the student's answer there is the named
+    mistake's answer too.
+
+    Parameters
+    ----------
+    key : str
+        Names the input within the check: the student is asked once per trial
+        (:meth:`autograder.checks.Trial.probe`).
+    answer : callable () -> object
+        The student's answer on the probe input, through ``t.call`` (a failing call, or
+        an answer not of the documented form, confirms nothing).
+    candidates : callable () -> dict
+        What each candidate mistake answers there, under the same names as on the
+        failing input.
+    truth : object, optional
+        The right answer there. A mistake that answers it rightly (its effect does not
+        show on this input) is confirmed by a right answer: the probe then tells it
+        from the mistakes that do show.
+    distance : callable (answer, candidate) -> float, optional
+        Filled in by the judge that uses the probe when None.
+    tolerance : float, optional
+        How close the student's answer must be to the named mistake's (filled in by
+        the judge when None).
+    alike : callable (candidate, candidate) -> bool, optional
+        Whether two candidates answer alike (default: closer than the match itself).
+    """
+
+    key: str
+    answer: Callable[[], Any]
+    candidates: Callable[[], dict]
+    truth: Any = None
+    distance: Callable | None = None
+    tolerance: float | None = None
+    alike: Callable | None = None
+
+    def completed(self, distance, tolerance, alike=None) -> "Probe":
+        """This probe, with the judge's distance, tolerance and likeness where it has none."""
+        return replace(self, distance=self.distance or distance,
+                       tolerance=tolerance if self.tolerance is None else self.tolerance,
+                       alike=self.alike or alike)
+
+
+def confirm(t: Trial, named: str | None, probe: Probe | None, margin: float = 3.0) -> str | None:
+    """The part of ``named`` (a mistake, or several that answered the failing input alike,
+    joined as :func:`~autograder.compare.closest` joins them) that ``probe`` confirms; None
+    when nothing is confirmed, or there is no probe: a name is never a guess.
+
+    A named mistake is confirmed when the student's answer on the probe input is within
+    the probe's tolerance of that mistake's answer there, and ``margin`` times closer to
+    it than to every other candidate (and the truth) answering differently.
+    """
+    if not named or probe is None:
+        return None
+    answer = t.probe(probe.key, probe.answer)
+    if answer is None:
+        return None
+    candidates = dict(probe.candidates())
+
+    def apart(a, b) -> float:
+        try:
+            with np.errstate(all="ignore"):
+                d = float(probe.distance(a, b))
+        except (ValueError, TypeError, ArithmeticError, np.linalg.LinAlgError, cv2.error):
+            return float("inf")
+        return d if d == d else float("inf")
+
+    scored = {name: apart(answer, candidate) for name, candidate in candidates.items()}
+    kept = [name for name in named.split(SAME_ANSWER) if scored.get(name, np.inf) <= probe.tolerance]
+    if not kept:
+        return None
+    best = min(scored[name] for name in kept)
+    ours = candidates[kept[0]]
+
+    def alike(other) -> bool:
+        if probe.alike is not None:
+            try:
+                return bool(probe.alike(ours, other))
+            except (ValueError, TypeError, ArithmeticError, np.linalg.LinAlgError, cv2.error):
+                return False
+        return apart(ours, other) <= max(best, 1e-12)
+
+    rivals = [scored[name] for name, candidate in candidates.items() if name not in kept and not alike(candidate)]
+    if probe.truth is not None and not alike(probe.truth):
+        rivals.append(apart(answer, probe.truth))
+    if any(d <= margin * best for d in rivals):
+        return None
+    return SAME_ANSWER.join(kept)
+
+
+def name_mistake(t: Trial, got, candidates: dict, distance, tolerance: float, truth=None,
+                 probe: Probe | None = None, margin: float = 3.0) -> str | None:
+    """The mistake that explains ``got`` on the failing input (:func:`~autograder.compare.closest`)
+    and again on the ``probe``'s input (:func:`confirm`); None otherwise."""
+    named = closest(got, candidates, distance, tolerance, truth=truth, margin=margin)
+    if named and probe is not None:
+        probe = probe.completed(distance, tolerance)
+    return confirm(t, named, probe, margin)
 
 
 def format_matrix(matrix, precision: int = 4) -> str:
@@ -30,8 +142,43 @@ def digits_apart(value: float, limit: float, digits: int = 3) -> str:
     return format_apart(value, limit, digits)
 
 
+def fingerprint(*values) -> str:
+    """A short key for a probe input (arrays by their bytes, other values by repr)."""
+    import hashlib
+
+    digest = hashlib.sha1()
+    for value in values:
+        if isinstance(value, np.ndarray):
+            digest.update(f"{value.dtype}{value.shape}".encode())
+            digest.update(np.ascontiguousarray(value).tobytes())
+        elif isinstance(value, (tuple, list)):
+            digest.update(fingerprint(*value).encode())
+        elif isinstance(value, dict):
+            digest.update(fingerprint(*sorted(value.items(), key=lambda item: str(item[0]))).encode())
+        else:
+            digest.update(repr(value).encode())
+    return digest.hexdigest()[:16]
+
+
+def call_probe(t: Trial, function: str, args=(), kwargs=None, *, candidates, truth=None,
+               shape=None, kind: str | None = "iuf", **fields) -> Probe:
+    """A :class:`Probe` whose student answer is ``function(*args, **kwargs)`` (an array of
+    ``shape``, when given; any value otherwise). ``candidates`` is a dict or a callable
+    giving one; ``fields`` are the other :class:`Probe` fields."""
+    kwargs = dict(kwargs or {})
+
+    def answer():
+        value = t.call(function, *args, **kwargs)
+        if shape is None:
+            return value
+        return t.expect_array(value, function, shape=shape, kind=kind, finite=True)
+
+    chosen = candidates if callable(candidates) else (lambda: candidates)
+    return Probe(f"{function}/{fingerprint(args, kwargs)}", answer, chosen, truth, **fields)
+
+
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3),
-                 up_to_scale: bool = False, rtol: float = 1e-6) -> np.ndarray:
+                 up_to_scale: bool = False, rtol: float = 1e-6, probe: Probe | None = None) -> np.ndarray:
     """Compare a returned matrix with the truth; name the mistake when one fits.
 
     Parameters
@@ -49,6 +196,9 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
     rtol : float
         Tolerance, relative to the largest entry (or to unit norm, up to scale), raised to
         float32's precision where it is tighter (:func:`autograder.compare.at_precision`).
+    probe : Probe, optional
+        A second input whose answer confirms a mistake that ``mistakes`` names
+        (its truth required; :func:`call_probe` builds one). Without it no mistake is named.
     """
     got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
     scale = 1.0 if up_to_scale else max(1.0, float(np.abs(expected).max()))
@@ -59,9 +209,12 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
     integers = integer_entries(got, expected)
     if integers:
         t.fail(f"{what} is wrong: {integers}", mistake="an integer matrix: its fractions are cut off")
-    mistake = closest(got, mistakes or {}, distance, 1e3 * rtol * scale, truth=expected)
-    if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    named = closest(got, mistakes or {}, distance, 1e3 * rtol * scale, truth=expected)
+    if named and probe is not None:
+        probe_scale = 1.0 if up_to_scale else max(1.0, float(np.abs(np.asarray(probe.truth, float)).max()))
+        mistake = confirm(t, named, probe.completed(distance, 1e3 * rtol * probe_scale))
+        if mistake:
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     shown, wanted = format_arrays_apart(got, expected)
     t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale)}.\n"
            f"It returned\n{shown}\nexpected\n{wanted}")
@@ -123,13 +276,37 @@ def where_matrices_differ(got, expected, up_to_scale: bool = False) -> str:
     return f"in its {listed} {kind}{'s' if len(names) > 1 else ''}"
 
 
-def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, show=True) -> Verdict:
+def warp_probe(t: Trial, function: str, source, M, mistakes: dict, args=None, kwargs=None,
+               dsize=None) -> Probe:
+    """A :class:`Probe` for image warps: the student's ``function(*args, **kwargs)`` (``args``
+    by default ``(source,)``: pass the map too when the function takes it) compared with ``source`` warped by each mistake's map
+    (``mistakes``: name -> map) and by the true map ``M``, on the output of size ``dsize``
+    (the input's by default)."""
+    width, height = dsize or (source.shape[1], source.shape[0])
+    expected_shape = (height, width) + source.shape[2:]
+    args = (source,) if args is None else tuple(args)
+    kwargs = dict(kwargs or {})
+
+    def answer():
+        got = t.call(function, *args, **kwargs)
+        if not (isinstance(got, np.ndarray) and got.shape == expected_shape and got.dtype == np.uint8):
+            return None
+        return got
+
+    return Probe(f"{function}/{fingerprint(args, kwargs)}", answer, lambda: mistakes, M,
+                 distance=lambda got, map_: warp_distance(got, source, map_, dsize),
+                 tolerance=IMAGE_TOLERANCE, alike=_same_map)
+
+
+def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, show=True,
+               probe: Probe | None = None) -> Verdict:
     """Judge an image warped by ``M`` (affine or homography) against the oracle.
 
     Full credit when the covered area matches (any sensible interpolation or
     pixel-centre convention) and the uncovered area is black; half when only the
     fill is wrong; otherwise the mistake is named when one of ``mistakes``
-    (name -> the map that mistake applies) explains the image.
+    (name -> the map that mistake applies) explains the image, and explains the
+    student's image on the ``probe``'s input too (:func:`warp_probe` builds one).
     """
     width, height = dsize or (source.shape[1], source.shape[0])
     expected_shape = (height, width) + source.shape[2:]
@@ -168,27 +345,36 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
         except np.linalg.LinAlgError:
             continue
     if explained and all(_same_map(explained[0][1], wrong_M) for _, wrong_M in explained):
-        mistake = "; or, the same map here, ".join(name for name, _ in explained)
-        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+        mistake = confirm(t, SAME_ANSWER.join(name for name, _ in explained), probe)
+        if mistake:
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
            "(see the pictures).")
 
 
 def _explains(got, source, wrong_M, dsize) -> bool:
-    """Whether ``got`` is ``source`` warped by ``wrong_M`` (a mistake's map).
+    """Whether ``got`` is ``source`` warped by ``wrong_M`` (a mistake's map)."""
+    return warp_distance(got, source, wrong_M, dsize) <= IMAGE_TOLERANCE
+
+
+def warp_distance(got, source, M, dsize=None) -> float:
+    """How far ``got`` is from ``source`` warped by the map ``M`` (mean blurred grey levels).
 
     A wrong homography may send most of the image behind the camera (w < 0), where
     :func:`fixtures.images.coverage` sees nothing but OpenCV still samples (it divides
-    by w whatever its sign): such a map is judged where its own warp has content.
+    by w whatever its sign): such a map is judged where its own warp has content
+    (infinite when it has almost none).
     """
-    error = warp_error(got, source, wrong_M, dsize, good_enough=IMAGE_TOLERANCE)
+    error = warp_error(got, source, M, dsize, good_enough=IMAGE_TOLERANCE)
     if np.isfinite(error):
-        return error <= IMAGE_TOLERANCE
-    expected = warp(source, wrong_M, dsize)
+        return error
+    expected = warp(source, M, dsize)
     content = expected != 0 if expected.ndim == 2 else np.any(expected != 0, axis=2)
     inner = np.zeros_like(content)  # away from the content's edges (interpolation differs there)
     inner[2:-2, 2:-2] = content[:-4, 2:-2] & content[4:, 2:-2] & content[2:-2, :-4] & content[2:-2, 4:]
-    return bool(inner.mean() >= 0.05) and blurred_difference(got, expected, inner) <= IMAGE_TOLERANCE
+    if inner.mean() < 0.05:
+        return float("inf")
+    return blurred_difference(got, expected, inner)
 
 
 def _same_map(first, second) -> bool:

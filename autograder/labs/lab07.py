@@ -15,17 +15,57 @@ from fixtures.images import photo
 
 from .. import strategies as st
 from ..checks import Fail, Trial, passed
-from ..compare import closest, format_arrays_apart
-from ..judges import digits_apart, judge_matrix, judge_parameter_used, judge_warp
+from ..compare import format_arrays_apart
+from ..judges import (Probe, call_probe, digits_apart, judge_matrix, judge_parameter_used, judge_warp,
+                      name_mistake, warp_probe)
 from ..registry import Lab
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
+
+# The confirmation probes' inputs (see autograder.judges.Probe): values no usual mistake leaves
+# unchanged -- fractional, of both signs, x apart from y, an angle far from 0 and 90 degrees, a
+# centre off the origin -- so that the mistakes answer them differently.
+PROBE_ARGS = {
+    "translation_matrix": ((37.25, -12.5), {}, truth.translation, truth.translation_mistakes),
+    "rotation_matrix": ((37.0,), {"center": (13.5, -7.25)}, truth.rotation, truth.rotation_mistakes),
+    "scaling_matrix": ((1.75, 0.6), {}, truth.scaling, truth.scaling_mistakes),
+    "shear_matrix": ((0.35,), {}, truth.shear, truth.shear_mistakes),
+}
+
+
+def matrix_probe(t: Trial, function: str) -> Probe:
+    """``function`` on its probe input: what it returns there, and what each mistake gives."""
+    args, kwargs, true_matrix, mistakes = PROBE_ARGS[function]
+    values = args + tuple(kwargs.values())
+    return call_probe(t, function, args, kwargs, candidates=lambda: mistakes(*values), truth=true_matrix(*values),
+                      shape=(3, 3))
+
+
+def image_probe(t: Trial, function: str) -> Probe:
+    """The image function on its probe input: another photo (neither square nor the checks' size)
+    moved by the probe's matrix."""
+    source = photo("rocket", (190, 130))
+    if function == "warp_affine":
+        A = np.array([[0.9, -0.25, 20.0], [0.15, 1.05, -8.0]])
+        return warp_probe(t, function, source, A, truth.warp_mistakes(A), args=(source, A))
+    if function == "rotate":
+        centre = truth.image_centre(source.shape)
+        return warp_probe(t, function, source, truth.rotation(37.0, centre), truth.rotation_mistakes(37.0, centre),
+                          kwargs={"angle_deg": 37.0})
+    kwargs, M, mistakes = {
+        "translate": ({"tx": 23.5, "ty": -17.25}, truth.translation(23.5, -17.25),
+                      truth.translation_mistakes(23.5, -17.25)),
+        "scale": ({"sx": 1.3, "sy": 0.7}, truth.scaling(1.3, 0.7), truth.scaling_mistakes(1.3, 0.7, source.shape)),
+        "shear": ({"s": 0.35}, truth.shear(0.35), truth.shear_mistakes(0.35, source.shape)),
+    }[function]
+    return warp_probe(t, function, source, M, mistakes, kwargs=kwargs)
 
 
 def judge_matrix_call(t: Trial, function: str, args: tuple, true_matrix, mistakes):
     """Call ``function(*args)`` and judge it against ``true_matrix(*args)`` and ``mistakes(*args)``."""
     what = f"{function}({', '.join(repr(a) for a in args)})"
-    judge_matrix(t, what, t.call(function, *args), true_matrix(*args), mistakes(*args))
+    judge_matrix(t, what, t.call(function, *args), true_matrix(*args), mistakes(*args),
+                 probe=matrix_probe(t, function))
 
 
 finite_floats = lambda lo, hi: st.floats(lo, hi, allow_nan=False, allow_infinity=False)  # noqa: E731
@@ -51,7 +91,8 @@ def translation_matrix_property(t):
 def translate_defaults(t):
     source = photo("astronaut", (240, 180))
     return judge_warp(t, "translate(image)", t.call("translate", source), source,
-                      truth.translation(100, 50), truth.translation_mistakes(100, 50))
+                      truth.translation(100, 50), truth.translation_mistakes(100, 50),
+        probe=image_probe(t, "translate"))
 
 
 @ex1.check("translate keeps a grey image grey", points=2)
@@ -59,7 +100,8 @@ def translate_grey(t):
     source = photo("camera", (160, 120), grey=True)
     return judge_warp(t, "translate(grey image, tx=-30, ty=20)",
                       t.call("translate", source, tx=-30, ty=20), source,
-                      truth.translation(-30, 20), truth.translation_mistakes(-30, 20))
+                      truth.translation(-30, 20), truth.translation_mistakes(-30, 20),
+        probe=image_probe(t, "translate"))
 
 
 # ================================================================== ex2 rotation
@@ -70,7 +112,7 @@ ex2 = lab.exercise("ex2", "Rotation", functions=[
 @ex2.check("rotation_matrix(30) about the origin", points=2)
 def rotation_matrix_example(t):
     judge_matrix(t, "rotation_matrix(30)", t.call("rotation_matrix", 30),
-                 truth.rotation(30), truth.rotation_mistakes(30, (0.0, 0.0)))
+                 truth.rotation(30), truth.rotation_mistakes(30, (0.0, 0.0)), probe=matrix_probe(t, "rotation_matrix"))
 
 
 @ex2.check("rotation_matrix equals cv2.getRotationMatrix2D for any angle and centre", points=3)
@@ -79,7 +121,8 @@ def rotation_matrix_property(t):
         angle, center = case
         what = f"rotation_matrix({angle!r}, center={center!r})"
         judge_matrix(t, what, t.call("rotation_matrix", angle, center=center),
-                     truth.rotation(angle, center), truth.rotation_mistakes(angle, center))
+                     truth.rotation(angle, center), truth.rotation_mistakes(angle, center),
+                     probe=matrix_probe(t, "rotation_matrix"))
 
     centres = st.tuples(finite_floats(-300, 300), finite_floats(-300, 300))
     t.for_all(st.tuples(finite_floats(-360, 360), centres), holds)
@@ -90,7 +133,8 @@ def rotate_default(t):
     source = photo("astronaut", (200, 150))
     centre = truth.image_centre(source.shape)
     return judge_warp(t, "rotate(image)", t.call("rotate", source), source,
-                      truth.rotation(45, centre), truth.rotation_mistakes(45, centre))
+                      truth.rotation(45, centre), truth.rotation_mistakes(45, centre),
+        probe=image_probe(t, "rotate"))
 
 
 @ex2.check("rotate keeps a grey image grey and its size", points=2)
@@ -99,7 +143,8 @@ def rotate_grey(t):
     centre = truth.image_centre(source.shape)
     return judge_warp(t, "rotate(grey image, angle_deg=-30)",
                       t.call("rotate", source, angle_deg=-30), source,
-                      truth.rotation(-30, centre), truth.rotation_mistakes(-30, centre))
+                      truth.rotation(-30, centre), truth.rotation_mistakes(-30, centre),
+        probe=image_probe(t, "rotate"))
 
 
 # ================================================================== ex3 scaling
@@ -122,7 +167,8 @@ def scaling_matrix_property(t):
 def scale_default(t):
     source = photo("coffee", (200, 150))
     return judge_warp(t, "scale(image)", t.call("scale", source), source,
-                      truth.scaling(1.5, 1.5), truth.scaling_mistakes(1.5, 1.5, source.shape))
+                      truth.scaling(1.5, 1.5), truth.scaling_mistakes(1.5, 1.5, source.shape),
+        probe=image_probe(t, "scale"))
 
 
 def judge_warp_using(t: Trial, function: str, parameter: str, values, judge):
@@ -164,7 +210,8 @@ def shear_matrix_property(t):
 def shear_default(t):
     source = photo("astronaut", (200, 150))
     return judge_warp(t, "shear(image)", t.call("shear", source), source,
-                      truth.shear(0.5), truth.shear_mistakes(0.5, source.shape))
+                      truth.shear(0.5), truth.shear_mistakes(0.5, source.shape),
+        probe=image_probe(t, "shear"))
 
 
 @ex4.check("shear keeps a grey image grey", points=3)
@@ -211,6 +258,19 @@ def point_error(A, B, pts) -> float:
     return float(np.linalg.norm(truth.apply_affine(A, pts) - truth.apply_affine(B, pts), axis=1).max())
 
 
+def fit_probe(t: Trial, function: str) -> Probe:
+    """``function`` (affine_from_points or affine_lstsq) on a probe problem: points of another
+    extent and origin, a map far from the identity."""
+    rng = np.random.default_rng(707)
+    A = np.array([[1.15, -0.35, 42.5], [0.25, 0.8, -31.0]])
+    src = truth.triangle(rng, 250.0) + [60.0, 35.0] if function == "affine_from_points" \
+        else rng.uniform(-150, 350, size=(9, 2))
+    dst = truth.apply_affine(A, src)
+    region = with_bounding_box(src)
+    return call_probe(t, function, (src, dst), candidates=lambda: truth.affine_fit_mistakes(src, dst), truth=A,
+                      shape=(2, 3), distance=lambda a, b: point_error(a, b, region), tolerance=1.0)
+
+
 def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
     """An affine fit from point pairs: right within :func:`point_tolerance` over the data."""
     got = t.expect_array(got, what, shape=(2, 3), kind="iuf", finite=True)
@@ -218,8 +278,8 @@ def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
     error = point_error(got, expected, region)
     if error <= tolerance:
         return
-    mistake = closest(got, truth.affine_fit_mistakes(src, dst), lambda a, b: point_error(a, b, region),
-                      max(1.0, 100 * tolerance), truth=expected)
+    mistake = name_mistake(t, got, truth.affine_fit_mistakes(src, dst), lambda a, b: point_error(a, b, region),
+                           max(1.0, 100 * tolerance), truth=expected, probe=fit_probe(t, "affine_from_points"))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     shown, wanted = format_arrays_apart(got, expected, 6)
@@ -254,7 +314,8 @@ def warp_affine_default(t):
     source = photo("rocket", (200, 150))
     A = np.array([[0.8, 0.3, 10.0], [-0.2, 0.9, 40.0]])
     return judge_warp(t, "warp_affine(image, A)", t.call("warp_affine", source, A), source, A,
-                      truth.warp_mistakes(A))
+                      truth.warp_mistakes(A),
+        probe=image_probe(t, "warp_affine"))
 
 
 @ex5.check("warp_affine with dsize=(width, height)", points=2)
@@ -263,7 +324,8 @@ def warp_affine_dsize(t):
     A = np.array([[1.2, 0.1, 5.0], [0.0, 1.1, -10.0]])
     return judge_warp(t, "warp_affine(image, A, dsize=(220, 100))",
                       t.call("warp_affine", source, A, dsize=(220, 100)), source, A,
-                      truth.warp_mistakes(A), dsize=(220, 100))
+                      truth.warp_mistakes(A), dsize=(220, 100),
+        probe=image_probe(t, "warp_affine"))
 
 
 # ================================================================== ex6 least squares
@@ -285,8 +347,8 @@ def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
     error = point_error(got, least_squares, src)
     if error <= tolerance:
         return passed(f"within {error:.2g} px of the least-squares fit at every point")
-    mistake = closest(got, truth.affine_fit_mistakes(src, dst), lambda a, b: point_error(a, b, src),
-                      max(0.5, 100 * tolerance), truth=least_squares)
+    mistake = name_mistake(t, got, truth.affine_fit_mistakes(src, dst), lambda a, b: point_error(a, b, src),
+                           max(0.5, 100 * tolerance), truth=least_squares, probe=fit_probe(t, "affine_lstsq"))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     residual = float(np.sqrt(np.mean(np.sum((truth.apply_affine(got, src) - dst) ** 2, axis=1))))

@@ -27,8 +27,9 @@ from fixtures.images import coverage, photo, warp
 from .. import strategies as st
 from ..checks import StudentFailure, Trial, partial, passed
 from ..compare import blurred_difference, closest, format_apart, format_arrays_apart, projective_distance
-from ..judges import (IMAGE_TOLERANCE, digits_apart, judge_parameter_used, judge_warp,
-                      parameter_ignored, where_matrices_differ, where_points_differ)
+from ..judges import (IMAGE_TOLERANCE, Probe, call_probe, confirm, digits_apart, fingerprint, judge_parameter_used,
+                      judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
+                      where_points_differ)
 from ..pictures import difference_heatmap, matches_picture, svg_points
 from ..registry import Lab
 
@@ -48,9 +49,26 @@ def call_once(t: Trial, key: str, function: str, *args, **kwargs):
     return t.shared(key, lambda: t.call(function, *args, **kwargs))
 
 
-def judge_homography_warp(t: Trial, what: str, got, source, H, dsize=None, show=True):
-    """:func:`~autograder.judges.judge_warp` with the usual homography mistakes."""
-    return judge_warp(t, what, got, source, H, truth.warp_mistakes(H), dsize, show)
+def judge_homography_warp(t: Trial, what: str, got, source, H, dsize=None, show=True, probe=None):
+    """:func:`~autograder.judges.judge_warp` with the usual homography mistakes, confirmed on
+    ``probe`` (by default ``apply_homography`` of :func:`probe_warp`'s input)."""
+    if probe is None:
+        probe = apply_homography_probe(t)
+    return judge_warp(t, what, got, source, H, truth.warp_mistakes(H), dsize, show, probe=probe)
+
+
+def probe_warp():
+    """The confirmation probe's input for image warps: another photo, a strong perspective H
+    (its rows and its transpose far apart), a larger output. ``(source, H, dsize)``."""
+    source = photo("coffee", (200, 150))
+    H = truth.translation(12, 8) @ truth.corner_homography(np.random.default_rng(808), (200, 150), 0.2)
+    return source, H, (230, 170)
+
+
+def apply_homography_probe(t: Trial) -> Probe:
+    source, H, dsize = probe_warp()
+    return warp_probe(t, "apply_homography", source, H, truth.warp_mistakes(H), args=(source, H),
+                      kwargs={"dsize": dsize}, dsize=dsize)
 
 
 def relative_point_error(got, expected) -> float:
@@ -76,14 +94,25 @@ def judge_points(t: Trial, what: str, got, H, pts):
     expected = truth.apply_h(H, pts)
     if relative_point_error(got, expected) <= 1e-5:   # float32 arithmetic is accepted
         return
-    mistake = closest(got, truth.point_mistakes(H, pts), relative_point_error, 1e-3,
-                      truth=expected)
+    mistake = name_mistake(t, got, truth.point_mistakes(H, pts), relative_point_error, 1e-3,
+                           truth=expected, probe=transform_points_probe(t))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     where = where_points_differ(got, expected, 1e-3 * np.maximum(1.0, np.abs(expected)))
     shown, wanted = format_arrays_apart(got[:4], expected[:4])
     t.fail(f"{what} is wrong {where}.\nIt returned\n{shown}\nexpected\n"
            f"{wanted}" + ("\n(first 4 rows shown)" if n > 4 else ""))
+
+
+def transform_points_probe(t: Trial) -> Probe:
+    """transform_points on a strong perspective H and points of both signs (w far from 1, x far
+    from y): the point mistakes answer it differently."""
+    rng = np.random.default_rng(8080)
+    H = truth.strong_perspective(rng)
+    pts = rng.uniform(-400, 400, size=(30, 2))
+    pts = pts[np.abs(truth.third_coordinate(H, pts)) > 0.3][:12]
+    return call_probe(t, "transform_points", (H, pts), candidates=lambda: truth.point_mistakes(H, pts),
+                      truth=truth.apply_h(H, pts), shape=(len(pts), 2))
 
 
 # ================================================================== ex1 apply H
@@ -148,24 +177,44 @@ def fitted_h(t: Trial, src, dst, what="homography_dlt(src, dst)"):
     return got
 
 
-def diagnose_h(t: Trial, what: str, got, H_true, src=None, dst=None, tolerance=1e-3):
-    """Fail naming the mistake when ``got`` is a known wrong variant of the truth."""
+REDUCED_SVD = ("the SVD is a reduced one: with 4 pairs A is 8x9, and np.linalg.svd(A, "
+               "full_matrices=False) returns only 8 right singular vectors, none of them the "
+               "null vector; use the full SVD (the default)")
+
+
+def dlt_candidates(src, dst, H_true, normalise: bool) -> dict:
+    """What each usual DLT mistake returns for ``(src, dst)`` (with or without normalising)."""
     mistakes = truth.matrix_mistakes(H_true)
-    if src is not None:
-        mistakes["the normalised H is returned without undoing the normalisation "
-                 "(return T_dst^-1 @ H_normalised @ T_src)"] = truth.unnormalised_return(src, dst)
-    if src is not None and len(src) == 4:
-        reduced = ("the SVD is a reduced one: with 4 pairs A is 8x9, and np.linalg.svd(A, "
-                   "full_matrices=False) returns only 8 right singular vectors, none of them the "
-                   "null vector; use the full SVD (the default)")
-        mistakes[reduced] = truth.dlt(src, dst, reduced_svd=True)
-        mistakes[reduced + " (and normalise the points)"] = truth.dlt(src, dst, normalise=False,
-                                                                      reduced_svd=True)
+    if src is None:
+        return mistakes
+    mistakes["the normalised H is returned without undoing the normalisation "
+             "(return T_dst^-1 @ H_normalised @ T_src)"] = truth.unnormalised_return(src, dst)
+    # Only with 4 pairs (an 8x9 A) does the reduced SVD lose the null vector: with more it
+    # answers rightly, which is what tells it from a solver that is wrong everywhere.
+    mistakes[REDUCED_SVD] = truth.dlt(src, dst, reduced_svd=True)
+    mistakes[REDUCED_SVD + " (and normalise the points)"] = truth.dlt(src, dst, normalise=False, reduced_svd=True)
+    mistakes.update(truth.dlt_mistakes(src, dst, normalise))
+    return mistakes
+
+
+def dlt_probe(t: Trial, failing_n: int, normalise: bool) -> Probe:
+    """homography_dlt on exact pairs of another H: 12 of them when the failing input had 4 (the
+    reduced SVD answers rightly there, a solver wrong everywhere does not), else 4."""
+    n = 12 if failing_n == 4 else 4
+    src, dst, H = truth.dlt_problem(8081, n, 0.0, IMAGE_REGION, 0.25)
+    return call_probe(t, "homography_dlt", (src, dst), candidates=lambda: dlt_candidates(src, dst, H, normalise),
+                      truth=H, shape=(3, 3), tolerance=1e-3)
+
+
+def diagnose_h(t: Trial, what: str, got, H_true, src=None, dst=None, tolerance=1e-3):
+    """Fail naming the mistake when ``got`` is a known wrong variant of the truth, confirmed on
+    a second set of exact pairs (:func:`dlt_probe`)."""
     for normalise in (True, False):   # students make the DLT's mistakes with and without it
-        candidates = dict(mistakes)
-        if src is not None:
-            candidates.update(truth.dlt_mistakes(src, dst, normalise))
-        mistake = closest(got, candidates, projective_distance, tolerance, truth=H_true)
+        candidates = dlt_candidates(src, dst, H_true, normalise)
+        if src is not None and len(src) != 4:
+            candidates = {name: H for name, H in candidates.items() if not name.startswith(REDUCED_SVD)}
+        probe = dlt_probe(t, len(src) if src is not None else 0, normalise)
+        mistake = name_mistake(t, got, candidates, projective_distance, tolerance, truth=H_true, probe=probe)
         if mistake:
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
 
@@ -264,6 +313,15 @@ def dlt_normalisation_advice(t):
                       "H = T_dst^-1 @ H_n @ T_src.")
 
 
+def warp_to_reference_probe(t: Trial) -> Probe:
+    """warp_to_reference of another photo by a strong perspective H, onto a reference of
+    another size than the moving image."""
+    moving, H, (w, h) = probe_warp()
+    reference = np.zeros((h, w, 3), np.uint8)
+    return warp_probe(t, "warp_to_reference", moving, H, truth.warp_mistakes(H), args=(reference, moving, H),
+                      dsize=(w, h))
+
+
 @ex2.check("warp_to_reference: moving image in the reference's frame and size", points=3)
 def warp_to_reference_check(t):
     scene = truth.panorama_scene()
@@ -276,7 +334,7 @@ def warp_to_reference_check(t):
     if isinstance(got, np.ndarray) and got.shape[:2] == moving.shape[:2]:
         t.fail(f"{what} returned shape {got.shape}, the moving image's size; expected "
                f"{reference.shape}: the output has the reference's size (dsize=(W_ref, H_ref))")
-    verdict = judge_homography_warp(t, what, got, moving, H, dsize=(w, h))
+    verdict = judge_homography_warp(t, what, got, moving, H, dsize=(w, h), probe=warp_to_reference_probe(t))
     if isinstance(got, np.ndarray) and got.shape == reference.shape:
         overlay = reference.copy()
         covered = np.any(got > 0, axis=2)
@@ -539,27 +597,93 @@ ALL_POINTS = ("H is fitted to all the points, outliers included, and threshold i
               "(RANSAC should pick the consensus set within the threshold and fit to it)")
 
 
+def ransac_candidates(src, dst, H_true) -> dict:
+    mistakes = truth.matrix_mistakes(H_true)
+    mistakes[ALL_POINTS] = truth.dlt(src, dst)
+    return mistakes
+
+
+# The confirmation probes of RANSAC's mistakes: a projective problem (the matrix mistakes
+# answer it differently), and an affine one (w = 1 at every point: a transfer error computed
+# without the perspective division is right there, a poor choice of model is not).
+RANSAC_PROBE = dict(seed=8082, n=80, outlier_fraction=0.3, noise=0.5)
+AFFINE_RANSAC_PROBE = dict(n=80, outlier_fraction=0.5, noise=0.5)
+
+
+def ransac_answer(t: Trial, affine: bool, seed: int = 3, threshold: float = 3.0):
+    """The student's (H, inliers) on a probe problem (None if not of the documented form),
+    with that problem: ``(answer, (src, dst, H_true, true_inliers))``. The affine problems
+    (one per ``seed``) have half their pairs wrong."""
+    problem = truth.ransac_problem(8090 + seed, **AFFINE_RANSAC_PROBE, affine=True) if affine \
+        else truth.ransac_problem(**RANSAC_PROBE)
+    src, dst = problem[0], problem[1]
+
+    def answer():
+        return ransac_result(t, src, dst, "homography_ransac", seed=seed, threshold=threshold)
+
+    return t.probe(f"homography_ransac/probe/{affine}/{seed}/{threshold}", answer), problem
+
+
+def consensus(H, src, dst, threshold) -> int:
+    with np.errstate(all="ignore"):
+        return int((np.linalg.norm(truth.apply_h(H, src) - dst, axis=1) < threshold).sum())
+
+
 def name_ransac_h(t: Trial, what, H, src, dst, H_true, seed=0, threshold=3.0):
-    """Fail naming the mistake when the returned H is a known wrong one, or ``threshold`` is ignored.
+    """Fail naming the mistake when the returned H is a known wrong one, or ``threshold`` is ignored,
+    each confirmed on a probe problem.
 
     A fit to all the points ignores the threshold too: it is named first, as one mistake.
     """
-    mistakes = truth.matrix_mistakes(H_true)
-    mistakes[ALL_POINTS] = truth.dlt(src, dst)
-    mistake = closest(H, mistakes, projective_distance, 0.02, truth=H_true)
+    problem = truth.ransac_problem(**RANSAC_PROBE)
+
+    def probe_h():
+        answer, _ = ransac_answer(t, affine=False)
+        return None if answer is None else answer[0]
+
+    probe = Probe("homography_ransac/probe H", probe_h, lambda: ransac_candidates(*problem[:3]), problem[2],
+                  tolerance=0.02)
+    mistake = name_mistake(t, H, ransac_candidates(src, dst, H_true), projective_distance, 0.02,
+                           truth=H_true, probe=probe)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
-    consensus = int((np.linalg.norm(truth.apply_h(H, src) - dst, axis=1) < threshold).sum())
-    best = int((np.linalg.norm(truth.apply_h(H_true, src) - dst, axis=1) < threshold).sum())
-    if consensus < 0.5 * best and dlt_works(t, src, dst, H_true):
-        t.fail(f"{what}: your H agrees with only {consensus} of the {len(src)} pairs within the "
-               f"threshold, where the true H agrees with {best}, and your homography_dlt is right: "
-               f"it looks like {NOT_THE_BEST}.", mistake=NOT_THE_BEST)
+    agree = consensus(H, src, dst, threshold)
+    best = consensus(H_true, src, dst, threshold)
+    if agree < 0.5 * best and dlt_works(t, src, dst, H_true):
+        measured = (f"{what}: your H agrees with only {agree} of the {len(src)} pairs within the "
+                    f"threshold, where the true H agrees with {best}, and your homography_dlt is right")
+        claim = poor_consensus_cause(t)
+        if claim:
+            t.fail(f"{measured}: it looks like {claim}.", mistake=claim)
     probe_ransac_threshold(t, src, dst, seed)
 
 
 NOT_THE_BEST = ("RANSAC does not keep the model with the most inliers: it returns the last model "
                 "drawn rather than the best one, or draws too few samples")
+NO_DIVISION = ("the transfer errors are computed without the perspective division: |H src - dst| "
+               "compares (u / w, v / w) with dst, (u, v, w) = H (x, y, 1)")
+
+
+def poor_consensus_cause(t: Trial) -> str | None:
+    """Why RANSAC's H agrees with few pairs while the DLT is right, when probes say it.
+
+    Four affine problems (w = 1 at every point) with half the pairs wrong tell the causes
+    apart: a transfer error computed without the perspective division is right on every one
+    (it failed where w varies); keeping the wrong model, or drawing too few samples, fails on
+    at least half of them (a RANSAC keeping the best of enough samples fails on none). Anything
+    in between names nothing.
+    """
+    wins = 0
+    for seed in range(4):
+        answer, (src, dst, H_true, _) = ransac_answer(t, affine=True, seed=seed)
+        if answer is None:
+            return None
+        wins += consensus(answer[0], src, dst, 3.0) >= 0.9 * consensus(H_true, src, dst, 3.0)
+    if wins == 4:
+        return NO_DIVISION
+    if wins <= 2:
+        return NOT_THE_BEST
+    return None
 
 
 def dlt_works(t: Trial, src, dst, H_true) -> bool:
@@ -905,14 +1029,53 @@ ONE_IMAGE_CANVAS = "the canvas is only one image's size"
 NOT_SHIFTED = "the canvas is not shifted for negative coordinates"
 
 
-def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
-    fail_if_left_out(t, judge, what)
+def sticking_out(judge: PanoramaJudge, names) -> dict:
+    """The sides where some image's footprint leaves the panorama: side -> [(name, px)]."""
     sticking = {}
     for k, name in enumerate(names):
         for side, amount in footprint_outside(judge.view_to_panorama(k), judge.scene.views[k].shape,
                                               judge.panorama.shape).items():
             if amount > 2.0:
                 sticking.setdefault(side, []).append((name, amount))
+    return sticking
+
+
+# The confirmation probes of the panorama checks' names: scenes of their own, one per function.
+# In the "positive" scenes every other image lies right of and below the first (for stitch_many,
+# the middle image reaches lowest): a canvas that is not shifted loses nothing there. In the
+# "other side" scene img2 lies left of and above img1, so every wrong map of img2 lands apart.
+PROBE_SCENES = {
+    ("stitch", "positive"): ("astronaut", (420, 260), ((20, 20), (150, 65)), (240, 180), 0.04, 5),
+    ("stitch", "other side"): ("astronaut", (420, 260), ((160, 60), (20, 15)), (240, 180), 0.04, 6),
+    ("stitch_many", "positive"): ("astronaut", (480, 250), ((10, 20), (115, 62), (225, 8)), (240, 180),
+                                  0.03, 35, False),
+}
+
+
+def probe_panorama(t: Trial, function: str, kind: str) -> "PanoramaJudge | None":
+    """The student's panorama of a probe scene, judged (None if it cannot be: no reference found)."""
+    scene = truth.panorama_scene(*PROBE_SCENES[(function, kind)])
+    what = f"{function} on a probe scene"
+    if function == "stitch":
+        return t.probe(f"stitch/{kind}", lambda: stitch_judge(t, f"stitch-probe-{kind}", scene, what))
+    return t.probe(f"stitch_many/{kind}", lambda: many_judge(t, f"many-probe-{kind}", scene, what))
+
+
+def canvas_not_shifted(t: Trial, function: str) -> bool:
+    """Whether a canvas that is not shifted for negative coordinates explains the probe: on a scene
+    with nothing at negative coordinates (of the first image's frame) nothing is cut off on the
+    right or at the bottom, and what the canvas holds is in place."""
+    judge = probe_panorama(t, function, "positive")
+    if judge is None:
+        return False
+    names = many_names(len(judge.scene.views))
+    far_sides = {"right", "bottom"} & set(sticking_out(judge, names))
+    return not far_sides and judge.error(np.any(judge.inside, axis=0)) <= PANORAMA_TOLERANCE
+
+
+def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
+    fail_if_left_out(t, judge, what)
+    sticking = sticking_out(judge, names)
     if sticking:
         judge.show(t, what)
         name_image_left_out(t, judge, what, names, sticking)
@@ -924,7 +1087,8 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
             t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: {ONE_IMAGE_CANVAS}; "
                    "it must be the bounding box of all the warped image corners, shifted by a "
                    "translation so that negative coordinates fit", mistake=ONE_IMAGE_CANVAS)
-        if placed and side in ("left", "top"):
+        function = "stitch" if len(names) == 2 else "stitch_many"
+        if placed and set(sticking) <= {"left", "top"} and canvas_not_shifted(t, function):
             t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: {NOT_SHIFTED}: "
                    "content that lands at negative coordinates must fit too, so shift everything by a "
                    "translation T = [[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]] (applied to every "
@@ -1026,8 +1190,9 @@ def second_warp_mistakes(scene, offset) -> dict[str, np.ndarray]:
     }
 
 
-def name_second_warp_mistake(t: Trial, judge: PanoramaJudge, scene):
-    """Fail naming the mistake when exactly one wrong map explains where img2 landed."""
+def second_warp_explained(judge: PanoramaJudge) -> list[str]:
+    """The usual mistakes of the second warp whose map explains where img2 landed."""
+    scene = judge.scene
     size = (judge.panorama.shape[1], judge.panorama.shape[0])
     explained = []
     for mistake, M in second_warp_mistakes(scene, judge.offset).items():
@@ -1036,9 +1201,20 @@ def name_second_warp_mistake(t: Trial, judge: PanoramaJudge, scene):
         if check.sum() >= 100 and blurred_difference(judge.panorama, warp(scene.views[1], M, size),
                                                      check) <= PANORAMA_TOLERANCE:
             explained.append(mistake)
-    if len(explained) == 1:
-        judge.show(t, STITCH_WHAT)
-        t.fail(f"{STITCH_WHAT}: it looks like {explained[0]}", mistake=explained[0].split(":")[0])
+    return explained
+
+
+def name_second_warp_mistake(t: Trial, judge: PanoramaJudge, scene=None):
+    """Fail naming the mistake when exactly one wrong map explains where img2 landed, here and on
+    the probe scene where img2 lies on the other side of img1."""
+    explained = second_warp_explained(judge)
+    if len(explained) != 1:
+        return
+    probe = probe_panorama(t, "stitch", "other side")
+    if probe is None or explained[0] not in second_warp_explained(probe):
+        return
+    judge.show(t, STITCH_WHAT)
+    t.fail(f"{STITCH_WHAT}: it looks like {explained[0]}", mistake=explained[0].split(":")[0])
 
 
 @ex5.check("stitch: the part only img2 sees is warped into place", points=3)
@@ -1047,18 +1223,7 @@ def stitch_second(t):
     judge = stitch_judge(t, "stitch-public", scene, STITCH_WHAT)
     region = judge.inside[1] & judge.outside[0]
     if region.sum() < 100 or judge.error(region) > PANORAMA_TOLERANCE:
-        # img2 warped with the inverse homography?
-        size = (judge.panorama.shape[1], judge.panorama.shape[0])
-        inverse = truth.translation(*judge.offset) @ np.linalg.inv(scene.h(1, 0))
-        wrong = warp(scene.views[1], inverse, size)
-        wrong_inside, _ = coverage(inverse, scene.views[1].shape, size, 3.0)
-        check = wrong_inside & judge.outside[0]
-        if check.sum() >= 100 and blurred_difference(judge.panorama, wrong, check) <= PANORAMA_TOLERANCE:
-            judge.show(t, STITCH_WHAT)
-            t.fail(f"{STITCH_WHAT}: img2 was warped with the inverse homography: use the H that "
-                   "maps img2's pixels onto img1's (match img2 -> img1, or invert)",
-                   mistake="img2 was warped with the inverse homography")
-        name_second_warp_mistake(t, judge, scene)
+        name_second_warp_mistake(t, judge)
     return judge_region(t, judge, STITCH_WHAT, region, "the part only img2 sees",
                         hint="warp img2 with T @ H, where H maps img2 onto img1 and T is the "
                              "canvas shift")
@@ -1130,6 +1295,14 @@ def warped_with_inverse(judge: PanoramaJudge, k: int) -> bool:
         judge.panorama, warp(judge.scene.views[k], wrong, size), region) <= PANORAMA_TOLERANCE
 
 
+def inverse_on_probe(t: Trial) -> bool:
+    """Whether on the many-image probe scene too some image sits where the inverse of its
+    homography to the reference puts it."""
+    judge = probe_panorama(t, "stitch_many", "positive")
+    return judge is not None and any(warped_with_inverse(judge, k) for k in range(len(judge.scene.views))
+                                     if k != judge.reference)
+
+
 def judge_many_content(t: Trial, judge: PanoramaJudge, what: str):
     n = len(judge.scene.views)
     wrong = []
@@ -1149,16 +1322,18 @@ def judge_many_content(t: Trial, judge: PanoramaJudge, what: str):
     fail_if_left_out(t, judge, what)
     judge.show(t, what)
     for k, _ in wrong:
-        if warped_with_inverse(judge, k):
+        if warped_with_inverse(judge, k) and inverse_on_probe(t):
             mistake = (f"image {k + 1} was warped with the inverse homography: a pairwise H was not "
                        "inverted on its way to the reference")
             t.fail(f"{what} (reference frame: image {judge.reference + 1}): {mistake} (for an image "
                    "before the reference, H_k->ref = inv(H_ref->k)).", mistake=mistake)
     if wrong:
         names = ", ".join(f"image {k + 1} ({e:.0f} grey levels off)" for k, e in wrong)
-        far = [k for k, _ in wrong if abs(k - judge.reference) >= 2]
+        # The order of a chain matters only from two steps away: advice only when the images
+        # next to the reference are in place and only farther ones are not.
+        far_only = all(abs(k - judge.reference) >= 2 for k, _ in wrong)
         advice = (" Chain the pairwise homographies in the right order: H_3->1 = H_2->1 @ H_3->2 "
-                  "(first 3 -> 2, then 2 -> 1)." if far else "")
+                  "(first 3 -> 2, then 2 -> 1)." if far_only else "")
         t.fail(f"{what} (reference frame: image {judge.reference + 1}): {names} "
                f"not where it belongs.{advice}", hint="warp each image k with T @ H_k->reference")
     t.fail(f"{what}: the panorama differs from the truth by {everything:.0f} grey levels on average.")
@@ -1222,7 +1397,7 @@ def blend_identity(t):
         return passed(f"largest change {int(error.max())} grey levels")
     t.images(what, input=image, yours=got,
              difference=difference_heatmap(image, got))
-    if mean_difference(got, coarsest_upsampled(image, 4)) <= 1.5:
+    if mean_difference(got, coarsest_upsampled(image, 4)) <= 1.5 and no_bands_on_probe(t):
         t.fail(f"{what} changed {bad:.0%} of the pixels: it looks like {NO_BANDS_ADDED}: "
                "out = cv2.pyrUp(out, dstsize=...) + band at every level", mistake=NO_BANDS_ADDED)
     signed = got.astype(np.int16) - image
@@ -1233,6 +1408,24 @@ def blend_identity(t):
     t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels; a Laplacian "
            "pyramid collapses back to the image exactly (up = cv2.pyrUp(coarser, dstsize=...), "
            "band = finer - up, and collapse by adding back)")
+
+
+def blend_probe(t: Trial, img1, img2, mask, **kwargs):
+    """The student's blend of a probe input (None when it fails or is not a uint8 image of the
+    input's shape)."""
+    def answer():
+        got = t.call("blend_multiband", img1, img2, mask, **kwargs)
+        ok = isinstance(got, np.ndarray) and got.shape == img1.shape and got.dtype == np.uint8
+        return got if ok else None
+
+    return t.probe(f"blend_multiband/{fingerprint(img1, img2, mask, kwargs)}", answer)
+
+
+def no_bands_on_probe(t: Trial) -> bool:
+    """Whether on another photo blended with itself the result is again its coarsest level, upsampled."""
+    image = photo("coffee", (200, 152))
+    got = blend_probe(t, image, image, truth.step_mask((200, 152), 90))
+    return got is not None and mean_difference(got, coarsest_upsampled(image, 4)) <= 1.5
 
 
 def away_from_seam(got, left_image, right_image, seam: int, margin: int = 40):
@@ -1298,10 +1491,8 @@ def blend_seam(t):
                "fixed depth leaves a visible seam; with levels=5 the coarsest level should spread "
                "the difference over tens of pixels", mistake="levels is ignored")
     if step > SEAM_STEP:
-        depth = closest(got, {f"the pyramid has {k} levels where levels=5 asks for 5 (off by "
-                              f"{5 - k}; levels counts the full-resolution level too)": truth.multiband(
-                                  dark, bright, mask, k) for k in (2, 3, 4)},
-                        mean_difference, 0.3, truth=truth.multiband(dark, bright, mask, 5))
+        depth = name_mistake(t, got, pyramid_depths(dark, bright, mask), mean_difference, 0.3,
+                             truth=truth.multiband(dark, bright, mask, 5), probe=depth_probe(t))
         if depth:
             t.fail(f"{what}: it looks like {depth}. The brightness still jumps by "
                    f"{format_apart(step, SEAM_STEP, 1)} grey "
@@ -1313,6 +1504,24 @@ def blend_seam(t):
                "leaves a visible seam; with 5 levels the coarsest level should spread the "
                "difference over tens of pixels")
     t.fail(f"{what}: far from the seam the result should equal the dark image.")
+
+
+def pyramid_depths(img1, img2, mask) -> dict:
+    """What a pyramid of 2, 3 or 4 levels gives where levels=5 is asked for."""
+    return {f"the pyramid has {k} levels where levels=5 asks for 5 (off by {5 - k}; levels counts "
+            f"the full-resolution level too)": truth.multiband(img1, img2, mask, k) for k in (2, 3, 4)}
+
+
+def depth_probe(t: Trial) -> Probe:
+    """Two exposures of another photo, a seam elsewhere, levels=5."""
+    dark, bright = truth.exposure_pair("astronaut", (224, 176), 0.6, 50)
+    mask = truth.step_mask((224, 176), 100)
+
+    def answer():
+        return blend_probe(t, dark, bright, mask, levels=5)
+
+    return Probe(f"blend_multiband/depth probe", answer, lambda: pyramid_depths(dark, bright, mask),
+                 truth.multiband(dark, bright, mask, 5))
 
 
 def detail(image):
@@ -1383,5 +1592,13 @@ def blend_odd_size(t):
     if e1 <= 3 and e2 <= 3:
         return passed("works for any size")
     t.images(what, yours=got)
-    t.fail(f"{what}: away from the seam the result differs from the inputs by {e1:.0f} / {e2:.0f} "
-           "grey levels: pass dstsize=(width, height) of the finer level to cv2.pyrUp")
+    measured = (f"{what}: away from the seam the result differs from the inputs by {e1:.0f} / "
+                f"{e2:.0f} grey levels")
+    # The size is to blame only if the same images cut to a multiple of 2**levels blend rightly.
+    even1, even2 = (np.ascontiguousarray(image[:160, :240]) for image in (img1, img2))
+    even = blend_probe(t, even1, even2, np.ascontiguousarray(mask[:160, :240]))
+    if even is not None and max(away_from_seam(even, even1, even2, seam=100)) <= 3:
+        t.fail(f"{measured}, while the same images cut to 240x160 (multiples of 2**levels) blend "
+               "rightly: pass dstsize=(width, height) of the finer level to cv2.pyrUp",
+               mistake="the sizes of odd levels are lost (cv2.pyrUp without dstsize)")
+    t.fail(f"{measured}; the mask should select img1 where mask = 1 and img2 where mask = 0, at any size.")

@@ -8,6 +8,9 @@ compared with what the usual mistakes would give, so the feedback can name them.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from typing import Callable
+
 import numpy as np
 
 from fixtures import lab09 as truth
@@ -18,12 +21,98 @@ from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
 from ..pictures import svg_points
 from .. import judges
-from ..judges import format_matrix
+from ..judges import Probe, call_probe, confirm, fingerprint, format_matrix
 from ..registry import Lab
 
 lab = Lab("lab09", module="lab09_camera", title="Geometric camera models")
 
 seeds = st.integers(0, 2**32 - 1)
+
+
+# ================================================================== confirmation probes
+@dataclass(frozen=True)
+class PointsProbe:
+    """:func:`judge_points`' confirmation probe (see :class:`autograder.judges.Probe`): the
+    student's points on another input, and there the truth, what each mistake gives and the
+    formulas a coordinate may have been computed with."""
+
+    key: str
+    answer: Callable
+    expected: np.ndarray
+    mistakes: dict
+    formulas: dict
+
+    def candidates_probe(self, tolerance: float) -> Probe:
+        return Probe(self.key, self.answer, lambda: self.mistakes, self.expected, distance=point_error,
+                     tolerance=tolerance * magnitude(self.expected))
+
+
+def _probe_camera():
+    K = np.array([[430.0, 1.5, 170.0], [0.0, 390.0, 115.0], [0.0, 0.0, 1.0]])
+    R, tvec = truth.random_pose(909)
+    return K, R, tvec
+
+
+def points_probe(t: Trial, function: str) -> PointsProbe:
+    """``function`` on its probe input: points of other depths, f far from the checks' values, a
+    camera with fx != fy and a principal point apart from the origin, distortion coefficients of
+    other signs: inputs on which the usual mistakes answer differently."""
+    X = truth.points_in_front(9090, n=10)
+    if function == "pinhole_project":
+        f = 730.0
+        args, expected = (X, f), truth.pinhole(X, f)
+        mistakes, formulas = truth.projection_mistakes(f, X), pinhole_formulas(X, f)
+    elif function == "project_with_intrinsics":
+        K = _probe_camera()[0]
+        args, expected = (K, X), truth.homogeneous_project(K, X)
+        mistakes, formulas = truth.intrinsics_projection_mistakes(K, X), intrinsics_formulas(K, X)
+    elif function in ("project", "project_onto_image"):
+        K, R, tvec = _probe_camera()
+        P = truth.camera(K, R, tvec)
+        Xw = truth.world_points_for(K, R, tvec, seed=9091, n=10)
+        args = (P, Xw) if function == "project" else (photo("coffee", (320, 240)), P, Xw)
+        expected, mistakes, formulas = truth.homogeneous_project(P, Xw), project_mistakes(P, Xw), project_formulas(P, Xw)
+    elif function == "project_focal_lengths":
+        f = 260.0
+        args, expected = (X, np.array([f, 900.0])), truth.pinhole(X, f)
+        mistakes, formulas = truth.projection_mistakes(f, X), pinhole_formulas(X, f)
+    elif function == "simulate_aperture":
+        f = 340.0
+        args, expected = (X, f, 0.0), truth.pinhole(X, f)
+        mistakes, formulas = truth.projection_mistakes(f, X), pinhole_formulas(X, f)
+    elif function == "distort_points":
+        rng = np.random.default_rng(9092)
+        pts = rng.uniform(-0.65, 0.65, size=(14, 2))
+        dist = np.array([0.21, -0.13, -0.004, 0.007, 0.05])
+        args, expected = (pts, dist), truth.distort_truth(pts, dist)
+        mistakes, formulas = truth.distortion_mistakes(pts, dist), {}
+    else:
+        raise ValueError(f"no probe for {function}")
+
+    def answer():
+        got = t.call(function, *args)
+        if function == "project_onto_image":
+            got = got[1] if isinstance(got, (tuple, list)) and len(got) == 2 else None
+        elif function == "project_focal_lengths":
+            got = got[0] if isinstance(got, np.ndarray) and got.ndim == 3 else None
+        elif function == "simulate_aperture":
+            got = got.mean(axis=1) if isinstance(got, np.ndarray) and got.ndim == 3 else None
+        if not (isinstance(got, np.ndarray) and got.shape == expected.shape and got.dtype.kind in "iuf"):
+            return None
+        return got
+
+    return PointsProbe(f"{function}/{fingerprint(args)}", answer, expected, mistakes, formulas)
+
+
+def matrix_probe(t: Trial, function: str) -> Probe:
+    """intrinsic_matrix or camera_matrix on a probe input (f, px, py all apart; a general camera)."""
+    if function == "intrinsic_matrix":
+        f, px, py = 733.0, 291.5, 187.25
+        return call_probe(t, function, (f, px, py), candidates=lambda: truth.intrinsic_mistakes(f, px, py),
+                          truth=truth.intrinsic(f, px, py), shape=(3, 3))
+    K, R, tvec = _probe_camera()
+    return call_probe(t, function, (K, R, tvec), candidates=lambda: truth.camera_mistakes(K, R, tvec),
+                      truth=truth.camera(K, R, tvec), shape=(3, 4))
 
 
 # ================================================================== shared judges
@@ -72,15 +161,16 @@ def expect_shape(t: Trial, what: str, got, shape, axes=None):
 
 
 def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e-6, show=None,
-                 mistake_tolerance=1e-4, formulas=None):
+                 mistake_tolerance=1e-4, formulas=None, probe: PointsProbe | None = None):
     """Compare returned 2D points with the truth; name the mistake when one fits.
 
     ``show`` (a title) attaches a plot of the true and the returned points.
     ``tolerance`` is relative to the largest coordinate, raised to float32's precision.
     A mistake is named when its answer is within ``mistake_tolerance`` (relative
-    to the largest coordinate) and clearly closer than any other and than the truth.
+    to the largest coordinate) and clearly closer than any other and than the truth,
+    here and on the ``probe``'s input (:func:`points_probe`; without one nothing is named).
     Otherwise ``formulas`` (see :func:`fixtures.lab09.coordinate_formulas`) may say
-    which formula each coordinate was computed with.
+    which formula each coordinate was computed with, when they say it on the probe too.
     """
     expected = np.asarray(expected, dtype=np.float64)
     got = expect_points(t, what, got, expected.shape)
@@ -101,11 +191,15 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
         if slip:
             t.fail(f"{what} is wrong: {slip}.", mistake="the pixels are rounded to integers")
     mistake = closest(got, mistakes or {}, point_error, mistake_tolerance * scale, truth=expected)
-    if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    if mistake and probe is not None:
+        mistake = confirm(t, mistake, probe.candidates_probe(mistake_tolerance))
+        if mistake:
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     explained = explain_coordinates(got, expected, formulas or {})
-    if explained:
-        t.fail(f"{what} is wrong: {explained}.", mistake=explained)
+    if explained and probe is not None:
+        again = t.probe(probe.key, probe.answer)
+        if again is not None and explain_coordinates(again, probe.expected, probe.formulas) == explained:
+            t.fail(f"{what} is wrong: {explained}.", mistake=explained)
     if not np.isnan(expected).any() and np.isnan(got).any():
         t.fail(f"{what} returned NaN for points in front of the camera (Z > 0).")
     worst = _worst_point(got, expected)
@@ -236,7 +330,9 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
             factor = got[i] / expected[i]
             t.fail(f"{what} is wrong: it is {factor:.4g} times the right matrix: it is right only up to "
                    "scale; return the matrix itself, not a rescaled one.", mistake="the matrix is rescaled")
-    return judges.judge_matrix(t, what, got, expected, mistakes, shape, up_to_scale, rtol=1e-7)
+    function = what.split("(")[0]
+    return judges.judge_matrix(t, what, got, expected, mistakes, shape, up_to_scale, rtol=1e-7,
+                               probe=matrix_probe(t, function))
 
 
 # ================================================================== ex1 pinhole
@@ -263,7 +359,7 @@ def pinhole_example(t):
     judge_points(t, "pinhole_project(points, f=500)", t.call("pinhole_project", SHEET_POINTS, 500.0),
                  truth.pinhole(SHEET_POINTS, 500.0), truth.projection_mistakes(500.0, SHEET_POINTS),
                  formulas=pinhole_formulas(SHEET_POINTS, 500.0),
-                 show="pinhole projection, f = 500")
+                 show="pinhole projection, f = 500", probe=points_probe(t, "pinhole_project"))
 
 
 @ex1.check("pinhole_project for any points in front and any f", points=3)
@@ -272,7 +368,8 @@ def pinhole_property(t):
         seed, f = case
         X = truth.points_in_front(seed, n=10)
         judge_points(t, f"pinhole_project(points, f={f!r})", t.call("pinhole_project", X, f),
-                     truth.pinhole(X, f), truth.projection_mistakes(f, X), formulas=pinhole_formulas(X, f))
+                     truth.pinhole(X, f), truth.projection_mistakes(f, X), formulas=pinhole_formulas(X, f),
+                     probe=points_probe(t, "pinhole_project"))
 
     t.for_all(st.tuples(seeds, st.floats(10.0, 2000.0)), holds, max_examples=15,
               describe=lambda c: f"fixtures.lab09.points_in_front(seed={c[0]}, n=10), f={c[1]!r}")
@@ -330,7 +427,8 @@ def project_intrinsics_example(t):
     X = truth.points_in_front(21, n=12)
     judge_points(t, "project_with_intrinsics(K, points)", t.call("project_with_intrinsics", K, X),
                  truth.homogeneous_project(K, X), truth.intrinsics_projection_mistakes(K, X),
-                 show="projection with K", formulas=intrinsics_formulas(K, X))
+                 show="projection with K", formulas=intrinsics_formulas(K, X),
+                 probe=points_probe(t, "project_with_intrinsics"))
 
 
 @ex2.check("project_with_intrinsics with non-square pixels, skew, and a single point", points=1)
@@ -339,7 +437,8 @@ def project_intrinsics_general(t):
     X = truth.points_in_front(22, n=8)
     judge_points(t, "project_with_intrinsics(K with fx != fy and skew, points)",
                  t.call("project_with_intrinsics", K, X), truth.homogeneous_project(K, X),
-                 truth.intrinsics_projection_mistakes(K, X), formulas=intrinsics_formulas(K, X))
+                 truth.intrinsics_projection_mistakes(K, X), formulas=intrinsics_formulas(K, X),
+                 probe=points_probe(t, "project_with_intrinsics"))
     judge_single_point(t, "project_with_intrinsics(K, (3,) point)",
                        t.call("project_with_intrinsics", K, X[0]), truth.homogeneous_project(K, X[0])[0])
 
@@ -421,7 +520,8 @@ def project_example(t):
     P = truth.camera(K, R, tvec)
     X = truth.world_points_for(K, R, tvec, seed=32)
     judge_points(t, "project(P, points)", t.call("project", P, X), truth.homogeneous_project(P, X),
-                 project_mistakes(P, X), show="projection with P = K [R | t]", formulas=project_formulas(P, X))
+                 project_mistakes(P, X), show="projection with P = K [R | t]", formulas=project_formulas(P, X),
+                 probe=points_probe(t, "project"))
 
 
 @ex3.check("project accepts any scale of P, and a single (3,) point", points=1)
@@ -430,7 +530,7 @@ def project_scale(t):
     P = truth.camera(K, R, tvec)
     X = truth.world_points_for(K, R, tvec, seed=34, n=6)
     judge_points(t, "project(2.5 * P, points)", t.call("project", 2.5 * P, X),
-                 truth.homogeneous_project(P, X), project_mistakes(2.5 * P, X))
+                 truth.homogeneous_project(P, X), project_mistakes(2.5 * P, X), probe=points_probe(t, "project"))
     judge_single_point(t, "project(P, (3,) point)", t.call("project", P, X[0]),
                        truth.homogeneous_project(P, X[0])[0])
 
@@ -483,7 +583,7 @@ def focal_lengths(t):
                mistake="the focal lengths are used in another order")
     for i, f in enumerate(fs):
         judge_points(t, f"project_focal_lengths(...)[{i}] (f = {f:g})", got[i], expected[i],
-                     truth.projection_mistakes(f, X))
+                     truth.projection_mistakes(f, X), probe=points_probe(t, "project_focal_lengths"))
     return passed("the image grows in proportion to f")
 
 
@@ -506,8 +606,8 @@ def aperture_zero(t):
     error = np.abs(got - ideal[:, None, :]).max()
     tolerance = at_precision(1e-6, magnitude(ideal))
     if error > tolerance:
-        mistake = closest(got.mean(axis=1), truth.projection_mistakes(APERTURE_F, X), point_error, 1e-3,
-                          truth=ideal)
+        mistake = judges.name_mistake(t, got.mean(axis=1), truth.projection_mistakes(APERTURE_F, X), point_error,
+                                      1e-3, truth=ideal, probe=points_probe(t, "simulate_aperture").candidates_probe(1e-5))
         if mistake:
             t.fail(f"{what} is not the ideal projection: it looks like {mistake}.", mistake=mistake)
         t.fail(f"{what}: with a point-sized pinhole every ray should land on the ideal projection "
@@ -539,28 +639,68 @@ def aperture_statistics(t):
     ratio = d.max(axis=1) / radius
     per_point = rms / radius
     if np.all(np.abs(ratio - 2.0) < 0.1):
-        t.fail(f"{what}: the rays spread over twice the expected disc: it looks like the aperture "
-               "is used as the diameter; it is the radius.", mistake="the aperture is used as the diameter")
+        # Twice the disc: the radius used is 2 * aperture (a diameter where the radius belongs),
+        # when a larger aperture spreads twice its disc too.
+        doubled = "the aperture is doubled (2 * aperture, a diameter, is used as the radius)"
+        named = f": it looks like {doubled}; aperture is the pinhole's radius" \
+            if _disc_ratio_on_probe(t, 0.8) is not None and abs(_disc_ratio_on_probe(t, 0.8) - 2.0) < 0.1 else ""
+        t.fail(f"{what}: the rays spread over twice the expected disc (up to {ratio.max():.2f} radii from "
+               f"the ideal projection){named}.", mistake=doubled if named else "")
     if np.ptp(rms / aperture) < 0.05 * np.mean(rms / aperture) and np.ptp(radius) > 0.2 * radius.mean():
+        unscaled = _spread_independent_of_depth_on_probe(t)
         t.fail(f"{what}: the spread is the same for every point, but it should depend on depth: "
-               "the offsets through the aperture are not scaled by (1 + f / Z): the blur disc has radius "
-               "aperture * (1 + f / Z) (near points blur more).",
-               mistake="the aperture offsets are not scaled by (1 + f / Z)")
+               + ("the offsets through the aperture are not scaled by (1 + f / Z): " if unscaled else "")
+               + "the blur disc has radius aperture * (1 + f / Z) (near points blur more).",
+               mistake="the aperture offsets are not scaled by (1 + f / Z)" if unscaled else "")
     if np.any(ratio > 1.02):
         t.fail(f"{what}: some rays land outside the blur disc of radius aperture * (1 + f / Z) "
                f"(up to {ratio.max():.2f} radii from the ideal projection).")
     if np.all(np.abs(ratio - 0.5) < 0.05):
-        # At aperture 0.5, halving it and squaring it give the same disc: both are said.
-        squared = ", or squared (the same disc at this aperture)" if np.isclose(aperture ** 2, aperture / 2) else ""
+        # At aperture 0.5, halving it and squaring it give the same disc: at aperture 0.8 they
+        # do not (0.4 and 0.64, ratios 0.5 and 0.8), and the probe tells which it is.
+        ratio_08 = _disc_ratio_on_probe(t, 0.8)
+        cause = ("the aperture is halved (taken as a diameter)" if ratio_08 is not None and abs(ratio_08 - 0.5) < 0.05
+                 else "the aperture is squared" if ratio_08 is not None and abs(ratio_08 - 0.8) < 0.05 else "")
         t.fail(f"{what}: the rays fill only the inner half of the blur disc (at most {ratio.max():.2f} "
-               f"radii from the ideal projection): it looks like the aperture is halved (taken as a "
-               f"diameter){squared}; it is the pinhole's radius.",
-               mistake="the aperture is halved (taken as a diameter)" + squared)
+               "radii from the ideal projection)" + (f": it looks like {cause}; it is the pinhole's radius"
+                                                       if cause else "") + ".", mistake=cause)
     if np.any(per_point < 0.5) or np.any(per_point > 0.8):
         t.fail(f"{what}: the rays fill the blur disc unevenly (RMS distance {per_point.min():.2f}.."
                f"{per_point.max():.2f} radii; uniform over the disc gives 0.71).",
                hint="draw the aperture point uniformly over the disc: radius = aperture * sqrt(u)")
     return passed(f"mean on the ideal projection, RMS spread {per_point.mean():.2f} blur radii")
+
+
+def _aperture_probe(t: Trial, f: float, aperture: float):
+    """The student's rays on the aperture probe's points (depths 1 to 8), with the ideal projection."""
+    X = truth.points_in_front(9093, n=6, z_range=(1.0, 8.0))
+
+    def answer():
+        got = t.call("simulate_aperture", X, f, aperture, n_rays=2000, seed=5)
+        ok = isinstance(got, np.ndarray) and got.shape == (len(X), 2000, 2) and got.dtype.kind == "f"
+        return got if ok and np.isfinite(got).all() else None
+
+    return t.probe(f"simulate_aperture/probe/{f}/{aperture}", answer), X
+
+
+def _disc_ratio_on_probe(t: Trial, aperture: float):
+    """How far the rays reach on the probe, in blur radii (f = 200): None if it cannot be said."""
+    got, X = _aperture_probe(t, APERTURE_F, aperture)
+    if got is None:
+        return None
+    d, _ = _spread(got, truth.pinhole(X, APERTURE_F))
+    ratio = d.max(axis=1) / truth.blur_radius(X, APERTURE_F, aperture)
+    return float(np.median(ratio))
+
+
+def _spread_independent_of_depth_on_probe(t: Trial) -> bool:
+    """Whether with f = 2 (where 1 + f / Z and 1 + Z / f both vary a lot over depths 1 to 8) the
+    spread is the same for every point again: the offsets are scaled by no depth at all."""
+    got, X = _aperture_probe(t, 2.0, 0.5)
+    if got is None:
+        return False
+    _, rms = _spread(got, truth.pinhole(X, 2.0))
+    return bool(np.ptp(rms) < 0.05 * np.mean(rms))
 
 
 @ex4.check("simulate_aperture: the spread grows with the aperture", points=2)
@@ -746,7 +886,7 @@ def project_onto_image_check(t):
         t.fail("project_onto_image returned (pts, image); the API wants the pair the other way round: "
                "(image, pts).", mistake="the pair is returned in the wrong order")
     judge_points(t, "project_onto_image(...)[1] (the points)", pts, expected, project_mistakes(P, X),
-                 tolerance=1e-6, show="projected points")
+                 tolerance=1e-6, show="projected points", probe=points_probe(t, "project_onto_image"))
     if isinstance(drawn, np.ndarray) and drawn.shape == image.shape and np.array_equal(drawn, image):
         t.fail("project_onto_image(...)[0] is the image unchanged: the projected points are not drawn on it "
                "(draw_points(image, pts)).", mistake="the points are not drawn on the image")
@@ -830,7 +970,7 @@ def judge_distortion(t: Trial, pts, dist, show=False):
         t.svg("normalised points: ideal, OpenCV's distortion, yours", svg_points(
             {"undistorted": pts, "OpenCV (truth)": expected, "yours": got}, lines=list(zip(expected, got))))
     judge_points(t, what, got, expected, truth.distortion_mistakes(pts, dist), tolerance=1e-7,
-                 mistake_tolerance=1e-6)
+                 mistake_tolerance=1e-6, probe=points_probe(t, "distort_points"))
 
 
 @ext2.check("distort_points matches OpenCV's model (cv2.projectPoints) on a grid", points=4)

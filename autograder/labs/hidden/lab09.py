@@ -10,7 +10,7 @@ import numpy as np
 from fixtures import lab09 as truth
 
 from ..lab09 import (ex3, ex4, ext1, judge_in_front, judge_calibration, judge_matrix, judge_points,
-                     project_mistakes)
+                     points_probe, project_mistakes)
 
 
 @ex3.check("hidden: camera_matrix and project for other cameras", points=2, hidden=True)
@@ -23,7 +23,7 @@ def hidden_project(t):
                      truth.camera_mistakes(K, R, tvec), shape=(3, 4))
         X = truth.world_points_for(K, R, tvec, seed=seed + 7, n=25, width=640, height=480)
         judge_points(t, "project(P, points)", t.call("project", P, X), truth.homogeneous_project(P, X),
-                     project_mistakes(P, X))
+                     project_mistakes(P, X), probe=points_probe(t, "project"))
     Xc, behind = truth.with_points_behind(truth.points_in_front(9004, n=16), seed=9005)
     X = (Xc - tvec) @ R
     judge_in_front(t, "project(P, points, some behind)", t.call("project", P, X),
@@ -38,7 +38,7 @@ def hidden_focal_lengths(t):
                          shape=(7, 20, 2), kind="iuf")
     for i, f in enumerate(fs):
         judge_points(t, f"project_focal_lengths(...)[{i}]", got[i], truth.pinhole(X, f),
-                     truth.projection_mistakes(f, X))
+                     truth.projection_mistakes(f, X), probe=points_probe(t, "project_focal_lengths"))
 
 
 HIDDEN_K = ((360.0, 0.0, 155.0), (0.0, 355.0, 124.0), (0.0, 0.0, 1.0))
