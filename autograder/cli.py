@@ -102,6 +102,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     bundle = commands.add_parser("bundle", help="write the repository students receive")
     bundle.add_argument("--student", metavar="OUT", required=True, help="folder to create")
+    bundle.add_argument("--wheels", action="store_true",
+                        help="also download every package the grader needs into OUT/wheels (for this Python "
+                             "and platform, at constraints.txt's versions), so the bundle installs offline")
     add_class_commands(commands)
     return parser
 
@@ -559,7 +562,7 @@ def run_gradescope(args) -> int:
 
 
 def run_bundle(args) -> int:
-    from .bundle import write_student_bundle
+    from .bundle import WheelhouseError, write_student_bundle, write_wheelhouse
 
     try:
         files = write_student_bundle(args.student)
@@ -568,6 +571,17 @@ def run_bundle(args) -> int:
         return USAGE_ERROR
     print(f"wrote {len(files)} files to {args.student}: the student repository "
           "(no reference solutions, no hidden checks)")
+    if not getattr(args, "wheels", False):
+        return 0
+    try:
+        wheels = write_wheelhouse(args.student)
+    except WheelhouseError as exc:
+        print(f"error: no wheels: {exc}. {args.student} is complete but installs with a network only "
+              "(its README says how); run autograder bundle again where pip can download.", file=sys.stderr)
+        return 1
+    size = sum((Path(args.student) / wheel).stat().st_size for wheel in wheels)
+    print(f"wrote {len(wheels)} wheels ({size / 2**20:.0f} MiB) to {Path(args.student) / 'wheels'}: "
+          "the README says how to install from them offline")
     return 0
 
 

@@ -2,17 +2,19 @@
 
 import ast
 import json
+import os
 import re
 import shutil
 import subprocess
 import sys
 import sysconfig
 import tempfile
+import zipfile
 from pathlib import Path
 
 import pytest
 
-from autograder.bundle import write_student_bundle
+from autograder.bundle import bundle_requirements, write_student_bundle, write_wheelhouse
 from autograder.registry import discover
 from conftest import REFERENCE, ROOT
 
@@ -186,3 +188,61 @@ def test_the_build_backend_is_pinned_to_the_constraints_and_the_license_is_an_sp
         assert spec.operator == "==" and pins[requirement.name.lower()] == spec.version, text
     assert project["project"]["license"] == "MIT"  # an SPDX expression: setuptools 77 or later
     assert Version(pins["setuptools"]) >= Version("77")
+
+
+# ------------------------------------------------------------------ the wheelhouse (no network here)
+def fake_wheel(folder: Path, name: str, version: str, requires=()) -> None:
+    """A wheel pip can resolve (metadata only): enough for ``pip download``."""
+    info = f"{name}-{version}.dist-info"
+    with zipfile.ZipFile(folder / f"{name}-{version}-py3-none-any.whl", "w") as zf:
+        zf.writestr(f"{info}/METADATA", f"Metadata-Version: 2.1\nName: {name}\nVersion: {version}\n"
+                    + "".join(f"Requires-Dist: {r}\n" for r in requires))
+        zf.writestr(f"{info}/WHEEL", "Wheel-Version: 1.0\nGenerator: test\nRoot-Is-Purelib: true\nTag: py3-none-any\n")
+        zf.writestr(f"{info}/RECORD", "")
+
+
+@pytest.fixture
+def offline_pip(tmp_path, monkeypatch):
+    """pip with no index and no configuration: it finds only what is in the folder returned."""
+    links = tmp_path / "links"
+    links.mkdir()
+    for name, value in (("PIP_NO_INDEX", "1"), ("PIP_FIND_LINKS", str(links)), ("PIP_CONFIG_FILE", os.devnull)):
+        monkeypatch.setenv(name, value)
+    monkeypatch.delenv("PIP_CONSTRAINT", raising=False)
+    return links
+
+
+def test_the_wheelhouse_holds_the_backend_and_dependencies_at_the_constrained_versions(tmp_path, offline_pip):
+    for name, version, requires in (("fakebackend", "1.0", ()), ("fakebackend", "2.0", ()),
+                                    ("tinydep", "1.0", ()), ("tinydep", "2.0", ("leafdep",)), ("leafdep", "0.5", ())):
+        fake_wheel(offline_pip, name, version, requires)
+    out = tmp_path / "bundle"
+    out.mkdir()
+    (out / "pyproject.toml").write_text('[build-system]\nrequires = ["fakebackend==1.0"]\n'
+                                        '[project]\nname = "x"\nversion = "0"\ndependencies = ["tinydep>=1"]\n'
+                                        '[project.optional-dependencies]\ntest = ["notthere"]\n')
+    (out / "constraints.txt").write_text("tinydep==2.0\nfakebackend==1.0\n")
+    (out / "README.md").write_text("# Labs\n\nSet up with a network.\n\n## Grading\n\npython grade.py\n")
+    wheels = write_wheelhouse(out)
+    assert [w.name for w in wheels] == ["fakebackend-1.0-py3-none-any.whl", "leafdep-0.5-py3-none-any.whl",
+                                        "tinydep-2.0-py3-none-any.whl"]
+    readme = (out / "README.md").read_text()
+    offline = readme.index("## Set up without a network")
+    assert readme.index("Set up with a network.") < offline < readme.index("## Grading")
+    assert "python -m pip install --no-index --find-links wheels -c constraints.txt -e ." in readme
+    assert f"CPython {sys.version_info[0]}.{sys.version_info[1]} on {sysconfig.get_platform()}" in readme
+    assert not (out / ".wheels.partial").exists()
+
+
+def test_bundle_wheels_without_a_network_refuses_cleanly(tmp_path, offline_pip, capsys):
+    from autograder.cli import main
+
+    out = tmp_path / "cv-labs"
+    assert main(["bundle", "--student", str(out), "--wheels"]) == 1
+    err = capsys.readouterr().err
+    assert "error: no wheels: pip download failed: ERROR:" in err and "installs with a network only" in err
+    assert "Traceback" not in err
+    assert not (out / "wheels").exists() and not (out / ".wheels.partial").exists()
+    assert (out / "grade.py").is_file() and "--no-index" not in (out / "README.md").read_text()
+    assert bundle_requirements(out)[0] == "setuptools==84.2.1"  # what a real wheelhouse starts with
+    assert "numpy>=1.24" in bundle_requirements(out)
