@@ -57,7 +57,7 @@ def _refuse_unconfined(confinement: confine.Confinement) -> None:
             "this machine cannot confine student code (confinement level 'process-group': no Linux "
             "namespaces), so each submission could read the other students' work and your files, and "
             "print them into its feedback. Grade the class on Linux as root or with unprivileged user "
-            "namespaces (see the README's security model), or pass --allow-unconfined to accept that.")
+            "namespaces (see docs/security.md), or pass --allow-unconfined to accept that.")
     weaker = confine.shortfall(confinement)  # e.g. AUTOGRADER_CONFINEMENT=namespaces where +user works
     if weaker:
         raise Unconfined(f"{weaker}: grade the class at the strongest level this machine allows, "
