@@ -160,6 +160,16 @@ def fingerprint(*values) -> str:
     return digest.hexdigest()[:16]
 
 
+def over_variants(distance, ndim: int):
+    """``distance`` between answers of ``ndim`` dimensions, either of which may be a stack of
+    textbook variants (one more dimension): the distance of the nearest pair."""
+    def nearest(a, b) -> float:
+        firsts = list(a) if np.ndim(a) > ndim else [a]
+        seconds = list(b) if np.ndim(b) > ndim else [b]
+        return min(float(distance(x, y)) for x in firsts for y in seconds)
+    return nearest
+
+
 def call_probe(t: Trial, function: str, args=(), kwargs=None, *, candidates, truth=None,
                shape=None, kind: str | None = "iuf", **fields) -> Probe:
     """A :class:`Probe` whose student answer is ``function(*args, **kwargs)`` (an array of

@@ -89,19 +89,33 @@ def points_probe(t: Trial, function: str) -> PointsProbe:
     else:
         raise ValueError(f"no probe for {function}")
 
-    def answer():
-        got = t.call(function, *args)
+    def pick(got):
         if function == "project_onto_image":
-            got = got[1] if isinstance(got, (tuple, list)) and len(got) == 2 else None
-        elif function == "project_focal_lengths":
-            got = got[0] if isinstance(got, np.ndarray) and got.ndim == 3 else None
-        elif function == "simulate_aperture":
-            got = got.mean(axis=1) if isinstance(got, np.ndarray) and got.ndim == 3 else None
+            return got[1] if isinstance(got, (tuple, list)) and len(got) == 2 else None
+        if function == "project_focal_lengths":
+            return got[0] if isinstance(got, np.ndarray) and got.ndim == 3 else None
+        if function == "simulate_aperture":
+            return got.mean(axis=1) if isinstance(got, np.ndarray) and got.ndim == 3 else None
+        return got
+
+    return make_points_probe(t, function, args, {}, expected, mistakes, formulas, pick)
+
+
+def make_points_probe(t: Trial, function: str, args, kwargs, expected, mistakes, formulas=None,
+                      pick=None) -> PointsProbe:
+    """A :class:`PointsProbe` calling ``function(*args, **kwargs)``; ``pick`` takes the points
+    out of what it returns (by default the value itself)."""
+    expected = np.asarray(expected, dtype=np.float64)
+
+    def answer():
+        got = t.call(function, *args, **kwargs)
+        got = pick(got) if pick is not None else got
         if not (isinstance(got, np.ndarray) and got.shape == expected.shape and got.dtype.kind in "iuf"):
             return None
         return got
 
-    return PointsProbe(f"{function}/{fingerprint(args)}", answer, expected, mistakes, formulas)
+    return PointsProbe(f"{function}/{fingerprint(args, kwargs)}", answer, expected, dict(mistakes),
+                       dict(formulas or {}))
 
 
 def matrix_probe(t: Trial, function: str) -> Probe:

@@ -20,14 +20,32 @@ from .. import strategies as st
 from ..checks import Trial, partial, passed
 from ..compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
                        projective_distance)
-from ..judges import format_matrix, where_matrices_differ
+from ..judges import Probe, call_probe, confirm, fingerprint, format_matrix, name_mistake, where_matrices_differ
 from ..pictures import svg_points
 from ..registry import Lab
-from .lab09 import expect_points, judge_points, judge_single_point, point_error
+from .lab09 import expect_points, judge_points, judge_single_point, make_points_probe, point_error
 
 lab = Lab("lab10", module="lab10_camera2", title="Geometric camera models (continued)")
 
 seeds = st.integers(0, 2**32 - 1)
+
+
+def projection_probe(t: Trial, function: str, **kwargs):
+    """A projection function on its confirmation probe's input (see autograder.judges.Probe):
+    points of varied depth away from the axis, an f none of the checks uses, a given z_avg
+    apart from every statistic of the depths."""
+    X = truth.points_in_front(10_010, n=10, z_range=(3.0, 14.0))
+    f = 640.0
+    if function == "perspective_project":
+        return make_points_probe(t, function, (X, f), {}, truth.pinhole(X, f), perspective_mistakes(f, X))
+    if function == "weak_perspective_project":
+        z_avg = kwargs.get("z_avg")
+        call_kwargs = {} if z_avg is None else {"z_avg": z_avg}
+        mistakes = weak_mistakes(X, f, z_avg)
+        if z_avg is None:
+            del mistakes["the given z_avg is ignored (the mean depth is used instead)"]
+        return make_points_probe(t, function, (X, f), call_kwargs, truth.weak_perspective(X, f, z_avg), mistakes)
+    return make_points_probe(t, function, (X,), {}, truth.orthographic(X), orthographic_mistakes(X))
 
 
 # ================================================================== ex1 perspective
@@ -58,7 +76,7 @@ def perspective_focal_lengths(t):
         if isinstance(got, np.ndarray) and got.shape == (10, 2):
             plots[f"f = {f:g}"] = got
         judge_points(t, f"perspective_project(points, f={f:g})", got, truth.pinhole(X, f),
-                     perspective_mistakes(f, X))
+                     perspective_mistakes(f, X), probe=projection_probe(t, "perspective_project"))
     t.svg("the same points with f = 100, 500, 1000", svg_points(plots))
     return passed("the image scales with f")
 
@@ -69,7 +87,7 @@ def perspective_property(t):
         seed, f = case
         X = truth.points_in_front(seed, n=8)
         judge_points(t, f"perspective_project(points, f={f!r})", t.call("perspective_project", X, f),
-                     truth.pinhole(X, f), perspective_mistakes(f, X))
+                     truth.pinhole(X, f), perspective_mistakes(f, X), probe=projection_probe(t, "perspective_project"))
 
     t.for_all(st.tuples(seeds, st.floats(10.0, 2000.0)), holds, max_examples=12,
               describe=lambda c: f"fixtures.lab09.points_in_front(seed={c[0]}, n=8), f={c[1]!r}")
@@ -132,7 +150,8 @@ def weak_default(t):
     if isinstance(got, np.ndarray) and got.shape == expected.shape:
         t.svg("weak perspective vs full perspective", svg_points(
             {"weak perspective (truth)": expected, "yours": got, "full perspective": truth.pinhole(X, 500.0)}))
-    judge_points(t, "weak_perspective_project(points, f=500)", got, expected, mistakes)
+    judge_points(t, "weak_perspective_project(points, f=500)", got, expected, mistakes,
+                 probe=projection_probe(t, "weak_perspective_project"))
 
 
 @ex2.check("weak_perspective_project with a given z_avg", points=2)
@@ -140,7 +159,8 @@ def weak_given(t):
     X = truth.scene_points(202, n=10, depth=15.0, relief=3.0)
     judge_points(t, "weak_perspective_project(points, f=300, z_avg=12.0)",
                  t.call("weak_perspective_project", X, 300.0, z_avg=12.0),
-                 truth.weak_perspective(X, 300.0, 12.0), weak_mistakes(X, 300.0, 12.0))
+                 truth.weak_perspective(X, 300.0, 12.0), weak_mistakes(X, 300.0, 12.0),
+                 probe=projection_probe(t, "weak_perspective_project", z_avg=7.25))
 
 
 @ex2.check("weak perspective approaches perspective for a shallow, distant object", points=1)
@@ -148,13 +168,25 @@ def weak_property(t):
     def holds(seed):
         X = truth.scene_points(seed, n=10, depth=50.0, relief=0.5)
         judge_points(t, "weak_perspective_project(points, f=400)", t.call("weak_perspective_project", X, 400.0),
-                     truth.weak_perspective(X, 400.0), weak_mistakes(X, 400.0))
+                     truth.weak_perspective(X, 400.0), weak_mistakes(X, 400.0),
+                     probe=projection_probe(t, "weak_perspective_project"))
 
     t.for_all(seeds, holds, max_examples=6, describe=lambda s: f"fixtures.lab10.scene_points({s}, depth=50)")
 
 
 # ================================================================== ex3 orthographic
 ex3 = lab.exercise("ex3", "Orthographic projection", functions=["orthographic_project(points)"])
+
+
+def orthographic_mistakes(X):
+    return {
+        "the points are divided by Z: that is perspective; orthographic projection ignores depth":
+            X[:, :2] / X[:, 2:3],
+        "it returns (X, Z); the lab sheet's matrix keeps X and Y": X[:, [0, 2]],
+        "it returns (Y, Z); the lab sheet's matrix keeps X and Y": X[:, [1, 2]],
+        "x and y are swapped": X[:, [1, 0]],
+        "the points are scaled by 1 / mean depth (weak perspective with f = 1)": truth.weak_perspective(X, 1.0),
+    }
 
 
 @ex3.check("orthographic_project uses the lab sheet's 3x4 matrix: (X, Y)", points=3)
@@ -168,14 +200,8 @@ def orthographic_example(t):
         t.fail("orthographic_project returned shape (2, 3); expected (10, 2): points[:2] takes the first two "
                "points (rows); X and Y are the first two columns, points[:, :2].",
                mistake="rows are taken instead of columns")
-    judge_points(t, "orthographic_project(points)", got, truth.orthographic(X), {
-        "the points are divided by Z: that is perspective; orthographic projection ignores depth":
-            X[:, :2] / X[:, 2:3],
-        "it returns (X, Z); the lab sheet's matrix keeps X and Y": X[:, [0, 2]],
-        "it returns (Y, Z); the lab sheet's matrix keeps X and Y": X[:, [1, 2]],
-        "x and y are swapped": X[:, [1, 0]],
-        "the points are scaled by 1 / mean depth (weak perspective with f = 1)": truth.weak_perspective(X, 1.0),
-    })
+    judge_points(t, "orthographic_project(points)", got, truth.orthographic(X), orthographic_mistakes(X),
+                 probe=projection_probe(t, "orthographic_project"))
 
 
 @ex3.check("orthographic_project: depth changes nothing; a single (3,) point", points=2)
@@ -185,7 +211,8 @@ def orthographic_property(t):
         X = rng.uniform(-10, 10, size=(8, 3))
         X[:, 2] = np.abs(X[:, 2]) + 0.5
         judge_points(t, "orthographic_project(points)", t.call("orthographic_project", X), truth.orthographic(X),
-                     {"the points are divided by Z: that is perspective": X[:, :2] / X[:, 2:3]})
+                     {"the points are divided by Z: that is perspective": X[:, :2] / X[:, 2:3]},
+                     probe=projection_probe(t, "orthographic_project"))
 
     t.for_all(seeds, holds, max_examples=8, describe=lambda s: f"uniform(-10, 10, (8, 3)) from seed {s}")
     judge_single_point(t, "orthographic_project((3,) point)", t.call("orthographic_project", np.array([1.0, 2.0, 7.0])),
@@ -221,10 +248,11 @@ def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_p
         if np.isfinite(residual) and residual <= 1.2 * true_residual and fresh.mean() <= 1.0:
             return passed(f"RMS residual {residual:.2f} px (the true P: {true_residual:.2f} px); "
                           f"new points within {fresh.mean():.2f} px on average")
-    mistake = closest(got, truth.dlt_mistakes(P, X, x), projective_distance, 0.05 if noise else 1e-4)
+    mistake = name_mistake(t, got, truth.dlt_mistakes(P, X, x), projective_distance, 0.05 if noise else 1e-4,
+                           probe=dlt_probe(t))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
-    if origin_on_principal_plane and abs(got[2, 3]) > 1e-3 * np.linalg.norm(got):
+    if origin_on_principal_plane and abs(got[2, 3]) > 1e-3 * np.linalg.norm(got) and dlt_right_on_probe(t):
         t.fail(f"{what}: here the true P[2, 3] is 0 (P[2, 3] = t_z, the depth of the world origin), "
                f"yours is {got[2, 3] / np.linalg.norm(got):.3g} of |P|. It looks like P[2, 3] was fixed "
                "to 1 (11 unknowns, least squares), which cannot express this camera: solve A p = 0 "
@@ -232,6 +260,21 @@ def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_p
     t.fail(f"{what}: P is wrong {where_matrices_differ(got, P, up_to_scale=True)} (compared with the "
            f"true camera up to scale): projecting new points with it misses their true projections by "
            f"{np.mean(fresh):.3g} px on average.")
+
+
+def dlt_probe(t: Trial) -> Probe:
+    """camera_matrix_dlt on 10 exact correspondences of another camera (its t_z far from 0)."""
+    P, X, x, _, _ = truth.dlt_problem(10_020, n=10, noise=0.0)
+    return call_probe(t, "camera_matrix_dlt", (X, x), candidates=lambda: truth.dlt_mistakes(P, X, x), truth=P,
+                      shape=(3, 4), distance=projective_distance, tolerance=1e-4)
+
+
+def dlt_right_on_probe(t: Trial) -> bool:
+    """Whether the DLT is right on the probe's camera (t_z far from 0): fixing P[2, 3] = 1 is
+    wrong only where t_z = 0, a DLT wrong for another reason is wrong there too."""
+    probe = dlt_probe(t)
+    answer = t.probe(probe.key, probe.answer)
+    return answer is not None and projective_distance(answer, probe.truth) < 1e-6
 
 
 @ex4.check("camera_matrix_dlt from exact correspondences (N = 6, N = 20, and t_z = 0)", points=4)
@@ -307,9 +350,8 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
           and np.abs(tv - t_true).max() <= tolerances["t"])
     if ok:
         return
-    for mistake, (Km, Rm, tm) in truth.decomposition_mistakes(Kn, R_true, t_true).items():
-        if (np.abs(K - Km).max() <= 1e-4 * np.abs(Km).max() and np.abs(R - Rm).max() <= 1e-4
-                and np.abs(tv - tm).max() <= 1e-4 * max(1.0, np.abs(tm).max())):
+    for mistake in decomposition_explained((K, R, tv), Kn, R_true, t_true):
+        if mistake in decomposition_on_probe(t):
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     recomposed = K @ np.column_stack([R, tv])
     if projective_distance(R @ K, np.asarray(P, float)[:, :3]) <= at_precision(1e-6) < projective_distance(recomposed, P):
@@ -328,6 +370,31 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     t.fail(f"{first}.\nK\n{shown}\nexpected\n{wanted}")
 
 
+def decomposition_explained(got, Kn, R_true, t_true) -> list[str]:
+    """The usual decomposition mistakes whose (K, R, t) is ``got``."""
+    K, R, tv = got
+    return [mistake for mistake, (Km, Rm, tm) in truth.decomposition_mistakes(Kn, R_true, t_true).items()
+            if np.abs(K - Km).max() <= 1e-4 * np.abs(Km).max() and np.abs(R - Rm).max() <= 1e-4
+            and np.abs(tv - tm).max() <= 1e-4 * max(1.0, np.abs(tm).max())]
+
+
+def decomposition_on_probe(t: Trial) -> list[str]:
+    """The mistakes that explain the decomposition of another camera (the confirmation probe)."""
+    P, K, R, tv, _ = truth.random_camera_matrix(10_030)
+
+    def answer():
+        got = t.call("decompose_camera_matrix", P)
+        if not (isinstance(got, (tuple, list)) and len(got) == 3):
+            return None
+        parts = [np.asarray(part, dtype=np.float64) for part in got]
+        if [part.size for part in parts] != [9, 9, 3] or not all(np.isfinite(part).all() for part in parts):
+            return None
+        return parts[0].reshape(3, 3), parts[1].reshape(3, 3), parts[2].reshape(3)
+
+    got = t.probe(f"decompose_camera_matrix/{fingerprint(P)}", answer)
+    return [] if got is None else decomposition_explained(got, K / K[2, 2], R, tv)
+
+
 @ex5.check("decompose_camera_matrix of P = K [R | t]", points=3)
 def decompose_example(t):
     _, K, R, tv, _ = truth.random_camera_matrix(501)
@@ -344,6 +411,15 @@ def decompose_property(t):
               describe=lambda s: f"fixtures.lab10.random_camera_matrix({s}) (negative scale included)")
 
 
+def center_mistakes(R, tv) -> dict:
+    return {
+        "it returned t; the centre is C = -R^T t (the point with P [C, 1] = 0)": tv,
+        "it returned -t; the centre is C = -R^T t (the rotation matters)": -tv,
+        "it returned -R t; the centre is C = -R^T t (R transposed)": -R @ tv,
+        "it returned R^T t; the centre is C = -R^T t (the sign is wrong)": R.T @ tv,
+    }
+
+
 def judge_center(t: Trial, P, R, tv):
     what = "camera_center(P)"
     got = t.call("camera_center", P)
@@ -355,17 +431,16 @@ def judge_center(t: Trial, P, R, tv):
     scale = magnitude(C)
     if np.abs(got - C).max() <= at_precision(1e-6 * scale, scale):
         return
-    mistakes = {
-        "it returned t; the centre is C = -R^T t (the point with P [C, 1] = 0)": tv,
-        "it returned -t; the centre is C = -R^T t (the rotation matters)": -tv,
-        "it returned -R t; the centre is C = -R^T t (R transposed)": -R @ tv,
-        "it returned R^T t; the centre is C = -R^T t (the sign is wrong)": R.T @ tv,
-    }
+    mistakes = center_mistakes(R, tv)
     null = np.append(C, 1.0) / np.linalg.norm(np.append(C, 1.0))      # the SVD's null vector, up to sign
     if min(np.abs(got - null[:3]).max(), np.abs(got + null[:3]).max()) <= at_precision(1e-6):
         t.fail(f"{what} is wrong: it returned the first three entries of the null vector of P without "
                "dividing by the fourth (C = v[:3] / v[3]).", mistake="the null vector is not de-homogenised")
-    mistake = closest(got, mistakes, lambda a, b: float(np.abs(a - b).max()), 1e-6 * scale, truth=C)
+    P2, _, R2, tv2, _ = truth.random_camera_matrix(10_031)
+    probe = call_probe(t, "camera_center", (P2,), candidates=lambda: center_mistakes(R2, tv2), truth=-R2.T @ tv2,
+                       shape=(3,), tolerance=1e-6 * magnitude(-R2.T @ tv2))
+    mistake = name_mistake(t, got, mistakes, lambda a, b: float(np.abs(a - b).max()), 1e-6 * scale, truth=C,
+                           probe=probe)
     if mistake:
         t.fail(f"{what} is wrong: {mistake}.", mistake=mistake)
     residual = np.linalg.norm(P @ np.append(got, 1.0)) / np.linalg.norm(P)
@@ -435,6 +510,8 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
     if angle <= ANGLE_TOLERANCE and rel <= TRANSLATION_TOLERANCE:
         if reproj_error > REPROJECTION_TOLERANCE:
             slip = _reprojection_slip(reprojected, rvec, tvec, pattern, square, K, dist)
+            if slip and _slip_on_probe(t, dist is not None) != slip:
+                slip = None
             if slip:
                 return partial(0.5, f"{what}: the pose is right, but the reprojected corners are wrong: "
                                     f"it looks like {slip}.", mistake=slip)
@@ -483,18 +560,84 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
             _, r0, t0 = cv2.solvePnP(objp, detected, K, None)
             a0, s0, _ = truth.pose_error(r0.ravel(), t0.ravel(), R, tv, pattern, square)
             if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(r0.ravel())) < 0.3 and \
-                    np.linalg.norm(tvec - t0.ravel()) < 0.003 * distance:
+                    np.linalg.norm(tvec - t0.ravel()) < 0.003 * distance and _dist_ignored_on_probe(t):
                 t.fail(f"{what}: the lens distortion dist is ignored: pass it to cv2.solvePnP "
                        "(and to cv2.projectPoints).", mistake="dist is ignored")
-    for (slip, label), (r_slip, t_slip) in _poses_from_wrong_grids(pattern, square, corners, K, dist).items():
-        if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(r_slip)) < 2 * ANGLE_TOLERANCE and \
-                np.linalg.norm(tvec - t_slip) < 2 * TRANSLATION_TOLERANCE * distance:
+    for (slip, label) in _wrong_grids_explaining(rvec, tvec, pattern, square, corners, K, dist):
+        if (slip, label) in _wrong_grids_on_probe(t):
             t.fail(f"{what}: {slip}; OpenCV gives the corners row by row, x fastest: "
                    "np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.", mistake=label)
     t.fail(f"{what}: the pose is off by {format_apart(angle, ANGLE_TOLERANCE, 2)} degrees and "
            f"{format_apart(rel, TRANSLATION_TOLERANCE, 2, percent=True)} of the distance (at most "
            f"{ANGLE_TOLERANCE:g} degrees and {TRANSLATION_TOLERANCE:.0%} accepted; reprojection off by up to "
            f"{reproj_error:.1f} px).")
+
+
+def _wrong_grids_explaining(rvec, tvec, pattern, square, corners, K, dist) -> list:
+    """The (slip, label) of each wrongly built grid whose cv2.solvePnP pose is (rvec, tvec)."""
+    R_got = scene.rotation_from_rvec(rvec)
+    distance = float(np.linalg.norm(tvec)) or 1.0
+    return [key for key, (r_slip, t_slip) in _poses_from_wrong_grids(pattern, square, corners, K, dist).items()
+            if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(r_slip)) < 2 * ANGLE_TOLERANCE
+            and np.linalg.norm(tvec - t_slip) < 2 * TRANSLATION_TOLERANCE * distance]
+
+
+# The pose checks' confirmation probe: another view of the board, or the same board through
+# another lens when dist matters (see autograder.judges.Probe).
+POSE_PROBE_VIEW = ((-0.2, -0.35, 0.05), 12.0, 3.9, (0.15, -0.05))
+
+
+def _pose_on_probe(t: Trial, with_dist: bool):
+    """(rvec, tvec, reprojected, corners, dist) of the student's pose on the probe view, or None."""
+    K, pattern, square = truth.POSE_K, truth.POSE_PATTERN, truth.POSE_SQUARE
+    if with_dist:
+        dist = np.array(UNDISTORT_PROBE_DIST)
+        image, _, R, tv, _ = truth.distorted_view(UNDISTORT_PROBE_DIST)
+        objp = scene.chessboard_object_points(pattern, square)
+        seen, _ = cv2.projectPoints(objp, scene.rvec_from_rotation(R), tv, K, dist)
+        corners = seen.reshape(-1, 2)
+    else:
+        dist = None
+        image, R, tv, corners = truth.render_pose_view(*POSE_PROBE_VIEW)
+
+    def answer():
+        _, got = _call_pose(t, image, pattern, square, K, dist)
+        if not (isinstance(got, (tuple, list)) and len(got) == 3):
+            return None
+        rvec, tvec, reprojected = (np.asarray(part, dtype=np.float64) for part in got)
+        if rvec.size != 3 or tvec.size != 3 or reprojected.size != corners.size:
+            return None
+        return rvec.reshape(3), tvec.reshape(3), reprojected.reshape(-1, 2), corners, dist
+
+    return t.probe(f"estimate_pose/probe/{with_dist}", answer)
+
+
+def _slip_on_probe(t: Trial, with_dist: bool):
+    got = _pose_on_probe(t, with_dist)
+    if got is None:
+        return None
+    rvec, tvec, reprojected, _, dist = got
+    return _reprojection_slip(reprojected, rvec, tvec, truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K, dist)
+
+
+def _dist_ignored_on_probe(t: Trial) -> bool:
+    """Whether through the probe's lens too the pose is cv2.solvePnP's without dist."""
+    got = _pose_on_probe(t, with_dist=True)
+    if got is None:
+        return False
+    rvec, tvec, _, corners, _ = got
+    objp = scene.chessboard_object_points(truth.POSE_PATTERN, truth.POSE_SQUARE)
+    _, r0, t0 = cv2.solvePnP(objp, corners.reshape(-1, 1, 2), truth.POSE_K, None)
+    return truth.rotation_angle_deg(scene.rotation_from_rvec(rvec), scene.rotation_from_rvec(r0.ravel())) < 0.3 \
+        and np.linalg.norm(tvec - t0.ravel()) < 0.003 * np.linalg.norm(t0)
+
+
+def _wrong_grids_on_probe(t: Trial) -> list:
+    got = _pose_on_probe(t, with_dist=False)
+    if got is None:
+        return []
+    rvec, tvec, _, corners, _ = got
+    return _wrong_grids_explaining(rvec, tvec, truth.POSE_PATTERN, truth.POSE_SQUARE, corners, truth.POSE_K, None)
 
 
 def _poses_from_wrong_grids(pattern, square, corners, K, dist) -> dict:
@@ -614,17 +757,40 @@ def undistort_check(t):
     if blurred_difference(got, distorted, valid) <= 1.0:
         t.fail(f"{what} returned the image unchanged: dist is not used (cv2.undistort(image, K, dist)).",
                mistake="the image is returned unchanged (dist is not used)")
+    mistake = name_mistake(t, got, undistortion_mistakes(distorted, K, dist),
+                           lambda a, b: blurred_difference(a, b, valid), UNDISTORT_TOLERANCE, truth=clean,
+                           probe=undistort_probe(t))
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    t.fail(f"{what} differs from the distortion-free view by {error:.0f} grey levels on average.")
+
+
+def undistortion_mistakes(distorted, K, dist) -> dict:
     twice = truth.distort_image(np.pad(distorted, truth.MARGIN), K, dist, truth.POSE_SIZE)
-    candidates = {
+    return {
         "the distortion is applied instead of removed (the lines bend even more)": twice,
         "the sign of the coefficients is flipped (undistorting with -dist)": cv2.undistort(distorted, K, -dist),
         "K is transposed (cv2.undistort wants K as given)": cv2.undistort(distorted, K.T, dist),
     }
-    mistake = closest(got, candidates, lambda a, b: blurred_difference(a, b, valid), UNDISTORT_TOLERANCE,
-                      truth=clean)
-    if mistake:
-        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
-    t.fail(f"{what} differs from the distortion-free view by {error:.0f} grey levels on average.")
+
+
+UNDISTORT_PROBE_DIST = (-0.18, 0.03, -0.002, 0.0025, 0.01)
+
+
+def undistort_probe(t: Trial) -> Probe:
+    """undistort_image of the same board through another lens (its tangential terms of other signs)."""
+    K, dist = truth.POSE_K, np.array(UNDISTORT_PROBE_DIST)
+    distorted, clean, _, _, _ = truth.distorted_view(UNDISTORT_PROBE_DIST)
+    valid = truth.undistortion_valid(K, dist, truth.POSE_SIZE)
+
+    def answer():
+        got = t.call("undistort_image", distorted, K, dist)
+        ok = isinstance(got, np.ndarray) and got.shape == distorted.shape and got.dtype == np.uint8
+        return got if ok else None
+
+    return Probe(f"undistort_image/{UNDISTORT_PROBE_DIST}", answer,
+                 lambda: undistortion_mistakes(distorted, K, dist), clean,
+                 distance=lambda a, b: blurred_difference(a, b, valid), tolerance=UNDISTORT_TOLERANCE)
 
 
 # ================================================================== ext2 dolly zoom
@@ -636,6 +802,32 @@ def dolly_scene():
     subject = np.column_stack([rng.uniform(-1, 1, 8), rng.uniform(-1.5, 1.5, 8), np.full(8, 5.0)])
     background = np.column_stack([rng.uniform(-6, 6, 12), rng.uniform(-4, 4, 12), rng.uniform(12, 25, 12)])
     return np.vstack([subject, background]), 8
+
+
+def dolly_distance(a, b):
+    """Relative error of the focal lengths and of the projections, the larger."""
+    (fa, pa), (fb, pb) = a, b
+    return max(float(np.abs(fa - fb).max() / np.abs(fb).max()),
+               point_error(pa.reshape(-1, 2), pb.reshape(-1, 2)) / float(np.nanmax(np.abs(pb))))
+
+
+def dolly_probe(t: Trial) -> Probe:
+    """dolly_zoom of other points (depths spread around z0) with an f0, z0 and distances no check uses."""
+    rng = np.random.default_rng(10_040)
+    X = np.column_stack([rng.uniform(-3, 3, 9), rng.uniform(-2, 2, 9), 3.5 + rng.uniform(-1.5, 9, 9)])
+    f0, z0, distances = 275.0, 3.5, np.array([2.25, 4.75, 8.5])
+
+    def answer():
+        got = t.call("dolly_zoom", X, f0, z0, distances)
+        if not (isinstance(got, (tuple, list)) and len(got) == 2):
+            return None
+        fs, proj = (np.asarray(g, dtype=np.float64) if isinstance(g, np.ndarray) else None for g in got)
+        ok = fs is not None and proj is not None and fs.shape == (3,) and proj.shape == (3, len(X), 2)
+        return (fs, proj) if ok else None
+
+    return Probe(f"dolly_zoom/{fingerprint(X)}", answer, lambda: truth.dolly_mistakes(X, f0, z0, distances),
+                 truth.dolly_zoom(X, f0, z0, distances), distance=dolly_distance, tolerance=1e-6,
+                 alike=lambda a, b: dolly_distance(a, b) <= 1e-9)
 
 
 def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
@@ -662,14 +854,8 @@ def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
         at_precision(1e-6 * np.nanmax(np.abs(proj_true)), p_scale)
     if ok_f and ok_p:
         return
-    def dolly_distance(a, b):
-        """Relative error of the focal lengths and of the projections, the larger."""
-        (fa, pa), (fb, pb) = a, b
-        return max(float(np.abs(fa - fb).max() / np.abs(fb).max()),
-                   point_error(pa.reshape(-1, 2), pb.reshape(-1, 2)) / float(np.nanmax(np.abs(pb))))
-
-    mistake = closest((fs, proj), truth.dolly_mistakes(X, f0, z0, distances), dolly_distance, 1e-6,
-                      truth=(fs_true, proj_true))
+    mistake = name_mistake(t, (fs, proj), truth.dolly_mistakes(X, f0, z0, distances), dolly_distance, 1e-6,
+                           truth=(fs_true, proj_true), probe=dolly_probe(t))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if not ok_f:

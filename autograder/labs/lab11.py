@@ -21,7 +21,8 @@ from .. import strategies as st
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
                        projective_distance)
-from ..judges import format_matrix, where_matrices_differ, where_points_differ
+from ..judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
+                      where_points_differ)
 from ..pictures import side_by_side, svg_points
 from ..registry import Lab
 
@@ -55,11 +56,19 @@ def conditioned_distance(pts1, pts2):
     return distance
 
 
+def projective_probe(t: Trial, function: str, args, expected, mistakes, distance=projective_distance,
+                     tolerance=1e-4, shape=(3, 3)) -> Probe:
+    """A confirmation probe for :func:`judge_projective`: ``function(*args)`` against ``mistakes``
+    (answers or stacks of textbook variants) and the truth ``expected``, compared with ``distance``."""
+    return call_probe(t, function, args, candidates=lambda: mistakes, truth=expected, shape=shape,
+                      distance=over_variants(distance, len(shape)), tolerance=tolerance)
+
+
 def judge_projective(t: Trial, what: str, got, expected, mistakes=None, tolerance=EXACT,
-                     shape=(3, 3), distance=projective_distance) -> np.ndarray:
+                     shape=(3, 3), distance=projective_distance, probe: Probe | None = None) -> np.ndarray:
     """A matrix or homogeneous vector equal to ``expected`` up to scale and sign; ``mistakes``
     map a mistake to its answer (a matrix, or a stack of its textbook variants), compared
-    with ``distance``."""
+    with ``distance``; a mistake is named when ``probe`` confirms it (:func:`projective_probe`)."""
     got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
     if not np.any(got):
         t.fail(f"{what} returned all zeros")
@@ -67,7 +76,7 @@ def judge_projective(t: Trial, what: str, got, expected, mistakes=None, toleranc
         return got
     mistakes = nearest_variants(got, {name: answer if np.ndim(answer) > len(shape) else [answer]
                                       for name, answer in (mistakes or {}).items()}, distance)
-    mistake = closest(got, mistakes, distance, max(tolerance, 1e-4), truth=expected)
+    mistake = confirm(t, closest(got, mistakes, distance, max(tolerance, 1e-4), truth=expected), probe)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     shown, wanted = format_arrays_apart(_unit(got), _unit(expected))
@@ -189,8 +198,8 @@ def _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise):
                mistake="the homogeneous solution was not divided by w")
     depth = np.linalg.norm(X - views.cam1.center, axis=1)
     distance = triangulation_distance(depth)
-    mistake = closest(got, nearest_variants(got, triangulation_mistakes(P1, P2, pts1, pts2), distance),
-                      distance, 1e-3 + 0.02 * noise, truth=X)
+    mistake = name_mistake(t, got, nearest_variants(got, triangulation_mistakes(P1, P2, pts1, pts2), distance),
+                           distance, 1e-3 + 0.02 * noise, truth=X, probe=triangulation_probe(t))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     with np.errstate(all="ignore"):
@@ -217,6 +226,16 @@ def _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise):
             t.fail(f"{what} is wrong: it looks like {mistake} inside your function (called with "
                    "them exchanged, it gives the right points). P1 belongs to pts1, P2 to pts2.",
                    mistake=mistake)
+
+
+def triangulation_probe(t: Trial) -> Probe:
+    """triangulate on another exact two-view problem (8 points)."""
+    views = truth.two_views(seed=11_063, n=8)
+    P1, P2, pts1, pts2 = views.P1, views.P2, views.pts1, views.pts2
+    distance = triangulation_distance(np.linalg.norm(views.X - views.cam1.center, axis=1))
+    return call_probe(t, "triangulate", (P1, P2, pts1, pts2),
+                      candidates=lambda: triangulation_mistakes(P1, P2, pts1, pts2), truth=views.X,
+                      shape=(len(pts1), 3), distance=over_variants(distance, 2), tolerance=1e-3)
 
 
 @ex1.check("triangulate a worked example (5 exact correspondences)", points=3)
@@ -276,7 +295,11 @@ def judge_lines(t: Trial, what: str, got, F, pts1):
     expected = truth.epipolar_lines(F, pts1)
     if _row_error(got, expected) <= at_precision(EXACT):
         return got
-    mistake = closest(got, truth.line_mistakes(F, pts1), _row_error, 1e-5)
+    probe_views = truth.two_views(seed=11_062, n=6)
+    F2, pts2 = 3.0 * probe_views.F, probe_views.pts1
+    probe = call_probe(t, "epipolar_lines", (F2, pts2), candidates=lambda: truth.line_mistakes(F2, pts2),
+                       truth=truth.epipolar_lines(F2, pts2), shape=(len(pts2), 3))
+    mistake = name_mistake(t, got, truth.line_mistakes(F, pts1), _row_error, 1e-5, probe=probe)
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if np.all(np.isfinite(got)):
@@ -457,13 +480,31 @@ ex3 = lab.exercise("ex3", "Essential matrix", functions=[
     "essential_from_fundamental(F, K1, K2)", "essential_8point(pts1, pts2, K1, K2)"])
 
 
+def essential_from_F_probe(t: Trial) -> Probe:
+    """essential_from_fundamental for another camera pair (K1 != K2, F at another scale)."""
+    views = truth.two_views(seed=11_060)
+    F, K1, K2 = 7.0 * views.F, views.cam1.K, views.cam2.K
+    return projective_probe(t, "essential_from_fundamental", (F, K1, K2), views.E,
+                            truth.essential_mistakes(F, K1, K2))
+
+
+def essential_8point_probe(t: Trial, exact: bool) -> Probe:
+    """essential_8point on the other stored problem: the noisy one for the exact check, the exact
+    one for the noisy check (the answers of the mistakes there are stored)."""
+    views, pts1, pts2 = truth.exact_essential_problem() if exact else truth.noisy_essential_problem()
+    figures = truth.figures()["essential_exact" if exact else "essential_noisy"]
+    return projective_probe(t, "essential_8point", (pts1, pts2, views.cam1.K, views.cam2.K),
+                            views.E if exact else figures["gold"], _essential_8point_mistakes(views, figures),
+                            tolerance=1e-4 if exact else 1e-3)
+
+
 @ex3.check("essential_from_fundamental on a worked example (K1 != K2)", points=2)
 def essential_from_F_example(t):
     views = truth.two_views(seed=7)
     K1, K2 = views.cam1.K, views.cam2.K
     judge_projective(t, "essential_from_fundamental(F, K1, K2)",
                      t.call("essential_from_fundamental", views.F, K1, K2), views.E,
-                     truth.essential_mistakes(views.F, K1, K2))
+                     truth.essential_mistakes(views.F, K1, K2), probe=essential_from_F_probe(t))
 
 
 @ex3.check("essential_from_fundamental for any camera pair", points=1)
@@ -473,7 +514,7 @@ def essential_from_F_property(t):
         K1, K2 = views.cam1.K, views.cam2.K
         judge_projective(t, "essential_from_fundamental(F, K1, K2)",
                          t.call("essential_from_fundamental", views.F, K1, K2), views.E,
-                         truth.essential_mistakes(views.F, K1, K2))
+                         truth.essential_mistakes(views.F, K1, K2), probe=essential_from_F_probe(t))
 
     t.for_all(seeds, holds, max_examples=10,
               describe=lambda s: f"fixtures.lab11.two_views(seed={s})")
@@ -516,7 +557,8 @@ def essential_8point_exact(t):
     views, pts1, pts2 = truth.exact_essential_problem()
     got = t.call("essential_8point", pts1, pts2, views.cam1.K, views.cam2.K)
     judge_projective(t, "essential_8point(pts1, pts2, K1, K2)", got, views.E,
-                     _essential_8point_mistakes(views, truth.figures()["essential_exact"]), tolerance=1e-5)
+                     _essential_8point_mistakes(views, truth.figures()["essential_exact"]), tolerance=1e-5,
+                     probe=essential_8point_probe(t, exact=False))
 
 
 @ex3.check("essential_8point: singular values (s, s, 0) on noisy data", points=2)
@@ -557,7 +599,8 @@ def essential_8point_noisy(t):
     if mine <= 1.5 * best + 0.1:
         return passed(f"|x2n^T E x1n| = {residual(got):.1e} on average over 50 exact held-out "
                       f"correspondences (Sampson error {mine:.2f} px; the 8-point algorithm: {best:.2f} px)")
-    mistake = closest(got, _essential_8point_mistakes(views, figures), projective_distance, 1e-3, truth=gold)
+    mistake = name_mistake(t, got, _essential_8point_mistakes(views, figures), projective_distance, 1e-3,
+                           truth=gold, probe=essential_8point_probe(t, exact=True))
     if mistake:
         t.fail(f"essential_8point is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"essential_8point from 50 noisy correspondences: the exact held-out correspondences "
@@ -623,7 +666,24 @@ def judge_exact_fundamental(t: Trial, views, n, sideways=False):
         mistakes = {name: answers for name, answers in mistakes.items() if name not in (
             FUNDAMENTAL_MISTAKES["largest_zeroed"], FUNDAMENTAL_MISTAKES["middle_zeroed"])}
     judge_projective(t, what, got, views.F, mistakes, tolerance=1e-4,
-                     distance=conditioned_distance(views.pts1[:n], views.pts2[:n]))
+                     distance=conditioned_distance(views.pts1[:n], views.pts2[:n]),
+                     probe=fundamental_probe(t, exact=False))
+
+
+def fundamental_probe(t: Trial, exact: bool) -> Probe:
+    """fundamental_8point on another problem whose mistakes' answers are stored: the 40 exact
+    correspondences (for the noisy check), the first noisy scene (for the exact one)."""
+    if exact:
+        views = truth.two_views(seed=10, n=40)
+        pts1, pts2, F = views.pts1, views.pts2, views.F
+        stored, tolerance = truth.figures()["fundamental_exact"]["40"], 1e-4
+    else:
+        seed = NOISY_SCENES[0]
+        _, pts1, pts2 = truth.noisy_fundamental_problem(seed)
+        figures = truth.figures()["fundamental"][str(seed)]
+        F, stored, tolerance = figures["gold"], figures["mistakes"], 1e-3
+    return projective_probe(t, "fundamental_8point", (pts1, pts2), F, fundamental_8point_mistakes(stored),
+                            distance=conditioned_distance(pts1, pts2), tolerance=tolerance)
 
 
 @ex4.check("fundamental_8point from exact correspondences (N=8 and N=40; a sideways motion)", points=3)
@@ -695,7 +755,8 @@ def fundamental_noisy(t):
         conditioned = conditioned_distance(pts1, pts2)
         candidates = nearest_variants(got, fundamental_8point_mistakes(figures["mistakes"]), conditioned)
         variant = min((figures[key] for key in FUNDAMENTAL_VARIANTS), key=lambda F: conditioned(got, F))
-        mistake = closest(got, candidates, conditioned, 1e-3, truth=variant)
+        mistake = confirm(t, closest(got, candidates, conditioned, 1e-3, truth=variant),
+                          fundamental_probe(t, exact=True))
         if mistake:
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     report = "; ".join(lines)
@@ -718,6 +779,22 @@ def epipole_pair_distance(a, b) -> float:
     flip the sign of any singular vector, which flips single entries of a row of U or a column of Vt."""
     return max(projective_distance(np.abs(np.asarray(x, float)), np.abs(np.asarray(y, float)))
                for x, y in zip(a, b))
+
+
+def epipoles_probe(t: Trial) -> Probe:
+    """epipoles of another general camera pair's F (at another scale)."""
+    views = truth.two_views(seed=11_061)
+    F = -4.0 * views.F
+
+    def answer():
+        got = t.call("epipoles", F)
+        if not (isinstance(got, (tuple, list)) and len(got) == 2):
+            return None
+        pair = tuple(np.asarray(g, dtype=np.float64) for g in got)
+        return pair if all(g.shape == (3,) and np.isfinite(g).all() and np.any(g) for g in pair) else None
+
+    return Probe("epipoles/probe", answer, lambda: truth.epipole_mistakes(F), truth.epipoles(views.cam1, views.cam2),
+                 distance=epipole_pair_distance, tolerance=1e-4)
 
 
 def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=None):
@@ -747,8 +824,8 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=N
     tolerance = at_precision(EXACT)
     if d1 <= tolerance and d2 <= tolerance:
         return
-    mistake = closest((g1, g2), truth.epipole_mistakes(F_given), epipole_pair_distance, 1e-4,
-                      truth=(e1, e2))
+    mistake = name_mistake(t, (g1, g2), truth.epipole_mistakes(F_given), epipole_pair_distance, 1e-4,
+                           truth=(e1, e2), probe=epipoles_probe(t))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}. F e1 = 0: e1 is the last row of V^T; "
                "F^T e2 = 0: e2 is the last column of U.", mistake=mistake)

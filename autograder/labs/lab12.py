@@ -25,7 +25,8 @@ from .. import strategies as st
 from ..checks import Fail, StudentFailure, Trial, partial, passed
 from ..compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, closest, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
-from ..judges import format_matrix, judge_parameter_changes_result, judge_parameter_used
+from ..judges import (Probe, call_probe, confirm, fingerprint, format_matrix, judge_parameter_changes_result,
+                      judge_parameter_used, name_mistake, over_variants)
 from ..pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..registry import Lab
 
@@ -148,12 +149,37 @@ def where_disparities_wrong(got, judged, threshold) -> str:
             f"off by {np.median(np.abs(error)):.3g} px in the median)")
 
 
+class MatchingMistakes:
+    """The maps the usual winner-take-all mistakes give on ``scene`` (called), and the
+    confirmation probe that tells them apart on another scene (:meth:`probe`)."""
+
+    PROBE_SCENE = dict(seed=12_012, n_boxes=2, noise=1.0)
+
+    def __init__(self, scene, block_size: int, cost: str = "ssd"):
+        self.scene, self.block_size, self.cost = scene, block_size, cost
+
+    def __call__(self) -> dict:
+        return truth.matching_mistakes(self.scene, self.block_size, self.cost)
+
+    def probe(self, t: Trial) -> Probe:
+        scene = truth.random_dot_scene(**self.PROBE_SCENE)
+        columns = np.arange(scene.judged.shape[1])[None, :] >= scene.max_disparity
+        mask = (scene.judged > 0) & columns
+        return call_probe(t, "block_matching", (np.array(scene.left), np.array(scene.right)),
+                          dict(max_disparity=scene.max_disparity, block_size=self.block_size, cost=self.cost),
+                          candidates=lambda: truth.matching_mistakes(scene, self.block_size, self.cost),
+                          truth=scene.judged, shape=scene.judged.shape, distance=truth.map_disagreement(mask),
+                          tolerance=0.2)
+
+
 def name_matching_mistake(t: Trial, what, got, scene, judged, mistakes):
-    """Fail naming the mistake whose map ``got`` is, where every disparity can be searched."""
+    """Fail naming the mistake whose map ``got`` is, where every disparity can be searched, here
+    and on ``mistakes``' probe scene."""
     candidates = mistakes()
     columns = np.arange(got.shape[1])[None, :] >= scene.max_disparity
     mask = (judged > 0) & columns
-    mistake = closest(got, candidates, truth.map_disagreement(mask), 0.2, truth=judged)
+    probe = mistakes.probe(t) if hasattr(mistakes, "probe") else None
+    mistake = name_mistake(t, got, candidates, truth.map_disagreement(mask), 0.2, truth=judged, probe=probe)
     if mistake:
         t.fail(f"{what}: it looks like {mistake}.", mistake=mistake)
 
@@ -223,7 +249,7 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
     depth = np.maximum(np.linalg.norm(X_true, axis=1), 1e-9 * scale)
     distance = truth.triangulation_distance(depth)
     mistakes = nearest_variants(got, truth.triangulation_mistakes(P1, P2, pts1, pts2), distance)
-    mistake = closest(got, mistakes, distance, 1e-3, truth=X_true)
+    mistake = name_mistake(t, got, mistakes, distance, 1e-3, truth=X_true, probe=triangulation_probe(t))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     norms = np.linalg.norm(got, axis=1) * np.linalg.norm(X_true, axis=1)
@@ -236,6 +262,15 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
            f"image 1: {reprojection:.3g} px).",
            hint="each view gives two rows, x p3 - p1 and y p3 - p2 (p_i the rows of P); "
                 "X is the last right singular vector of the 4x4 matrix")
+
+
+def triangulation_probe(t: Trial) -> Probe:
+    """triangulate on another pair of general cameras (10 exact matches)."""
+    P1, P2, X, pts1, pts2 = truth.general_points(seed=12_013, n=10)
+    distance = truth.triangulation_distance(np.maximum(np.linalg.norm(X, axis=1), 1e-9))
+    return call_probe(t, "triangulate", (P1, P2, pts1, pts2),
+                      candidates=lambda: truth.triangulation_mistakes(P1, P2, pts1, pts2), truth=X,
+                      shape=(len(pts1), 3), distance=over_variants(distance, 2), tolerance=1e-3)
 
 
 @ex1.check("triangulate on a rectified rig recovers the points (Z = f b / d)", points=3)
@@ -324,6 +359,14 @@ def _invalid_depths(got, disparity) -> list[str]:
     return found
 
 
+def depth_probe(t: Trial) -> Probe:
+    """depth_from_disparity of fractional disparities, f and b neither 1 nor alike."""
+    d, f, b = np.array([[3.5, 17.25, 61.0], [8.75, 0.6, 29.0]]), 712.5, 0.085
+    expected = f * b / d
+    return call_probe(t, "depth_from_disparity", (d, f, b), candidates=lambda: truth.depth_mistakes(d, f, b),
+                      truth=expected, shape=d.shape, tolerance=1e-6 * float(expected.max()))
+
+
 def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     disparity = np.asarray(disparity, dtype=np.float64)
     valid = np.isfinite(disparity) & (disparity > 0)
@@ -341,8 +384,8 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     tolerance = at_precision(1e-9 * scale, scale)
     if max_abs_error(got, expected) <= tolerance:
         return
-    mistake = closest(got, truth.depth_mistakes(disparity, f, baseline), max_abs_error,
-                      1e-6 * scale, truth=expected)
+    mistake = name_mistake(t, got, truth.depth_mistakes(disparity, f, baseline), max_abs_error,
+                           1e-6 * scale, truth=expected, probe=depth_probe(t))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what}: the depths are off by {describe_difference(got, expected, tolerance=tolerance)} "
@@ -647,7 +690,7 @@ def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, agai
     got = expect_disparity(t, what, got, scene)
     far, near = truth.far_and_near(truth.band(scene.judged, scene.max_disparity, figures["block_size"]))
     top = truth.top_of_range(near, scene.max_disparity)
-    mistakes = lambda: truth.matching_mistakes(scene, figures["block_size"], "ssd")  # noqa: E731
+    mistakes = MatchingMistakes(scene, figures["block_size"], "ssd")
     if far.any():
         wrong = truth.far_wrong_rate(got, far)
         if wrong > figures["far_legitimate"] + FAR_SLACK:
@@ -809,7 +852,7 @@ def ncc_motorcycle(t):
     what = "block_matching(left, right, cost=\"ncc\")"
     verdict = judge_disparity(t, what, got, scene, figures("motorcycle", "bm_ncc_9")["bad"],
                               probe=block_size_probe(t, what, scene, cost="ncc"),
-                              mistakes=lambda: truth.matching_mistakes(scene, 9, "ncc"))
+                              mistakes=MatchingMistakes(scene, 9, "ncc"))
     if verdict.fraction < 1:
         verdict.hint = NCC_HINT
         return verdict
@@ -858,7 +901,7 @@ def ncc_gain(t):
                "each block's mean and divide by the product of the blocks' standard deviations.",
                mistake="the NCC is not fully normalised")
     diagnose_disparity(t, what, got, scene, reference + MARGIN,
-                       mistakes=lambda: truth.matching_mistakes(scene, 9, "ncc"))
+                       mistakes=MatchingMistakes(scene, 9, "ncc"))
     block_size_probe(t, what, scene, cost="ncc")()
     if bad < reference + MARGIN + FADE:
         return partial((reference + MARGIN + FADE - bad) / FADE, f"{what}: {summary}.", hint=NCC_HINT)
@@ -1102,6 +1145,44 @@ def patterns_property(t):
               max_examples=20, describe=lambda c: f"width={c[0]}, n_bits={c[1]}")
 
 
+def simulation_explained(got, depth, f, baseline, n_bits) -> list[str]:
+    """The simulation mistakes whose images are ``got`` (pixels of tied columns aside)."""
+    width = depth.shape[1]
+    ties = truth.simulation_ties(depth, f, baseline)
+    mistakes = {
+        "the projector column is u + f b / Z; the projector is to the right, so it is u - f b / Z":
+            dict(sign=1.0),
+        "the columns are truncated (int/floor) instead of rounded": dict(rounding=np.floor),
+        "plain binary patterns are projected instead of Gray code":
+            dict(patterns=truth.binary_code_patterns(width, n_bits)),
+        "columns off the projector are clipped to its edge; those pixels must stay black (0)":
+            dict(clip=True),
+        "the images are in the wrong order: image 0 is lit by the most significant pattern (row 0)":
+            dict(reverse=True),
+    }
+    found = []
+    for mistake, kwargs in mistakes.items():
+        reverse = kwargs.pop("reverse", False)
+        candidate = truth.simulate_structured_light(depth, f, baseline, n_bits, **kwargs)
+        candidate = candidate[::-1] if reverse else candidate
+        if not (np.any(got != candidate, axis=0) & ~ties).any():
+            found.append(mistake)
+    return found
+
+
+def simulation_on_probe(t: Trial) -> list[str]:
+    """The simulation mistakes that explain the student's images of the other scene, with 5 bits."""
+    depth, f, baseline = truth.structured_light_scene("slope")
+
+    def answer():
+        got = t.call("simulate_structured_light", np.array(depth), f, 1.3 * baseline, 5)
+        ok = isinstance(got, np.ndarray) and got.shape == (5,) + depth.shape and got.dtype == np.uint8
+        return got if ok else None
+
+    got = t.probe("simulate_structured_light/probe", answer)
+    return [] if got is None else simulation_explained(got, depth, f, 1.3 * baseline, 5)
+
+
 @ex6.check("simulate_structured_light matches the projector model", points=3)
 def simulate_boxes(t):
     depth, f, baseline = truth.structured_light_scene("boxes")
@@ -1119,28 +1200,43 @@ def simulate_boxes(t):
     wrong = np.any(got != expected, axis=0) & ~ties
     if not wrong.any():
         return passed("every lit pixel sees the right projector column")
-    mistakes = {
-        "the projector column is u + f b / Z; the projector is to the right, so it is u - f b / Z":
-            dict(sign=1.0),
-        "the columns are truncated (int/floor) instead of rounded": dict(rounding=np.floor),
-        "plain binary patterns are projected instead of Gray code":
-            dict(patterns=truth.binary_code_patterns(width, n_bits)),
-        "columns off the projector are clipped to its edge; those pixels must stay black (0)":
-            dict(clip=True),
-        "the images are in the wrong order: image 0 is lit by the most significant pattern (row 0)":
-            dict(reverse=True),
-    }
-    for mistake, kwargs in mistakes.items():
-        reverse = kwargs.pop("reverse", False)
-        candidate = truth.simulate_structured_light(depth, f, baseline, n_bits, **kwargs)
-        candidate = candidate[::-1] if reverse else candidate
-        if not (np.any(got != candidate, axis=0) & ~ties).any():
+    for mistake in simulation_explained(got, depth, f, baseline, n_bits):
+        if mistake in simulation_on_probe(t):
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     lit_expected = np.any(expected > 0, axis=0)
     t.fail(f"{what}: {format_apart(wrong.mean(), 0.0, 2, percent=True)} of the pixels differ from the projector model "
            f"({np.mean(wrong & ~lit_expected):.1%} should be black).",
            hint="pixel (u, v) at depth Z sees projector column round(u - f*baseline/Z); black if "
                 "Z <= 0 or that column is not on the projector")
+
+
+def sl_decoding_explained(got, images, f, baseline) -> list[str]:
+    """The decoding mistakes whose depth map is ``got`` (at 99.5% of the pixels)."""
+    got = np.asarray(got, dtype=np.float64)
+    with np.errstate(invalid="ignore"):
+        got_valid = np.isfinite(got) & (got > 0)
+    found = []
+    for mistake, wrong in truth.structured_light_mistakes(images, f, baseline).items():
+        wrong_valid = wrong > 0
+        with np.errstate(invalid="ignore"):
+            match = (got_valid & wrong_valid & (np.abs(got - wrong) <= at_precision(
+                1e-6 * np.maximum(wrong, 1.0), np.maximum(wrong, 1.0)))) | (~got_valid & ~wrong_valid)
+        if match.mean() >= 0.995:
+            found.append(mistake)
+    return found
+
+
+def sl_decoding_on_probe(t: Trial) -> list[str]:
+    """The decoding mistakes that explain the student's depth on the other scene, with 5 bits."""
+    depth, f, baseline = truth.structured_light_scene("slope")
+    images = truth.simulate_structured_light(depth, f, 1.3 * baseline, 5)
+
+    def answer():
+        got = t.call("depth_from_structured_light", images, f, 1.3 * baseline)
+        return got if isinstance(got, np.ndarray) and got.shape == depth.shape and got.dtype.kind in "iuf" else None
+
+    got = t.probe(f"depth_from_structured_light/{fingerprint(images)}", answer)
+    return [] if got is None else sl_decoding_explained(got, images, f, 1.3 * baseline)
 
 
 def judge_sl_depth(t: Trial, what, got, images, f, baseline, true_depth):
@@ -1158,12 +1254,8 @@ def judge_sl_depth(t: Trial, what, got, images, f, baseline, true_depth):
         judged = exp_valid & (true_depth > 0)
         relative = np.median(np.abs(got[judged] - true_depth[judged]) / true_depth[judged])
         return passed(f"decoded exactly; median depth error {relative:.1%} of the true depth")
-    for mistake, wrong in truth.structured_light_mistakes(images, f, baseline).items():
-        wrong_valid = wrong > 0
-        match = (got_valid & wrong_valid & (np.abs(got - wrong) <= at_precision(1e-6 * np.maximum(wrong, 1.0),
-                                                                                 np.maximum(wrong, 1.0)))) | \
-                (~got_valid & ~wrong_valid)
-        if match.mean() >= 0.995:
+    for mistake in sl_decoding_explained(got, images, f, baseline):
+        if mistake in sl_decoding_on_probe(t):
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if np.mean(got_valid & ~exp_valid) > 0.005 and np.all(got[~np.any(images > 127, axis=0)] != 0):
         t.fail(f"{what}: pixels that are black in every image are undecodable: their depth must be 0.")

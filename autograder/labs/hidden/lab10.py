@@ -9,7 +9,7 @@ from __future__ import annotations
 from fixtures import lab10 as truth
 
 from ..lab10 import (ex2, ex4, ex5, ex6, _call_pose, judge_center, judge_decomposition, judge_dlt,
-                     judge_pose, judge_points, weak_mistakes)
+                     judge_pose, judge_points, projection_probe, weak_mistakes)
 
 
 @ex2.check("hidden: weak perspective on other objects", points=1, hidden=True)
@@ -18,7 +18,8 @@ def hidden_weak(t):
         X = truth.scene_points(seed, n=15, depth=25.0, relief=5.0)
         judge_points(t, f"weak_perspective_project(points, f={f:g}, z_avg={z_avg})",
                      t.call("weak_perspective_project", X, f, z_avg=z_avg),
-                     truth.weak_perspective(X, f, z_avg), weak_mistakes(X, f, z_avg))
+                     truth.weak_perspective(X, f, z_avg), weak_mistakes(X, f, z_avg),
+                     probe=projection_probe(t, "weak_perspective_project", z_avg=None if z_avg is None else 7.25))
 
 
 @ex4.check("hidden: DLT on other cameras, exact and noisy", points=2, hidden=True)

@@ -13,7 +13,7 @@ import numpy as np
 from fixtures import lab12 as truth
 
 from ...checks import passed
-from ..lab12 import (STEREO_TIMEOUT, block_matcher, block_size_probe, call_rectify, ex1, ex2, ex3, ex4, ex5, ex6, ext1,
+from ..lab12 import (STEREO_TIMEOUT, MatchingMistakes, block_matcher, block_size_probe, call_rectify, ex1, ex2, ex3, ex4, ex5, ex6, ext1,
                      expect_disparity, judge_block_matching, judge_depth, judge_disparity, judge_last_column,
                      judge_patterns, judge_rows, judge_sl_depth, judge_triangulation, smoothness_probe)
 
@@ -86,7 +86,7 @@ def hidden_ncc(t):
     what = "block_matching(left, 0.5 * right + 30, cost=\"ncc\")"
     return judge_disparity(t, what, got, scene, REFERENCE_BAD["ncc"], show=False,
                            probe=block_size_probe(t, what, scene, cost="ncc"),
-                           mistakes=lambda: truth.matching_mistakes(scene, 9, "ncc"))
+                           mistakes=MatchingMistakes(scene, 9, "ncc"))
 
 
 @ex5.check("hidden: dp_stereo on a weakly textured square over random dots", points=2, hidden=True,
