@@ -110,6 +110,9 @@ class Trial:
         self.modified_inputs: list[tuple[str, str]] = []
         self._properties = 0  # t.for_all calls so far (each has its recorded examples)
         self._probed: dict = {}  # confirmation probes' answers, asked once per trial (see probe)
+        # Student functions that, in this trial, were given fractional numbers and returned only
+        # whole ones (the values' side of autograder.reading's findings about truncation).
+        self.whole_numbers: set[str] = set()
 
     # ------------------------------------------------------------ calling
     def call(self, function: str, *args, **kwargs):
@@ -136,6 +139,9 @@ class Trial:
                 if (function, argument) not in self.modified_inputs:
                     self.modified_inputs.append((function, argument))
             if outcome.ok:
+                if function not in self.whole_numbers and _whole_numbers(outcome.value) \
+                        and _fractional((args, kwargs)):
+                    self.whole_numbers.add(function)
                 return outcome.value
             failure = StudentFailure(outcome, self._describe(function, outcome))
             if outcome.kind in _FATAL_KINDS:
@@ -376,6 +382,38 @@ class Trial:
         if ok:
             return value
         raise StudentFailure(value.outcome, value.message)
+
+
+def _float_arrays(value, depth: int = 0):
+    """The float arrays (and floats) in a value, its tuples, lists and dicts (a few levels)."""
+    if isinstance(value, np.ndarray) and value.dtype.kind == "f":
+        yield value
+    elif isinstance(value, float):
+        yield np.array(value)
+    elif isinstance(value, (tuple, list)) and depth < 3:
+        for item in value[:64]:
+            yield from _float_arrays(item, depth + 1)
+    elif isinstance(value, dict) and depth < 3:
+        for item in list(value.values())[:64]:
+            yield from _float_arrays(item, depth + 1)
+
+
+def _whole_numbers(value) -> bool:
+    """Whether a returned value holds a float array of whole numbers only, not all zero."""
+    for array in _float_arrays(value):
+        finite = array[np.isfinite(array)]
+        if finite.size and np.any(finite != 0) and np.array_equal(finite, np.round(finite)):
+            return True
+    return False
+
+
+def _fractional(arguments) -> bool:
+    """Whether the arguments hold a float with a fractional part."""
+    for array in _float_arrays(arguments):
+        finite = array[np.isfinite(array)]
+        if finite.size and not np.array_equal(finite, np.round(finite)):
+            return True
+    return False
 
 
 def _type_name(value) -> str:

@@ -36,6 +36,7 @@ from . import __version__, cache, confine
 from .checks import Fail, StudentFailure, Trial, Verdict
 from .inputs import Inputs
 from .notebooks import point_into_notebook
+from .reading import Reading, findings_for, read_file
 from .registry import Check, Exercise, discover, hidden_checks_installed, select
 from .results import (ADVICE, ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
                       ExerciseResult, GradingResult)
@@ -292,6 +293,7 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
         return out
     modified: list[tuple[str, str]] = []  # (function, argument) changed in place
     stubs = _stubs(exercise, submission)
+    reading = _reading(exercise, submission)
     for check in checks:
         spent = budget.exhausted() if budget is not None else ""
         stub = _only_stub_called(check, stubs)
@@ -301,7 +303,7 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
         elif stub:
             out.checks.append(_not_implemented(check, stub))
         else:
-            out.checks.append(run_check(sandbox, check, pictures, modified, rules, painter, inputs))
+            out.checks.append(run_check(sandbox, check, pictures, modified, rules, painter, inputs, reading))
         if on_check:
             on_check(exercise, out.checks[-1])
     graded = [c for c in out.checks if c.max_score > 0]
@@ -310,6 +312,27 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
     if modified:
         out.checks.append(_in_place_advice(modified))
     return out
+
+
+def _reading(exercise: Exercise, submission) -> Reading | None:
+    """The reading of the submission's module (see :mod:`autograder.reading`), if there is one."""
+    if submission is None:
+        return None
+    api = frozenset(name for ex in exercise.lab.exercises.values() for name in ex.signatures)
+    return read_file(submission.path / f"{exercise.lab.module}.py", api)
+
+
+def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: Trial) -> Verdict:
+    """A failing verdict that names no mistake, naming the cause the submission's code shows in the
+    functions the check called (a finding of :mod:`autograder.reading`), when there is one: the
+    check measured the failure, the reading says where it comes from. It takes no points."""
+    called = functions_called(check)
+    findings = findings_for(reading, called, bool(trial.whole_numbers & called))
+    if not findings:
+        return verdict
+    first, newline, rest = str(verdict.message).partition("\n")
+    sentence = f"Reading your code: {findings[0].sentence}."
+    return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=findings[0].mistake)
 
 
 def _stubs(exercise: Exercise, submission) -> frozenset[str]:
@@ -401,7 +424,8 @@ def _in_place_advice(modified) -> CheckResult:
 
 def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
               modified: list | None = None, rules: dict | None = None,
-              painter: "Painter | None" = None, inputs: Inputs | None = None) -> CheckResult:
+              painter: "Painter | None" = None, inputs: Inputs | None = None,
+              reading: Reading | None = None) -> CheckResult:
     """Run one check and turn however it ends into a scored :class:`CheckResult`.
 
     ``modified`` collects the (function, argument) pairs the student's calls
@@ -409,6 +433,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     where its properties draw their inputs (the submission's). With a
     ``painter`` the check's pictures are drawn on its threads (the result's
     ``artifacts`` are filled in by :meth:`Painter.finish`), else at once.
+    ``reading``, the submission's code read (:mod:`autograder.reading`), names
+    the cause of a failure the check measured but did not name.
     """
     if check.advice:
         return _run_advice(sandbox, check, modified, rules, inputs)
@@ -433,6 +459,9 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
                                        "the rest was graded - please tell your instructor"), ERROR
         tb = ""
         _log_grader_error(check, exc)
+    if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
+            and student_failure in ("", "exception"):
+        verdict = _named_by_reading(verdict, reading, check, trial)
     artifacts = []
     if pictures == "all" or (pictures == "failed" and status != PASSED):
         artifacts = painter.draw(check, trial.artifacts) if painter else drawn(check, trial.artifacts)

@@ -1,0 +1,574 @@
+"""Reading the submitted code, never running it: causes only the source shows.
+
+Some mistakes leave no mark the outputs can name: ``np.linalg.eig`` picks an
+eigenvector in an order of its own, an integer array truncates what is written
+into it, ``//`` floors coordinates, uint8 images wrap around when subtracted,
+OpenCV's masks of 0 and 1 select rows 0 and 1 when used as indices. This module
+reads the student's module with Python's :mod:`ast` (the text is parsed, never
+executed) and lists, per top-level function, the places that do such things
+(:class:`Finding`).
+
+A finding takes no points by itself: the runner uses it only to name the cause of
+a failure a check has already measured in a function that holds it, or calls a
+helper holding it (:func:`findings_for`), and only when the check named no
+confirmed mistake of its own. Findings whose cause shows in the values are used
+only when the values show it (:attr:`Finding.needs`: a function given fractional
+numbers that returned only whole ones).
+
+Reading is bounded: a module larger than :data:`MAX_SOURCE_BYTES`, or nested too
+deeply to parse, or with more than :data:`MAX_NODES` syntax nodes, is simply not
+read; nothing in a source can make it raise.
+"""
+
+from __future__ import annotations
+
+import ast
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+MAX_SOURCE_BYTES = 1_000_000
+MAX_NODES = 400_000
+
+# Parameter names the labs' APIs give uint8 images (see the skeletons' docstrings).
+IMAGE_PARAMETERS = frozenset({"image", "img", "img1", "img2", "img_l", "img_r", "left", "right", "moving",
+                              "reference", "frame", "distorted"})
+# OpenCV calls that return an image of their first argument's dtype.
+IMAGE_FUNCTIONS = frozenset({"warpPerspective", "warpAffine", "cvtColor", "resize", "remap", "pyrDown",
+                             "pyrUp", "GaussianBlur", "blur", "medianBlur", "copyMakeBorder", "flip",
+                             "undistort", "imread"})
+# OpenCV calls whose second result (fourth for recoverPose) is a uint8 mask of 0 and 1.
+MASK_FUNCTIONS = {"findHomography": 1, "findFundamentalMat": 1, "findEssentialMat": 1, "recoverPose": 3,
+                  "estimateAffine2D": 1, "estimateAffinePartial2D": 1}
+OPENCV_DISTORTION = ("k1", "k2", "p1", "p2", "k3")
+EIGEN_ORDERING = frozenset({"argsort", "argmin", "argmax", "sort", "sorted", "min", "max", "lexsort"})
+
+
+@dataclass(frozen=True)
+class Finding:
+    """A place in one function whose code causes a known mistake.
+
+    ``mistake`` names it in a few words (a check's ``mistake`` field); ``sentence``
+    says it to the student; ``needs`` is what the measured values must show for the
+    finding to be the cause (``""``: a failure is enough; ``"whole numbers"``: the
+    function turned fractional inputs into whole-number outputs).
+    """
+
+    function: str
+    line: int
+    mistake: str
+    sentence: str
+    needs: str = ""
+
+
+@dataclass(frozen=True)
+class Reading:
+    """What reading one module found: each top-level function's findings and the module's
+    functions each one calls (its helpers)."""
+
+    findings: dict
+    calls: dict
+
+    def reachable(self, function: str) -> list[str]:
+        """``function`` and the module's functions it calls, directly or through others."""
+        seen, todo = [], [function]
+        while todo:
+            name = todo.pop()
+            if name in seen or name not in self.calls:
+                continue
+            seen.append(name)
+            todo.extend(sorted(self.calls[name]))
+        return seen
+
+
+NOTHING = Reading({}, {})
+
+
+def read_file(path, api=frozenset()) -> Reading:
+    """The reading of the module at ``path`` (nothing when it cannot be read); cached per version."""
+    try:
+        stat = Path(path).stat()
+    except (OSError, TypeError, ValueError):
+        return NOTHING
+    return _read_file(str(path), stat.st_mtime_ns, stat.st_size, frozenset(api))
+
+
+@lru_cache(maxsize=64)
+def _read_file(path: str, mtime_ns: int, size: int, api: frozenset) -> Reading:
+    if size > MAX_SOURCE_BYTES:
+        return NOTHING
+    try:
+        text = Path(path).read_bytes().decode("utf-8", errors="replace")
+    except OSError:
+        return NOTHING
+    return read_source(text, api)
+
+
+def read_source(text: str, api=frozenset()) -> Reading:
+    """The findings of every top-level function of the module ``text`` (never raises).
+
+    ``api`` names the lab's functions: only their image parameters are known to hold
+    uint8 images (a helper's parameters may hold anything)."""
+    try:
+        if len(text) > MAX_SOURCE_BYTES:
+            return NOTHING
+        tree = ast.parse(text)
+        if sum(1 for _ in ast.walk(tree)) > MAX_NODES:
+            return NOTHING
+        functions = {node.name: node for node in tree.body if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))}
+        findings, calls = {}, {}
+        for name, node in functions.items():
+            findings[name] = _read_function(node, name in api)
+            calls[name] = {called for called in _called_names(node) if called in functions and called != name}
+        return Reading(findings, calls)
+    except (SyntaxError, ValueError, RecursionError, MemoryError, TypeError, AttributeError):
+        return NOTHING
+
+
+def findings_for(reading: Reading, functions, values_show_whole_numbers: bool) -> list[Finding]:
+    """The findings that may name the cause of a failure in ``functions`` (the student functions
+    a check called): theirs first, then their helpers', each kind once; a finding that needs
+    whole numbers only when the values showed them."""
+    chosen, kinds = [], set()
+    for function in sorted(functions):
+        for name in reading.reachable(function):
+            for finding in reading.findings.get(name, ()):
+                if finding.needs == "whole numbers" and not values_show_whole_numbers:
+                    continue
+                if finding.mistake not in kinds:
+                    kinds.add(finding.mistake)
+                    chosen.append(finding)
+    return chosen
+
+
+# ------------------------------------------------------------------ one function
+def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding]:
+    name = function.name
+    parameters = {a.arg for a in function.args.args + function.args.kwonlyargs + function.args.posonlyargs}
+    images = parameters if api else set()
+    found: list[Finding] = []
+    found += _eig_unsorted(name, function)
+    found += _integer_arrays(name, function)
+    found += _floor_division(name, function)
+    found += _uint8_arithmetic(name, function, images)
+    found += _homogeneous_zero(name, function)
+    found += _query_train(name, function)
+    found += _mask_as_index(name, function)
+    found += _distortion_order(name, function, parameters)
+    return found
+
+
+def _attribute_path(node) -> str:
+    """``np.linalg.eig`` for the expression ``np.linalg.eig`` ("" for anything else)."""
+    parts = []
+    while isinstance(node, ast.Attribute):
+        parts.append(node.attr)
+        node = node.value
+    if isinstance(node, ast.Name):
+        parts.append(node.id)
+        return ".".join(reversed(parts))
+    return ""
+
+
+def _call_name(call: ast.Call) -> str:
+    """The last name of what is called: ``eig`` for ``np.linalg.eig(...)``, ``hstack`` ..."""
+    func = call.func
+    if isinstance(func, ast.Attribute):
+        return func.attr
+    if isinstance(func, ast.Name):
+        return func.id
+    return ""
+
+
+def _called_names(function) -> set[str]:
+    return {node.func.id for node in ast.walk(function)
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name)}
+
+
+def _names_in(node) -> set[str]:
+    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+
+
+_UNKNOWN = ast.Constant(value=None)   # a value the reading cannot follow (an unpacked call...)
+
+
+def _assigned_names(function) -> dict[str, list[ast.AST]]:
+    """name -> the values assigned to it: ``name = value``, ``a, b = x, y`` pairwise, and an
+    unknown value for every other binding (``a, b = f()``, loops, ``with``, augmented)."""
+    out: dict[str, list[ast.AST]] = {}
+
+    def bind(target, value):
+        if isinstance(target, ast.Name):
+            out.setdefault(target.id, []).append(value)
+        elif isinstance(target, (ast.Tuple, ast.List)):
+            values = value.elts if isinstance(value, (ast.Tuple, ast.List)) and \
+                len(value.elts) == len(target.elts) else [_UNKNOWN] * len(target.elts)
+            for sub, sub_value in zip(target.elts, values):
+                bind(sub, sub_value)
+        elif isinstance(target, ast.Starred):
+            bind(target.value, _UNKNOWN)
+
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign):
+            for target in node.targets:
+                bind(target, node.value)
+        elif isinstance(node, ast.AnnAssign) and node.value is not None:
+            bind(node.target, node.value)
+        elif isinstance(node, (ast.For, ast.AsyncFor, ast.comprehension)):
+            bind(node.target, _UNKNOWN)
+        elif isinstance(node, ast.withitem) and node.optional_vars is not None:
+            bind(node.optional_vars, _UNKNOWN)
+        elif isinstance(node, ast.NamedExpr):
+            bind(node.target, node.value)
+    return out
+
+
+def _line(node) -> int:
+    return int(getattr(node, "lineno", 0) or 0)
+
+
+# ------------------------------------------------------------------ np.linalg.eig
+def _eig_unsorted(name, function) -> list[Finding]:
+    """``eig`` (not ``eigh``) whose eigenvalues are never used to choose a vector."""
+    eig_calls = [node for node in ast.walk(function) if isinstance(node, ast.Call) and _call_name(node) == "eig"]
+    if not eig_calls:
+        return []
+    ordering = {_call_name(node) for node in ast.walk(function) if isinstance(node, ast.Call)}
+    if ordering & EIGEN_ORDERING:
+        return []   # the eigenvalues may well choose the vector: no finding
+    call = eig_calls[0]
+    return [Finding(name, _line(call), "np.linalg.eig's eigenvalues are not sorted",
+                    f"{name} (line {_line(call)}) calls np.linalg.eig, whose eigenvalues are not sorted: "
+                    "its last column is not the eigenvector of the smallest eigenvalue (use "
+                    "np.linalg.eigh, which sorts them in ascending order, or take the last row of Vt "
+                    "from np.linalg.svd)")]
+
+
+# ------------------------------------------------------------------ integer arrays
+def _is_integer_dtype(node) -> bool:
+    if isinstance(node, ast.Name) and node.id == "int":
+        return True
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):   # not "uint8": images are
+        return node.value in ("int", "int16", "int32", "int64", "i4", "i8")
+    path = _attribute_path(node)
+    return path.split(".")[-1] in {"int_", "intc", "int16", "int32", "int64"} if path else False
+
+
+def _integer_arrays(name, function) -> list[Finding]:
+    """An array made with an integer dtype, then written into with computed values."""
+    integer_arrays = {}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                and isinstance(node.value, ast.Call) \
+                and _call_name(node.value) in {"zeros", "ones", "empty", "eye", "identity", "full", "zeros_like"} \
+                and any(k.arg == "dtype" and _is_integer_dtype(k.value) for k in node.value.keywords):
+            integer_arrays[node.targets[0].id] = node
+    for node in ast.walk(function):
+        if not isinstance(node, ast.Assign):
+            continue
+        for target in node.targets:
+            if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Name) \
+                    and target.value.id in integer_arrays and _computed(node.value):
+                made = integer_arrays[target.value.id]
+                return [Finding(name, _line(made), "an integer array: the values written into it are truncated",
+                                f"{name} (line {_line(made)}) makes {target.value.id} an integer array "
+                                f"(dtype=int) and writes computed values into it (line {_line(node)}): "
+                                "their fractions are cut off; make it a float array (dtype=float)")]
+    return []
+
+
+def _computed(node) -> bool:
+    """A variable or arithmetic on variables (or a list of such): what geometry writes into an
+    array; not a call (``np.argmin`` gives integers) nor integer constants."""
+    if isinstance(node, (ast.List, ast.Tuple)):
+        return any(_computed(element) for element in node.elts)
+    if isinstance(node, (ast.Name, ast.Attribute, ast.Subscript)):
+        return True
+    if isinstance(node, (ast.BinOp, ast.UnaryOp)):
+        return not _constant_integers(node) and not any(isinstance(sub, ast.Call) for sub in ast.walk(node))
+    return False
+
+
+def _constant_integers(node) -> bool:
+    """Whether an expression is made only of integer constants (nothing is truncated then)."""
+    for sub in ast.walk(node):
+        if isinstance(sub, (ast.Name, ast.Attribute, ast.Call, ast.Subscript)):
+            return False
+        if isinstance(sub, ast.Constant) and not isinstance(sub.value, (int, bool)):
+            return False
+    return True
+
+
+# ------------------------------------------------------------------ floor division
+def _floor_division(name, function) -> list[Finding]:
+    """``//`` between expressions that are not both integer constants (floors fractions)."""
+    for node in ast.walk(function):
+        if isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, ast.FloorDiv):
+            left = node.left if isinstance(node, ast.BinOp) else node.target
+            if _constant_integers(left) and _constant_integers(node.right):
+                continue
+            return [Finding(name, _line(node), "// floors the results to whole numbers",
+                            f"{name} (line {_line(node)}) uses // (floor division), which rounds its "
+                            "result down to a whole number: use / for coordinates, depths and "
+                            "focal lengths", needs="whole numbers")]
+    return []
+
+
+# ------------------------------------------------------------------ uint8 arithmetic
+_FLOAT_MAKERS = {"float32", "float64", "float_", "double", "single"}
+
+
+def _to_float(node) -> bool:
+    """Whether an expression surely gives a float array (a conversion, a true division...)."""
+    if isinstance(node, ast.Call):
+        call = _call_name(node)
+        if call == "astype" or call in _FLOAT_MAKERS:
+            return True
+        if call in {"asarray", "array", "asanyarray"} and any(k.arg == "dtype" for k in node.keywords):
+            return True
+        if call in {"asarray", "array"} and len(node.args) >= 2:
+            return True
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div):
+        return True
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and any(
+            isinstance(side, ast.Constant) and isinstance(side.value, float) for side in (node.left, node.right)):
+        return True
+    return False
+
+
+def _uint8_names(function, parameters) -> set[str]:
+    """Names that surely hold uint8 images: image parameters never bound to anything else, and
+    what image functions, slices, copies and ``zeros_like`` make of them (a name bound even
+    once to something else -- a conversion, a call the reading cannot follow -- is not one)."""
+    assigned = _assigned_names(function)
+    images = {p for p in parameters if p in IMAGE_PARAMETERS}
+    for _ in range(4):   # a few rounds: names made from names made from images
+        changed = False
+        for target, values in assigned.items():
+            uint8 = bool(values) and all(_is_uint8_expression(value, images | {target}) for value in values)
+            if target in parameters and target in IMAGE_PARAMETERS:
+                uint8 = all(_is_uint8_expression(value, images | {target}) for value in values)
+            if uint8 and target not in images:
+                images.add(target)
+                changed = True
+            elif not uint8 and target in images:
+                images.discard(target)
+                changed = True
+        if not changed:
+            break
+    return images
+
+
+def _is_uint8_expression(node, images) -> bool:
+    if isinstance(node, ast.Name):
+        return node.id in images
+    if isinstance(node, ast.Subscript):
+        return _is_uint8_expression(node.value, images)
+    if isinstance(node, ast.Call):
+        call = _call_name(node)
+        if call in {"copy", "zeros_like", "empty_like", "roll", "ascontiguousarray"} and not any(
+                k.arg == "dtype" for k in node.keywords):
+            receiver = node.func.value if isinstance(node.func, ast.Attribute) and call == "copy" else \
+                (node.args[0] if node.args else None)
+            return receiver is not None and _is_uint8_expression(receiver, images)
+        if call in IMAGE_FUNCTIONS and node.args:
+            return _is_uint8_expression(node.args[0], images)
+    return False
+
+
+def _uint8_arithmetic(name, function, parameters) -> list[Finding]:
+    images = _uint8_names(function, parameters)
+    if not images:
+        return []
+    for node in ast.walk(function):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub, ast.Mult, ast.Pow)):
+            sides = (node.left, node.right)
+            if isinstance(node.op, ast.Pow):
+                wraps = _is_uint8_expression(node.left, images)
+            else:
+                wraps = all(_is_uint8_expression(side, images) for side in sides)
+            if wraps:
+                return [Finding(name, _line(node), "uint8 arithmetic wraps around",
+                                f"{name} (line {_line(node)}) computes {ast.unparse(node)[:60]} on uint8 "
+                                "images: uint8 arithmetic wraps around (200 + 100 gives 44, 3 - 5 gives "
+                                "254); convert first: image.astype(np.float32)")]
+    return []
+
+
+# ------------------------------------------------------------------ homogeneous coordinates
+def _zeros_call(node) -> bool:
+    """``np.zeros`` of a size that depends on the data (one per point), not a constant shape:
+    ``np.zeros((3, 1))`` is the last column of ``[I | 0]``, not a homogeneous coordinate."""
+    if not (isinstance(node, ast.Call) and _call_name(node) in {"zeros", "zeros_like"}):
+        return False
+    return _call_name(node) == "zeros_like" or any(not _constant_integers(arg) for arg in node.args[:1])
+
+
+def _homogeneous_zero(name, function) -> list[Finding]:
+    """Points made homogeneous with 0 (``hstack([pts, zeros])``, ``[X, Y, Z, 0]``) and then
+    multiplied by a matrix or used as a row of a linear system."""
+    products = set()
+    for node in ast.walk(function):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.MatMult, ast.Mult)):
+            products |= _names_in(node)
+        elif isinstance(node, ast.Call) and _call_name(node) in {"dot", "matmul", "outer", "concatenate",
+                                                                  "hstack", "kron", "einsum"}:
+            products |= _names_in(node)
+    assigned = _assigned_names(function)
+    parameters = {a.arg for a in function.args.args + function.args.kwonlyargs + function.args.posonlyargs}
+    data = parameters | {target for target, values in assigned.items()
+                         if values and all(_names_in(v) & parameters for v in values)}
+    zeros = {target for target, values in assigned.items() if values and all(isinstance(v, ast.Call)
+             and _call_name(v) in {"zeros", "zeros_like"} for v in values)}
+
+    def zero_column(node) -> bool:
+        return _stacks_zero_column(node, zeros, data)
+
+    for target, values in assigned.items():
+        for value in values:
+            if (zero_column(value) or _ends_in_zero(value)) and target in products:
+                return [_homogeneous_finding(name, value)]
+    for node in ast.walk(function):   # a stack used at once: (np.hstack([X, zeros]) @ P.T)
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult):
+            for side in (node.left, node.right):
+                if zero_column(side):
+                    return [_homogeneous_finding(name, side)]
+    return []
+
+
+def _stacks_zero_column(node, zeros=frozenset(), data=frozenset()) -> bool:
+    """``hstack([points, zeros])`` (or ``column_stack``, ``concatenate(axis=1)``): points given a
+    last coordinate of 0. A column of constant size counts only after the function's data (a
+    parameter, or what is made from one): ``[np.eye(3), np.zeros((3, 1))]`` is ``[I | 0]``."""
+    if not (isinstance(node, ast.Call) and node.args and isinstance(node.args[0], (ast.List, ast.Tuple))):
+        return False
+    call, items = _call_name(node), node.args[0].elts
+    if call == "concatenate":
+        axis = [ast.unparse(k.value) for k in node.keywords if k.arg == "axis"]
+        if axis not in (["1"], ["-1"]):
+            return False
+    elif call not in {"hstack", "column_stack"}:
+        return False
+    if len(items) < 2:
+        return False
+    last, first = items[-1], items[0]
+    is_zeros = _zeros_call(last) or (isinstance(last, ast.Name) and last.id in zeros)
+    constant_size = isinstance(last, ast.Call) and not _zeros_call(last)
+    if isinstance(last, ast.Call) and _call_name(last) in {"zeros", "zeros_like"} and not _zeros_call(last):
+        is_zeros, constant_size = True, True
+    if not is_zeros:
+        return False
+    return not constant_size or bool(_names_in(first) & set(data))
+
+
+def _ends_in_zero(node) -> bool:
+    """``[x, y, 0]``, ``np.array([X, Y, Z, 0.0])`` or ``np.append(X, 0)``: coordinates, then 0."""
+    if isinstance(node, ast.Call) and _call_name(node) in {"array", "asarray"} and node.args:
+        node = node.args[0]
+    elif isinstance(node, ast.Call) and _call_name(node) == "append" and len(node.args) == 2:
+        last = node.args[1]
+        return isinstance(last, ast.Constant) and last.value == 0
+    if isinstance(node, (ast.List, ast.Tuple)) and 3 <= len(node.elts) <= 4:
+        *coordinates, last = node.elts
+        return isinstance(last, ast.Constant) and last.value == 0 and not isinstance(last.value, bool) \
+            and all(not isinstance(c, ast.Constant) for c in coordinates)
+    return False
+
+
+def _homogeneous_finding(name, node) -> Finding:
+    return Finding(name, _line(node), "the homogeneous coordinate is 0 instead of 1",
+                   f"{name} (line {_line(node)}) makes the points homogeneous with 0 "
+                   f"({ast.unparse(node)[:60]}): the homogeneous coordinate is 1, (x, y, 1) or "
+                   "(X, Y, Z, 1); with 0 a matrix's last column (the translation) is lost")
+
+
+# ------------------------------------------------------------------ DMatch indices
+def _query_train(name, function) -> list[Finding]:
+    """``kp1[m.trainIdx]`` or ``kp2[m.queryIdx]`` where des1 (of kp1) is the query of the match."""
+    keypoints_of = {}   # descriptors name -> keypoints name (kp, des = detector.detectAndCompute(...))
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
+                and isinstance(node.value, ast.Call) and _call_name(node.value) == "detectAndCompute":
+            elts = node.targets[0].elts
+            if len(elts) == 2 and all(isinstance(e, ast.Name) for e in elts):
+                keypoints_of[elts[1].id] = elts[0].id
+    roles = {}   # keypoints name -> "query" / "train"
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _call_name(node) in {"knnMatch", "match", "radiusMatch"} \
+                and len(node.args) >= 2 and all(isinstance(a, ast.Name) for a in node.args[:2]):
+            query, train = (keypoints_of.get(a.id) for a in node.args[:2])
+            if query and train and query != train:
+                roles[query], roles[train] = "query", "train"
+    if not roles:
+        return []
+    for node in ast.walk(function):
+        if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in roles \
+                and isinstance(node.slice, ast.Attribute) and node.slice.attr in ("queryIdx", "trainIdx"):
+            used = "query" if node.slice.attr == "queryIdx" else "train"
+            if used != roles[node.value.id]:
+                right = "queryIdx" if roles[node.value.id] == "query" else "trainIdx"
+                return [Finding(name, _line(node), "queryIdx and trainIdx are exchanged",
+                                f"{name} (line {_line(node)}) indexes {node.value.id} with "
+                                f"{node.slice.attr}: its descriptors are the match's "
+                                f"{roles[node.value.id]} set, so its index is m.{right} (queryIdx "
+                                "indexes the first set given to the matcher, trainIdx the second)")]
+    return []
+
+
+# ------------------------------------------------------------------ OpenCV masks
+def _mask_as_index(name, function) -> list[Finding]:
+    """A mask OpenCV returns (uint8, 0 and 1) used as an index without turning it into booleans."""
+    masks = {}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
+                and isinstance(node.value, ast.Call) and _call_name(node.value) in MASK_FUNCTIONS:
+            position = MASK_FUNCTIONS[_call_name(node.value)]
+            elts = node.targets[0].elts
+            if len(elts) > position and isinstance(elts[position], ast.Name):
+                masks[elts[position].id] = node
+    if not masks:
+        return []
+    converted = set()
+    for target, values in _assigned_names(function).items():
+        if target in masks and any(_makes_boolean(v) for v in values):
+            converted.add(target)
+    for node in ast.walk(function):
+        if isinstance(node, ast.Subscript):
+            index = node.slice
+            while isinstance(index, ast.Call) and isinstance(index.func, ast.Attribute) \
+                    and index.func.attr in ("ravel", "flatten", "squeeze", "reshape"):
+                index = index.func.value
+            if isinstance(index, ast.Name) and index.id in masks and index.id not in converted:
+                return [Finding(name, _line(node), "OpenCV's 0/1 mask is used as indices",
+                                f"{name} (line {_line(node)}) indexes with {index.id}, the uint8 mask of "
+                                "0 and 1 OpenCV returns: as an index it selects rows 0 and 1 over and "
+                                "over, not the inliers; use "
+                                f"{index.id}.ravel().astype(bool)")]
+    return []
+
+
+def _makes_boolean(node) -> bool:
+    if isinstance(node, ast.Compare):
+        return True
+    if isinstance(node, ast.Call) and _call_name(node) == "astype":
+        return bool(node.args) and ast.unparse(node.args[0]) in ("bool", "np.bool_", "np.bool", "'bool'", '"bool"')
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in (
+            "ravel", "flatten", "reshape", "squeeze"):
+        return _makes_boolean(node.func.value)
+    return False
+
+
+# ------------------------------------------------------------------ coefficient order
+def _distortion_order(name, function, parameters) -> list[Finding]:
+    """``k1, k2, k3, p1, p2 = dist``: OpenCV's order is (k1, k2, p1, p2, k3)."""
+    if "dist" not in parameters:
+        return []
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
+                and "dist" in _names_in(node.value):
+            names = [e.id.lower() if isinstance(e, ast.Name) else "" for e in node.targets[0].elts]
+            if len(names) == 5 and sorted(names) == sorted(OPENCV_DISTORTION) and tuple(names) != OPENCV_DISTORTION:
+                return [Finding(name, _line(node), "the distortion coefficients are read in the wrong order",
+                                f"{name} (line {_line(node)}) unpacks dist as ({', '.join(names)}); "
+                                "OpenCV's order is (k1, k2, p1, p2, k3)")]
+    return []
