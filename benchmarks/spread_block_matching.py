@@ -14,6 +14,10 @@ rate and the spread above the reference:
   multiple of 16, output divided by 16, invalid pixels and disparities above
   ``max_disparity`` set to 0).
 
+Then, for comparison, a known mistake on the same scenes: the SSD computed on the uint8
+images themselves (the squares wrap around), which the random-dot scene of black and
+white dots must fail.
+
 Pixels left of the search band (``x < numDisparities + block_size // 2``), where
 no matcher can search the whole range, are not judged (``fixtures.lab12.band``).
 The ends of the range are judged apart: pixels at infinity (the fraction given
@@ -54,6 +58,25 @@ def scenes() -> dict:
     return chosen
 
 
+def known_mistakes() -> dict:
+    """Matchers that are wrong, for comparison: they must land above the accepted rate."""
+    import cv2
+    import numpy as np
+
+    def uint8_ssd(left, right, max_disparity, block_size):
+        # the squared differences computed on the uint8 images themselves: they wrap around
+        height, width = left.shape
+        costs = np.full((max_disparity + 1, height, width), np.inf)
+        for d in range(max_disparity + 1):
+            shifted = np.zeros_like(right)
+            shifted[:, d:] = right[:, :width - d]
+            costs[d] = cv2.boxFilter(((left - shifted) ** 2).astype(np.float64), -1, (block_size, block_size))
+            costs[d, :, :d] = np.inf
+        return np.argmin(costs, axis=0).astype(np.float64)
+
+    return {"uint8 SSD (wrong)": uint8_ssd}
+
+
 def main() -> None:
     matchers = legitimate_matchers()
     names = list(matchers)
@@ -73,6 +96,13 @@ def main() -> None:
             print(f"{'  pixels at d = max_disparity given it':<42}"
                   + "".join(f"{figures['top_found'][n]:>20.1%}" for n in names))
     print(f"largest spread above the reference: {worst:+.1%}")
+    print()
+    print("known mistakes (the check accepts the worst legitimate rate + 3 points):")
+    for key, (build, block_size) in scenes().items():
+        legitimate = block_matching_figures(build(), block_size, matchers)["legitimate"]
+        wrong = block_matching_figures(build(), block_size, {**matchers, **known_mistakes()})["bad"]
+        print(f"{key:<36}{block_size:>6}  " + "".join(f"{name}: {wrong[name]:.1%} (accepted up to "
+                                                      f"{legitimate + 0.03:.1%})" for name in known_mistakes()))
 
 
 if __name__ == "__main__":
