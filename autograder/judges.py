@@ -112,7 +112,9 @@ def confirm(t: Trial, named: str | None, probe: Probe | None, margin: float = 3.
                 return bool(probe.alike(ours, other))
             except (ValueError, TypeError, ArithmeticError, np.linalg.LinAlgError, cv2.error):
                 return False
-        return apart(ours, other) <= max(best, 1e-12)
+        # Answers closer than a tenth of the tolerance cannot be told apart at this tolerance
+        # (a mistake that answers rightly here differs from the truth by rounding only).
+        return apart(ours, other) <= max(best, 0.1 * probe.tolerance, 1e-12)
 
     rivals = [scored[name] for name, candidate in candidates.items() if name not in kept and not alike(candidate)]
     if probe.truth is not None and not alike(probe.truth):

@@ -1,0 +1,298 @@
+"""Reading the submitted code where the outputs cannot tell (issue 26, autograder/reading.py).
+
+The reading finds, without running anything, the places in a function that cause a known
+mistake; the runner uses a finding only to name the cause of a failure a check measured
+in that function (or a helper it calls), never to take points.
+"""
+
+from __future__ import annotations
+
+import textwrap
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from autograder.reading import MAX_SOURCE_BYTES, NOTHING, findings_for, read_file, read_source
+from autograder.registry import discover
+from conftest import check_results, graded_case, named_mistakes
+
+ROOT = Path(__file__).resolve().parents[1]
+MODULE8 = "lab08_homographies"
+
+
+def mistakes_in(source: str, api=frozenset()) -> dict[str, set[str]]:
+    reading = read_source(textwrap.dedent(source), frozenset(api))
+    return {name: {f.mistake for f in found} for name, found in reading.findings.items() if found}
+
+
+def one(source: str, api=frozenset()) -> set[str]:
+    found = mistakes_in(source, api)
+    return set().union(*found.values()) if found else set()
+
+
+# ------------------------------------------------------------------ graded
+DLT_BY_EIG = """
+    def homography_dlt(src, dst):
+        A = []
+        for (x, y), (u, v) in zip(np.asarray(src, float), np.asarray(dst, float)):
+            A.append([-x, -y, -1, 0, 0, 0, u * x, u * y, u])
+            A.append([0, 0, 0, -x, -y, -1, v * x, v * y, v])
+        A = np.array(A)
+        w, V = np.linalg.eig(A.T @ A)
+        H = V[:, -1].reshape(3, 3)
+        return H / H[2, 2]
+    """
+
+
+@pytest.mark.xdist_group("lab08")
+def test_the_eig_dlt_is_named_by_the_reading():
+    result = graded_case(MODULE8, "lab08.ex2", DLT_BY_EIG)
+    named = named_mistakes(result, "lab08.ex2")
+    assert named, "the eig DLT must be named"
+    for label, message in named:
+        assert label == "np.linalg.eig's eigenvalues are not sorted", (label, message)
+        assert "calls np.linalg.eig, whose eigenvalues are not sorted" in message
+        assert "line" in message   # it says where
+
+
+@pytest.mark.xdist_group("lab08")
+@pytest.mark.parametrize("solver", [
+    "w, V = np.linalg.eigh(A.T @ A); h = V[:, 0]",                              # eigh sorts: the first
+    "w, V = np.linalg.eig(A.T @ A); h = np.real(V[:, np.argmin(np.real(w))])",  # eig, chosen by w
+])
+def test_a_correct_eigen_solver_is_never_mentioned(solver):
+    result = graded_case(MODULE8, "lab08.ex2", f"""
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            T1, T2 = _normalisation(src), _normalisation(dst)
+            A = _dlt_rows(src @ T1[:2, :2].T + T1[:2, 2], dst @ T2[:2, :2].T + T2[:2, 2])
+            {solver}
+            H = np.linalg.inv(T2) @ h.reshape(3, 3) @ T1
+            return H / H[2, 2]
+        """)
+    checks = check_results(result, "lab08.ex2")
+    assert all(c.passed or c.max_score == 0 for c in checks), [c.message for c in checks if not c.passed]
+    assert not any("eig" in c.message for c in checks)
+
+
+@pytest.mark.xdist_group("lab08")
+def test_eigh_with_another_mistake_is_not_named_as_eig():
+    """A failing DLT that uses eigh: the failure is measured, the reading has nothing to say."""
+    result = graded_case(MODULE8, "lab08.ex2", """
+        def homography_dlt(src, dst):
+            A = []
+            for (x, y), (u, v) in zip(np.asarray(src, float), np.asarray(dst, float)):
+                A.append([-x, -y, -1, 0, 0, 0, u * x, u * y, u])
+                A.append([0, 0, 0, -x, -y, -1, v * x, v * y, -v])     # a sign slip
+            w, V = np.linalg.eigh(np.array(A).T @ np.array(A))
+            H = V[:, 0].reshape(3, 3)
+            return H / H[2, 2]
+        """)
+    checks = check_results(result, "lab08.ex2")
+    assert any(not c.passed for c in checks)
+    assert not any("eig" in c.message.lower() and "eigh" not in c.message for c in checks if not c.passed)
+    assert not any("np.linalg.eig" in c.message for c in checks)
+
+
+@pytest.mark.xdist_group("lab08")
+def test_a_finding_takes_no_points():
+    """Code the reading flags, in a function that is right: full marks, nothing said."""
+    result = graded_case(MODULE8, "lab08.ex1", """
+        _right = transform_points
+        def transform_points(H, pts):
+            half = len(pts) // 2              # floor division the values never show
+            w, V = np.linalg.eig(np.eye(3))   # an eigen-solver whose vectors choose nothing
+            return _right(H, pts)
+        """)
+    checks = check_results(result, "lab08.ex1")
+    assert all(c.passed or c.max_score == 0 for c in checks), [c.message for c in checks if not c.passed]
+    assert not any("your code" in c.message.lower() for c in checks)
+
+
+@pytest.mark.xdist_group("lab09")
+def test_floor_division_is_named_only_when_the_values_show_whole_numbers():
+    named = graded_case("lab09_camera", "lab09.ex1", """
+        def pinhole_project(points, f):
+            X = np.atleast_2d(np.asarray(points, dtype=float))
+            xy = f * X[:, :2] // X[:, 2:3]
+            return xy[0] if np.ndim(points) == 1 else xy
+        """)
+    assert any("floor division" in m for _, m in named_mistakes(named, "lab09.ex1"))
+    # A // that only halves an index, in a function wrong for another reason: not named.
+    other = graded_case("lab09_camera", "lab09.ex1", """
+        def pinhole_project(points, f):
+            X = np.atleast_2d(np.asarray(points, dtype=float))
+            middle = len(X) // 2
+            xy = -f * X[:, :2] / X[:, 2:3]
+            return xy[0] if np.ndim(points) == 1 else xy
+        """)
+    failed = [c.message for c in check_results(other, "lab09.ex1") if not c.passed]
+    assert failed and not any("floor division" in m for m in failed)
+
+
+@pytest.mark.xdist_group("lab12")
+def test_a_uint8_ssd_loses_points_and_is_named():
+    result = graded_case("lab12_stereo", "lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            h, w = left.shape
+            costs = np.full((max_disparity + 1, h, w), np.inf)
+            for d in range(max_disparity + 1):
+                shifted = np.zeros_like(right)
+                shifted[:, d:] = right[:, :w - d]
+                costs[d] = cv2.boxFilter(((left - shifted) ** 2).astype(np.float64), -1, (block_size, block_size))
+                costs[d, :, :d] = np.inf
+            return np.argmin(costs, axis=0).astype(np.float64)
+        """)
+    [exercise] = [e for e in result.exercises if e.id == "lab12.ex4"]
+    assert exercise.score < exercise.max_score
+    assert any(label == "uint8 arithmetic wraps around" for label, _ in named_mistakes(result, "lab12.ex4"))
+
+
+# ------------------------------------------------------------------ the findings, one by one
+FINDINGS = {
+    "np.linalg.eig's eigenvalues are not sorted": ("""
+        def f(A):
+            w, V = np.linalg.eig(A.T @ A)
+            return V[:, -1]
+        """, """
+        def f(A):
+            w, V = np.linalg.eig(A.T @ A)
+            return V[:, np.argmin(w)]
+        """),
+    "an integer array: the values written into it are truncated": ("""
+        def f(tx, ty):
+            M = np.eye(3, dtype=int)
+            M[0, 2] = tx
+            return M
+        """, """
+        def f(image, tx):
+            canvas = np.zeros((10, 10, 3), dtype=np.uint8)
+            canvas[:5] = image
+            index = np.zeros(4, dtype=int)
+            index[0] = np.argmin(tx)
+            return canvas, index
+        """),
+    "// floors the results to whole numbers": ("""
+        def f(X, f):
+            return f * X[:, :2] // X[:, 2:3]
+        """, """
+        def f(X):
+            return X[: 10 // 2]
+        """),
+    "uint8 arithmetic wraps around": ("""
+        def block_matching(left, right):
+            shifted = np.zeros_like(right)
+            shifted[:, 3:] = right[:, :-3]
+            return (left - shifted) ** 2
+        """, """
+        def block_matching(left, right):
+            left, right = left.astype(np.float32), right.astype(np.float32)
+            return (left - right) ** 2
+        """),
+    "the homogeneous coordinate is 0 instead of 1": ("""
+        def f(H, pts):
+            p = np.hstack([pts, np.zeros((len(pts), 1))])
+            return p @ H.T
+        """, """
+        def f(K, R, pts):
+            P1 = K @ np.hstack([np.eye(3), np.zeros((3, 1))])
+            p = np.hstack([pts, np.ones((len(pts), 1))])
+            return p @ P1.T
+        """),
+    "queryIdx and trainIdx are exchanged": ("""
+        def f(g1, g2):
+            kp1, des1 = sift.detectAndCompute(g1, None)
+            kp2, des2 = sift.detectAndCompute(g2, None)
+            return [kp1[m.trainIdx].pt for m in matcher.match(des1, des2)]
+        """, """
+        def f(g1, g2):
+            kp1, des1 = sift.detectAndCompute(g1, None)
+            kp2, des2 = sift.detectAndCompute(g2, None)
+            return [(kp1[m.queryIdx].pt, kp2[m.trainIdx].pt) for m in matcher.match(des1, des2)]
+        """),
+    "OpenCV's 0/1 mask is used as indices": ("""
+        def f(p1, p2):
+            F, mask = cv2.findFundamentalMat(p1, p2, cv2.FM_RANSAC)
+            return p1[mask.ravel()]
+        """, """
+        def f(p1, p2):
+            F, mask = cv2.findFundamentalMat(p1, p2, cv2.FM_RANSAC)
+            inliers = mask.ravel().astype(bool)
+            return p1[inliers], p2[mask.ravel() == 1]
+        """),
+    "the distortion coefficients are read in the wrong order": ("""
+        def f(points, dist):
+            k1, k2, k3, p1, p2 = dist
+            return points
+        """, """
+        def f(points, dist):
+            k1, k2, p1, p2, k3 = np.asarray(dist).ravel()[:5]
+            return points
+        """),
+}
+
+
+@pytest.mark.parametrize("mistake", sorted(FINDINGS))
+def test_each_finding_is_found_and_the_right_code_is_not_flagged(mistake):
+    wrong, right = FINDINGS[mistake]
+    api = {"block_matching"}
+    assert mistake in one(wrong, api), mistakes_in(wrong, api)
+    assert mistake not in one(right, api), mistakes_in(right, api)
+
+
+def test_image_parameters_are_uint8_only_in_the_api_functions():
+    helper = """
+        def _ssd(left, right):          # a helper: its parameters may hold floats
+            return (left - right) ** 2
+        """
+    assert "uint8 arithmetic wraps around" not in one(helper, api={"block_matching"})
+
+
+def test_the_reference_solutions_hold_no_finding_a_failure_could_use():
+    for key, lab in discover().items():
+        api = frozenset(f for e in lab.exercises.values() for f in e.signatures)
+        reading = read_file(ROOT / "reference_solutions" / f"{lab.module}.py", api)
+        unconditional = [(name, f.mistake) for name, found in reading.findings.items() for f in found if not f.needs]
+        assert unconditional == [], (key, unconditional)
+
+
+def test_findings_reach_the_helpers_a_function_calls():
+    reading = read_source(textwrap.dedent("""
+        def _solve(A):
+            w, V = np.linalg.eig(A.T @ A)
+            return V[:, -1]
+        def homography_dlt(src, dst):
+            return _solve(build(src, dst)).reshape(3, 3)
+        """))
+    assert [f.function for f in findings_for(reading, {"homography_dlt"}, False)] == ["_solve"]
+    assert findings_for(reading, {"transform_points"}, False) == []
+
+
+# ------------------------------------------------------------------ never crashes
+@settings(max_examples=40, deadline=None)
+@given(st.text(max_size=400))
+def test_any_text_is_read_without_raising(text):
+    assert read_source(text) is not None
+
+
+@pytest.mark.parametrize("text", [
+    "x = " + "(" * 3000 + "1" + ")" * 3000,                    # nested beyond the parser
+    "x = " + "-" * 100_000 + "1",                               # a long unary chain
+    "def f(a):\n    return " + " + ".join(["a"] * 20_000),     # a huge expression
+    "\x00\xff def",                                             # not Python
+    "def f(" + ", ".join(f"a{i}" for i in range(3000)) + "):\n    return a0 // a1",
+])
+def test_hostile_sources_are_read_or_left_alone(text):
+    reading = read_source(text)
+    assert reading is NOTHING or isinstance(reading.findings, dict)
+
+
+def test_too_large_a_source_is_not_read(tmp_path):
+    path = tmp_path / "big.py"
+    path.write_text("x = 1\n" * (MAX_SOURCE_BYTES // 6 + 10) + "def f(A):\n    return np.linalg.eig(A)[1][:, -1]\n")
+    assert read_file(path) is NOTHING
+    path.write_bytes(b"\xff\xfe\x00garbage")
+    assert read_file(path).findings == {}
+    assert read_file(tmp_path / "missing.py") is NOTHING
