@@ -15,6 +15,7 @@ exercise, hidden checks included, and classified:
     python benchmarks/blind_naming.py                  # this checkout
     python benchmarks/blind_naming.py --code /tmp/old  # another copy of the grader, same cases
     python benchmarks/blind_naming.py --lab lab08 --json out.json
+    python benchmarks/blind_naming.py --later           # the second set, written after the mechanism
 
 The cases are never tuned on: they were written and committed before the naming
 mechanism was changed, and the truth of each was written with it.
@@ -82,6 +83,8 @@ def main(argv=None) -> int:
                         help="the grader's copy to measure (its autograder/, fixtures/, reference_solutions/)")
     parser.add_argument("--lab", action="append", help="only these labs (lab08 ...)")
     parser.add_argument("--json", type=Path, help="write every case's outcome, names and first message here")
+    parser.add_argument("--later", action="store_true",
+                        help="grade the second blind set (blind_mistakes/later.py), written after the mechanism")
     args = parser.parse_args(argv)
 
     sys.path.insert(0, str(args.code.resolve()))
@@ -92,10 +95,17 @@ def main(argv=None) -> int:
 
     reference = args.code.resolve() / "reference_solutions"
     counts, details = {}, []
-    for lab, cases in all_cases().items():
+    if args.later:
+        from blind_mistakes.later import CASES as LATER
+        chosen = {}
+        for module, case in LATER:
+            chosen.setdefault(case.exercise.split(".")[0], (module, []))[1].append(case)
+    else:
+        chosen = {lab: (__import__(f"blind_mistakes.{lab}", fromlist=["MODULE"]).MODULE, cases)
+                  for lab, cases in all_cases().items()}
+    for lab, (module, cases) in chosen.items():
         if args.lab and lab not in args.lab:
             continue
-        module = __import__(f"blind_mistakes.{lab}", fromlist=["MODULE"]).MODULE
         counts[lab] = dict.fromkeys(OUTCOMES, 0)
         missed_movers = 0
         for case in cases:
