@@ -331,8 +331,12 @@ def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: T
     if not findings:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
-    sentence = f"Reading your code: {findings[0].sentence}."
-    return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=findings[0].mistake)
+    finding = findings[0]
+    # "module.py, line N": a notebook's cell and line replace it (_point_into_notebooks)
+    where = finding.sentence.replace(f"(line {finding.line})",
+                                     f"({check.exercise.lab.module}.py, line {finding.line})", 1)
+    sentence = f"Reading your code: {where}."
+    return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=finding.mistake)
 
 
 def _stubs(exercise: Exercise, submission) -> frozenset[str]:

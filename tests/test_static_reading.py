@@ -296,3 +296,21 @@ def test_too_large_a_source_is_not_read(tmp_path):
     path.write_bytes(b"\xff\xfe\x00garbage")
     assert read_file(path).findings == {}
     assert read_file(tmp_path / "missing.py") is NOTHING
+
+
+def test_in_a_notebook_the_finding_points_at_the_cell(tmp_path):
+    """The reading's line is the converted module's: the message names the notebook's cell."""
+    import nbformat
+    from nbformat.v4 import new_code_cell, new_notebook
+
+    from autograder.runner import grade
+
+    reference = (ROOT / "reference_solutions" / f"{MODULE8}.py").read_text()
+    folder = tmp_path / "submission"
+    folder.mkdir()
+    nbformat.write(new_notebook(cells=[new_code_cell(reference), new_code_cell(textwrap.dedent(DLT_BY_EIG))]),
+                   folder / f"{MODULE8}.ipynb")
+    result = grade(folder, ["lab08.ex2"], pictures="none")
+    named = [m for _, m in named_mistakes(result, "lab08.ex2")]
+    assert named and all(f"{MODULE8}.ipynb, cell 2, line" in m for m in named), named
+    assert not any(f"{MODULE8}.py" in m for m in named)
