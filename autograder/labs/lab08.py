@@ -26,8 +26,8 @@ from fixtures.images import coverage, photo, warp
 
 from .. import strategies as st
 from ..checks import StudentFailure, Trial, partial, passed
-from ..compare import blurred_difference, closest, format_apart, format_arrays_apart, projective_distance
-from ..judges import (IMAGE_TOLERANCE, Probe, call_probe, confirm, digits_apart, fingerprint, judge_parameter_used,
+from ..compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
+from ..judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
 from ..pictures import difference_heatmap, matches_picture, svg_points

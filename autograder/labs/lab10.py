@@ -20,7 +20,7 @@ from .. import strategies as st
 from ..checks import Trial, partial, passed
 from ..compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
                        projective_distance)
-from ..judges import Probe, call_probe, confirm, fingerprint, format_matrix, name_mistake, where_matrices_differ
+from ..judges import Probe, call_probe, fingerprint, format_matrix, name_mistake, where_matrices_differ
 from ..pictures import svg_points
 from ..registry import Lab
 from .lab09 import expect_points, judge_points, judge_single_point, make_points_probe, point_error

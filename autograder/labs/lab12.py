@@ -23,9 +23,9 @@ from fixtures import lab12 as truth
 
 from .. import strategies as st
 from ..checks import Fail, StudentFailure, Trial, partial, passed
-from ..compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, closest, describe_difference,
+from ..compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
-from ..judges import (Probe, call_probe, confirm, fingerprint, format_matrix, judge_parameter_changes_result,
+from ..judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants)
 from ..pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..registry import Lab
