@@ -1061,11 +1061,12 @@ def probe_panorama(t: Trial, function: str, kind: str) -> "PanoramaJudge | None"
     return t.probe(f"stitch_many/{kind}", lambda: many_judge(t, f"many-probe-{kind}", scene, what))
 
 
-def canvas_not_shifted(t: Trial, function: str) -> bool:
-    """Whether a canvas that is not shifted for negative coordinates explains the probe: on a scene
-    with nothing at negative coordinates (of the first image's frame) nothing is cut off on the
+def canvas_not_shifted_on_probe(t: Trial, images: int) -> bool:
+    """Whether a canvas that is not shifted for negative coordinates explains the probe of the
+    panorama of ``images`` images (``stitch`` for 2, else ``stitch_many``): on a scene with
+    nothing at negative coordinates (of the first image's frame) nothing is cut off on the
     right or at the bottom, and what the canvas holds is in place."""
-    judge = probe_panorama(t, function, "positive")
+    judge = probe_panorama(t, "stitch" if images == 2 else "stitch_many", "positive")
     if judge is None:
         return False
     names = many_names(len(judge.scene.views))
@@ -1087,8 +1088,7 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
             t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: {ONE_IMAGE_CANVAS}; "
                    "it must be the bounding box of all the warped image corners, shifted by a "
                    "translation so that negative coordinates fit", mistake=ONE_IMAGE_CANVAS)
-        function = "stitch" if len(names) == 2 else "stitch_many"
-        if placed and set(sticking) <= {"left", "top"} and canvas_not_shifted(t, function):
+        if placed and set(sticking) <= {"left", "top"} and canvas_not_shifted_on_probe(t, len(names)):
             t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: {NOT_SHIFTED}: "
                    "content that lands at negative coordinates must fit too, so shift everything by a "
                    "translation T = [[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]] (applied to every "
