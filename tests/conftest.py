@@ -178,18 +178,33 @@ def marker() -> str:
     return "agh" + uuid.uuid4().hex[:12]
 
 
-def processes_named(name: str) -> list[int]:
-    """Processes on this machine whose name is ``name`` (survivors of an attack)."""
-    found = []
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open(f"/proc/{entry}/comm") as f:
-                    if f.read().strip() == name:
-                        found.append(int(entry))
-            except OSError:
-                pass
-    return found
+def processes_named(name: str, settle: float = 2.0) -> list[int]:
+    """Live processes on this machine whose name is ``name`` (survivors of an attack).
+
+    A killed process is a zombie until someone reaps it, and hundreds take a moment to be
+    killed: zombies hold nothing (where the machine's init does not reap orphans they stay),
+    so they are no survivors; the others get ``settle`` seconds to finish dying. Survivors
+    of the attacks here live for seconds, so they are still found."""
+    import time
+
+    deadline = time.monotonic() + settle
+    while True:
+        found = []
+        for entry in os.listdir("/proc"):
+            if entry.isdigit():
+                try:
+                    with open(f"/proc/{entry}/comm") as f:
+                        if f.read().strip() != name:
+                            continue
+                    with open(f"/proc/{entry}/stat") as f:
+                        state = f.read().rsplit(")", 1)[1].split()[0]
+                except (OSError, IndexError):
+                    continue
+                if state not in ("Z", "X"):
+                    found.append(int(entry))
+        if not found or time.monotonic() > deadline:
+            return found
+        time.sleep(0.1)
 
 
 # Source a hostile submission starts with, to give its processes a findable name.
