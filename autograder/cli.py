@@ -190,9 +190,9 @@ def run_grade(args) -> int:
                 # Pictures cost time to encode: make them only for a page (or a JSON file asking for them).
                 pictures = "all" if (args.json_pictures or not args.no_html) else "none"
                 course = CourseConfig.load(args.config) if args.config else CourseConfig()
-                if ignored_keys_note(course, "grade"):
-                    errors.print(f"[yellow]note:[/yellow] {escape(ignored_keys_note(course, 'grade'))}",
-                                 highlight=False)
+                note = ignored_keys_note(course, "grade")
+                if note:
+                    errors.print(f"[yellow]note:[/yellow] {escape(note)}", highlight=False)
                 result = grade(args.submission, args.select, limits=limits, pictures=pictures, rerun=_rerun(args),
                                include_hidden=not args.public_only, on_check=advance, forbid=course.forbid,
                                lanes=lanes, sandboxes=[early] if early else [],
@@ -352,8 +352,9 @@ def run_batch(args) -> int:
     console = Console()
     try:
         course = CourseConfig.load(args.course) if args.course else CourseConfig()
-        if ignored_keys_note(course, "batch"):
-            console.print(f"[yellow]note:[/yellow] {escape(ignored_keys_note(course, 'batch'))}", highlight=False)
+        note = ignored_keys_note(course, "batch")
+        if note:
+            console.print(f"[yellow]note:[/yellow] {escape(note)}", highlight=False)
         with _batch_progress(console) as progress:
             summary = batch(args.submissions, args.out, course=course, workers=args.workers,
                             pictures=args.pictures, regrade=args.regrade, roster=args.roster,
@@ -547,8 +548,9 @@ def run_gradescope(args) -> int:
         config = CourseConfig()  # inside the container results.json is written regardless
         gradescope.log.error("%s; using the defaults", exc)
     if args.action == "build":
-        if ignored_keys_note(config, "gradescope"):
-            print(f"warning: {ignored_keys_note(config, 'gradescope')}", file=sys.stderr)
+        note = ignored_keys_note(config, "gradescope")
+        if note:
+            print(f"warning: {note}", file=sys.stderr)
         try:
             out = gradescope.build(args.out, config)
         except SelectionError as exc:

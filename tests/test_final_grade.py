@@ -66,6 +66,8 @@ def test_every_page_and_export_tells_the_same_final_grade(tmp_path):
         assert headline(out, student_id).startswith(f"final grade {total} / 20"), headline(out, student_id)
         assert f"{total} / 20" in overview
     assert "(checks: 12 / 12 points)" in headline(out, "doejane-2345")   # the raw score, labelled
+    page = (out / "doejane-2345" / "feedback.html").read_text()          # the title and bar agree
+    assert "<title>Feedback: final grade 15 / 20 — " in page and 'aria-label="75 percent"' in page
     # named as the roster names them; the roster student with no submission is listed too
     assert grades["smithjohn-1234"]["Name"] == "Smith, John"
     assert "Smith, John" in overview and "Nobody, Ned" in overview and "no submission" in overview

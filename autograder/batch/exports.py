@@ -541,12 +541,27 @@ def headline(grade: StudentGrade, possible: float) -> str:
             f"(checks: {_fmt(raw)} / {_fmt(raw_max)} points)</span>")
 
 
-def with_headline(page: str, text: str) -> str:
-    """``page`` with its headline (between the template's markers) replaced; unchanged without them."""
-    start, stop = page.find(HEADLINE), page.find(HEADLINE_END)
+def with_final_grade(page: str, grade: StudentGrade, possible: float) -> str:
+    """``page`` telling ``grade``'s final grade wherever it tells a total: the headline (between
+    the template's markers), the bar under it and the window's title. Only for a page that may
+    show the final grade (:func:`shows_final`)."""
+    page = _between(page, HEADLINE, HEADLINE_END, headline(grade, possible))
+    percent = round(100 * grade.total / possible) if possible else 0
+    page = _between(page, BAR, BAR_END, f'<div class="bar" role="img" aria-label="{percent} percent">'
+                                        f'<span style="width: {percent}%"></span></div>')
+    return re.sub(r"<title>Feedback: [^<]*? — ", lambda _: f"<title>Feedback: final grade {_fmt(grade.total)} / "
+                  f"{possible:g} — ", page, count=1)
+
+
+BAR, BAR_END = "<!-- bar -->", "<!-- /bar -->"
+
+
+def _between(page: str, begin: str, end: str, text: str) -> str:
+    """``page`` with what stands between the markers ``begin`` and ``end`` replaced; unchanged without them."""
+    start, stop = page.find(begin), page.find(end)
     if start < 0 or stop < start:
         return page
-    return page[:start + len(HEADLINE)] + text + page[stop:]
+    return page[:start + len(begin)] + text + page[stop:]
 
 
 def with_adjustments(page: str, block: str) -> str:

@@ -356,7 +356,7 @@ def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> li
     show_final = exports.shows_final(grade, course)
     updated = exports.with_adjustments(page, exports.adjustments_html(grade, possible, show_final))
     if show_final:   # the headline is the final grade (never while it holds withheld hidden points)
-        updated = exports.with_headline(updated, exports.headline(grade, possible))
+        updated = exports.with_final_grade(updated, grade, possible)
     with storing(folder):
         if updated != page or restored:
             write_atomically(page_path, updated)
