@@ -398,3 +398,18 @@ def test_a_hostile_class_grades_each_student_as_alone(upload, kinds, lone_totals
     for table in out.glob("*.csv"):
         for row in csv.reader(table.open(newline="", encoding="utf-8")):
             assert all(spreadsheet_safe(cell) == cell for cell in row), (table, row)
+
+
+def test_metadata_keys_that_are_no_folder_names_fail_alone(tmp_path):
+    """A key of any YAML type (a 1000-digit number, a date, a list's worth of text) is one
+    ignored item; the export's real submission is still read."""
+    export = tmp_path / "export"
+    (export / "submission_1").mkdir(parents=True)
+    (export / "submission_1" / f"{MODULE}.py").write_bytes(module_source("one"))
+    (export / "submission_metadata.yml").write_text(
+        f"? {'9' * 1000}\n:\n  :submitters: []\n2026-01-01:\n  :submitters: []\ntrue:\n  :submitters: []\n"
+        "submission_1:\n  :submitters:\n  - :name: Ada\n")
+    upload = read_upload(export, [MODULE], [MODULE])
+    [entry] = upload.entries
+    assert entry.display_name == "Ada" and entry.files
+    assert len(upload.ignored) == 3

@@ -328,7 +328,7 @@ class _Reader:
     def gradescope(self, names: list[str]) -> None:
         metadata = self.gradescope_metadata()
         listed = set()
-        for key, meta in sorted(metadata.items(), key=lambda kv: str(kv[0])[:200]):
+        for key, meta in sorted(metadata.items(), key=lambda kv: _text(kv[0])):
             key = _text(key)
             if not GRADESCOPE_KEY.match(key) or key in listed:
                 self.upload.ignore(key or "(an empty key)", f"a key of {GRADESCOPE_METADATA} that names no "
