@@ -413,3 +413,16 @@ def test_metadata_keys_that_are_no_folder_names_fail_alone(tmp_path):
     [entry] = upload.entries
     assert entry.display_name == "Ada" and entry.files
     assert len(upload.ignored) == 3
+
+
+def test_a_name_no_file_system_takes_is_refused_and_the_rest_of_the_entry_read(tmp_path):
+    """Inside a class zip a name may be longer than any file system takes; the files are
+    written to disk when graded, so such a file is refused with its reason, not the student."""
+    archive = tmp_path / "class.zip"
+    with zipfile.ZipFile(archive, "w") as zf:
+        zf.writestr(f"ada/{MODULE}.py", module_source("ada"))
+        zf.writestr(f"ada/{'n' * 300}/helper.py", "X = 1\n")
+        zf.writestr(f"bob/{'n' * 300}/{MODULE}.py", module_source("bob"))
+    ada, bob = read_upload(archive, [MODULE], [MODULE]).entries
+    assert ada.files == {f"{MODULE}.py": module_source("ada")} and not ada.error
+    assert "longer than 255 bytes" in bob.error

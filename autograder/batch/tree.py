@@ -32,6 +32,7 @@ from ..text import shown
 
 FOLDER, FILE, LINK, SPECIAL = "folder", "file", "link", "special"
 IGNORED_NAMES = ("__MACOSX", "__pycache__")
+NAME_BYTES = 255              # a file or folder name any file system takes (the files are written to disk later)
 MAX_CLASS_MEMBERS = 200_000   # members of a class archive (a class of 300 holds a few thousand)
 
 
@@ -294,6 +295,8 @@ def source_files(tree: UploadTree, path: tuple[str, ...], refused: dict[str, str
             elif kind == FILE and name.endswith(suffixes):
                 try:
                     _check_name(text, caps)
+                    if any(len(part.encode()) > NAME_BYTES for part in item):
+                        raise Unreadable(f"a name in its path is longer than {NAME_BYTES} bytes; shorten it")
                     limit = min(_limit_for(name, caps), caps.total_bytes - total)
                     data = tree.read(path + item, limit)
                 except (_Refused, Unreadable) as exc:
