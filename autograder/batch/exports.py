@@ -132,13 +132,14 @@ class Roster(list):
     """The roster's rows (dicts with the keys below), and the CSV's own column names in
     :attr:`columns` (a Canvas export names each assignment ``"Lab 7 (12345)"``)."""
 
-    columns: list[str] = []
+    def __init__(self, rows=(), columns=()):
+        super().__init__(rows)
+        self.columns = list(columns)
 
 
 def read_roster(path) -> Roster:
-    rows = Roster()
     reader_rows = _read_csv(path)
-    rows.columns = [k.strip() for k in (reader_rows[0].keys() if reader_rows else []) if k]
+    rows = Roster(columns=[k.strip() for k in (reader_rows[0].keys() if reader_rows else []) if k])
     for row in reader_rows:
         row = {_roster_key(k): (v or "").strip() for k, v in row.items() if k}
         if "points possible" in row.get("name", "").lower():

@@ -229,14 +229,12 @@ def class_grades(book: Gradebook, course: CourseConfig | None = None) -> ClassGr
 
 def stored_roster(book: Gradebook) -> exports.Roster:
     """The roster the batch was last given (an empty one when it never was)."""
-    roster = exports.Roster()
     try:
         data = json.loads(book.get_meta("roster") or "{}")
-        roster.extend(row for row in data.get("rows", []) if isinstance(row, dict))
-        roster.columns = [str(c) for c in data.get("columns", [])]
+        return exports.Roster((row for row in data.get("rows", []) if isinstance(row, dict)),
+                              [str(c) for c in data.get("columns", [])])
     except (TypeError, ValueError, AttributeError):   # written by another version: no roster
         return exports.Roster()
-    return roster
 
 
 def _grading_fingerprint(course: CourseConfig) -> str:
