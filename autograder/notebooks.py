@@ -172,6 +172,9 @@ def _is_text(source) -> bool:
     return isinstance(source, str) or (isinstance(source, list) and all(isinstance(s, str) for s in source))
 
 
+MAX_CODE_LINES = 100_000   # a lab's notebook holds a few thousand
+
+
 def convert(text: str, name: str = "notebook", definitions_only: bool = True,
             importable: Callable[[str], bool] | None = None) -> ConvertedNotebook:
     """The code cells of a notebook as one module (see the module docstring for the rules).
@@ -204,6 +207,9 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True,
         cell_lines = _without_magics(source.splitlines())
         mode = "skip" if SKIP_TAG in tags else "keep" if GRADE_TAG in tags or not definitions_only else "analyse"
         code.append(CellCode(number, cell_lines, mode))
+    if sum(len(cell.lines) for cell in code) > MAX_CODE_LINES:  # the analysis is linear, ~40 us a line
+        raise NotebookError(f"{name} holds more than {MAX_CODE_LINES:,} lines of code, more than grading "
+                            "reads of a notebook: hand in the lab module as a .py file")
     selection = analyse(code, importable)
     guarded: list[str] = []  # the module's lines again, lines of kept values guarded
     for cell in code:

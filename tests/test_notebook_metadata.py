@@ -188,3 +188,15 @@ def test_an_unreadable_notebook_is_named_not_a_traceback(text, reason, tmp_path)
     [exercise] = grade(folder, ["lab07.ex1"], pictures="none").exercises
     assert f"{MODULE}.ipynb is not a readable notebook ({reason})" in exercise.message
     assert all(c.score == 0 for c in exercise.checks)
+
+
+def test_a_notebook_of_more_code_than_grading_reads_is_refused_with_its_reason():
+    """The definitions analysis is linear in the code: a notebook of a million generated
+    lines is that module's problem, named, never minutes of the grader's time."""
+    from autograder.notebooks import MAX_CODE_LINES, NotebookError, convert
+
+    source = "".join(f"a{i} = {i}\n" for i in range(MAX_CODE_LINES + 1))
+    notebook = json.dumps({"cells": [{"cell_type": "code", "metadata": {}, "source": source, "outputs": [],
+                                      "execution_count": 1}], "metadata": {}, "nbformat": 4, "nbformat_minor": 5})
+    with pytest.raises(NotebookError, match="more than 100,000 lines"):
+        convert(notebook, "lab07_transformations.ipynb")
