@@ -13,7 +13,10 @@ else, run as usual. It uses two facts:
   executed) for such stubs;
 - :func:`functions_called` reads a check's code (and its helpers' in the same
   package) for the student functions it names (``t.call("translate", ...)``,
-  ``judge_matrix_call(t, "translation_matrix", ...)``).
+  ``judge_matrix_call(t, "translation_matrix", ...)``). A helper whose name holds
+  ``probe`` is not read: a confirmation probe runs only after the check's own call
+  has given an answer to confirm (a stub's call fails first), so name every probe
+  helper so, or a skeleton's checks run instead of being recorded.
 """
 
 from __future__ import annotations
