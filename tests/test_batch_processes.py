@@ -16,10 +16,12 @@ import os
 import signal
 import subprocess
 import sys
+import shutil
 import tempfile
 import textwrap
 import threading
 import time
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -193,15 +195,27 @@ def test_a_dying_grading_process_is_charged_to_its_own_submission_alone(uninterr
 
 
 # ------------------------------------------------------------------ signals
-def _batch_folders(pid: int) -> list[Path]:
-    return list(Path(tempfile.gettempdir()).glob(f"{processes.FOLDER_PREFIX}{pid}-*"))
+def _batch_folders(temporary: Path, pid: int) -> list[Path]:
+    return list(temporary.glob(f"{processes.FOLDER_PREFIX}{pid}-*"))
 
 
-def _run_until_graded(command, out: Path, at_least: int) -> tuple[subprocess.Popen, dict]:
+@pytest.fixture
+def private_temporary_folder() -> Iterator[dict]:
+    """An environment whose temporary folder is this test's alone: any batch started meanwhile
+    by a parallel test removes the folders of dead batches in *its* temporary folder, which
+    would otherwise include the one this test kills and then looks for."""
+    # Short (under the system's): the fork server's socket lives there, and a socket's path
+    # is limited to 107 bytes (beyond, the batch spawns its gradings instead).
+    temporary = Path(tempfile.mkdtemp(prefix="ag-"))
+    yield {**os.environ, "TMPDIR": str(temporary)}
+    shutil.rmtree(temporary, ignore_errors=True)
+
+
+def _run_until_graded(command, out: Path, at_least: int, env: dict) -> tuple[subprocess.Popen, dict]:
     """Start ``command`` (a batch), noting every process under it, until the gradebook holds
     ``at_least`` gradings; returns the batch's process and what was seen under it."""
     batch = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                             start_new_session=True, cwd=ROOT)
+                             start_new_session=True, cwd=ROOT, env=env)
     seen: dict = {}
     deadline = time.monotonic() + 120
     try:
@@ -218,7 +232,8 @@ def _run_until_graded(command, out: Path, at_least: int) -> tuple[subprocess.Pop
     return batch, seen
 
 
-def test_sigterm_and_sigkill_leave_no_process_and_a_rerun_removes_what_was_left(uninterrupted, tmp_path):
+def test_sigterm_and_sigkill_leave_no_process_and_a_rerun_removes_what_was_left(uninterrupted, tmp_path,
+                                                                              private_temporary_folder):
     """SIGTERM (the batch stops as on Ctrl-C, its files removed) then SIGKILL (nothing of the
     batch can run after it): within seconds no process of the batch is left -- grading
     processes, fork server, resource tracker, sandbox workers -- and a rerun removes the
@@ -227,9 +242,11 @@ def test_sigterm_and_sigkill_leave_no_process_and_a_rerun_removes_what_was_left(
     out = tmp_path / "out"
     command = [sys.executable, "-m", "autograder", "batch", str(submissions), "--out", str(out),
                "--workers", "2", "--course", str(class_course(tmp_path))]
-    terminated, seen = _run_until_graded(command, out, at_least=2)
+    env = private_temporary_folder
+    temporary = Path(env["TMPDIR"])
+    terminated, seen = _run_until_graded(command, out, at_least=2, env=env)
     try:
-        folder, = _batch_folders(terminated.pid)
+        folder, = _batch_folders(temporary, terminated.pid)
         terminated.send_signal(signal.SIGTERM)
         assert terminated.wait(timeout=60) == 130, terminated.stderr.read().decode()   # as after Ctrl-C
         assert wait_until_gone(seen) == []
@@ -242,8 +259,8 @@ def test_sigterm_and_sigkill_leave_no_process_and_a_rerun_removes_what_was_left(
     assert not folder.exists(), "a batch stopped by SIGTERM removes its temporary files"
 
     graded_before = _gradings(out)
-    killed, seen = _run_until_graded(command, out, at_least=graded_before + 1)
-    folder, = _batch_folders(killed.pid)
+    killed, seen = _run_until_graded(command, out, at_least=graded_before + 1, env=env)
+    folder, = _batch_folders(temporary, killed.pid)
     os.kill(killed.pid, signal.SIGKILL)
     killed.wait()
     try:
@@ -253,7 +270,9 @@ def test_sigterm_and_sigkill_leave_no_process_and_a_rerun_removes_what_was_left(
     assert folder.exists(), "nothing of a batch killed with SIGKILL removes its files"
     assert _gradings(out) < len(comparable(reference_out)), "killed before the end"
 
-    run_batch(submissions, out, course=COURSE, workers=2)
+    rerun = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, cwd=ROOT,
+                           env=env, timeout=300)
+    assert rerun.returncode == 0, rerun.stderr.decode()
     assert not folder.exists(), "the next batch removes a dead batch's temporary files"
     assert_same_gradebook(out, reference_out)
     with Gradebook(out) as book:
