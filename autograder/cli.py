@@ -23,10 +23,11 @@ from pathlib import Path
 # command line does this: importing the package in a notebook changes nothing.)
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from . import __version__, confine  # noqa: E402
-from .sandbox import Limits, usable_cores  # noqa: E402
-from .submission import SubmissionError  # noqa: E402
-from .text import printable  # noqa: E402
+from . import __version__  # noqa: E402
+from .loading.submission import SubmissionError  # noqa: E402
+from .loading.text import printable  # noqa: E402
+from .sandbox import confine  # noqa: E402
+from .sandbox.supervisor import Limits, usable_cores  # noqa: E402
 
 USAGE_ERROR = 2
 STORAGE_ERROR = 1   # batch/report: RESULTS cannot be read or written (see StorageError)
@@ -41,7 +42,7 @@ def escape(text: str) -> str:
 
 
 def discover():
-    from .registry import discover as load_suites
+    from .engine.registry import discover as load_suites
 
     return load_suites()
 
@@ -166,11 +167,11 @@ def run_grade(args) -> int:
 
     from rich.console import Console
 
-    from .course import CourseConfig, CourseConfigError
-    from .registry import SelectionError
+    from .instructor.course import CourseConfig, CourseConfigError
+    from .engine.registry import SelectionError
     from .reports import terminal
-    from .results import write_json
-    from .runner import grade
+    from .engine.results import write_json
+    from .engine.runner import grade
 
     console, errors = Console(stderr=False), Console(stderr=True)
     if args.submission is None:
@@ -271,7 +272,7 @@ def _early_sandbox(limits):
     while the grader loads) at the strongest confinement level the platform offers, or
     None if it could not be made: grading then makes its own and reports why. Grading
     checks that the level works (the worker gets ready) before relying on it."""
-    from .sandbox import Sandbox
+    from .sandbox.supervisor import Sandbox
 
     try:
         sandbox = Sandbox(None, limits, confinement=confine.strongest_candidate())
@@ -296,7 +297,7 @@ def lanes_for(selectors) -> int:
 
 
 def _several_students(path) -> str | None:
-    from .batch.ingest import several_students
+    from .instructor.batch.ingest import several_students
 
     return several_students(path, sorted({lab.module for lab in discover().values()}))
 
@@ -330,7 +331,7 @@ BATCH_LINES = 20   # lines of each kind the batch prints (a stray-filled upload 
 
 
 def run_batch(args) -> int:
-    from .batch.task import grading_processes
+    from .instructor.batch.task import grading_processes
 
     # What takes a process of its own starts before the rest of the batch is imported.
     if args.dask_scheduler is None:
@@ -340,14 +341,14 @@ def run_batch(args) -> int:
     from rich.console import Console
     from rich.text import Text
 
-    from .batch.cluster import DaskUnavailable
-    from .batch.exports import ExportError
-    from .batch.gradebook import StorageError
-    from .batch.ingest import IngestError
-    from .batch.processes import GradingProcessesFailed
-    from .batch.run import run_batch as batch
-    from .course import CourseConfig, CourseConfigError
-    from .registry import SelectionError
+    from .instructor.batch.cluster import DaskUnavailable
+    from .instructor.batch.exports import ExportError
+    from .instructor.batch.gradebook import StorageError
+    from .instructor.batch.ingest import IngestError
+    from .instructor.batch.processes import GradingProcessesFailed
+    from .instructor.batch.run import run_batch as batch
+    from .instructor.course import CourseConfig, CourseConfigError
+    from .engine.registry import SelectionError
 
     console = Console()
     try:
@@ -390,7 +391,7 @@ def run_batch(args) -> int:
         try:
             summary.files.append(_batch_similarity(args, course, console))
             if summary.files[-1]:   # the class overview links it
-                from .classreport.pages import write_overview
+                from .instructor.classreport.pages import write_overview
 
                 write_overview(args.out)
         except StorageError as exc:
@@ -401,9 +402,9 @@ def run_batch(args) -> int:
 
 
 def _batch_similarity(args, course, console) -> Path | None:
-    from .batch.gradebook import StorageError
-    from .classreport.pages import SIMILARITY, write_similarity
-    from .classreport.similarity import SimilarityUnavailable
+    from .instructor.batch.gradebook import StorageError
+    from .instructor.classreport.pages import SIMILARITY, write_similarity
+    from .instructor.classreport.similarity import SimilarityUnavailable
 
     page = str(Path(args.out) / SIMILARITY)
     try:
@@ -487,8 +488,8 @@ VALIDATE_PROBLEMS = 1   # validate: problems found
 
 def run_validate(args) -> int:
     """``autograder validate PATH [SELECT...]``: 0 clean, 1 problems found, 2 usage."""
-    from .registry import SelectionError
-    from .validate import validate
+    from .engine.registry import SelectionError
+    from .student.validate import validate
 
     try:
         report = validate(args.submission, args.select)
@@ -535,9 +536,9 @@ _COMMAND = {"grade": "grading one submission", "batch": "autograder batch", "gra
 
 
 def run_gradescope(args) -> int:
-    from . import gradescope
-    from .course import CourseConfig, CourseConfigError
-    from .registry import SelectionError
+    from .instructor import gradescope
+    from .instructor.course import CourseConfig, CourseConfigError
+    from .engine.registry import SelectionError
 
     try:
         config = CourseConfig.load(args.config) if args.config else CourseConfig()
@@ -564,7 +565,7 @@ def run_gradescope(args) -> int:
 
 
 def run_bundle(args) -> int:
-    from .bundle import WheelhouseError, write_student_bundle, write_wheelhouse
+    from .instructor.bundle import WheelhouseError, write_student_bundle, write_wheelhouse
 
     try:
         files = write_student_bundle(args.student)
@@ -609,11 +610,11 @@ def add_class_commands(commands) -> None:
 def run_report(args) -> int:
     """``autograder report RESULTS``: the class overview again, and each student's page and
     results.json written again from the gradebook where they were lost (1 if some cannot be)."""
-    from .batch.gradebook import StorageError
-    from .batch.run import restore_student_files
-    from .classreport.pages import NoGradebook, write_overview
-    from .course import CourseConfig, CourseConfigError
-    from .registry import SelectionError
+    from .instructor.batch.gradebook import StorageError
+    from .instructor.batch.run import restore_student_files
+    from .instructor.classreport.pages import NoGradebook, write_overview
+    from .instructor.course import CourseConfig, CourseConfigError
+    from .engine.registry import SelectionError
 
     try:
         course = CourseConfig.load(args.course) if args.course else None
@@ -636,14 +637,14 @@ def run_report(args) -> int:
 
 
 def _default_similarity_page(folder: Path) -> Path:
-    from .classreport.pages import GRADEBOOK, SIMILARITY
+    from .instructor.classreport.pages import GRADEBOOK, SIMILARITY
 
     return folder / SIMILARITY if (folder / GRADEBOOK).is_file() else Path(SIMILARITY)
 
 
 def run_similarity(args) -> int:
-    from .classreport.similarity import SimilarityUnavailable, write_similarity_report
-    from .course import CourseConfig, CourseConfigError
+    from .instructor.classreport.similarity import SimilarityUnavailable, write_similarity_report
+    from .instructor.course import CourseConfig, CourseConfigError
 
     try:
         course = CourseConfig.load(args.course) if args.course else CourseConfig()

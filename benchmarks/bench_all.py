@@ -161,7 +161,7 @@ def measure_labs(runs: int) -> dict:
 def round_trip(repeats: int = 20) -> dict:
     """Send a 1000 x 1000 x 3 uint8 image to the worker and get it back (``translate``
     by zero pixels): median wall time per call, and the part outside the function."""
-    from autograder.sandbox import Sandbox
+    from autograder.sandbox.supervisor import Sandbox
 
     image = np.random.default_rng(0).integers(0, 256, (1000, 1000, 3), dtype=np.uint8)
     walls, inside = [], []

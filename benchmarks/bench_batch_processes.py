@@ -37,16 +37,16 @@ import bench_batch  # noqa: E402
 
 def ready() -> int:
     """What a grading process does before its first grading: import the grader."""
-    import autograder.batch.task  # noqa: F401
+    import autograder.instructor.batch.task  # noqa: F401
     import autograder.reports.html  # noqa: F401
-    import autograder.runner  # noqa: F401
+    import autograder.engine.runner  # noqa: F401
 
     return os.getpid()
 
 
 def timed_grading(*arguments) -> dict:
     """``grade_files(*arguments)`` in a grading process: its wall and CPU time there."""
-    from autograder.batch.task import grade_files
+    from autograder.instructor.batch.task import grade_files
 
     wall, cpu = time.perf_counter(), time.process_time()
     outcome = grade_files(*arguments)
@@ -58,8 +58,8 @@ def timed_grading(*arguments) -> dict:
 def per_grading(context, gradings: int = 4) -> list[dict]:
     import inspect
 
-    from autograder.batch.processes import GradingPool
-    from autograder.batch.task import grade_files
+    from autograder.instructor.batch.processes import GradingPool
+    from autograder.instructor.batch.task import grade_files
 
     reference = (bench_batch.ROOT / "reference_solutions" / "lab07_transformations.py").read_bytes()
     given = {"files": {"lab07_transformations.py": reference}, "selectors": ["lab07"], "call_timeout": 10.0,
@@ -74,13 +74,13 @@ def per_grading(context, gradings: int = 4) -> list[dict]:
 
 
 def _course_default(parameter: str):
-    from autograder.course import CourseConfig
+    from autograder.instructor.course import CourseConfig
 
     return getattr(CourseConfig(), parameter)
 
 
 def start_up(context, processes: int = 2) -> float:
-    from autograder.batch.processes import GradingPool
+    from autograder.instructor.batch.processes import GradingPool
 
     start = time.perf_counter()
     with GradingPool(processes, ready, context=context) as pool:
@@ -91,7 +91,7 @@ def start_up(context, processes: int = 2) -> float:
 
 
 def measure(students: int = 24, pairs: int = 6, rounds: int = 10) -> dict:
-    from autograder.batch.processes import grading_processes
+    from autograder.instructor.batch.processes import grading_processes
 
     forked = grading_processes()
     if forked.get_start_method() != "forkserver":

@@ -23,10 +23,10 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 from classreport_disguise import disguise  # noqa: E402
 
-from autograder.classreport.analysis import StudentRecord  # noqa: E402
-from autograder.classreport.overview import render_overview  # noqa: E402
-from autograder.registry import discover  # noqa: E402
-from autograder.results import FAILED, PASSED, CheckResult, ExerciseResult, GradingResult  # noqa: E402
+from autograder.instructor.classreport.analysis import StudentRecord  # noqa: E402
+from autograder.instructor.classreport.overview import render_overview  # noqa: E402
+from autograder.engine.registry import discover  # noqa: E402
+from autograder.engine.results import FAILED, PASSED, CheckResult, ExerciseResult, GradingResult  # noqa: E402
 
 
 def generated_class(n: int) -> list[StudentRecord]:
@@ -67,7 +67,7 @@ def similarity(n: int):
     """Where the similarity report's time goes, per lab module, and the whole class's estimate."""
     import copydetect
 
-    from autograder.classreport.similarity import compare_module, lab_modules, skeleton_sources
+    from autograder.instructor.classreport.similarity import compare_module, lab_modules, skeleton_sources
 
     labs = lab_modules()
     skeletons = skeleton_sources(labs)

@@ -20,7 +20,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from autograder.reports import html  # noqa: E402
-from autograder.runner import grade  # noqa: E402
+from autograder.engine.runner import grade  # noqa: E402
 
 
 def main():

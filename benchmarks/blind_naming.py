@@ -90,7 +90,7 @@ def main(argv=None) -> int:
     sys.path.insert(0, str(args.code.resolve()))
     sys.path.insert(0, str(HERE))
     os.environ.setdefault("AUTOGRADER_CACHE_DIR", tempfile.mkdtemp(prefix="blind-store-"))
-    from autograder.runner import grade  # noqa: E402  (the copy chosen above)
+    from autograder.engine.runner import grade  # noqa: E402  (the copy chosen above)
     from blind_mistakes import all_cases  # noqa: E402
 
     reference = args.code.resolve() / "reference_solutions"

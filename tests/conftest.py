@@ -22,12 +22,12 @@ from pathlib import Path
 import pytest
 from hypothesis import settings
 
-from autograder.properties import GRADING
-from autograder.runner import grade
+from autograder.engine.properties import GRADING
+from autograder.engine.runner import grade
 
 settings.load_profile(GRADING)
 
-# The grader's store of ground truth and recorded examples (autograder/cache.py) is a
+# The grader's store of ground truth and recorded examples (autograder/sandbox/cache.py) is a
 # folder of this test run, shared by its workers and removed at the end: the suite
 # writes nothing outside temporary folders.
 if "AUTOGRADER_CACHE_DIR" not in os.environ:

@@ -12,12 +12,12 @@ import numpy as np
 import pytest
 from rich.console import Console
 
-from autograder import gradescope
-from autograder.course import CourseConfig
-from autograder.registry import REGISTRY, Lab
+from autograder.instructor import gradescope
+from autograder.instructor.course import CourseConfig
+from autograder.engine.registry import REGISTRY, Lab
 from autograder.reports import html, terminal
-from autograder.results import ADVICE, GradingResult
-from autograder.runner import grade
+from autograder.engine.results import ADVICE, GradingResult
+from autograder.engine.runner import grade
 from conftest import submission_from_source
 from test_gradescope import SCHEMA
 

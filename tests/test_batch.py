@@ -25,13 +25,13 @@ from pathlib import Path
 
 import pytest
 
-from autograder.batch import exports
-from autograder.batch.gradebook import Gradebook, lock_hash, submission_key
-from autograder.batch.ingest import IngestError, read_class, several_students
-from autograder.batch.run import run_batch
+from autograder.instructor.batch import exports
+from autograder.instructor.batch.gradebook import Gradebook, lock_hash, submission_key
+from autograder.instructor.batch.ingest import IngestError, read_class, several_students
+from autograder.instructor.batch.run import run_batch
 from autograder.cli import main
-from autograder.course import CourseConfig
-from autograder.results import without_timings
+from autograder.instructor.course import CourseConfig
+from autograder.engine.results import without_timings
 from conftest import REFERENCE, ROOT, SKELETON
 
 pytestmark = pytest.mark.slow
@@ -570,8 +570,8 @@ def test_one_batch_at_a_time_writes_a_results_folder(tmp_path):
 def test_batch_refuses_a_class_where_student_code_cannot_be_confined(tmp_path, monkeypatch, capsys):
     """On a machine without namespaces one submission could read the others: refused
     unless the instructor says so, before anything is graded."""
-    from autograder import confine
-    from autograder.batch.run import Unconfined
+    from autograder.sandbox import confine
+    from autograder.instructor.batch.run import Unconfined
 
     class Unconfining:
         level = "process-group"
@@ -628,7 +628,7 @@ def test_the_grading_processes_fork_from_a_single_threaded_server():
     probe = textwrap.dedent("""
         import os, time
         from multiprocessing import forkserver
-        from autograder.batch.task import grading_processes
+        from autograder.instructor.batch.task import grading_processes
         grading_processes()
         server = getattr(forkserver._forkserver, "_forkserver_pid", None)  # private: the only way to find it
         if server is None:

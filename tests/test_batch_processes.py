@@ -26,10 +26,10 @@ from pathlib import Path
 
 import pytest
 
-from autograder.batch import processes, run
-from autograder.batch.gradebook import Gradebook
-from autograder.batch.run import POOL_ATTEMPTS, run_batch
-from autograder.batch.task import grade_files
+from autograder.instructor.batch import processes, run
+from autograder.instructor.batch.gradebook import Gradebook
+from autograder.instructor.batch.run import POOL_ATTEMPTS, run_batch
+from autograder.instructor.batch.task import grade_files
 from conftest import ROOT
 from test_batch import (COURSE, MODULE, WRONG_WAY, _first_difference, _gradings, assert_same_gradebook,
                         class_course, comparable, reference, skeleton, write)
@@ -285,9 +285,9 @@ def test_the_grading_processes_are_forked_from_the_server_after_opencv_is_import
     then adds LD_LIBRARY_PATH to the environment: the gradings are still forked from it."""
     probe = textwrap.dedent("""
         import os, time
-        from autograder.batch.task import grading_processes
+        from autograder.instructor.batch.task import grading_processes
         grading_processes()
-        import cv2, autograder.batch.run
+        import cv2, autograder.instructor.batch.run
         from multiprocessing import forkserver
         context = grading_processes()
         server = getattr(forkserver._forkserver, "_forkserver_pid", None)  # private: the only way to find it
@@ -339,7 +339,7 @@ def test_only_the_folders_of_dead_batches_are_removed(tmp_path):
 def test_cgroups_left_by_a_killed_grading_process_are_removed_by_the_next():
     """A grading process killed outright cannot remove its sandboxes' cgroups: the next cgroup
     made beside them removes those whose creator is dead (never a live process's)."""
-    from autograder.confine import Cgroup
+    from autograder.sandbox.confine import Cgroup
 
     def made(name):
         for attempt in (Cgroup._v2, Cgroup._v1):   # as Cgroup.create tries them

@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import pytest
 
-from autograder.batch import run
-from autograder.batch.gradebook import Gradebook, StorageError
-from autograder.batch.run import run_batch
-from autograder.course import CourseConfig
+from autograder.instructor.batch import run
+from autograder.instructor.batch.gradebook import Gradebook, StorageError
+from autograder.instructor.batch.run import run_batch
+from autograder.instructor.course import CourseConfig
 from test_batch import MODULE, reference, write
 
 pytestmark = pytest.mark.slow

@@ -25,12 +25,12 @@ from pathlib import Path
 
 import pytest
 
-from autograder import gradescope
-from autograder.batch.gradebook import SCHEMA_VERSION, Gradebook, StorageError
-from autograder.batch.run import run_batch
+from autograder.instructor import gradescope
+from autograder.instructor.batch.gradebook import SCHEMA_VERSION, Gradebook, StorageError
+from autograder.instructor.batch.run import run_batch
 from autograder.cli import STORAGE_ERROR, main
-from autograder.course import CourseConfig
-from autograder.results import without_timings
+from autograder.instructor.course import CourseConfig
+from autograder.engine.results import without_timings
 from test_batch import COURSE, MODULE, WRONG_WAY, assert_same_gradebook, comparable, reference, skeleton, write
 
 pytestmark = pytest.mark.slow

@@ -1,7 +1,7 @@
 """A beginner's mistakes get a sentence before the library's trace (issue 27).
 
 OpenCV's own errors are raised here by calling it wrongly, as students do, and the
-sentence :mod:`autograder.beginner` gives for each is checked for what it must
+sentence :mod:`autograder.sandbox.beginner` gives for each is checked for what it must
 name: the function, the argument, what it got, and the fix. End to end, graded
 submissions with the issue's integer matrix, ``image[x, y]``, a rotation matrix
 built as integers and an RGB result get that sentence first; what a student's
@@ -14,10 +14,10 @@ import cv2
 import numpy as np
 import pytest
 
-from autograder import beginner
-from autograder.checks import Fail, Trial
-from autograder.registry import select
-from autograder.runner import grade
+from autograder.sandbox import beginner
+from autograder.engine.checks import Fail, Trial
+from autograder.engine.registry import select
+from autograder.engine.runner import grade
 from conftest import mutant
 
 IMAGE = np.zeros((40, 60, 3), np.uint8)

@@ -14,8 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from autograder.bundle import bundle_requirements, write_student_bundle, write_wheelhouse
-from autograder.registry import discover
+from autograder.instructor.bundle import bundle_requirements, write_student_bundle, write_wheelhouse
+from autograder.engine.registry import discover
 from conftest import REFERENCE, ROOT
 
 try:
@@ -142,7 +142,7 @@ def test_bundle_ships_the_contract_and_the_student_guide(bundle):
     """The contract students are judged by, generated for every lab, in the bundle; its
     links and the README's paths stay inside the bundle; no hidden check is named there,
     even in the generated pages' Markdown escaping."""
-    from autograder import apidoc
+    from autograder.instructor import apidoc
 
     docs = bundle / "docs"
     labs = sorted(discover())

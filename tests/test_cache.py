@@ -1,5 +1,5 @@
-"""The store of ground truth and property examples kept between gradings (autograder.cache,
-autograder.examples): it gives back exactly what would be computed, never what it cannot trust,
+"""The store of ground truth and property examples kept between gradings (autograder.sandbox.cache,
+autograder.engine.examples): it gives back exactly what would be computed, never what it cannot trust,
 and a replayed property reaches Hypothesis's own verdict and message."""
 
 from __future__ import annotations
@@ -11,10 +11,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from autograder import cache, examples
-from autograder.checks import Fail, Trial
-from autograder.registry import select
-from autograder.sandbox import CallOutcome
+from autograder.sandbox import cache
+from autograder.engine import examples
+from autograder.engine.checks import Fail, Trial
+from autograder.engine.registry import select
+from autograder.sandbox.supervisor import CallOutcome
 
 ROOT = Path(__file__).resolve().parents[1]
 

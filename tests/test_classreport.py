@@ -8,10 +8,10 @@ from html import unescape
 
 import pytest
 
-from autograder.classreport.analysis import StudentRecord, first_sentence, mistake_of, summarise
-from autograder.classreport.overview import overview_html, render_overview, safe_href
-from autograder.classreport.pages import records_from_class_results
-from autograder.results import (FAILED, NOT_IMPLEMENTED, PASSED, CheckResult, ExerciseResult,
+from autograder.instructor.classreport.analysis import StudentRecord, first_sentence, mistake_of, summarise
+from autograder.instructor.classreport.overview import overview_html, render_overview, safe_href
+from autograder.instructor.classreport.pages import records_from_class_results
+from autograder.engine.results import (FAILED, NOT_IMPLEMENTED, PASSED, CheckResult, ExerciseResult,
                                 GradingResult)
 
 ROTATION_WRONG_WAY = ("the rotation goes the opposite way: with y pointing down, counter-clockwise "
@@ -211,8 +211,8 @@ def test_records_from_the_gradebooks_class_results():
 @pytest.mark.slow
 def test_real_gradings_carry_named_mistakes_and_failures(tmp_path):
     """End to end: the judges name the mistake, the runner records how student code failed."""
-    from autograder.runner import grade
-    from autograder.sandbox import Limits
+    from autograder.engine.runner import grade
+    from autograder.sandbox.supervisor import Limits
     from conftest import mutant
 
     wrong = mutant(tmp_path, "lab07_transformations", textwrap.dedent("""

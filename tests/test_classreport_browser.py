@@ -29,11 +29,11 @@ def assert_reads_well(page, tmp_path):
 
 
 def test_class_overview_reads_well_on_a_phone_and_a_desktop(tmp_path):
-    from autograder.classreport.analysis import StudentRecord
-    from autograder.classreport.overview import render_overview
+    from autograder.instructor.classreport.analysis import StudentRecord
+    from autograder.instructor.classreport.overview import render_overview
     from test_classreport import CLASS_SIZE, PLANTED, lab07, lab08
 
-    from autograder.results import GradingResult
+    from autograder.engine.results import GradingResult
 
     students = []
     for i in range(CLASS_SIZE):
@@ -49,7 +49,7 @@ def test_class_overview_reads_well_on_a_phone_and_a_desktop(tmp_path):
 
 def test_similarity_page_reads_well_on_a_phone_and_a_desktop(tmp_path):
     pytest.importorskip("copydetect")
-    from autograder.classreport.similarity import compare_class, similarity_html
+    from autograder.instructor.classreport.similarity import compare_class, similarity_html
     from classreport_disguise import disguise
     from test_similarity import INDEPENDENT, LAB07, REFERENCE, SKELETON, THRESHOLD
 

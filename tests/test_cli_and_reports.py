@@ -9,9 +9,9 @@ import zipfile
 import pytest
 
 from autograder.reports import html
-from autograder.results import GradingResult
-from autograder.runner import grade
-from autograder.submission import notebook_to_source
+from autograder.engine.results import GradingResult
+from autograder.engine.runner import grade
+from autograder.loading.submission import notebook_to_source
 from conftest import REFERENCE, ROOT, mutant
 
 MODULE = "lab07_transformations"

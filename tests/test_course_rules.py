@@ -6,11 +6,11 @@ import json
 import numpy as np
 import pytest
 
-from autograder import gradescope
-from autograder.course import CourseConfig, CourseConfigError
-from autograder.registry import REGISTRY, Lab
+from autograder.instructor import gradescope
+from autograder.instructor.course import CourseConfig, CourseConfigError
+from autograder.engine.registry import REGISTRY, Lab
 from autograder.reports import html
-from autograder.runner import grade
+from autograder.engine.runner import grade
 from conftest import submission_from_source
 
 SOLVER = """

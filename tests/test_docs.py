@@ -6,7 +6,7 @@
 - Every ``python`` block runs (a page's blocks in order, in one namespace), every
   ``json`` block is a course configuration that ``CourseConfig`` accepts.
 - The generated pages (``docs/api/*.md`` and the ``apidoc`` blocks of
-  ``docs/contract/*.md``) are what ``python -m autograder.apidoc docs`` writes now.
+  ``docs/contract/*.md``) are what ``python -m autograder.instructor.apidoc docs`` writes now.
 """
 
 from __future__ import annotations
@@ -24,9 +24,9 @@ from pathlib import Path
 
 import pytest
 
-from autograder import apidoc
-from autograder.course import CourseConfig
-from autograder.registry import REGISTRY, discover
+from autograder.instructor import apidoc
+from autograder.instructor.course import CourseConfig
+from autograder.engine.registry import REGISTRY, discover
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
@@ -77,7 +77,7 @@ def test_the_site_builds_in_strict_mode(tmp_path):
         built = site / (page[:-3] + "/index.html" if not page.endswith("index.md") else page[:-3] + ".html")
         assert built.is_file(), f"{page} was not built"
     engine = (site / "authors" / "engine-api" / "index.html").read_text(encoding="utf-8")
-    assert "autograder.checks.Trial" in engine and "expect_array" in engine, "mkdocstrings rendered no API"
+    assert "autograder.engine.checks.Trial" in engine and "expect_array" in engine, "mkdocstrings rendered no API"
 
 
 # ------------------------------------------------------------------------------ examples
@@ -226,7 +226,7 @@ def test_the_generator_command_checks_and_writes(tmp_path):
     docs = tmp_path / "docs"
     shutil.copytree(DOCS / "contract", docs / "contract")
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    command = [sys.executable, "-m", "autograder.apidoc", str(docs)]
+    command = [sys.executable, "-m", "autograder.instructor.apidoc", str(docs)]
     assert subprocess.run([*command, "--check"], env=env, capture_output=True).returncode == 1  # no api/ yet
     assert subprocess.run(command, env=env, capture_output=True).returncode == 0
     assert subprocess.run([*command, "--check"], env=env, capture_output=True).returncode == 0

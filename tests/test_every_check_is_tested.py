@@ -11,7 +11,7 @@ import importlib
 
 import pytest
 
-from autograder.registry import discover
+from autograder.engine.registry import discover
 from conftest import graded_case
 
 

@@ -14,8 +14,8 @@ import re
 
 import pytest
 
-from autograder.batch.run import run_batch
-from autograder.course import CourseConfig
+from autograder.instructor.batch.run import run_batch
+from autograder.instructor.course import CourseConfig
 from test_batch import MODULE, SELECT, WRONG_WAY, reference, write
 
 pytestmark = pytest.mark.slow

@@ -22,8 +22,10 @@ import jsonschema
 import numpy as np
 import pytest
 
-from autograder import confine, gradescope, pictures
-from autograder.course import CourseConfig, CourseConfigError
+from autograder.sandbox import confine
+from autograder.instructor import gradescope
+from autograder.engine import pictures
+from autograder.instructor.course import CourseConfig, CourseConfigError
 from conftest import REFERENCE, mutant, submission_from_source
 
 SCHEMA = json.loads((Path(__file__).parent / "gradescope_results.schema.json").read_text())
@@ -140,7 +142,7 @@ def test_course_config_is_validated(tmp_path):
 
 
 def test_the_diagnosis_reads_as_text_and_the_matrices_keep_their_layout():
-    from autograder.results import CheckResult
+    from autograder.engine.results import CheckResult
 
     message = ("homography_dlt(src, dst) is wrong: it looks like the rows of the design matrix "
                "have a sign error.\nIt returned\n[[1. 0.]\n [0. 1.]]")
@@ -152,8 +154,8 @@ def test_the_diagnosis_reads_as_text_and_the_matrices_keep_their_layout():
 
 def test_results_are_in_the_course_points_like_every_other_grade():
     """A course that rescales a lab gets the same grade on Gradescope as in the batch's exports."""
-    from autograder.batch.exports import compute_grades
-    from autograder.runner import grade
+    from autograder.instructor.batch.exports import compute_grades
+    from autograder.engine.runner import grade
 
     result = grade(REFERENCE, ["lab07.ex1"])
     course = CourseConfig(select=["lab07.ex1"], points={"lab07": 30}, hidden_points_visible=True)
@@ -236,7 +238,7 @@ def test_a_failed_public_check_shows_its_pictures_small_and_nothing_student_made
 
 
 def test_hostile_text_in_every_field_stays_text():
-    from autograder.results import Artifact, CheckResult
+    from autograder.engine.results import Artifact, CheckResult
 
     hostile = "<img src=x onerror=alert(1)><a href='javascript:x'>\x1b[2J</a>\u202e"
     picture = pictures.picture_item(hostile, np.full((40, 60, 3), 200, np.uint8))
@@ -268,7 +270,7 @@ def test_point_plots_become_png_pictures_with_their_points_in_place():
 
 
 def test_the_budget_goes_round_the_exercises_and_says_what_it_left_out(monkeypatch):
-    from autograder.results import Artifact, CheckResult, ExerciseResult, GradingResult
+    from autograder.engine.results import Artifact, CheckResult, ExerciseResult, GradingResult
 
     noise = np.random.default_rng(0).integers(0, 255, (120, 160, 3), dtype=np.uint8)
 

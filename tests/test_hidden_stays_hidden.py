@@ -25,15 +25,17 @@ from pathlib import Path
 
 import pytest
 
-import autograder.runner
-from autograder import cli, gradescope, selfcheck
-from autograder.batch import run as batch_run
-from autograder.batch import task
-from autograder.course import CourseConfig, CourseConfigError
-from autograder.registry import discover
+import autograder.engine.runner
+from autograder import cli
+from autograder.instructor import gradescope
+from autograder.student import selfcheck
+from autograder.instructor.batch import run as batch_run
+from autograder.instructor.batch import task
+from autograder.instructor.course import CourseConfig, CourseConfigError
+from autograder.engine.registry import discover
 from autograder.reports import html
-from autograder.results import GradingResult, strip_pictures
-from autograder.runner import grade
+from autograder.engine.results import GradingResult, strip_pictures
+from autograder.engine.runner import grade
 from conftest import REFERENCE, SKELETON
 
 # Appended to a reference module: every graded function prints its arguments, then answers
@@ -172,7 +174,7 @@ def student_scores(result: GradingResult, points_visible: bool) -> dict[str, tup
 def graded_as(monkeypatch):
     """Make every path that grades return a copy of ``result`` (graded once, above)."""
     def use(result: GradingResult):
-        monkeypatch.setattr(autograder.runner, "grade", lambda *args, **kwargs: copy.deepcopy(result))
+        monkeypatch.setattr(autograder.engine.runner, "grade", lambda *args, **kwargs: copy.deepcopy(result))
     return use
 
 

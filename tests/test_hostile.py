@@ -22,9 +22,9 @@ import time
 
 import pytest
 
-from autograder import confine
-from autograder.runner import grade
-from autograder.sandbox import Limits
+from autograder.sandbox import confine
+from autograder.engine.runner import grade
+from autograder.sandbox.supervisor import Limits
 from conftest import (NAME_PROCESS, ROOT, assert_only_exercise_lost, check_results, marker, mutant,
                       processes_named)
 

@@ -30,13 +30,14 @@ from pathlib import Path
 import pytest
 from rich.console import Console
 
-from autograder import confine, gradescope
-from autograder.course import CourseConfig
+from autograder.sandbox import confine
+from autograder.instructor import gradescope
+from autograder.instructor.course import CourseConfig
 from autograder.reports import html, terminal
-from autograder.results import write_json
-from autograder.runner import grade
-from autograder.sandbox import Limits
-from autograder.submission import Caps, load_submission
+from autograder.engine.results import write_json
+from autograder.engine.runner import grade
+from autograder.sandbox.supervisor import Limits
+from autograder.loading.submission import Caps, load_submission
 from conftest import (NAME_PROCESS, REFERENCE, ROOT, assert_only_exercise_lost, marker, mutant,
                       processes_named)
 
@@ -521,7 +522,7 @@ def test_a_fork_bomb_does_not_starve_a_worker_running_beside_it(tmp_path):
     threads of another student's code."""
     import threading
 
-    from autograder.sandbox import Limits, Sandbox
+    from autograder.sandbox.supervisor import Limits, Sandbox
 
     cgroup = confine.Cgroup.create(1 << 30, 8)
     if cgroup is not None:

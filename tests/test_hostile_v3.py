@@ -24,11 +24,11 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from autograder import confine, transport
-from autograder.registry import select
-from autograder.results import ERROR, write_json
-from autograder.runner import grade, run_check
-from autograder.sandbox import CallOutcome, Limits, Sandbox
+from autograder.sandbox import confine, transport
+from autograder.engine.registry import select
+from autograder.engine.results import ERROR, write_json
+from autograder.engine.runner import grade, run_check
+from autograder.sandbox.supervisor import CallOutcome, Limits, Sandbox
 from conftest import NAME_PROCESS, REFERENCE, assert_only_exercise_lost, marker, mutant, processes_named
 
 LAB07, LAB09 = "lab07_transformations", "lab09_camera"
@@ -128,7 +128,7 @@ def test_a_memory_bomb_leaves_the_other_lanes_memory_alone(tmp_path, cgroup):
 def test_lanes_shares_fit_in_the_machine(monkeypatch):
     """A share no lane can borrow from another is one that exists: the shares together are no more
     than the workers may hold on this machine (else its OOM killer would pick any process)."""
-    monkeypatch.setattr("autograder.sandbox.memory_for_workers", lambda: 2 << 30)
+    monkeypatch.setattr("autograder.sandbox.supervisor.memory_for_workers", lambda: 2 << 30)
     assert Limits(memory=6 << 30).shared_by(2).memory == 1 << 30
     assert Limits(memory=1 << 30).shared_by(2).memory == 512 << 20
     assert Limits(memory=6 << 30).shared_by(1) == Limits(memory=6 << 30)  # one worker: capped by its sandbox

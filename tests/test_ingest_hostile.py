@@ -35,9 +35,9 @@ import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from autograder.batch.exports import spreadsheet_safe
-from autograder.batch.ingest import read_upload
-from autograder.text import shown
+from autograder.instructor.batch.exports import spreadsheet_safe
+from autograder.instructor.batch.ingest import read_upload
+from autograder.loading.text import shown
 
 MODULE = "lab07_transformations"
 SECRET = "SECRET-OUTSIDE-THE-UPLOAD"
@@ -341,7 +341,7 @@ def test_a_class_zip_is_never_inflated_beyond_what_can_hold_code(tmp_path):
 @pytest.fixture(scope="module")
 def lone_totals(tmp_path_factory):
     """The total each kind of work gets graded alone (lab07.ex1)."""
-    from autograder.runner import grade
+    from autograder.engine.runner import grade
     from test_batch import WRONG_WAY, reference, skeleton
 
     totals = {}
@@ -367,9 +367,9 @@ def fingerprint(folder: Path) -> dict[str, str]:
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 @given(upload=uploads(), kinds=st.lists(st.sampled_from(["right", "wrong", "empty"]), min_size=5, max_size=5))
 def test_a_hostile_class_grades_each_student_as_alone(upload, kinds, lone_totals, tmp_path_factory):
-    from autograder.batch.gradebook import Gradebook
-    from autograder.batch.run import run_batch
-    from autograder.course import CourseConfig
+    from autograder.instructor.batch.gradebook import Gradebook
+    from autograder.instructor.batch.run import run_batch
+    from autograder.instructor.course import CourseConfig
 
     for student, kind in zip(upload.students, kinds):   # real work in place of the markers
         for name, data in list(upload.items.items()):

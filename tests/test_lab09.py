@@ -2,7 +2,7 @@
 
 import pytest
 
-from autograder.runner import grade
+from autograder.engine.runner import grade
 from conftest import (assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named,
                       mutant)
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from autograder.runner import grade
+from autograder.engine.runner import grade
 from conftest import assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, mutant
 
 MODULE = "lab10_camera2"
@@ -534,7 +534,7 @@ def test_projection_by_the_formula_alone_gets_full_marks_and_a_tip(tmp_path):
 def test_decomposition_remedy_fits_the_input(tmp_path):
     """With det(P[:, :3]) > 0 a negative diagonal of K is fixed by flipping signs, and the
     message says so (not 'negate P', which would be wrong for that input)."""
-    from autograder.checks import Fail
+    from autograder.engine.checks import Fail
     from autograder.labs import lab10
 
     class Probe:

@@ -2,7 +2,7 @@
 
 import pytest
 
-from autograder.runner import grade
+from autograder.engine.runner import grade
 from conftest import (THREE_ROW_TRIANGULATION, REFERENCE, advice_given, assert_advised, assert_all_not_implemented, assert_full_marks,
                       assert_mistake_named, check_results, mutant)
 
@@ -401,7 +401,7 @@ def test_stored_figures_are_current():
 
     import numpy as np
 
-    from autograder.compare import projective_distance
+    from autograder.engine.compare import projective_distance
     from autograder.labs.hidden import lab11 as hidden
     from conftest import ROOT
     from fixtures import lab11

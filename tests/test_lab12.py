@@ -6,7 +6,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from autograder.runner import grade
+from autograder.engine.runner import grade
 from conftest import (THREE_ROW_TRIANGULATION, assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results,
                       mutant)
 

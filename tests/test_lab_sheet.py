@@ -11,8 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from autograder.registry import REGISTRY, Lab, discover
-from autograder.runner import grade
+from autograder.engine.registry import REGISTRY, Lab, discover
+from autograder.engine.runner import grade
 from conftest import assert_full_marks, submission_from_source
 
 LAB_SHEET = Path(__file__).parent / "submissions" / "lab_sheet"

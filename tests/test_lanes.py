@@ -9,10 +9,10 @@ from pathlib import Path
 import pytest
 
 from autograder.cli import lanes_for
-from autograder.registry import select
-from autograder.results import without_timings
-from autograder.runner import grade
-from autograder.sandbox import Limits
+from autograder.engine.registry import select
+from autograder.engine.results import without_timings
+from autograder.engine.runner import grade
+from autograder.sandbox.supervisor import Limits
 
 ROOT = Path(__file__).resolve().parents[1]
 SELECT = ["lab07", "lab09.ex1", "lab10.ex1"]
@@ -70,7 +70,7 @@ def test_grade_py_grades_with_a_lane_per_core_and_selected_lab(monkeypatch):
 def test_a_lane_that_fails_stops_the_others_at_once(tmp_path, monkeypatch):
     import time
 
-    from autograder import runner
+    from autograder.engine import runner
 
     submission = tmp_path / "slow"
     shutil.copytree(ROOT / "reference_solutions", submission)
@@ -93,7 +93,7 @@ def test_a_lane_that_fails_stops_the_others_at_once(tmp_path, monkeypatch):
 
 
 def test_the_lanes_workers_share_the_submissions_memory_and_the_cores(tmp_path, monkeypatch):
-    from autograder import runner
+    from autograder.engine import runner
 
     made = []
 
@@ -108,5 +108,5 @@ def test_the_lanes_workers_share_the_submissions_memory_and_the_cores(tmp_path, 
     # what the grader holds of the lanes' replies at once is what it would hold of one
     assert {limits.max_result_bytes for limits in made} == {Limits().max_result_bytes // 3}
     assert Limits().shared_by(1) == Limits()
-    monkeypatch.setattr("autograder.sandbox.usable_cores", lambda: 4)
+    monkeypatch.setattr("autograder.sandbox.supervisor.usable_cores", lambda: 4)
     assert (Limits().shared_by(2).threads, Limits().shared_by(3).threads, Limits().shared_by(8).threads) == (2, 1, 1)

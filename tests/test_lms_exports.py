@@ -14,8 +14,8 @@ import io
 
 import pytest
 
-from autograder.batch import exports
-from autograder.course import CourseConfig, CourseConfigError
+from autograder.instructor.batch import exports
+from autograder.instructor.course import CourseConfig, CourseConfigError
 
 RAW = [("lab07.ex1", 12.0)]
 

@@ -12,7 +12,7 @@ import importlib
 
 import pytest
 
-from autograder.registry import discover
+from autograder.engine.registry import discover
 
 AT_LEAST = 5
 

@@ -2,7 +2,7 @@
 
 A check names a mistake only when the mistake's answer reproduces the student's on the
 failing input and on a second input chosen to tell the candidates apart (a probe,
-``autograder.judges.Probe``); otherwise the message says what is measurably wrong.
+``autograder.engine.judges.Probe``); otherwise the message says what is measurably wrong.
 
 - The wrong names a blind set measured are gone: each bug is graded here as a mutant and
   must not be named as the mistake it was mistaken for.
@@ -25,9 +25,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from autograder.checks import Trial
-from autograder.compare import SAME_ANSWER, max_abs_error
-from autograder.judges import Probe, confirm, name_mistake
+from autograder.engine.checks import Trial
+from autograder.engine.compare import SAME_ANSWER, max_abs_error
+from autograder.engine.judges import Probe, confirm, name_mistake
 from conftest import assert_diagnosed, check_results, graded_case, named_mistakes
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -335,7 +335,7 @@ DIRECT_EVIDENCE = {
 }
 CONFIRMING = {"name_mistake", "confirm", "judge_matrix", "judge_warp", "judge_points", "judge_projective",
               "name_second_warp_mistake", "name_matching_mistake", "probe", "_disc_ratio_on_probe"}
-SUITES = ["judges.py", "labs/lab07.py", "labs/lab08.py", "labs/lab09.py", "labs/lab10.py", "labs/lab11.py",
+SUITES = ["engine/judges.py", "labs/lab07.py", "labs/lab08.py", "labs/lab09.py", "labs/lab10.py", "labs/lab11.py",
           "labs/lab12.py"]
 
 

@@ -19,11 +19,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from rich.console import Console
 
-from autograder.notebooks import GRADE_TAG, SKIP_TAG, NotebookError, convert
-from autograder.registry import select
+from autograder.loading.notebooks import GRADE_TAG, SKIP_TAG, NotebookError, convert
+from autograder.engine.registry import select
 from autograder.reports import html, terminal
-from autograder.results import json_text, strip_pictures
-from autograder.runner import grade
+from autograder.engine.results import json_text, strip_pictures
+from autograder.engine.runner import grade
 from conftest import REFERENCE
 
 MODULE = "lab07_transformations"
@@ -193,7 +193,7 @@ def test_an_unreadable_notebook_is_named_not_a_traceback(text, reason, tmp_path)
 def test_a_notebook_of_more_code_than_grading_reads_is_refused_with_its_reason():
     """The definitions analysis is linear in the code: a notebook of a million generated
     lines is that module's problem, named, never minutes of the grader's time."""
-    from autograder.notebooks import MAX_CODE_LINES, NotebookError, convert
+    from autograder.loading.notebooks import MAX_CODE_LINES, NotebookError, convert
 
     source = "".join(f"a{i} = {i}\n" for i in range(MAX_CODE_LINES + 1))
     notebook = json.dumps({"cells": [{"cell_type": "code", "metadata": {}, "source": source, "outputs": [],

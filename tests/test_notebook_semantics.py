@@ -24,9 +24,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from autograder.definitions import available_at_grading
-from autograder.notebooks import convert
-from autograder.runner import grade
+from autograder.loading.definitions import available_at_grading
+from autograder.loading.notebooks import convert
+from autograder.engine.runner import grade
 from conftest import REFERENCE
 
 MODULE = "lab07_transformations"

@@ -5,8 +5,8 @@ import re
 import nbformat
 from nbformat.v4 import new_code_cell, new_markdown_cell, new_notebook
 
-from autograder.notebooks import convert
-from autograder.runner import grade
+from autograder.loading.notebooks import convert
+from autograder.engine.runner import grade
 from conftest import REFERENCE
 
 MODULE = "lab07_transformations"
@@ -109,7 +109,7 @@ def test_hand_edited_notebooks_with_odd_metadata_still_give_their_code():
     the code is still read, and nothing in them can crash the grader."""
     import json
 
-    from autograder.notebooks import convert
+    from autograder.loading.notebooks import convert
 
     odd = {"cells": [42, {"cell_type": "code", "source": "def f():\n    return 1\n", "metadata": 42},
                      {"cell_type": "code", "source": ["x = 2\n"], "metadata": {"tags": [1, "grade"]}},

@@ -9,8 +9,8 @@ import pytest
 from nbclient import NotebookClient
 from nbformat.v4 import new_code_cell, new_notebook
 
-from autograder.registry import select
-from autograder.runner import grade
+from autograder.engine.registry import select
+from autograder.engine.runner import grade
 from conftest import REFERENCE
 
 MODULE = "lab07_transformations"
@@ -80,7 +80,7 @@ def test_check_names_what_to_grade_when_it_finds_nothing(tmp_path):
 
 
 def test_check_points_to_the_kernels_input_numbers(monkeypatch):
-    from autograder import selfcheck
+    from autograder.student import selfcheck
 
     source = (REFERENCE / f"{MODULE}.py").read_text()
     history = [source, "def rotation_matrix(angle_deg:\n    pass",  # a typo, mended in In [3]

@@ -1,4 +1,4 @@
-"""Pictures drawn on other threads while grading goes on (autograder.runner.Painter): the same
+"""Pictures drawn on other threads while grading goes on (autograder.engine.runner.Painter): the same
 pictures as drawn at once, never a verdict changed by a picture, never student code called
 from a drawing thread."""
 
@@ -8,8 +8,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from autograder.registry import select
-from autograder.runner import Painter, run_check
+from autograder.engine.registry import select
+from autograder.engine.runner import Painter, run_check
 from test_cache import InProcess, _reference
 
 

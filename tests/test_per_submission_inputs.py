@@ -1,4 +1,4 @@
-"""Property checks draw their inputs per submission (autograder.inputs): the same files meet the
+"""Property checks draw their inputs per submission (autograder.engine.inputs): the same files meet the
 same inputs on every run, other files other inputs, so a table of the answers to one grading's
 inputs earns nothing on the next grading of the table itself."""
 
@@ -7,10 +7,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from autograder import runner
-from autograder.checks import Fail, Trial
-from autograder.inputs import SECRET_VARIABLE, Inputs
-from autograder.registry import select
+from autograder.engine import runner
+from autograder.engine.checks import Fail, Trial
+from autograder.engine.inputs import SECRET_VARIABLE, Inputs
+from autograder.engine.registry import select
 from conftest import REFERENCE, mutant
 
 MODULE = "lab07_transformations"
@@ -130,7 +130,7 @@ class _InProcess:
         self.calls, self.wrong_from, self.shared = 0, wrong_from, {}
 
     def call(self, module, function, args=(), kwargs=None, **_):
-        from autograder.sandbox import CallOutcome
+        from autograder.sandbox.supervisor import CallOutcome
 
         self.calls += 1
         value = getattr(self.module, function)(*args, **(kwargs or {}))
@@ -166,8 +166,8 @@ def test_the_official_grading_draws_with_the_courses_secret(recorded, tmp_path, 
     import json
     import zipfile
 
-    from autograder import gradescope
-    from autograder.course import CourseConfig, CourseConfigError
+    from autograder.instructor import gradescope
+    from autograder.instructor.course import CourseConfig, CourseConfigError
 
     with pytest.raises(CourseConfigError, match="inputs_secret"):
         CourseConfig(inputs_secret=1234)
@@ -194,7 +194,7 @@ def test_the_official_grading_draws_with_the_courses_secret(recorded, tmp_path, 
 def test_a_batch_grades_with_the_courses_secret(tmp_path):
     import json
 
-    from autograder.batch import task
+    from autograder.instructor.batch import task
 
     # A submission that prints what it is asked: its output tells the inputs it met.
     source = (mutant(tmp_path, MODULE, """

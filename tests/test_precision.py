@@ -4,7 +4,7 @@ The API pins no float dtype, memory order or writeability: the reference solutio
 wrapped to return float32 (what many OpenCV recipes give), or Fortran-ordered read-only
 arrays, get full marks in every lab. float16 is not wrapped: it is not a legitimate
 precision for geometry (a 1000 px coordinate is off by up to 0.25 px in it) and no
-tolerance grows for it (``autograder.compare.precision_floor``); a float16 answer loses
+tolerance grows for it (``autograder.engine.compare.precision_floor``); a float16 answer loses
 points. Messages that put a figure beside what it was compared with print the digits that
 tell them apart.
 """
@@ -18,9 +18,9 @@ import numpy as np
 import pytest
 from hypothesis import given, strategies as st
 
-from autograder.compare import (FLOAT32_EPS, at_precision, describe_difference, format_apart,
+from autograder.engine.compare import (FLOAT32_EPS, at_precision, describe_difference, format_apart,
                                 format_arrays_apart, precision_floor)
-from autograder.runner import grade
+from autograder.engine.runner import grade
 from conftest import REFERENCE, assert_full_marks, check_results, mutant
 
 LABS = ("lab07", "lab08", "lab09", "lab10", "lab11", "lab12")

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import pytest
 
-from autograder.runner import grade
+from autograder.engine.runner import grade
 from conftest import REFERENCE, assert_diagnosed, check_results, mutant
 
 SSD_VOLUME = """

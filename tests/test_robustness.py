@@ -4,9 +4,9 @@ import json
 
 import pytest
 
-from autograder.results import without_timings
-from autograder.runner import grade
-from autograder.sandbox import Limits
+from autograder.engine.results import without_timings
+from autograder.engine.runner import grade
+from autograder.sandbox.supervisor import Limits
 from conftest import REFERENCE, ROOT, assert_only_exercise_lost, check_results, mutant, submission_from_source
 
 MODULE = "lab07_transformations"
@@ -172,7 +172,7 @@ def test_worker_limits_are_best_effort_where_the_platform_refuses_one():
 
     script = f"""
 import resource, sys
-sys.path.insert(0, {str(ROOT / "autograder")!r})
+sys.path.insert(0, {str(ROOT / "autograder" / "sandbox")!r})
 import worker
 real = resource.setrlimit
 def refuse_address_space(which, limits):
@@ -193,9 +193,9 @@ def test_an_exception_while_judging_is_that_checks_grader_error_only():
 
     import numpy as np
 
-    from autograder.registry import select
-    from autograder.runner import run_check
-    from autograder.sandbox import Sandbox
+    from autograder.engine.registry import select
+    from autograder.engine.runner import run_check
+    from autograder.sandbox.supervisor import Sandbox
 
     [exercise] = select(["lab07.ex4"])
     check = exercise.checks[0]
@@ -213,7 +213,7 @@ def test_an_exception_while_judging_is_that_checks_grader_error_only():
 
 
 def test_course_budgets_reach_the_sandbox():
-    from autograder.course import CourseConfig, CourseConfigError
+    from autograder.instructor.course import CourseConfig, CourseConfigError
 
     limits = CourseConfig(call_timeout=3, exercise_budget=30, submission_budget=200).limits()
     assert (limits.call_timeout, limits.exercise_budget, limits.submission_budget) == (3, 30, 200)

@@ -9,10 +9,10 @@ import re
 import subprocess
 import sys
 
-from autograder import selfcheck
+from autograder.student import selfcheck
 from autograder.reports import html
-from autograder.results import ADVICE, NOT_IMPLEMENTED, GradingResult
-from autograder.runner import grade
+from autograder.engine.results import ADVICE, NOT_IMPLEMENTED, GradingResult
+from autograder.engine.runner import grade
 from conftest import ROOT, mutant
 
 

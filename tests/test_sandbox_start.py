@@ -5,7 +5,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from autograder.sandbox import Sandbox
+from autograder.sandbox.supervisor import Sandbox
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -51,7 +51,7 @@ def test_a_worker_made_ready_first_grades_the_submission_and_its_restarts_count(
 
 def test_a_worker_uses_the_opencv_threads_it_is_given(tmp_path):
     """Workers side by side (lanes, a batch's gradings) share the cores: one thread each here."""
-    from autograder.sandbox import Limits
+    from autograder.sandbox.supervisor import Limits
 
     (tmp_path / "threads_probe.py").write_text("import cv2\n\n\ndef threads():\n    return cv2.getNumThreads()\n")
     with Sandbox(tmp_path, Limits(threads=1)) as sandbox:

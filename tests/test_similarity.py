@@ -11,10 +11,10 @@ import pytest
 
 pytest.importorskip("copydetect")
 
-from autograder.classreport.similarity import (MAX_SOURCE_CHARS, collect_sources, compare_class,  # noqa: E402
+from autograder.instructor.classreport.similarity import (MAX_SOURCE_CHARS, collect_sources, compare_class,  # noqa: E402
                                                compare_module, similarity_html, skeleton_sources)
 from autograder.cli import main  # noqa: E402
-from autograder.course import CourseConfig  # noqa: E402
+from autograder.instructor.course import CourseConfig  # noqa: E402
 from classreport_disguise import disguise  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -121,7 +121,7 @@ def test_cli_writes_the_page_with_the_course_threshold(tmp_path, capsys):
 
 
 def test_threshold_is_validated(tmp_path):
-    from autograder.course import CourseConfigError
+    from autograder.instructor.course import CourseConfigError
 
     with pytest.raises(CourseConfigError):
         CourseConfig(similarity_threshold=1.5)
@@ -129,7 +129,7 @@ def test_threshold_is_validated(tmp_path):
 
 
 def test_skeleton_sources_found_for_every_lab():
-    from autograder.classreport.similarity import lab_modules
+    from autograder.instructor.classreport.similarity import lab_modules
 
     modules = lab_modules()
     assert set(skeleton_sources(modules)) == set(modules)
@@ -145,7 +145,7 @@ def test_aligning_only_candidates_finds_the_same_leads(lab07_class):
 
 
 def test_sources_from_an_lms_download_use_the_batchs_student_ids(tmp_path):
-    ingest = pytest.importorskip("autograder.batch.ingest")
+    ingest = pytest.importorskip("autograder.instructor.batch.ingest")
     (tmp_path / f"smithjohn_12345_67890_{LAB07}.py").write_text(REFERENCE)
     (tmp_path / f"doejane_LATE_23456_78901_{LAB07}-1.py").write_text(disguise(REFERENCE, 4))
     sources = collect_sources(tmp_path, [LAB07])

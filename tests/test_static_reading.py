@@ -1,4 +1,4 @@
-"""Reading the submitted code where the outputs cannot tell (issue 26, autograder/reading.py).
+"""Reading the submitted code where the outputs cannot tell (issue 26, autograder/loading/reading.py).
 
 The reading finds, without running anything, the places in a function that cause a known
 mistake; the runner uses a finding only to name the cause of a failure a check measured
@@ -14,8 +14,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from autograder.reading import MAX_SOURCE_BYTES, NOTHING, findings_for, read_file, read_source
-from autograder.registry import discover
+from autograder.loading.reading import MAX_SOURCE_BYTES, NOTHING, findings_for, read_file, read_source
+from autograder.engine.registry import discover
 from conftest import check_results, graded_case, named_mistakes
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -303,7 +303,7 @@ def test_in_a_notebook_the_finding_points_at_the_cell(tmp_path):
     import nbformat
     from nbformat.v4 import new_code_cell, new_notebook
 
-    from autograder.runner import grade
+    from autograder.engine.runner import grade
 
     reference = (ROOT / "reference_solutions" / f"{MODULE8}.py").read_text()
     folder = tmp_path / "submission"

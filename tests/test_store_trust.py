@@ -1,5 +1,5 @@
 """No verdict rests on bytes the graded code could have written: the store of ground truth and
-recorded examples (autograder.cache) trusts an entry only under its key's HMAC, and a worker
+recorded examples (autograder.sandbox.cache) trusts an entry only under its key's HMAC, and a worker
 that runs as the grader's user (process-group) neither finds that key nor leaves behind anything a
 later grading trusts. And a grader started through a relative interpreter path still confines."""
 
@@ -16,12 +16,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from autograder import cache, confine, examples, runner, sandbox, transport
-from autograder.checks import Fail, Trial
-from autograder.inputs import Inputs
-from autograder.registry import select
-from autograder.results import GradingResult
-from autograder.submission import load_submission
+from autograder.sandbox import cache, confine, supervisor as sandbox, transport
+from autograder.engine import examples, runner
+from autograder.engine.checks import Fail, Trial
+from autograder.engine.inputs import Inputs
+from autograder.engine.registry import select
+from autograder.engine.results import GradingResult
+from autograder.loading.submission import load_submission
 from conftest import REFERENCE, ROOT, mutant
 from test_cache import InProcess, _reference
 
@@ -179,7 +180,7 @@ def _attacker(tmp_path: Path, store: Path, entry: Path, frame: bytes) -> Path:
         from pathlib import Path as _Path
 
         _sys.path.insert(0, {str(ROOT)!r})
-        from autograder import cache as _cache
+        from autograder.sandbox import cache as _cache
 
         _store, _entry = _Path({str(store)!r}), _Path({str(entry)!r})
         try:
@@ -307,8 +308,8 @@ def test_a_grading_names_its_level_and_warns_loudly_when_it_is_forced_weaker(tmp
 
 @needs_namespaces
 def test_gradescope_refuses_a_weaker_level_unless_the_course_accepts_it(tmp_path, monkeypatch):
-    from autograder import gradescope
-    from autograder.course import CourseConfig
+    from autograder.instructor import gradescope
+    from autograder.instructor.course import CourseConfig
 
     monkeypatch.setenv("AUTOGRADER_CONFINEMENT", "process-group")
     refused = gradescope.run(_marking(tmp_path), tmp_path / "results.json", CourseConfig(select=["lab07.ex1"]))
@@ -321,7 +322,7 @@ def test_gradescope_refuses_a_weaker_level_unless_the_course_accepts_it(tmp_path
 
 @needs_namespaces
 def test_a_batch_refuses_a_level_forced_weaker_than_this_machine_allows(tmp_path, monkeypatch):
-    from autograder.batch.run import Unconfined, run_batch
+    from autograder.instructor.batch.run import Unconfined, run_batch
 
     levels = [level for level in confine.LEVELS[:-1] if level != confine.strongest_candidate().level]
     for forced in levels[-1:] + ["process-group"]:

@@ -1,4 +1,4 @@
-"""Described strategies (autograder.strategies): built, they are Hypothesis's own and draw the
+"""Described strategies (autograder.engine.strategies): built, they are Hypothesis's own and draw the
 same examples; described, they key recorded examples without importing Hypothesis."""
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 from hypothesis import given, settings, strategies as hst
 
-from autograder import strategies as st
-from autograder.properties import grading_settings
+from autograder.engine import strategies as st
+from autograder.engine.properties import grading_settings
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -60,7 +60,7 @@ def test_the_description_is_stable_and_tells_strategies_apart():
 
 
 def test_the_description_is_the_same_in_another_process():
-    code = ("from autograder import strategies as st; "
+    code = ("from autograder.engine import strategies as st; "
             "print(repr(st.floats(-5, 5, allow_nan=False).filter(lambda s: abs(s) > 1e-3).map(float)))")
     texts = {subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True,
                             check=True).stdout for _ in range(2)}
@@ -75,7 +75,7 @@ def test_a_function_that_holds_itself_is_described():
 
 
 def test_loading_the_suites_and_grading_the_skeleton_import_no_hypothesis(tmp_path):
-    code = ("import sys; from autograder.registry import discover; from autograder.runner import grade; "
+    code = ("import sys; from autograder.engine.registry import discover; from autograder.engine.runner import grade; "
             "discover(); r = grade('assignments', pictures='none'); "
             "print(r.total, 'hypothesis' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True,

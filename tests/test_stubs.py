@@ -5,11 +5,11 @@ import textwrap
 import pytest
 from conftest import REFERENCE, SKELETON, lab_exercises
 
-from autograder import runner
-from autograder.registry import discover
-from autograder.results import NOT_IMPLEMENTED
-from autograder.runner import grade
-from autograder.stubs import functions_called, stub_functions
+from autograder.engine import runner
+from autograder.engine.registry import discover
+from autograder.engine.results import NOT_IMPLEMENTED
+from autograder.engine.runner import grade
+from autograder.engine.stubs import functions_called, stub_functions
 
 
 def _verdicts(result):

@@ -9,10 +9,11 @@ import zipfile
 import pytest
 from rich.console import Console
 
-from autograder import cli, gradescope
-from autograder.course import CourseConfig
+from autograder import cli
+from autograder.instructor import gradescope
+from autograder.instructor.course import CourseConfig
 from autograder.reports import terminal
-from autograder.runner import grade
+from autograder.engine.runner import grade
 from conftest import REFERENCE, ROOT, submission_from_source
 
 LAB07, LAB11 = "lab07_transformations", "lab11_two_view"

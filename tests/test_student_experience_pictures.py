@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 import skimage.data
 
-from autograder import pictures
+from autograder.engine import pictures
 from autograder.reports import html
-from autograder.results import Artifact, CheckResult, ExerciseResult, GradingResult
-from autograder.runner import grade
+from autograder.engine.results import Artifact, CheckResult, ExerciseResult, GradingResult
+from autograder.engine.runner import grade
 from conftest import REFERENCE, mutant
 
 MODULE = "lab07_transformations"

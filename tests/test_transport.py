@@ -8,8 +8,8 @@ import pytest
 from hypothesis import given, strategies as st
 from hypothesis.extra import numpy as hnp
 
-from autograder.text import printable
-from autograder.transport import MAX_HEADER_BYTES, TransportError, decode, encode
+from autograder.loading.text import printable
+from autograder.sandbox.transport import MAX_HEADER_BYTES, TransportError, decode, encode
 
 scalars = st.one_of(st.none(), st.booleans(), st.integers(-2**63, 2**63 - 1), st.floats(),
                     st.text(max_size=20), st.complex_numbers(allow_nan=False))

@@ -9,8 +9,8 @@ import re
 import subprocess
 import sys
 
-from autograder import selfcheck
-from autograder.validate import NOTE, PROBLEM, validate
+from autograder.student import selfcheck
+from autograder.student.validate import NOTE, PROBLEM, validate
 from conftest import REFERENCE, ROOT, SKELETON, mutant, submission_from_source
 
 MODULE = "lab07_transformations"

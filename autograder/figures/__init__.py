@@ -72,9 +72,9 @@ class FigureOutcome:
 
 def make_figures(submission, selectors=(), out_dir=".", limits=None) -> list[FigureOutcome]:
     """Write ``out_dir/<exercise>.png`` for every selected exercise that has a figure."""
-    from ..registry import select
-    from ..sandbox import Sandbox
-    from ..submission import load_submission
+    from ..engine.registry import select
+    from ..sandbox.supervisor import Sandbox
+    from ..loading.submission import load_submission
 
     producers = _discover()
     exercises = [ex for ex in select(selectors) if ex.id in producers]
@@ -143,7 +143,7 @@ def _aspect(panel: Panel) -> float:
 
 
 def _show_image(ax, image):
-    from ..pictures import as_displayable
+    from ..engine.pictures import as_displayable
 
     try:
         shown = as_displayable(np.asarray(image))

@@ -13,7 +13,7 @@ def _scene(name="slanted"):
 
 @figure("lab12.ex2", "depth_from_disparity(true disparity, f, baseline)")
 def depth(call):
-    from ..pictures import disparity_picture
+    from ..engine.pictures import disparity_picture
 
     scene = _scene()
     depth_map = np.asarray(call("depth_from_disparity", scene.disparity, scene.f, scene.baseline), float)
@@ -23,7 +23,7 @@ def depth(call):
 
 @figure("lab12.ex4", "block_matching(left, right)")
 def block(call):
-    from ..pictures import disparity_picture
+    from ..engine.pictures import disparity_picture
 
     scene = _scene("random_dots")
     got = call("block_matching", scene.left, scene.right, scene.max_disparity)
@@ -34,7 +34,7 @@ def block(call):
 
 @figure("lab12.ex5", "dp_stereo(left, right)")
 def smooth(call):
-    from ..pictures import disparity_picture
+    from ..engine.pictures import disparity_picture
 
     scene = _scene("random_dots")
     got = call("dp_stereo", scene.left, scene.right, scene.max_disparity)

@@ -1,1 +1,1 @@
-"""Lab check suites. Each module registers one lab (see :mod:`autograder.registry`)."""
+"""Lab check suites. Each module registers one lab (see :mod:`autograder.engine.registry`)."""

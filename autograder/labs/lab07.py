@@ -13,16 +13,16 @@ import numpy as np
 from fixtures import lab07 as truth
 from fixtures.images import photo
 
-from .. import strategies as st
-from ..checks import Fail, Trial, passed
-from ..compare import format_arrays_apart
-from ..judges import (Probe, call_probe, digits_apart, judge_matrix, judge_parameter_used, judge_warp,
+from ..engine import strategies as st
+from ..engine.checks import Fail, Trial, passed
+from ..engine.compare import format_arrays_apart
+from ..engine.judges import (Probe, call_probe, digits_apart, judge_matrix, judge_parameter_used, judge_warp,
                       name_mistake, warp_probe)
-from ..registry import Lab
+from ..engine.registry import Lab
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
 
-# The confirmation probes' inputs (see autograder.judges.Probe): values no usual mistake leaves
+# The confirmation probes' inputs (see autograder.engine.judges.Probe): values no usual mistake leaves
 # unchanged -- fractional, of both signs, x apart from y, an angle far from 0 and 90 degrees, a
 # centre off the origin -- so that the mistakes answer them differently.
 PROBE_ARGS = {
@@ -337,7 +337,7 @@ def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
     what = f"affine_lstsq(src, dst) with N={len(src)}"
     got = t.expect_array(t.call("affine_lstsq", src, dst), what, shape=(2, 3), kind="iuf", finite=True)
     if show:
-        from ..pictures import svg_points
+        from ..engine.pictures import svg_points
 
         t.svg("where your fit sends the source points", svg_points({
             "target points (noisy)": dst,

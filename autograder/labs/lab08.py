@@ -24,14 +24,14 @@ import numpy as np
 from fixtures import lab08 as truth
 from fixtures.images import coverage, photo, warp
 
-from .. import strategies as st
-from ..checks import StudentFailure, Trial, partial, passed
-from ..compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
-from ..judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
+from ..engine import strategies as st
+from ..engine.checks import StudentFailure, Trial, partial, passed
+from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
+from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
-from ..pictures import difference_heatmap, matches_picture, svg_points
-from ..registry import Lab
+from ..engine.pictures import difference_heatmap, matches_picture, svg_points
+from ..engine.registry import Lab
 
 lab = Lab("lab08", module="lab08_homographies", title="Image homographies")
 lab.forbid("homography_dlt", "cv2.findHomography", "cv2.getPerspectiveTransform")
@@ -50,7 +50,7 @@ def call_once(t: Trial, key: str, function: str, *args, **kwargs):
 
 
 def judge_homography_warp(t: Trial, what: str, got, source, H, dsize=None, show=True, probe=None):
-    """:func:`~autograder.judges.judge_warp` with the usual homography mistakes, confirmed on
+    """:func:`~autograder.engine.judges.judge_warp` with the usual homography mistakes, confirmed on
     ``probe`` (by default ``apply_homography`` of :func:`probe_warp`'s input)."""
     if probe is None:
         probe = apply_homography_probe(t)

@@ -16,13 +16,13 @@ import numpy as np
 from fixtures import lab09 as truth
 from fixtures.lab09 import photo
 
-from .. import strategies as st
-from ..checks import Fail, StudentFailure, Trial, partial, passed
-from ..compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
-from ..pictures import svg_points
-from .. import judges
-from ..judges import Probe, call_probe, confirm, fingerprint, format_matrix
-from ..registry import Lab
+from ..engine import strategies as st
+from ..engine import judges
+from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
+from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
+from ..engine.judges import Probe, call_probe, confirm, fingerprint, format_matrix
+from ..engine.pictures import svg_points
+from ..engine.registry import Lab
 
 lab = Lab("lab09", module="lab09_camera", title="Geometric camera models")
 
@@ -32,7 +32,7 @@ seeds = st.integers(0, 2**32 - 1)
 # ================================================================== confirmation probes
 @dataclass(frozen=True)
 class PointsProbe:
-    """:func:`judge_points`' confirmation probe (see :class:`autograder.judges.Probe`): the
+    """:func:`judge_points`' confirmation probe (see :class:`autograder.engine.judges.Probe`): the
     student's points on another input, and there the truth, what each mistake gives and the
     formulas a coordinate may have been computed with."""
 
@@ -338,7 +338,7 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
     scale = magnitude(expected)
     if not up_to_scale and isinstance(got, np.ndarray) and got.shape == tuple(shape) and got.dtype.kind in "iuf" \
             and np.isfinite(got).all() and np.abs(got - expected).max() > at_precision(1e-7 * scale, scale):
-        from ..compare import projective_distance
+        from ..engine.compare import projective_distance
         if projective_distance(got, expected) <= precision_floor():
             i = np.unravel_index(np.argmax(np.abs(expected)), expected.shape)
             factor = got[i] / expected[i]

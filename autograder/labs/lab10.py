@@ -16,13 +16,13 @@ import numpy as np
 from fixtures import lab10 as truth
 from fixtures import scene
 
-from .. import strategies as st
-from ..checks import Trial, partial, passed
-from ..compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
+from ..engine import strategies as st
+from ..engine.checks import Trial, partial, passed
+from ..engine.compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
                        projective_distance)
-from ..judges import Probe, call_probe, fingerprint, format_matrix, name_mistake, where_matrices_differ
-from ..pictures import svg_points
-from ..registry import Lab
+from ..engine.judges import Probe, call_probe, fingerprint, format_matrix, name_mistake, where_matrices_differ
+from ..engine.pictures import svg_points
+from ..engine.registry import Lab
 from .lab09 import expect_points, judge_points, judge_single_point, make_points_probe, point_error
 
 lab = Lab("lab10", module="lab10_camera2", title="Geometric camera models (continued)")
@@ -31,7 +31,7 @@ seeds = st.integers(0, 2**32 - 1)
 
 
 def projection_probe(t: Trial, function: str, **kwargs):
-    """A projection function on its confirmation probe's input (see autograder.judges.Probe):
+    """A projection function on its confirmation probe's input (see autograder.engine.judges.Probe):
     points of varied depth away from the axis, an f none of the checks uses, a given z_avg
     apart from every statistic of the depths."""
     X = truth.points_in_front(10_010, n=10, z_range=(3.0, 14.0))
@@ -583,7 +583,7 @@ def _wrong_grids_explaining(rvec, tvec, pattern, square, corners, K, dist) -> li
 
 
 # The pose checks' confirmation probe: another view of the board, or the same board through
-# another lens when dist matters (see autograder.judges.Probe).
+# another lens when dist matters (see autograder.engine.judges.Probe).
 POSE_PROBE_VIEW = ((-0.2, -0.35, 0.05), 12.0, 3.9, (0.15, -0.05))
 
 

@@ -17,14 +17,14 @@ from fixtures import lab11 as truth
 from fixtures.lab12 import (linear_triangulation, triangulation_distance, triangulation_mistakes,
                             triangulation_variants)
 
-from .. import strategies as st
-from ..checks import Fail, StudentFailure, Trial, partial, passed
-from ..compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
+from ..engine import strategies as st
+from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
+from ..engine.compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
                        projective_distance)
-from ..judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
+from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
                       where_points_differ)
-from ..pictures import side_by_side, svg_points
-from ..registry import Lab
+from ..engine.pictures import side_by_side, svg_points
+from ..engine.registry import Lab
 
 lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
 

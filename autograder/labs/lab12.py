@@ -21,14 +21,14 @@ import numpy as np
 
 from fixtures import lab12 as truth
 
-from .. import strategies as st
-from ..checks import Fail, StudentFailure, Trial, partial, passed
-from ..compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
+from ..engine import strategies as st
+from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
+from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
-from ..judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
+from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants)
-from ..pictures import disparity_error_picture, disparity_picture, side_by_side
-from ..registry import Lab
+from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
+from ..engine.registry import Lab
 
 lab = Lab("lab12", module="lab12_stereo", title="Stereo")
 

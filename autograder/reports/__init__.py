@@ -1,1 +1,1 @@
-"""Renderers of a :class:`~autograder.results.GradingResult`: terminal, HTML, JSON, Gradescope."""
+"""Renderers of a :class:`~autograder.engine.results.GradingResult`: terminal, HTML, JSON, Gradescope."""

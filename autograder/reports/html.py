@@ -8,8 +8,8 @@ import re
 from jinja2 import Environment, PackageLoader, select_autoescape
 from markupsafe import Markup, escape
 
-from .. import pictures
-from ..results import ADVICE, ERROR, NOT_IMPLEMENTED, PARTIAL, PASSED, GradingResult, write_atomically
+from ..engine import pictures
+from ..engine.results import ADVICE, ERROR, NOT_IMPLEMENTED, PARTIAL, PASSED, GradingResult, write_atomically
 
 _UNSAFE_SVG = re.compile(r"<\s*(script|foreignObject|iframe)|\bon\w+\s*=|javascript:", re.IGNORECASE)
 

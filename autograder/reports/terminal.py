@@ -1,7 +1,7 @@
 """The terminal report: a table of per-exercise scores, then what to fix, then tips.
 
 Every string that may hold a submission's words goes through
-:func:`~autograder.text.printable` first, so nothing it prints can move the
+:func:`~autograder.loading.text.printable` first, so nothing it prints can move the
 cursor, clear the screen or redraw the table.
 """
 
@@ -11,8 +11,8 @@ from rich.console import Console
 from rich.table import Table
 from rich.text import Text
 
-from ..results import ERROR, NOT_IMPLEMENTED, GradingResult
-from ..text import printable
+from ..engine.results import ERROR, NOT_IMPLEMENTED, GradingResult
+from ..loading.text import printable
 
 
 def _score_style(score: float, maximum: float) -> str:

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from autograder.judges import judge_warp
+from autograder.engine.judges import judge_warp
 from autograder.labs.lab07 import ex1, ex2, ex3, ex4, ex5, ex6, image_probe, judge_affine_fit, judge_lstsq
 from fixtures import lab07 as truth
 from fixtures.images import photo

@@ -10,8 +10,8 @@ import numpy as np
 from fixtures import lab08 as truth
 from fixtures.images import photo
 
-from ...checks import partial, passed
-from ...compare import blurred_difference
+from ...engine.checks import partial, passed
+from ...engine.compare import blurred_difference
 from ..lab08 import (RANSAC_H_TOLERANCE, blended, diagnose_ransac, ex1, ex2, ex3, ex4, ex5, ext1, ext2,
                      ext3, fitted_h, diagnose_h, judge_coverage, judge_many_content, judge_matches,
                      judge_homography_warp, judge_region, many_judge, many_names, matched_points, ransac_result,

@@ -6,11 +6,11 @@ as the public checks.
 
 from __future__ import annotations
 
-from ... import strategies as st
+from ...engine import strategies as st
 
 from fixtures import lab11 as truth
 
-from ...checks import partial
+from ...engine.checks import partial
 from ..lab11 import (PIPELINE_TIMEOUT, call_reconstruction, conditioned_distance, ex1, ex2, ex3, ex4, ex5, ex6, judge_epipoles,
                      judge_lines, judge_pipeline_F, judge_projective, judge_structure, judge_triangulation)
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from fixtures import lab12 as truth
 
-from ...checks import passed
+from ...engine.checks import passed
 from ..lab12 import (STEREO_TIMEOUT, MatchingMistakes, block_matcher, block_size_probe, call_rectify, ex1, ex2, ex3, ex4, ex5, ex6, ext1,
                      expect_disparity, judge_block_matching, judge_depth, judge_disparity, judge_last_column,
                      judge_patterns, judge_rows, judge_sl_depth, judge_triangulation, smoothness_probe)

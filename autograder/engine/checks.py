@@ -1,0 +1,427 @@
+"""What a check sees: the trial object ``t``, verdicts, and failures.
+
+A check is a function of one argument, ``t`` (a :class:`Trial`). It calls the
+student's functions with ``t.call``, judges the results in the grader's process,
+and ends in one of three ways:
+
+- returns ``None`` (full points) or ``passed("what was verified")``;
+- returns ``partial(fraction, message, hint)`` for partial credit;
+- raises :class:`Fail` (through ``t.fail`` / ``t.expect_array``), for no points.
+
+If the student's code raises, hangs or crashes, ``t.call`` raises
+:class:`StudentFailure` and the check scores 0 with the student's own message.
+Anything else escaping a check is a grader error, reported as such.
+
+An advice check (registered with ``@exercise.advice(name)``, 0 points) calls
+``t.advise(message)`` when it has a tip and returns normally otherwise; a
+failure inside it is silent (the graded checks report it).
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..sandbox.beginner import uint8_wraps
+from ..sandbox.supervisor import CallOutcome, Sandbox
+from . import pictures
+from .inputs import NO_SUBMISSION
+from .registry import Check
+from .results import Artifact
+
+# Failure kinds after which calling the same function again in this check is pointless.
+_FATAL_KINDS = {"timeout", "crashed", "memory", "output_too_large", "import_error",
+                "missing_module", "missing_function", "not_implemented", "forbidden_call",
+                "budget", "protocol"}
+
+
+@dataclass
+class Verdict:
+    fraction: float
+    message: str = ""
+    hint: str = ""
+    mistake: str = ""  # the named mistake, when the check recognised one (class reports count them)
+
+
+def passed(message: str = "") -> Verdict:
+    return Verdict(1.0, message)
+
+
+def partial(fraction: float, message: str, hint: str = "", mistake: str = "") -> Verdict:
+    """Partial credit: ``fraction`` of the check's points (clipped to [0, 1])."""
+    return Verdict(float(min(max(fraction, 0.0), 1.0)), message, hint, mistake)
+
+
+class Fail(Exception):
+    """The student's answer is wrong: no points for this check.
+
+    ``mistake`` names the recognised mistake in a few words ("the rotation goes
+    the opposite way ..."), the same for every student who makes it.
+    """
+
+    def __init__(self, message: str, hint: str = "", mistake: str = ""):
+        super().__init__(message)
+        self.message, self.hint, self.mistake = message, hint, mistake
+
+
+class StudentFailure(Exception):
+    """The student's function did not return normally (raised, hung, crashed, missing...)."""
+
+    def __init__(self, outcome: CallOutcome, message: str):
+        super().__init__(message)
+        self.outcome, self.message = outcome, message
+
+
+# Hypothesis's engine runs one property at a time, whatever the lanes (runner.grade): the
+# examples it draws never depend on another lane's property.
+_ONE_ENGINE = threading.Lock()
+
+
+class Trial:
+    """The handle a check uses to call student code and attach pictures.
+
+    Parameters
+    ----------
+    sandbox : Sandbox
+        The submission's worker.
+    check : Check
+        The check being run (for its exercise, lab, timeout and forbidden calls).
+    forbid : dict, optional
+        The instructor's extra forbidden calls, per student function.
+    inputs : Inputs, optional
+        Where the submission's properties draw their inputs (see
+        :mod:`autograder.engine.inputs`); by default those of no submission.
+    """
+
+    def __init__(self, sandbox: Sandbox, check: Check, forbid: dict | None = None, inputs=None):
+        self.sandbox, self.check = sandbox, check
+        self.inputs = inputs if inputs is not None else NO_SUBMISSION
+        self.lab = check.exercise.lab
+        self._thread = threading.get_ident()  # the sandbox's one caller
+        self.forbid = forbid or {}
+        self._pictures: list = []  # made into Artifacts only if the grading keeps them
+        self.outputs: list[str] = []
+        self.student_seconds = 0.0
+        self._fatal: dict[str, StudentFailure] = {}
+        self.tips: list[tuple[str, str]] = []  # (message, hint) from t.advise
+        # (function, argument) pairs the student's function modified in place.
+        self.modified_inputs: list[tuple[str, str]] = []
+        self._properties = 0  # t.for_all calls so far (each has its recorded examples)
+        self._probed: dict = {}  # confirmation probes' answers, asked once per trial (see probe)
+        # Student functions that, in this trial, were given fractional numbers and returned only
+        # whole ones (the values' side of autograder.loading.reading's findings about truncation).
+        self.whole_numbers: set[str] = set()
+
+    # ------------------------------------------------------------ calling
+    def call(self, function: str, *args, **kwargs):
+        """Call the student's ``function`` and return its (plain-data) result.
+
+        Raises
+        ------
+        StudentFailure
+            If it raised, timed out, crashed, is missing or returned a forbidden type.
+        """
+        if threading.get_ident() != self._thread:
+            raise RuntimeError("student code is called from the check itself, never while a picture is "
+                               "drawn (pictures are drawn on other threads)")
+        failure = self._fatal.get(function)
+        if failure is None:
+            outcome = self.sandbox.call(self.lab.module, function, args, kwargs,
+                                        timeout=self.check.timeout,
+                                        forbid=self.lab.forbidden.get(function, ())
+                                        + self.forbid.get(function, ()))
+            self.student_seconds += outcome.seconds
+            if outcome.output.strip():
+                self.outputs.append(outcome.output)
+            for argument in outcome.modified:
+                if (function, argument) not in self.modified_inputs:
+                    self.modified_inputs.append((function, argument))
+            if outcome.ok:
+                if function not in self.whole_numbers and _whole_numbers(outcome.value) \
+                        and _fractional((args, kwargs)):
+                    self.whole_numbers.add(function)
+                return outcome.value
+            failure = StudentFailure(outcome, self._describe(function, outcome))
+            if outcome.kind in _FATAL_KINDS:
+                self._fatal[function] = failure
+        # One raise site, and a fresh exception each time: Hypothesis tells failures
+        # apart by where they are raised, and re-raising one object grows its traceback.
+        raise StudentFailure(failure.outcome, failure.message)
+
+    def probe(self, key: str, answer):
+        """The student's answer on a confirmation probe's input, ``answer()``, asked once per
+        trial (a property shrinking a failing example names it again at every step): None
+        when the call failed or its answer was not of the documented form.
+
+        A probe is a second input chosen to tell candidate mistakes apart; see
+        :class:`autograder.engine.judges.Probe`.
+        """
+        if key not in self._probed:
+            try:
+                self._probed[key] = answer()
+            except (StudentFailure, Fail):
+                self._probed[key] = None
+        return self._probed[key]
+
+    def not_implemented(self) -> str:
+        """The message of a call in this trial that met a function not implemented yet, or ``""``
+        (also when the check caught the failure itself, as advice does)."""
+        return next((f.message for f in self._fatal.values() if f.outcome.kind == "not_implemented"), "")
+
+    def _describe(self, function: str, outcome: CallOutcome) -> str:
+        if outcome.kind == "missing_function":
+            return f"not found: def {self.lab.signature(function)}"
+        return outcome.message
+
+    # ------------------------------------------------------------ judging
+    def fail(self, message: str, hint: str = "", mistake: str = ""):
+        raise Fail(message, hint, mistake)
+
+    def advise(self, message: str, hint: str = ""):
+        """Give a tip (advice checks only): shown with its reason, worth no points."""
+        if not self.check.advice:
+            raise TypeError(f"t.advise() in graded check {self.check.name!r}; "
+                            "register advice with @exercise.advice(name)")
+        self.tips.append((message, hint))
+
+    def expect_array(self, value, what: str, *, shape=None, dtype=None, kind=None,
+                     finite: bool = False) -> np.ndarray:
+        """Check that a returned value is an array of the documented form.
+
+        Parameters
+        ----------
+        value : object
+            What the student returned.
+        what : str
+            How to name it in messages, e.g. ``"translate()"``.
+        shape : tuple, optional
+            Expected shape; ``None`` entries match any length.
+        dtype : dtype, optional
+            Exact dtype required (e.g. ``np.uint8`` for images).
+        kind : str, optional
+            Required dtype kinds, e.g. ``"f"`` or ``"iuf"`` (numbers) or ``"b"``.
+        finite : bool
+            Require every value to be finite.
+
+        Returns
+        -------
+        ndarray
+            ``value`` (lists of numbers are accepted and converted when only
+            ``kind`` is constrained).
+        """
+        if isinstance(value, (list, tuple)) and dtype is None:
+            try:
+                value = np.asarray(value, dtype=float)
+            except (TypeError, ValueError):
+                pass
+        if not isinstance(value, np.ndarray):
+            self.fail(f"{what} returned {_type_name(value)}; expected a numpy array"
+                      + (f" of shape {_shape_text(shape)}" if shape is not None else ""))
+        if shape is not None:
+            if value.ndim != len(shape) or any(s is not None and s != v for s, v in zip(shape, value.shape)):
+                if len(shape) == 2 and None not in shape and shape[0] != shape[1] and value.shape == shape[::-1]:
+                    self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
+                              "it looks transposed (rows and columns exchanged)",
+                              mistake="the result is transposed")
+                self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}")
+        if dtype is not None and value.dtype != np.dtype(dtype):
+            self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}",
+                      hint="images stay uint8: convert with np.clip(x, 0, 255).astype(np.uint8)"
+                      if np.dtype(dtype) == np.uint8 else "")
+        if kind is not None and value.dtype.kind not in kind:
+            names = {"f": "float", "i": "integer", "u": "unsigned integer", "b": "bool", "c": "complex"}
+            wanted = " or ".join(names[k] for k in kind)
+            hint = ""
+            if "f" in kind and value.dtype.kind in "iub":  # a beginner's integer (or uint8) array
+                hint = (uint8_wraps(value) or "build it with dtype=float (an array of whole numbers is an "
+                        "integer array) or convert it with .astype(np.float64)")
+            self.fail(f"{what} returned dtype {value.dtype}; expected {wanted}", hint=hint)
+        if finite and value.dtype.kind in "fc" and not np.all(np.isfinite(value)):
+            self.fail(f"{what} returned NaN or infinite values")
+        return value
+
+    # ------------------------------------------------------------ properties
+    def for_all(self, strategy, body, *, max_examples: int | None = None, describe=repr):
+        """Run ``body(example)`` on examples drawn by Hypothesis (grading profile).
+
+        On failure the smallest failing example (after shrinking) is added to the
+        message. The examples are drawn for this submission (:attr:`inputs`): the
+        same files meet the same ones on every run and machine, other files other
+        ones. Examples of a property that passed are replayed without Hypothesis's
+        engine the next time (:mod:`autograder.engine.examples`); Hypothesis takes over at
+        the first one that fails.
+        """
+        from . import examples
+
+        seed = self.inputs.seed(self.check.id, self._properties)
+        where = examples.key(self.check, self._properties, strategy, max_examples, seed)
+        self._properties += 1
+        passed = self._replay(examples.recorded(where), body)
+        if passed is None:
+            return
+        # Only now, with examples to draw, is Hypothesis needed (see autograder.engine.strategies).
+        from hypothesis import errors, given, seed as seeded, settings
+
+        from .properties import grading_settings
+        from .strategies import build
+
+        strategy = build(strategy)
+        last, seen = [], []
+
+        @seeded(seed)
+        @settings(grading_settings(max_examples))
+        @given(strategy)
+        def property_holds(example):
+            last[:] = [example]
+            seen.append(example)
+            if len(seen) <= len(passed) and examples.same(example, passed[len(seen) - 1]):
+                return  # it passed a moment ago, in the replay: Hypothesis draws the same examples
+            passed.clear()  # from here on, every example is really run
+            body(example)
+
+        try:
+            with _ONE_ENGINE:
+                property_holds()
+        except StudentFailure as exc:
+            if exc.outcome.kind not in _FATAL_KINDS and last:  # fatal ones fail for every input
+                exc.message += self._counterexample(describe(last[0]))
+            raise
+        except Fail as exc:
+            if last:
+                exc.message += self._counterexample(describe(last[0]))
+            raise
+        except errors.Flaky:
+            self.fail("your function gave different answers for the same input "
+                      "(does it depend on randomness or on earlier calls?)")
+        examples.record(where, seen)
+
+    def _replay(self, recorded: list | None, body) -> list | None:
+        """Run ``body`` on recorded examples: None if every one passed, else those
+        that passed before the first that did not (Hypothesis then takes over)."""
+        for index, example in enumerate(recorded or ()):
+            before = (len(self.outputs), len(self.modified_inputs), len(self.tips),
+                      len(self._pictures), set(self._fatal))
+            try:
+                body(example)
+            except Exception:  # noqa: BLE001 - Hypothesis runs it again and reports it its own way
+                # It runs this example again: what the call printed or changed is recorded
+                # then (unless the function may not be called again: then it is not).
+                if set(self._fatal) == before[4]:
+                    del self.outputs[before[0]:], self.modified_inputs[before[1]:]
+                    del self.tips[before[2]:], self._pictures[before[3]:]
+                return list(recorded[:index])
+        return None if recorded else []
+
+    def _counterexample(self, example: str) -> str:
+        if self.inputs.secret:  # the course's inputs: a student's own run draws others
+            return (f"\nSmallest failing input found: {example}"
+                    "\n(inputs drawn for this submission: try this one directly, "
+                    "your own runs draw others)")
+        before, after = self.inputs.rerun
+        return (f"\nSmallest failing input found: {example}"
+                f"\n(the same inputs every run of these files: re-run with {before}{self.check.exercise.id}{after})")
+
+    # ------------------------------------------------------------ pictures
+    def images(self, title: str, caption: str = "", **labelled: np.ndarray):
+        """Attach images side by side, e.g. ``t.images("rotate", input=a, yours=b)``.
+
+        Pictures are encoded only if the grading keeps them (see
+        :func:`~autograder.engine.runner.grade`'s ``pictures``), on another thread while
+        grading goes on; an image may also be given as a function that draws it
+        (``matches=lambda: matches_picture(...)``), then drawn only in that case. So
+        the arrays must not change after the check, and a drawing function must not
+        call student code.
+        """
+        def artifact():
+            items = []
+            for label, image in labelled.items():
+                if callable(image):  # drawn only now that it is kept
+                    image = image()
+                if image is None:
+                    continue
+                try:  # what the student returned may not be drawable (a 0-d array): leave it out
+                    items.append(pictures.picture_item(label.replace("_", " "), image))
+                except ValueError:
+                    pass
+            return Artifact("images", title, items, caption)
+
+        self._pictures.append(artifact)
+
+    def compare_images(self, title: str, source, expected, got, valid=None, caption: str = ""):
+        """Attach input, expected, the student's output and a difference heat map."""
+        heat = None
+        if isinstance(got, np.ndarray) and got.shape[:2] == expected.shape[:2]:
+            heat = pictures.deferred_heatmap(expected, got, valid)  # drawn only if pictures are kept
+        self.images(title, caption, input=source, expected=expected, yours=got, difference=heat)
+
+    def svg(self, title: str, svg: str, caption: str = ""):
+        """Attach an inline SVG plot."""
+        self._pictures.append(lambda: Artifact("svg", title, [{"label": "", "svg": svg}], caption))
+
+    def artifacts(self) -> list[Artifact]:
+        """The attached pictures, encoded now."""
+        return [make() for make in self._pictures]
+
+    # ------------------------------------------------------------ sharing
+    def shared(self, key, compute):
+        """``compute()`` once per grading, shared by every check that asks for ``key``.
+
+        For an expensive student call several checks judge (a panorama, a
+        calibration): the value, or the student's failure, is remembered on the
+        sandbox, so each check sees the same outcome.
+        """
+        cache = self.sandbox.shared
+        if key not in cache:
+            try:
+                cache[key] = (True, compute())
+            except StudentFailure as failure:
+                cache[key] = (False, failure)
+        ok, value = cache[key]
+        if ok:
+            return value
+        raise StudentFailure(value.outcome, value.message)
+
+
+def _float_arrays(value, depth: int = 0):
+    """The float arrays (and floats) in a value, its tuples, lists and dicts (a few levels)."""
+    if isinstance(value, np.ndarray) and value.dtype.kind == "f":
+        yield value
+    elif isinstance(value, float):
+        yield np.array(value)
+    elif isinstance(value, (tuple, list)) and depth < 3:
+        for item in value[:64]:
+            yield from _float_arrays(item, depth + 1)
+    elif isinstance(value, dict) and depth < 3:
+        for item in list(value.values())[:64]:
+            yield from _float_arrays(item, depth + 1)
+
+
+def _whole_numbers(value) -> bool:
+    """Whether a returned value holds a float array of whole numbers only, not all zero."""
+    for array in _float_arrays(value):
+        finite = array[np.isfinite(array)]
+        if finite.size and np.any(finite != 0) and np.array_equal(finite, np.round(finite)):
+            return True
+    return False
+
+
+def _fractional(arguments) -> bool:
+    """Whether the arguments hold a float with a fractional part."""
+    for array in _float_arrays(arguments):
+        finite = array[np.isfinite(array)]
+        if finite.size and not np.array_equal(finite, np.round(finite)):
+            return True
+    return False
+
+
+def _type_name(value) -> str:
+    if value is None:
+        return "None"
+    return f"a {type(value).__name__}"
+
+
+def _shape_text(shape) -> str:
+    inner = ", ".join("N" if s is None else str(s) for s in shape)
+    return f"({inner},)" if len(shape) == 1 else f"({inner})"

@@ -1,0 +1,463 @@
+"""Judgements several lab suites share: a returned matrix, a warped image.
+
+Each judge checks the form of the answer (with messages that name expected and
+got), compares it with the truth, and when it is wrong compares it with what the
+usual mistakes would give, so the feedback can name the mistake.
+
+A mistake is named only when it is confirmed (:func:`name_mistake`): its answer
+reproduces the student's on the failing input *and* on a second input chosen to
+tell the candidates apart (a :class:`Probe`, whose student answer is asked for
+through ``t.call``). Otherwise the message says what is measurably wrong.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any, Callable
+
+import cv2
+import numpy as np
+
+from fixtures.images import as_homography, coverage, warp
+
+from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
+from .checks import StudentFailure, Trial, Verdict, partial, passed
+from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
+                      format_arrays_apart, max_abs_error, projective_distance, warp_error)
+
+IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
+FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
+
+
+# ---------------------------------------------------------------- naming, confirmed
+@dataclass(frozen=True)
+class Probe:
+    """A second input, independent of the failing one, on which the candidate mistakes
+    answer differently: a name stands only if the student's answer there is the named
+    mistake's answer too.
+
+    Parameters
+    ----------
+    key : str
+        Names the input within the check: the student is asked once per trial
+        (:meth:`autograder.engine.checks.Trial.probe`).
+    answer : callable () -> object
+        The student's answer on the probe input, through ``t.call`` (a failing call, or
+        an answer not of the documented form, confirms nothing).
+    candidates : callable () -> dict
+        What each candidate mistake answers there, under the same names as on the
+        failing input.
+    truth : object, optional
+        The right answer there. A mistake that answers it rightly (its effect does not
+        show on this input) is confirmed by a right answer: the probe then tells it
+        from the mistakes that do show.
+    distance : callable (answer, candidate) -> float, optional
+        Filled in by the judge that uses the probe when None.
+    tolerance : float, optional
+        How close the student's answer must be to the named mistake's (filled in by
+        the judge when None).
+    alike : callable (candidate, candidate) -> bool, optional
+        Whether two candidates answer alike (default: closer than the match itself).
+    """
+
+    key: str
+    answer: Callable[[], Any]
+    candidates: Callable[[], dict]
+    truth: Any = None
+    distance: Callable | None = None
+    tolerance: float | None = None
+    alike: Callable | None = None
+
+    def completed(self, distance, tolerance, alike=None) -> "Probe":
+        """This probe, with the judge's distance, tolerance and likeness where it has none."""
+        return replace(self, distance=self.distance or distance,
+                       tolerance=tolerance if self.tolerance is None else self.tolerance,
+                       alike=self.alike or alike)
+
+
+def confirm(t: Trial, named: str | None, probe: Probe | None, margin: float = 3.0) -> str | None:
+    """The part of ``named`` (a mistake, or several that answered the failing input alike,
+    joined as :func:`~autograder.engine.compare.closest` joins them) that ``probe`` confirms; None
+    when nothing is confirmed, or there is no probe: a name is never a guess.
+
+    A named mistake is confirmed when the student's answer on the probe input is within
+    the probe's tolerance of that mistake's answer there, and ``margin`` times closer to
+    it than to every other candidate (and the truth) answering differently.
+    """
+    if not named or probe is None:
+        return None
+    answer = t.probe(probe.key, probe.answer)
+    if answer is None:
+        return None
+    candidates = dict(probe.candidates())
+
+    def apart(a, b) -> float:
+        try:
+            with np.errstate(all="ignore"):
+                d = float(probe.distance(a, b))
+        except (ValueError, TypeError, ArithmeticError, np.linalg.LinAlgError, cv2.error):
+            return float("inf")
+        return d if d == d else float("inf")
+
+    scored = {name: apart(answer, candidate) for name, candidate in candidates.items()}
+    kept = [name for name in named.split(SAME_ANSWER) if scored.get(name, np.inf) <= probe.tolerance]
+    if not kept:
+        return None
+    best = min(scored[name] for name in kept)
+    ours = candidates[kept[0]]
+
+    def alike(other) -> bool:
+        if probe.alike is not None:
+            try:
+                return bool(probe.alike(ours, other))
+            except (ValueError, TypeError, ArithmeticError, np.linalg.LinAlgError, cv2.error):
+                return False
+        # Answers closer than a tenth of the tolerance cannot be told apart at this tolerance
+        # (a mistake that answers rightly here differs from the truth by rounding only).
+        return apart(ours, other) <= max(best, 0.1 * probe.tolerance, 1e-12)
+
+    rivals = [scored[name] for name, candidate in candidates.items() if name not in kept and not alike(candidate)]
+    if probe.truth is not None and not alike(probe.truth):
+        rivals.append(apart(answer, probe.truth))
+    if any(d <= margin * best for d in rivals):
+        return None
+    return SAME_ANSWER.join(kept)
+
+
+def name_mistake(t: Trial, got, candidates: dict, distance, tolerance: float, truth=None,
+                 probe: Probe | None = None, margin: float = 3.0) -> str | None:
+    """The mistake that explains ``got`` on the failing input (:func:`~autograder.engine.compare.closest`)
+    and again on the ``probe``'s input (:func:`confirm`); None otherwise."""
+    named = closest(got, candidates, distance, tolerance, truth=truth, margin=margin)
+    if named and probe is not None:
+        probe = probe.completed(distance, tolerance)
+    return confirm(t, named, probe, margin)
+
+
+def format_matrix(matrix, precision: int = 4) -> str:
+    return np.array2string(np.asarray(matrix, float), precision=precision, suppress_small=True)
+
+
+def digits_apart(value: float, limit: float, digits: int = 3) -> str:
+    """``value`` with enough significant digits that it never reads as ``limit``
+    (:func:`autograder.engine.compare.format_apart`)."""
+    return format_apart(value, limit, digits)
+
+
+def fingerprint(*values) -> str:
+    """A short key for a probe input (arrays by their bytes, other values by repr)."""
+    import hashlib
+
+    digest = hashlib.sha1()
+    for value in values:
+        if isinstance(value, np.ndarray):
+            digest.update(f"{value.dtype}{value.shape}".encode())
+            digest.update(np.ascontiguousarray(value).tobytes())
+        elif isinstance(value, (tuple, list)):
+            digest.update(fingerprint(*value).encode())
+        elif isinstance(value, dict):
+            digest.update(fingerprint(*sorted(value.items(), key=lambda item: str(item[0]))).encode())
+        else:
+            digest.update(repr(value).encode())
+    return digest.hexdigest()[:16]
+
+
+def over_variants(distance, ndim: int):
+    """``distance`` between answers of ``ndim`` dimensions, either of which may be a stack of
+    textbook variants (one more dimension): the distance of the nearest pair."""
+    def nearest(a, b) -> float:
+        firsts = list(a) if np.ndim(a) > ndim else [a]
+        seconds = list(b) if np.ndim(b) > ndim else [b]
+        return min(float(distance(x, y)) for x in firsts for y in seconds)
+    return nearest
+
+
+def call_probe(t: Trial, function: str, args=(), kwargs=None, *, candidates, truth=None,
+               shape=None, kind: str | None = "iuf", **fields) -> Probe:
+    """A :class:`Probe` whose student answer is ``function(*args, **kwargs)`` (an array of
+    ``shape``, when given; any value otherwise). ``candidates`` is a dict or a callable
+    giving one; ``fields`` are the other :class:`Probe` fields."""
+    kwargs = dict(kwargs or {})
+
+    def answer():
+        value = t.call(function, *args, **kwargs)
+        if shape is None:
+            return value
+        return t.expect_array(value, function, shape=shape, kind=kind, finite=True)
+
+    chosen = candidates if callable(candidates) else (lambda: candidates)
+    return Probe(f"{function}/{fingerprint(args, kwargs)}", answer, chosen, truth, **fields)
+
+
+def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3),
+                 up_to_scale: bool = False, rtol: float = 1e-6, probe: Probe | None = None) -> np.ndarray:
+    """Compare a returned matrix with the truth; name the mistake when one fits.
+
+    Parameters
+    ----------
+    what : str
+        The call, as the student reads it: ``"rotation_matrix(30)"``.
+    got : object
+        What the student returned.
+    expected : array
+        The true matrix.
+    mistakes : dict of str -> array, optional
+        What each usual mistake would return.
+    up_to_scale : bool
+        Compare projective matrices up to scale and sign.
+    rtol : float
+        Tolerance, relative to the largest entry (or to unit norm, up to scale), raised to
+        float32's precision where it is tighter (:func:`autograder.engine.compare.at_precision`).
+    probe : Probe, optional
+        A second input whose answer confirms a mistake that ``mistakes`` names
+        (its truth required; :func:`call_probe` builds one). Without it no mistake is named.
+    """
+    got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
+    scale = 1.0 if up_to_scale else max(1.0, float(np.abs(expected).max()))
+    distance = projective_distance if up_to_scale else max_abs_error
+    tolerance = at_precision(rtol * scale, scale)
+    if distance(got, expected) <= tolerance:
+        return got
+    integers = integer_entries(got, expected)
+    if integers:
+        t.fail(f"{what} is wrong: {integers}", mistake="an integer matrix: its fractions are cut off")
+    named = closest(got, mistakes or {}, distance, 1e3 * rtol * scale, truth=expected)
+    if named and probe is not None:
+        probe_scale = 1.0 if up_to_scale else max(1.0, float(np.abs(np.asarray(probe.truth, float)).max()))
+        mistake = confirm(t, named, probe.completed(distance, 1e3 * rtol * probe_scale))
+        if mistake:
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    shown, wanted = format_arrays_apart(got, expected)
+    t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale)}.\n"
+           f"It returned\n{shown}\nexpected\n{wanted}")
+
+
+def where_points_differ(got, expected, tolerance: float, names=("x", "y")) -> str:
+    """Which points, and which coordinates of them, are wrong, in words.
+
+    ``got`` and ``expected`` are (N, D) arrays; a coordinate is wrong when it is
+    off by more than ``tolerance`` (or not finite). ``names`` name the columns.
+    """
+    got, expected = np.asarray(got, np.float64), np.asarray(expected, np.float64)
+    with np.errstate(invalid="ignore"):
+        wrong = ~(np.abs(got - expected) <= tolerance)
+    rows = np.flatnonzero(wrong.any(axis=1))
+    if rows.size == 0:
+        return "nowhere beyond the tolerance"
+    columns = [name for name, bad in zip(names, wrong.any(axis=0)) if bad]
+    which = "every point" if rows.size == len(got) else \
+        f"{rows.size} of {len(got)} points (the first is row {rows[0]})"
+    if len(columns) < len(names):
+        return f"for {which}, in {' and '.join(columns)} only"
+    return f"for {which}"
+
+
+_ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
+
+
+def where_matrices_differ(got, expected, up_to_scale: bool = False) -> str:
+    """Where the error of ``got`` lies, in words: "in its third row", "in every entry"...
+
+    The entries carrying the error are those at least a tenth of the largest
+    entry error (up to scale, both matrices at unit norm and the same sign); the
+    rows or the columns holding them are named, whichever are fewer.
+    """
+    got, expected = np.asarray(got, np.float64), np.asarray(expected, np.float64)
+    if got.ndim == 1:
+        got, expected = got[None, :], expected[None, :]
+    if up_to_scale and np.linalg.norm(got) > 0 and np.linalg.norm(expected) > 0:
+        got, expected = got / np.linalg.norm(got), expected / np.linalg.norm(expected)
+        if np.linalg.norm(got + expected) < np.linalg.norm(got - expected):
+            got = -got
+    error = np.abs(got - expected)
+    wrong = error >= 0.1 * error.max()
+    if wrong.all() or got.ndim != 2 or max(got.shape) > len(_ORDINALS):
+        return "in every entry"
+    if wrong.sum() == 1:
+        (row, column), = zip(*np.nonzero(wrong))
+        return f"in entry [{row}, {column}] only" if got.shape[0] > 1 else f"in entry [{column}] only"
+    rows, columns = np.flatnonzero(wrong.any(axis=1)), np.flatnonzero(wrong.any(axis=0))
+    kind, where, count = ("row", rows, got.shape[0]) if len(rows) <= len(columns) \
+        else ("column", columns, got.shape[1])
+    if len(where) == count:  # spread over every row and every column
+        if wrong.sum() > 3:
+            return "in every row and every column"
+        return "in entries " + ", ".join(f"[{i}, {j}]" for i, j in zip(*np.nonzero(wrong)))
+    names = [_ORDINALS[i] for i in where]
+    listed = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+    return f"in its {listed} {kind}{'s' if len(names) > 1 else ''}"
+
+
+def warp_probe(t: Trial, function: str, source, M, mistakes: dict, args=None, kwargs=None,
+               dsize=None) -> Probe:
+    """A :class:`Probe` for image warps: the student's ``function(*args, **kwargs)`` (``args``
+    by default ``(source,)``: pass the map too when the function takes it) compared with ``source`` warped by each mistake's map
+    (``mistakes``: name -> map) and by the true map ``M``, on the output of size ``dsize``
+    (the input's by default)."""
+    width, height = dsize or (source.shape[1], source.shape[0])
+    expected_shape = (height, width) + source.shape[2:]
+    args = (source,) if args is None else tuple(args)
+    kwargs = dict(kwargs or {})
+
+    def answer():
+        got = t.call(function, *args, **kwargs)
+        if not (isinstance(got, np.ndarray) and got.shape == expected_shape and got.dtype == np.uint8):
+            return None
+        return got
+
+    return Probe(f"{function}/{fingerprint(args, kwargs)}", answer, lambda: mistakes, M,
+                 distance=lambda got, map_: warp_distance(got, source, map_, dsize),
+                 tolerance=IMAGE_TOLERANCE, alike=_same_map)
+
+
+def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, show=True,
+               probe: Probe | None = None) -> Verdict:
+    """Judge an image warped by ``M`` (affine or homography) against the oracle.
+
+    Full credit when the covered area matches (any sensible interpolation or
+    pixel-centre convention) and the uncovered area is black; half when only the
+    fill is wrong; otherwise the mistake is named when one of ``mistakes``
+    (name -> the map that mistake applies) explains the image, and explains the
+    student's image on the ``probe``'s input too (:func:`warp_probe` builds one).
+    """
+    width, height = dsize or (source.shape[1], source.shape[0])
+    expected_shape = (height, width) + source.shape[2:]
+    expected = warp(source, M, dsize)
+    inside, outside = coverage(M, source.shape, dsize)
+    if isinstance(got, np.ndarray) and show:
+        t.compare_images(what, source, expected, got, valid=inside | outside,
+                         caption="the difference map is grey where the border is not judged")
+    if isinstance(got, np.ndarray) and got.shape != expected_shape:
+        if got.shape[:2] == expected_shape[1::-1]:
+            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
+                   "width and height are swapped (shapes are (rows, columns), dsize is (width, height))",
+                   mistake="width and height are swapped")
+        if got.shape[:2] == expected_shape[:2]:
+            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
+                   "keep the input's channels (grey in, grey out)", mistake="the channels are not kept")
+        size_rule = "" if dsize else ": warps keep the input's size (content that leaves the frame is cut off)"
+        t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}{size_rule}")
+    got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)
+    error = warp_error(got, source, M, dsize, good_enough=IMAGE_TOLERANCE / 2, inside=inside)
+    if error <= IMAGE_TOLERANCE:
+        nonblack = fill_fraction(got, outside)
+        if nonblack > FILL_TOLERANCE:
+            return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
+                                "pixels with no source pixel are not black.",
+                           hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)",
+                           mistake="the fill is not black")
+        return passed(f"mean difference {error:.1f} grey levels on the covered area")
+    if channels_reversed(got, expected):
+        t.fail(f"{what} is wrong: {RGB_FOR_BGR}.", mistake="the colour channels are reversed (RGB for BGR)")
+    explained = []  # the mistakes whose map explains the image (a name only when one does)
+    for mistake, wrong_M in (mistakes or {}).items():
+        try:
+            if _explains(got, source, wrong_M, dsize):
+                explained.append((mistake, wrong_M))
+        except np.linalg.LinAlgError:
+            continue
+    if explained and all(_same_map(explained[0][1], wrong_M) for _, wrong_M in explained):
+        mistake = confirm(t, SAME_ANSWER.join(name for name, _ in explained), probe)
+        if mistake:
+            t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
+           "(see the pictures).")
+
+
+def _explains(got, source, wrong_M, dsize) -> bool:
+    """Whether ``got`` is ``source`` warped by ``wrong_M`` (a mistake's map)."""
+    return warp_distance(got, source, wrong_M, dsize) <= IMAGE_TOLERANCE
+
+
+def warp_distance(got, source, M, dsize=None) -> float:
+    """How far ``got`` is from ``source`` warped by the map ``M`` (mean blurred grey levels).
+
+    A wrong homography may send most of the image behind the camera (w < 0), where
+    :func:`fixtures.images.coverage` sees nothing but OpenCV still samples (it divides
+    by w whatever its sign): such a map is judged where its own warp has content
+    (infinite when it has almost none).
+    """
+    error = warp_error(got, source, M, dsize, good_enough=IMAGE_TOLERANCE)
+    if np.isfinite(error):
+        return error
+    expected = warp(source, M, dsize)
+    content = expected != 0 if expected.ndim == 2 else np.any(expected != 0, axis=2)
+    inner = np.zeros_like(content)  # away from the content's edges (interpolation differs there)
+    inner[2:-2, 2:-2] = content[:-4, 2:-2] & content[4:, 2:-2] & content[2:-2, :-4] & content[2:-2, 4:]
+    if inner.mean() < 0.05:
+        return float("inf")
+    return blurred_difference(got, expected, inner)
+
+
+def _same_map(first, second) -> bool:
+    """Whether two pixel maps (affine or homography) are the same map, up to scale."""
+    return projective_distance(as_homography(first), as_homography(second)) < 1e-6
+
+
+def _same_result(first, second) -> bool:
+    """Whether two returned values are exactly equal (arrays, or tuples/lists of arrays)."""
+    if isinstance(first, (tuple, list)) and isinstance(second, (tuple, list)):
+        return len(first) == len(second) and all(_same_result(a, b) for a, b in zip(first, second))
+    if not (isinstance(first, np.ndarray) and isinstance(second, np.ndarray)):
+        return False
+    if first.shape != second.shape or first.dtype.kind not in "biuf" or second.dtype.kind not in "biuf":
+        return False
+    return bool(np.array_equal(first, second, equal_nan=first.dtype.kind == "f" == second.dtype.kind))
+
+
+def parameter_ignored(call, parameter: str, values, informative=None) -> bool:
+    """Whether ``call(**{parameter: value})`` gives exactly the same, non-constant result for
+    both ``values`` (False when a call fails, or when ``informative(result)`` says the
+    result could not show the parameter anyway)."""
+    try:
+        first, second = (call(**{parameter: value}) for value in values)
+    except StudentFailure:
+        return False
+    if informative is not None and not informative(first):
+        return False
+    return _same_informative_result(first, second)
+
+
+def _same_informative_result(first, second) -> bool:
+    # A constant output ignores every parameter: that is not this parameter's mistake.
+    constant = isinstance(first, np.ndarray) and (
+        first.size == 0 or np.ptp(np.nan_to_num(first.astype(float))) == 0)
+    return _same_result(first, second) and not constant
+
+
+def _ignored(t: Trial, what: str, parameter: str, values, result: str):
+    first_value, second_value = values
+    t.fail(f"{what}: {parameter}={first_value!r} and {parameter}={second_value!r} give the same "
+           f"{result}: {parameter} is ignored.",
+           hint=f"use the {parameter} argument instead of a fixed value",
+           mistake=f"{parameter} is ignored")
+
+
+def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, result: str = "result",
+                         informative=None):
+    """Fail naming ``parameter`` as ignored when two values of it give exactly the same result.
+
+    The output alone cannot show an ignored parameter, so the student's function
+    is called again, ``call(**{parameter: value})`` for each of the two
+    ``values``. For checks that already fail: passing work never pays for the
+    probe. Returns quietly when the results differ, or when a call fails, or when
+    ``informative(result)`` is False (a result that cannot show the parameter).
+    """
+    if parameter_ignored(call, parameter, values, informative):
+        _ignored(t, what, parameter, values, result)
+
+
+def judge_parameter_changes_result(t: Trial, what: str, call, parameter: str, values,
+                                   result: str = "result") -> Verdict:
+    """A check of its own that ``parameter`` is used: ``call(**{parameter: value})`` for the two
+    ``values`` must not give exactly the same result.
+
+    For parameters whose effect the quality checks cannot see (a block size fixed at
+    its default still matches well). Unlike :func:`judge_parameter_used`, a failing
+    call fails the check (a stub is "not implemented", never "uses its parameter").
+    """
+    first, second = (call(**{parameter: value}) for value in values)
+    if _same_informative_result(first, second):
+        _ignored(t, what, parameter, values, result)
+    first_value, second_value = values
+    return passed(f"{parameter}={first_value!r} and {parameter}={second_value!r} give different {result}s")

@@ -1,0 +1,562 @@
+"""Grading a submission: discovery, execution and scoring, kept apart from reporting.
+
+:func:`grade` selects exercises from the registry, loads the submission, starts
+one sandboxed worker, runs every check in the grader's process and returns a
+:class:`~autograder.engine.results.GradingResult`. It never raises because of the
+submission; a failure inside a check is recorded as a grader error for that check.
+
+Student time is budgeted per exercise (``Limits.exercise_budget``, the seconds billed
+to its calls), and the whole grading has a wall-clock deadline (``Limits.submission_budget``
+after it began, whatever runs meanwhile: calls, restarts, other lanes, the grader's own
+judging; a call running then is stopped at it): once either is spent, the checks left
+are marked "time budget exhausted" (0 points) without calling anything, and the results
+are still complete.
+
+An exercise whose functions are all stubs (bodies that only raise
+``NotImplementedError``, see :mod:`autograder.engine.stubs`) costs almost nothing: a check
+that can only call one of them gets that function's "not implemented yet" without
+running, so no ground truth or pictures are built for it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import re
+import threading
+import time
+import traceback
+from dataclasses import replace
+from datetime import datetime, timezone
+from concurrent.futures import ThreadPoolExecutor
+from typing import Callable, Sequence
+
+from .. import __version__
+from ..loading.notebooks import point_into_notebook
+from ..loading.reading import Reading, findings_for, read_file
+from ..loading.submission import load_submission
+from ..sandbox import cache, confine
+from ..sandbox.supervisor import CallOutcome, Limits, Sandbox
+from .checks import Fail, StudentFailure, Trial, Verdict
+from .inputs import Inputs
+from .registry import Check, Exercise, discover, hidden_checks_installed, select
+from .results import (ADVICE, ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
+                      ExerciseResult, GradingResult)
+from .stubs import functions_called, stub_functions
+
+
+PICTURES = ("all", "failed", "none")
+
+
+def grade(submission_path, selectors=(), *, limits: Limits | None = None,
+          include_hidden: bool = True, pictures: str = "all",
+          on_check: Callable[[Exercise, CheckResult], None] | None = None,
+          forbid: dict[str, list[str]] | None = None, lanes: int = 1,
+          sandboxes: Sequence[Sandbox] = (), inputs_secret: str | None = None,
+          refuse_weaker: bool = False, rerun: tuple[str, str] | None = None) -> GradingResult:
+    """Grade the submission at ``submission_path``.
+
+    Parameters
+    ----------
+    submission_path : path
+        Folder, ``.py``, ``.zip`` or ``.ipynb`` (see :mod:`autograder.loading.submission`).
+    selectors : list of str
+        ``lab07`` or ``lab07.ex2`` style names; all exercises when empty.
+    limits : Limits, optional
+        Sandbox limits.
+    include_hidden : bool
+        Run hidden checks (the instructor's copy and the container do).
+    pictures : {"all", "failed", "none"}
+        Which checks keep their pictures (encoding them costs time; keep them
+        only where someone will look).
+    on_check : callable, optional
+        Called after every check, e.g. to advance a progress bar (from the lanes'
+        threads when there are several).
+    forbid : dict, optional
+        The instructor's extra rules (course configuration ``forbid``):
+        ``{"lab08.homography_ransac": ["cv2.findHomography"]}``.
+    lanes : int
+        How many labs are graded at once, each lane with a worker of its own.
+        Labs are separate modules of the submission, so while one lane waits for the
+        student's code another judges: on two cores, two lanes grade a whole
+        submission in about two thirds of the time. Each lab is graded whole in one
+        lane, its exercises in order; the labs with the most checks are started
+        first. A batch grades several submissions at once instead (one lane each).
+    sandboxes : sequence of Sandbox, optional
+        Sandboxes made without a submission, perhaps already started
+        (:meth:`Sandbox.start`, so the workers boot while the caller loads), one per
+        lane (lanes without one get their own), with ``limits.shared_by(lanes)``
+        (each lane's worker a fixed share of the submission's memory): the submission is
+        admitted into each, and all are closed at the end, whatever happens.
+    inputs_secret : str, optional
+        The course's secret, from which with the submission's content its property
+        checks draw their inputs (:class:`~autograder.engine.inputs.Inputs`); None:
+        ``$AUTOGRADER_INPUTS_SECRET``, else the content alone.
+    refuse_weaker : bool
+        Raise :class:`~autograder.sandbox.confine.WeakerConfinement` rather than run student
+        code less confined than this machine allows (Gradescope, a batch). Otherwise
+        the result says so (``confinement_warning``) and the log warns.
+
+    The result names the confinement level the student code ran at (``confinement``).
+
+    rerun : (str, str), optional
+        How the student grades these files again, the text before and after an
+        exercise's id (``("python grade.py --submission lab7.py ", "")``): property
+        failures say it (:attr:`Inputs.rerun`; default ``python grade.py <id>``).
+
+    Raises
+    ------
+    SelectionError, SubmissionError
+        For a selector that names nothing, or a path that is not a submission.
+    WeakerConfinement
+        With ``refuse_weaker``, before any student code runs.
+    """
+    with contextlib.ExitStack() as closing:
+        for sandbox in sandboxes:
+            closing.enter_context(sandbox)
+        return _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid,
+                      lanes, list(sandboxes), closing, inputs_secret, refuse_weaker, rerun)
+
+
+def _grade(submission_path, selectors, limits, include_hidden, pictures, on_check, forbid,
+           lanes, sandboxes, closing, inputs_secret=None, refuse_weaker=False, rerun=None):
+    if pictures not in PICTURES:
+        raise ValueError(f"pictures must be one of {PICTURES}, got {pictures!r}")
+    started = time.perf_counter()
+    deadline = time.monotonic() + (limits or Limits()).submission_budget
+    exercises = select(selectors, include_hidden)
+    modules = sorted({ex.lab.module for ex in exercises})
+    every_module = {lab.module for lab in discover().values()}  # a lone file is never another lab's
+    with load_submission(submission_path, modules, every_module=every_module) as submission:
+        result = GradingResult(submission.name, submission.content_hash, __version__,
+                               hidden_included=include_hidden and hidden_checks_installed(),
+                               notes=_reading_notes(submission),
+                               graded_at=datetime.now(timezone.utc).isoformat(timespec="seconds"))
+        labs = _labs_heaviest_first(exercises)
+        inputs = Inputs.for_submission(submission.content_hash, inputs_secret)
+        if rerun is not None:
+            inputs = replace(inputs, rerun=tuple(rerun))
+        for sandbox in sandboxes:
+            sandbox.admit(submission.path)
+        # A lab of stubs only costs next to nothing: it needs no lane of its own.
+        with_work = [lab for lab in labs if not all(_stubs(exercise, submission) for exercise in lab)]
+        lane_limits = (limits or Limits()).shared_by(max(1, lanes))
+        if not sandboxes or not sandboxes[0].ready():  # none given, or its level does not work here
+            sandboxes[:1] = [closing.enter_context(_first_sandbox(submission.path, lane_limits, sandboxes[:1]))]
+        _confinement_of(sandboxes[0], result, refuse_weaker)  # the worker is ready: no student code ran yet
+        while len(sandboxes) < min(max(1, lanes), len(with_work)):
+            sandboxes.append(closing.enter_context(
+                Sandbox(submission.path, lane_limits, confinement=sandboxes[0].confinement)))
+            sandboxes[-1].start()  # it boots while the first lane grades
+        sandboxes = sandboxes[:max(1, min(lanes, len(labs)))]
+        graded: dict[str, ExerciseResult] = {}
+
+        stopping = threading.Event()  # set when grading ends early (an interrupt, a grader bug)
+
+        def lane(sandbox: Sandbox):
+            budget = _Budget(sandbox, deadline)
+            while labs and not stopping.is_set():
+                try:
+                    lab = labs.pop(0)  # atomic: each lab goes to one lane
+                except IndexError:
+                    return
+                for exercise in lab:
+                    if stopping.is_set():
+                        return
+                    checks = [c for c in exercise.checks if include_hidden or not c.hidden]
+                    budget.start_exercise()
+                    rules = _rules_for(exercise, forbid or {})
+                    graded[exercise.id] = _grade_exercise(
+                        sandbox, exercise, checks, pictures, on_check, submission, budget, rules, painter,
+                        inputs)
+
+        # Ground truth is kept between gradings only where the worker cannot write it.
+        with cache.enabled(sandboxes[0].confinement.hides_files), Painter() as painter:
+            if len(sandboxes) == 1:
+                lane(sandboxes[0])
+            else:
+                with ThreadPoolExecutor(len(sandboxes), thread_name_prefix="lane") as pool:
+                    lanes_running = [pool.submit(lane, sandbox) for sandbox in sandboxes]
+                    try:
+                        for finished in lanes_running:
+                            finished.result()
+                    except BaseException:  # Ctrl-C included: the other lanes stop too, at once
+                        stopping.set()
+                        for sandbox in sandboxes:
+                            sandbox.interrupt()
+                        raise
+            painter.finish()
+        result.exercises = [graded[exercise.id] for exercise in exercises]
+        result.student_seconds = round(sum(sandbox.student_seconds for sandbox in sandboxes), 6)
+        result.student_wall_seconds = round(_covered([span for s in sandboxes for span in s.billed_spans]), 6)
+        _point_into_notebooks(result, exercises, submission)
+    result.seconds = round(time.perf_counter() - started, 6)
+    return result
+
+
+def _first_sandbox(submission_dir, limits, tried=()) -> Sandbox:
+    """A sandbox at the strongest confinement level that works here: a worker that gets
+    ready at the strongest level shows that it works (what :func:`confine.detect` would
+    probe with a process of its own, once per process); else the level the probe finds.
+    ``tried``: a sandbox whose worker did not get ready (closed here)."""
+    for failed in tried:
+        failed.close()
+    if not tried:
+        sandbox = Sandbox(submission_dir, limits, confinement=confine.strongest_candidate())
+        if sandbox.ready():
+            return sandbox
+        sandbox.close()
+    return Sandbox(submission_dir, limits)
+
+
+def _confinement_of(sandbox: Sandbox, result: GradingResult, refuse_weaker: bool) -> None:
+    """Record the level ``sandbox`` confines at; a level weaker than this machine allows is
+    refused (``refuse_weaker``) or said loudly: in the result, and in the log."""
+    result.confinement = sandbox.confinement.level
+    result.confinement_warning = confine.shortfall(sandbox.confinement)
+    if result.confinement_warning and refuse_weaker:
+        raise confine.WeakerConfinement(result.confinement_warning)
+    if result.confinement_warning:
+        logging.getLogger("autograder").warning("%s", result.confinement_warning)
+
+
+def _covered(spans: list[tuple[float, float]]) -> float:
+    """The length of the union of the ``(start, end)`` spans."""
+    covered, reached = 0.0, float("-inf")
+    for start, end in sorted(spans):
+        if end > reached:
+            covered += end - max(start, reached)
+            reached = end
+    return covered
+
+
+def _labs_heaviest_first(exercises: list[Exercise]) -> list[list[Exercise]]:
+    """The exercises grouped by lab (in their order), the labs with the most checks first:
+    the order in which lanes take them (the longest first, so that lanes end together)."""
+    labs: dict[str, list[Exercise]] = {}
+    for exercise in exercises:
+        labs.setdefault(exercise.lab.key, []).append(exercise)
+    return sorted(labs.values(), key=lambda lab: -sum(len(exercise.checks) for exercise in lab))
+
+
+class _Budget:
+    """A lane's time: each exercise's budget of billed student seconds, and the submission's
+    wall-clock deadline (``time.monotonic()``), the same for every lane."""
+
+    def __init__(self, sandbox: Sandbox, deadline: float):
+        self.sandbox, self.deadline = sandbox, deadline
+        self.limits = sandbox.limits
+        sandbox.set_deadline(deadline)  # within a check too: a call running then is stopped at it
+
+    def start_exercise(self):
+        self.sandbox.start_exercise(self.sandbox.student_seconds + self.limits.exercise_budget)
+
+    def exhausted(self) -> str:
+        """Which budget is spent ("" while there is time left)."""
+        if time.monotonic() >= self.deadline:
+            return f"time budget exhausted (the submission's {self.limits.submission_budget:g} s)"
+        if self.sandbox.remaining() <= 0:
+            return f"time budget exhausted (this exercise's {self.limits.exercise_budget:g} s)"
+        return ""
+
+
+def _rules_for(exercise: Exercise, forbid: dict) -> dict[str, tuple[str, ...]]:
+    """The instructor's forbids that concern this exercise's functions."""
+    return {function: tuple(forbid[f"{exercise.lab.key}.{function}"]) for function in exercise.signatures
+            if f"{exercise.lab.key}.{function}" in forbid}
+
+
+def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=None,
+                    budget=None, rules=None, painter=None, inputs=None) -> ExerciseResult:
+    functions = list(exercise.signatures.values())
+    rules = rules or {}
+    out = ExerciseResult(exercise.id, exercise.title, functions, rules=[
+        f"{function}() may not call {', '.join(names)} (your instructor's rule for this course)"
+        for function, names in rules.items()])
+    imported = _import(sandbox, exercise.lab.module, submission)
+    refusal = submission.refusal_for(exercise.lab.module) if submission is not None else ""
+    if not imported.ok:
+        # A missing or broken module: every check scores 0 with the same message.
+        message = imported.message
+        if imported.kind == "missing_module" and refusal:
+            message = refusal
+        elif imported.kind == "budget" and budget is not None:
+            message = budget.exhausted() or message
+        out.message = message
+        for check in checks:
+            status = ERROR if imported.kind == "grader_error" else FAILED
+            out.checks.append(CheckResult(check.name, 0.0, check.points, status,
+                                          message, hidden=check.hidden, failure=imported.kind,
+                                          traceback=imported.traceback, output=imported.output))
+            if on_check:
+                on_check(exercise, out.checks[-1])
+        return out
+    modified: list[tuple[str, str]] = []  # (function, argument) changed in place
+    stubs = _stubs(exercise, submission)
+    reading = _reading(exercise, submission)
+    for check in checks:
+        spent = budget.exhausted() if budget is not None else ""
+        stub = _only_stub_called(check, stubs)
+        if spent:
+            out.checks.append(CheckResult(check.name, 0.0, check.points, FAILED, spent,
+                                          hidden=check.hidden, failure="budget"))
+        elif stub:
+            out.checks.append(_not_implemented(check, stub))
+        else:
+            out.checks.append(run_check(sandbox, check, pictures, modified, rules, painter, inputs, reading))
+        if on_check:
+            on_check(exercise, out.checks[-1])
+    graded = [c for c in out.checks if c.max_score > 0]
+    if graded and all(c.status == NOT_IMPLEMENTED for c in graded):
+        out.message = "not implemented yet"
+    if modified:
+        out.checks.append(_in_place_advice(modified))
+    return out
+
+
+def _reading(exercise: Exercise, submission) -> Reading | None:
+    """The reading of the submission's module (see :mod:`autograder.loading.reading`), if there is one."""
+    if submission is None:
+        return None
+    api = frozenset(name for ex in exercise.lab.exercises.values() for name in ex.signatures)
+    return read_file(submission.path / f"{exercise.lab.module}.py", api)
+
+
+def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: Trial) -> Verdict:
+    """A failing verdict that names no mistake, naming the cause the submission's code shows in the
+    functions the check called (a finding of :mod:`autograder.loading.reading`), when there is one: the
+    check measured the failure, the reading says where it comes from. It takes no points."""
+    called = functions_called(check)
+    findings = findings_for(reading, called, bool(trial.whole_numbers & called))
+    if not findings:
+        return verdict
+    first, newline, rest = str(verdict.message).partition("\n")
+    finding = findings[0]
+    # "module.py, line N": a notebook's cell and line replace it (_point_into_notebooks)
+    where = finding.sentence.replace(f"(line {finding.line})",
+                                     f"({check.exercise.lab.module}.py, line {finding.line})", 1)
+    sentence = f"Reading your code: {where}."
+    return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=finding.mistake)
+
+
+def _stubs(exercise: Exercise, submission) -> frozenset[str]:
+    """The submission's stubs (functions that only raise NotImplementedError), when
+    every function of ``exercise`` is one; else none: a check might call a real one."""
+    if submission is None:
+        return frozenset()
+    stubs = stub_functions(submission.path / f"{exercise.lab.module}.py")
+    return stubs if set(exercise.signatures) <= stubs else frozenset()
+
+
+def _only_stub_called(check: Check, stubs: frozenset[str]) -> str:
+    """The stub ``check`` calls, when it names exactly one student function and that
+    one is a stub (its verdict is then known without running it); else ``""``.
+    Advice checks always run: they may turn a failure into a tip."""
+    if not stubs or check.advice:
+        return ""
+    called = functions_called(check)
+    return next(iter(called)) if len(called) == 1 and called <= stubs else ""
+
+
+def _not_implemented(check: Check, function: str) -> CheckResult:
+    """The verdict ``check`` would reach by calling the stub ``function``, without
+    building its ground truth, scenes or pictures."""
+    message = f"{function}() is not implemented yet"  # the worker's words for NotImplementedError
+    return CheckResult(check.name, 0.0, check.points, NOT_IMPLEMENTED, message,
+                       hidden=check.hidden, failure="not_implemented")
+
+
+def _import(sandbox: Sandbox, module: str, submission) -> CallOutcome:
+    """Import the module in the worker, unless loading already found why it cannot be
+    (not found, unreadable notebook); an import error names the file and line."""
+    problem = submission.problems.get(module) if submission is not None else None
+    if problem:
+        return CallOutcome(ok=False, kind="missing_module", message=problem)
+    outcome = sandbox.import_module(module)
+    if not outcome.ok and outcome.kind == "import_error" and ", line " not in outcome.message:
+        where = _innermost_frame(outcome.traceback)
+        if where:
+            outcome = replace(outcome, message=f"{outcome.message}\n  at {where}")
+    return outcome
+
+
+_FRAME = re.compile(r'File "([^"]+)", line (\d+)(?:, in \S+)?\n(?:    (.*))?')
+
+
+def _innermost_frame(traceback_text: str) -> str:
+    """``lab07_transformations.py, line 12: x = undefined_name`` from a student traceback."""
+    frames = _FRAME.findall(traceback_text or "")
+    if not frames:
+        return ""
+    filename, line, code = frames[-1]
+    return f"{filename}, line {line}" + (f": {code.strip()}" if code.strip() else "")
+
+
+def _reading_notes(submission) -> list[str]:
+    """What the student should know about how their files were read."""
+    notes = [f"graded {found} as {module}.py (the name the grader looks for); rename it to be sure"
+             for module, found in submission.renamed.items()]
+    for module, (name, converted) in submission.notebooks.items():
+        note = converted.left_out_note(name)  # one line: the statements left out, and why
+        if note:
+            notes.append(note)
+    return notes
+
+
+def _point_into_notebooks(result: GradingResult, exercises, submission) -> None:
+    """Messages and tracebacks about a module converted from a notebook name the
+    notebook's cell and line instead of the converted module's line."""
+    modules = {ex.id: ex.lab.module for ex in exercises}
+    for exercise in result.exercises:
+        module = modules.get(exercise.id)
+        if module not in submission.notebooks:
+            continue
+        name, converted = submission.notebooks[module]
+        exercise.message = point_into_notebook(exercise.message, module, name, converted)
+        for check in exercise.checks:
+            check.message = point_into_notebook(check.message, module, name, converted)
+            check.traceback = point_into_notebook(check.traceback, module, name, converted)
+
+
+def _in_place_advice(modified) -> CheckResult:
+    """The engine's own advice: a function that writes into its caller's arrays."""
+    lines = [f"{function}() modified its input array `{argument}` in place; callers do not expect that"
+             for function, argument in modified]
+    return CheckResult("inputs left unchanged", 0.0, 0.0, ADVICE, "\n".join(lines),
+                       hint="work on a copy (e.g. image = image.copy()) or write into a new array")
+
+
+def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
+              modified: list | None = None, rules: dict | None = None,
+              painter: "Painter | None" = None, inputs: Inputs | None = None,
+              reading: Reading | None = None) -> CheckResult:
+    """Run one check and turn however it ends into a scored :class:`CheckResult`.
+
+    ``modified`` collects the (function, argument) pairs the student's calls
+    changed in place; ``rules`` are the instructor's extra forbids; ``inputs``
+    where its properties draw their inputs (the submission's). With a
+    ``painter`` the check's pictures are drawn on its threads (the result's
+    ``artifacts`` are filled in by :meth:`Painter.finish`), else at once.
+    ``reading``, the submission's code read (:mod:`autograder.loading.reading`), names
+    the cause of a failure the check measured but did not name.
+    """
+    if check.advice:
+        return _run_advice(sandbox, check, modified, rules, inputs)
+    trial = Trial(sandbox, check, rules, inputs)
+    started = time.perf_counter()
+    tb, student_failure = "", ""
+    try:
+        verdict = check.func(trial)
+        if verdict is None:
+            verdict = Verdict(1.0)
+        elif not isinstance(verdict, Verdict):
+            raise TypeError(f"check returned {type(verdict).__name__}, not a Verdict")
+        status = PASSED if verdict.fraction >= 1.0 else (PARTIAL if verdict.fraction > 0 else FAILED)
+    except Fail as failure:
+        verdict, status = Verdict(0.0, failure.message, failure.hint, failure.mistake), FAILED
+    except StudentFailure as failure:
+        verdict = Verdict(0.0, failure.message)
+        status = {"not_implemented": NOT_IMPLEMENTED, "grader_error": ERROR}.get(failure.outcome.kind, FAILED)
+        tb, student_failure = failure.outcome.traceback, failure.outcome.kind
+    except Exception as exc:  # noqa: BLE001 - a bug in the grader must not stop grading
+        verdict, status = Verdict(0.0, f"grader error in this check ({type(exc).__name__}: {exc}); "
+                                       "the rest was graded - please tell your instructor"), ERROR
+        tb = ""
+        _log_grader_error(check, exc)
+    if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
+            and student_failure in ("", "exception"):
+        verdict = _named_by_reading(verdict, reading, check, trial)
+    artifacts = []
+    if pictures == "all" or (pictures == "failed" and status != PASSED):
+        artifacts = painter.draw(check, trial.artifacts) if painter else drawn(check, trial.artifacts)
+    fraction = verdict.fraction if isinstance(verdict.fraction, (int, float)) else 0.0
+    fraction = min(max(float(fraction), 0.0), 1.0) if fraction == fraction else 0.0
+    _collect(modified, trial)
+    return CheckResult(
+        name=check.name, score=round(fraction * check.points, 6), max_score=check.points,
+        status=status, message=str(verdict.message), hint=str(verdict.hint), hidden=check.hidden,
+        mistake=verdict.mistake, failure=student_failure, output="\n".join(trial.outputs)[:6000],
+        traceback=tb, artifacts=artifacts,
+        seconds=round(time.perf_counter() - started, 6),
+        student_seconds=round(trial.student_seconds, 6))
+
+
+class Painter:
+    """Draws and encodes the checks' pictures on other threads while grading goes on:
+    the grader mostly waits for the worker meanwhile, and OpenCV's drawing and
+    encoding release the GIL. A picture never costs a check its verdict: one that
+    cannot be drawn is left out (and logged)."""
+
+    def __init__(self, threads: int | None = None):
+        threads = threads or max(1, min(2, os.cpu_count() or 1))
+        self._pool = ThreadPoolExecutor(threads, thread_name_prefix="pictures")
+        self._pending: list = []
+
+    def draw(self, check: Check, make: Callable[[], list]) -> list:
+        """A list that :meth:`finish` fills with ``make()``'s artifacts."""
+        artifacts: list = []
+        self._pending.append((check, artifacts, self._pool.submit(make)))
+        return artifacts
+
+    def finish(self) -> None:
+        """Wait for every picture asked for so far."""
+        pending, self._pending = self._pending, []
+        for check, artifacts, future in pending:
+            artifacts.extend(drawn(check, future.result))
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc_info):
+        self._pool.shutdown(cancel_futures=True)
+
+
+def drawn(check: Check, make: Callable[[], list]) -> list:
+    """``make()``'s artifacts, or none if they cannot be drawn (logged): a picture never
+    costs a check its verdict."""
+    try:
+        return list(make())
+    except Exception as exc:  # noqa: BLE001
+        _log_grader_error(check, exc)
+        return []
+
+
+def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None, inputs=None) -> CheckResult:
+    """An advice check: a tip if it gave one, else silence; never a failure, never points."""
+    trial = Trial(sandbox, check, rules, inputs)
+    started = time.perf_counter()
+    status, message, hint = PASSED, "", ""
+    try:
+        check.func(trial)
+    except StudentFailure as failure:  # the graded checks report the student's failure
+        if failure.outcome.kind == "not_implemented":
+            status, message = NOT_IMPLEMENTED, failure.message
+    except Fail:
+        pass  # a tip is given with t.advise, not by failing
+    except Exception as exc:  # noqa: BLE001
+        status, message = ERROR, f"grader error in this advice ({type(exc).__name__}: {exc}); no points depend on it"
+        _log_grader_error(check, exc)
+    unimplemented = trial.not_implemented()
+    if unimplemented and status == PASSED:  # the advice caught it: a tip about a stub is no tip
+        status, message = NOT_IMPLEMENTED, unimplemented
+        trial.tips.clear()
+    if trial.tips and status == PASSED:
+        status = ADVICE
+        message = "\n".join(tip for tip, _ in trial.tips)
+        hint = " ".join(h for _, h in trial.tips if h)
+    _collect(modified, trial)
+    return CheckResult(name=check.name, score=0.0, max_score=0.0, status=status, message=message,
+                       hint=hint, hidden=check.hidden, output="\n".join(trial.outputs)[:6000],
+                       seconds=round(time.perf_counter() - started, 6),
+                       student_seconds=round(trial.student_seconds, 6))
+
+
+def _collect(modified, trial: Trial) -> None:
+    if modified is not None:
+        modified += [pair for pair in trial.modified_inputs if pair not in modified]
+
+
+def _log_grader_error(check: Check, exc: Exception):
+    logging.getLogger("autograder").error(
+        "grader error in %s:\n%s", check.id, "".join(traceback.format_exception(exc)))

@@ -1,0 +1,575 @@
+"""From the gradebook to grades: course points, overrides, late penalties, the roster, the CSVs.
+
+Files written in RESULTS (every one parses with :mod:`csv`; UTF-8, comma-separated):
+
+``grades.csv``
+    ``Student ID,Name,Status,<exercise>...,Late penalty,Adjustments,Total`` -- one
+    row per student (``Status``: graded, unreadable: <reason>, failed: <reason>,
+    pending, no submission), exercise columns in course points.
+``canvas_import.csv``
+    ``Student,ID,SIS User ID,SIS Login ID,Section,<assignment>`` then the
+    ``Points Possible`` row: Canvas's gradebook import. The grade column is
+    ``"<assignment> (<Canvas id>)"`` when the id is known (course
+    ``canvas_assignment_id``, or the roster's column of that name in a Canvas
+    export), so Canvas fills the existing assignment.
+``moodle_import.csv``
+    ``Identifier,Full name,Email address,Grade``: Moodle's offline grading
+    worksheet (``Identifier`` is ``Participant <id>``), for a Moodle download,
+    a roster with Moodle's ``Identifier`` column, or when the course's
+    ``lms_exports`` asks for it (which also turns the Canvas import off unless listed).
+``roster_unmatched.csv``
+    ``Student ID,Name,Problem``: students with no roster row and roster rows with
+    no submission (written when a roster is given). Nobody is dropped: they are
+    in the other files too, with the identities known.
+``ignored.csv``
+    ``Item,Reason``: what the upload held that is no student's submission (a
+    stray file, a link, a name no LMS gives), written when there is any.
+
+Every cell a spreadsheet would read as a formula (a leading ``=``, ``+``, ``-``,
+``@``, TAB or CR, OWASP's rule) is written with a ``'`` before it
+(:func:`spreadsheet_safe`), in every CSV the batch writes; plain numbers
+(``-2``, ``+1.5``) are left as they are.
+
+Overrides file (``--overrides``), columns ``student,exercise,points,penalty,comment``:
+``student`` is a derived id, an LMS id (sid, e-mail, login, Canvas user id, Moodle
+participant) of the student, a group member or the roster row, or a name (the
+download's, a member's or the roster's; ``"Kim, Bo"`` and ``"Bo Kim"`` agree); a
+row that names several students is refused with their ids;
+``exercise`` is an exercise id (``points`` replaces its score, ``penalty``
+subtracts), ``late`` (``points`` replaces the late penalty: 0 waives it) or
+``total``/empty (``penalty`` subtracts, ``points`` adds a bonus). Exactly one of
+points/penalty per row; points are course points.
+
+Roster file (``--roster``): a CSV with any of the columns ``Student ID`` (derived
+id), ``Student``/``Name``/``Full name``, ``ID`` (Canvas user id), ``SIS User ID``,
+``SIS Login ID``, ``Section``, ``Identifier`` (Moodle ``Participant N``),
+``Email``/``Email address`` -- Canvas's own gradebook export works as it is.
+A student matches the first row agreeing on the derived id, Canvas id, SIS user
+id, e-mail or login, Moodle participant, then the name.
+"""
+
+from __future__ import annotations
+
+import csv
+import html
+import io
+import math
+import re
+from dataclasses import dataclass, field
+from datetime import timedelta
+from pathlib import Path
+
+from ...engine.results import write_atomically
+from ..course import CourseConfig, parse_time
+
+GRADES_HEADER = ["Student ID", "Name", "Status"]
+GRADES_TAIL = ["Late penalty", "Adjustments", "Total"]
+CANVAS_HEADER = ["Student", "ID", "SIS User ID", "SIS Login ID", "Section"]
+MOODLE_HEADER = ["Identifier", "Full name", "Email address", "Grade"]
+UNMATCHED_HEADER = ["Student ID", "Name", "Problem"]
+OVERRIDES_HEADER = ["student", "exercise", "points", "penalty", "comment"]
+
+
+class ExportError(ValueError):
+    """An overrides or roster file that cannot be used as it is."""
+
+
+@dataclass(frozen=True)
+class Override:
+    student: str
+    exercise: str
+    points: float | None
+    penalty: float | None
+    comment: str = ""
+
+
+@dataclass
+class Adjustment:
+    """One line of the "instructor adjustments" on a student's page."""
+
+    what: str          # exercise id, "late" or "total"
+    change: str        # "set to 4", "-2", "+1"
+    comment: str
+
+
+@dataclass
+class StudentGrade:
+    student: dict                        # a Gradebook.class_results() row (or a roster-only stub)
+    exercises: dict[str, float | None]   # course points per exercise (None: not graded)
+    late_penalty: float = 0.0
+    bonus: float = 0.0                   # total-level overrides (bonus minus penalties)
+    adjustments: list[Adjustment] = field(default_factory=list)
+    roster: dict = field(default_factory=dict)
+
+    @property
+    def graded(self) -> bool:
+        return self.student["status"] in ("graded", "unreadable")
+
+    @property
+    def total(self) -> float | None:
+        if not self.graded:
+            return None
+        return round(max(0.0, sum(v or 0.0 for v in self.exercises.values()) - self.late_penalty + self.bonus), 2)
+
+
+# ------------------------------------------------------------------ reading the instructor's files
+def read_overrides(path) -> list[Override]:
+    rows = _read_csv(path)
+    out = []
+    for number, row in enumerate(rows, 2):
+        row = {k.strip().lower(): (v or "").strip() for k, v in row.items() if k}
+        if not row.get("student"):
+            raise ExportError(f"{path}:{number}: no student")
+        points, penalty = _number(row.get("points"), path, number), _number(row.get("penalty"), path, number)
+        if (points is None) == (penalty is None):
+            raise ExportError(f"{path}:{number}: give exactly one of points or penalty")
+        out.append(Override(row["student"], row.get("exercise", "").lower() or "total", points, penalty,
+                            row.get("comment", "")))
+    return out
+
+
+class Roster(list):
+    """The roster's rows (dicts with the keys below), and the CSV's own column names in
+    :attr:`columns` (a Canvas export names each assignment ``"Lab 7 (12345)"``)."""
+
+    def __init__(self, rows=(), columns=()):
+        super().__init__(rows)
+        self.columns = list(columns)
+
+
+def read_roster(path) -> Roster:
+    reader_rows = _read_csv(path)
+    rows = Roster(columns=[k.strip() for k in (reader_rows[0].keys() if reader_rows else []) if k])
+    for row in reader_rows:
+        row = {_roster_key(k): (v or "").strip() for k, v in row.items() if k}
+        if "points possible" in row.get("name", "").lower():
+            continue  # Canvas's export carries the points possible as a row
+        if any(row.values()):
+            rows.append(row)
+    return rows
+
+
+_CANVAS_ASSIGNMENT = re.compile(r"^(?P<name>.*\S)\s*\((?P<id>\d+)\)$")
+
+
+def canvas_assignment_column(course: CourseConfig, roster_columns=()) -> tuple[str, str]:
+    """The Canvas import's grade column, and a warning ('' when none).
+
+    Canvas fills an existing assignment only from a column named ``"Lab 7 (12345)"``:
+    the id comes from ``canvas_assignment_id``, else from the column of the roster
+    (Canvas's own gradebook export) whose name is the assignment's.
+    """
+    if course.canvas_assignment_id:
+        return f"{course.assignment} ({course.canvas_assignment_id})", ""
+    assignments = [c for c in roster_columns if _CANVAS_ASSIGNMENT.match(c)]
+    same = [c for c in assignments if _CANVAS_ASSIGNMENT.match(c)["name"].casefold() == course.assignment.casefold()]
+    if len(same) == 1:
+        return same[0], ""
+    if assignments:
+        return course.assignment, (
+            f"the roster (a Canvas export) has {'several columns' if same else 'no column'} for the assignment "
+            f"{course.assignment!r} (it has: {', '.join(assignments[:6])}); canvas_import.csv names its column "
+            f"{course.assignment!r}, which Canvas would add as a new assignment: set the course's "
+            "'assignment' to the Canvas name or give 'canvas_assignment_id'")
+    return course.assignment, ""
+
+
+_ROSTER_KEYS = {"student id": "student_id", "student_id": "student_id", "student": "name", "name": "name",
+                "full name": "name", "id": "canvas_user_id", "sis user id": "sid", "sis login id": "login",
+                "section": "section", "identifier": "identifier", "email": "email", "email address": "email"}
+
+
+def _roster_key(key: str) -> str:
+    return _ROSTER_KEYS.get(key.strip().lower(), key.strip().lower())
+
+
+def _read_csv(path) -> list[dict]:
+    try:
+        text = Path(path).read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ExportError(f"cannot read {path}: {exc}") from None
+    return list(csv.DictReader(io.StringIO(text)))
+
+
+def _number(text, path, line) -> float | None:
+    if not text:
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        raise ExportError(f"{path}:{line}: {text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise ExportError(f"{path}:{line}: {text!r} is not a number")
+    return value
+
+
+# ------------------------------------------------------------------ matching
+def _name_key(name: str) -> str:
+    """``"Smith, John"``, ``"John Smith"`` and ``"smithjohn"`` all agree."""
+    return "".join(sorted(re.sub(r"[^a-z0-9 ]", " ", name.lower()).split()))
+
+
+def _identities(student: dict) -> set[str]:
+    lms = student.get("lms", {})
+    ids = {f"student_id:{student['student_id']}"}
+    for key, prefix in (("canvas_user_id", "canvas_user_id"), ("sid", "sid"), ("email", "email"),
+                        ("moodle_participant_id", "moodle")):
+        if lms.get(key):
+            ids.add(f"{prefix}:{lms[key].lower()}")
+    return ids
+
+
+def _roster_identities(row: dict) -> set[str]:
+    ids = set()
+    for key, prefix in (("student_id", "student_id"), ("canvas_user_id", "canvas_user_id"), ("sid", "sid")):
+        if row.get(key):
+            ids.add(f"{prefix}:{row[key].lower()}")
+    for key in ("email", "login"):
+        if row.get(key):
+            ids.add(f"email:{row[key].lower()}")
+    if row.get("identifier"):
+        ids.add("moodle:" + re.sub(r"\D", "", row["identifier"]))
+    return ids
+
+
+def match_roster(students: list[dict], roster: list[dict]) -> tuple[dict[str, dict], list[dict], list[dict]]:
+    """(roster row by student id, students with no row, rows with no student)."""
+    matched, used = {}, set()
+    for student in students:
+        ids = _identities(student)
+        candidates = [i for i, row in enumerate(roster) if i not in used and ids & _roster_identities(row)]
+        if not candidates:
+            name = _name_key(student["display_name"])
+            candidates = [i for i, row in enumerate(roster)
+                          if i not in used and name and _name_key(row.get("name", "")) == name]
+        if candidates:
+            used.add(candidates[0])
+            matched[student["student_id"]] = roster[candidates[0]]
+    unmatched = [s for s in students if s["student_id"] not in matched]
+    absent = [row for i, row in enumerate(roster) if i not in used]
+    return matched, unmatched, absent
+
+
+# ------------------------------------------------------------------ grades
+def exercise_factors(exercises, course: CourseConfig) -> dict[str, float]:
+    """Course points per raw point, by exercise id (``exercises``: (id, raw max) pairs)."""
+    return course.point_factors(exercises)
+
+
+def late_days(student: dict, rule: dict) -> int:
+    """Days late (started days count whole) by the course's rule; 0 when on time or unknown."""
+    if not rule:
+        return 0
+    if rule.get("due") and student.get("submitted_at"):
+        try:
+            submitted = parse_time(student["submitted_at"])
+        except ValueError:
+            submitted = None
+        if submitted is not None:
+            over = submitted - parse_time(str(rule["due"])) - timedelta(minutes=rule.get("grace_minutes", 0))
+            return max(0, math.ceil(over / timedelta(days=1)))
+    return 1 if student.get("late") else 0
+
+
+def compute_grades(students: list[dict], exercises, course: CourseConfig,
+                   overrides: list[Override] = (), roster: list[dict] = ()) -> tuple[list[StudentGrade], list[str]]:
+    """Every student's grade, plus warnings (overrides naming nobody).
+
+    ``students`` are :meth:`Gradebook.class_results` rows; ``exercises`` the
+    selection's ``(id, raw max)`` pairs in order. Roster rows with no submission
+    are added with status ``no submission``.
+    """
+    factors = exercise_factors(exercises, course)
+    matched, _, absent = match_roster(students, list(roster))
+    grades, warnings = [], []
+    if not course.lms_exports or "canvas" in course.lms_exports:
+        _, warning = canvas_assignment_column(course, getattr(roster, "columns", ()))
+        warnings += [warning] if warning else []
+    for student in students:
+        scores: dict[str, float | None] = {e: None for e, _ in exercises}
+        if student["status"] == "graded":
+            for e in student["result"]["exercises"]:
+                if e["id"] in scores:
+                    scores[e["id"]] = round(e["score"] * factors[e["id"]], 4)
+        elif student["status"] == "unreadable":
+            scores = {e: 0.0 for e in scores}
+        grades.append(StudentGrade(student, scores, roster=matched.get(student["student_id"], {})))
+    for grade in grades:
+        days = late_days(grade.student, course.late_penalty)
+        if days and grade.graded:
+            percent = min(course.late_penalty.get("max", 100), course.late_penalty.get("per_day", 0) * days)
+            earned = sum(v or 0.0 for v in grade.exercises.values())
+            grade.late_penalty = round(earned * percent / 100, 2)
+            if grade.late_penalty:
+                grade.adjustments.append(Adjustment("late", f"-{grade.late_penalty:g}",
+                                                    f"{days} day(s) late: {percent:g}% of the points earned"))
+    index = _identity_index(grades)
+    for o in overrides:
+        candidates = _named_by(o.student, grades, index)
+        if not candidates:
+            warnings.append(f"override for {o.student!r} names no student; ignored")
+        elif len(candidates) > 1:
+            warnings.append(f"override for {o.student!r} is ambiguous: it names "
+                            f"{', '.join(g.student['student_id'] for g in candidates)}; ignored "
+                            "(name the student by id)")
+        else:
+            _apply(candidates[0], o, warnings)
+    for row in absent:
+        stub = {"student_id": row.get("student_id", ""), "display_name": row.get("name", ""), "lms": {},
+                "members": [], "status": "no submission", "reason": "", "result": None, "feedback": None}
+        grades.append(StudentGrade(stub, {e: None for e, _ in exercises}, roster=row))
+    return grades, warnings
+
+
+def _identity_index(grades: list[StudentGrade]) -> dict[str, list[StudentGrade]]:
+    """Every identity an override may use -> the grades it names: the derived id, LMS ids
+    and e-mails (the student's, each group member's, the roster's), and the names (the
+    download's, each member's, the roster's) as written and in any order of their words."""
+    index: dict[str, list[StudentGrade]] = {}
+    for grade in grades:
+        student, roster = grade.student, grade.roster
+        members = student.get("members", [])
+        ids = [student["student_id"], *student.get("lms", {}).values(),
+               *(v for m in members for k, v in m.items() if k != "name"),
+               *(v for k, v in roster.items() if k in ("student_id", "sid", "email", "login", "canvas_user_id"))]
+        names = [student["display_name"], roster.get("name", ""), *(m.get("name", "") for m in members)]
+        keys = {f"id:{v.strip().lower()}" for v in ids if v and v.strip()}
+        keys |= {f"name:{_name_key(n)}" for n in names if _name_key(n)}
+        for key in keys:
+            index.setdefault(key, []).append(grade)
+    return index
+
+
+def _named_by(who: str, grades: list[StudentGrade], index) -> list[StudentGrade]:
+    """The graded students an override's ``student`` names (a derived id is never ambiguous)."""
+    exact = [g for g in grades if g.student["student_id"] == who.strip()]
+    if exact:
+        return exact
+    found = index.get(f"id:{who.strip().lower()}", []) + index.get(f"name:{_name_key(who)}", [])
+    unique = list({id(g): g for g in found if g.student["status"] != "no submission"}.values())
+    return unique
+
+
+def _apply(grade: StudentGrade, o: Override, warnings: list[str]) -> None:
+    if o.exercise == "late":
+        change = o.points if o.points is not None else grade.late_penalty + o.penalty
+        grade.late_penalty = change
+        grade.adjustments = [a for a in grade.adjustments if a.what != "late"]
+        grade.adjustments.append(Adjustment("late", f"penalty set to {change:g}", o.comment))
+    elif o.exercise == "total":
+        delta = o.points if o.points is not None else -o.penalty
+        grade.bonus += delta
+        grade.adjustments.append(Adjustment("total", f"{delta:+g}", o.comment))
+    elif o.exercise in grade.exercises:
+        current = grade.exercises[o.exercise] or 0.0
+        if o.points is not None:
+            grade.exercises[o.exercise] = o.points
+            grade.adjustments.append(Adjustment(o.exercise, f"set to {o.points:g}", o.comment))
+        else:
+            grade.exercises[o.exercise] = current - o.penalty
+            grade.adjustments.append(Adjustment(o.exercise, f"-{o.penalty:g}", o.comment))
+    else:
+        warnings.append(f"override for {o.student!r} names exercise {o.exercise!r}, "
+                        "which the assignment does not grade; ignored")
+
+
+def max_total(exercises, course: CourseConfig) -> float:
+    factors = exercise_factors(exercises, course)
+    return round(sum(maximum * factors[e] for e, maximum in exercises), 2)
+
+
+# ------------------------------------------------------------------ CSV files
+def _status(grade: StudentGrade) -> str:
+    status, reason = grade.student["status"], grade.student.get("reason", "")
+    if grade.student.get("missing_from_download"):   # kept from an earlier download (see Gradebook)
+        graded_at = grade.student.get("graded_at")
+        return f"not in this download; last graded {graded_at[:10]}" if status == "graded" and graded_at \
+            else f"{status} (not in this download)"
+    return f"{status}: {reason}" if reason else status
+
+
+def _fmt(value) -> str:
+    return "" if value is None else f"{round(value, 4):g}"
+
+
+def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig, roster_given: bool,
+               roster_columns=()) -> list[Path]:
+    """Write grades.csv, the LMS imports that apply (see ``lms_exports`` in the course) and,
+    with a roster, roster_unmatched.csv; returns the files written."""
+    out = Path(out)
+    ids = [e for e, _ in exercises]
+    files = []
+
+    rows = [GRADES_HEADER + ids + GRADES_TAIL]
+    for g in grades:
+        rows.append([g.student["student_id"], g.roster.get("name") or g.student["display_name"], _status(g)]
+                    + [_fmt(g.exercises[e]) for e in ids]
+                    + [_fmt(g.late_penalty if g.graded else None), _fmt(g.bonus if g.graded else None),
+                       _fmt(g.total)])
+    files.append(write_csv(out / "grades.csv", rows))
+
+    canvas = out / "canvas_import.csv"
+    column, _ = canvas_assignment_column(course, roster_columns)
+    rows = [CANVAS_HEADER + [column], ["Points Possible", "", "", "", "", _fmt(max_total(exercises, course))]]
+    for g, member in _members(grades):
+        lms, r = g.student.get("lms", {}), g.roster
+        rows.append([r.get("name") or member.get("name") or g.student["display_name"],
+                     r.get("canvas_user_id") or lms.get("canvas_user_id", ""),
+                     r.get("sid") or member.get("sid", ""), r.get("login") or member.get("email", ""),
+                     r.get("section", ""), _fmt(g.total)])
+    if not course.lms_exports or "canvas" in course.lms_exports:
+        files.append(write_csv(canvas, rows))
+    else:
+        canvas.unlink(missing_ok=True)
+
+    moodle = out / "moodle_import.csv"
+    if not _moodle_wanted(grades, course, roster_columns):
+        moodle.unlink(missing_ok=True)   # a worksheet from an earlier run would be taken for this one's
+    rows = [MOODLE_HEADER]
+    for g, member in _members(grades):
+        lms, r = g.student.get("lms", {}), g.roster
+        participant = lms.get("moodle_participant_id")
+        rows.append([r.get("identifier") or (f"Participant {participant}" if participant else ""),
+                     r.get("name") or member.get("name") or g.student["display_name"],
+                     r.get("email") or member.get("email", ""), _fmt(g.total)])
+    if _moodle_wanted(grades, course, roster_columns):
+        files.append(write_csv(moodle, rows))
+
+    if roster_given:
+        rows = [UNMATCHED_HEADER]
+        for g in grades:
+            if g.student["status"] == "no submission":
+                rows.append([g.student["student_id"], g.student["display_name"], "on the roster, no submission"])
+            elif not g.roster:
+                rows.append([g.student["student_id"], g.student["display_name"], "submitted, not on the roster"])
+        files.append(write_csv(out / "roster_unmatched.csv", rows))
+    return files
+
+
+def _moodle_wanted(grades, course: CourseConfig, roster_columns) -> bool:
+    """Moodle's worksheet when asked for, for a Moodle download, or with a Moodle roster."""
+    if course.lms_exports:
+        return "moodle" in course.lms_exports
+    return (any(g.student.get("source") == "moodle" for g in grades)
+            or any(c.strip().lower() == "identifier" for c in roster_columns))
+
+
+def _members(grades):
+    """(grade, member) pairs: every submitter of a group gets the group's grade."""
+    for g in grades:
+        members = g.student.get("members") or [{"name": "", "sid": g.student.get("lms", {}).get("sid", ""),
+                                                "email": g.student.get("lms", {}).get("email", "")}]
+        for member in members:
+            yield g, member
+
+
+IGNORED_HEADER = ["Item", "Reason"]
+_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+_PLAIN_NUMBER = re.compile(r"[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?")
+
+
+def spreadsheet_safe(cell) -> str:
+    """``cell`` as text a spreadsheet shows and never evaluates: a leading ``=``, ``+``,
+    ``-``, ``@``, TAB or CR gets a ``'`` before it, unless the cell is a plain number.
+
+    >>> spreadsheet_safe("=1+1"), spreadsheet_safe("@SUM(A1)"), spreadsheet_safe("-2.5")
+    ("'=1+1", "'@SUM(A1)", '-2.5')
+    """
+    text = "" if cell is None else str(cell)
+    if text.startswith(_FORMULA_START) and not _PLAIN_NUMBER.fullmatch(text):
+        return "'" + text
+    return text
+
+
+def write_csv(path: Path, rows) -> Path:
+    """Write ``rows`` to the CSV file at ``path`` (atomically), every cell made :func:`spreadsheet_safe`."""
+    buffer = io.StringIO()
+    csv.writer(buffer, lineterminator="\n").writerows([spreadsheet_safe(cell) for cell in row] for row in rows)
+    write_atomically(path, buffer.getvalue())
+    return path
+
+
+
+def write_ignored(out, ignored: list[tuple[str, str]]) -> list[Path]:
+    """``ignored.csv`` listing what the upload held that is no submission (removed when nothing is)."""
+    path = Path(out) / "ignored.csv"
+    if not ignored:
+        path.unlink(missing_ok=True)
+        return []
+    return [write_csv(path, [IGNORED_HEADER] + [list(item) for item in ignored])]
+
+
+# ------------------------------------------------------------------ the student's page
+BEGIN, END = "<!-- instructor-adjustments -->", "<!-- /instructor-adjustments -->"
+
+
+def shows_final(grade: StudentGrade, course: CourseConfig) -> bool:
+    """Whether the student's page may show the final grade: not while it holds points of
+    hidden checks the course keeps from students (their page shows a verdict only)."""
+    result = grade.student.get("result") or {}
+    hidden = any(c.get("hidden") for e in result.get("exercises", []) for c in e.get("checks", []))
+    return course.hidden_points_visible or not hidden
+
+
+def adjustments_html(grade: StudentGrade, possible: float, show_final: bool = True) -> str:
+    """The block shown on a student's page: every adjustment and the final grade (or, while
+    hidden checks' points are withheld, when it will be shown), or nothing."""
+    if not grade.adjustments and not grade.late_penalty:
+        return f"{BEGIN}{END}"
+    rows = "".join(f"<tr><td>{html.escape(a.what)}</td><td>{html.escape(a.change)}</td>"
+                   f"<td>{html.escape(a.comment)}</td></tr>" for a in grade.adjustments)
+    final = (f"final grade {_fmt(grade.total)} / {possible:g}" if show_final
+             else "final grade: shown when the hidden checks are released")
+    return (f'{BEGIN}<section class="exercise" id="adjustments"><header><h2>Instructor adjustments</h2>'
+            f'<span class="score">{final}</span></header>'
+            f'<table class="overview"><tr><th>what</th><th>change</th><th>comment</th></tr>{rows}</table>'
+            f"</section>{END}")
+
+
+HEADLINE, HEADLINE_END = "<!-- headline -->", "<!-- /headline -->"
+
+
+def headline(grade: StudentGrade, possible: float) -> str:
+    """The page's headline (HTML): the final grade, with the checks' own points beside it,
+    labelled, where the two differ (course points, late penalty, overrides). Only for a page
+    that may show the final grade (:func:`shows_final`)."""
+    result = grade.student.get("result") or {}
+    raw, raw_max = result.get("total"), result.get("max_total")
+    final = f"{_fmt(grade.total)} / {possible:g}"
+    if raw == grade.total and raw_max == possible:
+        return f"{final} points"
+    return (f'final grade {final} <span class="muted" style="font-size: 1rem; font-weight: normal">'
+            f"(checks: {_fmt(raw)} / {_fmt(raw_max)} points)</span>")
+
+
+def with_final_grade(page: str, grade: StudentGrade, possible: float) -> str:
+    """``page`` telling ``grade``'s final grade wherever it tells a total: the headline (between
+    the template's markers), the bar under it and the window's title. Only for a page that may
+    show the final grade (:func:`shows_final`)."""
+    page = _between(page, HEADLINE, HEADLINE_END, headline(grade, possible))
+    percent = round(100 * grade.total / possible) if possible else 0
+    page = _between(page, BAR, BAR_END, f'<div class="bar" role="img" aria-label="{percent} percent">'
+                                        f'<span style="width: {percent}%"></span></div>')
+    return re.sub(r"<title>Feedback: [^<]*? — ", lambda _: f"<title>Feedback: final grade {_fmt(grade.total)} / "
+                  f"{possible:g} — ", page, count=1)
+
+
+BAR, BAR_END = "<!-- bar -->", "<!-- /bar -->"
+
+
+def _between(page: str, begin: str, end: str, text: str) -> str:
+    """``page`` with what stands between the markers ``begin`` and ``end`` replaced; unchanged without them."""
+    start, stop = page.find(begin), page.find(end)
+    if start < 0 or stop < start:
+        return page
+    return page[:start + len(begin)] + text + page[stop:]
+
+
+def with_adjustments(page: str, block: str) -> str:
+    """``page`` with its adjustments block replaced (inserted after the summary the first time)."""
+    start, stop = page.find(BEGIN), page.find(END)
+    if start >= 0 and stop > start:
+        return page[:start] + block + page[stop + len(END):]
+    anchor = page.find("</header>")
+    at = anchor + len("</header>") if anchor >= 0 else page.find("<main>") + len("<main>")
+    return page[:at] + "\n" + block + page[at:]

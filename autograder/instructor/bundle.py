@@ -1,0 +1,145 @@
+"""The repository students receive: skeletons, ``grade.py``, public checks and fixtures,
+the contract (``docs/contract/``, ``docs/api/``) and the student guide (``docs/students/``).
+
+Left out: ``reference_solutions/``, the hidden checks (``autograder/labs/hidden/``),
+the grader's own tests, and the scripts that measure the reference solutions.
+
+:func:`write_wheelhouse` adds ``wheels/``: every package the grader needs, for the
+Python and platform that made it, so the bundle installs with no network
+(``pip install --no-index --find-links wheels -c constraints.txt -e .``).
+"""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+import sysconfig
+from pathlib import Path
+
+PROJECT_ROOT = Path(__file__).resolve().parents[2]
+STUDENT_README = Path(__file__).resolve().parent / "templates" / "README_student.md"
+# The documentation students get: the contract (what each lab asks, the assignment API
+# generated from the skeletons and the registry: public checks only) and the student guide.
+# Their links stay among these folders (tests/test_bundle.py).
+STUDENT_DOCS = ("students", "contract", "api")
+
+
+def _public(path: Path, root: Path) -> bool:
+    parts = path.relative_to(root).parts
+    if "__pycache__" in parts or path.suffix == ".pyc":
+        return False
+    if parts[:3] == ("autograder", "labs", "hidden"):
+        return False
+    return not (parts[0] == "fixtures" and path.name.startswith("make_"))
+
+
+def write_student_bundle(out, root: Path = PROJECT_ROOT) -> list[Path]:
+    """Write the student repository into the folder ``out`` (which must not exist yet).
+
+    Returns the files written, relative to ``out``.
+    """
+    out = Path(out)
+    if out.exists() and any(out.iterdir()):
+        raise FileExistsError(f"{out} exists and is not empty")
+    written = []
+
+    def copy(source: Path, target: Path):
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(source, target)
+        written.append(target.relative_to(out))
+
+    for top in ("autograder", "fixtures"):
+        for path in sorted((root / top).rglob("*")):
+            if path.is_file() and _public(path, root):
+                copy(path, out / path.relative_to(root))
+    for path in sorted((root / "assignments").glob("*.py")):
+        copy(path, out / "assignments" / path.name)
+    for folder in STUDENT_DOCS:
+        for path in sorted((root / "docs" / folder).glob("*.md")):
+            copy(path, out / "docs" / folder / path.name)
+    for name in ("grade.py", "pyproject.toml", "constraints.txt", ".gitignore"):
+        if (root / name).exists():
+            copy(root / name, out / name)
+    copy(STUDENT_README, out / "README.md")
+    return written
+
+
+# ------------------------------------------------------------------ the wheelhouse
+WHEELS = "wheels"
+OFFLINE_README = """
+## Set up without a network
+
+`wheels/` holds every package the grader needs, built for {python} on {platform}
+(the machine that made this folder). On such a machine, this installs with no
+network at all:
+
+```bash
+{venv} -m venv .venv && . .venv/bin/activate && python -m pip install --no-index --find-links wheels -c constraints.txt -e . && python grade.py
+```
+
+On another Python version or system, use the command above, which needs a network.
+
+"""
+
+
+class WheelhouseError(RuntimeError):
+    """The wheels could not be downloaded (no network, a package without a wheel here)."""
+
+
+def bundle_requirements(out: Path) -> list[str]:
+    """What an install of the bundle in ``out`` fetches: its build backend (pyproject's
+    ``build-system.requires``) and its dependencies (``project.dependencies``; extras not)."""
+    try:
+        import tomllib
+    except ImportError:  # Python 3.10: tomli comes with pytest
+        import tomli as tomllib
+
+    project = tomllib.loads((Path(out) / "pyproject.toml").read_text(encoding="utf-8"))
+    return list(project["build-system"]["requires"]) + list(project["project"].get("dependencies", []))
+
+
+def write_wheelhouse(out, python: str = sys.executable, timeout: float = 1800) -> list[Path]:
+    """Download into ``out/wheels`` the wheels of :func:`bundle_requirements` and of all they
+    need, at ``out/constraints.txt``'s versions, for ``python``'s version and platform
+    (``pip download --only-binary :all:``, with pip's own configuration: indexes, proxies);
+    then say in ``out/README.md`` how to install from them offline.
+
+    Returns the wheels, relative to ``out``. Raises WheelhouseError, leaving no
+    ``wheels/`` and the README as it was, when pip cannot get them all.
+    """
+    out = Path(out)
+    partial, target = out / f".{WHEELS}.partial", out / WHEELS
+    if target.exists():
+        raise WheelhouseError(f"{target} exists already")
+    shutil.rmtree(partial, ignore_errors=True)
+    command = [python, "-m", "pip", "download", "--disable-pip-version-check", "--only-binary", ":all:",
+               "--dest", str(partial), "-c", str(out / "constraints.txt"), *bundle_requirements(out)]
+    try:
+        run = subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        shutil.rmtree(partial, ignore_errors=True)
+        raise WheelhouseError(f"pip download did not finish within {timeout:g} s") from None
+    if run.returncode != 0:
+        shutil.rmtree(partial, ignore_errors=True)
+        said = [line.strip() for line in run.stderr.splitlines() if line.strip()]
+        errors = [line for line in said if line.startswith("ERROR")] or said[-2:]
+        raise WheelhouseError("pip download failed: " + " ".join(errors[-2:])[:600])
+    partial.rename(target)
+    readme = out / "README.md"
+    readme.write_text(_with_offline_section(readme.read_text(encoding="utf-8"), python), encoding="utf-8")
+    return sorted(path.relative_to(out) for path in target.glob("*.whl"))
+
+
+def _with_offline_section(readme: str, python: str) -> str:
+    """The student README with :data:`OFFLINE_README` (naming ``python``'s version and
+    platform) before its "## Grading", or at its end when it has none."""
+    implementation, number, platform = subprocess.run(
+        [python, "-c", "import sys, sysconfig; print(sys.implementation.name, '%d.%d' % sys.version_info[:2], "
+                       "sysconfig.get_platform())"], capture_output=True, text=True, check=True).stdout.split()
+    name = "CPython" if implementation == "cpython" else implementation
+    section = OFFLINE_README.format(python=f"{name} {number}", platform=platform, venv=f"python{number}")
+    at = readme.find("\n## Grading")
+    if at < 0:
+        return readme.rstrip("\n") + "\n" + section
+    return readme[:at + 1] + section.lstrip("\n") + readme[at + 1:]

@@ -1,0 +1,77 @@
+"""The class overview page (``RESULTS/index.html``): what the class got wrong.
+
+One self-contained HTML file, no JavaScript: score histograms (inline SVG),
+pass rate per check, the most common named mistakes per exercise with links
+to the students' feedback pages, incidents (timeouts, crashes, import failures,
+forbidden calls) per student, and a link to every student's page.
+
+:func:`render_overview` is a pure function of plain data (a list of
+:class:`~autograder.instructor.classreport.analysis.StudentRecord`), so it renders the
+same from a fresh batch or from a stored gradebook.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import re
+from urllib.parse import quote
+
+from jinja2 import Environment, PackageLoader, select_autoescape
+
+from ...engine.results import write_atomically
+from .analysis import ClassSummary, StudentRecord, summarise
+from .charts import MEAN_COLOUR, MEDIAN_COLOUR, histogram_svg
+
+_SCHEME = re.compile(r"^\s*([a-z][a-z0-9+.-]*):", re.IGNORECASE)
+
+
+def safe_href(href: str) -> str:
+    """A link to a student's page: relative paths (or http/https) only, spaces and the like quoted."""
+    if not href:
+        return ""
+    scheme = _SCHEME.match(href)
+    if scheme and scheme.group(1).lower() not in ("http", "https"):
+        return ""
+    return quote(href, safe="/#?=&%:;@+,~")
+
+
+def _num(x) -> str:
+    return "–" if x is None else f"{x:.3g}" if abs(x) < 1000 else f"{x:.0f}"
+
+
+def environment() -> Environment:
+    """The Jinja2 environment of the class pages (templates beside the feedback page's)."""
+    env = Environment(loader=PackageLoader("autograder.reports", "templates"),
+                      autoescape=select_autoescape(["html", "j2"]), trim_blocks=True, lstrip_blocks=True)
+    env.filters["num"] = _num
+    env.filters["href"] = safe_href
+    env.filters["percent"] = lambda x: f"{x:.0f}%"
+    env.globals.update(histogram=histogram_svg, mean_colour=MEAN_COLOUR, median_colour=MEDIAN_COLOUR)
+    return env
+
+
+def overview_html(students: list[StudentRecord], course_title: str = "",
+                  generated: _dt.datetime | None = None, reports=()) -> str:
+    """The class overview page as a string; ``reports`` are (label, relative link) pairs."""
+    summary: ClassSummary = summarise(students)
+    generated = generated or _dt.datetime.now(_dt.timezone.utc)
+    return environment().get_template("class_overview.html.j2").render(
+        summary=summary, course_title=course_title, reports=list(reports),
+        generated=generated.strftime("%Y-%m-%d %H:%M %Z").strip())
+
+
+def render_overview(students: list[StudentRecord], out_path, course_title: str = "",
+                    generated: _dt.datetime | None = None, reports=()) -> None:
+    """Write the class overview page to ``out_path`` (atomically).
+
+    Parameters
+    ----------
+    students : list of StudentRecord
+        The class, graded or not; order is kept in the list of students.
+    out_path : path
+        Usually ``RESULTS/index.html``; each record's ``feedback_href`` is
+        relative to its folder.
+    course_title : str
+        Shown in the heading.
+    """
+    write_atomically(out_path, overview_html(students, course_title, generated, reports))

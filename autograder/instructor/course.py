@@ -1,0 +1,275 @@
+"""A course's grading configuration (``--config COURSE``), a small JSON file.
+
+Example ``course.json``::
+
+    {"select": ["lab07", "lab08"], "public_visibility": "visible",
+     "hidden_visibility": "after_published", "call_timeout": 10,
+     "exercise_budget": 60, "submission_budget": 240,
+     "forbid": {"lab08.homography_ransac": ["cv2.findHomography"]}}
+
+``call_timeout`` bounds one call into the student's code, ``exercise_budget`` the
+student time of one exercise (calls, timeouts and worker restarts), and
+``submission_budget`` the wall-clock time of the whole grading of a submission
+(whatever runs: calls, restarts, the grader's judging); checks left when a budget
+is spent score 0 as "time budget exhausted". Keep ``submission_budget`` well below
+the Gradescope assignment's own timeout, so results are always written.
+
+Every key is optional; unknown keys and bad values are refused with a message.
+
+Hidden checks stay hidden from students until the instructor releases them: in
+every report a student reads (terminal, feedback page, ``results.json``, check(),
+Gradescope's text) a hidden check is "hidden check N" with "passed" or "not
+passed", never its inputs, messages, output or pictures. ``hidden_points_visible``
+(default false) also shows its points; while false, the scores students see leave
+the hidden checks out. On Gradescope the hidden tests carry their points anyway
+(the grade needs them) and Gradescope keeps them, and the total, from students
+until the tests' ``hidden_visibility`` allows (``after_published``: until the
+grades are published; ``after_due_date``: until the due date). With ``visible``
+students see them at once, and with ``hidden`` Gradescope shows the total with
+their points in it: either needs ``hidden_points_visible: true``.
+
+``forbid`` (off by default) adds the instructor's own rules to the lab sheet's:
+inside the student function ``labNN.function``, calling any of the listed
+library functions (``module.name``) fails the check with "... which this
+exercise asks you to implement yourself". The feedback lists the rule under
+the exercise, so students see it before they lose a point.
+
+Keys read by ``autograder batch`` (instructor grading):
+
+``select``
+    The labs/exercises making up the assignment (default: every lab, every exercise).
+``assignment``
+    The assignment's name: the grade column of the Canvas and Moodle CSVs.
+``points``
+    Rescaled points, by lab or exercise: ``{"lab07": 20, "lab08.ex2": 5}``. A lab's
+    entry scales all its exercises alike; an exercise's entry wins over its lab's.
+    Default: the checks' own points.
+``canvas_assignment_id``
+    The assignment's number in Canvas (``.../assignments/12345``). Canvas fills an
+    existing assignment from an import only when its column is named
+    ``"<assignment> (<id>)"``; without this key the id is taken from the roster
+    when the roster is Canvas's own gradebook export holding a column for the
+    assignment.
+``lms_exports``
+    Which LMS imports to write: ``["canvas", "moodle"]``. Default: the Canvas
+    import always, Moodle's worksheet only for a Moodle download or a roster with
+    Moodle's ``Identifier`` column.
+``late_penalty``
+    ``{"due": "2026-03-01T23:59:00+01:00", "grace_minutes": 15, "per_day": 10,
+    "max": 50}``. A submission ``d`` started days late (after the grace period)
+    loses ``min(max, per_day * d)`` percent of the points it earned. The time comes
+    from the download (Gradescope's ``:created_at:``); where only a late flag is
+    known (Canvas's ``_LATE_``) it counts as one day late. No ``late_penalty``, no
+    penalty. An override row with exercise ``late`` replaces the penalty.
+
+Read by ``autograder similarity`` (and ``autograder batch --similarity``):
+
+``similarity_threshold``
+    Default 0.5. Pairs of submissions whose score -- the mean share of each
+    file's own code (skeleton excluded) found in the other -- is at least this
+    are shown side by side. Disguised copies score about 0.9, independent work
+    about 0.1.
+
+Read by every grading (``autograder batch``, Gradescope, ``grade --config``):
+
+``inputs_secret``
+    Default none. The course's secret from which, with each submission's content,
+    the property checks draw their inputs (see :mod:`autograder.engine.inputs`): the same
+    files always meet the same inputs, and nobody without the secret knows which.
+    Keep it out of the student bundle (it never ships there) and out of anything
+    students see; ``$AUTOGRADER_INPUTS_SECRET`` works too. ``gradescope build``
+    makes one when the configuration has none.
+
+``allow_weaker_confinement``
+    Default false: Gradescope does not run a submission where student code would
+    be less confined than the machine allows (a namespaced level that is there but
+    fails, a level forced weaker); the student is told to ask the instructor and the
+    log says why. True accepts grading at the weaker level.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import asdict, dataclass, field, fields
+from datetime import datetime
+from pathlib import Path
+
+VISIBILITIES = ("visible", "hidden", "after_due_date", "after_published")
+_STUDENT_FUNCTION = re.compile(r"lab\d\d\.[A-Za-z_]\w*")          # lab08.homography_ransac
+_LIBRARY_FUNCTION = re.compile(r"[A-Za-z_]\w*(\.[A-Za-z_]\w*)+")   # cv2.findHomography
+
+
+class CourseConfigError(ValueError):
+    """The course configuration file is malformed."""
+
+
+LMS_EXPORTS = ("canvas", "moodle")
+_GRADING = {"select", "call_timeout", "exercise_budget", "submission_budget", "forbid", "inputs_secret",
+            "hidden_points_visible"}
+# What each mode applies; the rest of a course is refused or warned about there (CourseConfig.ignored_by).
+_APPLIED_BY = {
+    "grade": _GRADING,
+    "gradescope": _GRADING | {"points", "public_visibility", "hidden_visibility", "stdout_visibility",
+                              "allow_weaker_confinement"},
+    "batch": _GRADING | {"assignment", "points", "late_penalty", "similarity_threshold", "canvas_assignment_id",
+                         "lms_exports"},
+}
+
+
+@dataclass(frozen=True)
+class CourseConfig:
+    select: list[str] = field(default_factory=list)     # labs/exercises graded; empty = all
+    public_visibility: str = "visible"                  # Gradescope visibility of public checks
+    hidden_visibility: str = "after_published"          # ... and of hidden checks
+    stdout_visibility: str = "hidden"                   # the grader's own log
+    call_timeout: float = 10.0                          # seconds per call into student code
+    assignment: str = "Computer vision labs"            # grade column name in LMS exports
+    points: dict[str, float] = field(default_factory=dict)   # "lab07" / "lab07.ex2" -> points
+    late_penalty: dict = field(default_factory=dict)    # due, grace_minutes, per_day, max (percent)
+    similarity_threshold: float = 0.5                   # similarity report: pairs shown side by side
+    inputs_secret: str = ""                             # property inputs: HMAC(secret, content); see inputs.py
+    allow_weaker_confinement: bool = False              # Gradescope grades below the machine's strongest level
+    exercise_budget: float = 60.0                       # student seconds per exercise
+    submission_budget: float = 240.0                    # wall seconds for grading a submission
+    forbid: dict = field(default_factory=dict)          # "lab08.homography_ransac": ["cv2.findHomography"]
+    hidden_points_visible: bool = False                 # students see hidden checks' points before release
+    canvas_assignment_id: str = ""                      # Canvas's id of the assignment: "Lab 7 (12345)"
+    lms_exports: list[str] = field(default_factory=list)  # "canvas", "moodle"; empty: as the upload says
+
+    def __post_init__(self):
+        for name in ("public_visibility", "hidden_visibility", "stdout_visibility"):
+            if getattr(self, name) not in VISIBILITIES:
+                raise CourseConfigError(f"{name} must be one of {VISIBILITIES}, got {getattr(self, name)!r}")
+        if not (isinstance(self.select, list) and all(isinstance(s, str) for s in self.select)):
+            raise CourseConfigError("select must be a list of names like 'lab07' or 'lab07.ex2'")
+        for name in ("call_timeout", "exercise_budget", "submission_budget"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not (isinstance(value, (int, float)) and value > 0):
+                raise CourseConfigError(f"{name} must be a positive number of seconds")
+        if not (isinstance(self.assignment, str) and self.assignment.strip()):
+            raise CourseConfigError("assignment must be a non-empty name")
+        if not (isinstance(self.points, dict) and all(
+                isinstance(k, str) and isinstance(v, (int, float)) and v >= 0 for k, v in self.points.items())):
+            raise CourseConfigError("points must map 'lab07' or 'lab07.ex2' to a number of points")
+        self._check_late_penalty()
+        if not isinstance(self.inputs_secret, str):
+            raise CourseConfigError("inputs_secret must be a string (the course's secret, e.g. 32 random hex digits)")
+        if not isinstance(self.allow_weaker_confinement, bool):
+            raise CourseConfigError("allow_weaker_confinement must be true or false")
+        if not (isinstance(self.similarity_threshold, (int, float)) and 0 < self.similarity_threshold <= 1):
+            raise CourseConfigError("similarity_threshold must be a number in (0, 1]")
+        self._check_forbid()
+        if not (isinstance(self.canvas_assignment_id, str) and re.fullmatch(r"\d*", self.canvas_assignment_id)):
+            raise CourseConfigError("canvas_assignment_id must be the assignment's number in Canvas, "
+                                    'as text: "12345" (from the assignment\'s address, .../assignments/12345)')
+        if not (isinstance(self.lms_exports, list) and set(self.lms_exports) <= set(LMS_EXPORTS)):
+            raise CourseConfigError(f"lms_exports must be a list of {list(LMS_EXPORTS)}")
+        if not isinstance(self.hidden_points_visible, bool):
+            raise CourseConfigError("hidden_points_visible must be true or false")
+        if self.hidden_visibility in ("visible", "hidden") and not self.hidden_points_visible:
+            # Gradescope hides a student's total only while some test is after_due_date/after_published.
+            raise CourseConfigError(
+                f'hidden_visibility "{self.hidden_visibility}" lets students see what the hidden checks '
+                'scored on Gradescope at once (their tests, or the total): set "hidden_points_visible": '
+                'true too, or keep hidden_visibility "after_published"')
+
+    def point_factors(self, exercises) -> dict[str, float]:
+        """Course points per raw point, by exercise id (``exercises``: (id, raw max) pairs):
+        ``points`` rescales a lab's exercises alike, or one exercise; 1 elsewhere."""
+        lab_max: dict[str, float] = {}
+        for exercise_id, maximum in exercises:
+            lab = exercise_id.split(".")[0]
+            lab_max[lab] = lab_max.get(lab, 0.0) + maximum
+        factors = {}
+        for exercise_id, maximum in exercises:
+            lab = exercise_id.split(".")[0]
+            if exercise_id in self.points:
+                factors[exercise_id] = self.points[exercise_id] / maximum if maximum else 0.0
+            elif lab in self.points:
+                factors[exercise_id] = self.points[lab] / lab_max[lab] if lab_max[lab] else 0.0
+            else:
+                factors[exercise_id] = 1.0
+        return factors
+
+    def ignored_by(self, mode: str) -> list[str]:
+        """The keys set in this course (not left at their defaults) that ``mode`` -- ``"grade"``
+        (a student's or an instructor's single grading), ``"gradescope"`` or ``"batch"`` --
+        does not apply, so the command can say so instead of ignoring them silently."""
+        default = CourseConfig()
+        return [f.name for f in fields(self)
+                if f.name not in _APPLIED_BY[mode] and getattr(self, f.name) != getattr(default, f.name)]
+
+    def limits(self):
+        """The sandbox limits this course asks for."""
+        from ..sandbox.supervisor import Limits
+
+        return Limits(call_timeout=self.call_timeout, exercise_budget=self.exercise_budget,
+                      submission_budget=self.submission_budget)
+
+    def _check_forbid(self):
+        example = '{"lab08.homography_ransac": ["cv2.findHomography"]}'
+        if not isinstance(self.forbid, dict):
+            raise CourseConfigError(f"forbid must be an object like {example}")
+        for function, libraries in self.forbid.items():
+            if not (isinstance(function, str) and _STUDENT_FUNCTION.fullmatch(function)):
+                raise CourseConfigError(f"forbid: {function!r} is not a student function like "
+                                        f"'lab08.homography_ransac' (example: {example})")
+            if not (isinstance(libraries, list) and libraries
+                    and all(isinstance(n, str) and _LIBRARY_FUNCTION.fullmatch(n) for n in libraries)):
+                raise CourseConfigError(f"forbid[{function!r}] must be a non-empty list of library "
+                                        f"functions like 'cv2.findHomography' (example: {example})")
+
+    def forbidden(self, lab: str) -> dict[str, tuple[str, ...]]:
+        """The instructor's extra forbids for one lab: student function -> library functions."""
+        return {key.split(".", 1)[1]: tuple(names) for key, names in self.forbid.items()
+                if key.split(".", 1)[0] == lab}
+
+    def _check_late_penalty(self):
+        rule = self.late_penalty
+        if not isinstance(rule, dict):
+            raise CourseConfigError("late_penalty must be an object (due, grace_minutes, per_day, max)")
+        unknown = sorted(set(rule) - {"due", "grace_minutes", "per_day", "max"})
+        if unknown:
+            raise CourseConfigError(f"late_penalty: unknown keys {unknown}")
+        for key in ("grace_minutes", "per_day", "max"):
+            if key in rule and not (isinstance(rule[key], (int, float)) and rule[key] >= 0):
+                raise CourseConfigError(f"late_penalty.{key} must be a non-negative number")
+        if "due" in rule:
+            try:
+                due = parse_time(str(rule["due"]))
+            except ValueError:
+                raise CourseConfigError("late_penalty.due must be an ISO 8601 time, "
+                                        "e.g. 2026-03-01T23:59:00+01:00") from None
+            if due.tzinfo is None:
+                raise CourseConfigError("late_penalty.due needs a time zone, e.g. +01:00 or Z")
+
+    @classmethod
+    def load(cls, path) -> "CourseConfig":
+        try:
+            data = json.loads(Path(path).read_text(encoding="utf-8"))
+        except (OSError, ValueError) as exc:
+            raise CourseConfigError(f"cannot read course configuration {path}: {exc}") from None
+        if not isinstance(data, dict):
+            raise CourseConfigError(f"{path}: expected a JSON object")
+        known = {f.name for f in fields(cls)}
+        unknown = sorted(set(data) - known)
+        if unknown:
+            raise CourseConfigError(f"{path}: unknown keys {unknown}; known keys are {sorted(known)}")
+        return cls(**data)
+
+    def to_json(self) -> str:
+        return json.dumps(asdict(self), indent=2) + "\n"
+
+
+def parse_time(text: str) -> datetime:
+    """An ISO 8601 time; ``Z`` and Gradescope's ``2026-03-01 23:59:00.1 -08:00`` too (Python 3.10)."""
+    text = text.strip().replace(" -", "-").replace(" +", "+")
+    if text.endswith(("Z", "z")):
+        text = text[:-1] + "+00:00"
+    date, _, rest = text.partition("T") if "T" in text else text.partition(" ")
+    if "." in rest:  # Python 3.10 accepts 3 or 6 fraction digits only
+        clock, _, fraction = rest.partition(".")
+        digits = len(fraction) - len(fraction.lstrip("0123456789"))
+        rest = f"{clock}.{fraction[:digits][:6].ljust(6, '0')}{fraction[digits:]}"
+    return datetime.fromisoformat(f"{date}T{rest}" if rest else date)
