@@ -15,7 +15,8 @@ exercise, hidden checks included, and classified:
     python benchmarks/blind_naming.py                  # this checkout
     python benchmarks/blind_naming.py --code /tmp/old  # another copy of the grader, same cases
     python benchmarks/blind_naming.py --lab lab08 --json out.json
-    python benchmarks/blind_naming.py --later           # the second set, written after the mechanism
+    python benchmarks/blind_naming.py --set b           # the second set (blind_mistakes/later.py; --later)
+    python benchmarks/blind_naming.py --set c           # the third set (blind_mistakes/set_c.py)
 
 The cases are never tuned on: they were written and committed before the naming
 mechanism was changed, and the truth of each was written with it.
@@ -35,6 +36,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 OUTCOMES = ("named", "described", "wrong", "not caught")
+SETS = {"a": None, "b": "later", "c": "set_c"}  # set -> module of (module, Case) pairs; a is per lab
 _LOOKS_LIKE = re.compile(r"(?:it )?looks like (.+?)(?:\.(?:\s|$)|\n|$)", re.S | re.I)
 
 
@@ -83,8 +85,11 @@ def main(argv=None) -> int:
                         help="the grader's copy to measure (its autograder/, fixtures/, reference_solutions/)")
     parser.add_argument("--lab", action="append", help="only these labs (lab08 ...)")
     parser.add_argument("--json", type=Path, help="write every case's outcome, names and first message here")
-    parser.add_argument("--later", action="store_true",
-                        help="grade the second blind set (blind_mistakes/later.py), written after the mechanism")
+    parser.add_argument("--set", dest="blind_set", choices=SETS, default="a",
+                        help="which blind set: a (blind_mistakes/labNN.py, the default), b (later.py, written "
+                             "after the mechanism) or c (set_c.py, written without reading the grader)")
+    parser.add_argument("--later", dest="blind_set", action="store_const", const="b",
+                        help="the same as --set b")
     args = parser.parse_args(argv)
 
     sys.path.insert(0, str(args.code.resolve()))
@@ -95,10 +100,10 @@ def main(argv=None) -> int:
 
     reference = args.code.resolve() / "reference_solutions"
     counts, details = {}, []
-    if args.later:
-        from blind_mistakes.later import CASES as LATER
+    if args.blind_set != "a":
+        listed = __import__(f"blind_mistakes.{SETS[args.blind_set]}", fromlist=["CASES"]).CASES
         chosen = {}
-        for module, case in LATER:
+        for module, case in listed:
             chosen.setdefault(case.exercise.split(".")[0], (module, []))[1].append(case)
     else:
         chosen = {lab: (__import__(f"blind_mistakes.{lab}", fromlist=["MODULE"]).MODULE, cases)
