@@ -292,6 +292,9 @@ def test_the_aperture_message_no_longer_names_the_opposite_cause():
 # The functions whose "it looks like" rests on a measurement that is itself the claim (no
 # candidate answer is compared), and why that is evidence enough.
 DIRECT_EVIDENCE = {
+    "shape_form": "the result's shape is the named form's (2x3 for 3x3, (N, 1, 2), one coordinate more...)",
+    "exception_form": "the shapes in NumPy's own error are the named form's",
+    "_homogeneous_product": "the product's inner sizes differ by the homogeneous coordinate",
     "judge_matrix": "an integer matrix: the entries are whole numbers where the truth's are not",
     "judge_warp": "the shape is the expected one with width and height exchanged",
     "expect_array": "the shape is the expected one transposed",
@@ -335,7 +338,7 @@ DIRECT_EVIDENCE = {
 }
 CONFIRMING = {"name_mistake", "confirm", "judge_matrix", "judge_warp", "judge_points", "judge_projective",
               "name_second_warp_mistake", "name_matching_mistake", "probe", "_disc_ratio_on_probe"}
-SUITES = ["engine/judges.py", "labs/lab07.py", "labs/lab08.py", "labs/lab09.py", "labs/lab10.py", "labs/lab11.py",
+SUITES = ["engine/judges.py", "engine/forms.py", "labs/lab07.py", "labs/lab08.py", "labs/lab09.py", "labs/lab10.py", "labs/lab11.py",
           "labs/lab12.py"]
 
 

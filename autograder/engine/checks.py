@@ -27,6 +27,7 @@ import numpy as np
 from ..sandbox.beginner import uint8_wraps
 from ..sandbox.supervisor import CallOutcome, Sandbox
 from . import pictures
+from .forms import shape_form
 from .inputs import NO_SUBMISSION
 from .registry import Check
 from .results import Artifact
@@ -221,10 +222,10 @@ class Trial:
                       + (f" of shape {_shape_text(shape)}" if shape is not None else ""))
         if shape is not None:
             if value.ndim != len(shape) or any(s is not None and s != v for s, v in zip(shape, value.shape)):
-                if len(shape) == 2 and None not in shape and shape[0] != shape[1] and value.shape == shape[::-1]:
+                form = shape_form(value.shape, tuple(shape))
+                if form is not None:
                     self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
-                              "it looks transposed (rows and columns exchanged)",
-                              mistake="the result is transposed")
+                              f"{form.sentence}", mistake=form.mistake)
                 self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}")
         if dtype is not None and value.dtype != np.dtype(dtype):
             self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}",

@@ -39,6 +39,7 @@ from ..loading.submission import load_submission
 from ..sandbox import cache, confine
 from ..sandbox.supervisor import CallOutcome, Limits, Sandbox
 from .checks import Fail, StudentFailure, Trial, Verdict
+from .forms import exception_form
 from .inputs import Inputs
 from .registry import Check, Exercise, discover, hidden_checks_installed, select
 from .results import (ADVICE, ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
@@ -323,6 +324,17 @@ def _reading(exercise: Exercise, submission) -> Reading | None:
     return read_file(submission.path / f"{exercise.lab.module}.py", api)
 
 
+def _named_by_exception(verdict: Verdict) -> Verdict:
+    """A failure whose exception NumPy raised for a wrong form (a per-row value kept flat, points
+    not made homogeneous: :func:`autograder.engine.forms.exception_form`), naming that form; the
+    shapes in the error are the evidence."""
+    form = exception_form(str(verdict.message))
+    if form is None:
+        return verdict
+    first, newline, rest = str(verdict.message).partition("\n")
+    return replace(verdict, message=f"{first.rstrip()}: {form.sentence}.{newline}{rest}", mistake=form.mistake)
+
+
 def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: Trial) -> Verdict:
     """A failing verdict that names no mistake, naming the cause the submission's code shows in the
     functions the check called (a finding of :mod:`autograder.loading.reading`), when there is one: the
@@ -464,6 +476,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
                                        "the rest was graded - please tell your instructor"), ERROR
         tb = ""
         _log_grader_error(check, exc)
+    if student_failure == "exception" and not verdict.mistake:
+        verdict = _named_by_exception(verdict)
     if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
             and student_failure in ("", "exception"):
         verdict = _named_by_reading(verdict, reading, check, trial)

@@ -1,0 +1,123 @@
+"""Naming a wrong *form* from what was measured: a result's shape, the error NumPy raised.
+
+Many mistakes leave the numbers right and the form wrong -- the 2x3 affine matrix
+OpenCV's ``warpAffine`` takes where the 3x3 homogeneous one is asked, points still
+homogeneous, OpenCV's ``(N, 1, 2)`` layout -- or stop the function with NumPy's own
+error (``operands could not be broadcast together with shapes (15,2) (15,)``, a
+matrix product whose inner sizes differ by the homogeneous 1). The shape, or the
+shapes in the error, are measured evidence: each name here follows from them alone,
+so no probe is needed to confirm it, and a form no rule recognises is left to the
+plain description ("returned shape (4, 4); expected (3, 3)").
+
+Each function returns a :class:`Form` (the sentence that explains it, beginning "it
+looks like", and the mistake's short name for the class reports) or ``None``.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Form:
+    sentence: str    # "it looks like ...; ..." (no final full stop)
+    mistake: str     # the short name class reports count
+
+
+def _size(shape) -> str:
+    return "x".join(str(n) for n in shape)
+
+
+def shape_form(got: tuple, expected: tuple) -> Form | None:
+    """The form a result of shape ``got`` has where ``expected`` is asked (``None`` entries
+    of ``expected`` match any length), when a rule recognises it."""
+    got, expected = tuple(got), tuple(expected)
+    known = [n for n in expected if n is not None]
+    if len(got) == 2 and len(expected) == 2 and None not in expected:
+        rows, columns = expected
+        if rows != columns and got == (columns, rows):
+            return Form("it looks transposed (rows and columns exchanged)", "the result is transposed")
+        if got == (rows - 1, columns) and rows == columns:
+            return Form(f"it looks like the {_size(got)} affine form, the matrix without its last row "
+                        f"[0 ... 0 1]; a {_size(expected)} homogeneous matrix is asked",
+                        f"the {_size(got)} affine form instead of the {_size(expected)} homogeneous matrix")
+        if got == (rows + 1, columns) and columns == rows + 1:
+            return Form(f"it looks like the {_size(got)} homogeneous matrix; its top {rows} rows "
+                        f"({_size(expected)}) are asked",
+                        f"the {_size(got)} homogeneous matrix instead of its {_size(expected)} top rows")
+        if got == (rows, columns - 1):
+            return Form(f"it looks like the last column is missing ({_size(got)} for {_size(expected)})",
+                        "the matrix's last column is missing")
+    if len(got) == len(expected) + 1 == 3 and got[1] == 1 and _fits(got[:1] + got[2:], expected):
+        return Form(f"it looks like OpenCV's (N, 1, {got[2]}) point layout: reshape it to (N, {got[2]})",
+                    "points left in OpenCV's (N, 1, 2) layout")
+    if len(got) == len(expected) == 2 and expected[0] is None and expected[1] in (2, 3) \
+            and got[1] == expected[1] + 1:
+        return Form(f"it looks like the points are still homogeneous ({got[1]} coordinates): divide by "
+                    f"the last one and keep the first {expected[1]}",
+                    "points left in homogeneous coordinates")
+    if len(expected) == 1 and len(got) == 2 and 1 in got and _fits((max(got),), expected):
+        return Form(f"it looks like a {'column' if got[1] == 1 else 'row'} of shape {got} where a flat "
+                    f"array of {max(got)} values is asked (ravel() it)",
+                    "a 2-D column or row where a flat array is asked")
+    if len(got) == 1 and len(expected) == 2 and None not in expected and known and got[0] == expected[0] * expected[1]:
+        return Form(f"it looks flattened: {got[0]} values where a {_size(expected)} matrix is asked "
+                    f"(reshape({expected[0]}, {expected[1]}))", "the matrix is flattened")
+    return None
+
+
+def _fits(shape: tuple, expected: tuple) -> bool:
+    return len(shape) == len(expected) and all(e is None or e == s for s, e in zip(shape, expected))
+
+
+_BROADCAST = re.compile(r"operands could not be broadcast together with shapes ((?:\([\d,]*\)\s*)+)")
+_SHAPE = re.compile(r"\(([\d,]*)\)")
+_MATMUL = re.compile(r"mismatch in its core dimension \d.*?\(size (\d+) is different from (\d+)\)", re.S)
+_DOT = re.compile(r"shapes \(([\d, ]+)\) and \(([\d, ]+)\) not aligned")
+
+
+def _shapes(text: str) -> list[tuple[int, ...]]:
+    return [tuple(int(n) for n in group.split(",") if n.strip()) for group in _SHAPE.findall(text)]
+
+
+def exception_form(message: str) -> Form | None:
+    """The form behind NumPy's error in ``message`` (the student's exception line), when a rule
+    recognises it: a per-row value kept flat against an ``(N, k)`` array, or a matrix product
+    whose inner sizes differ by the homogeneous coordinate."""
+    found = _BROADCAST.search(message)
+    if found:
+        shapes = _shapes(found.group(1))
+        for flat in shapes:
+            for table in shapes:
+                if len(flat) == 1 and len(table) == 2 and table[0] == flat[0] != table[1]:
+                    n, k = table
+                    return Form(f"it looks like a value per row, shape ({n},), meets an ({n}, {k}) array: "
+                                f"NumPy lines up the last axes, so keep it a column, shape ({n}, 1) "
+                                "(for example x[:, 2:3] or w[:, None])",
+                                "a per-row value kept flat (N,) against an (N, k) array")
+        return None
+    found = _MATMUL.search(message)
+    if found:
+        sizes = sorted(int(n) for n in found.groups())
+        if sizes[1] - sizes[0] == 1 and sizes[1] in (3, 4):
+            return _homogeneous_product(sizes)
+        return None
+    found = _DOT.search(message)
+    if found:
+        first, second = (tuple(int(n) for n in g.split(",") if n.strip()) for g in found.groups())
+        if len(first) == 2 and len(second) == 2:
+            sizes = sorted((first[1], second[0]))
+            if sizes[1] - sizes[0] == 1 and sizes[1] in (3, 4):
+                return _homogeneous_product(sizes)
+            if first[1] == second[1] and first[1] != second[0]:
+                return Form(f"it looks like the points are rows ({_size(second)}) multiplied as columns: "
+                            "use pts @ M.T (or M @ pts.T)", "points multiplied as columns while stored as rows")
+    return None
+
+
+def _homogeneous_product(sizes: list[int]) -> Form:
+    short, full = sizes
+    return Form(f"it looks like points of {short} coordinates meet a matrix that needs {full}: "
+                "make them homogeneous first (append a coordinate of ones)",
+                "points not made homogeneous before the matrix product")

@@ -1,0 +1,101 @@
+"""Wrong forms named from what was measured: a result's shape, NumPy's own error (issue 26)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from autograder.engine.forms import exception_form, shape_form
+from conftest import assert_mistake_named, graded_case, named_mistakes
+
+
+def numpy_error(operation) -> str:
+    """The message NumPy gives for ``operation`` (this NumPy's own wording, not a copy of it)."""
+    with pytest.raises((ValueError, IndexError)) as raised:
+        operation()
+    return f"project() raised {type(raised.value).__name__}: {raised.value}"
+
+
+# ------------------------------------------------------------------ shapes
+@pytest.mark.parametrize("got, expected, words", [
+    ((2, 3), (3, 3), "2x3 affine form"),
+    ((3, 3), (2, 3), "3x3 homogeneous matrix; its top 2 rows"),
+    ((3, 3), (3, 4), "last column is missing"),
+    ((4, 2), (2, 4), "transposed"),
+    ((12, 1, 2), (None, 2), "(N, 1, 2) point layout"),
+    ((12, 3), (None, 2), "still homogeneous"),
+    ((12, 4), (None, 3), "still homogeneous"),
+    ((9,), (3, 3), "flattened"),
+    ((5, 1), (5,), "column of shape (5, 1)"),
+    ((1, 5), (None,), "row of shape (1, 5)"),
+])
+def test_a_recognised_form_is_named_from_the_shape(got, expected, words):
+    form = shape_form(got, expected)
+    assert form is not None and words in form.sentence and form.sentence.startswith("it looks")
+    assert form.mistake
+
+
+@pytest.mark.parametrize("got, expected", [
+    ((4, 4), (3, 3)), ((3, 3, 3), (3, 3)), ((12, 5), (None, 2)), ((7,), (3, 3)), ((2, 2), (2,)),
+    ((12, 1, 3), (None, 2)),
+])
+def test_a_form_no_rule_knows_is_left_to_the_description(got, expected):
+    assert shape_form(got, expected) is None
+
+
+# ------------------------------------------------------------------ NumPy's errors
+def test_a_per_row_value_kept_flat_is_named_from_the_broadcast_error():
+    x = np.ones((15, 3))
+    message = numpy_error(lambda: x[:, :2] / x[:, 2])
+    form = exception_form(message)
+    assert form is not None and "shape (15, 1)" in form.sentence and "x[:, 2:3]" in form.sentence
+
+
+def test_points_not_made_homogeneous_are_named_from_the_product_error():
+    H, points = np.eye(3), np.ones((10, 2))
+    for operation in (lambda: points @ H.T, lambda: H @ points.T, lambda: np.dot(H, points.T)):
+        form = exception_form(numpy_error(operation))
+        assert form is not None and "homogeneous" in form.sentence, numpy_error(operation)
+
+
+def test_points_stored_as_rows_multiplied_as_columns_are_named():
+    H, points = np.eye(3), np.ones((10, 3))
+    form = exception_form(numpy_error(lambda: np.dot(H, points)))
+    assert form is not None and "pts @ M.T" in form.sentence
+
+
+@pytest.mark.parametrize("operation", [
+    lambda: np.ones(3) + np.ones(4),                       # two flat arrays: nothing to name
+    lambda: np.ones((5, 7)) @ np.ones((3, 2)),             # sizes far apart: not the homogeneous 1
+    lambda: np.ones((4, 2)) + np.ones((3, 2)),
+    lambda: np.ones(3)[5],
+])
+def test_other_numpy_errors_are_left_as_they_are(operation):
+    assert exception_form(numpy_error(operation)) is None
+
+
+def test_an_unrelated_message_names_nothing():
+    assert exception_form("project() raised KeyError: 'f'") is None
+    assert exception_form("shapes (3,3) and (3,3) not aligned") is None
+
+
+# ------------------------------------------------------------------ through a grading
+def test_the_2x3_form_of_a_translation_is_named_in_the_feedback():
+    source = '''
+def translation_matrix(tx, ty):
+    return np.float32([[1, 0, tx], [0, 1, ty]])
+'''
+    result = assert_mistake_named("lab07_transformations", "lab07.ex1", source, ["2x3 affine form"])
+    assert any("affine form" in mistake for mistake, _ in named_mistakes(result, "lab07.ex1"))
+
+
+def test_a_flat_w_is_named_when_numpy_refuses_the_division():
+    source = '''
+def transform_points(H, pts):
+    pts = np.asarray(pts, dtype=float)
+    x = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H, dtype=float).T
+    return x[:, :2] / x[:, 2]
+'''
+    result = graded_case("lab08_homographies", "lab08.ex1", source)
+    names = [mistake for mistake, _ in named_mistakes(result, "lab08.ex1")]
+    assert names and all("per-row value kept flat" in name for name in names), names
