@@ -61,7 +61,10 @@ def build_parser() -> argparse.ArgumentParser:
                        help="report hidden checks in full: their inputs, messages and pictures (for "
                             "instructors; by default they show as students see them, a verdict only)")
 
-    commands.add_parser("list", help="list the labs, exercises and checks")
+    listing = commands.add_parser("list", help="list the labs, exercises and checks")
+    listing.add_argument("--course", metavar="COURSE", help="course configuration (JSON): its own labs too")
+    listing.add_argument("--ids", action="store_true",
+                         help="show each check's id (lab07.ex1::translate_grey), as the course's 'hide' names it")
 
     validate = commands.add_parser(
         "validate", help="before hand-in: what would lose points for reasons other than the algorithm",
@@ -72,6 +75,7 @@ def build_parser() -> argparse.ArgumentParser:
     validate.add_argument("submission", help="folder, .py, .zip or .ipynb")
     validate.add_argument("select", nargs="*", metavar="SELECT",
                           help="what to validate: lab07, lab07.ex2 ... (default: everything)")
+    validate.add_argument("--config", metavar="COURSE", help="course configuration (JSON): its own labs too")
 
     batch = commands.add_parser("batch", help="grade a class: a gradebook, every student's page, LMS CSVs")
     batch.add_argument("submissions", metavar="SUBMISSIONS",
@@ -103,10 +107,13 @@ def build_parser() -> argparse.ArgumentParser:
 
     bundle = commands.add_parser("bundle", help="write the repository students receive")
     bundle.add_argument("--student", metavar="OUT", required=True, help="folder to create")
+    bundle.add_argument("--course", metavar="COURSE",
+                        help="course configuration (JSON): its labs' skeletons and public checks ship too")
     bundle.add_argument("--wheels", action="store_true",
                         help="also download every package the grader needs into OUT/wheels (for this Python "
                              "and platform, at constraints.txt's versions), so the bundle installs offline")
     add_class_commands(commands)
+    add_author_commands(commands)
     return parser
 
 
@@ -261,10 +268,10 @@ def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
         return {}
     for outcome in outcomes:
         if outcome.path is None:
-            console.print(f"[yellow]no figure for {outcome.exercise_id}:[/yellow] {escape(outcome.reason)}",
+            console.print(f"[yellow]no figure for {outcome.figure_id}:[/yellow] {escape(outcome.reason)}",
                           highlight=False)
-    written += [(f"figure {o.exercise_id}", o.path) for o in outcomes if o.path is not None]
-    return {o.exercise_id: o.path.read_bytes() for o in outcomes if o.path is not None}
+    written += [(f"figure {o.figure_id}", o.path) for o in outcomes if o.path is not None]
+    return {o.figure_id: o.path.read_bytes() for o in outcomes if o.path is not None}
 
 
 def _early_sandbox(limits):
@@ -489,11 +496,14 @@ VALIDATE_PROBLEMS = 1   # validate: problems found
 def run_validate(args) -> int:
     """``autograder validate PATH [SELECT...]``: 0 clean, 1 problems found, 2 usage."""
     from .engine.registry import SelectionError
+    from .instructor.course import CourseConfig, CourseConfigError
     from .student.validate import validate
 
     try:
+        if getattr(args, "config", None):
+            CourseConfig.load(args.config)   # registers the course's labs
         report = validate(args.submission, args.select)
-    except (SelectionError, SubmissionError) as exc:
+    except (SelectionError, SubmissionError, CourseConfigError) as exc:
         print(f"error: {printable(str(exc))}", file=sys.stderr)
         return USAGE_ERROR
     print(printable(str(report)))
@@ -501,13 +511,23 @@ def run_validate(args) -> int:
 
 
 def run_list(args) -> int:
+    if getattr(args, "course", None):
+        from .instructor.course import CourseConfig, CourseConfigError
+
+        try:
+            CourseConfig.load(args.course)   # registers the course's labs
+        except CourseConfigError as exc:
+            print(f"error: {exc}", file=sys.stderr)
+            return USAGE_ERROR
     for lab in sorted(discover().values(), key=lambda lab: lab.key):
-        print(f"{lab.key}  {lab.module}.py  {lab.title}")
+        where = f"  (course lab: {lab.folder})" if lab.folder else ""
+        print(f"{lab.key}  {lab.module}.py  {lab.title}{where}")
         for exercise in lab.exercises.values():
             print(f"  {exercise.id:<12} {exercise.max_score():>5g} pts  {exercise.title}")
             for check in exercise.checks:
                 points = "tip" if check.advice else f"{check.points:g}"  # advice: 0 points
-                print(f"      {points:>4}  {check_label(check.name, check.hidden)}")
+                print(f"      {points:>4}  {check_label(check.name, check.hidden)}"
+                      + (f"  [{check.id}]" if getattr(args, "ids", False) else ""))
     return 0
 
 
@@ -566,10 +586,12 @@ def run_gradescope(args) -> int:
 
 def run_bundle(args) -> int:
     from .instructor.bundle import WheelhouseError, write_student_bundle, write_wheelhouse
+    from .instructor.course import CourseConfig, CourseConfigError
 
     try:
-        files = write_student_bundle(args.student)
-    except FileExistsError as exc:
+        course = CourseConfig.load(args.course) if getattr(args, "course", None) else None
+        files = write_student_bundle(args.student, course=course)
+    except (FileExistsError, CourseConfigError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return USAGE_ERROR
     print(f"wrote {len(files)} files to {args.student}: the student repository "
@@ -663,11 +685,94 @@ def run_similarity(args) -> int:
     return 0
 
 
+def add_author_commands(commands) -> None:
+    """``autograder verify`` and ``autograder new-lab``: for those who write labs."""
+    verify = commands.add_parser(
+        "verify", help="prove labs' checks sound: reference, skeleton, mistakes table, determinism",
+        description="Grade each lab's reference solution (twice), its skeleton and every case of its mistakes "
+                    "table, and check that the reference gets full marks, the skeleton zero ('not implemented "
+                    "yet'), every case loses points named in its own words and never as another mistake, every "
+                    "check fails on some case and gives the same verdict twice. Exit status: 0 when every lab is "
+                    "sound, 1 when some is not, 2 for a usage error.")
+    verify.add_argument("labs", nargs="*", metavar="LAB",
+                        help="labs to verify: lab07 lab13 ... (default: the course's own labs with --course, "
+                             "else every built-in lab)")
+    verify.add_argument("--course", metavar="COURSE", help="course configuration (JSON): its labs")
+    new_lab = commands.add_parser("new-lab", help="write a lab folder to start from (it passes verify as it is)")
+    new_lab.add_argument("name", metavar="NAME", help="the lab's module, lab<NN>_<words>: lab13_flow")
+    new_lab.add_argument("--into", metavar="FOLDER", required=True, help="folder to create (empty or new)")
+    new_lab.add_argument("--title", default="", help="the lab's title (default: from NAME)")
+
+
+VERIFY_FAILED = 1   # verify: some lab is not sound
+
+
+def run_verify(args) -> int:
+    """``autograder verify [LAB ...] [--course COURSE]``: 0 sound, 1 not, 2 usage."""
+    from rich.console import Console
+
+    from .instructor.course import CourseConfig, CourseConfigError
+    from .instructor.verify import VerifyError, render, verify_lab
+
+    console, errors = Console(), Console(stderr=True)
+    try:
+        course = CourseConfig.load(args.course) if args.course else None
+    except CourseConfigError as exc:
+        errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
+        return USAGE_ERROR
+    labs = discover()
+    if args.labs:
+        keys = [key.strip().lower() for key in args.labs]
+    elif course is not None and course.labs:
+        keys = sorted(lab.key for lab in labs.values() if lab.folder)
+    else:
+        keys = sorted(key for key, lab in labs.items() if lab.folder is None)
+    unknown = [key for key in keys if key not in labs]
+    if unknown:
+        errors.print(f"[red]error:[/red] no lab {escape(', '.join(unknown))} (labs: {', '.join(sorted(labs))}; "
+                     "a course's own labs need --course)", highlight=False)
+        return USAGE_ERROR
+    sound = True
+    for key in keys:
+        try:
+            with _progress(errors) as advance:
+                report = verify_lab(labs[key], progress=(lambda what: advance(_Step(what), None)) if advance else None)
+        except VerifyError as exc:
+            errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
+            return USAGE_ERROR
+        render(report, console)
+        sound = sound and report.ok
+    return 0 if sound else VERIFY_FAILED
+
+
+class _Step:
+    """What the progress line shows while verify grades (it reads ``.id``)."""
+
+    def __init__(self, what: str):
+        self.id = what
+
+
+def run_new_lab(args) -> int:
+    from .instructor.newlab import NewLabError, new_lab
+
+    try:
+        written = new_lab(args.name, args.into, args.title)
+    except NewLabError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return USAGE_ERROR
+    folder = Path(args.into)
+    print(f"wrote {len(written)} files to {folder}: " + ", ".join(p.relative_to(folder).as_posix() for p in written))
+    print(f'name it in the course configuration ("labs": ["{folder.as_posix()}"], relative to the file), '
+          "then: autograder verify --course course.json")
+    return 0
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     commands = {"grade": run_grade, "list": run_list, "validate": run_validate, "batch": run_batch,
                 "gradescope": run_gradescope,
-                "bundle": run_bundle, "report": run_report, "similarity": run_similarity}
+                "bundle": run_bundle, "report": run_report, "similarity": run_similarity,
+                "verify": run_verify, "new-lab": run_new_lab}
     return _until_the_reader_goes(commands[args.command], args)
 
 

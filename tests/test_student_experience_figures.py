@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from autograder import cli
-from autograder.figures import PRODUCERS, _discover, make_figures
+from autograder.engine.registry import select
+from autograder.figures import PRODUCERS, SHEET_PICTURES, _discover, figure, make_figures, producers_for
 from conftest import REFERENCE, mutant
 
 MODULE = "lab07_transformations"
@@ -58,5 +59,37 @@ def test_a_missing_module_is_the_reason(tmp_path):
 @pytest.mark.slow
 def test_every_figure_is_made_from_the_reference_solutions(tmp_path):
     outcomes = make_figures(REFERENCE, [], tmp_path)
-    assert len(outcomes) == len(_discover()) >= 15
-    assert [o.exercise_id for o in outcomes if o.path is None] == []
+    assert sorted(o.figure_id for o in outcomes) == sorted(_discover())
+    assert [o.figure_id for o in outcomes if o.path is None] == []
+    assert all((tmp_path / f"{figure_id}.png").is_file() for figure_id in SHEET_PICTURES)
+
+
+def test_every_picture_the_lab_sheet_asks_for_has_a_producer_of_a_graded_exercise():
+    producers = _discover()
+    assert sorted(set(SHEET_PICTURES) - set(producers)) == []
+    graded = {exercise.id for exercise in select()}
+    assert sorted(p.figure_id for p in producers.values() if p.exercise_id not in graded) == []
+    # both experiment extensions have a figure of their own, beside their exercise's
+    extensions = [figure_id for figure_id in SHEET_PICTURES if figure_id.endswith("-extension")]
+    assert sorted(extensions) == ["lab09.ex3-extension", "lab12.ex4-extension"]
+    assert [p.figure_id for p in producers_for("lab12.ex4")] == ["lab12.ex4", "lab12.ex4-extension"]
+
+
+@pytest.mark.parametrize("bad", ["lab7.ex1", "lab07.ex1:extension", "lab07.ex1-extension.png", "lab07/ex1"])
+def test_a_figure_id_that_is_no_file_stem_is_refused(bad):
+    with pytest.raises(ValueError, match="figure id"):
+        figure(bad, "title")
+
+
+def test_an_answer_that_cannot_be_drawn_is_the_figures_reason_and_the_others_are_made(tmp_path):
+    submission = mutant(tmp_path, "lab09_camera", """
+        def pinhole_project(points, f):
+            return "not points"
+
+        def intrinsic_matrix(f, px, py):
+            return {"K": 1}
+        """)
+    outcomes = {o.figure_id: o for o in make_figures(submission, ["lab09.ex1", "lab09.ex2", "lab09.ex5"], tmp_path / "f")}
+    assert outcomes["lab09.ex1"].path is None and "cannot be drawn" in outcomes["lab09.ex1"].reason
+    assert outcomes["lab09.ex2"].path is None and outcomes["lab09.ex2"].reason
+    assert outcomes["lab09.ex5"].path.is_file()

@@ -7,16 +7,27 @@ lines, disparity maps ... made by calling the student's functions, in the
 sandbox, on the lab's inputs (the same photos and scenes the checks use). A
 figure is made whether the exercise passes or not: it shows what the code does.
 
-The engine knows no lab: a producer per exercise, registered with
+The engine knows no lab: a producer per figure, registered with
 :func:`figure` in ``autograder/figures/labNN.py``, receives a ``call``
 (``call("translate", image)`` runs the student's function and returns its
 value, or stops the figure with the reason) and returns :class:`Panel` s.
+
+Figure ids. A figure of a graded exercise (extensions with functions of their
+own included, e.g. ``lab08.ext2``) has that exercise's id. An experiment the lab
+sheet lists as an extension without a function of its own (the effects of R and
+t; block sizes in stereo matching) is a figure of the exercise whose functions it
+runs, with ``-extension`` after that id: ``lab09.ex3-extension``. The id is also
+the file name (``lab09.ex3-extension.png``) and the report section's name.
+:data:`SHEET_PICTURES` lists, apart from the producers, every figure the lab sheet
+asks for (an "Expected Output" that is an image, plot or visualisation, and the
+two experiments), so a test notices a producer that goes missing.
 """
 
 from __future__ import annotations
 
 import importlib
 import pkgutil
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
@@ -32,6 +43,9 @@ class Panel:
     image: np.ndarray | None = None
     points: dict[str, np.ndarray] = field(default_factory=dict)
     flip_y: bool = True  # image coordinates: y down
+    frame: tuple[float, float] | None = None  # (width, height): draw the image's border, fix the axes to it
+    axes: tuple[str, str] = ("x", "y")  # the plot's axis labels
+    extent: tuple[float, float, float, float] | None = None  # (x0, x1, y0, y1), e.g. common_extent(...)
 
 
 class FigureUnavailable(Exception):
@@ -40,18 +54,65 @@ class FigureUnavailable(Exception):
 
 @dataclass
 class Producer:
-    exercise_id: str
+    figure_id: str       # "lab07.ex1", "lab09.ex3-extension"
     title: str
     make: Callable[[Callable], list[Panel]]
 
+    @property
+    def exercise_id(self) -> str:
+        """The exercise whose functions the figure runs (its selector): ``lab09.ex3``."""
+        return self.figure_id.split("-", 1)[0]
+
 
 PRODUCERS: dict[str, Producer] = {}
+_FIGURE_ID = re.compile(r"lab\d\d\.ext?\d+(-extension)?")
+
+# What the lab sheet shows for each exercise whose expected output is a picture, in our
+# words; an experiment extension under its figure id. Producers must cover every entry.
+SHEET_PICTURES: dict[str, str] = {
+    "lab07.ex1": "the image translated, uncovered pixels black",
+    "lab07.ex2": "the image rotated about its centre",
+    "lab07.ex3": "the image scaled up",
+    "lab07.ex4": "the image sheared along x",
+    "lab07.ex5": "the image warped by the affine map of three point pairs",
+    "lab07.ex6": "the image warped by the least-squares affine map",
+    "lab08.ex1": "the image warped by a homography",
+    "lab08.ex2": "the second image warped into the first's view (DLT)",
+    "lab08.ex3": "the matched features drawn",
+    "lab08.ex4": "the second image warped into the first's view (RANSAC), inliers shown",
+    "lab08.ex5": "the panorama",
+    "lab09.ex1": "projections of a pinhole camera",
+    "lab09.ex2": "projections with the intrinsic matrix",
+    "lab09.ex3": "projections with the full camera matrix",
+    "lab09.ex3-extension": "projections for several rotations and translations",
+    "lab09.ex4": "projections for several focal lengths, and pinhole blur",
+    "lab09.ex5": "projected points marked on a photo",
+    "lab10.ex1": "projections for three focal lengths",
+    "lab10.ex2": "perspective and weak perspective side by side",
+    "lab10.ex3": "orthographic and perspective projections",
+    "lab10.ex6": "the reprojected chessboard corners",
+    "lab11.ex2": "epipolar lines on the second image",
+    "lab11.ex6": "matches, epipolar lines of the estimated F, triangulated points",
+    "lab12.ex2": "disparity and depth maps",
+    "lab12.ex3": "the rectified pair",
+    "lab12.ex4": "the disparity map of block matching",
+    "lab12.ex4-extension": "disparity maps for several block sizes",
+    "lab12.ex5": "the disparity map of the smoothness-enforcing matcher",
+    "lab12.ex6": "the depth map recovered from structured light",
+}
 
 
-def figure(exercise_id: str, title: str):
-    """Register ``make(call) -> list[Panel]`` as the figure of ``exercise_id``."""
+def figure(figure_id: str, title: str):
+    """Register ``make(call) -> list[Panel]`` as the figure ``figure_id`` (see the module doc)."""
+    if not _FIGURE_ID.fullmatch(figure_id):
+        raise ValueError(f"a figure id looks like lab07.ex1, lab08.ext2 or lab09.ex3-extension, "
+                         f"not {figure_id!r}")
+
     def register(make):
-        PRODUCERS[exercise_id] = Producer(exercise_id, title, make)
+        known = PRODUCERS.get(figure_id)
+        if known and (known.make.__module__, known.make.__qualname__) != (make.__module__, make.__qualname__):
+            raise ValueError(f"figure {figure_id} is registered twice")
+        PRODUCERS[figure_id] = Producer(figure_id, title, make)
         return make
     return register
 
@@ -68,32 +129,43 @@ class FigureOutcome:
     exercise_id: str
     path: Path | None = None
     reason: str = ""
+    figure_id: str = ""  # the file's stem; the exercise id unless an experiment's figure
+
+    def __post_init__(self):
+        self.figure_id = self.figure_id or self.exercise_id
+
+
+def producers_for(exercise_id: str) -> list[Producer]:
+    """The figures of one exercise, its own first, in the order they were registered."""
+    return [p for p in _discover().values() if p.exercise_id == exercise_id]
 
 
 def make_figures(submission, selectors=(), out_dir=".", limits=None) -> list[FigureOutcome]:
-    """Write ``out_dir/<exercise>.png`` for every selected exercise that has a figure."""
+    """Write ``out_dir/<figure id>.png`` for every figure of the selected exercises."""
     from ..engine.registry import select
     from ..sandbox.supervisor import Sandbox
     from ..loading.submission import load_submission
 
-    producers = _discover()
-    exercises = [ex for ex in select(selectors) if ex.id in producers]
+    chosen = [(ex, producer) for ex in select(selectors) for producer in producers_for(ex.id)]
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     outcomes = []
-    with load_submission(submission, sorted({ex.lab.module for ex in exercises})) as loaded:
+    with load_submission(submission, sorted({ex.lab.module for ex, _ in chosen})) as loaded:
         with Sandbox(loaded.path, limits) as sandbox:
-            for exercise in exercises:
-                producer = producers[exercise.id]
+            for exercise, producer in chosen:
                 call = _caller(sandbox, exercise.lab.module, loaded.problems.get(exercise.lab.module))
                 try:
-                    panels = producer.make(call)
+                    png = render_png(f"{producer.figure_id} · {producer.title}", producer.make(call))
                 except FigureUnavailable as exc:
-                    outcomes.append(FigureOutcome(exercise.id, reason=str(exc)))
+                    outcomes.append(FigureOutcome(exercise.id, reason=str(exc), figure_id=producer.figure_id))
                     continue
-                path = out_dir / f"{exercise.id}.png"
-                path.write_bytes(render_png(f"{exercise.id} · {producer.title}", panels))
-                outcomes.append(FigureOutcome(exercise.id, path))
+                except Exception as exc:  # noqa: BLE001 - what a student returned cannot stop the others
+                    reason = f"what your functions returned cannot be drawn ({type(exc).__name__}: {exc})"
+                    outcomes.append(FigureOutcome(exercise.id, reason=reason[:300], figure_id=producer.figure_id))
+                    continue
+                path = out_dir / f"{producer.figure_id}.png"
+                path.write_bytes(png)
+                outcomes.append(FigureOutcome(exercise.id, path, figure_id=producer.figure_id))
     return outcomes
 
 
@@ -109,22 +181,26 @@ def _caller(sandbox, module: str, problem: str | None):
 
 
 def render_png(title: str, panels: list[Panel], dpi: int = 110) -> bytes:
-    """The panels side by side (wrapping after three) as one PNG, each with its title."""
+    """The panels side by side (three to a row, four as two by two) as one PNG, each with its title."""
     import io
 
     from matplotlib.figure import Figure
 
-    columns = min(3, len(panels))
+    columns = 2 if len(panels) in (2, 4) else min(3, len(panels))
     rows = [panels[i:i + columns] for i in range(0, len(panels), columns)]
-    # Each panel as wide as its picture's aspect asks (a side-by-side pair is wide), plots square-ish.
-    ratios = [[_aspect(panel) for panel in row] + [0.0] * (columns - len(row)) for row in rows]
+    # Each panel as wide as its picture's aspect asks (a side-by-side pair is wide), plots square-ish;
+    # a short last row keeps the panel size of the rows above, left-aligned.
+    ratios = [[_aspect(panel) for panel in row] for row in rows]
+    usual = float(np.mean(ratios[0]))
+    ratios = [r + [usual] * (columns - len(r)) for r in ratios]
     width = 3.4 * max(sum(r) for r in ratios)
     fig = Figure(figsize=(min(width, 14.0), 3.4 * len(rows) + 0.5), dpi=dpi, layout="constrained")
     fig.suptitle(title)
-    for row, (row_panels, row_ratios) in enumerate(zip(rows, ratios)):
-        grid = fig.add_gridspec(len(rows), len(row_ratios), width_ratios=[r or 1e-3 for r in row_ratios])
+    row_figures = np.atleast_1d(fig.subfigures(len(rows), 1))  # rows laid out apart: no title overlaps
+    for row_figure, row_panels, row_ratios in zip(row_figures, rows, ratios):
+        grid = row_figure.add_gridspec(1, columns, width_ratios=row_ratios)
         for column, panel in enumerate(row_panels):
-            ax = fig.add_subplot(grid[row, column])
+            ax = row_figure.add_subplot(grid[0, column])
             ax.set_title(panel.title, fontsize=9)
             if panel.image is not None:
                 _show_image(ax, panel.image)
@@ -133,6 +209,18 @@ def render_png(title: str, panels: list[Panel], dpi: int = 110) -> bytes:
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png")
     return buffer.getvalue()
+
+
+def common_extent(*point_sets, margin: float = 0.05) -> tuple[float, float, float, float]:
+    """``(x0, x1, y0, y1)`` holding every finite point of ``point_sets``: panels that share it
+    show sizes that can be compared (a longer focal length, a larger picture)."""
+    points = np.vstack([np.asarray(p, dtype=float).reshape(-1, 2) for p in point_sets] or [np.zeros((0, 2))])
+    points = points[np.all(np.isfinite(points), axis=1)]
+    if len(points) == 0:
+        return (-1.0, 1.0, -1.0, 1.0)
+    low, high = points.min(axis=0), points.max(axis=0)
+    pad = np.maximum((high - low) * margin, 1e-9)
+    return (low[0] - pad[0], high[0] + pad[0], low[1] - pad[1], high[1] + pad[1])
 
 
 def _aspect(panel: Panel) -> float:
@@ -167,7 +255,20 @@ def _plot_points(ax, panel: Panel):
         ax.scatter(points[:, 0], points[:, 1], s=10, label=label)
     if len(panel.points) > 1:
         ax.legend(fontsize=7)
-    ax.set_aspect("equal", adjustable="datalim")
+    if panel.frame is not None:
+        width, height = panel.frame
+        ax.plot([0, width, width, 0, 0], [0, 0, height, height, 0], color="0.6", linewidth=1)
+        ax.set_xlim(-0.05 * width, 1.05 * width)
+        ax.set_ylim(-0.05 * height, 1.05 * height)
+        ax.set_aspect("equal")
+    elif panel.extent is not None:
+        ax.set_xlim(*panel.extent[:2])
+        ax.set_ylim(*panel.extent[2:])
+        ax.set_aspect("equal")
+    else:
+        ax.set_aspect("equal", adjustable="datalim")
     if panel.flip_y:
         ax.invert_yaxis()
+    ax.set_xlabel(panel.axes[0], fontsize=8)
+    ax.set_ylabel(panel.axes[1], fontsize=8)
     ax.tick_params(labelsize=7)

@@ -1,6 +1,6 @@
 """Lab 10's figures: focal lengths, perspective vs weak perspective vs orthographic."""
 
-from . import Panel, figure
+from . import FigureUnavailable, Panel, common_extent, figure
 
 
 def _scene():
@@ -12,8 +12,9 @@ def _scene():
 @figure("lab10.ex1", "perspective_project(points, f) for f = 100, 500, 1000")
 def focal_lengths(call):
     X = _scene()
-    return [Panel(f"f = {f:g}", points={"perspective": call("perspective_project", X, f)})
-            for f in (100.0, 500.0, 1000.0)]
+    projections = {f: call("perspective_project", X, f) for f in (100.0, 500.0, 1000.0)}
+    extent = common_extent(*projections.values())  # one scale for all three: the picture grows with f
+    return [Panel(f"f = {f:g}", points={"perspective": p}, extent=extent) for f, p in projections.items()]
 
 
 @figure("lab10.ex2", "perspective and weak perspective, f = 500")
@@ -46,3 +47,51 @@ def pose(call):
         if np.isfinite(x) and np.isfinite(y):
             cv2.circle(marked, (int(round(x)), int(round(y))), 3, (0, 0, 255), -1)
     return [Panel("input", image), Panel("reprojected corners (red)", marked)]
+
+
+@figure("lab10.ext1", "undistort_image(distorted chessboard view, K, dist)")
+def undistortion(call):
+    from fixtures.lab10 import DIST, POSE_K, distorted_view
+
+    distorted, clean, *_ = distorted_view()
+    return [Panel("what the lens records", distorted),
+            Panel("undistort_image(image, K, dist)", call("undistort_image", distorted, POSE_K, DIST)),
+            Panel("the view without distortion", clean)]
+
+
+@figure("lab10.ext2", "dolly_zoom(points, f0=300, z0=4, distances=[2, 4, 8])")
+def dolly(call):
+    import numpy as np
+
+    side = np.linspace(-0.5, 0.5, 9)
+    subject = np.vstack([np.column_stack([side, np.full_like(side, s), np.full_like(side, 4.0)]) for s in (-0.5, 0.5)]
+                        + [np.column_stack([np.full_like(side, s), side, np.full_like(side, 4.0)]) for s in (-0.5, 0.5)])
+    xs, ys = np.meshgrid(np.linspace(-4, 4, 9), np.linspace(-3, 3, 7))
+    background = np.column_stack([xs.ravel(), ys.ravel(), np.full(xs.size, 12.0)])
+    distances = np.array([2.0, 4.0, 8.0])
+    focal_lengths, projections = call("dolly_zoom", np.vstack([subject, background]), 300.0, 4.0, distances)
+    projections = np.asarray(projections, float)
+    if projections.shape != (3, len(subject) + len(background), 2):
+        raise FigureUnavailable(f"dolly_zoom() returned projections of shape {projections.shape}")
+    centre = np.array([160.0, 120.0])  # drawn on a 320 x 240 image, the optical axis at its centre
+    return [Panel(f"subject at {d:g}, f = {float(f):.4g}",
+                  points={"subject": projections[k, :len(subject)] + centre,
+                          "background": projections[k, len(subject):] + centre},
+                  frame=(320.0, 240.0), axes=("column x", "row y"))
+            for k, (d, f) in enumerate(zip(distances, np.asarray(focal_lengths, float).reshape(-1)))]
+
+
+@figure("lab10.ext3", "track_pose(frames): the board's position in each frame")
+def tracking(call):
+    import numpy as np
+    from fixtures.lab10 import POSE_K, POSE_PATTERN, POSE_SQUARE, track_sequence
+
+    frames, _ = track_sequence()
+    poses = np.asarray(call("track_pose", list(frames), POSE_PATTERN, POSE_SQUARE, POSE_K), float)
+    if poses.ndim != 2 or poses.shape[1] != 6:
+        raise FigureUnavailable(f"track_pose() returned shape {poses.shape}; expected (frames, 6)")
+    found = np.all(np.isfinite(poses), axis=1)
+    return [Panel(f"frame {k + 1}" + ("" if k < len(found) and found[k] else ": no board found"), frame)
+            for k, frame in enumerate(frames)] + [
+        Panel(f"tvec seen from above ({found.sum()} of {len(frames)} frames)",
+              points={"board origin": poses[found][:, [3, 5]]}, flip_y=False, axes=("X", "Z (depth)"))]

@@ -128,16 +128,18 @@ def _figure_caption(artifact, items) -> str:
 
 
 def render(result: GradingResult, figures: dict[str, bytes] | None = None) -> str:
-    """The feedback page as a string; ``figures`` (exercise id -> PNG bytes, from
-    :mod:`autograder.figures`) are shown at the top of their exercise."""
+    """The feedback page as a string; ``figures`` (figure id -> PNG bytes, from
+    :mod:`autograder.figures`) are shown at the top of their exercise (``lab09.ex3`` and
+    ``lab09.ex3-extension`` at the top of lab09.ex3)."""
     import base64
 
     percent = round(100 * result.total / result.max_total) if result.max_total else 0
     encoded = {}
-    for exercise_id, png in (figures or {}).items():
+    for figure_id, png in (figures or {}).items():
         mime, data, width, height = pictures.compact_encoding(base64.b64encode(png).decode("ascii"),
                                                               max_width=1400, max_height=900)
-        encoded[exercise_id] = {"mime": mime, "data": data, "width": width, "height": height}
+        encoded.setdefault(figure_id.split("-", 1)[0], []).append(
+            {"mime": mime, "data": data, "width": width, "height": height})
     return _environment().get_template("feedback.html.j2").render(
         result=result, percent=percent, graded=what_was_graded(result), graded_at=_graded_at(result),
         sheet=PictureSheet(), heat_scale=", ".join(pictures.heat_scale_stops()), figures=encoded)

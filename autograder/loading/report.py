@@ -1,0 +1,302 @@
+"""Reading the lab report a student hands in: an explanation per exercise.
+
+``python grade.py --report DIR`` writes a scaffold (:mod:`autograder.student.report`):
+per exercise a ``## lab07.ex1: title`` heading, the figures made by the student's
+code, the automatic verdict, and a marked place for the explanation::
+
+    <!-- explanation lab07.ex1 -->
+    _Explain what you see here._
+    <!-- end explanation -->
+
+This module reads what the student wrote there, from Markdown files and from the
+Markdown cells of notebooks, into :class:`Explanation` s. It never renders
+anything (the instructor side does, safely) and never raises on what a student
+sends: every fault (a file too large, a notebook that is no JSON, one exercise
+explained twice ...) is a sentence in :attr:`Report.problems`. Sizes are bounded:
+a file over :data:`MAX_REPORT_BYTES` is not read, an explanation over
+:data:`MAX_EXPLANATION_CHARS` is cut (``truncated=True``), at most
+:data:`MAX_EXPLANATIONS` exercises and :data:`MAX_PROBLEMS` sentences are kept.
+
+Where the explanation is, in a Markdown file:
+
+1. between ``<!-- explanation ID -->`` and the next ``<!-- end explanation -->``;
+   a missing end marker ends it at the next start marker or ``#``/``##`` heading;
+2. without markers for an exercise, under its heading ``## ID...`` up to the next
+   ``#`` or ``##`` heading, the figure lines and the verdict line removed.
+
+In a notebook: a Markdown cell tagged ``report:ID``, or holding the start marker of
+one exercise, is that exercise's explanation (its text, markers and placeholder
+removed); a cell holding markers of several exercises is read as a Markdown file.
+
+IDs are exercise ids (``lab07.ex1``, ``lab08.ext2``) or the figure ids of the
+experiment extensions (``lab09.ex3-extension``). :data:`PLACEHOLDER` alone, or
+nothing, means "not written": such a section gives no explanation.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import dataclass, field
+from pathlib import PurePosixPath
+
+from .text import printable, shown
+
+REPORT_SUFFIXES = (".md", ".ipynb")      # .pdf files are listed, never parsed
+ATTACHMENT_SUFFIXES = (".pdf",)
+MAX_REPORT_BYTES = 1 << 20               # a larger report file is refused with its reason
+MAX_EXPLANATION_CHARS = 20_000           # longer: cut, with truncated=True
+MAX_EXPLANATIONS = 300                   # exercises read from one hand-in (six labs have ~50)
+MAX_PROBLEMS = 20                        # sentences kept; the rest are counted
+
+PLACEHOLDER = "_Explain what you see here._"
+REPORT_TAG_PREFIX = "report:"            # a notebook cell's tag: report:lab07.ex1
+VERDICT_PREFIX = "Automatic verdict:"
+
+_ID = re.compile(r"lab\d\d\.[a-z]+\d+(?:-[a-z]+)?")
+_START = re.compile(r"<!--[ \t]*explanation[ \t]+([^\s>]{1,60})[ \t]*-->", re.IGNORECASE)
+_END = re.compile(r"<!--[ \t]*end[ \t]+explanation[ \t]*-->", re.IGNORECASE)
+_HEADING = re.compile(r"^#{1,2}[ \t]+(\S.*)$", re.MULTILINE)   # a level 1 or 2 heading
+_FENCE = re.compile(r"^[ \t]{0,3}(```|~~~)", re.MULTILINE)     # a code block's fence (its "# comments" are no headings)
+_SECTION = re.compile(r"(lab\d\d\.[a-z]+\d+(?:-[a-z]+)?)(?![\w-])", re.IGNORECASE)  # its id, first thing
+_FIGURE_LINE = re.compile(r"^[ \t]*!\[[^\]\n]*\]\([^)\n]*\)[ \t]*$", re.MULTILINE)
+_VERDICT_LINE = re.compile(r"^[ \t]*" + re.escape(VERDICT_PREFIX) + r".*$", re.MULTILINE)
+
+
+def exercise_id(text: str) -> str | None:
+    """``text`` as a section id (``lab07.ex1``, ``lab09.ex3-extension``), lower case, or None."""
+    text = text.strip().lower()
+    return text if _ID.fullmatch(text) else None
+
+
+@dataclass(frozen=True)
+class Explanation:
+    exercise: str          # "lab07.ex1"
+    text: str              # Markdown, as written (never rendered here), control chars removed
+    source: str            # "lab07_report.md" or "lab07_transformations.ipynb, cell 12"
+    truncated: bool = False
+
+
+@dataclass(frozen=True)
+class Report:
+    explanations: dict[str, Explanation] = field(default_factory=dict)  # written ones only
+    attachments: tuple[str, ...] = ()    # relative paths of PDFs handed in (offered as files)
+    problems: tuple[str, ...] = ()       # sentences: a file refused, two explanations of one exercise...
+
+
+# ------------------------------------------------------------------ public functions
+def explanations_in_markdown(text: str, source: str) -> dict[str, Explanation]:
+    """The written explanations of a Markdown report, by exercise id (see the module doc)."""
+    return _Reading().markdown(text, source)
+
+
+def explanations_in_notebook(data: bytes, source: str) -> dict[str, Explanation]:
+    """The written explanations in a notebook's Markdown cells, by exercise id."""
+    return _Reading().notebook(data, source)
+
+
+def read_report(files: dict[str, bytes]) -> Report:
+    """Every explanation in the Markdown files and notebooks of a hand-in, the PDFs beside
+    them, and what could not be read.
+
+    ``files``: relative path -> bytes (as ``sandbox.files.read_regular_files`` gives them).
+    Files are read in path order; an exercise explained in two places keeps both texts,
+    one after the other, and the problems say so.
+    """
+    reading = _Reading()
+    attachments = []
+    for path in sorted(files, key=str):
+        name = shown(path)
+        parts = PurePosixPath(str(path).replace("\\", "/")).parts
+        if any(part.startswith(".") or part == "__MACOSX" for part in parts):
+            continue  # editor backups, macOS resource forks
+        suffix = PurePosixPath(parts[-1] if parts else "").suffix.lower()
+        if suffix in ATTACHMENT_SUFFIXES:
+            attachments.append(name)
+            continue
+        if suffix not in REPORT_SUFFIXES:
+            continue
+        data = files[path]
+        if not isinstance(data, (bytes, bytearray, memoryview)):
+            reading.problem(f"{name} could not be read")
+            continue
+        if len(data) > MAX_REPORT_BYTES:
+            reading.problem(f"{name} is {len(data) / (1 << 20):.1f} MiB, larger than the "
+                            f"{MAX_REPORT_BYTES >> 20} MiB a report may be; it was not read "
+                            "(keep the pictures as separate files, not inside the text)")
+            continue
+        if suffix == ".md":
+            reading.markdown(_decoded(bytes(data)), name)
+        else:
+            reading.notebook(bytes(data), name)
+    return Report(dict(reading.found), tuple(attachments), reading.problem_list())
+
+
+# ------------------------------------------------------------------ reading
+class _Reading:
+    """Explanations and problems gathered over the files of one hand-in."""
+
+    def __init__(self):
+        self.found: dict[str, Explanation] = {}
+        self.problems: list[str] = []
+        self.more_problems = 0
+
+    def problem(self, sentence: str) -> None:
+        if len(self.problems) < MAX_PROBLEMS:
+            self.problems.append(sentence)
+        else:
+            self.more_problems += 1
+
+    def problem_list(self) -> tuple[str, ...]:
+        more = [f"and {self.more_problems} more problems like these"] if self.more_problems else []
+        return tuple(self.problems + more)
+
+    def add(self, exercise: str, text: str, source: str) -> None:
+        """Keep ``text`` as ``exercise``'s explanation if it is written; a second one is added
+        after the first (nothing a student wrote is dropped) and noted."""
+        text = _cleaned(text)
+        if not text:
+            return
+        known = self.found.get(exercise)
+        if known is None and len(self.found) >= MAX_EXPLANATIONS:
+            self.problem(f"{source}: more than {MAX_EXPLANATIONS} exercises explained; "
+                         f"{exercise} and those after it were not read")
+            return
+        if known is not None:
+            self.problem(f"{exercise} is explained twice ({known.source}; {source}); "
+                         "both texts are kept, one after the other")
+            text = f"{known.text}\n\n{text}"
+            source = f"{known.source}; {source}"
+        truncated = bool(known and known.truncated)
+        if len(text) > MAX_EXPLANATION_CHARS:
+            text, truncated = text[:MAX_EXPLANATION_CHARS], True
+            if not (known and known.truncated):
+                self.problem(f"the explanation of {exercise} ({source}) is longer than "
+                             f"{MAX_EXPLANATION_CHARS:,} characters; the rest was cut")
+        self.found[exercise] = Explanation(exercise, text, source, truncated)
+
+    # -------------------------------------------------------------- Markdown
+    def markdown(self, text: str, source: str) -> dict[str, Explanation]:
+        text = printable(text)[: 4 * MAX_REPORT_BYTES]  # at most 4 characters a byte came in as
+        starts = list(_START.finditer(text))
+        ends = [m.start() for m in _END.finditer(text)]
+        heading_matches = _headings(text)
+        headings = [m.start() for m in heading_matches]
+        marked: set[str] = set()
+        for number, start in enumerate(starts):
+            exercise = exercise_id(start.group(1))
+            if exercise is None:
+                self.problem(f"{source}: a marker names {shown(start.group(1), 40)!r}, which is no "
+                             "exercise (they look like lab07.ex1)")
+                continue
+            marked.add(exercise)
+            next_start = starts[number + 1].start() if number + 1 < len(starts) else len(text)
+            end = _first_after(ends, start.end(), len(text))
+            if end > next_start:  # the end marker was deleted: stop before the next section
+                end = min(next_start, _first_after(headings, start.end(), len(text)))
+                self.problem(f"{source}: the explanation of {exercise} has no "
+                             "'<!-- end explanation -->'; it was read up to the next section")
+            self.add(exercise, text[start.end():end], source)
+        self._under_headings(text, source, marked, heading_matches)
+        return self.found
+
+    def _under_headings(self, text, source, marked, heading_matches) -> None:
+        """The fallback: the text under ``## ID...`` for each exercise with no markers."""
+        headings = [m.start() for m in heading_matches]
+        for number, heading in enumerate(heading_matches):
+            title = heading.group(1)
+            match = _SECTION.match(title.strip())
+            if match is None:
+                continue
+            exercise = match.group(1).lower()
+            if exercise in marked:
+                continue
+            end = headings[number + 1] if number + 1 < len(headings) else len(text)
+            body = _FIGURE_LINE.sub("", text[heading.end():end])
+            body = _VERDICT_LINE.sub("", body)
+            self.add(exercise, body, source)
+
+    # -------------------------------------------------------------- notebooks
+    def notebook(self, data: bytes, source: str) -> dict[str, Explanation]:
+        if len(data) > MAX_REPORT_BYTES:
+            self.problem(f"{source} is larger than {MAX_REPORT_BYTES >> 20} MiB; its explanations were not read")
+            return self.found
+        try:
+            notebook = json.loads(_decoded(data))
+        except (ValueError, RecursionError):
+            self.problem(f"{source} is not a readable notebook (not valid JSON); its explanations were not read")
+            return self.found
+        cells = notebook.get("cells") if isinstance(notebook, dict) else None
+        if not isinstance(cells, list):
+            self.problem(f"{source} has no list of cells; its explanations were not read")
+            return self.found
+        for number, cell in enumerate(cells, 1):
+            if isinstance(cell, dict) and cell.get("cell_type") == "markdown":
+                self._markdown_cell(cell, f"{source}, cell {number}")
+        return self.found
+
+    def _markdown_cell(self, cell: dict, where: str) -> None:
+        text = _cell_text(cell.get("source"))
+        if text is None:
+            self.problem(f"{where}: its text is not text; it was not read")
+            return
+        text = printable(text)
+        metadata = cell.get("metadata")
+        tags = metadata.get("tags") if isinstance(metadata, dict) else None
+        tagged = []
+        for tag in tags if isinstance(tags, list) else ():
+            if isinstance(tag, str) and tag.lower().startswith(REPORT_TAG_PREFIX):
+                exercise = exercise_id(tag[len(REPORT_TAG_PREFIX):])
+                if exercise and exercise not in tagged:
+                    tagged.append(exercise)
+        marked = list(dict.fromkeys(filter(None, (exercise_id(m.group(1)) for m in _START.finditer(text)))))
+        if len(tagged) > 1:
+            self.problem(f"{where} is tagged for {len(tagged)} exercises ({', '.join(tagged[:4])}); "
+                         f"it counts for {tagged[0]}")
+        if tagged:
+            self.add(tagged[0], _without_markers(text), where)
+        elif len(marked) == 1:
+            self.add(marked[0], _without_markers(text), where)
+        elif len(marked) > 1:
+            self.markdown(text, where)
+
+
+# ------------------------------------------------------------------ helpers
+def _decoded(data: bytes) -> str:
+    return data.decode("utf-8", errors="replace").removeprefix("\ufeff")
+
+
+def _cell_text(source) -> str | None:
+    if isinstance(source, str):
+        return source
+    if isinstance(source, list) and all(isinstance(line, str) for line in source):
+        return "".join(source)
+    return None
+
+
+def _headings(text: str) -> list[re.Match]:
+    """The level 1 and 2 headings of ``text`` outside fenced code blocks."""
+    fences = [m.start() for m in _FENCE.finditer(text)]
+    return [m for m in _HEADING.finditer(text) if _fences_before(fences, m.start()) % 2 == 0]
+
+
+def _fences_before(fences: list[int], position: int) -> int:
+    import bisect
+
+    return bisect.bisect_left(fences, position)
+
+
+def _first_after(positions: list[int], after: int, default: int) -> int:
+    import bisect
+
+    index = bisect.bisect_left(positions, after)
+    return positions[index] if index < len(positions) else default
+
+
+def _without_markers(text: str) -> str:
+    return _END.sub("", _START.sub("", text))
+
+
+def _cleaned(text: str) -> str:
+    """An explanation's text: markers and the placeholder removed, blank edges trimmed."""
+    return _without_markers(text).replace(PLACEHOLDER, "").strip()
