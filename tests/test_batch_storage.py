@@ -272,9 +272,10 @@ SCHEMA_1_STUDENTS = """CREATE TABLE students (
 
 
 def schema_1(gradebook: Path) -> None:
-    """The gradebook as the first schema made it: no students.present, schema_version 1."""
+    """The gradebook as the first schema made it: no students.present (nor the report's column), schema_version 1."""
     db = sqlite3.connect(gradebook)
-    columns = ", ".join(row[1] for row in db.execute("PRAGMA table_info(students)") if row[1] != "present")
+    columns = ", ".join(row[1] for row in db.execute("PRAGMA table_info(students)")
+                        if row[1] not in ("present", "report_problems"))
     db.executescript(f"""
         ALTER TABLE students RENAME TO new;
         {SCHEMA_1_STUDENTS};
@@ -292,7 +293,7 @@ def test_a_schema_1_gradebook_is_read_as_it_is_and_migrated_in_place(submissions
     summary = run_batch(make_class(tmp_path / "download-2", ["ada", "bo", "cy"]), out, course=COURSE, workers=2)
     assert summary.graded == 0 and summary.missing == ["di"], "no regrading, the new column works at once"
     with Gradebook(out, readonly=True) as book:
-        assert book.get_meta("schema_version") == str(SCHEMA_VERSION) == "2"
+        assert book.get_meta("schema_version") == str(SCHEMA_VERSION) == "3"
     run_batch(submissions, out, course=COURSE, workers=2)
     assert_same_as_uninterrupted(out, uninterrupted)
 

@@ -62,6 +62,20 @@ Keys read by ``autograder batch`` (instructor grading):
     known (Canvas's ``_LATE_``) it counts as one day late. No ``late_penalty``, no
     penalty. An override row with exercise ``late`` replaces the penalty.
 
+``rubric``
+    The lab report's rubric, per exercise: a list of items, each with an ``id``
+    (letters, digits, ``-``, ``_``; unique within the exercise), a ``text`` and
+    ``points`` (positive: earned when applied; negative: a deduction)::
+
+        "rubric": {"lab08.ex3": [
+            {"id": "corners", "text": "explains the black corners of the warp", "points": 2},
+            {"id": "no-figure", "text": "discusses no figure", "points": -1}]}
+
+    ``autograder batch`` stores it in the gradebook, where ``autograder review``
+    applies and edits the items; the points of the items applied to a student's
+    exercise are added to their final grade (see ``autograder review``), and the
+    exercise's report is worth the sum of its positive items.
+
 Read by ``autograder similarity`` (and ``autograder batch --similarity``):
 
 ``similarity_threshold``
@@ -90,12 +104,18 @@ Read by every grading (``autograder batch``, Gradescope, ``grade --config``):
 from __future__ import annotations
 
 import json
+import math
 import re
 from dataclasses import asdict, dataclass, field, fields
 from datetime import datetime
 from pathlib import Path
 
 VISIBILITIES = ("visible", "hidden", "after_due_date", "after_published")
+_EXERCISE = re.compile(r"lab\d\d\.[A-Za-z0-9_-]+")                 # lab07.ex1
+_RUBRIC_ITEM_ID = re.compile(r"[A-Za-z0-9_-]{1,40}")
+RUBRIC_TEXT_LENGTH = 500           # characters of one item's text
+RUBRIC_MAX_POINTS = 1000           # |points| of one item
+RUBRIC_MAX_ITEMS = 50              # items of one exercise
 _STUDENT_FUNCTION = re.compile(r"lab\d\d\.[A-Za-z_]\w*")          # lab08.homography_ransac
 _LIBRARY_FUNCTION = re.compile(r"[A-Za-z_]\w*(\.[A-Za-z_]\w*)+")   # cv2.findHomography
 
@@ -113,7 +133,7 @@ _APPLIED_BY = {
     "gradescope": _GRADING | {"points", "public_visibility", "hidden_visibility", "stdout_visibility",
                               "allow_weaker_confinement"},
     "batch": _GRADING | {"assignment", "points", "late_penalty", "similarity_threshold", "canvas_assignment_id",
-                         "lms_exports"},
+                         "lms_exports", "rubric"},
 }
 
 
@@ -136,6 +156,7 @@ class CourseConfig:
     hidden_points_visible: bool = False                 # students see hidden checks' points before release
     canvas_assignment_id: str = ""                      # Canvas's id of the assignment: "Lab 7 (12345)"
     lms_exports: list[str] = field(default_factory=list)  # "canvas", "moodle"; empty: as the upload says
+    rubric: dict = field(default_factory=dict)          # "lab07.ex1": [{"id", "text", "points"}, ...]
 
     def __post_init__(self):
         for name in ("public_visibility", "hidden_visibility", "stdout_visibility"):
@@ -167,6 +188,11 @@ class CourseConfig:
             raise CourseConfigError(f"lms_exports must be a list of {list(LMS_EXPORTS)}")
         if not isinstance(self.hidden_points_visible, bool):
             raise CourseConfigError("hidden_points_visible must be true or false")
+        check_rubric(self.rubric)
+        outside = [e for e in self.rubric if self.select and not {e, e.split(".")[0]} & set(self.select)]
+        if outside:
+            raise CourseConfigError(f"rubric: {', '.join(outside)} not in select ({', '.join(self.select)}): "
+                                    "a rubric is for an exercise the assignment grades")
         if self.hidden_visibility in ("visible", "hidden") and not self.hidden_points_visible:
             # Gradescope hides a student's total only while some test is after_due_date/after_published.
             raise CourseConfigError(
@@ -260,6 +286,60 @@ class CourseConfig:
 
     def to_json(self) -> str:
         return json.dumps(asdict(self), indent=2) + "\n"
+
+
+def check_rubric(rubric) -> None:
+    """Raise :class:`CourseConfigError`, saying which item and why, unless ``rubric`` maps
+    exercise ids of the labs to lists of items ``{"id", "text", "points"}`` (see the module
+    docstring)."""
+    example = ('{"lab08.ex3": [{"id": "corners", "text": "explains the black corners of the warp", '
+               '"points": 2}]}')
+    if not isinstance(rubric, dict):
+        raise CourseConfigError(f"rubric must be an object of exercises to their items, like {example}")
+    known = None
+    for exercise, items in rubric.items():
+        if not (isinstance(exercise, str) and _EXERCISE.fullmatch(exercise)):
+            raise CourseConfigError(f"rubric: {exercise!r} is not an exercise id like 'lab07.ex1' (example: {example})")
+        if known is None:
+            from ..engine.registry import discover
+
+            known = {e.id for lab in discover().values() for e in lab.exercises.values()}
+        if exercise not in known:
+            same_lab = sorted(e for e in known if e.split(".")[0] == exercise.split(".")[0])
+            raise CourseConfigError(f"rubric: {exercise} is no exercise of the labs"
+                                    + (f" ({exercise.split('.')[0]} has {', '.join(same_lab)})" if same_lab else ""))
+        if not (isinstance(items, list) and items):
+            raise CourseConfigError(f"rubric[{exercise!r}] must be a non-empty list of items (example: {example})")
+        if len(items) > RUBRIC_MAX_ITEMS:
+            raise CourseConfigError(f"rubric[{exercise!r}] has {len(items)} items; at most {RUBRIC_MAX_ITEMS}")
+        seen = set()
+        for number, item in enumerate(items, 1):
+            where = f"rubric[{exercise!r}] item {number}"
+            if not isinstance(item, dict):
+                raise CourseConfigError(f"{where} must be an object with id, text and points (example: {example})")
+            unknown = sorted(set(item) - {"id", "text", "points"})
+            missing = [key for key in ("id", "text", "points") if key not in item]
+            if unknown or missing:
+                raise CourseConfigError(f"{where}: " + "; ".join(
+                    ([f"unknown keys {unknown}"] if unknown else []) + ([f"missing {missing}"] if missing else []))
+                    + " (an item has id, text and points)")
+            check_rubric_item(item["id"], item["text"], item["points"], where)
+            if item["id"] in seen:
+                raise CourseConfigError(f"{where}: the id {item['id']!r} is used twice in {exercise}")
+            seen.add(item["id"])
+
+
+def check_rubric_item(item_id, text, points, where: str = "rubric item") -> None:
+    """One rubric item's fields, as the course file and the review application take them."""
+    if not (isinstance(item_id, str) and _RUBRIC_ITEM_ID.fullmatch(item_id)):
+        raise CourseConfigError(f"{where}: id must be 1 to 40 letters, digits, '-' or '_', got {item_id!r}")
+    if not (isinstance(text, str) and text.strip() and len(text) <= RUBRIC_TEXT_LENGTH
+            and not any(ord(c) < 32 for c in text)):
+        raise CourseConfigError(f"{where}: text must be one line of 1 to {RUBRIC_TEXT_LENGTH} characters")
+    if isinstance(points, bool) or not isinstance(points, (int, float)) or not math.isfinite(points) \
+            or abs(points) > RUBRIC_MAX_POINTS:
+        raise CourseConfigError(f"{where}: points must be a number from -{RUBRIC_MAX_POINTS} to "
+                                f"{RUBRIC_MAX_POINTS} (negative: a deduction), got {points!r}")
 
 
 def parse_time(text: str) -> datetime:

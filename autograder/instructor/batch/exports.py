@@ -3,9 +3,11 @@
 Files written in RESULTS (every one parses with :mod:`csv`; UTF-8, comma-separated):
 
 ``grades.csv``
-    ``Student ID,Name,Status,<exercise>...,Late penalty,Adjustments,Total`` -- one
-    row per student (``Status``: graded, unreadable: <reason>, failed: <reason>,
-    pending, no submission), exercise columns in course points.
+    ``Student ID,Name,Status,<exercise>...,<exercise> report...,Late penalty,Adjustments,Total``
+    -- one row per student (``Status``: graded, unreadable: <reason>, failed: <reason>,
+    pending, no submission), exercise columns in course points; a ``report`` column
+    per exercise with a rubric: the points of the rubric items applied in
+    ``autograder review`` (empty while nobody reviewed it), counted in the total.
 ``canvas_import.csv``
     ``Student,ID,SIS User ID,SIS Login ID,Section,<assignment>`` then the
     ``Points Possible`` row: Canvas's gradebook import. The grade column is
@@ -100,16 +102,33 @@ class StudentGrade:
     bonus: float = 0.0                   # total-level overrides (bonus minus penalties)
     adjustments: list[Adjustment] = field(default_factory=list)
     roster: dict = field(default_factory=dict)
+    reports: dict[str, float | None] = field(default_factory=dict)   # report points per exercise (None: not reviewed)
+    reviews: dict[str, "Review"] = field(default_factory=dict)       # the review of each exercise reviewed
 
     @property
     def graded(self) -> bool:
         return self.student["status"] in ("graded", "unreadable")
 
     @property
+    def earned(self) -> float:
+        """The points of the checks and of the reports' reviews, before the late penalty and bonus."""
+        return sum(v or 0.0 for v in self.exercises.values()) + sum(v or 0.0 for v in self.reports.values())
+
+    @property
     def total(self) -> float | None:
         if not self.graded:
             return None
-        return round(max(0.0, sum(v or 0.0 for v in self.exercises.values()) - self.late_penalty + self.bonus), 2)
+        return round(max(0.0, self.earned - self.late_penalty + self.bonus), 2)
+
+
+@dataclass
+class Review:
+    """The review of one exercise's report, as the student's page shows it."""
+
+    items: list[tuple[str, float]]   # (text, points) of each rubric item applied
+    points: float
+    maximum: float                   # the sum of the exercise's positive items
+    comment: str
 
 
 # ------------------------------------------------------------------ reading the instructor's files
@@ -271,14 +290,26 @@ def late_days(student: dict, rule: dict) -> int:
     return 1 if student.get("late") else 0
 
 
+def report_maxima(rubric: dict[str, list[dict]], exercises) -> dict[str, float]:
+    """What each graded exercise's report is worth: the sum of its rubric's positive items
+    (``rubric`` as :meth:`.gradebook.Gradebook.rubric` gives it; exercises without one left out)."""
+    ids = [e for e, _ in exercises]
+    return {e: round(sum(max(0.0, item["points"]) for item in rubric[e]), 4) for e in ids if rubric.get(e)}
+
+
 def compute_grades(students: list[dict], exercises, course: CourseConfig,
-                   overrides: list[Override] = (), roster: list[dict] = ()) -> tuple[list[StudentGrade], list[str]]:
+                   overrides: list[Override] = (), roster: list[dict] = (), rubric: dict | None = None,
+                   reviews: dict | None = None) -> tuple[list[StudentGrade], list[str]]:
     """Every student's grade, plus warnings (overrides naming nobody).
 
     ``students`` are :meth:`Gradebook.class_results` rows; ``exercises`` the
     selection's ``(id, raw max)`` pairs in order. Roster rows with no submission
-    are added with status ``no submission``.
+    are added with status ``no submission``. ``rubric`` and ``reviews`` (as
+    :meth:`.gradebook.Gradebook.rubric` and :meth:`~.gradebook.Gradebook.reviews` give
+    them) add each reviewed exercise's report points (course points, as the rubric gives them).
     """
+    rubric, reviews = rubric or {}, reviews or {}
+    maxima = report_maxima(rubric, exercises)
     factors = exercise_factors(exercises, course)
     matched, _, absent = match_roster(students, list(roster))
     grades, warnings = [], []
@@ -293,12 +324,14 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
                     scores[e["id"]] = round(e["score"] * factors[e["id"]], 4)
         elif student["status"] == "unreadable":
             scores = {e: 0.0 for e in scores}
-        grades.append(StudentGrade(student, scores, roster=matched.get(student["student_id"], {})))
+        grade = StudentGrade(student, scores, roster=matched.get(student["student_id"], {}))
+        _add_reviews(grade, rubric, maxima, reviews)
+        grades.append(grade)
     for grade in grades:
         days = late_days(grade.student, course.late_penalty)
         if days and grade.graded:
             percent = min(course.late_penalty.get("max", 100), course.late_penalty.get("per_day", 0) * days)
-            earned = sum(v or 0.0 for v in grade.exercises.values())
+            earned = grade.earned
             grade.late_penalty = round(earned * percent / 100, 2)
             if grade.late_penalty:
                 grade.adjustments.append(Adjustment("late", f"-{grade.late_penalty:g}",
@@ -319,6 +352,17 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
                 "members": [], "status": "no submission", "reason": "", "result": None, "feedback": None}
         grades.append(StudentGrade(stub, {e: None for e, _ in exercises}, roster=row))
     return grades, warnings
+
+
+def _add_reviews(grade: StudentGrade, rubric: dict, maxima: dict[str, float], reviews: dict) -> None:
+    """The report points and reviews of ``grade``'s student, for the exercises with a rubric."""
+    texts = {(e, item["id"]): (item["text"], item["points"]) for e, items in rubric.items() for item in items}
+    for exercise, maximum in maxima.items():
+        review = reviews.get((grade.student["student_id"], exercise))
+        grade.reports[exercise] = None if review is None or not grade.graded else review["points"]
+        if review is not None and grade.graded:
+            grade.reviews[exercise] = Review([texts[(exercise, i)] for i in review["items"] if (exercise, i) in texts],
+                                             review["points"], maximum, review["comment"])
 
 
 def _identity_index(grades: list[StudentGrade]) -> dict[str, list[StudentGrade]]:
@@ -373,9 +417,10 @@ def _apply(grade: StudentGrade, o: Override, warnings: list[str]) -> None:
                         "which the assignment does not grade; ignored")
 
 
-def max_total(exercises, course: CourseConfig) -> float:
+def max_total(exercises, course: CourseConfig, report_max: dict[str, float] | None = None) -> float:
+    """The points possible: the checks' in course points, and the reports' (:func:`report_maxima`)."""
     factors = exercise_factors(exercises, course)
-    return round(sum(maximum * factors[e] for e, maximum in exercises), 2)
+    return round(sum(maximum * factors[e] for e, maximum in exercises) + sum((report_max or {}).values()), 2)
 
 
 # ------------------------------------------------------------------ CSV files
@@ -393,24 +438,27 @@ def _fmt(value) -> str:
 
 
 def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig, roster_given: bool,
-               roster_columns=()) -> list[Path]:
+               roster_columns=(), report_max: dict[str, float] | None = None) -> list[Path]:
     """Write grades.csv, the LMS imports that apply (see ``lms_exports`` in the course) and,
-    with a roster, roster_unmatched.csv; returns the files written."""
+    with a roster, roster_unmatched.csv; returns the files written. ``report_max``: what
+    each exercise's report is worth (:func:`report_maxima`), one column each."""
     out = Path(out)
     ids = [e for e, _ in exercises]
+    reported = list(report_max or {})
     files = []
 
-    rows = [GRADES_HEADER + ids + GRADES_TAIL]
+    rows = [GRADES_HEADER + ids + [f"{e} report" for e in reported] + GRADES_TAIL]
     for g in grades:
         rows.append([g.student["student_id"], g.roster.get("name") or g.student["display_name"], _status(g)]
-                    + [_fmt(g.exercises[e]) for e in ids]
+                    + [_fmt(g.exercises[e]) for e in ids] + [_fmt(g.reports.get(e)) for e in reported]
                     + [_fmt(g.late_penalty if g.graded else None), _fmt(g.bonus if g.graded else None),
                        _fmt(g.total)])
     files.append(write_csv(out / "grades.csv", rows))
 
     canvas = out / "canvas_import.csv"
     column, _ = canvas_assignment_column(course, roster_columns)
-    rows = [CANVAS_HEADER + [column], ["Points Possible", "", "", "", "", _fmt(max_total(exercises, course))]]
+    possible = max_total(exercises, course, report_max)
+    rows = [CANVAS_HEADER + [column], ["Points Possible", "", "", "", "", _fmt(possible)]]
     for g, member in _members(grades):
         lms, r = g.student.get("lms", {}), g.roster
         rows.append([r.get("name") or member.get("name") or g.student["display_name"],
@@ -573,3 +621,34 @@ def with_adjustments(page: str, block: str) -> str:
     anchor = page.find("</header>")
     at = anchor + len("</header>") if anchor >= 0 else page.find("<main>") + len("<main>")
     return page[:at] + "\n" + block + page[at:]
+
+
+def review_html(exercise: str, review: Review) -> str:
+    """The review of one exercise's report on the student's page: the rubric items applied with
+    their points, the report's points and the reviewer's comment (all escaped)."""
+    items = "".join(f"<li>{html.escape(text)} <b>{points:+g}</b></li>" for text, points in review.items)
+    comment = (f'<p class="review-comment">{html.escape(review.comment).replace(chr(10), "<br>")}</p>'
+               if review.comment.strip() else "")
+    return (f'<div class="rule review" id="review-{html.escape(exercise)}"><strong>Report, reviewed by your '
+            f"instructor: {_fmt(review.points)} / {review.maximum:g} points</strong>"
+            f"{f'<ul>{items}</ul>' if items else ''}{comment}</div>")
+
+
+def with_reviews(page: str, grade: StudentGrade) -> str:
+    """``page`` showing the review of each exercise's report in that exercise's section, under its
+    automatic score (between markers, so a later review replaces it; an exercise no longer
+    reviewed loses it)."""
+    for exercise in grade.reports:
+        begin, end = f"<!-- review {exercise} -->", f"<!-- /review {exercise} -->"
+        review = grade.reviews.get(exercise)
+        block = begin + (review_html(exercise, review) if review else "") + end
+        start, stop = page.find(begin), page.find(end)
+        if start >= 0 and stop > start:
+            page = page[:start] + block + page[stop + len(end):]
+            continue
+        section = page.find(f'<section class="exercise" id="{html.escape(exercise)}">')
+        anchor = page.find("</header>", section) if section >= 0 else -1
+        if anchor >= 0:
+            at = anchor + len("</header>")
+            page = page[:at] + "\n" + block + page[at:]
+    return page

@@ -20,6 +20,17 @@ Tables
     One row per grading that completed: resumption is tested by counting them.
 ``overrides``
     The instructor's adjustments, kept across regrades (see :mod:`.exports`).
+``report_files``, ``explanations``
+    The student's lab report as last read (see :mod:`.ingest`): its ``.md`` and
+    ``.pdf`` files (bytes, bounded), and the explanation of each exercise found in
+    them or in the notebooks' tagged cells; ``students.report_problems`` lists what
+    could not be read of it (JSON).
+``rubric_items``, ``review_marks``, ``review_notes``
+    The report's review (``autograder review``): the rubric's items per exercise
+    (seeded from the course's ``rubric``, edited centrally: an item's points are
+    read from here, so a change reaches every student it is applied to), the items
+    applied per student and exercise, and a comment and "reviewed" flag per
+    student and exercise; each with who changed it and when.
 ``meta``
     ``schema_version`` (a gradebook of an older schema is migrated in place when
     opened for writing) and ``course``, the course configuration of the last batch.
@@ -51,7 +62,7 @@ from ... import __version__
 from ...engine.results import strip_pictures
 
 GRADEBOOK = "gradebook.sqlite"
-SCHEMA_VERSION = 2   # 2: students.present
+SCHEMA_VERSION = 3   # 2: students.present; 3: reports and their review
 LOCK_PACKAGES = ("numpy", "opencv-python-headless", "scikit-image")
 REPOSITORY = Path(__file__).resolve().parents[3]
 
@@ -69,7 +80,8 @@ CREATE TABLE IF NOT EXISTS students (
     content_hash TEXT NOT NULL,
     submission_key TEXT,               -- NULL when unreadable
     unreadable TEXT NOT NULL DEFAULT '', -- why the entry could not be read
-    present INTEGER NOT NULL DEFAULT 1 -- 0: no longer in SUBMISSIONS (kept with the last grading)
+    present INTEGER NOT NULL DEFAULT 1, -- 0: no longer in SUBMISSIONS (kept with the last grading)
+    report_problems TEXT NOT NULL DEFAULT '[]' -- JSON list: what could not be read of the report
 );
 CREATE TABLE IF NOT EXISTS submissions (
     key TEXT PRIMARY KEY,
@@ -99,10 +111,31 @@ CREATE TABLE IF NOT EXISTS gradings (
 CREATE TABLE IF NOT EXISTS overrides (
     position INTEGER PRIMARY KEY, student TEXT NOT NULL, exercise TEXT NOT NULL,
     points REAL, penalty REAL, comment TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS report_files (
+    student_id TEXT NOT NULL, path TEXT NOT NULL, data BLOB NOT NULL,
+    PRIMARY KEY (student_id, path));
+CREATE TABLE IF NOT EXISTS explanations (
+    student_id TEXT NOT NULL, exercise TEXT NOT NULL, text TEXT NOT NULL, source TEXT NOT NULL,
+    truncated INTEGER NOT NULL, PRIMARY KEY (student_id, exercise));
+CREATE TABLE IF NOT EXISTS rubric_items (
+    exercise TEXT NOT NULL, item_id TEXT NOT NULL, position INTEGER NOT NULL,
+    text TEXT NOT NULL, points REAL NOT NULL,
+    course_text TEXT, course_points REAL,   -- as the course last gave it (NULL: added in the review)
+    changed_by TEXT NOT NULL, changed_at TEXT NOT NULL,
+    PRIMARY KEY (exercise, item_id));
+CREATE TABLE IF NOT EXISTS review_marks (
+    student_id TEXT NOT NULL, exercise TEXT NOT NULL, item_id TEXT NOT NULL,
+    marked_by TEXT NOT NULL, marked_at TEXT NOT NULL,
+    PRIMARY KEY (student_id, exercise, item_id));
+CREATE TABLE IF NOT EXISTS review_notes (
+    student_id TEXT NOT NULL, exercise TEXT NOT NULL, comment TEXT NOT NULL DEFAULT '',
+    done INTEGER NOT NULL DEFAULT 0, changed_by TEXT NOT NULL, changed_at TEXT NOT NULL,
+    PRIMARY KEY (student_id, exercise));
 """
 
 _STUDENT_COLUMNS = ("student_id", "display_name", "source", "origin", "lms", "members", "submitted_at",
-                    "late", "content_hash", "submission_key", "unreadable", "present")
+                    "late", "content_hash", "submission_key", "unreadable", "present", "report_problems")
+REVIEW_COMMENT_LENGTH = 10_000   # characters of one review comment
 
 # What a storage fault means for the instructor: errno values and SQLite's result codes.
 _FULL_ERRNOS = {errno.ENOSPC, errno.EDQUOT, errno.EFBIG}
@@ -238,7 +271,7 @@ class Gradebook:
     anything is graded; every storage fault afterwards raises it too.
     """
 
-    def __init__(self, folder, readonly: bool = False):
+    def __init__(self, folder, readonly: bool = False, threads: bool = False):
         self.folder = Path(folder)
         self.path = self.folder / GRADEBOOK
         if readonly and not self.path.is_file():
@@ -246,10 +279,12 @@ class Gradebook:
         with storing(self.path, "read" if readonly else "write"):
             if readonly:
                 self.db = sqlite3.connect(f"{self.path.resolve().as_uri()}?mode=ro", uri=True, timeout=60,
-                                          isolation_level=None)
+                                          isolation_level=None, check_same_thread=not threads)
             else:
                 self.folder.mkdir(parents=True, exist_ok=True)
-                self.db = sqlite3.connect(self.path, timeout=60, isolation_level=None)
+                # threads: the caller serialises its threads' use (the review application's lock)
+                self.db = sqlite3.connect(self.path, timeout=60, isolation_level=None,
+                                          check_same_thread=not threads)
             try:
                 self.db.row_factory = sqlite3.Row
                 self._open(readonly)
@@ -291,6 +326,7 @@ class Gradebook:
                 raise
         columns = {row["name"] for row in self.db.execute("PRAGMA table_info(students)")}
         self._present = "s.present" if "present" in columns else "1"   # a schema-1 gradebook read as it is
+        self._tables = {row[0] for row in self.db.execute("SELECT name FROM sqlite_master WHERE type='table'")}
         stat = os.stat(self.path)
         self._identity = (stat.st_dev, stat.st_ino)
 
@@ -302,6 +338,8 @@ class Gradebook:
         columns = {row["name"] for row in self.db.execute("PRAGMA table_info(students)")}
         if "present" not in columns:   # schema 1: students missing from a download were deleted
             self.db.execute("ALTER TABLE students ADD COLUMN present INTEGER NOT NULL DEFAULT 1")
+        if "report_problems" not in columns:   # schema 2: no reports (their tables are made above)
+            self.db.execute("ALTER TABLE students ADD COLUMN report_problems TEXT NOT NULL DEFAULT '[]'")
         self.db.execute("UPDATE meta SET value=? WHERE name='schema_version'", (str(SCHEMA_VERSION),))
 
     def close(self):
@@ -362,20 +400,30 @@ class Gradebook:
 
     # ------------------------------------------------------------------ the class
     def sync_students(self, entries, keys: dict[str, str]) -> list[str]:
-        """Record the class as read now: ``entries`` (see :mod:`.ingest`), ``keys`` by student id.
+        """Record the class as read now: ``entries`` (see :mod:`.ingest`), ``keys`` by student id,
+        each with its report (files, explanations, problems) as read now.
 
-        Students no longer in SUBMISSIONS keep their row (and so their last grading),
-        marked ``present = 0``; returns their ids, sorted.
+        Students no longer in SUBMISSIONS keep their row (and so their last grading, their
+        report and its review), marked ``present = 0``; returns their ids, sorted.
         """
         columns = ", ".join(_STUDENT_COLUMNS)
         with self._transaction():
             self.db.execute("UPDATE students SET present=0")
             for e in entries:
+                report = getattr(e, "report", None)
                 self.db.execute(
                     f"INSERT OR REPLACE INTO students ({columns}) VALUES ({', '.join('?' * len(_STUDENT_COLUMNS))})",
                     (e.student_id, e.display_name, e.source, e.origin, json.dumps(e.lms),
                      json.dumps(e.members), e.submitted_at, None if e.late is None else int(e.late),
-                     e.content_hash, None if e.error else keys[e.student_id], e.error, 1))
+                     e.content_hash, None if e.error else keys[e.student_id], e.error, 1,
+                     json.dumps(list(report.problems) if report else [])))
+                self.db.execute("DELETE FROM report_files WHERE student_id=?", (e.student_id,))
+                self.db.execute("DELETE FROM explanations WHERE student_id=?", (e.student_id,))
+                for path, data in sorted(getattr(e, "report_files", {}).items()):
+                    self.db.execute("INSERT INTO report_files VALUES (?,?,?)", (e.student_id, path, data))
+                for exercise, x in sorted((report.explanations if report else {}).items()):
+                    self.db.execute("INSERT INTO explanations VALUES (?,?,?,?,?)",
+                                    (e.student_id, exercise, x.text, x.source, int(x.truncated)))
             rows = self.db.execute("SELECT student_id FROM students WHERE present=0 ORDER BY student_id")
             return [row[0] for row in rows]
 
@@ -500,3 +548,157 @@ class Gradebook:
                 "graded_at": row["graded_at"],
             })
         return out
+
+    # ------------------------------------------------------------------ the report and its review
+    def _has(self, table: str) -> bool:
+        """Whether this gradebook has ``table`` (a read-only gradebook of an older schema may not)."""
+        return table in self._tables
+
+    def report(self, student_id: str) -> dict:
+        """The student's report as last read: ``explanations`` (exercise -> dict with ``text``,
+        ``source``, ``truncated``), ``files`` (path -> size in bytes: the ``.md`` and ``.pdf``
+        handed in) and ``problems`` (sentences)."""
+        out = {"explanations": {}, "files": {}, "problems": []}
+        if not self._has("explanations"):
+            return out
+        with self._reading():
+            for row in self.db.execute("SELECT exercise, text, source, truncated FROM explanations "
+                                       "WHERE student_id=? ORDER BY exercise", (student_id,)):
+                out["explanations"][row["exercise"]] = {"text": row["text"], "source": row["source"],
+                                                        "truncated": bool(row["truncated"])}
+            for row in self.db.execute("SELECT path, length(data) AS size FROM report_files WHERE student_id=? "
+                                       "ORDER BY path", (student_id,)):
+                out["files"][row["path"]] = row["size"]
+            row = self.db.execute("SELECT report_problems FROM students WHERE student_id=?", (student_id,)).fetchone()
+        if row is not None:
+            out["problems"] = json.loads(row[0] or "[]")
+        return out
+
+    def report_file(self, student_id: str, path: str) -> bytes | None:
+        """The bytes of one file of the student's report, None when there is no such file."""
+        if not self._has("report_files"):
+            return None
+        with self._reading():
+            row = self.db.execute("SELECT data FROM report_files WHERE student_id=? AND path=?",
+                                  (student_id, path)).fetchone()
+        return None if row is None else bytes(row[0])
+
+    def sync_rubric(self, rubric: dict, who: str = "course") -> None:
+        """Bring the stored rubric up to the course's ``rubric`` (see :class:`..course.CourseConfig`).
+
+        A new item is added. An item the course now gives otherwise than it last did
+        is changed as the course says (the course file was edited); an item the course
+        gives as before keeps what the review made of it (its text and points edited
+        centrally). Items the course no longer lists are kept, with their marks.
+        """
+        now = _now()
+        with self._transaction():
+            for exercise, items in rubric.items():
+                for item in items:
+                    row = self.db.execute("SELECT course_text, course_points FROM rubric_items "
+                                          "WHERE exercise=? AND item_id=?", (exercise, item["id"])).fetchone()
+                    given = (item["text"], float(item["points"]))
+                    if row is None:   # last in its exercise, in the course's order
+                        position = self.db.execute("SELECT COALESCE(MAX(position) + 1, 0) FROM rubric_items "
+                                                   "WHERE exercise=?", (exercise,)).fetchone()[0]
+                        self.db.execute("INSERT INTO rubric_items VALUES (?,?,?,?,?,?,?,?,?)",
+                                        (exercise, item["id"], position, *given, *given, who, now))
+                    elif (row["course_text"], row["course_points"]) != given:
+                        self.db.execute("UPDATE rubric_items SET text=?, points=?, course_text=?, course_points=?, "
+                                        "changed_by=?, changed_at=? WHERE exercise=? AND item_id=?",
+                                        (*given, *given, who, now, exercise, item["id"]))
+
+    def rubric(self) -> dict[str, list[dict]]:
+        """The stored rubric: exercise -> its items in order, each a dict with ``id``, ``text``,
+        ``points``, ``changed_by``, ``changed_at``."""
+        if not self._has("rubric_items"):
+            return {}
+        with self._reading():
+            rows = self.db.execute("SELECT exercise, item_id, text, points, changed_by, changed_at FROM rubric_items "
+                                   "ORDER BY exercise, position, item_id").fetchall()
+        out: dict[str, list[dict]] = {}
+        for row in rows:
+            out.setdefault(row["exercise"], []).append({
+                "id": row["item_id"], "text": row["text"], "points": row["points"],
+                "changed_by": row["changed_by"], "changed_at": row["changed_at"]})
+        return out
+
+    def set_rubric_item(self, exercise: str, item_id: str, text: str, points: float, who: str) -> None:
+        """Change an item's text and points for every student it is applied to, or add the item
+        (last in its exercise). Raises :class:`..course.CourseConfigError` for a malformed item."""
+        from ..course import check_rubric_item
+
+        check_rubric_item(item_id, text, points, f"rubric item {item_id!r} of {exercise}")
+        with self._transaction():
+            updated = self.db.execute("UPDATE rubric_items SET text=?, points=?, changed_by=?, changed_at=? "
+                                      "WHERE exercise=? AND item_id=?",
+                                      (text, float(points), who, _now(), exercise, item_id)).rowcount
+            if not updated:
+                position = self.db.execute("SELECT COALESCE(MAX(position) + 1, 0) FROM rubric_items "
+                                           "WHERE exercise=?", (exercise,)).fetchone()[0]
+                self.db.execute("INSERT INTO rubric_items VALUES (?,?,?,?,?,NULL,NULL,?,?)",
+                                (exercise, item_id, position, text, float(points), who, _now()))
+
+    def set_mark(self, student_id: str, exercise: str, item_id: str, applied: bool, who: str) -> None:
+        """Apply (or take back) a rubric item to one student's exercise; ``KeyError`` for an item
+        the exercise's rubric does not have."""
+        with self._transaction():
+            if not self.db.execute("SELECT 1 FROM rubric_items WHERE exercise=? AND item_id=?",
+                                   (exercise, item_id)).fetchone():
+                raise KeyError(f"{exercise} has no rubric item {item_id!r}")
+            if applied:
+                self.db.execute("INSERT OR IGNORE INTO review_marks VALUES (?,?,?,?,?)",
+                                (student_id, exercise, item_id, who, _now()))
+            else:
+                self.db.execute("DELETE FROM review_marks WHERE student_id=? AND exercise=? AND item_id=?",
+                                (student_id, exercise, item_id))
+
+    def set_review_note(self, student_id: str, exercise: str, who: str, comment: str | None = None,
+                        done: bool | None = None) -> None:
+        """Set the comment on a student's exercise and/or whether its review is done (None: unchanged).
+        The comment is kept as written, control characters but newlines and tabs removed, bounded."""
+        with self._transaction():
+            row = self.db.execute("SELECT comment, done FROM review_notes WHERE student_id=? AND exercise=?",
+                                  (student_id, exercise)).fetchone()
+            old_comment, old_done = (row["comment"], bool(row["done"])) if row else ("", False)
+            if comment is not None:
+                comment = "".join(c for c in comment if c in "\n\t" or (ord(c) >= 32 and ord(c) != 127))
+                comment = comment.replace("\r", "")[:REVIEW_COMMENT_LENGTH]
+            self.db.execute("INSERT OR REPLACE INTO review_notes VALUES (?,?,?,?,?,?)",
+                            (student_id, exercise, old_comment if comment is None else comment,
+                             int(old_done if done is None else done), who, _now()))
+
+    def reviews(self) -> dict[tuple[str, str], dict]:
+        """Every review: (student id, exercise) -> dict with ``items`` (ids applied, in the rubric's
+        order), ``points`` (their points now), ``comment``, ``done``, ``changed_by``, ``changed_at``
+        (the last change of a mark or note). Pairs nobody reviewed are absent."""
+        if not self._has("review_marks"):
+            return {}
+        with self._reading():
+            marks = self.db.execute(
+                "SELECT m.student_id, m.exercise, m.item_id, m.marked_by, m.marked_at, r.points "
+                "FROM review_marks m JOIN rubric_items r ON r.exercise = m.exercise AND r.item_id = m.item_id "
+                "ORDER BY m.student_id, m.exercise, r.position").fetchall()
+            notes = self.db.execute("SELECT * FROM review_notes").fetchall()
+        out: dict[tuple[str, str], dict] = {}
+
+        def review(student_id, exercise):
+            return out.setdefault((student_id, exercise), {"items": [], "points": 0.0, "comment": "", "done": False,
+                                                           "changed_by": "", "changed_at": ""})
+
+        for row in marks:
+            r = review(row["student_id"], row["exercise"])
+            r["items"].append(row["item_id"])
+            r["points"] = round(r["points"] + row["points"], 4)
+            if row["marked_at"] >= r["changed_at"]:
+                r["changed_by"], r["changed_at"] = row["marked_by"], row["marked_at"]
+        for row in notes:
+            r = review(row["student_id"], row["exercise"])
+            r["comment"], r["done"] = row["comment"], bool(row["done"])
+            if row["changed_at"] >= r["changed_at"]:
+                r["changed_by"], r["changed_at"] = row["changed_by"], row["changed_at"]
+        return out
+
+
+def _now() -> str:
+    return datetime.now(timezone.utc).isoformat(timespec="seconds")

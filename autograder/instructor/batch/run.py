@@ -129,6 +129,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     with _only_writer(out), Gradebook(out) as book:
         summary.missing = book.sync_students(entries, keys)
         book.set_meta("course", _course_record(course))   # for `autograder report`
+        book.sync_rubric(course.rubric)                   # for `autograder review`
         if overrides_rows is not None:
             book.set_overrides(overrides_rows)   # kept for later runs without --overrides
         if roster:
@@ -180,14 +181,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     # A full disk or a read-only folder: a StorageError naming the file (the gradings are kept).
     summary.warnings += standing.warnings
     with storing(out):
-        summary.files = exports.write_csvs(out, standing.grades, standing.exercises, course,
-                                           roster_given=bool(standing.roster),
-                                           roster_columns=standing.roster.columns)
+        summary.files = _write_exports(out, standing)
         summary.files += exports.write_ignored(out, upload.ignored)
-        for grade in standing.grades:
-            if grade.student.get("feedback"):
-                _refresh_page(out, grade, standing.possible, course)
-        summary.files.append(_write_overview(out, standing))
     book.check_in_place()   # RESULTS deleted while the exports were written
     if standing.roster:
         summary.unmatched = [f"{g.student['student_id'] or g.student['display_name']}: "
@@ -207,24 +202,60 @@ class ClassGrades:
     course: CourseConfig
     roster: exports.Roster
     warnings: list[str]
+    report_max: dict[str, float] = field(default_factory=dict)   # exercise -> what its report is worth
 
     @property
     def possible(self) -> float:
-        return exports.max_total(self.exercises, self.course)
+        return exports.max_total(self.exercises, self.course, self.report_max)
 
 
 def class_grades(book: Gradebook, course: CourseConfig | None = None) -> ClassGrades:
     """Every student's final grade, computed in this one place for the batch's exports, the
-    students' pages, ``autograder report`` and the class overview: the checks' scores in the
-    course's points, the late rule, the instructor's overrides (kept in the gradebook) and the
-    roster (the last one given, kept there too). ``course``: the batch's own unless given."""
+    students' pages, ``autograder report``, ``autograder review`` and the class overview: the
+    checks' scores in the course's points, the reports' reviews (the rubric items applied, at
+    the points the gradebook's rubric gives them now), the late rule, the instructor's overrides
+    (kept in the gradebook) and the roster (the last one given, kept there too). ``course``:
+    the batch's own unless given."""
     course = course or batch_course(book)
     students = book.class_results()
     overrides = [exports.Override(**o) for o in book.overrides()]
     roster = stored_roster(book)
     exercises = [(e.id, e.max_score()) for e in select(course.select)]
-    grades, warnings = exports.compute_grades(students, exercises, course, overrides, roster)
-    return ClassGrades(students, grades, exercises, course, roster, warnings)
+    rubric = book.rubric()
+    grades, warnings = exports.compute_grades(students, exercises, course, overrides, roster,
+                                              rubric=rubric, reviews=book.reviews())
+    return ClassGrades(students, grades, exercises, course, roster, warnings,
+                       exports.report_maxima(rubric, exercises))
+
+
+def _write_exports(out: Path, standing: ClassGrades) -> list[Path]:
+    """The CSVs, every graded student's page brought up to date (adjustments, review, final
+    grade) and the class overview; returns the files written (the pages left out)."""
+    files = exports.write_csvs(out, standing.grades, standing.exercises, standing.course,
+                               roster_given=bool(standing.roster), roster_columns=standing.roster.columns,
+                               report_max=standing.report_max)
+    for grade in standing.grades:
+        if grade.student.get("feedback"):
+            _refresh_page(out, grade, standing.possible, standing.course)
+    files.append(_write_overview(out, standing))
+    return files
+
+
+def write_exports(out, course: CourseConfig | None = None) -> tuple[list[Path], list[str]]:
+    """``autograder report``: every export written again from the gradebook (the CSVs, each
+    student's page with the current adjustments, review and final grade, the overview), as
+    the batch writes them at its end. Returns the files written and warnings.
+
+    While a batch writes RESULTS nothing is written here (:class:`.ingest.IngestError`): the
+    batch writes every export itself when it finishes, reviews included.
+    Raises :class:`StorageError` if RESULTS cannot be read or written.
+    """
+    out = Path(out)
+    with _only_writer(out), Gradebook(out, readonly=True) as book:
+        standing = class_grades(book, course)
+        with storing(out):
+            files = _write_exports(out, standing)
+    return files, standing.warnings
 
 
 def stored_roster(book: Gradebook) -> exports.Roster:
@@ -353,6 +384,7 @@ def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> li
         restored.append(page_path)
     show_final = exports.shows_final(grade, course)
     updated = exports.with_adjustments(page, exports.adjustments_html(grade, possible, show_final))
+    updated = exports.with_reviews(updated, grade)
     if show_final:   # the headline is the final grade (never while it holds withheld hidden points)
         updated = exports.with_final_grade(updated, grade, possible)
     with storing(folder):
@@ -367,7 +399,7 @@ def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> li
 # What `autograder report` needs of the batch's course to write a student's files as the batch
 # did (never the inputs secret, nor the grading limits).
 _REPORTED_COURSE = ("select", "assignment", "points", "late_penalty", "hidden_points_visible",
-                    "canvas_assignment_id", "lms_exports")
+                    "canvas_assignment_id", "lms_exports", "rubric")
 
 
 def _course_record(course: CourseConfig) -> str:

@@ -1,0 +1,107 @@
+"""A student's Markdown (a lab report's explanation) as HTML that is safe to show the instructor.
+
+The text is untrusted: :func:`render_markdown` renders it with markdown-it-py's
+CommonMark rules and
+
+- raw HTML off: ``<script>``, ``<img onerror=...>``, ``<iframe>`` are shown as text;
+- no remote fetch: an image is shown only when it names one of the figures the
+  grader made from the student's code (``figures/lab07.ex1.png`` -> ``lab07.ex1``,
+  looked up by ``figure_url``); any other image is its alt text, so opening the page
+  never asks another server for anything;
+- links only to ``http:``, ``https:``, ``mailto:`` or within the page (``#...``),
+  never ``javascript:``, ``data:``, ``vbscript:`` or ``file:``; each opens with
+  ``rel="noopener noreferrer nofollow"`` so the review's address (and its token)
+  is never sent along;
+- bounded: at most :data:`MAX_MARKDOWN_CHARS` characters are rendered (the rest is
+  cut, and the page says so), nesting at most :data:`MAX_NESTING` deep; control
+  characters removed.
+"""
+
+from __future__ import annotations
+
+import html
+import re
+from pathlib import PurePosixPath
+from typing import Callable
+from urllib.parse import unquote
+
+from markupsafe import Markup
+
+MAX_MARKDOWN_CHARS = 50_000
+MAX_NESTING = 20
+_SAFE_SCHEMES = ("http", "https", "mailto")
+_CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+_SCHEME = re.compile(r"^([a-zA-Z][a-zA-Z0-9+.-]*):")
+
+
+def safe_link(url: str) -> bool:
+    """Whether a link may be followed: http(s), mailto, or a relative/in-page address.
+
+    Browsers ignore tabs, newlines and leading spaces in a scheme (``java\\tscript:``),
+    and decode character references before the page is parsed: both are looked through,
+    and percent-escapes too (to be on the safe side).
+    """
+    text = "".join(c for c in unquote(html.unescape(url)) if c not in "\t\n\r").strip()
+    text = "".join(c for c in text if ord(c) > 32)
+    match = _SCHEME.match(text)
+    if match is None:
+        return not text.startswith("//")   # a scheme-relative address is another server's
+    return match[1].lower() in _SAFE_SCHEMES
+
+
+def figure_name(src: str) -> str:
+    """The figure an image names: ``figures/lab07.ex1.png`` -> ``lab07.ex1``."""
+    name = PurePosixPath(src.replace("\\", "/").split("?")[0].split("#")[0]).name
+    return name[:-4] if name.lower().endswith(".png") else name
+
+
+def _parser():
+    from markdown_it import MarkdownIt
+
+    md = MarkdownIt("commonmark", {"html": False, "linkify": False, "typographer": False,
+                                   "maxNesting": MAX_NESTING})
+    md.validateLink = lambda url: safe_link(url)
+    return md
+
+
+_MD = None
+
+
+def render_markdown(text: str, figure_url: Callable[[str], str | None] | None = None,
+                    limit: int = MAX_MARKDOWN_CHARS) -> Markup:
+    """``text`` (Markdown) as safe HTML (see the module docstring).
+
+    ``figure_url(name)`` gives the address of the grader-made figure ``name``
+    (``"lab07.ex1"``), or None when there is none; without it no image is shown.
+    """
+    global _MD
+    if _MD is None:
+        _MD = _parser()
+    text = _CONTROL.sub("", str(text or ""))
+    cut = len(text) > limit
+    text = text[:limit]
+    tokens = _MD.parse(text)
+    for token in tokens:
+        for child in token.children or ():
+            if child.type == "image":
+                _figure_or_alt(child, figure_url)
+            elif child.type == "link_open":
+                child.attrs["rel"] = "noopener noreferrer nofollow"
+                child.attrs["target"] = "_blank"
+    body = _MD.renderer.render(tokens, _MD.options, {})
+    if cut:
+        body += f'<p class="muted">(cut: only the first {limit:,} characters are shown)</p>'
+    return Markup(body)
+
+
+def _figure_or_alt(token, figure_url) -> None:
+    """An image becomes the grader's figure it names, or its alt text (never a fetch)."""
+    src = str(token.attrs.get("src", ""))
+    url = figure_url(figure_name(src)) if figure_url and safe_link(src) and not _SCHEME.match(src.strip()) else None
+    alt = "".join(c.content for c in token.children or () if c.type in ("text", "code_inline")) or token.content
+    if url:
+        token.attrs = {"src": url, "alt": alt, "loading": "lazy"}
+        return
+    # Rendered as text: the alt, marked as an image not shown.
+    token.type, token.tag, token.nesting, token.children = "text", "", 0, None
+    token.content = f"[image not shown: {alt or src}]"
