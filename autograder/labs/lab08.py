@@ -504,7 +504,7 @@ def draw_matches_shape(t):
                    "(convert a grey image with cv2.cvtColor(img, cv2.COLOR_GRAY2BGR))")
         if got.shape[:2] == expected[1::-1]:
             t.fail(f"{what} returned shape {got.shape}; expected {expected}: width and height are "
-                   "swapped")
+                   "swapped", mistake="width and height are swapped")
         t.fail(f"{what} returned shape {got.shape}; expected {expected} (height max(H1, H2), "
                "width W1 + W2)")
     t.expect_array(got, what, shape=expected, dtype=np.uint8)
@@ -527,7 +527,7 @@ def draw_matches_content(t):
         swapped = plain_composite(cv2.cvtColor(img2, cv2.COLOR_GRAY2BGR), img1)
         if swapped.shape == got.shape and \
                 (np.abs(got.astype(np.int16) - swapped).max(axis=2) > 40)[background].mean() < 0.05:
-            t.fail(f"{what}: img1 and img2 are swapped: img1 goes on the left")
+            t.fail(f"{what}: img1 and img2 are swapped: img1 goes on the left", mistake="img1 and img2 are swapped")
         t.fail(f"{what}: {stray:.0%} of the pixels away from the match lines differ from the two "
                "images placed side by side (img1 at the left, img2 right after it, black "
                "padding below the shorter one)")

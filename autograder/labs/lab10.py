@@ -310,7 +310,7 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     if isinstance(tv, np.ndarray) and tv.shape in ((4,), (4, 1)):
         t.fail(f"{what}[2] (t) has shape {tv.shape}: that looks like the homogeneous camera centre "
                "(what cv2.decomposeProjectionMatrix returns as its 'translation'); t is the (3,) vector "
-               "in P = K [R | t], t = -R C.")
+               "in P = K [R | t], t = -R C.", mistake="the homogeneous camera centre returned as t")
     tv = t.expect_array(tv, f"{what}[2] (t)", kind="iuf", finite=True)
     if tv.shape == (3, 1):
         tv = tv.ravel()

@@ -653,7 +653,8 @@ def judge_exact_fundamental(t: Trial, views, n, sideways=False):
     if sideways and isinstance(got, np.ndarray) and got.shape == (3, 3) and got.dtype.kind in "iuf":
         if not np.all(np.isfinite(got)):
             t.fail(f"{what} returned NaN or infinite entries: it looks like F was divided by F[2, 2], "
-                   "which is 0 here. Any scale of F is accepted: leave it, or divide by its norm.")
+                   "which is 0 here. Any scale of F is accepted: leave it, or divide by its norm.",
+                   mistake="F divided by F[2, 2], which is 0")
         size = np.linalg.norm(got)
         if projective_distance(got, views.F) > 1e-4 and abs(got[2, 2]) > 1e-3 * size:
             t.fail(f"{what}: your F[2, 2] is {got[2, 2] / size:.3g} of |F|, the true one is 0. It looks "
@@ -716,7 +717,7 @@ def fundamental_rank2(t):
         return passed(f"smallest singular value {s[2] / s[0]:.1e} of the largest")
     t.fail(f"fundamental_8point(noisy pts1, pts2) has rank 3 (singular values proportional to "
            f"(1, {s[1] / s[0]:.3g}, {s[2] / s[0]:.3g})): rank 2 was not enforced. Set the smallest "
-           "singular value to 0 (F = U diag(s1, s2, 0) V^T).")
+           "singular value to 0 (F = U diag(s1, s2, 0) V^T).", mistake="rank 2 was not enforced")
 
 
 NOISY_SCENES = truth.FUNDAMENTAL_SCENES

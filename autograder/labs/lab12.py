@@ -64,7 +64,8 @@ def expect_disparity(t: Trial, what: str, got, scene) -> np.ndarray:
     shape = scene.disparity.shape
     if isinstance(got, np.ndarray) and got.shape != shape:
         if got.shape == shape[::-1]:
-            t.fail(f"{what} returned shape {got.shape}; expected {shape}: rows and columns are swapped")
+            t.fail(f"{what} returned shape {got.shape}; expected {shape}: rows and columns are swapped",
+                   mistake="the result is transposed")
         if got.ndim == 2 and got.shape[0] == shape[0] and got.shape[1] < shape[1]:
             t.fail(f"{what} returned shape {got.shape}; expected {shape}: keep the left image's size "
                    "and mark pixels without a match as invalid (0)")
@@ -193,7 +194,8 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=N
     for shift in (1, -1):
         if truth.bad_pixel_rate(finite + shift, gt, 0.5) <= allowed:
             t.fail(f"{what}: every disparity is off by {'-' if shift > 0 else '+'}1 - "
-                   "it looks like an off-by-one error in the disparity index (d runs from 0).")
+                   "it looks like an off-by-one error in the disparity index (d runs from 0).",
+                   mistake="the disparity index is off by one")
     known = (gt > 0) & (finite > 0)
     if known.sum() > 10:
         ratio = float(np.median(finite[known] / gt[known]))
@@ -214,7 +216,8 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=N
             if truth.bad_pixel_rate(flipped, scene.judged_right, thr) <= allowed:
                 t.fail(f"{what}: you search in the wrong direction. The match of left pixel x is "
                        "at x - d in the right image (objects appear further left in the right view); "
-                       "your matcher finds the right image's disparities when given the views swapped.")
+                       "your matcher finds the right image's disparities when given the views swapped.",
+                       mistake="the search runs in the wrong direction (x + d)")
 
 
 finite_floats = lambda lo, hi: st.floats(lo, hi, allow_nan=False, allow_infinity=False)  # noqa: E731
@@ -316,7 +319,8 @@ def judge_disparities(t: Trial, what: str, got, xl, xr, n):
     if max_abs_error(got, expected) <= tolerance:
         return
     if max_abs_error(got, -expected) <= tolerance:
-        t.fail(f"{what} has the wrong sign: d = x_l - x_r (positive for a point in front of the rig).")
+        t.fail(f"{what} has the wrong sign: d = x_l - x_r (positive for a point in front of the rig).",
+               mistake="the disparity's sign is reversed (x_r - x_l)")
     shown, wanted = format_arrays_apart(got[:5], expected[:5])
     t.fail(f"{what} returned {shown}...; expected {wanted}... ({describe_difference(got, expected, 'px', tolerance)})")
 
@@ -528,6 +532,7 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
             t.fail(f"{what}: matches are on the same rows, but the disparities x_l - x_r are "
                    f"negative (median {np.median(dx):.3g} px): the left and right roles are "
                    "swapped or the new x axis points from camera 2 to camera 1.",
+                   mistake="the left and right roles are swapped in the rectification",
                    hint="camera 2's centre in camera-1 coordinates is -R^T T: the new x axis points towards it")
         return worst, float(np.median(dx))
     name_pose_mistake(t, pair, what)
