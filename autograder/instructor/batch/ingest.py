@@ -45,8 +45,13 @@ the metadata), so every item is read alone and fails alone:
   slugs unique by construction (checked against every id already given, case
   folded), stable between runs; LMS ids shared by two entries are reported.
 
-Inside an entry only ``.py`` and ``.ipynb`` files count; a ``.zip`` inside is
-unpacked where it lies. A single file that is named after no lab module is taken
+Inside an entry only ``.py`` and ``.ipynb`` files are graded; a ``.zip`` inside is
+unpacked where it lies. The lab report beside them is read the same way, deny by
+default (:class:`.tree.ReportFiles`): ``.md`` files up to the report's cap and
+``.pdf`` files (kept as files, never parsed; bounded), at most 20 per student; what
+is refused is a sentence of :attr:`Entry.report`'s problems, never the entry's error.
+:attr:`Entry.report` holds the explanations read from them and from the notebooks'
+tagged cells (:func:`autograder.loading.report.read_report`). A single file that is named after no lab module is taken
 as the module when the selection grades one lab (``alice.py`` for lab07).
 """
 
@@ -60,11 +65,12 @@ from dataclasses import dataclass, field
 from datetime import datetime
 from pathlib import Path, PurePosixPath
 
+from ...loading.report import Report, read_report
 from ...loading.text import one_line, shown
 from ...sandbox.files import CAPS, SOURCE_SUFFIXES, limit_for
 from ..course import parse_time
-from .tree import (FILE, FOLDER, LINK, Budget, FolderTree, Unreadable, UploadTree, ZipTree, _zip_sources,
-                   is_hidden, source_files)
+from .tree import (REPORT_FILE_SUFFIXES, FILE, FOLDER, LINK, Budget, FolderTree, ReportFiles, Unreadable, UploadTree, ZipTree,
+                   _zip_sources, is_hidden, source_files)
 
 MAX_CLASS_SOURCE_BYTES = 2 * 2**30   # every student's sources together, held in memory
 MAX_TOP_ITEMS = 20_000               # items looked at at the top of an upload
@@ -114,6 +120,13 @@ class Entry:
         Whether the LMS marked it late (Canvas ``_LATE_``); None when unknown.
     error : str
         Why it cannot be graded; empty when it can.
+    report_files : dict of str to bytes
+        The lab report's ``.md`` and ``.pdf`` files, relative POSIX path to content
+        (never graded, never part of :attr:`content_hash`: a report handed in later
+        regrades nothing).
+    report : Report or None
+        The explanations read from the report files and the notebooks, the PDFs, and
+        the problems (files refused included); None until the upload is read.
     """
 
     student_id: str
@@ -126,6 +139,9 @@ class Entry:
     submitted_at: str | None = None
     late: bool | None = None
     error: str = ""
+    report_files: dict[str, bytes] = field(default_factory=dict)
+    report: Report | None = None
+    reports_found: ReportFiles = field(default_factory=ReportFiles, repr=False)
 
     @property
     def content_hash(self) -> str:
@@ -173,11 +189,23 @@ def read_upload(path, modules: list[str], every_module: list[str] = ()) -> Class
     for entry in upload.entries:
         if not entry.error:
             _name_lone_file(entry, modules, every)
+        _read_report(entry)
         _make_safe(entry)
     _assign_ids(upload.entries)
     upload.warnings += _shared_identities(upload.entries)
     upload.entries.sort(key=lambda e: e.student_id)
     return upload
+
+
+def _read_report(entry: Entry) -> None:
+    """The entry's explanations, from its report files and notebooks (never raising)."""
+    entry.report_files = dict(entry.reports_found.files)
+    refused = entry.reports_found.problems()
+    try:
+        report = read_report({**entry.files, **entry.report_files})
+    except Exception as exc:  # noqa: BLE001 - the contract says it never raises; a student's report never stops the class
+        report = Report(problems=(f"the report could not be read ({type(exc).__name__})",))
+    entry.report = Report(report.explanations, report.attachments, tuple(refused) + tuple(report.problems))
 
 
 def _open_tree(path: Path) -> UploadTree:
@@ -297,13 +325,15 @@ class _Reader:
         if self.tree.problem(path):
             raise Unreadable(self.tree.problem(path))
         if self.kind(name) == FOLDER:
-            entry.files = self.folder_sources(path)
+            entry.files = self.folder_sources(path, entry)
         else:
-            entry.files = self.file_sources(path, name)
+            entry.files = self.file_sources(path, name, entry=entry)
 
-    def folder_sources(self, path: tuple) -> dict[str, bytes]:
+    def folder_sources(self, path: tuple, entry: Entry | None = None) -> dict[str, bytes]:
+        """The sources under ``path`` (and the report's files, into ``entry``'s)."""
         refused: dict[str, str] = {}
-        files = source_files(self.tree, path, refused, self.budget)
+        files = source_files(self.tree, path, refused, self.budget,
+                             reports=entry.reports_found if entry is not None else None)
         if files:
             return files
         if refused:
@@ -313,13 +343,19 @@ class _Reader:
         raise Unreadable("no .py or .ipynb file in it" + (f" (found: {shown(', '.join(found[:10]), 200)})"
                                                           if found else " (it is empty)"))
 
-    def file_sources(self, path: tuple, name: str, as_name: str | None = None) -> dict[str, bytes]:
-        """One uploaded file: a source file as it is, a zip's sources in a folder named after it."""
+    def file_sources(self, path: tuple, name: str, as_name: str | None = None,
+                     entry: Entry | None = None) -> dict[str, bytes]:
+        """One uploaded file: a source file as it is, a zip's sources in a folder named after it
+        (and its report files, into ``entry``'s)."""
         as_name = as_name or name
         if name.endswith(".zip"):
             data = self.tree.read(path, CAPS.total_bytes)
             folder = PurePosixPath(as_name).with_suffix("")
-            return {(folder / inner).as_posix(): d for inner, d in _zip_sources(data, name, CAPS, self.budget).items()}
+            reports = ReportFiles() if entry is not None else None
+            sources = _zip_sources(data, name, CAPS, self.budget, reports)
+            if entry is not None:
+                entry.reports_found.merge(reports, folder.as_posix())
+            return {(folder / inner).as_posix(): d for inner, d in sources.items()}
         data = self.tree.read(path, limit_for(name, CAPS))
         self.budget.take(len(data))
         return {as_name: data}
@@ -359,7 +395,7 @@ class _Reader:
                     raise Unreadable(f"{key} is listed in {GRADESCOPE_METADATA} but "
                                      + ("is a symbolic link, not followed" if kind == LINK else
                                         "is not a folder of the export" if kind else "has no folder in the export"))
-                entry.files = self.folder_sources(self.root + (key,))
+                entry.files = self.folder_sources(self.root + (key,), entry)
 
             self.add(entry, read)
         for name in names:
@@ -413,10 +449,13 @@ class _Reader:
         files: dict[str, bytes] = {}
         refused: dict[str, str] = {}
         for as_name, name in sorted(uploads.items()):
+            if ReportFiles.wanted(as_name):
+                entry.reports_found.read(self.tree, self.root + (name,), as_name, self.budget)
+                continue
             if not as_name.endswith(SOURCE_SUFFIXES + (".zip",)):
-                continue   # a report, a picture: kept by name only, never read
+                continue   # a picture, anything else: kept by name only, never read
             try:
-                for key, data in self.file_sources(self.root + (name,), name, as_name).items():
+                for key, data in self.file_sources(self.root + (name,), name, as_name, entry).items():
                     if key in files:
                         refused[shown(key)] = "two uploads give a file of that name"
                     else:
@@ -471,7 +510,7 @@ class _Reader:
                 flat[match["file"]] = name
         files: dict[str, bytes] = {}
         for folder in folders:
-            files.update(self.folder_sources(self.root + (folder,)))
+            files.update(self.folder_sources(self.root + (folder,), entry))
         if flat:
             part = Entry("", "", "", "")
             try:
@@ -479,6 +518,8 @@ class _Reader:
             except Unreadable:
                 if not files:
                     raise
+            finally:
+                entry.reports_found.merge(part.reports_found)
             clashes = sorted(set(files) & set(part.files))
             if clashes:
                 raise Unreadable(f"two uploads are named {shown(clashes[0])}")
@@ -492,7 +533,7 @@ class _Reader:
 def _undo_canvas_renaming(filename: str) -> tuple[str, int]:
     """``lab07-2.py`` -> (``lab07.py``, 2); a name without the suffix -> (name, 0)."""
     match = CANVAS_RENAMED.match(filename)
-    if match and match["suffix"] in SOURCE_SUFFIXES + (".zip",):
+    if match and match["suffix"].lower() in SOURCE_SUFFIXES + (".zip",) + REPORT_FILE_SUFFIXES:
         return match["stem"] + match["suffix"], int(match["n"])
     return filename, 0
 

@@ -13,7 +13,9 @@ archive costs nothing, and a member name too long for the file system or a file
 and a folder of the same name are just facts about the tree (:meth:`~UploadTree.problem`).
 
 :func:`source_files` collects what can hold code under one path, with the
-loader's caps, and unpacks a student's own ``.zip`` in memory the same way.
+loader's caps, and unpacks a student's own ``.zip`` in memory the same way; given a
+:class:`ReportFiles`, it collects the lab report's files beside them too (``.md``
+up to the report's cap, ``.pdf`` as files never parsed, each bounded and counted).
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ import zlib
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
+from ...loading.report import MAX_REPORT_BYTES
 from ...loading.submission import declared_members
 from ...loading.text import shown
 from ...sandbox.files import CAPS, SOURCE_SUFFIXES, Caps, Refused, check_name, limit_for, read_regular
@@ -34,6 +37,10 @@ FOLDER, FILE, LINK, SPECIAL = "folder", "file", "link", "special"
 IGNORED_NAMES = ("__MACOSX", "__pycache__")
 NAME_BYTES = 255              # a file or folder name any file system takes (the files are written to disk later)
 MAX_CLASS_MEMBERS = 200_000   # members of a class archive (a class of 300 holds a few thousand)
+REPORT_FILE_SUFFIXES = (".md", ".pdf")   # a lab report's files (a notebook's cells are read from the code)
+MAX_ATTACHMENT_BYTES = 20 * 2**20        # one PDF handed in beside the report
+MAX_REPORT_FILES = 20                    # report files kept per student
+MAX_REPORT_TOTAL = 40 * 2**20            # their bytes together
 
 
 class Unreadable(Exception):
@@ -56,6 +63,61 @@ class Budget:
 def is_hidden(name: str) -> bool:
     """Dot files, macOS's ``__MACOSX`` and Python's caches are no one's work."""
     return name.startswith(".") or name in IGNORED_NAMES
+
+
+@dataclass
+class ReportFiles:
+    """One student's report files as they are found (relative path -> bytes), and those refused
+    (shown path -> why): deny by default, as the sources are read, with the report's own caps."""
+
+    files: dict[str, bytes] = field(default_factory=dict)
+    refused: dict[str, str] = field(default_factory=dict)
+    total: int = 0
+
+    @staticmethod
+    def wanted(name: str) -> bool:
+        return name.lower().endswith(REPORT_FILE_SUFFIXES)
+
+    def read(self, tree: "UploadTree", path: tuple, text: str, budget: Budget, caps: Caps = CAPS) -> None:
+        """Keep the report file ``text`` (at ``path`` in ``tree``), or the reason it is refused."""
+        pdf = text.lower().endswith(".pdf")
+        try:
+            check_name(text, caps)
+            if any(len(part.encode()) > NAME_BYTES for part in PurePosixPath(text).parts):
+                raise Unreadable(f"a name in its path is longer than {NAME_BYTES} bytes; shorten it")
+            if len(self.files) >= MAX_REPORT_FILES:
+                raise Unreadable(f"more than {MAX_REPORT_FILES} report files; the rest was not read")
+            limit = MAX_ATTACHMENT_BYTES if pdf else MAX_REPORT_BYTES
+            if self.total + limit > MAX_REPORT_TOTAL:
+                limit = MAX_REPORT_TOTAL - self.total
+            data = tree.read(path, limit)
+            if pdf and not data.startswith(b"%PDF-"):
+                raise Unreadable("it is not a PDF (it does not begin with %PDF-)")
+            budget.take(len(data))
+        except (Refused, Unreadable) as exc:
+            self.refused[shown(text)] = str(exc)
+            return
+        if text in self.files:
+            self.refused[shown(text)] = "the upload holds it twice"
+            return
+        self.files[text] = data
+        self.total += len(data)
+
+    def merge(self, other: "ReportFiles", folder: str = "") -> None:
+        """``other``'s files and refusals, under ``folder`` (a zip's, unpacked where it lies)."""
+        prefix = f"{folder}/" if folder else ""
+        for name, data in other.files.items():
+            key = prefix + name
+            if key in self.files or len(self.files) >= MAX_REPORT_FILES or self.total + len(data) > MAX_REPORT_TOTAL:
+                self.refused[shown(key)] = ("the upload holds it twice" if key in self.files
+                                            else "more report files than are kept; not read")
+                continue
+            self.files[key] = data
+            self.total += len(data)
+        self.refused.update({prefix + name: why for name, why in other.refused.items()})
+
+    def problems(self) -> list[str]:
+        return [f"{name} was not read: {why}" for name, why in self.refused.items()]
 
 
 class UploadTree:
@@ -251,7 +313,7 @@ def read_member(archive: zipfile.ZipFile, info: zipfile.ZipInfo, limit: int) -> 
 
 
 def source_files(tree: UploadTree, path: tuple[str, ...], refused: dict[str, str], budget: Budget,
-                 caps: Caps = CAPS, nested: bool = False) -> dict[str, bytes]:
+                 caps: Caps = CAPS, nested: bool = False, reports: ReportFiles | None = None) -> dict[str, bytes]:
     """The files under ``path`` that can hold code: relative POSIX path -> bytes.
 
     The loader's rules: hidden items skipped; links, devices and pipes refused,
@@ -260,6 +322,7 @@ def source_files(tree: UploadTree, path: tuple[str, ...], refused: dict[str, str
     not valid UTF-8 or holds control characters is refused. A ``.zip`` among them
     is unpacked in memory into a folder named after it (unless ``nested``: a zip's
     own zips are not). What is refused goes into ``refused``: shown name -> reason.
+    With ``reports``, the lab report's files are kept there (:class:`ReportFiles`).
     """
     suffixes = SOURCE_SUFFIXES if nested else SOURCE_SUFFIXES + (".zip",)
     files: dict[str, bytes] = {}
@@ -292,6 +355,8 @@ def source_files(tree: UploadTree, path: tuple[str, ...], refused: dict[str, str
                 if name.endswith(suffixes) or kind == LINK:
                     refused[shown(text)] = ("it is a symbolic link" if kind == LINK
                                             else "it is not a regular file")
+            elif kind == FILE and reports is not None and ReportFiles.wanted(name):
+                reports.read(tree, path + item, text, budget, caps)
             elif kind == FILE and name.endswith(suffixes):
                 try:
                     check_name(text, caps)
@@ -303,12 +368,15 @@ def source_files(tree: UploadTree, path: tuple[str, ...], refused: dict[str, str
                     refused[shown(text)] = str(exc)
                     continue
                 if name.endswith(".zip"):
+                    inner_reports = ReportFiles() if reports is not None else None
                     try:
-                        inner = _zip_sources(data, name, caps, budget)
+                        inner = _zip_sources(data, name, caps, budget, inner_reports)
                     except Unreadable as exc:
                         refused[shown(text)] = str(exc)
                         continue
                     folder = PurePosixPath(text).with_suffix("")
+                    if reports is not None:
+                        reports.merge(inner_reports, folder.as_posix())
                     for inner_name, inner_data in inner.items():
                         key = (folder / inner_name).as_posix()
                         if key in files:
@@ -326,11 +394,13 @@ def source_files(tree: UploadTree, path: tuple[str, ...], refused: dict[str, str
     return files
 
 
-def _zip_sources(data: bytes, name: str, caps: Caps, budget: Budget) -> dict[str, bytes]:
-    """The source files of a student's own zip, read in memory with the loader's caps."""
+def _zip_sources(data: bytes, name: str, caps: Caps, budget: Budget,
+                 reports: ReportFiles | None = None) -> dict[str, bytes]:
+    """The source files of a student's own zip, read in memory with the loader's caps (and its
+    report files into ``reports``, when given)."""
     refused: dict[str, str] = {}
     with ZipTree.open(data, shown(name), max_members=caps.entries) as tree:
-        files = source_files(tree, (), refused, budget, caps, nested=True)
+        files = source_files(tree, (), refused, budget, caps, nested=True, reports=reports)
     if not files and refused:
         inner, reason = next(iter(refused.items()))
         raise Unreadable(f"{inner} in {shown(name)} was not read: {reason}")
