@@ -141,6 +141,9 @@ def add_grading_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--figures", metavar="DIR",
                         help="also write the lab sheet's output pictures, made by your functions, "
                              "as DIR/<exercise>.png (and show them on the feedback page)")
+    parser.add_argument("--report", metavar="DIR",
+                        help="write (or refresh) your lab report: DIR/labNN_report.md per lab, with the figures "
+                             "your functions make, the verdicts and a place for each explanation (kept when run again)")
 
 
 def _positive_seconds(text: str) -> float:
@@ -215,6 +218,8 @@ def run_grade(args) -> int:
     terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first
     written, status = [], 0
     figures = _write_figures(args, limits, console, errors, written) if getattr(args, "figures", None) else {}
+    if getattr(args, "report", None):
+        status = _write_report(args, result, limits, console, errors, written) or status
     for path, write, what in ((html_path, lambda r, p: _write_page(r, p, figures), "details and pictures"),
                               (args.json and _report_path(args.json, "results.json"),
                                lambda r, p: write_json(r, p, pictures=args.json_pictures), "results")):
@@ -272,6 +277,25 @@ def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
                           highlight=False)
     written += [(f"figure {o.figure_id}", o.path) for o in outcomes if o.path is not None]
     return {o.figure_id: o.path.read_bytes() for o in outcomes if o.path is not None}
+
+
+def _write_report(args, result, limits, console, errors, written) -> int:
+    """``--report DIR``: the lab report's scaffold (autograder.student.report); notes each file."""
+    from .student.report import write_report
+
+    try:
+        report = write_report(args.submission, args.select, args.report, result, limits)
+    except OSError as exc:
+        errors.print(f"[red]error:[/red] cannot write the report to {escape(str(args.report))}: "
+                     f"{escape(exc.strerror or str(exc))}", highlight=False, soft_wrap=True)
+        return USAGE_ERROR
+    for outcome in report.figures:
+        if outcome.path is None:
+            console.print(f"[yellow]no figure for {outcome.figure_id}:[/yellow] {escape(outcome.reason)}",
+                          highlight=False)
+    written += [(f"report ({report.kept[path.name]} explanations kept)" if report.kept[path.name] else "report",
+                 path) for path in report.files]
+    return 0
 
 
 def _early_sandbox(limits):

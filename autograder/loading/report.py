@@ -22,7 +22,8 @@ Where the explanation is, in a Markdown file:
 1. between ``<!-- explanation ID -->`` and the next ``<!-- end explanation -->``;
    a missing end marker ends it at the next start marker or ``#``/``##`` heading;
 2. without markers for an exercise, under its heading ``## ID...`` up to the next
-   ``#`` or ``##`` heading, the figure lines and the verdict line removed.
+   ``#`` or ``##`` heading (outside code blocks), the scaffold's lines removed: the
+   figures, the verdict, the "No figure" sentences.
 
 In a notebook: a Markdown cell tagged ``report:ID``, or holding the start marker of
 one exercise, is that exercise's explanation (its text, markers and placeholder
@@ -56,11 +57,13 @@ VERDICT_PREFIX = "Automatic verdict:"
 _ID = re.compile(r"lab\d\d\.[a-z]+\d+(?:-[a-z]+)?")
 _START = re.compile(r"<!--[ \t]*explanation[ \t]+([^\s>]{1,60})[ \t]*-->", re.IGNORECASE)
 _END = re.compile(r"<!--[ \t]*end[ \t]+explanation[ \t]*-->", re.IGNORECASE)
+_MARKER_LINE = re.compile(f"(?:{_START.pattern}|{_END.pattern})[ \t]*\n?", re.IGNORECASE)
 _HEADING = re.compile(r"^#{1,2}[ \t]+(\S.*)$", re.MULTILINE)   # a level 1 or 2 heading
 _FENCE = re.compile(r"^[ \t]{0,3}(```|~~~)", re.MULTILINE)     # a code block's fence (its "# comments" are no headings)
 _SECTION = re.compile(r"(lab\d\d\.[a-z]+\d+(?:-[a-z]+)?)(?![\w-])", re.IGNORECASE)  # its id, first thing
 _FIGURE_LINE = re.compile(r"^[ \t]*!\[[^\]\n]*\]\([^)\n]*\)[ \t]*$", re.MULTILINE)
-_VERDICT_LINE = re.compile(r"^[ \t]*" + re.escape(VERDICT_PREFIX) + r".*$", re.MULTILINE)
+VERDICT_LINE = re.compile(r"^[ \t]*" + re.escape(VERDICT_PREFIX) + r".*$", re.MULTILINE)
+_NO_FIGURE_LINE = re.compile(r"^[ \t]*_No figure[^\n]*_[ \t]*$", re.MULTILINE)  # the scaffold's, for a figure not made
 
 
 def exercise_id(text: str) -> str | None:
@@ -213,7 +216,7 @@ class _Reading:
                 continue
             end = headings[number + 1] if number + 1 < len(headings) else len(text)
             body = _FIGURE_LINE.sub("", text[heading.end():end])
-            body = _VERDICT_LINE.sub("", body)
+            body = _NO_FIGURE_LINE.sub("", VERDICT_LINE.sub("", body))
             self.add(exercise, body, source)
 
     # -------------------------------------------------------------- notebooks
@@ -294,7 +297,8 @@ def _first_after(positions: list[int], after: int, default: int) -> int:
 
 
 def _without_markers(text: str) -> str:
-    return _END.sub("", _START.sub("", text))
+    """``text`` without explanation markers (each with the line break after it)."""
+    return _MARKER_LINE.sub("", text)
 
 
 def _cleaned(text: str) -> str:
