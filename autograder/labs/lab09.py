@@ -23,6 +23,7 @@ from ..engine.compare import at_precision, closest, format_apart, format_arrays_
 from ..engine.judges import Probe, call_probe, confirm, fingerprint, format_matrix
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
+from ..sandbox.beginner import integer_entries
 
 lab = Lab("lab09", module="lab09_camera", title="Geometric camera models")
 
@@ -293,6 +294,9 @@ def judge_single_point(t: Trial, what: str, got, expected):
     got = t.expect_array(got, what, shape=(2,), kind="iuf")
     scale = magnitude(expected)
     if point_error(got[None], np.asarray(expected)[None]) > at_precision(1e-6 * scale, scale):
+        integers = integer_entries(got, expected)
+        if integers:
+            t.fail(f"{what} is wrong: {integers}", mistake="integer arithmetic: the fractions are cut off")
         shown, wanted = format_arrays_apart(got, expected)
         t.fail(f"{what} returned {shown}; expected {wanted}")
 
@@ -389,11 +393,16 @@ def pinhole_property(t):
               describe=lambda c: f"fixtures.lab09.points_in_front(seed={c[0]}, n=10), f={c[1]!r}")
 
 
-@ex1.check("a single (3,) point gives a single (2,) result", points=1)
+@ex1.check("a single (3,) point gives a single (2,) result, the lab sheet's (1, 1, 2) with f = 1 too",
+           points=1)
 def pinhole_single(t):
     X = np.array([0.3, -0.2, 4.0])
     judge_single_point(t, "pinhole_project((3,) point, f=100)", t.call("pinhole_project", X, 100.0),
                        truth.pinhole(X, 100.0)[0])
+    # The sheet's own sample, as a student types it: whole numbers, so an integer array.
+    sample = np.array([1, 1, 2])
+    judge_single_point(t, "pinhole_project(np.array([1, 1, 2]), f=1)", t.call("pinhole_project", sample, 1),
+                       truth.pinhole(sample.astype(float), 1.0)[0])
 
 
 def pinhole_behind_case():
