@@ -56,12 +56,8 @@ def test_a_missing_module_is_the_reason(tmp_path):
     assert outcome.path is None and f"{MODULE}.py not found" in outcome.reason
 
 
-@pytest.mark.slow
-def test_every_figure_is_made_from_the_reference_solutions(tmp_path):
-    outcomes = make_figures(REFERENCE, [], tmp_path)
-    assert sorted(o.figure_id for o in outcomes) == sorted(_discover())
-    assert [o.figure_id for o in outcomes if o.path is None] == []
-    assert all((tmp_path / f"{figure_id}.png").is_file() for figure_id in SHEET_PICTURES)
+# Every figure made from the reference solutions: tests/test_report_scaffold.py (the scaffold
+# of every lab makes them all, once).
 
 
 def test_every_picture_the_lab_sheet_asks_for_has_a_producer_of_a_graded_exercise():
