@@ -7,6 +7,10 @@ The pattern every lab follows (see ``test_lab07.py``):
 - for each exercise, a realistic wrong implementation -- the reference module
   with one function redefined (:func:`mutant`) -- loses points with the right
   diagnosis.
+
+What "sound" means is ``autograder verify``'s (:mod:`autograder.instructor.verify`): the
+helpers below assert its judgements, and :class:`SharedGradings` lets verify reuse the
+gradings these tests make (tests/test_verify.py).
 """
 
 from __future__ import annotations
@@ -24,6 +28,7 @@ from hypothesis import settings
 
 from autograder.engine.properties import GRADING
 from autograder.engine.runner import grade
+from autograder.instructor import verify
 
 settings.load_profile(GRADING)
 
@@ -48,7 +53,7 @@ def mutant(tmp_path: Path, module: str, source: str, base: Path = REFERENCE) -> 
     folder = tmp_path / "submission"
     folder.mkdir(parents=True, exist_ok=True)
     original = (base / f"{module}.py").read_text()
-    (folder / f"{module}.py").write_text(original + "\n\n# --- mutation\n" + textwrap.dedent(source))
+    (folder / f"{module}.py").write_text(verify.with_mutation(original, source))
     return folder
 
 
@@ -66,25 +71,14 @@ def check_results(result, exercise_id: str):
 
 
 def assert_diagnosed(result, exercise_id: str, *fragments: str):
-    """Some check of the exercise failed, and one failure message contains every fragment."""
-    checks = check_results(result, exercise_id)
-    failed = [c for c in checks if not c.passed and c.max_score > 0]  # advice is no failure
-    assert failed, f"{exercise_id}: every check passed, but the implementation is wrong"
-    messages = [c.message.lower() for c in failed]
-    assert any(all(f.lower() in m for f in fragments) for m in messages), \
-        f"{exercise_id}: no failure message mentions {fragments}; messages were:\n" + "\n".join(messages)
-    misnamed = [m for label, m in named_mistakes(result, exercise_id)
-                if not all(f.lower() in m.lower() for f in fragments)]
-    assert not misnamed, f"{exercise_id}: named as a different mistake than {fragments}:\n" + "\n".join(misnamed)
-    score = sum(c.score for c in checks)
-    maximum = sum(c.max_score for c in checks)
-    assert score < maximum
+    """The exercise lost points, one failure message contains every fragment, and no check
+    names another mistake (:func:`autograder.instructor.verify.case_problems`)."""
+    check_results(result, exercise_id)
+    problems = verify.case_problems(result, verify.Case("", exercise_id, "", fragments))
+    assert not problems, f"{exercise_id}: " + "\n".join(problems)
 
 
-def named_mistakes(result, exercise_id: str) -> list[tuple[str, str]]:
-    """(label, message) of each failing check of the exercise that names a mistake."""
-    return [(c.mistake, c.message) for c in check_results(result, exercise_id)
-            if not c.passed and c.max_score > 0 and (c.mistake or "looks like" in c.message.lower())]
+named_mistakes = verify.named_mistakes   # (label, message) of each failing check naming a mistake
 
 
 def lab_exercises(result, lab: str):
@@ -95,11 +89,10 @@ def lab_exercises(result, lab: str):
 
 
 def assert_full_marks(result, lab: str):
-    """Every check of every exercise of ``lab`` passed."""
-    for exercise in lab_exercises(result, lab):
-        for check in exercise.checks:
-            assert check.passed or check.max_score == 0, f"{exercise.id} {check.name}: {check.message}"
-        assert exercise.score == exercise.max_score
+    """Every check of every exercise of ``lab`` passed (:func:`verify.reference_problems`)."""
+    lab_exercises(result, lab)
+    problems = verify.reference_problems(result, lab)
+    assert not problems, "\n".join(problems)
 
 
 def advice_given(result, exercise_id: str) -> list[str]:
@@ -108,38 +101,69 @@ def advice_given(result, exercise_id: str) -> list[str]:
 
 
 def assert_advised(result, exercise_id: str, *fragments: str):
-    """The exercise lost no points for it, and one tip contains every fragment."""
+    """One tip of the exercise contains every fragment."""
     tips = advice_given(result, exercise_id)
     assert any(all(f.lower() in tip for f in fragments) for tip in tips), \
         f"{exercise_id}: no tip mentions {fragments}; tips were:\n" + "\n".join(tips)
 
 
+def assert_advice_case(module: str, exercise: str, source: str, fragments):
+    """A convention (a lab's ``ADVICE`` case): its tip given, no point lost (verify's judgement)."""
+    result = graded_case(module, exercise, source)
+    problems = verify.case_problems(result, verify.Case("", exercise, source, tuple(fragments), advice=True))
+    assert not problems, f"{exercise}: " + "\n".join(problems)
+
+
 def assert_all_not_implemented(result, lab: str):
-    """Every exercise of ``lab`` scores 0 with "not implemented yet" and no traceback noise."""
-    for exercise in lab_exercises(result, lab):
-        assert exercise.score == 0
-        assert exercise.message == "not implemented yet"
-        for check in exercise.checks:
-            assert "not implemented yet" in check.message
-            assert check.traceback == ""
+    """Every exercise of ``lab`` scores 0 with "not implemented yet" and no traceback noise
+    (:func:`verify.skeleton_problems`)."""
+    lab_exercises(result, lab)
+    problems = verify.skeleton_problems(result, lab)
+    assert not problems, "\n".join(problems)
 
 
 _GRADED_CASES: dict = {}
 
 
-def graded_case(module: str, exercise: str, source: str):
-    """The reference with ``source`` appended, graded on ``exercise`` (no pictures), once per
-    test process: a lab's mistake table is graded by its own tests and, for the checks it
-    fails, by ``test_every_check_is_tested``; both carry the lab's ``xdist_group``, so each
-    case is graded once per run."""
-    key = (module, exercise, source)
+def graded_case(module: str, exercise: str, source: str, base: Path = REFERENCE):
+    """``base``'s module with ``source`` appended, graded on ``exercise`` (no pictures), once per
+    test process: a lab's mistake table is graded case by case by its own tests and, whole,
+    by ``autograder verify`` in tests/test_verify.py; both carry the lab's ``xdist_group``, so
+    each case is graded once per run."""
+    key = (module, exercise, source, base)
     if key not in _GRADED_CASES:
         folder = Path(tempfile.mkdtemp(prefix="mistake-case-"))
         try:
-            _GRADED_CASES[key] = grade(mutant(folder, module, source), [exercise], pictures="none")
+            _GRADED_CASES[key] = grade(mutant(folder, module, source, base), [exercise], pictures="none")
         finally:
             shutil.rmtree(folder, ignore_errors=True)
     return _GRADED_CASES[key]
+
+
+_WHOLE_GRADINGS: dict = {}
+
+
+def whole_grading(folder: Path):
+    """Every lab of ``folder`` (the reference solutions, the skeletons) graded once per process."""
+    if folder not in _WHOLE_GRADINGS:
+        _WHOLE_GRADINGS[folder] = grade(folder)
+    return _WHOLE_GRADINGS[folder]
+
+
+class SharedGradings(verify.Gradings):
+    """verify's gradings, shared with the other tests of this process: the reference and the
+    skeletons graded whole once (the session fixtures' gradings), each case once
+    (:func:`graded_case`); the reference's second grading, which verify compares with the
+    first, is its own."""
+
+    def reference(self, parts, run=0):
+        return whole_grading(parts.reference) if run == 0 else super().reference(parts, run)
+
+    def skeleton(self, parts):
+        return whole_grading(parts.skeleton)
+
+    def case(self, parts, case):
+        return graded_case(parts.lab.module, case.exercise, case.source, parts.reference)
 
 
 def assert_mistake_named(module: str, exercise: str, source: str, fragments):
@@ -164,12 +188,12 @@ def assert_only_exercise_lost(result, lost: str, *fragments: str):
 @pytest.fixture(scope="session")
 def reference_result():
     """The reference solutions graded once for the whole test session (all labs)."""
-    return grade(REFERENCE)
+    return whole_grading(REFERENCE)
 
 
 @pytest.fixture(scope="session")
 def skeleton_result():
-    return grade(SKELETON)
+    return whole_grading(SKELETON)
 
 
 # ------------------------------------------------------------------ hostile submissions

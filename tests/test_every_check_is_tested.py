@@ -1,31 +1,34 @@
 """Every check of every lab fails on at least one realistic wrong implementation.
 
-The lab test files hold the wrong implementations (``MISTAKES``: exercise, code,
-expected diagnosis); each is also graded there for its diagnosis. Here they are
-graded together to show that no check, hidden ones included, is one that cannot
-fail. An advice check (0 points) counts when some submission gets its advice:
-the lab test files may list such submissions in ``ADVICE`` (same form).
+The tables of wrong implementations live in ``autograder/labs/mistakes/labNN.py``; the
+judgement is ``autograder verify``'s own (:func:`autograder.instructor.verify.unfailed_checks`),
+which tests/test_verify.py runs on every lab. Here the judgement itself is held to account:
+it finds a check that no case fails, and counts an advice check as failed when it gave its tip.
 """
 
-import importlib
+from types import SimpleNamespace
 
-import pytest
+from autograder.engine.results import ADVICE, FAILED, PASSED, CheckResult, ExerciseResult, GradingResult
+from autograder.instructor.verify import unfailed_checks
 
-from autograder.engine.registry import discover
-from conftest import graded_case
+NAMES = ("caught", "never failed", "a tip")
+LAB = SimpleNamespace(exercises={"ex1": SimpleNamespace(id="lab98.ex1", checks=[SimpleNamespace(name=n)
+                                                                              for n in NAMES])})
 
 
-@pytest.mark.parametrize("key", [pytest.param(key, marks=pytest.mark.xdist_group(key))
-                                 for key in sorted(discover())])
-def test_every_check_fails_on_some_realistic_mistake(key):
-    lab = discover()[key]
-    tests = importlib.import_module(f"test_{key}")
-    cases = [*tests.MISTAKES.values(), *getattr(tests, "ADVICE", {}).values()]
-    failed = set()
-    for exercise, source, _ in cases:
-        result = graded_case(lab.module, exercise, source)
-        failed |= {(e.id, c.name) for e in result.exercises for c in e.checks if not c.passed}
-    never = [(e.id, c.name) for e in lab.exercises.values()
-             for c in e.checks if (e.id, c.name) not in failed]
-    assert never == [], "checks no realistic mistake in tests/test_labNN.py fails:\n" + \
-        "\n".join(f"  {exercise}: {name}" for exercise, name in never)
+def graded(*statuses) -> GradingResult:
+    result = GradingResult("s", "h", "0")
+    result.exercises = [ExerciseResult("lab98.ex1", "One", ["f"], [
+        CheckResult(name, 1.0 if status == PASSED else 0.0, 0.0 if name == "a tip" else 1.0, status)
+        for name, status in zip(NAMES, statuses)])]
+    return result
+
+
+def test_a_check_no_case_fails_is_found():
+    assert unfailed_checks(LAB, [graded(FAILED, PASSED, ADVICE), graded(PASSED, PASSED, PASSED)]) == [
+        ("lab98.ex1", "never failed")]
+
+
+def test_an_advice_check_counts_only_when_it_gives_its_tip():
+    assert unfailed_checks(LAB, [graded(FAILED, FAILED, PASSED)]) == [("lab98.ex1", "a tip")]
+    assert unfailed_checks(LAB, [graded(FAILED, FAILED, ADVICE)]) == []

@@ -31,7 +31,8 @@ Reports show each tip with its reason; it never fails and never lowers a score.
 If the student's function raises or is missing, an advice check says nothing
 (the graded checks report that). The engine adds advice of its own, e.g. when a
 student function modifies its input arrays in place.
-Third-party suites can register through the ``autograder.labs`` entry-point group.
+Third-party suites can register through the ``autograder.labs`` entry-point group, and a
+course's own labs from folders outside the package (:mod:`.labfolders`).
 """
 
 from __future__ import annotations
@@ -44,6 +45,7 @@ import re
 from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib import metadata
+from pathlib import Path
 from typing import Callable
 
 REGISTRY: dict[str, "Lab"] = {}
@@ -116,6 +118,7 @@ class Lab:
     title: str
     exercises: dict[str, Exercise] = field(default_factory=dict)
     forbidden: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    folder: Path | None = None   # a course lab's folder (see .labfolders); None: built in
 
     def __post_init__(self):
         if not re.fullmatch(r"lab\d\d", self.key):
@@ -156,6 +159,9 @@ def discover() -> dict[str, Lab]:
                 _load_suite(name, lambda: importlib.import_module(name))
     for entry in _plugins():
         _load_suite(entry.name, entry.load)
+    from .labfolders import load_bundled
+
+    _load_suite("course_labs/", load_bundled)
     return REGISTRY
 
 
@@ -177,6 +183,32 @@ def _load_suite(name: str, load) -> None:
         load()
     except Exception:  # noqa: BLE001
         logging.getLogger("autograder").exception("lab suite %s failed to load; skipped", name)
+
+
+_HIDDEN_BY_COURSE: set[str] = set()   # ids of checks a course configuration hides
+
+
+def hide_checks(selectors) -> None:
+    """Make the checks named by ``selectors`` hidden checks, and only those (the course
+    configuration's ``hide``): a check id (``lab07.ex1::translate_grey``), an exercise
+    (``lab07.ex1``) or a lab (``lab07``). A hidden check is graded as before; students see
+    its verdict only. Raises :class:`SelectionError` for a selector that names nothing."""
+    checks = {c.id: c for lab in discover().values() for e in lab.exercises.values() for c in e.checks}
+    chosen = set()
+    for selector in selectors:
+        matches = {i for i, c in checks.items()
+                   if selector in (i, c.exercise.id, c.exercise.lab.key)}
+        if not matches:
+            raise SelectionError(f"hide: {selector!r} names no check (checks look like "
+                                 "lab07.ex1::translate_grey; `autograder list --ids` lists them)")
+        chosen |= {i for i in matches if not checks[i].hidden or i in _HIDDEN_BY_COURSE}
+    for check_id in _HIDDEN_BY_COURSE - chosen:
+        if check_id in checks:
+            checks[check_id].hidden = False
+    for check_id in chosen:
+        checks[check_id].hidden = True
+    _HIDDEN_BY_COURSE.clear()
+    _HIDDEN_BY_COURSE.update(chosen)
 
 
 def select(selectors=(), include_hidden: bool = True) -> list[Exercise]:

@@ -2,7 +2,13 @@
 the contract (``docs/contract/``, ``docs/api/``) and the student guide (``docs/students/``).
 
 Left out: ``reference_solutions/``, the hidden checks (``autograder/labs/hidden/``),
-the grader's own tests, and the scripts that measure the reference solutions.
+the mistakes tables (``autograder/labs/mistakes/``), the grader's own tests, and the
+scripts that measure the reference solutions.
+
+With a course (``autograder bundle --course``), each of its lab folders ships too, as
+``course_labs/<lab key>/`` (which the grader loads unasked), without the parts that
+give answers away (``reference/``, ``hidden.py``, ``mistakes.py``); its skeleton goes to
+``assignments/`` beside the built-in ones.
 
 :func:`write_wheelhouse` adds ``wheels/``: every package the grader needs, for the
 Python and platform that made it, so the bundle installs with no network
@@ -17,25 +23,29 @@ import sys
 import sysconfig
 from pathlib import Path
 
+from ..engine.labfolders import ANSWERS, BUNDLED, SKELETON
+
 PROJECT_ROOT = Path(__file__).resolve().parents[2]
 STUDENT_README = Path(__file__).resolve().parent / "templates" / "README_student.md"
 # The documentation students get: the contract (what each lab asks, the assignment API
 # generated from the skeletons and the registry: public checks only) and the student guide.
 # Their links stay among these folders (tests/test_bundle.py).
 STUDENT_DOCS = ("students", "contract", "api")
+COURSE_LABS = BUNDLED.name   # course_labs/, beside the package: the grader loads the labs in it unasked
 
 
 def _public(path: Path, root: Path) -> bool:
     parts = path.relative_to(root).parts
     if "__pycache__" in parts or path.suffix == ".pyc":
         return False
-    if parts[:3] == ("autograder", "labs", "hidden"):
+    if parts[:3] in (("autograder", "labs", "hidden"), ("autograder", "labs", "mistakes")):
         return False
     return not (parts[0] == "fixtures" and path.name.startswith("make_"))
 
 
-def write_student_bundle(out, root: Path = PROJECT_ROOT) -> list[Path]:
-    """Write the student repository into the folder ``out`` (which must not exist yet).
+def write_student_bundle(out, root: Path = PROJECT_ROOT, course=None) -> list[Path]:
+    """Write the student repository into the folder ``out`` (which must not exist yet), with
+    the labs of ``course`` (a :class:`~autograder.instructor.course.CourseConfig`) if given.
 
     Returns the files written, relative to ``out``.
     """
@@ -55,6 +65,11 @@ def write_student_bundle(out, root: Path = PROJECT_ROOT) -> list[Path]:
                 copy(path, out / path.relative_to(root))
     for path in sorted((root / "assignments").glob("*.py")):
         copy(path, out / "assignments" / path.name)
+    for lab_folder in course_lab_folders(course):
+        skeleton = lab_folder.part(SKELETON) / f"{lab_folder.lab.module}.py"
+        copy(skeleton, out / "assignments" / skeleton.name)
+        for path in shipped_lab_files(lab_folder.folder, leave_out=ANSWERS + (SKELETON,)):
+            copy(path, out / COURSE_LABS / lab_folder.lab.key / path.relative_to(lab_folder.folder))
     for folder in STUDENT_DOCS:
         for path in sorted((root / "docs" / folder).glob("*.md")):
             copy(path, out / "docs" / folder / path.name)
@@ -63,6 +78,23 @@ def write_student_bundle(out, root: Path = PROJECT_ROOT) -> list[Path]:
             copy(root / name, out / name)
     copy(STUDENT_README, out / "README.md")
     return written
+
+
+def course_lab_folders(course) -> list:
+    """The loaded lab folders of ``course`` (none without one), in its order."""
+    if course is None or not course.labs:
+        return []
+    from ..engine.labfolders import use_lab_folders, lab_folder
+
+    return [lab_folder(lab) for lab in use_lab_folders(course.labs)]
+
+
+def shipped_lab_files(folder: Path, leave_out) -> list[Path]:
+    """The files of a course lab folder except the parts ``leave_out`` names (top-level
+    files or folders) and Python's caches."""
+    return [path for path in sorted(folder.rglob("*")) if path.is_file()
+            and path.relative_to(folder).parts[0] not in leave_out
+            and "__pycache__" not in path.parts and path.suffix != ".pyc"]
 
 
 # ------------------------------------------------------------------ the wheelhouse

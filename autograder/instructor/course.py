@@ -99,6 +99,19 @@ Read by every grading (``autograder batch``, Gradescope, ``grade --config``):
     be less confined than the machine allows (a namespaced level that is there but
     fails, a level forced weaker); the student is told to ask the instructor and the
     log says why. True accepts grading at the weaker level.
+
+``labs``
+    Default none. The course's own labs, beside the built-in ones: folders written like
+    them (``suite.py``, ``hidden.py``, ``reference/``, ``skeleton/``, ``mistakes.py``; see
+    :mod:`autograder.engine.labfolders`), relative to this file:
+    ``"labs": ["labs/flow"]``. Their lab keys must be new (``lab13``); they are graded,
+    listed (``autograder list --course``), bundled and shipped like the built-in labs.
+
+``hide``
+    Default none. Checks of any lab graded as hidden checks for this course (students
+    see their verdict only): ``"hide": ["lab07.ex1::translate_grey", "lab08.ext1"]``, a
+    check's id (``autograder list --ids``), an exercise or a lab. The check's code
+    still ships in the student bundle when it is a public one.
 """
 
 from __future__ import annotations
@@ -126,7 +139,7 @@ class CourseConfigError(ValueError):
 
 LMS_EXPORTS = ("canvas", "moodle")
 _GRADING = {"select", "call_timeout", "exercise_budget", "submission_budget", "forbid", "inputs_secret",
-            "hidden_points_visible"}
+            "hidden_points_visible", "labs", "hide"}
 # What each mode applies; the rest of a course is refused or warned about there (CourseConfig.ignored_by).
 _APPLIED_BY = {
     "grade": _GRADING,
@@ -156,6 +169,8 @@ class CourseConfig:
     hidden_points_visible: bool = False                 # students see hidden checks' points before release
     canvas_assignment_id: str = ""                      # Canvas's id of the assignment: "Lab 7 (12345)"
     lms_exports: list[str] = field(default_factory=list)  # "canvas", "moodle"; empty: as the upload says
+    labs: list[str] = field(default_factory=list)       # course lab folders (absolute once loaded)
+    hide: list[str] = field(default_factory=list)       # checks graded as hidden: "lab07.ex1::name", "lab07.ex1"
     rubric: dict = field(default_factory=dict)          # "lab07.ex1": [{"id", "text", "points"}, ...]
 
     def __post_init__(self):
@@ -188,6 +203,11 @@ class CourseConfig:
             raise CourseConfigError(f"lms_exports must be a list of {list(LMS_EXPORTS)}")
         if not isinstance(self.hidden_points_visible, bool):
             raise CourseConfigError("hidden_points_visible must be true or false")
+        for name in ("labs", "hide"):
+            if not (isinstance(getattr(self, name), list) and all(isinstance(s, str) and s
+                                                                   for s in getattr(self, name))):
+                raise CourseConfigError(f'{name} must be a list of names, like "labs": ["labs/flow"] '
+                                        'or "hide": ["lab07.ex1::translate_grey"]')
         check_rubric(self.rubric)
         outside = [e for e in self.rubric if self.select and not {e, e.split(".")[0]} & set(self.select)]
         if outside:
@@ -282,7 +302,25 @@ class CourseConfig:
         unknown = sorted(set(data) - known)
         if unknown:
             raise CourseConfigError(f"{path}: unknown keys {unknown}; known keys are {sorted(known)}")
-        return cls(**data)
+        if isinstance(data.get("labs"), list):   # relative to this file, wherever the command runs
+            data["labs"] = [str((Path(path).parent / folder).resolve()) if isinstance(folder, str) and folder
+                            else folder for folder in data["labs"]]
+        course = cls(**data)
+        course.use_labs(path)
+        return course
+
+    def use_labs(self, where="the course configuration") -> None:
+        """Register this course's lab folders (``labs``, forgetting another course's) and
+        hide its ``hide`` checks, so every later selection sees them; raises
+        :class:`CourseConfigError` saying what is wrong with a folder."""
+        from ..engine.labfolders import LabFolderError, use_lab_folders
+        from ..engine.registry import SelectionError, hide_checks
+
+        try:
+            use_lab_folders(self.labs)
+            hide_checks(self.hide)
+        except (LabFolderError, SelectionError) as exc:
+            raise CourseConfigError(f"{where}: {exc}") from None
 
     def to_json(self) -> str:
         return json.dumps(asdict(self), indent=2) + "\n"

@@ -367,8 +367,9 @@ exit 0
 """
 
 # What the container needs: the engine (hidden checks included) and the fixtures,
-# never the reference solutions or the grader's own tests.
+# never the reference solutions, the mistakes tables or the grader's own tests.
 _SHIPPED = ("autograder", "fixtures")
+_NOT_SHIPPED = ("autograder/labs/mistakes/",)
 _SHIPPED_FILES = ("pyproject.toml", "README.md", "grade.py", "constraints.txt")
 
 
@@ -376,7 +377,8 @@ def _shipped_files(root: Path):
     for top in _SHIPPED:
         for path in sorted((root / top).rglob("*")):
             if path.is_file() and "__pycache__" not in path.parts and path.suffix != ".pyc" \
-                    and not path.name.startswith("make_"):
+                    and not path.name.startswith("make_") \
+                    and not path.relative_to(root).as_posix().startswith(_NOT_SHIPPED):
                 yield path
     for name in _SHIPPED_FILES:
         yield root / name
@@ -386,15 +388,24 @@ def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) ->
     """Write ``autograder.zip``: ``setup.sh`` and ``run_autograder`` at its root, plus sources.
 
     Its ``course.json`` is ``config``, with a new ``inputs_secret`` where ``config`` has
-    none (set one in the course configuration to keep the same inputs across builds)."""
+    none (set one in the course configuration to keep the same inputs across builds).
+    The course's own labs ship as ``course_labs/<lab key>/`` (suite, hidden checks,
+    helpers; not their reference, skeleton or mistakes table), named so in it."""
+    from ..engine.labfolders import MISTAKES, REFERENCE, SKELETON
     from ..engine.registry import select
+    from .bundle import COURSE_LABS, course_lab_folders, shipped_lab_files
 
     out = Path(out)
     config = config or CourseConfig()
     if not config.inputs_secret:  # the official grading's inputs: known to no one who lacks the zip
         config = dataclasses.replace(config, inputs_secret=secrets.token_hex(16))
+    lab_folders = course_lab_folders(config)
+    config.use_labs()
     select(config.select)  # a course that names a missing lab fails now, not at the deadline
     _check_forbidden_functions(config)
+    shipped_labs = {f"{COURSE_LABS}/{f.lab.key}": shipped_lab_files(f.folder, (REFERENCE, SKELETON, MISTAKES))
+                    for f in lab_folders}
+    config = dataclasses.replace(config, labs=list(shipped_labs))   # where they are in the zip
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_name(out.name + ".tmp")
     with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as zf:
@@ -403,6 +414,9 @@ def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) ->
         _add(zf, "course.json", config.to_json())
         for path in _shipped_files(root):
             _add(zf, path.relative_to(root).as_posix(), path.read_bytes())
+        for (shipped, files), lab_folder in zip(shipped_labs.items(), lab_folders):
+            for path in files:
+                _add(zf, f"{shipped}/{path.relative_to(lab_folder.folder).as_posix()}", path.read_bytes())
     tmp.replace(out)
     return out
 

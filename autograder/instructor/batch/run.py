@@ -164,7 +164,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
         arguments = (selection.split(","), course.call_timeout, PICTURES[pictures], course.hidden_points_visible,
                      course.inputs_secret)
         rules = {"forbid": course.forbid, "exercise_budget": course.exercise_budget,
-                 "submission_budget": course.submission_budget,
+                 "submission_budget": course.submission_budget, "labs": course.labs, "hide": course.hide,
                  "gradings": 1 if dask_scheduler else min(workers or os.cpu_count() or 1, max(len(todo), 1))}
         if dask_scheduler:
             from .cluster import grade_on_dask
@@ -399,7 +399,7 @@ def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> li
 # What `autograder report` needs of the batch's course to write a student's files as the batch
 # did (never the inputs secret, nor the grading limits).
 _REPORTED_COURSE = ("select", "assignment", "points", "late_penalty", "hidden_points_visible",
-                    "canvas_assignment_id", "lms_exports", "rubric")
+                    "canvas_assignment_id", "lms_exports", "rubric", "labs", "hide")
 
 
 def _course_record(course: CourseConfig) -> str:
@@ -409,9 +409,11 @@ def _course_record(course: CourseConfig) -> str:
 def batch_course(book: Gradebook) -> CourseConfig:
     """The course of the batch that last wrote ``book`` (the defaults for a gradebook without one)."""
     try:
-        return CourseConfig(**json.loads(book.get_meta("course") or "{}"))
+        course = CourseConfig(**json.loads(book.get_meta("course") or "{}"))
     except (TypeError, ValueError):   # written by another version; CourseConfigError is a ValueError
         return CourseConfig()
+    course.use_labs("the batch's course")   # its own labs, for the selection (a folder gone: an error)
+    return course
 
 
 def restore_student_files(out, course: CourseConfig | None = None) -> tuple[list[Path], list[str]]:

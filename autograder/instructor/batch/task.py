@@ -54,7 +54,8 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
     rules : dict, optional
         The course's other grading rules, as a single grading applies them:
         ``forbid`` (library functions a student function may not call),
-        ``exercise_budget`` and ``submission_budget`` (seconds); and ``gradings``,
+        ``exercise_budget`` and ``submission_budget`` (seconds); ``labs`` and ``hide``, the
+        course's own lab folders (absolute paths, on this machine) and hidden checks; and ``gradings``,
         how many gradings share this machine at once (their memory: :func:`_sharing_the_machine`).
     """
     from ...reports import html
@@ -85,6 +86,10 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
 
                 cv2.setNumThreads(threads)
             rules = rules or {}
+            if rules.get("labs") or rules.get("hide"):   # this process registers the course's labs too
+                from ..course import CourseConfig
+
+                CourseConfig(labs=list(rules.get("labs") or []), hide=list(rules.get("hide") or [])).use_labs()
             budgets = {k: rules[k] for k in ("exercise_budget", "submission_budget") if rules.get(k)}
             limits = Limits(call_timeout=call_timeout, threads=threads, **budgets)
             result = grade(folder, selectors, limits=_sharing_the_machine(limits, rules.get("gradings", 1)),

@@ -1,0 +1,46 @@
+"""``autograder new-lab NAME --into FOLDER``: a course lab to start from.
+
+It writes the parts of a lab folder (:mod:`autograder.engine.labfolders`) with one small
+worked exercise (``brighten(image, delta=40)``: public checks, a hidden check, ground
+truth and its mistakes, a reference, a skeleton and a mistakes table) that passes
+``autograder verify`` as it is. Replace the exercise with the lab's own.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from string import Template
+
+from ..engine.labfolders import HIDDEN, MISTAKES, REFERENCE, SKELETON, SUITE
+
+TEMPLATES = Path(__file__).resolve().parent / "templates" / "new_lab"
+_NAME = re.compile(r"(lab\d\d)_([a-z][a-z0-9_]*)")
+
+
+class NewLabError(ValueError):
+    """The name is not a lab module's name, or the folder is not empty."""
+
+
+def new_lab(name: str, into, title: str = "") -> list[Path]:
+    """Write a lab whose student module is ``name`` (``lab13_flow``: its key is ``lab13``)
+    into the folder ``into`` (created; it must be empty). Returns the files written."""
+    match = _NAME.fullmatch(name)
+    if not match:
+        raise NewLabError(f"{name!r} is not a lab's module name: lab<two digits>_<words>, like lab13_flow "
+                          "(the file students hand in, and the lab's key lab13)")
+    folder = Path(into)
+    if folder.exists() and (not folder.is_dir() or any(folder.iterdir())):
+        raise NewLabError(f"{folder} exists and is not an empty folder")
+    key = match.group(1)
+    values = {"key": key, "module": name, "title": title or match.group(2).replace("_", " ").capitalize()}
+    targets = {SUITE: "suite.py", HIDDEN: "hidden.py", "truth.py": "truth.py", MISTAKES: "mistakes.py",
+               f"{REFERENCE}/{name}.py": "reference.py", f"{SKELETON}/{name}.py": "skeleton.py"}
+    written = []
+    for target, template in targets.items():
+        path = folder / target
+        path.parent.mkdir(parents=True, exist_ok=True)
+        text = Template((TEMPLATES / f"{template}.tmpl").read_text(encoding="utf-8")).substitute(values)
+        path.write_text(text, encoding="utf-8")
+        written.append(path)
+    return written

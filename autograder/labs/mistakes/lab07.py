@@ -1,0 +1,278 @@
+"""Lab 7's mistakes table (2D transformations): realistic wrong implementations, each the
+reference solution with one function redefined, the exercise it must lose points in, and
+the words its diagnosis must contain (read by ``autograder verify``; see
+:mod:`autograder.labs.mistakes`)."""
+
+MISTAKES = {
+    "tx/ty swapped": ("lab07.ex1", """
+        def translation_matrix(tx, ty):
+            return np.array([[1.0, 0, ty], [0, 1.0, tx], [0, 0, 1.0]])
+        """, ["swapped"]),
+    "translate the wrong way": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            return _warp(image, translation_matrix(-tx, -ty))
+        """, ["opposite way"]),
+    "non-black fill": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            h, w = image.shape[:2]
+            return cv2.warpAffine(image, translation_matrix(tx, ty)[:2], (w, h),
+                                  borderMode=cv2.BORDER_REPLICATE)
+        """, ["not black"]),
+    "float image": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            return _warp(image.astype(np.float64), translation_matrix(tx, ty))
+        """, ["dtype float64", "uint8"]),
+    "rotation the wrong way": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            theta = np.deg2rad(angle_deg)
+            R = np.array([[np.cos(theta), -np.sin(theta)], [np.sin(theta), np.cos(theta)]])
+            c = np.asarray(center, float)
+            M = np.eye(3); M[:2, :2] = R; M[:2, 2] = c - R @ c
+            return M
+        """, ["opposite way"]),
+    "radians for degrees": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            theta = angle_deg
+            R = np.array([[np.cos(theta), np.sin(theta)], [-np.sin(theta), np.cos(theta)]])
+            c = np.asarray(center, float)
+            M = np.eye(3); M[:2, :2] = R; M[:2, 2] = c - R @ c
+            return M
+        """, ["radians"]),
+    "rotation about the origin": ("lab07.ex2", """
+        def rotate(image, angle_deg=45):
+            return _warp(image, rotation_matrix(angle_deg))
+        """, ["about the origin"]),
+    "inverse scale": ("lab07.ex3", """
+        def scaling_matrix(sx, sy):
+            return np.diag([1.0 / sx, 1.0 / sy, 1.0])
+        """, ["inverted"]),
+    "resize instead of scale": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            return cv2.resize(image, None, fx=sx, fy=sy)
+        """, ["keep the input's size"]),
+    "shear along y": ("lab07.ex4", """
+        def shear_matrix(s):
+            return np.array([[1.0, 0, 0], [s, 1.0, 0], [0, 0, 1.0]])
+        """, ["along y"]),
+    "affine from points inverted": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            S = np.hstack([np.asarray(dst, float), np.ones((3, 1))])
+            return np.linalg.solve(S, np.asarray(src, float)).T
+        """, ["swapped", "inverse"]),
+    "dsize as (height, width)": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            if dsize is not None:
+                dsize = (dsize[1], dsize[0])
+            return _warp(image, A, dsize)
+        """, ["width and height are swapped"]),
+    "lstsq unknowns in the wrong order": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            n = len(src)
+            M = np.zeros((2 * n, 6))
+            M[0::2, 0] = src[:, 0]; M[0::2, 2] = src[:, 1]; M[0::2, 4] = 1
+            M[1::2, 1] = src[:, 0]; M[1::2, 3] = src[:, 1]; M[1::2, 5] = 1
+            p, *_ = np.linalg.lstsq(M, dst.reshape(-1), rcond=None)
+            return p.reshape(2, 3)
+        """, ["wrong order"]),
+    "lstsq with three points only": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            return affine_from_points(np.asarray(src)[:3], np.asarray(dst)[:3])
+        """, ["first three points"]),
+    "lstsq with OpenCV": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            A, _ = cv2.estimateAffine2D(np.float32(src), np.float32(dst))
+            return A
+        """, ["cv2.estimateAffine2D", "yourself"]),
+    "lstsq that drops the last pair": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            S = np.hstack([src[:-1], np.ones((len(src) - 1, 1))])
+            return np.linalg.lstsq(S, dst[:-1], rcond=None)[0].T
+        """, ["last point pair is left out"]),
+    "translate ignores its arguments": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            return _warp(image, translation_matrix(100, 50))
+        """, ["ignored", "defaults (100, 50)"]),
+    "rotation matrix transposed": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            theta = np.deg2rad(angle_deg)
+            R = np.array([[np.cos(theta), np.sin(theta)], [-np.sin(theta), np.cos(theta)]]).T
+            c = np.asarray(center, float)
+            M = np.eye(3); M[:2, :2] = R; M[:2, 2] = c - R @ c
+            return M
+        """, ["opposite way"]),
+    "rotation centre added": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            theta = np.deg2rad(angle_deg)
+            R = np.array([[np.cos(theta), np.sin(theta)], [-np.sin(theta), np.cos(theta)]])
+            c = np.asarray(center, float)
+            M = np.eye(3); M[:2, :2] = R; M[:2, 2] = c + R @ c
+            return M
+        """, ["c + r c instead of c - r c"]),
+    "sy ignored": ("lab07.ex3", """
+        def scaling_matrix(sx, sy):
+            return np.diag([float(sx), float(sx), 1.0])
+        """, ["sy is ignored"]),
+    "shear about the centre": ("lab07.ex4", """
+        def shear(image, s=0.5):
+            h, w = image.shape[:2]
+            M = shear_matrix(s); M[0, 2] = -s * (h - 1) / 2
+            return _warp(image, M)
+        """, ["about the image centre"]),
+    "shear ignores s": ("lab07.ex4", """
+        def shear(image, s=0.5):
+            return _warp(image, shear_matrix(0.5))
+        """, ["s is ignored"]),
+    "affine_from_points not transposed": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            S = np.hstack([np.asarray(src, float), np.ones((3, 1))])
+            return np.linalg.solve(S, np.asarray(dst, float))
+        """, ["transposed"]),
+    "affine_from_points unknowns in the wrong order": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            M = np.zeros((6, 6))
+            M[0::2, 0:2] = src; M[0::2, 2] = 1; M[1::2, 3:5] = src; M[1::2, 5] = 1
+            p = np.linalg.solve(M, np.asarray(dst, float).reshape(-1))
+            return p.reshape(3, 2).T
+        """, ["wrong order"]),
+    "lstsq without the column of ones": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            X, *_ = np.linalg.lstsq(np.asarray(src, float), np.asarray(dst, float), rcond=None)
+            return np.hstack([X.T, np.zeros((2, 1))])
+        """, ["column of ones is missing"]),
+    "default dsize from image.shape": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            dsize = dsize or image.shape[:2]          # (rows, cols), but OpenCV wants (width, height)
+            return cv2.warpAffine(image, np.asarray(A, float), tuple(dsize))
+        """, ['width and height are swapped']),
+    # ---------------------------------------------------------------- more of each family
+    "translation matrix transposed (row-vector convention)": ("lab07.ex1", """
+        def translation_matrix(tx, ty):
+            return np.array([[1.0, 0, 0], [0, 1.0, 0], [tx, ty, 1.0]])
+        """, ["transposed"]),
+    "translate with tx and ty swapped": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            return _warp(image, translation_matrix(ty, tx))
+        """, ["tx and ty are swapped"]),
+    "degrees converted before cv2.getRotationMatrix2D": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            M = np.eye(3)
+            M[:2] = cv2.getRotationMatrix2D(tuple(map(float, center)), float(np.deg2rad(angle_deg)), 1.0)
+            return M
+        """, ["takes degrees"]),
+    "rotation centre not subtracted first": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            theta = np.deg2rad(angle_deg)
+            R = np.array([[np.cos(theta), np.sin(theta)], [-np.sin(theta), np.cos(theta)]])
+            M = np.eye(3); M[:2, :2] = R; M[:2, 2] = center        # T(c) R, no T(-c)
+            return M
+        """, ["centre is not subtracted"]),
+    "rotation centre as (row, column)": ("lab07.ex2", """
+        def rotate(image, angle_deg=45):
+            h, w = image.shape[:2]
+            return _warp(image, rotation_matrix(angle_deg, ((h - 1) / 2, (w - 1) / 2)))
+        """, ["(row, column)"]),
+    "sx and sy swapped": ("lab07.ex3", """
+        def scaling_matrix(sx, sy):
+            return np.diag([float(sy), float(sx), 1.0])
+        """, ["sx and sy are swapped"]),
+    "scale about the centre": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            h, w = image.shape[:2]
+            c = np.array([(w - 1) / 2, (h - 1) / 2])
+            return _warp(image, translation_matrix(*c) @ scaling_matrix(sx, sy) @ translation_matrix(*-c))
+        """, ["about the image centre"]),
+    "scale warped with the inverse map": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            h, w = image.shape[:2]
+            return cv2.warpAffine(image, scaling_matrix(sx, sy)[:2], (w, h),
+                                  flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
+        """, ["inverted"]),
+    "shear with the wrong sign": ("lab07.ex4", """
+        def shear_matrix(s):
+            return np.array([[1.0, -s, 0], [0, 1.0, 0], [0, 0, 1.0]])
+        """, ["wrong sign"]),
+    "shear(image) along y": ("lab07.ex4", """
+        def shear(image, s=0.5):
+            return _warp(image, shear_matrix(s).T)
+        """, ["along y"]),
+    "shear in both directions": ("lab07.ex4", """
+        def shear_matrix(s):
+            return np.array([[1.0, s, 0], [s, 1.0, 0], [0, 0, 1.0]])
+        """, ["along both x and y"]),
+    "shear s in the translation column": ("lab07.ex4", """
+        def shear_matrix(s):
+            return np.array([[1.0, 0, s], [0, 1.0, 0], [0, 0, 1.0]])
+        """, ["translation column"]),
+    "shear(image) with the inverse map": ("lab07.ex4", """
+        def shear(image, s=0.5):
+            h, w = image.shape[:2]
+            return cv2.warpAffine(image, shear_matrix(s)[:2], (w, h),
+                                  flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
+        """, ["wrong sign", "inverse map"]),
+    "affine without the column of ones": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            L = np.linalg.lstsq(np.asarray(src, float), np.asarray(dst, float), rcond=None)[0].T
+            return np.hstack([L, np.zeros((2, 1))])
+        """, ["column of ones is missing"]),
+    "affine rows stacked, targets interleaved": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            src = np.asarray(src, float)
+            M = np.zeros((6, 6))
+            M[:3, 0:2] = src; M[:3, 2] = 1; M[3:, 3:5] = src; M[3:, 5] = 1
+            return np.linalg.solve(M, np.asarray(dst, float).reshape(-1)).reshape(2, 3)
+        """, ["stacked, targets interleaved"]),
+    "warp_affine with the inverse map": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            h, w = image.shape[:2]
+            return cv2.warpAffine(image, np.asarray(A, float), dsize or (w, h),
+                                  flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
+        """, ["inverse map"]),
+    "lstsq that drops the first pair": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, float)[1:]; dst = np.asarray(dst, float)[1:]
+            S = np.hstack([src, np.ones((len(src), 1))])
+            return np.linalg.lstsq(S, dst, rcond=None)[0].T
+        """, ["first point pair is left out"]),
+    "lstsq with src and dst swapped": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            S = np.hstack([np.asarray(dst, float), np.ones((len(dst), 1))])
+            return np.linalg.lstsq(S, np.asarray(src, float), rcond=None)[0].T
+        """, ["src and dst are swapped"]),
+    "scale ignores sy": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            return _warp(image, scaling_matrix(sx, sx))
+        """, ["sy is ignored"]),
+    "shear(image) ignores s": ("lab07.ex4", """
+        def shear(image, s=0.5):
+            return _warp(image, shear_matrix(0.5))
+        """, ["s is ignored"]),
+    "shear about the centre": ("lab07.ex4", """
+        def shear(image, s=0.5):
+            h, w = image.shape[:2]
+            c = np.array([(w - 1) / 2, (h - 1) / 2])
+            return _warp(image, translation_matrix(*c) @ shear_matrix(s) @ translation_matrix(*-c))
+        """, ["about the image centre"]),
+    "affine with the targets as (row, column)": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            S = np.hstack([np.asarray(src, float), np.ones((3, 1))])
+            return np.linalg.solve(S, np.asarray(dst, float)[:, ::-1]).T
+        """, ["target points are exchanged"]),
+    "lstsq y rows read x twice": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            M = np.zeros((2 * len(src), 6))
+            M[0::2, 0:2] = src; M[0::2, 2] = 1
+            M[1::2, 3] = src[:, 0]; M[1::2, 4] = src[:, 0]; M[1::2, 5] = 1
+            return np.linalg.lstsq(M, dst.reshape(-1), rcond=None)[0].reshape(2, 3)
+        """, ["index error in the y' rows", "[0, 0, 0, x, x, 1]"]),
+    "lstsq rows interleaved, targets stacked": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            M = np.zeros((2 * len(src), 6))
+            M[0::2, 0:2] = src; M[0::2, 2] = 1; M[1::2, 3:5] = src; M[1::2, 5] = 1
+            b = np.concatenate([dst[:, 0], dst[:, 1]])
+            return np.linalg.lstsq(M, b, rcond=None)[0].reshape(2, 3)
+        """, ["interleaved, targets stacked"]),
+}

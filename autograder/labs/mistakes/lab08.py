@@ -1,0 +1,544 @@
+"""Lab 8's mistakes table (image homographies): realistic wrong implementations, each the
+reference solution with one function redefined, the exercise it must lose points in, and
+the words its diagnosis must contain (read by ``autograder verify``; see
+:mod:`autograder.labs.mistakes`)."""
+
+MISTAKES = {
+    "apply_homography with H transposed": ("lab08.ex1", """
+        def apply_homography(image, H, dsize=None):
+            h, w = image.shape[:2]
+            return cv2.warpPerspective(image, np.asarray(H, float).T, dsize or (w, h))
+        """, ["h is transposed"]),
+    # ---------------------------------------------------------------- ex1
+    "no perspective division": ("lab08.ex1", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, float)
+            return (np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H).T)[:, :2]
+        """, ["perspective division is missing"]),
+    "only x divided by w (a typo in the y column)": ("lab08.ex1", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, float)
+            q = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H).T
+            return np.column_stack([q[:, 0] / q[:, 2], q[:, 1] / q[:, 0]])
+        """, ["is wrong for every point, in y only.\nit returned"]),
+    "points times H": ("lab08.ex1", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, float)
+            q = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H)
+            return q[:, :2] / q[:, 2:]
+        """, ["transposed"]),
+    "homogeneous points returned": ("lab08.ex1", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, float)
+            q = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H).T
+            return q / q[:, 2:]
+        """, ["homogeneous", "drop it"]),
+    "warp with the inverse map": ("lab08.ex1", """
+        def apply_homography(image, H, dsize=None):
+            h, w = image.shape[:2]
+            return cv2.warpPerspective(image, H, dsize or (w, h),
+                                       flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
+        """, ["inverted"]),
+    "divided by x instead of w": ("lab08.ex1", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, float).reshape(-1, 2)
+            q = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H, float).T
+            return q[:, :2] / q[:, 0:1]
+        """, ["divided by x, the wrong coordinate"]),
+    "warpAffine for a homography": ("lab08.ex1", """
+        def apply_homography(image, H, dsize=None):
+            h, w = image.shape[:2]
+            H = np.asarray(H, float) / H[2, 2]
+            return cv2.warpAffine(image, H[:2], dsize or (w, h))
+        """, ["perspective row", "warpPerspective"]),
+    # ---------------------------------------------------------------- ex2
+    "DLT src and dst swapped": ("lab08.ex2", """
+        _reference_dlt = homography_dlt
+        def homography_dlt(src, dst):
+            return _reference_dlt(dst, src)
+        """, ["inverse homography"]),
+    "DLT h reshaped column-major": ("lab08.ex2", """
+        _reference_dlt = homography_dlt
+        def homography_dlt(src, dst):
+            return _reference_dlt(src, dst).T
+        """, ["transposed"]),
+    "DLT normalisation not undone": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            T1, T2 = _normalisation(src), _normalisation(dst)
+            s = src @ T1[:2, :2].T + T1[:2, 2]
+            d = dst @ T2[:2, :2].T + T2[:2, 2]
+            _, _, Vt = np.linalg.svd(_dlt_rows(s, d))
+            return Vt[-1].reshape(3, 3)
+        """, ["without undoing the normalisation"]),
+    "DLT with a reduced SVD": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            T1, T2 = _normalisation(src), _normalisation(dst)
+            s = src @ T1[:2, :2].T + T1[:2, 2]
+            d = dst @ T2[:2, :2].T + T2[:2, 2]
+            _, _, Vt = np.linalg.svd(_dlt_rows(s, d), full_matrices=False)
+            H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1
+            return H / H[2, 2]
+        """, ["full_matrices=false", "null vector"]),
+    "DLT with OpenCV": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            H, _ = cv2.findHomography(np.float64(src), np.float64(dst), 0)
+            return H
+        """, ["cv2.findHomography", "yourself"]),
+    "DLT with a sign error in the u rows": ("lab08.ex2", """
+        _reference_rows = _dlt_rows
+        def _dlt_rows(src, dst):
+            A = _reference_rows(src, dst)
+            A[0::2, 6:9] *= -1
+            return A
+        """, ["sign error in the u rows"]),
+    "DLT v rows built with u": ("lab08.ex2", """
+        _reference_rows = _dlt_rows
+        def _dlt_rows(src, dst):
+            A = _reference_rows(src, dst)
+            A[1::2, 6:9] = A[0::2, 6:9]
+            return A
+        """, ["the v rows use u"]),
+    "DLT with u and v swapped in the rows": ("lab08.ex2", """
+        _reference_rows = _dlt_rows
+        def _dlt_rows(src, dst):
+            return _reference_rows(src, np.asarray(dst)[:, ::-1])
+        """, ["u and v are swapped"]),
+    "DLT normalisation undone the wrong way round": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            T1, T2 = _normalisation(src), _normalisation(dst)
+            _, _, Vt = np.linalg.svd(_dlt_rows(transform_points(T1, src), transform_points(T2, dst)))
+            H = T2 @ Vt[-1].reshape(3, 3) @ np.linalg.inv(T1)
+            return H / H[2, 2]
+        """, ["undone the wrong way round"]),
+    "DLT takes the largest singular vector": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            T1, T2 = _normalisation(src), _normalisation(dst)
+            _, _, Vt = np.linalg.svd(_dlt_rows(transform_points(T1, src), transform_points(T2, dst)))
+            H = np.linalg.inv(T2) @ Vt[0].reshape(3, 3) @ T1
+            return H / H[2, 2]
+        """, ["largest singular value"]),
+    "warp_to_reference keeps the moving size": ("lab08.ex2", """
+        def warp_to_reference(reference, moving, H):
+            return apply_homography(moving, H)
+        """, ["reference's size"]),
+    "every point divided by the first point's w": ("lab08.ex1", """
+        def transform_points(H, pts):
+            q = np.hstack([np.asarray(pts, float), np.ones((len(pts), 1))]) @ np.asarray(H, float).T
+            return q[:, :2] / q[0, 2]
+        """, ["first point's w"]),
+    "DLT with a sign error in the second row": ("lab08.ex2", """
+        def _dlt_rows(src, dst):
+            n = len(src)
+            A = np.zeros((2 * n, 9))
+            sh = np.hstack([src, np.ones((n, 1))])
+            A[0::2, 0:3] = sh; A[0::2, 6:9] = -dst[:, :1] * sh
+            A[1::2, 3:6] = sh; A[1::2, 6:9] = dst[:, 1:] * sh        # sign error
+            return A
+        """, ["sign error in the v rows"]),
+    "DLT with the largest singular vector": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            A = _dlt_rows(np.asarray(src, float), np.asarray(dst, float))
+            H = np.linalg.svd(A)[2][0].reshape(3, 3)
+            return H / H[2, 2]
+        """, ["largest singular value"]),
+    # ---------------------------------------------------------------- ex3
+    "no ratio test": ("lab08.ex3", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            return _reference_match(img1, img2, ratio=0.8, method=method)
+        """, ["no effect"]),
+    "ratio test reversed": ("lab08.ex3", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            return _reference_match(img1, img2, ratio=1.5 - ratio, method=method)
+        """, ["reversed"]),
+    "pts1 and pts2 swapped": ("lab08.ex3", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _reference_match(img1, img2, ratio, method)
+            return pts2, pts1
+        """, ["swapped"]),
+    "matches as (row, column)": ("lab08.ex3", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _reference_match(img1, img2, ratio, method)
+            return pts1[:, ::-1], pts2[:, ::-1]
+        """, ["x and y are swapped"]),
+    "matcher fed the same image twice": ("lab08.ex3", """
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            return _match(_detect(img1, method), _detect(img1, method), ratio, method)
+        """, ["same image twice"]),
+    "lines not shifted by W1": ("lab08.ex3", """
+        _reference_draw = draw_matches
+        def draw_matches(img1, img2, pts1, pts2):
+            return _reference_draw(img1, img2, pts1, np.asarray(pts2) - [img1.shape[1], 0])
+        """, ["x2 + w1"]),
+    "images stacked vertically": ("lab08.ex3", """
+        def draw_matches(img1, img2, pts1, pts2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((h1 + h2, max(w1, w2), 3), np.uint8)
+            canvas[:h1, :w1] = _bgr(img1)
+            canvas[h1:, :w2] = _bgr(img2)
+            return canvas
+        """, ["side by side"]),
+    # ---------------------------------------------------------------- ex4
+    "RANSAC without the final refit": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            best, best_count = None, -1
+            for _ in range(500):
+                idx = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[idx], dst[idx])
+                count = (np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold).sum()
+                if count > best_count:
+                    best, best_count = H, count
+            return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
+        """, ["refit h on all the inliers"]),
+    "RANSAC with too few samples": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            best, best_count = None, -1
+            for _ in range(6):
+                idx = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[idx], dst[idx])
+                count = (np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold).sum()
+                if count > best_count:
+                    best, best_count = H, count
+            inliers = np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
+            H = homography_dlt(src[inliers], dst[inliers]) if inliers.sum() >= 4 else best
+            return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+        """, ["draws too few samples"]),
+    "RANSAC with squared distances": ("lab08.ex4", """
+        _reference_ransac = homography_ransac
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H, _ = _reference_ransac(src, dst, threshold, seed)
+            err = np.linalg.norm(transform_points(H, src) - np.asarray(dst), axis=1)
+            return H, err ** 2 < threshold
+        """, ["squared"]),
+    "RANSAC mask inverted": ("lab08.ex4", """
+        _reference_ransac = homography_ransac
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H, inliers = _reference_ransac(src, dst, threshold, seed)
+            return H, ~inliers
+        """, ["mask is inverted"]),
+    "RANSAC keeps the last sample's model": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            for _ in range(200):
+                idx = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[idx], dst[idx])
+                inliers = np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+            return H, inliers
+        """, ["does not keep the model with the most inliers"]),
+    "RANSAC fits all points": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H = homography_dlt(src, dst)
+            return H, np.linalg.norm(transform_points(H, src) - np.asarray(dst), axis=1) < threshold
+        """, ["outliers included"]),
+    "RANSAC returning its best 4-point H (many samples, no refit)": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            samples = np.array([rng.choice(len(src), 4, replace=False) for _ in range(1500)])
+            best, best_count, best_spread = None, -1, np.inf
+            for idx in samples:
+                H = homography_dlt(src[idx], dst[idx])
+                err = np.linalg.norm(transform_points(H, src) - dst, axis=1)
+                count, spread = (err < threshold).sum(), err[err < threshold].sum()
+                if (count, -spread) > (best_count, -best_spread):
+                    best, best_count, best_spread = H, count, spread
+            return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
+        """, ["not the fit to its own inliers", "refit h on all the inliers"]),
+    "RANSAC with a fixed threshold (the argument ignored)": ("lab08.ex4", """
+        _reference_ransac = homography_ransac
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            return _reference_ransac(src, dst, 1.0, seed)
+        """, ["threshold=1.0 and threshold=20.0 give the same h and inlier mask: threshold is ignored"]),
+    "RANSAC keeping the last model drawn": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            for _ in range(200):
+                idx = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[idx], dst[idx])
+                inliers = np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+            if inliers.sum() >= 4:
+                H = homography_dlt(src[inliers], dst[inliers])
+            return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+        """, ["returns the last model drawn rather than the best one"]),
+    # ---------------------------------------------------------------- ex5
+    "img2 as the reference": ("lab08.ex5", """
+        def stitch(img1, img2):
+            return _compose([img2, img1], [np.eye(3), _pairwise_homography(img1, img2)])
+        """, ["img1 is the reference frame"]),
+    "no shift for negative coordinates": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H = _pairwise_homography(img2, img1)
+            corners = transform_points(H, _corners(img2))
+            w = int(max(corners[:, 0].max(), img1.shape[1] - 1)) + 1
+            h = int(max(corners[:, 1].max(), img1.shape[0] - 1)) + 1
+            warped = apply_homography(img2, H, (w, h))
+            warped[: img1.shape[0], : img1.shape[1]] = img1
+            return warped
+        """, ["not shifted for negative coordinates"]),
+    "canvas of img1's size": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H = _pairwise_homography(img2, img1)
+            warped = apply_homography(img2, H, (img1.shape[1], img1.shape[0]))
+            return np.where(img1 > 0, img1, warped)
+        """, ["cut off", "bounding box"]),
+    "img2 warped with the inverse": ("lab08.ex5", """
+        def stitch(img1, img2):
+            return _compose([img1, img2], [np.eye(3), np.linalg.inv(_pairwise_homography(img2, img1))])
+        """, ["inverse homography"]),
+    "canvas shift on the wrong side of H": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H = _pairwise_homography(img2, img1)
+            corners = np.vstack([_corners(img1), transform_points(H, _corners(img2))])
+            x_min, y_min = np.floor(corners.min(axis=0))
+            x_max, y_max = np.ceil(corners.max(axis=0))
+            T = _translation(-x_min, -y_min)
+            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
+            first, second = apply_homography(img1, T, size), apply_homography(img2, H @ T, size)
+            return np.where(first > 0, first, second)
+        """, ["shift is on the wrong side"]),
+    "canvas shift not applied to img2": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H = _pairwise_homography(img2, img1)
+            corners = np.vstack([_corners(img1), transform_points(H, _corners(img2))])
+            x_min, y_min = np.floor(corners.min(axis=0))
+            x_max, y_max = np.ceil(corners.max(axis=0))
+            T = _translation(-x_min, -y_min)
+            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
+            first, second = apply_homography(img1, T, size), apply_homography(img2, H, size)
+            return np.where(first > 0, first, second)
+        """, ["shift is not applied to img2"]),
+    "img2 as the reference (img1 warped onto img2)": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H12 = _pairwise_homography(img1, img2)
+            return _compose([img1, img2], [H12, np.eye(3)])
+        """, ["img2 is used as the reference frame"]),
+    # ---------------------------------------------------------------- ext1
+    "ORB matcher fed img1 twice": ("lab08.ext1", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            if method == "orb":
+                return _match(_detect(img1, method), _detect(img1, method), ratio, method)
+            return _reference_match(img1, img2, ratio, method)
+        """, ["same image"]),
+    "ORB pts1 and pts2 exchanged": ("lab08.ext1", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _reference_match(img1, img2, ratio, method)
+            return (pts2, pts1) if method == "orb" else (pts1, pts2)
+        """, ["pts1 and pts2 are swapped"]),
+    "ORB points as (row, column)": ("lab08.ext1", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _reference_match(img1, img2, ratio, method)
+            return (pts1[:, ::-1], pts2[:, ::-1]) if method == "orb" else (pts1, pts2)
+        """, ["x and y are swapped"]),
+    "method ignored": ("lab08.ext1", """
+        _reference_match = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            return _reference_match(img1, img2, ratio)
+        """, ["method argument is ignored"]),
+    # ---------------------------------------------------------------- ext2
+    "homographies chained in the wrong order": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            step = [_pairwise_homography(images[k + 1], images[k]) for k in range(len(images) - 1)]
+            homographies = [np.eye(3)]
+            for k in range(1, len(images)):
+                H = np.eye(3)
+                for j in range(k):
+                    H = H @ step[j] if j == 0 else step[j] @ H   # wrong order
+                homographies.append(H / H[2, 2])
+            return _compose(images, homographies)
+        """, ["chain"]),
+    "last image skipped (loop stops one short)": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            step = [_pairwise_homography(images[k + 1], images[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            homographies = []
+            for k in range(len(images) - 1):                      # one short
+                H = np.eye(3)
+                for j in range(k - 1, r - 1, -1):
+                    H = step[j] @ H
+                for j in range(k, r):
+                    H = np.linalg.inv(step[j]) @ H
+                homographies.append(H / H[2, 2])
+            return _compose(images[:-1], homographies)
+        """, ["the last one, is left out"]),
+    "first image skipped (loop starts at 1)": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            step = [_pairwise_homography(images[k + 1], images[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            homographies = []
+            for k in range(1, len(images)):                       # starts one late
+                H = np.eye(3)
+                for j in range(k - 1, r - 1, -1):
+                    H = step[j] @ H
+                for j in range(k, r):
+                    H = np.linalg.inv(step[j]) @ H
+                homographies.append(H / H[2, 2])
+            return _compose(images[1:], homographies)
+        """, ["image 1", "left out"]),
+    "many images without the canvas shift": ("lab08.ext2", """
+        def _compose(images, homographies):          # no shift: the canvas starts at (0, 0)
+            corners = np.vstack([transform_points(H, _corners(im)) for im, H in zip(images, homographies)])
+            w, h = (np.ceil(corners.max(axis=0)) + 1).astype(int)
+            out = np.zeros((h, w, 3), np.uint8)
+            for image, H in zip(images, homographies):
+                warped = apply_homography(_bgr(image), H, (int(w), int(h)))
+                out = np.where(warped > 0, warped, out)
+            return out
+        """, ["cut off at the left", "translation"]),
+    "only the first two images": ("lab08.ext2", """
+        def stitch_many(images):
+            return stitch(images[0], images[1])
+        """, ["image 3, the last one, is left out"]),
+    "the last image left out (range(len(images) - 1))": ("lab08.ext2", """
+        _reference_many = stitch_many
+        def stitch_many(images):
+            images = list(images)
+            return _reference_many([images[k] for k in range(len(images) - 1)])
+        """, ["the last one, is left out"]),
+    "the first image left out (range(1, len(images)))": ("lab08.ext2", """
+        _reference_many = stitch_many
+        def stitch_many(images):
+            images = list(images)
+            return _reference_many([images[k] for k in range(1, len(images))])
+        """, ["the first one, is left out"]),
+    "canvas of the middle image's size": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            step = [_pairwise_homography(images[k + 1], images[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            h, w = images[r].shape[:2]
+            canvas = np.zeros((h, w, 3), np.uint8)
+            for k, image in enumerate(images):
+                H = np.eye(3)
+                for j in range(k - 1, r - 1, -1):
+                    H = step[j] @ H
+                for j in range(k, r):
+                    H = np.linalg.inv(step[j]) @ H
+                warped = apply_homography(_bgr(image), H, (w, h))
+                canvas = np.where(warped > 0, warped, canvas)
+            return canvas
+        """, ["the canvas is only one image's size"]),
+    "pairwise H not inverted before the reference": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            step = [_pairwise_homography(images[k + 1], images[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            homographies = []
+            for k in range(len(images)):
+                H = np.eye(3)
+                for j in range(k - 1, r - 1, -1):
+                    H = step[j] @ H
+                for j in range(k, r):
+                    H = step[j] @ H          # np.linalg.inv(step[j]) forgotten
+                homographies.append(H / H[2, 2])
+            return _compose(images, homographies)
+        """, ["image 1 was warped with the inverse homography"]),
+    # ---------------------------------------------------------------- ext3
+    "plain alpha blend": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            m = np.asarray(mask, np.float64)
+            if img1.ndim == 3:
+                m = m[..., None]
+            return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
+        """, ["plain cut"]),
+    "pyramids in uint8": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            def lap(img):
+                g = [img]
+                for _ in range(levels - 1):
+                    g.append(cv2.pyrDown(g[-1]))
+                return [cv2.subtract(f, cv2.pyrUp(c, dstsize=(f.shape[1], f.shape[0])))
+                        for f, c in zip(g[:-1], g[1:])] + [g[-1]]
+            w = _gaussian_pyramid(np.asarray(mask, np.float32), levels)
+            bands = []
+            for a, b, m in zip(lap(img1), lap(img2), w):
+                m = m[..., None] if a.ndim == 3 else m
+                bands.append((m * a + (1 - m) * b).astype(np.uint8))
+            out = bands[-1]
+            for band in reversed(bands[:-1]):
+                out = cv2.add(cv2.pyrUp(out, dstsize=(band.shape[1], band.shape[0])), band)
+            return out
+        """, ["float"]),
+    "wide feather instead of a pyramid": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            m = cv2.GaussianBlur(np.asarray(mask, np.float64), (0, 0), 8.0)
+            if img1.ndim == 3:
+                m = m[..., None]
+            return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
+        """, ["ghosting"]),
+    "narrow feather instead of a pyramid": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            m = cv2.GaussianBlur(np.asarray(mask, np.float64), (0, 0), 2.5)
+            if img1.ndim == 3:
+                m = m[..., None]
+            return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
+        """, ["narrow feather"]),
+    "multi-band blend with a fixed 2-level pyramid (levels ignored)": ("lab08.ext3", """
+        _reference_blend = blend_multiband
+        def blend_multiband(img1, img2, mask, levels=4):
+            return _reference_blend(img1, img2, mask, 2)
+        """, ["levels=1 and levels=6 give the same image: levels is ignored"]),
+    "one smoothed mask for the whole image (no Laplacian pyramid)": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            weights = _gaussian_pyramid(np.asarray(mask, np.float32), levels)
+            m = cv2.resize(weights[-1], (img1.shape[1], img1.shape[0]))
+            m = m[..., None] if img1.ndim == 3 else m
+            return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
+        """, ["not band by band in a laplacian pyramid"]),
+    "collapse without adding the bands": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            weights = _gaussian_pyramid(np.asarray(mask, np.float32), levels)
+            bands = []
+            for a, b, w in zip(_laplacian_pyramid(np.float32(img1), levels),
+                               _laplacian_pyramid(np.float32(img2), levels), weights):
+                w = w[..., None] if a.ndim == 3 else w
+                bands.append(w * a + (1 - w) * b)
+            out = bands[-1]
+            for band in reversed(bands[:-1]):
+                out = cv2.pyrUp(out, dstsize=(band.shape[1], band.shape[0]))   # + band forgotten
+            return np.clip(np.round(out), 0, 255).astype(np.uint8)
+        """, ["does not add the bands back"]),
+    "mask weights img2": ("lab08.ext3", """
+        _reference_blend = blend_multiband
+        def blend_multiband(img1, img2, mask, levels=4):
+            return _reference_blend(img2, img1, mask, levels)
+        """, ["weights img2"]),
+    "ORB only on colour images": ("lab08.ext1", """
+        _detect_right = _detect
+        def _detect(image, method):
+            if method == "orb":
+                image = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)   # assumes a colour image
+            return _detect_right(image, method)
+        """, ['raised']),
+}
+
+
+# Conventions the lab sheet leaves open: advice (0 points), never a lost point.
+ADVICE = {
+    "DLT without normalisation (the lab sheet's DLT on raw pixels)": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            _, _, Vt = np.linalg.svd(_dlt_rows(src, dst))
+            H = Vt[-1].reshape(3, 3)
+            return H / H[2, 2]
+        """, ["normalised dlt", "raw pixel coordinates", "no points"]),
+}

@@ -1,0 +1,409 @@
+"""Lab 9's mistakes table (camera models): realistic wrong implementations, each the
+reference solution with one function redefined, the exercise it must lose points in, and
+the words its diagnosis must contain (read by ``autograder verify``; see
+:mod:`autograder.labs.mistakes`)."""
+
+DROPS_BEHIND = """
+    def _divide(homogeneous, single):       # keeps only the points in front
+        front = homogeneous[:, 2] > 0
+        pts = homogeneous[front, :2] / homogeneous[front, 2:3]
+        return pts[0] if single else pts
+    """
+
+
+MISTAKES = {
+    "aperture halved (taken as a diameter)": ("lab09.ex4", """
+        _reference_aperture = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return _reference_aperture(points, f, aperture / 2.0, n_rays, seed)
+        """, ["halved"]),
+    **{f"drops the points behind the camera ({ex})": (f"lab09.{ex}", DROPS_BEHIND, ["drops the points behind"])
+       for ex in ("ex1", "ex2", "ex3")},
+    "x/y swapped": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            return _divide(np.column_stack([f * X[:, 1], f * X[:, 0], X[:, 2]]), single)
+        """, ["swapped"]),
+    "no division": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X = np.atleast_2d(np.asarray(points, float))
+            out = f * X[:, :2]
+            return out[0] if np.ndim(points) == 1 else out
+        """, ["division is missing"]),
+    "single point keeps (1, 2)": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            return _divide(np.column_stack([f * X[:, 0], f * X[:, 1], X[:, 2]]), False)
+        """, ["(1, 2)", "(2,)"]),
+    "K transposed": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, 0.0, 0.0], [0.0, f, 0.0], [px, py, 1.0]])
+        """, ["transposed"]),
+    "K with px typed for py": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, 0.0, px], [0.0, f, px], [0.0, 0.0, 1.0]])
+        """, ["py is replaced by px"]),
+    "principal point left out": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            K = np.asarray(K, float).copy(); K[:2, 2] = 0
+            return _divide(X @ K.T, single)
+        """, ["principal point is left out"]),
+    "t as camera centre": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            R = np.asarray(R, float)
+            return np.asarray(K, float) @ np.column_stack([R, -R @ np.asarray(t, float)])
+        """, ["camera centre"]),
+    "translation dropped": ("lab09.ex3", """
+        def project(P, points):
+            X, single = _points(points)
+            return _divide(X @ np.asarray(P, float)[:, :3].T, single)
+        """, ["translation is dropped"]),
+    "focal lengths axes": ("lab09.ex4", """
+        def project_focal_lengths(points, focal_lengths):
+            X, _ = _points(points)
+            return np.stack([pinhole_project(X, f) for f in focal_lengths], axis=1)
+        """, ["(f, n, 2)"]),
+    "aperture as diameter": ("lab09.ex4", """
+        _right = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return _right(points, f, 2 * aperture, n_rays, seed)
+        """, ["diameter"]),
+    "blur independent of depth": ("lab09.ex4", """
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            X, _ = _points(points)
+            rng = np.random.default_rng(seed)
+            r = aperture * np.sqrt(rng.uniform(size=(len(X), n_rays)))
+            a = rng.uniform(0, 2 * np.pi, size=(len(X), n_rays))
+            A = np.stack([r * np.cos(a), r * np.sin(a)], axis=-1)
+            return pinhole_project(X, f)[:, None, :] + 30 * A
+        """, ["depend on depth"]),
+    "seed ignored": ("lab09.ex4", """
+        _right = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return _right(points, f, aperture, n_rays, None)
+        """, ["same seed"]),
+    "hollow circles": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            for x, y in np.asarray(pts, float).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(out, (int(round(x)), int(round(y))), int(radius), tuple(color), 1)
+            return out
+        """, ["filled"]),
+    "circles at (y, x)": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            for x, y in np.asarray(pts, float).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(out, (int(round(y)), int(round(x))), int(radius), tuple(color), -1)
+            return out
+        """, ["(y, x)"]),
+    "wrong calibration object points": ("lab09.ext1", """
+        _right = calibrate
+        def calibrate(images, pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float32)
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].reshape(2, -1).T * square_size
+            pts = [cv2.findChessboardCorners(im, (cols, rows))[1] for im in images]
+            h, w = images[0].shape[:2]
+            rms, K, dist, _, _ = cv2.calibrateCamera([objp] * len(pts), pts, (w, h), None, None)
+            return K, dist.ravel(), rms
+        """, ["object points"]),
+    "tangential swapped": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            k1, k2, p1, p2, k3 = dist
+            return _right(points, [k1, k2, p2, p1, k3])
+        """, ["p1 and p2 are swapped"]),
+    "distortion via projectPoints": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, float)
+            obj = np.column_stack([pts, np.ones(len(pts))])
+            return cv2.projectPoints(obj, np.zeros(3), np.zeros(3), np.eye(3), np.asarray(dist, float))[0].reshape(-1, 2)
+        """, ["cv2.projectpoints", "yourself"]),
+    "inverted real image": ("lab09.ex4", """
+        _right = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return -_right(points, f, aperture, n_rays, seed)
+        """, ['aperture']),
+    "aperture used as an area": ("lab09.ex4", """
+        _right = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return _right(points, f, aperture ** 2, n_rays, seed)
+        """, ['squared']),
+    "calibration K transposed": ("lab09.ext1", """
+        _right = calibrate
+        def calibrate(images, pattern_size, square_size):
+            K, dist, rms = _right(images, pattern_size, square_size)
+            return K.T, dist, rms
+        """, ['transposed']),
+    # ---- the wider families of each exercise (issue 17)
+    "focal length applied twice": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            return _divide(np.column_stack([f * f * X[:, 0], f * f * X[:, 1], X[:, 2]]), single)
+        """, ["focal length is applied twice"]),
+    "only x divided by Z": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            out = np.column_stack([f * X[:, 0] / X[:, 2], f * X[:, 1]])
+            return out[0] if single else out
+        """, ["y is not divided by z"]),
+    "real (inverted) image": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            return _divide(np.column_stack([-f * X[:, 0], -f * X[:, 1], X[:, 2]]), single)
+        """, ["image is inverted"]),
+    "px and py swapped in K": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, 0.0, py], [0.0, f, px], [0.0, 0.0, 1.0]])
+        """, ["px and py are swapped"]),
+    "principal point subtracted": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            K = np.asarray(K, float).copy(); K[:2, 2] *= -1
+            return _divide(X @ K.T, single)
+        """, ["principal point has the wrong sign"]),
+    "K X without the division": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            x = (X @ np.asarray(K, float).T)[:, :2]
+            return x[0] if single else x
+        """, ["division is missing"]),
+    "camera_matrix with R transposed": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            return np.asarray(K, float) @ np.column_stack([np.asarray(R, float).T, np.asarray(t, float)])
+        """, ["r is transposed"]),
+    "project without de-homogenisation": ("lab09.ex3", """
+        def project(P, points):
+            X, single = _points(points)
+            x = (np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, float).T)[:, :2]
+            return x[0] if single else x
+        """, ["perspective division is missing"]),
+    "project divides by the world Z": ("lab09.ex3", """
+        def project(P, points):
+            X, single = _points(points)
+            h = np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, float).T
+            x = h[:, :2] / X[:, 2:3]
+            return x[0] if single else x
+        """, ["world point's z"]),
+    "aperture offsets not scaled by depth": ("lab09.ex4", """
+        _right = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            X, _ = _points(points)
+            rays = _right(points, f, aperture, n_rays, seed)
+            ideal = pinhole_project(X, f)[:, None, :]
+            return ideal + (rays - ideal) / (1.0 + f / X[:, 2])[:, None, None]
+        """, ["not scaled by (1 + f / z)"]),
+    "colour reversed (RGB)": ("lab09.ex5", """
+        _right = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            return _right(image, pts, radius, tuple(color)[::-1])
+        """, ["colour is reversed"]),
+    "radius ignored": ("lab09.ex5", """
+        _right = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            return _right(image, pts, 3, color)
+        """, ["radius argument is ignored"]),
+    "color ignored": ("lab09.ex5", """
+        _right = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            return _right(image, pts, radius)
+        """, ["color argument is ignored"]),
+    "project_onto_image returns (pts, image)": ("lab09.ex5", """
+        def project_onto_image(image, P, points):
+            pts = project(P, points).reshape(-1, 2)
+            return pts, draw_points(image, pts)
+        """, ["(image, pts)"]),
+    "project_onto_image forgets to draw": ("lab09.ex5", """
+        def project_onto_image(image, P, points):
+            return image.copy(), project(P, points).reshape(-1, 2)
+        """, ["not drawn"]),
+    "calibration grid built as (rows, cols)": ("lab09.ext1", """
+        _right = calibrate
+        def calibrate(images, pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float32)
+            objp[:, :2] = np.mgrid[0:rows, 0:cols].T.reshape(-1, 2) * square_size
+            pts = [cv2.findChessboardCorners(im, (cols, rows))[1] for im in images]
+            h, w = images[0].shape[:2]
+            rms, K, dist, _, _ = cv2.calibrateCamera([objp] * len(pts), pts, (w, h), None, None)
+            return K, dist.ravel(), rms
+        """, ["object points"]),
+    "k3 with r^4": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            k1, k2, p1, p2, k3 = dist
+            pts = np.asarray(points, float)
+            r2 = (pts ** 2).sum(axis=1, keepdims=True)
+            return _right(points, [k1, k2, p1, p2, 0.0]) + pts * k3 * r2 ** 2
+        """, ["k3 multiplies r^4"]),
+    "x's tangential term with y": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64)
+            k1, k2, p1, p2, k3 = dist
+            x, y = pts[:, 0], pts[:, 1]
+            r2 = x * x + y * y
+            radial = 1 + k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
+            return np.column_stack([x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * y * y),
+                                    y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y])
+        """, ["x's tangential term uses y"]),
+    "radial factor without its 1": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64)
+            k1, k2, p1, p2, k3 = dist
+            x, y = pts[:, 0], pts[:, 1]
+            r2 = x * x + y * y
+            radial = k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
+            return np.column_stack([x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x),
+                                    y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y])
+        """, ["misses its 1"]),
+    "k3 ignored": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            return _right(points, list(dist[:4]) + [0.0])
+        """, ["k3 is ignored"]),
+    "pixels rounded to integers": ("lab09.ex1", """
+        _right = pinhole_project
+        def pinhole_project(points, f):
+            return np.round(_right(points, f))
+        """, ["rounded to integers"]),
+    "principal point added twice": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            K = np.asarray(K, float)
+            out = _divide(X @ K.T, False) + K[:2, 2]
+            return out[0] if single else out
+        """, ["principal point is added twice"]),
+    "K[2, 2] = f": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, 0.0, px], [0.0, f, py], [0.0, 0.0, f]])
+        """, ["k[2, 2] holds f"]),
+    "P = [K R | t]": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            return np.column_stack([np.asarray(K, float) @ np.asarray(R, float), np.asarray(t, float)])
+        """, ["the last column is t (it is k t)"]),
+    "focal-length stack with its axes in the wrong order": ("lab09.ex4", """
+        def project_focal_lengths(points, focal_lengths):
+            X, _ = _points(points)
+            return np.stack([pinhole_project(X, f) for f in focal_lengths], axis=-1).T
+        """, ["axes are in the wrong order"]),
+    "k2 with r2 * 2": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64)
+            k1, k2, p1, p2, k3 = dist
+            x, y = pts[:, 0], pts[:, 1]
+            r2 = x * x + y * y
+            radial = 1 + k1 * r2 + k2 * r2 * 2 + k3 * r2 ** 3
+            return np.column_stack([x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x),
+                                    y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y])
+        """, ["k2 multiplies r2 * 2"]),
+    "columns 1:3 taken for (X, Y)": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            out = f * X[:, 1:3] / X[:, 2:3]
+            return out[0] if single else out
+        """, ["x is computed as f y / z; it should be f x / z"]),
+    "fx used for y": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            K = np.asarray(K, float)
+            out = np.column_stack([K[0, 0] * X[:, 0] / X[:, 2] + K[0, 2] + K[0, 1] * X[:, 1] / X[:, 2],
+                                   K[0, 0] * X[:, 1] / X[:, 2] + K[1, 2]])
+            return out[0] if single else out
+        """, ["y is computed as fx y / z + py; it should be fy y / z + py"]),
+    "P rescaled so that P[2, 3] = 1": ("lab09.ex3", """
+        _right = camera_matrix
+        def camera_matrix(K, R, t):
+            P = _right(K, R, t)
+            return P / P[2, 3]
+        """, ["right only up to scale"]),
+    "tangential terms with the wrong sign": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            k1, k2, p1, p2, k3 = dist
+            return _right(points, [k1, k2, -p1, -p2, k3])
+        """, ["tangential terms have the wrong sign"]),
+    "draw_points returns inside its loop": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                cv2.circle(out, (int(round(x)), int(round(y))), int(radius), tuple(int(c) for c in color), -1)
+                return out
+        """, ["only the first point is drawn"]),
+    "px in the skew entry": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, px, 0.0], [0.0, f, py], [0.0, 0.0, 1.0]])
+        """, ["px is in k[0, 1]"]),
+    "K X with its columns swapped": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            h = X @ np.asarray(K, float).T
+            out = h[:, 1::-1] / h[:, 2:3]
+            return out[0] if single else out
+        """, ["x and y are swapped"]),
+    "radius doubled (used as a diameter)": ("lab09.ex5", """
+        _right = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            return _right(image, pts, 2 * radius, color)
+        """, ["radius is doubled"]),
+    "K's inverse applied": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            return _divide(X @ np.linalg.inv(np.asarray(K, float)).T, single)
+        """, ["inverse is applied"]),
+    "P's last column R t": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            R, t = np.asarray(R, float), np.asarray(t, float)
+            return np.column_stack([np.asarray(K, float) @ R, R @ t])
+        """, ["the last column is r t"]),
+    "project divides by the second coordinate": ("lab09.ex3", """
+        def project(P, points):
+            X, single = _points(points)
+            h = np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, float).T
+            x = h[:, :2] / h[:, 1:2]
+            return x[0] if single else x
+        """, ["x is computed as (p x)[0] / (p x)[1]"]),
+    "focal lengths in reverse order": ("lab09.ex4", """
+        def project_focal_lengths(points, focal_lengths):
+            X, _ = _points(points)
+            return np.stack([pinhole_project(X, f) for f in np.asarray(focal_lengths)[::-1]])
+        """, ["another order"]),
+    "k2 ignored": ("lab09.ext2", """
+        _right = distort_points
+        def distort_points(points, dist):
+            k1, k2, p1, p2, k3 = dist
+            return _right(points, [k1, 0.0, p1, p2, k3])
+        """, ["k2 is ignored"]),
+}
+
+
+# Calibration is one OpenCV call; K does not depend on square_size or on the image
+# size passed (it only seeds the solver), so those slips cannot change the answer.
+FEWER_MISTAKES = {
+    "lab09.ext1": "cv2.calibrateCamera does the estimation: what a student can get wrong and the "
+                  "answer shows is the object-point grid (its order, its (cols, rows)) and the layout "
+                  "of K; square_size and the image size passed do not change K",
+}
+
+
+# Conventions the API leaves open: advice (0 points), never a lost point.
+MIRRORED = """
+    def _divide(homogeneous, single):       # the sheet's formula everywhere, no NaN
+        pts = homogeneous[:, :2] / homogeneous[:, 2:3]
+        return pts[0] if single else pts
+    """
+
+
+ADVICE = {f"behind the camera mirrored ({ex})": (f"lab09.{ex}", MIRRORED, ["z <= 0", "nan", "no points"])
+          for ex in ("ex1", "ex2", "ex3")}
+
+
+ADVICE["draw_points on NaN points raises"] = ("lab09.ex5", """
+    def draw_points(image, pts, radius=3, color=(0, 0, 255)):    # the sheet: cv2.circle per point
+        out = image.copy()
+        for x, y in np.asarray(pts, float).reshape(-1, 2):
+            cv2.circle(out, (int(round(x)), int(round(y))), radius, color, -1)
+        return out
+    """, ["draw_points(image, pts with a nan row) failed", "skip the rows that are not finite"])

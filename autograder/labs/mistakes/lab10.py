@@ -1,0 +1,497 @@
+"""Lab 10's mistakes table (camera models, continued): realistic wrong implementations, each the
+reference solution with one function redefined, the exercise it must lose points in, and
+the words its diagnosis must contain (read by ``autograder verify``; see
+:mod:`autograder.labs.mistakes`)."""
+
+MISTAKES = {
+    "perspective without division": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = f * X[:, :2]
+            return x[0] if single else x
+        """, ["division is missing"]),
+    "perspective by mean depth": ("lab10.ex1", """
+        def perspective_project(points, f):
+            return weak_perspective_project(points, f)
+        """, ["weak perspective"]),
+    "weak perspective = perspective": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            return perspective_project(points, f)
+        """, ["full perspective"]),
+    "z_avg ignored": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            x = (f / X[:, 2].mean()) * X[:, :2]
+            return x[0] if single else x
+        """, ["z_avg is ignored"]),
+    "orthographic divides by Z": ("lab10.ex3", """
+        def orthographic_project(points):
+            X, single = _points(points)
+            x = X[:, :2] / X[:, 2:3]
+            return x[0] if single else x
+        """, ["perspective"]),
+    "DLT largest singular vector": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
+            return np.linalg.svd(np.array(rows))[2][0].reshape(3, 4)
+        """, ["largest singular value"]),
+    "DLT with a sign error in the x rows": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+        """, ["the x rows have the wrong sign"]),
+    "DLT with u in the y rows": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -u * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+        """, ["the y rows use u where v belongs"]),
+    "DLT with solvePnP": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            K = np.eye(3)
+            _, r, t = cv2.solvePnP(np.asarray(points3d, float), np.asarray(points2d, float), K, None)
+            return np.hstack([cv2.Rodrigues(r)[0], t])
+        """, ["cv2.solvepnp", "yourself"]),
+    "DLT fixing P[2, 3] = 1": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            A, b = [], []
+            for (X, Y, Z), (u, v) in zip(np.asarray(points3d, float), np.asarray(points2d, float)):
+                A.append([X, Y, Z, 1, 0, 0, 0, 0, -u * X, -u * Y, -u * Z]); b.append(u)
+                A.append([0, 0, 0, 0, X, Y, Z, 1, -v * X, -v * Y, -v * Z]); b.append(v)
+            p = np.linalg.lstsq(np.array(A), np.array(b), rcond=None)[0]
+            return np.append(p, 1.0).reshape(3, 4)
+        """, ["t_z = 0", "fixed to 1", "svd"]),
+    "decomposition that fixes K's signs but never negates P": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            flip = np.eye(3)[::-1]
+            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
+            K = flip @ U.T @ flip
+            R = flip @ Q.T
+            signs = np.diag(np.sign(np.diag(K)))
+            K, R = K @ signs, signs @ R
+            t = np.linalg.solve(K, P[:, 3])
+            return K / K[2, 2], R, t
+        """, ["det(p[:, :3]) < 0", "multiply p by -1 first"]),
+    "t as camera centre": ("lab10.ex5", """
+        _right = decompose_camera_matrix
+        def decompose_camera_matrix(P):
+            K, R, t = _right(P)
+            return K, R, -R.T @ t
+        """, ["camera centre"]),
+    "no sign fix": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            flip = np.eye(3)[::-1]
+            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
+            K = flip @ U.T @ flip
+            R = flip @ Q.T
+            t = np.linalg.solve(K, P[:, 3])
+            return K / K[2, 2], R, t
+        """, ["negative diagonal", "multiply p by -1 first"]),
+    "centre is -t": ("lab10.ex5", """
+        def camera_center(P):
+            K, R, t = decompose_camera_matrix(P)
+            return -t
+        """, ["-r^t t"]),
+    "pose without square size": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            return _right(image, pattern_size, 1.0, K, dist)
+        """, ["square_size"]),
+    "pose ignores dist": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            return _right(image, pattern_size, square_size, K, None)
+        """, ["distortion", "ignored"]),
+    "pose with the rotation transposed (rvec negated)": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            rvec, tvec, reprojected = _right(image, pattern_size, square_size, K, dist)
+            return -np.asarray(rvec), tvec, reprojected
+        """, ["the rotation is transposed"]),
+    "pose pattern swapped": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            return _right(image, pattern_size[::-1], square_size, K, dist)
+        """, ["(cols, rows)"]),
+    "undistort the wrong way": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            return cv2.undistort(image, K, -np.asarray(dist, float))
+        """, ["sign"]),
+    "dolly moves the wrong way": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * distances / z0
+            return fs, np.stack([perspective_project(X - [0.0, 0.0, d - z0], f) for f, d in zip(fs, distances)])
+        """, ["wrong way"]),
+    "tracking rows [tvec, rvec]": ("lab10.ext3", """
+        _right = track_pose
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = _right(frames, pattern_size, square_size, K, dist)
+            return np.hstack([rows[:, 3:], rows[:, :3]])
+        """, ["[tvec, rvec]"]),
+    "tracking drops missing frames": ("lab10.ext3", """
+        _right = track_pose
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = _right(frames, pattern_size, square_size, K, dist)
+            return rows[np.isfinite(rows).all(axis=1)]
+        """, ["one row per frame"]),
+    "tracking fills frames without a board with zeros": ("lab10.ext3", """
+        _right = track_pose
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            return np.nan_to_num(_right(frames, pattern_size, square_size, K, dist))
+        """, ["should be nan", "zeros are a pose"]),
+    "pose without checking the board was found": ("lab10.ex6", """
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+            found, corners = cv2.findChessboardCorners(grey, tuple(pattern_size))
+            objp = _object_points(pattern_size, square_size)
+            K = np.asarray(K, dtype=np.float64)
+            dist = None if dist is None else np.asarray(dist, dtype=np.float64)
+            _, rvec, tvec = cv2.solvePnP(objp, corners, K, dist)
+            reprojected, _ = cv2.projectPoints(objp, rvec, tvec, K, dist)
+            return rvec.ravel(), tvec.ravel(), reprojected.reshape(-1, 2)
+        """, ['raised']),
+    # ---- the wider families of each exercise (issue 17)
+    "perspective with f applied twice": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = f * f * X[:, :2] / X[:, 2:3]
+            return x[0] if single else x
+        """, ["focal length is applied twice"]),
+    "perspective without f": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = X[:, :2] / X[:, 2:3]
+            return x[0] if single else x
+        """, ["focal length is not applied"]),
+    "perspective with x and y swapped": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = f * X[:, 1::-1] / X[:, 2:3]
+            return x[0] if single else x
+        """, ["x and y are swapped"]),
+    "weak perspective with the mean of every coordinate": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = X.mean() if z_avg is None else float(z_avg)
+            x = (f / z) * X[:, :2]
+            return x[0] if single else x
+        """, ["mean of every coordinate"]),
+    "weak perspective with the median depth": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = np.median(X[:, 2]) if z_avg is None else float(z_avg)
+            x = (f / z) * X[:, :2]
+            return x[0] if single else x
+        """, ["median"]),
+    "weak perspective without f": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = X[:, 2].mean() if z_avg is None else float(z_avg)
+            x = X[:, :2] / z
+            return x[0] if single else x
+        """, ["f is not applied"]),
+    "weak perspective with the scale inverted": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = X[:, 2].mean() if z_avg is None else float(z_avg)
+            x = (z / f) * X[:, :2]
+            return x[0] if single else x
+        """, ["scale is inverted"]),
+    "orthographic keeps Z": ("lab10.ex3", """
+        def orthographic_project(points):
+            X, single = _points(points)
+            return X[0] if single else X
+        """, ["z is kept"]),
+    "orthographic takes rows": ("lab10.ex3", """
+        def orthographic_project(points):
+            X, single = _points(points)
+            return X[0, :2] if single else X[:2]
+        """, ["points[:2] takes the first two points"]),
+    "orthographic returns (X, Z)": ("lab10.ex3", """
+        def orthographic_project(points):
+            X, single = _points(points)
+            x = X[:, [0, 2]]
+            return x[0] if single else x
+        """, ["(x, z)"]),
+    "orthographic with x and y swapped": ("lab10.ex3", """
+        def orthographic_project(points):
+            X, single = _points(points)
+            x = X[:, [1, 0]]
+            return x[0] if single else x
+        """, ["x and y are swapped"]),
+    "DLT with u and v swapped": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -v * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -u * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+        """, ["u and v (x and y) are swapped"]),
+    "DLT reshaped column by column": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(4, 3).T
+        """, ["reshaped in the wrong order"]),
+    "decomposition with R transposed": ("lab10.ex5", """
+        _right = decompose_camera_matrix
+        def decompose_camera_matrix(P):
+            K, R, t = _right(P)
+            return K, R.T, t
+        """, ["r is transposed"]),
+    "decomposition without normalising K": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            if np.linalg.det(P[:, :3]) < 0:
+                P = -P
+            flip = np.eye(3)[::-1]
+            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
+            K = flip @ U.T @ flip
+            R = flip @ Q.T
+            signs = np.diag(np.sign(np.diag(K)))
+            K, R = K @ signs, signs @ R
+            return K, R, np.linalg.solve(K, P[:, 3])
+        """, ["k is not normalised"]),
+    "centre is -R t": ("lab10.ex5", """
+        def camera_center(P):
+            K, R, t = decompose_camera_matrix(P)
+            return -R @ t
+        """, ["returned -r t"]),
+    "pose with object points in column order": ("lab10.ex6", """
+        def _object_points(pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float64)
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].reshape(2, -1).T * square_size
+            return objp
+        """, ["column order"]),
+    "pose inverted (camera in the board's frame)": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            rvec, tvec, reprojected = _right(image, pattern_size, square_size, K, dist)
+            R = cv2.Rodrigues(np.asarray(rvec, float))[0]
+            return -np.asarray(rvec), -R.T @ tvec, reprojected
+        """, ["pose is inverted"]),
+    "undistort without dist": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            return cv2.undistort(image, np.asarray(K, np.float64), None)
+        """, ["unchanged"]),
+    "undistort maps the wrong way (distorts again)": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            K = np.asarray(K, np.float64)
+            h, w = image.shape[:2]
+            ys, xs = np.mgrid[0:h, 0:w].astype(np.float64)
+            pix = np.column_stack([xs.ravel(), ys.ravel()]).reshape(-1, 1, 2)
+            src = cv2.undistortPoints(pix, K, np.asarray(dist, np.float64), P=K).reshape(h, w, 2)
+            return cv2.remap(image, src[..., 0].astype(np.float32), src[..., 1].astype(np.float32),
+                             cv2.INTER_LINEAR)
+        """, ["applied instead of removed"]),
+    "dolly zoom with the focal length inverted": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * z0 / distances
+            return fs, np.stack([perspective_project(X + [0.0, 0.0, d - z0], f) for f, d in zip(fs, distances)])
+        """, ["focal length is inverted"]),
+    "plain dolly (f fixed)": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = np.full(len(distances), float(f0))
+            return fs, np.stack([perspective_project(X + [0.0, 0.0, d - z0], f) for f, d in zip(fs, distances)])
+        """, ["plain dolly"]),
+    "dolly scales every depth": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * distances / z0
+            return fs, np.stack([perspective_project(X * [1.0, 1.0, d / z0], f) for f, d in zip(fs, distances)])
+        """, ["scaled by d / z0"]),
+    "dolly puts every point at depth d": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * distances / z0
+            return fs, np.stack([f * X[:, :2] / d for f, d in zip(fs, distances)])
+        """, ["every point is put at depth d"]),
+    "tracking rows one frame early": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = []
+            for i in range(1, len(frames)):
+                rvec, tvec, _ = estimate_pose(frames[i], pattern_size, square_size, K, dist)
+                rows.append(np.concatenate([rvec, tvec]))
+            rows.append(np.full(6, np.nan))
+            return np.array(rows)
+        """, ["off by one frame"]),
+    "tracking the camera's pose": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = []
+            for frame in frames:
+                rvec, tvec, _ = estimate_pose(frame, pattern_size, square_size, K, dist)
+                R = cv2.Rodrigues(rvec)[0] if np.isfinite(rvec).all() else np.eye(3)
+                rows.append(np.concatenate([-rvec, -R.T @ tvec]))
+            return np.array(rows)
+        """, ["pose is inverted"]),
+    "perspective with the first point's depth for all": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = f * X[:, :2] / X[0, 2]
+            return x[0] if single else x
+        """, ["divided by one depth, the first point's"]),
+    "weak perspective with the largest depth": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = X[:, 2].max() if z_avg is None else float(z_avg)
+            x = (f / z) * X[:, :2]
+            return x[0] if single else x
+        """, ["largest depth"]),
+    "centre not de-homogenised": ("lab10.ex5", """
+        def camera_center(P):
+            return np.linalg.svd(np.asarray(P, dtype=np.float64))[2][-1][:3]
+        """, ["without dividing by the fourth"]),
+    "pose with the grid built for (rows, cols)": ("lab10.ex6", """
+        def _object_points(pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float64)
+            objp[:, :2] = np.mgrid[0:rows, 0:cols].T.reshape(-1, 2) * square_size
+            return objp
+        """, ["built for (rows, cols)"]),
+    "dolly returns (projections, focal_lengths)": ("lab10.ext2", """
+        _right = dolly_zoom
+        def dolly_zoom(points, f0, z0, distances):
+            fs, proj = _right(points, f0, z0, distances)
+            return proj, fs
+        """, ["(focal_lengths, projections)"]),
+    "dolly projections with f0": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * distances / z0
+            return fs, np.stack([perspective_project(X + [0.0, 0.0, d - z0], f0) for d in distances])
+        """, ["projections use f0"]),
+    "tracking carries the last pose over": ("lab10.ext3", """
+        _right = track_pose
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = _right(frames, pattern_size, square_size, K, dist)
+            for i in range(1, len(rows)):
+                if not np.isfinite(rows[i]).all():
+                    rows[i] = rows[i - 1]
+            return rows
+        """, ["last pose is carried over"]),
+    "tracking frames[0] every time": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = []
+            for frame in frames:
+                rvec, tvec, _ = estimate_pose(frames[0], pattern_size, square_size, K, dist)
+                rows.append(np.concatenate([rvec, tvec]))
+            return np.array(rows)
+        """, ["same frame is used for every row"]),
+    "pose reprojected without dist": ("lab10.ex6", """
+        _right = estimate_pose
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            rvec, tvec, _ = _right(image, pattern_size, square_size, K, dist)
+            if not np.isfinite(rvec).all():
+                return rvec, tvec, np.zeros((0, 2))
+            reprojected, _ = cv2.projectPoints(_object_points(pattern_size, square_size), rvec, tvec,
+                                               np.asarray(K, float), None)
+            return rvec, tvec, reprojected.reshape(-1, 2)
+        """, ["projected without dist"]),
+    "DLT normalised but not denormalised": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.asarray(points3d, float); x = np.asarray(points2d, float)
+            T3, T2 = _normalising_transform(X), _normalising_transform(x)
+            Xn = np.column_stack([X, np.ones(len(X))]) @ T3.T
+            xn = (np.column_stack([x, np.ones(len(x))]) @ T2.T)[:, :2]
+            rows = []
+            for Xi, (u, v) in zip(Xn, xn):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
+            return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+        """, ["normalisation is not undone"]),
+    "decomposition by QR instead of RQ": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            if np.linalg.det(P[:, :3]) < 0:
+                P = -P
+            R, K = np.linalg.qr(P[:, :3])
+            D = np.diag(np.sign(np.diag(K)))
+            K, R = D @ K, R @ D
+            return K / K[2, 2], R, np.linalg.solve(K, P[:, 3])
+        """, ["qr decomposition"]),
+    "undistort with K transposed": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            return cv2.undistort(image, np.asarray(K, np.float64).T, np.asarray(dist, np.float64))
+        """, ["k is transposed"]),
+    "dolly moves X and Y too": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * distances / z0
+            return fs, np.stack([perspective_project(X + (d - z0), f) for f, d in zip(fs, distances)])
+        """, ["added to x and y too"]),
+    "tracking rows not flattened": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            return np.array([np.array(estimate_pose(f, pattern_size, square_size, K, dist)[:2]) for f in frames])
+        """, ["not flattened"]),
+    "perspective divided by the distance": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            x = f * X[:, :2] / np.linalg.norm(X, axis=1, keepdims=True)
+            return x[0] if single else x
+        """, ["distance |x|"]),
+    "DLT takes a column of Vt": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.column_stack([points3d, np.ones(len(points3d))])
+            rows = []
+            for Xi, (u, v) in zip(X, points2d):
+                rows.append(np.concatenate([Xi, np.zeros(4), -u * Xi]))
+                rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
+            return np.linalg.svd(np.array(rows))[2][:, -1].reshape(3, 4)
+        """, ["last column of vt"]),
+    "tracking marks missing frames with -1": ("lab10.ext3", """
+        _right = track_pose
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = _right(frames, pattern_size, square_size, K, dist)
+            rows[~np.isfinite(rows)] = -1
+            return rows
+        """, ["should be nan"]),
+    "decomposition with t of the wrong sign": ("lab10.ex5", """
+        _right = decompose_camera_matrix
+        def decompose_camera_matrix(P):
+            K, R, t = _right(P)
+            return K, R, -t
+        """, ["t has the wrong sign"]),
+    "pose grid divided by square_size": ("lab10.ex6", """
+        def _object_points(pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float64)
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) / square_size
+            return objp
+        """, ["not in the units of square_size"]),
+}
+
+
+# cv2.undistort does the work from the given K and dist: a student can skip dist, or
+# map the wrong way (by hand or with -dist); there is little else to get wrong.
+FEWER_MISTAKES = {
+    "lab10.ext1": "undistortion is one OpenCV call on the given K and dist: the realistic slips are "
+                  "dist not used, the mapping direction (distorting again), the sign of dist and K transposed",
+}

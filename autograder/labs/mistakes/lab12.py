@@ -1,0 +1,381 @@
+"""Lab 12's mistakes table (stereo): realistic wrong implementations, each the
+reference solution with one function redefined, the exercise it must lose points in, and
+the words its diagnosis must contain (read by ``autograder verify``; see
+:mod:`autograder.labs.mistakes`)."""
+
+MISTAKES = {
+    "block matching with block_size ignored": ("lab12.ex4", """
+        _block_matching_own = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching_own(left, right, max_disparity, 9, cost)
+        """, ["block_size is ignored"]),
+    # ---------------------------------------------------------------- ex1
+    "triangulate with the images swapped": ("lab12.ex1", """
+        _triangulate = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            return _triangulate(P1, P2, pts2, pts1)
+        """, ["swapped"]),
+    "triangulate with P1 used for both views": ("lab12.ex1", """
+        _triangulate = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            return _triangulate(P1, P1, pts1, pts2)
+        """, ["p1 is used for both views"]),
+    "triangulate returns homogeneous points": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.asarray(pts1, float); pts2 = np.asarray(pts2, float)
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[1],
+                          pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
+            return np.linalg.svd(A)[2][:, -1]
+        """, ["homogeneous", "fourth coordinate"]),
+    "triangulate without the division": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.asarray(pts1, float); pts2 = np.asarray(pts2, float)
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[1],
+                          pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
+            return np.linalg.svd(A)[2][:, -1, :3]
+        """, ["fourth coordinate"]),
+    "triangulate with OpenCV": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            X = cv2.triangulatePoints(np.float64(P1), np.float64(P2),
+                                      np.float64(pts1).T, np.float64(pts2).T)
+            return (X[:3] / X[3]).T
+        """, ["cv2.triangulatePoints", "yourself"]),
+    # ---------------------------------------------------------------- ex2
+    "depth b / (f d)": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, float)
+            ok = np.isfinite(d) & (d > 0)
+            return np.where(ok, baseline / (f * np.where(ok, d, 1.0)), 0.0)
+        """, ["b / (f d)"]),
+    "depth inf where d = 0": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return f * baseline / np.asarray(disparity, float)
+        """, ["where the disparity is 0, your depth is inf", "must be 0"]),
+    "depth f b / (d + eps): huge but finite where d = 0": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.nan_to_num(np.asarray(disparity, float))
+            return f * baseline / (np.abs(d) + 1e-9)
+        """, ["where the disparity is 0, your depth is 8e+10", "where the disparity is negative, your depth is"]),
+    "depth negative for negative disparities": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, float)
+            ok = np.isfinite(d) & (d != 0)
+            return np.where(ok, f * baseline / np.where(ok, d, 1.0), 0.0)
+        """, ["where the disparity is negative, your depth is -26.7", "must be 0"]),
+    "disparity xr - xl": ("lab12.ex2", """
+        def disparity_from_matches(xl, xr):
+            xl = np.asarray(xl, float); xr = np.asarray(xr, float)
+            if xl.ndim == 2:
+                xl, xr = xl[:, 0], xr[:, 0]
+            return xr - xl
+        """, ["wrong sign"]),
+    "disparity from the y column": ("lab12.ex2", """
+        def disparity_from_matches(xl, xr):
+            xl = np.asarray(xl, float); xr = np.asarray(xr, float)
+            if xl.ndim == 2:
+                xl, xr = xl[:, 1], xr[:, 1]
+            return xl - xr
+        """, ["y coordinates"]),
+    "depth with d and b swapped (f d / b)": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, float)
+            ok = np.isfinite(d) & (d > 0)
+            return np.where(ok, f * np.where(ok, d, 1.0) / baseline, 0.0)
+        """, ["d and b are swapped"]),
+    # ---------------------------------------------------------------- ex3
+    "rectify returns inverse homographies": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            return a, b, np.linalg.inv(H1), np.linalg.inv(H2)
+        """, ["back to the originals"]),
+    "rectify with the homographies swapped": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            return a, b, H2, H1
+        """, ["swapped"]),
+    "rectify with the pose read backwards": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            R = np.asarray(R, float)
+            return _rectify(img_l, img_r, K1, K2, R.T, -R.T @ np.asarray(T, float))
+        """, ["the pose is read backwards"]),
+    "rectify with the baseline reversed": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            flip = np.diag([-1.0, -1.0, 1.0])
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            return a, b, flip @ H1, flip @ H2
+        """, ["negative"]),
+    "rectify pushes the images out of view": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            shift = np.array([[1.0, 0, 110], [0, 1, 0], [0, 0, 1]])
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            H1, H2 = shift @ H1, shift @ H2
+            size = (img_l.shape[1], img_l.shape[0])
+            return cv2.warpPerspective(img_l, H1, size), cv2.warpPerspective(img_r, H2, size), H1, H2
+        """, ["stays inside"]),
+    "rectified images do not match the homographies": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            return np.array(img_l), np.array(img_r), H1, H2
+        """, ["differs from the input warped"]),
+    "rectify with the rectified images swapped": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            return b, a, H1, H2
+        """, ["rect_l and rect_r are swapped"]),
+    "rectify with R transposed": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            return _rectify(img_l, img_r, K1, K2, np.asarray(R, float).T, T)
+        """, ["r is transposed inside your function"]),
+    "rectify with K where K^-1 belongs": ("lab12.ex3", """
+        def rectify(img_l, img_r, K1, K2, R, T):
+            K1 = np.asarray(K1, float); K2 = np.asarray(K2, float)
+            R = np.asarray(R, float); T = np.asarray(T, float).reshape(3)
+            h, w = np.asarray(img_l).shape[:2]
+            e1 = -R.T @ T / np.linalg.norm(T)
+            e2 = np.cross(np.array([0, 0, 1.0]) + R.T @ np.array([0, 0, 1.0]), e1)
+            e2 /= np.linalg.norm(e2)
+            R_rect = np.vstack([e1, e2, np.cross(e1, e2)])
+            K_new = np.array([[K1[0, 0], 0, w / 2], [0, K1[0, 0], h / 2], [0, 0, 1.0]])
+            H1, H2 = K_new @ R_rect @ K1, K_new @ R_rect @ R.T @ K2
+            return cv2.warpPerspective(img_l, H1, (w, h)), cv2.warpPerspective(img_r, H2, (w, h)), H1, H2
+        """, ["k is used where k^-1 belongs"]),
+    # ---------------------------------------------------------------- ex4
+    "block matching in the wrong direction": ("lab12.ex4", """
+        def _shift_right(image, d):
+            if d == 0:
+                return image
+            out = np.empty_like(image)
+            out[:, :-d] = image[:, d:]
+            out[:, -d:] = image[:, -1:]
+            return out
+
+        def _ssd_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(max_disparity + 1):
+                costs[d] = _box_mean((left - _shift_right(right, d)) ** 2, block_size)
+                if d:
+                    costs[d, :, -d:] = np.inf
+            return costs
+        """, ["wrong direction"]),
+    "block matching with negative disparities": ("lab12.ex4", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return -_block_matching(left, right, max_disparity, block_size, cost)
+        """, ["negative"]),
+    "block matching off by one": ("lab12.ex4", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity, block_size, cost) + 1
+        """, ["off by"]),
+    "block matching that never searches d = 0": ("lab12.ex4", """
+        _ssd = _ssd_volume
+        def _ssd_volume(left, right, max_disparity, block_size):
+            costs = _ssd(left, right, max_disparity, block_size)
+            costs[0] = np.inf
+            return costs
+        """, ["wall at infinity", "must include d = 0"]),
+    "block matching searching half the range (max_disparity // 2)": ("lab12.ex4", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity // 2, block_size, cost)
+        """, ["of the wrong disparities are too small", "your largest disparity is"]),
+    "block matching with StereoBM's fixed point kept": ("lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            n = 16 * -(-(max_disparity + 1) // 16)
+            d = cv2.StereoBM_create(numDisparities=n, blockSize=block_size).compute(left, right)
+            return np.where((d > 0) & (d <= 16 * max_disparity), d, 0).astype(np.float64)
+        """, ["scaled by about 16", "fixed point"]),
+    "block_size ignored (a fixed 31 x 31 block)": ("lab12.ex4", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity, 31, cost)
+        """, ["block_size=5 and block_size=15 give the same disparity map: block_size is ignored"]),
+    "block matching keeping the highest SSD (argmax)": ("lab12.ex4", """
+        _ssd = _ssd_volume
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            volume = _ssd(_grey_float(left), _grey_float(right), int(max_disparity), int(block_size))
+            volume[~np.isfinite(volume)] = -np.inf
+            return np.argmax(volume, axis=0).astype(np.float64)
+        """, ["the disparity with the highest ssd is kept"]),
+    # ---------------------------------------------------------------- ext1
+    "NCC without subtracting the means": ("lab12.ext1", """
+        def _ncc_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            energy_l = _box_mean(left * left, block_size)
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(max_disparity + 1):
+                shifted = _shift_right(right, d)
+                energy_r = _box_mean(shifted * shifted, block_size)
+                costs[d] = -_box_mean(left * shifted, block_size) / np.sqrt(energy_l * energy_r + 1e-9)
+                costs[d, :, :d] = np.inf
+            return costs
+        """, ["not fully normalised"]),
+    "NCC as a plain correlation": ("lab12.ext1", """
+        def _ncc_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(max_disparity + 1):
+                costs[d] = -_box_mean(left * _shift_right(right, d), block_size)
+                costs[d, :, :d] = np.inf
+            return costs
+        """, ["fails even when both views have the same brightness"]),
+    "NCC with block_size ignored (a fixed 21 x 21 block)": ("lab12.ext1", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity, 21, cost)
+        """, ["block_size=5 and block_size=15 give the same disparity map: block_size is ignored"]),
+    "cost argument ignored": ("lab12.ext1", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity, block_size, "ssd")
+        """, ["cost argument is ignored"]),
+    "NCC keeping the lowest score (argmin of the similarity)": ("lab12.ext1", """
+        _ncc = _ncc_volume
+        def _ncc_volume(left, right, max_disparity, block_size):
+            costs = -_ncc(left, right, max_disparity, block_size)
+            costs[~np.isfinite(costs)] = np.inf
+            return costs
+        """, ["the disparity with the lowest ncc is kept"]),
+    "NCC divided by the variances": ("lab12.ext1", """
+        def _ncc_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            mean_l = _box_mean(left, block_size)
+            var_l = np.maximum(_box_mean(left * left, block_size) - mean_l ** 2, 0.0)
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(max_disparity + 1):
+                shifted = _shift_right(right, d)
+                mean_r = _box_mean(shifted, block_size)
+                var_r = np.maximum(_box_mean(shifted * shifted, block_size) - mean_r ** 2, 0.0)
+                covariance = _box_mean(left * shifted, block_size) - mean_l * mean_r
+                costs[d] = -np.divide(covariance, var_l * var_r, out=np.zeros_like(covariance),
+                                      where=var_l * var_r > 1e-6)
+                costs[d, :, :d] = np.inf
+            return costs
+        """, ["the ncc is divided by the right block's variance"]),
+    # ---------------------------------------------------------------- ex5
+    "DP without smoothness (winner-take-all)": ("lab12.ex5", """
+        DEFAULT_SMOOTHNESS = 0.0
+        """, ["the smoothness term is ignored (winner-take-all)"]),
+    "DP that ignores the smoothness argument": ("lab12.ex5", """
+        _dp_stereo = dp_stereo
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            return _dp_stereo(left, right, max_disparity, block_size, None)
+        """, ["smoothness=0 and smoothness=10000000.0 give the same disparity map: smoothness is ignored"]),
+    "DP whose last column is always 0": ("lab12.ex5", """
+        _dp_stereo = dp_stereo
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            disparity = _dp_stereo(left, right, max_disparity, block_size, smoothness)
+            disparity[:, -1] = 0
+            return disparity
+        """, ["the last column", "backtracking"]),
+    "DP with SGBM": ("lab12.ex5", """
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            sgbm = cv2.StereoSGBM_create(0, 16 * ((max_disparity + 15) // 16), block_size)
+            return sgbm.compute(left, right).astype(np.float64) / 16
+        """, ["cv2.StereoSGBM_create", "yourself"]),
+    "DP backtracking that never fills the last column": ("lab12.ex5", """
+        _dp_stereo = dp_stereo
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            disparity = _dp_stereo(left, right, max_disparity, block_size, smoothness)
+            shifted = np.zeros_like(disparity)
+            shifted[:, :-1] = disparity[:, 1:]
+            return shifted
+        """, ["the backtracking does not start right"]),
+    "DP with a default smoothness far too large": ("lab12.ex5", """
+        DEFAULT_SMOOTHNESS = 400.0
+        """, ["the default smoothness is far too large"]),
+    # ---------------------------------------------------------------- ex6
+    "plain binary patterns": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            k = (np.arange(width) * 2**n_bits) // width
+            shifts = np.arange(n_bits - 1, -1, -1)[:, None]
+            return (((k[None, :] >> shifts) & 1) * 255).astype(np.uint8)
+        """, ["plain binary"]),
+    "patterns least significant bit first": ("lab12.ex6", """
+        _gray_code_patterns = gray_code_patterns
+        def gray_code_patterns(width, n_bits):
+            return _gray_code_patterns(width, n_bits)[::-1]
+        """, ["wrong order"]),
+    "projector on the wrong side": ("lab12.ex6", """
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            depth = np.asarray(depth, float)
+            height, width = depth.shape
+            patterns = gray_code_patterns(width, n_bits)
+            valid = depth > 0
+            d = np.divide(f * baseline, depth, out=np.zeros_like(depth), where=valid)
+            column = np.floor(np.arange(width) + d + 0.5).astype(int)
+            lit = valid & (column >= 0) & (column < width)
+            images = np.zeros((n_bits, height, width), np.uint8)
+            images[:, lit] = patterns[:, column[lit]]
+            return images
+        """, ["u - f b / z"]),
+    "projector column truncated": ("lab12.ex6", """
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            depth = np.asarray(depth, float)
+            height, width = depth.shape
+            patterns = gray_code_patterns(width, n_bits)
+            valid = depth > 0
+            d = np.divide(f * baseline, depth, out=np.zeros_like(depth), where=valid)
+            column = (np.arange(width) - d).astype(int)
+            lit = valid & (column >= 0) & (column < width)
+            images = np.zeros((n_bits, height, width), np.uint8)
+            images[:, lit] = patterns[:, column[lit]]
+            return images
+        """, ["truncated"]),
+    "decoding without Gray to binary": ("lab12.ex6", """
+        def depth_from_structured_light(images, f, baseline):
+            images = np.asarray(images)
+            n, height, width = images.shape
+            k = np.zeros((height, width), int)
+            for image in images:
+                k = (k << 1) | (image > 127)
+            column = (k + 0.5) * width / 2**n - 0.5
+            z = depth_from_disparity(np.arange(width) - column, f, baseline)
+            return np.where((images > 127).any(axis=0), z, 0.0)
+        """, ["plain binary"]),
+    "decoding with the stripe edge": ("lab12.ex6", """
+        _depth_from_structured_light = depth_from_structured_light
+        def depth_from_structured_light(images, f, baseline):
+            images = np.asarray(images)
+            n, height, width = images.shape
+            bits = images > 127
+            k = np.zeros((height, width), int); b = np.zeros((height, width), bool)
+            for g in bits:
+                b = b ^ g
+                k = (k << 1) | b
+            z = depth_from_disparity(np.arange(width) - k * width / 2**n, f, baseline)
+            return np.where(bits.any(axis=0), z, 0.0)
+        """, ["left edge"]),
+    "decoding that leaves undecodable pixels with a depth": ("lab12.ex6", """
+        def depth_from_structured_light(images, f, baseline):
+            images = np.asarray(images)
+            n, height, width = images.shape
+            k = np.zeros((height, width), int); b = np.zeros((height, width), bool)
+            for g in images > 127:
+                b = b ^ g
+                k = (k << 1) | b
+            column = (k + 0.5) * width / 2**n - 0.5
+            return depth_from_disparity(np.arange(width) - column, f, baseline)
+        """, ["undecodable pixels"]),
+    "patterns with the stripe index rounded": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            k = np.minimum(np.round(np.arange(width) * 2**n_bits / width).astype(int), 2**n_bits - 1)
+            g = k ^ (k >> 1)
+            return (((g[None, :] >> np.arange(n_bits - 1, -1, -1)[:, None]) & 1) * 255).astype(np.uint8)
+        """, ["the stripe index is rounded"]),
+    "simulation with the images in reverse order": ("lab12.ex6", """
+        _simulate = simulate_structured_light
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            return _simulate(depth, f, baseline, n_bits)[::-1]
+        """, ["the images are in the wrong order"]),
+}
