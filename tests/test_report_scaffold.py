@@ -219,7 +219,8 @@ def notebook(*cells, raw: bool = False) -> bytes:
 
 def test_notebook_cells_tagged_or_marked_are_explanations():
     data = notebook(("report:lab07.ex1", [f"{START.format('lab07.ex1')}\n", "Tagged **cell**.\n"]),
-                    (None, f"Before the marker counts too.\n{START.format('lab07.ex2')}\n{PLACEHOLDER}\nMarked.\n{END}"),
+                    (None, f"Before the marker counts too.\n{START.format('lab07.ex2')}\n"
+                           f"{PLACEHOLDER}\nMarked.\n{END}"),
                     (None, "# A heading cell with nothing to do with the report"),
                     ("report:lab07.ex3", PLACEHOLDER),
                     (None, f"{START.format('lab07.ex4')}\nfour\n{END}\n{START.format('lab07.ex5')}\nfive\n{END}"))

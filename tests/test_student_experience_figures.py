@@ -85,7 +85,8 @@ def test_an_answer_that_cannot_be_drawn_is_the_figures_reason_and_the_others_are
         def intrinsic_matrix(f, px, py):
             return {"K": 1}
         """)
-    outcomes = {o.figure_id: o for o in make_figures(submission, ["lab09.ex1", "lab09.ex2", "lab09.ex5"], tmp_path / "f")}
+    made = make_figures(submission, ["lab09.ex1", "lab09.ex2", "lab09.ex5"], tmp_path / "f")
+    outcomes = {o.figure_id: o for o in made}
     assert outcomes["lab09.ex1"].path is None and "cannot be drawn" in outcomes["lab09.ex1"].reason
     assert outcomes["lab09.ex2"].path is None and outcomes["lab09.ex2"].reason
     assert outcomes["lab09.ex5"].path.is_file()

@@ -32,7 +32,8 @@ def pinhole(call):
 @figure("lab09.ex2", "project_with_intrinsics(intrinsic_matrix(300, 160, 120), cube)")
 def intrinsics(call):
     K = call("intrinsic_matrix", 300.0, 160.0, 120.0)
-    return [Panel("pixels; grey: the 320 x 240 image", points={"projection": call("project_with_intrinsics", K, _cube())},
+    projected = call("project_with_intrinsics", K, _cube())
+    return [Panel("pixels; grey: the 320 x 240 image", points={"projection": projected},
                   frame=FRAME, axes=("column x", "row y"))]
 
 
@@ -97,6 +98,7 @@ def distortion(call):
     grid = np.vstack([np.column_stack([np.full_like(line, v), line]) for v in ticks]
                      + [np.column_stack([line, np.full_like(line, v)]) for v in ticks])
     cases = [("no distortion", (0.0, 0.0, 0.0, 0.0, 0.0)), ("k1 = -0.3: barrel", (-0.3, 0.0, 0.0, 0.0, 0.0)),
-             ("k1 = +0.3: pincushion", (0.3, 0.0, 0.0, 0.0, 0.0)), ("p1 = 0.05: tangential", (0.0, 0.0, 0.05, 0.0, 0.0))]
+             ("k1 = +0.3: pincushion", (0.3, 0.0, 0.0, 0.0, 0.0)),
+             ("p1 = 0.05: tangential", (0.0, 0.0, 0.05, 0.0, 0.0))]
     return [Panel(title, points={"distorted grid": call("distort_points", grid, np.array(dist))},
                   axes=("normalised x", "normalised y")) for title, dist in cases]

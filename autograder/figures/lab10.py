@@ -64,8 +64,9 @@ def dolly(call):
     import numpy as np
 
     side = np.linspace(-0.5, 0.5, 9)
-    subject = np.vstack([np.column_stack([side, np.full_like(side, s), np.full_like(side, 4.0)]) for s in (-0.5, 0.5)]
-                        + [np.column_stack([np.full_like(side, s), side, np.full_like(side, 4.0)]) for s in (-0.5, 0.5)])
+    edge, depth = np.full_like(side, 0.5), np.full_like(side, 4.0)  # a square of side 1 at z0 = 4
+    subject = np.vstack([np.column_stack([side, s * edge, depth]) for s in (-1, 1)]
+                        + [np.column_stack([s * edge, side, depth]) for s in (-1, 1)])
     xs, ys = np.meshgrid(np.linspace(-4, 4, 9), np.linspace(-3, 3, 7))
     background = np.column_stack([xs.ravel(), ys.ravel(), np.full(xs.size, 12.0)])
     distances = np.array([2.0, 4.0, 8.0])

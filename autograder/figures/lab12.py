@@ -102,7 +102,7 @@ def block_sizes(call):
     return panels
 
 
-@figure("lab12.ext1", 'block_matching(..., cost="ncc") when the right view is darker')
+@figure("lab12.ext1", 'block_matching(..., cost="ncc") against SSD, the right view in another exposure')
 def ncc(call):
     from fixtures.lab12 import reference_figures, with_gain
 
