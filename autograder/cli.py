@@ -641,6 +641,14 @@ def add_class_commands(commands) -> None:
     report.add_argument("--course", metavar="COURSE", help="course configuration (JSON)")
     report.add_argument("--title", default="", help="course title shown on the page")
 
+    review = commands.add_parser(
+        "review", help="grade the lab reports with the course's rubric in a local web application")
+    review.add_argument("results", metavar="RESULTS", help="a batch's results folder")
+    review.add_argument("--port", type=int, default=0, help="port on 127.0.0.1 (default: a free one)")
+    review.add_argument("--anonymous", action="store_true", help="hide the students' names (stable pseudonyms)")
+    review.add_argument("--shuffle", type=int, metavar="SEED", help="review in an order shuffled by SEED")
+    review.add_argument("--reviewer", default="", help="your name, stored with each change (default: your login)")
+
     similarity = commands.add_parser(
         "similarity", help="write similarity.html: the most similar submissions, lab by lab (leads to read)")
     similarity.add_argument("submissions", metavar="SUBMISSIONS_OR_RESULTS",
@@ -662,10 +670,17 @@ def run_report(args) -> int:
     from .instructor.course import CourseConfig, CourseConfigError
     from .engine.registry import SelectionError
 
+    from .instructor.batch.ingest import IngestError
+    from .instructor.batch.run import write_exports
+
     try:
         course = CourseConfig.load(args.course) if args.course else None
-        out = write_overview(args.results, course_title=args.title or (course.assignment if course else None))
         restored, problems = restore_student_files(args.results, course)
+        try:   # the CSVs and every page again, with the reports' reviews
+            write_exports(args.results, course)
+        except IngestError as exc:   # a batch is writing RESULTS: it writes them when it ends
+            print(f"note: {exc}; the CSVs and pages are written by that batch when it finishes", file=sys.stderr)
+        out = write_overview(args.results, course_title=args.title or (course.assignment if course else None))
     except (CourseConfigError, NoGradebook, SelectionError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return USAGE_ERROR
@@ -680,6 +695,41 @@ def run_report(args) -> int:
               file=sys.stderr)
     print(f"wrote {out}")
     return STORAGE_ERROR if problems else 0
+
+
+def run_review(args) -> int:
+    """``autograder review RESULTS``: serve the report review on 127.0.0.1 until Ctrl-C."""
+    import getpass
+
+    from .instructor.batch.gradebook import GRADEBOOK, StorageError
+
+    if not (Path(args.results) / GRADEBOOK).is_file():
+        print(f"error: no gradebook in {args.results}: run autograder batch first", file=sys.stderr)
+        return USAGE_ERROR
+    try:
+        from .instructor.review import serve
+    except ImportError as exc:
+        print(f"error: autograder review needs Flask ({exc}): pip install -c constraints.txt -e '.[review]'",
+              file=sys.stderr)
+        return USAGE_ERROR
+    try:
+        reviewer = args.reviewer or getpass.getuser()
+    except (KeyError, OSError):
+        reviewer = "reviewer"
+
+    def announce(url: str) -> None:
+        print(f"Reviewing {args.results} as {reviewer}: open\n  {url}\n(only this machine can reach it; "
+              "every change is saved at once; Ctrl-C stops the server)", flush=True)
+
+    try:
+        serve(args.results, args.port, reviewer=reviewer, anonymous=args.anonymous, shuffle=args.shuffle,
+              announce=announce)
+    except StorageError as exc:
+        return _storage_failed(exc)
+    except OSError as exc:
+        print(f"error: cannot serve on 127.0.0.1:{args.port}: {exc.strerror or exc}", file=sys.stderr)
+        return USAGE_ERROR
+    return 0
 
 
 def _default_similarity_page(folder: Path) -> Path:
@@ -795,7 +845,7 @@ def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     commands = {"grade": run_grade, "list": run_list, "validate": run_validate, "batch": run_batch,
                 "gradescope": run_gradescope,
-                "bundle": run_bundle, "report": run_report, "similarity": run_similarity,
+                "bundle": run_bundle, "report": run_report, "similarity": run_similarity, "review": run_review,
                 "verify": run_verify, "new-lab": run_new_lab}
     return _until_the_reader_goes(commands[args.command], args)
 

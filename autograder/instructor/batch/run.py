@@ -148,7 +148,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
             if "result" in outcome:
                 book.check_in_place()   # a deleted RESULTS is not written again piecemeal
                 try:
-                    _write_student(out, entry, outcome["json"], outcome["page"])   # files first, then the commit
+                    _write_student(out, entry, outcome["json"], outcome["page"],   # files first, then the commit
+                                   outcome.get("figures"))
                     book.record(key, entry.student_id, entry.content_hash, selection, outcome["result"], lock=lock)
                     summary.graded += 1
                 except (OSError, ValueError, TypeError, KeyError) as exc:
@@ -165,7 +166,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
                      course.inputs_secret)
         rules = {"forbid": course.forbid, "exercise_budget": course.exercise_budget,
                  "submission_budget": course.submission_budget, "labs": course.labs, "hide": course.hide,
-                 "gradings": 1 if dask_scheduler else min(workers or os.cpu_count() or 1, max(len(todo), 1))}
+                 "gradings": 1 if dask_scheduler else min(workers or os.cpu_count() or 1, max(len(todo), 1)),
+                 "figures": sorted(course.rubric)}   # the review shows them beside the report
         if dask_scheduler:
             from .cluster import grade_on_dask
 
@@ -326,8 +328,9 @@ def _grade_locally(todo: list[Entry], arguments, finished, workers: int, rules: 
             finished(entry, outcome)
 
 
-def _write_student(out: Path, entry: Entry, results_json: str, page: str) -> None:
-    """The student's page, results and the sources graded (``sources/``, for the similarity report).
+def _write_student(out: Path, entry: Entry, results_json: str, page: str, figures: dict | None = None) -> None:
+    """The student's page, results, the sources graded (``sources/``, for the similarity report)
+    and the figures made from their code for the review (``figures/<figure id>.png``).
 
     Raises :class:`StorageError` when RESULTS cannot be written (full, read-only...);
     an ``OSError`` only for what is the submission's own (a file name this file
@@ -338,6 +341,10 @@ def _write_student(out: Path, entry: Entry, results_json: str, page: str) -> Non
         write_atomically(folder / "results.json", results_json)
         sources = folder / "sources"
         shutil.rmtree(sources, ignore_errors=True)
+        shutil.rmtree(folder / "figures", ignore_errors=True)
+        for figure_id, png in (figures or {}).items():   # ids of the grader's own producers
+            (folder / "figures").mkdir(exist_ok=True)
+            (folder / "figures" / f"{figure_id}.png").write_bytes(png)
     for relative, data in entry.files.items():
         parts = PurePosixPath(relative).parts
         if parts and not any(part in ("", ".", "..") for part in parts) and not relative.startswith("/"):

@@ -56,7 +56,9 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
         ``forbid`` (library functions a student function may not call),
         ``exercise_budget`` and ``submission_budget`` (seconds); ``labs`` and ``hide``, the
         course's own lab folders (absolute paths, on this machine) and hidden checks; and ``gradings``,
-        how many gradings share this machine at once (their memory: :func:`_sharing_the_machine`).
+        how many gradings share this machine at once (their memory: :func:`_sharing_the_machine`);
+        ``figures``, the exercises whose lab-sheet figures are made too (returned as
+        ``"figures"``: figure id -> PNG bytes; see :func:`_figures`).
     """
     from ...reports import html
     from ...engine.results import json_text, strip_pictures
@@ -95,11 +97,28 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
             result = grade(folder, selectors, limits=_sharing_the_machine(limits, rules.get("gradings", 1)),
                            pictures=pictures, inputs_secret=inputs_secret or None, forbid=rules.get("forbid"))
             student = result.for_students(hidden_points_visible)
+            figures = _figures(folder, rules.get("figures") or [], limits, Path(tmp) / "figures")
             return {"result": strip_pictures(result.to_dict()),
-                    "json": json_text(strip_pictures(student.to_dict())), "page": html.render(student)}
+                    "json": json_text(strip_pictures(student.to_dict())), "page": html.render(student),
+                    "figures": figures}
     except Exception as exc:  # noqa: BLE001 - one submission never stops the batch
         return {"error": f"the grader could not finish: {type(exc).__name__}: {exc}",
                 "traceback": traceback.format_exc()[-4000:]}
+
+
+def _figures(folder: Path, exercises: list[str], limits, out: Path) -> dict[str, bytes]:
+    """The lab sheet's figures of ``exercises`` (those the course reviews with a rubric) made by
+    the submission's functions in the sandbox: figure id -> PNG bytes. A figure that cannot be
+    made is left out (the review says so); making them never fails the grading."""
+    if not exercises:
+        return {}
+    from ...figures import make_figures
+
+    try:
+        outcomes = make_figures(folder, exercises, out, limits)
+        return {o.figure_id: o.path.read_bytes() for o in outcomes if o.path is not None}
+    except Exception:  # noqa: BLE001 - the grading stands without its figures
+        return {}
 
 
 def _sharing_the_machine(limits, gradings: int):

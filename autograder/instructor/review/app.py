@@ -1,0 +1,295 @@
+"""The review application: Flask over the batch's gradebook, one reviewer's local server.
+
+Security
+--------
+- Bound to ``127.0.0.1`` only; every address lives under a per-run random token
+  (``http://127.0.0.1:PORT/<token>/``, printed at start): any request without it,
+  or with a ``Host`` other than 127.0.0.1/localhost (DNS rebinding), is answered 403.
+- Every POST carries a second per-run secret in its form (``csrf``) and, when the
+  browser sends an ``Origin``, it must be this server's; else 403.
+- Pages forbid scripts but their own (a per-response nonce), frames, remote
+  images and any referrer (``Content-Security-Policy``, ``Referrer-Policy``), so a
+  student's report can neither run code nor leak the token.
+- The student's text is rendered by :func:`autograder.reports.markdown.render_markdown`;
+  a PDF is offered as a download, never shown or parsed; figures are only the PNGs
+  the batch made from the student's code (``RESULTS/<student>/figures/``).
+
+Storage
+-------
+Every change (an item applied or taken back, a comment, "reviewed", an item's text
+or points) is one transaction of the gradebook (WAL, ``synchronous=FULL``, a busy
+timeout), at once: two tabs see each other's changes on reload, a batch may grade
+meanwhile, and a server killed at any moment loses nothing that was answered.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import hmac
+import random
+import re
+import secrets
+import threading
+from dataclasses import dataclass
+from pathlib import Path
+from urllib.parse import urlsplit
+
+from ...reports.markdown import render_markdown
+from ..batch.gradebook import Gradebook
+from ..batch.run import batch_course
+from ..course import CourseConfigError
+
+FIGURE_ID = re.compile(r"lab\d\d\.[A-Za-z0-9_.-]{1,60}")
+LOCAL_HOSTS = ("127.0.0.1", "localhost")
+
+
+@dataclass(frozen=True)
+class Pair:
+    """One (student, exercise) to review, as the queue orders them."""
+
+    position: int
+    student_id: str
+    exercise: str
+    shown_name: str   # the student's name, or their pseudonym in anonymous mode
+
+
+class ReviewSession:
+    """The gradebook and what a run of the review application fixes: the reviewer's name, the
+    queue's order, the names shown. One connection, used by one thread at a time."""
+
+    def __init__(self, results, reviewer: str = "reviewer", anonymous: bool = False,
+                 shuffle: int | None = None):
+        self.results = Path(results)
+        self.reviewer, self.anonymous, self.shuffle = reviewer, anonymous, shuffle
+        self.lock = threading.Lock()
+        self.book = Gradebook(self.results, threads=True)   # migrates an older gradebook
+        with self.lock:
+            self.course = batch_course(self.book)
+            self.book.sync_rubric(self.course.rubric)
+            secret = self.book.get_meta("review_pseudonym_key")
+            if secret is None:   # stable pseudonyms across runs, unguessable from the ids
+                secret = secrets.token_hex(16)
+                self.book.set_meta("review_pseudonym_key", secret)
+        self._pseudonym_key = secret.encode()
+
+    def close(self) -> None:
+        self.book.close()
+
+    def pseudonym(self, student_id: str) -> str:
+        return "Student " + hmac.new(self._pseudonym_key, student_id.encode(), hashlib.sha256).hexdigest()[:6].upper()
+
+    def queue(self) -> list[Pair]:
+        """Every graded student's exercise that has a rubric: by student and exercise, or
+        shuffled by the seed (the same seed, the same order)."""
+        with self.lock:
+            rubric = self.book.rubric()
+            students = [s for s in self.book.class_results() if s["status"] == "graded"]
+        exercises = [e for e in sorted(rubric) if e in _selected(self.course)]
+        pairs = [(s["student_id"], e, self.pseudonym(s["student_id"]) if self.anonymous else s["display_name"])
+                 for s in students for e in exercises]
+        if self.shuffle is not None:
+            random.Random(self.shuffle).shuffle(pairs)
+        return [Pair(i, *p) for i, p in enumerate(pairs)]
+
+
+def _selected(course) -> set[str]:
+    from ...engine.registry import select
+
+    return {e.id for e in select(course.select)}
+
+
+def create_app(session: ReviewSession, token: str | None = None, csrf: str | None = None):
+    """The Flask application over ``session``; ``token`` (the URL's secret) and ``csrf`` (the
+    forms') are random unless given (tests)."""
+    from flask import Flask, Response, abort, g, jsonify, redirect, render_template, request, url_for
+
+    app = Flask(__name__, template_folder=str(Path(__file__).parent / "templates"))
+    app.config.update(TOKEN=token or secrets.token_urlsafe(24), CSRF=csrf or secrets.token_urlsafe(24),
+                      MAX_CONTENT_LENGTH=256 * 1024)
+    token, csrf = app.config["TOKEN"], app.config["CSRF"]
+
+    @app.before_request
+    def guard():
+        host = (request.host or "").rsplit(":", 1)[0].strip("[]")
+        parts = request.path.split("/", 2)
+        if host not in LOCAL_HOSTS or len(parts) < 2 or not hmac.compare_digest(parts[1].encode(), token.encode()):
+            abort(403)
+        if request.method not in ("GET", "HEAD"):
+            origin = request.headers.get("Origin")
+            if origin and urlsplit(origin).netloc != request.host:
+                abort(403)
+            if not hmac.compare_digest(request.form.get("csrf", "").encode(), csrf.encode()):
+                abort(403)
+        g.nonce = secrets.token_urlsafe(16)
+
+    @app.after_request
+    def headers(response):
+        response.headers["Content-Security-Policy"] = (
+            f"default-src 'none'; script-src 'nonce-{getattr(g, 'nonce', 'none')}'; style-src 'unsafe-inline'; "
+            "img-src 'self'; connect-src 'self'; form-action 'self'; base-uri 'none'; frame-ancestors 'none'")
+        response.headers["Referrer-Policy"] = "no-referrer"
+        response.headers["X-Content-Type-Options"] = "nosniff"
+        response.headers["Cache-Control"] = "no-store"
+        return response
+
+    def pair_at(position: int) -> tuple[Pair, list[Pair]]:
+        queue = session.queue()
+        if not 0 <= position < len(queue):
+            abort(404)
+        return queue[position], queue
+
+    def state(pair: Pair) -> dict:
+        """The review of ``pair`` now, and its points."""
+        with session.lock:
+            review = session.book.reviews().get((pair.student_id, pair.exercise), {})
+            items = session.book.rubric().get(pair.exercise, [])
+        return {"applied": review.get("items", []), "points": review.get("points", 0.0),
+                "comment": review.get("comment", ""), "done": review.get("done", False),
+                "changed_by": review.get("changed_by", ""), "changed_at": review.get("changed_at", ""),
+                "maximum": sum(max(0.0, i["points"]) for i in items)}
+
+    def page(template: str, **context):
+        return render_template(template, token=token, csrf=csrf, nonce=g.nonce, reviewer=session.reviewer,
+                               anonymous=session.anonymous, **context)
+
+    @app.get(f"/{token}/")
+    def queue_page():
+        queue = session.queue()
+        with session.lock:
+            reviews = session.book.reviews()
+        rows = [(p, reviews.get((p.student_id, p.exercise), {})) for p in queue]
+        done = sum(1 for _, r in rows if r.get("done"))
+        return page("queue.html", rows=rows, done=done)
+
+    @app.get(f"/{token}/review/<int:position>")
+    def review_page(position: int):
+        pair, queue = pair_at(position)
+        with session.lock:
+            report = session.book.report(pair.student_id)
+            rubric = session.book.rubric().get(pair.exercise, [])
+            students = {s["student_id"]: s for s in session.book.class_results()}
+        explanation = report["explanations"].get(pair.exercise)
+        figures = _figures(session.results, pair.student_id, pair.exercise)
+
+        def figure_url(name: str):
+            return url_for("figure", position=position, figure_id=name) if name in figures else None
+
+        rendered = render_markdown(explanation["text"], figure_url) if explanation else None
+        result = (students.get(pair.student_id) or {}).get("result") or {}
+        verdict = next((e for e in result.get("exercises", []) if e["id"] == pair.exercise), None)
+        attachments = [(i, path, size) for i, (path, size) in enumerate(report["files"].items())
+                       if path.lower().endswith(".pdf")]
+        return page("review.html", pair=pair, queue_length=len(queue), explanation=explanation,
+                    rendered=rendered, figures=figures, verdict=verdict, rubric=rubric, review=state(pair),
+                    attachments=attachments, problems=report["problems"])
+
+    @app.post(f"/{token}/review/<int:position>/mark")
+    def mark(position: int):
+        pair, _ = pair_at(position)
+        item, applied = request.form.get("item", ""), request.form.get("applied") == "1"
+        with session.lock:
+            try:
+                session.book.set_mark(pair.student_id, pair.exercise, item, applied, session.reviewer)
+            except KeyError:
+                abort(400)
+        return answer(pair, position)
+
+    @app.post(f"/{token}/review/<int:position>/note")
+    def note(position: int):
+        pair, _ = pair_at(position)
+        comment = request.form.get("comment")
+        done = {"1": True, "0": False}.get(request.form.get("done", ""))
+        with session.lock:
+            session.book.set_review_note(pair.student_id, pair.exercise, session.reviewer, comment=comment, done=done)
+        return answer(pair, position)
+
+    def answer(pair: Pair, position: int):
+        if request.headers.get("Accept", "").startswith("application/json"):
+            return jsonify(state(pair))
+        return redirect(url_for("review_page", position=position), code=303)
+
+    @app.get(f"/{token}/rubric")
+    def rubric_page():
+        with session.lock:
+            rubric = session.book.rubric()
+        return page("rubric.html", rubric=rubric, error=request.args.get("error", ""))
+
+    @app.post(f"/{token}/rubric/<exercise>")
+    def rubric_item(exercise: str):
+        with session.lock:
+            known = session.book.rubric()
+        if exercise not in known:
+            abort(404)
+        try:
+            points = float(request.form.get("points", ""))
+        except ValueError:
+            points = None
+        try:
+            with session.lock:
+                session.book.set_rubric_item(exercise, request.form.get("item", "").strip(),
+                                             request.form.get("text", "").strip(), points, session.reviewer)
+        except CourseConfigError as exc:
+            return redirect(url_for("rubric_page", error=str(exc)), code=303)
+        back = request.form.get("back", "")
+        if back.isdigit():
+            return redirect(url_for("review_page", position=int(back)), code=303)
+        return redirect(url_for("rubric_page"), code=303)
+
+    @app.get(f"/{token}/figure/<int:position>/<figure_id>.png")
+    def figure(position: int, figure_id: str):
+        pair, _ = pair_at(position)
+        path = _figures(session.results, pair.student_id, pair.exercise).get(figure_id)
+        if path is None:
+            abort(404)
+        return Response(path.read_bytes(), mimetype="image/png")
+
+    @app.get(f"/{token}/attachment/<int:position>/<int:number>")
+    def attachment(position: int, number: int):
+        pair, _ = pair_at(position)
+        with session.lock:
+            paths = [p for p in session.book.report(pair.student_id)["files"] if p.lower().endswith(".pdf")]
+            if not 0 <= number < len(paths):
+                abort(404)
+            data = session.book.report_file(pair.student_id, paths[number])
+        name = f"{pair.shown_name if session.anonymous else pair.student_id}-{number + 1}.pdf"
+        return Response(data, mimetype="application/pdf", headers={
+            "Content-Disposition": f'attachment; filename="{re.sub(r"[^A-Za-z0-9._-]", "_", name)}"'})
+
+    app.jinja_env.filters["num"] = lambda v: "" if v is None else f"{round(float(v), 4):g}"
+    return app
+
+
+def _figures(results: Path, student_id: str, exercise: str) -> dict[str, Path]:
+    """The PNGs the batch made from the student's code for ``exercise`` (and its extension's):
+    figure id -> file, only regular files named as the grader names them."""
+    folder = results / student_id / "figures"
+    if not folder.is_dir() or folder.is_symlink():
+        return {}
+    found = {}
+    for path in sorted(folder.glob("*.png")):
+        figure_id = path.name[:-4]
+        if FIGURE_ID.fullmatch(figure_id) and path.is_file() and not path.is_symlink() and (
+                figure_id == exercise or figure_id.startswith(exercise + "-")):
+            found[figure_id] = path
+    return found
+
+
+def serve(results, port: int = 0, reviewer: str = "reviewer", anonymous: bool = False,
+          shuffle: int | None = None, announce=print) -> None:
+    """Serve the review of ``results`` on 127.0.0.1:``port`` (0: a free one) until interrupted;
+    ``announce(url)`` is told the address with its token."""
+    from werkzeug.serving import make_server
+
+    session = ReviewSession(results, reviewer, anonymous, shuffle)
+    try:
+        app = create_app(session)
+        server = make_server("127.0.0.1", port, app, threaded=True)
+        announce(f"http://127.0.0.1:{server.server_port}/{app.config['TOKEN']}/")
+        try:
+            server.serve_forever()
+        except KeyboardInterrupt:
+            pass
+        finally:
+            server.server_close()
+    finally:
+        session.close()

@@ -1,0 +1,195 @@
+"""``autograder review``: the Flask application over the gradebook (Flask's test client).
+
+The token is required everywhere, POSTs need the form's CSRF secret (and a same-origin
+``Origin``), the student's text is inert, anonymous mode shows no name, a seeded shuffle
+is stable, and every change lands in the gradebook at once.
+"""
+
+from __future__ import annotations
+
+import re
+import socket
+import threading
+import urllib.request
+
+import pytest
+
+pytest.importorskip("flask")
+
+from autograder.instructor.batch.gradebook import Gradebook  # noqa: E402
+from autograder.instructor.review.app import ReviewSession, create_app, serve  # noqa: E402
+from test_review_storage import graded_book  # noqa: E402
+
+TOKEN, CSRF = "t0ken-for-tests", "csrf-for-tests"
+STUDENTS = ("ada", "bo", "cy")
+
+
+@pytest.fixture
+def results(tmp_path):
+    with graded_book(tmp_path, STUDENTS, (12.0, 6.0, 0.0)) as book:
+        book.db.execute("INSERT INTO explanations VALUES ('ada', 'lab07.ex1', ?, 'lab07_report.md', 0)",
+                        ("The warp leaves **black corners** <script>alert(1)</script> "
+                         "[x](javascript:alert(1)) ![fig](figures/lab07.ex1.png) ![t](https://evil.example/t.png)",))
+        book.db.execute("INSERT INTO report_files VALUES ('ada', 'ada lovelace.pdf', ?)", (b"%PDF-1.4 x",))
+    (tmp_path / "ada" / "figures").mkdir(parents=True)
+    (tmp_path / "ada" / "figures" / "lab07.ex1.png").write_bytes(b"\x89PNG figure")
+    (tmp_path / "ada" / "figures" / "notes.png").write_bytes(b"\x89PNG not a figure id")
+    return tmp_path
+
+
+def client_for(results, **options):
+    session = ReviewSession(results, reviewer="prof", **options)
+    app = create_app(session, token=TOKEN, csrf=CSRF)
+    return session, app.test_client()
+
+
+def get(client, path, **kw):
+    return client.get(path, base_url="http://127.0.0.1:5000", **kw)
+
+
+def post(client, path, data, **kw):
+    return client.post(path, data=data, base_url="http://127.0.0.1:5000", **kw)
+
+
+def test_every_request_needs_the_token_and_a_local_host(results):
+    session, client = client_for(results)
+    try:
+        assert get(client, f"/{TOKEN}/").status_code == 200
+        for path in ("/", "/review/0", f"/{TOKEN}x/", f"/{TOKEN[:-1]}/", "/favicon.ico", f"/x/{TOKEN}/",
+                     f"/{TOKEN.upper()}/review/0"):
+            assert get(client, path).status_code == 403, path
+        assert post(client, f"/x/review/0/mark", {"csrf": CSRF, "item": "corners", "applied": "1"}).status_code == 403
+        rebinding = client.get(f"/{TOKEN}/", base_url="http://evil.example:5000")
+        assert rebinding.status_code == 403, "a DNS-rebound host is refused"
+        page = get(client, f"/{TOKEN}/")
+        assert page.headers["Referrer-Policy"] == "no-referrer"
+        assert "default-src 'none'" in page.headers["Content-Security-Policy"]
+    finally:
+        session.close()
+
+
+def test_posts_need_the_csrf_secret_and_the_same_origin(results):
+    session, client = client_for(results)
+    try:
+        form = {"item": "corners", "applied": "1"}
+        assert post(client, f"/{TOKEN}/review/0/mark", form).status_code == 403
+        assert post(client, f"/{TOKEN}/review/0/mark", {**form, "csrf": "wrong"}).status_code == 403
+        assert post(client, f"/{TOKEN}/review/0/mark", {**form, "csrf": CSRF},
+                    headers={"Origin": "https://evil.example"}).status_code == 403
+        assert Gradebook(results, readonly=True).reviews() == {}, "nothing written by a refused request"
+        answer = post(client, f"/{TOKEN}/review/0/mark", {**form, "csrf": CSRF},
+                      headers={"Origin": "http://127.0.0.1:5000", "Accept": "application/json"})
+        assert answer.status_code == 200 and answer.json["applied"] == ["corners"] and answer.json["points"] == 2
+        assert post(client, f"/{TOKEN}/review/0/mark", {"csrf": CSRF, "item": "nope", "applied": "1"}).status_code == 400
+    finally:
+        session.close()
+
+
+def test_the_review_screen_shows_the_explanation_inert_the_figures_verdict_and_rubric(results):
+    session, client = client_for(results)
+    try:
+        page = get(client, f"/{TOKEN}/review/0").get_data(as_text=True)
+        assert "<strong>black corners</strong>" in page
+        assert "<script>alert(1)" not in page and "&lt;script&gt;" in page
+        assert 'href="javascript:' not in page and "evil.example" not in page.split('id="explanation"')[1][:2000] \
+            .replace("[image not shown: t]", "")
+        assert f'src="/{TOKEN}/figure/0/lab07.ex1.png"' in page
+        assert "notes.png" not in page
+        assert "12 / 12" in page and "explains the black corners" in page and "<kbd>1</kbd>" in page
+        assert "Ada" in page and "ada lovelace.pdf" in page
+        assert get(client, f"/{TOKEN}/figure/0/lab07.ex1.png").data == b"\x89PNG figure"
+        assert get(client, f"/{TOKEN}/figure/0/notes.png").status_code == 404
+        assert get(client, f"/{TOKEN}/figure/0/..%2f..%2fgradebook.sqlite.png").status_code == 404
+        pdf = get(client, f"/{TOKEN}/attachment/0/0")
+        assert pdf.data == b"%PDF-1.4 x" and pdf.headers["Content-Disposition"].startswith("attachment;")
+        assert get(client, f"/{TOKEN}/attachment/0/5").status_code == 404
+        assert get(client, f"/{TOKEN}/review/99").status_code == 404
+        nothing = get(client, f"/{TOKEN}/review/2").get_data(as_text=True)
+        assert "No explanation written" in nothing and "No figure" in nothing
+    finally:
+        session.close()
+
+
+def test_changes_are_in_the_gradebook_at_once_and_items_are_edited_centrally(results):
+    session, client = client_for(results)
+    try:
+        for position, item in ((0, "corners"), (1, "corners"), (1, "no-figure")):
+            post(client, f"/{TOKEN}/review/{position}/mark", {"csrf": CSRF, "item": item, "applied": "1"})
+        post(client, f"/{TOKEN}/review/1/note", {"csrf": CSRF, "comment": "Where is <b>it</b>?", "done": "1"})
+        with Gradebook(results, readonly=True) as other:   # another connection: committed already
+            reviews = other.reviews()
+        assert reviews[("ada", "lab07.ex1")]["points"] == 2 and reviews[("bo", "lab07.ex1")]["points"] == 1
+        assert reviews[("bo", "lab07.ex1")]["done"] and reviews[("bo", "lab07.ex1")]["changed_by"] == "prof"
+        answer = post(client, f"/{TOKEN}/rubric/lab07.ex1", {"csrf": CSRF, "item": "corners",
+                                                            "text": "explains the corners", "points": "3"})
+        assert answer.status_code == 303
+        with Gradebook(results, readonly=True) as other:
+            reviews = other.reviews()
+        assert reviews[("ada", "lab07.ex1")]["points"] == 3 and reviews[("bo", "lab07.ex1")]["points"] == 2
+        bad = post(client, f"/{TOKEN}/rubric/lab07.ex1", {"csrf": CSRF, "item": "corners", "text": "t", "points": "x"})
+        assert "points+must+be+a+number" in bad.headers["Location"] or "points%20must" in bad.headers["Location"]
+        assert post(client, f"/{TOKEN}/rubric/lab99.ex1", {"csrf": CSRF, "item": "a", "text": "t",
+                                                          "points": "1"}).status_code == 404
+        queue = get(client, f"/{TOKEN}/").get_data(as_text=True)
+        assert "1 of 3 reviewed" in queue
+        page = get(client, f"/{TOKEN}/review/1").get_data(as_text=True)
+        assert "Where is &lt;b&gt;it&lt;/b&gt;?" in page
+    finally:
+        session.close()
+
+
+def test_anonymous_mode_hides_names_with_stable_pseudonyms_and_the_shuffle_is_seeded(results):
+    session, client = client_for(results, anonymous=True, shuffle=7)
+    try:
+        queue = get(client, f"/{TOKEN}/").get_data(as_text=True)
+        page = get(client, f"/{TOKEN}/review/0").get_data(as_text=True)
+        for name in ("Ada", "Bo", "Cy", "ada lovelace", "lab07_report.md"):
+            assert name not in queue and name not in page, name
+        names = re.findall(r"Student [0-9A-F]{6}", queue)
+        order = [p.student_id for p in session.queue()]
+    finally:
+        session.close()
+    assert len(set(names)) == 3
+    again = ReviewSession(results, anonymous=True, shuffle=7)
+    try:
+        assert [p.student_id for p in again.queue()] == order, "the same seed, the same order"
+        assert [p.shown_name for p in again.queue()] == [again.pseudonym(s) for s in order]
+        assert {p.shown_name for p in again.queue()} == set(names), "pseudonyms stable across runs"
+    finally:
+        again.close()
+    orders = set()
+    for seed in range(6):
+        shuffled = ReviewSession(results, shuffle=seed)
+        orders.add(tuple(p.student_id for p in shuffled.queue()))
+        shuffled.close()
+    assert len(orders) > 1, "the seed changes the order"
+
+
+def test_the_server_listens_on_127_0_0_1_only_and_prints_its_token(results):
+    announced = []
+    ready = threading.Event()
+
+    def announce(url):
+        announced.append(url)
+        ready.set()
+
+    thread = threading.Thread(target=serve, args=(results,), kwargs={"announce": announce}, daemon=True)
+    thread.start()
+    assert ready.wait(30)
+    url = announced[0]
+    match = re.fullmatch(r"http://127\.0\.0\.1:(\d+)/([A-Za-z0-9_-]{20,})/", url)
+    assert match, url
+    port = int(match[1])
+    assert urllib.request.urlopen(url, timeout=10).status == 200
+    with pytest.raises(urllib.error.HTTPError) as refused:
+        urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=10)
+    assert refused.value.code == 403
+    addresses = {info[4][0] for info in socket.getaddrinfo(socket.gethostname(), None, socket.AF_INET)} - {"127.0.0.1"}
+    for address in addresses:   # another interface of this machine: nothing listens there
+        with pytest.raises(OSError):
+            socket.create_connection((address, port), timeout=2).close()
+    import psutil
+
+    listening = [c.laddr for c in psutil.net_connections("tcp") if c.laddr and c.laddr.port == port
+                 and c.status == psutil.CONN_LISTEN]
+    assert listening and all(addr.ip == "127.0.0.1" for addr in listening)
