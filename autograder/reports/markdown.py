@@ -100,7 +100,7 @@ def _figure_or_alt(token, figure_url) -> None:
     url = figure_url(figure_name(src)) if figure_url and safe_link(src) and not _SCHEME.match(src.strip()) else None
     alt = "".join(c.content for c in token.children or () if c.type in ("text", "code_inline")) or token.content
     if url:
-        token.attrs = {"src": url, "alt": alt, "loading": "lazy"}
+        token.attrs = {"src": url, "alt": alt}
         return
     # Rendered as text: the alt, marked as an image not shown.
     token.type, token.tag, token.nesting, token.children = "text", "", 0, None
