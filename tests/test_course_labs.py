@@ -241,6 +241,11 @@ def test_grade_with_the_course_config(tmp_path, capsys):
     assert any("truncated" in c["message"] for c in stretch["checks"])
 
 
+def test_validate_with_the_course_config(capsys):
+    assert main(["validate", str(REFERENCE), "lab13", "--config", str(COURSE / "course.json")]) == 0
+    assert "lab13" in capsys.readouterr().out
+
+
 @pytest.mark.slow
 def test_a_batch_grades_the_course_lab(tmp_path, capsys):
     submissions = tmp_path / "class"
