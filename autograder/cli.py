@@ -675,12 +675,13 @@ def run_report(args) -> int:
 
     try:
         course = CourseConfig.load(args.course) if args.course else None
+        title = args.title or (course.assignment if course else None)
+        out = write_overview(args.results, course_title=title)
         restored, problems = restore_student_files(args.results, course)
         try:   # the CSVs and every page again, with the reports' reviews
-            write_exports(args.results, course)
+            write_exports(args.results, course, course_title=title)
         except IngestError as exc:   # a batch is writing RESULTS: it writes them when it ends
             print(f"note: {exc}; the CSVs and pages are written by that batch when it finishes", file=sys.stderr)
-        out = write_overview(args.results, course_title=args.title or (course.assignment if course else None))
     except (CourseConfigError, NoGradebook, SelectionError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return USAGE_ERROR

@@ -230,23 +230,33 @@ def class_grades(book: Gradebook, course: CourseConfig | None = None) -> ClassGr
                        exports.report_maxima(rubric, exercises))
 
 
-def _write_exports(out: Path, standing: ClassGrades) -> list[Path]:
+def _write_exports(out: Path, standing: ClassGrades, course_title: str | None = None,
+                   unreadable: list[str] | None = None) -> list[Path]:
     """The CSVs, every graded student's page brought up to date (adjustments, review, final
-    grade) and the class overview; returns the files written (the pages left out)."""
+    grade) and the class overview; returns the files written (the pages left out). With
+    ``unreadable``, a page whose stored grading cannot be rendered is named there
+    (``"id: why"``) instead of stopping the rest."""
     files = exports.write_csvs(out, standing.grades, standing.exercises, standing.course,
                                roster_given=bool(standing.roster), roster_columns=standing.roster.columns,
                                report_max=standing.report_max)
     for grade in standing.grades:
         if grade.student.get("feedback"):
-            _refresh_page(out, grade, standing.possible, standing.course)
-    files.append(_write_overview(out, standing))
+            try:
+                _refresh_page(out, grade, standing.possible, standing.course)
+            except ValueError as exc:
+                if unreadable is None:
+                    raise
+                unreadable.append(f"{grade.student['student_id']}: {exc}")
+    files.append(_write_overview(out, standing, course_title))
     return files
 
 
-def write_exports(out, course: CourseConfig | None = None) -> tuple[list[Path], list[str]]:
+def write_exports(out, course: CourseConfig | None = None,
+                  course_title: str | None = None) -> tuple[list[Path], list[str]]:
     """``autograder report``: every export written again from the gradebook (the CSVs, each
     student's page with the current adjustments, review and final grade, the overview), as
-    the batch writes them at its end. Returns the files written and warnings.
+    the batch writes them at its end. Returns the files written and warnings (a page that
+    cannot be written again is one; :func:`restore_student_files` names it too).
 
     While a batch writes RESULTS nothing is written here (:class:`.ingest.IngestError`): the
     batch writes every export itself when it finishes, reviews included.
@@ -255,9 +265,10 @@ def write_exports(out, course: CourseConfig | None = None) -> tuple[list[Path], 
     out = Path(out)
     with _only_writer(out), Gradebook(out, readonly=True) as book:
         standing = class_grades(book, course)
+        unreadable: list[str] = []
         with storing(out):
-            files = _write_exports(out, standing)
-    return files, standing.warnings
+            files = _write_exports(out, standing, course_title, unreadable)
+    return files, standing.warnings + unreadable
 
 
 def stored_roster(book: Gradebook) -> exports.Roster:
@@ -358,11 +369,11 @@ def _write_student(out: Path, entry: Entry, results_json: str, page: str, figure
                 raise
 
 
-def _write_overview(out: Path, standing: ClassGrades) -> Path:
+def _write_overview(out: Path, standing: ClassGrades, course_title: str | None = None) -> Path:
     """``index.html``: the class's final grades, what it got wrong, and every report written."""
     from ..classreport.pages import write_overview_of
 
-    return write_overview_of(out, standing)
+    return write_overview_of(out, standing, course_title)
 
 
 def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> list[Path]:
