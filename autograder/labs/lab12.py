@@ -524,16 +524,45 @@ def name_pose_mistake(t: Trial, pair, what):
                "the pair.", mistake=undone[0])
 
 
+def orientation(H, shape) -> tuple[bool, bool, bool]:
+    """Whether ``H`` reverses the image's x axis, its y axis (measured along the image's centre
+    lines), and maps the image centre to a negative third coordinate (the new camera looks away)."""
+    h, w = shape[:2]
+    ends = np.array([[0.0, (h - 1) / 2, 1], [w - 1.0, (h - 1) / 2, 1], [(w - 1) / 2, 0.0, 1],
+                     [(w - 1) / 2, h - 1.0, 1], [(w - 1) / 2, (h - 1) / 2, 1]])
+    mapped = ends @ np.asarray(H, float).T
+    behind = bool(mapped[4, 2] < 0)
+    mapped = mapped[:, :2] / mapped[:, 2:3]
+    return bool(mapped[1, 0] < mapped[0, 0]), bool(mapped[3, 1] < mapped[2, 1]), behind
+
+
 def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
     dy, dx = row_errors(H1, H2, pair)
     worst = float(np.nanmax(dy)) if np.all(np.isfinite(dy)) else float("inf")
     if worst <= ROW_TOLERANCE:
         if np.median(dx) <= 0:
-            t.fail(f"{what}: matches are on the same rows, but the disparities x_l - x_r are "
-                   f"negative (median {np.median(dx):.3g} px): the left and right roles are "
-                   "swapped or the new x axis points from camera 2 to camera 1.",
-                   mistake="the left and right roles are swapped in the rectification",
-                   hint="camera 2's centre in camera-1 coordinates is -R^T T: the new x axis points towards it")
+            # Negative disparities: how the two maps turn the images tells the cause apart.
+            shape = np.asarray(pair.img_l).shape
+            (x1, y1, back1), (x2, y2, back2) = orientation(H1, shape), orientation(H2, shape)
+            negative = (f"{what}: matches are on the same rows, but the disparities x_l - x_r are "
+                        f"negative (median {np.median(dx):.3g} px)")
+            if back1 and back2:
+                t.fail(f"{negative}: the new cameras look away from the scene (each image's centre maps to a "
+                       "negative third coordinate), which mirrors both images: the rectifying rotation's "
+                       "second and third axes point the opposite way.",
+                       mistake="the rectifying rotation looks backwards: e2 and e3 point the opposite way",
+                       hint="e2 = e1 x z and e3 = e1 x e2, in this order, keep the new z axis towards the scene")
+            if x1 and x2 and not (back1 or back2):
+                t.fail(f"{negative}: both rectified images are mirrored left to right with the new cameras "
+                       "facing the scene: the new x axis points from camera 2 to camera 1.",
+                       mistake="the new x axis points from camera 2 to camera 1 (the images are mirrored)",
+                       hint="camera 2's centre in camera-1 coordinates is -R^T T: the new x axis points towards it")
+            if not (x1 or x2 or y1 or y2 or back1 or back2):
+                t.fail(f"{negative}, and neither image is turned or mirrored: the left and right roles are "
+                       "swapped.", mistake="the left and right roles are swapped in the rectification")
+            t.fail(f"{negative}: the two maps turn the images differently (left image: "
+                   f"{'mirrored' if x1 else 'not mirrored'}, {'upside down' if y1 else 'upright'}; right: "
+                   f"{'mirrored' if x2 else 'not mirrored'}, {'upside down' if y2 else 'upright'}).")
         return worst, float(np.median(dx))
     name_pose_mistake(t, pair, what)
     # Undoing a mistake of the construction must rectify exactly (the rows agree to rounding
