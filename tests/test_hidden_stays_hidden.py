@@ -20,7 +20,6 @@ import copy
 import html as html_text
 import json
 import textwrap
-import types
 from pathlib import Path
 
 import pytest
@@ -31,6 +30,7 @@ from autograder.instructor import gradescope
 from autograder.student import selfcheck
 from autograder.instructor.batch import run as batch_run
 from autograder.instructor.batch import task
+from autograder.instructor.batch.exports import StudentGrade
 from autograder.instructor.course import CourseConfig, CourseConfigError
 from autograder.engine.registry import discover
 from autograder.reports import html
@@ -251,8 +251,8 @@ def test_batch_student_files(gradings, graded_as, kind, points_visible, tmp_path
     assert "error" not in outcome, outcome
     data = json.loads(outcome["json"])
     # The batch re-renders a lost page from the gradebook, which keeps the whole grading.
-    student = types.SimpleNamespace(student={"student_id": "student1", "result": outcome["result"]},
-                                    adjustments=[], late_penalty=0, total=0)
+    student = StudentGrade(student={"student_id": "student1", "status": "graded", "result": outcome["result"]},
+                           exercises={})
     course = CourseConfig(hidden_points_visible=points_visible)
     batch_run._refresh_page(tmp_path, student, result.max_total, course)
     assert_nothing_hidden(result, {"feedback.html": outcome["page"], "results.json": "\n".join(strings(data)),
