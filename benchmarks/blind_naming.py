@@ -17,6 +17,7 @@ exercise, hidden checks included, and classified:
     python benchmarks/blind_naming.py --lab lab08 --json out.json
     python benchmarks/blind_naming.py --set b           # the second set (blind_mistakes/later.py; --later)
     python benchmarks/blind_naming.py --set c           # the third set (blind_mistakes/set_c.py)
+    python benchmarks/blind_naming.py --set d           # the fourth set (blind_mistakes/set_d.py)
 
 The cases are never tuned on: they were written and committed before the naming
 mechanism was changed, and the truth of each was written with it.
@@ -36,7 +37,8 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 OUTCOMES = ("named", "described", "wrong", "not caught")
-SETS = {"a": None, "b": "later", "c": "set_c"}  # set -> module of (module, Case) pairs; a is per lab
+# set -> module of (module, Case) pairs; a is per lab
+SETS = {"a": None, "b": "later", "c": "set_c", "d": "set_d"}
 _LOOKS_LIKE = re.compile(r"(?:it )?looks like (.+?)(?:\.(?:\s|$)|\n|$)", re.S | re.I)
 
 
@@ -87,7 +89,8 @@ def main(argv=None) -> int:
     parser.add_argument("--json", type=Path, help="write every case's outcome, names and first message here")
     parser.add_argument("--set", dest="blind_set", choices=SETS, default="a",
                         help="which blind set: a (blind_mistakes/labNN.py, the default), b (later.py, written "
-                             "after the mechanism) or c (set_c.py, written without reading the grader)")
+                             "after the mechanism), c (set_c.py) or d (set_d.py), both written without "
+                             "reading the grader)")
     parser.add_argument("--later", dest="blind_set", action="store_const", const="b",
                         help="the same as --set b")
     args = parser.parse_args(argv)
