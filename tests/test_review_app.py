@@ -17,6 +17,7 @@ import pytest
 pytest.importorskip("flask")
 
 from autograder.instructor.batch.gradebook import Gradebook  # noqa: E402
+from autograder.instructor.batch.ingest import Entry  # noqa: E402
 from autograder.instructor.review.app import ReviewSession, create_app, serve  # noqa: E402
 from test_review_storage import graded_book  # noqa: E402
 
@@ -51,6 +52,12 @@ def post(client, path, data, **kw):
     return client.post(path, data=data, base_url="http://127.0.0.1:5000", **kw)
 
 
+def base(client, position: int) -> str:
+    """Where the review screen at ``position`` sends its changes (its script's ``base``)."""
+    page = get(client, f"/{TOKEN}/review/{position}").get_data(as_text=True)
+    return re.search(r"const base = '([^']+)'", page)[1]
+
+
 def test_every_request_needs_the_token_and_a_local_host(results):
     session, client = client_for(results)
     try:
@@ -72,15 +79,16 @@ def test_posts_need_the_csrf_secret_and_the_same_origin(results):
     session, client = client_for(results)
     try:
         form = {"item": "corners", "applied": "1"}
-        assert post(client, f"/{TOKEN}/review/0/mark", form).status_code == 403
-        assert post(client, f"/{TOKEN}/review/0/mark", {**form, "csrf": "wrong"}).status_code == 403
-        assert post(client, f"/{TOKEN}/review/0/mark", {**form, "csrf": CSRF},
+        mark = base(client, 0) + "/mark"
+        assert post(client, mark, form).status_code == 403
+        assert post(client, mark, {**form, "csrf": "wrong"}).status_code == 403
+        assert post(client, mark, {**form, "csrf": CSRF},
                     headers={"Origin": "https://evil.example"}).status_code == 403
         assert Gradebook(results, readonly=True).reviews() == {}, "nothing written by a refused request"
-        answer = post(client, f"/{TOKEN}/review/0/mark", {**form, "csrf": CSRF},
+        answer = post(client, mark, {**form, "csrf": CSRF},
                       headers={"Origin": "http://127.0.0.1:5000", "Accept": "application/json"})
         assert answer.status_code == 200 and answer.json["applied"] == ["corners"] and answer.json["points"] == 2
-        assert post(client, f"/{TOKEN}/review/0/mark", {"csrf": CSRF, "item": "nope", "applied": "1"}).status_code == 400
+        assert post(client, mark, {"csrf": CSRF, "item": "nope", "applied": "1"}).status_code == 400
     finally:
         session.close()
 
@@ -93,16 +101,17 @@ def test_the_review_screen_shows_the_explanation_inert_the_figures_verdict_and_r
         assert "<script>alert(1)" not in page and "&lt;script&gt;" in page
         assert 'href="javascript:' not in page and "evil.example" not in page.split('id="explanation"')[1][:2000] \
             .replace("[image not shown: t]", "")
-        assert f'src="/{TOKEN}/figure/0/lab07.ex1.png"' in page
+        ada = session.ref("ada")
+        assert f'src="/{TOKEN}/figure/{ada}/lab07.ex1/lab07.ex1.png"' in page
         assert "notes.png" not in page
         assert "12 / 12" in page and "explains the black corners" in page and "<kbd>1</kbd>" in page
         assert "Ada" in page and "ada lovelace.pdf" in page
-        assert get(client, f"/{TOKEN}/figure/0/lab07.ex1.png").data == b"\x89PNG figure"
-        assert get(client, f"/{TOKEN}/figure/0/notes.png").status_code == 404
-        assert get(client, f"/{TOKEN}/figure/0/..%2f..%2fgradebook.sqlite.png").status_code == 404
-        pdf = get(client, f"/{TOKEN}/attachment/0/0")
+        assert get(client, f"/{TOKEN}/figure/{ada}/lab07.ex1/lab07.ex1.png").data == b"\x89PNG figure"
+        assert get(client, f"/{TOKEN}/figure/{ada}/lab07.ex1/notes.png").status_code == 404
+        assert get(client, f"/{TOKEN}/figure/{ada}/lab07.ex1/..%2f..%2fgradebook.sqlite.png").status_code == 404
+        pdf = get(client, f"/{TOKEN}/attachment/{ada}/lab07.ex1/0")
         assert pdf.data == b"%PDF-1.4 x" and pdf.headers["Content-Disposition"].startswith("attachment;")
-        assert get(client, f"/{TOKEN}/attachment/0/5").status_code == 404
+        assert get(client, f"/{TOKEN}/attachment/{ada}/lab07.ex1/5").status_code == 404
         assert get(client, f"/{TOKEN}/review/99").status_code == 404
         nothing = get(client, f"/{TOKEN}/review/2").get_data(as_text=True)
         assert "No explanation written" in nothing and "No figure" in nothing
@@ -114,8 +123,8 @@ def test_changes_are_in_the_gradebook_at_once_and_items_are_edited_centrally(res
     session, client = client_for(results)
     try:
         for position, item in ((0, "corners"), (1, "corners"), (1, "no-figure")):
-            post(client, f"/{TOKEN}/review/{position}/mark", {"csrf": CSRF, "item": item, "applied": "1"})
-        post(client, f"/{TOKEN}/review/1/note", {"csrf": CSRF, "comment": "Where is <b>it</b>?", "done": "1"})
+            post(client, base(client, position) + "/mark", {"csrf": CSRF, "item": item, "applied": "1"})
+        post(client, base(client, 1) + "/note", {"csrf": CSRF, "comment": "Where is <b>it</b>?", "done": "1"})
         with Gradebook(results, readonly=True) as other:   # another connection: committed already
             reviews = other.reviews()
         assert reviews[("ada", "lab07.ex1")]["points"] == 2 and reviews[("bo", "lab07.ex1")]["points"] == 1
@@ -134,6 +143,40 @@ def test_changes_are_in_the_gradebook_at_once_and_items_are_edited_centrally(res
         assert "1 of 3 reviewed" in queue
         page = get(client, f"/{TOKEN}/review/1").get_data(as_text=True)
         assert "Where is &lt;b&gt;it&lt;/b&gt;?" in page
+    finally:
+        session.close()
+
+
+def test_a_batch_moving_the_queue_never_turns_a_page_onto_another_student(results):
+    """bo's screen is open when a batch grades 'ai', who sorts before bo: the page's marks, comment,
+    figures and PDFs stay bo's, and 'next' goes on from where bo is now."""
+    from test_review_storage import result
+
+    for student in ("bo", "ai"):
+        (results / student / "figures").mkdir(parents=True)
+        (results / student / "figures" / "lab07.ex1.png").write_bytes(b"\x89PNG " + student.encode())
+    session, client = client_for(results, shuffle=3)
+    try:
+        position = next(p.position for p in session.queue() if p.student_id == "bo")
+        page = get(client, f"/{TOKEN}/review/{position}").get_data(as_text=True)
+        changes = re.search(r"const base = '([^']+)'", page)[1]
+        figure = re.search(r'<img src="([^"]+)"', page.split('id="figures"')[1])[1]
+        with Gradebook(results) as batch:   # another process grades a new student meanwhile
+            entries = [Entry(s, s.title(), "canvas", f"{s}.py", files={"lab07_transformations.py": b"x"})
+                       for s in ("ada", "ai", "bo", "cy")]
+            batch.sync_students(entries, {e.student_id: f"key-{e.student_id}" for e in entries})
+            batch.record("key-ai", "ai", entries[1].content_hash, "lab07.ex1", result(3.0), lock="l")
+        assert next(p.position for p in session.queue() if p.student_id == "bo") != position, "the queue moved"
+        post(client, changes + "/mark", {"csrf": CSRF, "item": "corners", "applied": "1"})
+        post(client, changes + "/note", {"csrf": CSRF, "comment": "for bo", "done": "1"})
+        reviews = Gradebook(results, readonly=True).reviews()
+        assert set(reviews) == {("bo", "lab07.ex1")} and reviews[("bo", "lab07.ex1")]["comment"] == "for bo"
+        assert get(client, figure).data == b"\x89PNG bo", "bo's figure, not the new student's"
+        queue = session.queue()
+        now = next(p.position for p in queue if p.student_id == "bo")
+        step = get(client, f"{changes}/step/next")
+        assert step.status_code == 303
+        assert step.headers["Location"].endswith(f"/review/{now + 1}" if now + 1 < len(queue) else f"/{TOKEN}/")
     finally:
         session.close()
 
@@ -163,6 +206,41 @@ def test_anonymous_mode_hides_names_with_stable_pseudonyms_and_the_shuffle_is_se
         orders.add(tuple(p.student_id for p in shuffled.queue()))
         shuffled.close()
     assert len(orders) > 1, "the seed changes the order"
+
+
+def test_anonymous_mode_shows_no_name_in_the_reports_problems_nor_in_the_queues_order(results):
+    """File names a student chose (in the problems of their report, the sources of its explanations)
+    and their names are not shown; unshuffled, the queue is in pseudonym order, not by name."""
+    import json
+
+    with Gradebook(results) as book:
+        book.set_meta("review_pseudonym_key", "k1")   # orders the pseudonyms bo, cy, ada
+        book.db.execute("UPDATE students SET display_name='Ada Lovelace' WHERE student_id='ada'")
+        book.db.execute("UPDATE students SET report_problems=? WHERE student_id='ada'", (json.dumps([
+            "Report_ADA_LOVELACE.pdf was not read: it is not a PDF (it does not begin with %PDF-)",
+            "lovelace-notes/lab07_report.md: the explanation of lab07.ex1 has no '<!-- end explanation -->'",
+            "lab07.ex1 is explained twice (lovelace-notes/lab07_report.md; ada.ipynb, cell 3); both texts are kept",
+            "submission 100.zip was not read"]),))
+        book.db.execute("UPDATE explanations SET source='lovelace-notes/lab07_report.md; ada.ipynb, cell 3' "
+                        "WHERE student_id='ada'")
+    session, client = client_for(results, anonymous=True)
+    try:
+        assert [p.student_id for p in session.queue()] == ["bo", "cy", "ada"]
+        position = next(p.position for p in session.queue() if p.student_id == "ada")
+        page = get(client, f"/{TOKEN}/review/{position}").get_data(as_text=True)
+        shown = page.split('id="files"')[1]
+        for name in ("ada", "Ada", "ADA", "Lovelace", "LOVELACE", "lovelace"):
+            assert not re.search(rf"(?<![A-Za-z]){name}(?![A-Za-z])", page), name
+        assert "it is not a PDF" in shown and "explained twice" in shown, "the problems themselves are shown"
+        assert session.pseudonym("ada") in shown and "100.zip" in shown, "a short number is no name"
+    finally:
+        session.close()
+    session, client = client_for(results)
+    try:   # not anonymous: everything as it is
+        page = get(client, f"/{TOKEN}/review/0").get_data(as_text=True)
+        assert "Report_ADA_LOVELACE.pdf" in page and "lovelace-notes/lab07_report.md" in page
+    finally:
+        session.close()
 
 
 def test_the_server_listens_on_127_0_0_1_only_and_prints_its_token(results):

@@ -51,6 +51,7 @@ class Pair:
     student_id: str
     exercise: str
     shown_name: str   # the student's name, or their pseudonym in anonymous mode
+    ref: str          # the student in addresses: stable, and no name (see ReviewSession.ref)
 
 
 class ReviewSession:
@@ -76,17 +77,26 @@ class ReviewSession:
         self.book.close()
 
     def pseudonym(self, student_id: str) -> str:
-        return "Student " + hmac.new(self._pseudonym_key, student_id.encode(), hashlib.sha256).hexdigest()[:6].upper()
+        return "Student " + self.ref(student_id)[:6].upper()
+
+    def ref(self, student_id: str) -> str:
+        """The student in the application's addresses. A queue's positions move when a batch
+        grades a student meanwhile, so whatever changes or shows one student's review (a mark,
+        a note, a figure, a PDF) names the student by this, never by a position."""
+        return hmac.new(self._pseudonym_key, student_id.encode(), hashlib.sha256).hexdigest()[:20]
 
     def queue(self) -> list[Pair]:
         """Every graded student's exercise that has a rubric: by student and exercise, or
-        shuffled by the seed (the same seed, the same order)."""
+        shuffled by the seed (the same seed, the same order); in anonymous mode, unshuffled, by
+        pseudonym (the students' order would tell their names)."""
         with self.lock:
             rubric = self.book.rubric()
             students = [s for s in self.book.class_results() if s["status"] == "graded"]
         exercises = [e for e in sorted(rubric) if e in _selected(self.course)]
-        pairs = [(s["student_id"], e, self.pseudonym(s["student_id"]) if self.anonymous else s["display_name"])
-                 for s in students for e in exercises]
+        if self.anonymous:
+            students.sort(key=lambda s: self.ref(s["student_id"]))
+        pairs = [(s["student_id"], e, self.pseudonym(s["student_id"]) if self.anonymous else s["display_name"],
+                  self.ref(s["student_id"])) for s in students for e in exercises]
         if self.shuffle is not None:
             random.Random(self.shuffle).shuffle(pairs)
         return [Pair(i, *p) for i, p in enumerate(pairs)]
@@ -138,6 +148,14 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
             abort(404)
         return queue[position], queue
 
+    def pair_of(ref: str, exercise: str) -> tuple[Pair, list[Pair]]:
+        """The pair a page was made for, wherever the queue has it now (404: no longer in it)."""
+        queue = session.queue()
+        pair = next((p for p in queue if p.ref == ref and p.exercise == exercise), None)
+        if pair is None:
+            abort(404)
+        return pair, queue
+
     def state(pair: Pair) -> dict:
         """The review of ``pair`` now, and its points."""
         with session.lock:
@@ -172,41 +190,60 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         figures = _figures(session.results, pair.student_id, pair.exercise)
 
         def figure_url(name: str):
-            return url_for("figure", position=position, figure_id=name) if name in figures else None
+            return url_for("figure", ref=pair.ref, exercise=pair.exercise, figure_id=name) if name in figures else None
 
         rendered = render_markdown(explanation["text"], figure_url) if explanation else None
         result = (students.get(pair.student_id) or {}).get("result") or {}
         verdict = next((e for e in result.get("exercises", []) if e["id"] == pair.exercise), None)
         attachments = [(i, path, size) for i, (path, size) in enumerate(report["files"].items())
                        if path.lower().endswith(".pdf")]
+        problems = report["problems"]
+        if session.anonymous:   # the file names a student chose, and their names, are not shown
+            student = students.get(pair.student_id) or {}
+            hidden = [*report["files"], *(s for e in report["explanations"].values()
+                                          for s in re.split(r"; |, cell \d+", e["source"]) if s)]
+            problems = [_anonymised(p, hidden, _identities(student), pair.shown_name) for p in problems]
+            if verdict:
+                verdict = {**verdict, "checks": [{**c, "message": _anonymised(c.get("message") or "", [],
+                                                                               _identities(student), pair.shown_name)}
+                                                 for c in verdict.get("checks", [])]}
         return page("review.html", pair=pair, queue_length=len(queue), explanation=explanation,
                     rendered=rendered, figures=figures, verdict=verdict, rubric=rubric, review=state(pair),
-                    attachments=attachments, problems=report["problems"])
+                    attachments=attachments, problems=problems)
 
-    @app.post(f"/{token}/review/<int:position>/mark")
-    def mark(position: int):
-        pair, _ = pair_at(position)
+    @app.get(f"/{token}/pair/<ref>/<exercise>/step/<any('next','previous'):step>")
+    def step(ref: str, exercise: str, step: str):
+        """The next or previous review from where this pair is now (the queue may have moved)."""
+        pair, queue = pair_of(ref, exercise)
+        position = pair.position + (1 if step == "next" else -1)
+        if 0 <= position < len(queue):
+            return redirect(url_for("review_page", position=position), code=303)
+        return redirect(url_for("queue_page"), code=303)
+
+    @app.post(f"/{token}/pair/<ref>/<exercise>/mark")
+    def mark(ref: str, exercise: str):
+        pair, _ = pair_of(ref, exercise)
         item, applied = request.form.get("item", ""), request.form.get("applied") == "1"
         with session.lock:
             try:
                 session.book.set_mark(pair.student_id, pair.exercise, item, applied, session.reviewer)
             except KeyError:
                 abort(400)
-        return answer(pair, position)
+        return answer(pair)
 
-    @app.post(f"/{token}/review/<int:position>/note")
-    def note(position: int):
-        pair, _ = pair_at(position)
+    @app.post(f"/{token}/pair/<ref>/<exercise>/note")
+    def note(ref: str, exercise: str):
+        pair, _ = pair_of(ref, exercise)
         comment = request.form.get("comment")
         done = {"1": True, "0": False}.get(request.form.get("done", ""))
         with session.lock:
             session.book.set_review_note(pair.student_id, pair.exercise, session.reviewer, comment=comment, done=done)
-        return answer(pair, position)
+        return answer(pair)
 
-    def answer(pair: Pair, position: int):
+    def answer(pair: Pair):
         if request.headers.get("Accept", "").startswith("application/json"):
             return jsonify(state(pair))
-        return redirect(url_for("review_page", position=position), code=303)
+        return redirect(url_for("review_page", position=pair.position), code=303)
 
     @app.get(f"/{token}/rubric")
     def rubric_page():
@@ -231,21 +268,21 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         except CourseConfigError as exc:
             return redirect(url_for("rubric_page", error=str(exc)), code=303)
         back = request.form.get("back", "")
-        if back.isdigit():
+        if re.fullmatch(r"[0-9]{1,9}", back):
             return redirect(url_for("review_page", position=int(back)), code=303)
         return redirect(url_for("rubric_page"), code=303)
 
-    @app.get(f"/{token}/figure/<int:position>/<figure_id>.png")
-    def figure(position: int, figure_id: str):
-        pair, _ = pair_at(position)
+    @app.get(f"/{token}/figure/<ref>/<exercise>/<figure_id>.png")
+    def figure(ref: str, exercise: str, figure_id: str):
+        pair, _ = pair_of(ref, exercise)
         path = _figures(session.results, pair.student_id, pair.exercise).get(figure_id)
         if path is None:
             abort(404)
         return Response(path.read_bytes(), mimetype="image/png")
 
-    @app.get(f"/{token}/attachment/<int:position>/<int:number>")
-    def attachment(position: int, number: int):
-        pair, _ = pair_at(position)
+    @app.get(f"/{token}/attachment/<ref>/<exercise>/<int:number>")
+    def attachment(ref: str, exercise: str, number: int):
+        pair, _ = pair_of(ref, exercise)
         with session.lock:
             paths = [p for p in session.book.report(pair.student_id)["files"] if p.lower().endswith(".pdf")]
             if not 0 <= number < len(paths):
@@ -257,6 +294,29 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
 
     app.jinja_env.filters["num"] = lambda v: "" if v is None else f"{round(float(v), 4):g}"
     return app
+
+
+def _identities(student: dict) -> list[str]:
+    """What names a student: their id, names (and each word of them), e-mails and LMS ids, and
+    their group members'."""
+    members = student.get("members") or []
+    values = [student.get("student_id"), student.get("display_name"), *(student.get("lms") or {}).values(),
+              *(v for m in members if isinstance(m, dict) for v in m.values())]
+    words = [str(v) for v in values if isinstance(v, (str, int)) and str(v).strip()]
+    words += [w for v in words for w in re.split(r"[\s&,._@-]+", v) if len(w) >= 2]
+    return [w for w in words if not (w.isdigit() and len(w) < 5)]   # not a message's small numbers
+
+
+def _anonymised(text: str, hidden: list[str], identities: list[str], pseudonym: str) -> str:
+    """``text`` with the ``hidden`` file names as "a file" and every ``identities`` word (whole, in
+    any case) as ``pseudonym``: what anonymous mode shows of a sentence about the student's files."""
+    for name in sorted({h for h in hidden if h}, key=len, reverse=True):
+        text = text.replace(name, "a file")
+    words = sorted({w for w in identities if w}, key=len, reverse=True)
+    if words:
+        pattern = "|".join(re.escape(w) for w in words)
+        text = re.sub(f"(?<![A-Za-z0-9])(?:{pattern})(?![A-Za-z0-9])", pseudonym, text, flags=re.IGNORECASE)
+    return text
 
 
 def _figures(results: Path, student_id: str, exercise: str) -> dict[str, Path]:
