@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from autograder.engine.forms import exception_form, shape_form
+from autograder.engine.forms import exception_form, scale_form, shape_form
 from conftest import assert_mistake_named, graded_case, named_mistakes
 
 
@@ -99,3 +99,18 @@ def transform_points(H, pts):
     result = graded_case("lab08_homographies", "lab08.ex1", source)
     names = [mistake for mistake, _ in named_mistakes(result, "lab08.ex1")]
     assert names and all("per-row value kept flat" in name for name in names), names
+
+
+# ------------------------------------------------------------------ a single factor
+def test_a_vector_divided_by_its_own_entry_or_negated_is_named():
+    C = np.array([0.5319, -0.231, 3.3973])
+    divided = scale_form(C / C[2], C)
+    assert divided is not None and "its own third entry" in divided.sentence
+    assert "sign" in scale_form(-C, C).sentence
+
+
+@pytest.mark.parametrize("got", [np.array([1.4, -0.4, 6.4]), np.array([0.7, -0.2, 3.0]),
+                                 np.array([0.7, -0.2, 3.2])])
+def test_another_factor_or_a_different_vector_names_nothing(got):
+    """Twice the truth (no entry is 1/2), a vector not proportional to it, and the truth itself."""
+    assert scale_form(got, np.array([0.7, -0.2, 3.2])) is None

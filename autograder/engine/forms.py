@@ -71,6 +71,35 @@ def _fits(shape: tuple, expected: tuple) -> bool:
     return len(shape) == len(expected) and all(e is None or e == s for s, e in zip(shape, expected))
 
 
+_ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
+
+
+def scale_form(got, expected, rtol: float = 1e-6) -> Form | None:
+    """The form of a vector that is the right one times a single factor ``k`` (measured: the
+    residual of the best factor is within ``rtol`` of the truth's size), when ``k`` tells how:
+    -1 (the sign), or one over one of the truth's own entries (divided by the wrong coordinate).
+    Any other factor is left to the description."""
+    import numpy as np
+
+    got = np.asarray(got, dtype=np.float64).ravel()
+    expected = np.asarray(expected, dtype=np.float64).ravel()
+    size = float(np.abs(expected).max()) if expected.size else 0.0
+    if got.shape != expected.shape or size == 0 or not np.all(np.isfinite(got)):
+        return None
+    k = float(got @ expected / (expected @ expected))
+    if np.abs(got - k * expected).max() > rtol * size or abs(k - 1) <= rtol:
+        return None
+    if abs(k + 1) <= 1e-6:
+        return Form("it looks like the right answer with its sign flipped", "the sign is flipped")
+    for index, entry in enumerate(expected):
+        if abs(entry) > 1e-9 * size and abs(k * entry - 1) <= 1e-6:
+            nth = _ORDINALS[index] if index < len(_ORDINALS) else f"number {index + 1}"
+            return Form(f"it looks like the right answer divided by its own {nth} entry (which becomes 1): "
+                        "the division uses the wrong coordinate",
+                        f"divided by the wrong coordinate (its {nth} entry)")
+    return None
+
+
 _BROADCAST = re.compile(r"operands could not be broadcast together with shapes ((?:\([\d,]*\)\s*)+)")
 _SHAPE = re.compile(r"\(([\d,]*)\)")
 _MATMUL = re.compile(r"mismatch in its core dimension \d.*?\(size (\d+) is different from (\d+)\)", re.S)

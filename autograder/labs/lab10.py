@@ -20,10 +20,12 @@ from ..engine import strategies as st
 from ..engine.checks import Trial, partial, passed
 from ..engine.compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
                        projective_distance)
+from ..engine.forms import scale_form
 from ..engine.judges import Probe, call_probe, fingerprint, format_matrix, name_mistake, where_matrices_differ
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
-from .lab09 import expect_points, judge_points, judge_single_point, make_points_probe, point_error
+from .lab09 import (expect_points, judge_points, judge_single_point, make_points_probe, pinhole_formulas,
+                    point_error)
 
 lab = Lab("lab10", module="lab10_camera2", title="Geometric camera models (continued)")
 
@@ -37,7 +39,8 @@ def projection_probe(t: Trial, function: str, **kwargs):
     X = truth.points_in_front(10_010, n=10, z_range=(3.0, 14.0))
     f = 640.0
     if function == "perspective_project":
-        return make_points_probe(t, function, (X, f), {}, truth.pinhole(X, f), perspective_mistakes(f, X))
+        return make_points_probe(t, function, (X, f), {}, truth.pinhole(X, f), perspective_mistakes(f, X),
+                                 formulas=pinhole_formulas(X, f))
     if function == "weak_perspective_project":
         z_avg = kwargs.get("z_avg")
         call_kwargs = {} if z_avg is None else {"z_avg": z_avg}
@@ -76,7 +79,8 @@ def perspective_focal_lengths(t):
         if isinstance(got, np.ndarray) and got.shape == (10, 2):
             plots[f"f = {f:g}"] = got
         judge_points(t, f"perspective_project(points, f={f:g})", got, truth.pinhole(X, f),
-                     perspective_mistakes(f, X), probe=projection_probe(t, "perspective_project"))
+                     perspective_mistakes(f, X), formulas=pinhole_formulas(X, f),
+                     probe=projection_probe(t, "perspective_project"))
     t.svg("the same points with f = 100, 500, 1000", svg_points(plots))
     return passed("the image scales with f")
 
@@ -87,7 +91,8 @@ def perspective_property(t):
         seed, f = case
         X = truth.points_in_front(seed, n=8)
         judge_points(t, f"perspective_project(points, f={f!r})", t.call("perspective_project", X, f),
-                     truth.pinhole(X, f), perspective_mistakes(f, X), probe=projection_probe(t, "perspective_project"))
+                     truth.pinhole(X, f), perspective_mistakes(f, X), formulas=pinhole_formulas(X, f),
+                     probe=projection_probe(t, "perspective_project"))
 
     t.for_all(st.tuples(seeds, st.floats(10.0, 2000.0)), holds, max_examples=12,
               describe=lambda c: f"fixtures.lab09.points_in_front(seed={c[0]}, n=8), f={c[1]!r}")
@@ -425,7 +430,7 @@ def judge_center(t: Trial, P, R, tv):
     got = t.call("camera_center", P)
     if isinstance(got, np.ndarray) and got.shape == (4,):
         t.fail(f"{what} returned a (4,) homogeneous vector; expected the (3,) centre: divide by the "
-               "last coordinate and drop it")
+               "last coordinate and drop it", mistake="the homogeneous centre returned (4 entries)")
     got = t.expect_array(got, what, shape=(3,), kind="iuf", finite=True)
     C = -R.T @ tv
     scale = magnitude(C)
@@ -443,6 +448,9 @@ def judge_center(t: Trial, P, R, tv):
                            probe=probe)
     if mistake:
         t.fail(f"{what} is wrong: {mistake}.", mistake=mistake)
+    form = scale_form(got, C)
+    if form is not None:
+        t.fail(f"{what} is wrong: {form.sentence}.", mistake=form.mistake)
     residual = np.linalg.norm(P @ np.append(got, 1.0)) / np.linalg.norm(P)
     shown, wanted = format_arrays_apart(got, C)
     t.fail(f"{what} returned {shown}; expected {wanted} (|P [C, 1]| / |P| = {residual:.2g}, should be 0)")
