@@ -190,7 +190,7 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=N
     finite = np.nan_to_num(got.astype(np.float64), nan=0.0, posinf=0.0, neginf=0.0)
     if truth.bad_pixel_rate(-finite, gt, thr) <= allowed:
         t.fail(f"{what}: the disparities are negative. d = x_l - x_r is positive: the match "
-               "of left pixel x lies at x - d in the right image.")
+               "of left pixel x lies at x - d in the right image.", mistake="the disparities are negative")
     for shift in (1, -1):
         if truth.bad_pixel_rate(finite + shift, gt, 0.5) <= allowed:
             t.fail(f"{what}: every disparity is off by {'-' if shift > 0 else '+'}1 - "
@@ -200,8 +200,13 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=N
     if known.sum() > 10:
         ratio = float(np.median(finite[known] / gt[known]))
         if abs(ratio - 1) > 0.3 and truth.bad_pixel_rate(finite / ratio, gt, thr) <= allowed + 0.05:
+            fixed_point = abs(ratio - 16) <= 0.1 * 16
             t.fail(f"{what}: the disparities are scaled by about {ratio:.3g} "
-                   "(return them in pixels, not rescaled for display or as OpenCV's 16x fixed point).")
+                   + ("(it looks like OpenCV's fixed point: StereoBM and StereoSGBM return 16 times the "
+                      "disparity; divide by 16)." if fixed_point else
+                      "(return them in pixels, not rescaled for display or as OpenCV's 16x fixed point)."),
+                   mistake="OpenCV's 16x fixed-point disparities, not divided by 16" if fixed_point
+                   else "the disparities are rescaled")
     values = finite[gt > 0]
     if values.size and np.ptp(values) < 1e-9:
         t.fail(f"{what}: every pixel got the same disparity ({values[0]:g}).")
