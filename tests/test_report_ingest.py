@@ -76,6 +76,25 @@ def test_reports_are_read_beside_the_code_in_a_folder_a_zip_and_a_notebook(tmp_p
     assert cy.report_files == {} and "notebook" not in cy.report.problems
 
 
+def test_the_copy_report_keeps_of_the_report_it_replaced_is_never_read(tmp_path):
+    """``--report`` keeps the report it replaced as labNN_report.previous.md beside it: handed in
+    with the folder, it would repeat every explanation (older texts among them)."""
+    from autograder.loading.report import read_report
+
+    current, older = section("lab07.ex1", "Final text.").encode(), section("lab07.ex1", "An older draft.").encode()
+    root = tmp_path / "class"
+    write(root / "ada" / f"{MODULE}.py", CODE)
+    write(root / "ada" / "report" / "lab07_report.md", current)
+    write(root / "ada" / "report" / "lab07_report.previous.md", older)
+    write(root / "bo.zip", zipped({f"{MODULE}.py": CODE, "lab07_report.md": current,
+                                   "lab07_report.previous.md": older}))
+    for entry in read(root).values():
+        assert [e.text for e in entry.report.explanations.values()] == ["Final text."], entry.student_id
+        assert entry.report.problems == () and not any("previous" in f for f in entry.report_files)
+    report = read_report({"lab07_report.md": current, "x/LAB07_REPORT.PREVIOUS.MD": older})
+    assert report.explanations["lab07.ex1"].text == "Final text." and report.problems == ()
+
+
 def test_a_report_changes_no_submission_key(tmp_path):
     write(tmp_path / "a" / "ada" / f"{MODULE}.py", CODE)
     write(tmp_path / "b" / "ada" / f"{MODULE}.py", CODE)

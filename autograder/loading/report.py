@@ -50,6 +50,7 @@ MAX_EXPLANATION_CHARS = 20_000           # longer: cut, with truncated=True
 MAX_EXPLANATIONS = 300                   # exercises read from one hand-in (six labs have ~50)
 MAX_PROBLEMS = 20                        # sentences kept; the rest are counted
 
+BACKUP_SUFFIX = ".previous.md"           # the scaffold's copy of the report it replaced: never read
 PLACEHOLDER = "_Explain what you see here._"
 REPORT_TAG_PREFIX = "report:"            # a notebook cell's tag: report:lab07.ex1
 VERDICT_PREFIX = "Automatic verdict:"
@@ -64,6 +65,13 @@ _SECTION = re.compile(r"(lab\d\d\.[a-z]+\d+(?:-[a-z]+)?)(?![\w-])", re.IGNORECAS
 _FIGURE_LINE = re.compile(r"^[ \t]*!\[[^\]\n]*\]\([^)\n]*\)[ \t]*$", re.MULTILINE)
 VERDICT_LINE = re.compile(r"^[ \t]*" + re.escape(VERDICT_PREFIX) + r".*$", re.MULTILINE)
 _NO_FIGURE_LINE = re.compile(r"^[ \t]*_No figure[^\n]*_[ \t]*$", re.MULTILINE)  # the scaffold's, for a figure not made
+
+
+def is_backup(name) -> bool:
+    """Whether ``name`` is the copy ``--report`` keeps of the report it replaced
+    (``lab07_report.previous.md``): handed in beside the report, it would repeat every
+    explanation, older ones among them."""
+    return str(name).lower().endswith(BACKUP_SUFFIX)
 
 
 def exercise_id(text: str) -> str | None:
@@ -111,8 +119,8 @@ def read_report(files: dict[str, bytes]) -> Report:
     for path in sorted(files, key=str):
         name = shown(path)
         parts = PurePosixPath(str(path).replace("\\", "/")).parts
-        if any(part.startswith(".") or part == "__MACOSX" for part in parts):
-            continue  # editor backups, macOS resource forks
+        if any(part.startswith(".") or part == "__MACOSX" for part in parts) or is_backup(path):
+            continue  # editor backups, macOS resource forks, the scaffold's own backup
         suffix = PurePosixPath(parts[-1] if parts else "").suffix.lower()
         if suffix in ATTACHMENT_SUFFIXES:
             attachments.append(name)

@@ -22,7 +22,8 @@ from pathlib import Path
 from ..engine.registry import Exercise, select
 from ..engine.results import GradingResult, write_atomically
 from ..figures import SHEET_PICTURES, FigureOutcome, make_figures, producers_for
-from ..loading.report import PLACEHOLDER, VERDICT_PREFIX, VERDICT_LINE, exercise_id, explanations_in_markdown
+from ..loading.report import (BACKUP_SUFFIX, PLACEHOLDER, VERDICT_PREFIX, VERDICT_LINE, exercise_id,
+                              explanations_in_markdown)
 from ..loading.text import one_line
 
 FIGURES_FOLDER = "figures"
@@ -75,7 +76,7 @@ def write_report(submission, selectors=(), out_dir=".", result: GradingResult | 
                     for section in _sections(ex, made, graded, figure_dir)]
         text, carried = scaffold(f"{lab.key} report: {lab.title}", sections, earlier, path.name)
         if earlier is not None and earlier != text:
-            write_atomically(path.with_name(f"{lab.key}_report.previous.md"), earlier)
+            write_atomically(path.with_name(f"{lab.key}_report{BACKUP_SUFFIX}"), earlier)
         write_atomically(path, text)
         files.append(path)
         kept[path.name] = carried

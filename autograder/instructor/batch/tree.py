@@ -28,7 +28,7 @@ import zlib
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
-from ...loading.report import MAX_REPORT_BYTES
+from ...loading.report import MAX_REPORT_BYTES, is_backup
 from ...loading.submission import declared_members
 from ...loading.text import shown
 from ...sandbox.files import CAPS, SOURCE_SUFFIXES, Caps, Refused, check_name, limit_for, read_regular
@@ -76,7 +76,7 @@ class ReportFiles:
 
     @staticmethod
     def wanted(name: str) -> bool:
-        return name.lower().endswith(REPORT_FILE_SUFFIXES)
+        return name.lower().endswith(REPORT_FILE_SUFFIXES) and not is_backup(name)
 
     def read(self, tree: "UploadTree", path: tuple, text: str, budget: Budget, caps: Caps = CAPS) -> None:
         """Keep the report file ``text`` (at ``path`` in ``tree``), or the reason it is refused."""
