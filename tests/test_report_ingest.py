@@ -95,6 +95,19 @@ def test_the_copy_report_keeps_of_the_report_it_replaced_is_never_read(tmp_path)
     assert report.explanations["lab07.ex1"].text == "Final text." and report.problems == ()
 
 
+def test_thousands_of_report_files_are_a_few_sentences_not_thousands(tmp_path):
+    from autograder.loading.report import MAX_PROBLEMS
+
+    write(tmp_path / "class" / "ada" / f"{MODULE}.py", CODE)
+    for number in range(MAX_REPORT_FILES + 300):
+        write(tmp_path / "class" / "ada" / f"notes{number:04d}.md", b"x")
+        write(tmp_path / "class" / "ada" / f"scan{number:04d}.pdf", b"not a pdf")
+    ada = read(tmp_path / "class")["ada"]
+    assert not ada.error and len(ada.report_files) == MAX_REPORT_FILES
+    assert len(ada.report.problems) <= 2 * MAX_PROBLEMS + 2
+    assert ada.report.problems[MAX_PROBLEMS].startswith("and ") and "more files were not read" in ada.report.problems[MAX_PROBLEMS]
+
+
 def test_a_report_changes_no_submission_key(tmp_path):
     write(tmp_path / "a" / "ada" / f"{MODULE}.py", CODE)
     write(tmp_path / "b" / "ada" / f"{MODULE}.py", CODE)

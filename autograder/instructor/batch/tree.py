@@ -28,7 +28,7 @@ import zlib
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
-from ...loading.report import MAX_REPORT_BYTES, is_backup
+from ...loading.report import MAX_PROBLEMS, MAX_REPORT_BYTES, is_backup
 from ...loading.submission import declared_members
 from ...loading.text import shown
 from ...sandbox.files import CAPS, SOURCE_SUFFIXES, Caps, Refused, check_name, limit_for, read_regular
@@ -117,7 +117,11 @@ class ReportFiles:
         self.refused.update({prefix + name: why for name, why in other.refused.items()})
 
     def problems(self) -> list[str]:
-        return [f"{name} was not read: {why}" for name, why in self.refused.items()]
+        """Why each refused file was, at most :data:`MAX_PROBLEMS` sentences (thousands of files
+        sent would be as many lines on the review screen and in the gradebook)."""
+        sentences = [f"{name} was not read: {why}" for name, why in list(self.refused.items())[:MAX_PROBLEMS]]
+        more = len(self.refused) - len(sentences)
+        return sentences + ([f"and {more} more files were not read"] if more else [])
 
 
 class UploadTree:
