@@ -115,6 +115,19 @@ def test_marks_and_notes_are_stored_with_who_and_when_and_items_edited_centrally
         assert book.reviews()[("ada", "lab07.ex1")]["items"] == ["corners"]
 
 
+def test_the_review_adds_no_more_items_to_an_exercise_than_the_course_file_may_have(tmp_path):
+    from autograder.instructor.course import RUBRIC_MAX_ITEMS
+
+    with graded_book(tmp_path) as book:
+        have = len(book.rubric()["lab07.ex1"])
+        for number in range(RUBRIC_MAX_ITEMS - have):
+            book.set_rubric_item("lab07.ex1", f"extra{number}", "another item", 1, "prof")
+        with pytest.raises(CourseConfigError, match=f"at most {RUBRIC_MAX_ITEMS}"):
+            book.set_rubric_item("lab07.ex1", "one-too-many", "another item", 1, "prof")
+        book.set_rubric_item("lab07.ex1", "extra0", "an item edited", 2, "prof")   # editing one still works
+        assert len(book.rubric()["lab07.ex1"]) == RUBRIC_MAX_ITEMS
+
+
 def test_the_course_file_seeds_the_rubric_and_a_later_edit_of_it_wins_once(tmp_path):
     with graded_book(tmp_path) as book:
         book.set_rubric_item("lab07.ex1", "axes", "names both axes", 1.5, "prof")

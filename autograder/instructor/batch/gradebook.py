@@ -626,7 +626,7 @@ class Gradebook:
     def set_rubric_item(self, exercise: str, item_id: str, text: str, points: float, who: str) -> None:
         """Change an item's text and points for every student it is applied to, or add the item
         (last in its exercise). Raises :class:`..course.CourseConfigError` for a malformed item."""
-        from ..course import check_rubric_item
+        from ..course import RUBRIC_MAX_ITEMS, CourseConfigError, check_rubric_item
 
         check_rubric_item(item_id, text, points, f"rubric item {item_id!r} of {exercise}")
         with self._transaction():
@@ -634,8 +634,11 @@ class Gradebook:
                                       "WHERE exercise=? AND item_id=?",
                                       (text, float(points), who, _now(), exercise, item_id)).rowcount
             if not updated:
-                position = self.db.execute("SELECT COALESCE(MAX(position) + 1, 0) FROM rubric_items "
-                                           "WHERE exercise=?", (exercise,)).fetchone()[0]
+                count, position = self.db.execute("SELECT COUNT(*), COALESCE(MAX(position) + 1, 0) FROM rubric_items "
+                                                  "WHERE exercise=?", (exercise,)).fetchone()
+                if count >= RUBRIC_MAX_ITEMS:   # as the course file may have, no more
+                    raise CourseConfigError(f"rubric item {item_id!r} of {exercise}: {exercise} has "
+                                            f"{count} items already; at most {RUBRIC_MAX_ITEMS}")
                 self.db.execute("INSERT INTO rubric_items VALUES (?,?,?,?,?,NULL,NULL,?,?)",
                                 (exercise, item_id, position, text, float(points), who, _now()))
 
