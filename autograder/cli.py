@@ -204,7 +204,8 @@ def run_grade(args) -> int:
                 note = ignored_keys_note(course, "grade")
                 if note:
                     errors.print(f"[yellow]note:[/yellow] {escape(note)}", highlight=False)
-                result = grade(args.submission, args.select, limits=limits, pictures=pictures, rerun=_rerun(args),
+                result = grade(args.submission, args.select or course.select, limits=limits, pictures=pictures,
+                               rerun=_rerun(args),
                                include_hidden=not args.public_only, on_check=advance, forbid=course.forbid,
                                lanes=lanes, sandboxes=[early] if early else [],
                                inputs_secret=course.inputs_secret or None)

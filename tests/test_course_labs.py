@@ -73,6 +73,18 @@ def test_the_course_config_registers_its_labs_relative_to_itself(tmp_path, monke
     assert "lab13" not in discover()
 
 
+def test_lab_folders_may_start_at_home_and_be_named_twice(tmp_path, monkeypatch):
+    course = course_copy(tmp_path)
+    monkeypatch.setenv("HOME", str(course))
+    path = tmp_path / "elsewhere" / "course.json"
+    path.parent.mkdir()
+    path.write_text(json.dumps({"labs": ["~/labs/imstats", str(course / "labs" / "imstats"),
+                                         "../course/labs/./imstats/"]}))
+    folder = str((course / "labs" / "imstats").resolve())
+    assert CourseConfig.load(path).labs == [folder]            # one folder, however it is named
+    assert discover()["lab13"].folder == Path(folder)
+
+
 def test_another_course_forgets_the_first_ones_labs(tmp_path):
     CourseConfig.load(COURSE / "course.json")
     other = tmp_path / "other.json"
@@ -157,8 +169,9 @@ def test_the_example_lab_is_sound_and_verify_says_so(capsys):
 
 
 def broken_course(tmp_path: Path) -> Path:
-    """The example course with three flaws verify must find: a check no mistake fails, a
-    case named as another mistake, and a check whose verdict changes when graded again."""
+    """The example course with five flaws verify must find: a check no mistake fails, a
+    case named as another mistake, a check whose verdict changes when graded again, one
+    whose inputs do (the reference passes both), and one that crashes on a wrong answer."""
     course = course_copy(tmp_path)
     folder = course / "labs" / "imstats"
     suite = folder / "suite.py"
@@ -177,6 +190,19 @@ def flaky(t):
     t.call("histogram", truth.scene())
     if next(_GRADINGS) % 2:
         t.fail("a different verdict on every other grading")
+
+
+@ex1.check("histogram of an image drawn at random", points=1)
+def unseeded(t):
+    image = np.random.default_rng().integers(0, 256, (8, 8), dtype=np.uint8)
+    if not np.array_equal(np.asarray(t.call("histogram", image)), truth.histogram(image)):
+        t.fail("the histogram of a random image is wrong")
+
+
+@ex2.check("stretch of a dim image, judged by a fragile grader", points=1)
+def fragile(t):
+    if np.asarray(t.call("stretch", truth.dim())).max() <= 1:
+        raise KeyError("a judge that crashes on an answer it did not foresee")
 ''')
     mistakes = folder / "mistakes.py"
     mistakes.write_text(mistakes.read_text().replace('""", ["truncated"]),', '""", ["minimum is not subtracted"]),'))
@@ -194,14 +220,34 @@ def test_verify_finds_each_flaw_of_a_broken_lab(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr("autograder.instructor.verify.verify_lab", verify_and_keep)
     assert main(["verify", "lab13", "--course", str(course / "course.json")]) == 1
     out = " ".join(capsys.readouterr().out.split())
-    assert "lab13 is not sound (5 problems)" in out and "no case" in out
+    assert "lab13 is not sound (8 problems)" in out and "no case" in out
     [report] = reports
     problems = "\n".join(report.problems)
     assert "lab13.ex2 'stretch returns an array': no case of the mistakes table fails it" in problems
-    assert "lab13.ex1 'histogram of a flaky grader': a different verdict or message when graded again" in problems
+    again = "a different verdict, message or input when the reference is graded again"
+    assert f"lab13.ex1 'histogram of a flaky grader': {again}" in problems
+    assert f"lab13.ex1 'histogram of an image drawn at random': {again}" in problems   # passed both times
     assert "stretch truncated: not named in its own words ['minimum is not subtracted']" in problems
     assert "stretch truncated: named as another mistake" in problems and "truncated, not rounded" in problems
-    assert len(report.problems) == 5, problems   # the misnamed case: by both checks that name it
+    # A crash on a wrong answer is no failure of it: a problem, and the check is failed by no case.
+    assert ("stretch to 0..1: grader error in lab13.ex2 'stretch of a dim image, judged by a fragile grader': "
+            "grader error in this check (KeyError") in problems
+    assert "'stretch of a dim image, judged by a fragile grader': no case of the mistakes table fails it" in problems
+    assert len(report.problems) == 8, problems   # the misnamed case: by both checks that name it
+
+
+def test_a_lab_without_hidden_checks_is_not_sound():
+    """Its public checks' answers, tabled, would earn every point."""
+    from autograder.instructor.verify import CheckReport, LabReport
+
+    def report(*hidden):
+        checks = [CheckReport("lab13.ex1", f"check {i}", 1, h, False, 0.0, 1, True) for i, h in enumerate(hidden)]
+        return LabReport("lab13", "Image statistics", (2, 2), [], (0, 2), [], [], checks)
+
+    assert report(False, True).ok
+    assert report(False, False).problems == [
+        "lab13 has no hidden checks: a table of the public checks' answers would earn every point "
+        "(add some to hidden.py, or hide some checks)"]
 
 
 def test_verify_refuses_what_it_cannot_verify(tmp_path, capsys):
@@ -211,6 +257,25 @@ def test_verify_refuses_what_it_cannot_verify(tmp_path, capsys):
     assert "has no mistakes.py" in capsys.readouterr().err
     assert main(["verify", "lab42"]) == 2
     assert "no lab lab42" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("change, words", [
+    (edit("mistakes.py", '"""Lab 13\'s', 'import no_such_module\n"""Lab 13\'s'),
+     ["mistakes.py, line 1", "cannot be imported", "no_such_module"]),
+    (edit("mistakes.py", "MISTAKES = {", "MISTAKES = {{"), ["mistakes.py, line", "SyntaxError in the mistakes table"]),
+    (edit("mistakes.py", '["truncated"]', '[""]'), ["MISTAKES['stretch truncated']", "an empty fragment"]),
+    (edit("mistakes.py", "            if high == low:\n", "            if high == low\n"),
+     ["MISTAKES['stretch in uint8']'s source, line 4: SyntaxError"]),
+])
+def test_a_mistakes_table_verify_cannot_use_is_a_usage_error_saying_where(tmp_path, capsys, change, words):
+    """Exit 2 before any grading, with the file and line: never a traceback, nor a case that
+    "loses points" to its own SyntaxError, nor a fragment every message holds."""
+    course = course_copy(tmp_path)
+    change(course / "labs" / "imstats")
+    assert main(["verify", "--course", str(course / "course.json")]) == 2
+    err = " ".join(capsys.readouterr().err.split())
+    for word in words:
+        assert word in err, err
 
 
 def test_new_lab_scaffolds_a_lab_that_verify_proves_sound(tmp_path, capsys):
@@ -228,6 +293,16 @@ def test_new_lab_scaffolds_a_lab_that_verify_proves_sound(tmp_path, capsys):
     assert "lab<two digits>_<words>" in capsys.readouterr().err
 
 
+def test_new_lab_refuses_a_built_in_key_and_takes_any_title(tmp_path, capsys):
+    assert main(["new-lab", "lab07_flow", "--into", str(tmp_path / "a")]) == 2
+    assert "lab07 is a built-in lab's key" in capsys.readouterr().err and not (tmp_path / "a").exists()
+    assert main(["new-lab", "lab13_flow", "--into", str(tmp_path / "b"), "--title", "Two\nlines"]) == 2
+    title = 'Lucas-Kanade\'s "flow" \\ C:\\x'
+    assert main(["new-lab", "lab13_flow", "--into", str(tmp_path / "c"), "--title", title]) == 0
+    [lab] = use_lab_folders([tmp_path / "c"])
+    assert lab.title == title
+
+
 # ------------------------------------------------------------------ graded everywhere
 def test_grade_with_the_course_config(tmp_path, capsys):
     submission = mutant(tmp_path, MODULE, TRUNCATED, base=REFERENCE)
@@ -239,6 +314,15 @@ def test_grade_with_the_course_config(tmp_path, capsys):
     stretch = result["exercises"][1]
     assert result["exercises"][0]["score"] == 5 and stretch["score"] < stretch["max_score"]
     assert any("truncated" in c["message"] for c in stretch["checks"])
+
+
+def test_grade_with_the_course_config_grades_what_it_selects(tmp_path):
+    course = tmp_path / "course.json"
+    course.write_text(json.dumps({"labs": [str(LAB)], "select": ["lab13.ex2"]}))
+    assert main(["grade", str(REFERENCE), "--no-html", "--config", str(course),
+                 "--json", str(tmp_path / "results.json")]) == 0
+    result = json.loads((tmp_path / "results.json").read_text())
+    assert [e["id"] for e in result["exercises"]] == ["lab13.ex2"]
 
 
 def test_validate_with_the_course_config(capsys):
@@ -299,6 +383,21 @@ def test_the_gradescope_zip_ships_the_course_lab_and_grades_it(tmp_path):
     assert any(t["status"] == "failed" and "truncated" in t["output"] for t in tests.values())
     hidden = [t for t in results["tests"] if t["visibility"] == "after_published"]
     assert len(hidden) == 2 and 0 < results["score"] < sum(t["max_score"] for t in results["tests"])
+
+
+def test_no_copy_of_an_answer_ships_with_a_course_lab(tmp_path):
+    """An editor's copies of the parts students never get stay behind too."""
+    from autograder.engine.labfolders import ANSWERS, SKELETON
+    from autograder.instructor.bundle import shipped_lab_files
+
+    folder = course_copy(tmp_path) / "labs" / "imstats"
+    for name in ("hidden.py~", "mistakes.py.bak", ".hidden.py.swp", ".git/config", "reference.py.orig",
+                 "data/.notes", "__pycache__/suite.cpython-311.pyc"):
+        (folder / name).parent.mkdir(parents=True, exist_ok=True)
+        (folder / name).write_text("an answer")
+    (folder / "data" / "pattern.txt").write_text("a fixture")
+    shipped = {p.relative_to(folder).as_posix() for p in shipped_lab_files(folder, ANSWERS + (SKELETON,))}
+    assert shipped == {"suite.py", "truth.py", "data/pattern.txt"}
 
 
 @pytest.mark.slow

@@ -19,6 +19,7 @@ failure inside it is silent (the graded checks report it).
 
 from __future__ import annotations
 
+import hashlib
 import threading
 from dataclasses import dataclass
 
@@ -75,6 +76,23 @@ class StudentFailure(Exception):
         self.outcome, self.message = outcome, message
 
 
+def fingerprint(*values) -> str:
+    """A short key for values given to a student's function (arrays by their bytes, other
+    values by repr): a probe's input, and every input a check gives (:attr:`Trial.given`)."""
+    digest = hashlib.sha1()
+    for value in values:
+        if isinstance(value, np.ndarray):
+            digest.update(f"{value.dtype}{value.shape}".encode())
+            digest.update(np.ascontiguousarray(value).tobytes())
+        elif isinstance(value, (tuple, list)):
+            digest.update(fingerprint(*value).encode())
+        elif isinstance(value, dict):
+            digest.update(fingerprint(*sorted(value.items(), key=lambda item: str(item[0]))).encode())
+        else:
+            digest.update(repr(value).encode())
+    return digest.hexdigest()[:16]
+
+
 # Hypothesis's engine runs one property at a time, whatever the lanes (runner.grade): the
 # examples it draws never depend on another lane's property.
 _ONE_ENGINE = threading.Lock()
@@ -114,6 +132,14 @@ class Trial:
         # Student functions that, in this trial, were given fractional numbers and returned only
         # whole ones (the values' side of autograder.loading.reading's findings about truncation).
         self.whole_numbers: set[str] = set()
+        # Every call's function and arguments, in order: two gradings of the same files must give
+        # the same (autograder verify), else the check draws inputs from the clock or an unseeded RNG.
+        self._given = hashlib.sha1()
+
+    @property
+    def given(self) -> str:
+        """A digest of every call this trial made so far (function and arguments, in order)."""
+        return self._given.hexdigest()[:16]
 
     # ------------------------------------------------------------ calling
     def call(self, function: str, *args, **kwargs):
@@ -127,6 +153,7 @@ class Trial:
         if threading.get_ident() != self._thread:
             raise RuntimeError("student code is called from the check itself, never while a picture is "
                                "drawn (pictures are drawn on other threads)")
+        self._given.update(fingerprint(function, args, kwargs).encode())
         failure = self._fatal.get(function)
         if failure is None:
             outcome = self.sandbox.call(self.lab.module, function, args, kwargs,

@@ -21,7 +21,7 @@ import numpy as np
 from fixtures.images import as_homography, coverage, warp
 
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
-from .checks import StudentFailure, Trial, Verdict, partial, passed
+from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
 
@@ -142,24 +142,6 @@ def digits_apart(value: float, limit: float, digits: int = 3) -> str:
     """``value`` with enough significant digits that it never reads as ``limit``
     (:func:`autograder.engine.compare.format_apart`)."""
     return format_apart(value, limit, digits)
-
-
-def fingerprint(*values) -> str:
-    """A short key for a probe input (arrays by their bytes, other values by repr)."""
-    import hashlib
-
-    digest = hashlib.sha1()
-    for value in values:
-        if isinstance(value, np.ndarray):
-            digest.update(f"{value.dtype}{value.shape}".encode())
-            digest.update(np.ascontiguousarray(value).tobytes())
-        elif isinstance(value, (tuple, list)):
-            digest.update(fingerprint(*value).encode())
-        elif isinstance(value, dict):
-            digest.update(fingerprint(*sorted(value.items(), key=lambda item: str(item[0]))).encode())
-        else:
-            digest.update(repr(value).encode())
-    return digest.hexdigest()[:16]
 
 
 def over_variants(distance, ndim: int):

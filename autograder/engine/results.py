@@ -73,6 +73,7 @@ class CheckResult:
     seconds: float = 0.0
     student_seconds: float = 0.0
     redacted: bool = False  # a hidden check as students see it before release: its verdict only
+    inputs_digest: str = ""  # what the check gave the student's functions (Trial.given): same files, same digest
 
     @property
     def passed(self) -> bool:

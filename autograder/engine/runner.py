@@ -493,7 +493,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         mistake=verdict.mistake, failure=student_failure, output="\n".join(trial.outputs)[:6000],
         traceback=tb, artifacts=artifacts,
         seconds=round(time.perf_counter() - started, 6),
-        student_seconds=round(trial.student_seconds, 6))
+        student_seconds=round(trial.student_seconds, 6), inputs_digest=trial.given)
 
 
 class Painter:
@@ -563,7 +563,7 @@ def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None, inputs=Non
     return CheckResult(name=check.name, score=0.0, max_score=0.0, status=status, message=message,
                        hint=hint, hidden=check.hidden, output="\n".join(trial.outputs)[:6000],
                        seconds=round(time.perf_counter() - started, 6),
-                       student_seconds=round(trial.student_seconds, 6))
+                       student_seconds=round(trial.student_seconds, 6), inputs_digest=trial.given)
 
 
 def _collect(modified, trial: Trial) -> None:

@@ -91,10 +91,15 @@ def course_lab_folders(course) -> list:
 
 def shipped_lab_files(folder: Path, leave_out) -> list[Path]:
     """The files of a course lab folder except the parts ``leave_out`` names (top-level
-    files or folders) and Python's caches."""
-    return [path for path in sorted(folder.rglob("*")) if path.is_file()
-            and path.relative_to(folder).parts[0] not in leave_out
-            and "__pycache__" not in path.parts and path.suffix != ".pyc"]
+    files or folders) and their copies an editor leaves (``hidden.py~``, ``mistakes.py.bak``,
+    ``.hidden.py.swp``: any dot-file or dot-folder, any name ending in ``~``), and Python's caches."""
+    def left_out(path: Path) -> bool:
+        parts = path.relative_to(folder).parts
+        return (any(parts[0] == part or parts[0].startswith(part + ".") for part in leave_out)
+                or any(p.startswith(".") or p.endswith("~") or p == "__pycache__" for p in parts)
+                or path.suffix == ".pyc")
+
+    return [path for path in sorted(folder.rglob("*")) if path.is_file() and not left_out(path)]
 
 
 # ------------------------------------------------------------------ the wheelhouse

@@ -303,8 +303,10 @@ class CourseConfig:
         if unknown:
             raise CourseConfigError(f"{path}: unknown keys {unknown}; known keys are {sorted(known)}")
         if isinstance(data.get("labs"), list):   # relative to this file, wherever the command runs
-            data["labs"] = [str((Path(path).parent / folder).resolve()) if isinstance(folder, str) and folder
-                            else folder for folder in data["labs"]]
+            folders = [str((Path(path).parent / Path(folder).expanduser()).resolve())
+                       if isinstance(folder, str) and folder else folder for folder in data["labs"]]
+            # A folder named twice (labs/flow, ./labs/flow) is one.
+            data["labs"] = [folder for i, folder in enumerate(folders) if folder not in folders[:i]]
         course = cls(**data)
         course.use_labs(path)
         return course

@@ -13,6 +13,7 @@ from pathlib import Path
 from string import Template
 
 from ..engine.labfolders import HIDDEN, MISTAKES, REFERENCE, SKELETON, SUITE
+from ..engine.registry import discover
 
 TEMPLATES = Path(__file__).resolve().parent / "templates" / "new_lab"
 _NAME = re.compile(r"(lab\d\d)_([a-z][a-z0-9_]*)")
@@ -29,11 +30,20 @@ def new_lab(name: str, into, title: str = "") -> list[Path]:
     if not match:
         raise NewLabError(f"{name!r} is not a lab's module name: lab<two digits>_<words>, like lab13_flow "
                           "(the file students hand in, and the lab's key lab13)")
+    key = match.group(1)
+    built_in = discover().get(key)
+    if built_in is not None and built_in.folder is None:
+        raise NewLabError(f"{key} is a built-in lab's key ({built_in.title}): a course lab needs a new one, "
+                          f"like lab13_{match.group(2)}")
+    if title and not title.isprintable():
+        raise NewLabError("the title is one line of text")
     folder = Path(into)
     if folder.exists() and (not folder.is_dir() or any(folder.iterdir())):
         raise NewLabError(f"{folder} exists and is not an empty folder")
-    key = match.group(1)
-    values = {"key": key, "module": name, "title": title or match.group(2).replace("_", " ").capitalize()}
+    title = title or match.group(2).replace("_", " ").capitalize()
+    # In docstrings as text (quotes and backslashes escaped); in Lab(...) as a Python literal.
+    values = {"key": key, "module": name, "title": title.replace("\\", "\\\\").replace('"', '\\"'),
+              "title_literal": repr(title)}
     targets = {SUITE: "suite.py", HIDDEN: "hidden.py", "truth.py": "truth.py", MISTAKES: "mistakes.py",
                f"{REFERENCE}/{name}.py": "reference.py", f"{SKELETON}/{name}.py": "skeleton.py"}
     written = []

@@ -8,7 +8,9 @@ A lab's checks are sound when
   own words (a failing check's message holds every fragment of the case), and no check
   names it as another mistake; every advice case gets its tip and loses nothing;
 - every check is failed by some case of the table (a check nothing fails proves nothing);
-- every check gives the same verdict and message when the reference is graded twice.
+- every check gives the same verdict and message, from the same inputs, when the reference
+  is graded twice;
+- no check is a grader error on any of these gradings, and the lab has hidden checks.
 
 :func:`verify_lab` grades all of it (through a :class:`Gradings`, which the project's tests
 replace by one that shares gradings between tests) and returns a :class:`LabReport`; the
@@ -33,7 +35,7 @@ from typing import Callable, Iterable
 
 from ..engine.labfolders import MISTAKES, REFERENCE, SKELETON, LabFolderError, lab_folder
 from ..engine.registry import Lab
-from ..engine.results import GradingResult
+from ..engine.results import ERROR, GradingResult
 
 PROJECT_ROOT = Path(__file__).resolve().parents[2]
 NOT_IMPLEMENTED = "not implemented yet"
@@ -92,10 +94,24 @@ def parts_of(lab: Lab) -> LabParts:
         table = importlib.import_module(table_name)
     except ModuleNotFoundError as exc:
         if exc.name != table_name:
-            raise
+            raise VerifyError(f"{_where(exc, where)}: the mistakes table cannot be imported: {exc}") from None
         raise VerifyError(f"{lab.key} has no mistakes table ({where})") from None
+    except SyntaxError as exc:
+        raise VerifyError(f"{exc.filename or where}, line {exc.lineno}: SyntaxError in the mistakes table: "
+                          f"{exc.msg}") from None
+    except Exception as exc:  # noqa: BLE001 - the author's table: any error, said where
+        raise VerifyError(f"{_where(exc, where)}: the mistakes table cannot be imported: "
+                          f"{type(exc).__name__}: {exc}") from None
     cases = _cases(lab, table, "MISTAKES", where) + _cases(lab, table, "ADVICE", where, advice=True)
     return LabParts(lab, reference, skeleton, tuple(cases), dict(getattr(table, "FEWER_MISTAKES", {})), where)
+
+
+def _where(exc: BaseException, where: str) -> str:
+    """``file, line N`` of the innermost frame of ``exc`` in the table ``where`` (else ``where``)."""
+    import traceback
+
+    frames = [f for f in traceback.extract_tb(exc.__traceback__) if f.filename.endswith(where)]
+    return f"{frames[-1].filename}, line {frames[-1].lineno}" if frames else where
 
 
 def _cases(lab: Lab, table, name: str, where: str, advice: bool = False) -> list[Case]:
@@ -106,12 +122,19 @@ def _cases(lab: Lab, table, name: str, where: str, advice: bool = False) -> list
     cases = []
     for case_name, entry in entries.items():
         if not (isinstance(entry, tuple) and len(entry) == 3 and isinstance(entry[1], str)
-                and isinstance(entry[2], (list, tuple)) and entry[2] and all(isinstance(f, str) for f in entry[2])):
+                and isinstance(entry[2], (list, tuple)) and entry[2]
+                and all(isinstance(f, str) and f.strip() for f in entry[2])):
             raise VerifyError(f"{where}: {name}[{case_name!r}] must be (exercise id, source, [fragments...]) "
-                              "with at least one fragment the diagnosis must contain")
+                              "with at least one fragment, a word or words the diagnosis must contain "
+                              "(an empty fragment is in every message)")
         if entry[0] not in exercises:
             raise VerifyError(f"{where}: {name}[{case_name!r}] names {entry[0]!r}, not an exercise of "
                               f"{lab.key} ({', '.join(sorted(exercises))})")
+        try:   # a case that cannot even be imported would lose points to its own SyntaxError
+            compile(textwrap.dedent(entry[1]), f"{name}[{case_name!r}]", "exec")
+        except SyntaxError as exc:
+            raise VerifyError(f"{where}: {name}[{case_name!r}]'s source, line {exc.lineno}: "
+                              f"SyntaxError: {exc.msg}") from None
         cases.append(Case(case_name, entry[0], entry[1], tuple(entry[2]), advice))
     return cases
 
@@ -161,12 +184,13 @@ def _scores(result: GradingResult, prefix: str) -> tuple[float, float]:
 
 
 def reference_problems(result: GradingResult, lab_key: str) -> list[str]:
-    """Every check of every exercise of the lab passed (advice may speak: it is no failure)."""
+    """Every check of every exercise of the lab passed (advice may speak: it is no failure, but
+    not crash)."""
     exercises = _exercises(result, lab_key)
     if not exercises:
         return [f"no exercise of {lab_key} was graded"]
     return [f"the reference fails {e.id} {c.name!r}: {c.message.splitlines()[0] if c.message else c.status}"
-            for e in exercises for c in e.checks if not c.passed and c.max_score > 0]
+            for e in exercises for c in e.checks if (not c.passed and c.max_score > 0) or c.status == ERROR]
 
 
 def skeleton_problems(result: GradingResult, lab_key: str) -> list[str]:
@@ -192,17 +216,26 @@ def named_mistakes(result: GradingResult, exercise_id: str) -> list[tuple[str, s
             if not c.passed and c.max_score > 0 and (c.mistake or "looks like" in c.message.lower())]
 
 
+def grader_errors(result: GradingResult, prefix: str) -> list[str]:
+    """The checks of the exercises under ``prefix`` (a lab or an exercise) that were grader
+    errors: a check that crashes on some answer scores it 0 without judging it."""
+    return [f"grader error in {e.id} {c.name!r}: {c.message.splitlines()[0] if c.message else ''}"
+            for e in _exercises(result, prefix) for c in e.checks if c.status == ERROR]
+
+
 def case_problems(result: GradingResult, case: Case) -> list[str]:
     """What is wrong with how the checks answer ``case`` (nothing: an empty list)."""
+    errors = grader_errors(result, case.exercise)
     if case.advice:
-        return _advice_problems(result, case)
+        return errors + _advice_problems(result, case)
     exercises = _exercises(result, case.exercise)
     if not exercises:
         return [f"{case.exercise} was not graded"]
-    failed = [c for e in exercises for c in e.checks if not c.passed and c.max_score > 0]
+    failed = [c for e in exercises for c in e.checks if not c.passed and c.max_score > 0 and c.status != ERROR]
     if not failed:
-        return [f"loses no points in {case.exercise}: every check passed, but the implementation is wrong"]
-    problems = []
+        return errors + [f"loses no points in {case.exercise}: every check passed"
+                         + (" or crashed" if errors else "") + ", but the implementation is wrong"]
+    problems = errors
     words = [f.lower() for f in case.fragments]
     if not any(all(w in c.message.lower() for w in words) for c in failed):
         problems.append(f"not named in its own words {list(case.fragments)}; the messages were: "
@@ -229,15 +262,19 @@ def _advice_problems(result: GradingResult, case: Case) -> list[str]:
 def unfailed_checks(lab: Lab, results: Iterable[GradingResult]) -> list[tuple[str, str]]:
     """(exercise id, check name) of the checks of ``lab`` that no grading of ``results`` failed
     (an advice check counts as failed when it gave its tip)."""
-    failed = {(e.id, c.name) for result in results for e in result.exercises for c in e.checks if not c.passed}
+    failed = {(e.id, c.name) for result in results for e in result.exercises for c in e.checks
+              if not c.passed and c.status != ERROR}
     return [(e.id, c.name) for e in lab.exercises.values() for c in e.checks if (e.id, c.name) not in failed]
 
 
 def differing_verdicts(first: GradingResult, second: GradingResult, lab_key: str) -> list[tuple[str, str]]:
     """(exercise id, check name) of the checks of the lab whose score or message differs
-    between two gradings of the same files."""
+    between two gradings of the same files, or which gave the student's functions other
+    inputs (a check drawing from the clock or an unseeded random generator, even if the
+    reference passes both)."""
     def verdicts(result):
-        return {(e.id, c.name): (c.score, c.message) for e in _exercises(result, lab_key) for c in e.checks}
+        return {(e.id, c.name): (c.score, c.message, c.inputs_digest)
+                for e in _exercises(result, lab_key) for c in e.checks}
 
     one, two = verdicts(first), verdicts(second)
     return [key for key in one if one[key] != two.get(key)] + [key for key in two if key not in one]
@@ -285,8 +322,11 @@ class LabReport:
         found += [f"{c.case.name}: {p}" for c in self.cases for p in c.problems]
         found += [f"{c.exercise} {c.name!r}: no case of the mistakes table fails it" for c in self.checks
                   if not c.failed_by]
-        found += [f"{c.exercise} {c.name!r}: a different verdict or message when graded again" for c in self.checks
-                  if not c.same_twice]
+        found += [f"{c.exercise} {c.name!r}: a different verdict, message or input when the reference is graded "
+                  "again (an unseeded random generator? the clock?)" for c in self.checks if not c.same_twice]
+        if not any(c.hidden and not c.advice for c in self.checks):
+            found.append(f"{self.key} has no hidden checks: a table of the public checks' answers would earn "
+                         "every point (add some to hidden.py, or hide some checks)")
         return found
 
     @property
@@ -319,7 +359,7 @@ def verify_lab(lab: Lab, gradings: Gradings | None = None,
                                 case_problems(result, case), result.seconds))
         for e in result.exercises:
             for c in e.checks:
-                if not c.passed:
+                if not c.passed and c.status != ERROR:
                     failed_by[(e.id, c.name)] = failed_by.get((e.id, c.name), 0) + 1
     differing = set(differing_verdicts(first, second, lab.key))
     timing = {(e.id, c.name): c.seconds for e in _exercises(first, lab.key) for c in e.checks}
