@@ -15,6 +15,7 @@ import contextlib
 import os
 import shlex
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 # The grader's matrices are small: one BLAS thread is as fast, NumPy starts a tenth of a
@@ -170,18 +171,26 @@ NO_SUBMISSION = ("autograder grade needs the submission to grade: a folder, .py,
 
 
 def run_grade(args) -> int:
-    limits = Limits(call_timeout=args.timeout) if args.timeout else Limits()
+    from .instructor.course import CourseConfig, CourseConfigError
+
+    try:  # read first: its time limits are the worker's, and the worker starts next
+        course = CourseConfig.load(args.config) if args.config else CourseConfig()
+    except CourseConfigError as exc:
+        print(f"error: {printable(str(exc))}", file=sys.stderr)
+        return USAGE_ERROR
+    limits = course.limits() if args.config else Limits()
+    if args.timeout:
+        limits = replace(limits, call_timeout=args.timeout)
     lanes = lanes_for(args.select)
     # First: the worker boots meanwhile.
     early = _early_sandbox(limits.shared_by(lanes)) if args.submission is not None else None
 
     from rich.console import Console
 
-    from .instructor.course import CourseConfig, CourseConfigError
     from .engine.registry import SelectionError
-    from .reports import terminal
     from .engine.results import write_json
     from .engine.runner import grade
+    from .reports import terminal
 
     console, errors = Console(stderr=False), Console(stderr=True)
     if args.submission is None:
@@ -200,7 +209,6 @@ def run_grade(args) -> int:
             with _progress(errors) as advance:
                 # Pictures cost time to encode: make them only for a page (or a JSON file asking for them).
                 pictures = "all" if (args.json_pictures or not args.no_html) else "none"
-                course = CourseConfig.load(args.config) if args.config else CourseConfig()
                 note = ignored_keys_note(course, "grade")
                 if note:
                     errors.print(f"[yellow]note:[/yellow] {escape(note)}", highlight=False)

@@ -115,3 +115,30 @@ def test_json_leaves_pictures_out_unless_asked(tmp_path):
     def artifacts(path):
         return [a for e in json.loads(path.read_text())["exercises"] for c in e["checks"] for a in c["artifacts"]]
     assert artifacts(plain) == [] and artifacts(with_pictures) != []
+
+
+def test_grade_applies_the_course_time_limits_and_timeout_overrides_them(tmp_path):
+    """``--config``'s call_timeout is the worker's limit (the note says grade applies it); an
+    explicit --timeout wins over it."""
+    from autograder.cli import main
+
+    handin = tmp_path / "handin"
+    handin.mkdir()
+    (handin / "lab07_transformations.py").write_text(
+        (REFERENCE / "lab07_transformations.py").read_text()
+        + "\n\nimport time\n_own, _slept = translation_matrix, []\n\ndef translation_matrix(tx, ty):\n"
+          "    if not _slept:  # the first call of each worker\n"
+          "        _slept.append(time.sleep(2))\n    return _own(tx, ty)\n")
+    course = tmp_path / "course.json"
+    course.write_text(json.dumps({"call_timeout": 1}))
+    out = tmp_path / "r.json"
+
+    def first_failure(*extra):
+        assert main(["grade", str(handin), "lab07.ex1", "--no-html", "--config", str(course),
+                     "--json", str(out), *extra]) == 0
+        checks = [c for e in json.loads(out.read_text())["exercises"] for c in e["checks"]]
+        return next((c for c in checks if c["status"] != "passed"), None)
+
+    limited = first_failure()
+    assert limited is not None and limited["failure"] == "timeout", limited
+    assert first_failure("--timeout", "10") is None
