@@ -7,6 +7,7 @@ is stable, and every change lands in the gradebook at once.
 
 from __future__ import annotations
 
+import logging
 import re
 import socket
 import threading
@@ -258,7 +259,19 @@ def test_the_server_listens_on_127_0_0_1_only_and_prints_its_token(results):
     match = re.fullmatch(r"http://127\.0\.0\.1:(\d+)/([A-Za-z0-9_-]{20,})/", url)
     assert match, url
     port = int(match[1])
-    assert urllib.request.urlopen(url, timeout=10).status == 200
+    logged = []
+
+    class Collect(logging.Handler):
+        def emit(self, record):
+            logged.append(record.getMessage())
+
+    collect = Collect()
+    logging.getLogger("werkzeug").addHandler(collect)
+    try:
+        assert urllib.request.urlopen(url, timeout=10).status == 200
+    finally:
+        logging.getLogger("werkzeug").removeHandler(collect)
+    assert logged and not any(match[2] in line for line in logged), logged   # the log shows <token>
     with pytest.raises(urllib.error.HTTPError) as refused:
         urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=10)
     assert refused.value.code == 403

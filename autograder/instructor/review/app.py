@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import hashlib
 import hmac
+import logging
 import random
 import re
 import secrets
@@ -334,6 +335,28 @@ def _figures(results: Path, student_id: str, exercise: str) -> dict[str, Path]:
     return found
 
 
+class _WithoutToken(logging.Filter):
+    """Werkzeug logs each request's path, which begins with the token: the log (a terminal, a
+    file it is redirected to, a screen shared in a lecture) shows ``<token>`` instead."""
+
+    def __init__(self, token: str):
+        super().__init__()
+        self.token = token
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        if record.args:
+            record.args = tuple(arg.replace(self.token, "<token>") if isinstance(arg, str) else arg
+                                for arg in (record.args if isinstance(record.args, tuple) else (record.args,)))
+        record.msg = str(record.msg).replace(self.token, "<token>")
+        return True
+
+
+def _hide_in_the_log(token: str) -> None:
+    log = logging.getLogger("werkzeug")
+    log.filters = [f for f in log.filters if not isinstance(f, _WithoutToken)]
+    log.addFilter(_WithoutToken(token))
+
+
 def serve(results, port: int = 0, reviewer: str = "reviewer", anonymous: bool = False,
           shuffle: int | None = None, announce=print) -> None:
     """Serve the review of ``results`` on 127.0.0.1:``port`` (0: a free one) until interrupted;
@@ -344,6 +367,7 @@ def serve(results, port: int = 0, reviewer: str = "reviewer", anonymous: bool = 
     try:
         app = create_app(session)
         server = make_server("127.0.0.1", port, app, threaded=True)
+        _hide_in_the_log(app.config["TOKEN"])
         announce(f"http://127.0.0.1:{server.server_port}/{app.config['TOKEN']}/")
         try:
             server.serve_forever()
