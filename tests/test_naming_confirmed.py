@@ -294,6 +294,7 @@ def test_the_aperture_message_no_longer_names_the_opposite_cause():
 DIRECT_EVIDENCE = {
     "shape_form": "the result's shape is the named form's (2x3 for 3x3, (N, 1, 2), one coordinate more...)",
     "exception_form": "the shapes in NumPy's own error are the named form's",
+    "scale_form": "the answer is the truth times one factor, measured, and the factor is -1 or 1 / an entry",
     "_homogeneous_product": "the product's inner sizes differ by the homogeneous coordinate",
     "judge_matrix": "an integer matrix: the entries are whole numbers where the truth's are not",
     "judge_warp": "the shape is the expected one with width and height exchanged",
