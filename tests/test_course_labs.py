@@ -26,6 +26,7 @@ from autograder.instructor.bundle import write_student_bundle
 from autograder.instructor.course import CourseConfig, CourseConfigError
 from autograder.instructor.verify import verify_lab
 from conftest import ROOT, mutant
+from test_gradescope import run_container
 
 COURSE = Path(__file__).parent / "data" / "course"
 LAB = COURSE / "labs" / "imstats"
@@ -365,18 +366,7 @@ def test_the_gradescope_zip_ships_the_course_lab_and_grades_it(tmp_path):
                                  "course_labs/lab13/mistakes.py", "autograder/labs/mistakes/")) for n in names)
     assert shipped["labs"] == ["course_labs/lab13"] and shipped["inputs_secret"]
     forget_lab_folders()
-    root = tmp_path / "autograder"
-    with zipfile.ZipFile(zip_path) as zf:
-        zf.extractall(root / "source")
-    (root / "source" / "run_autograder").chmod(0o755)
-    submission = mutant(tmp_path, MODULE, TRUNCATED, base=REFERENCE)
-    shutil.copytree(submission, root / "submission")
-    env = {**os.environ, "AUTOGRADER_ROOT": str(root), "AUTOGRADER_PYTHON": sys.executable}
-    env.pop("PYTHONPATH", None)
-    run = subprocess.run([str(root / "source" / "run_autograder")], cwd=root, env=env,
-                         capture_output=True, text=True, timeout=300)
-    assert run.returncode == 0, run.stderr
-    results = json.loads((root / "results" / "results.json").read_text())
+    results = run_container(zip_path, tmp_path, mutant(tmp_path, MODULE, TRUNCATED, base=REFERENCE))
     tests = {t["name"]: t for t in results["tests"]}
     assert all(name.startswith("lab13.") for name in tests) and len(tests) == 7
     assert tests["lab13.ex1 Histogram: histogram of a ramp with every grey level"]["status"] == "passed"
