@@ -20,6 +20,7 @@ from autograder.instructor.batch.gradebook import Gradebook
 from autograder.instructor.batch.ingest import read_upload
 from autograder.instructor.batch.tree import MAX_ATTACHMENT_BYTES, MAX_REPORT_FILES
 from autograder.loading.report import MAX_REPORT_BYTES
+from test_batch import write, zipped
 
 MODULE = "lab07_transformations"
 CODE = b"def translate(image, tx, ty):\n    return image\n"
@@ -37,17 +38,6 @@ def notebook(text: str) -> bytes:
     return json.dumps({"cells": cells, "metadata": {}, "nbformat": 4, "nbformat_minor": 5}).encode()
 
 
-def zipped(files: dict[str, bytes]) -> bytes:
-    buffer = io.BytesIO()
-    with zipfile.ZipFile(buffer, "w") as archive:
-        for name, data in files.items():
-            archive.writestr(name, data)
-    return buffer.getvalue()
-
-
-def write(path, data: bytes) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_bytes(data)
 
 
 def read(root):
