@@ -544,23 +544,32 @@ def run_validate(args) -> int:
 
 
 def run_list(args) -> int:
-    if getattr(args, "course", None):
-        from .instructor.course import CourseConfig, CourseConfigError
+    """The labs, exercises and checks; with ``--course``, as that course grades them: its labs,
+    its selection, its points (the suite's beside them where they differ) and its hidden checks."""
+    from .engine.registry import SelectionError, select
+    from .instructor.course import CourseConfig, CourseConfigError
 
-        try:
-            CourseConfig.load(args.course)   # registers the course's labs
-        except CourseConfigError as exc:
-            print(f"error: {exc}", file=sys.stderr)
-            return USAGE_ERROR
-    for lab in sorted(discover().values(), key=lambda lab: lab.key):
-        where = f"  (course lab: {lab.folder})" if lab.folder else ""
-        print(f"{lab.key}  {lab.module}.py  {lab.title}{where}")
-        for exercise in lab.exercises.values():
-            print(f"  {exercise.id:<12} {exercise.max_score():>5g} pts  {exercise.title}")
-            for check in exercise.checks:
-                points = "tip" if check.advice else f"{check.points:g}"  # advice: 0 points
-                print(f"      {points:>4}  {check_label(check.name, check.hidden)}"
-                      + (f"  [{check.id}]" if getattr(args, "ids", False) else ""))
+    try:
+        course = CourseConfig.load(args.course) if getattr(args, "course", None) else CourseConfig()
+        exercises = select(course.select)   # every exercise when the course selects none
+    except (CourseConfigError, SelectionError) as exc:
+        print(f"error: {printable(str(exc))}", file=sys.stderr)
+        return USAGE_ERROR
+    factors = course.point_factors([(e.id, e.max_score()) for e in exercises])
+    shown_lab = None
+    for exercise in exercises:
+        lab = exercise.lab
+        if lab is not shown_lab:
+            where = f"  (course lab: {lab.folder})" if lab.folder else ""
+            print(f"{lab.key}  {lab.module}.py  {lab.title}{where}")
+            shown_lab = lab
+        factor = factors.get(exercise.id, 1.0)
+        raw = f" (suite: {exercise.max_score():g})" if factor != 1.0 else ""
+        print(f"  {exercise.id:<12} {exercise.max_score() * factor:>5.4g} pts  {exercise.title}{raw}")
+        for check in exercise.checks:
+            points = "tip" if check.advice else f"{check.points * factor:.3g}"  # advice: 0 points
+            print(f"      {points:>4}  {check_label(check.name, check.hidden)}"
+                  + (f"  [{check.id}]" if getattr(args, "ids", False) else ""))
     return 0
 
 

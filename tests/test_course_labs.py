@@ -102,6 +102,18 @@ def test_list_shows_the_course_labs(capsys):
     assert "lab07  lab07_transformations.py" in out            # beside the built-in labs
 
 
+def test_list_shows_what_the_course_grades_at_its_points(tmp_path, capsys):
+    """The course's selection, its points (the suite's beside them) and its hidden checks."""
+    course = tmp_path / "course.json"
+    course.write_text(json.dumps({"labs": [str(LAB)], "select": ["lab13", "lab07.ex1"],
+                                  "points": {"lab07.ex1": 24}, "hide": ["lab07.ex1::translate_grey"]}))
+    assert main(["list", "--course", str(course)]) == 0
+    out = capsys.readouterr().out
+    assert "lab07.ex1       24 pts  Translation (suite: 12)" in out
+    assert "translate keeps a grey image grey (hidden)" in out and "      4  translation_matrix(100, 50)" in out
+    assert "lab13  " in out and "lab07.ex2" not in out and "lab08" not in out
+
+
 def edit(name: str, old: str, new: str):
     """A change to a lab folder: in its file ``name``, ``old`` becomes ``new``."""
     def change(folder: Path):
