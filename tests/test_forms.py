@@ -36,6 +36,7 @@ def test_a_recognised_form_is_named_from_the_shape(got, expected, words):
 
 
 @pytest.mark.parametrize("got, expected", [
+    ((1, 2), (2, 2)), ((2, 2), (1, 2)),                    # no affine form of that size
     ((4, 4), (3, 3)), ((3, 3, 3), (3, 3)), ((12, 5), (None, 2)), ((7,), (3, 3)), ((2, 2), (2,)),
     ((12, 1, 3), (None, 2)),
 ])

@@ -38,11 +38,11 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
         rows, columns = expected
         if rows != columns and got == (columns, rows):
             return Form("it looks transposed (rows and columns exchanged)", "the result is transposed")
-        if got == (rows - 1, columns) and rows == columns:
+        if got == (rows - 1, columns) and rows == columns in (3, 4):
             return Form(f"it looks like the {_size(got)} affine form, the matrix without its last row "
                         f"[0 ... 0 1]; a {_size(expected)} homogeneous matrix is asked",
                         f"the {_size(got)} affine form instead of the {_size(expected)} homogeneous matrix")
-        if got == (rows + 1, columns) and columns == rows + 1:
+        if got == (rows + 1, columns) and columns == rows + 1 in (3, 4):
             return Form(f"it looks like the {_size(got)} homogeneous matrix; its top {rows} rows "
                         f"({_size(expected)}) are asked",
                         f"the {_size(got)} homogeneous matrix instead of its {_size(expected)} top rows")
@@ -146,7 +146,9 @@ def exception_form(message: str) -> Form | None:
 
 
 def _homogeneous_product(sizes: list[int]) -> Form:
+    # NumPy's error gives both inner sizes, not which operand holds the points: the name says
+    # what is measured (one side has the homogeneous coordinate, the other not), both fixes.
     short, full = sizes
-    return Form(f"it looks like points of {short} coordinates meet a matrix that needs {full}: "
-                "make them homogeneous first (append a coordinate of ones)",
-                "points not made homogeneous before the matrix product")
+    return Form(f"it looks like homogeneous and plain coordinates meet in a matrix product (inner sizes "
+                f"{short} and {full}): append a coordinate of ones to points of {short}, or use the "
+                f"matrix that fits them", "homogeneous and plain coordinates mixed in a matrix product")
