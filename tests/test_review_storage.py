@@ -216,3 +216,17 @@ def test_the_late_penalty_applies_to_the_reports_points_too():
     course = CourseConfig(select=["lab07.ex1"], late_penalty={"per_day": 50})
     [grade], _ = exports.compute_grades(students, [("lab07.ex1", 12.0)], course, rubric=rubric, reviews=reviews)
     assert grade.late_penalty == 10 and grade.total == 10
+
+
+@pytest.mark.parametrize("show_final, says", [(True, "final grade 14 / 15"),
+                                              (False, "final grade: shown when the hidden checks are released")])
+def test_the_reports_points_are_listed_with_the_adjustments_the_final_grade_holds(show_final, says):
+    """While hidden points are withheld the headline shows the checks' total only: the block of
+    what makes the final grade lists the reviewed reports too, so the page never hides them."""
+    grade = exports.StudentGrade(student={"student_id": "ada", "status": "graded"}, exercises={"lab07.ex1": 12},
+                                 reports={"lab07.ex1": 2}, reviews={"lab07.ex1": exports.Review([("axes", 2)], 2, 3, "")})
+    block = exports.adjustments_html(grade, 15, show_final)
+    assert "<td>lab07.ex1 report, reviewed</td><td>+2</td>" in block and says in block
+    assert exports.adjustments_html(exports.StudentGrade(student={"student_id": "bo", "status": "graded"},
+                                                         exercises={"lab07.ex1": 12}), 15) == \
+        f"{exports.BEGIN}{exports.END}", "nothing to list: no block"

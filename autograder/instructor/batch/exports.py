@@ -562,10 +562,15 @@ def shows_final(grade: StudentGrade, course: CourseConfig) -> bool:
 def adjustments_html(grade: StudentGrade, possible: float, show_final: bool = True) -> str:
     """The block shown on a student's page: every adjustment and the final grade (or, while
     hidden checks' points are withheld, when it will be shown), or nothing."""
-    if not grade.adjustments and not grade.late_penalty:
+    if not grade.adjustments and not grade.late_penalty and not grade.reviews:
         return f"{BEGIN}{END}"
-    rows = "".join(f"<tr><td>{html.escape(a.what)}</td><td>{html.escape(a.change)}</td>"
-                   f"<td>{html.escape(a.comment)}</td></tr>" for a in grade.adjustments)
+    # The reports' points are in the final grade, not in the checks' total the headline shows
+    # while hidden points are withheld: listed here, each beside the others that make the grade.
+    reviewed = [(f"{exercise} report, reviewed", f"{review.points:+g}", "")
+                for exercise, review in sorted(grade.reviews.items())]
+    rows = "".join(f"<tr><td>{html.escape(what)}</td><td>{html.escape(change)}</td>"
+                   f"<td>{html.escape(comment)}</td></tr>"
+                   for what, change, comment in reviewed + [(a.what, a.change, a.comment) for a in grade.adjustments])
     final = (f"final grade {_fmt(grade.total)} / {possible:g}" if show_final
              else "final grade: shown when the hidden checks are released")
     return (f'{BEGIN}<section class="exercise" id="adjustments"><header><h2>Instructor adjustments</h2>'
