@@ -12,6 +12,7 @@ import sys
 from autograder.student import selfcheck
 from autograder.student.validate import NOTE, PROBLEM, validate
 from conftest import REFERENCE, ROOT, SKELETON, mutant, submission_from_source
+from test_beginner_errors import INTEGER_MATRIX
 
 MODULE = "lab07_transformations"
 REFERENCE_SOURCE = (REFERENCE / f"{MODULE}.py").read_text()
@@ -109,16 +110,7 @@ def test_files_imports_and_dtypes_are_named(tmp_path):
                       ["lab07.ex1"])
     [text] = problems(broken)[f"{MODULE}.py"]
     assert text.startswith("does not import: ") and "No module named 'seaborn'" in text and "line 2" in text
-    integer = '''
-def translation_matrix(tx, ty):
-    return np.array([[1, 0, tx], [0, 1, ty], [0, 0, 1]])
-
-
-def translate(image, tx=100, ty=50):
-    h, w = image.shape[:2]
-    return cv2.warpAffine(image, translation_matrix(tx, ty)[:2], (w, h))
-'''
-    found = problems(validate(mutant(tmp_path / "c", MODULE, integer), ["lab07.ex1"]))
+    found = problems(validate(mutant(tmp_path / "c", MODULE, INTEGER_MATRIX), ["lab07.ex1"]))
     assert found["translation_matrix()"] == ["returned an int64 array; the lab documents a float array (OpenCV's "
                                              "warps and most maths need floats): build it with dtype=float"]
     assert found["translate()"][0].startswith("cv2.warpAffine needs M as a float32 or float64 matrix; yours is int64")
