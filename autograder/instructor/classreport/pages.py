@@ -24,14 +24,6 @@ class NoGradebook(FileNotFoundError):
     """The folder holds no batch gradebook."""
 
 
-def records_from_class_results(rows: list[dict]) -> list[StudentRecord]:
-    """``Gradebook.class_results()`` rows as overview records (links relative to RESULTS)."""
-    return [StudentRecord(student_id=row["student_id"], name=row.get("display_name") or "",
-                          status=row.get("status", "graded"), reason=row.get("reason") or "",
-                          result=row.get("result"), feedback_href=row.get("feedback") or "")
-            for row in rows]
-
-
 # Every file a batch may write beside the pages, as the overview links them.
 REPORTS = (("grades", "grades.csv"), ("Canvas import", "canvas_import.csv"),
            ("Moodle worksheet", "moodle_import.csv"), ("roster problems", "roster_unmatched.csv"),
@@ -58,19 +50,6 @@ def records_from_grades(grades, possible: float) -> list[StudentRecord]:
             feedback_href=row.get("feedback") or "", final=grade.total,
             final_max=possible if grade.total is not None else None))
     return records
-
-
-def class_records(results_dir) -> list[StudentRecord]:
-    """The class as the gradebook in ``results_dir`` holds it, with the final grades."""
-    results_dir = Path(results_dir)
-    if not (results_dir / GRADEBOOK).is_file():
-        raise NoGradebook(f"{results_dir} holds no {GRADEBOOK}: run autograder batch SUBMISSIONS --out {results_dir}")
-    from ..batch.gradebook import Gradebook
-    from ..batch.run import class_grades
-
-    with Gradebook(results_dir, readonly=True) as book:
-        standing = class_grades(book)
-    return records_from_grades(standing.grades, standing.possible)
 
 
 def write_overview(results_dir, course_title: str | None = None) -> Path:
