@@ -120,6 +120,21 @@ def test_the_review_screen_shows_the_explanation_inert_the_figures_verdict_and_r
         session.close()
 
 
+def test_each_pdf_link_downloads_that_pdf_when_markdown_files_sort_before_it(tmp_path):
+    with graded_book(tmp_path, ("ada",), (12.0,)) as book:
+        for path, data in (("a_notes.md", b"# notes"), ("b_first.pdf", b"%PDF first"),
+                           ("c_report.md", b"# report"), ("d_second.pdf", b"%PDF second")):
+            book.db.execute("INSERT INTO report_files VALUES ('ada', ?, ?)", (path, data))
+    session, client = client_for(tmp_path)
+    try:
+        page = get(client, f"/{TOKEN}/review/0").get_data(as_text=True)
+        links = re.findall(rf'href="(/{TOKEN}/attachment/[^"]+)">([^<]+)</a>', page)
+        assert [name for _, name in links] == ["b_first.pdf", "d_second.pdf"]
+        assert [get(client, link).data for link, _ in links] == [b"%PDF first", b"%PDF second"]
+    finally:
+        session.close()
+
+
 def test_changes_are_in_the_gradebook_at_once_and_items_are_edited_centrally(results):
     session, client = client_for(results)
     try:

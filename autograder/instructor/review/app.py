@@ -196,8 +196,7 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         rendered = render_markdown(explanation["text"], figure_url) if explanation else None
         result = (students.get(pair.student_id) or {}).get("result") or {}
         verdict = next((e for e in result.get("exercises", []) if e["id"] == pair.exercise), None)
-        attachments = [(i, path, size) for i, (path, size) in enumerate(report["files"].items())
-                       if path.lower().endswith(".pdf")]
+        attachments = [(i, path, size) for i, (path, size) in enumerate(_pdfs(report["files"]))]
         problems = report["problems"]
         if session.anonymous:   # the file names a student chose, and their names, are not shown
             student = students.get(pair.student_id) or {}
@@ -285,7 +284,7 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
     def attachment(ref: str, exercise: str, number: int):
         pair, _ = pair_of(ref, exercise)
         with session.lock:
-            paths = [p for p in session.book.report(pair.student_id)["files"] if p.lower().endswith(".pdf")]
+            paths = [path for path, _ in _pdfs(session.book.report(pair.student_id)["files"])]
             if not 0 <= number < len(paths):
                 abort(404)
             data = session.book.report_file(pair.student_id, paths[number])
@@ -295,6 +294,12 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
 
     app.jinja_env.filters["num"] = lambda v: "" if v is None else f"{round(float(v), 4):g}"
     return app
+
+
+def _pdfs(files: dict[str, int]) -> list[tuple[str, int]]:
+    """The PDFs of a report's files (path -> size), in order: an attachment's number on the
+    review screen and in its download address is its place in this list."""
+    return [(path, size) for path, size in files.items() if path.lower().endswith(".pdf")]
 
 
 def _identities(student: dict) -> list[str]:
