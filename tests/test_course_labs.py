@@ -279,6 +279,13 @@ def test_verify_refuses_what_it_cannot_verify(tmp_path, capsys):
     (edit("mistakes.py", '["truncated"]', '[""]'), ["MISTAKES['stretch truncated']", "an empty fragment"]),
     (edit("mistakes.py", "            if high == low:\n", "            if high == low\n"),
      ["MISTAKES['stretch in uint8']'s source, line 4: SyntaxError"]),
+    (edit("mistakes.py", '("lab13.ex1", """\n        def histogram(image, bins=256):\n            return np.histogram',
+          '(["lab13.ex1"], """\n        def histogram(image, bins=256):\n            return np.histogram'),
+     ['MISTAKES["np.histogram over the image\'s own range"] must be (exercise id']),
+    (edit("mistakes.py", "MISTAKES = {", 'FEWER_MISTAKES = {"lab13.ex2"}\nMISTAKES = {'),
+     ["mistakes.py: FEWER_MISTAKES must be a dict"]),
+    (edit("mistakes.py", "MISTAKES = {", 'FEWER_MISTAKES = {"lab13.ex9": "no such exercise"}\nMISTAKES = {'),
+     ["FEWER_MISTAKES names 'lab13.ex9', not an exercise of lab13"]),
 ])
 def test_a_mistakes_table_verify_cannot_use_is_a_usage_error_saying_where(tmp_path, capsys, change, words):
     """Exit 2 before any grading, with the file and line: never a traceback, nor a case that

@@ -103,7 +103,22 @@ def parts_of(lab: Lab) -> LabParts:
         raise VerifyError(f"{_where(exc, where)}: the mistakes table cannot be imported: "
                           f"{type(exc).__name__}: {exc}") from None
     cases = _cases(lab, table, "MISTAKES", where) + _cases(lab, table, "ADVICE", where, advice=True)
-    return LabParts(lab, reference, skeleton, tuple(cases), dict(getattr(table, "FEWER_MISTAKES", {})), where)
+    return LabParts(lab, reference, skeleton, tuple(cases), _fewer(lab, table, where), where)
+
+
+def _fewer(lab: Lab, table, where: str) -> dict:
+    """The table's ``FEWER_MISTAKES`` (exercise id -> why), refused unless it is that."""
+    fewer = getattr(table, "FEWER_MISTAKES", {})
+    exercises = {e.id for e in lab.exercises.values()}
+    if not (isinstance(fewer, dict) and all(isinstance(k, str) and isinstance(v, str) and v.strip()
+                                            for k, v in fewer.items())):
+        raise VerifyError(f"{where}: FEWER_MISTAKES must be a dict: exercise id -> why its algorithm has "
+                          "fewer than five realistic mistakes")
+    stale = sorted(set(fewer) - exercises)
+    if stale:
+        raise VerifyError(f"{where}: FEWER_MISTAKES names {', '.join(map(repr, stale))}, not an exercise of "
+                          f"{lab.key} ({', '.join(sorted(exercises))})")
+    return dict(fewer)
 
 
 def _where(exc: BaseException, where: str) -> str:
@@ -121,7 +136,8 @@ def _cases(lab: Lab, table, name: str, where: str, advice: bool = False) -> list
     exercises = {e.id for e in lab.exercises.values()}
     cases = []
     for case_name, entry in entries.items():
-        if not (isinstance(entry, tuple) and len(entry) == 3 and isinstance(entry[1], str)
+        if not (isinstance(entry, tuple) and len(entry) == 3 and isinstance(entry[0], str)
+                and isinstance(entry[1], str)
                 and isinstance(entry[2], (list, tuple)) and entry[2]
                 and all(isinstance(f, str) and f.strip() for f in entry[2])):
             raise VerifyError(f"{where}: {name}[{case_name!r}] must be (exercise id, source, [fragments...]) "
