@@ -93,7 +93,7 @@ def test_marks_and_notes_are_stored_with_who_and_when_and_items_edited_centrally
         book.set_mark("ada", "lab07.ex1", "axes", True, "ta")          # twice: applied once
         book.set_mark("bo", "lab07.ex1", "corners", True, "prof")
         book.set_mark("bo", "lab07.ex1", "no-figure", True, "prof")
-        book.set_review_note("bo", "lab07.ex1", "prof", comment="Good\x1b[31m\r\nwork", done=True)
+        book.set_review_note("bo", "lab07.ex1", "prof", comment="Good\x1b[31m\u202e\x9b\r\nwork", done=True)
         with pytest.raises(KeyError, match="no rubric item 'nope'"):
             book.set_mark("ada", "lab07.ex1", "nope", True, "prof")
         reviews = book.reviews()

@@ -27,10 +27,11 @@ from urllib.parse import unquote
 
 from markupsafe import Markup
 
+from ..loading.text import printable
+
 MAX_MARKDOWN_CHARS = 50_000
 MAX_NESTING = 20
 _SAFE_SCHEMES = ("http", "https", "mailto")
-_CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
 _SCHEME = re.compile(r"^([a-zA-Z][a-zA-Z0-9+.-]*):")
 
 
@@ -77,7 +78,7 @@ def render_markdown(text: str, figure_url: Callable[[str], str | None] | None = 
     global _MD
     if _MD is None:
         _MD = _parser()
-    text = _CONTROL.sub("", str(text or ""))
+    text = printable(text or "")
     cut = len(text) > limit
     text = text[:limit]
     tokens = _MD.parse(text)

@@ -60,6 +60,7 @@ from pathlib import Path
 
 from ... import __version__
 from ...engine.results import strip_pictures
+from ...loading.text import printable
 
 GRADEBOOK = "gradebook.sqlite"
 SCHEMA_VERSION = 3   # 2: students.present; 3: reports and their review
@@ -665,8 +666,7 @@ class Gradebook:
                                   (student_id, exercise)).fetchone()
             old_comment, old_done = (row["comment"], bool(row["done"])) if row else ("", False)
             if comment is not None:
-                comment = "".join(c for c in comment if c in "\n\t" or (ord(c) >= 32 and ord(c) != 127))
-                comment = comment.replace("\r", "")[:REVIEW_COMMENT_LENGTH]
+                comment = printable(comment)[:REVIEW_COMMENT_LENGTH]
             self.db.execute("INSERT OR REPLACE INTO review_notes VALUES (?,?,?,?,?,?)",
                             (student_id, exercise, old_comment if comment is None else comment,
                              int(old_done if done is None else done), who, _now()))
