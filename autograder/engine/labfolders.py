@@ -33,7 +33,7 @@ import traceback
 from dataclasses import dataclass
 from pathlib import Path
 
-from .registry import REGISTRY, Lab
+from .registry import REGISTRY, Lab, LabKeyTaken
 
 SUITE, HIDDEN, MISTAKES = "suite.py", "hidden.py", "mistakes.py"
 REFERENCE, SKELETON = "reference", "skeleton"
@@ -162,8 +162,8 @@ def _run(package: str, path: Path) -> None:
     except Exception as exc:  # noqa: BLE001 - the author's code: any error, said where
         where = _where(exc, path.parent)
         message = str(exc)
-        if "is registered twice" in message:
-            key = message.split()[1]
+        if isinstance(exc, LabKeyTaken):
+            key = exc.key
             owner = lab_folder(REGISTRY[key]) if key in REGISTRY else None
             message = (f"the lab key {key} is taken by "
                        + (f"the course lab in {owner.folder}" if owner else "a built-in lab")

@@ -55,6 +55,14 @@ class SelectionError(ValueError):
     """A selector like ``lab07.ex9`` names nothing that exists."""
 
 
+class LabKeyTaken(ValueError):
+    """A lab declared with the key of a lab already registered (``key``)."""
+
+    def __init__(self, key: str):
+        super().__init__(f"lab {key} is registered twice")
+        self.key = key
+
+
 @dataclass
 class Check:
     """One graded check: ``func(t)`` inspects the student's functions through ``t``."""
@@ -124,7 +132,7 @@ class Lab:
         if not re.fullmatch(r"lab\d\d", self.key):
             raise ValueError(f"lab key must look like 'lab07', got {self.key!r}")
         if self.key in REGISTRY:
-            raise ValueError(f"lab {self.key} is registered twice")
+            raise LabKeyTaken(self.key)
         REGISTRY[self.key] = self
 
     def exercise(self, key: str, title: str, functions: list[str]) -> Exercise:
