@@ -36,6 +36,7 @@ from pathlib import Path
 from urllib.parse import urlsplit
 
 from ...reports.markdown import render_markdown
+from ..batch.exports import report_maxima
 from ..batch.gradebook import Gradebook
 from ..batch.run import batch_course
 from ..course import CourseConfigError
@@ -165,7 +166,7 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         return {"applied": review.get("items", []), "points": review.get("points", 0.0),
                 "comment": review.get("comment", ""), "done": review.get("done", False),
                 "changed_by": review.get("changed_by", ""), "changed_at": review.get("changed_at", ""),
-                "maximum": sum(max(0.0, i["points"]) for i in items)}
+                "maximum": report_maxima({pair.exercise: items}, [(pair.exercise, 0)]).get(pair.exercise, 0.0)}
 
     def page(template: str, **context):
         return render_template(template, token=token, csrf=csrf, nonce=g.nonce, reviewer=session.reviewer,
