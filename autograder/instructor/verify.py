@@ -275,11 +275,22 @@ def _advice_problems(result: GradingResult, case: Case) -> list[str]:
     return problems + [f"a convention loses points: {line}" for line in lost]
 
 
+def failures(results: Iterable[GradingResult]) -> dict[tuple[str, str], int]:
+    """How many gradings of ``results`` fail each check, by (exercise id, check name) (an advice
+    check counts as failed when it gave its tip; a grader error is no failure)."""
+    counted: dict[tuple[str, str], int] = {}
+    for result in results:
+        for e in result.exercises:
+            for c in e.checks:
+                if not c.passed and c.status != ERROR:
+                    counted[(e.id, c.name)] = counted.get((e.id, c.name), 0) + 1
+    return counted
+
+
 def unfailed_checks(lab: Lab, results: Iterable[GradingResult]) -> list[tuple[str, str]]:
     """(exercise id, check name) of the checks of ``lab`` that no grading of ``results`` failed
-    (an advice check counts as failed when it gave its tip)."""
-    failed = {(e.id, c.name) for result in results for e in result.exercises for c in e.checks
-              if not c.passed and c.status != ERROR}
+    (:func:`failures`)."""
+    failed = failures(results)
     return [(e.id, c.name) for e in lab.exercises.values() for c in e.checks if (e.id, c.name) not in failed]
 
 
@@ -366,17 +377,15 @@ def verify_lab(lab: Lab, gradings: Gradings | None = None,
     second = gradings.reference(parts, 1)
     tell(f"{lab.key} skeleton")
     skeleton = gradings.skeleton(parts)
-    cases, failed_by = [], {}
+    cases, results = [], []
     for case in parts.cases:
         tell(f"{lab.key} {case.name}")
         result = gradings.case(parts, case)
         graded = _exercises(result, case.exercise)
         cases.append(CaseReport(case, sum(e.score for e in graded), sum(e.max_score for e in graded),
                                 case_problems(result, case), result.seconds))
-        for e in result.exercises:
-            for c in e.checks:
-                if not c.passed and c.status != ERROR:
-                    failed_by[(e.id, c.name)] = failed_by.get((e.id, c.name), 0) + 1
+        results.append(result)
+    failed_by = failures(results)
     differing = set(differing_verdicts(first, second, lab.key))
     timing = {(e.id, c.name): c.seconds for e in _exercises(first, lab.key) for c in e.checks}
     checks = [CheckReport(e.id, c.name, c.points, c.hidden, c.advice, timing.get((e.id, c.name), 0.0),
