@@ -131,6 +131,8 @@ def edit(name: str, old: str, new: str):
      ["suite.py, line 10", "ModuleNotFoundError", "no_such_module"]),
     (edit("suite.py", "from . import truth", "from . import truth\nraise ValueError('figure lab07 is registered twice')"),
      ["suite.py, line 10", "ValueError: figure lab07 is registered twice"]),   # no lab key: said as it is
+    (edit("suite.py", "from . import truth", "from . import truth\nimport sys\nsys.exit(3)"),
+     ["suite.py, line 11", "SystemExit: 3"]),                               # said, not a silent exit
     (edit("hidden.py", "", "def broken(:\n"), ["hidden.py, line 1", "SyntaxError"]),
     (edit("truth.py", '"""Ground truth', '1 / 0\n"""Ground truth'), ["truth.py, line 1", "ZeroDivisionError"]),
     (edit("suite.py", "", "x = 1\n"), ["registers 0 labs"]),

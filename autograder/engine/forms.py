@@ -33,7 +33,6 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
     """The form a result of shape ``got`` has where ``expected`` is asked (``None`` entries
     of ``expected`` match any length), when a rule recognises it."""
     got, expected = tuple(got), tuple(expected)
-    known = [n for n in expected if n is not None]
     if len(got) == 2 and len(expected) == 2 and None not in expected:
         rows, columns = expected
         if rows != columns and got == (columns, rows):
@@ -61,7 +60,7 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
         return Form(f"it looks like a {'column' if got[1] == 1 else 'row'} of shape {got} where a flat "
                     f"array of {max(got)} values is asked (ravel() it)",
                     "a 2-D column or row where a flat array is asked")
-    if len(got) == 1 and len(expected) == 2 and None not in expected and known and got[0] == expected[0] * expected[1]:
+    if len(got) == 1 and len(expected) == 2 and None not in expected and got[0] == expected[0] * expected[1]:
         return Form(f"it looks flattened: {got[0]} values where a {_size(expected)} matrix is asked "
                     f"(reshape({expected[0]}, {expected[1]}))", "the matrix is flattened")
     return None

@@ -159,7 +159,7 @@ def _run(package: str, path: Path) -> None:
         raise
     except SyntaxError as exc:
         raise LabFolderError(f"{exc.filename or path}, line {exc.lineno}: SyntaxError: {exc.msg}") from None
-    except Exception as exc:  # noqa: BLE001 - the author's code: any error, said where
+    except (Exception, SystemExit) as exc:  # noqa: BLE001 - the author's code: any error, said where (sys.exit too)
         where = _where(exc, path.parent)
         message = str(exc)
         if isinstance(exc, LabKeyTaken):

@@ -99,7 +99,7 @@ def parts_of(lab: Lab) -> LabParts:
     except SyntaxError as exc:
         raise VerifyError(f"{exc.filename or where}, line {exc.lineno}: SyntaxError in the mistakes table: "
                           f"{exc.msg}") from None
-    except Exception as exc:  # noqa: BLE001 - the author's table: any error, said where
+    except (Exception, SystemExit) as exc:  # noqa: BLE001 - the author's table: any error, said where (sys.exit too)
         raise VerifyError(f"{_where(exc, where)}: the mistakes table cannot be imported: "
                           f"{type(exc).__name__}: {exc}") from None
     cases = _cases(lab, table, "MISTAKES", where) + _cases(lab, table, "ADVICE", where, advice=True)
