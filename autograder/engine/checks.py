@@ -429,19 +429,26 @@ def _float_arrays(value, depth: int = 0):
 def _whole_numbers(value) -> bool:
     """Whether a returned value holds a float array of whole numbers only, not all zero."""
     for array in _float_arrays(value):
+        if _has_fraction(array.ravel()[:_GLANCE]):   # most float results tell at once
+            continue
         finite = array[np.isfinite(array)]
-        if finite.size and np.any(finite != 0) and np.array_equal(finite, np.round(finite)):
+        if finite.size and np.any(finite != 0) and not _has_fraction(finite):
             return True
     return False
 
 
 def _fractional(arguments) -> bool:
     """Whether the arguments hold a float with a fractional part."""
-    for array in _float_arrays(arguments):
-        finite = array[np.isfinite(array)]
-        if finite.size and not np.array_equal(finite, np.round(finite)):
-            return True
-    return False
+    return any(_has_fraction(array.ravel()[:_GLANCE]) or _has_fraction(array) for array in _float_arrays(arguments))
+
+
+_GLANCE = 256   # values looked at before a whole array is scanned (this runs after every call)
+
+
+def _has_fraction(values: np.ndarray) -> bool:
+    """Whether a finite value of ``values`` has a fractional part."""
+    finite = values[np.isfinite(values)]
+    return bool(finite.size) and not np.array_equal(finite, np.round(finite))
 
 
 def _type_name(value) -> str:
