@@ -19,6 +19,7 @@ failure inside it is silent (the graded checks report it).
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import threading
 from dataclasses import dataclass
@@ -112,6 +113,9 @@ class Trial:
     inputs : Inputs, optional
         Where the submission's properties draw their inputs (see
         :mod:`autograder.engine.inputs`); by default those of no submission.
+
+    A check that draws its own inputs (every hidden check: angles, scales, seeds of
+    scenes, noise) draws them from :attr:`rng`, never from fixed values nor the clock.
     """
 
     def __init__(self, sandbox: Sandbox, check: Check, forbid: dict | None = None, inputs=None):
@@ -135,6 +139,13 @@ class Trial:
         # Every call's function and arguments, in order: two gradings of the same files must give
         # the same (autograder verify), else the check draws inputs from the clock or an unseeded RNG.
         self._given = hashlib.sha1()
+
+    @functools.cached_property
+    def rng(self) -> np.random.Generator:
+        """This submission's generator for this check (:meth:`Inputs.generator` of the
+        check's id): the same files and course secret draw the same values on every run and
+        machine, other files or another secret other values. Draw in a fixed order."""
+        return self.inputs.generator(self.check.id)
 
     @property
     def given(self) -> str:

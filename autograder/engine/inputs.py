@@ -14,6 +14,10 @@ without it knows the inputs of the official grading before it runs: trying
 variants of one's files at home until one happens to meet only easy inputs tells
 nothing about the official grading.
 
+Checks that draw their own inputs (hidden checks: angles, scenes, noise) draw them from
+:meth:`Inputs.generator` (``t.rng`` in a check), under the same key: a hidden input
+that leaked from one grading is not the next submission's.
+
 No Hypothesis here: a replayed property never imports it (see :mod:`autograder.engine.examples`).
 """
 
@@ -23,6 +27,8 @@ import hashlib
 import hmac
 import os
 from dataclasses import dataclass
+
+import numpy as np
 
 SECRET_VARIABLE = "AUTOGRADER_INPUTS_SECRET"
 
@@ -60,6 +66,16 @@ class Inputs:
         """Hypothesis's seed for the ``index``-th property of the check ``check_id`` (128 bits)."""
         digest = hmac.new(self.key, f"{check_id}|{index}".encode(), hashlib.sha256).digest()
         return int.from_bytes(digest[:16], "big")
+
+    def generator(self, check_id: str, purpose: str = "inputs") -> np.random.Generator:
+        """A NumPy generator for the check ``check_id``'s own draws (a hidden check's angles,
+        scenes, noise), seeded with 256 bits of an HMAC under this submission's key.
+
+        The message has its own prefix, so the draws are independent of the properties'
+        seeds (:meth:`seed`); ``purpose`` tells apart several generators of one check.
+        """
+        digest = hmac.new(self.key, f"generator|{check_id}|{purpose}".encode(), hashlib.sha256).digest()
+        return np.random.Generator(np.random.PCG64(int.from_bytes(digest, "big")))
 
 
 # What a check run outside a grading draws (a suite's test of one check): the empty content's inputs.
