@@ -94,6 +94,8 @@ def fingerprint(*values) -> str:
     return digest.hexdigest()[:16]
 
 
+_CALLS_KEPT = 32   # a property's hundreds of calls: its last ones hold the failing example
+
 # Hypothesis's engine runs one property at a time, whatever the lanes (runner.grade): the
 # examples it draws never depend on another lane's property.
 _ONE_ENGINE = threading.Lock()
@@ -139,6 +141,9 @@ class Trial:
         # Every call's function and arguments, in order: two gradings of the same files must give
         # the same (autograder verify), else the check draws inputs from the clock or an unseeded RNG.
         self._given = hashlib.sha1()
+        # The calls that returned, as (function, args, kwargs, answer), the last few: what the
+        # error model (autograder.engine.mutants) reproduces when the check fails.
+        self.calls: list[tuple[str, tuple, dict, object]] = []
 
     @functools.cached_property
     def rng(self) -> np.random.Generator:
@@ -178,6 +183,8 @@ class Trial:
                 if (function, argument) not in self.modified_inputs:
                     self.modified_inputs.append((function, argument))
             if outcome.ok:
+                self.calls.append((function, args, kwargs, outcome.value))
+                del self.calls[:-_CALLS_KEPT]
                 if function not in self.whole_numbers and _whole_numbers(outcome.value) \
                         and _fractional((args, kwargs)):
                     self.whole_numbers.add(function)
