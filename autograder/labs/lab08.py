@@ -27,6 +27,7 @@ from fixtures.images import coverage, photo, warp
 from ..engine import strategies as st
 from ..engine.checks import StudentFailure, Trial, partial, passed
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
+from ..engine.hints import TO_UINT8, RATIO_TEST, Hint, calls, expr, matmul_of
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
@@ -299,6 +300,15 @@ def dlt_normalised(t):
            f"(at most {tolerance:.3g} px expected).")
 
 
+SQRT2 = expr("np.sqrt(2)") | expr("math.sqrt(2)") | expr("sqrt(2)") | expr("2 ** 0.5") | expr("_ * np.sqrt(2)")
+DLT_NORMALISE_HINT = Hint(
+    "Normalise each point set first (Hartley: move the centroid to the origin and scale so the mean "
+    "distance is sqrt(2)), solve, then undo: H = T_dst^-1 @ H_n @ T_src.",
+    asks=((calls("np.mean") | calls(".mean")) & SQRT2).saying("normalises the points (a mean and sqrt(2))"),
+    instead="your code already {found}; the error is elsewhere: check that each set has its own transform "
+            "and that it is undone: H = T_dst^-1 @ H_n @ T_src.")
+
+
 @ex2.advice("homography_dlt normalises its points")
 def dlt_normalisation_advice(t):
     error, normalised, raw = patch_errors(t)
@@ -308,9 +318,7 @@ def dlt_normalisation_advice(t):
                  "with raw pixel coordinates the x*x' terms (about 1e6) swamp the others and the "
                  "noise is weighted very unevenly. The lab sheet does not ask for it: no points "
                  "depend on it.",
-                 hint="Normalise each point set first (Hartley: move the centroid to the origin and "
-                      "scale so the mean distance is sqrt(2)), solve, then undo: "
-                      "H = T_dst^-1 @ H_n @ T_src.")
+                 hint=DLT_NORMALISE_HINT.said(t))
 
 
 def warp_to_reference_probe(t: Trial) -> Probe:
@@ -370,6 +378,11 @@ def same_image_twice(pts1, pts2) -> bool:
     return len(pts1) >= 4 and float((np.linalg.norm(pts1 - pts2, axis=1) < 0.5).mean()) >= 0.9
 
 
+RATIO_HINT = Hint("keep a match only when best.distance < ratio * second_best.distance (knnMatch with k=2)",
+                  asks=RATIO_TEST, instead="your code already {found}; the error is elsewhere: which points "
+                  "are returned (pts1 from img1's keypoints by queryIdx, pts2 from img2's by trainIdx)")
+
+
 def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, min_fraction: float):
     pts1, pts2 = matched_points(t, what, result)
     good = truth.consistent(H, pts1, pts2, MATCH_TOLERANCE)
@@ -394,8 +407,7 @@ def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, 
     t.fail(f"{what}: only {format_apart(fraction, min_fraction, 2, percent=True)} of the {len(pts1)} "
            f"matches agree with the true homography (within {MATCH_TOLERANCE:g} px); at least "
            f"{min_fraction:.0%} expected.",
-           hint="keep a match only when best.distance < ratio * second_best.distance "
-                "(knnMatch with k=2)")
+           hint=RATIO_HINT.said(t))
 
 
 @ex3.check("match_features (SIFT): enough matches, nearly all consistent with the true H", points=4)
@@ -762,6 +774,14 @@ def refit_distance(H, inliers, src, dst) -> float:
     return float(np.sqrt(np.mean(apart ** 2)) / max(np.sqrt(np.mean(residual ** 2)), 1e-9))
 
 
+REFIT_HINT = Hint(
+    "H = homography_dlt(src[inliers], dst[inliers]) at the end; cv2.findHomography(src, dst, cv2.RANSAC, "
+    "threshold) does it for you",
+    asks=calls("cv2.findHomography") | calls("homography_dlt", at_least=2),
+    instead="your code already {found}; the error is elsewhere: the H returned must be the least-squares "
+            "fit to the very mask returned (all its inliers, not the best sample's four)")
+
+
 @ex4.check("homography_ransac refits H on all its inliers", points=2)
 def ransac_refit(t):
     distances = []
@@ -781,8 +801,7 @@ def ransac_refit(t):
            f"least-squares refit on the same inliers sends them (at most {RANSAC_REFIT_TOLERANCE} "
            "expected, over 7 problems): after RANSAC, refit H on all the inliers (the best "
            "4-point sample is noisy)",
-           hint="H = homography_dlt(src[inliers], dst[inliers]) at the end; "
-                "cv2.findHomography(src, dst, cv2.RANSAC, threshold) does it for you")
+           hint=REFIT_HINT.said(t))
 
 
 @ex4.check("homography_ransac with 50% outliers, judged over 5 seeds", points=3)
@@ -928,12 +947,15 @@ class PanoramaJudge:
                  difference=difference_heatmap(self.expected, self.panorama, valid))
 
 
+UINT8_HINT = Hint("convert with np.clip(x, 0, 255).astype(np.uint8)", asks=TO_UINT8,
+                  instead="your code {found} somewhere, but not the array it returns")
+
+
 def panorama_result(t: Trial, key: str, what: str, function: str, images):
     got = call_once(t, key, function, *images) if len(images) == 2 and function == "stitch" \
         else call_once(t, key, function, list(images))
     if isinstance(got, np.ndarray) and got.ndim == 3 and got.shape[2] == 3 and got.dtype != np.uint8:
-        t.fail(f"{what} returned dtype {got.dtype}; expected uint8",
-               hint="convert with np.clip(x, 0, 255).astype(np.uint8)")
+        t.fail(f"{what} returned dtype {got.dtype}; expected uint8", hint=UINT8_HINT.said(t))
     got = t.expect_array(got, what, shape=(None, None, 3), dtype=np.uint8)
     if got.shape[0] * got.shape[1] > MAX_PANORAMA_PIXELS:
         t.fail(f"{what} returned a {got.shape[1]}x{got.shape[0]} panorama, far larger than the "
@@ -1178,6 +1200,13 @@ def judge_region(t: Trial, judge: PanoramaJudge, what: str, region, name: str, h
            "(see the pictures).", hint)
 
 
+SECOND_WARP_HINT = Hint(
+    "warp img2 with T @ H, where H maps img2 onto img1 and T is the canvas shift",
+    asks=matmul_of(None, "H").saying("warps img2 with a product ... @ H (the shift after H)"),
+    instead="your code already {found}; the error is elsewhere: compare how the pixels only img2 "
+            "covers are written with the truth (brightness, blending with the empty canvas)")
+
+
 def second_warp_mistakes(scene, offset) -> dict[str, np.ndarray]:
     """The map (img2 -> panorama) each usual mistake of the second warp applies."""
     H, T = scene.h(1, 0), truth.translation(*offset)
@@ -1224,9 +1253,7 @@ def stitch_second(t):
     region = judge.inside[1] & judge.outside[0]
     if region.sum() < 100 or judge.error(region) > PANORAMA_TOLERANCE:
         name_second_warp_mistake(t, judge)
-    return judge_region(t, judge, STITCH_WHAT, region, "the part only img2 sees",
-                        hint="warp img2 with T @ H, where H maps img2 onto img1 and T is the "
-                             "canvas shift")
+    return judge_region(t, judge, STITCH_WHAT, region, "the part only img2 sees", hint=SECOND_WARP_HINT.said(t))
 
 
 @ex5.check("stitch: the overlap matches the truth (any sensible blend)", points=3)
@@ -1237,6 +1264,9 @@ def stitch_overlap(t):
 
 # ================================================================== ext1 ORB
 ext1 = lab.exercise("ext1", "ORB features", functions=['match_features(img1, img2, ratio=0.75, method="orb")'])
+ORB_HINT = Hint("use cv2.ORB_create() for 'orb', and match its binary descriptors with cv2.NORM_HAMMING",
+                asks=calls("cv2.ORB_create"),
+                instead="your code {found}, but not for method='orb' as given: check how method is compared")
 
 
 @ext1.check('match_features(..., method="orb"): enough matches, mostly consistent', points=4)
@@ -1248,8 +1278,7 @@ def match_orb(t):
     sift1, _ = matched_points(t, "match_features(img1, img2)", t.call("match_features", img1, img2))
     if len(pts1) == len(sift1) and np.allclose(pts1, sift1):
         t.fail(f"{what} returned exactly the SIFT matches: the method argument is ignored "
-               "(use cv2.ORB_create() for 'orb', and match its binary descriptors with "
-               "cv2.NORM_HAMMING)")
+               f"({ORB_HINT.said(t)})")
     return judge_matches(t, what, img1, img2, H, result, min_matches=40, min_fraction=0.85)
 
 
@@ -1361,7 +1390,8 @@ def blended(t: Trial, what: str, img1, img2, mask, **kwargs):
     got = t.call("blend_multiband", img1, img2, mask, **kwargs)
     if isinstance(got, np.ndarray) and got.shape == img1.shape and got.dtype != np.uint8:
         t.fail(f"{what} returned dtype {got.dtype}; expected uint8",
-               hint="round and clip the collapsed pyramid: np.clip(x, 0, 255).astype(np.uint8)")
+               hint=Hint("round and clip the collapsed pyramid: np.clip(x, 0, 255).astype(np.uint8)",
+                         asks=TO_UINT8, instead=UINT8_HINT.instead).said(t))
     return t.expect_array(got, what, shape=img1.shape, dtype=np.uint8)
 
 

@@ -20,6 +20,7 @@ from ..engine import strategies as st
 from ..engine import judges
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
+from ..engine.hints import Hint, calls, expr, nan_behind
 from ..engine.judges import Probe, call_probe, confirm, fingerprint, format_matrix
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
@@ -322,6 +323,9 @@ def judge_in_front(t: Trial, what: str, got, expected, behind):
                f"up to {format_apart(error, tolerance, 4)} px (at most {tolerance:.2g} px accepted).")
 
 
+NAN_BEHIND_HINT = nan_behind("e.g. np.where(Z[:, None] > 0, projected, np.nan)")
+
+
 def advise_nan_behind(t: Trial, what: str, got, behind):
     """Advice: a point behind the camera (Z <= 0) has no image; NaN says so."""
     got = np.asarray(got, dtype=np.float64) if isinstance(got, np.ndarray) else None
@@ -333,7 +337,7 @@ def advise_nan_behind(t: Trial, what: str, got, behind):
                  f"{np.nonzero(finite)[0].tolist()}): they are behind the camera and have no "
                  "image (the formula mirrors them through the pinhole); NaN tells the caller so. "
                  "No points depend on it.",
-                 hint="e.g. np.where(Z[:, None] > 0, projected, np.nan)")
+                 hint=NAN_BEHIND_HINT.said(t))
 
 
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3), up_to_scale=False):
@@ -601,13 +605,32 @@ def focal_lengths(t):
     order = [next((j for j in range(len(fs)) if point_error(got[i], expected[j]) <= at_precision(1e-6 * scale, scale)),
                   None) for i in range(len(fs))]
     if None not in order and order != list(range(len(fs))):
-        t.fail(f"project_focal_lengths: projection i is the one for f = {format_matrix(fs[order])}: the focal "
-               "lengths are used in another order (reversed?); projection i belongs to focal_lengths[i].",
-               mistake="the focal lengths are used in another order")
+        t.fail(*focal_order_named(order, fs))
     for i, f in enumerate(fs):
         judge_points(t, f"project_focal_lengths(...)[{i}] (f = {f:g})", got[i], expected[i],
                      truth.projection_mistakes(f, X), probe=points_probe(t, "project_focal_lengths"))
     return passed("the image grows in proportion to f")
+
+
+def focal_order_named(order: list[int], fs) -> tuple[str, str, str]:
+    """(message, hint, mistake) for projections that each match some focal length's, but not in the
+    order given: ``order[i]`` is the index of the focal length projection i was made with. Only what
+    the order shows is named: one focal length for all, a permutation (reversed or another), or
+    some focal lengths used twice and others never."""
+    found = f"project_focal_lengths: projection i is the one for f = {format_matrix(fs[order])}"
+    hint = "projection i belongs to focal_lengths[i]"
+    if len(set(order)) == 1:
+        which = {0: "the first", len(fs) - 1: "the last"}.get(order[0], f"focal_lengths[{order[0]}]")
+        return (f"{found}: every projection is made with {which} focal length (f = {fs[order[0]]:g}).", hint,
+                f"every projection uses {which} focal length")
+    if sorted(order) == list(range(len(fs))):
+        if order == list(range(len(fs)))[::-1]:
+            return (f"{found}: the focal lengths are used in reverse order.", hint,
+                    "the focal lengths are used in reverse order")
+        return (f"{found}: the focal lengths are used in another order.", hint,
+                "the focal lengths are used in another order")
+    return (f"{found}: some focal lengths are used for several projections and others for none.", hint,
+            "a focal length is used for several projections")
 
 
 APERTURE_F = 200.0
@@ -690,7 +713,10 @@ def aperture_statistics(t):
     if np.any(per_point < 0.5) or np.any(per_point > 0.8):
         t.fail(f"{what}: the rays fill the blur disc unevenly (RMS distance {per_point.min():.2f}.."
                f"{per_point.max():.2f} radii; uniform over the disc gives 0.71).",
-               hint="draw the aperture point uniformly over the disc: radius = aperture * sqrt(u)")
+               hint=Hint("draw the aperture point uniformly over the disc: radius = aperture * sqrt(u)",
+                         asks=calls("np.sqrt") | expr("_ ** 0.5"),
+                         instead="your code already {found}: check that u is uniform in [0, 1), the angle "
+                                 "uniform in [0, 2 pi), and the radius aperture * sqrt(u)").said(t))
     return passed(f"mean on the ideal projection, RMS spread {per_point.mean():.2f} blur radii")
 
 
@@ -885,7 +911,9 @@ def draw_nan(t):
         t.advise(f"{what} failed: {failure.message.splitlines()[0]} -- projections of points "
                  "behind the camera are NaN if you follow that advice, so skip the rows that "
                  "are not finite. No points depend on it.",
-                 hint="if np.isfinite(x) and np.isfinite(y): cv2.circle(...)")
+                 hint=Hint("if np.isfinite(x) and np.isfinite(y): cv2.circle(...)", asks=calls("np.isfinite"),
+                           instead="your code already {found}: check that the rows it skips are those not "
+                                   "finite, before any int() conversion").said(t))
 
 
 def _photo_scene(seed=51):
@@ -959,7 +987,10 @@ def judge_calibration(t: Trial, images, K_true, pattern):
                f"(focal lengths off by {f_error.max():.1%}, principal point by {c_error.max():.1f} px).")
     if rms > 0.5:
         return partial(0.5, f"{what}: K is right, but the reported reprojection error is {rms:.2f} px; "
-                            "these clean views allow < 0.2 px.", hint="refine corners with cv2.cornerSubPix")
+                            "these clean views allow < 0.2 px.",
+                       hint=Hint("refine corners with cv2.cornerSubPix", asks=calls("cv2.cornerSubPix"),
+                                 instead="your code already {found}: the error is elsewhere (the RMS returned "
+                                         "is cv2.calibrateCamera's, for the K and distortion returned)").said(t))
     return passed(f"focal lengths within {f_error.max():.2%}, principal point within {c_error.max():.2f} px, "
                   f"rms {rms:.3f} px")
 

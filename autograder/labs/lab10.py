@@ -21,6 +21,7 @@ from ..engine.checks import Trial, partial, passed
 from ..engine.compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
                        projective_distance)
 from ..engine.forms import scale_form
+from ..engine.hints import nan_behind
 from ..engine.judges import Probe, call_probe, fingerprint, format_matrix, name_mistake, where_matrices_differ
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
@@ -101,6 +102,9 @@ def perspective_property(t):
                        truth.pinhole(X, 500.0)[0])
 
 
+NAN_BEHIND_HINT = nan_behind("np.where(Z > 0, f * X / Z, np.nan)")
+
+
 @ex1.advice("NaN for points behind the camera")
 def perspective_behind(t):
     # The API leaves points with Z <= 0 to the lab sheet's formula (cv2.projectPoints
@@ -112,7 +116,7 @@ def perspective_behind(t):
         t.advise("perspective_project(points with some Z <= 0, f=500) returned finite pixels for the "
                  f"points behind the camera (rows {np.nonzero(behind)[0].tolist()}): they have no image "
                  "(the formula mirrors them through the pinhole); NaN there tells the caller so.",
-                 hint="np.where(Z > 0, f * X / Z, np.nan)")
+                 hint=NAN_BEHIND_HINT.said(t))
 
 
 # ================================================================== ex2 weak perspective

@@ -21,6 +21,7 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
                        projective_distance)
+from ..engine.hints import RATIO_TEST, Hint, calls, keyword
 from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
                       where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
@@ -689,6 +690,16 @@ def fundamental_probe(t: Trial, exact: bool) -> Probe:
                             distance=conditioned_distance(pts1, pts2), tolerance=tolerance)
 
 
+EIGHT_POINTS_HINT = Hint(
+    "with exactly 8 points A is 8 x 9: take the last row of Vt from np.linalg.svd(A) with "
+    "full_matrices=True (the default), which has 9 rows",
+    asks=(calls("np.linalg.svd") & ~keyword("svd", "full_matrices", False) & ~keyword("svd", "full_matrices", 0))
+    .saying("takes np.linalg.svd with full_matrices=True (Vt has a row per unknown)"),
+    instead="with exactly 8 points A must be 8 x 9 (one row per correspondence, one column per entry of "
+            "F); your code already {found}, so the error is elsewhere: look at how A is built and which "
+            "of its singular vectors is kept")
+
+
 @ex4.check("fundamental_8point from exact correspondences (N=8 and N=40; a sideways motion)", points=3)
 def fundamental_exact(t):
     views = truth.two_views(seed=10, n=40)
@@ -697,8 +708,7 @@ def fundamental_exact(t):
     try:
         judge_exact_fundamental(t, views, 8)
     except Fail as failure:
-        raise Fail(failure.message, "with exactly 8 points A is 8 x 9: take the last row of Vt from "
-                   "np.linalg.svd(A) with full_matrices=True (the default), which has 9 rows") from None
+        raise Fail(failure.message, EIGHT_POINTS_HINT.said(t)) from None
 
 
 @ex4.check("fundamental_8point returns a rank-2 matrix (noisy data)", points=2)
@@ -768,9 +778,12 @@ def fundamental_noisy(t):
     message = (f"on {len(NOISY_SCENES) - good} of {len(NOISY_SCENES)} noisy scenes your F is farther from "
                "the true epipolar geometry than any textbook 8-point variant (mean distance of exact "
                f"held-out matches to your lines: {report})")
-    return partial(good / len(NOISY_SCENES), message,
-                   "solve A f = 0 by SVD (the last row of Vt), reshape to 3 x 3, enforce rank 2 "
-                   "(U diag(s1, s2, 0) V^T); normalising the points first (Hartley) makes it more accurate")
+    return partial(good / len(NOISY_SCENES), message, Hint(
+        "solve A f = 0 by SVD (the last row of Vt), reshape to 3 x 3, enforce rank 2 (U diag(s1, s2, 0) V^T); "
+        "normalising the points first (Hartley) makes it more accurate",
+        asks=calls("np.linalg.svd", at_least=2), instead="your code already {found} (A f = 0 and rank 2?): "
+        "compare each step with the textbook (the rows of A, which singular vector, and undoing a "
+        "normalisation: F = T2^T Fn T1)").said(t))
 
 
 # ================================================================== ex5 epipoles
@@ -947,6 +960,13 @@ def pipeline_fundamental(t):
     return judge_pipeline_F(t, pair, F)
 
 
+RANSAC_ESTIMATOR = (calls("cv2.findFundamentalMat") | calls("cv2.findEssentialMat")).saying(
+    "keeps the inliers of a RANSAC estimator")
+MATCHES_ELSEWHERE = ("your code already {found}: check that the points returned are those its mask keeps, "
+                     "in the order given (pts1 in image 1)")
+INLIERS_HINT = Hint("keep only the RANSAC inliers", asks=RANSAC_ESTIMATOR, instead=MATCHES_ELSEWHERE)
+
+
 def judge_matches(t: Trial, pair, pts1, pts2):
     _, true2, valid = truth.true_correspondences(pair, pts1)
     if valid.sum() < 10:
@@ -964,8 +984,9 @@ def judge_matches(t: Trial, pair, pts1, pts2):
     message = (f"only {format_apart(correct, 0.8, 2, percent=True)} of your matches are within 2 px of the "
                "true position (need 80%)")
     if correct >= 0.5:
-        return partial(0.5, message, "keep only the RANSAC inliers")
-    t.fail(message, hint="keep only the RANSAC inliers; use Lowe's ratio test when matching")
+        return partial(0.5, message, INLIERS_HINT.said(t))
+    t.fail(message, hint=Hint(f"{INLIERS_HINT.text}; use Lowe's ratio test when matching",
+                              asks=RATIO_TEST & RANSAC_ESTIMATOR, instead=MATCHES_ELSEWHERE).said(t))
 
 
 @ex6.check("two_view_reconstruction: the matches are mostly correct", points=2, timeout=PIPELINE_TIMEOUT)
@@ -1081,11 +1102,19 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
         t.fail(f"your 3D points are wrong: it looks like {mistake}. ({summary})", mistake=mistake)
     if scale < 0 or np.median(got[:, 2]) < 0:
         t.fail("your 3D points are behind camera 1 (negative Z, or mirrored through its centre): "
-               "choose the pose with the points in front of both cameras (cv2.recoverPose does) and "
-               "divide by w")
+               + IN_FRONT_HINT.said(t))
     if median <= 0.15:
         return partial(0.5, summary + f" (full marks below {STRUCTURE_MEDIAN:.0%} and {STRUCTURE_P90:.0%})")
     t.fail(summary)
+
+
+IN_FRONT_HINT = Hint(
+    "choose the pose with the points in front of both cameras (cv2.recoverPose does) and divide by w",
+    asks=calls("cv2.recoverPose"),
+    instead="your code already {found}, which chooses the pose with the points in front of both cameras, "
+            "so the error is elsewhere: the cameras the points are triangulated with must match the "
+            "coordinates given to them (P = K [R | t] on pixels, [R | t] on normalised coordinates), "
+            "and the points are divided by w")
 
 
 @ex6.check("two_view_reconstruction: the 3D points equal the true scene up to one global scale", points=4,

@@ -25,6 +25,7 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
+from ..engine.hints import Hint, calls, expr, keyword
 from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
@@ -72,6 +73,14 @@ def expect_disparity(t: Trial, what: str, got, scene) -> np.ndarray:
     return t.expect_array(got, what, shape=shape, kind="iuf")
 
 
+LOWEST_COST_HINT = Hint(
+    "for left pixel (x, y) compare its block with the block around (x - d, y) in the right image, "
+    "d = 0..max_disparity, and keep the d with the lowest cost",
+    asks=calls("np.argmin").saying("keeps the lowest cost (argmin)"),
+    instead="for left pixel (x, y) compare its block with the block around (x - d, y) in the right image, "
+            "d = 0..max_disparity; your code already {found}: the error is elsewhere")
+
+
 def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, again=None,
                     show: bool = True, threshold_name: str = "reference solution:",
                     judged=None, allowed=None, accepted_by: str = "", probe=None, mistakes=None):
@@ -111,8 +120,7 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
         return partial(fraction, f"{what}: {where}. {summary}; up to "
                        f"{allowed:.1%} gets full marks (see the error map).")
     t.fail(f"{what}: most of the map is wrong: {where}. {summary} (see the error map).",
-           hint="for left pixel (x, y) compare its block with the block around (x - d, y) in the "
-                "right image, d = 0..max_disparity, and keep the d with the lowest cost")
+           hint=(NCC_HINT if "cost=\"ncc\"" in what else LOWEST_COST_HINT).said(t))
 
 
 def where_disparities_wrong(got, judged, threshold) -> str:
@@ -268,8 +276,12 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
     reprojection = np.linalg.norm(truth.project(P1, got) - pts1, axis=1).mean()
     t.fail(f"{what}: 3D points are off by up to {error.max():.3g} (mean reprojection error in "
            f"image 1: {reprojection:.3g} px).",
-           hint="each view gives two rows, x p3 - p1 and y p3 - p2 (p_i the rows of P); "
-                "X is the last right singular vector of the 4x4 matrix")
+           hint=Hint("each view gives two rows, x p3 - p1 and y p3 - p2 (p_i the rows of P); X is the last "
+                     "right singular vector of the 4x4 matrix",
+                     asks=calls("np.linalg.svd") | calls("cv2.triangulatePoints"),
+                     instead="each view gives two rows, x p3 - p1 and y p3 - p2 (p_i the rows of P); your code "
+                             "already {found}: check which rows of P and which coordinates make the rows, and "
+                             "that the solution is divided by its fourth coordinate").said(t))
 
 
 def triangulation_probe(t: Trial) -> Probe:
@@ -386,7 +398,10 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     if wrong:
         t.fail(f"{what}: " + "; ".join(wrong) + ". The depth there must be 0 (invalid): no point "
                "of the scene has d <= 0.",
-               hint="np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0) (NaN > 0 is False)")
+               hint=Hint("np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0) (NaN > 0 is False)",
+                         asks=keyword("np.divide", "where"),
+                         instead="your code already {found}: check its condition (d > 0; NaN > 0 is False) "
+                                 "and that out starts as zeros").said(t))
     if not np.all(np.isfinite(got)):
         t.fail(f"{what} returned NaN or infinite depths for valid disparities")
     scale = magnitude(expected)
@@ -776,7 +791,11 @@ def judge_top_of_range(t: Trial, what: str, got, scene, top, legitimate: float, 
     top_d = scene.max_disparity
     with np.errstate(invalid="ignore"):
         one_below = float(np.mean(np.abs(np.asarray(got, np.float64)[top] - (top_d - 1)) <= truth.TOP_THRESHOLD))
-    hint = "d = 0..max_disparity includes max_disparity itself: range(max_disparity + 1)"
+    hint = Hint("d = 0..max_disparity includes max_disparity itself: range(max_disparity + 1)",
+                asks=expr("max_disparity + 1"),
+                instead="d = 0..max_disparity includes max_disparity itself; your code already {found}: check "
+                        "that the block shifted by max_disparity is compared too (not cut off at the image "
+                        "edge or by a slice one short)").said(t)
     if one_below >= 0.5:
         t.fail(f"{what}: it looks like {TOP_MISSED}: the square at the top of the search range (true "
                f"disparity {top_d} = max_disparity) gets {top_d - 1} at {one_below:.0%} of its pixels.",
@@ -824,8 +843,12 @@ def block_matching_form(t):
         if np.any(got > max_disparity + 1e-9):
             t.fail(f"{what} returned disparities up to {np.nanmax(got):g}; the search range is "
                    f"0..{max_disparity}",
-                   hint="cv2.StereoBM rounds numDisparities up to a multiple of 16: set what it finds "
-                        "above max_disparity to 0 (invalid)")
+                   hint=Hint("cv2.StereoBM rounds numDisparities up to a multiple of 16: set what it finds "
+                             "above max_disparity to 0 (invalid)",
+                             asks=expr("_ > max_disparity") | expr("max_disparity < _"),
+                             instead="your code already compares disparities with max_disparity: check that "
+                                     "the comparison is made on the map returned (after StereoBM's division "
+                                     "by 16)").said(t))
 
 
 @ex4.check("block_matching (SSD, block_size=9) on random-dot planes", points=3, timeout=STEREO_TIMEOUT)
@@ -876,8 +899,10 @@ def block_matching_zero_disparity(t):
 
 
 # ================================================================== ext1 NCC
-NCC_HINT = ("NCC = sum((L - mean L)(R - mean R)) / (N std L std R) over the block; it is a "
-            "similarity: keep the disparity with the HIGHEST score")
+NCC_FORMULA = "NCC = sum((L - mean L)(R - mean R)) / (N std L std R) over the block"
+NCC_HINT = Hint(f"{NCC_FORMULA}; it is a similarity: keep the disparity with the HIGHEST score",
+                asks=calls("np.argmax").saying("keeps the highest score (argmax)"),
+                instead=f"{NCC_FORMULA}; your code already {{found}}: the error is elsewhere")
 ext1 = lab.exercise("ext1", "Normalised cross-correlation", functions=[
     "block_matching(left, right, max_disparity=64, block_size=9, cost=\"ncc\")"])
 
@@ -893,7 +918,7 @@ def ncc_motorcycle(t):
                               probe=block_size_probe(t, what, scene, cost="ncc"),
                               mistakes=MatchingMistakes(scene, 9, "ncc"))
     if verdict.fraction < 1:
-        verdict.hint = NCC_HINT
+        verdict.hint = NCC_HINT.said(t)
         return verdict
     # The motorcycle has no pixel at either end of the range: d = 0 and d = max_disparity are
     # judged on the range-ends scene; a map right but for one end takes half the points.
@@ -943,9 +968,9 @@ def ncc_gain(t):
                        mistakes=MatchingMistakes(scene, 9, "ncc"))
     block_size_probe(t, what, scene, cost="ncc")()
     if bad < reference + MARGIN + FADE:
-        return partial((reference + MARGIN + FADE - bad) / FADE, f"{what}: {summary}.", hint=NCC_HINT)
+        return partial((reference + MARGIN + FADE - bad) / FADE, f"{what}: {summary}.", hint=NCC_HINT.said(t))
     t.fail(f"{what}: {summary}; it fails even when both views have the same brightness.",
-           hint=NCC_HINT)
+           hint=NCC_HINT.said(t))
 
 
 # ================================================================== ex5 dynamic programming

@@ -1,0 +1,370 @@
+"""Hints that never contradict the student's code.
+
+A fixed hint tells the student to do something ("keep the disparity with the HIGHEST
+score", "warp img2 with T @ H", "choose the pose with cv2.recoverPose"). When the code
+already does it, the hint is wrong about the student and sends them the wrong way. So a
+hint declares, next to its text, the code it asks for -- a small predicate over the
+student's function read with :mod:`ast` (parsed, never executed)::
+
+    NCC_HINT = Hint("... it is a similarity: keep the disparity with the HIGHEST score",
+                    asks=calls("np.argmax") | calls(".argmax"),
+                    instead="... your code keeps the highest score (argmax); the error is elsewhere")
+
+and a check gives ``NCC_HINT.said(t)`` (a ``str``) where it used the text. The predicate
+is evaluated on the functions the check calls (:func:`~autograder.engine.stubs.functions_called`,
+or those the hint names) and on the module's functions they call; when it holds, the
+hint says ``instead`` (a neutral sentence, or nothing) rather than its text.
+
+Predicates (combine with ``|``, ``&`` and ``~``):
+
+- :func:`calls` -- a call of ``np.argmax`` (any module prefix: ``numpy.argmax``,
+  ``argmax`` imported) or, written ``".argmax"``, the method of any object;
+- :func:`mentions` -- a name or attribute (``"cv2.BORDER_CONSTANT"``, ``".T"``);
+  :func:`uses_attr` is its spelling for attributes;
+- :func:`matmul_of` -- a matrix product of two operands (``T @ H``, ``np.dot(T, H)``,
+  ``T.dot(H)``, ``np.matmul(T, H)``), each a name or ``None`` for any operand;
+- :func:`expr` -- a sub-expression with the pattern's structure (``"max_disparity + 1"``,
+  ``_`` matching anything);
+- :func:`keyword` -- a call passing ``name=value`` (``keyword("svd", "full_matrices", False)``).
+
+A predicate reads only what is written: ``calls("np.argmax")`` holds for a function that
+calls ``np.argmax`` somewhere, whatever it does with the result. That is the point: a hint
+asking for code the student wrote is wrong about them whatever else is wrong, and the
+neutral sentence says only that ("your code calls np.argmax; the error is elsewhere").
+Without a submission to read (a check run on a stand-in sandbox) every hint keeps its text.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
+from pathlib import Path
+from typing import Callable, Iterable
+
+from ..loading.reading import MAX_NODES, MAX_SOURCE_BYTES
+
+
+# ------------------------------------------------------------------ predicates
+@dataclass(frozen=True)
+class Predicate:
+    """A test of the student's code: ``test(node) -> bool`` on one ``FunctionDef`` (a leaf), or
+    ``a | b``, ``a & b``, ``~a`` of predicates over the functions read together (``a & b``
+    holds when each holds in one of them: a helper may do one part). ``says`` what it found,
+    in words that fit "your code already ...": "calls np.argmax"."""
+
+    says: str
+    test: Callable[[ast.AST], bool] | None = field(default=None, compare=False)
+    kind: str = "leaf"   # "leaf", "or", "and", "not"
+    parts: tuple = ()
+    told: bool = False   # ``says`` was given with :meth:`saying` (an "or" then says it, not its part)
+
+    def found(self, functions: Iterable[ast.AST]) -> str:
+        """What holds in ``functions`` in words (for ``a | b``, the alternative found); "" when
+        nothing does (never raises)."""
+        functions = list(functions)
+        if self.kind == "or":
+            said = next((part.found(functions) for part in self.parts if part.found(functions)), "")
+            return (self.says if self.told else said) if said else ""
+        if self.kind == "and":
+            return self.says if all(part.found(functions) for part in self.parts) else ""
+        if self.kind == "not":
+            return "" if self.parts[0].found(functions) else self.says
+        for function in functions:
+            try:
+                if self.test(function):
+                    return self.says
+            except (RecursionError, ValueError, TypeError, AttributeError):
+                continue
+        return ""
+
+    def holds(self, functions: Iterable[ast.AST]) -> bool:
+        return bool(self.found(functions))
+
+    def saying(self, says: str) -> "Predicate":
+        """This predicate, saying ``says`` when it holds ("computes T @ H" for ``matmul_of(None, "H")``)."""
+        return replace(self, says=says, told=True)
+
+    def __or__(self, other: "Predicate") -> "Predicate":
+        return Predicate(f"{self.says} or {other.says}", kind="or", parts=(self, other))
+
+    def __and__(self, other: "Predicate") -> "Predicate":
+        return Predicate(f"{self.says} and {other.says}", kind="and", parts=(self, other))
+
+    def __invert__(self) -> "Predicate":
+        return Predicate(f"does not: {self.says}", kind="not", parts=(self,))
+
+
+def _path(node) -> str:
+    """``np.linalg.svd`` for that expression, ``.argmax`` for ``x.argmax`` on anything else."""
+    parts = []
+    while isinstance(node, ast.Attribute):
+        parts.append(node.attr)
+        node = node.value
+    head = node.id if isinstance(node, ast.Name) else ""
+    return ".".join([head, *reversed(parts)])
+
+
+def _name_matches(path: str, wanted: str) -> bool:
+    """``wanted`` = ``"np.argmax"``: the same last name, under any module prefix or none
+    (``argmax``, ``numpy.argmax``, ``x.argmax``); ``".argmax"``: an attribute of anything
+    but a bare name (a method); ``"argmax"``: the last name only."""
+    last = wanted.rsplit(".", 1)[-1]
+    if path.rsplit(".", 1)[-1] != last:
+        return False
+    if wanted.startswith("."):
+        return "." in path
+    return True
+
+
+def calls(name: str, at_least: int = 1) -> Predicate:
+    """A call of ``name`` (see :func:`_name_matches` for how prefixes match), in at least
+    ``at_least`` places of one function."""
+    shown = name.lstrip(".")
+
+    def test(function) -> bool:
+        return sum(1 for node in ast.walk(function)
+                   if isinstance(node, ast.Call) and _name_matches(_path(node.func), name)) >= at_least
+    return Predicate(f"calls {shown}" + (f" in {at_least} places" if at_least > 1 else ""), test)
+
+
+def mentions(name: str) -> Predicate:
+    """A name or attribute ``name`` read anywhere (``"cv2.BORDER_CONSTANT"``, ``".T"``, ``"np.nan"``)."""
+    shown = name.lstrip(".")
+
+    def test(function) -> bool:
+        for node in ast.walk(function):
+            if isinstance(node, (ast.Attribute, ast.Name)) and _name_matches(_path(node), name):
+                return True
+        return False
+    return Predicate(f"uses {shown}", test)
+
+
+def uses_attr(attribute: str) -> Predicate:
+    """The attribute ``attribute`` (``".T"``) of anything."""
+    return mentions(attribute if attribute.startswith(".") else "." + attribute)
+
+
+def _holds_name(node, name: str | None) -> bool:
+    return name is None or any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(node))
+
+
+def matmul_of(left: str | None, right: str | None) -> Predicate:
+    """A matrix product ``left @ right`` (or ``np.dot``/``np.matmul``/``left.dot(right)``), each
+    operand an expression holding that name (``None``: any operand)."""
+    shown = f"{left or 'M'} @ {right or 'M'}"
+
+    def operands(node):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult):
+            return node.left, node.right
+        if isinstance(node, ast.Call):
+            path = _path(node.func)
+            if path.rsplit(".", 1)[-1] in ("dot", "matmul"):
+                if len(node.args) == 2:
+                    return node.args[0], node.args[1]
+                if len(node.args) == 1 and isinstance(node.func, ast.Attribute) \
+                        and not (isinstance(node.func.value, ast.Name) and node.func.value.id in ("np", "numpy")):
+                    return node.func.value, node.args[0]
+        return None
+
+    def test(function) -> bool:
+        for node in ast.walk(function):
+            pair = operands(node)
+            if pair and _holds_name(pair[0], left) and _holds_name(pair[1], right):
+                return True
+        return False
+    return Predicate(f"computes {shown}", test)
+
+
+def _same(node, pattern) -> bool:
+    """Whether ``node`` has ``pattern``'s structure (the name ``_`` in it matches anything)."""
+    if isinstance(pattern, ast.Name) and pattern.id == "_":
+        return True
+    if type(node) is not type(pattern):
+        return False
+    for name, value in ast.iter_fields(pattern):
+        if name == "ctx":
+            continue
+        other = getattr(node, name, None)
+        if isinstance(value, list):
+            if not isinstance(other, list) or len(other) != len(value) or \
+                    not all(_same(a, b) if isinstance(b, ast.AST) else a == b for a, b in zip(other, value)):
+                return False
+        elif isinstance(value, ast.AST):
+            if not isinstance(other, ast.AST) or not _same(other, value):
+                return False
+        elif value != other:
+            return False
+    return True
+
+
+def expr(pattern: str) -> Predicate:
+    """A sub-expression shaped like ``pattern`` (``"max_disparity + 1"``; ``_`` matches anything)."""
+    wanted = ast.parse(pattern, mode="eval").body
+
+    def test(function) -> bool:
+        return any(_same(node, wanted) for node in ast.walk(function))
+    return Predicate("computes " + re.sub(r"\b_\b", "...", pattern), test)
+
+
+ANY = object()   # keyword(..., value=ANY): any value
+
+
+def keyword(function: str, name: str, value=ANY) -> Predicate:
+    """A call of ``function`` passing ``name=value`` (a constant, or a dotted name such as
+    ``"cv2.BORDER_CONSTANT"`` given as :class:`str` and matched like :func:`mentions`; by
+    default any value)."""
+    def matches(node) -> bool:
+        if value is ANY:
+            return True
+        if isinstance(node, ast.Constant):
+            return node.value == value and type(node.value) is type(value)
+        return isinstance(value, str) and isinstance(node, (ast.Attribute, ast.Name)) \
+            and _name_matches(_path(node), value)
+
+    def test(tree) -> bool:
+        return any(isinstance(node, ast.Call) and _name_matches(_path(node.func), function)
+                   and any(k.arg == name and matches(k.value) for k in node.keywords)
+                   for node in ast.walk(tree))
+    shown = f"{name}=" if value is ANY else f"{name}={value}"
+    return Predicate(f"passes {shown} to {function.lstrip('.')}", test)
+
+
+# Predicates several labs' hints share.
+RATIO_TEST = (expr("_.distance < _ * _.distance") | expr("_.distance < _.distance * _")
+              | expr("_ * _.distance > _.distance") | expr("_.distance / _.distance < _")).saying(
+    "applies Lowe's ratio test (best.distance < ratio * second.distance)")
+TO_UINT8 = (expr("_.astype(np.uint8)") | expr("_.astype('uint8')") | expr("np.uint8(_)")
+            | keyword("np.clip", "dtype") | expr("_.astype(dtype=np.uint8)")).saying("converts to uint8")
+NAN_WHERE = (calls("np.where") & mentions("np.nan")).saying("uses np.where with np.nan")
+
+
+def nan_behind(text: str) -> "Hint":
+    """The advice to give points behind the camera NaN (``text``: how), in labs 9 and 10."""
+    return Hint(text, asks=NAN_WHERE, instead="your code already {found}: check its condition (a point is "
+                "behind the camera when Z <= 0) and that the array returned is the one it makes")
+
+
+# ------------------------------------------------------------------ the student's code
+@dataclass(frozen=True)
+class Code:
+    """A module's top-level functions (the last ``def`` of a name wins, as it does when the
+    module runs) and the module's functions each one calls by name."""
+
+    functions: dict
+    calls: dict
+
+    def reachable(self, names: Iterable[str]) -> list[ast.AST]:
+        """The functions ``names`` and those of the module they call, directly or not."""
+        seen, todo = [], sorted(names)
+        while todo:
+            name = todo.pop()
+            if name in seen or name not in self.functions:
+                continue
+            seen.append(name)
+            todo.extend(sorted(self.calls[name]))
+        return [self.functions[name] for name in seen]
+
+
+NO_CODE = Code({}, {})
+
+
+def read_code(text: str) -> Code:
+    """The functions of the module ``text`` (nothing when it cannot be parsed, or is too large)."""
+    try:
+        if len(text) > MAX_SOURCE_BYTES:
+            return NO_CODE
+        tree = ast.parse(text)
+        if sum(1 for _ in ast.walk(tree)) > MAX_NODES:
+            return NO_CODE
+    except (SyntaxError, ValueError, RecursionError, MemoryError):
+        return NO_CODE
+    functions = {node.name: node for node in tree.body if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))}
+    calls = {name: {n.func.id for n in ast.walk(node) if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
+                    and n.func.id in functions and n.func.id != name}
+             for name, node in functions.items()}
+    return Code(functions, calls)
+
+
+@lru_cache(maxsize=32)
+def _code_at(path: str, mtime_ns: int, size: int) -> Code:
+    if size > MAX_SOURCE_BYTES:
+        return NO_CODE
+    try:
+        return read_code(Path(path).read_bytes().decode("utf-8", errors="replace"))
+    except OSError:
+        return NO_CODE
+
+
+def code_of(t) -> Code:
+    """The code of the module a trial's check grades, as the sandbox holds it (the file the
+    worker imported; a notebook already converted); :data:`NO_CODE` without one."""
+    folder = getattr(t.sandbox, "submission_dir", None)
+    if folder is None:
+        return NO_CODE
+    try:
+        path = Path(folder) / f"{t.lab.module}.py"
+        stat = path.stat()
+    except (OSError, TypeError, ValueError):
+        return NO_CODE
+    return _code_at(str(path), stat.st_mtime_ns, stat.st_size)
+
+
+# ------------------------------------------------------------------ hints
+@dataclass(frozen=True)
+class Hint:
+    """A fixed hint and the code it asks for.
+
+    Parameters
+    ----------
+    text : str
+        What the hint says.
+    asks : Predicate, optional
+        The code the hint asks for; None: it asks for nothing specific (always said).
+    instead : str, optional
+        Said when the student's code already holds ``asks`` ("" says nothing; ``{found}`` in it
+        becomes what the code does, "calls np.argmax"); by default "your code already
+        {found}; the error is elsewhere".
+    functions : tuple of str, optional
+        The student functions whose code is read (default: those the check calls).
+    """
+
+    text: str
+    asks: Predicate | None = None
+    instead: str | None = None
+    functions: tuple = ()
+
+    def __str__(self) -> str:
+        return self.text
+
+    def neutral(self, found: str = "") -> str:
+        """What is said instead of the text, ``found`` being what the code does ("calls np.argmax")."""
+        if self.instead is not None:
+            return self.instead.replace("{found}", found or self.asks.says)
+        return f"your code already {found or self.asks.says}; the error is elsewhere"
+
+    def said(self, t, functions: Iterable[str] = ()) -> str:
+        """The hint's text, or :meth:`neutral` when the student's code (the functions the
+        check ``t`` calls, or ``functions``) already does what it asks."""
+        if self.asks is None:
+            return self.text
+        found = self.contradicts(code_of(t), tuple(functions) or self.functions or _called(t))
+        return self.neutral(found) if found else self.text
+
+    def contradicts(self, code: Code, functions: Iterable[str]) -> str:
+        """What ``code``'s ``functions`` (and their helpers) already do of what the hint asks, in
+        words ("calls np.argmax"); "" when they do not."""
+        return self.asks.found(code.reachable(functions)) if self.asks is not None else ""
+
+
+def _called(t) -> tuple[str, ...]:
+    from .stubs import functions_called
+
+    return tuple(sorted(functions_called(t.check)))
+
+
+def said(t, text, functions: Iterable[str] = ()) -> str:
+    """``text`` as said to the student of trial ``t``: a :class:`Hint`'s :meth:`Hint.said`, a plain
+    string as it is."""
+    return text.said(t, functions) if isinstance(text, Hint) else str(text)
