@@ -151,49 +151,102 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                 Sandbox(submission.path, lane_limits, confinement=sandboxes[0].confinement)))
             sandboxes[-1].start()  # it boots while the first lane grades
         sandboxes = sandboxes[:max(1, min(lanes, len(labs)))]
+        public = _phase(labs, hidden=False)
+        hidden = _phase(labs, hidden=True) if include_hidden else []
+        # Hidden checks run after every public check, in workers of their own: nothing the
+        # student's code keeps (in memory, in its scratch folder) while it serves a hidden
+        # check can reach a public check's messages, and the public phase never sees a hidden
+        # input. The fresh workers boot while the public checks run.
+        hidden_with_work = [lab for lab in hidden if not all(_stubs(exercise, submission) for exercise, _ in lab)]
+        fresh = [closing.enter_context(Sandbox(submission.path, lane_limits, confinement=sandboxes[0].confinement))
+                 for _ in range(min(len(sandboxes), max(1, len(hidden_with_work))) if hidden else 0)]
+        for sandbox in fresh:
+            sandbox.start()
         graded: dict[str, ExerciseResult] = {}
+        graded_hidden: dict[str, ExerciseResult] = {}
 
         stopping = threading.Event()  # set when grading ends early (an interrupt, a grader bug)
 
-        def lane(sandbox: Sandbox):
+        def lane(sandbox: Sandbox, work: list, into: dict, spent: dict | None = None):
             budget = _Budget(sandbox, deadline)
-            while labs and not stopping.is_set():
+            while work and not stopping.is_set():
                 try:
-                    lab = labs.pop(0)  # atomic: each lab goes to one lane
+                    lab = work.pop(0)  # atomic: each lab goes to one lane
                 except IndexError:
                     return
-                for exercise in lab:
+                for exercise, checks in lab:
                     if stopping.is_set():
                         return
-                    checks = [c for c in exercise.checks if include_hidden or not c.hidden]
-                    budget.start_exercise()
+                    budget.start_exercise(already_spent=(spent or {}).get(exercise.id, 0.0))
                     rules = _rules_for(exercise, forbid or {})
-                    graded[exercise.id] = _grade_exercise(
+                    into[exercise.id] = _grade_exercise(
                         sandbox, exercise, checks, pictures, on_check, submission, budget, rules, painter,
                         inputs)
 
+        def run_lanes(lane_sandboxes: list, work: list, into: dict, spent: dict | None = None):
+            if len(lane_sandboxes) == 1:
+                lane(lane_sandboxes[0], work, into, spent)
+                return
+            with ThreadPoolExecutor(len(lane_sandboxes), thread_name_prefix="lane") as pool:
+                lanes_running = [pool.submit(lane, sandbox, work, into, spent) for sandbox in lane_sandboxes]
+                try:
+                    for finished in lanes_running:
+                        finished.result()
+                except BaseException:  # Ctrl-C included: the other lanes stop too, at once
+                    stopping.set()
+                    for sandbox in (*lane_sandboxes, *fresh):
+                        sandbox.interrupt()
+                    raise
+
         # Ground truth is kept between gradings only where the worker cannot write it.
         with cache.enabled(sandboxes[0].confinement.hides_files), Painter() as painter:
-            if len(sandboxes) == 1:
-                lane(sandboxes[0])
-            else:
-                with ThreadPoolExecutor(len(sandboxes), thread_name_prefix="lane") as pool:
-                    lanes_running = [pool.submit(lane, sandbox) for sandbox in sandboxes]
-                    try:
-                        for finished in lanes_running:
-                            finished.result()
-                    except BaseException:  # Ctrl-C included: the other lanes stop too, at once
-                        stopping.set()
-                        for sandbox in sandboxes:
-                            sandbox.interrupt()
-                        raise
+            run_lanes(sandboxes, public, graded)
+            if hidden:
+                for sandbox in sandboxes:  # the public phase's workers are done: free their memory
+                    sandbox.close()
+                spent = {exercise_id: sum(c.student_seconds for c in done.checks)
+                         for exercise_id, done in graded.items()}
+                run_lanes(fresh, hidden, graded_hidden, spent)
+                sandboxes = sandboxes + fresh
             painter.finish()
+        for exercise_id, hidden_part in graded_hidden.items():
+            _merge_hidden(graded[exercise_id], hidden_part, _check_order(exercise_id, exercises))
         result.exercises = [graded[exercise.id] for exercise in exercises]
         result.student_seconds = round(sum(sandbox.student_seconds for sandbox in sandboxes), 6)
         result.student_wall_seconds = round(_covered([span for s in sandboxes for span in s.billed_spans]), 6)
         _point_into_notebooks(result, exercises, submission)
     result.seconds = round(time.perf_counter() - started, 6)
     return result
+
+
+def _phase(labs: list[list[Exercise]], hidden: bool) -> list[list[tuple[Exercise, list[Check]]]]:
+    """The labs' public (or hidden) checks, lab by lab: ``[[(exercise, checks), ...], ...]``.
+    Every exercise has its public part, even without checks (its result must exist); only
+    labs with hidden checks have a hidden part."""
+    phase = [[(exercise, [c for c in exercise.checks if c.hidden == hidden]) for exercise in lab]
+             for lab in labs]
+    if hidden:
+        phase = [[(exercise, checks) for exercise, checks in lab if checks] for lab in phase]
+    return [lab for lab in phase if lab]
+
+
+def _check_order(exercise_id: str, exercises: list[Exercise]) -> dict[str, int]:
+    exercise = next(ex for ex in exercises if ex.id == exercise_id)
+    return {check.name: index for index, check in enumerate(exercise.checks)}
+
+
+def _merge_hidden(public: ExerciseResult, hidden: ExerciseResult, order: dict[str, int]) -> None:
+    """Put an exercise's hidden results among its public ones, in the suite's order (the
+    engine's own advice last). Everything the hidden phase said is marked hidden: its
+    in-place advice included, which students see only with the hidden checks."""
+    for check in hidden.checks:
+        check.hidden = True
+    public.checks = sorted(public.checks + hidden.checks, key=lambda c: order.get(c.name, len(order)))
+    graded = [c for c in public.checks if c.max_score > 0]
+    if graded and all(c.status == NOT_IMPLEMENTED for c in graded):
+        public.message = public.message or hidden.message
+    elif public.message == "not implemented yet":
+        public.message = ""  # only the public checks were stubs' (an exercise of hidden checks only)
 
 
 def _first_sandbox(submission_dir, limits, tried=()) -> Sandbox:
@@ -250,8 +303,9 @@ class _Budget:
         self.limits = sandbox.limits
         sandbox.set_deadline(deadline)  # within a check too: a call running then is stopped at it
 
-    def start_exercise(self):
-        self.sandbox.start_exercise(self.sandbox.student_seconds + self.limits.exercise_budget)
+    def start_exercise(self, already_spent: float = 0.0):
+        """A new exercise (or its hidden checks, which get what its public checks left)."""
+        self.sandbox.start_exercise(self.sandbox.student_seconds + self.limits.exercise_budget - already_spent)
 
     def exhausted(self) -> str:
         """Which budget is spent ("" while there is time left)."""
