@@ -56,9 +56,39 @@ def test_dangerous_links_are_not_links(link):
 
 def test_safe_links_never_send_the_page_address_along():
     page = render("[lab sheet](https://example.org/lab) and <mailto:ta@example.org> and [top](#top)")
-    assert page.count("<a ") == 3
-    assert page.count('rel="noopener noreferrer nofollow"') == 3
+    assert page.count("<a ") == 2, "another machine's address and mailto: stay links"
+    assert page.count('rel="noopener noreferrer nofollow"') == 2
+    assert "top [link not followed: #top]" in page
     assert safe_link("https://example.org") and not safe_link("javascript:x")
+
+
+# Every link that resolves against the page's own address (the review application: its rubric page
+# showed a student's words in its error panel) or reaches this machine, and every dangerous scheme.
+INERT_LINKS = ["rubric?error=You+passed", "../rubric?error=x", "../../t0ken/rubric", "/t0ken/review/1", "/review/0",
+               "?error=x", "#frag", "#", "//evil.example/x", "///evil.example", "\\\\evil.example/x",
+               "http:rubric", "http:/t0ken/rubric", "HTTP:%2F%2Fevil.example", "http://localhost:5000/t0ken/",
+               "http://LOCALHOST./", "http://a.localhost/", "http://127.0.0.1:8123/t0ken/rubric", "http://127.1/",
+               "http://2130706433/", "http://0x7f.0.0.1/", "http://0177.0.0.1/", "http://[::1]:8123/",
+               "http://user@127.0.0.1/", "https://%6c%6f%63%61%6c%68%6f%73%74/", "https://ｌｏｃａｌｈｏｓｔ/",
+               "http://10.0.0.1/", "javascript:alert(1)", "data:text/html,x", "file:///etc/passwd",
+               "vbscript:x", "ftp://example.org/x"]
+
+
+@pytest.mark.parametrize("link", INERT_LINKS)
+def test_a_link_to_the_page_itself_or_this_machine_is_inert_text(link):
+    for text in (f"see [the rubric]({link}) now", f"see [the rubric][r] now\n\n[r]: {link}", f"see <{link}> now"):
+        page = render(text)
+        assert "<a " not in page and "href" not in page, (text, page)
+        assert "see " in page and " now" in page, "the text around it is kept"
+    page = render(f"see [the rubric]({link}) now")
+    assert "the rubric" in page, "the link's text is kept, as text"
+
+
+@pytest.mark.parametrize("link", ["https://example.org/x", "http://docs.opencv.org/4.x/", "HTTPS://Example.ORG",
+                                  "https://example.org:8443/a?b#c", "mailto:ta@example.org", "https://127.0.0.1.example/"])
+def test_another_machines_address_stays_a_link_that_sends_no_referrer(link):
+    page = render(f"[there]({link})")
+    assert page.count("<a ") == 1 and 'rel="noopener noreferrer nofollow"' in page and 'target="_blank"' in page
 
 
 def test_images_are_only_the_graders_own_figures_never_a_remote_fetch():

@@ -60,6 +60,16 @@ class Budget:
         self.remaining -= size
 
 
+def irregular(mode: int) -> str:
+    """Why a file of ``mode`` (``st_mode``, or a zip member's) is not read: what it is."""
+    kinds = ((stat.S_ISFIFO, "a named pipe"), (stat.S_ISSOCK, "a socket"), (stat.S_ISCHR, "a character device"),
+             (stat.S_ISBLK, "a block device"))
+    if stat.S_ISLNK(mode):
+        return "it is a symbolic link"
+    what = next((name for test, name in kinds if test(mode)), None)
+    return f"it is not a regular file ({what})" if what else "it is not a regular file"
+
+
 def is_hidden(name: str) -> bool:
     """Dot files, macOS's ``__MACOSX`` and Python's caches are no one's work."""
     return name.startswith(".") or name in IGNORED_NAMES
@@ -78,9 +88,16 @@ class ReportFiles:
     def wanted(name: str) -> bool:
         return name.lower().endswith(REPORT_FILE_SUFFIXES) and not is_backup(name)
 
+    def refuse(self, text: str, why: str) -> None:
+        """Note the report file ``text`` as not read, because ``why`` (named on the review screen)."""
+        self.refused[shown(text)] = why
+
     def read(self, tree: "UploadTree", path: tuple, text: str, budget: Budget, caps: Caps = CAPS) -> None:
         """Keep the report file ``text`` (at ``path`` in ``tree``), or the reason it is refused."""
         pdf = text.lower().endswith(".pdf")
+        if tree.kind(path) in (LINK, SPECIAL):
+            self.refuse(text, tree.not_regular(path))
+            return
         try:
             check_name(text, caps)
             if any(len(part.encode()) > NAME_BYTES for part in PurePosixPath(text).parts):
@@ -95,10 +112,10 @@ class ReportFiles:
                 raise Unreadable("it is not a PDF (it does not begin with %PDF-)")
             budget.take(len(data))
         except (Refused, Unreadable) as exc:
-            self.refused[shown(text)] = str(exc)
+            self.refuse(text, str(exc))
             return
         if text in self.files:
-            self.refused[shown(text)] = "the upload holds it twice"
+            self.refuse(text, "the upload holds it twice")
             return
         self.files[text] = data
         self.total += len(data)
@@ -144,6 +161,10 @@ class UploadTree:
         """Why ``path`` cannot be taken as it is (empty when it can)."""
         return ""
 
+    def not_regular(self, path: tuple[str, ...]) -> str:
+        """Why the link or special file at ``path`` is not read, naming what it is."""
+        return "it is a symbolic link" if self.kind(path) == LINK else "it is not a regular file"
+
     def close(self) -> None:
         pass
 
@@ -174,6 +195,12 @@ class FolderTree(UploadTree):
         if stat.S_ISDIR(mode):
             return FOLDER
         return FILE if stat.S_ISREG(mode) else SPECIAL
+
+    def not_regular(self, path):
+        try:
+            return irregular(os.lstat(self._path(path)).st_mode)
+        except (OSError, ValueError):
+            return super().not_regular(path)
 
     def children(self, path):
         try:
@@ -281,6 +308,12 @@ class ZipTree(UploadTree):
         node = self.nodes.get(tuple(path))
         return node.problem if node else ""
 
+    def not_regular(self, path):
+        node = self.nodes.get(tuple(path))
+        if node is None or node.info is None:
+            return super().not_regular(path)
+        return irregular(node.info.external_attr >> 16)
+
     def read(self, path, limit):
         node = self.nodes.get(tuple(path))
         if node is None or node.kind != FILE or node.info is None:
@@ -350,17 +383,19 @@ def source_files(tree: UploadTree, path: tuple[str, ...], refused: dict[str, str
                 continue
             kind = tree.kind(path + item)
             problem = tree.problem(path + item)
-            if problem:
+            report = reports is not None and kind != FOLDER and ReportFiles.wanted(name)
+            if problem and report:
+                reports.refuse(text, problem)   # named on the review screen, not the entry's error
+            elif problem:
                 refused[shown(text)] = problem
             elif kind == FOLDER:
                 if depth < caps.depth:
                     pending.append((item, depth + 1))
+            elif report:   # a link or a special file too: refused there, with what it is
+                reports.read(tree, path + item, text, budget, caps)
             elif kind in (LINK, SPECIAL):
                 if name.endswith(suffixes) or kind == LINK:
-                    refused[shown(text)] = ("it is a symbolic link" if kind == LINK
-                                            else "it is not a regular file")
-            elif kind == FILE and reports is not None and ReportFiles.wanted(name):
-                reports.read(tree, path + item, text, budget, caps)
+                    refused[shown(text)] = tree.not_regular(path + item)
             elif kind == FILE and name.endswith(suffixes):
                 try:
                     check_name(text, caps)

@@ -40,6 +40,7 @@ from ..batch.exports import report_maxima
 from ..batch.gradebook import Gradebook
 from ..batch.run import batch_course
 from ..course import CourseConfigError
+from .anonymity import Anonymiser
 
 FIGURE_ID = re.compile(r"lab\d\d\.[A-Za-z0-9_.-]{1,60}")
 LOCAL_HOSTS = ("127.0.0.1", "localhost")
@@ -194,21 +195,22 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         def figure_url(name: str):
             return url_for("figure", ref=pair.ref, exercise=pair.exercise, figure_id=name) if name in figures else None
 
-        rendered = render_markdown(explanation["text"], figure_url) if explanation else None
-        result = (students.get(pair.student_id) or {}).get("result") or {}
-        verdict = next((e for e in result.get("exercises", []) if e["id"] == pair.exercise), None)
+        student = students.get(pair.student_id) or {}
+        verdict = next((e for e in (student.get("result") or {}).get("exercises", []) if e["id"] == pair.exercise),
+                       None)
+        text, source = (explanation["text"], explanation["source"]) if explanation else ("", "")
         attachments = [(i, path, size) for i, (path, size) in enumerate(_pdfs(report["files"]))]
         problems = report["problems"]
-        if session.anonymous:   # the file names a student chose, and their names, are not shown
-            student = students.get(pair.student_id) or {}
-            hidden = [*report["files"], *(s for e in report["explanations"].values()
-                                          for s in re.split(r"; |, cell \d+", e["source"]) if s)]
-            problems = [_anonymised(p, hidden, _identities(student), pair.shown_name) for p in problems]
+        if session.anonymous:   # no file name a student chose, no name of theirs (see .anonymity)
+            hide = Anonymiser(student, report["files"], pair.shown_name)
+            text, source = hide.text(text), hide.sources(source) if source else ""
+            attachments = [(i, hide.label(path), size) for i, path, size in attachments]
+            problems = [hide.problem(p) for p in problems]
             if verdict:
-                verdict = {**verdict, "checks": [{**c, "message": _anonymised(c.get("message") or "", [],
-                                                                               _identities(student), pair.shown_name)}
+                verdict = {**verdict, "checks": [{**c, "message": hide.text(c.get("message") or "")}
                                                  for c in verdict.get("checks", [])]}
-        return page("review.html", pair=pair, queue_length=len(queue), explanation=explanation,
+        rendered = render_markdown(text, figure_url) if explanation else None
+        return page("review.html", pair=pair, queue_length=len(queue), explanation=explanation, source=source,
                     rendered=rendered, figures=figures, verdict=verdict, rubric=rubric, review=state(pair),
                     attachments=attachments, problems=problems)
 
@@ -247,10 +249,12 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         return redirect(url_for("review_page", position=pair.position), code=303)
 
     @app.get(f"/{token}/rubric")
-    def rubric_page():
+    def rubric_page(error: str = ""):
+        """The rubric, and ``error`` from a change just refused: the error panel never shows text
+        from the address (a student's relative link could put their words there)."""
         with session.lock:
             rubric = session.book.rubric()
-        return page("rubric.html", rubric=rubric, error=request.args.get("error", ""))
+        return page("rubric.html", rubric=rubric, error=error), 400 if error else 200
 
     @app.post(f"/{token}/rubric/<exercise>")
     def rubric_item(exercise: str):
@@ -267,7 +271,7 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
                 session.book.set_rubric_item(exercise, request.form.get("item", "").strip(),
                                              request.form.get("text", "").strip(), points, session.reviewer)
         except CourseConfigError as exc:
-            return redirect(url_for("rubric_page", error=str(exc)), code=303)
+            return rubric_page(error=str(exc))
         back = request.form.get("back", "")
         if re.fullmatch(r"[0-9]{1,9}", back):
             return redirect(url_for("review_page", position=int(back)), code=303)
@@ -301,29 +305,6 @@ def _pdfs(files: dict[str, int]) -> list[tuple[str, int]]:
     """The PDFs of a report's files (path -> size), in order: an attachment's number on the
     review screen and in its download address is its place in this list."""
     return [(path, size) for path, size in files.items() if path.lower().endswith(".pdf")]
-
-
-def _identities(student: dict) -> list[str]:
-    """What names a student: their id, names (and each word of them), e-mails and LMS ids, and
-    their group members'."""
-    members = student.get("members") or []
-    values = [student.get("student_id"), student.get("display_name"), *(student.get("lms") or {}).values(),
-              *(v for m in members if isinstance(m, dict) for v in m.values())]
-    words = [str(v) for v in values if isinstance(v, (str, int)) and str(v).strip()]
-    words += [w for v in words for w in re.split(r"[\s&,._@-]+", v) if len(w) >= 2]
-    return [w for w in words if not (w.isdigit() and len(w) < 5)]   # not a message's small numbers
-
-
-def _anonymised(text: str, hidden: list[str], identities: list[str], pseudonym: str) -> str:
-    """``text`` with the ``hidden`` file names as "a file" and every ``identities`` word (whole, in
-    any case) as ``pseudonym``: what anonymous mode shows of a sentence about the student's files."""
-    for name in sorted({h for h in hidden if h}, key=len, reverse=True):
-        text = text.replace(name, "a file")
-    words = sorted({w for w in identities if w}, key=len, reverse=True)
-    if words:
-        pattern = "|".join(re.escape(w) for w in words)
-        text = re.sub(f"(?<![A-Za-z0-9])(?:{pattern})(?![A-Za-z0-9])", pseudonym, text, flags=re.IGNORECASE)
-    return text
 
 
 def _figures(results: Path, student_id: str, exercise: str) -> dict[str, Path]:
