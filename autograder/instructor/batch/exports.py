@@ -568,15 +568,37 @@ def adjustments_html(grade: StudentGrade, possible: float, show_final: bool = Tr
     # while hidden points are withheld: listed here, each beside the others that make the grade.
     reviewed = [(f"{exercise} report, reviewed", f"{review.points:+g}", "")
                 for exercise, review in sorted(grade.reviews.items())]
+    adjustments = [(a.what, a.change, a.comment) if show_final or not _derived_from_points(a)
+                   else (a.what, "shown when the hidden checks are released", a.comment)
+                   for a in grade.adjustments]
     rows = "".join(f"<tr><td>{html.escape(what)}</td><td>{html.escape(change)}</td>"
                    f"<td>{html.escape(comment)}</td></tr>"
-                   for what, change, comment in reviewed + [(a.what, a.change, a.comment) for a in grade.adjustments])
+                   for what, change, comment in reviewed + adjustments)
     final = (f"final grade {_fmt(grade.total)} / {possible:g}" if show_final
              else "final grade: shown when the hidden checks are released")
     return (f'{BEGIN}<section class="exercise" id="adjustments"><header><h2>Instructor adjustments</h2>'
             f'<span class="score">{final}</span></header>'
             f'<table class="overview"><tr><th>what</th><th>change</th><th>comment</th></tr>{rows}</table>'
             f"</section>{END}")
+
+
+def _derived_from_points(adjustment: Adjustment) -> bool:
+    """Whether the adjustment's change is computed from the points earned (a late penalty is a
+    share of them): while hidden points are withheld, its number would tell theirs."""
+    return adjustment.what == "late"
+
+
+def student_page(page: str, grade: StudentGrade, possible: float, course: CourseConfig) -> str:
+    """The student's feedback ``page`` (rendered from :meth:`GradingResult.for_students`) with
+    what the class's grading adds: adjustments, reviews and, where it may be shown
+    (:func:`shows_final`), the final grade. While hidden points are withheld nothing here is
+    computed from them (a late penalty's points included)."""
+    show_final = shows_final(grade, course)
+    page = with_adjustments(page, adjustments_html(grade, possible, show_final))
+    page = with_reviews(page, grade)
+    if show_final:   # the headline is the final grade (never while it holds withheld hidden points)
+        page = with_final_grade(page, grade, possible)
+    return page
 
 
 HEADLINE, HEADLINE_END = "<!-- headline -->", "<!-- /headline -->"

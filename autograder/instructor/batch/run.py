@@ -400,11 +400,7 @@ def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> li
     if page is None:
         page = html.render(view)
         restored.append(page_path)
-    show_final = exports.shows_final(grade, course)
-    updated = exports.with_adjustments(page, exports.adjustments_html(grade, possible, show_final))
-    updated = exports.with_reviews(updated, grade)
-    if show_final:   # the headline is the final grade (never while it holds withheld hidden points)
-        updated = exports.with_final_grade(updated, grade, possible)
+    updated = exports.student_page(page, grade, possible, course)
     with storing(folder):
         if updated != page or restored:
             write_atomically(page_path, updated)
