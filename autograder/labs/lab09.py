@@ -20,7 +20,7 @@ from ..engine import strategies as st
 from ..engine import judges
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
-from ..engine.hints import Hint, calls, expr, nan_behind
+from ..engine.hints import Hint, calls, code_of, expr, nan_behind
 from ..engine.judges import Probe, call_probe, confirm, fingerprint, format_matrix
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
@@ -949,11 +949,12 @@ ext1 = lab.exercise("ext1", "Extension: camera calibration", functions=[
     "calibrate(images, pattern_size, square_size)"])
 
 
-def judge_calibration(t: Trial, images, K_true, pattern):
-    """Calibrate on rendered views of a board with ``pattern`` inner corners, rendered with ``K_true``."""
+def calibration_result(t: Trial, images, pattern) -> tuple[str, np.ndarray, np.ndarray, float]:
+    """``calibrate(images, pattern, square)`` called once per grading (the checks of one set of
+    views share it), checked for its form: (what, K, dist, rms)."""
     square = truth.CALIBRATION_SQUARE
     what = f"calibrate({len(images)} views, pattern_size={pattern}, square_size={square})"
-    got = t.call("calibrate", list(images), pattern, square)
+    got = t.shared(("calibrate", pattern, fingerprint(*images)), lambda: t.call("calibrate", list(images), pattern, square))
     if not (isinstance(got, (tuple, list)) and len(got) == 3):
         t.fail(f"{what} should return a triple (K, dist, rms)")
     K, dist, rms = got
@@ -963,7 +964,12 @@ def judge_calibration(t: Trial, images, K_true, pattern):
         t.fail(f"{what}[1] (dist) has {dist.size} values; expected OpenCV's (k1, k2, p1, p2, k3)")
     if not isinstance(rms, (int, float)) and not (isinstance(rms, np.ndarray) and rms.size == 1):
         t.fail(f"{what}[2] (rms) should be a number (the RMS reprojection error in pixels)")
-    rms = float(np.asarray(rms).ravel()[0])
+    return what, K, dist, float(np.asarray(rms).ravel()[0])
+
+
+def judge_calibration(t: Trial, images, K_true, pattern):
+    """Calibrate on rendered views of a board with ``pattern`` inner corners, rendered with ``K_true``."""
+    what, K, dist, rms = calibration_result(t, images, pattern)
     if abs(K[2, 2]) > 1e-12:
         K = K / K[2, 2]
     if abs(K[2, 0]) > 1.0 and abs(K[0, 2]) < 1.0:
@@ -995,11 +1001,45 @@ def judge_calibration(t: Trial, images, K_true, pattern):
                   f"rms {rms:.3f} px")
 
 
-@ext1.check("calibrate on six rendered chessboard views recovers K", points=5)
+@ext1.check("calibrate on six rendered chessboard views recovers K", points=4)
 def calibrate_rendered(t):
     images, K, _ = truth.calibration_views()
     t.images("two of the calibration views", view_1=images[0], view_2=images[3])
     return judge_calibration(t, images, K, truth.CALIBRATION_PATTERN)
+
+
+# The K, dist and rms of one calibration must agree: the board's corners reprojected with the
+# returned K and dist (each view's best pose, on the exact corners) are as far from them as the rms
+# says, or closer (the student's rms also holds their corner detection's noise). Measured on the
+# public views: the reference 0.005 px recomputed for rms 0.037; without cornerSubPix 0.006 / 0.041;
+# float32, CALIB_FIX_K3, CALIB_ZERO_TANGENT_DIST 0.004-0.005 / 0.037 (recomputed - rms <= -0.03). K
+# from cv2.getOptimalNewCameraMatrix (alpha 1, its focal lengths 1.5% off: within recovers-K's
+# tolerance) 0.159 / 0.037; alpha 0.5 0.098; without cornerSubPix 0.217 / 0.041 (>= +0.06).
+CONSISTENCY_SLACK = 0.05   # px the recomputed error may exceed the returned rms
+
+
+@ext1.check("calibrate: the K, dist and rms it returns agree with each other", points=1)
+def calibration_consistent(t):
+    images, _, corners = truth.calibration_views()
+    what, K, dist, rms = calibration_result(t, images, truth.CALIBRATION_PATTERN)
+    recomputed = truth.reprojection_rms(K, dist, corners)
+    if np.isnan(recomputed):
+        t.fail(f"{what}[1] (dist) has {dist.size} values, a length OpenCV's distortion model does not have "
+               "(4, 5, 8, 12 or 14)")
+    if recomputed <= rms + CONSISTENCY_SLACK:
+        return passed(f"the board's corners reprojected with your K and dist (best pose per view) are "
+                      f"{recomputed:.3f} px RMS from the true corners; your rms says {rms:.3f} px")
+    shown = "far off" if recomputed > 1e3 else f"{recomputed:.3f} px"
+    cause = "the K or dist returned is not the pair the rms was computed for"
+    reading = calls("cv2.getOptimalNewCameraMatrix").found(code_of(t).reachable(["calibrate"]))
+    if reading:
+        cause = ("it looks like K is cv2.getOptimalNewCameraMatrix's (your code calls it): that matrix is for "
+                 "undistorted images (cv2.undistort's newCameraMatrix), not the calibrated camera's K")
+    t.fail(f"{what}: the K, dist and rms returned do not agree: with your K and dist, the best pose of each "
+           f"view reprojects the board's corners {shown} RMS from the true corners, while the rms returned "
+           f"says {rms:.3f} px: {cause}. Return K, dist and rms from the same cv2.calibrateCamera call.",
+           mistake="K, dist and rms do not come from the same calibration" if not reading
+           else "K from cv2.getOptimalNewCameraMatrix instead of the calibrated K")
 
 
 @ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners)", points=1)

@@ -362,6 +362,9 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     for mistake in decomposition_explained((K, R, tv), Kn, R_true, t_true):
         if mistake in decomposition_on_probe(t):
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    disagreeing = t_against_p(P, K, R, tv)
+    if disagreeing:
+        t.fail(f"{what}: K, R and t do not come from the same P: {disagreeing[0]}.", mistake=disagreeing[1])
     recomposed = K @ np.column_stack([R, tv])
     if projective_distance(R @ K, np.asarray(P, float)[:, :3]) <= at_precision(1e-6) < projective_distance(recomposed, P):
         t.fail(f"{what} is wrong: R K gives back P[:, :3], not K R: it looks like a QR decomposition "
@@ -377,6 +380,39 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
         first += f" (K is wrong {where_matrices_differ(K, Kn)})"
     shown, wanted = format_arrays_apart(K, Kn)
     t.fail(f"{first}.\nK\n{shown}\nexpected\n{wanted}")
+
+
+def t_against_p(P, K, R, tv) -> tuple[str, str] | None:
+    """(sentence, mistake) when the returned K and R give back P's left block, P[:, :3] = s K R for a
+    scale s, but t is not the t of the same P, K^-1 P[:, 3] / s: the results of one decomposition
+    disagree. Told apart by the measured factor c with t = c K^-1 P[:, 3] / s: c = s (t solved
+    from P before its scale is divided out), c = -1 (t from P while K and R come from -P), any
+    other factor or none. None when K R is not P's left block (the other judgements say so) or
+    t agrees."""
+    P, K, R, tv = (np.asarray(a, np.float64) for a in (P, K, R, tv))
+    KR, M = K @ R, P[:, :3]
+    s = float(np.sum(KR * M) / np.sum(KR * KR)) if np.any(KR) else 0.0
+    if s == 0 or np.abs(s * KR - M).max() > at_precision(1e-6 * np.abs(M).max(), magnitude(M)):
+        return None
+    try:
+        own = np.linalg.solve(K, P[:, 3]) / s
+    except np.linalg.LinAlgError:
+        return None
+    size = max(magnitude(own), 1e-12)
+    if np.abs(tv - own).max() <= at_precision(1e-6 * size, size):
+        return None
+    told = f"with your K and R, P[:, :3] = s K R (s = {s:.4g}) and its t is K^-1 P[:, 3] / s = {format_matrix(own)}, " \
+           f"yours is {format_matrix(tv)}"
+    c = float(tv @ own / (own @ own)) if np.any(own) else 0.0
+    if np.abs(tv - c * own).max() <= at_precision(1e-6 * size * max(1.0, abs(c)), size):
+        if abs(s) != 1 and abs(c - s) <= 1e-6 * abs(s):
+            return (f"{told}: t is K^-1 P[:, 3] without dividing by P's scale s",
+                    "t is solved from P without dividing by its scale")
+        if abs(c + 1) <= 1e-6:
+            return (f"{told}: t has the opposite sign (K and R come from -P, t from P: negate P before "
+                    "solving for t too)", "t is solved from P while K and R come from -P")
+    return f"{told}: t must be solved from the same P as K and R, t = K^-1 P[:, 3] / s", \
+        "t does not come from the same P as K and R"
 
 
 def decomposition_explained(got, Kn, R_true, t_true) -> list[str]:

@@ -257,6 +257,21 @@ MISTAKES = {
                     best, best_count, best_spread = H, count, spread
             return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
         """, ["not the fit to its own inliers", "refit h on all the inliers"]),
+    "RANSAC returning the last sample's mask": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float)
+            dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            best_count, best_inliers = -1, None
+            for _ in range(500):
+                idx = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[idx], dst[idx])
+                inliers = np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+                if inliers.sum() > best_count:
+                    best_count, best_inliers = inliers.sum(), inliers
+            H = homography_dlt(src[best_inliers], dst[best_inliers])
+            return H, inliers
+        """, ["the mask and h returned do not agree", "another sample"]),
     "RANSAC with a fixed threshold (the argument ignored)": ("lab08.ex4", """
         _reference_ransac = homography_ransac
         def homography_ransac(src, dst, threshold=3.0, seed=None):

@@ -231,6 +231,14 @@ MISTAKES = {
             rms, K, dist, _, _ = cv2.calibrateCamera([objp] * len(pts), pts, (w, h), None, None)
             return K, dist.ravel(), rms
         """, ["object points"]),
+    "calibration returning cv2.getOptimalNewCameraMatrix's K": ("lab09.ext1", """
+        _right = calibrate
+        def calibrate(images, pattern_size, square_size):
+            K, dist, rms = _right(images, pattern_size, square_size)
+            h, w = images[0].shape[:2]
+            K, _ = cv2.getOptimalNewCameraMatrix(K, dist, (w, h), 1, (w, h))
+            return K, dist, rms
+        """, ["do not agree", "getoptimalnewcameramatrix"]),
     "k3 with r^4": ("lab09.ext2", """
         _right = distort_points
         def distort_points(points, dist):
@@ -383,8 +391,8 @@ MISTAKES = {
 # size passed (it only seeds the solver), so those slips cannot change the answer.
 FEWER_MISTAKES = {
     "lab09.ext1": "cv2.calibrateCamera does the estimation: what a student can get wrong and the "
-                  "answer shows is the object-point grid (its order, its (cols, rows)) and the layout "
-                  "of K; square_size and the image size passed do not change K",
+                  "answer shows is the object-point grid (its order, its (cols, rows)), the layout "
+                  "of K and a K that is not the calibration's own; square_size and the image size passed do not change K",
 }
 
 

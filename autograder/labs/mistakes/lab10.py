@@ -252,6 +252,12 @@ MISTAKES = {
                 rows.append(np.concatenate([np.zeros(4), Xi, -v * Xi]))
             return np.linalg.svd(np.array(rows))[2][-1].reshape(4, 3).T
         """, ["reshaped in the wrong order"]),
+    "decomposition solving t with the normalised K": ("lab10.ex5", """
+        _right = decompose_camera_matrix
+        def decompose_camera_matrix(P):
+            K, R, t = _right(P)
+            return K, R, np.linalg.solve(K, np.asarray(P, float)[:, 3])
+        """, ["do not come from the same p", "without dividing by p's scale"]),
     "decomposition with R transposed": ("lab10.ex5", """
         _right = decompose_camera_matrix
         def decompose_camera_matrix(P):
