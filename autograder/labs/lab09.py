@@ -302,6 +302,20 @@ def judge_single_point(t: Trial, what: str, got, expected):
         t.fail(f"{what} returned {shown}; expected {wanted}")
 
 
+def call_behind(t: Trial, what: str, function: str, *args):
+    """``t.call(function, *args)`` on points some of which are at Z = 0 or behind the camera: an
+    exception the student's code raises says which input it met (one convention for every lab
+    sharing a projection's form: such points must not stop the others' projection)."""
+    try:
+        return t.call(function, *args)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        raise StudentFailure(failure.outcome, f"{what}: {failure.message}\nThese points include one at Z = 0 "
+                             "(on the camera's principal plane) and some behind the camera (Z < 0): the "
+                             "projection must not raise for them (NaN is the usual value there).") from None
+
+
 def judge_in_front(t: Trial, what: str, got, expected, behind):
     """With some points behind the camera (Z <= 0), one row per point and those in front right.
 
@@ -417,7 +431,7 @@ def pinhole_behind_case():
 @ex1.check("with points behind the camera (Z <= 0), those in front stay right", points=1)
 def pinhole_behind(t):
     what, X, behind = pinhole_behind_case()
-    judge_in_front(t, what, t.call("pinhole_project", X, 300.0), truth.pinhole(X, 300.0), behind)
+    judge_in_front(t, what, call_behind(t, what, "pinhole_project", X, 300.0), truth.pinhole(X, 300.0), behind)
 
 
 @ex1.advice("NaN for points behind the camera")
@@ -479,7 +493,8 @@ def intrinsics_behind_case():
 @ex2.check("project_with_intrinsics: with points behind the camera, those in front stay right", points=1)
 def project_intrinsics_behind(t):
     what, K, X, behind = intrinsics_behind_case()
-    judge_in_front(t, what, t.call("project_with_intrinsics", K, X), truth.homogeneous_project(K, X), behind)
+    judge_in_front(t, what, call_behind(t, what, "project_with_intrinsics", K, X), truth.homogeneous_project(K, X),
+                   behind)
 
 
 @ex2.advice("NaN for points behind the camera")
@@ -573,7 +588,7 @@ def project_behind_case():
 @ex3.check("project: with points behind the camera, those in front stay right", points=1)
 def project_behind(t):
     what, P, X, behind = project_behind_case()
-    judge_in_front(t, what, t.call("project", P, X), truth.homogeneous_project(P, X), behind)
+    judge_in_front(t, what, call_behind(t, what, "project", P, X), truth.homogeneous_project(P, X), behind)
 
 
 @ex3.advice("NaN for points behind the camera")

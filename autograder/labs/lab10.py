@@ -25,8 +25,8 @@ from ..engine.hints import nan_behind
 from ..engine.judges import Probe, call_probe, fingerprint, format_matrix, name_mistake, where_matrices_differ
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
-from .lab09 import (expect_points, judge_points, judge_single_point, make_points_probe, pinhole_formulas,
-                    point_error)
+from .lab09 import (call_behind, expect_points, judge_in_front, judge_points, judge_single_point,
+                    make_points_probe, pinhole_formulas, point_error)
 
 lab = Lab("lab10", module="lab10_camera2", title="Geometric camera models (continued)")
 
@@ -71,7 +71,7 @@ def perspective_mistakes(f, X):
     }
 
 
-@ex1.check("perspective_project with f = 100, 500 and 1000", points=4)
+@ex1.check("perspective_project with f = 100, 500 and 1000", points=3)
 def perspective_focal_lengths(t):
     X = truth.scene_points(101, n=10, depth=8.0, relief=4.0)
     plots = {}
@@ -102,6 +102,20 @@ def perspective_property(t):
                        truth.pinhole(X, 500.0)[0])
 
 
+def perspective_behind_case():
+    X, behind = truth.lab09.with_points_behind(truth.points_in_front(102, n=10), seed=103)
+    return "perspective_project(points with some Z <= 0, one at Z = 0, f=500)", X, behind
+
+
+# The same input convention as lab 9's projections (judge_in_front): a point at Z = 0 or behind the
+# camera must not stop the projection of the others.
+@ex1.check("perspective_project: with points behind the camera (one at Z = 0), those in front stay right",
+           points=1)
+def perspective_in_front(t):
+    what, X, behind = perspective_behind_case()
+    judge_in_front(t, what, call_behind(t, what, "perspective_project", X, 500.0), truth.pinhole(X, 500.0), behind)
+
+
 NAN_BEHIND_HINT = nan_behind("np.where(Z > 0, f * X / Z, np.nan)")
 
 
@@ -109,7 +123,7 @@ NAN_BEHIND_HINT = nan_behind("np.where(Z > 0, f * X / Z, np.nan)")
 def perspective_behind(t):
     # The API leaves points with Z <= 0 to the lab sheet's formula (cv2.projectPoints
     # gives finite pixels too); NaN is only recommended.
-    X, behind = truth.lab09.with_points_behind(truth.points_in_front(102, n=10), seed=103)
+    _, X, behind = perspective_behind_case()
     got = t.call("perspective_project", X, 500.0)
     if isinstance(got, np.ndarray) and got.shape == (len(X), 2) and got.dtype.kind == "f" \
             and np.isfinite(got[behind]).all(axis=1).any():

@@ -72,6 +72,7 @@ class Limits:
     cpu_total: int = 1800                # CPU seconds over the worker's life
     extra_processes: int = 64            # processes/threads beyond those the user already has
     max_result_bytes: int = 256 * 2**20  # largest result frame accepted
+    max_result_elements: int | None = None  # most numbers a result's arrays may hold (None: any)
     max_output_chars: int = 4000         # captured stdout/stderr kept per call
     startup_timeout: float = 60.0        # for the worker to import NumPy/OpenCV (not billed)
     timeouts_per_function: int = 2       # after this many timeouts a function is not called again
@@ -100,6 +101,7 @@ class Limits:
             "processes": processes,
             "threads": self.threads,
             "max_result_bytes": self.max_result_bytes,
+            "max_result_elements": self.max_result_elements,
         })
 
 
@@ -751,6 +753,9 @@ class Sandbox:
                 _, header_length = transport.PREFIX.unpack(head)
                 if header_length > transport.MAX_HEADER_BYTES:
                     raise transport.TransportError(f"frame header larger than {transport.MAX_HEADER_BYTES} bytes")
+                if self.limits.max_result_elements is not None:  # counted on the header: no array read
+                    head += self._read(min(header_length, length - len(head)), deadline)
+                    transport.check_elements(head[transport.PREFIX.size:], self.limits.max_result_elements)
             frame = head + self._read(length - len(head), deadline)
             reply = transport.decode(frame, max_bytes=self.limits.max_result_bytes)
             seconds = time.perf_counter() - start  # measured here: the worker's word is not taken
@@ -762,6 +767,9 @@ class Sandbox:
             return self._abandon(self._fault(what, time.perf_counter() - start, stopped=stopped.reason))
         except (EOFError, OSError):  # the pipe ended, or broke (EPIPE; a descriptor gone)
             return self._abandon(self._fault(what, time.perf_counter() - start))
+        except transport.TooManyElements as exc:  # the arrays were never read: the worker goes
+            return self._abandon(CallOutcome(ok=False, kind="result_type", message=f"{what} {exc}",
+                                             seconds=time.perf_counter() - start))
         except transport.TransportError as exc:
             return self._abandon(CallOutcome(
                 ok=False, kind="protocol", seconds=time.perf_counter() - start,

@@ -54,8 +54,18 @@ class TransportError(ValueError):
     """A value cannot be encoded, or a frame is malformed or too large."""
 
 
+class TooManyElements(TransportError):
+    """A value whose arrays hold more numbers than the receiver takes (see :func:`count_elements`)."""
+
+    def __init__(self, elements: int, largest: tuple[int, ...], limit: int):
+        # ``elements``: those counted when the limit was passed (a sender stops there), or all
+        super().__init__(f"returned more numbers in arrays than the {limit:,} accepted ({elements:,} "
+                         f"counted; the largest array of shape {tuple(largest)})")
+        self.elements, self.largest, self.limit = elements, tuple(largest), limit
+
+
 # --------------------------------------------------------------------- encoding
-def encode(value, max_bytes: int = DEFAULT_MAX_BYTES) -> bytes:
+def encode(value, max_bytes: int = DEFAULT_MAX_BYTES, max_elements: int | None = None) -> bytes:
     """Encode plain data into one frame.
 
     Parameters
@@ -66,14 +76,18 @@ def encode(value, max_bytes: int = DEFAULT_MAX_BYTES) -> bytes:
         string-keyed dicts of those.
     max_bytes : int
         Largest frame allowed.
+    max_elements : int, optional
+        Most numbers the value's arrays may hold together (None: any number).
 
     Raises
     ------
     TransportError
-        For any other type (the message names it), or a frame over ``max_bytes``.
+        For any other type (the message names it), or a frame over ``max_bytes``;
+        :class:`TooManyElements` for arrays holding more than ``max_elements`` numbers.
     """
     buffers: list[bytes] = []
     size = [0]
+    elements = [0, ()]  # numbers in the arrays so far, the largest array's shape
 
     def node(v, depth):
         if depth > MAX_DEPTH:
@@ -104,6 +118,10 @@ def encode(value, max_bytes: int = DEFAULT_MAX_BYTES) -> bytes:
             size[0] += v.nbytes
             if size[0] > max_bytes:
                 raise TransportError(f"returned more than {max_bytes // 2**20} MiB")
+            elements[0] += v.size
+            elements[1] = max(elements[1], v.shape, key=math.prod)
+            if max_elements is not None and elements[0] > max_elements:
+                raise TooManyElements(elements[0], elements[1], max_elements)
             buffers.append(np.ascontiguousarray(v).tobytes())
             return {"a": len(buffers) - 1, "dtype": v.dtype.str, "shape": list(v.shape)}
         if isinstance(v, np.ndarray):
@@ -275,6 +293,45 @@ def _decode(frame, max_bytes, max_header):
     if offset[0] != len(frame):
         raise TransportError("trailing bytes after the last array")
     return result
+
+
+def count_elements(header: bytes) -> tuple[int, tuple[int, ...]]:
+    """The numbers the arrays of a frame hold together, and the largest array's shape, read
+    from the frame's header alone (the JSON between the prefix and the array bytes): what a
+    receiver checks before it reads the arrays, or decodes anything. A header too large
+    (over :data:`MAX_HEADER_BYTES`) or malformed raises :class:`TransportError`; array nodes
+    that are not well-formed count nothing here (:func:`decode` refuses them).
+    """
+    if len(header) > MAX_HEADER_BYTES:
+        raise TransportError(f"frame header larger than {MAX_HEADER_BYTES} bytes")
+    try:
+        tree = json.loads(header, parse_constant=_reject_constant)
+    except (ValueError, RecursionError) as exc:
+        raise TransportError(f"bad frame header: {type(exc).__name__}") from None
+    total, largest = 0, ()
+    stack = [tree]  # walked without recursion: the depth is the sender's choice
+    while stack:
+        node = stack.pop()
+        if type(node) is list:
+            stack.extend(node)
+        elif type(node) is dict:
+            shape = node.get("shape")
+            if "a" in node and type(shape) is list and len(shape) <= 32 \
+                    and all(type(s) is int and 0 <= s < INT64 for s in shape):  # as decode takes them
+                count = math.prod(shape)
+                total += count
+                largest = max(largest, tuple(shape), key=math.prod)
+            else:
+                stack.extend(node.values())
+    return total, largest
+
+
+def check_elements(header: bytes, max_elements: int) -> None:
+    """Raise :class:`TooManyElements` if the frame whose header this is holds more than
+    ``max_elements`` numbers in its arrays (see :func:`count_elements`)."""
+    total, largest = count_elements(header)
+    if total > max_elements:
+        raise TooManyElements(total, largest, max_elements)
 
 
 def _unicode(text: str) -> str:

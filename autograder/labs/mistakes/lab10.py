@@ -10,6 +10,13 @@ MISTAKES = {
             x = f * X[:, :2]
             return x[0] if single else x
         """, ["division is missing"]),
+    "perspective raising for a point at Z = 0": ("lab10.ex1", """
+        _right = perspective_project
+        def perspective_project(points, f):
+            if np.any(np.asarray(points, float)[..., 2] == 0):
+                raise ValueError("a point at Z = 0 has no projection")
+            return _right(points, f)
+        """, ["one at z = 0", "must not raise", "raised valueerror"]),
     "perspective by mean depth": ("lab10.ex1", """
         def perspective_project(points, f):
             return weak_perspective_project(points, f)
