@@ -40,7 +40,7 @@ _NOT_STUDENTS = {"__MACOSX", "index.html", "similarity.html"}
 
 
 class SimilarityUnavailable(RuntimeError):
-    """copydetect is not installed (``pip install 'cv-autograder[similarity]'``)."""
+    """copydetect is not installed (a dependency of the grader: an install that lacks it is broken)."""
 
 
 def _copydetect():
@@ -49,7 +49,8 @@ def _copydetect():
         from copydetect import utils
     except ImportError:  # pragma: no cover - exercised where the extra is missing
         raise SimilarityUnavailable(
-            "the similarity report needs copydetect: pip install 'cv-autograder[similarity]'") from None
+            "the similarity report needs copydetect, a dependency of the grader: install the grader again as the "
+            "README says (python -m pip install -c constraints.txt -e .)") from None
     return copydetect, utils
 
 
