@@ -49,8 +49,8 @@ IN_PLACE_FLOAT32 = """
 import numpy as np
 
 def scale(values, factor):
-    values *= factor
-    return values.astype(np.float32)
+    values[:] = values[::-1]          # reverses the caller's array: a second call answers the same
+    return np.sort(values).astype(np.float32) * factor
 """
 
 
@@ -142,3 +142,49 @@ def scale(values, factor):
     result = grade(submission_from_source(tmp_path, "toy_scaling", source), ["lab98"])
     [tip] = [c for c in result.exercises[0].checks if c.name == "inputs left unchanged"]
     assert tip.message == "scale() modified its input array `values[1]` in place; callers do not expect that"
+
+
+SCALES_IN_PLACE = """
+def scale(values, factor):
+    values *= factor                  # the caller's array is scaled too
+    return values
+"""
+
+
+def test_a_change_in_place_that_shows_in_a_second_call_loses_the_check(toy_lab, tmp_path):
+    """The first call answers rightly; called again on the caller's array (now doubled) it
+    answers 4x: the check where that shows fails, naming the argument and what was done to it."""
+    result = grade(submission_from_source(tmp_path, "toy_scaling", SCALES_IN_PLACE), ["lab98"])
+    [exercise] = result.exercises
+    [doubles] = [c for c in exercise.checks if c.name == "scale([1, 2, 3], 2)"]
+    assert doubles.score == 0 and doubles.mistake == "the caller's array is changed in place"
+    assert doubles.message.startswith("scale() multiplies (by 2) the caller's `values` in place: called a "
+                                      "second time on that same array")
+    assert "np.array(x, dtype=float)" in doubles.hint
+    assert any(c.name == "inputs left unchanged" and c.advice for c in exercise.checks)
+
+
+def test_a_change_in_place_costs_one_check_only(toy_lab, tmp_path):
+    @toy_lab.exercises["ex1"].check("scale([1, 2], 3)", points=1)
+    def triples(t):
+        got = t.call("scale", np.array([1.0, 2.0]), 3.0)
+        if not np.allclose(got, [3, 6]):
+            t.fail(f"scale() returned {got}")
+
+    result = grade(submission_from_source(tmp_path, "toy_scaling", SCALES_IN_PLACE), ["lab98"])
+    scores = {c.name: c.score for c in result.exercises[0].checks if c.max_score > 0}
+    assert scores == {"scale([1, 2, 3], 2)": 0, "scale([1, 2], 3)": 1}
+
+
+def test_answers_that_vary_for_the_same_input_are_not_blamed_on_the_change(toy_lab, tmp_path):
+    noisy = """
+import numpy as np
+
+def scale(values, factor):
+    out = values * factor + np.random.default_rng().normal(0, 1e-12, len(values))
+    values *= factor                  # would show in a second call, but no two answers are alike anyway
+    return out
+"""
+    result = grade(submission_from_source(tmp_path, "toy_scaling", noisy), ["lab98"])
+    [doubles] = [c for c in result.exercises[0].checks if c.name == "scale([1, 2, 3], 2)"]
+    assert doubles.passed, doubles.message

@@ -69,6 +69,11 @@ class Fail(Exception):
         self.message, self.hint, self.mistake = message, hint, mistake
 
 
+class ChangedInPlace(Fail):
+    """The student's function changed its caller's array, and a second call on it answers
+    differently (see :mod:`autograder.engine.inplace`)."""
+
+
 class StudentFailure(Exception):
     """The student's function did not return normally (raised, hung, crashed, missing...)."""
 
@@ -135,6 +140,7 @@ class Trial:
         self.modified_inputs: list[tuple[str, str]] = []
         self._properties = 0  # t.for_all calls so far (each has its recorded examples)
         self._probed: dict = {}  # confirmation probes' answers, asked once per trial (see probe)
+        self._in_place: dict = {}  # (function, input) -> how its change of the caller's array shows ("": not)
         # Student functions that, in this trial, were given fractional numbers and returned only
         # whole ones (the values' side of autograder.loading.reading's findings about truncation).
         self.whole_numbers: set[str] = set()
@@ -188,6 +194,8 @@ class Trial:
                 if function not in self.whole_numbers and _whole_numbers(outcome.value) \
                         and _fractional((args, kwargs)):
                     self.whole_numbers.add(function)
+                if outcome.changed:
+                    self._changed_in_place(function, args, kwargs, outcome)
                 return outcome.value
             failure = StudentFailure(outcome, self._describe(function, outcome))
             if outcome.kind in _FATAL_KINDS:
@@ -195,6 +203,33 @@ class Trial:
         # One raise site, and a fresh exception each time: Hypothesis tells failures
         # apart by where they are raised, and re-raising one object grows its traceback.
         raise StudentFailure(failure.outcome, failure.message)
+
+    def _changed_in_place(self, function: str, args: tuple, kwargs: dict, outcome: CallOutcome):
+        """Fail the check when ``function`` changed its caller's arrays and a second call on them,
+        as the caller now holds them, answers differently (:mod:`autograder.engine.inplace`): in the
+        first check of the grading where that shows, and again in it for the same input."""
+        from . import inplace
+
+        owners = getattr(self.sandbox, "shared", None)
+        if owners is None:
+            return
+        owner = owners.get(("changed in place", self.lab.module, function))
+        if owner not in (None, self.check.id):
+            return
+        given = (function, fingerprint(args, kwargs))
+        if given not in self._in_place:
+            def again(call_args, call_kwargs):
+                more = self.sandbox.call(self.lab.module, function, call_args, call_kwargs,
+                                         timeout=self.check.timeout,
+                                         forbid=self.lab.forbidden.get(function, ()) + self.forbid.get(function, ()))
+                self.student_seconds += more.seconds
+                return more.value if more.ok else None
+
+            self._in_place[given] = inplace.effect_of_change(again, function, self.lab.signature(function), args,
+                                                             kwargs, outcome, fingerprint)
+        if self._in_place[given]:
+            owners[("changed in place", self.lab.module, function)] = self.check.id
+            raise ChangedInPlace(self._in_place[given], inplace.HINT, inplace.MISTAKE)
 
     def probe(self, key: str, answer):
         """The student's answer on a confirmation probe's input, ``answer()``, asked once per
@@ -207,6 +242,8 @@ class Trial:
         if key not in self._probed:
             try:
                 self._probed[key] = answer()
+            except ChangedInPlace:
+                raise   # the check's own verdict, wherever it shows
             except (StudentFailure, Fail):
                 self._probed[key] = None
         return self._probed[key]

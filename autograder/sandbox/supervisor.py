@@ -228,7 +228,8 @@ class CallOutcome:
     ``ok`` with ``value``, or not ``ok`` with a failure ``kind`` (one of
     :data:`FAILURE_KINDS`), a ``message`` for the student, and the student-only
     ``traceback``. ``output`` is what the call printed (truncated); ``modified``
-    names the argument arrays the call changed in place.
+    names the argument arrays the call changed in place, and ``changed`` holds them as the
+    caller would after the call: ``(position or keyword, index in a list or None, array)``.
     """
 
     ok: bool
@@ -239,6 +240,19 @@ class CallOutcome:
     output: str = ""
     seconds: float = 0.0
     modified: tuple[str, ...] = ()
+    changed: tuple = ()
+
+
+def _changed_arrays(changed) -> tuple:
+    """The worker's ``changed`` (see ``worker.changed_arrays``), kept only where well formed."""
+    if type(changed) is not list or not changed:
+        return ()
+    import numpy as np   # only when an argument was changed: most replies never need it here
+
+    return tuple((key, index, array) for key, index, array in
+                 (item for item in changed[:20] if type(item) is list and len(item) == 3)
+                 if type(key) in (int, str) and (index is None or type(index) is int)
+                 and isinstance(array, np.ndarray) and array.dtype.kind in "biuf")
 
 
 def _scrubbed_environment(scratch: Path) -> dict[str, str]:
@@ -825,7 +839,8 @@ class Sandbox:
         modified = tuple(name[:100] for name in modified[:20] if type(name) is str) \
             if type(modified) is list else ()
         if reply["ok"]:
-            return CallOutcome(ok=True, value=reply.get("value"), seconds=seconds, modified=modified)
+            return CallOutcome(ok=True, value=reply.get("value"), seconds=seconds, modified=modified,
+                               changed=_changed_arrays(reply.get("changed")))
         kind = reply.get("kind") if reply.get("kind") in WORKER_KINDS else "exception"
         message = reply.get("message") if type(reply.get("message")) is str else ""
         tb = reply.get("traceback") if type(reply.get("traceback")) is str else ""

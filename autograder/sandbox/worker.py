@@ -243,6 +243,29 @@ def modified_arguments(function, snapshot):
         return []
 
 
+CHANGED_BYTES = 8 * 2**20   # the most bytes of changed argument arrays sent back with a reply
+
+
+def changed_arrays(snapshot, max_bytes=CHANGED_BYTES):
+    """``[[position or keyword, index in a list or None, array], ...]``: each argument array the
+    call changed in place, as its caller holds it now (numbers only, ``max_bytes`` in all) -- what
+    a second call on the same array would be given (the grader makes that call, see
+    :meth:`autograder.engine.checks.Trial.call`)."""
+    try:  # the student's code may have broken anything; never a failure of the call
+        import numpy
+        out, total = [], 0
+        for key, index, value, before in snapshot:
+            if value.shape == before.shape and value.tobytes() == before.tobytes():
+                continue
+            if value.dtype.kind not in "biuf" or total + value.nbytes > max_bytes:
+                continue
+            total += value.nbytes
+            out.append([key, index, numpy.array(value, subok=False)])
+        return out
+    except BaseException:  # noqa: BLE001
+        return []
+
+
 def close_figures():
     """Close every Matplotlib figure the call opened: the sheet asks for plots, the grader
     shows none (the backend is Agg, so ``plt.show()`` opens no window), and open figures
@@ -407,7 +430,7 @@ class Worker:
             return failure("forbidden_call", self._forbidden_message(self.forbidden_called[0], name),
                            seconds=seconds)
         return {"ok": True, "value": value, "seconds": seconds,
-                "modified": modified_arguments(function, inputs)}
+                "modified": modified_arguments(function, inputs), "changed": changed_arrays(inputs)}
 
     @staticmethod
     def _forbidden_message(qualified, function_name):

@@ -1,0 +1,108 @@
+"""Inputs changed in place, where the effect shows: a second call on the same array.
+
+A function that writes into its caller's array (``points /= scale``) answers its first
+call rightly and every later one wrongly: the caller's array is no longer what it was.
+The worker sends back each argument array a call changed, as the caller now holds it
+(:attr:`autograder.sandbox.supervisor.CallOutcome.changed`). :func:`effect_of_change` then
+calls the function twice more: on the same inputs again (a function whose answers vary
+for the same input shows nothing here), and on the inputs as the caller now holds them.
+When that second answer differs from the first, the change has an effect a caller meets,
+and :meth:`autograder.engine.checks.Trial.call` fails the check naming it; a change without
+effect (an idempotent write) keeps only the engine's 0-point advice.
+
+Each function loses points in one check per grading at most (the first where the
+effect shows), not in every check that calls it.
+"""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+MISTAKE = "the caller's array is changed in place"
+
+
+def with_changed(args: tuple, kwargs: dict, changed) -> tuple[tuple, dict] | None:
+    """``(args, kwargs)`` with each changed array (``(position or keyword, index in a list or None,
+    array)``) in its place; None when one has no place among them."""
+    args, kwargs = list(args), dict(kwargs)
+    for key, index, array in changed:
+        if isinstance(key, int) and 0 <= key < len(args):
+            holder, slot = args, key
+        elif isinstance(key, str) and key in kwargs:
+            holder, slot = kwargs, key
+        else:
+            return None
+        if index is None:
+            holder[slot] = array
+        elif isinstance(holder[slot], (list, tuple)) and 0 <= index < len(holder[slot]):
+            items = list(holder[slot])
+            items[index] = array
+            holder[slot] = type(holder[slot])(items) if isinstance(holder[slot], tuple) else items
+        else:
+            return None
+    return tuple(args), kwargs
+
+
+def argument_name(signature: str, key, index) -> str:
+    """``points`` (or ``images[2]``) for the changed argument at ``key`` of ``signature``
+    (``"normalise_points(points)"``)."""
+    if isinstance(key, int):
+        inside = signature.partition("(")[2].rpartition(")")[0]
+        names = [re.split(r"[=:]", part)[0].strip().lstrip("*") for part in inside.split(",") if part.strip()]
+        key = names[key] if key < len(names) else f"argument {key + 1}"
+    return key if index is None else f"{key}[{index}]"
+
+
+def how_changed(before, after) -> str:
+    """What the call did to the array, in a verb the values show: "divides" (by one factor),
+    "multiplies", "shifts" (the same offset for every row), else "writes into"."""
+    try:
+        b, a = np.asarray(before, np.float64), np.asarray(after, np.float64)
+    except (TypeError, ValueError):
+        return "writes into"
+    if b.shape != a.shape or not (np.all(np.isfinite(b)) and np.all(np.isfinite(a))):
+        return "writes into"
+    with np.errstate(all="ignore"):
+        if np.any(a) and np.all((a == 0) == (b == 0)):
+            ratio = b[a != 0] / a[a != 0]
+            if np.allclose(ratio, ratio[0], rtol=1e-9, atol=0) and abs(ratio[0]) != 1:
+                return f"divides (by {ratio[0]:.4g})" if abs(ratio[0]) > 1 else f"multiplies (by {1 / ratio[0]:.4g})"
+        offset = b - a
+        rows = offset.reshape(len(offset), -1) if offset.ndim > 1 else offset[:, None]
+        if offset.ndim and np.allclose(rows, rows[:1], rtol=0, atol=1e-12 * max(1.0, float(np.abs(b).max()))):
+            return "shifts (subtracts the same offset from every row of)"
+    return "writes into"
+
+
+def effect_of_change(call, function: str, signature: str, args: tuple, kwargs: dict, outcome,
+                     fingerprint) -> str:
+    """The sentence saying how ``function``'s change of its caller's array shows, or ``""``.
+
+    ``call(args, kwargs)`` calls the student's function once more and returns its answer (None
+    when that call failed: nothing is told then); ``outcome`` is the first call's, with the
+    changed arrays; ``fingerprint`` tells answers apart.
+    """
+    again = with_changed(args, kwargs, outcome.changed)
+    if again is None:
+        return ""
+    first = fingerprint(outcome.value)
+    repeated = call(args, kwargs)
+    if repeated is None or fingerprint(repeated) != first:
+        return ""   # its answers vary for the same input: a second call shows nothing
+    second = call(*again)
+    if second is not None and fingerprint(second) == first:
+        return ""
+    key, index, after = outcome.changed[0]
+    name = argument_name(signature, key, index)
+    holder = args[key] if isinstance(key, int) else kwargs[key]
+    before = holder[index] if index is not None else holder
+    result = "failed" if second is None else "returned a different result"
+    return (f"{function}() {how_changed(before, after)} the caller's `{name}` in place: called a second time "
+            f"on that same array, as the caller holds it after the first call, it {result}. A caller that "
+            "calls it twice, or uses its array afterwards, gets wrong values.")
+
+
+HINT = ("work on a copy: x = np.array(x, dtype=float) copies (np.asarray and .astype(float) of a float "
+        "array do not), and write x = x / s rather than x /= s")
