@@ -15,6 +15,7 @@ import contextlib
 import os
 import shlex
 import sys
+import time
 from dataclasses import replace
 from pathlib import Path
 
@@ -212,6 +213,7 @@ def run_grade(args) -> int:
                 note = ignored_keys_note(course, "grade")
                 if note:
                     errors.print(f"[yellow]note:[/yellow] {escape(note)}", highlight=False)
+                begun = time.monotonic()  # the submission's deadline counts from here: its figures share it
                 result = grade(args.submission, args.select or course.select, limits=limits, pictures=pictures,
                                rerun=_rerun(args),
                                include_hidden=not args.public_only, on_check=advance, forbid=course.forbid,
@@ -226,9 +228,13 @@ def run_grade(args) -> int:
     replaced_full_page = bool(args.select) and html_path is not None and html_path.is_file()
     terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first
     written, status = [], 0
-    figures = _write_figures(args, limits, console, errors, written) if getattr(args, "figures", None) else {}
+    # Figures are part of the grading: its calls' limits (a lane's memory share), what is left of its deadline.
+    graded, deadline = limits.shared_by(lanes), begun + limits.submission_budget
+    figures = {}
+    if getattr(args, "figures", None):
+        figures = _write_figures(args, graded, deadline, console, errors, written)
     if getattr(args, "report", None):
-        status = _write_report(args, result, limits, console, errors, written) or status
+        status = _write_report(args, result, graded, deadline, console, errors, written) or status
     for path, write, what in ((html_path, lambda r, p: _write_page(r, p, figures), "details and pictures"),
                               (args.json and _report_path(args.json, "results.json"),
                                lambda r, p: write_json(r, p, pictures=args.json_pictures), "results")):
@@ -269,42 +275,50 @@ def _prepare_page() -> None:
     html.prepare()
 
 
-def _write_figures(args, limits, console, errors, written) -> dict[str, bytes]:
+def _write_figures(args, limits, deadline, console, errors, written) -> dict[str, bytes]:
     """``--figures DIR``: the lab sheet's pictures made by the student's functions; returns
     the PNG bytes by exercise for the page, and notes each file (or why there is none)."""
     from .figures import make_figures
 
     try:
-        outcomes = make_figures(args.submission, args.select, args.figures, limits)
+        outcomes = make_figures(args.submission, args.select, args.figures, limits, deadline)
     except OSError as exc:
         errors.print(f"[red]error:[/red] cannot write figures to {escape(str(args.figures))}: "
                      f"{escape(exc.strerror or str(exc))}", highlight=False, soft_wrap=True)
         return {}
-    for outcome in outcomes:
-        if outcome.path is None:
-            console.print(f"[yellow]no figure for {outcome.figure_id}:[/yellow] {escape(outcome.reason)}",
-                          highlight=False)
+    _say_what_figures_lack(console, outcomes)
     written += [(f"figure {o.figure_id}", o.path) for o in outcomes if o.path is not None]
     return {o.figure_id: o.path.read_bytes() for o in outcomes if o.path is not None}
 
 
-def _write_report(args, result, limits, console, errors, written) -> int:
+def _write_report(args, result, limits, deadline, console, errors, written) -> int:
     """``--report DIR``: the lab report's scaffold (autograder.student.report); notes each file."""
     from .student.report import write_report
 
     try:
-        report = write_report(args.submission, args.select, args.report, result, limits)
+        report = write_report(args.submission, args.select, args.report, result, limits, deadline)
     except OSError as exc:
         errors.print(f"[red]error:[/red] cannot write the report to {escape(str(args.report))}: "
                      f"{escape(exc.strerror or str(exc))}", highlight=False, soft_wrap=True)
         return USAGE_ERROR
-    for outcome in report.figures:
-        if outcome.path is None:
-            console.print(f"[yellow]no figure for {outcome.figure_id}:[/yellow] {escape(outcome.reason)}",
-                          highlight=False)
+    _say_what_figures_lack(console, report.figures)
     written += [(f"report ({report.kept[path.name]} explanations kept)" if report.kept[path.name] else "report",
                  path) for path in report.files]
     return 0
+
+
+def _say_what_figures_lack(console, outcomes) -> None:
+    """Why each figure missing is (figures missing for one reason, e.g. the deadline, in one
+    line), and what a figure made leaves out."""
+    missing: dict[str, list[str]] = {}
+    for outcome in outcomes:
+        if outcome.path is None:
+            missing.setdefault(outcome.reason, []).append(outcome.figure_id)
+        elif outcome.note:
+            console.print(f"[yellow]note on figure {outcome.figure_id}:[/yellow] {escape(outcome.note)}",
+                          highlight=False)
+    for reason, figure_ids in missing.items():
+        console.print(f"[yellow]no figure for {', '.join(figure_ids)}:[/yellow] {escape(reason)}", highlight=False)
 
 
 def _early_sandbox(limits):
@@ -728,7 +742,8 @@ def run_review(args) -> int:
     try:
         from .instructor.review import serve
     except ImportError as exc:
-        print(f"error: autograder review needs Flask ({exc}): pip install -c constraints.txt -e '.[review]'",
+        print(f"error: autograder review needs Flask, a dependency of the grader ({exc}): install the grader "
+              "again as the README says (python -m pip install -c constraints.txt -e .)",
               file=sys.stderr)
         return USAGE_ERROR
     try:

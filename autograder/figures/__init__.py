@@ -21,6 +21,18 @@ the file name (``lab09.ex3-extension.png``) and the report section's name.
 :data:`SHEET_PICTURES` lists, apart from the producers, every figure the lab sheet
 asks for (an "Expected Output" that is an image, plot or visualisation, and the
 two experiments), so a test notices a producer that goes missing.
+
+Bounds. Making figures is part of grading a submission and is held to the same
+limits (:func:`make_figures`): its calls run in the same :class:`Sandbox` machinery
+with the graded calls' limits (their memory share, processes, call timeout), within
+what is left of the submission's deadline (``Limits.submission_budget`` from the
+start of its grading: grading and its figures share it; a figure left when it is
+spent is skipped with one sentence saying so). What a call returns to a figure is
+capped before the grader reads it (:data:`FIGURE_REPLY_BYTES` on the reply's length,
+:data:`FIGURE_REPLY_ELEMENTS` numbers on its header: the figure is skipped, naming
+the sizes), and what is drawn after that is thinned (images to
+``engine.pictures.MAX_SIDE`` a side, point sets to :data:`MAX_POINTS_DRAWN`, the
+figure's note saying so).
 """
 
 from __future__ import annotations
@@ -28,7 +40,8 @@ from __future__ import annotations
 import importlib
 import pkgutil
 import re
-from dataclasses import dataclass, field
+import time
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable
 
@@ -63,6 +76,13 @@ class Producer:
         """The exercise whose functions the figure runs (its selector): ``lab09.ex3``."""
         return self.figure_id.split("-", 1)[0]
 
+
+# What a figure's call may return, checked before the grader reads the reply (on its length,
+# then on its header): the largest the reference solutions return is 460,800 numbers (two photos
+# side by side with their matches drawn); a figure draws no more than a thousand pixels a side.
+FIGURE_REPLY_BYTES = 32 * 2**20
+FIGURE_REPLY_ELEMENTS = 4_000_000
+MAX_POINTS_DRAWN = 20_000  # per point set of a panel: Matplotlib's cost grows with each point
 
 PRODUCERS: dict[str, Producer] = {}
 _FIGURE_ID = re.compile(r"lab\d\d\.ext?\d+(-extension)?")
@@ -128,8 +148,9 @@ def _discover() -> dict[str, Producer]:
 class FigureOutcome:
     exercise_id: str
     path: Path | None = None
-    reason: str = ""
+    reason: str = ""     # why there is no figure (path None)
     figure_id: str = ""  # the file's stem; the exercise id unless an experiment's figure
+    note: str = ""       # what the figure leaves out (points thinned), for the student
 
     def __post_init__(self):
         self.figure_id = self.figure_id or self.exercise_id
@@ -140,44 +161,107 @@ def producers_for(exercise_id: str) -> list[Producer]:
     return [p for p in _discover().values() if p.exercise_id == exercise_id]
 
 
-def make_figures(submission, selectors=(), out_dir=".", limits=None) -> list[FigureOutcome]:
-    """Write ``out_dir/<figure id>.png`` for every figure of the selected exercises."""
+def figure_limits(limits) -> "Limits":
+    """``limits`` (those the submission's graded calls had: their memory share, processes,
+    timeouts) with a figure's caps on what a call returns."""
+    return replace(limits, max_result_bytes=min(limits.max_result_bytes, FIGURE_REPLY_BYTES),
+                   max_result_elements=min(limits.max_result_elements or FIGURE_REPLY_ELEMENTS,
+                                           FIGURE_REPLY_ELEMENTS))
+
+
+def make_figures(submission, selectors=(), out_dir=".", limits=None,
+                 deadline: float | None = None) -> list[FigureOutcome]:
+    """Write ``out_dir/<figure id>.png`` for every figure of the selected exercises.
+
+    ``limits``: those of the submission's graded calls (``Limits.shared_by(lanes)`` when it was
+    graded in lanes), with the figure's reply caps added (:func:`figure_limits`). ``deadline``:
+    the submission's, ``time.monotonic()`` at which its ``submission_budget`` is spent (its
+    grading began that long before); None: the budget from now, for figures made on their own.
+    A call running at the deadline is stopped, and every figure left is skipped with the reason.
+    """
     from ..engine.registry import select
-    from ..sandbox.supervisor import Sandbox
+    from ..sandbox.supervisor import Limits, Sandbox
     from ..loading.submission import load_submission
 
+    limits = figure_limits(limits or Limits())
+    if deadline is None:
+        deadline = time.monotonic() + limits.submission_budget
     chosen = [(ex, producer) for ex in select(selectors) for producer in producers_for(ex.id)]
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     outcomes = []
     with load_submission(submission, sorted({ex.lab.module for ex, _ in chosen})) as loaded:
-        with Sandbox(loaded.path, limits) as sandbox:
+        with Sandbox(loaded.path, limits) as sandbox:  # its worker starts at the first call, if any
+            sandbox.set_deadline(deadline)
             for exercise, producer in chosen:
-                call = _caller(sandbox, exercise.lab.module, loaded.problems.get(exercise.lab.module))
+                outcome = FigureOutcome(exercise.id, figure_id=producer.figure_id)
+                outcomes.append(outcome)
+                if sandbox.remaining() <= 0:
+                    outcome.reason = _out_of_time(limits.submission_budget)
+                    continue
+                sandbox.start_exercise(None)  # worker restarts are counted per figure, as per exercise
+                call = _caller(sandbox, exercise.lab.module, loaded.problems.get(exercise.lab.module),
+                               limits.submission_budget)
                 try:
-                    png = render_png(f"{producer.figure_id} · {producer.title}", producer.make(call))
+                    panels = producer.make(call)
+                    outcome.note = " ".join(_thin(panels))
+                    png = render_png(f"{producer.figure_id} · {producer.title}", panels)
                 except FigureUnavailable as exc:
-                    outcomes.append(FigureOutcome(exercise.id, reason=str(exc), figure_id=producer.figure_id))
+                    outcome.reason = str(exc)
                     continue
                 except Exception as exc:  # noqa: BLE001 - what a student returned cannot stop the others
                     reason = f"what your functions returned cannot be drawn ({type(exc).__name__}: {exc})"
-                    outcomes.append(FigureOutcome(exercise.id, reason=reason[:300], figure_id=producer.figure_id))
+                    outcome.reason = reason[:300]
                     continue
-                path = out_dir / f"{producer.figure_id}.png"
-                path.write_bytes(png)
-                outcomes.append(FigureOutcome(exercise.id, path, figure_id=producer.figure_id))
+                outcome.path = out_dir / f"{producer.figure_id}.png"
+                outcome.path.write_bytes(png)
     return outcomes
 
 
-def _caller(sandbox, module: str, problem: str | None):
+def _out_of_time(budget: float, function: str = "") -> str:
+    """Why a figure was not made: the submission's deadline (grading and figures share it)."""
+    what = f"{function}() was stopped" if function else "skipped"
+    return f"{what}: the submission's {budget:g} s time budget (grading and its figures together) is spent"
+
+
+def _caller(sandbox, module: str, problem: str | None, budget: float):
     def call(function: str, *args, **kwargs):
         if problem:
             raise FigureUnavailable(problem)
         outcome = sandbox.call(module, function, args, kwargs)
+        if outcome.kind == "budget":
+            raise FigureUnavailable(_out_of_time(budget, function if outcome.seconds else ""))  # ran: stopped
         if not outcome.ok:
-            raise FigureUnavailable(f"{function}(): {outcome.message.splitlines()[0]}")
+            message = outcome.message.splitlines()[0] if outcome.message else outcome.kind
+            raise FigureUnavailable(message if message.startswith(f"{function}()") else f"{function}(): {message}")
         return outcome.value
     return call
+
+
+def thinned(points) -> tuple[np.ndarray, int]:
+    """``points`` (anything of 2 N numbers) as an ``(M, 2)`` float array of at most
+    :data:`MAX_POINTS_DRAWN` rows, every k-th kept, and ``N``. Raises ValueError for an
+    odd count of numbers."""
+    points = np.asarray(points, dtype=float).reshape(-1, 2)
+    step = max(1, -(-len(points) // MAX_POINTS_DRAWN))
+    return points[::step], len(points)
+
+
+def _thin(panels: list[Panel]) -> list[str]:
+    """Thin the panels' point sets to :data:`MAX_POINTS_DRAWN` (their titles say so); one
+    sentence per set thinned, for the student."""
+    notes = []
+    for panel in panels:
+        drawn = []
+        for label, points in panel.points.items():
+            panel.points[label], count = thinned(points)
+            if count > len(panel.points[label]):
+                drawn.append(f"{len(panel.points[label]):,} of {count:,}")
+                notes.append(f"your figure's panel “{panel.title}” has {count:,} points of “{label}”; "
+                             f"at most {MAX_POINTS_DRAWN:,} are drawn.")
+        if drawn:
+            panel.title += f" ({', '.join(drawn)} points drawn)"
+    return notes
 
 
 def render_png(title: str, panels: list[Panel], dpi: int = 110) -> bytes:
@@ -251,7 +335,7 @@ def _show_image(ax, image):
 
 def _plot_points(ax, panel: Panel):
     for label, points in panel.points.items():
-        points = np.asarray(points, dtype=float).reshape(-1, 2)
+        points, _ = thinned(points)  # (make_figures has thinned them already, and said so)
         ax.scatter(points[:, 0], points[:, 1], s=10, label=label)
     if len(panel.points) > 1:
         ax.legend(fontsize=7)

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from . import Panel, common_extent, figure
+from . import FigureUnavailable, Panel, common_extent, figure
 
 
 def _cube():
@@ -70,6 +70,9 @@ def rotations_and_translations(call):
 def focal_lengths(call):
     focal = [100.0, 300.0, 600.0]
     projections = np.asarray(call("project_focal_lengths", _cube(), focal), dtype=float)
+    if projections.ndim != 3 or len(projections) != len(focal):  # (and not a million rows to unpack)
+        raise FigureUnavailable(f"project_focal_lengths() returned shape {projections.shape}; "
+                                f"expected ({len(focal)}, N, 2)")
     extent = common_extent(*projections)  # one scale for all three: the picture grows with f
     panels = [Panel(f"f = {f:g}", points={"projection": p}, extent=extent) for f, p in zip(focal, projections)]
     rays = [np.asarray(call("simulate_aperture", _cube(), 300.0, aperture, 20, 0), dtype=float).reshape(-1, 2)

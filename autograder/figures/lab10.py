@@ -1,6 +1,6 @@
 """Lab 10's figures: focal lengths, perspective vs weak perspective vs orthographic."""
 
-from . import FigureUnavailable, Panel, common_extent, figure
+from . import FigureUnavailable, Panel, common_extent, figure, thinned
 
 
 def _scene():
@@ -42,11 +42,12 @@ def pose(call):
 
     image = pose_views()[0][0]
     _, _, reprojected = call("estimate_pose", image, POSE_PATTERN, POSE_SQUARE, POSE_K)
+    corners, count = thinned(reprojected)  # drawn one by one: at most MAX_POINTS_DRAWN
     marked = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image.copy()
-    for x, y in np.asarray(reprojected, float).reshape(-1, 2):
-        if np.isfinite(x) and np.isfinite(y):
-            cv2.circle(marked, (int(round(x)), int(round(y))), 3, (0, 0, 255), -1)
-    return [Panel("input", image), Panel("reprojected corners (red)", marked)]
+    for x, y in np.clip(corners[np.all(np.isfinite(corners), axis=1)], -1e5, 1e5):
+        cv2.circle(marked, (int(round(x)), int(round(y))), 3, (0, 0, 255), -1)
+    drawn = "" if count == len(corners) else f", {len(corners):,} of {count:,} drawn"
+    return [Panel("input", image), Panel(f"reprojected corners (red{drawn})", marked)]
 
 
 @figure("lab10.ext1", "undistort_image(distorted chessboard view, K, dist)")

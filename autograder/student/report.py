@@ -52,16 +52,18 @@ class ReportWritten:
 
 
 def write_report(submission, selectors=(), out_dir=".", result: GradingResult | None = None,
-                 limits=None) -> ReportWritten:
+                 limits=None, deadline: float | None = None) -> ReportWritten:
     """Write (or refresh) ``out_dir/labNN_report.md`` and its figures for the selected labs.
 
     ``result``: this run's grading (the verdict lines); exercises it does not hold keep the
-    verdict line the earlier report had. Raises ``OSError`` when ``out_dir`` cannot be written.
+    verdict line the earlier report had. ``limits`` and ``deadline``: the grading's, which
+    its figures are held to (see :func:`autograder.figures.make_figures`). Raises ``OSError``
+    when ``out_dir`` cannot be written.
     """
     out_dir = Path(out_dir)
     figure_dir = out_dir / FIGURES_FOLDER
     selected = select(selectors)
-    outcomes = make_figures(submission, [ex.id for ex in selected], figure_dir, limits)
+    outcomes = make_figures(submission, [ex.id for ex in selected], figure_dir, limits, deadline)
     for outcome in outcomes:  # a picture from an earlier run would show code that is gone
         if outcome.path is None:
             (figure_dir / f"{outcome.figure_id}.png").unlink(missing_ok=True)

@@ -11,6 +11,7 @@ it are forked from a server that has imported the grader (:mod:`.processes`).
 from __future__ import annotations
 
 import tempfile
+import time
 import traceback
 import warnings
 from pathlib import Path
@@ -93,11 +94,14 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
 
                 CourseConfig(labs=list(rules.get("labs") or []), hide=list(rules.get("hide") or [])).use_labs()
             budgets = {k: rules[k] for k in ("exercise_budget", "submission_budget") if rules.get(k)}
-            limits = Limits(call_timeout=call_timeout, threads=threads, **budgets)
-            result = grade(folder, selectors, limits=_sharing_the_machine(limits, rules.get("gradings", 1)),
+            limits = _sharing_the_machine(Limits(call_timeout=call_timeout, threads=threads, **budgets),
+                                          rules.get("gradings", 1))
+            begun = time.monotonic()  # the submission's deadline counts from here: its figures share it
+            result = grade(folder, selectors, limits=limits,
                            pictures=pictures, inputs_secret=inputs_secret or None, forbid=rules.get("forbid"))
             student = result.for_students(hidden_points_visible)
-            figures = _figures(folder, rules.get("figures") or [], limits, Path(tmp) / "figures")
+            figures = _figures(folder, rules.get("figures") or [], limits, Path(tmp) / "figures",
+                               begun + limits.submission_budget)
             return {"result": strip_pictures(result.to_dict()),
                     "json": json_text(strip_pictures(student.to_dict())), "page": html.render(student),
                     "figures": figures}
@@ -106,16 +110,18 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
                 "traceback": traceback.format_exc()[-4000:]}
 
 
-def _figures(folder: Path, exercises: list[str], limits, out: Path) -> dict[str, bytes]:
+def _figures(folder: Path, exercises: list[str], limits, out: Path, deadline: float) -> dict[str, bytes]:
     """The lab sheet's figures of ``exercises`` (those the course reviews with a rubric) made by
-    the submission's functions in the sandbox: figure id -> PNG bytes. A figure that cannot be
-    made is left out (the review says so); making them never fails the grading."""
+    the submission's functions in the sandbox, with its graded calls' ``limits``, by the
+    submission's ``deadline`` (``time.monotonic()``: grading and figures share its budget):
+    figure id -> PNG bytes. A figure that cannot be made is left out (the review says so);
+    making them never fails the grading."""
     if not exercises:
         return {}
     from ...figures import make_figures
 
     try:
-        outcomes = make_figures(folder, exercises, out, limits)
+        outcomes = make_figures(folder, exercises, out, limits, deadline)
         return {o.figure_id: o.path.read_bytes() for o in outcomes if o.path is not None}
     except Exception:  # noqa: BLE001 - the grading stands without its figures
         return {}
