@@ -177,3 +177,60 @@ def test_the_gradebook_keeps_the_report_with_the_student(tmp_path):
         (root / "ada" / "lab07_report.md").unlink()
         book.sync_students(list(read(root).values()), {"ada": "k"})
         assert book.report("ada")["explanations"] == {}
+
+
+# Issue 34: a report file that is not a regular file was skipped silently; it is named, with what it is.
+FOLDER_KINDS = {"link": "it is a symbolic link", "fifo": "it is not a regular file (a named pipe)",
+                "socket": "it is not a regular file (a socket)",
+                "chardev": "it is not a regular file (a character device)",
+                "blockdev": "it is not a regular file (a block device)"}
+
+
+def make_special(path, kind: str) -> None:
+    import socket
+    import stat
+    import tempfile
+
+    if kind in ("chardev", "blockdev") and os.geteuid() != 0:
+        pytest.skip("making a device needs root")
+    if kind == "link":
+        path.symlink_to("/etc/passwd")
+    elif kind == "fifo":
+        os.mkfifo(path)
+    elif kind == "socket":
+        short = tempfile.mkdtemp()   # a socket's path must be short: bound there, then moved
+        with socket.socket(socket.AF_UNIX) as sock:
+            sock.bind(f"{short}/s")
+        os.rename(f"{short}/s", path)
+        os.rmdir(short)
+    else:
+        os.mknod(path, (stat.S_IFCHR if kind == "chardev" else stat.S_IFBLK) | 0o600, os.makedev(1, 3))
+
+
+@pytest.mark.parametrize("kind", FOLDER_KINDS)
+@pytest.mark.parametrize("name", ["lab07_report.md", "notes/scan.pdf"])
+def test_a_report_file_that_is_a_link_pipe_socket_or_device_is_named_with_what_it_is(tmp_path, kind, name):
+    student = tmp_path / "class" / "eve"
+    write(student / f"{MODULE}.py", CODE)
+    (student / name).parent.mkdir(parents=True, exist_ok=True)
+    make_special(student / name, kind)
+    eve = read(tmp_path / "class")["eve"]
+    assert not eve.error and set(eve.files) == {f"{MODULE}.py"} and eve.report_files == {}
+    assert eve.report.problems == (f"{name} was not read: {FOLDER_KINDS[kind]}",)
+
+
+@pytest.mark.parametrize("mode, reason", [
+    (0o120777, "it is a symbolic link"), (0o010644, "it is not a regular file (a named pipe)"),
+    (0o140644, "it is not a regular file (a socket)"), (0o020644, "it is not a regular file (a character device)"),
+    (0o060644, "it is not a regular file (a block device)")])
+def test_a_zipped_report_member_that_is_no_regular_file_is_named_with_what_it_is(tmp_path, mode, reason):
+    archive = io.BytesIO()
+    with zipfile.ZipFile(archive, "w") as zf:
+        zf.writestr(f"{MODULE}.py", CODE)
+        member = zipfile.ZipInfo("lab07_report.md")
+        member.external_attr = mode << 16
+        zf.writestr(member, b"/etc/passwd")
+    write(tmp_path / "class" / "eve.zip", archive.getvalue())
+    eve = read(tmp_path / "class")["eve"]
+    assert not eve.error and eve.report_files == {}
+    assert eve.report.problems == (f"eve/lab07_report.md was not read: {reason}",)

@@ -31,6 +31,7 @@ import itertools
 import re
 import unicodedata
 from pathlib import PurePosixPath
+from urllib.parse import quote
 
 UNKNOWN_PROBLEM = "a problem was found reading the report (its sentence names files: run without --anonymous to read it)"
 _KINDS = {".pdf": "PDF", ".md": "Markdown", ".ipynb": "notebook", ".zip": "zip", ".py": "Python"}
@@ -67,6 +68,14 @@ _PROBLEMS = [(re.compile(pattern, re.DOTALL), text) for pattern, text in (
      "{ex} is explained twice ({sources}); both texts are kept, one after the other"),
     (rf"the explanation of (?P<ex>{_EXERCISE}) \((?P<sources>.+)\) is longer than (?P<n>{_NUMBER}) characters; "
      "the rest was cut", "the explanation of {ex} ({sources}) is longer than {n} characters; the rest was cut"),
+    (rf"(?P<ex>{_EXERCISE}) is explained in more than (?P<n>{_NUMBER}) places; the text at (?P<sources>.+) and "
+     "after it was not read", "{ex} is explained in more than {n} places; the text at {sources} and after it "
+                              "was not read"),
+    (rf"(?P<file>.+) holds more than (?P<n>{_NUMBER}) explanation markers or headings; what follows the first "
+     rf"(?P<m>{_NUMBER}) was not read", "{file} holds more than {n} explanation markers or headings; what follows "
+                                        "the first {m} was not read"),
+    (rf"(?P<file>.+) holds more than (?P<n>{_NUMBER}) Markdown cells; cell (?P<m>\d+) and those after it were not "
+     "read", "{file} holds more than {n} Markdown cells; cell {m} and those after it were not read"),
     (rf"and (?P<n>{_NUMBER}) more problems like these", "and {n} more problems like these"),
     (rf"and (?P<n>{_NUMBER}) more files were not read", "and {n} more files were not read"),
     (r"the report could not be read \(\w+\)", "the report could not be read"),
@@ -125,7 +134,8 @@ def _forms(word: str) -> set[str]:
     """``word`` as a file system, a keyboard or a case change may have written it."""
     forms = {unicodedata.normalize(f, word) for f in ("NFC", "NFD", "NFKC")} | {word.casefold(), word.upper()}
     plain = "".join(c for c in unicodedata.normalize("NFKD", word) if not unicodedata.combining(c))
-    return forms | {plain, plain.casefold()}
+    forms |= {plain, plain.casefold()}
+    return forms | {quote(form, safe="") for form in forms}   # in a link the student wrote
 
 
 def _whole(word: str) -> str:
