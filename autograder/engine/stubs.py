@@ -21,17 +21,16 @@ else, run as usual. It uses two facts:
 
 from __future__ import annotations
 
-import ast
 import inspect
 import types
 from functools import lru_cache
 from pathlib import Path
 
+from ..loading.handed_in import stub_names
+from ..loading.parsing import parse
 from .registry import Check
 
 _MAX_SOURCE_BYTES = 2_000_000  # a larger module is simply graded the normal way
-# Code that can rebind a module's names at run time: a function "stub" might not stay one.
-_DYNAMIC = ("globals(", "setattr(", "__dict__", "sys.modules", "exec(", "eval(", "importlib")
 
 
 def stub_functions(module_file: Path) -> frozenset[str]:
@@ -48,7 +47,9 @@ def stub_functions(module_file: Path) -> frozenset[str]:
 def _stub_functions(module_file: str, mtime_ns: int, size: int) -> frozenset[str]:
     """A function counts when it is undecorated, its body is an optional docstring
     followed by ``raise NotImplementedError`` (with constant arguments, if any),
-    and nothing else in the module binds its name or ``NotImplementedError``.
+    and nothing else in the module binds its name or ``NotImplementedError``
+    (:func:`autograder.loading.handed_in.stub_names`, which also picks the file graded
+    when a lab is handed in twice).
     """
     try:
         source = Path(module_file).read_bytes()
@@ -57,52 +58,10 @@ def _stub_functions(module_file: str, mtime_ns: int, size: int) -> frozenset[str
         text = source.decode("utf-8")
         if "NotImplementedError" not in text:  # no stub can be there: no need to parse
             return frozenset()
-        tree = ast.parse(text)
+        tree = parse(text)   # under the parse lock, within its bounds (TooLarge is a ValueError)
     except (OSError, UnicodeDecodeError, SyntaxError, ValueError, RecursionError):
         return frozenset()
-    if any(token in text for token in _DYNAMIC):
-        return frozenset()
-    bindings: dict[str, int] = {}
-    for node in ast.walk(tree):
-        for name in _bound_names(node):
-            bindings[name] = bindings.get(name, 0) + 1
-    if bindings.get("NotImplementedError"):
-        return frozenset()
-    return frozenset(node.name for node in tree.body
-                     if isinstance(node, ast.FunctionDef) and _is_stub(node)
-                     and bindings.get(node.name) == 1)
-
-
-def _bound_names(node: ast.AST):
-    """Names a node binds (defs, assignments, imports, ``global``, deletions...)."""
-    if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
-        yield node.name
-    elif isinstance(node, ast.Name) and not isinstance(node.ctx, ast.Load):
-        yield node.id
-    elif isinstance(node, (ast.Import, ast.ImportFrom)):
-        for alias in node.names:
-            yield alias.asname or alias.name.split(".")[0]
-    elif isinstance(node, (ast.Global, ast.Nonlocal)):
-        yield from node.names
-    elif isinstance(node, ast.arg):
-        yield node.arg
-
-
-def _is_stub(function: ast.FunctionDef) -> bool:
-    if function.decorator_list:
-        return False
-    body = function.body
-    if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
-            and isinstance(body[0].value.value, str):
-        body = body[1:]
-    if len(body) != 1 or not isinstance(body[0], ast.Raise) or body[0].cause is not None:
-        return False
-    raised = body[0].exc
-    if isinstance(raised, ast.Name):
-        return raised.id == "NotImplementedError"
-    return (isinstance(raised, ast.Call) and isinstance(raised.func, ast.Name)
-            and raised.func.id == "NotImplementedError" and not raised.keywords
-            and all(isinstance(arg, ast.Constant) for arg in raised.args))
+    return stub_names(tree, text)
 
 
 def functions_called(check: Check) -> frozenset[str]:

@@ -32,10 +32,17 @@ import unicodedata
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..loading.parsing import parse
+
 PROJECT_ROOT = Path(__file__).resolve().parents[2]
 GENERATOR = "python -m autograder.instructor.apidoc docs"
 
 _BLOCK = re.compile(r"(<!-- apidoc:begin (?P<key>[\w.]+) -->\n)(?P<body>.*?)(<!-- apidoc:end -->)", re.S)
+
+
+def _parse(text: str, filename: str = "<unknown>", mode: str = "exec"):
+    """The project's own text parsed under the grader's parse lock (no size bounds)."""
+    return parse(text, filename, mode, max_chars=None, max_statements=None)
 
 
 class ApidocError(ValueError):
@@ -68,7 +75,7 @@ class Skeleton:
 
 def read_skeleton(path: Path) -> Skeleton:
     """Read ``path`` with ``ast`` (never imported: a skeleton may import anything)."""
-    tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+    tree = _parse(path.read_text(encoding="utf-8"), filename=str(path))
     functions = {}
     for node in tree.body:
         if isinstance(node, ast.FunctionDef) and not node.name.startswith("_"):
@@ -153,10 +160,10 @@ def _agrees(lab: str, exercise: str, signature: str, skeleton: Skeleton, functio
     if function not in skeleton.functions:
         raise ApidocError(f"{lab}.{exercise} grades {function}(), which {skeleton.path.name} does not define")
     try:
-        call = ast.parse(signature, mode="eval").body
+        call = _parse(signature, mode="eval").body
     except SyntaxError:
         raise ApidocError(f"{lab}.{exercise}: cannot read the signature {signature!r}") from None
-    defined = ast.parse(f"def {skeleton.functions[function].signature}: pass").body[0].args
+    defined = _parse(f"def {skeleton.functions[function].signature}: pass").body[0].args
     names = [a.arg for a in defined.posonlyargs + defined.args + defined.kwonlyargs]
     used = [a.id for a in getattr(call, "args", []) if isinstance(a, ast.Name)]
     used += [k.arg for k in getattr(call, "keywords", []) if k.arg]
@@ -447,7 +454,7 @@ def _exercise_facts(lab: LabFacts, exercise: ExerciseFacts, link_functions: bool
 def _same(signature: str, other: str) -> bool:
     """Whether two signatures say the same (``method="sift"`` is ``method='sift'``)."""
     try:
-        return ast.unparse(ast.parse(signature, mode="eval")) == ast.unparse(ast.parse(other, mode="eval"))
+        return ast.unparse(_parse(signature, mode="eval")) == ast.unparse(_parse(other, mode="eval"))
     except SyntaxError:
         return signature == other
 

@@ -36,6 +36,7 @@ from typing import Callable, Iterable
 from ..engine.labfolders import MISTAKES, REFERENCE, SKELETON, LabFolderError, lab_folder
 from ..engine.registry import Lab
 from ..engine.results import ERROR, GradingResult
+from ..loading.parsing import compile_source
 
 PROJECT_ROOT = Path(__file__).resolve().parents[2]
 NOT_IMPLEMENTED = "not implemented yet"
@@ -147,7 +148,7 @@ def _cases(lab: Lab, table, name: str, where: str, advice: bool = False) -> list
             raise VerifyError(f"{where}: {name}[{case_name!r}] names {entry[0]!r}, not an exercise of "
                               f"{lab.key} ({', '.join(sorted(exercises))})")
         try:   # a case that cannot even be imported would lose points to its own SyntaxError
-            compile(textwrap.dedent(entry[1]), f"{name}[{case_name!r}]", "exec")
+            compile_source(textwrap.dedent(entry[1]), f"{name}[{case_name!r}]", "exec")
         except SyntaxError as exc:
             raise VerifyError(f"{where}: {name}[{case_name!r}]'s source, line {exc.lineno}: "
                               f"SyntaxError: {exc.msg}") from None

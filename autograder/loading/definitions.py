@@ -46,10 +46,13 @@ from __future__ import annotations
 import ast
 import builtins
 import sys
+from collections import ChainMap
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 from typing import Callable, Iterable
+
+from .parsing import parse
 
 # ------------------------------------------------------------------ what is pure
 # Library calls that build a constant (cheap, silent, no files), by module; "*": all of it.
@@ -406,7 +409,9 @@ class _Analysis:
         # try: import seaborn / except ImportError: ... works wherever it runs.
         guarded = isinstance(node, ast.Try) and any(_catches_import_errors(h) for h in node.handlers)
         inner = _Analysis((lambda module: True) if guarded else self.importable)
-        inner.names, inner.stars = dict(self.names), list(self.stars)
+        # The block's bindings over the names outside it, not a copy of them: a copy per block
+        # made a cell of many blocks after many names quadratic.
+        inner.names, inner.stars = ChainMap({}, self.names), list(self.stars)
         inner.future_allowed = False
         if isinstance(node, ast.For):
             inner.bind(_targets(node.target), True)
@@ -478,7 +483,7 @@ class _Analysis:
         elif isinstance(node, ast.Delete):
             for target in node.targets:
                 for name in _targets(target):
-                    self.names.pop(name, None)
+                    _unbind(self.names, name)
         elif isinstance(node, (ast.Assign, ast.AnnAssign, ast.AugAssign)):
             targets = node.targets if isinstance(node, ast.Assign) else [node.target]
             kind = self.kind_of(node.value) if kept and node.value is not None else "value"
@@ -559,6 +564,17 @@ class _Analysis:
                     name = getattr(inner, "name", None) or _lambda_name(node)
                     found.setdefault(name, set()).update(_body_globals(inner))
         return found
+
+
+def _unbind(names, name: str) -> None:
+    """``del name``: gone from ``names``, a dict or (in a block) a ChainMap over the names
+    outside it, where it is then bound to None (looked up as not bound)."""
+    if isinstance(names, ChainMap):
+        names.maps[0].pop(name, None)
+        if any(name in outer for outer in names.maps[1:]):
+            names.maps[0][name] = None
+    else:
+        names.pop(name, None)
 
 
 def _lambda_name(statement: ast.stmt) -> str:
@@ -884,9 +900,9 @@ def analyse(cells: list[CellCode], importable: Callable[[str], bool] | None = No
     analysis = _Analysis(importable or available_at_grading)
     parsed: dict[int, list[tuple[_Statement, ast.stmt]]] = {}
     for cell in cells:
-        try:
-            tree = ast.parse("\n".join(cell.lines))
-        except (SyntaxError, ValueError, RecursionError, MemoryError):  # ValueError: NUL bytes (3.10)
+        try:  # the caller bounds the code (notebooks.convert); the cell's own bound is the parser's
+            tree = parse("\n".join(cell.lines))
+        except (SyntaxError, ValueError, RecursionError, MemoryError):  # ValueError: NUL bytes (3.10), TooLarge
             parsed[cell.number] = None
             analysis.future_allowed = analysis.future_allowed and cell.mode == "skip"
             continue
@@ -903,9 +919,7 @@ def analyse(cells: list[CellCode], importable: Callable[[str], bool] | None = No
     for cell in cells:
         statements = parsed[cell.number]
         if statements is None:  # kept whole (unless tagged skip-grading): the import reports it
-            selection.lines[cell.number] = list(cell.lines)
-            selection.kept[cell.number] = [cell.mode != "skip"] * len(cell.lines)
-            selection.guarded[cell.number] = set()
+            _take_whole(selection, cell)
             continue
         lines, kept = _cell_lines(cell.lines, statements)
         selection.lines[cell.number], selection.kept[cell.number] = lines, kept
@@ -916,9 +930,38 @@ def analyse(cells: list[CellCode], importable: Callable[[str], bool] | None = No
             first, _ = _statement_lines(node)
             defined = _defined_by(node)
             users = sorted((function, name) for name in defined for function in read_by.get(name, ()))
-            selection.omissions.append(Omission(cell.number, first, cell.lines[first - 1].strip(),
+            selection.omissions.append(Omission(cell.number, first, _first_line(cell.lines[first - 1], node),
                                                 statement.reason, users, statement.listed))
     return selection
+
+
+def taken_whole(cells: list[CellCode]) -> Selection:
+    """Every cell whole, nothing read (a cell tagged skip-grading left out): what :func:`analyse`
+    gives a cell that does not parse, for code too large to read."""
+    selection = Selection({}, {}, [])
+    for cell in cells:
+        _take_whole(selection, cell)
+    return selection
+
+
+def _take_whole(selection: Selection, cell: CellCode) -> None:
+    selection.lines[cell.number] = list(cell.lines)
+    selection.kept[cell.number] = [cell.mode != "skip"] * len(cell.lines)
+    selection.guarded[cell.number] = set()
+
+
+MAX_OMISSION_TEXT = 200   # characters of a statement an Omission keeps (notes show 50)
+
+
+def _first_line(line: str, node: ast.stmt) -> str:
+    """The first line of ``node``, which starts on ``line``: the statement's own part when it
+    shares the line (``img = load()`` of ``img = load(); K = np.eye(3)``), at most
+    :data:`MAX_OMISSION_TEXT` characters (so a line of thousands of statements is not kept
+    once per statement)."""
+    if getattr(node, "decorator_list", None) or not line.isascii():  # columns are UTF-8 bytes
+        return line.strip()[:MAX_OMISSION_TEXT]
+    end = node.end_col_offset if node.end_lineno == node.lineno and node.end_col_offset is not None else len(line)
+    return line[node.col_offset:min(end, node.col_offset + 4 * MAX_OMISSION_TEXT)].strip()[:MAX_OMISSION_TEXT]
 
 
 def _defined_by(node: ast.stmt) -> set[str]:
@@ -979,13 +1022,19 @@ def _is_docstring(node: ast.stmt) -> bool:
 
 
 def _without_statements(line: str, number: int, left_out: list[ast.stmt]) -> str:
-    """``line`` with each left-out statement's part replaced by ``pass`` (ast columns are UTF-8 bytes)."""
+    """``line`` with each left-out statement's part replaced by ``pass`` (ast columns are UTF-8
+    bytes); built from pieces in one pass, however many statements share the line."""
     data = line.encode("utf-8")
     spans = []
     for node in left_out:
         start = node.col_offset if node.lineno == number else 0
         end = node.end_col_offset if node.end_lineno == number else len(data)
         spans.append((start, end))
-    for start, end in sorted(spans, reverse=True):
-        data = data[:start] + b"pass" + data[end:]
-    return data.decode("utf-8", "replace")
+    pieces, done = [], 0
+    for start, end in sorted(spans):
+        if start < done:  # statements of one line never overlap; were they to, the first wins
+            continue
+        pieces += [data[done:start], b"pass"]
+        done = end
+    pieces.append(data[done:])
+    return b"".join(pieces).decode("utf-8", "replace")

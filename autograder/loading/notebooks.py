@@ -30,12 +30,13 @@ numbered from 1 at the top of the notebook, Markdown cells included.
 
 from __future__ import annotations
 
-import ast
+import bisect
 import re
 from dataclasses import dataclass, field
 from typing import Callable
 
-from .definitions import GUARD, CellCode, Omission, analyse
+from .definitions import GUARD, CellCode, Omission, analyse, taken_whole
+from .parsing import MAX_PARSE_CHARS, MAX_PARSE_STATEMENTS, parse
 from .text import one_line
 
 SKIP_TAG = "skip-grading"
@@ -47,8 +48,6 @@ LEFT_OUT = "# (not graded) "
 CELL_LABELS = ("cell", "input")
 # Cell magics whose body is Python, run as it is (the magic only times or captures it).
 _PYTHON_CELL_MAGICS = {"time", "timeit", "capture", "prun", "debug", "memit"}
-# A line of IPython syntax: %magic, !shell, ?help, x = !ls / x = %magic, obj? / obj??.
-_IPYTHON_LINE = re.compile(r"\s*[%!?]|\s*[\w., ]+=\s*[%!]|[^#'\"]*[\w)\]]\?\??\s*$")
 NOTE_STATEMENTS = 5   # statements a notebook's note names (the rest are counted)
 
 
@@ -74,6 +73,9 @@ class ConvertedNotebook:
         (:class:`autograder.loading.definitions.Omission`).
     left_out : list of str
         Per cell with lines left out: ``"cell 7: plt.show() (+2 lines)"``.
+    whole : str
+        Why no statement was read and every cell was taken whole (its code is beyond what
+        the grader parses, see :mod:`autograder.loading.parsing`), or ``""``.
     """
 
     source: str
@@ -82,32 +84,56 @@ class ConvertedNotebook:
     left_out: list[str] = field(default_factory=list)
     guarded_source: str = ""
     cell_label: str = "cell"  # one of CELL_LABELS
+    whole: str = ""           # why every cell was taken whole, unread (too much code to read), or ""
 
     def label(self, number: int) -> str:
         """``"cell 7"`` or ``"In [7]"``: the words are the grader's, never the notebook's."""
         return f"In [{int(number)}]" if self.cell_label == "input" else f"cell {int(number)}"
 
-    def left_out_note(self, name: str) -> str:
-        """One line naming the statements left out and why (those that would have done
-        something: a value shown at a cell's end is not named), or ``""``. Statements whose
+    def labels(self, numbers: list[int]) -> str:
+        """``"cell 7"``, ``"cells 6, 7"``, ``"In [6], In [9]"``."""
+        if self.cell_label == "input" or len(numbers) == 1:
+            return ", ".join(self.label(n) for n in numbers)
+        return "cells " + ", ".join(str(int(n)) for n in numbers)
+
+    def left_out_lines(self) -> list[str]:
+        """Every statement left out at grading that would have done something, once each (the
+        same statement in several cells, or a cell run twice in a kernel, is one line naming
+        every cell), as written: ``"cells 6, 7 `plt.show()` (plotting)"``. Statements whose
         names a kept function reads come first: that function fails when called."""
-        listed = [o for o in self.omissions if o.listed]
-        if not listed:
-            return ""
-        listed.sort(key=lambda o: not o.users)
-        named = []
-        for omission in listed[:NOTE_STATEMENTS]:
+        grouped: dict[tuple, list[int]] = {}
+        for omission in sorted((o for o in self.omissions if o.listed), key=lambda o: not o.users):
             why = omission.reason
             if omission.users:
                 why += "; " + ", ".join(f"{f}() uses {n}" for f, n in omission.users[:2])
-            named.append(f"{self.label(omission.cell)} `{one_line(omission.text, 50)}` ({one_line(why, 120)})")
-        more = f", and {len(listed) - NOTE_STATEMENTS} more" if len(listed) > NOTE_STATEMENTS else ""
-        return (f"{one_line(name, 80)}: left out at grading: {', '.join(named)}{more}. "
-                f"Tag a cell '{GRADE_TAG}' to grade it whole, '{SKIP_TAG}' to leave it out.")
+            cells = grouped.setdefault((one_line(omission.text, 50), one_line(why, 120)), [])
+            if omission.cell not in cells:
+                cells.append(omission.cell)
+        return [f"{self.labels(cells)} `{text}` ({why})" for (text, why), cells in grouped.items()]
+
+    def left_out_note(self, name: str) -> str:
+        """A note naming the statements left out and why (those that would have done
+        something: a value shown at a cell's end is not named), or ``""``: its first line
+        names the first :data:`NOTE_STATEMENTS` (see :meth:`left_out_lines`) and how many
+        more; when there are more, each following line is one of them all, for a page to
+        fold (the terminal shows the first line)."""
+        if self.whole:
+            return f"{one_line(name, 80)}: {self.whole}"
+        lines = self.left_out_lines()
+        if not lines:
+            return ""
+        more = len(lines) - NOTE_STATEMENTS
+        first = (f"{one_line(name, 80)}: left out at grading: {', '.join(lines[:NOTE_STATEMENTS])}"
+                 + (f", and {more} more (validate lists them all)" if more > 0 else "")
+                 + f". Tag a cell '{GRADE_TAG}' to grade it whole, '{SKIP_TAG}' to leave it out.")
+        return "\n".join([first] + (lines if more > 0 else []))
 
     def where(self, line: int) -> tuple[int, int] | None:
-        """``(cell_number, line_in_cell)`` of a converted module's ``line``; None for a header."""
-        for start, cell, count in self.cells:
+        """``(cell_number, line_in_cell)`` of a converted module's ``line``; None for a header.
+        ``cells`` is in module order, so the cell is found by bisection."""
+        index = bisect.bisect_right(self.cells, (line, float("inf"))) - 1
+        if index >= 0:
+            start, cell, count = self.cells[index]
             if start <= line < start + count:
                 return cell, line - start + 1
         return None
@@ -173,11 +199,18 @@ def _is_text(source) -> bool:
 
 
 MAX_CODE_LINES = 100_000   # a lab's notebook holds a few thousand
+MAX_CODE_CELLS = 10_000    # and a few hundred cells
 
 
 def convert(text: str, name: str = "notebook", definitions_only: bool = True,
             importable: Callable[[str], bool] | None = None) -> ConvertedNotebook:
     """The code cells of a notebook as one module (see the module docstring for the rules).
+
+    Linear in the notebook: the code is parsed (one cell at a time) only within the
+    grader's bounds on parsing (:data:`autograder.loading.parsing.MAX_PARSE_CHARS`,
+    :data:`~autograder.loading.parsing.MAX_PARSE_STATEMENTS`, counted over all cells);
+    beyond them every cell but those tagged skip-grading is taken whole, unread, and
+    :attr:`ConvertedNotebook.whole` (and the note) says so.
 
     Parameters
     ----------
@@ -191,6 +224,12 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True,
     importable : callable, optional
         ``importable("seaborn")``: whether an import can succeed where grading runs
         (default :func:`autograder.loading.definitions.available_at_grading`).
+
+    Raises
+    ------
+    NotebookError
+        Not a notebook (:func:`read_notebook`), or more than :data:`MAX_CODE_LINES` lines
+        or :data:`MAX_CODE_CELLS` code cells of code.
     """
     notebook = read_notebook(text, name)
     lines: list[str] = []
@@ -198,19 +237,27 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True,
     settings = _mapping(_mapping(notebook.get("metadata")).get("autograder"))
     if settings.get("cell_label") == "input":  # compared, never used: the words are ours
         converted.cell_label = "input"
-    code = []
+    raw: list[tuple[int, list[str], str]] = []   # (number, lines as written, mode)
     for number, cell in enumerate(notebook["cells"], 1):
         if not isinstance(cell, dict) or cell.get("cell_type") != "code":
             continue
+        if len(raw) >= MAX_CODE_CELLS:
+            raise NotebookError(f"{name} holds more than {MAX_CODE_CELLS:,} code cells, more than grading "
+                                "reads of a notebook: hand in the lab module as a .py file")
         source = _text(cell.get("source", ""))
         tags = _known_tags(_mapping(cell.get("metadata")).get("tags"))
-        cell_lines = _without_magics(source.splitlines())
         mode = "skip" if SKIP_TAG in tags else "keep" if GRADE_TAG in tags or not definitions_only else "analyse"
-        code.append(CellCode(number, cell_lines, mode))
-    if sum(len(cell.lines) for cell in code) > MAX_CODE_LINES:  # the analysis is linear, ~40 us a line
+        raw.append((number, source.splitlines(), mode))
+    if sum(len(cell_lines) for _, cell_lines, _ in raw) > MAX_CODE_LINES:  # the analysis is linear, ~40 us a line
         raise NotebookError(f"{name} holds more than {MAX_CODE_LINES:,} lines of code, more than grading "
                             "reads of a notebook: hand in the lab module as a .py file")
-    selection = analyse(code, importable)
+    too_large = _beyond_parsing(raw)
+    if too_large:  # read nothing: each cell whole (tagged skip-grading: left out), the import reports errors
+        converted.whole = (f"holds {too_large}, more code than grading reads statement by statement: every "
+                           f"cell was graded whole, demo code included; tag a cell '{SKIP_TAG}' to leave it out")
+    code = [CellCode(number, _without_magics(cell_lines, read_blocks=not too_large),
+                     "keep" if too_large and mode == "analyse" else mode) for number, cell_lines, mode in raw]
+    selection = taken_whole(code) if too_large else analyse(code, importable)
     guarded: list[str] = []  # the module's lines again, lines of kept values guarded
     for cell in code:
         cell_lines, keep = selection.lines[cell.number], selection.kept[cell.number]
@@ -220,10 +267,10 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True,
         for index, (text_line, kept) in enumerate(zip(cell_lines, keep)):
             lines.append(text_line if kept or not text_line.strip() else LEFT_OUT + text_line)
             guarded.append(GUARD + text_line if index in selection.guarded[cell.number] else lines[-1])
-        dropped = [line.strip() for line, kept in zip(cell_lines, keep) if not kept and line.strip()
+        dropped = [index for index, (line, kept) in enumerate(zip(cell_lines, keep)) if not kept and line.strip()
                    and not line.lstrip().startswith("#")]
         if dropped:
-            converted.left_out.append(f"{converted.label(cell.number)}: {dropped[0][:60]}"
+            converted.left_out.append(f"{converted.label(cell.number)}: {cell_lines[dropped[0]].strip()[:60]}"
                                       + (f" (+{len(dropped) - 1} lines)" if len(dropped) > 1 else ""))
         lines.append("")
         guarded.append("")
@@ -233,23 +280,68 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True,
     return converted
 
 
-def _without_magics(lines: list[str]) -> list[str]:
+def _beyond_parsing(cells: list[tuple[int, list[str], str]]) -> str:
+    """What of the cells to be read is beyond the grader's bounds on parsing, in words
+    (``"more than 200,000 characters of code"``), or ``""``. Counted over every cell read
+    (cells tagged skip-grading are not), in one pass over the lines."""
+    chars = statements = 0
+    for _, cell_lines, mode in cells:
+        if mode == "skip":
+            continue
+        statements += len(cell_lines) + 1 + sum(line.count(";") for line in cell_lines)
+        chars += len(cell_lines) + sum(len(line) for line in cell_lines)
+    if chars > MAX_PARSE_CHARS:
+        return f"more than {MAX_PARSE_CHARS:,} characters of code"
+    if statements > MAX_PARSE_STATEMENTS:
+        return f"more than {MAX_PARSE_STATEMENTS:,} statements (lines and ';')"
+    return ""
+
+
+def is_ipython_line(line: str) -> bool:
+    """Whether ``line`` is IPython syntax, not Python: ``%magic``, ``!shell``, ``?help`` (after
+    any indentation), ``x = !ls`` / ``x, y = %magic`` (names, dots, commas and spaces, then
+    ``=``), or help asked at the line's end (``obj?``, ``np.array??``: a name, ``)`` or ``]``
+    just before one or two ``?``, no ``#`` or quote before it).
+
+    Scanned with ``str`` methods in one pass (no regular expression, which backtracked on
+    long lines of spaces: seconds for a 300 KB line).
+    """
+    code = line.lstrip()
+    if code[:1] in ("%", "!", "?"):
+        return True
+    equals = code.find("=")
+    if equals > 0 and all(c.isalnum() or c in "_., " for c in code[:equals]) \
+            and code[equals + 1:].lstrip()[:1] in ("%", "!"):
+        return True
+    end = line.rstrip()
+    marks = len(end) - len(end.rstrip("?"))
+    if marks not in (1, 2) or len(end) == marks:
+        return False
+    before = end[-marks - 1]
+    if not (before.isalnum() or before in "_)]"):
+        return False
+    head = end[:-marks - 1]
+    return "#" not in head and "'" not in head and '"' not in head
+
+
+def _without_magics(lines: list[str], read_blocks: bool = True) -> list[str]:
     """A cell's IPython syntax commented out (see the module docstring); an indented line
-    of it becomes ``pass`` (and the comment), so its block stays a block."""
+    of it becomes ``pass`` (and the comment), so its block stays a block (when
+    ``read_blocks``: it takes parsing the cell)."""
     first = next((line.strip() for line in lines if line.strip()), "")
     if first.startswith("%%") and (first[2:].split() or [""])[0] not in _PYTHON_CELL_MAGICS:
         return [("# " + line) if line.strip() else line for line in lines]  # %%bash, %%writefile...
     commented, passed = [], []
     for line in lines:
         code = line.lstrip()
-        magic = bool(_IPYTHON_LINE.match(line))
+        magic = is_ipython_line(line)
         commented.append("# " + line if magic else line)
         passed.append(f"{line[:len(line) - len(code)]}pass  # {code}" if magic and code != line else commented[-1])
-    if passed == commented:
+    if passed == commented or not read_blocks:
         return commented
     try:  # `pass` where a magic was the body of a block; else (an indented cell) a comment
-        ast.parse("\n".join(passed))
-    except (SyntaxError, ValueError, RecursionError, MemoryError):
+        parse("\n".join(passed))
+    except (SyntaxError, ValueError, RecursionError, MemoryError):  # TooLarge is a ValueError
         return commented
     return passed
 

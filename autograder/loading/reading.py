@@ -15,9 +15,12 @@ confirmed mistake of its own. Findings whose cause shows in the values are used
 only when the values show it (:attr:`Finding.needs`: a function given fractional
 numbers that returned only whole ones).
 
-Reading is bounded: a module larger than :data:`MAX_SOURCE_BYTES`, or nested too
-deeply to parse, or with more than :data:`MAX_NODES` syntax nodes, is simply not
-read; nothing in a source can make it raise.
+Reading is bounded and linear in the source: a module beyond the grader's bounds on
+parsing (:data:`MAX_SOURCE_BYTES` characters,
+:data:`autograder.loading.parsing.MAX_PARSE_STATEMENTS` statements), or nested too
+deeply to parse, or with more than :data:`MAX_NODES` syntax nodes, is not read
+(:attr:`Reading.note` says why); nothing in a source can make it raise. Parsing holds
+:data:`autograder.loading.parsing.PARSE_LOCK` (``ast`` is not thread-safe).
 """
 
 from __future__ import annotations
@@ -27,7 +30,9 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-MAX_SOURCE_BYTES = 1_000_000
+from .parsing import MAX_PARSE_CHARS, TooLarge, parse
+
+MAX_SOURCE_BYTES = MAX_PARSE_CHARS   # characters (the file's bytes are checked first, the same number)
 MAX_NODES = 400_000
 
 # Parameter names the labs' APIs give uint8 images (see the skeletons' docstrings).
@@ -68,20 +73,26 @@ class Reading:
 
     findings: dict
     calls: dict
+    note: str = ""   # why the module was not read ("" when it was, or could not be parsed)
 
     def reachable(self, function: str) -> list[str]:
         """``function`` and the module's functions it calls, directly or through others."""
-        seen, todo = [], [function]
+        seen, order, todo = set(), [], [function]
         while todo:
             name = todo.pop()
             if name in seen or name not in self.calls:
                 continue
-            seen.append(name)
+            seen.add(name)
+            order.append(name)
             todo.extend(sorted(self.calls[name]))
-        return seen
+        return order
 
 
 NOTHING = Reading({}, {})
+
+
+def _not_read(why: str) -> Reading:
+    return Reading({}, {}, f"the code was not read for causes of mistakes: it holds {why}")
 
 
 def read_file(path, api=frozenset()) -> Reading:
@@ -95,8 +106,8 @@ def read_file(path, api=frozenset()) -> Reading:
 
 @lru_cache(maxsize=64)
 def _read_file(path: str, mtime_ns: int, size: int, api: frozenset) -> Reading:
-    if size > MAX_SOURCE_BYTES:
-        return NOTHING
+    if size > MAX_SOURCE_BYTES * 4:  # at most 4 bytes a character: surely more characters than read
+        return _not_read(f"more than {MAX_SOURCE_BYTES:,} characters")
     try:
         text = Path(path).read_bytes().decode("utf-8", errors="replace")
     except OSError:
@@ -110,17 +121,17 @@ def read_source(text: str, api=frozenset()) -> Reading:
     ``api`` names the lab's functions: only their image parameters are known to hold
     uint8 images (a helper's parameters may hold anything)."""
     try:
-        if len(text) > MAX_SOURCE_BYTES:
-            return NOTHING
-        tree = ast.parse(text)
+        tree = parse(text)   # within the bounds, under the lock
         if sum(1 for _ in ast.walk(tree)) > MAX_NODES:
-            return NOTHING
+            return _not_read(f"more than {MAX_NODES:,} syntax nodes")
         functions = {node.name: node for node in tree.body if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))}
         findings, calls = {}, {}
         for name, node in functions.items():
             findings[name] = _read_function(node, name in api)
             calls[name] = {called for called in _called_names(node) if called in functions and called != name}
         return Reading(findings, calls)
+    except TooLarge as exc:
+        return _not_read(str(exc))
     except (SyntaxError, ValueError, RecursionError, MemoryError, TypeError, AttributeError):
         return NOTHING
 
@@ -299,13 +310,34 @@ def _constant_integers(node) -> bool:
     return True
 
 
+def _constant_integer_nodes(tree) -> set[int]:
+    """The ids of the nodes under ``tree`` made only of integer constants (as
+    :func:`_constant_integers` judges each), found in one pass from the leaves up: asking
+    each ``//`` of a chain ``1 // 1 // ... // 1`` in turn walked it again (quadratic)."""
+    order, pending = [], [tree]
+    while pending:  # parents before children; reversed, children before parents
+        node = pending.pop()
+        order.append(node)
+        pending.extend(ast.iter_child_nodes(node))
+    constant: set[int] = set()
+    for node in reversed(order):
+        if isinstance(node, (ast.Name, ast.Attribute, ast.Call, ast.Subscript)):
+            continue
+        if isinstance(node, ast.Constant) and not isinstance(node.value, (int, bool)):
+            continue
+        if all(id(child) in constant for child in ast.iter_child_nodes(node)):
+            constant.add(id(node))
+    return constant
+
+
 # ------------------------------------------------------------------ floor division
 def _floor_division(name, function) -> list[Finding]:
     """``//`` between expressions that are not both integer constants (floors fractions)."""
+    constant = _constant_integer_nodes(function)
     for node in ast.walk(function):
         if isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, ast.FloorDiv):
             left = node.left if isinstance(node, ast.BinOp) else node.target
-            if _constant_integers(left) and _constant_integers(node.right):
+            if id(left) in constant and id(node.right) in constant:
                 continue
             return [Finding(name, _line(node), "// floors the results to whole numbers",
                             f"{name} (line {_line(node)}) uses // (floor division), which rounds its "
@@ -407,13 +439,15 @@ def _zeros_call(node) -> bool:
 def _homogeneous_zero(name, function) -> list[Finding]:
     """Points made homogeneous with 0 (``hstack([pts, zeros])``, ``[X, Y, Z, 0]``) and then
     multiplied by a matrix or used as a row of a linear system."""
-    products = set()
-    for node in ast.walk(function):
-        if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.MatMult, ast.Mult)):
+    products, pending = set(), [function]
+    while pending:  # a product's names are all of its names: those of products inside it are among them
+        node = pending.pop()
+        if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.MatMult, ast.Mult)) or \
+                isinstance(node, ast.Call) and _call_name(node) in {"dot", "matmul", "outer", "concatenate",
+                                                                     "hstack", "kron", "einsum"}:
             products |= _names_in(node)
-        elif isinstance(node, ast.Call) and _call_name(node) in {"dot", "matmul", "outer", "concatenate",
-                                                                  "hstack", "kron", "einsum"}:
-            products |= _names_in(node)
+        else:
+            pending.extend(ast.iter_child_nodes(node))
     assigned = _assigned_names(function)
     parameters = {a.arg for a in function.args.args + function.args.kwonlyargs + function.args.posonlyargs}
     data = parameters | {target for target, values in assigned.items()

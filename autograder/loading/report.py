@@ -15,7 +15,12 @@ sends: every fault (a file too large, a notebook that is no JSON, one exercise
 explained twice ...) is a sentence in :attr:`Report.problems`. Sizes are bounded:
 a file over :data:`MAX_REPORT_BYTES` is not read, an explanation over
 :data:`MAX_EXPLANATION_CHARS` is cut (``truncated=True``), at most
-:data:`MAX_EXPLANATIONS` exercises and :data:`MAX_PROBLEMS` sentences are kept.
+:data:`MAX_EXPLANATIONS` exercises and :data:`MAX_PROBLEMS` sentences are kept; an
+exercise is read from at most :data:`MAX_PLACES` places, a file's first
+:data:`MAX_SECTIONS` markers and headings and a notebook's first :data:`MAX_REPORT_CELLS`
+Markdown cells are read (a problem says what was not). Reading is linear in what is
+handed in: no regular expression here backtracks beyond a line, and an explanation
+gathered from many places is joined once, at the end.
 
 Where the explanation is, in a Markdown file:
 
@@ -36,9 +41,11 @@ nothing, means "not written": such a section gives no explanation.
 
 from __future__ import annotations
 
+import bisect
 import json
 import re
 from dataclasses import dataclass, field
+from itertools import islice
 from pathlib import PurePosixPath
 
 from .text import printable, shown
@@ -49,6 +56,9 @@ MAX_REPORT_BYTES = 1 << 20               # a larger report file is refused with 
 MAX_EXPLANATION_CHARS = 20_000           # longer: cut, with truncated=True
 MAX_EXPLANATIONS = 300                   # exercises read from one hand-in (six labs have ~50)
 MAX_PROBLEMS = 20                        # sentences kept; the rest are counted
+MAX_PLACES = 20                          # places one exercise is explained in, read (more: noted)
+MAX_SECTIONS = 1_000                     # markers, and headings, read per file or cell (more: noted)
+MAX_REPORT_CELLS = 2_000                 # Markdown cells read per notebook (more: noted)
 
 BACKUP_SUFFIX = ".previous.md"           # the scaffold's copy of the report it replaced: never read
 PLACEHOLDER = "_Explain what you see here._"
@@ -98,12 +108,16 @@ class Report:
 # ------------------------------------------------------------------ public functions
 def explanations_in_markdown(text: str, source: str) -> dict[str, Explanation]:
     """The written explanations of a Markdown report, by exercise id (see the module doc)."""
-    return _Reading().markdown(text, source)
+    reading = _Reading()
+    reading.markdown(text, source)
+    return reading.explanations()
 
 
 def explanations_in_notebook(data: bytes, source: str) -> dict[str, Explanation]:
     """The written explanations in a notebook's Markdown cells, by exercise id."""
-    return _Reading().notebook(data, source)
+    reading = _Reading()
+    reading.notebook(data, source)
+    return reading.explanations()
 
 
 def read_report(files: dict[str, bytes]) -> Report:
@@ -140,17 +154,39 @@ def read_report(files: dict[str, bytes]) -> Report:
             reading.markdown(_decoded(bytes(data)), name)
         else:
             reading.notebook(bytes(data), name)
-    return Report(dict(reading.found), tuple(attachments), reading.problem_list())
+    return Report(reading.explanations(), tuple(attachments), reading.problem_list())
 
 
 # ------------------------------------------------------------------ reading
+@dataclass
+class _Gathered:
+    """One exercise's explanation as read so far: its texts and where they came from."""
+
+    texts: list[str] = field(default_factory=list)   # at most MAX_PLACES, MAX_EXPLANATION_CHARS in all
+    sources: list[str] = field(default_factory=list)
+    length: int = 0
+    truncated: bool = False
+    more_places: int = 0                              # places beyond MAX_PLACES, not read
+
+    def explanation(self, exercise: str) -> Explanation:
+        text = "\n\n".join(self.texts)
+        truncated = self.truncated or len(text) > MAX_EXPLANATION_CHARS
+        source = "; ".join(self.sources) + (f"; and {self.more_places} more places" if self.more_places else "")
+        return Explanation(exercise, text[:MAX_EXPLANATION_CHARS], source, truncated)
+
+
 class _Reading:
     """Explanations and problems gathered over the files of one hand-in."""
 
     def __init__(self):
-        self.found: dict[str, Explanation] = {}
+        self.gathered: dict[str, _Gathered] = {}
         self.problems: list[str] = []
         self.more_problems = 0
+
+    def explanations(self) -> dict[str, Explanation]:
+        """Every exercise's explanation, its texts joined once (not at each new place: an
+        exercise explained in thousands of cells made that quadratic)."""
+        return {exercise: gathered.explanation(exercise) for exercise, gathered in self.gathered.items()}
 
     def problem(self, sentence: str) -> None:
         if len(self.problems) < MAX_PROBLEMS:
@@ -164,34 +200,53 @@ class _Reading:
 
     def add(self, exercise: str, text: str, source: str) -> None:
         """Keep ``text`` as ``exercise``'s explanation if it is written; a second one is added
-        after the first (nothing a student wrote is dropped) and noted."""
+        after the first (nothing a student wrote is dropped unless beyond the bounds, and
+        then the problems say so). Constant work beyond cleaning ``text``."""
         text = _cleaned(text)
         if not text:
             return
-        known = self.found.get(exercise)
-        if known is None and len(self.found) >= MAX_EXPLANATIONS:
-            self.problem(f"{source}: more than {MAX_EXPLANATIONS} exercises explained; "
-                         f"{exercise} and those after it were not read")
+        known = self.gathered.get(exercise)
+        if known is None:
+            if len(self.gathered) >= MAX_EXPLANATIONS:
+                self.problem(f"{source}: more than {MAX_EXPLANATIONS} exercises explained; "
+                             f"{exercise} and those after it were not read")
+                return
+            known = self.gathered[exercise] = _Gathered()
+        elif len(known.sources) >= MAX_PLACES:
+            known.more_places += 1
+            if known.more_places == 1:
+                self.problem(f"{exercise} is explained in more than {MAX_PLACES} places; the text at "
+                             f"{source} and after it was not read")
             return
-        if known is not None:
-            self.problem(f"{exercise} is explained twice ({known.source}; {source}); "
+        else:
+            self.problem(f"{exercise} is explained twice ({known.sources[0]}; {source}); "
                          "both texts are kept, one after the other")
-            text = f"{known.text}\n\n{text}"
-            source = f"{known.source}; {source}"
-        truncated = bool(known and known.truncated)
-        if len(text) > MAX_EXPLANATION_CHARS:
-            text, truncated = text[:MAX_EXPLANATION_CHARS], True
-            if not (known and known.truncated):
-                self.problem(f"the explanation of {exercise} ({source}) is longer than "
-                             f"{MAX_EXPLANATION_CHARS:,} characters; the rest was cut")
-        self.found[exercise] = Explanation(exercise, text, source, truncated)
+        known.sources.append(source)
+        if known.truncated:
+            return
+        room = MAX_EXPLANATION_CHARS - known.length - 2 * len(known.texts)   # "\n\n" between texts
+        if len(text) > room:
+            text, known.truncated = text[:max(room, 0)], True
+            self.problem(f"the explanation of {exercise} ({source}) is longer than "
+                         f"{MAX_EXPLANATION_CHARS:,} characters; the rest was cut")
+        if text:
+            known.texts.append(text)
+            known.length += len(text)
 
     # -------------------------------------------------------------- Markdown
-    def markdown(self, text: str, source: str) -> dict[str, Explanation]:
+    def markdown(self, text: str, source: str) -> None:
         text = printable(text)[: 4 * MAX_REPORT_BYTES]  # at most 4 characters a byte came in as
-        starts = list(_START.finditer(text))
+        starts = list(islice(_START.finditer(text), MAX_SECTIONS + 1))
+        heading_matches = _headings(text, MAX_SECTIONS + 1)
+        cut = min((found[MAX_SECTIONS].start() for found in (starts, heading_matches) if len(found) > MAX_SECTIONS),
+                  default=None)
+        if cut is not None:  # read up to the first marker or heading beyond the bound
+            self.problem(f"{source} holds more than {MAX_SECTIONS:,} explanation markers or headings; "
+                         f"what follows the first {MAX_SECTIONS:,} was not read")
+            text = text[:cut]
+            starts = [m for m in starts if m.start() < cut]
+            heading_matches = [m for m in heading_matches if m.start() < cut]
         ends = [m.start() for m in _END.finditer(text)]
-        heading_matches = _headings(text)
         headings = [m.start() for m in heading_matches]
         marked: set[str] = set()
         for number, start in enumerate(starts):
@@ -209,7 +264,6 @@ class _Reading:
                              "'<!-- end explanation -->'; it was read up to the next section")
             self.add(exercise, text[start.end():end], source)
         self._under_headings(text, source, marked, heading_matches)
-        return self.found
 
     def _under_headings(self, text, source, marked, heading_matches) -> None:
         """The fallback: the text under ``## ID...`` for each exercise with no markers."""
@@ -228,23 +282,28 @@ class _Reading:
             self.add(exercise, body, source)
 
     # -------------------------------------------------------------- notebooks
-    def notebook(self, data: bytes, source: str) -> dict[str, Explanation]:
+    def notebook(self, data: bytes, source: str) -> None:
         if len(data) > MAX_REPORT_BYTES:
             self.problem(f"{source} is larger than {MAX_REPORT_BYTES >> 20} MiB; its explanations were not read")
-            return self.found
+            return
         try:
             notebook = json.loads(_decoded(data))
         except (ValueError, RecursionError):
             self.problem(f"{source} is not a readable notebook (not valid JSON); its explanations were not read")
-            return self.found
+            return
         cells = notebook.get("cells") if isinstance(notebook, dict) else None
         if not isinstance(cells, list):
             self.problem(f"{source} has no list of cells; its explanations were not read")
-            return self.found
+            return
+        read = 0
         for number, cell in enumerate(cells, 1):
             if isinstance(cell, dict) and cell.get("cell_type") == "markdown":
+                if read == MAX_REPORT_CELLS:
+                    self.problem(f"{source} holds more than {MAX_REPORT_CELLS:,} Markdown cells; cell {number} "
+                                 "and those after it were not read")
+                    break
+                read += 1
                 self._markdown_cell(cell, f"{source}, cell {number}")
-        return self.found
 
     def _markdown_cell(self, cell: dict, where: str) -> None:
         text = _cell_text(cell.get("source"))
@@ -254,12 +313,13 @@ class _Reading:
         text = printable(text)
         metadata = cell.get("metadata")
         tags = metadata.get("tags") if isinstance(metadata, dict) else None
-        tagged = []
+        tagged: dict[str, None] = {}   # in order, each once (a dict: a list's `in` was quadratic in the tags)
         for tag in tags if isinstance(tags, list) else ():
             if isinstance(tag, str) and tag.lower().startswith(REPORT_TAG_PREFIX):
                 exercise = exercise_id(tag[len(REPORT_TAG_PREFIX):])
-                if exercise and exercise not in tagged:
-                    tagged.append(exercise)
+                if exercise:
+                    tagged.setdefault(exercise)
+        tagged = list(tagged)
         marked = list(dict.fromkeys(filter(None, (exercise_id(m.group(1)) for m in _START.finditer(text)))))
         if len(tagged) > 1:
             self.problem(f"{where} is tagged for {len(tagged)} exercises ({', '.join(tagged[:4])}); "
@@ -285,21 +345,17 @@ def _cell_text(source) -> str | None:
     return None
 
 
-def _headings(text: str) -> list[re.Match]:
-    """The level 1 and 2 headings of ``text`` outside fenced code blocks."""
+def _headings(text: str, most: int | None = None) -> list[re.Match]:
+    """The level 1 and 2 headings of ``text`` outside fenced code blocks (the first ``most``)."""
     fences = [m.start() for m in _FENCE.finditer(text)]
-    return [m for m in _HEADING.finditer(text) if _fences_before(fences, m.start()) % 2 == 0]
+    return list(islice((m for m in _HEADING.finditer(text) if _fences_before(fences, m.start()) % 2 == 0), most))
 
 
 def _fences_before(fences: list[int], position: int) -> int:
-    import bisect
-
     return bisect.bisect_left(fences, position)
 
 
 def _first_after(positions: list[int], after: int, default: int) -> int:
-    import bisect
-
     index = bisect.bisect_left(positions, after)
     return positions[index] if index < len(positions) else default
 

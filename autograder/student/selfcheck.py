@@ -143,13 +143,13 @@ def _history_notebook(history: list[str]):
     """The kernel's inputs as a notebook whose cell N is ``In [N]`` (messages say so). An
     input that did not parse defined nothing in the kernel, so it is left out (an empty
     cell keeps the numbering): the student has usually run the mended cell since."""
-    import ast
+    from ..loading.parsing import parse
 
     cells = []
     for source in history:
         try:
-            ast.parse("\n".join(("# " + line) if line.lstrip().startswith(("%", "!")) else line
-                                for line in source.splitlines()))
+            parse("\n".join(("# " + line) if line.lstrip().startswith(("%", "!")) else line
+                               for line in source.splitlines()), max_chars=None, max_statements=None)
         except SyntaxError:
             source = ""
         cells.append(nbformat.v4.new_code_cell(source))

@@ -32,6 +32,7 @@ from pathlib import Path
 from ..engine.registry import Exercise, discover, select
 from ..loading.definitions import CellCode, analyse
 from ..loading.notebooks import point_into_notebook
+from ..loading.parsing import parse
 from ..loading.submission import load_submission
 from ..loading.text import one_line
 from ..sandbox.supervisor import Limits
@@ -109,7 +110,9 @@ def validate(path, selectors=(), limits: Limits | None = None) -> Validation:
             report.add(PROBLEM, name, f"not read: {reason}")
         readable = []
         for module in modules:
-            subject = f"{module}.py"
+            subject = handed_in(submission, module)
+            for file in submission.not_graded.get(module, []):
+                report.add(NOTE, file.file, f"not graded: {file.sentence()}")
             if module in submission.problems:
                 report.add(PROBLEM, subject, submission.problems[module])
                 continue
@@ -139,11 +142,8 @@ def _notebook_findings(report: Validation, name: str, converted) -> None:
                                                  f"({converted.label(omission.cell)} `{one_line(omission.text, 60)}`: "
                                                  f"{omission.reason}): pass it in as an argument, or compute it "
                                                  "inside the function from constants")
-    listed = [o for o in converted.omissions if o.listed]
-    if listed:
-        shown = ", ".join(f"{converted.label(o.cell)} `{one_line(o.text, 40)}` ({o.reason})" for o in listed[:6])
-        more = f" and {len(listed) - 6} more" if len(listed) > 6 else ""
-        report.add(NOTE, name, f"left out at grading (demo code, and what needs it): {shown}{more}")
+    for line in converted.left_out_lines():  # every one, each once: a grading's note names the first few
+        report.add(NOTE, name, f"left out at grading: {line}")
 
 
 def _demo_code_findings(report: Validation, subject: str, source: str) -> None:
@@ -160,7 +160,7 @@ def _demo_code_findings(report: Validation, subject: str, source: str) -> None:
 def _signature_findings(report: Validation, exercise: Exercise, source: str) -> None:
     """The functions of ``exercise`` against the lab's declared signatures, read, not run."""
     try:
-        tree = ast.parse(source)
+        tree = parse(source, max_chars=None, max_statements=None)  # the student's own file, on their machine
     except (SyntaxError, ValueError, RecursionError, MemoryError):
         return  # the import reports it, with its line
     bound: dict[str, ast.AST] = {}
@@ -178,8 +178,8 @@ def _signature_findings(report: Validation, exercise: Exercise, source: str) -> 
     for function, declared in exercise.signatures.items():
         subject = f"{function}()"
         if function not in bound:
-            near = difflib.get_close_matches(function.lower(), {n.lower(): n for n in bound}, n=1, cutoff=0.7)
-            names = {n.lower(): n for n in bound}
+            names = {n.lower(): n for n in bound if _may_be_callable(bound[n])}  # never a constant (SCALE_INV)
+            near = difflib.get_close_matches(function.lower(), names, n=1, cutoff=0.7)
             hint = f" (is {names[near[0]]} meant to be it? the grader looks for this exact name)" if near else ""
             report.add(PROBLEM, subject, f"not defined: def {declared}{hint}")
             continue
@@ -191,9 +191,16 @@ def _signature_findings(report: Validation, exercise: Exercise, source: str) -> 
             report.add(PROBLEM, subject, problem)
 
 
+def _may_be_callable(node: ast.AST) -> bool:
+    """Whether what binds a name can make a function: a ``def``, an import, a lambda, a
+    call's result (``functools.partial(f)``), a name; not a literal or arithmetic."""
+    return isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Import, ast.ImportFrom, ast.Lambda,
+                             ast.Call, ast.Name, ast.Attribute))
+
+
 def _parameter_problems(declared: str, arguments: ast.arguments) -> list[str]:
     """How parameters ``arguments`` differ from the declared signature (``translate(image, tx=100, ty=50)``)."""
-    wanted = ast.parse(f"def {declared}: pass").body[0].args
+    wanted = parse(f"def {declared}: pass", max_chars=None, max_statements=None).body[0].args
     names = [a.arg for a in wanted.posonlyargs + wanted.args]
     wanted_defaults = dict(zip(names[len(names) - len(wanted.defaults):], wanted.defaults))
     theirs = [a.arg for a in arguments.posonlyargs + arguments.args]
@@ -228,6 +235,14 @@ class _Skipped(Exception):
     """A property check, left out of validation."""
 
 
+def handed_in(submission, module: str) -> str:
+    """The file the student handed in as ``module``, as they named it: the notebook
+    (``lab07_transformations.ipynb``), the file taken under another name, else ``module.py``."""
+    if module in submission.notebooks:
+        return submission.notebooks[module][0]
+    return submission.renamed.get(module) or f"{module}.py"
+
+
 def _run_findings(report: Validation, submission, exercises: list[Exercise], limits: Limits | None) -> None:
     from ..engine.checks import Fail, StudentFailure, Trial
     from ..engine.runner import _first_sandbox, _import  # the sandbox grading would use; an import as grading reports it
@@ -239,7 +254,7 @@ def _run_findings(report: Validation, submission, exercises: list[Exercise], lim
         imported = set()
         for module in sorted({e.lab.module for e in exercises}):
             outcome = _import(sandbox, module, submission)
-            subject = f"{module}.py"
+            subject = handed_in(submission, module)
             if outcome.ok:
                 imported.add(module)
                 report.add(GOOD, subject, "imports cleanly in a fresh sandboxed worker")
@@ -321,7 +336,7 @@ def _documented_dtypes(exercises: list[Exercise]) -> dict[str, str]:
     documented = {}
     for module in sorted({e.lab.module for e in exercises}):
         try:
-            tree = ast.parse((SKELETONS / f"{module}.py").read_text(encoding="utf-8"))
+            tree = parse((SKELETONS / f"{module}.py").read_text(encoding="utf-8"), max_chars=None, max_statements=None)
         except (OSError, SyntaxError):
             continue  # no skeletons here: nothing to compare with
         for node in tree.body:

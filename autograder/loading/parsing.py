@@ -1,0 +1,70 @@
+"""Parsing and compiling Python text in the grader's own process: one at a time, and bounded.
+
+CPython 3.11's ``ast`` module is not thread-safe: two threads building AST objects at
+once (``ast.parse``, ``compile`` of source or of a tree) share one recursion counter and
+fail with ``SystemError: AST constructor recursion depth mismatch`` (CPython gh-106905).
+The grader reads submissions from parallel lanes (threads), so every ``ast.parse`` and
+``compile`` in :mod:`autograder` goes through :func:`parse` or :func:`compile_source`,
+which hold :data:`PARSE_LOCK` for the call (``tests/test_linear_reading.py`` holds the
+package to it).
+
+The lock makes a long parse stall every lane, and the parser's cost grows with the
+text (~15 us and a few hundred bytes of objects per statement): text from a submission
+is parsed only within :data:`MAX_PARSE_CHARS` characters and :data:`MAX_PARSE_STATEMENTS`
+statements, counted before parsing by :func:`statement_bound`; beyond them
+:class:`TooLarge` is raised (a ``ValueError``, which every reader already treats as
+"cannot be read").
+"""
+
+from __future__ import annotations
+
+import ast
+import threading
+
+PARSE_LOCK = threading.RLock()   # re-entrant: a parse never waits on its own thread
+MAX_PARSE_CHARS = 200_000        # ~5,000 lines: worst case ~150 MB of AST objects, a second or two
+MAX_PARSE_STATEMENTS = 20_000    # lines plus ";": a lab module holds a few hundred statements
+
+
+class TooLarge(ValueError):
+    """Text beyond what the grader parses in its own process; the message says which bound."""
+
+
+def statement_bound(text: str) -> int:
+    """At least the number of statements ``text`` can hold: its lines plus its semicolons
+    (each statement after a line's first needs one). Counted in C, linear; ``;`` inside
+    strings and comments count too, so it may be more, never less."""
+    return text.count("\n") + text.count(";") + 1
+
+
+def check_size(text: str, max_chars: int | None = MAX_PARSE_CHARS,
+               max_statements: int | None = MAX_PARSE_STATEMENTS) -> None:
+    """Raise :class:`TooLarge` when ``text`` is beyond the bounds (None: not checked)."""
+    if max_chars is not None and len(text) > max_chars:
+        raise TooLarge(f"more than {max_chars:,} characters")
+    if max_statements is not None and statement_bound(text) > max_statements:
+        raise TooLarge(f"more than {max_statements:,} statements (lines and ';')")
+
+
+def parse(text: str, filename: str = "<unknown>", mode: str = "exec", *,
+          max_chars: int | None = MAX_PARSE_CHARS, max_statements: int | None = MAX_PARSE_STATEMENTS) -> ast.AST:
+    """``ast.parse(text, filename, mode)`` under :data:`PARSE_LOCK`, within the bounds
+    (None: that bound is not checked, for the grader's own text).
+
+    Raises
+    ------
+    TooLarge
+        Before parsing, for text beyond the bounds.
+    SyntaxError, ValueError, RecursionError, MemoryError
+        As :func:`ast.parse` does.
+    """
+    check_size(text, max_chars, max_statements)
+    with PARSE_LOCK:
+        return ast.parse(text, filename, mode)
+
+
+def compile_source(source, filename: str, mode: str = "exec", **options):
+    """``compile(source, filename, mode, **options)`` under :data:`PARSE_LOCK` (source text
+    or an AST: both build or read AST objects)."""
+    with PARSE_LOCK:
+        return compile(source, filename, mode, **options)
