@@ -10,9 +10,12 @@ Security
 - Pages forbid scripts but their own (a per-response nonce), frames, remote
   images and any referrer (``Content-Security-Policy``, ``Referrer-Policy``), so a
   student's report can neither run code nor leak the token.
-- The student's text is rendered by :func:`autograder.reports.markdown.render_markdown`;
-  a PDF is offered as a download, never shown or parsed; figures are only the PNGs
-  the batch made from the student's code (``RESULTS/<student>/figures/``).
+- The student's text is rendered by :func:`autograder.reports.markdown.render_markdown`
+  (a link into this application is inert text); no page shows text taken from its
+  address (the rubric's error is the refused change's own); a PDF is offered as a
+  download, never shown or parsed; figures are only the PNGs the batch made from
+  the student's code (``RESULTS/<student>/figures/``).
+- Anonymous mode shows nothing of a student but their pseudonym (:mod:`.anonymity`).
 
 Storage
 -------
