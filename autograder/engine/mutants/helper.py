@@ -1,0 +1,259 @@
+"""Running mutants: a helper process of the grader's, apart from the student's sandbox.
+
+The reference and its mutants are trusted code, but a mutant may loop or allocate without
+end (a loop bound moved, a statement that shrank a step dropped): they run in a helper
+process of their own (never the grader's process, never the student's worker), started
+lazily, with a memory limit; a request that overruns its timeout kills it, and the next
+request starts another. Values cross as the sandbox's frames
+(:mod:`autograder.sandbox.transport`), never as pickle.
+
+Requests (one frame each, a length before it):
+
+- ``{"op": "module", "source": str, "name": str}``: the reference module's text;
+- ``{"op": "calls", "calls": [[function, args, kwargs], ...]}``: inputs kept for later runs;
+- ``{"op": "run", "edits": [...], "function": str, "calls": [index, ...]}``: the mutant made by
+  ``edits`` (:func:`.operators.apply_edits`; none: the reference) called on the kept inputs;
+  the reply's ``values`` hold each call's result or ``{"__error__": "..."}``.
+
+``python -m autograder.engine.mutants.helper`` serves them on stdin/stdout.
+"""
+
+from __future__ import annotations
+
+import os
+import resource
+import select
+import signal
+import struct
+import subprocess
+import sys
+import time
+
+from ...sandbox import transport
+
+LENGTH = struct.Struct(">Q")
+MEMORY_BYTES = 3 * 2**30       # address space of the helper (NumPy, OpenCV and the mutants' arrays)
+MAX_FRAME = 256 * 2**20
+ERROR = "__error__"
+
+
+class HelperFailed(RuntimeError):
+    """The helper did not answer in time (it was killed) or died."""
+
+
+class Helper:
+    """The client: one helper process, started at the first request, restarted after a kill.
+
+    Not thread-safe: each grading lane uses its own (:func:`for_this_thread`).
+    """
+
+    def __init__(self):
+        self._process: subprocess.Popen | None = None
+        self._module: tuple[str, str] | None = None   # what the running process holds
+        self._calls: list | None = None
+        self.kills = 0
+
+    def _start(self):
+        env = {**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
+               "PYTHONHASHSEED": "0"}
+        self._process = subprocess.Popen(
+            [sys.executable, "-m", "autograder.engine.mutants.helper"], stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, env=env, start_new_session=True,
+            preexec_fn=_limit_memory, cwd=str(_project_root()))
+        self._module, self._calls = None, None
+
+    def close(self):
+        """Stop the helper (if running)."""
+        process, self._process = self._process, None
+        if process is not None:
+            try:
+                os.killpg(process.pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+            process.wait()
+            for pipe in (process.stdin, process.stdout):
+                try:
+                    pipe.close()
+                except OSError:
+                    pass
+
+    def prepare(self, source: str, name: str, calls: list, timeout: float):
+        """Make sure the helper holds this module and these inputs."""
+        if self._process is None or self._process.poll() is not None:
+            self.close()
+            self._start()
+        if self._module != (name, source):
+            self._request({"op": "module", "source": source, "name": name}, timeout + 5.0)  # imports cv2
+            self._module = (name, source)
+        if self._calls is not calls:
+            self._request({"op": "calls", "calls": [list(c) for c in calls]}, timeout)
+            self._calls = calls
+
+    def run(self, edits, calls: list[int], timeout: float) -> list:
+        """The mutant's results on the kept inputs ``calls`` (each a value or an error dict).
+
+        Raises
+        ------
+        HelperFailed
+            After ``timeout`` seconds (the helper is killed) or if it died.
+        """
+        reply = self._request({"op": "run", "edits": [list(e) for e in edits], "calls": list(calls)}, timeout)
+        return reply["values"]
+
+    def _request(self, request: dict, timeout: float):
+        process = self._process
+        if process is None:
+            raise HelperFailed("no helper")
+        deadline = time.monotonic() + timeout
+        frame = transport.encode(request)
+        try:
+            _write(process.stdin.fileno(), LENGTH.pack(len(frame)) + frame, deadline)
+            length, = LENGTH.unpack(_read(process.stdout.fileno(), LENGTH.size, deadline))
+            if length > MAX_FRAME:
+                raise HelperFailed("reply too large")
+            return transport.decode(_read(process.stdout.fileno(), length, deadline))
+        except (HelperFailed, OSError, transport.TransportError) as exc:
+            self.kills += 1
+            self.close()
+            raise HelperFailed(str(exc)) from None
+
+
+def _project_root():
+    from pathlib import Path
+    return Path(__file__).resolve().parents[3]
+
+
+def _limit_memory():
+    try:
+        resource.setrlimit(resource.RLIMIT_AS, (MEMORY_BYTES, MEMORY_BYTES))
+    except (ValueError, OSError):
+        pass
+
+
+def _write(fd: int, data: bytes, deadline: float):
+    view = memoryview(data)
+    while view:
+        left = deadline - time.monotonic()
+        if left <= 0 or not select.select([], [fd], [], left)[1]:
+            raise HelperFailed("timed out")
+        view = view[os.write(fd, view[: 1 << 16]):]
+
+
+def _read(fd: int, n: int, deadline: float) -> bytes:
+    chunks = []
+    while n:
+        left = deadline - time.monotonic()
+        if left <= 0 or not select.select([fd], [], [], None if left == float("inf") else left)[0]:
+            raise HelperFailed("timed out")
+        chunk = os.read(fd, min(n, 1 << 20))
+        if not chunk:
+            raise HelperFailed("the helper ended")
+        chunks.append(chunk)
+        n -= len(chunk)
+    return b"".join(chunks)
+
+
+# ------------------------------------------------------------------ the helper's side
+def _copy(value):
+    """A fresh copy of the arguments (a mutant may write into its inputs; the next must not see it)."""
+    import numpy as np
+
+    if isinstance(value, np.ndarray):
+        return value.copy()
+    if isinstance(value, list):
+        return [_copy(v) for v in value]
+    if isinstance(value, tuple):
+        return tuple(_copy(v) for v in value)
+    if isinstance(value, dict):
+        return {k: _copy(v) for k, v in value.items()}
+    return value
+
+
+def serve(request_fd: int, reply_fd: int) -> None:
+    import types
+    import warnings
+
+    import numpy as np
+
+    import ast
+
+    from .operators import mutated_defs
+
+    warnings.simplefilter("ignore")
+    np.seterr(all="ignore")
+    try:
+        import cv2
+        cv2.setNumThreads(1)
+    except ImportError:  # a lab without OpenCV
+        pass
+    source, name, calls, built, reference, tree = "", "", [], {}, None, None
+
+    def module(edits):
+        """The mutant: the reference's namespace copied (its functions rebound to the copy) with the
+        mutated defs executed over it."""
+        key = repr(edits)
+        if key not in built:
+            if len(built) > 64:
+                built.clear()
+            made = types.ModuleType(name)
+            made.__dict__.update(reference.__dict__)
+            for attr, value in reference.__dict__.items():
+                if isinstance(value, types.FunctionType) and value.__globals__ is reference.__dict__:
+                    rebound = types.FunctionType(value.__code__, made.__dict__, value.__name__,
+                                                 value.__defaults__, value.__closure__)
+                    rebound.__kwdefaults__ = value.__kwdefaults__
+                    setattr(made, attr, rebound)
+            code = compile(mutated_defs(tree, [tuple(e) for e in edits], source), f"<mutant of {name}>", "exec")
+            exec(code, made.__dict__)  # noqa: S102 - the trusted reference, changed
+            built[key] = made
+        return built[key]
+
+    while True:
+        try:
+            head = _read(request_fd, LENGTH.size, float("inf"))
+        except HelperFailed:
+            return
+        length, = LENGTH.unpack(head)
+        request = transport.decode(_read(request_fd, length, float("inf")))
+        reply: dict = {"ok": True}
+        if request["op"] == "module":
+            source, name, built = request["source"], request["name"], {}
+            tree = ast.parse(source)
+            reference = types.ModuleType(name)
+            exec(compile(source, f"<reference {name}>", "exec"), reference.__dict__)  # noqa: S102 - trusted
+        elif request["op"] == "calls":
+            calls = request["calls"]
+        elif request["op"] == "run":
+            values = []
+            try:
+                made = module(request["edits"]) if request["edits"] else reference
+            except Exception as exc:  # noqa: BLE001 - a mutant that does not build is no candidate
+                made, failure = None, f"{type(exc).__name__}: {exc}"
+            for index in request["calls"]:
+                function, args, kwargs = calls[index]
+                if made is None:
+                    values.append({ERROR: failure})
+                    continue
+                try:
+                    value = getattr(made, function)(*_copy(args), **_copy(kwargs))
+                    transport.encode(value)  # what cannot cross is no answer
+                    values.append(value)
+                except Exception as exc:  # noqa: BLE001
+                    values.append({ERROR: f"{type(exc).__name__}: {exc}"[:200]})
+            reply["values"] = values
+        frame = transport.encode(reply)
+        view = memoryview(LENGTH.pack(len(frame)) + frame)
+        while view:
+            view = view[os.write(reply_fd, view):]
+
+
+def main() -> None:
+    reply_fd = os.dup(1)  # the replies' pipe; what mutants print goes nowhere
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, 1)
+    os.dup2(devnull, 2)
+    serve(0, reply_fd)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,534 @@
+"""Naming a failure with the error model: the reference's mutants, confirmed on the student's inputs.
+
+When a check fails, :func:`name_failure` takes the calls the check made
+(:attr:`~autograder.engine.checks.Trial.calls`: function, arguments, the student's answer),
+runs the reference and each mutant of the function (:mod:`.operators`) on the same inputs
+in the helper process (:mod:`.helper`), and keeps the *candidates*: mutants that reproduce
+the student's answers on every call of that function in the trial -- much closer to the
+student's answer than the reference is, and within a small tolerance. Then it derives
+*confirmation inputs* from the failing ones (the same shapes and types, other values),
+keeps those on which the candidates (and the reference) disagree, asks the student's
+function for its answers there (through the sandbox; what it prints is labelled as the
+grader's confirmation call) and keeps the candidates that reproduce those too. A mistake
+is named only when the candidates left agree with each other everywhere (equivalent
+mutants: the simplest operator's sentence); otherwise nothing is said. When no single
+mutant reproduces, pairs of the mutants that each come closer to the student than the
+reference are tried (a few).
+
+Time is bounded: a few seconds per failed check, a total per grading (kept on the
+sandbox), a timeout per mutant (the helper is killed and restarted). Without the
+reference module (a copy of the grader without ``reference_solutions/``) nothing is named.
+"""
+
+from __future__ import annotations
+
+import atexit
+import itertools
+import threading
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .helper import ERROR, Helper, HelperFailed
+from .operators import OPERATORS, Mutant, mutants_of
+
+CHECK_SECONDS = 4.0        # the error model's time for one failed check
+GRADING_SECONDS = 40.0     # and for one grading (all its failed checks)
+CALLS_PER_FUNCTION = 6     # the trial's last calls of a function that are compared
+PAIR_MUTANTS = 6           # the closest single mutants combined in pairs
+VARIANTS_PER_CALL = 5      # confirmation inputs derived from each failing call
+CONFIRMATIONS = 3          # of which the student's function is asked at most this many
+PROJECT_ROOT = Path(__file__).resolve().parents[3]
+
+
+@dataclass(frozen=True)
+class Naming:
+    """A confirmed mistake: the mutant, and the evidence (calls compared, confirmation calls)."""
+
+    mutant: Mutant
+    calls: int
+    confirmations: int
+
+    @property
+    def sentence(self) -> str:
+        return self.mutant.sentence
+
+    @property
+    def mistake(self) -> str:
+        return f"mutant:{self.mutant.operator}"
+
+
+# ------------------------------------------------------------------ the lab's error model
+@dataclass(frozen=True)
+class ErrorModel:
+    """A lab's reference module and its mutants per graded function."""
+
+    module: str
+    source: str
+    mutants: dict
+    defaults: dict   # function -> [(parameter, position, default)] for its numeric defaults
+
+
+def _numeric_defaults(source: str) -> dict:
+    """function -> [(parameter, position, default)] for the parameters with a number as default
+    (confirmation inputs vary them too: a mistake may hide behind a default)."""
+    import ast
+
+    out = {}
+    for node in ast.parse(source).body:
+        if isinstance(node, ast.FunctionDef):
+            params = node.args.args
+            found = []
+            for offset, default in enumerate(node.args.defaults):
+                position = len(params) - len(node.args.defaults) + offset
+                try:
+                    value = ast.literal_eval(default)
+                except ValueError:
+                    continue
+                if isinstance(value, (int, float)) and not isinstance(value, bool):
+                    found.append((params[position].arg, position, value))
+            out[node.name] = found
+    return out
+
+
+_MODELS: dict = {}
+_MODELS_LOCK = threading.Lock()
+
+
+def reference_module(lab) -> Path | None:
+    """The lab's reference solution module (a course lab's ``reference/``), None when absent."""
+    from ..labfolders import REFERENCE, lab_folder
+
+    loaded = lab_folder(lab)
+    folder = loaded.folder / REFERENCE if loaded is not None else PROJECT_ROOT / "reference_solutions"
+    path = folder / f"{lab.module}.py"
+    return path if path.is_file() else None
+
+
+def model_for(lab) -> ErrorModel | None:
+    """The lab's error model (made once per process); None without a reference."""
+    path = reference_module(lab)
+    if path is None:
+        return None
+    with _MODELS_LOCK:
+        key = (lab.key, str(path), path.stat().st_mtime_ns)
+        if key not in _MODELS:
+            source = path.read_text(encoding="utf-8")
+            api = {name for exercise in lab.exercises.values() for name in exercise.signatures}
+            try:
+                mutants = mutants_of(source, api)
+            except SyntaxError:
+                return None
+            for function in mutants:  # simplest first: the time may end before the last
+                mutants[function].sort(key=lambda m: m.rank)
+            _MODELS[key] = ErrorModel(lab.module, source, mutants, _numeric_defaults(source))
+        return _MODELS[key]
+
+
+_HELPERS = threading.local()
+_ALL_HELPERS: list[Helper] = []
+
+
+def helper() -> Helper:
+    """This thread's helper process (a grading lane's)."""
+    if not hasattr(_HELPERS, "helper"):
+        _HELPERS.helper = Helper()
+        _ALL_HELPERS.append(_HELPERS.helper)
+    return _HELPERS.helper
+
+
+@atexit.register
+def close_helpers() -> None:
+    for each in _ALL_HELPERS:
+        each.close()
+
+
+# ------------------------------------------------------------------ comparing answers
+def _leaves(value, out: list) -> bool:
+    """Flatten an answer into arrays and other leaves; False for an error."""
+    if isinstance(value, dict) and ERROR in value:
+        return False
+    if isinstance(value, (tuple, list)) and not (value and all(isinstance(v, (int, float)) for v in value)):
+        out.append(("seq", len(value)))
+        return all(_leaves(v, out) for v in value)
+    if isinstance(value, dict):
+        out.append(("dict", tuple(sorted(map(str, value)))))
+        return all(_leaves(value[k], out) for k in sorted(value, key=str))
+    if isinstance(value, (np.ndarray, int, float, tuple, list)) and not isinstance(value, bool):
+        try:
+            out.append(np.asarray(value))
+        except (ValueError, TypeError):
+            out.append(("other", repr(value)))
+        return True
+    out.append(("other", repr(value)))
+    return True
+
+
+def distance(a, b) -> float:
+    """How far answer ``a`` is from ``b``: the largest mean absolute difference of their arrays
+    (small matrices also compared up to scale and sign, as the checks do); infinite when
+    their structure, shapes or NaN places differ, or one is an error."""
+    left, right = [], []
+    if not (_leaves(a, left) and _leaves(b, right)) or len(left) != len(right):
+        return float("inf")
+    worst = 0.0
+    for x, y in zip(left, right):
+        if isinstance(x, tuple) or isinstance(y, tuple):
+            if not (isinstance(x, tuple) and isinstance(y, tuple) and x == y):
+                return float("inf")
+            continue
+        if x.shape != y.shape or x.dtype.kind not in "biufc" or y.dtype.kind not in "biufc":
+            return float("inf")
+        if x.dtype.kind in "biu" and y.dtype.kind in "biu":  # images: no NaN, no float copies
+            worst = max(worst, float(np.mean(np.abs(x.astype(np.int64) - y))) if x.size else 0.0)
+            continue
+        kind = np.complex128 if "c" in x.dtype.kind + y.dtype.kind else np.float64
+        x, y = x.astype(kind, copy=False), y.astype(kind, copy=False)
+        nan_x, nan_y = ~np.isfinite(x), ~np.isfinite(y)
+        if not np.array_equal(nan_x, nan_y):
+            return float("inf")
+        if x.size == 0 or nan_x.all():
+            continue
+        raw = float(np.mean(np.abs(x[~nan_x] - y[~nan_y])))
+        if x.ndim == 2 and x.size <= 16 and not nan_x.any():
+            raw = min(raw, _up_to_scale(x, y))
+        worst = max(worst, raw)
+    return worst
+
+
+def _up_to_scale(x, y) -> float:
+    nx, ny = np.linalg.norm(x), np.linalg.norm(y)
+    if nx == 0 or ny == 0:
+        return float("inf")
+    xs, ys = x / nx, y / ny
+    if np.real(np.vdot(xs, ys)) < 0:
+        xs = -xs
+    return float(np.mean(np.abs(xs - ys))) * ny / np.sqrt(x.size)
+
+
+def _scale(value) -> float:
+    leaves = []
+    _leaves(value, leaves)
+    sizes = [np.abs(v[np.isfinite(v)]).mean() for v in leaves
+             if isinstance(v, np.ndarray) and v.dtype.kind in "iuf" and np.isfinite(v).any()]
+    return float(max(sizes, default=1.0))
+
+
+_MEASURED: dict = {}   # id(answer) -> (answer, tolerance), for one naming (answers are compared often)
+
+
+def _measures(value) -> tuple[float, float]:
+    """(tolerance, scale) of an answer, measured once per naming."""
+    kept = _MEASURED.get(id(value))
+    if kept is not None and kept[0] is value:
+        return kept[1]
+    measured = (_measured_tolerance(value), _scale(value))
+    _MEASURED[id(value)] = (value, measured)
+    return measured
+
+
+def _tolerance(value) -> float:
+    """A difference too small to tell two answers apart (images: half a grey level)."""
+    return _measures(value)[0]
+
+
+def _measured_tolerance(value) -> float:
+    leaves = []
+    _leaves(value, leaves)
+    if any(isinstance(v, np.ndarray) and v.dtype.kind in "iu" and v.size > 64 for v in leaves):
+        return 0.5
+    return 1e-5 * _scale(value) + 1e-9
+
+
+def reproduces(mutant, student, reference) -> bool:
+    """Whether the mutant's answer is the student's: within the tolerance, or (where the
+    reference is far from the student) ten times closer to it than the reference and
+    within 5% of the answer's size."""
+    tolerance, scale = _measures(student)
+    apart = distance(mutant, student)
+    if apart <= tolerance:
+        return True
+    off = distance(reference, student)
+    if off <= 10 * tolerance:   # the student is right here: the mutant must be as near
+        return apart <= 2 * off
+    return apart <= min(0.1 * off, 0.05 * scale)
+
+
+def wrong(student, reference) -> bool:
+    return distance(reference, student) > 10 * _tolerance(student)
+
+
+# ------------------------------------------------------------------ confirmation inputs
+def _perturbed(value, rng, depth=0):
+    """Another input of the same form: other values of the same shape, dtype and range."""
+    if isinstance(value, bool) or value is None or isinstance(value, str):
+        return value
+    if isinstance(value, float):
+        return value * rng.uniform(0.6, 1.4) + (rng.uniform(-1, 1) if value == 0 else 0.0)
+    if isinstance(value, int):
+        return value + 2 * int(rng.integers(-2, 3)) if abs(value) > 4 else value
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind == "f" and value.size:
+            finite = value[np.isfinite(value)]
+            spread = float(finite.std()) if finite.size > 1 else float(abs(finite).mean() if finite.size else 1.0)
+            return value + rng.normal(0, 0.15 * (spread or 1.0), value.shape).astype(value.dtype)
+        if value.dtype == np.uint8 and value.ndim >= 2:  # an image: the same picture, moved and relit
+            moved = np.roll(value, (int(rng.integers(-9, 10)), int(rng.integers(-9, 10))), axis=(0, 1))
+            return np.clip(moved.astype(np.int16) + int(rng.integers(-20, 21)), 0, 255).astype(np.uint8)
+        return value.copy()
+    if isinstance(value, (tuple, list)) and depth < 3:
+        made = [_perturbed(v, rng, depth + 1) for v in value]
+        return tuple(made) if isinstance(value, tuple) else made
+    if isinstance(value, dict) and depth < 3:
+        return {k: _perturbed(v, rng, depth + 1) for k, v in value.items()}
+    return value
+
+
+def _variants(call, count, seed, defaults=()):
+    """``count`` perturbed copies of a call; every other one also gives the numeric defaults it
+    left out, perturbed."""
+    function, args, kwargs = call
+    rng = np.random.default_rng(seed)
+    made = []
+    for index in range(count):
+        extra = {name: default for name, position, default in defaults
+                 if position >= len(args) and name not in kwargs} if index % 2 else {}
+        made.append((function, _perturbed(tuple(args), rng), _perturbed({**kwargs, **extra}, rng)))
+    return made
+
+
+# ------------------------------------------------------------------ naming
+class _Clock:
+    def __init__(self, seconds: float):
+        self.end = time.monotonic() + seconds
+
+    def left(self) -> float:
+        return self.end - time.monotonic()
+
+
+def name_failure(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
+    """The confirmed mutant that explains the failing trial's answers, or None.
+
+    ``trial`` is the failed check's :class:`~autograder.engine.checks.Trial` (its
+    ``calls``); the student's function is asked for a few confirmation answers through
+    its sandbox. Never raises for the student's sake: any failure of the helper is "no name".
+    """
+    model = model_for(trial.lab)
+    if model is None or not trial.calls:
+        return None
+    spent = trial.sandbox.shared.setdefault("error model seconds", [0.0])
+    seconds = min(seconds, GRADING_SECONDS - spent[0])
+    if seconds <= 0.2:
+        return None
+    started = time.monotonic()
+    try:
+        return _name(trial, model, _Clock(seconds))
+    except HelperFailed:
+        return None
+    finally:
+        spent[0] += time.monotonic() - started
+        _MEASURED.clear()
+
+
+def _name(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
+    recorded = {}
+    for function, args, kwargs, value in trial.calls:
+        if function in model.mutants:
+            recorded.setdefault(function, []).append((function, tuple(args), dict(kwargs), value))
+    runner = helper()
+    for function, calls in recorded.items():
+        calls = calls[-CALLS_PER_FUNCTION:]
+        inputs = [call[:3] for call in calls]
+        answers = [call[3] for call in calls]
+        runner.prepare(model.source, model.module, inputs, max(1.0, clock.left()))
+        references = runner.run((), range(len(inputs)), max(0.5, clock.left()))
+        failing = [i for i, (s, r) in enumerate(zip(answers, references)) if wrong(s, r)]
+        if not failing:
+            continue
+        naming = _name_function(trial, model, function, inputs, answers, references, failing, clock)
+        if naming is not None:
+            return naming
+    return None
+
+
+def _timeout(clock: _Clock) -> float:
+    return max(0.05, min(1.0, clock.left()))
+
+
+def _name_function(trial, model, function, inputs, answers, references, failing, clock) -> Naming | None:
+    runner = helper()
+    others = [i for i in range(len(inputs)) if i not in failing]
+    # A mistake confirmed in an earlier check of this grading, that reproduces these answers too,
+    # is named again without asking the student's function once more.
+    named = trial.sandbox.shared.setdefault("error model named", [])
+    for mutant in named:
+        if mutant.function == function and \
+                _reproduces(runner, mutant.edits, failing, others, answers, references, clock) is True:
+            return Naming(mutant, len(inputs), 0)
+    candidates, near = [], []
+    off = sum(distance(references[i], answers[i]) for i in failing)
+    for mutant in model.mutants[function]:
+        if clock.left() <= 0:
+            return None  # a mutant not tried might reproduce the answers too: no name is sure
+        outcome = _reproduces(runner, mutant.edits, failing, others, answers, references, clock)
+        if outcome is True:
+            candidates.append(mutant)
+        elif outcome is not None and outcome < 0.9 * off:
+            near.append((outcome, mutant))
+    if not candidates and near:
+        near.sort(key=lambda pair: (pair[0], pair[1].rank))
+        closest = [m for _, m in near[:PAIR_MUTANTS]]
+        for first, second in itertools.combinations(closest, 2):
+            if clock.left() <= 0:
+                break
+            if (first.where, first.edits[0][1]) == (second.where, second.edits[0][1]):
+                continue
+            pair = first.combined(second) if first.rank <= second.rank else second.combined(first)
+            if _reproduces(runner, pair.edits, failing, others, answers, references, clock) is True:
+                candidates.append(pair)
+    if not candidates or clock.left() <= 0:
+        return None
+    naming = _confirmed(trial, model, function, inputs, failing, candidates, clock)
+    if naming is not None:
+        named.append(naming.mutant)
+    return naming
+
+
+def _reproduces(runner, edits, failing, others, answers, references, clock):
+    """True when the mutant reproduces every answer; else its summed distance on the failing
+    calls (None: it failed there)."""
+    try:
+        values = runner.run(edits, failing, _timeout(clock))
+    except HelperFailed:
+        return None
+    if not all(reproduces(v, answers[i], references[i]) for v, i in zip(values, failing)):
+        total = sum(distance(v, answers[i]) for v, i in zip(values, failing))
+        return total if np.isfinite(total) else None
+    if others:
+        try:
+            values = runner.run(edits, others, _timeout(clock))
+        except HelperFailed:
+            return None
+        if not all(reproduces(v, answers[i], references[i]) for v, i in zip(values, others)):
+            return None
+    return True
+
+
+def _confirmed(trial, model, function, inputs, failing, candidates, clock) -> Naming | None:
+    """The candidate left after the student's answers on inputs that tell them apart, or None."""
+    from ..checks import fingerprint
+
+    runner = helper()
+    variants = []
+    for i in failing[:2]:
+        variants += _variants(inputs[i], VARIANTS_PER_CALL, int(fingerprint(function, i, inputs[i][1])[:8], 16),
+                              model.defaults.get(function, ()))
+    every = inputs + variants
+    runner.prepare(model.source, model.module, every, max(1.0, clock.left()))
+    indices = list(range(len(inputs), len(every)))
+    reference = runner.run((), indices, _timeout(clock))
+    outputs = {}
+    for candidate in candidates[:12]:
+        try:
+            outputs[candidate.key] = runner.run(candidate.edits, indices, _timeout(clock))
+        except HelperFailed:
+            continue
+    candidates = [c for c in candidates if c.key in outputs]
+    usable = [k for k, r in enumerate(reference) if not (isinstance(r, dict) and ERROR in r)]
+    chosen = _separating(usable, reference, [outputs[c.key] for c in candidates])
+    if not chosen:
+        return None
+    answers = []
+    for k in chosen:
+        answer = _student_answer(trial, every[indices[k]])
+        if answer is _FAILED:
+            return None
+        answers.append(answer)
+    survivors = [c for c in candidates
+                 if all(reproduces(outputs[c.key][k], answer, reference[k]) for k, answer in zip(chosen, answers))
+                 and any(wrong(answer, reference[k]) for k, answer in zip(chosen, answers))]
+    if not survivors:
+        return None
+    first = survivors[0]
+    for other in survivors[1:]:  # they must be one mistake (equivalent on every input seen)
+        if any(distance(outputs[other.key][k], outputs[first.key][k]) > _tolerance(outputs[first.key][k])
+               for k in chosen):
+            return None
+    best = min(survivors, key=lambda m: m.rank)
+    return Naming(best, len(inputs), len(chosen))
+
+
+def _separating(usable, reference, candidate_outputs) -> list[int]:
+    """Up to :data:`CONFIRMATIONS` variant indices that, greedily, tell apart most pairs of
+    (the reference, each candidate); empty when none tells any candidate from the reference."""
+    rows = [reference] + candidate_outputs
+    pairs = [(a, b) for a in range(len(rows)) for b in range(a + 1, len(rows))]
+
+    def apart(k, a, b):
+        return distance(rows[a][k], rows[b][k]) > 10 * _tolerance(rows[b][k])
+
+    split = {k: {p for p in pairs if apart(k, *p)} for k in usable}
+    chosen, covered = [], set()
+    while len(chosen) < CONFIRMATIONS:
+        k = max(usable, key=lambda k: (len(split[k] - covered), -k), default=None)
+        if k is None or not split[k] - covered:
+            break
+        chosen.append(k)
+        covered |= split[k]
+    if not any(a == 0 for a, _ in covered):
+        return []
+    return sorted(chosen)
+
+
+_FAILED = object()
+
+
+def _student_answer(trial, call):
+    """The student's answer on a confirmation input (the grader's own call, labelled so)."""
+    function, args, kwargs = call
+    lab = trial.lab
+    outcome = trial.sandbox.call(lab.module, function, args, kwargs, timeout=trial.check.timeout,
+                                 forbid=lab.forbidden.get(function, ()) + tuple(trial.forbid.get(function, ())))
+    trial.student_seconds += outcome.seconds
+    if outcome.output.strip():
+        trial.outputs.append(f"(printed during the grader's confirmation call to {function}())\n{outcome.output}")
+    return outcome.value if outcome.ok else _FAILED
+
+
+def contradicts(named: str, naming: Naming) -> bool:
+    """Whether a hand-written name (its mistake label and sentence) says another thing than the
+    confirmed mutant: it shares none of the operator's words."""
+    text = named.lower()
+    words = set()
+    for operator in naming.mutant.operator.split("+"):
+        words.update(OPERATORS[operator])
+    return not any(word in text for word in words)
+
+
+def named_by_error_model(verdict, trial):
+    """A failed check's verdict with the error model's name added (see the module docstring):
+    appended to the message's first line when the verdict names nothing; in place of the name
+    it gives when a confirmed mutant contradicts it; unchanged otherwise."""
+    from dataclasses import replace
+
+    naming = name_failure(trial)
+    if naming is None:
+        return verdict
+    message = str(verdict.message)
+    if verdict.mistake and not contradicts(f"{verdict.mistake} {message}", naming):
+        return verdict
+    first, newline, rest = message.partition("\n")
+    if verdict.mistake:  # a hand-written name the mutant contradicts: its sentence goes
+        first = _without_name(first)
+    sentence = f"The error model: it looks like {naming.sentence} ({naming.mutant.operator.replace('_', ' ')})."
+    return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=naming.mistake)
+
+
+def _without_name(line: str) -> str:
+    """A message line without its "it looks like ..." / "Reading your code: ..." clause."""
+    import re
+
+    return re.split(r"(?:[:;,.]\s*|\s)(?:it looks like|looks like|Reading your code:)", line, maxsplit=1,
+                    flags=re.I)[0]

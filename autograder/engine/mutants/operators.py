@@ -1,0 +1,890 @@
+"""Mutation operators over a reference module's functions (Python's ``ast``; trusted code).
+
+A *mutant* is the reference module with one small, realistic change (or two) in a
+function a graded function runs: a sign flipped, two arguments swapped, a ``.T`` added
+or missing, degrees used as radians, another axis, another OpenCV flag... Each carries
+the edits that make it (so that another process rebuilds it from the source alone) and a
+sentence for the student built from the operator and its place in the code, in the
+student's terms: API parameter names, the NumPy/OpenCV call involved, "the sine of
+`angle_deg`" -- never the reference's code, its private helpers' or local variables' names.
+
+An edit is ``(def name, ordinal, operator, payload)``: the ``ordinal``-th node of
+``ast.walk`` over that ``def`` (in the unmutated source), replaced by what the operator
+makes of it with ``payload`` (JSON-able). :func:`apply_edits` rebuilds a module's source
+from edits; :func:`mutants_of` lists a module's mutants per API function.
+"""
+
+from __future__ import annotations
+
+import ast
+import copy
+import functools
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+# Operators, simplest first (equivalent mutants are named by the simplest), with the words
+# their sentences use (a hand-written name sharing none of them is another diagnosis).
+OPERATORS = {
+    "sign": ("sign", "minus", "negat", "opposite"),
+    "add_sub": ("sign", "added", "subtracted", "minus", "plus"),
+    "swap_operands": ("order", "swap", "revers", "other way"),
+    "swap_args": ("order", "swap", "revers"),
+    "transpose": ("transpos",),
+    "degrees": ("degree", "radian"),
+    "axis": ("axis", "x and y", "column", "row", "width", "height", "swap"),
+    "minmax": ("min", "max", "small", "larg", "high", "low"),
+    "flag": ("cv2.", "flag", "interpolat", "border", "method"),
+    "bound": ("off by one", "one element", "bound", "- 1", "+ 1"),
+    "int_division": ("integer", "truncat", "round"),
+    "drop_division": ("normalis", "normaliz", "homogeneous", "divid", "division", "scale"),
+    "drop_factor": ("denormalis", "normalis", "product", "missing", "undone"),
+    "other_name": ("instead of", "in place of", "where"),
+    "drop_statement": ("missing", "skipped", "not "),
+}
+RANK = {name: index for index, name in enumerate(OPERATORS)}
+
+_NON_COMMUTATIVE = {ast.Sub: "subtraction", ast.Div: "division", ast.MatMult: "matrix product",
+                    ast.FloorDiv: "division"}
+_ANGLE_CONVERSIONS = {"np.deg2rad": "radians", "np.radians": "radians", "math.radians": "radians",
+                      "np.rad2deg": "degrees", "np.degrees": "degrees", "math.degrees": "degrees"}
+_OPPOSITES = {"argmin": "argmax", "argmax": "argmin", "min": "max", "max": "min", "amin": "amax",
+              "amax": "amin", "minimum": "maximum", "maximum": "minimum", "nanargmin": "nanargmax",
+              "nanargmax": "nanargmin", "nanmin": "nanmax", "nanmax": "nanmin"}
+# OpenCV constants that stand for one another (a student picks another member of the family).
+_FLAG_FAMILIES = [
+    ("INTER_NEAREST", "INTER_LINEAR", "INTER_CUBIC", "INTER_AREA"),
+    ("BORDER_CONSTANT", "BORDER_REPLICATE", "BORDER_REFLECT", "BORDER_REFLECT_101"),
+    ("RANSAC", "LMEDS", "RHO"),
+    ("FM_7POINT", "FM_8POINT", "FM_RANSAC", "FM_LMEDS"),
+    ("NORM_L1", "NORM_L2", "NORM_HAMMING", "NORM_INF", "NORM_L2SQR"),
+    ("TM_SQDIFF", "TM_SQDIFF_NORMED", "TM_CCORR", "TM_CCORR_NORMED", "TM_CCOEFF", "TM_CCOEFF_NORMED"),
+    ("COLOR_BGR2GRAY", "COLOR_RGB2GRAY"),
+    ("COLOR_BGR2RGB", "COLOR_RGB2BGR", "COLOR_BGR2HSV"),
+    ("CV_32F", "CV_64F", "CV_8U"),
+    ("THRESH_BINARY", "THRESH_BINARY_INV"),
+    ("SOLVEPNP_ITERATIVE", "SOLVEPNP_EPNP", "SOLVEPNP_SQPNP"),
+    ("CALIB_FIX_PRINCIPAL_POINT", "CALIB_ZERO_TANGENT_DIST", "CALIB_FIX_ASPECT_RATIO"),
+]
+_FLAG_FAMILY = {name: family for family in _FLAG_FAMILIES for name in family}
+_OTHER_NAMES_PER_SITE = 4
+_MAX_PHRASE = 110
+
+
+@dataclass(frozen=True)
+class Mutant:
+    """One mutant of the reference module, seen from the graded function ``function``.
+
+    operator : the operator id (a key of :data:`OPERATORS`).
+    function : the API function whose mistake it models.
+    where : the ``def`` the edit changes (``function`` itself or a function it calls).
+    line : the edit's line in the reference (for authors; never shown to students).
+    edits : ``((def name, ordinal, operator, payload), ...)``, see :func:`apply_edits`.
+    sentence : what it says to the student, e.g. "in `rotation_matrix`, the sine of
+        `angle_deg` has the wrong sign".
+    """
+
+    operator: str
+    function: str
+    where: str
+    line: int
+    edits: tuple
+    sentence: str
+
+    @property
+    def key(self) -> str:
+        """A stable id: the edits."""
+        return ";".join(f"{d}:{o}:{op}:{p}" for d, o, op, p in self.edits)
+
+    @property
+    def rank(self) -> tuple:
+        return (len(self.edits), max(RANK[e[2]] for e in self.edits), len(self.sentence))
+
+    def combined(self, other: "Mutant") -> "Mutant":
+        """This mutant and ``other`` at once (two mistakes)."""
+        sentence = f"{self.sentence}; and {other.sentence.split(', ', 1)[-1]}" \
+            if other.sentence.startswith(self.sentence.split(", ", 1)[0] + ",") else \
+            f"{self.sentence}; and {other.sentence}"
+        return Mutant(f"{self.operator}+{other.operator}", self.function, self.where, self.line,
+                      self.edits + other.edits, sentence)
+
+
+# ------------------------------------------------------------------ rebuilding a mutant
+def _defs(tree: ast.Module) -> dict[str, ast.FunctionDef]:
+    return {node.name: node for node in tree.body if isinstance(node, ast.FunctionDef)}
+
+
+def _parents(root: ast.AST) -> dict[int, tuple[ast.AST, str, int | None]]:
+    """id(child) -> (parent, field, index in the field's list or None)."""
+    parents = {}
+    for parent in ast.walk(root):
+        for field, value in ast.iter_fields(parent):
+            if isinstance(value, list):
+                for index, item in enumerate(value):
+                    if isinstance(item, ast.AST):
+                        parents[id(item)] = (parent, field, index)
+            elif isinstance(value, ast.AST):
+                parents[id(value)] = (parent, field, None)
+    return parents
+
+
+def apply_edits(source: str, edits) -> str:
+    """The module ``source`` with ``edits`` made (all located in the unmutated tree first).
+
+    Raises
+    ------
+    ValueError
+        When an edit does not apply (a stale ordinal, overlapping edits).
+    """
+    tree = ast.parse(source)
+    defs = _defs(tree)
+    located = []
+    for def_name, ordinal, operator, payload in edits:
+        if def_name not in defs:
+            raise ValueError(f"no def {def_name}")
+        nodes = list(ast.walk(defs[def_name]))
+        if not 0 <= ordinal < len(nodes):
+            raise ValueError(f"no node {ordinal} in {def_name}")
+        located.append((nodes[ordinal], operator, payload))
+    targets = [id(node) for node, _, _ in located]
+    for node, _, _ in located:  # an edit inside another's node would be lost
+        inner = {id(n) for n in ast.walk(node)} - {id(node)}
+        if inner & set(targets):
+            raise ValueError("overlapping edits")
+    parents = _parents(tree)
+    for node, operator, payload in located:
+        _replace(parents, node, _MAKE[operator](node, payload))
+    return ast.unparse(ast.fix_missing_locations(tree))
+
+
+def mutated_defs(tree: ast.Module, edits, source: str | None = None) -> ast.Module:
+    """Only the ``def``s ``edits`` change, mutated, as a module (``tree``, the reference's, is left
+    as it is): executed over a copy of the reference module's namespace, they make the mutant.
+    With the module's ``source``, each def is parsed again from its own lines (the same nodes in
+    the same order, ten times faster than copying the tree).
+
+    Raises ValueError as :func:`apply_edits` does."""
+    defs = _defs(tree)
+    lines = source.splitlines(keepends=True) if source is not None else None
+    changed = {}
+    for def_name, _, _, _ in edits:
+        if def_name not in defs:
+            raise ValueError(f"no def {def_name}")
+        if def_name not in changed:
+            fn = defs[def_name]
+            if lines is not None:
+                first = min([fn.lineno] + [d.lineno for d in fn.decorator_list])
+                changed[def_name] = ast.parse("".join(lines[first - 1:fn.end_lineno])).body[0]
+            else:
+                changed[def_name] = copy.deepcopy(fn)
+    located = []
+    for def_name, ordinal, operator, payload in edits:
+        nodes = list(ast.walk(changed[def_name]))
+        if not 0 <= ordinal < len(nodes):
+            raise ValueError(f"no node {ordinal} in {def_name}")
+        located.append((nodes[ordinal], operator, payload))
+    targets = {id(node) for node, _, _ in located}
+    for node, _, _ in located:
+        if ({id(n) for n in ast.walk(node)} - {id(node)}) & targets:
+            raise ValueError("overlapping edits")
+    for fn in changed.values():
+        parents = _parents(fn)
+        for node, operator, payload in located:
+            if id(node) in parents:
+                _replace(parents, node, _MAKE[operator](node, payload))
+    return ast.fix_missing_locations(ast.Module(list(changed.values()), []))
+
+
+def _replace(parents, node, new) -> None:
+    parent, field, index = parents[id(node)]
+    if index is None:
+        setattr(parent, field, new)
+    else:
+        getattr(parent, field)[index] = new
+
+
+def _dotted(node) -> str:
+    if isinstance(node, ast.Name):
+        return node.id
+    if isinstance(node, ast.Attribute):
+        inner = _dotted(node.value)
+        return f"{inner}.{node.attr}" if inner else ""
+    return ""
+
+
+def _name(dotted: str) -> ast.expr:
+    parts = dotted.split(".")
+    node: ast.expr = ast.Name(parts[0], ast.Load())
+    for part in parts[1:]:
+        node = ast.Attribute(node, part, ast.Load())
+    return node
+
+
+def _call(dotted: str, *args) -> ast.Call:
+    return ast.Call(_name(dotted), list(args), [])
+
+
+# How each operator changes its node (payload from the generator).
+def _make_sign(node, payload):
+    if payload == "remove":
+        return copy.deepcopy(node.operand)
+    return ast.UnaryOp(ast.USub(), copy.deepcopy(node))
+
+
+def _make_add_sub(node, payload):
+    new = copy.deepcopy(node)
+    new.op = ast.Sub() if isinstance(node.op, ast.Add) else ast.Add()
+    return new
+
+
+def _make_swap_operands(node, payload):
+    return ast.BinOp(copy.deepcopy(node.right), node.op, copy.deepcopy(node.left))
+
+
+def _make_swap_args(node, payload):
+    new = copy.deepcopy(node)
+    i, j = payload
+    new.args[i], new.args[j] = new.args[j], new.args[i]
+    return new
+
+
+def _make_transpose(node, payload):
+    if payload == "remove":
+        return copy.deepcopy(node.value if isinstance(node, ast.Attribute) else node.args[0])
+    if payload == "literal":
+        new = copy.deepcopy(node)
+        rows = [row.elts for row in new.args[0].elts]
+        new.args[0].elts = [ast.List([row[j] for row in rows], ast.Load()) for j in range(len(rows[0]))]
+        return new
+    return ast.Attribute(copy.deepcopy(node), "T", ast.Load())
+
+
+def _make_degrees(node, payload):
+    if payload == "remove":
+        return copy.deepcopy(node.args[0])
+    return _call(payload, copy.deepcopy(node))
+
+
+def _make_axis(node, payload):
+    if payload == "swap_index":  # x[:, k] <-> x[k, :]: a row for a column
+        new = copy.deepcopy(node)
+        new.slice.elts.reverse()
+        return new
+    return ast.Constant(payload)
+
+
+def _make_minmax(node, payload):
+    return _name(payload)
+
+
+def _make_flag(node, payload):
+    return ast.Attribute(copy.deepcopy(node.value), payload, ast.Load())
+
+
+def _make_bound(node, payload):
+    if payload == "drop":  # x - 1 -> x
+        return copy.deepcopy(node.left)
+    if isinstance(payload, str):  # "+1" / "-1" around an expression
+        return ast.BinOp(copy.deepcopy(node), ast.Add() if payload[0] == "+" else ast.Sub(), ast.Constant(1))
+    return ast.Constant(payload)  # a constant bound moved
+
+
+def _make_int_division(node, payload):
+    if payload == "floor":
+        return ast.BinOp(copy.deepcopy(node.left), ast.FloorDiv(), copy.deepcopy(node.right))
+    return _call("int", copy.deepcopy(node))
+
+
+def _make_drop_division(node, payload):
+    return copy.deepcopy(node.left)
+
+
+def _make_drop_factor(node, payload):
+    return copy.deepcopy(node.right if payload == "left" else node.left)
+
+
+def _make_other_name(node, payload):
+    return ast.Name(payload, ast.Load())
+
+
+def _make_drop_statement(node, payload):
+    return ast.Pass()
+
+
+_MAKE = {"sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+         "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
+         "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
+         "int_division": _make_int_division, "drop_division": _make_drop_division,
+         "drop_factor": _make_drop_factor, "other_name": _make_other_name,
+         "drop_statement": _make_drop_statement}
+
+
+# ------------------------------------------------------------------ describing, in the student's terms
+class _Words:
+    """Phrases for expressions of one ``def``: API parameters by name, locals by what they hold."""
+
+    def __init__(self, fn: ast.FunctionDef, api_params: set[str], module_defs: dict, api: set[str]):
+        self.fn, self.api_params, self.module_defs, self.api = fn, api_params, module_defs, api
+        self.definitions: dict[str, list[tuple[int, ast.AST, int | None]]] = {}
+        for node in ast.walk(fn):
+            if isinstance(node, ast.Assign):
+                for target in node.targets:
+                    self._define(target, node.value, node.lineno)
+            elif isinstance(node, (ast.AugAssign, ast.AnnAssign)) and node.value is not None:
+                self._define(node.target, node.value if isinstance(node, ast.AnnAssign) else node, node.lineno)
+            elif isinstance(node, (ast.For, ast.comprehension)):
+                self._define(node.target, ast.Call(ast.Name("__loop__", ast.Load()), [node.iter], []),
+                             getattr(node, "lineno", getattr(node.iter, "lineno", 0)))
+
+    def _define(self, target, value, line):
+        if isinstance(target, ast.Name):
+            self.definitions.setdefault(target.id, []).append((line, value, None))
+        elif isinstance(target, (ast.Tuple, ast.List)):
+            for index, element in enumerate(target.elts):
+                if isinstance(element, ast.Name):
+                    self.definitions.setdefault(element.id, []).append((line, value, index))
+
+    def locals_before(self, line: int) -> list[str]:
+        """The def's parameters and the locals assigned before ``line``."""
+        names = [a.arg for a in self.fn.args.args + self.fn.args.kwonlyargs]
+        names += [name for name, defs in self.definitions.items() if any(at < line for at, _, _ in defs)]
+        return list(dict.fromkeys(names))
+
+    def what(self, node, depth: int = 0, line: int | None = None) -> str:
+        """A short phrase for ``node`` (never a local or private name); "" when none fits."""
+        line = line if line is not None else getattr(node, "lineno", 10**9)
+        for start in (depth, depth + 2, depth + 4):  # deeper starts say less: a shorter phrase
+            phrase = self._what(node, start, line)
+            if len(phrase) <= _MAX_PHRASE:
+                return phrase
+        return ""
+
+    def _what(self, node, depth, line) -> str:
+        if depth > 6:
+            return ""
+        if isinstance(node, ast.Name):
+            if node.id in self.api_params:
+                return f"`{node.id}`"
+            defs = [d for d in self.definitions.get(node.id, ()) if d[0] < line] or \
+                self.definitions.get(node.id, [])
+            if not defs:
+                return ""
+            at, value, index = defs[-1]
+            if isinstance(value, ast.AugAssign):
+                return self._what(value.target, depth, at)
+            if index is not None:
+                shape_of = _shape_source(value)
+                if shape_of is not None and index < 3:
+                    inner = self._what(shape_of, depth + 1, at)
+                    which = ("height", "width", "number of channels")[index]
+                    return f"the {which} of {inner}" if inner else ""
+                if isinstance(value, (ast.Tuple, ast.List)) and index < len(value.elts):
+                    return self._what(value.elts[index], depth + 1, at)
+                if index == 0 and isinstance(value, ast.Call) and _dotted(value.func) in self.module_defs \
+                        and _dotted(value.func) not in self.api and value.args:
+                    return self._what(value.args[0], depth + 1, at)  # a helper that prepares its input
+                whole = self._what(value, depth + 1, at)
+                return f"result {index + 1} of {whole}" if whole else ""
+            return self._what(value, depth + 1, at)
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
+            return repr(node.value)
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            inner = self._what(node.operand, depth + 1, line)
+            return f"minus {inner}" if inner else ""
+        if isinstance(node, ast.Attribute):
+            if node.attr == "T":
+                inner = self._what(node.value, depth + 1, line)
+                return f"the transpose of {inner}" if inner else ""
+            if node.attr == "shape":
+                inner = self._what(node.value, depth + 1, line)
+                return f"the shape of {inner}" if inner else ""
+            dotted = _dotted(node)
+            return f"`{dotted}`" if dotted.startswith(("cv2.", "np.")) else ""
+        if isinstance(node, ast.Subscript):
+            return self._subscript(node, depth, line)
+        if isinstance(node, ast.Call):
+            return self._call(node, depth, line)
+        if isinstance(node, ast.BinOp) and depth < 2:
+            left, right = self._what(node.left, depth + 1, line), self._what(node.right, depth + 1, line)
+            if not (left and right):
+                return ""
+            word = {ast.Add: "plus", ast.Sub: "minus", ast.Mult: "times", ast.Div: "divided by",
+                    ast.FloorDiv: "divided by"}.get(type(node.op))
+            if isinstance(node.op, ast.MatMult):
+                return f"the product of {left} and {right}"
+            return f"{left} {word} {right}" if word else ""
+        if isinstance(node, (ast.Tuple, ast.List)) and 0 < len(node.elts) <= 3:
+            parts = [self._what(e, depth + 1, line) for e in node.elts]
+            return f"({', '.join(parts)})" if all(parts) else ""
+        return ""
+
+    def _subscript(self, node, depth, line) -> str:
+        if isinstance(node.value, ast.Attribute) and node.value.attr == "shape" \
+                and isinstance(node.slice, ast.Constant):
+            inner = self._what(node.value.value, depth + 1, line)
+            which = {0: "height (number of rows)", 1: "width (number of columns)", 2: "number of channels",
+                     -1: "last dimension"}.get(node.slice.value, f"dimension {node.slice.value}")
+            return f"the {which} of {inner}" if inner else ""
+        inner = self._what(node.value, depth + 1, line)
+        if not inner:
+            return ""
+        index = node.slice
+        if isinstance(index, ast.Constant) and isinstance(index.value, int):
+            return f"{'the last' if index.value == -1 else f'element {index.value}'} of {inner}"
+        if isinstance(index, ast.Tuple) and len(index.elts) == 2:
+            first, second = index.elts
+            if all(isinstance(e, ast.Constant) and isinstance(e.value, int) for e in index.elts):
+                return f"entry [{first.value}, {second.value}] of {inner}"
+            if _whole_slice(first) and isinstance(second, ast.Constant) and isinstance(second.value, int):
+                name = {0: "the x coordinates (column 0)", 1: "the y coordinates (column 1)"}.get(
+                    second.value, f"column {second.value}")
+                return f"{name} of {inner}"
+            if isinstance(first, ast.Constant) and isinstance(first.value, int) and _whole_slice(second):
+                return f"{'the last row' if first.value == -1 else f'row {first.value}'} of {inner}"
+        block = _block_text(index)
+        return f"{block} of {inner}" if block else f"part of {inner}"
+
+    def _call(self, node, depth, line) -> str:
+        dotted = _dotted(node.func)
+        first = node.args[0] if node.args else None
+        arg = self._what(first, depth + 1, line) if first is not None else ""
+        short = dotted.rsplit(".", 1)[-1]
+        if dotted == "__loop__":
+            return f"each item of {arg}" if arg else ""
+        if short in ("sin", "cos", "tan") and arg:
+            return f"the {dict(sin='sine', cos='cosine', tan='tangent')[short]} of {arg}"
+        if dotted in _ANGLE_CONVERSIONS and arg:
+            return f"{arg} in {_ANGLE_CONVERSIONS[dotted]}"
+        if short in ("asarray", "array", "float64", "float", "atleast_2d", "ascontiguousarray", "copy",
+                     "astype") and isinstance(first, (ast.Name, ast.Subscript, ast.Attribute)):
+            return arg
+        if isinstance(node.func, ast.Attribute) and node.func.attr in ("astype", "copy", "reshape", "ravel"):
+            return self._what(node.func.value, depth + 1, line)
+        if short in ("array", "asarray") and isinstance(first, ast.List):
+            parts = [self._what(e, depth + 2, line) for row in first.elts
+                     for e in (row.elts if isinstance(row, ast.List) else [row])]
+            parts = list(dict.fromkeys(p for p in parts if p and not p[0].isdigit()))[:2]
+            built = f"the matrix built from {' and '.join(parts)}"
+            return built if parts and len(built) <= _MAX_PHRASE // 2 else "the matrix built there"
+        if dotted in ("np.eye", "np.identity"):
+            return "the matrix started from the identity"
+        named = {"inv": "the inverse of", "svd": "the SVD of", "norm": "the norm of", "pinv": "the pseudo-inverse of",
+                 "det": "the determinant of", "eig": "the eigendecomposition of", "qr": "the QR decomposition of",
+                 "sqrt": "the square root of", "hstack": "the columns stacked from", "vstack": "the rows stacked from",
+                 "column_stack": "the columns stacked from"}.get(short)
+        if named and dotted.startswith(("np.", "numpy.")):
+            return f"{named} {arg}" if arg else f"the result of `{dotted}`"
+        if dotted in self.api:
+            return f"what `{dotted}` returns"
+        if dotted in self.module_defs:
+            step = step_phrase(self.module_defs[dotted])
+            return f"the result of {step}" if step else arg
+        if dotted.startswith(("cv2.", "np.")):
+            return f"the result of `{dotted}`"
+        return ""
+
+
+def _shape_source(value):
+    """``x`` when ``value`` is ``x.shape`` or ``x.shape[:k]`` (unpacked into height, width...)."""
+    if isinstance(value, ast.Subscript) and isinstance(value.slice, ast.Slice) and value.slice.lower is None:
+        value = value.value
+    if isinstance(value, ast.Attribute) and value.attr == "shape":
+        return value.value
+    return None
+
+
+def _block_text(index) -> str:
+    """"rows 0-1, column 2" for ``[:2, 2]``; "" when the index is not constants and constant slices."""
+    elements = index.elts if isinstance(index, ast.Tuple) else [index]
+    words = []
+    for axis, element in zip(("row", "column"), elements):
+        if isinstance(element, ast.Constant) and isinstance(element.value, int):
+            words.append(f"{'the last ' + axis if element.value == -1 else f'{axis} {element.value}'}")
+        elif isinstance(element, ast.Slice) and element.step is None and all(
+                b is None or (isinstance(b, ast.Constant) and isinstance(b.value, int) and b.value >= 0)
+                for b in (element.lower, element.upper)):
+            lower = element.lower.value if element.lower is not None else 0
+            if element.upper is None:
+                words.append(f"{axis}s {lower} onwards" if lower else f"all {axis}s")
+            else:
+                words.append(f"{axis}s {lower}-{element.upper.value - 1}")
+        else:
+            return ""
+    return ", ".join(words) if len(elements) <= 2 else ""
+
+
+def _whole_slice(node) -> bool:
+    return isinstance(node, ast.Slice) and node.lower is None and node.upper is None and node.step is None
+
+
+def step_phrase(fn: ast.FunctionDef) -> str:
+    """A private helper told as the step it does, from its docstring's first sentence: "the
+    step that normalises the points"; "" without a docstring."""
+    doc = ast.get_docstring(fn) or ""
+    first = re.split(r"(?<=[a-z\)])[.:;](\s|$)", doc.strip().split("\n\n")[0].replace("\n", " "))[0]
+    first = re.sub(r"``([^`]*)``", r"\1", first).strip()
+    if not first or len(first) > 90 or re.search(r"[=_\[\]`]|\w\.\w", first):  # code, not words
+        return ""
+    return f"the step \"{first[0].lower() + first[1:]}\""
+
+
+# ------------------------------------------------------------------ generating
+@functools.lru_cache(maxsize=16)
+def _module_mutants(source: str, api: frozenset) -> dict:
+    """def name -> [(operator, ordinal, payload, line, phrase)], the sites of every def."""
+    tree = ast.parse(source)
+    defs = _defs(tree)
+    sites = {}
+    for name, fn in defs.items():
+        params = {a.arg for a in fn.args.args + fn.args.kwonlyargs} if name in api else set()
+        words = _Words(fn, params, defs, set(api))
+        sites[name] = list(_sites(fn, words))
+    return sites
+
+
+def _calls_of(fn: ast.FunctionDef, defs: dict) -> list[str]:
+    return list(dict.fromkeys(n.func.id for n in ast.walk(fn) if isinstance(n, ast.Call)
+                              and isinstance(n.func, ast.Name) and n.func.id in defs and n.func.id != fn.name))
+
+
+def mutants_of(source: str, api) -> dict[str, list[Mutant]]:
+    """API function -> its mutants: edits in its own ``def`` and in every module function it
+    calls (directly or not), each once (the first of the edits giving the same code).
+
+    ``source`` is the reference module's text; ``api`` the graded function names.
+    """
+    api = frozenset(api)
+    tree = ast.parse(source)
+    defs = _defs(tree)
+    sites = _module_mutants(source, api)
+    out = {}
+    for function in sorted(api & set(defs)):
+        reached, queue = [], [function]
+        while queue:  # the functions it runs, itself first
+            name = queue.pop(0)
+            if name not in reached:
+                reached.append(name)
+                queue += _calls_of(defs[name], defs)
+        mutants = []
+        for where in reached:
+            context = _context(function, where, defs, api)
+            for operator, ordinal, payload, line, phrase in sites[where]:
+                mutants.append(Mutant(operator, function, where, line, ((where, ordinal, operator, payload),),
+                                      f"in `{function}`{context}, {phrase}"))
+        out[function] = mutants
+    return out
+
+
+def _context(function: str, where: str, defs: dict, api) -> str:
+    if where == function:
+        return ""
+    if where in api:
+        return f" (in `{where}`, which it calls)"
+    step = step_phrase(defs[where])
+    return f", in {step}" if step else ", in a step it runs"
+
+
+def _sites(fn: ast.FunctionDef, words: _Words):
+    """(operator, ordinal, payload, line, phrase) for every change the operators make in ``fn``."""
+    nodes = list(ast.walk(fn))
+    parents = _parents(fn)
+    seen = set()
+    for ordinal, node in enumerate(nodes):
+        if ordinal == 0 or _in_docstring(node, fn):
+            continue
+        line = getattr(node, "lineno", None) or getattr(parents.get(id(node), (fn,))[0], "lineno", fn.lineno)
+        for operator, payload, phrase in _changes(node, parents, words, line):
+            if not phrase:
+                continue
+            try:
+                before = ast.unparse(node)
+                after = ast.unparse(ast.fix_missing_locations(_MAKE[operator](node, payload)))
+            except Exception:  # noqa: BLE001 - an edit that cannot be written is not a mutant
+                continue
+            if before == after or (ordinal, after) in seen:
+                continue
+            seen.add((ordinal, after))
+            yield operator, ordinal, payload, line, phrase
+
+
+def _in_docstring(node, fn) -> bool:
+    body = fn.body
+    return bool(body) and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
+        and node is body[0].value
+
+
+def _changes(node, parents, words: _Words, line):
+    """The operators' changes of one node: (operator, payload, phrase)."""
+    what = lambda n: words.what(n, line=line)  # noqa: E731
+    parent = parents.get(id(node), (None, None, None))[0]
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and not isinstance(node.operand, ast.Constant):
+        yield "sign", "remove", _subject(what(node.operand), "has the wrong sign (its minus is missing)", node, parents, words)
+    if isinstance(node, ast.expr) and _entry_of_literal(node, parents) and not (
+            isinstance(node, ast.Constant) and node.value in (0, 0.0, 1, 1.0)) \
+            and not isinstance(node, ast.UnaryOp) and not isinstance(parent, ast.UnaryOp):
+        yield "sign", "insert", _subject(what(node), "has the wrong sign", node, parents, words)
+    if _trig_argument(node, parent):
+        yield "sign", "insert", f"{what(node)} has the wrong sign (inside the sine/cosine)" if what(node) else ""
+    if isinstance(node, ast.Name) and node.id in words.api_params and _angle_name(node.id) \
+            and isinstance(parent, ast.Call) and node in parent.args \
+            and _dotted(parent.func) not in _ANGLE_CONVERSIONS and not _trig_argument(node, parent):
+        yield "degrees", "np.deg2rad", f"`{node.id}` is converted to radians where degrees are needed"
+    if isinstance(node, ast.Constant) and isinstance(node.value, int) and not isinstance(node.value, bool):
+        yield from _constant_changes(node, parents, words, what)
+    if isinstance(parent, ast.Call) and _dotted(parent.func) == "range" and parent.args \
+            and node is parent.args[min(1, len(parent.args) - 1)] and not isinstance(node, ast.Constant):
+        for delta in ("-1", "+1"):
+            yield "bound", delta, f"a loop over {what(node)} runs one step {'short' if delta == '-1' else 'too far'} " \
+                                  "(off by one)" if what(node) else ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)):
+        left, right = what(node.left), what(node.right)
+        if right:
+            verb = "added instead of subtracted" if isinstance(node.op, ast.Sub) else "subtracted instead of added"
+            yield "add_sub", None, f"{right} is {verb}" + (f" ({left} {'minus' if isinstance(node.op, ast.Sub) else 'plus'} it)" if left else "")
+    if isinstance(node, ast.BinOp) and type(node.op) in _NON_COMMUTATIVE:
+        left, right = what(node.left), what(node.right)
+        kind = _NON_COMMUTATIVE[type(node.op)]
+        if left and right:
+            if isinstance(node.op, ast.MatMult):
+                yield "swap_operands", None, f"the matrix product of {left} and {right} is taken in the reverse order"
+            else:
+                yield "swap_operands", None, f"the {kind} has its two operands swapped ({left} and {right})"
+        if isinstance(node.op, ast.MatMult):
+            if right and left:
+                yield "drop_factor", "left", f"the product with {left} is missing (only {right} is used)"
+                yield "drop_factor", "right", f"the product with {right} is missing (only {left} is used)"
+        if isinstance(node.op, ast.Div):
+            yield "drop_division", None, _division_phrase(node, what)
+            yield "int_division", "floor", f"{left or 'a value'} divided by {right or 'another'} is an integer " \
+                                           "division (// truncates)"
+    if isinstance(node, ast.Call):
+        yield from _call_changes(node, words, what, parents)
+    if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load):
+        inner = what(node.value)
+        yield "transpose", "remove", f"{inner} is used untransposed (its transpose belongs there)" if inner else ""
+    if isinstance(node, ast.expr) and _transposable(node, parent):
+        inner = what(node)
+        yield "transpose", "insert", f"{inner} is used transposed" if inner else ""
+    if isinstance(node, ast.Attribute) and _dotted(node).startswith("cv2.") and node.attr in _FLAG_FAMILY:
+        for other in _FLAG_FAMILY[node.attr]:
+            if other != node.attr:
+                yield "flag", other, f"`cv2.{other}` is used where `cv2.{node.attr}` belongs"
+    if isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2:
+        first, second = node.slice.elts
+        inner = what(node.value)
+        for whole, index, was, now in ((first, second, "column", "row"), (second, first, "row", "column")):
+            if _whole_slice(whole) and isinstance(index, ast.Constant) and isinstance(index.value, int) and inner:
+                yield "axis", "swap_index", f"{now} {index.value} of {inner} is used where {was} {index.value} " \
+                                            f"belongs (a {now} instead of a {was})"
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)) and isinstance(node.right, ast.Constant) \
+            and node.right.value == 1:
+        inner = what(node.left)
+        sign = "- 1" if isinstance(node.op, ast.Sub) else "+ 1"
+        yield "bound", "drop", f"the {sign} after {inner} is missing (off by one)" if inner else ""
+    if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and _replaceable(node, parent):
+        yield from _name_changes(node, words, what, line)
+    if isinstance(node, (ast.Assign, ast.AugAssign)) and parent is not None:
+        yield "drop_statement", None, _statement_phrase(node, words, line)
+
+
+def _subject(phrase: str, predicate: str, node, parents, words) -> str:
+    """"<phrase> <predicate>", placed in its matrix literal when it is an entry of one."""
+    place = _entry_of_literal(node, parents)
+    if place:
+        where = f"entry [{place[0]}, {place[1]}] of the matrix built there"
+        return f"{phrase} at {where} {predicate}" if phrase else f"{where} {predicate}"
+    return f"{phrase} {predicate}" if phrase else ""
+
+
+def _entry_of_literal(node, parents):
+    """(row, column) when ``node`` (or its minus) is an entry of a nested list literal."""
+    if not isinstance(node, ast.expr):
+        return None
+    up = parents.get(id(node))
+    if up and isinstance(up[0], ast.UnaryOp):
+        node, up = up[0], parents.get(id(up[0]))
+    if not up or not isinstance(up[0], ast.List) or up[2] is None:
+        return None
+    row, above = up[0], parents.get(id(up[0]))
+    if not above or not isinstance(above[0], ast.List) or above[2] is None:
+        return None
+    if not all(isinstance(r, ast.List) for r in above[0].elts):
+        return None
+    return above[2], up[2]
+
+
+def _division_phrase(node, what) -> str:
+    right = node.right
+    left = what(node.left)
+    if isinstance(right, ast.Subscript):
+        index = right.slice
+        last = (isinstance(index, ast.Constant) and index.value in (2, -1)) or (
+            isinstance(index, ast.Tuple) and len(index.elts) == 2 and (
+                (isinstance(index.elts[1], ast.Constant) and index.elts[1].value in (2, -1))
+                or (isinstance(index.elts[1], ast.Slice) and isinstance(index.elts[1].lower, ast.Constant)
+                    and index.elts[1].lower.value in (2, -1))
+                or (isinstance(index.elts[0], ast.Constant) and index.elts[0].value in (2, -1))))
+        if last:
+            return (f"{left} is not divided by its last (homogeneous) coordinate (no de-homogenisation)"
+                    if left else "the division by the last (homogeneous) coordinate is missing (no de-homogenisation)")
+    divisor = what(right)
+    if isinstance(right, ast.Call) and _dotted(right.func).endswith("norm"):
+        return f"the normalisation by {divisor} is missing" if divisor else "a normalisation (by a norm) is missing"
+    if divisor and left:
+        return f"{left} is not divided by {divisor} (a normalisation is missing)"
+    return ""
+
+
+def _call_changes(node: ast.Call, words, what, parents):
+    dotted = _dotted(node.func)
+    short = dotted.rsplit(".", 1)[-1]
+    shown = f"`{dotted}`" if dotted.startswith(("cv2.", "np.", "numpy.")) else (
+        f"`{dotted}`" if dotted in words.api else "")
+    positional = [a for a in node.args if not isinstance(a, ast.Starred)]
+    if len(positional) == len(node.args) and len(node.args) >= 2 and shown:
+        for i in range(len(node.args)):
+            for j in range(i + 1, min(len(node.args), i + 3)):
+                a, b = what(node.args[i]), what(node.args[j])
+                ordinal = ("first", "second", "third", "fourth", "fifth", "sixth")
+                if i < 6 and j < 6:
+                    detail = f" ({a} and {b})" if a and b else ""
+                    yield "swap_args", (i, j), f"{shown} gets its {ordinal[i]} and {ordinal[j]} arguments in " \
+                                               f"the wrong order{detail}"
+    if dotted in _ANGLE_CONVERSIONS:
+        arg = what(node.args[0]) if node.args else ""
+        unit = _ANGLE_CONVERSIONS[dotted]
+        other = "degrees" if unit == "radians" else "radians"
+        yield "degrees", "remove", f"{arg or 'the angle'} is used in {other} where {unit} are needed " \
+                                   f"(the conversion `{dotted}` is missing)"
+    if short in _OPPOSITES and (dotted.startswith(("np.", "numpy.")) or dotted in ("min", "max")):
+        other = dotted[: -len(short)] + _OPPOSITES[short]
+        on = what(node.args[0]) if node.args else ""
+        yield "minmax", other, f"`{other}` is used where `{dotted}` belongs" + (f" (on {on})" if on else "")
+
+
+def _trig_argument(node, parent) -> bool:
+    return isinstance(parent, ast.Call) and bool(parent.args) and node is parent.args[0] \
+        and _dotted(parent.func).rsplit(".", 1)[-1] in ("sin", "cos", "tan") \
+        and not isinstance(node, (ast.UnaryOp, ast.Constant))
+
+
+def _angle_name(name: str) -> bool:
+    return any(word in name.lower() for word in ("angle", "deg", "theta"))
+
+
+def _constant_changes(node: ast.Constant, parents, words, what):
+    """An integer constant as an axis, an index or a slice bound: another axis or index, a bound
+    moved by one."""
+    parent, field, _ = parents.get(id(node), (None, None, None))
+    value = node.value
+    if isinstance(parent, ast.keyword) and parent.arg == "axis":
+        for other in (0, 1):
+            if other != value:
+                yield "axis", other, f"the sum/statistic runs over axis {other} where axis {value} belongs"
+        return
+    if isinstance(parent, ast.Slice):
+        subscript = parents.get(id(parent), (None,))[0]
+        subscript = parents.get(id(subscript), (None,))[0] if isinstance(subscript, ast.Tuple) else subscript
+        inner = what(subscript.value) if isinstance(subscript, ast.Subscript) else ""
+        if value >= 0 and inner:
+            for delta in (-1, 1):
+                if value + delta >= 0:
+                    yield "bound", value + delta, f"a slice of {inner} {'starts' if field == 'lower' else 'stops'} " \
+                                                  f"one element {'early' if delta < 0 else 'late'} (off by one)"
+        return
+    subscript, elements = parent, [node]
+    if isinstance(parent, ast.Tuple):
+        subscript, elements = parents.get(id(parent), (None,))[0], parent.elts
+    if not (isinstance(subscript, ast.Subscript) and subscript.slice is (parent if elements != [node] else node)):
+        return
+    if not 0 <= value <= 2:
+        return
+    position = next(i for i, e in enumerate(elements) if e is node)
+    if isinstance(subscript.value, ast.Attribute) and subscript.value.attr == "shape" and value in (0, 1):
+        target = what(subscript.value.value)
+        if target:
+            yield "axis", 1 - value, f"the width and height of {target} are swapped"
+        return
+    inner = what(subscript.value)
+    for other in (0, 1, 2):
+        if other != value and (other < 2 or value == 1):
+            phrase = _index_phrase(inner, elements, position, value, other)
+            if phrase:
+                yield "axis", other, phrase
+
+
+def _transposable(node, parent) -> bool:
+    """Where a ``.T`` is a plausible slip: a matrix product's operand, a linear-algebra call's
+    argument, a returned matrix."""
+    if isinstance(node, (ast.Constant, ast.Starred)) or (isinstance(node, ast.Attribute) and node.attr == "T"):
+        return False
+    if isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult):
+        return True
+    if isinstance(parent, ast.Call) and node in parent.args and _dotted(parent.func).startswith("np.linalg."):
+        return True
+    return isinstance(parent, ast.Return) and isinstance(node, (ast.Name, ast.Call, ast.BinOp))
+
+
+def _index_phrase(inner, elements, position, value, other) -> str:
+    if not inner:
+        return ""
+    if len(elements) == 2 and position == 1 and _whole_slice(elements[0]):
+        names = {0: "x coordinates (column 0)", 1: "y coordinates (column 1)", 2: "values in column 2"}
+        return f"the {names[other]} of {inner} are used where the {names[value]} belong"
+    if len(elements) == 1:
+        return f"element {other} of {inner} is used where element {value} belongs"
+    if len(elements) == 2 and position == 0 and _whole_slice(elements[1]):
+        return f"row {other} of {inner} is used where row {value} belongs"
+    return f"another index ({other} for {value}) is used in {inner}"
+
+
+def _replaceable(node: ast.Name, parent) -> bool:
+    if isinstance(parent, ast.Call) and parent.func is node:
+        return False
+    if isinstance(parent, ast.Attribute):
+        return False
+    return isinstance(parent, (ast.Call, ast.BinOp, ast.Subscript, ast.Return, ast.keyword, ast.Tuple,
+                               ast.List, ast.UnaryOp, ast.Compare))
+
+
+def _name_changes(node: ast.Name, words: _Words, what, line):
+    if node.id in ("np", "cv2", "math", "None", "True", "False"):
+        return
+    own = what(node)
+    if not own:
+        return
+    count = 0
+    for other in words.locals_before(line):
+        if other == node.id or other in words.module_defs:
+            continue
+        phrase = words.what(ast.Name(other, ast.Load()), line=line)
+        if not phrase or phrase == own:
+            continue
+        yield "other_name", other, f"{phrase} is used where {own} belongs"
+        count += 1
+        if count >= _OTHER_NAMES_PER_SITE:
+            return
+
+
+def _statement_phrase(node, words: _Words, line) -> str:
+    target = node.target if isinstance(node, ast.AugAssign) else (node.targets[0] if len(node.targets) == 1 else None)
+    if isinstance(target, ast.Subscript):
+        inner = words.what(target, line=line + 1)
+        return f"{inner} is never set (that step is missing)" if inner else ""
+    if isinstance(target, ast.Name):
+        earlier = [d for d in words.definitions.get(target.id, ()) if d[0] < node.lineno]
+        is_param = target.id in {a.arg for a in words.fn.args.args}
+        if isinstance(node, ast.AugAssign) or earlier or is_param:
+            before = words.what(ast.Name(target.id, ast.Load()), line=node.lineno)
+            change = words.what(node.value if isinstance(node, ast.Assign) else node, line=node.lineno + 1)
+            if isinstance(node, ast.AugAssign):
+                verb = {ast.Div: "divided by", ast.Mult: "multiplied by", ast.Add: "increased by",
+                        ast.Sub: "decreased by"}.get(type(node.op))
+                amount = words.what(node.value, line=node.lineno)
+                if before and verb and amount:
+                    return f"{before} is never {verb} {amount} (that step is missing)"
+            if before and change and change != before:
+                return f"{before} is used as it was, without the update to {change}"
+    return ""
+
+

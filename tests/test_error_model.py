@@ -1,0 +1,224 @@
+"""The error model (autograder.engine.mutants): mutants of the reference, confirmed on the
+student's own inputs, name mistakes nobody listed."""
+
+from __future__ import annotations
+
+import ast
+import re
+import types
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from autograder.engine.mutants import naming
+from autograder.engine.mutants.helper import Helper, HelperFailed
+from autograder.engine.mutants.operators import OPERATORS, apply_edits, mutants_of, mutated_defs
+from autograder.engine.registry import discover
+from autograder.sandbox.supervisor import CallOutcome
+from fixtures.images import photo
+
+ROOT = Path(__file__).resolve().parents[1]
+LABS = discover()
+
+
+def _api(lab) -> set[str]:
+    return {name for exercise in lab.exercises.values() for name in exercise.signatures}
+
+
+def _source(lab) -> str:
+    return (ROOT / "reference_solutions" / f"{lab.module}.py").read_text()
+
+
+@pytest.mark.parametrize("key", sorted(LABS))
+def test_operators_make_valid_distinct_mutants_of_every_reference_function(key):
+    """Every graded function of every lab has mutants; each (its edits once, where several graded
+    functions share a helper) is valid Python, changes its def, and no two make the same code."""
+    lab = LABS[key]
+    source = _source(lab)
+    tree = ast.parse(source)
+    defs = {n.name for n in tree.body if isinstance(n, ast.FunctionDef)}
+    every = mutants_of(source, _api(lab))
+    assert set(every) == _api(lab) & defs
+    unique = {}
+    for function, mutants in every.items():
+        assert mutants, f"{function}: no mutant"
+        for mutant in mutants:
+            assert mutant.operator in OPERATORS and mutant.function == function
+            unique.setdefault(mutant.key, mutant)
+    originals = {n.name: ast.unparse(n) for n in tree.body if isinstance(n, ast.FunctionDef)}
+    made = set()
+    for mutant in unique.values():
+        module = mutated_defs(tree, mutant.edits, source)
+        compile(module, "<mutant>", "exec")     # valid Python
+        [changed] = module.body
+        text = ast.unparse(changed)
+        assert text != originals[mutant.where], f"{mutant.sentence}: changes nothing"
+        assert text not in made, f"{mutant.sentence}: the same code as another mutant"
+        made.add(text)
+
+
+@pytest.mark.parametrize("key", sorted(LABS))
+def test_sentences_speak_the_students_terms(key):
+    """A sentence names the graded function, API parameters and functions, NumPy/OpenCV calls:
+    never a local variable or a private helper of the reference, never its code."""
+    lab = LABS[key]
+    source = _source(lab)
+    tree = ast.parse(source)
+    defs = {n.name: n for n in tree.body if isinstance(n, ast.FunctionDef)}
+    api = _api(lab)
+    allowed = set(api) | {a.arg for name in api if name in defs for a in defs[name].args.args}
+    for function, mutants in mutants_of(source, api).items():
+        for mutant in mutants:
+            assert mutant.sentence.startswith(f"in `{function}`")
+            for quoted in re.findall(r"`([^`]+)`", mutant.sentence):
+                assert quoted in allowed | {"min", "max"} or quoted.startswith(("cv2.", "np.")), (mutant.sentence, quoted)
+            assert "=" not in mutant.sentence, mutant.sentence
+
+
+def test_apply_edits_rebuilds_the_whole_module():
+    lab = LABS["lab07"]
+    source = _source(lab)
+    [degrees] = [m for m in mutants_of(source, _api(lab))["rotation_matrix"] if m.operator == "degrees"
+                 and "missing" in m.sentence]
+    module = types.ModuleType("m")
+    exec(apply_edits(source, degrees.edits), module.__dict__)  # noqa: S102 - the reference, changed
+    theta = 30.0
+    assert np.allclose(module.rotation_matrix(theta)[0, 1], np.sin(theta))   # degrees used as radians
+
+
+# ------------------------------------------------------------------ naming, with a stand-in sandbox
+class _InProcess:
+    """A stand-in for the student's sandbox: the (test's own, trusted) student module called here."""
+
+    def __init__(self, module):
+        self.module, self.shared, self.asked = module, {}, []
+
+    def call(self, module, function, args, kwargs, timeout=None, forbid=()):
+        self.asked.append((function, args, kwargs))
+        print("the student printed this")
+        return CallOutcome(ok=True, value=getattr(self.module, function)(*args, **kwargs), output="hello")
+
+
+def _trial(key: str, student_source: str, calls):
+    """A failed trial: the student's module (the reference with ``student_source`` appended)
+    called as ``calls`` [(function, args, kwargs)]."""
+    lab = LABS[key]
+    module = types.ModuleType("student")
+    exec(_source(lab) + "\n\n" + student_source, module.__dict__)  # noqa: S102 - the test's own code
+    recorded = [(f, a, k, getattr(module, f)(*a, **k)) for f, a, k in calls]
+    return SimpleNamespace(lab=lab, calls=recorded, sandbox=_InProcess(module), check=SimpleNamespace(timeout=10),
+                           forbid={}, student_seconds=0.0, outputs=[])
+
+
+ROTATION_ADDS_RC = """
+def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+    theta = np.deg2rad(angle_deg)
+    cos, sin = np.cos(theta), np.sin(theta)
+    R = np.array([[cos, sin], [-sin, cos]])
+    c = np.asarray(center, dtype=np.float64)
+    M = np.eye(3)
+    M[:2, :2] = R
+    M[:2, 2] = c + R @ c
+    return M
+"""
+
+
+def test_the_confirmation_separates_two_candidates_and_names_the_true_one():
+    """rotate(image) at the default 45 degrees about the centre with c + R c: the image leaves the
+    frame, and a sine with the wrong sign gives the same black picture. The confirmation inputs
+    (another angle: the default varied too) tell them apart; only the true one is named."""
+    image = photo("astronaut", (120, 90))
+    trial = _trial("lab07", ROTATION_ADDS_RC, [("rotate", (image,), {})])
+    model = naming.model_for(trial.lab)
+    reproducing = []
+    runner = naming.helper()
+    runner.prepare(model.source, model.module, [("rotate", (image,), {})], 10)
+    [reference] = runner.run((), [0], 10)
+    student = trial.calls[0][3]
+    for mutant in model.mutants["rotate"]:
+        [value] = runner.run(mutant.edits, [0], 5)
+        if naming.reproduces(value, student, reference):
+            reproducing.append(mutant.operator)
+    assert {"sign", "add_sub"} <= set(reproducing)   # on the failing input alone, both fit
+
+    named = naming.name_failure(trial, seconds=60)
+    assert named is not None and named.mutant.operator == "add_sub", named
+    assert "added instead of subtracted" in named.sentence and "`rotate`" in named.sentence
+    assert named.confirmations >= 1 and trial.sandbox.asked            # the student was asked
+    assert all("angle_deg" in kwargs for _, _, kwargs in trial.sandbox.asked[1:]) or \
+        any("angle_deg" in kwargs for _, _, kwargs in trial.sandbox.asked)
+    assert any("confirmation call" in output for output in trial.outputs)   # its printing labelled
+
+
+def test_a_student_no_mutant_explains_is_not_named():
+    """A rotation by a fixed wrong angle is no operator's: nothing is named."""
+    trial = _trial("lab07", "def rotation_matrix(angle_deg, center=(0.0, 0.0)):\n"
+                            "    return np.array([[0.3, 0.1, 2.0], [0.5, 0.9, 1.0], [0.0, 0.0, 1.0]])\n",
+                   [("rotation_matrix", (30.0,), {"center": (3.0, -2.0)})])
+    assert naming.name_failure(trial, seconds=60) is None
+
+
+def test_a_right_answer_is_not_named():
+    trial = _trial("lab07", "", [("rotation_matrix", (30.0,), {})])
+    assert naming.name_failure(trial, seconds=60) is None
+    assert not trial.sandbox.asked
+
+
+def test_degrees_used_as_radians_is_named():
+    trial = _trial("lab07", "def rotation_matrix(angle_deg, center=(0.0, 0.0)):\n"
+                            "    c, s = np.cos(angle_deg), np.sin(angle_deg)\n"
+                            "    cx, cy = center\n"
+                            "    R = np.array([[c, s], [-s, c]])\n"
+                            "    M = np.eye(3)\n    M[:2, :2] = R\n"
+                            "    M[:2, 2] = np.array([cx, cy]) - R @ np.array([cx, cy])\n    return M\n",
+                   [("rotation_matrix", (30.0,), {"center": (3.0, -2.0)})])
+    named = naming.name_failure(trial, seconds=60)
+    assert named is not None and named.mutant.operator == "degrees"
+    assert "`angle_deg` is used in degrees where radians are needed" in named.sentence
+
+
+def test_a_contradicted_hand_written_name_is_replaced_and_an_agreeing_one_kept(monkeypatch):
+    from autograder.engine.checks import Verdict
+
+    lab = LABS["lab07"]
+    [degrees] = [m for m in naming.model_for(lab).mutants["rotation_matrix"] if m.operator == "degrees"][:1]
+    monkeypatch.setattr(naming, "name_failure", lambda trial: naming.Naming(degrees, 1, 1))
+    wrong = Verdict(0.0, "rotation_matrix(30) is wrong: it looks like the translation column is c + R c.\nmore",
+                    mistake="the translation column is c + R c")
+    replaced = naming.named_by_error_model(wrong, None)
+    assert replaced.mistake == "mutant:degrees"
+    assert "c + R c" not in replaced.message.split("\n")[0] and replaced.message.endswith("\nmore")
+    assert "The error model: it looks like in `rotation_matrix`" in replaced.message
+    agreeing = Verdict(0.0, "wrong: it looks like the angle is used in degrees", mistake="angle in degrees")
+    assert naming.named_by_error_model(agreeing, None) is agreeing
+    plain = Verdict(0.0, "rotation_matrix(30) is wrong")
+    assert naming.named_by_error_model(plain, None).mistake == "mutant:degrees"
+
+
+# ------------------------------------------------------------------ the helper process
+def test_a_mutant_that_loops_forever_is_stopped_and_the_helper_restarts():
+    helper = Helper()
+    try:
+        source = "def spin(n):\n    while n > 0:\n        n += 1\n    return n\n\ndef one(x):\n    return x + 1\n"
+        helper.prepare(source, "looping", [("spin", (1,), {}), ("one", (np.arange(3.0),), {})], 5)
+        with pytest.raises(HelperFailed):
+            helper.run((), [0], 0.5)
+        assert helper.kills == 1
+        helper.prepare(source, "looping", [("one", (np.arange(3.0),), {})], 5)   # a new helper
+        [value] = helper.run((), [0], 5)
+        assert np.array_equal(value, [1.0, 2.0, 3.0])
+    finally:
+        helper.close()
+
+
+def test_the_helper_answers_errors_as_values_and_never_pickles():
+    helper = Helper()
+    try:
+        source = "def f(x):\n    raise ValueError('no')\n\ndef g(x):\n    return object()\n"
+        helper.prepare(source, "errors", [("f", (1,), {}), ("g", (1,), {})], 5)
+        first, second = helper.run((), [0, 1], 5)
+        assert "ValueError" in first["__error__"] and "__error__" in second   # an object cannot cross
+    finally:
+        helper.close()
