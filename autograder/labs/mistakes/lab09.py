@@ -377,7 +377,12 @@ MISTAKES = {
         def project_focal_lengths(points, focal_lengths):
             X, _ = _points(points)
             return np.stack([pinhole_project(X, f) for f in np.asarray(focal_lengths)[::-1]])
-        """, ["another order"]),
+        """, ["reverse order"]),
+    "every projection with the first focal length": ("lab09.ex4", """
+        def project_focal_lengths(points, focal_lengths):
+            X, _ = _points(points)
+            return np.stack([pinhole_project(X, focal_lengths[0]) for f in focal_lengths])
+        """, ["every projection is made with the first focal length"]),
     "k2 ignored": ("lab09.ext2", """
         _right = distort_points
         def distort_points(points, dist):
