@@ -234,3 +234,21 @@ def test_a_zipped_report_member_that_is_no_regular_file_is_named_with_what_it_is
     eve = read(tmp_path / "class")["eve"]
     assert not eve.error and eve.report_files == {}
     assert eve.report.problems == (f"eve/lab07_report.md was not read: {reason}",)
+
+
+@pytest.mark.parametrize("kind", ["link", "fifo"])
+def test_an_lms_downloads_report_link_or_pipe_is_named_on_its_students_report(tmp_path, kind):
+    """A Canvas or Moodle download is flat: a link or a pipe at its top named like a student's report
+    file is listed as ignored (never followed) and named in that student's report's problems."""
+    canvas = tmp_path / "canvas"
+    write(canvas / f"adalovelace_1234_55_{MODULE}.py", CODE)
+    make_special(canvas / "adalovelace_1234_56_lab07_report-1.md", kind)
+    moodle = tmp_path / "moodle"
+    write(moodle / f"Bo Li_77_assignsubmission_file_{MODULE}.py", CODE)
+    make_special(moodle / "Bo Li_77_assignsubmission_file_scan.pdf", kind)
+    for root, file in ((canvas, "lab07_report.md"), (moodle, "scan.pdf")):
+        upload = read_upload(root, [MODULE], [MODULE])
+        [entry] = upload.entries
+        assert not entry.error and entry.report_files == {}
+        assert entry.report.problems == (f"{file} was not read: {FOLDER_KINDS[kind]}",)
+        assert len(upload.ignored) == 1, "still listed with the upload's ignored items"

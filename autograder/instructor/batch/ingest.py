@@ -172,13 +172,17 @@ def read_class(path, modules: list[str], every_module: list[str] = ()) -> list[E
     return read_upload(path, modules, every_module).entries
 
 
-def read_upload(path, modules: list[str], every_module: list[str] = ()) -> ClassUpload:
+def read_upload(path, modules: list[str], every_module: list[str] = (),
+                known: "Identities | None" = None) -> ClassUpload:
     """Read the class folder or zip at ``path``: entries sorted by id, ignored items, warnings.
 
     ``modules`` are the lab modules the selection grades, ``every_module`` those
     of all labs (for the lone-file rule: a file named after another lab's module
-    is not renamed). Raises :class:`IngestError` only when ``path`` itself cannot
-    be read; anything wrong inside it is one entry's error or one ignored item.
+    is not renamed). ``known``: the ids earlier downloads gave (the gradebook's,
+    :meth:`.gradebook.Gradebook.identities`): a student seen before keeps their id, and
+    no id ever given goes to anybody else. Raises :class:`IngestError` only when
+    ``path`` itself cannot be read; anything wrong inside it is one entry's error or
+    one ignored item.
     """
     upload = ClassUpload()
     every = set(every_module) | set(modules)
@@ -191,7 +195,7 @@ def read_upload(path, modules: list[str], every_module: list[str] = ()) -> Class
             _name_lone_file(entry, modules, every)
         _read_report(entry)
         _make_safe(entry)
-    _assign_ids(upload.entries)
+    _assign_ids(upload.entries, known or Identities())
     upload.warnings += _shared_identities(upload.entries)
     upload.entries.sort(key=lambda e: e.student_id)
     return upload
@@ -414,10 +418,21 @@ class _Reader:
         return metadata
 
     # -------------------------------------------------------------- Canvas
+    def _unread_report(self, name: str, pattern: re.Pattern, owner: str, unread: dict) -> None:
+        """A link or special file at the top named like a student's report file (listed as ignored
+        already): kept in ``unread`` by its owner's LMS id, to be named on their review screen too."""
+        match = pattern.match(name)
+        if match and ReportFiles.wanted(match["file"]):
+            why = self.tree.not_regular(self.root + (name,))
+            file = _undo_canvas_renaming(match["file"])[0] if pattern is CANVAS_NAME else match["file"]
+            unread.setdefault(match[owner], []).append((file, why))
+
     def canvas(self, names: list[str]) -> None:
         by_user: dict[str, list[tuple[str, re.Match]]] = {}
+        unread: dict[str, list[tuple[str, str]]] = {}
         for name in names:
             if self._not_followed(name):
+                self._unread_report(name, CANVAS_NAME, "user", unread)
                 continue
             match = CANVAS_NAME.match(name) if self.kind(name) == FILE else None
             if not match:
@@ -430,6 +445,8 @@ class _Reader:
             entry = Entry(slug(first["name"], user), first["name"], "canvas", uploads[0][0],
                           lms={"canvas_user_id": user, "canvas_submission_id": first["submission"]},
                           late=any(m["late"] for _, m in uploads))
+            for file, why in unread.get(user, ()):
+                entry.reports_found.refuse(file, why)
             self.add(entry, lambda entry=entry, uploads=uploads: self.canvas_files(entry, uploads))
 
     def canvas_files(self, entry: Entry, uploads) -> None:
@@ -473,8 +490,10 @@ class _Reader:
     # -------------------------------------------------------------- Moodle
     def moodle(self, names: list[str]) -> None:
         by_participant: dict[str, list[tuple[str, re.Match]]] = {}
+        unread: dict[str, list[tuple[str, str]]] = {}
         for name in names:
             if self._not_followed(name):
+                self._unread_report(name, MOODLE_NAME, "participant", unread)
                 continue
             match = MOODLE_NAME.match(name)
             if not match:
@@ -490,6 +509,8 @@ class _Reader:
             first = items[0][1]
             entry = Entry(slug(first["name"], participant), first["name"], "moodle", items[0][0],
                           lms={"moodle_participant_id": participant})
+            for file, why in unread.get(participant, ()):
+                entry.reports_found.refuse(file, why)
             self.add(entry, lambda entry=entry, items=items: self.moodle_files(entry, items))
 
     def moodle_files(self, entry: Entry, items) -> None:
@@ -644,16 +665,64 @@ def slug(*parts: str) -> str:
     return text[:80].strip("-") or "student"
 
 
-def _assign_ids(entries: list[Entry]) -> None:
-    """Unique ids by construction: an entry whose slug is its alone keeps it; the others,
-    in the order of their origins, take ``slug-2``, ``slug-3``, ... skipping every id
-    already given (so ``alice``, ``Alice`` and a folder ``alice-2`` never collide)."""
+# The LMS's own identities of a person, surest first (see identity_keys).
+_LMS_IDENTITIES = (("canvas", "canvas_user_id"), ("moodle", "moodle_participant_id"), ("sid", "sid"),
+                   ("email", "email"))
+
+
+def identity_keys(origin: str, lms: dict) -> list[str]:
+    """What tells this student from every other across downloads, surest first: the LMS's
+    user ids where the download carries them (a Canvas file name changes with each
+    resubmission, its user id does not), else the place in the download (a folder's name,
+    case and all: ``alice/`` and ``Alice/`` are two students)."""
+    keys = [f"{kind}:{str(lms.get(field, '')).strip().lower()}" for kind, field in _LMS_IDENTITIES
+            if str(lms.get(field, "")).strip()]
+    return keys or [f"origin:{origin}"]
+
+
+@dataclass
+class Identities:
+    """The ids earlier downloads gave: ``ids`` by identity key (:func:`identity_keys`; a key
+    two students shared is left out: it tells neither), and every id ever given, of
+    students still here or gone (``given``): none of them is ever given to anybody else."""
+
+    ids: dict[str, str] = field(default_factory=dict)
+    given: set[str] = field(default_factory=set)
+
+    @classmethod
+    def of(cls, students) -> "Identities":
+        """From rows with ``student_id``, ``origin`` and ``lms`` (a dict)."""
+        holders: dict[str, set[str]] = {}
+        for row in students:
+            for key in identity_keys(row["origin"], row["lms"]):
+                holders.setdefault(key, set()).add(row["student_id"])
+        return cls({key: next(iter(ids)) for key, ids in holders.items() if len(ids) == 1},
+                   {row["student_id"] for row in students})
+
+
+def _assign_ids(entries: list[Entry], known: Identities) -> None:
+    """Unique ids by construction, and stable across downloads. A student seen before
+    (:class:`Identities`) keeps their id. The others: an entry whose slug is its alone and
+    was never given keeps it; the rest, in the order of their origins, take ``slug-2``,
+    ``slug-3``, ... skipping every id already given, now or before (so ``alice``, ``Alice``
+    and a folder ``alice-2`` never collide, and a newcomer ``Alice`` never takes the id
+    ``alice`` of a student graded before, nor that of one gone since)."""
+    kept: dict[str, Entry] = {}
+    for entry in sorted(entries, key=lambda e: (e.origin, e.source)):
+        earlier = next((known.ids[key] for key in identity_keys(entry.origin, entry.lms) if key in known.ids), None)
+        if earlier is not None and earlier not in kept:
+            kept[earlier] = entry
+            entry.student_id = earlier
+    returning = {id(entry) for entry in kept.values()}
     wanted: dict[str, list[Entry]] = {}
     for entry in entries:
-        wanted.setdefault(entry.student_id, []).append(entry)
-    taken = {base for base, group in wanted.items() if len(group) == 1}
+        if id(entry) not in returning:
+            wanted.setdefault(entry.student_id, []).append(entry)
+    taken = set(known.given) | set(kept)
+    alone = {base for base, group in wanted.items() if len(group) == 1 and base not in taken}
+    taken |= alone
     for base, group in sorted(wanted.items()):
-        if len(group) == 1:
+        if base in alone:
             continue
         number = 1
         for entry in sorted(group, key=lambda e: (e.origin, e.source)):
