@@ -18,14 +18,16 @@ hint says ``instead`` (a neutral sentence, or nothing) rather than its text.
 Predicates (combine with ``|``, ``&`` and ``~``):
 
 - :func:`calls` -- a call of ``np.argmax`` (any module prefix: ``numpy.argmax``,
-  ``argmax`` imported) or, written ``".argmax"``, the method of any object;
+  ``argmax`` imported, ``a.argmax``) or, written ``".argmax"``, an attribute call only;
 - :func:`mentions` -- a name or attribute (``"cv2.BORDER_CONSTANT"``, ``".T"``);
   :func:`uses_attr` is its spelling for attributes;
 - :func:`matmul_of` -- a matrix product of two operands (``T @ H``, ``np.dot(T, H)``,
   ``T.dot(H)``, ``np.matmul(T, H)``), each a name or ``None`` for any operand;
 - :func:`expr` -- a sub-expression with the pattern's structure (``"max_disparity + 1"``,
   ``_`` matching anything);
-- :func:`keyword` -- a call passing ``name=value`` (``keyword("svd", "full_matrices", False)``).
+- :func:`keyword` -- a call passing ``name=value`` (``keyword("svd", "full_matrices", False)``);
+- :func:`passes_product` -- a call given a matrix product as one argument (``cv2.warpPerspective(img,
+  T @ H, size)``, or through a name holding the product).
 
 A predicate reads only what is written: ``calls("np.argmax")`` holds for a function that
 calls ``np.argmax`` somewhere, whatever it does with the result. That is the point: a hint
@@ -109,7 +111,7 @@ def _path(node) -> str:
 def _name_matches(path: str, wanted: str) -> bool:
     """``wanted`` = ``"np.argmax"``: the same last name, under any module prefix or none
     (``argmax``, ``numpy.argmax``, ``x.argmax``); ``".argmax"``: an attribute of anything
-    but a bare name (a method); ``"argmax"``: the last name only."""
+    (``x.argmax``, ``np.argmax``), not a bare name; ``"argmax"``: the last name only."""
     last = wanted.rsplit(".", 1)[-1]
     if path.rsplit(".", 1)[-1] != last:
         return False
@@ -175,6 +177,29 @@ def matmul_of(left: str | None, right: str | None) -> Predicate:
                 return True
         return False
     return Predicate(f"computes {shown}", test)
+
+
+def _product(node) -> bool:
+    """Whether ``node`` is a matrix product (``a @ b``, ``np.dot(a, b)``, ``np.matmul(a, b)``, ``a.dot(b)``)."""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult):
+        return True
+    return isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("dot", "matmul") \
+        and len(node.args) + isinstance(node.func, ast.Attribute) >= 2
+
+
+def passes_product(function: str, position: int) -> Predicate:
+    """A call of ``function`` whose argument at ``position`` is a matrix product, written there or
+    held by a name the function assigns a product to (``M = T @ H; cv2.warpPerspective(img, M, ...)``)."""
+    def test(tree) -> bool:
+        products = {target.id for node in ast.walk(tree) if isinstance(node, ast.Assign) and _product(node.value)
+                    for target in node.targets if isinstance(target, ast.Name)}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Call) and _name_matches(_path(node.func), function) and len(node.args) > position:
+                given = node.args[position]
+                if _product(given) or (isinstance(given, ast.Name) and given.id in products):
+                    return True
+        return False
+    return Predicate(f"passes a matrix product to {function.lstrip('.')}", test)
 
 
 def _same(node, pattern) -> bool:

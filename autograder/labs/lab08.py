@@ -27,7 +27,7 @@ from fixtures.images import coverage, photo, warp
 from ..engine import strategies as st
 from ..engine.checks import StudentFailure, Trial, partial, passed
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
-from ..engine.hints import TO_UINT8, RATIO_TEST, Hint, calls, expr, matmul_of
+from ..engine.hints import RATIO_TEST, TO_UINT8, Hint, calls, expr, matmul_of, passes_product
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
@@ -1251,7 +1251,8 @@ def judge_region(t: Trial, judge: PanoramaJudge, what: str, region, name: str, h
 
 SECOND_WARP_HINT = Hint(
     "warp img2 with T @ H, where H maps img2 onto img1 and T is the canvas shift",
-    asks=matmul_of(None, "H").saying("warps img2 with a product ... @ H (the shift after H)"),
+    asks=(matmul_of(None, "H") | passes_product("cv2.warpPerspective", 1)).saying(
+        "warps with a product of a shift and a homography"),
     instead="your code already {found}; the error is elsewhere: compare how the pixels only img2 "
             "covers are written with the truth (brightness, blending with the empty canvas)")
 

@@ -1,0 +1,172 @@
+"""Hints never contradict the student's code (autograder/engine/hints.py).
+
+The predicates read what is written (``ast``, never run); a hint whose predicate holds on the
+functions a check calls says its neutral sentence instead. Graded cases: the third-party
+mistakes of issue 35, each told to do what its code already does before the change.
+"""
+
+import textwrap
+
+import pytest
+
+from autograder.engine.hints import (NAN_WHERE, RATIO_TEST, TO_UINT8, Hint, calls, expr, keyword, matmul_of,
+                                     mentions, passes_product, read_code, uses_attr)
+from autograder.engine.runner import grade
+from autograder.labs.lab08 import SECOND_WARP_HINT
+from autograder.labs.lab11 import EIGHT_POINTS_HINT, IN_FRONT_HINT
+from autograder.labs.lab12 import NCC_HINT
+from conftest import check_results, mutant
+
+
+def found(predicate, source: str, function: str = "f") -> str:
+    return predicate.found(read_code(textwrap.dedent(source)).reachable([function]))
+
+
+def test_calls_match_any_module_prefix_and_methods_only_when_asked():
+    source = """
+        def f(a):
+            return np.argmax(a, axis=0), cv.recoverPose(a)
+        """
+    assert found(calls("np.argmax"), source) == "calls np.argmax"
+    assert found(calls("cv2.recoverPose"), source) == "calls cv2.recoverPose"   # imported as cv
+    assert found(calls(".argmax"), "def f(a):\n    return argmax(a)\n") == ""        # imported: no attribute
+    assert found(calls(".argmax"), "def f(a):\n    return a.argmax(0)\n") == "calls argmax"
+    assert found(calls("np.argmax"), "def f(a):\n    return a.argmax(0)\n") == "calls np.argmax"
+    assert found(calls("np.argmin"), source) == ""
+
+
+def test_a_helper_the_function_calls_is_read_too_and_the_last_definition_wins():
+    source = """
+        def helper(a):
+            return np.argmax(a)
+        def f(a):
+            return helper(a)
+        def g(a):
+            return np.argmax(a)
+        def g(a):
+            return np.argmin(a)
+        """
+    assert found(calls("np.argmax"), source) == "calls np.argmax"
+    assert found(calls("np.argmax"), source, "g") == ""
+    assert found(calls("np.argmax"), source, "missing") == ""
+
+
+def test_products_expressions_keywords_and_attributes():
+    source = """
+        def f(img2, H, max_disparity):
+            T = np.eye(3)
+            M = T.dot(H)
+            out = cv2.warpPerspective(img2, M, (10, 10))
+            d = range(max_disparity + 1)
+            u, s, vt = np.linalg.svd(H, full_matrices=False)
+            return out.T, np.where(H > 0, H, np.nan)
+        """
+    assert found(matmul_of("T", "H"), source) == "computes T @ H"
+    assert found(matmul_of("H", "T"), source) == ""
+    assert found(passes_product("cv2.warpPerspective", 1), source) == "passes a matrix product to cv2.warpPerspective"
+    assert found(expr("max_disparity + 1"), source) == "computes max_disparity + 1"
+    assert found(expr("_ - 1"), source) == ""
+    assert found(keyword("np.linalg.svd", "full_matrices", False), source)
+    assert not found(keyword("np.linalg.svd", "full_matrices", True), source)
+    assert found(uses_attr(".T"), source) and found(mentions("np.nan"), source) and found(NAN_WHERE, source)
+
+
+def test_and_holds_across_the_functions_read_together_or_says_the_alternative_found():
+    source = """
+        def f(kp1, des1, des2):
+            good = [m for m, n in matches(des1, des2) if m.distance < 0.75 * n.distance]
+            return estimate(good)
+        def estimate(good):
+            return cv2.findFundamentalMat(good, good, cv2.FM_RANSAC)
+        def matches(a, b):
+            return cv2.BFMatcher().knnMatch(a, b, k=2)
+        """
+    ransac = calls("cv2.findFundamentalMat") | calls("cv2.findEssentialMat")
+    assert found(ransac, source) == "calls cv2.findFundamentalMat"
+    assert found(RATIO_TEST & ransac, source)
+    assert not found(RATIO_TEST & ransac, source, "estimate")
+    assert found(~calls("np.argmax"), source)
+    assert found(TO_UINT8, "def f(x):\n    return np.clip(x, 0, 255).astype(np.uint8)\n") == "converts to uint8"
+
+
+def test_code_that_cannot_be_read_keeps_every_hint():
+    assert read_code("def f(:\n").functions == {}
+    hint = Hint("keep the highest", asks=calls("np.argmax"))
+    assert not hint.contradicts(read_code("def f(:\n"), ["f"])
+    assert hint.contradicts(read_code("def f(a):\n    return a.argmax()\n"), ["f"]) == "calls np.argmax"
+    assert hint.neutral("calls np.argmax") == "your code already calls np.argmax; the error is elsewhere"
+
+
+@pytest.mark.parametrize("source, contradicted", [
+    ("def fundamental_8point(p1, p2):\n    return np.linalg.svd(A)[2][-1].reshape(3, 3)\n", True),
+    ("def fundamental_8point(p1, p2):\n    return np.linalg.svd(A, full_matrices=False)[2][-1]\n", False),
+])
+def test_the_eight_point_hint_is_kept_only_for_a_reduced_svd(source, contradicted):
+    assert bool(EIGHT_POINTS_HINT.contradicts(read_code(source), ["fundamental_8point"])) == contradicted
+
+
+NCC_ARGMAX_OFF_BY_TWO = """
+    _bm_ref = block_matching
+    def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+        if cost != "ncc":
+            return _bm_ref(left, right, max_disparity, block_size, cost)
+        score = -_ncc_volume(_grey_float(left), _grey_float(right), int(max_disparity), int(block_size))
+        return np.maximum(np.{pick}({sign}score, axis=0) - 2, 0).astype(np.float64)
+    """
+
+
+def test_an_ncc_matcher_keeping_the_highest_score_is_not_told_to_keep_it(tmp_path):
+    result = grade(mutant(tmp_path, "lab12_stereo", NCC_ARGMAX_OFF_BY_TWO.format(pick="argmax", sign="")),
+                   ["lab12.ext1"], pictures="none")
+    hints = [c.hint for c in check_results(result, "lab12.ext1") if not c.passed and c.hint]
+    assert hints and all("HIGHEST" not in h and "keeps the highest score (argmax)" in h for h in hints)
+    assert NCC_HINT.text.startswith(hints[0].split(";")[0])     # the formula is still said
+
+
+def test_the_same_mistake_without_argmax_keeps_the_hint(tmp_path):
+    result = grade(mutant(tmp_path / "control", "lab12_stereo", NCC_ARGMAX_OFF_BY_TWO.format(pick="argmin", sign="-")),
+                   ["lab12.ext1"], pictures="none")
+    hints = [c.hint for c in check_results(result, "lab12.ext1") if not c.passed and c.hint]
+    assert hints and all(h == NCC_HINT.text for h in hints)
+
+
+def test_cameras_without_k_are_not_told_to_use_recover_pose_which_they_do(tmp_path):
+    source = """
+        _reference = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            F, pts1, pts2, _ = _reference(img1, img2, K)
+            E = essential_from_fundamental(F, K, K)
+            _, R, t, _ = cv2.recoverPose(E, pts1, pts2, np.asarray(K, float))
+            P1 = np.hstack([np.eye(3), np.zeros((3, 1))])       # without K, used on pixels
+            P2 = np.hstack([R, t.reshape(3, 1)])
+            return F, pts1, pts2, triangulate(P1, P2, pts1, pts2)
+        """
+    result = grade(mutant(tmp_path, "lab11_two_view", source), ["lab11.ex6"], pictures="none")
+    [structure] = [c for c in check_results(result, "lab11.ex6") if c.name.startswith("two_view_reconstruction: the 3D")]
+    assert not structure.passed
+    assert IN_FRONT_HINT.text not in structure.message
+    assert "your code already calls cv2.recoverPose" in structure.message and "P = K [R | t]" in structure.message
+
+
+def test_a_half_bright_strip_is_not_told_to_warp_with_t_at_h_which_it_does(tmp_path):
+    source = """
+        def stitch(img1, img2):
+            H = _pairwise_homography(img2, img1)
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            corners = cv2.perspectiveTransform(np.float32([[0, 0], [w2, 0], [w2, h2], [0, h2]]).reshape(-1, 1, 2), H)
+            every = np.vstack([corners.reshape(-1, 2), [[0, 0], [w1, 0], [w1, h1], [0, h1]]])
+            xmin, ymin = np.floor(every.min(axis=0)).astype(int)
+            xmax, ymax = np.ceil(every.max(axis=0)).astype(int)
+            T = np.array([[1, 0, -xmin], [0, 1, -ymin], [0, 0, 1]], float)
+            size = (int(xmax - xmin), int(ymax - ymin))
+            second = cv2.warpPerspective(img2, T @ H, size)
+            first = cv2.warpPerspective(img1, T, size)
+            out = first.copy()
+            out[second > 0] = ((first[second > 0].astype(float) + second[second > 0]) / 2).astype(np.uint8)
+            return out
+        """
+    result = grade(mutant(tmp_path, "lab08_homographies", source), ["lab08.ex5"], pictures="none")
+    [strip] = [c for c in check_results(result, "lab08.ex5") if c.name.startswith("stitch: the part only img2")]
+    assert not strip.passed and strip.hint == SECOND_WARP_HINT.neutral(
+        "warps with a product of a shift and a homography")
