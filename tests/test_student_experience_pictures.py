@@ -43,7 +43,9 @@ def test_a_wrongly_sized_result_is_drawn_smaller_and_without_a_difference_map(tm
     assert sizes["yours"][1] == "90 × 80"
     assert sizes["yours"][0] < sizes["expected"][0], "the smaller image must look smaller"
     assert "difference" not in sizes
-    assert "No difference map: your image is 90 × 80 pixels" in page
+    # one sentence: no caption about a difference map run together with "no difference map"
+    assert " — no difference map: your image is 90 × 80 pixels" in page
+    assert "the difference map is grey" not in page
 
 
 def test_a_difference_map_has_its_colour_scale(tmp_path):

@@ -240,13 +240,24 @@ class Trial:
         :class:`autograder.engine.judges.Probe`.
         """
         if key not in self._probed:
+            printed = len(self.outputs)
             try:
                 self._probed[key] = answer()
             except ChangedInPlace:
                 raise   # the check's own verdict, wherever it shows
             except (StudentFailure, Fail):
                 self._probed[key] = None
+            finally:
+                self._set_apart(printed, len(self.outputs), "the grader's own extra calls, on other inputs")
         return self._probed[key]
+
+    def _set_apart(self, start: int, end: int, during: str) -> None:
+        """Label what the student's code printed in ``outputs[start:end]`` as printed during
+        ``during``, one entry: a student reading it under a check must not take it for the
+        output of the call the check is about (``rotating by 37.0`` under the default 45)."""
+        printed = "\n".join(self.outputs[start:end]).strip("\n")
+        if printed:
+            self.outputs[start:end] = [f"(printed during {during}:)\n{printed}"]
 
     def not_implemented(self) -> str:
         """The message of a call in this trial that met a function not implemented yet, or ``""``
@@ -341,6 +352,23 @@ class Trial:
         seed = self.inputs.seed(self.check.id, self._properties)
         where = examples.key(self.check, self._properties, strategy, max_examples, seed)
         self._properties += 1
+        begin = current = len(self.outputs)  # what the examples print; the last one's stays unlabelled
+
+        def run(example):
+            nonlocal current
+            current = len(self.outputs)
+            body(example)
+
+        try:
+            self._for_all(strategy, run, max_examples, describe, where, seed)
+            current = len(self.outputs)  # it held: no example failed, every one is "other"
+        finally:
+            self._set_apart(begin, current, "the other examples this property tried")
+
+    def _for_all(self, strategy, body, max_examples, describe, where, seed):
+        """:meth:`for_all` once its recorded examples are known (``where``) and its ``seed``."""
+        from . import examples
+
         passed = self._replay(examples.recorded(where), body)
         if passed is None:
             return

@@ -307,8 +307,9 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
     expected = warp(source, M, dsize)
     inside, outside = coverage(M, source.shape, dsize)
     if isinstance(got, np.ndarray) and show:
-        t.compare_images(what, source, expected, got, valid=inside | outside,
-                         caption="the difference map is grey where the border is not judged")
+        t.compare_images(what, source, expected, got, valid=inside | outside,  # a map only for the same shape
+                         caption="the difference map is grey where the border is not judged"
+                         if got.shape == expected_shape else "")
     if isinstance(got, np.ndarray) and got.shape != expected_shape:
         if got.shape[:2] == expected_shape[1::-1]:
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "

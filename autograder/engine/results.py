@@ -38,6 +38,7 @@ from pathlib import Path
 PASSED, PARTIAL, FAILED, NOT_IMPLEMENTED, ERROR, ADVICE = (
     "passed", "partial", "failed", "not implemented", "grader error", "advice")
 TIMING_KEYS = {"seconds", "student_seconds", "student_wall_seconds", "graded_at"}
+NOT_STARTED = "not implemented yet"   # an exercise's message when all its functions are the skeleton's stubs
 
 
 @dataclass
@@ -115,6 +116,21 @@ class ExerciseResult:
     def max_score(self) -> float:
         return round(sum(c.max_score for c in self.checks), 6)
 
+    @property
+    def not_started(self) -> str:
+        """One line for an exercise none of whose functions is written yet, or ``""``: its
+        stubs only raise NotImplementedError (:data:`NOT_STARTED`), or the module (a
+        notebook, say) defines none of them (``"not started: scaling_matrix() and scale()
+        are not defined yet"``). Reports say it once instead of a line per check."""
+        if self.message == NOT_STARTED:
+            return NOT_STARTED
+        graded = [c for c in self.checks if c.max_score > 0 and not c.redacted]
+        if self.message or not graded or any(c.failure != "missing_function" for c in graded):
+            return ""
+        names = [f"{f.split('(')[0]}()" for f in self.functions]
+        listed = names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
+        return f"not started: {listed} {'is' if len(names) == 1 else 'are'} not defined yet"
+
     def to_dict(self) -> dict:
         return {"id": self.id, "title": self.title, "functions": self.functions,
                 "score": self.score, "max_score": self.max_score, "message": self.message,
@@ -136,6 +152,9 @@ class GradingResult:
     hidden_points_withheld: bool = False  # a students' view whose scores leave hidden checks out
     confinement: str = ""  # the level student code ran at (autograder.sandbox.confine.LEVELS)
     confinement_warning: str = ""  # why that is weaker than this machine allows ("" when it is not)
+    # A lab handed in more than once: per file not graded, {"module", "file", "graded", "why"}
+    # (autograder.loading.handed_in.NotGraded.to_dict); ``notes`` says the same in words.
+    files_not_graded: list[dict] = field(default_factory=list)
 
     @property
     def total(self) -> float:
@@ -153,6 +172,7 @@ class GradingResult:
                 "student_wall_seconds": self.student_wall_seconds, "notes": self.notes, "graded_at": self.graded_at,
                 "hidden_points_withheld": self.hidden_points_withheld,
                 "confinement": self.confinement, "confinement_warning": self.confinement_warning,
+                "files_not_graded": [dict(f) for f in self.files_not_graded],
                 "exercises": [e.to_dict() for e in self.exercises]}
 
     @classmethod
@@ -171,7 +191,7 @@ class GradingResult:
                    data.get("hidden_included", True), data.get("notes", []), data.get("graded_at", ""),
                    data.get("student_wall_seconds", data.get("student_seconds", 0.0)),
                    data.get("hidden_points_withheld", False), data.get("confinement", ""),
-                   data.get("confinement_warning", ""))
+                   data.get("confinement_warning", ""), list(data.get("files_not_graded", [])))
 
     def in_points(self, factors: dict[str, float]) -> "GradingResult":
         """This grading in the course's points: each check's score and maximum times its
@@ -215,7 +235,7 @@ class GradingResult:
         return GradingResult(self.submission, self.submission_hash, self.grader_version, exercises,
                              self.seconds, self.student_seconds, self.hidden_included, list(self.notes),
                              self.graded_at, self.student_wall_seconds, withheld, self.confinement,
-                             self.confinement_warning)
+                             self.confinement_warning, [dict(f) for f in self.files_not_graded])
 
 
 # All a student reads of a hidden check before release, besides its points where shown.

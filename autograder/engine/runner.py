@@ -133,6 +133,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         result = GradingResult(submission.name, submission.content_hash, __version__,
                                hidden_included=include_hidden and hidden_checks_installed(),
                                notes=_reading_notes(submission),
+                               files_not_graded=[f.to_dict() for files in submission.not_graded.values() for f in files],
                                graded_at=datetime.now(timezone.utc).isoformat(timespec="seconds"))
         labs = _labs_heaviest_first(exercises)
         inputs = Inputs.for_submission(submission.content_hash, inputs_secret)
@@ -460,9 +461,11 @@ def _innermost_frame(traceback_text: str) -> str:
 
 
 def _reading_notes(submission) -> list[str]:
-    """What the student should know about how their files were read."""
-    notes = [f"graded {found} as {module}.py (the name the grader looks for); rename it to be sure"
-             for module, found in submission.renamed.items()]
+    """What the student should know about how their files were read: first each file
+    handed in but not graded (a lab handed in twice), then renames and notebooks."""
+    notes = [f.sentence() for files in submission.not_graded.values() for f in files]
+    notes += [f"graded {found} as {module}.py (the name the grader looks for); rename it to be sure"
+              for module, found in submission.renamed.items()]
     for module, (name, converted) in submission.notebooks.items():
         note = converted.left_out_note(name)  # one line: the statements left out, and why
         if note:

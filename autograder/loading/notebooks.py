@@ -362,4 +362,31 @@ def point_into_notebook(text: str, module: str, notebook_name: str, converted: C
                   lambda m: f'File "{notebook_name}", {spot(m.group(1))}', text)
     text = re.sub(rf"(?<![\w/.]){filename}, line (\d{{1,9}})(?!\d)",
                   lambda m: f"{notebook_name}, {spot(m.group(1))}", text)
-    return re.sub(rf"(?<![\w/.\"]){filename}", lambda m: notebook_name, text)  # a name, never a template
+    text = re.sub(rf"(?<![\w/.\"]){filename}", lambda m: notebook_name, text)  # a name, never a template
+    first, newline, rest = text.partition("\n")
+    return _why_not_defined(first, converted) + newline + rest
+
+
+_NOT_DEFINED = re.compile(r"name '([A-Za-z_]\w*)' is not defined")
+_ASSIGNED = re.compile(r"\s*([A-Za-z_]\w*(?:\s*,\s*[A-Za-z_]\w*)*)\s*(?::[^=]*)?=(?!=)")
+
+
+def _why_not_defined(line: str, converted: ConvertedNotebook) -> str:
+    """``line`` (a message's first line) with, after its first "name 'H' is not defined",
+    the cell that would have defined ``H`` when that is a kept statement grading skipped
+    because it raised (it is guarded, see :data:`GUARD`): the NameError is its consequence."""
+    found = _NOT_DEFINED.search(line)
+    if not found:
+        return line
+    name = found.group(1)
+    for index, (plain, guarded) in enumerate(zip(converted.source.splitlines(),
+                                                 converted.guarded_source.splitlines())):
+        assigned = _ASSIGNED.match(plain) if guarded.startswith(GUARD) else None
+        if assigned and name in re.split(r"\s*,\s*", assigned.group(1)):
+            where = converted.where(index + 1)
+            cell = converted.label(where[0]) if where else "a cell"
+            why = (f" (`{name}` is not defined because {cell} raised when run: `{one_line(plain.strip(), 60)}`; "
+                   "grading skips a statement that raises, as Jupyter goes on after a failing cell: run that "
+                   "cell to see its error)")
+            return line[:found.end()] + why + line[found.end():]
+    return line

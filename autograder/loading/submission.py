@@ -17,7 +17,11 @@ Nothing the student handed in stops the others from being graded: a file
 plainly meant as a module (``Lab07_Transformations.py``, ``lab07_transformations (1).py``,
 or one inside a ``.zip`` within the folder) is taken, and noted; so is a lone
 source file with any name (``lab7.py``) when one module is looked for, unless it
-is named after another lab's module (as the batch does); a module that is
+is named after another lab's module (as the batch does). A lab handed in more than
+once (a notebook beside the skeleton ``.py``, two notebooks, the module in two
+folders, a copy) is graded from the file that implements it, and every other file is
+named with the reason (:attr:`Submission.not_graded`, :mod:`autograder.loading.handed_in`);
+a module that is
 missing, ambiguous or unreadable becomes a *problem* of that module only
 (:attr:`Submission.problems`), naming the files found and the rename to make.
 An archive handed in as the whole submission that cannot be read (not a zip,
@@ -35,6 +39,7 @@ import shutil
 import stat
 import struct
 import tempfile
+import time
 import zipfile
 import zlib
 from dataclasses import dataclass, field
@@ -43,6 +48,7 @@ from typing import Collection
 
 from ..sandbox.files import (CAPS, SKIPPED_FOLDERS, SOURCE_SUFFIXES, Caps, Refused, check_name, copy_regular_files,
                              display_name, limit_for, mib, read_one, read_regular_files, write_file)
+from .handed_in import Candidate, NotGraded, Progress, choose, progress
 from .notebooks import ConvertedNotebook, NotebookError, convert
 
 
@@ -71,6 +77,9 @@ class Submission:
     problems, notebooks, renamed : dict
         Per module: why it cannot be graded (not found, unreadable notebook...),
         the notebook it came from, and the file accepted under another name.
+    not_graded : dict
+        Per module handed in more than once: the files not graded, each with the file
+        graded instead and why (:class:`~autograder.loading.handed_in.NotGraded`).
     """
 
     path: Path
@@ -80,6 +89,7 @@ class Submission:
     problems: dict[str, str] = field(default_factory=dict)
     notebooks: dict[str, tuple[str, ConvertedNotebook]] = field(default_factory=dict)
     renamed: dict[str, str] = field(default_factory=dict)
+    not_graded: dict[str, list[NotGraded]] = field(default_factory=dict)
 
     def cleanup(self):
         shutil.rmtree(self.path, ignore_errors=True)
@@ -132,6 +142,7 @@ def load_submission(path, modules: list[str], caps: Caps = CAPS,
         root.mkdir()
         if source.is_dir():
             copy_regular_files(source, root, refused, caps, SOURCE_SUFFIXES + (".zip",))
+            _keep_times(source, root)  # "the newer file" is the student's, not the copy's
         elif source.suffix == ".zip":
             try:
                 unzip_regular_files(source, root, refused, caps)
@@ -152,7 +163,7 @@ def load_submission(path, modules: list[str], caps: Caps = CAPS,
                 submission.problems[module] = (f"{unreadable}, so {module}.py could not be read from it: "
                                                f"zip your files again, or hand in {module}.py itself")
                 continue
-            found = _find_module(root, module)
+            found, converted = _chosen(root, module, out, submission)
             if found is None and lone is not None and len(modules) == 1:
                 found = lone
                 submission.renamed[module] = _shown(lone, root, out)
@@ -162,7 +173,7 @@ def load_submission(path, modules: list[str], caps: Caps = CAPS,
                     submission.problems[module] += ("; a single file is graded as a lab's module "
                                                     "when only that lab is selected")
                 continue
-            _materialise_module(found, module, out, submission)
+            _materialise_module(found, module, out, submission, converted)
             # Helper modules the student keeps beside the lab module come along.
             for helper in found.parent.glob("*.py"):
                 if helper.stem.isidentifier() and helper.stem not in modules \
@@ -239,6 +250,11 @@ def _extract_member(zf: zipfile.ZipFile, info: zipfile.ZipInfo, dest: Path, caps
                 if written > info.file_size or written > limit:
                     raise Refused("it unpacks to more than it declares")
                 out.write(chunk)
+        try:  # the member's own date: "the newer file" when a lab is handed in twice
+            stamp = time.mktime(info.date_time + (0, 0, -1))
+            os.utime(dest, (stamp, stamp))
+        except (OverflowError, ValueError, OSError):
+            pass
     except (zipfile.BadZipFile, zlib.error, EOFError, NotImplementedError, RuntimeError, OSError) as exc:
         dest.unlink(missing_ok=True)
         raise Refused(f"it cannot be unpacked ({type(exc).__name__})") from None
@@ -290,6 +306,66 @@ def _find_module(root: Path, module: str) -> Path | None:
     return None
 
 
+def _handed_in(root: Path, module: str) -> list[Path]:
+    """Every file of ``root`` handed in as ``module``: named exactly (``.py`` or ``.ipynb``,
+    at most three levels down, as :func:`_find_module` searches) or under a name plainly
+    meant (``Lab07_Transformations (1).ipynb``, :func:`_plain_name`)."""
+    exact = [p for suffix in SOURCE_SUFFIXES for p in root.rglob(module + suffix)
+             if "__MACOSX" not in p.parts and not any(part.startswith(".") for part in p.relative_to(root).parts)
+             and len(p.relative_to(root).parts) <= 3]
+    meant = [p for p in _source_files(root) if _plain_name(p.stem) == module and p not in exact]
+    return exact + meant
+
+
+def _chosen(root: Path, module: str, out: Path, submission: Submission
+            ) -> tuple[Path | None, ConvertedNotebook | None]:
+    """The file to grade as ``module`` (its notebook converted, when it is one): the one
+    found by name when it is alone, else the one that implements the lab
+    (:func:`autograder.loading.handed_in.choose`), the others recorded in
+    :attr:`Submission.not_graded`. ``(None, None)`` when no file is named as ``module``."""
+    files = _handed_in(root, module)
+    if len(files) < 2:
+        return _find_module(root, module), None
+    candidates, converted = [], {}
+    for path in files:
+        read = _progress(path)
+        if isinstance(read, tuple):
+            read, converted[path] = read
+        candidates.append(Candidate(path, _shown(path, root, out), read, path.stat().st_mtime))
+    best, others = choose(module, candidates)
+    submission.not_graded[module] = others
+    if best.path.stem != module:
+        submission.renamed[module] = best.shown
+    return best.path, converted.get(best.path)
+
+
+def _progress(path: Path) -> Progress | tuple[Progress, ConvertedNotebook]:
+    """How much of its lab ``path`` implements (a notebook: with its conversion, to reuse)."""
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except UnicodeDecodeError:
+        return Progress(0, 0, "is not UTF-8 text")
+    except OSError as exc:
+        return Progress(0, 0, f"cannot be read ({exc.strerror})")
+    if path.suffix.lower() != ".ipynb":
+        return progress(text)
+    try:
+        converted = convert(text, path.name)
+    except NotebookError as exc:
+        return Progress(0, 0, f"cannot be read as a notebook ({exc})")
+    return progress(converted.source), converted
+
+
+def _keep_times(source: Path, copy: Path) -> None:
+    """Give the files copied from ``source`` into ``copy`` their modification times."""
+    for file in copy.rglob("*"):
+        try:
+            original = os.lstat(source / file.relative_to(copy))
+            os.utime(file, ns=(original.st_atime_ns, original.st_mtime_ns))
+        except (OSError, ValueError):
+            continue
+
+
 def _lone_file(root: Path, modules: set[str]) -> Path | None:
     """The submission's one source file, when it holds exactly one (no archive beside it)
     and its name is not meant as any of ``modules`` (``lab7.py``, ``my_work.ipynb``)."""
@@ -299,15 +375,17 @@ def _lone_file(root: Path, modules: set[str]) -> Path | None:
     return files[0]
 
 
-def _materialise_module(found: Path, module: str, out: Path, submission: Submission):
-    """``out/<module>.py`` from the file found; a notebook that cannot be read becomes a
-    problem of that module only, so the other modules are still graded."""
+def _materialise_module(found: Path, module: str, out: Path, submission: Submission,
+                        converted: ConvertedNotebook | None = None):
+    """``out/<module>.py`` from the file found (``converted``: the notebook already read);
+    a notebook that cannot be read becomes a problem of that module only, so the other
+    modules are still graded."""
     target = out / f"{module}.py"
-    if found.suffix == ".py":
+    if found.suffix.lower() == ".py":
         shutil.copyfile(found, target)
         return
     try:
-        converted = convert(found.read_bytes().decode("utf-8"), found.name)
+        converted = converted or convert(found.read_bytes().decode("utf-8"), found.name)
     except (NotebookError, UnicodeDecodeError) as exc:
         submission.problems[module] = (str(exc) if isinstance(exc, NotebookError)
                                        else f"{found.name} is not a readable notebook (not UTF-8 text)")

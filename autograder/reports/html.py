@@ -113,17 +113,18 @@ class PictureSheet:
 
 
 def _figure_caption(artifact, items) -> str:
-    """The artifact's caption, plus why a comparison has no difference map when it has none."""
+    """The artifact's caption, plus why a comparison has no difference map when it has none:
+    one sentence (a caption about the difference map gives way to it)."""
     by_label = {item["label"]: item for item in items}
     caption = artifact.caption
     expected, yours = by_label.get("expected"), by_label.get("yours")
     if expected and yours and "difference" not in by_label:
         sizes = [(i["width"], i["height"]) for i in (yours, expected)]
         if sizes[0] != sizes[1]:
-            note = (f"No difference map: your image is {sizes[0][0]} × {sizes[0][1]} pixels and the "
+            note = (f"no difference map: your image is {sizes[0][0]} × {sizes[0][1]} pixels and the "
                     f"expected one {sizes[1][0]} × {sizes[1][1]} (width × height), so they cannot be "
-                    "compared pixel by pixel.")
-            caption = f"{caption} {note}".strip()
+                    "compared pixel by pixel")
+            caption = note if not caption or "difference map" in caption else f"{caption.rstrip('. ')}; {note}"
     return caption
 
 

@@ -11,7 +11,7 @@ from rich.console import Console
 from rich.table import Table
 from rich.text import Text
 
-from ..engine.results import ERROR, NOT_IMPLEMENTED, GradingResult
+from ..engine.results import ERROR, NOT_IMPLEMENTED, NOT_STARTED, GradingResult
 from ..loading.text import printable
 
 
@@ -22,8 +22,10 @@ def _score_style(score: float, maximum: float) -> str:
 
 
 def render(result: GradingResult, console: Console | None = None, html_path=None,
-           details: bool = True, page=None) -> None:
-    """Print the score table and, under it, one line per check that lost points."""
+           details: bool = True, page=None, printed_where: str = "") -> None:
+    """Print the score table and, under it, one line per check that lost points.
+    ``printed_where``: how to read what the student's code printed, in the terms of where
+    this runs, when there is no page (default: the command line's)."""
     console = console or Console()
     table = Table(title=f"Grading {printable(result.submission)}", title_justify="left", expand=False,
                   caption=f"student code confined at the {result.confinement} level" if result.confinement else None,
@@ -41,8 +43,8 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
     table.add_section()
     table.add_row("total", "", Text(f"{result.total:g} / {result.max_total:g}",
                                     style=_score_style(result.total, result.max_total)), "")
-    for note in result.notes:
-        console.print(Text("note: ", style="yellow") + Text(note))
+    for note in result.notes:  # its first line: the lines after it list what it counts, for the page
+        console.print(Text("note: ", style="yellow") + Text(printable((note.splitlines() or [""])[0])))
     if result.confinement_warning:  # never quietly weaker than the machine allows
         console.print(Text("warning: ", style="bold red") + Text(result.confinement_warning, style="bold"))
     console.print(table)
@@ -53,7 +55,7 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
     if details:
         _print_problems(result, console)
         _print_advice(result, console)
-    printed = printed_output_line(result, page or html_path)
+    printed = printed_output_line(result, page or html_path, printed_where)
     if printed:
         console.print(Text(printed, style="magenta"))
     if not result.hidden_included:
@@ -65,8 +67,9 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
         render_written(console, [("details and pictures", html_path)])
 
 
-def printed_output_line(result: GradingResult, page=None) -> str:
-    """One line saying that the student's code printed, how much, and where to read it."""
+def printed_output_line(result: GradingResult, page=None, elsewhere: str = "") -> str:
+    """One line saying that the student's code printed, how much, and where to read it: on
+    ``page``, else ``elsewhere`` (how, where this runs), else the command line's way."""
     checks = [(e, c) for e in result.exercises for c in e.checks if c.output]
     if not checks:
         return ""
@@ -74,7 +77,7 @@ def printed_output_line(result: GradingResult, page=None) -> str:
     amount = f"{size / 1024:.1f} KB" if size >= 1024 else f"{size} characters"
     exercises = list(dict.fromkeys(e.id for e, _ in checks))
     where = (f"read it in {page} under \"what your code printed\"" if page
-             else "write the feedback page (drop --no-html) to read it")
+             else elsewhere or "write the feedback page (drop --no-html) to read it")
     return (f"Your code printed output in {len(checks)} checks ({amount} kept, at most 4 KB per call) of"
             f" {', '.join(exercises[:6])}{' ...' if len(exercises) > 6 else ''}; "
             f"{where}. Printing slows grading: remove debugging prints when done.")
@@ -85,9 +88,6 @@ def render_written(console: Console, written) -> None:
     for what, path in written:
         console.print(Text(f"{what[0].upper()}{what[1:]}: ") + Text(str(path), style="bold"),
                       soft_wrap=True)  # a path stays whole, to copy and paste
-
-
-NOT_STARTED = "not implemented yet"
 
 
 def _graded(check) -> bool:
@@ -119,9 +119,12 @@ def _print_problems(result: GradingResult, console: Console) -> None:
             not_started.setdefault(lab, []).append(key)
     for lab, keys in not_started.items():
         console.print(Text(f"· {lab} {', '.join(keys)}: ", style="bold") + Text(NOT_STARTED))
+    for exercise in result.exercises:  # functions not written at all (a notebook): one line each
+        if exercise.not_started and exercise.message != NOT_STARTED:
+            console.print(Text(f"· {exercise.id}: ", style="bold") + Text(exercise.not_started))
     _module_messages(result, console)
     for exercise in result.exercises:
-        if exercise.message:  # said once per module, above (or "not implemented yet", once per lab)
+        if exercise.message or exercise.not_started:  # said once per module or exercise, above
             continue
         for check in exercise.checks:
             if check.passed or not _graded(check):  # advice is printed apart, as tips

@@ -13,8 +13,10 @@ are skipped (they defined nothing). The result shows inline: score, and every
 check that lost points with its message, hint and pictures.
 
 Elsewhere (a plain Python shell or a script) it grades the lab's module file: in
-the current folder, or in ``assignments/`` below it; and prints the result as
-text. Either way, ``check(..., notebook="lab07_transformations.ipynb")`` or
+the current folder, or in ``assignments/`` below it; and shows the result as
+text: a script's ``check()`` prints it, a shell shows what ``check()`` returns (as for
+any value), so it is never shown twice. Advice in the report is given in the terms of
+where it runs (``report.printed()``, not a command-line flag). Either way, ``check(..., notebook="lab07_transformations.ipynb")`` or
 ``check(..., submission="path/to/folder")`` names exactly what to grade.
 
 The code runs in the same sandbox as ``python grade.py``, with the same checks,
@@ -55,6 +57,12 @@ class CheckReport:
 
         return render_selfcheck(self.result, self.source)
 
+    def printed(self) -> str:
+        """What the student's code printed, check by check (``""`` when it printed nothing):
+        what ``grade.py`` shows on the feedback page under "what your code printed"."""
+        return "\n\n".join(f"{exercise.id} {check.name}:\n{check.output.rstrip()}"
+                             for exercise in self.result.exercises for check in exercise.checks if check.output)
+
     def __str__(self) -> str:
         from rich.console import Console
 
@@ -62,7 +70,8 @@ class CheckReport:
 
         buffer = io.StringIO()
         console = Console(file=buffer, width=100, color_system=None, force_terminal=False, force_jupyter=False)
-        terminal.render(self.result, console)
+        terminal.render(self.result, console, printed_where="print(report.printed()) shows it, where "
+                                                            "report is what check() returned")
         return buffer.getvalue().rstrip()
 
     __repr__ = __str__
@@ -105,7 +114,7 @@ def check(*selectors: str, notebook=None, submission=None, public_only: bool = F
             if temporary:
                 shutil.rmtree(temporary, ignore_errors=True)
         report.submission = source
-        return report
+        return _shown(report)
     try:
         # A failing property says how to meet its input again: this same call.
         named = "" if notebook is None and submission is None else \
@@ -117,7 +126,18 @@ def check(*selectors: str, notebook=None, submission=None, public_only: bool = F
             shutil.rmtree(temporary, ignore_errors=True)
     result = result.for_students()
     result.submission = source
-    return CheckReport(result, source)
+    return _shown(CheckReport(result, source))
+
+
+def _shown(report):
+    """``report``, printed first as text when nothing else would show it: in a script. A
+    notebook or an IPython shell displays the value a cell ends with, and Python's
+    interactive shell the value of an expression (``sys.ps1`` is set there)."""
+    import sys
+
+    if _kernel_history() is None and not hasattr(sys, "ps1"):
+        print(report, flush=True)
+    return report
 
 
 def _what_to_grade(modules: list[str], notebook, submission):
@@ -157,7 +177,9 @@ def _history_notebook(history: list[str]):
 
 
 def _kernel_history() -> list[str] | None:
-    """The cells an IPython kernel has run, in order; None outside IPython."""
+    """The cells an IPython kernel has run, in order, as the student wrote them (``%matplotlib
+    inline``, not IPython's ``get_ipython().run_line_magic(...)`` that ``In`` holds); None
+    outside IPython."""
     try:
         from IPython import get_ipython
     except ImportError:
@@ -166,4 +188,9 @@ def _kernel_history() -> list[str] | None:
     if shell is None:
         return None
     history = shell.user_ns.get("In")
-    return [cell for cell in history[1:] if isinstance(cell, str)] if isinstance(history, list) else None
+    if not isinstance(history, list):
+        return None
+    raw = getattr(getattr(shell, "history_manager", None), "input_hist_raw", None)
+    if isinstance(raw, list) and len(raw) == len(history):  # the same cells, untransformed
+        history = raw
+    return [cell for cell in history[1:] if isinstance(cell, str)]

@@ -5,7 +5,10 @@ Files written in RESULTS (every one parses with :mod:`csv`; UTF-8, comma-separat
 ``grades.csv``
     ``Student ID,Name,Status,<exercise>...,<exercise> report...,Late penalty,Adjustments,Total``
     -- one row per student (``Status``: graded, unreadable: <reason>, failed: <reason>,
-    pending, no submission), exercise columns in course points; a ``report`` column
+    pending, no submission), exercise columns in course points; when a student handed a
+    lab in more than once, a ``Files not graded`` column after ``Status`` says, for each
+    such student, which file was graded, which was not and why
+    (:class:`autograder.loading.handed_in.NotGraded`); a ``report`` column
     per exercise with a rubric: the points of the rubric items applied in
     ``autograder review`` (empty while nobody reviewed it), counted in the total.
 ``canvas_import.csv``
@@ -66,6 +69,7 @@ from ..course import CourseConfig, parse_time
 
 GRADES_HEADER = ["Student ID", "Name", "Status"]
 GRADES_TAIL = ["Late penalty", "Adjustments", "Total"]
+FILES_NOT_GRADED = "Files not graded"
 CANVAS_HEADER = ["Student", "ID", "SIS User ID", "SIS Login ID", "Section"]
 MOODLE_HEADER = ["Identifier", "Full name", "Email address", "Grade"]
 UNMATCHED_HEADER = ["Student ID", "Name", "Problem"]
@@ -433,6 +437,14 @@ def _status(grade: StudentGrade) -> str:
     return f"{status}: {reason}" if reason else status
 
 
+def files_not_graded(result: dict | None) -> str:
+    """The files a result's submission held that were not graded (a lab handed in twice),
+    one sentence each (``"graded lab07_transformations.ipynb, not lab07_transformations.py, because ..."``),
+    or ``""``."""
+    return " | ".join(f"graded {f.get('graded', '')}, not {f.get('file', '')}, because {f.get('why', '')}"
+                      for f in (result or {}).get("files_not_graded") or [])
+
+
 def _fmt(value) -> str:
     return "" if value is None else f"{round(value, 4):g}"
 
@@ -447,10 +459,13 @@ def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig,
     reported = list(report_max or {})
     files = []
 
-    rows = [GRADES_HEADER + ids + [f"{e} report" for e in reported] + GRADES_TAIL]
-    for g in grades:
+    not_graded = [files_not_graded(g.student.get("result")) for g in grades]
+    extra = [FILES_NOT_GRADED] if any(not_graded) else []   # only when some lab was handed in twice
+    rows = [GRADES_HEADER + extra + ids + [f"{e} report" for e in reported] + GRADES_TAIL]
+    for g, left_aside in zip(grades, not_graded):
         rows.append([g.student["student_id"], g.roster.get("name") or g.student["display_name"], _status(g)]
-                    + [_fmt(g.exercises[e]) for e in ids] + [_fmt(g.reports.get(e)) for e in reported]
+                    + ([left_aside] if extra else []) + [_fmt(g.exercises[e]) for e in ids]
+                    + [_fmt(g.reports.get(e)) for e in reported]
                     + [_fmt(g.late_penalty if g.graded else None), _fmt(g.bonus if g.graded else None),
                        _fmt(g.total)])
     files.append(write_csv(out / "grades.csv", rows))

@@ -166,6 +166,9 @@ class ClassSummary:
     checks: list[CheckSummary]        # hardest first
     incidents: list[Incident]
     not_graded: list[StudentRecord]
+    # Students who handed a lab in more than once, with the files not graded (each a
+    # NotGraded.to_dict(): module, file, graded, why), in the order of ``students``.
+    files_not_graded: list[tuple[StudentRecord, list[dict]]] = field(default_factory=list)
 
     @property
     def graded(self) -> list[StudentRecord]:
@@ -307,4 +310,5 @@ def summarise(students: list[StudentRecord]) -> ClassSummary:
     checks = sorted(check_stats.values(), key=lambda c: (c.pass_rate, c.exercise_id, c.name))
     ordered_incidents = sorted(incidents.values(), key=lambda i: (i.student.label.lower(), i.kind))
     return ClassSummary(students, Distribution(max_total, totals), labs, exercises, checks,
-                        ordered_incidents, [s for s in students if s.result is None])
+                        ordered_incidents, [s for s in students if s.result is None],
+                        [(s, s.result["files_not_graded"]) for s in graded if s.result.get("files_not_graded")])
