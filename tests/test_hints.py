@@ -170,3 +170,20 @@ def test_a_half_bright_strip_is_not_told_to_warp_with_t_at_h_which_it_does(tmp_p
     [strip] = [c for c in check_results(result, "lab08.ex5") if c.name.startswith("stitch: the part only img2")]
     assert not strip.passed and strip.hint == SECOND_WARP_HINT.neutral(
         "warps with a product of a shift and a homography")
+
+
+def test_an_image_converted_to_uint8_then_back_is_not_told_to_convert_it(tmp_path):
+    source = """
+        _right = translate
+        def translate(image, tx=100, ty=50):
+            out = np.clip(_right(image, tx, ty), 0, 255).astype(np.uint8)
+            return out / 1.0
+        """
+    result = grade(mutant(tmp_path, "lab07_transformations", source), ["lab07.ex1"], pictures="none")
+    hints = {c.hint for c in check_results(result, "lab07.ex1") if "dtype float64" in c.message}
+    assert hints == {"your code converts to uint8 somewhere, but not the array it returns"}
+    plain = grade(mutant(tmp_path / "plain", "lab07_transformations", source.replace(
+        "np.clip(_right(image, tx, ty), 0, 255).astype(np.uint8)", "_right(image, tx, ty)")),
+        ["lab07.ex1"], pictures="none")
+    assert {c.hint for c in check_results(plain, "lab07.ex1") if "dtype float64" in c.message} == {
+        "images stay uint8: convert with np.clip(x, 0, 255).astype(np.uint8)"}

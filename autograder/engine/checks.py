@@ -322,15 +322,13 @@ class Trial:
                 self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}")
         if dtype is not None and value.dtype != np.dtype(dtype):
             self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}",
-                      hint="images stay uint8: convert with np.clip(x, 0, 255).astype(np.uint8)"
-                      if np.dtype(dtype) == np.uint8 else "")
+                      hint=_hints().UINT8_HINT.said(self) if np.dtype(dtype) == np.uint8 else "")
         if kind is not None and value.dtype.kind not in kind:
             names = {"f": "float", "i": "integer", "u": "unsigned integer", "b": "bool", "c": "complex"}
             wanted = " or ".join(names[k] for k in kind)
             hint = ""
             if "f" in kind and value.dtype.kind in "iub":  # a beginner's integer (or uint8) array
-                hint = (uint8_wraps(value) or "build it with dtype=float (an array of whole numbers is an "
-                        "integer array) or convert it with .astype(np.float64)")
+                hint = uint8_wraps(value) or _hints().FLOAT_HINT.said(self)
             self.fail(f"{what} returned dtype {value.dtype}; expected {wanted}", hint=hint)
         if finite and value.dtype.kind in "fc" and not np.all(np.isfinite(value)):
             self.fail(f"{what} returned NaN or infinite values")
@@ -493,6 +491,12 @@ class Trial:
         if ok:
             return value
         raise StudentFailure(value.outcome, value.message)
+
+
+def _hints():
+    from . import hints   # hints reads the student's code: only a failing form needs it
+
+    return hints
 
 
 def _float_arrays(value, depth: int = 0):

@@ -263,6 +263,9 @@ RATIO_TEST = (expr("_.distance < _ * _.distance") | expr("_.distance < _.distanc
 TO_UINT8 = (expr("_.astype(np.uint8)") | expr("_.astype('uint8')") | expr("np.uint8(_)")
             | keyword("np.clip", "dtype") | expr("_.astype(dtype=np.uint8)")).saying("converts to uint8")
 NAN_WHERE = (calls("np.where") & mentions("np.nan")).saying("uses np.where with np.nan")
+TO_FLOAT = (expr("_.astype(float)") | expr("_.astype(np.float64)") | expr("_.astype(np.float32)")
+            | keyword("np.array", "dtype") | keyword("np.asarray", "dtype") | keyword("np.zeros", "dtype")
+            | expr("np.float64(_)") | expr("np.float32(_)")).saying("converts to float")
 
 
 def nan_behind(text: str) -> "Hint":
@@ -393,3 +396,11 @@ def said(t, text, functions: Iterable[str] = ()) -> str:
     """``text`` as said to the student of trial ``t``: a :class:`Hint`'s :meth:`Hint.said`, a plain
     string as it is."""
     return text.said(t, functions) if isinstance(text, Hint) else str(text)
+
+
+# The engine's own form hints (autograder.engine.checks.Trial.expect_array).
+UINT8_HINT = Hint("images stay uint8: convert with np.clip(x, 0, 255).astype(np.uint8)", asks=TO_UINT8,
+                  instead="your code {found} somewhere, but not the array it returns")
+FLOAT_HINT = Hint("build it with dtype=float (an array of whole numbers is an integer array) or convert it "
+                  "with .astype(np.float64)", asks=TO_FLOAT,
+                  instead="your code {found} somewhere, but not the array it returns")

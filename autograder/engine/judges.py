@@ -22,10 +22,16 @@ from fixtures.images import as_homography, coverage, warp
 
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
+from .hints import Hint, keyword, mentions
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
+BLACK_FILL_HINT = Hint("use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)",
+                       asks=mentions("cv2.BORDER_CONSTANT") | keyword("cv2.warpPerspective", "borderMode")
+                       | keyword("cv2.warpAffine", "borderMode"),
+                       instead="your code already {found}: the pixels with no source pixel are filled "
+                               "elsewhere (borderValue, or what is written into the output afterwards)")
 FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
 
 
@@ -327,7 +333,7 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
         if nonblack > FILL_TOLERANCE:
             return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
                                 "pixels with no source pixel are not black.",
-                           hint="use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)",
+                           hint=BLACK_FILL_HINT.said(t),
                            mistake="the fill is not black")
         return passed(f"mean difference {error:.1f} grey levels on the covered area")
     if channels_reversed(got, expected):
