@@ -27,7 +27,7 @@ from autograder.figures import (FIGURE_REPLY_BYTES, FIGURE_REPLY_ELEMENTS, MAX_P
 from autograder.sandbox import transport
 from autograder.sandbox.supervisor import Limits, Sandbox
 from conftest import REFERENCE, mutant
-from test_hostile_v3 import cgroup  # noqa: F401 - a fixture: with the kernel's cgroup, and without
+from test_hostile_v3 import HOG, cgroup  # noqa: F401 - a fixture: with the kernel's cgroup, and without
 
 LAB07, LAB09 = "lab07_transformations", "lab09_camera"
 SPENT = "time budget (grading and its figures together) is spent"
@@ -133,7 +133,7 @@ class TestASleepingFigureEndsAtTheDeadline:
         task.grade_files({f"{LAB07}.py": (REFERENCE / f"{LAB07}.py").read_bytes()}, ["lab07.ex1"], 10.0, "none",
                          False, "", "student", rules={"figures": ["lab07.ex1"], "gradings": 3,
                                                       "submission_budget": 50})
-        (cli_limits, cli_deadline), (batch_limits, batch_deadline) = given
+        (cli_limits, _), (batch_limits, _) = given
         lanes = cli.lanes_for(["lab07.ex1", "lab09.ex1"])
         assert cli_limits == Limits().shared_by(lanes)  # what each lane's worker had
         assert batch_limits == graded[1][0] and batch_limits.memory <= Limits().memory
@@ -142,36 +142,20 @@ class TestASleepingFigureEndsAtTheDeadline:
 
 
 # ================================================================ memory: the graded calls' share
-# Each holds 500 MiB for a while (the grader, where no cgroup enforces the share, looks every 50 ms).
+# Each holds 500 MiB or more for a while (the grader, where no cgroup enforces the share, looks
+# every 50 ms): test_hostile_v3's hogs, called from a figure's function, and one of NumPy's.
+HOGGING = textwrap.dedent(HOG)
 HOGS = {
-    "translate, page by page": (LAB07, "lab07.ex1", "translate", """
+    "translate, page by page": (LAB07, "lab07.ex1", "translate", HOGGING + textwrap.dedent("""
         def translate(image, tx=100, ty=50):
-            import time
-            held = []
-            for _ in range(1000):                         # 1 MiB every 2 ms, each page touched
-                block = bytearray(2**20)
-                block[::4096] = b"x" * 256
-                held.append(block)
-                time.sleep(0.002)
+            page_by_page()
             return image
-        """),
-    "pinhole_project, in two children": (LAB09, "lab09.ex1", "pinhole_project", """
+        """)),
+    "pinhole_project, in four children": (LAB09, "lab09.ex1", "pinhole_project", HOGGING + textwrap.dedent("""
         def pinhole_project(points, f):
-            import os, time
-            children = []
-            for _ in range(2):                            # 2 x 250 MiB, together over the share
-                pid = os.fork()
-                if pid == 0:
-                    block = bytearray(250 * 2**20)
-                    block[::4096] = b"x" * len(block[::4096])
-                    time.sleep(4)
-                    os._exit(0)
-                children.append(pid)
-            for pid in children:
-                os.waitpid(pid, 0)
-            time.sleep(10)                                # (over the call's timeout)
+            in_four_children()
             return points[:, :2]
-        """),
+        """)),
     "rotate, numpy at once": (LAB07, "lab07.ex2", "rotate", """
         def rotate(image, angle_deg=45):
             import time
@@ -186,8 +170,8 @@ HOGS = {
 class TestAFigureOverItsMemoryShareIsStoppedLikeAGradedCall:
     @pytest.mark.parametrize("case", HOGS)
     def test_stopped_at_the_lanes_share(self, tmp_path, case, cgroup):  # noqa: F811 - the fixture
-        """640 MiB for the submission, graded in two lanes: 320 MiB each. The hog holds 500 MiB,
-        which the submission's whole limit would allow: the figure pass has a lane's share."""
+        """640 MiB for the submission, graded in two lanes: 320 MiB each. The figure pass has a
+        lane's share, and its hog is stopped there, in the words a graded call gets."""
         module, figure_id, function, source = HOGS[case]
         limits = Limits(call_timeout=8.0, memory=640 << 20, address_space=4 << 30).shared_by(2)
         assert limits.memory == 320 << 20
