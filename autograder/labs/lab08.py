@@ -27,7 +27,7 @@ from fixtures.images import coverage, photo, warp
 from ..engine import strategies as st
 from ..engine.checks import StudentFailure, Trial, partial, passed
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
-from ..engine.hints import RATIO_TEST, TO_UINT8, Hint, calls, expr, matmul_of, passes_product
+from ..engine.hints import RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, calls, expr, matmul_of, mentions, passes_product
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
@@ -513,7 +513,10 @@ def draw_matches_shape(t):
                    "side (img2 to the right of img1), not one above the other")
         if got.shape[:2] == expected[:2]:
             t.fail(f"{what} returned shape {got.shape}; expected {expected}: always 3 channels "
-                   "(convert a grey image with cv2.cvtColor(img, cv2.COLOR_GRAY2BGR))")
+                   + Hint("(convert a grey image with cv2.cvtColor(img, cv2.COLOR_GRAY2BGR))",
+                          asks=mentions("cv2.COLOR_GRAY2BGR"),
+                          instead="(your code already {found}: check that each image given is converted "
+                                  "before they are put side by side)").said(t))
         if got.shape[:2] == expected[1::-1]:
             t.fail(f"{what} returned shape {got.shape}; expected {expected}: width and height are "
                    "swapped", mistake="width and height are swapped")
@@ -1483,8 +1486,10 @@ def blend_identity(t):
     signed = got.astype(np.int16) - image
     if (np.abs(signed).max(axis=2) > 100).mean() > 0.02 or (signed.mean() > 2 and (signed >= 0).mean() > 0.95):
         t.fail(f"{what} changed {bad:.0%} of the pixels: the Laplacian levels are negative in "
-               "places, and uint8 arithmetic clips them to 0 or wraps them around; compute the "
-               "pyramids in float (img.astype(np.float32))")
+               "places, and uint8 arithmetic clips them to 0 or wraps them around; "
+               + Hint("compute the pyramids in float (img.astype(np.float32))", asks=TO_FLOAT,
+                      instead="your code {found} somewhere, but a level or band is still computed from uint8 "
+                              "images").said(t))
     t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels; a Laplacian "
            "pyramid collapses back to the image exactly (up = cv2.pyrUp(coarser, dstsize=...), "
            "band = finer - up, and collapse by adding back)")

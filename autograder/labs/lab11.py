@@ -21,7 +21,7 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
                        projective_distance)
-from ..engine.hints import RATIO_TEST, Hint, calls, keyword
+from ..engine.hints import RATIO_TEST, Hint, calls, keyword, mentions
 from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
                       where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
@@ -937,7 +937,12 @@ def judge_pipeline_F(t: Trial, pair, F):
     message = (f"true correspondences are {format_apart(distance, 1.5, 2)} px from your epipolar lines (median over "
                f"{len(g1)} pixels with known depth; expected below 1.5 px)")
     if distance <= 4.0:
-        return partial(0.5, message, "use RANSAC (cv2.FM_RANSAC) with a threshold of about 1 px")
+        return partial(0.5, message, Hint(
+            "use RANSAC (cv2.FM_RANSAC) with a threshold of about 1 px",
+            asks=(mentions("cv2.FM_RANSAC") | mentions("cv2.RANSAC") | mentions("cv2.USAC_DEFAULT")
+                  | mentions("cv2.USAC_MAGSAC") | mentions("cv2.FM_LMEDS")).saying("estimates F robustly"),
+            instead="your code already {found}: check its threshold (about 1 px) and the matches it is "
+                    "given (Lowe's ratio test, pts1 in image 1)").said(t))
     t.fail(message)
 
 
