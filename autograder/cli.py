@@ -806,6 +806,11 @@ def add_author_commands(commands) -> None:
                         help="labs to verify: lab07 lab13 ... (default: the course's own labs with --course, "
                              "else every built-in lab)")
     verify.add_argument("--course", metavar="COURSE", help="course configuration (JSON): its labs")
+    verify.add_argument("--error-model", action="store_true",
+                        help="also measure the error model: grade a sample of the reference's mutants and count "
+                             "those caught, named and equivalent (slow: one grading per mutant)")
+    verify.add_argument("--mutants", type=int, default=30, metavar="N",
+                        help="how many mutants per lab --error-model grades (default 30)")
     new_lab = commands.add_parser("new-lab", help="write a lab folder to start from (it passes verify as it is)")
     new_lab.add_argument("name", metavar="NAME", help="the lab's module, lab<NN>_<words>: lab13_flow")
     new_lab.add_argument("--into", metavar="FOLDER", required=True, help="folder to create (empty or new)")
@@ -850,6 +855,17 @@ def run_verify(args) -> int:
             return USAGE_ERROR
         render(report, console)
         sound = sound and report.ok
+        if args.error_model:
+            from .instructor.error_model import measure_error_model, render_error_model
+
+            try:
+                with _progress(errors) as advance:
+                    measured = measure_error_model(labs[key], max(1, args.mutants), progress=(
+                        lambda what: advance(_Step(what), None)) if advance else None)
+            except ValueError as exc:
+                errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
+                return USAGE_ERROR
+            render_error_model(measured, console)
     return 0 if sound else VERIFY_FAILED
 
 

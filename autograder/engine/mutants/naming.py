@@ -166,10 +166,14 @@ def _leaves(value, out: list) -> bool:
     return True
 
 
-def distance(a, b) -> float:
+def distance(a, b, lenient: bool = False) -> float:
     """How far answer ``a`` is from ``b``: the largest mean absolute difference of their arrays
     (small matrices also compared up to scale and sign, as the checks do); infinite when
-    their structure, shapes or NaN places differ, or one is an error."""
+    their structure, shapes or NaN places differ, or one is an error.
+
+    ``lenient``: ``a`` (a mutant's answer) may have NaN where ``b`` has numbers, in fewer than
+    half the places (the reference marks points behind the camera NaN; a student who does not
+    still makes the mutant's mistake everywhere else)."""
     left, right = [], []
     if not (_leaves(a, left) and _leaves(b, right)) or len(left) != len(right):
         return float("inf")
@@ -188,7 +192,10 @@ def distance(a, b) -> float:
         x, y = x.astype(kind, copy=False), y.astype(kind, copy=False)
         nan_x, nan_y = ~np.isfinite(x), ~np.isfinite(y)
         if not np.array_equal(nan_x, nan_y):
-            return float("inf")
+            if not (lenient and not (nan_y & ~nan_x).any() and nan_x.mean() < 0.5):
+                return float("inf")
+            x, y = x[~nan_x], y[~nan_x]
+            nan_x = nan_y = np.zeros(x.shape, bool)
         if x.size == 0 or nan_x.all():
             continue
         raw = float(np.mean(np.abs(x[~nan_x] - y[~nan_y])))
@@ -247,13 +254,22 @@ def reproduces(mutant, student, reference) -> bool:
     reference is far from the student) ten times closer to it than the reference and
     within 5% of the answer's size."""
     tolerance, scale = _measures(student)
-    apart = distance(mutant, student)
+    apart = distance(mutant, student, lenient=True)
     if apart <= tolerance:
         return True
     off = distance(reference, student)
     if off <= 10 * tolerance:   # the student is right here: the mutant must be as near
         return apart <= 2 * off
     return apart <= min(0.1 * off, 0.05 * scale)
+
+
+def _constant(value) -> bool:
+    """Whether every array of an answer holds one value only (then it tells no cause apart)."""
+    leaves = []
+    if not _leaves(value, leaves):
+        return True
+    arrays = [v for v in leaves if isinstance(v, np.ndarray) and v.size > 1]
+    return bool(arrays) and all(np.all(v == v.flat[0]) for v in arrays)
 
 
 def wrong(student, reference) -> bool:
@@ -345,8 +361,8 @@ def _name(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
         runner.prepare(model.source, model.module, inputs, max(1.0, clock.left()))
         references = runner.run((), range(len(inputs)), max(0.5, clock.left()))
         failing = [i for i, (s, r) in enumerate(zip(answers, references)) if wrong(s, r)]
-        if not failing:
-            continue
+        if not failing or all(_constant(answers[i]) for i in failing):
+            continue   # a constant answer (all zeros, a black image) is what many mistakes give
         naming = _name_function(trial, model, function, inputs, answers, references, failing, clock)
         if naming is not None:
             return naming
@@ -443,7 +459,7 @@ def _confirmed(trial, model, function, inputs, failing, candidates, clock) -> Na
     answers = []
     for k in chosen:
         answer = _student_answer(trial, every[indices[k]])
-        if answer is _FAILED:
+        if answer is _FAILED or _constant(answer):
             return None
         answers.append(answer)
     survivors = [c for c in candidates
@@ -456,7 +472,16 @@ def _confirmed(trial, model, function, inputs, failing, candidates, clock) -> Na
         if any(distance(outputs[other.key][k], outputs[first.key][k]) > _tolerance(outputs[first.key][k])
                for k in chosen):
             return None
-    best = min(survivors, key=lambda m: m.rank)
+    ordered = sorted(survivors, key=lambda m: m.rank)
+    best = ordered[0]
+    # An equivalent mutant of another operator says the same mistake another way (c @ R is R^T c):
+    # both are told, the simplest first.
+    other = next((m for m in ordered[1:] if m.operator != best.operator), None)
+    if other is not None:
+        said = other.sentence.split(", ", 1)[1] if other.sentence.split(", ", 1)[0] == best.sentence.split(", ", 1)[0] \
+            else other.sentence
+        best = Mutant(best.operator, best.function, best.where, best.line, best.edits,
+                      f"{best.sentence} (equivalently, {said})")
     return Naming(best, len(inputs), len(chosen))
 
 
