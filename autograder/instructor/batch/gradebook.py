@@ -428,6 +428,16 @@ class Gradebook:
             rows = self.db.execute("SELECT student_id FROM students WHERE present=0 ORDER BY student_id")
             return [row[0] for row in rows]
 
+    def identities(self) -> "Identities":
+        """The ids given so far, by what tells each student apart (see :class:`.ingest.Identities`),
+        students gone since included: the next download gives them to nobody else."""
+        from .ingest import Identities
+
+        with self._reading():
+            rows = self.db.execute("SELECT student_id, origin, lms FROM students").fetchall()
+        return Identities.of([{"student_id": row["student_id"], "origin": row["origin"],
+                               "lms": _json_object(row["lms"])} for row in rows])
+
     def is_graded(self, key: str) -> bool:
         with self._reading():
             row = self.db.execute("SELECT status FROM submissions WHERE key=?", (key,)).fetchone()
@@ -705,3 +715,12 @@ class Gradebook:
 
 def _now() -> str:
     return datetime.now(timezone.utc).isoformat(timespec="seconds")
+
+
+def _json_object(text) -> dict:
+    """A stored JSON object (``{}`` for anything else: an identity is then told by its origin)."""
+    try:
+        value = json.loads(text or "{}")
+    except (TypeError, ValueError):
+        return {}
+    return value if isinstance(value, dict) else {}

@@ -116,7 +116,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     modules = sorted({e.lab.module for e in exercises})
     overrides_rows = exports.read_overrides(overrides) if overrides else None
     roster_rows = exports.read_roster(roster) if roster else []
-    upload = read_upload(submissions, modules, [lab.module for lab in discover().values()])
+    upload = read_upload(submissions, modules, [lab.module for lab in discover().values()], _known(out))
     entries = upload.entries
     if probing:
         _refuse_unconfined(confine.detect())
@@ -367,6 +367,15 @@ def _write_student(out: Path, entry: Entry, results_json: str, page: str, figure
                 if exc.errno in STORAGE_ERRNOS:
                     raise StorageError.from_exception(exc, exc.filename or target) from exc
                 raise
+
+
+def _known(out: Path):
+    """The ids earlier runs gave (none before the first): a student keeps theirs in every download."""
+    try:
+        with Gradebook(out, readonly=True) as book:
+            return book.identities()
+    except FileNotFoundError:
+        return None
 
 
 def _write_overview(out: Path, standing: ClassGrades, course_title: str | None = None) -> Path:
