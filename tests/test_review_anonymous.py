@@ -59,15 +59,21 @@ def identities(draw) -> dict:
     canvas = str(draw(st.integers(10**6, 10**9)))
     name = f"{first} {last}"
     email = f"{slug(first) or 'x'}.{slug(last) or 'y'}@uni.example"
+    mate_first, mate_last = draw(part), draw(part)   # a group partner (Gradescope's submitters)
+    partner = {"first": mate_first, "last": mate_last, "name": f"{mate_first} {mate_last}",
+               "sid": f"s{draw(st.integers(1_000_000, 9_999_999))}", "email": f"{slug(mate_last) or 'p'}@uni.example"}
     return {"first": first, "last": last, "name": name, "matric": matric, "canvas": canvas, "email": email,
-            "id": f"{slug(last) or 'z'}-{matric}", "origin": f"{slug(last)}{slug(first)}_{canvas}_55_{MODULE}.py"}
+            "id": f"{slug(last) or 'z'}-{matric}", "origin": f"{slug(last)}{slug(first)}_{canvas}_55_{MODULE}.py",
+            "partner": partner}
 
 
 def forms_of(who: dict) -> list[str]:
     """The texts that would tell who the student is (each checked in several spellings)."""
     slugs = [s for s in (slug(who["first"]), slug(who["last"])) if len(s) >= 4]
+    mate = who["partner"]
     return [who["first"], who["last"], who["name"], who["matric"], who["canvas"], who["email"], who["id"],
-            who["origin"], f"{who['first']}{who['last']}", *slugs, *who["files"]]
+            who["origin"], f"{who['first']}{who['last']}", *slugs, *who["files"],
+            mate["first"], mate["last"], mate["name"], mate["sid"], mate["email"]]
 
 
 def spellings(text: str) -> set[str]:
@@ -104,7 +110,8 @@ def explanation(who: dict) -> str:
             f"{who['email']} / {who['matric']}lab07 / id {who['id']} / canvas {who['canvas']} / "
             f"see {who['origin']} and [my rubric](../rubric?error=by-{quote(who['name'])}) and "
             "[the rubric](../rubric?error=hello) and [the sheet](https://example.org/lab) and "
-            f"[my page](https://example.org/{slug(first)}{slug(last)}) and <{who['email']}>.")
+            f"[my page](https://example.org/{slug(first)}{slug(last)}) and <{who['email']}>. With "
+            f"{who['partner']['name']} ({who['partner']['sid']}, {who['partner']['email']}).")
 
 
 def build_class(folder, who: dict) -> None:
@@ -119,6 +126,8 @@ def build_class(folder, who: dict) -> None:
                            f"{who['matric']}/{who['first'].lower()}.pdf", f"{who['name']}.zip/{who['id']}.md"})
     student = Entry(who["id"], who["name"], "canvas", who["origin"], files={f"{MODULE}.py": b"x"},
                     lms={"canvas_user_id": who["canvas"], "email": who["email"], "sid": who["matric"]},
+                    members=[{"name": who["name"], "sid": who["matric"], "email": who["email"]},
+                             {k: who["partner"][k] for k in ("name", "sid", "email")}],
                     report_files=files, report=report)
     other = Entry("zz-other", "Other Person", "canvas", "other.py", files={f"{MODULE}.py": b"y"})
     graded = result(6.0)
@@ -193,7 +202,9 @@ def baseline(tmp_path_factory) -> str:
     generated name part that is one of its words (a CSS property, "rubric") tells nothing."""
     folder = tmp_path_factory.mktemp("baseline")
     build_class(folder, {"first": "Aaaa", "last": "Bbbb", "name": "Aaaa Bbbb", "matric": "s0000000",
-                         "canvas": "0", "email": "a.b@uni.example", "id": "bbbb-s0000000", "origin": "x.py"})
+                         "canvas": "0", "email": "a.b@uni.example", "id": "bbbb-s0000000", "origin": "x.py",
+                         "partner": {"first": "Cccc", "last": "Dddd", "name": "Cccc Dddd", "sid": "s0000001",
+                                     "email": "d@uni.example"}})
     return _Corpus("\n".join(text for _, text in walk(folder)[0]).casefold())
 
 
@@ -205,8 +216,10 @@ class _Corpus(str):
 @settings(max_examples=20)
 @given(who=identities())
 def test_anonymous_mode_shows_no_identity_on_any_route(who, baseline, tmp_path_factory):
+    mate = who["partner"]
     assume(all(not word or word.casefold() not in baseline for word in (
-        who["first"], who["last"], who["matric"], who["canvas"], slug(who["last"]), slug(who["first"]))))
+        who["first"], who["last"], who["matric"], who["canvas"], slug(who["last"]), slug(who["first"]),
+        mate["first"], mate["last"], mate["sid"], slug(mate["last"]))))
     folder = tmp_path_factory.mktemp("class")
     build_class(folder, who)
     seen, missed = walk(folder)
@@ -229,10 +242,12 @@ def test_the_same_class_not_anonymous_shows_the_names(tmp_path):
     """The property above is not vacuous: without --anonymous the pages do name the student."""
     who = {"first": "Jørgen", "last": "Łukasz", "name": "Jørgen Łukasz", "matric": "s2231234",
            "canvas": "7654321", "email": "jorgen.lukasz@uni.example", "id": "lukasz-s2231234",
-           "origin": f"lukaszjorgen_7654321_55_{MODULE}.py"}
+           "origin": f"lukaszjorgen_7654321_55_{MODULE}.py",
+           "partner": {"first": "Ngozi", "last": "Okoro", "name": "Ngozi Okoro", "sid": "s7777777",
+                       "email": "okoro@uni.example"}}
     build_class(tmp_path, who)
     shown = "\n".join(text for _, text in walk(tmp_path, anonymous=False)[0])
-    assert "Jørgen Łukasz" in shown and f"{who['last']}{who['first']}.md was not read: it is a symbolic link" in shown
+    assert "Jørgen Łukasz" in shown and "Ngozi Okoro" in shown and f"{who['last']}{who['first']}.md was not read: it is a symbolic link" in shown
     assert f'filename="{who["id"]}-1.pdf"' in shown
 
 
