@@ -713,9 +713,18 @@ def dlt_works(t: Trial, src, dst, H_true) -> bool:
 
 def diagnose_ransac(t: Trial, what, H, inliers, src, dst, H_true, true_inliers, threshold=3.0, seed=0):
     if (~inliers == true_inliers).mean() >= 0.95:
-        t.fail(f"{what}: the inlier mask is inverted: True must mark the inliers "
-               "(transfer error below the threshold)", mistake="the inlier mask is inverted")
+        fail_inverted_mask(t, what)
     name_ransac_h(t, what, H, src, dst, H_true, seed, threshold)
+    name_squared_threshold(t, what, H, inliers, src, dst, threshold)
+
+
+def fail_inverted_mask(t: Trial, what: str):
+    t.fail(f"{what}: the inlier mask is inverted: True must mark the inliers "
+           "(transfer error below the threshold)", mistake="the inlier mask is inverted")
+
+
+def name_squared_threshold(t: Trial, what: str, H, inliers, src, dst, threshold: float):
+    """Fail naming a mask of the pairs whose *squared* error is below the threshold, when it is one."""
     errors = np.linalg.norm(truth.apply_h(H, src) - dst, axis=1)
     if (inliers == (errors ** 2 < threshold)).mean() >= 0.98 and \
             (inliers == (errors < threshold)).mean() < 0.95:
@@ -787,6 +796,10 @@ def ransac_mask_of_h(t):
         if (far | near).mean() <= MASK_DISAGREEMENT:
             notes.append(f"{int(inliers.sum())} marked, {int((far | near).sum())} against the mask")
             continue
+        # the mask's own mistakes first: it is H's, but inverted or by the squared error
+        if np.bitwise_or(*mask_disagreement(H, ~inliers, src, dst, 3.0)).mean() <= MASK_DISAGREEMENT:
+            fail_inverted_mask(t, what)
+        name_squared_threshold(t, what, H, inliers, src, dst, 3.0)
         try:
             inverse = np.linalg.inv(np.asarray(H, np.float64))
         except np.linalg.LinAlgError:

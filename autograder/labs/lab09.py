@@ -1050,11 +1050,12 @@ def calibration_consistent(t):
     if reading:
         cause = ("it looks like K is cv2.getOptimalNewCameraMatrix's (your code calls it): that matrix is for "
                  "undistorted images (cv2.undistort's newCameraMatrix), not the calibrated camera's K")
+    # Named only with the cause the code shows: the disagreement alone has several (a K returned
+    # transposed, another call's K or dist), which the message leaves to the student.
     t.fail(f"{what}: the K, dist and rms returned do not agree: with your K and dist, the best pose of each "
            f"view reprojects the board's corners {shown} RMS from the true corners, while the rms returned "
            f"says {rms:.3f} px: {cause}. Return K, dist and rms from the same cv2.calibrateCamera call.",
-           mistake="K, dist and rms do not come from the same calibration" if not reading
-           else "K from cv2.getOptimalNewCameraMatrix instead of the calibrated K")
+           mistake="K from cv2.getOptimalNewCameraMatrix instead of the calibrated K" if reading else "")
 
 
 @ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners)", points=1)
