@@ -85,7 +85,8 @@ def test_a_link_to_the_page_itself_or_this_machine_is_inert_text(link):
 
 
 @pytest.mark.parametrize("link", ["https://example.org/x", "http://docs.opencv.org/4.x/", "HTTPS://Example.ORG",
-                                  "https://example.org:8443/a?b#c", "mailto:ta@example.org", "https://127.0.0.1.example/"])
+                                  "https://example.org:8443/a?b#c", "mailto:ta@example.org",
+                                  "https://127.0.0.1.example/"])
 def test_another_machines_address_stays_a_link_that_sends_no_referrer(link):
     page = render(f"[there]({link})")
     assert page.count("<a ") == 1 and 'rel="noopener noreferrer nofollow"' in page and 'target="_blank"' in page

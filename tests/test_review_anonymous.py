@@ -247,7 +247,8 @@ def test_the_same_class_not_anonymous_shows_the_names(tmp_path):
                        "email": "okoro@uni.example"}}
     build_class(tmp_path, who)
     shown = "\n".join(text for _, text in walk(tmp_path, anonymous=False)[0])
-    assert "Jørgen Łukasz" in shown and "Ngozi Okoro" in shown and f"{who['last']}{who['first']}.md was not read: it is a symbolic link" in shown
+    assert "Jørgen Łukasz" in shown and "Ngozi Okoro" in shown
+    assert f"{who['last']}{who['first']}.md was not read: it is a symbolic link" in shown
     assert f'filename="{who["id"]}-1.pdf"' in shown
 
 
@@ -317,7 +318,8 @@ def test_every_sentence_the_grader_writes_about_a_report_is_rewritten_from_a_tem
     kinds = " ".join(rewritten.values())
     for reason in ("it is a symbolic link", "it is not a regular file (a named pipe)",
                    "it is not a regular file (a socket)", "it is not a PDF", "its name holds control characters",
-                   "the archive holds it twice", "(a character device)" if os.geteuid() == 0 else "", "is longer than", "a marker names something", "is explained twice",
+                   "the archive holds it twice", "(a character device)" if os.geteuid() == 0 else "",
+                   "is longer than", "a marker names something", "is explained twice",
                    "has no '<!-- end explanation -->'", "is not a readable notebook", "has no list of cells",
                    "its text is not text", "is tagged for 2 exercises", "more than 300 exercises explained",
                    "and 10 more files were not read", "larger than"):

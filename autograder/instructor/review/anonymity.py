@@ -33,7 +33,8 @@ import unicodedata
 from pathlib import PurePosixPath
 from urllib.parse import quote
 
-UNKNOWN_PROBLEM = "a problem was found reading the report (its sentence names files: run without --anonymous to read it)"
+UNKNOWN_PROBLEM = ("a problem was found reading the report (its sentence names files: "
+                   "run without --anonymous to read it)")
 _KINDS = {".pdf": "PDF", ".md": "Markdown", ".ipynb": "notebook", ".zip": "zip", ".py": "Python"}
 _EXERCISE = r"lab\d\d\.[a-z]+\d+(?:-[a-z]+)?"
 _NUMBER = r"\d[\d,.]{0,12}"
