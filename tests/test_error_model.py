@@ -17,7 +17,6 @@ from autograder.engine.mutants.helper import Helper, HelperFailed
 from autograder.engine.mutants.operators import OPERATORS, apply_edits, mutants_of, mutated_defs
 from autograder.engine.registry import discover
 from autograder.sandbox.supervisor import CallOutcome
-from fixtures.images import photo
 
 ROOT = Path(__file__).resolve().parents[1]
 LABS = discover()
@@ -112,43 +111,33 @@ def _trial(key: str, student_source: str, calls):
                            forbid={}, student_seconds=0.0, outputs=[])
 
 
-ROTATION_ADDS_RC = """
-def rotation_matrix(angle_deg, center=(0.0, 0.0)):
-    theta = np.deg2rad(angle_deg)
-    cos, sin = np.cos(theta), np.sin(theta)
-    R = np.array([[cos, sin], [-sin, cos]])
-    c = np.asarray(center, dtype=np.float64)
-    M = np.eye(3)
-    M[:2, :2] = R
-    M[:2, 2] = c + R @ c
-    return M
-"""
+TINY = "import numpy as np\n\n\ndef f(x, k=2.0):\n    return np.array([[x * k + 1.0]])\n"
 
 
-def test_the_confirmation_separates_two_candidates_and_names_the_true_one():
-    """rotate(image) at the default 45 degrees about the centre with c + R c: the image leaves the
-    frame, and a sine with the wrong sign gives the same black picture. The confirmation inputs
-    (another angle: the default varied too) tell them apart; only the true one is named."""
-    image = photo("astronaut", (120, 90))
-    trial = _trial("lab07", ROTATION_ADDS_RC, [("rotate", (image,), {})])
-    model = naming.model_for(trial.lab)
-    reproducing = []
+def test_the_confirmation_separates_two_candidates_and_names_the_true_one(monkeypatch):
+    """At x = 0, -(x k + 1) and x k - 1 both give the student's -1: two candidates. The
+    confirmation inputs (other x, other k) tell them apart; only the true one is named."""
+    from autograder.engine.mutants.naming import ErrorModel, _numeric_defaults
+
+    model = ErrorModel("tiny", TINY, mutants_of(TINY, {"f"}), _numeric_defaults(TINY))
+    monkeypatch.setattr(naming, "model_for", lambda lab: model)
+    student = types.ModuleType("student")
+    exec(TINY.replace("x * k + 1.0", "x * k - 1.0"), student.__dict__)  # noqa: S102 - the test's own code
+    lab = SimpleNamespace(module="tiny", forbidden={})
+    trial = SimpleNamespace(lab=lab, calls=[("f", (0.0,), {}, student.f(0.0))], sandbox=_InProcess(student),
+                            check=SimpleNamespace(timeout=10), forbid={}, student_seconds=0.0, outputs=[])
     runner = naming.helper()
-    runner.prepare(model.source, model.module, [("rotate", (image,), {})], 10)
+    runner.prepare(model.source, model.module, [("f", (0.0,), {})], 10)
     [reference] = runner.run((), [0], 10)
-    student = trial.calls[0][3]
-    for mutant in model.mutants["rotate"]:
-        [value] = runner.run(mutant.edits, [0], 5)
-        if naming.reproduces(value, student, reference):
-            reproducing.append(mutant.operator)
-    assert {"sign", "add_sub"} <= set(reproducing)   # on the failing input alone, both fit
+    reproducing = {m.operator for m in model.mutants["f"]
+                   if naming.reproduces(runner.run(m.edits, [0], 5)[0], trial.calls[0][3], reference)}
+    assert {"sign", "add_sub"} <= reproducing        # on the failing input alone, both fit
 
     named = naming.name_failure(trial, seconds=60)
     assert named is not None and named.mutant.operator == "add_sub", named
-    assert "added instead of subtracted" in named.sentence and "`rotate`" in named.sentence
-    assert named.confirmations >= 1 and trial.sandbox.asked            # the student was asked
-    assert all("angle_deg" in kwargs for _, _, kwargs in trial.sandbox.asked[1:]) or \
-        any("angle_deg" in kwargs for _, _, kwargs in trial.sandbox.asked)
+    assert named.sentence == "in `f`, 1.0 is subtracted instead of added (`x` times `k` plus it)"
+    assert named.confirmations >= 1 and trial.sandbox.asked           # the student was asked
+    assert any(call[1] != (0.0,) for call in trial.sandbox.asked)      # on other inputs
     assert any("confirmation call" in output for output in trial.outputs)   # its printing labelled
 
 
@@ -195,6 +184,42 @@ def test_a_contradicted_hand_written_name_is_replaced_and_an_agreeing_one_kept(m
     assert naming.named_by_error_model(agreeing, None) is agreeing
     plain = Verdict(0.0, "rotation_matrix(30) is wrong")
     assert naming.named_by_error_model(plain, None).mistake == "mutant:degrees"
+
+
+# ------------------------------------------------------------------ in a grading
+def _mutant_submission(tmp_path, key, function, operator, words):
+    lab = LABS[key]
+    model = naming.model_for(lab)
+    [mutant] = [m for m in model.mutants[function] if m.operator == operator and words in m.sentence]
+    folder = tmp_path / "submission"
+    folder.mkdir()
+    (folder / f"{lab.module}.py").write_text(apply_edits(model.source, mutant.edits))
+    return folder, mutant
+
+
+def test_a_mutant_submission_fails_and_is_named_with_the_operators_sentence(tmp_path):
+    from autograder.engine.runner import grade
+
+    folder, mutant = _mutant_submission(tmp_path, "lab09", "project_with_intrinsics", "transpose", "untransposed")
+    result = grade(folder, ["lab09.ex2"], pictures="none")
+    failed = [c for e in result.exercises for c in e.checks if c.score < c.max_score]
+    assert failed
+    named = [c for c in failed if c.mistake == "mutant:transpose"]
+    assert named and all(mutant.sentence in c.message for c in named)
+    assert "The error model: it looks like in `project_with_intrinsics`, `K` is used untransposed" in named[0].message
+
+
+def test_a_correct_submission_is_never_run_through_naming(tmp_path, monkeypatch):
+    from autograder.engine.runner import grade
+
+    asked = []
+    monkeypatch.setattr(naming, "name_failure", lambda trial, seconds=0: asked.append(trial.check.name))
+    result = grade(ROOT / "reference_solutions", ["lab09.ex2"], pictures="none")
+    assert all(c.score == c.max_score for e in result.exercises for c in e.checks) and not asked
+    folder, _ = _mutant_submission(tmp_path, "lab09", "project_with_intrinsics", "transpose", "untransposed")
+    result = grade(folder, ["lab09.ex2"], pictures="none")
+    failed = {c.name for e in result.exercises for c in e.checks if c.score < c.max_score and not c.failure}
+    assert failed and set(asked) == failed     # every failed check, and only those
 
 
 # ------------------------------------------------------------------ the helper process

@@ -166,14 +166,16 @@ def _leaves(value, out: list) -> bool:
     return True
 
 
-def distance(a, b, lenient: bool = False) -> float:
+def distance(a, b, lenient: bool = False, projective: bool = False) -> float:
     """How far answer ``a`` is from ``b``: the largest mean absolute difference of their arrays
     (small matrices also compared up to scale and sign, as the checks do); infinite when
     their structure, shapes or NaN places differ, or one is an error.
 
     ``lenient``: ``a`` (a mutant's answer) may have NaN where ``b`` has numbers, in fewer than
     half the places (the reference marks points behind the camera NaN; a student who does not
-    still makes the mutant's mistake everywhere else)."""
+    still makes the mutant's mistake everywhere else). ``projective``: small matrices (up to 16
+    entries) are compared up to scale and sign, as checks of homographies and fundamental
+    matrices do."""
     left, right = [], []
     if not (_leaves(a, left) and _leaves(b, right)) or len(left) != len(right):
         return float("inf")
@@ -199,7 +201,7 @@ def distance(a, b, lenient: bool = False) -> float:
         if x.size == 0 or nan_x.all():
             continue
         raw = float(np.mean(np.abs(x[~nan_x] - y[~nan_y])))
-        if x.ndim == 2 and x.size <= 16 and not nan_x.any():
+        if projective and x.ndim == 2 and x.size <= 16 and not nan_x.any():
             raw = min(raw, _up_to_scale(x, y))
         worst = max(worst, raw)
     return worst
@@ -260,7 +262,12 @@ def reproduces(mutant, student, reference) -> bool:
     off = distance(reference, student)
     if off <= 10 * tolerance:   # the student is right here: the mutant must be as near
         return apart <= 2 * off
-    return apart <= min(0.1 * off, 0.05 * scale)
+    if apart <= min(0.1 * off, 0.05 * scale):
+        return True
+    # A homography or fundamental matrix the student scaled otherwise: the same test, up to scale.
+    off = distance(reference, student, projective=True)
+    apart = distance(mutant, student, lenient=True, projective=True)
+    return off > 10 * tolerance and apart <= min(0.1 * off, 0.05 * scale)
 
 
 def _constant(value) -> bool:
