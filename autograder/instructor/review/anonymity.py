@@ -27,6 +27,7 @@ anonymous its own way:
 
 from __future__ import annotations
 
+import functools
 import itertools
 import re
 import unicodedata
@@ -159,8 +160,7 @@ class Anonymiser:
         for name in sorted(files):
             self.label(name)
         forms = {form for word in identities(student) for form in _forms(word) if form.strip()}
-        self._identity = re.compile("|".join(_whole(w) for w in sorted(forms, key=len, reverse=True)),
-                                    re.IGNORECASE) if forms else None
+        self._forms = sorted(((form, form.casefold()) for form in forms), key=lambda f: -len(f[0]))
 
     def label(self, name: str) -> str:
         """``name`` (a file's path) as ``report N (KIND)``: the same name, the same label."""
@@ -182,7 +182,11 @@ class Anonymiser:
         for name in sorted(self.labels, key=len, reverse=True):
             if len(name) >= 3:
                 text = text.replace(name, self.labels[name])
-        return self._identity.sub(self.pseudonym, text) if self._identity else text
+        # One alternation of every form (hundreds) costs seconds on a long explanation: only the
+        # forms that occur at all, case aside, are looked for where they are whole.
+        folded = text.casefold()
+        present = tuple(form for form, fold in self._forms if fold in folded)
+        return _pattern(present).sub(self.pseudonym, text) if present else text
 
     def problem(self, sentence: str) -> str:
         """A problem of the report, rewritten from the templates (see the module doc)."""
@@ -198,6 +202,12 @@ class Anonymiser:
                     fields["why"] = _reason(fields["why"])
                 return template.format(**fields)
         return UNKNOWN_PROBLEM
+
+
+@functools.lru_cache(maxsize=256)
+def _pattern(forms: tuple[str, ...]) -> re.Pattern:
+    """``forms`` (longest first) as one pattern, each whole (see :func:`_whole`), case aside."""
+    return re.compile("|".join(_whole(form) for form in forms), re.IGNORECASE)
 
 
 def _reason(why: str) -> str:
