@@ -506,6 +506,8 @@ def _block_text(index) -> str:
             lower = element.lower.value if element.lower is not None else 0
             if element.upper is None:
                 words.append(f"{axis}s {lower} onwards" if lower else f"all {axis}s")
+            elif element.upper.value == lower + 1:
+                words.append(f"{axis} {lower}")
             else:
                 words.append(f"{axis}s {lower}-{element.upper.value - 1}")
         else:
@@ -617,8 +619,10 @@ def _changes(node, parents, words: _Words, line):
     """The operators' changes of one node: (operator, payload, phrase)."""
     what = lambda n: words.what(n, line=line)  # noqa: E731
     parent = parents.get(id(node), (None, None, None))[0]
+    place = functools.partial(_place, node, parents, words, line)   # where, when nothing names the term
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and not isinstance(node.operand, ast.Constant):
-        yield "sign", "remove", _subject(what(node.operand), "has the wrong sign (its minus is missing)", node, parents, words)
+        yield "sign", "remove", _subject(what(node.operand), "has the wrong sign (its minus is missing)", node, parents,
+                                         words) or _placed("a minus sign is missing", place())
     if isinstance(node, ast.expr) and _entry_of_literal(node, parents) and not (
             isinstance(node, ast.Constant) and node.value in (0, 0.0, 1, 1.0)) \
             and not isinstance(node, ast.UnaryOp) and not isinstance(parent, ast.UnaryOp):
@@ -638,9 +642,11 @@ def _changes(node, parents, words: _Words, line):
                                   "(off by one)" if what(node) else ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)):
         left, right = what(node.left), what(node.right)
+        verb = "added instead of subtracted" if isinstance(node.op, ast.Sub) else "subtracted instead of added"
         if right:
-            verb = "added instead of subtracted" if isinstance(node.op, ast.Sub) else "subtracted instead of added"
             yield "add_sub", None, f"{right} is {verb}" + (f" ({left} {'minus' if isinstance(node.op, ast.Sub) else 'plus'} it)" if left else "")
+        else:
+            yield "add_sub", None, _placed(f"a term is {verb}", place())
     if isinstance(node, ast.BinOp) and type(node.op) in _NON_COMMUTATIVE:
         left, right = what(node.left), what(node.right)
         kind = _NON_COMMUTATIVE[type(node.op)]
@@ -649,22 +655,30 @@ def _changes(node, parents, words: _Words, line):
                 yield "swap_operands", None, f"the matrix product of {left} and {right} is taken in the reverse order"
             else:
                 yield "swap_operands", None, f"the {kind} has its two operands swapped ({left} and {right})"
+        else:
+            yield "swap_operands", None, _placed(f"the two operands of a {kind} are swapped", place())
         if isinstance(node.op, ast.MatMult):
             if right and left:
                 yield "drop_factor", "left", f"the product with {left} is missing (only {right} is used)"
                 yield "drop_factor", "right", f"the product with {right} is missing (only {left} is used)"
+            else:
+                yield "drop_factor", "left", _placed("the left factor of a matrix product is missing", place())
+                yield "drop_factor", "right", _placed("the right factor of a matrix product is missing", place())
         if isinstance(node.op, ast.Div):
-            yield "drop_division", None, _division_phrase(node, what)
+            yield "drop_division", None, _division_phrase(node, what) or _placed(
+                "a division (a normalisation) is missing", place())
             yield "int_division", "floor", f"{left or 'a value'} divided by {right or 'another'} is an integer " \
                                            "division (// truncates)"
     if isinstance(node, ast.Call):
         yield from _call_changes(node, words, what, parents)
     if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load):
         inner = what(node.value)
-        yield "transpose", "remove", f"{inner} is used untransposed (its transpose belongs there)" if inner else ""
+        yield "transpose", "remove", f"{inner} is used untransposed (its transpose belongs there)" if inner else \
+            _placed("a transpose is missing", place())
     if isinstance(node, ast.expr) and _transposable(node, parent):
         inner = what(node)
-        yield "transpose", "insert", f"{inner} is used transposed" if inner else ""
+        yield "transpose", "insert", f"{inner} is used transposed" if inner else \
+            _placed("a matrix is used transposed", place())
     if isinstance(node, ast.Attribute) and _dotted(node).startswith("cv2.") and node.attr in _FLAG_FAMILY:
         for other in _FLAG_FAMILY[node.attr]:
             if other != node.attr:
@@ -685,6 +699,43 @@ def _changes(node, parents, words: _Words, line):
         yield from _name_changes(node, words, what, line)
     if isinstance(node, (ast.Assign, ast.AugAssign)) and parent is not None:
         yield "drop_statement", None, _statement_phrase(node, words, line)
+
+
+def _placed(sentence: str, place: str) -> str:
+    return f"{sentence} {place}" if place else ""
+
+
+def _place(node, parents, words: _Words, line) -> str:
+    """Where an unnamed term is, in the student's terms: "in the arguments of `np.hstack`", "in
+    the returned value", "in computing rows 0-1, column 2 of ..."; "" when nothing says it."""
+    up, child, item = parents.get(id(node)), node, None
+    while up is not None:
+        holder = up[0]
+        if isinstance(holder, (ast.List, ast.Tuple)):
+            item = next((i for i, e in enumerate(holder.elts) if e is child), None)
+        if isinstance(holder, ast.Call):
+            dotted = _dotted(holder.func)
+            if dotted.startswith(("np.", "cv2.")) or dotted in words.api:
+                which = next((i for i, a in enumerate(holder.args) if a is child), None)
+                argument = f"the {_ORDINALS[which]} argument" if which is not None and which < 6 else "the arguments"
+                if which is not None and isinstance(child, (ast.List, ast.Tuple)) and item is not None and item < 6:
+                    argument = f"the {_ORDINALS[item]} item of {argument}"
+                same = [n for n in ast.walk(words.fn) if isinstance(n, ast.Call) and _dotted(n.func) == dotted]
+                call = f"the {_ORDINALS[same.index(holder)]} `{dotted}`" if 1 < len(same) <= 6 else f"`{dotted}`"
+                return f"in {argument} of {call}"
+        if isinstance(holder, ast.Return):
+            return "in the returned value"
+        if isinstance(holder, (ast.Assign, ast.AugAssign)):
+            target = holder.targets[0] if isinstance(holder, ast.Assign) else holder.target
+            named = words.what(target, line=line + 1) if not isinstance(target, ast.Tuple) else ""
+            return f"in computing {named}" if named else ""
+        if isinstance(holder, ast.stmt):
+            return ""
+        up, child = parents.get(id(holder)), holder
+    return ""
+
+
+_ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
 
 
 def _subject(phrase: str, predicate: str, node, parents, words) -> str:
