@@ -4,6 +4,8 @@ file, and everything else is still graded -- locally, through the CLI, and on Gr
 import io
 import json
 import shutil
+import subprocess
+import sys
 import zipfile
 
 import pytest
@@ -12,7 +14,7 @@ from rich.console import Console
 from autograder import cli
 from autograder.instructor import gradescope
 from autograder.instructor.course import CourseConfig
-from autograder.reports import terminal
+from autograder.reports import html, terminal
 from autograder.engine.runner import grade
 from conftest import REFERENCE, ROOT, submission_from_source
 
@@ -271,3 +273,113 @@ def translation_matrix(tx, ty):
     failed = [t for t in data["tests"] if t["status"] == "failed"]
     assert failed and all(t["output_format"] == "html" for t in data["tests"])
     assert any("<pre>It returned\n[[" in t["output"] for t in failed)
+
+
+# ------------------------------------------------------------------ issue 36: what a student reads
+def lab07_notebook(*cells: str) -> str:
+    return json.dumps({"cells": [{"cell_type": "code", "metadata": {}, "execution_count": None, "outputs": [],
+                                  "source": cell} for cell in cells],
+                       "metadata": {}, "nbformat": 4, "nbformat_minor": 5})
+
+
+REFERENCE_07 = (REFERENCE / f"{LAB07}.py").read_text()
+EX1_AND_EX2 = REFERENCE_07[:REFERENCE_07.index("def scaling_matrix")]
+
+
+def test_an_exercise_not_started_in_a_notebook_is_one_line(tmp_path):
+    """A notebook that does not define an exercise's functions yet gets one line for it, as a
+    skeleton's stubs do, not a "not found: def ..." line per check (and the page says it once)."""
+    folder = folder_with(tmp_path, {f"{LAB07}.ipynb": lab07_notebook(EX1_AND_EX2)})
+    result = grade(folder, ["lab07.ex1", "lab07.ex3", "lab07.ex4"]).for_students()
+    text = terminal_text(result)
+    assert "· lab07.ex3: not started: scaling_matrix() and scale() are not defined yet" in text
+    assert "· lab07.ex4: not started: shear_matrix() and shear() are not defined yet" in text
+    assert "not found: def" not in text and "hidden check" not in text
+    assert len([line for line in text.splitlines() if "lab07.ex3" in line]) == 2   # the table's row and this line
+    page = html.render(result)
+    assert page.count("not started: scaling_matrix() and scale() are not defined yet") == 1
+    assert "not found: def scaling_matrix" not in page
+    assert full(result, "lab07.ex1")
+
+
+def test_the_left_out_note_is_whole_on_request_without_duplicates_as_written(tmp_path):
+    demo = "plt.imshow(translate(img))\nplt.show()"
+    cells = [EX1_AND_EX2, "%matplotlib inline\nimport matplotlib.pyplot as plt\nimg = plt.imread('photo.png')",
+             demo, demo] + [f"out{i} = translate(img, {i}, 0)" for i in range(8)]
+    folder = folder_with(tmp_path, {f"{LAB07}.ipynb": lab07_notebook(*cells)})
+    result = grade(folder, ["lab07.ex1"])
+    [note] = [n for n in result.notes if "left out at grading" in n]
+    first, *listed = note.splitlines()
+    assert "and 7 more (validate lists them all)" in first
+    assert len(listed) == 12 and len(set(listed)) == len(listed)
+    assert "cells 3, 4 `plt.show()` (plotting)" in listed, "the same statement in two cells is one line"
+    assert all("get_ipython" not in line for line in listed)
+    text = " ".join(terminal_text(result).split())   # the lines as one, whatever the wrapping
+    assert " ".join(f"note: {first}".split()) in text and listed[-1] not in text   # the first line only
+    page = html.render(result)
+    assert "<details><summary>all 12 listed</summary>" in page and "out7 = translate(img, 7, 0)" in page
+    # check() in a kernel reads the cells as written: %matplotlib inline, not IPython's translation
+    from autograder.student import selfcheck
+
+    class Shell:
+        user_ns = {"In": ["", "get_ipython().run_line_magic('matplotlib', 'inline')"]}
+        history_manager = type("History", (), {"input_hist_raw": ["", "%matplotlib inline"]})()
+
+    import IPython
+    original = IPython.get_ipython
+    IPython.get_ipython = lambda: Shell()
+    try:
+        assert selfcheck._kernel_history() == ["%matplotlib inline"]
+    finally:
+        IPython.get_ipython = original
+
+
+def test_a_name_missing_because_its_cell_raised_names_that_cell(tmp_path):
+    folder = folder_with(tmp_path, {f"{LAB07}.ipynb": lab07_notebook(
+        "import numpy as np", "S = np.zeros((3, 3))\nS_INV = np.linalg.inv(S)",
+        "def translation_matrix(tx, ty):\n    return S_INV @ np.array([[1.0, 0, tx], [0, 1, ty], [0, 0, 1]])")})
+    result = grade(folder, ["lab07.ex1"], pictures="none")
+    [check, *_] = exercise(result, "lab07.ex1").checks
+    assert check.message.splitlines()[0].endswith(
+        "NameError: name 'S_INV' is not defined (`S_INV` is not defined because cell 2 raised when run: "
+        "`S_INV = np.linalg.inv(S)`; grading skips a statement that raises, as Jupyter goes on after a "
+        "failing cell: run that cell to see its error)")
+
+
+def test_validate_names_the_notebook_and_suggests_only_functions(tmp_path):
+    from autograder.student.validate import validate
+
+    folder = folder_with(tmp_path, {f"{LAB07}.ipynb": lab07_notebook(
+        EX1_AND_EX2.replace("def rotate(", "def rotat("), "SCALING_MATRX = 2.0")})
+    text = str(validate(folder, ["lab07.ex2", "lab07.ex3"]))
+    assert f"✓ {LAB07}.ipynb: imports cleanly" in text and f"{LAB07}.py" not in text
+    assert "(is rotat meant to be it?" in text
+    assert "SCALING_MATRX" not in text, "a constant is never suggested as a misspelt function"
+
+
+def test_check_prints_its_report_in_a_script_and_advises_in_its_own_terms(tmp_path):
+    (tmp_path / f"{LAB07}.py").write_text(REFERENCE_07 + "\n_t = translation_matrix\n"
+                                          "def translation_matrix(tx, ty):\n    print('debug')\n    return _t(tx, ty)\n")
+    script = "from autograder import check\nreport = check('lab07.ex1')\n"
+    run = subprocess.run([sys.executable, "-c", script], cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert "lab07.ex1" in run.stdout and "Translation" in run.stdout, "a script's check() prints the report"
+    assert "print(report.printed())" in run.stdout and "--no-html" not in run.stdout
+    # an interactive shell shows the value itself: nothing printed twice
+    shell = subprocess.run([sys.executable, "-i", "-c", ""], input=script, cwd=tmp_path, capture_output=True,
+                           text=True, timeout=300)
+    assert "Traceback" not in shell.stderr and "Translation" not in shell.stdout + shell.stderr
+
+
+def test_output_printed_during_the_graders_own_calls_is_labelled(tmp_path):
+    folder = submission_from_source(tmp_path, LAB07, REFERENCE_07 + """
+def rotate(image, angle_deg=45):
+    print("rotating by", float(angle_deg))
+    height, width = image.shape[:2]
+    return _warp(image, rotation_matrix(-angle_deg, ((width - 1) / 2.0, (height - 1) / 2.0)))
+""")
+    result = grade(folder, ["lab07.ex2"], pictures="none")
+    [check] = [c for c in exercise(result, "lab07.ex2").checks if c.name.startswith("rotate(image) by the default")]
+    own, _, extra = check.output.partition("(printed during the grader's own extra calls, on other inputs:)")
+    assert "rotating by 45.0" in own and "rotating by 37.0" not in own
+    assert "rotating by 37.0" in extra
