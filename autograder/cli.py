@@ -191,6 +191,7 @@ def run_grade(args) -> int:
     from .engine.registry import SelectionError
     from .engine.results import write_json
     from .engine.runner import grade
+    from .figures import grading_budget
     from .reports import terminal
 
     console, errors = Console(stderr=False), Console(stderr=True)
@@ -229,7 +230,7 @@ def run_grade(args) -> int:
     terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first
     written, status = [], 0
     # Figures are part of the grading: its calls' limits (a lane's memory share), what is left of its deadline.
-    graded, deadline = limits.shared_by(lanes), begun + limits.submission_budget
+    graded, deadline = limits.shared_by(lanes), begun + grading_budget(limits, args.select or course.select)
     figures = {}
     if getattr(args, "figures", None):
         figures = _write_figures(args, graded, deadline, console, errors, written)

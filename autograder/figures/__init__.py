@@ -169,14 +169,24 @@ def figure_limits(limits) -> "Limits":
                                            FIGURE_REPLY_ELEMENTS))
 
 
+def grading_budget(limits, selectors=()) -> float:
+    """The seconds a grading of ``selectors`` has from its start to its deadline, as the runner
+    sets it: ``Limits.budget_for`` the exercises selected, where the limits have it (a lab's
+    share each), else ``Limits.submission_budget``. Figures made after that grading share it."""
+    from ..engine.registry import select
+
+    budget_for = getattr(limits, "budget_for", None)
+    return budget_for(select(selectors)) if budget_for is not None else limits.submission_budget
+
+
 def make_figures(submission, selectors=(), out_dir=".", limits=None,
                  deadline: float | None = None) -> list[FigureOutcome]:
     """Write ``out_dir/<figure id>.png`` for every figure of the selected exercises.
 
     ``limits``: those of the submission's graded calls (``Limits.shared_by(lanes)`` when it was
     graded in lanes), with the figure's reply caps added (:func:`figure_limits`). ``deadline``:
-    the submission's, ``time.monotonic()`` at which its ``submission_budget`` is spent (its
-    grading began that long before); None: the budget from now, for figures made on their own.
+    the grading's, ``time.monotonic()`` at which its time is spent (:func:`grading_budget` after
+    it began); None: that budget from now, for figures made on their own.
     A call running at the deadline is stopped, and every figure left is skipped with the reason.
     """
     from ..engine.registry import select
@@ -185,7 +195,7 @@ def make_figures(submission, selectors=(), out_dir=".", limits=None,
 
     limits = figure_limits(limits or Limits())
     if deadline is None:
-        deadline = time.monotonic() + limits.submission_budget
+        deadline = time.monotonic() + grading_budget(limits, selectors)
     chosen = [(ex, producer) for ex in select(selectors) for producer in producers_for(ex.id)]
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -197,11 +207,10 @@ def make_figures(submission, selectors=(), out_dir=".", limits=None,
                 outcome = FigureOutcome(exercise.id, figure_id=producer.figure_id)
                 outcomes.append(outcome)
                 if sandbox.remaining() <= 0:
-                    outcome.reason = _out_of_time(limits.submission_budget)
+                    outcome.reason = _out_of_time()
                     continue
                 sandbox.start_exercise(None)  # worker restarts are counted per figure, as per exercise
-                call = _caller(sandbox, exercise.lab.module, loaded.problems.get(exercise.lab.module),
-                               limits.submission_budget)
+                call = _caller(sandbox, exercise.lab.module, loaded.problems.get(exercise.lab.module))
                 try:
                     panels = producer.make(call)
                     outcome.note = " ".join(_thin(panels))
@@ -218,19 +227,19 @@ def make_figures(submission, selectors=(), out_dir=".", limits=None,
     return outcomes
 
 
-def _out_of_time(budget: float, function: str = "") -> str:
+def _out_of_time(function: str = "") -> str:
     """Why a figure was not made: the submission's deadline (grading and figures share it)."""
     what = f"{function}() was stopped" if function else "skipped"
-    return f"{what}: the submission's {budget:g} s time budget (grading and its figures together) is spent"
+    return f"{what}: the submission's time budget (grading and its figures together) is spent"
 
 
-def _caller(sandbox, module: str, problem: str | None, budget: float):
+def _caller(sandbox, module: str, problem: str | None):
     def call(function: str, *args, **kwargs):
         if problem:
             raise FigureUnavailable(problem)
         outcome = sandbox.call(module, function, args, kwargs)
         if outcome.kind == "budget":
-            raise FigureUnavailable(_out_of_time(budget, function if outcome.seconds else ""))  # ran: stopped
+            raise FigureUnavailable(_out_of_time(function if outcome.seconds else ""))  # it ran: stopped
         if not outcome.ok:
             message = outcome.message.splitlines()[0] if outcome.message else outcome.kind
             raise FigureUnavailable(message if message.startswith(f"{function}()") else f"{function}(): {message}")

@@ -64,6 +64,7 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
     from ...reports import html
     from ...engine.results import json_text, strip_pictures
     from ...engine.runner import grade
+    from ...figures import grading_budget
     from ...sandbox.supervisor import Limits
 
     try:
@@ -101,7 +102,7 @@ def grade_files(files: dict[str, bytes], selectors: list[str], call_timeout: flo
                            pictures=pictures, inputs_secret=inputs_secret or None, forbid=rules.get("forbid"))
             student = result.for_students(hidden_points_visible)
             figures = _figures(folder, rules.get("figures") or [], limits, Path(tmp) / "figures",
-                               begun + limits.submission_budget)
+                               begun + grading_budget(limits, selectors))
             return {"result": strip_pictures(result.to_dict()),
                     "json": json_text(strip_pictures(student.to_dict())), "page": html.render(student),
                     "figures": figures}
