@@ -200,7 +200,9 @@ def test_a_zero_stride_view_is_refused_for_its_size_before_it_is_copied(tmp_path
         """, Limits(call_timeout=5.0)) as box:
         for function in ("broadcast", "strided"):
             outcome = box.call("m", function)
-            assert (outcome.kind, outcome.message) == ("result_type", f"{function}() returned more than 256 MiB")
+            assert (outcome.kind, outcome.message) == ("result_type", f"{function}() returned a float64 array of "
+                                                       "shape (2300, 131072) (2.25 GiB), which cannot be sent back: "
+                                                       "it is more than the 256 MiB a result may be")
             assert box.call("m", "fine").value == 1
 
 
@@ -422,7 +424,8 @@ def test_a_slow_loris_ends_at_the_deadline_with_results_and_nothing_left(tmp_pat
     submission = mutant(tmp_path, LAB07, source)
     with open(submission / f"{LAB09}.py", "w") as module:
         module.write((REFERENCE / f"{LAB09}.py").read_text() + "\n" + source)
-    limits = Limits(call_timeout=1.0, import_timeout=4.0, exercise_budget=3.0, submission_budget=6.0)
+    limits = Limits(call_timeout=1.0, import_timeout=4.0, exercise_budget=3.0, submission_budget=6.0,
+                    lab_budget=3.0)  # (two labs: the whole 6 s)
     result = grade(submission, ["lab07", "lab09"], limits=limits, pictures="none", lanes=2)
     # The deadline is the grader's: whatever the calls did, grading ended at it (with what a
     # call running then and a busy machine add), every check has its verdict.
@@ -602,11 +605,17 @@ def test_no_reply_however_exotic_is_a_grader_error_in_any_check(value):
 
 
 @pytest.mark.parametrize("value, kind", [
-    (np.ones(3, np.float16), "returned an array of dtype float16; use float32 or float64"),
-    (np.ones(3, np.longdouble), "returned an array of dtype float128; use float32 or float64"),
-    (np.array([object()]), "returned an array of dtype object; use a numeric or bool dtype"),
-    (np.broadcast_to(np.zeros(1), (2300, 2**17)), "returned more than 256 MiB"),
-    ("x" * (5 * 2**20), "returned more than 4 MiB of numbers and text outside arrays (return an array)"),
+    (np.ones(3, np.float16), "returned a float16 array of shape (3,) (6 bytes), which cannot be sent back: "
+                             "arrays of dtype float16 cannot cross; use float32 or float64"),
+    (np.ones(3, np.longdouble), "returned a float128 array of shape (3,) (48 bytes), which cannot be sent back: "
+                                "arrays of dtype float128 cannot cross; use float32 or float64"),
+    (np.array([object()]), "returned an object array of shape (1,) (8 bytes), which cannot be sent back: "
+                           "arrays of dtype object cannot cross; use a numeric or bool dtype"),
+    (np.broadcast_to(np.zeros(1), (2300, 2**17)), "returned a float64 array of shape (2300, 131072) (2.25 GiB), "
+                                                  "which cannot be sent back: it is more than the 256 MiB a "
+                                                  "result may be"),
+    ("x" * (5 * 2**20), "returned a string of 5242880 characters, which cannot be sent back: it holds more than "
+                        "4 MiB of numbers and text outside arrays; at most that can cross (return an array)"),
 ])
 def test_what_cannot_cross_is_refused_where_it_is_made(value, kind):
     with pytest.raises(transport.TransportError) as refused:

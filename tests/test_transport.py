@@ -59,7 +59,7 @@ class AlwaysEqual(np.ndarray):
 @pytest.mark.parametrize("value, fragment", [
     (np.zeros(3).view(AlwaysEqual), "ndarray subclass"),
     (np.array([object()]), "dtype object"),
-    (object(), "returned a builtins.object"),
+    (object(), "returned an object, which cannot be sent back"),
     ({1: 2}, "non-string keys"),
     (np.ma.masked_array([1, 2]), "ndarray subclass"),
     (lambda: 0, "function"),

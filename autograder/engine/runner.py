@@ -6,9 +6,10 @@ one sandboxed worker, runs every check in the grader's process and returns a
 submission; a failure inside a check is recorded as a grader error for that check.
 
 Student time is budgeted per exercise (``Limits.exercise_budget``, the seconds billed
-to its calls), and the whole grading has a wall-clock deadline (``Limits.submission_budget``
-after it began, whatever runs meanwhile: calls, restarts, other lanes, the grader's own
-judging; a call running then is stopped at it): once either is spent, the checks left
+to its calls), and the whole grading has a wall-clock deadline (``Limits.budget_for`` the
+exercises selected -- a lab's share each, at most ``Limits.submission_budget`` -- after it
+began, whatever runs meanwhile: calls, restarts, other lanes, the grader's own judging; a
+call running then is stopped at it): once either is spent, the checks left
 are marked "time budget exhausted" (0 points) without calling anything, and the results
 are still complete.
 
@@ -125,8 +126,9 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
     if pictures not in PICTURES:
         raise ValueError(f"pictures must be one of {PICTURES}, got {pictures!r}")
     started = time.perf_counter()
-    deadline = time.monotonic() + (limits or Limits()).submission_budget
     exercises = select(selectors, include_hidden)
+    seconds = (limits or Limits()).budget_for(exercises)  # the deadline scales with what is graded
+    deadline = time.monotonic() + seconds
     modules = sorted({ex.lab.module for ex in exercises})
     every_module = {lab.module for lab in discover().values()}  # a lone file is never another lab's
     with load_submission(submission_path, modules, every_module=every_module) as submission:
@@ -169,7 +171,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         stopping = threading.Event()  # set when grading ends early (an interrupt, a grader bug)
 
         def lane(sandbox: Sandbox, work: list, into: dict, spent: dict | None = None):
-            budget = _Budget(sandbox, deadline)
+            budget = _Budget(sandbox, deadline, seconds)
             while work and not stopping.is_set():
                 try:
                     lab = work.pop(0)  # atomic: each lab goes to one lane
@@ -299,8 +301,8 @@ class _Budget:
     """A lane's time: each exercise's budget of billed student seconds, and the submission's
     wall-clock deadline (``time.monotonic()``), the same for every lane."""
 
-    def __init__(self, sandbox: Sandbox, deadline: float):
-        self.sandbox, self.deadline = sandbox, deadline
+    def __init__(self, sandbox: Sandbox, deadline: float, seconds: float):
+        self.sandbox, self.deadline, self.seconds = sandbox, deadline, seconds
         self.limits = sandbox.limits
         sandbox.set_deadline(deadline)  # within a check too: a call running then is stopped at it
 
@@ -311,7 +313,7 @@ class _Budget:
     def exhausted(self) -> str:
         """Which budget is spent ("" while there is time left)."""
         if time.monotonic() >= self.deadline:
-            return f"time budget exhausted (the submission's {self.limits.submission_budget:g} s)"
+            return f"time budget exhausted (the submission's {self.seconds:g} s)"
         if self.sandbox.remaining() <= 0:
             return f"time budget exhausted (this exercise's {self.limits.exercise_budget:g} s)"
         return ""

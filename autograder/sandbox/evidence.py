@@ -100,6 +100,13 @@ def memory_in_use(pids) -> int | None:
     return total if known else None
 
 
+def resident(pid: int | None) -> int | None:
+    """Bytes of memory process ``pid`` holds (its resident set size, ``statm``): a tenth of a
+    millisecond to read, cheap enough for every call. None where it cannot be read."""
+    statm = _read(f"/proc/{pid}/statm") if pid is not None else None
+    return int(statm.split()[1]) * PAGE if statm else None
+
+
 def holds_pipe(pid: int, fd: int, pipe_inode: int) -> bool | None:
     """Whether process ``pid`` has the pipe ``pipe_inode`` at descriptor ``fd``: None when
     that cannot be told (no ``/proc``, not allowed, the process is gone)."""

@@ -75,11 +75,25 @@ class Limits:
     max_result_elements: int | None = None  # most numbers a result's arrays may hold (None: any)
     max_output_chars: int = 4000         # captured stdout/stderr kept per call
     startup_timeout: float = 60.0        # for the worker to import NumPy/OpenCV (not billed)
-    timeouts_per_function: int = 2       # after this many timeouts a function is not called again
+    timeouts_per_function: int = 2       # after this many timeouts (or memory stops) a function is not called again
     exercise_budget: float = 60.0        # student seconds per exercise (calls, timeouts, restarts)
     submission_budget: float = 240.0     # wall seconds for grading the whole submission, whatever runs
+    lab_budget: float | None = None      # wall seconds per lab selected (None: a third of submission_budget)
     max_restarts: int = 12               # worker restarts per exercise (each billed its start-up)
     threads: int | None = None           # OpenCV's threads in the worker (None: OpenCV's own, one per core)
+
+    def budget_for(self, exercises) -> float:
+        """Wall seconds for grading ``exercises`` (those selected; each has a ``lab`` with a
+        ``key``): :attr:`lab_budget` for each lab they come from, at most
+        :attr:`submission_budget`, never less than one exercise's :attr:`exercise_budget`.
+
+        A grading of one lab ends within that lab's time, not the whole submission's: a
+        submission whose every call sleeps just under its timeout costs a lab-7 grading 80 s
+        by default, not 240. A third of the submission's time per lab is what a lab has on
+        average when a whole submission (six labs) is graded in two lanes."""
+        per_lab = self.submission_budget / 3 if self.lab_budget is None else self.lab_budget
+        labs = {exercise.lab.key for exercise in exercises}
+        return min(self.submission_budget, max(self.exercise_budget, per_lab * max(1, len(labs))))
 
     def shared_by(self, lanes: int) -> "Limits":
         """These limits for each of ``lanes`` workers grading one submission side by side
@@ -372,7 +386,9 @@ class Sandbox:
         self._deadline: float | None = None  # time.monotonic() at which the submission's time is up
         self._request_id = secrets.randbits(48)
         self.shared: dict = {}  # values checks share within one grading (see Trial.shared)
-        self._timeouts: dict[tuple[str, str], int] = {}
+        self._strikes: dict[tuple[str, str, str], int] = {}  # (module, function, "timeout" or "memory")
+        self._memory_floor = 0   # what the worker holds once ready and its modules imported (bytes)
+        self._held_before = 0    # what it held when the current request began (bytes)
 
     # The worker may write only in these folders of its scratch (when namespaces
     # allow): its copy of the submission and of the worker code stay intact.
@@ -561,6 +577,7 @@ class Sandbox:
         self._own_processes = len(self.cgroup.processes()) if self.cgroup is not None else 0
         self._own_pids = {self.proc.pid, *evidence.descendants(self.proc.pid)}
         self._find_worker()
+        self._memory_floor = evidence.resident(self._worker_pid) or 0
 
     def _find_worker(self) -> None:
         """Find the worker's own process among the sandbox's (the last of the wrappers' line, as
@@ -690,11 +707,11 @@ class Sandbox:
         imported = self.import_module(module)
         if not imported.ok:
             return imported
-        # A function that hung repeatedly would only cost every later check its full timeout.
-        if self._timeouts.get((module, function), 0) >= self.limits.timeouts_per_function:
-            return CallOutcome(ok=False, kind="timeout",
-                               message=f"{function}() timed out {self.limits.timeouts_per_function} "
-                                       "times already; not called again")
+        # A function that hung, or was stopped for its memory, repeatedly would only cost every
+        # later check its full timeout, or the time to fill its memory and a restart.
+        struck = self._struck(module, function)
+        if struck is not None:
+            return struck
         timeout = timeout or self.limits.call_timeout
         if self.remaining() <= 0:
             return self._over_budget(f"{function}()")
@@ -702,9 +719,22 @@ class Sandbox:
                    "args": list(args), "kwargs": dict(kwargs or {}),
                    "forbid": list(forbid), "cpu_seconds": timeout + 1.0}
         outcome = self._billed(request, timeout, what=f"{function}()")
-        if outcome.kind == "timeout":
-            self._timeouts[(module, function)] = self._timeouts.get((module, function), 0) + 1
+        if outcome.kind in ("timeout", "memory"):
+            key = (module, function, outcome.kind)
+            self._strikes[key] = self._strikes.get(key, 0) + 1
         return outcome
+
+    def _struck(self, module: str, function: str) -> CallOutcome | None:
+        """The outcome of a function not called again (it timed out, or was stopped for its
+        memory, :attr:`Limits.timeouts_per_function` times), else None."""
+        times = self.limits.timeouts_per_function
+        if self._strikes.get((module, function, "timeout"), 0) >= times:
+            return CallOutcome(ok=False, kind="timeout",
+                               message=f"{function}() timed out {times} times already; not called again")
+        if self._strikes.get((module, function, "memory"), 0) >= times:
+            return CallOutcome(ok=False, kind="memory",
+                               message=f"{function}() ran out of memory {times} times already; not called again")
+        return None
 
     # ------------------------------------------------------------ plumbing
     def _restart(self, what: str) -> CallOutcome | None:
@@ -723,6 +753,8 @@ class Sandbox:
                 self._spawn_worker()
             self._await_ready(self.remaining() if restart else None)  # a restart is billed
         except WorkerStartError as exc:
+            if restart:  # what is left of the budget was too short for the start-up: that is spent too
+                self._bill(time.perf_counter() - started)
             if self.remaining() <= 0:
                 return self._over_budget(what)
             return CallOutcome(ok=False, kind="grader_error", message=str(exc))
@@ -752,16 +784,20 @@ class Sandbox:
         request = {**request, "id": self._request_id}
         frame = transport.encode(request)
         self._measured = _Measures.now(self.cgroup)
+        self._held_before = evidence.resident(self._worker_pid) or 0
         start = time.perf_counter()
         deadline = time.monotonic() + timeout
         self._watching = True
+        replying = None  # the reply's length, once the worker has begun sending it
         try:
             self._write(LENGTH.pack(len(frame)) + frame, deadline)
             length, = LENGTH.unpack(self._read(LENGTH.size, deadline))
-            if length > self.limits.max_result_bytes:
+            replying = length
+            if length > self.limits.max_result_bytes:  # (the worker refuses it first: this one lied)
                 return self._abandon(CallOutcome(
                     ok=False, kind="result_type", seconds=time.perf_counter() - start,
-                    message=f"{what} returned more than {self.limits.max_result_bytes // 2**20} MiB"))
+                    message=f"{what} returned {transport.size_words(length)}, which cannot be sent back: "
+                            f"at most {transport.size_words(self.limits.max_result_bytes)} can"))
             head = self._read(min(length, transport.PREFIX.size), deadline)
             if len(head) == transport.PREFIX.size:  # refuse an oversized header before reading it
                 _, header_length = transport.PREFIX.unpack(head)
@@ -776,11 +812,13 @@ class Sandbox:
             if self._pending_reply():
                 raise transport.TransportError("more than one reply to one call")
         except TimeoutError:
-            return self._abandon(self._fault(what, time.perf_counter() - start, timeout=timeout))
+            return self._abandon(self._fault(what, time.perf_counter() - start, timeout=timeout,
+                                             replying=replying))
         except _Stopped as stopped:
-            return self._abandon(self._fault(what, time.perf_counter() - start, stopped=stopped.reason))
+            return self._abandon(self._fault(what, time.perf_counter() - start, stopped=stopped.reason,
+                                             replying=replying))
         except (EOFError, OSError):  # the pipe ended, or broke (EPIPE; a descriptor gone)
-            return self._abandon(self._fault(what, time.perf_counter() - start))
+            return self._abandon(self._fault(what, time.perf_counter() - start, replying=replying))
         except transport.TooManyElements as exc:  # the arrays were never read: the worker goes
             return self._abandon(CallOutcome(ok=False, kind="result_type", message=f"{what} {exc}",
                                              seconds=time.perf_counter() - start))
@@ -803,7 +841,23 @@ class Sandbox:
                                        message=f"{what} left {left} running; the module's top-level code "
                                                "must finish its work (start threads and processes inside "
                                                "your functions, and wait for them there)")
+            else:
+                self._weigh(request["op"])
         return outcome
+
+    def _weigh(self, op: str) -> None:
+        """After a request: what the worker holds now. An import's is the floor of what it holds
+        from then on (the module's own data). A call that left more than a quarter of the
+        worker's memory held (in a global, a cache that grows) would leave the next call, of
+        another function perhaps, only the rest: the worker is replaced before the next call
+        (a restart, billed), and a memory bomb costs only the function that kept the memory."""
+        held = evidence.resident(self._worker_pid)
+        if held is None:
+            return
+        if op == "import":
+            self._memory_floor = max(self._memory_floor, held)
+        elif held - self._memory_floor > self.memory // 4:
+            self._stop_worker()
 
     def _left_running(self, reply) -> str:
         """What the request left running besides the worker (``""``: nothing). Child processes as
@@ -858,25 +912,35 @@ class Sandbox:
         self._stop_worker()
         return outcome
 
-    def _fault(self, what, seconds, timeout: float | None = None, stopped: str = "") -> CallOutcome:
+    def _fault(self, what, seconds, timeout: float | None = None, stopped: str = "",
+               replying: int | None = None) -> CallOutcome:
         """Why the worker stopped answering a request, decided from what the grader measured
         (before the worker is stopped): its own reason to stop it (``stopped``, see
         :meth:`_check_in`), the cgroup's counters, whether the worker still holds the grader's
-        pipe, how it ended. Never from what the worker said."""
+        pipe, how it ended, and whether it had begun sending its reply (``replying``: the
+        reply's length, read from the pipe). Never from what the worker said."""
+        from . import transport  # with NumPy: imported once a request was made
+
         def fault(kind, message):
             return CallOutcome(ok=False, kind=kind, message=message, seconds=seconds)
 
+        # The call had returned, and its result was on its way: the call's own code had ended.
+        sending = "" if replying is None else f"{what} returned {transport.size_words(replying)}, and "
+        memory = (f"{sending}the worker was stopped for using more than {self.memory // 2**20} MB of memory "
+                  "while sending it back") if sending else self._memory_words(what) + self._held_words()
         if self._interrupted:
             return fault("grader_error", "grading was stopped")
         if stopped == "processes":
             return fault("crashed", f"{what} started more than {self.limits.extra_processes} processes "
                                     "(a fork bomb?)")
         if stopped == "memory" or self._measured.oom_killed(self.cgroup):
-            return fault("memory", self._memory_words(what))
+            return fault("memory", memory)
         if stopped == "pipe" or self._pipe_taken():
             return fault("crashed", f"{what} closed the grader's pipe to the worker; do not close or "
                                     "replace file descriptors your code did not open")
         if timeout is not None:
+            if sending:
+                return fault("timeout", f"{sending}it was not all sent back within {timeout:g} s")
             if self._measured.pressed(self.cgroup, self.memory):  # it thrashed at its limit meanwhile
                 return fault("memory", f"{self._memory_words(what)} (and was stopped after {timeout:g} s)")
             held = max(self._measured.peak, evidence.memory_in_use(
@@ -893,9 +957,13 @@ class Sandbox:
             return fault("crashed", f"{what} closed the grader's pipe to the worker; do not close or "
                                     "replace file descriptors your code did not open")
         if self._measured.oom_killed(self.cgroup):
-            return fault("memory", self._memory_words(what))
-        if code is not None and code < 0:
-            signame = signal.Signals(-code).name if -code in signal.valid_signals() else str(-code)
+            return fault("memory", memory)
+        signame = None if code is None or code >= 0 else \
+            signal.Signals(-code).name if -code in signal.valid_signals() else str(-code)
+        if sending:
+            return fault("crashed", f"{sending}the worker ended ({signame or f'exit code {code}'}) while sending "
+                                    "it back; a thread or process your code left running can end it")
+        if signame is not None:
             if signame == "SIGKILL" and self.cgroup is None and self._measured.peak >= self.memory // 2:
                 # No cgroup to count out-of-memory kills: the system's OOM killer picks the process
                 # holding the most memory, and this one held half its limit or more.
@@ -915,6 +983,14 @@ class Sandbox:
 
     def _memory_words(self, what: str) -> str:
         return f"{what} used more than {self.memory // 2**20} MB of memory"
+
+    def _held_words(self) -> str:
+        """What the worker held when the request began beyond its floor (its modules), when that
+        was much of its memory: kept by earlier calls (``""`` otherwise)."""
+        kept = self._held_before - self._memory_floor
+        if kept <= self.memory // 8:
+            return ""
+        return f" ({kept // 2**20} MB of it already held when it was called, kept by earlier calls)"
 
     def _pipe_taken(self) -> bool:
         """Whether the worker, alive, no longer holds the grader's pipe at its descriptor (the

@@ -82,77 +82,265 @@ def encode(value, max_bytes: int = DEFAULT_MAX_BYTES, max_elements: int | None =
     Raises
     ------
     TransportError
-        For any other type (the message names it), or a frame over ``max_bytes``;
+        For anything else, a frame over ``max_bytes``, or more than :data:`MAX_HEADER_BYTES`
+        of numbers and text outside arrays: its message is one sentence, "returned <what the
+        value is>, which cannot be sent back: <why>" (see :func:`frame_parts`);
         :class:`TooManyElements` for arrays holding more than ``max_elements`` numbers.
     """
-    buffers: list[bytes] = []
-    size = [0]
+    return b"".join(piece for part in frame_parts(value, max_bytes, max_elements) for piece in pieces(part))
+
+
+def frame_parts(value, max_bytes: int = DEFAULT_MAX_BYTES, max_elements: int | None = None) -> list:
+    """The frame of :func:`encode` in parts, each of ``len(part)`` bytes: the prefix and the
+    header, then each array's bytes -- a contiguous array's memory itself, a non-contiguous
+    one's copied a few MiB at a time as it is written (:func:`pieces` gives a part's
+    bytes-like pieces). The worker writes them one after the other: sending a result costs
+    it next to no memory beyond the result, where one joined frame costs its size twice over.
+
+    Encoding runs none of the value's own code: only exact types are taken (a subclass of
+    ``list``, ``float`` or ``ndarray`` is refused by its type, never asked anything), so a
+    result whose methods raise, exit or recurse is refused like any other. A value that
+    cannot cross is refused as early as it can be told -- its size before any copy, a
+    list's length before its items -- with a :class:`TransportError` whose message names
+    what was returned, the part that cannot cross (``its item [2]['H']``) and why."""
+    buffers: list = []
+    size = [0, 0]  # bytes of arrays, bytes of header at least (a lower bound, counted as it grows)
     elements = [0, ()]  # numbers in the arrays so far, the largest array's shape
+    inside: set[int] = set()  # the containers being encoded, to tell a value that contains itself
+    trail = [None] * (MAX_DEPTH + 2)  # the value being encoded at each depth: where a refusal is
+
+    def grow_header(n: int) -> None:
+        size[1] += n
+        if size[1] > MAX_HEADER_BYTES:
+            raise _Refused(f"it holds more than {size_words(MAX_HEADER_BYTES)} of numbers and text outside "
+                           "arrays; at most that can cross (return an array)", whole=True)
 
     def node(v, depth):
+        trail[depth] = v
         if depth > MAX_DEPTH:
-            raise TransportError(f"returned a value nested deeper than {MAX_DEPTH} levels")
+            raise _Refused(f"it is nested deeper than {MAX_DEPTH} levels; at most {MAX_DEPTH} can cross",
+                           whole=True)
         t = type(v)
-        if v is None or t is bool or t is str:
+        if v is None or t is bool:  # (two characters of header at least: counted by the container)
+            return v
+        if t is str:
+            grow_header(len(v) + 1)
             return v
         if t is int:
             return v if -INT64 <= v < INT64 else _float_node(_int_as_float(v))
         if t is float:
             return _float_node(v)
         if t is complex:
+            grow_header(10)
             return {"c": [_float_node(v.real), _float_node(v.imag)]}
-        if isinstance(v, np.generic) and type(v).__module__ == "numpy":
+        if t in _NUMPY_SCALARS:  # NumPy's own: its dtype and item() are NumPy's code
             if v.dtype.kind not in _ALLOWED_KINDS:
-                raise TransportError(f"returned a NumPy scalar of dtype {v.dtype}; return a number")
+                raise _Refused(f"NumPy scalars of dtype {v.dtype} cannot cross; return a number", depth)
             item = v.item()  # a long double stays one: it crosses as the nearest float
             if isinstance(item, np.generic):
                 item = complex(item) if v.dtype.kind == "c" else float(item)
-            return node(item, depth + 1)
+            return node(item, depth)
         if t is np.ndarray:
             if not _allowed(v.dtype):
                 use = {"f": "float32 or float64", "c": "complex64 or complex128"}.get(
                     v.dtype.kind, "a numeric or bool dtype")
-                raise TransportError(f"returned an array of dtype {v.dtype}; use {use}")
+                raise _Refused(f"arrays of dtype {v.dtype} cannot cross; use {use}", depth)
             # Counted before the bytes are made: a broadcast view (zero strides) of a few
             # bytes can stand for gigabytes.
             size[0] += v.nbytes
             if size[0] > max_bytes:
-                raise TransportError(f"returned more than {max_bytes // 2**20} MiB")
+                raise _Refused(f"it is more than the {size_words(max_bytes)} a result may be", whole=True)
             elements[0] += v.size
             elements[1] = max(elements[1], v.shape, key=math.prod)
             if max_elements is not None and elements[0] > max_elements:
                 raise TooManyElements(elements[0], elements[1], max_elements)
-            buffers.append(np.ascontiguousarray(v).tobytes())
+            grow_header(40 + 8 * v.ndim)
+            buffers.append(_raw_bytes(v))
             return {"a": len(buffers) - 1, "dtype": v.dtype.str, "shape": list(v.shape)}
-        if isinstance(v, np.ndarray):
-            raise TransportError(
-                f"returned a {t.__module__}.{t.__qualname__} (an ndarray subclass); "
-                "return a plain numpy.ndarray (np.asarray(x))"
-            )
-        if t is list:
-            return {"l": [node(x, depth + 1) for x in v]}
-        if t is tuple:
-            return {"t": [node(x, depth + 1) for x in v]}
-        if t is dict:
-            items = []
-            for k, x in v.items():
-                if type(k) is not str:
-                    raise TransportError("returned a dict with non-string keys")
-                items.append([k, node(x, depth + 1)])
-            return {"d": items}
-        raise TransportError(
-            f"returned a {t.__module__}.{t.__qualname__}; expected arrays, numbers, "
-            "strings, or lists/tuples/dicts of those"
-        )
+        if t is list or t is tuple or t is dict:
+            grow_header(8 + 2 * len(v))  # each item takes a character and a comma at least
+            if id(v) in inside:
+                raise _Refused(f"that {t.__name__} itself (it contains itself, so it has no end)", depth)
+            inside.add(id(v))
+            if t is dict:
+                keys = 0
+                items = []
+                for k, x in v.items():
+                    if type(k) is not str:
+                        raise _Refused(f"its keys must be strings, and one is {describe(k)} (non-string keys "
+                                       "cannot cross)", depth)
+                    keys += len(k) + 4
+                    items.append([k, node(x, depth + 1)])
+                grow_header(keys)
+                encoded = {"d": items}
+            else:
+                encoded = {"l" if t is list else "t": [node(x, depth + 1) for x in v]}
+            inside.discard(id(v))
+            return encoded
+        if issubclass(t, np.ndarray):  # (of its type: isinstance would ask the value its __class__)
+            raise _Refused("an ndarray subclass cannot cross; return a plain numpy.ndarray (np.asarray(x))", depth)
+        raise _Refused("only arrays, numbers, strings, and lists, tuples and string-keyed dicts of those "
+                       "can cross" + _HINTS.get(t, ""), depth)
 
-    header = json.dumps(node(value, 0), separators=(",", ":")).encode()
-    if len(header) > MAX_HEADER_BYTES:
-        raise TransportError(f"returned more than {MAX_HEADER_BYTES // 2**20} MiB of numbers and text "
-                             "outside arrays (return an array)")
-    total = PREFIX.size + len(header) + size[0]
-    if total > max_bytes:
-        raise TransportError(f"returned more than {max_bytes // 2**20} MiB")
-    return b"".join([PREFIX.pack(MAGIC, len(header)), header, *buffers])
+    try:
+        header = json.dumps(node(value, 0), separators=(",", ":")).encode()
+        if len(header) > MAX_HEADER_BYTES:
+            raise _Refused(f"it holds more than {size_words(MAX_HEADER_BYTES)} of numbers and text outside "
+                           "arrays; at most that can cross (return an array)", whole=True)
+        if PREFIX.size + len(header) + size[0] > max_bytes:
+            raise _Refused(f"it is more than the {size_words(max_bytes)} a result may be", whole=True)
+    except _Refused as refused:
+        refused.locate(trail)
+        raise Unsendable(refused.sentence(value), refused) from None
+    finally:
+        # node() refers to itself: a cycle that only the garbage collector would free, with
+        # the value in trail -- a result the worker no longer holds must be gone at once.
+        node = None  # noqa: F841
+    return [PREFIX.pack(MAGIC, len(header)) + header, *buffers]
+
+
+class _Refused(Exception):
+    """Why a part of a value cannot cross: ``reason``, about the part at ``depth`` of the value
+    (the whole value when ``whole``); :meth:`locate` finds its ``path`` (keys and indices
+    from the value down), only once a value was refused."""
+
+    def __init__(self, reason: str, depth: int = 0, whole: bool = False):
+        super().__init__(reason)
+        self.reason, self.depth, self.whole, self.path = reason, depth, whole, []
+
+    def locate(self, trail: list) -> None:
+        """The keys from ``trail[0]`` down to ``trail[depth]``, each container's (by identity)."""
+        if self.whole:
+            return
+        for parent, child in zip(trail[:self.depth], trail[1:self.depth + 1]):
+            keys = parent.items() if type(parent) is dict else enumerate(parent)
+            self.path.append(next((key for key, item in keys if item is child), "?"))
+
+    def sentence(self, value, path=None) -> str:
+        """"returned <value>, which cannot be sent back: <why>", the part at ``path`` (by default
+        :attr:`path`) of ``value`` named."""
+        path = self.path if path is None else path
+        if self.whole or not path:
+            return f"returned {describe(value)}, which cannot be sent back: {self.reason}"
+        where = "".join(f"[{key!r}]" for key in path)
+        part = value
+        for key in path:
+            part = part[key]  # exact lists, tuples and dicts only: no code of the value runs
+        what = self.reason if self.reason.startswith("that ") else f"{describe(part)}: {self.reason}"
+        return f"returned {describe(value)}, which cannot be sent back: its item {where} is {what}"
+
+
+class Unsendable(TransportError):
+    """A value :func:`encode` refuses; the message is one sentence about it (see :func:`frame_parts`)."""
+
+    def __init__(self, sentence: str, refused: _Refused):
+        super().__init__(sentence)
+        self._refused = refused
+
+    def about(self, item, key) -> str:
+        """The sentence about ``item``, the value at ``key`` of the dict that was encoded (a
+        worker's reply: what the student's function returned, not the reply around it)."""
+        refused = self._refused
+        if refused.whole or refused.path[:1] == [key]:
+            return refused.sentence(item, refused.path[1:])
+        return str(self)
+
+
+# What a value of these types can become before it is returned.
+_HINTS = {t: " (make it a list: list(...))" for t in
+          (set, frozenset, range, map, filter, zip, enumerate, reversed, type({}.keys()), type({}.values()),
+           type({}.items()), type(x for x in ()))}
+# NumPy's scalar types, exactly (a subclass of one is the submission's code).
+_NUMPY_SCALARS = frozenset(np.sctypeDict.values())
+
+
+def _raw_bytes(array: np.ndarray):
+    """The bytes of ``array`` in C order: a view of its memory when it is contiguous, else a
+    :class:`_Copied` part."""
+    if not array.flags.c_contiguous:
+        return _Copied(array)
+    return memoryview(array.reshape(-1).view(np.uint8)) if array.size else b""
+
+
+class _Copied:
+    """A non-contiguous array's bytes in C order, copied :attr:`CHUNK` bytes or so at a time
+    (a block of its first axis, or of a row's) while they are written."""
+
+    CHUNK = 4 * 2**20
+
+    def __init__(self, array: np.ndarray):
+        self.array = array
+
+    def __len__(self):
+        return self.array.nbytes
+
+    def __iter__(self):
+        return self._blocks(self.array)
+
+    def _blocks(self, a):
+        if a.ndim == 0 or a.nbytes <= self.CHUNK:
+            yield np.ascontiguousarray(a).tobytes()
+            return
+        row = a.nbytes // len(a)
+        if row > self.CHUNK:
+            for sub in a:
+                yield from self._blocks(sub)
+            return
+        step = self.CHUNK // row
+        for start in range(0, len(a), step):
+            yield np.ascontiguousarray(a[start:start + step]).tobytes()
+
+
+def pieces(part):
+    """The bytes-like pieces of one part of :func:`frame_parts`, in order."""
+    return part if isinstance(part, _Copied) else (part,)
+
+
+def size_words(n: int) -> str:
+    """``n`` bytes in words: ``"320 MiB"``, ``"12 KiB"``, ``"100 bytes"``."""
+    for unit, scale in (("GiB", 2**30), ("MiB", 2**20), ("KiB", 2**10)):
+        if n >= scale:
+            return f"{n / scale:.3g} {unit}"
+    return f"{n} byte" + ("" if n == 1 else "s")
+
+
+def describe(value) -> str:
+    """What ``value`` is, in a few words (``"a float64 array of shape (480, 640) (2.34 MiB)"``,
+    ``"a list of 3 items"``, ``"a m.Hostile (a float subclass)"``), from its type and NumPy's
+    or Python's own attributes only: no code of the value runs, whatever it is."""
+    try:
+        t = type(value)
+        if value is None:
+            return "None"
+        if t is np.ndarray:
+            return f"{_a(str(value.dtype))} array of shape {tuple(value.shape)} ({size_words(value.nbytes)})"
+        if t in (list, tuple, dict):
+            return f"a {t.__name__} of {len(value)} item" + ("" if len(value) == 1 else "s")
+        if t is str:
+            return f"a string of {len(value)} characters"
+        if t in (bool, int, float, complex) or t in _NUMPY_SCALARS:
+            return _a(_type_name(t))
+        mro = type.__dict__["__mro__"].__get__(t)
+        base = next((b for b in mro[1:] if b in _PLAIN), None)
+        return _a(_type_name(t)) + (f" ({_a(_type_name(base))} subclass)" if base is not None else "")
+    except BaseException:  # noqa: BLE001 - a description is never worth a failure
+        return "a value of an unknown type"
+
+
+_PLAIN = (list, tuple, dict, str, bytes, int, float, complex, set, np.ndarray, np.generic)
+
+
+def _a(noun: str) -> str:
+    return ("an " if noun[:1] in "aeiou" else "a ") + noun
+
+
+def _type_name(t: type) -> str:
+    """``module.qualname`` of ``t`` (just the name for builtins), read without running any of its code."""
+    module = type.__dict__["__module__"].__get__(t)
+    name = type.__dict__["__qualname__"].__get__(t)
+    module = module if type(module) is str else "?"
+    name = name if type(name) is str else "?"
+    return name if module == "builtins" else f"{module}.{name}"
 
 
 def _int_as_float(n: int) -> float:

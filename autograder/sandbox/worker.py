@@ -112,28 +112,43 @@ def read_exact(fd, n):
 
 
 def send(fd, message, max_bytes=transport.DEFAULT_MAX_BYTES, max_elements=None):
-    """Write one reply; a value that cannot cross is that call's failure, never the worker's end."""
+    """Write one reply. A value that cannot cross is that call's failure, told in one sentence
+    (what the function returned, and why it cannot be sent back), and the worker goes on: no
+    value, whatever it is or does, ends it here. The frame is written in its parts, an
+    array's bytes straight from the array (see ``transport.frame_parts``)."""
     try:
-        frame = transport.encode(message, max_bytes, max_elements)
-    except transport.TransportError as exc:
-        frame = _failure_frame(message, "result_type", str(exc))
-    except MemoryError:  # the copy of a result made for the pipe did not fit (RLIMIT_AS)
-        frame = _failure_frame(message, "memory", "its result could not be copied out (MemoryError)")
-    except (Exception, RecursionError) as exc:  # noqa: BLE001 - whatever the value does while encoded
-        frame = _failure_frame(message, "result_type",
-                               f"returned a value that cannot be sent back ({type(exc).__name__})")
+        parts = transport.frame_parts(message, max_bytes, max_elements)
+    except BaseException as exc:  # noqa: BLE001 - encoding runs none of the value's code; whatever happened
+        parts = [transport.encode(_failure(message, _unsendable(message.get("value"), exc)))]
     try:
-        transport.write_frame(fd, LENGTH.pack(len(frame)) + frame)
+        transport.write_frame(fd, LENGTH.pack(sum(len(part) for part in parts)) + parts[0])
+        for part in parts[1:]:
+            for piece in transport.pieces(part):
+                transport.write_frame(fd, piece)
     except OSError:
         hold_still()
 
 
-def _failure_frame(message, kind, text):
-    reply = {"ok": False, "kind": kind, "message": text, "traceback": "",
+def _unsendable(value, exc):
+    """The sentence for a reply whose ``value`` could not be encoded (``exc``)."""
+    try:
+        if isinstance(exc, transport.Unsendable):
+            return exc.about(value, "value")
+        if isinstance(exc, transport.TransportError):
+            return str(exc)
+        why = ("copying it out for the grader ran out of memory (MemoryError)" if isinstance(exc, MemoryError)
+               else f"encoding it raised {type(exc).__name__}")
+        return f"returned {transport.describe(value)}, which cannot be sent back: {why}"
+    except BaseException:  # noqa: BLE001
+        return "returned a value that cannot be sent back"
+
+
+def _failure(message, text):
+    reply = {"ok": False, "kind": "result_type", "message": text, "traceback": "",
              "seconds": message.get("seconds", 0.0), "id": message.get("id")}
     if "suspect" in message:
         reply["suspect"] = message["suspect"]
-    return transport.encode(reply)
+    return reply
 
 
 def hold_still():
@@ -189,7 +204,14 @@ def student_traceback(exc, submission_dir):
 
 
 def _exception_line(exc):
-    text = str(exc)
+    try:  # the exception is the student's: its __str__ may raise, exit or recurse
+        text = str(exc)
+    except BaseException:  # noqa: BLE001
+        text = "(its message could not be read: str() of it raised)"
+    if type(text) is not str:
+        text = ""
+    if len(text) > 2000:  # a reply's text stays small (the grader keeps 2000 characters)
+        text = text[:2000] + f"... ({len(text) - 2000} more characters)"
     return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
 
 
@@ -495,6 +517,9 @@ class Worker:
             if reason:
                 response["suspect"] = reason
             send(response_fd, response, self.max_result_bytes, self.max_result_elements)
+            # Nothing of this call is held while the worker waits: the grader weighs what the
+            # worker holds now (memory a call keeps would be the next call's missing).
+            request = response = None
 
 
 def suspect_state():
