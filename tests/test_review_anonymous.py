@@ -334,3 +334,13 @@ def test_a_sentence_no_template_knows_is_not_shown_and_a_crafted_name_tells_noth
     crafted = "x was not read: it cannot be read (Jane Doe) was not read: it is a symbolic link"
     assert hide.problem(crafted) == "report 1 (file) was not read: it is a symbolic link"
     assert "Jane" not in hide.problem("the archive holds Jane.md twice was not read: the archive holds Jane.md twice")
+
+
+def test_free_text_names_the_students_files_by_their_labels_refused_ones_too():
+    hide = Anonymiser({"student_id": "eve", "display_name": "Eve Ng"}, ["notes/zqscan.pdf"], "Student ABC123")
+    assert hide.problem("zqdraft.md was not read: it is a symbolic link") == \
+        "report 2 (Markdown) was not read: it is a symbolic link"
+    assert hide.text("see notes/zqscan.pdf and zqdraft.md, by Eve and NG") == \
+        "see report 1 (PDF) and report 2 (Markdown), by Student ABC123 and Student ABC123"
+    assert hide.text("a remark on Evelyn's eve-ning") == "a remark on Evelyn's Student ABC123-ning", \
+        "a name inside a longer word is no name; joined by a hyphen it is"

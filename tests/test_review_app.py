@@ -254,13 +254,13 @@ def test_anonymous_mode_shows_no_name_in_the_reports_problems_nor_in_the_queues_
             assert not re.search(rf"(?<![A-Za-z]){name}(?![A-Za-z])", page), name
         problems = re.findall(r'<p class="muted problem">Report: ([^<]*)</p>', shown)
         assert problems == [   # the files as neutral labels, numbered after the kept ones, the same name the same
-            "report 4 (PDF) was not read: it is not a PDF (it does not begin with %PDF-)",
-            "report 2 (Markdown): the explanation of lab07.ex1 has no &#39;&lt;!-- end explanation --&gt;&#39;; "
+            "report 2 (PDF) was not read: it is not a PDF (it does not begin with %PDF-)",
+            "report 3 (Markdown): the explanation of lab07.ex1 has no &#39;&lt;!-- end explanation --&gt;&#39;; "
             "it was read up to the next section",
-            "lab07.ex1 is explained twice (report 2 (Markdown); report 3 (notebook), cell 3); both texts are kept, "
+            "lab07.ex1 is explained twice (report 3 (Markdown); report 4 (notebook), cell 3); both texts are kept, "
             "one after the other",
             "a problem was found reading the report (its sentence names files: run without --anonymous to read it)"]
-        assert ">report 1 (PDF)</a>" in shown and "from report 2 (Markdown); report 3 (notebook), cell 3" in page
+        assert ">report 1 (PDF)</a>" in shown and "from report 3 (Markdown); report 4 (notebook), cell 3" in page
         assert "100.zip" not in page
     finally:
         session.close()

@@ -206,9 +206,10 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         problems = report["problems"]
         if session.anonymous:   # no file name a student chose, no name of theirs (see .anonymity)
             hide = Anonymiser(student, report["files"], pair.shown_name)
-            text, source = hide.text(text), hide.sources(source) if source else ""
+            problems = [hide.problem(p) for p in problems]   # first: the files refused get labels too
+            source = hide.sources(source) if source else ""
+            text = hide.text(text)
             attachments = [(i, hide.label(path), size) for i, path, size in attachments]
-            problems = [hide.problem(p) for p in problems]
             if verdict:
                 verdict = {**verdict, "checks": [{**c, "message": hide.text(c.get("message") or "")}
                                                  for c in verdict.get("checks", [])]}
