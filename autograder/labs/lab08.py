@@ -800,6 +800,14 @@ def ransac_mask_of_h(t):
         if np.bitwise_or(*mask_disagreement(H, ~inliers, src, dst, 3.0)).mean() <= MASK_DISAGREEMENT:
             fail_inverted_mask(t, what)
         name_squared_threshold(t, what, H, inliers, src, dst, 3.0)
+        probe_ransac_threshold(t, src, dst, k)
+        errors = np.linalg.norm(truth.apply_h(np.asarray(H, np.float64), src) - dst, axis=1)
+        if inliers.any() and not inliers.all() and errors[inliers].max() < errors[~inliers].min():
+            # H's inliers, but at another threshold: described, the cause (a fixed threshold,
+            # another unit) is the student's to find
+            t.fail(f"{what}: the mask marks the pairs your H sends within {errors[inliers].max():.2g} px "
+                   f"(the farthest marked) and leaves out pairs from {errors[~inliers].min():.2g} px on: they "
+                   "are H's inliers at another threshold than the one given (3 px).")
         try:
             inverse = np.linalg.inv(np.asarray(H, np.float64))
         except np.linalg.LinAlgError:
