@@ -392,12 +392,6 @@ def _called(t) -> tuple[str, ...]:
     return tuple(sorted(functions_called(t.check)))
 
 
-def said(t, text, functions: Iterable[str] = ()) -> str:
-    """``text`` as said to the student of trial ``t``: a :class:`Hint`'s :meth:`Hint.said`, a plain
-    string as it is."""
-    return text.said(t, functions) if isinstance(text, Hint) else str(text)
-
-
 # The engine's own form hints (autograder.engine.checks.Trial.expect_array).
 UINT8_HINT = Hint("images stay uint8: convert with np.clip(x, 0, 255).astype(np.uint8)", asks=TO_UINT8,
                   instead="your code {found} somewhere, but not the array it returns")
