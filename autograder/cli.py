@@ -14,6 +14,7 @@ import argparse
 import contextlib
 import os
 import shlex
+import shutil
 import sys
 import time
 from dataclasses import replace
@@ -87,6 +88,9 @@ def build_parser() -> argparse.ArgumentParser:
     batch.add_argument("--pictures", choices=("none", "failing", "all"), default="failing",
                        help="pictures on the feedback pages (default: %(default)s)")
     batch.add_argument("--regrade", action="store_true", help="grade everything again, even if unchanged")
+    batch.add_argument("--compare", action="store_true",
+                       help="regrade into a scratch copy of the gradebook and list whose final grade would "
+                            "change, and why; nothing in OUT changes (the same command without --compare applies)")
     batch.add_argument("--course", metavar="COURSE", help="course configuration (JSON): labs, points, late rule")
     batch.add_argument("--roster", metavar="CSV", help="roster mapping students to LMS identities")
     batch.add_argument("--overrides", metavar="CSV", help="instructor overrides: student,exercise,points,penalty,comment")
@@ -406,13 +410,16 @@ def run_batch(args) -> int:
     from .engine.registry import SelectionError
 
     console = Console()
+    out = args.out
     try:
         course = CourseConfig.load(args.course) if args.course else CourseConfig()
         note = ignored_keys_note(course, "batch")
         if note:
             console.print(f"[yellow]note:[/yellow] {escape(note)}", highlight=False)
+        if args.compare:
+            out = _scratch_copy(args.out)
         with _batch_progress(console) as progress:
-            summary = batch(args.submissions, args.out, course=course, workers=args.workers,
+            summary = batch(args.submissions, out, course=course, workers=args.workers,
                             pictures=args.pictures, regrade=args.regrade, roster=args.roster,
                             overrides=args.overrides, dask_scheduler=args.dask_scheduler, progress=progress,
                             allow_unconfined=args.allow_unconfined)
@@ -429,10 +436,19 @@ def run_batch(args) -> int:
         console.print("interrupted: every finished grading is in the gradebook; "
                       "run the same command again to resume")
         return 130
+    finally:
+        if out != args.out:   # the preview's scratch copy
+            shutil.rmtree(out, ignore_errors=True)
     console.print(f"{summary.students} students: {summary.graded} graded now, {summary.reused} unchanged "
                   f"(kept from the gradebook), {len(summary.failed)} failed, {len(summary.unreadable)} unreadable",
                   highlight=False)
-    for title, lines in (("unreadable", summary.unreadable), ("failed", summary.failed),
+    moved = len(summary.changes)
+    console.print(f"{moved} final grade{'s' if moved != 1 else ''} "
+                  + ("would change (a preview: nothing in " f"{args.out} changed; run the same command without "
+                     "--compare to apply)" if args.compare else "changed since the last run (changes.csv)"),
+                  highlight=False, markup=False)
+    for title, lines in (("changed", [change.sentence() for change in summary.changes]),
+                         ("unreadable", summary.unreadable), ("failed", summary.failed),
                          ("ignored", summary.ignored),
                          ("no longer in SUBMISSIONS", [f"{i} (kept, with their last grading)" for i in summary.missing]),
                          ("roster", summary.unmatched),
@@ -440,8 +456,10 @@ def run_batch(args) -> int:
         for line in lines[:BATCH_LINES]:
             console.print(Text.assemble("  ", (f"{title}:", "yellow"), f" {printable(line)}"), highlight=False)
         if len(lines) > BATCH_LINES:
-            more = " (all in ignored.csv)" if title == "ignored" else ""
+            more = {"ignored": " (all in ignored.csv)", "changed": " (all in changes.csv)"}.get(title, "")
             console.print(f"  ... and {len(lines) - BATCH_LINES} more {title}{more}", highlight=False, markup=False)
+    if args.compare:
+        return 0
     if args.similarity:
         try:
             summary.files.append(_batch_similarity(args, course, console))
@@ -454,6 +472,27 @@ def run_batch(args) -> int:
     console.print(f"wrote {args.out}/ : " + ", ".join(p.name for p in summary.files if p)
                   + ", <student>/feedback.html, <student>/results.json, gradebook.sqlite", highlight=False, markup=False)
     return 0
+
+
+def _scratch_copy(out) -> Path:
+    """A scratch folder holding a consistent copy of OUT's gradebook (none yet: an empty folder),
+    for ``batch --compare``: gradings kept there are reused, and nothing in OUT is touched."""
+    import sqlite3
+    import tempfile
+
+    from .instructor.batch.gradebook import GRADEBOOK
+
+    scratch = Path(tempfile.mkdtemp(prefix="autograder-compare-"))
+    source = Path(out) / GRADEBOOK
+    if source.is_file():
+        original, copy = sqlite3.connect(f"{source.resolve().as_uri()}?mode=ro", uri=True), \
+            sqlite3.connect(scratch / GRADEBOOK)
+        try:
+            original.backup(copy)
+        finally:
+            original.close()
+            copy.close()
+    return scratch
 
 
 def _batch_similarity(args, course, console) -> Path | None:

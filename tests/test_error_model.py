@@ -87,6 +87,19 @@ def test_apply_edits_rebuilds_the_whole_module():
     assert np.allclose(module.rotation_matrix(theta)[0, 1], np.sin(theta))   # degrees used as radians
 
 
+def test_two_names_used_in_each_others_place_are_told_as_exchanged():
+    lab = LABS["lab11"]
+    mutants = naming.model_for(lab).mutants["essential_from_fundamental"]
+    k1_for_k2 = next(m for m in mutants if m.sentence.endswith("`K1` is used where `K2` belongs"))
+    k2_for_k1 = next(m for m in mutants if m.sentence.endswith("`K2` is used where `K1` belongs"))
+    pair = k1_for_k2.combined(k2_for_k1)
+    assert pair.operator == "swap_names" and len(pair.edits) == 2
+    assert pair.sentence == ("in `essential_from_fundamental`, `K2` and `K1` are exchanged "
+                             "(each is used where the other belongs)")
+    plain = k1_for_k2.combined(next(m for m in mutants if m.operator != "other_name"))
+    assert "; and " in plain.sentence and "+" in plain.operator
+
+
 # ------------------------------------------------------------------ naming, with a stand-in sandbox
 class _InProcess:
     """A stand-in for the student's sandbox: the (test's own, trusted) student module called here."""

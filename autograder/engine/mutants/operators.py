@@ -40,6 +40,7 @@ OPERATORS = {
     "drop_division": ("normalis", "normaliz", "homogeneous", "divid", "division", "scale"),
     "drop_factor": ("denormalis", "normalis", "product", "missing", "undone"),
     "other_name": ("instead of", "in place of", "where"),
+    "swap_names": ("exchang", "swap", "order", "other way", "revers"),   # two other_name, crossed
     "drop_statement": ("missing", "skipped", "not "),
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
@@ -101,7 +102,16 @@ class Mutant:
         return (len(self.edits), max(RANK[e[2]] for e in self.edits), len(self.sentence))
 
     def combined(self, other: "Mutant") -> "Mutant":
-        """This mutant and ``other`` at once (two mistakes)."""
+        """This mutant and ``other`` at once (two mistakes); two names used in each other's place
+        are told as exchanged."""
+        crossed = [re.search(r"(.+?) is used where (.+) belongs$", m.sentence.split(", ", 1)[-1])
+                   for m in (self, other)]
+        if self.operator == other.operator == "other_name" and all(crossed) \
+                and crossed[0].groups() == crossed[1].groups()[::-1]:
+            first, second = crossed[0].groups()
+            return Mutant("swap_names", self.function, self.where, self.line, self.edits + other.edits,
+                          f"{self.sentence.split(', ', 1)[0]}, {second} and {first} are exchanged (each is used "
+                          "where the other belongs)")
         sentence = f"{self.sentence}; and {other.sentence.split(', ', 1)[-1]}" \
             if other.sentence.startswith(self.sentence.split(", ", 1)[0] + ",") else \
             f"{self.sentence}; and {other.sentence}"
@@ -425,10 +435,16 @@ class _Words:
             which = {0: "height (number of rows)", 1: "width (number of columns)", 2: "number of channels",
                      -1: "last dimension"}.get(node.slice.value, f"dimension {node.slice.value}")
             return f"the {which} of {inner}" if inner else ""
+        index = node.slice
+        if isinstance(node.value, ast.Call) and _dotted(node.value.func).endswith("linalg.svd") \
+                and isinstance(index, ast.Constant) and index.value in (0, 1, 2) and node.value.args:
+            of = self._what(node.value.args[0], depth + 1, line)
+            part = ("U (the left singular vectors)", "the singular values",
+                    "Vt (the right singular vectors, as rows)")[index.value]
+            return f"{part} of the SVD of {of}" if of else f"{part} of an SVD"
         inner = self._what(node.value, depth + 1, line)
         if not inner:
             return ""
-        index = node.slice
         if isinstance(index, ast.Constant) and isinstance(index.value, int):
             return f"{'the last' if index.value == -1 else f'element {index.value}'} of {inner}"
         if isinstance(index, ast.Tuple) and len(index.elts) == 2:
@@ -635,6 +651,14 @@ def _changes(node, parents, words: _Words, line):
         yield "degrees", "np.deg2rad", f"`{node.id}` is converted to radians where degrees are needed"
     if isinstance(node, ast.Constant) and isinstance(node.value, int) and not isinstance(node.value, bool):
         yield from _constant_changes(node, parents, words, what)
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and isinstance(node.operand, ast.Constant) \
+            and node.operand.value == 1:
+        holder = parent if not isinstance(parent, ast.Tuple) else parents.get(id(parent), (None,))[0]
+        if isinstance(holder, ast.Subscript) and not isinstance(parent, ast.Slice):
+            inner = what(holder.value)
+            first = "row" if (isinstance(parent, ast.Tuple) and parent.elts[0] is node) or inner.startswith("Vt") \
+                else "element"
+            yield "axis", 0, f"the first {first} of {inner} is used where the last belongs" if inner else ""
     if isinstance(parent, ast.Call) and _dotted(parent.func) == "range" and parent.args \
             and node is parent.args[min(1, len(parent.args) - 1)] and not isinstance(node, ast.Constant):
         for delta in ("-1", "+1"):

@@ -603,17 +603,36 @@ def _derived_from_points(adjustment: Adjustment) -> bool:
     return adjustment.what == "late"
 
 
-def student_page(page: str, grade: StudentGrade, possible: float, course: CourseConfig) -> str:
+def student_page(page: str, grade: StudentGrade, possible: float, course: CourseConfig, change=None) -> str:
     """The student's feedback ``page`` (rendered from :meth:`GradingResult.for_students`) with
-    what the class's grading adds: adjustments, reviews and, where it may be shown
+    what the class's grading adds: adjustments, reviews, what changed since the previous
+    grading (``change``, a :class:`.changes.Change`) and, where it may be shown
     (:func:`shows_final`), the final grade. While hidden points are withheld nothing here is
     computed from them (a late penalty's points included)."""
     show_final = shows_final(grade, course)
     page = with_adjustments(page, adjustments_html(grade, possible, show_final))
+    page = _with_block(page, CHANGED, CHANGED_END, changed_html(change, show_final) if change else "")
     page = with_reviews(page, grade)
     if show_final:   # the headline is the final grade (never while it holds withheld hidden points)
         page = with_final_grade(page, grade, possible)
     return page
+
+
+CHANGED, CHANGED_END = "<!-- changed -->", "<!-- /changed -->"
+
+
+def changed_html(change, show_final: bool) -> str:
+    """What moved the student's grade since their previous grading. While hidden points are
+    withheld, only that it was regraded and why (every number could hold hidden points)."""
+    if change.before is None:
+        return ""
+    if not show_final:
+        return (f'<div class="rule changed"><strong>Graded again since your previous grading</strong>'
+                f"{f' ({html.escape(change.why)})' if change.why else ''}.</div>")
+    items = "".join(f"<li>{html.escape(part)}</li>" for part in change.parts)
+    return (f'<div class="rule changed"><strong>Since your previous grading: {_fmt(change.before)} → '
+            f"{_fmt(change.after)}</strong>{f' ({html.escape(change.why)})' if change.why else ''}"
+            f"{f'<ul>{items}</ul>' if items else ''}</div>")
 
 
 HEADLINE, HEADLINE_END = "<!-- headline -->", "<!-- /headline -->"
@@ -660,6 +679,18 @@ def with_adjustments(page: str, block: str) -> str:
     start, stop = page.find(BEGIN), page.find(END)
     if start >= 0 and stop > start:
         return page[:start] + block + page[stop + len(END):]
+    return _after_summary(page, block)
+
+
+def _with_block(page: str, begin: str, end: str, text: str) -> str:
+    """``page`` with ``text`` between the markers ``begin`` and ``end`` (placed after the summary,
+    before any block placed so before, the first time)."""
+    if page.find(begin) >= 0 and page.find(end) > page.find(begin):
+        return _between(page, begin, end, text)
+    return _after_summary(page, f"{begin}{text}{end}")
+
+
+def _after_summary(page: str, block: str) -> str:
     anchor = page.find("</header>")
     at = anchor + len("</header>") if anchor >= 0 else page.find("<main>") + len("<main>")
     return page[:at] + "\n" + block + page[at:]

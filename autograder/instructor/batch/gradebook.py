@@ -529,12 +529,17 @@ class Gradebook:
             the status, reason and result of their last grading.
         ``graded_at`` : str or None
             When the submission shown was graded (ISO 8601, UTC); None if never.
+        ``content_hash``, ``lock`` : str
+            The files' hash as read last, and the grader and course the shown grading was made
+            under (empty if none): what tells a new submission from a changed grader
+            (:mod:`.changes`).
         """
         with self._reading():
             rows = self.db.execute(
                 "SELECT s.student_id, s.display_name, s.source, s.origin, s.lms, s.members, s.submitted_at, "
                 f"s.late, s.unreadable, {self._present} AS present, g.status AS grading_status, "
-                "g.reason AS grading_reason, g.result AS result, g.graded_at AS graded_at "
+                "g.reason AS grading_reason, g.result AS result, g.graded_at AS graded_at, "
+                "s.content_hash AS content_hash, g.lock_hash AS lock "
                 "FROM students s LEFT JOIN submissions g ON g.key = s.submission_key "
                 "ORDER BY s.student_id").fetchall()
         out = []
@@ -557,6 +562,7 @@ class Gradebook:
                 "feedback": f"{row['student_id']}/feedback.html" if graded else None,
                 "missing_from_download": not row["present"],
                 "graded_at": row["graded_at"],
+                "content_hash": row["content_hash"], "lock": row["lock"] or "",
             })
         return out
 

@@ -37,7 +37,7 @@ from ...reports import html
 from ...sandbox import confine
 from ...sandbox.supervisor import cores_each
 from ..course import CourseConfig
-from . import exports
+from . import changes, exports
 from .gradebook import STORAGE_ERRNOS, Gradebook, StorageError, lock_hash, storing, submission_key
 from .ingest import Entry, IngestError, read_upload
 from .processes import GradingPool, ProcessDeath, batch_process
@@ -77,6 +77,7 @@ class BatchSummary:
     running: list[str] = field(default_factory=list)      # ids being graded now (local gradings)
     warnings: list[str] = field(default_factory=list)
     files: list[Path] = field(default_factory=list)
+    changes: list = field(default_factory=list)           # changes.Change: final grades this run moved
 
 
 @batch_process
@@ -177,6 +178,12 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
                            running=lambda ids: setattr(summary, "running", ids))
 
         standing = class_grades(book, course)
+        # Every run is an audit: whose final grade moved since the last one, and what moved it.
+        before, _ = changes.recorded(book)
+        now = changes.standings(standing.grades)
+        standing.changes = summary.changes = changes.compare(before, now) if before is not None else []
+        changes.record(book, now, standing.changes)
+        standing.latest_changes = changes.last_changes(book)
         book.check_in_place()   # not the exports of a gradebook that is gone
 
     # Exports: every page and file shows the one final grade (course points, overrides, late rule).
@@ -205,6 +212,8 @@ class ClassGrades:
     roster: exports.Roster
     warnings: list[str]
     report_max: dict[str, float] = field(default_factory=dict)   # exercise -> what its report is worth
+    changes: list = field(default_factory=list)   # changes.Change: what the last run moved (the overview, CSV)
+    latest_changes: list = field(default_factory=list)   # each student's latest change (their page)
 
     @property
     def possible(self) -> float:
@@ -227,7 +236,8 @@ def class_grades(book: Gradebook, course: CourseConfig | None = None) -> ClassGr
     grades, warnings = exports.compute_grades(students, exercises, course, overrides, roster,
                                               rubric=rubric, reviews=book.reviews())
     return ClassGrades(students, grades, exercises, course, roster, warnings,
-                       exports.report_maxima(rubric, exercises))
+                       exports.report_maxima(rubric, exercises), changes.recorded(book)[1],
+                       changes.last_changes(book))
 
 
 def _write_exports(out: Path, standing: ClassGrades, course_title: str | None = None,
@@ -239,10 +249,12 @@ def _write_exports(out: Path, standing: ClassGrades, course_title: str | None = 
     files = exports.write_csvs(out, standing.grades, standing.exercises, standing.course,
                                roster_given=bool(standing.roster), roster_columns=standing.roster.columns,
                                report_max=standing.report_max)
+    files.append(exports.write_csv(out / "changes.csv", changes.rows(standing.changes)))
     for grade in standing.grades:
         if grade.student.get("feedback"):
             try:
-                _refresh_page(out, grade, standing.possible, standing.course)
+                _refresh_page(out, grade, standing.possible, standing.course,
+                              changes.for_student(standing.latest_changes, grade.student["student_id"]))
             except ValueError as exc:
                 if unreadable is None:
                     raise
@@ -385,7 +397,7 @@ def _write_overview(out: Path, standing: ClassGrades, course_title: str | None =
     return write_overview_of(out, standing, course_title)
 
 
-def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> list[Path]:
+def _refresh_page(out: Path, grade, possible: float, course: CourseConfig, change=None) -> list[Path]:
     """Show the current adjustments on the student's page, and write again what was lost of the
     student's folder, from the gradebook's whole grading as the student may see it: the page
     (without its pictures) and ``results.json``. Returns the files written again.
@@ -409,7 +421,7 @@ def _refresh_page(out: Path, grade, possible: float, course: CourseConfig) -> li
     if page is None:
         page = html.render(view)
         restored.append(page_path)
-    updated = exports.student_page(page, grade, possible, course)
+    updated = exports.student_page(page, grade, possible, course, change)
     with storing(folder):
         if updated != page or restored:
             write_atomically(page_path, updated)

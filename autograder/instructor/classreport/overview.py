@@ -51,17 +51,18 @@ def environment() -> Environment:
 
 
 def overview_html(students: list[StudentRecord], course_title: str = "",
-                  generated: _dt.datetime | None = None, reports=()) -> str:
-    """The class overview page as a string; ``reports`` are (label, relative link) pairs."""
+                  generated: _dt.datetime | None = None, reports=(), changes=()) -> str:
+    """The class overview page as a string; ``reports`` are (label, relative link) pairs;
+    ``changes`` the final grades the last run moved (:class:`..batch.changes.Change`)."""
     summary: ClassSummary = summarise(students)
     generated = generated or _dt.datetime.now(_dt.timezone.utc)
     return environment().get_template("class_overview.html.j2").render(
-        summary=summary, course_title=course_title, reports=list(reports),
+        summary=summary, course_title=course_title, reports=list(reports), changes=list(changes),
         generated=generated.strftime("%Y-%m-%d %H:%M %Z").strip())
 
 
 def render_overview(students: list[StudentRecord], out_path, course_title: str = "",
-                    generated: _dt.datetime | None = None, reports=()) -> None:
+                    generated: _dt.datetime | None = None, reports=(), changes=()) -> None:
     """Write the class overview page to ``out_path`` (atomically).
 
     Parameters
@@ -74,4 +75,4 @@ def render_overview(students: list[StudentRecord], out_path, course_title: str =
     course_title : str
         Shown in the heading.
     """
-    write_atomically(out_path, overview_html(students, course_title, generated, reports))
+    write_atomically(out_path, overview_html(students, course_title, generated, reports, changes))

@@ -25,7 +25,7 @@ class NoGradebook(FileNotFoundError):
 
 
 # Every file a batch may write beside the pages, as the overview links them.
-REPORTS = (("grades", "grades.csv"), ("Canvas import", "canvas_import.csv"),
+REPORTS = (("grades", "grades.csv"), ("changes", "changes.csv"), ("Canvas import", "canvas_import.csv"),
            ("Moodle worksheet", "moodle_import.csv"), ("roster problems", "roster_unmatched.csv"),
            ("not submissions", "ignored.csv"), ("similar submissions", SIMILARITY))
 
@@ -81,7 +81,7 @@ def write_overview_of(results_dir, standing, course_title: str | None = None) ->
     with storing(out):
         render_overview(records_from_grades(standing.grades, standing.possible), out,
                         course_title=standing.course.assignment if course_title is None else course_title,
-                        reports=reports)
+                        reports=reports, changes=getattr(standing, "changes", ()))
     return out
 
 

@@ -1,0 +1,92 @@
+"""Every regrade is an audit: whose final grade moved since the last run, old -> new, and why.
+
+A small class graded once; then one student's file is replaced, then the course's late
+rule changes: each run lists exactly the students whose final grade moved, with the
+exercise and checks (or the late penalty) that moved it, on the terminal, in
+``changes.csv``, in the overview and on the student's own page. ``batch --compare``
+shows the same list before anything in RESULTS changes.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import subprocess
+import sys
+
+import pytest
+
+from autograder.instructor.batch.run import run_batch
+from autograder.instructor.course import CourseConfig
+from test_batch import COURSE, MODULE, WRONG_WAY, reference, skeleton, write
+
+pytestmark = pytest.mark.slow
+
+
+def changes_csv(out):
+    return {row["Student ID"]: row for row in csv.DictReader((out / "changes.csv").open())}
+
+
+def test_each_run_lists_the_grades_it_moved_and_why(tmp_path):
+    download, out = tmp_path / "download", tmp_path / "out"
+    write(download / "ann" / f"{MODULE}.py", reference())
+    write(download / "bo" / f"{MODULE}.py", skeleton())
+    write(download / "cy" / f"{MODULE}.py", reference() + WRONG_WAY)
+    first = run_batch(download, out, course=COURSE, workers=2)
+    assert first.changes == [] and changes_csv(out) == {}          # nothing to compare with yet
+
+    again = run_batch(download, out, course=COURSE, workers=2)
+    assert again.graded == 0 and again.changes == []                 # nothing moved, nothing listed
+
+    write(download / "bo" / f"{MODULE}.py", reference())             # bo hands in a working file
+    moved = run_batch(download, out, course=COURSE, workers=2)
+    [change] = moved.changes
+    assert (change.student_id, change.before, change.after, change.why) == ("bo", 0.0, 12.0, "new submission")
+    assert change.parts and change.parts[0].startswith("lab07.ex1: 0 -> 12 (checks: ")
+    row = changes_csv(out)["bo"]
+    assert (row["Before"], row["After"], row["Why regraded"]) == ("0", "12", "new submission")
+    assert "lab07.ex1: 0 -> 12" in row["What moved it"]
+    overview = (out / "index.html").read_text()
+    assert 'id="changes"' in overview and "new submission" in overview and 'href="changes.csv"' in overview
+    page = (out / "bo" / "feedback.html").read_text()
+    # lab07.ex1 has hidden checks, whose points this course withholds: every number could tell them
+    assert "Graded again since your previous grading</strong> (new submission)" in page and "0 → 12" not in page
+    assert "previous grading" not in (out / "ann" / "feedback.html").read_text()
+    shown = run_batch(download, out, course=CourseConfig(select=COURSE.select, assignment="Lab 7",
+                                                         hidden_points_visible=True), workers=2)
+    assert shown.changes == []   # the same grades, shown otherwise: nothing moved
+    page = (out / "bo" / "feedback.html").read_text()
+    assert "Since your previous grading: 0 → 12" in page and "lab07.ex1: 0 -&gt; 12" in page
+
+    # A course change (a late rule nobody here falls under) and an override: only the override's
+    # student is listed, with the override as the cause.
+    late_course = CourseConfig(select=COURSE.select, assignment="Lab 7", late_penalty={"per_day": 25})
+    (tmp_path / "overrides.csv").write_text("student,exercise,points,penalty,comment\nann,total,2,,presented\n")
+    rule = run_batch(download, out, course=late_course, workers=2, overrides=tmp_path / "overrides.csv")
+    moved_ids = {c.student_id: c for c in rule.changes}
+    assert set(moved_ids) == {"ann"}
+    assert moved_ids["ann"].parts == ["override total +2 (presented)"]
+
+
+def test_compare_previews_the_changes_and_leaves_the_gradebook_alone(tmp_path):
+    download, out = tmp_path / "download", tmp_path / "out"
+    write(download / "ann" / f"{MODULE}.py", skeleton())
+    write(download / "bo" / f"{MODULE}.py", reference())
+    run_batch(download, out, course=COURSE, workers=2)
+    before = {p.name: p.read_bytes() for p in out.rglob("*") if p.is_file() and p.suffix in (".csv", ".sqlite")}
+
+    write(download / "ann" / f"{MODULE}.py", reference())
+    (tmp_path / "course.json").write_text(json.dumps({"select": COURSE.select, "assignment": "Lab 7"}))
+    command = [sys.executable, "-m", "autograder", "batch", str(download), "--out", str(out),
+               "--course", str(tmp_path / "course.json"), "--workers", "1", "--compare"]
+    preview = subprocess.run(command, capture_output=True, text=True, timeout=600)
+    assert preview.returncode == 0, preview.stderr
+    assert "1 final grade would change" in preview.stdout and "without --compare to apply" in preview.stdout
+    assert "ann: 0 -> 12 (new submission; lab07.ex1: 0 -> 12" in preview.stdout
+    after = {p.name: p.read_bytes() for p in out.rglob("*") if p.is_file() and p.suffix in (".csv", ".sqlite")}
+    assert after == before                                             # a preview changes nothing
+
+    applied = subprocess.run(command[:-1], capture_output=True, text=True, timeout=600)
+    assert applied.returncode == 0, applied.stderr
+    assert "1 final grade changed since the last run" in applied.stdout
+    assert changes_csv(out)["ann"]["After"] == "12"
