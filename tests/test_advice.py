@@ -188,3 +188,20 @@ def scale(values, factor):
     result = grade(submission_from_source(tmp_path, "toy_scaling", noisy), ["lab98"])
     [doubles] = [c for c in result.exercises[0].checks if c.name == "scale([1, 2, 3], 2)"]
     assert doubles.passed, doubles.message
+
+
+def test_what_a_change_in_place_did_is_told_from_the_values():
+    from autograder.engine.inplace import argument_name, how_changed, with_changed
+
+    points = np.array([[1.0, 2.0], [3.0, 5.0]])
+    assert how_changed(points, points / 4) == "divides (by 4)"
+    assert how_changed(points, points * 3) == "multiplies (by 3)"
+    assert how_changed(points, points - points.mean(axis=0)).startswith("shifts")
+    assert how_changed(points, np.zeros((2, 2))) == "writes into"
+    assert argument_name("normalise_points(points, scale=1.0)", 0, None) == "points"
+    assert argument_name("calibrate(images, pattern_size, square_size)", 0, 2) == "images[2]"
+    assert argument_name("f(a)", "b", None) == "b"
+    args, kwargs = with_changed(([np.zeros(1), np.ones(1)], 2.0), {"x": np.ones(2)},
+                                [(0, 1, np.full(1, 7.0)), ("x", None, np.zeros(2))])
+    assert args[0][1][0] == 7.0 and args[1] == 2.0 and not kwargs["x"].any()
+    assert with_changed((np.ones(1),), {}, [(3, None, np.ones(1))]) is None
