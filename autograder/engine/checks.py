@@ -141,6 +141,7 @@ class Trial:
         self._properties = 0  # t.for_all calls so far (each has its recorded examples)
         self._probed: dict = {}  # confirmation probes' answers, asked once per trial (see probe)
         self._in_place: dict = {}  # (function, input) -> how its change of the caller's array shows ("": not)
+        self._last_changed: tuple = ()  # the arrays the last call changed in place (see held)
         # Student functions that, in this trial, were given fractional numbers and returned only
         # whole ones (the values' side of autograder.loading.reading's findings about truncation).
         self.whole_numbers: set[str] = set()
@@ -194,6 +195,7 @@ class Trial:
                 if function not in self.whole_numbers and _whole_numbers(outcome.value) \
                         and _fractional((args, kwargs)):
                     self.whole_numbers.add(function)
+                self._last_changed = outcome.changed
                 if outcome.changed:
                     self._changed_in_place(function, args, kwargs, outcome)
                 return outcome.value
@@ -230,6 +232,14 @@ class Trial:
         if self._in_place[given]:
             owners[("changed in place", self.lab.module, function)] = self.check.id
             raise ChangedInPlace(self._in_place[given], inplace.HINT, inplace.MISTAKE)
+
+    def held(self, *args, **kwargs) -> tuple[tuple, dict]:
+        """``(args, kwargs)``, the arguments of the last call, as its caller now holds them: the
+        arrays the call changed in place replaced by what they became (unchanged when it changed
+        none). For a check that calls a function twice on the same arrays, as a caller does."""
+        from .inplace import with_changed
+
+        return (with_changed(args, kwargs, self._last_changed) if self._last_changed else None) or (args, kwargs)
 
     def probe(self, key: str, answer):
         """The student's answer on a confirmation probe's input, ``answer()``, asked once per

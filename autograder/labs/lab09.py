@@ -895,11 +895,31 @@ def _drawn_radius(got, image, pts, color):
     return best + 1 if differences[best] < 2e-4 and differences[best] * 3 < min(others) else None
 
 
-@ex5.check("draw_points draws filled circles at the points", points=3)
+@ex5.check("draw_points draws filled circles at the points", points=2)
 def draw_example(t):
     image = photo("astronaut", (200, 150))
     pts = np.array([[20.3, 30.7], [100.0, 75.0], [180.6, 20.2], [50.5, 120.4], [150.2, 130.9]])
     return judge_drawing(t, "draw_points(image, pts)", t.call("draw_points", image, pts), image, pts)
+
+
+@ex5.check("draw_points twice on the same image: each drawing shows its own points only", points=1)
+def draw_twice(t):
+    image = photo("astronaut", (200, 150))
+    first_pts = np.array([[30.0, 40.0], [160.0, 110.0]])
+    second_pts = np.array([[100.0, 30.0], [60.0, 120.0]])
+    what = "draw_points(image, pts) called a second time on the same image"
+    t.call("draw_points", image, first_pts)
+    (held, _), _ = t.held(image, first_pts)
+    got = t.call("draw_points", held, second_pts)
+    both = truth.expected_drawing(truth.expected_drawing(image, first_pts), second_pts)
+    if not np.array_equal(held, image) and isinstance(got, np.ndarray) and got.shape == image.shape \
+            and np.mean(np.any(got != both, axis=-1)) < 0.002:
+        t.images(what, first_points_then_second=got)
+        t.fail(f"{what}: the second drawing shows the first one's points too: draw_points draws on the caller's "
+               "`image` (the array given) instead of on a copy, so whoever calls it twice, or uses the image "
+               "afterwards, finds points drawn on it.", hint="out = image.copy(), then draw on out",
+               mistake="draw_points draws on the caller's image")
+    return judge_drawing(t, what, got, image, second_pts)
 
 
 @ex5.check("draw_points with radius, colour, and points off the image and on its border", points=2)

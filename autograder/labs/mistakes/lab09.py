@@ -196,6 +196,13 @@ MISTAKES = {
             ideal = pinhole_project(X, f)[:, None, :]
             return ideal + (rays - ideal) / (1.0 + f / X[:, 2])[:, None, None]
         """, ["not scaled by (1 + f / z)"]),
+    "draw_points drawing on the caller's image": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            for x, y in np.asarray(pts, float).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(image, (int(round(x)), int(round(y))), radius, color, -1)
+            return image
+        """, ["the second drawing shows the first one's points too", "caller's `image`"]),
     "colour reversed (RGB)": ("lab09.ex5", """
         _right = draw_points
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
