@@ -309,10 +309,13 @@ def is_ipython_line(line: str) -> bool:
     code = line.lstrip()
     if code[:1] in ("%", "!", "?"):
         return True
-    equals = code.find("=")
-    if equals > 0 and all(c.isalnum() or c in "_., " for c in code[:equals]) \
-            and code[equals + 1:].lstrip()[:1] in ("%", "!"):
-        return True
+    equals = line.find("=")   # names cannot hold one: the first is the assignment's
+    if equals > 0 and line[equals + 1:].lstrip()[:1] in ("%", "!"):
+        names = equals   # the names before it: a run of word characters, dots, commas and spaces...
+        while names > 0 and (line[names - 1].isalnum() or line[names - 1] in "_., "):
+            names -= 1
+        if names < equals and not line[:names].strip():   # ... after nothing but indentation
+            return True
     end = line.rstrip()
     marks = len(end) - len(end.rstrip("?"))
     if marks not in (1, 2) or len(end) == marks:

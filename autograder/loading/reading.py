@@ -333,16 +333,17 @@ def _constant_integer_nodes(tree) -> set[int]:
 # ------------------------------------------------------------------ floor division
 def _floor_division(name, function) -> list[Finding]:
     """``//`` between expressions that are not both integer constants (floors fractions)."""
-    constant = _constant_integer_nodes(function)
-    for node in ast.walk(function):
-        if isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, ast.FloorDiv):
-            left = node.left if isinstance(node, ast.BinOp) else node.target
-            if id(left) in constant and id(node.right) in constant:
-                continue
-            return [Finding(name, _line(node), "// floors the results to whole numbers",
-                            f"{name} (line {_line(node)}) uses // (floor division), which rounds its "
-                            "result down to a whole number: use / for coordinates, depths and "
-                            "focal lengths", needs="whole numbers")]
+    divisions = [node for node in ast.walk(function)
+                 if isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, ast.FloorDiv)]
+    constant = _constant_integer_nodes(function) if divisions else set()
+    for node in divisions:
+        left = node.left if isinstance(node, ast.BinOp) else node.target
+        if id(left) in constant and id(node.right) in constant:
+            continue
+        return [Finding(name, _line(node), "// floors the results to whole numbers",
+                        f"{name} (line {_line(node)}) uses // (floor division), which rounds its "
+                        "result down to a whole number: use / for coordinates, depths and "
+                        "focal lengths", needs="whole numbers")]
     return []
 
 
