@@ -452,11 +452,13 @@ def run_batch(args) -> int:
                          ("ignored", summary.ignored),
                          ("no longer in SUBMISSIONS", [f"{i} (kept, with their last grading)" for i in summary.missing]),
                          ("roster", summary.unmatched),
+                         ("file not graded", summary.files_not_graded),
                          ("warning", summary.warnings)):
         for line in lines[:BATCH_LINES]:
             console.print(Text.assemble("  ", (f"{title}:", "yellow"), f" {printable(line)}"), highlight=False)
         if len(lines) > BATCH_LINES:
-            more = {"ignored": " (all in ignored.csv)", "changed": " (all in changes.csv)"}.get(title, "")
+            more = {"ignored": " (all in ignored.csv)", "changed": " (all in changes.csv)",
+                    "file not graded": " (all in grades.csv)"}.get(title, "")
             console.print(f"  ... and {len(lines) - BATCH_LINES} more {title}{more}", highlight=False, markup=False)
     if args.compare:
         return 0

@@ -27,8 +27,7 @@ from rich.console import Console
 
 from autograder.engine.results import GradingResult
 from autograder.engine.runner import grade
-from autograder.instructor.batch.run import run_batch
-from autograder.instructor.course import CourseConfig
+from autograder.cli import main
 from autograder.loading.handed_in import NotGraded, progress
 from autograder.loading.submission import load_submission
 from autograder.reports import html, terminal
@@ -170,13 +169,17 @@ def test_validate_names_the_file_not_graded_and_the_notebook_handed_in(tmp_path)
 
 
 @pytest.mark.slow
-def test_the_class_files_name_the_file_not_graded(tmp_path):
+def test_the_class_files_name_the_file_not_graded(tmp_path, capsys):
     submissions = tmp_path / "submissions"
     files, older, *_ = CASES["notebook beside the skeleton"]
     hand_in(submissions / "twice", files, older)
     hand_in(submissions / "once", {PY: REF})
-    out = tmp_path / "results"
-    run_batch(submissions, out, course=CourseConfig(select=SELECT, assignment="Lab 7"), workers=1)
+    out, course = tmp_path / "results", tmp_path / "course.json"
+    course.write_text(json.dumps({"select": SELECT, "assignment": "Lab 7"}))
+    assert main(["batch", str(submissions), "--out", str(out), "--course", str(course), "--workers", "1",
+                 "--pictures", "none"]) == 0
+    printed = " ".join(capsys.readouterr().out.split())   # the batch's terminal
+    assert f"file not graded: twice: graded {NB}, not {PY}, because {PY} implements none" in printed
     rows = list(csv.DictReader((out / "grades.csv").open(newline="")))
     header = next(csv.reader((out / "grades.csv").open(newline="")))
     assert header[:4] == ["Student ID", "Name", "Status", "Files not graded"]

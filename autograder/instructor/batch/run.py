@@ -74,6 +74,7 @@ class BatchSummary:
     ignored: list[str] = field(default_factory=list)      # "item: why it is no submission"
     missing: list[str] = field(default_factory=list)      # ids graded before, no longer in SUBMISSIONS (kept)
     unmatched: list[str] = field(default_factory=list)    # roster problems
+    files_not_graded: list[str] = field(default_factory=list)  # "id: graded X, not Y, because ..." (a lab handed in twice)
     running: list[str] = field(default_factory=list)      # ids being graded now (local gradings)
     warnings: list[str] = field(default_factory=list)
     files: list[Path] = field(default_factory=list)
@@ -193,6 +194,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
         summary.files = _write_exports(out, standing)
         summary.files += exports.write_ignored(out, upload.ignored)
     book.check_in_place()   # RESULTS deleted while the exports were written
+    summary.files_not_graded = [f"{g.student['student_id']}: {left_aside}" for g in standing.grades
+                                if (left_aside := exports.files_not_graded(g.student.get("result")))]
     if standing.roster:
         summary.unmatched = [f"{g.student['student_id'] or g.student['display_name']}: "
                              + ("on the roster, no submission" if g.student["status"] == "no submission"
