@@ -34,8 +34,8 @@ import numpy as np
 from .helper import ERROR, Helper, HelperFailed
 from .operators import OPERATORS, Mutant, mutants_of
 
-CHECK_SECONDS = 4.0        # the error model's time for one failed check
-GRADING_SECONDS = 40.0     # and for one grading (all its failed checks)
+CHECK_SECONDS = 3.0        # the error model's time for one failed check
+GRADING_SECONDS = 30.0     # and for one grading (all its failed checks)
 CALLS_PER_FUNCTION = 6     # the trial's last calls of a function that are compared
 PAIR_MUTANTS = 6           # the closest single mutants combined in pairs
 VARIANTS_PER_CALL = 5      # confirmation inputs derived from each failing call
@@ -127,16 +127,32 @@ def model_for(lab) -> ErrorModel | None:
         return _MODELS[key]
 
 
-_HELPERS = threading.local()
+_IDLE: list[Helper] = []          # helper processes not naming right now (kept between gradings)
 _ALL_HELPERS: list[Helper] = []
+_POOL_LOCK = threading.Lock()
+_USING = threading.local()
 
 
 def helper() -> Helper:
-    """This thread's helper process (a grading lane's)."""
-    if not hasattr(_HELPERS, "helper"):
-        _HELPERS.helper = Helper()
-        _ALL_HELPERS.append(_HELPERS.helper)
-    return _HELPERS.helper
+    """The helper this thread is naming with (taken from the idle ones, else a new one): as many
+    helpers as lanes name at once, each started at its first use and kept for the next grading."""
+    current = getattr(_USING, "helper", None)
+    if current is None:
+        with _POOL_LOCK:
+            current = _IDLE.pop() if _IDLE else None
+            if current is None:
+                current = Helper()
+                _ALL_HELPERS.append(current)
+        _USING.helper = current
+    return current
+
+
+def _release() -> None:
+    current = getattr(_USING, "helper", None)
+    if current is not None:
+        _USING.helper = None
+        with _POOL_LOCK:
+            _IDLE.append(current)
 
 
 @atexit.register
@@ -353,6 +369,7 @@ def name_failure(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
     finally:
         spent[0] += time.monotonic() - started
         _MEASURED.clear()
+        _release()
 
 
 def _name(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
@@ -390,19 +407,36 @@ def _name_function(trial, model, function, inputs, answers, references, failing,
         if mutant.function == function and \
                 _reproduces(runner, mutant.edits, failing, others, answers, references, clock) is True:
             return Naming(mutant, len(inputs), 0)
+    # The student's function is the same code in every check of a grading: a mutant that did not
+    # reproduce its answers in an earlier check is not its mistake, and is not run again.
+    ruled_out = trial.sandbox.shared.setdefault("error model ruled out", {}).setdefault(function, set())
     candidates, near = [], []
     off = sum(distance(references[i], answers[i]) for i in failing)
     for mutant in model.mutants[function]:
+        if mutant.key in ruled_out:
+            continue
         if clock.left() <= 0:
             return None  # a mutant not tried might reproduce the answers too: no name is sure
         outcome = _reproduces(runner, mutant.edits, failing, others, answers, references, clock)
         if outcome is True:
             candidates.append(mutant)
-        elif outcome is not None and outcome < 0.9 * off:
+            continue
+        if clock.left() > 0:   # (a mutant cut short by the clock is not ruled out)
+            ruled_out.add(mutant.key)
+        if outcome is not None and outcome < 0.9 * off:
             near.append((outcome, mutant))
+    kept_near = trial.sandbox.shared.setdefault("error model near", {}).setdefault(function, [])
+    if not candidates:   # the closest singles of earlier checks (ruled out as singles) are scored here too
+        scored = {m.key for _, m in near}
+        for mutant in kept_near:
+            if mutant.key not in scored and clock.left() > 0:
+                outcome = _reproduces(runner, mutant.edits, failing, others, answers, references, clock)
+                if outcome is not None and outcome is not True and outcome < 0.9 * off:
+                    near.append((outcome, mutant))
     if not candidates and near:
         near.sort(key=lambda pair: (pair[0], pair[1].rank))
         closest = [m for _, m in near[:PAIR_MUTANTS]]
+        kept_near[:] = closest
         for first, second in itertools.combinations(closest, 2):
             if clock.left() <= 0:
                 break
