@@ -383,3 +383,20 @@ def rotate(image, angle_deg=45):
     own, _, extra = check.output.partition("(printed during the grader's own extra calls, on other inputs:)")
     assert "rotating by 45.0" in own and "rotating by 37.0" not in own
     assert "rotating by 37.0" in extra
+
+
+def test_output_of_a_propertys_other_examples_is_labelled_and_the_failing_ones_is_not(tmp_path):
+    folder = submission_from_source(tmp_path, LAB07, REFERENCE_07 + """
+_right = translation_matrix
+def translation_matrix(tx, ty):
+    print("called with", tx)
+    return _right(-tx if tx > 500 else tx, ty)
+""")
+    result = grade(folder, ["lab07.ex1"], pictures="none")
+    [check] = [c for c in exercise(result, "lab07.ex1").checks if c.name == "translation_matrix for any tx, ty"]
+    assert check.score == 0
+    lines = check.output.splitlines()
+    assert lines[0] == "(printed during the other examples this property tried:)"
+    own = [line for line in lines if line.startswith("called with")]   # not indented: the failing example's
+    assert len(own) == 1 and float(own[0].split()[-1]) > 500
+    assert sum(line.startswith("    called with") for line in lines) > 1

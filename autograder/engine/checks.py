@@ -209,12 +209,12 @@ class Trial:
     def _changed_in_place(self, function: str, args: tuple, kwargs: dict, outcome: CallOutcome):
         """Fail the check when ``function`` changed its caller's arrays and a second call on them,
         as the caller now holds them, answers differently (:mod:`autograder.engine.inplace`): in the
-        first check of the grading where that shows, and again in it for the same input."""
+        first public check of the grading where that shows, and again in it for the same input."""
         from . import inplace
 
         owners = getattr(self.sandbox, "shared", None)
-        if owners is None:
-            return
+        if owners is None or self.check.hidden:
+            return   # hidden checks run in a sandbox of their own: the public check says it, once
         owner = owners.get(("changed in place", self.lab.module, function))
         if owner not in (None, self.check.id):
             return
@@ -263,11 +263,13 @@ class Trial:
 
     def _set_apart(self, start: int, end: int, during: str) -> None:
         """Label what the student's code printed in ``outputs[start:end]`` as printed during
-        ``during``, one entry: a student reading it under a check must not take it for the
-        output of the call the check is about (``rotating by 37.0`` under the default 45)."""
+        ``during``, one entry, its lines indented under the label: a student reading it under
+        a check must not take it for the output of the call the check is about (``rotating by
+        37.0`` under the default 45); what is not indented is that call's."""
         printed = "\n".join(self.outputs[start:end]).strip("\n")
         if printed:
-            self.outputs[start:end] = [f"(printed during {during}:)\n{printed}"]
+            indented = "\n".join("    " + line for line in printed.splitlines())
+            self.outputs[start:end] = [f"(printed during {during}:)\n{indented}"]
 
     def not_implemented(self) -> str:
         """The message of a call in this trial that met a function not implemented yet, or ``""``
