@@ -155,6 +155,10 @@ class GradingResult:
     # A lab handed in more than once: per file not graded, {"module", "file", "graded", "why"}
     # (autograder.loading.handed_in.NotGraded.to_dict); ``notes`` says the same in words.
     files_not_graded: list[dict] = field(default_factory=list)
+    # The libraries that judged it, {"python", "numpy", "opencv"} -> version (the worker runs
+    # the grader's interpreter: autograder.engine.versions.judged_with); {} in results stored
+    # before versions were recorded.
+    versions: dict[str, str] = field(default_factory=dict)
 
     @property
     def total(self) -> float:
@@ -173,6 +177,7 @@ class GradingResult:
                 "hidden_points_withheld": self.hidden_points_withheld,
                 "confinement": self.confinement, "confinement_warning": self.confinement_warning,
                 "files_not_graded": [dict(f) for f in self.files_not_graded],
+                "versions": dict(self.versions),
                 "exercises": [e.to_dict() for e in self.exercises]}
 
     @classmethod
@@ -191,7 +196,8 @@ class GradingResult:
                    data.get("hidden_included", True), data.get("notes", []), data.get("graded_at", ""),
                    data.get("student_wall_seconds", data.get("student_seconds", 0.0)),
                    data.get("hidden_points_withheld", False), data.get("confinement", ""),
-                   data.get("confinement_warning", ""), list(data.get("files_not_graded", [])))
+                   data.get("confinement_warning", ""), list(data.get("files_not_graded", [])),
+                   dict(data.get("versions") or {}))
 
     def in_points(self, factors: dict[str, float]) -> "GradingResult":
         """This grading in the course's points: each check's score and maximum times its
@@ -235,7 +241,8 @@ class GradingResult:
         return GradingResult(self.submission, self.submission_hash, self.grader_version, exercises,
                              self.seconds, self.student_seconds, self.hidden_included, list(self.notes),
                              self.graded_at, self.student_wall_seconds, withheld, self.confinement,
-                             self.confinement_warning, [dict(f) for f in self.files_not_graded])
+                             self.confinement_warning, [dict(f) for f in self.files_not_graded],
+                             dict(self.versions))
 
 
 # All a student reads of a hidden check before release, besides its points where shown.

@@ -46,6 +46,7 @@ from .registry import Check, Exercise, discover, hidden_checks_installed, select
 from .results import (ADVICE, ERROR, FAILED, NOT_IMPLEMENTED, PARTIAL, PASSED, CheckResult,
                       ExerciseResult, GradingResult)
 from .stubs import functions_called, stub_functions
+from .versions import judged_with
 
 
 PICTURES = ("all", "failed", "none")
@@ -136,6 +137,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                                hidden_included=include_hidden and hidden_checks_installed(),
                                notes=_reading_notes(submission),
                                files_not_graded=[f.to_dict() for files in submission.not_graded.values() for f in files],
+                               versions=judged_with(),  # the worker runs this interpreter
                                graded_at=datetime.now(timezone.utc).isoformat(timespec="seconds"))
         labs = _labs_heaviest_first(exercises)
         inputs = Inputs.for_submission(submission.content_hash, inputs_secret)
