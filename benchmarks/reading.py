@@ -45,8 +45,9 @@ def shapes():
     """``(reader, shape, make(n) -> input, run(input))``; ``n`` is roughly the input's size in KiB."""
     from autograder.loading import notebooks, reading, report
 
-    markdown = lambda text: report.explanations_in_markdown(text, "lab07_report.md")  # noqa: E731
-    notebook_report = lambda data: report.read_report({"a.ipynb": data, "b.ipynb": data})  # noqa: E731
+    folder = "submissions/" + "a-student-s-long-folder-name/" * 5   # a name shown in full: ~160 characters
+    markdown = lambda text: report.read_report({folder + "lab07_report.md": text.encode()})  # noqa: E731
+    notebook_report = lambda data: report.read_report({folder + "a.ipynb": data, folder + "b.ipynb": data})  # noqa: E731
     convert = lambda text: notebooks.convert(text, "lab07_transformations.ipynb")  # noqa: E731
     tagged = lambda n: _notebook([{"cell_type": "markdown", "metadata": {"tags": ["report:lab07.ex1"]},  # noqa: E731
                                    "source": f"text {i}"} for i in range(n * 1024 // 80)]).encode()

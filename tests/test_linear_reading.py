@@ -80,12 +80,15 @@ def _markdown(source: str, tags=()) -> dict:
     return {"cell_type": "markdown", "metadata": {"tags": list(tags)}, "source": source}
 
 
+FOLDER = "submissions/" + "a-student-s-long-folder-name/" * 5   # each place names it: ~160 characters
+
+
 def _md_report(text: str):
-    return read_report({"lab07_report.md": text.encode("utf-8", "surrogateescape")})
+    return read_report({FOLDER + "lab07_report.md": text.encode("utf-8", "surrogateescape")})
 
 
 def _nb_reports(data: bytes):
-    return read_report({"a/lab07.ipynb": data, "b/lab07.ipynb": data})
+    return read_report({FOLDER + "a/lab07.ipynb": data, FOLDER + "b/lab07.ipynb": data})
 
 
 def _convert(text: str):
@@ -195,6 +198,25 @@ def test_one_line_of_statements_left_out_keeps_each_statement_once():
     converted = _convert(_notebook([_code(line)]))
     assert converted.source.splitlines()[1] == "; ".join(["pass"] * 2000) + "; K = 3"
     assert len(converted.omissions) == 2000 and converted.omissions[5].text == "print(5)"
+
+
+@pytest.mark.parametrize("depth", [150, 5_000])
+def test_deep_nesting_is_read_or_taken_whole_never_an_error(depth):
+    nested = "x = " + "(" * depth + "1" + ")" * depth + "\n"
+    listed = "y = " + "[" * depth + "]" * depth + "\n"
+    chained = "z = 1" + " + 1" * depth * 2 + "\n"
+    source = nested + listed + chained + "def f(a):\n    return a // 2\n"
+    got = reading.read_source(source)
+    if depth < 200:   # the parser's own bound on parentheses is 200
+        assert [finding.function for finding in got.findings["f"]] == ["f"]
+    else:
+        assert got.findings == {}
+    converted = _convert(_notebook([_code(source), _code("print(x)")]))
+    assert "def f(a):" in converted.source.splitlines()   # kept (whole, or read), never an error
+    deep_json = '{"cells": [' + "[" * depth + "]" * depth + "]}"
+    assert read_report({"lab07.ipynb": deep_json.encode()}).explanations == {}
+    with pytest.raises(NotebookError):
+        convert('{"cells": ' + "[" * 200_000 + "]" * 200_000 + "}", "lab07.ipynb")
 
 
 # ------------------------------------------------------------------ the IPython line check
