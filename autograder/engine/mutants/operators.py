@@ -302,6 +302,9 @@ def _make_bound(node, payload):
 def _make_int_division(node, payload):
     if payload == "floor":
         return ast.BinOp(copy.deepcopy(node.left), ast.FloorDiv(), copy.deepcopy(node.right))
+    if payload == "astype":  # np.asarray(x).astype(int)
+        return ast.Call(ast.Attribute(_call("np.asarray", copy.deepcopy(node)), "astype", ast.Load()),
+                        [ast.Name("int", ast.Load())], [])
     return _call("int", copy.deepcopy(node))
 
 
@@ -693,6 +696,10 @@ def _changes(node, parents, words: _Words, line):
                 "a division (a normalisation) is missing", place())
             yield "int_division", "floor", f"{left or 'a value'} divided by {right or 'another'} is an integer " \
                                            "division (// truncates)"
+            if left and right:
+                yield "int_division", "int", f"{left} divided by {right} is truncated to an integer (int())"
+    if isinstance(parent, ast.Return) and isinstance(node, (ast.Name, ast.Call, ast.BinOp, ast.Subscript)):
+        yield "int_division", "astype", _placed("the result is truncated to integers (astype(int))", "in the returned value")
     if isinstance(node, ast.Call):
         yield from _call_changes(node, words, what, parents)
     if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load):
