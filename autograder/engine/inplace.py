@@ -10,8 +10,8 @@ When that second answer differs from the first, the change has an effect a calle
 and :meth:`autograder.engine.checks.Trial.call` fails the check naming it; a change without
 effect (an idempotent write) keeps only the engine's 0-point advice.
 
-Each function loses points in one check per grading at most (the first where the
-effect shows), not in every check that calls it.
+Each function loses points in one check per grading at most (the first public check where
+the effect shows), not in every check that calls it.
 """
 
 from __future__ import annotations

@@ -145,6 +145,19 @@ MISTAKES = {
             H = np.linalg.svd(A)[2][0].reshape(3, 3)
             return H / H[2, 2]
         """, ["largest singular value"]),
+    "homography_dlt centring the caller's points in place": ("lab08.ex2", """
+        _reference_dlt = homography_dlt
+        def homography_dlt(src, dst):
+            src = np.asarray(src, dtype=float)       # no copy for a float array
+            dst = np.asarray(dst, dtype=float)
+            ms, md = src.mean(axis=0), dst.mean(axis=0)
+            src -= ms
+            dst -= md
+            H = _reference_dlt(src, dst)
+            T_src = np.array([[1, 0, -ms[0]], [0, 1, -ms[1]], [0, 0, 1.0]])
+            T_dst_inv = np.array([[1, 0, md[0]], [0, 1, md[1]], [0, 0, 1.0]])
+            return T_dst_inv @ H @ T_src
+        """, ["the caller's `src` in place", "called a second time on that same array"]),
     # ---------------------------------------------------------------- ex3
     "no ratio test": ("lab08.ex3", """
         _reference_match = match_features
