@@ -24,6 +24,7 @@ import sysconfig
 from pathlib import Path
 
 from ..engine.labfolders import ANSWERS, BUNDLED, SKELETON
+from ..engine.versions import DEFAULT_OPENCV, constraints_file
 
 PROJECT_ROOT = Path(__file__).resolve().parents[2]
 STUDENT_README = Path(__file__).resolve().parent / "templates" / "README_student.md"
@@ -73,9 +74,13 @@ def write_student_bundle(out, root: Path = PROJECT_ROOT, course=None) -> list[Pa
     for folder in STUDENT_DOCS:
         for path in sorted((root / "docs" / folder).glob("*.md")):
             copy(path, out / "docs" / folder / path.name)
-    for name in ("grade.py", "pyproject.toml", "constraints.txt", ".gitignore"):
+    for name in ("grade.py", "pyproject.toml", ".gitignore"):
         if (root / name).exists():
             copy(root / name, out / name)
+    # The pins of the course's OpenCV major ("opencv", default 5), as the bundle's constraints.txt.
+    pins = constraints_file(course.opencv if course is not None else DEFAULT_OPENCV, root)
+    if pins.exists():
+        copy(pins, out / "constraints.txt")
     copy(STUDENT_README, out / "README.md")
     return written
 

@@ -107,6 +107,14 @@ Read by every grading (``autograder batch``, Gradescope, ``grade --config``):
     ``"labs": ["labs/flow"]``. Their lab keys must be new (``lab13``); they are graded,
     listed (``autograder list --course``), bundled and shipped like the built-in labs.
 
+``opencv``
+    Default ``"5"``. The OpenCV major the course grades with, ``"4"`` or ``"5"``: the student
+    bundle and Gradescope's ``setup.sh`` install its pins (``constraints.txt``, or
+    ``constraints-opencv4.txt`` shipped as ``constraints.txt``), and ``autograder batch``
+    stops, saying what to install, in an environment with the other major. A few OpenCV
+    calls behave differently between the two (``cv2.minMaxLoc`` on a one-row array); every
+    result says which NumPy and OpenCV judged it.
+
 ``hide``
     Default none. Checks of any lab graded as hidden checks for this course (students
     see their verdict only): ``"hide": ["lab07.ex1::translate_grey", "lab08.ext1"]``, a
@@ -122,6 +130,8 @@ import re
 from dataclasses import asdict, dataclass, field, fields
 from datetime import datetime
 from pathlib import Path
+
+from ..engine.versions import OPENCV_MAJORS
 
 VISIBILITIES = ("visible", "hidden", "after_due_date", "after_published")
 _EXERCISE = re.compile(r"lab\d\d\.[A-Za-z0-9_-]+")                 # lab07.ex1
@@ -144,9 +154,9 @@ _GRADING = {"select", "call_timeout", "exercise_budget", "submission_budget", "f
 _APPLIED_BY = {
     "grade": _GRADING,
     "gradescope": _GRADING | {"points", "public_visibility", "hidden_visibility", "stdout_visibility",
-                              "allow_weaker_confinement"},
+                              "allow_weaker_confinement", "opencv"},
     "batch": _GRADING | {"assignment", "points", "late_penalty", "similarity_threshold", "canvas_assignment_id",
-                         "lms_exports", "rubric"},
+                         "lms_exports", "rubric", "opencv"},
 }
 
 
@@ -172,6 +182,7 @@ class CourseConfig:
     labs: list[str] = field(default_factory=list)       # course lab folders (absolute once loaded)
     hide: list[str] = field(default_factory=list)       # checks graded as hidden: "lab07.ex1::name", "lab07.ex1"
     rubric: dict = field(default_factory=dict)          # "lab07.ex1": [{"id", "text", "points"}, ...]
+    opencv: str = "5"                                   # the OpenCV major graded with: "4" or "5" (versions.py)
 
     def __post_init__(self):
         for name in ("public_visibility", "hidden_visibility", "stdout_visibility"):
@@ -209,6 +220,11 @@ class CourseConfig:
                 raise CourseConfigError(f'{name} must be a list of names, like "labs": ["labs/flow"] '
                                         'or "hide": ["lab07.ex1::translate_grey"]')
         check_rubric(self.rubric)
+        if isinstance(self.opencv, int) and not isinstance(self.opencv, bool):   # "opencv": 4 means "4"
+            object.__setattr__(self, "opencv", str(self.opencv))
+        if self.opencv not in OPENCV_MAJORS:
+            raise CourseConfigError(f'opencv must be "4" or "5" (the OpenCV major the course grades with), '
+                                    f"got {self.opencv!r}")
         outside = [e for e in self.rubric if self.select and not {e, e.split(".")[0]} & set(self.select)]
         if outside:
             raise CourseConfigError(f"rubric: {', '.join(outside)} not in select ({', '.join(self.select)}): "

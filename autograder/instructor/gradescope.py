@@ -28,6 +28,7 @@ import zipfile
 from pathlib import Path
 
 from ..engine.results import GradingResult, write_atomically
+from ..engine.versions import constraints_file, describe
 from ..loading.submission import SubmissionError
 from ..loading.text import printable
 from ..sandbox.confine import WeakerConfinement
@@ -93,6 +94,8 @@ def _summary(result: GradingResult) -> str:
                      "instructor releases them.")
     if any(c.lost_points and not c.hidden for e in result.exercises for c in e.checks):
         lines.append(FULL_PAGE)
+    if describe(result.versions):
+        lines.append(f"Judged with {describe(result.versions)}.")
     return "\n".join(lines)
 
 
@@ -341,6 +344,11 @@ id agworker >/dev/null 2>&1 || useradd --system --no-create-home --home-dir /non
     --shell /usr/sbin/nologin --user-group agworker
 """.format(tested=" ".join(TESTED_PYTHONS), preferred=TESTED_PYTHONS[1])
 
+# Appended to SETUP_SH: a wrong OpenCV fails the build, where the instructor sees it, not a grading.
+OPENCV_CHECK = """# The course grades with OpenCV {major} ("opencv" in course.json; constraints.txt holds its pins).
+/autograder/venv/bin/python -c "import cv2, sys; sys.exit(0 if cv2.__version__.split('.')[0] == '{major}' else 'setup.sh: the course grades with OpenCV {major}, but ' + cv2.__version__ + ' was installed')"
+"""
+
 RUN_AUTOGRADER = """#!/usr/bin/env bash
 # Grades $ROOT/submission and writes $ROOT/results/results.json (always).
 # AUTOGRADER_ROOT and AUTOGRADER_PYTHON exist for tests; Gradescope sets neither.
@@ -409,10 +417,14 @@ def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) ->
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_name(out.name + ".tmp")
     with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as zf:
-        _add(zf, "setup.sh", SETUP_SH, executable=True)
+        _add(zf, "setup.sh", SETUP_SH + OPENCV_CHECK.format(major=config.opencv), executable=True)
         _add(zf, "run_autograder", RUN_AUTOGRADER, executable=True)
         _add(zf, "course.json", config.to_json())
         for path in _shipped_files(root):
+            if path.name == "constraints.txt":   # the pins of the course's OpenCV major
+                path = constraints_file(config.opencv, root)
+                _add(zf, "constraints.txt", path.read_bytes())
+                continue
             _add(zf, path.relative_to(root).as_posix(), path.read_bytes())
         for (shipped, files), lab_folder in zip(shipped_labs.items(), lab_folders):
             for path in files:

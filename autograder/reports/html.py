@@ -10,6 +10,7 @@ from markupsafe import Markup, escape
 
 from ..engine import pictures
 from ..engine.results import ADVICE, ERROR, NOT_IMPLEMENTED, PARTIAL, PASSED, GradingResult, write_atomically
+from ..engine.versions import describe
 
 _UNSAFE_SVG = re.compile(r"<\s*(script|foreignObject|iframe)|\bon\w+\s*=|javascript:", re.IGNORECASE)
 
@@ -143,7 +144,7 @@ def render(result: GradingResult, figures: dict[str, bytes] | None = None) -> st
             {"mime": mime, "data": data, "width": width, "height": height})
     return _environment().get_template("feedback.html.j2").render(
         result=result, percent=percent, graded=what_was_graded(result), graded_at=_graded_at(result),
-        sheet=PictureSheet(), heat_scale=", ".join(pictures.heat_scale_stops()), figures=encoded)
+        judged_with=describe(result.versions), sheet=PictureSheet(), heat_scale=", ".join(pictures.heat_scale_stops()), figures=encoded)
 
 
 def write(result: GradingResult, path, figures: dict[str, bytes] | None = None) -> None:

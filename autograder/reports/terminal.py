@@ -12,6 +12,7 @@ from rich.table import Table
 from rich.text import Text
 
 from ..engine.results import ERROR, NOT_IMPLEMENTED, NOT_STARTED, GradingResult
+from ..engine.versions import describe
 from ..loading.text import printable
 
 
@@ -27,9 +28,11 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
     ``printed_where``: how to read what the student's code printed, in the terms of where
     this runs, when there is no page (default: the command line's)."""
     console = console or Console()
+    caption = "; ".join(filter(None, [
+        f"student code confined at the {result.confinement} level" if result.confinement else "",
+        f"judged with {describe(result.versions)}" if describe(result.versions) else ""]))
     table = Table(title=f"Grading {printable(result.submission)}", title_justify="left", expand=False,
-                  caption=f"student code confined at the {result.confinement} level" if result.confinement else None,
-                  caption_justify="left")
+                  caption=caption or None, caption_justify="left")
     table.add_column("exercise", style="bold")
     table.add_column("title")
     table.add_column("score", justify="right")

@@ -60,6 +60,7 @@ from pathlib import Path
 
 from ... import __version__
 from ...engine.results import strip_pictures
+from ...engine.versions import CONSTRAINTS, constraints_file, installed_opencv_major
 from ...loading.text import printable
 
 GRADEBOOK = "gradebook.sqlite"
@@ -231,12 +232,15 @@ def storing(path, action: str = "write"):
 
 
 def lock_hash() -> str:
-    """What the grading depends on besides the grader: ``constraints.txt``, else library versions.
+    """What the grading depends on besides the grader: the pins of the installed OpenCV major
+    (``constraints.txt``, or ``constraints-opencv4.txt`` under OpenCV 4), else library versions.
 
-    A change of either (new pins, an upgraded OpenCV) makes every submission due
-    for regrading, since scores may move with the libraries.
+    A change of either (new pins, an upgraded OpenCV, a course moved to the other
+    OpenCV major) makes every submission due for regrading, since scores may move
+    with the libraries.
     """
-    constraints = REPOSITORY / "constraints.txt"
+    constraints = constraints_file(installed_opencv_major(), REPOSITORY) \
+        if installed_opencv_major() in CONSTRAINTS else REPOSITORY / "constraints.txt"
     if constraints.is_file():
         text = constraints.read_text(encoding="utf-8")
     else:

@@ -36,7 +36,8 @@ from ...engine.results import GradingResult, json_text, strip_pictures, write_at
 from ...reports import html
 from ...sandbox import confine
 from ...sandbox.supervisor import cores_each
-from ..course import CourseConfig
+from ...engine.versions import OpenCVMismatch, check_opencv
+from ..course import CourseConfig, CourseConfigError
 from . import changes, exports
 from .gradebook import STORAGE_ERRNOS, Gradebook, StorageError, lock_hash, storing, submission_key
 from .ingest import Entry, IngestError, read_upload
@@ -91,7 +92,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     ``progress(event, entry, summary)`` is called with ``"start"`` (entry None,
     with the number to grade in ``summary.students``) and ``"done"`` per grading.
     Raises :class:`.ingest.IngestError` / :class:`.exports.ExportError` for
-    unusable inputs, before anything is graded, and :class:`Unconfined` where this
+    unusable inputs, :class:`~autograder.instructor.course.CourseConfigError` where the
+    installed OpenCV is not the course's ``opencv`` major, before anything is graded, and :class:`Unconfined` where this
     machine cannot keep one student's code from reading the others' work (the
     ``process-group`` level) unless ``allow_unconfined`` says that is acceptable.
     A fault of RESULTS -- full, read-only, deleted mid-run, a damaged gradebook --
@@ -101,6 +103,10 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     course = course or CourseConfig()
     if pictures not in PICTURES:
         raise ValueError(f"pictures must be one of {sorted(PICTURES)}")
+    try:   # scores are grades: never with another OpenCV than the course's (versions.check_opencv)
+        check_opencv(course.opencv)
+    except OpenCVMismatch as exc:
+        raise CourseConfigError(str(exc)) from None
     out = Path(out)
     if Path(submissions).is_dir() and Path(submissions).resolve() in out.resolve().parents:
         raise IngestError(f"--out {out} is inside {submissions}: it would be read as a student next time")
