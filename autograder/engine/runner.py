@@ -411,6 +411,19 @@ def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: T
     return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=finding.mistake)
 
 
+def _named_by_error_model(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
+    """A failed verdict named by the error model (:mod:`autograder.engine.mutants`): a mutant of the
+    reference confirmed on the student's inputs; a hand-written name it contradicts is replaced.
+    A failure of the error model itself never costs the verdict (logged)."""
+    from .mutants.naming import named_by_error_model
+
+    try:
+        return named_by_error_model(verdict, trial)
+    except Exception as exc:  # noqa: BLE001 - naming is a bonus: the verdict stands without it
+        _log_grader_error(check, exc)
+        return verdict
+
+
 def _stubs(exercise: Exercise, submission) -> frozenset[str]:
     """The submission's stubs (functions that only raise NotImplementedError), when
     every function of ``exercise`` is one; else none: a check might call a real one."""
@@ -542,6 +555,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
             and student_failure in ("", "exception"):
         verdict = _named_by_reading(verdict, reading, check, trial)
+    if status in (FAILED, PARTIAL) and student_failure == "":
+        verdict = _named_by_error_model(verdict, check, trial)
     artifacts = []
     if pictures == "all" or (pictures == "failed" and status != PASSED):
         artifacts = painter.draw(check, trial.artifacts) if painter else drawn(check, trial.artifacts)
