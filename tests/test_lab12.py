@@ -38,23 +38,25 @@ def test_stored_reference_figures_are_current():
 
 
 def test_hidden_reference_figures_are_current():
-    """The bad-pixel rates written in the hidden checks are the reference's on those scenes."""
+    """The bad-pixel rates written in the hidden checks bound the reference's on scenes drawn
+    as the checks draw them (the worst over many draws; block matching's hardly vary)."""
     from autograder.labs.hidden import lab12 as hidden
     from fixtures import lab12
-    from fixtures.make_lab12_figures import load_reference
+    from fixtures.make_lab12_figures import block_matching_figures, load_reference
 
-    from fixtures.make_lab12_figures import block_matching_figures
-
-    measured = block_matching_figures(hidden.block_matching_scene(), hidden.BLOCK_MATCHING["block_size"])
-    for key in ("reference", "legitimate", "far_legitimate"):
-        assert abs(measured[key] - hidden.BLOCK_MATCHING[key]) < 0.005, (key, measured[key])
     reference = load_reference()
-    cases = {"ncc": (hidden.ncc_scene(), "block_matching", dict(block_size=9, cost="ncc")),
-             "dp_stereo": (hidden.dp_scene(), "dp_stereo", {})}
-    for key, (scene, function, kwargs) in cases.items():
-        got = getattr(reference, function)(scene.left, scene.right, max_disparity=scene.max_disparity, **kwargs)
-        rate = lab12.bad_pixel_rate(got, scene.judged, scene.threshold)
-        assert abs(rate - hidden.REFERENCE_BAD[key]) < 0.005, (key, rate)
+    for draw in range(2):
+        rng = np.random.default_rng(draw)
+        measured = block_matching_figures(hidden.block_matching_scene(rng), hidden.BLOCK_MATCHING["block_size"])
+        for key in ("reference", "legitimate", "far_legitimate"):
+            assert abs(measured[key] - hidden.BLOCK_MATCHING[key]) < 0.005, (key, measured[key])
+        cases = {"ncc": (hidden.ncc_scene(*hidden.darker(rng)), "block_matching", dict(block_size=9, cost="ncc")),
+                 "dp_stereo": (hidden.dp_scene(rng), "dp_stereo", {})}
+        for key, (scene, function, kwargs) in cases.items():
+            got = getattr(reference, function)(scene.left, scene.right, max_disparity=scene.max_disparity, **kwargs)
+            rate = lab12.bad_pixel_rate(got, scene.judged, scene.threshold)
+            assert rate <= hidden.REFERENCE_BAD[key] + 0.005, (key, rate)
+            assert key == "dp_stereo" or hidden.REFERENCE_BAD[key] - rate < 0.005, (key, rate)
 
 
 def test_scenes_show_what_the_checks_rely_on():

@@ -1098,13 +1098,16 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
             t.fail("your 3D points are wrong: it looks like the homogeneous points were not divided by "
                    "w: each point is in the right direction but off by its own factor.",
                    mistake="the homogeneous points were not divided by w")
+    # A pose mistake first: on some scenes camera 2's rotation transposed also gives points
+    # nearly mirrored through camera 1's centre; points truly mirrored (median error ~0 after a
+    # negative scale) are never named as a pose mistake (at most half the truth's error).
+    mistake = name_pose_mistake(got, pose_mistakes(pair, pts1[good], pts2[good], F), median)
+    if mistake:
+        t.fail(f"your 3D points are wrong: it looks like {mistake}. ({summary})", mistake=mistake)
     if scale < 0 and median <= STRUCTURE_MEDIAN:
         t.fail(f"your 3D points are wrong: it looks like {MIRRORED}: every point is mirrored through "
                "camera 1's centre, behind camera 1 (cv2.recoverPose picks the pose with the points in "
                f"front of both cameras; use its R and t as they are). ({summary})", mistake=MIRRORED)
-    mistake = name_pose_mistake(got, pose_mistakes(pair, pts1[good], pts2[good], F), median)
-    if mistake:
-        t.fail(f"your 3D points are wrong: it looks like {mistake}. ({summary})", mistake=mistake)
     if scale < 0 or np.median(got[:, 2]) < 0:
         t.fail("your 3D points are behind camera 1 (negative Z, or mirrored through its centre): "
                + IN_FRONT_HINT.said(t))
