@@ -296,9 +296,9 @@ def test_an_exercise_not_started_in_a_notebook_is_one_line(tmp_path):
     assert "· lab07.ex4: not started: shear_matrix() and shear() are not defined yet" in text
     assert "not found: def" not in text and "hidden check" not in text
     assert len([line for line in text.splitlines() if "lab07.ex3" in line]) == 2   # the table's row and this line
-    page = html.render(result)
-    assert page.count("not started: scaling_matrix() and scale() are not defined yet") == 1
-    assert "not found: def scaling_matrix" not in page
+    for page in (html.render(result), html.render_selfcheck(result, "the kernel's code")):   # and check()'s
+        assert page.count("not started: scaling_matrix() and scale() are not defined yet") == 1
+        assert "not found: def scaling_matrix" not in page
     assert full(result, "lab07.ex1")
 
 
@@ -316,8 +316,8 @@ def test_the_left_out_note_is_whole_on_request_without_duplicates_as_written(tmp
     assert all("get_ipython" not in line for line in listed)
     text = " ".join(terminal_text(result).split())   # the lines as one, whatever the wrapping
     assert " ".join(f"note: {first}".split()) in text and listed[-1] not in text   # the first line only
-    page = html.render(result)
-    assert "<details><summary>all 12 listed</summary>" in page and "out7 = translate(img, 7, 0)" in page
+    for page in (html.render(result), html.render_selfcheck(result, "the kernel's code")):
+        assert "<details><summary>all 12 listed</summary>" in page and "out7 = translate(img, 7, 0)" in page
     # check() in a kernel reads the cells as written: %matplotlib inline, not IPython's translation
     from autograder.student import selfcheck
 
