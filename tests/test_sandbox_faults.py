@@ -14,6 +14,7 @@
 Limits are small so that the file stays fast; sizes are bounded.
 """
 
+import re
 import textwrap
 
 import numpy as np
@@ -24,7 +25,7 @@ from autograder.engine.runner import grade
 from autograder.sandbox import transport
 from autograder.sandbox.supervisor import Limits
 from conftest import REFERENCE, mutant
-from test_hostile_v3 import LAB07, LAB09, SLOW_LORIS, assert_no_grader_error, messages, sandbox_for
+from test_hostile_v3 import LAB07, LAB09, SLOW_LORIS, assert_no_grader_error, cgroup, messages, sandbox_for  # noqa: F401
 
 CROSS = "only arrays, numbers, strings, and lists, tuples and string-keyed dicts of those can cross"
 
@@ -283,7 +284,7 @@ LAB09_BOMB = """
 class TestMemoryBombs:
     LIMITS = Limits(call_timeout=10.0, memory=384 << 20)
 
-    def test_memory_a_call_keeps_is_not_the_next_functions_missing(self, tmp_path):
+    def test_memory_a_call_keeps_is_not_the_next_functions_missing(self, tmp_path, cgroup):
         """A call that keeps 200 MB of 384 in a global: the next call of another function gets a
         worker with all of its memory (it was told "used more than 384 MB" before)."""
         with sandbox_for(tmp_path, MEMORY, self.LIMITS) as box:
@@ -292,7 +293,17 @@ class TestMemoryBombs:
             assert outcome.ok, outcome.message
             assert box.call("m", "keep", (50,)).value == 1  # a fresh worker: the module imported again
 
-    def test_a_bomb_is_charged_twice_then_not_called_again(self, tmp_path):
+    def test_memory_kept_by_earlier_calls_is_told_with_a_bomb(self, tmp_path, cgroup):
+        """70 MB kept (less than a quarter of 384: the worker stays), then a bomb: its sentence says
+        how much was already held when it was called."""
+        with sandbox_for(tmp_path, MEMORY, self.LIMITS) as box:
+            assert box.call("m", "keep", (70,)).value == 1
+            outcome = box.call("m", "bomb")
+            kept = re.fullmatch(r"bomb\(\) used more than 384 MB of memory \((\d+) MB of it already held when "
+                                r"it was called, kept by earlier calls\)", outcome.message)
+            assert outcome.kind == "memory" and kept and 65 <= int(kept[1]) <= 80, outcome.message
+
+    def test_a_bomb_is_charged_twice_then_not_called_again(self, tmp_path, cgroup):
         with sandbox_for(tmp_path, MEMORY, self.LIMITS) as box:
             for _ in range(2):
                 outcome = box.call("m", "bomb")

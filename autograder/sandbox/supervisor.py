@@ -388,7 +388,7 @@ class Sandbox:
         self.shared: dict = {}  # values checks share within one grading (see Trial.shared)
         self._strikes: dict[tuple[str, str, str], int] = {}  # (module, function, "timeout" or "memory")
         self._memory_floor = 0   # what the worker holds once ready and its modules imported (bytes)
-        self._held_before = 0    # what it held when the current request began (bytes)
+        self._held_before = 0    # what it held when the current request began (bytes; see _weigh)
 
     # The worker may write only in these folders of its scratch (when namespaces
     # allow): its copy of the submission and of the worker code stay intact.
@@ -577,7 +577,7 @@ class Sandbox:
         self._own_processes = len(self.cgroup.processes()) if self.cgroup is not None else 0
         self._own_pids = {self.proc.pid, *evidence.descendants(self.proc.pid)}
         self._find_worker()
-        self._memory_floor = evidence.resident(self._worker_pid) or 0
+        self._memory_floor = self._held_before = evidence.resident(self._worker_pid) or 0
 
     def _find_worker(self) -> None:
         """Find the worker's own process among the sandbox's (the last of the wrappers' line, as
@@ -784,7 +784,6 @@ class Sandbox:
         request = {**request, "id": self._request_id}
         frame = transport.encode(request)
         self._measured = _Measures.now(self.cgroup)
-        self._held_before = evidence.resident(self._worker_pid) or 0
         start = time.perf_counter()
         deadline = time.monotonic() + timeout
         self._watching = True
@@ -854,6 +853,7 @@ class Sandbox:
         held = evidence.resident(self._worker_pid)
         if held is None:
             return
+        self._held_before = held  # (nothing runs in the worker until the next request)
         if op == "import":
             self._memory_floor = max(self._memory_floor, held)
         elif held - self._memory_floor > self.memory // 4:
