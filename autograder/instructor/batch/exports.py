@@ -65,6 +65,7 @@ from datetime import timedelta
 from pathlib import Path
 
 from ...engine.results import write_atomically
+from ...loading.text import one_line
 from ..course import CourseConfig, parse_time
 
 GRADES_HEADER = ["Student ID", "Name", "Status"]
@@ -103,6 +104,7 @@ class StudentGrade:
     student: dict                        # a Gradebook.class_results() row (or a roster-only stub)
     exercises: dict[str, float | None]   # course points per exercise (None: not graded)
     late_penalty: float = 0.0
+    late_days: int = 0                   # days late by the course's rule (0: on time, or no rule)
     bonus: float = 0.0                   # total-level overrides (bonus minus penalties)
     adjustments: list[Adjustment] = field(default_factory=list)
     roster: dict = field(default_factory=dict)
@@ -333,6 +335,7 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
         grades.append(grade)
     for grade in grades:
         days = late_days(grade.student, course.late_penalty)
+        grade.late_days = days
         if days and grade.graded:
             percent = min(course.late_penalty.get("max", 100), course.late_penalty.get("per_day", 0) * days)
             earned = grade.earned
@@ -351,11 +354,26 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
                             "(name the student by id)")
         else:
             _apply(candidates[0], o, warnings)
+    warnings += _unreviewed(grades, maxima, reviews)
     for row in absent:
         stub = {"student_id": row.get("student_id", ""), "display_name": row.get("name", ""), "lms": {},
                 "members": [], "status": "no submission", "reason": "", "result": None, "feedback": None}
         grades.append(StudentGrade(stub, {e: None for e, _ in exercises}, roster=row))
     return grades, warnings
+
+
+def _unreviewed(grades: list[StudentGrade], maxima: dict[str, float], reviews: dict) -> list[str]:
+    """A warning per exercise whose reports are not all reviewed yet: their points count 0 in
+    every export until they are (a perfect submission shows less than full marks)."""
+    graded = [g for g in grades if g.graded]
+    warnings = []
+    for exercise, maximum in sorted(maxima.items()):
+        waiting = sum((g.student["student_id"], exercise) not in reviews for g in graded)
+        if waiting:
+            warnings.append(f"{exercise}: {waiting} of {len(graded)} reports not reviewed yet; until they are, "
+                            f"their {maximum:g} report points count 0 in grades.csv and the LMS imports "
+                            "(autograder review)")
+    return warnings
 
 
 def _add_reviews(grade: StudentGrade, rubric: dict, maxima: dict[str, float], reviews: dict) -> None:
@@ -429,12 +447,41 @@ def max_total(exercises, course: CourseConfig, report_max: dict[str, float] | No
 
 # ------------------------------------------------------------------ CSV files
 def _status(grade: StudentGrade) -> str:
+    """What happened to the student's work, in words: graded, nothing implemented, does not
+    import (why), could not be read (why), failed, missing; and late, even at 0 points."""
     status, reason = grade.student["status"], grade.student.get("reason", "")
     if grade.student.get("missing_from_download"):   # kept from an earlier download (see Gradebook)
         graded_at = grade.student.get("graded_at")
         return f"not in this download; last graded {graded_at[:10]}" if status == "graded" and graded_at \
             else f"{status} (not in this download)"
-    return f"{status}: {reason}" if reason else status
+    if status == "graded":
+        status = _what_was_graded(grade.student.get("result") or {})
+    elif status == "unreadable":
+        status = "could not be read"
+    told = f"{status}: {reason}" if reason else status
+    if grade.late_days:
+        told += f"; late ({grade.late_days} day{'s' if grade.late_days != 1 else ''})"
+    elif grade.student.get("late"):
+        told += "; late"
+    return told
+
+
+# How a check fails when its lab's module could not be used at all.
+_UNUSABLE = ("import_error", "missing_module")
+
+
+def _what_was_graded(result: dict) -> str:
+    """``graded``, or what the grading found instead of work to judge: every graded check met a
+    stub ("nothing implemented"), or no module could be imported ("does not import: why")."""
+    checks = [c for e in result.get("exercises", []) for c in e.get("checks", []) if c.get("max_score")]
+    if checks and all(c.get("failure") == "not_implemented" or c.get("status") == "not_implemented"
+                      for c in checks):
+        return "nothing implemented"
+    if checks and all(c.get("failure") in _UNUSABLE for c in checks):
+        messages = [e.get("message", "") for e in result.get("exercises", []) if e.get("message")]
+        first = messages[0].splitlines()[0] if messages else ""
+        return f"does not import ({one_line(first, 160)})" if first else "does not import"
+    return "graded"
 
 
 def files_not_graded(result: dict | None) -> str:
