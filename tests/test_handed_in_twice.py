@@ -23,12 +23,13 @@ import zipfile
 from pathlib import Path
 
 import pytest
+from hypothesis import given, strategies as st
 from rich.console import Console
 
 from autograder.engine.results import GradingResult
 from autograder.engine.runner import grade
 from autograder.cli import main
-from autograder.loading.handed_in import NotGraded, progress
+from autograder.loading.handed_in import Candidate, NotGraded, Progress, choose, progress
 from autograder.loading.submission import load_submission
 from autograder.reports import html, terminal
 from conftest import REFERENCE, SKELETON
@@ -193,3 +194,22 @@ def test_the_class_files_name_the_file_not_graded(tmp_path, capsys):
     page = (out / "twice" / "feedback.html").read_text()
     assert f"graded {NB}, not {PY}, because" in page
     assert json.loads((out / "twice" / "results.json").read_text())["files_not_graded"][0]["file"] == PY
+
+
+# ------------------------------------------------------------------ the rule, for any files
+candidates = st.lists(st.tuples(st.sampled_from(["a/", "b/", ""]), st.sampled_from([".py", ".ipynb"]),
+                                st.integers(0, 3), st.integers(0, 3), st.sampled_from([0.0, 1.0, 2.0])),
+                      min_size=2, max_size=5, unique_by=lambda c: (c[0], c[1]))
+
+
+@given(candidates)
+def test_the_file_graded_implements_the_most_and_every_other_is_named_once(drawn):
+    files = [Candidate(Path(f"{folder}{MODULE}{suffix}"), f"{folder}{MODULE}{suffix}", Progress(done, stubs), when)
+             for folder, suffix, done, stubs, when in drawn]
+    best, others = choose(MODULE, files)
+    assert sorted(f.file for f in others) == sorted(c.shown for c in files if c is not best)
+    assert all(f.graded == best.shown and f.why for f in others)
+    for other in files:   # nothing beats it: more implemented, or as much with fewer stubs, or as much and newer
+        mine, theirs = (other.progress.implemented, -other.progress.stubs, other.modified), \
+            (best.progress.implemented, -best.progress.stubs, best.modified)
+        assert mine <= theirs
