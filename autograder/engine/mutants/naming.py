@@ -268,22 +268,73 @@ def _measured_tolerance(value) -> float:
 
 
 def reproduces(mutant, student, reference) -> bool:
-    """Whether the mutant's answer is the student's: within the tolerance, or (where the
-    reference is far from the student) ten times closer to it than the reference and
-    within 5% of the answer's size."""
+    """Whether the mutant's answer is the student's.
+
+    Numbers (matrices, points): every entry within 1e-4 of the answer's size (another order
+    of floating-point operations, not another value; a mutant that is merely close, as the
+    identity is to a rotation by half a degree, is not the student's). Images: the mean absolute
+    difference within half a grey level, or ten times smaller than the reference's and under
+    5% of the mean brightness (another interpolation of the same warp)."""
     tolerance, scale = _measures(student)
+    if not _has_image(student):
+        size = max(_largest(student), 1e-12)
+        if _largest_difference(mutant, student) <= 1e-4 * size:
+            return True
+        return _largest_difference(mutant, student, projective=True) <= 1e-4 * size \
+            and _largest_difference(reference, student, projective=True) > 1e-3 * size
     apart = distance(mutant, student, lenient=True)
     if apart <= tolerance:
         return True
     off = distance(reference, student)
     if off <= 10 * tolerance:   # the student is right here: the mutant must be as near
         return apart <= 2 * off
-    if apart <= min(0.1 * off, 0.05 * scale):
-        return True
-    # A homography or fundamental matrix the student scaled otherwise: the same test, up to scale.
-    off = distance(reference, student, projective=True)
-    apart = distance(mutant, student, lenient=True, projective=True)
-    return off > 10 * tolerance and apart <= min(0.1 * off, 0.05 * scale)
+    return apart <= min(0.1 * off, 0.05 * scale)
+
+
+def _has_image(value) -> bool:
+    leaves = []
+    _leaves(value, leaves)
+    return any(isinstance(v, np.ndarray) and v.dtype.kind in "iub" and v.ndim >= 2 and v.size > 64 for v in leaves)
+
+
+def _largest(value) -> float:
+    leaves = []
+    _leaves(value, leaves)
+    sizes = [float(np.abs(v[np.isfinite(v)]).max()) for v in leaves
+             if isinstance(v, np.ndarray) and v.dtype.kind in "iufc" and np.isfinite(v).any()]
+    return max(sizes, default=0.0)
+
+
+def _largest_difference(a, b, projective: bool = False) -> float:
+    """The largest entry-wise difference of two answers (``a`` a mutant's, NaN-lenient as
+    :func:`distance`); infinite when their forms differ."""
+    left, right = [], []
+    if not (_leaves(a, left) and _leaves(b, right)) or len(left) != len(right):
+        return float("inf")
+    worst = 0.0
+    for x, y in zip(left, right):
+        if isinstance(x, tuple) or isinstance(y, tuple):
+            if not (isinstance(x, tuple) and isinstance(y, tuple) and x == y):
+                return float("inf")
+            continue
+        if x.shape != y.shape or x.dtype.kind not in "biufc" or y.dtype.kind not in "biufc":
+            return float("inf")
+        x, y = x.astype(np.complex128 if "c" in x.dtype.kind + y.dtype.kind else np.float64), y.astype(
+            np.complex128 if "c" in x.dtype.kind + y.dtype.kind else np.float64)
+        bad_x, bad_y = ~np.isfinite(x), ~np.isfinite(y)
+        if (bad_y & ~bad_x).any() or (bad_x.any() and (bad_x & ~bad_y).mean() >= 0.5):
+            return float("inf")
+        keep = ~bad_x & ~bad_y
+        if projective and x.ndim == 2 and x.size <= 16 and keep.all():
+            nx, ny = np.linalg.norm(x), np.linalg.norm(y)
+            if nx == 0 or ny == 0:
+                return float("inf")
+            x = x / nx * ny
+            if np.real(np.vdot(x, y)) < 0:
+                x = -x
+        if keep.any():
+            worst = max(worst, float(np.max(np.abs(x[keep] - y[keep]))))
+    return worst
 
 
 def _constant(value) -> bool:
