@@ -18,6 +18,7 @@ import builtins
 import gc
 import json
 import re
+import sys
 import threading
 import time
 from pathlib import Path
@@ -374,9 +375,21 @@ def test_the_readers_parse_only_under_the_lock(lock_checked, tmp_path):
         ast.parse("x = 1")   # the check itself can fail
 
 
+class _Cycle:
+    """Garbage whose finalizer lets another thread in: a collection inside one thread's AST
+    construction is where another thread's parse could interleave with it."""
+
+    def __init__(self):
+        self.me = self
+
+    def __del__(self):
+        time.sleep(0)
+
+
 def test_parsing_from_many_threads_never_raises_system_error():
     """Lanes read submissions in threads; unlocked, CPython 3.11's AST constructor shares one
-    recursion counter between them (gh-106905)."""
+    recursion counter between them (gh-106905). Threads are switched as often as they can
+    be, and collections with finalizers happen during parses."""
     deep = "x = " + "(" * 90 + "1" + ")" * 90 + "\ny = " + "[" * 60 + "]" * 60 + "\n"
     source = deep + "def f(a):\n    return a // 2 + " + " + ".join(["a"] * 400) + "\n"
     nb = _notebook([_code(source), _code("%matplotlib inline\nimport numpy as np")])
@@ -385,17 +398,26 @@ def test_parsing_from_many_threads_never_raises_system_error():
     def work():
         try:
             for _ in range(4):
+                for _ in range(100):
+                    _Cycle()
                 reading.read_source(source)
                 _convert(nb)
-                parsing.parse(deep)
+                parsing.parse(deep * 5)
         except BaseException as exc:  # noqa: BLE001 - every failure is the test's
             errors.append(repr(exc))
 
-    threads = [threading.Thread(target=work) for _ in range(6)]
-    for thread in threads:
-        thread.start()
-    for thread in threads:
-        thread.join()
+    interval, thresholds = sys.getswitchinterval(), gc.get_threshold()
+    sys.setswitchinterval(1e-6)
+    gc.set_threshold(50)
+    try:
+        threads = [threading.Thread(target=work) for _ in range(6)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+    finally:
+        sys.setswitchinterval(interval)
+        gc.set_threshold(*thresholds)
     assert errors == []
 
 
