@@ -213,3 +213,13 @@ def test_the_file_graded_implements_the_most_and_every_other_is_named_once(drawn
         mine, theirs = (other.progress.implemented, -other.progress.stubs, other.modified), \
             (best.progress.implemented, -best.progress.stubs, best.modified)
         assert mine <= theirs
+
+
+@pytest.mark.parametrize("progress_, words", [
+    (Progress(0, 1), "implements none of its 1 function yet (it only raises NotImplementedError)"),
+    (Progress(0, 11), "implements none of its 11 functions yet (each only raises NotImplementedError)"),
+    (Progress(2, 1), "implements 2 functions (1 more only raises NotImplementedError)"),
+    (Progress(1, 0), "implements 1 function"), (Progress(0, 0), "defines no function"),
+    (Progress(0, 0, "is not UTF-8 text"), "is not UTF-8 text")])
+def test_progress_in_words(progress_, words):
+    assert progress_.words() == words

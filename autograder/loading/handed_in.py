@@ -95,8 +95,10 @@ class Progress:
         if not self.stubs:
             return f"implements {self.implemented} function{plural}" if self.implemented else "defines no function"
         if not self.implemented:
-            return f"implements none of its {self.stubs} functions yet (each only raises NotImplementedError)"
-        return f"implements {self.implemented} function{plural} ({self.stubs} more only raise NotImplementedError)"
+            return (f"implements none of its {self.stubs} function{'s' * (self.stubs != 1)} yet "
+                    f"({'each' if self.stubs != 1 else 'it'} only raises NotImplementedError)")
+        return (f"implements {self.implemented} function{plural} ({self.stubs} more only "
+                f"raise{'s' * (self.stubs == 1)} NotImplementedError)")
 
 
 def progress(text: str) -> Progress:
