@@ -155,7 +155,8 @@ _APPLIED_BY = {
     "grade": _GRADING,
     "gradescope": _GRADING | {"points", "public_visibility", "hidden_visibility", "stdout_visibility",
                               "allow_weaker_confinement", "opencv"},
-    "batch": _GRADING | {"assignment", "points", "late_penalty", "similarity_threshold", "canvas_assignment_id",
+    "batch": _GRADING | {"assignment", "points", "late_penalty", "extensions", "late_days",
+                         "similarity_threshold", "canvas_assignment_id",
                          "lms_exports", "rubric", "opencv"},
 }
 
@@ -170,6 +171,12 @@ class CourseConfig:
     assignment: str = "Computer vision labs"            # grade column name in LMS exports
     points: dict[str, float] = field(default_factory=dict)   # "lab07" / "lab07.ex2" -> points
     late_penalty: dict = field(default_factory=dict)    # due, grace_minutes, per_day, max (percent)
+    # Per student (any identity the roster or download knows: id, e-mail, name...): {"days": 3},
+    # {"due": "2026-03-08T23:59:00+01:00"} or {"excused": true}.
+    extensions: dict = field(default_factory=dict)
+    # Pooled late days: {"tokens": 5, "ledger": "late_days.json"} (the ledger, shared by the term's
+    # assignments, spends the tokens in the order of their due dates).
+    late_days: dict = field(default_factory=dict)
     similarity_threshold: float = 0.5                   # similarity report: pairs shown side by side
     inputs_secret: str = ""                             # property inputs: HMAC(secret, content); see inputs.py
     allow_weaker_confinement: bool = False              # Gradescope grades below the machine's strongest level
@@ -200,6 +207,7 @@ class CourseConfig:
                 isinstance(k, str) and isinstance(v, (int, float)) and v >= 0 for k, v in self.points.items())):
             raise CourseConfigError("points must map 'lab07' or 'lab07.ex2' to a number of points")
         self._check_late_penalty()
+        self._check_extensions()
         if not isinstance(self.inputs_secret, str):
             raise CourseConfigError("inputs_secret must be a string (the course's secret, e.g. 32 random hex digits)")
         if not isinstance(self.allow_weaker_confinement, bool):
@@ -306,6 +314,36 @@ class CourseConfig:
             if due.tzinfo is None:
                 raise CourseConfigError("late_penalty.due needs a time zone, e.g. +01:00 or Z")
 
+    def _check_extensions(self):
+        example = '{"alice@uni.edu": {"days": 3}, "s2231234": {"due": "2026-03-08T23:59:00+01:00"}, "Bo Chen": {"excused": true}}'
+        if not isinstance(self.extensions, dict):
+            raise CourseConfigError(f"extensions must be an object of students to their extension, like {example}")
+        for who, extension in self.extensions.items():
+            if not (isinstance(who, str) and who.strip() and isinstance(extension, dict) and len(extension) == 1
+                    and set(extension) <= {"days", "due", "excused"}):
+                raise CourseConfigError(f"extensions[{who!r}] must be one of {{\"days\": N}}, {{\"due\": time}} "
+                                        f"or {{\"excused\": true}} (example: {example})")
+            [(kind, value)] = extension.items()
+            if kind == "days" and (isinstance(value, bool) or not isinstance(value, (int, float)) or value < 0):
+                raise CourseConfigError(f"extensions[{who!r}].days must be a non-negative number of days")
+            if kind == "excused" and value is not True:
+                raise CourseConfigError(f"extensions[{who!r}].excused must be true")
+            if kind == "due":
+                try:
+                    due = parse_time(str(value))
+                except ValueError:
+                    due = None
+                if due is None or due.tzinfo is None:
+                    raise CourseConfigError(f"extensions[{who!r}].due must be an ISO 8601 time with a time zone")
+        rule = self.late_days
+        if not isinstance(rule, dict) or set(rule) - {"tokens", "ledger"} or (rule and "tokens" not in rule):
+            raise CourseConfigError('late_days must be like {"tokens": 5, "ledger": "late_days.json"} '
+                                    "(the ledger is optional: without it, the tokens are this assignment's only)")
+        if rule and (isinstance(rule["tokens"], bool) or not isinstance(rule["tokens"], int) or rule["tokens"] < 0):
+            raise CourseConfigError("late_days.tokens must be a whole number of days, 0 or more")
+        if rule.get("ledger") is not None and not (isinstance(rule["ledger"], str) and rule["ledger"].strip()):
+            raise CourseConfigError("late_days.ledger must be a file name")
+
     @classmethod
     def load(cls, path) -> "CourseConfig":
         try:
@@ -323,6 +361,9 @@ class CourseConfig:
                        if isinstance(folder, str) and folder else folder for folder in data["labs"]]
             # A folder named twice (labs/flow, ./labs/flow) is one.
             data["labs"] = [folder for i, folder in enumerate(folders) if folder not in folders[:i]]
+        late = data.get("late_days")
+        if isinstance(late, dict) and isinstance(late.get("ledger"), str) and late["ledger"].strip():
+            data["late_days"] = {**late, "ledger": str((Path(path).parent / Path(late["ledger"]).expanduser()).resolve())}
         course = cls(**data)
         course.use_labs(path)
         return course

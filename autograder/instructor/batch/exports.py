@@ -58,6 +58,7 @@ from __future__ import annotations
 import csv
 import html
 import io
+import json
 import math
 import re
 from dataclasses import dataclass, field
@@ -104,7 +105,9 @@ class StudentGrade:
     student: dict                        # a Gradebook.class_results() row (or a roster-only stub)
     exercises: dict[str, float | None]   # course points per exercise (None: not graded)
     late_penalty: float = 0.0
-    late_days: int = 0                   # days late by the course's rule (0: on time, or no rule)
+    late_days: int = 0                   # days late by the course's rule and the student's extension
+    late_days_used: int = 0              # pooled late days (course late_days) spent on these
+    excused: bool = False                # excused by the instructor (course extensions): not counted
     bonus: float = 0.0                   # total-level overrides (bonus minus penalties)
     adjustments: list[Adjustment] = field(default_factory=list)
     roster: dict = field(default_factory=dict)
@@ -122,7 +125,7 @@ class StudentGrade:
 
     @property
     def total(self) -> float | None:
-        if not self.graded:
+        if not self.graded or self.excused:
             return None
         return round(max(0.0, self.earned - self.late_penalty + self.bonus), 2)
 
@@ -281,19 +284,114 @@ def exercise_factors(exercises, course: CourseConfig) -> dict[str, float]:
     return course.point_factors(exercises)
 
 
-def late_days(student: dict, rule: dict) -> int:
-    """Days late (started days count whole) by the course's rule; 0 when on time or unknown."""
+def late_days(student: dict, rule: dict, extension: dict | None = None) -> int:
+    """Days late (started days count whole) by the course's rule and the student's extension
+    (``{"days": n}`` moves the due date, ``{"due": time}`` replaces it); 0 when on time or
+    unknown. A late flag without times (Canvas's ``_LATE_``) is one day, unless the extension
+    gives days."""
+    extension = extension or {}
     if not rule:
         return 0
-    if rule.get("due") and student.get("submitted_at"):
+    due = extension.get("due") or rule.get("due")
+    if due and student.get("submitted_at"):
         try:
             submitted = parse_time(student["submitted_at"])
         except ValueError:
             submitted = None
         if submitted is not None:
-            over = submitted - parse_time(str(rule["due"])) - timedelta(minutes=rule.get("grace_minutes", 0))
+            over = (submitted - parse_time(str(due)) - timedelta(minutes=rule.get("grace_minutes", 0))
+                    - timedelta(days=extension.get("days", 0)))
             return max(0, math.ceil(over / timedelta(days=1)))
-    return 1 if student.get("late") else 0
+    return 1 if student.get("late") and not extension.get("days") and not extension.get("due") else 0
+
+
+# ------------------------------------------------------------------ extensions and late days
+def _extensions(course: CourseConfig, grades: list[StudentGrade], index) -> tuple[dict[int, dict], list[str]]:
+    """Each student's extension (by ``id()`` of their grade), matched by any identity the
+    download or roster knows, as overrides are; warnings for one naming nobody or several."""
+    found, warnings = {}, []
+    for who, extension in course.extensions.items():
+        named = _named_by(who, grades, index)
+        if len(named) == 1:
+            found[id(named[0])] = extension
+        elif not named:
+            warnings.append(f"extension for {who!r} names no student; ignored")
+        else:
+            warnings.append(f"extension for {who!r} is ambiguous: it names "
+                            f"{', '.join(g.student['student_id'] for g in named)}; ignored (name the student by id)")
+    return found, warnings
+
+
+def ledger_key(student: dict) -> str:
+    """Who a student is in the term's late-day ledger: the LMS's user id, else where they were
+    in the download (the same folder name in every assignment)."""
+    from .ingest import identity_keys
+
+    return identity_keys(student.get("origin", student.get("student_id", "")), student.get("lms") or {})[0]
+
+
+def read_ledger(course: CourseConfig) -> dict:
+    """The term's late-day ledger (``{"assignments": {name: {"due": time or None, "late": {key: days}}}}``),
+    empty when the course keeps none or it is not written yet."""
+    path = (course.late_days or {}).get("ledger")
+    if not path:
+        return {"assignments": {}}
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        return {"assignments": {}}
+    except (OSError, ValueError) as exc:
+        raise ExportError(f"the late-day ledger {path} cannot be read ({exc}); fix or remove it") from None
+    if not isinstance(data, dict) or not isinstance(data.get("assignments"), dict):
+        raise ExportError(f"the late-day ledger {path} is not a ledger; fix or remove it")
+    return data
+
+
+def record_late_days(course: CourseConfig, grades: list[StudentGrade]) -> Path | None:
+    """Write this assignment's late days (before any token is spent) into the term's ledger, so
+    every assignment spends the tokens in the order of the due dates, whichever runs first."""
+    path = (course.late_days or {}).get("ledger")
+    if not path:
+        return None
+    ledger = read_ledger(course)
+    ledger["assignments"][course.assignment] = {
+        "due": course.late_penalty.get("due"),
+        "late": {ledger_key(g.student): g.late_days for g in grades if g.graded and g.late_days}}
+    write_atomically(Path(path), json.dumps(ledger, indent=1, sort_keys=True))
+    return Path(path)
+
+
+def _tokens_left(student: dict, course: CourseConfig, ledger: dict) -> int:
+    """The pooled late days a student has left for this assignment: the course's tokens less
+    those the assignments due before it spent (each spends what it needs while some are left)."""
+    due = str(course.late_penalty.get("due") or "")
+    key, left = ledger_key(student), course.late_days["tokens"]
+    earlier = sorted((str(a.get("due") or ""), name) for name, a in ledger.get("assignments", {}).items()
+                     if name != course.assignment and (str(a.get("due") or ""), name) < (due, course.assignment))
+    for _, name in earlier:
+        left -= min(left, int(ledger["assignments"][name].get("late", {}).get(key, 0)))
+    return left
+
+
+def _late_rules(grade: StudentGrade, extension: dict, course: CourseConfig, ledger: dict) -> int:
+    """Apply the student's extension and pooled late days; the days left to penalise."""
+    if extension.get("excused"):
+        grade.excused = True
+        grade.adjustments.append(Adjustment("excused", "not counted", "excused by your instructor"))
+        return 0
+    if extension:
+        change = f"+{extension['days']:g} days" if "days" in extension else f"due {extension['due']}"
+        grade.adjustments.append(Adjustment("extension", change, "your instructor's extension"))
+    days = grade.late_days = late_days(grade.student, course.late_penalty, extension)
+    if days and course.late_days and grade.graded:
+        left = _tokens_left(grade.student, course, ledger)
+        grade.late_days_used = min(days, left)
+        if grade.late_days_used:
+            grade.adjustments.append(Adjustment(
+                "late days", f"{grade.late_days_used} used",
+                f"{left - grade.late_days_used} of {course.late_days['tokens']} left for the term"))
+        days -= grade.late_days_used
+    return days
 
 
 def report_maxima(rubric: dict[str, list[dict]], exercises) -> dict[str, float]:
@@ -305,7 +403,7 @@ def report_maxima(rubric: dict[str, list[dict]], exercises) -> dict[str, float]:
 
 def compute_grades(students: list[dict], exercises, course: CourseConfig,
                    overrides: list[Override] = (), roster: list[dict] = (), rubric: dict | None = None,
-                   reviews: dict | None = None) -> tuple[list[StudentGrade], list[str]]:
+                   reviews: dict | None = None, ledger: dict | None = None) -> tuple[list[StudentGrade], list[str]]:
     """Every student's grade, plus warnings (overrides naming nobody).
 
     ``students`` are :meth:`Gradebook.class_results` rows; ``exercises`` the
@@ -313,6 +411,8 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
     are added with status ``no submission``. ``rubric`` and ``reviews`` (as
     :meth:`.gradebook.Gradebook.rubric` and :meth:`~.gradebook.Gradebook.reviews` give
     them) add each reviewed exercise's report points (course points, as the rubric gives them).
+    The course's ``extensions`` move a student's due date (or excuse them), and its pooled
+    ``late_days`` are spent before any penalty, as the term's ``ledger`` (:func:`read_ledger`) leaves them.
     """
     rubric, reviews = rubric or {}, reviews or {}
     maxima = report_maxima(rubric, exercises)
@@ -333,9 +433,11 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
         grade = StudentGrade(student, scores, roster=matched.get(student["student_id"], {}))
         _add_reviews(grade, rubric, maxima, reviews)
         grades.append(grade)
+    index = _identity_index(grades)
+    extensions, extension_warnings = _extensions(course, grades, index)
+    warnings += extension_warnings
     for grade in grades:
-        days = late_days(grade.student, course.late_penalty)
-        grade.late_days = days
+        days = _late_rules(grade, extensions.get(id(grade), {}), course, ledger or {})
         if days and grade.graded:
             percent = min(course.late_penalty.get("max", 100), course.late_penalty.get("per_day", 0) * days)
             earned = grade.earned
@@ -343,7 +445,6 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
             if grade.late_penalty:
                 grade.adjustments.append(Adjustment("late", f"-{grade.late_penalty:g}",
                                                     f"{days} day(s) late: {percent:g}% of the points earned"))
-    index = _identity_index(grades)
     for o in overrides:
         candidates = _named_by(o.student, grades, index)
         if not candidates:
@@ -454,6 +555,8 @@ def _status(grade: StudentGrade) -> str:
         graded_at = grade.student.get("graded_at")
         return f"not in this download; last graded {graded_at[:10]}" if status == "graded" and graded_at \
             else f"{status} (not in this download)"
+    if grade.excused:
+        return "excused"
     if status == "graded":
         status = _what_was_graded(grade.student.get("result") or {})
     elif status == "unreadable":
@@ -526,7 +629,7 @@ def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig,
         rows.append([r.get("name") or member.get("name") or g.student["display_name"],
                      r.get("canvas_user_id") or lms.get("canvas_user_id", ""),
                      r.get("sid") or member.get("sid", ""), r.get("login") or member.get("email", ""),
-                     r.get("section", ""), _fmt(g.total)])
+                     r.get("section", ""), "EX" if g.excused else _fmt(g.total)])   # Canvas's "excused"
     if not course.lms_exports or "canvas" in course.lms_exports:
         files.append(write_csv(canvas, rows))
     else:

@@ -199,6 +199,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     with storing(out):
         summary.files = _write_exports(out, standing)
         summary.files += exports.write_ignored(out, upload.ignored)
+    ledger = exports.record_late_days(course, standing.grades)   # the term's other assignments spend after these
+    summary.files += [ledger] if ledger else []
     book.check_in_place()   # RESULTS deleted while the exports were written
     summary.files_not_graded = [f"{g.student['student_id']}: {left_aside}" for g in standing.grades
                                 if (left_aside := exports.files_not_graded(g.student.get("result")))]
@@ -243,7 +245,7 @@ def class_grades(book: Gradebook, course: CourseConfig | None = None) -> ClassGr
     exercises = [(e.id, e.max_score()) for e in select(course.select)]
     rubric = book.rubric()
     grades, warnings = exports.compute_grades(students, exercises, course, overrides, roster,
-                                              rubric=rubric, reviews=book.reviews())
+                                              rubric=rubric, reviews=book.reviews(), ledger=exports.read_ledger(course))
     return ClassGrades(students, grades, exercises, course, roster, warnings,
                        exports.report_maxima(rubric, exercises), changes.recorded(book)[1],
                        changes.last_changes(book))

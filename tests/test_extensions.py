@@ -1,0 +1,105 @@
+"""Extensions, excused work and pooled late days, applied by the one final-grade computation.
+
+A student's extension (extra days or a due date of their own) is found by any identity
+the download or roster knows, as an override is; excused work counts for nothing and
+shows as Canvas's "EX"; pooled late days are spent before any penalty, across the
+term's assignments in the order of their due dates, whichever assignment is graded first.
+"""
+
+from __future__ import annotations
+
+import csv
+
+import pytest
+
+from autograder.instructor.batch.exports import (compute_grades, read_ledger, record_late_days, write_csvs,
+                                                 _status)
+from autograder.instructor.course import CourseConfig, CourseConfigError
+
+EXERCISES = [("lab07.ex1", 10.0)]
+DUE = "2026-03-01T23:59:00+00:00"
+
+
+def student(student_id: str, submitted_at: str | None, email: str = "", name: str = "") -> dict:
+    return {"student_id": student_id, "display_name": name or student_id, "origin": f"{student_id}/",
+            "lms": {"email": email} if email else {}, "members": [], "status": "graded", "reason": "",
+            "submitted_at": submitted_at, "late": None, "feedback": None,
+            "result": {"total": 10.0, "max_total": 10.0,
+                       "exercises": [{"id": "lab07.ex1", "score": 10.0, "max_score": 10.0, "checks": []}]}}
+
+
+def course(**options) -> CourseConfig:
+    return CourseConfig(assignment=options.pop("assignment", "Lab 7"),
+                        late_penalty=options.pop("late_penalty", {"due": DUE, "per_day": 10}), **options)
+
+
+def grades_of(students, config, ledger=None):
+    grades, warnings = compute_grades(students, EXERCISES, config, ledger=ledger)
+    return {g.student["student_id"]: g for g in grades}, warnings
+
+
+TWO_DAYS_LATE = "2026-03-03T20:00:00+00:00"
+
+
+@pytest.mark.parametrize("extension, penalty", [
+    ({"days": 2}, 0.0), ({"days": 1}, 1.0), ({"days": 0}, 2.0),
+    ({"due": "2026-03-04T00:00:00+00:00"}, 0.0), ({"due": "2026-03-02T23:59:00+00:00"}, 1.0)])
+@pytest.mark.parametrize("named_by", ["ann", "ann@uni.edu", "Ann Lee", "lee ann"])
+def test_an_extension_moves_the_due_date_of_the_student_it_names(extension, penalty, named_by):
+    config = course(extensions={named_by: extension})
+    grades, warnings = grades_of([student("ann", TWO_DAYS_LATE, "ann@uni.edu", "Ann Lee"),
+                                  student("bo", TWO_DAYS_LATE)], config)
+    assert warnings == []
+    assert grades["ann"].late_penalty == penalty and grades["ann"].total == 10 - penalty
+    assert grades["bo"].late_penalty == 2.0            # nobody else's due date moves
+    assert [a.what for a in grades["ann"].adjustments][0] == "extension"
+
+
+def test_excused_work_counts_for_nothing_and_is_told_so(tmp_path):
+    config = course(extensions={"ann": {"excused": True}})
+    grades, _ = grades_of([student("ann", TWO_DAYS_LATE), student("bo", None)], config)
+    assert grades["ann"].total is None and grades["ann"].late_penalty == 0 and _status(grades["ann"]) == "excused"
+    write_csvs(tmp_path, list(grades.values()), EXERCISES, config, roster_given=False)
+    canvas = list(csv.reader((tmp_path / "canvas_import.csv").open()))
+    assert [row[-1] for row in canvas[2:]] == ["EX", "10"]
+
+
+def test_an_extension_naming_nobody_or_several_is_refused_with_a_warning():
+    config = course(extensions={"zed": {"days": 1}, "Ann Lee": {"days": 1}})
+    grades, warnings = grades_of([student("ann", TWO_DAYS_LATE, name="Ann Lee"),
+                                  student("ann-2", TWO_DAYS_LATE, name="Ann Lee")], config)
+    assert any("'zed' names no student" in w for w in warnings)
+    assert any("'Ann Lee' is ambiguous" in w for w in warnings)
+    assert grades["ann"].late_penalty == grades["ann-2"].late_penalty == 2.0
+
+
+def test_pooled_late_days_are_spent_in_the_order_of_the_due_dates(tmp_path):
+    ledger = tmp_path / "late_days.json"
+    first = course(assignment="Lab 7", late_days={"tokens": 3, "ledger": str(ledger)})
+    second = course(assignment="Lab 8", late_days={"tokens": 3, "ledger": str(ledger)},
+                    late_penalty={"due": "2026-03-15T23:59:00+00:00", "per_day": 10})
+    late_for_second = "2026-03-17T20:00:00+00:00"
+
+    # Lab 8 graded before Lab 7: it may spend what Lab 7 will need...
+    eight, _ = grades_of([student("ann", late_for_second)], second, read_ledger(second))
+    assert eight["ann"].late_days_used == 2 and eight["ann"].late_penalty == 0
+    record_late_days(second, list(eight.values()))
+    # ...but Lab 7 is due first: it spends first, whatever ran first.
+    seven, _ = grades_of([student("ann", TWO_DAYS_LATE)], first, read_ledger(first))
+    assert seven["ann"].late_days_used == 2 and seven["ann"].late_penalty == 0
+    record_late_days(first, list(seven.values()))
+    eight, _ = grades_of([student("ann", late_for_second)], second, read_ledger(second))
+    assert eight["ann"].late_days_used == 1 and eight["ann"].late_penalty == 1.0
+    assert any(a.what == "late days" and "0 of 3 left" in a.comment for a in eight["ann"].adjustments)
+
+
+def test_without_a_ledger_the_tokens_are_this_assignments():
+    grades, _ = grades_of([student("ann", TWO_DAYS_LATE)], course(late_days={"tokens": 1}))
+    assert grades["ann"].late_days_used == 1 and grades["ann"].late_penalty == 1.0
+
+
+@pytest.mark.parametrize("extensions", [{"ann": {"days": -1}}, {"ann": {"weeks": 1}}, {"ann": {"excused": "yes"}},
+                                        {"ann": {"due": "tomorrow"}}, {"ann": {"days": 1, "due": DUE}}, ["ann"]])
+def test_a_malformed_extension_is_refused_saying_which(extensions):
+    with pytest.raises(CourseConfigError, match="extensions"):
+        course(extensions=extensions)
