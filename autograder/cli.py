@@ -50,12 +50,37 @@ def discover():
     return load_suites()
 
 
+class CommandParser(argparse.ArgumentParser):
+    """A command's parser: options and arguments in any order (``autograder grade SUB
+    --no-html lab07.ex2``, as ``grade.py lab07 --no-html lab08``), and the command's own
+    usage on every error, an unknown option's too (argparse leaves those to the top-level
+    parser, whose usage names no option of the command)."""
+
+    _intermixing = False   # inside parse_known_intermixed_args, which calls parse_known_args twice
+
+    def parse_known_args(self, args=None, namespace=None):
+        if self._intermixing:
+            return super().parse_known_args(args, namespace)
+        # A command with subcommands (gradescope build|run) cannot be intermixed; each of them is.
+        mixable = not any(action.nargs in (argparse.PARSER, argparse.REMAINDER)
+                          for action in self._get_positional_actions())
+        self._intermixing = True
+        try:
+            parsed, extras = (self.parse_known_intermixed_args if mixable else super().parse_known_args)(
+                args, namespace)
+        finally:
+            self._intermixing = False
+        if extras:
+            self.error(f"unrecognized arguments: {' '.join(extras)}")
+        return parsed, []
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="autograder", description="Grade computer-vision lab submissions: autograder grade, "
                                        "autograder list (students: python grade.py).")
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
-    commands = parser.add_subparsers(dest="command", required=True)
+    commands = parser.add_subparsers(dest="command", required=True, parser_class=CommandParser)
 
     grade = commands.add_parser("grade", help="grade one submission")
     grade.add_argument("submission", nargs="?", help="folder, .py, .zip or .ipynb")
@@ -232,6 +257,7 @@ def run_grade(args) -> int:
     html_path = None if args.no_html else _report_path(args.html, "feedback.html")
     replaced_full_page = bool(args.select) and html_path is not None and html_path.is_file()
     terminal.render(result, console, details=not args.quiet, page=html_path)  # scores first
+    moved = _since_previous_run(result, args, html_path, console)
     written, status = [], 0
     # Figures are part of the grading: its calls' limits (a lane's memory share), what is left of its deadline.
     graded, deadline = limits.shared_by(lanes), begun + grading_budget(limits, args.select or course.select)
@@ -240,7 +266,7 @@ def run_grade(args) -> int:
         figures = _write_figures(args, graded, deadline, console, errors, written)
     if getattr(args, "report", None):
         status = _write_report(args, result, graded, deadline, console, errors, written) or status
-    for path, write, what in ((html_path, lambda r, p: _write_page(r, p, figures), "details and pictures"),
+    for path, write, what in ((html_path, lambda r, p: _write_page(r, p, figures, moved), "details and pictures"),
                               (args.json and _report_path(args.json, "results.json"),
                                lambda r, p: write_json(r, p, pictures=args.json_pictures), "results")):
         if not path:
@@ -267,10 +293,21 @@ def _rerun(args) -> tuple[str, str]:
     return f"autograder grade {shlex.quote(str(args.submission))} ", ""
 
 
-def _write_page(result, path, figures) -> None:
+def _write_page(result, path, figures, since=()) -> None:
     from .reports import html  # Jinja2 is imported only when a page is written
 
-    html.write(result, path, figures=figures)
+    html.write(result, path, figures=figures, since=since)
+
+
+def _since_previous_run(result, args, html_path, console) -> list[str]:
+    """What moved since the previous run, read from the results it left (the ``--json`` file,
+    else the page) before this run overwrites them; told on the terminal, returned for the page."""
+    from .student.progress import previous_scores, since
+
+    moved = since(previous_scores(args.json and _report_path(args.json, "results.json"), html_path), result)
+    if moved:
+        console.print("since your previous run: " + "; ".join(moved), highlight=False, markup=False)
+    return moved
 
 
 def _prepare_page() -> None:
@@ -750,10 +787,11 @@ def run_report(args) -> int:
     try:
         course = CourseConfig.load(args.course) if args.course else None
         title = args.title or (course.assignment if course else None)
-        out = write_overview(args.results, course_title=title)
+        written, warnings, pages = [write_overview(args.results, course_title=title)], [], False
         restored, problems = restore_student_files(args.results, course)
         try:   # the CSVs and every page again, with the reports' reviews
-            write_exports(args.results, course, course_title=title)
+            written, warnings = write_exports(args.results, course, course_title=title)
+            pages = True
         except IngestError as exc:   # a batch is writing RESULTS: it writes them when it ends
             print(f"note: {exc}; the CSVs and pages are written by that batch when it finishes", file=sys.stderr)
     except (CourseConfigError, NoGradebook, SelectionError) as exc:
@@ -768,8 +806,24 @@ def run_report(args) -> int:
         print(f"error: cannot restore the files of {student}: {why}; "
               f"grade them again with autograder batch SUBMISSIONS --out {args.results} --regrade",
               file=sys.stderr)
-    print(f"wrote {out}")
+    for line in warnings[:BATCH_LINES]:
+        print(f"warning: {printable(line)}", file=sys.stderr)
+    if len(warnings) > BATCH_LINES:
+        print(f"warning: ... and {len(warnings) - BATCH_LINES} more", file=sys.stderr)
+    print(_what_report_wrote(Path(args.results), written, pages))
     return STORAGE_ERROR if problems else 0
+
+
+def _what_report_wrote(results: Path, written: list[Path], pages: bool) -> str:
+    """One line: the files written, by name, and (``pages``: they were brought up to date with
+    the gradebook) how many students' pages the folder holds."""
+    names = ", ".join(path.relative_to(results).as_posix() if path.is_relative_to(results) else str(path)
+                      for path in written if path)
+    line = f"wrote {results.as_posix()}/ : {names}"
+    if pages:
+        count = sum(1 for _ in results.glob("*/feedback.html"))
+        line += f"; {count} student page{'s' if count != 1 else ''} up to date (<student>/feedback.html)"
+    return line
 
 
 def run_review(args) -> int:
@@ -857,6 +911,9 @@ def add_author_commands(commands) -> None:
     new_lab.add_argument("name", metavar="NAME", help="the lab's module, lab<NN>_<words>: lab13_flow")
     new_lab.add_argument("--into", metavar="FOLDER", required=True, help="folder to create (empty or new)")
     new_lab.add_argument("--title", default="", help="the lab's title (default: from NAME)")
+    new_lab.add_argument("--course", metavar="COURSE", default="course.json",
+                         help="the course configuration that will name the lab (default: %(default)s): "
+                              "the line to write there is printed, the folder relative to it")
 
 
 VERIFY_FAILED = 1   # verify: some lab is not sound
@@ -919,17 +976,21 @@ class _Step:
 
 
 def run_new_lab(args) -> int:
-    from .instructor.newlab import NewLabError, new_lab
+    from .instructor.newlab import NewLabError, course_entry, new_lab
 
     try:
         written = new_lab(args.name, args.into, args.title)
     except NewLabError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return USAGE_ERROR
-    folder = Path(args.into)
+    folder, course = Path(args.into), Path(args.course)
     print(f"wrote {len(written)} files to {folder}: " + ", ".join(p.relative_to(folder).as_posix() for p in written))
-    print(f'name it in the course configuration ("labs": ["{folder.as_posix()}"], relative to the file), '
-          "then: autograder verify --course course.json")
+    entry = course_entry(folder, course)
+    if course.is_file():
+        print(f"in {course}, set (replacing its \"labs\" line if it has one):\n  {entry}")
+    else:
+        print(f"write {course} (it does not exist yet):\n  {entry}")
+    print(f"then: autograder verify --course {shlex.quote(str(course))}")
     return 0
 
 
@@ -957,7 +1018,7 @@ def _until_the_reader_goes(command, args) -> int:
 def grade_py_main(argv=None, root: Path | None = None) -> int:
     """``python grade.py [SELECT...] [--submission PATH]``: grade the student's own work."""
     root = root or Path.cwd()
-    parser = argparse.ArgumentParser(
+    parser = CommandParser(
         prog="grade.py", description="Grade your labs: python grade.py [lab07 | lab07.ex2 ...]",
         epilog="In a notebook, check one exercise as you work: "
                "from autograder import check; check(\"lab07.ex2\")")

@@ -8,6 +8,8 @@ truth and its mistakes, a reference, a skeleton and a mistakes table) that passe
 
 from __future__ import annotations
 
+import json
+import os
 import re
 from pathlib import Path
 from string import Template
@@ -54,3 +56,24 @@ def new_lab(name: str, into, title: str = "") -> list[Path]:
         path.write_text(text, encoding="utf-8")
         written.append(path)
     return written
+
+
+def course_entry(folder, course) -> str:
+    """What to write in the course configuration ``course`` so that it grades the lab in
+    ``folder``: its ``"labs"`` line (the course's labs so far, then this one), or the whole
+    file when there is none yet. The folder is written relative to the course file, as the
+    course reads it, whenever it can be (not on another drive); absolute otherwise."""
+    course = Path(course)
+    target = Path(folder).resolve()
+    try:
+        entry = Path(os.path.relpath(target, course.resolve().parent)).as_posix()
+    except ValueError:   # another drive (Windows): only an absolute path reaches it
+        entry = target.as_posix()
+    try:
+        data = json.loads(course.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        data = None
+    if not isinstance(data, dict):
+        return json.dumps({"labs": [entry]})
+    labs = data.get("labs") if isinstance(data.get("labs"), list) else []
+    return '"labs": ' + json.dumps([lab for lab in labs if lab != entry] + [entry])
