@@ -1,5 +1,6 @@
 """What the hidden checks draw from ``t.rng`` (the submission's own generator), beyond plain
-uniforms: a seed for a fixture's scene, a crop of a photo at a drawn place.
+uniforms: a seed for a fixture's scene, a crop of a photo at a drawn place, chessboard views
+moved from written ones while every board stays whole in the image.
 
 Crops rather than drawn photo sizes: every size is decoded and kept once per process
 (``fixtures.images``), so drawing sizes would grow that cache with every submission.
@@ -9,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from fixtures import lab09
 from fixtures.images import photo
 
 
@@ -65,8 +67,6 @@ def board_views(rng: np.random.Generator, views, K, pattern, square, size, jitte
 def board_margin(K, view, pattern, square, size) -> float:
     """Pixels between the outline of the whole board of ``view`` and the image border
     (negative: the board leaves the image)."""
-    from fixtures import lab09
-
     tilt, spin, distance, offset = view
     R, tvec = lab09.board_pose(np.array(tilt), spin, distance, pattern, square, offset)
     cols, rows = pattern

@@ -24,7 +24,7 @@ STRONG = 1.2   # the perspective divisor w varies by at least this factor over t
 
 def strong_perspective(rng, size):
     """A corner homography (corners moved by up to about 20% of the size) whose w varies by
-    STRONG over the image, drawn again until it does (7 draws in 10 do): on a nearly affine
+    STRONG over the image, drawn again until it does (8 draws in 10 do): on a nearly affine
     H, an answer that ignores the perspective row is right."""
     w, h = size
     corners = np.array([[0, 0, 1], [w - 1, 0, 1], [w - 1, h - 1, 1], [0, h - 1, 1]], float)
