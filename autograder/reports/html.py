@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import json
 import re
 
 from jinja2 import Environment, PackageLoader, select_autoescape
@@ -129,10 +130,23 @@ def _figure_caption(artifact, items) -> str:
     return caption
 
 
-def render(result: GradingResult, figures: dict[str, bytes] | None = None) -> str:
+SCORES_ID = "autograder-scores"
+
+
+def scores_script(result: GradingResult) -> Markup:
+    """The page's scores as data for the next run's comparison (:mod:`autograder.student.progress`):
+    a JSON block, never executed; ``</`` escaped, so no score can end the script early."""
+    scores = {"total": result.total, "max_total": result.max_total,
+              "exercises": {e.id: [e.score, e.max_score] for e in result.exercises}}
+    text = json.dumps(scores, sort_keys=True).replace("</", "<\\/")
+    return Markup(f'<script type="application/json" id="{SCORES_ID}">{text}</script>')
+
+
+def render(result: GradingResult, figures: dict[str, bytes] | None = None, since: list[str] = ()) -> str:
     """The feedback page as a string; ``figures`` (figure id -> PNG bytes, from
     :mod:`autograder.figures`) are shown at the top of their exercise (``lab09.ex3`` and
-    ``lab09.ex3-extension`` at the top of lab09.ex3)."""
+    ``lab09.ex3-extension`` at the top of lab09.ex3); ``since``, what changed since the
+    student's previous run (:func:`autograder.student.progress.since`), at the top."""
     import base64
 
     percent = round(100 * result.total / result.max_total) if result.max_total else 0
@@ -144,11 +158,12 @@ def render(result: GradingResult, figures: dict[str, bytes] | None = None) -> st
             {"mime": mime, "data": data, "width": width, "height": height})
     return _environment().get_template("feedback.html.j2").render(
         result=result, percent=percent, graded=what_was_graded(result), graded_at=_graded_at(result),
-        judged_with=describe(result.versions), sheet=PictureSheet(), heat_scale=", ".join(pictures.heat_scale_stops()), figures=encoded)
+        judged_with=describe(result.versions), sheet=PictureSheet(), heat_scale=", ".join(pictures.heat_scale_stops()), figures=encoded,
+        since=list(since), scores=scores_script(result))
 
 
-def write(result: GradingResult, path, figures: dict[str, bytes] | None = None) -> None:
-    write_atomically(path, render(result, figures))
+def write(result: GradingResult, path, figures: dict[str, bytes] | None = None, since: list[str] = ()) -> None:
+    write_atomically(path, render(result, figures, since))
 
 
 def render_selfcheck(result: GradingResult, source: str) -> str:
