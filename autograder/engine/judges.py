@@ -404,11 +404,13 @@ def parameter_ignored(call, parameter: str, values, informative=None) -> bool:
         return False
     if informative is not None and not informative(first):
         return False
-    return _same_informative_result(first, second)
+    return same_informative_result(first, second)
 
 
-def _same_informative_result(first, second) -> bool:
-    # A constant output ignores every parameter: that is not this parameter's mistake.
+def same_informative_result(first, second) -> bool:
+    """``first`` and ``second`` are exactly the same and not constant: a constant output
+    ignores every parameter (or comes from a degenerate computation), so it shows no
+    parameter's mistake."""
     constant = isinstance(first, np.ndarray) and (
         first.size == 0 or np.ptp(np.nan_to_num(first.astype(float))) == 0)
     return _same_result(first, second) and not constant
@@ -446,7 +448,7 @@ def judge_parameter_changes_result(t: Trial, what: str, call, parameter: str, va
     call fails the check (a stub is "not implemented", never "uses its parameter").
     """
     first, second = (call(**{parameter: value}) for value in values)
-    if _same_informative_result(first, second):
+    if same_informative_result(first, second):
         _ignored(t, what, parameter, values, result)
     first_value, second_value = values
     return passed(f"{parameter}={first_value!r} and {parameter}={second_value!r} give different {result}s")

@@ -1,0 +1,143 @@
+"""OpenCV calls whose behaviour differs between majors 4 and 5, read in the student's code.
+
+Course code written for OpenCV 4 may rely on what OpenCV 4 does, and be right there: a
+1-D NumPy array is a column (N x 1) to OpenCV 4, a row (1 x N, or 1-D) to OpenCV 5, so
+``cv2.minMaxLoc(costs)[2][1]`` is the index of the smallest cost under 4 and always 0 under
+5. Such code then fails checks whose diagnosis ("the cost argument is ignored") would be a
+false statement about the student's code. :data:`KNOWN` lists the differences measured (each
+with a demonstration, ``tests/test_opencv_versions.py`` runs it under the installed OpenCV
+and compares with what each major gives); :func:`version_note` names those the checked
+functions' code reaches (read with :mod:`ast`, never run), in a sentence that is true
+whatever the arrays are: "if that array is one-dimensional, ...".
+"""
+
+from __future__ import annotations
+
+import ast
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from .hints import Predicate, calls, code_of
+
+LOCATION_INDICES = (2, 3)   # minMaxLoc returns (minVal, maxVal, minLoc, maxLoc)
+
+
+def _is_minmaxloc(node) -> bool:
+    return (isinstance(node, ast.Call) and isinstance(node.func, (ast.Attribute, ast.Name))
+            and (node.func.attr if isinstance(node.func, ast.Attribute) else node.func.id) == "minMaxLoc")
+
+
+def _index(node) -> int | None:
+    return node.value if isinstance(node, ast.Constant) and isinstance(node.value, int) else None
+
+
+def _reads_minmaxloc_location(function) -> bool:
+    """``cv2.minMaxLoc(x)[2]``, ``_, _, loc, _ = cv2.minMaxLoc(x)`` (a location bound to a
+    name other than ``_``), or ``r = cv2.minMaxLoc(x)`` and then ``r[3]``."""
+    bound = set()
+    for node in ast.walk(function):
+        if isinstance(node, ast.Subscript) and _is_minmaxloc(node.value) \
+                and _index(node.slice) in LOCATION_INDICES:
+            return True
+        if isinstance(node, ast.Assign) and _is_minmaxloc(node.value):
+            for target in node.targets:
+                if isinstance(target, (ast.Tuple, ast.List)) and len(target.elts) == 4 and any(
+                        not (isinstance(t, ast.Name) and t.id.startswith("_")) for t in target.elts[2:]):
+                    return True
+                if isinstance(target, ast.Name):
+                    bound.add(target.id)
+    return any(isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in bound
+               and _index(node.slice) in LOCATION_INDICES for node in ast.walk(function))
+
+
+@dataclass(frozen=True)
+class VersionDifference:
+    """One measured difference: the code that depends on it (``reads``), what to tell the
+    student (``says``, completed with the OpenCV that graded), and a demonstration whose
+    value under each major is ``under`` (``{"4": ..., "5": ...}``)."""
+
+    name: str
+    reads: Predicate
+    says: str
+    demonstrate: Callable[[], object]
+    under: dict
+
+
+_ROW = np.array([3.0, 1.0, 2.0, 5.0])   # a 1-D array: a column to OpenCV 4, a row to OpenCV 5
+
+KNOWN = (
+    VersionDifference(
+        "minMaxLoc's location on a 1-D array",
+        Predicate("reads the location cv2.minMaxLoc returns", _reads_minmaxloc_location),
+        "your code reads cv2.minMaxLoc's location; on a one-dimensional array it is (0, i) under "
+        "OpenCV 4 (a column) and (i, 0) under OpenCV 5 (a row)",
+        lambda: __import__("cv2").minMaxLoc(_ROW)[2], {"4": (0, 1), "5": (1, 0)}),
+    VersionDifference(
+        "cv2.sortIdx on a 1-D array",
+        calls("cv2.sortIdx"),
+        "your code calls cv2.sortIdx; a one-dimensional array is a column to OpenCV 4 and a row to "
+        "OpenCV 5, where SORT_EVERY_COLUMN sorts nothing",
+        lambda: __import__("cv2").sortIdx(_ROW, __import__("cv2").SORT_EVERY_COLUMN).ravel().tolist(),
+        {"4": [1, 2, 0, 3], "5": [0, 0, 0, 0]}),
+    VersionDifference(
+        "cv2.flip on a 1-D array",
+        calls("cv2.flip"),
+        "your code calls cv2.flip; a one-dimensional array is a column to OpenCV 4 and a row to "
+        "OpenCV 5, so a horizontal flip reverses it under 5 only",
+        lambda: __import__("cv2").flip(_ROW, 1).ravel().tolist(), {"4": [3.0, 1.0, 2.0, 5.0], "5": [5.0, 2.0, 1.0, 3.0]}),
+    VersionDifference(
+        "cv2.solve / cv2.gemm with a 1-D vector",
+        calls("cv2.solve") | calls("cv2.gemm"),
+        "your code calls cv2.solve or cv2.gemm; a one-dimensional vector is a column to OpenCV 4 and "
+        "a row to OpenCV 5, which refuses it",
+        lambda: _outcome(lambda: __import__("cv2").solve(np.eye(2), np.array([1.0, 2.0]))[1].ravel().tolist()),
+        {"4": [1.0, 2.0], "5": "error"}),
+)
+
+
+def _outcome(call):
+    """``call()``'s value, or ``"error"`` where OpenCV refuses it."""
+    import cv2
+
+    try:
+        return call()
+    except cv2.error:
+        return "error"
+
+
+def differences_in(functions) -> list[VersionDifference]:
+    """The known differences the code of ``functions`` (``ast`` function nodes) depends on."""
+    functions = list(functions)
+    return [difference for difference in KNOWN if difference.reads.holds(functions)]
+
+
+def version_note(t) -> str:
+    """A sentence naming each version difference the code of the functions the check ``t``
+    calls (and their helpers in the module) depends on, ending with the OpenCV this course
+    grades with; ``""`` when none (or no code to read)."""
+    import cv2
+
+    from .stubs import functions_called
+
+    found = differences_in(code_of(t).reachable(functions_called(t.check)))
+    if not found:
+        return ""
+    return "; ".join(d.says for d in found) + f"; this course grades with OpenCV {cv2.__version__}."
+
+
+def with_version_note(verdict, t):
+    """``verdict`` (a failed one) with :func:`version_note` after its message. A named cause
+    (``mistake``) stays: checks name one only when it is shown by the outputs themselves
+    (lab12's "cost argument is ignored" needs two informative maps, not two maps of zeros)."""
+    from dataclasses import replace
+
+    try:
+        note = version_note(t)
+    except Exception:   # noqa: BLE001 - a note is a bonus: the verdict stands without it
+        return verdict
+    if not note:
+        return verdict
+    message = str(verdict.message).rstrip()
+    return replace(verdict, message=f"{message} Note: {note}" if message else f"Note: {note}")
