@@ -45,6 +45,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Callable, Iterable
 
+from ..loading.parsing import parse
 from ..loading.reading import MAX_NODES, MAX_SOURCE_BYTES
 
 
@@ -226,7 +227,7 @@ def _same(node, pattern) -> bool:
 
 def expr(pattern: str) -> Predicate:
     """A sub-expression shaped like ``pattern`` (``"max_disparity + 1"``; ``_`` matches anything)."""
-    wanted = ast.parse(pattern, mode="eval").body
+    wanted = parse(pattern, mode="eval", max_chars=None, max_statements=None).body
 
     def test(function) -> bool:
         return any(_same(node, wanted) for node in ast.walk(function))
@@ -303,7 +304,7 @@ def read_code(text: str) -> Code:
     try:
         if len(text) > MAX_SOURCE_BYTES:
             return NO_CODE
-        tree = ast.parse(text)
+        tree = parse(text)   # under the parse lock, within its bounds (TooLarge is a ValueError)
         if sum(1 for _ in ast.walk(tree)) > MAX_NODES:
             return NO_CODE
     except (SyntaxError, ValueError, RecursionError, MemoryError):

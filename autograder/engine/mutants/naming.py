@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...loading.parsing import parse
 from .helper import ERROR, Helper, HelperFailed
 from .operators import OPERATORS, Mutant, mutants_of
 
@@ -77,7 +78,7 @@ def _numeric_defaults(source: str) -> dict:
     import ast
 
     out = {}
-    for node in ast.parse(source).body:
+    for node in parse(source, max_chars=None, max_statements=None).body:  # the reference, under the lock
         if isinstance(node, ast.FunctionDef):
             params = node.args.args
             found = []

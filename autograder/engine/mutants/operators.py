@@ -23,6 +23,13 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
+from ...loading.parsing import parse
+
+
+def _parse(source: str):
+    """The reference's text (trusted, no size bounds) parsed under the grader's parse lock."""
+    return parse(source, max_chars=None, max_statements=None)
+
 # Operators, simplest first (equivalent mutants are named by the simplest), with the words
 # their sentences use (a hand-written name sharing none of them is another diagnosis).
 OPERATORS = {
@@ -146,7 +153,7 @@ def apply_edits(source: str, edits) -> str:
     ValueError
         When an edit does not apply (a stale ordinal, overlapping edits).
     """
-    tree = ast.parse(source)
+    tree = _parse(source)
     defs = _defs(tree)
     located = []
     for def_name, ordinal, operator, payload in edits:
@@ -184,7 +191,7 @@ def mutated_defs(tree: ast.Module, edits, source: str | None = None) -> ast.Modu
             fn = defs[def_name]
             if lines is not None:
                 first = min([fn.lineno] + [d.lineno for d in fn.decorator_list])
-                changed[def_name] = ast.parse("".join(lines[first - 1:fn.end_lineno])).body[0]
+                changed[def_name] = _parse("".join(lines[first - 1:fn.end_lineno])).body[0]
             else:
                 changed[def_name] = copy.deepcopy(fn)
     located = []
@@ -553,7 +560,7 @@ def step_phrase(fn: ast.FunctionDef) -> str:
 @functools.lru_cache(maxsize=16)
 def _module_mutants(source: str, api: frozenset) -> dict:
     """def name -> [(operator, ordinal, payload, line, phrase)], the sites of every def."""
-    tree = ast.parse(source)
+    tree = _parse(source)
     defs = _defs(tree)
     sites = {}
     for name, fn in defs.items():
@@ -575,7 +582,7 @@ def mutants_of(source: str, api) -> dict[str, list[Mutant]]:
     ``source`` is the reference module's text; ``api`` the graded function names.
     """
     api = frozenset(api)
-    tree = ast.parse(source)
+    tree = _parse(source)
     defs = _defs(tree)
     sites = _module_mutants(source, api)
     out = {}
