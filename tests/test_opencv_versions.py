@@ -1,0 +1,181 @@
+"""OpenCV 4 or 5: the two pin files, the course's choice, the versions every result records,
+and feedback that states no false cause when code depends on what only one major does.
+
+Runs under either major (bash .ci/opencv4 runs the suite under OpenCV 4): what differs
+between them is asserted for the installed one.
+"""
+
+import ast
+import json
+import zipfile
+
+import cv2
+import numpy as np
+import pytest
+
+from autograder.engine import version_differences, versions
+from autograder.engine.results import GradingResult
+from autograder.engine.runner import grade
+from autograder.instructor import verify
+from autograder.instructor.course import CourseConfig, CourseConfigError
+from conftest import REFERENCE, ROOT
+
+MAJOR = cv2.__version__.split(".")[0]
+OTHER = "4" if MAJOR == "5" else "5"
+
+
+def pins(name: str) -> dict[str, str]:
+    lines = (ROOT / name).read_text().splitlines()
+    return dict(line.split("==", 1) for line in lines if line and not line.startswith("#"))
+
+
+# ------------------------------------------------------------------ the two pin files
+def test_the_two_constraints_files_differ_in_the_opencv_pin_only():
+    """.ci/lock writes constraints-opencv4.txt from constraints.txt: the same NumPy, SciPy,
+    scikit-image, Hypothesis... so the two majors are the only difference between two courses."""
+    five, four = pins("constraints.txt"), pins("constraints-opencv4.txt")
+    assert five.keys() == four.keys()
+    differ = {name for name in five if five[name] != four[name]}
+    assert differ == {"opencv-python-headless"}
+    assert five["opencv-python-headless"].startswith("5.") and four["opencv-python-headless"].startswith("4.")
+    lock = (ROOT / ".ci" / "lock").read_text()
+    assert "constraints-opencv4.txt" in lock and "OPENCV4" in lock
+
+
+def test_the_installed_opencv_is_one_the_grader_is_tested_with():
+    installed = pins(versions.CONSTRAINTS[MAJOR])["opencv-python-headless"]
+    assert cv2.__version__ == ".".join(installed.split(".")[:3])
+
+
+# ------------------------------------------------------------------ the known differences
+@pytest.mark.parametrize("difference", version_differences.KNOWN, ids=lambda d: d.name)
+def test_each_known_difference_is_what_the_installed_opencv_does(difference):
+    """The table states what each major does; this OpenCV does what it says of it, and the
+    other major something else (else it would be no difference)."""
+    got = difference.demonstrate()
+    got = list(got) if isinstance(got, tuple) else got
+    expected = {major: list(v) if isinstance(v, tuple) else v for major, v in difference.under.items()}
+    assert got == expected[MAJOR]
+    assert expected[OTHER] != expected[MAJOR]
+
+
+def reads_location(source: str) -> bool:
+    [function] = ast.parse(source).body
+    return bool(version_differences.differences_in([function])) and \
+        version_differences.differences_in([function])[0] is version_differences.KNOWN[0]
+
+
+@pytest.mark.parametrize("body, reads", [
+    ("return cv2.minMaxLoc(costs)[2][1]", True),
+    ("_, _, loc, _ = cv2.minMaxLoc(costs)\n    return loc[1]", True),
+    ("r = cv2.minMaxLoc(costs)\n    return r[3]", True),
+    ("return cv2.minMaxLoc(costs)[0]", False),                 # the value: the same under both
+    ("low, _, _, _ = cv2.minMaxLoc(costs)\n    return low", False),
+    ("_, _, (x, y), _ = cv2.minMaxLoc(cv2.matchTemplate(a, b, 0))\n    return x", False),   # surely 2-D
+    ("return np.argmin(costs)", False),
+])
+def test_reading_minmaxloc_location_is_told_from_the_code(body, reads):
+    assert reads_location(f"def f(costs, a=None, b=None):\n    {body}\n") is reads
+
+
+# ------------------------------------------------------------------ the versions that judged
+def test_results_record_the_versions_and_old_results_read_without_them():
+    result = GradingResult("s", "h", "1", versions=versions.judged_with())
+    data = json.loads(json.dumps(result.to_dict()))
+    assert data["versions"] == {"python": data["versions"]["python"], "numpy": np.__version__,
+                                "opencv": cv2.__version__}
+    assert GradingResult.from_dict(data).versions == result.versions
+    assert result.for_students().versions == result.versions
+    old = {k: v for k, v in data.items() if k != "versions"}
+    assert GradingResult.from_dict(old).versions == {}
+    assert versions.describe({}) == ""
+    assert versions.describe(result.versions) == f"NumPy {np.__version__}, OpenCV {cv2.__version__}"
+
+
+def test_every_report_says_which_numpy_and_opencv_judged():
+    from rich.console import Console
+
+    from autograder.instructor.gradescope import _summary
+    from autograder.reports import html, terminal
+
+    result = GradingResult("alice", "h", "1", versions=versions.judged_with())
+    said = f"NumPy {np.__version__}, OpenCV {cv2.__version__}"
+    console = Console(record=True, width=200)
+    terminal.render(result, console=console, details=False)
+    assert said in console.export_text()
+    assert said in html.render(result)
+    assert said in _summary(result)
+    old = GradingResult("alice", "h", "1")   # stored before versions were recorded: nothing claimed
+    assert "judged with" not in html.render(old) and "Judged with" not in _summary(old)
+
+
+# ------------------------------------------------------------------ the course's choice
+def test_a_course_chooses_its_opencv_major():
+    assert CourseConfig().opencv == "5"
+    assert CourseConfig(opencv=4).opencv == "4"
+    with pytest.raises(CourseConfigError, match='opencv must be "4" or "5"'):
+        CourseConfig(opencv="4.10")
+    assert "opencv" in CourseConfig(opencv="4").ignored_by("grade")   # told, never silently ignored
+    assert "opencv" not in CourseConfig(opencv="4").ignored_by("batch")
+
+
+@pytest.mark.parametrize("major", ["4", "5"])
+def test_the_bundle_and_gradescope_install_the_courses_pins(tmp_path, major):
+    from autograder.instructor import gradescope
+    from autograder.instructor.bundle import write_student_bundle
+
+    course = CourseConfig(opencv=major, select=["lab07"])
+    wanted = (ROOT / versions.CONSTRAINTS[major]).read_text()
+    write_student_bundle(tmp_path / "bundle", course=course)
+    assert (tmp_path / "bundle" / "constraints.txt").read_text() == wanted
+    with zipfile.ZipFile(gradescope.build(tmp_path / "autograder.zip", course)) as zf:
+        assert zf.read("constraints.txt").decode() == wanted
+        setup = zf.read("setup.sh").decode()
+        assert json.loads(zf.read("course.json"))["opencv"] == major
+    assert "-c /autograder/source/constraints.txt" in setup
+    assert f"== '{major}' else 'setup.sh: the course grades with OpenCV {major}" in setup
+
+
+def test_a_batch_under_the_other_major_stops_saying_what_to_install(tmp_path):
+    from autograder.instructor.batch.run import run_batch
+
+    with pytest.raises(CourseConfigError) as refused:
+        run_batch(tmp_path / "nowhere", tmp_path / "out", course=CourseConfig(opencv=OTHER))
+    said = str(refused.value)
+    assert f"grades with OpenCV {OTHER}" in said and f"OpenCV {cv2.__version__} is installed" in said
+    assert f"-c {versions.CONSTRAINTS[OTHER]}" in said
+    assert not (tmp_path / "out").exists()   # refused before anything was read or written
+
+
+def test_the_gradebook_lock_is_the_installed_majors_pins():
+    import hashlib
+
+    from autograder.instructor.batch.gradebook import lock_hash
+
+    text = (ROOT / versions.CONSTRAINTS[MAJOR]).read_text()
+    assert lock_hash() == hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+# ------------------------------------------------------------------ third-party OpenCV-4 code
+def test_opencv4_block_matcher_full_marks_under_4_and_no_false_cause_under_5(tmp_path):
+    """A block matcher written for OpenCV 4 (cv2.minMaxLoc's location on the 1-D vector of costs
+    of a pixel): right under OpenCV 4, a map of zeros under 5. Under 5 it loses the points, but no
+    check names a cause in its code ("the cost argument is ignored" was said); each failure says
+    what differs and which OpenCV graded."""
+    folder = tmp_path / "submission"
+    folder.mkdir()
+    source = (ROOT / "tests" / "data" / "opencv4" / "block_matcher.py").read_text()
+    (folder / "lab12_stereo.py").write_text(
+        verify.with_mutation((REFERENCE / "lab12_stereo.py").read_text(), source))
+    result = grade(folder, ["lab12.ex4", "lab12.ext1"], pictures="none")
+    assert result.versions["opencv"] == cv2.__version__
+    checks = [c for e in result.exercises for c in e.checks]
+    if MAJOR == "4":
+        assert result.total == result.max_total, [(c.name, c.message) for c in checks if not c.passed]
+        return
+    failed = [c for c in checks if not c.passed]
+    assert result.total < result.max_total / 2 and failed
+    for check in failed:
+        assert not check.mistake and "ignored" not in check.message, (check.name, check.message)
+        assert "cv2.minMaxLoc's location" in check.message
+        assert f"this course grades with OpenCV {cv2.__version__}" in check.message
