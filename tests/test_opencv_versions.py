@@ -109,6 +109,17 @@ def test_every_report_says_which_numpy_and_opencv_judged():
     assert "judged with" not in html.render(old) and "Judged with" not in _summary(old)
 
 
+def test_the_class_overview_says_which_versions_judged_the_class():
+    from autograder.instructor.classreport.analysis import StudentRecord
+    from autograder.instructor.classreport.overview import overview_html
+
+    graded = GradingResult("alice", "h", "1", versions=versions.judged_with()).to_dict()
+    old = GradingResult("bob", "h", "1").to_dict()   # kept from before versions were recorded
+    page = overview_html([StudentRecord("alice", result=graded), StudentRecord("bob", result=old),
+                          StudentRecord("carol", status="unreadable", reason="empty")])
+    assert f"judged with NumPy {np.__version__}, OpenCV {cv2.__version__}</div>" in page
+
+
 # ------------------------------------------------------------------ the course's choice
 def test_a_course_chooses_its_opencv_major():
     assert CourseConfig().opencv == "5"

@@ -19,6 +19,7 @@ from urllib.parse import quote
 from jinja2 import Environment, PackageLoader, select_autoescape
 
 from ...engine.results import write_atomically
+from ...engine.versions import describe
 from .analysis import ClassSummary, StudentRecord, summarise
 from .charts import MEAN_COLOUR, MEDIAN_COLOUR, histogram_svg
 
@@ -56,9 +57,11 @@ def overview_html(students: list[StudentRecord], course_title: str = "",
     ``changes`` the final grades the last run moved (:class:`..batch.changes.Change`)."""
     summary: ClassSummary = summarise(students)
     generated = generated or _dt.datetime.now(_dt.timezone.utc)
+    # The NumPy/OpenCV that judged the gradings shown (more than one only if kept gradings differ).
+    judged_with = sorted({describe(s.result.get("versions") or {}) for s in students if s.result} - {""})
     return environment().get_template("class_overview.html.j2").render(
         summary=summary, course_title=course_title, reports=list(reports), changes=list(changes),
-        generated=generated.strftime("%Y-%m-%d %H:%M %Z").strip())
+        generated=generated.strftime("%Y-%m-%d %H:%M %Z").strip(), judged_with=judged_with)
 
 
 def render_overview(students: list[StudentRecord], out_path, course_title: str = "",
