@@ -186,17 +186,28 @@ def test_a_contradicted_hand_written_name_is_replaced_and_an_agreeing_one_kept(m
 
     lab = LABS["lab07"]
     [degrees] = [m for m in naming.model_for(lab).mutants["rotation_matrix"] if m.operator == "degrees"][:1]
-    monkeypatch.setattr(naming, "name_failure", lambda trial: naming.Naming(degrees, 1, 1))
+    asked = []
+    monkeypatch.setattr(naming, "name_failure", lambda trial: asked.append(1) or naming.Naming(degrees, 1, 1))
+
+    def trial(shared):
+        return SimpleNamespace(calls=[("rotation_matrix", (30,), {}, None)], sandbox=SimpleNamespace(shared=shared))
+
     wrong = Verdict(0.0, "rotation_matrix(30) is wrong: it looks like the translation column is c + R c.\nmore",
                     mistake="the translation column is c + R c")
-    replaced = naming.named_by_error_model(wrong, None)
+    replaced = naming.named_by_error_model(wrong, trial({}))
     assert replaced.mistake == "mutant:degrees"
     assert "c + R c" not in replaced.message.split("\n")[0] and replaced.message.endswith("\nmore")
     assert "The error model: it looks like in `rotation_matrix`" in replaced.message
-    agreeing = Verdict(0.0, "wrong: it looks like the angle is used in degrees", mistake="angle in degrees")
-    assert naming.named_by_error_model(agreeing, None) is agreeing
     plain = Verdict(0.0, "rotation_matrix(30) is wrong")
-    assert naming.named_by_error_model(plain, None).mistake == "mutant:degrees"
+    assert naming.named_by_error_model(plain, trial({})).mistake == "mutant:degrees"
+
+    # A hand-written name that agrees stands, and has precedence over the error model for the same
+    # function in the rest of the grading.
+    shared = {}
+    agreeing = Verdict(0.0, "wrong: it looks like the angle is used in degrees", mistake="angle in degrees")
+    assert naming.named_by_error_model(agreeing, trial(shared)) is agreeing
+    asked.clear()
+    assert naming.named_by_error_model(plain, trial(shared)) is plain and not asked
 
 
 # ------------------------------------------------------------------ in a grading

@@ -631,11 +631,18 @@ def named_by_error_model(verdict, trial):
     it gives when a confirmed mutant contradicts it; unchanged otherwise."""
     from dataclasses import replace
 
+    called = {call[0] for call in trial.calls}
+    hand_named = trial.sandbox.shared.setdefault("error model: named by hand", set())
+    if not verdict.mistake and called and called <= hand_named:
+        return verdict   # a hand-written diagnosis of these functions stands in this grading: it has precedence
     naming = name_failure(trial)
     if naming is None:
+        if verdict.mistake:
+            hand_named.update(called)
         return verdict
     message = str(verdict.message)
     if verdict.mistake and not contradicts(f"{verdict.mistake} {message}", naming):
+        hand_named.update(called)
         return verdict
     first, newline, rest = message.partition("\n")
     if verdict.mistake:  # a hand-written name the mutant contradicts: its sentence goes
