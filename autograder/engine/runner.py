@@ -173,8 +173,12 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
 
         stopping = threading.Event()  # set when grading ends early (an interrupt, a grader bug)
 
-        def lane(sandbox: Sandbox, work: list, into: dict, spent: dict | None = None):
-            budget = _Budget(sandbox, deadline, seconds)
+        # The public phase may not spend the hidden phase's share of the deadline (its checks'
+        # share of all): a slow exercise then cannot starve another exercise's hidden checks.
+        public_deadline = deadline - seconds * _hidden_share(public, hidden)
+
+        def lane(sandbox: Sandbox, work: list, into: dict, spent: dict | None = None, until: float = deadline):
+            budget = _Budget(sandbox, until, seconds)
             while work and not stopping.is_set():
                 try:
                     lab = work.pop(0)  # atomic: each lab goes to one lane
@@ -189,12 +193,13 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                         sandbox, exercise, checks, pictures, on_check, submission, budget, rules, painter,
                         inputs)
 
-        def run_lanes(lane_sandboxes: list, work: list, into: dict, spent: dict | None = None):
+        def run_lanes(lane_sandboxes: list, work: list, into: dict, spent: dict | None = None,
+                      until: float = deadline):
             if len(lane_sandboxes) == 1:
-                lane(lane_sandboxes[0], work, into, spent)
+                lane(lane_sandboxes[0], work, into, spent, until)
                 return
             with ThreadPoolExecutor(len(lane_sandboxes), thread_name_prefix="lane") as pool:
-                lanes_running = [pool.submit(lane, sandbox, work, into, spent) for sandbox in lane_sandboxes]
+                lanes_running = [pool.submit(lane, sandbox, work, into, spent, until) for sandbox in lane_sandboxes]
                 try:
                     for finished in lanes_running:
                         finished.result()
@@ -206,7 +211,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
 
         # Ground truth is kept between gradings only where the worker cannot write it.
         with cache.enabled(sandboxes[0].confinement.hides_files), Painter() as painter:
-            run_lanes(sandboxes, public, graded)
+            run_lanes(sandboxes, public, graded, until=public_deadline)
             if hidden:
                 for sandbox in sandboxes:  # the public phase's workers are done: free their memory
                     sandbox.close()
@@ -237,6 +242,13 @@ def _phase(labs: list[list[Exercise]], hidden: bool) -> list[list[tuple[Exercise
     if hidden:
         phase = [[(exercise, checks) for exercise, checks in lab if checks] for lab in phase]
     return [lab for lab in phase if lab]
+
+
+def _hidden_share(public: list, hidden: list) -> float:
+    """The hidden checks' share of the checks to run (0 without hidden checks)."""
+    count = lambda phase: sum(len(checks) for lab in phase for _, checks in lab)
+    total = count(public) + count(hidden)
+    return count(hidden) / total if total else 0.0
 
 
 def _check_order(exercise_id: str, exercises: list[Exercise]) -> dict[str, int]:

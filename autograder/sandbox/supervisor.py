@@ -724,6 +724,12 @@ class Sandbox:
             self._strikes[key] = self._strikes.get(key, 0) + 1
         return outcome
 
+    def remember_strikes(self, other: "Sandbox") -> None:
+        """Give up here too on the functions ``other`` (a worker of the same submission) gave up
+        on: the hidden checks' fresh workers do not call again what the public phase stopped."""
+        for key, count in other._strikes.items():
+            self._strikes[key] = max(self._strikes.get(key, 0), count)
+
     def _struck(self, module: str, function: str) -> CallOutcome | None:
         """The outcome of a function not called again (it timed out, or was stopped for its
         memory, :attr:`Limits.timeouts_per_function` times), else None."""
