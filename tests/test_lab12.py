@@ -29,12 +29,35 @@ def test_every_exercise_of_the_api_is_registered(reference_result):
                for c in e.checks)
 
 
+# How far the reference's figures move between OpenCV majors (the scenes are drawn with OpenCV's
+# warps and filters): at most 0.0013 measured (4.14 vs 5.0), against the checks' MARGIN of 0.05.
+OTHER_MAJOR_DRIFT = 0.002
+
+
 def test_stored_reference_figures_are_current():
-    """fixtures/data/lab12_figures.json is what make_lab12_figures.py computes now."""
+    """fixtures/data/lab12_figures.json is what make_lab12_figures.py computes now, under the
+    pinned OpenCV (constraints.txt's, which makes it); under the other major each figure within
+    OTHER_MAJOR_DRIFT of it."""
+    import cv2
+
+    from autograder.engine.versions import DEFAULT_OPENCV
     from fixtures import lab12
     from fixtures.make_lab12_figures import compute
 
-    assert json.loads(lab12.FIGURES_FILE.read_text()) == json.loads(json.dumps(compute()))
+    stored, now = json.loads(lab12.FIGURES_FILE.read_text()), json.loads(json.dumps(compute()))
+    if cv2.__version__.split(".")[0] == DEFAULT_OPENCV:
+        assert stored == now
+        return
+
+    def leaves(tree, path=()):
+        if isinstance(tree, dict):
+            return {k: v for key, sub in tree.items() for k, v in leaves(sub, path + (key,)).items()}
+        return {path: tree}
+
+    stored, now = leaves(stored), leaves(now)
+    assert stored.keys() == now.keys()
+    moved = {path: (stored[path], now[path]) for path in stored if stored[path] != now[path]}
+    assert all(isinstance(a, float) and abs(a - b) <= OTHER_MAJOR_DRIFT for a, b in moved.values()), moved
 
 
 def test_hidden_reference_figures_are_current():
