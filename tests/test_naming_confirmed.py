@@ -214,7 +214,7 @@ def test_trial_asks_each_probe_once():
 
     class FakeTrial(Trial):
         def __init__(self):
-            self._probed = {}
+            self._probed, self.outputs = {}, []
 
     trial = FakeTrial()
     for _ in range(3):
