@@ -28,7 +28,7 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
     ``printed_where``: how to read what the student's code printed, in the terms of where
     this runs, when there is no page (default: the command line's)."""
     console = console or Console()
-    caption = "; ".join(filter(None, [
+    caption = "\n".join(filter(None, [   # a line each: rich wraps each to the table's width
         f"student code confined at the {result.confinement} level" if result.confinement else "",
         f"judged with {describe(result.versions)}" if describe(result.versions) else ""]))
     table = Table(title=f"Grading {printable(result.submission)}", title_justify="left", expand=False,
