@@ -434,3 +434,20 @@ def test_too_large_text_is_refused_before_parsing(lock_checked):
         parsing.parse("a;" * parsing.MAX_PARSE_STATEMENTS)
     assert lock_checked == []   # refused without parsing
     assert isinstance(parsing.TooLarge("x"), ValueError)   # what every reader already catches
+
+
+@pytest.mark.slow
+def test_a_module_too_large_to_read_is_told_to_the_student(tmp_path):
+    """The code is still graded (in the sandbox); only the grader's reading of it is skipped,
+    and the grading's notes say why (no failure is explained from the code then)."""
+    from autograder.engine.runner import grade
+    from conftest import REFERENCE
+
+    module = "lab07_transformations"
+    folder = tmp_path / "submission"
+    folder.mkdir()
+    padding = "\n".join(f"_unused_{i} = {i}" for i in range(25_000))   # beyond the statement bound
+    (folder / f"{module}.py").write_text((REFERENCE / f"{module}.py").read_text() + "\n" + padding + "\n")
+    result = grade(folder, ["lab07.ex1"], pictures="none", include_hidden=False)
+    assert result.exercises[0].score == result.exercises[0].max_score
+    assert any(note.startswith(f"{module}.py: the code was not read") for note in result.notes), result.notes

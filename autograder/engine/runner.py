@@ -35,6 +35,7 @@ from typing import Callable, Sequence
 
 from .. import __version__
 from ..loading.notebooks import point_into_notebook
+from ..loading.parsing import PARSE_LOCK
 from ..loading.reading import Reading, findings_for, read_file
 from ..loading.submission import load_submission
 from ..sandbox import cache, confine
@@ -229,6 +230,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         result.student_seconds = round(sum(sandbox.student_seconds for sandbox in sandboxes), 6)
         result.student_wall_seconds = round(_covered([span for s in sandboxes for span in s.billed_spans]), 6)
         _point_into_notebooks(result, exercises, submission)
+        result.notes += _not_read_notes(exercises, submission)
     result.seconds = round(time.perf_counter() - started, 6)
     return result
 
@@ -389,6 +391,20 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
     if modified:
         out.checks.append(_in_place_advice(modified))
     return out
+
+
+def _not_read_notes(exercises, submission) -> list[str]:
+    """Why a module's code was not read (too large to parse in the grader's process): no
+    failure is then explained from the code, and the student should know why."""
+    notes, seen = [], set()
+    for exercise in exercises:
+        if exercise.lab.module in seen:
+            continue
+        seen.add(exercise.lab.module)
+        reading = _reading(exercise, submission)
+        if reading is not None and reading.note:
+            notes.append(f"{exercise.lab.module}.py: {reading.note}")
+    return notes
 
 
 def _reading(exercise: Exercise, submission) -> Reading | None:
@@ -667,4 +683,11 @@ def _collect(modified, trial: Trial) -> None:
 
 def _log_grader_error(check: Check, exc: Exception):
     logging.getLogger("autograder").error(
-        "grader error in %s:\n%s", check.id, "".join(traceback.format_exception(exc)))
+        "grader error in %s:\n%s", check.id, _formatted(exc))
+
+
+def _formatted(exc: BaseException) -> str:
+    """The traceback of ``exc`` as text. Python 3.11 parses source lines to point at the failing
+    expression: under the parse lock, as every parse in the grader's process is."""
+    with PARSE_LOCK:
+        return "".join(traceback.format_exception(exc))
