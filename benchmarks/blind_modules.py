@@ -1,0 +1,74 @@
+"""Grade a blind set of whole-module submissions and keep what the grader told each one.
+
+The sets under ``benchmarks/blind_mistakes/<date>/`` are whole modules, each with one bug,
+written from the lab sheet, the API and the reference alone, and a ``MANIFEST.json`` saying
+(for each file) the function with the bug and the bug in a teacher's words. Each file is
+graded on the exercises that call that function, hidden checks included; the failing
+checks' messages and named mistakes are written out beside the truth, for a reader who
+classifies each case as named (the feedback names the true cause), described (points
+lost, no cause named), wrong (a cause named that is not the bug) or not caught.
+
+    python benchmarks/blind_modules.py benchmarks/blind_mistakes/2026-11-28 --json after.json
+    python benchmarks/blind_modules.py SET --code /tmp/old --json before.json   # another copy of the grader
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("set", type=Path, help="the set's folder (holding MANIFEST.json)")
+    parser.add_argument("--code", type=Path, default=HERE.parent, help="the grader's copy to measure")
+    parser.add_argument("--json", type=Path, required=True, help="where to write every case's feedback")
+    parser.add_argument("--only", help="only files whose path contains this")
+    args = parser.parse_args(argv)
+
+    sys.path.insert(0, str(args.code.resolve()))
+    os.environ.setdefault("AUTOGRADER_CACHE_DIR", tempfile.mkdtemp(prefix="blind-store-"))
+    from autograder.engine.registry import select  # noqa: E402  (the copy chosen above)
+    from autograder.engine.runner import grade  # noqa: E402
+
+    manifest = json.loads((args.set / "MANIFEST.json").read_text())
+    cases = []
+    for entry in manifest["submissions"]:
+        if args.only and args.only not in entry["file"]:
+            continue
+        lab = "lab" + entry["lab"][3:5]
+        exercises = [e.id for e in select([lab]) if entry["function"] in e.signatures]
+        folder = Path(tempfile.mkdtemp(prefix="blind-module-"))
+        try:
+            (folder / f"{entry['lab']}.py").write_text((args.set / entry["file"]).read_text())
+            started = time.perf_counter()
+            result = grade(folder, exercises, pictures="none")
+            seconds = time.perf_counter() - started
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
+        checks = [c for e in result.exercises for c in e.checks if c.max_score > 0]
+        failed = [c for c in checks if c.score < c.max_score]
+        cases.append({**entry, "exercises": exercises, "seconds": round(seconds, 1),
+                      "score": round(sum(c.score for c in checks), 2), "max": round(sum(c.max_score for c in checks), 2),
+                      "caught": bool(failed),
+                      "failed": [{"check": c.name, "hidden": c.hidden, "mistake": c.mistake,
+                                  "message": "\n".join(c.message.splitlines()[:6])[:1200], "hint": c.hint[:400]}
+                                 for c in failed]})
+        print(f"{entry['file']:<60} {'caught' if failed else 'NOT CAUGHT':<10} "
+              f"{cases[-1]['score']}/{cases[-1]['max']}  {seconds:.0f}s", flush=True)
+        args.json.write_text(json.dumps(cases, indent=1))
+    caught = sum(c["caught"] for c in cases)
+    print(f"caught {caught} of {len(cases)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
