@@ -924,7 +924,7 @@ def run_verify(args) -> int:
     from rich.console import Console
 
     from .instructor.course import CourseConfig, CourseConfigError
-    from .instructor.verify import VerifyError, render, verify_lab
+    from .instructor.verify import MIN_MISTAKES, VerifyError, render, verify_lab
 
     console, errors = Console(), Console(stderr=True)
     try:
@@ -948,7 +948,8 @@ def run_verify(args) -> int:
     for key in keys:
         try:
             with _progress(errors) as advance:
-                report = verify_lab(labs[key], progress=(lambda what: advance(_Step(what), None)) if advance else None)
+                report = verify_lab(labs[key], progress=(lambda what: advance(_Step(what), None)) if advance else None,
+                                    min_mistakes=course.min_mistakes if course else MIN_MISTAKES)
         except VerifyError as exc:
             errors.print(f"[red]error:[/red] {escape(str(exc))}", highlight=False, soft_wrap=True)
             return USAGE_ERROR

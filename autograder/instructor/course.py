@@ -37,7 +37,9 @@ the exercise, so students see it before they lose a point.
 Keys read by ``autograder batch`` (instructor grading):
 
 ``select``
-    The labs/exercises making up the assignment (default: every lab, every exercise).
+    The labs/exercises making up the assignment. Default: the course's own ``labs`` when it
+    has some (list built-in ones too to grade them as well:
+    ``"select": ["lab07", "lab13"]``), else every built-in lab; every exercise of each.
 ``assignment``
     The assignment's name: the grade column of the Canvas and Moodle CSVs.
 ``points``
@@ -120,6 +122,14 @@ Read by every grading (``autograder batch``, Gradescope, ``grade --config``):
     see their verdict only): ``"hide": ["lab07.ex1::translate_grey", "lab08.ext1"]``, a
     check's id (``autograder list --ids``), an exercise or a lab. The check's code
     still ships in the student bundle when it is a public one.
+
+Read by ``autograder verify`` (lab authors):
+
+``min_mistakes``
+    Default 5. The fewest cases of its mistakes table each exercise of a lab must have
+    (its ``ADVICE`` cases not counted), for every lab verified with this course, built-in
+    or the course's own; an exercise below it is a problem unless the table's
+    ``FEWER_MISTAKES`` gives the reason. 0: no minimum.
 """
 
 from __future__ import annotations
@@ -127,7 +137,7 @@ from __future__ import annotations
 import json
 import math
 import re
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field, fields, replace
 from datetime import datetime
 from pathlib import Path
 
@@ -151,6 +161,7 @@ LMS_EXPORTS = ("canvas", "moodle")
 _GRADING = {"select", "call_timeout", "exercise_budget", "submission_budget", "forbid", "inputs_secret",
             "hidden_points_visible", "labs", "hide"}
 # What each mode applies; the rest of a course is refused or warned about there (CourseConfig.ignored_by).
+_AUTHORING = {"min_mistakes"}   # read by autograder verify: no grading applies it, and none needs to say so
 _APPLIED_BY = {
     "grade": _GRADING,
     "gradescope": _GRADING | {"points", "public_visibility", "hidden_visibility", "stdout_visibility",
@@ -190,6 +201,7 @@ class CourseConfig:
     hide: list[str] = field(default_factory=list)       # checks graded as hidden: "lab07.ex1::name", "lab07.ex1"
     rubric: dict = field(default_factory=dict)          # "lab07.ex1": [{"id", "text", "points"}, ...]
     opencv: str = "5"                                   # the OpenCV major graded with: "4" or "5" (versions.py)
+    min_mistakes: int = 5                               # verify: mistakes-table cases per exercise, at least
 
     def __post_init__(self):
         for name in ("public_visibility", "hidden_visibility", "stdout_visibility"):
@@ -228,6 +240,9 @@ class CourseConfig:
                 raise CourseConfigError(f'{name} must be a list of names, like "labs": ["labs/flow"] '
                                         'or "hide": ["lab07.ex1::translate_grey"]')
         check_rubric(self.rubric)
+        if isinstance(self.min_mistakes, bool) or not isinstance(self.min_mistakes, int) or self.min_mistakes < 0:
+            raise CourseConfigError("min_mistakes must be a whole number, 0 or more: the fewest cases of its "
+                                    "mistakes table autograder verify asks of each exercise (default 5)")
         if isinstance(self.opencv, int) and not isinstance(self.opencv, bool):   # "opencv": 4 means "4"
             object.__setattr__(self, "opencv", str(self.opencv))
         if self.opencv not in OPENCV_MAJORS:
@@ -267,8 +282,8 @@ class CourseConfig:
         (a student's or an instructor's single grading), ``"gradescope"`` or ``"batch"`` --
         does not apply, so the command can say so instead of ignoring them silently."""
         default = CourseConfig()
-        return [f.name for f in fields(self)
-                if f.name not in _APPLIED_BY[mode] and getattr(self, f.name) != getattr(default, f.name)]
+        return [f.name for f in fields(self) if f.name not in _APPLIED_BY[mode] | _AUTHORING
+                and getattr(self, f.name) != getattr(default, f.name)]
 
     def limits(self):
         """The sandbox limits this course asks for."""
@@ -365,21 +380,25 @@ class CourseConfig:
         if isinstance(late, dict) and isinstance(late.get("ledger"), str) and late["ledger"].strip():
             data["late_days"] = {**late, "ledger": str((Path(path).parent / Path(late["ledger"]).expanduser()).resolve())}
         course = cls(**data)
-        course.use_labs(path)
+        own = course.use_labs(path)
+        if own and not course.select:   # a course of its own labs grades those, not every built-in lab too
+            course = replace(course, select=own)
         return course
 
-    def use_labs(self, where="the course configuration") -> None:
+    def use_labs(self, where="the course configuration") -> list[str]:
         """Register this course's lab folders (``labs``, forgetting another course's) and
-        hide its ``hide`` checks, so every later selection sees them; raises
-        :class:`CourseConfigError` saying what is wrong with a folder."""
+        hide its ``hide`` checks, so every later selection sees them; returns the keys of
+        its labs (``lab13``), in its order. Raises :class:`CourseConfigError` saying what is
+        wrong with a folder."""
         from ..engine.labfolders import LabFolderError, use_lab_folders
         from ..engine.registry import SelectionError, hide_checks
 
         try:
-            use_lab_folders(self.labs)
+            labs = use_lab_folders(self.labs)
             hide_checks(self.hide)
         except (LabFolderError, SelectionError) as exc:
             raise CourseConfigError(f"{where}: {exc}") from None
+        return [lab.key for lab in labs]
 
     def to_json(self) -> str:
         return json.dumps(asdict(self), indent=2) + "\n"

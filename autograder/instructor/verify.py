@@ -10,7 +10,9 @@ A lab's checks are sound when
 - every check is failed by some case of the table (a check nothing fails proves nothing);
 - every check gives the same verdict and message, from the same inputs, when the reference
   is graded twice;
-- no check is a grader error on any of these gradings, and the lab has hidden checks.
+- no check is a grader error on any of these gradings, and the lab has hidden checks;
+- every exercise has at least ``min_mistakes`` cases in the table (default 5, the course's
+  ``min_mistakes``), or a reason in its ``FEWER_MISTAKES``: the same bar for every lab.
 
 :func:`verify_lab` grades all of it (through a :class:`Gradings`, which the project's tests
 replace by one that shares gradings between tests) and returns a :class:`LabReport`; the
@@ -40,6 +42,7 @@ from ..loading.parsing import compile_source
 
 PROJECT_ROOT = Path(__file__).resolve().parents[2]
 NOT_IMPLEMENTED = "not implemented yet"
+MIN_MISTAKES = 5   # cases of the mistakes table per exercise, at least (a course's min_mistakes)
 
 
 class VerifyError(ValueError):
@@ -68,7 +71,7 @@ class LabParts:
     reference: Path
     skeleton: Path
     cases: tuple[Case, ...]
-    fewer: dict = field(default_factory=dict)   # exercise id -> why it has fewer than five cases
+    fewer: dict = field(default_factory=dict)   # exercise id -> why it has fewer cases than the minimum
     table: str = ""                             # where the table is, for messages
 
 
@@ -114,7 +117,7 @@ def _fewer(lab: Lab, table, where: str) -> dict:
     if not (isinstance(fewer, dict) and all(isinstance(k, str) and isinstance(v, str) and v.strip()
                                             for k, v in fewer.items())):
         raise VerifyError(f"{where}: FEWER_MISTAKES must be a dict: exercise id -> why its algorithm has "
-                          "fewer than five realistic mistakes")
+                          "fewer realistic mistakes than verify's minimum (the course's min_mistakes, default 5)")
     stale = sorted(set(fewer) - exercises)
     if stale:
         raise VerifyError(f"{where}: FEWER_MISTAKES names {', '.join(map(repr, stale))}, not an exercise of "
@@ -308,6 +311,18 @@ def differing_verdicts(first: GradingResult, second: GradingResult, lab_key: str
     return [key for key in one if one[key] != two.get(key)] + [key for key in two if key not in one]
 
 
+def too_few_mistakes(parts: LabParts, minimum: int = MIN_MISTAKES) -> list[str]:
+    """A sentence for each exercise of the lab whose mistakes table has fewer than ``minimum``
+    cases (advice not counted) and no reason for it in ``FEWER_MISTAKES``."""
+    counts = {e.id: 0 for e in parts.lab.exercises.values()}
+    for case in parts.cases:
+        counts[case.exercise] += not case.advice
+    return [f"{exercise} has {count} mistake{'s' if count != 1 else ''} in its table ({parts.table}); every "
+            f"exercise of every lab needs at least {minimum} (the course's min_mistakes), or the reason "
+            "its algorithm has fewer in FEWER_MISTAKES"
+            for exercise, count in counts.items() if count < minimum and not parts.fewer.get(exercise)]
+
+
 # ------------------------------------------------------------------ a lab's report
 @dataclass
 class CaseReport:
@@ -341,6 +356,8 @@ class LabReport:
     cases: list[CaseReport]
     checks: list[CheckReport]
     seconds: float = 0.0
+    table_problems: list[str] = field(default_factory=list)   # too_few_mistakes
+
 
     @property
     def problems(self) -> list[str]:
@@ -348,6 +365,7 @@ class LabReport:
         found = [f"reference: {p}" for p in self.reference_problems]
         found += [f"skeleton: {p}" for p in self.skeleton_problems]
         found += [f"{c.case.name}: {p}" for c in self.cases for p in c.problems]
+        found += [f"mistakes table: {p}" for p in self.table_problems]
         found += [f"{c.exercise} {c.name!r}: no case of the mistakes table fails it" for c in self.checks
                   if not c.failed_by]
         found += [f"{c.exercise} {c.name!r}: a different verdict, message or input when the reference is graded "
@@ -363,9 +381,10 @@ class LabReport:
 
 
 def verify_lab(lab: Lab, gradings: Gradings | None = None,
-               progress: Callable[[str], None] | None = None) -> LabReport:
+               progress: Callable[[str], None] | None = None, min_mistakes: int = MIN_MISTAKES) -> LabReport:
     """Grade ``lab``'s reference (twice), skeleton and every case of its mistakes table, and
-    judge them; ``progress(what)`` is told each grading as it starts."""
+    judge them (each exercise needing ``min_mistakes`` cases, :func:`too_few_mistakes`);
+    ``progress(what)`` is told each grading as it starts."""
     import time
 
     gradings = gradings or Gradings()
@@ -394,13 +413,16 @@ def verify_lab(lab: Lab, gradings: Gradings | None = None,
               for e in lab.exercises.values() for c in e.checks]
     return LabReport(lab.key, lab.title, _scores(first, lab.key), reference_problems(first, lab.key),
                      _scores(skeleton, lab.key), skeleton_problems(skeleton, lab.key),
-                     cases, checks, round(time.perf_counter() - started, 3))
+                     cases, checks, round(time.perf_counter() - started, 3), too_few_mistakes(parts, min_mistakes))
 
 
 # ------------------------------------------------------------------ the tables
 def render(report: LabReport, console) -> None:
     """``report`` as two tables on a rich ``console``: the gradings (reference, skeleton, each
-    case), then the checks (points, cases failing it, the same twice, time); then a verdict."""
+    case), then the checks (points, cases failing it, the same twice, time); then a verdict
+    and every problem in full. A row is one line, whatever the console's width (80 columns
+    and up): names too long are cut with an ellipsis, as a failing verdict is, which the
+    list of problems after the tables gives whole."""
     from rich.markup import escape
     from rich.table import Table
 
@@ -409,33 +431,59 @@ def render(report: LabReport, console) -> None:
     def said(problems):
         return ok if not problems else bad + " " + escape("; ".join(problems))
 
-    gradings = Table(title=f"{report.key} {escape(report.title)}: gradings", title_justify="left")
-    for column, justify in (("grading", "left"), ("exercise", "left"), ("score", "right"), ("verdict", "left")):
-        gradings.add_column(column, justify=justify, overflow="fold")
-    gradings.add_row("reference", "all", f"{report.reference[0]:g} / {report.reference[1]:g}",
-                     said(report.reference_problems))
-    gradings.add_row("skeleton", "all", f"{report.skeleton[0]:g} / {report.skeleton[1]:g}",
-                     said(report.skeleton_problems))
-    for c in report.cases:
-        kind = "tip" if c.case.advice else "mistake"
-        gradings.add_row(f"{kind}: {escape(c.case.name)}", c.case.exercise, f"{c.score:g} / {c.max_score:g}",
-                         said(c.problems))
-    console.print(gradings)
+    def short(exercise_id: str) -> str:   # the table's title names the lab
+        return exercise_id.removeprefix(f"{report.key}.")
 
-    checks = Table(title=f"{report.key}: checks", title_justify="left")
-    for column, justify in (("exercise", "left"), ("check", "left"), ("points", "right"),
-                            ("failed by", "right"), ("same twice", "left"), ("seconds", "right")):
-        checks.add_column(column, justify=justify, overflow="fold")
-    for c in report.checks:
-        points = "tip" if c.advice else f"{c.points:g}" + (" hidden" if c.hidden else "")
-        checks.add_row(c.exercise, escape(c.name), points,
-                       f"{c.failed_by} cases" if c.failed_by else "[red]no case[/red]",
-                       "yes" if c.same_twice else "[red]no[/red]", f"{c.seconds:.2f}")
-    console.print(checks)
+    rows = [("reference", "all", f"{report.reference[0]:g} / {report.reference[1]:g}",
+             said(report.reference_problems)),
+            ("skeleton", "all", f"{report.skeleton[0]:g} / {report.skeleton[1]:g}", said(report.skeleton_problems))]
+    rows += [(f"{'tip' if c.case.advice else 'mistake'}: {escape(c.case.name)}", short(c.case.exercise),
+              f"{c.score:g} / {c.max_score:g}", said(c.problems)) for c in report.cases]
+    console.print(_table(f"{report.key} {escape(report.title)}: gradings", console.width, rows,
+                         ("grading", "left", True), ("ex.", "left", False), ("score", "right", False),
+                         ("verdict", "left", True)))
+    rows = [(short(c.exercise), escape(c.name.removesuffix(" (hidden)") + (" (hidden)" if c.hidden else "")),
+             "tip" if c.advice else f"{c.points:g}", str(c.failed_by) if c.failed_by else "[red]0[/red]",
+             "yes" if c.same_twice else "[red]no[/red]", f"{c.seconds:.2f}") for c in report.checks]
+    console.print(_table(f"{report.key}: checks (failed by: cases failing it; same: verdict graded twice)",
+                         console.width, rows,
+                         ("ex.", "left", False), ("check", "left", True), ("pts", "right", False),
+                         ("failed by", "right", False), ("same", "left", False), ("s", "right", False)))
     if report.ok:
         console.print(f"[green]{report.key} is sound[/green]: {len(report.cases)} cases, "
                       f"{len(report.checks)} checks, {report.seconds:.0f} s")
     else:
         console.print(f"[red]{report.key} is not sound[/red] ({len(report.problems)} problems):")
+        listed = Table.grid(padding=(0, 1), pad_edge=True)   # a problem's lines indented under its dash
+        listed.add_column(no_wrap=True)
+        listed.add_column(overflow="fold")
         for problem in report.problems:
-            console.print(f"  - {escape(problem)}", highlight=False)
+            listed.add_row("-", escape(problem))
+        console.print(listed, highlight=False)
+
+
+def _table(title: str, width: int, rows, *columns: tuple[str, str, bool]):
+    """A table ``width`` columns wide at most, without vertical rules, each of ``rows`` (rich
+    markup) on one line: ``columns`` are (header, justify, cut). A column not cut is as wide
+    as its widest cell; the columns cut (names, verdicts) share what is left, a longer cell
+    ending in an ellipsis."""
+    from rich import box
+    from rich.table import Table
+    from rich.text import Text
+
+    widest = [max([Text.from_markup(row[i]).cell_len for row in rows] + [len(header)])
+              for i, (header, _, _) in enumerate(columns)]
+    cut = [i for i, (_, _, shortened) in enumerate(columns) if shortened]
+    # Two characters between columns (a space of padding, the rule's), none outside; what
+    # the others leave, shared.
+    left = width - 2 * (len(columns) - 1) - sum(w for i, w in enumerate(widest) if i not in cut)
+    need = [widest[i] for i in cut]
+    share = dict(zip(cut, need if sum(need) <= left else [max(8, left * n // sum(need)) for n in need]))
+    table = Table(title=title, title_justify="left", box=box.SIMPLE_HEAD, show_edge=False, pad_edge=False,
+                  collapse_padding=True)
+    for i, (header, justify, shortened) in enumerate(columns):
+        table.add_column(header, justify=justify, no_wrap=True, overflow="ellipsis",
+                         min_width=None if shortened else widest[i], max_width=share.get(i))
+    for row in rows:
+        table.add_row(*row)
+    return table

@@ -20,6 +20,12 @@ MISTAKES = {
         def histogram(image, bins=256):
             return np.bincount(np.asarray(image).ravel(), minlength=256)
         """, ["histogram(image, bins=16)"]),
+    "counts in a float array": ("lab13.ex1", """
+        def histogram(image, bins=256):
+            counts = np.zeros(bins)
+            np.add.at(counts, np.asarray(image).astype(np.int64).ravel() * bins // 256, 1)
+            return counts
+        """, ["has dtype float64", "must be integer"]),
     "stretch in uint8": ("lab13.ex2", """
         def stretch(image):
             low, high = image.min(), image.max()
