@@ -22,7 +22,7 @@ from ._draws import seed, uniform
 HIDDEN_SEEDS = st.integers(10**6, 2 * 10**6)
 
 
-@ex1.check("hidden: triangulate noisy far points (1 px noise, depth 20-60)", points=1, hidden=True)
+@ex1.check("hidden: triangulate noisy far points (about 1 px noise, depth 20-60)", points=1, hidden=True)
 def hidden_triangulate_far_noisy(t):
     views, pts1, pts2 = truth.noisy_triangulation_problem(
         seed(t.rng), n=int(t.rng.integers(60, 101)), sigma=uniform(t.rng, 0.8, 1.2),

@@ -85,7 +85,7 @@ def hidden_depth_map(t):
                 t.call("depth_from_disparity", d, f, baseline), d, f, baseline)
 
 
-@ex3.check("hidden: rectify a pair turned by 12 degrees", points=1, hidden=True)
+@ex3.check("hidden: rectify a pair turned by up to 12 degrees", points=1, hidden=True)
 def hidden_rectify(t):
     pair = truth.unrectified_pair(seed=seed(t.rng), max_angle_deg=12.0)
     _, _, H1, H2 = call_rectify(t, pair)
