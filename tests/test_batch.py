@@ -310,7 +310,7 @@ def test_grades_csv_and_lms_imports_parse_with_the_documented_headers(generated,
     assert rows[0] == ["Student ID", "Name", "Status", "lab07.ex1", "Late penalty", "Adjustments", "Total"]
     by_id = {r[0]: r for r in rows[1:]}
     assert by_id["correct-00"][-1] == "12" and by_id["partly-wrong"][-1] == "4"
-    assert by_id["bad-zip"][2].startswith("unreadable: ")
+    assert by_id["bad-zip"][2].startswith("could not be read: ")
     canvas = list(csv.reader((out / "canvas_import.csv").open(newline="")))
     assert canvas[0] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Lab 7"]
     assert canvas[1] == ["Points Possible", "", "", "", "", "12"]
