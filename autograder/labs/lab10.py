@@ -113,7 +113,14 @@ def perspective_behind_case():
            points=1)
 def perspective_in_front(t):
     what, X, behind = perspective_behind_case()
-    judge_in_front(t, what, call_behind(t, what, "perspective_project", X, 500.0), truth.pinhole(X, 500.0), behind)
+    got = call_behind(t, what, "perspective_project", X, 500.0)
+    front = ~behind
+    if isinstance(got, np.ndarray) and got.shape == (len(X), 2) and got.dtype.kind in "iuf":
+        # a wrong projection is named as the other checks name it, on the points in front
+        judge_points(t, f"{what}, the points in front", got[front], truth.pinhole(X[front], 500.0),
+                     perspective_mistakes(500.0, X[front]), formulas=pinhole_formulas(X[front], 500.0),
+                     probe=projection_probe(t, "perspective_project"))
+    judge_in_front(t, what, got, truth.pinhole(X, 500.0), behind)
 
 
 NAN_BEHIND_HINT = nan_behind("np.where(Z > 0, f * X / Z, np.nan)")
