@@ -34,6 +34,15 @@ In a notebook: a Markdown cell tagged ``report:ID``, or holding the start marker
 one exercise, is that exercise's explanation (its text, markers and placeholder
 removed); a cell holding markers of several exercises is read as a Markdown file.
 
+In the student's own structure (when the reader is given the
+:class:`~.headings.ExerciseNames` of the labs graded): the text under any heading that
+names an exercise -- "## Exercise 2: Rotation", "Ex. 2", "2. Rotation", "Rotation",
+"Lab 7 Exercise 2", "Extension 1", setext and bold-line headings too (see
+:mod:`.headings`) -- in a Markdown file, and in a notebook's Markdown cells read one
+after the other (a heading's text runs on into the cells after it). The scaffold's
+markers, tags and ``## ID`` headings keep precedence: a heading of the student's own is
+read only for an exercise that none of those explains anywhere in the hand-in.
+
 IDs are exercise ids (``lab07.ex1``, ``lab08.ext2``) or the figure ids of the
 experiment extensions (``lab09.ex3-extension``). :data:`PLACEHOLDER` alone, or
 nothing, means "not written": such a section gives no explanation.
@@ -48,6 +57,7 @@ from dataclasses import dataclass, field
 from itertools import islice
 from pathlib import PurePosixPath
 
+from .headings import ExerciseNames, student_sections
 from .text import printable, shown
 
 REPORT_SUFFIXES = (".md", ".ipynb")      # .pdf files are listed, never parsed
@@ -120,15 +130,16 @@ def explanations_in_notebook(data: bytes, source: str) -> dict[str, Explanation]
     return reading.explanations()
 
 
-def read_report(files: dict[str, bytes]) -> Report:
+def read_report(files: dict[str, bytes], names: ExerciseNames | None = None) -> Report:
     """Every explanation in the Markdown files and notebooks of a hand-in, the PDFs beside
     them, and what could not be read.
 
     ``files``: relative path -> bytes (as ``sandbox.files.read_regular_files`` gives them).
+    ``names``: the exercises the student's own headings may name (none read without it).
     Files are read in path order; an exercise explained in two places keeps both texts,
     one after the other, and the problems say so.
     """
-    reading = _Reading()
+    reading = _Reading(names)
     attachments = []
     for path in sorted(files, key=str):
         name = shown(path)
@@ -178,15 +189,36 @@ class _Gathered:
 class _Reading:
     """Explanations and problems gathered over the files of one hand-in."""
 
-    def __init__(self):
+    def __init__(self, names: ExerciseNames | None = None):
         self.gathered: dict[str, _Gathered] = {}
         self.problems: list[str] = []
         self.more_problems = 0
+        self.names = names
+        self.own: list[tuple[str, str, str]] = []   # (exercise, text, source) under the student's own headings
 
     def explanations(self) -> dict[str, Explanation]:
         """Every exercise's explanation, its texts joined once (not at each new place: an
-        exercise explained in thousands of cells made that quadratic)."""
+        exercise explained in thousands of cells made that quadratic). The student's own
+        headings count for the exercises nothing of the scaffold's explains."""
+        explained = set(self.gathered)
+        for exercise, text, source in self.own:
+            if exercise not in explained:
+                self.add(exercise, text, source)
+        self.own = []
         return {exercise: gathered.explanation(exercise) for exercise, gathered in self.gathered.items()}
+
+    def own_headings(self, text: str, source: str, where=None) -> None:
+        """Keep the sections under the student's own headings in ``text`` (of the file
+        ``source``) for the end. ``where(position)``: the source of the text at ``position`` (a notebook's cell)."""
+        if self.names is None:
+            return
+        unsure: list[str] = []
+        for section in student_sections(text, self.names, self.names.lab_of_path(source), MAX_SECTIONS, unsure):
+            self.own.append((section.exercise, _section_text(section.body),
+                             where(section.start) if where else source))
+        if unsure:
+            self.problem(f"{source}: the heading {unsure[0]!r} names an exercise by number but not its lab; "
+                         "name the lab in the file's name (lab07_report.md) or a heading (# Lab 7)")
 
     def problem(self, sentence: str) -> None:
         if len(self.problems) < MAX_PROBLEMS:
@@ -234,7 +266,7 @@ class _Reading:
             known.length += len(text)
 
     # -------------------------------------------------------------- Markdown
-    def markdown(self, text: str, source: str) -> None:
+    def markdown(self, text: str, source: str, notebook_cell: bool = False) -> None:
         text = printable(text)[: 4 * MAX_REPORT_BYTES]  # at most 4 characters a byte came in as
         starts = list(islice(_START.finditer(text), MAX_SECTIONS + 1))
         heading_matches = _headings(text, MAX_SECTIONS + 1)
@@ -264,6 +296,8 @@ class _Reading:
                              "'<!-- end explanation -->'; it was read up to the next section")
             self.add(exercise, text[start.end():end], source)
         self._under_headings(text, source, marked, heading_matches)
+        if not notebook_cell:
+            self.own_headings(text, source)
 
     def _under_headings(self, text, source, marked, heading_matches) -> None:
         """The fallback: the text under ``## ID...`` for each exercise with no markers."""
@@ -277,9 +311,7 @@ class _Reading:
             if exercise in marked:
                 continue
             end = headings[number + 1] if number + 1 < len(headings) else len(text)
-            body = _FIGURE_LINE.sub("", text[heading.end():end])
-            body = _NO_FIGURE_LINE.sub("", VERDICT_LINE.sub("", body))
-            self.add(exercise, body, source)
+            self.add(exercise, _section_text(text[heading.end():end]), source)
 
     # -------------------------------------------------------------- notebooks
     def notebook(self, data: bytes, source: str) -> None:
@@ -296,6 +328,9 @@ class _Reading:
             self.problem(f"{source} has no list of cells; its explanations were not read")
             return
         read = 0
+        plain: list[str] = []      # the Markdown cells with no tag or marker, for the student's own headings
+        starts: list[int] = []     # where each of them starts in "\n\n".join(plain)
+        numbers: list[int] = []
         for number, cell in enumerate(cells, 1):
             if isinstance(cell, dict) and cell.get("cell_type") == "markdown":
                 if read == MAX_REPORT_CELLS:
@@ -303,13 +338,21 @@ class _Reading:
                                  "and those after it were not read")
                     break
                 read += 1
-                self._markdown_cell(cell, f"{source}, cell {number}")
+                text = self._markdown_cell(cell, f"{source}, cell {number}")
+                if text is not None:
+                    starts.append(starts[-1] + len(plain[-1]) + 2 if plain else 0)
+                    plain.append(text)
+                    numbers.append(number)
+        if plain and self.names is not None:
+            self.own_headings("\n\n".join(plain), source,
+                              lambda at: f"{source}, cell {numbers[bisect.bisect_right(starts, at) - 1]}")
 
-    def _markdown_cell(self, cell: dict, where: str) -> None:
+    def _markdown_cell(self, cell: dict, where: str) -> str | None:
+        """Read one Markdown cell; its text when it holds no tag or marker (None otherwise)."""
         text = _cell_text(cell.get("source"))
         if text is None:
             self.problem(f"{where}: its text is not text; it was not read")
-            return
+            return None
         text = printable(text)
         metadata = cell.get("metadata")
         tags = metadata.get("tags") if isinstance(metadata, dict) else None
@@ -329,7 +372,10 @@ class _Reading:
         elif len(marked) == 1:
             self.add(marked[0], _without_markers(text), where)
         elif len(marked) > 1:
-            self.markdown(text, where)
+            self.markdown(text, where, notebook_cell=True)
+        else:
+            return text
+        return None
 
 
 # ------------------------------------------------------------------ helpers
@@ -358,6 +404,12 @@ def _fences_before(fences: list[int], position: int) -> int:
 def _first_after(positions: list[int], after: int, default: int) -> int:
     index = bisect.bisect_left(positions, after)
     return positions[index] if index < len(positions) else default
+
+
+def _section_text(body: str) -> str:
+    """The text under a heading without the scaffold's lines: figures, verdict, "No figure"."""
+    body = _FIGURE_LINE.sub("", body)
+    return _NO_FIGURE_LINE.sub("", VERDICT_LINE.sub("", body))
 
 
 def _without_markers(text: str) -> str:

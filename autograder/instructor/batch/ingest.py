@@ -65,6 +65,7 @@ from dataclasses import dataclass, field
 from datetime import datetime
 from pathlib import Path, PurePosixPath
 
+from ...loading.headings import ExerciseNames
 from ...loading.report import Report, read_report
 from ...loading.text import one_line, shown
 from ...sandbox.files import CAPS, SOURCE_SUFFIXES, limit_for
@@ -173,7 +174,7 @@ def read_class(path, modules: list[str], every_module: list[str] = ()) -> list[E
 
 
 def read_upload(path, modules: list[str], every_module: list[str] = (),
-                known: "Identities | None" = None) -> ClassUpload:
+                known: "Identities | None" = None, names: ExerciseNames | None = None) -> ClassUpload:
     """Read the class folder or zip at ``path``: entries sorted by id, ignored items, warnings.
 
     ``modules`` are the lab modules the selection grades, ``every_module`` those
@@ -182,7 +183,8 @@ def read_upload(path, modules: list[str], every_module: list[str] = (),
     :meth:`.gradebook.Gradebook.identities`): a student seen before keeps their id, and
     no id ever given goes to anybody else. Raises :class:`IngestError` only when
     ``path`` itself cannot be read; anything wrong inside it is one entry's error or
-    one ignored item.
+    one ignored item. ``names``: the graded labs' exercises, which the headings of a report
+    in the student's own structure may name (:mod:`autograder.loading.headings`).
     """
     upload = ClassUpload()
     every = set(every_module) | set(modules)
@@ -193,7 +195,7 @@ def read_upload(path, modules: list[str], every_module: list[str] = (),
     for entry in upload.entries:
         if not entry.error:
             _name_lone_file(entry, modules, every)
-        _read_report(entry)
+        _read_report(entry, names)
         _make_safe(entry)
     _assign_ids(upload.entries, known or Identities())
     upload.warnings += _shared_identities(upload.entries)
@@ -201,12 +203,12 @@ def read_upload(path, modules: list[str], every_module: list[str] = (),
     return upload
 
 
-def _read_report(entry: Entry) -> None:
+def _read_report(entry: Entry, names: ExerciseNames | None = None) -> None:
     """The entry's explanations, from its report files and notebooks (never raising)."""
     entry.report_files = dict(entry.reports_found.files)
     refused = entry.reports_found.problems()
     try:
-        report = read_report({**entry.files, **entry.report_files})
+        report = read_report({**entry.files, **entry.report_files}, names)
     except Exception as exc:  # noqa: BLE001 - the contract says it never raises; a student's report never stops the class
         report = Report(problems=(f"the report could not be read ({type(exc).__name__})",))
     entry.report = Report(report.explanations, report.attachments, tuple(refused) + tuple(report.problems))

@@ -37,6 +37,7 @@ from ...reports import html
 from ...sandbox import confine
 from ...sandbox.supervisor import cores_each
 from ...engine.versions import OpenCVMismatch, check_opencv
+from ...loading.headings import ExerciseNames
 from ..course import CourseConfig, CourseConfigError
 from . import changes, exports
 from .gradebook import STORAGE_ERRNOS, Gradebook, StorageError, lock_hash, storing, submission_key
@@ -124,7 +125,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     modules = sorted({e.lab.module for e in exercises})
     overrides_rows = exports.read_overrides(overrides) if overrides else None
     roster_rows = exports.read_roster(roster) if roster else []
-    upload = read_upload(submissions, modules, [lab.module for lab in discover().values()], _known(out))
+    names = ExerciseNames.of_labs({e.lab.key: e.lab for e in exercises}.values())   # what report headings may name
+    upload = read_upload(submissions, modules, [lab.module for lab in discover().values()], _known(out), names)
     entries = upload.entries
     if probing:
         _refuse_unconfined(confine.detect())
