@@ -6,10 +6,12 @@ Each hidden check is run on the reference solutions under two submissions' input
 with a course secret); the reference passes every one, the calls each check makes (its
 ``inputs_digest``) differ between the two, and the same inputs give the same calls again.
 A realistic wrong submission (cases of the mistakes tables) still fails its exercise's
-hidden check whatever it draws.
+hidden check whatever it draws (how it is named is ``autograder verify``'s judgement).
 """
 
 from __future__ import annotations
+
+import importlib
 
 import numpy as np
 import pytest
@@ -98,16 +100,11 @@ WRONG = [("lab07", "rotation the wrong way"), ("lab07", "sy ignored"), ("lab10",
 
 @pytest.mark.parametrize("lab_key, case", WRONG)
 def test_a_realistic_mistake_fails_its_exercises_hidden_check_whatever_it_draws(tmp_path, lab_key, case):
-    import importlib
-
     lab = discover()[lab_key]
-    exercise, source, fragments = importlib.import_module(f"autograder.labs.mistakes.{lab_key}").MISTAKES[case][:3]
+    exercise, source = importlib.import_module(f"autograder.labs.mistakes.{lab_key}").MISTAKES[case][:2]
     folder = mutant(tmp_path, lab.module, source)
     checks = [check for check in hidden_checks(lab_key) if check.exercise.id == exercise]
     assert checks
     for inputs in DRAWS:
         for check_id, result in graded(folder, checks, inputs).items():
             assert not result.passed and result.score == 0, (check_id, result.message)
-            # A named mistake is named in the case's own words (verify's judgement, case_problems).
-            named = result.mistake or "looks like" in result.message.lower()
-            assert not named or all(f.lower() in result.message.lower() for f in fragments), result.message
