@@ -150,7 +150,7 @@ def walk(folder, anonymous: bool = True) -> tuple[list[tuple[str, str]], set[str
     for each response, and the endpoints not reached (of those ``url_map`` lists)."""
     session = ReviewSession(folder, reviewer="prof", anonymous=anonymous)
     app = create_app(session, token=TOKEN, csrf=CSRF)
-    routes = {rule.endpoint for rule in app.url_map.iter_rules()} - {"static"}
+    routes = {rule.endpoint for rule in app.url_map.iter_rules()}
     client = app.test_client()
     seen: list[tuple[str, str]] = []
     reached: set[str] = set()
@@ -189,6 +189,12 @@ def walk(folder, anonymous: bool = True) -> tuple[list[tuple[str, str]], set[str
         ask("POST", f"/{TOKEN}/rubric/lab07.ex1", {"csrf": CSRF, "item": "corners", "text": "t", "points": "x"})
         ask("POST", f"/{TOKEN}/rubric/lab07.ex1", {"csrf": CSRF, "item": "corners", "text": "t", "points": "2",
                                                    "back": "0"})
+        ask("POST", f"/{TOKEN}/bank/lab07.ex1", {"csrf": CSRF, "key": "corners", "text": "Why black?", "back": "0"})
+        ask("POST", f"/{TOKEN}/bank/lab07.ex1", {"csrf": CSRF, "key": "not a key", "text": "t"})
+        ask("GET", f"/{TOKEN}/review/0")       # with a saved comment
+        for show in ("todo", "noreport"):
+            ask("GET", f"/{TOKEN}/?show={show}")
+        ask("GET", f"/{TOKEN}/static/review.js")
         ask("GET", f"/{TOKEN}/review/99")
         ask("GET", "/not-the-token/")
     finally:

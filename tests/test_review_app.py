@@ -56,7 +56,7 @@ def post(client, path, data, **kw):
 def base(client, position: int) -> str:
     """Where the review screen at ``position`` sends its changes (its script's ``base``)."""
     page = get(client, f"/{TOKEN}/review/{position}").get_data(as_text=True)
-    return re.search(r"const base = '([^']+)'", page)[1]
+    return re.search(r'data-base="([^"]+)"', page)[1]
 
 
 def test_every_request_needs_the_token_and_a_local_host(results):
@@ -178,7 +178,7 @@ def test_a_batch_moving_the_queue_never_turns_a_page_onto_another_student(result
     try:
         position = next(p.position for p in session.queue() if p.student_id == "bo")
         page = get(client, f"/{TOKEN}/review/{position}").get_data(as_text=True)
-        changes = re.search(r"const base = '([^']+)'", page)[1]
+        changes = re.search(r'data-base="([^"]+)"', page)[1]
         figure = re.search(r'<img src="([^"]+)"', page.split('id="figures"')[1])[1]
         with Gradebook(results) as batch:   # another process grades a new student meanwhile
             entries = [Entry(s, s.title(), "canvas", f"{s}.py", files={"lab07_transformations.py": b"x"})

@@ -230,3 +230,43 @@ def test_from_the_report_to_the_final_grade_in_the_canvas_import_while_a_batch_r
     assert float(canvas["3456"]["Lab 7 (4242)"]) == max(0.0, checks["leeann-3456"] - 1)
     page = (out / "smithjohn-1234" / "feedback.html").read_text()
     assert "explains the black corners <b>+3</b>" in page
+
+
+# ------------------------------------------------------------------ 3. the screen at 1280x900
+def test_the_review_screen_at_1280x900_keeps_the_review_in_view(browser, tmp_path):
+    """A long explanation and a 1500-pixel-wide figure: the rubric, the comment box, the saved
+    comments and the save button stay above the fold, the figure keeps its own width (scrolled
+    inside its pane), and a saved comment is inserted by keyboard (v, 1) and saved."""
+    import numpy as np
+    import cv2
+    from autograder.instructor.batch.gradebook import Gradebook
+    from test_review_storage import graded_book
+
+    with graded_book(tmp_path, ("ada", "bo"), (3.0, 6.0)) as book:
+        book.db.execute("INSERT INTO explanations VALUES ('ada', 'lab07.ex1', ?, 'lab07_report.md', 0)",
+                        ("The corners are black. " * 300,))
+        book.set_bank_comment("lab07.ex1", "corners", "Why are the corners black?", "ta")
+    (tmp_path / "ada" / "figures").mkdir(parents=True)
+    cv2.imwrite(str(tmp_path / "ada" / "figures" / "lab07.ex1.png"), np.full((400, 1500, 3), 200, np.uint8))
+    server = Server(tmp_path)
+    tab = Tab(browser)
+    try:
+        browser.send("Emulation.setDeviceMetricsOverride", {"width": 1280, "height": 900, "deviceScaleFactor": 1,
+                                                            "mobile": False}, session=tab.session)
+        tab.open(server.url + "review/0")
+        tab.wait("[...document.images].every(i => i.complete && i.naturalWidth > 0)")
+        bottoms = tab.eval("Object.fromEntries(['rubric', 'comment', 'bank', 'save', 'head'].map("
+                           "id => [id, document.getElementById(id).getBoundingClientRect().bottom]))")
+        assert all(0 < bottom <= 900 for bottom in bottoms.values()), bottoms
+        assert tab.eval("document.documentElement.scrollHeight") <= 900, "the page itself does not scroll"
+        assert tab.eval("document.getElementById('work').scrollHeight > document.getElementById('work').clientHeight")
+        assert tab.eval("document.querySelector('#figures img').width") == 1500, "the figure at its own width"
+        tab.key("z")
+        assert tab.eval("document.querySelector('#figures img').width") < 900, "z fits it to the pane"
+        tab.key("v")
+        tab.key("1")
+        tab.wait("document.getElementById('status').textContent === 'saved'")
+    finally:
+        server.kill()
+    with Gradebook(tmp_path, readonly=True) as book:
+        assert book.reviews()[("ada", "lab07.ex1")]["comment"] == "Why are the corners black?"

@@ -31,6 +31,10 @@ Tables
     read from here, so a change reaches every student it is applied to), the items
     applied per student and exercise, and a comment and "reviewed" flag per
     student and exercise; each with who changed it and when.
+``comment_bank``
+    The reviewers' reusable comments per exercise, by a short key: saved once, inserted
+    into a student's comment by key, edited centrally. An insertion copies the text: a
+    comment already saved on a student stays as written when the bank's text changes.
 ``meta``
     ``schema_version`` (a gradebook of an older schema is migrated in place when
     opened for writing) and ``course``, the course configuration of the last batch.
@@ -52,6 +56,7 @@ import errno
 import hashlib
 import json
 import os
+import re
 import sqlite3
 from contextlib import contextmanager, suppress
 from datetime import datetime, timezone
@@ -129,6 +134,10 @@ CREATE TABLE IF NOT EXISTS review_marks (
     student_id TEXT NOT NULL, exercise TEXT NOT NULL, item_id TEXT NOT NULL,
     marked_by TEXT NOT NULL, marked_at TEXT NOT NULL,
     PRIMARY KEY (student_id, exercise, item_id));
+CREATE TABLE IF NOT EXISTS comment_bank (
+    exercise TEXT NOT NULL, key TEXT NOT NULL, text TEXT NOT NULL,
+    changed_by TEXT NOT NULL, changed_at TEXT NOT NULL,
+    PRIMARY KEY (exercise, key));
 CREATE TABLE IF NOT EXISTS review_notes (
     student_id TEXT NOT NULL, exercise TEXT NOT NULL, comment TEXT NOT NULL DEFAULT '',
     done INTEGER NOT NULL DEFAULT 0, changed_by TEXT NOT NULL, changed_at TEXT NOT NULL,
@@ -138,6 +147,8 @@ CREATE TABLE IF NOT EXISTS review_notes (
 _STUDENT_COLUMNS = ("student_id", "display_name", "source", "origin", "lms", "members", "submitted_at",
                     "late", "content_hash", "submission_key", "unreadable", "present", "report_problems")
 REVIEW_COMMENT_LENGTH = 10_000   # characters of one review comment
+BANK_KEY = re.compile(r"[A-Za-z0-9][A-Za-z0-9_-]{0,29}")   # a reusable comment's key
+BANK_MAX_COMMENTS = 100          # reusable comments per exercise
 
 # What a storage fault means for the instructor: errno values and SQLite's result codes.
 _FULL_ERRNOS = {errno.ENOSPC, errno.EDQUOT, errno.EFBIG}
@@ -595,6 +606,23 @@ class Gradebook:
             out["problems"] = json.loads(row[0] or "[]")
         return out
 
+    def reports_handed_in(self) -> dict[str, dict]:
+        """Per student with a report: ``explained`` (the exercises it explains, a set) and
+        ``files`` (how many ``.md``/``.pdf`` files were handed in). Students without are absent."""
+        out: dict[str, dict] = {}
+        if not self._has("explanations"):
+            return out
+
+        def of(student_id):
+            return out.setdefault(student_id, {"explained": set(), "files": 0})
+
+        with self._reading():
+            for row in self.db.execute("SELECT student_id, exercise FROM explanations"):
+                of(row["student_id"])["explained"].add(row["exercise"])
+            for row in self.db.execute("SELECT student_id, COUNT(*) AS n FROM report_files GROUP BY student_id"):
+                of(row["student_id"])["files"] = row["n"]
+        return out
+
     def report_file(self, student_id: str, path: str) -> bytes | None:
         """The bytes of one file of the student's report, None when there is no such file."""
         if not self._has("report_files"):
@@ -690,6 +718,36 @@ class Gradebook:
             self.db.execute("INSERT OR REPLACE INTO review_notes VALUES (?,?,?,?,?,?)",
                             (student_id, exercise, old_comment if comment is None else comment,
                              int(old_done if done is None else done), who, _now()))
+
+    def comment_bank(self) -> dict[str, list[dict]]:
+        """The reusable comments: exercise -> dicts with ``key``, ``text``, ``changed_by``,
+        ``changed_at``, by key."""
+        if not self._has("comment_bank"):
+            return {}
+        with self._reading():
+            rows = self.db.execute("SELECT * FROM comment_bank ORDER BY exercise, key").fetchall()
+        out: dict[str, list[dict]] = {}
+        for row in rows:
+            out.setdefault(row["exercise"], []).append({name: row[name] for name in
+                                                        ("key", "text", "changed_by", "changed_at")})
+        return out
+
+    def set_bank_comment(self, exercise: str, key: str, text: str, who: str) -> None:
+        """Save (or change, for every later insertion) the reusable comment ``key`` of ``exercise``;
+        an empty ``text`` deletes it. Raises ``ValueError`` for a malformed key or too many comments."""
+        if not BANK_KEY.fullmatch(key):
+            raise ValueError(f"a comment's key is 1 to 30 letters, digits, '-' or '_', starting with a letter "
+                             f"or digit; not {key[:40]!r}")
+        text = printable(text).strip()[:REVIEW_COMMENT_LENGTH]
+        with self._transaction():
+            if not text:
+                self.db.execute("DELETE FROM comment_bank WHERE exercise=? AND key=?", (exercise, key))
+                return
+            count = self.db.execute("SELECT COUNT(*) FROM comment_bank WHERE exercise=? AND key<>?",
+                                    (exercise, key)).fetchone()[0]
+            if count >= BANK_MAX_COMMENTS:
+                raise ValueError(f"{exercise} has {count} saved comments already; at most {BANK_MAX_COMMENTS}")
+            self.db.execute("INSERT OR REPLACE INTO comment_bank VALUES (?,?,?,?,?)", (exercise, key, text, who, _now()))
 
     def reviews(self) -> dict[tuple[str, str], dict]:
         """Every review: (student id, exercise) -> dict with ``items`` (ids applied, in the rubric's

@@ -7,7 +7,7 @@ Security
   or with a ``Host`` other than 127.0.0.1/localhost (DNS rebinding), is answered 403.
 - Every POST carries a second per-run secret in its form (``csrf``) and, when the
   browser sends an ``Origin``, it must be this server's; else 403.
-- Pages forbid scripts but their own (a per-response nonce), frames, remote
+- Pages forbid scripts but their own files (``static/``: no inline script runs), frames, remote
   images and any referrer (``Content-Security-Policy``, ``Referrer-Policy``), so a
   student's report can neither run code nor leak the token.
 - The student's text is rendered by :func:`autograder.reports.markdown.render_markdown`
@@ -47,6 +47,9 @@ from .anonymity import Anonymiser
 
 FIGURE_ID = re.compile(r"lab\d\d\.[A-Za-z0-9_.-]{1,60}")
 LOCAL_HOSTS = ("127.0.0.1", "localhost")
+# The queue's filters (``?show=``): every pair, those not reviewed yet, those with no report text;
+# each with its key on the queue.
+QUEUE_FILTERS = {"all": ("all", "a"), "todo": ("not reviewed", "t"), "noreport": ("no report", "r")}
 
 
 @dataclass(frozen=True)
@@ -117,12 +120,13 @@ def _selected(course) -> set[str]:
 def create_app(session: ReviewSession, token: str | None = None, csrf: str | None = None):
     """The Flask application over ``session``; ``token`` (the URL's secret) and ``csrf`` (the
     forms') are random unless given (tests)."""
-    from flask import Flask, Response, abort, g, jsonify, redirect, render_template, request, url_for
+    from flask import Flask, Response, abort, jsonify, redirect, render_template, request, url_for
 
-    app = Flask(__name__, template_folder=str(Path(__file__).parent / "templates"))
-    app.config.update(TOKEN=token or secrets.token_urlsafe(24), CSRF=csrf or secrets.token_urlsafe(24),
-                      MAX_CONTENT_LENGTH=256 * 1024)
-    token, csrf = app.config["TOKEN"], app.config["CSRF"]
+    token, csrf = token or secrets.token_urlsafe(24), csrf or secrets.token_urlsafe(24)
+    # The pages' scripts are files (no inline script may run); served under the token like everything else.
+    app = Flask(__name__, template_folder=str(Path(__file__).parent / "templates"),
+                static_folder=str(Path(__file__).parent / "static"), static_url_path=f"/{token}/static")
+    app.config.update(TOKEN=token, CSRF=csrf, MAX_CONTENT_LENGTH=256 * 1024)
 
     @app.before_request
     def guard():
@@ -136,12 +140,11 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
                 abort(403)
             if not hmac.compare_digest(request.form.get("csrf", "").encode(), csrf.encode()):
                 abort(403)
-        g.nonce = secrets.token_urlsafe(16)
 
     @app.after_request
     def headers(response):
         response.headers["Content-Security-Policy"] = (
-            f"default-src 'none'; script-src 'nonce-{getattr(g, 'nonce', 'none')}'; style-src 'unsafe-inline'; "
+            "default-src 'none'; script-src 'self'; style-src 'unsafe-inline'; "
             "img-src 'self'; connect-src 'self'; form-action 'self'; base-uri 'none'; frame-ancestors 'none'")
         response.headers["Referrer-Policy"] = "no-referrer"
         response.headers["X-Content-Type-Options"] = "nosniff"
@@ -173,17 +176,25 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
                 "maximum": report_maxima({pair.exercise: items}, [(pair.exercise, 0)]).get(pair.exercise, 0.0)}
 
     def page(template: str, **context):
-        return render_template(template, token=token, csrf=csrf, nonce=g.nonce, reviewer=session.reviewer,
+        return render_template(template, token=token, csrf=csrf, reviewer=session.reviewer,
                                anonymous=session.anonymous, **context)
 
     @app.get(f"/{token}/")
     def queue_page():
+        """The queue; ``?show=todo`` keeps the pairs not reviewed, ``?show=noreport`` those whose
+        student explained nothing of that exercise (a position stays the queue's own)."""
+        show = request.args.get("show", "all")
+        show = show if show in QUEUE_FILTERS else "all"
         queue = session.queue()
         with session.lock:
             reviews = session.book.reviews()
-        rows = [(p, reviews.get((p.student_id, p.exercise), {})) for p in queue]
-        done = sum(1 for _, r in rows if r.get("done"))
-        return page("queue.html", rows=rows, done=done)
+            handed_in = session.book.reports_handed_in()
+        rows = [(p, reviews.get((p.student_id, p.exercise), {}), _report_state(handed_in.get(p.student_id), p.exercise))
+                for p in queue]
+        done = sum(1 for _, r, _ in rows if r.get("done"))
+        shown = [row for row in rows if show == "all" or (show == "todo" and not row[1].get("done"))
+                 or (show == "noreport" and row[2] != "explained")]
+        return page("queue.html", rows=shown, total=len(rows), done=done, show=show, filters=QUEUE_FILTERS)
 
     @app.get(f"/{token}/review/<int:position>")
     def review_page(position: int):
@@ -214,9 +225,11 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
                 verdict = {**verdict, "checks": [{**c, "message": hide.text(c.get("message") or "")}
                                                  for c in verdict.get("checks", [])]}
         rendered = render_markdown(text, figure_url) if explanation else None
+        with session.lock:
+            bank = session.book.comment_bank().get(pair.exercise, [])
         return page("review.html", pair=pair, queue_length=len(queue), explanation=explanation, source=source,
                     rendered=rendered, figures=figures, verdict=verdict, rubric=rubric, review=state(pair),
-                    attachments=attachments, problems=problems)
+                    attachments=attachments, problems=problems, bank=bank)
 
     @app.get(f"/{token}/pair/<ref>/<exercise>/step/<any('next','previous'):step>")
     def step(ref: str, exercise: str, step: str):
@@ -258,7 +271,8 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         from the address (a student's relative link could put their words there)."""
         with session.lock:
             rubric = session.book.rubric()
-        return page("rubric.html", rubric=rubric, error=error), 400 if error else 200
+            bank = session.book.comment_bank()
+        return page("rubric.html", rubric=rubric, bank=bank, error=error), 400 if error else 200
 
     @app.post(f"/{token}/rubric/<exercise>")
     def rubric_item(exercise: str):
@@ -280,6 +294,24 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         if re.fullmatch(r"[0-9]{1,9}", back):
             return redirect(url_for("review_page", position=int(back)), code=303)
         return redirect(url_for("rubric_page"), code=303)
+
+    @app.post(f"/{token}/bank/<exercise>")
+    def bank_comment(exercise: str):
+        """Save, change (for every later insertion) or delete (empty text) a reusable comment."""
+        with session.lock:
+            known = session.book.rubric()
+        if exercise not in known:
+            abort(404)
+        try:
+            with session.lock:
+                session.book.set_bank_comment(exercise, request.form.get("key", "").strip(),
+                                              request.form.get("text", ""), session.reviewer)
+        except ValueError as exc:
+            return rubric_page(error=str(exc))
+        back = request.form.get("back", "")
+        if re.fullmatch(r"[0-9]{1,9}", back):
+            return redirect(url_for("review_page", position=int(back)), code=303)
+        return redirect(url_for("rubric_page") + f"#bank-{exercise}", code=303)
 
     @app.get(f"/{token}/figure/<ref>/<exercise>/<figure_id>.png")
     def figure(ref: str, exercise: str, figure_id: str):
@@ -303,6 +335,13 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
 
     app.jinja_env.filters["num"] = lambda v: "" if v is None else f"{round(float(v), 4):g}"
     return app
+
+
+def _report_state(handed_in: dict | None, exercise: str) -> str:
+    """``"explained"``, ``"not this exercise"`` (a report without its text) or ``"none"``."""
+    if not handed_in:
+        return "none"
+    return "explained" if exercise in handed_in["explained"] else "not this exercise"
 
 
 def _pdfs(files: dict[str, int]) -> list[tuple[str, int]]:
