@@ -7,7 +7,6 @@ from __future__ import annotations
 import io
 import json
 import re
-import shutil
 from pathlib import Path
 
 import pytest
@@ -15,31 +14,21 @@ from rich.console import Console
 
 from autograder.cli import main
 from autograder.engine.labfolders import forget_lab_folders
-from autograder.engine.registry import discover, hide_checks
+from autograder.engine.registry import discover
 from autograder.instructor.course import CourseConfig, CourseConfigError
 from autograder.instructor.newlab import course_entry
 from autograder.instructor.verify import (MIN_MISTAKES, Case, CaseReport, CheckReport, LabReport, parts_of,
                                           render, too_few_mistakes)
 
-COURSE = Path(__file__).parent / "data" / "course"
-REFERENCE = COURSE / "labs" / "imstats" / "reference"
+from test_course_labs import REFERENCE, course_labs_forgotten  # noqa: F401 - autouse: built-in labs only
+from test_course_labs import course_copy as copy_of_the_example_course
 
 pytestmark = pytest.mark.xdist_group("course_labs")
 
 
-@pytest.fixture(autouse=True)
-def course_labs_forgotten():
-    forget_lab_folders()
-    yield
-    forget_lab_folders()
-    hide_checks([])
-
-
 def course_copy(tmp_path: Path, **keys) -> Path:
     """The example course (lab13) copied, its course.json given ``keys`` too; returns the file."""
-    target = tmp_path / "course"
-    shutil.copytree(COURSE, target, ignore=shutil.ignore_patterns("__pycache__"))
-    course = target / "course.json"
+    course = copy_of_the_example_course(tmp_path) / "course.json"
     course.write_text(json.dumps({**json.loads(course.read_text()), **keys}))
     return course
 
