@@ -190,3 +190,23 @@ def test_opencv4_block_matcher_full_marks_under_4_and_no_false_cause_under_5(tmp
         assert not check.mistake and "ignored" not in check.message, (check.name, check.message)
         assert "cv2.minMaxLoc's location" in check.message
         assert f"this course grades with OpenCV {cv2.__version__}" in check.message
+
+
+@pytest.mark.parametrize("body, noted", [
+    ("t = np.linalg.solve(K, p)", False),                  # another library's solve: no note
+    ("t = scipy.linalg.solve(K, p)", False),
+    ("ok, t = cv2.solve(K, p)", True),
+    ("ok, t = cv.solve(K, p)", True),
+    ("r = cv2.gemm(a, b, 1, None, 0)", True),
+    ("order = np.argsort(x)", False),
+    ("order = cv2.sortIdx(x, cv2.SORT_EVERY_COLUMN)", True),
+])
+def test_a_note_on_opencv_versions_needs_opencvs_own_call(body, noted):
+    """A note about OpenCV 4 and 5 is true of the code only when the code calls OpenCV's function
+    (the blind set's decomposition, which calls np.linalg.solve, was told it calls cv2.solve)."""
+    import ast
+
+    from autograder.engine.version_differences import KNOWN
+
+    function = ast.parse(f"def f(K, p, a, b, x):\n    {body}\n").body[0]
+    assert any(bool(d.reads.found([function])) for d in KNOWN[1:]) == noted

@@ -19,7 +19,7 @@ from typing import Callable
 
 import numpy as np
 
-from .hints import Predicate, calls, code_of
+from .hints import Predicate, code_of
 
 LOCATION_INDICES = (2, 3)   # minMaxLoc returns (minVal, maxVal, minLoc, maxLoc)
 
@@ -72,6 +72,17 @@ class VersionDifference:
     under: dict
 
 
+def _opencv_call(name: str) -> Predicate:
+    """A call of OpenCV's ``name`` itself (``cv2.solve``, or ``cv.solve`` after ``import cv2 as
+    cv``): never another library's function of the same name (``np.linalg.solve``), about
+    which a note on OpenCV's versions would be false."""
+    def test(function) -> bool:
+        return any(isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == name
+                   and isinstance(node.func.value, ast.Name) and node.func.value.id in ("cv2", "cv")
+                   for node in ast.walk(function))
+    return Predicate(f"calls cv2.{name}", test)
+
+
 _ROW = np.array([3.0, 1.0, 2.0, 5.0])   # a 1-D array: a column to OpenCV 4, a row to OpenCV 5
 
 # Left out, measured too: cv2.flip, filters (blur, Sobel, filter2D), normalize, threshold and
@@ -86,14 +97,14 @@ KNOWN = (
         lambda: __import__("cv2").minMaxLoc(_ROW)[2], {"4": (0, 1), "5": (1, 0)}),
     VersionDifference(
         "cv2.sortIdx on a 1-D array",
-        calls("cv2.sortIdx"),
+        _opencv_call("sortIdx"),
         "your code calls cv2.sortIdx; a one-dimensional array is a column to OpenCV 4 and a row to "
         "OpenCV 5, where SORT_EVERY_COLUMN sorts nothing",
         lambda: __import__("cv2").sortIdx(_ROW, __import__("cv2").SORT_EVERY_COLUMN).ravel().tolist(),
         {"4": [1, 2, 0, 3], "5": [0, 0, 0, 0]}),
     VersionDifference(
         "cv2.solve / cv2.gemm with a 1-D vector",
-        calls("cv2.solve") | calls("cv2.gemm"),
+        _opencv_call("solve") | _opencv_call("gemm"),
         "your code calls cv2.solve or cv2.gemm; a one-dimensional vector is a column to OpenCV 4 and "
         "a row to OpenCV 5, which refuses it",
         lambda: _outcome(lambda: __import__("cv2").solve(np.eye(2), np.array([1.0, 2.0]))[1].ravel().tolist()),
