@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 from autograder.engine.registry import discover
 from autograder.instructor.batch.ingest import read_upload
-from autograder.loading.headings import ExerciseNames
+from autograder.loading.headings import ExerciseNames, plain_text_sections
 from autograder.loading.report import explanations_in_markdown, read_report
 from test_batch import write
 
@@ -218,3 +218,34 @@ def test_arbitrary_text_never_raises_and_names_only_known_exercises(text):
         # a known exercise, or an id the text spells out (the scaffold's markers and "## ID" headings)
         assert all(exercise in names.exercises or exercise in text.lower() for exercise in report.explanations)
         assert all(explanation.text.strip() for explanation in report.explanations.values())
+        assert {section.exercise for section in plain_text_sections(text, names, None, 1_000)} <= set(names.exercises)
+
+
+# ------------------------------------------------------------------ text extracted from a PDF
+PDF_TEXT = """\
+Lab 7 - 2D transformations                    Jane Doe
+1
+Exercise 1: Translation
+The picture moves by (100, 50); the corners left behind are black.
+2
+Lab 7 - 2D transformations                    Jane Doe
+2. Rotation
+It turns about the centre.
+Figure 2.
+Ex 3
+Scaling doubles the size.
+"""
+
+
+def test_plain_text_of_a_pdf_is_read_per_exercise_strictly():
+    """A short line naming an exercise is a heading; page numbers ("2"), running headers and a
+    sentence starting with a title are not."""
+    sections = plain_text_sections(PDF_TEXT, EVERY, None, 10_000)
+    assert [(s.exercise, " ".join(s.body.split())) for s in sections] == [
+        ("lab07.ex1", "The picture moves by (100, 50); the corners left behind are black. 2 "
+                      "Lab 7 - 2D transformations Jane Doe"),
+        ("lab07.ex2", "It turns about the centre. Figure 2."),
+        ("lab07.ex3", "Scaling doubles the size."),
+    ]
+    assert [LAB07.named(line, None, strict=True).exercise for line in ("2", "7.2", "2.", "2. Rotation", "Q2")] \
+        == [None, None, None, "lab07.ex2", "lab07.ex2"]

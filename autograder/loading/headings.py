@@ -44,6 +44,7 @@ from typing import Iterable, Iterator, Mapping
 
 MAX_HEADING_CHARS = 200          # a heading's text looked at; longer headings are cut
 BOLD_LEVEL = 7                   # a wholly bold line: below every ATX level
+MAX_PLAIN_HEADING_CHARS = 80     # a line of a PDF's text that may be a heading
 
 _EXERCISE_ID = re.compile(r"(lab\d\d)\.(ex|ext)(\d+)")
 # On a heading already lower case, whitespace collapsed to single spaces, and cut: the
@@ -127,16 +128,18 @@ class ExerciseNames:
         match = _LAB_IN_PATH.search(path.lower())
         return self.lab_keys.get(int(match.group(1))) if match else None
 
-    def named(self, heading: str, lab: str | None) -> "Named":
-        """What ``heading`` (its text, without ``#``) names, ``lab`` being the lab in force."""
+    def named(self, heading: str, lab: str | None, strict: bool = False) -> "Named":
+        """What ``heading`` (its text, without ``#``) names, ``lab`` being the lab in force.
+        ``strict``: a bare number names an exercise only with its title after it ("2. Rotation",
+        not "2": in text extracted from a PDF a line "2" is a page number)."""
         text = " ".join(heading[:MAX_HEADING_CHARS].translate(_EMPHASIS).lower().split())
         title_words = words(text)
         numbered = _NUMBERED.match(text)
         if numbered:
-            exercise, unsure = self._by_number(numbered, text, lab)
+            exercise, unsure = self._by_number(numbered, text, lab, strict)
             if exercise or unsure:
                 return Named(exercise=exercise, unsure=unsure and not exercise)
-        found = self._by_title(title_words, lab)
+        found = self._by_title(title_words, lab, exact=strict)
         if found:
             return Named(exercise=found)
         if title_words in self._lab_titles:
@@ -146,7 +149,7 @@ class ExerciseNames:
             return Named(lab=self.lab_keys[int(only_lab.group("lab"))])
         return Named()
 
-    def _by_number(self, match: re.Match, text: str, lab: str | None) -> tuple[str | None, bool]:
+    def _by_number(self, match: re.Match, text: str, lab: str | None, strict: bool = False) -> tuple[str | None, bool]:
         """(exercise id or None, whether it looked like a number with no lab to go by)."""
         kind = "ext" if (match.group("kind") or "").startswith("ext") else "ex"
         n, m = int(match.group("n")), match.group("m")
@@ -158,7 +161,8 @@ class ExerciseNames:
             lab, n = self.lab_keys[n], int(m)          # "7.2": lab 7, exercise 2
         rest = text[match.end():]
         if not match.group("kind"):   # a bare number: "2.", "Lab 7 - 2)", "2 Rotation"; not "Lab 7: 2D ..."
-            if m is None and rest[:1] not in ("", *_BARE_NUMBER_ENDS) and not self._title_follows(rest, lab, n):
+            if (strict and not match.group("lab") or m is None and rest[:1] not in ("", *_BARE_NUMBER_ENDS)) \
+                    and not self._title_follows(rest.lstrip(_BARE_NUMBER_ENDS), lab, n):
                 return None, False
         if lab is None:
             lab = next(iter(self._titles)) if len(self._titles) == 1 else None
@@ -171,15 +175,15 @@ class ExerciseNames:
                    for lab_key in ([lab] if lab else self._titles)
                    for title, exercise in self._titles.get(lab_key, ()))
 
-    def _by_title(self, heading_words: str, lab: str | None) -> str | None:
-        """The exercise whose title the heading is, or starts with (the lab in force's; else
-        the only lab's whose title it is)."""
+    def _by_title(self, heading_words: str, lab: str | None, exact: bool = False) -> str | None:
+        """The exercise whose title the heading is, or starts with unless ``exact`` (the lab in
+        force's; else the only lab's whose title it is)."""
         if not heading_words:
             return None
         found = set()
         for lab_key in [lab] if lab else self._titles:
             # the longest title the heading starts with: "triangulation revisited" before "triangulation"
-            found.update(next(([e] for title, e in self._titles.get(lab_key, ()) if _starts_with(heading_words, title)), []))
+            found.update(next(([e] for title, e in self._titles.get(lab_key, ()) if heading_words == title or not exact and _starts_with(heading_words, title)), []))
         return found.pop() if len(found) == 1 else None
 
 
@@ -259,17 +263,45 @@ def student_sections(text: str, names: ExerciseNames, path_lab: str | None, most
     read (the rest of the text is read as part of the last section). A heading that names
     an exercise by number with no lab to go by is appended to ``unsure`` (its text).
     """
+    return _sections(text, names, path_lab, headings(text, most), unsure)
+
+
+def plain_text_sections(text: str, names: ExerciseNames, path_lab: str | None, most: int,
+                        unsure: list | None = None) -> list[Section]:
+    """As :func:`student_sections`, for plain text (a PDF's, extracted): a line of at most
+    :data:`MAX_PLAIN_HEADING_CHARS` characters that names an exercise or a lab is a heading,
+    strictly (a bare number needs the title after it, a title is the whole line: "Scaling
+    doubles the size" is a sentence); a section runs to the next one, running headers
+    ("Lab 7 - report" atop each page) and all."""
+    return _sections(text, names, path_lab, _short_lines(text, most), unsure, strict=True)
+
+
+def _short_lines(text: str, most: int) -> Iterator[Heading]:
+    position = 0
+    for number, line in enumerate(text.split("\n")):
+        start, position = position, position + len(line) + 1
+        if number >= most:
+            return
+        if 0 < len(line.strip()) <= MAX_PLAIN_HEADING_CHARS:
+            yield Heading(start, min(position, len(text)), 2, line.strip(), False)
+
+
+def _sections(text, names, path_lab, candidates, unsure, strict=False) -> list[Section]:
     sections: list[Section] = []
     lab, current = path_lab, None
 
     def close(at: int) -> None:
         sections.append(Section(current.exercise, current.start, text[current.body:at]))
 
-    for heading in headings(text, most):
-        named = names.named(heading.text, lab)
+    # One forward pass: a section closes at the next heading of its level or above, or naming another exercise.
+    for heading in candidates:
+        named = names.named(heading.text, lab, strict)
         if named.unsure and unsure is not None:
             unsure.append(heading.text[:80])
         if not (heading.strong or named.exercise or named.lab):
+            continue
+        if strict and not named.exercise:   # a PDF's running header ("Lab 7 - report") on every page
+            lab = named.lab or lab
             continue
         if current and (heading.level <= current.level or (named.exercise or current.exercise) != current.exercise):
             close(heading.start)
