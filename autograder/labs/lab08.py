@@ -855,6 +855,15 @@ REFIT_HINT = Hint(
             "fit to the very mask returned (all its inliers, not the best sample's four)")
 
 
+# The message's own advice: true of code that does not refit; code that does (cv2.findHomography
+# refits on the inliers it returns) is told where else the H can come from.
+REFIT_ADVICE = Hint(
+    "after RANSAC, refit H on all the inliers (the best 4-point sample is noisy)",
+    asks=REFIT_HINT.asks,
+    instead="your code already {found}, so the H returned is not the one fitted to the mask returned "
+            "(another H, or the two computed from different points?)")
+
+
 @ex4.check("homography_ransac refits H on all its inliers", points=2)
 def ransac_refit(t):
     distances = []
@@ -872,8 +881,7 @@ def ransac_refit(t):
     t.fail(f"homography_ransac's H is not the fit to its own inliers: it sends them on average "
            f"{digits_apart(mean, RANSAC_REFIT_TOLERANCE)} times the noise level (the refit's RMS residual) away from where a "
            f"least-squares refit on the same inliers sends them (at most {RANSAC_REFIT_TOLERANCE} "
-           "expected, over 7 problems): after RANSAC, refit H on all the inliers (the best "
-           "4-point sample is noisy)",
+           f"expected, over 7 problems): {REFIT_ADVICE.said(t)}",
            hint=REFIT_HINT.said(t))
 
 
@@ -1169,6 +1177,16 @@ def canvas_not_shifted_on_probe(t: Trial, images: int) -> bool:
     return not far_sides and judge.error(np.any(judge.inside, axis=0)) <= PANORAMA_TOLERANCE
 
 
+# Content cut off, no canvas mistake confirmed: code that already sizes the canvas from warped
+# corners is told the other way content lands outside it (homographies that send it elsewhere).
+CANVAS_ADVICE = Hint(
+    "the canvas must be the bounding box of all the warped image corners, shifted by a translation so "
+    "that negative coordinates fit",
+    asks=calls("cv2.perspectiveTransform") | calls("transform_points"),
+    instead="your code {found} to size the canvas, so the images are warped with homographies other than "
+            "the ones whose corners it measured (check which H, and its direction, each warp uses)")
+
+
 def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
     fail_if_left_out(t, judge, what)
     sticking = sticking_out(judge, names)
@@ -1189,9 +1207,8 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
                    "translation T = [[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]] (applied to every "
                    "homography) and size the canvas to the bounding box of all warped corners",
                    mistake=NOT_SHIFTED)
-        t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: the canvas must be "
-               "the bounding box of all the warped image corners, shifted by a translation so that "
-               "negative coordinates fit")
+        t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: "
+               f"{CANVAS_ADVICE.said(t)}")
     covered = np.any(judge.inside, axis=0)
     ys, xs = np.nonzero(covered)
     box = (xs.max() - xs.min() + 1) * (ys.max() - ys.min() + 1)

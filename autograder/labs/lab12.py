@@ -603,8 +603,18 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                mistake="H1 and H2 are swapped")
     t.fail(f"{what}: true correspondences end up {np.nanmedian(dy):.3g} px apart vertically "
            f"(up to {worst:.3g} px); after rectification they must share a row.",
-           hint="X2 = R X1 + T takes camera-1 coordinates to camera 2's; both cameras need the "
-                "same new rotation and the same new K")
+           hint=RECTIFY_HINT.said(t))
+
+
+# Code that already gives both cameras one new rotation and one K is told the other half of the
+# recipe: the baseline's direction comes from the camera centres (C2 = -R^T T), not T itself.
+RECTIFY_HINT = Hint(
+    "the recipe, step by step: X2 = R X1 + T takes camera-1 coordinates to camera 2's, so camera 2's "
+    "centre is -R^T T (not T); the new x axis follows the baseline between the two centres; both cameras "
+    "get that one new rotation and one new K",
+    asks=calls("cv2.stereoRectify"),
+    instead="your code {found}; then check what it is given: R and T take camera-1 coordinates to camera "
+            "2's (X2 = R X1 + T), so the second camera's centre is -R^T T, not T")
 
 
 @ex3.check("rectify: true correspondences end up on the same row", points=4)
@@ -1074,8 +1084,11 @@ def dp_weak_texture(t):
     name_oversmoothing(t, what, got, scene, reference["bad"] + MARGIN)
     diagnose_disparity(t, what, got, scene, reference["bad"] + MARGIN)
     if bad < bm["bad"] - MARGIN:
+        # No cause is known here: the hint says where the difference can come from, not what to change.
         return partial(0.5, f"{what}: {summary}: better than block matching, but not yet as "
-                            "good as the reference.", hint="try another default smoothness")
+                            "good as the reference.",
+                       hint="compare each step with the lab sheet's: the matching cost, the accumulation "
+                            "along the row with its smoothness penalty, and the backtracking from the last column")
     t.fail(f"{what}: {summary}: no better than block matching.")
 
 
