@@ -26,7 +26,7 @@ import atexit
 import itertools
 import threading
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -571,10 +571,8 @@ def _confirmed(trial, model, function, inputs, failing, candidates, clock) -> Na
     # both are told, the simplest first.
     other = next((m for m in ordered[1:] if m.operator != best.operator), None)
     if other is not None:
-        said = other.sentence.split(", ", 1)[1] if other.sentence.split(", ", 1)[0] == best.sentence.split(", ", 1)[0] \
-            else other.sentence
-        best = Mutant(best.operator, best.function, best.where, best.line, best.edits,
-                      f"{best.sentence} (equivalently, {said})")
+        said = other.sentence[len(other.place):] if other.place and other.place == best.place else other.sentence
+        best = replace(best, sentence=f"{best.sentence} (equivalently, {said})")
     return Naming(best, len(inputs), len(chosen))
 
 
@@ -629,9 +627,12 @@ def named_by_error_model(verdict, trial):
     """A failed check's verdict with the error model's name added (see the module docstring):
     appended to the message's first line when the verdict names nothing; in place of the name
     it gives when a confirmed mutant contradicts it; unchanged otherwise."""
-    from dataclasses import replace
+    from ..stubs import functions_called
 
-    called = {call[0] for call in trial.calls}
+    # The functions the check calls (by its source, and by the calls it made: a value shared
+    # between checks is called only once, in the first check that asks for it).
+    called = {call[0] for call in trial.calls} | set(functions_called(trial.check)) if hasattr(trial, "check") \
+        else {call[0] for call in trial.calls}
     hand_named = trial.sandbox.shared.setdefault("error model: named by hand", set())
     if not verdict.mistake and called and called <= hand_named:
         return verdict   # a hand-written diagnosis of these functions stands in this grading: it has precedence

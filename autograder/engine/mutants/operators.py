@@ -98,6 +98,7 @@ class Mutant:
     line: int
     edits: tuple
     sentence: str
+    place: str = ""   # the sentence's start that says where ("in `rotate` (in `rotation_matrix`, ...), ")
 
     @property
     def key(self) -> str:
@@ -111,19 +112,16 @@ class Mutant:
     def combined(self, other: "Mutant") -> "Mutant":
         """This mutant and ``other`` at once (two mistakes); two names used in each other's place
         are told as exchanged."""
-        crossed = [re.search(r"(.+?) is used where (.+) belongs$", m.sentence.split(", ", 1)[-1])
-                   for m in (self, other)]
-        if self.operator == other.operator == "other_name" and all(crossed) \
+        crossed = [re.fullmatch(r"(.+?) is used where (.+) belongs", m.sentence[len(m.place):]) for m in (self, other)]
+        if self.operator == other.operator == "other_name" and all(crossed) and self.place == other.place \
                 and crossed[0].groups() == crossed[1].groups()[::-1]:
             first, second = crossed[0].groups()
             return Mutant("swap_names", self.function, self.where, self.line, self.edits + other.edits,
-                          f"{self.sentence.split(', ', 1)[0]}, {second} and {first} are exchanged (each is used "
-                          "where the other belongs)")
-        sentence = f"{self.sentence}; and {other.sentence.split(', ', 1)[-1]}" \
-            if other.sentence.startswith(self.sentence.split(", ", 1)[0] + ",") else \
-            f"{self.sentence}; and {other.sentence}"
+                          f"{self.place}{second} and {first} are exchanged (each is used where the other belongs)",
+                          self.place)
+        said = other.sentence[len(other.place):] if other.place and other.place == self.place else other.sentence
         return Mutant(f"{self.operator}+{other.operator}", self.function, self.where, self.line,
-                      self.edits + other.edits, sentence)
+                      self.edits + other.edits, f"{self.sentence}; and {said}", self.place)
 
 
 # ------------------------------------------------------------------ rebuilding a mutant
@@ -597,8 +595,9 @@ def mutants_of(source: str, api) -> dict[str, list[Mutant]]:
         for where in reached:
             context = _context(function, where, defs, api)
             for operator, ordinal, payload, line, phrase in sites[where]:
+                place = f"in `{function}`{context}, "
                 mutants.append(Mutant(operator, function, where, line, ((where, ordinal, operator, payload),),
-                                      f"in `{function}`{context}, {phrase}"))
+                                      place + phrase, place))
         out[function] = mutants
     return out
 
