@@ -249,3 +249,30 @@ def test_plain_text_of_a_pdf_is_read_per_exercise_strictly():
     ]
     assert [LAB07.named(line, None, strict=True).exercise for line in ("2", "7.2", "2.", "2. Rotation", "Q2")] \
         == [None, None, None, "lab07.ex2", "lab07.ex2"]
+
+
+# ------------------------------------------------------------------ linear in what is handed in
+@pytest.mark.parametrize("shape", ["many headings", "deep headings under one", "long lines", "spaces in headings",
+                                   "many cells"])
+def test_reading_own_headings_is_linear(shape):
+    """Twice the text, at most RATIO times the CPU time (tests/test_linear_reading.py's measure),
+    for the inputs that would make a backtracking or quadratic reader slow."""
+    from test_linear_reading import assert_linear
+
+    def make(n):
+        # (a file's first MAX_SECTIONS headings are read: below that bound, the text under them grows)
+        if shape == "many headings":
+            return "".join(f"### Exercise {i % 7}: Rotation\n" + "text " * (n // 50) + "\n" for i in range(900))
+        if shape == "deep headings under one":
+            return "# Exercise 2\n" + ("###### 2.1 more\n" + "x " * (n // 50) + "\n") * 900
+        if shape == "long lines":
+            return "## Exercise 2\n" + ("Rotation " * 200 + "\n") * (n // 20)
+        if shape == "spaces in headings":
+            return ("# Lab 7" + " " * 500 + "Ex" + " " * 500 + ".\n") * (n // 20)
+        cells = [{"cell_type": "markdown", "source": f"## Ex {i % 7}\nx"} for i in range(n // 4)]  # < MAX_REPORT_CELLS
+        return json.dumps({"cells": cells})
+
+    def run(text):
+        read_report({"lab07_report.md" if not text.startswith("{") else "lab07.ipynb": text.encode()}, LAB07)
+
+    assert_linear(run, make, 4_000)
