@@ -308,6 +308,11 @@ def grader_sentences(tmp_path) -> list[str]:
         "zqh.md": b"x" * (reading.MAX_REPORT_BYTES + 1),
     }
     sentences += read_report(files).problems
+    from autograder.engine.registry import discover
+    from autograder.loading.headings import ExerciseNames
+
+    every = ExerciseNames.of_labs(discover().values())   # a number with no lab to go by
+    sentences += read_report({"zqi.md": b"## Exercise 2: Eve's words\ntext\n"}, every).problems
     many = ReportFiles()
     for number in range(30):
         many.refuse(f"zqn{number}.md", "it is a symbolic link")
@@ -328,10 +333,11 @@ def test_every_sentence_the_grader_writes_about_a_report_is_rewritten_from_a_tem
                    "is longer than", "a marker names something", "is explained twice",
                    "has no '<!-- end explanation -->'", "is not a readable notebook", "has no list of cells",
                    "its text is not text", "is tagged for 2 exercises", "more than 300 exercises explained",
-                   "and 10 more files were not read", "larger than"):
+                   "and 10 more files were not read", "larger than", "names an exercise by number but not its lab"):
         assert reason in kinds, reason
     for sentence, text in rewritten.items():
         assert "zq" not in text, (sentence, text)   # every file handed in is named zq...
+        assert "Eve's words" not in text, (sentence, text)   # nor a heading the student wrote
 
 
 def test_a_sentence_no_template_knows_is_not_shown_and_a_crafted_name_tells_nothing():

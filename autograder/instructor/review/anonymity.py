@@ -81,6 +81,10 @@ _PROBLEMS = [(re.compile(pattern, re.DOTALL), text) for pattern, text in (
     (rf"and (?P<n>{_NUMBER}) more problems like these", "and {n} more problems like these"),
     (rf"and (?P<n>{_NUMBER}) more files were not read", "and {n} more files were not read"),
     (r"the report could not be read \(\w+\)", "the report could not be read"),
+    (r"(?P<file>.+): the heading .* names an exercise by number but not its lab; name the lab in the file's name "
+     r"\(lab07_report\.md\) or a heading \(# Lab 7\)", "{file}: a heading names an exercise by number but not its "
+                                                        "lab; name the lab in the file's name (lab07_report.md) or a "
+                                                        "heading (# Lab 7)"),
 )]
 # Why a file was refused (batch/tree.py, sandbox/files.py): a reason naming another of the student's
 # files ("the archive holds X twice") is said without it.
