@@ -197,7 +197,8 @@ def test_a_contradicted_hand_written_name_is_replaced_and_an_agreeing_one_kept(m
     replaced = naming.named_by_error_model(wrong, trial({}))
     assert replaced.mistake == "mutant:degrees"
     assert "c + R c" not in replaced.message.split("\n")[0] and replaced.message.endswith("\nmore")
-    assert "The error model: it looks like in `rotation_matrix`" in replaced.message
+    assert "The error model (in place of a name it contradicts): it looks like in `rotation_matrix`" \
+        in replaced.message
     plain = Verdict(0.0, "rotation_matrix(30) is wrong")
     assert naming.named_by_error_model(plain, trial({})).mistake == "mutant:degrees"
 
@@ -208,6 +209,24 @@ def test_a_contradicted_hand_written_name_is_replaced_and_an_agreeing_one_kept(m
     assert naming.named_by_error_model(agreeing, trial(shared)) is agreeing
     asked.clear()
     assert naming.named_by_error_model(plain, trial(shared)) is plain and not asked
+
+
+def test_an_exercise_named_by_hand_takes_back_the_error_models_names_of_that_function():
+    from autograder.engine.results import FAILED, CheckResult
+
+    lab = LABS["lab07"]
+    first, second = lab.exercises["ex3"].checks[:2]     # both call scaling_matrix
+    by_hand = CheckResult("a", 0.0, 2.0, FAILED, "scaling_matrix(2, 3) is wrong: it looks like sy is ignored.",
+                          mistake="sy is ignored")
+    by_model = CheckResult("b", 0.0, 2.0, FAILED, "scaling_matrix(1, 5) is wrong " + naming.APPENDED
+                           + "in `scaling_matrix`, `sx` is used where `sy` belongs (other name).\ndetails",
+                           mistake="mutant:other_name")
+    naming.defer_to_hand_written([(second, by_model), (first, by_hand)])
+    assert by_model.message == "scaling_matrix(1, 5) is wrong\ndetails" and by_model.mistake == ""
+    assert by_hand.mistake == "sy is ignored"
+    alone = CheckResult("c", 0.0, 2.0, FAILED, "wrong " + naming.APPENDED + "in `x`, y (sign).", mistake="mutant:sign")
+    naming.defer_to_hand_written([(second, alone)])
+    assert alone.mistake == "mutant:sign"                # nothing named by hand: it stays
 
 
 # ------------------------------------------------------------------ in a grading

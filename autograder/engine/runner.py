@@ -385,6 +385,7 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
             out.checks.append(run_check(sandbox, check, pictures, modified, rules, painter, inputs, reading))
         if on_check:
             on_check(exercise, out.checks[-1])
+    _defer_to_hand_written(checks, out.checks)
     graded = [c for c in out.checks if c.max_score > 0]
     if graded and all(c.status == NOT_IMPLEMENTED for c in graded):
         out.message = "not implemented yet"
@@ -454,6 +455,14 @@ def _named_by_error_model(verdict: Verdict, check: Check, trial: Trial) -> Verdi
     except Exception as exc:  # noqa: BLE001 - naming is a bonus: the verdict stands without it
         _log_grader_error(check, exc)
         return verdict
+
+
+def _defer_to_hand_written(checks, results) -> None:
+    """The error model's names on checks of a function that another check of the exercise names by
+    hand are taken back (:func:`autograder.engine.mutants.naming.defer_to_hand_written`)."""
+    from .mutants.naming import defer_to_hand_written
+
+    defer_to_hand_written(list(zip(checks, results)))
 
 
 def _stubs(exercise: Exercise, submission) -> frozenset[str]:

@@ -646,10 +646,35 @@ def named_by_error_model(verdict, trial):
         hand_named.update(called)
         return verdict
     first, newline, rest = message.partition("\n")
+    said = naming.mutant.operator.replace("_", " ")
     if verdict.mistake:  # a hand-written name the mutant contradicts: its sentence goes
         first = _without_name(first)
-    sentence = f"The error model: it looks like {naming.sentence} ({naming.mutant.operator.replace('_', ' ')})."
+        sentence = f"{REPLACING}{naming.sentence} ({said})."
+    else:
+        sentence = f"{APPENDED}{naming.sentence} ({said})."
     return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=naming.mistake)
+
+
+APPENDED = "The error model: it looks like "
+REPLACING = "The error model (in place of a name it contradicts): it looks like "
+
+
+def defer_to_hand_written(graded) -> None:
+    """Hand-written diagnoses keep precedence within an exercise: when a failed check names a
+    function's mistake by hand, the error model's names appended to other checks of that function
+    are taken back (one mistake, one name; whatever the checks' order). ``graded``: the exercise's
+    ``(Check, CheckResult)`` pairs, changed in place. Names that replaced a contradicted one stay."""
+    from ..stubs import functions_called
+
+    hand = set()
+    for check, result in graded:
+        if result.mistake and not result.mistake.startswith("mutant:") and result.score < result.max_score:
+            hand |= functions_called(check)
+    for check, result in graded:
+        if result.mistake.startswith("mutant:") and APPENDED in result.message and functions_called(check) & hand:
+            first, newline, rest = result.message.partition("\n")
+            result.message = first.split(" " + APPENDED, 1)[0] + newline + rest
+            result.mistake = ""
 
 
 def _without_name(line: str) -> str:
