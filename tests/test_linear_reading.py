@@ -34,7 +34,7 @@ from autograder.loading.report import (MAX_EXPLANATION_CHARS, MAX_EXPLANATIONS, 
                                        MAX_REPORT_CELLS, MAX_SECTIONS, explanations_in_markdown, read_report)
 
 PACKAGE = Path(__file__).resolve().parents[1] / "autograder"
-RATIO = 2.5     # for twice the input: linear is 2, quadratic 4
+RATIO = 2.8     # for twice the input: linear is 2, quadratic 4 (a shared machine's noise, measured: up to x2.8)
 
 
 # ------------------------------------------------------------------ measuring
@@ -54,11 +54,11 @@ def cpu_seconds(run, value) -> float:
 def assert_linear(run, make, n: int, repeat: int = 3) -> None:
     """``run(make(2n))`` takes at most :data:`RATIO` times as long as ``run(make(n))``: the least
     of ``repeat`` runs of each, taken in turn (so that both sizes share the machine's moods);
-    measured a second time before failing, since a shared machine's noise rarely repeats,
+    measured up to three times before failing, since a shared machine's noise rarely repeats,
     and a quadratic reader's x4 always does."""
     small, large = make(n), make(2 * n)
     ratios = []
-    for _ in range(2):
+    for _ in range(3):
         base = double = float("inf")
         for _ in range(repeat):
             base = min(base, cpu_seconds(run, small))
