@@ -181,7 +181,7 @@ def test_degrees_used_as_radians_is_named():
     assert "`angle_deg` is used in degrees where radians are needed" in named.sentence
 
 
-def test_a_contradicted_hand_written_name_is_replaced_and_an_agreeing_one_kept(monkeypatch):
+def test_a_hand_written_name_keeps_precedence_in_the_grading(monkeypatch):
     from autograder.engine.checks import Verdict
 
     lab = LABS["lab07"]
@@ -192,23 +192,16 @@ def test_a_contradicted_hand_written_name_is_replaced_and_an_agreeing_one_kept(m
     def trial(shared):
         return SimpleNamespace(calls=[("rotation_matrix", (30,), {}, None)], sandbox=SimpleNamespace(shared=shared))
 
-    wrong = Verdict(0.0, "rotation_matrix(30) is wrong: it looks like the translation column is c + R c.\nmore",
-                    mistake="the translation column is c + R c")
-    replaced = naming.named_by_error_model(wrong, trial({}))
-    assert replaced.mistake == "mutant:degrees"
-    assert "c + R c" not in replaced.message.split("\n")[0] and replaced.message.endswith("\nmore")
-    assert "The error model (in place of a name it contradicts): it looks like in `rotation_matrix`" \
-        in replaced.message
-    plain = Verdict(0.0, "rotation_matrix(30) is wrong")
-    assert naming.named_by_error_model(plain, trial({})).mistake == "mutant:degrees"
-
-    # A hand-written name that agrees stands, and has precedence over the error model for the same
-    # function in the rest of the grading.
+    plain = Verdict(0.0, "rotation_matrix(30) is wrong\nmore")
+    named = naming.named_by_error_model(plain, trial({}))
+    assert named.mistake == "mutant:degrees" and named.message.endswith("\nmore")
+    assert named.message.startswith("rotation_matrix(30) is wrong The error model: it looks like in "
+                                    "`rotation_matrix`, `angle_deg` is used in degrees where radians are needed")
     shared = {}
-    agreeing = Verdict(0.0, "wrong: it looks like the angle is used in degrees", mistake="angle in degrees")
-    assert naming.named_by_error_model(agreeing, trial(shared)) is agreeing
+    by_hand = Verdict(0.0, "wrong: it looks like the translation column is c + R c", mistake="c + R c")
     asked.clear()
-    assert naming.named_by_error_model(plain, trial(shared)) is plain and not asked
+    assert naming.named_by_error_model(by_hand, trial(shared)) is by_hand and not asked
+    assert naming.named_by_error_model(plain, trial(shared)) is plain and not asked   # later checks too
 
 
 def test_an_exercise_named_by_hand_takes_back_the_error_models_names_of_that_function():

@@ -33,7 +33,7 @@ import numpy as np
 
 from ...loading.parsing import parse
 from .helper import ERROR, Helper, HelperFailed
-from .operators import OPERATORS, Mutant, mutants_of
+from .operators import Mutant, mutants_of
 
 CHECK_SECONDS = 3.0        # the error model's time for one failed check
 GRADING_SECONDS = 30.0     # and for one grading (all its failed checks)
@@ -613,20 +613,9 @@ def _student_answer(trial, call):
     return outcome.value if outcome.ok else _FAILED
 
 
-def contradicts(named: str, naming: Naming) -> bool:
-    """Whether a hand-written name (its mistake label and sentence) says another thing than the
-    confirmed mutant: it shares none of the operator's words."""
-    text = named.lower()
-    words = set()
-    for operator in naming.mutant.operator.split("+"):
-        words.update(OPERATORS[operator])
-    return not any(word in text for word in words)
-
-
 def named_by_error_model(verdict, trial):
-    """A failed check's verdict with the error model's name added (see the module docstring):
-    appended to the message's first line when the verdict names nothing; in place of the name
-    it gives when a confirmed mutant contradicts it; unchanged otherwise."""
+    """A failed check's verdict with the error model's name added (see the module docstring),
+    appended to the message's first line, when the verdict names nothing; unchanged otherwise."""
     from ..stubs import functions_called
 
     # The functions the check calls (by its source, and by the calls it made: a value shared
@@ -634,52 +623,41 @@ def named_by_error_model(verdict, trial):
     called = {call[0] for call in trial.calls} | set(functions_called(trial.check)) if hasattr(trial, "check") \
         else {call[0] for call in trial.calls}
     hand_named = trial.sandbox.shared.setdefault("error model: named by hand", set())
-    if not verdict.mistake and called and called <= hand_named:
-        return verdict   # a hand-written diagnosis of these functions stands in this grading: it has precedence
-    naming = name_failure(trial)
-    if naming is None:
-        if verdict.mistake:
-            hand_named.update(called)
-        return verdict
-    message = str(verdict.message)
-    if verdict.mistake and not contradicts(f"{verdict.mistake} {message}", naming):
+    if verdict.mistake or "looks like" in str(verdict.message).lower():
+        # A hand-written name keeps precedence (here and in the grading's later checks of these
+        # functions). Replacing one a mutant "contradicts" was tried with a test on the operator's
+        # words: too crude, it replaced right names ("c + R c instead of c - R c") with clumsier ones.
         hand_named.update(called)
         return verdict
+    if called and called <= hand_named:
+        return verdict
+    naming = name_failure(trial)
+    if naming is None:
+        return verdict
+    message = str(verdict.message)
     first, newline, rest = message.partition("\n")
-    said = naming.mutant.operator.replace("_", " ")
-    if verdict.mistake:  # a hand-written name the mutant contradicts: its sentence goes
-        first = _without_name(first)
-        sentence = f"{REPLACING}{naming.sentence} ({said})."
-    else:
-        sentence = f"{APPENDED}{naming.sentence} ({said})."
+    sentence = f"{APPENDED}{naming.sentence} ({naming.mutant.operator.replace('_', ' ')})."
     return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=naming.mistake)
 
 
 APPENDED = "The error model: it looks like "
-REPLACING = "The error model (in place of a name it contradicts): it looks like "
 
 
 def defer_to_hand_written(graded) -> None:
     """Hand-written diagnoses keep precedence within an exercise: when a failed check names a
     function's mistake by hand, the error model's names appended to other checks of that function
     are taken back (one mistake, one name; whatever the checks' order). ``graded``: the exercise's
-    ``(Check, CheckResult)`` pairs, changed in place. Names that replaced a contradicted one stay."""
+    ``(Check, CheckResult)`` pairs, changed in place."""
     from ..stubs import functions_called
 
     hand = set()
     for check, result in graded:
-        if result.mistake and not result.mistake.startswith("mutant:") and result.score < result.max_score:
+        named = (result.mistake and not result.mistake.startswith("mutant:")) or (
+            "looks like" in result.message.lower() and APPENDED not in result.message)
+        if named and result.score < result.max_score:
             hand |= functions_called(check)
     for check, result in graded:
         if result.mistake.startswith("mutant:") and APPENDED in result.message and functions_called(check) & hand:
             first, newline, rest = result.message.partition("\n")
             result.message = first.split(" " + APPENDED, 1)[0] + newline + rest
             result.mistake = ""
-
-
-def _without_name(line: str) -> str:
-    """A message line without its "it looks like ..." / "Reading your code: ..." clause."""
-    import re
-
-    return re.split(r"(?:[:;,.]\s*|\s)(?:it looks like|looks like|Reading your code:)", line, maxsplit=1,
-                    flags=re.I)[0]
