@@ -204,7 +204,7 @@ def test_a_hand_written_name_keeps_precedence_in_the_grading(monkeypatch):
     assert naming.named_by_error_model(plain, trial(shared)) is plain and not asked   # later checks too
 
 
-def test_an_exercise_named_by_hand_takes_back_the_error_models_names_of_that_function():
+def test_an_exercise_named_by_hand_takes_back_the_error_models_names():
     from autograder.engine.results import FAILED, CheckResult
 
     lab = LABS["lab07"]
@@ -218,7 +218,8 @@ def test_an_exercise_named_by_hand_takes_back_the_error_models_names_of_that_fun
     assert by_model.message == "scaling_matrix(1, 5) is wrong\ndetails" and by_model.mistake == ""
     assert by_hand.mistake == "sy is ignored"
     alone = CheckResult("c", 0.0, 2.0, FAILED, "wrong " + naming.APPENDED + "in `x`, y (sign).", mistake="mutant:sign")
-    naming.defer_to_hand_written([(second, alone)])
+    described = CheckResult("d", 0.0, 2.0, FAILED, "scaling_matrix(1, 5) is wrong in its second row")
+    naming.defer_to_hand_written([(second, alone), (first, described)])
     assert alone.mistake == "mutant:sign"                # nothing named by hand: it stays
 
 

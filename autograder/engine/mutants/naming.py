@@ -644,20 +644,16 @@ APPENDED = "The error model: it looks like "
 
 
 def defer_to_hand_written(graded) -> None:
-    """Hand-written diagnoses keep precedence within an exercise: when a failed check names a
-    function's mistake by hand, the error model's names appended to other checks of that function
-    are taken back (one mistake, one name; whatever the checks' order). ``graded``: the exercise's
-    ``(Check, CheckResult)`` pairs, changed in place."""
-    from ..stubs import functions_called
-
-    hand = set()
+    """Hand-written diagnoses keep precedence within an exercise: when a failed check names the
+    mistake by hand, the error model's names appended to its other checks are taken back (one
+    mistake, one name, whatever the checks' order: ``rotate`` and ``rotation_matrix`` share the
+    mistake of the one it calls). ``graded``: the exercise's ``(Check, CheckResult)`` pairs,
+    changed in place."""
+    hand = any(((result.mistake and not result.mistake.startswith("mutant:"))
+                or ("looks like" in result.message.lower() and APPENDED not in result.message))
+               and result.score < result.max_score for _, result in graded)
     for check, result in graded:
-        named = (result.mistake and not result.mistake.startswith("mutant:")) or (
-            "looks like" in result.message.lower() and APPENDED not in result.message)
-        if named and result.score < result.max_score:
-            hand |= functions_called(check)
-    for check, result in graded:
-        if result.mistake.startswith("mutant:") and APPENDED in result.message and functions_called(check) & hand:
+        if hand and result.mistake.startswith("mutant:") and APPENDED in result.message:
             first, newline, rest = result.message.partition("\n")
             result.message = first.split(" " + APPENDED, 1)[0] + newline + rest
             result.mistake = ""
