@@ -78,6 +78,30 @@ def test_reading_minmaxloc_location_is_told_from_the_code(body, reads):
     assert reads_location(f"def f(costs, a=None, b=None):\n    {body}\n") is reads
 
 
+def test_undistortion_criteria_are_told_from_the_code():
+    def named(body):
+        [function] = ast.parse(f"def f(p, K, d, c):\n    {body}\n").body
+        return [d.name for d in version_differences.differences_in([function])]
+
+    assert named("return cv2.undistortPoints(p, K, d, P=K, criteria=c)") == ["cv2.undistortPoints' termination criteria"]
+    assert named("return cv2.undistortPointsIter(p, K, d, None, K, c)") == ["cv2.undistortPoints' termination criteria"]
+    assert named("return cv2.undistortPoints(p, K, d, P=K)") == []
+
+
+def test_the_fixtures_undistortion_is_the_same_under_both_majors():
+    """fixtures.lab10 undistorts with criteria through the call each major has: the points are
+    those of the plain call refined further (the plain call's 5 iterations: within 0.1 px here)."""
+    from fixtures.lab10 import undistort_points_iterated
+
+    K = np.array([[300.0, 0, 160], [0, 300, 120], [0, 0, 1]])
+    dist = np.array([-0.28, 0.08, 0.001, -0.0015, 0.0])
+    pix = np.float64([[[0.0, 0.0]], [[319.0, 239.0]], [[100.0, 50.0]]])
+    iterated = undistort_points_iterated(pix, K, dist, K, (cv2.TERM_CRITERIA_COUNT | cv2.TERM_CRITERIA_EPS, 40, 1e-6))
+    np.testing.assert_allclose(iterated.ravel(), [-25.24998092, -19.37899141, 344.86722351, 257.92283543,
+                                                  98.38142942, 48.02709588], atol=1e-6)   # measured on 4.14 and 5.0
+    assert np.abs(iterated - cv2.undistortPoints(pix, K, dist, P=K)).max() < 0.1
+
+
 # ------------------------------------------------------------------ the versions that judged
 def test_results_record_the_versions_and_old_results_read_without_them():
     result = GradingResult("s", "h", "1", versions=versions.judged_with())

@@ -72,15 +72,16 @@ class VersionDifference:
     under: dict
 
 
-def _opencv_call(name: str) -> Predicate:
+def _opencv_call(name: str, passing: str | None = None) -> Predicate:
     """A call of OpenCV's ``name`` itself (``cv2.solve``, or ``cv.solve`` after ``import cv2 as
-    cv``): never another library's function of the same name (``np.linalg.solve``), about
-    which a note on OpenCV's versions would be false."""
+    cv``), passing the keyword ``passing`` when given: never another library's function of the
+    same name (``np.linalg.solve``), about which a note on OpenCV's versions would be false."""
     def test(function) -> bool:
         return any(isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == name
                    and isinstance(node.func.value, ast.Name) and node.func.value.id in ("cv2", "cv")
+                   and (passing is None or any(k.arg == passing for k in node.keywords))
                    for node in ast.walk(function))
-    return Predicate(f"calls cv2.{name}", test)
+    return Predicate(f"calls cv2.{name}" + (f" with {passing}=" if passing else ""), test)
 
 
 _ROW = np.array([3.0, 1.0, 2.0, 5.0])   # a 1-D array: a column to OpenCV 4, a row to OpenCV 5
@@ -102,6 +103,13 @@ KNOWN = (
         "OpenCV 5, where SORT_EVERY_COLUMN sorts nothing",
         lambda: __import__("cv2").sortIdx(_ROW, __import__("cv2").SORT_EVERY_COLUMN).ravel().tolist(),
         {"4": [1, 2, 0, 3], "5": [0, 0, 0, 0]}),
+    VersionDifference(
+        "cv2.undistortPoints' termination criteria",
+        _opencv_call("undistortPointsIter") | _opencv_call("undistortPoints", passing="criteria"),
+        "your code gives cv2.undistortPoints termination criteria: OpenCV 4 takes them in "
+        "cv2.undistortPointsIter only, OpenCV 5 as undistortPoints(..., criteria=...) and has no "
+        "undistortPointsIter",
+        lambda: hasattr(__import__("cv2"), "undistortPointsIter"), {"4": True, "5": False}),
     VersionDifference(
         "cv2.solve / cv2.gemm with a 1-D vector",
         _opencv_call("solve") | _opencv_call("gemm"),
