@@ -207,19 +207,17 @@ def test_a_hand_written_name_keeps_precedence_in_the_grading(monkeypatch):
 def test_an_exercise_named_by_hand_takes_back_the_error_models_names():
     from autograder.engine.results import FAILED, CheckResult
 
-    lab = LABS["lab07"]
-    first, second = lab.exercises["ex3"].checks[:2]     # both call scaling_matrix
     by_hand = CheckResult("a", 0.0, 2.0, FAILED, "scaling_matrix(2, 3) is wrong: it looks like sy is ignored.",
                           mistake="sy is ignored")
     by_model = CheckResult("b", 0.0, 2.0, FAILED, "scaling_matrix(1, 5) is wrong " + naming.APPENDED
                            + "in `scaling_matrix`, `sx` is used where `sy` belongs (other name).\ndetails",
                            mistake="mutant:other_name")
-    naming.defer_to_hand_written([(second, by_model), (first, by_hand)])
+    naming.defer_to_hand_written([by_model, by_hand])
     assert by_model.message == "scaling_matrix(1, 5) is wrong\ndetails" and by_model.mistake == ""
     assert by_hand.mistake == "sy is ignored"
     alone = CheckResult("c", 0.0, 2.0, FAILED, "wrong " + naming.APPENDED + "in `x`, y (sign).", mistake="mutant:sign")
     described = CheckResult("d", 0.0, 2.0, FAILED, "scaling_matrix(1, 5) is wrong in its second row")
-    naming.defer_to_hand_written([(second, alone), (first, described)])
+    naming.defer_to_hand_written([alone, described])
     assert alone.mistake == "mutant:sign"                # nothing named by hand: it stays
 
 

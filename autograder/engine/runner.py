@@ -227,6 +227,8 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         for exercise_id, hidden_part in graded_hidden.items():
             _merge_hidden(graded[exercise_id], hidden_part, _check_order(exercise_id, exercises))
         result.exercises = [graded[exercise.id] for exercise in exercises]
+        for graded_exercise in result.exercises:   # public and hidden checks together
+            _defer_to_hand_written(graded_exercise.checks)
         result.student_seconds = round(sum(sandbox.student_seconds for sandbox in sandboxes), 6)
         result.student_wall_seconds = round(_covered([span for s in sandboxes for span in s.billed_spans]), 6)
         _point_into_notebooks(result, exercises, submission)
@@ -385,7 +387,6 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
             out.checks.append(run_check(sandbox, check, pictures, modified, rules, painter, inputs, reading))
         if on_check:
             on_check(exercise, out.checks[-1])
-    _defer_to_hand_written(checks, out.checks)
     graded = [c for c in out.checks if c.max_score > 0]
     if graded and all(c.status == NOT_IMPLEMENTED for c in graded):
         out.message = "not implemented yet"
@@ -457,12 +458,12 @@ def _named_by_error_model(verdict: Verdict, check: Check, trial: Trial) -> Verdi
         return verdict
 
 
-def _defer_to_hand_written(checks, results) -> None:
-    """The error model's names on checks of a function that another check of the exercise names by
-    hand are taken back (:func:`autograder.engine.mutants.naming.defer_to_hand_written`)."""
+def _defer_to_hand_written(results) -> None:
+    """The error model's names on an exercise's checks are taken back when one of them names the
+    mistake by hand (:func:`autograder.engine.mutants.naming.defer_to_hand_written`)."""
     from .mutants.naming import defer_to_hand_written
 
-    defer_to_hand_written(list(zip(checks, results)))
+    defer_to_hand_written(results)
 
 
 def _stubs(exercise: Exercise, submission) -> frozenset[str]:

@@ -647,12 +647,12 @@ def defer_to_hand_written(graded) -> None:
     """Hand-written diagnoses keep precedence within an exercise: when a failed check names the
     mistake by hand, the error model's names appended to its other checks are taken back (one
     mistake, one name, whatever the checks' order: ``rotate`` and ``rotation_matrix`` share the
-    mistake of the one it calls). ``graded``: the exercise's ``(Check, CheckResult)`` pairs,
+    mistake of the one it calls). ``graded``: the exercise's check results (public and hidden),
     changed in place."""
     hand = any(((result.mistake and not result.mistake.startswith("mutant:"))
                 or ("looks like" in result.message.lower() and APPENDED not in result.message))
-               and result.score < result.max_score for _, result in graded)
-    for check, result in graded:
+               and result.score < result.max_score for result in graded)
+    for result in graded:
         if hand and result.mistake.startswith("mutant:") and APPENDED in result.message:
             first, newline, rest = result.message.partition("\n")
             result.message = first.split(" " + APPENDED, 1)[0] + newline + rest
