@@ -21,7 +21,6 @@ import copy
 import functools
 import re
 from dataclasses import dataclass
-from pathlib import Path
 
 from ...loading.parsing import parse
 
