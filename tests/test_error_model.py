@@ -195,7 +195,7 @@ def test_a_hand_written_name_keeps_precedence_in_the_grading(monkeypatch):
     plain = Verdict(0.0, "rotation_matrix(30) is wrong\nmore")
     named = naming.named_by_error_model(plain, trial({}))
     assert named.mistake == "mutant:degrees" and named.message.endswith("\nmore")
-    assert named.message.startswith("rotation_matrix(30) is wrong The error model: it looks like in "
+    assert named.message.startswith("rotation_matrix(30) is wrong. The error model: it looks like in "
                                     "`rotation_matrix`, `angle_deg` is used in degrees where radians are needed")
     shared = {}
     by_hand = Verdict(0.0, "wrong: it looks like the translation column is c + R c", mistake="c + R c")

@@ -850,18 +850,19 @@ def refit_distance(H, inliers, src, dst) -> float:
 REFIT_HINT = Hint(
     "H = homography_dlt(src[inliers], dst[inliers]) at the end; cv2.findHomography(src, dst, cv2.RANSAC, "
     "threshold) does it for you",
-    asks=calls("cv2.findHomography") | calls("homography_dlt", at_least=2),
-    instead="your code already {found}; the error is elsewhere: the H returned must be the least-squares "
-            "fit to the very mask returned (all its inliers, not the best sample's four)")
+    asks=calls("cv2.findHomography") | calls("homography_dlt", at_least=2))   # else: "the error is elsewhere"
 
 
 # The message's own advice: true of code that does not refit; code that does (cv2.findHomography
-# refits on the inliers it returns) is told where else the H can come from.
+# refits on the inliers it returns) is told only what was measured.
 REFIT_ADVICE = Hint(
     "after RANSAC, refit H on all the inliers (the best 4-point sample is noisy)",
-    asks=REFIT_HINT.asks,
-    instead="your code already {found}, so the H returned is not the one fitted to the mask returned "
-            "(another H, or the two computed from different points?)")
+    asks=REFIT_HINT.asks, instead="")   # no cause known then: the measurement alone is said
+
+
+def _advice(said: str) -> str:
+    """``": advice"``, or nothing where the code already follows it."""
+    return f": {said}" if said else ""
 
 
 @ex4.check("homography_ransac refits H on all its inliers", points=2)
@@ -881,7 +882,7 @@ def ransac_refit(t):
     t.fail(f"homography_ransac's H is not the fit to its own inliers: it sends them on average "
            f"{digits_apart(mean, RANSAC_REFIT_TOLERANCE)} times the noise level (the refit's RMS residual) away from where a "
            f"least-squares refit on the same inliers sends them (at most {RANSAC_REFIT_TOLERANCE} "
-           f"expected, over 7 problems): {REFIT_ADVICE.said(t)}",
+           f"expected, over 7 problems){_advice(REFIT_ADVICE.said(t))}",
            hint=REFIT_HINT.said(t))
 
 
@@ -1178,13 +1179,11 @@ def canvas_not_shifted_on_probe(t: Trial, images: int) -> bool:
 
 
 # Content cut off, no canvas mistake confirmed: code that already sizes the canvas from warped
-# corners is told the other way content lands outside it (homographies that send it elsewhere).
+# corners is told only what was measured (no cause is known then).
 CANVAS_ADVICE = Hint(
     "the canvas must be the bounding box of all the warped image corners, shifted by a translation so "
     "that negative coordinates fit",
-    asks=calls("cv2.perspectiveTransform") | calls("transform_points"),
-    instead="your code {found} to size the canvas, so the images are warped with homographies other than "
-            "the ones whose corners it measured (check which H, and its direction, each warp uses)")
+    asks=calls("cv2.perspectiveTransform") | calls("transform_points"), instead="")
 
 
 def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
@@ -1207,8 +1206,7 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
                    "translation T = [[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]] (applied to every "
                    "homography) and size the canvas to the bounding box of all warped corners",
                    mistake=NOT_SHIFTED)
-        t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: "
-               f"{CANVAS_ADVICE.said(t)}")
+        t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}{_advice(CANVAS_ADVICE.said(t))}")
     covered = np.any(judge.inside, axis=0)
     ys, xs = np.nonzero(covered)
     box = (xs.max() - xs.min() + 1) * (ys.max() - ys.min() + 1)

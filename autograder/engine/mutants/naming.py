@@ -637,7 +637,10 @@ def named_by_error_model(verdict, trial):
     message = str(verdict.message)
     first, newline, rest = message.partition("\n")
     sentence = f"{APPENDED}{naming.sentence} ({naming.mutant.operator.replace('_', ' ')})."
-    return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=naming.mistake)
+    lead = first.rstrip()
+    if lead and lead[-1] not in ".:;!?":   # "... is wrong" ends a sentence before the model's own
+        lead += "."
+    return replace(verdict, message=f"{lead} {sentence}{newline}{rest}", mistake=naming.mistake)
 
 
 APPENDED = "The error model: it looks like "
