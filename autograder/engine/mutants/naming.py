@@ -183,6 +183,24 @@ def _leaves(value, out: list) -> bool:
     return True
 
 
+def _numeric_pairs(a, b) -> list | None:
+    """The two answers' numeric arrays side by side; None when their forms differ (different
+    structures, shapes, non-numeric leaves that are not equal): infinitely far apart then."""
+    left, right = [], []
+    if not (_leaves(a, left) and _leaves(b, right)) or len(left) != len(right):
+        return None
+    pairs = []
+    for x, y in zip(left, right):
+        if isinstance(x, tuple) or isinstance(y, tuple):
+            if not (isinstance(x, tuple) and isinstance(y, tuple) and x == y):
+                return None
+            continue
+        if x.shape != y.shape or x.dtype.kind not in "biufc" or y.dtype.kind not in "biufc":
+            return None
+        pairs.append((x, y))
+    return pairs
+
+
 def distance(a, b, lenient: bool = False, projective: bool = False) -> float:
     """How far answer ``a`` is from ``b``: the largest mean absolute difference of their arrays
     (small matrices also compared up to scale and sign, as the checks do); infinite when
@@ -193,17 +211,11 @@ def distance(a, b, lenient: bool = False, projective: bool = False) -> float:
     still makes the mutant's mistake everywhere else). ``projective``: small matrices (up to 16
     entries) are compared up to scale and sign, as checks of homographies and fundamental
     matrices do."""
-    left, right = [], []
-    if not (_leaves(a, left) and _leaves(b, right)) or len(left) != len(right):
+    pairs = _numeric_pairs(a, b)
+    if pairs is None:
         return float("inf")
     worst = 0.0
-    for x, y in zip(left, right):
-        if isinstance(x, tuple) or isinstance(y, tuple):
-            if not (isinstance(x, tuple) and isinstance(y, tuple) and x == y):
-                return float("inf")
-            continue
-        if x.shape != y.shape or x.dtype.kind not in "biufc" or y.dtype.kind not in "biufc":
-            return float("inf")
+    for x, y in pairs:
         if x.dtype.kind in "biu" and y.dtype.kind in "biu":  # images: no NaN, no float copies
             worst = max(worst, float(np.mean(np.abs(x.astype(np.int64) - y))) if x.size else 0.0)
             continue
@@ -309,17 +321,11 @@ def _largest(value) -> float:
 def _largest_difference(a, b, projective: bool = False) -> float:
     """The largest entry-wise difference of two answers (``a`` a mutant's, NaN-lenient as
     :func:`distance`); infinite when their forms differ."""
-    left, right = [], []
-    if not (_leaves(a, left) and _leaves(b, right)) or len(left) != len(right):
+    pairs = _numeric_pairs(a, b)
+    if pairs is None:
         return float("inf")
     worst = 0.0
-    for x, y in zip(left, right):
-        if isinstance(x, tuple) or isinstance(y, tuple):
-            if not (isinstance(x, tuple) and isinstance(y, tuple) and x == y):
-                return float("inf")
-            continue
-        if x.shape != y.shape or x.dtype.kind not in "biufc" or y.dtype.kind not in "biufc":
-            return float("inf")
+    for x, y in pairs:
         x, y = x.astype(np.complex128 if "c" in x.dtype.kind + y.dtype.kind else np.float64), y.astype(
             np.complex128 if "c" in x.dtype.kind + y.dtype.kind else np.float64)
         bad_x, bad_y = ~np.isfinite(x), ~np.isfinite(y)
