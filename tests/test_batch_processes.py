@@ -184,7 +184,8 @@ def test_a_dying_grading_process_is_charged_to_its_own_submission_alone(uninterr
     # The processes under each killed grading process (its worker, busy at the student's
     # import, and the worker's namespace) ended with it.
     noted = [tuple(map(int, line.split())) for line in (notes / "hangs.pids").read_text().splitlines()]
-    assert sum(worker for *_, worker in noted) == POOL_ATTEMPTS, "a worker ran under each killed process"
+    # (two workers each: the public checks' and the hidden checks' fresh one, booting meanwhile)
+    assert sum(worker for *_, worker in noted) >= POOL_ATTEMPTS, "a worker ran under each killed process"
     assert wait_until_gone({(pid, started) for pid, started, _ in noted}) == []
     # and the files of the killed processes (their gradings' and sandboxes') are gone: those of
     # the processes that ended normally go as they end.
