@@ -36,7 +36,7 @@ from .helper import ERROR, Helper, HelperFailed
 from .operators import Mutant, mutants_of
 
 CHECK_SECONDS = 3.0        # the error model's time for one failed check
-GRADING_SECONDS = 30.0     # and for one grading (all its failed checks)
+GRADING_SECONDS = 10.0     # and for one grading (all its failed checks): bounds what failing everything costs
 CALLS_PER_FUNCTION = 6     # the trial's last calls of a function that are compared
 PAIR_MUTANTS = 6           # the closest single mutants combined in pairs
 VARIANTS_PER_CALL = 5      # confirmation inputs derived from each failing call
