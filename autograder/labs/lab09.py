@@ -1068,7 +1068,8 @@ def calibration_consistent(t):
     cause = "the K or dist returned is not the pair the rms was computed for"
     reading = calls("cv2.getOptimalNewCameraMatrix").found(code_of(t).reachable(["calibrate"]))
     if reading:
-        cause = ("it looks like K is cv2.getOptimalNewCameraMatrix's (your code calls it): that matrix is for "
+        cause = ("your code calls cv2.getOptimalNewCameraMatrix, and K is measured not to be the calibrated "
+                 "camera's: that matrix is for "
                  "undistorted images (cv2.undistort's newCameraMatrix), not the calibrated camera's K")
     # Named only with the cause the code shows: the disagreement alone has several (a K returned
     # transposed, another call's K or dist), which the message leaves to the student.
