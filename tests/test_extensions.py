@@ -103,3 +103,23 @@ def test_without_a_ledger_the_tokens_are_this_assignments():
 def test_a_malformed_extension_is_refused_saying_which(extensions):
     with pytest.raises(CourseConfigError, match="extensions"):
         course(extensions=extensions)
+
+
+@pytest.mark.slow
+def test_autograder_report_tells_the_batchs_final_grades(tmp_path):
+    """`autograder report` (and the review app) compute grades from the course the batch kept:
+    extensions and pooled late days included, or the grade they write would differ from the batch's."""
+    from autograder.instructor.batch.run import run_batch, write_exports
+    from test_batch import COURSE, MODULE, reference, write
+
+    download, out = tmp_path / "download", tmp_path / "out"
+    write(download / f"annlee_LATE_1001_1_{MODULE}.py", reference())      # Canvas's late flag: one day
+    write(download / f"bochen_LATE_1002_2_{MODULE}.py", reference())
+    config = CourseConfig(select=COURSE.select, assignment="Lab 7", late_penalty={"per_day": 50},
+                          extensions={"annlee-1001": {"days": 1}}, late_days={"tokens": 0})
+    run_batch(download, out, course=config, workers=1)
+    batch = (out / "grades.csv").read_text()
+    totals = {row["Student ID"]: row["Total"] for row in csv.DictReader(batch.splitlines())}
+    assert totals == {"annlee-1001": "12", "bochen-1002": "6"}
+    write_exports(out)            # no course given: the batch's own
+    assert (out / "grades.csv").read_text() == batch

@@ -446,8 +446,8 @@ def _refresh_page(out: Path, grade, possible: float, course: CourseConfig, chang
 
 # What `autograder report` needs of the batch's course to write a student's files as the batch
 # did (never the inputs secret, nor the grading limits).
-_REPORTED_COURSE = ("select", "assignment", "points", "late_penalty", "hidden_points_visible",
-                    "canvas_assignment_id", "lms_exports", "rubric", "labs", "hide")
+_REPORTED_COURSE = ("select", "assignment", "points", "late_penalty", "extensions", "late_days",
+                    "hidden_points_visible", "canvas_assignment_id", "lms_exports", "rubric", "labs", "hide")
 
 
 def _course_record(course: CourseConfig) -> str:
