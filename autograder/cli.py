@@ -775,6 +775,7 @@ def add_class_commands(commands) -> None:
 def run_report(args) -> int:
     """``autograder report RESULTS``: the class overview again, and each student's page and
     results.json written again from the gradebook where they were lost (1 if some cannot be)."""
+    from .instructor.batch.exports import ExportError
     from .instructor.batch.gradebook import StorageError
     from .instructor.batch.run import restore_student_files
     from .instructor.classreport.pages import NoGradebook, write_overview
@@ -794,7 +795,7 @@ def run_report(args) -> int:
             pages = True
         except IngestError as exc:   # a batch is writing RESULTS: it writes them when it ends
             print(f"note: {exc}; the CSVs and pages are written by that batch when it finishes", file=sys.stderr)
-    except (CourseConfigError, NoGradebook, SelectionError) as exc:
+    except (CourseConfigError, NoGradebook, SelectionError, ExportError) as exc:   # ExportError: the late-day ledger
         print(f"error: {exc}", file=sys.stderr)
         return USAGE_ERROR
     except StorageError as exc:

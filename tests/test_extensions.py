@@ -123,3 +123,16 @@ def test_autograder_report_tells_the_batchs_final_grades(tmp_path):
     assert totals == {"annlee-1001": "12", "bochen-1002": "6"}
     write_exports(out)            # no course given: the batch's own
     assert (out / "grades.csv").read_text() == batch
+
+
+def test_a_damaged_ledger_is_refused_in_one_sentence(tmp_path):
+    ledger = tmp_path / "late_days.json"
+    ledger.write_text("[not a ledger")
+    config = course(late_days={"tokens": 2, "ledger": str(ledger)})
+    with pytest.raises(ValueError, match="late-day ledger .* cannot be read"):
+        read_ledger(config)
+    for damaged in ('{"assignments": 3}', '{"assignments": {"Lab 7": {"late": {"canvas:1": "two"}}}}',
+                    '{"assignments": {"Lab 7": []}}'):
+        ledger.write_text(damaged)
+        with pytest.raises(ValueError, match="is not a ledger"):
+            read_ledger(config)

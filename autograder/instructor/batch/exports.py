@@ -342,8 +342,13 @@ def read_ledger(course: CourseConfig) -> dict:
         return {"assignments": {}}
     except (OSError, ValueError) as exc:
         raise ExportError(f"the late-day ledger {path} cannot be read ({exc}); fix or remove it") from None
-    if not isinstance(data, dict) or not isinstance(data.get("assignments"), dict):
-        raise ExportError(f"the late-day ledger {path} is not a ledger; fix or remove it")
+    assignments = data.get("assignments") if isinstance(data, dict) else None
+    if not isinstance(assignments, dict) or not all(
+            isinstance(a, dict) and isinstance(a.get("late", {}), dict)
+            and all(isinstance(days, int) and not isinstance(days, bool) and days >= 0 for days in a.get("late", {}).values())
+            for a in assignments.values()):
+        raise ExportError(f"the late-day ledger {path} is not a ledger (assignments, each with its late days "
+                          "per student); fix or remove it")
     return data
 
 

@@ -201,7 +201,9 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     with storing(out):
         summary.files = _write_exports(out, standing)
         summary.files += exports.write_ignored(out, upload.ignored)
-    ledger = exports.record_late_days(course, standing.grades)   # the term's other assignments spend after these
+    ledger_path = (course.late_days or {}).get("ledger")
+    with storing(Path(ledger_path) if ledger_path else out):   # a full disk there: one line, like RESULTS'
+        ledger = exports.record_late_days(course, standing.grades)   # the term's other assignments spend after these
     summary.files += [ledger] if ledger else []
     book.check_in_place()   # RESULTS deleted while the exports were written
     summary.files_not_graded = [f"{g.student['student_id']}: {left_aside}" for g in standing.grades
