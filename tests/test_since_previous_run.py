@@ -36,18 +36,19 @@ def test_the_page_keeps_its_scores_for_the_next_run(tmp_path):
 
 
 @pytest.mark.parametrize("content", ["", "<html>not ours</html>", '<script type="application/json" '
-                                     'id="autograder-scores">{"exercises": "x"}</script>', "\xff" * 10])
+                                     'id="autograder-scores">{"exercises": "x"}</script>'])
 def test_a_page_without_scores_is_a_first_run(tmp_path, content):
     page = tmp_path / "feedback.html"
-    page.write_text(content, encoding="utf-8", errors="surrogateescape") if content != "\xff" * 10 \
-        else page.write_bytes(b"\xff" * 10)
-    assert previous_scores(page) is None or previous_scores(page) == {"exercises": {}}
+    page.write_bytes(content.encode("utf-8", errors="surrogateescape") if content else b"\xff" * 10)
+    assert previous_scores(page) is None
 
 
 def test_a_score_cannot_end_the_data_block(tmp_path):
-    hostile = GradingResult("s", "h", "0", [ExerciseResult("lab07.ex1</script><b>x", "t", [], [])])
-    page = html.render(hostile)
-    assert "</script><b>x" not in page
+    hostile = GradingResult("s", "h", "0", [ExerciseResult("lab07.ex1</script><b>x<!--", "t", [], [])])
+    page = tmp_path / "feedback.html"
+    html.write(hostile, page)
+    assert "</script><b>x" not in page.read_text() and "x<!--" not in page.read_text().split("autograder-scores")[1]
+    assert previous_scores(page) == {"exercises": {"lab07.ex1</script><b>x<!--": [0.0, 0.0]}}   # read back whole
 
 
 @pytest.mark.slow

@@ -11,7 +11,6 @@ after a whole run speaks of lab07.ex2 alone.
 
 from __future__ import annotations
 
-import html
 import json
 import re
 from pathlib import Path
@@ -20,7 +19,8 @@ from ..engine.results import GradingResult
 from ..reports.html import SCORES_ID
 
 _SCORES = re.compile(f'<script type="application/json" id="{SCORES_ID}">(.*?)</script>', re.S)
-_READ_AT_MOST = 64 << 20   # a page with its pictures; anything larger is not ours
+_READ_AT_MOST = 64 << 20   # a results file with its pictures; anything larger is not ours
+_PAGE_TAIL = 1 << 20       # what is read of a page: its end, where the scores are
 
 
 def previous_scores(*paths) -> dict | None:
@@ -30,13 +30,17 @@ def previous_scores(*paths) -> dict | None:
         if not path:
             continue
         path = Path(path)
+        page = path.suffix.lower() in (".html", ".htm")
         try:
-            if not path.is_file() or path.stat().st_size > _READ_AT_MOST:
+            if not path.is_file() or (not page and path.stat().st_size > _READ_AT_MOST):
                 continue
-            text = path.read_text(encoding="utf-8", errors="replace")
+            with path.open("rb") as file:
+                if page:   # the block closes the page, after its pictures: its tail is enough
+                    file.seek(max(0, path.stat().st_size - _PAGE_TAIL))
+                text = file.read(_READ_AT_MOST).decode("utf-8", errors="replace")
         except OSError:
             continue
-        scores = _from_page(text) if path.suffix.lower() in (".html", ".htm") else _from_results(text)
+        scores = _from_page(text) if page else _from_results(text)
         if scores is not None:
             return scores
     return None
@@ -47,7 +51,7 @@ def _from_page(text: str) -> dict | None:
     if not found:
         return None
     try:
-        return _valid(json.loads(html.unescape(found[1]).replace("<\\/", "</")))
+        return _valid(json.loads(found[1]))   # JSON, not HTML: its escapes are JSON's own
     except ValueError:
         return None
 
