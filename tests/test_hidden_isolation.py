@@ -123,3 +123,23 @@ def test_hidden_checks_stay_in_the_suites_order_and_keep_their_budget(tmp_path):
         assert [c.name for c in graded.checks if c.max_score > 0] == [c.name for c in exercise.checks
                                                                      if not c.advice]
         assert graded.score == graded.max_score
+
+
+@pytest.mark.slow
+def test_hidden_checks_that_meet_only_stubs_need_no_fresh_worker(monkeypatch):
+    """A skeleton's hidden checks call nothing (each meets a stub): no worker is booted for them,
+    and no hidden input reaches the student's code, which they never call."""
+    from autograder.engine import runner
+    from conftest import SKELETON
+
+    made = []
+
+    class Recorded(runner.Sandbox):
+        def __init__(self, *args, **options):
+            made.append(self)
+            super().__init__(*args, **options)
+
+    monkeypatch.setattr(runner, "Sandbox", Recorded)
+    result = grade(SKELETON, ["lab07"], pictures="none", limits=LIMITS)
+    assert any(c.hidden for e in result.exercises for c in e.checks)
+    assert len(made) == 1      # the public lane's worker only

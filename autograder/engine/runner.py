@@ -164,9 +164,13 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         # student's code keeps (in memory, in its scratch folder) while it serves a hidden
         # check can reach a public check's messages, and the public phase never sees a hidden
         # input. The fresh workers boot while the public checks run.
-        hidden_with_work = [lab for lab in hidden if not all(_stubs(exercise, submission) for exercise, _ in lab)]
+        # A hidden check that only meets a stub calls nothing (its verdict is known without a
+        # call): labs whose hidden checks are all such need no fresh worker, and none gives any
+        # hidden input to the student's code, so they are graded in the public phase's workers.
+        hidden_calls = [lab for lab in hidden if any(not _only_stub_called(check, _stubs(exercise, submission))
+                                                     for exercise, checks in lab for check in checks)]
         fresh = [closing.enter_context(Sandbox(submission.path, lane_limits, confinement=sandboxes[0].confinement))
-                 for _ in range(min(len(sandboxes), max(1, len(hidden_with_work))) if hidden else 0)]
+                 for _ in range(min(len(sandboxes), len(hidden_calls)))]
         for sandbox in fresh:
             sandbox.start()
         graded: dict[str, ExerciseResult] = {}
@@ -176,7 +180,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
 
         # The public phase may not spend the hidden phase's share of the deadline (its checks'
         # share of all): a slow exercise then cannot starve another exercise's hidden checks.
-        public_deadline = deadline - seconds * _hidden_share(public, hidden)
+        public_deadline = deadline - seconds * _hidden_share(public, hidden_calls)
 
         def lane(sandbox: Sandbox, work: list, into: dict, spent: dict | None = None, until: float = deadline):
             budget = _Budget(sandbox, until, seconds)
@@ -213,7 +217,9 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         # Ground truth is kept between gradings only where the worker cannot write it.
         with cache.enabled(sandboxes[0].confinement.hides_files), Painter() as painter:
             run_lanes(sandboxes, public, graded, until=public_deadline)
-            if hidden:
+            if hidden and not fresh:   # no hidden check calls the student's code
+                run_lanes(sandboxes, hidden, graded_hidden)
+            elif hidden:
                 for sandbox in sandboxes:  # the public phase's workers are done: free their memory
                     sandbox.close()
                 spent = {exercise_id: sum(c.student_seconds for c in done.checks)
