@@ -455,6 +455,7 @@ def run_batch(args) -> int:
             console.print(f"[yellow]note:[/yellow] {escape(note)}", highlight=False)
         if args.compare:
             out = _scratch_copy(args.out)
+            course = _preview_course(course, out)
         with _batch_progress(console) as progress:
             summary = batch(args.submissions, out, course=course, workers=args.workers,
                             pictures=args.pictures, regrade=args.regrade, roster=args.roster,
@@ -532,6 +533,19 @@ def _scratch_copy(out) -> Path:
             original.close()
             copy.close()
     return scratch
+
+
+def _preview_course(course, scratch: Path):
+    """``course`` for a ``--compare`` preview: its late-day ledger (shared by the term's
+    assignments, outside RESULTS) copied into the scratch folder, so the preview writes nothing
+    anywhere else."""
+    ledger = (course.late_days or {}).get("ledger")
+    if not ledger:
+        return course
+    copy = scratch / "late_days.json"
+    if Path(ledger).is_file():
+        shutil.copyfile(ledger, copy)
+    return replace(course, late_days={**course.late_days, "ledger": str(copy)})
 
 
 def _batch_similarity(args, course, console) -> Path | None:

@@ -76,7 +76,9 @@ def test_compare_previews_the_changes_and_leaves_the_gradebook_alone(tmp_path):
     before = {p.name: p.read_bytes() for p in out.rglob("*") if p.is_file() and p.suffix in (".csv", ".sqlite")}
 
     write(download / "ann" / f"{MODULE}.py", reference())
-    (tmp_path / "course.json").write_text(json.dumps({"select": COURSE.select, "assignment": "Lab 7"}))
+    (tmp_path / "course.json").write_text(json.dumps({"select": COURSE.select, "assignment": "Lab 7",
+                                                      "late_days": {"tokens": 3, "ledger": "late_days.json"}}))
+    ledger_before = (tmp_path / "late_days.json").read_bytes() if (tmp_path / "late_days.json").exists() else None
     command = [sys.executable, "-m", "autograder", "batch", str(download), "--out", str(out),
                "--course", str(tmp_path / "course.json"), "--workers", "1", "--compare"]
     preview = subprocess.run(command, capture_output=True, text=True, timeout=600)
@@ -85,6 +87,7 @@ def test_compare_previews_the_changes_and_leaves_the_gradebook_alone(tmp_path):
     assert "ann: 0 -> 12 (new submission; lab07.ex1: 0 -> 12" in preview.stdout
     after = {p.name: p.read_bytes() for p in out.rglob("*") if p.is_file() and p.suffix in (".csv", ".sqlite")}
     assert after == before                                             # a preview changes nothing
+    assert not (tmp_path / "late_days.json").exists() and ledger_before is None   # not even the term's ledger
 
     applied = subprocess.run(command[:-1], capture_output=True, text=True, timeout=600)
     assert applied.returncode == 0, applied.stderr
