@@ -65,7 +65,7 @@ from dataclasses import dataclass, field
 from datetime import timedelta
 from pathlib import Path
 
-from ...engine.results import write_atomically
+from ...engine.results import NOT_IMPLEMENTED, write_atomically
 from ...loading.text import one_line
 from ..course import CourseConfig, parse_time
 
@@ -582,8 +582,7 @@ def _what_was_graded(result: dict) -> str:
     """``graded``, or what the grading found instead of work to judge: every graded check met a
     stub ("nothing implemented"), or no module could be imported ("does not import: why")."""
     checks = [c for e in result.get("exercises", []) for c in e.get("checks", []) if c.get("max_score")]
-    if checks and all(c.get("failure") == "not_implemented" or c.get("status") == "not_implemented"
-                      for c in checks):
+    if checks and all(c.get("status") == NOT_IMPLEMENTED for c in checks):
         return "nothing implemented"
     if checks and all(c.get("failure") in _UNUSABLE for c in checks):
         messages = [e.get("message", "") for e in result.get("exercises", []) if e.get("message")]
