@@ -143,3 +143,31 @@ def test_hidden_checks_that_meet_only_stubs_need_no_fresh_worker(monkeypatch):
     result = grade(SKELETON, ["lab07"], pictures="none", limits=LIMITS)
     assert any(c.hidden for e in result.exercises for c in e.checks)
     assert len(made) == 1      # the public lane's worker only
+
+
+def test_what_a_hidden_check_named_never_changes_a_public_checks_words():
+    """The error model's name on a public check is taken back only by a public check's own
+    hand-written name: a hidden check's name (known only after release) must leave it as it is."""
+    from autograder.engine.mutants.naming import APPENDED
+    from autograder.engine.results import CheckResult, FAILED
+    from autograder.engine.runner import _defer_to_hand_written
+
+    def exercise():
+        public = CheckResult("public", 0.0, 2.0, FAILED, f"f(1) is wrong. {APPENDED}in `f`, a sign is flipped.",
+                             mistake="mutant:flip_sign")
+        hidden = CheckResult("hidden", 0.0, 2.0, FAILED, "f(7) is wrong: it looks like the angle is in radians.",
+                             hidden=True, mistake="the angle is used as radians")
+        hidden_model = CheckResult("hidden 2", 0.0, 2.0, FAILED, f"f(3) is wrong. {APPENDED}in `f`, a sign is flipped.",
+                                   hidden=True, mistake="mutant:flip_sign")
+        return [public, hidden, hidden_model]
+
+    checks = exercise()
+    _defer_to_hand_written(checks)
+    public, _, hidden_model = checks
+    assert APPENDED in public.message and public.mistake == "mutant:flip_sign"     # untouched
+    assert APPENDED not in hidden_model.message and hidden_model.mistake == ""    # hidden defers to all
+
+    checks = exercise()
+    checks[1].hidden = False   # the same hand-written name on a public check takes the public name back
+    _defer_to_hand_written(checks)
+    assert APPENDED not in checks[0].message

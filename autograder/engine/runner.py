@@ -467,10 +467,14 @@ def _named_by_error_model(verdict: Verdict, check: Check, trial: Trial) -> Verdi
 
 def _defer_to_hand_written(results) -> None:
     """The error model's names on an exercise's checks are taken back when one of them names the
-    mistake by hand (:func:`autograder.engine.mutants.naming.defer_to_hand_written`)."""
+    mistake by hand (:func:`autograder.engine.mutants.naming.defer_to_hand_written`). A public
+    check answers to public checks only: what a hidden check named must not change a word students
+    read before the release."""
     from .mutants.naming import defer_to_hand_written
 
-    defer_to_hand_written(results)
+    public = [result for result in results if not result.hidden]
+    defer_to_hand_written(public)
+    defer_to_hand_written([result for result in results if result.hidden], evidence=results)
 
 
 def _stubs(exercise: Exercise, submission) -> frozenset[str]:

@@ -652,15 +652,14 @@ def named_by_error_model(verdict, trial):
 APPENDED = "The error model: it looks like "
 
 
-def defer_to_hand_written(graded) -> None:
-    """Hand-written diagnoses keep precedence within an exercise: when a failed check names the
-    mistake by hand, the error model's names appended to its other checks are taken back (one
-    mistake, one name, whatever the checks' order: ``rotate`` and ``rotation_matrix`` share the
-    mistake of the one it calls). ``graded``: the exercise's check results (public and hidden),
-    changed in place."""
+def defer_to_hand_written(graded, evidence=None) -> None:
+    """Hand-written diagnoses keep precedence within an exercise: when a failed check of
+    ``evidence`` (default ``graded``) names the mistake by hand, the error model's names appended
+    to the checks of ``graded`` are taken back (one mistake, one name, whatever the checks' order:
+    ``rotate`` and ``rotation_matrix`` share the mistake of the one it calls). Changed in place."""
     hand = any(((result.mistake and not result.mistake.startswith("mutant:"))
                 or ("looks like" in result.message.lower() and APPENDED not in result.message))
-               and result.score < result.max_score for result in graded)
+               and result.score < result.max_score for result in (graded if evidence is None else evidence))
     for result in graded:
         if hand and result.mistake.startswith("mutant:") and APPENDED in result.message:
             first, newline, rest = result.message.partition("\n")
