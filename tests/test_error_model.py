@@ -283,3 +283,28 @@ def test_the_helper_answers_errors_as_values_and_never_pickles():
         assert "ValueError" in first["__error__"] and "__error__" in second   # an object cannot cross
     finally:
         helper.close()
+
+
+@pytest.mark.parametrize("answer, tells", [
+    ("\ud800", False), (2**70, False), ([[[[]]]], False), (float("nan"), False), (np.full((3, 3), 7.0), False),
+    (np.array([object()]), False), (np.arange(6.0).reshape(2, 3), True), (np.array(3.0), True),
+    ((np.eye(3), np.array([1, 0, 1], bool)), True),
+])
+def test_answers_that_tell_nothing_are_not_modelled(answer, tells):
+    """A reply no mutant of numeric code gives (a string, a huge integer, only NaN, a constant)
+    is decided from the answer alone: the helper is not asked, and nothing is named."""
+    assert naming._tells_nothing(answer) is not tells
+
+
+@pytest.mark.parametrize("answer, reference, same", [
+    (np.ones((2, 3)), np.ones((3, 2)), True),                     # transposed: a mutant's form
+    (np.ones((4, 3)), np.ones((4, 2)), True),                     # not de-homogenised
+    ([[1.0, 2.0], [3.0, 4.0]], np.eye(2), False),                 # rows as separate sequences
+    (np.array(3.0), np.eye(3), False),                            # a scalar for a matrix
+    ({"H": [[1.0]]}, np.eye(3), False),                           # a dict for a matrix
+    ((np.eye(3), np.ones(3)), (np.eye(3), np.ones(3)), True),
+    ((np.eye(3),), (np.eye(3), np.ones(3)), False),               # a result left out
+])
+def test_answers_of_another_kind_are_not_modelled(answer, reference, same):
+    """No mutant turns a matrix into a scalar or a dict: such answers are not run against them."""
+    assert naming._same_kind(answer, reference) is same

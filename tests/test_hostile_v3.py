@@ -595,10 +595,11 @@ class Replies:
 @pytest.mark.parametrize("value", list(EXOTIC.values()), ids=list(EXOTIC))
 def test_no_reply_however_exotic_is_a_grader_error_in_any_check(value):
     """Every check of every lab (hidden ones where installed), judging an exotic reply to every call."""
-    errors = []
+    errors, sandboxes = [], {}
     for exercise in select([], include_hidden=True):
+        sandbox = sandboxes.setdefault(exercise.lab.key, Replies(value))   # one per lab, as a grading's lane
         for check in exercise.checks:
-            result = run_check(Replies(value), check, pictures="none")
+            result = run_check(sandbox, check, pictures="none")
             if result.status == ERROR:
                 errors.append((check.id, result.message))
     assert errors == []

@@ -353,6 +353,32 @@ def _constant(value) -> bool:
     return bool(arrays) and all(np.all(v == v.flat[0]) for v in arrays)
 
 
+def _tells_nothing(value) -> bool:
+    """Whether an answer can tell no mistake apart, before any mutant runs: constant (every array
+    one value), nothing but NaN and infinities, or not made of numbers (a string, an integer beyond
+    64 bits, an object array, only empty sequences), which no mutant of numeric reference code gives."""
+    leaves = []
+    if not _leaves(value, leaves) or _constant(value):
+        return True
+    arrays = [v for v in leaves if isinstance(v, np.ndarray)]
+    other = any(isinstance(v, tuple) and v[0] == "other" for v in leaves)
+    if other or not arrays or any(v.dtype.kind not in "biufc" for v in arrays):
+        return True
+    return not any(np.isfinite(v).any() for v in arrays if v.size)   # only NaN and infinities
+
+
+def _same_kind(student, reference) -> bool:
+    """Whether a mutant could give the student's answer's form: the same containers (sequence
+    lengths, dict keys) around arrays of the same number of dimensions (a mutant may transpose
+    or drop a row, not turn a matrix into a scalar or a dict)."""
+    left, right = [], []
+    if not (_leaves(student, left) and _leaves(reference, right)) or len(left) != len(right):
+        return False
+    return all((x == y) if isinstance(x, tuple) and isinstance(y, tuple)
+               else (isinstance(x, np.ndarray) and isinstance(y, np.ndarray) and x.ndim == y.ndim)
+               for x, y in zip(left, right))
+
+
 def wrong(student, reference) -> bool:
     return distance(reference, student) > 10 * _tolerance(student)
 
@@ -440,11 +466,14 @@ def _name(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
         calls = calls[-CALLS_PER_FUNCTION:]
         inputs = [call[:3] for call in calls]
         answers = [call[3] for call in calls]
+        if all(_tells_nothing(answer) for answer in answers):
+            continue   # decided from the answers alone: the helper is not asked
         runner.prepare(model.source, model.module, inputs, max(1.0, clock.left()))
         references = runner.run((), range(len(inputs)), max(0.5, clock.left()))
         failing = [i for i, (s, r) in enumerate(zip(answers, references)) if wrong(s, r)]
-        if not failing or all(_constant(answers[i]) for i in failing):
-            continue   # a constant answer (all zeros, a black image) is what many mistakes give
+        if not failing or all(_constant(answers[i]) or not _same_kind(answers[i], references[i]) for i in failing):
+            continue   # a constant answer (all zeros, a black image) is what many mistakes give;
+            # an answer of another kind (a dict, a scalar for a matrix) is none of the mutants'
         naming = _name_function(trial, model, function, inputs, answers, references, failing, clock)
         if naming is not None:
             return naming
