@@ -66,9 +66,10 @@ WORKER_USER = "agworker"
 _PR_SET_CHILD_SUBREAPER = 36
 
 # Distributions a submission may import (with everything they require): the lab
-# sheet's NumPy, OpenCV and Matplotlib, and SciPy and scikit-image as courtesy.
+# sheet's NumPy, OpenCV and Matplotlib, and SciPy and scikit-image as courtesy; pypdf for the
+# workers that read PDF reports (autograder.sandbox.report_reader: never in the grader's process).
 ALLOWED_LIBRARIES = ("numpy", "opencv-python", "opencv-python-headless", "opencv-contrib-python",
-                     "opencv-contrib-python-headless", "matplotlib", "scipy", "scikit-image")
+                     "opencv-contrib-python-headless", "matplotlib", "scipy", "scikit-image", "pypdf")
 # System folders bound read-only (programs and shared libraries), and the few
 # files of /etc the dynamic loader and the C library read.
 SYSTEM_FOLDERS = ("/usr", "/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32")
