@@ -136,3 +136,17 @@ def test_a_damaged_ledger_is_refused_in_one_sentence(tmp_path):
         ledger.write_text(damaged)
         with pytest.raises(ValueError, match="is not a ledger"):
             read_ledger(config)
+
+
+def test_an_excused_students_page_says_excused_where_it_would_tell_the_final_grade():
+    """The page of an excused student whose final grade may be shown (no hidden points withheld):
+    the headline, the title and the adjustments say "excused" (the batch stopped on its total, None)."""
+    from autograder.instructor.batch.exports import BAR, BAR_END, BEGIN, END, HEADLINE, HEADLINE_END, student_page
+
+    config = course(extensions={"ann": {"excused": True}})
+    grades, _ = grades_of([student("ann", TWO_DAYS_LATE)], config)
+    page = f"<title>Feedback: 10 / 10 — ann</title>{HEADLINE}10 / 10{HEADLINE_END}{BAR}{BAR_END}{BEGIN}{END}"
+    shown = student_page(page, grades["ann"], 10.0, config)
+    assert "<title>Feedback: excused — ann</title>" in shown
+    assert f"{HEADLINE}excused, not counted" in shown and "(checks: 10 / 10 points)" in shown
+    assert "excused: not counted" in shown and "final grade" not in shown

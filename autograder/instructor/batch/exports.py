@@ -743,7 +743,8 @@ def adjustments_html(grade: StudentGrade, possible: float, show_final: bool = Tr
     rows = "".join(f"<tr><td>{html.escape(what)}</td><td>{html.escape(change)}</td>"
                    f"<td>{html.escape(comment)}</td></tr>"
                    for what, change, comment in reviewed + adjustments)
-    final = (f"final grade {_fmt(grade.total)} / {possible:g}" if show_final
+    final = ("excused: not counted" if grade.excused
+             else f"final grade {_fmt(grade.total)} / {possible:g}" if show_final
              else "final grade: shown when the hidden checks are released")
     return (f'{BEGIN}<section class="exercise" id="adjustments"><header><h2>Instructor adjustments</h2>'
             f'<span class="score">{final}</span></header>'
@@ -798,11 +799,14 @@ def headline(grade: StudentGrade, possible: float) -> str:
     that may show the final grade (:func:`shows_final`)."""
     result = grade.student.get("result") or {}
     raw, raw_max = result.get("total"), result.get("max_total")
+    checks = (f'<span class="muted" style="font-size: 1rem; font-weight: normal">'
+              f"(checks: {_fmt(raw)} / {_fmt(raw_max)} points)</span>")
+    if grade.excused:   # no final grade: the work is not counted
+        return f"excused, not counted {checks}"
     final = f"{_fmt(grade.total)} / {possible:g}"
     if raw == grade.total and raw_max == possible:
         return f"{final} points"
-    return (f'final grade {final} <span class="muted" style="font-size: 1rem; font-weight: normal">'
-            f"(checks: {_fmt(raw)} / {_fmt(raw_max)} points)</span>")
+    return f"final grade {final} {checks}"
 
 
 def with_final_grade(page: str, grade: StudentGrade, possible: float) -> str:
@@ -810,11 +814,11 @@ def with_final_grade(page: str, grade: StudentGrade, possible: float) -> str:
     the template's markers), the bar under it and the window's title. Only for a page that may
     show the final grade (:func:`shows_final`)."""
     page = _between(page, HEADLINE, HEADLINE_END, headline(grade, possible))
-    percent = round(100 * grade.total / possible) if possible else 0
+    percent = round(100 * grade.total / possible) if possible and grade.total is not None else 0
     page = _between(page, BAR, BAR_END, f'<div class="bar" role="img" aria-label="{percent} percent">'
                                         f'<span style="width: {percent}%"></span></div>')
-    return re.sub(r"<title>Feedback: [^<]*? — ", lambda _: f"<title>Feedback: final grade {_fmt(grade.total)} / "
-                  f"{possible:g} — ", page, count=1)
+    told = "excused" if grade.excused else f"final grade {_fmt(grade.total)} / {possible:g}"
+    return re.sub(r"<title>Feedback: [^<]*? — ", lambda _: f"<title>Feedback: {told} — ", page, count=1)
 
 
 BAR, BAR_END = "<!-- bar -->", "<!-- /bar -->"
