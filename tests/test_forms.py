@@ -28,6 +28,8 @@ def numpy_error(operation) -> str:
     ((9,), (3, 3), "flattened"),
     ((5, 1), (5,), "column of shape (5, 1)"),
     ((1, 5), (None,), "row of shape (1, 5)"),
+    ((120, 160, 3), (120, 160), "grey in, grey out"),
+    ((120, 160), (120, 160, 3), "BGR in, BGR out"),
 ])
 def test_a_recognised_form_is_named_from_the_shape(got, expected, words):
     form = shape_form(got, expected)
@@ -39,6 +41,7 @@ def test_a_recognised_form_is_named_from_the_shape(got, expected, words):
     ((1, 2), (2, 2)), ((2, 2), (1, 2)),                    # no affine form of that size
     ((4, 4), (3, 3)), ((3, 3, 3), (3, 3)), ((12, 5), (None, 2)), ((7,), (3, 3)), ((2, 2), (2,)),
     ((12, 1, 3), (None, 2)),
+    ((3, 3, 3), (3, 3)), ((120, 160, 2), (120, 160)), ((120, 160, 3), (None, 160)),   # no image of a known size
 ])
 def test_a_form_no_rule_knows_is_left_to_the_description(got, expected):
     assert shape_form(got, expected) is None

@@ -56,6 +56,9 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
         return Form(f"it looks like the points are still homogeneous ({got[1]} coordinates): divide by "
                     f"the last one and keep the first {expected[1]}",
                     "points left in homogeneous coordinates")
+    channels = _channels_form(got, expected)
+    if channels is not None:
+        return channels
     if len(expected) == 1 and len(got) == 2 and 1 in got and _fits((max(got),), expected):
         return Form(f"it looks like a {'column' if got[1] == 1 else 'row'} of shape {got} where a flat "
                     f"array of {max(got)} values is asked (ravel() it)",
@@ -63,6 +66,25 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
     if len(got) == 1 and len(expected) == 2 and None not in expected and got[0] == expected[0] * expected[1]:
         return Form(f"it looks flattened: {got[0]} values where a {_size(expected)} matrix is asked "
                     f"(reshape({expected[0]}, {expected[1]}))", "the matrix is flattened")
+    return None
+
+
+IMAGE_SIDE = 8   # an (H, W) expectation this large on both sides is an image, not a matrix
+
+
+def _channels_form(got: tuple, expected: tuple) -> Form | None:
+    """An image of the asked size with another channel count: grey asked, 3 or 4 channels
+    returned (a cv2.cvtColor(..., COLOR_GRAY2BGR) to draw in colour), or BGR asked and grey
+    returned. The API's rule: a function that takes an image returns its channel count."""
+    if None in expected or len(expected) not in (2, 3) or min(expected[:2]) < IMAGE_SIDE:
+        return None
+    rule = "a function that takes an image returns the input's channel count"
+    if len(expected) == 2 and len(got) == 3 and got[:2] == expected and got[2] in (3, 4):
+        return Form(f"it looks like the channels are not kept: {got[2]} channels where a grey (H, W) image is "
+                    f"asked ({rule}: grey in, grey out)", "the channels are not kept")
+    if len(expected) == 3 and expected[2] == 3 and got == expected[:2]:
+        return Form(f"it looks like the channels are not kept: a grey (H, W) image where a BGR (H, W, 3) one is "
+                    f"asked ({rule}: BGR in, BGR out)", "the channels are not kept")
     return None
 
 
