@@ -6,6 +6,7 @@ from __future__ import annotations
 import ast
 import re
 import types
+from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -14,7 +15,7 @@ import pytest
 
 from autograder.engine.mutants import naming
 from autograder.engine.mutants.helper import Helper, HelperFailed
-from autograder.engine.mutants.operators import OPERATORS, apply_edits, mutants_of, mutated_defs
+from autograder.engine.mutants.operators import OPERATORS, Mutant, apply_edits, mutants_of, mutated_defs
 from autograder.engine.registry import discover
 from autograder.sandbox.supervisor import CallOutcome
 
@@ -308,3 +309,90 @@ def test_answers_that_tell_nothing_are_not_modelled(answer, tells):
 def test_answers_of_another_kind_are_not_modelled(answer, reference, same):
     """No mutant turns a matrix into a scalar or a dict: such answers are not run against them."""
     assert naming._same_kind(answer, reference) is same
+
+
+# ------------------------------------------------------------------ images: a mutant sharing part of a mistake
+UINT8_PYRAMIDS = """
+def blend_multiband(img1, img2, mask, levels=4):
+    a = np.asarray(img1)
+    b = np.asarray(img2)
+    weights = _gaussian_pyramid(np.clip(np.asarray(mask, dtype=np.float32), 0, 1), levels)
+    bands = []
+    for band_a, band_b, w in zip(_laplacian_pyramid(a, levels), _laplacian_pyramid(b, levels), weights):
+        if band_a.ndim == 3:
+            w = w[..., None]
+        bands.append(w * band_a + (1 - w) * band_b)
+    result = bands[-1]
+    for band in reversed(bands[:-1]):
+        result = cv2.pyrUp(result, dstsize=(band.shape[1], band.shape[0])) + band
+    return np.clip(np.round(result), 0, 255).astype(np.uint8)
+"""
+
+SATURATING_PYRAMIDS = """
+def blend_multiband(img1, img2, mask, levels=4):
+    weights = _gaussian_pyramid(np.clip(np.asarray(mask, dtype=np.float32), 0, 1), levels)
+
+    def laplacian(image):
+        gaussian = _gaussian_pyramid(image, levels)
+        return [cv2.subtract(fine, cv2.pyrUp(coarse, dstsize=(fine.shape[1], fine.shape[0])))
+                for fine, coarse in zip(gaussian[:-1], gaussian[1:])] + [gaussian[-1]]
+
+    bands = []
+    for band_a, band_b, w in zip(laplacian(img1), laplacian(img2), weights):
+        w = w[..., None] if band_a.ndim == 3 else w
+        bands.append(w * band_a + (1 - w) * band_b)
+    result = bands[-1]
+    for band in reversed(bands[:-1]):
+        result = cv2.pyrUp(result, dstsize=(band.shape[1], band.shape[0])) + band
+    return np.clip(np.round(result), 0, 255).astype(np.uint8)
+"""
+
+
+def _blend_itself():
+    """lab 8's check "blending an image with itself": img1 is img2 (an exchange changes nothing)."""
+    from autograder.labs.lab08 import photo
+
+    image = photo("astronaut", (256, 192))
+    ys, xs = np.mgrid[0:192, 0:256]
+    return [("blend_multiband", (image, image, np.clip((xs - 80) / 100.0 + 0.2 * np.sin(ys / 15.0), 0, 1)), {})]
+
+
+def test_pyramids_of_uint8_images_are_named_as_a_missing_float_conversion():
+    trial = _trial("lab08", UINT8_PYRAMIDS, _blend_itself())
+    named = naming.name_failure(trial, seconds=60)
+    assert named is not None and named.mutant.operator == "drop_conversion", named
+    assert named.sentence.startswith("in `blend_multiband`, `img1` and `img2` are not converted to float")
+
+
+def test_a_mutant_sharing_only_part_of_the_mistake_is_not_named(monkeypatch):
+    """The false name of the blind set: with img1 is img2, "the unconverted img2 for img1's float
+    copy, and img1 for img2's" gives the uint8 student's very image (the exchange shows nothing);
+    on confirmation inputs (two images) it is ten times closer than the reference on average, but
+    a third of its pixels are not the student's. Without the operator that is the mistake, nothing
+    may be named."""
+    lab = LABS["lab08"]
+    model = naming.model_for(lab)
+    fn = next(n for n in ast.parse(model.source).body if isinstance(n, ast.FunctionDef) and n.name == "blend_multiband")
+    ordinal = {node.id: k for k, node in enumerate(ast.walk(fn)) if isinstance(node, ast.Name)
+               and node.id in ("a", "b") and isinstance(node.ctx, ast.Load)}
+    place = "in `blend_multiband`, "
+    crossed = [Mutant("other_name", "blend_multiband", "blend_multiband", fn.lineno,
+                             (("blend_multiband", ordinal[local], "other_name", raw),),
+                             f"{place}`{raw}` is used where `{own}` belongs", place)
+               for local, raw, own in (("a", "img2", "img1"), ("b", "img1", "img2"))]
+    mutants = [m for m in model.mutants["blend_multiband"] if m.operator != "drop_conversion"] + crossed
+    monkeypatch.setattr(naming, "model_for", lambda lab: replace(model, mutants={"blend_multiband": mutants}))
+    trial = _trial("lab08", UINT8_PYRAMIDS, _blend_itself())
+    pair = crossed[0].combined(crossed[1])
+    runner = naming.helper()
+    runner.prepare(model.source, model.module, [c[:3] for c in trial.calls], 30)
+    [reference], [crossing] = runner.run((), [0], 30), runner.run(pair.edits, [0], 30)
+    assert naming.reproduces(crossing, trial.calls[0][3], reference)   # on the failing input, it fits
+    assert naming.name_failure(trial, seconds=60) is None
+    assert trial.sandbox.asked                                          # the confirmation told it apart
+
+
+def test_a_student_no_operator_reproduces_in_images_is_not_named():
+    """Saturating uint8 arithmetic (cv2.subtract clips the bands at 0): no mutant's, nothing named."""
+    trial = _trial("lab08", SATURATING_PYRAMIDS, _blend_itself())
+    assert naming.name_failure(trial, seconds=60) is None

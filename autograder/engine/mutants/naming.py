@@ -286,8 +286,12 @@ def reproduces(mutant, student, reference) -> bool:
     Numbers (matrices, points): every entry within 1e-4 of the answer's size (another order
     of floating-point operations, not another value; a mutant that is merely close, as the
     identity is to a rotation by half a degree, is not the student's). Images: the mean absolute
-    difference within half a grey level, or ten times smaller than the reference's and under
-    5% of the mean brightness (another interpolation of the same warp)."""
+    difference within half a grey level, or else (another interpolation of the same warp)
+    :data:`IMAGE_CLOSER` times smaller than the reference's, under 5% of the mean brightness,
+    and the student's pixels where the mutant changes the reference's are the mutant's
+    (:func:`_explains_changed_pixels`): a mutant sharing only part of a mistake (uint8
+    arithmetic wrapped around, with two images exchanged besides) is ten times closer on
+    average than the reference but disagrees with the student on a third of the pixels."""
     tolerance, scale = _measures(student)
     if not _has_image(student):
         size = max(_largest(student), 1e-12)
@@ -301,7 +305,35 @@ def reproduces(mutant, student, reference) -> bool:
     off = distance(reference, student)
     if off <= 10 * tolerance:   # the student is right here: the mutant must be as near
         return apart <= 2 * off
-    return apart <= min(0.1 * off, 0.05 * scale)
+    return apart <= min(off / IMAGE_CLOSER, 0.05 * scale) and _explains_changed_pixels(mutant, student, reference)
+
+
+IMAGE_CLOSER = 30        # how many times closer than the reference a mutant's image must be to the student's
+PIXEL_LEVELS = 3         # grey levels within which a pixel is "the same" (interpolations differ by one or two)
+PIXELS_EXPLAINED = 0.9   # share of the pixels the mutant changes where the student's are the mutant's
+
+
+def _explains_changed_pixels(mutant, student, reference) -> bool:
+    """Whether, at the pixels of every image where the mutant differs from the reference by more
+    than :data:`PIXEL_LEVELS`, the student's image is within :data:`PIXEL_LEVELS` of the mutant's
+    at :data:`PIXELS_EXPLAINED` of them or more (the mistake is judged where it shows, not on
+    average over pixels nobody changed). Answers of other forms: False."""
+    mine, theirs, right = [], [], []
+    if not (_leaves(mutant, mine) and _leaves(student, theirs) and _leaves(reference, right)) \
+            or not len(mine) == len(theirs) == len(right):
+        return False
+    for m, s, r in zip(mine, theirs, right):
+        if not (isinstance(m, np.ndarray) and isinstance(s, np.ndarray) and isinstance(r, np.ndarray)
+                and s.dtype.kind in "iub" and s.ndim >= 2 and s.size > 64):
+            continue   # numbers beside the image are judged by the distance
+        if not m.shape == s.shape == r.shape or m.dtype.kind not in "biuf":
+            return False
+        m, s, r = (np.asarray(v, np.float64) for v in (m, s, r))
+        per_pixel = (lambda d: d.max(axis=2) if d.ndim == 3 else d)   # colour: the worst channel
+        changed = per_pixel(np.abs(m - r)) > PIXEL_LEVELS
+        if changed.any() and (per_pixel(np.abs(m - s))[changed] <= PIXEL_LEVELS).mean() < PIXELS_EXPLAINED:
+            return False
+    return True
 
 
 def _has_image(value) -> bool:

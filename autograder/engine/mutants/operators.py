@@ -43,6 +43,7 @@ OPERATORS = {
     "flag": ("cv2.", "flag", "interpolat", "border", "method"),
     "bound": ("off by one", "one element", "bound", "- 1", "+ 1"),
     "int_division": ("integer", "truncat", "round"),
+    "drop_conversion": ("float", "uint8", "integer", "convert", "conversion", "wrap", "dtype", "clip"),
     "drop_division": ("normalis", "normaliz", "homogeneous", "divid", "division", "scale"),
     "drop_factor": ("denormalis", "normalis", "product", "missing", "undone"),
     "other_name": ("instead of", "in place of", "where"),
@@ -119,6 +120,12 @@ class Mutant:
                           f"{self.place}{second} and {first} are exchanged (each is used where the other belongs)",
                           self.place)
         said = other.sentence[len(other.place):] if other.place and other.place == self.place else other.sentence
+        alike = [re.fullmatch(r"(`[^`]+`) (is not converted .+)", m.sentence[len(m.place):]) for m in (self, other)]
+        if self.operator == other.operator == "drop_conversion" and all(alike) and self.place == other.place \
+                and alike[0].group(2) == alike[1].group(2):   # one slip made twice: told once
+            said = alike[0].group(2).replace("is not", "are not", 1)
+            return Mutant(self.operator, self.function, self.where, self.line, self.edits + other.edits,
+                          f"{self.place}{alike[0].group(1)} and {alike[1].group(1)} {said}", self.place)
         return Mutant(f"{self.operator}+{other.operator}", self.function, self.where, self.line,
                       self.edits + other.edits, f"{self.sentence}; and {said}", self.place)
 
@@ -320,6 +327,13 @@ def _make_drop_factor(node, payload):
     return copy.deepcopy(node.right if payload == "left" else node.left)
 
 
+def _make_drop_conversion(node, payload):
+    converted = _float_conversion(node)
+    if isinstance(node.func, ast.Attribute) and node.func.attr == "astype":
+        return copy.deepcopy(converted)
+    return _call("np.asarray", copy.deepcopy(converted))
+
+
 def _make_other_name(node, payload):
     return ast.Name(payload, ast.Load())
 
@@ -332,7 +346,7 @@ _MAKE = {"sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_sw
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
-         "drop_factor": _make_drop_factor, "other_name": _make_other_name,
+         "drop_factor": _make_drop_factor, "drop_conversion": _make_drop_conversion, "other_name": _make_other_name,
          "drop_statement": _make_drop_statement}
 
 
@@ -707,6 +721,11 @@ def _changes(node, parents, words: _Words, line):
         yield "int_division", "astype", _placed("the result is truncated to integers (astype(int))", "in the returned value")
     if isinstance(node, ast.Call):
         yield from _call_changes(node, words, what, parents)
+        converted = _float_conversion(node)
+        if converted is not None and what(converted) and not _dotted(getattr(converted, "func", None)) \
+                .rsplit(".", 1)[-1].startswith("arg"):   # (an index array is integer by design)
+            yield "drop_conversion", None, f"{what(converted)} is not converted to float before the arithmetic " \
+                                           "(integer values, such as uint8 pixels, wrap around or are truncated)"
     if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load):
         inner = what(node.value)
         yield "transpose", "remove", f"{inner} is used untransposed (its transpose belongs there)" if inner else \
@@ -849,6 +868,25 @@ def _call_changes(node: ast.Call, words, what, parents):
         yield "minmax", other, f"`{other}` is used where `{dotted}` belongs" + (f" (on {on})" if on else "")
 
 
+_FLOAT_TYPES = {"float", "np.float32", "np.float64", "np.double", "numpy.float32", "numpy.float64"}
+
+
+def _float_conversion(node: ast.Call):
+    """``x`` when ``node`` converts ``x`` to a float array: ``np.asarray(x, dtype=np.float32)``,
+    ``np.array(x, float)``, ``np.float64(x)``, ``x.astype(np.float32)``; else None."""
+    dotted = _dotted(node.func)
+    is_float = (lambda n: _dotted(n) in _FLOAT_TYPES
+                or (isinstance(n, ast.Constant) and n.value in ("float", "float32", "float64")))
+    if dotted in ("np.asarray", "np.array", "numpy.asarray", "numpy.array") and len(node.args) >= 1:
+        dtype = node.args[1] if len(node.args) > 1 else next((k.value for k in node.keywords if k.arg == "dtype"), None)
+        return node.args[0] if dtype is not None and is_float(dtype) else None
+    if dotted in _FLOAT_TYPES - {"float"} and len(node.args) == 1 and not node.keywords:
+        return node.args[0]
+    if isinstance(node.func, ast.Attribute) and node.func.attr == "astype" and node.args and is_float(node.args[0]):
+        return node.func.value
+    return None
+
+
 def _trig_argument(node, parent) -> bool:
     return isinstance(parent, ast.Call) and bool(parent.args) and node is parent.args[0] \
         and _dotted(parent.func).rsplit(".", 1)[-1] in ("sin", "cos", "tan") \
@@ -940,12 +978,22 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     own = what(node)
     if not own:
         return
-    count = 0
+    params = {a.arg for a in words.fn.args.args + words.fn.args.kwonlyargs}
+    others = []
     for other in words.locals_before(line):
         if other == node.id or other in words.module_defs:
             continue
         phrase = words.what(ast.Name(other, ast.Load()), line=line)
-        if not phrase or phrase == own:
+        if phrase and phrase != own:
+            others.append((other, phrase))
+    # Two names told alike (`img2`, and its float copy told as `img2` too): only the one of the
+    # replaced name's kind (a parameter for a parameter, a local for a local) is that mistake; the
+    # other one also drops the copy's conversion, which its sentence would not say.
+    kind = node.id in params
+    alike = {phrase for other, phrase in others if (other in params) == kind}
+    count = 0
+    for other, phrase in others:
+        if (other in params) != kind and phrase in alike:
             continue
         yield "other_name", other, f"{phrase} is used where {own} belongs"
         count += 1
