@@ -317,6 +317,19 @@ MISTAKES = {
             return cv2.remap(image, src[..., 0].astype(np.float32), src[..., 1].astype(np.float32),
                              cv2.INTER_LINEAR)
         """, ["applied instead of removed"]),
+    "undistort into the tutorial's new camera matrix (alpha=1)": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            K, dist = np.asarray(K, np.float64), np.asarray(dist, np.float64)
+            h, w = image.shape[:2]
+            new_K, roi = cv2.getOptimalNewCameraMatrix(K, dist, (w, h), 1, (w, h))
+            return cv2.undistort(image, K, dist, None, new_K)
+        """, ["another camera matrix", "getOptimalNewCameraMatrix(alpha=1)", "keep k"]),
+    "undistort a grey image into BGR": ("lab10.ext1", """
+        _undistort = undistort_image
+        def undistort_image(image, K, dist):
+            colour = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image
+            return _undistort(colour, K, dist)
+        """, ["channels are not kept", "grey in, grey out"]),
     "dolly zoom with the focal length inverted": ("lab10.ext2", """
         def dolly_zoom(points, f0, z0, distances):
             X, _ = _points(points)
@@ -502,9 +515,5 @@ MISTAKES = {
 }
 
 
-# cv2.undistort does the work from the given K and dist: a student can skip dist, or
-# map the wrong way (by hand or with -dist); there is little else to get wrong.
-FEWER_MISTAKES = {
-    "lab10.ext1": "undistortion is one OpenCV call on the given K and dist: the realistic slips are "
-                  "dist not used, the mapping direction (distorting again), the sign of dist and K transposed",
-}
+# every exercise has at least five cases (ext1's undistortion since its new camera matrix and channels)
+FEWER_MISTAKES: dict = {}
