@@ -21,6 +21,7 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
                        projective_distance)
+from ..engine.forms import shape_form
 from ..engine.hints import RATIO_TEST, Hint, calls, keyword, mentions
 from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
                       where_points_differ)
@@ -383,8 +384,9 @@ def draw_judgement(got, base, lines):
 
 
 def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
-    """Judge the drawn lines. A grey input may come back grey (the API's rule: the input's
-    channel count) or BGR (to show colours; a tip reminds of the rule): both are judged."""
+    """Judge the drawn lines. A grey input's drawing is judged for its lines whether it came back
+    grey (the API's rule: the input's channel count) or BGR; the channel count is the grey-input
+    check's question (:func:`draw_full_width`), asked once."""
     height, width = image.shape[:2]
     if isinstance(got, np.ndarray) and got.shape == (height, width) and image.ndim == 2:
         got = cv2.cvtColor(t.expect_array(got, what, dtype=np.uint8), cv2.COLOR_GRAY2BGR)
@@ -451,19 +453,19 @@ def draw_full_width(t):
         [-1.0, -0.05, 120.0],     # nearly vertical
     ]))
     got = t.call("draw_epipolar_lines", image, lines)
+    what = "draw_epipolar_lines(grey image, lines)"
     if isinstance(got, np.ndarray) and got.ndim in (2, 3):
         t.images("draw_epipolar_lines(black 160 x 120 grey image, 5 lines)", input=image, yours=got)
-    judge_drawing(t, "draw_epipolar_lines(grey image, lines)", got, image, lines)
-
-
-@ex2.advice("grey in, grey out (the API's rule for functions that take an image)")
-def draw_keeps_channels(t):
-    image = np.zeros((60, 80), np.uint8)
-    got = t.call("draw_epipolar_lines", image, np.array([[0.0, 1.0, -30.0]]))
-    if isinstance(got, np.ndarray) and got.shape == (60, 80, 3):
-        t.advise("draw_epipolar_lines(grey image, lines) returned a BGR image. That is accepted (it shows "
-                 "coloured lines), but the API's rule is that a function taking an image returns its "
-                 "channel count unless stated otherwise: grey in, grey out, lines in white (255).")
+    judge_drawing(t, what, got, image, lines)
+    if got.shape != image.shape:
+        # The API: a function that takes an image returns the input's channel count unless stated
+        # otherwise, and nothing states otherwise here (the skeleton: grey in, grey out, white lines).
+        # OpenCV's epipolar tutorial converts to BGR to draw in colour: the lines are right (judged
+        # above), the form is not, so half the points.
+        form = shape_form(got.shape, image.shape)
+        return partial(0.5, f"{what} draws the lines rightly but returns shape {got.shape} for a grey "
+                            f"{image.shape} input: {form.sentence}. Draw the lines in white (255) on a grey copy.",
+                       mistake=form.mistake)
 
 
 @ex2.check("draw_epipolar_lines draws a vertical line (b = 0)", points=1)

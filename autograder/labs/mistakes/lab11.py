@@ -101,6 +101,13 @@ MISTAKES = {
                          (0, 0, 255), 1)
             return canvas
         """, ["stop short"]),
+    "draw_epipolar_lines returning BGR for a grey input (the tutorial's way)": ("lab11.ex2", """
+        _draw = draw_epipolar_lines
+        def draw_epipolar_lines(image, lines):
+            if image.ndim == 2:
+                image = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR)
+            return _draw(image, lines)
+        """, ["channels are not kept", "grey in, grey out"]),
     "draw with x and y swapped": ("lab11.ex2", """
         _draw = draw_epipolar_lines
         def draw_epipolar_lines(image, lines):
