@@ -396,3 +396,45 @@ def test_a_student_no_operator_reproduces_in_images_is_not_named():
     """Saturating uint8 arithmetic (cv2.subtract clips the bands at 0): no mutant's, nothing named."""
     trial = _trial("lab08", SATURATING_PYRAMIDS, _blend_itself())
     assert naming.name_failure(trial, seconds=60) is None
+
+
+# ------------------------------------------------------------------ inputs changed in place
+IN_PLACE = ("import numpy as np\n\n\n"
+            "def scaled(x, s=2.0):\n    out = x.copy()\n    out *= s\n    return out\n\n\n"
+            "def shifted(x, c=1.0):\n    x = x - c\n    return x\n")
+
+
+@pytest.mark.parametrize("function, student, said", [
+    ("scaled", "out = x.copy()", "in `scaled`, `x` is written into in place (the copy of it is missing: the caller's "
+                                 "array changes)"),
+    ("shifted", "x = x - c", "in `shifted`, `x` is decreased in place (the caller's array changes)"),
+])
+def test_a_function_changing_its_callers_array_is_told_where(monkeypatch, function, student, said):
+    """When a check fails because the caller's array changed (the engine's ChangedInPlace verdict),
+    the in-place mutant that gives the student's answer *and* changes the same argument to the same
+    values says where; a student whose change is another's (another factor) is told nothing more."""
+    from autograder.engine.checks import Verdict
+    from autograder.engine.inplace import MISTAKE
+    from autograder.engine.mutants.naming import ErrorModel, _numeric_defaults
+
+    model = ErrorModel("inplace", IN_PLACE, mutants_of(IN_PLACE, {"scaled", "shifted"}), _numeric_defaults(IN_PLACE))
+    monkeypatch.setattr(naming, "model_for", lambda lab: model)
+    assert {m.sentence for m in model.mutants[function] if m.operator == "in_place"} == {said}
+
+    def trial(written):
+        module = types.ModuleType("student")
+        exec(IN_PLACE.replace(student, written), module.__dict__)  # noqa: S102 - the test's own code
+        given = np.arange(6.0).reshape(3, 2)
+        held = given.copy()
+        answer = getattr(module, function)(held)
+        changed = [[0, None, held]] if not np.array_equal(held, given) else []
+        return SimpleNamespace(lab=SimpleNamespace(module="inplace", forbidden={}), calls=[(function, (given,), {}, answer)],
+                               _last_changed=changed, sandbox=SimpleNamespace(shared={}))
+
+    verdict = Verdict(0.0, f"{function}() writes into the caller's `x` in place: ...\nmore", mistake=MISTAKE)
+    same = trial({"scaled": "out = x", "shifted": "x -= c"}[function])
+    told = naming.named_by_error_model(verdict, same)
+    assert told.mistake == MISTAKE and told.message.endswith("\nmore")
+    assert f"{naming.APPENDED}{said} (in place)." in told.message
+    other = trial({"scaled": "out = x; out += 0.5", "shifted": "x -= 2 * c"}[function])
+    assert naming.named_by_error_model(verdict, other) is verdict

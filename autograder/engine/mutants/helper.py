@@ -13,7 +13,10 @@ Requests (one frame each, a length before it):
 - ``{"op": "calls", "calls": [[function, args, kwargs], ...]}``: inputs kept for later runs;
 - ``{"op": "run", "edits": [...], "function": str, "calls": [index, ...]}``: the mutant made by
   ``edits`` (:func:`.operators.apply_edits`; none: the reference) called on the kept inputs;
-  the reply's ``values`` hold each call's result or ``{"__error__": "..."}``.
+  the reply's ``values`` hold each call's result or ``{"__error__": "..."}``; with
+  ``"changed": true`` also ``changed``, per call the argument arrays it wrote into, as
+  ``[[position or keyword, index in a list or None, array], ...]`` (the sandbox's form, see
+  :attr:`autograder.sandbox.supervisor.CallOutcome.changed`).
 
 ``python -m autograder.engine.mutants.helper`` serves them on stdin/stdout.
 """
@@ -100,6 +103,13 @@ class Helper:
         reply = self._request({"op": "run", "edits": [list(e) for e in edits], "calls": list(calls)}, timeout)
         return reply["values"]
 
+    def run_changed(self, edits, calls: list[int], timeout: float) -> list[tuple]:
+        """``(value, changed)`` per call: as :meth:`run`, with the argument arrays the mutant
+        changed in place (``[[position or keyword, index or None, array], ...]``)."""
+        reply = self._request({"op": "run", "edits": [list(e) for e in edits], "calls": list(calls),
+                               "changed": True}, timeout)
+        return list(zip(reply["values"], reply["changed"]))
+
     def _request(self, request: dict, timeout: float):
         process = self._process
         if process is None:
@@ -169,6 +179,23 @@ def _copy(value):
     return value
 
 
+def _changed(given, kept) -> list:
+    """The argument arrays of ``given`` (the arguments a call was handed) that differ from ``kept``
+    (the same, untouched): ``[[position or keyword, index in a list or None, array], ...]``."""
+    import numpy as np
+
+    args, kwargs = given
+    out = []
+    for key, value in list(enumerate(args)) + list(kwargs.items()):
+        before = kept[0][key] if isinstance(key, int) else kept[1][key]
+        pairs = zip(range(len(value)), value, before) if isinstance(value, (list, tuple)) else [(None, value, before)]
+        for index, now, was in pairs:
+            if isinstance(now, np.ndarray) and isinstance(was, np.ndarray) and now.dtype.kind in "biuf" \
+                    and (now.shape != was.shape or now.tobytes() != was.tobytes()):
+                out.append([key, index, now])
+    return out
+
+
 def serve(request_fd: int, reply_fd: int) -> None:
     import types
     import warnings
@@ -224,23 +251,29 @@ def serve(request_fd: int, reply_fd: int) -> None:
         elif request["op"] == "calls":
             calls = request["calls"]
         elif request["op"] == "run":
-            values = []
+            values, changes = [], []
             try:
                 made = module(request["edits"]) if request["edits"] else reference
             except Exception as exc:  # noqa: BLE001 - a mutant that does not build is no candidate
                 made, failure = None, f"{type(exc).__name__}: {exc}"
             for index in request["calls"]:
                 function, args, kwargs = calls[index]
+                changes.append([])
                 if made is None:
                     values.append({ERROR: failure})
                     continue
+                given = (_copy(args), _copy(kwargs))
                 try:
-                    value = getattr(made, function)(*_copy(args), **_copy(kwargs))
+                    value = getattr(made, function)(*given[0], **given[1])
                     transport.encode(value)  # what cannot cross is no answer
                     values.append(value)
+                    if request.get("changed"):
+                        changes[-1] = _changed(given, (args, kwargs))
                 except Exception as exc:  # noqa: BLE001
                     values.append({ERROR: f"{type(exc).__name__}: {exc}"[:200]})
             reply["values"] = values
+            if request.get("changed"):
+                reply["changed"] = changes
         frame = transport.encode(reply)
         view = memoryview(LENGTH.pack(len(frame)) + frame)
         while view:

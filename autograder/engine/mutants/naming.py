@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from ...loading.parsing import parse
+from ..inplace import MISTAKE as IN_PLACE
 from .helper import ERROR, Helper, HelperFailed
 from .operators import Mutant, mutants_of
 
@@ -470,6 +471,12 @@ def name_failure(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
     ``calls``); the student's function is asked for a few confirmation answers through
     its sandbox. Never raises for the student's sake: any failure of the helper is "no name".
     """
+    return _within_budget(trial, seconds, _name)
+
+
+def _within_budget(trial, seconds: float, work) -> Naming | None:
+    """``work(trial, model, clock)`` within this check's and this grading's time left (None without
+    a model, without calls, out of time or when the helper fails)."""
     model = model_for(trial.lab)
     if model is None or not trial.calls:
         return None
@@ -479,13 +486,46 @@ def name_failure(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
         return None
     started = time.monotonic()
     try:
-        return _name(trial, model, _Clock(seconds))
+        return work(trial, model, _Clock(seconds))
     except HelperFailed:
         return None
     finally:
         spent[0] += time.monotonic() - started
         _MEASURED.clear()
         _release()
+
+
+def name_in_place(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
+    """Where a function changes its caller's array, when the check failed for it
+    (:class:`~autograder.engine.checks.ChangedInPlace`: the trial's last call changed arrays in place,
+    :attr:`~autograder.engine.checks.Trial.calls`' last entry): the ``in_place`` mutant of that function
+    that, on that call, gives the student's answer and changes the same arguments to the same values;
+    None when none or several different ones do."""
+    return _within_budget(trial, seconds, _name_in_place)
+
+
+def _name_in_place(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
+    changed = getattr(trial, "_last_changed", ()) or ()
+    function, args, kwargs, answer = trial.calls[-1]
+    mutants = [m for m in model.mutants.get(function, ()) if m.operator == "in_place"]
+    if not changed or not mutants:
+        return None
+    theirs = {(key, index): array for key, index, array in changed}
+    runner = helper()
+    runner.prepare(model.source, model.module, [(function, tuple(args), dict(kwargs))], max(1.0, clock.left()))
+    [reference] = runner.run((), [0], _timeout(clock))
+    found = []
+    for mutant in mutants:
+        if clock.left() <= 0:
+            return None
+        [(value, mine)] = runner.run_changed(mutant.edits, [0], _timeout(clock))
+        mine = {(key, index): array for key, index, array in mine}
+        if set(mine) == set(theirs) and reproduces(value, answer, reference) \
+                and all(distance(mine[k], theirs[k]) <= _tolerance(theirs[k]) for k in theirs):
+            found.append(mutant)
+    if not found or len({m.sentence.split(", ", 1)[-1] for m in found}) > 1:
+        return None   # (one copy dropped, told from the graded function and from a helper it runs)
+    return Naming(min(found, key=lambda m: m.rank), 1, 0)
 
 
 def _name(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
@@ -690,6 +730,10 @@ def named_by_error_model(verdict, trial):
     called = {call[0] for call in trial.calls} | set(functions_called(trial.check)) if hasattr(trial, "check") \
         else {call[0] for call in trial.calls}
     hand_named = trial.sandbox.shared.setdefault("error model: named by hand", set())
+    if verdict.mistake == IN_PLACE:   # the engine names the change; the model may say where it is made
+        hand_named.update(called)
+        naming = name_in_place(trial)
+        return verdict if naming is None else replace(verdict, message=_appended(str(verdict.message), naming))
     if verdict.mistake or "looks like" in str(verdict.message).lower():
         # A hand-written name keeps precedence (here and in the grading's later checks of these
         # functions). Replacing one a mutant "contradicts" was tried with a test on the operator's
@@ -701,13 +745,17 @@ def named_by_error_model(verdict, trial):
     naming = name_failure(trial)
     if naming is None:
         return verdict
-    message = str(verdict.message)
+    return replace(verdict, message=_appended(str(verdict.message), naming), mistake=naming.mistake)
+
+
+def _appended(message: str, naming: Naming) -> str:
+    """``message`` with the error model's sentence at the end of its first line."""
     first, newline, rest = message.partition("\n")
     sentence = f"{APPENDED}{naming.sentence} ({naming.mutant.operator.replace('_', ' ')})."
     lead = first.rstrip()
     if lead and lead[-1] not in ".:;!?":   # "... is wrong" ends a sentence before the model's own
         lead += "."
-    return replace(verdict, message=f"{lead} {sentence}{newline}{rest}", mistake=naming.mistake)
+    return f"{lead} {sentence}{newline}{rest}"
 
 
 APPENDED = "The error model: it looks like "

@@ -49,6 +49,7 @@ OPERATORS = {
     "other_name": ("instead of", "in place of", "where"),
     "swap_names": ("exchang", "swap", "order", "other way", "revers"),   # two other_name, crossed
     "drop_statement": ("missing", "skipped", "not "),
+    "in_place": ("in place", "copy", "caller", "writes into", "written into"),   # named where the change shows
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -334,6 +335,18 @@ def _make_drop_conversion(node, payload):
     return _call("np.asarray", copy.deepcopy(converted))
 
 
+def _make_in_place(node, payload):
+    if payload == "augment":   # x = x / s -> x /= s
+        return ast.AugAssign(copy.deepcopy(node.targets[0]), node.value.op, copy.deepcopy(node.value.right))
+    if payload == "array":     # np.array(x, ...) copies, np.asarray(x, ...) does not
+        new = copy.deepcopy(node)
+        new.func = _name("np.asarray")
+        new.keywords = [k for k in new.keywords if k.arg != "copy"]
+        return new
+    return copy.deepcopy(node.func.value if isinstance(node.func, ast.Attribute) and node.func.attr == "copy"
+                         else node.args[0])   # x.copy() / np.copy(x) -> x
+
+
 def _make_other_name(node, payload):
     return ast.Name(payload, ast.Load())
 
@@ -346,7 +359,7 @@ _MAKE = {"sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_sw
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
-         "drop_factor": _make_drop_factor, "drop_conversion": _make_drop_conversion, "other_name": _make_other_name,
+         "drop_factor": _make_drop_factor, "drop_conversion": _make_drop_conversion, "other_name": _make_other_name, "in_place": _make_in_place,
          "drop_statement": _make_drop_statement}
 
 
@@ -754,6 +767,33 @@ def _changes(node, parents, words: _Words, line):
         yield from _name_changes(node, words, what, line)
     if isinstance(node, (ast.Assign, ast.AugAssign)) and parent is not None:
         yield "drop_statement", None, _statement_phrase(node, words, line)
+    yield from _in_place_changes(node, words)
+
+
+def _in_place_changes(node, words: _Words):
+    """A copy of an input dropped (``out = image.copy()`` -> ``out = image``, ``np.array`` -> ``np.asarray``)
+    or an input's update written in place (``x = x / s`` -> ``x /= s``): the caller's array changes.
+    Only on the graded function's own parameters (what a caller hands in)."""
+    if isinstance(node, ast.Call) and node.args[:1] and isinstance(node.args[0], ast.Name) \
+            and node.args[0].id in words.api_params and _dotted(node.func) in ("np.array", "numpy.array") \
+            and not any(k.arg == "copy" and isinstance(k.value, ast.Constant) and not k.value.value
+                        for k in node.keywords):
+        yield "in_place", "array", f"`{node.args[0].id}` is written into in place (the copy of it is missing: " \
+                                   "the caller's array changes)"
+    copied = node.func.value if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) \
+        and node.func.attr == "copy" and not node.args else \
+        (node.args[0] if isinstance(node, ast.Call) and _dotted(node.func) in ("np.copy", "numpy.copy")
+         and len(node.args) == 1 else None)
+    if isinstance(copied, ast.Name) and copied.id in words.api_params:
+        yield "in_place", "copy", f"`{copied.id}` is written into in place (the copy of it is missing: " \
+                                  "the caller's array changes)"
+    if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+            and isinstance(node.value, ast.BinOp) and isinstance(node.value.left, ast.Name) \
+            and node.value.left.id == node.targets[0].id and node.targets[0].id in words.api_params \
+            and type(node.value.op) in (ast.Add, ast.Sub, ast.Mult, ast.Div):
+        verb = {ast.Add: "increased", ast.Sub: "decreased", ast.Mult: "multiplied", ast.Div: "divided"}[
+            type(node.value.op)]
+        yield "in_place", "augment", f"`{node.targets[0].id}` is {verb} in place (the caller's array changes)"
 
 
 def _placed(sentence: str, place: str) -> str:
