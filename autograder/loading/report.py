@@ -43,6 +43,18 @@ after the other (a heading's text runs on into the cells after it). The scaffold
 markers, tags and ``## ID`` headings keep precedence: a heading of the student's own is
 read only for an exercise that none of those explains anywhere in the hand-in.
 
+PDF reports (when the reader is given a :class:`~.pdf_report.ReportReader` and the
+exercise names): the text is extracted in a sandbox worker, never here, and split per
+exercise as the student's own headings are (:func:`~.pdf_report.pdf_sections`: strictly,
+a heading being a short line that names an exercise); a PDF whose text cannot be read is
+one problem, "report.pdf: the PDF's text could not be read: it is encrypted ...".
+
+Figures (:class:`ReportFigure`, with the same reader): the pictures of a PDF and the image
+outputs of a notebook's code cells, thumbnailed in the worker, each with the exercise
+whose section holds it (a PDF's page, a notebook's cell after the exercise's heading or
+tagged cell); the review screen compares them with the figures the student's code makes
+(:mod:`autograder.instructor.review.provenance`).
+
 IDs are exercise ids (``lab07.ex1``, ``lab08.ext2``) or the figure ids of the
 experiment extensions (``lab09.ex3-extension``). :data:`PLACEHOLDER` alone, or
 nothing, means "not written": such a section gives no explanation.
@@ -57,10 +69,14 @@ from dataclasses import dataclass, field
 from itertools import islice
 from pathlib import PurePosixPath
 
+import numpy as np
+
 from .headings import ExerciseNames, student_sections
+from .pdf_report import ReportReader, notebook_pictures, pdf_sections
 from .text import printable, shown
 
-REPORT_SUFFIXES = (".md", ".ipynb")      # .pdf files are listed, never parsed
+REPORT_SUFFIXES = (".md", ".ipynb")      # .pdf files are listed; their text is read in a worker (pdf_report)
+MAX_FIGURES = 100                        # report figures kept per hand-in
 ATTACHMENT_SUFFIXES = (".pdf",)
 MAX_REPORT_BYTES = 1 << 20               # a larger report file is refused with its reason
 MAX_EXPLANATION_CHARS = 20_000           # longer: cut, with truncated=True
@@ -109,10 +125,23 @@ class Explanation:
 
 
 @dataclass(frozen=True)
+class ReportFigure:
+    """A picture embedded in the report, thumbnailed in a worker (never decoded here)."""
+
+    exercise: str          # the exercise whose section holds it; "" when none does
+    source: str            # "report.pdf, page 3" or "lab07_transformations.ipynb, cell 12"
+    number: int            # its place among the hand-in's report figures, from 1
+    width: int             # its own size, pixels
+    height: int
+    thumb: np.ndarray      # THUMB x THUMB grey uint8 (autograder.sandbox.report_reader.thumbnail)
+
+
+@dataclass(frozen=True)
 class Report:
     explanations: dict[str, Explanation] = field(default_factory=dict)  # written ones only
     attachments: tuple[str, ...] = ()    # relative paths of PDFs handed in (offered as files)
     problems: tuple[str, ...] = ()       # sentences: a file refused, two explanations of one exercise...
+    figures: tuple[ReportFigure, ...] = ()   # pictures in the report (with a reader only)
 
 
 # ------------------------------------------------------------------ public functions
@@ -130,16 +159,19 @@ def explanations_in_notebook(data: bytes, source: str) -> dict[str, Explanation]
     return reading.explanations()
 
 
-def read_report(files: dict[str, bytes], names: ExerciseNames | None = None) -> Report:
+def read_report(files: dict[str, bytes], names: ExerciseNames | None = None,
+                reader: ReportReader | None = None) -> Report:
     """Every explanation in the Markdown files and notebooks of a hand-in, the PDFs beside
     them, and what could not be read.
 
     ``files``: relative path -> bytes (as ``sandbox.files.read_regular_files`` gives them).
     ``names``: the exercises the student's own headings may name (none read without it).
+    ``reader``: reads the PDFs' text and the report's pictures in sandbox workers (with
+    ``names``; without, PDFs are only listed and no figure is read).
     Files are read in path order; an exercise explained in two places keeps both texts,
     one after the other, and the problems say so.
     """
-    reading = _Reading(names)
+    reading = _Reading(names, reader if names is not None else None)
     attachments = []
     for path in sorted(files, key=str):
         name = shown(path)
@@ -149,6 +181,8 @@ def read_report(files: dict[str, bytes], names: ExerciseNames | None = None) -> 
         suffix = PurePosixPath(parts[-1] if parts else "").suffix.lower()
         if suffix in ATTACHMENT_SUFFIXES:
             attachments.append(name)
+            if reading.reader is not None and isinstance(files[path], (bytes, bytearray, memoryview)):
+                reading.pdf(bytes(files[path]), name)
             continue
         if suffix not in REPORT_SUFFIXES:
             continue
@@ -165,7 +199,7 @@ def read_report(files: dict[str, bytes], names: ExerciseNames | None = None) -> 
             reading.markdown(_decoded(bytes(data)), name)
         else:
             reading.notebook(bytes(data), name)
-    return Report(reading.explanations(), tuple(attachments), reading.problem_list())
+    return Report(reading.explanations(), tuple(attachments), reading.problem_list(), tuple(reading.figures))
 
 
 # ------------------------------------------------------------------ reading
@@ -189,11 +223,13 @@ class _Gathered:
 class _Reading:
     """Explanations and problems gathered over the files of one hand-in."""
 
-    def __init__(self, names: ExerciseNames | None = None):
+    def __init__(self, names: ExerciseNames | None = None, reader: ReportReader | None = None):
         self.gathered: dict[str, _Gathered] = {}
         self.problems: list[str] = []
         self.more_problems = 0
         self.names = names
+        self.reader = reader
+        self.figures: list[ReportFigure] = []
         self.own: list[tuple[str, str, str]] = []   # (exercise, text, source) under the student's own headings
 
     def explanations(self) -> dict[str, Explanation]:
@@ -207,18 +243,66 @@ class _Reading:
         self.own = []
         return {exercise: gathered.explanation(exercise) for exercise, gathered in self.gathered.items()}
 
-    def own_headings(self, text: str, source: str, where=None) -> None:
+    def own_headings(self, text: str, source: str, where=None, sections=None) -> list:
         """Keep the sections under the student's own headings in ``text`` (of the file
-        ``source``) for the end. ``where(position)``: the source of the text at ``position`` (a notebook's cell)."""
+        ``source``) for the end, and return them. ``where(position)``: the source of the text
+        at ``position`` (a notebook's cell). ``sections``: given (a PDF's), else found here."""
         if self.names is None:
-            return
+            return []
         unsure: list[str] = []
-        for section in student_sections(text, self.names, self.names.lab_of_path(source), MAX_SECTIONS, unsure):
+        if sections is None:
+            sections = student_sections(text, self.names, self.names.lab_of_path(source), MAX_SECTIONS, unsure)
+        for section in sections:
             self.own.append((section.exercise, _section_text(section.body),
                              where(section.start) if where else source))
         if unsure:
             self.problem(f"{source}: the heading {unsure[0]!r} names an exercise by number but not its lab; "
                          "name the lab in the file's name (lab07_report.md) or a heading (# Lab 7)")
+        return sections
+
+    # -------------------------------------------------------------- PDFs and pictures (in a worker)
+    def pdf(self, data: bytes, source: str) -> None:
+        """The PDF's text per exercise (as the student's own headings), and its pictures."""
+        pdf = self.reader.pdf(data)
+        if pdf.error:
+            self.problem(f"{source}: the PDF's text could not be read: {pdf.error}")
+            return
+        for note in pdf.notes:
+            self.problem(f"{source}: {note}")
+        text, unsure = pdf.text, []
+        sections = pdf_sections(pdf, self.names, source, MAX_SECTIONS, unsure)
+        if unsure:
+            self.problem(f"{source}: the heading {unsure[0]!r} names an exercise by number but not its lab; "
+                         "name the lab in the file's name (lab07_report.pdf) or a heading (Lab 7)")
+        self.own_headings(text, source, lambda at: f"{source}, page {pdf.page_at(at)}", sections)
+        # A page's pictures belong to every exercise whose section runs over that page.
+        spans = [(s.exercise, pdf.page_at(s.start), pdf.page_at(max(s.start, text.find(s.body, s.start) + len(s.body) - 1)))
+                 for s in sections]
+        for picture in pdf.pictures:
+            page = int(picture.where.split()[-1])
+            self.figure([e for e, first, last in spans if first <= page <= last], f"{source}, {picture.where}", picture)
+
+    def notebook_figures(self, notebook: dict, source: str, marks: list[tuple[int, str]]) -> None:
+        """The image outputs of the notebook's code cells, each with the exercise of the last
+        mark (cell number, exercise: a tagged cell, a heading of the student's) before it."""
+        found = notebook_pictures(notebook)
+        if not found or self.reader is None:
+            return
+        pictures, problems = self.reader.pictures([(f"{source}, cell {cell}", blob) for cell, blob in found])
+        for sentence in problems:
+            self.problem(sentence)
+        marks = sorted(marks)
+        for picture in pictures:
+            cell = int(picture.where.rsplit(" ", 1)[-1])
+            before = bisect.bisect_right(marks, (cell, "\uffff"))
+            self.figure([marks[before - 1][1]] if before else [], picture.where, picture)
+
+    def figure(self, exercises: list[str], source: str, picture) -> None:
+        number = len({(f.source, f.number) for f in self.figures}) + 1
+        if number > MAX_FIGURES:
+            return
+        for exercise in dict.fromkeys(exercises or [""]):   # an exercise in two sections of a page: once
+            self.figures.append(ReportFigure(exercise, source, number, picture.width, picture.height, picture.thumb))
 
     def problem(self, sentence: str) -> None:
         if len(self.problems) < MAX_PROBLEMS:
@@ -331,6 +415,7 @@ class _Reading:
         plain: list[str] = []      # the Markdown cells with no tag or marker, for the student's own headings
         starts: list[int] = []     # where each of them starts in "\n\n".join(plain)
         numbers: list[int] = []
+        marks: list[tuple[int, str]] = []   # (cell number, exercise) where an exercise's text begins
         for number, cell in enumerate(cells, 1):
             if isinstance(cell, dict) and cell.get("cell_type") == "markdown":
                 if read == MAX_REPORT_CELLS:
@@ -338,21 +423,27 @@ class _Reading:
                                  "and those after it were not read")
                     break
                 read += 1
-                text = self._markdown_cell(cell, f"{source}, cell {number}")
+                text, exercise = self._markdown_cell(cell, f"{source}, cell {number}")
+                if exercise:
+                    marks.append((number, exercise))
                 if text is not None:
                     starts.append(starts[-1] + len(plain[-1]) + 2 if plain else 0)
                     plain.append(text)
                     numbers.append(number)
+        cell_at = lambda at: numbers[bisect.bisect_right(starts, at) - 1]  # noqa: E731
         if plain and self.names is not None:
-            self.own_headings("\n\n".join(plain), source,
-                              lambda at: f"{source}, cell {numbers[bisect.bisect_right(starts, at) - 1]}")
+            sections = self.own_headings("\n\n".join(plain), source, lambda at: f"{source}, cell {cell_at(at)}")
+            marks += [(cell_at(section.start), section.exercise) for section in sections]
+        if self.reader is not None:
+            self.notebook_figures(notebook, source, marks)
 
-    def _markdown_cell(self, cell: dict, where: str) -> str | None:
-        """Read one Markdown cell; its text when it holds no tag or marker (None otherwise)."""
+    def _markdown_cell(self, cell: dict, where: str) -> tuple[str | None, str | None]:
+        """Read one Markdown cell: (its text when it holds no tag or marker, else None; the
+        exercise it is tagged or marked for, the first one, or None)."""
         text = _cell_text(cell.get("source"))
         if text is None:
             self.problem(f"{where}: its text is not text; it was not read")
-            return None
+            return None, None
         text = printable(text)
         metadata = cell.get("metadata")
         tags = metadata.get("tags") if isinstance(metadata, dict) else None
@@ -374,8 +465,8 @@ class _Reading:
         elif len(marked) > 1:
             self.markdown(text, where, notebook_cell=True)
         else:
-            return text
-        return None
+            return text, None
+        return None, (tagged or marked)[0]
 
 
 # ------------------------------------------------------------------ helpers

@@ -12,7 +12,7 @@ Every entry point returns, never raises for what the file holds: a fault is the
 ``"error"`` entry of its answer, one sentence ("it is encrypted ...").
 
 Pictures come back as *thumbnails* (:func:`thumbnail`): the picture in grey, resized to
-``THUMB x THUMB`` with area averaging, ``uint8``; with the picture's own width and
+``THUMB x THUMB`` (128) with area averaging, ``uint8``; with the picture's own width and
 height. The grader compares them with the figures the student's code made
 (:mod:`autograder.instructor.review.provenance`), which it thumbnails the same way.
 
@@ -28,7 +28,7 @@ import warnings
 import numpy as np
 
 MODULE = "ag_report_reader"      # its name in the worker's submission folder
-THUMB = 64                       # a thumbnail's side, pixels
+THUMB = 128                      # a thumbnail's side, pixels (fine enough to tell a panel changed)
 MIN_FIGURE_SIDE = 48             # a picture narrower or lower is an icon or a rule: not a figure
 MAX_PAGES = 200                  # pages read; the rest is noted
 MAX_TEXT_CHARS = 400_000         # characters of text kept over the whole PDF

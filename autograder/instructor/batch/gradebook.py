@@ -124,6 +124,10 @@ CREATE TABLE IF NOT EXISTS report_files (
 CREATE TABLE IF NOT EXISTS explanations (
     student_id TEXT NOT NULL, exercise TEXT NOT NULL, text TEXT NOT NULL, source TEXT NOT NULL,
     truncated INTEGER NOT NULL, PRIMARY KEY (student_id, exercise));
+CREATE TABLE IF NOT EXISTS report_figures (   -- pictures in the report, thumbnailed in a worker
+    student_id TEXT NOT NULL, exercise TEXT NOT NULL, number INTEGER NOT NULL, source TEXT NOT NULL,
+    width INTEGER NOT NULL, height INTEGER NOT NULL, thumb BLOB NOT NULL,
+    PRIMARY KEY (student_id, exercise, number));
 CREATE TABLE IF NOT EXISTS rubric_items (
     exercise TEXT NOT NULL, item_id TEXT NOT NULL, position INTEGER NOT NULL,
     text TEXT NOT NULL, points REAL NOT NULL,
@@ -435,6 +439,10 @@ class Gradebook:
                      json.dumps(list(report.problems) if report else [])))
                 self.db.execute("DELETE FROM report_files WHERE student_id=?", (e.student_id,))
                 self.db.execute("DELETE FROM explanations WHERE student_id=?", (e.student_id,))
+                self.db.execute("DELETE FROM report_figures WHERE student_id=?", (e.student_id,))
+                for f in getattr(report, "figures", ()):
+                    self.db.execute("INSERT OR IGNORE INTO report_figures VALUES (?,?,?,?,?,?,?)",
+                                    (e.student_id, f.exercise, f.number, f.source, f.width, f.height, f.thumb.tobytes()))
                 for path, data in sorted(getattr(e, "report_files", {}).items()):
                     self.db.execute("INSERT INTO report_files VALUES (?,?,?)", (e.student_id, path, data))
                 for exercise, x in sorted((report.explanations if report else {}).items()):
@@ -605,6 +613,18 @@ class Gradebook:
         if row is not None:
             out["problems"] = json.loads(row[0] or "[]")
         return out
+
+    def report_figures(self, student_id: str) -> list[dict]:
+        """The pictures in the student's report as last read (see
+        :class:`autograder.loading.report.ReportFigure`): dicts with ``exercise`` ("" when
+        under no exercise's heading), ``number``, ``source``, ``width``, ``height`` and
+        ``thumb`` (its bytes: ``THUMB x THUMB`` grey ``uint8``), by number."""
+        if not self._has("report_figures"):
+            return []
+        with self._reading():
+            rows = self.db.execute("SELECT exercise, number, source, width, height, thumb FROM report_figures "
+                                   "WHERE student_id=? ORDER BY number, exercise", (student_id,)).fetchall()
+        return [{**dict(row), "thumb": bytes(row["thumb"])} for row in rows]
 
     def reports_handed_in(self) -> dict[str, dict]:
         """Per student with a report: ``explained`` (the exercises it explains, a set) and

@@ -48,7 +48,8 @@ the metadata), so every item is read alone and fails alone:
 Inside an entry only ``.py`` and ``.ipynb`` files are graded; a ``.zip`` inside is
 unpacked where it lies. The lab report beside them is read the same way, deny by
 default (:class:`.tree.ReportFiles`): ``.md`` files up to the report's cap and
-``.pdf`` files (kept as files, never parsed; bounded), at most 20 per student; what
+``.pdf`` files (kept as files; their text and pictures read only in a sandbox worker,
+:mod:`autograder.loading.pdf_report`; bounded), at most 20 per student; what
 is refused is a sentence of :attr:`Entry.report`'s problems, never the entry's error.
 :attr:`Entry.report` holds the explanations read from them and from the notebooks'
 tagged cells (:func:`autograder.loading.report.read_report`). A single file that is named after no lab module is taken
@@ -66,6 +67,7 @@ from datetime import datetime
 from pathlib import Path, PurePosixPath
 
 from ...loading.headings import ExerciseNames
+from ...loading.pdf_report import ReportReader
 from ...loading.report import Report, read_report
 from ...loading.text import one_line, shown
 from ...sandbox.files import CAPS, SOURCE_SUFFIXES, limit_for
@@ -192,26 +194,29 @@ def read_upload(path, modules: list[str], every_module: list[str] = (),
         for name in getattr(tree, "outside", []):
             upload.ignore(name, "its name points outside the archive; not read")
         _Reader(tree, _unwrap(tree, (), every), upload).read()
-    for entry in upload.entries:
-        if not entry.error:
-            _name_lone_file(entry, modules, every)
-        _read_report(entry, names)
-        _make_safe(entry)
+    with ReportReader() as reader:   # PDFs and report pictures: parsed in sandbox workers only
+        for entry in upload.entries:
+            if not entry.error:
+                _name_lone_file(entry, modules, every)
+            _read_report(entry, names, reader)
+            _make_safe(entry)
     _assign_ids(upload.entries, known or Identities())
     upload.warnings += _shared_identities(upload.entries)
     upload.entries.sort(key=lambda e: e.student_id)
     return upload
 
 
-def _read_report(entry: Entry, names: ExerciseNames | None = None) -> None:
-    """The entry's explanations, from its report files and notebooks (never raising)."""
+def _read_report(entry: Entry, names: ExerciseNames | None = None, reader: ReportReader | None = None) -> None:
+    """The entry's explanations, from its report files and notebooks (never raising); with
+    ``names`` and ``reader``, the text of its PDFs and the report's figures too (read in workers)."""
     entry.report_files = dict(entry.reports_found.files)
     refused = entry.reports_found.problems()
     try:
-        report = read_report({**entry.files, **entry.report_files}, names)
+        report = read_report({**entry.files, **entry.report_files}, names, reader)
     except Exception as exc:  # noqa: BLE001 - the contract says it never raises; a student's report never stops the class
         report = Report(problems=(f"the report could not be read ({type(exc).__name__})",))
-    entry.report = Report(report.explanations, report.attachments, tuple(refused) + tuple(report.problems))
+    entry.report = Report(report.explanations, report.attachments, tuple(refused) + tuple(report.problems),
+                          report.figures)
 
 
 def _open_tree(path: Path) -> UploadTree:
