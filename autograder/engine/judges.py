@@ -22,6 +22,7 @@ from fixtures.images import as_homography, coverage, warp
 
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
+from .forms import shape_form
 from .hints import Hint, keyword, mentions
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
@@ -322,8 +323,9 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
                    "width and height are swapped (shapes are (rows, columns), dsize is (width, height))",
                    mistake="width and height are swapped")
         if got.shape[:2] == expected_shape[:2]:
+            form = shape_form(got.shape, expected_shape)   # grey in, grey out, or BGR in, BGR out
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
-                   "keep the input's channels (grey in, grey out)", mistake="the channels are not kept")
+                   + (form.sentence if form else "keep the input's channels"), mistake="the channels are not kept")
         size_rule = "" if dsize else ": warps keep the input's size (content that leaves the frame is cut off)"
         t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}{size_rule}")
     got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)

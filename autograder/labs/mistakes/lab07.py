@@ -4,6 +4,20 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
 MISTAKES = {
+    # the API's rule: a function that takes an image returns its channel count (shapes named by
+    # autograder.engine.forms); a grey image made BGR to "see it in colour", a colour one made grey
+    "translate returning BGR for a grey image": ("lab07.ex1", """
+        _translate = translate
+        def translate(image, tx=100, ty=50):
+            colour = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image
+            return _translate(colour, tx, ty)
+        """, ["channels are not kept", "grey in, grey out"]),
+    "rotate returning grey for a colour image": ("lab07.ex2", """
+        _rotate = rotate
+        def rotate(image, angle_deg=45):
+            grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+            return _rotate(grey, angle_deg)
+        """, ["channels are not kept", "BGR in, BGR out"]),
     "tx/ty swapped": ("lab07.ex1", """
         def translation_matrix(tx, ty):
             return np.array([[1.0, 0, ty], [0, 1.0, tx], [0, 0, 1.0]])
