@@ -109,16 +109,102 @@ def _path(node) -> str:
     return ".".join([head, *reversed(parts)])
 
 
-def _name_matches(path: str, wanted: str) -> bool:
-    """``wanted`` = ``"np.argmax"``: the same last name, under any module prefix or none
-    (``argmax``, ``numpy.argmax``, ``x.argmax``); ``".argmax"``: an attribute of anything
-    (``x.argmax``, ``np.argmax``), not a bare name; ``"argmax"``: the last name only."""
+# Module names as students import them, when the module read has no import saying otherwise.
+_CONVENTIONAL = {"np": "numpy", "numpy": "numpy", "cv2": "cv2", "cv": "cv2", "scipy": "scipy", "math": "math"}
+_FAMILY = {"scipy": "numpy"}   # scipy.linalg.svd is an SVD as numpy.linalg.svd is
+
+
+@dataclass(frozen=True)
+class Scope:
+    """What the names of one module refer to (read from its ``import`` statements and ``def``s,
+    wherever they are): ``modules`` local name -> module (``cv`` -> ``cv2``, ``la`` -> ``numpy.linalg``),
+    ``imported`` local name -> module attribute (``rp`` -> ``cv2.recoverPose``), ``defined`` the
+    module's own functions and classes, ``star`` the modules imported with ``*``."""
+
+    modules: dict
+    imported: dict
+    defined: frozenset
+    star: tuple
+
+
+def scope_of(tree: ast.AST) -> Scope:
+    """The :class:`Scope` of a parsed module (or of one function read alone)."""
+    modules, imported, defined, star = {}, {}, set(), []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.asname:
+                    modules[alias.asname] = alias.name
+                else:   # import numpy.linalg binds numpy
+                    head = alias.name.split(".")[0]
+                    modules[head] = head
+        elif isinstance(node, ast.ImportFrom) and node.module and not node.level:
+            for alias in node.names:
+                if alias.name == "*":
+                    star.append(node.module)
+                else:
+                    imported[alias.asname or alias.name] = f"{node.module}.{alias.name}"
+        elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            defined.add(node.name)
+    return Scope(modules, imported, frozenset(defined), tuple(star))
+
+
+def _scope(function) -> Scope:
+    """The scope :func:`read_code` gave ``function`` (its module's), else the function's own."""
+    found = getattr(function, "_hint_scope", None)
+    if found is None:
+        found = scope_of(function)
+        function._hint_scope = found
+    return found
+
+
+def _resolved(node, scope: Scope) -> tuple[str, str]:
+    """``(kind, path)`` of the name or attribute chain ``node``: ``("module", "cv2.recoverPose")``
+    for a module's attribute under any alias or imported from it, ``("own", "recoverPose")`` for a
+    function or class of the student's module, ``("method", ".argmax")``/``("method", "a.argmax")``
+    for an attribute of a value, ``("bare", "argmax")`` for any other name (a builtin, a local)."""
+    path = _path(node)
+    head, _, rest = path.partition(".")
+    tail = f".{rest}" if rest else ""
+    if head in scope.modules:
+        return "module", scope.modules[head] + tail
+    if head in scope.imported:
+        return "module", scope.imported[head] + tail
+    if head in scope.defined:
+        return "own", path
+    if head in _CONVENTIONAL and rest:
+        return "module", _CONVENTIONAL[head] + tail
+    return ("method" if rest or not head else "bare"), path
+
+
+def _root(module_path: str) -> str:
+    head = module_path.split(".")[0]
+    head = _CONVENTIONAL.get(head, head)
+    return _FAMILY.get(head, head)
+
+
+def _name_matches(node, wanted: str, scope: Scope) -> bool:
+    """Whether the name or attribute chain ``node`` refers to ``wanted``.
+
+    ``"np.argmax"``: that module's function (the same last name, the module under any alias or
+    imported from, numpy's submodules and scipy counting as numpy), or a method of that name of a
+    value (``x.argmax``); never a function the student's module defines, nor another module's.
+    ``".argmax"``: an attribute of anything (``x.argmax``, ``np.argmax``), not a bare name nor the
+    student's own function. ``"argmax"``: the last name only (the student's own functions too:
+    ``calls("transform_points")``)."""
+    kind, path = _resolved(node, scope)
     last = wanted.rsplit(".", 1)[-1]
     if path.rsplit(".", 1)[-1] != last:
         return False
+    if "." not in wanted:
+        return True
     if wanted.startswith("."):
-        return "." in path
-    return True
+        return kind in ("module", "method")
+    if kind == "module":
+        return _root(path) == _root(wanted)
+    if kind == "bare":   # a module's function only under a star import of it
+        return any(_root(module) == _root(wanted) for module in scope.star)
+    return kind == "method"
 
 
 def calls(name: str, at_least: int = 1) -> Predicate:
@@ -128,7 +214,7 @@ def calls(name: str, at_least: int = 1) -> Predicate:
 
     def test(function) -> bool:
         return sum(1 for node in ast.walk(function)
-                   if isinstance(node, ast.Call) and _name_matches(_path(node.func), name)) >= at_least
+                   if isinstance(node, ast.Call) and _name_matches(node.func, name, _scope(function))) >= at_least
     return Predicate(f"calls {shown}" + (f" in {at_least} places" if at_least > 1 else ""), test)
 
 
@@ -138,7 +224,7 @@ def mentions(name: str) -> Predicate:
 
     def test(function) -> bool:
         for node in ast.walk(function):
-            if isinstance(node, (ast.Attribute, ast.Name)) and _name_matches(_path(node), name):
+            if isinstance(node, (ast.Attribute, ast.Name)) and _name_matches(node, name, _scope(function)):
                 return True
         return False
     return Predicate(f"uses {shown}", test)
@@ -195,7 +281,8 @@ def passes_product(function: str, position: int) -> Predicate:
         products = {target.id for node in ast.walk(tree) if isinstance(node, ast.Assign) and _product(node.value)
                     for target in node.targets if isinstance(target, ast.Name)}
         for node in ast.walk(tree):
-            if isinstance(node, ast.Call) and _name_matches(_path(node.func), function) and len(node.args) > position:
+            if isinstance(node, ast.Call) and _name_matches(node.func, function, _scope(tree)) \
+                    and len(node.args) > position:
                 given = node.args[position]
                 if _product(given) or (isinstance(given, ast.Name) and given.id in products):
                     return True
@@ -241,17 +328,18 @@ def keyword(function: str, name: str, value=ANY) -> Predicate:
     """A call of ``function`` passing ``name=value`` (a constant, or a dotted name such as
     ``"cv2.BORDER_CONSTANT"`` given as :class:`str` and matched like :func:`mentions`; by
     default any value)."""
-    def matches(node) -> bool:
+    def matches(node, scope) -> bool:
         if value is ANY:
             return True
         if isinstance(node, ast.Constant):
             return node.value == value and type(node.value) is type(value)
         return isinstance(value, str) and isinstance(node, (ast.Attribute, ast.Name)) \
-            and _name_matches(_path(node), value)
+            and _name_matches(node, value, scope)
 
     def test(tree) -> bool:
-        return any(isinstance(node, ast.Call) and _name_matches(_path(node.func), function)
-                   and any(k.arg == name and matches(k.value) for k in node.keywords)
+        scope = _scope(tree)
+        return any(isinstance(node, ast.Call) and _name_matches(node.func, function, scope)
+                   and any(k.arg == name and matches(k.value, scope) for k in node.keywords)
                    for node in ast.walk(tree))
     shown = f"{name}=" if value is ANY else f"{name}={value}"
     return Predicate(f"passes {shown} to {function.lstrip('.')}", test)
@@ -310,8 +398,12 @@ def read_code(text: str) -> Code:
     except (SyntaxError, ValueError, RecursionError, MemoryError):
         return NO_CODE
     functions = {node.name: node for node in tree.body if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))}
-    calls = {name: {n.func.id for n in ast.walk(node) if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
-                    and n.func.id in functions and n.func.id != name}
+    scope = scope_of(tree)   # what the names refer to: cv2's recoverPose, or the student's own
+    for node in functions.values():
+        node._hint_scope = scope
+    # a function named anywhere in another counts as called by it: ``(_ssd if c else _ncc)(...)``,
+    # a helper passed as a callback
+    calls = {name: {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and n.id in functions and n.id != name}
              for name, node in functions.items()}
     return Code(functions, calls)
 
