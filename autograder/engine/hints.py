@@ -17,8 +17,9 @@ hint says ``instead`` (a neutral sentence, or nothing) rather than its text.
 
 Predicates (combine with ``|``, ``&`` and ``~``):
 
-- :func:`calls` -- a call of ``np.argmax`` (any module prefix: ``numpy.argmax``,
-  ``argmax`` imported, ``a.argmax``) or, written ``".argmax"``, an attribute call only;
+- :func:`calls` -- a call of ``np.argmax`` (numpy's, however it is imported: ``numpy.argmax``,
+  ``xp.argmax``, ``argmax`` imported from numpy, or a method ``a.argmax``; never a function the
+  student's module defines) or, written ``".argmax"``, an attribute call only;
 - :func:`mentions` -- a name or attribute (``"cv2.BORDER_CONSTANT"``, ``".T"``);
   :func:`uses_attr` is its spelling for attributes;
 - :func:`matmul_of` -- a matrix product of two operands (``T @ H``, ``np.dot(T, H)``,
