@@ -60,7 +60,7 @@ class Predicate:
 
     says: str
     test: Callable[[ast.AST], bool] | None = field(default=None, compare=False)
-    kind: str = "leaf"   # "leaf", "or", "and", "not"
+    kind: str = "leaf"   # "leaf", "all" (a test of every function read), "or", "and", "not"
     parts: tuple = ()
     told: bool = False   # ``says`` was given with :meth:`saying` (an "or" then says it, not its part)
 
@@ -75,6 +75,11 @@ class Predicate:
             return self.says if all(part.found(functions) for part in self.parts) else ""
         if self.kind == "not":
             return "" if self.parts[0].found(functions) else self.says
+        if self.kind == "all":   # a test of the functions read together (a value followed across them)
+            try:
+                return self.says if self.test(functions) else ""
+            except (RecursionError, ValueError, TypeError, AttributeError):
+                return ""
         for function in functions:
             try:
                 if self.test(function):
@@ -344,6 +349,176 @@ def keyword(function: str, name: str, value=ANY) -> Predicate:
                    for node in ast.walk(tree))
     shown = f"{name}=" if value is ANY else f"{name}={value}"
     return Predicate(f"passes {shown} to {function.lstrip('.')}", test)
+
+
+# ------------------------------------------------------------------ picking the best score
+# A disparity (or any index) kept for the highest score is kept, equally, by the argmin of the
+# score negated (a cost ``-ncc``, ``1 - ncc``, stored by a helper), by the last entry of an
+# ascending argsort, by ``max(..., key=...)`` and by a loop keeping ``score > best``. Whether
+# the value an argmin/argmax picks from is negated is followed through the code: names assigned
+# in the function (``costs[d] = -ncc`` counts for ``costs``), the module's functions it calls
+# (their returned value), each negation flipping the sign; a score is recognised by its name
+# (``score``, ``ncc``, ``corr``, ...), so a negated shift (``-d``) is no negated score.
+SCORE_NAMES = ("score", "ncc", "corr", "sim", "zncc", "nxc")
+COST_NAMES = ("cost", "ssd", "sad", "energy", "err", "dist", "diff")
+_FOLLOW = 8   # steps followed back from the picked value
+
+
+def _named(node, names) -> bool:
+    """Whether an identifier in ``node`` (a name, an attribute or a called function's) holds one of ``names``."""
+    for n in ast.walk(node):
+        ident = n.id if isinstance(n, ast.Name) else n.attr if isinstance(n, ast.Attribute) else None
+        if ident and any(word in ident.lower() for word in names):
+            return True
+    return False
+
+
+def _negation(node):
+    """The operand of ``-x`` or ``c - x`` (``c`` a constant), else None."""
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and not isinstance(node.operand, ast.Constant):
+        return node.operand
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) and isinstance(node.left, ast.Constant):
+        return node.right
+    return None
+
+
+def _target_name(target) -> str | None:
+    while isinstance(target, ast.Subscript):
+        target = target.value
+    return target.id if isinstance(target, ast.Name) else None
+
+
+class _Signs:
+    """Follows a value back through one module's functions: ``(negated, named)`` -- whether it is
+    negated an odd number of times on its way, and whether a value named by ``names`` is met."""
+
+    def __init__(self, functions, names):
+        self.functions = {f.name: f for f in functions if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))}
+        self.names = names
+
+    def of(self, node, function, steps: int = _FOLLOW) -> tuple[bool, bool]:
+        if steps <= 0 or node is None:
+            return False, False
+        operand = _negation(node)
+        if operand is not None:
+            negated, named = self.of(operand, function, steps - 1)
+            return not negated, named or _named(operand, self.names)
+        if isinstance(node, ast.Name):
+            values = self._assigned(node.id, function)
+            if not values:
+                return False, _named(node, self.names)
+            negated, named = self.of(values[-1], function, steps - 1)
+            return negated, named or _named(node, self.names)
+        if isinstance(node, ast.Call):
+            called = self._called(node.func)
+            if called is not None:
+                returned = [n.value for n in ast.walk(called) if isinstance(n, ast.Return) and n.value is not None]
+                if returned:
+                    negated, named = self.of(returned[-1], called, steps - 1)
+                    return negated, named or _named(node.func, self.names)
+            first = node.args[0] if node.args else None   # np.asarray(x), x.astype(...): follow x
+            if isinstance(node.func, ast.Attribute) and not (isinstance(node.func.value, ast.Name)
+                                                               and node.func.value.id in ("np", "numpy")):
+                first = node.func.value
+            negated, named = self.of(first, function, steps - 1)
+            return negated, named or _named(node, self.names)
+        return False, _named(node, self.names)
+
+    def _assigned(self, name: str, function) -> list:
+        """The values stored in ``name`` (or its elements) in ``function`` that carry something
+        (not a constant or an array filled with one)."""
+        values = []
+        for n in ast.walk(function):
+            if isinstance(n, ast.Assign):
+                targets, value = n.targets, n.value
+            elif isinstance(n, (ast.AugAssign, ast.AnnAssign)) and n.value is not None:
+                targets, value = [n.target], n.value
+            else:
+                continue
+            if any(_target_name(t) == name for t in targets) and not self._filler(value):
+                values.append(value)
+        return values
+
+    @staticmethod
+    def _filler(value) -> bool:
+        if isinstance(value, ast.Constant) or (isinstance(value, ast.Attribute) and value.attr in ("inf", "nan")):
+            return True
+        return isinstance(value, ast.Call) and _path(value.func).rsplit(".", 1)[-1] in (
+            "full", "zeros", "ones", "empty", "full_like", "zeros_like", "ones_like", "empty_like")
+
+    def _called(self, func):
+        """The module function ``func`` calls (of an ``a if c else b`` of two, the one named by ``names``)."""
+        if isinstance(func, ast.IfExp):
+            branches = [b for b in (func.body, func.orelse) if _named(b, self.names)]
+            func = branches[0] if branches else func.body
+        return self.functions.get(func.id) if isinstance(func, ast.Name) else None
+
+
+def _picks(highest: bool, names) -> Callable[[list], bool]:
+    """Whether an argmax (``highest``) or argmin, in effect, is taken of a value named by ``names``."""
+    def test(functions) -> bool:
+        signs = _Signs(functions, names)
+        for function in functions:
+            for node in ast.walk(function):
+                if not isinstance(node, ast.Call):
+                    continue
+                last = _path(node.func).rsplit(".", 1)[-1]
+                if last not in ("argmax", "argmin", "nanargmax", "nanargmin"):
+                    continue
+                method = isinstance(node.func, ast.Attribute) and not (
+                    isinstance(node.func.value, ast.Name) and node.func.value.id in ("np", "numpy"))
+                if not (method or node.args):
+                    continue
+                picked = node.func.value if method else node.args[0]
+                negated, named = signs.of(picked, function)
+                if (last.endswith("argmax") != negated) == highest and (named or not negated):
+                    return True
+        return False
+    return test
+
+
+def _argsort_end(last: bool) -> Callable[[ast.AST], bool]:
+    """An ``argsort(...)`` indexed at its last entry (``[-1]``, ``[..., -1]``, ``[::-1]``) or, ``last=False``,
+    at its first (``[0]``)."""
+    def end(index) -> bool:
+        if isinstance(index, ast.Tuple):
+            return any(end(e) for e in index.elts)
+        if isinstance(index, ast.Slice):
+            step = index.step
+            return last and isinstance(step, ast.UnaryOp) and isinstance(step.op, ast.USub)
+        if last:
+            return isinstance(index, ast.UnaryOp) and isinstance(index.op, ast.USub) \
+                and isinstance(index.operand, ast.Constant) and index.operand.value == 1
+        return isinstance(index, ast.Constant) and index.value == 0
+
+    def test(function) -> bool:
+        return any(isinstance(node, ast.Subscript) and isinstance(node.value, ast.Call)
+                   and _path(node.value.func).rsplit(".", 1)[-1] == "argsort" and _negation(node.value.args[0]
+                                                                                           if node.value.args else None) is None
+                   and end(node.slice) for node in ast.walk(function))
+    return test
+
+
+def _loop_keeps(op, names) -> Callable[[ast.AST], bool]:
+    """An ``if`` comparing a value named by ``names`` with a kept best (``score > best``)."""
+    def test(function) -> bool:
+        for node in ast.walk(function):
+            if isinstance(node, ast.If) and isinstance(node.test, ast.Compare) and len(node.test.ops) == 1:
+                left, right = node.test.left, node.test.comparators[0]
+                if isinstance(node.test.ops[0], op) and _named(left, names) and _named(right, ("best", "max", "min")):
+                    return True
+        return False
+    return test
+
+
+KEEPS_HIGHEST = (Predicate("picks the highest score", _picks(True, SCORE_NAMES), kind="all")
+                 | Predicate("sorts", _argsort_end(last=True)) | keyword("max", "key")
+                 | Predicate("keeps a larger score", _loop_keeps(ast.Gt, SCORE_NAMES))
+                 ).saying("keeps the highest score (argmax, or argmin of the score negated)")
+KEEPS_LOWEST = (Predicate("picks the lowest cost", _picks(False, COST_NAMES), kind="all")
+                | Predicate("sorts", _argsort_end(last=False)) | keyword("min", "key")
+                | Predicate("keeps a smaller cost", _loop_keeps(ast.Lt, COST_NAMES))
+                ).saying("keeps the lowest cost (argmin, or argmax of the cost negated)")
 
 
 # Predicates several labs' hints share.

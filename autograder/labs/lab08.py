@@ -27,7 +27,8 @@ from fixtures.images import coverage, photo, warp
 from ..engine import strategies as st
 from ..engine.checks import StudentFailure, Trial, partial, passed
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
-from ..engine.hints import RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, calls, expr, matmul_of, mentions, passes_product
+from ..engine.hints import (RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, calls, expr, keyword, matmul_of, mentions,
+                             passes_product)
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
@@ -777,6 +778,9 @@ MASK_DISAGREEMENT = 0.05   # fraction of pairs allowed against the mask
 MASK_PROBLEMS = [((10, 100, 0.3, 1.0), 0), ((40, 80, 0.5, 0.7), 0)]
 
 
+SWAPPED_ENDS = next(iter(truth.matrix_mistakes(np.eye(3))))   # "src and dst are swapped (...)"
+
+
 def mask_disagreement(H, inliers, src, dst, threshold: float) -> tuple[np.ndarray, np.ndarray]:
     """(marked pairs H sends beyond MASK_BAND x threshold, unmarked pairs it sends within
     threshold / MASK_BAND): the pairs that contradict the mask being H's inliers."""
@@ -808,15 +812,13 @@ def ransac_mask_of_h(t):
             t.fail(f"{what}: the mask marks the pairs your H sends within {errors[inliers].max():.2g} px "
                    f"(the farthest marked) and leaves out pairs from {errors[~inliers].min():.2g} px on: they "
                    "are H's inliers at another threshold than the one given (3 px).")
-        try:
-            inverse = np.linalg.inv(np.asarray(H, np.float64))
-        except np.linalg.LinAlgError:
-            inverse = None
-        if inverse is not None and (np.bitwise_or(*mask_disagreement(inverse, inliers, src, dst, 3.0))).mean() \
-                <= MASK_DISAGREEMENT:
-            mistake = "the H returned is the inverse of the one the mask belongs to (it maps dst to src)"
-            t.fail(f"{what}: the mask and H returned do not agree: {mistake}; H must map src onto dst.",
-                   mistake=mistake)
+        if np.bitwise_or(*mask_disagreement(H, inliers, dst, src, 3.0)).mean() <= MASK_DISAGREEMENT:
+            # H and the mask agree with each other, read the other way round: the two come from one
+            # fit of dst onto src (cv2.findHomography(dst, src, ...)), not from different fits
+            t.fail(f"{what}: the mask is the pairs your H sends within the threshold when H is applied "
+                   f"to dst and compared with src (|H dst - src| < 3 px): H and the mask agree with each other, "
+                   f"but H maps dst onto src: it looks like {SWAPPED_ENDS}; H must map src onto dst.",
+                   mistake=SWAPPED_ENDS)
         t.fail(f"{what}: the mask and H returned do not agree: {int(far.sum())} of the {int(inliers.sum())} pairs "
                f"marked as inliers are more than {MASK_BAND:g} x threshold (3 px) from where your H sends them, "
                f"and {int(near.sum())} pairs within {3.0 / MASK_BAND:g} px are not marked. The mask must be the "
@@ -867,7 +869,7 @@ def _advice(said: str) -> str:
 
 @ex4.check("homography_ransac refits H on all its inliers", points=2)
 def ransac_refit(t):
-    distances = []
+    distances, backwards = [], []
     for (seed, n, fraction, noise), k in REFIT_PROBLEMS:
         src, dst, H_true, true_inliers = truth.ransac_problem(seed, n, fraction, noise)
         what = f"homography_ransac(src, dst, seed={k})"
@@ -876,9 +878,16 @@ def ransac_refit(t):
             diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers, seed=k)
             t.fail(f"{what} marks {int(inliers.sum())} inliers; a homography needs at least 4")
         distances.append(refit_distance(H, inliers, src, dst))
+        backwards.append(refit_distance(H, inliers, dst, src))
     mean = float(np.mean(distances))
     if mean <= RANSAC_REFIT_TOLERANCE:
         return passed(f"H agrees with a refit on its own inliers: {mean:.3f} noise levels apart on average")
+    if float(np.mean(backwards)) <= RANSAC_REFIT_TOLERANCE:
+        # the fit to its own inliers, in the other orientation: refitting is not what is wrong
+        t.fail(f"homography_ransac's H is the least-squares fit to its own inliers, but mapping dst onto src "
+               f"({float(np.mean(backwards)):.2g} noise levels from a refit of dst onto src on the same inliers, "
+               f"{digits_apart(mean, RANSAC_REFIT_TOLERANCE)} from a refit of src onto dst): it looks like "
+               f"{SWAPPED_ENDS}; H must map src onto dst.", mistake=SWAPPED_ENDS)
     t.fail(f"homography_ransac's H is not the fit to its own inliers: it sends them on average "
            f"{digits_apart(mean, RANSAC_REFIT_TOLERANCE)} times the noise level (the refit's RMS residual) away from where a "
            f"least-squares refit on the same inliers sends them (at most {RANSAC_REFIT_TOLERANCE} "
@@ -991,6 +1000,48 @@ def _agreement(panorama, image, offset):
     return float(diff.mean()), float((diff < 8).mean())
 
 
+IN_PLACE_BLOCK = 20      # px: blocks of an image judged whole (agreeing everywhere) or not
+IN_PLACE_SHARE = 0.25    # the share of an image's blocks in place that shows it is only shifted
+
+
+def in_place(panorama, image, offset) -> tuple[float, float]:
+    """Whether ``image`` sits at ``offset`` unwarped where it is not covered by something else.
+
+    Returns the share of the image's 20 px blocks that agree with it everywhere (blurred
+    difference below 8) and the share of the other pixels that hold content (not black).
+    An image only shifted and then partly drawn over agrees block by block where it is seen
+    (measured on the blind set's panoramas: 46-60% of the blocks, the rest covered by img2 in
+    the wrong place, 98% of it content); a warped image agrees at most around one fixed point.
+    """
+    h, w = image.shape[:2]
+    ox, oy = offset
+    place = np.zeros_like(image)
+    x0, y0 = max(0, ox), max(0, oy)
+    x1, y1 = min(panorama.shape[1], ox + w), min(panorama.shape[0], oy + h)
+    if x1 <= x0 or y1 <= y0:
+        return 0.0, 0.0
+    place[y0 - oy : y1 - oy, x0 - ox : x1 - ox] = panorama[y0:y1, x0:x1]
+    diff = np.abs(cv2.GaussianBlur(place.astype(np.float32), (0, 0), 1.0)
+                  - cv2.GaussianBlur(image.astype(np.float32), (0, 0), 1.0))
+    agree = (diff.max(axis=2) if diff.ndim == 3 else diff) < 8
+    b = IN_PLACE_BLOCK
+    blocks = agree[: h // b * b, : w // b * b].reshape(h // b, b, w // b, b).mean(axis=(1, 3))
+    content = (place.max(axis=2) if place.ndim == 3 else place) > 10
+    return float((blocks >= 0.95).mean()), float(content[~agree].mean()) if (~agree).any() else 1.0
+
+
+def placed_as_is(panorama, image, offset, name: str) -> tuple[bool, str]:
+    """(whether ``image`` is only shifted and partly covered by other content, what the panorama
+    shows of it in words), from :func:`in_place`."""
+    share, content = in_place(panorama, image, offset)
+    if share < IN_PLACE_SHARE:
+        return False, f"only {share:.0%} of {name}'s area is {name} as it is, only shifted"
+    if content >= 0.9:
+        return True, f"{name} is in place, only shifted, over {share:.0%} of its area: other content is drawn over the rest"
+    return False, (f"{name} is in place, only shifted, over {share:.0%} of its area; {1 - content:.0%} of the rest is "
+                   "black (nothing drawn)")
+
+
 def footprint_outside(M, view_shape, panorama_shape) -> dict[str, float]:
     """How far (px) the view's corners, mapped by M, stick out of the panorama on each side."""
     h, w = view_shape[:2]
@@ -1051,7 +1102,10 @@ MAX_PANORAMA_PIXELS = 2_000_000   # the panoramas judged here are about 120 000 
 IMG2_REFERENCE = "img2 is used as the reference frame instead of img1"
 
 
-def stitch_judge(t: Trial, key: str, scene, what: str) -> PanoramaJudge:
+def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> PanoramaJudge:
+    """The judge of ``stitch``'s panorama of ``scene`` (img1 located in it), or a failure saying
+    why img1 cannot be found. ``name``: a failure may name the second warp's mistake (probes,
+    which that naming calls, do not)."""
     img1, img2 = scene.views
     panorama = panorama_result(t, key, what, "stitch", (img1, img2))
     store = t.sandbox.shared  # judgements of the shared panorama, made once per grading
@@ -1060,13 +1114,25 @@ def stitch_judge(t: Trial, key: str, scene, what: str) -> PanoramaJudge:
     offset, error, agreement = locate(panorama, img1)
     _, _, agreement2 = locate(panorama, img2)
     if agreement < 0.5 or agreement2 > agreement:
-        t.images(what, yours=panorama, img1=img1, img2=img2)
         if agreement2 >= 0.8 and agreement2 > agreement:
+            t.images(what, yours=panorama, img1=img1, img2=img2)
             t.fail(f"{what}: img2 appears unwarped in your panorama, so img1 was warped: "
                    f"{IMG2_REFERENCE}; img1 is the reference frame (warp img2 with the H that maps "
                    "img2's pixels onto img1's)", mistake=IMG2_REFERENCE)
+        covered, shown = placed_as_is(panorama, img1, offset, "img1")
+        if covered:
+            # img1 is only shifted, but something is drawn over it: the judge stands, and says what
+            judge = PanoramaJudge(scene, panorama, 0, offset)
+            if not name:
+                store[key + "/judge"] = judge
+                return judge
+            name_second_warp_mistake(t, judge, what)
+            judge.show(t, what)
+            t.fail(f"{what}: at its best place the panorama differs from img1 by {error:.0f} grey levels on "
+                   f"average: {shown}.")
+        t.images(what, yours=panorama, img1=img1, img2=img2)
         t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs "
-               f"from img1 by {error:.0f} grey levels): img1 is the reference frame and must only "
+               f"from img1 by {error:.0f} grey levels; {shown}): img1 is the reference frame and must only "
                "be shifted")
     store[key + "/judge"] = PanoramaJudge(scene, panorama, 0, offset)
     return store[key + "/judge"]
@@ -1161,8 +1227,8 @@ def probe_panorama(t: Trial, function: str, kind: str) -> "PanoramaJudge | None"
     scene = truth.panorama_scene(*PROBE_SCENES[(function, kind)])
     what = f"{function} on a probe scene"
     if function == "stitch":
-        return t.probe(f"stitch/{kind}", lambda: stitch_judge(t, f"stitch-probe-{kind}", scene, what))
-    return t.probe(f"stitch_many/{kind}", lambda: many_judge(t, f"many-probe-{kind}", scene, what))
+        return t.probe(f"stitch/{kind}", lambda: stitch_judge(t, f"stitch-probe-{kind}", scene, what, name=False))
+    return t.probe(f"stitch_many/{kind}", lambda: many_judge(t, f"many-probe-{kind}", scene, what, name=False))
 
 
 def canvas_not_shifted_on_probe(t: Trial, images: int) -> bool:
@@ -1206,6 +1272,8 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
                    "translation T = [[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]] (applied to every "
                    "homography) and size the canvas to the bounding box of all warped corners",
                    mistake=NOT_SHIFTED)
+        if not placed:   # content in the wrong place: a known wrong map may say where it came from
+            name_second_warp_mistake(t, judge, what) if len(names) == 2 else name_inverse_warp(t, judge, what)
         t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}{_advice(CANVAS_ADVICE.said(t))}")
     covered = np.any(judge.inside, axis=0)
     ys, xs = np.nonzero(covered)
@@ -1272,9 +1340,13 @@ def stitch_reference(t):
     if error <= IMAGE_TOLERANCE:
         return passed(f"img1 found with its top-left corner at {judge.offset}; "
                       f"mean difference {error:.1f} grey levels")
+    measured = f"{STITCH_WHAT}: where only img1 is seen, the panorama differs from img1 by {error:.0f} grey levels on average"
+    covered, shown = placed_as_is(judge.panorama, judge.scene.views[0], judge.offset, "img1")
+    if covered:
+        # img1 itself is only shifted: what differs is drawn over it (img2 in the wrong place, if a map says so)
+        name_second_warp_mistake(t, judge)
     judge.show(t, STITCH_WHAT)
-    t.fail(f"{STITCH_WHAT}: where only img1 is seen, the panorama differs from img1 by {error:.0f} "
-           "grey levels on average: copy img1 unchanged (only shifted)")
+    t.fail(f"{measured}; {shown}." if covered else f"{measured}; {shown}: copy img1 unchanged (only shifted)")
 
 
 def judge_region(t: Trial, judge: PanoramaJudge, what: str, region, name: str, hint: str = ""):
@@ -1322,7 +1394,7 @@ def second_warp_explained(judge: PanoramaJudge) -> list[str]:
     return explained
 
 
-def name_second_warp_mistake(t: Trial, judge: PanoramaJudge, scene=None):
+def name_second_warp_mistake(t: Trial, judge: PanoramaJudge, what: str = STITCH_WHAT):
     """Fail naming the mistake when exactly one wrong map explains where img2 landed, here and on
     the probe scene where img2 lies on the other side of img1."""
     explained = second_warp_explained(judge)
@@ -1331,8 +1403,8 @@ def name_second_warp_mistake(t: Trial, judge: PanoramaJudge, scene=None):
     probe = probe_panorama(t, "stitch", "other side")
     if probe is None or explained[0] not in second_warp_explained(probe):
         return
-    judge.show(t, STITCH_WHAT)
-    t.fail(f"{STITCH_WHAT}: it looks like {explained[0]}", mistake=explained[0].split(":")[0])
+    judge.show(t, what)
+    t.fail(f"{what}: it looks like {explained[0]}", mistake=explained[0].split(":")[0])
 
 
 @ex5.check("stitch: the part only img2 sees is warped into place", points=3)
@@ -1380,7 +1452,9 @@ def many_scene():
                                 (240, 180), 0.03, 34, False)
 
 
-def many_judge(t: Trial, key: str, scene, what: str) -> PanoramaJudge:
+def many_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> PanoramaJudge:
+    """The judge of ``stitch_many``'s panorama of ``scene`` (the image found unwarped in it is the
+    reference), or a failure saying why none is found. ``name``: as for :func:`stitch_judge`."""
     panorama = panorama_result(t, key, what, "stitch_many", scene.views)
     store = t.sandbox.shared  # judgements of the shared panorama, made once per grading
     if key + "/judge" in store:
@@ -1389,9 +1463,20 @@ def many_judge(t: Trial, key: str, scene, what: str) -> PanoramaJudge:
     k = int(np.argmax([agreement for _, _, agreement in found]))
     offset, error, agreement = found[k]
     if agreement < 0.5:
+        covered, shown = placed_as_is(panorama, scene.views[k], offset, f"image {k + 1}")
+        if covered:
+            # the reference is only shifted, with another image drawn over it: judged as such
+            judge = PanoramaJudge(scene, panorama, k, offset)
+            if not name:
+                store[key + "/judge"] = judge
+                return judge
+            name_inverse_warp(t, judge, what)
+            judge.show(t, what)
+            t.fail(f"{what}: image {k + 1} is the closest to an image only shifted (it differs by {error:.0f} grey "
+                   f"levels on average at its best place): {shown}.")
         t.images(what, yours=panorama)
-        t.fail(f"{what}: none of the images appears unwarped in your panorama (the closest "
-               f"differs by {error:.0f} grey levels): keep one image as the reference frame "
+        t.fail(f"{what}: none of the images appears unwarped in your panorama (the closest, image {k + 1}, "
+               f"differs by {error:.0f} grey levels; {shown}): keep one image as the reference frame "
                "(only shifted) and warp the others into it")
     store[key + "/judge"] = PanoramaJudge(scene, panorama, k, offset)
     return store[key + "/judge"]
@@ -1421,6 +1506,19 @@ def inverse_on_probe(t: Trial) -> bool:
                                      if k != judge.reference)
 
 
+def name_inverse_warp(t: Trial, judge: PanoramaJudge, what: str, images=None):
+    """Fail naming an image (of ``images``, by default every one but the reference) that sits where
+    the inverse of its homography to the reference puts it, here and on the probe scene."""
+    images = [k for k in range(len(judge.scene.views)) if k != judge.reference] if images is None else images
+    for k in images:
+        if warped_with_inverse(judge, k) and inverse_on_probe(t):
+            mistake = (f"image {k + 1} was warped with the inverse homography: a pairwise H was not "
+                       "inverted on its way to the reference")
+            judge.show(t, what)
+            t.fail(f"{what} (reference frame: image {judge.reference + 1}): {mistake} (for an image "
+                   "before the reference, H_k->ref = inv(H_ref->k)).", mistake=mistake)
+
+
 def judge_many_content(t: Trial, judge: PanoramaJudge, what: str):
     n = len(judge.scene.views)
     wrong = []
@@ -1439,12 +1537,7 @@ def judge_many_content(t: Trial, judge: PanoramaJudge, what: str):
                       "grey levels from the truth")
     fail_if_left_out(t, judge, what)
     judge.show(t, what)
-    for k, _ in wrong:
-        if warped_with_inverse(judge, k) and inverse_on_probe(t):
-            mistake = (f"image {k + 1} was warped with the inverse homography: a pairwise H was not "
-                       "inverted on its way to the reference")
-            t.fail(f"{what} (reference frame: image {judge.reference + 1}): {mistake} (for an image "
-                   "before the reference, H_k->ref = inv(H_ref->k)).", mistake=mistake)
+    name_inverse_warp(t, judge, what, [k for k, _ in wrong])
     if wrong:
         names = ", ".join(f"image {k + 1} ({e:.0f} grey levels off)" for k, e in wrong)
         # The order of a chain matters only from two steps away: advice only when the images
@@ -1549,6 +1642,36 @@ def no_bands_on_probe(t: Trial) -> bool:
     return got is not None and mean_difference(got, coarsest_upsampled(image, 4)) <= 1.5
 
 
+def identity_changed(t: Trial) -> float:
+    """The share of pixels (0 when the call fails) that blending another photo with itself changes by
+    more than 2 grey levels: a multi-band blend collapses back to the image exactly, so any
+    share names a damaged pyramid whatever else a check sees."""
+    image = photo("coffee", (200, 152))
+    got = blend_probe(t, image, image, truth.step_mask((200, 152), 90))
+    return 0.0 if got is None else float((np.abs(got.astype(np.int16) - image).max(axis=2) > 2).mean())
+
+
+def damaged_pyramid(t: Trial) -> str:
+    """A sentence for the seam and ghosting checks when blending an image with itself already
+    changes it (measured on another photo), "" otherwise: a seam or ghosting is then no sign of
+    a feather."""
+    changed = identity_changed(t)
+    if changed <= 0.005:
+        return ""
+    return (f" Blending an image with itself already changes {changed:.0%} of its pixels by more than 2 grey "
+            "levels (see the check 'blending an image with itself leaves it unchanged'): the pyramid does not "
+            "collapse back to the image, so look there first.")
+
+
+def feathered(t: Trial) -> bool:
+    """Whether the blend of two different photos is one weight per pixel near the seam (a feather
+    or an alpha blend, not a band-by-band blend): the exposure pair cannot show it (its images
+    are proportional, so every blend is one weight per pixel there)."""
+    img1, img2 = photo("brick", (256, 192)), photo("astronaut", (256, 192))
+    got = blend_probe(t, img1, img2, truth.step_mask((256, 192), 128), levels=5)
+    return got is not None and one_weight_per_pixel(got, img1, img2, seam=128)
+
+
 def away_from_seam(got, left_image, right_image, seam: int, margin: int = 40):
     """Mean blurred differences of ``got`` to each input, ``margin`` px or more from a vertical seam."""
     columns = np.arange(got.shape[1])
@@ -1599,18 +1722,22 @@ def blend_seam(t):
         return passed(f"the brightness changes by at most {step:.1f} grey levels per column "
                       f"across the seam (a hard cut: {cut:.0f})")
     t.images(what, dark=dark, bright=bright, yours=got)
+    damaged = damaged_pyramid(t)
     if step > 0.8 * cut:
-        t.fail(f"{what}: the brightness jumps by {step:.0f} grey levels at the seam, as with a "
-               "plain cut mask * img1 + (1 - mask) * img2: blend each Laplacian level with the "
-               "mask's Gaussian pyramid at that level, so coarse levels blend over a wide band")
+        plain = f"{what}: the brightness jumps by {step:.0f} grey levels at the seam, as with a plain cut " \
+                f"mask * img1 + (1 - mask) * img2 ({cut:.0f})"
+        if damaged or not feathered(t):
+            t.fail(f"{plain}.{damaged}")
+        t.fail(f"{plain}: blend each Laplacian level with the mask's Gaussian pyramid at that level, so "
+               "coarse levels blend over a wide band")
     if step > SEAM_STEP and parameter_ignored(
             lambda **kw: t.call("blend_multiband", dark, bright, mask, **kw), "levels", (1, 6)):
         t.fail(f"{what}: levels=1 and levels=6 give the same image: levels is ignored. The "
                f"brightness still jumps by {format_apart(step, SEAM_STEP, 1)} grey levels per column at the "
-               "seam (a hard "
-               f"cut: {cut:.0f}, at most {SEAM_STEP:g} accepted): a narrow feather or a pyramid of "
-               "fixed depth leaves a visible seam; with levels=5 the coarsest level should spread "
-               "the difference over tens of pixels", mistake="levels is ignored")
+               f"seam (a hard cut: {cut:.0f}, at most {SEAM_STEP:g} accepted)"
+               + ("" if damaged or not feathered(t) else ", as one smoothed mask for all detail (a narrow feather) "
+                  "leaves it") + "; with levels=5 the coarsest level should spread the difference over tens of "
+               "pixels", mistake="levels is ignored")
     if step > SEAM_STEP:
         depth = name_mistake(t, got, pyramid_depths(dark, bright, mask), mean_difference, 0.3,
                              truth=truth.multiband(dark, bright, mask, 5), probe=depth_probe(t))
@@ -1619,11 +1746,13 @@ def blend_seam(t):
                    f"{format_apart(step, SEAM_STEP, 1)} grey "
                    f"levels per column at the seam (at most {SEAM_STEP:g} accepted).", mistake=depth)
     if step > SEAM_STEP:
-        t.fail(f"{what}: the brightness still jumps by {format_apart(step, SEAM_STEP, 1)} grey levels "
-               "per column at the "
-               f"seam (a hard cut: {cut:.0f}, at most {SEAM_STEP:g} accepted): a narrow feather "
-               "leaves a visible seam; with 5 levels the coarsest level should spread the "
-               "difference over tens of pixels")
+        measured = (f"{what}: the brightness still jumps by {format_apart(step, SEAM_STEP, 1)} grey levels per "
+                    f"column at the seam (a hard cut: {cut:.0f}, at most {SEAM_STEP:g} accepted)")
+        # a feather only when the blend of two different photos is one weight per pixel
+        cause = "" if damaged or not feathered(t) else \
+            ": it looks like one smoothed mask for all detail (a narrow feather), which leaves a visible seam"
+        t.fail(f"{measured}.{damaged}" if damaged else f"{measured}{cause}; with 5 levels the coarsest level "
+               "should spread the difference over tens of pixels.")
     t.fail(f"{what}: far from the seam the result should equal the dark image.")
 
 
@@ -1688,19 +1817,26 @@ def blend_sharp(t):
         return passed(f"fine detail near the seam is {1 - ghosting:.0%} the selected image's")
     t.images(what, img1=img1, img2=img2, yours=got)
     if parameter_ignored(lambda **kw: t.call("blend_multiband", img1, img2, mask, **kw), "levels", (1, 6)):
+        feather = one_weight_per_pixel(got, img1, img2, seam=128)   # then both images' detail shows through
         t.fail(f"{what}: levels=1 and levels=6 give the same image: levels is ignored. 3 to 10 px "
-               f"from the seam both images' detail shows through ({ghosting:.0%} ghosting).",
-               mistake="levels is ignored")
+               f"from the seam the fine detail differs from the image the mask selects by {ghosting:.0%} of "
+               "its strength" + (f" (ghosting): {NO_LAPLACIAN}." if feather else "."), mistake="levels is ignored")
     if one_weight_per_pixel(got, img1, img2, seam=128):
         t.fail(f"{what}: 3 to 10 px from the seam the fine detail differs from the image the mask "
                f"selects by {ghosting:.0%} of its strength (ghosting): {NO_LAPLACIAN}. In multi-band "
                "blending the finest level uses the sharp mask; only coarse levels blend over a "
                "wide band.", mistake=NO_LAPLACIAN)
+    damaged = damaged_pyramid(t)
     t.fail(f"{what}: 3 to 10 px from the seam the fine detail differs from the image the mask "
            f"selects by {format_apart(ghosting, GHOSTING, 2, percent=True)} of its strength (at most "
-           f"{GHOSTING:.0%} accepted): both "
-           "images' detail shows through (ghosting), as with a wide feather. In multi-band blending "
-           "the finest level uses the sharp mask; only coarse levels blend over a wide band.")
+           f"{GHOSTING:.0%} accepted)." + (damaged or " In multi-band blending the finest level uses the sharp "
+                                           "mask; only coarse levels blend over a wide band."))
+
+
+PYRUP_DSTSIZE = Hint("pass dstsize=(width, height) of the finer level to cv2.pyrUp",
+                    asks=keyword("cv2.pyrUp", "dstsize") | (calls("cv2.pyrUp") & mentions("dstsize")),
+                    instead="your code {found}: check every place a level is brought to another's size "
+                            "(the mask's pyramid, the bands, the collapse)")
 
 
 @ext3.check("blend_multiband on sizes that are not multiples of 2**levels", points=1)
@@ -1720,6 +1856,5 @@ def blend_odd_size(t):
     even = blend_probe(t, even1, even2, np.ascontiguousarray(mask[:160, :240]))
     if even is not None and max(away_from_seam(even, even1, even2, seam=100)) <= 3:
         t.fail(f"{measured}, while the same images cut to 240x160 (multiples of 2**levels) blend "
-               "rightly: pass dstsize=(width, height) of the finer level to cv2.pyrUp",
-               mistake="the sizes of odd levels are lost (cv2.pyrUp without dstsize)")
+               f"rightly: {PYRUP_DSTSIZE.said(t)}", mistake="the sizes of odd levels are lost (cv2.pyrUp without dstsize)")
     t.fail(f"{measured}; the mask should select img1 where mask = 1 and img2 where mask = 0, at any size.")
