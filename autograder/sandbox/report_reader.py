@@ -49,7 +49,13 @@ def thumbnail(image: np.ndarray) -> np.ndarray:
         raise ValueError(f"a picture must be 2-D or 3-D with pixels; got shape {image.shape}")
     import cv2
 
-    return np.clip(cv2.resize(image, (THUMB, THUMB), interpolation=cv2.INTER_AREA) + 0.5, 0, 255).astype(np.uint8)
+    # Shrunk by area averaging along each axis longer than THUMB, enlarged linearly along the others:
+    # area "enlarging" repeats pixels, which shifts a small picture's thumbnail against a large one's.
+    height, width = image.shape
+    image = cv2.resize(image, (min(width, THUMB), min(height, THUMB)), interpolation=cv2.INTER_AREA)
+    if image.shape != (THUMB, THUMB):
+        image = cv2.resize(image, (THUMB, THUMB), interpolation=cv2.INTER_LINEAR)
+    return np.clip(image + 0.5, 0, 255).astype(np.uint8)
 
 
 def read_pdf(data: np.ndarray) -> dict:
@@ -89,7 +95,7 @@ def read_pdf(data: np.ndarray) -> dict:
         return out
     if count > MAX_PAGES:
         out["notes"].append(f"it has {count} pages; the first {MAX_PAGES} were read")
-    total, failed = 0, []
+    total, failed, why = 0, [], ""
     for number in range(min(count, MAX_PAGES)):
         text = ""
         try:
@@ -97,10 +103,10 @@ def read_pdf(data: np.ndarray) -> dict:
             text = page.extract_text() or ""
         except RecursionError:
             failed.append(number + 1)
-            page = None
-        except Exception:  # noqa: BLE001 - one page's fault leaves the others readable
+            why, page = why or "its objects are nested too deeply", None
+        except Exception as exc:  # noqa: BLE001 - one page's fault leaves the others readable
             failed.append(number + 1)
-            page = None
+            why, page = why or _reason(exc), None
         text = text[:MAX_PAGE_CHARS][: max(MAX_TEXT_CHARS - total, 0)]
         total += len(text)
         out["pages"].append(text)
@@ -111,7 +117,11 @@ def read_pdf(data: np.ndarray) -> dict:
         out["notes"].append(f"the text of page{'s' if len(failed) > 1 else ''} {shown} could not be read")
     if total >= MAX_TEXT_CHARS:
         out["notes"].append(f"its text is longer than {MAX_TEXT_CHARS:,} characters; the rest was not read")
-    if count and not any(text.strip() for text in out["pages"]):
+    if not count:
+        out["error"] = "it has no pages that can be found"
+    elif failed and not any(text.strip() for text in out["pages"]):
+        out["error"] = f"the text of its pages cannot be read ({why})"
+    elif not any(text.strip() for text in out["pages"]):
         out["error"] = ("it holds no text (scanned pages or pictures only?); export the report "
                         "from a text editor so that its words can be read")
     return out

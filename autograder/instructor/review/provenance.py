@@ -20,8 +20,8 @@ Two pictures are the same figure (:func:`same_figure`) when
   the rest of the figure still matches).
 
 Measured on the 14 figures of labs 7 and 8 (benchmarks/bench_provenance.py): the same
-figure rescaled to 25-150 % and JPEG-compressed at quality 30-80 scores at least 0.987
-whole and 0.69 in detail; two different figures of the same shape at most 0.966 whole and
+figure rescaled to 25-150 % and JPEG-compressed at quality 30-80 scores at least 0.990
+whole and 0.74 in detail; two different figures of the same shape at most 0.966 whole and
 0.34 in detail; one panel of three shifted by 12 px, turned by 5 degrees or replaced, at
 most 0.97 whole and 0.32 in detail; made 30 % darker, at most 0.974 whole.
 
@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -53,6 +54,7 @@ SAME_DETAIL = 0.5            # correlation of their fine structure, in the worst
 DETAIL_SIGMA = 2.0           # the blur taken off a thumbnail to keep its fine structure (pixels)
 MAX_ASPECT_CHANGE = 1.25     # width/height ratios of one figure differ by less than this factor
 MIN_CONTRAST = 4.0           # grey levels (standard deviation) a thumbnail needs to be compared
+MIN_COMPARED_SIDE = 64       # pixels: a smaller report picture has too little left to tell figures apart
 MAX_FIGURE_BYTES = 32 * 2**20   # a code figure's PNG larger than this is not decoded
 
 
@@ -82,21 +84,36 @@ class Finding:
 
 def code_figures(paths: dict[str, Path]) -> list[CodeFigure]:
     """Thumbnails of the code's figures (figure id -> PNG the batch wrote); a file that cannot
-    be decoded is left out."""
-    import cv2
-
+    be decoded is left out. Each file is decoded once while it is unchanged (a review screen
+    is shown again and again)."""
     found = []
     for figure_id, path in sorted(paths.items()):
         try:
-            if path.stat().st_size > MAX_FIGURE_BYTES:
-                continue
-            image = cv2.imdecode(np.frombuffer(path.read_bytes(), np.uint8), cv2.IMREAD_COLOR)
+            stat = path.stat()
         except OSError:
             continue
-        if image is None:
-            continue
-        found.append(CodeFigure(figure_id, image.shape[1], image.shape[0], thumbnail(image)))
+        if stat.st_size <= MAX_FIGURE_BYTES:
+            made = _code_thumbnail(str(path), stat.st_mtime_ns, stat.st_size)
+            if made is not None:
+                found.append(CodeFigure(figure_id, *made))
     return found
+
+
+@lru_cache(maxsize=2048)
+def _code_thumbnail(path: str, mtime_ns: int, size: int) -> tuple[int, int, np.ndarray] | None:
+    """(width, height, thumbnail) of a PNG of the grader's, None if it cannot be read
+    (``mtime_ns`` and ``size``: a file written again is read again)."""
+    import cv2
+
+    try:
+        image = cv2.imdecode(np.fromfile(path, np.uint8), cv2.IMREAD_COLOR)
+    except OSError:
+        return None
+    if image is None:
+        return None
+    thumb = thumbnail(image)
+    thumb.flags.writeable = False   # shared by every caller of the cache
+    return image.shape[1], image.shape[0], thumb
 
 
 def similarity(a: np.ndarray, b: np.ndarray) -> float:
@@ -151,7 +168,7 @@ def findings(report_figures: list[dict], code: list[CodeFigure]) -> list[Finding
     out = []
     for figure in report_figures:
         number, source = figure["number"], figure["source"]
-        label = f"report figure {number} ({source})"
+        label = f"report figure {number} ({source}{'' if figure.get('exercise') else ', under no exercise heading'})"
         thumb = np.frombuffer(figure["thumb"], np.uint8)
         if thumb.size != THUMB * THUMB:
             continue
@@ -159,6 +176,10 @@ def findings(report_figures: list[dict], code: list[CodeFigure]) -> list[Finding
         if not code:
             out.append(Finding(number, source, None, None,
                                f"{label} was not compared: the batch has no figure made by this student's code"))
+            continue
+        if min(figure["width"], figure["height"]) < MIN_COMPARED_SIDE:
+            out.append(Finding(number, source, None, None, f"{label} is {figure['width']} x {figure['height']} "
+                                                           "pixels, too small to be compared"))
             continue
         if thumb.std() < MIN_CONTRAST:
             out.append(Finding(number, source, None, None, f"{label} is almost uniform; it was not compared"))
@@ -174,3 +195,16 @@ def findings(report_figures: list[dict], code: list[CodeFigure]) -> list[Finding
             out.append(Finding(number, source, None, best_score if best_score is not None else -1.0,
                                f"{label} matches none of the figures your code makes"))
     return out
+
+
+def for_exercise(report_figures: list[dict], code_paths: dict[str, Path], exercise: str) -> list[Finding]:
+    """What the review screen of ``exercise`` says of the report's figures: every figure in
+    that exercise's part of the report, and those under no exercise's heading that match
+    none. ``code_paths``: every figure the student's code made (id -> PNG), any exercise's:
+    a report may show a figure under another heading than the grader's."""
+    here = [f for f in report_figures if f.get("exercise") == exercise]
+    nowhere = [f for f in report_figures if not f.get("exercise")]
+    if not (here or nowhere):
+        return []
+    code = code_figures(code_paths)
+    return findings(here, code) + [f for f in findings(nowhere, code) if f.unmatched]
