@@ -13,8 +13,10 @@ Security
 - The student's text is rendered by :func:`autograder.reports.markdown.render_markdown`
   (a link into this application is inert text); no page shows text taken from its
   address (the rubric's error is the refused change's own); a PDF is offered as a
-  download, never shown or parsed; figures are only the PNGs the batch made from
-  the student's code (``RESULTS/<student>/figures/``).
+  download, never shown or parsed here (its text was read in a sandbox worker by the
+  batch); figures are only the PNGs the batch made from the student's code
+  (``RESULTS/<student>/figures/``); the report's own pictures are only compared with them
+  as the worker's thumbnails (:mod:`.provenance`), never decoded here.
 - Anonymous mode shows nothing of a student but their pseudonym (:mod:`.anonymity`).
 
 Storage
@@ -44,6 +46,7 @@ from ..batch.gradebook import Gradebook
 from ..batch.run import batch_course
 from ..course import CourseConfigError
 from .anonymity import Anonymiser
+from .provenance import for_exercise
 
 FIGURE_ID = re.compile(r"lab\d\d\.[A-Za-z0-9_.-]{1,60}")
 LOCAL_HOSTS = ("127.0.0.1", "localhost")
@@ -203,6 +206,7 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
             report = session.book.report(pair.student_id)
             rubric = session.book.rubric().get(pair.exercise, [])
             students = {s["student_id"]: s for s in session.book.class_results()}
+            report_figures = session.book.report_figures(pair.student_id)
         explanation = report["explanations"].get(pair.exercise)
         figures = _figures(session.results, pair.student_id, pair.exercise)
 
@@ -221,15 +225,18 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
             source = hide.sources(source) if source else ""
             text = hide.text(text)
             attachments = [(i, hide.label(path), size) for i, path, size in attachments]
+            report_figures = [{**f, "source": _labelled(hide, f["source"])} for f in report_figures]
             if verdict:
                 verdict = {**verdict, "checks": [{**c, "message": hide.text(c.get("message") or "")}
                                                  for c in verdict.get("checks", [])]}
         rendered = render_markdown(text, figure_url) if explanation else None
+        # The report's figures against every figure the student's code made (see .provenance).
+        provenance = for_exercise(report_figures, _figures(session.results, pair.student_id), pair.exercise)
         with session.lock:
             bank = session.book.comment_bank().get(pair.exercise, [])
         return page("review.html", pair=pair, queue_length=len(queue), explanation=explanation, source=source,
                     rendered=rendered, figures=figures, verdict=verdict, rubric=rubric, review=state(pair),
-                    attachments=attachments, problems=problems, bank=bank)
+                    attachments=attachments, problems=problems, bank=bank, provenance=provenance)
 
     @app.get(f"/{token}/pair/<ref>/<exercise>/step/<any('next','previous'):step>")
     def step(ref: str, exercise: str, step: str):
@@ -350,9 +357,15 @@ def _pdfs(files: dict[str, int]) -> list[tuple[str, int]]:
     return [(path, size) for path, size in files.items() if path.lower().endswith(".pdf")]
 
 
-def _figures(results: Path, student_id: str, exercise: str) -> dict[str, Path]:
-    """The PNGs the batch made from the student's code for ``exercise`` (and its extension's):
-    figure id -> file, only regular files named as the grader names them."""
+def _labelled(hide: Anonymiser, source: str) -> str:
+    """A report figure's source (``report.pdf, page 3``) with the file's label."""
+    name, comma, where = source.partition(", ")
+    return hide.label(name) + comma + where
+
+
+def _figures(results: Path, student_id: str, exercise: str | None = None) -> dict[str, Path]:
+    """The PNGs the batch made from the student's code for ``exercise`` (and its extension's;
+    None: every exercise's): figure id -> file, only regular files named as the grader names them."""
     folder = results / student_id / "figures"
     if not folder.is_dir() or folder.is_symlink():
         return {}
@@ -360,7 +373,7 @@ def _figures(results: Path, student_id: str, exercise: str) -> dict[str, Path]:
     for path in sorted(folder.glob("*.png")):
         figure_id = path.name[:-4]
         if FIGURE_ID.fullmatch(figure_id) and path.is_file() and not path.is_symlink() and (
-                figure_id == exercise or figure_id.startswith(exercise + "-")):
+                exercise is None or figure_id == exercise or figure_id.startswith(exercise + "-")):
             found[figure_id] = path
     return found
 
