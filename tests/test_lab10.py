@@ -5,7 +5,7 @@ import pytest
 
 from autograder.engine.runner import grade
 from autograder.labs.mistakes.lab10 import MISTAKES
-from conftest import assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, mutant
+from conftest import assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
 
 MODULE = "lab10_camera2"
 
@@ -127,6 +127,17 @@ VARIANTS = {
             return rvec.ravel(), tvec.ravel(), reprojected.reshape(-1, 2)
         """),
 }
+
+
+def test_a_new_camera_matrix_loses_half_the_undistortion_check_and_nothing_else(tmp_path):
+    """OpenCV's tutorial recipe undoes the lens rightly into cv2.getOptimalNewCameraMatrix's
+    matrix: half of the undistortion check, named; the colour check (its own question) passes."""
+    exercise, source, _ = MISTAKES["undistort into the tutorial's new camera matrix (alpha=1)"]
+    checks = {c.name: c for c in check_results(grade(mutant(tmp_path, MODULE, source), [exercise]), exercise)}
+    main = checks["undistort_image straightens a view through a distorting lens"]
+    assert main.score == pytest.approx(main.max_score / 2)
+    assert main.mistake == "undistorted into a new camera matrix (cv2.getOptimalNewCameraMatrix), not K"
+    assert checks["undistort_image keeps a colour image in colour (BGR in, BGR out)"].passed
 
 
 @pytest.mark.parametrize("case", sorted(VARIANTS))

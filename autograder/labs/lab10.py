@@ -25,6 +25,7 @@ from ..engine.hints import calls, code_of, nan_behind
 from ..engine.judges import Probe, call_probe, fingerprint, format_matrix, name_mistake, where_matrices_differ
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
+from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed
 from .lab09 import (call_behind, expect_points, judge_in_front, judge_points, judge_single_point,
                     make_points_probe, pinhole_formulas, point_error)
 
@@ -908,6 +909,45 @@ def undistort_probe(t: Trial) -> Probe:
     return Probe(undistort_probe_key(), lambda: _undistort_answer(t, distorted),
                  lambda: undistortion_mistakes(distorted, K, dist), clean,
                  distance=lambda a, b: blurred_difference(a, b, valid), tolerance=UNDISTORT_TOLERANCE)
+
+
+def tinted(grey: np.ndarray) -> np.ndarray:
+    """(H, W) -> (H, W, 3) BGR with three different channels (the board, a darker copy, its
+    negative): a grey answer, a channel reversal or one channel for all cannot match it."""
+    grey = np.asarray(grey, np.uint8)
+    return np.dstack([grey, np.round(grey * 0.6).astype(np.uint8), 255 - grey])
+
+
+@ext1.check("undistort_image keeps a colour image in colour (BGR in, BGR out)", points=1)
+def undistort_colour(t):
+    """The skeleton: (H, W) or (H, W, 3) in, the same shape out. One question, the colour: what
+    the undistortion itself is worth is the grey check's, so an answer equal to the student's own
+    grey undistortion of each channel passes (a new camera matrix loses its points once)."""
+    distorted, clean, _, _, _ = truth.distorted_view()
+    K, dist = truth.POSE_K, truth.DIST
+    colour, expected = tinted(distorted), tinted(clean)
+    what = "undistort_image(colour image, K, dist)"
+    got = t.call("undistort_image", colour, K, dist)
+    valid = truth.undistortion_valid(K, dist, truth.POSE_SIZE)
+    if isinstance(got, np.ndarray):
+        t.compare_images(what, colour, expected, got, valid=valid,
+                         caption="expected: the same view rendered without distortion, in colour")
+    got = t.expect_array(got, what, shape=colour.shape, dtype=np.uint8)
+    # rounding 0.6 x grey before or after the remap: under one level apart
+    error = blurred_difference(got, expected, valid)
+    if error <= UNDISTORT_TOLERANCE:
+        return passed(f"mean difference {error:.1f} levels from the distortion-free view, in every channel")
+    if channels_reversed(got, expected):
+        t.fail(f"{what} is wrong: {RGB_FOR_BGR}.", mistake="the colour channels are reversed (RGB for BGR)")
+    per_channel = [t.expect_array(t.call("undistort_image", np.ascontiguousarray(colour[..., c]), K, dist),
+                                  f"undistort_image(channel {c} of the colour image, K, dist)",
+                                  shape=distorted.shape, dtype=np.uint8) for c in range(3)]
+    if blurred_difference(got, np.dstack(per_channel), valid) <= UNDISTORT_TOLERANCE:
+        return passed("each channel is undistorted as your code undistorts a grey image "
+                      "(the undistortion itself is the other check's)")
+    t.fail(f"{what} differs by {error:.0f} levels on average from the distortion-free view, and is not your "
+           "own undistortion of each channel either: undistort the three channels alike "
+           "(cv2.undistort takes a BGR image as it is).")
 
 
 # ================================================================== ext2 dolly zoom

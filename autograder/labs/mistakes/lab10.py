@@ -330,6 +330,12 @@ MISTAKES = {
             colour = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image
             return _undistort(colour, K, dist)
         """, ["channels are not kept", "grey in, grey out"]),
+    "undistort a colour image into grey (the calibration tutorial's grey copy)": ("lab10.ext1", """
+        _undistort = undistort_image
+        def undistort_image(image, K, dist):
+            grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+            return _undistort(grey, K, dist)
+        """, ["channels are not kept", "BGR in, BGR out"]),
     "dolly zoom with the focal length inverted": ("lab10.ext2", """
         def dolly_zoom(points, f0, z0, distances):
             X, _ = _points(points)
