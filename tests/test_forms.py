@@ -30,6 +30,7 @@ def numpy_error(operation) -> str:
     ((1, 5), (None,), "row of shape (1, 5)"),
     ((120, 160, 3), (120, 160), "grey in, grey out"),
     ((120, 160), (120, 160, 3), "BGR in, BGR out"),
+    ((120, 160, 1), (120, 160), "channel axis of length 1"),
 ])
 def test_a_recognised_form_is_named_from_the_shape(got, expected, words):
     form = shape_form(got, expected)

@@ -79,6 +79,9 @@ def _channels_form(got: tuple, expected: tuple) -> Form | None:
     if None in expected or len(expected) not in (2, 3) or min(expected[:2]) < IMAGE_SIDE:
         return None
     rule = "a function that takes an image returns the input's channel count"
+    if len(expected) == 2 and got == expected + (1,):   # a mask broadcast as mask[..., None], say
+        return Form("it looks like the grey image kept a channel axis of length 1, (H, W, 1): a grey image is "
+                    "(H, W) (drop the axis: result[..., 0])", "a grey image with an extra (H, W, 1) axis")
     if len(expected) == 2 and len(got) == 3 and got[:2] == expected and got[2] in (3, 4):
         return Form(f"it looks like the channels are not kept: {got[2]} channels where a grey (H, W) image is "
                     f"asked ({rule}: grey in, grey out)", "the channels are not kept")
