@@ -288,3 +288,17 @@ def book_entries(book):
     return [Entry(s["student_id"], s["display_name"], "canvas", f"{s['student_id']}.py",
                   files={"lab07_transformations.py": b"x"}, lms={"canvas_user_id": "100"})
             for s in book.class_results()]
+
+
+def test_anonymous_review_rewrites_an_unreadable_pdfs_sentence_from_fixed_words():
+    from autograder.instructor.review.anonymity import Anonymiser
+
+    hide = Anonymiser({"student_id": "ada", "display_name": "Ada Lovelace", "lms": {}, "members": [], "origin": "ada"},
+                      {"ada lovelace lab07.pdf": 10}, "Student X")
+    said = [hide.problem(f"ada lovelace lab07.pdf: {UNREADABLE}{why}") for why in
+            ("it is encrypted (protected by a password); hand in a PDF without one",
+             "it is not a readable PDF (PdfReadError: Ada Lovelace wrote this object)",
+             "reading it took longer than 20 seconds")]
+    assert said == [f"report 1 (PDF): {UNREADABLE}it is encrypted (protected by a password)",
+                    f"report 1 (PDF): {UNREADABLE}it is not a readable PDF",     # the parser's words are dropped
+                    f"report 1 (PDF): {UNREADABLE}reading it took longer than 20 seconds"]

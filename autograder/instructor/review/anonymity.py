@@ -85,6 +85,21 @@ _PROBLEMS = [(re.compile(pattern, re.DOTALL), text) for pattern, text in (
      r"\(lab07_report\.md\) or a heading \(# Lab 7\)", "{file}: a heading names an exercise by number but not its "
                                                         "lab; name the lab in the file's name (lab07_report.md) or a "
                                                         "heading (# Lab 7)"),
+    (r"(?P<file>.+): the PDF's text could not be read: (?P<pdf_why>.*)",
+     "{file}: the PDF's text could not be read: {pdf_why}"),
+)]
+# Why a PDF's text could not be read (sandbox/report_reader.py, loading/pdf_report.py): a parser's own
+# words (which may quote the file) are never taken.
+_PDF_REASONS = [(re.compile(pattern, re.DOTALL), text) for pattern, text in (
+    (r"it is encrypted.*", "it is encrypted (protected by a password)"),
+    (r"it is not a PDF\b.*", "it is not a PDF"),
+    (r"it is not a readable PDF.*", "it is not a readable PDF"),
+    (r"it holds no text.*", "it holds no text (scanned pages or pictures only?)"),
+    (r"(?:its pages cannot be found|it has no pages|the text of its pages cannot be read).*", "its pages cannot be read"),
+    (r"its objects are nested too deeply.*|its page tree is nested too deeply.*", "its objects are nested too deeply"),
+    (rf"reading it took longer than (?P<n>{_NUMBER}) seconds", "reading it took longer than {n} seconds"),
+    (rf"reading it needed more than (?P<n>{_NUMBER}) MiB of memory", "reading it needed more than {n} MiB of memory"),
+    (rf"it is {_NUMBER} MiB, more than the (?P<n>{_NUMBER}) MiB read", "it is larger than the {n} MiB read"),
 )]
 # Why a file was refused (batch/tree.py, sandbox/files.py): a reason naming another of the student's
 # files ("the archive holds X twice") is said without it.
@@ -204,6 +219,8 @@ class Anonymiser:
                     fields["sources"] = self.sources(fields["sources"])
                 if "why" in fields:
                     fields["why"] = _reason(fields["why"])
+                if "pdf_why" in fields:
+                    fields["pdf_why"] = _reason(fields["pdf_why"], _PDF_REASONS)
                 return template.format(**fields)
         return UNKNOWN_PROBLEM
 
@@ -214,8 +231,8 @@ def _pattern(forms: tuple[str, ...]) -> re.Pattern:
     return re.compile("|".join(_whole(form) for form in forms), re.IGNORECASE)
 
 
-def _reason(why: str) -> str:
-    for pattern, template in _REASONS:
+def _reason(why: str, reasons=None) -> str:
+    for pattern, template in reasons or _REASONS:
         match = pattern.fullmatch(why)
         if match:
             return template.format(**match.groupdict())
