@@ -119,12 +119,23 @@ def test_an_ncc_matcher_keeping_the_highest_score_is_not_told_to_keep_it(tmp_pat
     result = grade(mutant(tmp_path, "lab12_stereo", NCC_ARGMAX_OFF_BY_TWO.format(pick="argmax", sign="")),
                    ["lab12.ext1"], pictures="none")
     hints = [c.hint for c in check_results(result, "lab12.ext1") if not c.passed and c.hint]
-    assert hints and all("HIGHEST" not in h and "keeps the highest score (argmax)" in h for h in hints)
+    assert hints and all("HIGHEST" not in h and "keeps the highest score (argmax" in h for h in hints)
     assert NCC_HINT.text.startswith(hints[0].split(";")[0])     # the formula is still said
 
 
-def test_the_same_mistake_without_argmax_keeps_the_hint(tmp_path):
-    result = grade(mutant(tmp_path / "control", "lab12_stereo", NCC_ARGMAX_OFF_BY_TWO.format(pick="argmin", sign="-")),
+def test_the_argmin_of_the_score_negated_is_keeping_the_highest_too(tmp_path):
+    """``score`` holds +NCC (the reference's helper returns -NCC, negated again): the argmin of
+    ``-score`` keeps the highest NCC, as an argmax does."""
+    result = grade(mutant(tmp_path / "negated", "lab12_stereo", NCC_ARGMAX_OFF_BY_TWO.format(pick="argmin", sign="-")),
+                   ["lab12.ext1"], pictures="none")
+    hints = [c.hint for c in check_results(result, "lab12.ext1") if not c.passed and c.hint]
+    assert hints and all("HIGHEST" not in h and "keeps the highest score (argmax" in h for h in hints)
+
+
+def test_a_matcher_keeping_the_lowest_ncc_keeps_the_hint(tmp_path):
+    """The control: the argmin of ``score`` (+NCC after the helper's negation is undone) keeps the
+    lowest NCC, so the hint to keep the highest is what the code needs."""
+    result = grade(mutant(tmp_path / "control", "lab12_stereo", NCC_ARGMAX_OFF_BY_TWO.format(pick="argmin", sign="")),
                    ["lab12.ext1"], pictures="none")
     hints = [c.hint for c in check_results(result, "lab12.ext1") if not c.passed and c.hint]
     assert hints and all(h == NCC_HINT.text for h in hints)

@@ -25,7 +25,7 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
-from ..engine.hints import Hint, calls, expr, keyword
+from ..engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, Hint, calls, expr, keyword
 from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
@@ -76,7 +76,7 @@ def expect_disparity(t: Trial, what: str, got, scene) -> np.ndarray:
 LOWEST_COST_HINT = Hint(
     "for left pixel (x, y) compare its block with the block around (x - d, y) in the right image, "
     "d = 0..max_disparity, and keep the d with the lowest cost",
-    asks=calls("np.argmin").saying("keeps the lowest cost (argmin)"),
+    asks=KEEPS_LOWEST,
     instead="for left pixel (x, y) compare its block with the block around (x - d, y) in the right image, "
             "d = 0..max_disparity; your code already {found}: the error is elsewhere")
 
@@ -107,6 +107,8 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     fraction = (allowed + FADE - bad) / FADE  # partial credit near the accepted rate
     try:
         diagnose_disparity(t, what, got, scene, allowed, again, judged, mistakes)
+        if NCC_CALL in what:
+            name_ncc_normalisation(t, what)
         if probe is not None:
             probe()
     except Fail as named:
@@ -120,7 +122,7 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
         return partial(fraction, f"{what}: {where}. {summary}; up to "
                        f"{allowed:.1%} gets full marks (see the error map).")
     t.fail(f"{what}: most of the map is wrong: {where}. {summary} (see the error map).",
-           hint=(NCC_HINT if "cost=\"ncc\"" in what else LOWEST_COST_HINT).said(t))
+           hint=(NCC_HINT if NCC_CALL in what else LOWEST_COST_HINT).said(t))
 
 
 def where_disparities_wrong(got, judged, threshold) -> str:
@@ -911,8 +913,58 @@ def block_matching_zero_disparity(t):
 # ================================================================== ext1 NCC
 NCC_FORMULA = "NCC = sum((L - mean L)(R - mean R)) / (N std L std R) over the block"
 NCC_HINT = Hint(f"{NCC_FORMULA}; it is a similarity: keep the disparity with the HIGHEST score",
-                asks=calls("np.argmax").saying("keeps the highest score (argmax)"),
+                asks=KEEPS_HIGHEST,
                 instead=f"{NCC_FORMULA}; your code already {{found}}: the error is elsewhere")
+NCC_CALL = 'cost="ncc"'
+NOT_CENTRED = "the block means are not subtracted"
+# The views of the invariance probe: a random-dot pair whose right view is dimmed (x 0.4, so that
+# + 150 stays within 0..255) and then lifted by 150 grey levels. A normalised cross-correlation
+# gives the same map for the three (measured, the reference: at most 0.01% of the pixels apart);
+# without the means subtracted the lifted view moves the map (the blind set's matcher, numerator
+# mean(L R): 24% of the pixels, its dimmed view 0.6%). (A gain of the right view moves no argmax of
+# a covariance, divided by the deviations or not: it cannot tell that step.)
+INVARIANCE_SCENE = dict(seed=12_016, n_boxes=2)
+GAIN, OFFSET = 0.4, 150
+INVARIANT = 0.03     # share of the pixels apart: the same map
+MOVED = 0.1          # share of the pixels apart: the map moved
+
+
+def ncc_invariance(t: Trial) -> tuple[float, float] | None:
+    """(share of pixels apart under a gain of GAIN, under an offset of OFFSET grey levels) of the student's
+    NCC maps on the invariance probe; None when a call fails or gives no map."""
+    scene = truth.random_dot_scene(**INVARIANCE_SCENE)
+    right = np.asarray(scene.right, np.float64)
+    dimmed = np.round(GAIN * right).astype(np.uint8)
+    views = {"plain": np.array(scene.right), "dimmed": dimmed, "lifted": (dimmed + OFFSET).astype(np.uint8)}
+
+    def answer(view):
+        got = t.call("block_matching", np.array(scene.left), views[view], max_disparity=scene.max_disparity,
+                     block_size=9, cost="ncc")
+        ok = isinstance(got, np.ndarray) and got.shape == scene.judged.shape and got.dtype.kind in "iuf"
+        return got if ok else None
+
+    maps = {view: t.probe(f"block_matching/ncc invariance/{view}", lambda view=view: answer(view)) for view in views}
+    if any(m is None for m in maps.values()) or not same_informative_result(maps["plain"], maps["plain"]):
+        return None
+    columns = np.arange(scene.judged.shape[1])[None, :] >= scene.max_disparity
+    apart = truth.map_disagreement((scene.judged > 0) & columns)
+    return apart(maps["plain"], maps["dimmed"]), apart(maps["dimmed"], maps["lifted"])
+
+
+def name_ncc_normalisation(t: Trial, what: str):
+    """Fail naming the means not subtracted when the NCC maps show it: moved by an offset of one view,
+    not by a gain (a cost that is no correlation at all, SSD, is moved by both)."""
+    measured = ncc_invariance(t)
+    if measured is None:
+        return
+    gain, offset = measured
+    if gain <= INVARIANT and offset >= MOVED:
+        t.fail(f"{what}: it looks like {NOT_CENTRED}: adding {OFFSET} grey levels to the right view moves {offset:.0%} "
+               f"of your disparities (on random dots), while scaling it by {GAIN:g} moves {gain:.0%}; a normalised "
+               "cross-correlation is unchanged by both. Subtract each block's mean before multiplying.",
+               hint=NCC_FORMULA, mistake=NOT_CENTRED)
+
+
 ext1 = lab.exercise("ext1", "Normalised cross-correlation", functions=[
     "block_matching(left, right, max_disparity=64, block_size=9, cost=\"ncc\")"])
 
@@ -972,12 +1024,14 @@ def ncc_gain(t):
     if (isinstance(unchanged, np.ndarray) and unchanged.shape == plain.disparity.shape
             and truth.bad_pixel_rate(unchanged, plain.judged, plain.threshold)
             <= figures("motorcycle", "bm_ncc_9")["bad"] + MARGIN):
+        name_ncc_normalisation(t, what)
         t.fail(f"{what}: bad-pixel rate {bad:.1%} (reference {reference:.1%}), although it works "
                "when the views have the same brightness: your NCC is not fully normalised. Subtract "
                "each block's mean and divide by the product of the blocks' standard deviations.",
                mistake="the NCC is not fully normalised")
     diagnose_disparity(t, what, got, scene, reference + MARGIN,
                        mistakes=MatchingMistakes(scene, 9, "ncc"))
+    name_ncc_normalisation(t, what)
     block_size_probe(t, what, scene, cost="ncc")()
     if bad < reference + MARGIN + FADE:
         return partial((reference + MARGIN + FADE - bad) / FADE, f"{what}: {summary}.", hint=NCC_HINT.said(t))
@@ -1032,6 +1086,61 @@ def name_oversmoothing(t: Trial, what: str, got, scene, allowed: float):
                mistake=OVERSMOOTHED)
 
 
+NOT_BACKTRACKED = ("the disparities are not backtracked: each column takes the lowest accumulated energy of the "
+                   "forward pass instead of following the choices back from the last column")
+
+
+FORWARD_AGREEMENT = 0.9   # share of pixels within 1 px of a forward-pass map
+
+
+def forward_pass_maps(scene, block_size: int = 5) -> dict[str, np.ndarray]:
+    """The maps a DP gives at a huge smoothness when it reads each column's lowest accumulated
+    energy instead of backtracking, for the two usual data costs (block SAD, block SSD; the cost
+    255 or 255^2 where x - d < 0): with a penalty far above any cost, the accumulated energy at
+    column x is the sum of the cost up to x at one disparity, so its argmin per column is that of
+    the cumulative sum along the row."""
+    left, right = (np.asarray(image, np.float64) for image in (scene.left, scene.right))
+    if left.ndim == 3:
+        left, right = (cv2.cvtColor(image.astype(np.float32), cv2.COLOR_BGR2GRAY).astype(np.float64)
+                       for image in (left, right))
+    height, width = left.shape
+    depth = scene.max_disparity + 1
+    maps = {}
+    for name, cost, fill in (("SAD", np.abs, 255.0), ("SSD", np.square, 255.0 ** 2)):
+        volume = np.full((depth, height, width), fill)
+        for d in range(min(depth, width)):
+            shifted = np.empty_like(right)
+            shifted[:, d:] = right[:, :width - d]
+            shifted[:, :d] = right[:, :1]
+            volume[d, :, d:] = cv2.blur(cost(left - shifted), (block_size, block_size),
+                                        borderType=cv2.BORDER_REFLECT)[:, d:]
+        maps[name] = np.argmin(np.cumsum(volume, axis=2), axis=0).astype(np.float64)
+    return maps
+
+
+def name_no_backtracking(t: Trial, what: str):
+    """Fail naming disparities read from the forward pass when, on the weak-texture scene at a
+    huge smoothness, the rows are not constant (a backtracked DP keeps one disparity a row) and
+    the map is a forward-pass map (:func:`forward_pass_maps`). Measured there: the blind set's DP
+    without backtracking (SAD) 99% of the pixels within 1 px of the SAD map; the reference (constant
+    rows) 49% and 1%."""
+    scene = truth.scene("weak_texture")
+    flat = t.probe("dp_stereo/huge smoothness", lambda: call_dp(t, scene, smoothness=1e7))
+    if not isinstance(flat, np.ndarray) or flat.shape != scene.disparity.shape or flat.dtype.kind not in "iuf":
+        return
+    flat = np.nan_to_num(flat.astype(np.float64), nan=-1.0)
+    changing = float(np.mean(np.any(np.diff(flat, axis=1) != 0, axis=1)))
+    if changing < 0.5:
+        return
+    agreement = {name: float(np.mean(np.abs(flat - m) <= 1)) for name, m in forward_pass_maps(scene).items()}
+    cost, share = max(agreement.items(), key=lambda item: item[1])
+    if share >= FORWARD_AGREEMENT:
+        t.fail(f"{what}: it looks like {NOT_BACKTRACKED}. With smoothness=1e7 a backtracked DP keeps one "
+               f"disparity per row; {changing:.0%} of your rows change, and {share:.0%} of your pixels are, "
+               f"within 1 px, the disparity with the lowest {cost} summed along the row up to that column "
+               "(what the forward pass holds at each column under so large a penalty).", mistake=NOT_BACKTRACKED)
+
+
 LAST_COLUMN_TOLERANCE = 0.2   # bad fraction of the last column (the references: 0 on synthetic scenes)
 
 
@@ -1084,11 +1193,16 @@ def dp_weak_texture(t):
     name_oversmoothing(t, what, got, scene, reference["bad"] + MARGIN)
     diagnose_disparity(t, what, got, scene, reference["bad"] + MARGIN)
     if bad < bm["bad"] - MARGIN:
+        better = f"{summary}: better than block matching, but not yet as good as the reference."
+        try:
+            name_no_backtracking(t, what)
+        except Fail as named:   # a named mistake does not take the credit the map earns
+            return partial(0.5, f"{named.message} {better}", mistake=named.mistake)
         # No cause is known here: the hint says where the difference can come from, not what to change.
-        return partial(0.5, f"{what}: {summary}: better than block matching, but not yet as "
-                            "good as the reference.",
+        return partial(0.5, f"{what}: {better}",
                        hint="compare each step with the lab sheet's: the matching cost, the accumulation "
                             "along the row with its smoothness penalty, and the backtracking from the last column")
+    name_no_backtracking(t, what)
     t.fail(f"{what}: {summary}: no better than block matching.")
 
 
@@ -1118,9 +1232,9 @@ def dp_motorcycle(t):
     reference = figures("motorcycle", "dp_5")["bad"]
     name_oversmoothing(t, "dp_stereo(left, right)", got, scene, reference + MARGIN)
     return judge_disparity(t, "dp_stereo(left, right)", got, scene, reference,
-                           probe=lambda: judge_parameter_used(
+                           probe=lambda: (name_no_backtracking(t, "dp_stereo(left, right)"), judge_parameter_used(
                                t, "dp_stereo(left, right)", lambda **kw: call_dp(t, scene, **kw),
-                               "block_size", (3, 9), "disparity map"))
+                               "block_size", (3, 9), "disparity map")))
 
 
 @ex5.check("smoothness=0 is winner-take-all; a huge smoothness makes every row constant", points=2,
@@ -1145,6 +1259,7 @@ def dp_smoothness_parameter(t):
     rows_with_jumps = float(np.mean(np.any(np.diff(np.nan_to_num(flat), axis=1) != 0, axis=1)))
     if rows_with_jumps > 0.1:
         smoothness_probe(t, scene)
+        name_no_backtracking(t, "dp_stereo(left, right, smoothness=1e7)")
         t.fail(f"dp_stereo(left, right, smoothness=1e7): {rows_with_jumps:.0%} of the rows still "
                "change disparity; with a huge penalty each row should be constant.")
     return passed(f"smoothness=0: {wta_jumps:.1%} jumps; smoothness=1e7: constant rows")

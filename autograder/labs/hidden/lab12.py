@@ -18,7 +18,8 @@ from fixtures import lab12 as truth
 from ...engine.checks import passed
 from ..lab12 import (STEREO_TIMEOUT, MatchingMistakes, block_matcher, block_size_probe, call_rectify, ex1, ex2, ex3, ex4, ex5, ex6, ext1,
                      expect_disparity, judge_block_matching, judge_depth, judge_disparity, judge_last_column,
-                     judge_patterns, judge_rows, judge_sl_depth, judge_triangulation, smoothness_probe)
+                     judge_patterns, judge_rows, judge_sl_depth, judge_triangulation, name_no_backtracking,
+                     smoothness_probe)
 from ._draws import seed, uniform
 
 
@@ -125,7 +126,8 @@ def hidden_dp(t):
     got = expect_disparity(t, "dp_stereo(left, right)", got, scene)  # a map, before its columns are read
     judge_last_column(t, "dp_stereo(left, right)", got, scene)
     return judge_disparity(t, "dp_stereo(left, right)", got, scene, REFERENCE_BAD["dp_stereo"],
-                           show=False, probe=lambda: smoothness_probe(t, scene))
+                           show=False, probe=lambda: (smoothness_probe(t, scene),
+                                                      name_no_backtracking(t, "dp_stereo(left, right)")))
 
 
 @ex6.check("hidden: 10-bit patterns for a projector of 513 to 1024 pixels, and decoding them", points=2,
