@@ -438,3 +438,42 @@ def test_a_function_changing_its_callers_array_is_told_where(monkeypatch, functi
     assert f"{naming.APPENDED}{said} (in place)." in told.message
     other = trial({"scaled": "out = x; out += 0.5", "shifted": "x -= 2 * c"}[function])
     assert naming.named_by_error_model(verdict, other) is verdict
+
+
+# ------------------------------------------------------------------ centring dropped
+NCC_NOT_CENTRED = '''
+def _ncc_volume(left, right, max_disparity, block_size):
+    height, width = left.shape
+    mean_l = _box_mean(left, block_size)
+    std_l = np.sqrt(np.maximum(_box_mean(left * left, block_size) - mean_l ** 2, 0.0))
+    costs = np.full((max_disparity + 1, height, width), np.inf)
+    for d in range(min(max_disparity, width - 1) + 1):
+        shifted = _shift_right(right, d)
+        mean_r = _box_mean(shifted, block_size)
+        std_r = np.sqrt(np.maximum(_box_mean(shifted * shifted, block_size) - mean_r ** 2, 0.0))
+        numerator = _box_mean(left * shifted, block_size)
+        denominator = std_l * std_r
+        ncc = np.divide(numerator, denominator, out=np.zeros_like(numerator), where=denominator > 1e-6)
+        costs[d] = -ncc
+        costs[d, :, :d] = np.inf
+    return costs
+'''
+
+
+def test_an_ncc_without_the_means_subtracted_is_named():
+    """The blind set's NCC numerator mean(L R) without - mean(L) mean(R): the operator that drops a
+    subtracted mean reaches the NCC cost, which block_matching picks with a conditional expression
+    (``(_ssd_volume if ... else _ncc_volume)(...)``: a function named there counts as called)."""
+    from fixtures import lab12 as truth
+
+    lab = LABS["lab12"]
+    centring = [m for m in naming.model_for(lab).mutants["block_matching"] if m.operator == "drop_centring"]
+    assert {m.where for m in centring} == {"_ncc_volume"} and len(centring) == 3
+    scene = truth.random_dot_scene(seed=12_016, n_boxes=2)
+    left, right = np.array(scene.left)[40:100, :120], np.array(scene.right)[40:100, :120]
+    lifted = (np.round(0.4 * right) + 120).astype(np.uint8)   # brightness moves this score, not an NCC
+    trial = _trial("lab12", NCC_NOT_CENTRED, [("block_matching", (left, lifted),
+                                                dict(max_disparity=scene.max_disparity, block_size=9, cost="ncc"))])
+    named = naming.name_failure(trial, seconds=60)
+    assert named is not None and named.mutant.operator == "drop_centring", named
+    assert "the product of the two means is not subtracted" in named.sentence

@@ -46,6 +46,7 @@ OPERATORS = {
     "drop_conversion": ("float", "uint8", "integer", "convert", "conversion", "wrap", "dtype", "clip"),
     "drop_division": ("normalis", "normaliz", "homogeneous", "divid", "division", "scale"),
     "drop_factor": ("denormalis", "normalis", "product", "missing", "undone"),
+    "drop_centring": ("mean", "centr", "center", "subtract", "average"),
     "other_name": ("instead of", "in place of", "where"),
     "swap_names": ("exchang", "swap", "order", "other way", "revers"),   # two other_name, crossed
     "drop_statement": ("missing", "skipped", "not "),
@@ -347,6 +348,10 @@ def _make_in_place(node, payload):
                          else node.args[0])   # x.copy() / np.copy(x) -> x
 
 
+def _make_drop_centring(node, payload):
+    return copy.deepcopy(node.left)   # x - mean -> x
+
+
 def _make_other_name(node, payload):
     return ast.Name(payload, ast.Load())
 
@@ -359,7 +364,8 @@ _MAKE = {"sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_sw
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
-         "drop_factor": _make_drop_factor, "drop_conversion": _make_drop_conversion, "other_name": _make_other_name, "in_place": _make_in_place,
+         "drop_factor": _make_drop_factor, "drop_centring": _make_drop_centring,
+         "drop_conversion": _make_drop_conversion, "other_name": _make_other_name, "in_place": _make_in_place,
          "drop_statement": _make_drop_statement}
 
 
@@ -595,8 +601,10 @@ def _module_mutants(source: str, api: frozenset) -> dict:
 
 
 def _calls_of(fn: ast.FunctionDef, defs: dict) -> list[str]:
-    return list(dict.fromkeys(n.func.id for n in ast.walk(fn) if isinstance(n, ast.Call)
-                              and isinstance(n.func, ast.Name) and n.func.id in defs and n.func.id != fn.name))
+    """The module functions ``fn`` names (a function named anywhere counts as called: a cost picked
+    by ``(_ssd_volume if cost == "ssd" else _ncc_volume)(...)``, a helper passed as a callback)."""
+    return list(dict.fromkeys(n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)
+                              and n.id in defs and n.id != fn.name))
 
 
 def mutants_of(source: str, api) -> dict[str, list[Mutant]]:
@@ -723,6 +731,8 @@ def _changes(node, parents, words: _Words, line):
             else:
                 yield "drop_factor", "left", _placed("the left factor of a matrix product is missing", place())
                 yield "drop_factor", "right", _placed("the right factor of a matrix product is missing", place())
+        if isinstance(node.op, ast.Sub) and _is_mean(node.right, words):
+            yield "drop_centring", None, _centring_phrase(node, what)
         if isinstance(node.op, ast.Div):
             yield "drop_division", None, _division_phrase(node, what) or _placed(
                 "a division (a normalisation) is missing", place())
@@ -925,6 +935,52 @@ def _float_conversion(node: ast.Call):
     if isinstance(node.func, ast.Attribute) and node.func.attr == "astype" and node.args and is_float(node.args[0]):
         return node.func.value
     return None
+
+
+_MEAN_WORDS = ("mean", "average", "centroid", "centre", "center")
+
+
+def _centring_phrase(node: ast.BinOp, what) -> str:
+    """What is missing when ``x - mean`` becomes ``x``: a covariance's product of means, a variance's
+    squared mean, or a centring."""
+    right = node.right
+    if isinstance(right, ast.BinOp) and isinstance(right.op, ast.Mult):
+        return "the product of the two means is not subtracted (a covariance is the mean of the products " \
+               "minus the product of the means: without it the score is not centred)"
+    if isinstance(right, ast.BinOp) and isinstance(right.op, ast.Pow):
+        return "the squared mean is not subtracted (a variance is the mean of the squares minus the squared mean)"
+    mean, of = what(right), what(node.left)
+    said = f"{mean} is not subtracted from {of}" if mean and of else f"{mean} is not subtracted" if mean \
+        else "a mean is not subtracted"
+    return f"{said} (the values are not centred on their mean)"
+
+
+def _is_mean(node, words: _Words, depth: int = 0) -> bool:
+    """Whether ``node`` is (or is a product or a function of) a mean: ``np.mean(x)``, ``x.mean(axis=0)``,
+    ``np.average``, a call of a module function whose docstring or name says it averages, or a name
+    holding one (``mean_l * mean_r``, ``centroid``): what centring subtracts."""
+    if depth > 3:
+        return False
+    if isinstance(node, ast.Call):
+        dotted = _dotted(node.func)
+        short = dotted.rsplit(".", 1)[-1].lower()
+        if short in ("mean", "nanmean", "average", "median", "blur", "boxfilter") or any(w in short for w in _MEAN_WORDS):
+            return True
+        helper = words.module_defs.get(dotted)
+        if helper is not None:
+            said = (ast.get_docstring(helper) or "").split("\n\n")[0].lower()
+            return any(w in said.split(".")[0] for w in ("mean", "average"))
+        return False
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Pow)):
+        return _is_mean(node.left, words, depth + 1)
+    if isinstance(node, ast.Name):
+        if any(w in node.id.lower() for w in _MEAN_WORDS):
+            return True
+        defined = words.definitions.get(node.id, ())
+        return len(defined) == 1 and defined[0][2] is None and _is_mean(defined[0][1], words, depth + 1)
+    if isinstance(node, ast.Subscript):
+        return _is_mean(node.value, words, depth + 1)
+    return False
 
 
 def _trig_argument(node, parent) -> bool:
