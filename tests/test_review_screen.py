@@ -40,7 +40,8 @@ def test_reusable_comments_are_saved_once_inserted_by_key_and_edited_centrally(r
         assert saved_buttons(get(client, f"/{TOKEN}/review/0").get_data(as_text=True)) == []
         assert post(client, bank, {"key": "corners", "text": "Why black?"}).status_code == 403, "CSRF needed"
         answer = post(client, bank, {"csrf": CSRF, "key": "corners", "text": "Why are the corners black?", "back": "1"})
-        assert answer.status_code == 303 and answer.headers["Location"].endswith(f"/{TOKEN}/review/1")
+        # back to the screen it was saved from, the focus on its new button (see review.js)
+        assert answer.status_code == 303 and answer.headers["Location"].endswith(f"/{TOKEN}/review/1#saved-corners")
         post(client, bank, {"csrf": CSRF, "key": "axes", "text": "Label the <b>axes</b>."})
         for position in (0, 1, 2):   # every student's screen of that exercise offers them
             page = get(client, f"/{TOKEN}/review/{position}").get_data(as_text=True)

@@ -8,8 +8,10 @@ Security
 - Every POST carries a second per-run secret in its form (``csrf``) and, when the
   browser sends an ``Origin``, it must be this server's; else 403.
 - Pages forbid scripts but their own files (``static/``: no inline script runs), frames, remote
-  images and any referrer (``Content-Security-Policy``, ``Referrer-Policy``), so a
-  student's report can neither run code nor leak the token.
+  images and any referrer leaving the application (``Content-Security-Policy``,
+  ``Referrer-Policy: same-origin``), so a student's report can neither run code nor leak the
+  token. Within it the browser sends its real ``Origin`` (under ``no-referrer`` a form's POST
+  says ``Origin: null``, refused above: no form of the application could be sent).
 - The student's text is rendered by :func:`autograder.reports.markdown.render_markdown`
   (a link into this application is inert text); no page shows text taken from its
   address (the rubric's error is the refused change's own); a PDF is offered as a
@@ -149,7 +151,7 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         response.headers["Content-Security-Policy"] = (
             "default-src 'none'; script-src 'self'; style-src 'unsafe-inline'; "
             "img-src 'self'; connect-src 'self'; form-action 'self'; base-uri 'none'; frame-ancestors 'none'")
-        response.headers["Referrer-Policy"] = "no-referrer"
+        response.headers["Referrer-Policy"] = "same-origin"   # see the module docstring
         response.headers["X-Content-Type-Options"] = "nosniff"
         response.headers["Cache-Control"] = "no-store"
         return response
@@ -316,8 +318,9 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         except ValueError as exc:
             return rubric_page(error=str(exc))
         back = request.form.get("back", "")
-        if re.fullmatch(r"[0-9]{1,9}", back):
-            return redirect(url_for("review_page", position=int(back)), code=303)
+        if re.fullmatch(r"[0-9]{1,9}", back):   # the review screen, its focus on the comment just saved
+            return redirect(url_for("review_page", position=int(back)) + f"#saved-{request.form['key'].strip()}",
+                            code=303)
         return redirect(url_for("rubric_page") + f"#bank-{exercise}", code=303)
 
     @app.get(f"/{token}/figure/<ref>/<exercise>/<figure_id>.png")

@@ -56,6 +56,9 @@
     savedComment = comment.value;   // the form reloads the page: the comment is posted with it below
     navigator.sendBeacon && navigator.sendBeacon(base + '/note', new URLSearchParams({csrf, comment: comment.value}));
   });
+  // Back from saving a comment for reuse (a page load): the focus on its new button, not lost to the page.
+  const justSaved = location.hash.startsWith('#saved-') && saved.find(b => '#' + b.id === location.hash);
+  if (justSaved) justSaved.focus();
   comment.addEventListener('input', () => { clearTimeout(timer); timer = setTimeout(saveComment, 400); });
   comment.addEventListener('blur', saveComment);
   window.addEventListener('beforeunload', saveComment);
