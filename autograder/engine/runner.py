@@ -41,6 +41,7 @@ from ..loading.submission import load_submission
 from ..sandbox import cache, confine
 from ..sandbox.supervisor import CallOutcome, Limits, Sandbox
 from .checks import Fail, StudentFailure, Trial, Verdict
+from .claims import rewritten
 from .forms import exception_form
 from .inputs import Inputs
 from .registry import Check, Exercise, discover, hidden_checks_installed, select
@@ -610,6 +611,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_reading(verdict, reading, check, trial)
     if status in (FAILED, PARTIAL) and student_failure == "":
         verdict = _named_by_error_model(verdict, check, trial)
+    if status in (FAILED, PARTIAL):   # a diagnosis asking for code the student wrote is not said
+        verdict = rewritten(verdict, trial)
     if status in (FAILED, PARTIAL):   # code relying on what only one OpenCV major does is told so
         verdict = with_version_note(verdict, trial)
     artifacts = []

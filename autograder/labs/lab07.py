@@ -15,12 +15,31 @@ from fixtures.images import photo
 
 from ..engine import strategies as st
 from ..engine.checks import Fail, Trial, passed
+from ..engine.claims import calls_any, guard
 from ..engine.compare import format_arrays_apart
 from ..engine.judges import (Probe, call_probe, digits_apart, judge_matrix, judge_parameter_used, judge_warp,
                       name_mistake, warp_probe)
+from ..engine.hints import expr, mentions
 from ..engine.registry import Lab
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
+
+# Names that ask for code, held to the student's code (autograder.engine.claims): a rotation
+# whose angle reaches cos and sin in degrees, from code that converts it (into another name, or
+# back), is not told to convert it.
+DEGREES_TO_RADIANS = (calls_any("np.deg2rad", "np.radians", "math.radians") | expr("_ * np.pi / 180")
+                      | expr("np.pi * _ / 180") | expr("_ / 180 * np.pi") | expr("_ * (np.pi / 180)")
+                      | expr("_ * math.pi / 180") | expr("math.pi * _ / 180")).saying("converts degrees to radians")
+guard(truth.ANGLE_AS_RADIANS, asks=DEGREES_TO_RADIANS,
+      instead="the angle is used as radians: your code {found}, but cos and sin are given the angle "
+              "before the conversion (or converted back)")
+guard(truth.RADIANS_TO_OPENCV, asks=~calls_any("cv2.getRotationMatrix2D"),
+      instead="the rotation is by angle_deg * pi / 180 degrees: the angle is converted to radians twice")
+guard(truth.INVERSE_MAP, asks=~(calls_any("np.linalg.inv", "np.linalg.pinv", "cv2.invertAffineTransform")
+                                | mentions("cv2.WARP_INVERSE_MAP")),
+      instead="the inverse map is applied (A maps source pixels to output pixels); your code neither inverts "
+              "A nor passes cv2.WARP_INVERSE_MAP: look at how each output pixel is looked up (reading the "
+              "source at A x applies the inverse of A)")
 
 # The confirmation probes' inputs (see autograder.engine.judges.Probe): values no usual mistake leaves
 # unchanged -- fractional, of both signs, x apart from y, an angle far from 0 and 90 degrees, a

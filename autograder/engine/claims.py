@@ -1,0 +1,263 @@
+"""Sentences of the labs' feedback that ask for code, or say what the code does, held to the code.
+
+A lab's feedback is made of three kinds of sentence (issue 35, "no hint contradicts the code"):
+
+- **measurements** of the student's outputs ("the lines are right but not scaled so that
+  a^2 + b^2 = 1", "returned 12 rows for 14 frames"): true of the student by construction.
+  When such a sentence also reads like an instruction or names an API, it is marked with
+  :func:`measured` -- an identity function that documents the judgement and lets
+  ``tests/test_hints_coverage.py`` tell it from an unguarded instruction (:func:`from_code` marks a
+  sentence a check says only after reading the code to do what it names);
+- **hints in a check's code**: a :class:`~autograder.engine.hints.Hint` (text, the code it asks
+  for, what to say instead), said with ``.said(t)`` where the check builds its message;
+- **diagnoses** -- a mistake's name, from the fixtures' candidate tables or a lab's own sentences
+  -- that tell the student to do X, or claim the code does Y: registered with :func:`guard`
+  (the same predicate and ``instead`` as a Hint). Every failed or partial check's message and
+  hint go through :func:`rewritten` (run by :func:`autograder.engine.runner.run_check`), which
+  replaces each registered sentence found in them by what its Hint says for this student's
+  code: the sentence itself, or its ``instead``.
+
+The predicates are :mod:`autograder.engine.hints`' and the code-reading ones below, which read
+the student's module with :mod:`ast`, never executing it:
+
+- :func:`divides_by` -- a division (``a / b``, ``a /= b``, ``np.divide(a, b)``) whose divisor has a
+  pattern's shape, directly or through a name assigned it (``w = X[:, 2]; X / w``);
+- :func:`negates_on_negative_det` -- a value negated under a test of a determinant's sign
+  (``if np.linalg.det(M) < 0: P = -P``), or multiplied by ``np.sign(np.linalg.det(...))``;
+- :func:`reshapes` -- a reshape to a given shape in a given order (``f.reshape(3, 3)``: row by
+  row; ``order="F"``: column by column);
+- :func:`passes_argument` -- a call given an argument at a position or as a keyword, not ``None``
+  (``cv2.projectPoints(obj, rvec, tvec, K, dist)``);
+- :func:`zeroes_an_entry` -- an entry of an array set to 0 (``S[2] = 0``, ``s[-1] = 0``) or a
+  diagonal built with a literal 0 (``np.diag([s[0], s[1], 0])``).
+"""
+
+from __future__ import annotations
+
+import ast
+from dataclasses import replace
+from typing import Iterable
+
+from ..loading.parsing import parse
+from .hints import Hint, Predicate, _path, _same
+
+# text -> its Hint, for every diagnosis registered with guard(); texts marked measured()
+GUARDED: dict[str, Hint] = {}
+MEASURED: set[str] = set()
+
+
+def measured(text: str) -> str:
+    """``text``, marked as a measurement of the student's outputs: true of every student who
+    gets it, whatever their code (the shape returned, a count, an answer matching a mistake's
+    on the failing input and a probe). Returns ``text`` unchanged."""
+    MEASURED.add(text)
+    return text
+
+
+def from_code(text: str) -> str:
+    """``text``, marked as said only where the check has read the student's code to do what it
+    says (``calls("cv2.getOptimalNewCameraMatrix").found(...)`` before naming it). Returns ``text``."""
+    MEASURED.add(text)
+    return text
+
+
+def guard(text: str, asks: Predicate, instead: str | None = None, functions: tuple = ()) -> str:
+    """Register the diagnosis ``text``: wherever a failed check's message or hint holds it, it is
+    said only when the student's code does not already do what ``asks`` reads (else ``instead``;
+    see :class:`~autograder.engine.hints.Hint`). Returns ``text`` (a plain ``str``: a mistake's
+    name stays a dictionary key and a ``mistake=`` label)."""
+    if not text:
+        raise ValueError("guard: an empty sentence")
+    known = GUARDED.get(text)
+    if known is not None and known.asks != asks:
+        raise ValueError(f"guard: {text!r} is registered twice with different predicates")
+    GUARDED[text] = Hint(text, asks=asks, instead=instead, functions=tuple(functions))
+    return text
+
+
+def said(t, text: str) -> str:
+    """``text`` with every registered diagnosis in it replaced by what it says for ``t``'s code."""
+    if not text:
+        return text
+    for sentence in sorted((s for s in GUARDED if s in text), key=len, reverse=True):
+        if sentence in text:   # a longer sentence replaced first may hold a shorter one
+            text = text.replace(sentence, GUARDED[sentence].said(t))
+    return text
+
+
+def rewritten(verdict, t):
+    """``verdict`` (a :class:`~autograder.engine.checks.Verdict`) with its message and hint
+    :func:`said` for ``t``'s code; the mistake's label is kept (class reports count it)."""
+    message, hint = said(t, str(verdict.message)), said(t, str(verdict.hint))
+    if message == verdict.message and hint == verdict.hint:
+        return verdict
+    return replace(verdict, message=message, hint=hint)
+
+
+# ------------------------------------------------------------------ predicates
+def _pattern(text: str) -> ast.AST:
+    return parse(text, mode="eval", max_chars=None, max_statements=None).body
+
+
+def _assigned_names(function, test) -> set[str]:
+    """Names the function assigns a value ``test`` holds for (``w = X[:, 2]``)."""
+    return {target.id for node in ast.walk(function) if isinstance(node, ast.Assign) and test(node.value)
+            for target in node.targets if isinstance(target, ast.Name)}
+
+
+def divides_by(*patterns: str, says: str = "") -> Predicate:
+    """A division whose divisor has one of ``patterns``' shapes (``"_[:, 2]"``, ``"_[2, 2]"``;
+    ``_`` matches anything), written there or held by a name the function assigns it to."""
+    wanted = [_pattern(p) for p in patterns]
+
+    def shaped(node) -> bool:
+        return any(_same(node, p) for p in wanted)
+
+    def test(function) -> bool:
+        held = _assigned_names(function, shaped)
+
+        def divisor(node) -> bool:
+            return shaped(node) or (isinstance(node, ast.Name) and node.id in held)
+        for node in ast.walk(function):
+            if isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, (ast.Div, ast.FloorDiv)):
+                if divisor(node.right if isinstance(node, ast.BinOp) else node.value):
+                    return True
+            elif isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("divide", "true_divide") \
+                    and len(node.args) >= 2 and divisor(node.args[1]):
+                return True
+        return False
+    return Predicate(says or "divides by " + " or ".join(p.replace("_", "...") for p in patterns), test)
+
+
+# The third (last) coordinate of points, however indexed: X[:, 2], X[2], X[..., 2:], X[:, -1:], ...
+THIRD_COORDINATE = divides_by("_[:, 2]", "_[2]", "_[..., 2]", "_[:, 2:]", "_[:, 2:3]", "_[..., 2:]",
+                              "_[:, 2, None]", "_[:, [2]]", "_[:, -1]", "_[-1]", "_[..., -1]", "_[:, -1:]",
+                              "_[..., -1:]", "_[:, -1, None]", "_[2, :]", "_[-1, :]", "_[:, 2][:, None]",
+                              "_[:, -1][:, None]", "_[:, 2].reshape(-1, 1)", "_[:, 2:3].copy()",
+                              says="divides by a third coordinate")
+
+
+def _det_sign_test(node) -> bool:
+    """``np.linalg.det(M) < 0`` (or ``> 0``, ``0 > det``, a name holding the determinant)."""
+    return isinstance(node, ast.Compare) and any(
+        isinstance(part, ast.Call) and _path(part.func).rsplit(".", 1)[-1] == "det"
+        or isinstance(part, ast.Name) and "det" in part.id.lower()
+        for part in [node.left, *node.comparators])
+
+
+def _negates(statement) -> bool:
+    """``x = -x``, ``x = -1 * x``, ``x = x * -1``, ``x *= -1``, ``x = np.negative(x)``."""
+    minus_one = _pattern("-1")
+    if isinstance(statement, ast.AugAssign) and isinstance(statement.op, ast.Mult):
+        return _same(statement.value, minus_one) or _same(statement.value, _pattern("-1.0"))
+    if isinstance(statement, ast.Assign):
+        value = statement.value
+        if isinstance(value, ast.UnaryOp) and isinstance(value.op, ast.USub):
+            return True
+        if isinstance(value, ast.BinOp) and isinstance(value.op, ast.Mult):
+            return any(isinstance(side, ast.UnaryOp) and isinstance(side.op, ast.USub)
+                       and isinstance(side.operand, ast.Constant) for side in (value.left, value.right))
+        if isinstance(value, ast.Call) and _path(value.func).rsplit(".", 1)[-1] == "negative":
+            return True
+    return False
+
+
+def negates_on_negative_det() -> Predicate:
+    """A value negated in a branch that tests a determinant's sign, or multiplied by the sign
+    of a determinant (``np.sign(np.linalg.det(M)) * P``)."""
+    sign_of_det = _pattern("np.sign(np.linalg.det(_))")
+
+    def test(function) -> bool:
+        for node in ast.walk(function):
+            if isinstance(node, ast.If) and _det_sign_test(node.test):
+                if any(_negates(s) for branch in (node.body, node.orelse) for s in branch for s in ast.walk(s)):
+                    return True
+            if isinstance(node, ast.IfExp) and _det_sign_test(node.test) and any(
+                    isinstance(b, ast.UnaryOp) and isinstance(b.op, ast.USub) for b in (node.body, node.orelse)):
+                return True
+            if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and any(
+                    _same(side, sign_of_det) for side in (node.left, node.right)):
+                return True
+        return False
+    return Predicate("negates P when det(P[:, :3]) < 0", test)
+
+
+def reshapes(*shape: int, order: str = "C") -> Predicate:
+    """A reshape to ``shape`` (``x.reshape(3, 3)``, ``x.reshape((3, 3))``, ``np.reshape(x, (3, 3))``)
+    in ``order``: "C" (row by row, the default: no ``order`` or ``order="C"``) or "F"."""
+    def dims(args) -> tuple | None:
+        if len(args) == 1 and isinstance(args[0], (ast.Tuple, ast.List)):
+            args = args[0].elts
+        if all(isinstance(a, ast.Constant) and isinstance(a.value, int) for a in args):
+            return tuple(a.value for a in args)
+        return None
+
+    def test(function) -> bool:
+        for node in ast.walk(function):
+            if not (isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "reshape"):
+                continue
+            method = isinstance(node.func, ast.Attribute) and _path(node.func.value) not in ("np", "numpy")
+            if dims(node.args if method else node.args[1:]) != shape:
+                continue
+            given = next((k.value for k in node.keywords if k.arg == "order"), None)
+            if not method and given is None and len(node.args) > 2:
+                given = node.args[2]
+            written = given.value if isinstance(given, ast.Constant) else "C" if given is None else None
+            if written == order:
+                return True
+        return False
+    where = "row by row" if order == "C" else "column by column (order='F')"
+    return Predicate(f"reshapes to {shape[0]} x {shape[1]} {where}", test)
+
+
+def passes_argument(function: str, position: int, name: str, says: str = "") -> Predicate:
+    """A call of ``function`` (matched by its last name: ``"cv2.projectPoints"``, ``projectPoints``
+    imported) given an argument at ``position`` or as the keyword ``name``, other than ``None``
+    (``cv2.projectPoints(obj, rvec, tvec, K, dist)``, ``distCoeffs=dist``)."""
+    last = function.rsplit(".", 1)[-1]
+
+    def given(node) -> bool:
+        return not (isinstance(node, ast.Constant) and node.value is None)
+
+    def test(function_node) -> bool:
+        for node in ast.walk(function_node):
+            if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == last:
+                if len(node.args) > position and given(node.args[position]):
+                    return True
+                if any(k.arg == name and given(k.value) for k in node.keywords):
+                    return True
+        return False
+    return Predicate(says or f"passes {name} to {function}", test)
+
+
+def zeroes_an_entry() -> Predicate:
+    """An array entry set to 0 (``S[2] = 0``, ``s[-1] = 0.0``) or a diagonal written with a 0
+    (``np.diag([s[0], s[1], 0])``, ``np.diag((1, 1, 0))``)."""
+    def zero(node) -> bool:
+        return isinstance(node, ast.Constant) and node.value == 0 and not isinstance(node.value, bool)
+
+    def test(function) -> bool:
+        for node in ast.walk(function):
+            if isinstance(node, ast.Assign) and zero(node.value) and any(
+                    isinstance(target, ast.Subscript) for target in node.targets):
+                return True
+            if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "diag" and node.args \
+                    and isinstance(node.args[0], (ast.List, ast.Tuple)) and any(zero(e) for e in node.args[0].elts):
+                return True
+        return False
+    return Predicate("sets a singular value to 0", test)
+
+
+def calls_any(*names: str, says: str = "") -> Predicate:
+    """A call of any of ``names`` (:func:`~autograder.engine.hints.calls`), saying ``says``."""
+    from .hints import calls
+
+    found = calls(names[0])
+    for name in names[1:]:
+        found = found | calls(name)
+    return found.saying(says) if says else found
+
+
+def registered(texts: Iterable[str]) -> list[str]:
+    """Of ``texts``, those neither :func:`guard`-ed nor :func:`measured`."""
+    return [text for text in texts if text not in GUARDED and text not in MEASURED]
