@@ -302,3 +302,31 @@ def test_anonymous_review_rewrites_an_unreadable_pdfs_sentence_from_fixed_words(
     assert said == [f"report 1 (PDF): {UNREADABLE}it is encrypted (protected by a password)",
                     f"report 1 (PDF): {UNREADABLE}it is not a readable PDF",     # the parser's words are dropped
                     f"report 1 (PDF): {UNREADABLE}reading it took longer than 20 seconds"]
+
+
+def test_a_markdown_reports_linked_pictures_are_figures_of_the_section_linking_them(tmp_path):
+    """Read as the batch reads a class: the pictures beside the report are kept in memory for
+    their thumbnails only (never stored), and each link counts under the heading above it."""
+    from autograder.instructor.batch.ingest import read_upload
+
+    made, other = texture(21), texture(22)
+    student = tmp_path / "class" / "ada"
+    (student / "figures").mkdir(parents=True)
+    (student / "lab07_transformations.py").write_text("def translate(image, tx, ty):\n    return image\n")
+    cv2.imwrite(str(student / "figures" / "mine.jpg"), cv2.resize(made, (240, 160)), [cv2.IMWRITE_JPEG_QUALITY, 70])
+    cv2.imwrite(str(student / "figures" / "other one.png"), other)
+    (student / "figures" / "fake.png").write_bytes(b"not a picture at all")
+    (student / "lab07_report.md").write_text(
+        "# Lab 7\n\n## Exercise 1: Translation\n\n![my result](figures/mine.jpg)\n\nIt moves.\n\n"
+        "## Exercise 2\n\n![](<figures/other%20one.png> \"title\")\n![again](./figures/mine.jpg)\n"
+        "![gone](figures/fake.png) ![web](https://example.org/x.png) ![up](../secret.png)\n")
+    entry, = read_upload(tmp_path / "class", ["lab07_transformations"], ["lab07_transformations"], names=NAMES).entries
+    assert "figures/mine.jpg" not in entry.report_files and entry.report.explanations["lab07.ex1"].text == "It moves."
+    figures = [(f.exercise, f.source, f.number, f.width) for f in entry.report.figures]
+    assert figures == [("lab07.ex1", "lab07_report.md, figures/mine.jpg", 1, 240),
+                       ("lab07.ex2", "lab07_report.md, figures/other one.png", 2, 300)]
+    stored = [{"exercise": f.exercise, "number": f.number, "source": f.source, "width": f.width,
+               "height": f.height, "thumb": f.thumb.tobytes()} for f in entry.report.figures]
+    paths = code_figure_folder(tmp_path, {"lab07.ex1": made})
+    assert provenance.for_exercise(stored, paths, "lab07.ex1")[0].matched == "lab07.ex1"
+    assert provenance.for_exercise(stored, paths, "lab07.ex2")[0].unmatched

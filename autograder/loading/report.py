@@ -49,10 +49,11 @@ exercise as the student's own headings are (:func:`~.pdf_report.pdf_sections`: s
 a heading being a short line that names an exercise); a PDF whose text cannot be read is
 one problem, "report.pdf: the PDF's text could not be read: it is encrypted ...".
 
-Figures (:class:`ReportFigure`, with the same reader): the pictures of a PDF and the image
-outputs of a notebook's code cells, thumbnailed in the worker, each with the exercise
-whose section holds it (a PDF's page, a notebook's cell after the exercise's heading or
-tagged cell); the review screen compares them with the figures the student's code makes
+Figures (:class:`ReportFigure`, with the same reader): the pictures of a PDF, the image
+outputs of a notebook's code cells, and the pictures a Markdown report links to among the
+hand-in's PNG and JPEG files (``![](figures/lab07.ex1.png)``, relative to the report),
+thumbnailed in the worker, each with the exercise whose section holds it (a PDF's page, a
+notebook's cell after the exercise's heading or tagged cell, the link's place in the file); the review screen compares them with the figures the student's code makes
 (:mod:`autograder.instructor.review.provenance`).
 
 IDs are exercise ids (``lab07.ex1``, ``lab08.ext2``) or the figure ids of the
@@ -64,10 +65,12 @@ from __future__ import annotations
 
 import bisect
 import json
+import posixpath
 import re
 from dataclasses import dataclass, field
 from itertools import islice
 from pathlib import PurePosixPath
+from urllib.parse import unquote
 
 import numpy as np
 
@@ -100,6 +103,8 @@ _FENCE = re.compile(r"^[ \t]{0,3}(```|~~~)", re.MULTILINE)     # a code block's 
 _SECTION = re.compile(r"(lab\d\d\.[a-z]+\d+(?:-[a-z]+)?)(?![\w-])", re.IGNORECASE)  # its id, first thing
 _FIGURE_LINE = re.compile(r"^[ \t]*!\[[^\]\n]*\]\([^)\n]*\)[ \t]*$", re.MULTILINE)
 VERDICT_LINE = re.compile(r"^[ \t]*" + re.escape(VERDICT_PREFIX) + r".*$", re.MULTILINE)
+# A Markdown picture link: ![alt](target) or ![alt](<target> "title"); bounded on one line.
+_PICTURE_LINK = re.compile(r'!\[[^\]\n]{0,300}\]\([ \t]*<?([^)\s>]{1,500})>?(?:[ \t]+"[^"\n]{0,300}")?[ \t]*\)')
 _NO_FIGURE_LINE = re.compile(r"^[ \t]*_No figure[^\n]*_[ \t]*$", re.MULTILINE)  # the scaffold's, for a figure not made
 
 
@@ -160,14 +165,15 @@ def explanations_in_notebook(data: bytes, source: str) -> dict[str, Explanation]
 
 
 def read_report(files: dict[str, bytes], names: ExerciseNames | None = None,
-                reader: ReportReader | None = None) -> Report:
+                reader: ReportReader | None = None, pictures: dict[str, bytes] | None = None) -> Report:
     """Every explanation in the Markdown files and notebooks of a hand-in, the PDFs beside
     them, and what could not be read.
 
     ``files``: relative path -> bytes (as ``sandbox.files.read_regular_files`` gives them).
     ``names``: the exercises the student's own headings may name (none read without it).
     ``reader``: reads the PDFs' text and the report's pictures in sandbox workers (with
-    ``names``; without, PDFs are only listed and no figure is read).
+    ``names``; without, PDFs are only listed and no figure is read). ``pictures``: the
+    hand-in's PNG and JPEG files (relative path -> bytes) a Markdown report may link to.
     Files are read in path order; an exercise explained in two places keeps both texts,
     one after the other, and the problems say so.
     """
@@ -196,7 +202,10 @@ def read_report(files: dict[str, bytes], names: ExerciseNames | None = None,
                             "(keep the pictures as separate files, not inside the text)")
             continue
         if suffix == ".md":
-            reading.markdown(_decoded(bytes(data)), name)
+            text = _decoded(bytes(data))
+            reading.markdown(text, name)
+            if reading.reader is not None and pictures:
+                reading.markdown_pictures(printable(text)[: 4 * MAX_REPORT_BYTES], name, str(path), pictures)
         else:
             reading.notebook(bytes(data), name)
     return Report(reading.explanations(), tuple(attachments), reading.problem_list(), tuple(reading.figures))
@@ -281,6 +290,36 @@ class _Reading:
         for picture in pdf.pictures:
             page = int(picture.where.split()[-1])
             self.figure([e for e, first, last in spans if first <= page <= last], f"{source}, {picture.where}", picture)
+
+    def markdown_pictures(self, text: str, source: str, path: str, pictures: dict[str, bytes]) -> None:
+        """The pictures the Markdown ``text`` (of the file at ``path``) links to among
+        ``pictures``, each with the exercise of the last marker or heading before its link."""
+        folder, found = PurePosixPath(path.replace("\\", "/")).parent, {}
+        for link in islice(_PICTURE_LINK.finditer(text), MAX_FIGURES):
+            target = unquote(link.group(1))
+            if "://" in target or target.startswith(("/", "data:")):
+                continue
+            resolved = posixpath.normpath((folder / target).as_posix())
+            if resolved in pictures and resolved not in found:   # a picture linked twice is one figure
+                found[resolved] = link.start()
+        if not found:
+            return
+        marks = [(m.start(), exercise) for m in islice(_START.finditer(text), MAX_SECTIONS)
+                 if (exercise := exercise_id(m.group(1)))]
+        marks += [(h.start(), m.group(1).lower()) for h in _headings(text, MAX_SECTIONS)
+                  if (m := _SECTION.match(h.group(1).strip()))]
+        if self.names is not None:
+            marks += [(section.start, section.exercise) for section in
+                      student_sections(text, self.names, self.names.lab_of_path(source), MAX_SECTIONS)]
+        marks.sort()
+        where = {f"{source}, {shown(target)}": at for target, at in found.items()}
+        read, problems = self.reader.pictures([(label, pictures[target]) for label, target
+                                               in zip(where, found)])
+        for sentence in problems:
+            self.problem(sentence)
+        for picture in read:
+            before = bisect.bisect_right(marks, (where[picture.where], "\uffff"))
+            self.figure([marks[before - 1][1]] if before else [], picture.where, picture)
 
     def notebook_figures(self, notebook: dict, source: str, marks: list[tuple[int, str]]) -> None:
         """The image outputs of the notebook's code cells, each with the exercise of the last

@@ -212,7 +212,7 @@ def _read_report(entry: Entry, names: ExerciseNames | None = None, reader: Repor
     entry.report_files = dict(entry.reports_found.files)
     refused = entry.reports_found.problems()
     try:
-        report = read_report({**entry.files, **entry.report_files}, names, reader)
+        report = read_report({**entry.files, **entry.report_files}, names, reader, entry.reports_found.pictures)
     except Exception as exc:  # noqa: BLE001 - the contract says it never raises; a student's report never stops the class
         report = Report(problems=(f"the report could not be read ({type(exc).__name__})",))
     entry.report = Report(report.explanations, report.attachments, tuple(refused) + tuple(report.problems),

@@ -15,7 +15,8 @@ and a folder of the same name are just facts about the tree (:meth:`~UploadTree.
 :func:`source_files` collects what can hold code under one path, with the
 loader's caps, and unpacks a student's own ``.zip`` in memory the same way; given a
 :class:`ReportFiles`, it collects the lab report's files beside them too (``.md``
-up to the report's cap, ``.pdf`` as files never parsed, each bounded and counted).
+up to the report's cap, ``.pdf`` as files never parsed here, each bounded and counted; PNG and
+JPEG pictures, in memory only, for figure provenance).
 """
 
 from __future__ import annotations
@@ -38,6 +39,13 @@ IGNORED_NAMES = ("__MACOSX", "__pycache__")
 NAME_BYTES = 255              # a file or folder name any file system takes (the files are written to disk later)
 MAX_CLASS_MEMBERS = 200_000   # members of a class archive (a class of 300 holds a few thousand)
 REPORT_FILE_SUFFIXES = (".md", ".pdf")   # a lab report's files (a notebook's cells are read from the code)
+# A Markdown report's pictures: kept in memory only, for their thumbnails (made in a sandbox worker) to
+# be compared with the code's figures; never stored, never shown. Beyond the caps they are not compared.
+PICTURE_SUFFIXES = (".png", ".jpg", ".jpeg")
+PICTURE_MAGIC = (b"\x89PNG\r\n\x1a\n", b"\xff\xd8\xff")
+MAX_PICTURES = 40                         # pictures kept per student
+MAX_PICTURE_BYTES = 8 * 2**20             # one picture
+MAX_PICTURES_TOTAL = 64 * 2**20           # their bytes together
 MAX_ATTACHMENT_BYTES = 20 * 2**20        # one PDF handed in beside the report
 MAX_REPORT_FILES = 20                    # report files kept per student
 MAX_REPORT_TOTAL = 40 * 2**20            # their bytes together
@@ -83,10 +91,28 @@ class ReportFiles:
     files: dict[str, bytes] = field(default_factory=dict)
     refused: dict[str, str] = field(default_factory=dict)
     total: int = 0
+    pictures: dict[str, bytes] = field(default_factory=dict)   # PNG/JPEG files, for figure provenance
+    pictures_total: int = 0
 
     @staticmethod
     def wanted(name: str) -> bool:
-        return name.lower().endswith(REPORT_FILE_SUFFIXES) and not is_backup(name)
+        return name.lower().endswith(REPORT_FILE_SUFFIXES + PICTURE_SUFFIXES) and not is_backup(name)
+
+    def _picture(self, tree: "UploadTree", path: tuple, text: str, budget: Budget, caps: Caps) -> None:
+        """Keep a picture within its caps, quietly: one not kept is only not compared."""
+        if tree.kind(path) != FILE or len(self.pictures) >= MAX_PICTURES or text in self.pictures:
+            return
+        limit = min(MAX_PICTURE_BYTES, MAX_PICTURES_TOTAL - self.pictures_total)
+        try:
+            check_name(text, caps)
+            data = tree.read(path, limit)
+            if not data.startswith(PICTURE_MAGIC):
+                return
+            budget.take(len(data))
+        except (Refused, Unreadable):
+            return
+        self.pictures[text] = data
+        self.pictures_total += len(data)
 
     def refuse(self, text: str, why: str) -> None:
         """Note the report file ``text`` as not read, because ``why`` (named on the review screen)."""
@@ -94,6 +120,9 @@ class ReportFiles:
 
     def read(self, tree: "UploadTree", path: tuple, text: str, budget: Budget, caps: Caps = CAPS) -> None:
         """Keep the report file ``text`` (at ``path`` in ``tree``), or the reason it is refused."""
+        if text.lower().endswith(PICTURE_SUFFIXES):
+            self._picture(tree, path, text, budget, caps)
+            return
         pdf = text.lower().endswith(".pdf")
         if tree.kind(path) in (LINK, SPECIAL):
             self.refuse(text, tree.not_regular(path))
@@ -132,6 +161,11 @@ class ReportFiles:
             self.files[key] = data
             self.total += len(data)
         self.refused.update({prefix + name: why for name, why in other.refused.items()})
+        for name, data in other.pictures.items():
+            if prefix + name not in self.pictures and len(self.pictures) < MAX_PICTURES \
+                    and self.pictures_total + len(data) <= MAX_PICTURES_TOTAL:
+                self.pictures[prefix + name] = data
+                self.pictures_total += len(data)
 
     def problems(self) -> list[str]:
         """Why each refused file was, at most :data:`MAX_PROBLEMS` sentences (thousands of files
