@@ -150,3 +150,20 @@ def test_an_excused_students_page_says_excused_where_it_would_tell_the_final_gra
     assert "<title>Feedback: excused — ann</title>" in shown
     assert f"{HEADLINE}excused, not counted" in shown and "(checks: 10 / 10 points)" in shown
     assert "excused: not counted" in shown and "final grade" not in shown
+
+
+def test_the_class_overview_tells_each_students_extension_excused_work_and_days_late():
+    from autograder.instructor.classreport.overview import overview_html
+    from autograder.instructor.classreport.pages import records_from_grades
+
+    config = course(extensions={"ann": {"days": 2}, "bo": {"excused": True}}, late_days={"tokens": 1})
+    grades, _ = grades_of([student("ann", TWO_DAYS_LATE), student("bo", TWO_DAYS_LATE), student("dee", TWO_DAYS_LATE),
+                           student("cy", None) | {"late": True}, student("eve", None)], config)
+    records = {r.student_id: r for r in records_from_grades(list(grades.values()), 10.0)}
+    # dee: two days late, one paid by a late day, one by the penalty; cy: Canvas's late flag (a day), a late day
+    assert {s: r.rules for s, r in records.items()} == {
+        "ann": ["extension +2 days"], "bo": ["excused"], "dee": ["late days: 1 used", "late 2 days, -1"],
+        "cy": ["late days: 1 used", "late 1 day"], "eve": []}
+    page = overview_html(list(records.values()))
+    assert '<span class="rules">extension +2 days</span>' in page and '<span class="rules">excused</span>' in page
+    assert '<span class="rules">late days: 1 used · late 2 days, -1</span>' in page

@@ -55,6 +55,9 @@ class StudentRecord:
         Link to the student's ``feedback.html``, relative to the class page.
     final, final_max : float or None
         The final grade (course points, late penalty, overrides) where one is known.
+    rules : list of str
+        What the course's rules for this student did, in a few words ("extension +2 days",
+        "excused", "late 1 day, -3"): the list of students shows them beside the grade.
     """
 
     student_id: str
@@ -65,6 +68,7 @@ class StudentRecord:
     feedback_href: str = ""
     final: float | None = None
     final_max: float | None = None
+    rules: list[str] = field(default_factory=list)
 
     @property
     def label(self) -> str:

@@ -48,8 +48,26 @@ def records_from_grades(grades, possible: float) -> list[StudentRecord]:
             student_id=row["student_id"], name=grade.roster.get("name") or row.get("display_name") or "",
             status=row.get("status", "graded"), reason=row.get("reason") or "", result=row.get("result"),
             feedback_href=row.get("feedback") or "", final=grade.total,
-            final_max=possible if grade.total is not None else None))
+            final_max=possible if grade.total is not None else None, rules=rules_applied(grade)))
     return records
+
+
+def rules_applied(grade) -> list[str]:
+    """What the course's rules did to one student's grade (a ``batch.exports.StudentGrade``), in a
+    few words: excused, an extension, pooled late days spent, days late (even at 0 points) and
+    their penalty."""
+    told = ["excused"] if grade.excused else []
+    for adjustment in grade.adjustments:
+        if adjustment.what == "extension":
+            told.append(f"extension {adjustment.change}")
+        elif adjustment.what == "late days":
+            told.append(f"late days: {adjustment.change}")
+    if grade.late_days:
+        told.append(f"late {grade.late_days} day{'s' if grade.late_days != 1 else ''}"
+                    + (f", -{grade.late_penalty:g}" if grade.late_penalty else ""))
+    elif grade.student.get("late") and not grade.excused:
+        told.append("late")
+    return told
 
 
 def write_overview(results_dir, course_title: str | None = None) -> Path:
