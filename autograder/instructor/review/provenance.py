@@ -1,6 +1,7 @@
 """Figure provenance: which pictures of a student's report their submitted code does not make.
 
-The report's pictures (a PDF's, a notebook's image outputs) were thumbnailed in a sandbox
+The report's pictures (a PDF's, a notebook's image outputs, the files a Markdown report
+links to) were thumbnailed in a sandbox
 worker when the class was read (:class:`autograder.loading.report.ReportFigure`; never
 decoded in the grader's process). The figures the student's code makes are the PNGs the
 batch drew from it (``RESULTS/<student>/figures/<figure id>.png``, the grader's own
@@ -33,9 +34,9 @@ uniform picture correlates with nothing). Otherwise it says why no comparison wa
 Limits (said on the review screen's help and in docs/instructors/review.md): a picture the
 student drew themselves from their code's output (another layout, one panel cropped out,
 other colours, their own matplotlib plot) matches none even when the code made it: "matches
-none" is a reason to look, not a verdict. Pictures of a Markdown report kept as separate
-files are not read; a PDF's vector drawings (a plot exported as vector graphics) are no
-pictures and are not compared.
+none" is a reason to look, not a verdict. A Markdown report's pictures are read only where
+it links to them inside the hand-in; a PDF's vector drawings (a plot exported as vector
+graphics) are no pictures and are not compared.
 """
 
 from __future__ import annotations
