@@ -68,7 +68,34 @@ def test_zip_layout(autograder_zip):
             assert text.startswith(b"#!/usr/bin/env bash\n") and b"\r\n" not in text
         assert "autograder/labs/hidden/lab07.py" in names       # the container runs hidden checks
         assert "course.json" in names and "pyproject.toml" in names
-        assert not any(n.startswith(("reference_solutions/", "tests/")) for n in names)
+        assert f"reference_solutions/{MODULE}.py" in names      # the error model's reference
+        assert not any(n.startswith(("tests/", "autograder/labs/mistakes/")) for n in names)
+
+
+def test_a_course_can_leave_the_reference_out_of_the_zip(tmp_path):
+    built = gradescope.build(tmp_path / "autograder.zip", CourseConfig(select=["lab07"], error_model=False))
+    with zipfile.ZipFile(built) as zf:
+        assert not any(n.startswith("reference_solutions/") for n in zf.namelist())
+    with pytest.raises(CourseConfigError, match="error_model"):
+        CourseConfig(error_model="yes")
+
+
+def test_the_error_model_names_a_mistake_in_the_container(autograder_zip, tmp_path):
+    """A mistake no check names by hand is named by the error model there too: the container
+    holds the reference, read by the grader (never by the student's worker, see below)."""
+    from autograder.engine.mutants import naming
+    from autograder.engine.mutants.operators import apply_edits
+    from autograder.engine.registry import discover
+
+    model = naming.model_for(discover()["lab07"])
+    [wrong_index] = [m for m in model.mutants["affine_lstsq"]
+                     if m.operator == "axis" and "(0 for 2) is used in the result of `np.zeros`" in m.sentence]
+    submission = tmp_path / "submission"
+    submission.mkdir()
+    (submission / f"{MODULE}.py").write_text(apply_edits(model.source, wrong_index.edits))
+    results = run_container(autograder_zip, tmp_path, submission)
+    said = "\n".join(t.get("output", "") for t in results["tests"] if t["status"] == "failed")
+    assert wrong_index.sentence in said
 
 
 def test_correct_submission(autograder_zip, tmp_path):
@@ -109,7 +136,8 @@ def test_hostile_submission_cannot_read_sources_or_forge_results(autograder_zip,
         def shear_matrix(s):
             import os
             print("UID", os.getuid())
-            for path in ("{root}/source/course.json", "{root}/source/autograder/labs/hidden/lab07.py"):
+            for path in ("{root}/source/course.json", "{root}/source/autograder/labs/hidden/lab07.py",
+                         "{root}/source/reference_solutions/{MODULE}.py"):
                 try:
                     print("READ", open(path).read()[:80])
                 except OSError as error:

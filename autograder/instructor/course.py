@@ -102,6 +102,13 @@ Read by every grading (``autograder batch``, Gradescope, ``grade --config``):
     fails, a level forced weaker); the student is told to ask the instructor and the
     log says why. True accepts grading at the weaker level.
 
+``error_model``
+    Default true: the Gradescope zip holds the reference solutions (the built-in labs' and
+    the course labs' ``reference/``) so that the error model names mistakes nobody listed
+    there too; student code never sees them (the worker's file system holds neither them nor
+    the hidden checks). False leaves them out: the container then names only what the
+    checks name by hand.
+
 ``labs``
     Default none. The course's own labs, beside the built-in ones: folders written like
     them (``suite.py``, ``hidden.py``, ``reference/``, ``skeleton/``, ``mistakes.py``; see
@@ -165,7 +172,7 @@ _AUTHORING = {"min_mistakes"}   # read by autograder verify: no grading applies 
 _APPLIED_BY = {
     "grade": _GRADING,
     "gradescope": _GRADING | {"points", "public_visibility", "hidden_visibility", "stdout_visibility",
-                              "allow_weaker_confinement", "opencv"},
+                              "allow_weaker_confinement", "opencv", "error_model"},
     "batch": _GRADING | {"assignment", "points", "late_penalty", "extensions", "late_days",
                          "similarity_threshold", "canvas_assignment_id",
                          "lms_exports", "rubric", "opencv"},
@@ -191,6 +198,7 @@ class CourseConfig:
     similarity_threshold: float = 0.5                   # similarity report: pairs shown side by side
     inputs_secret: str = ""                             # property inputs: HMAC(secret, content); see inputs.py
     allow_weaker_confinement: bool = False              # Gradescope grades below the machine's strongest level
+    error_model: bool = True                            # the Gradescope zip holds the reference solutions
     exercise_budget: float = 60.0                       # student seconds per exercise
     submission_budget: float = 240.0                    # wall seconds for grading a submission
     forbid: dict = field(default_factory=dict)          # "lab08.homography_ransac": ["cv2.findHomography"]
@@ -224,6 +232,8 @@ class CourseConfig:
             raise CourseConfigError("inputs_secret must be a string (the course's secret, e.g. 32 random hex digits)")
         if not isinstance(self.allow_weaker_confinement, bool):
             raise CourseConfigError("allow_weaker_confinement must be true or false")
+        if not isinstance(self.error_model, bool):
+            raise CourseConfigError("error_model must be true or false")
         if not (isinstance(self.similarity_threshold, (int, float)) and 0 < self.similarity_threshold <= 1):
             raise CourseConfigError("similarity_threshold must be a number in (0, 1]")
         self._check_forbid()

@@ -358,6 +358,8 @@ PYTHON="${AUTOGRADER_PYTHON:-$ROOT/venv/bin/python}"
 RESULTS="$ROOT/results/results.json"
 mkdir -p "$ROOT/results"
 cd "$ROOT/source"
+# The error model's reference (when the course ships it): read by the grader, never by the worker.
+export AUTOGRADER_REFERENCE_SOLUTIONS="$ROOT/source/reference_solutions"
 status=0
 "$PYTHON" -m autograder gradescope run --submission "$ROOT/submission" \\
     --results "$RESULTS" --config "$ROOT/source/course.json" || status=$?
@@ -374,15 +376,18 @@ fi
 exit 0
 """
 
-# What the container needs: the engine (hidden checks included) and the fixtures,
-# never the reference solutions, the mistakes tables or the grader's own tests.
+# What the container needs: the engine (hidden checks included) and the fixtures, and the
+# reference solutions for the error model (unless the course says no: ``error_model``), never
+# the mistakes tables or the grader's own tests. Student code sees none of them: the worker's
+# file system is built without /autograder/source and the installed grader.
 _SHIPPED = ("autograder", "fixtures")
+_REFERENCE = "reference_solutions"
 _NOT_SHIPPED = ("autograder/labs/mistakes/",)
 _SHIPPED_FILES = ("pyproject.toml", "README.md", "grade.py", "constraints.txt")
 
 
-def _shipped_files(root: Path):
-    for top in _SHIPPED:
+def _shipped_files(root: Path, error_model: bool = True):
+    for top in _SHIPPED + ((_REFERENCE,) if error_model else ()):
         for path in sorted((root / top).rglob("*")):
             if path.is_file() and "__pycache__" not in path.parts and path.suffix != ".pyc" \
                     and not path.name.startswith("make_") \
@@ -411,8 +416,8 @@ def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) ->
     config.use_labs()
     select(config.select)  # a course that names a missing lab fails now, not at the deadline
     _check_forbidden_functions(config)
-    shipped_labs = {f"{COURSE_LABS}/{f.lab.key}": shipped_lab_files(f.folder, (REFERENCE, SKELETON, MISTAKES))
-                    for f in lab_folders}
+    left_out = (SKELETON, MISTAKES) if config.error_model else (REFERENCE, SKELETON, MISTAKES)
+    shipped_labs = {f"{COURSE_LABS}/{f.lab.key}": shipped_lab_files(f.folder, left_out) for f in lab_folders}
     config = dataclasses.replace(config, labs=list(shipped_labs))   # where they are in the zip
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_name(out.name + ".tmp")
@@ -420,7 +425,7 @@ def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) ->
         _add(zf, "setup.sh", SETUP_SH + OPENCV_CHECK.format(major=config.opencv), executable=True)
         _add(zf, "run_autograder", RUN_AUTOGRADER, executable=True)
         _add(zf, "course.json", config.to_json())
-        for path in _shipped_files(root):
+        for path in _shipped_files(root, config.error_model):
             if path.name == "constraints.txt":   # the pins of the course's OpenCV major
                 path = constraints_file(config.opencv, root)
                 _add(zf, "constraints.txt", path.read_bytes())

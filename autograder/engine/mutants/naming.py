@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import atexit
 import itertools
+import os
 import threading
 import time
 from dataclasses import dataclass, replace
@@ -104,7 +105,9 @@ def reference_module(lab) -> Path | None:
     from ..labfolders import REFERENCE, lab_folder
 
     loaded = lab_folder(lab)
-    folder = loaded.folder / REFERENCE if loaded is not None else PROJECT_ROOT / "reference_solutions"
+    installed = os.environ.get("AUTOGRADER_REFERENCE_SOLUTIONS")   # the Gradescope container's copy
+    folder = loaded.folder / REFERENCE if loaded is not None else \
+        Path(installed) if installed else PROJECT_ROOT / "reference_solutions"
     path = folder / f"{lab.module}.py"
     return path if path.is_file() else None
 
