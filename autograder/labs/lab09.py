@@ -19,14 +19,40 @@ from fixtures.lab09 import photo
 from ..engine import strategies as st
 from ..engine import judges
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
+from ..engine.claims import THIRD_COORDINATE, divides_by, from_code, guard, measured
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
-from ..engine.hints import Hint, calls, code_of, expr, nan_behind
+from ..engine.hints import Hint, calls, code_of, expr, matmul_of, mentions, nan_behind
 from ..engine.judges import Probe, call_probe, confirm, fingerprint, format_matrix
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
 from ..sandbox.beginner import integer_entries
 
 lab = Lab("lab09", module="lab09_camera", title="Geometric camera models")
+
+# Names that ask for code, held to the student's code (autograder.engine.claims).
+DIVIDES = (THIRD_COORDINATE | divides_by("Z", "z", "Z[:, None]", "z[:, None]", "Z[..., None]",
+                                           says="divides by Z")).saying(
+    "divides by a third coordinate")
+for _missing in (truth.DIVISION_MISSING, truth.DIVISION_MISSING_KX):
+    guard(_missing, asks=DIVIDES, instead="the perspective division is missing: your code {found}, but the "
+          "points returned are not the divided ones")
+guard(truth.K_TRANSPOSED, asks=(expr("_ @ K.T") | expr("np.dot(_, K.T)") | matmul_of("K", None)).saying(
+          "multiplies by K"),
+      instead="K is transposed (the points are multiplied by K^T where K X is due): your code {found}, so "
+              "look at the points' layout: points @ K.T for (N, 3) rows, K @ X for (3, N) columns")
+APPENDS_ONE = (mentions("np.ones") | mentions("np.ones_like") | expr("np.append(_, 1)") | expr("np.append(_, 1.0)")
+               | expr("np.r_[_, 1]") | expr("np.c_[_, 1]")).saying("appends a 1 to the points")
+TRANSLATION_DROPPED = guard(
+    "the translation is dropped: append 1 to each point before applying P (P @ [X, Y, Z, 1])", asks=APPENDS_ONE,
+    instead="the translation is dropped (P's last column has no effect): your code {found}, but the last "
+            "column of P never multiplies it (P[:, :3] used?)")
+PROJECTION_DIVISION_MISSING = guard(
+    "the perspective division is missing (divide by the third coordinate)", asks=DIVIDES,
+    instead="the perspective division is missing: your code {found}, but the points returned are not the "
+            "divided ones")
+ROUNDED = measured("the pixels are rounded to integers; return the exact (float) projection")
+TRUNCATED = measured("the pixels are truncated to integers; return the exact (float) projection")
+WRONG_DIVISOR = measured("the division is by the world point's Z; divide P [X, 1] by its own third coordinate")
 
 seeds = st.integers(0, 2**32 - 1)
 
@@ -153,7 +179,7 @@ def expect_points(t: Trial, what: str, got, shape) -> np.ndarray:
     if isinstance(got, np.ndarray) and got.ndim == 2 and len(shape) == 2 and got.shape == shape[::-1] \
             and shape[0] != shape[1]:
         t.fail(f"{what} returned shape {got.shape}; expected {shape}: one row (x, y) per point "
-               "(transpose your result)", mistake="the result is transposed")
+               "(the result is transposed)", mistake="the result is transposed")
     expect_shape(t, what, got, shape)
     return t.expect_array(got, what, shape=shape, kind="iuf")
 
@@ -173,7 +199,7 @@ def expect_shape(t: Trial, what: str, got, shape, axes=None):
                mistake="the axes are in the wrong order")
     if got.shape == shape[:-1] + (3,) and shape[-1] == 2:
         t.fail(f"{what} returned shape {got.shape}; expected {shape}: a third coordinate is kept (Z is kept, "
-               "or the homogeneous one); return only (x, y).", mistake="a third coordinate is kept")
+               "or the homogeneous one); only (x, y) is expected.", mistake="a third coordinate is kept")
 
 
 def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e-6, show=None,
@@ -200,8 +226,7 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
                                lines=list(zip(truth_pts, got_pts))))
     if error <= tolerance * scale:
         return got
-    rounded = {"the pixels are rounded to integers; return the exact (float) projection": np.round(expected),
-               "the pixels are truncated to integers; return the exact (float) projection": np.trunc(expected)}
+    rounded = {ROUNDED: np.round(expected), TRUNCATED: np.trunc(expected)}
     if np.isfinite(expected).all():
         slip = closest(got, rounded, point_error, 1e-9, truth=expected, margin=1.0)
         if slip:
@@ -287,11 +312,17 @@ def where_points_wrong(got, expected, tolerance) -> str:
     return where
 
 
+SINGLE_POINT_HINT = Hint(
+    " (np.atleast_2d in, [0] out)", asks=calls("np.atleast_2d"),
+    instead=" (your code calls np.atleast_2d: a (3,) point's result is row [0] of what it "
+            "computes)")
+
+
 def judge_single_point(t: Trial, what: str, got, expected):
     """A single (3,) point must give a single (2,) result."""
     if isinstance(got, np.ndarray) and got.shape == (1, 2):
         t.fail(f"{what} returned shape (1, 2) for a single (3,) point; expected (2,): "
-               "a (3,) point gives a (2,) result (np.atleast_2d in, [0] out)")
+               "a (3,) point gives a (2,) result" + SINGLE_POINT_HINT.said(t))
     got = t.expect_array(got, what, shape=(2,), kind="iuf")
     scale = magnitude(expected)
     if point_error(got[None], np.asarray(expected)[None]) > at_precision(1e-6 * scale, scale):
@@ -324,9 +355,9 @@ def judge_in_front(t: Trial, what: str, got, expected, behind):
     """
     if isinstance(got, np.ndarray) and got.ndim == 2 and got.shape[1:] == (2,) \
             and len(got) == int((~behind).sum()) != len(behind):
-        t.fail(f"{what} returned {len(got)} rows for {len(behind)} points: it drops the points "
-               "behind the camera; return one row per input point (NaN is the usual value for "
-               "a point with no image)")
+        t.fail(f"{what} returned {len(got)} rows for {len(behind)} points: "
+               + measured("it drops the points behind the camera; return one row per input point (NaN is the "
+                          "usual value for a point with no image)"))
     got = np.asarray(expect_points(t, what, got, expected.shape), dtype=np.float64)
     front = ~behind
     error = point_error(got[front], expected[front])
@@ -365,7 +396,8 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
             i = np.unravel_index(np.argmax(np.abs(expected)), expected.shape)
             factor = got[i] / expected[i]
             t.fail(f"{what} is wrong: it is {factor:.4g} times the right matrix: it is right only up to "
-                   "scale; return the matrix itself, not a rescaled one.", mistake="the matrix is rescaled")
+                   "scale" + measured("; return the matrix itself, not a rescaled one."),
+                   mistake="the matrix is rescaled")
     function = what.split("(")[0]
     return judges.judge_matrix(t, what, got, expected, mistakes, shape, up_to_scale, rtol=1e-7,
                                probe=matrix_probe(t, function))
@@ -547,12 +579,10 @@ def project_mistakes(P, X):
     x = Xh @ P.T
     right = truth.homogeneous_project(P, X)
     return {
-        "the perspective division is missing (divide by the third coordinate)": x[:, :2],
+        PROJECTION_DIVISION_MISSING: x[:, :2],
         "x and y are swapped": right[:, ::-1],
-        "the translation is dropped: append 1 to each point before applying P (P @ [X, Y, Z, 1])":
-            truth.homogeneous_project(P[:, :3], X),
-        "the division is by the world point's Z; divide P [X, 1] by its own third coordinate":
-            x[:, :2] / X[:, 2:3],
+        TRANSLATION_DROPPED: truth.homogeneous_project(P[:, :3], X),
+        WRONG_DIVISOR: x[:, :2] / X[:, 2:3],
     }
 
 
@@ -786,6 +816,13 @@ def aperture_growth(t):
     return passed(f"spread {format_matrix(spreads)} px for apertures 0.05, 0.2, 0.8")
 
 
+SEED_HINT = Hint(
+    "use rng = np.random.default_rng(seed) and draw every random number from rng.",
+    asks=calls("np.random.default_rng"),
+    instead="your code calls np.random.default_rng: check that it is given seed, and that every random "
+            "number is drawn from that generator (none from np.random's own functions).")
+
+
 @ex4.check("simulate_aperture is reproducible with a seed", points=1)
 def aperture_seed(t):
     X = truth.points_in_front(45, n=4)
@@ -793,8 +830,7 @@ def aperture_seed(t):
     b, _ = _aperture_call(t, X, 0.3, 50, 123)
     c, _ = _aperture_call(t, X, 0.3, 50, 124)
     if not np.array_equal(a, b):
-        t.fail(f"{what} gave different rays for the same seed: the seed is ignored; use "
-               "rng = np.random.default_rng(seed) and draw every random number from rng.",
+        t.fail(f"{what} gave different rays for the same seed: the seed is ignored; " + SEED_HINT.said(t),
                mistake="the seed is ignored")
     if np.array_equal(a, c):
         t.fail("simulate_aperture gave the same rays for seeds 123 and 124: the seed is ignored.",
@@ -821,7 +857,8 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     pts = np.asarray(pts, float).reshape(-1, 2)
     swapped_core, _ = truth.circle_regions(image.shape, pts[:, ::-1], radius)
     if swapped_core.any() and painted[swapped_core].mean() > 0.9:
-        t.fail(f"{what}: the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = (column, row).",
+        t.fail(f"{what}: " + measured("the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = "
+                                      "(column, row)."),
                mistake="x and y (column and row) are swapped")
     if got.ndim == 3:
         reversed_colour = np.all(got == np.asarray(color[::-1], np.uint8), axis=-1)
@@ -845,7 +882,7 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
         h, w = image.shape[:2]
         border = "" if first or not all(x in (0, w - 1) or y in (0, h - 1) for x, y in np.round(pts[missing])) \
             else (f" (on the image's border: x = 0 and {w - 1}, y = 0 and {h - 1} are pixels of the image, "
-                  f"0 <= x < {w}: check the bounds)")
+                  f"0 <= x < {w}" + measured(": check the bounds)"))
         t.fail(f"{what}: no circle at point(s) {missing} (of {len(pts)}){first}{border}.",
                mistake="only the first point is drawn" if first else "some points are not drawn")
     drawn_radius = _drawn_radius(got, image, pts, color)
@@ -902,6 +939,12 @@ def draw_example(t):
     return judge_drawing(t, "draw_points(image, pts)", t.call("draw_points", image, pts), image, pts)
 
 
+COPY_HINT = Hint(
+    "out = image.copy(), then draw on out", asks=calls(".copy") | calls("np.copy"),
+    instead="your code copies the image ({found}): draw on the copy, not on `image`, and "
+            "return the copy")
+
+
 @ex5.check("draw_points twice on the same image: each drawing shows its own points only", points=1)
 def draw_twice(t):
     image = photo("astronaut", (200, 150))
@@ -917,7 +960,7 @@ def draw_twice(t):
         t.images(what, first_points_then_second=got)
         t.fail(f"{what}: the second drawing shows the first one's points too: draw_points draws on the caller's "
                "`image` (the array given) instead of on a copy, so whoever calls it twice, or uses the image "
-               "afterwards, finds points drawn on it.", hint="out = image.copy(), then draw on out",
+               "afterwards, finds points drawn on it.", hint=COPY_HINT.said(t),
                mistake="draw_points draws on the caller's image")
     return judge_drawing(t, what, got, image, second_pts)
 
@@ -980,6 +1023,17 @@ def project_onto_image_check(t):
 
 
 # ================================================================== ext1 calibration
+# Object points built row by row, x fastest, from pattern_size = (cols, rows) (labs 9 and 10).
+OBJECT_POINTS_ROW_BY_ROW = (expr("np.mgrid[0:_[0], 0:_[1]].T.reshape(-1, 2)")
+                            | expr("np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)")
+                            | expr("np.mgrid[0:nx, 0:ny].T.reshape(-1, 2)")
+                            | expr("np.mgrid[0:w, 0:h].T.reshape(-1, 2)")).saying(
+    "builds the object points with np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)")
+OBJECT_POINTS_HINT = Hint(
+    "build them row by row, x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.",
+    asks=OBJECT_POINTS_ROW_BY_ROW,
+    instead="your code {found}: check that pattern_size is read as (cols, rows), and that each view's object "
+            "points go with that view's corners.")
 ext1 = lab.exercise("ext1", "Extension: camera calibration", functions=[
     "calibrate(images, pattern_size, square_size)"])
 
@@ -1018,7 +1072,7 @@ def judge_calibration(t: Trial, images, K_true, pattern):
         t.fail(f"{what}: the reprojection error is {rms:.2f} px (a good calibration on these clean "
                "views has < 0.1 px): the object points do not correspond to the detected corners "
                "(they are in the wrong order, e.g. column by column, or for another pattern_size); "
-               "build them row by row, x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.",
+               + OBJECT_POINTS_HINT.said(t),
                mistake="the object points are in the wrong order")
     if np.abs(K[:2, 2] - K_true[1::-1, 2]).max() < 3.0 and c_error.max() > 3.0:
         t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
@@ -1068,15 +1122,15 @@ def calibration_consistent(t):
     cause = "the K or dist returned is not the pair the rms was computed for"
     reading = calls("cv2.getOptimalNewCameraMatrix").found(code_of(t).reachable(["calibrate"]))
     if reading:
-        cause = ("your code calls cv2.getOptimalNewCameraMatrix, and K is measured not to be the calibrated "
-                 "camera's: that matrix is for "
-                 "undistorted images (cv2.undistort's newCameraMatrix), not the calibrated camera's K")
+        cause = from_code("your code calls cv2.getOptimalNewCameraMatrix, and K is measured not to be the calibrated "
+                          "camera's: that matrix is for "
+                          "undistorted images (cv2.undistort's newCameraMatrix), not the calibrated camera's K")
     # Named only with the cause the code shows: the disagreement alone has several (a K returned
     # transposed, another call's K or dist), which the message leaves to the student.
     t.fail(f"{what}: the K, dist and rms returned do not agree: with your K and dist, the best pose of each "
            f"view reprojects the board's corners {shown} RMS from the true corners, while the rms returned "
-           f"says {rms:.3f} px: {cause}. Return K, dist and rms from the same cv2.calibrateCamera call.",
-           mistake="K from cv2.getOptimalNewCameraMatrix instead of the calibrated K" if reading else "")
+           f"says {rms:.3f} px: {cause}. " + measured("Return K, dist and rms from the same cv2.calibrateCamera call."),
+           mistake=from_code("K from cv2.getOptimalNewCameraMatrix instead of the calibrated K") if reading else "")
 
 
 @ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners)", points=1)

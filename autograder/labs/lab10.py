@@ -18,20 +18,64 @@ from fixtures import scene
 
 from ..engine import strategies as st
 from ..engine.checks import Trial, partial, passed
+from ..engine.claims import calls_any, divides_by, guard, measured, negates_on_negative_det, passes_argument, reshapes
 from ..engine.compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
                        projective_distance)
 from ..engine.forms import scale_form
-from ..engine.hints import calls, code_of, nan_behind
+from ..engine.hints import Hint, calls, code_of, expr, mentions, nan_behind
 from ..engine.judges import Probe, call_probe, fingerprint, format_matrix, name_mistake, where_matrices_differ
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed
-from .lab09 import (call_behind, expect_points, judge_in_front, judge_points, judge_single_point,
-                    make_points_probe, pinhole_formulas, point_error)
+from .lab09 import (OBJECT_POINTS_ROW_BY_ROW, call_behind, expect_points, judge_in_front, judge_points,
+                    judge_single_point, make_points_probe, pinhole_formulas, point_error)
 
 lab = Lab("lab10", module="lab10_camera2", title="Geometric camera models (continued)")
 
 seeds = st.integers(0, 2**32 - 1)
+
+# Names and sentences that ask for code, held to the student's code (autograder.engine.claims).
+guard(truth.RESHAPED_WRONG, asks=reshapes(3, 4),
+      instead="the 12 entries of p come out in another order: your code {found}, so look at the order of the "
+              "columns of A (P's first row multiplies [X, Y, Z, 1] in the u equations, then the second, then the "
+              "third)")
+guard(truth.NOT_UNDONE, asks=calls_any("np.linalg.inv", "np.linalg.solve", says="inverts a normalising transform"),
+      instead="the normalisation is not undone (the P returned is the camera of the normalised points): your "
+              "code {found}; check that the P returned is T2^-1 P_n T3")
+SIGN_FIX = Hint(
+    "for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): multiply P by -1 first, then decompose; flipping "
+    "signs of K's columns alone would leave det(R) = -1", asks=negates_on_negative_det(),
+    instead="for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): your code already {found}; check that "
+            "the negated P is the one decomposed and solved for t, and that flipping K's columns flips the same "
+            "rows of R")
+RQ_HINT = Hint(" (use an RQ decomposition of the left 3x3 block)",
+               asks=calls_any("scipy.linalg.rq", "cv2.RQDecomp3x3", "cv2.decomposeProjectionMatrix", "np.linalg.qr",
+                              says="decomposes P[:, :3]"),
+               instead=" (your code {found}: check which factor becomes K, P[:, :3] = K R with K upper "
+                       "triangular, and the row and column reversals that turn a QR into an RQ)")
+NORMALISE_K_HINT = Hint("divide K by K[2, 2] (P is only known up to scale)",
+                        asks=divides_by("_[2, 2]", "_[-1, -1]", says="divides by K[2, 2]"),
+                        instead="your code {found}, but the K returned is not the divided one (or is changed "
+                                "afterwards); P is only known up to scale")
+SIGNS_HINT = Hint("multiply the offending columns of K and the same rows of R by -1 (R then comes out with det +1, "
+                  "as det(P[:, :3]) > 0 here)", asks=(calls("np.sign") | expr("np.diag(np.sign(np.diag(_)))")).saying(
+                      "fixes signs with np.sign"),
+                  instead="your code {found}: check that it flips the same columns of K and rows of R (K D and "
+                          "D R with one D), and that the fixed K and R are the ones returned")
+DIST_TO_PROJECT = passes_argument("cv2.projectPoints", 4, "distCoeffs", says="passes a distortion to cv2.projectPoints")
+guard("the corners are projected without dist (pass dist to cv2.projectPoints too)", asks=DIST_TO_PROJECT,
+      instead="the corners are projected without dist: your code {found}, but not the dist given (None or zeros?)")
+DIST_TO_PNP = (passes_argument("cv2.solvePnP", 3, "distCoeffs") | passes_argument("cv2.solvePnPRansac", 3, "distCoeffs")
+               ).saying("passes a distortion to cv2.solvePnP")
+DIST_TO_UNDISTORT = (passes_argument("cv2.undistort", 2, "distCoeffs")
+                     | passes_argument("cv2.initUndistortRectifyMap", 1, "distCoeffs")).saying(
+    "passes a distortion to cv2.undistort")
+guard("K is transposed (cv2.undistort wants K as given)",
+      asks=~calls_any("cv2.undistort", "cv2.initUndistortRectifyMap"),
+      instead="K is transposed (the image is undistorted with K^T)")
+FIRST_FRAME = guard(" (use each frame of the loop, not frames[0])", asks=~expr("frames[0]"), instead="")
+guard("the object points are built for (rows, cols): np.mgrid[0:rows, 0:cols]", asks=~mentions("np.mgrid"),
+      instead="the object points are built for (rows, cols): x runs over the rows")
 
 
 def projection_probe(t: Trial, function: str, **kwargs):
@@ -226,7 +270,7 @@ def orthographic_example(t):
     got = t.call("orthographic_project", X)
     if isinstance(got, np.ndarray) and got.shape == (10, 3):
         t.fail("orthographic_project returned shape (10, 3); expected (10, 2): a third coordinate is kept "
-               "(Z is kept); divide by the homogeneous coordinate and drop it", mistake="a third coordinate is kept")
+               "(Z is kept, or the homogeneous one); only (x, y) is expected", mistake="a third coordinate is kept")
     if isinstance(got, np.ndarray) and got.shape == (2, 3):
         t.fail("orthographic_project returned shape (2, 3); expected (10, 2): points[:2] takes the first two "
                "points (rows); X and Y are the first two columns, points[:, :2].",
@@ -254,6 +298,15 @@ def orthographic_property(t):
 ex4 = lab.exercise("ex4", "Camera matrix by the DLT", functions=["camera_matrix_dlt(points3d, points2d)"])
 lab.forbid("camera_matrix_dlt", "cv2.calibrateCamera", "cv2.solvePnP", "cv2.solvePnPRansac",
            "cv2.solvePnPGeneric", "cv2.initCameraMatrix2D", "cv2.calibrateCameraExtended")
+
+
+FIXED_P23_HINT = Hint(
+    "It looks like P[2, 3] was fixed to 1 (11 unknowns, least squares), which cannot express this "
+    "camera: solve A p = 0 for all 12 entries by SVD (the last row of Vt).",
+    asks=(calls("np.linalg.svd") & ~calls_any("np.linalg.lstsq", "np.linalg.solve", "np.linalg.pinv")).saying(
+        "solves by np.linalg.svd"),
+    instead="Your code {found}: check that A has 12 columns (P[2, 3] is an unknown too) and that p "
+            "is the last row of Vt.")
 
 
 def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_principal_plane=False):
@@ -285,9 +338,8 @@ def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_p
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if origin_on_principal_plane and abs(got[2, 3]) > 1e-3 * np.linalg.norm(got) and dlt_right_on_probe(t):
         t.fail(f"{what}: here the true P[2, 3] is 0 (P[2, 3] = t_z, the depth of the world origin), "
-               f"yours is {got[2, 3] / np.linalg.norm(got):.3g} of |P|. It looks like P[2, 3] was fixed "
-               "to 1 (11 unknowns, least squares), which cannot express this camera: solve A p = 0 "
-               "for all 12 entries by SVD (the last row of Vt).", mistake="P[2, 3] is fixed to 1")
+               f"yours is {got[2, 3] / np.linalg.norm(got):.3g} of |P|. " + FIXED_P23_HINT.said(t),
+               mistake="P[2, 3] is fixed to 1")
     t.fail(f"{what}: P is wrong {where_matrices_differ(got, P, up_to_scale=True)} (compared with the "
            f"true camera up to scale): projecting new points with it misses their true projections by "
            f"{np.mean(fresh):.3g} px on average.")
@@ -339,31 +391,28 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     R = t.expect_array(got[1], f"{what}[1] (R)", shape=(3, 3), kind="iuf", finite=True)
     tv = got[2]
     if isinstance(tv, np.ndarray) and tv.shape in ((4,), (4, 1)):
-        t.fail(f"{what}[2] (t) has shape {tv.shape}: that looks like the homogeneous camera centre "
-               "(what cv2.decomposeProjectionMatrix returns as its 'translation'); t is the (3,) vector "
-               "in P = K [R | t], t = -R C.", mistake="the homogeneous camera centre returned as t")
+        t.fail(f"{what}[2] (t) has shape {tv.shape}: " + measured(
+            "that looks like the homogeneous camera centre (what cv2.decomposeProjectionMatrix returns as its "
+            "'translation'); t is the (3,) vector in P = K [R | t], t = -R C."),
+            mistake="the homogeneous camera centre returned as t")
     tv = t.expect_array(tv, f"{what}[2] (t)", kind="iuf", finite=True)
     if tv.shape == (3, 1):
         tv = tv.ravel()
     tv = t.expect_array(tv, f"{what}[2] (t)", shape=(3,))
     problems, labels = [], []
     negative = np.linalg.det(np.asarray(P, float)[:, :3]) < 0
-    sign_fix = ("for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): multiply P by -1 first, "
-                "then decompose; flipping signs of K's columns alone would leave det(R) = -1")
+    sign_fix = SIGN_FIX.said(t)
     K_scale = magnitude(K)
     if np.abs(np.tril(K, -1)).max() > at_precision(1e-6 * np.abs(K).max(), K_scale):
-        problems.append("K is not upper triangular (use an RQ decomposition of the left 3x3 block)")
+        problems.append("K is not upper triangular" + RQ_HINT.said(t))
     if abs(K[2, 2] - 1) > at_precision(1e-6):
-        problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: K is not normalised; divide K by K[2, 2] "
-                        "(P is only known up to scale)")
+        problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: K is not normalised; " + NORMALISE_K_HINT.said(t))
         labels.append("K is not normalised (K[2, 2] != 1)")
     rotation = np.abs(R @ R.T - np.eye(3)).max() <= at_precision(1e-6)
     if np.any(np.diag(K) <= 0):
         labels.append("P is not negated when det(P[:, :3]) < 0" if negative else "the signs of K's diagonal are not fixed")
         problems.append(f"K has a negative diagonal entry ({format_matrix(np.diag(K))}): "
-                        + (sign_fix if negative else "RQ is unique only up to signs; multiply the offending "
-                           "columns of K and the same rows of R by -1 (R then comes out with det +1, "
-                           "as det(P[:, :3]) > 0 here)"))
+                        + (sign_fix if negative else "RQ is unique only up to signs; " + SIGNS_HINT.said(t)))
     if not rotation:
         problems.append("R is not a rotation (R R^T != I)")
     elif np.linalg.det(R) < 0 and sign_fix not in " ".join(problems):
@@ -431,8 +480,8 @@ def t_against_p(P, K, R, tv) -> tuple[str, str] | None:
             return (f"{told}: t is K^-1 P[:, 3] without dividing by P's scale s",
                     "t is solved from P without dividing by its scale")
         if abs(c + 1) <= 1e-6:
-            return (f"{told}: t has the opposite sign (K and R come from -P, t from P: negate P before "
-                    "solving for t too)", "t is solved from P while K and R come from -P")
+            return (f"{told}: " + measured("t has the opposite sign (K and R come from -P, t from P: negate P before "
+                                           "solving for t too)"), "t is solved from P while K and R come from -P")
     return f"{told}: t must be solved from the same P as K and R, t = K^-1 P[:, 3] / s", \
         "t does not come from the same P as K and R"
 
@@ -491,8 +540,8 @@ def judge_center(t: Trial, P, R, tv):
     what = "camera_center(P)"
     got = t.call("camera_center", P)
     if isinstance(got, np.ndarray) and got.shape == (4,):
-        t.fail(f"{what} returned a (4,) homogeneous vector; expected the (3,) centre: divide by the "
-               "last coordinate and drop it", mistake="the homogeneous centre returned (4 entries)")
+        t.fail(f"{what} returned a (4,) homogeneous vector; expected the (3,) centre: (X, Y, Z) / W of the "
+               "homogeneous (X, Y, Z, W)", mistake="the homogeneous centre returned (4 entries)")
     got = t.expect_array(got, what, shape=(3,), kind="iuf", finite=True)
     C = -R.T @ tv
     scale = magnitude(C)
@@ -550,8 +599,8 @@ def _unpack_pose(t: Trial, what, got, n_corners):
         t.fail(f"{what} should return a triple (rvec, tvec, reprojected)")
     rvec, tvec, reprojected = got
     if isinstance(rvec, np.ndarray) and rvec.shape == (3, 3):
-        t.fail(f"{what} returned a 3x3 rotation matrix as rvec; return the (3,) Rodrigues vector "
-               "(what cv2.solvePnP gives; cv2.Rodrigues converts)")
+        t.fail(f"{what} returned a 3x3 rotation matrix as rvec; " + measured(
+            "return the (3,) Rodrigues vector (what cv2.solvePnP gives; cv2.Rodrigues converts)"))
     rvec = t.expect_array(np.asarray(rvec).reshape(-1) if isinstance(rvec, np.ndarray) and rvec.size == 3 else rvec,
                           f"{what}[0] (rvec)", shape=(3,), kind="f")
     tvec = t.expect_array(np.asarray(tvec).reshape(-1) if isinstance(tvec, np.ndarray) and tvec.size == 3 else tvec,
@@ -561,6 +610,24 @@ def _unpack_pose(t: Trial, what, got, n_corners):
     reprojected = expect_points(t, f"{what}[2] (reprojected)", reprojected, (n_corners, 2)) \
         if n_corners else t.expect_array(reprojected, f"{what}[2] (reprojected)", shape=(0, 2))
     return rvec, tvec, reprojected
+
+
+PATTERN_AXES_HINT = Hint(
+    "passed to cv2.findChessboardCorners as given, and the object points run row by row with x "
+    "fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).", asks=OBJECT_POINTS_ROW_BY_ROW,
+    instead="and your code {found}: check that pattern_size reaches cv2.findChessboardCorners "
+            "as given.")
+PROJECT_POINTS_HINT = Hint(
+    "project the object points with rvec, tvec, K and dist (cv2.projectPoints), in the same order.",
+    asks=calls("cv2.projectPoints"),
+    instead="your code calls cv2.projectPoints: check that it is given the object points, rvec, tvec, "
+            "K and dist of this pose, in that order, and that its output is what is returned.")
+CORNER_ORDER_HINT = Hint(
+    ": np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.", asks=OBJECT_POINTS_ROW_BY_ROW,
+    instead=" (your code {found}: check how pattern_size is read, as (cols, rows)).")
+DIST_TO_PNP_HINT = Hint(
+    "pass it to cv2.solvePnP (and to cv2.projectPoints).", asks=DIST_TO_PNP,
+    instead="your code {found}, but not the dist given (None or zeros?).")
 
 
 def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, dist=None, show=True):
@@ -587,8 +654,8 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
                                     f"it looks like {slip}.", mistake=slip)
             return partial(0.5, f"{what}: the pose is right (rotation off by {angle:.2f} deg, translation by "
                                 f"{rel:.2%}), but the reprojected corners miss the corners by up to "
-                                f"{format_apart(reproj_error, REPROJECTION_TOLERANCE, 2)} px: project the object points with rvec, tvec, K and dist "
-                                "(cv2.projectPoints), in the same order.")
+                                f"{format_apart(reproj_error, REPROJECTION_TOLERANCE, 2)} px: "
+                                + PROJECT_POINTS_HINT.said(t))
         return passed(f"rotation within {angle:.2f} deg, translation within {rel:.2%}, "
                       f"reprojection within {reproj_error:.2f} px")
     # diagnosis
@@ -611,17 +678,17 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
     if normal_angle < 2.0 and abs(in_plane - 90.0) < 2.0:
         t.fail(f"{what}: the board plane is right but its x and y axes are exchanged (the pose is turned "
                "by 90 degrees in the board plane): pattern_size is (cols, rows) = (inner corners per row, "
-               "per column), passed to cv2.findChessboardCorners as given, and the object points run "
-               "row by row with x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).",
+               "per column), " + PATTERN_AXES_HINT.said(t),
                mistake="pattern_size's cols and rows are exchanged")
     if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and rel <= TRANSLATION_TOLERANCE:
         t.fail(f"{what}: the translation is right but the rotation is transposed (rvec has the wrong "
-               "sign): return rvec as cv2.solvePnP gives it, the board's rotation into the camera frame.",
+               "sign): " + measured("return rvec as cv2.solvePnP gives it, the board's rotation into the camera "
+                                    "frame."),
                mistake="the rotation is transposed")
     C = -R.T @ tv
     if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and np.linalg.norm(tvec - C) < 0.05 * distance:
         t.fail(f"{what}: that is the camera's pose in the board's frame (R^T, -R^T t): the pose is inverted; "
-               "the task wants the board's pose in the camera frame, as cv2.solvePnP returns it.",
+               + measured("the task wants the board's pose in the camera frame, as cv2.solvePnP returns it."),
                mistake="the pose is inverted (the camera's pose in the board's frame)")
     if dist is not None:
         objp = scene.chessboard_object_points(pattern, square)
@@ -631,12 +698,12 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
             a0, s0, _ = truth.pose_error(r0.ravel(), t0.ravel(), R, tv, pattern, square)
             if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(r0.ravel())) < 0.3 and \
                     np.linalg.norm(tvec - t0.ravel()) < 0.003 * distance and _dist_ignored_on_probe(t):
-                t.fail(f"{what}: the lens distortion dist is ignored: pass it to cv2.solvePnP "
-                       "(and to cv2.projectPoints).", mistake="dist is ignored")
+                t.fail(f"{what}: the lens distortion dist is ignored: " + DIST_TO_PNP_HINT.said(t),
+                       mistake="dist is ignored")
     for (slip, label) in _wrong_grids_explaining(rvec, tvec, pattern, square, corners, K, dist):
         if (slip, label) in _wrong_grids_on_probe(t):
-            t.fail(f"{what}: {slip}; OpenCV gives the corners row by row, x fastest: "
-                   "np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.", mistake=label)
+            t.fail(f"{what}: {slip}; OpenCV gives the corners row by row, x fastest" + CORNER_ORDER_HINT.said(t),
+                   mistake=label)
     t.fail(f"{what}: the pose is off by {format_apart(angle, ANGLE_TOLERANCE, 2)} degrees and "
            f"{format_apart(rel, TRANSLATION_TOLERANCE, 2, percent=True)} of the distance (at most "
            f"{ANGLE_TOLERANCE:g} degrees and {TRANSLATION_TOLERANCE:.0%} accepted; reprojection off by up to "
@@ -806,6 +873,11 @@ ext1 = lab.exercise("ext1", "Extension: undistortion", functions=["undistort_ima
 UNDISTORT_TOLERANCE = 6.0
 
 
+DIST_TO_UNDISTORT_HINT = Hint(
+    " (cv2.undistort(image, K, dist)).", asks=DIST_TO_UNDISTORT,
+    instead=": your code {found}, but not the dist given (None or zeros?).")
+
+
 @ext1.check("undistort_image straightens a view through a distorting lens", points=4)
 def undistort_check(t):
     distorted, clean, _, _, _ = truth.distorted_view()
@@ -824,7 +896,7 @@ def undistort_check(t):
     if renamed:
         return renamed
     if blurred_difference(got, distorted, valid) <= 1.0:
-        t.fail(f"{what} returned the image unchanged: dist is not used (cv2.undistort(image, K, dist)).",
+        t.fail(f"{what} returned the image unchanged: dist is not used" + DIST_TO_UNDISTORT_HINT.said(t),
                mistake="the image is returned unchanged (dist is not used)")
     mistake = name_mistake(t, got, undistortion_mistakes(distorted, K, dist),
                            lambda a, b: blurred_difference(a, b, valid), UNDISTORT_TOLERANCE, truth=clean,
@@ -861,13 +933,13 @@ def new_camera_matrix_verdict(t: Trial, what: str, got, clean, K, dist):
                         f"distortion-free view with the camera matrix of {name}"
                         f"{' (on a second lens too)' if confirmed else ''}"
                         f"{', which your code calls' if read else ''}, not K. "
-                        "Keep K, as the skeleton asks (the image a pinhole camera with the same K would "
-                        "record): cv2.undistort(image, K, dist), without a newCameraMatrix.",
+                        + measured("Keep K, as the skeleton asks (the image a pinhole camera with the same K would "
+                                   "record): cv2.undistort(image, K, dist), without a newCameraMatrix."),
                    mistake=NEW_CAMERA_MATRIX_MISTAKE if confirmed or read else "")
 
 
 NEW_CAMERA_MATRIX = calls("cv2.getOptimalNewCameraMatrix")
-NEW_CAMERA_MATRIX_MISTAKE = "undistorted into a new camera matrix (cv2.getOptimalNewCameraMatrix), not K"
+NEW_CAMERA_MATRIX_MISTAKE = measured("undistorted into a new camera matrix (cv2.getOptimalNewCameraMatrix), not K")
 
 
 def _new_camera_matrix_view(got, clean, K, dist) -> str | None:
@@ -946,8 +1018,8 @@ def undistort_colour(t):
         return passed("each channel is undistorted as your code undistorts a grey image "
                       "(the undistortion itself is the other check's)")
     t.fail(f"{what} differs by {error:.0f} levels on average from the distortion-free view, and is not your "
-           "own undistortion of each channel either: undistort the three channels alike "
-           "(cv2.undistort takes a BGR image as it is).")
+           "own undistortion of each channel either: " + measured(
+               "undistort the three channels alike (cv2.undistort takes a BGR image as it is)."))
 
 
 # ================================================================== ext2 dolly zoom
@@ -1075,24 +1147,23 @@ def track_check(t):
     what = "track_pose(frames, pattern_size, square_size, K)"
     got = t.call("track_pose", list(frames), pattern, square, K)
     if isinstance(got, np.ndarray) and got.ndim > 2 and got.shape[0] == len(frames) and got.size == 6 * len(frames):
-        t.fail(f"{what} returned shape {got.shape}; expected ({len(frames)}, 6): the rows are not flattened: "
-               "each row is np.concatenate([rvec, tvec]).", mistake="the rows are not flattened to [rvec, tvec]")
+        t.fail(f"{what} returned shape {got.shape}; expected ({len(frames)}, 6): the rows are not flattened "
+               "(each row is the 6 numbers of rvec, then tvec).", mistake="the rows are not flattened to [rvec, tvec]")
     if isinstance(got, np.ndarray) and got.shape == (len(frames) - 1, 6):
-        t.fail(f"{what} returned {got.shape[0]} rows for {len(frames)} frames: keep one row per frame, "
-               "NaN where the board is not found.")
+        t.fail(f"{what} returned {got.shape[0]} rows for {len(frames)} frames: " + measured(
+            "keep one row per frame, NaN where the board is not found."))
     got = t.expect_array(got, what, shape=(len(frames), 6), kind="f")
     shifted = {
         "the rows are off by one frame (one frame late): row i must be the pose in frame i (frames[i])": (None,) + poses[:-1],
         "the rows are off by one frame (one frame early): row i must be the pose in frame i (frames[i])": poses[1:] + (None,),
-        "each row is the camera's pose in the board's frame (R^T, -R^T t): the pose is inverted; "
-        "the rows are the board's pose in the camera frame, as cv2.solvePnP gives it":
+        measured("each row is the camera's pose in the board's frame (R^T, -R^T t): the pose is inverted; "
+                 "the rows are the board's pose in the camera frame, as cv2.solvePnP gives it"):
             tuple(None if p is None else (p[0].T, -p[0].T @ p[1]) for p in poses),
     }
     for k, pose in enumerate(poses):
         if pose is not None:
-            shifted[f"every row is the pose in frame {k}: the same frame is used for every row (use each "
-                    "frame of the loop, not frames[0])" if k == 0 else
-                    f"every row is the pose in frame {k}: the same frame is used for every row"] = \
+            shifted[f"every row is the pose in frame {k}: the same frame is used for every row"
+                    + (FIRST_FRAME if k == 0 else "")] = \
                 (pose,) * len(poses)
     for mistake, candidate in shifted.items():
         if _track_rows_match(got, candidate, poses, pattern, square):

@@ -22,13 +22,24 @@ from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
                        projective_distance)
 from ..engine.forms import shape_form
-from ..engine.hints import RATIO_TEST, Hint, calls, keyword, mentions
+from ..engine.claims import (THIRD_COORDINATE, calls_any, divides_by, from_code, guard, measured, reshapes,
+                             zeroes_an_entry)
+from ..engine.hints import RATIO_TEST, Hint, calls, expr, keyword, mentions
 from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
                       where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
 
 lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
+
+# Names and sentences that ask for code, held to the student's code (autograder.engine.claims).
+measured(truth.LINES_UNIT_LENGTH)
+measured(truth.LINES_BY_C)
+# Solving A f = 0 by SVD alone: an 8-unknown least-squares solve (F[2, 2] = 1) may use svd for rank 2.
+SOLVES_BY_SVD = (calls("np.linalg.svd") & ~calls_any("np.linalg.lstsq", "np.linalg.solve", "np.linalg.pinv")
+                 ).saying("solves by np.linalg.svd")
+TRANSPOSES = (mentions(".T") | calls("np.transpose") | calls(".transpose")).saying("transposes")
+DIVIDES_BY_W = THIRD_COORDINATE.saying("divides by the last entry")
 
 EXACT = 1e-6          # relative error accepted on exact data (raised to float32's precision: at_precision)
 seeds = st.integers(0, 2**32 - 1)
@@ -140,8 +151,8 @@ def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, g
     if isinstance(got, np.ndarray) and got.shape == (3, n) and n != 3:
         t.fail(f"{what} returned shape (3, {n}); expected ({n}, 3): one row per point")
     if isinstance(got, np.ndarray) and got.shape == (n, 4):
-        t.fail(f"{what} returned shape ({n}, 4); expected ({n}, 3): divide the homogeneous "
-               "solution (X, Y, Z, w) by w and drop w")
+        t.fail(f"{what} returned shape ({n}, 4); expected ({n}, 3): the homogeneous solution (X, Y, Z, w) is "
+               "returned; the point is (X, Y, Z) / w")
     got = t.expect_array(got, what, shape=(n, 3), kind="iuf")
     if not np.all(np.isfinite(got)):
         t.fail(f"{what} returned NaN or infinite values")
@@ -212,7 +223,7 @@ def _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise):
         if np.median(mine) <= tolerance and np.median(other) > 10 * tolerance + 1:
             t.fail(f"{what} is wrong: it looks like only the {view} view's equations are used: the "
                    f"points project exactly onto the {view} image but miss the other one by "
-                   f"{np.median(other):.1f} px. Stack two rows from each view (4 x 4 system).",
+                   f"{np.median(other):.1f} px. " + measured("Stack two rows from each view (4 x 4 system)."),
                    mistake=f"only the {view} view's equations are used")
     # Black-box test with the student's own function: does swapping the cameras back fix it?
     depth = np.linalg.norm(X - views.cam1.center, axis=1)
@@ -291,6 +302,13 @@ def _row_error(got, expected) -> float:
     return float(per_row.max() / max(1.0, np.abs(expected).max()))
 
 
+LINE_SCALE_HINT = Hint(
+    " (divide each line by sqrt(a^2 + b^2)).",
+    asks=calls_any("np.hypot", "np.sqrt", "np.linalg.norm", says="computes a norm"),
+    instead=" (your code {found}: check that each line is divided by sqrt(a^2 + b^2) of its own first "
+            "two entries, and that the divided lines are returned).")
+
+
 def judge_lines(t: Trial, what: str, got, F, pts1):
     n = len(pts1)
     got = t.expect_array(got, what, shape=(n, 3), kind="iuf")
@@ -307,8 +325,8 @@ def judge_lines(t: Trial, what: str, got, F, pts1):
     if np.all(np.isfinite(got)):
         parallel = np.linalg.norm(np.cross(got, expected), axis=1) <= at_precision(1e-6) * np.linalg.norm(got, axis=1)
         if np.all(parallel):
-            t.fail(f"{what}: the lines are right but not scaled so that a^2 + b^2 = 1 "
-                   "(divide each line by sqrt(a^2 + b^2)).", mistake="the lines are not scaled so that a^2 + b^2 = 1")
+            t.fail(f"{what}: the lines are right but not scaled so that a^2 + b^2 = 1" + LINE_SCALE_HINT.said(t),
+                   mistake="the lines are not scaled so that a^2 + b^2 = 1")
     signs = np.where(np.sum(np.nan_to_num(got) * expected, axis=1) < 0, -1.0, 1.0)[:, None]
     where = where_points_differ(got * signs, expected, 1e-5 * max(1.0, np.abs(expected).max()),
                                 names=("a", "b", "c"))
@@ -406,7 +424,7 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     if stray <= 0.05 and coverage.max() < min_coverage and coverage.mean() > 0.15:
         t.fail(f"{what}: the lines are in the right place but stop short "
                f"(only {coverage.mean():.0%} of their length inside the image is drawn): "
-               "draw each line across the whole image", mistake="the lines stop short")
+               + measured("draw each line across the whole image"), mistake="the lines stop short")
     t.fail(f"{what}: {np.sum(coverage < min_coverage)} of {len(coverage)} lines are missing or "
            f"incomplete, and {stray:.0%} of the changed pixels are away from every line "
            "(see the picture)")
@@ -464,7 +482,8 @@ def draw_full_width(t):
         # above), the form is not, so half the points.
         form = shape_form(got.shape, image.shape)
         return partial(0.5, f"{what} draws the lines rightly but returns shape {got.shape} for a grey "
-                            f"{image.shape} input: {form.sentence}. Draw the lines in white (255) on a grey copy.",
+                            f"{image.shape} input: {form.sentence}. "
+                            + measured("Draw the lines in white (255) on a grey copy."),
                        mistake=form.mistake)
 
 
@@ -537,7 +556,10 @@ ESSENTIAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for 
                                "(K2^-1 x for a column vector)",
     "rank2_only": "the singular values were set to (s1, s2, 0): an essential matrix has two equal "
                   "ones, (1, 1, 0)",
-    "v_not_transposed": "E = U diag(1, 1, 0) V: np.linalg.svd returns V^T already (E = U diag(1, 1, 0) Vt)",
+    "v_not_transposed": guard(
+        "E = U diag(1, 1, 0) V: np.linalg.svd returns V^T already (E = U diag(1, 1, 0) Vt)", asks=~TRANSPOSES,
+        instead="E comes out as U diag(1, 1, 0) V, where U diag(1, 1, 0) Vt is due (Vt as np.linalg.svd "
+                "returns it)"),
     "design_x1x2": "the rows of A are kron(x1, x2); x2^T E x1 = 0 gives kron(x2, x1) (this is E^T)",
 }
 
@@ -564,6 +586,13 @@ def essential_8point_exact(t):
                      probe=essential_8point_probe(t, exact=False))
 
 
+ESSENTIAL_VALUES_HINT = Hint(
+    "Replace them by (1, 1, 0) (U diag(1, 1, 0) V^T).",
+    asks=(expr("np.diag([1, 1, 0])") | expr("np.diag((1, 1, 0))")).saying("builds diag(1, 1, 0)"),
+    instead="Your code {found}: check that E is rebuilt with it, U diag(1, 1, 0) V^T, and that this "
+            "E is the one returned.")
+
+
 @ex3.check("essential_8point: singular values (s, s, 0) on noisy data", points=2)
 def essential_8point_singular_values(t):
     views, pts1, pts2 = truth.noisy_essential_problem()
@@ -577,8 +606,8 @@ def essential_8point_singular_values(t):
         return passed(f"singular values proportional to (1, {s[1]:.6f}, {s[2]:.1e})")
     if s[2] <= at_precision(1e-6):
         t.fail(f"essential_8point: it looks like the singular values were set to (s1, s2, 0): they are "
-               f"proportional to (1, {s[1]:.4f}, 0), and an essential matrix has two equal ones. Replace "
-               "them by (1, 1, 0) (U diag(1, 1, 0) V^T).", mistake=ESSENTIAL_MISTAKES["rank2_only"])
+               f"proportional to (1, {s[1]:.4f}, 0), and an essential matrix has two equal ones. "
+               + ESSENTIAL_VALUES_HINT.said(t), mistake=ESSENTIAL_MISTAKES["rank2_only"])
     t.fail(f"essential_8point: it looks like the singular values were not set to (1, 1, 0) after the "
            f"least-squares solution: they are proportional to (1, {s[1]:.4f}, {s[2]:.4f}); an essential "
            "matrix has (s, s, 0).", mistake="the singular values were not set to (1, 1, 0)")
@@ -623,7 +652,13 @@ FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores fo
           "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1])",
     "design_x1x2": "the rows of A are kron(x1, x2); x2^T F x1 = 0 gives kron(x2, x1) = "
                    "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]",
-    "column_order": "the null vector f was reshaped column by column (order='F'): F = f.reshape(3, 3)",
+    "column_order": guard(
+        "the null vector f was reshaped column by column (order='F'): F = f.reshape(3, 3)",
+        asks=reshapes(3, 3) & ~reshapes(3, 3, order="F") & ~expr("_.reshape(3, 3).T")
+        & ~expr("_.reshape((3, 3)).T") & ~expr("np.reshape(_, (3, 3)).T"),
+        instead="F comes out transposed, as if f were reshaped column by column; your code reshapes f row by "
+                "row, so look at the order of the columns of A (each row is [x2 x1, x2 y1, x2, y2 x1, y2 y1, "
+                "y2, x1, y1, 1])"),
     "design_columns": "two columns of A are exchanged (x2 y1 and y2 x1): each row is "
                       "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]",
     "no_rank2": "rank 2 was not enforced",
@@ -649,20 +684,30 @@ def fundamental_8point_mistakes(stored: dict) -> dict:
     return {name: np.stack(list(stored[key].values())) for key, name in FUNDAMENTAL_MISTAKES.items()}
 
 
+DIVIDED_BY_F22_HINT = Hint(
+    "it looks like F was divided by F[2, 2], which is 0 here. Any scale of F is accepted: leave it, "
+    "or divide by its norm.", asks=~divides_by("_[2, 2]", "_[-1, -1]"),
+    instead="the true F[2, 2] is 0 here, so nothing may be divided by it; any scale of F is "
+            "accepted.")
+FIXED_F22_HINT = Hint(
+    "It looks like F[2, 2] = 1 was fixed (8 unknowns), which cannot express this camera pair: solve "
+    "A f = 0 for all 9 entries by SVD.", asks=SOLVES_BY_SVD,
+    instead="Your code {found}: check that A has 9 columns (F[2, 2] is an unknown too) and that f is "
+            "the last row of Vt.")
+
+
 def judge_exact_fundamental(t: Trial, views, n, sideways=False):
     what = f"fundamental_8point(pts1, pts2) with N={n} exact correspondences" + \
         (" of a sideways motion (a rectified pair: the true F[2, 2] is 0)" if sideways else "")
     got = t.call("fundamental_8point", views.pts1[:n], views.pts2[:n])
     if sideways and isinstance(got, np.ndarray) and got.shape == (3, 3) and got.dtype.kind in "iuf":
         if not np.all(np.isfinite(got)):
-            t.fail(f"{what} returned NaN or infinite entries: it looks like F was divided by F[2, 2], "
-                   "which is 0 here. Any scale of F is accepted: leave it, or divide by its norm.",
+            t.fail(f"{what} returned NaN or infinite entries: " + DIVIDED_BY_F22_HINT.said(t),
                    mistake="F divided by F[2, 2], which is 0")
         size = np.linalg.norm(got)
         if projective_distance(got, views.F) > 1e-4 and abs(got[2, 2]) > 1e-3 * size:
-            t.fail(f"{what}: your F[2, 2] is {got[2, 2] / size:.3g} of |F|, the true one is 0. It looks "
-                   "like F[2, 2] = 1 was fixed (8 unknowns), which cannot express this camera pair: "
-                   "solve A f = 0 for all 9 entries by SVD.")
+            t.fail(f"{what}: your F[2, 2] is {got[2, 2] / size:.3g} of |F|, the true one is 0. "
+                   + FIXED_F22_HINT.said(t))
     stored = truth.figures()["fundamental_exact"]["sideways" if sideways else str(n)]
     mistakes = fundamental_8point_mistakes(stored)
     values = np.linalg.svd(views.F, compute_uv=False)
@@ -713,6 +758,12 @@ def fundamental_exact(t):
         raise Fail(failure.message, EIGHT_POINTS_HINT.said(t)) from None
 
 
+RANK2_HINT = Hint(
+    "Set the smallest singular value to 0 (F = U diag(s1, s2, 0) V^T).", asks=zeroes_an_entry(),
+    instead="Your code {found}: check that F is rebuilt from it, U diag(s1, s2, 0) V^T, and that this F "
+            "is the one returned.")
+
+
 @ex4.check("fundamental_8point returns a rank-2 matrix (noisy data)", points=2)
 def fundamental_rank2(t):
     views = truth.two_views(seed=11, n=30)
@@ -728,8 +779,8 @@ def fundamental_rank2(t):
     if s[2] / s[0] <= 1e-7:
         return passed(f"smallest singular value {s[2] / s[0]:.1e} of the largest")
     t.fail(f"fundamental_8point(noisy pts1, pts2) has rank 3 (singular values proportional to "
-           f"(1, {s[1] / s[0]:.3g}, {s[2] / s[0]:.3g})): rank 2 was not enforced. Set the smallest "
-           "singular value to 0 (F = U diag(s1, s2, 0) V^T).", mistake="rank 2 was not enforced")
+           f"(1, {s[1] / s[0]:.3g}, {s[2] / s[0]:.3g})): rank 2 was not enforced. " + RANK2_HINT.said(t),
+           mistake="rank 2 was not enforced")
 
 
 NOISY_SCENES = truth.FUNDAMENTAL_SCENES
@@ -815,6 +866,16 @@ def epipoles_probe(t: Trial) -> Probe:
                  distance=epipole_pair_distance, tolerance=1e-4)
 
 
+EPIPOLE_NOT_FINITE_HINT = Hint(
+    "so do not divide by w (w = 0); return the homogeneous vector", asks=~DIVIDES_BY_W,
+    instead="and an entry is divided by it somewhere; the homogeneous vector is expected")
+EPIPOLE_DIVIDED_HINT = Hint(
+    "it looks like it was divided by its last entry w, which is w = 0 (up to rounding) for an epipole "
+    "at infinity; return the homogeneous vector without dividing", asks=~DIVIDES_BY_W,
+    instead="its last entry is 1 where w = 0 (up to rounding) for an epipole at infinity: the "
+            "homogeneous vector is expected, at any scale")
+
+
 def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=None):
     """``F_given`` is the F passed to the student (default ``views.F``), for the mistakes' answers."""
     e1, e2 = truth.epipoles(views.cam1, views.cam2)
@@ -825,19 +886,18 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=N
     g2 = t.expect_array(got[1], f"{what}[1] (e2)", shape=None, kind="iuf")
     for g, name in ((g1, "e1"), (g2, "e2")):
         if g.shape == (2,):
-            t.fail(f"{what}: {name} has shape (2,); return homogeneous 3-vectors (x, y, w) "
-                   "(an epipole may be at infinity, w = 0)")
+            t.fail(f"{what}: {name} has shape (2,); " + measured(
+                "return homogeneous 3-vectors (x, y, w) (an epipole may be at infinity, w = 0)"))
         if g.shape != (3,):
             t.fail(f"{what}: {name} has shape {g.shape}; expected (3,)")
         if not np.all(np.isfinite(g)):
-            t.fail(f"{what}: {name} = {g} is not finite: an epipole at infinity has w = 0, so "
-                   "do not divide by w (w = 0); return the homogeneous vector")
+            t.fail(f"{what}: {name} = {g} is not finite: an epipole at infinity has w = 0, "
+                   + EPIPOLE_NOT_FINITE_HINT.said(t))
         if not np.any(g):
             t.fail(f"{what}: {name} is all zeros")
         if at_infinity and abs(g[2]) == 1 and np.abs(g[:2]).max() > 1e8:
-            t.fail(f"{what}: {name} = {g}: it looks like it was divided by its last entry w, "
-                   "which is w = 0 (up to rounding) for an epipole at infinity; return the "
-                   "homogeneous vector without dividing", mistake="the epipole was divided by w = 0")
+            t.fail(f"{what}: {name} = {g}: " + EPIPOLE_DIVIDED_HINT.said(t),
+                   mistake="the epipole was divided by w = 0")
     d1, d2 = projective_distance(g1, e1), projective_distance(g2, e2)
     tolerance = at_precision(EXACT)
     if d1 <= tolerance and d2 <= tolerance:
@@ -913,7 +973,7 @@ def call_reconstruction(t: Trial, pair):
     pts2 = t.expect_array(got[2], f"{what}: pts2", shape=(m, 2), kind="iuf", finite=True)
     points3d = t.expect_array(got[3], f"{what}: points3d", shape=(m, 3), kind="iuf")
     if m < 20:
-        t.fail(f"{what} returned only {m} matches; keep at least 20 (the photos share plenty of texture)")
+        t.fail(f"{what} returned only {m} matches; " + measured("keep at least 20 (the photos share plenty of texture)"))
     if not np.any(F):
         t.fail(f"{what}: F is all zeros")
     return F.astype(float), pts1.astype(float), pts2.astype(float), points3d.astype(float)
@@ -955,7 +1015,7 @@ def pipeline_shapes(t):
     _, pts1, _, points3d = call_reconstruction(t, pair)
     if not np.all(np.isfinite(points3d)):
         t.fail("two_view_reconstruction: points3d contains NaN or infinite values "
-               "(drop the points you cannot triangulate, together with their matches)")
+               + measured("(drop the points you cannot triangulate, together with their matches)"))
     return passed(f"{len(pts1)} matches")
 
 
@@ -969,8 +1029,8 @@ def pipeline_fundamental(t):
 
 RANSAC_ESTIMATOR = (calls("cv2.findFundamentalMat") | calls("cv2.findEssentialMat")).saying(
     "keeps the inliers of a RANSAC estimator")
-MATCHES_ELSEWHERE = ("your code already {found}: check that the points returned are those its mask keeps, "
-                     "in the order given (pts1 in image 1)")
+MATCHES_ELSEWHERE = from_code("your code already {found}: check that the points returned are those its mask "
+                              "keeps, in the order given (pts1 in image 1)")
 INLIERS_HINT = Hint("keep only the RANSAC inliers", asks=RANSAC_ESTIMATOR, instead=MATCHES_ELSEWHERE)
 
 
@@ -1062,6 +1122,13 @@ def name_pose_mistake(got, candidates: dict, truth_error: float):
     return None
 
 
+RECOVER_POSE_HINT = Hint(
+    "(cv2.recoverPose picks the pose with the points in front of both cameras; use its R and t as "
+    "they are).", asks=~calls("cv2.recoverPose"),
+    instead="(of the four poses an essential matrix gives, the right one puts the points in front "
+            "of both cameras).")
+
+
 def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
     X, true2, valid = truth.true_correspondences(pair, pts1)
     good = valid & (np.linalg.norm(pts2 - np.nan_to_num(true2), axis=1) <= 2.0)
@@ -1086,8 +1153,8 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
     s2 = np.median(np.linalg.norm(frame2, axis=1) / np.maximum(np.linalg.norm(got, axis=1), 1e-300))
     median2 = np.median(np.linalg.norm(s2 * got - frame2, axis=1) / np.linalg.norm(frame2, axis=1))
     if median2 < 0.5 * median:
-        t.fail("your 3D points are in camera 2's frame (they fit it better than camera 1's): return "
-               "them in camera 1's frame (P1 = K [I | 0], P2 = K [R | t])")
+        t.fail("your 3D points are in camera 2's frame (they fit it better than camera 1's): " + measured(
+            "return them in camera 1's frame (P1 = K [I | 0], P2 = K [R | t])"))
     if scale > 0 and median <= STRUCTURE_MEDIAN and p90 <= STRUCTURE_P90:
         return passed(summary)
     # With camera 1 right, every point lies on its true ray whatever else is wrong (even when
@@ -1108,8 +1175,7 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
         t.fail(f"your 3D points are wrong: it looks like {mistake}. ({summary})", mistake=mistake)
     if scale < 0 and median <= STRUCTURE_MEDIAN:
         t.fail(f"your 3D points are wrong: it looks like {MIRRORED}: every point is mirrored through "
-               "camera 1's centre, behind camera 1 (cv2.recoverPose picks the pose with the points in "
-               f"front of both cameras; use its R and t as they are). ({summary})", mistake=MIRRORED)
+               "camera 1's centre, behind camera 1 " + RECOVER_POSE_HINT.said(t) + f" ({summary})", mistake=MIRRORED)
     if scale < 0 or np.median(got[:, 2]) < 0:
         t.fail("your 3D points are behind camera 1 (negative Z, or mirrored through its centre): "
                + IN_FRONT_HINT.said(t))
