@@ -171,7 +171,8 @@ def test_a_report_figure_the_code_makes_matches_and_one_it_does_not_make_matches
     made, other = texture(7), texture(8)
     # In the PDF: the code's figure at half size, then another picture of the same shape.
     half = cv2.resize(made, (150, 100), interpolation=cv2.INTER_AREA)
-    data = pdf([["Exercise 1: Translation", "My result:"], ["Exercise 2", "Another picture:"]],
+    # (page 2's running header ends exercise 1's section there: too little of it for page 2's picture)
+    data = pdf([["Exercise 1: Translation", "My result:"], ["Lab 7 report", "Exercise 2", "Another picture:"]],
                {0: [half], 1: [cv2.resize(other, (150, 100), interpolation=cv2.INTER_AREA)]})
     report = read_report({"lab07_report.pdf": data}, NAMES, reader)
     assert [(f.exercise, f.source, f.number, f.width, f.height) for f in report.figures] == [

@@ -284,12 +284,9 @@ class _Reading:
             self.problem(f"{source}: the heading {unsure[0]!r} names an exercise by number but not its lab; "
                          "name the lab in the file's name (lab07_report.pdf) or a heading (Lab 7)")
         self.own_headings(text, source, lambda at: f"{source}, page {pdf.page_at(at)}", sections)
-        # A page's pictures belong to every exercise whose section runs over that page.
-        spans = [(s.exercise, pdf.page_at(s.start), pdf.page_at(max(s.start, text.find(s.body, s.start) + len(s.body) - 1)))
-                 for s in sections]
         for picture in pdf.pictures:
             page = int(picture.where.split()[-1])
-            self.figure([e for e, first, last in spans if first <= page <= last], f"{source}, {picture.where}", picture)
+            self.figure(_exercises_on_page(pdf, sections, page), f"{source}, {picture.where}", picture)
 
     def markdown_pictures(self, text: str, source: str, path: str, pictures: dict[str, bytes]) -> None:
         """The pictures the Markdown ``text`` (of the file at ``path``) links to among
@@ -509,6 +506,31 @@ class _Reading:
 
 
 # ------------------------------------------------------------------ helpers
+PAGE_TEXT_CHARS = 80     # a section's text on a page it does not start on, for its pictures to be its
+
+
+def _exercises_on_page(pdf, sections: list, page: int) -> list[str]:
+    """The exercises a picture on ``page`` of ``pdf`` belongs to: those whose section starts on
+    that page or holds at least :data:`PAGE_TEXT_CHARS` of its text (a section's tail over the
+    next page's running header is not enough); else every section over the page."""
+    text, starts, at = pdf.text, [], 0
+    for page_text in pdf.pages:
+        starts.append(at)
+        at += len(page_text) + 1
+    if not 1 <= page <= len(starts):
+        return []
+    first, last = starts[page - 1], starts[page] if page < len(starts) else len(text)
+    over, owning = [], []
+    for section in sections:
+        end = text.find(section.body, section.start) + len(section.body)
+        share = text[max(section.start, first):min(end, last)].strip()
+        if share:
+            over.append(section.exercise)
+            if first <= section.start < last or len(share) >= PAGE_TEXT_CHARS:
+                owning.append(section.exercise)
+    return owning or over
+
+
 def _decoded(data: bytes) -> str:
     return data.decode("utf-8", errors="replace").removeprefix("\ufeff")
 
