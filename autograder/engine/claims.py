@@ -137,11 +137,14 @@ THIRD_COORDINATE = divides_by("_[:, 2]", "_[2]", "_[..., 2]", "_[:, 2:]", "_[:, 
                               says="divides by a third coordinate")
 
 
-def _det_sign_test(node) -> bool:
-    """``np.linalg.det(M) < 0`` (or ``> 0``, ``0 > det``, a name holding the determinant)."""
+def _is_det(node) -> bool:
+    return isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "det"
+
+
+def _det_sign_test(node, held: set) -> bool:
+    """``np.linalg.det(M) < 0`` (or ``> 0``, ``0 > det``, a name ``held`` assigned a determinant)."""
     return isinstance(node, ast.Compare) and any(
-        isinstance(part, ast.Call) and _path(part.func).rsplit(".", 1)[-1] == "det"
-        or isinstance(part, ast.Name) and "det" in part.id.lower()
+        _is_det(part) or isinstance(part, ast.Name) and (part.id in held or "det" in part.id.lower())
         for part in [node.left, *node.comparators])
 
 
@@ -168,18 +171,19 @@ def negates_on_negative_det() -> Predicate:
     sign_of_det = _pattern("np.sign(np.linalg.det(_))")
 
     def test(function) -> bool:
+        held = _assigned_names(function, _is_det)
         for node in ast.walk(function):
-            if isinstance(node, ast.If) and _det_sign_test(node.test):
+            if isinstance(node, ast.If) and _det_sign_test(node.test, held):
                 if any(_negates(s) for branch in (node.body, node.orelse) for s in branch for s in ast.walk(s)):
                     return True
-            if isinstance(node, ast.IfExp) and _det_sign_test(node.test) and any(
+            if isinstance(node, ast.IfExp) and _det_sign_test(node.test, held) and any(
                     isinstance(b, ast.UnaryOp) and isinstance(b.op, ast.USub) for b in (node.body, node.orelse)):
                 return True
             if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and any(
                     _same(side, sign_of_det) for side in (node.left, node.right)):
                 return True
         return False
-    return Predicate("negates P when det(P[:, :3]) < 0", test)
+    return Predicate("negates a matrix when a determinant is negative", test)
 
 
 def reshapes(*shape: int, order: str = "C") -> Predicate:
@@ -197,7 +201,7 @@ def reshapes(*shape: int, order: str = "C") -> Predicate:
             if not (isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "reshape"):
                 continue
             method = isinstance(node.func, ast.Attribute) and _path(node.func.value) not in ("np", "numpy")
-            if dims(node.args if method else node.args[1:]) != shape:
+            if dims(node.args if method else node.args[1:2]) != shape:
                 continue
             given = next((k.value for k in node.keywords if k.arg == "order"), None)
             if not method and given is None and len(node.args) > 2:
