@@ -157,10 +157,12 @@ def test_the_class_overview_tells_each_students_extension_excused_work_and_days_
     from autograder.instructor.classreport.pages import records_from_grades
 
     config = course(extensions={"ann": {"days": 2}, "bo": {"excused": True}}, late_days={"tokens": 1})
-    grades, _ = grades_of([student("ann", TWO_DAYS_LATE), student("bo", TWO_DAYS_LATE), student("dee", TWO_DAYS_LATE),
+    grades, _ = grades_of([student("ann", TWO_DAYS_LATE) | {"late": True}, student("bo", TWO_DAYS_LATE),
+                           student("dee", TWO_DAYS_LATE),
                            student("cy", None) | {"late": True}, student("eve", None)], config)
     records = {r.student_id: r for r in records_from_grades(list(grades.values()), 10.0)}
-    # dee: two days late, one paid by a late day, one by the penalty; cy: Canvas's late flag (a day), a late day
+    # ann: late by the LMS's flag, within her extension; dee: two days late, one paid by a late day, one by
+    # the penalty; cy: Canvas's late flag (a day), a late day
     assert {s: r.rules for s, r in records.items()} == {
         "ann": ["extension +2 days"], "bo": ["excused"], "dee": ["late days: 1 used", "late 2 days, -1"],
         "cy": ["late days: 1 used", "late 1 day"], "eve": []}

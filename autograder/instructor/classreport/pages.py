@@ -65,7 +65,7 @@ def rules_applied(grade) -> list[str]:
     if grade.late_days:
         told.append(f"late {grade.late_days} day{'s' if grade.late_days != 1 else ''}"
                     + (f", -{grade.late_penalty:g}" if grade.late_penalty else ""))
-    elif grade.student.get("late") and not grade.excused:
+    elif grade.student.get("late") and not told:   # the LMS's flag, no rule counting days (nor an extension)
         told.append("late")
     return told
 
