@@ -331,3 +331,13 @@ def test_a_markdown_reports_linked_pictures_are_figures_of_the_section_linking_t
     paths = code_figure_folder(tmp_path, {"lab07.ex1": made})
     assert provenance.for_exercise(stored, paths, "lab07.ex1")[0].matched == "lab07.ex1"
     assert provenance.for_exercise(stored, paths, "lab07.ex2")[0].unmatched
+
+
+def test_broken_pictures_leave_the_text_read_and_are_one_sentence(reader):
+    picture = texture(31, (100, 100))
+    packed = zlib.compress(picture.tobytes())
+    data = pdf([["Exercise 1", "Text one."], ["Exercise 2", "Text two."]], {0: [picture, picture], 1: [picture]})
+    data = data.replace(packed, b"x" * len(packed))   # every picture's stream is no zlib stream
+    report = read_report({"lab07_report.pdf": data}, NAMES, reader)
+    assert report.explanations["lab07.ex2"].text == "Text two." and report.figures == ()
+    assert report.problems == ("lab07_report.pdf: a picture on pages 1, 2 could not be read; it was not compared",)

@@ -95,7 +95,7 @@ def read_pdf(data: np.ndarray) -> dict:
         return out
     if count > MAX_PAGES:
         out["notes"].append(f"it has {count} pages; the first {MAX_PAGES} were read")
-    total, failed, why = 0, [], ""
+    total, failed, why, unread = 0, [], "", []   # unread: pages with a picture that could not be read
     for number in range(min(count, MAX_PAGES)):
         text = ""
         try:
@@ -111,10 +111,11 @@ def read_pdf(data: np.ndarray) -> dict:
         total += len(text)
         out["pages"].append(text)
         if page is not None and len(out["images"]) < MAX_IMAGES:
-            _page_images(page, number + 1, out)
+            _page_images(page, number + 1, out, unread)
     if failed:
-        shown = ", ".join(map(str, failed[:5])) + (" ..." if len(failed) > 5 else "")
-        out["notes"].append(f"the text of page{'s' if len(failed) > 1 else ''} {shown} could not be read")
+        out["notes"].append(f"the text of {_pages(failed)} could not be read")
+    if unread:
+        out["notes"].append(f"a picture on {_pages(unread)} could not be read; it was not compared")
     if total >= MAX_TEXT_CHARS:
         out["notes"].append(f"its text is longer than {MAX_TEXT_CHARS:,} characters; the rest was not read")
     if not count:
@@ -162,13 +163,20 @@ def _open(raw: bytes):
     return reader
 
 
-def _page_images(page, page_number: int, out: dict) -> None:
-    """Thumbnails of the pictures on ``page``, appended to ``out["images"]`` (bounded)."""
+def _pages(numbers: list[int]) -> str:
+    """``[3]`` -> "page 3", ``[1, 2, ...]`` -> "pages 1, 2, 3, 4, 5 ..." (five at most)."""
+    shown = ", ".join(map(str, numbers[:5])) + (" ..." if len(numbers) > 5 else "")
+    return f"page{'s' if len(numbers) > 1 else ''} {shown}"
+
+
+def _page_images(page, page_number: int, out: dict, unread: list) -> None:
+    """Thumbnails of the pictures on ``page``, appended to ``out["images"]`` (bounded); the
+    page's number is appended to ``unread`` once if a picture of it could not be read."""
     try:
         images = page.images
         keys = list(images.keys()) if hasattr(images, "keys") else list(range(len(images)))
     except Exception:  # noqa: BLE001
-        out["notes"].append(f"the pictures of page {page_number} could not be read")
+        unread.append(page_number)
         return
     for key in keys:
         if len(out["images"]) >= MAX_IMAGES:
@@ -184,7 +192,8 @@ def _page_images(page, page_number: int, out: dict) -> None:
                 _check_size(*image.size)
                 found = _from_pil(image)
         except Exception:  # noqa: BLE001 - one picture's fault leaves the others
-            out["notes"].append(f"a picture on page {page_number} could not be read")
+            if unread[-1:] != [page_number]:
+                unread.append(page_number)
             continue
         if found is not None:
             out["images"].append({"page": page_number, "number": number, **found})
