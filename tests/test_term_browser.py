@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import base64
 import json
+import re
 import os
 import tempfile
 import time
@@ -35,7 +36,7 @@ import pytest
 from browser import _DevTools, find_chromium
 
 pytest.importorskip("flask")
-pytestmark = [pytest.mark.browser, pytest.mark.slow,
+pytestmark = [pytest.mark.browser,
               pytest.mark.skipif(find_chromium() is None,
                                  reason="Chromium is not installed (apt-get install chromium, or set CHROMIUM)")]
 
@@ -321,6 +322,7 @@ def saved(tab: Keyboard):
     tab.wait("document.getElementById('status').textContent === 'saved'")
 
 
+@pytest.mark.slow
 def test_a_term_by_keyboard_review_regrade_and_extensions(term, browser):
     from autograder.instructor.batch import run
     from autograder.instructor.batch.gradebook import Gradebook
@@ -466,3 +468,32 @@ def test_a_term_by_keyboard_review_regrade_and_extensions(term, browser):
     tab.screenshot("5-student")
     print(f"batch {term.seconds:.1f} s, browser journey {time.monotonic() - started:.1f} s "
           f"(of which the regrade {regraded:.1f} s), {len(stops)} stops on the overview")
+
+
+# ------------------------------------------------------------------ the walk can fail
+KEYBOARD_FAULTS = {
+    "no focus style": ("<button>ok</button><style>button:focus-visible { outline: none }</style>", "focus not shown"),
+    "out of the Tab order": ('<button>ok</button><button tabindex="-1">save</button>', "not reachable by Tab: ['button save']"),
+    "a trap": ('<input id="a" aria-label="a"><input id="b" aria-label="b"><button>after</button><script>'
+               "b.addEventListener('keydown', e => { if (e.key === 'Tab') { e.preventDefault(); a.focus(); } })"
+               "</script>", "not reachable by Tab: ['button after']"),
+    "a region no key scrolls": ('<div id="long" tabindex="-1" style="height: 100px; overflow: auto">'
+                                '<p style="height: 900px">text</p></div><button>ok</button>',
+                                "scrolls, but not by keyboard (nothing in it takes the focus): ['div#long"),
+}
+
+
+@pytest.mark.parametrize("fault", KEYBOARD_FAULTS)
+def test_the_keyboard_walk_catches_what_it_should(browser, tmp_path, fault):
+    page, told = KEYBOARD_FAULTS[fault]
+    tab = Keyboard(browser)
+    (tmp_path / "page.html").write_text(f"<!doctype html><html><body>{page}</body></html>")
+    tab.open((tmp_path / "page.html").as_uri())
+    with pytest.raises(AssertionError, match=re.escape(told)):
+        assert_keyboard_reaches_everything(tab, fault)
+    # and a page without the fault passes: a shadow is a focus style too
+    (tmp_path / "good.html").write_text('<!doctype html><html><body><a href="#x">x</a><input aria-label="i">'
+                                        "<button>ok</button><style>button:focus-visible { outline: none; "
+                                        "box-shadow: 0 0 0 3px #0969da }</style></body></html>")
+    tab.open((tmp_path / "good.html").as_uri())
+    assert [s["what"] for s in assert_keyboard_reaches_everything(tab, "good")] == ["a x", "input i", "button ok"]
