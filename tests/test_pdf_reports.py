@@ -341,3 +341,17 @@ def test_broken_pictures_leave_the_text_read_and_are_one_sentence(reader):
     report = read_report({"lab07_report.pdf": data}, NAMES, reader)
     assert report.explanations["lab07.ex2"].text == "Text two." and report.figures == ()
     assert report.problems == ("lab07_report.pdf: a picture on pages 1, 2 could not be read; it was not compared",)
+
+
+def test_a_classs_pdfs_are_read_side_by_side_with_the_same_answers(monkeypatch):
+    monkeypatch.setenv("AUTOGRADER_CACHE_DIR", "off")   # every file read by a worker, none from the store
+    files = [pdf([[f"Exercise {n % 6 + 1}", f"Student {n} writes."]]) for n in range(4)]
+    files += [b"%PDF-1.4 cut", files[0]]                  # a broken one, and one handed in twice
+    with ReportReader() as alone:
+        one_by_one = [alone.pdf(data) for data in files]
+    assert one_by_one[0].pages == ("Exercise 1\nStudent 0 writes.\n",) and one_by_one[4].error
+    with ReportReader() as reader:
+        reader.prefetch(files, 2)
+        assert reader.files_read == 5 and reader._box is None   # read by two readers of its own
+        assert [reader.pdf(data) for data in files] == one_by_one
+        assert reader.files_read == 5 and reader._box is None   # nothing read again

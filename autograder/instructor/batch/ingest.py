@@ -68,6 +68,7 @@ from pathlib import Path, PurePosixPath
 
 from ...loading.headings import ExerciseNames
 from ...loading.pdf_report import ReportReader
+from ...sandbox.supervisor import usable_cores
 from ...loading.report import Report, read_report
 from ...loading.text import one_line, shown
 from ...sandbox.files import CAPS, SOURCE_SUFFIXES, limit_for
@@ -79,6 +80,7 @@ MAX_CLASS_SOURCE_BYTES = 2 * 2**30   # every student's sources together, held in
 MAX_TOP_ITEMS = 20_000               # items looked at at the top of an upload
 MAX_METADATA_BYTES = 32 * 2**20      # submission_metadata.yml
 NAME_LENGTH = 100                    # characters of a display name
+PDF_READERS = 4                      # workers reading a class's PDFs side by side, at most (and the cores)
 
 CANVAS_NAME = re.compile(r"^(?P<name>.+?)(?P<late>_LATE)?_(?P<user>\d+)_(?P<submission>\d+)_(?P<file>.+)$")
 CANVAS_RENAMED = re.compile(r"^(?P<stem>.+)-(?P<n>\d+)(?P<suffix>\.[^.]+)$")
@@ -195,6 +197,9 @@ def read_upload(path, modules: list[str], every_module: list[str] = (),
             upload.ignore(name, "its name points outside the archive; not read")
         _Reader(tree, _unwrap(tree, (), every), upload).read()
     with ReportReader() as reader:   # PDFs and report pictures: parsed in sandbox workers only
+        if names is not None:   # a class's PDFs read side by side first (read_report then finds them read)
+            reader.prefetch([data for entry in upload.entries for path, data in entry.reports_found.files.items()
+                             if path.lower().endswith(".pdf")], min(usable_cores(), PDF_READERS))
         for entry in upload.entries:
             if not entry.error:
                 _name_lone_file(entry, modules, every)
