@@ -27,8 +27,8 @@ from fixtures.images import coverage, photo, warp
 from ..engine import strategies as st
 from ..engine.checks import StudentFailure, Trial, partial, passed
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
-from ..engine.hints import (RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, calls, expr, keyword, matmul_of, mentions,
-                             passes_product)
+from ..engine.hints import (RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, calls, code_of, expr, keyword, matmul_of,
+                             mentions, passes_product)
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
@@ -674,6 +674,10 @@ def name_ransac_h(t: Trial, what, H, src, dst, H_true, seed=0, threshold=3.0):
     probe_ransac_threshold(t, src, dst, seed)
 
 
+# Code whose RANSAC loop is OpenCV's: the loop's own mistakes (too few samples, the last model
+# kept, no perspective division) are not its, and advice about them is not said.
+OPENCV_RANSAC = Hint("", asks=calls("cv2.findHomography").saying("calls cv2.findHomography"), instead="")
+
 NOT_THE_BEST = ("RANSAC does not keep the model with the most inliers: it returns the last model "
                 "drawn rather than the best one, or draws too few samples")
 NO_DIVISION = ("the transfer errors are computed without the perspective division: |H src - dst| "
@@ -689,6 +693,8 @@ def poor_consensus_cause(t: Trial) -> str | None:
     at least half of them (a RANSAC keeping the best of enough samples fails on none). Anything
     in between names nothing.
     """
+    if OPENCV_RANSAC.contradicts(code_of(t), ["homography_ransac"]):
+        return None   # OpenCV's loop keeps the best of enough samples and divides by w: neither cause holds
     wins = 0
     for seed in range(4):
         answer, (src, dst, H_true, _) = ransac_answer(t, affine=True, seed=seed)
@@ -760,10 +766,14 @@ def ransac_mask(t):
         return passed(f"{recall:.0%} of the true inliers found, {precision:.0%} of the marked "
                       "ones are true inliers")
     diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
+    # the mask's recipe only when the mask is not the returned H's inliers; when it is, H is what is off
+    own = np.bitwise_or(*mask_disagreement(H, inliers, src, dst, 3.0)).mean() <= MASK_DISAGREEMENT
     t.fail(f"{what}: the mask finds {format_apart(recall, 0.93, 2, percent=True)} of the true inliers "
            f"(at least 93% expected) and {format_apart(precision, 0.95, 2, percent=True)} of what it "
-           "marks are true inliers (at least 95% expected).",
-           hint="inliers = |H src - dst| < threshold, with the final H")
+           "marks are true inliers (at least 95% expected)."
+           + (" The mask is the pairs your H sends within the threshold: it is H that is off (see the check of H)."
+              if own else ""),
+           hint="" if own else "inliers = |H src - dst| < threshold, with the final H")
 
 
 # The mask and H of one call must agree: the mask marks the pairs H sends within the threshold.
@@ -787,6 +797,18 @@ def mask_disagreement(H, inliers, src, dst, threshold: float) -> tuple[np.ndarra
     with np.errstate(all="ignore"):
         errors = np.linalg.norm(truth.apply_h(np.asarray(H, np.float64), src) - dst, axis=1)
     return inliers & ~(errors <= MASK_BAND * threshold), ~inliers & (errors < threshold / MASK_BAND)
+
+
+def another_hypothesis(inliers, src, dst) -> bool:
+    """Whether the mask is the inliers of some homography: the DLT fit to the pairs it marks
+    (at least 4) agrees with it as a returned H would (:func:`mask_disagreement`)."""
+    if inliers.sum() < 4:
+        return False
+    try:
+        fitted = truth.dlt(src[inliers], dst[inliers])
+    except (np.linalg.LinAlgError, ValueError):
+        return False
+    return bool(np.bitwise_or(*mask_disagreement(fitted, inliers, src, dst, 3.0)).mean() <= MASK_DISAGREEMENT)
 
 
 @ex4.check("homography_ransac: the inlier mask it returns is the inliers of the H it returns", points=1)
@@ -819,11 +841,18 @@ def ransac_mask_of_h(t):
                    f"to dst and compared with src (|H dst - src| < 3 px): H and the mask agree with each other, "
                    f"but H maps dst onto src: it looks like {SWAPPED_ENDS}; H must map src onto dst.",
                    mistake=SWAPPED_ENDS)
-        t.fail(f"{what}: the mask and H returned do not agree: {int(far.sum())} of the {int(inliers.sum())} pairs "
-               f"marked as inliers are more than {MASK_BAND:g} x threshold (3 px) from where your H sends them, "
-               f"and {int(near.sum())} pairs within {3.0 / MASK_BAND:g} px are not marked. The mask must be the "
-               "pairs the returned H sends within the threshold (|H src - dst| < threshold): it looks like "
-               "they come from different hypotheses (e.g. the mask of another sample than the H returned).",
+        measured = (f"{what}: the mask and H returned do not agree: {int(far.sum())} of the {int(inliers.sum())} "
+                    f"pairs marked as inliers are more than {MASK_BAND:g} x threshold (3 px) from where your H sends "
+                    f"them, and {int(near.sum())} pairs within {3.0 / MASK_BAND:g} px are not marked. The mask must be "
+                    "the pairs the returned H sends within the threshold (|H src - dst| < threshold)")
+        # Not H's inliers at any threshold, in either direction, nor inverted: measured, the mask is
+        # no function of the distances to H, so the two do not come from one model.
+        closer = int((~inliers & (errors < errors[inliers].max())).sum()) if inliers.any() else 0
+        other = (" (the mask is the inliers of another homography: the fit to the pairs it marks sends them "
+                 "within the threshold and no others)" if another_hypothesis(inliers, src, dst) else "")
+        t.fail(f"{measured}: the mask is not the pairs within any one distance of where your H sends them "
+               f"({closer} unmarked pairs are closer than the farthest marked one){other}, so the two do not come "
+               "from one model (e.g. the mask of another sample than the H returned).",
                mistake="the inlier mask is not the inliers of the returned H")
     return passed("; ".join(notes))
 
@@ -895,6 +924,13 @@ def ransac_refit(t):
            hint=REFIT_HINT.said(t))
 
 
+SAMPLES_HINT = Hint("With half the pairs wrong, a random 4-point sample is all inliers only 1 time in 16: "
+                   "draw enough samples (log(1 - 0.99) / log(1 - 0.5**4) is about 72, more is safer), "
+                   "keep the H with the most inliers, then refit on them.", asks=OPENCV_RANSAC.asks,
+                   instead="your code {found}, whose loop draws enough samples and keeps the best model: compare "
+                           "what it is given (src, dst, the method cv2.RANSAC, the threshold) with what it returns")
+
+
 @ex4.check("homography_ransac with 50% outliers, judged over 5 seeds", points=3)
 def ransac_seeds(t):
     wins, notes = 0, []
@@ -913,9 +949,7 @@ def ransac_seeds(t):
     name_ransac_h(t, what, H, src, dst, H_true, seed=4)
     message = (f"homography_ransac found the right homography and inliers with only {wins} of 5 "
                f"seeds ({summary}).")
-    hint = ("With half the pairs wrong, a random 4-point sample is all inliers only 1 time in 16: "
-            "draw enough samples (log(1 - 0.99) / log(1 - 0.5**4) is about 72, more is safer), "
-            "keep the H with the most inliers, then refit on them.")
+    hint = SAMPLES_HINT.said(t)
     if wins == 0:
         t.fail(message, hint)
     return partial(wins / 5 * 0.5, message, hint)
@@ -1506,6 +1540,31 @@ def inverse_on_probe(t: Trial) -> bool:
                                      if k != judge.reference)
 
 
+REVERSED_CHAIN = "the pairwise homographies are chained in the reverse order"
+MANY_WARP_HINT = Hint("warp each image k with T @ H_k->reference",
+                      asks=(matmul_of(None, None) | passes_product("cv2.warpPerspective", 1)).saying(
+                          "warps with products of homographies"), instead="")
+
+
+def warped_with_reversed_chain(judge: PanoramaJudge, k: int) -> bool:
+    """Whether image k (two or more steps from the reference) sits where the product of the
+    pairwise homographies between it and the reference, taken in the reverse order, puts it."""
+    G, r = judge.scene.G, judge.reference
+    step = 1 if k > r else -1
+    pairs = [G[j - step] @ np.linalg.inv(G[j]) for j in range(k, r, -step)]   # H_{j -> j -/+ 1}, from k on
+    if len(pairs) < 2:
+        return False
+    wrong = np.eye(3)
+    for H in pairs:   # the right chain is pairs[-1] @ ... @ pairs[0]; this is pairs[0] @ ... @ pairs[-1]
+        wrong = wrong @ H
+    M = judge.M @ np.linalg.inv(G[r]) @ wrong
+    size = (judge.panorama.shape[1], judge.panorama.shape[0])
+    inside, _ = coverage(M, judge.scene.views[k].shape, size, 3.0)
+    region = inside & np.all([judge.outside[j] for j in range(len(G)) if j != k], axis=0)
+    return region.sum() >= 200 and blurred_difference(
+        judge.panorama, warp(judge.scene.views[k], M, size), region) <= PANORAMA_TOLERANCE
+
+
 def name_inverse_warp(t: Trial, judge: PanoramaJudge, what: str, images=None):
     """Fail naming an image (of ``images``, by default every one but the reference) that sits where
     the inverse of its homography to the reference puts it, here and on the probe scene."""
@@ -1540,13 +1599,16 @@ def judge_many_content(t: Trial, judge: PanoramaJudge, what: str):
     name_inverse_warp(t, judge, what, [k for k, _ in wrong])
     if wrong:
         names = ", ".join(f"image {k + 1} ({e:.0f} grey levels off)" for k, e in wrong)
-        # The order of a chain matters only from two steps away: advice only when the images
-        # next to the reference are in place and only farther ones are not.
-        far_only = all(abs(k - judge.reference) >= 2 for k, _ in wrong)
-        advice = (" Chain the pairwise homographies in the right order: H_3->1 = H_2->1 @ H_3->2 "
-                  "(first 3 -> 2, then 2 -> 1)." if far_only else "")
-        t.fail(f"{what} (reference frame: image {judge.reference + 1}): {names} "
-               f"not where it belongs.{advice}", hint="warp each image k with T @ H_k->reference")
+        # The order of a chain matters only from two steps away: named when the images next to
+        # the reference are in place and a farther one sits where the reversed chain puts it.
+        reversed_chain = [k for k, _ in wrong if abs(k - judge.reference) >= 2 and warped_with_reversed_chain(judge, k)]
+        if reversed_chain and all(abs(k - judge.reference) >= 2 for k, _ in wrong):
+            t.fail(f"{what} (reference frame: image {judge.reference + 1}): {names} not where it belongs; image "
+                   f"{reversed_chain[0] + 1} sits where the pairwise homographies multiplied in the reverse order put "
+                   f"it: it looks like {REVERSED_CHAIN}: H_3->1 = H_2->1 @ H_3->2 (first 3 -> 2, then 2 -> 1).",
+                   mistake=REVERSED_CHAIN)
+        t.fail(f"{what} (reference frame: image {judge.reference + 1}): {names} not where it belongs.",
+               hint=MANY_WARP_HINT.said(t))
     t.fail(f"{what}: the panorama differs from the truth by {everything:.0f} grey levels on average.")
 
 
@@ -1826,11 +1888,11 @@ def blend_sharp(t):
                f"selects by {ghosting:.0%} of its strength (ghosting): {NO_LAPLACIAN}. In multi-band "
                "blending the finest level uses the sharp mask; only coarse levels blend over a "
                "wide band.", mistake=NO_LAPLACIAN)
-    damaged = damaged_pyramid(t)
+    # no feather (one weight per pixel) is seen: the measurement alone, and what blending an image
+    # with itself shows
     t.fail(f"{what}: 3 to 10 px from the seam the fine detail differs from the image the mask "
            f"selects by {format_apart(ghosting, GHOSTING, 2, percent=True)} of its strength (at most "
-           f"{GHOSTING:.0%} accepted)." + (damaged or " In multi-band blending the finest level uses the sharp "
-                                           "mask; only coarse levels blend over a wide band."))
+           f"{GHOSTING:.0%} accepted).{damaged_pyramid(t)}")
 
 
 PYRUP_DSTSIZE = Hint("pass dstsize=(width, height) of the finer level to cv2.pyrUp",

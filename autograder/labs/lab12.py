@@ -25,7 +25,7 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
-from ..engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, Hint, calls, expr, keyword
+from ..engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, Hint, calls, code_of, expr, keyword
 from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
@@ -518,6 +518,8 @@ POSE_FIXES = {   # a mistake inside rectify -> the arguments that undo it (R, T 
     "centre is -R^T T": lambda K1, K2, R, T: (K1, K2, R.T, -R.T @ T),
     "K1 and K2 are swapped inside your function (K1 belongs to the left image)":
         lambda K1, K2, R, T: (K2, K1, R, T),
+    "T itself is taken as camera 2's centre: X2 = R X1 + T takes camera-1 coordinates to camera 2's, so "
+    "camera 2's centre is -R^T T": lambda K1, K2, R, T: (K1, K2, R, -R.T @ T),
 }
 
 
@@ -605,18 +607,24 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                mistake="H1 and H2 are swapped")
     t.fail(f"{what}: true correspondences end up {np.nanmedian(dy):.3g} px apart vertically "
            f"(up to {worst:.3g} px); after rectification they must share a row.",
-           hint=RECTIFY_HINT.said(t))
+           hint=RECTIFY_HINT.said(t) if RECTIFY_HINT.contradicts(code_of(t), ["rectify"]) else CENTRE_HINT.said(t))
 
 
 # Code that already gives both cameras one new rotation and one K is told the other half of the
 # recipe: the baseline's direction comes from the camera centres (C2 = -R^T T), not T itself.
 RECTIFY_HINT = Hint(
-    "the recipe, step by step: X2 = R X1 + T takes camera-1 coordinates to camera 2's, so camera 2's "
+    "compare your steps with the recipe: X2 = R X1 + T takes camera-1 coordinates to camera 2's, so camera 2's "
     "centre is -R^T T (not T); the new x axis follows the baseline between the two centres; both cameras "
     "get that one new rotation and one new K",
     asks=calls("cv2.stereoRectify"),
     instead="your code {found}; then check what it is given: R and T take camera-1 coordinates to camera "
             "2's (X2 = R X1 + T), so the second camera's centre is -R^T T, not T")
+# Code that computes the centre -R^T T is not told it (the rest of the recipe is a checklist).
+CENTRE = (expr("-R.T @ T") | expr("-_.T @ _") | expr("-(_.T @ _)") | expr("-np.dot(_.T, _)")
+          | expr("-_.T.dot(_)") | expr("_.T @ -_")).saying("computes camera 2's centre -R^T T")
+CENTRE_HINT = Hint(RECTIFY_HINT.text, asks=CENTRE,
+                   instead="your code {found}; compare the rest with the recipe: the new x axis follows the "
+                           "baseline between the two centres, and both cameras get one new rotation and one new K")
 
 
 @ex3.check("rectify: true correspondences end up on the same row", points=4)

@@ -1,0 +1,256 @@
+"""No message names a cause the student's code or outputs contradict (issue 35), labs 8 and 12.
+
+Each fixed message is tested twice: a variant whose code already does what the old words told
+it to do is not told so (its outputs, or its code read with ``ast``, say otherwise), and the
+realistic mistake behind it gets the right name. The predicates of the code are tested on source
+alone; the diagnoses by grading mutants of the reference (the reference and the sensible
+alternatives pass: tests/test_lab08.py, tests/test_lab12.py).
+"""
+
+import textwrap
+
+import numpy as np
+import pytest
+
+from autograder.engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, read_code
+from autograder.engine.runner import grade
+from autograder.labs import lab08, lab12
+from conftest import check_results, mutant
+from fixtures import lab08 as truth08
+
+
+def found(predicate, source: str, function: str) -> str:
+    return predicate.found(read_code(textwrap.dedent(source)).reachable([function]))
+
+
+# ------------------------------------------------------------------ what the code keeps
+NCC_HELPER = """
+    def _ssd(left, right, d):
+        return (left - np.roll(right, d, axis=1)) ** 2
+    def _ncc_costs(left, right, n):
+        costs = np.full((n, 4, 4), np.inf)
+        for d in range(n):
+            ncc = _correlate(left, np.roll(right, -d, axis=1))
+            costs[d] = {negate}ncc
+        return costs
+    def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+        volume = (_ssd if cost == "ssd" else _ncc_costs)(left, right, max_disparity + 1)
+        return np.{pick}(volume, axis=0)
+    """
+
+
+@pytest.mark.parametrize("negate, pick, highest", [
+    ("-", "argmin", True),     # a cost -NCC stored by a helper, its argmin (the blind set's NCC)
+    ("1 - ", "argmin", True),  # 1 - NCC
+    ("", "argmax", True),
+    ("", "argmin", False),     # the lowest NCC: the hint to keep the highest is what it needs
+    ("-", "argmax", False),
+])
+def test_the_highest_score_is_seen_through_a_negation_in_a_helper(negate, pick, highest):
+    """A negated shift (``np.roll(right, -d)``) in the same code is no negated score."""
+    source = NCC_HELPER.format(negate=negate, pick=pick)
+    assert bool(found(KEEPS_HIGHEST, source, "block_matching")) == highest
+
+
+@pytest.mark.parametrize("source, highest", [
+    ("def f(scores):\n    return np.argsort(scores, axis=0)[-1]\n", True),
+    ("def f(scores):\n    return max(range(len(scores)), key=lambda d: scores[d])\n", True),
+    ("def f(l, r):\n    best = -2\n    for d in range(9):\n        score = ncc(l, r, d)\n"
+     "        if score > best:\n            best, keep = score, d\n    return keep\n", True),
+    ("def f(scores):\n    s = -scores\n    return np.argmin(-s, axis=0)\n", False),   # negated twice
+    ("def f(scores):\n    return np.argsort(scores, axis=0)[0]\n", False),
+])
+def test_other_ways_of_keeping_the_highest_score(source, highest):
+    assert bool(found(KEEPS_HIGHEST, source, "f")) == highest
+
+
+def test_the_lowest_cost_is_seen_through_a_negation_too():
+    assert found(KEEPS_LOWEST, "def f(cost):\n    return np.argmax(-cost, axis=0)\n", "f")
+    assert found(KEEPS_LOWEST, "def f(cost):\n    return cost.argmin(axis=0)\n", "f")
+    assert not found(KEEPS_LOWEST, "def f(cost):\n    return np.argmax(cost, axis=0)\n", "f")
+
+
+@pytest.mark.parametrize("source, computes", [
+    ("def rectify(a, b, K1, K2, R, T):\n    C2 = -R.T @ T\n    return C2\n", True),
+    ("def rectify(a, b, K1, K2, R, T):\n    c = -np.dot(R.T, T)\n    return c\n", True),
+    ("def rectify(a, b, K1, K2, R, T):\n    C2 = T\n    return C2\n", False),
+])
+def test_the_rectification_hint_reads_the_centre_from_the_code(source, computes):
+    assert bool(found(lab12.CENTRE, source, "rectify")) == computes
+
+
+# ------------------------------------------------------------------ what the outputs show
+def test_an_image_only_shifted_and_partly_drawn_over_is_told_apart_from_a_warped_one():
+    rng = np.random.default_rng(3)
+    image = rng.integers(0, 256, (120, 160, 3)).astype(np.uint8)
+    image = np.ascontiguousarray(np.repeat(np.repeat(image[::4, ::4], 4, 0), 4, 1))   # blocks, not noise
+    panorama = np.zeros((160, 240, 3), np.uint8)
+    panorama[20:140, 30:190] = image
+    panorama[20:140, 30:100] = rng.integers(30, 256, (120, 70, 3))                       # something drawn over
+    covered, said = lab08.placed_as_is(panorama, image, (30, 20), "img1")
+    assert covered and "in place, only shifted, over" in said and "drawn over" in said
+    warped = cv2_warp(image, truth08.corner_homography(np.random.default_rng(1), (160, 120), 0.08))
+    panorama[20:140, 30:190] = warped
+    covered, said = lab08.placed_as_is(panorama, image, (30, 20), "img1")
+    assert not covered and said.startswith("only")
+
+
+def cv2_warp(image, H):
+    import cv2
+
+    return cv2.warpPerspective(image, H, (image.shape[1], image.shape[0]))
+
+
+def test_a_mask_of_another_hypothesis_is_told_apart_from_a_mask_of_none():
+    src, dst, H, true_inliers = truth08.ransac_problem(10, 100, 0.3, 1.0)
+    assert lab08.another_hypothesis(true_inliers, src, dst)
+    sample = np.zeros(len(src), bool)
+    sample[np.flatnonzero(~true_inliers)[:4]] = True      # four outliers: the inliers of their own H
+    assert lab08.another_hypothesis(sample, src, dst)
+    scattered = np.random.default_rng(0).random(len(src)) < 0.5
+    assert not lab08.another_hypothesis(scattered, src, dst)
+
+
+# ------------------------------------------------------------------ graded: lab 8
+def failing(result, exercise: str):
+    return [c for c in check_results(result, exercise) if not c.passed]
+
+
+def test_ransac_with_src_and_dst_swapped_in_opencv_is_named_not_told_it_does_not_refit(tmp_path):
+    """H and mask from one cv2.findHomography(dst, src): they agree, read dst -> src."""
+    source = """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H, mask = cv2.findHomography(np.float64(dst), np.float64(src), cv2.RANSAC, threshold)
+            return H, mask.ravel().astype(bool)
+        """
+    result = grade(mutant(tmp_path, "lab08_homographies", source), ["lab08.ex4"], pictures="none")
+    failed = {c.name: c for c in failing(result, "lab08.ex4")}
+    for name in ("homography_ransac: the inlier mask it returns is the inliers of the H it returns",
+                 "homography_ransac refits H on all its inliers"):
+        assert failed[name].mistake == lab08.SWAPPED_ENDS, failed[name].message
+        assert "H maps dst onto src" in failed[name].message or "mapping dst onto src" in failed[name].message
+    text = " ".join(c.message + " " + c.hint for c in failed.values())
+    assert "not the fit to its own inliers" not in text and "different hypotheses" not in text
+    assert "refit H on all the inliers" not in text and "draw enough samples" not in text
+
+
+def test_ransac_through_opencv_the_right_way_round_passes_the_consistency_checks(tmp_path):
+    source = """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H, mask = cv2.findHomography(np.float64(src), np.float64(dst), cv2.RANSAC, threshold)
+            return H, mask.ravel().astype(bool)
+        """
+    result = grade(mutant(tmp_path, "lab08_homographies", source), ["lab08.ex4"], pictures="none")
+    assert not failing(result, "lab08.ex4"), [c.message for c in failing(result, "lab08.ex4")]
+
+
+def test_a_panorama_warped_the_wrong_way_is_named_and_not_told_to_copy_img1(tmp_path):
+    """img2 warped with the H of img1 -> img2 (img1 itself only shifted): the second warp is
+    named wherever img1's part is drawn over, and img1 is never told to be copied unchanged."""
+    source = """
+        def stitch(img1, img2):
+            return _compose([img1, img2], [np.eye(3), _pairwise_homography(img1, img2)])
+        """
+    result = grade(mutant(tmp_path, "lab08_homographies", source), ["lab08.ex5"], pictures="none")
+    failed = failing(result, "lab08.ex5")
+    assert failed
+    for check in failed:
+        assert "copy img1 unchanged" not in check.message and "must only be shifted" not in check.message
+    named = [c for c in failed if c.mistake == "img2 was warped with the inverse homography"]
+    assert any(c.name == "stitch: img1 appears unwarped, only shifted" for c in named), \
+        [(c.name, c.message) for c in failed]
+
+
+UINT8_PYRAMIDS = """
+    def blend_multiband(img1, img2, mask, levels=4):
+        def lap(image):   # uint8 throughout
+            g = [image]
+            for _ in range(levels - 1):
+                g.append(cv2.pyrDown(g[-1]))
+            return [{sub}(f, cv2.pyrUp(c, dstsize=(f.shape[1], f.shape[0]))) for f, c in zip(g[:-1], g[1:])] + [g[-1]]
+        weights = _gaussian_pyramid(np.asarray(mask, np.float32), levels)
+        bands = []
+        for a, b, w in zip(lap(img1), lap(img2), weights):
+            w = w[..., None] if a.ndim == 3 else w
+            bands.append((w * a + (1 - w) * b).astype(np.uint8))
+        out = bands[-1]
+        for band in reversed(bands[:-1]):
+            out = {add}(cv2.pyrUp(out, dstsize=(band.shape[1], band.shape[0])), band)
+        return out
+    """
+
+
+@pytest.mark.parametrize("sub, add, damaged", [
+    ("cv2.subtract", "cv2.add", True),                                # saturated: an image blended with itself changes
+    ("np.subtract", "np.add", False),                                 # wrapped: it comes back, the seam does not
+])
+def test_a_multiband_blend_in_uint8_is_not_told_of_feathers(tmp_path, sub, add, damaged):
+    """The pyramid in uint8 is a pyramid: no message says feather, nor tells it the finest level's
+    recipe it follows; what blending an image with itself shows is said when it shows."""
+    result = grade(mutant(tmp_path, "lab08_homographies", UINT8_PYRAMIDS.format(sub=sub, add=add)), ["lab08.ext3"],
+                   pictures="none")
+    failed = failing(result, "lab08.ext3")
+    assert failed
+    messages = [c.message for c in failed]
+    assert not any("feather" in m or "finest level uses the sharp mask" in m for m in messages), messages
+    assert any("uint8 arithmetic" in m for m in messages) == damaged, messages
+    assert any("Blending an image with itself already changes" in m for m in messages) == damaged, messages
+
+
+# ------------------------------------------------------------------ graded: lab 12
+def test_an_ncc_without_the_means_subtracted_is_named_and_not_told_to_keep_the_highest(tmp_path):
+    """The helper returns -NCC and block_matching takes the argmin: it keeps the highest score."""
+    source = """
+        def _ncc_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            mean_l = _box_mean(left, block_size)
+            std_l = np.sqrt(np.maximum(_box_mean(left * left, block_size) - mean_l ** 2, 0.0))
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(min(max_disparity, width - 1) + 1):
+                shifted = _shift_right(right, d)
+                mean_r = _box_mean(shifted, block_size)
+                std_r = np.sqrt(np.maximum(_box_mean(shifted * shifted, block_size) - mean_r ** 2, 0.0))
+                product = _box_mean(left * shifted, block_size)             # the means never subtracted
+                ncc = np.divide(product, std_l * std_r, out=np.zeros_like(product), where=std_l * std_r > 1e-6)
+                costs[d] = -ncc
+                costs[d, :, :d] = np.inf
+            return costs
+        """
+    result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ext1"], pictures="none")
+    failed = failing(result, "lab12.ext1")
+    assert failed and all(c.mistake == lab12.NOT_CENTRED for c in failed), [(c.name, c.message) for c in failed]
+    assert not any("HIGHEST" in c.hint or "HIGHEST" in c.message for c in failed)
+
+
+def test_a_dp_reading_the_forward_pass_is_named_and_keeps_the_credit_its_map_earns(tmp_path):
+    source = """
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)
+            left, right = _grey_float(left), _grey_float(right)
+            D = int(max_disparity) + 1
+            costs = _sad_volume(left, right, D - 1, int(block_size))
+            ramp = (s * np.arange(D)).astype(np.float32)
+            energy = np.empty_like(costs)
+            energy[0] = costs[0]
+            for x in range(1, costs.shape[0]):
+                previous = energy[x - 1]
+                below = np.minimum.accumulate(previous - ramp, axis=1) + ramp
+                above = np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)[:, ::-1] - ramp
+                best = np.minimum(below, above)
+                energy[x] = costs[x] + best - best.min(axis=1, keepdims=True)
+            return np.argmin(energy, axis=2).T.astype(np.float64)   # no backtracking
+        """
+    result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ex5"], pictures="none")
+    failed = failing(result, "lab12.ex5")
+    assert failed and any(c.mistake == lab12.NOT_BACKTRACKED for c in failed), [(c.name, c.message) for c in failed]
+    weak = [c for c in failed if c.name == "dp_stereo beats block matching where the texture is weak"]
+    assert all(c.score > 0 for c in weak)   # better than block matching: half the points, named
+
+
+def test_the_reference_dp_is_not_a_forward_pass_map():
+    """At smoothness 1e7 the reference keeps one disparity a row: no forward-pass map to match."""
+    scene = lab12.truth.scene("weak_texture")
+    maps = lab12.forward_pass_maps(scene)
+    assert set(maps) == {"SAD", "SSD"} and all(m.shape == scene.disparity.shape for m in maps.values())
+    constant = np.repeat(maps["SAD"][:, -1:], scene.disparity.shape[1], axis=1)    # a backtracked DP's rows
+    assert np.mean(np.abs(constant - maps["SAD"]) <= 1) < lab12.FORWARD_AGREEMENT
