@@ -10,7 +10,8 @@ download, the gradebook, final grades, changes, pages, the overview).
 Then, with keys only (Tab, Shift+Tab, Enter, Space, the app's shortcuts; never a click):
 the review queue is walked and filtered (not reviewed, no report); a student is opened,
 a rubric item scored, a comment saved for reuse under a key and applied to the next student
-by its key, the review saved; the next student and back: everything kept. A regrade after
+by its key, the review saved; the next student and back: everything kept; an item's points
+changed on the rubric page. A regrade after
 one student handed in a new file lists, in the class overview, exactly the grades that
 moved (old -> new and why); an extension and an excused student show theirs. Every page
 visited is walked with Tab: every control is reached, shows a focus indicator, and Tab
@@ -416,15 +417,23 @@ def test_a_term_by_keyboard_review_regrade_and_extensions(term, browser):
         tab.leaves("t")
         assert first not in queue_names(tab) and second not in queue_names(tab) and len(queue_names(tab)) == 28
 
-        # The rubric page, by Tab too.
+        # The rubric page, by Tab too: an item's points changed (Tab selects the field's text), Enter saves
+        # it, and the focus comes back to that item's save button.
         tab.open(server.url + "rubric")
         assert_keyboard_reaches_everything(tab, "rubric page")
+        tab.tab_to("el.getAttribute('aria-label') === 'points of no-figure'")
+        tab.type("-2")
+        tab.leaves("Enter")
+        assert tab.focused()["what"] == "button#item-lab07.ex1-no-figure save", tab.focused()
+        assert tab.eval("document.querySelector('[aria-label=\"points of no-figure\"]').value") == "-2"
         tab.screenshot("3-rubric")
     finally:
         server.kill()
     with Gradebook(out, readonly=True) as book:
         reviews = book.reviews()
     assert reviews[(first_id, "lab07.ex1")]["points"] == 3 and reviews[(second_id, "lab07.ex1")]["points"] == 1
+    with Gradebook(out, readonly=True) as book:
+        assert [i["points"] for i in book.rubric()["lab07.ex1"]] == [3, 1, -2]
 
     # A regrade after student 2 (the skeleton) handed in the reference: the overview lists exactly
     # the grades that moved, and why.

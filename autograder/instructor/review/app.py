@@ -302,7 +302,8 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         back = request.form.get("back", "")
         if re.fullmatch(r"[0-9]{1,9}", back):
             return redirect(url_for("review_page", position=int(back)), code=303)
-        return redirect(url_for("rubric_page"), code=303)
+        # the rubric page, its focus on the item just saved (static/rubric.js)
+        return redirect(url_for("rubric_page") + f"#item-{exercise}-{request.form['item'].strip()}", code=303)
 
     @app.post(f"/{token}/bank/<exercise>")
     def bank_comment(exercise: str):
@@ -321,7 +322,7 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         if re.fullmatch(r"[0-9]{1,9}", back):   # the review screen, its focus on the comment just saved
             return redirect(url_for("review_page", position=int(back)) + f"#saved-{request.form['key'].strip()}",
                             code=303)
-        return redirect(url_for("rubric_page") + f"#bank-{exercise}", code=303)
+        return redirect(url_for("rubric_page") + f"#bank-{exercise}-{request.form['key'].strip()}", code=303)
 
     @app.get(f"/{token}/figure/<ref>/<exercise>/<figure_id>.png")
     def figure(ref: str, exercise: str, figure_id: str):
