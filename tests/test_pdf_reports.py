@@ -328,6 +328,12 @@ def test_a_markdown_reports_linked_pictures_are_figures_of_the_section_linking_t
                        ("lab07.ex2", "lab07_report.md, figures/other one.png", 2, 300)]
     stored = [{"exercise": f.exercise, "number": f.number, "source": f.source, "width": f.width,
                "height": f.height, "thumb": f.thumb.tobytes()} for f in entry.report.figures]
+    from autograder.instructor.review.anonymity import Anonymiser
+    from autograder.instructor.review.app import _labelled
+
+    hide = Anonymiser({"student_id": "ada", "display_name": "Ada Lovelace", "lms": {}, "members": [],
+                       "origin": "ada"}, {"lab07_report.md": 1}, "Student X")
+    assert _labelled(hide, "lab07_report.md, figures/ada_lovelace.png") == "report 1 (Markdown), figures/Student X.png"
     paths = code_figure_folder(tmp_path, {"lab07.ex1": made})
     assert provenance.for_exercise(stored, paths, "lab07.ex1")[0].matched == "lab07.ex1"
     assert provenance.for_exercise(stored, paths, "lab07.ex2")[0].unmatched

@@ -362,9 +362,10 @@ def _pdfs(files: dict[str, int]) -> list[tuple[str, int]]:
 
 
 def _labelled(hide: Anonymiser, source: str) -> str:
-    """A report figure's source (``report.pdf, page 3``) with the file's label."""
+    """A report figure's source (``report.pdf, page 3``; ``report.md, figures/a.png``) with the
+    file's label, and the rest as free text (a picture's own name may hold the student's)."""
     name, comma, where = source.partition(", ")
-    return hide.label(name) + comma + where
+    return hide.label(name) + comma + hide.text(where)
 
 
 def _figures(results: Path, student_id: str, exercise: str | None = None) -> dict[str, Path]:
