@@ -141,6 +141,31 @@ CASES = {
         def camera_matrix_dlt(points3d, points2d):
             return np.linalg.svd(_design(points3d, points2d))[2][-1].reshape(4, 3).T
         """),
+    "lab10 the largest singular vector": (G[truth10.LARGEST_TAKEN], "camera_matrix_dlt", """
+        def camera_matrix_dlt(points3d, points2d):
+            U, S, Vt = np.linalg.svd(_design(points3d, points2d).T)
+            return Vt[-1, :].reshape(3, 4)
+        """, """
+        def camera_matrix_dlt(points3d, points2d):
+            return np.linalg.svd(_design(points3d, points2d))[2][0].reshape(3, 4)
+        """),
+    "lab10 the last column of Vt": (G[truth10.LAST_COLUMN_TAKEN], "camera_matrix_dlt", """
+        def camera_matrix_dlt(points3d, points2d):
+            vt = np.linalg.svd(_design(points3d, points2d))[2]
+            return vt[-1].reshape(4, 3).T
+        """, """
+        def camera_matrix_dlt(points3d, points2d):
+            return np.linalg.svd(_design(points3d, points2d))[2][:, -1].reshape(3, 4)
+        """),
+    "lab11 the largest singular vector": (G[lab11.FUNDAMENTAL_MISTAKES["largest"]], "fundamental_8point", """
+        def fundamental_8point(pts1, pts2):
+            _, _, V = np.linalg.svd(_design(pts1, pts2).T @ _design(pts1, pts2))
+            return _rank2(V[-1].reshape(3, 3))
+        """, """
+        def fundamental_8point(pts1, pts2):
+            _, _, V = np.linalg.svd(_design(pts1, pts2))
+            return _rank2(V[0].reshape(3, 3))
+        """),
     "lab10 normalisation not undone": (G[truth10.NOT_UNDONE], "camera_matrix_dlt", """
         def camera_matrix_dlt(points3d, points2d):
             Pn = _solve(points3d, points2d)

@@ -28,6 +28,8 @@ the student's module with :mod:`ast`, never executing it:
   row; ``order="F"``: column by column);
 - :func:`passes_argument` -- a call given an argument at a position or as a keyword, not ``None``
   (``cv2.projectPoints(obj, rvec, tvec, K, dist)``);
+- :func:`takes_last_row_of_vt` -- the last row of an SVD's ``Vt`` (``np.linalg.svd(A)[2][-1]``,
+  ``Vt[-1]`` for a ``Vt`` unpacked from an ``svd`` call);
 - :func:`zeroes_an_entry` -- an entry of an array set to 0 (``S[2] = 0``, ``s[-1] = 0``) or a
   diagonal built with a literal 0 (``np.diag([s[0], s[1], 0])``).
 """
@@ -250,6 +252,37 @@ def zeroes_an_entry() -> Predicate:
                 return True
         return False
     return Predicate("sets a singular value to 0", test)
+
+
+def _is_svd(node) -> bool:
+    return isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "svd"
+
+
+def takes_last_row_of_vt() -> Predicate:
+    """The last row of an SVD's V^T taken: ``np.linalg.svd(A)[2][-1]``, ``Vt[-1]`` or ``Vt[-1, :]``
+    for a ``Vt`` unpacked from (or indexed out of) an ``svd`` call."""
+    def last(index) -> bool:
+        if isinstance(index, ast.Tuple) and index.elts:
+            index, rest = index.elts[0], index.elts[1:]
+            if not all(isinstance(e, ast.Slice) and e.lower is e.upper is e.step is None for e in rest):
+                return False
+        return isinstance(index, ast.UnaryOp) and isinstance(index.op, ast.USub) \
+            and isinstance(index.operand, ast.Constant) and index.operand.value == 1
+
+    def vt(node, held) -> bool:
+        if isinstance(node, ast.Name):
+            return node.id in held
+        return isinstance(node, ast.Subscript) and _is_svd(node.value) and isinstance(node.slice, ast.Constant) \
+            and node.slice.value == 2
+
+    def test(function) -> bool:
+        held = {target.elts[2].id for node in ast.walk(function) if isinstance(node, ast.Assign) and _is_svd(node.value)
+                for target in node.targets if isinstance(target, ast.Tuple) and len(target.elts) == 3
+                and isinstance(target.elts[2], ast.Name)}
+        held |= _assigned_names(function, lambda value: vt(value, set()))
+        return any(isinstance(node, ast.Subscript) and vt(node.value, held) and last(node.slice)
+                   for node in ast.walk(function))
+    return Predicate("takes the last row of Vt", test)
 
 
 def calls_any(*names: str, says: str = "") -> Predicate:

@@ -597,7 +597,7 @@ def _code_at(path: str, mtime_ns: int, size: int) -> Code:
 def code_of(t) -> Code:
     """The code of the module a trial's check grades, as the sandbox holds it (the file the
     worker imported; a notebook already converted); :data:`NO_CODE` without one."""
-    folder = getattr(t.sandbox, "submission_dir", None)
+    folder = getattr(getattr(t, "sandbox", None), "submission_dir", None)   # a stand-in trial has none
     if folder is None:
         return NO_CODE
     try:
@@ -646,7 +646,10 @@ class Hint:
         check ``t`` calls, or ``functions``) already does what it asks."""
         if self.asks is None:
             return self.text
-        found = self.contradicts(code_of(t), tuple(functions) or self.functions or _called(t))
+        code = code_of(t)
+        if not code.functions:   # nothing to read (a stand-in trial, code that cannot be parsed)
+            return self.text
+        found = self.contradicts(code, tuple(functions) or self.functions or _called(t))
         return self.neutral(found) if found else self.text
 
     def contradicts(self, code: Code, functions: Iterable[str]) -> str:

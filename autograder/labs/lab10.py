@@ -18,7 +18,8 @@ from fixtures import scene
 
 from ..engine import strategies as st
 from ..engine.checks import Trial, partial, passed
-from ..engine.claims import calls_any, divides_by, guard, measured, negates_on_negative_det, passes_argument, reshapes
+from ..engine.claims import (calls_any, divides_by, guard, measured, negates_on_negative_det, passes_argument, reshapes,
+                             takes_last_row_of_vt)
 from ..engine.compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
                        projective_distance)
 from ..engine.forms import scale_form
@@ -39,6 +40,10 @@ guard(truth.RESHAPED_WRONG, asks=reshapes(3, 4),
       instead="the 12 entries of p come out in another order: your code {found}, so look at the order of the "
               "columns of A (P's first row multiplies [X, Y, Z, 1] in the u equations, then the second, then the "
               "third)")
+for _taken in (truth.LARGEST_TAKEN, truth.LAST_COLUMN_TAKEN):
+    guard(_taken, asks=takes_last_row_of_vt(),
+          instead="p comes out as another singular vector than the last row of Vt; your code {found}, so look "
+                  "at what is decomposed (A, with a row per equation and a column per entry of P)")
 guard(truth.NOT_UNDONE, asks=calls_any("np.linalg.inv", "np.linalg.solve", says="inverts a normalising transform"),
       instead="the normalisation is not undone (the P returned is the camera of the normalised points): your "
               "code {found}; check that the P returned is T2^-1 P_n T3")

@@ -23,7 +23,7 @@ from ..engine.compare import (at_precision, closest, format_apart, format_arrays
                        projective_distance)
 from ..engine.forms import shape_form
 from ..engine.claims import (THIRD_COORDINATE, calls_any, divides_by, from_code, guard, measured, reshapes,
-                             zeroes_an_entry)
+                             takes_last_row_of_vt, zeroes_an_entry)
 from ..engine.hints import RATIO_TEST, Hint, calls, expr, keyword, mentions
 from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
                       where_points_differ)
@@ -666,8 +666,10 @@ FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores fo
                       "smallest (U diag(s1, s2, 0) V^T)",
     "middle_zeroed": "the middle singular value was set to 0; rank 2 is enforced by zeroing the "
                      "smallest (U diag(s1, s2, 0) V^T)",
-    "largest": "the singular vector of the largest singular value is taken (Vt[0]); f is the last "
-               "row of Vt",
+    "largest": guard("the singular vector of the largest singular value is taken (Vt[0]); f is the last row of Vt",
+                     asks=takes_last_row_of_vt(),
+                     instead="f comes out as the singular vector of the largest singular value; your code {found}, "
+                             "so look at what is decomposed (A, with a row per correspondence)"),
     "undo_order": "the normalisation is undone the wrong way round: F = T2^T Fn T1",
     "undo_inverse": "the normalisation is undone with the inverses: F = T2^T Fn T1, not T2^-1 Fn T1^-1",
     "not_undone": "the normalisation is not undone: F = T2^T Fn T1",
