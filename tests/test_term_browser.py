@@ -27,14 +27,13 @@ import base64
 import json
 import re
 import os
-import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 
-from browser import _DevTools, find_chromium
+from browser import find_chromium
 
 pytest.importorskip("flask")
 pytestmark = [pytest.mark.browser,
@@ -42,7 +41,7 @@ pytestmark = [pytest.mark.browser,
                                  reason="Chromium is not installed (apt-get install chromium, or set CHROMIUM)")]
 
 from test_batch import MODULE, WRONG_WAY, reference, skeleton, write   # noqa: E402
-from test_review_browser import Server, Tab   # noqa: E402
+from test_review_browser import Server, Tab, browser   # noqa: E402,F401 (browser: the fixture)
 
 WIDTH, HEIGHT = 1280, 900
 # The class: Canvas names (surname + first name), each a user id; three distinct submissions.
@@ -155,9 +154,9 @@ KEYS = {"Tab": ("Tab", 9, ""), "Enter": ("Enter", 13, "\r"), " ": ("Space", 32, 
 SHIFT = 8
 
 # An element in words: its tag, id and label (its aria-label, its <label>, its text, value or address).
-DESCRIBE_FUNCTION = r"""(el => el.tagName.toLowerCase() + (el.id ? '#' + el.id : '') + ' ' + (el.getAttribute('aria-label')
-  || (el.labels && el.labels[0] && el.labels[0].innerText) || el.innerText || el.value || el.getAttribute('href')
-  || '').trim().replace(/\s+/g, ' ').slice(0, 50))"""
+DESCRIBE_FUNCTION = r"""(el => el.tagName.toLowerCase() + (el.id ? '#' + el.id : '') + ' '
+  + (el.getAttribute('aria-label') || (el.labels && el.labels[0] && el.labels[0].innerText) || el.innerText
+     || el.value || el.getAttribute('href') || '').trim().replace(/\s+/g, ' ').slice(0, 50))"""
 
 # What the focused element is, how its focus shows, and whether it is in view; each element
 # keeps one number for the page's life (a WeakMap), so a walk can tell where it has been.
@@ -173,7 +172,8 @@ FOCUSED = r"""
           visible: el.matches(':focus-visible'),
           indicator: outline ? `outline ${s.outlineStyle} ${s.outlineWidth} ${s.outlineColor}`
                      : (s.boxShadow !== 'none' ? 'box-shadow ' + s.boxShadow : ''),
-          inView: r.width > 0 && r.height > 0 && r.bottom > 0 && r.top < innerHeight && r.right > 0 && r.left < innerWidth};
+          inView: r.width > 0 && r.height > 0 && r.bottom > 0 && r.top < innerHeight
+                  && r.right > 0 && r.left < innerWidth};
 })()
 """.replace("DESCRIBE", DESCRIBE_FUNCTION)
 
@@ -296,16 +296,6 @@ def assert_keyboard_reaches_everything(tab: Keyboard, page: str) -> list[dict]:
 
 
 # ------------------------------------------------------------------ the journey
-@pytest.fixture(scope="module")
-def browser():
-    with tempfile.TemporaryDirectory(prefix="chromium-profile-") as profile:
-        devtools = _DevTools(find_chromium(), profile)
-        try:
-            yield devtools
-        finally:
-            devtools.close()
-
-
 def queue_names(tab: Keyboard) -> list[str]:
     return tab.eval("[...document.querySelectorAll('#queue td.name')].map(td => td.textContent.trim())")
 
@@ -482,7 +472,8 @@ def test_a_term_by_keyboard_review_regrade_and_extensions(term, browser):
 # ------------------------------------------------------------------ the walk can fail
 KEYBOARD_FAULTS = {
     "no focus style": ("<button>ok</button><style>button:focus-visible { outline: none }</style>", "focus not shown"),
-    "out of the Tab order": ('<button>ok</button><button tabindex="-1">save</button>', "not reachable by Tab: ['button save']"),
+    "out of the Tab order": ('<button>ok</button><button tabindex="-1">save</button>',
+                             "not reachable by Tab: ['button save']"),
     "a trap": ('<input id="a" aria-label="a"><input id="b" aria-label="b"><button>after</button><script>'
                "b.addEventListener('keydown', e => { if (e.key === 'Tab') { e.preventDefault(); a.focus(); } })"
                "</script>", "not reachable by Tab: ['button after']"),
