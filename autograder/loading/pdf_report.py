@@ -17,8 +17,10 @@ review screen. :func:`pdf_sections` splits the text into exercises with
 "2. Rotation", an exercise's title on a line of its own).
 
 Results are kept in the grader's store (:mod:`autograder.sandbox.cache`), keyed by the
-file's SHA-256 and the reader's code and libraries, where the store is trusted (the
-namespaced confinement levels): a class graded again does not parse its PDFs again.
+file's (or picture's) SHA-256 and the reader's code and libraries, where the store is
+trusted (the namespaced confinement levels): a class graded again does not parse its PDFs
+or thumbnail its pictures again. :meth:`ReportReader.prefetch` reads a class's PDFs side by
+side, each reader's worker in a thread of its own, before they are asked for one by one.
 """
 
 from __future__ import annotations
