@@ -407,6 +407,13 @@ def test_a_term_by_keyboard_review_regrade_and_extensions(term, browser):
         tab.leaves("t")
         assert first not in queue_names(tab) and second not in queue_names(tab) and len(queue_names(tab)) == 28
 
+        # The screens of the students with an extension and excused say so.
+        for i, told in ((3, "extension +2 days"), (4, "excused"), (6, "late 1 day, -3")):
+            tab.open(server.url + f"review/{order.index(NAMES[i])}")
+            assert review_state(tab)["student"] == NAMES[i] and tab.text("#rules") == told
+        tab.open(server.url + f"review/{order.index(NAMES[5])}")
+        assert tab.eval("document.getElementById('rules')") is None
+
         # The rubric page, by Tab too: an item's points changed (Tab selects the field's text), Enter saves
         # it, and the focus comes back to that item's save button.
         tab.open(server.url + "rubric")

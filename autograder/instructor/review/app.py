@@ -45,7 +45,8 @@ from urllib.parse import urlsplit
 from ...reports.markdown import render_markdown
 from ..batch.exports import report_maxima
 from ..batch.gradebook import Gradebook
-from ..batch.run import batch_course
+from ..batch.run import batch_course, class_grades
+from ..classreport.pages import rules_applied
 from ..course import CourseConfigError
 from .anonymity import Anonymiser
 from .provenance import for_exercise
@@ -236,9 +237,10 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
         provenance = for_exercise(report_figures, _figures(session.results, pair.student_id), pair.exercise)
         with session.lock:
             bank = session.book.comment_bank().get(pair.exercise, [])
+            rules = _rules_of(session, pair.student_id)
         return page("review.html", pair=pair, queue_length=len(queue), explanation=explanation, source=source,
                     rendered=rendered, figures=figures, verdict=verdict, rubric=rubric, review=state(pair),
-                    attachments=attachments, problems=problems, bank=bank, provenance=provenance)
+                    attachments=attachments, problems=problems, bank=bank, provenance=provenance, rules=rules)
 
     @app.get(f"/{token}/pair/<ref>/<exercise>/step/<any('next','previous'):step>")
     def step(ref: str, exercise: str, step: str):
@@ -346,6 +348,17 @@ def create_app(session: ReviewSession, token: str | None = None, csrf: str | Non
 
     app.jinja_env.filters["num"] = lambda v: "" if v is None else f"{round(float(v), 4):g}"
     return app
+
+
+def _rules_of(session: ReviewSession, student_id: str) -> list[str]:
+    """What the course's rules did to the student's grade (excused, an extension, days late), as the
+    class overview says it: from the one final-grade computation, over the whole class (an extension
+    names a student by any identity, which only the class makes unambiguous)."""
+    try:
+        grades = class_grades(session.book, session.course).grades
+    except ValueError as exc:   # a damaged late-day ledger: said on the screen, not a failed page
+        return [str(exc)]
+    return next((rules_applied(g) for g in grades if g.student.get("student_id") == student_id), [])
 
 
 def _report_state(handed_in: dict | None, exercise: str) -> str:
