@@ -883,18 +883,26 @@ DIST_TO_UNDISTORT_HINT = Hint(
     instead=": your code {found}, but not the dist given (None or zeros?).")
 
 
+def undistorted(t: Trial, what: str, image, expected, seen: str):
+    """``undistort_image(image, K, dist)`` through the checks' lens, shown beside ``expected`` (the
+    view without distortion``seen``): the answer of the input's shape and uint8, its mean blurred
+    difference from ``expected`` and the pixels judged."""
+    K, dist = truth.POSE_K, truth.DIST
+    got = t.call("undistort_image", image, K, dist)
+    valid = truth.undistortion_valid(K, dist, truth.POSE_SIZE)
+    if isinstance(got, np.ndarray):
+        t.compare_images(what, image, expected, got, valid=valid,
+                         caption=f"expected: the same view rendered without distortion{seen}")
+    got = t.expect_array(got, what, shape=image.shape, dtype=np.uint8)
+    return got, blurred_difference(got, expected, valid), valid
+
+
 @ext1.check("undistort_image straightens a view through a distorting lens", points=4)
 def undistort_check(t):
     distorted, clean, _, _, _ = truth.distorted_view()
     K, dist = truth.POSE_K, truth.DIST
     what = "undistort_image(image, K, dist)"
-    got = t.call("undistort_image", distorted, K, dist)
-    valid = truth.undistortion_valid(K, dist, truth.POSE_SIZE)
-    if isinstance(got, np.ndarray):
-        t.compare_images(what, distorted, clean, got, valid=valid,
-                         caption="expected: the same view rendered without distortion")
-    got = t.expect_array(got, what, shape=distorted.shape, dtype=np.uint8)
-    error = blurred_difference(got, clean, valid)
+    got, error, valid = undistorted(t, what, distorted, clean, "")
     if error <= UNDISTORT_TOLERANCE:
         return passed(f"mean difference {error:.1f} grey levels from the distortion-free view")
     renamed = new_camera_matrix_verdict(t, what, got, clean, K, dist)
@@ -1004,14 +1012,8 @@ def undistort_colour(t):
     K, dist = truth.POSE_K, truth.DIST
     colour, expected = tinted(distorted), tinted(clean)
     what = "undistort_image(colour image, K, dist)"
-    got = t.call("undistort_image", colour, K, dist)
-    valid = truth.undistortion_valid(K, dist, truth.POSE_SIZE)
-    if isinstance(got, np.ndarray):
-        t.compare_images(what, colour, expected, got, valid=valid,
-                         caption="expected: the same view rendered without distortion, in colour")
-    got = t.expect_array(got, what, shape=colour.shape, dtype=np.uint8)
     # rounding 0.6 x grey before or after the remap: under one level apart
-    error = blurred_difference(got, expected, valid)
+    got, error, valid = undistorted(t, what, colour, expected, ", in colour")
     if error <= UNDISTORT_TOLERANCE:
         return passed(f"mean difference {error:.1f} levels from the distortion-free view, in every channel")
     if channels_reversed(got, expected):
