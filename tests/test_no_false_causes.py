@@ -254,3 +254,40 @@ def test_the_reference_dp_is_not_a_forward_pass_map():
     assert set(maps) == {"SAD", "SSD"} and all(m.shape == scene.disparity.shape for m in maps.values())
     constant = np.repeat(maps["SAD"][:, -1:], scene.disparity.shape[1], axis=1)    # a backtracked DP's rows
     assert np.mean(np.abs(constant - maps["SAD"]) <= 1) < lab12.FORWARD_AGREEMENT
+
+
+def test_a_rectification_taking_t_as_the_centre_is_named(tmp_path):
+    """Called with -R^T T in place of T, the function rectifies: T was taken as the centre."""
+    source = """
+        _rectify_right = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            R = np.asarray(R, float)
+            return _rectify_right(img_l, img_r, K1, K2, R, -R @ np.asarray(T, float).reshape(3))
+        """
+    result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ex3"], pictures="none")
+    failed = failing(result, "lab12.ex3")
+    assert failed and any(c.mistake.startswith("T itself is taken as camera 2's centre") for c in failed), \
+        [(c.name, c.message) for c in failed]
+
+
+def test_a_chain_of_homographies_in_the_reverse_order_is_named(tmp_path):
+    """Four images, the reference the third: the first is two steps away, multiplied the wrong way round."""
+    source = """
+        def stitch_many(images):
+            images = list(images)
+            features = [_detect(image) for image in images]
+            step = [_pairwise_homography(features[k + 1], features[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            homographies = []
+            for k in range(len(images)):
+                H = np.eye(3)
+                for j in range(k - 1, r - 1, -1):
+                    H = H @ step[j]                          # reversed: step[j] @ H is right
+                for j in range(k, r):
+                    H = H @ np.linalg.inv(step[j])
+                homographies.append(H / H[2, 2])
+            return _compose(images, homographies)
+        """
+    result = grade(mutant(tmp_path, "lab08_homographies", source), ["lab08.ext2"], pictures="none")
+    failed = failing(result, "lab08.ext2")
+    assert failed and any(c.mistake == lab08.REVERSED_CHAIN for c in failed), [(c.name, c.message) for c in failed]
