@@ -15,6 +15,7 @@ import numpy as np
 
 from fixtures import lab10 as truth
 from fixtures import scene
+from fixtures.images import tinted
 
 from ..engine import strategies as st
 from ..engine.checks import Trial, partial, passed
@@ -994,13 +995,6 @@ def undistort_probe(t: Trial) -> Probe:
     return Probe(undistort_probe_key(), lambda: _undistort_answer(t, distorted),
                  lambda: undistortion_mistakes(distorted, K, dist), clean,
                  distance=lambda a, b: blurred_difference(a, b, valid), tolerance=UNDISTORT_TOLERANCE)
-
-
-def tinted(grey: np.ndarray) -> np.ndarray:
-    """(H, W) -> (H, W, 3) BGR with three different channels (the board, a darker copy, its
-    negative): a grey answer, a channel reversal or one channel for all cannot match it."""
-    grey = np.asarray(grey, np.uint8)
-    return np.dstack([grey, np.round(grey * 0.6).astype(np.uint8), 255 - grey])
 
 
 @ext1.check("undistort_image keeps a colour image in colour (BGR in, BGR out)", points=1)

@@ -16,15 +16,20 @@ DP and NCC, the reference's.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import cv2
 import numpy as np
 
 from fixtures import lab12 as truth
+from fixtures.images import tinted
 
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
+from ..engine.claims import measured
+from ..engine.forms import shape_form
 from ..engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, Hint, calls, code_of, expr, keyword
 from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
@@ -477,7 +482,9 @@ def call_rectify(t: Trial, pair):
     rect_r = t.expect_array(rect_r, f"{what}: rect_r", dtype=np.uint8)
     for name, image in (("rect_l", rect_l), ("rect_r", rect_r)):
         if image.shape != shape:
-            t.fail(f"{what}: {name} has shape {image.shape}; expected {shape} (the input size)")
+            form = shape_form(image.shape, shape)   # the channels not kept: grey for BGR, BGR for grey
+            t.fail(f"{what}: {name} has shape {image.shape}; expected {shape} (the input size)"
+                   + (f": {form.sentence}" if form else ""), mistake=form.mistake if form else "")
     return rect_l, rect_r, H1.astype(np.float64), H2.astype(np.float64)
 
 
@@ -700,6 +707,36 @@ def rectify_images(t):
                    f"{'H1' if name == 'rect_l' else 'H2'} by {error:.0f} grey levels on average "
                    "(do the images and the homographies describe the same warp?)")
     return passed("both images match their homographies")
+
+
+@ex3.check("rectify keeps a colour pair in colour (BGR in, BGR out)", points=1)
+def rectify_colour(t):
+    """The skeleton: (H, W) or (H, W, 3) images in, rectified images of the same shape out; every
+    other check gives a grey pair. One question, the colour: each rectified image is its colour
+    input warped by the homography returned with it. Whether the images match their homographies
+    at all is the grey check's: where the grey pair's do not either, this check passes."""
+    pair = truth.unrectified_pair(seed=4)
+    colour = replace(pair, img_l=tinted(pair.img_l), img_r=tinted(pair.img_r))
+    rect_l, rect_r, H1, H2 = call_rectify(t, colour)
+    errors = {name: _warped_or_inf(image, H, got) for name, image, H, got in
+              (("rect_l", colour.img_l, H1, rect_l), ("rect_r", colour.img_r, H2, rect_r))}
+    wrong = [name for name, error in errors.items() if error > 8.0]
+    if not wrong:
+        return passed("both colour images match their homographies")
+    grey_l, grey_r, G1, G2 = call_rectify(t, pair)
+    if max(_warped_or_inf(pair.img_l, G1, grey_l), _warped_or_inf(pair.img_r, G2, grey_r)) > 8.0:
+        return passed("the grey pair's images do not match their homographies either: judged by the grey check")
+    t.fail(f"rectify of a colour pair: {wrong[0]} differs from the colour input warped by your "
+           f"{'H1' if wrong[0] == 'rect_l' else 'H2'} by {errors[wrong[0]]:.0f} levels on average, while "
+           "a grey pair's images match their homographies: "
+           + measured("warp the colour images as they are (cv2.warpPerspective takes BGR images)."))
+
+
+def _warped_or_inf(image, H, got) -> float:
+    try:
+        return warped_error(image, H, got)
+    except np.linalg.LinAlgError:   # a singular H: no warp to compare with
+        return float("inf")
 
 
 @ex3.check("rectify: most of each image stays in view", points=2)

@@ -84,6 +84,13 @@ MISTAKES = {
             return np.where(ok, f * np.where(ok, d, 1.0) / baseline, 0.0)
         """, ["d and b are swapped"]),
     # ---------------------------------------------------------------- ex3
+    "rectify a colour pair into grey (made grey for stereo first)": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            if img_l.ndim == 3:
+                img_l, img_r = cv2.cvtColor(img_l, cv2.COLOR_BGR2GRAY), cv2.cvtColor(img_r, cv2.COLOR_BGR2GRAY)
+            return _rectify(img_l, img_r, K1, K2, R, T)
+        """, ["channels are not kept", "BGR in, BGR out"]),
     "rectify returns inverse homographies": ("lab12.ex3", """
         _rectify = rectify
         def rectify(img_l, img_r, K1, K2, R, T):
