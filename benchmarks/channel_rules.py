@@ -21,9 +21,9 @@ of the asked size; a BGR answer for a grey input keeps full marks only in lab 7'
 warp_affine and lab 8's warp_to_reference (no check gives them a grey image: left, as no
 realistic code converts there), lab 8's stitch and stitch_many and lab 9's drawings (BGR
 only by the contract). Before: 14 of the 60 gradings ended in a grader error (a difference
-map of two channel counts); lab 10's undistort_image and lab 11's draw_epipolar_lines kept
-full marks for BGR from grey, lab 10's undistort_image and lab 12's rectify for grey from
-BGR (each now loses points: a check of its own, or half of the grey-input check).
+map of two channel counts, lab 10's undistort_image among them); lab 11's draw_epipolar_lines
+kept full marks for BGR from grey, lab 10's undistort_image and lab 12's rectify for grey
+from BGR (each now loses points: a check of its own, or half of the grey-input check).
 """
 
 from __future__ import annotations
