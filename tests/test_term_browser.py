@@ -295,6 +295,13 @@ def assert_keyboard_reaches_everything(tab: Keyboard, page: str) -> list[dict]:
     return stops
 
 
+def assert_plain_focus(stops: list[dict]):
+    """The review application's own focus style on every stop: a 2-pixel solid outline (the
+    browser's ring is a thin one)."""
+    thin = [s for s in stops if not s["indicator"].startswith("outline solid 2px")]
+    assert not thin, f"the focus is shown thinly on {thin[:3]}"
+
+
 # ------------------------------------------------------------------ the journey
 def queue_names(tab: Keyboard) -> list[str]:
     return tab.eval("[...document.querySelectorAll('#queue td.name')].map(td => td.textContent.trim())")
@@ -330,7 +337,7 @@ def test_a_term_by_keyboard_review_regrade_and_extensions(term, browser):
         # The queue: every control by Tab; the filters by Tab and Enter, and by their letters.
         tab.open(server.url)
         assert "0 of 30 reviewed" in tab.text("h1")
-        assert_keyboard_reaches_everything(tab, "queue")
+        assert_plain_focus(assert_keyboard_reaches_everything(tab, "queue"))
         tab.screenshot("1-queue")
         tab.open(server.url)
         tab.tab_to("el.textContent === 'not reviewed'")
@@ -347,7 +354,7 @@ def test_a_term_by_keyboard_review_regrade_and_extensions(term, browser):
 
         # The review screen: every control by Tab, with its focus shown; the student's long report
         # scrolls by keys, also with the figures fitted to the pane (z), when they no longer scroll.
-        assert_keyboard_reaches_everything(tab, "review screen")
+        assert_plain_focus(assert_keyboard_reaches_everything(tab, "review screen"))
         tab.press("z")
         assert_keyboard_reaches_everything(tab, "review screen, figures fitted")
         tab.eval("document.activeElement && document.activeElement.blur()")
@@ -417,7 +424,7 @@ def test_a_term_by_keyboard_review_regrade_and_extensions(term, browser):
         # The rubric page, by Tab too: an item's points changed (Tab selects the field's text), Enter saves
         # it, and the focus comes back to that item's save button.
         tab.open(server.url + "rubric")
-        assert_keyboard_reaches_everything(tab, "rubric page")
+        assert_plain_focus(assert_keyboard_reaches_everything(tab, "rubric page"))
         tab.tab_to("el.getAttribute('aria-label') === 'points of no-figure'")
         tab.type("-2")
         tab.leaves("Enter")
