@@ -361,3 +361,30 @@ def test_a_classs_pdfs_are_read_side_by_side_with_the_same_answers(monkeypatch):
         assert reader.files_read == 5 and reader._box is None   # read by two readers of its own
         assert [reader.pdf(data) for data in files] == one_by_one
         assert reader.files_read == 5 and reader._box is None   # nothing read again
+
+
+def test_the_grader_never_parses_a_pdf_or_a_picture_itself(monkeypatch, reader):
+    """With pypdf's reader and Pillow's decoder refusing in the grader's process, a PDF and a
+    notebook's picture are still read: in the worker."""
+    import base64
+    import json
+
+    import pypdf
+    from PIL import Image
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("parsed in the grader's process")
+
+    monkeypatch.setenv("AUTOGRADER_CACHE_DIR", "off")   # read by the worker, not found in the store
+    monkeypatch.setattr(pypdf, "PdfReader", refuse)
+    monkeypatch.setattr(Image, "open", refuse)
+    png = base64.b64encode(cv2.imencode(".png", texture(41))[1].tobytes()).decode()
+    notebook = json.dumps({"nbformat": 4, "nbformat_minor": 5, "metadata": {}, "cells": [
+        {"cell_type": "markdown", "metadata": {}, "source": "## Exercise 3\nScaled."},
+        {"cell_type": "code", "metadata": {}, "source": "", "execution_count": 1, "outputs": [
+            {"output_type": "display_data", "metadata": {}, "data": {"image/png": png}}]}]}).encode()
+    report = read_report({"lab07_report.pdf": pdf([["Exercise 1", "Read elsewhere."]], {0: [texture(40)]}),
+                          "lab07.ipynb": notebook}, NAMES, reader)
+    assert report.problems == () and report.explanations["lab07.ex1"].text == "Read elsewhere."
+    assert [(f.exercise, f.source) for f in report.figures] == [("lab07.ex3", "lab07.ipynb, cell 2"),
+                                                                ("lab07.ex1", "lab07_report.pdf, page 1")]
