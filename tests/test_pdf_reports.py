@@ -388,3 +388,15 @@ def test_the_grader_never_parses_a_pdf_or_a_picture_itself(monkeypatch, reader):
     assert report.problems == () and report.explanations["lab07.ex1"].text == "Read elsewhere."
     assert [(f.exercise, f.source) for f in report.figures] == [("lab07.ex3", "lab07.ipynb, cell 2"),
                                                                 ("lab07.ex1", "lab07_report.pdf, page 1")]
+
+
+def test_where_workers_cannot_be_confined_nothing_is_parsed_unless_allowed():
+    from autograder.sandbox.confine import Confinement
+
+    data = pdf([["Exercise 1", "Text."]])
+    with ReportReader(Confinement("process-group")) as reader:
+        assert reader.pdf(data).error == pdf_report.UNCONFINED and reader._box is None
+        assert reader.pictures([("nb, cell 1", cv2.imencode(".png", texture(1))[1].tobytes())]) == (
+            [], [f"the pictures were not compared: {pdf_report.UNCONFINED}"])
+    with ReportReader(Confinement("process-group"), allow_unconfined=True) as reader:   # --allow-unconfined
+        assert reader.pdf(data).pages == ("Exercise 1\nText.\n",)

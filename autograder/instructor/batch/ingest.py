@@ -178,7 +178,8 @@ def read_class(path, modules: list[str], every_module: list[str] = ()) -> list[E
 
 
 def read_upload(path, modules: list[str], every_module: list[str] = (),
-                known: "Identities | None" = None, names: ExerciseNames | None = None) -> ClassUpload:
+                known: "Identities | None" = None, names: ExerciseNames | None = None,
+                allow_unconfined: bool = False) -> ClassUpload:
     """Read the class folder or zip at ``path``: entries sorted by id, ignored items, warnings.
 
     ``modules`` are the lab modules the selection grades, ``every_module`` those
@@ -188,7 +189,9 @@ def read_upload(path, modules: list[str], every_module: list[str] = (),
     no id ever given goes to anybody else. Raises :class:`IngestError` only when
     ``path`` itself cannot be read; anything wrong inside it is one entry's error or
     one ignored item. ``names``: the graded labs' exercises, which the headings of a report
-    in the student's own structure may name (:mod:`autograder.loading.headings`).
+    in the student's own structure may name (:mod:`autograder.loading.headings`); with them,
+    PDFs and the report's pictures are read in sandbox workers, at the ``process-group``
+    level only when ``allow_unconfined`` (as the batch grades).
     """
     upload = ClassUpload()
     every = set(every_module) | set(modules)
@@ -196,7 +199,8 @@ def read_upload(path, modules: list[str], every_module: list[str] = (),
         for name in getattr(tree, "outside", []):
             upload.ignore(name, "its name points outside the archive; not read")
         _Reader(tree, _unwrap(tree, (), every), upload).read()
-    with ReportReader() as reader:   # PDFs and report pictures: parsed in sandbox workers only
+    # PDFs and report pictures: parsed in sandbox workers only (confined, unless allow_unconfined)
+    with ReportReader(allow_unconfined=allow_unconfined) as reader:
         if names is not None:   # a class's PDFs read side by side first (read_report then finds them read)
             reader.prefetch([data for entry in upload.entries for path, data in entry.reports_found.files.items()
                              if path.lower().endswith(".pdf")], min(usable_cores(), PDF_READERS))

@@ -126,7 +126,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
     overrides_rows = exports.read_overrides(overrides) if overrides else None
     roster_rows = exports.read_roster(roster) if roster else []
     names = ExerciseNames.of_labs({e.lab.key: e.lab for e in exercises}.values())   # what report headings may name
-    upload = read_upload(submissions, modules, [lab.module for lab in discover().values()], _known(out), names)
+    upload = read_upload(submissions, modules, [lab.module for lab in discover().values()], _known(out), names,
+                         allow_unconfined)   # the reports' PDFs are read in workers as confined as the gradings
     entries = upload.entries
     if probing:
         _refuse_unconfined(confine.detect())
