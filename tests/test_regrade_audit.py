@@ -93,3 +93,18 @@ def test_compare_previews_the_changes_and_leaves_the_gradebook_alone(tmp_path):
     assert applied.returncode == 0, applied.stderr
     assert "1 final grade changed since the last run" in applied.stdout
     assert changes_csv(out)["ann"]["After"] == "12"
+
+
+@pytest.mark.parametrize("old, new, why, part", [
+    ({"reports": {}}, {"reports": {"lab07.ex1": 3.0}}, "report reviewed", "lab07.ex1 report not reviewed -> 3"),
+    ({"adjustments": []}, {"adjustments": ["override +5"]}, "override changed", "override override +5"),
+    ({"late": 0.0}, {"late": -7.3}, "late rules changed (extension, late days, penalty)", "late penalty 0 -> -7.3"),
+])
+def test_a_change_without_a_regrade_says_what_moved_it(old, new, why, part):
+    """A grade moved by a review, an override or the late rules (the same grading) says so in
+    its 'why' column, never a blank or a dash for a report not reviewed before."""
+    from autograder.instructor.batch.changes import compare
+
+    base = {"content": "c", "lock": "l", "status": "graded"}
+    [change] = compare({"ada": {**base, **old, "total": 10.0}}, {"ada": {**base, **new, "total": 13.0}})
+    assert (change.why, change.parts) == (why, [part])

@@ -453,7 +453,8 @@ def test_a_term_by_keyboard_review_regrade_and_extensions(term, browser):
     tab.open((out / "index.html").as_uri())
     changes = tab.eval("[...document.querySelectorAll('#changes tr')].slice(1).map(r => r.innerText.split('\\t'))")
     assert {row[0]: row[1:4] + [row[4].split(" (")[0]] for row in changes} == {
-        first_id: ["12", "15", "", "lab07.ex1 report - -> 3"], second_id: ["12", "13", "", "lab07.ex1 report - -> 1"],
+        first_id: ["12", "15", "report reviewed", "lab07.ex1 report not reviewed -> 3"],
+        second_id: ["12", "13", "report reviewed", "lab07.ex1 report not reviewed -> 1"],
         student_id(2): ["0", "12", "new submission", "lab07.ex1: 0 -> 12"]}, changes
     every = {li.split("\n")[0]: li for li in tab.eval("[...document.querySelectorAll('#students li')]"
                                                       ".map(li => li.innerText)")}

@@ -97,6 +97,12 @@ def _why(old: dict | None, new: dict) -> str:
         return "grader or course changed"
     if old.get("status") != new.get("status"):
         return f"{old.get('status') or 'not graded'} -> {new.get('status')}"
+    if old.get("reports", {}) != new.get("reports", {}):
+        return "report reviewed"
+    if old.get("adjustments", []) != new.get("adjustments", []):
+        return "override changed"
+    if not _same(old.get("late") or 0.0, new.get("late") or 0.0):
+        return "late rules changed (extension, late days, penalty)"
     return ""
 
 
@@ -123,13 +129,13 @@ def _parts(old: dict, new: dict) -> list[str]:
     for exercise in sorted(set(old.get("reports", {})) | set(new.get("reports", {}))):
         a, b = old.get("reports", {}).get(exercise), new.get("reports", {}).get(exercise)
         if not _same(a, b):
-            parts.append(f"{exercise} report {_points(a)} -> {_points(b)}")
+            parts.append(f"{exercise} report {_points(a, 'not reviewed')} -> {_points(b, 'not reviewed')}")
     return parts
 
 
-def _points(value) -> str:
+def _points(value, missing: str = "-") -> str:
     if value is None:
-        return "-"
+        return missing
     return f"{round(float(value), 2):g}"
 
 
