@@ -477,3 +477,18 @@ def test_an_ncc_without_the_means_subtracted_is_named():
     named = naming.name_failure(trial, seconds=60)
     assert named is not None and named.mutant.operator == "drop_centring", named
     assert "the product of the two means is not subtracted" in named.sentence
+
+
+def test_a_reshape_in_the_other_order_is_named(tmp_path):
+    """A null vector reshaped column by column (order='F') -- numbered by nobody's table for the
+    camera matrix -- is a mutant of every reshape, and named where it reproduces."""
+    from autograder.engine.runner import grade
+
+    source = "import numpy as np\n\ndef f(v):\n    return v.reshape(3, 4) + np.ravel(v).reshape(3, 4, order='C') * 0\n"
+    sentences = {m.sentence for m in mutants_of(source, {"f"})["f"] if m.operator == "reshape_order"}
+    assert sentences == {"in `f`, `v` is reshaped column by column (Fortran order) instead of row by row",
+                         "in `f`, `v` is flattened column by column (Fortran order) instead of row by row"}
+    folder, mutant = _mutant_submission(tmp_path, "lab10", "camera_matrix_dlt", "reshape_order", "reshaped column")
+    result = grade(folder, ["lab10.ex4"], pictures="none")
+    named = [c for e in result.exercises for c in e.checks if c.mistake == "mutant:reshape_order"]
+    assert named and mutant.sentence in named[0].message

@@ -49,6 +49,7 @@ OPERATORS = {
     "drop_centring": ("mean", "centr", "center", "subtract", "average"),
     "other_name": ("instead of", "in place of", "where"),
     "swap_names": ("exchang", "swap", "order", "other way", "revers"),   # two other_name, crossed
+    "reshape_order": ("order", "column by column", "row by row", "reshape", "transpos", "flatten"),
     "drop_statement": ("missing", "skipped", "not "),
     "in_place": ("in place", "copy", "caller", "writes into", "written into"),   # named where the change shows
 }
@@ -76,6 +77,7 @@ _FLAG_FAMILIES = [
     ("SOLVEPNP_ITERATIVE", "SOLVEPNP_EPNP", "SOLVEPNP_SQPNP"),
     ("CALIB_FIX_PRINCIPAL_POINT", "CALIB_ZERO_TANGENT_DIST", "CALIB_FIX_ASPECT_RATIO"),
 ]
+_ORDERED = {"reshape": "reshaped", "ravel": "flattened", "flatten": "flattened"}   # order="C" unless told
 _FLAG_FAMILY = {name: family for family in _FLAG_FAMILIES for name in family}
 _OTHER_NAMES_PER_SITE = 4
 _MAX_PHRASE = 110
@@ -352,6 +354,12 @@ def _make_drop_centring(node, payload):
     return copy.deepcopy(node.left)   # x - mean -> x
 
 
+def _make_reshape_order(node, payload):
+    new = copy.deepcopy(node)   # x.reshape(3, 4) -> x.reshape(3, 4, order="F")
+    new.keywords = [k for k in new.keywords if k.arg != "order"] + [ast.keyword("order", ast.Constant(payload))]
+    return new
+
+
 def _make_other_name(node, payload):
     return ast.Name(payload, ast.Load())
 
@@ -366,7 +374,7 @@ _MAKE = {"sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_sw
          "int_division": _make_int_division, "drop_division": _make_drop_division,
          "drop_factor": _make_drop_factor, "drop_centring": _make_drop_centring,
          "drop_conversion": _make_drop_conversion, "other_name": _make_other_name, "in_place": _make_in_place,
-         "drop_statement": _make_drop_statement}
+         "drop_statement": _make_drop_statement, "reshape_order": _make_reshape_order}
 
 
 # ------------------------------------------------------------------ describing, in the student's terms
@@ -912,6 +920,11 @@ def _call_changes(node: ast.Call, words, what, parents):
         other = "degrees" if unit == "radians" else "radians"
         yield "degrees", "remove", f"{arg or 'the angle'} is used in {other} where {unit} are needed " \
                                    f"(the conversion `{dotted}` is missing)"
+    method = node.func.attr if isinstance(node.func, ast.Attribute) else ""   # x.reshape, np.reshape(x, ...)
+    if method in _ORDERED and not any(k.arg == "order" for k in node.keywords):
+        array = what(node.args[0]) if dotted.startswith(("np.", "numpy.")) and node.args else what(node.func.value)
+        yield "reshape_order", "F", f"{array or 'an array'} is {_ORDERED[method]} column by column " \
+                                    "(Fortran order) instead of row by row"
     if short in _OPPOSITES and (dotted.startswith(("np.", "numpy.")) or dotted in ("min", "max")):
         other = dotted[: -len(short)] + _OPPOSITES[short]
         on = what(node.args[0]) if node.args else ""
