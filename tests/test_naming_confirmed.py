@@ -296,6 +296,7 @@ DIRECT_EVIDENCE = {
     "exception_form": "the shapes in NumPy's own error are the named form's",
     "scale_form": "the answer is the truth times one factor, measured, and the factor is -1 or 1 / an entry",
     "_homogeneous_product": "the product's inner sizes differ by the homogeneous coordinate",
+    "_channels_form": "the image's size is the asked one and only its channel axis differs (measured)",
     "judge_matrix": "an integer matrix: the entries are whole numbers where the truth's are not",
     "judge_warp": "the shape is the expected one with width and height exchanged",
     "expect_array": "the shape is the expected one transposed",

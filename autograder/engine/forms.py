@@ -11,12 +11,41 @@ plain description ("returned shape (4, 4); expected (3, 3)").
 
 Each function returns a :class:`Form` (the sentence that explains it, beginning "it
 looks like", and the mistake's short name for the class reports) or ``None``.
+
+Held to the code (issue 35; ``tests/test_judges_coverage.py``): a fix a sentence gives
+("reshape it to (N, 2)", "keep it a column") is about the array measured -- the one returned,
+or the operands in NumPy's error -- so it is true of the student whatever else the code does,
+and is marked :func:`~autograder.engine.claims.measured`. Two parts say what the code does and
+are :func:`~autograder.engine.claims.guard`-ed: "divide by the last one" (code that already
+divides by the last coordinate is told only to keep the first ones) and "the division uses the
+wrong coordinate" (code that writes no division is told only the measured scale).
 """
 
 from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+
+from .claims import divides_by, guard, measured
+
+
+def _divides_by_last(k: int):
+    """A division by the last of ``k + 1`` coordinates, however indexed (``X[:, k]``, ``X[:, -1:]``,
+    ``X[..., k, None]``...), written or through a name holding it."""
+    ends = (str(k), "-1")
+    return divides_by(*(f"_[{form}]" for end in ends for form in (
+        f":, {end}", f":, {end}:", f"..., {end}", f"..., {end}:", f":, {end}, None", f":, [{end}]", end,
+        f"{end}, :")), f"_[:, {k}:{k + 1}]", "_[:, -1][:, None]", f"_[:, {k}][:, None]",
+        says="divides by the last coordinate")
+
+
+# "divide by the last one and keep the first k", for points of k coordinates (2-D or 3-D)
+DEHOMOGENISE = {k: guard(f"divide by the last one and keep the first {k}", _divides_by_last(k),
+                         instead=f"your code {{found}}: keep only the first {k} coordinates of what it returns")
+                for k in (2, 3)}
+# The cause scale_form names, said only of code that divides somewhere (else the measured scale only).
+WRONG_COORDINATE = guard("the division uses the wrong coordinate", ~divides_by("_"),
+                         instead="no division is written in your code: the answer is scaled by one over that entry")
 
 
 @dataclass(frozen=True)
@@ -49,23 +78,23 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
             return Form(f"it looks like the last column is missing ({_size(got)} for {_size(expected)})",
                         "the matrix's last column is missing")
     if len(got) == len(expected) + 1 == 3 and got[1] == 1 and _fits(got[:1] + got[2:], expected):
-        return Form(f"it looks like OpenCV's (N, 1, {got[2]}) point layout: reshape it to (N, {got[2]})",
+        return Form(measured(f"it looks like OpenCV's (N, 1, {got[2]}) point layout: reshape it to (N, {got[2]})"),
                     "points left in OpenCV's (N, 1, 2) layout")
     if len(got) == len(expected) == 2 and expected[0] is None and expected[1] in (2, 3) \
             and got[1] == expected[1] + 1:
-        return Form(f"it looks like the points are still homogeneous ({got[1]} coordinates): divide by "
-                    f"the last one and keep the first {expected[1]}",
+        return Form(f"it looks like the points are still homogeneous ({got[1]} coordinates): "
+                    + DEHOMOGENISE.get(expected[1], measured(f"keep the first {expected[1]}")),
                     "points left in homogeneous coordinates")
     channels = _channels_form(got, expected)
     if channels is not None:
         return channels
     if len(expected) == 1 and len(got) == 2 and 1 in got and _fits((max(got),), expected):
-        return Form(f"it looks like a {'column' if got[1] == 1 else 'row'} of shape {got} where a flat "
-                    f"array of {max(got)} values is asked (ravel() it)",
+        return Form(measured(f"it looks like a {'column' if got[1] == 1 else 'row'} of shape {got} where a flat "
+                             f"array of {max(got)} values is asked (ravel() it)"),
                     "a 2-D column or row where a flat array is asked")
     if len(got) == 1 and len(expected) == 2 and None not in expected and got[0] == expected[0] * expected[1]:
-        return Form(f"it looks flattened: {got[0]} values where a {_size(expected)} matrix is asked "
-                    f"(reshape({expected[0]}, {expected[1]}))", "the matrix is flattened")
+        return Form(measured(f"it looks flattened: {got[0]} values where a {_size(expected)} matrix is asked "
+                             f"(reshape({expected[0]}, {expected[1]}))"), "the matrix is flattened")
     return None
 
 
@@ -80,8 +109,8 @@ def _channels_form(got: tuple, expected: tuple) -> Form | None:
         return None
     rule = "a function that takes an image returns the input's channel count"
     if len(expected) == 2 and got == expected + (1,):   # a mask broadcast as mask[..., None], say
-        return Form("it looks like the grey image kept a channel axis of length 1, (H, W, 1): a grey image is "
-                    "(H, W) (drop the axis: result[..., 0])", "a grey image with an extra (H, W, 1) axis")
+        return Form(measured("it looks like the grey image kept a channel axis of length 1, (H, W, 1): a grey "
+                             "image is (H, W) (drop the axis: result[..., 0])"), "a grey image with an extra (H, W, 1) axis")
     if len(expected) == 2 and len(got) == 3 and got[:2] == expected and got[2] in (3, 4):
         return Form(f"it looks like the channels are not kept: {got[2]} channels where a grey (H, W) image is "
                     f"asked ({rule}: grey in, grey out)", "the channels are not kept")
@@ -119,7 +148,7 @@ def scale_form(got, expected, rtol: float = 1e-6) -> Form | None:
         if abs(entry) > 1e-9 * size and abs(k * entry - 1) <= 1e-6:
             nth = _ORDINALS[index] if index < len(_ORDINALS) else f"number {index + 1}"
             return Form(f"it looks like the right answer divided by its own {nth} entry (which becomes 1): "
-                        "the division uses the wrong coordinate",
+                        + WRONG_COORDINATE,
                         f"divided by the wrong coordinate (its {nth} entry)")
     return None
 
@@ -145,9 +174,9 @@ def exception_form(message: str) -> Form | None:
             for table in shapes:
                 if len(flat) == 1 and len(table) == 2 and table[0] == flat[0] != table[1]:
                     n, k = table
-                    return Form(f"it looks like a value per row, shape ({n},), meets an ({n}, {k}) array: "
-                                f"NumPy lines up the last axes, so keep it a column, shape ({n}, 1) "
-                                "(for example x[:, 2:3] or w[:, None])",
+                    return Form(measured(f"it looks like a value per row, shape ({n},), meets an ({n}, {k}) "
+                                         f"array: NumPy lines up the last axes, so keep it a column, shape ({n}, 1) "
+                                         "(for example x[:, 2:3] or w[:, None])"),
                                 "a per-row value kept flat (N,) against an (N, k) array")
         return None
     found = _MATMUL.search(message)
@@ -164,8 +193,8 @@ def exception_form(message: str) -> Form | None:
             if sizes[1] - sizes[0] == 1 and sizes[1] in (3, 4):
                 return _homogeneous_product(sizes)
             if first[1] == second[1] and first[1] != second[0]:
-                return Form(f"it looks like the points are rows ({_size(second)}) multiplied as columns: "
-                            "use pts @ M.T (or M @ pts.T)", "points multiplied as columns while stored as rows")
+                return Form(measured(f"it looks like the points are rows ({_size(second)}) multiplied as "
+                                     "columns: use pts @ M.T (or M @ pts.T)"), "points multiplied as columns while stored as rows")
     return None
 
 
@@ -173,6 +202,6 @@ def _homogeneous_product(sizes: list[int]) -> Form:
     # NumPy's error gives both inner sizes, not which operand holds the points: the name says
     # what is measured (one side has the homogeneous coordinate, the other not), both fixes.
     short, full = sizes
-    return Form(f"it looks like homogeneous and plain coordinates meet in a matrix product (inner sizes "
-                f"{short} and {full}): append a coordinate of ones to points of {short}, or use the "
-                f"matrix that fits them", "homogeneous and plain coordinates mixed in a matrix product")
+    return Form(measured(f"it looks like homogeneous and plain coordinates meet in a matrix product (inner "
+                         f"sizes {short} and {full}): append a coordinate of ones to points of {short}, or use "
+                         "the matrix that fits them"), "homogeneous and plain coordinates mixed in a matrix product")

@@ -12,13 +12,22 @@ effect (an idempotent write) keeps only the engine's 0-point advice.
 
 Each function loses points in one check per grading at most (the first public check where
 the effect shows), not in every check that calls it.
+
+The hint is held to the code (issue 35): "work on a copy" is measured (the caller's array did
+change, so it was not copied before the write); "write x = x / s rather than x /= s" is said only
+to code that writes an augmented assignment (``x /= s``, ``x[:, 0] -= c``), the usual way in.
 """
 
 from __future__ import annotations
 
 import re
 
+import ast
+
 import numpy as np
+
+from .claims import guard, measured
+from .hints import Predicate
 
 MISTAKE = "the caller's array is changed in place"
 
@@ -104,5 +113,8 @@ def effect_of_change(call, function: str, signature: str, args: tuple, kwargs: d
             "calls it twice, or uses its array afterwards, gets wrong values.")
 
 
-HINT = ("work on a copy: x = np.array(x, dtype=float) copies (np.asarray and .astype(float) of a float "
-        "array do not), and write x = x / s rather than x /= s")
+AUGMENTS = Predicate("writes an augmented assignment (x /= s)",
+                     lambda function: any(isinstance(node, ast.AugAssign) for node in ast.walk(function)))
+HINT = (measured("work on a copy: x = np.array(x, dtype=float) copies (np.asarray and .astype(float) of a float "
+                 "array do not)")
+        + guard(", and write x = x / s rather than x /= s", ~AUGMENTS, instead=""))

@@ -8,10 +8,20 @@ A mistake is named only when it is confirmed (:func:`name_mistake`): its answer
 reproduces the student's on the failing input *and* on a second input chosen to
 tell the candidates apart (a :class:`Probe`, whose student answer is asked for
 through ``t.call``). Otherwise the message says what is measurably wrong.
+
+The judges' own sentences are held to the code (issue 35; ``tests/test_judges_coverage.py``):
+where, and by how much, an answer is wrong, its shape, its channels, an ignored parameter are
+measurements of the student's outputs (a fix they name, "keep the input's channels", is about the
+array measured: :func:`~autograder.engine.claims.measured`); the two that ask for code are
+:class:`~autograder.engine.hints.Hint`\ s -- the black fill (code already passing a border mode is
+told the fill comes from elsewhere) and "use the PARAMETER argument" (code that reads the
+parameter is told its value has no effect, not that it is fixed). A mistake's name ("it looks
+like ...") is a lab's, held where the lab registers it.
 """
 
 from __future__ import annotations
 
+import ast
 from dataclasses import dataclass, replace
 from typing import Any, Callable
 
@@ -22,8 +32,9 @@ from fixtures.images import as_homography, coverage, warp
 
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
+from .claims import measured
 from .forms import shape_form
-from .hints import Hint, keyword, mentions
+from .hints import Hint, Predicate, keyword, mentions
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
 
@@ -325,7 +336,8 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
         if got.shape[:2] == expected_shape[:2]:
             form = shape_form(got.shape, expected_shape)   # grey in, grey out, or BGR in, BGR out
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
-                   + (form.sentence if form else "keep the input's channels"), mistake="the channels are not kept")
+                   + (form.sentence if form else measured("keep the input's channels")),
+                   mistake="the channels are not kept")
         size_rule = "" if dsize else ": warps keep the input's size (content that leaves the frame is cut off)"
         t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}{size_rule}")
     got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)
@@ -418,11 +430,28 @@ def same_informative_result(first, second) -> bool:
     return _same_result(first, second) and not constant
 
 
+def reads(name: str) -> Predicate:
+    """The value of the name ``name`` read (``ast.Load``) somewhere: a parameter used, whatever
+    becomes of its value (``k = 5`` before it still reads ``k`` afterwards)."""
+    def test(function) -> bool:
+        return any(isinstance(node, ast.Name) and node.id == name and isinstance(node.ctx, ast.Load)
+                   for node in ast.walk(function))
+    return Predicate(f"reads {name}", test)
+
+
+def unused_parameter_hint(parameter: str) -> Hint:
+    """The hint for ``parameter`` measured as ignored: "use it instead of a fixed value" only to code
+    that never reads it; code that reads it is told its value has no effect on the result."""
+    return Hint(f"use the {parameter} argument instead of a fixed value", asks=reads(parameter),
+                instead=f"your code reads {parameter}, yet the result does not change with it: follow where "
+                        "its value goes (is it overwritten before it is used, or used where it has no effect?)")
+
+
 def _ignored(t: Trial, what: str, parameter: str, values, result: str):
     first_value, second_value = values
     t.fail(f"{what}: {parameter}={first_value!r} and {parameter}={second_value!r} give the same "
            f"{result}: {parameter} is ignored.",
-           hint=f"use the {parameter} argument instead of a fixed value",
+           hint=unused_parameter_hint(parameter).said(t),
            mistake=f"{parameter} is ignored")
 
 

@@ -41,7 +41,7 @@ from ..loading.submission import load_submission
 from ..sandbox import cache, confine
 from ..sandbox.supervisor import CallOutcome, Limits, Sandbox
 from .checks import Fail, StudentFailure, Trial, Verdict
-from .claims import rewritten
+from .claims import measured, rewritten
 from .forms import exception_form
 from .inputs import Inputs
 from .registry import Check, Exercise, discover, hidden_checks_installed, select
@@ -564,7 +564,8 @@ def _in_place_advice(modified) -> CheckResult:
     lines = [f"{function}() modified its input array `{argument}` in place; callers do not expect that"
              for function, argument in modified]
     return CheckResult("inputs left unchanged", 0.0, 0.0, ADVICE, "\n".join(lines),
-                       hint="work on a copy (e.g. image = image.copy()) or write into a new array")
+                       # measured: the caller's array did change, so it was not copied before the write
+                       hint=measured("work on a copy (e.g. image = image.copy()) or write into a new array"))
 
 
 def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
