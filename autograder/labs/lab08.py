@@ -26,6 +26,8 @@ from fixtures.images import coverage, photo, warp
 
 from ..engine import strategies as st
 from ..engine.checks import StudentFailure, Trial, partial, passed
+from ..engine.claims import (THIRD_COORDINATE, calls_any, divides_by, guard, measured,
+                             takes_last_row_of_vt)
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
 from ..engine.hints import (RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, calls, code_of, expr, keyword, matmul_of,
                              mentions, passes_product)
@@ -37,6 +39,31 @@ from ..engine.registry import Lab
 
 lab = Lab("lab08", module="lab08_homographies", title="Image homographies")
 lab.forbid("homography_dlt", "cv2.findHomography", "cv2.getPerspectiveTransform")
+
+# Names and sentences that ask for code, held to the student's code (autograder.engine.claims).
+guard(truth.DIVISION_MISSING, asks=THIRD_COORDINATE,
+      instead="the perspective division is missing: your code {found}, but the points returned are not the "
+              "divided ones")
+guard(truth.H_TRANSPOSED, asks=(expr("_ @ H.T") | expr("np.dot(_, H.T)") | matmul_of("H", None)).saying(
+          "multiplies by H"),
+      instead="H is transposed (the points are multiplied by H^T where H x is due): your code {found}, so "
+              "look at the points' layout: pts_h @ H.T for (N, 3) rows, H @ pts_h.T for (3, N) columns")
+for _coordinate, _divisor in ((truth.DIVIDED_BY_X, "x"), (truth.DIVIDED_BY_Y, "y")):
+    guard(_coordinate, asks=THIRD_COORDINATE,
+          instead=f"x and y come out divided by {_divisor}, the wrong coordinate: your code {{found}}, so look "
+                  "at the layout of the array it indexes ((N, 3) rows or (3, N) columns?)")
+# w per point: a column of (N, 3) rows or a row of (3, N) columns (X[2] alone is ambiguous, so not read as one)
+OWN_W = divides_by("_[:, 2]", "_[:, 2:]", "_[:, 2:3]", "_[:, 2, None]", "_[:, [2]]", "_[:, -1]", "_[:, -1:]",
+                   "_[:, -1, None]", "_[..., 2]", "_[..., 2:]", "_[..., -1:]", "_[2, :]", "_[-1, :]",
+                   "_[:, 2][:, None]", "_[:, -1][:, None]", "_[:, 2].reshape(-1, 1)",
+                   says="divides by each point's third coordinate")
+guard(truth.FIRST_W, asks=OWN_W,
+      instead="every point comes out divided by the first point's w: your code {found}, so look at the "
+              "layout of the array it indexes ((N, 3) rows or (3, N) columns?)")
+guard(truth.WARP_INVERTED, asks=~(mentions("cv2.WARP_INVERSE_MAP") | calls("np.linalg.inv")),
+      instead="H is inverted (the image is warped with H^-1; cv2.warpPerspective inverts H itself)")
+guard(truth.WARP_AFFINE, asks=~calls("cv2.warpAffine"),
+      instead="the perspective row of H is ignored (the image is warped as if H[2] were (0, 0, 1))")
 
 PANORAMA_TOLERANCE = 9.0   # mean blurred error accepted on a panorama region
 MATCH_TOLERANCE = 3.0      # px: a match agrees with the true H
@@ -88,8 +115,8 @@ def relative_point_error(got, expected) -> float:
 def judge_points(t: Trial, what: str, got, H, pts):
     n = len(pts)
     if isinstance(got, np.ndarray) and got.shape == (n, 3):
-        t.fail(f"{what} returned homogeneous points of shape {got.shape}; expected ({n}, 2): "
-               "divide x and y by the third coordinate w and drop it")
+        t.fail(f"{what} returned homogeneous points of shape {got.shape}; expected ({n}, 2): the third "
+               "coordinate w is kept (x and y are expected, divided by it)")
     if isinstance(got, np.ndarray) and got.shape == (2, n) and n != 2:
         t.fail(f"{what} returned shape {got.shape}; expected ({n}, 2): one row per point")
     got = t.expect_array(got, what, shape=(n, 2), kind="iuf")
@@ -140,8 +167,8 @@ def transform_points_property(t):
         judge_points(t, "transform_points(H, pts)", t.call("transform_points", H, pts), H, pts)
 
     t.for_all(st.integers(0, 2**32 - 1), holds, max_examples=8,
-              describe=lambda s: f"fixtures.lab08.strong_perspective(np.random.default_rng({s})) "
-                                 "and 20 points in [-5000, 5000]^2")
+              describe=lambda s: measured(f"fixtures.lab08.strong_perspective(np.random.default_rng({s})) "
+                                          "and 20 points in [-5000, 5000]^2"))
 
 
 @ex1.check("apply_homography(image, H) keeps the input size", points=3)
@@ -170,18 +197,31 @@ PATCH_REGION = (800, 600, 160, 120)   # a small patch of a large photo, far from
 PATCH_SEEDS = (100, 103, 109)
 
 
+NULL_VECTOR_HINT = Hint("take the right singular vector of the smallest singular value",
+                        asks=takes_last_row_of_vt(),
+                        instead="your code {found}, but the H returned is not built from it (or is overwritten)")
+
+
 def fitted_h(t: Trial, src, dst, what="homography_dlt(src, dst)"):
     got = t.expect_array(t.call("homography_dlt", src, dst), what, shape=(3, 3), kind="iuf",
                          finite=True)
     if np.linalg.norm(got) == 0:
-        t.fail(f"{what} returned the zero matrix (the trivial solution of A h = 0): take the "
-               "right singular vector of the smallest singular value")
+        t.fail(f"{what} returned the zero matrix (the trivial solution of A h = 0): " + NULL_VECTOR_HINT.said(t))
     return got
 
 
-REDUCED_SVD = ("the SVD is a reduced one: with 4 pairs A is 8x9, and np.linalg.svd(A, "
-               "full_matrices=False) returns only 8 right singular vectors, none of them the "
-               "null vector; use the full SVD (the default)")
+REDUCED_SVD = guard(
+    "the SVD is a reduced one: with 4 pairs A is 8x9, and np.linalg.svd(A, full_matrices=False) returns only 8 "
+    "right singular vectors, none of them the null vector; use the full SVD (the default)",
+    asks=~keyword("np.linalg.svd", "full_matrices", False),
+    instead="H is the answer of a reduced SVD (with 4 pairs A is 8x9 and its null vector is the 9th right "
+            "singular vector): your code does not pass full_matrices=False, so look at A's shape (9 columns?) "
+            "and at which row of Vt is taken")
+NOT_UNDONE = guard(
+    "the normalised H is returned without undoing the normalisation (return T_dst^-1 @ H_normalised @ T_src)",
+    asks=calls_any("np.linalg.inv", "np.linalg.solve", says="inverts a normalising transform"),
+    instead="the normalised H is returned without undoing the normalisation: your code {found}; check that the "
+            "H returned is T_dst^-1 @ H_normalised @ T_src")
 
 
 def dlt_candidates(src, dst, H_true, normalise: bool) -> dict:
@@ -189,12 +229,11 @@ def dlt_candidates(src, dst, H_true, normalise: bool) -> dict:
     mistakes = truth.matrix_mistakes(H_true)
     if src is None:
         return mistakes
-    mistakes["the normalised H is returned without undoing the normalisation "
-             "(return T_dst^-1 @ H_normalised @ T_src)"] = truth.unnormalised_return(src, dst)
+    mistakes[NOT_UNDONE] = truth.unnormalised_return(src, dst)
     # Only with 4 pairs (an 8x9 A) does the reduced SVD lose the null vector: with more it
     # answers rightly, which is what tells it from a solver that is wrong everywhere.
     mistakes[REDUCED_SVD] = truth.dlt(src, dst, reduced_svd=True)
-    mistakes[REDUCED_SVD + " (and normalise the points)"] = truth.dlt(src, dst, normalise=False, reduced_svd=True)
+    mistakes[REDUCED_SVD + " (and the points are not normalised)"] = truth.dlt(src, dst, normalise=False, reduced_svd=True)
     mistakes.update(truth.dlt_mistakes(src, dst, normalise))
     return mistakes
 
@@ -379,6 +418,22 @@ def same_image_twice(pts1, pts2) -> bool:
     return len(pts1) >= 4 and float((np.linalg.norm(pts1 - pts2, axis=1) < 0.5).mean()) >= 0.9
 
 
+XY_HINT = Hint("return (x, y) = (column, row), as cv2.KeyPoint.pt gives them",
+               asks=(mentions(".pt") | calls("cv2.KeyPoint_convert")).saying("reads (x, y) from KeyPoint.pt"),
+               instead="your code {found}, which is (x, y) = (column, row): look at where the pair is reversed "
+                       "or indexed as (row, column)")
+# Lowe's test written with the ratio argument itself (not a constant)
+USES_RATIO = (expr("_.distance < ratio * _.distance") | expr("_.distance < _.distance * ratio")
+              | expr("ratio * _.distance > _.distance") | expr("_.distance / _.distance < ratio")).saying(
+    "compares best.distance < ratio * second_best.distance")
+RATIO_IGNORED_HINT = Hint(
+    "Apply Lowe's ratio test with the given ratio: keep a match when best.distance < ratio * second_best.distance.",
+    asks=USES_RATIO, instead="Your code {found}, yet ratio=0.5 and ratio=0.9 give the same matches: check that the "
+                             "matches returned are the ones that pass it (and that ratio is not overwritten).")
+RATIO_REVERSED_HINT = Hint(
+    "keep a match when best.distance < ratio * second_best.distance.", asks=RATIO_TEST,
+    instead="your code {found}: look at which matches it keeps (those passing it, with best the closer of the "
+            "two) and which are returned.")
 RATIO_HINT = Hint("keep a match only when best.distance < ratio * second_best.distance (knnMatch with k=2)",
                   asks=RATIO_TEST, instead="your code already {found}; the error is elsewhere: which points "
                   "are returned (pts1 from img1's keypoints by queryIdx, pts2 from img2's by trainIdx)")
@@ -400,8 +455,7 @@ def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, 
             t.fail(f"{what}: {SWAPPED}: pts1 must be the points in img1 "
                    "(queryIdx of a match of img1's descriptors against img2's)", mistake=SWAPPED)
         if truth.consistent(H, pts1[:, ::-1], pts2[:, ::-1]).mean() >= min_fraction:
-            t.fail(f"{what}: x and y are swapped: return (x, y) = (column, row), "
-                   "as cv2.KeyPoint.pt gives them", mistake="x and y are swapped")
+            t.fail(f"{what}: x and y are swapped: " + XY_HINT.said(t), mistake="x and y are swapped")
     if len(pts1) < min_matches:
         t.fail(f"{what} returned {len(pts1)} matches; at least {min_matches} are expected on this "
                "pair (the true homography is a mild change of view)")
@@ -436,13 +490,12 @@ def match_ratio(t):
                "correct), "
                f"ratio=0.9 gave {counts[0.9]} ({fractions[0.9]:.0%} correct)")
     if counts[0.5] == counts[0.9]:
-        t.fail(f"{summary}: the ratio argument has no effect (ratio is ignored). Apply Lowe's "
-               "ratio test with the given ratio: keep a match when best.distance < ratio * "
-               "second_best.distance.", mistake="ratio is ignored")
+        t.fail(f"{summary}: the ratio argument has no effect (ratio is ignored). " + RATIO_IGNORED_HINT.said(t),
+               mistake="ratio is ignored")
     if counts[0.5] > counts[0.9]:
         t.fail(f"{summary}: the stricter ratio kept more matches, so the ratio test is reversed "
-               "(it keeps the ambiguous matches): keep a match when best.distance < ratio * "
-               "second_best.distance.", mistake="the ratio test is reversed")
+               "(it keeps the ambiguous matches): " + RATIO_REVERSED_HINT.said(t),
+               mistake="the ratio test is reversed")
     if counts[0.5] < 10:
         t.fail(f"{summary}: too few matches survive ratio=0.5 (at least 10 expected).")
     if fractions[0.5] < 0.9 or fractions[0.5] < fractions[0.9] - 0.02:
@@ -575,8 +628,8 @@ def ransac_result(t: Trial, src, dst, what: str, **kwargs):
     n = len(src)
     if isinstance(inliers, np.ndarray) and inliers.ndim == 1 and inliers.dtype.kind in "iu" \
             and len(inliers) != n:
-        t.fail(f"{what}[1] has {len(inliers)} entries: return a boolean mask of length N={n} "
-               "(True for inliers), not the indices of the inliers")
+        t.fail(f"{what}[1] has {len(inliers)} integer entries, where a boolean mask of length N={n} (True for "
+               "inliers) is expected: they look like the indices of the inliers")
     if isinstance(inliers, np.ndarray) and inliers.shape == (n,) and inliers.dtype.kind in "iu" \
             and set(np.unique(inliers)) <= {0, 1}:
         inliers = inliers.astype(bool)  # a 0/1 mask is accepted
@@ -730,14 +783,19 @@ def fail_inverted_mask(t: Trial, what: str):
            "(transfer error below the threshold)", mistake="the inlier mask is inverted")
 
 
+SQUARED_HINT = Hint("compare the distance |H src - dst| itself with the threshold (pixels)",
+                    asks=calls_any("np.linalg.norm", "np.sqrt", "np.hypot", says="computes a distance (a square root)"),
+                    instead="your code {found}: look at what is compared with the threshold (the squared distance, "
+                            "or the threshold squared?)")
+
+
 def name_squared_threshold(t: Trial, what: str, H, inliers, src, dst, threshold: float):
     """Fail naming a mask of the pairs whose *squared* error is below the threshold, when it is one."""
     errors = np.linalg.norm(truth.apply_h(H, src) - dst, axis=1)
     if (inliers == (errors ** 2 < threshold)).mean() >= 0.98 and \
             (inliers == (errors < threshold)).mean() < 0.95:
         t.fail(f"{what}: the inlier mask marks the pairs whose *squared* error is below the "
-               "threshold; compare the distance |H src - dst| itself with the threshold (pixels)",
-               mistake="the squared error is compared with the threshold")
+               "threshold; " + SQUARED_HINT.said(t), mistake="the squared error is compared with the threshold")
 
 
 @ex4.check("homography_ransac with 30% outliers: H within 1.5 px of the truth", points=3)
@@ -1157,8 +1215,8 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
         if agreement2 >= 0.8 and agreement2 > agreement:
             t.images(what, yours=panorama, img1=img1, img2=img2)
             t.fail(f"{what}: img2 appears unwarped in your panorama, so img1 was warped: "
-                   f"{IMG2_REFERENCE}; img1 is the reference frame (warp img2 with the H that maps "
-                   "img2's pixels onto img1's)", mistake=IMG2_REFERENCE)
+                   f"{IMG2_REFERENCE}; img1 is the reference frame (only shifted), img2 the image warped "
+                   "onto it by the H that maps img2's pixels onto img1's", mistake=IMG2_REFERENCE)
         covered, shown = placed_as_is(panorama, img1, offset, "img1")
         if covered:
             # img1 is only shifted, but something is drawn over it: the judge stands, and says what
@@ -1230,9 +1288,12 @@ def fail_if_left_out(t: Trial, judge: PanoramaJudge, what: str):
     which = "last" if k == n - 1 else "first"
     loop = "range(len(images) - 1)" if k == n - 1 else "range(1, len(images))"
     mistake = f"image {k + 1}, the {which} one, is left out: the loop over the images is off by one"
+    # said only to a loop written that way: another loop leaving the image out is not told it is this one
+    every = Hint(f"loop over every image, not {loop}", asks=~expr(loop.replace("images", "_")),
+                 instead="every image is to be warped and composed")
     judge.show(t, what)
-    t.fail(f"{what}: {mistake} (the panorama is exactly the one of the other images; loop over "
-           f"every image, not {loop}).", mistake=mistake)
+    t.fail(f"{what}: {mistake} (the panorama is exactly the one of the other images; {every.said(t)}).",
+           mistake=mistake)
 
 
 ONE_IMAGE_CANVAS = "the canvas is only one image's size"
@@ -1356,8 +1417,8 @@ def name_image_left_out(t: Trial, judge: PanoramaJudge, what: str, names, sticki
     place = "the last" if k == len(names) - 1 else "the first" if k == 0 else "one"
     mistake = f"{names[k]} is left out"
     t.fail(f"{what}: it looks like {names[k]} ({place} of the images) is left out of the panorama: "
-           "the panorama is exactly the other images' bounding box. Warp and compose every image "
-           "(a loop over the images that stops one short leaves the last one out).",
+           f"the panorama is exactly the other images' bounding box, so {names[k]} is neither warped nor "
+           "composed (a loop over the images that stops one short leaves the last one out).",
            mistake=mistake)
 
 
@@ -1386,7 +1447,8 @@ def stitch_reference(t):
         # img1 itself is only shifted: what differs is drawn over it (img2 in the wrong place, if a map says so)
         name_second_warp_mistake(t, judge)
     judge.show(t, STITCH_WHAT)
-    t.fail(f"{measured}; {shown}." if covered else f"{measured}; {shown}: copy img1 unchanged (only shifted)")
+    t.fail(f"{measured}; {shown}." if covered else f"{measured}; {shown}: img1 is not in the panorama unchanged "
+           "(only shifted), as the reference frame is")
 
 
 def judge_region(t: Trial, judge: PanoramaJudge, what: str, region, name: str, hint: str = ""):
@@ -1408,16 +1470,29 @@ SECOND_WARP_HINT = Hint(
             "covers are written with the truth (brightness, blending with the empty canvas)")
 
 
+INVERSE_SECOND_WARP = guard(
+    "img2 was warped with the inverse homography: use the H that maps img2's pixels onto img1's (match img2 -> "
+    "img1, or invert)", asks=calls_any("np.linalg.inv", "np.linalg.pinv", says="inverts a homography"),
+    instead="img2 was warped with the inverse homography (the one mapping img1 onto img2): your code {found}, so "
+            "look at which H is inverted, and at the direction of the matches (img2 -> img1)")
+# The shift on the left of H, and no product with H on the left: T @ H written, H @ T not.
+SHIFT_LEFT = (matmul_of(None, "H") & ~matmul_of("H", None)).saying("multiplies the shift on the left of H (T @ H)")
+SHIFT_ON_THE_RIGHT = guard(
+    "the canvas shift is on the wrong side: warp img2 with T @ H (first H, then the shift), not H @ T",
+    asks=SHIFT_LEFT, instead="the canvas shift is on the wrong side (img2 lands where H @ T sends it): your code "
+                             "{found}, so look at which H it is (the one mapping img2 onto img1?) and which "
+                             "product is given to cv2.warpPerspective")
+SHIFT_NOT_APPLIED = guard(
+    "the canvas shift is not applied to img2: warp it with T @ H, as img1 is shifted by T",
+    asks=SECOND_WARP_HINT.asks, instead="the canvas shift is not applied to img2 (it lands where H alone sends "
+                                        "it): your code {found}, so look at which matrix is given to "
+                                        "cv2.warpPerspective for img2")
+
+
 def second_warp_mistakes(scene, offset) -> dict[str, np.ndarray]:
     """The map (img2 -> panorama) each usual mistake of the second warp applies."""
     H, T = scene.h(1, 0), truth.translation(*offset)
-    return {
-        "img2 was warped with the inverse homography: use the H that maps img2's pixels onto "
-        "img1's (match img2 -> img1, or invert)": T @ np.linalg.inv(H),
-        "the canvas shift is on the wrong side: warp img2 with T @ H (first H, then the shift), "
-        "not H @ T": H @ T,
-        "the canvas shift is not applied to img2: warp it with T @ H, as img1 is shifted by T": H,
-    }
+    return {INVERSE_SECOND_WARP: T @ np.linalg.inv(H), SHIFT_ON_THE_RIGHT: H @ T, SHIFT_NOT_APPLIED: H}
 
 
 def second_warp_explained(judge: PanoramaJudge) -> list[str]:
@@ -1516,8 +1591,8 @@ def many_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Panor
                    f"levels on average at its best place): {shown}.")
         t.images(what, yours=panorama)
         t.fail(f"{what}: none of the images appears unwarped in your panorama (the closest, image {k + 1}, "
-               f"differs by {error:.0f} grey levels; {shown}): keep one image as the reference frame "
-               "(only shifted) and warp the others into it")
+               f"differs by {error:.0f} grey levels; {shown}): one image is to be the reference frame "
+               "(only shifted), the others warped into it")
     store[key + "/judge"] = PanoramaJudge(scene, panorama, k, offset)
     return store[key + "/judge"]
 
@@ -1653,6 +1728,20 @@ NO_BANDS_ADDED = ("the collapse does not add the bands back (only the coarsest l
                   "upsampled, a blurred image)")
 
 
+# An upsampled level added to something: a collapse that adds the bands back
+ADDS_UPSAMPLED = (expr("cv2.pyrUp(_) + _") | expr("_ + cv2.pyrUp(_)") | expr("cv2.pyrUp(_, _) + _")
+                  | expr("_ + cv2.pyrUp(_, _)") | expr("cv2.pyrUp(_, dstsize=_) + _")
+                  | expr("_ + cv2.pyrUp(_, dstsize=_)")).saying("adds a band to an upsampled level")
+ADD_BANDS_HINT = Hint("out = cv2.pyrUp(out, dstsize=...) + band at every level", asks=ADDS_UPSAMPLED,
+                      instead="your code {found}, yet the result is the coarsest level upsampled: look at which "
+                              "variable carries the sum from one level to the next (out = up(out) + band)")
+EXACT_COLLAPSE_HINT = Hint(
+    "a Laplacian pyramid collapses back to the image exactly (up = cv2.pyrUp(coarser, dstsize=...), band = "
+    "finer - up, and collapse by adding back)", asks=calls("cv2.pyrUp") & calls("cv2.pyrDown"),
+    instead="a Laplacian pyramid collapses back to the image exactly: your code {found}, so compare each band "
+            "with finer - pyrUp(coarser) and the collapse with adding them back in the same order")
+
+
 def coarsest_upsampled(image, levels: int) -> np.ndarray:
     """The coarsest Gaussian level brought back to full size with cv2.pyrUp, no band added."""
     pyramid = [np.float32(image)]
@@ -1678,8 +1767,8 @@ def blend_identity(t):
     t.images(what, input=image, yours=got,
              difference=difference_heatmap(image, got))
     if mean_difference(got, coarsest_upsampled(image, 4)) <= 1.5 and no_bands_on_probe(t):
-        t.fail(f"{what} changed {bad:.0%} of the pixels: it looks like {NO_BANDS_ADDED}: "
-               "out = cv2.pyrUp(out, dstsize=...) + band at every level", mistake=NO_BANDS_ADDED)
+        t.fail(f"{what} changed {bad:.0%} of the pixels: it looks like {NO_BANDS_ADDED}: " + ADD_BANDS_HINT.said(t),
+               mistake=NO_BANDS_ADDED)
     signed = got.astype(np.int16) - image
     if (np.abs(signed).max(axis=2) > 100).mean() > 0.02 or (signed.mean() > 2 and (signed >= 0).mean() > 0.95):
         t.fail(f"{what} changed {bad:.0%} of the pixels: the Laplacian levels are negative in "
@@ -1687,9 +1776,7 @@ def blend_identity(t):
                + Hint("compute the pyramids in float (img.astype(np.float32))", asks=TO_FLOAT,
                       instead="your code {found} somewhere, but a level or band is still computed from uint8 "
                               "images").said(t))
-    t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels; a Laplacian "
-           "pyramid collapses back to the image exactly (up = cv2.pyrUp(coarser, dstsize=...), "
-           "band = finer - up, and collapse by adding back)")
+    t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels; " + EXACT_COLLAPSE_HINT.said(t))
 
 
 def blend_probe(t: Trial, img1, img2, mask, **kwargs):
@@ -1748,6 +1835,14 @@ def away_from_seam(got, left_image, right_image, seam: int, margin: int = 40):
     return blurred_difference(got, left_image, left), blurred_difference(got, right_image, right)
 
 
+MASK_SIDE_HINT = Hint(
+    "it must weight img1 (mask * img1 + (1 - mask) * img2 at every level)",
+    asks=(expr("_ * img1 + (1 - _) * img2") | expr("img1 * _ + img2 * (1 - _)")).saying(
+        "writes mask * img1 + (1 - mask) * img2"),
+    instead="your code {found}: look at which pyramid stands for img1 at each level (the mask's, img1's, "
+            "img2's), and at the order the arguments are used in")
+
+
 @ext3.check("the mask is respected: img1 where mask = 1, img2 where mask = 0", points=2)
 def blend_mask(t):
     img1, img2 = photo("astronaut", (256, 192)), photo("coffee", (256, 192))
@@ -1759,8 +1854,7 @@ def blend_mask(t):
         return passed(f"mean difference {err_left:.1f} (img1 side), {err_right:.1f} (img2 side)")
     t.images(what, img1=img1, img2=img2, mask=(mask * 255).astype(np.uint8), yours=got)
     if max(away_from_seam(got, img2, img1, seam=128)) <= 3:
-        t.fail(f"{what}: the mask weights img2; it must weight img1 (mask * img1 + (1 - mask) * img2 "
-               "at every level)")
+        t.fail(f"{what}: the mask weights img2; " + MASK_SIDE_HINT.said(t))
     t.fail(f"{what}: away from the seam the result should be img1 where mask = 1 and img2 where "
            f"mask = 0; it differs by {err_left:.0f} and {err_right:.0f} grey levels.")
 
@@ -1796,8 +1890,9 @@ def blend_seam(t):
                 f"mask * img1 + (1 - mask) * img2 ({cut:.0f})"
         if damaged or not feathered(t):
             t.fail(f"{plain}.{damaged}")
-        t.fail(f"{plain}: blend each Laplacian level with the mask's Gaussian pyramid at that level, so "
-               "coarse levels blend over a wide band")
+        t.fail(f"{plain}: near the seam your result is one weight per pixel (a feather or alpha blend, measured on "
+               "two photos), where a multiband blend mixes each Laplacian level with the mask's Gaussian pyramid at "
+               "that level, so coarse levels blend over a wide band")
     if step > SEAM_STEP and parameter_ignored(
             lambda **kw: t.call("blend_multiband", dark, bright, mask, **kw), "levels", (1, 6)):
         t.fail(f"{what}: levels=1 and levels=6 give the same image: levels is ignored. The "
@@ -1907,6 +2002,10 @@ PYRUP_DSTSIZE = Hint("pass dstsize=(width, height) of the finer level to cv2.pyr
                             "(the mask's pyramid, the bands, the collapse)")
 
 
+ODD_SIZES_LOST = guard("the sizes of odd levels are lost (cv2.pyrUp without dstsize)", asks=PYRUP_DSTSIZE.asks,
+                       instead="the sizes of odd levels are lost")
+
+
 @ext3.check("blend_multiband on sizes that are not multiples of 2**levels", points=1)
 def blend_odd_size(t):
     img1, img2 = photo("chelsea", (250, 170)), photo("rocket", (250, 170))
@@ -1924,5 +2023,5 @@ def blend_odd_size(t):
     even = blend_probe(t, even1, even2, np.ascontiguousarray(mask[:160, :240]))
     if even is not None and max(away_from_seam(even, even1, even2, seam=100)) <= 3:
         t.fail(f"{measured}, while the same images cut to 240x160 (multiples of 2**levels) blend "
-               f"rightly: {PYRUP_DSTSIZE.said(t)}", mistake="the sizes of odd levels are lost (cv2.pyrUp without dstsize)")
+               f"rightly: {PYRUP_DSTSIZE.said(t)}", mistake=ODD_SIZES_LOST)
     t.fail(f"{measured}; the mask should select img1 where mask = 1 and img2 where mask = 0, at any size.")

@@ -32,7 +32,7 @@ MISTAKES = {
             pts = np.asarray(pts, float)
             q = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H).T
             return q / q[:, 2:]
-        """, ["homogeneous", "drop it"]),
+        """, ["homogeneous", "w is kept"]),
     "warp with the inverse map": ("lab08.ex1", """
         def apply_homography(image, H, dsize=None):
             h, w = image.shape[:2]
