@@ -229,3 +229,83 @@ def test_the_off_by_one_loop_is_named_only_to_a_loop_written_that_way(loop, writ
     # the Hint lab08.fail_if_left_out builds for the image left out
     every = Hint(f"loop over every image, not {loop}", asks=~expr(loop.replace("images", "_")), instead="")
     assert told(every, f"def stitch_many(images):\n    {written}\n", "stitch_many") is told_it
+
+
+# ------------------------------------------------------------------ lab 12
+from autograder.labs import lab12  # noqa: E402
+from fixtures import lab12 as truth12  # noqa: E402
+
+CASES12 = {
+    "lab12 NCC divided by a variance": (G[truth12.NCC_BY_VARIANCE], "block_matching", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            Lc, Rc = L - L.mean(), R - R.mean()
+            return (Lc * Rc).sum() / np.sqrt((Lc ** 2).sum() * (Rc ** 2).sum())
+        """, """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            Lc, Rc = L - L.mean(), R - R.mean()
+            return (Lc * Rc).mean() / (Rc.std() ** 2)
+        """),
+    "lab12 third coordinate for the fourth": (G[truth12.THIRD_NOT_FOURTH], "triangulate", """
+        def triangulate(P1, P2, pts1, pts2):
+            X = np.linalg.svd(rows(P1, P2, pts1, pts2))[2][:, -1]
+            return X[:, :3] / X[:, 3:]
+        """, """
+        def triangulate(P1, P2, pts1, pts2):
+            X = np.linalg.svd(rows(P1, P2, pts1, pts2))[2][:, -1]
+            return X[:, :3] / X[:, 2:3]
+        """),
+    "lab12 Gray code decoded as binary": (G[truth12.PLAIN_BINARY_DECODE], "depth_from_structured_light", """
+        def depth_from_structured_light(images, f, baseline):
+            bits = np.array(images) > 127
+            for i in range(1, len(bits)):
+                bits[i] ^= bits[i - 1]
+            return depth(bits, f, baseline)
+        """, """
+        def depth_from_structured_light(images, f, baseline):
+            bits = np.array(images) > 127
+            return depth(bits, f, baseline)
+        """),
+    "lab12 OpenCV's fixed point": (lab12.FIXED_POINT_HINT, "block_matching", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            raw = cv2.StereoBM_create(max_disparity, block_size).compute(left, right)
+            disparity = raw / 16.0
+            return raw.astype(np.float64)
+        """, """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return cv2.StereoBM_create(max_disparity, block_size).compute(left, right).astype(np.float64)
+        """),
+    "lab12 H1 and H2 inverted": (lab12.INVERT_HINT, "rectify", """
+        def rectify(img_l, img_r, K1, K2, R, T):
+            H1 = np.linalg.inv(K_new @ R1 @ np.linalg.inv(K1))
+            return warp(img_l, img_r, H1, H2)
+        """, """
+        def rectify(img_l, img_r, K1, K2, R, T):
+            H1 = K1 @ R1.T @ K_new_inverse   # the map back, rectified -> original
+            return warp(img_l, img_r, H1, H2)
+        """),
+    "lab12 NCC means not subtracted": (lab12.CENTRE_HINT, "block_matching", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            Lc = L - cv2.boxFilter(L, -1, (block_size, block_size))
+            return ncc(Lc, R)
+        """, """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return (L * R).sum() / np.sqrt((L ** 2).sum() * (R ** 2).sum())
+        """),
+    "lab12 NCC not fully normalised": (lab12.NORMALISE_NCC_HINT, "block_matching", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            Lc, Rc = L - L.mean(), R - R.mean()
+            return (Lc * Rc).mean() / (Lc.std() * Rc.std() + 1e-9)
+        """, """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            Lc, Rc = L - L.mean(), R - R.mean()
+            return (Lc * Rc).sum()
+        """),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES12))
+def test_lab12_a_student_whose_code_does_it_is_not_told_the_realistic_mistake_is(name):
+    hint, function, does_it, mistake = CASES12[name]
+    assert hint.asks is not None
+    assert not told(hint, does_it, function), f"{name}: told to do what the code does"
+    assert told(hint, mistake, function), f"{name}: the mistake is no longer told"

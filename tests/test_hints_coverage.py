@@ -30,7 +30,7 @@ from autograder.engine import claims
 
 ROOT = Path(__file__).resolve().parents[1]
 LABS = ("lab07", "lab08", "lab09", "lab10", "lab11", "lab12")
-PENDING = {"lab12": "lab12 is being audited separately (issue 35)"}
+PENDING: dict[str, str] = {}   # labs whose audit is under way (strict xfails)
 
 VERBS = ("use|divide|multiply|transpose|reshape|negate|call|convert|take|keep|apply|pass|refine|choose|draw|"
          "build|flip|swap|normalise|normalize|undo|invert|add|subtract|solve|set|enforce|compute|give|return|"

@@ -16,6 +16,7 @@ DP and NCC, the reference's.
 
 from __future__ import annotations
 
+import ast
 from dataclasses import replace
 
 import cv2
@@ -28,15 +29,44 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
-from ..engine.claims import measured
+from ..engine.claims import calls_any, divides_by, guard, measured
 from ..engine.forms import shape_form
-from ..engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, Hint, calls, code_of, expr, keyword
+from ..engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, Hint, Predicate, calls, code_of, expr, keyword
 from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..engine.registry import Lab
 
 lab = Lab("lab12", module="lab12_stereo", title="Stereo")
+
+# Names and sentences that ask for code, held to the student's code (autograder.engine.claims).
+# A block's deviation (or the square root of a product of variances) as a divisor.
+STD_PRODUCT = divides_by("np.sqrt(_ * _)", "np.sqrt(_) * np.sqrt(_)", "_.std() * _.std()", "np.std(_) * np.std(_)",
+                         "(_ * _) ** 0.5", "np.sqrt(_ * _) + _", "np.sqrt(_ * _ + _)", "_.std() * _.std() + _",
+                         "_ * _.std() * _.std()", "_ * np.std(_) * np.std(_)",
+                         says="divides by a product of the blocks' deviations")
+guard(truth.NCC_BY_VARIANCE, asks=STD_PRODUCT,
+      instead="the NCC is divided by the right block's variance (std_R^2, or var_L var_R): your code {found}, so "
+              "look at which blocks' deviations are multiplied (std_L std_R, each a square root)")
+FOURTH_COORDINATE = divides_by("_[:, 3]", "_[:, 3:]", "_[:, 3:4]", "_[:, 3, None]", "_[:, -1]", "_[:, -1:]",
+                               "_[:, -1, None]", "_[3]", "_[-1]", "_[3, :]", "_[-1, :]", "_[..., 3:]", "_[..., -1:]",
+                               "_[..., 3]", "_[..., -1]", says="divides by the fourth coordinate")
+guard(truth.THIRD_NOT_FOURTH, asks=FOURTH_COORDINATE,
+      instead="X comes out divided by its third coordinate: your code {found}, so look at the layout of the array "
+              "it indexes ((N, 4) rows or (4, N) columns?) and at the X returned")
+
+
+def _xor(function) -> bool:
+    """``a ^ b`` or ``a ^= b`` written in ``function``."""
+    return any(isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, ast.BitXor)
+               for node in ast.walk(function))
+
+
+XORS = (Predicate("computes an XOR", _xor) | calls("np.bitwise_xor") | calls("np.logical_xor")).saying(
+    "computes an XOR")
+guard(truth.PLAIN_BINARY_DECODE, asks=XORS,
+      instead="the patterns are decoded as plain binary: your code {found}, so check that it turns the Gray code "
+              "into binary (b_0 = g_0, b_i = b_(i-1) XOR g_i: b_(i-1), not g_(i-1)) before the stripe index is read")
 
 MARGIN = 0.05   # bad-pixel rate accepted above the reference's on the same scene (DP, NCC)
 SLACK = 0.03    # block matching (SSD): accepted above the worst legitimate matcher's rate
@@ -73,8 +103,8 @@ def expect_disparity(t: Trial, what: str, got, scene) -> np.ndarray:
             t.fail(f"{what} returned shape {got.shape}; expected {shape}: rows and columns are swapped",
                    mistake="the result is transposed")
         if got.ndim == 2 and got.shape[0] == shape[0] and got.shape[1] < shape[1]:
-            t.fail(f"{what} returned shape {got.shape}; expected {shape}: keep the left image's size "
-                   "and mark pixels without a match as invalid (0)")
+            t.fail(f"{what} returned shape {got.shape}; expected {shape}: {shape[1] - got.shape[1]} columns are "
+                   "missing (the map has the left image's size, pixels without a match marked invalid (0))")
     return t.expect_array(got, what, shape=shape, kind="iuf")
 
 
@@ -84,6 +114,13 @@ LOWEST_COST_HINT = Hint(
     asks=KEEPS_LOWEST,
     instead="for left pixel (x, y) compare its block with the block around (x - d, y) in the right image, "
             "d = 0..max_disparity; your code already {found}: the error is elsewhere")
+
+
+FIXED_POINT_HINT = Hint(
+    "(it looks like OpenCV's fixed point: StereoBM and StereoSGBM return 16 times the disparity; divide by 16).",
+    asks=(divides_by("16") | expr("_ * 0.0625") | expr("_ * (1 / 16)")).saying("divides by 16"),
+    instead="(it looks like OpenCV's fixed point: StereoBM and StereoSGBM return 16 times the disparity; your code "
+            "{found}, but not the map returned).")
 
 
 def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, again=None,
@@ -217,9 +254,8 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=N
         if abs(ratio - 1) > 0.3 and truth.bad_pixel_rate(finite / ratio, gt, thr) <= allowed + 0.05:
             fixed_point = abs(ratio - 16) <= 0.1 * 16
             t.fail(f"{what}: the disparities are scaled by about {ratio:.3g} "
-                   + ("(it looks like OpenCV's fixed point: StereoBM and StereoSGBM return 16 times the "
-                      "disparity; divide by 16)." if fixed_point else
-                      "(return them in pixels, not rescaled for display or as OpenCV's 16x fixed point)."),
+                   + (FIXED_POINT_HINT.said(t) if fixed_point else
+                      "(they are expected in pixels, not rescaled for display or as OpenCV's 16x fixed point)."),
                    mistake="OpenCV's 16x fixed-point disparities, not divided by 16" if fixed_point
                    else "the disparities are rescaled")
     values = finite[gt > 0]
@@ -252,10 +288,10 @@ VARIANT_SLACK = 1.1   # noisy data: up to 10% above the least accurate textbook 
 def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, exact=True):
     n = len(pts1)
     if isinstance(got, np.ndarray) and got.shape == (n, 4):
-        t.fail(f"{what} returned homogeneous (N, 4) points: divide by the fourth coordinate "
-               "and return (N, 3).")
+        t.fail(f"{what} returned homogeneous (N, 4) points; (N, 3) points are expected, divided by the fourth "
+               "coordinate.")
     if isinstance(got, np.ndarray) and got.shape == (3, n) and n != 3:
-        t.fail(f"{what} returned shape {got.shape}; expected ({n}, 3): one row per point (transpose it).")
+        t.fail(f"{what} returned shape {got.shape}; expected ({n}, 3): one row per point (this is its transpose).")
     got = t.expect_array(got, what, shape=(n, 3), kind="iuf", finite=True)
     linear = truth.linear_triangulation(P1, P2, pts1, pts2)
     scale = max(1.0, float(np.abs(X_true).max()))
@@ -567,6 +603,11 @@ def orientation(H, shape) -> tuple[bool, bool, bool]:
     return bool(mapped[1, 0] < mapped[0, 0]), bool(mapped[3, 1] < mapped[2, 1]), behind
 
 
+INVERT_HINT = Hint(" (invert them)", asks=calls_any("np.linalg.inv", "np.linalg.pinv", "cv2.invert",
+                                                  says="inverts a matrix"),
+                   instead=" (your code {found}: look at which way each matrix it inverts maps)")
+
+
 def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
     dy, dx = row_errors(H1, H2, pair)
     worst = float(np.nanmax(dy)) if np.all(np.isfinite(dy)) else float("inf")
@@ -607,7 +648,7 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
     inv1, inv2 = np.linalg.pinv(H1), np.linalg.pinv(H2)
     if np.nanmax(row_errors(inv1, inv2, pair)[0]) <= EXACT_ROWS:
         t.fail(f"{what}: H1 and H2 map rectified pixels back to the originals; the API wants "
-               "them from original to rectified coordinates (invert them).",
+               "them from original to rectified coordinates" + INVERT_HINT.said(t) + ".",
                mistake="H1 and H2 are inverted (rectified to original)")
     if np.nanmax(row_errors(H2, H1, pair)[0]) <= EXACT_ROWS:
         t.fail(f"{what}: H1 and H2 are swapped (H1 rectifies the left image).",
@@ -750,13 +791,13 @@ def rectify_in_view(t):
         if kept < IN_VIEW:
             t.fail(f"rectify: only {format_apart(kept, IN_VIEW, 2, percent=True)} of the {name} image stays "
                    "inside the rectified frame "
-                   f"(at least {IN_VIEW:.0%} should): choose the new principal point (and focal "
-                   "length) so the rectified images stay in view.")
+                   f"(at least {IN_VIEW:.0%} should): the new principal point (and focal length) do not keep "
+                   "the rectified images in view.")
         if covered < IN_VIEW:
             t.fail(f"rectify: the {name} image covers only {format_apart(covered, IN_VIEW, 2, percent=True)} of "
                    "its rectified frame "
                    f"(at least {IN_VIEW:.0%} should): the result is shrunk or pushed aside.")
-    return passed("both images stay mostly in view and fill their frames")
+    return passed(measured("both images stay mostly in view and fill their frames"))
 
 
 # ================================================================== ex4 block matching (SSD)
@@ -818,13 +859,13 @@ def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, agai
                               judged=np.where(top, 0.0, near),
                               mistakes=mistakes,
                               allowed=figures["legitimate"] + SLACK,
-                              accepted_by=f"; the legitimate SSD matchers, cv2.StereoBM included, up to "
-                                          f"{figures['legitimate']:.1%}",
+                              accepted_by=measured(f"; the legitimate SSD matchers, cv2.StereoBM included, up to "
+                                                   f"{figures['legitimate']:.1%}"),
                               probe=block_size_probe(t, what, scene, cost="ssd"))
     if verdict.fraction == 1:
         # (figures of a scene with no pixel at the top of the range may leave it out)
-        judge_top_of_range(t, what, got, scene, top, figures.get("top_legitimate", 1.0), "legitimate SSD matchers, "
-                           "cv2.StereoBM included", mistakes=mistakes, show=False)
+        judge_top_of_range(t, what, got, scene, top, figures.get("top_legitimate", 1.0),
+                           measured("legitimate SSD matchers, cv2.StereoBM included"), mistakes=mistakes, show=False)
     return verdict
 
 
@@ -996,6 +1037,18 @@ def ncc_invariance(t: Trial) -> tuple[float, float] | None:
     return apart(maps["plain"], maps["dimmed"]), apart(maps["dimmed"], maps["lifted"])
 
 
+SUBTRACTS_MEANS = calls_any("np.mean", ".mean", "cv2.boxFilter", "cv2.blur", "scipy.ndimage.uniform_filter",
+                            says="computes block means")
+CENTRE_HINT = Hint("Subtract each block's mean before multiplying.", asks=SUBTRACTS_MEANS,
+                   instead="Your code {found}: check that each block's own mean is subtracted from it, in both "
+                           "views, before the product.")
+NORMALISE_NCC_HINT = Hint(
+    "Subtract each block's mean and divide by the product of the blocks' standard deviations.",
+    asks=SUBTRACTS_MEANS & STD_PRODUCT,
+    instead="Your code {found}: check that each block's own mean is subtracted and that the deviations divided by "
+            "are those of the same two blocks, over the same pixels.")
+
+
 def name_ncc_normalisation(t: Trial, what: str):
     """Fail naming the means not subtracted when the NCC maps show it: moved by an offset of one view,
     not by a gain (a cost that is no correlation at all, SSD, is moved by both)."""
@@ -1006,7 +1059,7 @@ def name_ncc_normalisation(t: Trial, what: str):
     if gain <= INVARIANT and offset >= MOVED:
         t.fail(f"{what}: it looks like {NOT_CENTRED}: adding {OFFSET} grey levels to the right view moves {offset:.0%} "
                f"of your disparities (on random dots), while scaling it by {GAIN:g} moves {gain:.0%}; a normalised "
-               "cross-correlation is unchanged by both. Subtract each block's mean before multiplying.",
+               "cross-correlation is unchanged by both. " + CENTRE_HINT.said(t),
                hint=NCC_FORMULA, mistake=NOT_CENTRED)
 
 
@@ -1071,8 +1124,8 @@ def ncc_gain(t):
             <= figures("motorcycle", "bm_ncc_9")["bad"] + MARGIN):
         name_ncc_normalisation(t, what)
         t.fail(f"{what}: bad-pixel rate {bad:.1%} (reference {reference:.1%}), although it works "
-               "when the views have the same brightness: your NCC is not fully normalised. Subtract "
-               "each block's mean and divide by the product of the blocks' standard deviations.",
+               "when the views have the same brightness: your NCC is not fully normalised. "
+               + NORMALISE_NCC_HINT.said(t),
                mistake="the NCC is not fully normalised")
     diagnose_disparity(t, what, got, scene, reference + MARGIN,
                        mistakes=MatchingMistakes(scene, 9, "ncc"))
@@ -1207,8 +1260,8 @@ def judge_last_column(t: Trial, what: str, got, scene):
         shown = ", ".join(f"{v:g}" for v in values[:3]) + (", ..." if len(values) > 3 else "")
         t.fail(f"{what}: it looks like {BACKTRACKING}: the last column (x = {got.shape[1] - 1}) is wrong "
                f"in {bad:.0%} of the rows (your values there: {shown}; true disparities "
-               f"{truth_column[known].min():.1f} to {truth_column[known].max():.1f}). Fill every column "
-               "down to x = 0.", mistake=BACKTRACKING)
+               f"{truth_column[known].min():.1f} to {truth_column[known].max():.1f}); the backtracking starts "
+               "at the last column and reaches every column down to x = 0.", mistake=BACKTRACKING)
 
 
 @ex5.check("dp_stereo beats block matching where the texture is weak", points=4, timeout=STEREO_TIMEOUT)
@@ -1245,8 +1298,9 @@ def dp_weak_texture(t):
             return partial(0.5, f"{named.message} {better}", mistake=named.mistake)
         # No cause is known here: the hint says where the difference can come from, not what to change.
         return partial(0.5, f"{what}: {better}",
-                       hint="compare each step with the lab sheet's: the matching cost, the accumulation "
-                            "along the row with its smoothness penalty, and the backtracking from the last column")
+                       hint="the difference can come from any step of the lab sheet's: the matching cost, the "
+                            "accumulation along the row with its smoothness penalty, and the backtracking from the "
+                            "last column")
     name_no_backtracking(t, what)
     t.fail(f"{what}: {summary}: no better than block matching.")
 
@@ -1316,6 +1370,9 @@ ex6 = lab.exercise("ex6", "Structured light", functions=[
     "depth_from_structured_light(images, f, baseline)"])
 
 
+ZERO_ONE = "the values are 0 and 1, not 0 and 255"
+
+
 def pattern_mistakes(width, n_bits) -> dict:
     expected = truth.gray_code_patterns(width, n_bits)
     return {
@@ -1323,7 +1380,7 @@ def pattern_mistakes(width, n_bits) -> dict:
             truth.binary_code_patterns(width, n_bits),
         "the bits are in the wrong order: row 0 carries the most significant bit": expected[::-1],
         "black and white are swapped (bit 1 is 255)": 255 - expected,
-        "the values are 0 and 1; use 0 and 255": expected // 255,
+        ZERO_ONE: expected // 255,
         "the stripe index is rounded; it is floor(u * 2**n_bits / width), (u * 2**n_bits) // width":
             truth.rounded_stripe_patterns(width, n_bits),
     }
@@ -1361,7 +1418,7 @@ def judge_patterns(t: Trial, width, n_bits):
     if got.dtype != np.uint8:
         if np.array_equal(got, expected // 255):
             t.fail(f"{what} returned 0/1 values as {got.dtype}; the patterns are uint8 images of 0 and 255",
-                   mistake="the values are 0 and 1; use 0 and 255")
+                   mistake=ZERO_ONE)
         t.expect_array(got, what, dtype=np.uint8)
     if np.array_equal(got, expected):
         return
