@@ -233,7 +233,8 @@ def dlt_candidates(src, dst, H_true, normalise: bool) -> dict:
     # Only with 4 pairs (an 8x9 A) does the reduced SVD lose the null vector: with more it
     # answers rightly, which is what tells it from a solver that is wrong everywhere.
     mistakes[REDUCED_SVD] = truth.dlt(src, dst, reduced_svd=True)
-    mistakes[REDUCED_SVD + " (and the points are not normalised)"] = truth.dlt(src, dst, normalise=False, reduced_svd=True)
+    mistakes[REDUCED_SVD + " (and the points are not normalised)"] = truth.dlt(src, dst, normalise=False,
+                                                                              reduced_svd=True)
     mistakes.update(truth.dlt_mistakes(src, dst, normalise))
     return mistakes
 
