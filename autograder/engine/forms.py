@@ -23,10 +23,13 @@ wrong coordinate" (code that writes no division is told only the measured scale)
 
 from __future__ import annotations
 
+import ast
 import re
 from dataclasses import dataclass
 
+from ..sandbox import beginner
 from .claims import divides_by, guard, measured
+from .hints import Predicate, expr, keyword, mentions
 
 
 def _divides_by_last(k: int):
@@ -43,6 +46,48 @@ def _divides_by_last(k: int):
 DEHOMOGENISE = {k: guard(f"divide by the last one and keep the first {k}", _divides_by_last(k),
                          instead=f"your code {{found}}: keep only the first {k} coordinates of what it returns")
                 for k in (2, 3)}
+# The fixes autograder.sandbox.beginner's sentences give, held to the code here (the grader's side):
+# its exceptions' explanations reach the grader as the failure's message, rewritten there.
+_ROW_NAME = re.compile(r"^(?:y|yy|row|rows|r|v|i|top|bottom)(?:_?\d*|_\w+)?$", re.I)
+_COLUMN_NAME = re.compile(r"^(?:x|xx|col|cols|column|c|u|j|left|right)(?:_?\d*|_\w+)?$", re.I)
+
+
+def _index_pairs(function):
+    """The (first, second) names leading each two-index subscript of ``function`` (``img[y + 1, x]``
+    gives ``("y", "x")``; an index with no name gives ``""``)."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2:
+            yield tuple(next((n.id for n in ast.walk(e) if isinstance(n, ast.Name)), "") for e in node.slice.elts)
+
+
+def _indexes(first: re.Pattern, second: re.Pattern):
+    return lambda function: any(first.match(a) and second.match(b) for a, b in _index_pairs(function))
+
+
+# [y, x] written, and never [x, y]: the IndexError then comes from a range, not the order
+INDEXES_Y_X = (Predicate("indexes images as [y, x]", _indexes(_ROW_NAME, _COLUMN_NAME))
+               & ~Predicate("indexes [x, y]", _indexes(_COLUMN_NAME, _ROW_NAME))).saying("indexes images as [y, x]")
+guard(beginner.INDEX_AS_Y_X, INDEXES_Y_X,
+      instead="your code {found}: the index itself goes past that axis (check the range it runs over)")
+_FLOAT = ("float", "np.float64", "np.float32", "numpy.float64", "numpy.float32", "float64", "float32")
+# One leaf testing each pattern (a chain of ``|`` re-reads its parts at every level of the chain).
+_FLOAT_PATTERNS = [expr("_.astype(float)"), expr("_.astype(np.float64)"), expr("_.astype(np.float32)"),
+                   expr("np.float64(_)"), expr("np.float32(_)")] + [
+    keyword(maker, "dtype", value)   # dtype=float only (dtype=int is how the mistake is written)
+    for maker in ("np.array", "np.asarray", "np.zeros", "np.ones", "np.eye", "np.identity", "np.full", "np.empty")
+    for value in _FLOAT]
+TO_FLOAT = Predicate("builds or converts an array as float",
+                     lambda function: any(pattern.test(function) for pattern in _FLOAT_PATTERNS))
+guard(beginner.BUILD_AS_FLOAT, TO_FLOAT,
+      instead="Your code {found} somewhere, but not this one (follow the array returned back to where it is made).")
+guard(beginner.CONVERT_FIRST, TO_FLOAT, instead="your code {found} somewhere, but the array returned is still uint8")
+# "convert to RGB only to show a picture": to code that converts to RGB; other code put the channels
+# in R, G, B order another way (measured: the image returned is the right one with its channels reversed)
+CONVERTS_TO_RGB = (mentions("cv2.COLOR_BGR2RGB") | mentions("cv2.COLOR_RGB2BGR") | expr("_[..., ::-1]")
+                   | expr("_[:, :, ::-1]")).saying("converts between BGR and RGB")
+guard(beginner.RGB_ONLY_TO_SHOW, ~CONVERTS_TO_RGB,
+      instead="your code does not convert to RGB: it puts the channels in R, G, B order another way "
+              "(a stack or a channel index)")
 # The cause scale_form names, said only of code that divides somewhere (else the measured scale only).
 WRONG_COORDINATE = guard("the division uses the wrong coordinate", ~divides_by("_"),
                          instead="no division is written in your code: the answer is scaled by one over that entry")

@@ -13,7 +13,7 @@ The judges' own sentences are held to the code (issue 35; ``tests/test_judges_co
 where, and by how much, an answer is wrong, its shape, its channels, an ignored parameter are
 measurements of the student's outputs (a fix they name, "keep the input's channels", is about the
 array measured: :func:`~autograder.engine.claims.measured`); the two that ask for code are
-:class:`~autograder.engine.hints.Hint`\ s -- the black fill (code already passing a border mode is
+Hints (:class:`~autograder.engine.hints.Hint`) -- the black fill (code already passing a border mode is
 told the fill comes from elsewhere) and "use the PARAMETER argument" (code that reads the
 parameter is told its value has no effect, not that it is fixed). A mistake's name ("it looks
 like ...") is a lab's, held where the lab registers it.

@@ -272,6 +272,14 @@ def _from_message_alone(function, message, arguments, values) -> str:
 
 
 # ------------------------------------------------------------------ (x, y) vs (row, column)
+# The parts of these sentences that say what to write are held to the student's code in the grader
+# (autograder.engine.forms guards them: code that already indexes [y, x], or converts to float, is
+# told something else); the rest describes the value measured.
+INDEX_AS_Y_X = "index it as image[y, x]"
+BUILD_AS_FLOAT = "Build it with dtype=float."
+CONVERT_FIRST = "convert first, x.astype(np.float64)"
+
+
 def explain_index_error(message: str, arguments: list) -> str:
     """``image[x, y]`` for ``image[y, x]``: an IndexError whose index fits the other axis of
     an image the function was given. ``arguments``: the call's values."""
@@ -283,7 +291,7 @@ def explain_index_error(message: str, arguments: list) -> str:
         if _is_image(image) and image.shape[axis] == size and abs(index) < image.shape[1 - axis]:
             return (f"an image is indexed [row, column], that is [y, x]: index {index} fits its "
                     f"{'width' if axis == 0 else 'height'} ({image.shape[1 - axis]}) but not its "
-                    f"{'height' if axis == 0 else 'width'} ({size}); index it as image[y, x]")
+                    f"{'height' if axis == 0 else 'width'} ({size}); " + INDEX_AS_Y_X)
     return ""
 
 
@@ -300,13 +308,12 @@ def integer_entries(got, expected) -> str:
         return ""
     return (f"it holds integers ({got.dtype}), where the answer has fractions: an array made of whole "
             "numbers (np.array([[1, 0, 0], ...]), np.eye(3, dtype=int)) is an integer array, and the "
-            "fractions written into it are cut off. Build it with dtype=float.")
+            "fractions written into it are cut off. " + BUILD_AS_FLOAT)
 
 
 def uint8_wraps(got) -> str:
     """A hint for a uint8 array where floats are expected (its arithmetic wraps around)."""
-    return ("uint8 arithmetic wraps around at 256 and cuts off fractions: convert first, "
-            "x.astype(np.float64)") if getattr(getattr(got, "dtype", None), "name", "") == "uint8" else ""
+    return ("uint8 arithmetic wraps around at 256 and cuts off fractions: " + CONVERT_FIRST) if getattr(getattr(got, "dtype", None), "name", "") == "uint8" else ""
 
 
 def channels_reversed(got, expected) -> bool:
@@ -323,8 +330,8 @@ def channels_reversed(got, expected) -> bool:
     return close(got[..., ::-1], expected) < min(3.0, 0.25 * close(got, expected))
 
 
-RGB_FOR_BGR = ("the colour channels are reversed (RGB for BGR): OpenCV images are BGR; convert to RGB "
-               "only to show a picture with Matplotlib, never in what a function returns")
+RGB_ONLY_TO_SHOW = "convert to RGB only to show a picture with Matplotlib, never in what a function returns"
+RGB_FOR_BGR = "the colour channels are reversed (RGB for BGR): OpenCV images are BGR; " + RGB_ONLY_TO_SHOW
 
 
 # ------------------------------------------------------------------ describing values
