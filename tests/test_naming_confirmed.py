@@ -337,6 +337,10 @@ DIRECT_EVIDENCE = {
                            "(probe); the spread ignores depth, and again with f = 2 (probe)",
     "name_ransac_h": "the consensus, and four affine problems (probes) tell the cause",
     "aperture_zero": "confirmed by the probe through judges.name_mistake",
+    "ransac_refit": "H is the least-squares refit of its own inliers mapping dst onto src (measured on 7 "
+                    "problems), and not of src onto dst",
+    "name_ncc_normalisation": "an offset of one view moves the disparities while a gain does not (two "
+                              "probes on random dots); a normalised correlation is moved by neither",
 }
 CONFIRMING = {"name_mistake", "confirm", "judge_matrix", "judge_warp", "judge_points", "judge_projective",
               "name_second_warp_mistake", "name_matching_mistake", "probe", "_disc_ratio_on_probe"}

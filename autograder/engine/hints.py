@@ -69,7 +69,7 @@ class Predicate:
         nothing does (never raises)."""
         functions = list(functions)
         if self.kind == "or":
-            said = next((part.found(functions) for part in self.parts if part.found(functions)), "")
+            said = next(filter(None, (part.found(functions) for part in self.parts)), "")   # each part once
             return (self.says if self.told else said) if said else ""
         if self.kind == "and":
             return self.says if all(part.found(functions) for part in self.parts) else ""
