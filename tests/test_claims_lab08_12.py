@@ -283,7 +283,7 @@ CASES12 = {
             H1 = K1 @ R1.T @ K_new_inverse   # the map back, rectified -> original
             return warp(img_l, img_r, H1, H2)
         """),
-    "lab12 NCC means not subtracted": (lab12.CENTRE_HINT, "block_matching", """
+    "lab12 NCC means not subtracted": (lab12.BLOCK_MEANS_HINT, "block_matching", """
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
             Lc = L - cv2.boxFilter(L, -1, (block_size, block_size))
             return ncc(Lc, R)

@@ -1039,7 +1039,7 @@ def ncc_invariance(t: Trial) -> tuple[float, float] | None:
 
 SUBTRACTS_MEANS = calls_any("np.mean", ".mean", "cv2.boxFilter", "cv2.blur", "scipy.ndimage.uniform_filter",
                             says="computes block means")
-CENTRE_HINT = Hint("Subtract each block's mean before multiplying.", asks=SUBTRACTS_MEANS,
+BLOCK_MEANS_HINT = Hint("Subtract each block's mean before multiplying.", asks=SUBTRACTS_MEANS,
                    instead="Your code {found}: check that each block's own mean is subtracted from it, in both "
                            "views, before the product.")
 NORMALISE_NCC_HINT = Hint(
@@ -1059,7 +1059,7 @@ def name_ncc_normalisation(t: Trial, what: str):
     if gain <= INVARIANT and offset >= MOVED:
         t.fail(f"{what}: it looks like {NOT_CENTRED}: adding {OFFSET} grey levels to the right view moves {offset:.0%} "
                f"of your disparities (on random dots), while scaling it by {GAIN:g} moves {gain:.0%}; a normalised "
-               "cross-correlation is unchanged by both. " + CENTRE_HINT.said(t),
+               "cross-correlation is unchanged by both. " + BLOCK_MEANS_HINT.said(t),
                hint=NCC_FORMULA, mistake=NOT_CENTRED)
 
 
