@@ -89,11 +89,16 @@ def said(t, text: str) -> str:
 
 def rewritten(verdict, t):
     """``verdict`` (a :class:`~autograder.engine.checks.Verdict`) with its message and hint
-    :func:`said` for ``t``'s code; the mistake's label is kept (class reports count it)."""
+    :func:`said` for ``t``'s code. The mistake's label is kept where it is true of the code (class
+    reports count it); a label the code contradicts (a guarded diagnosis the code already does
+    the opposite of) is dropped: instructors read labels in the overview and the review app too."""
     message, hint = said(t, str(verdict.message)), said(t, str(verdict.hint))
-    if message == verdict.message and hint == verdict.hint:
+    mistake = verdict.mistake
+    if isinstance(mistake, str) and mistake and said(t, mistake) != mistake:
+        mistake = ""
+    if message == verdict.message and hint == verdict.hint and mistake == verdict.mistake:
         return verdict
-    return replace(verdict, message=message, hint=hint)
+    return replace(verdict, message=message, hint=hint, mistake=mistake)
 
 
 # ------------------------------------------------------------------ predicates
