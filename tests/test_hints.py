@@ -198,3 +198,18 @@ def test_an_image_converted_to_uint8_then_back_is_not_told_to_convert_it(tmp_pat
         ["lab07.ex1"], pictures="none")
     assert {c.hint for c in check_results(plain, "lab07.ex1") if "dtype float64" in c.message} == {
         "images stay uint8: convert with np.clip(x, 0, 255).astype(np.uint8)"}
+
+
+@pytest.mark.parametrize("body, converts", [
+    ("x = np.array(a, dtype=np.float64)", True), ("x = np.asarray(a, dtype=float)", True),
+    ("x = np.zeros(3, dtype=np.float32)", True), ("x = np.array(a, dtype=int)", False),
+    ("x = np.zeros(3, dtype=np.uint8)", False),
+])
+def test_to_float_counts_only_float_dtypes(body, converts):
+    """An integer dtype is no conversion to float: a float hint is not withheld from such code."""
+    import ast
+
+    from autograder.engine.hints import TO_FLOAT
+
+    tree = ast.parse(f"import numpy as np\ndef f(a):\n    {body}\n    return x\n")
+    assert bool(TO_FLOAT.found([tree.body[1]])) is converts

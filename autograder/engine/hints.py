@@ -528,8 +528,19 @@ RATIO_TEST = (expr("_.distance < _ * _.distance") | expr("_.distance < _.distanc
 TO_UINT8 = (expr("_.astype(np.uint8)") | expr("_.astype('uint8')") | expr("np.uint8(_)")
             | keyword("np.clip", "dtype") | expr("_.astype(dtype=np.uint8)")).saying("converts to uint8")
 NAN_WHERE = (calls("np.where") & mentions("np.nan")).saying("uses np.where with np.nan")
+def _any_of(predicates) -> Predicate:
+    """``a | b | ...`` of an iterable of predicates."""
+    predicates = list(predicates)
+    combined = predicates[0]
+    for predicate in predicates[1:]:
+        combined = combined | predicate
+    return combined
+
+
 TO_FLOAT = (expr("_.astype(float)") | expr("_.astype(np.float64)") | expr("_.astype(np.float32)")
-            | keyword("np.array", "dtype") | keyword("np.asarray", "dtype") | keyword("np.zeros", "dtype")
+            # dtype=int or np.uint8 is no float: only the float types count
+            | _any_of(keyword(call, "dtype", kind) for call in ("np.array", "np.asarray", "np.zeros")
+                      for kind in ("float", "np.float64", "np.float32"))
             | expr("np.float64(_)") | expr("np.float32(_)")).saying("converts to float")
 
 
