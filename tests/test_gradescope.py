@@ -371,3 +371,15 @@ def test_a_submission_wrong_in_every_lab_stays_within_the_budget(tmp_path):
     left_out = [t for t in data["tests"] if "Pictures left out here" in t["output"]]
     assert left_out and all(t["status"] == "failed" and t["visibility"] == "visible" for t in left_out)
     assert not any("<img" in t["output"] for t in data["tests"] if t["visibility"] != "visible")
+
+
+def test_the_reference_is_withheld_where_student_code_could_read_it(tmp_path, monkeypatch):
+    """At a level that hides no files (process-group, allowed by the course), the container's
+    reference is deleted before any student code runs; where files are hidden it stays."""
+    folder = tmp_path / "reference_solutions"
+    folder.mkdir()
+    (folder / f"{MODULE}.py").write_text("answers")
+    monkeypatch.setenv("AUTOGRADER_REFERENCE_SOLUTIONS", str(folder))
+    assert not gradescope.withhold_readable_reference(hides_files=True) and folder.is_dir()
+    assert gradescope.withhold_readable_reference(hides_files=False) and not folder.exists()
+    assert not gradescope.withhold_readable_reference(hides_files=False)     # nothing left to remove

@@ -22,7 +22,9 @@ import html
 import json
 import logging
 import math
+import os
 import secrets
+import shutil
 import time
 import zipfile
 from pathlib import Path
@@ -258,6 +260,7 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
 
     config = config or CourseConfig()
     started = time.monotonic()
+    withhold_readable_reference()
     try:
         result = grade(submission, config.select, limits=config.limits(), pictures="failed",
                        forbid=config.forbid, inputs_secret=config.inputs_secret or None,
@@ -283,6 +286,25 @@ def run(submission, results_path, config: CourseConfig | None = None) -> dict:
                             config)
     data["execution_time"] = round(time.monotonic() - started, 3)
     return write_results(results_path, data, config)
+
+
+def withhold_readable_reference(hides_files: bool | None = None) -> bool:
+    """Delete the container's copy of the reference solutions (the error model's) when student
+    code would run where it can read the grader's files (a weaker level the course allowed):
+    the error model then names nothing, and no student can print the reference. True if deleted."""
+    from ..sandbox import confine
+
+    folder = os.environ.get("AUTOGRADER_REFERENCE_SOLUTIONS")
+    if not folder or not Path(folder).is_dir():
+        return False
+    if hides_files is None:
+        hides_files = confine.detect().hides_files
+    if hides_files:
+        return False
+    log.warning("student code can read this machine's files: the reference solutions are removed, "
+                "the error model names nothing")
+    shutil.rmtree(folder, ignore_errors=True)
+    return True
 
 
 def write_results(path, data: dict, config: CourseConfig) -> dict:
