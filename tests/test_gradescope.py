@@ -87,6 +87,8 @@ def test_the_error_model_names_a_mistake_in_the_container(autograder_zip, tmp_pa
     from autograder.engine.mutants.operators import apply_edits
     from autograder.engine.registry import discover
 
+    if not confine.detect().hides_files:
+        pytest.skip("student code could read the reference here: the container withholds it (tested below)")
     model = naming.model_for(discover()["lab07"])
     [wrong_index] = [m for m in model.mutants["affine_lstsq"]
                      if m.operator == "axis" and "(0 for 2) is used in the result of `np.zeros`" in m.sentence]
