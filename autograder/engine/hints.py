@@ -589,10 +589,50 @@ def read_code(text: str) -> Code:
     for node in functions.values():
         node._hint_scope = scope
     # a function named anywhere in another counts as called by it: ``(_ssd if c else _ncc)(...)``,
-    # a helper passed as a callback
-    calls = {name: {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and n.id in functions and n.id != name}
-             for name, node in functions.items()}
+    # a helper passed as a callback, under another name, or as an attribute of the module itself
+    aliases = _aliases(tree, functions, scope)
+    calls = {name: _own_references(node, name, functions, aliases, scope) for name, node in functions.items()}
     return Code(functions, calls)
+
+
+# Libraries a student imports: ``x.f`` of one of them, or an ``f`` imported from one, is never the
+# student's own ``f`` (a module of the student's own functions is any other import).
+_LIBRARIES = frozenset({"numpy", "cv2", "scipy", "math", "matplotlib", "skimage", "PIL", "random", "itertools",
+                        "functools", "os", "sys", "time", "collections", "typing", "dataclasses"})
+
+
+def _own_module(module: str) -> bool:
+    return bool(module) and module.split(".")[0] not in _LIBRARIES
+
+
+def _aliases(tree: ast.Module, functions: dict, scope: Scope) -> dict[str, str]:
+    """Other names of the module's own functions: a module-level ``patterns = gray_code_patterns``,
+    or one imported from the module itself (``from lab12_stereo import gray_code_patterns as gcp``)."""
+    found = {local: target.rpartition(".")[2] for local, target in scope.imported.items()
+             if target.rpartition(".")[2] in functions and _own_module(target.rpartition(".")[0])
+             and local not in functions}
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and isinstance(node.value, ast.Name) and node.value.id in functions:
+            found.update({target.id: node.value.id for target in node.targets
+                          if isinstance(target, ast.Name) and target.id not in functions})
+    return found
+
+
+def _own_references(node, name: str, functions: dict, aliases: dict, scope: Scope) -> set[str]:
+    """The module's functions other than ``name`` that ``node`` (a function, its nested ones
+    included) refers to: by name, by an alias, or as ``module.f`` of an import of its own module."""
+    found = set()
+    for n in ast.walk(node):
+        if isinstance(n, ast.Name):
+            target = n.id if n.id in functions else aliases.get(n.id)
+        elif isinstance(n, ast.Attribute) and isinstance(n.value, ast.Name) and n.attr in functions \
+                and _own_module(scope.modules.get(n.value.id, "")):
+            target = n.attr
+        else:
+            continue
+        if target and target != name:
+            found.add(target)
+    return found
 
 
 @lru_cache(maxsize=32)
