@@ -151,6 +151,9 @@ class Trial:
         # The calls that returned, as (function, args, kwargs, answer), the last few: what the
         # error model (autograder.engine.mutants) reproduces when the check fails.
         self.calls: list[tuple[str, tuple, dict, object]] = []
+        # The last call that raised, as (function, args, kwargs, message): the error model names the
+        # cause of a check that ended by the student's exception from it.
+        self.raised: tuple | None = None
 
     @functools.cached_property
     def rng(self) -> np.random.Generator:
@@ -200,6 +203,8 @@ class Trial:
                     self._changed_in_place(function, args, kwargs, outcome)
                 return outcome.value
             failure = StudentFailure(outcome, self._describe(function, outcome))
+            if outcome.kind == "exception":
+                self.raised = (function, args, kwargs, outcome.message)
             if outcome.kind in _FATAL_KINDS:
                 self._fatal[function] = failure
         # One raise site, and a fresh exception each time: Hypothesis tells failures

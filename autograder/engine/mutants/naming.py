@@ -25,6 +25,7 @@ from __future__ import annotations
 import atexit
 import itertools
 import os
+import re
 import threading
 import time
 from dataclasses import dataclass, replace
@@ -424,8 +425,9 @@ def _perturbed(value, rng, depth=0):
     """Another input of the same form: other values of the same shape, dtype and range."""
     if isinstance(value, bool) or value is None or isinstance(value, str):
         return value
-    if isinstance(value, float):
-        return value * rng.uniform(0.6, 1.4) + (rng.uniform(-1, 1) if value == 0 else 0.0)
+    if isinstance(value, float):   # 0 stays 0 half the time: a mistake may show only at 0 (`x or DEFAULT`)
+        factor, shift = rng.uniform(0.6, 1.4), (rng.uniform(-1, 1) if value == 0 else 0.0)
+        return value * factor + (shift if shift > 0 else 0.0)
     if isinstance(value, int):
         return value + 2 * int(rng.integers(-2, 3)) if abs(value) > 4 else value
     if isinstance(value, np.ndarray):
@@ -477,11 +479,12 @@ def name_failure(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
     return _within_budget(trial, seconds, _name)
 
 
-def _within_budget(trial, seconds: float, work) -> Naming | None:
+def _within_budget(trial, seconds: float, work, evidence=None) -> Naming | None:
     """``work(trial, model, clock)`` within this check's and this grading's time left (None without
-    a model, without calls, out of time or when the helper fails)."""
+    a model, without ``evidence`` -- by default the calls that returned --, out of time or when the
+    helper fails)."""
     model = model_for(trial.lab)
-    if model is None or not trial.calls:
+    if model is None or not (trial.calls if evidence is None else evidence):
         return None
     spent = trial.sandbox.shared.setdefault("error model seconds", [0.0])
     seconds = min(seconds, GRADING_SECONDS - spent[0])
@@ -693,6 +696,9 @@ def _separating(usable, reference, candidate_outputs) -> list[int]:
     pairs = [(a, b) for a in range(len(rows)) for b in range(a + 1, len(rows))]
 
     def apart(k, a, b):
+        kinds = _error_kind(rows[a][k]), _error_kind(rows[b][k])
+        if kinds != (None, None):
+            return kinds[0] != kinds[1]
         return distance(rows[a][k], rows[b][k]) > 10 * _tolerance(rows[b][k])
 
     split = {k: {p for p in pairs if apart(k, *p)} for k in usable}
@@ -711,8 +717,159 @@ def _separating(usable, reference, candidate_outputs) -> list[int]:
 _FAILED = object()
 
 
-def _student_answer(trial, call):
-    """The student's answer on a confirmation input (the grader's own call, labelled so)."""
+# ------------------------------------------------------------------ naming an exception
+# Phrases that class an exception's message (the first found): two errors of one type but of
+# different classes (a broadcast and a matmul mismatch, both ValueError) are different mistakes.
+_ERROR_CLASSES = ("could not be broadcast", "too many indices", "out of bounds", "cannot reshape",
+                  "mismatch in its core dimension", "not aligned", "input array dimensions",
+                  "same number of dimensions", "singular matrix", "assertion failed", "truth value of an array",
+                  "unsupported operand", "not subscriptable", "invalid index", "must be square",
+                  "only integer scalar arrays", "last 2 dimensions")
+_RAISED = re.compile(r"raised ([A-Za-z_][\w.]*)(?::\s*(.*))?")
+
+
+def _error_kind(value) -> tuple | None:
+    """(exception type, message class) of an error answer (the helper's ``{ERROR: "Type: text"}``),
+    None for an answer."""
+    if not (isinstance(value, dict) and ERROR in value):
+        return None
+    kind, _, text = str(value[ERROR]).partition(":")
+    return kind.strip().rsplit(".", 1)[-1], _error_class(text)
+
+
+def _error_class(text: str) -> str:
+    lowered = text.lower()
+    return next((phrase for phrase in _ERROR_CLASSES if phrase in lowered), "")
+
+
+def _raised_answer(message: str) -> dict | None:
+    """The student's exception as an error answer, from the sandbox's "f() raised Type: text"."""
+    for line in str(message).splitlines():
+        found = _RAISED.search(line)
+        if found:
+            return {ERROR: f"{found.group(1)}: {found.group(2) or ''}"}
+    return None
+
+
+def _same_outcome(value, student, reference) -> bool:
+    """A mutant's outcome is the student's: the same exception (type and message class), or an
+    answer that :func:`reproduces` theirs."""
+    kinds = _error_kind(value), _error_kind(student)
+    if kinds != (None, None):
+        return kinds[0] == kinds[1]
+    return reproduces(value, student, reference)
+
+
+def name_raised(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
+    """The confirmed mutant that raises the student's exception (:attr:`Trial.raised`: the same type
+    and message class) on the input where the student's function raised, while it returns the
+    student's answers on the trial's calls of that function that returned, and agrees with the
+    student on confirmation inputs derived from both (at least one of them an answer, not an
+    exception: a mutant that raises everywhere names nothing); None otherwise."""
+    return _within_budget(trial, seconds, _name_raised, evidence=getattr(trial, "raised", None))
+
+
+def _name_raised(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
+    function, args, kwargs, message = trial.raised
+    theirs = _raised_answer(message)
+    if function not in model.mutants or theirs is None:
+        return None
+    returned = [call for call in trial.calls if call[0] == function][-(CALLS_PER_FUNCTION - 1):]
+    inputs = [(function, tuple(args), dict(kwargs))] + [(f, tuple(a), dict(k)) for f, a, k, _ in returned]
+    answers = [theirs] + [call[3] for call in returned]
+    runner = helper()
+    runner.prepare(model.source, model.module, inputs, max(1.0, clock.left()))
+    references = runner.run((), range(len(inputs)), max(0.5, clock.left()))
+    if _error_kind(references[0]) is not None:
+        return None   # the reference raises there too: the input, not the code, is the cause
+    ruled_out = trial.sandbox.shared.setdefault("error model ruled out raising", {}).setdefault(function, set())
+    candidates = []
+    for mutant in model.mutants[function]:
+        if mutant.key in ruled_out:
+            continue
+        if clock.left() <= 0:
+            return None   # a mutant not tried might raise the same: no name is sure
+        try:
+            values = runner.run(mutant.edits, range(len(inputs)), _timeout(clock))
+        except HelperFailed:
+            continue
+        if all(_same_outcome(v, a, r) for v, a, r in zip(values, answers, references)):
+            candidates.append(mutant)
+        elif clock.left() > 0:
+            ruled_out.add(mutant.key)
+    if not candidates:
+        return None
+    return _confirmed_raised(trial, model, function, inputs, answers, candidates, clock)
+
+
+def _confirmed_raised(trial, model, function, inputs, answers, candidates, clock) -> Naming | None:
+    """As :func:`_confirmed`, outcomes compared as exceptions or answers; at least one answer (a
+    returned call or a confirmation that returned) must be among the evidence."""
+    from ..checks import fingerprint
+
+    runner = helper()
+    variants = []
+    for i in range(min(len(inputs), 3)):
+        seed = int(fingerprint(function, "raised", i, inputs[i][1])[:8], 16)
+        variants += _variants(inputs[i], VARIANTS_PER_CALL if i == 0 else 2, seed, model.defaults.get(function, ()))
+    variants += _batched(inputs[0], int(fingerprint(function, "batched", inputs[0][1])[:8], 16))
+    every = inputs + variants
+    runner.prepare(model.source, model.module, every, max(1.0, clock.left()))
+    indices = list(range(len(inputs), len(every)))
+    reference = runner.run((), indices, _timeout(clock))
+    outputs = {}
+    for candidate in candidates[:12]:
+        try:
+            outputs[candidate.key] = runner.run(candidate.edits, indices, _timeout(clock))
+        except HelperFailed:
+            continue
+    candidates = [c for c in candidates if c.key in outputs]
+    usable = [k for k, r in enumerate(reference) if _error_kind(r) is None]
+    chosen = _separating(usable, reference, [outputs[c.key] for c in candidates])
+    if not chosen:
+        return None
+    theirs = []
+    for k in chosen:
+        answer = _student_outcome(trial, every[indices[k]])
+        if answer is _FAILED or (_error_kind(answer) is None and _constant(answer)):
+            return None
+        theirs.append(answer)
+    if len(inputs) == 1 and all(_error_kind(answer) is not None for answer in theirs):
+        return None   # raising everywhere: nothing says the rest of the mutant is the student's
+    survivors = [c for c in candidates
+                 if all(_same_outcome(outputs[c.key][k], answer, reference[k]) for k, answer in zip(chosen, theirs))]
+    if not survivors:
+        return None
+    first = survivors[0]
+    for other in survivors[1:]:   # one mistake: the same outcome on every input seen
+        if any(not _same_outcome(outputs[other.key][k], outputs[first.key][k], reference[k]) for k in chosen):
+            return None
+    best = min(survivors, key=lambda m: m.rank)
+    return Naming(best, len(inputs), len(chosen))
+
+
+def _batched(call, seed) -> list:
+    """The raising call with its 1-D float arrays given as a batch of two rows (the array and a
+    perturbed copy): where a single point raised, a batch tells whether the rest of the code is a
+    mutant's; [] without a 1-D float array."""
+    function, args, kwargs = call
+    rng = np.random.default_rng(seed)
+
+    def batch(value):
+        if isinstance(value, np.ndarray) and value.ndim == 1 and value.dtype.kind == "f" and 1 < value.size <= 4:
+            return np.stack([value, _perturbed(value, rng)])
+        return value
+
+    made = (function, tuple(batch(a) for a in args), {k: batch(v) for k, v in kwargs.items()})
+    return [made] if _changed_call(call, made) else []
+
+
+def _changed_call(call, made) -> bool:
+    return any(a is not b for a, b in zip(call[1], made[1])) or any(call[2][k] is not made[2][k] for k in call[2])
+
+
+def _student_outcome(trial, call):
+    """The student's answer on a confirmation input, or their exception as an error answer."""
     function, args, kwargs = call
     lab = trial.lab
     outcome = trial.sandbox.call(lab.module, function, args, kwargs, timeout=trial.check.timeout,
@@ -720,12 +877,23 @@ def _student_answer(trial, call):
     trial.student_seconds += outcome.seconds
     if outcome.output.strip():
         trial.outputs.append(f"(printed during the grader's confirmation call to {function}())\n{outcome.output}")
-    return outcome.value if outcome.ok else _FAILED
+    if outcome.ok:
+        return outcome.value
+    raised = _raised_answer(outcome.message) if outcome.kind == "exception" else None
+    return raised if raised is not None else _FAILED
 
 
-def named_by_error_model(verdict, trial):
+def _student_answer(trial, call):
+    """The student's answer on a confirmation input (the grader's own call, labelled so)."""
+    answer = _student_outcome(trial, call)
+    return _FAILED if _error_kind(answer) is not None else answer
+
+
+def named_by_error_model(verdict, trial, raised: bool = False):
     """A failed check's verdict with the error model's name added (see the module docstring),
-    appended to the message's first line, when the verdict names nothing; unchanged otherwise."""
+    appended to the message's first line, when the verdict names nothing; unchanged otherwise.
+    ``raised``: the check ended by the student's exception (:attr:`Trial.raised`), named by a
+    mutant raising the same (:func:`name_raised`)."""
     from ..stubs import functions_called
 
     # The functions the check calls (by its source, and by the calls it made: a value shared
@@ -745,7 +913,7 @@ def named_by_error_model(verdict, trial):
         return verdict
     if called and called <= hand_named:
         return verdict
-    naming = name_failure(trial)
+    naming = name_raised(trial) if raised else name_failure(trial)
     if naming is None:
         return verdict
     return replace(verdict, message=_appended(str(verdict.message), naming), mistake=naming.mistake)

@@ -37,6 +37,7 @@ OPERATORS = {
     "swap_operands": ("order", "swap", "revers", "other way"),
     "swap_args": ("order", "swap", "revers"),
     "transpose": ("transpos",),
+    "inverse": ("invers", "transpos"),                 # inv(X) <-> X.T, an inversion dropped
     "degrees": ("degree", "radian"),
     "axis": ("axis", "x and y", "column", "row", "width", "height", "swap"),
     "minmax": ("min", "max", "small", "larg", "high", "low"),
@@ -50,8 +51,11 @@ OPERATORS = {
     "other_name": ("instead of", "in place of", "where"),
     "swap_names": ("exchang", "swap", "order", "other way", "revers"),   # two other_name, crossed
     "reshape_order": ("order", "column by column", "row by row", "reshape", "transpos", "flatten"),
+    "single_point": ("single", "1-d", "2-d", "one point", "atleast"),   # np.atleast_2d(x) -> x
     "drop_statement": ("missing", "skipped", "not "),
     "in_place": ("in place", "copy", "caller", "writes into", "written into"),   # named where the change shows
+    "stack_order": ("order", "stack", "exchang", "swap", "piece"),   # np.hstack([a, b]) -> np.hstack([b, a])
+    "default": ("default", "none", "0", "zero"),      # `x is None` -> `not x`: a legitimate 0 swallowed
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -295,7 +299,45 @@ def _make_axis(node, payload):
         new = copy.deepcopy(node)
         new.slice.elts.reverse()
         return new
+    if isinstance(payload, list):   # another index: [":", -1] for x[-1]; ["0:1"] a slice for x[:, 1:2]
+        new = copy.deepcopy(node)
+        parts = [_index_part(p) for p in payload]
+        new.slice = parts[0] if len(parts) == 1 else ast.Tuple(parts, ast.Load())
+        return new
     return ast.Constant(payload)
+
+
+def _index_part(spec):
+    """":" -> a whole slice, "a:b" -> a constant slice, an int -> that index."""
+    if spec == ":":
+        return ast.Slice()
+    if isinstance(spec, str):
+        lower, upper = (ast.Constant(int(b)) if b else None for b in spec.split(":"))
+        return ast.Slice(lower, upper)
+    return ast.Constant(spec) if spec >= 0 else ast.UnaryOp(ast.USub(), ast.Constant(-spec))
+
+
+def _make_inverse(node, payload):
+    if payload == "insert":     # X.T -> np.linalg.inv(X)
+        return _call("np.linalg.inv", copy.deepcopy(node.value))
+    if payload == "transpose":  # np.linalg.inv(X) -> X.T
+        return ast.Attribute(copy.deepcopy(node.args[0]), "T", ast.Load())
+    return copy.deepcopy(node.args[0])   # np.linalg.inv(X) -> X
+
+
+def _make_stack_order(node, payload):
+    new = copy.deepcopy(node)   # np.hstack([a, b, c]) -> np.hstack([b, a, c])
+    items = new.args[0].elts
+    items[payload], items[payload + 1] = items[payload + 1], items[payload]
+    return new
+
+
+def _make_default(node, payload):
+    return ast.UnaryOp(ast.Not(), copy.deepcopy(node.left))   # x is None -> not x
+
+
+def _make_single_point(node, payload):
+    return copy.deepcopy(node.args[0])   # np.atleast_2d(x) -> x
 
 
 def _make_minmax(node, payload):
@@ -374,7 +416,9 @@ _MAKE = {"sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_sw
          "int_division": _make_int_division, "drop_division": _make_drop_division,
          "drop_factor": _make_drop_factor, "drop_centring": _make_drop_centring,
          "drop_conversion": _make_drop_conversion, "other_name": _make_other_name, "in_place": _make_in_place,
-         "drop_statement": _make_drop_statement, "reshape_order": _make_reshape_order}
+         "drop_statement": _make_drop_statement, "reshape_order": _make_reshape_order,
+         "inverse": _make_inverse, "stack_order": _make_stack_order, "default": _make_default,
+         "single_point": _make_single_point}
 
 
 # ------------------------------------------------------------------ describing, in the student's terms
@@ -786,6 +830,126 @@ def _changes(node, parents, words: _Words, line):
     if isinstance(node, (ast.Assign, ast.AugAssign)) and parent is not None:
         yield "drop_statement", None, _statement_phrase(node, words, line)
     yield from _in_place_changes(node, words)
+    yield from _inverse_changes(node, what, place)
+    if isinstance(node, ast.Subscript):
+        yield from _index_changes(node, what)
+    if isinstance(node, ast.Call):
+        yield from _stack_changes(node, what)
+    if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], ast.Is) \
+            and isinstance(node.comparators[0], ast.Constant) and node.comparators[0].value is None \
+            and isinstance(node.left, ast.Name) and node.left.id in words.api_params \
+            and isinstance(parent, (ast.IfExp, ast.If)) and parent.test is node:
+        yield "default", None, f"a `{node.left.id}` of 0 (or any value that is false) is taken as not given: " \
+                               "the default is used in its place (only None means not given)"
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.atleast_2d", "numpy.atleast_2d") \
+            and len(node.args) == 1 and what(node.args[0]):
+        yield "single_point", None, f"{what(node.args[0])} is not made 2-D: a single point (a 1-D array) " \
+                                    "is not handled (`np.atleast_2d` is missing)"
+
+
+_INDEX_WORDS = {-1: "last", 0: "first", 1: "second", 2: "third"}
+
+
+def _constant_index(node):
+    """The int an index node holds (``-1`` written ``-1``), else None."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, int) and not isinstance(node.value, bool):
+        return node.value
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and isinstance(node.operand, ast.Constant) \
+            and isinstance(node.operand.value, int) and not isinstance(node.operand.value, bool):
+        return -node.operand.value
+    return None
+
+
+def _axis_name(position: int, count: int) -> str:
+    """A position of an index told as what it picks: a row or a column of a matrix (of each
+    matrix of a stack, for three indices)."""
+    if count <= 2:
+        return ("row", "column")[position]
+    return {1: "row", 2: "column"}.get(position, f"axis-{position} slice")
+
+
+def _index_changes(node: ast.Subscript, what):
+    """An index on another axis (``Vt[-1]`` for ``Vt[:, -1]``, a batched SVD's ``Vt[:, :, -1]`` for
+    ``Vt[:, -1]``, ``a[:, 0]`` for ``a[0]``) and a copy-paste slice (``p[:, 0:1]`` where ``p[:, 1:2]``
+    belongs: the x coordinates for the y)."""
+    elements = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+    if len(elements) > 3 or isinstance(node.ctx, ast.Store):
+        return
+    inner = what(node.value)
+    if not inner:
+        return
+    constants = [(i, _constant_index(e)) for i, e in enumerate(elements) if _constant_index(e) is not None]
+    wholes = [i for i, e in enumerate(elements) if _whole_slice(e)]
+    if len(constants) == 1 and len(constants) + len(wholes) == len(elements) and constants[0][1] in _INDEX_WORDS:
+        (position, value), count = constants[0], len(elements)
+        targets = [q for q in range(count) if q != position and (count < 3 or q > 0)]
+        if count == 2 and position == 1 and ("SVD" in inner or "singular" in inner):
+            targets.append(2)   # a batched SVD's stack of matrices: the column of each where its row belongs
+        if count == 1:
+            targets = [1]
+        word = _INDEX_WORDS[value]
+        for target in targets:
+            size = max(count, target + 1)
+            spec = [":"] * size
+            spec[target] = value
+            was = _axis_name(position, count) if count > 1 else "row"
+            now = _axis_name(target, size)
+            if count == 1:
+                said = f"the {word} column of {inner} is used where its {word} row belongs"
+            elif size == 3 and target > 0 and position > 0:   # a stack of matrices, indexed in each
+                said = f"the {word} {now} of each matrix of {inner} is used where its {word} " \
+                       f"{_axis_name(position, 3) if count == 3 else 'row'} belongs"
+            else:
+                said = f"the {word} {now} of {inner} is used where the {word} {was} belongs"
+            yield "axis", spec, said + " (an index on the wrong axis)"
+    if len(elements) == 2 and _whole_slice(elements[0]) and isinstance(elements[1], ast.Slice) \
+            and elements[1].step is None:
+        lower = _constant_index(elements[1].lower) if elements[1].lower is not None else 0
+        upper = _constant_index(elements[1].upper) if elements[1].upper is not None else None
+        if lower not in (0, 1, 2) or (upper is not None and upper != lower + 1) or (upper is None and lower != 1):
+            return
+        names = {0: "x coordinates (column 0)", 1: "y coordinates (column 1)", 2: "values in column 2"}
+        for other in (0, 1, 2):
+            if other != lower and (other < 2 or lower == 1):
+                yield "axis", [":", f"{other}:{other + 1}"], f"the {names[other]} of {inner} are used where the " \
+                                                              f"{names[lower]} belong (a copied index)"
+
+
+def _inverse_changes(node, what, place):
+    """``np.linalg.inv(X)`` as ``X.T`` or as ``X``, and ``X.T`` as ``np.linalg.inv(X)``."""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.linalg.inv", "numpy.linalg.inv") \
+            and len(node.args) == 1 and not node.keywords and not isinstance(node.args[0], ast.Starred):
+        inner = what(node.args[0])
+        yield "inverse", "transpose", f"the transpose of {inner} is used where its inverse belongs" if inner \
+            else _placed("a transpose is used where an inverse belongs", place())
+        yield "inverse", "drop", f"{inner} is used where its inverse belongs (the inversion is missing)" if inner \
+            else _placed("an inversion is missing", place())
+    if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load) and not (
+            isinstance(node.value, ast.Call) and _dotted(node.value.func) in ("np.linalg.inv", "numpy.linalg.inv")):
+        inner = what(node.value)   # (inv(X).T as inv(inv(X)) is X used: the operators above say it)
+        yield "inverse", "insert", f"the inverse of {inner} is used where its transpose belongs" if inner \
+            else _placed("an inverse is used where a transpose belongs", place())
+
+
+_STACKING = ("hstack", "vstack", "concatenate", "column_stack", "stack", "dstack")
+
+
+def _stack_changes(node: ast.Call, what):
+    """Two neighbouring pieces of ``np.hstack([...])`` (``vstack``, ``concatenate``, ...) exchanged."""
+    dotted = _dotted(node.func)
+    if not (dotted.startswith(("np.", "numpy.")) and dotted.rsplit(".", 1)[-1] in _STACKING) or not node.args \
+            or not isinstance(node.args[0], (ast.List, ast.Tuple)) or len(node.args[0].elts) < 2:
+        return
+    items = node.args[0].elts
+    for i in range(min(len(items), 9) - 1):
+        if any(isinstance(e, ast.Starred) for e in items[i:i + 2]):
+            continue
+        a, b = what(items[i]), what(items[i + 1])
+        if a and b and len(a + b) <= 90:
+            yield "stack_order", i, f"{a} and {b} are stacked in the other order (each where the other belongs)"
+        elif i < 5:
+            yield "stack_order", i, f"the {_ORDINALS[i]} and {_ORDINALS[i + 1]} pieces stacked by `{dotted}` " \
+                                    "are exchanged"
 
 
 def _in_place_changes(node, words: _Words):
@@ -1100,6 +1264,12 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     # other one also drops the copy's conversion, which its sentence would not say.
     kind = node.id in params
     alike = {phrase for other, phrase in others if (other in params) == kind}
+    # A copy-paste slip takes a name's sibling: one unpacked with it (`u, v = ...`), or the same
+    # array's other part ("column 0 of `dst`" for "column 1 of `dst`"); those are tried first.
+    together = {other for line_at, value, _ in words.definitions.get(node.id, ())
+                for other, defs in words.definitions.items() if any(d[0] == line_at and d[1] is value for d in defs)}
+    tail = own.rsplit(" of ", 1)[-1]
+    others.sort(key=lambda pair: (pair[0] not in together, pair[1].rsplit(" of ", 1)[-1] != tail or " of " not in own))
     count = 0
     for other, phrase in others:
         if (other in params) != kind and phrase in alike:
