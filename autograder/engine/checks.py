@@ -140,6 +140,9 @@ class Trial:
         self.modified_inputs: list[tuple[str, str]] = []
         self._properties = 0  # t.for_all calls so far (each has its recorded examples)
         self._probed: dict = {}  # confirmation probes' answers, asked once per trial (see probe)
+        # The calls behind the values this trial was served from another check's t.shared, as in
+        # calls: what it judged although it called nothing (autograder.engine.inherited).
+        self.served: list[tuple[str, tuple, dict, object]] = []
         self._in_place: dict = {}  # (function, input) -> how its change of the caller's array shows ("": not)
         self._last_changed: tuple = ()  # the arrays the last call changed in place (see held)
         # Student functions that, in this trial, were given fractional numbers and returned only
@@ -502,10 +505,14 @@ class Trial:
         """
         cache = self.sandbox.shared
         if key not in cache:
+            before = len(self.calls)
             try:
                 cache[key] = (True, compute())
             except StudentFailure as failure:
                 cache[key] = (False, failure)
+            cache[("calls behind", key)] = self.calls[before:]
+        else:
+            self.served += cache.get(("calls behind", key), [])
         ok, value = cache[key]
         if ok:
             return value

@@ -466,6 +466,18 @@ def _named_by_error_model(verdict: Verdict, check: Check, trial: Trial, raised: 
         return verdict
 
 
+def _told_if_inherited(verdict: Verdict, check: Check, trial: Trial) -> tuple[Verdict, bool]:
+    """A failed verdict told as inherited from another of the student's functions when it is
+    (:mod:`autograder.engine.inherited`), and whether it is. Never costs the verdict (logged)."""
+    from .inherited import told
+
+    try:
+        return told(verdict, trial)
+    except Exception as exc:  # noqa: BLE001 - the verdict stands without it
+        _log_grader_error(check, exc)
+        return verdict, False
+
+
 def _defer_to_hand_written(results) -> None:
     """The error model's names on an exercise's checks are taken back when one of them names the
     mistake by hand (:func:`autograder.engine.mutants.naming.defer_to_hand_written`). A public
@@ -605,12 +617,15 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
                                        "the rest was graded - please tell your instructor"), ERROR
         tb = ""
         _log_grader_error(check, exc)
+    inherited = False   # a failure another of the student's functions causes is not this one's mistake
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception"):
+        verdict, inherited = _told_if_inherited(verdict, check, trial)
     if student_failure == "exception" and not verdict.mistake:
         verdict = _named_by_exception(verdict)
     if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
-            and student_failure in ("", "exception"):
+            and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_reading(verdict, reading, check, trial)
-    if status in (FAILED, PARTIAL) and student_failure in ("", "exception"):
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
     if status in (FAILED, PARTIAL):   # a diagnosis asking for code the student wrote is not said
         verdict = rewritten(verdict, trial)
