@@ -434,6 +434,20 @@ def test_negates_on_a_negative_determinant(source, negates):
     assert bool(found(negates_on_negative_det(), source)) is negates
 
 
+@pytest.mark.parametrize("source, negates", [
+    ("def f(P):\n    P = np.asarray(P, float)\n    if np.linalg.det(P[:, :3]) < 0:\n        P = -P\n    return P\n", True),
+    ("def f(P):\n    M = P.copy()\n    if np.linalg.det(M[:, :3]) < 0:\n        M *= -1\n    return M\n", True),
+    ("def f(P):\n    P = -P if np.linalg.det(P[:, :3]) < 0 else P\n    return P\n", True),
+    ("def f(P):\n    P = np.sign(np.linalg.det(P[:, :3])) * P\n    return P\n", True),
+    ("def f(P):\n    K, R = rq(P[:, :3])\n    if np.linalg.det(P[:, :3]) < 0:\n        K = -K\n    return K\n", False),
+    ("def f(P):\n    K = rq(P)\n    K = -K if np.linalg.det(P[:, :3]) < 0 else K\n    return K\n", False),
+    ("def f(P):\n    P = -P\n    return P\n", False),
+])
+def test_negates_the_argument_on_a_negative_determinant(source, negates):
+    # the sign fix's place: P itself (or a converted copy of it), not K or R
+    assert bool(found(negates_on_negative_det(0), source)) is negates
+
+
 def test_reshapes_reads_the_shape_and_the_order():
     assert found(reshapes(3, 3), "def f(v):\n    return v.reshape(3, 3)\n")
     assert found(reshapes(3, 3), "def f(v):\n    return np.reshape(v, (3, 3))\n")
@@ -483,6 +497,31 @@ def test_a_decomposition_negating_on_a_negative_determinant_is_not_told_to_negat
     assert any("your code already negates a matrix when a determinant is negative" in m for m in messages)
     labels = [c.mistake or "" for c in check_results(result, "lab10.ex5") if not c.passed]
     assert not any("negated" in label and "det" in label for label in labels), labels
+
+
+def test_a_decomposition_negating_p_but_leaving_rqs_signs_is_told_the_signs_not_the_negation(tmp_path):
+    # P negated where det(P[:, :3]) < 0 as the sheet's recipe does, K's and R's signs never fixed:
+    # the cause is RQ's sign ambiguity, not a missing negation (a fresh blind set's evaluator)
+    source = """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            if np.linalg.det(P[:, :3]) < 0:
+                P = -P
+            flip = np.eye(3)[::-1]
+            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
+            K, R = flip @ U.T @ flip, flip @ Q.T
+            t = np.linalg.solve(K, P[:, 3])
+            return K / K[2, 2], R, t
+        """
+    result = grade(mutant(tmp_path, "lab10_camera2", source), ["lab10.ex5"], pictures="none")
+    failed = [c for c in check_results(result, "lab10.ex5") if not c.passed]
+    messages = " ".join(c.message for c in failed)
+    assert "RQ is unique only up to signs; multiply the offending columns of K and the same rows of R" in messages
+    assert "multiply P by -1 first" not in messages
+    assert "without the same rows of R" not in messages        # no column flip in this code
+    labels = {c.mistake for c in failed if c.mistake}
+    assert labels and all("negated" not in label for label in labels), labels
+    assert "the signs of K's diagonal are not fixed" in labels
 
 
 def test_a_transposed_design_matrix_reshaped_row_wise_is_not_told_it_reshaped_column_by_column(tmp_path):

@@ -23,7 +23,8 @@ the student's module with :mod:`ast`, never executing it:
 - :func:`divides_by` -- a division (``a / b``, ``a /= b``, ``np.divide(a, b)``) whose divisor has a
   pattern's shape, directly or through a name assigned it (``w = X[:, 2]; X / w``);
 - :func:`negates_on_negative_det` -- a value negated under a test of a determinant's sign
-  (``if np.linalg.det(M) < 0: P = -P``), or multiplied by ``np.sign(np.linalg.det(...))``;
+  (``if np.linalg.det(M) < 0: P = -P``), or multiplied by ``np.sign(np.linalg.det(...))``; with an
+  argument's position, only that parameter (or a converted copy of it) negated;
 - :func:`reshapes` -- a reshape to a given shape in a given order (``f.reshape(3, 3)``: row by
   row; ``order="F"``: column by column);
 - :func:`passes_argument` -- a call given an argument at a position or as a keyword, not ``None``
@@ -172,25 +173,67 @@ def _negates(statement) -> bool:
     return False
 
 
-def negates_on_negative_det() -> Predicate:
+def _argument_names(function, index: int) -> set[str]:
+    """The names holding the function's parameter at ``index``: the parameter and the names bound
+    to a conversion or copy of one of them (``P = np.asarray(P, float)``, ``M = P.copy()``)."""
+    parameters = function.args.posonlyargs + function.args.args
+    if index >= len(parameters):
+        return set()
+    names = {parameters[index].arg}
+
+    def holds(value) -> bool:
+        if isinstance(value, ast.Name):
+            return value.id in names
+        if isinstance(value, ast.Call):
+            name = _path(value.func).rsplit(".", 1)[-1]
+            if name in ("asarray", "array", "asanyarray", "copy", "astype", "float64", "float32"):
+                subject = value.func.value if isinstance(value.func, ast.Attribute) and name in (
+                    "copy", "astype") else (value.args[0] if value.args else None)
+                return holds(subject) if subject is not None else False
+        return False
+    while True:
+        more = {target.id for node in ast.walk(function) if isinstance(node, ast.Assign) and holds(node.value)
+                for target in node.targets if isinstance(target, ast.Name)} - names
+        if not more:
+            return names
+        names |= more
+
+
+def _bound_names(statement) -> set[str]:
+    """The plain names an assignment binds (``P = ...``, ``P *= -1``)."""
+    targets = statement.targets if isinstance(statement, ast.Assign) else [statement.target] if isinstance(
+        statement, ast.AugAssign) else []
+    return {t.id for t in targets if isinstance(t, ast.Name)}
+
+
+def negates_on_negative_det(argument: int | None = None, says: str = "") -> Predicate:
     """A value negated in a branch that tests a determinant's sign, or multiplied by the sign
-    of a determinant (``np.sign(np.linalg.det(M)) * P``)."""
+    of a determinant (``np.sign(np.linalg.det(M)) * P``). With ``argument``, only a negation of
+    the function's parameter at that position (or a converted copy of it, see
+    :func:`_argument_names`): ``P = -P`` counts for ``decompose_camera_matrix(P)``, ``K = -K`` not."""
     sign_of_det = _pattern("np.sign(np.linalg.det(_))")
 
     def test(function) -> bool:
         held = _assigned_names(function, _is_det)
+        aimed_at = None if argument is None else _argument_names(function, argument)
+
+        def aimed(statement) -> bool:
+            return aimed_at is None or bool(_bound_names(statement) & aimed_at)
         for node in ast.walk(function):
             if isinstance(node, ast.If) and _det_sign_test(node.test, held):
-                if any(_negates(s) for branch in (node.body, node.orelse) for s in branch for s in ast.walk(s)):
+                if any(_negates(s) and aimed(s) for branch in (node.body, node.orelse) for s in branch
+                       for s in ast.walk(s)):
                     return True
-            if isinstance(node, ast.IfExp) and _det_sign_test(node.test, held) and any(
-                    isinstance(b, ast.UnaryOp) and isinstance(b.op, ast.USub) for b in (node.body, node.orelse)):
+            # with an argument, only a value assigned to it counts; without, any expression
+            value = node.value if isinstance(node, ast.Assign) and aimed(node) else node if aimed_at is None else None
+            if isinstance(value, ast.IfExp) and _det_sign_test(value.test, held) and any(
+                    isinstance(b, ast.UnaryOp) and isinstance(b.op, ast.USub) for b in (value.body, value.orelse)):
                 return True
-            if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and any(
-                    _same(side, sign_of_det) for side in (node.left, node.right)):
+            if isinstance(value, ast.BinOp) and isinstance(value.op, ast.Mult) and any(
+                    _same(side, sign_of_det) for side in (value.left, value.right)):
                 return True
         return False
-    return Predicate("negates a matrix when a determinant is negative", test)
+    return Predicate(says or "negates a matrix when a determinant is negative", test)
 
 
 def reshapes(*shape: int, order: str = "C") -> Predicate:

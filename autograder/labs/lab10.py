@@ -48,6 +48,8 @@ for _taken in (truth.LARGEST_TAKEN, truth.LAST_COLUMN_TAKEN):
 guard(truth.NOT_UNDONE, asks=calls_any("np.linalg.inv", "np.linalg.solve", says="inverts a normalising transform"),
       instead="the normalisation is not undone (the P returned is the camera of the normalised points): your "
               "code {found}; check that the P returned is T2^-1 P_n T3")
+# the sign fix's own place: P negated (not K, not R) under a test of det(P[:, :3]) < 0
+NEGATES_P = negates_on_negative_det(0, says="negates P when det(P[:, :3]) < 0")
 SIGN_FIX = Hint(
     "for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): multiply P by -1 first, then decompose; flipping "
     "signs of K's columns alone would leave det(R) = -1", asks=negates_on_negative_det(),
@@ -64,7 +66,7 @@ NORMALISE_K_HINT = Hint("divide K by K[2, 2] (P is only known up to scale)",
                         instead="your code {found}, but the K returned is not the divided one (or is changed "
                                 "afterwards); P is only known up to scale")
 SIGNS_HINT = Hint("multiply the offending columns of K and the same rows of R by -1 (R then comes out with det +1, "
-                  "as det(P[:, :3]) > 0 here)", asks=(calls("np.sign") | expr("np.diag(np.sign(np.diag(_)))")).saying(
+                  "as the block decomposed has det > 0)", asks=(calls("np.sign") | expr("np.diag(np.sign(np.diag(_)))")).saying(
                       "fixes signs with np.sign"),
                   instead="your code {found}: check that it flips the same columns of K and rows of R (K D and "
                           "D R with one D), and that the fixed K and R are the ones returned")
@@ -407,6 +409,8 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     tv = t.expect_array(tv, f"{what}[2] (t)", shape=(3,))
     problems, labels = [], []
     negative = np.linalg.det(np.asarray(P, float)[:, :3]) < 0
+    # a P the code negates (det < 0) leaves RQ's own sign ambiguity as the cause, as for det > 0
+    unnegated = negative and not NEGATES_P.found(code_of(t).reachable(["decompose_camera_matrix"]))
     sign_fix = SIGN_FIX.said(t)
     K_scale = magnitude(K)
     if np.abs(np.tril(K, -1)).max() > at_precision(1e-6 * np.abs(K).max(), K_scale):
@@ -415,17 +419,23 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
         problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: K is not normalised; " + NORMALISE_K_HINT.said(t))
         labels.append("K is not normalised (K[2, 2] != 1)")
     rotation = np.abs(R @ R.T - np.eye(3)).max() <= at_precision(1e-6)
-    if np.any(np.diag(K) <= 0):
-        labels.append("P is not negated when det(P[:, :3]) < 0" if negative else "the signs of K's diagonal are not fixed")
+    unsigned = np.any(np.diag(K) <= 0)
+    if unsigned:
+        labels.append("P is not negated when det(P[:, :3]) < 0" if unnegated else "the signs of K's diagonal are not fixed")
         problems.append(f"K has a negative diagonal entry ({format_matrix(np.diag(K))}): "
-                        + (sign_fix if negative else "RQ is unique only up to signs; " + SIGNS_HINT.said(t)))
+                        + (sign_fix if unnegated else "RQ is unique only up to signs; " + SIGNS_HINT.said(t)))
     if not rotation:
         problems.append("R is not a rotation (R R^T != I)")
-    elif np.linalg.det(R) < 0 and sign_fix not in " ".join(problems):
-        labels.append("P is not negated when det(P[:, :3]) < 0" if negative
-                      else "K's columns are flipped without R's rows")
-        problems.append("det(R) = -1: " + (sign_fix if negative else "with det(P[:, :3]) > 0 that comes "
-                        "from a sign flip of K's columns without the same rows of R"))
+    elif np.linalg.det(R) < 0 and not unsigned:   # with K's signs unfixed, det(R) = -1 follows from them
+        flips = SIGNS_HINT.contradicts(code_of(t), ["decompose_camera_matrix"])
+        labels.append("P is not negated when det(P[:, :3]) < 0" if unnegated else
+                      "K's columns are flipped without R's rows" if flips else "the signs of K's diagonal are not fixed")
+        problems.append("det(R) = -1: " + (
+            sign_fix if unnegated else
+            "with a block of det > 0 decomposed, that comes from a sign flip of K's columns without the same rows "
+            "of R" if flips else
+            "with a block of det > 0 decomposed, K had an odd number of negative diagonal entries before it was "
+            "normalised; RQ is unique only up to signs: " + SIGNS_HINT.said(t)))
     if problems:
         # a named mistake only when the problems point to one cause
         t.fail(f"{what}: " + "; ".join(problems) + ".", mistake=labels[0] if len(set(labels)) == 1 else "")
