@@ -29,6 +29,7 @@ from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mis
                       where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
+from .code_signs import name_batched_vt_row
 
 lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
 
@@ -153,6 +154,7 @@ def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, g
     if isinstance(got, np.ndarray) and got.shape == (n, 4):
         t.fail(f"{what} returned shape ({n}, 4); expected ({n}, 3): the homogeneous solution (X, Y, Z, w) is "
                "returned; the point is (X, Y, Z) / w")
+    name_batched_vt_row(t, what, got, n)
     got = t.expect_array(got, what, shape=(n, 3), kind="iuf")
     if not np.all(np.isfinite(got)):
         t.fail(f"{what} returned NaN or infinite values")

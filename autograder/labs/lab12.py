@@ -29,13 +29,19 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
-from ..engine.claims import calls_any, divides_by, guard, measured
+from ..engine.claims import calls_any, divides_by, from_code, guard, measured
 from ..engine.forms import shape_form
 from ..engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, Hint, Predicate, calls, code_of, expr, keyword
 from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..engine.registry import Lab
+from ..engine.stubs import functions_called
+from .code_signs import DIVIDES_BY_16, STEREO_MATCHER, name_batched_vt_row, zero_taken_for_missing
+
+# OpenCV's matcher called, its answer never divided by 16 (a sign, said with a measurement).
+STEREO_MATCHER_UNDIVIDED = (STEREO_MATCHER & ~DIVIDES_BY_16).saying(
+    "calls OpenCV's block matcher and never divides by 16")
 
 lab = Lab("lab12", module="lab12_stereo", title="Stereo")
 
@@ -116,9 +122,25 @@ LOWEST_COST_HINT = Hint(
             "d = 0..max_disparity; your code already {found}: the error is elsewhere")
 
 
+# Code that calls OpenCV's matcher has its block search done: what is left to tell is its answer.
+OPENCV_MATCHER_HINT = Hint(
+    LOWEST_COST_HINT.text, asks=STEREO_MATCHER,
+    instead="your code {found}, which compares the blocks and keeps the lowest cost itself: look at what "
+            "is done with its answer (int16 disparities in 1/16 px, -16 where no match is found) and at "
+            "what it is given (grey uint8 images, numDisparities a multiple of 16 above max_disparity, an "
+            "odd blockSize of 5 or more)")
+
+
+def matching_hint(t: Trial) -> str:
+    """The block-search recipe, or, for code calling OpenCV's matcher, what is left to check."""
+    if OPENCV_MATCHER_HINT.contradicts(code_of(t), functions_called(t.check)):
+        return OPENCV_MATCHER_HINT.said(t)
+    return LOWEST_COST_HINT.said(t)
+
+
 FIXED_POINT_HINT = Hint(
     "(it looks like OpenCV's fixed point: StereoBM and StereoSGBM return 16 times the disparity; divide by 16).",
-    asks=(divides_by("16") | expr("_ * 0.0625") | expr("_ * (1 / 16)")).saying("divides by 16"),
+    asks=DIVIDES_BY_16,
     instead="(it looks like OpenCV's fixed point: StereoBM and StereoSGBM return 16 times the disparity; your code "
             "{found}, but not the map returned).")
 
@@ -164,7 +186,7 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
         return partial(fraction, f"{what}: {where}. {summary}; up to "
                        f"{allowed:.1%} gets full marks (see the error map).")
     t.fail(f"{what}: most of the map is wrong: {where}. {summary} (see the error map).",
-           hint=(NCC_HINT if NCC_CALL in what else LOWEST_COST_HINT).said(t))
+           hint=NCC_HINT.said(t) if NCC_CALL in what else matching_hint(t))
 
 
 def where_disparities_wrong(got, judged, threshold) -> str:
@@ -237,6 +259,77 @@ def name_matching_mistake(t: Trial, what, got, scene, judged, mistakes):
         t.fail(f"{what}: it looks like {mistake}.", mistake=mistake)
 
 
+FIXED_POINT = "OpenCV's 16x fixed-point disparities, not divided by 16"
+# The code's half of that name: OpenCV's matcher called, its answer never divided by 16.
+FIXED_POINT_KEPT = from_code("your code calls OpenCV's block matcher and never divides its answer by 16: "
+                             "StereoBM and StereoSGBM return int16 disparities in 1/16 px (16 times the "
+                             "disparity, -16 where no match is found); divide by 16 in floating point "
+                             "(compute(left, right).astype(np.float32) / 16)")
+# Factors a map in pixels is commonly off by, in words ("16 times the expected").
+FACTORS = {16.0: "16 times", 1 / 16: "1/16 of", 2.0: "twice", 0.5: "half", 4.0: "4 times", 0.25: "a quarter of"}
+EXPLAINED = 0.8      # share of the valid, unclipped pixels a single factor must explain
+AT_TOP = 0.5         # share of the valid pixels at the map's largest value: a map clipped there
+
+
+def disparity_scale(got, judged, threshold, max_disparity) -> tuple[float | None, float]:
+    """``(c, clipped)``: the factor ``c`` with ``got ~ c * truth`` on the valid pixels whose value is not
+    the map's largest (a map clipped at ``max_disparity`` or its own top keeps the others' scale),
+    when it explains :data:`EXPLAINED` of them within ``threshold`` (None: no single factor does);
+    ``clipped`` the share of the valid pixels at ``max_disparity`` or above (the truth's is small)."""
+    got, judged = np.asarray(got, np.float64), np.asarray(judged, np.float64)
+    valid = (judged >= 1) & np.isfinite(got) & (got > 0)   # (a wall at infinity has no scale to tell)
+    if valid.sum() <= 10:
+        return None, 0.0
+    top = float(got[valid].max())
+    at_top = valid & (got >= top - 1e-9)
+    clipped = float(np.mean(got[valid] >= max_disparity - 1e-9))
+    unclipped = valid & ~at_top if at_top.sum() >= 0.1 * valid.sum() else valid
+    if unclipped.sum() <= 10:
+        return None, clipped
+    ratio = float(np.median(got[unclipped] / judged[unclipped]))
+
+    def explained(factor) -> float:
+        return float(np.mean(np.abs(got[unclipped] / factor - judged[unclipped]) <= threshold))
+    # A round factor near the median ratio that explains about as many pixels is the one said.
+    share = explained(ratio)
+    for factor in FACTORS:
+        if abs(ratio / factor - 1) <= 0.2 and explained(factor) >= share - 0.05:
+            ratio, share = factor, explained(factor)
+            break
+    return (ratio if share >= EXPLAINED else None), clipped
+
+
+def name_disparity_scale(t: Trial, what: str, got, judged, threshold, max_disparity):
+    """Fail telling the factor a failing map is off by (16 times, half, ...), measured on the pixels
+    it has not clipped, and, where the code calls OpenCV's matcher without dividing by 16, naming
+    the fixed point (also when the map is clipped at ``max_disparity`` almost everywhere)."""
+    ratio, clipped = disparity_scale(got, judged, threshold, max_disparity)
+    kept = STEREO_MATCHER_UNDIVIDED.holds(code_of(t).reachable(functions_called(t.check)))
+    truth_at_top = float(np.mean(judged[judged > 0] >= max_disparity - 0.5)) if np.any(judged > 0) else 0.0
+    if ratio is not None and abs(ratio - 1) > 0.3:
+        fixed_point = abs(ratio - 16) <= 0.1 * 16
+        factor = next((words for value, words in FACTORS.items() if abs(ratio / value - 1) <= 0.1), None)
+        said = f"{factor} the expected" if factor else f"{ratio:.3g} times the expected"
+        cause = (FIXED_POINT_KEPT + "." if kept else FIXED_POINT_HINT.said(t)) if fixed_point else \
+            measured("they are expected in pixels.")
+        t.fail(f"{what}: the disparities are {said} (on the pixels not clipped)"
+               + (f": it looks like {FIXED_POINT}: " if fixed_point and kept else ": ") + cause,
+               mistake=FIXED_POINT if fixed_point else "the disparities are rescaled")
+    if not kept:
+        return
+    if clipped >= AT_TOP and truth_at_top <= 0.1:
+        t.fail(f"{what}: {clipped:.0%} of your valid disparities are max_disparity ({max_disparity}) or more, "
+               f"where {truth_at_top:.0%} of the true ones are: it looks like {FIXED_POINT}: "
+               + FIXED_POINT_KEPT + ", before comparing with max_disparity.", mistake=FIXED_POINT)
+    known = judged > 0
+    with np.errstate(invalid="ignore"):
+        found = float(np.mean(np.isfinite(got[known]) & (got[known] > 0))) if known.any() else 1.0
+    if found < 1 - AT_TOP:
+        t.fail(f"{what}: only {found:.0%} of the pixels get a disparity (0 elsewhere): it looks like {FIXED_POINT} "
+               "(16 times the disparity is above max_disparity nearly everywhere): "
+               + FIXED_POINT_KEPT + ", before comparing with max_disparity.", mistake=FIXED_POINT)
+
+
 def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=None, mistakes=None):
     gt, thr = (scene.judged if judged is None else judged), scene.threshold
     finite = np.nan_to_num(got.astype(np.float64), nan=0.0, posinf=0.0, neginf=0.0)
@@ -248,16 +341,7 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=N
             t.fail(f"{what}: every disparity is off by {'-' if shift > 0 else '+'}1 - "
                    "it looks like an off-by-one error in the disparity index (d runs from 0).",
                    mistake="the disparity index is off by one")
-    known = (gt > 0) & (finite > 0)
-    if known.sum() > 10:
-        ratio = float(np.median(finite[known] / gt[known]))
-        if abs(ratio - 1) > 0.3 and truth.bad_pixel_rate(finite / ratio, gt, thr) <= allowed + 0.05:
-            fixed_point = abs(ratio - 16) <= 0.1 * 16
-            t.fail(f"{what}: the disparities are scaled by about {ratio:.3g} "
-                   + (FIXED_POINT_HINT.said(t) if fixed_point else
-                      "(they are expected in pixels, not rescaled for display or as OpenCV's 16x fixed point)."),
-                   mistake="OpenCV's 16x fixed-point disparities, not divided by 16" if fixed_point
-                   else "the disparities are rescaled")
+    name_disparity_scale(t, what, finite, gt, thr, scene.max_disparity)
     values = finite[gt > 0]
     if values.size and np.ptp(values) < 1e-9:
         t.fail(f"{what}: every pixel got the same disparity ({values[0]:g}).")
@@ -292,6 +376,7 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
                "coordinate.")
     if isinstance(got, np.ndarray) and got.shape == (3, n) and n != 3:
         t.fail(f"{what} returned shape {got.shape}; expected ({n}, 3): one row per point (this is its transpose).")
+    name_batched_vt_row(t, what, got, n)
     got = t.expect_array(got, what, shape=(n, 3), kind="iuf", finite=True)
     linear = truth.linear_triangulation(P1, P2, pts1, pts2)
     scale = max(1.0, float(np.abs(X_true).max()))
@@ -939,6 +1024,11 @@ def block_matching_form(t):
     got = t.expect_array(got, what, kind="f")
     with np.errstate(invalid="ignore"):
         if np.any(got > max_disparity + 1e-9):
+            if np.nanmax(got) > 2 * max_disparity and \
+                    STEREO_MATCHER_UNDIVIDED.holds(code_of(t).reachable(["block_matching"])):
+                t.fail(f"{what} returned disparities up to {np.nanmax(got):g}, far above the search range "
+                       f"0..{max_disparity}: it looks like {FIXED_POINT}: " + FIXED_POINT_KEPT + ".",
+                       mistake=FIXED_POINT)
             t.fail(f"{what} returned disparities up to {np.nanmax(got):g}; the search range is "
                    f"0..{max_disparity}",
                    hint=Hint("cv2.StereoBM rounds numDisparities up to a multiple of 16: set what it finds "
@@ -1336,6 +1426,26 @@ def dp_motorcycle(t):
                                "block_size", (3, 9), "disparity map")))
 
 
+ZERO_SMOOTHNESS = "smoothness=0 is taken for the default (0 is false, as None is)"
+ZERO_TAKEN = zero_taken_for_missing("smoothness")
+
+
+def name_zero_smoothness(t: Trial, scene, wta, default):
+    """Fail naming 0 taken for "not given" (``smoothness or DEFAULT``, ``if not smoothness``) when the
+    smoothness=0 map is the default's (measured) and the code tests smoothness for truth (read)."""
+    wta, default = (np.nan_to_num(np.asarray(m, np.float64), nan=-1.0) for m in (wta, default))
+    if not np.array_equal(wta, default):
+        return
+    measured_part = ("dp_stereo(left, right, smoothness=0) gives exactly the map of smoothness=None (the "
+                     "default), where 0 means no smoothness at all (winner-take-all)")
+    found = ZERO_TAKEN.found(code_of(t).reachable(["dp_stereo"]))
+    if found:
+        t.fail(f"{measured_part}: it looks like {ZERO_SMOOTHNESS}. Your code {found}; "
+               + from_code("test `smoothness is None` for the default instead (0 is a value given)."),
+               mistake=ZERO_SMOOTHNESS)
+    t.fail(measured_part + ".")
+
+
 @ex5.check("smoothness=0 is winner-take-all; a huge smoothness makes every row constant", points=2,
            timeout=STEREO_TIMEOUT)
 def dp_smoothness_parameter(t):
@@ -1348,6 +1458,7 @@ def dp_smoothness_parameter(t):
     if wta_jumps < 0.5 * reference or default_jumps * 3 > wta_jumps:
         smoothness_probe(t, scene)
     if wta_jumps < 0.5 * reference:
+        name_zero_smoothness(t, scene, wta, default)
         t.fail(f"dp_stereo(left, right, smoothness=0): only {wta_jumps:.1%} of neighbouring pixels "
                f"jump by more than 1 px (winner-take-all gives about {reference:.1%}): with "
                "smoothness 0 every pixel must take its best data cost.")

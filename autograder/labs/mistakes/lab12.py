@@ -34,6 +34,15 @@ MISTAKES = {
                           pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
             return np.linalg.svd(A)[2][:, -1, :3]
         """, ["fourth coordinate"]),
+    "triangulate taking the last row of the batched SVD's Vt (Vt[-1])": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.asarray(pts1, float).reshape(-1, 2); pts2 = np.asarray(pts2, float).reshape(-1, 2)
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[1],
+                          pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
+            _, _, Vt = np.linalg.svd(A)
+            X = Vt[-1]
+            return X[:, :3] / X[:, 3:]
+        """, ["4 rows is the size of each point's 4 x 4 system", "vt[:, -1]"]),
     "triangulate with OpenCV": ("lab12.ex1", """
         def triangulate(P1, P2, pts1, pts2):
             X = cv2.triangulatePoints(np.float64(P1), np.float64(P2),
@@ -201,7 +210,41 @@ MISTAKES = {
             n = 16 * -(-(max_disparity + 1) // 16)
             d = cv2.StereoBM_create(numDisparities=n, blockSize=block_size).compute(left, right)
             return np.where((d > 0) & (d <= 16 * max_disparity), d, 0).astype(np.float64)
-        """, ["scaled by about 16", "fixed point"]),
+        """, ["fixed-point", "never divides its answer by 16"]),
+    "block matching with StereoBM's fixed point kept, then values above max_disparity set to 0": ("lab12.ex4", """
+        _block_matching_own = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            if cost != "ssd":
+                return _block_matching_own(left, right, max_disparity, block_size, cost)
+            stereo = cv2.StereoBM_create(numDisparities=16 * -(-(max_disparity + 1) // 16), blockSize=block_size)
+            d = stereo.compute(left, right).astype(np.float32)
+            d[d > max_disparity] = 0
+            return d
+        """, ["of the pixels get a disparity", "never divides its answer by 16"]),
+    "block matching with StereoBM's fixed point kept, clipped to max_disparity": ("lab12.ex4", """
+        _block_matching_own = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            if cost != "ssd":
+                return _block_matching_own(left, right, max_disparity, block_size, cost)
+            stereo = cv2.StereoBM_create(numDisparities=16 * ((max_disparity + 16) // 16), blockSize=block_size)
+            return np.clip(stereo.compute(left, right).astype(np.float32), 0, max_disparity)
+        """, ["of your valid disparities are max_disparity", "never divides its answer by 16"]),
+    "block matching with StereoBM's int16 fixed point converted to float32 only": ("lab12.ex4", """
+        _block_matching_own = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            if cost != "ssd":
+                return _block_matching_own(left, right, max_disparity, block_size, cost)
+            stereo = cv2.StereoBM_create(numDisparities=16 * int(np.ceil((max_disparity + 1) / 16)),
+                                         blockSize=block_size)
+            disparity = np.float32(stereo.compute(left, right))
+            disparity[disparity < 0] = 0
+            return disparity
+        """, ["fixed-point", "never divides its answer by 16"]),
+    "block matching returning twice the disparity": ("lab12.ex4", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return 2.0 * _block_matching(left, right, max_disparity, block_size, cost)
+        """, ["the disparities are twice the expected"]),
     "block_size ignored (a fixed 31 x 31 block)": ("lab12.ex4", """
         _block_matching = block_matching
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
@@ -278,6 +321,19 @@ MISTAKES = {
         def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
             return _dp_stereo(left, right, max_disparity, block_size, None)
         """, ["smoothness=0 and smoothness=10000000.0 give the same disparity map: smoothness is ignored"]),
+    "DP taking smoothness=0 for the default (smoothness or DEFAULT)": ("lab12.ex5", """
+        _dp_stereo = dp_stereo
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            smoothness = smoothness or DEFAULT_SMOOTHNESS
+            return _dp_stereo(left, right, max_disparity, block_size, smoothness)
+        """, ["gives exactly the map of smoothness=none", "smoothness=0 is taken for the default"]),
+    "DP taking smoothness=0 for the default (if not smoothness)": ("lab12.ex5", """
+        _dp_stereo = dp_stereo
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            if not smoothness:
+                smoothness = DEFAULT_SMOOTHNESS
+            return _dp_stereo(left, right, max_disparity, block_size, smoothness)
+        """, ["smoothness=0 is taken for the default"]),
     "DP whose last column is always 0": ("lab12.ex5", """
         _dp_stereo = dp_stereo
         def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):

@@ -1,0 +1,172 @@
+"""What the student's code shows of a mistake, read with :mod:`ast` (labs 11 and 12; issue 35).
+
+A check that has measured a failure names its likely cause only where the code shows it: these
+predicates (:class:`~autograder.engine.hints.Predicate`, evaluated on the functions a check calls
+and their helpers, never executed) are the code's half of such a name; the measurement is the
+check's. A predicate that holds is a *sign*, not a proof: every name built on one is said with the
+measurement that makes it likely, and a code that does the right thing another way (a division
+by a constant held in a module-level name) is simply not named.
+
+- :data:`STEREO_MATCHER` -- OpenCV's block matchers (``cv2.StereoBM_create``, ``cv2.StereoSGBM.create``);
+- :data:`DIVIDES_BY_16` -- a division of anything by 16 (``d / 16``, ``d * (1 / 16)``, ``d >> 4``);
+- :func:`zero_taken_for_missing` -- a numeric parameter tested for truth (``smoothness or DEFAULT``,
+  ``if not smoothness:``), which takes 0 for "not given";
+- :data:`LINES_FROM_SIDES_ONLY` -- lines ``a x + b y + c = 0`` drawn by dividing by ``b`` only (the
+  left and right borders, ``x = 0`` and ``x = w - 1``): a steep line leaves through the top and bottom;
+- :data:`CAMERA_WITHOUT_K` -- a camera matrix ``[R | t]`` stacked and never multiplied by K, in code
+  that never normalises its points (``K^-1 x``, ``cv2.undistortPoints``).
+"""
+
+from __future__ import annotations
+
+import ast
+
+import numpy as np
+
+from ..engine.claims import calls_any, divides_by, from_code, takes_last_row_of_vt
+from ..engine.hints import Predicate, _path, calls, code_of, expr, mentions
+
+STEREO_MATCHER = (mentions("cv2.StereoBM") | mentions("cv2.StereoSGBM") | calls("cv2.StereoBM_create")
+                  | calls("cv2.StereoSGBM_create")).saying("uses OpenCV's block matcher (cv2.StereoBM or StereoSGBM)")
+
+
+def _sixteen(node) -> bool:
+    return isinstance(node, ast.Constant) and not isinstance(node.value, bool) and node.value == 16
+
+
+def _of_the_range(node) -> bool:
+    """Whether ``node`` involves the search range (``max_disparity``, ``numDisparities``, ``num_disp``):
+    ``-(-(max_disparity + 1) // 16)`` rounds the range up to a multiple of 16, it divides no disparity."""
+    return any(isinstance(n, ast.Name) and ("max" in n.id.lower() or "num" in n.id.lower() or "range" in n.id.lower())
+               for n in ast.walk(node))
+
+
+def _divides_disparities_by_16(function) -> bool:
+    """A division by 16 (``/``, ``//``, ``/=``, ``np.divide``, ``np.true_divide``, ``np.floor_divide``) of
+    something other than the search range."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Div, ast.FloorDiv)) and _sixteen(node.right):
+            if not _of_the_range(node.left):
+                return True
+        elif isinstance(node, ast.AugAssign) and isinstance(node.op, (ast.Div, ast.FloorDiv)) and _sixteen(node.value):
+            if not _of_the_range(node.target):
+                return True
+        elif isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in (
+                "divide", "true_divide", "floor_divide") and len(node.args) >= 2 and _sixteen(node.args[1]):
+            if not _of_the_range(node.args[0]):
+                return True
+    return False
+
+
+DIVIDES_BY_16 = (Predicate("divides by 16", _divides_disparities_by_16) | expr("_ * 0.0625") | expr("_ * (1 / 16)")
+                 | expr("(1 / 16) * _") | expr("0.0625 * _") | expr("_ >> 4")).saying("divides by 16")
+
+
+def _parameters(function) -> set[str]:
+    arguments = function.args
+    return {a.arg for a in arguments.posonlyargs + arguments.args + arguments.kwonlyargs}
+
+
+def zero_taken_for_missing(parameter: str) -> Predicate:
+    """The parameter ``parameter`` tested for truth where a default replaces it: ``parameter or X``,
+    ``X if parameter else Y``, ``if not parameter:`` / ``if parameter:`` (0 is false, as ``None`` is)."""
+    def named(node) -> bool:
+        return isinstance(node, ast.Name) and node.id == parameter
+
+    def truth_test(node) -> bool:
+        return named(node) or isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not) and named(node.operand)
+
+    def test(function) -> bool:
+        if parameter not in _parameters(function):
+            return False
+        for node in ast.walk(function):
+            if isinstance(node, ast.BoolOp) and isinstance(node.op, ast.Or) and named(node.values[0]):
+                return True
+            if isinstance(node, (ast.If, ast.IfExp)) and truth_test(node.test):
+                return True
+        return False
+    return Predicate(f"tests {parameter} for truth ({parameter} or ..., if not {parameter})", test)
+
+
+def _divides_by_name_or_entry(names: tuple[str, ...], index: int) -> Predicate:
+    """A division by one of ``names`` or by the entry ``index`` of anything (``line[1]``, ``l[:, 1]``)."""
+    patterns = [*names, f"_[{index}]", f"_[:, {index}]", f"_[..., {index}]", f"_[i, {index}]"]
+    return divides_by(*patterns)
+
+
+# Lines a x + b y + c = 0 drawn as y = -(a x + c) / b only: a division by b, none by a.
+LINES_FROM_SIDES_ONLY = (_divides_by_name_or_entry(("b",), 1) & ~_divides_by_name_or_entry(("a",), 0)
+                         & ~calls_any("cv2.clipLine")).saying(
+    "computes y = -(a x + c) / b at the left and right borders only (it divides by b, never by a)")
+
+
+_STACKS = ("hstack", "column_stack", "concatenate", "c_")
+
+
+def _stacked(node) -> bool:
+    """``np.hstack([R, t])``, ``np.column_stack((R, t))``, ``np.concatenate([R, t], axis=1)``, ``np.c_[R, t]``,
+    ``np.eye(3, 4)`` (a camera's ``[I | 0]``)."""
+    if isinstance(node, ast.Call):
+        last = _path(node.func).rsplit(".", 1)[-1]
+        if last == "eye" and len(node.args) == 2:
+            return True
+        if last in _STACKS and node.args and isinstance(node.args[0], (ast.List, ast.Tuple)) \
+                and len(node.args[0].elts) == 2:
+            return True
+    return isinstance(node, ast.Subscript) and _path(node.value).rsplit(".", 1)[-1] == "c_"
+
+
+def _products(function) -> list[ast.AST]:
+    """The operands of every matrix product in ``function`` (``a @ b``, ``np.dot(a, b)``, ``a.dot(b)``)."""
+    operands = []
+    for node in ast.walk(function):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.MatMult, ast.Mult)):
+            operands += [node.left, node.right]
+        elif isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("dot", "matmul"):
+            operands += list(node.args) + ([node.func.value] if isinstance(node.func, ast.Attribute) else [])
+    return operands
+
+
+def _camera_without_k(function) -> bool:
+    """A stacked ``[R | t]`` (or ``[I | 0]``) assigned to a name or passed on, that no product takes."""
+    multiplied = _products(function)
+    multiplied_names = {n.id for operand in multiplied for n in ast.walk(operand) if isinstance(n, ast.Name)}
+    multiplied_nodes = {id(n) for operand in multiplied for n in ast.walk(operand)}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and _stacked(node.value) and id(node.value) not in multiplied_nodes:
+            names = {t.id for t in node.targets if isinstance(t, ast.Name)}
+            if names and not names & multiplied_names:
+                return True
+        if isinstance(node, ast.Call) and any(_stacked(a) and id(a) not in multiplied_nodes for a in node.args) \
+                and _path(node.func).rsplit(".", 1)[-1] not in _STACKS:
+            return True
+    return False
+
+
+NORMALISES_POINTS = (calls_any("np.linalg.inv", "np.linalg.solve", "np.linalg.pinv", "cv2.undistortPoints",
+                               "cv2.undistortImagePoints")).saying("normalises its points with K^-1")
+CAMERA_WITHOUT_K = (Predicate("builds a camera [R | t] without K", _camera_without_k) & ~NORMALISES_POINTS).saying(
+    "builds a camera matrix [R | t] (or [I | 0]) without K and triangulates pixels with it")
+
+
+# ------------------------------------------------------------------ shapes that say where the index went
+LAST_VT_OF_A_STACK = "the last row of a batched SVD's Vt is taken (Vt[-1]) instead of each system's (Vt[:, -1])"
+TAKES_LAST_ROW_OF_VT = takes_last_row_of_vt()
+
+
+def name_batched_vt_row(t, what: str, got, n: int, size: int = 4, function: str = "triangulate"):
+    """Fail naming ``Vt[-1]`` of an SVD of a stack of ``size x size`` systems when the answer has
+    ``size`` rows for ``n`` points (its first dimension is the system's size, not N: measured) and the
+    code takes the last row of an SVD's Vt (read). ``Vt`` of an ``(N, 4, 4)`` stack is ``(N, 4, 4)``:
+    ``Vt[-1]`` is the last point's whole ``Vt``, each point's solution is ``Vt[:, -1]``."""
+    if not (isinstance(got, np.ndarray) and got.ndim == 2 and got.shape[0] == size != n):
+        return
+    found = TAKES_LAST_ROW_OF_VT.found(code_of(t).reachable([function]))
+    if not found:
+        return
+    t.fail(f"{what} returned shape {got.shape} for {n} points: {size} rows is the size of each point's "
+           f"{size} x {size} system, not the number of points. It looks like {LAST_VT_OF_A_STACK}: your code "
+           + from_code(f"takes Vt[-1]; for A of shape (N, {size}, {size}) np.linalg.svd gives Vt of shape "
+                       f"(N, {size}, {size}), so Vt[-1] is the last point's whole Vt and each point's solution "
+                       "is Vt[:, -1] (shape (N, 4)), or solve the points one at a time."),
+           mistake=LAST_VT_OF_A_STACK)
