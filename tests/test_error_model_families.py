@@ -213,3 +213,19 @@ def test_the_error_class_tells_two_value_errors_apart():
     assert not naming._same_outcome(np.eye(3), broadcast, np.eye(3))
     assert naming._raised_answer("Your points are (3,).\nf() raised IndexError: too many indices") == \
         {naming.ERROR: "IndexError: too many indices"}
+
+
+def test_in_a_grading_a_check_ended_by_the_students_exception_is_named(tmp_path):
+    """The runner passes a check that ended by the student's exception to the error model
+    (:attr:`Trial.raised`): `_points` without np.atleast_2d raises on the lab sheet's single point."""
+    from autograder.engine.runner import grade
+
+    source = (ROOT / "reference_solutions" / "lab09_camera.py").read_text()
+    old = "    return np.atleast_2d(points), points.ndim == 1\n"
+    assert source.count(old) == 1
+    (tmp_path / "lab09_camera.py").write_text(source.replace(old, "    return points, points.ndim == 1\n"))
+    result = grade(tmp_path, ["lab09.ex1"], pictures="none")
+    failed = [c for e in result.exercises for c in e.checks if c.score < c.max_score]
+    assert failed and all(c.failure == "exception" for c in failed)
+    assert any(c.mistake == "mutant:single_point" and "IndexError" in c.message
+               and "a single point (a 1-D array) is not handled" in c.message for c in failed)

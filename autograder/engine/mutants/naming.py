@@ -812,7 +812,8 @@ def _confirmed_raised(trial, model, function, inputs, answers, candidates, clock
     for i in range(min(len(inputs), 3)):
         seed = int(fingerprint(function, "raised", i, inputs[i][1])[:8], 16)
         variants += _variants(inputs[i], VARIANTS_PER_CALL if i == 0 else 2, seed, model.defaults.get(function, ()))
-    variants += _batched(inputs[0], int(fingerprint(function, "batched", inputs[0][1])[:8], 16))
+    batched = _batched(inputs[0], int(fingerprint(function, "batched", inputs[0][1])[:8], 16))
+    variants += batched
     every = inputs + variants
     runner.prepare(model.source, model.module, every, max(1.0, clock.left()))
     indices = list(range(len(inputs), len(every)))
@@ -828,6 +829,8 @@ def _confirmed_raised(trial, model, function, inputs, answers, candidates, clock
     chosen = _separating(usable, reference, [outputs[c.key] for c in candidates])
     if not chosen:
         return None
+    if len(inputs) == 1 and batched and len(every) - 1 - len(inputs) in usable:
+        chosen = sorted(set(chosen) | {len(every) - 1 - len(inputs)})   # (the batch: the rest of the code)
     theirs = []
     for k in chosen:
         answer = _student_outcome(trial, every[indices[k]])

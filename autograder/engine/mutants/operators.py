@@ -842,9 +842,11 @@ def _changes(node, parents, words: _Words, line):
         yield "default", None, f"a `{node.left.id}` of 0 (or any value that is false) is taken as not given: " \
                                "the default is used in its place (only None means not given)"
     if isinstance(node, ast.Call) and _dotted(node.func) in ("np.atleast_2d", "numpy.atleast_2d") \
-            and len(node.args) == 1 and what(node.args[0]):
-        yield "single_point", None, f"{what(node.args[0])} is not made 2-D: a single point (a 1-D array) " \
-                                    "is not handled (`np.atleast_2d` is missing)"
+            and len(node.args) == 1:   # (in a helper, the array may have no name of the student's)
+        subject = what(node.args[0])
+        yield "single_point", None, f"{subject} is not made 2-D: a single point (a 1-D array) is not handled " \
+                                    "(`np.atleast_2d` is missing)" if subject else \
+            "a single point (a 1-D array) is not handled: it is not made 2-D (`np.atleast_2d` is missing)"
 
 
 _INDEX_WORDS = {-1: "last", 0: "first", 1: "second", 2: "third"}
