@@ -700,7 +700,7 @@ class Hint:
         code = code_of(t)
         if not code.functions:   # nothing to read (a stand-in trial, code that cannot be parsed)
             return self.text
-        found = self.contradicts(code, tuple(functions) or self.functions or _called(t))
+        found = self.contradicts(code, tuple(functions) or self.functions or functions_read(t))
         return self.neutral(found) if found else self.text
 
     def contradicts(self, code: Code, functions: Iterable[str]) -> str:
@@ -709,7 +709,8 @@ class Hint:
         return self.asks.found(code.reachable(functions)) if self.asks is not None else ""
 
 
-def _called(t) -> tuple[str, ...]:
+def functions_read(t) -> tuple[str, ...]:
+    """The student functions whose code a check ``t``'s hints read: those the check calls."""
     from .stubs import functions_called
 
     return tuple(sorted(functions_called(t.check)))

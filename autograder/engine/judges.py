@@ -32,9 +32,9 @@ from fixtures.images import as_homography, coverage, warp
 
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
-from .claims import measured
+from .claims import from_code, measured
 from .forms import shape_form
-from .hints import Hint, Predicate, keyword, mentions
+from .hints import Hint, Predicate, calls, code_of, functions_read, keyword, mentions
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
 
@@ -45,6 +45,16 @@ BLACK_FILL_HINT = Hint("use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black
                        instead="your code already {found}: the pixels with no source pixel are filled "
                                "elsewhere (borderValue, or what is written into the output afterwards)")
 FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
+# what the pixels with no source pixel hold instead of black, by the border rule that gives them
+FILLS = {
+    cv2.BORDER_WRAP: measured("wrap around from the opposite side (as np.roll and cv2.BORDER_WRAP do)"),
+    cv2.BORDER_REPLICATE: measured("repeat the nearest edge pixel (as cv2.BORDER_REPLICATE does)"),
+    cv2.BORDER_REFLECT: measured("mirror the image at its edge (as cv2.BORDER_REFLECT does)"),
+    cv2.BORDER_REFLECT_101: measured("mirror the image at its edge (as cv2.BORDER_REFLECT_101 does)"),
+}
+KEPT_INPUT = measured("still hold the input image (the output started as a copy of it?)")
+ROLL_HINT = from_code("np.roll moves the pixels that leave one side back in on the other: set the rows and "
+                      "columns it brought round to 0, or warp with cv2.warpAffine (black fill)")
 
 
 # ---------------------------------------------------------------- naming, confirmed
@@ -345,9 +355,12 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
     if error <= IMAGE_TOLERANCE:
         nonblack = fill_fraction(got, outside)
         if nonblack > FILL_TOLERANCE:
+            held = fill_held(got, source, M, dsize, outside)
+            rolls = held == FILLS[cv2.BORDER_WRAP] and calls("np.roll").found(
+                code_of(t).reachable(functions_read(t)))
             return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
-                                "pixels with no source pixel are not black.",
-                           hint=BLACK_FILL_HINT.said(t),
+                                "pixels with no source pixel are not black" + (f": they {held}." if held else "."),
+                           hint=ROLL_HINT if rolls else BLACK_FILL_HINT.said(t),
                            mistake="the fill is not black")
         return passed(f"mean difference {error:.1f} grey levels on the covered area")
     if channels_reversed(got, expected):
@@ -365,6 +378,32 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
            "(see the pictures).")
+
+
+def fill_held(got, source, M, dsize, outside) -> str:
+    """What ``got``'s pixels with no source pixel (``outside``) hold, in words for "they ...": a
+    border rule's fill (:data:`FILLS`: wrapped, replicated, mirrored), the input's own pixels, one
+    constant grey level; "" when none fits at 90% of them (within 24 grey levels: the fill
+    is interpolated at the border too)."""
+    outside = np.asarray(outside, dtype=bool)
+    if not outside.any():
+        return ""
+    got = np.asarray(got, dtype=np.float32)
+    width, height = dsize or (source.shape[1], source.shape[0])
+
+    def fits(candidate) -> bool:
+        apart = np.abs(got - np.asarray(candidate, dtype=np.float32))
+        apart = apart.max(axis=2) if apart.ndim == 3 else apart
+        return float(np.mean(apart[outside] <= 24)) >= 0.9
+    for border, words in FILLS.items():
+        if fits(cv2.warpPerspective(source, as_homography(M), (width, height), borderMode=border)):
+            return words
+    if source.shape[:2] == (height, width) and fits(source):
+        return KEPT_INPUT
+    levels = got[outside]
+    if np.ptp(levels) <= 2:
+        return f"are all {format_apart(float(levels.mean()), 0.0, 1)} (a constant fill, not 0)"
+    return ""
 
 
 def _explains(got, source, wrong_M, dsize) -> bool:
