@@ -80,6 +80,13 @@ def _projected(P, X):
 
 
 X3 = RNG.uniform(-1, 1, (6, 3)) + [0, 0, 6]
+SRC = RNG.uniform(0, 500, (6, 2))
+
+
+def _mapped(points):
+    h = np.column_stack([points, np.ones(len(points))]) @ np.array([[1.1, 0.1, 20], [0.05, 0.9, -10],
+                                                                   [1e-4, 2e-4, 1]]).T
+    return h[:, :2] / h[:, 2:]
 ESSENTIAL = ("essential_8point", (PTS1, PTS2, K1, K2), {})
 TRIANGULATE = ("triangulate", (P1, P2, _projected(P1, X3), _projected(P2, X3)), {})
 
@@ -91,6 +98,12 @@ CASES = {
     # family 2: the y row of the triangulation built from the x coordinate (copy-paste)
     "copied index": ("lab11", ("pts1[:, 1:2] * P1[2] - P1[1]", "pts1[:, 0:1] * P1[2] - P1[1]"), [TRIANGULATE],
                      "the x coordinates (column 0) of `pts1` are used where the y coordinates (column 1) belong"),
+    # family 2, in a private helper: one row of the design matrix built with the other coordinate
+    "copied name in a helper": ("lab08", ("rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -v * x, -v * y, -v]",
+                                          "rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -u * x, -v * y, -v]"),
+                                [("homography_dlt", (SRC, _mapped(SRC)), {})],
+                                "the x coordinates (column 0) of the destination points are used where the y "
+                                "coordinates (column 1) of the destination points belong"),
     # family 3: the batched SVD's null vectors taken as columns
     "index on the wrong axis": ("lab11", ("X = np.linalg.svd(A)[2][:, -1, :]", "X = np.linalg.svd(A)[2][:, :, -1]"),
                                 [TRIANGULATE], "the last column of each matrix of"),
@@ -121,6 +134,8 @@ ALTERNATIVES = {   # legitimate code that differs from the reference's text
     "inverse as transpose": ("x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T",
                              "x1 = np.linalg.solve(K1, _homogeneous(pts1).T).T"),
     "copied index": ("pts1[:, 1:2] * P1[2] - P1[1]", "pts1[:, [1]] * P1[2] - P1[1]"),
+    "copied name in a helper": ("rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -v * x, -v * y, -v]",
+                                "rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -(v * x), -(v * y), -v]"),
     "index on the wrong axis": ("X = np.linalg.svd(A)[2][:, -1, :]", "X = np.linalg.svd(A)[2][..., -1, :]"),
     "stacked in another order": ("Rt = np.column_stack([np.asarray(R, dtype=np.float64), np.asarray(t, "
                                  "dtype=np.float64).reshape(3)])",

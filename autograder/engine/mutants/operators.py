@@ -422,11 +422,21 @@ _MAKE = {"sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_sw
 
 
 # ------------------------------------------------------------------ describing, in the student's terms
+_PARAMETER_WORDS = {"src": "the source points", "dst": "the destination points",
+                    "src_n": "the normalised source points", "dst_n": "the normalised destination points",
+                    "pts": "the points", "points": "the points", "x1": "the points of image 1",
+                    "x2": "the points of image 2", "left": "the left image", "right": "the right image"}
+
+
 class _Words:
     """Phrases for expressions of one ``def``: API parameters by name, locals by what they hold."""
 
     def __init__(self, fn: ast.FunctionDef, api_params: set[str], module_defs: dict, api: set[str]):
         self.fn, self.api_params, self.module_defs, self.api = fn, api_params, module_defs, api
+        # A private helper's parameters told by what they hold, where the name says it plainly
+        # (`src` in a helper building the design matrix: "the source points"); else nothing.
+        self.helper_params = {} if fn.name in api else {
+            a.arg: _PARAMETER_WORDS[a.arg] for a in fn.args.args if a.arg in _PARAMETER_WORDS}
         self.definitions: dict[str, list[tuple[int, ast.AST, int | None]]] = {}
         for node in ast.walk(fn):
             if isinstance(node, ast.Assign):
@@ -467,8 +477,10 @@ class _Words:
         if isinstance(node, ast.Name):
             if node.id in self.api_params:
                 return f"`{node.id}`"
-            defs = [d for d in self.definitions.get(node.id, ()) if d[0] < line] or \
-                self.definitions.get(node.id, [])
+            before = [d for d in self.definitions.get(node.id, ()) if d[0] < line]
+            if not before and node.id in self.helper_params:
+                return self.helper_params[node.id]
+            defs = before or self.definitions.get(node.id, [])
             if not defs:
                 return ""
             at, value, index = defs[-1]
@@ -1276,10 +1288,21 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     for other, phrase in others:
         if (other in params) != kind and phrase in alike:
             continue
-        yield "other_name", other, f"{phrase} is used where {own} belongs"
+        if words.helper_params and other not in together and (
+                " of " not in phrase or " of " not in own or phrase.rsplit(" of ", 1)[-1] != tail):
+            continue   # in a private helper, only a sibling's copy-paste slip (the count stays small)
+        yield "other_name", other, f"{phrase} {_plural(phrase, 'is', 'are')} used where {own} " \
+                                   f"{_plural(own, 'belongs', 'belong')}"
         count += 1
         if count >= _OTHER_NAMES_PER_SITE:
             return
+
+
+def _plural(phrase: str, one: str, many: str) -> str:
+    """``many`` for a phrase naming several things ("the x coordinates (column 0) of ...", "the
+    source points"), else ``one``."""
+    head = re.sub(r" \(.*?\)", "", phrase).split(" of ", 1)[0]
+    return many if head.endswith(("coordinates", "points", "values", "vectors")) else one
 
 
 def _statement_phrase(node, words: _Words, line) -> str:
