@@ -249,6 +249,19 @@ class Trial:
 
         return (with_changed(args, kwargs, self._last_changed) if self._last_changed else None) or (args, kwargs)
 
+    def naming_input(self, function: str, *args, **kwargs):
+        """The student's ``function`` on a small input offered to the error model
+        (:mod:`autograder.engine.mutants`) in place of the trial's other calls of it: a function
+        whose ~100 mutants cannot run on the check's own inputs within the model's time (lab 12's
+        matchers) is named on this one, when it fails there too. Asked once per trial, what it
+        prints set apart (:meth:`probe`); returns the answer, None when the call failed."""
+        def answer():
+            value = self.call(function, *args, **kwargs)
+            kept = self.calls[-1]   # (the call returned: it is the last recorded)
+            self.calls[:] = [call for call in self.calls if call[0] != function] + [kept]
+            return value
+        return self.probe(f"naming input/{function}/{fingerprint(function, args, kwargs)}", answer)
+
     def probe(self, key: str, answer):
         """The student's answer on a confirmation probe's input, ``answer()``, asked once per
         trial (a property shrinking a failing example names it again at every step): None

@@ -1,0 +1,149 @@
+"""Lab 12 names what the student's code shows (issue 35), and offers the error model inputs it can
+afford: the code-reading signs (autograder/labs/code_signs.py) on source alone, the band of rows a
+failing matcher's check offers the model. The mistakes themselves are graded in tests/test_lab12.py
+(the mistakes table: OpenCV's fixed point kept, smoothness=0 taken for the default, Vt[-1] of a
+batched SVD, a map twice the disparity); the legitimate variants keep full marks there and here."""
+
+from __future__ import annotations
+
+import importlib.util
+import textwrap
+
+import numpy as np
+import pytest
+
+from autograder.engine.checks import Fail, Trial
+from autograder.engine.hints import read_code
+from autograder.engine.registry import select
+from autograder.engine.runner import grade
+from autograder.labs import code_signs, lab12
+from autograder.sandbox.supervisor import CallOutcome
+from conftest import REFERENCE, check_results, mutant
+
+MODULE = "lab12_stereo"
+
+
+def found(predicate, source: str, function: str) -> str:
+    return predicate.found(read_code(textwrap.dedent(source)).reachable([function]))
+
+
+BM = """
+    import cv2
+    import numpy as np
+    def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+        n = 16 * -(-(max_disparity + 1) // 16)
+        stereo = cv2.StereoBM_create(numDisparities=n, blockSize=block_size)
+        {body}
+    """
+
+
+@pytest.mark.parametrize("body, undivided", [
+    ("return stereo.compute(left, right).astype(np.float32)", True),
+    ("d = np.float32(stereo.compute(left, right))\n        d[d < 0] = 0\n        return d", True),
+    ("return np.clip(stereo.compute(left, right), 0, max_disparity).astype(float)", True),
+    ("return stereo.compute(left, right).astype(np.float32) / 16.0", False),
+    ("return stereo.compute(left, right) / 16", False),
+    ("d = stereo.compute(left, right).astype(float)\n        d /= 16\n        return d", False),
+    ("return np.divide(stereo.compute(left, right), 16.0)", False),
+    ("return stereo.compute(left, right) * (1 / 16)", False),
+    ("return (stereo.compute(left, right) // 16).astype(np.float64)", False),
+])
+def test_opencv_matcher_not_divided_by_16_is_read(body, undivided):
+    """The range rounded up to a multiple of 16 (``-(-(max_disparity + 1) // 16)``) divides no disparity."""
+    assert bool(found(lab12.STEREO_MATCHER_UNDIVIDED, BM.format(body=body), "block_matching")) == undivided
+
+
+def test_own_matcher_is_no_opencv_matcher():
+    source = "def block_matching(left, right, max_disparity=64, block_size=9, cost='ssd'):\n" \
+             "    return np.argmin(costs(left, right), axis=0) * 16\n"
+    assert not found(lab12.STEREO_MATCHER_UNDIVIDED, source, "block_matching")
+
+
+@pytest.mark.parametrize("line, taken", [
+    ("s = smoothness or DEFAULT_SMOOTHNESS", True),
+    ("s = smoothness if smoothness else 6.0", True),
+    ("if not smoothness:\n        smoothness = 6.0", True),
+    ("s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)", False),
+    ("if smoothness is None:\n        smoothness = 6.0", False),
+    ("s = block_size or 5", False),
+])
+def test_zero_taken_for_missing_is_read(line, taken):
+    source = f"def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):\n    {line}\n    return s\n"
+    assert bool(found(code_signs.zero_taken_for_missing("smoothness"), source, "dp_stereo")) == taken
+
+
+def test_batched_vt_row_is_read_and_each_systems_is_not():
+    batched = "def triangulate(P1, P2, pts1, pts2):\n    _, _, Vt = np.linalg.svd(A)\n    X = Vt[-1]\n    return X\n"
+    each = "def triangulate(P1, P2, pts1, pts2):\n    _, _, Vt = np.linalg.svd(A)\n    X = Vt[:, -1]\n    return X\n"
+    assert found(code_signs.TAKES_LAST_ROW_OF_VT, batched, "triangulate")
+    assert not found(code_signs.TAKES_LAST_ROW_OF_VT, each, "triangulate")
+
+
+# ------------------------------------------------------------------ the band offered to the error model
+class InProcess:
+    """Stands in for the sandbox: calls a module's functions here (tests only)."""
+
+    def __init__(self, module):
+        self.module, self.shared, self.submission_dir = module, {}, None
+
+    def call(self, module, function, args=(), kwargs=None, **_):
+        return CallOutcome(ok=True, value=getattr(self.module, function)(*args, **(kwargs or {})))
+
+
+def _student(source: str):
+    """The reference lab 12 module with ``source`` run in it (its defs win)."""
+    spec = importlib.util.spec_from_file_location("student_lab12", REFERENCE / f"{MODULE}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    exec(textwrap.dedent(source), module.__dict__)   # noqa: S102 - the test's own mistake
+    return module
+
+
+BLOCK_SIZE_AS_RANGE = """
+    def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+        volume = _ssd_volume(_grey_float(left), _grey_float(right), int(block_size), int(block_size))
+        return np.argmin(volume, axis=0).astype(np.float64)
+    """
+
+
+def test_a_failing_matcher_check_offers_the_error_model_a_band_of_rows_only():
+    """The model reproduces the trial's recorded calls with every mutant: after a failed check of
+    block_matching they are one call, on NAMING_ROWS rows of the scene (7.4 s of mutants on the
+    check's own calls, 2.1 s on the band, measured; the model has 3 s a check)."""
+    [exercise] = select(["lab12.ex4"])
+    check = next(c for c in exercise.checks if c.func.__name__ == "block_matching_slanted")
+    trial = Trial(InProcess(_student(BLOCK_SIZE_AS_RANGE)), check)
+    with pytest.raises(Fail):
+        check.func(trial)
+    recorded = [call for call in trial.calls if call[0] == "block_matching"]
+    assert len(recorded) == 1
+    _, (left, right), kwargs, answer = recorded[0]
+    assert left.shape[0] == right.shape[0] == answer.shape[0] == lab12.NAMING_ROWS
+    assert kwargs["max_disparity"] == lab12.truth.scene("slanted").max_disparity
+
+
+def test_a_passing_matcher_check_offers_nothing():
+    [exercise] = select(["lab12.ex4"])
+    check = next(c for c in exercise.checks if c.func.__name__ == "block_matching_slanted")
+    trial = Trial(InProcess(_student("")), check)
+    check.func(trial)
+    assert all(np.asarray(call[1][0]).shape[0] > lab12.NAMING_ROWS for call in trial.calls)
+
+
+# ------------------------------------------------------------------ legitimate OpenCV recipes: no name
+STEREO_BM_FLOAT32 = """
+    _block_matching_own = block_matching
+    def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+        if cost != "ssd":
+            return _block_matching_own(left, right, max_disparity, block_size, cost)
+        stereo = cv2.StereoBM_create(numDisparities=16 * int(np.ceil((max_disparity + 1) / 16)), blockSize=block_size)
+        disparity = np.float32(stereo.compute(left, right)) / 16.0
+        disparity[(disparity < 0) | (disparity > max_disparity)] = 0
+        return disparity
+    """
+
+
+def test_stereo_bm_converted_to_float32_and_divided_keeps_full_marks(tmp_path):
+    result = grade(mutant(tmp_path, MODULE, STEREO_BM_FLOAT32), ["lab12.ex4"], pictures="none")
+    for check in check_results(result, "lab12.ex4"):
+        assert check.passed and not check.mistake, f"{check.name}: {check.message}"
