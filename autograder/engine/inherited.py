@@ -305,6 +305,9 @@ def _shown_value(value) -> str | None:
         return np.array2string(value, separator=", ") if value.size <= 4 else None
     if isinstance(value, float):
         return f"{value:g}"
+    if isinstance(value, (list, tuple)) and 0 < len(value) <= 4 and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+        return f"({', '.join(_shown_value(v) for v in value)})"
     text = repr(value)
     return text if len(text) <= 24 and not isinstance(value, (list, tuple, dict)) else None
 
@@ -451,16 +454,14 @@ def _names(callees) -> str:
 
 
 def inherited_sentence(decision: Decision, failing) -> str:
-    """What an inherited failure's message says first."""
-    f, callees = decision.function, decision.callees
-    whose = "(see its own checks)" if len(callees) == 1 else "(see their own checks)"
-    if not set(callees) & set(failing):
-        whose = "(its own checks do not show it on their inputs)" if len(callees) == 1 else \
-            "(their own checks do not show it on their inputs)"
-    one = len(callees) == 1
+    """What an inherited failure's message says first (``failing``: the functions known to fail their
+    own checks in this grading; a hidden check's fresh worker knows none)."""
+    f, callees, one = decision.function, decision.callees, len(decision.callees) == 1
+    known = set(callees) <= set(failing)
+    whose = (" (see its own checks)" if one else " (see their own checks)") if known else ""
     return (f"Your `{f}` itself is right here: given what your {_names(callees)} "
             f"{'returns' if one else 'return'} ({decision.shown}), it gives exactly what a correct `{f}` gives. "
-            f"Its answer is wrong because your {_names(callees)} {'is' if one else 'are'} wrong there {whose}: "
+            f"Its answer is wrong because your {_names(callees)} {'is' if one else 'are'} wrong there{whose}: "
             f"fix {'it' if one else 'them'} first.")
 
 
