@@ -50,7 +50,8 @@ When a check of ``f`` fails (its own value judged, the check calling no other AP
    student's code by :mod:`autograder.engine.claims` (a recipe the code already follows is not said).
 
 Time is bounded: :data:`CHECK_SECONDS` per failed check, :data:`GRADING_SECONDS` per grading (kept on
-the sandbox), each helper run within what is left; the student's calls are billed to the check as
+the sandbox), and half of what the exercise's budget and the submission's deadline leave; each
+helper run within what is left; the student's calls are billed to the check as
 any other call (the exercise's budget). A decision is kept for the grading, by the call's input and
 answer: lab 11's three pipeline checks on the same photos decide once.
 """
@@ -68,7 +69,7 @@ import numpy as np
 from .compare import at_precision, magnitude
 from .hints import Code, code_of, read_code
 
-CHECK_SECONDS = 5.0       # for one failed check (the helper runs the reference a few times)
+CHECK_SECONDS = 6.0       # for one failed check (the helper runs the reference a few times)
 GRADING_SECONDS = 15.0    # for one grading's failed checks together
 ROUNDS = 3                # reference runs per call (each adds the student's answers it needed)
 ASKED = 16                # the student's callee answers asked per call, at most
@@ -423,7 +424,9 @@ def decide(trial, function: str, substitutes, seconds: float = CHECK_SECONDS) ->
     source = found[0] + APPENDIX
     shared = trial.sandbox.shared
     spent = shared.setdefault(SHARED_SECONDS, [0.0])
-    clock = _Clock(min(seconds, GRADING_SECONDS - spent[0]))
+    remaining = getattr(trial.sandbox, "remaining", lambda: float("inf"))()
+    # at most half what the exercise's budget and the submission's deadline leave: the checks after come first
+    clock = _Clock(min(seconds, GRADING_SECONDS - spent[0], remaining / 2))
     decisions, started = [], time.monotonic()
     try:
         for _, args, kwargs, answer in _judged_calls(trial, function):
