@@ -18,6 +18,8 @@ by hand forbids it in the course configuration (``"forbid"``). ``stitch`` and
 
 from __future__ import annotations
 
+import ast
+
 import cv2
 import numpy as np
 
@@ -26,11 +28,11 @@ from fixtures.images import coverage, photo, warp
 
 from ..engine import strategies as st
 from ..engine.checks import StudentFailure, Trial, partial, passed
-from ..engine.claims import (THIRD_COORDINATE, calls_any, divides_by, guard, measured,
+from ..engine.claims import (THIRD_COORDINATE, calls_any, divides_by, from_code, guard, measured,
                              takes_last_row_of_vt)
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
-from ..engine.hints import (RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, calls, code_of, expr, keyword, matmul_of,
-                             mentions, passes_product)
+from ..engine.hints import (RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope, calls, code_of,
+                             expr, keyword, matmul_of, mentions, passes_product)
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
@@ -1559,6 +1561,87 @@ def match_orb(t):
     return judge_matches(t, what, img1, img2, H, result, min_matches=40, min_fraction=0.85)
 
 
+# ORB's descriptors matched with a float norm: read from the code only. The outputs cannot tell it
+# (benchmarks/spread_lab08_extensions.py): with the ratio test NORM_L2 keeps 0.95-0.98 of its matches
+# correct on the grader's pairs (legitimate matchers 0.92-1.00) and about half as many matches as
+# NORM_HAMMING with the same keypoints (101 against 193 here), which legitimate matchers also return
+# (nfeatures=300: 140; the best 30 % of a crossCheck match: 64). So it is a tip, worth no points.
+def _strings(function):
+    """The string constants of ``function`` that are values (not a docstring or a bare string)."""
+    bare = {id(n.value) for n in ast.walk(function) if isinstance(n, ast.Expr)}
+    return (n.value for n in ast.walk(function)
+            if isinstance(n, ast.Constant) and isinstance(n.value, str) and id(n) not in bare)
+
+
+def _lsh_index(function) -> bool:
+    """FLANN's LSH index: ``algorithm=6`` (a keyword or a dict entry), a name holding "LSH", or its
+    ``table_number`` parameter."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and any(k.arg in ("algorithm", "table_number") and
+                                              (k.arg == "table_number" or _is_six(k.value)) for k in node.keywords):
+            return True
+        if isinstance(node, ast.Dict) and any(isinstance(k, ast.Constant) and (k.value == "table_number" or (
+                k.value == "algorithm" and _is_six(v))) for k, v in zip(node.keys, node.values)):
+            return True
+        if isinstance(node, (ast.Name, ast.Attribute)) and "lsh" in (_path(node).lower()):
+            return True
+    return False
+
+
+def _is_six(node) -> bool:
+    return isinstance(node, ast.Constant) and node.value == 6 and not isinstance(node.value, bool)
+
+
+def _default_bf(function) -> bool:
+    """``cv2.BFMatcher()`` (or ``BFMatcher_create()``) given no norm: OpenCV's default is NORM_L2."""
+    return any(isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("BFMatcher", "BFMatcher_create")
+               and not node.args and not any(k.arg == "normType" for k in node.keywords)
+               for node in ast.walk(function))
+
+
+def _float_matcher_by_name(function) -> bool:
+    """``cv2.DescriptorMatcher_create("BruteForce")`` or "BruteForce-L1": a float norm by name."""
+    return any(isinstance(node, ast.Call) and _path(node.func).endswith("DescriptorMatcher_create")
+               and node.args and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)
+               and "hamming" not in node.args[0].value.lower() for node in ast.walk(function))
+
+
+ORB_CREATED = calls_any("cv2.ORB_create", "cv2.ORB.create", says="creates ORB features")
+HAMMING = (mentions("cv2.NORM_HAMMING") | mentions("cv2.NORM_HAMMING2")
+           | Predicate("names the Hamming distance", lambda f: any("hamming" in s.lower() for s in _strings(f)))
+           | Predicate("uses FLANN's LSH index", _lsh_index)
+           | calls_any("np.unpackbits", "np.bitwise_xor", "np.bitwise_count") | expr("_ ^ _")).saying(
+    "matches with the Hamming distance")
+FLOAT_NORM = (mentions("cv2.NORM_L2").saying("cv2.NORM_L2") | mentions("cv2.NORM_L1").saying("cv2.NORM_L1")
+              | mentions("cv2.NORM_L2SQR").saying("cv2.NORM_L2SQR")
+              | Predicate("cv2.BFMatcher() without a norm (NORM_L2 by default)", _default_bf)
+              | Predicate("a brute-force matcher named without Hamming (the L2 norm)", _float_matcher_by_name)
+              | (calls("cv2.FlannBasedMatcher") & ~Predicate("uses FLANN's LSH index", _lsh_index)).saying(
+                  "FLANN's KD-tree index (the L2 norm on float32 copies)"))
+
+
+@ext1.advice("ORB's binary descriptors are matched with the Hamming distance")
+def orb_norm_advice(t):
+    img1, img2, _ = truth.matching_pair("chelsea", (240, 180), seed=3)
+    result = t.call("match_features", img1, img2, method="orb")   # the pair of the check above
+    functions = code_of(t).reachable(["match_features"])
+    norm = FLOAT_NORM.found(functions)
+    if not (norm and ORB_CREATED.holds(functions)) or HAMMING.holds(functions):
+        return
+    shaped = isinstance(result, (tuple, list)) and len(result) == 2 and isinstance(result[0], np.ndarray)
+    count = len(result[0]) if shaped and result[0].ndim >= 1 else None
+    t.advise(from_code(
+        f"Your code creates ORB features and matches descriptors with {norm}, never with the Hamming distance. "
+        "ORB's descriptor is 256 bits packed into 32 bytes: the L1 or L2 distance between those bytes is not "
+        "the number of bits that differ (a flipped high bit changes its byte by 128, a low bit by 1), so true "
+        "matches look farther apart than they are and the ratio test drops many of them. Measured on this "
+        "lab's pairs, the same ORB keypoints matched with NORM_L2 keep about half the matches NORM_HAMMING "
+        "keeps (101 against 193 on the pair of the check above), nearly all still correct: no points depend "
+        "on it.") + ("" if count is None else f" Your matcher returned {count} matches on that pair."),
+        hint=from_code("for method='orb' match with cv2.BFMatcher(cv2.NORM_HAMMING) (or FLANN's LSH index); "
+                       "keep NORM_L2 for SIFT"))
+
+
 # ================================================================== ext2 many images
 ext2 = lab.exercise("ext2", "Panorama of many images", functions=["stitch_many(images)"])
 
@@ -2026,3 +2109,186 @@ def blend_odd_size(t):
         t.fail(f"{measured}, while the same images cut to 240x160 (multiples of 2**levels) blend "
                f"rightly: {PYRUP_DSTSIZE.said(t)}", mistake=ODD_SIZES_LOST)
     t.fail(f"{measured}; the mask should select img1 where mask = 1 and img2 where mask = 0, at any size.")
+
+
+# ------------------------------------------------------------------ the mask's pyramid
+# A mask pyramid made by subsampling (mask[::2, ::2], cv2.resize to each level) weights the coarse
+# levels by single mask pixels. Across a step mask it does not show: the collapse's pyrUp smooths
+# every level, so the seam is 19-22 px wide against 29-57 px for legitimate pyramids, at most 4 grey
+# levels per column (benchmarks/spread_lab08_extensions.py). A mask of independent 0/1 pixels shows
+# it: between two exposures 60 grey levels apart a multi-band blend is dark + 30 everywhere (the
+# coarse weights are the mask's local mean, 0.5); with single pixels as coarse weights it is
+# blotched. Spread of (blend - dark) / offset, levels=5, over five photos: legitimate pyramids
+# (pyrDown, GaussianBlur sigma 0.6 to 2 + [::2, ::2], skimage, a uint8 mask pyramid, INTER_AREA,
+# float64, other borders) 0.005-0.021, 0.023 with one level fewer; the mistake 0.112-0.299.
+MASK_GRAIN = 0.05
+GRAIN_SCENE = ("coffee", (256, 192), 0.7, 60, 8)   # photo, size, gain, offset, the grain's seed
+SMOOTHING = {"pyrDown", "GaussianBlur", "blur", "boxFilter", "filter2D", "sepFilter2D", "pyramid_gaussian",
+             "pyramid_reduce", "gaussian_filter", "gaussian", "uniform_filter", "convolve", "convolve2d",
+             "correlate", "fftconvolve", "downscale_local_mean", "block_reduce"}
+
+
+def _holds_any(node, names) -> bool:
+    return any(isinstance(n, ast.Name) and n.id in names for n in ast.walk(node))
+
+
+def _bound(target) -> list[str]:
+    """Names a target binds or fills: ``w``, ``(a, w)``, ``levels[i]`` (fills ``levels``)."""
+    if isinstance(target, ast.Name):
+        return [target.id]
+    if isinstance(target, (ast.Tuple, ast.List)):
+        return [name for element in target.elts for name in _bound(element)]
+    if isinstance(target, (ast.Subscript, ast.Attribute, ast.Starred)):
+        return _bound(target.value)
+    return []
+
+
+def _loop_bound(loop, names) -> list[str]:
+    """Names a ``for`` loop (or comprehension) binds to values of ``names``: by position in a
+    ``zip``/``enumerate`` of them, else all its targets."""
+    if not _holds_any(loop.iter, names):
+        return []
+    target, it = loop.target, loop.iter
+    if isinstance(target, ast.Tuple) and isinstance(it, ast.Call) and isinstance(it.func, ast.Name):
+        if it.func.id == "zip" and len(it.args) == len(target.elts):
+            return [n for arg, element in zip(it.args, target.elts) if _holds_any(arg, names) for n in _bound(element)]
+        if it.func.id == "enumerate" and len(target.elts) == 2:
+            return _bound(target.elts[1])
+    return _bound(target)
+
+
+def _parameters(function) -> list[str]:
+    return [a.arg for a in function.args.posonlyargs + function.args.args]
+
+
+def mask_values(functions) -> dict[str, set[str]]:
+    """Per function, the names holding ``blend_multiband``'s mask (its third parameter) or a value
+    computed from it, followed through assignments, loops, ``.append`` and the module's functions it
+    is passed to (their parameters)."""
+    by_name = {f.name: f for f in functions}
+    start = by_name.get("blend_multiband")
+    if start is None or len(_parameters(start)) < 3:
+        return {}
+    held = {name: set() for name in by_name}
+    held["blend_multiband"].add(_parameters(start)[2])
+    for _ in range(20):   # to a fixed point (each round adds a name or stops)
+        before = sum(map(len, held.values()))
+        for name, function in by_name.items():
+            names = held[name]
+            for node in ast.walk(function):
+                bound = []
+                if isinstance(node, ast.Assign) and _holds_any(node.value, names):
+                    bound = [n for target in node.targets for n in _bound(target)]
+                elif isinstance(node, (ast.AugAssign, ast.AnnAssign)) and node.value is not None \
+                        and _holds_any(node.value, names):
+                    bound = _bound(node.target)
+                elif isinstance(node, (ast.For, ast.comprehension)):
+                    bound = _loop_bound(node, names)
+                elif isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) \
+                        and node.func.attr in ("append", "extend", "insert") and any(_holds_any(a, names) for a in node.args):
+                    bound = _bound(node.func.value)
+                elif isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in by_name:
+                    callee = _parameters(by_name[node.func.id])
+                    given = [callee[i] for i, a in enumerate(node.args) if i < len(callee) and _holds_any(a, names)]
+                    given += [k.arg for k in node.keywords if k.arg in callee and _holds_any(k.value, names)]
+                    held[node.func.id].update(given)
+                names.update(bound)
+        if sum(map(len, held.values())) == before:
+            break
+    return held
+
+
+def _resize_kind(node, function) -> str:
+    """For a call: "smooths" (a blur, a Gaussian or mean pyramid step, cv2.resize with INTER_AREA,
+    skimage's resize with its anti-aliasing), "subsamples" (cv2.resize otherwise, scipy's zoom,
+    skimage's resize with order=0 or anti_aliasing=False), or ""."""
+    last = _path(node.func).rsplit(".", 1)[-1]
+    if last in SMOOTHING:
+        return "smooths"
+    if last == "zoom":
+        return "subsamples"
+    if last not in ("resize", "rescale"):
+        return ""
+    keywords = {k.arg: k.value for k in node.keywords}
+    if _resolved(node.func, _scope(function))[1].startswith("skimage"):
+        plain = any(isinstance(keywords.get(k), ast.Constant) and keywords[k].value in (False, 0)
+                    for k in ("anti_aliasing", "order"))
+        return "subsamples" if plain else "smooths"
+    area = any(isinstance(n, (ast.Name, ast.Attribute)) and _path(n).endswith("INTER_AREA") for n in ast.walk(node))
+    return "smooths" if area else "subsamples"
+
+
+def _stepped(node) -> bool:
+    """A subscript taking every k-th element (``m[::2, ::2]``, ``m[::2]``)."""
+    parts = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+    return any(isinstance(p, ast.Slice) and p.step is not None for p in parts)
+
+
+def _mask_use(kind: str):
+    def test(functions) -> bool:
+        functions = list(functions)
+        held = mask_values(functions)
+        for function in functions:
+            names = held.get(function.name, set())
+            for node in ast.walk(function):
+                if isinstance(node, ast.Call) and any(_holds_any(a, names) for a in node.args) \
+                        and _resize_kind(node, function) == kind:
+                    return True
+                if kind == "subsamples" and isinstance(node, ast.Subscript) and _stepped(node) \
+                        and _holds_any(node.value, names):
+                    return True
+        return False
+    return test
+
+
+MASK_SMOOTHED = Predicate("smooths the mask (cv2.pyrDown, a blur, or an area mean)", _mask_use("smooths"), kind="all")
+MASK_SUBSAMPLED = Predicate("subsamples or resizes the mask", _mask_use("subsamples"), kind="all")
+UNSMOOTHED_MASK = (MASK_SUBSAMPLED & ~MASK_SMOOTHED).saying(
+    "subsamples or resizes the mask (slicing, cv2.resize) and never smooths it")
+MASK_NOT_SMOOTHED = from_code("the mask's pyramid is subsampled without smoothing (the coarse levels are weighted by "
+                              "single mask pixels)")
+MASK_PYRAMID_HINT = Hint(
+    "build the mask's levels as the images' Gaussian pyramid, G[i + 1] = cv2.pyrDown(G[i]) (a blur, then every "
+    "second pixel), and weight each level with the mask's level of the same size",
+    asks=MASK_SMOOTHED, functions=("blend_multiband",),
+    instead="your code {found}: check that every level of the mask is blurred before it is halved (a Gaussian "
+            "pyramid's level is the previous one blurred, then subsampled: one blur at full size is not enough), "
+            "and that each band is weighted by the mask's level of its size")
+
+
+def grain_spread(got, dark, offset: float, margin: int = 16) -> float:
+    """Standard deviation of (got - dark) / offset over the interior (channels averaged)."""
+    difference = got.astype(np.float64) - dark
+    if difference.ndim == 3:
+        difference = difference.mean(axis=2)
+    return float(difference[margin:-margin, margin:-margin].std() / offset)
+
+
+@ext3.check("coarse levels are weighted by the mask's local mean: a fine-grained mask (levels=5)", points=2)
+def blend_mask_pyramid(t):
+    name, size, gain, offset, seed = GRAIN_SCENE
+    dark, bright = truth.exposure_pair(name, size, gain, offset)
+    mask = truth.grain_mask(size, seed)
+    what = "blend_multiband(dark, bright, fine-grained mask, levels=5)"
+    got = blended(t, what, dark, bright, mask, levels=5)
+    spread = grain_spread(got, dark, offset)
+    if spread <= MASK_GRAIN:
+        return passed(f"the blend is even: its brightness varies by {spread:.1%} of the exposure difference "
+                      f"(at most {MASK_GRAIN:.0%} accepted)")
+    t.images(what, dark=dark, bright=bright, mask=(mask * 255).astype(np.uint8), yours=got)
+    measurement = (f"{what}: the mask's pixels are 0 or 1 at random, half of each, and bright = dark + {offset} "
+                   f"everywhere, so a multi-band blend, whose coarse levels are weighted by the mask's Gaussian "
+                   f"pyramid (its local mean, 0.5), gives about dark + {offset // 2} everywhere; yours is "
+                   f"blotched: its brightness varies by {format_apart(spread, MASK_GRAIN, 2, percent=True)} of the "
+                   f"{offset} grey levels (standard deviation; at most {MASK_GRAIN:.0%} accepted, legitimate "
+                   "pyramids give at most 2.3%)")
+    damaged = damaged_pyramid(t)
+    reading = UNSMOOTHED_MASK.found(code_of(t).reachable(["blend_multiband"]))
+    if reading and not damaged:
+        # named from the code (a mask subsampled, never smoothed) and the measurement together
+        t.fail(f"{measurement}. The cause, read from your code: {MASK_NOT_SMOOTHED}: " + from_code(
+            "your code subsamples or resizes the mask (slicing, cv2.resize) and never smooths it, so each coarse "
+            "level is weighted by single pixels of the mask. The mask's Gaussian pyramid is built as the images' "
+            "(cv2.pyrDown at every level: a blur, then every second pixel), so each level's weights are the "
+            "mask averaged at that level's scale."), mistake=MASK_NOT_SMOOTHED)
+    t.fail(f"{measurement}.{damaged}", hint=MASK_PYRAMID_HINT.said(t))

@@ -550,6 +550,44 @@ MISTAKES = {
         def blend_multiband(img1, img2, mask, levels=4):
             return _reference_blend(img2, img1, mask, levels)
         """, ["weights img2"]),
+    "mask pyramid by slicing (mask[::2, ::2], no smoothing)": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            weights = [np.float32(mask)]
+            for _ in range(levels - 1):
+                weights.append(weights[-1][::2, ::2])          # plain subsampling
+            la, lb = _laplacian_pyramid(np.float32(img1), levels), _laplacian_pyramid(np.float32(img2), levels)
+            blended = [(w[..., None] if a.ndim == 3 else w) * (a - b) + b for a, b, w in zip(la, lb, weights)]
+            out = blended.pop()
+            while blended:
+                band = blended.pop()
+                out = cv2.pyrUp(out, dstsize=band.shape[1::-1]) + band
+            return np.clip(np.round(out), 0, 255).astype(np.uint8)
+        """, ["subsampled without smoothing", "subsamples or resizes the mask"]),
+    "the same mask resized (nearest) to every level": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            la, lb = _laplacian_pyramid(np.float32(img1), levels), _laplacian_pyramid(np.float32(img2), levels)
+            out = None
+            for a, b in reversed(list(zip(la, lb))):      # blend and collapse, coarsest level first
+                w = cv2.resize(np.float32(mask), (a.shape[1], a.shape[0]), interpolation=cv2.INTER_NEAREST)
+                w = w[..., None] if a.ndim == 3 else w
+                band = w * a + (1 - w) * b
+                out = band if out is None else cv2.pyrUp(out, dstsize=(a.shape[1], a.shape[0])) + band
+            return np.clip(np.round(out), 0, 255).astype(np.uint8)
+        """, ["subsampled without smoothing"]),
+    "mask pyramid by cv2.resize of the full mask (linear) to each level": ("lab08.ext3", """
+        def _mask_levels(mask, shapes):
+            return [cv2.resize(mask, (w, h)) for h, w in shapes]
+        def blend_multiband(img1, img2, mask, levels=4):
+            la = _laplacian_pyramid(np.float32(img1), levels)
+            lb = _laplacian_pyramid(np.float32(img2), levels)
+            weights = _mask_levels(np.float32(mask), [x.shape[:2] for x in la])
+            bands = [(w[..., None] if a.ndim == 3 else w) * a + (1 - (w[..., None] if a.ndim == 3 else w)) * b
+                     for a, b, w in zip(la, lb, weights)]
+            out = bands[-1]
+            for band in reversed(bands[:-1]):
+                out = cv2.pyrUp(out, dstsize=(band.shape[1], band.shape[0])) + band
+            return np.clip(np.round(out), 0, 255).astype(np.uint8)
+        """, ["subsampled without smoothing"]),
     "ORB only on colour images": ("lab08.ext1", """
         _detect_right = _detect
         def _detect(image, method):
@@ -569,4 +607,25 @@ ADVICE = {
             H = Vt[-1].reshape(3, 3)
             return H / H[2, 2]
         """, ["normalised dlt", "raw pixel coordinates", "no points"]),
+    # The outputs cannot tell it (benchmarks/spread_lab08_extensions.py): a tip read from the code.
+    "ORB descriptors matched with NORM_L2": ("lab08.ext1", """
+        def _match(features1, features2, ratio, method="sift"):
+            (points1, descriptors1), (points2, descriptors2) = features1, features2
+            if descriptors1 is None or descriptors2 is None or len(points2) < 2:
+                return np.zeros((0, 2)), np.zeros((0, 2))
+            pairs = cv2.BFMatcher(cv2.NORM_L2).knnMatch(descriptors1, descriptors2, k=2)
+            good = [m for m, n in (p for p in pairs if len(p) == 2) if m.distance < ratio * n.distance]
+            return (points1[[m.queryIdx for m in good]].reshape(-1, 2),
+                    points2[[m.trainIdx for m in good]].reshape(-1, 2))
+        """, ["cv2.NORM_L2", "hamming", "no points"]),
+    "ORB descriptors matched with BFMatcher()'s default norm": ("lab08.ext1", """
+        def _match(features1, features2, ratio, method="sift"):
+            (points1, descriptors1), (points2, descriptors2) = features1, features2
+            if descriptors1 is None or descriptors2 is None or len(points2) < 2:
+                return np.zeros((0, 2)), np.zeros((0, 2))
+            pairs = cv2.BFMatcher().knnMatch(descriptors1, descriptors2, k=2)
+            good = [m for m, n in (p for p in pairs if len(p) == 2) if m.distance < ratio * n.distance]
+            return (points1[[m.queryIdx for m in good]].reshape(-1, 2),
+                    points2[[m.trainIdx for m in good]].reshape(-1, 2))
+        """, ["NORM_L2 by default", "hamming"]),
 }
