@@ -24,12 +24,12 @@ from ..engine.compare import (at_precision, closest, format_apart, format_arrays
 from ..engine.forms import shape_form
 from ..engine.claims import (THIRD_COORDINATE, calls_any, divides_by, from_code, guard, measured, reshapes,
                              takes_last_row_of_vt, zeroes_an_entry)
-from ..engine.hints import RATIO_TEST, Hint, calls, expr, keyword, mentions
+from ..engine.hints import RATIO_TEST, Hint, calls, code_of, expr, keyword, mentions
 from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
                       where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
-from .code_signs import name_batched_vt_row
+from .code_signs import LINES_FROM_SIDES_ONLY, name_batched_vt_row
 
 lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
 
@@ -427,9 +427,45 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
         t.fail(f"{what}: the lines are in the right place but stop short "
                f"(only {coverage.mean():.0%} of their length inside the image is drawn): "
                + measured("draw each line across the whole image"), mistake="the lines stop short")
+    name_steep_lines_missed(t, what, coverage < min_coverage, lines, image.shape, stray)
     t.fail(f"{what}: {np.sum(coverage < min_coverage)} of {len(coverage)} lines are missing or "
            f"incomplete, and {stray:.0%} of the changed pixels are away from every line "
            "(see the picture)")
+
+
+SIDES_ONLY = "each line is intersected with the left and right borders only (x = 0 and x = w - 1)"
+
+
+def name_steep_lines_missed(t: Trial, what: str, missed, lines, shape, stray: float):
+    """Fail saying which lines a drawing misses when every one of them leaves the image through its
+    top or bottom border and every line crossing from the left border to the right is drawn
+    (measured), naming the borders used when the code computes y = -(a x + c) / b without ever
+    dividing by a (read). Steep lines (|a| > |b|) and vertical ones (b = 0) always leave that way."""
+    lines = np.asarray(lines, float).reshape(-1, 3)
+    height, width = shape[:2]
+    a, b, c = lines.T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        y_left, y_right = -c / b, -(c + a * (width - 1)) / b
+    spans = (b != 0) & (y_left >= 0) & (y_left <= height - 1) & (y_right >= 0) & (y_right <= height - 1)
+    if not missed.any() or (missed & spans).any():
+        return
+    which = ", ".join(str(i) for i in np.flatnonzero(missed))
+    crossing = int(spans.sum())
+    steep = int(np.sum(missed & (np.abs(a) > np.abs(b))))
+    measured_part = (f"{what}: the lines missing or wrong (line{'s' if missed.sum() > 1 else ''} {which} of {len(lines)}, "
+                     f"{steep} of them steep: |a| > |b|) all leave the image through its top or bottom border; "
+                     + (f"the {crossing} line{'s' if crossing > 1 else ''} crossing it from the left border to the right "
+                        f"{'are' if crossing > 1 else 'is'} drawn right" if crossing else
+                        "none crosses it from the left border to the right")
+                     + f" ({stray:.0%} of the changed pixels are away from every line)")
+    found = LINES_FROM_SIDES_ONLY.found(code_of(t).reachable(["draw_epipolar_lines"]))
+    if found:
+        t.fail(f"{measured_part}: it looks like {SIDES_ONLY}. Your code {found}: "
+               + from_code("a line that leaves through the top or bottom has its y = -(a x + c) / b outside the image "
+                           "at x = 0 or x = w - 1 (for b = 0, undefined); intersect it with y = 0 and y = h - 1 "
+                           "(x = -(b y + c) / a), or draw between far points and let cv2.clipLine cut them."),
+               mistake=SIDES_ONLY)
+    t.fail(measured_part + ".")
 
 
 @ex2.check("draw_epipolar_lines on a photo: the lines pass through the true matches", points=3)

@@ -108,6 +108,32 @@ MISTAKES = {
                 image = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR)
             return _draw(image, lines)
         """, ["channels are not kept", "grey in, grey out"]),
+    "draw each line between the left and right borders, y clipped into the image": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            canvas = np.array(image, dtype=np.uint8, copy=True)
+            height, width = canvas.shape[:2]
+            for i, (a, b, c) in enumerate(np.asarray(lines, np.float64).reshape(-1, 3)):
+                b = b if abs(b) > 1e-9 else 1e-9
+                y0 = int(np.clip(-c / b, 0, height - 1))
+                y1 = int(np.clip(-(c + a * (width - 1)) / b, 0, height - 1))
+                colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 255
+                cv2.line(canvas, (0, y0), (width - 1, y1), colour, 1)
+            return canvas
+        """, ["leave the image through its top or bottom border",
+              "intersected with the left and right borders only"]),
+    "draw each line between the left and right borders, vertical lines skipped": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            canvas = np.array(image, dtype=np.uint8, copy=True)
+            height, width = canvas.shape[:2]
+            for i, (a, b, c) in enumerate(np.asarray(lines, np.float64).reshape(-1, 3)):
+                if abs(b) < 1e-12:
+                    continue
+                p = (0, int(round(-c / b)))
+                q = (width - 1, int(round(-(c + a * (width - 1)) / b)))
+                colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 255
+                cv2.line(canvas, p, q, colour, 1)
+            return canvas
+        """, ["line 0 of 2", "intersected with the left and right borders only"]),
     "draw with x and y swapped": ("lab11.ex2", """
         _draw = draw_epipolar_lines
         def draw_epipolar_lines(image, lines):
