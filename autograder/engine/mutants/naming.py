@@ -642,23 +642,11 @@ def _confirmed(trial, model, function, inputs, failing, candidates, clock) -> Na
     """The candidate left after the student's answers on inputs that tell them apart, or None."""
     from ..checks import fingerprint
 
-    runner = helper()
     variants = []
     for i in failing[:2]:
         variants += _variants(inputs[i], VARIANTS_PER_CALL, int(fingerprint(function, i, inputs[i][1])[:8], 16),
                               model.defaults.get(function, ()))
-    every = inputs + variants
-    runner.prepare(model.source, model.module, every, max(1.0, clock.left()))
-    indices = list(range(len(inputs), len(every)))
-    reference = runner.run((), indices, _timeout(clock))
-    outputs = {}
-    for candidate in candidates[:12]:
-        try:
-            outputs[candidate.key] = runner.run(candidate.edits, indices, _timeout(clock))
-        except HelperFailed:
-            continue
-    candidates = [c for c in candidates if c.key in outputs]
-    usable = [k for k, r in enumerate(reference) if not (isinstance(r, dict) and ERROR in r)]
+    every, indices, reference, outputs, candidates, usable = _on_variants(model, inputs, variants, candidates, clock)
     chosen = _separating(usable, reference, [outputs[c.key] for c in candidates])
     if not chosen:
         return None
@@ -687,6 +675,27 @@ def _confirmed(trial, model, function, inputs, failing, candidates, clock) -> Na
         said = other.sentence[len(other.place):] if other.place and other.place == best.place else other.sentence
         best = replace(best, sentence=f"{best.sentence} (equivalently, {said})")
     return Naming(best, len(inputs), len(chosen))
+
+
+def _on_variants(model, inputs, variants, candidates, clock):
+    """The confirmation inputs run: ``(every, indices, reference, outputs, candidates, usable)`` --
+    the inputs then the variants, the variants' indices in it, the reference's outputs there, the
+    candidates' (the first 12, by key; those the helper could not run are left out) and the
+    variants where the reference answers (positions in ``indices``)."""
+    runner = helper()
+    every = inputs + variants
+    runner.prepare(model.source, model.module, every, max(1.0, clock.left()))
+    indices = list(range(len(inputs), len(every)))
+    reference = runner.run((), indices, _timeout(clock))
+    outputs = {}
+    for candidate in candidates[:12]:
+        try:
+            outputs[candidate.key] = runner.run(candidate.edits, indices, _timeout(clock))
+        except HelperFailed:
+            continue
+    candidates = [c for c in candidates if c.key in outputs]
+    usable = [k for k, r in enumerate(reference) if _error_kind(r) is None]
+    return every, indices, reference, outputs, candidates, usable
 
 
 def _separating(usable, reference, candidate_outputs) -> list[int]:
@@ -807,25 +816,13 @@ def _confirmed_raised(trial, model, function, inputs, answers, candidates, clock
     returned call or a confirmation that returned) must be among the evidence."""
     from ..checks import fingerprint
 
-    runner = helper()
     variants = []
     for i in range(min(len(inputs), 3)):
         seed = int(fingerprint(function, "raised", i, inputs[i][1])[:8], 16)
         variants += _variants(inputs[i], VARIANTS_PER_CALL if i == 0 else 2, seed, model.defaults.get(function, ()))
     batched = _batched(inputs[0], int(fingerprint(function, "batched", inputs[0][1])[:8], 16))
     variants += batched
-    every = inputs + variants
-    runner.prepare(model.source, model.module, every, max(1.0, clock.left()))
-    indices = list(range(len(inputs), len(every)))
-    reference = runner.run((), indices, _timeout(clock))
-    outputs = {}
-    for candidate in candidates[:12]:
-        try:
-            outputs[candidate.key] = runner.run(candidate.edits, indices, _timeout(clock))
-        except HelperFailed:
-            continue
-    candidates = [c for c in candidates if c.key in outputs]
-    usable = [k for k, r in enumerate(reference) if _error_kind(r) is None]
+    every, indices, reference, outputs, candidates, usable = _on_variants(model, inputs, variants, candidates, clock)
     chosen = _separating(usable, reference, [outputs[c.key] for c in candidates])
     if not chosen:
         return None
