@@ -5,6 +5,25 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 
 MISTAKES = {
     # ---------------------------------------------------------------- ex1
+    "triangulation with x where y belongs in the second row": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
+            pts1 = np.asarray(pts1, float).reshape(-1, 2); pts2 = np.asarray(pts2, float).reshape(-1, 2)
+            A = np.stack([pts1[:, 0:1] * P1[2] - P1[0], pts1[:, 0:1] * P1[2] - P1[1],
+                          pts2[:, 0:1] * P2[2] - P2[0], pts2[:, 0:1] * P2[2] - P2[1]], axis=1)
+            X = np.linalg.svd(A)[2][:, -1, :]
+            return X[:, :3] / X[:, 3:4]
+        """, ["x is used where y belongs in each view's second row"]),
+    "triangulation with x where y belongs in the second view's row (a loop, copy-pasted)": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
+            out = []
+            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float).reshape(-1, 2), np.asarray(pts2, float).reshape(-1, 2)):
+                A = np.array([x1 * P1[2] - P1[0], y1 * P1[2] - P1[1], x2 * P2[2] - P2[0], x2 * P2[2] - P2[1]])
+                X = np.linalg.svd(A)[2][-1]
+                out.append(X[:3] / X[3])
+            return np.array(out)
+        """, ["x is used where y belongs in the second view's second row"]),
     "triangulation without dividing by w": ("lab11.ex1", """
         def triangulate(P1, P2, pts1, pts2):
             P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
