@@ -313,6 +313,17 @@ class Trial:
                             "register advice with @exercise.advice(name)")
         self.tips.append((message, hint))
 
+    def _why_none(self, value) -> str:
+        """Where the function just called returns None, read from its code (": your `f` returns
+        None where `not found`"), when ``value`` is None and is that call's whole answer."""
+        if value is not None or not self.calls or self.calls[-1][3] is not None:
+            return ""
+        from .hints import code_of, none_returned
+
+        function = self.calls[-1][0]
+        found = none_returned(code_of(self), function)
+        return f": your `{function}` {found}" if found else ""
+
     def expect_array(self, value, what: str, *, shape=None, dtype=None, kind=None,
                      finite: bool = False) -> np.ndarray:
         """Check that a returned value is an array of the documented form.
@@ -345,7 +356,7 @@ class Trial:
                 pass
         if not isinstance(value, np.ndarray):
             self.fail(f"{what} returned {_type_name(value)}; expected a numpy array"
-                      + (f" of shape {_shape_text(shape)}" if shape is not None else ""))
+                      + (f" of shape {_shape_text(shape)}" if shape is not None else "") + self._why_none(value))
         if shape is not None:
             if value.ndim != len(shape) or any(s is not None and s != v for s, v in zip(shape, value.shape)):
                 form = shape_form(value.shape, tuple(shape))
@@ -434,7 +445,13 @@ class Trial:
             if last:
                 exc.message += self._counterexample(describe(last[0]))
             raise
-        except errors.Flaky:
+        except errors.Flaky as exc:
+            # A call the grader could not make (its worker did not start in time on a loaded
+            # machine) fails once and passes when Hypothesis replays it: that is the grader's
+            # failure, reported as one, never the student's randomness.
+            grader = _grader_failure(exc)
+            if grader is not None:
+                raise StudentFailure(grader.outcome, grader.message) from None
             self.fail("your function gave different answers for the same input "
                       "(does it depend on randomness or on earlier calls?)")
         examples.record(where, seen)
@@ -530,6 +547,18 @@ class Trial:
         if ok:
             return value
         raise StudentFailure(value.outcome, value.message)
+
+
+def _grader_failure(exc: BaseException) -> StudentFailure | None:
+    """The first failure of the grader's own (kind ``grader_error``) among those a Hypothesis
+    ``Flaky`` saw (a ``FlakyFailure`` groups them), else None."""
+    if isinstance(exc, StudentFailure):
+        return exc if exc.outcome.kind == "grader_error" else None
+    for inner in getattr(exc, "exceptions", ()):
+        found = _grader_failure(inner)
+        if found is not None:
+            return found
+    return None
 
 
 def _hints():

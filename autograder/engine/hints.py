@@ -709,6 +709,72 @@ class Hint:
         return self.asks.found(code.reachable(functions)) if self.asks is not None else ""
 
 
+def _own_nodes(function):
+    """The nodes of ``function``'s body, not those of functions or lambdas defined in it."""
+    todo = list(function.body)
+    while todo:
+        node = todo.pop()
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda, ast.ClassDef)):
+            continue
+        yield node
+        todo.extend(ast.iter_child_nodes(node))
+
+
+def _always_leaves(statements) -> bool:
+    """Whether running ``statements`` always ends in a ``return`` or ``raise`` (an ``if`` whose
+    branches both do, a ``with``/``try`` whose body does); a loop may finish, so it does not."""
+    if not statements:
+        return False
+    last = statements[-1]
+    if isinstance(last, (ast.Return, ast.Raise)):
+        return True
+    if isinstance(last, ast.If):
+        return _always_leaves(last.body) and _always_leaves(last.orelse)
+    if isinstance(last, (ast.With, ast.AsyncWith)):
+        return _always_leaves(last.body)
+    if isinstance(last, ast.Try):
+        return (_always_leaves(last.body) or _always_leaves(last.orelse)) and all(
+            _always_leaves(h.body) for h in last.handlers)
+    if isinstance(last, ast.While) and isinstance(last.test, ast.Constant) and last.test.value is True:
+        return not any(isinstance(n, ast.Break) for n in ast.walk(last))
+    return False
+
+
+def none_returned(code: Code, function: str) -> str:
+    """Where the student's ``function`` returns None, in words for "your `f` ...": a ``return``
+    without a value (and the condition it is under), no ``return`` of a value at all, or an end
+    reached without one; "" when the code cannot say (a None from a call it returns)."""
+    fn = code.functions.get(function)
+    if fn is None:
+        return ""
+    returns = [n for n in _own_nodes(fn) if isinstance(n, ast.Return)]
+    valued = [n for n in returns if n.value is not None and not (isinstance(n.value, ast.Constant)
+                                                                 and n.value.value is None)]
+    if not valued:
+        return "has no `return` of a value, and a Python function without one returns None"
+    conditions = {}
+    for node in _own_nodes(fn):
+        if isinstance(node, ast.If):
+            for branch, negated in ((node.body, False), (node.orelse, True)):
+                for inner in branch:
+                    for leaf in ast.walk(inner):
+                        if isinstance(leaf, ast.Return) and id(leaf) not in conditions:
+                            test = _unparsed(node.test)
+                            conditions[id(leaf)] = f"not ({test})" if negated else test
+    empty = [n for n in returns if n not in valued]
+    if empty:
+        where = [f"where `{conditions[id(n)]}`" for n in empty if id(n) in conditions][:2]
+        return "returns None " + (" and ".join(where) if where else "with a bare `return`")
+    if not _always_leaves(fn.body):
+        return "can reach its end without a `return`, and then returns None"
+    return ""
+
+
+def _unparsed(node, limit: int = 60) -> str:
+    text = ast.unparse(node)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
 def functions_read(t) -> tuple[str, ...]:
     """The student functions whose code a check ``t``'s hints read: those the check calls."""
     from .stubs import functions_called
