@@ -24,7 +24,9 @@ MODULE = "lab12_stereo"
 
 
 def found(predicate, source: str, function: str) -> str:
-    return predicate.found(read_code(textwrap.dedent(source)).reachable([function]))
+    code = read_code(textwrap.dedent(source))
+    assert function in code.functions, "the test's source does not parse"
+    return predicate.found(code.reachable([function]))
 
 
 BM = """

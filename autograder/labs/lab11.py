@@ -29,7 +29,7 @@ from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mis
                       where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
-from .code_signs import LINES_FROM_SIDES_ONLY, name_batched_vt_row
+from .code_signs import CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, name_batched_vt_row
 
 lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
 
@@ -1013,10 +1013,41 @@ def call_reconstruction(t: Trial, pair):
     pts2 = t.expect_array(got[2], f"{what}: pts2", shape=(m, 2), kind="iuf", finite=True)
     points3d = t.expect_array(got[3], f"{what}: points3d", shape=(m, 3), kind="iuf")
     if m < 20:
-        t.fail(f"{what} returned only {m} matches; " + measured("keep at least 20 (the photos share plenty of texture)"))
+        few_matches(t, pair, what, F.astype(float), pts1, pts2, points3d)
     if not np.any(F):
         t.fail(f"{what}: F is all zeros")
     return F.astype(float), pts1.astype(float), pts2.astype(float), points3d.astype(float)
+
+
+def few_matches(t: Trial, pair, what: str, F, pts1, pts2, points3d):
+    """Fail a pipeline returning fewer than 20 matches. When those are right (within 2 px of the true
+    match), the matching is not what is short and the student is not told to keep more: the matches
+    are lost after it, and where the 3D points are those of cameras built without K (with the
+    pipeline's own pose: measured) or the code builds them so (read), that is named."""
+    m = len(pts1)
+    pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+    if m >= 5 and np.all(np.isfinite(pts1)) and np.all(np.isfinite(pts2)):
+        _, true2, valid = truth.true_correspondences(pair, pts1)
+        correct = valid & (np.linalg.norm(pts2 - np.nan_to_num(true2), axis=1) <= 2.0)
+        if correct.mean() >= 0.8:
+            measured_part = (f"{what} returned only {m} matches, {correct.sum()} of them within 2 px of the true match: "
+                             "the matching is not what is short, the matches are lost after it")
+            points = np.asarray(points3d, float)
+            shown = False
+            if np.all(np.isfinite(F)) and np.all(np.isfinite(points)) and correct.sum() >= 5:
+                own = own_pose(F, pts1, pts2, pair.K)
+                if own is not None:
+                    without = linear_triangulation(np.eye(3, 4), np.hstack(own), pts1[correct], pts2[correct])
+                    shown = structure_error(points[correct], without) <= STRUCTURE_MEDIAN
+            found = CAMERA_WITHOUT_K.found(code_of(t).reachable(["two_view_reconstruction"]))
+            if shown or found:
+                evidence = ("your points are those of cameras [I | 0] and [R | t] on pixels, with your pose"
+                            if shown else f"your code {found}")
+                t.fail(f"{measured_part}: it looks like {WITHOUT_K} ({evidence}): [R | t] acts on normalised "
+                       "coordinates K^-1 x only, and with cameras that do not match the coordinates most points land "
+                       "behind a camera.", mistake=WITHOUT_K)
+            t.fail(measured_part + ".")
+    t.fail(f"{what} returned only {m} matches; " + measured("keep at least 20 (the photos share plenty of texture)"))
 
 
 def judge_pipeline_F(t: Trial, pair, F):
@@ -1127,8 +1158,7 @@ def pose_mistakes(pair, pts1, pts2, F=None) -> dict[str, np.ndarray]:
             linear_triangulation(P1, K2 @ np.hstack([R.T, t]), pts1, pts2),
         "pts1 and pts2 are exchanged in the triangulation (pts1 belongs to P1)":
             linear_triangulation(P1, K2 @ np.hstack([R, t]), pts2, pts1),
-        "the cameras are built without K: P1 = K [I | 0] and P2 = K [R | t] act on pixels":
-            linear_triangulation(np.eye(3, 4), np.hstack([R, t]), pts1, pts2),
+        WITHOUT_K: linear_triangulation(np.eye(3, 4), np.hstack([R, t]), pts1, pts2),
         "camera 1 is built without K: P1 = K [I | 0] acts on pixels":
             linear_triangulation(np.eye(3, 4), K2 @ np.hstack([R, t]), pts1, pts2),
         "camera 2 is built without K: P2 = K [R | t] acts on pixels":
@@ -1141,7 +1171,27 @@ def pose_mistakes(pair, pts1, pts2, F=None) -> dict[str, np.ndarray]:
             return mistakes
         mistakes["the pose is recovered from F instead of E = K^T F K (recoverPose needs the essential "
                  "matrix)"] = linear_triangulation(P1, K2 @ np.hstack([R_F, t_F.reshape(3, 1)]), pts1, pts2)
+        # Pixels triangulated with [R | t] hang on t's direction (1/f of a pixel's ray): the pipeline's
+        # own pose (recoverPose on its E = K^T F K) says it, the true one is too far from it.
+        own = own_pose(F, pts1, pts2, K1)
+        if own is not None:
+            mistakes[WITHOUT_K] = [mistakes[WITHOUT_K], linear_triangulation(np.eye(3, 4), np.hstack(own), pts1, pts2)]
     return mistakes
+
+
+WITHOUT_K = "the cameras are built without K: P1 = K [I | 0] and P2 = K [R | t] act on pixels"
+
+
+def own_pose(F, pts1, pts2, K):
+    """``(R, t)`` (t a (3, 1) column) recoverPose finds from the pipeline's F as the lab sheet does
+    (E = K^T F K), on its matches; None when OpenCV cannot."""
+    K = np.asarray(K, float)
+    try:
+        _, R, t, _ = cv2.recoverPose(K.T @ np.asarray(F, float) @ K, np.asarray(pts1, float),
+                                     np.asarray(pts2, float), K)
+    except cv2.error:
+        return None
+    return R, t.reshape(3, 1)
 
 
 MIRRORED = ("camera 2's translation has the wrong sign (P2 = K [R | -t]) or the pose was not chosen with "
@@ -1150,9 +1200,11 @@ MIRRORED = ("camera 2's translation has the wrong sign (P2 = K [R | -t]) or the 
 
 def name_pose_mistake(got, candidates: dict, truth_error: float):
     """The candidate ``got`` matches, when unambiguous: within :data:`STRUCTURE_MEDIAN`, and at
-    most half as far as the next candidate and as the truth."""
-    errors = sorted((structure_error(got, X), name) for name, X in candidates.items()
-                    if np.all(np.isfinite(X)))
+    most half as far as the next candidate and as the truth (a candidate given as a list of
+    answers: the closest)."""
+    errors = sorted((min(structure_error(got, X) for X in answers), name) for name, X_or_list in candidates.items()
+                    if (answers := [X for X in (X_or_list if isinstance(X_or_list, list) else [X_or_list])
+                                    if np.all(np.isfinite(X))]))
     if not errors:
         return None
     best, name = errors[0]

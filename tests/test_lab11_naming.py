@@ -1,0 +1,109 @@
+"""Lab 11 names what the student's code shows (issue 35): the code-reading signs of
+autograder/labs/code_signs.py on source alone, and the legitimate variants next to the mistakes
+they name keeping full marks with no name. The mistakes themselves are graded in tests/test_lab11.py
+(the mistakes table: lines from the left and right borders only, cameras without K, x for y in a
+DLT row, Vt[-1] of a batched SVD)."""
+
+from __future__ import annotations
+
+import textwrap
+
+import pytest
+
+from autograder.engine.hints import read_code
+from autograder.engine.runner import grade
+from autograder.labs import code_signs
+from conftest import REFERENCE, check_results, mutant
+
+MODULE = "lab11_two_view"
+
+
+def found(predicate, source: str, function: str) -> str:
+    code = read_code(textwrap.dedent(source))
+    assert function in code.functions, "the test's source does not parse"
+    return predicate.found(code.reachable([function]))
+
+
+def function_source(head: str, body: str, tail: str) -> str:
+    """``head`` (a ``def`` and its first lines, 4-space indented), ``body`` (lines at 4 spaces), ``tail``."""
+    return head + textwrap.indent(body, "    ") + "\n" + tail
+
+
+@pytest.mark.parametrize("body, sides_only", [
+    ("y0 = -c / b\n        y1 = -(c + a * (w - 1)) / b", True),
+    ("y0 = -line[2] / line[1]\n        y1 = -(line[2] + line[0] * (w - 1)) / line[1]", True),
+    ("if abs(b) >= abs(a):\n            y0 = -c / b\n        else:\n            x0 = -c / a", False),
+    ("p = (-c / a, 0.0) if abs(a) > abs(b) else (0.0, -c / b)", False),
+    ("d = np.array([b, -a]) * 1e4\n        p0 = np.array([-a * c, -b * c])", False),   # a far segment, no division
+])
+def test_lines_from_the_side_borders_only_are_read(body, sides_only):
+    source = function_source("def draw_epipolar_lines(image, lines):\n    h, w = image.shape[:2]\n"
+                             "    for line in lines:\n        a, b, c = line\n",
+                             textwrap.indent(body.replace("\n        ", "\n"), "    "), "    return image\n")
+    assert bool(found(code_signs.LINES_FROM_SIDES_ONLY, source, "draw_epipolar_lines")) == sides_only
+
+
+
+
+@pytest.mark.parametrize("cameras, without_k", [
+    ("P1 = np.hstack([np.eye(3), np.zeros((3, 1))])\n        P2 = np.hstack([R, t])", True),
+    ("P1 = np.eye(3, 4)\n        P2 = np.column_stack((R, t))", True),
+    ("P1 = np.concatenate([np.eye(3), np.zeros((3, 1))], axis=1)\n        P2 = np.c_[R, t]", True),
+    ("P1 = K @ np.hstack([np.eye(3), np.zeros((3, 1))])\n        P2 = K @ np.hstack([R, t])", False),
+    ("P1 = np.eye(3, 4)\n        P2 = np.hstack([R, t])\n        P1, P2 = K @ P1, np.dot(K, P2)", False),
+    # normalised coordinates: [R | t] is right for them
+    ("P1 = np.eye(3, 4)\n        P2 = np.hstack([R, t])\n        pts1 = cv2.undistortPoints(pts1, K, None)", False),
+    ("P1 = np.eye(3, 4)\n        P2 = np.hstack([R, t])\n        Kinv = np.linalg.inv(K)", False),
+])
+def test_cameras_built_without_k_are_read(cameras, without_k):
+    source = function_source("def two_view_reconstruction(img1, img2, K):\n"
+                             "    _, R, t, _ = cv2.recoverPose(E, pts1, pts2, K)\n",
+                             cameras.replace("\n        ", "\n"), "    return triangulate(P1, P2, pts1, pts2)\n")
+    assert bool(found(code_signs.CAMERA_WITHOUT_K, source, "two_view_reconstruction")) == without_k
+
+
+def test_the_reference_pipeline_builds_its_cameras_with_k():
+    source = (REFERENCE / f"{MODULE}.py").read_text()
+    assert not found(code_signs.CAMERA_WITHOUT_K, source, "two_view_reconstruction")
+    assert not found(code_signs.LINES_FROM_SIDES_ONLY, source, "draw_epipolar_lines")
+
+
+# ------------------------------------------------------------------ legitimate variants: full marks, no name
+VARIANTS = {
+    "the pipeline triangulating normalised coordinates with [I | 0] and [R | t]": ("lab11.ex6", """
+        _reconstruction = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            F, pts1, pts2, _ = _reconstruction(img1, img2, K)
+            K = np.asarray(K, np.float64)
+            E = K.T @ F @ K
+            _, R, t, _ = cv2.recoverPose(E, pts1, pts2, K)
+            n1 = cv2.undistortPoints(pts1.reshape(-1, 1, 2), K, None).reshape(-1, 2)
+            n2 = cv2.undistortPoints(pts2.reshape(-1, 1, 2), K, None).reshape(-1, 2)
+            P1 = np.hstack([np.eye(3), np.zeros((3, 1))])
+            P2 = np.hstack([R, t])
+            points3d = triangulate(P1, P2, n1, n2)
+            return F, pts1, pts2, points3d
+        """),
+    "lines drawn between two far points along the line, cut by cv2.clipLine": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            canvas = np.array(image, dtype=np.uint8, copy=True)
+            height, width = canvas.shape[:2]
+            for i, (a, b, c) in enumerate(np.asarray(lines, np.float64).reshape(-1, 3)):
+                norm = np.hypot(a, b)
+                foot = np.array([-a * c, -b * c]) / norm ** 2
+                along = np.array([b, -a]) / norm * 4 * (width + height)
+                p, q = np.round(foot - along).astype(int), np.round(foot + along).astype(int)
+                inside, p, q = cv2.clipLine((0, 0, width, height), tuple(map(int, p)), tuple(map(int, q)))
+                if inside:
+                    cv2.line(canvas, p, q, _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 255, 1)
+            return canvas
+        """),
+}
+
+
+@pytest.mark.parametrize("case", sorted(VARIANTS))
+def test_legitimate_variants_keep_full_marks_and_no_name(tmp_path, case):
+    exercise, source = VARIANTS[case]
+    result = grade(mutant(tmp_path, MODULE, source), [exercise], pictures="none")
+    for check in check_results(result, exercise):
+        assert check.passed and not check.mistake, f"{check.name}: {check.message}"
