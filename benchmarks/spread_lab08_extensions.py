@@ -28,20 +28,22 @@
 
 Printed figures (OpenCV 5.0.0, skimage 0.25.2), in short:
 
-- ORB: no output measure separates the mistake. With the ratio test, NORM_L2 keeps 0.92-0.99
-  of its matches correct (legitimate matchers: 0.81-1.00 on the same pairs, brick aside) and
-  returns about half as many matches as NORM_HAMMING with the same keypoints (101 against 193
-  on the public pair), but legitimate matchers return as few (nfeatures=300: 119; the best 30 %
-  of a crossCheck match: 64); NORM_L1 loses only 10-20 % of the matches. So ext1 gives a 0-point
+- ORB: no output measure separates the mistake. With the ratio test, NORM_L2 keeps 0.95-0.98
+  of its matches correct on the grader's pairs (legitimate matchers: 0.92-1.00) and returns
+  about half as many matches as NORM_HAMMING with the same keypoints (101 against 193 on the
+  public pair), but legitimate matchers return as few (nfeatures=300: 140; the best 30 % of a
+  crossCheck match: 64); NORM_L1 loses only 10-20 % of the matches. So ext1 gives a 0-point
   tip read from the code, never a lost point.
-- Multi-band, step mask: the unsmoothed mask pyramid is not a hard seam (the collapse's pyrUp
-  smooths each level): 19-22 px wide against 29-57 px legitimately, and at most 4 grey levels
-  per column (legitimate 1-3): no margin.
-- Multi-band, grain mask (levels=5): legitimate at most 0.017 of the offset (0.036 with one
-  level fewer), the unsmoothed mask pyramid at least 0.12 (slicing or nearest: 0.21 and more).
-  The check "coarse levels weight by the mask's local mean" accepts 0.05. A mask halved by
+- Multi-band, step mask: the unsmoothed mask pyramid is no hard seam (the collapse's pyrUp
+  smooths each level): 19-22 px wide against 29-57 px for legitimate pyramids of the right
+  depth (18-19 px with one level fewer), at most 4 grey levels per column (legitimate 1-3,
+  one level fewer 4-5): no margin.
+- Multi-band, grain mask, levels=5: legitimate 0.005-0.021 of the offset (0.023 with one level
+  fewer), the unsmoothed mask pyramid 0.112-0.299 (slicing or nearest: 0.21 and more). The
+  check "coarse levels are weighted by the mask's local mean" accepts 0.05. A mask halved by
   ``cv2.resize`` with INTER_LINEAR/INTER_AREA is a 2x2 mean at each level (a box pyramid,
-  smoothed): it passes (0.014-0.017), as it should by this measure.
+  smoothed): 0.013-0.037, it passes. A mask pyramid in uint8 without scaling (0/1 levels)
+  fails it too (about 0.3), for another cause.
 """
 
 from __future__ import annotations
@@ -224,6 +226,14 @@ def uint8_mask_pyramid(mask, shapes):
     return [level.astype(np.float32) / 255 for level in levels]
 
 
+def uint8_01_mask_pyramid(mask, shapes):
+    """The mask's pyramid in uint8 without scaling: each level of a 0/1 mask rounds back to 0 or 1."""
+    levels = [mask.astype(np.uint8)]
+    for _ in shapes[1:]:
+        levels.append(cv2.pyrDown(levels[-1]))
+    return [level.astype(np.float32) for level in levels]
+
+
 def skimage_mask_pyramid(mask, shapes):
     from skimage.transform import pyramid_gaussian
     return list(pyramid_gaussian(mask, max_layer=len(shapes) - 1))
@@ -350,6 +360,7 @@ BLEND_MISTAKES = {
     "full mask cv2.resize INTER_NEAREST to each level": opencv_blend(resized_from_full(cv2.INTER_NEAREST)),
     "full mask cv2.resize (linear) to each level": opencv_blend(resized_from_full(cv2.INTER_LINEAR)),
     "skimage pyramids, mask[::2, ::2]": skimage_blend(sliced),
+    "mask pyramid in uint8, not scaled (another cause)": opencv_blend(uint8_01_mask_pyramid),
 }
 BOX_PYRAMIDS = {   # a 2x2 mean at each level: smoothed (a box pyramid), not counted as the mistake
     "mask halved by cv2.resize INTER_LINEAR": opencv_blend(halved(cv2.INTER_LINEAR)),

@@ -28,8 +28,8 @@ from fixtures.images import coverage, photo, warp
 
 from ..engine import strategies as st
 from ..engine.checks import StudentFailure, Trial, partial, passed
-from ..engine.claims import (THIRD_COORDINATE, calls_any, divides_by, from_code, guard, measured,
-                             takes_last_row_of_vt)
+from ..engine.claims import (THIRD_COORDINATE, calls_any, compares_a_distance_with, divides_by, from_code, guard,
+                             measured, takes_last_row_of_vt)
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
 from ..engine.hints import (RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope, calls, code_of,
                              expr, keyword, matmul_of, mentions, passes_product)
@@ -787,9 +787,9 @@ def fail_inverted_mask(t: Trial, what: str):
 
 
 SQUARED_HINT = Hint("compare the distance |H src - dst| itself with the threshold (pixels)",
-                    asks=calls_any("np.linalg.norm", "np.sqrt", "np.hypot", says="computes a distance (a square root)"),
-                    instead="your code {found}: look at what is compared with the threshold (the squared distance, "
-                            "or the threshold squared?)")
+                    asks=compares_a_distance_with(),
+                    instead="your code {found}: check what the square root is taken of, and that the "
+                            "threshold itself is not squared")
 
 
 def name_squared_threshold(t: Trial, what: str, H, inliers, src, dst, threshold: float):
@@ -2253,7 +2253,8 @@ MASK_PYRAMID_HINT = Hint(
     asks=MASK_SMOOTHED, functions=("blend_multiband",),
     instead="your code {found}: check that every level of the mask is blurred before it is halved (a Gaussian "
             "pyramid's level is the previous one blurred, then subsampled: one blur at full size is not enough), "
-            "and that each band is weighted by the mask's level of its size")
+            "that the levels stay float (in uint8 the levels of a 0/1 mask round back to 0 or 1), and that each "
+            "band is weighted by the mask's level of its size")
 
 
 def grain_spread(got, dark, offset: float, margin: int = 16) -> float:
