@@ -134,6 +134,12 @@ def test_the_mask_read_as_subsampled_without_smoothing_only_where_the_code_does(
     """, ""),
     ("""
     def match_features(img1, img2, ratio=0.75, method="sift"):
+        d = cv2.ORB_create() if method == "orb" else cv2.SIFT_create()
+        matcher = cv2.BFMatcher(6) if method == "orb" else cv2.BFMatcher(cv2.NORM_L2)   # 6: NORM_HAMMING
+        return matcher.knnMatch(d1, d2, k=2)
+    """, ""),
+    ("""
+    def match_features(img1, img2, ratio=0.75, method="sift"):
         d = cv2.SIFT_create()
         return cv2.BFMatcher(cv2.NORM_L2).knnMatch(d1, d2, k=2)
     """, "")])   # no ORB at all (the method check says so)

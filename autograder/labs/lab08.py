@@ -1592,6 +1592,16 @@ def _is_six(node) -> bool:
     return isinstance(node, ast.Constant) and node.value == 6 and not isinstance(node.value, bool)
 
 
+def _hamming_by_number(function) -> bool:
+    """A brute-force matcher given NORM_HAMMING or NORM_HAMMING2 by value (6, 7)."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("BFMatcher", "BFMatcher_create"):
+            given = node.args[:1] + [k.value for k in node.keywords if k.arg == "normType"]
+            if any(isinstance(g, ast.Constant) and g.value in (6, 7) and not isinstance(g.value, bool) for g in given):
+                return True
+    return False
+
+
 def _default_bf(function) -> bool:
     """``cv2.BFMatcher()`` (or ``BFMatcher_create()``) given no norm: OpenCV's default is NORM_L2."""
     return any(isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("BFMatcher", "BFMatcher_create")
@@ -1610,6 +1620,7 @@ ORB_CREATED = calls_any("cv2.ORB_create", "cv2.ORB.create", says="creates ORB fe
 HAMMING = (mentions("cv2.NORM_HAMMING") | mentions("cv2.NORM_HAMMING2")
            | Predicate("names the Hamming distance", lambda f: any("hamming" in s.lower() for s in _strings(f)))
            | Predicate("uses FLANN's LSH index", _lsh_index)
+           | Predicate("gives the matcher NORM_HAMMING by value", _hamming_by_number)
            | calls_any("np.unpackbits", "np.bitwise_xor", "np.bitwise_count") | expr("_ ^ _")).saying(
     "matches with the Hamming distance")
 FLOAT_NORM = (mentions("cv2.NORM_L2").saying("cv2.NORM_L2") | mentions("cv2.NORM_L1").saying("cv2.NORM_L1")
