@@ -562,3 +562,21 @@ def test_an_angle_in_degrees_from_code_that_converts_it_is_not_told_to_convert(t
     messages = " ".join(c.message for c in check_results(result, "lab07.ex2") if not c.passed)
     assert "your code converts degrees to radians, but cos and sin are given the angle" in messages
     assert "convert degrees with np.deg2rad" not in messages
+
+
+@pytest.mark.parametrize("source, compares", [
+    # the reference's shape: the root is taken in a helper the comparison's value comes from
+    ("def f(H, src, dst, threshold):\n    errors = _errors(H, src, dst)\n    return errors < threshold\n"
+     "def _errors(H, src, dst):\n    d = apply(H, src) - dst\n    return np.sqrt((d ** 2).sum(axis=1))\n", True),
+    ("def f(H, src, dst, threshold=3.0):\n    e = np.linalg.norm(apply(H, src) - dst, axis=1)\n"
+     "    inliers = e <= threshold\n    return inliers\n", True),
+    ("def f(p, q, thresh):\n    return np.hypot(*(p - q).T) < thresh\n", True),
+    ("def f(p, q, threshold):\n    return ((p - q) ** 2).sum(axis=1) ** 0.5 < threshold\n", True),
+    # squared distances compared, though the code takes a square root elsewhere (a normalisation)
+    ("def f(H, src, dst, threshold):\n    scale = np.sqrt(2) / np.std(src)\n    d = apply(H, src) - dst\n"
+     "    err = (d ** 2).sum(axis=1)\n    return err < threshold\n", False),
+    ("def f(H, src, dst, threshold):\n    s = np.sqrt(2)\n    return ((apply(H, src) - dst) ** 2).sum(1) < threshold\n", False),
+])
+def test_compares_a_distance_with_the_threshold_follows_the_compared_value(source, compares):
+    from autograder.engine.claims import compares_a_distance_with
+    assert bool(found(compares_a_distance_with(), source)) is compares

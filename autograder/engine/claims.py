@@ -333,6 +333,65 @@ def takes_last_row_of_vt() -> Predicate:
     return Predicate("takes the last row of Vt", test)
 
 
+THRESHOLD_NAMES = ("threshold", "thresh", "thr", "tol", "max_error", "reproj_threshold", "ransac_threshold")
+
+
+def compares_a_distance_with(names: Iterable[str] = THRESHOLD_NAMES, says: str = "") -> Predicate:
+    """A comparison (``<``, ``<=``, ``>``, ``>=``) of a threshold -- a name in ``names`` or starting
+    with "thresh" -- with a value computed through a square root (``np.sqrt``, ``np.linalg.norm``,
+    ``np.hypot``, ``** 0.5``): followed through the names the function assigns and into the module's
+    functions it calls (``errors = _transfer_errors(H, src, dst); errors < threshold``). A square
+    root elsewhere in the code (a normalisation's scale) does not count."""
+    names = frozenset(names)
+
+    def is_threshold(node) -> bool:
+        return any(isinstance(n, ast.Name) and (n.id in names or n.id.startswith("thresh")) for n in ast.walk(node))
+
+    def rooted(node, function, defs, depth) -> bool:
+        if depth < 0:
+            return False
+        assigned = {}
+        for statement in ast.walk(function):
+            if isinstance(statement, ast.Assign):
+                for target in statement.targets:
+                    for name in ast.walk(target):
+                        if isinstance(name, ast.Name):
+                            assigned.setdefault(name.id, []).append(statement.value)
+        for part in ast.walk(node):
+            if isinstance(part, ast.Call):
+                called = _path(part.func).rsplit(".", 1)[-1]
+                if called in ("sqrt", "norm", "hypot"):
+                    return True
+                if called in defs and defs[called] is not function and any(
+                        rooted(r.value, defs[called], defs, depth - 1) for r in ast.walk(defs[called])
+                        if isinstance(r, ast.Return) and r.value is not None):
+                    return True
+            if isinstance(part, ast.BinOp) and isinstance(part.op, ast.Pow) and _same(part.right, _pattern("0.5")):
+                return True
+            if isinstance(part, ast.Name) and part is not node and part.id in assigned:
+                if any(rooted(value, function, defs, depth - 1) for value in assigned[part.id]):
+                    return True
+            if isinstance(node, ast.Name) and part is node and node.id in assigned:
+                if any(rooted(value, function, defs, depth - 1) for value in assigned[node.id]):
+                    return True
+        return False
+
+    def test(functions) -> bool:
+        functions = list(functions)
+        defs = {f.name: f for f in functions if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))}
+        for function in functions:
+            for node in ast.walk(function):
+                if not (isinstance(node, ast.Compare) and all(
+                        isinstance(op, (ast.Lt, ast.LtE, ast.Gt, ast.GtE)) for op in node.ops)):
+                    continue
+                sides = [node.left, *node.comparators]
+                if any(is_threshold(side) for side in sides) and any(
+                        rooted(side, function, defs, 4) for side in sides if not is_threshold(side)):
+                    return True
+        return False
+    return Predicate(says or "compares a distance (a square root) with the threshold", test, kind="all")
+
+
 def calls_any(*names: str, says: str = "") -> Predicate:
     """A call of any of ``names`` (:func:`~autograder.engine.hints.calls`), saying ``says``."""
     from .hints import calls
