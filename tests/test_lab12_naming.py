@@ -149,3 +149,18 @@ def test_stereo_bm_converted_to_float32_and_divided_keeps_full_marks(tmp_path):
     result = grade(mutant(tmp_path, MODULE, STEREO_BM_FLOAT32), ["lab12.ex4"], pictures="none")
     for check in check_results(result, "lab12.ex4"):
         assert check.passed and not check.mistake, f"{check.name}: {check.message}"
+
+
+# ------------------------------------------------------------------ a hint reads the function its map comes from
+def test_a_dp_check_reads_the_dp_not_block_matching():
+    """dp_stereo's checks also name block_matching (a helper they share asks it): the block search's
+    hints and OpenCV's fixed point are not said to a DP for what block_matching's code does."""
+    assert lab12.judged_function("dp_stereo(left, right)") == "dp_stereo"
+    assert lab12.judged_function('block_matching(left, 0.4 * right +150, cost="ncc")') == "block_matching"
+
+    source = textwrap.dedent(BM.format(body="return stereo.compute(left, right) / 16.0")) + \
+        "def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):\n    return left\n"
+    code = read_code(source)
+    assert lab12.OPENCV_MATCHER_HINT.contradicts(code, ["block_matching"])
+    assert not lab12.OPENCV_MATCHER_HINT.contradicts(code, [lab12.judged_function("dp_stereo(left, right)")])
+    assert lab12.matching_hint(None, "dp_stereo(left, right)") == lab12.DP_STEPS   # (no code read)

@@ -36,7 +36,6 @@ from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judg
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..engine.registry import Lab
-from ..engine.stubs import functions_called
 from .code_signs import DIVIDES_BY_16, STEREO_MATCHER, name_batched_vt_row, zero_taken_for_missing
 
 # OpenCV's matcher called, its answer never divided by 16 (a sign, said with a measurement).
@@ -131,11 +130,24 @@ OPENCV_MATCHER_HINT = Hint(
             "odd blockSize of 5 or more)")
 
 
-def matching_hint(t: Trial) -> str:
-    """The block-search recipe, or, for code calling OpenCV's matcher, what is left to check."""
-    if OPENCV_MATCHER_HINT.contradicts(code_of(t), functions_called(t.check)):
-        return OPENCV_MATCHER_HINT.said(t)
-    return LOWEST_COST_HINT.said(t)
+DP_STEPS = ("the difference can come from any step of the lab sheet's: the matching cost, the accumulation along "
+            "the row with its smoothness penalty, and the backtracking from the last column")
+
+
+def judged_function(what: str) -> str:
+    """The student function whose answer ``what`` describes ("dp_stereo(left, right)" -> "dp_stereo")."""
+    return what.split("(", 1)[0].strip()
+
+
+def matching_hint(t: Trial, what: str) -> str:
+    """For a wrong map of ``what``: the block-search recipe, or, for code calling OpenCV's matcher, what
+    is left to check; for the DP, where the difference can come from (its own steps, not block matching's)."""
+    function = judged_function(what)
+    if function == "dp_stereo":
+        return DP_STEPS
+    if OPENCV_MATCHER_HINT.contradicts(code_of(t), [function]):
+        return OPENCV_MATCHER_HINT.said(t, [function])
+    return LOWEST_COST_HINT.said(t, [function])
 
 
 FIXED_POINT_HINT = Hint(
@@ -189,7 +201,7 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
         return partial(fraction, f"{what}: {where}. {summary}; up to "
                        f"{allowed:.1%} gets full marks (see the error map).")
     t.fail(f"{what}: most of the map is wrong: {where}. {summary} (see the error map).",
-           hint=NCC_HINT.said(t) if NCC_CALL in what else matching_hint(t))
+           hint=NCC_HINT.said(t) if NCC_CALL in what else matching_hint(t, what))
 
 
 def where_disparities_wrong(got, judged, threshold) -> str:
@@ -326,13 +338,15 @@ def name_disparity_scale(t: Trial, what: str, got, judged, threshold, max_dispar
     it has not clipped, and, where the code calls OpenCV's matcher without dividing by 16, naming
     the fixed point (also when the map is clipped at ``max_disparity`` almost everywhere)."""
     ratio, clipped = disparity_scale(got, judged, threshold, max_disparity)
-    kept = STEREO_MATCHER_UNDIVIDED.holds(code_of(t).reachable(functions_called(t.check)))
+    judged_code = code_of(t).reachable([judged_function(what)])   # a DP check also names block_matching
+    kept = STEREO_MATCHER_UNDIVIDED.holds(judged_code)
     truth_at_top = float(np.mean(judged[judged > 0] >= max_disparity - 0.5)) if np.any(judged > 0) else 0.0
     if ratio is not None and abs(ratio - 1) > 0.3:
-        fixed_point = abs(ratio - 16) <= 0.1 * 16
+        # OpenCV's fixed point is said only to code that calls OpenCV's matcher (a DP may not).
+        fixed_point = abs(ratio - 16) <= 0.1 * 16 and STEREO_MATCHER.holds(judged_code)
         factor = next((words for value, words in FACTORS.items() if abs(ratio / value - 1) <= 0.1), None)
         said = f"{factor} the expected" if factor else f"{ratio:.3g} times the expected"
-        cause = (FIXED_POINT_KEPT + "." if kept else FIXED_POINT_HINT.said(t)) if fixed_point else \
+        cause = (FIXED_POINT_KEPT + "." if kept else FIXED_POINT_HINT.said(t, [judged_function(what)])) if fixed_point else \
             measured("they are expected in pixels.")
         t.fail(f"{what}: the disparities are {said} (on the pixels not clipped)"
                + (f": it looks like {FIXED_POINT}: " if fixed_point and kept else ": ") + cause,
@@ -1052,9 +1066,10 @@ def block_matching_form(t):
                 t.fail(f"{what} returned disparities up to {np.nanmax(got):g}, far above the search range "
                        f"0..{max_disparity}: it looks like {FIXED_POINT}: " + FIXED_POINT_KEPT + ".",
                        mistake=FIXED_POINT)
+            opencv = STEREO_MATCHER.holds(code_of(t).reachable(["block_matching"]))
             t.fail(f"{what} returned disparities up to {np.nanmax(got):g}; the search range is "
                    f"0..{max_disparity}",
-                   hint=Hint("cv2.StereoBM rounds numDisparities up to a multiple of 16: set what it finds "
+                   hint=measured("the disparities searched are 0..max_disparity, no more") if not opencv else Hint("cv2.StereoBM rounds numDisparities up to a multiple of 16: set what it finds "
                              "above max_disparity to 0 (invalid)",
                              asks=expr("_ > max_disparity") | expr("max_disparity < _"),
                              instead="your code already compares disparities with max_disparity: check that "
@@ -1412,10 +1427,7 @@ def dp_weak_texture(t):
             return partial(0.5, f"{named.message} {better}", mistake=named.mistake)
         # No cause is known here: the hint says where the difference can come from, not what to change.
         naming_crop(t, "dp_stereo", scene, columns=NAMING_COLUMNS)()
-        return partial(0.5, f"{what}: {better}",
-                       hint="the difference can come from any step of the lab sheet's: the matching cost, the "
-                            "accumulation along the row with its smoothness penalty, and the backtracking from the "
-                            "last column")
+        return partial(0.5, f"{what}: {better}", hint=DP_STEPS)
     name_no_backtracking(t, what)
     naming_crop(t, "dp_stereo", scene, columns=NAMING_COLUMNS)()
     t.fail(f"{what}: {summary}: no better than block matching.")
