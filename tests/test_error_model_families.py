@@ -244,3 +244,26 @@ def test_in_a_grading_a_check_ended_by_the_students_exception_is_named(tmp_path)
     assert failed and all(c.failure == "exception" for c in failed)
     assert any(c.mistake == "mutant:single_point" and "IndexError" in c.message
                and "a single point (a 1-D array) is not handled" in c.message for c in failed)
+
+
+def test_an_array_tested_for_truth_is_named_on_the_call_without_it(monkeypatch):
+    """`if not dist` on lab 10's estimate_pose: a given distortion array raises ValueError (its truth
+    value is ambiguous). Only that call was made; the same call with dist left as None returns the
+    reference's pose, the evidence that the rest of the code is the `default` mutant's. Named with a
+    long budget (a grading's 3 s do not run this pipeline's 114 mutants once; the answer cache does
+    over a class)."""
+    from fixtures import lab10 as truth
+
+    # each helper run finds the board in six images: the per-run second is the grader's, not this test's
+    monkeypatch.setattr(naming, "_timeout", lambda clock: max(0.05, min(20.0, clock.left())))
+    image = truth.pose_views()[0][0]
+    call = ("estimate_pose", (image, truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K,
+                              np.array([0.05, -0.02, 0.0, 0.0, 0.0])), {})
+    edit = ("    dist = None if dist is None else np.asarray(dist, dtype=np.float64)\n",
+            "    dist = None if not dist else np.asarray(dist, dtype=np.float64)\n")
+    trial = _trial("lab10", edit, [call])
+    assert trial.raised is not None and "truth value of an array" in trial.raised[3]
+    found = naming.name_raised(trial, seconds=300)
+    assert found is not None and found.mutant.operator == "default", found
+    assert any(asked[1][4] is None for asked in trial.sandbox.asked)   # the call without dist
+    assert naming.name_raised(_trial("lab10", None, [call]), seconds=60) is None   # the reference raises nothing

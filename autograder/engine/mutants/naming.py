@@ -28,7 +28,7 @@ import os
 import re
 import threading
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -73,11 +73,22 @@ class ErrorModel:
     source: str
     mutants: dict
     defaults: dict   # function -> [(parameter, position, default)] for its numeric defaults
+    optional: dict = field(default_factory=dict)   # function -> [(parameter, position, None)]
 
 
 def _numeric_defaults(source: str) -> dict:
     """function -> [(parameter, position, default)] for the parameters with a number as default
     (confirmation inputs vary them too: a mistake may hide behind a default)."""
+    return _defaults(source, lambda value: isinstance(value, (int, float)) and not isinstance(value, bool))
+
+
+def _none_defaults(source: str) -> dict:
+    """function -> [(parameter, position, None)] for the parameters that default to None (an
+    exception raised on a value given there is confirmed on the call without it)."""
+    return _defaults(source, lambda value: value is None)
+
+
+def _defaults(source: str, keep) -> dict:
     import ast
 
     out = {}
@@ -91,7 +102,7 @@ def _numeric_defaults(source: str) -> dict:
                     value = ast.literal_eval(default)
                 except ValueError:
                     continue
-                if isinstance(value, (int, float)) and not isinstance(value, bool):
+                if keep(value):
                     found.append((params[position].arg, position, value))
             out[node.name] = found
     return out
@@ -129,7 +140,7 @@ def model_for(lab) -> ErrorModel | None:
                 return None
             for function in mutants:  # simplest first: the time may end before the last
                 mutants[function].sort(key=lambda m: m.rank)
-            _MODELS[key] = ErrorModel(lab.module, source, mutants, _numeric_defaults(source))
+            _MODELS[key] = ErrorModel(lab.module, source, mutants, _numeric_defaults(source), _none_defaults(source))
         return _MODELS[key]
 
 
@@ -775,7 +786,7 @@ def name_raised(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
     student's answers on the trial's calls of that function that returned, and agrees with the
     student on confirmation inputs derived from both (at least one of them an answer, not an
     exception: a mutant that raises everywhere names nothing); None otherwise."""
-    return _within_budget(trial, seconds, _name_raised, evidence=getattr(trial, "raised", None))
+    return _within_budget(trial, seconds, _name_raised, evidence=getattr(trial, "raised", None) or ())
 
 
 def _name_raised(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
@@ -820,14 +831,18 @@ def _confirmed_raised(trial, model, function, inputs, answers, candidates, clock
     for i in range(min(len(inputs), 3)):
         seed = int(fingerprint(function, "raised", i, inputs[i][1])[:8], 16)
         variants += _variants(inputs[i], VARIANTS_PER_CALL if i == 0 else 2, seed, model.defaults.get(function, ()))
-    batched = _batched(inputs[0], int(fingerprint(function, "batched", inputs[0][1])[:8], 16))
-    variants += batched
+    # The rest of the code, where only the raising call was made: the same point as a batch, the
+    # call without an optional argument (`if not dist:` raises on an array, not on None).
+    corroborating = _batched(inputs[0], int(fingerprint(function, "batched", inputs[0][1])[:8], 16)) \
+        + _left_out(inputs[0], model.optional.get(function, ()))
+    variants += corroborating
     every, indices, reference, outputs, candidates, usable = _on_variants(model, inputs, variants, candidates, clock)
     chosen = _separating(usable, reference, [outputs[c.key] for c in candidates])
     if not chosen:
         return None
-    if len(inputs) == 1 and batched and len(every) - 1 - len(inputs) in usable:
-        chosen = sorted(set(chosen) | {len(every) - 1 - len(inputs)})   # (the batch: the rest of the code)
+    if len(inputs) == 1:
+        extra = range(len(indices) - len(corroborating), len(indices))
+        chosen = sorted(set(chosen) | {k for k in extra if k in usable})
     theirs = []
     for k in chosen:
         answer = _student_outcome(trial, every[indices[k]])
@@ -862,6 +877,19 @@ def _batched(call, seed) -> list:
 
     made = (function, tuple(batch(a) for a in args), {k: batch(v) for k, v in kwargs.items()})
     return [made] if _changed_call(call, made) else []
+
+
+def _left_out(call, optional) -> list:
+    """The call with each optional argument it gives (a parameter defaulting to None, given a value)
+    given as None instead, one call per argument."""
+    function, args, kwargs = call
+    made = []
+    for name, position, _ in optional:
+        if name in kwargs and kwargs[name] is not None:
+            made.append((function, tuple(args), {**kwargs, name: None}))
+        elif position < len(args) and args[position] is not None:
+            made.append((function, tuple(None if i == position else a for i, a in enumerate(args)), dict(kwargs)))
+    return made
 
 
 def _changed_call(call, made) -> bool:

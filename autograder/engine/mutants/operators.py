@@ -938,11 +938,19 @@ def _inverse_changes(node, what, place):
             else _placed("a transpose is used where an inverse belongs", place())
         yield "inverse", "drop", f"{inner} is used where its inverse belongs (the inversion is missing)" if inner \
             else _placed("an inversion is missing", place())
-    if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load) and not (
-            isinstance(node.value, ast.Call) and _dotted(node.value.func) in ("np.linalg.inv", "numpy.linalg.inv")):
-        inner = what(node.value)   # (inv(X).T as inv(inv(X)) is X used: the operators above say it)
+    if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load) and _named_matrix(node.value):
+        inner = what(node.value)
         yield "inverse", "insert", f"the inverse of {inner} is used where its transpose belongs" if inner \
             else _placed("an inverse is used where a transpose belongs", place())
+
+
+def _named_matrix(node) -> bool:
+    """Whether ``node`` is a matrix a student names (``R``, ``np.asarray(K, ...)``): where a transpose
+    may be written for an inverse. A grid, a stack, a product or an inverse (inv(X).T as inv(inv(X))
+    is X: the operators above say it) is not: inverting those raises everywhere, no slip of anyone's."""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.asarray", "np.array", "numpy.asarray", "numpy.array"):
+        node = node.args[0] if node.args else None
+    return isinstance(node, ast.Name)
 
 
 _STACKING = ("hstack", "vstack", "concatenate", "column_stack", "stack", "dstack")
