@@ -324,6 +324,18 @@ class Trial:
         found = none_returned(code_of(self), function)
         return f": your `{function}` {found}" if found else ""
 
+    def _why_swapped(self, got, expected) -> str:
+        """For an image returned (W, H) where (H, W) is asked, the OpenCV call the student's code
+        gives a size rows first (": your code passes `image.shape[:2]` ... to cv2.resize ...")."""
+        expected = tuple(expected)
+        if len(got) < 2 or len(expected) < 2 or None in expected[:2] or expected[0] == expected[1] or \
+                tuple(got[:2]) != (expected[1], expected[0]) or tuple(got[2:]) != expected[2:]:
+            return ""
+        from .hints import code_of, functions_read, size_given_as_shape
+
+        found = size_given_as_shape(code_of(self), functions_read(self))
+        return f"; your code {found}" if found else ""
+
     def expect_array(self, value, what: str, *, shape=None, dtype=None, kind=None,
                      finite: bool = False) -> np.ndarray:
         """Check that a returned value is an array of the documented form.
@@ -362,8 +374,9 @@ class Trial:
                 form = shape_form(value.shape, tuple(shape))
                 if form is not None:
                     self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
-                              f"{form.sentence}", mistake=form.mistake)
-                self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}")
+                              f"{form.sentence}{self._why_swapped(value.shape, shape)}", mistake=form.mistake)
+                self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}"
+                          + self._why_swapped(value.shape, shape))
         if dtype is not None and value.dtype != np.dtype(dtype):
             self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}",
                       hint=_hints().UINT8_HINT.said(self) if np.dtype(dtype) == np.uint8 else "")

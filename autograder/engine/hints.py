@@ -775,6 +775,66 @@ def _unparsed(node, limit: int = 60) -> str:
     return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
+# OpenCV functions that take an image size as (width, height): the argument's position and keywords
+SIZE_ARGUMENTS = {"resize": (1, ("dsize",)), "warpAffine": (2, ("dsize",)), "warpPerspective": (2, ("dsize",)),
+                  "initUndistortRectifyMap": (4, ("size",)), "getOptimalNewCameraMatrix": (2, ("imageSize",)),
+                  "stereoRectify": (4, ("imageSize",)), "calibrateCamera": (2, ("imageSize",)),
+                  "stereoCalibrate": (5, ("imageSize",)), "initInverseRectificationMap": (4, ("size",))}
+
+
+def _rows_first(node, unpacked: dict):
+    """The part of ``node`` that is an image size written rows first -- ``X.shape[:2]``,
+    ``X.shape[0:2]``, ``(X.shape[0], X.shape[1])``, or ``(h, w)`` for names unpacked from
+    ``X.shape[:2]`` in that order (``unpacked``: name -> its index in the shape); either side of
+    ``dsize or (h, w)`` -- or None."""
+    if isinstance(node, (ast.BoolOp, ast.IfExp)):
+        parts = node.values if isinstance(node, ast.BoolOp) else [node.body, node.orelse]
+        return next(filter(None, (_rows_first(part, unpacked) for part in parts)), None)
+    if isinstance(node, ast.Subscript) and _path(node.value).endswith("shape") and isinstance(node.slice, ast.Slice):
+        low, high = node.slice.lower, node.slice.upper
+        if (low is None or _same(low, ast.Constant(0))) and isinstance(high, ast.Constant) and high.value == 2:
+            return node
+    if isinstance(node, (ast.Tuple, ast.List)) and len(node.elts) == 2:
+        def index(e):
+            if isinstance(e, ast.Name):
+                return unpacked.get(e.id)
+            if isinstance(e, ast.Subscript) and _path(e.value).endswith("shape") and isinstance(e.slice, ast.Constant):
+                return e.slice.value
+            return None
+        if (index(node.elts[0]), index(node.elts[1])) == (0, 1):
+            return node
+    return None
+
+
+def size_given_as_shape(code: Code, functions: Iterable[str]) -> str:
+    """Where the student's ``functions`` (and their helpers) give OpenCV an image size rows first
+    (``image.shape[:2]``, ``(h, w)``) where it reads (width, height), in words for ": your code
+    ..."; "" when no such call is written."""
+    for function in code.reachable(functions):
+        unpacked = {}
+        for node in ast.walk(function):
+            if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Tuple) and isinstance(
+                    node.value, ast.Subscript) and _path(node.value.value).endswith("shape"):
+                for position, target in enumerate(node.targets[0].elts):
+                    if isinstance(target, ast.Name):
+                        unpacked[target.id] = position
+        for node in ast.walk(function):
+            if not isinstance(node, ast.Call):
+                continue
+            name = _path(node.func).rsplit(".", 1)[-1]
+            if name not in SIZE_ARGUMENTS:
+                continue
+            position, keywords = SIZE_ARGUMENTS[name]
+            given = [node.args[position]] if len(node.args) > position else []
+            given += [k.value for k in node.keywords if k.arg in keywords]
+            for argument in given:
+                part = _rows_first(argument, unpacked)
+                if part is not None:
+                    return (f"passes `{_unparsed(part)}` (rows, columns) to cv2.{name} as its size, which "
+                            "OpenCV reads as (width, height)")
+    return ""
+
+
 def functions_read(t) -> tuple[str, ...]:
     """The student functions whose code a check ``t``'s hints read: those the check calls."""
     from .stubs import functions_called

@@ -34,7 +34,7 @@ from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
 from .claims import from_code, measured
 from .forms import shape_form
-from .hints import Hint, Predicate, calls, code_of, functions_read, keyword, mentions
+from .hints import Hint, Predicate, calls, code_of, functions_read, keyword, mentions, size_given_as_shape
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
 
@@ -340,9 +340,10 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
                          if got.shape == expected_shape else "")
     if isinstance(got, np.ndarray) and got.shape != expected_shape:
         if got.shape[:2] == expected_shape[1::-1]:
+            read = size_given_as_shape(code_of(t), functions_read(t))
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
-                   "width and height are swapped (shapes are (rows, columns), dsize is (width, height))",
-                   mistake="width and height are swapped")
+                   "width and height are swapped (shapes are (rows, columns), dsize is (width, height))"
+                   + (f": your code {read}" if read else ""), mistake="width and height are swapped")
         if got.shape[:2] == expected_shape[:2]:
             form = shape_form(got.shape, expected_shape)   # grey in, grey out, or BGR in, BGR out
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
