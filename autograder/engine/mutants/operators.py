@@ -892,7 +892,13 @@ def _index_changes(node: ast.Subscript, what):
     inner = what(node.value)
     if not inner:
         return
-    constants = [(i, _constant_index(e)) for i, e in enumerate(elements) if _constant_index(e) is not None]
+    # The axis moves only on an array the code names or an SVD's factor (a tuple's item, a list's, a
+    # 1-D result of np.lexsort indexed on another axis raises everywhere: no one's slip).
+    named = isinstance(node.value, ast.Name) or (
+        isinstance(node.value, ast.Subscript) and isinstance(node.value.value, ast.Call)
+        and _dotted(node.value.value.func).endswith("linalg.svd"))
+    constants = [(i, _constant_index(e)) for i, e in enumerate(elements) if _constant_index(e) is not None] \
+        if named else []
     wholes = [i for i, e in enumerate(elements) if _whole_slice(e)]
     if len(constants) == 1 and len(constants) + len(wholes) == len(elements) and constants[0][1] in _INDEX_WORDS:
         (position, value), count = constants[0], len(elements)
@@ -923,8 +929,8 @@ def _index_changes(node: ast.Subscript, what):
         if lower not in (0, 1, 2) or (upper is not None and upper != lower + 1) or (upper is None and lower != 1):
             return
         names = {0: "x coordinates (column 0)", 1: "y coordinates (column 1)", 2: "values in column 2"}
-        for other in (0, 1, 2):
-            if other != lower and (other < 2 or lower == 1):
+        for other in (0, 1):   # x for y, y for x, either for z (no z where only x and y are)
+            if other != lower:
                 yield "axis", [":", f"{other}:{other + 1}"], f"the {names[other]} of {inner} are used where the " \
                                                               f"{names[lower]} belong (a copied index)"
 
