@@ -164,3 +164,18 @@ def test_a_dp_check_reads_the_dp_not_block_matching():
     assert lab12.OPENCV_MATCHER_HINT.contradicts(code, ["block_matching"])
     assert not lab12.OPENCV_MATCHER_HINT.contradicts(code, [lab12.judged_function("dp_stereo(left, right)")])
     assert lab12.matching_hint(None, "dp_stereo(left, right)") == lab12.DP_STEPS   # (no code read)
+
+
+@pytest.mark.parametrize("factor, words", [(16.0, "16 times"), (1 / 16, "1/16 of"), (-1.0, "the negative of"),
+                                           (1000.0, "1000 times"), (2.37, "2.37 times")])
+def test_an_answer_off_by_a_constant_is_told_the_factor(factor, words):
+    expected = np.array([[3.5, 17.25, 61.0], [8.75, 0.6, np.nan]])
+    c = code_signs.constant_factor(factor * expected, expected)
+    assert c == pytest.approx(factor) and code_signs.factor_words(c) == words
+
+
+def test_no_factor_for_the_answer_itself_or_another_error():
+    expected = np.array([3.5, 17.25, 61.0, 8.75])
+    assert code_signs.constant_factor(expected, expected) is None
+    assert code_signs.constant_factor(2 * expected + 1, expected) is None   # an offset too: no single factor
+    assert code_signs.constant_factor(expected[:3], expected) is None

@@ -169,3 +169,35 @@ def name_batched_vt_row(t, what: str, got, n: int, size: int = 4, function: str 
                        f"(N, {size}, {size}), so Vt[-1] is the last point's whole Vt and each point's solution "
                        "is Vt[:, -1] (shape (N, 4)), or solve the points one at a time."),
            mistake=LAST_VT_OF_A_STACK)
+
+
+# ------------------------------------------------------------------ an answer off by a constant factor
+ROUND_FACTORS = {16.0: "16 times", 1 / 16: "1/16 of", 2.0: "twice", 0.5: "half", -1.0: "the negative of",
+                 255.0: "255 times", 1 / 255: "1/255 of", 1000.0: "1000 times", 1e-3: "1/1000 of",
+                 100.0: "100 times", 1e-2: "1/100 of", 10.0: "10 times", 0.1: "1/10 of", 4.0: "4 times",
+                 0.25: "a quarter of"}
+
+
+def constant_factor(got, expected, relative: float = 1e-6) -> float | None:
+    """The factor ``c`` with ``got == c * expected`` entry by entry (within ``relative`` of the largest
+    ``|c * expected|``, on the entries finite in both), when it is not 1; None otherwise."""
+    got, expected = np.asarray(got, np.float64), np.asarray(expected, np.float64)
+    if got.shape != expected.shape:
+        return None
+    both = np.isfinite(got) & np.isfinite(expected)
+    if both.sum() < 2 or not np.any(expected[both]):
+        return None
+    g, e = got[both], expected[both]
+    c = float(np.dot(g, e) / np.dot(e, e))
+    scale = abs(c) * float(np.max(np.abs(e)))
+    if c == 0 or abs(c - 1) <= 1e-3 or np.max(np.abs(g - c * e)) > relative * scale + 1e-300:
+        return None
+    return c
+
+
+def factor_words(c: float) -> str:
+    """``c`` in words: "16 times", "half", "the negative of" (a round factor within 1%), else "2.37 times"."""
+    for value, words in ROUND_FACTORS.items():
+        if abs(c / value - 1) <= 0.01:
+            return words
+    return f"{c:.3g} times"

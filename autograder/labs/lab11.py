@@ -29,7 +29,7 @@ from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mis
                       where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
-from .code_signs import CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, name_batched_vt_row
+from .code_signs import CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, constant_factor, factor_words, name_batched_vt_row
 
 lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
 
@@ -170,6 +170,10 @@ def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, g
         if np.all(error <= allowed):
             return passed(f"all {n} points within {error.max():.1e} of their distance to camera 1")
         _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise=0.0)
+        factor = constant_factor(got, views.X)
+        if factor is not None:
+            t.fail(f"{what}: every point is {factor_words(factor)} the true one (X, Y and Z alike).",
+                   mistake="the points are off by a constant factor")
         worst, wrong = int(np.argmax(error / allowed)), int(np.sum(error > allowed))
         wanted, shown = format_arrays_apart(views.X[worst], got[worst])
         t.fail(f"{what} is wrong for {'every point' if wrong == n else f'{wrong} of {n} points'} "

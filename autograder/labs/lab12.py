@@ -36,7 +36,8 @@ from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judg
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..engine.registry import Lab
-from .code_signs import DIVIDES_BY_16, STEREO_MATCHER, name_batched_vt_row, zero_taken_for_missing
+from .code_signs import (DIVIDES_BY_16, STEREO_MATCHER, constant_factor, factor_words, name_batched_vt_row,
+                         zero_taken_for_missing)
 
 # OpenCV's matcher called, its answer never divided by 16 (a sign, said with a measurement).
 STEREO_MATCHER_UNDIVIDED = (STEREO_MATCHER & ~DIVIDES_BY_16).saying(
@@ -437,6 +438,9 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
     if np.all(cosine > 1 - 1e-6) and np.ptp(np.linalg.norm(got, axis=1) / np.linalg.norm(X_true, axis=1)) > 1e-3:
         t.fail(f"{what}: each point is right up to its own scale - divide the SVD's homogeneous "
                "solution by its fourth coordinate.")
+    factor = constant_factor(got, X_true) if exact else None
+    if factor is not None:
+        t.fail(f"{what}: every point is {factor_words(factor)} the true one (X, Y and Z alike).", mistake=SCALED_POINTS)
     reprojection = np.linalg.norm(truth.project(P1, got) - pts1, axis=1).mean()
     t.fail(f"{what}: 3D points are off by up to {error.max():.3g} (mean reprojection error in "
            f"image 1: {reprojection:.3g} px).",
@@ -576,8 +580,16 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
                            1e-6 * scale, truth=expected, probe=depth_probe(t))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    factor = constant_factor(got, expected)
+    if factor is not None:
+        t.fail(f"{what}: the depths are {factor_words(factor)} the expected at every pixel (Z = f b / d, in "
+               "the baseline's unit).", mistake=SCALED_DEPTHS)
     t.fail(f"{what}: the depths are off by {describe_difference(got, expected, tolerance=tolerance)} "
            "(Z = f b / d).")
+
+
+SCALED_DEPTHS = "the depths are off by a constant factor"
+SCALED_POINTS = "the points are off by a constant factor"
 
 
 @ex2.check("depth_from_disparity: Z = f b / d on a worked example", points=2)

@@ -56,6 +56,11 @@ MISTAKES = {
             ok = np.isfinite(d) & (d > 0)
             return np.where(ok, baseline / (f * np.where(ok, d, 1.0)), 0.0)
         """, ["b / (f d)"]),
+    "depth in millimetres (the baseline converted, the depth not back)": ("lab12.ex2", """
+        _depth_from_disparity = depth_from_disparity
+        def depth_from_disparity(disparity, f, baseline):
+            return _depth_from_disparity(disparity, f, baseline * 1000.0)
+        """, ["the depths are 1000 times the expected"]),
     "depth inf where d = 0": ("lab12.ex2", """
         def depth_from_disparity(disparity, f, baseline):
             with np.errstate(divide="ignore", invalid="ignore"):
