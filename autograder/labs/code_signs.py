@@ -1,20 +1,26 @@
 """What the student's code shows of a mistake, read with :mod:`ast` (labs 11 and 12; issue 35).
 
 A check that has measured a failure names its likely cause only where the code shows it: these
-predicates (:class:`~autograder.engine.hints.Predicate`, evaluated on the functions a check calls
+predicates (:class:`~autograder.engine.hints.Predicate`, evaluated on the functions a check judges
 and their helpers, never executed) are the code's half of such a name; the measurement is the
-check's. A predicate that holds is a *sign*, not a proof: every name built on one is said with the
-measurement that makes it likely, and a code that does the right thing another way (a division
-by a constant held in a module-level name) is simply not named.
+check's. A predicate that holds is a *sign*, not a proof: every name built on one is said only
+with the measurement that makes it likely (a map 16 times the truth, the lines missed being those
+leaving through the top or bottom), so code doing the right thing in a way not read (a division
+by 16 held in a module-level name) gives no such measurement and no name.
 
 - :data:`STEREO_MATCHER` -- OpenCV's block matchers (``cv2.StereoBM_create``, ``cv2.StereoSGBM.create``);
-- :data:`DIVIDES_BY_16` -- a division of anything by 16 (``d / 16``, ``d * (1 / 16)``, ``d >> 4``);
+- :data:`DIVIDES_BY_16` -- a division by 16 of anything but the search range (``d / 16``,
+  ``d * (1 / 16)``, ``d >> 4``; not ``-(-(max_disparity + 1) // 16)``);
 - :func:`zero_taken_for_missing` -- a numeric parameter tested for truth (``smoothness or DEFAULT``,
   ``if not smoothness:``), which takes 0 for "not given";
 - :data:`LINES_FROM_SIDES_ONLY` -- lines ``a x + b y + c = 0`` drawn by dividing by ``b`` only (the
   left and right borders, ``x = 0`` and ``x = w - 1``): a steep line leaves through the top and bottom;
 - :data:`CAMERA_WITHOUT_K` -- a camera matrix ``[R | t]`` stacked and never multiplied by K, in code
-  that never normalises its points (``K^-1 x``, ``cv2.undistortPoints``).
+  that never normalises its points (``K^-1 x``, ``cv2.undistortPoints``);
+- :func:`name_batched_vt_row` -- ``Vt[-1]`` of an SVD of a stack of systems, told from an answer with
+  the system's size as its first dimension;
+- :func:`constant_factor`, :func:`factor_words` -- an answer that is the expected times one constant
+  (measured, no code read), and that constant in words.
 """
 
 from __future__ import annotations
