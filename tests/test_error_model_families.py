@@ -214,6 +214,15 @@ def test_an_exception_no_mutant_raises_like_that_is_not_named(source_edit):
     assert naming.name_raised(trial, seconds=120) is None
 
 
+def test_an_exception_no_mutant_can_raise_is_decided_without_running_them(monkeypatch):
+    """A NameError (a name of the student's own) is no mutant's: the helper is never asked."""
+    monkeypatch.setattr(naming, "helper", lambda: pytest.fail("the helper was asked"))
+    trial = _trial("lab09", ("x, y = pts[:, 0], pts[:, 1]", "x, y = pts[:, 0], ptss[:, 1]"),
+                   [("distort_points", (ROWS, DIST), {})])
+    assert "NameError" in trial.raised[3]
+    assert naming.name_raised(trial, seconds=60) is None and not trial.sandbox.asked
+
+
 def test_an_input_the_reference_raises_on_is_not_named():
     trial = _trial("lab08", None, [("homography_ransac", (ROWS, ROWS), {})])   # 3 pairs: ValueError for all
     assert trial.raised is not None

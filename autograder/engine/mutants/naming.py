@@ -789,10 +789,16 @@ def name_raised(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
     return _within_budget(trial, seconds, _name_raised, evidence=getattr(trial, "raised", None) or ())
 
 
+# Exceptions no mutant of the reference raises (a name of the student's own, an import, their own
+# assert): decided without running any, so a submission that fails everything this way costs nothing.
+NO_MUTANT_RAISES = {"NameError", "ImportError", "ModuleNotFoundError", "AssertionError", "SyntaxError",
+                    "IndentationError", "NotImplementedError"}
+
+
 def _name_raised(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
     function, args, kwargs, message = trial.raised
     theirs = _raised_answer(message)
-    if function not in model.mutants or theirs is None:
+    if function not in model.mutants or theirs is None or _error_kind(theirs)[0] in NO_MUTANT_RAISES:
         return None
     returned = [call for call in trial.calls if call[0] == function][-(CALLS_PER_FUNCTION - 1):]
     inputs = [(function, tuple(args), dict(kwargs))] + [(f, tuple(a), dict(k)) for f, a, k, _ in returned]
