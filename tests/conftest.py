@@ -185,6 +185,39 @@ def assert_only_exercise_lost(result, lost: str, *fragments: str):
             assert exercise.score == exercise.max_score, (exercise.id, exercise.checks)
 
 
+@pytest.hookimpl(trylast=True)
+def pytest_collection_modifyitems(config, items):
+    """Tests that share work run in one process (``--dist loadgroup``, README's command):
+
+    - the tests of a module that use one of its module-scoped fixtures (a class batch-graded
+      once, a whole submission graded with pictures) share an ``xdist_group`` named after the
+      module, so the fixture is made once, not once in each process (loadgroup spreads
+      ungrouped tests one by one); a test already in a group (a lab's) keeps its own;
+    - in an xdist worker, each grouped test's id ends in ``@group``, which is how xdist's
+      scheduler finds the groups. xdist 3.8 writes that suffix into ``item._nodeid``, which
+      pytest 9 no longer reads (``Item.nodeid`` is ``str(item._id)``): without this, no group
+      held (a lab's mistake cases were graded again by tests/test_verify.py in the other
+      process, each module fixture made twice).
+    """
+    for item in items:
+        module = getattr(item, "module", None)
+        info = getattr(item, "_fixtureinfo", None)
+        if module is None or info is None or item.get_closest_marker("xdist_group"):
+            continue
+        if any(definitions[-1].scope in ("module", "class") for definitions in info.name2fixturedefs.values()):
+            item.add_marker(pytest.mark.xdist_group(module.__name__))
+    if getattr(config, "workerinput", None) is None or not config.getvalue("loadgroup"):
+        return
+    from _pytest.nodeid import NodeId
+
+    for item in items:
+        names = sorted({str(mark.args[0] if mark.args else mark.kwargs.get("name", "default"))
+                        for mark in item.iter_markers("xdist_group")})
+        suffix = "@" + "_".join(names)
+        if names and hasattr(item, "_id") and not item.nodeid.endswith(suffix):
+            item._id = NodeId.parse(item.nodeid + suffix)
+
+
 @pytest.fixture(scope="session")
 def reference_result():
     """The reference solutions graded once for the whole test session (all labs)."""
