@@ -66,6 +66,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .claims import measured
 from .compare import at_precision, magnitude
 from .hints import Code, code_of, read_code
 
@@ -80,7 +81,6 @@ INHERITED = "inherited"   # a decision: the failure comes from the callees
 OWN = "own"               # the function itself is wrong (or its callees are right)
 SHARED_FAILING = "inherited: functions failing their own checks"
 SHARED_SECONDS = "inherited: seconds"
-ENTRY = "_autograder_given_answers"   # the stand-in runner appended to the reference (helper side)
 
 
 # ------------------------------------------------------------------ reading the calls
@@ -212,71 +212,10 @@ def same_answer(a, b) -> bool:
 
 
 # ------------------------------------------------------------------ the helper's side
-# Appended to the reference's text in the helper process (never the student's sandbox): runs the
-# reference ``function`` with each callee named in ``answers`` answered from ``answers`` (the
-# student's answers, by the arguments given) and, for arguments not there, by the reference's own
-# callee, recording them (``needed``: the callee, its arguments and the reference's answer).
-# Calls made from inside a callee answered by the reference are the reference's own business.
-APPENDIX = f'''
-
-def _autograder_same(a, b):
-    import numpy as _np
-    if isinstance(a, _np.ndarray) or isinstance(b, _np.ndarray):
-        return isinstance(a, _np.ndarray) and isinstance(b, _np.ndarray) and a.shape == b.shape \\
-            and a.dtype.kind == b.dtype.kind and _np.array_equal(a, b, equal_nan=a.dtype.kind in "fc")
-    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
-        return len(a) == len(b) and all(_autograder_same(x, y) for x, y in zip(a, b))
-    if isinstance(a, dict) and isinstance(b, dict):
-        return set(a) == set(b) and all(_autograder_same(a[k], b[k]) for k in a)
-    if isinstance(a, (int, float, complex, _np.number)) and isinstance(b, (int, float, complex, _np.number)) \\
-            and not isinstance(a, bool) and not isinstance(b, bool):
-        return a == b or (a != a and b != b)
-    return type(a) is type(b) and a == b
-
-
-def _autograder_copy(value):
-    import numpy as _np
-    if isinstance(value, _np.ndarray):
-        return value.copy()
-    if isinstance(value, (list, tuple)):
-        return type(value)(_autograder_copy(v) for v in value)
-    if isinstance(value, dict):
-        return {{k: _autograder_copy(v) for k, v in value.items()}}
-    return value
-
-
-def {ENTRY}(function, answers, args, kwargs):
-    space = globals()
-    kept = {{name: space[name] for name in answers}}
-    needed, inside = [], [0]
-
-    def stand_in(name):
-        real = kept[name]
-
-        def call(*a, **k):
-            if inside[0]:
-                return real(*a, **k)
-            for given, given_k, answer in answers[name]:
-                if _autograder_same(list(a), list(given)) and _autograder_same(k, dict(given_k)):
-                    return _autograder_copy(answer)
-            given = (_autograder_copy(list(a)), _autograder_copy(dict(k)))
-            inside[0] += 1
-            try:
-                value = real(*a, **k)
-            finally:
-                inside[0] -= 1
-            needed.append([name, given[0], given[1], _autograder_copy(value)])
-            return value
-        return call
-
-    try:
-        for name in answers:
-            space[name] = stand_in(name)
-        value = space[function](*args, **kwargs)
-    finally:
-        space.update(kept)
-    return {{"value": value, "needed": needed}}
-'''
+# Appended to the reference's text in the helper process (never the student's sandbox): see
+# autograder/engine/stand_ins.py.
+APPENDIX = "\n\n" + (Path(__file__).parent / "stand_ins.py").read_text(encoding="utf-8")
+ENTRY = "_autograder_given_answers"   # the stand-in runner APPENDIX defines
 
 
 # ------------------------------------------------------------------ deciding
@@ -462,17 +401,19 @@ def inherited_sentence(decision: Decision, failing) -> str:
     f, callees, one = decision.function, decision.callees, len(decision.callees) == 1
     known = set(callees) <= set(failing)
     whose = (" (see its own checks)" if one else " (see their own checks)") if known else ""
-    return (f"Your `{f}` itself is right here: given what your {_names(callees)} "
-            f"{'returns' if one else 'return'} ({decision.shown}), it gives exactly what a correct `{f}` gives. "
-            f"Its answer is wrong because your {_names(callees)} {'is' if one else 'are'} wrong there{whose}: "
-            f"fix {'it' if one else 'them'} first.")
+    # measured: the reference, given the student's callee's answers, gave the student's answer
+    return measured(f"Your `{f}` itself is right here: given what your {_names(callees)} "
+                    f"{'returns' if one else 'return'} ({decision.shown}), it gives exactly what a correct "
+                    f"`{f}` gives. Its answer is wrong because your {_names(callees)} {'is' if one else 'are'} "
+                    f"wrong there{whose}: fix {'it' if one else 'them'} first.")
 
 
 def dependency_sentence(function: str, callees) -> str:
     """The static fallback's sentence: ``function`` calls callees that fail their own checks."""
     which = "fails its own checks" if len(callees) == 1 else "fail their own checks"
-    return (f"Your `{function}` calls your {_names(callees)}, which {which} in this grading: fix "
-            f"{'it' if len(callees) == 1 else 'them'} first, then see what this check says.")
+    # measured: the callees' own checks failed in this grading, and the function's code calls them
+    return measured(f"Your `{function}` calls your {_names(callees)}, which {which} in this grading: fix "
+                    f"{'it' if len(callees) == 1 else 'them'} first, then see what this check says.")
 
 
 def _failing(trial) -> set:
