@@ -38,6 +38,7 @@ the student's module with :mod:`ast`, never executing it:
 from __future__ import annotations
 
 import ast
+import sys
 from dataclasses import replace
 from typing import Iterable
 
@@ -49,18 +50,27 @@ GUARDED: dict[str, Hint] = {}
 MEASURED: set[str] = set()
 
 
+def _remember(text: str) -> None:
+    """Keep a mark made while a module loads (a table's sentence, which the coverage tests then
+    find wherever it is used); a mark made in a check holds the student's figures and is never
+    said again: kept, a long batch would grow the set without end. Literals written inside
+    measured(...)/from_code(...) are recognised by the coverage tests where they stand."""
+    if sys._getframe(2).f_code.co_name == "<module>":
+        MEASURED.add(text)
+
+
 def measured(text: str) -> str:
     """``text``, marked as a measurement of the student's outputs: true of every student who
     gets it, whatever their code (the shape returned, a count, an answer matching a mistake's
     on the failing input and a probe). Returns ``text`` unchanged."""
-    MEASURED.add(text)
+    _remember(text)
     return text
 
 
 def from_code(text: str) -> str:
     """``text``, marked as said only where the check has read the student's code to do what it
     says (``calls("cv2.getOptimalNewCameraMatrix").found(...)`` before naming it). Returns ``text``."""
-    MEASURED.add(text)
+    _remember(text)
     return text
 
 
