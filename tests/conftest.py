@@ -208,8 +208,10 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.xdist_group(module.__name__))
     if getattr(config, "workerinput", None) is None or not config.getvalue("loadgroup"):
         return
-    from _pytest.nodeid import NodeId
-
+    try:
+        from _pytest.nodeid import NodeId
+    except ImportError:   # pytest 8 and before read item._nodeid, where xdist writes the suffix
+        return
     for item in items:
         names = sorted({str(mark.args[0] if mark.args else mark.kwargs.get("name", "default"))
                         for mark in item.iter_markers("xdist_group")})
