@@ -576,6 +576,11 @@ def test_an_angle_in_degrees_from_code_that_converts_it_is_not_told_to_convert(t
     ("def f(H, src, dst, threshold):\n    scale = np.sqrt(2) / np.std(src)\n    d = apply(H, src) - dst\n"
      "    err = (d ** 2).sum(axis=1)\n    return err < threshold\n", False),
     ("def f(H, src, dst, threshold):\n    s = np.sqrt(2)\n    return ((apply(H, src) - dst) ** 2).sum(1) < threshold\n", False),
+    # squared errors from a helper given a homography fitted on normalised (square-rooted) points
+    ("def f(src, dst, threshold):\n    T = _norm(src)\n    H = fit(src) @ T\n    errors = _errors(H, src, dst)\n"
+     "    return errors < threshold\n"
+     "def _norm(p):\n    return np.sqrt(2) / p.std()\n"
+     "def _errors(H, src, dst):\n    e = ((apply(H, src) - dst) ** 2).sum(axis=1)\n    return np.where(e > 0, e, 0)\n", False),
 ])
 def test_compares_a_distance_with_the_threshold_follows_the_compared_value(source, compares):
     from autograder.engine.claims import compares_a_distance_with

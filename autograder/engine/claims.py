@@ -358,6 +358,9 @@ def compares_a_distance_with(names: Iterable[str] = THRESHOLD_NAMES, says: str =
         return any(isinstance(n, ast.Name) and (n.id in names or n.id.startswith("thresh")) for n in ast.walk(node))
 
     def rooted(node, function, defs, depth) -> bool:
+        """Whether ``node``'s value is computed through a square root. A module function's value
+        is read from its returns only: its arguments are its inputs (a homography from
+        normalised points is not a distance because the normalisation took a square root)."""
         if depth < 0:
             return False
         assigned = {}
@@ -367,23 +370,24 @@ def compares_a_distance_with(names: Iterable[str] = THRESHOLD_NAMES, says: str =
                     for name in ast.walk(target):
                         if isinstance(name, ast.Name):
                             assigned.setdefault(name.id, []).append(statement.value)
-        for part in ast.walk(node):
+        todo = [node]
+        while todo:
+            part = todo.pop()
             if isinstance(part, ast.Call):
                 called = _path(part.func).rsplit(".", 1)[-1]
                 if called in ("sqrt", "norm", "hypot"):
                     return True
-                if called in defs and defs[called] is not function and any(
-                        rooted(r.value, defs[called], defs, depth - 1) for r in ast.walk(defs[called])
-                        if isinstance(r, ast.Return) and r.value is not None):
-                    return True
+                if called in defs and defs[called] is not function:
+                    if any(rooted(r.value, defs[called], defs, depth - 1) for r in ast.walk(defs[called])
+                           if isinstance(r, ast.Return) and r.value is not None):
+                        return True
+                    continue
             if isinstance(part, ast.BinOp) and isinstance(part.op, ast.Pow) and _same(part.right, _pattern("0.5")):
                 return True
-            if isinstance(part, ast.Name) and part is not node and part.id in assigned:
+            if isinstance(part, ast.Name) and part.id in assigned:
                 if any(rooted(value, function, defs, depth - 1) for value in assigned[part.id]):
                     return True
-            if isinstance(node, ast.Name) and part is node and node.id in assigned:
-                if any(rooted(value, function, defs, depth - 1) for value in assigned[node.id]):
-                    return True
+            todo.extend(ast.iter_child_nodes(part))
         return False
 
     def test(functions) -> bool:
