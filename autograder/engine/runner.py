@@ -236,6 +236,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         result.exercises = [graded[exercise.id] for exercise in exercises]
         for graded_exercise in result.exercises:   # public and hidden checks together
             _defer_to_hand_written(graded_exercise.checks)
+        _hints_beside_a_name(list(zip(exercises, result.exercises)))
         result.student_seconds = round(sum(sandbox.student_seconds for sandbox in sandboxes), 6)
         result.student_wall_seconds = round(_covered([span for s in sandboxes for span in s.billed_spans]), 6)
         _point_into_notebooks(result, exercises, submission)
@@ -488,6 +489,37 @@ def _defer_to_hand_written(results) -> None:
     public = [result for result in results if not result.hidden]
     defer_to_hand_written(public)
     defer_to_hand_written([result for result in results if result.hidden], evidence=results)
+
+
+def _hints_beside_a_name(graded: list) -> None:
+    """One mistake, one account (issue 35: no hint contradicts the code), over ``graded``'s
+    (exercise, its result) pairs. A check the error model names keeps its name without the check's
+    recipe hint (the name is the cause; the recipe describes code that is mostly right). Where a
+    failed check of a student function names a mistake, the recipe hints of the other failed,
+    unnamed checks of that function -- in any exercise: lab 12's NCC checks call the matcher
+    whose search another exercise names -- are replaced by a pointer to it. A check's function is
+    the one of its own exercise it calls; a public check never points at a hidden one. In place."""
+    def function(exercise, result) -> str:
+        check = next((c for c in exercise.checks if c.name == result.name), None)
+        own = functions_called(check) & set(exercise.signatures) if check is not None else set()
+        return next(iter(own)) if len(own) == 1 else ""
+    failed = [(function(exercise, r), r) for exercise, done in graded for r in done.checks
+              if r.max_score > 0 and r.score < r.max_score]
+    for _, result in failed:
+        if result.mistake.startswith("mutant:"):
+            result.hint = ""
+    named: dict[str, object] = {}
+    for called, result in failed:
+        if called and result.mistake:
+            named.setdefault(called, result)
+            if not result.hidden:   # a public name is the one to point at
+                named[called] = named[called] if not named[called].hidden else result
+    for called, result in failed:
+        first = named.get(called)
+        if first is None or result.mistake or not result.hint or (first.hidden and not result.hidden):
+            continue
+        result.hint = (f"the check \u201c{first.name}\u201d names the mistake found in your `{called}`; this one "
+                       "may fail for the same reason")
 
 
 def _stubs(exercise: Exercise, submission) -> frozenset[str]:

@@ -756,7 +756,8 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                        "negative third coordinate), which mirrors both images: the rectifying rotation's "
                        "second and third axes point the opposite way.",
                        mistake="the rectifying rotation looks backwards: e2 and e3 point the opposite way",
-                       hint="e2 = e1 x z and e3 = e1 x e2, in this order, keep the new z axis towards the scene")
+                       hint=measured("e2 = z x e1 (the mean optical axis crossed with e1, in this order) and "
+                                     "e3 = e1 x e2 keep the new z axis towards the scene"))
             if x1 and x2 and not (back1 or back2):
                 t.fail(f"{negative}: both rectified images are mirrored left to right with the new cameras "
                        "facing the scene: the new x axis points from camera 2 to camera 1.",
@@ -1673,13 +1674,17 @@ def sl_decoding_explained(got, images, f, baseline) -> list[str]:
     got = np.asarray(got, dtype=np.float64)
     with np.errstate(invalid="ignore"):
         got_valid = np.isfinite(got) & (got > 0)
+    truth_valid = truth.depth_from_structured_light(images, f, baseline) > 0
     found = []
     for mistake, wrong in truth.structured_light_mistakes(images, f, baseline).items():
         wrong_valid = wrong > 0
         with np.errstate(invalid="ignore"):
             match = (got_valid & wrong_valid & (np.abs(got - wrong) <= at_precision(
                 1e-6 * np.maximum(wrong, 1.0), np.maximum(wrong, 1.0)))) | (~got_valid & ~wrong_valid)
-        if match.mean() >= 0.995:
+        # agreeing on pixels both leave undecoded is no evidence: a candidate that decodes too
+        # little of what the truth decodes names nothing (a decoder lighting almost no pixel
+        # agrees with every mistake whose disparities come out negative)
+        if match.mean() >= 0.995 and (got_valid | wrong_valid).mean() >= 0.5 * truth_valid.mean():
             found.append(mistake)
     return found
 
