@@ -179,3 +179,20 @@ def test_no_factor_for_the_answer_itself_or_another_error():
     assert code_signs.constant_factor(expected, expected) is None
     assert code_signs.constant_factor(2 * expected + 1, expected) is None   # an offset too: no single factor
     assert code_signs.constant_factor(expected[:3], expected) is None
+
+
+def test_a_dp_on_uint8_costs_is_not_told_its_backtracking_or_smoothness_is_missing(tmp_path):
+    # the data cost computed on the uint8 images wraps round (10 - 12 = 254): the map is wrong all
+    # over, the penalty acts but weakly at that scale; neither the backtracking's start nor an
+    # ignored smoothness is the cause (the 28c evaluator read both names as false)
+    source = """
+        def _grey_float(image):
+            image = np.asarray(image)
+            return cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+        """
+    result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ex5"], pictures="none")
+    failed = [c for c in check_results(result, "lab12.ex5") if not c.passed and c.max_score > 0]
+    assert failed, "uint8 costs lose points"
+    said = " ".join(c.message + " " + (c.mistake or "") for c in failed)
+    assert "the backtracking does not start right" not in said
+    assert "the smoothness term is ignored" not in said

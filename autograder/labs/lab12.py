@@ -31,7 +31,7 @@ from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_differen
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
 from ..engine.claims import calls_any, divides_by, from_code, guard, measured
 from ..engine.forms import shape_form
-from ..engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, Hint, Predicate, calls, code_of, expr, keyword
+from ..engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, Hint, Predicate, calls, code_of, expr, keyword
 from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
@@ -1300,8 +1300,28 @@ def smoothness_probe(t: Trial, scene):
 SMOOTHNESS_IGNORED = "the smoothness term is ignored"
 
 
-def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, compared_with="winner-take-all block matching"):
-    """The map is as jumpy as winner-take-all matching: no smoothness acts by default."""
+WEAK_DEFAULT = "the default smoothness penalty is too weak for the cost's scale"
+COST_SCALE_HINT = Hint("compute the data cost in float (differences of uint8 images wrap round: 10 - 12 = 254), "
+                       "and choose the default penalty for that cost's scale", asks=TO_FLOAT,
+                       instead="your code {found}: check that the data cost is computed on the converted images, "
+                               "and that the default penalty suits that cost's scale")
+
+
+def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, scene, compared_with="winner-take-all block matching",
+                         zero_jumps=None):
+    """The map is as jumpy as winner-take-all matching. Named "ignored" only when the student's own
+    smoothness=0 map is as jumpy (``zero_jumps``, else asked on ``scene``): where 0 gives clearly more
+    jumps, the penalty acts, too weakly for the cost's scale (a data cost far larger than it should
+    be -- uint8 differences wrapping round, say -- or a default chosen too small)."""
+    if zero_jumps is None:
+        zero = t.probe(f"dp_stereo/smoothness 0/{scene.name}", lambda: call_dp(t, scene, smoothness=0))
+        usable = isinstance(zero, np.ndarray) and zero.shape == scene.disparity.shape and zero.dtype.kind in "iuf"
+        zero_jumps = truth.jump_rate(np.nan_to_num(zero.astype(np.float64)), scene.judged) if usable else None
+    if zero_jumps is not None and jumps < 0.85 * zero_jumps:
+        beside = "" if zero_jumps == wta_jumps else f" ({compared_with}: {wta_jumps:.1%})"
+        t.fail(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px{beside}, and {zero_jumps:.1%} "
+               f"with your smoothness=0: the penalty acts, but it looks like {WEAK_DEFAULT}.",
+               hint=COST_SCALE_HINT.said(t), mistake=WEAK_DEFAULT)
     t.fail(f"{what}: it looks like {SMOOTHNESS_IGNORED} (winner-take-all): {jumps:.1%} of "
            f"neighbouring pixels jump by more than 1 px, as many as {compared_with} ({wta_jumps:.1%}).",
            hint="with smoothness=None, use a default penalty suited to your cost's scale",
@@ -1397,7 +1417,10 @@ def judge_last_column(t: Trial, what: str, got, scene):
     with np.errstate(invalid="ignore"):
         good = np.isfinite(column) & (column > 0) & (np.abs(column - truth_column) <= scene.threshold)
     bad = 1.0 - float(good[known].mean())
-    if bad > LAST_COLUMN_TOLERANCE:
+    # the backtracking's start is the cause only where the last column stands out: a map wrong
+    # all over (a broken data cost) is wrong at its last column too, and is judged as a whole
+    stands_out = truth.bad_pixel_rate(got, scene.judged, scene.threshold) <= 0.5 * bad
+    if bad > LAST_COLUMN_TOLERANCE and stands_out:
         values = np.unique(np.round(column[known], 2))
         shown = ", ".join(f"{v:g}" for v in values[:3]) + (", ..." if len(values) > 3 else "")
         t.fail(f"{what}: it looks like {BACKTRACKING}: the last column (x = {got.shape[1] - 1}) is wrong "
@@ -1429,7 +1452,7 @@ def dp_weak_texture(t):
     jumps = truth.jump_rate(got, scene.judged)
     if jumps >= 0.6 * bm["jumps"]:
         smoothness_probe(t, scene)
-        fail_winner_take_all(t, what, jumps, bm["jumps"])
+        fail_winner_take_all(t, what, jumps, bm["jumps"], scene)
     name_oversmoothing(t, what, got, scene, reference["bad"] + MARGIN)
     diagnose_disparity(t, what, got, scene, reference["bad"] + MARGIN)
     if bad < bm["bad"] - MARGIN:
@@ -1458,7 +1481,7 @@ def dp_smooth(t):
         if jumps > JUMPS_VS_BM * bm:
             smoothness_probe(t, scene)
             if jumps >= 0.6 * bm:
-                fail_winner_take_all(t, what, jumps, bm)
+                fail_winner_take_all(t, what, jumps, bm, scene)
             t.fail(f"{what}: {format_apart(jumps, JUMPS_VS_BM * bm, 2, percent=True)} of neighbouring pixels "
                    f"jump by more than 1 px; block matching gives {bm:.1%} and at most "
                    f"{JUMPS_VS_BM * bm:.1%} is expected.")
@@ -1515,7 +1538,8 @@ def dp_smoothness_parameter(t):
                f"jump by more than 1 px (winner-take-all gives about {reference:.1%}): with "
                "smoothness 0 every pixel must take its best data cost.")
     if default_jumps * 3 > wta_jumps:
-        fail_winner_take_all(t, "dp_stereo(left, right)", default_jumps, wta_jumps, "your smoothness=0 result")
+        fail_winner_take_all(t, "dp_stereo(left, right)", default_jumps, wta_jumps, scene, "your smoothness=0 result",
+                             zero_jumps=wta_jumps)
     flat = expect_disparity(t, "dp_stereo(left, right, smoothness=1e7)",
                             call_dp(t, scene, smoothness=1e7), scene)
     rows_with_jumps = float(np.mean(np.any(np.diff(np.nan_to_num(flat), axis=1) != 0, axis=1)))
