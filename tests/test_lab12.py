@@ -126,6 +126,27 @@ STEREO_RECTIFY = """
             return (cv2.warpPerspective(img_l, H1, (w, h)), cv2.warpPerspective(img_r, H2, (w, h)), H1, H2)
         """
 VARIANTS = {
+    # An integer disparity map (issue 35): float depths however the division is written, no name.
+    "depth into a float np.zeros(d.shape), the map kept integer": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity)
+            valid = d > 0
+            depth = np.zeros(d.shape)
+            np.divide(f * baseline, d, out=depth, where=valid)
+            return depth
+        """),
+    "depth into np.zeros_like(disparity, dtype=float)": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            depth = np.zeros_like(disparity, dtype=float)
+            np.divide(f * baseline, disparity, out=depth, where=disparity > 0)
+            return depth
+        """),
+    "depth by np.where on the integer map": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity)
+            valid = d > 0
+            return np.where(valid, f * baseline / np.where(valid, d, 1), 0.0)
+        """),
     "rectify with cv2.stereoRectify, alpha=-1": ("lab12.ex3", "ALPHA = -1\n" + textwrap.dedent(STEREO_RECTIFY)),
     "rectify with cv2.stereoRectify, alpha=0": ("lab12.ex3", "ALPHA = 0\n" + textwrap.dedent(STEREO_RECTIFY)),
     "rectify with cv2.stereoRectify, alpha=1": ("lab12.ex3", "ALPHA = 1\n" + textwrap.dedent(STEREO_RECTIFY)),

@@ -631,6 +631,46 @@ def depth_scene(t):
              true_depth=disparity_picture(scene.depth), yours=disparity_picture(got))
 
 
+# A matcher's map is integer (cv2.StereoBM's int16, an argmin's int64), and the API takes arrays of
+# any shape, not only float ones: a depth array made like the disparity (np.zeros_like(d) filled by
+# np.divide(..., out=depth)) is integer then, so the division raises (float cannot be cast into an
+# integer out=) or the depths are truncated to whole numbers.
+INTEGER_DEPTH = measured("the depth array takes the disparity's integer dtype, and depths must be float "
+                         "(f b / d is fractional)")
+LIKE_THE_DISPARITY = calls_any("np.zeros_like", "np.empty_like", "np.full_like", "np.ones_like") \
+    | keyword("np.divide", "out")
+INTEGER_DEPTH_CAUSE = from_code("your code makes the depth array like the disparity (np.zeros_like / "
+                                "np.empty_like, or np.divide's out=): give it a float dtype (np.zeros(d.shape), "
+                                "or convert first: d = np.asarray(disparity, dtype=float))")
+INTEGER_MAPS = ((np.array([[12, 0, -16], [35, 7, 64]], dtype=np.int16), 700.0, 0.12),
+                (np.array([[3, 9, 0, 41], [-1, 18, 27, 5]], dtype=np.int64), 512.0, 0.3))
+
+
+def _integer_depth(t: Trial, what: str, outcome: str):
+    """Fail naming :data:`INTEGER_DEPTH` (measured: the call raised a casting error into, or
+    returned, the disparity's integer dtype), with its cause where the code shows it."""
+    kept = LIKE_THE_DISPARITY.found(code_of(t).reachable(["depth_from_disparity"]))
+    t.fail(f"{what} {outcome}: {INTEGER_DEPTH}" + (f"; {INTEGER_DEPTH_CAUSE}" if kept else "") + ".",
+           mistake="the depth array takes the disparity's integer dtype")
+
+
+@ex2.check("depth_from_disparity on an integer disparity map (int16, int64: a matcher's)", points=1)
+def depth_integer_map(t):
+    for d, f, b in INTEGER_MAPS:
+        what = f"depth_from_disparity({d.dtype} disparity map, f={f:g}, baseline={b:g})"
+        try:
+            got = t.call("depth_from_disparity", d.copy(), f, b)
+        except StudentFailure as failure:
+            said = failure.message.splitlines()[0] if failure.message else ""
+            if failure.outcome.kind == "exception" and "cast" in said.lower() and str(d.dtype) in said:
+                _integer_depth(t, what, f"raised {said!r}")
+            raise
+        if isinstance(got, np.ndarray) and got.shape == d.shape and got.dtype == d.dtype:
+            _integer_depth(t, what, f"returned depths of dtype {got.dtype}")
+        judge_depth(t, what, got, d, f, b)
+    return passed("float depths f b / d from int16 and int64 maps, 0 where d <= 0")
+
+
 # ================================================================== ex3 rectification
 ex3 = lab.exercise("ex3", "Rectification", functions=["rectify(img_l, img_r, K1, K2, R, T)"])
 ROW_TOLERANCE = 0.5      # pixels: corresponding points on the same rectified row

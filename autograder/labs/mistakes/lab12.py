@@ -61,6 +61,21 @@ MISTAKES = {
         def depth_from_disparity(disparity, f, baseline):
             return _depth_from_disparity(disparity, f, baseline * 1000.0)
         """, ["the depths are 1000 times the expected"]),
+    # An integer map (a matcher's int16, an argmin's int64): the depth array made like it is integer.
+    "depth into np.zeros_like(disparity): an integer map raises": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            depth = np.zeros_like(disparity)
+            np.divide(f * baseline, disparity, out=depth, where=disparity > 0)
+            return depth
+        """, ["raised", "the depth array takes the disparity's integer dtype", "np.zeros_like"]),
+    "depth assigned into np.zeros_like(disparity): integer depths": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity)
+            depth = np.zeros_like(d)
+            valid = d > 0
+            depth[valid] = f * baseline / d[valid]
+            return depth
+        """, ["returned depths of dtype int16", "the depth array takes the disparity's integer dtype"]),
     "depth inf where d = 0": ("lab12.ex2", """
         def depth_from_disparity(disparity, f, baseline):
             with np.errstate(divide="ignore", invalid="ignore"):
