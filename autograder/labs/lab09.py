@@ -8,6 +8,7 @@ compared with what the usual mistakes would give, so the feedback can name them.
 
 from __future__ import annotations
 
+import ast
 from dataclasses import dataclass
 from typing import Callable
 
@@ -21,7 +22,8 @@ from ..engine import judges
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import THIRD_COORDINATE, divides_by, from_code, guard, measured
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
-from ..engine.hints import Hint, calls, code_of, expr, matmul_of, mentions, nan_behind
+from ..engine.hints import Hint, Predicate, calls, code_of, expr, matmul_of, mentions, nan_behind
+from ..engine.hints import _path as _hints_path
 from ..engine.judges import Probe, call_probe, confirm, fingerprint, format_matrix
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
@@ -881,6 +883,38 @@ def aperture_seed(t):
                mistake="the seed is ignored")
 
 
+# The API asks for "random points of a circular pinhole", not points uniform over its area: a
+# radius drawn uniformly (aperture * u) is accepted by the graded checks (its RMS spread, 0.58
+# radii, is within their 0.5..0.8), and told here. Measured on the rays: their distances from the
+# ideal projection, in blur radii, are uniform on [0, 1] (P(r < s) = s) where a disc filled
+# uniformly gives P(r < s) = s^2 (KS distance 0.25 from uniform; 0.02 leaves thousands of rays' margin).
+CROWDED_CENTRE = measured("the rays crowd the centre of the blur disc: the radius is drawn uniformly "
+                          "(aperture * u); points uniform over the disc's area take radius aperture * sqrt(u)")
+SQRT_RADIUS_HINT = Hint("radius = aperture * np.sqrt(rng.random(n_rays)), angle = 2 pi * rng.random(n_rays)",
+                        asks=calls("np.sqrt") | expr("_ ** 0.5"),
+                        instead="your code already {found}: check that the square root is of the uniform "
+                                "number u, before it is multiplied by the aperture")
+
+
+@ex4.advice("simulate_aperture fills the pinhole uniformly over its area")
+def aperture_uniform_area(t):
+    X = truth.points_in_front(43, n=6, z_range=(1.0, 8.0))
+    aperture, n = 0.5, 4000
+    got = t.call("simulate_aperture", X, APERTURE_F, aperture, n_rays=n, seed=7)
+    if not (isinstance(got, np.ndarray) and got.shape == (len(X), n, 2) and got.dtype.kind == "f"
+            and np.isfinite(got).all()):
+        return   # the graded checks say what is wrong with the form
+    offsets = (got - truth.pinhole(X, APERTURE_F)[:, None, :]) / truth.blur_radius(X, APERTURE_F, aperture)[:, None, None]
+    r = np.hypot(offsets[..., 0], offsets[..., 1]).ravel()
+    if aperture_sampling(offsets) or not 0.95 < r.max() <= 1.02:
+        return   # another shape, judged (and named) by the graded checks
+    if _ks_distance(r, lambda s: np.clip(s, 0.0, 1.0)) < 0.02:
+        t.advise(f"simulate_aperture(points, f={APERTURE_F:g}, aperture={aperture:g}, n_rays={n}, seed=7): "
+                 f"{CROWDED_CENTRE} (half the rays lie within {np.median(r):.2f} blur radii of the ideal "
+                 "projection; uniform over the area puts half within 0.71). No points depend on it.",
+                 hint=SQRT_RADIUS_HINT.said(t))
+
+
 # ================================================================== ex5 points on a real image
 ex5 = lab.exercise("ex5", "Points on a real image", functions=[
     "draw_points(image, pts, radius=3, color=(0, 0, 255))", "project_onto_image(image, P, points)"])
@@ -1038,6 +1072,57 @@ def draw_nan(t):
                  hint=Hint("if np.isfinite(x) and np.isfinite(y): cv2.circle(...)", asks=calls("np.isfinite"),
                            instead="your code already {found}: check that the rows it skips are those not "
                                    "finite, before any int() conversion").said(t))
+
+
+def _truncates_coordinates(function) -> bool:
+    """An ``int(...)`` call on something other than a constant, the radius or the colour (a
+    coordinate), in a function that rounds nothing (round, np.round, np.rint, np.around, np.floor)."""
+    rounding = {"round", "np.round", "np.rint", "np.around", "np.floor", "numpy.round", "numpy.rint"}
+    if any(isinstance(node, ast.Call) and _hints_path(node.func) in rounding for node in ast.walk(function)):
+        return False
+    def names(node) -> set[str]:
+        return {n.id.lower() for n in ast.walk(node) if isinstance(n, ast.Name)}
+
+    def other(name: str) -> bool:
+        return any(word in name for word in ("radius", "color", "colour", "thick"))
+
+    # names iterating over the colour or the radius (``tuple(int(c) for c in color)``) are not coordinates
+    others = set().union(*(names(node.target) for node in ast.walk(function)
+                           if isinstance(node, (ast.comprehension, ast.For)) and any(map(other, names(node.iter)))))
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "int" \
+                and len(node.args) == 1 and not isinstance(node.args[0], ast.Constant):
+            read = names(node.args[0])
+            if read and not any(other(name) or name in others for name in read):
+                return True
+    return False
+
+
+TRUNCATES = Predicate("calls int() on the coordinates, rounding none", _truncates_coordinates)
+# The API asks for "filled circles" at the points, not at their nearest pixels: a centre one pixel
+# off is accepted by the graded coverage, and told here, measured on the drawing (every fractional
+# part >= 0.5, away from ties, so truncating and rounding give different pixels everywhere).
+TRUNCATED_CENTRES = measured("the circles are centred at (floor(x), floor(y)), one pixel short of the nearest "
+                             "pixel (round(x), round(y)) where the fractional part is 0.5 or more")
+TRUNCATED_CAUSE = from_code("the centres are truncated (int()); round them (int(round(x)))")
+
+
+@ex5.advice("draw_points centres the circles on the nearest pixels")
+def draw_rounded(t):
+    image = photo("coffee", (160, 120))
+    pts = np.array([[40.7, 30.6], [100.8, 75.9], [60.6, 100.7], [130.9, 20.8]])
+    got = t.call("draw_points", image, pts)
+    if not (isinstance(got, np.ndarray) and got.shape == image.shape and got.dtype == np.uint8):
+        return   # the graded checks say what is wrong with the form
+
+    def apart(expected):
+        return float(np.mean(np.any(got != expected, axis=-1)))
+
+    rounded, floored = apart(truth.expected_drawing(image, pts)), apart(truth.expected_drawing(image, np.floor(pts)))
+    if floored < 2e-4 and rounded > 10 * max(floored, 1e-5):
+        truncates = TRUNCATES.found(code_of(t).reachable(["draw_points"]))
+        t.advise(f"draw_points(image, pts at x.6 .. x.9): {TRUNCATED_CENTRES}"
+                 + (f": {TRUNCATED_CAUSE}" if truncates else "") + ". No points depend on it.")
 
 
 def _photo_scene(seed=51):

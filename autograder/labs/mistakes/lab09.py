@@ -427,3 +427,28 @@ ADVICE["draw_points on NaN points raises"] = ("lab09.ex5", """
             cv2.circle(out, (int(round(x)), int(round(y))), radius, color, -1)
         return out
     """, ["draw_points(image, pts with a nan row) failed", "skip the rows that are not finite"])
+
+
+# Random points of the pinhole (the API) need not be uniform over its area: a radius drawn
+# uniformly crowds the rays near the centre, told, never lost points (issue 35).
+ADVICE["simulate_aperture with the radius drawn uniformly (aperture * u)"] = ("lab09.ex4", """
+    def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+        X, _ = _points(points)
+        rng = np.random.default_rng(seed)
+        radius = aperture * rng.uniform(0.0, 1.0, size=(len(X), n_rays))
+        angle = rng.uniform(0.0, 2 * np.pi, size=(len(X), n_rays))
+        A = np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=-1)
+        return pinhole_project(X, f)[:, None, :] - A * (1.0 + f / X[:, 2])[:, None, None]
+    """, ["the rays crowd the centre", "aperture * u", "aperture * sqrt(u)"])
+
+
+# Filled circles "at the points" (the API): a centre truncated with int() is a pixel off for
+# fractional parts >= 0.5, accepted by the graded coverage and told (issue 35).
+ADVICE["draw_points truncating the centres with int()"] = ("lab09.ex5", """
+    def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+        out = image.copy()
+        for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+            if np.isfinite(x) and np.isfinite(y):
+                cv2.circle(out, (int(x), int(y)), int(radius), tuple(int(c) for c in color), -1)
+        return out
+    """, ["centred at (floor(x), floor(y))", "the centres are truncated (int())", "int(round(x))"])
