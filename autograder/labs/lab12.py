@@ -650,7 +650,7 @@ def _integer_depth(t: Trial, what: str, outcome: str):
     """Fail naming :data:`INTEGER_DEPTH` (measured: the call raised a casting error into, or
     returned, the disparity's integer dtype), with its cause where the code shows it."""
     kept = LIKE_THE_DISPARITY.found(code_of(t).reachable(["depth_from_disparity"]))
-    t.fail(f"{what} {outcome}: {INTEGER_DEPTH}" + (f"; {INTEGER_DEPTH_CAUSE}" if kept else "") + ".",
+    t.fail(f"{what}: {outcome} -- {INTEGER_DEPTH}" + (f"; {INTEGER_DEPTH_CAUSE}" if kept else "") + ".",
            mistake="the depth array takes the disparity's integer dtype")
 
 
@@ -663,10 +663,10 @@ def depth_integer_map(t):
         except StudentFailure as failure:
             said = failure.message.splitlines()[0] if failure.message else ""
             if failure.outcome.kind == "exception" and "cast" in said.lower() and str(d.dtype) in said:
-                _integer_depth(t, what, f"raised {said!r}")
+                _integer_depth(t, what, said)
             raise
         if isinstance(got, np.ndarray) and got.shape == d.shape and got.dtype == d.dtype:
-            _integer_depth(t, what, f"returned depths of dtype {got.dtype}")
+            _integer_depth(t, what, f"it returned depths of dtype {got.dtype}")
         judge_depth(t, what, got, d, f, b)
     return passed("float depths f b / d from int16 and int64 maps, 0 where d <= 0")
 
