@@ -31,7 +31,7 @@ def test_other_exercises_unaffected_by_a_mistake(tmp_path):
     for exercise in result.exercises:
         assert (exercise.score == exercise.max_score) == (exercise.id != "lab08.ex3"), exercise.id
     failing = [c for c in check_results(result, "lab08.ex3") if not c.passed]
-    assert len(failing) == 2
+    assert len(failing) == 3   # the three draw_matches checks
     assert all("ValueError: oops" in c.message for c in failing)
 
 
@@ -97,6 +97,17 @@ def test_sensible_alternatives_score_full_marks(tmp_path):
     for exercise in result.exercises:
         for check in exercise.checks:
             assert check.passed, f"{exercise.id} {check.name}: {check.message}"
+
+
+def test_lines_shifted_by_w2_are_named_on_images_of_unequal_widths(tmp_path):
+    """Lines shifted by img2's width instead of img1's: the canvas is right (the shape check
+    passes); on img1 120 px and img2 280 px wide the lines end 160 px off, named."""
+    exercise, source, _ = MISTAKES["lines shifted by W2 instead of W1"]
+    checks = {c.name: c for c in check_results(grade(mutant(tmp_path, MODULE, source), [exercise]), exercise)}
+    unequal = checks["draw_matches of a narrow, short img1 and a wide, tall img2: the lines end at x2 + W1"]
+    assert not unequal.passed and unequal.mistake == "the lines are shifted by W2 instead of W1"
+    assert "shifted by img2's width (280 px)" in unequal.message and "x = W1 = 120" in unequal.message
+    assert checks["draw_matches: side by side, width W1+W2, height max(H1,H2), 3 channels"].passed
 
 
 @pytest.mark.parametrize("name", sorted(ADVICE))

@@ -49,6 +49,19 @@ VARIANTS = {
                 cv2.line(canvas, p, q, colour, 1, cv2.LINE_AA)
             return canvas
         """),
+    "draw_epipolar_lines on image.copy(), far end points clipped by cv2.clipLine": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            out = image.copy()
+            h, w = out.shape[:2]
+            for a, b, c in np.asarray(lines, float):
+                point = -c * np.array([a, b]) / (a * a + b * b)         # the line's point nearest the origin
+                far = 4 * (w + h) * np.array([-b, a]) / np.hypot(a, b)  # along the line, beyond the image
+                p, q = (tuple(int(round(v)) for v in point + s * far) for s in (-1, 1))
+                inside, p, q = cv2.clipLine((0, 0, w, h), p, q)
+                if inside:
+                    cv2.line(out, p, q, 255 if out.ndim == 2 else (0, 255, 255), 1)
+            return out
+        """),
     "the lab sheet's 8-point on raw pixel coordinates (no normalisation asked)": ("lab11.ex4", """
         def fundamental_8point(pts1, pts2):
             F = _eight_point_core(_homogeneous(pts1), _homogeneous(pts2))
@@ -90,6 +103,19 @@ def test_bgr_for_a_grey_input_loses_half_the_grey_check_only(tmp_path):
     assert grey.score == pytest.approx(grey.max_score / 2) and grey.mistake == "the channels are not kept"
     assert "grey in, grey out" in grey.message and "draws the lines rightly" in grey.message
     assert all(c.passed for name, c in checks.items() if name != grey.name and c.max_score > 0)
+
+
+def test_drawing_on_the_callers_image_loses_the_twice_check_only(tmp_path):
+    """Drawing on np.asarray(image) returns the right picture on a fresh image (every other check);
+    drawn twice on the same image, the second picture shows both sets of lines: that check's
+    point, named, with the copy hint held to the code (it copies nothing)."""
+    exercise, source, _ = MISTAKES["draw_epipolar_lines drawing on the caller's image"]
+    checks = {c.name: c for c in check_results(grade(mutant(tmp_path, MODULE, source), [exercise]), exercise)}
+    twice = checks["draw_epipolar_lines twice on the same image: each drawing shows its own lines only"]
+    assert not twice.passed and twice.mistake == "draw_epipolar_lines draws on the caller's image"
+    assert "the second drawing shows the first one's lines too" in twice.message
+    assert "out = image.copy()" in twice.hint
+    assert all(c.passed for name, c in checks.items() if name != twice.name and c.max_score > 0)
 
 
 def test_stored_figures_are_current():

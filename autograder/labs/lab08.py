@@ -583,20 +583,18 @@ def draw_matches_shape(t):
     return passed("shape (180, 440, 3), uint8")
 
 
-@ex3.check("draw_matches shows both images and a line per match", points=3)
-def draw_matches_content(t):
-    img1, img2, pts1, pts2 = drawing_case()
-    what = "draw_matches(img1, img2, pts1, pts2)"
-    got = t.call("draw_matches", img1, img2, pts1, pts2)
-    got = t.expect_array(got, what, shape=(180, 440, 3), dtype=np.uint8)
+def judge_match_drawing(t: Trial, what: str, got, img1, img2, pts1, pts2):
+    """A drawing ``got`` (already of the right shape) against the two images side by side: nothing
+    changed away from the match lines, and a line from (x1, y1) to (x2 + W1, y2) per match."""
+    w1, w2 = img1.shape[1], img2.shape[1]
     plain = plain_composite(img1, img2)
     t.images(what, yours=got, without_lines=plain)
-    starts, ends = pts1, pts2 + [240, 0]
+    starts, ends = pts1, pts2 + [w1, 0]
     changed = np.abs(got.astype(np.int16) - plain).max(axis=2) > 40
     background = far_from(changed.shape, starts, ends)
     stray = float(changed[background].mean())
     if stray > 0.05:
-        swapped = plain_composite(cv2.cvtColor(img2, cv2.COLOR_GRAY2BGR), img1)
+        swapped = plain_composite(cv2.cvtColor(img2, cv2.COLOR_GRAY2BGR) if img2.ndim == 2 else img2, img1)
         if swapped.shape == got.shape and \
                 (np.abs(got.astype(np.int16) - swapped).max(axis=2) > 40)[background].mean() < 0.05:
             t.fail(f"{what}: img1 and img2 are swapped: img1 goes on the left", mistake="img1 and img2 are swapped")
@@ -610,8 +608,41 @@ def draw_matches_content(t):
     if (unshifted >= 0.7).mean() >= 0.75:
         t.fail(f"{what}: the lines end at (x2, y2) in the left image; the second image starts at "
                "x = W1, so draw each line to (x2 + W1, y2)")
+    if w1 != w2 and (segments_drawn(changed, starts, pts2 + [w2, 0]) >= 0.7).mean() >= 0.75:
+        t.fail(f"{what}: the lines end at (x2 + W2, y2), shifted by img2's width ({w2} px); the second "
+               f"image starts at x = W1 = {w1}, so draw each line to (x2 + W1, y2)",
+               mistake="the lines are shifted by W2 instead of W1")
     t.fail(f"{what}: only {int((drawn >= 0.7).sum())} of the {len(drawn)} match lines were found "
            "(a line from (x1, y1) to (x2 + W1, y2) per match, in a visible colour)")
+
+
+@ex3.check("draw_matches shows both images and a line per match", points=2)
+def draw_matches_content(t):
+    img1, img2, pts1, pts2 = drawing_case()
+    what = "draw_matches(img1, img2, pts1, pts2)"
+    got = t.call("draw_matches", img1, img2, pts1, pts2)
+    got = t.expect_array(got, what, shape=(180, 440, 3), dtype=np.uint8)
+    return judge_match_drawing(t, what, got, img1, img2, pts1, pts2)
+
+
+@ex3.check("draw_matches of a narrow, short img1 and a wide, tall img2: the lines end at x2 + W1", points=1)
+def draw_matches_unequal(t):
+    """drawing_case's widths differ by 40 px only, on nearly horizontal lines: a line shifted by
+    img2's width instead of img1's stays close enough to pass there. Here W1 = 120 and W2 = 280
+    (160 px apart, the matches' x2 below 110 so both ends stay on the canvas), H1 < H2 (img1
+    padded below), and the lines go up and down."""
+    img1, img2 = photo("chelsea", (120, 140)), photo("astronaut", (280, 200))
+    pts1 = np.array([[20.0, 25.0], [100.0, 30.0], [60.0, 70.0], [25.0, 120.0], [95.0, 115.0]])
+    pts2 = np.array([[30.0, 180.0], [90.0, 150.0], [15.0, 100.0], [70.0, 20.0], [105.0, 60.0]])
+    what = "draw_matches(colour 120x140 img1, colour 280x200 img2, pts1, pts2)"
+    got = t.call("draw_matches", img1, img2, pts1, pts2)
+    expected = (200, 400, 3)
+    if isinstance(got, np.ndarray) and got.shape != expected:
+        t.images("your drawing", yours=got)
+        t.fail(f"{what} returned shape {got.shape}; expected {expected} (height max(H1, H2) = 200, "
+               "width W1 + W2 = 400, 3 channels)")
+    got = t.expect_array(got, what, shape=expected, dtype=np.uint8)
+    return judge_match_drawing(t, what, got, img1, img2, pts1, pts2)
 
 
 # ================================================================== ex4 RANSAC

@@ -30,6 +30,7 @@ from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mis
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
 from .code_signs import CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, constant_factor, factor_words, name_batched_vt_row
+from .lab09 import COPY_HINT
 
 lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
 
@@ -472,7 +473,7 @@ def name_steep_lines_missed(t: Trial, what: str, missed, lines, shape, stray: fl
     t.fail(measured_part + ".")
 
 
-@ex2.check("draw_epipolar_lines on a photo: the lines pass through the true matches", points=3)
+@ex2.check("draw_epipolar_lines on a photo: the lines pass through the true matches", points=2)
 def draw_through_matches(t):
     from fixtures.images import photo
 
@@ -500,6 +501,31 @@ def draw_through_matches(t):
     if not hit.all():
         t.fail(f"{np.sum(~hit)} of {len(hit)} true matches are not on a drawn line")
     return passed(f"all {len(hit)} matches lie on drawn lines")
+
+
+@ex2.check("draw_epipolar_lines twice on the same image: each drawing shows its own lines only", points=1)
+def draw_twice(t):
+    """Every other check draws on a fresh image once, where drawing on the caller's array itself
+    (``np.asarray(image)``) returns the right picture; a caller drawing other lines on the same
+    image (as it holds it after the first call: :meth:`Trial.held`) then gets both sets."""
+    from fixtures.images import photo
+
+    image = photo("coffee", (160, 120))
+    first = truth.normalise_lines(np.array([[0.0, 1.0, -30.0], [3.0, -1.0, -200.0]]))
+    second = truth.normalise_lines(np.array([[0.2, 1.0, -90.0], [-1.0, -0.05, 120.0]]))
+    what = "draw_epipolar_lines(image, lines) called a second time on the same image, with other lines"
+    t.call("draw_epipolar_lines", image, first)
+    (held, _), _ = t.held(image, first)
+    got = t.call("draw_epipolar_lines", held, second)
+    if not np.array_equal(held, image) and isinstance(got, np.ndarray) and got.shape == image.shape \
+            and got.dtype == np.uint8 and draw_judgement(got, image, np.vstack([first, second]))[0].min() >= 0.85:
+        t.images(what, first_lines_then_second=got)
+        t.fail(f"{what}: the second drawing shows the first one's lines too: draw_epipolar_lines draws on the "
+               "caller's `image` (the array given) instead of on a copy, so whoever calls it twice, or uses the "
+               "image afterwards, finds lines drawn on it.", hint=COPY_HINT.said(t),
+               mistake="draw_epipolar_lines draws on the caller's image")
+    judge_drawing(t, what, got, image, second, min_coverage=0.85)
+    return passed("the second drawing shows its own lines only")
 
 
 @ex2.check("draw_epipolar_lines draws across the whole image of a grey input", points=2)

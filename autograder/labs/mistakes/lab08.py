@@ -190,6 +190,18 @@ MISTAKES = {
         def draw_matches(img1, img2, pts1, pts2):
             return _reference_draw(img1, img2, pts1, np.asarray(pts2) - [img1.shape[1], 0])
         """, ["x2 + w1"]),
+    "lines shifted by W2 instead of W1": ("lab08.ex3", """
+        def draw_matches(img1, img2, pts1, pts2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
+            canvas[:h1, :w1] = _bgr(img1)
+            canvas[:h2, w1:] = _bgr(img2)
+            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                cv2.line(canvas, (int(round(x1)), int(round(y1))), (int(round(x2 + w2)), int(round(y2))),
+                         (0, 255, 0), 1, cv2.LINE_AA)
+            return canvas
+        """, ["shifted by img2's width (280 px)", "x2 + w1"]),
     "images stacked vertically": ("lab08.ex3", """
         def draw_matches(img1, img2, pts1, pts2):
             h1, w1 = img1.shape[:2]

@@ -153,6 +153,19 @@ MISTAKES = {
                 cv2.line(canvas, p, q, colour, 1)
             return canvas
         """, ["line 0 of 2", "intersected with the left and right borders only"]),
+    "draw_epipolar_lines drawing on the caller's image": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            canvas = np.asarray(image)
+            height, width = canvas.shape[:2]
+            for i, (a, b, c) in enumerate(np.asarray(lines, np.float64).reshape(-1, 3)):
+                if abs(b) >= abs(a):
+                    p, q = (0.0, -c / b), (width - 1.0, -(c + a * (width - 1)) / b)
+                else:
+                    p, q = (-c / a, 0.0), (-(c + b * (height - 1)) / a, height - 1.0)
+                colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 255
+                cv2.line(canvas, _to_int(p, width, height), _to_int(q, width, height), colour, 1)
+            return canvas
+        """, ["the second drawing shows the first one's lines too", "caller's `image`"]),
     "draw with x and y swapped": ("lab11.ex2", """
         _draw = draw_epipolar_lines
         def draw_epipolar_lines(image, lines):
