@@ -341,6 +341,19 @@ DIRECT_EVIDENCE = {
                     "problems), and not of src onto dst",
     "name_ncc_normalisation": "an offset of one view moves the disparities while a gain does not (two "
                               "probes on random dots); a normalised correlation is moved by neither",
+    "name_steep_lines_missed": "every line the drawing misses leaves the image through its top or bottom "
+                               "border, and none other is missed (measured); the cause is said only where "
+                               "the code divides by b and never by a (read)",
+    "few_matches": "the few matches returned are right (within 2 px of the true correspondences), and the 3D "
+                   "points are those of cameras without K at the pipeline's own pose (measured) or the code "
+                   "builds P from R and t without K (read)",
+    "name_disparity_scale": "the map is the truth times one factor on the pixels not clipped, or clipped at "
+                            "max_disparity, or 0 almost everywhere after a range filter (measured); OpenCV's "
+                            "fixed point only where the code calls StereoBM/SGBM and never divides by 16 (read)",
+    "block_matching_form": "disparities far above the search range, from code calling StereoBM/SGBM that "
+                           "never divides by 16 (read)",
+    "name_zero_smoothness": "the smoothness=0 map is the default's (measured), and the code tests "
+                            "smoothness for truth, 'smoothness or X' / 'if not smoothness' (read)",
 }
 CONFIRMING = {"name_mistake", "confirm", "judge_matrix", "judge_warp", "judge_points", "judge_projective",
               "name_second_warp_mistake", "name_matching_mistake", "probe", "_disc_ratio_on_probe"}

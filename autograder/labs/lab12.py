@@ -135,6 +135,11 @@ DP_STEPS = ("the difference can come from any step of the lab sheet's: the match
             "the row with its smoothness penalty, and the backtracking from the last column")
 
 
+# a name compared, not called: kept out of the functions' own constants, where stubs.functions_called
+# would count it as a call (and every matcher check would then wait on the DP too)
+DP_FUNCTION = "dp_stereo"
+
+
 def judged_function(what: str) -> str:
     """The student function whose answer ``what`` describes ("dp_stereo(left, right)" -> "dp_stereo")."""
     return what.split("(", 1)[0].strip()
@@ -144,7 +149,7 @@ def matching_hint(t: Trial, what: str) -> str:
     """For a wrong map of ``what``: the block-search recipe, or, for code calling OpenCV's matcher, what
     is left to check; for the DP, where the difference can come from (its own steps, not block matching's)."""
     function = judged_function(what)
-    if function == "dp_stereo":
+    if function == DP_FUNCTION:
         return DP_STEPS
     if OPENCV_MATCHER_HINT.contradicts(code_of(t), [function]):
         return OPENCV_MATCHER_HINT.said(t, [function])
