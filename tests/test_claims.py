@@ -585,3 +585,16 @@ def test_an_angle_in_degrees_from_code_that_converts_it_is_not_told_to_convert(t
 def test_compares_a_distance_with_the_threshold_follows_the_compared_value(source, compares):
     from autograder.engine.claims import compares_a_distance_with
     assert bool(found(compares_a_distance_with(), source)) is compares
+
+
+def test_compares_a_distance_with_follows_any_chain_of_names_each_once():
+    # a square root ten names away is found (each name expanded once, not to a fixed depth), and
+    # names that each read many others are not re-expanded per use (a wide web stays linear)
+    from autograder.engine.claims import compares_a_distance_with
+    chain = "".join(f"    e{i + 1} = e{i} * 1.0\n" for i in range(10))
+    source = f"def f(d, threshold):\n    e0 = np.sqrt((d ** 2).sum(1))\n{chain}    return e10 < threshold\n"
+    assert found(compares_a_distance_with(), source)
+    web = "".join(f"    w{i} = " + " + ".join(f"w{j}" for j in range(i)) + " + d\n" if i else "    w0 = d * d\n"
+                  for i in range(200))
+    source = f"def f(d, threshold):\n{web}    return w199 < threshold\n"
+    assert not found(compares_a_distance_with(), source)

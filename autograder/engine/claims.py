@@ -40,7 +40,7 @@ from __future__ import annotations
 import ast
 import sys
 from dataclasses import replace
-from typing import Iterable
+from typing import Callable, Iterable
 
 from ..loading.parsing import parse
 from .hints import Hint, Predicate, _path, _same
@@ -201,12 +201,15 @@ def _argument_names(function, index: int) -> set[str]:
                     "copy", "astype") else (value.args[0] if value.args else None)
                 return holds(subject) if subject is not None else False
         return False
-    while True:
-        more = {target.id for node in ast.walk(function) if isinstance(node, ast.Assign) and holds(node.value)
-                for target in node.targets if isinstance(target, ast.Name)} - names
-        if not more:
-            return names
-        names |= more
+    # in the order written: a copy is made after what it copies (two passes for a loop's order;
+    # never a pass per name: a chain of copies stays linear)
+    assignments = [node for node in ast.walk(function) if isinstance(node, ast.Assign)]
+    assignments.sort(key=lambda node: (node.lineno, node.col_offset))
+    for _ in range(2):
+        for node in assignments:
+            if holds(node.value):
+                names.update(t.id for t in node.targets if isinstance(t, ast.Name))
+    return names
 
 
 def _bound_names(statement) -> set[str]:
@@ -357,50 +360,72 @@ def compares_a_distance_with(names: Iterable[str] = THRESHOLD_NAMES, says: str =
     def is_threshold(node) -> bool:
         return any(isinstance(n, ast.Name) and (n.id in names or n.id.startswith("thresh")) for n in ast.walk(node))
 
-    def rooted(node, function, defs, depth) -> bool:
-        """Whether ``node``'s value is computed through a square root. A module function's value
-        is read from its returns only: its arguments are its inputs (a homography from
-        normalised points is not a distance because the normalisation took a square root)."""
-        if depth < 0:
-            return False
-        assigned = {}
+    def rooted_in(function, defs, returns_rooted) -> Callable:
+        """``rooted(node)`` for ``function``: whether a value is computed through a square root.
+        Each name the function assigns, and each module function it calls, is expanded once
+        (remembered; a name being expanded counts as not rooted), so the reading stays linear in
+        the code's size whatever chains of names a submission writes. A module function's value is
+        read from its returns only: its arguments are its inputs (a homography from normalised
+        points is not a distance because the normalisation took a square root)."""
+        assigned: dict[str, list] = {}
         for statement in ast.walk(function):
             if isinstance(statement, ast.Assign):
                 for target in statement.targets:
                     for name in ast.walk(target):
                         if isinstance(name, ast.Name):
                             assigned.setdefault(name.id, []).append(statement.value)
-        todo = [node]
-        while todo:
-            part = todo.pop()
-            if isinstance(part, ast.Call):
-                called = _path(part.func).rsplit(".", 1)[-1]
-                if called in ("sqrt", "norm", "hypot"):
-                    return True
-                if called in defs and defs[called] is not function:
-                    if any(rooted(r.value, defs[called], defs, depth - 1) for r in ast.walk(defs[called])
-                           if isinstance(r, ast.Return) and r.value is not None):
+        known: dict[str, bool] = {}
+
+        def rooted(node) -> bool:
+            todo = [node]
+            while todo:
+                part = todo.pop()
+                if isinstance(part, ast.Call):
+                    called = _path(part.func).rsplit(".", 1)[-1]
+                    if called in ("sqrt", "norm", "hypot"):
                         return True
-                    continue
-            if isinstance(part, ast.BinOp) and isinstance(part.op, ast.Pow) and _same(part.right, _pattern("0.5")):
-                return True
-            if isinstance(part, ast.Name) and part.id in assigned:
-                if any(rooted(value, function, defs, depth - 1) for value in assigned[part.id]):
+                    if called in defs and defs[called] is not function:
+                        if returns_rooted(called):
+                            return True
+                        continue
+                if isinstance(part, ast.BinOp) and isinstance(part.op, ast.Pow) and _same(part.right, _pattern("0.5")):
                     return True
-            todo.extend(ast.iter_child_nodes(part))
-        return False
+                if isinstance(part, ast.Name) and part.id in assigned:
+                    if part.id not in known:
+                        known[part.id] = False   # in progress: a cycle adds nothing
+                        known[part.id] = any(rooted(value) for value in assigned[part.id])
+                    if known[part.id]:
+                        return True
+                todo.extend(ast.iter_child_nodes(part))
+            return False
+        return rooted
 
     def test(functions) -> bool:
         functions = list(functions)
         defs = {f.name: f for f in functions if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))}
+        readers, returned = {}, {}
+
+        def reader(function):
+            if id(function) not in readers:
+                readers[id(function)] = rooted_in(function, defs, returns_rooted)
+            return readers[id(function)]
+
+        def returns_rooted(name) -> bool:
+            if name not in returned:
+                returned[name] = False   # in progress: recursion adds nothing
+                function = defs[name]
+                returned[name] = any(reader(function)(r.value) for r in ast.walk(function)
+                                     if isinstance(r, ast.Return) and r.value is not None)
+            return returned[name]
         for function in functions:
+            rooted = reader(function)
             for node in ast.walk(function):
                 if not (isinstance(node, ast.Compare) and all(
                         isinstance(op, (ast.Lt, ast.LtE, ast.Gt, ast.GtE)) for op in node.ops)):
                     continue
                 sides = [node.left, *node.comparators]
                 if any(is_threshold(side) for side in sides) and any(
-                        rooted(side, function, defs, 4) for side in sides if not is_threshold(side)):
+                        rooted(side) for side in sides if not is_threshold(side)):
                     return True
         return False
     return Predicate(says or "compares a distance (a square root) with the threshold", test, kind="all")

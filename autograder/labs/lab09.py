@@ -787,8 +787,8 @@ def aperture_sampling(offsets) -> str:
     which the API asks for: the RMS judgement below accepts it, so it is not named a mistake here."""
     u = np.asarray(offsets, dtype=np.float64).reshape(-1, 2)
     r = np.hypot(u[:, 0], u[:, 1])
-    if len(r) < 1000 or not np.isfinite(r).all() or r.max() == 0:
-        return ""
+    if len(r) < 1000 or not np.isfinite(r).all() or r.max() == 0 or np.any(u.std(axis=0) == 0):
+        return ""   # a coordinate that never moves has no distribution to tell (the other checks say so)
     if np.mean(np.abs(r - 1) < 0.02) > 0.99:
         return measured("every ray lands on the rim of the blur disc: the aperture point's radius is always the "
                         "aperture's, never drawn (uniform over the disc: radius aperture * sqrt(u))")
