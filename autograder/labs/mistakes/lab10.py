@@ -109,18 +109,6 @@ MISTAKES = {
             t = np.linalg.solve(K, P[:, 3])
             return K / K[2, 2], R, t
         """, ["rq is unique only up to signs"]),   # P negated as the recipe does; RQ's signs left as QR gives them
-    "no negation": ("lab10.ex5", """
-        def decompose_camera_matrix(P):
-            P = np.asarray(P, dtype=np.float64)
-            flip = np.eye(3)[::-1]
-            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
-            K = flip @ U.T @ flip
-            R = flip @ Q.T
-            signs = np.diag(np.sign(np.diag(K)))
-            K, R = K @ signs, signs @ R
-            t = np.linalg.solve(K, P[:, 3])
-            return K / K[2, 2], R, t
-        """, ["multiply p by -1 first"]),   # signs fixed, P of det < 0 decomposed as it is: det(R) = -1
     "centre is -t": ("lab10.ex5", """
         def camera_center(P):
             K, R, t = decompose_camera_matrix(P)

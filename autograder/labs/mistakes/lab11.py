@@ -3,6 +3,31 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
+# a two-view pipeline whose cameras lack K ([R | t] on pixel coordinates); IN_FRONT: what it keeps
+_WITHOUT_K = """
+        def two_view_reconstruction(img1, img2, K):
+            grey1 = cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY) if img1.ndim == 3 else img1
+            grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img2.ndim == 3 else img2
+            sift = cv2.SIFT_create()
+            kp1, des1 = sift.detectAndCompute(grey1, None)
+            kp2, des2 = sift.detectAndCompute(grey2, None)
+            pairs = cv2.BFMatcher(cv2.NORM_L2).knnMatch(des1, des2, k=2)
+            good = [m for m, n in (p for p in pairs if len(p) == 2) if m.distance < 0.75 * n.distance]
+            pts1 = np.float64([kp1[m.queryIdx].pt for m in good])
+            pts2 = np.float64([kp2[m.trainIdx].pt for m in good])
+            F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
+            inliers = mask.ravel().astype(bool)
+            pts1, pts2 = pts1[inliers], pts2[inliers]
+            K = np.asarray(K, np.float64)
+            E = K.T @ F @ K
+            _, R, t, pose_mask = cv2.recoverPose(E, pts1, pts2, K)
+            P1 = np.hstack([np.eye(3), np.zeros((3, 1))])
+            P2 = np.hstack([R, t])
+            points3d = triangulate(P1, P2, pts1, pts2)
+            in_front = IN_FRONT
+            return F, pts1[in_front], pts2[in_front], points3d[in_front]
+"""
+
 MISTAKES = {
     # ---------------------------------------------------------------- ex1
     "triangulation with x where y belongs in the second row": ("lab11.ex1", """
@@ -378,50 +403,9 @@ MISTAKES = {
             F, pts1, pts2, X = _right(img1, img2, K)
             return F, pts1, pts2, X.T
         """, ['shape']),
-    "pipeline with cameras built without K, points behind a camera dropped": ("lab11.ex6", """
-        def two_view_reconstruction(img1, img2, K):
-            grey1 = cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY) if img1.ndim == 3 else img1
-            grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img2.ndim == 3 else img2
-            sift = cv2.SIFT_create()
-            kp1, des1 = sift.detectAndCompute(grey1, None)
-            kp2, des2 = sift.detectAndCompute(grey2, None)
-            pairs = cv2.BFMatcher(cv2.NORM_L2).knnMatch(des1, des2, k=2)
-            good = [m for m, n in (p for p in pairs if len(p) == 2) if m.distance < 0.75 * n.distance]
-            pts1 = np.float64([kp1[m.queryIdx].pt for m in good])
-            pts2 = np.float64([kp2[m.trainIdx].pt for m in good])
-            F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
-            inliers = mask.ravel().astype(bool)
-            pts1, pts2 = pts1[inliers], pts2[inliers]
-            K = np.asarray(K, np.float64)
-            E = K.T @ F @ K
-            _, R, t, pose_mask = cv2.recoverPose(E, pts1, pts2, K)
-            P1 = np.hstack([np.eye(3), np.zeros((3, 1))])
-            P2 = np.hstack([R, t])
-            points3d = triangulate(P1, P2, pts1, pts2)
-            in_front = (points3d[:, 2] > 0) & ((points3d @ R.T + t.reshape(3))[:, 2] > 0)
-            return F, pts1[in_front], pts2[in_front], points3d[in_front]
-        """, ["the matching is not what is short", "the cameras are built without k"]),
-    "pipeline with cameras built without K": ("lab11.ex6", """
-        def two_view_reconstruction(img1, img2, K):
-            grey1 = cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY) if img1.ndim == 3 else img1
-            grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img2.ndim == 3 else img2
-            sift = cv2.SIFT_create()
-            kp1, des1 = sift.detectAndCompute(grey1, None)
-            kp2, des2 = sift.detectAndCompute(grey2, None)
-            pairs = cv2.BFMatcher(cv2.NORM_L2).knnMatch(des1, des2, k=2)
-            good = [m for m, n in (p for p in pairs if len(p) == 2) if m.distance < 0.75 * n.distance]
-            pts1 = np.float64([kp1[m.queryIdx].pt for m in good])
-            pts2 = np.float64([kp2[m.trainIdx].pt for m in good])
-            F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
-            inliers = mask.ravel().astype(bool)
-            pts1, pts2 = pts1[inliers], pts2[inliers]
-            K = np.asarray(K, np.float64)
-            E = K.T @ F @ K
-            _, R, t, pose_mask = cv2.recoverPose(E, pts1, pts2, K)
-            P1 = np.hstack([np.eye(3), np.zeros((3, 1))])
-            P2 = np.hstack([R, t])
-            points3d = triangulate(P1, P2, pts1, pts2)
-            in_front = np.ones(len(points3d), bool)
-            return F, pts1[in_front], pts2[in_front], points3d[in_front]
-        """, ["the cameras are built without k"]),
+    "pipeline with cameras built without K, points behind a camera dropped": ("lab11.ex6", _WITHOUT_K.replace(
+        "IN_FRONT", "(points3d[:, 2] > 0) & ((points3d @ R.T + t.reshape(3))[:, 2] > 0)"),
+        ["the matching is not what is short", "the cameras are built without k"]),
+    "pipeline with cameras built without K": ("lab11.ex6", _WITHOUT_K.replace("IN_FRONT", "np.ones(len(points3d), bool)"),
+                                               ["the cameras are built without k"]),
 }
