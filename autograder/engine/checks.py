@@ -447,26 +447,49 @@ class Trial:
             passed.clear()  # from here on, every example is really run
             body(example)
 
-        try:
-            with _ONE_ENGINE:
-                property_holds()
-        except StudentFailure as exc:
-            if exc.outcome.kind not in _FATAL_KINDS and last:  # fatal ones fail for every input
-                exc.message += self._counterexample(describe(last[0]))
-            raise
-        except Fail as exc:
-            if last:
-                exc.message += self._counterexample(describe(last[0]))
-            raise
-        except errors.Flaky as exc:
-            # A call the grader could not make (its worker did not start in time on a loaded
-            # machine) fails once and passes when Hypothesis replays it: that is the grader's
-            # failure, reported as one, never the student's randomness.
-            grader = _grader_failure(exc)
-            if grader is not None:
-                raise StudentFailure(grader.outcome, grader.message) from None
-            self.fail("your function gave different answers for the same input "
-                      "(does it depend on randomness or on earlier calls?)")
+        for attempt in (1, 2):
+            try:
+                with _ONE_ENGINE:
+                    property_holds()
+                break
+            except StudentFailure as exc:
+                if exc.outcome.kind not in _FATAL_KINDS and last:  # fatal ones fail for every input
+                    exc.message += self._counterexample(describe(last[0]))
+                raise
+            except Fail as exc:
+                if last:
+                    exc.message += self._counterexample(describe(last[0]))
+                raise
+            except errors.Flaky as exc:
+                # A call the grader could not make (its worker did not start in time on a loaded
+                # machine) fails once and passes when Hypothesis replays it: that is the grader's
+                # failure, reported as one, never the student's randomness.
+                grader = _grader_failure(exc)
+                if grader is not None:
+                    raise StudentFailure(grader.outcome, grader.message) from None
+                if attempt == 1:  # once more from the start: a hiccup does not repeat, randomness does
+                    last.clear(), seen.clear(), passed.clear()
+                    continue
+                self._unreproduced(exc, describe(last[0]) if last else "")
+        examples.record(where, seen)
+
+    def _unreproduced(self, flaky: BaseException, example: str):
+        """Fail a property whose failure Hypothesis could not reproduce (twice): with what the
+        calls showed, never a cause they do not show."""
+        first = _first_failure(flaky)
+        answers = {}
+        for function, args, kwargs, value in self.calls:
+            given, answered = fingerprint(function, args, kwargs), fingerprint(value)
+            if answers.setdefault(given, answered) != answered:
+                self.fail("your function gave different answers for the same input "
+                          "(does it depend on randomness or on earlier calls?)"
+                          + self._counterexample(example))
+        said = first.message if first is not None else "an input failed"
+        hint = getattr(first, "hint", "")
+        self.fail(f"{said}{self._counterexample(example) if example else ''}\n(the same input did not "
+                  "fail when it was tried again: does your function depend on randomness or on "
+                  "earlier calls?)", hint=hint)
+
         examples.record(where, seen)
 
     def _replay(self, recorded: list | None, body) -> list | None:
@@ -560,6 +583,17 @@ class Trial:
         if ok:
             return value
         raise StudentFailure(value.outcome, value.message)
+
+
+def _first_failure(exc: BaseException) -> Fail | StudentFailure | None:
+    """The first check failure or failed call among those a Hypothesis ``Flaky`` saw."""
+    if isinstance(exc, (Fail, StudentFailure)):
+        return exc
+    for inner in getattr(exc, "exceptions", ()):
+        found = _first_failure(inner)
+        if found is not None:
+            return found
+    return None
 
 
 def _grader_failure(exc: BaseException) -> StudentFailure | None:
