@@ -93,3 +93,45 @@ def test_a_drawing_that_forgets_to_return_is_told_in_grading(tmp_path):
     messages = [c.message for c in check_results(result, "lab09.ex5") if not c.passed]
     assert any("returned None; expected a numpy array" in m and "your `draw_points` has no `return` of a value"
                in m for m in messages), messages
+
+
+TUPLES = {
+    "a tuple of Nones under a condition": ("""
+        def f(image):
+            found, corners = detect(image)
+            if not found:
+                return None, None, None
+            return corners, corners, corners
+        """, "returns `(None, None, None)` where `not found`"),
+    "a None beside an array": ("""
+        def f(x):
+            if x.size == 0:
+                return x, None
+            return x, x
+        """, "returns `(x, None)` where `x.size == 0`"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(TUPLES))
+def test_where_a_part_of_the_answer_is_none_is_read(name):
+    source, words = TUPLES[name]
+    assert words in none_returned(read_code(textwrap.dedent(source)), "f", in_tuple=True)
+    assert none_returned(read_code(textwrap.dedent(SILENT["always returns"])), "f", in_tuple=True) == ""
+
+
+def test_a_pose_of_nones_without_a_board_is_told_where_in_grading(tmp_path):
+    source = """
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+            found, corners = cv2.findChessboardCorners(grey, tuple(pattern_size))
+            if not found:
+                return None, None, None
+            objp = _object_points(pattern_size, square_size)
+            _, rvec, tvec = cv2.solvePnP(objp, corners, np.asarray(K, float), dist)
+            reprojected, _ = cv2.projectPoints(objp, rvec, tvec, np.asarray(K, float), dist)
+            return rvec.ravel(), tvec.ravel(), reprojected.reshape(-1, 2)
+        """
+    result = grade(mutant(tmp_path, "lab10_camera2", source), ["lab10.ex6"], pictures="none")
+    messages = [c.message for c in check_results(result, "lab10.ex6") if not c.passed]
+    assert any("returned None" in m and "your `estimate_pose` returns `(None, None, None)` where `not found`"
+               in m for m in messages), messages

@@ -315,13 +315,18 @@ class Trial:
 
     def _why_none(self, value) -> str:
         """Where the function just called returns None, read from its code (": your `f` returns
-        None where `not found`"), when ``value`` is None and is that call's whole answer."""
-        if value is not None or not self.calls or self.calls[-1][3] is not None:
+        None where `not found`"), when ``value`` is None and is that call's whole answer or a
+        part of the tuple it returned (": your `f` returns `(None, None)` where `not found`")."""
+        if value is not None or not self.calls:
+            return ""
+        answer = self.calls[-1][3]
+        in_tuple = isinstance(answer, (tuple, list)) and any(part is None for part in answer)
+        if answer is not None and not in_tuple:
             return ""
         from .hints import code_of, none_returned
 
         function = self.calls[-1][0]
-        found = none_returned(code_of(self), function)
+        found = none_returned(code_of(self), function, in_tuple=in_tuple)
         return f": your `{function}` {found}" if found else ""
 
     def _why_swapped(self, got, expected) -> str:

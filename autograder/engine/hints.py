@@ -740,18 +740,17 @@ def _always_leaves(statements) -> bool:
     return False
 
 
-def none_returned(code: Code, function: str) -> str:
+def none_returned(code: Code, function: str, *, in_tuple: bool = False) -> str:
     """Where the student's ``function`` returns None, in words for "your `f` ...": a ``return``
     without a value (and the condition it is under), no ``return`` of a value at all, or an end
-    reached without one; "" when the code cannot say (a None from a call it returns)."""
+    reached without one; "" when the code cannot say (a None from a call it returns).
+
+    ``in_tuple``: where it returns a tuple holding None (``return None, None, None``) instead,
+    the answer's part that was None."""
     fn = code.functions.get(function)
     if fn is None:
         return ""
     returns = [n for n in _own_nodes(fn) if isinstance(n, ast.Return)]
-    valued = [n for n in returns if n.value is not None and not (isinstance(n.value, ast.Constant)
-                                                                 and n.value.value is None)]
-    if not valued:
-        return "has no `return` of a value, and a Python function without one returns None"
     conditions = {}
     for node in _own_nodes(fn):
         if isinstance(node, ast.If):
@@ -761,6 +760,15 @@ def none_returned(code: Code, function: str) -> str:
                         if isinstance(leaf, ast.Return) and id(leaf) not in conditions:
                             test = _unparsed(node.test)
                             conditions[id(leaf)] = f"not ({test})" if negated else test
+    if in_tuple:
+        holding = [n for n in returns if isinstance(n.value, (ast.Tuple, ast.List))
+                   and any(_is_none(e) for e in n.value.elts)]
+        where = [f"`{_unparsed(n.value)}` where `{conditions[id(n)]}`" for n in holding if id(n) in conditions]
+        return f"returns {' and '.join(where[:2])}" if where else \
+            (f"returns `{_unparsed(holding[0].value)}`" if holding else "")
+    valued = [n for n in returns if n.value is not None and not _is_none(n.value)]
+    if not valued:
+        return "has no `return` of a value, and a Python function without one returns None"
     empty = [n for n in returns if n not in valued]
     if empty:
         where = [f"where `{conditions[id(n)]}`" for n in empty if id(n) in conditions][:2]
@@ -768,6 +776,10 @@ def none_returned(code: Code, function: str) -> str:
     if not _always_leaves(fn.body):
         return "can reach its end without a `return`, and then returns None"
     return ""
+
+
+def _is_none(node) -> bool:
+    return isinstance(node, ast.Constant) and node.value is None
 
 
 def _unparsed(node, limit: int = 60) -> str:
