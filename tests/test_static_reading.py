@@ -242,6 +242,35 @@ def test_each_finding_is_found_and_the_right_code_is_not_flagged(mistake):
     assert mistake not in one(right, api), mistakes_in(right, api)
 
 
+# The points of each descriptor set, however a student pairs them, and indices kept in names.
+QUERY_TRAIN_FORMS = {
+    "siblings of an unpacked tuple, indices in names": ("""
+        def f(a, b):
+            (pts_a, desc_a), (pts_b, desc_b) = features(a), features(b)
+            good = [m for m, n in matcher.knnMatch(desc_a, desc_b, k=2) if m.distance < 0.7 * n.distance]
+            q = np.array([m.queryIdx for m in good])
+            t = np.array([m.trainIdx for m in good])
+            return pts_a[{first}], pts_b[{second}]
+        """, ("t", "q"), ("q", "t")),
+    "names ending alike": ("""
+        def f(g1, g2):
+            keypoints1 = detect(g1)
+            keypoints2 = detect(g2)
+            descriptors1, descriptors2 = describe(g1), describe(g2)
+            return [(keypoints1[m.{first}].pt, keypoints2[m.{second}].pt)
+                    for m in matcher.match(descriptors1, descriptors2)]
+        """, ("trainIdx", "queryIdx"), ("queryIdx", "trainIdx")),
+}
+
+
+@pytest.mark.parametrize("form", sorted(QUERY_TRAIN_FORMS))
+def test_query_and_train_exchanged_are_read_in_other_forms(form):
+    source, wrong, right = QUERY_TRAIN_FORMS[form]
+    mistake = "queryIdx and trainIdx are exchanged"
+    assert mistake in one(source.format(first=wrong[0], second=wrong[1]))
+    assert mistake not in one(source.format(first=right[0], second=right[1]))
+
+
 def test_image_parameters_are_uint8_only_in_the_api_functions():
     helper = """
         def _ssd(left, right):          # a helper: its parameters may hold floats

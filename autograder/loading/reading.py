@@ -519,35 +519,67 @@ def _homogeneous_finding(name, node) -> Finding:
 
 # ------------------------------------------------------------------ DMatch indices
 def _query_train(name, function) -> list[Finding]:
-    """``kp1[m.trainIdx]`` or ``kp2[m.queryIdx]`` where des1 (of kp1) is the query of the match."""
-    keypoints_of = {}   # descriptors name -> keypoints name (kp, des = detector.detectAndCompute(...))
-    for node in ast.walk(function):
-        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
-                and isinstance(node.value, ast.Call) and _call_name(node.value) == "detectAndCompute":
-            elts = node.targets[0].elts
-            if len(elts) == 2 and all(isinstance(e, ast.Name) for e in elts):
-                keypoints_of[elts[1].id] = elts[0].id
-    roles = {}   # keypoints name -> "query" / "train"
-    for node in ast.walk(function):
-        if isinstance(node, ast.Call) and _call_name(node) in {"knnMatch", "match", "radiusMatch"} \
-                and len(node.args) >= 2 and all(isinstance(a, ast.Name) for a in node.args[:2]):
-            query, train = (keypoints_of.get(a.id) for a in node.args[:2])
-            if query and train and query != train:
-                roles[query], roles[train] = "query", "train"
-    if not roles:
+    """``kp1[m.trainIdx]`` or ``kp2[m.queryIdx]`` where des1 (of kp1) is the query of the match.
+
+    The points that go with a set of descriptors are found however they were written:
+    ``kp, des = detector.detectAndCompute(...)``, siblings of one unpacked tuple
+    (``(points1, descriptors1), (points2, descriptors2) = features1, features2``), or names
+    ending alike (``kp1``/``des1``, ``pts_l``/``desc_l``); the index may be ``m.trainIdx``
+    itself or a name holding only train (or only query) indices (``train = [m.trainIdx for m in good]``)."""
+    matched = [node for node in ast.walk(function) if isinstance(node, ast.Call)
+               and _call_name(node) in {"knnMatch", "match", "radiusMatch"} and len(node.args) >= 2
+               and all(isinstance(a, ast.Name) for a in node.args[:2]) and node.args[0].id != node.args[1].id]
+    if not matched:
         return []
+    role_of_descriptors = {matched[0].args[0].id: "query", matched[0].args[1].id: "train"}
+    roles = {}   # points or keypoints name -> "query" / "train"
     for node in ast.walk(function):
-        if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in roles \
-                and isinstance(node.slice, ast.Attribute) and node.slice.attr in ("queryIdx", "trainIdx"):
-            used = "query" if node.slice.attr == "queryIdx" else "train"
-            if used != roles[node.value.id]:
-                right = "queryIdx" if roles[node.value.id] == "query" else "trainIdx"
-                return [Finding(name, _line(node), "queryIdx and trainIdx are exchanged",
-                                f"{name} (line {_line(node)}) indexes {node.value.id} with "
-                                f"{node.slice.attr}: its descriptors are the match's "
-                                f"{roles[node.value.id]} set, so its index is m.{right} (queryIdx "
-                                "indexes the first set given to the matcher, trainIdx the second)")]
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple):
+            groups = [node.targets[0].elts]
+            groups += [e.elts for e in node.targets[0].elts if isinstance(e, ast.Tuple)]
+            for group in groups:
+                names = [e.id for e in group if isinstance(e, ast.Name)]
+                for descriptors in set(names) & set(role_of_descriptors):
+                    for other in names:
+                        if other != descriptors:
+                            roles.setdefault(other, role_of_descriptors[descriptors])
+    names = {n.id for n in ast.walk(function) if isinstance(n, ast.Name)}
+    for descriptors, role in role_of_descriptors.items():
+        ending = _index_ending(descriptors)
+        for other in names - set(role_of_descriptors):
+            if ending and _index_ending(other) == ending and other not in roles:
+                roles[other] = role
+    if set(roles.values()) != {"query", "train"}:
+        return []
+    indices = {}   # name -> "queryIdx" / "trainIdx": names holding one kind of index only
+    for target, values in _assigned_names(function).items():
+        kinds = {n.attr for v in values for n in ast.walk(v)
+                 if isinstance(n, ast.Attribute) and n.attr in ("queryIdx", "trainIdx")}
+        if len(kinds) == 1:
+            indices[target] = kinds.pop()
+    for node in ast.walk(function):
+        if not (isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in roles):
+            continue
+        index = node.slice.attr if isinstance(node.slice, ast.Attribute) and node.slice.attr in ("queryIdx", "trainIdx") \
+            else indices.get(node.slice.id) if isinstance(node.slice, ast.Name) else None
+        if index is None or (index == "queryIdx") == (roles[node.value.id] == "query"):
+            continue
+        right = "queryIdx" if roles[node.value.id] == "query" else "trainIdx"
+        return [Finding(name, _line(node), "queryIdx and trainIdx are exchanged",
+                        f"{name} (line {_line(node)}) indexes {node.value.id} with {index}"
+                        f"{'' if index in ast.unparse(node.slice) else f' (in {ast.unparse(node.slice)})'}: "
+                        f"its descriptors are the match's {roles[node.value.id]} set, so its index is "
+                        f"m.{right} (queryIdx indexes the first set given to the matcher, trainIdx the second)")]
     return []
+
+
+def _index_ending(name: str) -> str:
+    """What tells a pair's names apart at their end: ``1`` of ``kp1``, ``l`` of ``pts_l``, else ""."""
+    head = name.rstrip("0123456789")
+    if head != name:
+        return name[len(head):]
+    base, _, last = name.rpartition("_")
+    return last if base and len(last) <= 5 else ""
 
 
 # ------------------------------------------------------------------ OpenCV masks
