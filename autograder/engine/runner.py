@@ -426,15 +426,26 @@ def _reading(exercise: Exercise, submission) -> Reading | None:
     return read_file(submission.path / f"{exercise.lab.module}.py", api)
 
 
-def _named_by_exception(verdict: Verdict) -> Verdict:
+def _named_by_exception(verdict: Verdict, trial: Trial, traceback_text: str) -> Verdict:
     """A failure whose exception NumPy raised for a wrong form (a per-row value kept flat, points
-    not made homogeneous: :func:`autograder.engine.forms.exception_form`), naming that form; the
-    shapes in the error are the evidence."""
-    form = exception_form(str(verdict.message))
+    not made homogeneous: :func:`autograder.engine.forms.exception_form`; a 1-D vector given by the
+    caller joined to a 2-D array in the raising line: :func:`autograder.engine.raised.explained`),
+    naming that form; the shapes in the error, and the line with the arguments given, are the evidence."""
+    form = exception_form(str(verdict.message)) or _explained_from_the_line(trial, traceback_text)
     if form is None:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
     return replace(verdict, message=f"{first.rstrip()}: {form.sentence}.{newline}{rest}", mistake=form.mistake)
+
+
+def _explained_from_the_line(trial: Trial, traceback_text: str):
+    from . import raised
+    from .hints import code_of
+
+    if not getattr(trial, "raised", None):
+        return None
+    function, args, kwargs, message = trial.raised
+    return raised.explained(code_of(trial), traceback_text, message, function, args, kwargs)
 
 
 def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: Trial) -> Verdict:
@@ -653,7 +664,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     if status in (FAILED, PARTIAL) and student_failure in ("", "exception"):
         verdict, inherited = _told_if_inherited(verdict, check, trial)
     if student_failure == "exception" and not verdict.mistake:
-        verdict = _named_by_exception(verdict)
+        verdict = _named_by_exception(verdict, trial, tb)
     if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
             and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_reading(verdict, reading, check, trial)

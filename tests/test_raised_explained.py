@@ -1,0 +1,96 @@
+"""A NumPy error is explained from the student's line that raised it (issue 35: "relayed
+exceptions that do not say which input or why").
+
+``np.hstack([R, t])`` raises "all the input arrays must have same number of dimensions" for a
+translation given as a (3,) vector: the message alone names neither ``t`` nor the caller's
+shape. :mod:`autograder.engine.raised` reads the raising line and binds the call's arguments
+to the student's own parameters; it names the cause only when the array the error points at
+is a parameter, unchanged before that line, given 1-D.
+"""
+
+from __future__ import annotations
+
+import textwrap
+
+import numpy as np
+import pytest
+
+from autograder.engine.hints import read_code
+from autograder.engine.raised import MISTAKE, explained
+from autograder.engine.runner import grade
+from conftest import check_results, mutant
+
+NDIM = ("all the input arrays must have same number of dimensions, but the array at index 0 has 2 "
+        "dimension(s) and the array at index 1 has 1 dimension(s)")
+R, t = np.eye(3), np.array([1.0, 2.0, 3.0])
+
+
+def traceback_at(line: int, function: str = "f") -> str:
+    return f'Traceback (your code):\n  File "lab.py", line {line}, in {function}\n    ...\nValueError: {NDIM}'
+
+
+def explain(source: str, line: int, args=(R, t), raised_in: str = "f"):
+    """What is said of ``f(*args)`` raising NDIM at ``line`` of ``raised_in``."""
+    return explained(read_code(textwrap.dedent(source)), traceback_at(line, raised_in), NDIM, "f", args, {})
+
+
+NAMED = {
+    "hstack of the parameters": ("""
+        def f(R, t):
+            return np.hstack([R, t])
+        """, 3),
+    "concatenate of converted parameters": ("""
+        def f(rotation, translation):
+            Rt = np.concatenate((np.asarray(rotation, float), translation.astype(np.float64)), axis=1)
+            return Rt
+        """, 3),
+}
+NOT_NAMED = {
+    "the vector was reshaped before": ("""
+        def f(R, t):
+            t = t.reshape(1, 3)
+            return np.hstack([R, t])
+        """, 4),
+    "the 1-D array is not a parameter": ("""
+        def f(R, t):
+            c = -R.T @ t
+            return np.hstack([R, c])
+        """, 4),
+    "the line is in a helper": ("""
+        def join(a, b):
+            return np.hstack([a, b])
+
+        def f(R, t):
+            return join(R, t)
+        """, 3),
+}
+
+
+@pytest.mark.parametrize("name", sorted(NAMED))
+def test_a_vector_given_1d_and_joined_to_a_matrix_is_named(name):
+    source, line = NAMED[name]
+    form = explain(source, line)
+    assert form is not None and form.mistake == MISTAKE
+    assert "shape (3,)" in form.sentence and f"(line {line})" in form.sentence
+
+
+@pytest.mark.parametrize("name", sorted(NOT_NAMED))
+def test_what_the_line_does_not_show_is_not_named(name):
+    source, line = NOT_NAMED[name]
+    assert explain(source, line, raised_in="join" if "helper" in name else "f") is None
+
+
+def test_a_column_given_is_not_named():
+    source, line = NAMED["hstack of the parameters"]
+    assert explain(source, line, args=(R, t.reshape(3, 1))) is None   # not 1-D as given: another cause
+
+
+def test_a_camera_matrix_joining_a_flat_translation_is_told_in_grading(tmp_path):
+    source = """
+        def camera_matrix(K, R, t):
+            return np.asarray(K, float) @ np.hstack([np.asarray(R, float), np.asarray(t, float)])
+        """
+    result = grade(mutant(tmp_path, "lab09_camera", source), ["lab09.ex3"], pictures="none")
+    failed = [c for c in check_results(result, "lab09.ex3") if not c.passed]
+    assert failed and any(c.mistake == MISTAKE and "joins `t` as it was given, shape (3,)" in c.message
+                          for c in failed), [c.message for c in failed]
