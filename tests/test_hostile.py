@@ -19,6 +19,7 @@ import subprocess
 import sys
 import threading
 import time
+from dataclasses import replace
 
 import pytest
 
@@ -30,6 +31,9 @@ from conftest import (NAME_PROCESS, ROOT, assert_only_exercise_lost, check_resul
 
 MODULE = "lab07_transformations"
 FAST = Limits(call_timeout=2.0, import_timeout=4.0)
+# For attacks that never return: one timeout per function shows the attack stopped and its
+# processes gone; giving up after repeated timeouts is tests/test_robustness.py's.
+ONE_TIMEOUT = replace(FAST, timeouts_per_function=1)
 NAMESPACED = confine.detect().level != "process-group"
 needs_namespaces = pytest.mark.skipif(not NAMESPACED, reason="no namespaces on this platform")
 
@@ -69,7 +73,7 @@ def test_fork_bomb(tmp_path, confinement):
                     os._exit(0)
             while True:
                 pass
-        """, "lab07.ex4")
+        """, "lab07.ex4", limits=ONE_TIMEOUT)
     # Stopped by its timeout, or, where no cgroup bounds its processes, by the grader's own count.
     [shear] = [e for e in result.exercises if e.id == "lab07.ex4"]
     words = " ".join(c.message for c in shear.checks)
@@ -124,7 +128,7 @@ def test_sigterm_handler_that_ignores_termination(tmp_path, confinement):
             signal.signal(signal.SIGTERM, signal.SIG_IGN)
             while True:
                 pass
-        """, "lab07.ex4", "did not finish")
+        """, "lab07.ex4", "did not finish", limits=ONE_TIMEOUT)
 
 
 @needs_namespaces
