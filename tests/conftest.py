@@ -16,6 +16,9 @@ gradings these tests make (tests/test_verify.py).
 from __future__ import annotations
 
 import atexit
+import fcntl
+import hashlib
+import json
 import os
 import shutil
 import tempfile
@@ -27,6 +30,7 @@ import pytest
 from hypothesis import settings
 
 from autograder.engine.properties import GRADING
+from autograder.engine.results import GradingResult, write_atomically
 from autograder.engine.runner import grade
 from autograder.instructor import verify
 
@@ -142,11 +146,40 @@ def graded_case(module: str, exercise: str, source: str, base: Path = REFERENCE)
 
 _WHOLE_GRADINGS: dict = {}
 
+# The whole gradings every test process needs (the reference's takes ~40 s) are made once per
+# run: the first process to ask grades under a file lock and leaves the result as JSON in a
+# folder the run's processes share (made here by the first process, inherited by xdist's
+# workers through the environment, removed at the end); the others read it.
+if "AUTOGRADER_TEST_GRADINGS_DIR" not in os.environ:
+    os.environ["AUTOGRADER_TEST_GRADINGS_DIR"] = tempfile.mkdtemp(prefix="autograder-test-gradings-")
+    atexit.register(shutil.rmtree, os.environ["AUTOGRADER_TEST_GRADINGS_DIR"], ignore_errors=True)
+
+
+def _code_digest(folder: Path) -> str:
+    """What a grading of ``folder`` depends on: the grader's code and ``folder``'s files (the
+    tree may change during a run; a changed one is graded again, not read)."""
+    digest = hashlib.sha256(str(folder).encode())
+    for root in (ROOT / "autograder", folder):
+        for path in sorted(root.rglob("*")):
+            if path.is_file() and "__pycache__" not in path.parts:
+                digest.update(str(path.relative_to(root)).encode() + b"\0" + path.read_bytes())
+    return digest.hexdigest()[:32]
+
 
 def whole_grading(folder: Path):
-    """Every lab of ``folder`` (the reference solutions, the skeletons) graded once per process."""
+    """Every lab of ``folder`` (the reference solutions, the skeletons) graded once per run,
+    shared by its processes (a ``GradingResult`` through ``to_dict``/``from_dict``, which keep
+    every field)."""
     if folder not in _WHOLE_GRADINGS:
-        _WHOLE_GRADINGS[folder] = grade(folder)
+        shared = Path(os.environ["AUTOGRADER_TEST_GRADINGS_DIR"]) / f"{_code_digest(folder)}.json"
+        with open(shared.with_suffix(".lock"), "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)   # the other processes wait for the one grading
+            if shared.exists():
+                result = GradingResult.from_dict(json.loads(shared.read_text()))
+            else:
+                result = grade(folder)
+                write_atomically(shared, json.dumps(result.to_dict()))
+        _WHOLE_GRADINGS[folder] = result
     return _WHOLE_GRADINGS[folder]
 
 
