@@ -1,5 +1,6 @@
 """The error model's operators for mistakes nobody listed (issue 35): an inverse written as a
-transpose, a copy-pasted index, an index on the wrong axis, stacked pieces in another order,
+transpose, a copy-pasted index, an index on the wrong axis, stacked pieces in another order, a
+loop over positions where the values belong,
 ``x or DEFAULT`` swallowing a 0, and a single point a 1-D array that raises. Each realistic
 student module (a small edit of the reference's text) gets that name; the reference and a
 legitimate alternative get none."""
@@ -114,6 +115,11 @@ CASES = {
                                            "np.asarray(R, dtype=np.float64)])"),
                                  [("camera_matrix", (K1, np.eye(3)[[1, 0, 2]], np.array([0.5, -0.2, 4.0])), {})],
                                  "`R` and `t` are stacked in the other order"),
+    # a loop over positions where the values belong (the focal lengths 0, 1, 2 ...)
+    "positions for values": ("lab09", ("pinhole_project(X, f) for f in np.asarray(focal_lengths, dtype=np.float64).ravel()",
+                                       "pinhole_project(X, f) for f in range(len(focal_lengths))"),
+                             [("project_focal_lengths", (X3, np.array([100.0, 400.0, 900.0])), {})],
+                             "the loop takes the positions 0, 1, 2, ... of `focal_lengths` where its values belong"),
 }
 
 
@@ -141,6 +147,8 @@ ALTERNATIVES = {   # legitimate code that differs from the reference's text
                                  "dtype=np.float64).reshape(3)])",
                                  "Rt = np.hstack([np.asarray(R, dtype=np.float64), "
                                  "np.asarray(t, dtype=np.float64).reshape(3, 1)])"),
+    "positions for values": ("pinhole_project(X, f) for f in np.asarray(focal_lengths, dtype=np.float64).ravel()",
+                             "pinhole_project(X, focal_lengths[i]) for i in range(len(focal_lengths))"),
 }
 
 

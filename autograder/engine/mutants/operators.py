@@ -56,6 +56,7 @@ OPERATORS = {
     "in_place": ("in place", "copy", "caller", "writes into", "written into"),   # named where the change shows
     "stack_order": ("order", "stack", "exchang", "swap", "piece"),   # np.hstack([a, b]) -> np.hstack([b, a])
     "default": ("default", "none", "0", "zero"),      # `x is None` -> `not x`: a legitimate 0 swallowed
+    "loop_index": ("position", "index", "loop"),      # for f in fs -> for f in range(len(fs))
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -410,7 +411,11 @@ def _make_drop_statement(node, payload):
     return ast.Pass()
 
 
-_MAKE = {"sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+def _make_loop_index(node, payload):
+    return _call("range", _call("len", copy.deepcopy(node)))   # the positions of what was looped over
+
+
+_MAKE = {"loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -853,6 +858,11 @@ def _changes(node, parents, words: _Words, line):
             and isinstance(parent, (ast.IfExp, ast.If)) and parent.test is node:
         yield "default", None, f"a `{node.left.id}` of 0 (or any value that is false) is taken as not given: " \
                                "the default is used in its place (only None means not given)"
+    if isinstance(parent, (ast.comprehension, ast.For)) and parent.iter is node and isinstance(parent.target, ast.Name) \
+            and not (isinstance(node, ast.Call) and _dotted(node.func) in _LOOPED_POSITIONS):
+        looped = what(node)
+        yield "loop_index", None, f"the loop takes the positions 0, 1, 2, ... of {looped} where its values belong" \
+            if looped else _placed("a loop takes positions 0, 1, 2, ... where the values belong", place())
     if isinstance(node, ast.Call) and _dotted(node.func) in ("np.atleast_2d", "numpy.atleast_2d") \
             and len(node.args) == 1:   # (in a helper, the array may have no name of the student's)
         subject = what(node.args[0])
@@ -862,6 +872,7 @@ def _changes(node, parents, words: _Words, line):
 
 
 _INDEX_WORDS = {-1: "last", 0: "first", 1: "second", 2: "third"}
+_LOOPED_POSITIONS = {"range", "enumerate", "zip"}   # loops whose targets are positions or tuples already
 
 
 def _constant_index(node):
