@@ -1,6 +1,6 @@
 """The error model's operators for mistakes nobody listed (issue 35): an inverse written as a
 transpose, a copy-pasted index, an index on the wrong axis, stacked pieces in another order, a
-loop over positions where the values belong,
+loop over positions where the values belong, a normalisation undone the wrong way round or never,
 ``x or DEFAULT`` swallowing a 0, and a single point a 1-D array that raises. Each realistic
 student module (a small edit of the reference's text) gets that name; the reference and a
 legitimate alternative get none."""
@@ -120,6 +120,14 @@ CASES = {
                                        "pinhole_project(X, f) for f in range(len(focal_lengths))"),
                              [("project_focal_lengths", (X3, np.array([100.0, 400.0, 900.0])), {})],
                              "the loop takes the positions 0, 1, 2, ... of `focal_lengths` where its values belong"),
+    # a normalisation undone with the inverse on the other transform
+    "undone the wrong way round": ("lab10", ("P = np.linalg.inv(T) @ p.reshape(3, 4) @ U",
+                                             "P = T @ p.reshape(3, 4) @ np.linalg.inv(U)"),
+                                   [("camera_matrix_dlt", (X3 * [3, 3, 1], _projected(P2, X3 * [3, 3, 1])), {})],
+                                   "the normalisation is undone the wrong way round"),
+    # ... or never undone
+    "never undone": ("lab08", ("H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1", "H = Vt[-1].reshape(3, 3)"),
+                     [("homography_dlt", (SRC, _mapped(SRC)), {})], "the normalisation is never undone"),
 }
 
 
@@ -149,6 +157,10 @@ ALTERNATIVES = {   # legitimate code that differs from the reference's text
                                  "np.asarray(t, dtype=np.float64).reshape(3, 1)])"),
     "positions for values": ("pinhole_project(X, f) for f in np.asarray(focal_lengths, dtype=np.float64).ravel()",
                              "pinhole_project(X, focal_lengths[i]) for i in range(len(focal_lengths))"),
+    "undone the wrong way round": ("P = np.linalg.inv(T) @ p.reshape(3, 4) @ U",
+                                   "P = np.linalg.solve(T, p.reshape(3, 4) @ U)"),
+    "never undone": ("H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1",
+                     "H = np.linalg.solve(T2, Vt[-1].reshape(3, 3)) @ T1"),
 }
 
 

@@ -319,6 +319,13 @@ def _index_part(spec):
 
 
 def _make_inverse(node, payload):
+    if payload in ("swap_sides", "undone_never"):   # inv(A) @ M @ B -> A @ M @ inv(B), or -> M
+        first, middle, last = _chain_of_three(node)
+        if payload == "undone_never":
+            return copy.deepcopy(middle)
+        toggled = [copy.deepcopy(f.args[0]) if _is_inverse(f) else _call("np.linalg.inv", copy.deepcopy(f))
+                   for f in (first, last)]
+        return ast.BinOp(ast.BinOp(toggled[0], ast.MatMult(), copy.deepcopy(middle)), ast.MatMult(), toggled[1])
     if payload == "insert":     # X.T -> np.linalg.inv(X)
         return _call("np.linalg.inv", copy.deepcopy(node.value))
     if payload == "transpose":  # np.linalg.inv(X) -> X.T
@@ -848,6 +855,7 @@ def _changes(node, parents, words: _Words, line):
         yield "drop_statement", None, _statement_phrase(node, words, line)
     yield from _in_place_changes(node, words)
     yield from _inverse_changes(node, what, place)
+    yield from _undoing_changes(node)
     if isinstance(node, ast.Subscript):
         yield from _index_changes(node, what)
     if isinstance(node, ast.Call):
@@ -959,6 +967,33 @@ def _inverse_changes(node, what, place):
         inner = what(node.value)
         yield "inverse", "insert", f"the inverse of {inner} is used where its transpose belongs" if inner \
             else _placed("an inverse is used where a transpose belongs", place())
+
+
+def _is_inverse(node) -> bool:
+    return isinstance(node, ast.Call) and _dotted(node.func) in ("np.linalg.inv", "numpy.linalg.inv") \
+        and len(node.args) == 1 and not node.keywords
+
+
+def _chain_of_three(node):
+    """``(A, M, B)`` of ``A @ M @ B`` (left to right), else None."""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult) and isinstance(node.left, ast.BinOp) \
+            and isinstance(node.left.op, ast.MatMult):
+        return node.left.left, node.left.right, node.right
+    return None
+
+
+def _undoing_changes(node):
+    """A normalisation undone as ``inv(T) @ M @ U``: undone with the inverses on the other sides
+    (``T @ M @ inv(U)``), or never undone (``M``). Told without the transforms' names: a student's
+    locals have names of their own, and the step is the same whatever they are."""
+    chain = _chain_of_three(node)
+    if chain is None or not any(_is_inverse(f) for f in (chain[0], chain[2])):
+        return
+    yield "inverse", "swap_sides", "the normalisation is undone the wrong way round: each of the two normalising " \
+                                   "transforms is inverted where the other is (undoing it takes the inverse of the " \
+                                   "output side's transform, on the left, and the other as it is, on the right)"
+    yield "inverse", "undone_never", "the normalisation is never undone: the solution of the normalised system is " \
+                                     "returned without its two transforms"
 
 
 def _named_matrix(node) -> bool:
