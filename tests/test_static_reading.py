@@ -222,6 +222,17 @@ FINDINGS = {
             inliers = mask.ravel().astype(bool)
             return p1[inliers], p2[mask.ravel() == 1]
         """),
+    "cv2.recoverPose without the camera matrix": ("""
+        def f(E, pts1, pts2, K):
+            _, R, t, mask = cv2.recoverPose(E, pts1, pts2)
+            return R, t
+        """, """
+        def f(E, pts1, pts2, K):
+            _, R, t, mask = cv2.recoverPose(E, pts1, pts2, cameraMatrix=K)
+            n1 = cv2.undistortPoints(pts1.reshape(-1, 1, 2), K, None)
+            _, R2, t2, _ = cv2.recoverPose(E, n1, n1)   # normalised first: no camera needed
+            return R, t
+        """),
     "the distortion coefficients are read in the wrong order": ("""
         def f(points, dist):
             k1, k2, k3, p1, p2 = dist

@@ -166,6 +166,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _query_train(name, function)
     found += _mask_as_index(name, function)
     found += _distortion_order(name, function, parameters)
+    found += _camera_left_out(name, function)
     return found
 
 
@@ -580,6 +581,35 @@ def _index_ending(name: str) -> str:
         return name[len(head):]
     base, _, last = name.rpartition("_")
     return last if base and len(last) <= 5 else ""
+
+
+# ------------------------------------------------------------------ OpenCV's default camera
+# OpenCV calls that take the camera matrix as an optional argument and otherwise read the points
+# as normalised coordinates (focal length 1, principal point (0, 0)): the positional arguments
+# before it, and the keywords that give the camera.
+CAMERA_DEFAULTED = {"recoverPose": (3, ("cameraMatrix", "focal", "pp")),
+                    "findEssentialMat": (2, ("cameraMatrix", "focal", "pp"))}
+# What makes pixel points normalised first (then leaving the camera out is right).
+NORMALISING = frozenset({"inv", "solve", "undistortPoints", "pinv"})
+
+
+def _camera_left_out(name, function) -> list[Finding]:
+    """``cv2.recoverPose(E, pts1, pts2)`` (or ``cv2.findEssentialMat(pts1, pts2)``) without the
+    camera matrix, in a function that never normalises its points with K."""
+    if any(_call_name(node) in NORMALISING for node in ast.walk(function) if isinstance(node, ast.Call)):
+        return []
+    for node in ast.walk(function):
+        if not isinstance(node, ast.Call) or _call_name(node) not in CAMERA_DEFAULTED \
+                or _attribute_path(node.func) not in (f"cv2.{_call_name(node)}", _call_name(node)):
+            continue
+        before, keywords = CAMERA_DEFAULTED[_call_name(node)]
+        if len(node.args) <= before and not any(k.arg in keywords or k.arg is None for k in node.keywords):
+            called = _call_name(node)
+            return [Finding(name, _line(node), f"cv2.{called} without the camera matrix",
+                            f"{name} (line {_line(node)}) calls cv2.{called} without the camera matrix: OpenCV "
+                            "then takes a focal length of 1 and the principal point (0, 0), reading pixel "
+                            "coordinates as normalised ones; pass K to it")]
+    return []
 
 
 # ------------------------------------------------------------------ OpenCV masks
