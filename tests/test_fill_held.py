@@ -68,4 +68,19 @@ def test_a_replicated_border_is_told_so_and_not_told_about_np_roll(tmp_path):
     partial = [c for c in check_results(result, "lab07.ex1") if not c.passed and c.name.startswith("translate(")]
     assert partial and all(FILLS[cv2.BORDER_REPLICATE] in c.message for c in partial)
     assert not any("np.roll" in c.hint for c in partial)
-    assert all("your code already" in c.hint for c in partial)   # it passes a borderMode: not told to
+    # a border mode passed is not "already black": the one it passes is named, the constant one asked for
+    assert all("Your code uses cv2.BORDER_REPLICATE, which fills them so." in c.message for c in partial)
+    assert all("your code already" not in c.hint and "cv2.BORDER_CONSTANT" in c.hint for c in partial)
+
+
+def test_a_constant_border_of_another_value_is_told_to_look_elsewhere(tmp_path):
+    source = """
+        def translate(image, tx=100, ty=50):
+            M = np.float32([[1, 0, tx], [0, 1, ty]])
+            h, w = image.shape[:2]
+            return cv2.warpAffine(image, M, (w, h), borderMode=cv2.BORDER_CONSTANT, borderValue=(255, 255, 255))
+        """
+    result = grade(mutant(tmp_path, "lab07_transformations", source), ["lab07.ex1"], pictures="none")
+    partial = [c for c in check_results(result, "lab07.ex1") if not c.passed and c.name.startswith("translate(")]
+    assert partial and all("your code already uses cv2.BORDER_CONSTANT" in c.hint and "borderValue" in c.hint
+                           for c in partial), [c.hint for c in partial]

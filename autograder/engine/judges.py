@@ -39,9 +39,9 @@ from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fi
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
+# (a border mode passed is "already done" only when it is the constant one: BORDER_REPLICATE is not)
 BLACK_FILL_HINT = Hint("use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)",
-                       asks=mentions("cv2.BORDER_CONSTANT") | keyword("cv2.warpPerspective", "borderMode")
-                       | keyword("cv2.warpAffine", "borderMode"),
+                       asks=mentions("cv2.BORDER_CONSTANT"),
                        instead="your code already {found}: the pixels with no source pixel are filled "
                                "elsewhere (borderValue, or what is written into the output afterwards)")
 FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
@@ -53,6 +53,8 @@ FILLS = {
     cv2.BORDER_REFLECT_101: measured("mirror the image at its edge (as cv2.BORDER_REFLECT_101 does)"),
 }
 KEPT_INPUT = measured("still hold the input image (the output started as a copy of it?)")
+BORDER_NAMES = {cv2.BORDER_WRAP: "BORDER_WRAP", cv2.BORDER_REPLICATE: "BORDER_REPLICATE",
+                cv2.BORDER_REFLECT: "BORDER_REFLECT", cv2.BORDER_REFLECT_101: "BORDER_REFLECT_101"}
 ROLL_HINT = from_code("np.roll moves the pixels that leave one side back in on the other: set the rows and "
                       "columns it brought round to 0, or warp with cv2.warpAffine (black fill)")
 
@@ -357,10 +359,14 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
         nonblack = fill_fraction(got, outside)
         if nonblack > FILL_TOLERANCE:
             held = fill_held(got, source, M, dsize, outside)
-            rolls = held == FILLS[cv2.BORDER_WRAP] and calls("np.roll").found(
-                code_of(t).reachable(functions_read(t)))
+            read = code_of(t).reachable(functions_read(t))
+            rolls = held == FILLS[cv2.BORDER_WRAP] and calls("np.roll").found(read)
+            rule = next((name for border, name in BORDER_NAMES.items() if held == FILLS[border]
+                         and mentions(f"cv2.{name}").found(read)), None)
+            cause = from_code(f" Your code uses cv2.{rule}, which fills them so.") if rule else ""
             return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
-                                "pixels with no source pixel are not black" + (f": they {held}." if held else "."),
+                                "pixels with no source pixel are not black" + (f": they {held}." if held else ".")
+                           + cause,
                            hint=ROLL_HINT if rolls else BLACK_FILL_HINT.said(t),
                            mistake="the fill is not black")
         return passed(f"mean difference {error:.1f} grey levels on the covered area")
