@@ -1,6 +1,6 @@
 """The error model's operators for mistakes nobody listed (issue 35): an inverse written as a
 transpose, a copy-pasted index, an index on the wrong axis, stacked pieces in another order, a
-loop over positions where the values belong, a normalisation undone the wrong way round or never,
+loop over positions where the values belong, a normalisation undone the wrong way round or never, a bit shift the wrong way,
 ``x or DEFAULT`` swallowing a 0, and a single point a 1-D array that raises. Each realistic
 student module (a small edit of the reference's text) gets that name; the reference and a
 legitimate alternative get none."""
@@ -128,6 +128,9 @@ CASES = {
     # ... or never undone
     "never undone": ("lab08", ("H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1", "H = Vt[-1].reshape(3, 3)"),
                      [("homography_dlt", (SRC, _mapped(SRC)), {})], "the normalisation is never undone"),
+    # a bit shift the wrong way: k ^ (k << 1) for the Gray code
+    "shift the wrong way": ("lab12", ("gray = k ^ (k >> 1)", "gray = k ^ (k << 1)"),
+                            [("gray_code_patterns", (97, 5), {})], "(<< where >> belongs)"),
 }
 
 
@@ -161,6 +164,7 @@ ALTERNATIVES = {   # legitimate code that differs from the reference's text
                                    "P = np.linalg.solve(T, p.reshape(3, 4) @ U)"),
     "never undone": ("H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1",
                      "H = np.linalg.solve(T2, Vt[-1].reshape(3, 3)) @ T1"),
+    "shift the wrong way": ("gray = k ^ (k >> 1)", "gray = np.bitwise_xor(k, k // 2)"),
 }
 
 

@@ -259,3 +259,16 @@ def test_functions_writing_into_their_inputs_get_a_tip(tmp_path):
     [exercise] = result.exercises
     assert exercise.score == exercise.max_score
     assert_advised(result, "lab12.ex2", "depth_from_disparity", "disparity", "in place")
+
+
+def test_a_pattern_hint_tells_the_stripe_index_from_the_code_by_what_the_columns_carry():
+    """One code per stripe: the stripe index is right, the Gray code is not (its formula is the
+    hint); several codes within a stripe: k itself is wrong (the floor formula is the hint)."""
+    from autograder.labs.lab12 import one_code_per_stripe
+    from fixtures import lab12 as truth
+
+    width, n_bits = 97, 5
+    stripes = truth._stripe(width, n_bits)
+    assert one_code_per_stripe(truth.gray_code_patterns(width, n_bits), stripes)
+    assert one_code_per_stripe(truth.binary_code_patterns(width, n_bits), stripes)   # another code, right k
+    assert not one_code_per_stripe(truth.rounded_stripe_patterns(width, n_bits), stripes)   # k rounded

@@ -1659,7 +1659,23 @@ def judge_patterns(t: Trial, width, n_bits):
     column = int(np.argmax(np.any(got != expected, axis=0)))
     t.fail(f"{what}: column {column} (stripe k = {stripes[column]}) is {got[:, column].tolist()}; "
            f"expected {expected[:, column].tolist()}",
-           hint="k = floor(u * 2**n_bits / width) with integer arithmetic: (u * 2**n_bits) // width")
+           hint=GRAY_CODE_HINT if one_code_per_stripe(got, stripes) else STRIPE_HINT)
+
+
+# measured: every column of a stripe carries the same code (the stripe index is right), not its Gray code
+GRAY_CODE_HINT = measured("each stripe k gets one code, but not the binary-reflected Gray code of k: "
+                          "g = k XOR (k >> 1), bit i of g (most significant first) in row i")
+# measured: columns of one stripe carry different codes, so k itself differs
+STRIPE_HINT = measured("the columns of one stripe carry different codes: k = floor(u * 2**n_bits / width), "
+                       "with integer arithmetic (u * 2**n_bits) // width")
+
+
+def one_code_per_stripe(patterns, stripes) -> bool:
+    """Whether all the columns of each stripe carry the same bits (patterns (n_bits, width), bits
+    read at mid-grey), and different stripes different bits: the stripe index is right."""
+    codes = np.packbits(patterns > 127, axis=0).T.copy().view(f"V{(patterns.shape[0] + 7) // 8}").ravel()
+    pairs = len(set(zip(stripes.tolist(), codes.tolist())))
+    return pairs == len(set(stripes.tolist())) == len(set(codes.tolist()))
 
 
 @ex6.check("gray_code_patterns(16, 4) bit for bit", points=2)

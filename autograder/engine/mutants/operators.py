@@ -57,6 +57,7 @@ OPERATORS = {
     "stack_order": ("order", "stack", "exchang", "swap", "piece"),   # np.hstack([a, b]) -> np.hstack([b, a])
     "default": ("default", "none", "0", "zero"),      # `x is None` -> `not x`: a legitimate 0 swallowed
     "loop_index": ("position", "index", "loop"),      # for f in fs -> for f in range(len(fs))
+    "shift": ("shift", "<<", ">>"),                    # k >> 1 -> k << 1
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -418,11 +419,16 @@ def _make_drop_statement(node, payload):
     return ast.Pass()
 
 
+def _make_shift(node, payload):
+    return ast.BinOp(copy.deepcopy(node.left), ast.LShift() if isinstance(node.op, ast.RShift) else ast.RShift(),
+                     copy.deepcopy(node.right))
+
+
 def _make_loop_index(node, payload):
     return _call("range", _call("len", copy.deepcopy(node)))   # the positions of what was looped over
 
 
-_MAKE = {"loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+_MAKE = {"shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -866,6 +872,13 @@ def _changes(node, parents, words: _Words, line):
             and isinstance(parent, (ast.IfExp, ast.If)) and parent.test is node:
         yield "default", None, f"a `{node.left.id}` of 0 (or any value that is false) is taken as not given: " \
                                "the default is used in its place (only None means not given)"
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.RShift)):
+        wrong, right = ("<<", ">>") if isinstance(node.op, ast.RShift) else (">>", "<<")
+        shifted = what(node.left)
+        # (a function has few shifts: where nothing names the shifted term, the direction says enough)
+        yield "shift", None, f"{shifted} is shifted the wrong way ({wrong} where {right} belongs)" if shifted \
+            else _placed(f"a bit shift goes the wrong way ({wrong} where {right} belongs)", place()) \
+            or f"a bit shift goes the wrong way ({wrong} where {right} belongs)"
     if isinstance(parent, (ast.comprehension, ast.For)) and parent.iter is node and isinstance(parent.target, ast.Name) \
             and not (isinstance(node, ast.Call) and _dotted(node.func) in _LOOPED_POSITIONS):
         looped = what(node)
