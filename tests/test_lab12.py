@@ -272,3 +272,23 @@ def test_a_pattern_hint_tells_the_stripe_index_from_the_code_by_what_the_columns
     assert one_code_per_stripe(truth.gray_code_patterns(width, n_bits), stripes)
     assert one_code_per_stripe(truth.binary_code_patterns(width, n_bits), stripes)   # another code, right k
     assert not one_code_per_stripe(truth.rounded_stripe_patterns(width, n_bits), stripes)   # k rounded
+
+
+@pytest.mark.parametrize("edit, words", [
+    (("rect_r = cv2.warpPerspective(np.asarray(img_r), H2,", "rect_r = cv2.warpPerspective(np.asarray(img_r), H1,"),
+     "rect_r alone is warped with H1, the other image's homography, where H2 belongs"),
+    (("rect_l = cv2.warpPerspective(np.asarray(img_l), H1,", "rect_l = cv2.warpPerspective(np.asarray(img_l), H2,"),
+     "rect_l alone is warped with H2, the other image's homography, where H1 belongs"),
+])
+def test_one_image_warped_with_the_other_homography_is_told_alone(tmp_path, edit, words):
+    """A warp line copied from the other image's is not "each image is warped with the other's"."""
+    from conftest import REFERENCE
+
+    folder = tmp_path / "submission"
+    folder.mkdir()
+    source = (REFERENCE / "lab12_stereo.py").read_text()
+    assert source.count(edit[0]) == 1
+    (folder / "lab12_stereo.py").write_text(source.replace(edit[0], edit[1]))
+    result = grade(folder, ["lab12.ex3"], pictures="none")
+    [check] = [c for c in check_results(result, "lab12.ex3") if c.name.startswith("rectify: the rectified images")]
+    assert not check.passed and words in check.message and "each image" not in check.message, check.message

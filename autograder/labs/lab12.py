@@ -908,8 +908,7 @@ def rectify_images(t):
             h_swapped = np.nanmax(row_errors(H2, H1, pair)[0]) <= EXACT_ROWS
             alternatives = {
                 "rect_l and rect_r are swapped": (other_image, other_H),
-                "H1 and H2 are swapped" if h_swapped else
-                "each image is warped with the other one's homography (rect_l = img_l warped by H1)":
+                "H1 and H2 are swapped" if h_swapped else _warped_with_the_other(t, name, pair, rect_l, rect_r, H1, H2):
                     (image, other_H),
             }
             for mistake, (source, homography) in alternatives.items():
@@ -927,6 +926,21 @@ def rectify_images(t):
                    f"{'H1' if name == 'rect_l' else 'H2'} by {error:.0f} grey levels on average "
                    "(do the images and the homographies describe the same warp?)")
     return passed("both images match their homographies")
+
+
+def _warped_with_the_other(t, name, pair, rect_l, rect_r, H1, H2) -> str:
+    """The mistake of ``name`` (rect_l or rect_r) warped with the other image's homography: both
+    images so, or that one alone (a line copied from the other image's), as the other image shows."""
+    other, image, H = ("rect_r", pair.img_r, H1) if name == "rect_l" else ("rect_l", pair.img_l, H2)
+    got = rect_r if name == "rect_l" else rect_l
+    try:
+        both = warped_error(image, H, got) <= 8.0
+    except np.linalg.LinAlgError:
+        both = False
+    if both:
+        return "each image is warped with the other one's homography"
+    own, wrong = ("H1", "H2") if name == "rect_l" else ("H2", "H1")
+    return f"{name} alone is warped with {wrong}, the other image's homography, where {own} belongs"
 
 
 @ex3.check("rectify keeps a colour pair in colour (BGR in, BGR out)", points=1)
