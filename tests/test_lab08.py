@@ -114,3 +114,22 @@ def test_lines_shifted_by_w2_are_named_on_images_of_unequal_widths(tmp_path):
 @pytest.mark.xdist_group("lab08")
 def test_convention_is_advice_not_points(name):
     assert_advice_case(MODULE, *ADVICE[name])
+
+
+@pytest.mark.parametrize("edit, sizing_told", [
+    (("shift = _translation(-x_min, -y_min)  # integer shift", "shift = np.eye(3)  # integer shift"), False),
+])
+def test_a_canvas_of_the_right_size_never_shifted_is_told_the_shift_only(tmp_path, edit, sizing_told):
+    """The canvas sized from all the warped corners but never translated: told to shift, not to
+    size the canvas, which it already does (the table's 'no shift' case sizes it wrongly too)."""
+    from conftest import REFERENCE
+
+    folder = tmp_path / "submission"
+    folder.mkdir()
+    source = (REFERENCE / "lab08_homographies.py").read_text()
+    assert source.count(edit[0]) == 1
+    (folder / "lab08_homographies.py").write_text(source.replace(edit[0], edit[1]))
+    result = grade(folder, ["lab08.ex5"], pictures="none")
+    told = [c for c in check_results(result, "lab08.ex5") if c.mistake == "the canvas is not shifted for negative coordinates"]
+    assert told, [c.message for c in check_results(result, "lab08.ex5") if not c.passed]
+    assert all(("size the canvas" in c.message) == sizing_told for c in told), [c.message for c in told]

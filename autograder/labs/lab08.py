@@ -1402,11 +1402,13 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
                    "it must be the bounding box of all the warped image corners, shifted by a "
                    "translation so that negative coordinates fit", mistake=ONE_IMAGE_CANVAS)
         if placed and set(sticking) <= {"left", "top"} and canvas_not_shifted_on_probe(t, len(names)):
+            # measured: a canvas of the bounding box's size is told only the shift
+            sized = "" if canvas_has_the_bounding_box_size(judge) else \
+                measured(" and size the canvas to the bounding box of all warped corners")
             t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: {NOT_SHIFTED}: "
                    "content that lands at negative coordinates must fit too, so shift everything by a "
                    "translation T = [[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]] (applied to every "
-                   "homography) and size the canvas to the bounding box of all warped corners",
-                   mistake=NOT_SHIFTED)
+                   f"homography){sized}", mistake=NOT_SHIFTED)
         if not placed:   # content in the wrong place: a known wrong map may say where it came from
             name_second_warp_mistake(t, judge, what) if len(names) == 2 else name_inverse_warp(t, judge, what)
         t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}{_advice(CANVAS_ADVICE.said(t))}")
@@ -1419,6 +1421,15 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
         return partial(0.5, f"{what}: the panorama covers the images but is {area / box:.1f} times "
                             "the area of their bounding box: crop the canvas to the bounding box")
     return passed(f"{what}: {judge.panorama.shape[1]}x{judge.panorama.shape[0]}, every image inside")
+
+
+def canvas_has_the_bounding_box_size(judge: PanoramaJudge, slack: float = 3.0) -> bool:
+    """Whether the panorama's width and height are those of the bounding box of all the warped
+    image corners (within ``slack`` pixels: a box from floor(min) to ceil(max), rounding)."""
+    corners = np.vstack([truth.apply_h(judge.view_to_panorama(k), corners_of(view.shape))
+                         for k, view in enumerate(judge.scene.views)])
+    width, height = corners.max(axis=0) - corners.min(axis=0) + 1
+    return abs(judge.panorama.shape[1] - width) <= slack and abs(judge.panorama.shape[0] - height) <= slack
 
 
 def name_image_left_out(t: Trial, judge: PanoramaJudge, what: str, names, sticking):
