@@ -133,3 +133,10 @@ def test_a_canvas_of_the_right_size_never_shifted_is_told_the_shift_only(tmp_pat
     told = [c for c in check_results(result, "lab08.ex5") if c.mistake == "the canvas is not shifted for negative coordinates"]
     assert told, [c.message for c in check_results(result, "lab08.ex5") if not c.passed]
     assert all(("size the canvas" in c.message) == sizing_told for c in told), [c.message for c in told]
+
+
+def test_a_canvas_sized_to_the_maximum_only_is_told_to_size_it_too(tmp_path):
+    exercise, source, _ = MISTAKES["no shift for negative coordinates"]
+    result = grade(mutant(tmp_path, "lab08_homographies", source), [exercise], pictures="none")
+    told = [c for c in check_results(result, exercise) if c.mistake == "the canvas is not shifted for negative coordinates"]
+    assert told and any("size the canvas to the bounding box" in c.message for c in told), [c.message for c in told]
