@@ -140,3 +140,21 @@ def test_a_canvas_sized_to_the_maximum_only_is_told_to_size_it_too(tmp_path):
     result = grade(mutant(tmp_path, "lab08_homographies", source), [exercise], pictures="none")
     told = [c for c in check_results(result, exercise) if c.mistake == "the canvas is not shifted for negative coordinates"]
     assert told and any("size the canvas to the bounding box" in c.message for c in told), [c.message for c in told]
+
+
+def test_a_pyramid_collapsed_with_resize_is_told_the_two_enlargements(tmp_path):
+    """Bands made with cv2.pyrUp, collapsed with cv2.resize: not told to compare with pyrUp, which it
+    already calls, but that the two enlargements differ."""
+    from conftest import REFERENCE
+
+    old = "result = cv2.pyrUp(result, dstsize=(band.shape[1], band.shape[0])) + band"
+    new = "result = cv2.resize(result, (band.shape[1], band.shape[0])) + band"
+    folder = tmp_path / "submission"
+    folder.mkdir()
+    source = (REFERENCE / "lab08_homographies.py").read_text()
+    assert source.count(old) == 1
+    (folder / "lab08_homographies.py").write_text(source.replace(old, new))
+    result = grade(folder, ["lab08.ext3"], pictures="none")
+    [check] = [c for c in check_results(result, "lab08.ext3") if c.name == "blending an image with itself leaves it unchanged"]
+    assert not check.passed and "both with cv2.pyrUp and with cv2.resize" in check.message, check.message
+    assert "compare each band" not in check.message + check.hint

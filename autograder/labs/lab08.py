@@ -32,7 +32,7 @@ from ..engine.claims import (THIRD_COORDINATE, calls_any, compares_a_distance_wi
                              measured, takes_last_row_of_vt)
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
 from ..engine.hints import (RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope, calls, code_of,
-                             expr, keyword, matmul_of, mentions, passes_product)
+                             expr, functions_read, keyword, matmul_of, mentions, passes_product)
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
@@ -1913,7 +1913,18 @@ def blend_identity(t):
                + Hint("compute the pyramids in float (img.astype(np.float32))", asks=TO_FLOAT,
                       instead="your code {found} somewhere, but a level or band is still computed from uint8 "
                               "images").said(t))
+    read = code_of(t).reachable(functions_read(t))
+    if (calls("cv2.pyrUp") & calls("cv2.resize")).found(read):
+        t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels: {RESIZE_AND_PYRUP}",
+               mistake=RESIZE_AND_PYRUP_MISTAKE)
     t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels; " + EXACT_COLLAPSE_HINT.said(t))
+
+
+# from the code: it calls both; a band made with one enlargement is undone only by the same one
+RESIZE_AND_PYRUP = from_code("your code enlarges levels both with cv2.pyrUp and with cv2.resize: a band made "
+                             "as finer - pyrUp(coarser) is undone only by that same pyrUp when the pyramid "
+                             "is collapsed (cv2.resize interpolates differently), and the other way round")
+RESIZE_AND_PYRUP_MISTAKE = "the pyramid is built and collapsed with different enlargements (pyrUp, resize)"
 
 
 def blend_probe(t: Trial, img1, img2, mask, **kwargs):
