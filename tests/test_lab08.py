@@ -158,3 +158,25 @@ def test_a_pyramid_collapsed_with_resize_is_told_the_two_enlargements(tmp_path):
     [check] = [c for c in check_results(result, "lab08.ext3") if c.name == "blending an image with itself leaves it unchanged"]
     assert not check.passed and "both with cv2.pyrUp and with cv2.resize" in check.message, check.message
     assert "compare each band" not in check.message + check.hint
+
+
+def test_a_ransac_measuring_its_error_backwards_is_not_told_an_inverted_mask_or_an_ignored_threshold(tmp_path):
+    """|H dst - src| for |H src - dst|: every pair ends up an inlier and H a fit to all of them. The
+    outputs look like a fit to all the points and, against the truth, like an inverted mask; neither
+    the mask's inversion nor an ignored threshold is true of such code."""
+    from conftest import REFERENCE
+
+    folder = tmp_path / "submission"
+    folder.mkdir()
+    source = (REFERENCE / "lab08_homographies.py").read_text()
+    for old, new in (("homogeneous = np.hstack([src, np.ones((len(src), 1))])",
+                      "homogeneous = np.hstack([dst, np.ones((len(dst), 1))])"),
+                     ("errors = np.linalg.norm(xy - dst, axis=2)", "errors = np.linalg.norm(xy - src, axis=2)")):
+        assert source.count(old) == 1
+        source = source.replace(old, new)
+    (folder / "lab08_homographies.py").write_text(source)
+    result = grade(folder, ["lab08.ex4"], pictures="none")
+    failed = [c for c in check_results(result, "lab08.ex4") if not c.passed]
+    assert failed
+    text = " ".join(c.message + c.hint + c.mistake for c in failed)
+    assert "inverted" not in text and "threshold is ignored" not in text, text
