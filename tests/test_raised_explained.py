@@ -94,3 +94,28 @@ def test_a_camera_matrix_joining_a_flat_translation_is_told_in_grading(tmp_path)
     failed = [c for c in check_results(result, "lab09.ex3") if not c.passed]
     assert failed and any(c.mistake == MISTAKE and "joins `t` as it was given, shape (3,)" in c.message
                           for c in failed), [c.message for c in failed]
+
+
+def test_a_fractional_parameter_in_a_slice_is_named():
+    source = """
+        def f(image, tx, ty):
+            out = np.zeros_like(image)
+            out[ty:, tx:] = image[:-ty or None, :-tx or None]
+            return out
+        """
+    message = "slice indices must be integers or None or have an __index__ method"
+    form = explained(read_code(textwrap.dedent(source)), traceback_at(4), message, "f", (R, 12.5, 3), {})
+    assert form is not None and "`tx`, given 12.5 here, in a slice" in form.sentence
+    assert explained(read_code(textwrap.dedent(source)), traceback_at(4), message, "f", (R, 12.0, 3), {}) is None
+
+
+@pytest.mark.parametrize("message, mistake", [
+    ("could not broadcast input array from shape (150,200) into shape (150,200,3)", "grey image written into a colour"),
+    ("could not broadcast input array from shape (150,200,3) into shape (150,200)", "colour image written into a grey"),
+])
+def test_a_grey_and_a_colour_image_written_into_each_other_are_named(message, mistake):
+    from autograder.engine.forms import exception_form
+
+    form = exception_form(f"draw_matches() raised ValueError: {message}")
+    assert form is not None and mistake in form.mistake
+    assert exception_form("could not broadcast input array from shape (15,20) into shape (150,200,3)") is None

@@ -202,6 +202,10 @@ _BROADCAST = re.compile(r"operands could not be broadcast together with shapes (
 _SHAPE = re.compile(r"\(([\d,]*)\)")
 _MATMUL = re.compile(r"mismatch in its core dimension \d.*?\(size (\d+) is different from (\d+)\)", re.S)
 _DOT = re.compile(r"shapes \(([\d, ]+)\) and \(([\d, ]+)\) not aligned")
+_INTO = re.compile(r"could not broadcast input array from shape \((\d+),\s*(\d+)(?:,\s*(\d+))?\) into shape "
+                   r"\((\d+),\s*(\d+)(?:,\s*(\d+))?\)")
+GREY_INTO_COLOUR = "a grey image written into a colour (3-channel) array"
+COLOUR_INTO_GREY = "a colour image written into a grey (2-D) array"
 
 
 def _shapes(text: str) -> list[tuple[int, ...]]:
@@ -212,6 +216,18 @@ def exception_form(message: str) -> Form | None:
     """The form behind NumPy's error in ``message`` (the student's exception line), when a rule
     recognises it: a per-row value kept flat against an ``(N, k)`` array, or a matrix product
     whose inner sizes differ by the homogeneous coordinate."""
+    found = _INTO.search(message)
+    if found:
+        h, w, c, H, W, C = found.groups()
+        if (h, w) == (H, W) and c is None and C == "3":
+            return Form(measured(f"a grey image, shape ({h}, {w}), is written into a colour array of shape "
+                                 f"({H}, {W}, 3): convert it to BGR first (cv2.cvtColor(img, cv2.COLOR_GRAY2BGR))"),
+                        GREY_INTO_COLOUR)
+        if (h, w) == (H, W) and c == "3" and C is None:
+            return Form(measured(f"a colour image, shape ({h}, {w}, 3), is written into a grey array of shape "
+                                 f"({H}, {W}): keep the input's channels (np.zeros_like(image), or "
+                                 "image.shape for the new array)"), COLOUR_INTO_GREY)
+        return None
     found = _BROADCAST.search(message)
     if found:
         shapes = _shapes(found.group(1))

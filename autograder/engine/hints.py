@@ -40,6 +40,7 @@ Without a submission to read (a check run on a stand-in sandbox) every hint keep
 from __future__ import annotations
 
 import ast
+import inspect
 import re
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
@@ -860,3 +861,24 @@ UINT8_HINT = Hint("images stay uint8: convert with np.clip(x, 0, 255).astype(np.
 FLOAT_HINT = Hint("build it with dtype=float (an array of whole numbers is an integer array) or convert it "
                   "with .astype(np.float64)", asks=TO_FLOAT,
                   instead="your code {found} somewhere, but not the array it returns")
+
+
+def signature_of_def(fn: ast.FunctionDef) -> inspect.Signature | None:
+    """The student's own def as a signature (its names; defaults only marked), to bind a call's arguments."""
+    arguments = fn.args
+    kind = inspect.Parameter
+    positional = [(a, kind.POSITIONAL_ONLY) for a in arguments.posonlyargs] + \
+        [(a, kind.POSITIONAL_OR_KEYWORD) for a in arguments.args]
+    first_default = len(positional) - len(arguments.defaults)
+    parameters = [kind(a.arg, k, default=None if i >= first_default else kind.empty)
+                  for i, (a, k) in enumerate(positional)]
+    if arguments.vararg:
+        parameters.append(kind(arguments.vararg.arg, kind.VAR_POSITIONAL))
+    parameters += [kind(a.arg, kind.KEYWORD_ONLY, default=kind.empty if d is None else None)
+                   for a, d in zip(arguments.kwonlyargs, arguments.kw_defaults)]
+    if arguments.kwarg:
+        parameters.append(kind(arguments.kwarg.arg, kind.VAR_KEYWORD))
+    try:
+        return inspect.Signature(parameters)
+    except ValueError:   # two parameters of one name: not a def Python would run
+        return None

@@ -12,14 +12,13 @@ one of the function's own parameters, unchanged before that line, whose given sh
 from __future__ import annotations
 
 import ast
-import inspect
 import re
 
 import numpy as np
 
 from .claims import measured
 from .forms import Form
-from .hints import Code, _own_nodes
+from .hints import Code, _own_nodes, signature_of_def
 
 # "File "lab09_camera.py", line 42, in camera_matrix\n    return K @ np.hstack([R, t])"
 _FRAME = re.compile(r'File "[^"]+", line (\d+), in (\w+)')
@@ -27,6 +26,8 @@ _NDIM = re.compile(r"the array at index (\d+) has (\d+) dimension\(s\) and the a
                    r"(\d+) dimension\(s\)")
 _SIZE = re.compile(r"along dimension (\d+), the array at index (\d+) has size (\d+) and the array at "
                    r"index (\d+) has size (\d+)")
+_SLICE = re.compile(r"slice indices must be integers")
+SLICED_MISTAKE = "a fractional value used as a slice bound"
 JOINS = frozenset({"hstack", "vstack", "concatenate", "column_stack", "row_stack", "stack", "append", "block"})
 MISTAKE = "a 1-D vector joined to a 2-D array"
 
@@ -40,11 +41,13 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
     if not frames or fn is None or frames[-1][1] != function:
         return None
     line = int(frames[-1][0])
-    signature = _signature(fn)
+    signature = signature_of_def(fn)
     try:
         given = signature.bind(*args, **kwargs).arguments if signature else {}
     except TypeError:
         return None
+    if _SLICE.search(message):
+        return _fraction_sliced(fn, line, given)
     found = _NDIM.search(message) or _SIZE.search(message)
     if found is None:
         return None
@@ -53,6 +56,22 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
         if parts is None:
             continue
         return _join_named(fn, call, parts, found, given, line)
+    return None
+
+
+def _fraction_sliced(fn, line: int, given: dict) -> Form | None:
+    """A parameter given a fractional number, used in a slice bound on the raising line."""
+    for node in _own_nodes(fn):
+        if not isinstance(node, ast.Slice) or not node.lineno <= line <= getattr(node, "end_lineno", node.lineno):
+            continue
+        for bound in (node.lower, node.upper, node.step):
+            for name in (n.id for n in ast.walk(bound) if isinstance(n, ast.Name)) if bound is not None else ():
+                value = given.get(name)
+                if isinstance(value, (float, np.floating)) and value != int(value) and not _reassigned(fn, name, line):
+                    # measured: the line raised on a slice holding this parameter, given a fraction
+                    return Form(measured(f"your `{fn.name}` uses `{name}`, given {value!r} here, in a slice "
+                                         f"(line {line}), and slice bounds must be whole numbers: a slice moves "
+                                         "whole pixels only"), SLICED_MISTAKE)
     return None
 
 
@@ -127,24 +146,3 @@ def _reassigned(fn, name: str, line: int) -> bool:
             if any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(target)) and node.lineno < line:
                 return True
     return False
-
-
-def _signature(fn: ast.FunctionDef) -> inspect.Signature | None:
-    """The student's own def as a signature (its names; defaults only marked), to bind a call's arguments."""
-    arguments = fn.args
-    kind = inspect.Parameter
-    positional = [(a, kind.POSITIONAL_ONLY) for a in arguments.posonlyargs] + \
-        [(a, kind.POSITIONAL_OR_KEYWORD) for a in arguments.args]
-    first_default = len(positional) - len(arguments.defaults)
-    parameters = [kind(a.arg, k, default=None if i >= first_default else kind.empty)
-                  for i, (a, k) in enumerate(positional)]
-    if arguments.vararg:
-        parameters.append(kind(arguments.vararg.arg, kind.VAR_POSITIONAL))
-    parameters += [kind(a.arg, kind.KEYWORD_ONLY, default=kind.empty if d is None else None)
-                   for a, d in zip(arguments.kwonlyargs, arguments.kw_defaults)]
-    if arguments.kwarg:
-        parameters.append(kind(arguments.kwarg.arg, kind.VAR_KEYWORD))
-    try:
-        return inspect.Signature(parameters)
-    except ValueError:   # two parameters of one name: not a def Python would run
-        return None

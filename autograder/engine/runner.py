@@ -448,6 +448,23 @@ def _explained_from_the_line(trial: Trial, traceback_text: str):
     return raised.explained(code_of(trial), traceback_text, message, function, args, kwargs)
 
 
+def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:
+    """A failing verdict that names no mistake, naming a parameter the check's calls gave a value and
+    the student's function never reads (:mod:`autograder.engine.ignored`)."""
+    from . import ignored
+    from .hints import code_of
+
+    calls = list(trial.calls) + ([trial.raised] if getattr(trial, "raised", None) else [])
+    found = ignored.unused_given(code_of(trial), calls) if calls else None
+    if found is None:
+        return verdict
+    first, newline, rest = str(verdict.message).partition("\n")
+    lead = first.rstrip()
+    lead += "" if not lead or lead[-1] in ".:;!?" else "."
+    return replace(verdict, message=f"{lead} {ignored.sentence(*found)[0].upper()}{ignored.sentence(*found)[1:]}."
+                   f"{newline}{rest}", mistake=ignored.MISTAKE)
+
+
 def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: Trial) -> Verdict:
     """A failing verdict that names no mistake, naming the cause the submission's code shows in the
     functions the check called (a finding of :mod:`autograder.loading.reading`), when there is one: the
@@ -670,6 +687,9 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_reading(verdict, reading, check, trial)
     if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
+    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") \
+            and not inherited and "looks like" not in str(verdict.message).lower():
+        verdict = _named_by_unused_parameter(verdict, trial)   # the last resort: true, but not confirmed
     if status in (FAILED, PARTIAL):   # a diagnosis asking for code the student wrote is not said
         verdict = rewritten(verdict, trial)
     if status in (FAILED, PARTIAL):   # code relying on what only one OpenCV major does is told so

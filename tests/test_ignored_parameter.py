@@ -1,0 +1,72 @@
+"""A parameter the failing check gave a value and the student's function never reads is named
+(issue 35: "returned shape (120, 160, 3); expected (100, 220, 3)" located a dsize left unused
+without its cause). The body is read, never run; only a value the check chose counts."""
+
+from __future__ import annotations
+
+import textwrap
+
+import pytest
+
+from autograder.engine.hints import read_code
+from autograder.engine.ignored import MISTAKE, never_read, unused_given
+from autograder.engine.runner import grade
+from conftest import check_results, mutant
+
+
+def code(source: str):
+    return read_code(textwrap.dedent(source))
+
+
+def test_a_parameter_never_loaded_is_found_and_one_read_anywhere_is_not():
+    fn = code("""
+        def f(image, A, dsize=None, center=None, scale=1.0):
+            helper = lambda: scale * 2
+            h, w = image.shape[:2]
+            return cv2.warpAffine(image, A, (w, h)), helper()
+        """).functions["f"]
+    assert never_read(fn) == {"dsize", "center"}
+
+
+def test_a_function_reading_locals_is_not_judged():
+    fn = code("""
+        def f(image, dsize=None):
+            return g(**locals())
+        """).functions["f"]
+    assert never_read(fn) == set()
+
+
+@pytest.mark.parametrize("call, found", [
+    (("f", ("img", "A"), {"dsize": (220, 100)}), ("f", "dsize", (220, 100))),
+    (("f", ("img", "A", (220, 100)), {}), ("f", "dsize", (220, 100))),    # positionally
+    (("f", ("img", "A"), {}), None),                                        # the default: nothing chosen
+    (("f", ("img", "A"), {"dsize": None}), None),                           # None: nothing given
+    (("f", ("img", "A"), {"seed": 3}), None),                               # randomness: its own checks
+])
+def test_only_a_value_the_check_gave_names_it(call, found):
+    source = code("""
+        def f(image, A, dsize=None, seed=None):
+            return image @ A
+        """)
+    assert unused_given(source, [call + ("answer",)]) == found
+
+
+def test_the_literal_default_given_again_names_nothing():
+    source = code("""
+        def f(points, f=1.0, z_avg=10.0):
+            return points * f
+        """)
+    assert unused_given(source, [("f", ([1.0],), {"z_avg": 10.0}, None)]) is None
+    assert unused_given(source, [("f", ([1.0],), {"z_avg": 12.0}, None)]) == ("f", "z_avg", 12.0)
+
+
+def test_a_warp_that_ignores_dsize_is_named_in_grading(tmp_path):
+    source = """
+        def warp_affine(image, A, dsize=None):
+            h, w = image.shape[:2]
+            return cv2.warpAffine(image, np.asarray(A, float)[:2], (w, h))
+        """
+    result = grade(mutant(tmp_path, "lab07_transformations", source), ["lab07.ex5"], pictures="none")
+    named = [c for c in check_results(result, "lab07.ex5") if c.mistake == MISTAKE]
+    assert named and all("never uses its parameter `dsize`" in c.message for c in named), \
+        [c.message for c in check_results(result, "lab07.ex5") if not c.passed]
