@@ -128,6 +128,11 @@ CASES = {
     # ... or never undone
     "never undone": ("lab08", ("H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1", "H = Vt[-1].reshape(3, 3)"),
                      [("homography_dlt", (SRC, _mapped(SRC)), {})], "the normalisation is never undone"),
+    # two entries of a design matrix's row exchanged, past the sixth (positions told by number)
+    "row entries exchanged": ("lab08", ("rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -v * x, -v * y, -v]",
+                                        "rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -v * y, -v * x, -v]"),
+                              [("homography_dlt", (SRC, _mapped(SRC)), {})],
+                              "the seventh and eighth pieces stacked by `np.stack` are exchanged"),
     # a bit shift the wrong way: k ^ (k << 1) for the Gray code
     "shift the wrong way": ("lab12", ("gray = k ^ (k >> 1)", "gray = k ^ (k << 1)"),
                             [("gray_code_patterns", (97, 5), {})], "(<< where >> belongs)"),
@@ -165,6 +170,8 @@ ALTERNATIVES = {   # legitimate code that differs from the reference's text
     "never undone": ("H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1",
                      "H = np.linalg.solve(T2, Vt[-1].reshape(3, 3)) @ T1"),
     "shift the wrong way": ("gray = k ^ (k >> 1)", "gray = np.bitwise_xor(k, k // 2)"),
+    "row entries exchanged": ("rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -v * x, -v * y, -v]",
+                              "rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -(v * x), -(v * y), -v]"),
 }
 
 

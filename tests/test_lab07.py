@@ -83,3 +83,17 @@ def test_textbook_variant_scores_full_marks(tmp_path, case):
     result = grade(mutant(tmp_path, MODULE, source), [exercise])
     for check in check_results(result, exercise):
         assert check.passed or check.max_score == 0, f"{check.name}: {check.message}"
+
+
+def test_a_scale_made_with_cv2_resize_is_told_it_resizes(tmp_path):
+    """An output of the input's size times the scale, from code calling cv2.resize: named."""
+    from autograder.engine.judges import RESIZED
+
+    source = """
+        def scale(image, sx=1.5, sy=1.5):
+            return cv2.resize(image, None, fx=sx, fy=sy)
+        """
+    result = grade(mutant(tmp_path, "lab07_transformations", source), ["lab07.ex3"], pictures="none")
+    failed = [c for c in check_results(result, "lab07.ex3") if not c.passed and c.max_score]
+    assert failed and all(c.mistake == RESIZED and "your code calls cv2.resize" in c.message for c in failed
+                          if "returned shape" in c.message), [c.message for c in failed]

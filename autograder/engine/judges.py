@@ -322,6 +322,25 @@ def warp_probe(t: Trial, function: str, source, M, mistakes: dict, args=None, kw
                  tolerance=IMAGE_TOLERANCE, alike=_same_map)
 
 
+RESIZED = "the image is resized rather than warped into a frame of the input's size"
+
+
+def _resized(t: Trial, got, source, M) -> str:
+    """For an answer of the wrong size, :data:`RESIZED` when its size is the input's scaled by M's
+    scale factors (with the code's cv2.resize call when it has one), else ""."""
+    if not isinstance(got, np.ndarray) or got.ndim < 2:
+        return ""
+    A = np.asarray(M, np.float64)
+    h, w = source.shape[:2]
+    sx, sy = np.hypot(A[0, 0], A[1, 0]), np.hypot(A[0, 1], A[1, 1])
+    if abs(got.shape[0] - h * sy) > 1.5 or abs(got.shape[1] - w * sx) > 1.5 or (abs(sx - 1) < 1e-3 and abs(sy - 1) < 1e-3):
+        return ""
+    resizes = calls("cv2.resize").found(code_of(t).reachable(functions_read(t)))
+    # measured: the size is the input's times M's scales; the call only where the code has it
+    return measured(f"{RESIZED} (content that leaves the frame is cut off)") + \
+        (from_code("; your code calls cv2.resize") if resizes else "")
+
+
 def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, show=True,
                probe: Probe | None = None) -> Verdict:
     """Judge an image warped by ``M`` (affine or homography) against the oracle.
@@ -351,6 +370,10 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
                    + (form.sentence if form else measured("keep the input's channels")),
                    mistake="the channels are not kept")
+        resized = "" if dsize else _resized(t, got, source, M)
+        if resized:
+            t.fail(f"{what} returned shape {got.shape}, the input's size times the transform's scale; expected "
+                   f"{expected_shape}: {resized}", mistake=RESIZED)
         size_rule = "" if dsize else ": warps keep the input's size (content that leaves the frame is cut off)"
         t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}{size_rule}")
     got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)

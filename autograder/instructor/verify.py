@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Iterable
 
+from ..engine.ignored import MISTAKE as UNUSED_PARAMETER
 from ..engine.labfolders import MISTAKES, REFERENCE, SKELETON, LabFolderError, lab_folder
 from ..engine.registry import Lab
 from ..engine.results import ERROR, GradingResult
@@ -243,6 +244,7 @@ def grader_errors(result: GradingResult, prefix: str) -> list[str]:
             for e in _exercises(result, prefix) for c in e.checks if c.status == ERROR]
 
 
+
 def case_problems(result: GradingResult, case: Case) -> list[str]:
     """What is wrong with how the checks answer ``case`` (nothing: an empty list)."""
     errors = grader_errors(result, case.exercise)
@@ -260,14 +262,14 @@ def case_problems(result: GradingResult, case: Case) -> list[str]:
     if not any(all(w in c.message.lower() for w in words) for c in failed):
         problems.append(f"not named in its own words {list(case.fragments)}; the messages were: "
                         + " | ".join(c.message.splitlines()[0] for c in failed if c.message))
-    # The error model's names (``mutant:...``) are told in its own generic words: they count as
-    # another mistake only when no check names the case in its own words (autograder verify
-    # --error-model measures them apart).
+    # The error model's names (``mutant:...``) and an unused parameter's (engine/ignored.py) are told
+    # in their own generic words: they count as another mistake only when no check names the case in
+    # its own words (autograder verify --error-model measures the model's apart).
     named_in_own_words = any(all(w in c.message.lower() for w in words) for c in failed)
     problems += [f"named as another mistake: {message.splitlines()[0]!r}"
                  for label, message in named_mistakes(result, case.exercise)
                  if not all(w in message.lower() for w in words)
-                 and not (named_in_own_words and label.startswith("mutant:"))]
+                 and not (named_in_own_words and (label.startswith("mutant:") or label == UNUSED_PARAMETER))]
     if sum(e.score for e in exercises) >= sum(e.max_score for e in exercises):
         problems.append(f"loses no points in {case.exercise}")
     return problems

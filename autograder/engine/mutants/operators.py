@@ -1034,7 +1034,7 @@ def _stack_changes(node: ast.Call, what):
         a, b = what(items[i]), what(items[i + 1])
         if a and b and len(a + b) <= 90:
             yield "stack_order", i, f"{a} and {b} are stacked in the other order (each where the other belongs)"
-        elif i < 5:
+        else:   # (a design matrix's row: its entries by position, the way the lab sheet writes them)
             yield "stack_order", i, f"the {_ORDINALS[i]} and {_ORDINALS[i + 1]} pieces stacked by `{dotted}` " \
                                     "are exchanged"
 
@@ -1099,7 +1099,7 @@ def _place(node, parents, words: _Words, line) -> str:
     return ""
 
 
-_ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
+_ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth")
 
 
 def _subject(phrase: str, predicate: str, node, parents, words) -> str:

@@ -63,7 +63,7 @@ MISTAKES = {
     "resize instead of scale": ("lab07.ex3", """
         def scale(image, sx=1.5, sy=1.5):
             return cv2.resize(image, None, fx=sx, fy=sy)
-        """, ["keep the input's size"]),
+        """, ["resized rather than warped"]),
     "shear along y": ("lab07.ex4", """
         def shear_matrix(s):
             return np.array([[1.0, 0, 0], [s, 1.0, 0], [0, 0, 1.0]])
