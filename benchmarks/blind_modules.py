@@ -10,6 +10,12 @@ lost, no cause named), wrong (a cause named that is not the bug) or not caught.
 
     python benchmarks/blind_modules.py benchmarks/blind_mistakes/2026-11-28 --json after.json
     python benchmarks/blind_modules.py SET --code /tmp/old --json before.json   # another copy of the grader
+    python benchmarks/blind_modules.py SET --cold --json after.json   # each file in a process of its own
+
+By default the files are graded one after another in one process, so the error model's answers
+on a check's fixed inputs (kept per process) are warm for every file after a lab's first; a
+student's own grading, or a Gradescope container's, starts cold: ``--cold`` grades each file in
+a fresh process, as they do.
 """
 
 from __future__ import annotations
@@ -32,7 +38,10 @@ def main(argv=None) -> int:
     parser.add_argument("--code", type=Path, default=HERE.parent, help="the grader's copy to measure")
     parser.add_argument("--json", type=Path, required=True, help="where to write every case's feedback")
     parser.add_argument("--only", help="only files whose path contains this")
+    parser.add_argument("--cold", action="store_true", help="grade each file in a fresh process")
     args = parser.parse_args(argv)
+    if args.cold:
+        return _cold(args)
 
     sys.path.insert(0, str(args.code.resolve()))
     os.environ.setdefault("AUTOGRADER_CACHE_DIR", tempfile.mkdtemp(prefix="blind-store-"))
@@ -67,6 +76,25 @@ def main(argv=None) -> int:
         args.json.write_text(json.dumps(cases, indent=1))
     caught = sum(c["caught"] for c in cases)
     print(f"caught {caught} of {len(cases)}")
+    return 0
+
+
+def _cold(args) -> int:
+    """Each file of the set graded by this script in a process of its own (``--only`` that file)."""
+    import subprocess
+
+    manifest = json.loads((args.set / "MANIFEST.json").read_text())
+    cases = []
+    for entry in manifest["submissions"]:
+        if args.only and args.only not in entry["file"]:
+            continue
+        with tempfile.TemporaryDirectory(prefix="blind-cold-") as folder:
+            out = Path(folder) / "case.json"
+            subprocess.run([sys.executable, str(Path(__file__).resolve()), str(args.set), "--code", str(args.code),
+                            "--json", str(out), "--only", entry["file"]], check=True)
+            cases += [case for case in json.loads(out.read_text()) if case["file"] == entry["file"]]
+        args.json.write_text(json.dumps(cases, indent=1))
+    print(f"caught {sum(c['caught'] for c in cases)} of {len(cases)} (each file in a fresh process)")
     return 0
 
 

@@ -463,8 +463,20 @@ class _Words:
             elif isinstance(node, (ast.AugAssign, ast.AnnAssign)) and node.value is not None:
                 self._define(node.target, node.value if isinstance(node, ast.AnnAssign) else node, node.lineno)
             elif isinstance(node, (ast.For, ast.comprehension)):
-                self._define(node.target, ast.Call(ast.Name("__loop__", ast.Load()), [node.iter], []),
-                             getattr(node, "lineno", getattr(node.iter, "lineno", 0)))
+                self._define_loop(node.target, node.iter, getattr(node, "lineno", getattr(node.iter, "lineno", 0)))
+
+    def _define_loop(self, target, iterable, line):
+        """A loop's targets: through ``enumerate`` (its item) and ``zip`` (each its own sequence),
+        a name takes each item of what is looped over, a tuple's names each an entry of it."""
+        if isinstance(iterable, ast.Call) and _dotted(iterable.func) == "enumerate" and iterable.args \
+                and isinstance(target, ast.Tuple) and len(target.elts) == 2:
+            self._define_loop(target.elts[1], iterable.args[0], line)   # (the position has no words)
+        elif isinstance(iterable, ast.Call) and _dotted(iterable.func) == "zip" and isinstance(target, ast.Tuple) \
+                and len(target.elts) == len(iterable.args):
+            for part, sequence in zip(target.elts, iterable.args):
+                self._define_loop(part, sequence, line)
+        else:
+            self._define(target, ast.Call(ast.Name("__loop__", ast.Load()), [iterable], []), line)
 
     def _define(self, target, value, line):
         if isinstance(target, ast.Name):
@@ -512,6 +524,9 @@ class _Words:
                     return f"the {which} of {inner}" if inner else ""
                 if isinstance(value, (ast.Tuple, ast.List)) and index < len(value.elts):
                     return self._what(value.elts[index], depth + 1, at)
+                if isinstance(value, ast.Call) and _dotted(value.func) == "__loop__" and index < len(_ORDINALS):
+                    looped = self._what(value.args[0], depth + 1, at)
+                    return f"the {_ORDINALS[index]} entry of each item of {looped}" if looped else ""
                 if index == 0 and isinstance(value, ast.Call) and _dotted(value.func) in self.module_defs \
                         and _dotted(value.func) not in self.api and value.args:
                     return self._what(value.args[0], depth + 1, at)  # a helper that prepares its input
