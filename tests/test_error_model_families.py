@@ -1,6 +1,6 @@
 """The error model's operators for mistakes nobody listed (issue 35): an inverse written as a
 transpose, a copy-pasted index, an index on the wrong axis, stacked pieces in another order, a
-loop over positions where the values belong, a normalisation undone the wrong way round or never, a bit shift the wrong way,
+loop over positions where the values belong, a normalisation undone the wrong way round or never, a bit shift the wrong way, a sign in a drawing,
 ``x or DEFAULT`` swallowing a 0, and a single point a 1-D array that raises. Each realistic
 student module (a small edit of the reference's text) gets that name; the reference and a
 legitimate alternative get none."""
@@ -89,6 +89,8 @@ def _mapped(points):
                                                                    [1e-4, 2e-4, 1]]).T
     return h[:, :2] / h[:, 2:]
 ESSENTIAL = ("essential_8point", (PTS1, PTS2, K1, K2), {})
+LINES = ("draw_epipolar_lines", (np.zeros((120, 160, 3), np.uint8),
+                                 np.array([[0.02, 1.0, -60.0], [-0.05, 1.0, -30.0], [1.0, 0.1, -80.0]])), {})
 TRIANGULATE = ("triangulate", (P1, P2, _projected(P1, X3), _projected(P2, X3)), {})
 
 CASES = {
@@ -133,6 +135,10 @@ CASES = {
                                         "rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -v * y, -v * x, -v]"),
                               [("homography_dlt", (SRC, _mapped(SRC)), {})],
                               "the seventh and eighth pieces stacked by `np.stack` are exchanged"),
+    # a drawing: its lines in other places change few pixels, named by the pixels, both ways
+    "sign in a drawing": ("lab11", ("p, q = (0.0, -c / b), (width - 1.0, -(c + a * (width - 1)) / b)",
+                                    "p, q = (0.0, c / b), (width - 1.0, -(c + a * (width - 1)) / b)"), [LINES],
+                          "the third entry of each item of `lines` has the wrong sign"),
     # a bit shift the wrong way: k ^ (k << 1) for the Gray code
     "shift the wrong way": ("lab12", ("gray = k ^ (k >> 1)", "gray = k ^ (k << 1)"),
                             [("gray_code_patterns", (97, 5), {})], "(<< where >> belongs)"),
@@ -170,6 +176,8 @@ ALTERNATIVES = {   # legitimate code that differs from the reference's text
     "never undone": ("H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1",
                      "H = np.linalg.solve(T2, Vt[-1].reshape(3, 3)) @ T1"),
     "shift the wrong way": ("gray = k ^ (k >> 1)", "gray = np.bitwise_xor(k, k // 2)"),
+    "sign in a drawing": ("p, q = (0.0, -c / b), (width - 1.0, -(c + a * (width - 1)) / b)",
+                          "p, q = (0.0, -(c / b)), (width - 1.0, -(c + a * (width - 1)) / b)"),
     "row entries exchanged": ("rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -v * x, -v * y, -v]",
                               "rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -(v * x), -(v * y), -v]"),
 }

@@ -302,7 +302,8 @@ def reproduces(mutant, student, reference) -> bool:
     Numbers (matrices, points): every entry within 1e-4 of the answer's size (another order
     of floating-point operations, not another value; a mutant that is merely close, as the
     identity is to a rotation by half a degree, is not the student's). Images: the mean absolute
-    difference within half a grey level, or else (another interpolation of the same warp)
+    difference within half a grey level and the same pixels changed both ways (a drawing's thin
+    lines move the mean little wherever they are), or else (another interpolation of the same warp)
     :data:`IMAGE_CLOSER` times smaller than the reference's, under 5% of the mean brightness,
     and the student's pixels where the mutant changes the reference's are the mutant's
     (:func:`_explains_changed_pixels`): a mutant sharing only part of a mistake (uint8
@@ -316,10 +317,11 @@ def reproduces(mutant, student, reference) -> bool:
         return _largest_difference(mutant, student, projective=True) <= 1e-4 * size \
             and _largest_difference(reference, student, projective=True) > 1e-3 * size
     apart = distance(mutant, student, lenient=True)
-    if apart <= tolerance:
-        return True
+    if apart <= tolerance:   # close on average; a drawing's few pixels must be the same ones too
+        return _explains_changed_pixels(mutant, student, reference) and _explains_changed_pixels(student, mutant,
+                                                                                                 reference)
     off = distance(reference, student)
-    if off <= 10 * tolerance:   # the student is right here: the mutant must be as near
+    if not wrong(student, reference):   # the student is right here: the mutant must be as near
         return apart <= 2 * off
     return apart <= min(off / IMAGE_CLOSER, 0.05 * scale) and _explains_changed_pixels(mutant, student, reference)
 
@@ -428,7 +430,19 @@ def _same_kind(student, reference) -> bool:
 
 
 def wrong(student, reference) -> bool:
-    return distance(reference, student) > 10 * _tolerance(student)
+    """Whether an answer differs from the reference's beyond a rounding: for an image, also one
+    whose pixels differ in a few places only, strongly (a drawing: thin lines in other places
+    change the mean little)."""
+    return distance(reference, student) > 10 * _tolerance(student) or _drawn_elsewhere(student, reference)
+
+
+def _drawn_elsewhere(student, reference) -> bool:
+    """An integer image of the reference's shape with more than 1% of its pixels over 16 grey levels off."""
+    if not (isinstance(student, np.ndarray) and isinstance(reference, np.ndarray)) or student.shape != reference.shape \
+            or student.dtype.kind not in "iu" or reference.dtype.kind not in "iu" or student.ndim < 2 or student.size < 64:
+        return False
+    apart = np.abs(student.astype(np.int64) - reference) > 16
+    return bool((apart.reshape(student.shape[0], student.shape[1], -1).any(axis=2)).mean() > 0.01)
 
 
 # ------------------------------------------------------------------ confirmation inputs
@@ -719,7 +733,7 @@ def _separating(usable, reference, candidate_outputs) -> list[int]:
         kinds = _error_kind(rows[a][k]), _error_kind(rows[b][k])
         if kinds != (None, None):
             return kinds[0] != kinds[1]
-        return distance(rows[a][k], rows[b][k]) > 10 * _tolerance(rows[b][k])
+        return wrong(rows[a][k], rows[b][k])   # (a drawing's lines apart change its mean little)
 
     split = {k: {p for p in pairs if apart(k, *p)} for k in usable}
     chosen, covered = [], set()
