@@ -61,6 +61,19 @@ def mutant(tmp_path: Path, module: str, source: str, base: Path = REFERENCE) -> 
     return folder
 
 
+def edited_reference(tmp_path: Path, module: str, *edits: tuple[str, str]) -> Path:
+    """A submission: the reference ``module`` with each ``(old, new)`` text edit made (``old``
+    found exactly once), as a student changes a line of a working solution."""
+    source = (REFERENCE / f"{module}.py").read_text()
+    for old, new in edits:
+        assert source.count(old) == 1, old
+        source = source.replace(old, new)
+    folder = tmp_path / "submission"
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / f"{module}.py").write_text(source)
+    return folder
+
+
 def submission_from_source(tmp_path: Path, module: str, source: str) -> Path:
     """A submission whose module is exactly ``source``."""
     folder = tmp_path / "submission"

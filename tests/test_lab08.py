@@ -122,14 +122,9 @@ def test_convention_is_advice_not_points(name):
 def test_a_canvas_of_the_right_size_never_shifted_is_told_the_shift_only(tmp_path, edit, sizing_told):
     """The canvas sized from all the warped corners but never translated: told to shift, not to
     size the canvas, which it already does (the table's 'no shift' case sizes it wrongly too)."""
-    from conftest import REFERENCE
+    from conftest import edited_reference
 
-    folder = tmp_path / "submission"
-    folder.mkdir()
-    source = (REFERENCE / "lab08_homographies.py").read_text()
-    assert source.count(edit[0]) == 1
-    (folder / "lab08_homographies.py").write_text(source.replace(edit[0], edit[1]))
-    result = grade(folder, ["lab08.ex5"], pictures="none")
+    result = grade(edited_reference(tmp_path, "lab08_homographies", edit), ["lab08.ex5"], pictures="none")
     told = [c for c in check_results(result, "lab08.ex5") if c.mistake == "the canvas is not shifted for negative coordinates"]
     assert told, [c.message for c in check_results(result, "lab08.ex5") if not c.passed]
     assert all(("size the canvas" in c.message) == sizing_told for c in told), [c.message for c in told]
@@ -145,16 +140,11 @@ def test_a_canvas_sized_to_the_maximum_only_is_told_to_size_it_too(tmp_path):
 def test_a_pyramid_collapsed_with_resize_is_told_the_two_enlargements(tmp_path):
     """Bands made with cv2.pyrUp, collapsed with cv2.resize: not told to compare with pyrUp, which it
     already calls, but that the two enlargements differ."""
-    from conftest import REFERENCE
+    from conftest import edited_reference
 
-    old = "result = cv2.pyrUp(result, dstsize=(band.shape[1], band.shape[0])) + band"
-    new = "result = cv2.resize(result, (band.shape[1], band.shape[0])) + band"
-    folder = tmp_path / "submission"
-    folder.mkdir()
-    source = (REFERENCE / "lab08_homographies.py").read_text()
-    assert source.count(old) == 1
-    (folder / "lab08_homographies.py").write_text(source.replace(old, new))
-    result = grade(folder, ["lab08.ext3"], pictures="none")
+    edit = ("result = cv2.pyrUp(result, dstsize=(band.shape[1], band.shape[0])) + band",
+            "result = cv2.resize(result, (band.shape[1], band.shape[0])) + band")
+    result = grade(edited_reference(tmp_path, "lab08_homographies", edit), ["lab08.ext3"], pictures="none")
     [check] = [c for c in check_results(result, "lab08.ext3") if c.name == "blending an image with itself leaves it unchanged"]
     assert not check.passed and "both with cv2.pyrUp and with cv2.resize" in check.message, check.message
     assert "compare each band" not in check.message + check.hint
@@ -164,17 +154,12 @@ def test_a_ransac_measuring_its_error_backwards_is_not_told_an_inverted_mask_or_
     """|H dst - src| for |H src - dst|: every pair ends up an inlier and H a fit to all of them. The
     outputs look like a fit to all the points and, against the truth, like an inverted mask; neither
     the mask's inversion nor an ignored threshold is true of such code."""
-    from conftest import REFERENCE
+    from conftest import edited_reference
 
-    folder = tmp_path / "submission"
-    folder.mkdir()
-    source = (REFERENCE / "lab08_homographies.py").read_text()
-    for old, new in (("homogeneous = np.hstack([src, np.ones((len(src), 1))])",
-                      "homogeneous = np.hstack([dst, np.ones((len(dst), 1))])"),
-                     ("errors = np.linalg.norm(xy - dst, axis=2)", "errors = np.linalg.norm(xy - src, axis=2)")):
-        assert source.count(old) == 1
-        source = source.replace(old, new)
-    (folder / "lab08_homographies.py").write_text(source)
+    folder = edited_reference(tmp_path, "lab08_homographies",
+                              ("homogeneous = np.hstack([src, np.ones((len(src), 1))])",
+                               "homogeneous = np.hstack([dst, np.ones((len(dst), 1))])"),
+                              ("errors = np.linalg.norm(xy - dst, axis=2)", "errors = np.linalg.norm(xy - src, axis=2)"))
     result = grade(folder, ["lab08.ex4"], pictures="none")
     failed = [c for c in check_results(result, "lab08.ex4") if not c.passed]
     assert failed

@@ -282,13 +282,8 @@ def test_a_pattern_hint_tells_the_stripe_index_from_the_code_by_what_the_columns
 ])
 def test_one_image_warped_with_the_other_homography_is_told_alone(tmp_path, edit, words):
     """A warp line copied from the other image's is not "each image is warped with the other's"."""
-    from conftest import REFERENCE
+    from conftest import edited_reference
 
-    folder = tmp_path / "submission"
-    folder.mkdir()
-    source = (REFERENCE / "lab12_stereo.py").read_text()
-    assert source.count(edit[0]) == 1
-    (folder / "lab12_stereo.py").write_text(source.replace(edit[0], edit[1]))
-    result = grade(folder, ["lab12.ex3"], pictures="none")
+    result = grade(edited_reference(tmp_path, "lab12_stereo", edit), ["lab12.ex3"], pictures="none")
     [check] = [c for c in check_results(result, "lab12.ex3") if c.name.startswith("rectify: the rectified images")]
     assert not check.passed and words in check.message and "each image" not in check.message, check.message
