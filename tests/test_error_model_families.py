@@ -1,6 +1,6 @@
 """The error model's operators for mistakes nobody listed (issue 35): an inverse written as a
 transpose, a copy-pasted index, an index on the wrong axis, stacked pieces in another order, a
-loop over positions where the values belong, a normalisation undone the wrong way round or never, a bit shift the wrong way, a sign in a drawing,
+loop over positions where the values belong, a normalisation undone the wrong way round or never, a bit shift the wrong way, a sign in a drawing, an element-wise product for a matrix product, a bit mask dropped,
 ``x or DEFAULT`` swallowing a 0, and a single point a 1-D array that raises. Each realistic
 student module (a small edit of the reference's text) gets that name; the reference and a
 legitimate alternative get none."""
@@ -139,6 +139,13 @@ CASES = {
     "sign in a drawing": ("lab11", ("p, q = (0.0, -c / b), (width - 1.0, -(c + a * (width - 1)) / b)",
                                     "p, q = (0.0, c / b), (width - 1.0, -(c + a * (width - 1)) / b)"), [LINES],
                           "the third entry of each item of `lines` has the wrong sign"),
+    # arithmetic operators replaced: an element-wise product for a matrix product, a bit mask dropped
+    "element-wise for matrix product": ("lab11", ("np.asarray(F, np.float64) @ np.asarray(K1, np.float64)",
+                                                  "np.asarray(F, np.float64) * np.asarray(K1, np.float64)"),
+                                        [("essential_from_fundamental", (P2[:, :3] @ K1.T, K1, K2), {})],
+                                        "are multiplied element by element (*) where their matrix product (@) belongs"),
+    "bit mask dropped": ("lab12", ("(((gray[None, :] >> shifts) & 1) * 255)", "((gray[None, :] >> shifts) * 255)"),
+                         [("gray_code_patterns", (97, 5), {})], "the mask & 1 that keeps the lowest bits is missing"),
     # a bit shift the wrong way: k ^ (k << 1) for the Gray code
     "shift the wrong way": ("lab12", ("gray = k ^ (k >> 1)", "gray = k ^ (k << 1)"),
                             [("gray_code_patterns", (97, 5), {})], "(<< where >> belongs)"),
@@ -176,6 +183,9 @@ ALTERNATIVES = {   # legitimate code that differs from the reference's text
     "never undone": ("H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1",
                      "H = np.linalg.solve(T2, Vt[-1].reshape(3, 3)) @ T1"),
     "shift the wrong way": ("gray = k ^ (k >> 1)", "gray = np.bitwise_xor(k, k // 2)"),
+    "element-wise for matrix product": ("np.asarray(F, np.float64) @ np.asarray(K1, np.float64)",
+                                        "np.asarray(F, np.float64).dot(np.asarray(K1, np.float64))"),
+    "bit mask dropped": ("(((gray[None, :] >> shifts) & 1) * 255)", "(((gray[None, :] >> shifts) % 2) * 255)"),
     "sign in a drawing": ("p, q = (0.0, -c / b), (width - 1.0, -(c + a * (width - 1)) / b)",
                           "p, q = (0.0, -(c / b)), (width - 1.0, -(c + a * (width - 1)) / b)"),
     "row entries exchanged": ("rows_v = np.stack([zeros, zeros, zeros, x, y, ones, -v * x, -v * y, -v]",

@@ -58,6 +58,10 @@ OPERATORS = {
     "default": ("default", "none", "0", "zero"),      # `x is None` -> `not x`: a legitimate 0 swallowed
     "loop_index": ("position", "index", "loop"),      # for f in fs -> for f in range(len(fs))
     "shift": ("shift", "<<", ">>"),                    # k >> 1 -> k << 1
+    "arithmetic": ("divid", "multipl", "element", "*", "@"),   # x * r -> x / r, A @ B -> A * B
+    "stack_kind": ("stack", "concatenat", "axis"),     # np.stack(pieces) -> np.concatenate(pieces)
+    "drop_mask": ("mask", "& 1", "bit"),               # (g >> s) & 1 -> g >> s
+    "reshape_transpose": ("reshape", "transpos"),      # X.T -> X.reshape(X.shape[::-1])
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -419,6 +423,30 @@ def _make_drop_statement(node, payload):
     return ast.Pass()
 
 
+_ARITHMETIC = {"mul_div": ast.Div, "div_mul": ast.Mult, "matmul_mult": ast.Mult, "mult_matmul": ast.MatMult}
+
+
+def _make_arithmetic(node, payload):
+    return ast.BinOp(copy.deepcopy(node.left), _ARITHMETIC[payload](), copy.deepcopy(node.right))
+
+
+def _make_stack_kind(node, payload):
+    new = copy.deepcopy(node)
+    new.func = _name(f"np.{payload}")
+    return new
+
+
+def _make_drop_mask(node, payload):
+    return copy.deepcopy(node.left)
+
+
+def _make_reshape_transpose(node, payload):
+    inner = copy.deepcopy(node.value)
+    shape = ast.Subscript(ast.Attribute(copy.deepcopy(node.value), "shape", ast.Load()),
+                          ast.Slice(None, None, ast.UnaryOp(ast.USub(), ast.Constant(1))), ast.Load())
+    return ast.Call(ast.Attribute(inner, "reshape", ast.Load()), [shape], [])
+
+
 def _make_shift(node, payload):
     return ast.BinOp(copy.deepcopy(node.left), ast.LShift() if isinstance(node.op, ast.RShift) else ast.RShift(),
                      copy.deepcopy(node.right))
@@ -428,7 +456,8 @@ def _make_loop_index(node, payload):
     return _call("range", _call("len", copy.deepcopy(node)))   # the positions of what was looped over
 
 
-_MAKE = {"shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+_MAKE = {"arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+         "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -887,6 +916,21 @@ def _changes(node, parents, words: _Words, line):
             and isinstance(parent, (ast.IfExp, ast.If)) and parent.test is node:
         yield "default", None, f"a `{node.left.id}` of 0 (or any value that is false) is taken as not given: " \
                                "the default is used in its place (only None means not given)"
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div, ast.MatMult)):
+        yield from _arithmetic_changes(node, what, place)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitAnd) and isinstance(node.right, ast.Constant):
+        yield "drop_mask", None, f"the mask & {node.right.value} that keeps the lowest bits is missing" \
+            if isinstance(node.right.value, int) and not isinstance(node.right.value, bool) else ""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.stack", "numpy.stack", "np.concatenate",
+                                                            "numpy.concatenate") and node.args:
+        other = "concatenate" if _dotted(node.func).endswith("stack") else "stack"
+        yield "stack_kind", other, (f"the pieces are joined with `np.{other}` where `{_dotted(node.func)}` belongs "
+                                    + ("(along an existing axis instead of a new one)" if other == "concatenate"
+                                       else "(along a new axis instead of an existing one)"))
+    if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load) \
+            and _named_matrix(node.value) and what(node.value):
+        yield "reshape_transpose", None, f"{what(node.value)} is reshaped to the transposed shape where it is " \
+                                         "transposed (reshape keeps the order of the entries; .T moves them)"
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.RShift)):
         wrong, right = ("<<", ">>") if isinstance(node.op, ast.RShift) else (">>", "<<")
         shifted = what(node.left)
@@ -995,6 +1039,27 @@ def _inverse_changes(node, what, place):
         inner = what(node.value)
         yield "inverse", "insert", f"the inverse of {inner} is used where its transpose belongs" if inner \
             else _placed("an inverse is used where a transpose belongs", place())
+
+
+def _arithmetic_changes(node, what, place):
+    """``*`` and ``/`` exchanged, and ``@`` taken element by element (``*``) or the reverse; a side
+    without words of its own is "a term" when the other side has them."""
+    left, right = what(node.left), what(node.right)
+    told = bool(left or right)
+    left, right = left or "a term", right or "a term"
+    if isinstance(node.op, ast.Mult):
+        yield "arithmetic", "mul_div", (f"{left} is divided by {right} where it is multiplied by it" if told
+                                        else _placed("a division stands where a multiplication belongs", place()))
+        yield "arithmetic", "mult_matmul", (
+            f"the matrix product of {left} and {right} is taken where they are multiplied element by element"
+            if told else _placed("a matrix product stands where an element-wise product belongs", place()))
+    elif isinstance(node.op, ast.Div):
+        yield "arithmetic", "div_mul", (f"{left} is multiplied by {right} where it is divided by it" if told
+                                        else _placed("a multiplication stands where a division belongs", place()))
+    else:
+        yield "arithmetic", "matmul_mult", (
+            f"{left} and {right} are multiplied element by element (*) where their matrix product (@) belongs"
+            if told else _placed("an element-wise product (*) stands where a matrix product (@) belongs", place()))
 
 
 def _is_inverse(node) -> bool:
