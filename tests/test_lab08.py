@@ -164,4 +164,6 @@ def test_a_ransac_measuring_its_error_backwards_is_not_told_an_inverted_mask_or_
     failed = [c for c in check_results(result, "lab08.ex4") if not c.passed]
     assert failed
     text = " ".join(c.message + c.hint + c.mistake for c in failed)
-    assert "inverted" not in text and "threshold is ignored" not in text, text
+    assert "inverted" not in text and "threshold is ignored" not in text and "another sample" not in text, text
+    [mask] = [c for c in failed if c.name == "homography_ransac: the inlier mask it returns is the inliers of the H it returns"]
+    assert "the mask marks every pair" in mask.message, mask.message

@@ -954,6 +954,10 @@ def ransac_mask_of_h(t):
                     "the pairs the returned H sends within the threshold (|H src - dst| < threshold)")
         # Not H's inliers at any threshold, in either direction, nor inverted: measured, the mask is
         # no function of the distances to H, so the two do not come from one model.
+        if inliers.all():   # every pair marked: a set within some distance, but not the threshold's
+            t.fail(f"{measured}: the mask marks every pair, as if every pair counted as an inlier, although your "
+                   f"H sends {int(far.sum())} of them beyond the threshold.",
+                   mistake="the inlier mask is not the inliers of the returned H")
         closer = int((~inliers & (errors < errors[inliers].max())).sum()) if inliers.any() else 0
         other = (" (the mask is the inliers of another homography: the fit to the pairs it marks sends them "
                  "within the threshold and no others)" if another_hypothesis(inliers, src, dst) else "")
