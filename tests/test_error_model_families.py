@@ -1,6 +1,6 @@
 """The error model's operators for mistakes nobody listed (issue 35): an inverse written as a
 transpose, a copy-pasted index, an index on the wrong axis, stacked pieces in another order, a
-loop over positions where the values belong, a normalisation undone the wrong way round or never, a bit shift the wrong way, a sign in a drawing, an element-wise product for a matrix product, a bit mask dropped,
+loop over positions where the values belong, a normalisation undone the wrong way round or never, a bit shift the wrong way, a sign in a drawing, a name left from the line above, an element-wise product for a matrix product, a bit mask dropped,
 ``x or DEFAULT`` swallowing a 0, and a single point a 1-D array that raises. Each realistic
 student module (a small edit of the reference's text) gets that name; the reference and a
 legitimate alternative get none."""
@@ -139,6 +139,12 @@ CASES = {
     "sign in a drawing": ("lab11", ("p, q = (0.0, -c / b), (width - 1.0, -(c + a * (width - 1)) / b)",
                                     "p, q = (0.0, c / b), (width - 1.0, -(c + a * (width - 1)) / b)"), [LINES],
                           "the third entry of each item of `lines` has the wrong sign"),
+    # a line copied from its sibling's, one name left unchanged throughout (T1 for T2)
+    "a name left from the line above": ("lab08", ("    dst_n = dst @ T2[:2, :2].T + T2[:2, 2]\n    A = _dlt_rows",
+                                                  "    dst_n = dst @ T1[:2, :2].T + T1[:2, 2]\n    A = _dlt_rows"),
+                                        [("homography_dlt", (SRC, _mapped(SRC)), {})],
+                                        'on `src` is used where the result of the step "hartley\'s similarity" on `dst` '
+                                        "belongs, everywhere in one line"),
     # arithmetic operators replaced: an element-wise product for a matrix product, a bit mask dropped
     "element-wise for matrix product": ("lab11", ("np.asarray(F, np.float64) @ np.asarray(K1, np.float64)",
                                                   "np.asarray(F, np.float64) * np.asarray(K1, np.float64)"),
@@ -183,6 +189,8 @@ ALTERNATIVES = {   # legitimate code that differs from the reference's text
     "never undone": ("H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1",
                      "H = np.linalg.solve(T2, Vt[-1].reshape(3, 3)) @ T1"),
     "shift the wrong way": ("gray = k ^ (k >> 1)", "gray = np.bitwise_xor(k, k // 2)"),
+    "a name left from the line above": ("    dst_n = dst @ T2[:2, :2].T + T2[:2, 2]\n    A = _dlt_rows",
+                                        "    dst_n = (T2[:2, :2] @ dst.T).T + T2[:2, 2]\n    A = _dlt_rows"),
     "element-wise for matrix product": ("np.asarray(F, np.float64) @ np.asarray(K1, np.float64)",
                                         "np.asarray(F, np.float64).dot(np.asarray(K1, np.float64))"),
     "bit mask dropped": ("(((gray[None, :] >> shifts) & 1) * 255)", "(((gray[None, :] >> shifts) % 2) * 255)"),

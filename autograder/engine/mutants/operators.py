@@ -59,6 +59,7 @@ OPERATORS = {
     "loop_index": ("position", "index", "loop"),      # for f in fs -> for f in range(len(fs))
     "shift": ("shift", "<<", ">>"),                    # k >> 1 -> k << 1
     "arithmetic": ("divid", "multipl", "element", "*", "@"),   # x * r -> x / r, A @ B -> A * B
+    "other_name_line": ("instead of", "in place of", "where"),   # every T2 of a line copied with T1
     "stack_kind": ("stack", "concatenat", "axis"),     # np.stack(pieces) -> np.concatenate(pieces)
     "drop_mask": ("mask", "& 1", "bit"),               # (g >> s) & 1 -> g >> s
     "reshape_transpose": ("reshape", "transpos"),      # X.T -> X.reshape(X.shape[::-1])
@@ -426,6 +427,15 @@ def _make_drop_statement(node, payload):
 _ARITHMETIC = {"mul_div": ast.Div, "div_mul": ast.Mult, "matmul_mult": ast.Mult, "mult_matmul": ast.MatMult}
 
 
+def _make_other_name_line(node, payload):
+    old, new = payload
+    made = copy.deepcopy(node)
+    for name in ast.walk(made.value):
+        if isinstance(name, ast.Name) and name.id == old and isinstance(name.ctx, ast.Load):
+            name.id = new
+    return made
+
+
 def _make_arithmetic(node, payload):
     return ast.BinOp(copy.deepcopy(node.left), _ARITHMETIC[payload](), copy.deepcopy(node.right))
 
@@ -456,7 +466,7 @@ def _make_loop_index(node, payload):
     return _call("range", _call("len", copy.deepcopy(node)))   # the positions of what was looped over
 
 
-_MAKE = {"arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+_MAKE = {"other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -658,9 +668,9 @@ class _Words:
             return f"{named} {arg}" if arg else f"the result of `{dotted}`"
         if dotted in self.api:
             return f"what `{dotted}` returns"
-        if dotted in self.module_defs:
+        if dotted in self.module_defs:   # on its argument, when it has words: T1 and T2 of src and dst
             step = step_phrase(self.module_defs[dotted])
-            return f"the result of {step}" if step else arg
+            return (f"the result of {step}" + (f" on {arg}" if arg else "")) if step else arg
         if dotted.startswith(("cv2.", "np.")):
             return f"the result of `{dotted}`"
         return ""
@@ -903,6 +913,8 @@ def _changes(node, parents, words: _Words, line):
         yield from _name_changes(node, words, what, line)
     if isinstance(node, (ast.Assign, ast.AugAssign)) and parent is not None:
         yield "drop_statement", None, _statement_phrase(node, words, line)
+    if isinstance(node, ast.Assign) and len(node.targets) == 1:
+        yield from _line_name_changes(node, words, line)
     yield from _in_place_changes(node, words)
     yield from _inverse_changes(node, what, place)
     yield from _undoing_changes(node)
@@ -1449,6 +1461,27 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
         count += 1
         if count >= _OTHER_NAMES_PER_SITE:
             return
+
+
+def _line_name_changes(node: ast.Assign, words: _Words, line):
+    """A line copied from its sibling's with one name left unchanged everywhere in it (``dst_n = dst
+    @ T1[:2, :2].T + T1[:2, 2]`` under ``src_n = src @ T1...``): each local read twice or more in
+    the value, replaced throughout by a name unpacked with it (``T1, T2 = ...``)."""
+    counts = {}
+    for name in ast.walk(node.value):
+        if isinstance(name, ast.Name) and isinstance(name.ctx, ast.Load):
+            counts[name.id] = counts.get(name.id, 0) + 1
+    for name, count in sorted(counts.items()):
+        if count < 2 or name not in words.definitions:
+            continue
+        own = words.what(ast.Name(name, ast.Load()), line=line)
+        siblings = {other for line_at, value, _ in words.definitions[name] for other, defs in words.definitions.items()
+                    if other != name and any(d[0] == line_at and d[1] is value for d in defs)}
+        for other in sorted(siblings):
+            phrase = words.what(ast.Name(other, ast.Load()), line=line)
+            if own and phrase and phrase != own:
+                yield "other_name_line", (name, other), f"{phrase} {_plural(phrase, 'is', 'are')} used where {own} " \
+                                                        f"{_plural(own, 'belongs', 'belong')}, everywhere in one line"
 
 
 def _plural(phrase: str, one: str, many: str) -> str:
