@@ -20,8 +20,18 @@ from .claims import measured
 from .forms import Form
 from .hints import Code, _own_nodes, signature_of_def
 
-# "File "lab09_camera.py", line 42, in camera_matrix\n    return K @ np.hstack([R, t])"
-_FRAME = re.compile(r'File "[^"]+", line (\d+), in (\w+)')
+# 'File "lab09_camera.py", line 42, in camera_matrix' and, on the next line, the code
+_FRAME = re.compile(r'File "([^"]+)", line (\d+)(?:, in (\S+))?\n(?:    (.*))?')
+
+
+def innermost_frame(traceback_text: str) -> tuple[str, int, str, str] | None:
+    """``(file, line, function, code)`` of the last frame of a student traceback (the worker's
+    "Traceback (your code):" text), or None."""
+    frames = _FRAME.findall(traceback_text or "")
+    if not frames:
+        return None
+    filename, line, function, code = frames[-1]
+    return filename, int(line), function, code.strip()
 _NDIM = re.compile(r"the array at index (\d+) has (\d+) dimension\(s\) and the array at index (\d+) has "
                    r"(\d+) dimension\(s\)")
 _SIZE = re.compile(r"along dimension (\d+), the array at index (\d+) has size (\d+) and the array at "
@@ -36,11 +46,11 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
     """The cause of the exception ``message`` that ``function`` (called with ``args``,
     ``kwargs``) raised, read from its innermost line in ``traceback_text`` when that line is in
     ``function`` itself; None otherwise."""
-    frames = _FRAME.findall(traceback_text or "")
+    frame = innermost_frame(traceback_text)
     fn = code.functions.get(function)
-    if not frames or fn is None or frames[-1][1] != function:
+    if frame is None or fn is None or frame[2] != function:
         return None
-    line = int(frames[-1][0])
+    line = frame[1]
     signature = signature_of_def(fn)
     try:
         given = signature.bind(*args, **kwargs).arguments if signature else {}

@@ -24,7 +24,6 @@ from __future__ import annotations
 import contextlib
 import logging
 import os
-import re
 import threading
 import time
 import traceback
@@ -591,16 +590,15 @@ def _import(sandbox: Sandbox, module: str, submission) -> CallOutcome:
     return outcome
 
 
-_FRAME = re.compile(r'File "([^"]+)", line (\d+)(?:, in \S+)?\n(?:    (.*))?')
-
-
 def _innermost_frame(traceback_text: str) -> str:
     """``lab07_transformations.py, line 12: x = undefined_name`` from a student traceback."""
-    frames = _FRAME.findall(traceback_text or "")
-    if not frames:
+    from .raised import innermost_frame
+
+    frame = innermost_frame(traceback_text)
+    if frame is None:
         return ""
-    filename, line, code = frames[-1]
-    return f"{filename}, line {line}" + (f": {code.strip()}" if code.strip() else "")
+    filename, line, _, code = frame
+    return f"{filename}, line {line}" + (f": {code}" if code else "")
 
 
 def _reading_notes(submission) -> list[str]:
