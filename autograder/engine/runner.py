@@ -460,8 +460,8 @@ def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:
     first, newline, rest = str(verdict.message).partition("\n")
     lead = first.rstrip()
     lead += "" if not lead or lead[-1] in ".:;!?" else "."
-    return replace(verdict, message=f"{lead} {ignored.sentence(*found)[0].upper()}{ignored.sentence(*found)[1:]}."
-                   f"{newline}{rest}", mistake=ignored.MISTAKE)
+    said = ignored.sentence(*found)
+    return replace(verdict, message=f"{lead} {said[:1].upper()}{said[1:]}.{newline}{rest}", mistake=ignored.MISTAKE)
 
 
 def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: Trial) -> Verdict:
