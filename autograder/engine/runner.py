@@ -494,6 +494,18 @@ def _named_by_error_model(verdict: Verdict, check: Check, trial: Trial, raised: 
         return verdict
 
 
+def _named_by_repair(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
+    """A failed verdict that names nothing, named by a change of the student's own code that makes
+    their answers right (:mod:`autograder.engine.mutants.repair`). Never costs the verdict (logged)."""
+    from .mutants.repair import named_by_repair
+
+    try:
+        return named_by_repair(verdict, trial)
+    except Exception as exc:  # noqa: BLE001 - naming is a bonus: the verdict stands without it
+        _log_grader_error(check, exc)
+        return verdict
+
+
 def _told_if_inherited(verdict: Verdict, check: Check, trial: Trial) -> tuple[Verdict, bool]:
     """A failed verdict told as inherited from another of the student's functions when it is
     (:mod:`autograder.engine.inherited`), and whether it is. Never costs the verdict (logged)."""
@@ -685,6 +697,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_reading(verdict, reading, check, trial)
     if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
+        verdict = _named_by_repair(verdict, check, trial)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") \
             and not inherited and "looks like" not in str(verdict.message).lower():
         verdict = _named_by_unused_parameter(verdict, trial)   # the last resort: true, but not confirmed

@@ -386,6 +386,7 @@ class Sandbox:
         self._deadline: float | None = None  # time.monotonic() at which the submission's time is up
         self._request_id = secrets.randbits(48)
         self.shared: dict = {}  # values checks share within one grading (see Trial.shared)
+        self._companion: Sandbox | None = None   # see companion()
         self._strikes: dict[tuple[str, str, str], int] = {}  # (module, function, "timeout" or "memory")
         self._memory_floor = 0   # what the worker holds once ready and its modules imported (bytes)
         self._held_before = 0    # what it held when the current request began (bytes; see _weigh)
@@ -480,6 +481,8 @@ class Sandbox:
         if self._closed:
             return
         self._closed = True
+        if self._companion is not None:
+            self._companion.close()
         self._stop_worker(restarting=False)
         if self.cgroup is not None:
             self.cgroup.remove()
@@ -659,6 +662,8 @@ class Sandbox:
         deadline, which holds whatever runs meanwhile (calls, restarts, other lanes, the grader's
         own judging). A request running then is stopped at it."""
         self._deadline = at
+        if self._companion is not None:
+            self._companion.set_deadline(at)
 
     def remaining(self) -> float:
         left = float("inf") if self._budget is None else self._budget - self.student_seconds
@@ -724,6 +729,35 @@ class Sandbox:
             self._strikes[key] = self._strikes.get(key, 0) + 1
         return outcome
 
+    def call_variant(self, module: str, source: str, function: str, calls, *, timeout: float,
+                     forbid=()) -> CallOutcome:
+        """Call ``function`` of a variant of the student's ``module`` -- its defs in ``source`` (the
+        grader's rewrite of the student's own code) executed over a copy of the module -- on each
+        ``(args, kwargs)`` of ``calls``. The value is a list: each call's result or ``{"__error__":
+        "Type: text"}``. Not billed to the student: the caller bounds the time (``timeout``, and the
+        submission's deadline); meant for a :meth:`companion`, whose faults cost the student's own
+        worker nothing."""
+        imported = self.import_module(module)
+        if not imported.ok:
+            return imported
+        timeout = min(timeout, self.remaining())
+        if timeout <= 0:
+            return self._over_budget(f"{function}() (a variant)")
+        request = {"op": "variant", "module": module, "source": source, "function": function,
+                   "calls": [[list(args), dict(kwargs)] for args, kwargs in calls],
+                   "forbid": list(forbid), "cpu_seconds": timeout + 1.0}
+        return self._request(request, timeout, f"{function}() (a variant)")
+
+    def companion(self) -> "Sandbox":
+        """Another sandbox of the same submission, the same limits and confinement and deadline,
+        started at its first use and closed with this one: the grader's own experiments with the
+        student's code (:mod:`autograder.engine.mutants.repair`) run there, so a variant that hangs or
+        crashes costs this worker no restart, its budget nothing, and the two never share memory."""
+        if self._companion is None or self._companion._closed:
+            self._companion = Sandbox(self._source, self.limits, confinement=self.confinement)
+            self._companion.set_deadline(self._deadline)
+        return self._companion
+
     def remember_strikes(self, other: "Sandbox") -> None:
         """Give up here too on the functions ``other`` (a worker of the same submission) gave up
         on: the hidden checks' fresh workers do not call again what the public phase stopped."""
@@ -776,7 +810,7 @@ class Sandbox:
             failed = self._restart(what)
             if failed is not None:
                 return failed
-            if request["op"] == "call":
+            if request["op"] in ("call", "variant"):
                 imported = self.import_module(request["module"])
                 if not imported.ok:
                     return imported

@@ -7,7 +7,7 @@ never sees checks, fixtures or reference solutions.
 
 Protocol: the parent writes length-prefixed transport frames to the request pipe
 and reads one length-prefixed frame per request from the response pipe. A
-request is a dict ``{"op": "import" | "call", ...}``; the response is
+request is a dict ``{"op": "import" | "call" | "variant", ...}``; the response is
 ``{"ok": True, "value": ..., "seconds": float}`` or
 ``{"ok": False, "kind": str, "message": str, "traceback": str, "seconds": float}``.
 The student's stdout and stderr go to a file the parent reads after each call.
@@ -45,6 +45,22 @@ LENGTH = struct.Struct(">Q")
 # Kept before any student code runs: the submission may replace the modules' own.
 _active_threads, _listdir = threading.active_count, os.listdir
 _open, _read, _close = os.open, os.read, os.close
+_exec, _compile, _FunctionType = exec, compile, type(lambda: None)
+
+
+def _limit_cpu(budget):
+    """Let this request use ``budget`` more seconds of CPU (RLIMIT_CPU), if given."""
+    if not budget:
+        return
+    used = resource.getrusage(resource.RUSAGE_SELF).ru_utime
+    soft, hard = resource.getrlimit(resource.RLIMIT_CPU)
+    new_soft = int(used + budget) + 1
+    if hard != resource.RLIM_INFINITY:
+        new_soft = min(new_soft, hard)
+    try:
+        resource.setrlimit(resource.RLIMIT_CPU, (new_soft, hard))
+    except (ValueError, OSError):
+        pass  # the wall-clock timeout still applies
 
 
 class ForbiddenCall(BaseException):
@@ -401,17 +417,7 @@ class Worker:
         function = getattr(module, name, None)
         if not callable(function):
             return failure("missing_function", f"function {name} not found in {module_name}.py")
-        budget = request.get("cpu_seconds")
-        if budget:
-            used = resource.getrusage(resource.RUSAGE_SELF).ru_utime
-            soft, hard = resource.getrlimit(resource.RLIMIT_CPU)
-            new_soft = int(used + budget) + 1
-            if hard != resource.RLIM_INFINITY:
-                new_soft = min(new_soft, hard)
-            try:
-                resource.setrlimit(resource.RLIMIT_CPU, (new_soft, hard))
-            except (ValueError, OSError):
-                pass  # the wall-clock timeout still applies
+        _limit_cpu(request.get("cpu_seconds"))
         self.forbidden_called = []
         args, kwargs = request.get("args", ()), request.get("kwargs", {})
         inputs = snapshot_arrays(args, kwargs)
@@ -453,6 +459,57 @@ class Worker:
                            seconds=seconds)
         return {"ok": True, "value": value, "seconds": seconds,
                 "modified": modified_arguments(function, inputs), "changed": changed_arrays(inputs)}
+
+    # -- a variant: the student's functions with some of their defs rewritten by the grader
+    def handle_variant(self, request):
+        """Call ``function`` of a *variant* of the student's module on each of ``calls``.
+
+        The variant is the imported module with the defs in ``source`` (the grader's rewrite of
+        the student's own functions: one small change, to see whether it repairs the answers)
+        executed over a copy of its namespace; every function of the copy sees the copy, so a
+        changed helper is the one the unchanged functions call. The module itself is left as it
+        was. The value is one entry per call: its result, or ``{"__error__": "Type: text"}``.
+        """
+        try:
+            base = self.load(request["module"])
+        except BaseException:  # the parent imports first; this is a fallback
+            return self.handle_import(request["module"])
+        variant = type(base)(base.__name__)
+        own = vars(base)
+        space = vars(variant)
+        space.update(own)
+        start = time.perf_counter()
+        try:
+            _exec(_compile(request["source"], getattr(base, "__file__", None) or "<variant>", "exec"), space)
+        except BaseException as exc:  # noqa: BLE001 - a rewrite that cannot run is no variant
+            return failure("exception", f"the variant did not run: {_exception_line(exc)}")
+        for key, value in list(space.items()):   # the copy's functions read the copy's globals
+            if isinstance(value, _FunctionType) and value.__globals__ is own:
+                rebound = _FunctionType(value.__code__, space, value.__name__, value.__defaults__, value.__closure__)
+                rebound.__kwdefaults__ = value.__kwdefaults__
+                space[key] = rebound
+        function = space.get(request["function"])
+        if not callable(function):
+            return failure("missing_function", f"function {request['function']} not found in the variant")
+        _limit_cpu(request.get("cpu_seconds"))
+        key = f"{base.__name__} (variant)"
+        self.modules[key] = variant   # so that the tripwires reach names it imported itself
+        restore = self.install_tripwires(request.get("forbid") or [])
+        values = []
+        try:
+            for args, kwargs in request.get("calls", ()):
+                self.forbidden_called = []
+                try:
+                    value = function(*args, **kwargs)
+                except BaseException as exc:  # noqa: BLE001 - the variant's exception is its answer
+                    value = {"__error__": _exception_line(exc)[:300]}
+                if self.forbidden_called:
+                    value = {"__error__": f"ForbiddenCall: {self.forbidden_called[0]}"}
+                values.append(value)
+        finally:
+            restore()
+            del self.modules[key]
+        return {"ok": True, "value": values, "seconds": time.perf_counter() - start}
 
     @staticmethod
     def _forbidden_message(qualified, function_name):
@@ -507,6 +564,8 @@ class Worker:
                     response = self.handle_import(request["module"])
                 elif request.get("op") == "call":
                     response = self.handle_call(request)
+                elif request.get("op") == "variant":
+                    response = self.handle_variant(request)
                 else:
                     response = failure("protocol", f"unknown op {request.get('op')!r}")
                 close_figures()

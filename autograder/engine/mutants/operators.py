@@ -724,15 +724,16 @@ def step_phrase(fn: ast.FunctionDef) -> str:
 
 # ------------------------------------------------------------------ generating
 @functools.lru_cache(maxsize=16)
-def _module_mutants(source: str, api: frozenset) -> dict:
-    """def name -> [(operator, ordinal, payload, line, phrase)], the sites of every def."""
+def _module_mutants(source: str, api: frozenset, phrased: bool = True) -> dict:
+    """def name -> [(operator, ordinal, payload, line, phrase)], the sites of every def (``phrased``:
+    only those the operators can tell in words)."""
     tree = _parse(source)
     defs = _defs(tree)
     sites = {}
     for name, fn in defs.items():
         params = {a.arg for a in fn.args.args + fn.args.kwonlyargs} if name in api else set()
         words = _Words(fn, params, defs, set(api))
-        sites[name] = list(_sites(fn, words))
+        sites[name] = list(_sites(fn, words, phrased))
     return sites
 
 
@@ -743,16 +744,18 @@ def _calls_of(fn: ast.FunctionDef, defs: dict) -> list[str]:
                               and n.id in defs and n.id != fn.name))
 
 
-def mutants_of(source: str, api) -> dict[str, list[Mutant]]:
+def mutants_of(source: str, api, phrased: bool = True) -> dict[str, list[Mutant]]:
     """API function -> its mutants: edits in its own ``def`` and in every module function it
     calls (directly or not), each once (the first of the edits giving the same code).
 
-    ``source`` is the reference module's text; ``api`` the graded function names.
+    ``source`` is the reference module's text; ``api`` the graded function names. ``phrased``
+    False keeps the changes no sentence tells too (their sentence is the place alone): a change of
+    the student's own code is told by showing it (:mod:`.repair`).
     """
     api = frozenset(api)
     tree = _parse(source)
     defs = _defs(tree)
-    sites = _module_mutants(source, api)
+    sites = _module_mutants(source, api, phrased)
     out = {}
     for function in sorted(api & set(defs)):
         reached, queue = [], [function]
@@ -781,8 +784,9 @@ def _context(function: str, where: str, defs: dict, api) -> str:
     return f", in {step}" if step else ", in a step it runs"
 
 
-def _sites(fn: ast.FunctionDef, words: _Words):
-    """(operator, ordinal, payload, line, phrase) for every change the operators make in ``fn``."""
+def _sites(fn: ast.FunctionDef, words: _Words, phrased: bool = True):
+    """(operator, ordinal, payload, line, phrase) for every change the operators make in ``fn``
+    (``phrased``: only those with a phrase)."""
     nodes = list(ast.walk(fn))
     parents = _parents(fn)
     seen = set()
@@ -791,7 +795,7 @@ def _sites(fn: ast.FunctionDef, words: _Words):
             continue
         line = getattr(node, "lineno", None) or getattr(parents.get(id(node), (fn,))[0], "lineno", fn.lineno)
         for operator, payload, phrase in _changes(node, parents, words, line):
-            if not phrase:
+            if not phrase and phrased:
                 continue
             try:
                 before = ast.unparse(node)

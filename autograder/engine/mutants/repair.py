@@ -1,0 +1,387 @@
+"""Naming a failure by repairing the student's own code: one small change that makes it right.
+
+The error model (:mod:`.naming`) explains a student's answers by a mutant of the reference. When
+the student's code is built otherwise -- other steps, other names, a helper of their own -- no
+mutant of the reference gives their answers, even when their mistake is one slip. Here the same
+operators (:mod:`.operators`) change the *student's* function instead (and the module functions it
+runs), one change at a time, and each variant is called in a companion sandbox
+(:meth:`~autograder.sandbox.supervisor.Sandbox.companion`: the student's code never runs in the
+grader's process, and a variant that hangs costs the student's own worker nothing) on the inputs
+where their answers were wrong. A change is told only when the variant gives the reference's
+answers there, on the trial's other calls of that function, and on confirmation inputs derived
+from the failing ones. The sentence shows the student's own code before and after the change
+("changing `std_l * std_l` to `std_l * std_r` (line 23) makes `ncc_disparity` give the expected
+answers on all 9 inputs tried"), never the reference's.
+
+What it cannot name: a step that is missing (no operator inserts code), two slips at once, and a
+function whose right answers are random (RANSAC with its own samples): no single change gives the
+reference's answers there. Time is bounded per failed check and per grading, as the error model's.
+"""
+
+from __future__ import annotations
+
+import ast
+import copy
+import hashlib
+import itertools
+import threading
+import time
+from collections import OrderedDict
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from ...loading.parsing import parse
+from ...loading.reading import MAX_NODES, MAX_SOURCE_BYTES
+from . import naming
+from .helper import HelperFailed
+from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_defs
+
+CHECK_SECONDS = 3.0       # the repairs' time for one failed check
+GRADING_SECONDS = 10.0    # and for one grading
+CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
+VARIANTS = 4              # confirmation inputs derived from the failing calls
+VARIANT_TIMEOUT = 1.0     # seconds for one variant on its inputs (one request)
+MISTAKE = "repair:"       # + the operator: a mistake named by a change of the student's code
+_SHOWN = 70               # the longest code shown before and after a change
+
+
+@dataclass(frozen=True)
+class Repair:
+    """A change of the student's code that makes their function's answers right.
+
+    function : the graded function whose answers it repairs.
+    where : the ``def`` it changes (``function`` or a module function it runs).
+    changes : ``((line, before, after), ...)``: each changed line of the student's module, the
+        code there and the same code changed (``ast.unparse`` forms); one, or two for one slip
+        made twice.
+    operator : the operator that made the (first) change.
+    edits : the change, as :func:`.operators.apply_edits` takes it.
+    inputs : how many inputs the changed function answered right (failing, others, confirmations).
+    """
+
+    function: str
+    where: str
+    changes: tuple
+    operator: str
+    edits: tuple
+    inputs: int
+
+    @property
+    def mistake(self) -> str:
+        return MISTAKE + self.operator
+
+    @property
+    def sentence(self) -> str:
+        told = []
+        for line, before, after in self.changes:
+            told.append(f"removing `{before}` (line {line})" if after == "pass"
+                        else f"changing `{before}` to `{after}` (line {line})")
+        inside = "" if self.where == self.function else f" in `{self.where}`"
+        return (f"Trying small changes to your code: {' and '.join(told)}{inside} makes `{self.function}` give "
+                f"the expected answers on all {self.inputs} inputs tried, so that is likely the mistake")
+
+
+# ------------------------------------------------------------------ the student's code
+@dataclass(frozen=True)
+class _Student:
+    text: str
+    tree: ast.Module
+    mutants: dict   # API function -> [Mutant], simplest first
+
+
+_READ: OrderedDict = OrderedDict()   # digest of (text, api) -> _Student (a class's copies of one file)
+_READ_LOCK = threading.Lock()
+
+
+def _student_code(trial) -> _Student | None:
+    """The student's module the trial's sandbox holds, parsed within the reading bounds, and the
+    changes the operators make to its API functions; None when there is none or it is too large."""
+    folder = getattr(getattr(trial, "sandbox", None), "submission_dir", None)
+    if folder is None:
+        return None
+    try:
+        path = Path(folder) / f"{trial.lab.module}.py"
+        if path.stat().st_size > MAX_SOURCE_BYTES:
+            return None
+        text = path.read_bytes().decode("utf-8", errors="replace")
+    except (OSError, TypeError, ValueError):
+        return None
+    api = sorted(name for exercise in trial.lab.exercises.values() for name in exercise.signatures)
+    key = hashlib.sha256("\0".join([text, *api]).encode()).digest()
+    with _READ_LOCK:
+        if key in _READ:
+            _READ.move_to_end(key)
+            return _READ[key]
+    try:
+        tree = parse(text)   # the student's text: within the bounds, under the parse lock
+        if sum(1 for _ in ast.walk(tree)) > MAX_NODES:
+            return None
+        mutants = mutants_of(text, api, phrased=False)
+    except (SyntaxError, ValueError, RecursionError, MemoryError):
+        return None
+    for each in mutants.values():
+        each.sort(key=lambda m: (len(m.edits), m.rank[1], m.line))
+    read = _Student(text, tree, mutants)
+    with _READ_LOCK:
+        _READ[key] = read
+        while len(_READ) > 8:
+            _READ.popitem(last=False)
+    return read
+
+
+def _shown(student: _Student, edit) -> tuple[int, str, str] | None:
+    """(line, before, after): the smallest expression or statement around the change that shows it
+    (a name alone is ambiguous: `sl * sl`, not `sl`), before and after; None when the change cannot
+    be shown in a short line."""
+    where, ordinal, operator, payload = edit
+    fn = _defs(student.tree).get(where)
+    if fn is None:
+        return None
+    nodes = list(ast.walk(fn))
+    if not 0 <= ordinal < len(nodes):
+        return None
+    edited = nodes[ordinal]
+    parents = _parents(fn)
+    context = edited
+    while isinstance(context, (ast.Name, ast.Constant, ast.Attribute, ast.keyword, ast.Slice)) \
+            or (isinstance(context, ast.expr) and len(ast.unparse(context)) < 12):
+        parent = parents.get(id(context), (None,))[0]
+        if parent is None or isinstance(parent, (ast.FunctionDef, ast.AsyncFunctionDef)) \
+                or len(ast.unparse(parent)) > _SHOWN:
+            break
+        context = parent
+    before = ast.unparse(context)
+    copied = copy.deepcopy(context)
+    position = next(i for i, node in enumerate(ast.walk(context)) if node is edited)
+    target = list(ast.walk(copied))[position]
+    made = _MAKE[operator](target, payload)
+    if target is copied:
+        copied = made
+    else:
+        _replace(_parents(copied), target, made)
+    after = ast.unparse(ast.fix_missing_locations(copied))
+    before, after = (" ".join(text.split()) for text in (before, after))
+    if before == after or len(before) > _SHOWN or len(after) > _SHOWN:
+        return None
+    return getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), before, after
+
+
+# ------------------------------------------------------------------ right answers
+def right(value, reference) -> bool:
+    """Whether a variant's answer is the reference's: images within a grey level on average and
+    nowhere drawn otherwise; numbers entry by entry within 1e-4 of their size (1e-6 of the answer's
+    largest), small matrices up to scale and sign too. An error is never right."""
+    if naming._error_kind(value) is not None or naming._error_kind(reference) is not None:
+        return False
+    if naming._has_image(reference):
+        return naming.distance(value, reference) <= 1.0 and not naming._drawn_elsewhere(value, reference)
+    pairs = naming._numeric_pairs(value, reference)
+    if pairs is None:
+        return False
+    floor = 1e-6 * max(naming._largest(reference), 1e-12)
+    for got, want in pairs:
+        got, want = got.astype(np.complex128 if "c" in got.dtype.kind + want.dtype.kind else np.float64), \
+            want.astype(np.complex128 if "c" in want.dtype.kind + got.dtype.kind else np.float64)
+        if np.isfinite(got).tolist() != np.isfinite(want).tolist():
+            return False
+        if np.allclose(got, want, rtol=1e-4, atol=floor, equal_nan=True):
+            continue
+        small = got.ndim == 2 and got.size <= 16 and np.isfinite(got).all()
+        scale = np.vdot(got, want) / np.vdot(got, got) if small and np.vdot(got, got) != 0 else 0
+        if not (small and scale != 0 and np.allclose(got * scale, want, rtol=1e-4, atol=floor)):
+            return False
+    return True
+
+
+# ------------------------------------------------------------------ the search
+def name_by_repair(trial, seconds: float = CHECK_SECONDS) -> Repair | None:
+    """A change of the student's code that makes the failed trial's answers right, confirmed; or None.
+
+    Never raises for the student's sake: a variant that fails is no repair; without a reference
+    module, a reading of the student's code or time left, nothing is named."""
+    model = naming.model_for(trial.lab)
+    if model is None or not (trial.calls or getattr(trial, "raised", None)):
+        return None
+    spent = trial.sandbox.shared.setdefault("repair seconds", [0.0])
+    seconds = min(seconds, GRADING_SECONDS - spent[0])
+    if seconds <= 0.2:
+        return None
+    started = time.monotonic()
+    try:
+        student = _student_code(trial)
+        if student is None:
+            return None
+        return _search(trial, model, student, naming._Clock(seconds))
+    except HelperFailed:
+        return None
+    finally:
+        spent[0] += time.monotonic() - started
+        naming._MEASURED.clear()
+        naming._release()
+
+
+def _recorded(trial) -> dict:
+    """function -> [(function, args, kwargs, the student's outcome)] of the trial, raised last."""
+    recorded = {}
+    for function, args, kwargs, value in trial.calls:
+        recorded.setdefault(function, []).append((function, tuple(args), dict(kwargs), value))
+    if getattr(trial, "raised", None):
+        function, args, kwargs, message = trial.raised
+        theirs = naming._raised_answer(message)
+        if theirs is not None:
+            recorded.setdefault(function, []).append((function, tuple(args), dict(kwargs), theirs))
+    return recorded
+
+
+def _search(trial, model, student: _Student, clock) -> Repair | None:
+    runner = naming.helper()
+    for function, calls in _recorded(trial).items():
+        mutants = student.mutants.get(function)
+        if not mutants or function not in model.mutants:
+            continue
+        calls = calls[-CALLS_PER_FUNCTION:]
+        inputs = [call[:3] for call in calls]
+        runner.prepare(model.source, model.module, inputs, max(1.0, clock.left()))
+        references = runner.run((), range(len(inputs)), max(0.5, clock.left()))
+        failing = [i for i, (call, reference) in enumerate(zip(calls, references))
+                   if naming._error_kind(reference) is None and _wrong(call[3], reference)]
+        if not failing:
+            continue
+        found = _repaired(trial, model, student, function, inputs, references, failing, clock)
+        if found is not None:
+            return found
+    return None
+
+
+def _wrong(answer, reference) -> bool:
+    return naming._error_kind(answer) is not None or naming.wrong(answer, reference)
+
+
+def _repaired(trial, model, student, function, inputs, references, failing, clock) -> Repair | None:
+    """The simplest confirmed change of ``function``'s code (or of a helper it runs) whose answers on
+    the ``failing`` inputs are the reference's; else the simplest confirmed pair of changes among
+    those that each bring the answers nearer (one slip made twice: a row copied twice with the
+    wrong camera's name)."""
+    shared = trial.sandbox.shared
+    ruled_out = shared.setdefault("repair ruled out", {}).setdefault(function, set())
+    kept_near = shared.setdefault("repair near", {}).setdefault(function, [])
+    earlier = shared.setdefault("repair found", {}).get(function)
+    variant = _Variants(trial, model, student, function, inputs, references, clock)
+    off = sum(naming.distance(references[i], variant.students[i]) for i in failing)
+    near = []
+    order = ([earlier] if earlier is not None else []) + [m for m in student.mutants[function]
+                                                            if earlier is None or m.key != earlier.key]
+    for mutant in order:
+        if clock.left() <= 0:
+            return None
+        if mutant.key in ruled_out:
+            continue
+        values = variant.answers(mutant, failing, inputs)
+        if values is not None and all(right(v, references[i]) for v, i in zip(values, failing)):
+            found = variant.confirmed(mutant, failing)
+            if found is not None:
+                return found
+        elif values is not None and np.isfinite(off):
+            apart = sum(naming.distance(v, references[i]) for v, i in zip(values, failing))
+            if apart < 0.9 * off:
+                near.append((apart, mutant))
+        if clock.left() > 0:
+            ruled_out.add(mutant.key)
+    near = [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
+    kept_near[:] = near
+    pairs = [(a, b) for a, b in itertools.combinations(near, 2) if _apart(a, b)]
+    pairs.sort(key=lambda pair: not _same_slip(*pair))   # the same slip twice first
+    for first, second in pairs:
+        if clock.left() <= 0:
+            return None
+        both = replace(first, edits=first.edits + second.edits)
+        values = variant.answers(both, failing, inputs)
+        if values is not None and all(right(v, references[i]) for v, i in zip(values, failing)):
+            found = variant.confirmed(both, failing)
+            if found is not None:
+                return found
+    return None
+
+
+PAIR_CHANGES = 6   # the nearest single changes combined in pairs
+
+
+def _apart(first, second) -> bool:
+    """Two changes at different places (neither inside the other: the edits must both apply)."""
+    (where_a, ordinal_a, _, _), (where_b, ordinal_b, _, _) = first.edits[0], second.edits[0]
+    return (where_a, ordinal_a) != (where_b, ordinal_b)
+
+
+def _same_slip(first, second) -> bool:
+    return first.edits[0][2:] == second.edits[0][2:]
+
+
+class _Variants:
+    """Calling variants of the student's function in the companion sandbox, and confirming one."""
+
+    def __init__(self, trial, model, student, function, inputs, references, clock):
+        self.trial, self.model, self.student, self.function = trial, model, student, function
+        self.inputs, self.references, self.clock = inputs, references, clock
+        self.students = [call[3] for call in _recorded(trial)[function][-CALLS_PER_FUNCTION:]]
+        self.companion = trial.sandbox.companion()
+        self.forbid = tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
+
+    def answers(self, mutant, indices, every) -> list | None:
+        """The variant's answers on ``every[i]`` for ``i`` in ``indices`` (None when it did not answer)."""
+        try:
+            source = ast.unparse(mutated_defs(self.student.tree, mutant.edits, self.student.text))
+        except (ValueError, SyntaxError, RecursionError):
+            return None
+        outcome = self.companion.call_variant(
+            self.trial.lab.module, source, self.function, [every[i][1:] for i in indices], forbid=self.forbid,
+            timeout=max(0.05, min(VARIANT_TIMEOUT, self.clock.left())))
+        value = outcome.value if outcome.ok else None
+        return value if isinstance(value, list) and len(value) == len(indices) else None
+
+    def confirmed(self, mutant, failing) -> Repair | None:
+        """The repair, when the variant is also right on the trial's other calls and on confirmation
+        inputs derived from the failing ones (where the reference answers), and can be shown."""
+        from ..checks import fingerprint
+
+        shown = [_shown(self.student, edit) for edit in mutant.edits]
+        if any(each is None for each in shown):
+            return None
+        others = [i for i in range(len(self.inputs)) if i not in failing]
+        if others and not self._right_on(mutant, others, self.inputs, self.references):
+            return None
+        variants = []
+        for i in failing[:2]:
+            seed = int(fingerprint(self.function, "repair", i, self.inputs[i][1])[:8], 16)
+            variants += naming._variants(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
+                                         self.model.defaults.get(self.function, ()))
+        every = self.inputs + variants
+        runner = naming.helper()
+        runner.prepare(self.model.source, self.model.module, every, max(1.0, self.clock.left()))
+        indices = list(range(len(self.inputs), len(every)))
+        wanted = dict(zip(indices, runner.run((), indices, max(0.5, self.clock.left()))))
+        usable = [i for i in indices if naming._error_kind(wanted[i]) is None]
+        if usable and not self._right_on(mutant, usable, every, wanted):
+            return None
+        self.trial.sandbox.shared["repair found"][self.function] = mutant
+        return Repair(self.function, mutant.where, tuple(shown), mutant.operator, mutant.edits,
+                      len(self.inputs) + len(usable))
+
+    def _right_on(self, mutant, indices, every, wanted) -> bool:
+        values = self.answers(mutant, indices, every)
+        return values is not None and all(right(v, wanted[i]) for v, i in zip(values, indices))
+
+
+def named_by_repair(verdict, trial):
+    """A failed check's verdict with a confirmed repair told at the end of its first line, when the
+    verdict names nothing; unchanged otherwise (see the module docstring)."""
+    if verdict.mistake or "looks like" in str(verdict.message).lower():
+        return verdict
+    repair = name_by_repair(trial)
+    if repair is None:
+        return verdict
+    first, newline, rest = str(verdict.message).partition("\n")
+    lead = first.rstrip()
+    lead += "" if not lead or lead[-1] in ".:;!?" else "."
+    return replace(verdict, message=f"{lead} {repair.sentence}.{newline}{rest}", mistake=repair.mistake)

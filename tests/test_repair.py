@@ -1,0 +1,158 @@
+"""Naming a mistake by repairing the student's own code (issue 35): variants of the student's
+functions run in a companion sandbox, and a change is told only when it makes the answers the
+reference's on the failing inputs, the other calls and confirmation inputs."""
+
+from __future__ import annotations
+
+import ast
+import textwrap
+
+import numpy as np
+import pytest
+
+from autograder.engine.mutants import repair
+from autograder.engine.runner import grade
+from autograder.sandbox.supervisor import Limits, Sandbox
+from conftest import check_results, edited_reference, submission_from_source
+
+SMALL = Limits(call_timeout=5.0)
+
+
+# ------------------------------------------------------------------ the sandbox's variants
+@pytest.fixture
+def box(tmp_path):
+    folder = submission_from_source(tmp_path, "student", """
+        import numpy as np
+
+        def helper(x):
+            return x + 1
+
+        def graded(x):
+            return helper(x) * 2
+    """)
+    with Sandbox(folder, SMALL) as sandbox:
+        yield sandbox
+
+
+def test_a_variant_of_a_helper_is_the_one_the_function_calls(box):
+    companion = box.companion()
+    outcome = companion.call_variant("student", "def helper(x):\n    return x - 1\n", "graded",
+                                     [((3,), {}), ((np.arange(3.0),), {})], timeout=5.0)
+    assert outcome.ok, outcome.message
+    assert outcome.value[0] == 4
+    np.testing.assert_array_equal(outcome.value[1], [-2.0, 0.0, 2.0])
+    # the module itself is left as it was, in the companion and in the student's own worker
+    assert companion.call("student", "graded", (3,)).value == 8
+    assert box.call("student", "graded", (3,)).value == 8
+
+
+def test_each_call_of_a_variant_answers_or_raises_on_its_own(box):
+    source = "def helper(x):\n    return 1 / x\n"
+    outcome = box.companion().call_variant("student", source, "graded", [((0,), {}), ((2,), {})], timeout=5.0)
+    assert outcome.ok
+    assert outcome.value[0] == {"__error__": "ZeroDivisionError: division by zero"}
+    assert outcome.value[1] == 1.0
+
+
+def test_a_variant_that_hangs_costs_the_students_worker_nothing(box):
+    before = box.call("student", "graded", (1,))
+    outcome = box.companion().call_variant("student", "def helper(x):\n    while True:\n        pass\n", "graded",
+                                           [((1,), {})], timeout=0.5)
+    assert not outcome.ok and outcome.kind in ("timeout", "budget")
+    assert box.restarts == 0 and box.student_seconds == pytest.approx(before.seconds, abs=0.05)
+    assert box.call("student", "graded", (1,)).value == 4
+
+
+def test_a_variant_meets_the_same_forbidden_calls(tmp_path):
+    folder = submission_from_source(tmp_path, "student", """
+        import cv2
+        import numpy as np
+
+        def graded(src, dst):
+            return np.eye(3)
+    """)
+    source = "def graded(src, dst):\n    return cv2.findHomography(src, dst)[0]\n"
+    points = np.array([[0, 0], [1, 0], [0, 1], [1, 1]], np.float64)
+    with Sandbox(folder, SMALL) as sandbox:
+        outcome = sandbox.companion().call_variant("student", source, "graded", [((points, points), {})],
+                                                   timeout=5.0, forbid=("cv2.findHomography",))
+    assert outcome.ok
+    assert outcome.value[0]["__error__"].startswith("ForbiddenCall")
+
+
+def test_the_companion_closes_with_its_sandbox(tmp_path):
+    folder = submission_from_source(tmp_path, "student", "def graded(x):\n    return x\n")
+    sandbox = Sandbox(folder, SMALL)
+    companion = sandbox.companion()
+    assert companion is not sandbox and sandbox.companion() is companion
+    assert companion.call("student", "graded", (5,)).value == 5
+    sandbox.close()
+    assert companion._closed
+
+
+# ------------------------------------------------------------------ judging and showing
+def test_right_is_the_reference_up_to_rounding_not_merely_near():
+    H = np.array([[1.0, 0.2, 30.0], [0.1, 0.9, -4.0], [1e-4, 2e-4, 1.0]])
+    assert repair.right(H * (1 + 1e-9), H)
+    assert repair.right(-3.0 * H, H)                   # a homography up to scale and sign
+    assert not repair.right(H + 1e-2, H)
+    points = np.array([[1.0, 2.0], [np.nan, np.nan]])
+    assert repair.right(points.copy(), points)
+    assert not repair.right(np.array([[1.0, 2.0], [3.0, 4.0]]), points)
+    image = np.full((40, 40), 100, np.uint8)
+    moved = image.copy()
+    moved[:, :4] = 255                                  # a thin band drawn elsewhere: not the same image
+    assert repair.right(image + 1, image) and not repair.right(moved, image)
+    assert not repair.right({"__error__": "ValueError: x"}, H)
+
+
+def _read(source: str, api=("graded",)):
+    source = textwrap.dedent(source)
+    tree = ast.parse(source)
+    mutants = repair.mutants_of(source, api, phrased=False)
+    return repair._Student(source, tree, mutants), mutants["graded"]
+
+
+def test_a_changed_name_is_shown_with_the_expression_around_it():
+    student, mutants = _read("""
+        def graded(std_l, std_r):
+            denominator = std_l * std_l
+            return denominator
+    """)
+    shown = {repair._shown(student, m.edits[0]) for m in mutants if m.operator == "other_name"}
+    assert (3, "std_l * std_l", "std_r * std_l") in shown
+    assert (3, "std_l * std_l", "std_l * std_r") in shown
+
+
+# ------------------------------------------------------------------ whole gradings
+# Both of view 2's rows made with camera 1's third row: a line copied and half edited, twice.
+# No single change of the reference reproduces it (the error model names nothing); two changes of
+# the student's own code repair it.
+_VIEW_2_ROWS = [("pts2[:, :1] * P2[2] - P2[0],", "pts2[:, :1] * P1[2] - P2[0],"),
+                ("pts2[:, 1:] * P2[2] - P2[1],", "pts2[:, 1:] * P1[2] - P2[1],")]
+
+
+def test_a_slip_made_twice_is_told_as_the_two_changes_that_repair_it(tmp_path):
+    result = grade(edited_reference(tmp_path, "lab12_stereo", *_VIEW_2_ROWS), ["lab12.ex1"], pictures="none",
+                   include_hidden=False)
+    told = [c for c in check_results(result, "lab12.ex1") if c.mistake.startswith(repair.MISTAKE)]
+    assert told, [c.message for c in check_results(result, "lab12.ex1")]
+    assert "changing `pts2[:, :1] * P1[2]` to `pts2[:, :1] * P2[2]`" in told[0].message
+    assert "`pts2[:, 1:] * P1[2]` to `pts2[:, 1:] * P2[2]`" in told[0].message
+
+
+def test_three_slips_get_no_repair(tmp_path):
+    """No one change and no pair repairs them: nothing is claimed (a pair that mends two of them
+    gives answers still wrong, and is not told)."""
+    edits = [_VIEW_2_ROWS[0], ("X = X[:, :3] / X[:, 3:]", "X = X[:, :3] / X[:, 2:3]"),
+             ("pts1[:, 1:] * P1[2] - P1[1],", "pts1[:, 1:] * P1[2] - P1[0],")]
+    result = grade(edited_reference(tmp_path, "lab12_stereo", *edits), ["lab12.ex1"], pictures="none",
+                   include_hidden=False)
+    checks = check_results(result, "lab12.ex1")
+    assert any(c.score < c.max_score for c in checks)
+    assert not any("Trying small changes" in c.message for c in checks)
+
+
+def test_the_reference_is_never_told_a_repair(tmp_path):
+    result = grade(edited_reference(tmp_path, "lab12_stereo"), ["lab12.ex1"], pictures="none", include_hidden=False)
+    assert all(c.score == c.max_score for c in check_results(result, "lab12.ex1"))
