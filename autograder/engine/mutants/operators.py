@@ -488,8 +488,12 @@ _PARAMETER_WORDS = {"src": "the source points", "dst": "the destination points",
 class _Words:
     """Phrases for expressions of one ``def``: API parameters by name, locals by what they hold."""
 
-    def __init__(self, fn: ast.FunctionDef, api_params: set[str], module_defs: dict, api: set[str]):
+    def __init__(self, fn: ast.FunctionDef, api_params: set[str], module_defs: dict, api: set[str],
+                 student: bool = False):
         self.fn, self.api_params, self.module_defs, self.api = fn, api_params, module_defs, api
+        # The student's own code is shown, not told: any expression is its own phrase (its text),
+        # and every call's arguments may be swapped (a helper of theirs, too).
+        self.student = student
         # A private helper's parameters told by what they hold, where the name says it plainly
         # (`src` in a helper building the design matrix: "the source points"); else nothing.
         self.helper_params = {} if fn.name in api else {
@@ -532,7 +536,11 @@ class _Words:
         return list(dict.fromkeys(names))
 
     def what(self, node, depth: int = 0, line: int | None = None) -> str:
-        """A short phrase for ``node`` (never a local or private name); "" when none fits."""
+        """A short phrase for ``node`` (never a local or private name); "" when none fits. (The
+        student's code: its text.)"""
+        if self.student:
+            text = ast.unparse(node)
+            return f"`{text}`" if len(text) <= _MAX_PHRASE else ""
         line = line if line is not None else getattr(node, "lineno", 10**9)
         for start in (depth, depth + 2, depth + 4):  # deeper starts say less: a shorter phrase
             phrase = self._what(node, start, line)
@@ -732,7 +740,7 @@ def _module_mutants(source: str, api: frozenset, phrased: bool = True) -> dict:
     sites = {}
     for name, fn in defs.items():
         params = {a.arg for a in fn.args.args + fn.args.kwonlyargs} if name in api else set()
-        words = _Words(fn, params, defs, set(api))
+        words = _Words(fn, params, defs, set(api), student=not phrased)
         sites[name] = list(_sites(fn, words, phrased))
     return sites
 
@@ -1250,7 +1258,7 @@ def _call_changes(node: ast.Call, words, what, parents):
     dotted = _dotted(node.func)
     short = dotted.rsplit(".", 1)[-1]
     shown = f"`{dotted}`" if dotted.startswith(("cv2.", "np.", "numpy.")) else (
-        f"`{dotted}`" if dotted in words.api else "")
+        f"`{dotted}`" if dotted in words.api or words.student else "")
     positional = [a for a in node.args if not isinstance(a, ast.Starred)]
     if len(positional) == len(node.args) and len(node.args) >= 2 and shown:
         for i in range(len(node.args)):

@@ -48,39 +48,53 @@ _SHOWN = 70               # the longest code shown before and after a change
 
 
 @dataclass(frozen=True)
-class Repair:
-    """A change of the student's code that makes their function's answers right.
+class Fix:
+    """One change (or two, one slip made twice) of the student's code that makes a function right.
 
-    function : the graded function whose answers it repairs.
-    where : the ``def`` it changes (``function`` or a module function it runs).
-    changes : ``((line, before, after), ...)``: each changed line of the student's module, the
-        code there and the same code changed (``ast.unparse`` forms); one, or two for one slip
-        made twice.
+    changes : ``((line, before, after), ...)``: each changed line of the student's module, the code
+        there and the same code changed (``ast.unparse`` forms).
+    where : the ``def`` changed (the graded function or a module function it runs).
     operator : the operator that made the (first) change.
     edits : the change, as :func:`.operators.apply_edits` takes it.
-    inputs : how many inputs the changed function answered right (failing, others, confirmations).
     """
 
-    function: str
-    where: str
     changes: tuple
+    where: str
     operator: str
     edits: tuple
+
+    def told(self, function: str) -> str:
+        inside = "" if self.where == function else f", in `{self.where}`"
+        said = [f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
+                for line, before, after in self.changes]
+        return ("removing " if self.changes[0][2] == "pass" else "changing ") + " and ".join(said)
+
+
+@dataclass(frozen=True)
+class Repair:
+    """The confirmed fixes of a graded function: each makes its answers right on ``inputs`` inputs
+    (the failing ones, the trial's other calls, confirmation inputs). Several when several places
+    can be changed to the same effect (a swapped call, or the result transposed later): one of them
+    is the mistake."""
+
+    function: str
+    fixes: tuple
     inputs: int
 
     @property
     def mistake(self) -> str:
-        return MISTAKE + self.operator
+        return MISTAKE + self.fixes[0].operator
 
     @property
     def sentence(self) -> str:
-        told = []
-        for line, before, after in self.changes:
-            told.append(f"removing `{before}` (line {line})" if after == "pass"
-                        else f"changing `{before}` to `{after}` (line {line})")
-        inside = "" if self.where == self.function else f" in `{self.where}`"
-        return (f"Trying small changes to your code: {' and '.join(told)}{inside} makes `{self.function}` give "
-                f"the expected answers on all {self.inputs} inputs tried, so that is likely the mistake")
+        head = "Trying small changes to your code"
+        said = f"the expected answers on all {self.inputs} inputs tried"
+        if len(self.fixes) == 1:
+            return f"{head}: {self.fixes[0].told(self.function)} makes `{self.function}` give {said}, " \
+                   "so the mistake is likely there"
+        listed = "; ".join(fix.told(self.function) for fix in self.fixes)
+        return f"{head}: each of these makes `{self.function}` give {said}, so the mistake is likely at one " \
+               f"of them: {listed}"
 
 
 # ------------------------------------------------------------------ the student's code
@@ -114,16 +128,16 @@ def _student_code(trial) -> _Student | None:
         if key in _READ:
             _READ.move_to_end(key)
             return _READ[key]
+    read = None
     try:
         tree = parse(text)   # the student's text: within the bounds, under the parse lock
-        if sum(1 for _ in ast.walk(tree)) > MAX_NODES:
-            return None
-        mutants = mutants_of(text, api, phrased=False)
-    except (SyntaxError, ValueError, RecursionError, MemoryError):
-        return None
-    for each in mutants.values():
-        each.sort(key=lambda m: (len(m.edits), m.rank[1], m.line))
-    read = _Student(text, tree, mutants)
+        if sum(1 for _ in ast.walk(tree)) <= MAX_NODES:
+            mutants = mutants_of(text, api, phrased=False)
+            for each in mutants.values():
+                each.sort(key=lambda m: (len(m.edits), m.rank[1], m.line))
+            read = _Student(text, tree, mutants)
+    except Exception:  # noqa: BLE001 - code the operators cannot read has no repairs (said once, not per check)
+        read = None
     with _READ_LOCK:
         _READ[key] = read
         while len(_READ) > 8:
@@ -260,35 +274,45 @@ def _wrong(answer, reference) -> bool:
 
 
 def _repaired(trial, model, student, function, inputs, references, failing, clock) -> Repair | None:
-    """The simplest confirmed change of ``function``'s code (or of a helper it runs) whose answers on
-    the ``failing`` inputs are the reference's; else the simplest confirmed pair of changes among
-    those that each bring the answers nearer (one slip made twice: a row copied twice with the
-    wrong camera's name)."""
+    """The confirmed single changes of ``function``'s code (or of a helper it runs) whose answers on
+    the ``failing`` inputs are the reference's (up to :data:`FIXES`, one per line); else the first
+    confirmed pair of changes among those that each bring the answers nearer (one slip made twice:
+    a row copied twice with the wrong camera's name)."""
     shared = trial.sandbox.shared
     ruled_out = shared.setdefault("repair ruled out", {}).setdefault(function, set())
     kept_near = shared.setdefault("repair near", {}).setdefault(function, [])
-    earlier = shared.setdefault("repair found", {}).get(function)
+    earlier = shared.setdefault("repair found", {}).get(function, [])
     variant = _Variants(trial, model, student, function, inputs, references, clock)
     off = sum(naming.distance(references[i], variant.students[i]) for i in failing)
-    near = []
-    order = ([earlier] if earlier is not None else []) + [m for m in student.mutants[function]
-                                                            if earlier is None or m.key != earlier.key]
-    for mutant in order:
-        if clock.left() <= 0:
-            return None
+    candidates, near = [], []
+    known = {m.key for m in earlier}
+    for mutant in list(earlier) + [m for m in student.mutants[function] if m.key not in known]:
+        if clock.left() <= (RESERVE if candidates else 0):
+            break
         if mutant.key in ruled_out:
             continue
         values = variant.answers(mutant, failing, inputs)
         if values is not None and all(right(v, references[i]) for v, i in zip(values, failing)):
-            found = variant.confirmed(mutant, failing)
-            if found is not None:
-                return found
-        elif values is not None and np.isfinite(off):
+            candidates.append(mutant)
+            continue
+        if values is not None and np.isfinite(off):
             apart = sum(naming.distance(v, references[i]) for v, i in zip(values, failing))
             if apart < 0.9 * off:
                 near.append((apart, mutant))
         if clock.left() > 0:
             ruled_out.add(mutant.key)
+    fixes, lines = [], set()
+    for mutant in candidates:
+        if len(fixes) >= FIXES or clock.left() <= 0:
+            break
+        fix = variant.fix(mutant)
+        if fix is not None and fix.changes[0][0] not in lines and variant.confirmed(mutant, failing):
+            fixes.append((mutant, fix))
+            lines.add(fix.changes[0][0])
+        elif clock.left() > 0:
+            ruled_out.add(mutant.key)
+    if fixes:
+        return variant.repair(fixes)
     near = [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
     kept_near[:] = near
     pairs = [(a, b) for a, b in itertools.combinations(near, 2) if _apart(a, b)]
@@ -299,12 +323,14 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         both = replace(first, edits=first.edits + second.edits)
         values = variant.answers(both, failing, inputs)
         if values is not None and all(right(v, references[i]) for v, i in zip(values, failing)):
-            found = variant.confirmed(both, failing)
-            if found is not None:
-                return found
+            fix = variant.fix(both)
+            if fix is not None and variant.confirmed(both, failing):
+                return variant.repair([(both, fix)])
     return None
 
 
+FIXES = 3         # the most fixes told (one per line)
+RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 
 
@@ -319,7 +345,7 @@ def _same_slip(first, second) -> bool:
 
 
 class _Variants:
-    """Calling variants of the student's function in the companion sandbox, and confirming one."""
+    """Calling variants of the student's function in the companion sandbox, and confirming them."""
 
     def __init__(self, trial, model, student, function, inputs, references, clock):
         self.trial, self.model, self.student, self.function = trial, model, student, function
@@ -327,6 +353,7 @@ class _Variants:
         self.students = [call[3] for call in _recorded(trial)[function][-CALLS_PER_FUNCTION:]]
         self.companion = trial.sandbox.companion()
         self.forbid = tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
+        self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
 
     def answers(self, mutant, indices, every) -> list | None:
         """The variant's answers on ``every[i]`` for ``i`` in ``indices`` (None when it did not answer)."""
@@ -340,33 +367,41 @@ class _Variants:
         value = outcome.value if outcome.ok else None
         return value if isinstance(value, list) and len(value) == len(indices) else None
 
-    def confirmed(self, mutant, failing) -> Repair | None:
-        """The repair, when the variant is also right on the trial's other calls and on confirmation
-        inputs derived from the failing ones (where the reference answers), and can be shown."""
-        from ..checks import fingerprint
-
+    def fix(self, mutant) -> Fix | None:
+        """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
         shown = [_shown(self.student, edit) for edit in mutant.edits]
         if any(each is None for each in shown):
             return None
+        return Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
+
+    def confirmed(self, mutant, failing) -> bool:
+        """Whether the variant is also right on the trial's other calls and on confirmation inputs
+        derived from the failing ones (where the reference answers)."""
+        from ..checks import fingerprint
+
         others = [i for i in range(len(self.inputs)) if i not in failing]
         if others and not self._right_on(mutant, others, self.inputs, self.references):
-            return None
-        variants = []
-        for i in failing[:2]:
-            seed = int(fingerprint(self.function, "repair", i, self.inputs[i][1])[:8], 16)
-            variants += naming._variants(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
-                                         self.model.defaults.get(self.function, ()))
-        every = self.inputs + variants
-        runner = naming.helper()
-        runner.prepare(self.model.source, self.model.module, every, max(1.0, self.clock.left()))
-        indices = list(range(len(self.inputs), len(every)))
-        wanted = dict(zip(indices, runner.run((), indices, max(0.5, self.clock.left()))))
-        usable = [i for i in indices if naming._error_kind(wanted[i]) is None]
-        if usable and not self._right_on(mutant, usable, every, wanted):
-            return None
-        self.trial.sandbox.shared["repair found"][self.function] = mutant
-        return Repair(self.function, mutant.where, tuple(shown), mutant.operator, mutant.edits,
-                      len(self.inputs) + len(usable))
+            return False
+        if self.confirmations is None:
+            variants = []
+            for i in failing[:2]:
+                seed = int(fingerprint(self.function, "repair", i, self.inputs[i][1])[:8], 16)
+                variants += naming._variants(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
+                                             self.model.defaults.get(self.function, ()))
+            every = self.inputs + variants
+            runner = naming.helper()
+            runner.prepare(self.model.source, self.model.module, every, max(1.0, self.clock.left()))
+            indices = list(range(len(self.inputs), len(every)))
+            wanted = dict(zip(indices, runner.run((), indices, max(0.5, self.clock.left()))))
+            self.confirmations = (every, wanted, [i for i in indices if naming._error_kind(wanted[i]) is None])
+        every, wanted, usable = self.confirmations
+        return not usable or self._right_on(mutant, usable, every, wanted)
+
+    def repair(self, fixes) -> Repair:
+        """The repair told for ``fixes`` [(mutant, fix)], kept for the grading's later checks."""
+        self.trial.sandbox.shared["repair found"][self.function] = [mutant for mutant, _ in fixes]
+        usable = self.confirmations[2] if self.confirmations else []
+        return Repair(self.function, tuple(fix for _, fix in fixes), len(self.inputs) + len(usable))
 
     def _right_on(self, mutant, indices, every, wanted) -> bool:
         values = self.answers(mutant, indices, every)
