@@ -156,3 +156,30 @@ def test_three_slips_get_no_repair(tmp_path):
 def test_the_reference_is_never_told_a_repair(tmp_path):
     result = grade(edited_reference(tmp_path, "lab12_stereo"), ["lab12.ex1"], pictures="none", include_hidden=False)
     assert all(c.score == c.max_score for c in check_results(result, "lab12.ex1"))
+
+
+def test_changes_of_the_students_own_code_only():
+    """A function applied where it does not belong, one mistaken for its sibling, a reshape for a
+    transpose: offered for the student's code (shown, not told), never as a mutant of the reference."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(s, X):
+            return np.tan(s) * np.sin(s) + X.reshape(3, 2)
+    """)
+    student = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
+    assert {("unwrap", None), ("function", "np.cos"), ("function", "np.arctan"),
+            ("transpose", "for_reshape")} <= student
+    reference = {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
+    assert not reference & {"unwrap", "function"}
+
+
+def test_a_function_applied_where_it_does_not_belong_is_shown(tmp_path):
+    """A student's own shear matrix built with tan(s), as if s were an angle."""
+    folder = edited_reference(tmp_path, "lab07_transformations", (
+        "    return np.array([[1.0, s, 0.0],", "    k = np.tan(s)\n    return np.array([[1.0, k, 0.0],"))
+    result = grade(folder, ["lab07.ex4"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab07.ex4") if c.score < c.max_score]
+    assert checks
+    told = [c for c in checks if c.mistake.startswith(repair.MISTAKE)]
+    assert told and "`k = np.tan(s)` to `k = s` (line 72)" in told[0].message, [c.message for c in checks]

@@ -63,6 +63,9 @@ OPERATORS = {
     "stack_kind": ("stack", "concatenat", "axis"),     # np.stack(pieces) -> np.concatenate(pieces)
     "drop_mask": ("mask", "& 1", "bit"),               # (g >> s) & 1 -> g >> s
     "reshape_transpose": ("reshape", "transpos"),      # X.T -> X.reshape(X.shape[::-1])
+    # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
+    "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
+    "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -285,6 +288,8 @@ def _make_swap_args(node, payload):
 
 
 def _make_transpose(node, payload):
+    if payload == "for_reshape":   # x.reshape(w, h) -> x.T
+        return ast.Attribute(copy.deepcopy(node.func.value), "T", ast.Load())
     if payload == "remove":
         return copy.deepcopy(node.value if isinstance(node, ast.Attribute) else node.args[0])
     if payload == "literal":
@@ -466,7 +471,17 @@ def _make_loop_index(node, payload):
     return _call("range", _call("len", copy.deepcopy(node)))   # the positions of what was looped over
 
 
-_MAKE = {"other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+def _make_unwrap(node, payload):
+    return copy.deepcopy(node.args[0])
+
+
+def _make_function(node, payload):
+    new = copy.deepcopy(node)
+    new.func = _name(payload)
+    return new
+
+
+_MAKE = {"unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -955,6 +970,8 @@ def _changes(node, parents, words: _Words, line):
             and _named_matrix(node.value) and what(node.value):
         yield "reshape_transpose", None, f"{what(node.value)} is reshaped to the transposed shape where it is " \
                                          "transposed (reshape keeps the order of the entries; .T moves them)"
+    if words.student:
+        yield from _student_changes(node)
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.RShift)):
         wrong, right = ("<<", ">>") if isinstance(node.op, ast.RShift) else (">>", "<<")
         shifted = what(node.left)
@@ -977,6 +994,32 @@ def _changes(node, parents, words: _Words, line):
 
 _INDEX_WORDS = {-1: "last", 0: "first", 1: "second", 2: "third"}
 _LOOPED_POSITIONS = {"range", "enumerate", "zip"}   # loops whose targets are positions or tuples already
+
+
+# Functions a student applies where they do not belong, and those mistaken for each other.
+_UNARY = {"sin", "cos", "tan", "arcsin", "arccos", "arctan", "abs", "absolute", "fabs", "sqrt", "square", "exp",
+          "log", "round", "rint", "floor", "ceil", "deg2rad", "rad2deg", "radians", "degrees"}
+_MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin", "tan": "arctan", "arctan": "tan",
+             "floor": "ceil", "ceil": "floor", "round": "floor", "mean": "median", "median": "mean", "sum": "mean",
+             "log": "log10", "log10": "log"}
+
+
+def _student_changes(node):
+    """Changes made to a student's code only (:mod:`.repair`), told by showing them: a function applied
+    that does not belong (``np.tan(s)`` for ``s``), one mistaken for its sibling (``np.sin`` for
+    ``np.cos``), a reshape where a transpose belongs."""
+    if not isinstance(node, ast.Call):
+        return
+    dotted = _dotted(node.func)
+    short = dotted.rsplit(".", 1)[-1]
+    prefix = dotted[: -len(short)]
+    one_argument = len(node.args) == 1 and not node.keywords and not isinstance(node.args[0], ast.Starred)
+    if one_argument and short in _UNARY and prefix in ("np.", "numpy.", "math.", ""):
+        yield "unwrap", None, ""
+    if short in _MISTAKEN and prefix in ("np.", "numpy.", "math."):
+        yield "function", prefix + _MISTAKEN[short], ""
+    if isinstance(node.func, ast.Attribute) and node.func.attr == "reshape":
+        yield "transpose", "for_reshape", ""
 
 
 def _constant_index(node):

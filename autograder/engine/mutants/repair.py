@@ -401,7 +401,8 @@ class _Variants:
         """The repair told for ``fixes`` [(mutant, fix)], kept for the grading's later checks."""
         self.trial.sandbox.shared["repair found"][self.function] = [mutant for mutant, _ in fixes]
         usable = self.confirmations[2] if self.confirmations else []
-        return Repair(self.function, tuple(fix for _, fix in fixes), len(self.inputs) + len(usable))
+        told = sorted((fix for _, fix in fixes), key=lambda fix: (fix.where != self.function, fix.changes[0][0]))
+        return Repair(self.function, tuple(told), len(self.inputs) + len(usable))   # in the order the code runs
 
     def _right_on(self, mutant, indices, every, wanted) -> bool:
         values = self.answers(mutant, indices, every)
@@ -409,8 +410,8 @@ class _Variants:
 
 
 def named_by_repair(verdict, trial):
-    """A failed check's verdict with a confirmed repair told at the end of its first line, when the
-    verdict names nothing; unchanged otherwise (see the module docstring)."""
+    """A failed check's verdict with a confirmed repair told at the end of its first line (in place of
+    its fixed hint), when the verdict names nothing; unchanged otherwise (see the module docstring)."""
     if verdict.mistake or "looks like" in str(verdict.message).lower():
         return verdict
     repair = name_by_repair(trial)
@@ -419,4 +420,5 @@ def named_by_repair(verdict, trial):
     first, newline, rest = str(verdict.message).partition("\n")
     lead = first.rstrip()
     lead += "" if not lead or lead[-1] in ".:;!?" else "."
-    return replace(verdict, message=f"{lead} {repair.sentence}.{newline}{rest}", mistake=repair.mistake)
+    # The change shown is the evidence; a fixed hint beside it would only guess at another cause.
+    return replace(verdict, message=f"{lead} {repair.sentence}.{newline}{rest}", mistake=repair.mistake, hint="")
