@@ -164,14 +164,16 @@ def test_changes_of_the_students_own_code_only():
     source = textwrap.dedent("""
         import numpy as np
 
-        def graded(s, X):
-            return np.tan(s) * np.sin(s) + X.reshape(3, 2)
+        def graded(s, X, P):
+            x = (P @ X.T).T
+            return np.tan(s) * np.sin(s) + X.reshape(3, 2) + x[:, :2]
     """)
     student = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
-    assert {("unwrap", None), ("function", "np.cos"), ("function", "np.arctan"),
-            ("transpose", "for_reshape")} <= student
+    assert {("unwrap", None), ("function", "np.cos"), ("function", "np.arctan"), ("transpose", "for_reshape"),
+            ("inverse", "wrap"), ("dehomogenise", 2)} <= student
     reference = {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
-    assert not reference & {"unwrap", "function"}
+    assert not reference & {"unwrap", "function", "dehomogenise"}
+    assert ("inverse", "wrap") not in {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"})["graded"]}
 
 
 def test_a_function_applied_where_it_does_not_belong_is_shown(tmp_path):

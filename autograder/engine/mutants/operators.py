@@ -66,6 +66,7 @@ OPERATORS = {
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
+    "dehomogenise": ("homogeneous", "divid", "last coordinate"),   # x[:, :2] -> x[:, :2] / x[:, 2:3]
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -337,6 +338,8 @@ def _make_inverse(node, payload):
         toggled = [copy.deepcopy(f.args[0]) if _is_inverse(f) else _call("np.linalg.inv", copy.deepcopy(f))
                    for f in (first, last)]
         return ast.BinOp(ast.BinOp(toggled[0], ast.MatMult(), copy.deepcopy(middle)), ast.MatMult(), toggled[1])
+    if payload == "wrap":       # X -> np.linalg.inv(X) (the student's code: an inversion missing)
+        return _call("np.linalg.inv", copy.deepcopy(node))
     if payload == "insert":     # X.T -> np.linalg.inv(X)
         return _call("np.linalg.inv", copy.deepcopy(node.value))
     if payload == "transpose":  # np.linalg.inv(X) -> X.T
@@ -471,6 +474,17 @@ def _make_loop_index(node, payload):
     return _call("range", _call("len", copy.deepcopy(node)))   # the positions of what was looped over
 
 
+def _make_dehomogenise(node, payload):
+    # x[:, :2] -> x[:, :2] / x[:, 2:3]: the points divided by their last coordinate
+    last = copy.deepcopy(node)
+    bound = ast.Slice(ast.Constant(payload), ast.Constant(payload + 1))
+    if isinstance(last.slice, ast.Tuple):
+        last.slice.elts[-1] = bound
+    else:
+        last.slice = bound
+    return ast.BinOp(copy.deepcopy(node), ast.Div(), last)
+
+
 def _make_unwrap(node, payload):
     return copy.deepcopy(node.args[0])
 
@@ -481,7 +495,7 @@ def _make_function(node, payload):
     return new
 
 
-_MAKE = {"unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+_MAKE = {"dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -971,7 +985,7 @@ def _changes(node, parents, words: _Words, line):
         yield "reshape_transpose", None, f"{what(node.value)} is reshaped to the transposed shape where it is " \
                                          "transposed (reshape keeps the order of the entries; .T moves them)"
     if words.student:
-        yield from _student_changes(node)
+        yield from _student_changes(node, parent)
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.RShift)):
         wrong, right = ("<<", ">>") if isinstance(node.op, ast.RShift) else (">>", "<<")
         shifted = what(node.left)
@@ -1004,10 +1018,19 @@ _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin",
              "log": "log10", "log10": "log"}
 
 
-def _student_changes(node):
+def _student_changes(node, parent):
     """Changes made to a student's code only (:mod:`.repair`), told by showing them: a function applied
     that does not belong (``np.tan(s)`` for ``s``), one mistaken for its sibling (``np.sin`` for
-    ``np.cos``), a reshape where a transpose belongs."""
+    ``np.cos``), a reshape where a transpose belongs, an inversion missing in a matrix product, points
+    not divided by their last coordinate (``x[:, :2]``)."""
+    if isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult) \
+            and isinstance(node, (ast.Name, ast.Subscript, ast.Call)) and not _is_inverse(node):
+        yield "inverse", "wrap", ""
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load):
+        last = node.slice.elts[-1] if isinstance(node.slice, ast.Tuple) and node.slice.elts else node.slice
+        if isinstance(last, ast.Slice) and last.lower is None and last.step is None \
+                and isinstance(last.upper, ast.Constant) and last.upper.value in (2, 3):
+            yield "dehomogenise", last.upper.value, ""
     if not isinstance(node, ast.Call):
         return
     dotted = _dotted(node.func)
