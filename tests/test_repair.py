@@ -185,3 +185,15 @@ def test_a_function_applied_where_it_does_not_belong_is_shown(tmp_path):
     assert checks
     told = [c for c in checks if c.mistake.startswith(repair.MISTAKE)]
     assert told and "`k = np.tan(s)` to `k = s` (line 72)" in told[0].message, [c.message for c in checks]
+
+
+def test_a_repair_takes_the_place_of_a_mutants_sentence_and_the_smallest_change_is_told(tmp_path):
+    """`c - R.T @ c`: the error model names it (a mutant of the reference), and so do two changes of
+    the student's line -- dropping the `.T`, or `c @ R.T`, which compensates; the smallest is told,
+    in place of the mutant's sentence."""
+    folder = edited_reference(tmp_path, "lab07_transformations", ("    M[:2, 2] = c - R @ c", "    M[:2, 2] = c - R.T @ c"))
+    result = grade(folder, ["lab07.ex2"], pictures="none", include_hidden=False)
+    told = [c for c in check_results(result, "lab07.ex2") if c.mistake.startswith(repair.MISTAKE)]
+    assert told
+    assert "changing `M[:2, 2] = c - R.T @ c` to `M[:2, 2] = c - R @ c`" in told[0].message
+    assert "c @ R.T" not in told[0].message and "The error model" not in told[0].message

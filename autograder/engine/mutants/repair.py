@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import ast
 import copy
+import difflib
 import hashlib
 import itertools
 import threading
@@ -62,6 +63,13 @@ class Fix:
     where: str
     operator: str
     edits: tuple
+
+    @property
+    def size(self) -> int:
+        """How many characters the change adds and removes."""
+        kept = sum(sum(block.size for block in difflib.SequenceMatcher(None, before, after, autojunk=False)
+                       .get_matching_blocks()) for _, before, after in self.changes)
+        return sum(len(before) + len(after) for _, before, after in self.changes) - 2 * kept
 
     def told(self, function: str) -> str:
         inside = "" if self.where == function else f", in `{self.where}`"
@@ -302,11 +310,16 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if clock.left() > 0:
             ruled_out.add(mutant.key)
     fixes, lines = [], set()
-    for mutant in candidates:
+    shown = [(mutant, variant.fix(mutant)) for mutant in candidates]
+    # The smallest change of the text first: the student's slip is a few characters (`R.T` for `R`),
+    # where a change that compensates for it elsewhere on the line rewrites more (`c @ R.T`).
+    shown = sorted(((m, f) for m, f in shown if f is not None), key=lambda pair: pair[1].size)
+    for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
-        fix = variant.fix(mutant)
-        if fix is not None and fix.changes[0][0] not in lines and variant.confirmed(mutant, failing):
+        if fix.changes[0][0] in lines:
+            continue
+        if variant.confirmed(mutant, failing):
             fixes.append((mutant, fix))
             lines.add(fix.changes[0][0])
         elif clock.left() > 0:
@@ -411,13 +424,22 @@ class _Variants:
 
 def named_by_repair(verdict, trial):
     """A failed check's verdict with a confirmed repair told at the end of its first line (in place of
-    its fixed hint), when the verdict names nothing; unchanged otherwise (see the module docstring)."""
-    if verdict.mistake or "looks like" in str(verdict.message).lower():
+    its fixed hint), when the verdict names nothing or only the error model names it; unchanged
+    otherwise (see the module docstring).
+
+    A repair told where the error model named a mutant of the reference takes its place: both are
+    confirmed on the student's answers, but the repair is a change of the code the student wrote,
+    shown as it is, where a mutant's sentence describes the reference's code in words that may fit
+    the student's less well."""
+    by_mutant = verdict.mistake.startswith("mutant:") and naming.APPENDED in str(verdict.message)
+    if (verdict.mistake and not by_mutant) or ("looks like" in str(verdict.message).lower() and not by_mutant):
         return verdict
     repair = name_by_repair(trial)
     if repair is None:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
+    if by_mutant:
+        first = first.split(" " + naming.APPENDED, 1)[0]
     lead = first.rstrip()
     lead += "" if not lead or lead[-1] in ".:;!?" else "."
     # The change shown is the evidence; a fixed hint beside it would only guess at another cause.
