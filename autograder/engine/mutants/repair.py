@@ -110,7 +110,8 @@ class Repair:
 class _Student:
     text: str
     tree: ast.Module
-    mutants: dict   # API function -> [Mutant], simplest first
+    mutants: dict   # API function -> [Mutant] that can be shown, the smallest change of the text first
+    fixes: dict     # mutant key -> its Fix
 
 
 _READ: OrderedDict = OrderedDict()   # digest of (text, api) -> _Student (a class's copies of one file)
@@ -141,9 +142,16 @@ def _student_code(trial) -> _Student | None:
         tree = parse(text)   # the student's text: within the bounds, under the parse lock
         if sum(1 for _ in ast.walk(tree)) <= MAX_NODES:
             mutants = mutants_of(text, api, phrased=False)
+            fixes = {}
             for each in mutants.values():
-                each.sort(key=lambda m: (len(m.edits), m.rank[1], m.line))
-            read = _Student(text, tree, mutants)
+                for mutant in each:
+                    if mutant.key not in fixes:
+                        fixes[mutant.key] = _fix(tree, mutant)
+            # The student's slip is a few characters: the smallest changes of the text are tried first
+            # (a change compensating for it elsewhere rewrites more), and only those that can be shown.
+            shown = {function: sorted((m for m in each if fixes[m.key] is not None),
+                                      key=lambda m: (fixes[m.key].size, m.line)) for function, each in mutants.items()}
+            read = _Student(text, tree, shown, fixes)
     except Exception:  # noqa: BLE001 - code the operators cannot read has no repairs (said once, not per check)
         read = None
     with _READ_LOCK:
@@ -153,12 +161,20 @@ def _student_code(trial) -> _Student | None:
     return read
 
 
-def _shown(student: _Student, edit) -> tuple[int, str, str] | None:
+def _fix(tree: ast.Module, mutant) -> Fix | None:
+    """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
+    shown = [_shown(tree, edit) for edit in mutant.edits]
+    if any(each is None for each in shown):
+        return None
+    return Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
+
+
+def _shown(tree: ast.Module, edit) -> tuple[int, str, str] | None:
     """(line, before, after): the smallest expression or statement around the change that shows it
     (a name alone is ambiguous: `sl * sl`, not `sl`), before and after; None when the change cannot
     be shown in a short line."""
     where, ordinal, operator, payload = edit
-    fn = _defs(student.tree).get(where)
+    fn = _defs(tree).get(where)
     if fn is None:
         return None
     nodes = list(ast.walk(fn))
@@ -272,9 +288,22 @@ def _search(trial, model, student: _Student, clock) -> Repair | None:
         if not failing:
             continue
         found = _repaired(trial, model, student, function, inputs, references, failing, clock)
+        seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
+        known = {_key(call) for call in seen}
+        seen += [call for call in inputs if _key(call) not in known][:max(0, SEEN - len(seen))]
         if found is not None:
             return found
     return None
+
+
+SEEN = 8                 # a function's calls kept from a grading's checks for confirming later repairs
+SEEN_CONFIRMATIONS = 3   # of which a repair is confirmed on at most this many
+
+
+def _key(call) -> str:
+    from ..checks import fingerprint
+
+    return fingerprint(call[0], call[1], call[2])
 
 
 def _wrong(answer, reference) -> bool:
@@ -367,6 +396,7 @@ class _Variants:
         self.companion = trial.sandbox.companion()
         self.forbid = tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
+        self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
 
     def answers(self, mutant, indices, every) -> list | None:
         """The variant's answers on ``every[i]`` for ``i`` in ``indices`` (None when it did not answer)."""
@@ -382,10 +412,8 @@ class _Variants:
 
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
-        shown = [_shown(self.student, edit) for edit in mutant.edits]
-        if any(each is None for each in shown):
-            return None
-        return Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
+        known = self.student.fixes.get(mutant.key)
+        return known if known is not None else _fix(self.student.tree, mutant)
 
     def confirmed(self, mutant, failing) -> bool:
         """Whether the variant is also right on the trial's other calls and on confirmation inputs
@@ -396,7 +424,11 @@ class _Variants:
         if others and not self._right_on(mutant, others, self.inputs, self.references):
             return False
         if self.confirmations is None:
-            variants = []
+            # The function's calls in the grading's earlier checks (an image of another size, other
+            # arguments), then inputs derived from the failing ones: a change right by coincidence
+            # on one check's inputs (rotating by the image's width, 360 degrees) is wrong elsewhere.
+            given = {_key(call) for call in self.inputs}
+            variants = [call for call in self.seen if _key(call) not in given][:SEEN_CONFIRMATIONS]
             for i in failing[:2]:
                 seed = int(fingerprint(self.function, "repair", i, self.inputs[i][1])[:8], 16)
                 variants += naming._variants(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
