@@ -197,3 +197,20 @@ def test_a_repair_takes_the_place_of_a_mutants_sentence_and_the_smallest_change_
     assert told
     assert "changing `M[:2, 2] = c - R.T @ c` to `M[:2, 2] = c - R @ c`" in told[0].message
     assert "c @ R.T" not in told[0].message and "The error model" not in told[0].message
+
+
+def test_a_long_line_is_shown_around_the_change_and_a_slip_made_twice_is_found(tmp_path):
+    """transform_points written with two reshapes where two transposes belong (neither alone brings
+    the answers nearer), and E = K2^T F * K1 on one long line: each shown around its change."""
+    folder = edited_reference(
+        tmp_path, "lab08_homographies",
+        ("    homogeneous = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H, dtype=np.float64).T",
+         "    homogeneous = np.asarray(H, dtype=np.float64) @ np.hstack([pts, np.ones((len(pts), 1))]).reshape(3, -1)\n"
+         "    homogeneous = homogeneous.reshape(-1, 3)"))
+    result = grade(folder, ["lab08.ex1"], pictures="none", include_hidden=False)
+    told = [c for c in check_results(result, "lab08.ex1") if c.mistake.startswith(repair.MISTAKE)]
+    assert told, [c.message for c in check_results(result, "lab08.ex1")]
+    assert ".reshape(3, -1)` to `" in told[0].message and ".reshape(-1, 3)` to `" in told[0].message
+    before, after = repair._elided("a" * 10 + " x = f(b, c) * g(d) " + "z " * 40, "a" * 10 + " x = f(b, c) @ g(d) " + "z " * 40)
+    assert before.startswith("aaaaaaaaaa x = f(b, c) * g(d) z") and before.endswith(" ...") and len(before) <= 70
+    assert after == before.replace("*", "@")

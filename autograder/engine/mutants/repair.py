@@ -25,6 +25,7 @@ import copy
 import difflib
 import hashlib
 import itertools
+import os
 import threading
 import time
 from collections import OrderedDict
@@ -201,9 +202,35 @@ def _shown(tree: ast.Module, edit) -> tuple[int, str, str] | None:
         _replace(_parents(copied), target, made)
     after = ast.unparse(ast.fix_missing_locations(copied))
     before, after = (" ".join(text.split()) for text in (before, after))
-    if before == after or len(before) > _SHOWN or len(after) > _SHOWN:
+    if before == after:
         return None
-    return getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), before, after
+    shown = _elided(before, after)
+    if shown is None:
+        return None
+    return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shown)
+
+
+_AROUND = 30   # characters kept on each side of a change shown in a long line
+
+
+def _elided(before: str, after: str) -> tuple[str, str] | None:
+    """``before`` and ``after`` shortened to the change and :data:`_AROUND` characters on each side
+    ("..." for what is left out) when either is longer than :data:`_SHOWN`; None when even that is."""
+    if len(before) <= _SHOWN and len(after) <= _SHOWN:
+        return before, after
+    prefix = len(os.path.commonprefix([before, after]))
+    suffix = len(os.path.commonprefix([before[prefix:][::-1], after[prefix:][::-1]]))
+    start = max(0, prefix - _AROUND)
+    if start:   # at a word's start, not inside a name
+        space = before.find(" ", start, prefix)
+        start = space + 1 if space != -1 else start
+    cut = max(0, suffix - _AROUND)
+    if cut:
+        space = before.rfind(" ", len(before) - suffix, len(before) - cut)
+        cut = len(before) - space if space != -1 else cut
+    shortened = [("... " if start else "") + text[start:len(text) - cut] + (" ..." if cut else "")
+                 for text in (before, after)]
+    return None if max(map(len, shortened)) > _SHOWN else (shortened[0], shortened[1])
 
 
 # ------------------------------------------------------------------ right answers
@@ -359,6 +386,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     kept_near[:] = near
     pairs = [(a, b) for a, b in itertools.combinations(near, 2) if _apart(a, b)]
     pairs.sort(key=lambda pair: not _same_slip(*pair))   # the same slip twice first
+    # The same slip at two places, even where mending one alone brings the answers no nearer (two
+    # reshapes where two transposes belong: one transpose alone mixes the coordinates further).
+    tried = {(a.key, b.key) for a, b in pairs}
+    twice = [(a, b) for a, b in itertools.combinations(student.mutants[function], 2)
+             if _same_slip(a, b) and _apart(a, b) and a.where == b.where and (a.key, b.key) not in tried]
+    pairs += twice[:SAME_SLIP_PAIRS]
     for first, second in pairs:
         if clock.left() <= 0:
             return None
@@ -374,6 +407,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
 FIXES = 3         # the most fixes told (one per line)
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
+SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
 
 
 def _apart(first, second) -> bool:
