@@ -4,8 +4,9 @@ For each lab: the reference (passes every check: the error model never runs), an
 submission whose every graded function carries a mutant of its own (the first of its
 mutants, simplest operator first, that changes its own ``def``) so that most checks fail
 with wrong values -- the error model's worst case. The failing one is graded with the error
-model (twice: the first grading of a process also starts the helper process, which later
-gradings reuse) and without it (its naming replaced by nothing), after one warm-up grading
+model and its repairs of the student's code (twice: the first grading of a process also starts
+the helper process, which later gradings reuse) and without them (naming by mutants and by
+repairs replaced by nothing), after one warm-up grading
 of the reference (ground truth cached). The issue's target: failing with the error model at
 most 2x the passing grading.
 
@@ -27,7 +28,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 os.environ.setdefault("AUTOGRADER_CACHE_DIR", tempfile.mkdtemp(prefix="error-model-bench-"))
 
-from autograder.engine.mutants import naming  # noqa: E402
+from autograder.engine.mutants import naming, repair  # noqa: E402
 from autograder.engine.mutants.operators import apply_edits  # noqa: E402
 from autograder.engine.registry import discover  # noqa: E402
 from autograder.engine.runner import grade  # noqa: E402
@@ -49,7 +50,7 @@ def timed(folder: Path, key: str):
     result = grade(folder, [key], pictures="none")
     checks = [c for e in result.exercises for c in e.checks if c.max_score > 0]
     return time.perf_counter() - started, sum(c.score < c.max_score for c in checks), len(checks), \
-        sum(c.mistake.startswith("mutant:") for c in checks)
+        sum(c.mistake.startswith(("mutant:", repair.MISTAKE)) for c in checks)
 
 
 def main(argv=None) -> int:
@@ -69,12 +70,12 @@ def main(argv=None) -> int:
             passing, _, _, _ = timed(reference, key)
             first, _, _, _ = timed(folder, key)           # starts the helper process (once per process)
             failing, failed, total, named = timed(folder, key)
-            keep = naming.name_failure
-            naming.name_failure = lambda trial, seconds=0: None
+            keep = naming.name_failure, repair.name_by_repair
+            naming.name_failure = repair.name_by_repair = lambda trial, seconds=0: None
             try:
                 without, _, _, _ = timed(folder, key)
             finally:
-                naming.name_failure = keep
+                naming.name_failure, repair.name_by_repair = keep
         finally:
             shutil.rmtree(folder, ignore_errors=True)
         print(f"{key:<7}{passing:>11.1f}{first:>17.1f}{failing:>11.1f}{failing / passing:>7.2f}{without:>14.1f}"

@@ -15,7 +15,8 @@ answers on all 9 inputs tried"), never the reference's.
 
 What it cannot name: a step that is missing (no operator inserts code), two slips at once, and a
 function whose right answers are random (RANSAC with its own samples): no single change gives the
-reference's answers there. Time is bounded per failed check and per grading, as the error model's.
+reference's answers there. Time is bounded per failed check, and per grading together with the
+error model's naming (:data:`.naming.GRADING_SECONDS`).
 """
 
 from __future__ import annotations
@@ -40,8 +41,7 @@ from . import naming
 from .helper import HelperFailed
 from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_defs
 
-CHECK_SECONDS = 3.0       # the repairs' time for one failed check
-GRADING_SECONDS = 10.0    # and for one grading
+CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
 VARIANTS = 4              # confirmation inputs derived from the failing calls
 VARIANT_TIMEOUT = 1.0     # seconds for one variant on its inputs (one request)
@@ -269,8 +269,10 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS) -> Repair | None:
     model = naming.model_for(trial.lab)
     if model is None or not (trial.calls or getattr(trial, "raised", None)):
         return None
-    spent = trial.sandbox.shared.setdefault("repair seconds", [0.0])
-    seconds = min(seconds, GRADING_SECONDS - spent[0])
+    # One time per grading for naming by mutants and by repairs (naming.GRADING_SECONDS): what
+    # failing everything costs stays bounded as it was.
+    spent = trial.sandbox.shared.setdefault("error model seconds", [0.0])
+    seconds = min(seconds, naming.GRADING_SECONDS - spent[0])
     if seconds <= 0.2:
         return None
     started = time.monotonic()
