@@ -110,7 +110,7 @@ def _read(source: str, api=("graded",)):
     source = textwrap.dedent(source)
     tree = ast.parse(source)
     mutants = repair.mutants_of(source, api, phrased=False)
-    return repair._Student(source, tree, mutants, {}), mutants["graded"]
+    return repair._Student(source, tree, mutants), mutants["graded"]
 
 
 def test_a_changed_name_is_shown_with_the_expression_around_it():
@@ -119,7 +119,7 @@ def test_a_changed_name_is_shown_with_the_expression_around_it():
             denominator = std_l * std_l
             return denominator
     """)
-    shown = {repair._shown(student.tree, m.edits[0]) for m in mutants if m.operator == "other_name"}
+    shown = {student.shown(m.edits[0]) for m in mutants if m.operator == "other_name"}
     assert (3, "std_l * std_l", "std_r * std_l") in shown
     assert (3, "std_l * std_l", "std_l * std_r") in shown
 

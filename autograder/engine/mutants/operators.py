@@ -1026,6 +1026,13 @@ def _student_changes(node, parent):
     if isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult) \
             and isinstance(node, (ast.Name, ast.Subscript, ast.Call)) and not _is_inverse(node):
         yield "inverse", "wrap", ""
+    if isinstance(parent, ast.Call) and node in parent.args and len(parent.args) == 1 \
+            and _dotted(parent.func).rsplit(".", 1)[-1] in ("sin", "cos", "tan") \
+            and not (isinstance(node, ast.Call) and _dotted(node.func) in _ANGLE_CONVERSIONS):
+        yield "degrees", "np.deg2rad", ""   # an angle in degrees given to the sine
+    if isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult)) \
+            and isinstance(node, (ast.Name, ast.Subscript)) and node is parent.right:
+        yield "sign", "insert", ""   # a term's sign: `x + s * y` for `x - s * y`
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load):
         last = node.slice.elts[-1] if isinstance(node.slice, ast.Tuple) and node.slice.elts else node.slice
         if isinstance(last, ast.Slice) and last.lower is None and last.step is None \

@@ -107,12 +107,82 @@ class Repair:
 
 
 # ------------------------------------------------------------------ the student's code
-@dataclass(frozen=True)
 class _Student:
-    text: str
-    tree: ast.Module
-    mutants: dict   # API function -> [Mutant] that can be shown, the smallest change of the text first
-    fixes: dict     # mutant key -> its Fix
+    """The student's module read once: its tree, the operators' changes per API function, and each
+    change shown (made lazily, for the functions that fail: showing every change of a long module
+    takes seconds)."""
+
+    def __init__(self, text: str, tree: ast.Module, mutants: dict):
+        self.text, self.tree, self.mutants = text, tree, mutants
+        self.fixes: dict = {}        # mutant key -> its Fix, or None when it cannot be shown
+        self._ordered: dict = {}     # function -> its mutants that can be shown, smallest change first
+        self._defs = _defs(tree)
+        self._walked: dict = {}      # def name -> (its nodes in ast.walk order, their parents)
+        self._lock = threading.Lock()
+
+    def ordered(self, function: str) -> list:
+        """``function``'s changes that can be shown, the smallest change of the text first: the
+        student's slip is a few characters, where a change compensating for it rewrites more."""
+        with self._lock:
+            if function not in self._ordered:
+                shown = [m for m in self.mutants.get(function, ()) if self.fix(m) is not None]
+                self._ordered[function] = sorted(shown, key=lambda m: (self.fixes[m.key].size, m.line))
+            return self._ordered[function]
+
+    def fix(self, mutant) -> Fix | None:
+        """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
+        if mutant.key not in self.fixes:
+            shown = [self.shown(edit) for edit in mutant.edits]
+            self.fixes[mutant.key] = None if any(each is None for each in shown) else \
+                Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
+        return self.fixes[mutant.key]
+
+    def shown(self, edit) -> tuple[int, str, str] | None:
+        """(line, before, after): the smallest expression or statement around the change that shows
+        it (a name alone is ambiguous: `sl * sl`, not `sl`), before and after; None when the change
+        cannot be shown in a short line."""
+        where, ordinal, operator, payload = edit
+        fn = self._defs.get(where)
+        if fn is None:
+            return None
+        if where not in self._walked:
+            self._walked[where] = (list(ast.walk(fn)), _parents(fn))
+        nodes, parents = self._walked[where]
+        if not 0 <= ordinal < len(nodes):
+            return None
+        edited = nodes[ordinal]
+        context = edited
+        while isinstance(context, (ast.Name, ast.Constant, ast.Attribute, ast.keyword, ast.Slice)) \
+                or (isinstance(context, ast.expr) and _width(context) < 12):
+            parent = parents.get(id(context), (None,))[0]
+            if parent is None or isinstance(parent, (ast.FunctionDef, ast.AsyncFunctionDef)) \
+                    or _width(parent) > _SHOWN:
+                break
+            context = parent
+        before = ast.unparse(context)
+        copied = copy.deepcopy(context)
+        position = next(i for i, node in enumerate(ast.walk(context)) if node is edited)
+        target = list(ast.walk(copied))[position]
+        made = _MAKE[operator](target, payload)
+        if target is copied:
+            copied = made
+        else:
+            _replace(_parents(copied), target, made)
+        after = ast.unparse(ast.fix_missing_locations(copied))
+        before, after = (" ".join(text.split()) for text in (before, after))
+        if before == after:
+            return None
+        shortened = _elided(before, after)
+        if shortened is None:
+            return None
+        return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
+
+
+def _width(node) -> int:
+    """How many characters ``node`` takes in the source (a node over several lines: many)."""
+    if getattr(node, "end_lineno", None) is None or node.lineno != node.end_lineno:
+        return 10**6 if getattr(node, "end_lineno", None) is not None else len(ast.unparse(node))
+    return node.end_col_offset - node.col_offset
 
 
 _READ: OrderedDict = OrderedDict()   # digest of (text, api) -> _Student (a class's copies of one file)
@@ -142,17 +212,7 @@ def _student_code(trial) -> _Student | None:
     try:
         tree = parse(text)   # the student's text: within the bounds, under the parse lock
         if sum(1 for _ in ast.walk(tree)) <= MAX_NODES:
-            mutants = mutants_of(text, api, phrased=False)
-            fixes = {}
-            for each in mutants.values():
-                for mutant in each:
-                    if mutant.key not in fixes:
-                        fixes[mutant.key] = _fix(tree, mutant)
-            # The student's slip is a few characters: the smallest changes of the text are tried first
-            # (a change compensating for it elsewhere rewrites more), and only those that can be shown.
-            shown = {function: sorted((m for m in each if fixes[m.key] is not None),
-                                      key=lambda m: (fixes[m.key].size, m.line)) for function, each in mutants.items()}
-            read = _Student(text, tree, shown, fixes)
+            read = _Student(text, tree, mutants_of(text, api, phrased=False))
     except Exception:  # noqa: BLE001 - code the operators cannot read has no repairs (said once, not per check)
         read = None
     with _READ_LOCK:
@@ -160,54 +220,6 @@ def _student_code(trial) -> _Student | None:
         while len(_READ) > 8:
             _READ.popitem(last=False)
     return read
-
-
-def _fix(tree: ast.Module, mutant) -> Fix | None:
-    """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
-    shown = [_shown(tree, edit) for edit in mutant.edits]
-    if any(each is None for each in shown):
-        return None
-    return Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
-
-
-def _shown(tree: ast.Module, edit) -> tuple[int, str, str] | None:
-    """(line, before, after): the smallest expression or statement around the change that shows it
-    (a name alone is ambiguous: `sl * sl`, not `sl`), before and after; None when the change cannot
-    be shown in a short line."""
-    where, ordinal, operator, payload = edit
-    fn = _defs(tree).get(where)
-    if fn is None:
-        return None
-    nodes = list(ast.walk(fn))
-    if not 0 <= ordinal < len(nodes):
-        return None
-    edited = nodes[ordinal]
-    parents = _parents(fn)
-    context = edited
-    while isinstance(context, (ast.Name, ast.Constant, ast.Attribute, ast.keyword, ast.Slice)) \
-            or (isinstance(context, ast.expr) and len(ast.unparse(context)) < 12):
-        parent = parents.get(id(context), (None,))[0]
-        if parent is None or isinstance(parent, (ast.FunctionDef, ast.AsyncFunctionDef)) \
-                or len(ast.unparse(parent)) > _SHOWN:
-            break
-        context = parent
-    before = ast.unparse(context)
-    copied = copy.deepcopy(context)
-    position = next(i for i, node in enumerate(ast.walk(context)) if node is edited)
-    target = list(ast.walk(copied))[position]
-    made = _MAKE[operator](target, payload)
-    if target is copied:
-        copied = made
-    else:
-        _replace(_parents(copied), target, made)
-    after = ast.unparse(ast.fix_missing_locations(copied))
-    before, after = (" ".join(text.split()) for text in (before, after))
-    if before == after:
-        return None
-    shown = _elided(before, after)
-    if shown is None:
-        return None
-    return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shown)
 
 
 _AROUND = 30   # characters kept on each side of a change shown in a long line
@@ -305,8 +317,7 @@ def _recorded(trial) -> dict:
 def _search(trial, model, student: _Student, clock) -> Repair | None:
     runner = naming.helper()
     for function, calls in _recorded(trial).items():
-        mutants = student.mutants.get(function)
-        if not mutants or function not in model.mutants:
+        if function not in model.mutants or not student.ordered(function):
             continue
         calls = calls[-CALLS_PER_FUNCTION:]
         inputs = [call[:3] for call in calls]
@@ -352,7 +363,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     off = sum(naming.distance(references[i], variant.students[i]) for i in failing)
     candidates, near = [], []
     known = {m.key for m in earlier}
-    for mutant in list(earlier) + [m for m in student.mutants[function] if m.key not in known]:
+    for mutant in list(earlier) + [m for m in student.ordered(function) if m.key not in known]:
         if clock.left() <= (RESERVE if candidates else 0):
             break
         if mutant.key in ruled_out:
@@ -391,8 +402,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # The same slip at two places, even where mending one alone brings the answers no nearer (two
     # reshapes where two transposes belong: one transpose alone mixes the coordinates further).
     tried = {(a.key, b.key) for a, b in pairs}
-    twice = [(a, b) for a, b in itertools.combinations(student.mutants[function], 2)
-             if _same_slip(a, b) and _apart(a, b) and a.where == b.where and (a.key, b.key) not in tried]
+    slips: dict = {}
+    for mutant in student.ordered(function):
+        slips.setdefault((mutant.where, mutant.edits[0][2], repr(mutant.edits[0][3])), []).append(mutant)
+    twice = [(a, b) for same in slips.values() for a, b in itertools.combinations(same[:8], 2)
+             if _apart(a, b) and (a.key, b.key) not in tried]
+    twice.sort(key=lambda pair: student.fix(pair[0]).size + student.fix(pair[1]).size)
     pairs += twice[:SAME_SLIP_PAIRS]
     for first, second in pairs:
         if clock.left() <= 0:
@@ -448,8 +463,7 @@ class _Variants:
 
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
-        known = self.student.fixes.get(mutant.key)
-        return known if known is not None else _fix(self.student.tree, mutant)
+        return self.student.fix(mutant)
 
     def confirmed(self, mutant, failing) -> bool:
         """Whether the variant is also right on the trial's other calls and on confirmation inputs
