@@ -954,6 +954,8 @@ def _changes(node, parents, words: _Words, line):
         yield from _name_changes(node, words, what, line)
     if isinstance(node, (ast.Assign, ast.AugAssign)) and parent is not None:
         yield "drop_statement", None, _statement_phrase(node, words, line)
+    if words.student and isinstance(node, (ast.Continue, ast.Break)):
+        yield "drop_statement", None, ""   # a frame skipped, a loop left, where it must go on
     if isinstance(node, ast.Assign) and len(node.targets) == 1:
         yield from _line_name_changes(node, words, line)
     yield from _in_place_changes(node, words)
@@ -1518,7 +1520,7 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     params = {a.arg for a in words.fn.args.args + words.fn.args.kwonlyargs}
     others = []
     for other in words.locals_before(line):
-        if other == node.id or other in words.module_defs:
+        if other == node.id or other in words.module_defs or other == "_":   # (`_` is thrown away)
             continue
         phrase = words.what(ast.Name(other, ast.Load()), line=line)
         if phrase and phrase != own:

@@ -44,7 +44,7 @@ from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_def
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
 VARIANTS = 4              # confirmation inputs derived from the failing calls
-VARIANT_TIMEOUT = 1.0     # seconds for one variant on its inputs (one request)
+VARIANT_TIMEOUT = 1.0     # seconds for one variant on its inputs (one request), at least
 MISTAKE = "repair:"       # + the operator: a mistake named by a change of the student's code
 _SHOWN = 70               # the longest code shown before and after a change
 
@@ -67,10 +67,11 @@ class Fix:
 
     @property
     def size(self) -> int:
-        """How many characters the change adds and removes."""
+        """How many characters the change adds and removes (a statement removed: its own)."""
+        changed = [(before, "" if after == "pass" else after) for _, before, after in self.changes]
         kept = sum(sum(block.size for block in difflib.SequenceMatcher(None, before, after, autojunk=False)
-                       .get_matching_blocks()) for _, before, after in self.changes)
-        return sum(len(before) + len(after) for _, before, after in self.changes) - 2 * kept
+                       .get_matching_blocks()) for before, after in changed)
+        return sum(len(before) + len(after) for before, after in changed) - 2 * kept
 
     def told(self, function: str) -> str:
         inside = "" if self.where == function else f", in `{self.where}`"
@@ -121,12 +122,16 @@ class _Student:
         self._lock = threading.Lock()
 
     def ordered(self, function: str) -> list:
-        """``function``'s changes that can be shown, the smallest change of the text first: the
-        student's slip is a few characters, where a change compensating for it rewrites more."""
+        """``function``'s changes that can be shown: its own code's first, then its private helpers'
+        (another graded function it calls has checks of its own, and a mistake there is told as
+        inherited), each the smallest change of the text first: the student's slip is a few
+        characters, where a change compensating for it rewrites more."""
         with self._lock:
             if function not in self._ordered:
-                shown = [m for m in self.mutants.get(function, ()) if self.fix(m) is not None]
-                self._ordered[function] = sorted(shown, key=lambda m: (self.fixes[m.key].size, m.line))
+                shown = [m for m in self.mutants.get(function, ())
+                         if (m.where == function or m.where not in self.mutants) and self.fix(m) is not None]
+                self._ordered[function] = sorted(
+                    shown, key=lambda m: (m.where != function, self.fixes[m.key].size, m.line))
             return self._ordered[function]
 
     def fix(self, mutant) -> Fix | None:
@@ -340,6 +345,20 @@ SEEN = 8                 # a function's calls kept from a grading's checks for c
 SEEN_CONFIRMATIONS = 3   # of which a repair is confirmed on at most this many
 
 
+def _widened(call, defaults=()) -> list:
+    """The call with every float argument given alone (a factor, an angle, a threshold; a numeric
+    default it left out, given) two and a half times larger, when it has one: a change right by
+    coincidence for small values (`s * s` truncated to 0 where `s * height` belongs) is wrong
+    there; [] otherwise."""
+    function, args, kwargs = call
+    kwargs = {**{name: float(value) for name, position, value in defaults
+                 if position >= len(args) and name not in kwargs and isinstance(value, float)}, **kwargs}
+    widen = (lambda v: v * 4.0 if isinstance(v, float) and v != 0 else v)
+    made = (function, tuple(widen(a) for a in args), {k: widen(v) for k, v in kwargs.items()})
+    changed = any(a is not b for a, b in zip(made[1], args)) or any(made[2][k] is not kwargs[k] for k in kwargs)
+    return [made] if changed else []
+
+
 def _key(call) -> str:
     from ..checks import fingerprint
 
@@ -394,7 +413,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         elif clock.left() > 0:
             ruled_out.add(mutant.key)
     if fixes:
-        return variant.repair(fixes)
+        # A change of the function itself is told alone: one in a helper it shares with other graded
+        # functions (a translation matrix transposed, the warp's interpolation) mends this one's
+        # answers by breaking theirs.
+        own = [pair for pair in fixes if pair[1].where == function]
+        return variant.repair(own or fixes)
     near = [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
     kept_near[:] = near
     pairs = [(a, b) for a, b in itertools.combinations(near, 2) if _apart(a, b)]
@@ -448,6 +471,7 @@ class _Variants:
         self.forbid = tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
+        self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
 
     def answers(self, mutant, indices, every) -> list | None:
         """The variant's answers on ``every[i]`` for ``i`` in ``indices`` (None when it did not answer)."""
@@ -455,9 +479,12 @@ class _Variants:
             source = ast.unparse(mutated_defs(self.student.tree, mutant.edits, self.student.text))
         except (ValueError, SyntaxError, RecursionError):
             return None
+        # As long as the student's own calls took, and more: a slow function's variant cut short
+        # says nothing of the change (and costs a restart of the companion's worker).
+        timeout = max(VARIANT_TIMEOUT, 3 * self.seconds_per_call * len(indices))
         outcome = self.companion.call_variant(
             self.trial.lab.module, source, self.function, [every[i][1:] for i in indices], forbid=self.forbid,
-            timeout=max(0.05, min(VARIANT_TIMEOUT, self.clock.left())))
+            timeout=max(0.05, min(timeout, self.clock.left())))
         value = outcome.value if outcome.ok else None
         return value if isinstance(value, list) and len(value) == len(indices) else None
 
@@ -483,6 +510,7 @@ class _Variants:
                 seed = int(fingerprint(self.function, "repair", i, self.inputs[i][1])[:8], 16)
                 variants += naming._variants(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
                                              self.model.defaults.get(self.function, ()))
+                variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
             every = self.inputs + variants
             runner = naming.helper()
             runner.prepare(self.model.source, self.model.module, every, max(1.0, self.clock.left()))
