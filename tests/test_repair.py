@@ -214,3 +214,21 @@ def test_a_long_line_is_shown_around_the_change_and_a_slip_made_twice_is_found(t
     before, after = repair._elided("a" * 10 + " x = f(b, c) * g(d) " + "z " * 40, "a" * 10 + " x = f(b, c) @ g(d) " + "z " * 40)
     assert before.startswith("aaaaaaaaaa x = f(b, c) * g(d) z") and before.endswith(" ...") and len(before) <= 70
     assert after == before.replace("*", "@")
+
+
+def test_verify_counts_a_repaired_mutant_as_named():
+    """`autograder verify --error-model`: a mutant whose failing check shows a change mending it is
+    "repaired", and counts in the naming rate."""
+    from types import SimpleNamespace
+
+    from autograder.instructor.error_model import ErrorModelReport, classify
+
+    mutant = SimpleNamespace(sentence="in `f`, the sine has the wrong sign", operator="sign")
+    shown = SimpleNamespace(score=0.0, max_score=2.0, mistake="repair:sign",
+                            message="f(1) is wrong. Trying small changes to your code: changing `-s` to `s` (line 3) ...")
+    plain = SimpleNamespace(score=0.0, max_score=2.0, mistake="", message="f(1) is wrong.")
+    outcome = classify(mutant, "lab07.ex2", [plain, shown])
+    assert outcome.outcome == "repaired" and outcome.said.startswith("changing `-s` to `s`")
+    assert classify(mutant, "lab07.ex2", [plain]).outcome == "described"
+    report = ErrorModelReport("lab07", 2, [outcome, classify(mutant, "lab07.ex2", [plain])])
+    assert report.naming_rate == 0.5

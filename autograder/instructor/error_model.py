@@ -8,8 +8,10 @@ the mutant's edits) and its exercise is graded. A mutant is
 - **equivalent** when every check passes: no check tells it from the reference (a mutant
   whose change does not matter, or one the checks miss -- the author decides which);
 - **caught** when some check loses points, and then
-- **named** when a failing check names that very mutant (its sentence), **named as
-  another** when the error model names another mutant (an equivalent one, or a wrong
+- **named** when a failing check names that very mutant (its sentence), **repaired** when
+  a failing check shows a change of the file that mends its answers
+  (:mod:`autograder.engine.mutants.repair`: the mutant's edit undone, or an equivalent change),
+  **named as another** when the error model names another mutant (an equivalent one, or a wrong
   name: read them), **named by hand** when only a hand-written diagnosis names it.
 
 Grading every mutant of a lab takes long (hundreds of gradings): a sample is graded,
@@ -30,7 +32,7 @@ from ..engine.mutants.naming import model_for, reference_module
 from ..engine.mutants.operators import Mutant, apply_edits
 from ..engine.registry import Lab
 
-OUTCOMES = ("named", "named as another", "named by hand", "described", "equivalent")
+OUTCOMES = ("named", "repaired", "named as another", "named by hand", "described", "equivalent")
 
 
 @dataclass
@@ -53,10 +55,10 @@ class ErrorModelReport:
 
     @property
     def naming_rate(self) -> float:
-        """Named (this mutant) among the caught ones."""
+        """Named (this mutant, or the change of the student's code that undoes it) among the caught ones."""
         counts = self.counts()
         caught = sum(counts[o] for o in OUTCOMES if o != "equivalent")
-        return counts["named"] / caught if caught else 0.0
+        return (counts["named"] + counts["repaired"]) / caught if caught else 0.0
 
 
 def sample(mutants: list[Mutant], count: int) -> list[Mutant]:
@@ -126,6 +128,10 @@ def classify(mutant: Mutant, exercise: str, checks) -> MutantOutcome:
     modelled = [c for c in failed if c.mistake.startswith("mutant:")]
     if any(mutant.sentence in c.message for c in failed):   # (an in-place change keeps the engine's label)
         return MutantOutcome(mutant, exercise, "named")
+    repaired = [c for c in failed if c.mistake.startswith("repair:")]
+    if repaired:   # a change of the "student's" code, confirmed to mend its answers, is shown
+        said = repaired[0].message.split("Trying small changes to your code: ", 1)[-1].split("\n")[0]
+        return MutantOutcome(mutant, exercise, "repaired", said)
     if modelled:
         said = modelled[0].message.split("The error model: it looks like ", 1)[-1].split("\n")[0]
         return MutantOutcome(mutant, exercise, "named as another", said)
