@@ -106,6 +106,20 @@ def test_right_is_the_reference_up_to_rounding_not_merely_near():
     assert not repair.right({"__error__": "ValueError: x"}, H)
 
 
+def test_right_closely_where_the_students_code_differs_legitimately():
+    """Within 1% when the variant is a hundred times nearer the reference than the student's own
+    answer (a failing input), or on a confirmation input; never for an answer merely nearer; up to
+    scale only where scale is not the student's mistake."""
+    points = np.array([[120.0, 80.0], [-40.0, 300.0], [15.0, -7.5]])
+    close = points * (1 + 3e-3)
+    assert repair.right(close, points)                                   # (a 3x2 array: up to scale)
+    assert not repair.right(close, points, projective=False)
+    assert repair.right(close, points, student=points + 60, projective=False)
+    assert not repair.right(close, points, student=points + 10, projective=False)   # 28 times nearer
+    assert repair.right(close, points, confirming=True, projective=False)
+    assert not repair.right(points + 10, points, student=points + 1e4, projective=False)   # beyond 1%
+
+
 def _read(source: str, api=("graded",)):
     source = textwrap.dedent(source)
     tree = ast.parse(source)

@@ -251,28 +251,49 @@ def _elided(before: str, after: str) -> tuple[str, str] | None:
 
 
 # ------------------------------------------------------------------ right answers
-def right(value, reference) -> bool:
-    """Whether a variant's answer is the reference's: images within a grey level on average and
-    nowhere drawn otherwise; numbers entry by entry within 1e-4 of their size (1e-6 of the answer's
-    largest), small matrices up to scale and sign too. An error is never right."""
+def right(value, reference, student=None, confirming: bool = False, projective: bool = True) -> bool:
+    """Whether a variant's answer is the reference's.
+
+    Exactly, up to rounding: images within a grey level on average and nowhere drawn otherwise;
+    numbers entry by entry within 1e-4 of their size (1e-6 of the answer's largest), small matrices
+    up to scale and sign too (unless ``projective`` is False: where the student's answer is the
+    reference's up to scale, scale is their mistake). Or closely -- images within 3 grey levels, numbers within 1% -- where
+    the student's code differs from the reference's legitimately (another normalisation, their own
+    interpolation): on a failing input, when the variant is also far nearer the reference than the
+    student's own answer (``student``: 100 times for numbers, 30 for images); on a confirmation
+    input (``confirming``), alone (the failing inputs showed the change is what mends the answers).
+    An error is never right."""
     if naming._error_kind(value) is not None or naming._error_kind(reference) is not None:
         return False
+    if _within(value, reference, rtol=1e-4, grey=1.0, projective=projective):
+        return True
+    if student is None and not confirming:
+        return False
+    if not _within(value, reference, rtol=1e-2, grey=3.0, projective=projective):
+        return False
+    if confirming:
+        return True
+    nearer = 30 if naming._has_image(reference) else 100
+    return naming.distance(value, reference) * nearer <= naming.distance(student, reference)
+
+
+def _within(value, reference, rtol: float, grey: float, projective: bool = True) -> bool:
     if naming._has_image(reference):
-        return naming.distance(value, reference) <= 1.0 and not naming._drawn_elsewhere(value, reference)
+        return naming.distance(value, reference) <= grey and not naming._drawn_elsewhere(value, reference)
     pairs = naming._numeric_pairs(value, reference)
     if pairs is None:
         return False
-    floor = 1e-6 * max(naming._largest(reference), 1e-12)
+    floor = rtol / 100 * max(naming._largest(reference), 1e-12)
     for got, want in pairs:
-        got, want = got.astype(np.complex128 if "c" in got.dtype.kind + want.dtype.kind else np.float64), \
-            want.astype(np.complex128 if "c" in want.dtype.kind + got.dtype.kind else np.float64)
+        kind = np.complex128 if "c" in got.dtype.kind + want.dtype.kind else np.float64
+        got, want = got.astype(kind), want.astype(kind)
         if np.isfinite(got).tolist() != np.isfinite(want).tolist():
             return False
-        if np.allclose(got, want, rtol=1e-4, atol=floor, equal_nan=True):
+        if np.allclose(got, want, rtol=rtol, atol=floor, equal_nan=True):
             continue
-        small = got.ndim == 2 and got.size <= 16 and np.isfinite(got).all()
+        small = projective and got.ndim == 2 and got.size <= 16 and np.isfinite(got).all()
         scale = np.vdot(got, want) / np.vdot(got, got) if small and np.vdot(got, got) != 0 else 0
-        if not (small and scale != 0 and np.allclose(got * scale, want, rtol=1e-4, atol=floor)):
+        if not (small and scale != 0 and np.allclose(got * scale, want, rtol=rtol, atol=floor)):
             return False
     return True
 
@@ -388,7 +409,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if mutant.key in ruled_out:
             continue
         values = variant.answers(mutant, failing, inputs)
-        if values is not None and all(right(v, references[i]) for v, i in zip(values, failing)):
+        if values is not None and all(variant.right(v, references[i], variant.students[i])
+                                      for v, i in zip(values, failing)):
             candidates.append(mutant)
             continue
         if values is not None and np.isfinite(off):
@@ -437,7 +459,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             return None
         both = replace(first, edits=first.edits + second.edits)
         values = variant.answers(both, failing, inputs)
-        if values is not None and all(right(v, references[i]) for v, i in zip(values, failing)):
+        if values is not None and all(variant.right(v, references[i], variant.students[i])
+                                      for v, i in zip(values, failing)):
             fix = variant.fix(both)
             if fix is not None and variant.confirmed(both, failing):
                 return variant.repair([(both, fix)])
@@ -472,6 +495,8 @@ class _Variants:
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
+        self.projective = not any(naming._error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
+                                  for answer, reference in zip(self.students, references))
 
     def answers(self, mutant, indices, every) -> list | None:
         """The variant's answers on ``every[i]`` for ``i`` in ``indices`` (None when it did not answer)."""
@@ -529,7 +554,12 @@ class _Variants:
 
     def _right_on(self, mutant, indices, every, wanted) -> bool:
         values = self.answers(mutant, indices, every)
-        return values is not None and all(right(v, wanted[i]) for v, i in zip(values, indices))
+        return values is not None and all(self.right(v, wanted[i], confirming=True) for v, i in zip(values, indices))
+
+    def right(self, value, reference, student=None, confirming: bool = False) -> bool:
+        """:func:`right`, up to scale only where no failing answer of the student's is the reference's
+        up to scale (then scale is the mistake, and any variant that leaves it would look right)."""
+        return right(value, reference, student, confirming, projective=self.projective)
 
 
 def named_by_repair(verdict, trial):
