@@ -105,6 +105,15 @@ def test_the_eight_point_hint_is_kept_only_for_a_reduced_svd(source, contradicte
     assert bool(EIGHT_POINTS_HINT.contradicts(read_code(source), ["fundamental_8point"])) == contradicted
 
 
+@pytest.fixture
+def no_repairs(monkeypatch):
+    """The fixed hints themselves: a repair of the student's code found for the failure would take
+    the hint's place (tests/test_repair.py)."""
+    from autograder.engine.mutants import repair
+
+    monkeypatch.setattr(repair, "name_by_repair", lambda trial, seconds=0: None)
+
+
 NCC_ARGMAX_OFF_BY_TWO = """
     _bm_ref = block_matching
     def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
@@ -115,7 +124,7 @@ NCC_ARGMAX_OFF_BY_TWO = """
     """
 
 
-def test_an_ncc_matcher_keeping_the_highest_score_is_not_told_to_keep_it(tmp_path):
+def test_an_ncc_matcher_keeping_the_highest_score_is_not_told_to_keep_it(tmp_path, no_repairs):
     result = grade(mutant(tmp_path, "lab12_stereo", NCC_ARGMAX_OFF_BY_TWO.format(pick="argmax", sign="")),
                    ["lab12.ext1"], pictures="none")
     hints = [c.hint for c in check_results(result, "lab12.ext1") if not c.passed and c.hint]
@@ -123,7 +132,7 @@ def test_an_ncc_matcher_keeping_the_highest_score_is_not_told_to_keep_it(tmp_pat
     assert NCC_HINT.text.startswith(hints[0].split(";")[0])     # the formula is still said
 
 
-def test_the_argmin_of_the_score_negated_is_keeping_the_highest_too(tmp_path):
+def test_the_argmin_of_the_score_negated_is_keeping_the_highest_too(tmp_path, no_repairs):
     """``score`` holds +NCC (the reference's helper returns -NCC, negated again): the argmin of
     ``-score`` keeps the highest NCC, as an argmax does."""
     result = grade(mutant(tmp_path / "negated", "lab12_stereo", NCC_ARGMAX_OFF_BY_TWO.format(pick="argmin", sign="-")),
@@ -132,7 +141,7 @@ def test_the_argmin_of_the_score_negated_is_keeping_the_highest_too(tmp_path):
     assert hints and all("HIGHEST" not in h and "keeps the highest score (argmax" in h for h in hints)
 
 
-def test_a_matcher_keeping_the_lowest_ncc_keeps_the_hint(tmp_path):
+def test_a_matcher_keeping_the_lowest_ncc_keeps_the_hint(tmp_path, no_repairs):
     """The control: the argmin of ``score`` (+NCC after the helper's negation is undone) keeps the
     lowest NCC, so the hint to keep the highest is what the code needs."""
     result = grade(mutant(tmp_path / "control", "lab12_stereo", NCC_ARGMAX_OFF_BY_TWO.format(pick="argmin", sign="")),

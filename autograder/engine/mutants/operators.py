@@ -950,7 +950,10 @@ def _changes(node, parents, words: _Words, line):
         inner = what(node.left)
         sign = "- 1" if isinstance(node.op, ast.Sub) else "+ 1"
         yield "bound", "drop", f"the {sign} after {inner} is missing (off by one)" if inner else ""
-    if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and _replaceable(node, parent):
+    if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and _replaceable(node, parent) \
+            and not (words.student and isinstance(parent, ast.Subscript) and isinstance(parent.ctx, ast.Store)):
+        # (the student's code: another array written into, `F[:, 2] = 1.0` for `lines[:, 2] = 1.0`,
+        # "mends" a statement by writing into the caller's array instead -- that is no fix)
         yield from _name_changes(node, words, what, line)
     if isinstance(node, (ast.Assign, ast.AugAssign)) and parent is not None:
         yield "drop_statement", None, _statement_phrase(node, words, line)

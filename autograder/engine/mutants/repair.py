@@ -307,6 +307,9 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS) -> Repair | None:
     model = naming.model_for(trial.lab)
     if model is None or not (trial.calls or getattr(trial, "raised", None)):
         return None
+    raised = naming._raised_answer(trial.raised[3]) if getattr(trial, "raised", None) else None
+    if raised is not None and naming._error_kind(raised)[0] in naming.NO_MUTANT_RAISES:
+        return None   # a name undefined (a notebook cell that raised), an import: no change of a value mends it
     # One time per grading for naming by mutants and by repairs (naming.GRADING_SECONDS): what
     # failing everything costs stays bounded as it was.
     spent = trial.sandbox.shared.setdefault("error model seconds", [0.0])

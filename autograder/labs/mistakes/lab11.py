@@ -128,7 +128,7 @@ MISTAKES = {
             lines = np.array(_right_lines(F, pts1), float)
             lines[:, 2] = 1.0
             return lines
-        """, ["is wrong for every line, in c only.\nit returned"]),
+        """, ["is wrong for every line, in c only.", "\nit returned"]),
     "epipolar lines not normalised": ("lab11.ex2", """
         def epipolar_lines(F, pts1):
             return _homogeneous(pts1) @ np.asarray(F, float).T
