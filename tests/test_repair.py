@@ -246,3 +246,30 @@ def test_verify_counts_a_repaired_mutant_as_named():
     assert classify(mutant, "lab07.ex2", [plain]).outcome == "described"
     report = ErrorModelReport("lab07", 2, [outcome, classify(mutant, "lab07.ex2", [plain])])
     assert report.naming_rate == 0.5
+
+
+def test_a_helper_shared_with_other_graded_functions_and_a_search_cut_short():
+    """A change in a helper another graded function runs too is told only when nothing else mends
+    the answers; one found before the time ran out says the mistake *may* be there."""
+    student, _ = _read("""
+        def _shared(x):
+            return x + 1
+
+        def _own(x):
+            return x * 2
+
+        def graded(x):
+            return _shared(_own(x))
+
+        def other(x):
+            return _shared(x)
+    """, api=("graded", "other"))
+    assert student.shared("_shared", "graded") and not student.shared("_own", "graded")
+    assert not student.shared("graded", "graded")
+    fix = repair.Fix(((3, "x + 1", "x - 1"),), "_shared", "add_sub", (("_shared", 1, "add_sub", None),))
+    cut_short = repair.Repair("graded", (fix,), 5, complete=False)
+    assert "so the mistake may be there (other changes were not all tried" in cut_short.sentence
+    assert "so the mistake is likely there" in repair.Repair("graded", (fix,), 5).sentence
+    swapped = repair.Fix(((3, "a_long_name - another_long_name", "another_long_name - a_long_name"),), "graded",
+                         "swap_operands", (("graded", 4, "swap_operands", None),))
+    assert swapped.size == 3   # two things exchanged: one slip, however long the names

@@ -13,10 +13,12 @@ from the failing ones. The sentence shows the student's own code before and afte
 ("changing `std_l * std_l` to `std_l * std_r` (line 23) makes `ncc_disparity` give the expected
 answers on all 9 inputs tried"), never the reference's.
 
-What it cannot name: a step that is missing (no operator inserts code), two slips at once, and a
-function whose right answers are random (RANSAC with its own samples): no single change gives the
-reference's answers there. Time is bounded per failed check, and per grading together with the
-error model's naming (:data:`.naming.GRADING_SECONDS`).
+When no single change mends the answers, pairs are tried (one slip made at two places first).
+What it cannot name: a step that is missing (beyond a few insertions: an inversion, a division by
+the last coordinate, a conversion to radians), more than two slips, a mistake in another graded
+function (told as inherited), and a function whose right answers are random (RANSAC with its own
+samples). Time is bounded per failed check, and per grading together with the error model's
+naming (:data:`.naming.GRADING_SECONDS`).
 """
 
 from __future__ import annotations
@@ -47,6 +49,7 @@ VARIANTS = 4              # confirmation inputs derived from the failing calls
 VARIANT_TIMEOUT = 1.0     # seconds for one variant on its inputs (one request), at least
 MISTAKE = "repair:"       # + the operator: a mistake named by a change of the student's code
 _SHOWN = 70               # the longest code shown before and after a change
+_EXCHANGES = {"swap_operands", "swap_args", "stack_order"}   # operators that exchange two things
 
 
 @dataclass(frozen=True)
@@ -67,7 +70,10 @@ class Fix:
 
     @property
     def size(self) -> int:
-        """How many characters the change adds and removes (a statement removed: its own)."""
+        """How many characters the change adds and removes (a statement removed: its own; two
+        things exchanged, however long: as a few characters, one slip)."""
+        if all(edit[2] in _EXCHANGES for edit in self.edits):
+            return 3 * len(self.edits)
         changed = [(before, "" if after == "pass" else after) for _, before, after in self.changes]
         kept = sum(sum(block.size for block in difflib.SequenceMatcher(None, before, after, autojunk=False)
                        .get_matching_blocks()) for before, after in changed)
@@ -90,6 +96,7 @@ class Repair:
     function: str
     fixes: tuple
     inputs: int
+    complete: bool = True   # every single change was tried (else another place might mend it too)
 
     @property
     def mistake(self) -> str:
@@ -101,7 +108,8 @@ class Repair:
         said = f"the expected answers on all {self.inputs} inputs tried"
         if len(self.fixes) == 1:
             return f"{head}: {self.fixes[0].told(self.function)} makes `{self.function}` give {said}, " \
-                   "so the mistake is likely there"
+                   + ("so the mistake is likely there" if self.complete
+                      else "so the mistake may be there (other changes were not all tried in the time)")
         listed = "; ".join(fix.told(self.function) for fix in self.fixes)
         return f"{head}: each of these makes `{self.function}` give {said}, so the mistake is likely at one " \
                f"of them: {listed}"
@@ -120,6 +128,11 @@ class _Student:
         self._defs = _defs(tree)
         self._walked: dict = {}      # def name -> (its nodes in ast.walk order, their parents)
         self._lock = threading.Lock()
+
+    def shared(self, where: str, function: str) -> bool:
+        """Whether the def ``where`` (not ``function`` itself) is run by another graded function too."""
+        return where != function and any(
+            other != function and any(m.where == where for m in mutants) for other, mutants in self.mutants.items())
 
     def ordered(self, function: str) -> list:
         """``function``'s changes that can be shown: its own code's first, then its private helpers'
@@ -415,8 +428,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     off = sum(naming.distance(references[i], variant.students[i]) for i in failing)
     candidates, near = [], []
     known = {m.key for m in earlier}
+    complete = True   # every change tried (or ruled out in an earlier check)
     for mutant in list(earlier) + [m for m in student.ordered(function) if m.key not in known]:
         if clock.left() <= (RESERVE if candidates else 0):
+            complete = False
             break
         if mutant.key in ruled_out:
             continue
@@ -447,11 +462,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         elif clock.left() > 0:
             ruled_out.add(mutant.key)
     if fixes:
-        # A change of the function itself is told alone: one in a helper it shares with other graded
-        # functions (a translation matrix transposed, the warp's interpolation) mends this one's
-        # answers by breaking theirs.
-        own = [pair for pair in fixes if pair[1].where == function]
-        return variant.repair(own or fixes)
+        # A change in a helper this function shares with other graded functions (the warp's
+        # interpolation) mends its answers by breaking theirs: told only when nothing else is. A
+        # change in its own code and one in a helper only it runs are both told (a band's sign
+        # flipped where the pyramid is built, or undone where it is collapsed).
+        kept = [pair for pair in fixes if not student.shared(pair[1].where, function)]
+        return variant.repair(kept or fixes, complete)
     near = [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
     kept_near[:] = near
     pairs = [(a, b) for a, b in itertools.combinations(near, 2) if _apart(a, b)]
@@ -557,12 +573,12 @@ class _Variants:
         every, wanted, usable = self.confirmations
         return not usable or self._right_on(mutant, usable, every, wanted)
 
-    def repair(self, fixes) -> Repair:
+    def repair(self, fixes, complete: bool = True) -> Repair:
         """The repair told for ``fixes`` [(mutant, fix)], kept for the grading's later checks."""
         self.trial.sandbox.shared["repair found"][self.function] = [mutant for mutant, _ in fixes]
         usable = self.confirmations[2] if self.confirmations else []
         told = sorted((fix for _, fix in fixes), key=lambda fix: (fix.where != self.function, fix.changes[0][0]))
-        return Repair(self.function, tuple(told), len(self.inputs) + len(usable))   # in the order the code runs
+        return Repair(self.function, tuple(told), len(self.inputs) + len(usable), complete)   # in the order the code runs
 
     def _right_on(self, mutant, indices, every, wanted) -> bool:
         values = self.answers(mutant, indices, every)
