@@ -236,8 +236,10 @@ def exception_form(message: str) -> Form | None:
                 if len(flat) == 1 and len(table) == 2 and table[0] == flat[0] != table[1]:
                     n, k = table
                     return Form(measured(f"it looks like a value per row, shape ({n},), meets an ({n}, {k}) "
-                                         f"array: NumPy lines up the last axes, so keep it a column, shape ({n}, 1) "
-                                         "(for example x[:, 2:3] or w[:, None])"),
+                                         f"array: NumPy lines up the last axes, so either the values belong in a "
+                                         f"column, shape ({n}, 1) (for example x[:, 2:3] or w[:, None]), or the "
+                                         f"({n}, {k}) array should be one value per row too (a column of it "
+                                         "taken, x[:, 0])"),
                                 "a per-row value kept flat (N,) against an (N, k) array")
         return None
     found = _MATMUL.search(message)

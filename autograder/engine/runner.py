@@ -690,6 +690,10 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     inherited = False   # a failure another of the student's functions causes is not this one's mistake
     if status in (FAILED, PARTIAL) and student_failure in ("", "exception"):
         verdict, inherited = _told_if_inherited(verdict, check, trial)
+    if student_failure == "exception" and not verdict.mistake and not inherited:
+        # A change of their code confirmed to mend the exception comes before the NumPy forms'
+        # reading of its message, which guesses which operand is wrong ("keep it a column").
+        verdict = _named_by_repair(verdict, check, trial)
     if student_failure == "exception" and not verdict.mistake:
         verdict = _named_by_exception(verdict, trial, tb)
     if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
@@ -697,7 +701,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_reading(verdict, reading, check, trial)
     if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
-    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited \
+            and not verdict.mistake.startswith("repair:"):
         verdict = _named_by_repair(verdict, check, trial)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") \
             and not inherited and "looks like" not in str(verdict.message).lower():
