@@ -85,6 +85,7 @@ def test_the_companion_closes_with_its_sandbox(tmp_path):
     sandbox = Sandbox(folder, SMALL)
     companion = sandbox.companion()
     assert companion is not sandbox and sandbox.companion() is companion
+    assert companion.limits.memory == sandbox.limits.memory // 2   # the two hold at most 1.5 shares
     assert companion.call("student", "graded", (5,)).value == 5
     sandbox.close()
     assert companion._closed

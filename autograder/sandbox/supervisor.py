@@ -749,12 +749,16 @@ class Sandbox:
         return self._request(request, timeout, f"{function}() (a variant)")
 
     def companion(self) -> "Sandbox":
-        """Another sandbox of the same submission, the same limits and confinement and deadline,
+        """Another sandbox of the same submission, the same confinement and deadline, half the memory,
         started at its first use and closed with this one: the grader's own experiments with the
         student's code (:mod:`autograder.engine.mutants.repair`) run there, so a variant that hangs or
         crashes costs this worker no restart, its budget nothing, and the two never share memory."""
         if self._companion is None or self._companion._closed:
-            self._companion = Sandbox(self._source, self.limits, confinement=self.confinement)
+            # Half this worker's memory and reply size: the two together never hold more than one
+            # and a half shares (the student's worker waits, idle, while its companion runs).
+            halved = replace(self.limits, memory=self.limits.memory // 2,
+                             max_result_bytes=self.limits.max_result_bytes // 2)
+            self._companion = Sandbox(self._source, halved, confinement=self.confinement)
             self._companion.set_deadline(self._deadline)
         return self._companion
 
