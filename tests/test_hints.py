@@ -223,3 +223,33 @@ def test_to_float_counts_only_float_dtypes(body, converts):
 
     tree = ast.parse(f"import numpy as np\ndef f(a):\n    {body}\n    return x\n")
     assert bool(TO_FLOAT.found([tree.body[1]])) is converts
+
+
+_RUNNING_BEST = """
+def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+    best = np.full(left.shape, np.inf)
+    disp = np.zeros(left.shape)
+    for d in range(max_disparity + 1):
+        shifted = np.roll(right, d, axis=1)
+        if cost == "ssd":
+            c = cv2.boxFilter((left - shifted) ** 2, -1, (block_size, block_size))
+        else:
+            c = {sign}_ncc(left, shifted, block_size)
+        better = c < best
+        best[better] = c[better]
+        disp[better] = d
+    return disp
+"""
+
+
+@pytest.mark.parametrize("sign, keeps_highest", [("-", True), ("", False)])
+def test_a_vectorised_running_minimum_of_the_negated_ncc_keeps_the_highest(sign, keeps_highest):
+    """The most common student matcher: a running best over the disparities, `better = c < best`.
+    With c = -NCC it keeps the highest NCC (the hint to keep the HIGHEST is not said); with c = +NCC
+    it keeps the lowest, and the hint stays. The SSD branch keeps the lowest cost either way."""
+    from autograder.engine.hints import KEEPS_LOWEST
+    from autograder.labs.lab12 import NCC_HINT
+
+    code = read_code(textwrap.dedent(_RUNNING_BEST.format(sign=sign)))
+    assert bool(NCC_HINT.contradicts(code, ["block_matching"])) == keeps_highest
+    assert KEEPS_LOWEST.found(code.reachable(["block_matching"]))

@@ -512,13 +512,41 @@ def _loop_keeps(op, names) -> Callable[[ast.AST], bool]:
     return test
 
 
+def _running_best(highest: bool) -> Callable[[ast.AST], bool]:
+    """A running best kept over a loop, vectorised or not: ``better = c < best`` (or ``c > best``,
+    ``best > c``...) where ``c`` is assigned, somewhere in the function, a negated value (``c = -ncc``:
+    the lowest of the negation is the highest) or a plain one. ``highest``: keeping the highest of
+    the plain value (a larger plain value, or a smaller negated one); else the lowest."""
+    def test(function) -> bool:
+        negated, plain = set(), set()
+        for node in ast.walk(function):
+            if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+                (negated if _negation(node.value) is not None else plain).add(node.targets[0].id)
+        for node in ast.walk(function):
+            if not (isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Lt, ast.Gt))):
+                continue
+            left, right, smaller = node.left, node.comparators[0], isinstance(node.ops[0], ast.Lt)
+            if _named(left, ("best",)) and isinstance(right, ast.Name):
+                left, right, smaller = right, left, not smaller   # best > c: c < best
+            if not (isinstance(left, ast.Name) and _named(right, ("best",))):
+                continue
+            kinds = ({True} if left.id in negated else set()) | ({False} if left.id in plain else set())
+            # a smaller negated value, or a larger plain one, is a higher one
+            if any((smaller == is_negated) == highest for is_negated in kinds):
+                return True
+        return False
+    return test
+
+
 KEEPS_HIGHEST = (Predicate("picks the highest score", _picks(True, SCORE_NAMES), kind="all")
                  | Predicate("sorts", _argsort_end(last=True)) | keyword("max", "key")
                  | Predicate("keeps a larger score", _loop_keeps(ast.Gt, SCORE_NAMES))
+                 | Predicate("keeps a running best", _running_best(highest=True))
                  ).saying("keeps the highest score (argmax, or argmin of the score negated)")
 KEEPS_LOWEST = (Predicate("picks the lowest cost", _picks(False, COST_NAMES), kind="all")
                 | Predicate("sorts", _argsort_end(last=False)) | keyword("min", "key")
                 | Predicate("keeps a smaller cost", _loop_keeps(ast.Lt, COST_NAMES))
+                | Predicate("keeps a running best", _running_best(highest=False))
                 ).saying("keeps the lowest cost (argmin, or argmax of the cost negated)")
 
 
