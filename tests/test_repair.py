@@ -274,3 +274,19 @@ def test_a_helper_shared_with_other_graded_functions_and_a_search_cut_short():
     swapped = repair.Fix(((3, "a_long_name - another_long_name", "another_long_name - a_long_name"),), "graded",
                          "swap_operands", (("graded", 4, "swap_operands", None),))
     assert swapped.size == 3   # two things exchanged: one slip, however long the names
+
+
+def test_a_module_too_large_to_read_in_time_gets_no_repairs(tmp_path):
+    """The operators' reading grows faster than the code: a module several times the largest lab's
+    is not read at all (none of its changes could be tried in the time), and is answered at once."""
+    from types import SimpleNamespace
+
+    from autograder.engine.registry import discover
+
+    lab = discover()["lab07"]
+    body = "\n".join(f"    a{i} = x * {i} + x" for i in range(2500))   # about 25 000 nodes
+    (tmp_path / f"{lab.module}.py").write_text(f"def translation_matrix(x, y=0):\n{body}\n    return x\n")
+    trial = SimpleNamespace(sandbox=SimpleNamespace(submission_dir=tmp_path), lab=lab)
+    assert repair._student_code(trial) is None
+    (tmp_path / f"{lab.module}.py").write_text("def translation_matrix(x, y=0):\n    return x + y\n")
+    assert repair._student_code(trial) is not None

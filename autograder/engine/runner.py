@@ -701,8 +701,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_reading(verdict, reading, check, trial)
     if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
-    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited \
-            and not verdict.mistake.startswith("repair:"):
+    if status in (FAILED, PARTIAL) and student_failure == "" and not inherited:   # (an exception's: above)
         verdict = _named_by_repair(verdict, check, trial)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") \
             and not inherited and "looks like" not in str(verdict.message).lower():

@@ -45,7 +45,7 @@ LENGTH = struct.Struct(">Q")
 # Kept before any student code runs: the submission may replace the modules' own.
 _active_threads, _listdir = threading.active_count, os.listdir
 _open, _read, _close = os.open, os.read, os.close
-_exec, _compile, _FunctionType = exec, compile, type(lambda: None)
+_exec, _compile, _FunctionType, _ModuleType = exec, compile, type(lambda: None), type(sys)
 
 
 def _limit_cpu(budget):
@@ -474,12 +474,12 @@ class Worker:
             base = self.load(request["module"])
         except BaseException:  # the parent imports first; this is a fallback
             return self.handle_import(request["module"])
-        variant = type(base)(base.__name__)
-        own = vars(base)
-        space = vars(variant)
-        space.update(own)
         start = time.perf_counter()
-        try:
+        try:   # (what the import left under the module's name may be any object of the student's)
+            variant = _ModuleType(str(getattr(base, "__name__", request["module"])))
+            own = vars(base)
+            space = vars(variant)
+            space.update(own)
             _exec(_compile(request["source"], getattr(base, "__file__", None) or "<variant>", "exec"), space)
         except BaseException as exc:  # noqa: BLE001 - a rewrite that cannot run is no variant
             return failure("exception", f"the variant did not run: {_exception_line(exc)}")

@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from ...loading.parsing import parse
-from ...loading.reading import MAX_NODES, MAX_SOURCE_BYTES
+from ...loading.reading import MAX_SOURCE_BYTES
 from . import naming
 from .helper import HelperFailed
 from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_defs
@@ -49,6 +49,10 @@ VARIANTS = 4              # confirmation inputs derived from the failing calls
 VARIANT_TIMEOUT = 1.0     # seconds for one variant on its inputs (one request), at least
 MISTAKE = "repair:"       # + the operator: a mistake named by a change of the student's code
 _SHOWN = 70               # the longest code shown before and after a change
+# The operators' reading is not linear in a function's size (each name against every local before
+# it): a module larger than a few times the largest lab's (3.4k nodes) is not changed at all, so
+# reading it never outlasts the time the repairs are given.
+MAX_NODES = 15_000
 _EXCHANGES = {"swap_operands", "swap_args", "stack_order"}   # operators that exchange two things
 
 
@@ -600,7 +604,7 @@ def named_by_repair(verdict, trial):
     shown as it is, where a mutant's sentence describes the reference's code in words that may fit
     the student's less well."""
     by_mutant = verdict.mistake.startswith("mutant:") and naming.APPENDED in str(verdict.message)
-    if (verdict.mistake and not by_mutant) or ("looks like" in str(verdict.message).lower() and not by_mutant):
+    if not by_mutant and (verdict.mistake or "looks like" in str(verdict.message).lower()):
         return verdict
     repair = name_by_repair(trial)
     if repair is None:
