@@ -191,6 +191,39 @@ def test_changes_of_the_students_own_code_only():
     assert ("inverse", "wrap") not in {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"})["graded"]}
 
 
+def test_two_entries_of_a_sequence_written_in_each_others_place():
+    """A size given as (rows, cols), a matrix row's entries, names assigned the other way round: every
+    pair of a short tuple or list is exchanged (the student's code only); a stacking call's pieces are
+    `stack_order`'s, not exchanged twice."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(image, tx, ty):
+            w, h = image.shape[:2]
+            M = np.float32([[1, 0, tx], [0, ty, 1]])
+            return M, (h, w), np.hstack([M, M.T])
+    """)
+    swapped = {repair.ast.unparse(repair._MAKE["swap_items"](node, m.edits[0][3]))
+               for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"] if m.operator == "swap_items"
+               for node in [list(ast.walk(ast.parse(source).body[1]))[m.edits[0][1]]]}
+    assert {"(h, w)", "(w, h)", "[0, 1, ty]", "[ty, 0, 1]", "[tx, 0, 1]"} <= swapped
+    assert "[M.T, M]" not in swapped and "[0, ty, 1]" not in swapped   # (stacked pieces; two equal entries)
+    assert "swap_items" not in {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
+
+
+def test_a_translation_matrix_with_an_entry_in_the_wrong_place_is_shown(tmp_path):
+    """A student's own translation: `[0, ty, 1]` where the row is `[0, 1, ty]`."""
+    folder = edited_reference(tmp_path, "lab07_transformations", (
+        "    return _warp(image, translation_matrix(tx, ty))",
+        "    M = np.float32([[1, 0, tx], [0, ty, 1]])\n"
+        "    return cv2.warpAffine(image, M, image.shape[1::-1], borderMode=cv2.BORDER_CONSTANT)"))
+    result = grade(folder, ["lab07.ex1"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab07.ex1") if c.score < c.max_score]
+    told = [c for c in checks if c.mistake == repair.MISTAKE + "swap_items"]
+    assert told and "[0, ty, 1]]` to `" in told[0].message and "[0, 1, ty]]` (line 29)" in told[0].message, \
+        [c.message for c in checks]
+
+
 def test_a_function_applied_where_it_does_not_belong_is_shown(tmp_path):
     """A student's own shear matrix built with tan(s), as if s were an angle."""
     folder = edited_reference(tmp_path, "lab07_transformations", (

@@ -19,6 +19,7 @@ from __future__ import annotations
 import ast
 import copy
 import functools
+import itertools
 import re
 from dataclasses import dataclass
 
@@ -67,6 +68,7 @@ OPERATORS = {
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
     "dehomogenise": ("homogeneous", "divid", "last coordinate"),   # x[:, :2] -> x[:, :2] / x[:, 2:3]
+    "swap_items": ("order", "swap", "exchang"),       # (rows, cols) -> (cols, rows), [0, ty, 1] -> [0, 1, ty]
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -489,13 +491,20 @@ def _make_unwrap(node, payload):
     return copy.deepcopy(node.args[0])
 
 
+def _make_swap_items(node, payload):
+    new = copy.deepcopy(node)   # (h, w) -> (w, h): the same for a tuple assigned to, `w, h = image.shape[:2]`
+    i, j = payload
+    new.elts[i], new.elts[j] = new.elts[j], new.elts[i]
+    return new
+
+
 def _make_function(node, payload):
     new = copy.deepcopy(node)
     new.func = _name(payload)
     return new
 
 
-_MAKE = {"dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+_MAKE = {"swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -1043,6 +1052,8 @@ def _student_changes(node, parent):
         if isinstance(last, ast.Slice) and last.lower is None and last.step is None \
                 and isinstance(last.upper, ast.Constant) and last.upper.value in (2, 3):
             yield "dehomogenise", last.upper.value, ""
+    if isinstance(node, (ast.Tuple, ast.List)):
+        yield from _item_swaps(node, parent)
     if not isinstance(node, ast.Call):
         return
     dotted = _dotted(node.func)
@@ -1055,6 +1066,23 @@ def _student_changes(node, parent):
         yield "function", prefix + _MISTAKEN[short], ""
     if isinstance(node.func, ast.Attribute) and node.func.attr == "reshape":
         yield "transpose", "for_reshape", ""
+
+
+def _item_swaps(node, parent):
+    """Two entries of a tuple or list written in each other's place: a size given as (rows, cols), a
+    matrix row's entries, the images paired with their homographies, a pixel indexed [x, y], the
+    names assigned `w, h = image.shape[:2]`. Every pair of a short sequence, neighbours of a longer
+    one (up to nine entries); never a stacking call's pieces (``stack_order`` exchanges those)."""
+    items = node.elts
+    if not 2 <= len(items) <= 9 or any(isinstance(item, ast.Starred) for item in items) \
+            or (isinstance(parent, ast.Call) and node in parent.args
+                and _dotted(parent.func).rsplit(".", 1)[-1] in _STACKING):
+        return
+    pairs = itertools.combinations(range(len(items)), 2) if len(items) <= 4 else \
+        ((i, i + 1) for i in range(len(items) - 1))
+    for i, j in pairs:
+        if ast.dump(items[i]) != ast.dump(items[j]):
+            yield "swap_items", (i, j), ""
 
 
 def _constant_index(node):
