@@ -224,6 +224,42 @@ def test_a_translation_matrix_with_an_entry_in_the_wrong_place_is_shown(tmp_path
         [c.message for c in checks]
 
 
+def test_a_change_the_check_itself_accepts_is_told_for_a_students_own_recipe(tmp_path):
+    """A scale written with cv2.resize and a crop (the sheet allows it; its answers differ from the
+    reference's warp by a couple of grey levels, more than a repair's rounding) with the size given as
+    (rows, cols): the swap is judged by running the failed check again with the changed code."""
+    folder = edited_reference(tmp_path, "lab07_transformations", (
+        "    return _warp(image, scaling_matrix(sx, sy))",
+        "    h, w = image.shape[:2]\n"
+        "    big = cv2.resize(image, (int(round(h * sy)), int(round(w * sx))))\n"
+        "    out = np.zeros_like(image)\n"
+        "    out[:min(h, big.shape[0]), :min(w, big.shape[1])] = big[:h, :w]\n"
+        "    return out"))
+    result = grade(folder, ["lab07.ex3"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab07.ex3") if c.score < c.max_score]
+    told = [c for c in checks if c.mistake == repair.MISTAKE + "swap_items"]
+    assert told, [c.message for c in checks]
+    assert "`(int(round(h * sy)), int(round(w * sx)))` to `(int(round(w * sx)), int(round(h * sy)))`" \
+        in told[0].message and "answers this check accepts, near the expected ones" in told[0].message
+
+
+def test_a_failure_too_small_for_a_repairs_rounding_is_judged_by_the_check(tmp_path):
+    """Epipolar lines drawn from x = 0 to the image's height instead of its width: a few lines short,
+    the images a fraction of a grey level apart. Only the check tells a change right there; the
+    changes that alter nothing on its lines (`/` -> `//`) are not told."""
+    folder = edited_reference(tmp_path, "lab11_two_view", (
+        "p, q = (0.0, -c / b), (width - 1.0, -(c + a * (width - 1)) / b)",
+        "p, q = (0.0, -c / b), (height - 1.0, -(c + a * (height - 1)) / b)"))
+    result = grade(folder, ["lab11.ex2"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab11.ex2") if c.score < c.max_score]
+    assert checks
+    told = [c for c in checks if c.mistake.startswith(repair.MISTAKE)]
+    assert told and all("(height - 1.0, -(c + a * (height - 1)) / b))` to `" in c.message
+                        and "(width - 1.0, -(c + a * (width - 1)) / b))` (line 65)" in c.message for c in told), \
+        [c.message for c in checks]
+    assert not any("//" in c.message for c in checks)
+
+
 def test_a_function_applied_where_it_does_not_belong_is_shown(tmp_path):
     """A student's own shear matrix built with tan(s), as if s were an angle."""
     folder = edited_reference(tmp_path, "lab07_transformations", (

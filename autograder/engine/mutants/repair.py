@@ -101,6 +101,7 @@ class Repair:
     fixes: tuple
     inputs: int
     complete: bool = True   # every single change was tried (else another place might mend it too)
+    checked: bool = False   # judged by the failed check itself (answers near the reference's, not equal)
 
     @property
     def mistake(self) -> str:
@@ -110,6 +111,8 @@ class Repair:
     def sentence(self) -> str:
         head = "Trying small changes to your code"
         said = f"the expected answers on all {self.inputs} inputs tried"
+        if self.checked:   # (the student's own recipe: near the reference's answers, as the check accepts)
+            said = f"answers this check accepts, near the expected ones on all {self.inputs} inputs tried"
         if len(self.fixes) == 1:
             return f"{head}: {self.fixes[0].told(self.function)} makes `{self.function}` give {said}, " \
                    + ("so the mistake is likely there" if self.complete
@@ -371,9 +374,13 @@ def _search(trial, model, student: _Student, clock) -> Repair | None:
         references = runner.run((), range(len(inputs)), max(0.5, clock.left()))
         failing = [i for i, (call, reference) in enumerate(zip(calls, references))
                    if naming._error_kind(reference) is None and _wrong(call[3], reference)]
+        subtle = not failing   # the check failed on answers near the reference's (a line missing
+        if subtle and _replayable(trial):   # of five): only the check itself tells a change right
+            failing = [i for i, (call, reference) in enumerate(zip(calls, references))
+                       if naming._error_kind(reference) is None and naming.distance(call[3], reference) > 0]
         if not failing:
             continue
-        found = _repaired(trial, model, student, function, inputs, references, failing, clock)
+        found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle)
         seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         known = {_key(call) for call in seen}
         seen += [call for call in inputs if _key(call) not in known][:max(0, SEEN - len(seen))]
@@ -419,11 +426,12 @@ def _wrong(answer, reference) -> bool:
     return naming._error_kind(answer) is not None or naming.wrong(answer, reference)
 
 
-def _repaired(trial, model, student, function, inputs, references, failing, clock) -> Repair | None:
+def _repaired(trial, model, student, function, inputs, references, failing, clock, subtle=False) -> Repair | None:
     """The confirmed single changes of ``function``'s code (or of a helper it runs) whose answers on
-    the ``failing`` inputs are the reference's (up to :data:`FIXES`, one per line); else the first
-    confirmed pair of changes among those that each bring the answers nearer (one slip made twice:
-    a row copied twice with the wrong camera's name)."""
+    the ``failing`` inputs are the reference's (up to :data:`FIXES`, one per line), or with which the
+    failed check itself passes (:meth:`_Variants.passes_check`; only that where the student's answers
+    are ``subtle``-ly off); else the first confirmed pair of changes among those that each bring the
+    answers nearer (one slip made twice: a row copied twice with the wrong camera's name)."""
     shared = trial.sandbox.shared
     ruled_out = shared.setdefault("repair ruled out", {}).setdefault(function, set())
     kept_near = shared.setdefault("repair near", {}).setdefault(function, [])
@@ -440,14 +448,19 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if mutant.key in ruled_out:
             continue
         values = variant.answers(mutant, failing, inputs)
-        if values is not None and all(variant.right(v, references[i], variant.students[i])
-                                      for v, i in zip(values, failing)):
+        if values is not None and not subtle and all(variant.right(v, references[i], variant.students[i])
+                                                     for v, i in zip(values, failing)):
             candidates.append(mutant)
             continue
         if values is not None and np.isfinite(off):
             apart = sum(naming.distance(v, references[i]) for v, i in zip(values, failing))
             if apart < 0.9 * off:
                 near.append((apart, mutant))
+            # Far nearer, not the reference's to the last grey level (the student's own recipe: a
+            # resize where the reference warps): the check's own tolerances judge it.
+            if apart * (2 if subtle else REPLAY_NEARER) <= off and variant.passes_check(mutant, values, failing):
+                candidates.append(mutant)
+                continue
         if clock.left() > 0:
             ruled_out.add(mutant.key)
     fixes, lines = [], set()
@@ -491,8 +504,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             return None
         both = replace(first, edits=first.edits + second.edits)
         values = variant.answers(both, failing, inputs)
-        if values is not None and all(variant.right(v, references[i], variant.students[i])
-                                      for v, i in zip(values, failing)):
+        if values is not None and (variant.passes_check(both, values, failing) if subtle else all(
+                variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing))):
             fix = variant.fix(both)
             if fix is not None and variant.confirmed(both, failing):
                 return variant.repair([(both, fix)])
@@ -501,6 +514,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
 
 FIXES = 3         # the most fixes told (one per line)
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
+REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
+REPLAYS = 4       # the most changes a failed check is replayed with
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
 
@@ -529,12 +544,23 @@ class _Variants:
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
         self.projective = not any(naming._error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
                                   for answer, reference in zip(self.students, references))
+        self.replayable = _replayable(trial)
+        self.checked: dict = {}     # change -> its spread, where the check itself judged it right
+        self.replays = 0
+        self.theirs: dict = {}      # confirmation input -> the student's own answer there
+
+    def source(self, mutant) -> str | None:
+        """The changed defs of the student's module (None when the change cannot be written)."""
+        try:
+            return ast.unparse(mutated_defs(self.student.tree, mutant.edits, self.student.text))
+        except (ValueError, SyntaxError, RecursionError):
+            return None
 
     def answers(self, mutant, indices, every) -> list | None:
-        """The variant's answers on ``every[i]`` for ``i`` in ``indices`` (None when it did not answer)."""
-        try:
-            source = ast.unparse(mutated_defs(self.student.tree, mutant.edits, self.student.text))
-        except (ValueError, SyntaxError, RecursionError):
+        """The variant's answers on ``every[i]`` for ``i`` in ``indices`` (None when it did not answer;
+        ``mutant`` None: the student's own code's)."""
+        source = self.source(mutant) if mutant is not None else ""
+        if source is None:
             return None
         # As long as the student's own calls took, and more: a slow function's variant cut short
         # says nothing of the change (and costs a restart of the companion's worker).
@@ -548,6 +574,33 @@ class _Variants:
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
         return self.student.fix(mutant)
+
+    def passes_check(self, mutant, values, failing) -> bool:
+        """Whether the failed check, run again with every call answered by the variant, passes: its
+        tolerances come from the spread of legitimate work, where :func:`right`'s are the reference's
+        rounding. At most :data:`REPLAYS` per check; never a check with properties (Hypothesis would
+        draw and shrink anew for each variant). ``values``: the variant's answers on the ``failing``
+        inputs (how far from the reference's the check accepts them is the spread its confirmation
+        allows)."""
+        from ..checks import Trial, Verdict
+
+        if not self.replayable or self.replays >= REPLAYS or self.clock.left() <= 0:
+            return False
+        source = self.source(mutant)
+        if source is None:
+            return False
+        self.replays += 1
+        check = self.trial.check
+        replayed = Trial(_Replayed(self, source), check, self.trial.forbid, self.trial.inputs)
+        try:
+            verdict = check.func(replayed)
+        except Exception:  # noqa: BLE001 - a failed check, the variant's exception, a call out of time
+            return False
+        passed = verdict is None or (isinstance(verdict, Verdict) and verdict.fraction >= 1.0)
+        if passed and not replayed._properties:
+            self.checked[mutant.key] = max(naming.distance(v, self.references[i]) for v, i in zip(values, failing))
+            return True
+        return False
 
     def confirmed(self, mutant, failing) -> bool:
         """Whether the variant is also right on the trial's other calls and on confirmation inputs
@@ -582,16 +635,71 @@ class _Variants:
         self.trial.sandbox.shared["repair found"][self.function] = [mutant for mutant, _ in fixes]
         usable = self.confirmations[2] if self.confirmations else []
         told = sorted((fix for _, fix in fixes), key=lambda fix: (fix.where != self.function, fix.changes[0][0]))
-        return Repair(self.function, tuple(told), len(self.inputs) + len(usable), complete)   # in the order the code runs
+        checked = any(mutant.key in self.checked for mutant, _ in fixes)
+        return Repair(self.function, tuple(told), len(self.inputs) + len(usable), complete, checked)   # as the code runs
 
     def _right_on(self, mutant, indices, every, wanted) -> bool:
         values = self.answers(mutant, indices, every)
-        return values is not None and all(self.right(v, wanted[i], confirming=True) for v, i in zip(values, indices))
+        if values is None:
+            return False
+        if mutant.key not in self.checked:
+            return all(self.right(v, wanted[i], confirming=True) for v, i in zip(values, indices))
+        # A change the check judged right is confirmed against the student's own answers (their recipe
+        # differs from the reference's legitimately, by a measure the check knows, not this): where
+        # theirs are wrong, far nearer the reference's (or half as near, within the spread the check
+        # accepted); where theirs are right, no farther than that spread or theirs.
+        spread = 1.5 * self.checked[mutant.key] + 1e-9
+        missing = [i for i in indices if i not in self.theirs and i >= len(self.students)]
+        if missing:
+            own = self.answers(None, missing, every)
+            if own is None:
+                return False
+            self.theirs.update(zip(missing, own))
+        for value, i in zip(values, indices):
+            theirs = self.students[i] if i < len(self.students) else self.theirs[i]
+            if self.right(value, wanted[i]):
+                continue
+            apart, off = naming.distance(value, wanted[i]), naming.distance(theirs, wanted[i])
+            if _wrong(theirs, wanted[i]):
+                if not (apart * REPLAY_NEARER <= off or (apart <= spread and 2 * apart <= off)):
+                    return False
+            elif apart > max(spread, 1.5 * off):
+                return False
+        return True
 
     def right(self, value, reference, student=None, confirming: bool = False) -> bool:
         """:func:`right`, up to scale only where no failing answer of the student's is the reference's
         up to scale (then scale is the mistake, and any variant that leaves it would look right)."""
         return right(value, reference, student, confirming, projective=self.projective)
+
+
+def _replayable(trial) -> bool:
+    """Whether the trial's check can be run again with a variant answering: not one with properties."""
+    return not getattr(trial, "_properties", 1) and getattr(trial, "check", None) is not None
+
+
+class _Replayed:
+    """The trial's sandbox as a check run again meets it (:meth:`_Variants.passes_check`): every call
+    answered by the variant in the companion, within the repairs' time; nothing shared with the
+    grading (a value another check computed from the student's own code is computed again)."""
+
+    def __init__(self, variants: _Variants, source: str):
+        self.variants, self.source = variants, source
+        self.shared: dict = {}
+        self.submission_dir = getattr(variants.trial.sandbox, "submission_dir", None)
+
+    def call(self, module, function, args=(), kwargs=None, *, timeout, forbid=()):
+        from ...sandbox.supervisor import CallOutcome
+
+        outcome = self.variants.companion.call_variant(
+            module, self.source, function, [(tuple(args), dict(kwargs or {}))], forbid=forbid,
+            timeout=max(0.05, min(timeout or np.inf, self.variants.clock.left())))
+        if not outcome.ok:
+            return outcome
+        value = outcome.value[0] if isinstance(outcome.value, list) and len(outcome.value) == 1 else None
+        if isinstance(value, dict) and "__error__" in value:
+            return CallOutcome(ok=False, kind="exception", message=str(value["__error__"]), seconds=outcome.seconds)
+        return CallOutcome(ok=True, value=value, seconds=outcome.seconds)
 
 
 def named_by_repair(verdict, trial):
