@@ -240,7 +240,7 @@ def test_a_change_the_check_itself_accepts_is_told_for_a_students_own_recipe(tmp
     told = [c for c in checks if c.mistake == repair.MISTAKE + "swap_items"]
     assert told, [c.message for c in checks]
     assert "`(int(round(h * sy)), int(round(w * sx)))` to `(int(round(w * sx)), int(round(h * sy)))`" \
-        in told[0].message and "answers this check accepts, near the expected ones" in told[0].message
+        in told[0].message and "makes `scale` pass this check, its answers nearer the expected ones" in told[0].message
 
 
 def test_a_failure_too_small_for_a_repairs_rounding_is_judged_by_the_check(tmp_path):
@@ -258,6 +258,29 @@ def test_a_failure_too_small_for_a_repairs_rounding_is_judged_by_the_check(tmp_p
                         and "(width - 1.0, -(c + a * (width - 1)) / b))` (line 65)" in c.message for c in told), \
         [c.message for c in checks]
     assert not any("//" in c.message for c in checks)
+
+
+def test_a_function_with_many_right_answers_is_repaired_by_its_check(tmp_path):
+    """A rectification through cv2.stereoRectify (right, but far from the reference's own rectifying
+    maps) that builds the right image's map with the left camera's rotation: mending it brings its
+    answers only somewhat nearer the reference's, so the check itself, run again, judges it."""
+    folder = edited_reference(tmp_path, "lab12_stereo", ("def rectify(img_l, img_r, K1, K2, R, T):", """def rectify(img_l, img_r, K1, K2, R, T):
+    K1, K2 = np.asarray(K1, np.float64), np.asarray(K2, np.float64)
+    h, w = img_l.shape[:2]
+    R1, R2, Pn1, Pn2 = cv2.stereoRectify(K1, np.zeros(5), K2, np.zeros(5), (w, h), np.asarray(R, np.float64),
+                                         np.asarray(T, np.float64).reshape(3, 1))[:4]
+    H1 = Pn1[:, :3] @ R1 @ np.linalg.inv(K1)
+    H2 = Pn2[:, :3] @ R1 @ np.linalg.inv(K2)
+    return cv2.warpPerspective(img_l, H1, (w, h)), cv2.warpPerspective(img_r, H2, (w, h)), H1, H2
+
+
+def _unused_rectify(img_l, img_r, K1, K2, R, T):"""))
+    result = grade(folder, ["lab12.ex3"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab12.ex3") if c.score < c.max_score]
+    told = [c for c in checks if c.mistake.startswith(repair.MISTAKE)]
+    assert told, [c.message for c in checks]
+    assert "changing `Pn2[:, :3] @ R1` to `Pn2[:, :3] @ R2`" in told[0].message
+    assert "makes `rectify` pass this check" in told[0].message and not told[0].hint
 
 
 def test_a_function_applied_where_it_does_not_belong_is_shown(tmp_path):

@@ -506,6 +506,17 @@ def _named_by_repair(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
         return verdict
 
 
+def _remember_check(check: Check, trial: Trial) -> None:
+    """Keep the check under the functions it called, for repairs judged by checks run again
+    (:func:`autograder.engine.mutants.repair.remember_check`). Never costs the verdict (logged)."""
+    from .mutants.repair import remember_check
+
+    try:
+        remember_check(trial)
+    except Exception as exc:  # noqa: BLE001 - the verdict stands without it
+        _log_grader_error(check, exc)
+
+
 def _told_if_inherited(verdict: Verdict, check: Check, trial: Trial) -> tuple[Verdict, bool]:
     """A failed verdict told as inherited from another of the student's functions when it is
     (:mod:`autograder.engine.inherited`), and whether it is. Never costs the verdict (logged)."""
@@ -687,6 +698,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
                                        "the rest was graded - please tell your instructor"), ERROR
         tb = ""
         _log_grader_error(check, exc)
+    _remember_check(check, trial)
     inherited = False   # a failure another of the student's functions causes is not this one's mistake
     if status in (FAILED, PARTIAL) and student_failure in ("", "exception"):
         verdict, inherited = _told_if_inherited(verdict, check, trial)

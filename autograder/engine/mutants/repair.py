@@ -101,7 +101,7 @@ class Repair:
     fixes: tuple
     inputs: int
     complete: bool = True   # every single change was tried (else another place might mend it too)
-    checked: bool = False   # judged by the failed check itself (answers near the reference's, not equal)
+    checked: str = ""       # judged by the failed check itself: confirmed by its "checks" or answers "nearer"
 
     @property
     def mistake(self) -> str:
@@ -111,14 +111,17 @@ class Repair:
     def sentence(self) -> str:
         head = "Trying small changes to your code"
         said = f"the expected answers on all {self.inputs} inputs tried"
-        if self.checked:   # (the student's own recipe: near the reference's answers, as the check accepts)
-            said = f"answers this check accepts, near the expected ones on all {self.inputs} inputs tried"
+        makes = f"makes `{self.function}` give {said}"
+        if self.checked:   # (the student's own recipe, or a function with many right answers)
+            makes = f"makes `{self.function}` pass this check, " + (
+                "and the grading's other checks of it" if self.checked == "checks" else
+                f"its answers nearer the expected ones on the {self.inputs} inputs tried")
         if len(self.fixes) == 1:
-            return f"{head}: {self.fixes[0].told(self.function)} makes `{self.function}` give {said}, " \
+            return f"{head}: {self.fixes[0].told(self.function)} {makes}, " \
                    + ("so the mistake is likely there" if self.complete
                       else "so the mistake may be there (other changes were not all tried in the time)")
         listed = "; ".join(fix.told(self.function) for fix in self.fixes)
-        return f"{head}: each of these makes `{self.function}` give {said}, so the mistake is likely at one " \
+        return f"{head}: each of these {makes}, so the mistake is likely at one " \
                f"of them: {listed}"
 
 
@@ -438,11 +441,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     earlier = shared.setdefault("repair found", {}).get(function, [])
     variant = _Variants(trial, model, student, function, inputs, references, clock)
     off = sum(naming.distance(references[i], variant.students[i]) for i in failing)
-    candidates, near = [], []
+    candidates, near, near_answers = [], [], {}
     known = {m.key for m in earlier}
     complete = True   # every change tried (or ruled out in an earlier check)
     for mutant in list(earlier) + [m for m in student.ordered(function) if m.key not in known]:
-        if clock.left() <= (RESERVE if candidates else 0):
+        if clock.left() <= (RESERVE if candidates or (near and variant.replayable) else 0):
             complete = False
             break
         if mutant.key in ruled_out:
@@ -456,6 +459,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             apart = sum(naming.distance(v, references[i]) for v, i in zip(values, failing))
             if apart < 0.9 * off:
                 near.append((apart, mutant))
+                near_answers[mutant.key] = values
             # Far nearer, not the reference's to the last grey level (the student's own recipe: a
             # resize where the reference warps): the check's own tolerances judge it.
             if apart * (2 if subtle else REPLAY_NEARER) <= off and variant.passes_check(mutant, values, failing):
@@ -463,6 +467,16 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                 continue
         if clock.left() > 0:
             ruled_out.add(mutant.key)
+    if not candidates:
+        # A function with many right answers (a rectification) comes only somewhat nearer the
+        # reference's when mended: the nearest changes are judged by the check itself.
+        for _, mutant in sorted(near, key=lambda pair: pair[0]):
+            if variant.replays >= REPLAYS or clock.left() <= 0:
+                break
+            if mutant.key in variant.checked or not variant.passes_check(mutant, near_answers[mutant.key], failing):
+                continue
+            candidates.append(mutant)
+            break
     fixes, lines = [], set()
     shown = [(mutant, variant.fix(mutant)) for mutant in candidates]
     # The smallest change of the text first: the student's slip is a few characters (`R.T` for `R`),
@@ -516,6 +530,7 @@ FIXES = 3         # the most fixes told (one per line)
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
 REPLAYS = 4       # the most changes a failed check is replayed with
+OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by a check must pass too
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
 
@@ -548,6 +563,7 @@ class _Variants:
         self.checked: dict = {}     # change -> its spread, where the check itself judged it right
         self.replays = 0
         self.theirs: dict = {}      # confirmation input -> the student's own answer there
+        self.confirmed_by_checks = False   # a change the check judged, confirmed by its other checks
 
     def source(self, mutant) -> str | None:
         """The changed defs of the student's module (None when the change cannot be written)."""
@@ -582,25 +598,30 @@ class _Variants:
         draw and shrink anew for each variant). ``values``: the variant's answers on the ``failing``
         inputs (how far from the reference's the check accepts them is the spread its confirmation
         allows)."""
-        from ..checks import Trial, Verdict
-
         if not self.replayable or self.replays >= REPLAYS or self.clock.left() <= 0:
             return False
-        source = self.source(mutant)
-        if source is None:
-            return False
         self.replays += 1
-        check = self.trial.check
+        if not self._replay(mutant, self.trial.check):
+            return False
+        self.checked[mutant.key] = max((naming.distance(v, self.references[i]) for v, i in zip(values, failing)),
+                                       default=0.0)
+        return True
+
+    def _replay(self, mutant, check) -> bool:
+        """Whether ``check`` passes run again with every call answered by the variant (False for a
+        check with properties, which it cannot be run again in the time)."""
+        from ..checks import Trial, Verdict
+
+        source = self.source(mutant)
+        if source is None or self.clock.left() <= 0:
+            return False
         replayed = Trial(_Replayed(self, source), check, self.trial.forbid, self.trial.inputs)
         try:
             verdict = check.func(replayed)
         except Exception:  # noqa: BLE001 - a failed check, the variant's exception, a call out of time
             return False
         passed = verdict is None or (isinstance(verdict, Verdict) and verdict.fraction >= 1.0)
-        if passed and not replayed._properties:
-            self.checked[mutant.key] = max(naming.distance(v, self.references[i]) for v, i in zip(values, failing))
-            return True
-        return False
+        return passed and not replayed._properties
 
     def confirmed(self, mutant, failing) -> bool:
         """Whether the variant is also right on the trial's other calls and on confirmation inputs
@@ -608,8 +629,9 @@ class _Variants:
         from ..checks import fingerprint
 
         others = [i for i in range(len(self.inputs)) if i not in failing]
-        if others and not self._right_on(mutant, others, self.inputs, self.references):
-            return False
+        if others and mutant.key not in self.checked and not self._right_on(mutant, others, self.inputs,
+                                                                             self.references):
+            return False   # (a change the check judged ran on them when the check ran again)
         if self.confirmations is None:
             # The function's calls in the grading's earlier checks (an image of another size, other
             # arguments), then inputs derived from the failing ones: a change right by coincidence
@@ -628,14 +650,45 @@ class _Variants:
             wanted = dict(zip(indices, runner.run((), indices, max(0.5, self.clock.left()))))
             self.confirmations = (every, wanted, [i for i in indices if naming._error_kind(wanted[i]) is None])
         every, wanted, usable = self.confirmations
-        return not usable or self._right_on(mutant, usable, every, wanted)
+        if not usable or self._right_on(mutant, usable, every, wanted):
+            return True
+        if mutant.key not in self.checked:
+            return False
+        # A function with many right answers (a rectification, a disparity map with its own borders)
+        # is far from the reference's where it is right: the grading's other checks of it judge, or,
+        # where none can run again, its answers must come nearer the reference's than the student's
+        # somewhere (half the distance) and nowhere be much farther.
+        if self.passes_other_checks(mutant):
+            self.confirmed_by_checks = True
+            return True
+        return not self._other_checks() and self._nearer_somewhere(mutant, usable, every, wanted)
+
+    def _nearer_somewhere(self, mutant, indices, every, wanted) -> bool:
+        values = self.answers(mutant, indices, every)
+        if values is None:
+            return False
+        pairs = [(naming.distance(value, wanted[i]), naming.distance(self.theirs[i], wanted[i]))
+                 for value, i in zip(values, indices) if i in self.theirs]
+        return len(pairs) == len(indices) and any(2 * apart <= off for apart, off in pairs) \
+            and all(apart <= 1.5 * off + 1e-9 for apart, off in pairs)
+
+    def _other_checks(self) -> list:
+        return [check for check in self.trial.sandbox.shared.get(("checks calling", self.function), ())
+                if check is not self.trial.check][-OTHER_CHECKS:]
+
+    def passes_other_checks(self, mutant) -> bool:
+        """Whether the grading's other checks that called the function (:func:`remember_check`; at
+        least one, at most :data:`OTHER_CHECKS`) pass when run again with the variant."""
+        others = self._other_checks()
+        return bool(others) and all(self._replay(mutant, check) for check in others)
 
     def repair(self, fixes, complete: bool = True) -> Repair:
         """The repair told for ``fixes`` [(mutant, fix)], kept for the grading's later checks."""
         self.trial.sandbox.shared["repair found"][self.function] = [mutant for mutant, _ in fixes]
         usable = self.confirmations[2] if self.confirmations else []
         told = sorted((fix for _, fix in fixes), key=lambda fix: (fix.where != self.function, fix.changes[0][0]))
-        checked = any(mutant.key in self.checked for mutant, _ in fixes)
+        checked = "" if not any(mutant.key in self.checked for mutant, _ in fixes) else \
+            "checks" if self.confirmed_by_checks else "nearer"
         return Repair(self.function, tuple(told), len(self.inputs) + len(usable), complete, checked)   # as the code runs
 
     def _right_on(self, mutant, indices, every, wanted) -> bool:
@@ -671,6 +724,19 @@ class _Variants:
         """:func:`right`, up to scale only where no failing answer of the student's is the reference's
         up to scale (then scale is the mistake, and any variant that leaves it would look right)."""
         return right(value, reference, student, confirming, projective=self.projective)
+
+
+def remember_check(trial) -> None:
+    """Keep the check of a trial that ran (passed or not) under each student function it called:
+    a change judged by running a failed check again must pass these too
+    (:meth:`_Variants.passes_other_checks`). Checks with properties are not kept."""
+    shared = getattr(trial.sandbox, "shared", None)
+    if shared is None or not _replayable(trial):
+        return
+    for function in dict.fromkeys(call[0] for call in trial.calls):
+        kept = shared.setdefault(("checks calling", function), [])
+        if trial.check not in kept:
+            kept.append(trial.check)
 
 
 def _replayable(trial) -> bool:
