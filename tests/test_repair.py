@@ -240,7 +240,7 @@ def test_a_change_the_check_itself_accepts_is_told_for_a_students_own_recipe(tmp
     told = [c for c in checks if c.mistake == repair.MISTAKE + "swap_items"]
     assert told, [c.message for c in checks]
     assert "`(int(round(h * sy)), int(round(w * sx)))` to `(int(round(w * sx)), int(round(h * sy)))`" \
-        in told[0].message and "makes `scale` pass this check, its answers nearer the expected ones" in told[0].message
+        in told[0].message and "makes `scale` pass this check, and its answers on the" in told[0].message
 
 
 def test_a_failure_too_small_for_a_repairs_rounding_is_judged_by_the_check(tmp_path):
@@ -281,6 +281,19 @@ def _unused_rectify(img_l, img_r, K1, K2, R, T):"""))
     assert told, [c.message for c in checks]
     assert "changing `Pn2[:, :3] @ R1` to `Pn2[:, :3] @ R2`" in told[0].message
     assert "makes `rectify` pass this check" in told[0].message and not told[0].hint
+
+
+def test_a_transform_applied_twice_in_an_estimator_is_repaired(tmp_path):
+    """E from K^-1-normalised points, then K2^T E K1 applied again: dropping the outer factors gives
+    the reference's E exactly on the check's exact correspondences; on noisy derived points every
+    8-point answer is its own least squares', so the check, run again, confirms it."""
+    folder = edited_reference(tmp_path, "lab11_two_view", (
+        "    E = _eight_point_core(x1, x2)\n", "    E = K2.T @ _eight_point_core(x1, x2) @ K1\n"))
+    result = grade(folder, ["lab11.ex3"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab11.ex3") if c.score < c.max_score]
+    told = [c for c in checks if c.mistake.startswith(repair.MISTAKE)]
+    assert told, [c.message for c in checks]
+    assert "changing `K2.T @ _eight_point_core(x1, x2) @ K1` to `_eight_point_core(x1, x2)`" in told[0].message
 
 
 def test_a_function_applied_where_it_does_not_belong_is_shown(tmp_path):

@@ -1054,6 +1054,9 @@ def _student_changes(node, parent):
             yield "dehomogenise", last.upper.value, ""
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
+    chain = _chain_of_three(node)
+    if chain is not None and not any(_is_inverse(f) for f in (chain[0], chain[2])):
+        yield "inverse", "undone_never", ""   # `K2.T @ F @ K1` -> `F`: a transform applied twice, or too early
     if not isinstance(node, ast.Call):
         return
     dotted = _dotted(node.func)

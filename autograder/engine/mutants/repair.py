@@ -83,6 +83,12 @@ class Fix:
                        .get_matching_blocks()) for before, after in changed)
         return sum(len(before) + len(after) for before, after in changed) - 2 * kept
 
+    @property
+    def written(self) -> int:
+        """How long the changed code is: of two changes of one size, the shorter result is the slip
+        undone (`len(frames)`), the longer one compensates for it (`len(frames) - 1 + 1`)."""
+        return sum(len(after) for _, _, after in self.changes)
+
     def told(self, function: str) -> str:
         inside = "" if self.where == function else f", in `{self.where}`"
         said = [f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
@@ -115,7 +121,7 @@ class Repair:
         if self.checked:   # (the student's own recipe, or a function with many right answers)
             makes = f"makes `{self.function}` pass this check, " + (
                 "and the grading's other checks of it" if self.checked == "checks" else
-                f"its answers nearer the expected ones on the {self.inputs} inputs tried")
+                f"and its answers on the {self.inputs} inputs tried are no farther from the expected ones")
         if len(self.fixes) == 1:
             return f"{head}: {self.fixes[0].told(self.function)} {makes}, " \
                    + ("so the mistake is likely there" if self.complete
@@ -153,8 +159,8 @@ class _Student:
             if function not in self._ordered:
                 shown = [m for m in self.mutants.get(function, ())
                          if (m.where == function or m.where not in self.mutants) and self.fix(m) is not None]
-                self._ordered[function] = sorted(
-                    shown, key=lambda m: (m.where != function, self.fixes[m.key].size, m.line))
+                self._ordered[function] = sorted(shown, key=lambda m: (
+                    m.where != function, self.fixes[m.key].size, self.fixes[m.key].written, m.line))
             return self._ordered[function]
 
     def fix(self, mutant) -> Fix | None:
@@ -481,17 +487,17 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     shown = [(mutant, variant.fix(mutant)) for mutant in candidates]
     # The smallest change of the text first: the student's slip is a few characters (`R.T` for `R`),
     # where a change that compensates for it elsewhere on the line rewrites more (`c @ R.T`).
-    shown = sorted(((m, f) for m, f in shown if f is not None), key=lambda pair: pair[1].size)
+    shown = sorted(((m, f) for m, f in shown if f is not None), key=lambda pair: (pair[1].size, pair[1].written))
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
         if fix.changes[0][0] in lines:
             continue
-        if variant.confirmed(mutant, failing):
+        if variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs):
             fixes.append((mutant, fix))
             lines.add(fix.changes[0][0])
-        elif clock.left() > 0:
-            ruled_out.add(mutant.key)
+        elif clock.left() > 0 and not (mutant.key in variant.checked and not variant.other_checks()):
+            ruled_out.add(mutant.key)   # (one the check passed with waits for another check to confirm it)
     if fixes:
         # A change in a helper this function shares with other graded functions (the warp's
         # interpolation) mends its answers by breaking theirs: told only when nothing else is. A
@@ -564,6 +570,7 @@ class _Variants:
         self.replays = 0
         self.theirs: dict = {}      # confirmation input -> the student's own answer there
         self.confirmed_by_checks = False   # a change the check judged, confirmed by its other checks
+        self.exact: set = set()     # changes the check judged that gave the reference's answers exactly
 
     def source(self, mutant) -> str | None:
         """The changed defs of the student's module (None when the change cannot be written)."""
@@ -605,6 +612,8 @@ class _Variants:
             return False
         self.checked[mutant.key] = max((naming.distance(v, self.references[i]) for v, i in zip(values, failing)),
                                        default=0.0)
+        if values and all(self.right(v, self.references[i]) for v, i in zip(values, failing)):
+            self.exact.add(mutant.key)
         return True
 
     def _replay(self, mutant, check) -> bool:
@@ -661,25 +670,42 @@ class _Variants:
         if self.passes_other_checks(mutant):
             self.confirmed_by_checks = True
             return True
-        return not self._other_checks() and self._nearer_somewhere(mutant, usable, every, wanted)
+        return not self.other_checks() and self._nearer_somewhere(mutant, usable, every, wanted)
 
     def _nearer_somewhere(self, mutant, indices, every, wanted) -> bool:
+        """Nearer the reference's answers than the student's own somewhere (half the distance) and
+        nowhere much farther; or, for a change that gives the reference's answers exactly on the
+        check's inputs (an estimator on exact data), no farther on the whole (on noisy derived inputs
+        an estimator's answer is its own least squares': the student's and the reference's differ)."""
         values = self.answers(mutant, indices, every)
         if values is None:
             return False
         pairs = [(naming.distance(value, wanted[i]), naming.distance(self.theirs[i], wanted[i]))
                  for value, i in zip(values, indices) if i in self.theirs]
-        return len(pairs) == len(indices) and any(2 * apart <= off for apart, off in pairs) \
-            and all(apart <= 1.5 * off + 1e-9 for apart, off in pairs)
+        if len(pairs) != len(indices):
+            return False
+        if mutant.key in self.exact:
+            return sum(apart for apart, _ in pairs) <= sum(off for _, off in pairs)
+        return any(2 * apart <= off for apart, off in pairs) and all(apart <= 1.5 * off + 1e-9 for apart, off in pairs)
 
-    def _other_checks(self) -> list:
+    def other_checks(self) -> list:
         return [check for check in self.trial.sandbox.shared.get(("checks calling", self.function), ())
                 if check is not self.trial.check][-OTHER_CHECKS:]
+
+    def confirmed_by_check(self, mutant, failing, inputs) -> bool:
+        """Whether a change right on the failing inputs but not on the confirmation inputs (an
+        estimator's answer on noisy points depends on its own least squares: the student's and the
+        reference's differ there legitimately) is confirmed as one the check judges: the check passes
+        run again with it, and so do the grading's other checks of the function, or it comes nearer."""
+        if mutant.key in self.checked:
+            return False   # (judged by the check already: not confirmed)
+        values = self.answers(mutant, failing, inputs)
+        return values is not None and self.passes_check(mutant, values, failing) and self.confirmed(mutant, failing)
 
     def passes_other_checks(self, mutant) -> bool:
         """Whether the grading's other checks that called the function (:func:`remember_check`; at
         least one, at most :data:`OTHER_CHECKS`) pass when run again with the variant."""
-        others = self._other_checks()
+        others = self.other_checks()
         return bool(others) and all(self._replay(mutant, check) for check in others)
 
     def repair(self, fixes, complete: bool = True) -> Repair:
