@@ -150,6 +150,20 @@ def test_a_pyramid_collapsed_with_resize_is_told_the_two_enlargements(tmp_path):
     assert "compare each band" not in check.message + check.hint
 
 
+def test_a_band_with_its_sign_flipped_in_float_is_not_told_uint8_arithmetic(tmp_path):
+    """The pyramid built in float with each band's sign flipped (up(coarser) - finer): blending an image
+    with itself changes it by over 100 grey levels, as uint8 arithmetic would; the code computes in
+    float, so neither uint8 nor a band "still computed from uint8" is said, but what must hold."""
+    from conftest import edited_reference
+
+    edit = ("bands.append(fine - cv2.pyrUp(coarse, dstsize=size))", "bands.append(cv2.pyrUp(coarse, dstsize=size) - fine)")
+    result = grade(edited_reference(tmp_path, "lab08_homographies", edit), ["lab08.ext3"], pictures="none")
+    [check] = [c for c in check_results(result, "lab08.ext3") if c.name == "blending an image with itself leaves it unchanged"]
+    assert not check.passed
+    said = check.message + check.hint
+    assert "uint8" not in said and "must undo the one taken out" in said, said
+
+
 def test_a_ransac_measuring_its_error_backwards_is_not_told_an_inverted_mask_or_an_ignored_threshold(tmp_path):
     """|H dst - src| for |H src - dst|: every pair ends up an inlier and H a fit to all of them. The
     outputs look like a fit to all the points and, against the truth, like an inverted mask; neither

@@ -194,5 +194,5 @@ def test_a_dp_on_uint8_costs_is_not_told_its_backtracking_or_smoothness_is_missi
     failed = [c for c in check_results(result, "lab12.ex5") if not c.passed and c.max_score > 0]
     assert failed, "uint8 costs lose points"
     said = " ".join(c.message + " " + (c.mistake or "") for c in failed)
-    assert "the backtracking does not start right" not in said
+    assert "where the backtracking starts, is wrong" not in said
     assert "the smoothness term is ignored" not in said

@@ -1927,11 +1927,15 @@ def blend_identity(t):
                mistake=NO_BANDS_ADDED)
     signed = got.astype(np.int16) - image
     if (np.abs(signed).max(axis=2) > 100).mean() > 0.02 or (signed.mean() > 2 and (signed >= 0).mean() > 0.95):
-        t.fail(f"{what} changed {bad:.0%} of the pixels: the Laplacian levels are negative in "
-               "places, and uint8 arithmetic clips them to 0 or wraps them around; "
-               + Hint("compute the pyramids in float (img.astype(np.float32))", asks=TO_FLOAT,
-                      instead="your code {found} somewhere, but a level or band is still computed from uint8 "
-                              "images").said(t))
+        in_float = Hint("compute the pyramids in float (img.astype(np.float32))", asks=TO_FLOAT, instead="").said(t)
+        if in_float:   # code that never converts to float: its negative bands clip or wrap round
+            t.fail(f"{what} changed {bad:.0%} of the pixels: the Laplacian levels are negative in "
+                   f"places, and uint8 arithmetic clips them to 0 or wraps them around; {in_float}")
+        # Code in float: the same large changes say only that collapsing does not undo building.
+        t.fail(measured(f"{what} changed {bad:.0%} of the pixels, some by more than 100 grey levels: blending an "
+                        "image with itself must give it back, so each band added back when the pyramid is collapsed "
+                        "must undo the one taken out when it was built (band = level - up(next level), then level = "
+                        "up(next level) + band, with the same enlargement)"))
     read = code_of(t).reachable(functions_read(t))
     if (calls("cv2.pyrUp") & calls("cv2.resize")).found(read):
         t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels: {RESIZE_AND_PYRUP}",

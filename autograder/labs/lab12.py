@@ -1387,8 +1387,9 @@ def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, scene, compared_with=
            mistake=SMOOTHNESS_IGNORED)
 
 
-BACKTRACKING = ("the backtracking does not start right: at the last column, from the disparity with "
-                "the lowest total energy there (or it never fills that column)")
+# Said of the map, not of the code: a last column wrong alone shows where the backtracking starts,
+# not why (a start that is right meets wrong energies when the forward pass is wrong).
+BACKTRACKING = "the last column, where the backtracking starts, is wrong while the rest of the map is mostly right"
 OVERSMOOTHED = "the default smoothness is far too large for your cost's scale"
 
 
@@ -1482,10 +1483,13 @@ def judge_last_column(t: Trial, what: str, got, scene):
     if bad > LAST_COLUMN_TOLERANCE and stands_out:
         values = np.unique(np.round(column[known], 2))
         shown = ", ".join(f"{v:g}" for v in values[:3]) + (", ..." if len(values) > 3 else "")
-        t.fail(f"{what}: it looks like {BACKTRACKING}: the last column (x = {got.shape[1] - 1}) is wrong "
-               f"in {bad:.0%} of the rows (your values there: {shown}; true disparities "
-               f"{truth_column[known].min():.1f} to {truth_column[known].max():.1f}); the backtracking starts "
-               "at the last column and reaches every column down to x = 0.", mistake=BACKTRACKING)
+        # measured: the map's last column, where every backtracking starts, whatever the code does there
+        t.fail(measured(f"{what}: the last column (x = {got.shape[1] - 1}), where the backtracking starts, is wrong "
+                        f"in {bad:.0%} of the rows (your values there: {shown}; true disparities "
+                        f"{truth_column[known].min():.1f} to {truth_column[known].max():.1f}), while the map as a "
+                        "whole is mostly right: look at how that column is filled and at the first steps back "
+                        "from it (the backtracking starts at the last column and reaches every column down to "
+                        "x = 0)."), mistake=BACKTRACKING)
 
 
 @ex5.check("dp_stereo beats block matching where the texture is weak", points=4, timeout=STEREO_TIMEOUT)

@@ -373,7 +373,7 @@ MISTAKES = {
             shifted = np.zeros_like(disparity)
             shifted[:, :-1] = disparity[:, 1:]
             return shifted
-        """, ["the backtracking does not start right"]),
+        """, ["the last column", "where the backtracking starts, is wrong"]),
     "DP with a default smoothness far too large": ("lab12.ex5", """
         DEFAULT_SMOOTHNESS = 400.0
         """, ["the default smoothness is far too large"]),
