@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import ast
 import textwrap
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -294,6 +295,19 @@ def test_a_transform_applied_twice_in_an_estimator_is_repaired(tmp_path):
     told = [c for c in checks if c.mistake.startswith(repair.MISTAKE)]
     assert told, [c.message for c in checks]
     assert "changing `K2.T @ _eight_point_core(x1, x2) @ K1` to `_eight_point_core(x1, x2)`" in told[0].message
+
+
+def test_a_change_a_check_cannot_tell_from_the_fix_is_not_told_on_numbers_nearer_by_chance(tmp_path):
+    """e2 taken as the last row of U: on the hidden check's forward motion e1 = e2, so `U[-1]` -> `Vt[-1]`
+    passes that check too; on derived inputs (a perturbed F is no longer of rank 2) nearer or farther
+    is chance, so only the change the grading's checks all accept, to `U[:, -1]`, is told."""
+    # (the blind set's file itself: a submission's hidden inputs are drawn from its bytes)
+    written = Path(__file__).parents[1] / "benchmarks/blind_mistakes/2026-11-28e/lab11_two_view/07_epipoles_U_last_row.py"
+    (tmp_path / "lab11_two_view.py").write_text(written.read_text())
+    result = grade(tmp_path, ["lab11.ex5"], pictures="none")
+    told = [c for c in check_results(result, "lab11.ex5") if c.mistake.startswith(repair.MISTAKE)]
+    assert not any("(Vt[-1], Vt[-1])" in c.message for c in told), [c.message for c in told]
+    assert all("`(Vt[-1], U[:, -1])`" in c.message for c in told), [c.message for c in told]
 
 
 def test_a_function_applied_where_it_does_not_belong_is_shown(tmp_path):

@@ -100,6 +100,7 @@ def fingerprint(*values) -> str:
 
 
 _CALLS_KEPT = 32   # a property's hundreds of calls: its last ones hold the failing example
+_EXAMPLES_KEPT = 3   # a property's passing examples kept for running its check again
 
 # Hypothesis's engine runs one property at a time, whatever the lanes (runner.grade): the
 # examples it draws never depend on another lane's property.
@@ -139,6 +140,9 @@ class Trial:
         # (function, argument) pairs the student's function modified in place.
         self.modified_inputs: list[tuple[str, str]] = []
         self._properties = 0  # t.for_all calls so far (each has its recorded examples)
+        # Per t.for_all call, the examples that decided it: the failing one, or a few that passed (a
+        # check run again on them -- autograder.engine.mutants.repair -- needs no Hypothesis engine).
+        self.property_examples: list[list] = []
         self._probed: dict = {}  # confirmation probes' answers, asked once per trial (see probe)
         # The calls behind the values this trial was served from another check's t.shared, as in
         # calls: what it judged although it called nothing (autograder.engine.inherited).
@@ -429,8 +433,10 @@ class Trial:
         """:meth:`for_all` once its recorded examples are known (``where``) and its ``seed``."""
         from . import examples
 
-        passed = self._replay(examples.recorded(where), body)
+        recorded = examples.recorded(where)
+        passed = self._replay(recorded, body)
         if passed is None:
+            self.property_examples.append(list(recorded or ())[:_EXAMPLES_KEPT])
             return
         # Only now, with examples to draw, is Hypothesis needed (see autograder.engine.strategies).
         from hypothesis import errors, given, seed as seeded, settings
@@ -460,10 +466,12 @@ class Trial:
             except StudentFailure as exc:
                 if exc.outcome.kind not in _FATAL_KINDS and last:  # fatal ones fail for every input
                     exc.message += self._counterexample(describe(last[0]))
+                self.property_examples.append(list(last))
                 raise
             except Fail as exc:
                 if last:
                     exc.message += self._counterexample(describe(last[0]))
+                self.property_examples.append(list(last))
                 raise
             except errors.Flaky as exc:
                 # A call the grader could not make (its worker did not start in time on a loaded
@@ -477,6 +485,7 @@ class Trial:
                     continue
                 self._unreproduced(exc, describe(last[0]) if last else "")
         examples.record(where, seen)
+        self.property_examples.append(list(seen[:_EXAMPLES_KEPT]))
 
     def _unreproduced(self, flaky: BaseException, example: str):
         """Fail a property whose failure Hypothesis could not reproduce (twice): with what the

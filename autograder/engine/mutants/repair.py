@@ -39,6 +39,7 @@ import numpy as np
 
 from ...loading.parsing import parse
 from ...loading.reading import MAX_SOURCE_BYTES
+from ..checks import Trial, Verdict, fingerprint
 from . import naming
 from .helper import HelperFailed
 from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_defs
@@ -425,9 +426,13 @@ def _widened(call, defaults=()) -> list:
     return [made] if changed else []
 
 
-def _key(call) -> str:
-    from ..checks import fingerprint
+def _weight(call) -> int:
+    """How large a call's array arguments are (bytes): what a slow function's time grows with."""
+    function, args, kwargs = call[:3]
+    return sum(value.nbytes for value in (*args, *kwargs.values()) if isinstance(value, np.ndarray))
 
+
+def _key(call) -> str:
     return fingerprint(call[0], call[1], call[2])
 
 
@@ -447,6 +452,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     earlier = shared.setdefault("repair found", {}).get(function, [])
     variant = _Variants(trial, model, student, function, inputs, references, clock)
     off = sum(naming.distance(references[i], variant.students[i]) for i in failing)
+    # A slow function's variants are tried on its smallest failing input first (a matcher's crop
+    # offered to the error model): only those right or nearer there run on the others.
+    screen = min(failing, key=lambda i: _weight(inputs[i]))
     candidates, near, near_answers = [], [], {}
     known = {m.key for m in earlier}
     complete = True   # every change tried (or ruled out in an earlier check)
@@ -456,7 +464,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             break
         if mutant.key in ruled_out:
             continue
-        values = variant.answers(mutant, failing, inputs)
+        values = variant.screened(mutant, failing, screen, subtle)
         if values is not None and not subtle and all(variant.right(v, references[i], variant.students[i])
                                                      for v, i in zip(values, failing)):
             candidates.append(mutant)
@@ -570,7 +578,6 @@ class _Variants:
         self.replays = 0
         self.theirs: dict = {}      # confirmation input -> the student's own answer there
         self.confirmed_by_checks = False   # a change the check judged, confirmed by its other checks
-        self.exact: set = set()     # changes the check judged that gave the reference's answers exactly
 
     def source(self, mutant) -> str | None:
         """The changed defs of the student's module (None when the change cannot be written)."""
@@ -598,45 +605,61 @@ class _Variants:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
         return self.student.fix(mutant)
 
+    def screened(self, mutant, failing, screen, subtle=False) -> list | None:
+        """The variant's answers on the ``failing`` inputs, when on the ``screen`` one (the smallest)
+        it answers right or nearer the reference's than the student's own; else None."""
+        first = self.answers(mutant, [screen], self.inputs)
+        if first is None or len(failing) == 1:
+            return first
+        value, reference, theirs = first[0], self.references[screen], self.students[screen]
+        if (subtle or not self.right(value, reference, theirs)) \
+                and not naming.distance(value, reference) < 0.9 * naming.distance(theirs, reference):
+            return None
+        rest = [i for i in failing if i != screen]
+        others = self.answers(mutant, rest, self.inputs)
+        if others is None:
+            return None
+        answered = {**dict(zip(rest, others)), screen: value}
+        return [answered[i] for i in failing]
+
     def passes_check(self, mutant, values, failing) -> bool:
         """Whether the failed check, run again with every call answered by the variant, passes: its
         tolerances come from the spread of legitimate work, where :func:`right`'s are the reference's
-        rounding. At most :data:`REPLAYS` per check; never a check with properties (Hypothesis would
-        draw and shrink anew for each variant). ``values``: the variant's answers on the ``failing``
-        inputs (how far from the reference's the check accepts them is the spread its confirmation
-        allows)."""
+        rounding. At most :data:`REPLAYS` per check; a property on the examples that decided it (its
+        failing one: Hypothesis would draw and shrink anew for each variant). ``values``: the variant's
+        answers on the ``failing`` inputs (how far from the reference's the check accepts them is the
+        spread its confirmation allows)."""
         if not self.replayable or self.replays >= REPLAYS or self.clock.left() <= 0:
             return False
         self.replays += 1
-        if not self._replay(mutant, self.trial.check):
+        if self._replay(mutant, (self.trial.check, self.trial.property_examples)) is not True:
             return False
         self.checked[mutant.key] = max((naming.distance(v, self.references[i]) for v, i in zip(values, failing)),
                                        default=0.0)
-        if values and all(self.right(v, self.references[i]) for v, i in zip(values, failing)):
-            self.exact.add(mutant.key)
         return True
 
-    def _replay(self, mutant, check) -> bool:
-        """Whether ``check`` passes run again with every call answered by the variant (False for a
-        check with properties, which it cannot be run again in the time)."""
-        from ..checks import Trial, Verdict
-
+    def _replay(self, mutant, kept) -> bool | None:
+        """Whether a check passes run again with every call answered by the variant; ``kept``: the
+        check and its properties' examples (:func:`remember_check`). None when it says nothing of
+        the function: it never called it, or a property of it has no examples (not run yet)."""
+        check, examples = kept
         source = self.source(mutant)
         if source is None or self.clock.left() <= 0:
             return False
-        replayed = Trial(_Replayed(self, source), check, self.trial.forbid, self.trial.inputs)
+        replayed = _ReplayedTrial(_Replayed(self, source), check, self.trial.forbid, self.trial.inputs, examples)
         try:
             verdict = check.func(replayed)
+        except _NotReplayed:
+            return None
         except Exception:  # noqa: BLE001 - a failed check, the variant's exception, a call out of time
-            return False
-        passed = verdict is None or (isinstance(verdict, Verdict) and verdict.fraction >= 1.0)
-        return passed and not replayed._properties
+            verdict = Verdict(0.0)
+        if not any(call[0] == self.function for call in replayed.calls + replayed.served):
+            return None
+        return verdict is None or (isinstance(verdict, Verdict) and verdict.fraction >= 1.0)
 
     def confirmed(self, mutant, failing) -> bool:
         """Whether the variant is also right on the trial's other calls and on confirmation inputs
         derived from the failing ones (where the reference answers)."""
-        from ..checks import fingerprint
-
         others = [i for i in range(len(self.inputs)) if i not in failing]
         if others and mutant.key not in self.checked and not self._right_on(mutant, others, self.inputs,
                                                                              self.references):
@@ -663,34 +686,40 @@ class _Variants:
             return True
         if mutant.key not in self.checked:
             return False
-        # A function with many right answers (a rectification, a disparity map with its own borders)
-        # is far from the reference's where it is right: the grading's other checks of it judge, or,
-        # where none can run again, its answers must come nearer the reference's than the student's
-        # somewhere (half the distance) and nowhere be much farther.
+        # A function with many right answers (a rectification, an estimator on noisy points: its own
+        # least squares) is far from the reference's where it is right: the grading's other checks of
+        # it judge; where none can run again, an image's (a warp's own interpolation, a disparity map's
+        # own borders) must come nearer the reference's than the student's somewhere (half the
+        # distance) and nowhere be much farther. Numbers are not: on derived inputs that lost the
+        # structure the check's had (a perturbed F is no longer of rank 2), nearer is a coin's toss.
         if self.passes_other_checks(mutant):
             self.confirmed_by_checks = True
             return True
-        return not self.other_checks() and self._nearer_somewhere(mutant, usable, every, wanted)
+        return not self.other_checks() and naming._has_image(wanted[usable[0]]) \
+            and self._nearer_somewhere(mutant, usable, every, wanted)
 
     def _nearer_somewhere(self, mutant, indices, every, wanted) -> bool:
         """Nearer the reference's answers than the student's own somewhere (half the distance) and
-        nowhere much farther; or, for a change that gives the reference's answers exactly on the
-        check's inputs (an estimator on exact data), no farther on the whole (on noisy derived inputs
-        an estimator's answer is its own least squares': the student's and the reference's differ)."""
+        nowhere much farther."""
         values = self.answers(mutant, indices, every)
         if values is None:
             return False
         pairs = [(naming.distance(value, wanted[i]), naming.distance(self.theirs[i], wanted[i]))
                  for value, i in zip(values, indices) if i in self.theirs]
-        if len(pairs) != len(indices):
-            return False
-        if mutant.key in self.exact:
-            return sum(apart for apart, _ in pairs) <= sum(off for _, off in pairs)
-        return any(2 * apart <= off for apart, off in pairs) and all(apart <= 1.5 * off + 1e-9 for apart, off in pairs)
+        return len(pairs) == len(indices) and any(2 * apart <= off for apart, off in pairs) \
+            and all(apart <= 1.5 * off + 1e-9 for apart, off in pairs)
 
     def other_checks(self) -> list:
-        return [check for check in self.trial.sandbox.shared.get(("checks calling", self.function), ())
-                if check is not self.trial.check][-OTHER_CHECKS:]
+        """The grading's other checks that called the function, with their properties' examples; then
+        the exercise's checks not run yet (as public or hidden as this one: a hidden check's inputs
+        never reach a public phase's sandbox), which count only where they call it."""
+        shared = self.trial.sandbox.shared
+        ran = shared.get(("checks calling", self.function), [])
+        done = shared.get("checks run", set())
+        later = [(check, []) for check in self.trial.check.exercise.checks
+                 if check is not self.trial.check and not check.advice and check.hidden == self.trial.check.hidden
+                 and check.id not in done]
+        return ([kept for kept in ran if kept[0] is not self.trial.check] + later)[:OTHER_CHECKS]
 
     def confirmed_by_check(self, mutant, failing, inputs) -> bool:
         """Whether a change right on the failing inputs but not on the confirmation inputs (an
@@ -703,10 +732,15 @@ class _Variants:
         return values is not None and self.passes_check(mutant, values, failing) and self.confirmed(mutant, failing)
 
     def passes_other_checks(self, mutant) -> bool:
-        """Whether the grading's other checks that called the function (:func:`remember_check`; at
-        least one, at most :data:`OTHER_CHECKS`) pass when run again with the variant."""
-        others = self.other_checks()
-        return bool(others) and all(self._replay(mutant, check) for check in others)
+        """Whether the grading's other checks of the function (:meth:`other_checks`; at least one that
+        calls it, at most :data:`OTHER_CHECKS`) pass when run again with the variant."""
+        confirming = 0
+        for kept in self.other_checks():
+            outcome = self._replay(mutant, kept)
+            if outcome is False:
+                return False
+            confirming += outcome is True
+        return confirming > 0
 
     def repair(self, fixes, complete: bool = True) -> Repair:
         """The repair told for ``fixes`` [(mutant, fix)], kept for the grading's later checks."""
@@ -753,21 +787,47 @@ class _Variants:
 
 
 def remember_check(trial) -> None:
-    """Keep the check of a trial that ran (passed or not) under each student function it called:
-    a change judged by running a failed check again must pass these too
-    (:meth:`_Variants.passes_other_checks`). Checks with properties are not kept."""
+    """Keep the check of a trial that ran (passed or not), with its properties' examples, under each
+    student function it called: a change judged by running a failed check again must pass these too
+    (:meth:`_Variants.passes_other_checks`)."""
     shared = getattr(trial.sandbox, "shared", None)
-    if shared is None or not _replayable(trial):
+    if shared is None:
+        return
+    shared.setdefault("checks run", set()).add(trial.check.id)
+    if not _replayable(trial):
         return
     for function in dict.fromkeys(call[0] for call in trial.calls):
         kept = shared.setdefault(("checks calling", function), [])
-        if trial.check not in kept:
-            kept.append(trial.check)
+        if all(check is not trial.check for check, _ in kept):
+            kept.append((trial.check, [list(examples) for examples in trial.property_examples]))
 
 
 def _replayable(trial) -> bool:
-    """Whether the trial's check can be run again with a variant answering: not one with properties."""
-    return not getattr(trial, "_properties", 1) and getattr(trial, "check", None) is not None
+    """Whether the trial's check can be run again with a variant answering: each of its properties
+    has the examples that decided it (not one Hypothesis could not reproduce)."""
+    examples = getattr(trial, "property_examples", None)
+    return getattr(trial, "check", None) is not None and examples is not None \
+        and len(examples) == getattr(trial, "_properties", -1) and all(examples)
+
+
+class _ReplayedTrial(Trial):
+    """A trial whose properties run on the examples that decided them in the grading, no more."""
+
+    def __init__(self, sandbox, check, forbid, inputs, examples):
+        super().__init__(sandbox, check, forbid, inputs)
+        self._examples = examples
+
+    def for_all(self, strategy, body, *, max_examples=None, describe=repr):
+        index = self._properties
+        self._properties += 1
+        if index >= len(self._examples) or not self._examples[index]:
+            raise _NotReplayed()
+        for example in self._examples[index]:
+            body(example)
+
+
+class _NotReplayed(Exception):
+    """A property of a check run again without the examples that decided it."""
 
 
 class _Replayed:
