@@ -212,6 +212,31 @@ def test_two_entries_of_a_sequence_written_in_each_others_place():
     assert "swap_items" not in {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
 
 
+def test_a_step_done_to_one_input_only_and_an_argument_another_call_is_given():
+    """`xl = xl[:, 0]` with no `xr = xr[:, 0]`: the two done together; `warp(weight, H)` beside
+    `warp(image, shift @ H)`: the other call's argument. Student-only, never a step already done."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(xl, xr, image, weight, H, shift):
+            xl = np.asarray(xl)
+            xr = np.asarray(xr)
+            xl = xl[:, 0]
+            a = warp(image, shift @ H)
+            b = warp(weight, H)
+            return xl - xr, a, b
+    """)
+    made = set()
+    fn = ast.parse(source).body[1]
+    for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]:
+        if m.operator in ("sibling_step", "sibling_argument"):
+            node = list(ast.walk(fn))[m.edits[0][1]]
+            made.add(ast.unparse(repair._MAKE[m.operator](node, m.edits[0][3])))
+    assert "xl, xr = (xl[:, 0], xr[:, 0])" in made and "warp(weight, shift @ H)" in made, made
+    assert not any(text.startswith("xl, xr = (np.asarray(xl)") for text in made)   # (xr's is done already)
+    assert not {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]} & {"sibling_step", "sibling_argument"}
+
+
 def test_a_translation_matrix_with_an_entry_in_the_wrong_place_is_shown(tmp_path):
     """A student's own translation: `[0, ty, 1]` where the row is `[0, 1, ty]`."""
     folder = edited_reference(tmp_path, "lab07_transformations", (

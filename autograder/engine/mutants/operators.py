@@ -69,6 +69,8 @@ OPERATORS = {
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
     "dehomogenise": ("homogeneous", "divid", "last coordinate"),   # x[:, :2] -> x[:, :2] / x[:, 2:3]
     "swap_items": ("order", "swap", "exchang"),       # (rows, cols) -> (cols, rows), [0, ty, 1] -> [0, 1, ty]
+    "sibling_step": ("missing", "also", "both"),      # xl = xl[:, 0] -> xl, xr = xl[:, 0], xr[:, 0]
+    "sibling_argument": ("missing", "other call"),    # warp(w, H) beside warp(img, shift @ H): -> warp(w, shift @ H)
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -498,13 +500,28 @@ def _make_swap_items(node, payload):
     return new
 
 
+def _make_sibling_step(node, payload):
+    name = node.targets[0].id   # a = f(a) -> a, b = f(a), f(b)
+    twin = _renamed(node, name, payload)
+    return ast.fix_missing_locations(ast.copy_location(ast.Assign(
+        [ast.Tuple([ast.Name(name, ast.Store()), ast.Name(payload, ast.Store())], ast.Store())],
+        ast.Tuple([copy.deepcopy(node.value), twin.value], ast.Load())), node))
+
+
+def _make_sibling_argument(node, payload):
+    new = copy.deepcopy(node)
+    position, text = payload
+    new.args[position] = ast.parse(text, mode="eval").body
+    return new
+
+
 def _make_function(node, payload):
     new = copy.deepcopy(node)
     new.func = _name(payload)
     return new
 
 
-_MAKE = {"swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+_MAKE = {"sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -1000,6 +1017,7 @@ def _changes(node, parents, words: _Words, line):
                                          "transposed (reshape keeps the order of the entries; .T moves them)"
     if words.student:
         yield from _student_changes(node, parent)
+        yield from _sibling_changes(node, words)
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.RShift)):
         wrong, right = ("<<", ">>") if isinstance(node.op, ast.RShift) else (">>", "<<")
         shifted = what(node.left)
@@ -1069,6 +1087,43 @@ def _student_changes(node, parent):
         yield "function", prefix + _MISTAKEN[short], ""
     if isinstance(node.func, ast.Attribute) and node.func.attr == "reshape":
         yield "transpose", "for_reshape", ""
+
+
+def _sibling_changes(node, words):
+    """Changes that copy what the student's code does for one of two like things to the other: a step
+    done to one input only (`xl = xl[:, 0]` and no `xr = xr[:, 0]`: the two done together, `xl, xr =
+    xl[:, 0], xr[:, 0]`), and an argument of a call that another call of the same function is given
+    (`warp(weight, H, size)` beside `warp(image, shift @ H, size)`: the shift left out of one)."""
+    if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+        name = node.targets[0].id
+        if any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(node.value)):
+            done = {ast.dump(statement) for statement in ast.walk(words.fn) if isinstance(statement, ast.Assign)}
+            for other in (a.arg for a in words.fn.args.args):
+                if other != name and ast.dump(_renamed(node, name, other)) not in done:
+                    yield "sibling_step", other, ""
+    if isinstance(node, ast.Call) and not any(isinstance(a, ast.Starred) for a in node.args):
+        dotted = _dotted(node.func)
+        for other in ast.walk(words.fn):
+            if other is node or not isinstance(other, ast.Call) or _dotted(other.func) != dotted \
+                    or len(other.args) != len(node.args):
+                continue
+            for position, (mine, theirs) in enumerate(zip(node.args, other.args)):
+                if position and ast.dump(mine) != ast.dump(theirs) and _text_width(theirs) <= 40 \
+                        and not isinstance(theirs, ast.Starred):
+                    yield "sibling_argument", (position, ast.unparse(theirs)), ""
+
+
+def _text_width(node) -> int:
+    return len(ast.unparse(node))
+
+
+def _renamed(node, old: str, new: str):
+    """A copy of ``node`` with every name ``old`` read or written as ``new``."""
+    copied = copy.deepcopy(node)
+    for inner in ast.walk(copied):
+        if isinstance(inner, ast.Name) and inner.id == old:
+            inner.id = new
+    return copied
 
 
 def _item_swaps(node, parent):
