@@ -237,6 +237,27 @@ def test_a_step_done_to_one_input_only_and_an_argument_another_call_is_given():
     assert not {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]} & {"sibling_step", "sibling_argument"}
 
 
+def test_an_array_made_of_the_wrong_type():
+    """A canvas allocated without its dtype (float64, where an image is uint8), a zeros_like of an image
+    summed into (uint8 wraps round), focal lengths cast to int: each given the other type."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(image, focal_lengths):
+            canvas = np.zeros((4, 4, 3))
+            total = np.zeros_like(image)
+            f = np.asarray(focal_lengths, dtype=int)
+            kept = np.zeros((4, 4), np.float32)
+            return canvas, total, f, kept
+    """)
+    fn = ast.parse(source).body[1]
+    made = {ast.unparse(repair._MAKE["dtype"](list(ast.walk(fn))[m.edits[0][1]], m.edits[0][3]))
+            for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"] if m.operator == "dtype"}
+    assert {"np.zeros((4, 4, 3), dtype=np.uint8)", "np.zeros_like(image, dtype=np.float64)",
+            "np.asarray(focal_lengths, dtype=np.float64)"} <= made, made
+    assert not any(text.startswith("np.zeros((4, 4), np.float32") for text in made)   # (its dtype is given)
+
+
 def test_a_translation_matrix_with_an_entry_in_the_wrong_place_is_shown(tmp_path):
     """A student's own translation: `[0, ty, 1]` where the row is `[0, 1, ty]`."""
     folder = edited_reference(tmp_path, "lab07_transformations", (

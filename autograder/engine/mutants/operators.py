@@ -71,6 +71,7 @@ OPERATORS = {
     "swap_items": ("order", "swap", "exchang"),       # (rows, cols) -> (cols, rows), [0, ty, 1] -> [0, 1, ty]
     "sibling_step": ("missing", "also", "both"),      # xl = xl[:, 0] -> xl, xr = xl[:, 0], xr[:, 0]
     "sibling_argument": ("missing", "other call"),    # warp(w, H) beside warp(img, shift @ H): -> warp(w, shift @ H)
+    "dtype": ("dtype", "uint8", "float", "integer"),  # np.zeros(shape) -> np.zeros(shape, dtype=np.uint8)
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -500,6 +501,12 @@ def _make_swap_items(node, payload):
     return new
 
 
+def _make_dtype(node, payload):
+    new = copy.deepcopy(node)   # np.zeros(shape) -> np.zeros(shape, dtype=np.uint8); dtype=int -> np.float64
+    new.keywords = [k for k in new.keywords if k.arg != "dtype"] + [ast.keyword("dtype", _name(payload))]
+    return new
+
+
 def _make_sibling_step(node, payload):
     name = node.targets[0].id   # a = f(a) -> a, b = f(a), f(b)
     twin = _renamed(node, name, payload)
@@ -521,7 +528,7 @@ def _make_function(node, payload):
     return new
 
 
-_MAKE = {"sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+_MAKE = {"dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -1075,6 +1082,8 @@ def _student_changes(node, parent):
     chain = _chain_of_three(node)
     if chain is not None and not any(_is_inverse(f) for f in (chain[0], chain[2])):
         yield "inverse", "undone_never", ""   # `K2.T @ F @ K1` -> `F`: a transform applied twice, or too early
+    if isinstance(node, ast.Call):
+        yield from _dtype_changes(node)
     if not isinstance(node, ast.Call):
         return
     dotted = _dotted(node.func)
@@ -1087,6 +1096,28 @@ def _student_changes(node, parent):
         yield "function", prefix + _MISTAKEN[short], ""
     if isinstance(node.func, ast.Attribute) and node.func.attr == "reshape":
         yield "transpose", "for_reshape", ""
+
+
+_FILLED = {"zeros", "ones", "empty", "full", "zeros_like", "ones_like", "empty_like", "full_like"}
+_MADE = _FILLED | {"array", "asarray", "arange"}
+_INTEGER_TYPES = {"int", "np.int32", "np.int64", "np.uint8", "np.int16", "np.uint16", "np.intp", "numpy.int64"}
+
+
+def _dtype_changes(node: ast.Call):
+    """An array made of the wrong type: a canvas allocated without its dtype (np.zeros is float64: an
+    image built on it is not uint8; np.zeros_like(image) is uint8: sums on it wrap round), or values
+    cast to integers where they are not (`np.asarray(f, dtype=int)`)."""
+    dotted = _dotted(node.func)
+    if not dotted.startswith(("np.", "numpy.")) or dotted.rsplit(".", 1)[-1] not in _MADE:
+        return
+    given = next((k for k in node.keywords if k.arg == "dtype"), None)
+    if given is not None and _dotted(given.value) in _INTEGER_TYPES:
+        yield "dtype", "np.float64", ""
+    elif given is None and dotted.rsplit(".", 1)[-1] in _FILLED \
+            and len(node.args) < (3 if dotted.endswith("full") or dotted.endswith("full_like") else 2):
+        yield "dtype", "np.uint8", ""
+        if dotted.endswith("_like"):
+            yield "dtype", "np.float64", ""
 
 
 def _sibling_changes(node, words):

@@ -387,7 +387,7 @@ def _search(trial, model, student: _Student, clock) -> Repair | None:
         subtle = not failing   # the check failed on answers near the reference's (a line missing
         if subtle and _replayable(trial):   # of five): only the check itself tells a change right
             failing = [i for i, (call, reference) in enumerate(zip(calls, references))
-                       if naming._error_kind(reference) is None and naming.distance(call[3], reference) > 0]
+                       if naming._error_kind(reference) is None and _differs(call[3], reference)]
         if not failing:
             continue
         found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle)
@@ -424,6 +424,16 @@ def _widened(call, defaults=()) -> list:
     made = (function, tuple(widen(a) for a in args), {k: widen(v) for k, v in kwargs.items()})
     changed = any(a is not b for a, b in zip(made[1], args)) or any(made[2][k] is not kwargs[k] for k in kwargs)
     return [made] if changed else []
+
+
+def _differs(answer, reference) -> bool:
+    """Whether an answer differs from the reference's at all: in a value, or in its arrays' kind (the
+    right values as float64 where uint8 is asked for)."""
+    if naming.distance(answer, reference) > 0:
+        return True
+    kinds = lambda value: [v.dtype.kind for v in (value if isinstance(value, (tuple, list)) else [value])  # noqa: E731
+                           if isinstance(v, np.ndarray)]
+    return kinds(answer) != kinds(reference)
 
 
 def _weight(call) -> int:
