@@ -356,6 +356,17 @@ def test_a_change_a_check_cannot_tell_from_the_fix_is_not_told_on_numbers_nearer
     assert all("`(Vt[-1], U[:, -1])`" in c.message for c in told), [c.message for c in told]
 
 
+def test_a_degenerate_change_nearer_than_far_off_answers_is_not_told(tmp_path):
+    """Laplacian bands built on uint8 images (they wrap round): a pyramid of no levels blends an image
+    with itself exactly, so the check passes with `range(1 - levels)`, and on derived inputs it is
+    nearer the reference than the wrapped bands; it is no fix, and is not told."""
+    written = Path(__file__).parents[1] / "benchmarks/blind_mistakes/2026-11-28/lab08_homographies/10_multiband_uint8.py"
+    (tmp_path / "lab08_homographies.py").write_text(written.read_text())
+    result = grade(tmp_path, ["lab08.ext3"], pictures="none")
+    said = " ".join(c.message for c in check_results(result, "lab08.ext3"))
+    assert "range(1 - levels)" not in said, said
+
+
 def test_a_function_applied_where_it_does_not_belong_is_shown(tmp_path):
     """A student's own shear matrix built with tan(s), as if s were an angle."""
     folder = edited_reference(tmp_path, "lab07_transformations", (
