@@ -277,6 +277,23 @@ def skeleton_result():
     return whole_grading(SKELETON)
 
 
+@pytest.fixture
+def no_naming(monkeypatch):
+    """Gradings in this process (not in a ``grade.py`` subprocess) name no mistake by the error
+    model or by repairs and decide no failure inherited: each spends up to seconds per failed
+    check and per worker (``naming.GRADING_SECONDS``, ``inherited.GRADING_SECONDS``), which a test
+    of what failing costs elsewhere -- pictures, statuses, scores -- does not need. Only for tests
+    that assert nothing those diagnoses write (tests/test_error_model.py and the labs' mistake
+    tables test them)."""
+    from autograder.engine import inherited
+    from autograder.engine.mutants import naming, repair
+
+    for name in ("name_failure", "name_raised", "name_in_place"):
+        monkeypatch.setattr(naming, name, lambda trial, seconds=0: None)
+    monkeypatch.setattr(repair, "name_by_repair", lambda trial, seconds=0: None)
+    monkeypatch.setattr(inherited, "decide", lambda trial, function, substitutes, seconds=0: None)
+
+
 # ------------------------------------------------------------------ hostile submissions
 def marker() -> str:
     """A process name (15 chars max) that survivors of an attack would carry."""
