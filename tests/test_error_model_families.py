@@ -292,7 +292,7 @@ def test_the_error_class_tells_two_value_errors_apart():
     assert naming._same_outcome(broadcast, dict(broadcast), None)
     assert not naming._same_outcome(broadcast, reshape, None)
     assert not naming._same_outcome(np.eye(3), broadcast, np.eye(3))
-    assert naming._raised_answer("Your points are (3,).\nf() raised IndexError: too many indices") == \
+    assert naming.raised_answer("Your points are (3,).\nf() raised IndexError: too many indices") == \
         {naming.ERROR: "IndexError: too many indices"}
 
 

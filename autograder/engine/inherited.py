@@ -382,7 +382,7 @@ def decide(trial, function: str, substitutes, seconds: float = CHECK_SECONDS) ->
                 decisions.append(shared[key])
     finally:
         spent[0] += time.monotonic() - started
-        naming._release()
+        naming.release_helper()
     if not decisions:
         return None
     own = next((d for d in decisions if d.kind == OWN), None)

@@ -164,7 +164,8 @@ def helper() -> Helper:
     return current
 
 
-def _release() -> None:
+def release_helper() -> None:
+    """Let this thread's reference helper go (another naming may take it)."""
     current = getattr(_USING, "helper", None)
     if current is not None:
         _USING.helper = None
@@ -199,7 +200,7 @@ def _leaves(value, out: list) -> bool:
     return True
 
 
-def _numeric_pairs(a, b) -> list | None:
+def numeric_pairs(a, b) -> list | None:
     """The two answers' numeric arrays side by side; None when their forms differ (different
     structures, shapes, non-numeric leaves that are not equal): infinitely far apart then."""
     left, right = [], []
@@ -227,7 +228,7 @@ def distance(a, b, lenient: bool = False, projective: bool = False) -> float:
     still makes the mutant's mistake everywhere else). ``projective``: small matrices (up to 16
     entries) are compared up to scale and sign, as checks of homographies and fundamental
     matrices do."""
-    pairs = _numeric_pairs(a, b)
+    pairs = numeric_pairs(a, b)
     if pairs is None:
         return float("inf")
     worst = 0.0
@@ -273,6 +274,11 @@ def _scale(value) -> float:
 _MEASURED: dict = {}   # id(answer) -> (answer, tolerance), for one naming (answers are compared often)
 
 
+def forget_measures() -> None:
+    """End one naming's measures of answers (kept by identity: the answers go with the naming)."""
+    _MEASURED.clear()
+
+
 def _measures(value) -> tuple[float, float]:
     """(tolerance, scale) of an answer, measured once per naming."""
     kept = _MEASURED.get(id(value))
@@ -310,8 +316,8 @@ def reproduces(mutant, student, reference) -> bool:
     arithmetic wrapped around, with two images exchanged besides) is ten times closer on
     average than the reference but disagrees with the student on a third of the pixels."""
     tolerance, scale = _measures(student)
-    if not _has_image(student):
-        size = max(_largest(student), 1e-12)
+    if not has_image(student):
+        size = max(largest_entry(student), 1e-12)
         if _largest_difference(mutant, student) <= 1e-4 * size:
             return True
         return _largest_difference(mutant, student, projective=True) <= 1e-4 * size \
@@ -354,13 +360,15 @@ def _explains_changed_pixels(mutant, student, reference) -> bool:
     return True
 
 
-def _has_image(value) -> bool:
+def has_image(value) -> bool:
+    """Whether an answer holds an image: an integer or boolean array of two or more dimensions."""
     leaves = []
     _leaves(value, leaves)
     return any(isinstance(v, np.ndarray) and v.dtype.kind in "iub" and v.ndim >= 2 and v.size > 64 for v in leaves)
 
 
-def _largest(value) -> float:
+def largest_entry(value) -> float:
+    """The largest finite magnitude among an answer's numbers (0 when it has none)."""
     leaves = []
     _leaves(value, leaves)
     sizes = [float(np.abs(v[np.isfinite(v)]).max()) for v in leaves
@@ -371,7 +379,7 @@ def _largest(value) -> float:
 def _largest_difference(a, b, projective: bool = False) -> float:
     """The largest entry-wise difference of two answers (``a`` a mutant's, NaN-lenient as
     :func:`distance`); infinite when their forms differ."""
-    pairs = _numeric_pairs(a, b)
+    pairs = numeric_pairs(a, b)
     if pairs is None:
         return float("inf")
     worst = 0.0
@@ -433,10 +441,10 @@ def wrong(student, reference) -> bool:
     """Whether an answer differs from the reference's beyond a rounding: for an image, also one
     whose pixels differ in a few places only, strongly (a drawing: thin lines in other places
     change the mean little)."""
-    return distance(reference, student) > 10 * _tolerance(student) or _drawn_elsewhere(student, reference)
+    return distance(reference, student) > 10 * _tolerance(student) or drawn_elsewhere(student, reference)
 
 
-def _drawn_elsewhere(student, reference) -> bool:
+def drawn_elsewhere(student, reference) -> bool:
     """An integer image of the reference's shape with more than 1% of its pixels over 16 grey levels off."""
     if not (isinstance(student, np.ndarray) and isinstance(reference, np.ndarray)) or student.shape != reference.shape \
             or student.dtype.kind not in "iu" or reference.dtype.kind not in "iu" or student.ndim < 2 or student.size < 64:
@@ -472,7 +480,7 @@ def _perturbed(value, rng, depth=0):
     return value
 
 
-def _variants(call, count, seed, defaults=()):
+def derived_calls(call, count, seed, defaults=()):
     """``count`` perturbed copies of a call; every other one also gives the numeric defaults it
     left out, perturbed."""
     function, args, kwargs = call
@@ -486,7 +494,9 @@ def _variants(call, count, seed, defaults=()):
 
 
 # ------------------------------------------------------------------ naming
-class _Clock:
+class Clock:
+    """The time a naming has left (:meth:`left`, seconds), from a budget given at its start."""
+
     def __init__(self, seconds: float):
         self.end = time.monotonic() + seconds
 
@@ -517,13 +527,13 @@ def _within_budget(trial, seconds: float, work, evidence=None) -> Naming | None:
         return None
     started = time.monotonic()
     try:
-        return work(trial, model, _Clock(seconds))
+        return work(trial, model, Clock(seconds))
     except HelperFailed:
         return None
     finally:
         spent[0] += time.monotonic() - started
         _MEASURED.clear()
-        _release()
+        release_helper()
 
 
 def name_in_place(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
@@ -535,7 +545,7 @@ def name_in_place(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
     return _within_budget(trial, seconds, _name_in_place)
 
 
-def _name_in_place(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
+def _name_in_place(trial, model: ErrorModel, clock: Clock) -> Naming | None:
     changed = getattr(trial, "_last_changed", ()) or ()
     function, args, kwargs, answer = trial.calls[-1]
     mutants = [m for m in model.mutants.get(function, ()) if m.operator == "in_place"]
@@ -559,7 +569,7 @@ def _name_in_place(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
     return Naming(min(found, key=lambda m: m.rank), 1, 0)
 
 
-def _name(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
+def _name(trial, model: ErrorModel, clock: Clock) -> Naming | None:
     recorded = {}
     for function, args, kwargs, value in trial.calls:
         if function in model.mutants:
@@ -583,7 +593,7 @@ def _name(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
     return None
 
 
-def _timeout(clock: _Clock) -> float:
+def _timeout(clock: Clock) -> float:
     return max(0.05, min(1.0, clock.left()))
 
 
@@ -669,7 +679,7 @@ def _confirmed(trial, model, function, inputs, failing, candidates, clock) -> Na
 
     variants = []
     for i in failing[:2]:
-        variants += _variants(inputs[i], VARIANTS_PER_CALL, int(fingerprint(function, i, inputs[i][1])[:8], 16),
+        variants += derived_calls(inputs[i], VARIANTS_PER_CALL, int(fingerprint(function, i, inputs[i][1])[:8], 16),
                               model.defaults.get(function, ()))
     every, indices, reference, outputs, candidates, usable = _on_variants(model, inputs, variants, candidates, clock)
     chosen = _separating(usable, reference, [outputs[c.key] for c in candidates])
@@ -719,7 +729,7 @@ def _on_variants(model, inputs, variants, candidates, clock):
         except HelperFailed:
             continue
     candidates = [c for c in candidates if c.key in outputs]
-    usable = [k for k, r in enumerate(reference) if _error_kind(r) is None]
+    usable = [k for k, r in enumerate(reference) if error_kind(r) is None]
     return every, indices, reference, outputs, candidates, usable
 
 
@@ -730,7 +740,7 @@ def _separating(usable, reference, candidate_outputs) -> list[int]:
     pairs = [(a, b) for a in range(len(rows)) for b in range(a + 1, len(rows))]
 
     def apart(k, a, b):
-        kinds = _error_kind(rows[a][k]), _error_kind(rows[b][k])
+        kinds = error_kind(rows[a][k]), error_kind(rows[b][k])
         if kinds != (None, None):
             return kinds[0] != kinds[1]
         return wrong(rows[a][k], rows[b][k])   # (a drawing's lines apart change its mean little)
@@ -762,7 +772,7 @@ _ERROR_CLASSES = ("could not be broadcast", "too many indices", "out of bounds",
 _RAISED = re.compile(r"raised ([A-Za-z_][\w.]*)(?::\s*(.*))?")
 
 
-def _error_kind(value) -> tuple | None:
+def error_kind(value) -> tuple | None:
     """(exception type, message class) of an error answer (the helper's ``{ERROR: "Type: text"}``),
     None for an answer."""
     if not (isinstance(value, dict) and ERROR in value):
@@ -776,7 +786,7 @@ def _error_class(text: str) -> str:
     return next((phrase for phrase in _ERROR_CLASSES if phrase in lowered), "")
 
 
-def _raised_answer(message: str) -> dict | None:
+def raised_answer(message: str) -> dict | None:
     """The student's exception as an error answer, from the sandbox's "f() raised Type: text"."""
     for line in str(message).splitlines():
         found = _RAISED.search(line)
@@ -788,7 +798,7 @@ def _raised_answer(message: str) -> dict | None:
 def _same_outcome(value, student, reference) -> bool:
     """A mutant's outcome is the student's: the same exception (type and message class), or an
     answer that :func:`reproduces` theirs."""
-    kinds = _error_kind(value), _error_kind(student)
+    kinds = error_kind(value), error_kind(student)
     if kinds != (None, None):
         return kinds[0] == kinds[1]
     return reproduces(value, student, reference)
@@ -809,10 +819,10 @@ NO_MUTANT_RAISES = {"NameError", "ImportError", "ModuleNotFoundError", "Assertio
                     "IndentationError", "NotImplementedError"}
 
 
-def _name_raised(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
+def _name_raised(trial, model: ErrorModel, clock: Clock) -> Naming | None:
     function, args, kwargs, message = trial.raised
-    theirs = _raised_answer(message)
-    if function not in model.mutants or theirs is None or _error_kind(theirs)[0] in NO_MUTANT_RAISES:
+    theirs = raised_answer(message)
+    if function not in model.mutants or theirs is None or error_kind(theirs)[0] in NO_MUTANT_RAISES:
         return None
     returned = [call for call in trial.calls if call[0] == function][-(CALLS_PER_FUNCTION - 1):]
     inputs = [(function, tuple(args), dict(kwargs))] + [(f, tuple(a), dict(k)) for f, a, k, _ in returned]
@@ -820,7 +830,7 @@ def _name_raised(trial, model: ErrorModel, clock: _Clock) -> Naming | None:
     runner = helper()
     runner.prepare(model.source, model.module, inputs, max(1.0, clock.left()))
     references = runner.run((), range(len(inputs)), max(0.5, clock.left()))
-    if _error_kind(references[0]) is not None:
+    if error_kind(references[0]) is not None:
         return None   # the reference raises there too: the input, not the code, is the cause
     ruled_out = trial.sandbox.shared.setdefault("error model ruled out raising", {}).setdefault(function, set())
     candidates = []
@@ -850,7 +860,7 @@ def _confirmed_raised(trial, model, function, inputs, answers, candidates, clock
     variants = []
     for i in range(min(len(inputs), 3)):
         seed = int(fingerprint(function, "raised", i, inputs[i][1])[:8], 16)
-        variants += _variants(inputs[i], VARIANTS_PER_CALL if i == 0 else 2, seed, model.defaults.get(function, ()))
+        variants += derived_calls(inputs[i], VARIANTS_PER_CALL if i == 0 else 2, seed, model.defaults.get(function, ()))
     # The rest of the code, where only the raising call was made: the same point as a batch, the
     # call without an optional argument (`if not dist:` raises on an array, not on None).
     corroborating = _batched(inputs[0], int(fingerprint(function, "batched", inputs[0][1])[:8], 16)) \
@@ -866,10 +876,10 @@ def _confirmed_raised(trial, model, function, inputs, answers, candidates, clock
     theirs = []
     for k in chosen:
         answer = _student_outcome(trial, every[indices[k]])
-        if answer is _FAILED or (_error_kind(answer) is None and _constant(answer)):
+        if answer is _FAILED or (error_kind(answer) is None and _constant(answer)):
             return None
         theirs.append(answer)
-    if len(inputs) == 1 and all(_error_kind(answer) is not None for answer in theirs):
+    if len(inputs) == 1 and all(error_kind(answer) is not None for answer in theirs):
         return None   # raising everywhere: nothing says the rest of the mutant is the student's
     survivors = [c for c in candidates
                  if all(_same_outcome(outputs[c.key][k], answer, reference[k]) for k, answer in zip(chosen, theirs))]
@@ -927,14 +937,14 @@ def _student_outcome(trial, call):
         trial.outputs.append(f"(printed during the grader's confirmation call to {function}())\n{outcome.output}")
     if outcome.ok:
         return outcome.value
-    raised = _raised_answer(outcome.message) if outcome.kind == "exception" else None
+    raised = raised_answer(outcome.message) if outcome.kind == "exception" else None
     return raised if raised is not None else _FAILED
 
 
 def _student_answer(trial, call):
     """The student's answer on a confirmation input (the grader's own call, labelled so)."""
     answer = _student_outcome(trial, call)
-    return _FAILED if _error_kind(answer) is not None else answer
+    return _FAILED if error_kind(answer) is not None else answer
 
 
 def named_by_error_model(verdict, trial, raised: bool = False):

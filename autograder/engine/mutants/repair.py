@@ -293,7 +293,7 @@ def right(value, reference, student=None, confirming: bool = False, projective: 
     student's own answer (``student``: 100 times for numbers, 30 for images); on a confirmation
     input (``confirming``), alone (the failing inputs showed the change is what mends the answers).
     An error is never right."""
-    if naming._error_kind(value) is not None or naming._error_kind(reference) is not None:
+    if naming.error_kind(value) is not None or naming.error_kind(reference) is not None:
         return False
     if _within(value, reference, rtol=1e-4, grey=1.0, projective=projective):
         return True
@@ -303,17 +303,17 @@ def right(value, reference, student=None, confirming: bool = False, projective: 
         return False
     if confirming:
         return True
-    nearer = 30 if naming._has_image(reference) else 100
+    nearer = 30 if naming.has_image(reference) else 100
     return naming.distance(value, reference) * nearer <= naming.distance(student, reference)
 
 
 def _within(value, reference, rtol: float, grey: float, projective: bool = True) -> bool:
-    if naming._has_image(reference):
-        return naming.distance(value, reference) <= grey and not naming._drawn_elsewhere(value, reference)
-    pairs = naming._numeric_pairs(value, reference)
+    if naming.has_image(reference):
+        return naming.distance(value, reference) <= grey and not naming.drawn_elsewhere(value, reference)
+    pairs = naming.numeric_pairs(value, reference)
     if pairs is None:
         return False
-    floor = rtol / 100 * max(naming._largest(reference), 1e-12)
+    floor = rtol / 100 * max(naming.largest_entry(reference), 1e-12)
     for got, want in pairs:
         kind = np.complex128 if "c" in got.dtype.kind + want.dtype.kind else np.float64
         got, want = got.astype(kind), want.astype(kind)
@@ -337,8 +337,8 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS) -> Repair | None:
     model = naming.model_for(trial.lab)
     if model is None or not (trial.calls or getattr(trial, "raised", None)):
         return None
-    raised = naming._raised_answer(trial.raised[3]) if getattr(trial, "raised", None) else None
-    if raised is not None and naming._error_kind(raised)[0] in naming.NO_MUTANT_RAISES:
+    raised = naming.raised_answer(trial.raised[3]) if getattr(trial, "raised", None) else None
+    if raised is not None and naming.error_kind(raised)[0] in naming.NO_MUTANT_RAISES:
         return None   # a name undefined (a notebook cell that raised), an import: no change of a value mends it
     # One time per grading for naming by mutants and by repairs (naming.GRADING_SECONDS): what
     # failing everything costs stays bounded as it was.
@@ -351,13 +351,13 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS) -> Repair | None:
         student = _student_code(trial)
         if student is None:
             return None
-        return _search(trial, model, student, naming._Clock(seconds))
+        return _search(trial, model, student, naming.Clock(seconds))
     except HelperFailed:
         return None
     finally:
         spent[0] += time.monotonic() - started
-        naming._MEASURED.clear()
-        naming._release()
+        naming.forget_measures()
+        naming.release_helper()
 
 
 def _recorded(trial) -> dict:
@@ -367,7 +367,7 @@ def _recorded(trial) -> dict:
         recorded.setdefault(function, []).append((function, tuple(args), dict(kwargs), value))
     if getattr(trial, "raised", None):
         function, args, kwargs, message = trial.raised
-        theirs = naming._raised_answer(message)
+        theirs = naming.raised_answer(message)
         if theirs is not None:
             recorded.setdefault(function, []).append((function, tuple(args), dict(kwargs), theirs))
     return recorded
@@ -383,11 +383,11 @@ def _search(trial, model, student: _Student, clock) -> Repair | None:
         runner.prepare(model.source, model.module, inputs, max(1.0, clock.left()))
         references = runner.run((), range(len(inputs)), max(0.5, clock.left()))
         failing = [i for i, (call, reference) in enumerate(zip(calls, references))
-                   if naming._error_kind(reference) is None and _wrong(call[3], reference)]
+                   if naming.error_kind(reference) is None and _wrong(call[3], reference)]
         subtle = not failing   # the check failed on answers near the reference's (a line missing
         if subtle and _replayable(trial):   # of five): only the check itself tells a change right
             failing = [i for i, (call, reference) in enumerate(zip(calls, references))
-                       if naming._error_kind(reference) is None and _differs(call[3], reference)]
+                       if naming.error_kind(reference) is None and _differs(call[3], reference)]
         if not failing:
             continue
         found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle)
@@ -447,7 +447,7 @@ def _key(call) -> str:
 
 
 def _wrong(answer, reference) -> bool:
-    return naming._error_kind(answer) is not None or naming.wrong(answer, reference)
+    return naming.error_kind(answer) is not None or naming.wrong(answer, reference)
 
 
 def _repaired(trial, model, student, function, inputs, references, failing, clock, subtle=False) -> Repair | None:
@@ -581,7 +581,7 @@ class _Variants:
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
-        self.projective = not any(naming._error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
+        self.projective = not any(naming.error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
                                   for answer, reference in zip(self.students, references))
         self.replayable = _replayable(trial)
         self.checked: dict = {}     # change -> its spread, where the check itself judged it right
@@ -682,7 +682,7 @@ class _Variants:
             variants = [call for call in self.seen if _key(call) not in given][:SEEN_CONFIRMATIONS]
             for i in failing[:2]:
                 seed = int(fingerprint(self.function, "repair", i, self.inputs[i][1])[:8], 16)
-                variants += naming._variants(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
+                variants += naming.derived_calls(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
                                              self.model.defaults.get(self.function, ()))
                 variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
             every = self.inputs + variants
@@ -690,7 +690,7 @@ class _Variants:
             runner.prepare(self.model.source, self.model.module, every, max(1.0, self.clock.left()))
             indices = list(range(len(self.inputs), len(every)))
             wanted = dict(zip(indices, runner.run((), indices, max(0.5, self.clock.left()))))
-            self.confirmations = (every, wanted, [i for i in indices if naming._error_kind(wanted[i]) is None])
+            self.confirmations = (every, wanted, [i for i in indices if naming.error_kind(wanted[i]) is None])
         every, wanted, usable = self.confirmations
         if not usable or self._right_on(mutant, usable, every, wanted):
             return True
