@@ -231,14 +231,6 @@ class Decision:
     shown: str = ""
 
 
-class _Clock:
-    def __init__(self, seconds: float):
-        self.end = time.monotonic() + seconds
-
-    def left(self) -> float:
-        return self.end - time.monotonic()
-
-
 def _shown_value(value) -> str | None:
     """A scalar or a tiny array as written; None for anything larger (named by its parameter)."""
     if isinstance(value, np.ndarray):
@@ -294,7 +286,7 @@ def _student_answer(trial, function: str, args, kwargs, asked_for: str):
 
 
 def _decide_call(trial, runner, source: str, module: str, function: str, substitutes, args, kwargs, answer,
-                 clock: _Clock) -> Decision | None:
+                 clock) -> Decision | None:
     """The :class:`Decision` for one call of ``function`` whose student answer is ``answer``; None when
     the call is right or nothing can be decided (see the module docstring)."""
     from .mutants.helper import ERROR
@@ -365,7 +357,7 @@ def decide(trial, function: str, substitutes, seconds: float = CHECK_SECONDS) ->
     spent = shared.setdefault(SHARED_SECONDS, [0.0])
     remaining = getattr(trial.sandbox, "remaining", lambda: float("inf"))()
     # at most half what the exercise's budget and the submission's deadline leave: the checks after come first
-    clock = _Clock(min(seconds, GRADING_SECONDS - spent[0], remaining / 2))
+    clock = naming.Clock(min(seconds, GRADING_SECONDS - spent[0], remaining / 2))
     decisions, started = [], time.monotonic()
     try:
         for _, args, kwargs, answer in _judged_calls(trial, function):
