@@ -489,6 +489,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             if apart * (2 if subtle else REPLAY_NEARER) <= off and variant.passes_check(mutant, values, failing):
                 candidates.append(mutant)
                 continue
+        elif values is not None and np.isfinite(sum(naming.distance(v, references[i]) for v, i in zip(values, failing))) \
+                and variant.passes_check(mutant, values, failing):
+            # The student's answers were not of the reference's form (no matches kept at all, an
+            # exception): a change that gives answers of that form is judged by the check itself.
+            candidates.append(mutant)
+            continue
         if clock.left() > 0:
             ruled_out.add(mutant.key)
     if not candidates:
@@ -686,13 +692,16 @@ class _Variants:
                                              self.model.defaults.get(self.function, ()))
                 variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
             every = self.inputs + variants
-            runner = naming.helper()
-            runner.prepare(self.model.source, self.model.module, every, max(1.0, self.clock.left()))
-            indices = list(range(len(self.inputs), len(every)))
-            wanted = dict(zip(indices, runner.run((), indices, max(0.5, self.clock.left()))))
-            self.confirmations = (every, wanted, [i for i in indices if naming.error_kind(wanted[i]) is None])
+            try:
+                runner = naming.helper()
+                runner.prepare(self.model.source, self.model.module, every, max(1.0, self.clock.left()))
+                indices = list(range(len(self.inputs), len(every)))
+                wanted = dict(zip(indices, runner.run((), indices, max(0.5, self.clock.left()))))
+                self.confirmations = (every, wanted, [i for i in indices if naming.error_kind(wanted[i]) is None])
+            except HelperFailed:   # the reference too slow on them (a whole pipeline): no confirmation here
+                self.confirmations = (every, {}, None)
         every, wanted, usable = self.confirmations
-        if not usable or self._right_on(mutant, usable, every, wanted):
+        if usable is not None and (not usable or self._right_on(mutant, usable, every, wanted)):
             return True
         if mutant.key not in self.checked:
             return False
@@ -743,7 +752,7 @@ class _Variants:
     def repair(self, fixes, complete: bool = True) -> Repair:
         """The repair told for ``fixes`` [(mutant, fix)], kept for the grading's later checks."""
         self.trial.sandbox.shared["repair found"][self.function] = [mutant for mutant, _ in fixes]
-        usable = self.confirmations[2] if self.confirmations else []
+        usable = (self.confirmations[2] or []) if self.confirmations else []
         told = sorted((fix for _, fix in fixes), key=lambda fix: (fix.where != self.function, fix.changes[0][0]))
         checked = "" if not any(mutant.key in self.checked for mutant, _ in fixes) else \
             "checks" if self.confirmed_by_checks else "nearer"
