@@ -258,6 +258,20 @@ def test_an_array_made_of_the_wrong_type():
     assert not any(text.startswith("np.zeros((4, 4), np.float32") for text in made)   # (its dtype is given)
 
 
+def test_a_comparison_and_a_grouping_a_student_gets_wrong():
+    """`x > 0` where `x >= 0` belongs (or the other way round), and `a - b + c` written for `a - (b + c)`
+    (or `a / b * c` for `a / (b * c)`, and back): student-only changes."""
+    source = textwrap.dedent("""
+        def graded(x, a, b, c):
+            return x > 0, x - a + b, a / b * c, a - (b - c)
+    """)
+    fn = ast.parse(source).body[0]
+    made = {ast.unparse(repair._MAKE[m.operator](list(ast.walk(fn))[m.edits[0][1]], m.edits[0][3]))
+            for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"] if m.operator in ("compare", "regroup")}
+    assert {"x >= 0", "x < 0", "x - (a + b)", "a / (b * c)", "a - b - c"} <= made, made
+    assert not {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]} & {"compare", "regroup"}
+
+
 def test_a_translation_matrix_with_an_entry_in_the_wrong_place_is_shown(tmp_path):
     """A student's own translation: `[0, ty, 1]` where the row is `[0, 1, ty]`."""
     folder = edited_reference(tmp_path, "lab07_transformations", (

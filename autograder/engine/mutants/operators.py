@@ -72,6 +72,8 @@ OPERATORS = {
     "sibling_step": ("missing", "also", "both"),      # xl = xl[:, 0] -> xl, xr = xl[:, 0], xr[:, 0]
     "sibling_argument": ("missing", "other call"),    # warp(w, H) beside warp(img, shift @ H): -> warp(w, shift @ H)
     "dtype": ("dtype", "uint8", "float", "integer"),  # np.zeros(shape) -> np.zeros(shape, dtype=np.uint8)
+    "compare": ("compar", "strict", "equal"),         # x > 0 -> x >= 0, x < t -> x > t
+    "regroup": ("bracket", "parenthes", "order"),     # a - b + c -> a - (b + c), a / b * c -> a / (b * c)
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -501,6 +503,22 @@ def _make_swap_items(node, payload):
     return new
 
 
+def _make_compare(node, payload):
+    new = copy.deepcopy(node)
+    new.ops = [getattr(ast, payload)()]
+    return new
+
+
+def _make_regroup(node, payload):
+    if payload == "flat":   # a - (b + c) -> a - b + c
+        inner = node.right
+        return ast.BinOp(ast.BinOp(copy.deepcopy(node.left), node.op, copy.deepcopy(inner.left)), inner.op,
+                         copy.deepcopy(inner.right))
+    inner = node.left       # a / b * c -> a / (b * c)
+    return ast.BinOp(copy.deepcopy(inner.left), inner.op,
+                     ast.BinOp(copy.deepcopy(inner.right), node.op, copy.deepcopy(node.right)))
+
+
 def _make_dtype(node, payload):
     new = copy.deepcopy(node)   # np.zeros(shape) -> np.zeros(shape, dtype=np.uint8); dtype=int -> np.float64
     new.keywords = [k for k in new.keywords if k.arg != "dtype"] + [ast.keyword("dtype", _name(payload))]
@@ -528,7 +546,7 @@ def _make_function(node, payload):
     return new
 
 
-_MAKE = {"dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+_MAKE = {"compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -1084,6 +1102,15 @@ def _student_changes(node, parent):
         yield "inverse", "undone_never", ""   # `K2.T @ F @ K1` -> `F`: a transform applied twice, or too early
     if isinstance(node, ast.Call):
         yield from _dtype_changes(node)
+    if isinstance(node, ast.Compare) and len(node.ops) == 1 and type(node.ops[0]) in _COMPARED:
+        for other in _COMPARED[type(node.ops[0])]:
+            yield "compare", other, ""   # `x > 0` for `x >= 0`, or the other way
+    if isinstance(node, ast.BinOp) and type(node.op) in (ast.Sub, ast.Div) \
+            and type(node.right) is ast.BinOp and type(node.right.op) in _REGROUPED[type(node.op)]:
+        yield "regroup", "flat", ""      # `a - (b + c)` for `a - b + c`
+    if isinstance(node, ast.BinOp) and type(node.left) is ast.BinOp and type(node.left.op) in (ast.Sub, ast.Div) \
+            and type(node.op) in _REGROUPED[type(node.left.op)]:
+        yield "regroup", "nested", ""    # `a / b * c` for `a / (b * c)`
     if not isinstance(node, ast.Call):
         return
     dotted = _dotted(node.func)
@@ -1101,6 +1128,12 @@ def _student_changes(node, parent):
 _FILLED = {"zeros", "ones", "empty", "full", "zeros_like", "ones_like", "empty_like", "full_like"}
 _MADE = _FILLED | {"array", "asarray", "arange"}
 _INTEGER_TYPES = {"int", "np.int32", "np.int64", "np.uint8", "np.int16", "np.uint16", "np.intp", "numpy.int64"}
+
+
+# A comparison a student writes strictly where it is not (or the wrong way round), and the operators
+# a subtraction or division is regrouped with (`a - b + c` is not `a - (b + c)`).
+_COMPARED = {ast.Lt: ("LtE", "Gt"), ast.LtE: ("Lt", "GtE"), ast.Gt: ("GtE", "Lt"), ast.GtE: ("Gt", "LtE")}
+_REGROUPED = {ast.Sub: (ast.Add, ast.Sub), ast.Div: (ast.Mult, ast.Div)}
 
 
 def _dtype_changes(node: ast.Call):
