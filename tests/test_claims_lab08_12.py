@@ -300,6 +300,19 @@ CASES12 = {
             Lc, Rc = L - L.mean(), R - R.mean()
             return (Lc * Rc).sum()
         """),
+    "lab12 what cv2.stereoRectify is given": (lab12.GIVEN_AS_IS_HINT, "rectify", """
+        def rectify(img_l, img_r, K1, K2, R, T):
+            K1 = np.asarray(K1, dtype=np.float64)
+            h, w = img_l.shape[:2]
+            R1, R2, P1, P2 = cv2.stereoRectify(K1, np.zeros(5), K2, np.zeros(5), (w, h),
+                                               np.asarray(R, np.float64), np.asarray(T).reshape(3, 1))[:4]
+            return warp(img_l, img_r, P1[:, :3] @ R1 @ np.linalg.inv(K1), P2[:, :3] @ R1 @ np.linalg.inv(K2))
+        """, """
+        def rectify(img_l, img_r, K1, K2, R, T):
+            h, w = img_l.shape[:2]
+            R1, R2, P1, P2 = cv2.stereoRectify(K1, np.zeros(5), K2, np.zeros(5), (w, h), R.T, T)[:4]
+            return warp(img_l, img_r, P1[:, :3] @ R1 @ np.linalg.inv(K1), P2[:, :3] @ R2 @ np.linalg.inv(K2))
+        """),
 }
 
 

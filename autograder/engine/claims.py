@@ -29,6 +29,8 @@ the student's module with :mod:`ast`, never executing it:
   row; ``order="F"``: column by column);
 - :func:`passes_argument` -- a call given an argument at a position or as a keyword, not ``None``
   (``cv2.projectPoints(obj, rvec, tvec, K, dist)``);
+- :func:`passes_parameters` -- a call given, at given positions, the function's own parameters as
+  they came (``cv2.stereoRectify(K1, d, K2, d, size, np.asarray(R), T.reshape(3, 1))``);
 - :func:`takes_last_row_of_vt` -- the last row of an SVD's ``Vt`` (``np.linalg.svd(A)[2][-1]``,
   ``Vt[-1]`` for a ``Vt`` unpacked from an ``svd`` call);
 - :func:`zeroes_an_entry` -- an entry of an array set to 0 (``S[2] = 0``, ``s[-1] = 0``) or a
@@ -295,6 +297,52 @@ def passes_argument(function: str, position: int, name: str, says: str = "") -> 
                     return True
         return False
     return Predicate(says or f"passes {name} to {function}", test)
+
+
+_WRAPPERS = {"np.asarray", "np.array", "np.float64", "np.float32", "numpy.asarray", "numpy.array"}
+
+
+def passes_parameters(function: str, positions: dict[int, str], says: str = "") -> Predicate:
+    """A call of ``function`` given, at each of ``positions``, the enclosing function's own parameter
+    of that name as it came (``cv2.stereoRectify(K1, d, K2, d, size, R, T)``): the name itself, read
+    directly or through a conversion (``np.asarray(R, np.float64)``, ``T.reshape(3, 1)``), or a local
+    assigned once from such a reading."""
+    last = function.rsplit(".", 1)[-1]
+
+    def test(function_node) -> bool:
+        parameters = {a.arg for a in function_node.args.args + function_node.args.kwonlyargs}
+        assigned: dict[str, list] = {}
+        for node in ast.walk(function_node):
+            if isinstance(node, ast.Assign):
+                for target in node.targets:
+                    if isinstance(target, ast.Name):
+                        assigned.setdefault(target.id, []).append(node.value)
+            elif isinstance(node, (ast.AugAssign, ast.AnnAssign)) and isinstance(node.target, ast.Name):
+                assigned.setdefault(node.target.id, []).append(None)
+
+        def reads(node, name: str, depth: int = 0, converted: bool = False) -> bool:
+            """Whether ``node`` is the parameter ``name`` as it came (``converted``: inside a conversion
+            of it, where the name is the parameter as given, `K1 = np.asarray(K1)`)."""
+            if depth > 4:
+                return False
+            if isinstance(node, ast.Name):
+                values = assigned.get(node.id, [])
+                if node.id == name and name in parameters:   # unchanged, or only converted in place
+                    return converted or all(value is not None and reads(value, name, depth + 1, True)
+                                            for value in values)
+                return len(values) == 1 and values[0] is not None and reads(values[0], name, depth + 1)
+            if isinstance(node, ast.Call) and node.args and _path(node.func) in _WRAPPERS:
+                return reads(node.args[0], name, depth + 1, converted)
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) \
+                    and node.func.attr in ("reshape", "astype", "copy", "ravel", "flatten"):
+                return reads(node.func.value, name, depth + 1, converted)
+            return False
+
+        return any(isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == last
+                   and all(len(node.args) > position and reads(node.args[position], name)
+                           for position, name in positions.items())
+                   for node in ast.walk(function_node))
+    return Predicate(says or f"gives {function} its own {', '.join(positions.values())}", test)
 
 
 def zeroes_an_entry() -> Predicate:

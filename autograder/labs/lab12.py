@@ -29,7 +29,7 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
-from ..engine.claims import calls_any, divides_by, from_code, guard, measured
+from ..engine.claims import calls_any, divides_by, from_code, guard, measured, passes_parameters
 from ..engine.forms import shape_form
 from ..engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, Hint, Predicate, calls, code_of, expr, keyword
 from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
@@ -834,7 +834,7 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                mistake="H1 and H2 are swapped")
     t.fail(f"{what}: true correspondences end up {np.nanmedian(dy):.3g} px apart vertically "
            f"(up to {worst:.3g} px); after rectification they must share a row.",
-           hint=RECTIFY_HINT.said(t) if RECTIFY_HINT.contradicts(code_of(t), ["rectify"]) else CENTRE_HINT.said(t))
+           hint=GIVEN_AS_IS_HINT.said(t) if RECTIFY_HINT.contradicts(code_of(t), ["rectify"]) else CENTRE_HINT.said(t))
 
 
 # Code that already gives both cameras one new rotation and one K is told the other half of the
@@ -846,6 +846,15 @@ RECTIFY_HINT = Hint(
     asks=calls("cv2.stereoRectify"),
     instead="your code {found}; then check what it is given: R and T take camera-1 coordinates to camera "
             "2's (X2 = R X1 + T), so the second camera's centre is -R^T T, not T")
+# Code that gives cv2.stereoRectify K1, K2, R and T as they came is not told to check what it gives
+# it: the rest of that recipe, as a checklist (which output belongs to which image).
+GIVEN_AS_IS_HINT = Hint(RECTIFY_HINT.neutral("calls cv2.stereoRectify"),
+                        asks=passes_parameters("cv2.stereoRectify", {0: "K1", 2: "K2", 5: "R", 6: "T"},
+                                               says="gives cv2.stereoRectify K1, K2, R and T as they came"),
+                        instead="your code {found}, as it takes them; check the image size it is given (width, "
+                                "height) and what is done with what it returns: R1 and P1 belong to the left "
+                                "image, R2 and P2 to the right, and each image's map is H = P[:, :3] R K^-1 "
+                                "with its own K")
 # Code that computes the centre -R^T T is not told it (the rest of the recipe is a checklist).
 CENTRE = (expr("-R.T @ T") | expr("-_.T @ _") | expr("-(_.T @ _)") | expr("-np.dot(_.T, _)")
           | expr("-_.T.dot(_)") | expr("_.T @ -_")).saying("computes camera 2's centre -R^T T")
