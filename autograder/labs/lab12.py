@@ -853,8 +853,7 @@ GIVEN_AS_IS_HINT = Hint(RECTIFY_HINT.neutral("calls cv2.stereoRectify"),
                                                says="gives cv2.stereoRectify K1, K2, R and T as they came"),
                         instead="your code {found}, as it takes them; check the image size it is given (width, "
                                 "height) and what is done with what it returns: R1 and P1 belong to the left "
-                                "image, R2 and P2 to the right, and each image's map is H = P[:, :3] R K^-1 "
-                                "with its own K")
+                                "image, R2 and P2 to the right, and each image's map is H = P[:, :3] R K^-1")
 # Code that computes the centre -R^T T is not told it (the rest of the recipe is a checklist).
 CENTRE = (expr("-R.T @ T") | expr("-_.T @ _") | expr("-(_.T @ _)") | expr("-np.dot(_.T, _)")
           | expr("-_.T.dot(_)") | expr("_.T @ -_")).saying("computes camera 2's centre -R^T T")
