@@ -381,6 +381,17 @@ def test_a_degenerate_change_nearer_than_far_off_answers_is_not_told(tmp_path):
     assert "range(1 - levels)" not in said, said
 
 
+def test_a_change_far_from_the_reference_is_not_confirmed_by_its_own_spread(tmp_path):
+    """A canvas with img1's channels into which a grey img2 cannot be copied (it raises): removing the
+    copy passes the shape check, far from the reference's picture; a spread that far would let any
+    answer through, so only the grading's other checks could confirm it (they do not)."""
+    written = Path(__file__).parents[1] / "benchmarks/blind_mistakes/2026-11-28d/lab08_homographies/02_draw_matches_grey_canvas.py"
+    (tmp_path / "lab08_homographies.py").write_text(written.read_text())
+    result = grade(tmp_path, ["lab08.ex3"], pictures="none")
+    said = " ".join(c.message for c in check_results(result, "lab08.ex3"))
+    assert "removing `canvas[:h2, w1:] = img2`" not in said, said
+
+
 def test_a_function_applied_where_it_does_not_belong_is_shown(tmp_path):
     """A student's own shear matrix built with tan(s), as if s were an angle."""
     folder = edited_reference(tmp_path, "lab07_transformations", (

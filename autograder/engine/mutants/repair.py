@@ -426,6 +426,14 @@ def _widened(call, defaults=()) -> list:
     return [made] if changed else []
 
 
+def _close(value, reference) -> bool:
+    """Whether an answer is near the reference's as legitimate recipes are: images within 3 grey levels
+    on average (their own interpolation may differ at edges), numbers within 1%."""
+    if naming.has_image(reference):
+        return naming.distance(value, reference) <= 3.0
+    return _within(value, reference, rtol=1e-2, grey=3.0)
+
+
 def _differs(answer, reference) -> bool:
     """Whether an answer differs from the reference's at all: in a value, or in its arrays' kind (the
     right values as float64 where uint8 is asked for)."""
@@ -594,6 +602,11 @@ class _Variants:
         self.replays = 0
         self.theirs: dict = {}      # confirmation input -> the student's own answer there
         self.confirmed_by_checks = False   # a change the check judged, confirmed by its other checks
+        # Changes the check judged whose answers on the failing inputs were close to the reference's
+        # (a couple of grey levels, 1%): only their spread says what the student's recipe legitimately
+        # gives elsewhere; a change far from the reference (a copy removed, no rectification at all)
+        # has a spread that would let anything through, and is confirmed by other checks only.
+        self.close: set = set()
 
     def source(self, mutant) -> str | None:
         """The changed defs of the student's module (None when the change cannot be written)."""
@@ -652,6 +665,8 @@ class _Variants:
             return False
         self.checked[mutant.key] = max((naming.distance(v, self.references[i]) for v, i in zip(values, failing)),
                                        default=0.0)
+        if values and all(_close(v, self.references[i]) for v, i in zip(values, failing)):
+            self.close.add(mutant.key)
         return True
 
     def _replay(self, mutant, kept) -> bool | None:
@@ -764,6 +779,8 @@ class _Variants:
             return False
         if mutant.key not in self.checked:
             return all(self.right(v, wanted[i], confirming=True) for v, i in zip(values, indices))
+        if mutant.key not in self.close:
+            return False
         # A change the check judged right is confirmed against the student's own answers (their recipe
         # differs from the reference's legitimately, by a measure the check knows, not this): within
         # the spread the check accepted, and where theirs are wrong, half as far at most.
