@@ -193,7 +193,8 @@ def test_a_half_bright_strip_is_not_told_to_warp_with_t_at_h_which_it_does(tmp_p
         "warps with a product of a shift and a homography")
 
 
-def test_an_image_converted_to_uint8_then_back_is_not_told_to_convert_it(tmp_path):
+def test_an_image_converted_to_uint8_then_back_is_not_told_to_convert_it(tmp_path, no_repairs):
+    # (the hint itself: a repair -- dropping the `/ 1.0` -- would take its place)
     source = """
         _right = translate
         def translate(image, tx=100, ty=50):

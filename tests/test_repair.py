@@ -392,6 +392,28 @@ def test_a_change_far_from_the_reference_is_not_confirmed_by_its_own_spread(tmp_
     assert "removing `canvas[:h2, w1:] = img2`" not in said, said
 
 
+def test_one_naming_time_per_grading_public_and_hidden(tmp_path, monkeypatch):
+    """The error model's and repairs' seconds are counted once per grading: the hidden phase's fresh
+    workers (and every lane) hold the public phase's counter, not one of their own."""
+    from autograder.engine.mutants import naming
+
+    counters, hidden = set(), []
+
+    def recording(original):
+        def named(trial, seconds=repair.CHECK_SECONDS):
+            counters.add(id(trial.sandbox.shared.get(naming.SPENT)))
+            hidden.append(trial.check.hidden)
+            return original(trial, seconds)
+        return named
+
+    monkeypatch.setattr(repair, "name_by_repair", recording(repair.name_by_repair))
+    monkeypatch.setattr(naming, "name_failure", recording(naming.name_failure))
+    folder = edited_reference(tmp_path, "lab09_camera", ("    return np.stack([pinhole_project(X, f) for f in", "    return np.stack([pinhole_project(X, f / 2) for f in"))
+    grade(folder, ["lab09"], pictures="none", lanes=2)
+    assert True in hidden and False in hidden, hidden
+    assert len(counters) == 1, counters
+
+
 def test_a_function_applied_where_it_does_not_belong_is_shown(tmp_path):
     """A student's own shear matrix built with tan(s), as if s were an angle."""
     folder = edited_reference(tmp_path, "lab07_transformations", (

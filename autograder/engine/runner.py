@@ -173,6 +173,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                  for _ in range(min(len(sandboxes), len(hidden_calls)))]
         for sandbox in fresh:
             sandbox.start()
+        _one_naming_time(sandboxes + fresh)
         graded: dict[str, ExerciseResult] = {}
         graded_hidden: dict[str, ExerciseResult] = {}
 
@@ -504,6 +505,19 @@ def _named_by_repair(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
     except Exception as exc:  # noqa: BLE001 - naming is a bonus: the verdict stands without it
         _log_grader_error(check, exc)
         return verdict
+
+
+def _one_naming_time(sandboxes: list) -> None:
+    """One time per grading for naming failures (the error model's and repairs',
+    ``naming.GRADING_SECONDS``; the inherited failures' own), whatever its lanes and phases: every
+    worker's shared values hold the same counters -- seconds only, nothing of a hidden check's."""
+    from .inherited import SHARED_SECONDS
+    from .mutants.naming import SPENT
+
+    for key in (SPENT, SHARED_SECONDS):
+        counter = [0.0]
+        for sandbox in sandboxes:
+            sandbox.shared[key] = counter
 
 
 def _remember_check(check: Check, trial: Trial) -> None:

@@ -40,6 +40,7 @@ from .operators import Mutant, mutants_of
 
 CHECK_SECONDS = 3.0        # the error model's time for one failed check
 GRADING_SECONDS = 10.0     # and for one grading (all its failed checks): bounds what failing everything costs
+SPENT = "error model seconds"   # the key of the grading's counter of it (runner: one per grading, every worker)
 CALLS_PER_FUNCTION = 6     # the trial's last calls of a function that are compared
 PAIR_MUTANTS = 6           # the closest single mutants combined in pairs
 VARIANTS_PER_CALL = 5      # confirmation inputs derived from each failing call
@@ -521,7 +522,7 @@ def _within_budget(trial, seconds: float, work, evidence=None) -> Naming | None:
     model = model_for(trial.lab)
     if model is None or not (trial.calls if evidence is None else evidence):
         return None
-    spent = trial.sandbox.shared.setdefault("error model seconds", [0.0])
+    spent = trial.sandbox.shared.setdefault(SPENT, [0.0])
     seconds = min(seconds, GRADING_SECONDS - spent[0])
     if seconds <= 0.2:
         return None

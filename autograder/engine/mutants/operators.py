@@ -536,7 +536,7 @@ def _make_sibling_step(node, payload):
 def _make_sibling_argument(node, payload):
     new = copy.deepcopy(node)
     position, text = payload
-    new.args[position] = ast.parse(text, mode="eval").body
+    new.args[position] = _parse(text).body[0].value   # (the other call's argument, as it was written)
     return new
 
 

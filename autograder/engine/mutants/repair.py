@@ -342,7 +342,7 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS) -> Repair | None:
         return None   # a name undefined (a notebook cell that raised), an import: no change of a value mends it
     # One time per grading for naming by mutants and by repairs (naming.GRADING_SECONDS): what
     # failing everything costs stays bounded as it was.
-    spent = trial.sandbox.shared.setdefault("error model seconds", [0.0])
+    spent = trial.sandbox.shared.setdefault(naming.SPENT, [0.0])
     seconds = min(seconds, naming.GRADING_SECONDS - spent[0])
     if seconds <= 0.2:
         return None
