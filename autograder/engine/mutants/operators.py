@@ -1595,14 +1595,9 @@ def _constant_changes(node: ast.Constant, parents, words, what):
     parent, field, _ = parents.get(id(node), (None, None, None))
     value = node.value
     if isinstance(parent, ast.keyword) and parent.arg == "axis":
-        for other in (0, 1, 2) if words.student else (0, 1):   # (a student's 3-D stacks: axis 2 too)
+        for other in (0, 1):
             if other != value:
                 yield "axis", other, f"the sum/statistic runs over axis {other} where axis {value} belongs"
-        return
-    if words.student and isinstance(parent, ast.Call) and _dotted(parent.func) == "range" and node in parent.args:
-        for delta in (-1, 1):   # a loop that starts or stops one early or late: `range(1, n)` for `range(n)`
-            if value + delta >= 0:
-                yield "bound", value + delta, ""
         return
     if isinstance(parent, ast.Slice):
         subscript = parents.get(id(parent), (None,))[0]
@@ -1619,7 +1614,7 @@ def _constant_changes(node: ast.Constant, parents, words, what):
         subscript, elements = parents.get(id(parent), (None,))[0], parent.elts
     if not (isinstance(subscript, ast.Subscript) and subscript.slice is (parent if elements != [node] else node)):
         return
-    if not 0 <= value <= (3 if words.student else 2):
+    if not 0 <= value <= 2:
         return
     position = next(i for i, e in enumerate(elements) if e is node)
     if isinstance(subscript.value, ast.Attribute) and subscript.value.attr == "shape" and value in (0, 1):
@@ -1628,11 +1623,6 @@ def _constant_changes(node: ast.Constant, parents, words, what):
             yield "axis", 1 - value, f"the width and height of {target} are swapped"
         return
     inner = what(subscript.value)
-    if words.student:   # (shown, not told: another of the first four, `P[:, 2]` for `P[:, 3]`, or the last)
-        for other in (0, 1, 2, 3, -1):
-            if other != value:
-                yield "axis", other, ""
-        return
     for other in (0, 1, 2):
         if other != value and (other < 2 or value == 1):
             phrase = _index_phrase(inner, elements, position, value, other)
