@@ -272,6 +272,20 @@ def test_a_comparison_and_a_grouping_a_student_gets_wrong():
     assert not {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]} & {"compare", "regroup"}
 
 
+def test_a_use_in_a_long_function_is_compared_with_the_nearest_locals_only():
+    """Reading the student's code stays linear in its length: a name is replaced only by the parameters
+    and the last few locals assigned before its use, not by every local of a long function."""
+    from autograder.engine.mutants import operators
+
+    lines = "\n".join(f"    a{i} = x + {i}" for i in range(60))
+    source = f"def graded(x, y):\n{lines}\n    return a59 * a58\n"
+    fn = ast.parse(source).body[0]
+    replaced = {m.edits[0][3] for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+                if m.operator == "other_name" and isinstance(list(ast.walk(fn))[m.edits[0][1]], ast.Name)
+                and list(ast.walk(fn))[m.edits[0][1]].id == "a59"}
+    assert replaced and replaced <= {"x", "y"} | {f"a{i}" for i in range(60 - operators._NEAREST_LOCALS, 60)}, replaced
+
+
 def test_a_translation_matrix_with_an_entry_in_the_wrong_place_is_shown(tmp_path):
     """A student's own translation: `[0, ty, 1]` where the row is `[0, 1, ty]`."""
     folder = edited_reference(tmp_path, "lab07_transformations", (

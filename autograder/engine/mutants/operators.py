@@ -17,6 +17,7 @@ from edits; :func:`mutants_of` lists a module's mutants per API function.
 from __future__ import annotations
 
 import ast
+import bisect
 import copy
 import functools
 import itertools
@@ -102,6 +103,7 @@ _FLAG_FAMILIES = [
 _ORDERED = {"reshape": "reshaped", "ravel": "flattened", "flatten": "flattened"}   # order="C" unless told
 _FLAG_FAMILY = {name: family for family in _FLAG_FAMILIES for name in family}
 _OTHER_NAMES_PER_SITE = 4
+_NEAREST_LOCALS = 16   # the student's code: the locals last assigned before a use that may replace it
 _MAX_PHRASE = 110
 
 
@@ -609,10 +611,18 @@ class _Words:
                 if isinstance(element, ast.Name):
                     self.definitions.setdefault(element.id, []).append((line, value, index))
 
-    def locals_before(self, line: int) -> list[str]:
-        """The def's parameters and the locals assigned before ``line``."""
+    def locals_before(self, line: int, nearest: int | None = None) -> list[str]:
+        """The def's parameters and the locals assigned before ``line`` (``nearest``: only that many
+        of the locals, the last assigned before it -- the student's code: each use compared with a
+        bounded number of names, so reading a long function stays linear in its length)."""
         names = [a.arg for a in self.fn.args.args + self.fn.args.kwonlyargs]
-        names += [name for name, defs in self.definitions.items() if any(at < line for at, _, _ in defs)]
+        if nearest is None:
+            names += [name for name, defs in self.definitions.items() if any(at < line for at, _, _ in defs)]
+            return list(dict.fromkeys(names))
+        if not hasattr(self, "_first_lines"):   # (the line a name is first assigned, the name), by line
+            self._first_lines = sorted((min(at for at, _, _ in defs), name) for name, defs in self.definitions.items())
+        before = self._first_lines[:bisect.bisect_left(self._first_lines, (line, ""))]
+        names += [name for _, name in before[-nearest:]]
         return list(dict.fromkeys(names))
 
     def what(self, node, depth: int = 0, line: int | None = None) -> str:
@@ -1158,27 +1168,41 @@ def _sibling_changes(node, words):
     done to one input only (`xl = xl[:, 0]` and no `xr = xr[:, 0]`: the two done together, `xl, xr =
     xl[:, 0], xr[:, 0]`), and an argument of a call that another call of the same function is given
     (`warp(weight, H, size)` beside `warp(image, shift @ H, size)`: the shift left out of one)."""
+    done, calls = _read_siblings(words)
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
         name = node.targets[0].id
         if any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(node.value)):
-            done = {ast.dump(statement) for statement in ast.walk(words.fn) if isinstance(statement, ast.Assign)}
             for other in (a.arg for a in words.fn.args.args):
                 if other != name and ast.dump(_renamed(node, name, other)) not in done:
                     yield "sibling_step", other, ""
     if isinstance(node, ast.Call) and not any(isinstance(a, ast.Starred) for a in node.args):
-        dotted = _dotted(node.func)
-        for other in ast.walk(words.fn):
-            if other is node or not isinstance(other, ast.Call) or _dotted(other.func) != dotted \
-                    or len(other.args) != len(node.args):
-                continue
+        given = set()
+        for other in calls.get((_dotted(node.func), len(node.args)), ()):
             for position, (mine, theirs) in enumerate(zip(node.args, other.args)):
-                if position and ast.dump(mine) != ast.dump(theirs) and _text_width(theirs) <= 40 \
-                        and not isinstance(theirs, ast.Starred):
-                    yield "sibling_argument", (position, ast.unparse(theirs)), ""
+                text = ast.unparse(theirs)
+                if other is not node and position and ast.dump(mine) != ast.dump(theirs) and len(text) <= 40 \
+                        and not isinstance(theirs, ast.Starred) and (position, text) not in given:
+                    given.add((position, text))
+                    yield "sibling_argument", (position, text), ""
 
 
-def _text_width(node) -> int:
-    return len(ast.unparse(node))
+_SIBLING_CALLS = 6   # the calls of one function (and arity) a call is compared with: the first few
+
+
+def _read_siblings(words):
+    """The def's assignments (dumped) and its calls by (function, arity), read once per def (kept
+    on ``words``): comparing every node with every other would grow with the square of the code."""
+    if not hasattr(words, "siblings"):
+        done, calls = set(), {}
+        for statement in ast.walk(words.fn):
+            if isinstance(statement, ast.Assign):
+                done.add(ast.dump(statement))
+            elif isinstance(statement, ast.Call):
+                kept = calls.setdefault((_dotted(statement.func), len(statement.args)), [])
+                if len(kept) < _SIBLING_CALLS:
+                    kept.append(statement)
+        words.siblings = (done, calls)
+    return words.siblings
 
 
 def _renamed(node, old: str, new: str):
@@ -1672,7 +1696,7 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
         return
     params = {a.arg for a in words.fn.args.args + words.fn.args.kwonlyargs}
     others = []
-    for other in words.locals_before(line):
+    for other in words.locals_before(line, nearest=_NEAREST_LOCALS if words.student else None):
         if other == node.id or other in words.module_defs or other == "_":   # (`_` is thrown away)
             continue
         phrase = words.what(ast.Name(other, ast.Load()), line=line)
