@@ -286,6 +286,25 @@ def test_a_use_in_a_long_function_is_compared_with_the_nearest_locals_only():
     assert replaced and replaced <= {"x", "y"} | {f"a{i}" for i in range(60 - operators._NEAREST_LOCALS, 60)}, replaced
 
 
+def test_a_loop_started_late_another_column_and_another_axis():
+    """`range(1, n)` for `range(n)`, `P[:, 2]` for `P[:, 3]` (a 3x4 camera's fourth column), `axis=1`
+    for `axis=2`: student-only (the reference's mutants keep their phrased, narrower set)."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(P, fs, A):
+            out = [fs[i] for i in range(1, len(fs))]
+            return out, P[:, 2], np.linalg.norm(A, axis=1)
+    """)
+    fn = ast.parse(source).body[1]
+    made = {(ast.unparse(list(ast.walk(fn))[m.edits[0][1]]),
+             ast.unparse(repair._MAKE[m.operator](list(ast.walk(fn))[m.edits[0][1]], m.edits[0][3])))
+            for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"] if m.operator in ("bound", "axis")}
+    assert {("1", "0"), ("2", "3"), ("1", "2"), ("2", "-1")} <= made, made
+    reference = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"})["graded"]}
+    assert ("axis", 3) not in reference and ("bound", 0) not in reference
+
+
 def test_a_translation_matrix_with_an_entry_in_the_wrong_place_is_shown(tmp_path):
     """A student's own translation: `[0, ty, 1]` where the row is `[0, 1, ty]`."""
     folder = edited_reference(tmp_path, "lab07_transformations", (
@@ -527,3 +546,50 @@ def test_a_module_too_large_to_read_in_time_gets_no_repairs(tmp_path):
     assert repair._student_code(trial) is None
     (tmp_path / f"{lab.module}.py").write_text("def translation_matrix(x, y=0):\n    return x + y\n")
     assert repair._student_code(trial) is not None
+
+
+def _made(source, operators):
+    """(before, after) of each change the given operators make to `graded` in the student's ``source``."""
+    fn = next(node for node in ast.parse(source).body if isinstance(node, ast.FunctionDef))
+    return {(ast.unparse(list(ast.walk(fn))[m.edits[0][1]]),
+             ast.unparse(repair._MAKE[m.operator](list(ast.walk(fn))[m.edits[0][1]], m.edits[0][3])))
+            for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"] if m.operator in operators}
+
+
+def test_a_step_done_to_one_twin_only_is_done_to_both():
+    """`(x / w, y)`: the division done to x is tried on y too; in twin assignments (`u = X / Z`,
+    `v = Y`) and inside a call's tuple (`(int(u), v)`) the same."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(q, X, Y, Z, img):
+            out = np.column_stack([q[:, 0] / q[:, 2], q[:, 1]])
+            u = X / Z
+            v = Y
+            return out, (int(u), v), u, v
+    """)
+    made = _made(source, {"twin_step"})
+    assert ("[q[:, 0] / q[:, 2], q[:, 1]]", "[q[:, 0] / q[:, 2], q[:, 1] / q[:, 2]]") in made, made
+    assert ("v = Y", "v = Y / Z") in made, made
+    assert ("(int(u), v)", "(int(u), int(v))") in made, made
+    assert not any(after.startswith("u =") for _, after in made), made   # (the stepped one is left as it is)
+
+
+def test_a_difference_measured_the_other_way_and_a_power_moved_across_an_average():
+    source = textwrap.dedent("""
+        import numpy as np
+        import cv2
+
+        def graded(d, e, lines, A, pts):
+            cost = cv2.blur(d, (5, 5)) ** 2 + np.abs(e) + np.mean(e ** 2)
+            n = lines / np.linalg.norm(lines[:, 1:], axis=1, keepdims=True)
+            A[1, 3:7] = pts[0]
+            return cost, n, pts[:8], (e - d) ** 2
+    """)
+    made = _made(source, {"measure", "power_inside", "slice", "drop_slice"})
+    for pair in [("cv2.blur(d, (5, 5)) ** 2", "cv2.blur(d ** 2, (5, 5))"), ("np.abs(e)", "e ** 2"),
+                 ("np.mean(e ** 2)", "np.mean(e) ** 2"), ("(e - d) ** 2", "np.abs(e - d)"),
+                 ("1:", ":2"), ("3:7", "4:8"), ("3:7", "2:6"), ("pts[:8]", "pts")]:
+        assert pair in made, (pair, made)
+    reference = {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
+    assert not reference & {"measure", "power_inside", "slice", "drop_slice", "twin_step"}

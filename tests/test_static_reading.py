@@ -133,6 +133,24 @@ def test_floor_division_is_named_only_when_the_values_show_whole_numbers():
 
 
 @pytest.mark.xdist_group("lab12")
+def test_an_integer_array_is_not_blamed_for_values_that_are_whole_anyway():
+    """Gray-code patterns built in a dtype=int array hold the right 0/255 values as int64: the
+    dtype is wrong, no fraction was cut off, so the truncation reading is not told."""
+    named = graded_case("lab12_stereo", "lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            patterns = np.zeros((n_bits, width), dtype=int)
+            columns = np.arange(width)
+            gray = columns ^ (columns >> 1)
+            for bit in range(n_bits):
+                patterns[bit] = ((gray >> (n_bits - 1 - bit)) & 1) * 255
+            return patterns
+        """)
+    failed = [c.message for c in check_results(named, "lab12.ex6") if not c.passed]
+    assert failed and not any("cut off" in m for m in failed), failed
+    assert not any("0/1 values" in m for m in failed), failed
+
+
+@pytest.mark.xdist_group("lab12")
 def test_a_uint8_ssd_loses_points_and_is_named():
     result = graded_case("lab12_stereo", "lab12.ex4", """
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):

@@ -643,7 +643,10 @@ def _float_arrays(value, depth: int = 0):
 
 
 def _whole_numbers(value) -> bool:
-    """Whether a returned value holds a float array of whole numbers only, not all zero."""
+    """Whether a returned value holds an array of whole numbers only, not all zero: a float array
+    without fractions, or an integer one (an array made with dtype=int keeps no fraction either)."""
+    if any(np.any(array) for array in _integer_arrays(value)):
+        return True
     for array in _float_arrays(value):
         if _has_fraction(array.ravel()[:_GLANCE]):   # most float results tell at once
             continue
@@ -651,6 +654,15 @@ def _whole_numbers(value) -> bool:
         if finite.size and np.any(finite != 0) and not _has_fraction(finite):
             return True
     return False
+
+
+def _integer_arrays(value, depth: int = 0):
+    """The integer arrays (not booleans) in a value, its tuples and lists (a few levels)."""
+    if isinstance(value, np.ndarray) and value.dtype.kind in "iu":
+        yield value
+    elif isinstance(value, (tuple, list)) and depth < 3:
+        for item in value[:64]:
+            yield from _integer_arrays(item, depth + 1)
 
 
 def _fractional(arguments) -> bool:

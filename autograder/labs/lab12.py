@@ -118,8 +118,11 @@ LOWEST_COST_HINT = Hint(
     "for left pixel (x, y) compare its block with the block around (x - d, y) in the right image, "
     "d = 0..max_disparity, and keep the d with the lowest cost",
     asks=KEEPS_LOWEST,
-    instead="for left pixel (x, y) compare its block with the block around (x - d, y) in the right image, "
-            "d = 0..max_disparity; your code already {found}: the error is elsewhere")
+    # (code that keeps the lowest cost has its search written: restating the search would tell it
+    # what it does; what is left is how each block's cost is computed and which blocks are compared)
+    instead="your code already {found}: the error is in the cost of a block (the sum or mean of the "
+            "squared differences over the block, computed in floats) or in which blocks are compared "
+            "(left (x, y) with right (x - d, y), d = 0..max_disparity)")
 
 
 # Code that calls OpenCV's matcher has its block search done: what is left to tell is its answer.
@@ -1674,7 +1677,7 @@ def judge_patterns(t: Trial, width, n_bits):
         t.fail(f"{what} returned shape {got.shape}; expected ({n_bits}, {width}): one row per bit")
     got = t.expect_array(got, what, shape=(n_bits, width))
     if got.dtype != np.uint8:
-        if np.array_equal(got, expected // 255):
+        if got.any() and np.array_equal(got, expected // 255):   # (all black tells nothing of 0/1)
             t.fail(f"{what} returned 0/1 values as {got.dtype}; the patterns are uint8 images of 0 and 255",
                    mistake=ZERO_ONE)
         t.expect_array(got, what, dtype=np.uint8)

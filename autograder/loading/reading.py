@@ -285,7 +285,8 @@ def _integer_arrays(name, function) -> list[Finding]:
                 return [Finding(name, _line(made), "an integer array: the values written into it are truncated",
                                 f"{name} (line {_line(made)}) makes {target.value.id} an integer array "
                                 f"(dtype=int) and writes computed values into it (line {_line(node)}): "
-                                "their fractions are cut off; make it a float array (dtype=float)")]
+                                "their fractions are cut off; make it a float array (dtype=float)",
+                                needs="whole numbers")]   # (values that are whole anyway lose nothing)
     return []
 
 

@@ -75,6 +75,11 @@ OPERATORS = {
     "dtype": ("dtype", "uint8", "float", "integer"),  # np.zeros(shape) -> np.zeros(shape, dtype=np.uint8)
     "compare": ("compar", "strict", "equal"),         # x > 0 -> x >= 0, x < t -> x > t
     "regroup": ("bracket", "parenthes", "order"),     # a - b + c -> a - (b + c), a / b * c -> a / (b * c)
+    "twin_step": ("missing", "also", "both", "only"),  # (x / w, y) -> (x / w, y / w): a step done to one twin only
+    "measure": ("square", "absolute", "abs", "**"),   # np.abs(d) <-> d ** 2: the other measure of a difference
+    "power_inside": ("square", "mean", "sum", "**"),  # np.mean(d) ** 2 <-> np.mean(d ** 2)
+    "slice": ("slice", "column", "entries", "first", "last"),   # l[:, 1:] -> l[:, :2], A[r, 3:7] -> A[r, 4:8]
+    "drop_slice": ("first", "only", "all"),          # pts[:8] -> pts: every point, not the first few
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -542,13 +547,56 @@ def _make_sibling_argument(node, payload):
     return new
 
 
+def _make_twin_step(node, payload):
+    new = copy.deepcopy(node)   # (x / w, y) -> (x / w, y / w); `v = y` -> `v = y / w`
+    position, text = payload
+    step = _parse(text).body[0].value   # (the twin's step, as the student wrote it)
+    if position is None:
+        new.value = step
+    else:
+        new.elts[position] = step
+    return new
+
+
+def _make_measure(node, payload):
+    if payload == "square":   # np.abs(d) -> d ** 2
+        return ast.BinOp(copy.deepcopy(node.args[0]), ast.Pow(), ast.Constant(2))
+    inner = node.left if isinstance(node, ast.BinOp) else node.args[0]   # d ** 2, np.square(d) -> np.abs(d)
+    return ast.Call(_name("np.abs"), [copy.deepcopy(inner)], [])
+
+
+def _make_power_inside(node, payload):
+    if payload == "inside":   # np.mean(d) ** 2 -> np.mean(d ** 2)
+        call = copy.deepcopy(node.left)
+        call.args[0] = ast.BinOp(call.args[0], ast.Pow(), copy.deepcopy(node.right))
+        return call
+    new = copy.deepcopy(node)   # np.mean(d ** 2) -> np.mean(d) ** 2
+    power = new.args[0]
+    new.args[0] = power.left
+    return ast.BinOp(new, ast.Pow(), power.right)
+
+
+def _make_slice(node, payload):
+    lower, upper = payload   # l[:, 1:] -> l[:, :2]; A[r, 3:7] -> A[r, 4:8]
+    return ast.Slice(None if lower is None else _signed(lower), None if upper is None else _signed(upper), None)
+
+
+def _signed(value: int):
+    return ast.UnaryOp(ast.USub(), ast.Constant(-value)) if value < 0 else ast.Constant(value)
+
+
+def _make_drop_slice(node, payload):
+    return copy.deepcopy(node.value)   # pts[:8] -> pts
+
+
 def _make_function(node, payload):
     new = copy.deepcopy(node)
     new.func = _name(payload)
     return new
 
 
-_MAKE = {"compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+_MAKE = {"twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
+         "slice": _make_slice, "drop_slice": _make_drop_slice, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -1107,6 +1155,14 @@ def _student_changes(node, parent):
             yield "dehomogenise", last.upper.value, ""
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
+    yield from _measure_changes(node)
+    if isinstance(node, ast.Slice):
+        yield from _slice_changes(node)
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.slice, ast.Slice) \
+            and node.slice.lower is None and node.slice.step is None \
+            and isinstance(node.slice.upper, ast.Constant) and isinstance(node.slice.upper.value, int) \
+            and node.slice.upper.value >= 4:
+        yield "drop_slice", None, ""   # `pts[:8]`: only the first few used where all belong
     chain = _chain_of_three(node)
     if chain is not None and not any(_is_inverse(f) for f in (chain[0], chain[2])):
         yield "inverse", "undone_never", ""   # `K2.T @ F @ K1` -> `F`: a transform applied twice, or too early
@@ -1156,6 +1212,8 @@ def _dtype_changes(node: ast.Call):
     given = next((k for k in node.keywords if k.arg == "dtype"), None)
     if given is not None and _dotted(given.value) in _INTEGER_TYPES:
         yield "dtype", "np.float64", ""
+        if _dotted(given.value) != "np.uint8":
+            yield "dtype", "np.uint8", ""   # (an image built in an int array: right values, not uint8)
     elif given is None and dotted.rsplit(".", 1)[-1] in _FILLED \
             and len(node.args) < (3 if dotted.endswith("full") or dotted.endswith("full_like") else 2):
         yield "dtype", "np.uint8", ""
@@ -1163,12 +1221,129 @@ def _dtype_changes(node: ast.Call):
             yield "dtype", "np.float64", ""
 
 
+_SQUARED = {"abs", "absolute", "fabs"}
+# Calls a power may be taken inside or outside of: reductions and box/blur filters (a mean of squares
+# is not the square of a mean).
+_AVERAGING = {"mean", "sum", "average", "nanmean", "nansum", "blur", "boxFilter", "filter2D", "GaussianBlur",
+              "sqrBoxFilter", "uniform_filter", "convolve", "correlate", "sepFilter2D"}
+
+
+def _measure_changes(node):
+    """A difference measured the other way: squared where its absolute value belongs or the other
+    way round (`np.abs(d)` / `d ** 2` / `np.square(d)`), and a power taken outside an average where it
+    belongs inside (`np.mean(d) ** 2` for `np.mean(d ** 2)`) or the other way round."""
+    if isinstance(node, ast.Call) and len(node.args) == 1 and not node.keywords \
+            and _dotted(node.func).rsplit(".", 1)[-1] in _SQUARED and _dotted(node.func) in (
+                "abs", "np.abs", "numpy.abs", "np.absolute", "numpy.absolute", "np.fabs", "math.fabs"):
+        yield "measure", "square", ""
+    squared = isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) \
+        and isinstance(node.right, ast.Constant) and node.right.value == 2
+    if squared or (isinstance(node, ast.Call) and _dotted(node.func) in ("np.square", "numpy.square")
+                   and len(node.args) == 1):
+        yield "measure", "abs", ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.left, ast.Call) \
+            and node.left.args and not isinstance(node.left.args[0], ast.Starred) \
+            and _dotted(node.left.func).rsplit(".", 1)[-1] in _AVERAGING:
+        yield "power_inside", "inside", ""
+    if isinstance(node, ast.Call) and node.args and isinstance(node.args[0], ast.BinOp) \
+            and isinstance(node.args[0].op, ast.Pow) and _dotted(node.func).rsplit(".", 1)[-1] in _AVERAGING:
+        yield "power_inside", "outside", ""
+
+
+def _slice_changes(node: ast.Slice):
+    """A slice of constant bounds one place off: the window moved by one (`3:7` for `4:8`), or the
+    last entries taken where the first belong (`1:` for `:2` of a 3-vector, and back)."""
+    if node.step is not None:
+        return
+    lower, upper = (None if b is None else _constant_index(b) for b in (node.lower, node.upper))
+    if (node.lower is not None and lower is None) or (node.upper is not None and upper is None):
+        return
+    if lower is not None and upper is not None:
+        for delta in (-1, 1):
+            if lower + delta >= 0 and (upper + delta != 0 or upper < 0):
+                yield "slice", (lower + delta, upper + delta), ""
+    elif lower == 1 and upper is None:
+        yield "slice", (None, 2), ""
+        yield "slice", (None, -1), ""
+    elif lower is None and upper in (2, -1):
+        yield "slice", (1, None), ""
+
+
+def _twins(a, b) -> bool:
+    """Two like terms, one letter or one index apart (`x` and `y`, `q[:, 0]` and `q[:, 1]`,
+    `pts1[i]` and `pts2[i]`): what a student writes twice, once per coordinate or image."""
+    if type(a) is not type(b) or not isinstance(a, (ast.Name, ast.Subscript, ast.Attribute)):
+        return False
+    first, second = list(ast.walk(a)), list(ast.walk(b))
+    if len(first) != len(second) or len(first) > 12:
+        return False
+    apart = 0
+    for x, y in zip(first, second):
+        if type(x) is not type(y):
+            return False
+        words = (x.id, y.id) if isinstance(x, ast.Name) else (x.attr, y.attr) if isinstance(x, ast.Attribute) \
+            else None
+        if words and words[0] != words[1]:
+            if len(words[0]) != len(words[1]) or sum(p != q for p, q in zip(*words)) != 1:
+                return False
+            apart += 1
+        if isinstance(x, ast.Constant) and x.value != y.value:
+            if not (isinstance(x.value, int) and isinstance(y.value, int)):
+                return False
+            apart += 1
+    return apart == 1
+
+
+def _twin_steps(items):
+    """For each bare term among ``items`` (a tuple's entries, the values of twin assignments), its
+    twin's step done to it too: `(x / w, y)` -> `y / w`, `(int(u), v)` -> `int(v)`. (position, text)."""
+    for j, bare in enumerate(items):
+        if not isinstance(bare, (ast.Name, ast.Subscript, ast.Attribute)):
+            continue
+        made = set()
+        for i, stepped in enumerate(items):
+            if i == j or isinstance(stepped, (ast.Name, ast.Subscript, ast.Attribute, ast.Constant)):
+                continue
+            for inner in itertools.islice((n for n in ast.walk(stepped) if n is not stepped and _twins(n, bare)), 3):
+                twin = copy.deepcopy(stepped)
+                for old, new in zip(ast.walk(stepped), ast.walk(twin)):
+                    if old is inner:
+                        replaced = _swap_in(twin, new, copy.deepcopy(bare))
+                        break
+                text = ast.unparse(replaced)
+                if text not in made and len(text) <= 80:
+                    made.add(text)
+                    yield j, text
+
+
+def _swap_in(root, old, new):
+    """``root`` with the node ``old`` (inside it) replaced by ``new``."""
+    for parent in ast.walk(root):
+        for field, value in ast.iter_fields(parent):
+            if value is old:
+                setattr(parent, field, new)
+                return root
+            if isinstance(value, list) and any(item is old for item in value):
+                value[next(k for k, item in enumerate(value) if item is old)] = new
+                return root
+    return root
+
+
 def _sibling_changes(node, words):
     """Changes that copy what the student's code does for one of two like things to the other: a step
     done to one input only (`xl = xl[:, 0]` and no `xr = xr[:, 0]`: the two done together, `xl, xr =
     xl[:, 0], xr[:, 0]`), and an argument of a call that another call of the same function is given
     (`warp(weight, H, size)` beside `warp(image, shift @ H, size)`: the shift left out of one)."""
-    done, calls = _read_siblings(words)
+    done, calls, _ = _read_siblings(words)
+    if isinstance(node, (ast.Tuple, ast.List)) and isinstance(node.ctx, ast.Load) and 2 <= len(node.elts) <= 4:
+        for position, text in _twin_steps(node.elts):
+            yield "twin_step", (position, text), ""
+    if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+            and isinstance(node.value, (ast.Name, ast.Subscript, ast.Attribute)):
+        for twin in _twin_assignments(node, words):   # `u = x / w` beside `v = y`
+            for position, text in _twin_steps([node.value, twin.value]):
+                if position == 0:
+                    yield "twin_step", (None, text), ""
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
         name = node.targets[0].id
         if any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(node.value)):
@@ -1189,19 +1364,28 @@ def _sibling_changes(node, words):
 _SIBLING_CALLS = 6   # the calls of one function (and arity) a call is compared with: the first few
 
 
+def _twin_assignments(node, words):
+    """The def's assignments to a name one letter apart from ``node``'s (`u = ...` for `v = ...`)."""
+    name = node.targets[0].id
+    return [other for other in _read_siblings(words)[2] if other is not node and _twins(ast.Name(other.targets[0].id),
+                                                                                      ast.Name(name))][:2]
+
+
 def _read_siblings(words):
     """The def's assignments (dumped) and its calls by (function, arity), read once per def (kept
     on ``words``): comparing every node with every other would grow with the square of the code."""
     if not hasattr(words, "siblings"):
-        done, calls = set(), {}
+        done, calls, named = set(), {}, []
         for statement in ast.walk(words.fn):
             if isinstance(statement, ast.Assign):
                 done.add(ast.dump(statement))
+                if len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name) and len(named) < 64:
+                    named.append(statement)
             elif isinstance(statement, ast.Call):
                 kept = calls.setdefault((_dotted(statement.func), len(statement.args)), [])
                 if len(kept) < _SIBLING_CALLS:
                     kept.append(statement)
-        words.siblings = (done, calls)
+        words.siblings = (done, calls, named)
     return words.siblings
 
 
@@ -1619,9 +1803,14 @@ def _constant_changes(node: ast.Constant, parents, words, what):
     parent, field, _ = parents.get(id(node), (None, None, None))
     value = node.value
     if isinstance(parent, ast.keyword) and parent.arg == "axis":
-        for other in (0, 1):
+        for other in (0, 1, 2) if words.student else (0, 1):   # (a student's 3-D stacks: axis 2 too)
             if other != value:
                 yield "axis", other, f"the sum/statistic runs over axis {other} where axis {value} belongs"
+        return
+    if words.student and isinstance(parent, ast.Call) and _dotted(parent.func) == "range" and node in parent.args:
+        for delta in (-1, 1):   # a loop that starts or stops one early or late: `range(1, n)` for `range(n)`
+            if value + delta >= 0:
+                yield "bound", value + delta, ""
         return
     if isinstance(parent, ast.Slice):
         subscript = parents.get(id(parent), (None,))[0]
@@ -1638,7 +1827,7 @@ def _constant_changes(node: ast.Constant, parents, words, what):
         subscript, elements = parents.get(id(parent), (None,))[0], parent.elts
     if not (isinstance(subscript, ast.Subscript) and subscript.slice is (parent if elements != [node] else node)):
         return
-    if not 0 <= value <= 2:
+    if not 0 <= value <= (3 if words.student else 2):
         return
     position = next(i for i, e in enumerate(elements) if e is node)
     if isinstance(subscript.value, ast.Attribute) and subscript.value.attr == "shape" and value in (0, 1):
@@ -1647,6 +1836,11 @@ def _constant_changes(node: ast.Constant, parents, words, what):
             yield "axis", 1 - value, f"the width and height of {target} are swapped"
         return
     inner = what(subscript.value)
+    if words.student:   # (shown, not told: another of the first four, `P[:, 2]` for `P[:, 3]`, or the last)
+        for other in (0, 1, 2, 3, -1):
+            if other != value:
+                yield "axis", other, ""
+        return
     for other in (0, 1, 2):
         if other != value and (other < 2 or value == 1):
             phrase = _index_phrase(inner, elements, position, value, other)

@@ -20,7 +20,7 @@ MISTAKES = {
             pts = np.asarray(pts, float)
             q = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H).T
             return np.column_stack([q[:, 0] / q[:, 2], q[:, 1] / q[:, 0]])
-        """, ["is wrong for every point, in y only.\nit returned"]),
+        """, ["in y only", "changing `q[:, 1] / q[:, 0]` to `q[:, 1] / q[:, 2]`"]),
     "points times H": ("lab08.ex1", """
         def transform_points(H, pts):
             pts = np.asarray(pts, float)

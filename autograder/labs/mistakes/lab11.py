@@ -133,6 +133,11 @@ MISTAKES = {
         def epipolar_lines(F, pts1):
             return _homogeneous(pts1) @ np.asarray(F, float).T
         """, ["a^2 + b^2 = 1"]),
+    "epipolar lines scaled to unit length over a, b and c": ("lab11.ex2", """
+        def epipolar_lines(F, pts1):
+            lines = _homogeneous(pts1) @ np.asarray(F, float).T
+            return lines / np.linalg.norm(lines, axis=1, keepdims=True)
+        """, ["over all three entries"]),
     "draw short segments": ("lab11.ex2", """
         def draw_epipolar_lines(image, lines):
             canvas = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image.copy()
