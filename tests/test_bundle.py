@@ -50,14 +50,15 @@ def bundle_python(bundle, open_folder, tmp_path_factory):
     visible by a ``.pth`` file: ``--system-site-packages`` would expose the *base*
     interpreter's packages instead, which inside a virtual environment are not
     the ones installed for the tests (and may lack ``wheel``).
+
+    The environment is made without pip (seeding it costs seconds) and the tests' pip
+    installs into it (``pip --python``); the build backend is the pinned setuptools the
+    ``.pth`` brings (the old one Python 3.11's venv would seed is too old for the SPDX
+    license string).
     """
     venv = open_folder / "venv"
-    subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
     python = venv / "bin" / "python"
-    # Python 3.11's venv seeds an old setuptools that would build the bundle instead of ours
-    # (too old for the SPDX license string): the pinned one comes with the .pth below.
-    subprocess.run([str(python), "-m", "pip", "uninstall", "--quiet", "--yes", "setuptools"],
-                   check=True, capture_output=True)
     nested_site = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
                                  check=True, capture_output=True, text=True).stdout.strip()
     ours = dict.fromkeys(sysconfig.get_paths()[key] for key in ("purelib", "platlib"))
@@ -67,8 +68,8 @@ def bundle_python(bundle, open_folder, tmp_path_factory):
     (Path(nested_site) / "test-dependencies.pth").write_text("".join(f"{path}\n" for path in ours))
     source = tmp_path_factory.mktemp("install") / "cv-labs"  # a copy: building writes build/
     shutil.copytree(bundle, source)
-    subprocess.run([str(python), "-m", "pip", "install", "--quiet", "--no-index", "--no-build-isolation",
-                    str(source)], check=True, capture_output=True, timeout=300)
+    subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install", "--quiet", "--no-index",
+                    "--no-build-isolation", str(source)], check=True, capture_output=True, timeout=300)
     return python
 
 
