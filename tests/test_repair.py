@@ -566,12 +566,16 @@ def test_a_step_done_to_one_twin_only_is_done_to_both():
             out = np.column_stack([q[:, 0] / q[:, 2], q[:, 1]])
             u = X / Z
             v = Y
+            for i, (x, y) in enumerate(q):
+                out[i, 0] = x / Z
+                out[i, 1] = y
             return out, (int(u), v), u, v
     """)
     made = _made(source, {"twin_step"})
     assert ("[q[:, 0] / q[:, 2], q[:, 1]]", "[q[:, 0] / q[:, 2], q[:, 1] / q[:, 2]]") in made, made
     assert ("v = Y", "v = Y / Z") in made, made
     assert ("(int(u), v)", "(int(u), int(v))") in made, made
+    assert ("out[i, 1] = y", "out[i, 1] = y / Z") in made, made
     assert not any(after.startswith("u =") for _, after in made), made   # (the stepped one is left as it is)
 
 
@@ -593,3 +597,47 @@ def test_a_difference_measured_the_other_way_and_a_power_moved_across_an_average
         assert pair in made, (pair, made)
     reference = {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
     assert not reference & {"measure", "power_inside", "slice", "drop_slice", "twin_step"}
+
+
+def test_a_canvas_sized_by_one_image_is_sized_by_both():
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(img1, img2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((h1, w1, 3), np.uint8)
+            return canvas
+    """)
+    made = _made(source, {"canvas"})
+    assert {("h1", "max(h1, h2)"), ("w1", "w1 + w2")} <= made, made
+
+
+def test_a_traced_call_reports_the_lines_of_the_students_file_it_ran(tmp_path):
+    """The student's code as it is, traced: the lines run (the branch taken, the helper called), not
+    the branch left; a change there would mend nothing on this input, so it is not tried."""
+    folder = submission_from_source(tmp_path, "student", """
+        def helper(x):
+            return x + 1
+
+        def graded(x, cost="ssd"):
+            if cost == "ncc":
+                return -x
+            return helper(x) * 2
+    """)
+    source = (folder / "student.py").read_text().splitlines()
+    line_of = {text.strip(): number for number, text in enumerate(source, 1)}
+    with Sandbox(folder, SMALL) as sandbox:
+        outcome = sandbox.companion().call_variant("student", "", "graded", [((3,), {})], timeout=5.0, trace=True)
+    assert outcome.ok, outcome.message
+    assert outcome.value["values"] == [8]
+    ran = set(outcome.value["lines"])
+    assert {line_of['if cost == "ncc":'], line_of["return helper(x) * 2"], line_of["return x + 1"]} <= ran, ran
+    assert line_of["return -x"] not in ran, ran
+
+
+def test_a_long_change_is_shown_with_the_arguments_it_leaves_as_dots():
+    before = ast.parse("cv2.blur(difference, (block_size, block_size), borderType=cv2.BORDER_REFLECT) ** 2").body[0].value
+    after = ast.parse("cv2.blur(difference ** 2, (block_size, block_size), borderType=cv2.BORDER_REFLECT)").body[0].value
+    assert repair._abbreviated(before, after) == ("cv2.blur(difference, ..., borderType=...) ** 2",
+                                                  "cv2.blur(difference ** 2, ..., borderType=...)")

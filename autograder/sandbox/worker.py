@@ -46,6 +46,8 @@ LENGTH = struct.Struct(">Q")
 _active_threads, _listdir = threading.active_count, os.listdir
 _open, _read, _close = os.open, os.read, os.close
 _exec, _compile, _FunctionType, _ModuleType = exec, compile, type(lambda: None), type(sys)
+_settrace = sys.settrace
+_TRACED_LINES = 20_000   # the lines of the student's file a traced call reports, at most
 
 
 def _limit_cpu(budget):
@@ -496,19 +498,27 @@ class Worker:
         self.modules[key] = variant   # so that the tripwires reach names it imported itself
         restore = self.install_tripwires(request.get("forbid") or [])
         values = []
+        traced = _LineTrace(getattr(base, "__file__", None)) if request.get("trace") and not request["source"] else None
         try:
             for args, kwargs in request.get("calls", ()):
                 self.forbidden_called = []
                 try:
+                    if traced is not None:
+                        _settrace(traced.enter)
                     value = function(*args, **kwargs)
                 except BaseException as exc:  # noqa: BLE001 - the variant's exception is its answer
                     value = {"__error__": _exception_line(exc)[:300]}
+                finally:
+                    if traced is not None:
+                        _settrace(None)
                 if self.forbidden_called:
                     value = {"__error__": f"ForbiddenCall: {self.forbidden_called[0]}"}
                 values.append(value)
         finally:
             restore()
             del self.modules[key]
+        if traced is not None:   # (the lines its own code ran: the grader skips changes of others)
+            values = {"values": values, "lines": sorted(traced.lines)}
         return {"ok": True, "value": values, "seconds": time.perf_counter() - start}
 
     @staticmethod
@@ -579,6 +589,28 @@ class Worker:
             # Nothing of this call is held while the worker waits: the grader weighs what the
             # worker holds now (memory a call keeps would be the next call's missing).
             request = response = None
+
+
+class _LineTrace:
+    """The lines of one file (the student's module) that a call runs, for ``sys.settrace``. The
+    student's code may stop the trace: it only loses the grader's shortcut."""
+
+    def __init__(self, filename):
+        self.filename, self.lines = filename, set()
+
+    def enter(self, frame, event, arg):
+        if filename_of(frame) != self.filename:
+            return None
+        return self.line
+
+    def line(self, frame, event, arg):
+        if event == "line" and len(self.lines) < _TRACED_LINES:
+            self.lines.add(frame.f_lineno)
+        return self.line
+
+
+def filename_of(frame):
+    return frame.f_code.co_filename
 
 
 def suspect_state():

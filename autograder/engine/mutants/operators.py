@@ -80,6 +80,7 @@ OPERATORS = {
     "power_inside": ("square", "mean", "sum", "**"),  # np.mean(d) ** 2 <-> np.mean(d ** 2)
     "slice": ("slice", "column", "entries", "first", "last"),   # l[:, 1:] -> l[:, :2], A[r, 3:7] -> A[r, 4:8]
     "drop_slice": ("first", "only", "all"),          # pts[:8] -> pts: every point, not the first few
+    "canvas": ("size", "height", "width", "max", "both"),   # np.zeros((h1, w1 + w2)) -> max(h1, h2) rows
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -585,6 +586,10 @@ def _signed(value: int):
     return ast.UnaryOp(ast.USub(), ast.Constant(-value)) if value < 0 else ast.Constant(value)
 
 
+def _make_canvas(node, payload):
+    return _parse(payload).body[0].value   # h1 -> max(h1, h2), w1 -> w1 + w2
+
+
 def _make_drop_slice(node, payload):
     return copy.deepcopy(node.value)   # pts[:8] -> pts
 
@@ -596,7 +601,7 @@ def _make_function(node, payload):
 
 
 _MAKE = {"twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
-         "slice": _make_slice, "drop_slice": _make_drop_slice, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+         "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -1272,7 +1277,7 @@ def _slice_changes(node: ast.Slice):
 def _twins(a, b) -> bool:
     """Two like terms, one letter or one index apart (`x` and `y`, `q[:, 0]` and `q[:, 1]`,
     `pts1[i]` and `pts2[i]`): what a student writes twice, once per coordinate or image."""
-    if type(a) is not type(b) or not isinstance(a, (ast.Name, ast.Subscript, ast.Attribute)):
+    if type(a) is not type(b) or not isinstance(a, _TERMS):
         return False
     first, second = list(ast.walk(a)), list(ast.walk(b))
     if len(first) != len(second) or len(first) > 12:
@@ -1298,11 +1303,11 @@ def _twin_steps(items):
     """For each bare term among ``items`` (a tuple's entries, the values of twin assignments), its
     twin's step done to it too: `(x / w, y)` -> `y / w`, `(int(u), v)` -> `int(v)`. (position, text)."""
     for j, bare in enumerate(items):
-        if not isinstance(bare, (ast.Name, ast.Subscript, ast.Attribute)):
+        if not isinstance(bare, _TERMS):
             continue
         made = set()
         for i, stepped in enumerate(items):
-            if i == j or isinstance(stepped, (ast.Name, ast.Subscript, ast.Attribute, ast.Constant)):
+            if i == j or isinstance(stepped, (*_TERMS, ast.Constant)):
                 continue
             for inner in itertools.islice((n for n in ast.walk(stepped) if n is not stepped and _twins(n, bare)), 3):
                 twin = copy.deepcopy(stepped)
@@ -1335,12 +1340,13 @@ def _sibling_changes(node, words):
     xl[:, 0], xr[:, 0]`), and an argument of a call that another call of the same function is given
     (`warp(weight, H, size)` beside `warp(image, shift @ H, size)`: the shift left out of one)."""
     done, calls, _ = _read_siblings(words)
+    yield from _canvas_changes(node, words)
     if isinstance(node, (ast.Tuple, ast.List)) and isinstance(node.ctx, ast.Load) and 2 <= len(node.elts) <= 4:
         for position, text in _twin_steps(node.elts):
             yield "twin_step", (position, text), ""
-    if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
-            and isinstance(node.value, (ast.Name, ast.Subscript, ast.Attribute)):
-        for twin in _twin_assignments(node, words):   # `u = x / w` beside `v = y`
+    if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.value, _TERMS) \
+            and isinstance(node.targets[0], _TERMS):
+        for twin in _twin_assignments(node, words):   # `u = x / w` beside `v = y`; `out[i, 1] = v` too
             for position, text in _twin_steps([node.value, twin.value]):
                 if position == 0:
                     yield "twin_step", (None, text), ""
@@ -1364,11 +1370,34 @@ def _sibling_changes(node, words):
 _SIBLING_CALLS = 6   # the calls of one function (and arity) a call is compared with: the first few
 
 
+_TERMS = (ast.Name, ast.Subscript, ast.Attribute)
+_ALLOCATED = {"zeros", "ones", "empty", "full"}
+
+
+def _canvas_changes(node, words):
+    """A canvas sized by one image where both belong: `np.zeros((h1, w1 + w2, 3))` with `max(h1, h2)`
+    rows, or `w1` columns where `w1 + w2` belong (the names' twins: `h1`/`h2`, `w_a`/`w_b`)."""
+    if not (isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)):
+        return
+    if not hasattr(words, "canvas_sizes"):   # (read once per def: the names in allocated shapes)
+        words.canvas_sizes = {id(size) for call in ast.walk(words.fn) if isinstance(call, ast.Call) and call.args
+                              and isinstance(call.args[0], ast.Tuple)
+                              and _dotted(call.func).rsplit(".", 1)[-1] in _ALLOCATED
+                              for size in call.args[0].elts if isinstance(size, ast.Name)}
+        words.names_read = sorted({n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name)})
+    if id(node) not in words.canvas_sizes:
+        return
+    for twin in words.names_read:
+        if _twins(ast.Name(twin), ast.Name(node.id)):
+            yield "canvas", f"max({node.id}, {twin})", ""
+            yield "canvas", f"{node.id} + {twin}", ""
+
+
 def _twin_assignments(node, words):
-    """The def's assignments to a name one letter apart from ``node``'s (`u = ...` for `v = ...`)."""
-    name = node.targets[0].id
-    return [other for other in _read_siblings(words)[2] if other is not node and _twins(ast.Name(other.targets[0].id),
-                                                                                      ast.Name(name))][:2]
+    """The def's assignments to ``node``'s target's twin (`u = ...` for `v = ...`, `out[i, 0] = ...`
+    for `out[i, 1] = ...`)."""
+    return [other for other in _read_siblings(words)[2]
+            if other is not node and _twins(other.targets[0], node.targets[0])][:2]
 
 
 def _read_siblings(words):
@@ -1379,7 +1408,7 @@ def _read_siblings(words):
         for statement in ast.walk(words.fn):
             if isinstance(statement, ast.Assign):
                 done.add(ast.dump(statement))
-                if len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name) and len(named) < 64:
+                if len(statement.targets) == 1 and isinstance(statement.targets[0], _TERMS) and len(named) < 64:
                     named.append(statement)
             elif isinstance(statement, ast.Call):
                 kept = calls.setdefault((_dotted(statement.func), len(statement.args)), [])

@@ -143,6 +143,7 @@ class _Student:
         self.fixes: dict = {}        # mutant key -> its Fix, or None when it cannot be shown
         self._ordered: dict = {}     # function -> its mutants that can be shown, smallest change first
         self._defs = _defs(tree)
+        self._statements: dict = {}   # def -> line -> the first line of the statement holding it
         self._walked: dict = {}      # def name -> (its nodes in ast.walk order, their parents)
         self._lock = threading.Lock()
 
@@ -163,6 +164,37 @@ class _Student:
                 self._ordered[function] = sorted(shown, key=lambda m: (
                     m.where != function, self.fixes[m.key].size, self.fixes[m.key].written, m.line))
             return self._ordered[function]
+
+    def runs(self, mutant, lines) -> bool:
+        """Whether code the ``lines`` ran holds each of the mutant's changes (True when nothing is
+        known: ``lines`` None). A change is run when the statement around it is; a def's header (a
+        default value) always is."""
+        if lines is None:
+            return True
+        fix = self.fix(mutant)
+        return fix is None or all(self._statement_of(edit[0], change[0]) in lines
+                                  for edit, change in zip(mutant.edits, fix.changes))
+
+    def ran_here(self, function: str, lines) -> set | None:
+        """``lines`` when they hold the first statement of ``function`` (the file the sandbox ran
+        is the text read here), else None (nothing is known)."""
+        fn = self._defs.get(function)
+        return lines if lines is not None and fn is not None and _first_run(fn) in lines else None
+
+    def _statement_of(self, where: str, line: int) -> int:
+        """The first line of the innermost statement of ``where`` holding ``line`` (a def's header
+        lines: the first line of its body, which every call runs)."""
+        if where not in self._statements:
+            fn, starts = self._defs.get(where), {}
+            if fn is not None and fn.body:
+                for statement in ast.walk(fn):   # outer statements first: inner ones overwrite
+                    if isinstance(statement, ast.stmt) and statement is not fn:
+                        for held in range(statement.lineno, (statement.end_lineno or statement.lineno) + 1):
+                            starts[held] = statement.lineno
+                for held in range(fn.lineno, fn.body[0].lineno):
+                    starts[held] = _first_run(fn)
+            self._statements[where] = starts
+        return self._statements[where].get(line, line)
 
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
@@ -207,10 +239,17 @@ class _Student:
         before, after = (" ".join(text.split()) for text in (before, after))
         if before == after:
             return None
-        shortened = _elided(before, after)
+        shortened = _elided(before, after) or _elided(*_abbreviated(context, copied))
         if shortened is None:
             return None
         return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
+
+
+def _first_run(fn) -> int:
+    """The line of the first statement a call of ``fn`` runs (a docstring is not run)."""
+    body = fn.body[1:] if len(fn.body) > 1 and isinstance(fn.body[0], ast.Expr) \
+        and isinstance(fn.body[0].value, ast.Constant) and isinstance(fn.body[0].value.value, str) else fn.body
+    return body[0].lineno
 
 
 def _width(node) -> int:
@@ -258,6 +297,37 @@ def _student_code(trial) -> _Student | None:
 
 
 _AROUND = 30   # characters kept on each side of a change shown in a long line
+
+
+def _abbreviated(before, after) -> tuple[str, str]:
+    """``before`` and ``after`` (nodes) written with the long arguments the change leaves as they were
+    as "...": `cv2.blur(diff, ..., borderType=...) ** 2` -> `cv2.blur(diff ** 2, ..., borderType=...)`."""
+    kept = _arguments(before) & _arguments(after)   # (the same call's same argument, on both sides)
+
+    def cut(node) -> str:
+        node = copy.deepcopy(node)
+        for call in ast.walk(node):
+            if isinstance(call, ast.Call):
+                function = ast.dump(call.func)
+                call.args = [_ELLIPSIS if (function, i, ast.dump(a)) in kept and len(ast.unparse(a)) > 8 else a
+                             for i, a in enumerate(call.args)]
+                for keyword in call.keywords:
+                    if (function, keyword.arg, ast.dump(keyword.value)) in kept and len(ast.unparse(keyword.value)) > 8:
+                        keyword.value = _ELLIPSIS
+        return " ".join(ast.unparse(ast.fix_missing_locations(node)).split())
+
+    return cut(before), cut(after)
+
+
+_ELLIPSIS = ast.Constant(...)
+
+
+def _arguments(node) -> set:
+    """(function, position or keyword, argument) of every call in ``node`` (dumped)."""
+    return {(ast.dump(call.func), i, ast.dump(a)) for call in ast.walk(node) if isinstance(call, ast.Call)
+            for i, a in enumerate(call.args)} | \
+        {(ast.dump(call.func), k.arg, ast.dump(k.value)) for call in ast.walk(node) if isinstance(call, ast.Call)
+         for k in call.keywords}
 
 
 def _elided(before: str, after: str) -> tuple[str, str] | None:
@@ -476,7 +546,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     candidates, near, near_answers = [], [], {}
     known = {m.key for m in earlier}
     complete = True   # every change tried (or ruled out in an earlier check)
-    for mutant in list(earlier) + [m for m in student.ordered(function) if m.key not in known]:
+    # A change in code the smallest failing input does not run leaves the student's wrong answer
+    # there as it is: only changes of the lines it runs are tried (a cost="ncc" branch, unused helpers).
+    ran = student.ran_here(function, variant.ran(screen))
+    for mutant in list(earlier) + [m for m in student.ordered(function)
+                                   if m.key not in known and student.runs(m, ran)]:
         if clock.left() <= (RESERVE if candidates or (near and variant.replayable) else 0):
             complete = False
             break
@@ -633,6 +707,21 @@ class _Variants:
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
         return self.student.fix(mutant)
+
+    def ran(self, index) -> set | None:
+        """The lines of the student's file their own code runs on ``self.inputs[index]`` (a change
+        elsewhere leaves that answer as it is, so it mends nothing there), kept per input; None when
+        the traced call did not answer in time."""
+        kept = self.trial.sandbox.shared.setdefault("repair lines run", {})
+        key = (self.function, _key(self.inputs[index]))
+        if key not in kept:
+            timeout = max(VARIANT_TIMEOUT, 4 * self.seconds_per_call)
+            outcome = self.companion.call_variant(
+                self.trial.lab.module, "", self.function, [self.inputs[index][1:]], forbid=self.forbid,
+                timeout=max(0.05, min(timeout, self.clock.left())), trace=True)
+            lines = outcome.value.get("lines") if outcome.ok and isinstance(outcome.value, dict) else None
+            kept[key] = {line for line in lines if isinstance(line, int)} if isinstance(lines, list) else None
+        return kept[key]
 
     def screened(self, mutant, failing, screen, subtle=False) -> list | None:
         """The variant's answers on the ``failing`` inputs, when on the ``screen`` one (the smallest)
