@@ -33,6 +33,7 @@ from autograder.engine.properties import GRADING
 from autograder.engine.results import GradingResult, write_atomically
 from autograder.engine.runner import grade
 from autograder.instructor import verify
+from naming_switch import turn_naming_off
 
 settings.load_profile(GRADING)
 
@@ -284,14 +285,8 @@ def no_naming(monkeypatch):
     check and per worker (``naming.GRADING_SECONDS``, ``inherited.GRADING_SECONDS``), which a test
     of what failing costs elsewhere -- pictures, statuses, scores -- does not need. Only for tests
     that assert nothing those diagnoses write (tests/test_error_model.py and the labs' mistake
-    tables test them)."""
-    from autograder.engine import inherited
-    from autograder.engine.mutants import naming, repair
-
-    for name in ("name_failure", "name_raised", "name_in_place"):
-        monkeypatch.setattr(naming, name, lambda trial, seconds=0: None)
-    monkeypatch.setattr(repair, "name_by_repair", lambda trial, seconds=0: None)
-    monkeypatch.setattr(inherited, "decide", lambda trial, function, substitutes, seconds=0: None)
+    tables test them). A ``grade.py`` subprocess: ``naming_switch.pythonpath_without_naming``."""
+    turn_naming_off(monkeypatch.setattr)
 
 
 # ------------------------------------------------------------------ hostile submissions

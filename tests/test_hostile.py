@@ -28,6 +28,7 @@ from autograder.engine.runner import grade
 from autograder.sandbox.supervisor import Limits
 from conftest import (NAME_PROCESS, ROOT, assert_only_exercise_lost, check_results, marker, mutant,
                       processes_named)
+from naming_switch import pythonpath_without_naming
 
 MODULE = "lab07_transformations"
 FAST = Limits(call_timeout=2.0, import_timeout=4.0)
@@ -105,7 +106,9 @@ def test_double_forked_daemon_neither_survives_nor_rewrites_results(tmp_path, co
                 os._exit(0)
             return None
         """)
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    # Naming off in grade.py (it asserts nothing naming writes): the error model's and repairs'
+    # reruns would start a daemon each (26 s -> 12 s a grading); the checks' calls start several.
+    env = {**os.environ, "PYTHONPATH": pythonpath_without_naming(ROOT)}
     run = subprocess.run([sys.executable, str(ROOT / "grade.py"), "--submission", str(submission), "lab07",
                           "--json", "results.json", "--html", "feedback.html", "--timeout", "2"],
                          cwd=cwd, env=env, capture_output=True, text=True, timeout=120)
@@ -132,7 +135,8 @@ def test_sigterm_handler_that_ignores_termination(tmp_path, confinement):
 
 
 @needs_namespaces
-def test_killing_the_grader_is_impossible(tmp_path):
+def test_killing_the_grader_is_impossible(tmp_path, no_naming):
+    """(Naming off: its reruns repeat the same attack, 9 s -> 4 s.)"""
     attack(tmp_path, """
         def shear_matrix(s):
             import os, signal
@@ -194,7 +198,8 @@ def test_object_that_equals_everything(tmp_path):
         """, "lab07.ex4", "returned a lab07_transformations.Anything")
 
 
-def test_object_whose_unpickling_runs_code(tmp_path):
+def test_object_whose_unpickling_runs_code(tmp_path, no_naming):
+    """(Naming off: its reruns return the same payload, 5 s -> 2.5 s.)"""
     flag = tmp_path / "pwned"
     attack(tmp_path, f"""
         import os
@@ -261,7 +266,8 @@ def test_fake_results_in_working_and_parent_folders_and_deleted_files(tmp_path, 
 
 
 @needs_namespaces
-def test_walking_the_filesystem_for_answers_finds_nothing(tmp_path):
+def test_walking_the_filesystem_for_answers_finds_nothing(tmp_path, no_naming):
+    """(Naming off: its reruns walk again, 16 s -> 7 s; what is asserted is the checks' output.)"""
     result = attack(tmp_path, f"""
         def shear_matrix(s):
             import os, sys
