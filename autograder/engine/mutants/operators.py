@@ -875,17 +875,31 @@ def step_phrase(fn: ast.FunctionDef) -> str:
 
 # ------------------------------------------------------------------ generating
 @functools.lru_cache(maxsize=16)
-def _module_mutants(source: str, api: frozenset, phrased: bool = True) -> dict:
-    """def name -> [(operator, ordinal, payload, line, phrase)], the sites of every def (``phrased``:
-    only those the operators can tell in words)."""
-    tree = _parse(source)
-    defs = _defs(tree)
-    sites = {}
-    for name, fn in defs.items():
-        params = {a.arg for a in fn.args.args + fn.args.kwonlyargs} if name in api else set()
-        words = _Words(fn, params, defs, set(api), student=not phrased)
-        sites[name] = list(_sites(fn, words, phrased))
-    return sites
+def _module_defs(source: str) -> dict:
+    """The module's defs by name, parsed once per text (read only: every change is made on a copy)."""
+    return _defs(_parse(source))
+
+
+@functools.lru_cache(maxsize=512)
+def _def_sites(source: str, api: frozenset, phrased: bool, name: str) -> list:
+    """[(operator, ordinal, payload, line, phrase)], the sites of the def ``name`` (``phrased``: only
+    those the operators can tell in words), read only when a function that runs it is asked for: a
+    student's whole module is many defs, and a failed check needs one function's."""
+    defs = _module_defs(source)
+    fn = defs[name]
+    params = {a.arg for a in fn.args.args + fn.args.kwonlyargs} if name in api else set()
+    return list(_sites(fn, _Words(fn, params, defs, set(api), student=not phrased), phrased))
+
+
+def runs(defs: dict, function: str) -> list[str]:
+    """The module functions ``function`` runs (directly or not), itself first."""
+    reached, queue = [], [function]
+    while queue:
+        name = queue.pop(0)
+        if name not in reached and name in defs:
+            reached.append(name)
+            queue += _calls_of(defs[name], defs)
+    return reached
 
 
 def _calls_of(fn: ast.FunctionDef, defs: dict) -> list[str]:
@@ -895,30 +909,23 @@ def _calls_of(fn: ast.FunctionDef, defs: dict) -> list[str]:
                               and n.id in defs and n.id != fn.name))
 
 
-def mutants_of(source: str, api, phrased: bool = True) -> dict[str, list[Mutant]]:
+def mutants_of(source: str, api, phrased: bool = True, functions=None) -> dict[str, list[Mutant]]:
     """API function -> its mutants: edits in its own ``def`` and in every module function it
     calls (directly or not), each once (the first of the edits giving the same code).
 
-    ``source`` is the reference module's text; ``api`` the graded function names. ``phrased``
-    False keeps the changes no sentence tells too (their sentence is the place alone): a change of
-    the student's own code is told by showing it (:mod:`.repair`).
+    ``source`` is the reference module's text; ``api`` the graded function names; ``functions``
+    those of them whose mutants are made (default: all). ``phrased`` False keeps the changes no
+    sentence tells too (their sentence is the place alone): a change of the student's own code is
+    told by showing it (:mod:`.repair`).
     """
     api = frozenset(api)
-    tree = _parse(source)
-    defs = _defs(tree)
-    sites = _module_mutants(source, api, phrased)
+    defs = _module_defs(source)
     out = {}
-    for function in sorted(api & set(defs)):
-        reached, queue = [], [function]
-        while queue:  # the functions it runs, itself first
-            name = queue.pop(0)
-            if name not in reached:
-                reached.append(name)
-                queue += _calls_of(defs[name], defs)
+    for function in sorted(api & set(defs) & (set(functions) if functions is not None else set(api))):
         mutants = []
-        for where in reached:
+        for where in runs(defs, function):
             context = _context(function, where, defs, api)
-            for operator, ordinal, payload, line, phrase in sites[where]:
+            for operator, ordinal, payload, line, phrase in _def_sites(source, api, phrased, where):
                 place = f"in `{function}`{context}, "
                 mutants.append(Mutant(operator, function, where, line, ((where, ordinal, operator, payload),),
                                       place + phrase, place))

@@ -42,7 +42,7 @@ from ...loading.reading import MAX_SOURCE_BYTES
 from ..checks import Trial, Verdict, fingerprint
 from . import naming
 from .helper import HelperFailed
-from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_defs
+from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_defs, runs
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
@@ -138,19 +138,28 @@ class _Student:
     change shown (made lazily, for the functions that fail: showing every change of a long module
     takes seconds)."""
 
-    def __init__(self, text: str, tree: ast.Module, mutants: dict):
-        self.text, self.tree, self.mutants = text, tree, mutants
+    def __init__(self, text: str, tree: ast.Module, api):
+        self.text, self.tree = text, tree
+        self._defs = _defs(tree)
+        self.api = frozenset(api) & set(self._defs)   # the graded functions it defines
+        self._mutants: dict = {}     # API function -> the operators' changes of the code it runs
         self.fixes: dict = {}        # mutant key -> its Fix, or None when it cannot be shown
         self._ordered: dict = {}     # function -> its mutants that can be shown, smallest change first
-        self._defs = _defs(tree)
         self._statements: dict = {}   # def -> line -> the first line of the statement holding it
         self._walked: dict = {}      # def name -> (its nodes in ast.walk order, their parents)
         self._lock = threading.Lock()
 
+    def mutants(self, function: str) -> list:
+        """The operators' changes of the code ``function`` runs (made at its first failure: a long
+        module's every function would take seconds)."""
+        if function not in self._mutants:
+            made = mutants_of(self.text, self.api, phrased=False, functions={function}) if function in self.api else {}
+            self._mutants[function] = made.get(function, [])
+        return self._mutants[function]
+
     def shared(self, where: str, function: str) -> bool:
         """Whether the def ``where`` (not ``function`` itself) is run by another graded function too."""
-        return where != function and any(
-            other != function and any(m.where == where for m in mutants) for other, mutants in self.mutants.items())
+        return where != function and any(other != function and where in runs(self._defs, other) for other in self.api)
 
     def ordered(self, function: str) -> list:
         """``function``'s changes that can be shown: its own code's first, then its private helpers'
@@ -159,8 +168,8 @@ class _Student:
         characters, where a change compensating for it rewrites more."""
         with self._lock:
             if function not in self._ordered:
-                shown = [m for m in self.mutants.get(function, ())
-                         if (m.where == function or m.where not in self.mutants) and self.fix(m) is not None]
+                shown = [m for m in self.mutants(function)
+                         if (m.where == function or m.where not in self.api) and self.fix(m) is not None]
                 self._ordered[function] = sorted(shown, key=lambda m: (
                     m.where != function, self.fixes[m.key].size, self.fixes[m.key].written, m.line))
             return self._ordered[function]
@@ -286,7 +295,7 @@ def _student_code(trial) -> _Student | None:
     try:
         tree = parse(text)   # the student's text: within the bounds, under the parse lock
         if sum(1 for _ in ast.walk(tree)) <= MAX_NODES:
-            read = _Student(text, tree, mutants_of(text, api, phrased=False))
+            read = _Student(text, tree, api)
     except Exception:  # noqa: BLE001 - code the operators cannot read has no repairs (said once, not per check)
         read = None
     with _READ_LOCK:
