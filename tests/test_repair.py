@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from autograder.engine.mutants import repair
+from autograder.engine.mutants.operators import Mutant
 from autograder.engine.runner import grade
 from autograder.sandbox.supervisor import Limits, Sandbox
 from conftest import check_results, edited_reference, submission_from_source
@@ -641,3 +642,18 @@ def test_a_long_change_is_shown_with_the_arguments_it_leaves_as_dots():
     after = ast.parse("cv2.blur(difference ** 2, (block_size, block_size), borderType=cv2.BORDER_REFLECT)").body[0].value
     assert repair._abbreviated(before, after) == ("cv2.blur(difference, ..., borderType=...) ** 2",
                                                   "cv2.blur(difference ** 2, ..., borderType=...)")
+
+
+def test_changes_just_before_the_line_that_raised_are_tried_first():
+    from autograder.engine.checks import _lines_of
+
+    traceback = ('Traceback (your code):\n  File "lab08_homographies.py", line 150, in draw_matches\n'
+                 '    canvas[:h2, w1:] = img2\nValueError: could not broadcast')
+    assert _lines_of(traceback, "lab08_homographies") == (150,)
+    far, near, after = (Mutant("sign", "f", "f", line, (), "") for line in (120, 147, 151))
+
+    class Raised:
+        raised, raised_lines = ("f", (), {}, "f() raised ValueError"), (150,)
+
+    assert repair._near_the_raise([far, after, near], Raised(), "f") == [near, far, after]
+    assert repair._near_the_raise([far, near], Raised(), "g") == [far, near]   # another function raised

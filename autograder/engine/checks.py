@@ -19,6 +19,7 @@ failure inside it is silent (the graded checks report it).
 
 from __future__ import annotations
 
+import re
 import functools
 import hashlib
 import threading
@@ -161,6 +162,7 @@ class Trial:
         # The last call that raised, as (function, args, kwargs, message): the error model names the
         # cause of a check that ended by the student's exception from it.
         self.raised: tuple | None = None
+        self.raised_lines: tuple = ()   # the lines of the student's module in its traceback, outermost first
 
     @functools.cached_property
     def rng(self) -> np.random.Generator:
@@ -212,6 +214,7 @@ class Trial:
             failure = StudentFailure(outcome, self._describe(function, outcome))
             if outcome.kind == "exception":
                 self.raised = (function, args, kwargs, outcome.message)
+                self.raised_lines = _lines_of(outcome.traceback, self.lab.module)
             if outcome.kind in _FATAL_KINDS:
                 self._fatal[function] = failure
         # One raise site, and a fresh exception each time: Hypothesis tells failures
@@ -640,6 +643,12 @@ def _float_arrays(value, depth: int = 0):
     elif isinstance(value, dict) and depth < 3:
         for item in list(value.values())[:64]:
             yield from _float_arrays(item, depth + 1)
+
+
+def _lines_of(traceback: str, module: str) -> tuple:
+    """The line numbers of ``module``'s file in a relayed traceback ("File "m.py", line 6, in f")."""
+    return tuple(int(n) for n in re.findall(r'File "(?:[^"]*/)?' + re.escape(module) + r'\.py", line (\d+)',
+                                             str(traceback)[-4000:]))[-8:]
 
 
 def _whole_numbers(value) -> bool:

@@ -558,8 +558,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # A change in code the smallest failing input does not run leaves the student's wrong answer
     # there as it is: only changes of the lines it runs are tried (a cost="ncc" branch, unused helpers).
     ran = student.ran_here(function, variant.ran(screen))
-    for mutant in list(earlier) + [m for m in student.ordered(function)
-                                   if m.key not in known and student.runs(m, ran)]:
+    tried = [m for m in student.ordered(function) if m.key not in known and student.runs(m, ran)]
+    for mutant in list(earlier) + _near_the_raise(tried, trial, function):
         if clock.left() <= (RESERVE if candidates or (near and variant.replayable) else 0):
             complete = False
             break
@@ -654,6 +654,21 @@ REPLAYS = 4       # the most changes a failed check is replayed with
 OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by a check must pass too
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
+
+
+RAISE_REACH = 6   # lines before the one that raised where a change is tried first
+
+
+def _near_the_raise(mutants, trial, function) -> list:
+    """``mutants`` with those of the few lines up to the one where the student's ``function`` raised
+    first (each group in its order): the slip is mostly there or just before (a canvas one image
+    high, then an image copied into it)."""
+    raised = getattr(trial, "raised", None)
+    lines = getattr(trial, "raised_lines", ()) if raised and raised[0] == function else ()
+    if not lines:
+        return mutants
+    near = lambda m: any(0 <= line - m.line <= RAISE_REACH for line in lines)  # noqa: E731
+    return [m for m in mutants if near(m)] + [m for m in mutants if not near(m)]
 
 
 def _apart(first, second) -> bool:

@@ -211,6 +211,18 @@ MISTAKES = {
             canvas[h1:, :w2] = _bgr(img2)
             return canvas
         """, ["side by side"]),
+    "a canvas as high as img1 only (raises for a taller img2)": ("lab08.ex3", """
+        def draw_matches(img1, img2, pts1, pts2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((h1, w1 + w2, 3), np.uint8)
+            canvas[:h1, :w1] = _bgr(img1)
+            canvas[:h2, w1:] = _bgr(img2)
+            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                cv2.line(canvas, (int(round(x1)), int(round(y1))), (int(round(x2 + w1)), int(round(y2))),
+                         (0, 255, 0), 1, cv2.LINE_AA)
+            return canvas
+        """, ["`(max(h1, h2), w1 + w2, 3)`"]),
     # ---------------------------------------------------------------- ex4
     "RANSAC without the final refit": ("lab08.ex4", """
         def homography_ransac(src, dst, threshold=3.0, seed=None):
