@@ -49,7 +49,8 @@ def test_huge_allocation_costs_only_its_exercise(tmp_path):
     assert_only_exercise_lost(result, "lab07.ex4", "shear_matrix() asked for more than 6144 MB of memory (MemoryError)")
 
 
-def test_always_equal_ndarray_subclass_is_refused(tmp_path):
+def test_always_equal_ndarray_subclass_is_refused(tmp_path, no_naming):
+    """(Naming off: the refusal is the transport's, named by nothing else; 7 s -> 2 s.)"""
     result = grade(mutant(tmp_path, MODULE, """
         class Liar(np.ndarray):
             def __eq__(self, other):
