@@ -657,3 +657,18 @@ def test_changes_just_before_the_line_that_raised_are_tried_first():
 
     assert repair._near_the_raise([far, after, near], Raised(), "f") == [near, far, after]
     assert repair._near_the_raise([far, near], Raised(), "g") == [far, near]   # another function raised
+
+
+def test_a_change_found_beside_a_checks_own_name_is_told_after_it(tmp_path):
+    """rotate() through cv2.getRotationMatrix2D given -angle_deg: the check names the effect (the
+    rotation goes the opposite way); the change of the student's code that mends it is told after
+    that name, which stays (label and hint as they were)."""
+    folder = edited_reference(tmp_path, "lab07_transformations", (
+        "    return _warp(image, rotation_matrix(angle_deg, centre))\n",
+        "    return cv2.warpAffine(image, cv2.getRotationMatrix2D(centre, -angle_deg, 1.0), (width, height))\n"))
+    result = grade(folder, ["lab07.ex2"], pictures="none", include_hidden=False)
+    failed = [c for c in check_results(result, "lab07.ex2") if c.score < c.max_score]
+    told = [c for c in failed if "to `cv2.getRotationMatrix2D(centre, angle_deg, 1.0)`" in c.message]
+    assert told, [c.message for c in failed]
+    assert "opposite way" in told[0].message and not told[0].mistake.startswith(repair.MISTAKE)
+    assert told[0].message.index("opposite way") < told[0].message.index("Trying small changes")

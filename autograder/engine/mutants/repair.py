@@ -29,6 +29,7 @@ import difflib
 import hashlib
 import itertools
 import os
+import re
 import threading
 import time
 from collections import OrderedDict
@@ -990,9 +991,25 @@ class _Replayed:
         return CallOutcome(ok=True, value=value, seconds=outcome.seconds)
 
 
+# A check's own name of a mistake says what the answers show ("the rotation goes the opposite way",
+# "the channels are not kept"); a repair found beside it says where in the student's code. Searched
+# for a shorter time than where nothing names the mistake (the name is said either way).
+BESIDE_NAMES = True
+BESIDE_SECONDS = 2.0
+
+
+def _beside(verdict) -> bool:
+    """Whether a repair may be told beside the check's own name of the mistake: not beside a name that
+    already points into the code (a reading of it, a line) nor one a repair made."""
+    message = str(verdict.message)
+    return BESIDE_NAMES and not verdict.mistake.startswith(MISTAKE) and "Reading your code" not in message \
+        and re.search(r"\(line \d+\)", message) is None
+
+
 def named_by_repair(verdict, trial):
     """A failed check's verdict with a confirmed repair told at the end of its first line (in place of
-    its fixed hint), when the verdict names nothing or only the error model names it; unchanged
+    its fixed hint), when the verdict names nothing or only the error model names it; beside the
+    check's own name of the mistake (which stays, with its hint) when :func:`_beside` allows; unchanged
     otherwise (see the module docstring).
 
     A repair told where the error model named a mutant of the reference takes its place: both are
@@ -1000,12 +1017,17 @@ def named_by_repair(verdict, trial):
     shown as it is, where a mutant's sentence describes the reference's code in words that may fit
     the student's less well."""
     by_mutant = verdict.mistake.startswith("mutant:") and naming.APPENDED in str(verdict.message)
-    if not by_mutant and (verdict.mistake or "looks like" in str(verdict.message).lower()):
+    by_hand = not by_mutant and bool(verdict.mistake or "looks like" in str(verdict.message).lower())
+    if by_hand and not _beside(verdict):
         return verdict
-    repair = name_by_repair(trial)
+    repair = name_by_repair(trial, BESIDE_SECONDS if by_hand else CHECK_SECONDS)
     if repair is None:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
+    if by_hand:   # the check's name of the effect stays, with where it comes from in their code
+        lead = first.rstrip()
+        lead += "" if not lead or lead[-1] in ".:;!?" else "."
+        return replace(verdict, message=f"{lead} {repair.sentence}.{newline}{rest}")
     if by_mutant:
         first = first.split(" " + naming.APPENDED, 1)[0]
     lead = first.rstrip()
