@@ -614,6 +614,17 @@ def test_a_canvas_sized_by_one_image_is_sized_by_both():
     assert {("h1", "max(h1, h2)"), ("w1", "w1 + w2")} <= made, made
 
 
+def test_a_loop_over_a_fixed_count_is_made_a_loop_over_every_item():
+    source = textwrap.dedent("""
+        def graded(p1, p2):
+            rows = []
+            for i in range(8):
+                rows.append([p1[i, 0] * p2[i, 0], 1])
+            return rows
+    """)
+    assert {("8", "len(p1)"), ("8", "len(p2)")} <= _made(source, {"loop_all"})
+
+
 def test_a_traced_call_reports_the_lines_of_the_students_file_it_ran(tmp_path):
     """The student's code as it is, traced: the lines run (the branch taken, the helper called), not
     the branch left; a change there would mend nothing on this input, so it is not tried."""

@@ -81,6 +81,7 @@ OPERATORS = {
     "slice": ("slice", "column", "entries", "first", "last"),   # l[:, 1:] -> l[:, :2], A[r, 3:7] -> A[r, 4:8]
     "drop_slice": ("first", "only", "all"),          # pts[:8] -> pts: every point, not the first few
     "canvas": ("size", "height", "width", "max", "both"),   # np.zeros((h1, w1 + w2)) -> max(h1, h2) rows
+    "loop_all": ("only", "first", "all", "every"),    # for i in range(8) -> range(len(p1)): every point
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -590,6 +591,10 @@ def _make_canvas(node, payload):
     return _parse(payload).body[0].value   # h1 -> max(h1, h2), w1 -> w1 + w2
 
 
+def _make_loop_all(node, payload):
+    return _parse(payload).body[0].value   # range(8) -> range(len(p1))
+
+
 def _make_drop_slice(node, payload):
     return copy.deepcopy(node.value)   # pts[:8] -> pts
 
@@ -601,7 +606,7 @@ def _make_function(node, payload):
 
 
 _MAKE = {"twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
-         "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+         "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -1110,6 +1115,11 @@ def _changes(node, parents, words: _Words, line):
             and _named_matrix(node.value) and what(node.value):
         yield "reshape_transpose", None, f"{what(node.value)} is reshaped to the transposed shape where it is " \
                                          "transposed (reshape keeps the order of the entries; .T moves them)"
+    if words.student and isinstance(parent, ast.Call) and _dotted(parent.func) == "range" and parent.args == [node] \
+            and isinstance(node, ast.Constant) and isinstance(node.value, int) and node.value >= 3:
+        loop = parents.get(id(parent), (None,))[0]
+        if isinstance(loop, ast.For) and loop.iter is parent and isinstance(loop.target, ast.Name):
+            yield from _counted_loop_changes(loop)
     if words.student:
         yield from _student_changes(node, parent)
         yield from _sibling_changes(node, words)
@@ -1170,6 +1180,7 @@ def _student_changes(node, parent):
     yield from _measure_changes(node)
     if isinstance(node, ast.Slice):
         yield from _slice_changes(node)
+
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.slice, ast.Slice) \
             and node.slice.lower is None and node.slice.step is None \
             and isinstance(node.slice.upper, ast.Constant) and isinstance(node.slice.upper.value, int) \
@@ -1279,6 +1290,19 @@ def _slice_changes(node: ast.Slice):
         yield "slice", (None, -1), ""
     elif lower is None and upper in (2, -1):
         yield "slice", (1, None), ""
+
+
+def _counted_loop_changes(loop: ast.For):
+    """A loop over a fixed count where every item belongs (`for i in range(8)` over `p1[i]`: the
+    eight-point algorithm given 40 points uses eight): the count becomes `len` of what it indexes."""
+    indexed = []
+    for inner in ast.walk(loop):
+        if isinstance(inner, ast.Subscript) and isinstance(inner.value, ast.Name) and inner.value.id not in indexed:
+            first = inner.slice.elts[0] if isinstance(inner.slice, ast.Tuple) and inner.slice.elts else inner.slice
+            if isinstance(first, ast.Name) and first.id == loop.target.id:
+                indexed.append(inner.value.id)
+    for name in indexed[:2]:
+        yield "loop_all", f"len({name})", ""
 
 
 def _twins(a, b) -> bool:

@@ -32,7 +32,7 @@ import os
 import re
 import threading
 import time
-from collections import OrderedDict
+from collections import Counter, OrderedDict
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -171,8 +171,16 @@ class _Student:
             if function not in self._ordered:
                 shown = [m for m in self.mutants(function)
                          if (m.where == function or m.where not in self.api) and self.fix(m) is not None]
-                self._ordered[function] = sorted(shown, key=lambda m: (
+                smallest = sorted(shown, key=lambda m: (
                     m.where != function, self.fixes[m.key].size, self.fixes[m.key].written, m.line))
+                # Each kind of slip has its turn: the k-th smallest change of every operator before the
+                # (k+1)-th of any (a function's 150 names that might be another's would otherwise come
+                # before its one loop over a fixed count).
+                turn, taken = {}, Counter()
+                for m in smallest:
+                    turn[m.key] = taken[(m.where != function, m.operator)]
+                    taken[(m.where != function, m.operator)] += 1
+                self._ordered[function] = sorted(smallest, key=lambda m: (m.where != function, turn[m.key]))
             return self._ordered[function]
 
     def runs(self, mutant, lines) -> bool:
