@@ -653,7 +653,7 @@ def _lines_of(traceback: str, module: str) -> tuple:
 
 def _whole_numbers(value) -> bool:
     """Whether a returned value holds an array of whole numbers only, not all zero: a float array
-    without fractions, or an integer one (an array made with dtype=int keeps no fraction either)."""
+    without fractions, or a signed integer one (an array made with dtype=int keeps no fraction)."""
     if any(np.any(array) for array in _integer_arrays(value)):
         return True
     for array in _float_arrays(value):
@@ -666,8 +666,9 @@ def _whole_numbers(value) -> bool:
 
 
 def _integer_arrays(value, depth: int = 0):
-    """The integer arrays (not booleans) in a value, its tuples and lists (a few levels)."""
-    if isinstance(value, np.ndarray) and value.dtype.kind in "iu":
+    """The signed integer arrays in a value, its tuples and lists (a few levels): not images (uint8),
+    nor booleans."""
+    if isinstance(value, np.ndarray) and value.dtype.kind == "i":
         yield value
     elif isinstance(value, (tuple, list)) and depth < 3:
         for item in value[:64]:
