@@ -37,6 +37,7 @@ from autograder.engine.registry import discover
 from autograder.reports import html
 from autograder.engine.results import GradingResult, strip_pictures
 from autograder.engine.runner import grade
+from autograder.sandbox.supervisor import Limits
 from conftest import REFERENCE, SKELETON
 
 # Appended to a reference module: every graded function prints its arguments, then answers
@@ -108,12 +109,17 @@ def _echoing_submission(folder: Path, raising: bool) -> Path:
 
 @pytest.fixture(scope="module")
 def gradings(tmp_path_factory) -> dict[str, tuple[Path, GradingResult]]:
-    """Each submission graded once (every lab, pictures of every check): kind -> (folder, grading)."""
+    """Each submission graded once (every lab, pictures of every check): kind -> (folder, grading).
+
+    A GiB of memory is plenty for every check; the wrong answers' hidden stitch_many (its
+    homographies wrong) grows its panorama to 5 GB until its 10 s run out: stopped at the GiB
+    instead, a grading of 26 s takes 10 (naming off), and its message is as much its own."""
     root = tmp_path_factory.mktemp("hidden")
     folders = {"skeleton": SKELETON,
                "wrong answers": _echoing_submission(root / "wrong", raising=False),
                "raising": _echoing_submission(root / "raising", raising=True)}
-    return {kind: (folder, grade(folder, pictures="all")) for kind, folder in folders.items()}
+    limits = Limits(memory=1 << 30)
+    return {kind: (folder, grade(folder, pictures="all", limits=limits)) for kind, folder in folders.items()}
 
 
 # ------------------------------------------------------------------ what may not leak
