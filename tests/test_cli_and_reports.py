@@ -102,8 +102,9 @@ def test_notebook_submission(tmp_path):
     assert result.total == result.max_total
 
 
-def test_json_leaves_pictures_out_unless_asked(tmp_path):
-    """A JSON file is for programs: no base64 pictures by default (megabytes each)."""
+def test_json_leaves_pictures_out_unless_asked(tmp_path, no_naming):
+    """A JSON file is for programs: no base64 pictures by default (megabytes each). (Naming off:
+    it adds no picture.)"""
     from autograder.cli import main
 
     plain, with_pictures = tmp_path / "plain.json", tmp_path / "pictures.json"

@@ -99,7 +99,9 @@ WRONG = [("lab07", "rotation the wrong way"), ("lab07", "sy ignored"), ("lab10",
 
 
 @pytest.mark.parametrize("lab_key, case", WRONG)
-def test_a_realistic_mistake_fails_its_exercises_hidden_check_whatever_it_draws(tmp_path, lab_key, case):
+def test_a_realistic_mistake_fails_its_exercises_hidden_check_whatever_it_draws(tmp_path, lab_key, case,
+                                                                             no_naming):
+    """(Naming off: what is asserted is the verdict on each draw; how it is named is verify's.)"""
     lab = discover()[lab_key]
     exercise, source = importlib.import_module(f"autograder.labs.mistakes.{lab_key}").MISTAKES[case][:2]
     folder = mutant(tmp_path, lab.module, source)
