@@ -417,8 +417,10 @@ def _within(value, reference, rtol: float, grey: float, projective: bool = True)
 
 
 # ------------------------------------------------------------------ the search
-def name_by_repair(trial, seconds: float = CHECK_SECONDS) -> Repair | None:
+def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = None) -> Repair | None:
     """A change of the student's code that makes the failed trial's answers right, confirmed; or None.
+    ``tries``: at most this many single changes, no pairs (a search whose outcome does not depend on
+    the machine's speed, within ``seconds``).
 
     Never raises for the student's sake: a variant that fails is no repair; without a reference
     module, a reading of the student's code or time left, nothing is named."""
@@ -439,7 +441,7 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS) -> Repair | None:
         student = _student_code(trial)
         if student is None:
             return None
-        return _search(trial, model, student, naming.Clock(seconds))
+        return _search(trial, model, student, naming.Clock(seconds), tries)
     except HelperFailed:
         return None
     finally:
@@ -461,7 +463,7 @@ def _recorded(trial) -> dict:
     return recorded
 
 
-def _search(trial, model, student: _Student, clock) -> Repair | None:
+def _search(trial, model, student: _Student, clock, tries=None) -> Repair | None:
     runner = naming.helper()
     for function, calls in _recorded(trial).items():
         if function not in model.mutants or not student.ordered(function):
@@ -478,7 +480,7 @@ def _search(trial, model, student: _Student, clock) -> Repair | None:
                        if naming.error_kind(reference) is None and _differs(call[3], reference)]
         if not failing:
             continue
-        found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle)
+        found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle, tries)
         seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         known = {_key(call) for call in seen}
         seen += [call for call in inputs if _key(call) not in known][:max(0, SEEN - len(seen))]
@@ -546,7 +548,8 @@ def _wrong(answer, reference) -> bool:
     return naming.error_kind(answer) is not None or naming.wrong(answer, reference)
 
 
-def _repaired(trial, model, student, function, inputs, references, failing, clock, subtle=False) -> Repair | None:
+def _repaired(trial, model, student, function, inputs, references, failing, clock, subtle=False,
+              tries=None) -> Repair | None:
     """The confirmed single changes of ``function``'s code (or of a helper it runs) whose answers on
     the ``failing`` inputs are the reference's (up to :data:`FIXES`, one per line), or with which the
     failed check itself passes (:meth:`_Variants.passes_check`; only that where the student's answers
@@ -569,7 +572,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     ran = student.ran_here(function, variant.ran(screen))
     tried = [m for m in student.ordered(function) if m.key not in known and student.runs(m, ran)]
     for mutant in list(earlier) + _near_the_raise(tried, trial, function):
-        if clock.left() <= (RESERVE if candidates or (near and variant.replayable) else 0):
+        if clock.left() <= (RESERVE if candidates or (near and variant.replayable) else 0) \
+                or (tries is not None and variant.screenings >= tries):
             complete = False
             break
         if mutant.key in ruled_out:
@@ -629,6 +633,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # flipped where the pyramid is built, or undone where it is collapsed).
         kept = [pair for pair in fixes if not student.shared(pair[1].where, function)]
         return variant.repair(kept or fixes, complete)
+    if tries is not None:
+        return None   # (pairs: a search bounded by its tries makes none)
     near = [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
     kept_near[:] = near
     pairs = [(a, b) for a, b in itertools.combinations(near, 2) if _apart(a, b)]
@@ -707,6 +713,7 @@ class _Variants:
         self.replayable = _replayable(trial)
         self.checked: dict = {}     # change -> its spread, where the check itself judged it right
         self.replays = 0
+        self.screenings = 0         # changes run on the screening input
         self.theirs: dict = {}      # confirmation input -> the student's own answer there
         self.confirmed_by_checks = False   # a change the check judged, confirmed by its other checks
         # Changes the check judged whose answers on the failing inputs were close to the reference's
@@ -759,6 +766,7 @@ class _Variants:
     def screened(self, mutant, failing, screen, subtle=False) -> list | None:
         """The variant's answers on the ``failing`` inputs, when on the ``screen`` one (the smallest)
         it answers right or nearer the reference's than the student's own; else None."""
+        self.screenings += 1
         first = self.answers(mutant, [screen], self.inputs)
         if first is None or len(failing) == 1:
             return first
@@ -1001,9 +1009,12 @@ class _Replayed:
 
 # A check's own name of a mistake says what the answers show ("the rotation goes the opposite way",
 # "the channels are not kept"); a repair found beside it says where in the student's code. Searched
-# for a shorter time than where nothing names the mistake (the name is said either way).
+# among fewer changes than where nothing names the mistake (the name is said either way): a count,
+# not a time, bounds it, so a grading tells the same beside a name however busy the machine is (a
+# regrade, a batch on another machine), unless the time, far above what the count takes, runs out.
 BESIDE_NAMES = True
-BESIDE_SECONDS = 2.0
+BESIDE_TRIES = 30
+BESIDE_SECONDS = 4.0
 
 
 def _beside(verdict) -> bool:
@@ -1028,7 +1039,7 @@ def named_by_repair(verdict, trial):
     by_hand = not by_mutant and bool(verdict.mistake or "looks like" in str(verdict.message).lower())
     if by_hand and not _beside(verdict):
         return verdict
-    repair = name_by_repair(trial, BESIDE_SECONDS if by_hand else CHECK_SECONDS)
+    repair = name_by_repair(trial, BESIDE_SECONDS, BESIDE_TRIES) if by_hand else name_by_repair(trial)
     if repair is None:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
