@@ -213,6 +213,13 @@ def _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise):
     sine = np.linalg.norm(np.cross(got, X), axis=1) / (np.linalg.norm(got, axis=1) * np.linalg.norm(X, axis=1) + 1e-300)
     scale = np.sum(got * X, axis=1) / np.sum(X * X, axis=1)
     if np.quantile(sine, 0.9) <= 1e-6 + 0.05 * noise and np.median(np.abs(scale - 1)) > 0.1:
+        # One factor for every point is no w (each point's own): a sign or a scale of the solver.
+        if np.all(scale < 0) and np.median(np.abs(scale + 1)) <= 0.1:
+            t.fail(f"{what} is wrong: every point is the true one negated (X -> -X): a sign is flipped "
+                   "in the system or in its solution.", mistake="every point is negated")
+        common = float(np.median(scale))
+        if np.all(np.abs(scale - common) <= 1e-3 * max(1.0, abs(common)) + 0.05 * noise):
+            t.fail(f"{what} is wrong: every point is the true one times the same factor {common:.4g}.")
         t.fail(f"{what} is wrong: it looks like the homogeneous solution (X, Y, Z, w) was not "
                f"divided by w: each point is the true one times some factor (the first is {scale[0]:.3g}).",
                mistake="the homogeneous solution was not divided by w")

@@ -116,6 +116,15 @@ MISTAKES = {
             X = np.linalg.svd(A)[2][:, 0]
             return X[:, :3] / X[:, 3:]
         """, ["largest singular value"]),
+    "inhomogeneous triangulation with the right-hand side's sign flipped": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
+            out = np.empty((len(pts1), 3))
+            for i, ((x1, y1), (x2, y2)) in enumerate(zip(np.asarray(pts1, float), np.asarray(pts2, float))):
+                A = np.array([x1 * P1[2] - P1[0], y1 * P1[2] - P1[1], x2 * P2[2] - P2[0], y2 * P2[2] - P2[1]])
+                out[i] = np.linalg.lstsq(A[:, :3], A[:, 3], rcond=None)[0]
+            return out
+        """, ["every point is the true one negated"]),
     # ---------------------------------------------------------------- ex2
     "epipolar lines with F transposed": ("lab11.ex2", """
         def epipolar_lines(F, pts1):
