@@ -666,8 +666,9 @@ def essential_8point_exact(t):
 ESSENTIAL_VALUES_HINT = Hint(
     "Replace them by (1, 1, 0) (U diag(1, 1, 0) V^T).",
     asks=(expr("np.diag([1, 1, 0])") | expr("np.diag((1, 1, 0))")).saying("builds diag(1, 1, 0)"),
-    instead="Your code {found}: check that E is rebuilt with it, U diag(1, 1, 0) V^T, and that this "
-            "E is the one returned.")
+    instead="Your code {found}, but the E it returns is not of that form: a step after it changes the "
+            "singular values again (a product with another matrix, a normalisation undone after the "
+            "constraint), or the E returned is not the one rebuilt with it.")
 
 
 @ex3.check("essential_8point: singular values (s, s, 0) on noisy data", points=2)
@@ -682,9 +683,13 @@ def essential_8point_singular_values(t):
     if s[2] <= at_precision(1e-6) and s[1] >= 1 - at_precision(1e-6):
         return passed(f"singular values proportional to (1, {s[1]:.6f}, {s[2]:.1e})")
     if s[2] <= at_precision(1e-6):
+        said = ESSENTIAL_VALUES_HINT.said(t)
+        if said != ESSENTIAL_VALUES_HINT.text:   # (code that sets (1, 1, 0) is not told it sets (s1, s2, 0))
+            t.fail(f"essential_8point: the singular values of the E returned are proportional to "
+                   f"(1, {s[1]:.4f}, 0), and an essential matrix has two equal ones. " + said)
         t.fail(f"essential_8point: it looks like the singular values were set to (s1, s2, 0): they are "
                f"proportional to (1, {s[1]:.4f}, 0), and an essential matrix has two equal ones. "
-               + ESSENTIAL_VALUES_HINT.said(t), mistake=ESSENTIAL_MISTAKES["rank2_only"])
+               + said, mistake=ESSENTIAL_MISTAKES["rank2_only"])
     t.fail(f"essential_8point: it looks like the singular values were not set to (1, 1, 0) after the "
            f"least-squares solution: they are proportional to (1, {s[1]:.4f}, {s[2]:.4f}); an essential "
            "matrix has (s, s, 0).", mistake="the singular values were not set to (1, 1, 0)")

@@ -125,6 +125,15 @@ MISTAKES = {
                 out[i] = np.linalg.lstsq(A[:, :3], A[:, 3], rcond=None)[0]
             return out
         """, ["every point is the true one negated"]),
+    "E given (1, 1, 0) before its conditioning is undone": ("lab11.ex3", """
+        def essential_8point(pts1, pts2, K1, K2):
+            x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
+            x2 = _homogeneous(pts2) @ np.linalg.inv(K2).T
+            T1, T2 = np.diag([2.0, 2.0, 1.0]), np.diag([3.0, 3.0, 1.0])
+            U, _, Vt = np.linalg.svd(_eight_point_core(x1 @ T1.T, x2 @ T2.T))
+            En = U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+            return T2.T @ En @ T1
+        """, ["a step after it changes the singular values again"]),
     # ---------------------------------------------------------------- ex2
     "epipolar lines with F transposed": ("lab11.ex2", """
         def epipolar_lines(F, pts1):
