@@ -793,8 +793,28 @@ def poor_consensus_cause(t: Trial) -> str | None:
     if wins == 4:
         return NO_DIVISION
     if wins <= 2:
+        drawn = _fixed_sample_counts(t)
+        if drawn and min(drawn) >= SAMPLES_ENOUGH:   # (code drawing 1000 samples does not draw too few)
+            return NOT_THE_BEST.replace(", or draws too few samples", "")
         return NOT_THE_BEST
     return None
+
+
+SAMPLES_ENOUGH = 200   # a loop this long keeps a good model of half-wrong pairs (4-point samples)
+
+
+def _fixed_sample_counts(t: Trial) -> list[int]:
+    """The constant counts of the `for ... in range(N)` loops of the student's homography_ransac (and
+    its helpers); [] when it has none (a count from a variable)."""
+    counts = []
+    for function in code_of(t).reachable(["homography_ransac"]):
+        for node in ast.walk(function):
+            if isinstance(node, ast.For) and isinstance(node.iter, ast.Call) and _path(node.iter.func) == "range" \
+                    and node.iter.args:
+                bound = node.iter.args[0 if len(node.iter.args) == 1 else 1]
+                if isinstance(bound, ast.Constant) and isinstance(bound.value, int):
+                    counts.append(bound.value)
+    return counts
 
 
 def dlt_works(t: Trial, src, dst, H_true) -> bool:

@@ -325,7 +325,7 @@ MISTAKES = {
             if inliers.sum() >= 4:
                 H = homography_dlt(src[inliers], dst[inliers])
             return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
-        """, ["returns the last model drawn rather than the best one"]),
+        """, ["returns the last model drawn rather than the best one."]),   # (500 samples: not "too few")
     # ---------------------------------------------------------------- ex5
     "img2 as the reference": ("lab08.ex5", """
         def stitch(img1, img2):
