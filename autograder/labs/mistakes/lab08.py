@@ -21,6 +21,13 @@ MISTAKES = {
             q = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H).T
             return np.column_stack([q[:, 0] / q[:, 2], q[:, 1] / q[:, 0]])
         """, ["in y only", "changing `q[:, 1] / q[:, 0]` to `q[:, 1] / q[:, 2]`"]),
+    "w computed as if H[2, 2] were 1": ("lab08.ex1", """
+        def transform_points(H, pts):
+            H, pts = np.asarray(H, float), np.asarray(pts, float)
+            w = H[2, 0] * pts[:, 0] + H[2, 1] * pts[:, 1] + 1.0
+            return np.column_stack([(H[0, 0] * pts[:, 0] + H[0, 1] * pts[:, 1] + H[0, 2]) / w,
+                                    (H[1, 0] * pts[:, 0] + H[1, 1] * pts[:, 1] + H[1, 2]) / w])
+        """, ["is wrong for every point"]),
     "points times H": ("lab08.ex1", """
         def transform_points(H, pts):
             pts = np.asarray(pts, float)
