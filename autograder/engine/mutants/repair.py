@@ -570,8 +570,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # A change in code the smallest failing input does not run leaves the student's wrong answer
     # there as it is: only changes of the lines it runs are tried (a cost="ncc" branch, unused helpers).
     ran = student.ran_here(function, variant.ran(screen))
-    tried = [m for m in student.ordered(function) if m.key not in known and student.runs(m, ran)]
-    for mutant in list(earlier) + _near_the_raise(tried, trial, function):
+    runnable = [m for m in student.ordered(function) if student.runs(m, ran)]
+    for mutant in list(earlier) + _near_the_raise([m for m in runnable if m.key not in known], trial, function):
         if clock.left() <= (RESERVE if candidates or (near and variant.replayable) else 0) \
                 or (tries is not None and variant.screenings >= tries):
             complete = False
@@ -643,12 +643,16 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # reshapes where two transposes belong: one transpose alone mixes the coordinates further).
     tried = {(a.key, b.key) for a, b in pairs}
     slips: dict = {}
-    for mutant in student.ordered(function):
+    for mutant in runnable:   # (of the lines the failing input runs, as the single changes)
         slips.setdefault((mutant.where, mutant.edits[0][2], repr(mutant.edits[0][3])), []).append(mutant)
-    twice = [(a, b) for same in slips.values() for a, b in itertools.combinations(same[:8], 2)
-             if _apart(a, b) and (a.key, b.key) not in tried]
-    twice.sort(key=lambda pair: student.fix(pair[0]).size + student.fix(pair[1]).size)
-    pairs += twice[:SAME_SLIP_PAIRS]
+    size = lambda pair: student.fix(pair[0]).size + student.fix(pair[1]).size  # noqa: E731
+    # Each slip's pairs, smallest first, one slip after another in turns (as the single changes):
+    # many small slips' pairs would otherwise fill the count before a larger slip's second pair.
+    turns = [sorted(((a, b) for a, b in itertools.combinations(same[:8], 2)
+                     if _apart(a, b) and (a.key, b.key) not in tried), key=size) for same in slips.values()]
+    twice = sorted(((turn, pair) for group in turns for turn, pair in enumerate(group)),
+                   key=lambda item: (item[0], size(item[1])))
+    pairs += [pair for _, pair in twice[:SAME_SLIP_PAIRS]]
     for first, second in pairs:
         if clock.left() <= 0:
             return None
