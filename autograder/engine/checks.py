@@ -631,18 +631,23 @@ def _hints():
     return hints
 
 
-def _float_arrays(value, depth: int = 0):
-    """The float arrays (and floats) in a value, its tuples, lists and dicts (a few levels)."""
-    if isinstance(value, np.ndarray) and value.dtype.kind == "f":
+def _arrays(value, kind: str, depth: int = 0):
+    """The arrays of dtype ``kind`` ("f": floats too, "i": signed integers -- not images, uint8, nor
+    booleans) in a value, its tuples, lists and dicts (a few levels, 64 items each)."""
+    if isinstance(value, np.ndarray) and value.dtype.kind == kind:
         yield value
-    elif isinstance(value, float):
+    elif isinstance(value, float) and kind == "f":
         yield np.array(value)
     elif isinstance(value, (tuple, list)) and depth < 3:
         for item in value[:64]:
-            yield from _float_arrays(item, depth + 1)
+            yield from _arrays(item, kind, depth + 1)
     elif isinstance(value, dict) and depth < 3:
         for item in list(value.values())[:64]:
-            yield from _float_arrays(item, depth + 1)
+            yield from _arrays(item, kind, depth + 1)
+
+
+def _float_arrays(value):
+    return _arrays(value, "f")
 
 
 def _lines_of(traceback: str, module: str) -> tuple:
@@ -654,7 +659,7 @@ def _lines_of(traceback: str, module: str) -> tuple:
 def _whole_numbers(value) -> bool:
     """Whether a returned value holds an array of whole numbers only, not all zero: a float array
     without fractions, or a signed integer one (an array made with dtype=int keeps no fraction)."""
-    if any(np.any(array) for array in _integer_arrays(value)):
+    if any(np.any(array) for array in _arrays(value, "i")):
         return True
     for array in _float_arrays(value):
         if _has_fraction(array.ravel()[:_GLANCE]):   # most float results tell at once
@@ -663,16 +668,6 @@ def _whole_numbers(value) -> bool:
         if finite.size and np.any(finite != 0) and not _has_fraction(finite):
             return True
     return False
-
-
-def _integer_arrays(value, depth: int = 0):
-    """The signed integer arrays in a value, its tuples and lists (a few levels): not images (uint8),
-    nor booleans."""
-    if isinstance(value, np.ndarray) and value.dtype.kind == "i":
-        yield value
-    elif isinstance(value, (tuple, list)) and depth < 3:
-        for item in value[:64]:
-            yield from _integer_arrays(item, depth + 1)
 
 
 def _fractional(arguments) -> bool:

@@ -599,18 +599,12 @@ class _LineTrace:
         self.filename, self.lines = filename, set()
 
     def enter(self, frame, event, arg):
-        if filename_of(frame) != self.filename:
-            return None
-        return self.line
+        return self.line if frame.f_code.co_filename == self.filename else None
 
     def line(self, frame, event, arg):
         if event == "line" and len(self.lines) < _TRACED_LINES:
             self.lines.add(frame.f_lineno)
         return self.line
-
-
-def filename_of(frame):
-    return frame.f_code.co_filename
 
 
 def suspect_state():
