@@ -5,7 +5,7 @@ import pytest
 from autograder.engine.runner import grade
 from autograder.labs.mistakes.lab11 import MISTAKES
 from conftest import (THREE_ROW_TRIANGULATION, assert_all_not_implemented, assert_full_marks,
-                      assert_mistake_named, check_results, mutant)
+                      assert_mistake_named, check_results, graded_case, mutant)
 
 MODULE = "lab11_two_view"
 
@@ -159,8 +159,6 @@ def test_stored_figures_are_current():
 def test_lines_scaled_by_another_norm_are_not_told_the_unit_length_mistake():
     """Lines divided by the norm of (b, c) differ from lines of unit length over (a, b, c) by about
     a^2 / c^2 only: that mistake's name is not said to this code (it is not what it does)."""
-    from conftest import graded_case
-
     result = graded_case(MODULE, "lab11.ex2", """
         def epipolar_lines(F, pts1):
             lines = _homogeneous(pts1) @ np.asarray(F, float).T

@@ -612,6 +612,7 @@ def test_a_canvas_sized_by_one_image_is_sized_by_both():
     """)
     made = _made(source, {"canvas"})
     assert {("h1", "max(h1, h2)"), ("w1", "w1 + w2")} <= made, made
+    assert ("h1", "max(h1, w1)") not in made, made
 
 
 def test_a_loop_over_a_fixed_count_is_made_a_loop_over_every_item():

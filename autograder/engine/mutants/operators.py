@@ -1418,8 +1418,8 @@ def _canvas_changes(node, words):
         words.names_read = sorted({n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name)})
     if id(node) not in words.canvas_sizes:
         return
-    for twin in words.names_read:
-        if _twins(ast.Name(twin), ast.Name(node.id)):
+    for twin in words.names_read:   # (the same quantity of the other image: h1/h2, not h1/w1)
+        if twin[:1] == node.id[:1] and _twins(ast.Name(twin), ast.Name(node.id)):
             yield "canvas", f"max({node.id}, {twin})", ""
             yield "canvas", f"{node.id} + {twin}", ""
 
