@@ -50,6 +50,8 @@ CASES = [
      ["cv2.circle needs center as whole numbers, pixel coordinates", "(12.5, 20.0)", "int(round(x))"]),
     ("circle", (IMAGE, (12, 20), 2.5, (0, 0, 255)), {}, ["whole number for radius", "2.5"]),
     ("line", (IMAGE, (np.float64(1.5), 2), (3, 4), (255, 0, 0)), {}, ["pt1 as whole numbers", "1.5"]),
+    ("line", (IMAGE, (0, 10 ** 15), (3, 4), (255, 0, 0)), {},
+     ["pt1 as whole numbers within OpenCV's int range", "1000000000000000", "cv2.clipLine"]),
     ("circle", (IMAGE, (1, 2, 3), 2, (255, 0, 0)), {}, ["center as 2 numbers; yours has 3"]),
     ("cvtColor", (GREY, cv2.COLOR_BGR2GRAY), {}, ["cannot convert src with 1 channel", "already grey"]),
     ("cvtColor", (IMAGE.astype(np.int64), cv2.COLOR_BGR2GRAY), {}, ["int64 image", "astype"]),

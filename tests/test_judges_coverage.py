@@ -50,6 +50,8 @@ NOT_TO_A_STUDENT = {
 EXCEPTION_EXPLAINED = (   # autograder/sandbox/beginner.py: the value of the call that raised, measured
     "{} needs a whole number for {}; yours is {}: use int(round({}))",
     "{} needs {} as whole numbers, {}; yours is {}: round them, e.g. (int(round(x)), int(round(y)))",
+    "{} needs {} as whole numbers within OpenCV's int range (below 2^31 in size); yours is {}: a point that far "
+    "away cannot be drawn, clip the end points to the image first (cv2.clipLine)",
     " (did cv2.imread find the file, or a function of yours return nothing?)",
     ": np.asarray(...) makes one",
     "{} needs {} as a float32 or float64 matrix; yours is {}: build it with dtype=float (np.array([[1, 0, tx], "

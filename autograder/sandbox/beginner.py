@@ -131,6 +131,11 @@ def _bad_argument(function, message, arguments, values) -> str:
     if found:
         name, why = found.group(1), found.group(2)
         value = _shown(values[name]) if name in values else "not that"
+        if "wrong type" in why and _beyond_c_int(values.get(name)):
+            # whole numbers already, too large for OpenCV's int: rounding is not the fix
+            return (f"{function} needs {name} as whole numbers within OpenCV's int range (below 2^31 in size); "
+                    f"yours is {value}: a point that far away cannot be drawn, clip the end points to the "
+                    "image first (cv2.clipLine)")
         if "wrong type" in why:
             what = "(width, height)" if name in ("dsize", "size", "ksize") else "pixel coordinates"
             return (f"{function} needs {name} as whole numbers, {what}; yours is {value}: round them, "
@@ -353,6 +358,15 @@ def _is_points(value) -> bool:
 def _is_image(value) -> bool:
     return _is_array(value) and value.ndim in (2, 3) and min(value.shape[:2]) > 4 \
         and (value.ndim == 2 or value.shape[2] <= 4)
+
+
+def _beyond_c_int(value) -> bool:
+    """Whether ``value`` is a sequence of integers, one of them outside C's 32-bit int."""
+    if not isinstance(value, (list, tuple)) or not value:
+        return False
+    whole = all(isinstance(v, int) and not isinstance(v, bool) or type(v).__name__.startswith(("int", "uint"))
+                for v in value)
+    return whole and any(abs(int(v)) >= 2 ** 31 for v in value)
 
 
 def _shown(value) -> str:
