@@ -248,17 +248,22 @@ def test_correct_variants_keep_full_marks(tmp_path, case):
         assert check.passed, f"{check.name}: {check.message}"
 
 
-def test_functions_writing_into_their_inputs_get_a_tip(tmp_path):
-    """Writing into the caller's array loses no points; the engine's advice names it."""
+def test_a_disparity_map_written_into_loses_one_check_though_a_second_call_agrees(tmp_path):
+    """The sheet shows the disparity map beside the depth computed from it (inplace.shown_after):
+    inf written into the caller's invalid entries (f b / inf = 0, the depths right, a second call on
+    the changed map the same) loses the first check where it shows, named, and no other."""
     result = grade(mutant(tmp_path, MODULE, """
         def depth_from_disparity(disparity, f, baseline):
             d = np.asarray(disparity, dtype=np.float64)   # no copy for a float array
             d[~(d > 0)] = np.inf                          # f b / inf = 0: invalid
             return f * baseline / d
-        """), ["lab12.ex2"])
-    [exercise] = result.exercises
-    assert exercise.score == exercise.max_score
+        """), ["lab12.ex2"], pictures="none")
+    failed = [c for c in check_results(result, "lab12.ex2") if not c.passed and not c.advice]
+    assert [c.name for c in failed] == ["depth_from_disparity gives 0 for invalid disparities (<= 0 or NaN)"]
+    assert "writes into the caller's `disparity` in place (3 of its 6 values: 0 became inf, -3 became inf, " \
+           "nan became inf)" in failed[0].message, failed[0].message
     assert_advised(result, "lab12.ex2", "depth_from_disparity", "disparity", "in place")
+
 
 
 def test_a_pattern_hint_tells_the_stripe_index_from_the_code_by_what_the_columns_carry():

@@ -243,7 +243,7 @@ class Trial:
                 return more.value if more.ok else None
 
             self._in_place[given] = inplace.effect_of_change(again, function, self.lab.signature(function), args,
-                                                             kwargs, outcome, fingerprint)
+                                                             kwargs, outcome, fingerprint, module=self.lab.module)
         if self._in_place[given]:
             owners[("changed in place", self.lab.module, function)] = self.check.id
             raise ChangedInPlace(self._in_place[given], inplace.HINT, inplace.MISTAKE)

@@ -10,6 +10,12 @@ When that second answer differs from the first, the change has an effect a calle
 and :meth:`autograder.engine.checks.Trial.call` fails the check naming it; a change without
 effect (an idempotent write) keeps only the engine's 0-point advice.
 
+Unless the lab sheet's own workflow shows or uses that argument after the call: a lab declares
+such an argument with :func:`shown_after` (lab 12's ``depth_from_disparity(disparity, ...)``: its
+exercise outputs the disparity map beside the depth map computed from it). There a change of its
+values is itself the effect a caller meets, with no second call needed (29c's lab12/07 wrote inf
+into the caller's invalid disparities: the depths right, the map shown afterwards not).
+
 Each function loses points in one check per grading at most (the first public check where
 the effect shows), not in every check that calls it.
 
@@ -85,14 +91,59 @@ def how_changed(before, after) -> str:
     return "writes into"
 
 
+# (module, function) -> {argument: where the lab sheet shows or uses it after the call}
+SHOWN_AFTER: dict[tuple[str, str], dict[str, str]] = {}
+
+
+def shown_after(lab, function: str, argument: str, where: str) -> None:
+    """Declare that ``lab``'s sheet shows or uses ``function``'s ``argument`` after the call
+    (``where``: the sheet's words, "ex2's output is the disparity map beside the depth map"): a
+    change of its values in place is then an effect the caller meets, named and losing points
+    like one a second call shows (see :func:`effect_of_change`)."""
+    SHOWN_AFTER.setdefault((lab.module, function), {})[argument] = where
+
+
+def values_changed(before, after) -> str:
+    """How many values of the array changed, and the first few changes ("2 of its 6 values: 0
+    became inf, -3 became inf"), NaN equal to NaN."""
+    b, a = np.asarray(before), np.asarray(after)
+    if b.shape != a.shape:
+        return f"its shape {b.shape} became {a.shape}"
+    with np.errstate(invalid="ignore"):
+        same = (b == a) | (np.isnan(b) & np.isnan(a) if b.dtype.kind == a.dtype.kind == "f" else False)
+    where = np.flatnonzero(~np.asarray(same).ravel())
+    pairs = list(dict.fromkeys(f"{float(b.ravel()[i]):g} became {float(a.ravel()[i]):g}" for i in where[:12]))[:3]
+    return f"{where.size} of its {b.size} values: " + ", ".join(pairs) + (", ..." if where.size > len(pairs) else "")
+
+
+def _shown_change(function: str, signature: str, args: tuple, kwargs: dict, changed, module: str) -> str:
+    """The sentence for a change of an argument declared :func:`shown_after`, or ``""``."""
+    shown = SHOWN_AFTER.get((module, function), {})
+    for key, index, after in changed:
+        name = argument_name(signature, key, index)
+        where = shown.get(name.partition("[")[0])
+        if where is None:
+            continue
+        holder = args[key] if isinstance(key, int) else kwargs[key]
+        before = holder[index] if index is not None else holder
+        return (f"{function}() {how_changed(before, after)} the caller's `{name}` in place "
+                f"({values_changed(before, after)}). The lab sheet shows or uses `{name}` after the call "
+                f"({where}): what is shown then is no longer what was passed.")
+    return ""
+
+
 def effect_of_change(call, function: str, signature: str, args: tuple, kwargs: dict, outcome,
-                     fingerprint) -> str:
+                     fingerprint, module: str = "") -> str:
     """The sentence saying how ``function``'s change of its caller's array shows, or ``""``.
 
     ``call(args, kwargs)`` calls the student's function once more and returns its answer (None
     when that call failed: nothing is told then); ``outcome`` is the first call's, with the
-    changed arrays; ``fingerprint`` tells answers apart.
+    changed arrays; ``fingerprint`` tells answers apart. An argument of ``module``'s function
+    declared :func:`shown_after` needs no second call: its change is the effect.
     """
+    shown = _shown_change(function, signature, args, kwargs, outcome.changed, module)
+    if shown:
+        return shown
     again = with_changed(args, kwargs, outcome.changed)
     if again is None:
         return ""

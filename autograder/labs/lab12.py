@@ -25,6 +25,7 @@ import numpy as np
 from fixtures import lab12 as truth
 from fixtures.images import tinted
 
+from ..engine import inplace
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
@@ -502,6 +503,10 @@ def triangulate_noisy(t):
 # ================================================================== ex2 disparity and depth
 ex2 = lab.exercise("ex2", "Disparity and depth", functions=[
     "disparity_from_matches(xl, xr)", "depth_from_disparity(disparity, f, baseline)"])
+# The sheet's exercise 2 outputs the disparity map and the depth map computed from it: the map is
+# shown after depth_from_disparity, so writing into it (np.asarray of a float map is no copy) shows.
+inplace.shown_after(lab, "depth_from_disparity", "disparity",
+                    "exercise 2's expected output is the disparity map and the depth map computed from it")
 
 
 def judge_disparities(t: Trial, what: str, got, xl, xr, n):
@@ -1158,6 +1163,46 @@ def block_matching_form(t):
                              instead="your code already compares disparities with max_disparity: check that "
                                      "the comparison is made on the map returned (after StereoBM's division "
                                      "by 16)").said(t))
+    judge_left_strip(t, what, got, max_disparity)
+    return passed(measured("a float map in 0..max_disparity; no disparity points left of the right image"))
+
+
+# A left pixel x has its match at x - d in the right image, whose first column is 0: d <= x (+ half a
+# pixel, the pixel-centre convention); the API leaves a pixel without a partner invalid. Measured on the
+# public scenes (benchmarks/left_strip_block_matching.py): the reference (SSD, NCC), SAD, a Gaussian
+# prefilter, cv2.StereoBM (clipped or not) and a loop over the columns x >= d put no pixel past its
+# column; searches against a right image padded or wrapped round (np.roll, np.pad with zeros, edge or
+# reflection, the x < d cost left finite) 4% to 21% of the strip on the form check's scene, 18% to 29%
+# with NCC on the motorcycle.
+PAST_THE_EDGE = 0.5     # px beyond x: still the right image's first pixel
+LEFT_STRIP_ALLOWED = 0.01   # share of the strip's pixels (legitimate matchers: none)
+PAST_THE_EDGE_MISTAKE = "disparities point left of the right image (x - d < 0) along the left border"
+ROLLED = calls("np.roll")
+
+
+def judge_left_strip(t: Trial, what: str, got, max_disparity: int, function: str = "block_matching"):
+    """Fail when more than :data:`LEFT_STRIP_ALLOWED` of the left strip ``x < max_disparity`` of the
+    map ``got`` (H, W) get a disparity above their column ``x`` (+ :data:`PAST_THE_EDGE`): a match
+    left of the right image, which has no pixel there. Said of the map; np.roll only when the code
+    calls it."""
+    got = np.asarray(got, np.float64)
+    strip = got[:, :min(int(max_disparity), got.shape[1])]
+    with np.errstate(invalid="ignore"):
+        past = np.isfinite(strip) & (strip > 0) & (strip > np.arange(strip.shape[1])[None, :] + PAST_THE_EDGE)
+    if past.mean() <= LEFT_STRIP_ALLOWED:
+        return
+    y, x = (int(v[0]) for v in np.nonzero(past))
+    rolled = ROLLED.found(code_of(t).reachable([function]))
+    t.fail(f"{what}: {past.sum()} pixels of the left strip x < {max_disparity} ({past.mean():.0%} of it) get a "
+           f"disparity larger than their column x (e.g. d = {strip[y, x]:g} at x = {x}, row {y}): their match "
+           "x - d would lie left of the right image's first column, where it has no pixel. "
+           + measured("A left pixel x can only match d = 0..min(x, max_disparity); pixels with no match there are "
+                      "invalid (0).")
+           + (from_code(" Your code calls np.roll, which brings the right image's last columns round to its "
+                        "left edge: blocks there are compared with the far side of the image.") if rolled else ""),
+           mistake=PAST_THE_EDGE_MISTAKE,
+           hint=measured("where x - d < 0 the block has no partner in the right image: give those disparities an "
+                         "infinite cost (or leave the pixel invalid)"))
 
 
 @ex4.check("block_matching (SSD, block_size=9) on random-dot planes", points=3, timeout=STEREO_TIMEOUT)
@@ -1292,6 +1337,11 @@ def ncc_motorcycle(t):
     if verdict.fraction < 1:
         verdict.hint = NCC_HINT.said(t)
         return verdict
+    try:   # the left border, where the map is not judged: a map right but there takes half the points
+        judge_left_strip(t, what, got, scene.max_disparity)
+    except Fail as past:
+        return partial(0.5, f"{past.message} On the rest of the motorcycle: {verdict.message}.", hint=past.hint,
+                       mistake=past.mistake)
     # The motorcycle has no pixel at either end of the range: d = 0 and d = max_disparity are
     # judged on the range-ends scene; a map right but for one end takes half the points.
     ends = truth.scene("zero_disparity")

@@ -92,6 +92,16 @@ MISTAKES = {
             ok = np.isfinite(d) & (d != 0)
             return np.where(ok, f * baseline / np.where(ok, d, 1.0), 0.0)
         """, ["where the disparity is negative, your depth is -26.7", "must be 0"]),
+    # The sheet shows the disparity map after the depth is computed from it (engine/inplace.py's
+    # shown_after): invalid entries overwritten in the caller's map lose points, with no second call.
+    "depth marking the caller's invalid disparities NaN in place (np.asarray: no copy)": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, dtype=np.float64)
+            d[~(d > 0)] = np.nan
+            depth = f * baseline / d
+            depth[np.isnan(depth)] = 0.0
+            return depth
+        """, ["writes into the caller's `disparity` in place", "0 became nan", "shows or uses `disparity` after"]),
     "disparity xr - xl": ("lab12.ex2", """
         def disparity_from_matches(xl, xr):
             xl = np.asarray(xl, float); xr = np.asarray(xr, float)
@@ -203,6 +213,25 @@ MISTAKES = {
                     costs[d, :, -d:] = np.inf
             return costs
         """, ["wrong direction"]),
+    # Columns x < d have no partner in the right image: a search that compares them anyway (the right
+    # image's edge repeated, zeros padded, or wrapped round) sends pixels of the left strip past it.
+    "block matching with the x < d cost left finite (the right image's first column repeated)": ("lab12.ex4", """
+        def _ssd_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(min(max_disparity, width - 1) + 1):
+                costs[d] = _box_mean((left - _shift_right(right, d)) ** 2, block_size)
+            return costs
+        """, ["of the left strip", "larger than their column x", "left of the right image's first column"]),
+    "block matching against a zero-padded right image (np.pad), every d at every column": ("lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            left, right = _grey_float(left), _grey_float(right)
+            width = left.shape[1]
+            padded = np.pad(right, ((0, 0), (max_disparity, 0)))
+            costs = [cv2.boxFilter((left - padded[:, max_disparity - d:max_disparity - d + width]) ** 2, -1,
+                                   (block_size, block_size), normalize=False) for d in range(max_disparity + 1)]
+            return np.argmin(np.stack(costs), axis=0).astype(np.float64)
+        """, ["larger than their column x"]),
     "block matching with negative disparities": ("lab12.ex4", """
         _block_matching = block_matching
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
@@ -290,6 +319,20 @@ MISTAKES = {
                 costs[d, :, :d] = np.inf
             return costs
         """, ["not fully normalised"]),
+    "NCC against the right image rolled (np.roll), the wrapped columns not excluded": ("lab12.ext1", """
+        def _ncc_volume(left, right, max_disparity, block_size):
+            mean_l = _box_mean(left, block_size)
+            std_l = np.sqrt(np.maximum(_box_mean(left * left, block_size) - mean_l ** 2, 0.0))
+            costs = []
+            for d in range(max_disparity + 1):
+                shifted = np.roll(right, d, axis=1)
+                mean_r = _box_mean(shifted, block_size)
+                std_r = np.sqrt(np.maximum(_box_mean(shifted * shifted, block_size) - mean_r ** 2, 0.0))
+                below = std_l * std_r
+                costs.append(-np.divide(_box_mean(left * shifted, block_size) - mean_l * mean_r, below,
+                                        out=np.zeros_like(below), where=below > 1e-6))
+            return np.stack(costs)
+        """, ["larger than their column x", "your code calls np.roll"]),
     "NCC as a plain correlation": ("lab12.ext1", """
         def _ncc_volume(left, right, max_disparity, block_size):
             height, width = left.shape
