@@ -652,8 +652,13 @@ def test_a_traced_call_reports_the_lines_of_the_students_file_it_ran(tmp_path):
 def test_a_long_change_is_shown_with_the_arguments_it_leaves_as_dots():
     before = ast.parse("cv2.blur(difference, (block_size, block_size), borderType=cv2.BORDER_REFLECT) ** 2").body[0].value
     after = ast.parse("cv2.blur(difference ** 2, (block_size, block_size), borderType=cv2.BORDER_REFLECT)").body[0].value
-    assert repair._abbreviated(before, after) == ("cv2.blur(difference, ..., borderType=...) ** 2",
-                                                  "cv2.blur(difference ** 2, ..., borderType=...)")
+    assert repair._abbreviated(before, after) == ("cv2.blur(difference, ...) ** 2", "cv2.blur(difference ** 2, ...)")
+    # (arguments and keywords the change leaves as they were, after the one it changes: one "...")
+    before = ast.parse("cv2.remap(image, map_x, map_y, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT)").body[0].value
+    after = ast.parse("cv2.remap(image, np.float32(map_x), np.float32(map_y), cv2.INTER_LINEAR, "
+                      "borderMode=cv2.BORDER_CONSTANT)").body[0].value
+    assert repair._abbreviated(before, after) == ("cv2.remap(image, map_x, map_y, ...)",
+                                                  "cv2.remap(image, np.float32(map_x), np.float32(map_y), ...)")
 
 
 def test_changes_just_before_the_line_that_raised_are_tried_first():

@@ -455,8 +455,43 @@ def drawn_elsewhere(student, reference) -> bool:
 
 
 # ------------------------------------------------------------------ confirmation inputs
+_SMALL_MATRIX = 4   # matrices up to 4 x 4 (K, R, H, P, F, an affine A) keep their structure
+
+
+def _rotation(value: np.ndarray) -> bool:
+    """Whether ``value`` is a 2 x 2 or 3 x 3 rotation (or reflection): R^T R = I."""
+    return value.ndim == 2 and value.shape[0] == value.shape[1] in (2, 3) and bool(np.all(np.isfinite(value))) \
+        and np.allclose(value.T @ value, np.eye(value.shape[0]), atol=1e-6)
+
+
+def _small_rotation(size: int, rng) -> np.ndarray:
+    """A random rotation of about 0.2 radians, ``size`` x ``size`` (2 or 3)."""
+    if size == 2:
+        angle = rng.normal(0, 0.2)
+        return np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+    axis = rng.normal(size=3)
+    axis /= np.linalg.norm(axis) or 1.0
+    skew = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    angle = rng.normal(0, 0.2)
+    return np.eye(3) + np.sin(angle) * skew + (1 - np.cos(angle)) * skew @ skew   # Rodrigues
+
+
+def _structure(value: np.ndarray) -> np.ndarray:
+    """The entries that make an array's form and stay as they are when it is perturbed: a small
+    matrix's exact 0s and 1s (K's zeros and its 1, an affine's last row [0, 0, 1]) and a column of
+    ones in a table of points (homogeneous coordinates). Perturbing them gives inputs no caller
+    gives (a K with entries below the diagonal), where right code may answer otherwise."""
+    kept = np.zeros(value.shape, dtype=bool)
+    if value.ndim == 2 and max(value.shape) <= _SMALL_MATRIX:
+        kept |= (value == 0) | (value == 1)
+    elif value.ndim == 2 and value.shape[1] <= _SMALL_MATRIX:
+        kept[:, np.all(value == 1, axis=0)] = True
+    return kept
+
+
 def _perturbed(value, rng, depth=0):
-    """Another input of the same form: other values of the same shape, dtype and range."""
+    """Another input of the same form: other values of the same shape, dtype and range, and the
+    same structure (a rotation stays a rotation, :func:`_structure`)."""
     if isinstance(value, bool) or value is None or isinstance(value, str):
         return value
     if isinstance(value, float):   # 0 stays 0 half the time: a mistake may show only at 0 (`x or DEFAULT`)
@@ -466,9 +501,12 @@ def _perturbed(value, rng, depth=0):
         return value + 2 * int(rng.integers(-2, 3)) if abs(value) > 4 else value
     if isinstance(value, np.ndarray):
         if value.dtype.kind == "f" and value.size:
+            if _rotation(value):
+                return (value @ _small_rotation(value.shape[0], rng)).astype(value.dtype)
             finite = value[np.isfinite(value)]
             spread = float(finite.std()) if finite.size > 1 else float(abs(finite).mean() if finite.size else 1.0)
-            return value + rng.normal(0, 0.15 * (spread or 1.0), value.shape).astype(value.dtype)
+            noise = rng.normal(0, 0.15 * (spread or 1.0), value.shape)
+            return value + np.where(_structure(value), 0.0, noise).astype(value.dtype)
         if value.dtype == np.uint8 and value.ndim >= 2:  # an image: the same picture, moved and relit
             moved = np.roll(value, (int(rng.integers(-9, 10)), int(rng.integers(-9, 10))), axis=(0, 1))
             return np.clip(moved.astype(np.int16) + int(rng.integers(-20, 21)), 0, 255).astype(np.uint8)

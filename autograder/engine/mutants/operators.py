@@ -82,6 +82,11 @@ OPERATORS = {
     "drop_slice": ("first", "only", "all"),          # pts[:8] -> pts: every point, not the first few
     "canvas": ("size", "height", "width", "max", "both"),   # np.zeros((h1, w1 + w2)) -> max(h1, h2) rows
     "loop_all": ("only", "first", "all", "every"),    # for i in range(8) -> range(len(p1)): every point
+    "power_spread": ("square", "sum", "**"),          # (x + y) ** 2 -> x ** 2 + y ** 2
+    "keep_result": ("result", "returned", "discard", "assign"),   # draw(img, p) -> img = draw(img, p)
+    "add_axis": ("axis",),                             # np.delete(X, 2) -> np.delete(X, 2, axis=1)
+    "flip_keyword": ("true", "false", "keyword"),     # full_matrices=False -> True
+    "float32": ("float32", "dtype", "float"),          # cv2.remap(img, mx, my) -> np.float32(mx), ...
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -519,6 +524,14 @@ def _make_compare(node, payload):
 
 
 def _make_regroup(node, payload):
+    if payload == "first":   # a - b / c -> (a - b) / c
+        inner = node.right
+        return ast.BinOp(ast.BinOp(copy.deepcopy(node.left), node.op, copy.deepcopy(inner.left)), inner.op,
+                         copy.deepcopy(inner.right))
+    if payload == "last":    # a * b + c -> a * (b + c)
+        inner = node.left
+        return ast.BinOp(copy.deepcopy(inner.left), inner.op,
+                         ast.BinOp(copy.deepcopy(inner.right), node.op, copy.deepcopy(node.right)))
     if payload == "flat":   # a - (b + c) -> a - b + c
         inner = node.right
         return ast.BinOp(ast.BinOp(copy.deepcopy(node.left), node.op, copy.deepcopy(inner.left)), inner.op,
@@ -599,13 +612,43 @@ def _make_drop_slice(node, payload):
     return copy.deepcopy(node.value)   # pts[:8] -> pts
 
 
+def _make_power_spread(node, payload):
+    terms = node.left   # (x + y) ** 2 -> x ** 2 + y ** 2
+    return ast.BinOp(ast.BinOp(copy.deepcopy(terms.left), ast.Pow(), copy.deepcopy(node.right)), terms.op,
+                     ast.BinOp(copy.deepcopy(terms.right), ast.Pow(), copy.deepcopy(node.right)))
+
+
+def _make_keep_result(node, payload):
+    return ast.Assign([ast.Name(payload, ast.Store())], copy.deepcopy(node.value))   # f(x) -> x = f(x)
+
+
+def _make_add_axis(node, payload):
+    new = copy.deepcopy(node)   # np.delete(X, 2) -> np.delete(X, 2, axis=1)
+    new.keywords = [*new.keywords, ast.keyword("axis", _signed(payload))]
+    return new
+
+
+def _make_flip_keyword(node, payload):
+    new = copy.deepcopy(node)   # np.linalg.svd(A, full_matrices=False) -> full_matrices=True
+    new.keywords = [ast.keyword(k.arg, ast.Constant(not k.value.value)) if k.arg == payload else k
+                    for k in new.keywords]
+    return new
+
+
+def _make_float32(node, payload):
+    new = copy.deepcopy(node)   # cv2.remap(img, mx, my, ...) -> np.float32(mx), np.float32(my)
+    new.args = [_call("np.float32", arg) if position in payload else arg for position, arg in enumerate(new.args)]
+    return new
+
+
 def _make_function(node, payload):
     new = copy.deepcopy(node)
     new.func = _name(payload)
     return new
 
 
-_MAKE = {"twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
+_MAKE = {"power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
+         "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
@@ -1191,6 +1234,18 @@ def _student_changes(node, parent):
         yield "inverse", "undone_never", ""   # `K2.T @ F @ K1` -> `F`: a transform applied twice, or too early
     if isinstance(node, ast.Call):
         yield from _dtype_changes(node)
+        yield from _call_slips(node)
+    if isinstance(node, ast.Expr):
+        yield from _discarded_result(node)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.left, ast.BinOp) \
+            and isinstance(node.left.op, (ast.Add, ast.Sub)) and isinstance(node.right, ast.Constant):
+        yield "power_spread", None, ""   # `(x + y) ** 2` where `x ** 2 + y ** 2` belongs
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)) \
+            and isinstance(node.right, ast.BinOp) and isinstance(node.right.op, _BINDS_TIGHTER):
+        yield "regroup", "first", ""     # `w - 1 / 2` for `(w - 1) / 2`
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)) \
+            and isinstance(node.left, ast.BinOp) and isinstance(node.left.op, _BINDS_TIGHTER):
+        yield "regroup", "last", ""      # `a * b + c` for `a * (b + c)`
     if isinstance(node, ast.Compare) and len(node.ops) == 1 and type(node.ops[0]) in _COMPARED:
         for other in _COMPARED[type(node.ops[0])]:
             yield "compare", other, ""   # `x > 0` for `x >= 0`, or the other way
@@ -1242,6 +1297,60 @@ def _dtype_changes(node: ast.Call):
         yield "dtype", "np.uint8", ""
         if dotted.endswith("_like"):
             yield "dtype", "np.float64", ""
+
+
+_BINDS_TIGHTER = (ast.Mult, ast.Div, ast.FloorDiv, ast.MatMult, ast.Mod)
+# NumPy functions that take an axis, and the position it has among their arguments: left out, the
+# array is flattened (np.delete, np.append, np.sum) or a default axis used where another belongs.
+_AXIS_POSITIONS = {"delete": 2, "insert": 3, "append": 2, "sum": 1, "mean": 1, "max": 1, "min": 1, "amax": 1,
+                   "amin": 1, "argmax": 1, "argmin": 1, "median": 1, "std": 1, "var": 1, "any": 1, "all": 1,
+                   "cumsum": 1, "flip": 1, "concatenate": 1, "stack": 1, "norm": 2, "average": 1, "nanmean": 1,
+                   "nansum": 1, "nanmax": 1, "nanmin": 1, "diff": 2, "sort": 1, "argsort": 1, "unique": 99}
+_REDUCTIONS = {"sum", "mean", "max", "min", "argmax", "argmin", "std", "var", "any", "all", "cumsum"}
+# Methods of an array that return a new one: a call of them whose result is not kept changes nothing.
+_RETURNS_NEW = {"astype", "copy", "reshape", "round", "clip", "transpose", "flatten", "ravel", "squeeze"}
+_SIDE_EFFECTS = {"print", "append", "extend", "insert", "update", "setdefault", "write", "imshow", "imwrite",
+                 "waitKey", "destroyAllWindows", "fill", "sort", "shuffle", "seed", "put", "setflags", "plot",
+                 "show", "savefig", "remove", "pop", "clear", "add", "discard", "close", "assert_allclose"}
+
+
+def _call_slips(node: ast.Call):
+    """Slips in how a library function is called: an axis left out (`np.delete(X, 2)` flattens X; the
+    sum of every entry for each row's), a flag keyword given the wrong truth value (`full_matrices=False`
+    where the full V is needed), and float64 arrays given to an OpenCV function that takes float32
+    (`cv2.remap`'s maps, `cv2.getAffineTransform`'s points): the arguments after the image cast."""
+    dotted = _dotted(node.func)
+    short = dotted.rsplit(".", 1)[-1]
+    function = dotted.startswith(("np.", "numpy.")) and short in _AXIS_POSITIONS
+    method = isinstance(node.func, ast.Attribute) and not dotted.startswith(("np.", "numpy.", "cv2.")) \
+        and short in _REDUCTIONS   # `x.sum()`: the array is not among the arguments
+    if (function or method) and not any(k.arg == "axis" for k in node.keywords) \
+            and not any(isinstance(a, ast.Starred) for a in node.args) \
+            and len(node.args) + method <= _AXIS_POSITIONS[short]:
+        for axis in (0, 1, -1):
+            yield "add_axis", axis, ""
+    for keyword in node.keywords:
+        if keyword.arg and isinstance(keyword.value, ast.Constant) and isinstance(keyword.value.value, bool):
+            yield "flip_keyword", keyword.arg, ""
+    if dotted.startswith(("cv2.", "cv.")) and len(node.args) >= 2:
+        arrays = [i for i, a in enumerate(node.args) if isinstance(a, (ast.Name, ast.Subscript))]
+        if any(i >= 1 for i in arrays):
+            yield "float32", [i for i in arrays if i >= 1], ""
+        if len(arrays) >= 2 and 0 in arrays:
+            yield "float32", arrays, ""
+
+
+def _discarded_result(statement: ast.Expr):
+    """A call whose result is dropped (`draw_points(image, pts)`, `np.clip(x, 0, 255)`, `x.astype(int)` on
+    a line of their own): the result kept in the array it was made from."""
+    call = statement.value
+    if not isinstance(call, ast.Call) or _dotted(call.func).rsplit(".", 1)[-1] in _SIDE_EFFECTS:
+        return
+    if isinstance(call.func, ast.Attribute) and call.func.attr in _RETURNS_NEW and isinstance(call.func.value, ast.Name):
+        yield "keep_result", call.func.value.id, ""   # x.astype(int) -> x = x.astype(int)
+    elif call.args and isinstance(call.args[0], ast.Name) and (
+            isinstance(call.func, ast.Name) or _dotted(call.func).startswith(("np.", "numpy.", "cv2."))):
+        yield "keep_result", call.args[0].id, ""      # f(x, ...) -> x = f(x, ...)
 
 
 _SQUARED = {"abs", "absolute", "fabs"}

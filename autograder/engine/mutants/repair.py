@@ -329,6 +329,12 @@ def _abbreviated(before, after) -> tuple[str, str]:
                 function = ast.dump(call.func)
                 call.args = [_ELLIPSIS if (function, i, ast.dump(a)) in kept and len(ast.unparse(a)) > 8 else a
                              for i, a in enumerate(call.args)]
+                unchanged = [(function, k.arg, ast.dump(k.value)) in kept for k in call.keywords]
+                if call.keywords and all(unchanged):   # keywords as they were, and the arguments' tail: one "..."
+                    call.keywords = []
+                    while call.args and call.args[-1] is _ELLIPSIS:
+                        call.args.pop()
+                    call.args.append(_ELLIPSIS)
                 for keyword in call.keywords:
                     if (function, keyword.arg, ast.dump(keyword.value)) in kept and len(ast.unparse(keyword.value)) > 8:
                         keyword.value = _ELLIPSIS
