@@ -62,6 +62,38 @@ VARIANTS = {
                     cv2.line(out, p, q, 255 if out.ndim == 2 else (0, 255, 255), 1)
             return out
         """),
+    "draw_epipolar_lines branching on |b| >= |a|, no clipping (cv2.line clips)": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            out = np.array(image, np.uint8, copy=True)
+            h, w = out.shape[:2]
+            for a, b, c in np.asarray(lines, float):
+                if abs(b) >= abs(a):
+                    p, q = (0, int(round(-c / b))), (w - 1, int(round(-(c + a * (w - 1)) / b)))
+                else:
+                    p, q = (int(round(-c / a)), 0), (int(round(-(c + b * (h - 1)) / a)), h - 1)
+                cv2.line(out, p, q, 255 if out.ndim == 2 else (0, 0, 255), 1)
+            return out
+        """),
+    "epipoles by scipy.linalg.null_space": ("lab11.ex5", """
+        import scipy.linalg
+        def epipoles(F):
+            F = np.asarray(F, float)
+            return scipy.linalg.null_space(F)[:, 0], scipy.linalg.null_space(F.T)[:, 0]
+        """),
+    "epipoles as eigenvectors of F^T F and F F^T (smallest eigenvalue)": ("lab11.ex5", """
+        def epipoles(F):
+            F = np.asarray(F, float)
+            return np.linalg.eigh(F.T @ F)[1][:, 0], np.linalg.eigh(F @ F.T)[1][:, 0]
+        """),
+    "epipoles as the longest cross product of two rows (columns) of F": ("lab11.ex5", """
+        def _null_by_cross(M):
+            pairs = [np.cross(M[i], M[j]) for i, j in ((0, 1), (0, 2), (1, 2))]
+            e = max(pairs, key=np.linalg.norm)
+            return e / np.linalg.norm(e)
+        def epipoles(F):
+            F = np.asarray(F, float)
+            return _null_by_cross(F), _null_by_cross(F.T)
+        """),
     "the lab sheet's 8-point on raw pixel coordinates (no normalisation asked)": ("lab11.ex4", """
         def fundamental_8point(pts1, pts2):
             F = _eight_point_core(_homogeneous(pts1), _homogeneous(pts2))

@@ -564,7 +564,16 @@ def draw_full_width(t):
                        mistake=form.mistake)
 
 
-@ex2.check("draw_epipolar_lines draws a vertical line (b = 0)", points=1)
+# Lines l' = F x of a vertical (or horizontal) camera motion are vertical (horizontal) up to
+# rounding: b (or a) comes out as 1e-13 rather than 0. The lab sheet's line a x + b y + c = 0 is
+# the same whatever their size; the reference, cv2.clipLine on far end points and a branch on
+# |b| >= |a| draw them all.
+NEAR_AXIS_LINES = np.array([[1.0, 1e-13, -100.0],   # x = 100, b of rounding size
+                            [1e-13, 1.0, -40.0]])   # y = 40, a of rounding size
+
+
+@ex2.check("draw_epipolar_lines draws vertical and horizontal lines (b = 0, a = 0, or of rounding size)",
+           points=1)
 def draw_vertical(t):
     image = np.zeros((120, 160, 3), np.uint8)
     lines = np.array([[1.0, 0.0, -70.0], [0.0, 1.0, -60.0]])   # x = 70 and y = 60
@@ -572,6 +581,21 @@ def draw_vertical(t):
     if isinstance(got, np.ndarray) and got.ndim in (2, 3):
         t.images("draw_epipolar_lines(black image, lines x = 70 and y = 60)", yours=got)
     judge_drawing(t, "draw_epipolar_lines(image, [[1, 0, -70], [0, 1, -60]])", got, image, lines)
+    what = "draw_epipolar_lines(image, [[1, 1e-13, -100], [1e-13, 1, -40]])"
+    try:
+        got = t.call("draw_epipolar_lines", image, NEAR_AXIS_LINES)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        raise StudentFailure(failure.outcome, f"{what}: {failure.message}\nThese are the lines x = 100 and y = 40 "
+                             "with b (and a) of rounding size, 1e-13, as F x gives them for a vertical (horizontal) "
+                             "camera motion; the lines with b = 0 and a = 0 are drawn. "
+                             + measured("Such a line meets the left and right borders (the top and bottom ones) "
+                                        "some 1e15 px away: draw every line between the two borders it crosses "
+                                        "inside the image.")) from None
+    if isinstance(got, np.ndarray) and got.ndim in (2, 3):
+        t.images("draw_epipolar_lines(black image, lines x = 100 and y = 40, b and a of 1e-13)", yours=got)
+    judge_drawing(t, what + " (x = 100 and y = 40, b and a of rounding size)", got, image, NEAR_AXIS_LINES)
 
 
 # ================================================================== ex3 essential matrix
@@ -1017,11 +1041,39 @@ def epipoles_forward(t):
     judge_epipoles(t, "epipoles(F) for forward motion", t.call("epipoles", views.F), views)
 
 
-@ex5.check("epipoles at infinity (sideways motion), as homogeneous vectors", points=2)
+def _finite_pair(got) -> bool:
+    """Whether ``got`` is a pair of finite, non-zero (3,) vectors (whatever their values)."""
+    return isinstance(got, (tuple, list)) and len(got) == 2 and all(
+        isinstance(g, np.ndarray) and g.shape == (3,) and g.dtype.kind in "iuf" and np.all(np.isfinite(g))
+        and np.any(g) for g in got)
+
+
+# A pure translation in the image plane (the commonest stereo set-up) puts both epipoles at
+# infinity and makes F's first two rows parallel; a rectified pair's F, as a textbook writes it,
+# has an exact zero first row and column (computed as K2^-T E K1^-1, entries of 1e-17 instead).
+# The SVD's null vector (the lab sheet's recipe), scipy's null_space, an eigenvector of F^T F and
+# cross products of the two largest rows all give the epipoles of each of these Fs.
+@ex5.check("epipoles at infinity (sideways and diagonal motion; F with exact zeros), as homogeneous vectors",
+           points=2)
 def epipoles_infinity(t):
     views = truth.sideways_views(seed=20)
     judge_epipoles(t, "epipoles(F) for sideways motion", t.call("epipoles", views.F), views,
                    at_infinity=True)
+    F = truth.exact_zeros(views.F)
+    what = "epipoles(F) for sideways motion, F with its zeros exact (its first row and column are 0)"
+    got = t.call("epipoles", F)
+    if not _finite_pair(got) and isinstance(got, (tuple, list)) and len(got) == 2:
+        shown = ", ".join(f"{name} = {format_matrix(g) if isinstance(g, np.ndarray) else repr(g)}"
+                          for name, g in zip(("e1", "e2"), got))
+        t.fail(f"{what} returned {shown}: no epipoles (NaN or zero), where for the same F with entries of 1e-17 in place of the zeros (as the product K2^-T E K1^-1 gives "
+               "it) they are right. " + measured("F's zero first row is no degenerate case (every rectified "
+                                                 "pair has it): the epipoles are F's null vectors, whichever of "
+                                                 "its rows are 0 or parallel."),
+               mistake="no epipoles for an F with a zero row")
+    judge_epipoles(t, what, got, views, at_infinity=True, F_given=F)
+    diagonal = truth.sideways_views(seed=22, direction=0.6)
+    judge_epipoles(t, "epipoles(F) for a motion along a diagonal of the image plane (F's first two rows are "
+                      "parallel)", t.call("epipoles", diagonal.F), diagonal, at_infinity=True)
 
 
 @ex5.check("epipoles for any camera pair and any scale of F", points=1)

@@ -214,6 +214,19 @@ MISTAKES = {
                 cv2.line(canvas, _to_int(p, width, height), _to_int(q, width, height), colour, 1)
             return canvas
         """, ["the second drawing shows the first one's lines too", "caller's `image`"]),
+    "draw each line between the top and bottom borders unless a == 0": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            canvas = np.array(image, dtype=np.uint8, copy=True)
+            height, width = canvas.shape[:2]
+            colour = 255 if canvas.ndim == 2 else (0, 255, 0)
+            for a, b, c in np.asarray(lines, np.float64).reshape(-1, 3):
+                if a == 0:   # horizontal: y = -c / b everywhere
+                    p, q = (0, int(round(-c / b))), (width - 1, int(round(-c / b)))
+                else:        # where the line meets the top and bottom rows
+                    p, q = (int(round(-c / a)), 0), (int(round(-(b * (height - 1) + c) / a)), height - 1)
+                cv2.line(canvas, p, q, colour, 1)
+            return canvas
+        """, ["x = 100 and y = 40", "rounding size"]),
     "draw with x and y swapped": ("lab11.ex2", """
         _draw = draw_epipolar_lines
         def draw_epipolar_lines(image, lines):
@@ -356,6 +369,22 @@ MISTAKES = {
             Vt = np.linalg.svd(np.asarray(F, np.float64))[2]
             return Vt[-1], Vt[-1]
         """, ["e2 is computed from f like e1"]),
+    "epipoles as cross products of two fixed rows (columns) of F": ("lab11.ex5", """
+        def epipoles(F):
+            F = np.asarray(F, np.float64)
+            e1, e2 = np.cross(F[0], F[2]), np.cross(F[:, 0], F[:, 2])
+            return e1 / np.linalg.norm(e1), e2 / np.linalg.norm(e2)
+        """, ["first row and column are 0", "no epipoles"]),
+    "epipoles as cross products of rows, another pair only when one is zero": ("lab11.ex5", """
+        def _null_by_cross(M):
+            e = np.cross(M[0], M[1])
+            if not np.any(e):   # a zero row: take the other two
+                e = np.cross(M[1], M[2])
+            return e / np.linalg.norm(e)
+        def epipoles(F):
+            F = np.asarray(F, np.float64)
+            return _null_by_cross(F), _null_by_cross(F.T)
+        """, ["first two rows are parallel", "is not a null vector of f"]),
     # ---------------------------------------------------------------- ex6
     "pipeline returns F transposed": ("lab11.ex6", """
         _tvr = two_view_reconstruction
