@@ -598,14 +598,33 @@ def project_example(t):
                  probe=points_probe(t, "project"))
 
 
-@ex3.check("project accepts any scale of P, and a single (3,) point", points=1)
-def project_scale(t):
+def other_cameras():
+    """``(what, P, X)``: cameras the usual set-up (world origin some metres ahead) leaves out, with
+    world points in their view: P at another scale, a camera at the world origin (t = 0, so
+    P[2, 3] = 0: the world origin on the camera's principal plane) and one the world origin is
+    behind (t_z < 0, P[2, 3] < 0). P is only defined up to a positive factor; its last column is
+    any camera's too."""
     K, R, tvec = _example_camera(33)
     P = truth.camera(K, R, tvec)
-    X = truth.world_points_for(K, R, tvec, seed=34, n=6)
-    judge_points(t, "project(2.5 * P, points)", t.call("project", 2.5 * P, X),
-                 truth.homogeneous_project(P, X), project_mistakes(2.5 * P, X), probe=points_probe(t, "project"))
-    judge_single_point(t, "project(P, (3,) point)", t.call("project", P, X[0]),
+    cameras = [("2.5 * P", 2.5 * P, truth.world_points_for(K, R, tvec, seed=34, n=6))]
+    R, _ = truth.random_pose(37)
+    cameras.append(("P of a camera at the world origin (t = 0, P[2, 3] = 0)", truth.camera(K, R, np.zeros(3)),
+                    truth.world_points_for(K, R, np.zeros(3), seed=38, n=6)))
+    R, tvec = truth.random_pose(39)
+    tvec = tvec - (0.0, 0.0, 9.0)
+    cameras.append((f"P of a camera the world origin is behind (t_z = {tvec[2]:.2f}, P[2, 3] < 0)",
+                    truth.camera(K, R, tvec), truth.world_points_for(K, R, tvec, seed=40, n=6)))
+    return cameras
+
+
+@ex3.check("project for any camera: P at any scale, the world origin on or behind the camera's plane "
+           "(P[2, 3] = 0 or < 0), and a single (3,) point", points=1)
+def project_scale(t):
+    for name, P, X in other_cameras():
+        judge_points(t, f"project({name}, points)", t.call("project", P, X), truth.homogeneous_project(P, X),
+                     project_mistakes(P, X), probe=points_probe(t, "project"))
+    _, P, X = other_cameras()[0]
+    judge_single_point(t, "project(2.5 * P, (3,) point)", t.call("project", P, X[0]),
                        truth.homogeneous_project(P, X[0])[0])
 
 
@@ -652,32 +671,76 @@ def focal_lengths(t):
     order = [next((j for j in range(len(fs)) if point_error(got[i], expected[j]) <= at_precision(1e-6 * scale, scale)),
                   None) for i in range(len(fs))]
     if None not in order and order != list(range(len(fs))):
-        t.fail(*focal_order_named(order, fs))
+        t.fail(*focal_order_named(fs[order], fs))
     for i, f in enumerate(fs):
         judge_points(t, f"project_focal_lengths(...)[{i}] (f = {f:g})", got[i], expected[i],
                      truth.projection_mistakes(f, X), probe=points_probe(t, "project_focal_lengths"))
     return passed("the image grows in proportion to f")
 
 
-def focal_order_named(order: list[int], fs) -> tuple[str, str, str]:
+def focal_order_named(used, fs) -> tuple[str, str, str]:
     """(message, hint, mistake) for projections that each match some focal length's, but not in the
-    order given: ``order[i]`` is the index of the focal length projection i was made with. Only what
-    the order shows is named: one focal length for all, a permutation (reversed or another), or
-    some focal lengths used twice and others never."""
-    found = f"project_focal_lengths: projection i is the one for f = {format_matrix(fs[order])}"
+    order given: ``used[i]`` is the focal length projection i was made with (values: ``fs`` may
+    repeat one). Only what the order shows is named: one focal length for all, the order reversed,
+    sorted or another, or some focal lengths used for several projections and others for none."""
+    used, fs = [float(f) for f in used], [float(f) for f in fs]
+    found = f"project_focal_lengths: projection i is the one for f = {format_matrix(np.array(used))}"
     hint = "projection i belongs to focal_lengths[i]"
-    if len(set(order)) == 1:
-        which = {0: "the first", len(fs) - 1: "the last"}.get(order[0], f"focal_lengths[{order[0]}]")
-        return (f"{found}: every projection is made with {which} focal length (f = {fs[order[0]]:g}).", hint,
+    if len(set(used)) == 1:
+        which = {0: "the first", len(fs) - 1: "the last"}.get(fs.index(used[0]), f"focal_lengths[{fs.index(used[0])}]")
+        return (f"{found}: every projection is made with {which} focal length (f = {used[0]:g}).", hint,
                 f"every projection uses {which} focal length")
-    if sorted(order) == list(range(len(fs))):
-        if order == list(range(len(fs)))[::-1]:
-            return (f"{found}: the focal lengths are used in reverse order.", hint,
-                    "the focal lengths are used in reverse order")
-        return (f"{found}: the focal lengths are used in another order.", hint,
-                "the focal lengths are used in another order")
+    if sorted(used) == sorted(fs):
+        order = "in reverse order" if used == fs[::-1] else "sorted" if used == sorted(fs) else "in another order"
+        return f"{found}: the focal lengths are used {order}.", hint, f"the focal lengths are used {order}"
     return (f"{found}: some focal lengths are used for several projections and others for none.", hint,
             "a focal length is used for several projections")
+
+
+SORTED_UNIQUE = measured("the focal lengths are sorted and their repeats dropped")
+# Focal lengths as a caller gives them: not sorted, one of them twice; then a single one.
+CALLER_FOCAL_LENGTHS = ((1000.0, 100.0, 500.0, 100.0), (250.0,))
+
+
+@ex4.check("project_focal_lengths keeps the caller's focal lengths: in any order, with a repeat, or just one",
+           points=1)
+def focal_lengths_as_given(t):
+    X = truth.points_in_front(46, n=7)
+    for fs in CALLER_FOCAL_LENGTHS:
+        what = f"project_focal_lengths(points, np.array({list(fs)}))"
+        expected = np.stack([truth.pinhole(X, f) for f in fs])
+        got = t.call("project_focal_lengths", X, np.array(fs))
+        if isinstance(got, np.ndarray) and got.ndim == 3 and got.shape[1:] == expected.shape[1:] \
+                and got.shape[0] != len(fs):
+            used = focal_lengths_used(got, X, fs)
+            kept = f": its projections are those of f = {format_matrix(np.array(used))}" if used else ""
+            deduplicated = SORTED_UNIQUE if used == sorted(set(fs)) else ""
+            t.fail(f"{what} returned {got.shape[0]} projections for {len(fs)} focal lengths{kept}"
+                   + (f": {deduplicated}" if deduplicated else "")
+                   + "; expected one per focal length given, in the order given (repeats included).",
+                   mistake=deduplicated)
+        expect_shape(t, what, got, expected.shape, axes=("F", "N", "2"))
+        got = t.expect_array(got, what, shape=expected.shape, kind="iuf")
+        used = focal_lengths_used(got, X, fs)
+        if used is not None and used != list(fs):
+            message, hint, mistake = focal_order_named(used, fs)
+            t.fail(f"{what}: " + message.split(": ", 1)[1], hint=hint, mistake=mistake)
+        for i, f in enumerate(fs):
+            judge_points(t, f"{what}[{i}] (f = {f:g})", got[i], expected[i], truth.projection_mistakes(f, X),
+                         probe=points_probe(t, "project_focal_lengths"))
+
+
+def focal_lengths_used(got, X, fs) -> list | None:
+    """The focal length (of ``fs``) each projection of ``got`` (F', N, 2) is made with, or None
+    when one is made with none of them."""
+    used = []
+    for projection in np.asarray(got, np.float64):
+        match = [f for f in dict.fromkeys(fs) if point_error(projection, truth.pinhole(X, f))
+                 <= at_precision(1e-6 * magnitude(truth.pinhole(X, f)), magnitude(truth.pinhole(X, f)))]
+        if not match:
+            return None
+        used.append(match[0])
+    return used
 
 
 APERTURE_F = 200.0
@@ -955,6 +1018,9 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     if inner.any() and painted[inner].mean() < 0.5 and near.any() and (d[near] >= radius - 1).mean() > 0.9:
         t.fail(f"{what}: the circles are outlines; they should be filled (thickness=-1).",
                mistake="the circles are outlines, not filled")
+    wrapped = _wrapped_at_256(got, image, pts, radius, color)
+    if wrapped:
+        t.fail(f"{what}: {wrapped}.", mistake=wrapped.split(":")[0])
     missing = _points_not_drawn(painted, image.shape, pts, radius)
     if missing:
         only = sorted(set(range(len(pts))) - set(missing) - set(_off_image(image.shape, pts)))
@@ -978,6 +1044,29 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
                f"(radius {radius}, colour {tuple(color)}) are.")
     t.fail(f"{what}: {1 - untouched:.1%} of the pixels far from every point were changed; "
            "only the circles should be drawn (on a copy of the image).")
+
+
+def _wrapped_at_256(got, image, pts, radius, color) -> str:
+    """A sentence when the drawing is the right one for the centres taken modulo 256 (and not for
+    the centres themselves): the circles of points with x or y of 256 or more (or below 0) are
+    drawn where that coordinate, wrapped around at 256, puts them; "" otherwise."""
+    centres = np.round(np.asarray(pts, np.float64).reshape(-1, 2))
+    finite = np.isfinite(centres).all(axis=1)
+    beyond = finite & ((centres >= 256) | (centres < 0)).any(axis=1)
+    if not beyond.any() or got.shape != image.shape:
+        return ""
+    wrapped = centres.copy()
+    wrapped[finite] = np.mod(centres[finite], 256)
+
+    def apart(expected):
+        return float(np.mean(np.any(got != expected, axis=-1) if got.ndim == 3 else got != expected))
+
+    if apart(truth.expected_drawing(image, wrapped, radius, color)) > 2e-4:
+        return ""
+    shown = ", ".join(f"({x:g}, {y:g}) at ({u:g}, {v:g})" for (x, y), (u, v) in zip(centres[beyond][:3], wrapped[beyond][:3]))
+    return measured(f"the circles are wrong for coordinates of 256 and more (or below 0): they are drawn with "
+                    f"the coordinate taken modulo 256 ({shown}: all an 8-bit integer keeps of it); pass cv2.circle "
+                    "the centre as Python integers (int(round(x)), int(round(y)))")
 
 
 def _off_image(shape, pts):
@@ -1012,11 +1101,12 @@ def _drawn_radius(got, image, pts, color):
     return best + 1 if differences[best] < 2e-4 and differences[best] * 3 < min(others) else None
 
 
-@ex5.check("draw_points draws filled circles at the points", points=2)
+@ex5.check("draw_points draws filled circles at the points, anywhere on a 400x300 image", points=2)
 def draw_example(t):
-    image = photo("astronaut", (200, 150))
-    pts = np.array([[20.3, 30.7], [100.0, 75.0], [180.6, 20.2], [50.5, 120.4], [150.2, 130.9]])
-    return judge_drawing(t, "draw_points(image, pts)", t.call("draw_points", image, pts), image, pts)
+    image = photo("astronaut", (400, 300))
+    # x and y past 255 too: pixel coordinates of an ordinary photo do not fit in 8 bits
+    pts = np.array([[20.3, 30.7], [300.0, 75.0], [380.6, 20.2], [50.5, 280.4], [270.2, 260.9], [150.2, 130.9]])
+    return judge_drawing(t, "draw_points(400x300 image, pts)", t.call("draw_points", image, pts), image, pts)
 
 
 COPY_HINT = Hint(
@@ -1126,10 +1216,11 @@ def draw_rounded(t):
 
 
 def _photo_scene(seed=51):
-    image = photo("chelsea", (240, 180))
-    K = np.array([[260.0, 0.0, 119.5], [0.0, 260.0, 89.5], [0.0, 0.0, 1.0]])
+    """(image, P, world points): a 320x240 photo, points in view, two of them at x >= 256."""
+    image = photo("chelsea", (320, 240))
+    K = np.array([[350.0, 0.0, 159.5], [0.0, 350.0, 119.5], [0.0, 0.0, 1.0]])
     R, tvec = truth.random_pose(seed)
-    X = truth.world_points_for(K, R, tvec, seed=seed + 1, n=10, width=240, height=180)
+    X = truth.world_points_for(K, R, tvec, seed=seed + 1, n=10, width=320, height=240)
     return image, truth.camera(K, R, tvec), X
 
 

@@ -390,6 +390,27 @@ MISTAKES = {
             X, _ = _points(points)
             return np.stack([pinhole_project(X, focal_lengths[0]) for f in focal_lengths])
         """, ["every projection is made with the first focal length"]),
+    # ---- inputs the usual set-up leaves out (issue 35): another camera, the caller's order, big images
+    "project normalising P by P[2, 3]": ("lab09.ex3", """
+        def project(P, points):
+            X, single = _points(points)
+            P = np.asarray(P, float)
+            P = P / P[2, 3]                       # as if P were scaled like a homography
+            return _divide(np.column_stack([X, np.ones(len(X))]) @ P.T, single)
+        """, ["p[2, 3] = 0", "returned nan for points in front of the camera"]),
+    "focal lengths sorted, repeats dropped": ("lab09.ex4", """
+        def project_focal_lengths(points, focal_lengths):
+            X, _ = _points(points)
+            return np.stack([pinhole_project(X, f) for f in sorted(set(focal_lengths))])
+        """, ["returned 3 projections for 4 focal lengths", "the focal lengths are sorted and their repeats dropped"]),
+    "draw_points with 8-bit centres": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            pts = np.asarray(pts, dtype=np.float64).reshape(-1, 2)
+            for x, y in np.round(pts[np.isfinite(pts).all(axis=1)]).astype(image.dtype):
+                cv2.circle(out, (int(x), int(y)), int(radius), tuple(int(c) for c in color), -1)
+            return out
+        """, ["wrong for coordinates of 256 and more", "(300, 75) at (44, 75)"]),
     "k2 ignored": ("lab09.ext2", """
         _right = distort_points
         def distort_points(points, dist):
