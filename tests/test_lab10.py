@@ -86,6 +86,30 @@ VARIANTS = {
             map1, map2 = cv2.initUndistortRectifyMap(K, dist, None, K, (w, h), cv2.CV_32FC1)
             return cv2.remap(image, map1, map2, cv2.INTER_NEAREST)
         """),
+    "undistortion by an own map of the full model (k1, k2, p1, p2, k3)": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            K = np.asarray(K, np.float64)
+            k1, k2, p1, p2, k3 = np.ravel(dist)[:5]
+            h, w = image.shape[:2]
+            ys, xs = np.mgrid[0:h, 0:w].astype(np.float64)
+            x, y = (xs - K[0, 2]) / K[0, 0], (ys - K[1, 2]) / K[1, 1]
+            r2 = x * x + y * y
+            radial = 1 + k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
+            xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x)
+            yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y
+            return cv2.remap(image, (xd * K[0, 0] + K[0, 2]).astype(np.float32),
+                             (yd * K[1, 1] + K[1, 2]).astype(np.float32), cv2.INTER_CUBIC)
+        """),
+    "tracking by undistorting each frame first, then the pose without dist": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            K = np.asarray(K, np.float64)
+            rows = []
+            for frame in frames:
+                if dist is not None:
+                    frame = cv2.undistort(frame, K, np.asarray(dist, np.float64))
+                rows.append(np.concatenate(estimate_pose(frame, pattern_size, square_size, K)[:2]))
+            return np.array(rows, dtype=np.float64).reshape(-1, 6)
+        """),
     "DLT on raw coordinates (the lab sheet does not ask for normalisation)": ("lab10.ex4", """
         def camera_matrix_dlt(points3d, points2d):
             rows = []
@@ -134,7 +158,8 @@ def test_a_new_camera_matrix_loses_half_the_undistortion_check_and_nothing_else(
     matrix: half of the undistortion check, named; the colour check (its own question) passes."""
     exercise, source, _ = MISTAKES["undistort into the tutorial's new camera matrix (alpha=1)"]
     checks = {c.name: c for c in check_results(grade(mutant(tmp_path, MODULE, source), [exercise]), exercise)}
-    main = checks["undistort_image straightens a view through a distorting lens"]
+    main = checks["undistort_image straightens views through two distorting lenses (the second with large "
+                  "tangential terms p1, p2)"]
     assert main.score == pytest.approx(main.max_score / 2)
     assert main.mistake == "undistorted into a new camera matrix (cv2.getOptimalNewCameraMatrix), not K"
     assert checks["undistort_image keeps a colour image in colour (BGR in, BGR out)"].passed

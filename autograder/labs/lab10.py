@@ -18,7 +18,7 @@ from fixtures import scene
 from fixtures.images import tinted
 
 from ..engine import strategies as st
-from ..engine.checks import Trial, partial, passed
+from ..engine.checks import Fail, Trial, partial, passed
 from ..engine.claims import (calls_any, divides_by, guard, measured, negates_on_negative_det, passes_argument, reshapes,
                              takes_last_row_of_vt)
 from ..engine.compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
@@ -894,11 +894,11 @@ DIST_TO_UNDISTORT_HINT = Hint(
     instead=": your code {found}, but not the dist given (None or zeros?).")
 
 
-def undistorted(t: Trial, what: str, image, expected, seen: str):
-    """``undistort_image(image, K, dist)`` through the checks' lens, shown beside ``expected`` (the
-    view without distortion``seen``): the answer of the input's shape and uint8, its mean blurred
-    difference from ``expected`` and the pixels judged."""
-    K, dist = truth.POSE_K, truth.DIST
+def undistorted(t: Trial, what: str, image, expected, seen: str, dist=None):
+    """``undistort_image(image, K, dist)`` through the checks' lens (``dist``, by default
+    truth.DIST), shown beside ``expected`` (the view without distortion``seen``): the answer of the
+    input's shape and uint8, its mean blurred difference from ``expected`` and the pixels judged."""
+    K, dist = truth.POSE_K, truth.DIST if dist is None else np.asarray(dist, float)
     got = t.call("undistort_image", image, K, dist)
     valid = truth.undistortion_valid(K, dist, truth.POSE_SIZE)
     if isinstance(got, np.ndarray):
@@ -908,14 +908,15 @@ def undistorted(t: Trial, what: str, image, expected, seen: str):
     return got, blurred_difference(got, expected, valid), valid
 
 
-@ext1.check("undistort_image straightens a view through a distorting lens", points=4)
+@ext1.check("undistort_image straightens views through two distorting lenses (the second with large "
+            "tangential terms p1, p2)", points=4)
 def undistort_check(t):
     distorted, clean, _, _, _ = truth.distorted_view()
     K, dist = truth.POSE_K, truth.DIST
     what = "undistort_image(image, K, dist)"
     got, error, valid = undistorted(t, what, distorted, clean, "")
     if error <= UNDISTORT_TOLERANCE:
-        return passed(f"mean difference {error:.1f} grey levels from the distortion-free view")
+        return undistort_full_lens(t, error)
     renamed = new_camera_matrix_verdict(t, what, got, clean, K, dist)
     if renamed:
         return renamed
@@ -928,6 +929,37 @@ def undistort_check(t):
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} differs from the distortion-free view by {error:.0f} grey levels on average.")
+
+
+# The API's distortion is OpenCV's whole model (k1, k2, p1, p2, k3). The first lens's tangential
+# terms (1e-3) move its image by a fraction of a pixel, so an undistortion without them passes
+# there; truth.FULL_DIST's (1e-2) move it by several pixels. Measured (blurred_difference, grey
+# levels, through FULL_DIST and the probe's FULL_PROBE_DIST): cv2.undistort, float32 K and dist,
+# initUndistortRectifyMap + remap (CV_32FC1 or CV_16SC2 maps, linear or cubic) and an own map of
+# the full model 0.7-1.3 from the clean view; without p1, p2 11.9-12.7; p1, p2 swapped 22-24;
+# without k3 1.3-1.5 (k3's r^6 is too small at this field of view to judge).
+FULL_PROBE_DIST = (-0.22, 0.05, -0.014, 0.012, 0.02)
+
+
+def undistort_full_lens(t: Trial, first: float):
+    """undistort_image through truth.FULL_DIST, after the first lens passed with ``first`` levels."""
+    K, dist = truth.POSE_K, truth.FULL_DIST
+    distorted, clean, _, _, _ = truth.distorted_view(tuple(dist))
+    what = f"undistort_image(image, K, dist={format_matrix(dist)})"
+    got, error, valid = undistorted(t, what, distorted, clean, " (a lens with tangential terms)", dist=dist)
+    if error <= UNDISTORT_TOLERANCE:
+        return passed(f"mean difference {first:.1f} and {error:.1f} grey levels from the distortion-free views "
+                      "(the second lens's tangential terms included)")
+    mistake = name_mistake(t, got, undistortion_mistakes(distorted, K, dist),
+                           lambda a, b: blurred_difference(a, b, valid), UNDISTORT_TOLERANCE, truth=clean,
+                           probe=undistort_probe(t, FULL_PROBE_DIST))
+    # right through the first lens: half the points
+    if mistake:
+        return partial(0.5, f"{what} is wrong through this lens (through the first one, whose tangential terms are "
+                            f"1e-3, it is right): it looks like {mistake}.", mistake=mistake)
+    return partial(0.5, f"{what}: through this lens, with tangential terms p1 = {dist[2]:g}, p2 = {dist[3]:g} and "
+                        f"k3 = {dist[4]:g}, the result differs from the distortion-free view by {error:.0f} grey levels "
+                        f"on average; through the first lens (tangential terms of 1e-3, k3 = 0) by {first:.1f}.")
 
 
 # The output keeps K: the skeleton pins it ("Remove lens distortion from an image, keeping the
@@ -976,33 +1008,40 @@ def _new_camera_matrix_view(got, clean, K, dist) -> str | None:
 
 def undistortion_mistakes(distorted, K, dist) -> dict:
     twice = truth.distort_image(np.pad(distorted, truth.MARGIN), K, dist, truth.POSE_SIZE)
+    dist = np.asarray(dist, float)
     return {
         "the distortion is applied instead of removed (the lines bend even more)": twice,
         "the sign of the coefficients is flipped (undistorting with -dist)": cv2.undistort(distorted, K, -dist),
         "K is transposed (cv2.undistort wants K as given)": cv2.undistort(distorted, K.T, dist),
+        TANGENTIAL_LEFT_OUT: cv2.undistort(distorted, K, dist * [1.0, 1.0, 0.0, 0.0, 1.0]),
+        "p1 and p2 are swapped (the image is undistorted with (k1, k2, p2, p1, k3))":
+            cv2.undistort(distorted, K, dist[[0, 1, 3, 2, 4]]),
     }
+
+
+TANGENTIAL_LEFT_OUT = "the tangential terms are left out (the image is undistorted as with p1 = p2 = 0)"
 
 
 UNDISTORT_PROBE_DIST = (-0.18, 0.03, -0.002, 0.0025, 0.01)
 
 
-def undistort_probe_key() -> str:
-    return f"undistort_image/{UNDISTORT_PROBE_DIST}"
+def undistort_probe_key(dist=UNDISTORT_PROBE_DIST) -> str:
+    return f"undistort_image/{tuple(dist)}"
 
 
-def _undistort_answer(t: Trial, distorted):
-    """undistort_image on the probe's lens (K, UNDISTORT_PROBE_DIST); None unless of the input's form."""
-    got = t.call("undistort_image", distorted, truth.POSE_K, np.array(UNDISTORT_PROBE_DIST))
+def _undistort_answer(t: Trial, distorted, dist=UNDISTORT_PROBE_DIST):
+    """undistort_image on a probe's lens (K, dist); None unless of the input's form."""
+    got = t.call("undistort_image", distorted, truth.POSE_K, np.array(dist))
     ok = isinstance(got, np.ndarray) and got.shape == distorted.shape and got.dtype == np.uint8
     return got if ok else None
 
 
-def undistort_probe(t: Trial) -> Probe:
+def undistort_probe(t: Trial, lens=UNDISTORT_PROBE_DIST) -> Probe:
     """undistort_image of the same board through another lens (its tangential terms of other signs)."""
-    K, dist = truth.POSE_K, np.array(UNDISTORT_PROBE_DIST)
-    distorted, clean, _, _, _ = truth.distorted_view(UNDISTORT_PROBE_DIST)
+    K, dist = truth.POSE_K, np.array(lens)
+    distorted, clean, _, _, _ = truth.distorted_view(tuple(lens))
     valid = truth.undistortion_valid(K, dist, truth.POSE_SIZE)
-    return Probe(undistort_probe_key(), lambda: _undistort_answer(t, distorted),
+    return Probe(undistort_probe_key(lens), lambda: _undistort_answer(t, distorted, lens),
                  lambda: undistortion_mistakes(distorted, K, dist), clean,
                  distance=lambda a, b: blurred_difference(a, b, valid), tolerance=UNDISTORT_TOLERANCE)
 
@@ -1151,12 +1190,58 @@ def _track_rows_match(rows, candidate, poses, pattern, square) -> bool:
     return differs
 
 
-@ext3.check("track_pose follows a board along a known trajectory (NaN where it leaves the view)", points=4)
+def _poses_without_dist(frames, K) -> list:
+    """Per frame, the (R, t) cv2.solvePnP gives for its detected corners without a distortion
+    (None where no board is found)."""
+    objp = scene.chessboard_object_points(truth.POSE_PATTERN, truth.POSE_SQUARE)
+    out = []
+    for frame in frames:
+        found, corners = cv2.findChessboardCorners(frame, tuple(truth.POSE_PATTERN))
+        if not found:
+            out.append(None)
+            continue
+        corners = cv2.cornerSubPix(frame, corners, (5, 5), (-1, -1),
+                                   (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3))
+        _, r, tv = cv2.solvePnP(objp, corners, K, None)
+        out.append((scene.rotation_from_rvec(r.ravel()), tv.ravel()))
+    return out
+
+
+def _without_dist(rows, frames, poses, K) -> float | None:
+    """The largest translation error (fraction of the distance) of the true poses when every
+    row is the pose solved without dist (within a tenth of the tolerances), else None."""
+    worst = 0.0
+    for row, pose, true_pose in zip(rows, _poses_without_dist(frames, K), poses):
+        if true_pose is None or pose is None:
+            continue
+        if not np.isfinite(row).all():
+            return None
+        angle, shift, _ = truth.pose_error(row[:3], row[3:], *pose, truth.POSE_PATTERN, truth.POSE_SQUARE)
+        if angle > 0.1 * ANGLE_TOLERANCE or shift > 0.1 * TRANSLATION_TOLERANCE * np.linalg.norm(pose[1]):
+            return None
+        worst = max(worst, np.linalg.norm(pose[1] - true_pose[1]) / np.linalg.norm(true_pose[1]))
+    return worst if worst > TRANSLATION_TOLERANCE else None
+
+
+@ext3.check("track_pose follows a board along a known trajectory (NaN where it leaves the view), also through "
+            "a distorting lens (dist given)", points=4)
 def track_check(t):
     frames, poses = truth.track_sequence()
+    first = judge_track(t, frames, poses)
+    frames, poses = truth.distorted_track_sequence()
+    try:
+        return judge_track(t, frames, poses, dist=truth.DIST)
+    except Fail as failure:   # the tracking itself is right (the first sequence): half the points
+        return partial(0.5, f"{failure.message} (Without a lens distortion: {first.message}.)", failure.hint,
+                       failure.mistake)
+
+
+def judge_track(t: Trial, frames, poses, dist=None):
+    """track_pose on ``frames`` (with ``dist`` when given) against the true ``poses``."""
     pattern, square, K = truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K
-    what = "track_pose(frames, pattern_size, square_size, K)"
-    got = t.call("track_pose", list(frames), pattern, square, K)
+    what = "track_pose(frames, pattern_size, square_size, K" + (", dist) through a distorting lens" if dist is not None
+                                                                else ")")
+    got = t.call("track_pose", list(frames), pattern, square, K, **({} if dist is None else {"dist": dist}))
     if isinstance(got, np.ndarray) and got.ndim > 2 and got.shape[0] == len(frames) and got.size == 6 * len(frames):
         t.fail(f"{what} returned shape {got.shape}; expected ({len(frames)}, 6): the rows are not flattened "
                "(each row is the 6 numbers of rvec, then tvec).", mistake="the rows are not flattened to [rvec, tvec]")
@@ -1202,11 +1287,18 @@ def track_check(t):
             swapped = truth.pose_error(row[3:], row[:3], R, tv, pattern, square)
             if swapped[0] <= ANGLE_TOLERANCE and swapped[1] <= TRANSLATION_TOLERANCE * np.linalg.norm(tv):
                 t.fail(f"{what}: the rows are [tvec, rvec]; the API wants [rvec, tvec].")
+            off = None if dist is None else _without_dist(got, frames, poses, K)
+            if off is not None:
+                t.fail(f"{what}: every row is the pose cv2.solvePnP finds for the frame's corners without dist, as "
+                       f"if the lens had no distortion (up to {off:.1%} of the distance off the true pose; at most "
+                       f"{TRANSLATION_TOLERANCE:.0%} accepted): the dist given is not used.",
+                       mistake="track_pose does not use dist")
             t.fail(f"{what}: frame {i}: the pose is off by {format_apart(angle, ANGLE_TOLERANCE, 2)} degrees "
                    f"and {format_apart(shift / np.linalg.norm(tv), TRANSLATION_TOLERANCE, 2, percent=True)} of "
                    f"the distance (at most {ANGLE_TOLERANCE:g} degrees and {TRANSLATION_TOLERANCE:.0%} accepted).")
         errors.append(angle)
     trajectory = np.array([pose[1] if pose else [np.nan] * 3 for pose in poses])
-    t.svg("board position (x, z) along the sequence: truth vs yours", svg_points(
+    t.svg("board position (x, z) along the sequence: truth vs yours"
+          + (" (through the distorting lens)" if dist is not None else ""), svg_points(
         {"true": trajectory[:, [0, 2]], "yours": got[:, [3, 5]]}, flip_y=False))
     return passed(f"every frame within {max(errors):.2f} degrees")

@@ -309,6 +309,34 @@ MISTAKES = {
         def undistort_image(image, K, dist):
             return cv2.undistort(image, np.asarray(K, np.float64), None)
         """, ["unchanged"]),
+    "undistort by an own map of the radial terms only": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            K = np.asarray(K, np.float64)
+            k1, k2, p1, p2, k3 = np.ravel(dist)[:5]
+            h, w = image.shape[:2]
+            u, v = np.meshgrid(np.arange(w, dtype=np.float64), np.arange(h, dtype=np.float64))
+            x, y = (u - K[0, 2]) / K[0, 0], (v - K[1, 2]) / K[1, 1]
+            r2 = x * x + y * y
+            radial = 1 + k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
+            map_x = (x * radial * K[0, 0] + K[0, 2]).astype(np.float32)
+            map_y = (y * radial * K[1, 1] + K[1, 2]).astype(np.float32)
+            return cv2.remap(image, map_x, map_y, cv2.INTER_LINEAR)
+        """, ["through the first one, whose tangential terms are 1e-3, it is right",
+              "the tangential terms are left out", "p1 = p2 = 0"]),
+    "undistort by an own map with p1 and p2 exchanged": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            K = np.asarray(K, np.float64)
+            k1, k2, p1, p2, k3 = np.ravel(dist)[:5]
+            h, w = image.shape[:2]
+            ys, xs = np.mgrid[0:h, 0:w].astype(np.float64)
+            x, y = (xs - K[0, 2]) / K[0, 0], (ys - K[1, 2]) / K[1, 1]
+            r2 = x * x + y * y
+            radial = 1 + k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
+            xd = x * radial + 2 * p2 * x * y + p1 * (r2 + 2 * x * x)
+            yd = y * radial + p2 * (r2 + 2 * y * y) + 2 * p1 * x * y
+            return cv2.remap(image, (xd * K[0, 0] + K[0, 2]).astype(np.float32),
+                             (yd * K[1, 1] + K[1, 2]).astype(np.float32), cv2.INTER_LINEAR)
+        """, ["p1 and p2 are swapped"]),
     "undistort maps the wrong way (distorts again)": ("lab10.ext1", """
         def undistort_image(image, K, dist):
             K = np.asarray(K, np.float64)
@@ -366,6 +394,27 @@ MISTAKES = {
             fs = f0 * distances / z0
             return fs, np.stack([f * X[:, :2] / d for f, d in zip(fs, distances)])
         """, ["every point is put at depth d"]),
+    "tracking without passing dist on": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            return np.array([np.concatenate(estimate_pose(frame, pattern_size, square_size, K)[:2])
+                             for frame in frames], dtype=np.float64).reshape(-1, 6)
+        """, ["without dist", "the dist given is not used"]),
+    "tracking by cv2.solvePnP on each frame without the distortion": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3))
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size
+            out = np.full((len(frames), 6), np.nan)
+            for i, frame in enumerate(frames):
+                grey = frame if frame.ndim == 2 else cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY)
+                found, corners = cv2.findChessboardCorners(grey, (cols, rows))
+                if found:
+                    corners = cv2.cornerSubPix(grey, corners, (5, 5), (-1, -1),
+                                               (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3))
+                    _, rvec, tvec = cv2.solvePnP(objp, corners, np.asarray(K, np.float64), None)
+                    out[i] = np.concatenate([rvec.ravel(), tvec.ravel()])
+            return out
+        """, ["the dist given is not used"]),
     "tracking rows one frame early": ("lab10.ext3", """
         def track_pose(frames, pattern_size, square_size, K, dist=None):
             rows = []
