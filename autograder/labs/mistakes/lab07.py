@@ -289,4 +289,34 @@ MISTAKES = {
             b = np.concatenate([dst[:, 0], dst[:, 1]])
             return np.linalg.lstsq(M, b, rcond=None)[0].reshape(2, 3)
         """, ["interleaved, targets stacked"]),
+    # ---------------------------------------------------------------- inputs the API allows
+    # Grey (H, W) images are images too; a shift of 0 is a shift like any other.
+    "warp_affine by its own cv2.remap, unpacking h, w, c = image.shape (a grey image raises)": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            h, w, c = image.shape
+            width, height = dsize if dsize is not None else (w, h)
+            inverse = np.linalg.inv(np.vstack([np.asarray(A, float), [0.0, 0.0, 1.0]]))
+            ys, xs = np.mgrid[0:height, 0:width].astype(np.float64)
+            map_x = (inverse[0, 0] * xs + inverse[0, 1] * ys + inverse[0, 2]).astype(np.float32)
+            map_y = (inverse[1, 0] * xs + inverse[1, 1] * ys + inverse[1, 2]).astype(np.float32)
+            return cv2.remap(image, map_x, map_y, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+        """, ["warp_affine(grey image, a, dsize=(220, 100)): warp_affine() raised valueerror"]),
+    "scale by cv2.resize and a crop, unpacking h, w, _ = image.shape (a grey image raises)": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            h, w, _ = image.shape
+            resized = cv2.resize(image, None, fx=sx, fy=sy, interpolation=cv2.INTER_LINEAR)
+            out = np.zeros_like(image)
+            rows, cols = min(h, resized.shape[0]), min(w, resized.shape[1])
+            out[:rows, :cols] = resized[:rows, :cols]
+            return out
+        """, ["scale(grey image, sx=2.0, sy=0.8): scale() raised valueerror"]),
+    "translate by slicing with negative ends (image[:-ty] is empty for ty = 0)": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            tx, ty = int(round(tx)), int(round(ty))
+            out = np.zeros_like(image)
+            rows = (slice(ty, None), slice(None, -ty)) if ty >= 0 else (slice(None, ty), slice(-ty, None))
+            cols = (slice(tx, None), slice(None, -tx)) if tx >= 0 else (slice(None, tx), slice(-tx, None))
+            out[rows[0], cols[0]] = image[rows[1], cols[1]]
+            return out
+        """, ["translate(grey image, tx=45, ty=0): translate() raised valueerror"]),
 }
