@@ -678,13 +678,40 @@ def _essential_8point_mistakes(views, figures):
     }
 
 
-@ex3.check("essential_8point recovers E from exact correspondences", points=2)
+FIXED_E22_HINT = Hint(
+    "It looks like E[2, 2] = 1 was fixed (8 unknowns), which cannot express this motion: solve A e = 0 for all 9 "
+    "entries by SVD.", asks=SOLVES_BY_SVD,
+    instead="Your code {found}: check that A has 9 columns (E[2, 2] is an unknown too) and that e is the last row "
+            "of Vt.")
+DIVIDED_BY_E22_HINT = Hint(
+    "it looks like E was divided by E[2, 2], which is 0 here. Any scale of E is accepted: leave it, or divide by "
+    "its norm.", asks=~divides_by("_[2, 2]", "_[-1, -1]"),
+    instead="the true E[2, 2] is 0 here, so nothing may be divided by it; any scale of E is accepted.")
+
+
+@ex3.check("essential_8point recovers E from exact correspondences (and of a sideways motion, E[2, 2] = 0)",
+           points=2)
 def essential_8point_exact(t):
     views, pts1, pts2 = truth.exact_essential_problem()
     got = t.call("essential_8point", pts1, pts2, views.cam1.K, views.cam2.K)
     judge_projective(t, "essential_8point(pts1, pts2, K1, K2)", got, views.E,
                      _essential_8point_mistakes(views, truth.figures()["essential_exact"]), tolerance=1e-5,
                      probe=essential_8point_probe(t, exact=False))
+    # A rectified pair (pure translation along x, the commonest stereo set-up): E = [t]x has
+    # E[2, 2] = 0 and a zero first row; every 8-point variant of the lab sheet finds it exactly.
+    sideways = truth.sideways_views(seed=23, n=16)
+    K = sideways.cam1.K
+    what = "essential_8point(pts1, pts2, K1, K2) of a sideways motion (a rectified pair: the true E[2, 2] is 0)"
+    got = t.call("essential_8point", sideways.pts1, sideways.pts2, K, K)
+    if isinstance(got, np.ndarray) and got.shape == (3, 3) and got.dtype.kind in "iuf":
+        if not np.all(np.isfinite(got)):
+            t.fail(f"{what} returned NaN or infinite entries: " + DIVIDED_BY_E22_HINT.said(t),
+                   mistake="E divided by E[2, 2], which is 0")
+        size = np.linalg.norm(got)
+        if size and projective_distance(got, sideways.E) > 1e-4 and abs(got[2, 2]) > 1e-3 * size:
+            t.fail(f"{what}: your E[2, 2] is {got[2, 2] / size:.3g} of |E|, the true one is 0 (on the general "
+                   "motion above your E is right). " + FIXED_E22_HINT.said(t))
+    judge_projective(t, what, got, sideways.E, tolerance=1e-5)
 
 
 ESSENTIAL_VALUES_HINT = Hint(

@@ -263,6 +263,15 @@ MISTAKES = {
             U, _, Vt = np.linalg.svd(_eight_point_core(_homogeneous(pts1), _homogeneous(pts2)))
             return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
         """, ["not normalised with k^-1"]),
+    "essential 8-point with E[2, 2] fixed to 1 (least squares for 8 unknowns)": ("lab11.ex3", """
+        def essential_8point(pts1, pts2, K1, K2):
+            x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
+            x2 = _homogeneous(pts2) @ np.linalg.inv(K2).T
+            A = (x2[:, :, None] * x1[:, None, :]).reshape(len(x1), 9)
+            e = np.linalg.lstsq(A[:, :8], -A[:, 8], rcond=None)[0]
+            U, _, Vt = np.linalg.svd(np.append(e, 1.0).reshape(3, 3))
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+        """, ["sideways motion", "the true one is 0", "e[2, 2] = 1 was fixed"]),
     "essential 8-point with points swapped": ("lab11.ex3", """
         _e8 = essential_8point
         def essential_8point(pts1, pts2, K1, K2):
