@@ -1156,15 +1156,23 @@ def dolly_example(t):
     return passed("subject fixed, background moving")
 
 
-@ext2.check("dolly_zoom for other focal lengths and distances", points=2)
+@ext2.check("dolly_zoom for other focal lengths and distances (in any order, repeated, a single one)", points=2)
 def dolly_property(t):
+    def points(rng, z0):
+        return np.column_stack([rng.uniform(-2, 2, 10), rng.uniform(-2, 2, 10), z0 + rng.uniform(0, 10, 10)])
+
     def holds(case):
         seed, f0, z0 = case
         rng = np.random.default_rng(seed)
-        X = np.column_stack([rng.uniform(-2, 2, 10), rng.uniform(-2, 2, 10), z0 + rng.uniform(0, 10, 10)])
-        judge_dolly(t, X, f0, z0, np.sort(rng.uniform(0.5 * z0, 3 * z0, 5)))
+        X = points(rng, z0)
+        # a dolly may move in and out: the distances in any order, one of them twice
+        distances = rng.uniform(0.5 * z0, 3 * z0, 5)
+        distances[3] = distances[1]
+        judge_dolly(t, X, f0, z0, distances)
 
     t.for_all(st.tuples(seeds, st.floats(50, 2000), st.floats(1, 20)), holds, max_examples=10)
+    # one distance: one frame, projections of shape (1, N, 2)
+    judge_dolly(t, points(np.random.default_rng(602), 4.0), 350.0, 4.0, np.array([6.5]))
 
 
 # ================================================================== ext3 tracking

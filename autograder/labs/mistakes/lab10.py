@@ -394,6 +394,19 @@ MISTAKES = {
             fs = f0 * distances / z0
             return fs, np.stack([f * X[:, :2] / d for f, d in zip(fs, distances)])
         """, ["every point is put at depth d"]),
+    "dolly zoom squeezing the stacked frames": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X = np.atleast_2d(np.asarray(points, np.float64))
+            d = np.asarray(distances, np.float64).ravel()
+            fs = f0 * d / z0
+            frames = [perspective_project(X + [0.0, 0.0, di - z0], fi) for fi, di in zip(fs, d)]
+            return fs, np.squeeze(np.array(frames))
+        """, ["(1, 10, 2)"]),
+    "dolly zoom over the distances in increasing order": ("lab10.ext2", """
+        _dolly = dolly_zoom
+        def dolly_zoom(points, f0, z0, distances):
+            return _dolly(points, f0, z0, np.sort(distances))
+        """, ["the focal lengths are", "expected f0 * d / z0"]),
     "tracking without passing dist on": ("lab10.ext3", """
         def track_pose(frames, pattern_size, square_size, K, dist=None):
             return np.array([np.concatenate(estimate_pose(frame, pattern_size, square_size, K)[:2])
