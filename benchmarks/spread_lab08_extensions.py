@@ -26,6 +26,13 @@
 
     python benchmarks/spread_lab08_extensions.py
 
+3. ext3 -- the collapsed pyramid cast to uint8 without a clip: beside a black-and-white chessboard
+   (``chessboard_colour``) a multi-band blend overshoots 0..255 near the seam. Largest distance
+   from the clipped yardstick over four scenes (photos, square sizes, grey, levels 4 and 5):
+   legitimate pyramids (the list of 2.) 0-80 grey levels, at no pixel more than 128; values wrapped
+   around (the cast without the clip) 255, farther than 128 at 2.0-10.2 % of the pixels (the check's
+   scene: 4.2 %). The check accepts 128 grey levels, at up to 0.1 % of the pixels.
+
 Printed figures (OpenCV 5.0.0, skimage 0.25.2), in short:
 
 - ORB: no output measure separates the mistake. With the ratio test, NORM_L2 keeps 0.95-0.98
@@ -435,6 +442,38 @@ def blend_table():
               f"grain spread levels=5 {min(five):.3f}-{max(five):.3f}, levels=4 {min(four):.3f}-{max(four):.3f}")
 
 
+# ------------------------------------------------------------------ clip
+# The check "where the blend passes 0 or 255, it is clipped": a black-and-white chessboard beside a
+# photo (the check's scene first, then other photos, square sizes, grey, levels=5).
+CLIP_SCENES = [("coffee", 16, 4, False), ("astronaut", 12, 4, False), ("chelsea", 16, 5, False),
+               ("camera", 20, 4, True)]
+
+
+def wrapped_blend(img1, img2, mask, levels):
+    """The yardstick's collapse cast to uint8 without the clip (values past 0..255 wrap around)."""
+    return np.round(truth.multiband(img1, img2, mask, levels, clip=False)).astype(np.int64).astype(np.uint8)
+
+
+def clip_table():
+    print("ext3 clip: largest |blend - clipped yardstick| (grey levels) / share of pixels farther than 128")
+    for title, group in (("legitimate", BLEND_LEGITIMATE), ("mistake", {"cast without the clip": wrapped_blend})):
+        for name, blend in group.items():
+            row = []
+            for photo_name, square, levels, grey in CLIP_SCENES:
+                size = (256, 192)
+                board, other = truth.chessboard_colour(size, square), photo(photo_name, size)
+                if grey:
+                    board, other = board[..., 0].copy(), cv2.cvtColor(other, cv2.COLOR_BGR2GRAY)
+                mask = truth.step_mask(size, 128)
+                due = truth.multiband(board, other, mask, levels).astype(np.float64)
+                off = np.abs(blend(board, other, mask, levels).astype(np.float64) - due)
+                far = off > 128
+                row.append(f"{off.max():3.0f} / {(far.any(axis=2) if far.ndim == 3 else far).mean():.4f}")
+            print(f"  {title:10s} {name[:49]:49s} " + "  ".join(row))
+    print()
+
+
 if __name__ == "__main__":
     orb_table()
     blend_table()
+    clip_table()

@@ -2223,6 +2223,50 @@ def blend_odd_size(t):
     t.fail(f"{measured}; the mask should select img1 where mask = 1 and img2 where mask = 0, at any size.")
 
 
+# ------------------------------------------------------------------ values past 0..255
+# Beside a black-and-white chessboard the collapsed pyramid overshoots 0..255 near the seam (4 % of
+# the pixels of the scene below); a uint8 result must clip it there. Measured on this scene and three
+# others (benchmarks/spread_lab08_extensions.py, clip_table): legitimate pyramids (those of the
+# mask-pyramid study, one level fewer included) are within 80 grey levels of the clipped yardstick at
+# every pixel (53 here); values wrapped around (a cast without the clip) are more than 128 from it at
+# 2 to 10 % of the pixels (4.2 % here).
+CLIPPED_FAR = 128   # grey levels from the clipped yardstick that no legitimate blend comes near
+CLIP_HINT = Hint("clip the collapsed pyramid before the conversion: np.clip(np.round(result), 0, 255).astype(np.uint8)",
+                 asks=calls("np.clip") | calls(".clip"),
+                 instead="your code already clips ({found}): check that it is the collapsed result that is "
+                         "clipped, before its conversion to uint8")
+WRAPPED = measured("values past 0 or 255 wrap around to the other end of the range instead of being clipped")
+
+
+@ext3.check("a black-and-white chessboard beside a photo: where the blend passes 0 or 255, it is clipped",
+            points=1)
+def blend_clipped(t):
+    size = (256, 192)
+    board, other, mask = truth.chessboard_colour(size), photo("coffee", size), truth.step_mask(size, 128)
+    what = "blend_multiband(black-and-white chessboard, photo, step mask)"
+    got = blended(t, what, board, other, mask).astype(np.float64)
+    raw = np.round(truth.multiband(board, other, mask, 4, clip=False))
+    due = np.clip(raw, 0, 255)
+    off = np.abs(got - due) > CLIPPED_FAR                        # (h, w, 3)
+    far = off.any(axis=2)
+    beyond = (raw < 0) | (raw > 255)
+    if far.mean() <= 1e-3:
+        return passed(f"the blend passes 0..255 at {beyond.any(axis=2).mean():.1%} of the pixels; yours is "
+                      f"within {np.abs(got - due)[beyond].max(initial=0):.0f} grey levels of it clipped there")
+    t.images(what, img1=board, img2=other, yours=got.astype(np.uint8))
+    reach = int(np.abs(np.nonzero(far)[1] - 128).max())
+    measurement = (f"{what}: {far.mean():.1%} of the pixels, all within {reach} px of the seam, are more than "
+                   f"{CLIPPED_FAR} grey levels from a multi-band blend (legitimate pyramids stay within 80 of it)")
+    wrapped = off & beyond
+    if wrapped.sum() >= 0.9 * off.sum():
+        y, x, c = (int(i[0]) for i in np.nonzero(wrapped))
+        t.fail(measured(f"{measurement}; {wrapped.sum() / off.sum():.0%} of those values lie where the blend goes "
+                        f"past 0 or 255, and yours is at the other end of the range there (pixel ({x}, {y}), "
+                        f"channel {c}: {got[y, x, c]:.0f} where {due[y, x, c]:.0f} is due): {WRAPPED}; ")
+               + CLIP_HINT.said(t), mistake=WRAPPED)
+    t.fail(f"{measurement}.{damaged_pyramid(t)}")
+
+
 # ------------------------------------------------------------------ the mask's pyramid
 # A mask pyramid made by subsampling (mask[::2, ::2], cv2.resize to each level) weights the coarse
 # levels by single mask pixels. Across a step mask it does not show: the collapse's pyrUp smooths

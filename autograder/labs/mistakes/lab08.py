@@ -576,6 +576,19 @@ MISTAKES = {
                 out = cv2.pyrUp(out, dstsize=(band.shape[1], band.shape[0]))   # + band forgotten
             return np.clip(np.round(out), 0, 255).astype(np.uint8)
         """, ["does not add the bands back"]),
+    "collapsed pyramid cast to uint8 without a clip": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            weights = _gaussian_pyramid(np.asarray(mask, np.float32), levels)
+            bands = []
+            for a, b, w in zip(_laplacian_pyramid(np.float32(img1), levels),
+                               _laplacian_pyramid(np.float32(img2), levels), weights):
+                w = w[..., None] if a.ndim == 3 else w
+                bands.append(w * a + (1 - w) * b)
+            out = bands[-1]
+            for band in reversed(bands[:-1]):
+                out = cv2.pyrUp(out, dstsize=(band.shape[1], band.shape[0])) + band
+            return out.astype(np.uint8)      # values past 0..255 beside strong edges wrap around
+        """, ["wrap around to the other end of the range instead of being clipped", "np.clip"]),
     "mask weights img2": ("lab08.ext3", """
         _reference_blend = blend_multiband
         def blend_multiband(img1, img2, mask, levels=4):
