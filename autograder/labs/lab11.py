@@ -282,16 +282,27 @@ def triangulate_near_and_far(t):
     return judge_triangulation(t, "triangulate(P1, P2, pts1, pts2) with N=300", got, views)
 
 
-@ex1.check("triangulate any exact two-view problem", points=2)
+# P1 and P2 at any scale and sign (s P projects alike), and camera 1 as K1 [I | 0] (its P1[:, 3] = 0:
+# the world in camera 1's frame, as a two-view pipeline builds it) half the time.
+CAMERA_SCALES = [(1.0, 1.0), (-1.0, 1.0), (0.01, 40.0), (250.0, -0.5)]
+
+
+@ex1.check("triangulate any exact two-view problem (P1, P2 at any scale and sign; camera 1 = K1 [I | 0])",
+           points=2)
 def triangulate_property(t):
     def holds(case):
-        seed, n = case
+        seed, n, canonical, (s1, s2) = case
         views = truth.two_views(seed, n=n)
-        judge_triangulation(t, f"triangulate(P1, P2, pts1, pts2) with N={n}",
-                            t.call("triangulate", views.P1, views.P2, views.pts1, views.pts2), views)
+        views = truth.in_camera1_frame(views) if canonical else views
+        judge_triangulation(t, f"triangulate({s1:g} P1, {s2:g} P2, pts1, pts2) with N={n}"
+                            + (", camera 1 = K1 [I | 0]" if canonical else ""),
+                            t.call("triangulate", s1 * views.P1, s2 * views.P2, views.pts1, views.pts2), views)
 
-    t.for_all(st.tuples(seeds, st.integers(1, 40)), holds, max_examples=15,
-              describe=lambda c: f"fixtures.lab11.two_views(seed={c[0]}, n={c[1]})")
+    t.for_all(st.tuples(seeds, st.integers(1, 40), st.booleans(), st.sampled_from(CAMERA_SCALES)), holds,
+              max_examples=15,
+              describe=lambda c: f"fixtures.lab11.two_views(seed={c[0]}, n={c[1]})"
+                                 + (" in camera 1's frame (camera 1 = K1 [I | 0])" if c[2] else "")
+                                 + f", P1 and P2 scaled by {c[3][0]:g} and {c[3][1]:g}")
 
 
 @ex1.check("triangulate noisy correspondences (0.5 px noise)", points=2)

@@ -57,6 +57,12 @@ MISTAKES = {
                           pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
             return np.linalg.svd(A)[2][:, -1, :3]
         """, ["not divided by w"]),
+    "triangulation with each P scaled so that P[2, 3] = 1": ("lab11.ex1", """
+        _triangulate = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
+            return _triangulate(P1 / P1[2, 3], P2 / P2[2, 3], pts1, pts2)
+        """, ["camera 1 = k1 [i | 0]"]),
     "triangulation from one view only": ("lab11.ex1", """
         def triangulate(P1, P2, pts1, pts2):
             P1 = np.asarray(P1, float)
