@@ -369,16 +369,16 @@ def lines_example(t):
     judge_lines(t, "epipolar_lines(F, pts1)", t.call("epipolar_lines", F, views.pts1), F, views.pts1)
 
 
-@ex2.check("epipolar_lines for any camera pair", points=2)
+@ex2.check("epipolar_lines for any camera pair, any scale of F, any number of points (one too)", points=2)
 def lines_property(t):
     def holds(case):
-        seed, scale = case
-        views = truth.two_views(seed, n=10)
+        seed, scale, n = case
+        views = truth.two_views(seed, n=n)
         F = scale * views.F
-        judge_lines(t, "epipolar_lines(F, pts1)", t.call("epipolar_lines", F, views.pts1), F, views.pts1)
+        judge_lines(t, f"epipolar_lines(F, pts1) with N={n}", t.call("epipolar_lines", F, views.pts1), F, views.pts1)
 
-    t.for_all(st.tuples(seeds, st.sampled_from([1.0, -3.0, 1e-3, 1e4])), holds, max_examples=10,
-              describe=lambda c: f"F = {c[1]} * fixtures.lab11.two_views(seed={c[0]}).F")
+    t.for_all(st.tuples(seeds, st.sampled_from([1.0, -3.0, 1e-3, 1e4]), st.integers(1, 12)), holds, max_examples=10,
+              describe=lambda c: f"F = {c[1]} * fixtures.lab11.two_views(seed={c[0]}, n={c[2]}).F and its pts1")
 
 
 @ex2.check("the epipolar lines pass through the corresponding points", points=1)

@@ -153,6 +153,12 @@ MISTAKES = {
             lines[:, 2] = 1.0
             return lines
         """, ["is wrong for every line, in c only.", "\nit returned"]),
+    "epipolar lines squeezed (one point gives a (3,) line)": ("lab11.ex2", """
+        def epipolar_lines(F, pts1):
+            x = np.column_stack([np.asarray(pts1, float), np.ones(len(pts1))])
+            lines = np.squeeze(np.asarray(F, float) @ x.T).T
+            return lines / np.linalg.norm(lines[..., :2], axis=-1, keepdims=True)
+        """, ["n=1", "shape (3,)"]),
     "epipolar lines not normalised": ("lab11.ex2", """
         def epipolar_lines(F, pts1):
             return _homogeneous(pts1) @ np.asarray(F, float).T
