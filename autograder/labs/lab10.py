@@ -18,7 +18,7 @@ from fixtures import scene
 from fixtures.images import tinted
 
 from ..engine import strategies as st
-from ..engine.checks import Fail, Trial, partial, passed
+from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (calls_any, divides_by, guard, measured, negates_on_negative_det, passes_argument, reshapes,
                              takes_last_row_of_vt)
 from ..engine.compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
@@ -842,11 +842,29 @@ def _call_pose(t: Trial, image, pattern, square, K, dist=None):
     return what, t.call("estimate_pose", image, pattern, square, K, **kwargs)
 
 
-@ex6.check("estimate_pose on three rendered views with known pose", points=5)
+def colour_photo(grey) -> np.ndarray:
+    """(H, W) uint8 -> a BGR photo of the same scene, as cv2.imread reads one (slightly warm)."""
+    grey = np.asarray(grey, np.uint8)
+    return np.dstack([np.round(grey * 0.92).astype(np.uint8), grey, grey])
+
+
+@ex6.check("estimate_pose on three rendered views with known pose (one a colour photo, BGR)", points=5)
 def pose_views(t):
     messages = []
     for i, (image, R, tv, corners) in enumerate(truth.pose_views()):
-        what, got = _call_pose(t, image, truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K)
+        # the second view as cv2.imread reads a photo: BGR (OpenCV's corner refinement wants grey)
+        given = colour_photo(image) if i == 1 else image
+        try:
+            what, got = _call_pose(t, given, truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K)
+        except StudentFailure as failure:
+            if i != 1 or failure.outcome.kind != "exception":
+                raise
+            raise StudentFailure(failure.outcome, f"estimate_pose(colour image, ...): {failure.message}\nThis view "
+                                 "is a colour photo (BGR, as cv2.imread reads one); the grey view before it passed. "
+                                 + measured("estimate_pose takes either: convert a colour image to grey where "
+                                            "OpenCV wants one channel (cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)).")
+                                 ) from None
+        what = what.replace("(image,", "(colour image,") if i == 1 else what
         verdict = judge_pose(t, what, got, image, R, tv, corners, truth.POSE_PATTERN, truth.POSE_SQUARE,
                              truth.POSE_K, show=(i == 0))
         if verdict.fraction < 1:

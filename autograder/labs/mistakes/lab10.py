@@ -298,6 +298,18 @@ MISTAKES = {
             objp[:, :2] = np.mgrid[0:cols, 0:rows].reshape(2, -1).T * square_size
             return objp
         """, ["column order"]),
+    "pose with the corners refined on the image as given (a BGR photo too)": ("lab10.ex6", """
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            found, corners = cv2.findChessboardCorners(image, tuple(pattern_size))
+            if not found:
+                return np.full(3, np.nan), np.full(3, np.nan), np.zeros((0, 2))
+            corners = cv2.cornerSubPix(image, corners, (5, 5), (-1, -1),
+                                       (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3))
+            objp = _object_points(pattern_size, square_size)
+            _, rvec, tvec = cv2.solvePnP(objp, corners, np.asarray(K, float), dist)
+            reprojected, _ = cv2.projectPoints(objp, rvec, tvec, np.asarray(K, float), dist)
+            return rvec.ravel(), tvec.ravel(), reprojected.reshape(-1, 2)
+        """, ["cornerSubPix", "colour photo (BGR", "the grey view before it passed"]),
     "pose inverted (camera in the board's frame)": ("lab10.ex6", """
         _right = estimate_pose
         def estimate_pose(image, pattern_size, square_size, K, dist=None):
