@@ -43,6 +43,16 @@ MISTAKES = {
             X = Vt[-1]
             return X[:, :3] / X[:, 3:]
         """, ["4 rows is the size of each point's 4 x 4 system", "vt[:, -1]"]),
+    # One match is an (N, 2) array with N = 1: the (N, 3) answer keeps its row.
+    "triangulate squeezing its answer (one match gives (3,))": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            points = []
+            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                A = np.array([x1 * P1[2] - P1[0], y1 * P1[2] - P1[1], x2 * P2[2] - P2[0], y2 * P2[2] - P2[1]])
+                X = np.linalg.svd(A)[2][-1]
+                points.append(X[:3] / X[3])
+            return np.squeeze(np.array(points))
+        """, ["with n=1 returned an array of shape (3,); expected (1, 3)"]),
     "triangulate with OpenCV": ("lab12.ex1", """
         def triangulate(P1, P2, pts1, pts2):
             X = cv2.triangulatePoints(np.float64(P1), np.float64(P2),
@@ -417,6 +427,11 @@ MISTAKES = {
             shifted[:, :-1] = disparity[:, 1:]
             return shifted
         """, ["the last column", "where the backtracking starts, is wrong"]),
+    "DP with its block fixed at 5 x 5 (block_size ignored)": ("lab12.ex5", """
+        _sad = _sad_volume
+        def _sad_volume(left, right, max_disparity, block_size):
+            return _sad(left, right, max_disparity, 5)
+        """, ["block_size=3 and block_size=9 give the same disparity map: block_size is ignored"]),
     "DP with a default smoothness far too large": ("lab12.ex5", """
         DEFAULT_SMOOTHNESS = 400.0
         """, ["the default smoothness is far too large"]),
