@@ -45,10 +45,10 @@ from dataclasses import replace
 from typing import Callable, Iterable
 
 from ..loading.parsing import parse
-from .hints import Hint, Predicate, _path, _same
+from .hints import Hint, Predicate, _path, _same, code_of, functions_read
 
-# text -> its Hint, for every diagnosis registered with guard(); texts marked measured()
-GUARDED: dict[str, Hint] = {}
+# text -> its Hint (or Checklist), for every diagnosis registered with guard() or checklist(); texts marked measured()
+GUARDED: dict[str, "Hint | Checklist"] = {}
 MEASURED: set[str] = set()
 
 
@@ -88,6 +88,49 @@ def guard(text: str, asks: Predicate, instead: str | None = None, functions: tup
         raise ValueError(f"guard: {text!r} is registered twice with different predicates")
     GUARDED[text] = Hint(text, asks=asks, instead=instead, functions=tuple(functions))
     return text
+
+
+class Checklist:
+    """Things to check, each said only where the student's code does not visibly do it already
+    (:func:`checklist`): "check that A, and that B" becomes "check that B" for code doing A, and
+    ``none_left`` for code doing both."""
+
+    def __init__(self, lead: str, items: tuple, none_left: str, functions: tuple):
+        self.lead, self.items, self.none_left, self.functions = lead, items, none_left, functions
+        self.text = _listed(lead, [text for text, _ in items], none_left)
+
+    def said(self, t) -> str:
+        code = code_of(t)
+        return self.told(code, self.functions or functions_read(t)) if code.functions else self.text
+
+    def told(self, code, functions) -> str:
+        """What is said for ``code``'s ``functions`` (and the helpers they call)."""
+        if not code.functions:   # nothing to read: every item is said
+            return self.text
+        read = code.reachable(functions)
+        return _listed(self.lead, [text for text, done in self.items if not done.holds(read)], self.none_left)
+
+
+def _listed(lead: str, items: list, none_left: str) -> str:
+    if not items:
+        return f"{lead}{none_left}".strip()
+    return f"{lead}check that {', and that '.join(items)}"
+
+
+def checklist(lead: str, *items: tuple[str, Predicate], none_left: str = "the error is elsewhere",
+              functions: tuple = ()) -> str:
+    """Register a list of things to check: ``lead`` ("your code already calls X: ") then "check that
+    A, and that B" of the ``items`` -- (what to check, the code that does it) -- whose code the
+    student's functions (those the check calls, or ``functions``) do not already hold; ``none_left``
+    after ``lead`` when they hold every one. An item the code does is a hint that contradicts it
+    (issue 35); an item no predicate can read is no item (write it as a measurement, or leave it
+    out). Returns the full text (a ``str``, said as it is without code to read), registered as
+    :func:`guard`'s sentences are: wherever a failed check's message or hint holds it, it is replaced."""
+    if not items or any(not isinstance(done, Predicate) for _, done in items):
+        raise ValueError("checklist: every item needs the predicate of the code that does it")
+    made = Checklist(lead, tuple(items), none_left, tuple(functions))
+    GUARDED[made.text] = made
+    return made.text
 
 
 def said(t, text: str) -> str:

@@ -60,7 +60,6 @@ from __future__ import annotations
 
 import logging
 import threading
-import time
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -357,8 +356,8 @@ def decide(trial, function: str, substitutes, seconds: float = CHECK_SECONDS) ->
     spent = shared.setdefault(SHARED_SECONDS, [0.0])
     remaining = getattr(trial.sandbox, "remaining", lambda: float("inf"))()
     # at most half what the exercise's budget and the submission's deadline leave: the checks after come first
-    clock = naming.Clock(min(seconds, GRADING_SECONDS - spent[0], remaining / 2))
-    decisions, started = [], time.monotonic()
+    clock = naming.work_clock(trial, min(seconds, GRADING_SECONDS - spent[0], remaining / 2))
+    decisions = []
     try:
         for _, args, kwargs, answer in _judged_calls(trial, function):
             if clock.left() <= 0:
@@ -373,7 +372,7 @@ def decide(trial, function: str, substitutes, seconds: float = CHECK_SECONDS) ->
             if shared[key] is not None:
                 decisions.append(shared[key])
     finally:
-        spent[0] += time.monotonic() - started
+        spent[0] += clock.used()
         naming.release_helper()
     if not decisions:
         return None

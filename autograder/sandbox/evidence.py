@@ -107,6 +107,22 @@ def resident(pid: int | None) -> int | None:
     return int(statm.split()[1]) * PAGE if statm else None
 
 
+TICKS = os.sysconf("SC_CLK_TCK") if hasattr(os, "sysconf") else 100
+
+
+def cpu_seconds(pid: int | None) -> float | None:
+    """CPU time (user and system, all threads) process ``pid`` has used, from ``/proc/PID/stat``;
+    None where it cannot be read (the process ended, no ``/proc``)."""
+    stat = _read(f"/proc/{pid}/stat") if pid is not None else None
+    if not stat or ")" not in stat:
+        return None
+    fields = stat[stat.rindex(")") + 2:].split()   # (the command name may hold spaces and brackets)
+    try:
+        return (int(fields[11]) + int(fields[12])) / TICKS   # utime, stime: fields 14 and 15 of stat
+    except (IndexError, ValueError):
+        return None
+
+
 def holds_pipe(pid: int, fd: int, pipe_inode: int) -> bool | None:
     """Whether process ``pid`` has the pipe ``pipe_inode`` at descriptor ``fd``: None when
     that cannot be told (no ``/proc``, not allowed, the process is gone)."""

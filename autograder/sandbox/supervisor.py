@@ -549,6 +549,7 @@ class Sandbox:
             os.close(request_r)
             os.close(response_w)
         _LIVE_WORKERS.add(self.proc.pid)
+        self._worker_started = time.monotonic()
         self._request_fd, self._response_fd = request_w, response_r
         self._worker_pipes = ((request_r, os.fstat(request_w).st_ino), (response_w, os.fstat(response_r).st_ino))
         if not self.confinement.hides_files:
@@ -748,6 +749,16 @@ class Sandbox:
                    "calls": [[list(args), dict(kwargs)] for args, kwargs in calls],
                    "forbid": list(forbid), "cpu_seconds": timeout + 1.0, "trace": bool(trace)}
         return self._request(request, timeout, f"{function}() (a variant)")
+
+    def working_pids(self) -> list[tuple[int, float]]:
+        """(pid, when it started: ``time.monotonic()``) of the processes running the student's code for
+        this sandbox now: its worker, and its companion's when one runs (the CPU time a naming spends,
+        :class:`~autograder.engine.mutants.naming.Clock`)."""
+        pids = [(self._worker_pid, self._worker_started)] \
+            if self._worker_pid is not None and self.proc is not None else []
+        if self._companion is not None and not self._companion._closed:
+            pids += self._companion.working_pids()
+        return pids
 
     def companion(self) -> "Sandbox":
         """Another sandbox of the same submission, the same confinement and deadline, half the memory,

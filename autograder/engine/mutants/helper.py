@@ -68,7 +68,14 @@ class Helper:
             [sys.executable, "-m", "autograder.engine.mutants.helper"], stdin=subprocess.PIPE,
             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, env=env, start_new_session=True,
             preexec_fn=_limit_memory, cwd=str(_project_root()))
+        self._started = time.monotonic()
         self._module, self._calls = None, None
+
+    @property
+    def running(self) -> tuple[int, float] | None:
+        """(pid, when it started: ``time.monotonic()``) of the helper process while it runs."""
+        process = self._process
+        return (process.pid, self._started) if process is not None and process.poll() is None else None
 
     def close(self):
         """Stop the helper (if running)."""

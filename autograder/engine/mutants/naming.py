@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from ...loading.parsing import parse
+from ...sandbox import evidence
 from ..inplace import MISTAKE as IN_PLACE
 from .helper import ERROR, Helper, HelperFailed
 from .operators import Mutant, mutants_of
@@ -533,14 +534,67 @@ def derived_calls(call, count, seed, defaults=()):
 
 
 # ------------------------------------------------------------------ naming
-class Clock:
-    """The time a naming has left (:meth:`left`, seconds), from a budget given at its start."""
+WALL_SLACK = 3.0   # a naming's wall-clock time is at most this many times its budget (a busy machine)
 
-    def __init__(self, seconds: float):
-        self.end = time.monotonic() + seconds
+
+class Clock:
+    """The time a naming has left (:meth:`left`, seconds), from a budget given at its start.
+
+    Counted in CPU seconds of the processes doing the work -- this thread (the grader's comparisons)
+    and ``processes()`` (the reference's helper, the student's sandboxes) -- so that a submission gets
+    the same names on a busy machine as on a quiet one (a regrade, a batch beside other work, a class
+    graded on shared cores), within :data:`WALL_SLACK` times the budget in wall-clock time. Without
+    ``processes``, or where a process's CPU time cannot be read (no ``/proc``), wall-clock seconds."""
+
+    def __init__(self, seconds: float, processes=None):
+        now = time.monotonic()
+        self.seconds, self.started = seconds, now
+        self.end = now + seconds                       # (wall clock)
+        self.wall_end = now + seconds * WALL_SLACK
+        self._processes = processes
+        self._thread = time.thread_time()
+        self._cpu: dict[int, list[float]] = {}         # pid -> [CPU seconds when first seen, last seen]
+        if processes is not None and self._look() is None:
+            self._processes = None
+
+    def _look(self) -> float | None:
+        """CPU seconds used since the start (None when a process's cannot be read)."""
+        for pid, started in self._processes():
+            cpu = evidence.cpu_seconds(pid)
+            if cpu is None:
+                return None
+            # A process started since (a helper or worker restarted) counts all its time; one that ran
+            # before (the student's worker, a helper kept from an earlier grading) from now on.
+            seen = self._cpu.setdefault(pid, [0.0 if started >= self.started else cpu, cpu])
+            seen[1] = cpu
+        return time.thread_time() - self._thread + sum(last - first for first, last in self._cpu.values())
+
+    def used(self) -> float:
+        """Seconds of the budget used so far."""
+        wall = time.monotonic() - self.started
+        if self._processes is None:
+            return wall
+        cpu = self._look()
+        if cpu is None:   # a process no longer readable: wall-clock time from here on
+            self._processes = None
+            return wall
+        return max(cpu, wall * self.seconds / (self.wall_end - self.started) if self.wall_end > self.started else wall)
 
     def left(self) -> float:
-        return self.end - time.monotonic()
+        return self.seconds - self.used()
+
+
+def work_clock(trial, seconds: float) -> Clock:
+    """A :class:`Clock` of ``seconds`` counting the CPU time of this thread, its reference helper and
+    the trial's sandboxes (the student's worker and its companion)."""
+    working = getattr(getattr(trial, "sandbox", None), "working_pids", None)
+
+    def processes() -> list[tuple[int, float]]:
+        current = getattr(_USING, "helper", None)   # (this thread's, once it has one)
+        running = current.running if current is not None else None
+        return list(working()) + ([running] if running is not None else [])
+
+    return Clock(seconds, processes if working is not None else None)
 
 
 def name_failure(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
@@ -564,13 +618,13 @@ def _within_budget(trial, seconds: float, work, evidence=None) -> Naming | None:
     seconds = min(seconds, GRADING_SECONDS - spent[0])
     if seconds <= 0.2:
         return None
-    started = time.monotonic()
+    clock = work_clock(trial, seconds)
     try:
-        return work(trial, model, Clock(seconds))
+        return work(trial, model, clock)
     except HelperFailed:
         return None
     finally:
-        spent[0] += time.monotonic() - started
+        spent[0] += clock.used()
         _MEASURED.clear()
         release_helper()
 

@@ -31,7 +31,6 @@ import itertools
 import os
 import re
 import threading
-import time
 from collections import Counter, OrderedDict
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -442,16 +441,16 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = No
     seconds = min(seconds, naming.GRADING_SECONDS - spent[0])
     if seconds <= 0.2:
         return None
-    started = time.monotonic()
+    clock = naming.work_clock(trial, seconds)
     try:
         student = _student_code(trial)
         if student is None:
             return None
-        return _search(trial, model, student, naming.Clock(seconds), tries)
+        return _search(trial, model, student, clock, tries)
     except HelperFailed:
         return None
     finally:
-        spent[0] += time.monotonic() - started
+        spent[0] += clock.used()
         naming.forget_measures()
         naming.release_helper()
 

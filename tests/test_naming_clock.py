@@ -1,0 +1,72 @@
+"""The naming's clock counts the CPU time of the processes doing the work, not the wall clock.
+
+A submission should get the same names on a busy machine as on a quiet one (a regrade, a batch
+beside other work): the error model's and the repairs' budgets are CPU seconds of this thread, the
+reference's helper and the student's sandboxes, within WALL_SLACK times the budget of wall-clock time.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import time
+
+from autograder.engine.mutants import naming
+from autograder.sandbox import evidence
+
+SPIN = "import time\nwhile time.process_time() < {cpu} + 0.1: pass\ntime.sleep(60)"   # (/proc counts in ticks)
+
+
+def _spinning(cpu: float) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-c", SPIN.format(cpu=cpu)])
+
+
+def test_waiting_on_an_idle_process_uses_little_of_the_budget():
+    idle = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    try:
+        clock = naming.Clock(3.0, lambda: [(idle.pid, 0.0)])
+        time.sleep(0.6)   # the machine busy elsewhere: wall time passes, no work is done
+        assert clock.used() < 0.4   # at most a third of the wall time (WALL_SLACK), not all of it
+        assert clock.left() > 2.6
+    finally:
+        idle.kill()
+        idle.wait()
+
+
+def test_a_worker_started_during_the_naming_counts_all_its_cpu_time():
+    workers = []   # (none yet when the naming starts)
+    clock = naming.Clock(10.0, lambda: workers)
+    busy = _spinning(0.5)
+    workers.append((busy.pid, time.monotonic()))
+    try:
+        while (evidence.cpu_seconds(busy.pid) or 0.0) < 0.5:
+            time.sleep(0.05)
+        assert clock.used() >= 0.45
+    finally:
+        busy.kill()
+        busy.wait()
+
+
+def test_a_worker_running_before_counts_from_the_start_only():
+    busy = _spinning(0.4)
+    try:
+        while (evidence.cpu_seconds(busy.pid) or 0.0) < 0.4:
+            time.sleep(0.05)
+        clock = naming.Clock(10.0, lambda: [(busy.pid, 0.0)])   # its 0.4 s are an earlier grading's
+        assert clock.used() < 0.2
+    finally:
+        busy.kill()
+        busy.wait()
+
+
+def test_the_wall_clock_bounds_a_naming_on_a_very_busy_machine():
+    clock = naming.Clock(0.1, lambda: [])
+    time.sleep(0.1 * naming.WALL_SLACK + 0.05)
+    assert clock.left() <= 0
+
+
+def test_without_a_readable_process_the_clock_is_the_wall_clock():
+    clock = naming.Clock(1.0, lambda: [(2**22 + 12345, 0.0)])   # no such process
+    time.sleep(0.3)
+    assert clock.used() >= 0.3
+    assert naming.Clock(1.0).left() > 0.9   # (no processes given: wall clock)
