@@ -10,6 +10,8 @@ from noisy data against what the textbook algorithm achieves on the same data.
 
 from __future__ import annotations
 
+import dataclasses
+
 import cv2
 import numpy as np
 
@@ -1213,15 +1215,27 @@ def judge_pipeline_F(t: Trial, pair, F):
     t.fail(message)
 
 
-@ex6.check("two_view_reconstruction returns F, pts1, pts2, points3d of matching shapes", points=1,
-           timeout=PIPELINE_TIMEOUT)
+@ex6.check("two_view_reconstruction returns F, pts1, pts2, points3d of matching shapes (a colour and a grey pair)",
+           points=1, timeout=PIPELINE_TIMEOUT)
 def pipeline_shapes(t):
     pair = truth.rendered_pair(0)
     _, pts1, _, points3d = call_reconstruction(t, pair)
     if not np.all(np.isfinite(points3d)):
         t.fail("two_view_reconstruction: points3d contains NaN or infinite values "
                + measured("(drop the points you cannot triangulate, together with their matches)"))
-    return passed(f"{len(pts1)} matches")
+    # the API's images are grey (H, W) or BGR (H, W, 3): the same pair in grey
+    grey = dataclasses.replace(pair, img1=cv2.cvtColor(pair.img1, cv2.COLOR_BGR2GRAY),
+                               img2=cv2.cvtColor(pair.img2, cv2.COLOR_BGR2GRAY))
+    try:
+        _, grey_pts1, _, _ = call_reconstruction(t, grey)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        raise StudentFailure(failure.outcome, f"two_view_reconstruction(grey img1, grey img2, K): {failure.message}\n"
+                             "The same pair in colour (BGR) passed. " + measured(
+                                 "Images are grey (H, W) or BGR (H, W, 3), as the API's conventions say: take "
+                                 "either (convert to grey only a colour image).")) from None
+    return passed(f"{len(pts1)} matches ({len(grey_pts1)} on the grey pair)")
 
 
 @ex6.check("two_view_reconstruction: F agrees with the true epipolar geometry", points=3,
