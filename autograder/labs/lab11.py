@@ -1105,10 +1105,10 @@ def epipoles_infinity(t):
     if not _finite_pair(got) and isinstance(got, (tuple, list)) and len(got) == 2:
         shown = ", ".join(f"{name} = {format_matrix(g) if isinstance(g, np.ndarray) else repr(g)}"
                           for name, g in zip(("e1", "e2"), got))
-        t.fail(f"{what} returned {shown}: no epipoles (NaN or zero), where for the same F with entries of 1e-17 in place of the zeros (as the product K2^-T E K1^-1 gives "
-               "it) they are right. " + measured("F's zero first row is no degenerate case (every rectified "
-                                                 "pair has it): the epipoles are F's null vectors, whichever of "
-                                                 "its rows are 0 or parallel."),
+        t.fail(measured(f"{what} returned {shown}: no epipoles (NaN or zero), where for the same F with entries "
+                        "of 1e-17 in place of the zeros (as the product K2^-T E K1^-1 gives it) they are right. ")
+               + measured("F's zero first row is no degenerate case (every rectified pair has it): the epipoles are "
+                          "F's null vectors, whichever of its rows are 0 or parallel."),
                mistake="no epipoles for an F with a zero row")
     judge_epipoles(t, what, got, views, at_infinity=True, F_given=F)
     diagonal = truth.sideways_views(seed=22, direction=0.6)
