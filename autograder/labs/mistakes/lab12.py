@@ -119,6 +119,14 @@ MISTAKES = {
                 xl, xr = xl[:, 0], xr[:, 0]
             return xr - xl
         """, ["wrong sign"]),
+    # d = x_l - x_r keeps its sign: a mismatch (x_r > x_l) gives a negative disparity.
+    "disparity as a distance |x_l - x_r|": ("lab12.ex2", """
+        def disparity_from_matches(xl, xr):
+            xl = np.asarray(xl, float); xr = np.asarray(xr, float)
+            if xl.ndim == 2:
+                xl, xr = xl[:, 0], xr[:, 0]
+            return np.abs(xl - xr)
+        """, ["where x_r > x_l (x_l = 12, x_r = 19.5) it returned 7.5, not -7.5", "every disparity came back positive"]),
     "disparity from the y column": ("lab12.ex2", """
         def disparity_from_matches(xl, xr):
             xl = np.asarray(xl, float); xr = np.asarray(xr, float)
