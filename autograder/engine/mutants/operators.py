@@ -1331,6 +1331,9 @@ _AXIS_POSITIONS = {"delete": 2, "insert": 3, "append": 2, "sum": 1, "mean": 1, "
                    "amin": 1, "argmax": 1, "argmin": 1, "median": 1, "std": 1, "var": 1, "any": 1, "all": 1,
                    "cumsum": 1, "flip": 1, "concatenate": 1, "stack": 1, "norm": 2, "average": 1, "nanmean": 1,
                    "nansum": 1, "nanmax": 1, "nanmin": 1, "diff": 2, "sort": 1, "argsort": 1, "unique": 99}
+# OpenCV functions that take float32 arrays only (float64 fails their assertions): maps, point sets.
+_FLOAT32_ONLY = {"remap", "getAffineTransform", "getPerspectiveTransform", "cornerSubPix", "calcOpticalFlowPyrLK",
+                 "convertMaps", "minAreaRect", "fitLine", "kmeans", "calcBackProject"}
 _REDUCTIONS = {"sum", "mean", "max", "min", "argmax", "argmin", "std", "var", "any", "all", "cumsum"}
 # Methods of an array that return a new one: a call of them whose result is not kept changes nothing.
 _RETURNS_NEW = {"astype", "copy", "reshape", "round", "clip", "transpose", "flatten", "ravel", "squeeze"}
@@ -1357,7 +1360,7 @@ def _call_slips(node: ast.Call):
     for keyword in node.keywords:
         if keyword.arg and isinstance(keyword.value, ast.Constant) and isinstance(keyword.value.value, bool):
             yield "flip_keyword", keyword.arg, ""
-    if dotted.startswith(("cv2.", "cv.")) and len(node.args) >= 2:
+    if dotted.startswith(("cv2.", "cv.")) and short in _FLOAT32_ONLY and len(node.args) >= 2:
         arrays = [i for i, a in enumerate(node.args) if isinstance(a, (ast.Name, ast.Subscript))]
         if any(i >= 1 for i in arrays):
             yield "float32", [i for i in arrays if i >= 1], ""
