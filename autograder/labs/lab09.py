@@ -1355,11 +1355,28 @@ def calibration_consistent(t):
            mistake=from_code("K from cv2.getOptimalNewCameraMatrix instead of the calibrated K") if reading else "")
 
 
-@ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners)", points=1)
+GREY_FOR_OPENCV = Hint(
+    "Convert each view to grey where an OpenCV call needs one channel (cv2.cornerSubPix does), when it has 3: "
+    "cv2.cvtColor(image, cv2.COLOR_BGR2GRAY), and pass the image size as (width, height)",
+    asks=calls("cv2.cvtColor"),
+    instead="Your code {found}: check that every call that needs one channel gets the converted view, and that "
+            "the image size passed is (width, height), not the shape of a 3-channel array")
+
+
+@ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners), with 3 channels as "
+            "cv2.imread reads a photo", points=1)
 def calibrate_skimage(t):
-    images, K = truth.skimage_chessboard_views()
+    grey, K = truth.skimage_chessboard_views()
+    images = [np.repeat(view[..., None], 3, axis=2) for view in grey]   # BGR, as cv2.imread reads a photo of a board
     t.images("scikit-image's chessboard, in two of the poses", view_1=images[1], view_2=images[4])
-    return judge_calibration(t, images, K, truth.SKIMAGE_PATTERN)
+    try:
+        return judge_calibration(t, images, K, truth.SKIMAGE_PATTERN)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        raise StudentFailure(failure.outcome, f"{failure.message}\nThese views have 3 channels (BGR), as "
+                             "cv2.imread reads a photo of a board, where the other calibration check's views are "
+                             "grey: calibrate takes both. " + GREY_FOR_OPENCV.said(t)) from None
 
 
 # ================================================================== ext2 lens distortion
