@@ -1374,9 +1374,9 @@ def calibrate_skimage(t):
     except StudentFailure as failure:
         if failure.outcome.kind != "exception":
             raise
-        raise StudentFailure(failure.outcome, f"{failure.message}\nThese views have 3 channels (BGR), as "
-                             "cv2.imread reads a photo of a board, where the other calibration check's views are "
-                             "grey: calibrate takes both. " + GREY_FOR_OPENCV.said(t)) from None
+        raise StudentFailure(failure.outcome, f"{failure.message}\n" + measured(
+            "These views have 3 channels (BGR), as cv2.imread reads a photo of a board, where the other calibration "
+            "check's views are grey: calibrate takes both. ") + GREY_FOR_OPENCV.said(t)) from None
 
 
 # ================================================================== ext2 lens distortion
