@@ -91,14 +91,16 @@ finite_floats = lambda lo, hi: st.floats(lo, hi, allow_nan=False, allow_infinity
 
 
 def call_on(t: Trial, what: str, function: str, *args, **kwargs):
-    """``t.call``; an exception it relays is said with ``what``, the input it raised on ("scale(grey
-    image, sx=2.0, sy=0.8): scale() raised ..."), where the check's name does not say it."""
+    """``t.call``; an exception it relays is said with ``what``, the input it raised on ("scale() raised
+    ValueError: ... (raised on scale(grey image, sx=2.0, sy=0.8))", at the end of its first line),
+    where the check's name does not say it."""
     try:
         return t.call(function, *args, **kwargs)
     except StudentFailure as failure:
         if failure.outcome.kind != "exception":
             raise
-        raise StudentFailure(failure.outcome, f"{what}: {failure.message}") from None
+        first, newline, rest = failure.message.partition("\n")
+        raise StudentFailure(failure.outcome, f"{first} (raised on {what}){newline}{rest}") from None
 
 
 # ================================================================== ex1 translation

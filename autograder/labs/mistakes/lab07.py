@@ -300,7 +300,7 @@ MISTAKES = {
             map_x = (inverse[0, 0] * xs + inverse[0, 1] * ys + inverse[0, 2]).astype(np.float32)
             map_y = (inverse[1, 0] * xs + inverse[1, 1] * ys + inverse[1, 2]).astype(np.float32)
             return cv2.remap(image, map_x, map_y, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
-        """, ["warp_affine(grey image, a, dsize=(220, 100)): warp_affine() raised valueerror"]),
+        """, ["warp_affine() raised valueerror", "(raised on warp_affine(grey image, a, dsize=(220, 100)))"]),
     "scale by cv2.resize and a crop, unpacking h, w, _ = image.shape (a grey image raises)": ("lab07.ex3", """
         def scale(image, sx=1.5, sy=1.5):
             h, w, _ = image.shape
@@ -309,7 +309,7 @@ MISTAKES = {
             rows, cols = min(h, resized.shape[0]), min(w, resized.shape[1])
             out[:rows, :cols] = resized[:rows, :cols]
             return out
-        """, ["scale(grey image, sx=2.0, sy=0.8): scale() raised valueerror"]),
+        """, ["scale() raised valueerror", "(raised on scale(grey image, sx=2.0, sy=0.8))"]),
     "translate by slicing with negative ends (image[:-ty] is empty for ty = 0)": ("lab07.ex1", """
         def translate(image, tx=100, ty=50):
             tx, ty = int(round(tx)), int(round(ty))
@@ -318,5 +318,5 @@ MISTAKES = {
             cols = (slice(tx, None), slice(None, -tx)) if tx >= 0 else (slice(None, tx), slice(-tx, None))
             out[rows[0], cols[0]] = image[rows[1], cols[1]]
             return out
-        """, ["translate(grey image, tx=45, ty=0): translate() raised valueerror"]),
+        """, ["translate() raised valueerror", "(raised on translate(grey image, tx=45, ty=0))"]),
 }
