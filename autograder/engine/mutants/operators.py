@@ -1381,14 +1381,29 @@ def _in_loop(node, parents) -> bool:
     return False
 
 
+def _mode_test(test) -> bool:
+    """A test of which case a call is in, not of the data: a mode named by a string (`cost == "ncc"`),
+    None for "not given" (`x is None`), a type (`isinstance(x, list)`). Turned round, it runs the code
+    of another case -- which may pass a check by chance (NCC's search where SSD's is wrong) and is no
+    slip a student makes."""
+    for node in ast.walk(test):
+        if isinstance(node, ast.Constant) and (isinstance(node.value, str) or node.value is None):
+            return True
+        if isinstance(node, ast.Compare) and any(isinstance(op, (ast.Is, ast.IsNot)) for op in node.ops):
+            return True
+        if isinstance(node, ast.Call) and _dotted(node.func) in ("isinstance", "hasattr", "callable"):
+            return True
+    return False
+
+
 def _logic_changes(node, parent, parents):
     """Slips of logic and accumulation: a condition the wrong way round (`if x > t:` where `if not x >
     t:` belongs, a `not` too many), masks combined with & where | belongs (or `and`/`or`), and a sum
     in a loop assigned where it is added to (`total = x` for `total += x`) or the other way round."""
     if isinstance(parent, (ast.If, ast.IfExp, ast.While)) and parent.test is node \
-            and not (isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not)):
+            and not (isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not)) and not _mode_test(node):
         yield "negate", "insert", ""
-    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not):
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not) and not _mode_test(node.operand):
         yield "negate", "drop", ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.BitAnd, ast.BitOr)) \
             and not isinstance(node.right, ast.Constant) and not isinstance(node.left, ast.Constant):
