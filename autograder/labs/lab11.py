@@ -585,8 +585,14 @@ NEAR_AXIS_LINES = np.array([[1.0, 1e-13, -100.0],   # x = 100, b of rounding siz
                             [1e-13, 1.0, -40.0]])   # y = 40, a of rounding size
 
 
-@ex2.check("draw_epipolar_lines draws vertical and horizontal lines (b = 0, a = 0, or of rounding size)",
-           points=1)
+# An epipolar line may miss the other image altogether (a point whose match is out of view): it
+# draws nothing, and the other lines are drawn as ever.
+MISSING_LINES = np.array([[0.0, 1.0, -150.0],    # y = 150, below the 120 rows
+                          [0.0, 1.0, -60.0]])    # y = 60
+
+
+@ex2.check("draw_epipolar_lines draws vertical and horizontal lines (b = 0, a = 0, or of rounding size); a "
+           "line outside the image draws nothing", points=1)
 def draw_vertical(t):
     image = np.zeros((120, 160, 3), np.uint8)
     lines = np.array([[1.0, 0.0, -70.0], [0.0, 1.0, -60.0]])   # x = 70 and y = 60
@@ -609,6 +615,17 @@ def draw_vertical(t):
     if isinstance(got, np.ndarray) and got.ndim in (2, 3):
         t.images("draw_epipolar_lines(black image, lines x = 100 and y = 40, b and a of 1e-13)", yours=got)
     judge_drawing(t, what + " (x = 100 and y = 40, b and a of rounding size)", got, image, NEAR_AXIS_LINES)
+    what = "draw_epipolar_lines(image, [[0, 1, -150], [0, 1, -60]]) on a 160 x 120 image"
+    try:
+        got = t.call("draw_epipolar_lines", image, MISSING_LINES)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        raise StudentFailure(failure.outcome, measured(
+            f"{what}: {failure.message}\nThe first line, y = 150, misses the image (it has 120 rows), as the "
+            "epipolar line of a point whose match is out of view does; the lines above, inside it, are drawn. ")
+            + measured("A line outside the image draws nothing; the others are drawn as ever.")) from None
+    judge_drawing(t, what + " (y = 150 misses the image)", got, image, MISSING_LINES)
 
 
 # ================================================================== ex3 essential matrix

@@ -239,6 +239,22 @@ MISTAKES = {
                 cv2.line(canvas, p, q, colour, 1)
             return canvas
         """, ["x = 100 and y = 40", "rounding size"]),
+    "draw each line between its first two border points inside the image": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            canvas = np.array(image, dtype=np.uint8, copy=True)
+            h, w = canvas.shape[:2]
+            colour = 255 if canvas.ndim == 2 else (0, 255, 0)
+            for a, b, c in np.asarray(lines, np.float64).reshape(-1, 3):
+                ends = []
+                if abs(b) > 1e-9:
+                    ends += [(x, -(a * x + c) / b) for x in (0.0, w - 1.0)]
+                if abs(a) > 1e-9:
+                    ends += [(-(b * y + c) / a, y) for y in (0.0, h - 1.0)]
+                ends = [(x, y) for x, y in ends if 0 <= x <= w - 1 and 0 <= y <= h - 1]
+                (x0, y0), (x1, y1) = ends[0], ends[-1]
+                cv2.line(canvas, (int(round(x0)), int(round(y0))), (int(round(x1)), int(round(y1))), colour, 1)
+            return canvas
+        """, ["misses the image", "indexerror"]),
     "draw with x and y swapped": ("lab11.ex2", """
         _draw = draw_epipolar_lines
         def draw_epipolar_lines(image, lines):
