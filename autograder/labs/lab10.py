@@ -1254,11 +1254,12 @@ def _without_dist(rows, frames, poses, K) -> float | None:
     return worst if worst > TRANSLATION_TOLERANCE else None
 
 
-@ext3.check("track_pose follows a board along a known trajectory (NaN where it leaves the view), also through "
-            "a distorting lens (dist given)", points=4)
+@ext3.check("track_pose follows a board along a known trajectory (NaN where it leaves the view; a single frame "
+            "too), also through a distorting lens (dist given)", points=4)
 def track_check(t):
     frames, poses = truth.track_sequence()
     first = judge_track(t, frames, poses)
+    judge_track(t, frames[:1], poses[:1], what="track_pose([one frame], pattern_size, square_size, K)")
     frames, poses = truth.distorted_track_sequence()
     try:
         return judge_track(t, frames, poses, dist=truth.DIST)
@@ -1267,11 +1268,11 @@ def track_check(t):
                        failure.mistake)
 
 
-def judge_track(t: Trial, frames, poses, dist=None):
+def judge_track(t: Trial, frames, poses, dist=None, what=None):
     """track_pose on ``frames`` (with ``dist`` when given) against the true ``poses``."""
     pattern, square, K = truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K
-    what = "track_pose(frames, pattern_size, square_size, K" + (", dist) through a distorting lens" if dist is not None
-                                                                else ")")
+    what = what or "track_pose(frames, pattern_size, square_size, K" + (
+        ", dist) through a distorting lens" if dist is not None else ")")
     got = t.call("track_pose", list(frames), pattern, square, K, **({} if dist is None else {"dist": dist}))
     if isinstance(got, np.ndarray) and got.ndim > 2 and got.shape[0] == len(frames) and got.size == 6 * len(frames):
         t.fail(f"{what} returned shape {got.shape}; expected ({len(frames)}, 6): the rows are not flattened "

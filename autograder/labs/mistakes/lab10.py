@@ -425,6 +425,11 @@ MISTAKES = {
         def dolly_zoom(points, f0, z0, distances):
             return _dolly(points, f0, z0, np.sort(distances))
         """, ["the focal lengths are", "expected f0 * d / z0"]),
+    "tracking rows squeezed (one frame gives a (6,) row)": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = [np.concatenate(estimate_pose(frame, pattern_size, square_size, K, dist)[:2]) for frame in frames]
+            return np.squeeze(np.array(rows, dtype=np.float64))
+        """, ["track_pose([one frame]", "expected (1, 6)"]),
     "tracking without passing dist on": ("lab10.ext3", """
         def track_pose(frames, pattern_size, square_size, K, dist=None):
             return np.array([np.concatenate(estimate_pose(frame, pattern_size, square_size, K)[:2])
