@@ -320,7 +320,7 @@ DIRECT_EVIDENCE = {
     "name_pose_mistake": "called again with R transposed, the pose reversed or K1/K2 exchanged, "
                          "rectify rectifies exactly (probes of its own)",
     "judge_pipeline_F": "F transposed, or K^-T F K^-1, is right over thousands of true correspondences",
-    "track_check": "row by row over the sequence's frames, the rows are the poses of the frame before "
+    "judge_track": "row by row over the sequence's frames, the rows are the poses of the frame before "
                    "or after, or inverted, or one frame's everywhere (each frame an input of its own)",
     "name_pattern_mistake": "the patterns equal the mistake's bit for bit, and again at PATTERN_PROBE "
                             "when few columns tell them apart",
