@@ -532,6 +532,41 @@ def calls_any(*names: str, says: str = "") -> Predicate:
     return found.saying(says) if says else found
 
 
+def assigns(*names: str, says: str = "") -> Predicate:
+    """A value stored in one of ``names`` (``ratio = 0.8``, ``ratio *= 2``, ``for ratio in ...``): with ``~``,
+    a parameter the code never overwrites."""
+    def test(function) -> bool:
+        for node in ast.walk(function):
+            targets = node.targets if isinstance(node, ast.Assign) else \
+                [node.target] if isinstance(node, (ast.AugAssign, ast.AnnAssign, ast.For, ast.comprehension)) else []
+            if any(isinstance(n, ast.Name) and n.id in names for target in targets for n in ast.walk(target)):
+                return True
+        return False
+    return Predicate(says or f"assigns {' or '.join(names)}", test)
+
+
+def treats_each_of(first: int = 0, second: int = 1, says: str = "") -> Predicate:
+    """One function called on each of two parameters apart (``hartley(src)`` and ``hartley(dst)``,
+    ``np.mean(pts1, 0)`` and ``np.mean(pts2, 0)``), or a loop over both (``for pts in (src, dst)``): each
+    of the two is given its own (normalising) transform. Read in the function whose parameters they are."""
+    def test(function) -> bool:
+        parameters = [a.arg for a in function.args.posonlyargs + function.args.args]
+        if len(parameters) <= max(first, second):
+            return False
+        pair = {parameters[first], parameters[second]}
+        given: dict[str, set] = {}
+        for node in ast.walk(function):
+            if isinstance(node, (ast.For, ast.comprehension)) and isinstance(node.iter, (ast.Tuple, ast.List)) \
+                    and pair <= {n.id for n in ast.walk(node.iter) if isinstance(n, ast.Name)}:
+                return True
+            if isinstance(node, ast.Call) and _path(node.func):
+                held = {n.id for a in node.args for n in ast.walk(a) if isinstance(n, ast.Name)} & pair
+                if len(held) == 1:   # a call given both (build(src, dst)) is no transform of each
+                    given.setdefault(_path(node.func), set()).update(held)
+        return any(held == pair for held in given.values())
+    return Predicate(says or "treats each point set apart", test)
+
+
 def registered(texts: Iterable[str]) -> list[str]:
     """Of ``texts``, those neither :func:`guard`-ed nor :func:`measured`."""
     return [text for text in texts if text not in GUARDED and text not in MEASURED]

@@ -1,0 +1,235 @@
+"""The labs' lists of things to check, each item held to the student's code (issue 35; the mechanism:
+tests/test_checklists.py).
+
+For each list converted to :func:`autograder.engine.claims.checklist`: code doing an item is not told
+it, and the realistic mistake is still told the item it gets wrong. The code is read, never run: the
+trial's code is the source given here (``code_of`` and ``functions_read`` stand in for a sandbox's).
+"""
+
+from __future__ import annotations
+
+import textwrap
+
+import pytest
+
+from autograder.engine import claims, hints
+from autograder.engine.hints import Hint, read_code
+
+
+@pytest.fixture
+def speak(monkeypatch):
+    """``speak(hint_or_text, source, function)``: what a failed check says for that code, as
+    :func:`autograder.engine.runner.run_check` has it said (a Hint's own reading, then every registered
+    sentence in the result replaced)."""
+    def said(hint, source: str, function: str) -> str:
+        code = read_code(textwrap.dedent(source))
+        assert code.functions, "the source given does not parse"
+        for module in (hints, claims):
+            monkeypatch.setattr(module, "code_of", lambda t: code)
+            monkeypatch.setattr(module, "functions_read", lambda t: (function,))
+        trial = object()
+        text = hint.said(trial) if isinstance(hint, Hint) else hint
+        return claims.said(trial, text)
+    return said
+
+
+# ------------------------------------------------------------------ lab 8
+from autograder.labs import lab08  # noqa: E402
+
+DLT_EACH = """
+    def homography_dlt(src, dst):
+        Ts, Td = hartley(src), hartley(dst)
+        Hn = solve(Ts, Td, src, dst)
+        return np.linalg.inv(Td) @ Hn @ Ts
+
+    def hartley(pts):
+        c = pts.mean(axis=0)
+        s = np.sqrt(2) / np.linalg.norm(pts - c, axis=1).mean()
+        return np.array([[s, 0, -s * c[0]], [0, s, -s * c[1]], [0, 0, 1]])
+    """
+
+
+def test_lab08_dlt_normalisation_each_set_and_undone(speak):
+    said = speak(lab08.DLT_NORMALISE_HINT, DLT_EACH, "homography_dlt")
+    assert "check that" not in said and "look at the transforms themselves" in said
+    one_transform = DLT_EACH.replace("Ts, Td = hartley(src), hartley(dst)", "Ts = Td = hartley(src)")
+    said = speak(lab08.DLT_NORMALISE_HINT, one_transform, "homography_dlt")
+    assert "check that each set has its own transform." in said and "undone" not in said
+    in_a_loop = DLT_EACH.replace("Ts, Td = hartley(src), hartley(dst)", "Ts, Td = [hartley(p) for p in (src, dst)]")
+    assert "check that" not in speak(lab08.DLT_NORMALISE_HINT, in_a_loop, "homography_dlt")
+
+
+RATIO_KEPT = """
+    def match_features(img1, img2, ratio=0.75, method="sift"):
+        kp1, kp2, knn = detect(img1, img2)
+        good = [m for m, n in knn if m.distance < ratio * n.distance]
+        pts1 = np.float32([kp1[m.queryIdx].pt for m in good])
+        pts2 = np.float32([kp2[m.trainIdx].pt for m in good])
+        return pts1, pts2
+    """
+
+
+def test_lab08_ratio_ignored(speak):
+    overwritten = RATIO_KEPT.replace("kp1, kp2, knn", "ratio = 0.75\n        kp1, kp2, knn")
+    said = speak(lab08.RATIO_IGNORED_HINT, overwritten, "match_features")
+    assert said.endswith("check that ratio is not overwritten.")
+    left_aside = RATIO_KEPT.replace("for m in good", "for m, _ in knn")
+    said = speak(lab08.RATIO_IGNORED_HINT, left_aside, "match_features")
+    assert said.endswith("check that the matches returned are the ones that pass it.")
+    appended = RATIO_KEPT.replace("good = [m for m, n in knn if m.distance < ratio * n.distance]",
+                                  "good = []\n        for m, n in knn:\n            if m.distance < ratio * n.distance:\n"
+                                  "                good.append(m)")
+    assert "check that" not in speak(lab08.RATIO_IGNORED_HINT, appended, "match_features")
+
+
+def test_lab08_ratio_test_applied_which_points(speak):
+    said = speak(lab08.RATIO_HINT, RATIO_KEPT, "match_features")
+    assert "check that" not in said and said.endswith("look at which points are returned, and in which order")
+    second = RATIO_KEPT.replace("good = [m for m, n", "good = [n for m, n")
+    said = speak(lab08.RATIO_HINT, second, "match_features")
+    assert said.endswith("check that the match kept is the closer of the two neighbours (m of each m, n pair)")
+    swapped = RATIO_KEPT.replace("kp1[m.queryIdx]", "kp1[m.trainIdx]")
+    assert speak(lab08.RATIO_HINT, swapped, "match_features").endswith(
+        "check that pts1 come from img1's keypoints by queryIdx")
+
+
+RANSAC_ROOT = """
+    def homography_ransac(src, dst, threshold=3.0, seed=0):
+        err = np.sqrt(((transfer(H, src) - dst) ** 2).sum(axis=1))
+        return H, err < threshold
+    """
+
+
+def test_lab08_squared_threshold(speak):
+    said = speak(lab08.SQUARED_HINT, RANSAC_ROOT.replace("err < threshold", "err < threshold ** 2"),
+                 "homography_ransac")
+    assert said.endswith("check that the threshold itself is not squared")
+    said = speak(lab08.SQUARED_HINT, RANSAC_ROOT.replace("err < threshold", "err ** 2 < threshold"),
+                 "homography_ransac")
+    assert said.endswith("check that the root's value is not squared again before the comparison")
+    assert "check that" not in speak(lab08.SQUARED_HINT, RANSAC_ROOT, "homography_ransac")
+
+
+BLEND = """
+    def blend_multiband(img1, img2, mask, levels=4):
+        m = mask.astype(np.float32)
+        masks = [m]
+        for _ in range(levels - 1):
+            masks.append(cv2.pyrDown(masks[-1]))
+        bands1, bands2 = laplacian(img1, levels), laplacian(img2, levels)
+        out = [w * a + (1 - w) * b for w, a, b in zip(masks, bands1, bands2)]
+        return collapse(out)
+    """
+
+
+def test_lab08_mask_pyramid(speak):
+    assert "check that" not in speak(lab08.MASK_PYRAMID_HINT, BLEND, "blend_multiband")
+    one_blur = BLEND.replace("m = mask.astype(np.float32)",
+                             "m = cv2.GaussianBlur(mask.astype(np.float32), (5, 5), 1)").replace(
+        "cv2.pyrDown(masks[-1])", "masks[-1][::2, ::2]")
+    said = speak(lab08.MASK_PYRAMID_HINT, one_blur, "blend_multiband")
+    assert "check that every level of the mask is blurred before it is halved" in said
+    assert "float" not in said and "each band is weighted" not in said
+
+
+def test_lab08_stitch_many_reference_frame(speak):
+    chained = """
+        def stitch_many(images):
+            Hs = [np.eye(3)]
+            for a, b in zip(images, images[1:]):
+                Hs.append(Hs[-1] @ pairwise(a, b))
+            return [cv2.warpPerspective(img, H, size) for img, H in zip(images, Hs)]
+        """
+    said = speak(lab08.REFERENCE_FRAME_CHECKLIST, chained, "stitch_many")
+    assert "check that" not in said and "look at the direction of each homography" in said
+    unreferenced = chained.replace("[np.eye(3)]", "[pairwise(images[0], images[1])]")
+    assert speak(lab08.REFERENCE_FRAME_CHECKLIST, unreferenced, "stitch_many") == (
+        "check that one image is the reference frame (only shifted: its homography is the identity)")
+
+
+# ------------------------------------------------------------------ lab 9
+from autograder.labs import lab09  # noqa: E402
+
+APERTURE = """
+    def simulate_aperture(X, f, aperture, n_rays, seed=0):
+        rng = np.random.default_rng(seed)
+        offsets = rng.uniform(-aperture, aperture, size=(n_rays, 2))
+        return trace(X, f, offsets)
+    """
+
+
+def test_lab09_seed(speak):
+    said = speak(lab09.SEED_HINT, APERTURE, "simulate_aperture")
+    assert "check that" not in said and "look at where the generator is made" in said
+    fixed = APERTURE.replace("default_rng(seed)", "default_rng(0)")
+    assert speak(lab09.SEED_HINT, fixed, "simulate_aperture").endswith("check that it is given seed.")
+    global_draws = APERTURE.replace("rng.uniform(", "np.random.uniform(")
+    assert speak(lab09.SEED_HINT, global_draws, "simulate_aperture").endswith(
+        "check that every random number is drawn from that generator (none from np.random's own functions).")
+
+
+CALIBRATE = """
+    def calibrate(images, pattern_size, square_size):
+        cols, rows = pattern_size
+        objp = np.zeros((cols * rows, 3), np.float32)
+        objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size
+        obj_points, img_points = [], []
+        for image in images:
+            found, corners = cv2.findChessboardCorners(image, pattern_size)
+            if found:
+                obj_points.append(objp)
+                img_points.append(corners)
+        return cv2.calibrateCamera(obj_points, img_points, size, None, None)
+    """
+
+
+def test_lab09_object_points(speak):
+    said = speak(lab09.OBJECT_POINTS_HINT, CALIBRATE, "calibrate")
+    assert "check that" not in said and "look at the square size" in said
+    rows_first = CALIBRATE.replace("cols, rows = pattern_size", "rows, cols = pattern_size")
+    assert speak(lab09.OBJECT_POINTS_HINT, rows_first, "calibrate").endswith(
+        "check that pattern_size is read as (cols, rows).")
+    every_view = CALIBRATE.replace("                obj_points.append(objp)\n", "").replace(
+        "            if found:", "            obj_points.append(objp)\n            if found:")
+    assert speak(lab09.OBJECT_POINTS_HINT, every_view, "calibrate").endswith(
+        "check that each view's object points go with that view's corners.")
+
+
+DISC = """
+    def simulate_aperture(X, f, aperture, n_rays, seed=0):
+        rng = np.random.default_rng(seed)
+        r = aperture * np.sqrt(rng.random(n_rays))
+        a = 2 * np.pi * rng.random(n_rays)
+        return trace(X, f, np.stack([r * np.cos(a), r * np.sin(a)], axis=1))
+    """
+
+
+def test_lab09_uniform_disc(speak):
+    assert "check that" not in speak(lab09.UNIFORM_DISC_HINT, DISC, "simulate_aperture")
+    half_turn = DISC.replace("2 * np.pi * rng.random", "np.pi * rng.random")
+    assert speak(lab09.UNIFORM_DISC_HINT, half_turn, "simulate_aperture").endswith(
+        "check that the angle is uniform in [0, 2 pi)")
+    root_outside = DISC.replace("aperture * np.sqrt(rng.random(n_rays))", "np.sqrt(aperture * rng.random(n_rays))")
+    said = speak(lab09.UNIFORM_DISC_HINT, root_outside, "simulate_aperture")
+    assert said.endswith("check that the radius is aperture * sqrt(u)") and "angle" not in said
+
+
+DRAW = """
+    def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+        out = image.copy()
+        for x, y in pts:
+            cv2.circle(out, (int(round(x)), int(round(y))), radius, color, -1)
+        return out
+    """
+
+
+def test_lab09_copy(speak):
+    assert "check that" not in speak(lab09.COPY_HINT, DRAW, "draw_points")
+    on_image = DRAW.replace("cv2.circle(out,", "cv2.circle(image,")
+    assert speak(lab09.COPY_HINT, on_image, "draw_points").endswith(
+        "check that each point is drawn on the copy, not on `image`")
+    rebound = on_image.replace("out = image.copy()", "image = image.copy()").replace("return out", "return image")
+    said = speak(lab09.COPY_HINT, rebound, "draw_points")
+    assert "check that" not in said
+    not_returned = DRAW.replace("return out", "return image")
+    assert speak(lab09.COPY_HINT, not_returned, "draw_points").endswith("check that the copy is returned")
