@@ -233,3 +233,89 @@ def test_lab09_copy(speak):
     assert "check that" not in said
     not_returned = DRAW.replace("return out", "return image")
     assert speak(lab09.COPY_HINT, not_returned, "draw_points").endswith("check that the copy is returned")
+
+
+# ------------------------------------------------------------------ lab 10
+from autograder.labs import lab10  # noqa: E402
+
+DECOMPOSE = """
+    def decompose_camera_matrix(P):
+        if np.linalg.det(P[:, :3]) < 0:
+            P = -P
+        K, R = scipy.linalg.rq(P[:, :3])
+        D = np.diag(np.sign(np.diag(K)))
+        K = K @ D
+        R = D @ R
+        t = np.linalg.solve(K, P[:, 3])
+        return K / K[2, 2], R, t
+    """
+
+
+def test_lab10_sign_fix(speak):
+    said = speak(lab10.SIGN_FIX, DECOMPOSE, "decompose_camera_matrix")
+    assert "check that" not in said and "look at which P the translation is solved from" in said
+    k_only = DECOMPOSE.replace("        R = D @ R\n", "")
+    assert speak(lab10.SIGN_FIX, k_only, "decompose_camera_matrix").endswith(
+        "check that flipping K's columns flips the same rows of R")
+
+
+def test_lab10_signs_returned(speak):
+    said = speak(lab10.SIGNS_HINT, DECOMPOSE, "decompose_camera_matrix")
+    assert "check that" not in said
+    unreturned = DECOMPOSE.replace("K = K @ D\n        R = D @ R", "K2 = K @ D\n        R2 = D @ R").replace(
+        "return K / K[2, 2], R, t", "return K, R, t")
+    assert speak(lab10.SIGNS_HINT, unreturned, "decompose_camera_matrix").endswith(
+        "check that the fixed K and R are the ones returned")
+    columns = DECOMPOSE.replace("R = D @ R", "R = R @ D")
+    assert speak(lab10.SIGNS_HINT, columns, "decompose_camera_matrix").endswith(
+        "check that it flips the same columns of K and rows of R (K D and D R with one D)")
+
+
+DLT10 = """
+    def camera_matrix_dlt(points3d, points2d):
+        rows = []
+        for (X, Y, Z), (u, v) in zip(points3d, points2d):
+            rows.append([X, Y, Z, 1, 0, 0, 0, 0, -u * X, -u * Y, -u * Z, -u])
+            rows.append([0, 0, 0, 0, X, Y, Z, 1, -v * X, -v * Y, -v * Z, -v])
+        return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+    """
+
+
+def test_lab10_fixed_p23(speak):
+    assert "check that" not in speak(lab10.FIXED_P23_HINT, DLT10, "camera_matrix_dlt")
+    eleven = DLT10.replace(", -u])", "])").replace(", -v])", "])")
+    assert speak(lab10.FIXED_P23_HINT, eleven, "camera_matrix_dlt").endswith(
+        "check that A has 12 columns (P[2, 3] is an unknown too).")
+    column = DLT10.replace("[2][-1]", "[2][:, -1]")
+    assert speak(lab10.FIXED_P23_HINT, column, "camera_matrix_dlt").endswith("check that p is the last row of Vt.")
+
+
+POSE = """
+    def estimate_pose(image, pattern_size, square_size, K, dist=None):
+        found, corners = cv2.findChessboardCorners(image, pattern_size)
+        ok, rvec, tvec = cv2.solvePnP(objp, corners, K, dist)
+        projected, _ = cv2.projectPoints(objp, rvec, tvec, K, dist)
+        return rvec.ravel(), tvec.ravel(), projected.reshape(-1, 2)
+    """
+
+
+def test_lab10_project_points(speak):
+    said = speak(lab10.PROJECT_POINTS_HINT, POSE, "estimate_pose")
+    assert "check that" not in said and "look at the pose it is given" in said
+    swapped = POSE.replace("(objp, rvec, tvec, K, dist)", "(objp, tvec, rvec, K, dist)")
+    assert speak(lab10.PROJECT_POINTS_HINT, swapped, "estimate_pose").endswith(
+        "check that it is given the object points, rvec, tvec, K and dist of this pose, in that order.")
+    corners = POSE.replace("projected.reshape(-1, 2)", "corners.reshape(-1, 2)")
+    assert speak(lab10.PROJECT_POINTS_HINT, corners, "estimate_pose").endswith(
+        "check that its output is what is returned.")
+
+
+def test_lab10_rq(speak):
+    said = speak(lab10.RQ_HINT, DECOMPOSE, "decompose_camera_matrix")
+    assert "check that" not in said and "look at the signs fixed after it" in said
+    reversed_names = DECOMPOSE.replace("K, R = scipy.linalg.rq", "R, K = scipy.linalg.rq")
+    said = speak(lab10.RQ_HINT, reversed_names, "decompose_camera_matrix")
+    assert said.endswith("check that the upper-triangular factor becomes K (P[:, :3] = K R))")
+    plain_qr = DECOMPOSE.replace("scipy.linalg.rq(P[:, :3])", "np.linalg.qr(P[:, :3])")
+    assert speak(lab10.RQ_HINT, plain_qr, "decompose_camera_matrix").endswith(
+        "check that the rows and columns are reversed to turn a QR into an RQ)")
