@@ -319,3 +319,116 @@ def test_lab10_rq(speak):
     plain_qr = DECOMPOSE.replace("scipy.linalg.rq(P[:, :3])", "np.linalg.qr(P[:, :3])")
     assert speak(lab10.RQ_HINT, plain_qr, "decompose_camera_matrix").endswith(
         "check that the rows and columns are reversed to turn a QR into an RQ)")
+
+
+# ------------------------------------------------------------------ lab 11
+from autograder.labs import lab11  # noqa: E402
+
+LINES11 = """
+    def epipolar_lines(F, pts1):
+        lines = np.column_stack([pts1, np.ones(len(pts1))]) @ F.T
+        return lines / np.linalg.norm(lines[:, :2], axis=1, keepdims=True)
+    """
+
+
+def test_lab11_line_scale(speak):
+    said = speak(lab11.LINE_SCALE_HINT, LINES11, "epipolar_lines")
+    assert "check that" not in said and "look at which lines the norm is taken of" in said
+    l1 = LINES11.replace("np.linalg.norm(lines[:, :2], axis=1, keepdims=True)",
+                         "np.sqrt(np.abs(lines[:, 0]) + np.abs(lines[:, 1]))[:, None]")
+    said = speak(lab11.LINE_SCALE_HINT, l1, "epipolar_lines")
+    assert said.endswith("check that each line is divided by sqrt(a^2 + b^2) of its own first two entries).")
+    kept = LINES11.replace("return lines / np.linalg.norm(lines[:, :2], axis=1, keepdims=True)",
+                           "unit = lines / np.hypot(lines[:, 0], lines[:, 1])[:, None]\n        return lines")
+    assert speak(lab11.LINE_SCALE_HINT, kept, "epipolar_lines").endswith(
+        "check that the divided lines are returned).")
+    by_hand = LINES11.replace("np.linalg.norm(lines[:, :2], axis=1, keepdims=True)",
+                              "np.sqrt(a * a + b * b)")
+    assert "check that" not in speak(lab11.LINE_SCALE_HINT, by_hand, "epipolar_lines")
+
+
+EIGHT = """
+    def fundamental_8point(pts1, pts2):
+        T1, T2 = hartley(pts1), hartley(pts2)
+        x1, x2 = apply(T1, pts1), apply(T2, pts2)
+        A = np.column_stack([x2[:, 0] * x1[:, 0], x2[:, 0] * x1[:, 1], x2[:, 0], x2[:, 1] * x1[:, 0],
+                             x2[:, 1] * x1[:, 1], x2[:, 1], x1[:, 0], x1[:, 1], np.ones(len(x1))])
+        Fn = np.linalg.svd(A)[2][-1].reshape(3, 3)
+        U, s, Vt = np.linalg.svd(Fn)
+        s[2] = 0
+        Fn = U @ np.diag(s) @ Vt
+        return T2.T @ Fn @ T1
+
+    def hartley(pts):
+        c = pts.mean(axis=0)
+        s = np.sqrt(2) / np.linalg.norm(pts - c, axis=1).mean()
+        return np.array([[s, 0, s * c[0]], [0, s, s * c[1]], [0, 0, 1]])
+    """
+
+
+def test_lab11_fundamental_steps(speak):
+    said = speak(lab11.FUNDAMENTAL_STEPS_HINT, EIGHT, "fundamental_8point")
+    assert "check that" not in said and "look at the normalising transforms" in said
+    not_undone = EIGHT.replace("return T2.T @ Fn @ T1", "return Fn")
+    assert speak(lab11.FUNDAMENTAL_STEPS_HINT, not_undone, "fundamental_8point").endswith(
+        "check that the normalisation is undone: F = T2^T Fn T1")
+    raw = not_undone.replace("T1, T2 = hartley(pts1), hartley(pts2)", "T1 = T2 = np.eye(3)").replace(
+        "np.sqrt(2)", "1.0")
+    assert "check that" not in speak(lab11.FUNDAMENTAL_STEPS_HINT, raw, "fundamental_8point")
+
+
+def test_lab11_nine_unknowns(speak):
+    assert "check that" not in speak(lab11.FIXED_F22_HINT, EIGHT, "fundamental_8point")
+    eight_columns = EIGHT.replace(", np.ones(len(x1))])", "])")
+    assert speak(lab11.FIXED_F22_HINT, eight_columns, "fundamental_8point").endswith(
+        "check that A has 9 columns (F[2, 2] is an unknown too).")
+
+
+def test_lab11_rank2_rebuilt_and_returned(speak):
+    said = speak(lab11.RANK2_HINT, EIGHT, "fundamental_8point")
+    assert "check that" not in said and "which singular value is set to 0" in said
+    unreturned = EIGHT.replace("Fn = U @ np.diag(s) @ Vt\n        return T2.T @ Fn @ T1",
+                               "F2 = U @ np.diag(s) @ Vt\n        return T2.T @ Fn @ T1")
+    assert speak(lab11.RANK2_HINT, unreturned, "fundamental_8point").endswith(
+        "check that this F is the one returned.")
+
+
+RECONSTRUCTION = """
+    def two_view_reconstruction(img1, img2, K):
+        pts1, pts2 = match(img1, img2)
+        F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
+        E = K.T @ F @ K
+        _, R, t, _ = cv2.recoverPose(E, pts1, pts2, K)
+        P1 = K @ np.hstack([np.eye(3), np.zeros((3, 1))])
+        P2 = K @ np.hstack([R, t])
+        X = cv2.triangulatePoints(P1, P2, pts1.T, pts2.T)
+        return F, pts1, pts2, (X[:3] / X[3]).T
+
+    def match(img1, img2):
+        kp1, kp2, knn = detect(img1, img2)
+        good = [m for m, n in knn if m.distance < 0.75 * n.distance]
+        return points(kp1, kp2, good)
+    """
+
+
+def test_lab11_robust_f(speak):
+    said = speak(lab11.ROBUST_F_HINT, RECONSTRUCTION, "two_view_reconstruction")
+    assert "check that" not in said and "look at the points it is given" in said
+    loose = RECONSTRUCTION.replace("cv2.FM_RANSAC, 1.0", "cv2.FM_RANSAC, 10.0")
+    assert speak(lab11.ROBUST_F_HINT, loose, "two_view_reconstruction").endswith(
+        "check that its threshold is about 1 px")
+    unfiltered = RECONSTRUCTION.replace("if m.distance < 0.75 * n.distance", "")
+    assert speak(lab11.ROBUST_F_HINT, unfiltered, "two_view_reconstruction").endswith(
+        "check that the matches it is given pass Lowe's ratio test")
+
+
+def test_lab11_in_front(speak):
+    said = speak(lab11.IN_FRONT_HINT, RECONSTRUCTION, "two_view_reconstruction")
+    assert "check that" not in said and "look at which points are triangulated" in said
+    no_k = RECONSTRUCTION.replace("P1 = K @ np.hstack", "P1 = np.hstack").replace("P2 = K @ np.hstack", "P2 = np.hstack")
+    said = speak(lab11.IN_FRONT_HINT, no_k, "two_view_reconstruction")
+    assert said.endswith("check that the cameras the points are triangulated with match the coordinates given to them "
+                         "(P = K [R | t] on pixels, [R | t] on normalised coordinates)")
+    undivided = RECONSTRUCTION.replace("(X[:3] / X[3]).T", "X[:3].T")
+    assert speak(lab11.IN_FRONT_HINT, undivided, "two_view_reconstruction").endswith(
+        "check that the points are divided by w")

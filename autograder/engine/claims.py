@@ -567,6 +567,32 @@ def treats_each_of(first: int = 0, second: int = 1, says: str = "") -> Predicate
     return Predicate(says or "treats each point set apart", test)
 
 
+def returns_from(made: Predicate, says: str = "") -> Predicate:
+    """A ``return`` holding a value ``made`` reads (``made`` tested on the expression: a division, a product
+    with ``np.diag``), written there or stored in a name on the way (``F = U @ np.diag(s) @ Vt; F = T2.T @ F @ T1;
+    return F``; ``lines /= norm; return lines``)."""
+    def test(function) -> bool:
+        held: set[str] = set()
+        for _ in range(4):   # names from names, a few steps
+            for node in ast.walk(function):
+                if isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign)) and node.value is not None:
+                    source = node if isinstance(node, ast.AugAssign) else node.value
+                    if made.holds([source]) or any(isinstance(n, ast.Name) and n.id in held
+                                                   for n in ast.walk(node.value)):
+                        targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+                        held |= {n.id for target in targets for n in ast.walk(target) if isinstance(n, ast.Name)}
+        return any(isinstance(node, ast.Return) and node.value is not None
+                   and (made.holds([node.value]) or any(isinstance(n, ast.Name) and n.id in held
+                                                        for n in ast.walk(node.value)))
+                   for node in ast.walk(function))
+    return Predicate(says or f"returns what {made.says}", test)
+
+
+DIVISION = Predicate("divides", lambda node: any(
+    isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.Div)
+    or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide") for n in ast.walk(node)))
+
+
 def registered(texts: Iterable[str]) -> list[str]:
     """Of ``texts``, those neither :func:`guard`-ed nor :func:`measured`."""
     return [text for text in texts if text not in GUARDED and text not in MEASURED]
