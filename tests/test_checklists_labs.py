@@ -432,3 +432,120 @@ def test_lab11_in_front(speak):
     undivided = RECONSTRUCTION.replace("(X[:3] / X[3]).T", "X[:3].T")
     assert speak(lab11.IN_FRONT_HINT, undivided, "two_view_reconstruction").endswith(
         "check that the points are divided by w")
+
+
+# ------------------------------------------------------------------ lab 12
+from autograder.labs import lab12  # noqa: E402
+
+TRIANGULATE = """
+    def triangulate(P1, P2, pts1, pts2):
+        out = []
+        for (x1, y1), (x2, y2) in zip(pts1, pts2):
+            A = np.array([x1 * P1[2] - P1[0], y1 * P1[2] - P1[1], x2 * P2[2] - P2[0], y2 * P2[2] - P2[1]])
+            X = np.linalg.svd(A)[2][-1]
+            out.append(X[:3] / X[3])
+        return np.array(out)
+    """
+
+
+def test_lab12_triangulation_rows(speak):
+    said = speak(lab12.TRIANGULATION_ROWS_HINT, TRIANGULATE, "triangulate")
+    assert "check that" not in said and "look at which singular vector is kept" in said
+    undivided = TRIANGULATE.replace("X[:3] / X[3]", "X[:3]")
+    assert speak(lab12.TRIANGULATION_ROWS_HINT, undivided, "triangulate").endswith(
+        "check that the solution is divided by its fourth coordinate")
+    columns = TRIANGULATE.replace("x1 * P1[2] - P1[0], y1 * P1[2] - P1[1], x2 * P2[2] - P2[0], y2 * P2[2] - P2[1]",
+                                  "x1 * P1[:, 2] - P1[:, 0], y1 * P1[:, 2] - P1[:, 1], x2 * P2[:, 2] - P2[:, 0], "
+                                  "y2 * P2[:, 2] - P2[:, 1]")
+    assert speak(lab12.TRIANGULATION_ROWS_HINT, columns, "triangulate").endswith(
+        "check that each view's rows are made of its own P's rows and its own point's x and y")
+
+
+RECTIFY = """
+    def rectify(img_l, img_r, K1, K2, R, T):
+        C2 = -R.T @ T.ravel()
+        e1 = C2 / np.linalg.norm(C2)
+        e2 = np.cross([0, 0, 1], e1)
+        e2 /= np.linalg.norm(e2)
+        e3 = np.cross(e1, e2)
+        R_rect = np.vstack([e1, e2, e3])
+        K_new = (K1 + K2) / 2
+        H1 = K_new @ R_rect @ np.linalg.inv(K1)
+        H2 = K_new @ R_rect @ R.T @ np.linalg.inv(K2)
+        return warp(img_l, H1), warp(img_r, H2), H1, H2
+    """
+
+
+def test_lab12_rectify_recipe(speak):
+    said = speak(lab12.CENTRE_HINT, RECTIFY, "rectify")
+    assert "check that" not in said and "look at the order of the products" in said
+    columns = RECTIFY.replace("np.vstack([e1, e2, e3])", "np.column_stack([e1, e2, e3])")
+    assert speak(lab12.CENTRE_HINT, columns, "rectify").endswith(
+        "check that the new axes are the rows of the rectifying rotation (np.vstack([e1, e2, e3]), not its columns)")
+    from_t = RECTIFY.replace("C2 = -R.T @ T.ravel()", "C2 = T.ravel()")
+    said = speak(lab12.CENTRE_HINT, from_t, "rectify")
+    assert said.startswith("compare your steps with the recipe: check that camera 2's centre is -R^T T, not T")
+    assert "and that" not in said
+
+
+STEREO_RECTIFY = """
+    def rectify(img_l, img_r, K1, K2, R, T):
+        h, w = img_l.shape[:2]
+        R1, R2, P1, P2 = cv2.stereoRectify(K1, None, K2, None, (w, h), R, T)[:4]
+        H1 = P1[:, :3] @ R1 @ np.linalg.inv(K1)
+        H2 = P2[:, :3] @ R2 @ np.linalg.inv(K2)
+        return warp(img_l, H1), warp(img_r, H2), H1, H2
+    """
+
+
+def test_lab12_stereo_rectify_given_as_is(speak):
+    said = speak(lab12.GIVEN_AS_IS_HINT, STEREO_RECTIFY, "rectify")
+    assert "check that" not in said and "look at which image each map is applied to" in said
+    rows_first = STEREO_RECTIFY.replace("(w, h)", "img_l.shape[:2]")
+    assert speak(lab12.GIVEN_AS_IS_HINT, rows_first, "rectify").endswith(
+        "check that the image size it is given is (width, height)")
+    out_of_order = STEREO_RECTIFY.replace("R1, R2, P1, P2 =", "R1, P1, R2, P2 =")
+    assert speak(lab12.GIVEN_AS_IS_HINT, out_of_order, "rectify").endswith(
+        "check that R1 and P1 go to the left image, R2 and P2 to the right (it returns R1, R2, P1, P2 in that order)")
+
+
+DP = """
+    def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+        L, R = left.astype(np.float64), right.astype(np.float64)
+        cost = block_costs(L, R, max_disparity, block_size)
+        return scanlines(cost, 0.01 if smoothness is None else smoothness)
+    """
+
+
+def test_lab12_dp_cost_scale(speak):
+    said = speak(lab12.COST_SCALE_HINT, DP, "dp_stereo")
+    assert "check that" not in said and "the default penalty is what is too weak" in said
+    unconverted = DP.replace("L, R = left.astype(np.float64), right.astype(np.float64)",
+                             "L, R = left, right\n        scale = np.zeros(3, dtype=float)")
+    assert speak(lab12.COST_SCALE_HINT, unconverted, "dp_stereo").endswith(
+        "check that the data cost is computed on the converted images")
+
+
+STRUCTURED = """
+    def depth_from_structured_light(images, f, baseline):
+        bits = np.asarray(images) > 127
+        binary = bits.copy()
+        for i in range(1, len(bits)):
+            binary[i] = binary[i - 1] ^ bits[i]
+        k = sum(b.astype(int) << (len(bits) - 1 - i) for i, b in enumerate(binary))
+        width = images.shape[2]
+        column = (k + 0.5) * width / 2 ** len(bits) - 0.5
+        u = np.arange(width)[None, :]
+        return f * baseline / (u - column)
+    """
+
+
+def test_lab12_structured_light_recipe(speak):
+    said = speak(lab12.STRUCTURED_LIGHT_RECIPE, STRUCTURED, "depth_from_structured_light")
+    assert "check that" not in said and said.startswith("look at the order the bits are read in")
+    plain = STRUCTURED.replace("binary[i] = binary[i - 1] ^ bits[i]", "pass")
+    assert speak(lab12.STRUCTURED_LIGHT_RECIPE, plain, "depth_from_structured_light") == (
+        "check that the Gray code is converted to binary (most significant bit first: b0 = g0, b_i = b_(i-1) XOR g_i)")
+    stripe_edge = STRUCTURED.replace("(k + 0.5) * width / 2 ** len(bits) - 0.5", "k * width / 2 ** len(bits)")
+    assert speak(lab12.STRUCTURED_LIGHT_RECIPE, stripe_edge, "depth_from_structured_light") == (
+        "check that the projector column is (k + 0.5) * width / 2**n_bits - 0.5")
