@@ -549,3 +549,59 @@ def test_lab12_structured_light_recipe(speak):
     stripe_edge = STRUCTURED.replace("(k + 0.5) * width / 2 ** len(bits) - 0.5", "k * width / 2 ** len(bits)")
     assert speak(lab12.STRUCTURED_LIGHT_RECIPE, stripe_edge, "depth_from_structured_light") == (
         "check that the projector column is (k + 0.5) * width / 2**n_bits - 0.5")
+
+
+SSD = """
+    def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+        L, R = left.astype(np.float64), right.astype(np.float64)
+        costs = np.full((max_disparity + 1,) + L.shape, np.inf)
+        for d in range(max_disparity + 1):
+            diff = (L[:, d:] - R[:, :L.shape[1] - d]) ** 2
+            costs[d][:, d:] = box(diff, block_size)
+        return np.argmin(costs, axis=0).astype(np.float64)
+    """
+
+
+def test_lab12_lowest_cost(speak):
+    said = speak(lab12.LOWEST_COST_HINT, SSD, "block_matching")
+    assert "check that" not in said and "look at where each cost is stored" in said
+    in_uint8 = SSD.replace("left.astype(np.float64), right.astype(np.float64)", "left, right")
+    assert speak(lab12.LOWEST_COST_HINT, in_uint8, "block_matching").endswith(
+        "check that a block's cost is the sum or mean of the squared differences over the block, computed in floats")
+
+
+DEPTH = """
+    def depth_from_disparity(disparity, f, baseline):
+        d = np.asarray(disparity, dtype=np.float64)
+        return np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0)
+    """
+
+
+def test_lab12_guarded_division(speak):
+    said = speak(lab12.GUARDED_DIVISION_HINT, DEPTH, "depth_from_disparity")
+    assert "check that" not in said and "look at the value divided by" in said
+    nonzero = DEPTH.replace("where=d > 0", "where=d != 0")
+    assert speak(lab12.GUARDED_DIVISION_HINT, nonzero, "depth_from_disparity").endswith(
+        "check that its condition is d > 0 (NaN > 0 is False)")
+    empty = DEPTH.replace("out=np.zeros_like(d)", "out=np.empty_like(d)")
+    assert speak(lab12.GUARDED_DIVISION_HINT, empty, "depth_from_disparity").endswith(
+        "check that out starts as zeros")
+
+
+SIMULATE = """
+    def simulate_structured_light(depth, f, baseline, n_bits):
+        h, w = depth.shape
+        u = np.arange(w)[None, :]
+        with np.errstate(divide="ignore"):
+            column = np.round(u - f * baseline / depth)
+        lit = (depth > 0) & (column >= 0) & (column < w)
+        return patterns(column, lit, n_bits)
+    """
+
+
+def test_lab12_projector_model(speak):
+    said = speak(lab12.PROJECTOR_MODEL, SIMULATE, "simulate_structured_light")
+    assert said == "look at which bit of the column's Gray code each image shows (the most significant first)"
+    one_end = SIMULATE.replace(" & (column >= 0)", "")
+    assert speak(lab12.PROJECTOR_MODEL, one_end, "simulate_structured_light") == (
+        "check that a pixel whose column is off the projector (below 0, or at its width and past) is black")

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import ast
 from dataclasses import replace
+from typing import Callable
 
 import cv2
 import numpy as np
@@ -122,9 +123,24 @@ LOWEST_COST_HINT = Hint(
     asks=KEEPS_LOWEST,
     # (code that keeps the lowest cost has its search written: restating the search would tell it
     # what it does; what is left is how each block's cost is computed and which blocks are compared)
-    instead="your code already {found}: the error is in the cost of a block (the sum or mean of the "
-            "squared differences over the block, computed in floats) or in which blocks are compared "
-            "(left (x, y) with right (x - d, y), d = 0..max_disparity)")
+    instead="your code already {found}: " + checklist(
+        "", ("a block's cost is the sum or mean of the squared differences over the block, computed in floats",
+             Predicate("converts the images", lambda f: _converts_an_image(f))),
+        ("the blocks compared are left (x, y) and right (x - d, y), d = 0..max_disparity",
+         Predicate("shifts by the disparity", lambda f: _shifts_by_disparity(f))),
+        none_left="look at where each cost is stored (the cost of disparity d at index d) and at the columns near "
+                  "the left border (no block at x - d there)"))
+
+
+def _shifts_by_disparity(function) -> bool:
+    """A subtraction of a disparity (``x - d``, ``right[:, :-d]``, ``np.roll(right, d)``): the right block taken at
+    x - d, read leniently (any name starting with d or disp, any roll)."""
+    return calls("np.roll").holds([function]) or any(
+        isinstance(n, ast.BinOp) and isinstance(n.op, ast.Sub) and isinstance(n.right, ast.Name)
+        and n.right.id.lower().startswith("d") for n in ast.walk(function)) or any(
+        isinstance(n, ast.Slice) and any(isinstance(b, ast.UnaryOp) and isinstance(b.operand, ast.Name)
+                                         and b.operand.id.lower().startswith("d") for b in (n.lower, n.upper))
+        for n in ast.walk(function))
 
 
 # Code that calls OpenCV's matcher has its block search done: what is left to tell is its answer.
@@ -592,10 +608,7 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     if wrong:
         t.fail(f"{what}: " + "; ".join(wrong) + ". The depth there must be 0 (invalid): no point "
                "of the scene has d <= 0.",
-               hint=Hint("np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0) (NaN > 0 is False)",
-                         asks=keyword("np.divide", "where"),
-                         instead="your code already {found}: check its condition (d > 0; NaN > 0 is False) "
-                                 "and that out starts as zeros").said(t))
+               hint=GUARDED_DIVISION_HINT.said(t))
     if not np.all(np.isfinite(got)):
         t.fail(f"{what} returned NaN or infinite depths for valid disparities")
     scale = magnitude(expected)
@@ -1491,7 +1504,8 @@ SMOOTHNESS_IGNORED = "the smoothness term is ignored"
 
 
 WEAK_DEFAULT = "the default smoothness penalty is too weak for the cost's scale"
-FLOATS = ("float", "float32", "float64", "double", "img_as_float")
+# a conversion that stops uint8 differences wrapping round (a float, or a signed integer type)
+FLOATS = ("float", "float32", "float64", "double", "img_as_float", "int", "int16", "int32", "int64")
 
 
 def _converts_an_image(function) -> bool:
@@ -1933,8 +1947,64 @@ def simulate_boxes(t):
     lit_expected = np.any(expected > 0, axis=0)
     t.fail(f"{what}: {format_apart(wrong.mean(), 0.0, 2, percent=True)} of the pixels differ from the projector model "
            f"({np.mean(wrong & ~lit_expected):.1%} should be black).",
-           hint="pixel (u, v) at depth Z sees projector column round(u - f*baseline/Z); black if "
-                "Z <= 0 or that column is not on the projector")
+           hint=PROJECTOR_MODEL)
+
+
+def _both_bounds(function) -> bool:
+    """A column tested against both ends of the projector: ``>= 0`` (or ``> -1``) and ``< width`` (or ``<= w - 1``);
+    a test of the depth (the first parameter: ``depth > 0``) is no test of the column."""
+    arguments = function.args.posonlyargs + function.args.args
+    depth = arguments[0].arg if arguments else ""
+    low = high = False
+    for n in ast.walk(function):
+        if isinstance(n, ast.Compare) and len(n.ops) == 1 and not any(
+                isinstance(m, ast.Name) and m.id == depth for m in ast.walk(n)):
+            right = n.comparators[0]
+            constant = right.value if isinstance(right, ast.Constant) and isinstance(right.value, (int, float)) else None
+            if isinstance(n.ops[0], (ast.GtE, ast.Gt)) and constant in (0, -1):
+                low = True
+            elif isinstance(n.ops[0], (ast.Lt, ast.LtE)) and constant is None:
+                high = True
+            elif isinstance(n.ops[0], (ast.Lt, ast.LtE)) and isinstance(n.left, ast.Constant) and n.left.value in (0, -1):
+                low = True   # 0 <= column
+    return low and high
+
+
+PROJECTOR_MODEL = checklist(
+    "", ("pixel (u, v) at depth Z sees projector column round(u - f*baseline/Z)",
+         (calls("np.round") | calls("np.rint") | calls("round") | calls("np.floor")) & expr("_ * _ / _")),
+    ("a pixel with Z <= 0 is black", expr("_ > 0") | expr("_ <= 0") | expr("0 < _")),
+    ("a pixel whose column is off the projector (below 0, or at its width and past) is black",
+     Predicate("tests the column against both ends", _both_bounds)),
+    none_left="look at which bit of the column's Gray code each image shows (the most significant first)")
+
+
+def _divide_keyword(name: str, holds: Callable) -> Callable:
+    """A test: an ``np.divide`` call given ``name=`` whose value ``holds`` (a name, computed elsewhere, holds)."""
+    def test(function) -> bool:
+        return any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide"
+                   and any(k.arg == name and (isinstance(k.value, ast.Name) or holds(k.value)) for k in n.keywords)
+                   for n in ast.walk(function))
+    return test
+
+
+def _positive_test(node) -> bool:
+    return isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], ast.Gt) \
+        and isinstance(node.comparators[0], ast.Constant) and node.comparators[0].value == 0
+
+
+def _zeros(node) -> bool:
+    return isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("zeros_like", "zeros")
+
+
+GUARDED_DIVISION_HINT = Hint(
+    "np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0) (NaN > 0 is False)",
+    asks=keyword("np.divide", "where"),
+    instead="your code already {found}: " + checklist(
+        "", ("its condition is d > 0 (NaN > 0 is False)", Predicate("divides where d > 0",
+                                                                    _divide_keyword("where", _positive_test))),
+        ("out starts as zeros", Predicate("gives np.divide zeros as out", _divide_keyword("out", _zeros))),
+        none_left="look at the value divided by (the disparity given, d = x_l - x_r) and at the array returned"))
 
 
 def sl_decoding_explained(got, images, f, baseline) -> list[str]:
