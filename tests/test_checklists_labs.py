@@ -605,3 +605,28 @@ def test_lab12_projector_model(speak):
     one_end = SIMULATE.replace(" & (column >= 0)", "")
     assert speak(lab12.PROJECTOR_MODEL, one_end, "simulate_structured_light") == (
         "check that a pixel whose column is off the projector (below 0, or at its width and past) is black")
+
+
+GREY_VIEWS = """
+    def calibrate(images, pattern_size, square_size):
+        obj_points, img_points = [], []
+        for image in images:
+            grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+            found, corners = cv2.findChessboardCorners(grey, pattern_size)
+            if found:
+                corners = cv2.cornerSubPix(grey, corners, (11, 11), (-1, -1), criteria)
+                obj_points.append(board(pattern_size, square_size))
+                img_points.append(corners)
+        return cv2.calibrateCamera(obj_points, img_points, grey.shape[::-1], None, None)
+    """
+
+
+def test_lab09_grey_for_opencv(speak):
+    said = speak(lab09.GREY_FOR_OPENCV, GREY_VIEWS, "calibrate")
+    assert "check that" not in said and "look at the views each OpenCV call is given" in said
+    raw = GREY_VIEWS.replace("cv2.cornerSubPix(grey,", "cv2.cornerSubPix(image,")
+    assert speak(lab09.GREY_FOR_OPENCV, raw, "calibrate").endswith(
+        "check that every call that needs one channel gets the converted view")
+    shape = GREY_VIEWS.replace("grey.shape[::-1]", "image.shape[::-1]")
+    assert speak(lab09.GREY_FOR_OPENCV, shape, "calibrate").endswith(
+        "check that the image size passed is (width, height), not the shape of a 3-channel array")

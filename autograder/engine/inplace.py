@@ -105,13 +105,15 @@ def shown_after(lab, function: str, argument: str, where: str) -> None:
 
 def values_changed(before, after) -> str:
     """How many values of the array changed, and the first few changes ("2 of its 6 values: 0
-    became inf, -3 became inf"), NaN equal to NaN."""
+    became inf, -3 became inf"); ``""`` when none did (NaN equal to NaN, -0.0 to 0.0)."""
     b, a = np.asarray(before), np.asarray(after)
     if b.shape != a.shape:
         return f"its shape {b.shape} became {a.shape}"
     with np.errstate(invalid="ignore"):
         same = (b == a) | (np.isnan(b) & np.isnan(a) if b.dtype.kind == a.dtype.kind == "f" else False)
     where = np.flatnonzero(~np.asarray(same).ravel())
+    if not where.size:
+        return ""
     pairs = list(dict.fromkeys(f"{float(b.ravel()[i]):g} became {float(a.ravel()[i]):g}" for i in where[:12]))[:3]
     return f"{where.size} of its {b.size} values: " + ", ".join(pairs) + (", ..." if where.size > len(pairs) else "")
 
@@ -124,11 +126,16 @@ def _shown_change(function: str, signature: str, args: tuple, kwargs: dict, chan
         where = shown.get(name.partition("[")[0])
         if where is None:
             continue
-        holder = args[key] if isinstance(key, int) else kwargs[key]
-        before = holder[index] if index is not None else holder
-        return (f"{function}() {how_changed(before, after)} the caller's `{name}` in place "
-                f"({values_changed(before, after)}). The lab sheet shows or uses `{name}` after the call "
-                f"({where}): what is shown then is no longer what was passed.")
+        try:
+            holder = args[key] if isinstance(key, int) else kwargs[key]
+            before = holder[index] if index is not None else holder
+        except (IndexError, KeyError, TypeError):   # no place among the arguments (see with_changed)
+            continue
+        changes = values_changed(before, after)
+        if changes:
+            return (f"{function}() {how_changed(before, after)} the caller's `{name}` in place ({changes}). "
+                    f"The lab sheet shows or uses `{name}` after the call ({where}): what is shown then is no "
+                    "longer what was passed.")
     return ""
 
 

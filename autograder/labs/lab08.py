@@ -19,6 +19,7 @@ by hand forbids it in the course configuration (``"forbid"``). ``stitch`` and
 from __future__ import annotations
 
 import ast
+from dataclasses import replace
 from typing import Callable
 
 import cv2
@@ -154,10 +155,17 @@ ex1 = lab.exercise("ex1", "Applying a homography", functions=[
 SHEET_H = np.array([[1.2, 0.1, 30.0], [0.05, 0.9, -20.0], [0.001, 0.002, 1.0]])
 
 
-@ex1.check("transform_points on a worked example", points=2)
+@ex1.check("transform_points on a worked example, and on a single point (pts of shape (1, 2))", points=2)
 def transform_points_example(t):
     pts = np.array([[0.0, 0.0], [100.0, 50.0], [320.0, 240.0]])
     judge_points(t, "transform_points(H, pts)", t.call("transform_points", SHEET_H, pts), SHEET_H, pts)
+    one = pts[2:]
+    got = t.call("transform_points", SHEET_H, one)
+    if isinstance(got, np.ndarray) and got.shape == (2,):
+        t.fail(measured("transform_points(H, pts of shape (1, 2)) returned shape (2,); expected (1, 2): one row per "
+                        "point, a single point included"),
+               mistake=measured("a single point loses its row axis"))
+    judge_points(t, "transform_points(H, pts of shape (1, 2))", got, SHEET_H, one)
 
 
 @ex1.check("transform_points: strong perspective, points far away", points=3)
@@ -1408,6 +1416,15 @@ def stitch_scene():
     return truth.panorama_scene("astronaut", (400, 260), ((20, 50), (130, 15)), (240, 180), 0.04, 2)
 
 
+def sizes_scene():
+    """stitch_scene's views cut to two sizes, as the API allows (a crop keeps its view's
+    coordinates): img1 216x180 gives the panorama its bottom, img2 240x162 its right side, so a
+    canvas built from either one's size for both cuts the other off."""
+    scene = stitch_scene()
+    return replace(scene, views=(np.ascontiguousarray(scene.views[0][:, :216]),
+                                 np.ascontiguousarray(scene.views[1][:162])))
+
+
 STITCH_WHAT = "stitch(img1, img2)"
 
 
@@ -1542,6 +1559,9 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
                    "content that lands at negative coordinates must fit too, so shift everything by a "
                    "translation T = [[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]] (applied to every "
                    f"homography){sized}", mistake=NOT_SHIFTED)
+        one_size = placed and canvas_of_one_size(judge, names)
+        if one_size:
+            t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: {one_size}", mistake=ONE_SIZE)
         if not placed:   # content in the wrong place: a known wrong map may say where it came from
             name_second_warp_mistake(t, judge, what) if len(names) == 2 else name_inverse_warp(t, judge, what)
         t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}{_advice(CANVAS_ADVICE.said(t))}")
@@ -1554,6 +1574,27 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
         return partial(0.5, f"{what}: the panorama covers the images but is {area / box:.1f} times "
                             "the area of their bounding box: crop the canvas to the bounding box")
     return passed(f"{what}: {judge.panorama.shape[1]}x{judge.panorama.shape[0]}, every image inside")
+
+
+ONE_SIZE = measured("the canvas is sized as if every image had one image's size")
+
+
+def canvas_of_one_size(judge: PanoramaJudge, names, slack: float = 3.0) -> str:
+    """A sentence when the images differ in size and the panorama is the bounding box of the warped
+    corners every image would have at one image's size (its width and height within ``slack``),
+    which the true bounding box is not; "" otherwise."""
+    shapes = [view.shape[:2] for view in judge.scene.views]
+    if len(set(shapes)) == 1 or canvas_has_the_bounding_box_size(judge, slack):
+        return ""
+    for k, shape in enumerate(shapes):
+        corners = np.vstack([truth.apply_h(judge.view_to_panorama(j), corners_of(shape)) for j in range(len(shapes))])
+        width, height = corners.max(axis=0) - corners.min(axis=0) + 1
+        if abs(judge.panorama.shape[1] - width) <= slack and abs(judge.panorama.shape[0] - height) <= slack:
+            sizes = ", ".join(f"{name} is {w}x{h}" for name, (h, w) in zip(names, shapes))
+            return (f"{ONE_SIZE} (the bounding box of the corners each image would have at {names[k]}'s size, "
+                    f"{shape[1]}x{shape[0]}; {sizes}): the canvas is the bounding box of every image's own warped "
+                    "corners")
+    return ""
 
 
 def canvas_has_the_bounding_box_size(judge: PanoramaJudge, slack: float = 3.0) -> bool:
@@ -1609,6 +1650,12 @@ def corners_of(shape) -> np.ndarray:
 def stitch_coverage(t):
     judge = stitch_judge(t, "stitch-public", stitch_scene(), STITCH_WHAT)
     return judge_coverage(t, judge, STITCH_WHAT, ["img1", "img2"])
+
+
+@ex5.check("stitch of images of two sizes (216x180 and 240x162): the panorama covers both", points=1)
+def stitch_sizes(t):
+    what = "stitch(216x180 img1, 240x162 img2)"
+    return judge_coverage(t, stitch_judge(t, "stitch-sizes", sizes_scene(), what), what, ["img1", "img2"])
 
 
 @ex5.check("stitch: img1 appears unwarped, only shifted", points=3)

@@ -1463,11 +1463,66 @@ def calibration_consistent(t):
            mistake=from_code("K from cv2.getOptimalNewCameraMatrix instead of the calibrated K") if reading else "")
 
 
-@ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners)", points=1)
+def _converted_names(function) -> set[str]:
+    """Names ``function`` assigns a cv2.cvtColor result (``grey = cv2.cvtColor(view, ...)``)."""
+    return {t.id for n in ast.walk(function) if isinstance(n, ast.Assign)
+            and any(isinstance(c, ast.Call) and _hints_path(c.func).rsplit(".", 1)[-1] == "cvtColor"
+                    for c in ast.walk(n.value)) for t in n.targets if isinstance(t, ast.Name)}
+
+
+def _unconverted_to_one_channel(functions) -> bool:
+    """A cv2.cornerSubPix given a name no cv2.cvtColor result was stored in (the view as it came)."""
+    for function in functions:
+        converted = _converted_names(function)
+        for n in ast.walk(function):
+            if isinstance(n, ast.Call) and _hints_path(n.func).rsplit(".", 1)[-1] == "cornerSubPix" and n.args \
+                    and isinstance(n.args[0], ast.Name) and n.args[0].id not in converted:
+                return True
+    return False
+
+
+def _size_of_three_channels(functions) -> bool:
+    """cv2.calibrateCamera given ``view.shape[::-1]`` of a view not converted (3 entries for a colour view)."""
+    for function in functions:
+        converted = _converted_names(function)
+        for n in ast.walk(function):
+            if isinstance(n, ast.Call) and _hints_path(n.func).rsplit(".", 1)[-1] == "calibrateCamera" \
+                    and len(n.args) > 2:
+                size = n.args[2]
+                if isinstance(size, ast.Subscript) and isinstance(size.value, ast.Attribute) \
+                        and size.value.attr == "shape" and isinstance(size.slice, ast.Slice) \
+                        and size.slice.lower is None and size.slice.upper is None \
+                        and not (isinstance(size.value.value, ast.Name) and size.value.value.id in converted):
+                    return True
+    return False
+
+
+GREY_FOR_OPENCV = Hint(
+    "Convert each view to grey where an OpenCV call needs one channel (cv2.cornerSubPix does), when it has 3: "
+    "cv2.cvtColor(image, cv2.COLOR_BGR2GRAY), and pass the image size as (width, height)",
+    asks=calls("cv2.cvtColor"),
+    instead="Your code {found}: " + checklist(
+        "", ("every call that needs one channel gets the converted view",
+             ~Predicate("gives cv2.cornerSubPix a view not converted", _unconverted_to_one_channel, kind="all")),
+        ("the image size passed is (width, height), not the shape of a 3-channel array",
+         ~Predicate("gives cv2.calibrateCamera a colour view's shape", _size_of_three_channels, kind="all")),
+        none_left="look at the views each OpenCV call is given when they have 3 channels"))
+
+
+@ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners), with 3 channels as "
+            "cv2.imread reads a photo", points=1)
 def calibrate_skimage(t):
-    images, K = truth.skimage_chessboard_views()
+    grey, K = truth.skimage_chessboard_views()
+    images = [np.repeat(view[..., None], 3, axis=2) for view in grey]   # BGR, as cv2.imread reads a photo of a board
     t.images("scikit-image's chessboard, in two of the poses", view_1=images[1], view_2=images[4])
-    return judge_calibration(t, images, K, truth.SKIMAGE_PATTERN)
+    try:
+        return judge_calibration(t, images, K, truth.SKIMAGE_PATTERN)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        raise StudentFailure(failure.outcome, f"{failure.message}\n" + measured(
+            "These views have 3 channels (BGR), as cv2.imread reads a photo of a board, where the other calibration "
+            "check's views are grey: calibrate takes both. ") + GREY_FOR_OPENCV.said(t)) from None
 
 
 # ================================================================== ext2 lens distortion

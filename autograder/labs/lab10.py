@@ -330,13 +330,18 @@ def weak_default(t):
                  probe=projection_probe(t, "weak_perspective_project"))
 
 
-@ex2.check("weak_perspective_project with a given z_avg", points=2)
+@ex2.check("weak_perspective_project with a given z_avg; a single (3,) point", points=2)
 def weak_given(t):
     X = truth.scene_points(202, n=10, depth=15.0, relief=3.0)
     judge_points(t, "weak_perspective_project(points, f=300, z_avg=12.0)",
                  t.call("weak_perspective_project", X, 300.0, z_avg=12.0),
                  truth.weak_perspective(X, 300.0, 12.0), weak_mistakes(X, 300.0, 12.0),
                  probe=projection_probe(t, "weak_perspective_project", z_avg=7.25))
+    # the API's convention for (N, 3) functions: a (3,) point gives a (2,) result
+    X = np.array([0.4, -0.3, 5.0])
+    judge_single_point(t, "weak_perspective_project((3,) point, f=300, z_avg=12.0)",
+                       t.call("weak_perspective_project", X, 300.0, z_avg=12.0),
+                       truth.weak_perspective(X, 300.0, 12.0)[0])
 
 
 @ex2.check("weak perspective approaches perspective for a shallow, distant object", points=1)
@@ -1002,11 +1007,11 @@ def pose_views(t):
         except StudentFailure as failure:
             if i != 1 or failure.outcome.kind != "exception":
                 raise
-            raise StudentFailure(failure.outcome, f"estimate_pose(colour image, ...): {failure.message}\nThis view "
-                                 "is a colour photo (BGR, as cv2.imread reads one); the grey view before it passed. "
-                                 + measured("estimate_pose takes either: convert a colour image to grey where "
-                                            "OpenCV wants one channel (cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)).")
-                                 ) from None
+            raise StudentFailure(failure.outcome, measured(
+                f"estimate_pose(colour image, ...): {failure.message}\nThis view is a colour photo (BGR, as "
+                "cv2.imread reads one); the grey view before it passed. ") + measured(
+                "estimate_pose takes either: convert a colour image to grey where OpenCV wants one channel "
+                "(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)).")) from None
         what = what.replace("(image,", "(colour image,") if i == 1 else what
         verdict = judge_pose(t, what, got, image, R, tv, corners, truth.POSE_PATTERN, truth.POSE_SQUARE,
                              truth.POSE_K, show=(i == 0))
@@ -1119,8 +1124,8 @@ def undistort_full_lens(t: Trial, first: float):
         return partial(0.5, f"{what} is wrong through this lens (through the first one, whose tangential terms are "
                             f"1e-3, it is right): it looks like {mistake}.", mistake=mistake)
     return partial(0.5, f"{what}: through this lens, with tangential terms p1 = {dist[2]:g}, p2 = {dist[3]:g} and "
-                        f"k3 = {dist[4]:g}, the result differs from the distortion-free view by {error:.0f} grey levels "
-                        f"on average; through the first lens (tangential terms of 1e-3, k3 = 0) by {first:.1f}.")
+                        f"k3 = {dist[4]:g}, the result differs from the distortion-free view by {error:.0f} grey "
+                        f"levels on average; through the first lens (tangential terms of 1e-3, k3 = 0) by {first:.1f}.")
 
 
 # The output keeps K: the skeleton pins it ("Remove lens distortion from an image, keeping the
@@ -1458,9 +1463,9 @@ def judge_track(t: Trial, frames, poses, dist=None):
                 t.fail(f"{what}: the rows are [tvec, rvec]; the API wants [rvec, tvec].")
             off = None if dist is None else _without_dist(got, frames, poses, K)
             if off is not None:
-                t.fail(f"{what}: every row is the pose cv2.solvePnP finds for the frame's corners without dist, as "
-                       f"if the lens had no distortion (up to {off:.1%} of the distance off the true pose; at most "
-                       f"{TRANSLATION_TOLERANCE:.0%} accepted): the dist given is not used.",
+                t.fail(measured(f"{what}: every row is the pose cv2.solvePnP finds for the frame's corners without "
+                                f"dist, as if the lens had no distortion (up to {off:.1%} of the distance off the true "
+                                f"pose; at most {TRANSLATION_TOLERANCE:.0%} accepted): the dist given is not used."),
                        mistake="track_pose does not use dist")
             t.fail(f"{what}: frame {i}: the pose is off by {format_apart(angle, ANGLE_TOLERANCE, 2)} degrees "
                    f"and {format_apart(shift / np.linalg.norm(tv), TRANSLATION_TOLERANCE, 2, percent=True)} of "

@@ -11,6 +11,7 @@ from noisy data against what the textbook algorithm achieves on the same data.
 from __future__ import annotations
 
 import ast
+import dataclasses
 
 import cv2
 import numpy as np
@@ -1169,10 +1170,10 @@ def epipoles_infinity(t):
     if not _finite_pair(got) and isinstance(got, (tuple, list)) and len(got) == 2:
         shown = ", ".join(f"{name} = {format_matrix(g) if isinstance(g, np.ndarray) else repr(g)}"
                           for name, g in zip(("e1", "e2"), got))
-        t.fail(f"{what} returned {shown}: no epipoles (NaN or zero), where for the same F with entries of 1e-17 in place of the zeros (as the product K2^-T E K1^-1 gives "
-               "it) they are right. " + measured("F's zero first row is no degenerate case (every rectified "
-                                                 "pair has it): the epipoles are F's null vectors, whichever of "
-                                                 "its rows are 0 or parallel."),
+        t.fail(measured(f"{what} returned {shown}: no epipoles (NaN or zero), where for the same F with entries "
+                        "of 1e-17 in place of the zeros (as the product K2^-T E K1^-1 gives it) they are right. ")
+               + measured("F's zero first row is no degenerate case (every rectified pair has it): the epipoles are "
+                          "F's null vectors, whichever of its rows are 0 or parallel."),
                mistake="no epipoles for an F with a zero row")
     judge_epipoles(t, what, got, views, at_infinity=True, F_given=F)
     diagonal = truth.sideways_views(seed=22, direction=0.6)
@@ -1295,15 +1296,27 @@ ROBUST_F_HINT = Hint(
         none_left="look at the points it is given: pts1 from image 1 (queryIdx), pts2 from image 2 (trainIdx)"))
 
 
-@ex6.check("two_view_reconstruction returns F, pts1, pts2, points3d of matching shapes", points=1,
-           timeout=PIPELINE_TIMEOUT)
+@ex6.check("two_view_reconstruction returns F, pts1, pts2, points3d of matching shapes (a colour and a grey pair)",
+           points=1, timeout=PIPELINE_TIMEOUT)
 def pipeline_shapes(t):
     pair = truth.rendered_pair(0)
     _, pts1, _, points3d = call_reconstruction(t, pair)
     if not np.all(np.isfinite(points3d)):
         t.fail("two_view_reconstruction: points3d contains NaN or infinite values "
                + measured("(drop the points you cannot triangulate, together with their matches)"))
-    return passed(f"{len(pts1)} matches")
+    # the API's images are grey (H, W) or BGR (H, W, 3): the same pair in grey
+    grey = dataclasses.replace(pair, img1=cv2.cvtColor(pair.img1, cv2.COLOR_BGR2GRAY),
+                               img2=cv2.cvtColor(pair.img2, cv2.COLOR_BGR2GRAY))
+    try:
+        _, grey_pts1, _, _ = call_reconstruction(t, grey)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        raise StudentFailure(failure.outcome, f"two_view_reconstruction(grey img1, grey img2, K): {failure.message}\n"
+                             "The same pair in colour (BGR) passed. " + measured(
+                                 "Images are grey (H, W) or BGR (H, W, 3), as the API's conventions say: take "
+                                 "either (convert to grey only a colour image).")) from None
+    return passed(f"{len(pts1)} matches ({len(grey_pts1)} on the grey pair)")
 
 
 @ex6.check("two_view_reconstruction: F agrees with the true epipolar geometry", points=3,

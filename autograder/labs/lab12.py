@@ -548,15 +548,27 @@ def judge_disparities(t: Trial, what: str, got, xl, xr, n):
     if max_abs_error(got, -expected) <= tolerance:
         t.fail(f"{what} has the wrong sign: d = x_l - x_r (positive for a point in front of the rig).",
                mistake="the disparity's sign is reversed (x_r - x_l)")
+    negative = expected < 0
+    if negative.any() and max_abs_error(got, np.abs(expected)) <= tolerance:
+        i = int(np.argmax(negative))
+        t.fail(f"{what}: where x_r > x_l (x_l = {xl[i]:g}, x_r = {xr[i]:g}) it returned {got[i]:g}, not "
+               f"{expected[i]:g}: " + measured("every disparity came back positive. d = x_l - x_r keeps its sign: "
+                                               "a negative one marks a match no point in front of the rig gives "
+                                               "(depth_from_disparity makes it invalid)."),
+               mistake=ABSOLUTE_DISPARITY)
     shown, wanted = format_arrays_apart(got[:5], expected[:5])
     t.fail(f"{what} returned {shown}...; expected {wanted}... ({describe_difference(got, expected, 'px', tolerance)})")
 
 
+ABSOLUTE_DISPARITY = "the disparity's sign is dropped (|x_l - x_r|)"
+
+
 @ex2.check("disparity_from_matches on x coordinates", points=1)
 def disparities_from_x(t):
-    xl = np.array([120.5, 80.0, 33.25, 150.0])
-    xr = np.array([100.5, 72.0, 30.0, 110.0])
-    judge_disparities(t, "disparity_from_matches(xl, xr)", t.call("disparity_from_matches", xl, xr), xl, xr, 4)
+    # the last match is a mismatch, its right point right of the left one: d = x_l - x_r < 0
+    xl = np.array([120.5, 80.0, 33.25, 150.0, 12.0])
+    xr = np.array([100.5, 72.0, 30.0, 110.0, 19.5])
+    judge_disparities(t, "disparity_from_matches(xl, xr)", t.call("disparity_from_matches", xl, xr), xl, xr, 5)
 
 
 @ex2.check("disparity_from_matches on (N, 2) matched points of a rectified pair", points=2)
@@ -2089,13 +2101,26 @@ STRUCTURED_LIGHT_RECIPE = checklist(
               "undecoded (black in every image: depth 0)")
 
 
+# 10 bits too, as a 1024-column projector is coded: stripe indices past 255 (a uint8 accumulator of
+# the decoded bits wraps from 9 bits on; 6 to 8 bits do not show it).
+SL_BITS = (6, 10)
+
+
 @ex6.check("depth_from_structured_light decodes the patterns and triangulates", points=3)
 def sl_depth(t):
     depth, f, baseline = truth.structured_light_scene("boxes")
-    images = truth.simulate_structured_light(depth, f, baseline, 6)
-    got = t.call("depth_from_structured_light", images, f, baseline)
-    return judge_sl_depth(t, f"depth_from_structured_light(6 images, f={f:g}, baseline={baseline:g})",
-                          got, images, f, baseline, depth)
+    for n_bits in SL_BITS:
+        images = truth.simulate_structured_light(depth, f, baseline, n_bits)
+        got = t.call("depth_from_structured_light", images, f, baseline)
+        try:
+            verdict = judge_sl_depth(t, f"depth_from_structured_light({n_bits} images, f={f:g}, "
+                                        f"baseline={baseline:g})", got, images, f, baseline, depth)
+        except Fail as wrong:
+            if n_bits == SL_BITS[0]:
+                raise
+            t.fail(wrong.message + measured(f" With {SL_BITS[0]} images it decodes exactly; with {n_bits} the stripe "
+                                            f"indices k reach {2 ** n_bits - 1}."), wrong.hint, wrong.mistake)
+    return verdict
 
 
 @ex6.check("depth_from_structured_light copes with a dim projector and sensor noise", points=1)

@@ -86,7 +86,10 @@ OPERATORS = {
     "keep_result": ("result", "returned", "discard", "assign"),   # draw(img, p) -> img = draw(img, p)
     "add_axis": ("axis",),                             # np.delete(X, 2) -> np.delete(X, 2, axis=1)
     "flip_keyword": ("true", "false", "keyword"),     # full_matrices=False -> True
-    "float32": ("float32", "dtype", "float"),          # cv2.remap(img, mx, my) -> np.float32(mx), ...
+    "float32": ("float32", "dtype", "float"),
+    "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
+    "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
+    "logic": ("and", "or", "&", "|"),                 # m1 & m2 -> m1 | m2, a and b -> a or b          # cv2.remap(img, mx, my) -> np.float32(mx), ...
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -641,13 +644,34 @@ def _make_float32(node, payload):
     return new
 
 
+def _make_accumulate(node, payload):
+    if payload == "assign":   # total += x -> total = x
+        return ast.Assign([copy.deepcopy(node.target)], copy.deepcopy(node.value))
+    target = copy.deepcopy(node.targets[0])   # total = x -> total += x
+    target.ctx = ast.Store()
+    return ast.AugAssign(target, getattr(ast, payload)(), copy.deepcopy(node.value))
+
+
+def _make_negate(node, payload):
+    if payload == "drop":   # not m -> m
+        return copy.deepcopy(node.operand)
+    return ast.UnaryOp(ast.Not(), copy.deepcopy(node))   # x > t -> not x > t
+
+
+def _make_logic(node, payload):
+    new = copy.deepcopy(node)   # m1 & m2 <-> m1 | m2, a and b <-> a or b
+    new.op = getattr(ast, payload)()
+    return new
+
+
 def _make_function(node, payload):
     new = copy.deepcopy(node)
     new.func = _name(payload)
     return new
 
 
-_MAKE = {"power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
+_MAKE = {"accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+         "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
@@ -1166,6 +1190,7 @@ def _changes(node, parents, words: _Words, line):
     if words.student:
         yield from _student_changes(node, parent)
         yield from _sibling_changes(node, words)
+        yield from _logic_changes(node, parent, parents)
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.RShift)):
         wrong, right = ("<<", ">>") if isinstance(node.op, ast.RShift) else (">>", "<<")
         shifted = what(node.left)
@@ -1306,6 +1331,9 @@ _AXIS_POSITIONS = {"delete": 2, "insert": 3, "append": 2, "sum": 1, "mean": 1, "
                    "amin": 1, "argmax": 1, "argmin": 1, "median": 1, "std": 1, "var": 1, "any": 1, "all": 1,
                    "cumsum": 1, "flip": 1, "concatenate": 1, "stack": 1, "norm": 2, "average": 1, "nanmean": 1,
                    "nansum": 1, "nanmax": 1, "nanmin": 1, "diff": 2, "sort": 1, "argsort": 1, "unique": 99}
+# OpenCV functions that take float32 arrays only (float64 fails their assertions): maps, point sets.
+_FLOAT32_ONLY = {"remap", "getAffineTransform", "getPerspectiveTransform", "cornerSubPix", "calcOpticalFlowPyrLK",
+                 "convertMaps", "minAreaRect", "fitLine", "kmeans", "calcBackProject"}
 _REDUCTIONS = {"sum", "mean", "max", "min", "argmax", "argmin", "std", "var", "any", "all", "cumsum"}
 # Methods of an array that return a new one: a call of them whose result is not kept changes nothing.
 _RETURNS_NEW = {"astype", "copy", "reshape", "round", "clip", "transpose", "flatten", "ravel", "squeeze"}
@@ -1332,12 +1360,46 @@ def _call_slips(node: ast.Call):
     for keyword in node.keywords:
         if keyword.arg and isinstance(keyword.value, ast.Constant) and isinstance(keyword.value.value, bool):
             yield "flip_keyword", keyword.arg, ""
-    if dotted.startswith(("cv2.", "cv.")) and len(node.args) >= 2:
+    if dotted.startswith(("cv2.", "cv.")) and short in _FLOAT32_ONLY and len(node.args) >= 2:
         arrays = [i for i, a in enumerate(node.args) if isinstance(a, (ast.Name, ast.Subscript))]
         if any(i >= 1 for i in arrays):
             yield "float32", [i for i in arrays if i >= 1], ""
         if len(arrays) >= 2 and 0 in arrays:
             yield "float32", arrays, ""
+
+
+_ACCUMULATED = {ast.Add: "Add", ast.Sub: "Sub", ast.Mult: "Mult"}
+
+
+def _in_loop(node, parents) -> bool:
+    while id(node) in parents:
+        node = parents[id(node)][0]
+        if isinstance(node, (ast.For, ast.While, ast.comprehension)):
+            return True
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+            return False
+    return False
+
+
+def _logic_changes(node, parent, parents):
+    """Slips of logic and accumulation: a condition the wrong way round (`if x > t:` where `if not x >
+    t:` belongs, a `not` too many), masks combined with & where | belongs (or `and`/`or`), and a sum
+    in a loop assigned where it is added to (`total = x` for `total += x`) or the other way round."""
+    if isinstance(parent, (ast.If, ast.IfExp, ast.While)) and parent.test is node \
+            and not (isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not)):
+        yield "negate", "insert", ""
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not):
+        yield "negate", "drop", ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.BitAnd, ast.BitOr)) \
+            and not isinstance(node.right, ast.Constant) and not isinstance(node.left, ast.Constant):
+        yield "logic", "BitOr" if isinstance(node.op, ast.BitAnd) else "BitAnd", ""
+    if isinstance(node, ast.BoolOp):
+        yield "logic", "Or" if isinstance(node.op, ast.And) else "And", ""
+    if isinstance(node, ast.AugAssign) and type(node.op) in _ACCUMULATED:
+        yield "accumulate", "assign", ""
+    if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], (ast.Name, ast.Subscript)) \
+            and _in_loop(node, parents):
+        yield "accumulate", "Add", ""
 
 
 def _discarded_result(statement: ast.Expr):

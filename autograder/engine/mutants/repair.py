@@ -170,8 +170,11 @@ class _Student:
             if function not in self._ordered:
                 shown = [m for m in self.mutants(function)
                          if (m.where == function or m.where not in self.api) and self.fix(m) is not None]
+                # (a name swapped for its twin -- R1 for R2, left for right -- first of its kind: the
+                # likeliest slip among a function's many names that might be another's)
                 smallest = sorted(shown, key=lambda m: (
-                    m.where != function, self.fixes[m.key].size, self.fixes[m.key].written, m.line))
+                    m.where != function, not _twin_swap(self.fixes[m.key]), self.fixes[m.key].size,
+                    self.fixes[m.key].written, m.line))
                 # Each kind of slip has its turn: the k-th smallest change of every operator before the
                 # (k+1)-th of any (a function's 150 names that might be another's would otherwise come
                 # before its one loop over a fixed count).
@@ -260,6 +263,28 @@ class _Student:
         if shortened is None:
             return None
         return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
+
+
+_TWIN_WORDS = {frozenset(pair) for pair in (("left", "right"), ("src", "dst"), ("l", "r"), ("x", "y"), ("u", "v"),
+                                            ("rows", "cols"), ("h", "w"), ("height", "width"), ("first", "second"))}
+
+
+def _twin_swap(fix: "Fix") -> bool:
+    """Whether the fix's one change puts a name for its twin: one digit apart (`R1`/`R2`, `pts1`/`pts2`)
+    or a pair's other half (`left`/`right`, `src`/`dst`, `l`/`r` in `img_l`/`img_r`)."""
+    if fix.operator not in ("other_name", "swap_names", "other_name_line") or len(fix.changes) != 1:
+        return False
+    before, after = (re.findall(r"\w+", text) for text in fix.changes[0][1:])
+    pairs = [(a, b) for a, b in zip(before, after) if a != b]
+    if len(before) != len(after) or len(pairs) != 1:
+        return False
+    a, b = pairs[0]
+    if len(a) == len(b) and sum(x != y for x, y in zip(a, b)) == 1 and any(x.isdigit() for x in a + b):
+        return True
+    split = lambda name: re.split(r"_", name)  # noqa: E731
+    parts_a, parts_b = split(a), split(b)
+    return len(parts_a) == len(parts_b) and sum(x != y for x, y in zip(parts_a, parts_b)) == 1 and any(
+        frozenset((x, y)) in _TWIN_WORDS for x, y in zip(parts_a, parts_b) if x != y)
 
 
 def _first_run(fn) -> int:

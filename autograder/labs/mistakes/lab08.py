@@ -576,6 +576,29 @@ MISTAKES = {
                 out = cv2.pyrUp(out, dstsize=(band.shape[1], band.shape[0]))   # + band forgotten
             return np.clip(np.round(out), 0, 255).astype(np.uint8)
         """, ["does not add the bands back"]),
+    # ---- inputs the usual set-up leaves out (issue 35): a single point, images of two sizes
+    "transform_points squeezing its result": ("lab08.ex1", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, np.float64).reshape(-1, 1, 2)
+            return cv2.perspectiveTransform(pts, np.asarray(H, np.float64)).squeeze()
+        """, ["returned shape (2,); expected (1, 2)"]),
+    "canvas from img1's size for both images": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H = _pairwise_homography(img2, img1)
+            h, w = img1.shape[:2]
+            corners = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], float)
+            box = np.vstack([corners, transform_points(H, corners)])    # img2's corners at img1's size
+            x_min, y_min = np.floor(box.min(axis=0))
+            x_max, y_max = np.ceil(box.max(axis=0))
+            T = _translation(-x_min, -y_min)
+            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
+            a = apply_homography(img1, T, size).astype(float)
+            b = apply_homography(img2, T @ H, size).astype(float)
+            ma = apply_homography(np.full(img1.shape[:2], 255, np.uint8), T, size) > 127
+            mb = apply_homography(np.full(img2.shape[:2], 255, np.uint8), T @ H, size) > 127
+            count = np.maximum(ma.astype(float) + mb, 1)[..., None]
+            return np.clip((a * ma[..., None] + b * mb[..., None]) / count, 0, 255).astype(np.uint8)
+        """, ["cut off at the right", "sized as if every image had one image's size", "at img1's size"]),
     "collapsed pyramid cast to uint8 without a clip": ("lab08.ext3", """
         def blend_multiband(img1, img2, mask, levels=4):
             weights = _gaussian_pyramid(np.asarray(mask, np.float32), levels)

@@ -411,6 +411,22 @@ MISTAKES = {
                 cv2.circle(out, (int(x), int(y)), int(radius), tuple(int(c) for c in color), -1)
             return out
         """, ["wrong for coordinates of 256 and more", "(300, 75) at (44, 75)"]),
+    "calibration views used as given (grey assumed)": ("lab09.ext1", """
+        def calibrate(images, pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float32)
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size
+            criteria = (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3)
+            object_points, image_points = [], []
+            for image in images:
+                found, corners = cv2.findChessboardCorners(image, (cols, rows))
+                if found:
+                    object_points.append(objp)
+                    image_points.append(cv2.cornerSubPix(image, corners, (5, 5), (-1, -1), criteria))
+            size = images[0].shape[::-1]
+            rms, K, dist, _, _ = cv2.calibrateCamera(object_points, image_points, size, None, None)
+            return K, dist.ravel(), rms
+        """, ["these views have 3 channels (bgr)", "cv2.cvtcolor(image, cv2.color_bgr2gray)"]),
     "k2 ignored": ("lab09.ext2", """
         _right = distort_points
         def distort_points(points, dist):
@@ -425,7 +441,8 @@ MISTAKES = {
 FEWER_MISTAKES = {
     "lab09.ext1": "cv2.calibrateCamera does the estimation: what a student can get wrong and the "
                   "answer shows is the object-point grid (its order, its (cols, rows)), the layout "
-                  "of K and a K that is not the calibration's own; square_size and the image size passed do not change K",
+                  "of K, a K that is not the calibration's own, and views of 3 channels (as cv2.imread reads a "
+                  "photo) given where an OpenCV call needs one; square_size and the image size passed do not change K",
 }
 
 

@@ -25,6 +25,12 @@ MISTAKES = {
         def weak_perspective_project(points, f, z_avg=None):
             return perspective_project(points, f)
         """, ["full perspective"]),
+    "weak perspective for (N, 3) arrays only": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X = np.asarray(points, dtype=np.float64)
+            z = X[:, 2].mean() if z_avg is None else z_avg
+            return f * X[:, :2] / z
+        """, ["a single point (a 1-d array) is not handled"]),
     "z_avg ignored": ("lab10.ex2", """
         def weak_perspective_project(points, f, z_avg=None):
             X, single = _points(points)

@@ -407,6 +407,12 @@ MISTAKES = {
             return _null_by_cross(F), _null_by_cross(F.T)
         """, ["first two rows are parallel", "is not a null vector of f"]),
     # ---------------------------------------------------------------- ex6
+    "pipeline converting every image from BGR": ("lab11.ex6", """
+        _pipeline = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            grey1, grey2 = cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY), cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY)
+            return _pipeline(grey1, grey2, K)
+        """, ["grey img1", "the same pair in colour (bgr) passed"]),
     "pipeline returns F transposed": ("lab11.ex6", """
         _tvr = two_view_reconstruction
         def two_view_reconstruction(img1, img2, K):

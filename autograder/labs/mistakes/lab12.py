@@ -119,6 +119,14 @@ MISTAKES = {
                 xl, xr = xl[:, 0], xr[:, 0]
             return xr - xl
         """, ["wrong sign"]),
+    # d = x_l - x_r keeps its sign: a mismatch (x_r > x_l) gives a negative disparity.
+    "disparity as a distance |x_l - x_r|": ("lab12.ex2", """
+        def disparity_from_matches(xl, xr):
+            xl = np.asarray(xl, float); xr = np.asarray(xr, float)
+            if xl.ndim == 2:
+                xl, xr = xl[:, 0], xr[:, 0]
+            return np.abs(xl - xr)
+        """, ["where x_r > x_l (x_l = 12, x_r = 19.5) it returned 7.5, not -7.5", "every disparity came back positive"]),
     "disparity from the y column": ("lab12.ex2", """
         def disparity_from_matches(xl, xr):
             xl = np.asarray(xl, float); xr = np.asarray(xr, float)
@@ -508,6 +516,21 @@ MISTAKES = {
             column = (k + 0.5) * width / 2**n - 0.5
             return depth_from_disparity(np.arange(width) - column, f, baseline)
         """, ["undecodable pixels"]),
+    # 10 bits code a 1024-column projector: stripe indices past 255.
+    "decoding into a uint8 accumulator (np.zeros_like(images[0]))": ("lab12.ex6", """
+        def depth_from_structured_light(images, f, baseline):
+            images = np.asarray(images)
+            n, height, width = images.shape
+            bits = (images > 127).astype(np.uint8)
+            k = np.zeros_like(images[0]); b = np.zeros_like(images[0])
+            for g in bits:
+                b = b ^ g
+                k = (k << 1) | b
+            column = (k + 0.5) * width / 2**n - 0.5
+            z = depth_from_disparity(np.arange(width)[None, :] - column, f, baseline)
+            return np.where(bits.any(axis=0), z, 0.0)
+        """, ["depth_from_structured_light(10 images", "with 6 images it decodes exactly",
+              "the stripe indices k reach 1023"]),
     "patterns with the stripe index rounded": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
             k = np.minimum(np.round(np.arange(width) * 2**n_bits / width).astype(int), 2**n_bits - 1)
