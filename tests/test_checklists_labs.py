@@ -630,3 +630,12 @@ def test_lab09_grey_for_opencv(speak):
     shape = GREY_VIEWS.replace("grey.shape[::-1]", "image.shape[::-1]")
     assert speak(lab09.GREY_FOR_OPENCV, shape, "calibrate").endswith(
         "check that the image size passed is (width, height), not the shape of a 3-channel array")
+
+
+def test_lab11_inliers_kept(speak):
+    masked = RECONSTRUCTION.replace("E = K.T @ F @ K", "pts1, pts2 = pts1[mask.ravel() == 1], pts2[mask.ravel() == 1]\n"
+                                    "        E = K.T @ F @ K")
+    said = speak(lab11.INLIERS_HINT, masked, "two_view_reconstruction")
+    assert "check that" not in said and "look at the order of the points" in said
+    assert speak(lab11.INLIERS_HINT, RECONSTRUCTION, "two_view_reconstruction").endswith(
+        "check that the points returned are those its mask keeps")

@@ -1329,8 +1329,22 @@ def pipeline_fundamental(t):
 
 RANSAC_ESTIMATOR = (calls("cv2.findFundamentalMat") | calls("cv2.findEssentialMat")).saying(
     "keeps the inliers of a RANSAC estimator")
-MATCHES_ELSEWHERE = from_code("your code already {found}: check that the points returned are those its mask "
-                              "keeps, in the order given (pts1 in image 1)")
+
+
+def _indexes_by_a_mask(function) -> bool:
+    """Points indexed by a RANSAC mask (``pts1[mask.ravel() == 1]``, ``pts1[inliers]``): a subscript whose index
+    holds a name with "mask" or "inl" in it, or a name a findFundamentalMat/findEssentialMat result is stored in."""
+    held = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and RANSAC_ESTIMATOR.holds([n.value])
+            for target in n.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
+    return any(isinstance(n, ast.Subscript) and any(
+        isinstance(m, ast.Name) and (m.id in held or "mask" in m.id.lower() or "inl" in m.id.lower())
+        for m in ast.walk(n.slice)) for n in ast.walk(function))
+
+
+MATCHES_ELSEWHERE = "your code already {found}: " + checklist(
+    "", ("the points returned are those its mask keeps", Predicate("indexes the points by the mask",
+                                                                   _indexes_by_a_mask)),
+    none_left="look at the order of the points given and returned (pts1 in image 1, pts2 in image 2)")
 INLIERS_HINT = Hint("keep only the RANSAC inliers", asks=RANSAC_ESTIMATOR, instead=MATCHES_ELSEWHERE)
 
 
