@@ -532,6 +532,67 @@ def calls_any(*names: str, says: str = "") -> Predicate:
     return found.saying(says) if says else found
 
 
+def assigns(*names: str, says: str = "") -> Predicate:
+    """A value stored in one of ``names`` (``ratio = 0.8``, ``ratio *= 2``, ``for ratio in ...``): with ``~``,
+    a parameter the code never overwrites."""
+    def test(function) -> bool:
+        for node in ast.walk(function):
+            targets = node.targets if isinstance(node, ast.Assign) else \
+                [node.target] if isinstance(node, (ast.AugAssign, ast.AnnAssign, ast.For, ast.comprehension)) else []
+            if any(isinstance(n, ast.Name) and n.id in names for target in targets for n in ast.walk(target)):
+                return True
+        return False
+    return Predicate(says or f"assigns {' or '.join(names)}", test)
+
+
+def treats_each_of(first: int = 0, second: int = 1, says: str = "") -> Predicate:
+    """One function called on each of two parameters apart (``hartley(src)`` and ``hartley(dst)``,
+    ``np.mean(pts1, 0)`` and ``np.mean(pts2, 0)``), or a loop over both (``for pts in (src, dst)``): each
+    of the two is given its own (normalising) transform. Read in the function whose parameters they are."""
+    def test(function) -> bool:
+        parameters = [a.arg for a in function.args.posonlyargs + function.args.args]
+        if len(parameters) <= max(first, second):
+            return False
+        pair = {parameters[first], parameters[second]}
+        given: dict[str, set] = {}
+        for node in ast.walk(function):
+            if isinstance(node, (ast.For, ast.comprehension)) and isinstance(node.iter, (ast.Tuple, ast.List)) \
+                    and pair <= {n.id for n in ast.walk(node.iter) if isinstance(n, ast.Name)}:
+                return True
+            if isinstance(node, ast.Call) and _path(node.func):
+                held = {n.id for a in node.args for n in ast.walk(a) if isinstance(n, ast.Name)} & pair
+                if len(held) == 1:   # a call given both (build(src, dst)) is no transform of each
+                    given.setdefault(_path(node.func), set()).update(held)
+        return any(held == pair for held in given.values())
+    return Predicate(says or "treats each point set apart", test)
+
+
+def returns_from(made: Predicate, says: str = "") -> Predicate:
+    """A ``return`` holding a value ``made`` reads (``made`` tested on the expression: a division, a product
+    with ``np.diag``), written there or stored in a name on the way (``F = U @ np.diag(s) @ Vt; F = T2.T @ F @ T1;
+    return F``; ``lines /= norm; return lines``)."""
+    def test(function) -> bool:
+        held: set[str] = set()
+        for _ in range(4):   # names from names, a few steps
+            for node in ast.walk(function):
+                if isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign)) and node.value is not None:
+                    source = node if isinstance(node, ast.AugAssign) else node.value
+                    if made.holds([source]) or any(isinstance(n, ast.Name) and n.id in held
+                                                   for n in ast.walk(node.value)):
+                        targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+                        held |= {n.id for target in targets for n in ast.walk(target) if isinstance(n, ast.Name)}
+        return any(isinstance(node, ast.Return) and node.value is not None
+                   and (made.holds([node.value]) or any(isinstance(n, ast.Name) and n.id in held
+                                                        for n in ast.walk(node.value)))
+                   for node in ast.walk(function))
+    return Predicate(says or f"returns what {made.says}", test)
+
+
+DIVISION = Predicate("divides", lambda node: any(
+    isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.Div)
+    or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide") for n in ast.walk(node)))
+
+
 def registered(texts: Iterable[str]) -> list[str]:
     """Of ``texts``, those neither :func:`guard`-ed nor :func:`measured`."""
     return [text for text in texts if text not in GUARDED and text not in MEASURED]

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import ast
 from dataclasses import replace
+from typing import Callable
 
 import cv2
 import numpy as np
@@ -29,8 +30,8 @@ from fixtures.images import coverage, photo, warp
 
 from ..engine import strategies as st
 from ..engine.checks import StudentFailure, Trial, partial, passed
-from ..engine.claims import (THIRD_COORDINATE, calls_any, compares_a_distance_with, divides_by, from_code, guard,
-                             measured, takes_last_row_of_vt)
+from ..engine.claims import (THIRD_COORDINATE, THRESHOLD_NAMES, assigns, calls_any, checklist, compares_a_distance_with, divides_by,
+                             from_code, guard, measured, takes_last_row_of_vt, treats_each_of)
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
 from ..engine.hints import (RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope, calls, code_of,
                              expr, functions_read, keyword, matmul_of, mentions, passes_product)
@@ -232,9 +233,11 @@ REDUCED_SVD = guard(
     instead="H is the answer of a reduced SVD (with 4 pairs A is 8x9 and its null vector is the 9th right "
             "singular vector): your code does not pass full_matrices=False, so look at A's shape (9 columns?) "
             "and at which row of Vt is taken")
+UNDOES_A_TRANSFORM = calls_any("np.linalg.inv", "np.linalg.solve", "np.linalg.pinv",
+                               says="inverts a normalising transform")
 NOT_UNDONE = guard(
     "the normalised H is returned without undoing the normalisation (return T_dst^-1 @ H_normalised @ T_src)",
-    asks=calls_any("np.linalg.inv", "np.linalg.solve", says="inverts a normalising transform"),
+    asks=UNDOES_A_TRANSFORM,
     instead="the normalised H is returned without undoing the normalisation: your code {found}; check that the "
             "H returned is T_dst^-1 @ H_normalised @ T_src")
 
@@ -361,8 +364,12 @@ DLT_NORMALISE_HINT = Hint(
     "Normalise each point set first (Hartley: move the centroid to the origin and scale so the mean "
     "distance is sqrt(2)), solve, then undo: H = T_dst^-1 @ H_n @ T_src.",
     asks=((calls("np.mean") | calls(".mean")) & SQRT2).saying("normalises the points (a mean and sqrt(2))"),
-    instead="your code already {found}; the error is elsewhere: check that each set has its own transform "
-            "and that it is undone: H = T_dst^-1 @ H_n @ T_src.")
+    instead="your code already {found}; " + checklist(
+        "the error is elsewhere: ",
+        ("each set has its own transform", treats_each_of(0, 1)),
+        ("it is undone: H = T_dst^-1 @ H_n @ T_src", UNDOES_A_TRANSFORM),
+        none_left="look at the transforms themselves (a centroid subtracted, a scale making the mean distance "
+                  "sqrt(2))") + ".")
 
 
 @ex2.advice("homography_dlt normalises its points")
@@ -442,17 +449,84 @@ XY_HINT = Hint("return (x, y) = (column, row), as cv2.KeyPoint.pt gives them",
 USES_RATIO = (expr("_.distance < ratio * _.distance") | expr("_.distance < _.distance * ratio")
               | expr("ratio * _.distance > _.distance") | expr("_.distance / _.distance < ratio")).saying(
     "compares best.distance < ratio * second_best.distance")
+
+
+def _ratio_tests(node) -> list:
+    """The comparisons of ``node`` that are Lowe's test (``m.distance < r * n.distance``)."""
+    return [n for n in ast.walk(node) if isinstance(n, ast.Compare) and RATIO_TEST.holds([n])]
+
+
+def _kept_by_the_test(function) -> list[tuple[ast.AST, str, str]]:
+    """(the test, the name of the list kept, the element kept) of each list of ``function`` filled with the
+    matches passing Lowe's test: ``good = [m for m, n in knn if <test>]``, ``if <test>: good.append(m)``."""
+    kept = []
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and isinstance(node.value, (ast.ListComp, ast.GeneratorExp)):
+            tests = [test for generator in node.value.generators for condition in generator.ifs
+                     for test in _ratio_tests(condition)]
+            element = node.value.elt
+            for target in node.targets:
+                if tests and isinstance(target, ast.Name):
+                    kept.append((tests[0], target.id, _path(element) if isinstance(element, ast.Name) else ""))
+        if isinstance(node, ast.If) and _ratio_tests(node.test):
+            for call in (n for statement in node.body for n in ast.walk(statement)):
+                if isinstance(call, ast.Call) and isinstance(call.func, ast.Attribute) and call.func.attr == "append" \
+                        and isinstance(call.func.value, ast.Name) and call.args:
+                    element = call.args[0]
+                    kept.append((_ratio_tests(node.test)[0], call.func.value.id,
+                                 element.id if isinstance(element, ast.Name) else ""))
+    return kept
+
+
+def _kept_matches_read(functions) -> bool:
+    """Whether each list of the matches passing Lowe's test is read after it is filled (not left aside
+    while all the matches are returned); True where no such list is written (nothing to contradict)."""
+    for function in functions:
+        for _, name, _ in _kept_by_the_test(function):
+            reads = [n for n in ast.walk(function) if isinstance(n, ast.Name) and n.id == name
+                     and isinstance(n.ctx, ast.Load)]
+            appends = [n for n in ast.walk(function) if isinstance(n, ast.Attribute) and n.attr == "append"
+                       and isinstance(n.value, ast.Name) and n.value.id == name]
+            if len(reads) <= len(appends):
+                return False
+    return True
+
+
+def _keeps_the_closer(functions) -> bool:
+    """Whether the match kept by Lowe's test is the one whose distance is the smaller side of the test
+    (``m`` of ``m.distance < r * n.distance``, not ``n``); True where the code says nothing else."""
+    for function in functions:
+        for test, _, element in _kept_by_the_test(function):
+            sides = [test.left, test.comparators[0]] if len(test.ops) == 1 else []
+            if not sides or not element:
+                continue
+            smaller = sides[0] if isinstance(test.ops[0], (ast.Lt, ast.LtE)) else sides[1]
+            closer = {n.value.id for n in ast.walk(smaller) if isinstance(n, ast.Attribute) and n.attr == "distance"
+                      and isinstance(n.value, ast.Name)}
+            if closer and element not in closer:
+                return False
+    return True
+
+
+KEPT_MATCHES_READ = Predicate("returns the matches passing the test", _kept_matches_read, kind="all")
+KEEPS_THE_CLOSER = Predicate("keeps the closer of the two neighbours", _keeps_the_closer, kind="all")
 RATIO_IGNORED_HINT = Hint(
     "Apply Lowe's ratio test with the given ratio: keep a match when best.distance < ratio * second_best.distance.",
-    asks=USES_RATIO, instead="Your code {found}, yet ratio=0.5 and ratio=0.9 give the same matches: check that the "
-                             "matches returned are the ones that pass it (and that ratio is not overwritten).")
+    asks=USES_RATIO, instead="Your code {found}, yet ratio=0.5 and ratio=0.9 give the same matches: " + checklist(
+        "", ("the matches returned are the ones that pass it", KEPT_MATCHES_READ),
+        ("ratio is not overwritten", ~assigns("ratio")),
+        none_left="look at where the matches returned are chosen") + ".")
 RATIO_REVERSED_HINT = Hint(
     "keep a match when best.distance < ratio * second_best.distance.", asks=RATIO_TEST,
     instead="your code {found}: look at which matches it keeps (those passing it, with best the closer of the "
             "two) and which are returned.")
 RATIO_HINT = Hint("keep a match only when best.distance < ratio * second_best.distance (knnMatch with k=2)",
-                  asks=RATIO_TEST, instead="your code already {found}; the error is elsewhere: which points "
-                  "are returned (pts1 from img1's keypoints by queryIdx, pts2 from img2's by trainIdx)")
+                  asks=RATIO_TEST, instead="your code already {found}; " + checklist(
+                      "the error is elsewhere: ",
+                      ("the match kept is the closer of the two neighbours (m of each m, n pair)", KEEPS_THE_CLOSER),
+                      ("pts1 come from img1's keypoints by queryIdx", mentions(".queryIdx")),
+                      ("pts2 come from img2's keypoints by trainIdx", mentions(".trainIdx")),
+                      none_left="look at which points are returned, and in which order"))
 
 
 def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, min_fraction: float):
@@ -863,10 +937,25 @@ def fail_inverted_mask(t: Trial, what: str):
            "(transfer error below the threshold)", mistake="the inlier mask is inverted")
 
 
+SQUARED_THRESHOLD = Predicate("squares the threshold", lambda function: any(
+    isinstance(n, ast.BinOp) and ((isinstance(n.op, ast.Pow) and _is_threshold(n.left))
+                                  or (isinstance(n.op, ast.Mult) and _is_threshold(n.left) and _is_threshold(n.right)))
+    for n in ast.walk(function)))
+SQUARED_DISTANCE = (expr("_ ** 2 < _") | expr("_ ** 2 <= _") | expr("_ > _ ** 2") | expr("_ >= _ ** 2")).saying(
+    "compares a squared value")
+
+
+def _is_threshold(node) -> bool:
+    return isinstance(node, ast.Name) and node.id in THRESHOLD_NAMES
+
+
 SQUARED_HINT = Hint("compare the distance |H src - dst| itself with the threshold (pixels)",
                     asks=compares_a_distance_with(),
-                    instead="your code {found}: check what the square root is taken of, and that the "
-                            "threshold itself is not squared")
+                    instead="your code {found}: " + checklist(
+                        "", ("the root's value is not squared again before the comparison", ~SQUARED_DISTANCE),
+                        ("the threshold itself is not squared", ~SQUARED_THRESHOLD),
+                        none_left="look at what the square root is taken of (the sum of the squared differences "
+                                  "of x and of y, per pair)"))
 
 
 def name_squared_threshold(t: Trial, what: str, H, inliers, src, dst, threshold: float):
@@ -1819,10 +1908,25 @@ def many_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Panor
                    f"levels on average at its best place): {shown}.")
         t.images(what, yours=panorama)
         t.fail(f"{what}: none of the images appears unwarped in your panorama (the closest, image {k + 1}, "
-               f"differs by {error:.0f} grey levels; {shown}): one image is to be the reference frame "
-               "(only shifted), the others warped into it")
+               f"differs by {error:.0f} grey levels; {shown}): {REFERENCE_FRAME_CHECKLIST}")
     store[key + "/judge"] = PanoramaJudge(scene, panorama, k, offset)
     return store[key + "/judge"]
+
+
+def _pastes_an_image(function) -> bool:
+    """An image written into a slice of another (``canvas[y:y + h, x:x + w] = img``): placed, only shifted."""
+    return any(isinstance(n, ast.Assign) and any(isinstance(t, ast.Subscript) and isinstance(t.slice, ast.Tuple)
+                                                  and any(isinstance(e, ast.Slice) and (e.lower or e.upper)
+                                                          for e in t.slice.elts) for t in n.targets)
+               for n in ast.walk(function))
+
+
+REFERENCE_FRAME_CHECKLIST = checklist(
+    "", ("one image is the reference frame (only shifted: its homography is the identity)",
+         calls("np.eye") | calls("np.identity") | Predicate("places an image only shifted", _pastes_an_image)),
+    ("the others are warped into it", calls("cv2.warpPerspective") | calls("warp_to_reference")),
+    none_left="your code gives one image no warp and warps the others: look at the direction of each homography "
+              "used (from image k to the reference frame, not the reverse) and at the shift applied to every image")
 
 
 def many_names(n):
@@ -2445,6 +2549,47 @@ def _mask_use(kind: str):
 
 
 MASK_SMOOTHED = Predicate("smooths the mask (cv2.pyrDown, a blur, or an area mean)", _mask_use("smooths"), kind="all")
+PYRAMID_STEPS = ("pyrDown", "pyramid_gaussian", "pyramid_reduce", "buildPyramid")
+LOOPS = (ast.For, ast.While, ast.ListComp, ast.GeneratorExp, ast.DictComp)
+
+
+def _mask_nodes(found: Callable, in_loops: bool = True) -> Callable:
+    """A test of the functions read: ``found(node, function, names)`` holds for a node (inside a loop or
+    comprehension of a function, with ``in_loops``), ``names`` the names holding the mask there
+    (:func:`mask_values`)."""
+    def test(functions) -> bool:
+        functions = list(functions)
+        held = mask_values(functions)
+        for function in functions:
+            names = held.get(function.name, set())
+            places = [n for n in ast.walk(function) if isinstance(n, LOOPS)] if in_loops else [function]
+            if any(found(node, function, names) for place in places for node in ast.walk(place)):
+                return True
+        return False
+    return test
+
+
+def _smooths_mask(node, function, names) -> bool:
+    return isinstance(node, ast.Call) and any(_holds_any(a, names) for a in node.args) \
+        and _resize_kind(node, function) == "smooths"
+
+
+def _pyramid_of_mask(node, function, names) -> bool:
+    return isinstance(node, ast.Call) and any(_holds_any(a, names) for a in node.args) \
+        and _path(node.func).rsplit(".", 1)[-1] in PYRAMID_STEPS
+
+
+def _weighs_by_mask(node, function, names) -> bool:
+    return isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) \
+        and (_holds_any(node.left, names) or _holds_any(node.right, names))
+
+
+# every level blurred: a pyramid step given the mask (cv2.pyrDown blurs, then halves), or a blur of it in a loop
+MASK_SMOOTHED_PER_LEVEL = (Predicate("builds the mask's pyramid", _mask_nodes(_pyramid_of_mask, in_loops=False),
+                                     kind="all")
+                           | Predicate("blurs the mask in a loop", _mask_nodes(_smooths_mask), kind="all"))
+BANDS_WEIGHTED_BY_MASK = Predicate("weights the bands by the mask's levels in a loop", _mask_nodes(_weighs_by_mask),
+                                   kind="all")
 MASK_SUBSAMPLED = Predicate("subsamples or resizes the mask", _mask_use("subsamples"), kind="all")
 UNSMOOTHED_MASK = (MASK_SUBSAMPLED & ~MASK_SMOOTHED).saying(
     "subsamples or resizes the mask (slicing, cv2.resize) and never smooths it")
@@ -2454,10 +2599,15 @@ MASK_PYRAMID_HINT = Hint(
     "build the mask's levels as the images' Gaussian pyramid, G[i + 1] = cv2.pyrDown(G[i]) (a blur, then every "
     "second pixel), and weight each level with the mask's level of the same size",
     asks=MASK_SMOOTHED, functions=("blend_multiband",),
-    instead="your code {found}: check that every level of the mask is blurred before it is halved (a Gaussian "
-            "pyramid's level is the previous one blurred, then subsampled: one blur at full size is not enough), "
-            "that the levels stay float (in uint8 the levels of a 0/1 mask round back to 0 or 1), and that each "
-            "band is weighted by the mask's level of its size")
+    instead="your code {found}: " + checklist(
+        "",
+        ("every level of the mask is blurred before it is halved (a Gaussian pyramid's level is the previous one "
+         "blurred, then subsampled: one blur at full size is not enough)", MASK_SMOOTHED_PER_LEVEL),
+        ("the levels stay float (in uint8 the levels of a 0/1 mask round back to 0 or 1)",
+         TO_FLOAT | mentions("float") | mentions("np.float32") | mentions("np.float64") | expr("_ / 255.0")),
+        ("each band is weighted by the mask's level of its size", BANDS_WEIGHTED_BY_MASK),
+        none_left="look at the mask's level each band is weighted with (its size, its values)",
+        functions=("blend_multiband",)))
 
 
 def grain_spread(got, dark, offset: float, margin: int = 16) -> float:

@@ -20,9 +20,9 @@ from fixtures.lab09 import photo
 from ..engine import strategies as st
 from ..engine import judges
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
-from ..engine.claims import THIRD_COORDINATE, divides_by, from_code, guard, measured
+from ..engine.claims import THIRD_COORDINATE, checklist, divides_by, from_code, guard, measured
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
-from ..engine.hints import Hint, Predicate, calls, code_of, expr, matmul_of, mentions, nan_behind
+from ..engine.hints import Hint, Predicate, _resolved, _scope, calls, code_of, expr, matmul_of, mentions, nan_behind
 from ..engine.hints import _path as _hints_path
 from ..engine.judges import Probe, call_probe, confirm, fingerprint, format_matrix
 from ..engine.pictures import svg_points
@@ -826,11 +826,21 @@ def aperture_statistics(t):
     if np.any(per_point < 0.5) or np.any(per_point > 0.8):
         t.fail(f"{what}: the rays fill the blur disc unevenly (RMS distance {per_point.min():.2f}.."
                f"{per_point.max():.2f} radii; uniform over the disc gives 0.71).",
-               hint=Hint("draw the aperture point uniformly over the disc: radius = aperture * sqrt(u)",
-                         asks=calls("np.sqrt") | expr("_ ** 0.5"),
-                         instead="your code already {found}: check that u is uniform in [0, 1), the angle "
-                                 "uniform in [0, 2 pi), and the radius aperture * sqrt(u)").said(t))
+               hint=UNIFORM_DISC_HINT.said(t))
     return passed(f"mean on the ideal projection, RMS spread {per_point.mean():.2f} blur radii")
+
+
+TWO_PI = (expr("2 * np.pi") | expr("np.pi * 2") | expr("_ * 2 * np.pi") | expr("2.0 * np.pi") | expr("2 * math.pi")
+          | expr("2 * pi") | mentions("np.tau") | mentions("math.tau")).saying("computes 2 pi")
+UNIFORM_DISC_HINT = Hint(
+    "draw the aperture point uniformly over the disc: radius = aperture * sqrt(u)",
+    asks=calls("np.sqrt") | expr("_ ** 0.5"),
+    instead="your code already {found}: " + checklist(
+        "", ("u is uniform in [0, 1)", calls(".random") | calls(".uniform") | calls(".rand")),
+        ("the angle is uniform in [0, 2 pi)", TWO_PI),
+        ("the radius is aperture * sqrt(u)", expr("_ * np.sqrt(_)") | expr("np.sqrt(_) * _") | expr("_ * _ ** 0.5")
+         | expr("_ ** 0.5 * _") | expr("_ * np.sqrt(_)[:, None]")),
+        none_left="look at how the angle and the radius become the two coordinates (r cos t, r sin t)"))
 
 
 def _ks_distance(samples, cdf) -> float:
@@ -925,11 +935,35 @@ def aperture_growth(t):
     return passed(f"spread {format_matrix(spreads)} px for apertures 0.05, 0.2, 0.8")
 
 
+GENERATORS = ("default_rng", "Generator", "SeedSequence", "PCG64", "RandomState")
+
+
+def _seeds_the_generator(function) -> bool:
+    """A ``np.random.default_rng`` given a value that is no constant (the seed passed in, not 0)."""
+    return any(isinstance(node, ast.Call) and _resolved(node.func, _scope(function))[1] == "numpy.random.default_rng"
+               and any(not isinstance(value, ast.Constant) for value in [*node.args, *(k.value for k in node.keywords)])
+               for node in ast.walk(function))
+
+
+def _draws_from_np_random(function) -> bool:
+    """A call of one of ``np.random``'s own functions (``np.random.normal``), not a generator's method."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call):
+            kind, path = _resolved(node.func, _scope(function))
+            if kind == "module" and path.startswith("numpy.random.") and path.rsplit(".", 1)[-1] not in GENERATORS:
+                return True
+    return False
+
+
 SEED_HINT = Hint(
     "use rng = np.random.default_rng(seed) and draw every random number from rng.",
     asks=calls("np.random.default_rng"),
-    instead="your code calls np.random.default_rng: check that it is given seed, and that every random "
-            "number is drawn from that generator (none from np.random's own functions).")
+    instead="your code calls np.random.default_rng: " + checklist(
+        "", ("it is given seed", Predicate("gives the generator the seed", _seeds_the_generator)),
+        ("every random number is drawn from that generator (none from np.random's own functions)",
+         ~Predicate("calls np.random's own functions", _draws_from_np_random)),
+        none_left="look at where the generator is made (once per call, not once per module?) and what it is "
+                  "given") + ".")
 
 
 @ex4.check("simulate_aperture is reproducible with a seed", points=1)
@@ -1109,10 +1143,48 @@ def draw_example(t):
     return judge_drawing(t, "draw_points(400x300 image, pts)", t.call("draw_points", image, pts), image, pts)
 
 
+DRAWING = ("circle", "line", "rectangle", "drawMarker", "putText", "ellipse", "polylines", "fillPoly")
+COPIES = (expr("_.copy()") | expr("np.copy(_)") | expr("np.array(_)")).saying("copies the image")
+
+
+def _first_parameter(function) -> str:
+    arguments = function.args.posonlyargs + function.args.args
+    return arguments[0].arg if arguments else ""
+
+
+def _draws_on_the_callers_image(function) -> bool:
+    """A drawing call (``cv2.circle(image, ...)``) or an assignment into the function's first parameter, never
+    rebound to a copy (``image = image.copy()`` draws on the copy after)."""
+    image = _first_parameter(function)
+    if not image or any(isinstance(n, ast.Assign) and any(isinstance(t, ast.Name) and t.id == image for t in n.targets)
+                        for n in ast.walk(function)):
+        return False
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _hints_path(node.func).rsplit(".", 1)[-1] in DRAWING and node.args \
+                and isinstance(node.args[0], ast.Name) and node.args[0].id == image:
+            return True
+        if isinstance(node, ast.Assign) and any(isinstance(t, ast.Subscript) and isinstance(t.value, ast.Name)
+                                                and t.value.id == image for t in node.targets):
+            return True
+    return False
+
+
+def _returns_a_copy(function) -> bool:
+    """A ``return`` of a name assigned a copy (``out = image.copy()``), or of the copy itself."""
+    copies = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and COPIES.holds([n.value])
+              for t in n.targets if isinstance(t, ast.Name)}
+    return any(isinstance(n, ast.Return) and n.value is not None
+               and ((isinstance(n.value, ast.Name) and n.value.id in copies) or COPIES.holds([n.value]))
+               for n in ast.walk(function))
+
+
 COPY_HINT = Hint(
     "out = image.copy(), then draw on out", asks=calls(".copy") | calls("np.copy"),
-    instead="your code copies the image ({found}): draw on the copy, not on `image`, and "
-            "return the copy")
+    instead="your code copies the image ({found}): " + checklist(
+        "", ("each point is drawn on the copy, not on `image`",
+             ~Predicate("draws on the caller's image", _draws_on_the_callers_image)),
+        ("the copy is returned", Predicate("returns the copy", _returns_a_copy)),
+        none_left="look at every array the points are drawn on (a helper given `image`?)"))
 
 
 @ex5.check("draw_points twice on the same image: each drawing shows its own points only", points=1)
@@ -1251,11 +1323,47 @@ OBJECT_POINTS_ROW_BY_ROW = (expr("np.mgrid[0:_[0], 0:_[1]].T.reshape(-1, 2)")
                             | expr("np.mgrid[0:nx, 0:ny].T.reshape(-1, 2)")
                             | expr("np.mgrid[0:w, 0:h].T.reshape(-1, 2)")).saying(
     "builds the object points with np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)")
+ROWS_FIRST = ("r", "h", "ny", "n_rows", "nrows", "height")
+
+
+def _pattern_read_rows_first(function) -> bool:
+    """``rows, cols = pattern_size`` (or ``h, w``, ``ny, nx``) read from a name holding "pattern", or
+    ``np.mgrid[0:p[1], 0:p[0]]``: pattern_size read as (rows, cols)."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Tuple) \
+                and any("pattern" in n.id for n in ast.walk(node.value) if isinstance(n, ast.Name)):
+            first = node.targets[0].elts[0]
+            if isinstance(first, ast.Name) and (first.id.lower() in ROWS_FIRST or first.id.lower().startswith("row")):
+                return True
+    return expr("np.mgrid[0:_[1], 0:_[0]]").holds([function])
+
+
+def _views_appended_apart(function) -> bool:
+    """Object points and corners appended in different blocks (one under ``if found:``, the other not):
+    a view's object points may then go with another view's corners, or with none."""
+    blocks = {"obj": set(), "corner": set()}
+    for parent in ast.walk(function):
+        for field in ("body", "orelse"):
+            for statement in getattr(parent, field, []) if isinstance(getattr(parent, field, None), list) else []:
+                for node in ast.walk(statement) if isinstance(statement, ast.Expr) else []:
+                    if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) \
+                            and node.func.attr == "append" and node.args:
+                        held = " ".join(n.id.lower() for n in ast.walk(node.args[0]) if isinstance(n, ast.Name))
+                        for kind, words in (("obj", ("obj",)), ("corner", ("corner", "img_p", "imgp", "pts"))):
+                            if any(word in held for word in words):
+                                blocks[kind].add((id(parent), field))
+    return bool(blocks["obj"] and blocks["corner"] and not blocks["obj"] & blocks["corner"])
+
+
 OBJECT_POINTS_HINT = Hint(
     "build them row by row, x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.",
     asks=OBJECT_POINTS_ROW_BY_ROW,
-    instead="your code {found}: check that pattern_size is read as (cols, rows), and that each view's object "
-            "points go with that view's corners.")
+    instead="your code {found}: " + checklist(
+        "", ("pattern_size is read as (cols, rows)", ~Predicate("reads pattern_size as (rows, cols)",
+                                                                _pattern_read_rows_first)),
+        ("each view's object points go with that view's corners",
+         ~Predicate("appends object points and corners apart", _views_appended_apart)),
+        none_left="look at the square size and at the views kept (those whose corners were found)") + ".")
 ext1 = lab.exercise("ext1", "Extension: camera calibration", functions=[
     "calibrate(images, pattern_size, square_size)"])
 
@@ -1355,12 +1463,50 @@ def calibration_consistent(t):
            mistake=from_code("K from cv2.getOptimalNewCameraMatrix instead of the calibrated K") if reading else "")
 
 
+def _converted_names(function) -> set[str]:
+    """Names ``function`` assigns a cv2.cvtColor result (``grey = cv2.cvtColor(view, ...)``)."""
+    return {t.id for n in ast.walk(function) if isinstance(n, ast.Assign)
+            and any(isinstance(c, ast.Call) and _hints_path(c.func).rsplit(".", 1)[-1] == "cvtColor"
+                    for c in ast.walk(n.value)) for t in n.targets if isinstance(t, ast.Name)}
+
+
+def _unconverted_to_one_channel(functions) -> bool:
+    """A cv2.cornerSubPix given a name no cv2.cvtColor result was stored in (the view as it came)."""
+    for function in functions:
+        converted = _converted_names(function)
+        for n in ast.walk(function):
+            if isinstance(n, ast.Call) and _hints_path(n.func).rsplit(".", 1)[-1] == "cornerSubPix" and n.args \
+                    and isinstance(n.args[0], ast.Name) and n.args[0].id not in converted:
+                return True
+    return False
+
+
+def _size_of_three_channels(functions) -> bool:
+    """cv2.calibrateCamera given ``view.shape[::-1]`` of a view not converted (3 entries for a colour view)."""
+    for function in functions:
+        converted = _converted_names(function)
+        for n in ast.walk(function):
+            if isinstance(n, ast.Call) and _hints_path(n.func).rsplit(".", 1)[-1] == "calibrateCamera" \
+                    and len(n.args) > 2:
+                size = n.args[2]
+                if isinstance(size, ast.Subscript) and isinstance(size.value, ast.Attribute) \
+                        and size.value.attr == "shape" and isinstance(size.slice, ast.Slice) \
+                        and size.slice.lower is None and size.slice.upper is None \
+                        and not (isinstance(size.value.value, ast.Name) and size.value.value.id in converted):
+                    return True
+    return False
+
+
 GREY_FOR_OPENCV = Hint(
     "Convert each view to grey where an OpenCV call needs one channel (cv2.cornerSubPix does), when it has 3: "
     "cv2.cvtColor(image, cv2.COLOR_BGR2GRAY), and pass the image size as (width, height)",
     asks=calls("cv2.cvtColor"),
-    instead="Your code {found}: check that every call that needs one channel gets the converted view, and that "
-            "the image size passed is (width, height), not the shape of a 3-channel array")
+    instead="Your code {found}: " + checklist(
+        "", ("every call that needs one channel gets the converted view",
+             ~Predicate("gives cv2.cornerSubPix a view not converted", _unconverted_to_one_channel, kind="all")),
+        ("the image size passed is (width, height), not the shape of a 3-channel array",
+         ~Predicate("gives cv2.calibrateCamera a colour view's shape", _size_of_three_channels, kind="all")),
+        none_left="look at the views each OpenCV call is given when they have 3 channels"))
 
 
 @ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners), with 3 channels as "

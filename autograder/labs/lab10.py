@@ -10,6 +10,8 @@ accepting the half-turn ambiguity of a symmetric board.
 
 from __future__ import annotations
 
+import ast
+
 import cv2
 import numpy as np
 
@@ -19,12 +21,12 @@ from fixtures.images import tinted
 
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
-from ..engine.claims import (calls_any, divides_by, guard, measured, negates_on_negative_det, passes_argument, reshapes,
-                             takes_last_row_of_vt)
+from ..engine.claims import (calls_any, checklist, divides_by, guard, measured, negates_on_negative_det,
+                             passes_argument, reshapes, takes_last_row_of_vt)
 from ..engine.compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
                        projective_distance)
 from ..engine.forms import scale_form
-from ..engine.hints import Hint, calls, code_of, expr, mentions, nan_behind
+from ..engine.hints import Hint, Predicate, _path, calls, code_of, expr, mentions, nan_behind
 from ..engine.judges import Probe, call_probe, fingerprint, format_matrix, name_mistake, where_matrices_differ
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
@@ -50,17 +52,106 @@ guard(truth.NOT_UNDONE, asks=calls_any("np.linalg.inv", "np.linalg.solve", says=
               "code {found}; check that the P returned is T2^-1 P_n T3")
 # the sign fix's own place: P negated (not K, not R) under a test of det(P[:, :3]) < 0
 NEGATES_P = negates_on_negative_det(0, says="negates P when det(P[:, :3]) < 0")
+
+
+def _product_operands(node):
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult):
+        return node.left, node.right
+    if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("dot", "matmul") and len(node.args) == 2:
+        return node.args[0], node.args[1]
+    return None
+
+
+def _negated_part(node) -> str:
+    """"column" for ``X[:, i] *= -1`` (or ``= -X[:, i]``), "row" for ``X[i] *= -1``/``X[i, :]``, else ""."""
+    if isinstance(node, ast.AugAssign) and isinstance(node.op, ast.Mult):
+        target = node.target
+    elif isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.value, ast.UnaryOp):
+        target = node.targets[0]
+    else:
+        return ""
+    if not isinstance(target, ast.Subscript):
+        return ""
+    index = target.slice
+    if isinstance(index, ast.Tuple) and index.elts and isinstance(index.elts[0], ast.Slice):
+        return "column"
+    return "row"
+
+
+def _flips_both_sides(function) -> bool:
+    """K's columns and R's rows flipped by one sign vector: one matrix on the right of one product and the left
+    of another (``K @ D``, ``D @ R``), both a column and a row negated (``K[:, i] *= -1``, ``R[i] *= -1``), or a
+    sign vector broadcast over rows (``s[:, None] * R``, with ``K * s``)."""
+    right = {n.id for node in ast.walk(function) if (pair := _product_operands(node)) and isinstance(pair[1], ast.Name)
+             for n in [pair[1]]}
+    left = {n.id for node in ast.walk(function) if (pair := _product_operands(node)) and isinstance(pair[0], ast.Name)
+            for n in [pair[0]]}
+    signs = {t.id for node in ast.walk(function) if isinstance(node, ast.Assign)
+             and any(isinstance(n, (ast.Name, ast.Attribute)) and _path(n).rsplit(".", 1)[-1] in ("sign", "diag")
+                     for n in ast.walk(node.value)) for t in node.targets if isinstance(t, ast.Name)}
+    if right & left & signs:   # one sign matrix on both sides
+        return True
+    parts = {_negated_part(node) for node in ast.walk(function)}
+    if {"column", "row"} <= parts:
+        return True
+    return (expr("_[:, None] * _") | expr("_[:, np.newaxis] * _") | expr("_ * _[:, None]")).holds([function])
+
+
+FLIPS_BOTH_SIDES = Predicate("flips K's columns and R's rows with one D", _flips_both_sides)
+
+
+def _returns_the_fixed(function) -> bool:
+    """A ``return`` of (K, R) each a product, or a name the function changes after it is first given a value (the
+    sign fix: ``K = K @ D``, ``R[i] *= -1``)."""
+    changed: dict[str, int] = {}
+    for node in ast.walk(function):
+        targets = node.targets if isinstance(node, ast.Assign) else [node.target] \
+            if isinstance(node, ast.AugAssign) else []
+        for target in targets:
+            for name in [target] if isinstance(target, ast.Name) else [target.value] \
+                    if isinstance(target, ast.Subscript) else target.elts if isinstance(target, ast.Tuple) else []:
+                if isinstance(name, ast.Name):
+                    changed[name.id] = changed.get(name.id, 0) + (2 if isinstance(node, ast.AugAssign) else 1)
+    for node in ast.walk(function):
+        if isinstance(node, ast.Return) and isinstance(node.value, ast.Tuple) and len(node.value.elts) >= 2:
+            first_two = node.value.elts[:2]
+            if all(_product_operands(e) or isinstance(e, ast.BinOp)
+                   or (isinstance(e, ast.Name) and changed.get(e.id, 0) >= 2) for e in first_two):
+                return True
+    return False
+
+
+RETURNS_THE_FIXED = Predicate("returns the fixed K and R", _returns_the_fixed)
 SIGN_FIX = Hint(
     "for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): multiply P by -1 first, then decompose; flipping "
     "signs of K's columns alone would leave det(R) = -1", asks=negates_on_negative_det(),
-    instead="for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): your code already {found}; check that "
-            "the negated P is the one decomposed and solved for t, and that flipping K's columns flips the same "
-            "rows of R")
+    instead="for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): your code already {found}; " + checklist(
+        "", ("the negated P is the one decomposed and solved for t", NEGATES_P),
+        ("flipping K's columns flips the same rows of R", FLIPS_BOTH_SIDES),
+        none_left="look at which P the translation is solved from (t = K^-1 times the negated P's last column)"))
+def _orthogonal_first(function) -> bool:
+    """``R, K = scipy.linalg.rq(M)`` (or ``Q, K = ...``, cv2.RQDecomp3x3's): an RQ's first factor, the upper
+    triangular one, stored under an orthogonal matrix's name."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Tuple) and node.targets[0].elts \
+                and any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("rq", "RQDecomp3x3")
+                        for n in ast.walk(node.value)):
+            first = node.targets[0].elts[0]
+            if isinstance(first, ast.Name) and first.id.lower().startswith(("r", "q", "rot")):
+                return True
+    return False
+
+
 RQ_HINT = Hint(" (use an RQ decomposition of the left 3x3 block)",
                asks=calls_any("scipy.linalg.rq", "cv2.RQDecomp3x3", "cv2.decomposeProjectionMatrix", "np.linalg.qr",
                               says="decomposes P[:, :3]"),
-               instead=" (your code {found}: check which factor becomes K, P[:, :3] = K R with K upper "
-                       "triangular, and the row and column reversals that turn a QR into an RQ)")
+               instead=" (your code {found}: " + checklist(
+                   "", ("the upper-triangular factor becomes K (P[:, :3] = K R)",
+                        ~Predicate("takes the orthogonal factor of an RQ as K", _orthogonal_first)),
+                   ("the rows and columns are reversed to turn a QR into an RQ",
+                    ~calls("np.linalg.qr") | calls_any("np.flipud", "np.fliplr", "np.flip") | expr("_[::-1]")
+                    | expr("_[::-1, ::-1]")),
+                   none_left="look at the signs fixed after it, and at K divided by K[2, 2]") + ")")
 NORMALISE_K_HINT = Hint("divide K by K[2, 2] (P is only known up to scale)",
                         asks=divides_by("_[2, 2]", "_[-1, -1]", says="divides by K[2, 2]"),
                         instead="your code {found}, but the K returned is not the divided one (or is changed "
@@ -68,8 +159,10 @@ NORMALISE_K_HINT = Hint("divide K by K[2, 2] (P is only known up to scale)",
 SIGNS_HINT = Hint("multiply the offending columns of K and the same rows of R by -1 (R then comes out with det +1, "
                   "as the block decomposed has det > 0)", asks=(calls("np.sign") | expr("np.diag(np.sign(np.diag(_)))")).saying(
                       "fixes signs with np.sign"),
-                  instead="your code {found}: check that it flips the same columns of K and rows of R (K D and "
-                          "D R with one D), and that the fixed K and R are the ones returned")
+                  instead="your code {found}: " + checklist(
+                      "", ("it flips the same columns of K and rows of R (K D and D R with one D)", FLIPS_BOTH_SIDES),
+                      ("the fixed K and R are the ones returned", RETURNS_THE_FIXED),
+                      none_left="look at which signs are fixed (those of K's diagonal, to make it positive)"))
 DIST_TO_PROJECT = passes_argument("cv2.projectPoints", 4, "distCoeffs", says="passes a distortion to cv2.projectPoints")
 guard("the corners are projected without dist (pass dist to cv2.projectPoints too)", asks=DIST_TO_PROJECT,
       instead="the corners are projected without dist: your code {found}, but not the dist given (None or zeros?)")
@@ -313,13 +406,22 @@ lab.forbid("camera_matrix_dlt", "cv2.calibrateCamera", "cv2.solvePnP", "cv2.solv
            "cv2.solvePnPGeneric", "cv2.initCameraMatrix2D", "cv2.calibrateCameraExtended")
 
 
+def _twelve_columns(function) -> bool:
+    """12 written where A is built: a constant 12 (``np.zeros((2 * n, 12))``) or a row of 12 entries."""
+    return any((isinstance(n, ast.Constant) and n.value == 12) or (isinstance(n, (ast.List, ast.Tuple))
+                                                                  and len(n.elts) == 12) for n in ast.walk(function))
+
+
+TWELVE_COLUMNS = Predicate("builds A with 12 columns", _twelve_columns)
 FIXED_P23_HINT = Hint(
     "It looks like P[2, 3] was fixed to 1 (11 unknowns, least squares), which cannot express this "
     "camera: solve A p = 0 for all 12 entries by SVD (the last row of Vt).",
     asks=(calls("np.linalg.svd") & ~calls_any("np.linalg.lstsq", "np.linalg.solve", "np.linalg.pinv")).saying(
         "solves by np.linalg.svd"),
-    instead="Your code {found}: check that A has 12 columns (P[2, 3] is an unknown too) and that p "
-            "is the last row of Vt.")
+    instead="Your code {found}: " + checklist(
+        "", ("A has 12 columns (P[2, 3] is an unknown too)", TWELVE_COLUMNS), ("p is the last row of Vt",
+                                                                                takes_last_row_of_vt()),
+        none_left="look at the rows of A (the u and v equations of each point)") + ".")
 
 
 def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_principal_plane=False):
@@ -638,11 +740,52 @@ PATTERN_AXES_HINT = Hint(
     "fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).", asks=OBJECT_POINTS_ROW_BY_ROW,
     instead="and your code {found}: check that pattern_size reaches cv2.findChessboardCorners "
             "as given.")
+def _projections(function) -> list[ast.Call]:
+    return [n for n in ast.walk(function) if isinstance(n, ast.Call)
+            and _path(n.func).rsplit(".", 1)[-1] == "projectPoints"]
+
+
+def _projects_in_order(function) -> bool:
+    """A cv2.projectPoints call given five arguments not visibly out of order (no ``tvec`` where rvec goes, no
+    ``dist`` where K goes, and the reverse)."""
+    def named(node, *words) -> bool:
+        return any(isinstance(n, ast.Name) and any(w in n.id.lower() for w in words) for n in ast.walk(node))
+    for call in _projections(function):
+        given = list(call.args) + [k.value for k in call.keywords]
+        if len(given) < 5:
+            continue
+        if len(call.args) >= 5 and (named(call.args[1], "tvec", "trans") or named(call.args[2], "rvec", "rot")
+                                    or named(call.args[3], "dist") or named(call.args[4], "mtx", "camera")
+                                    or (isinstance(call.args[4], ast.Name) and call.args[4].id == "K")):
+            continue
+        return True
+    return False
+
+
+def _returns_the_projection(function) -> bool:
+    """A ``return`` holding cv2.projectPoints' result: the call itself, or a name it (or a value made from it)
+    is stored in."""
+    held = set()
+    for _ in range(3):   # a few steps: projected, _ = cv2.projectPoints(...); out = projected.reshape(-1, 2)
+        for node in ast.walk(function):
+            if isinstance(node, ast.Assign) and (_projections(node.value) or any(
+                    isinstance(n, ast.Name) and n.id in held for n in ast.walk(node.value))):
+                held |= {n.id for target in node.targets for n in ast.walk(target) if isinstance(n, ast.Name)}
+    return any(isinstance(node, ast.Return) and node.value is not None
+               and (_projections(node.value) or any(isinstance(n, ast.Name) and n.id in held
+                                                    for n in ast.walk(node.value)))
+               for node in ast.walk(function))
+
+
 PROJECT_POINTS_HINT = Hint(
     "project the object points with rvec, tvec, K and dist (cv2.projectPoints), in the same order.",
     asks=calls("cv2.projectPoints"),
-    instead="your code calls cv2.projectPoints: check that it is given the object points, rvec, tvec, "
-            "K and dist of this pose, in that order, and that its output is what is returned.")
+    instead="your code calls cv2.projectPoints: " + checklist(
+        "", ("it is given the object points, rvec, tvec, K and dist of this pose, in that order",
+             Predicate("gives cv2.projectPoints its arguments in order", _projects_in_order)),
+        ("its output is what is returned", Predicate("returns cv2.projectPoints' output", _returns_the_projection)),
+        none_left="look at the pose it is given (the one returned?) and at the object points (the board's, in "
+                  "square units)") + ".")
 CORNER_ORDER_HINT = Hint(
     ": np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.", asks=OBJECT_POINTS_ROW_BY_ROW,
     instead=" (your code {found}: check how pattern_size is read, as (cols, rows)).")

@@ -10,6 +10,7 @@ from noisy data against what the textbook algorithm achieves on the same data.
 
 from __future__ import annotations
 
+import ast
 import dataclasses
 
 import cv2
@@ -24,9 +25,9 @@ from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
                        projective_distance)
 from ..engine.forms import shape_form
-from ..engine.claims import (THIRD_COORDINATE, calls_any, divides_by, from_code, guard, measured, reshapes,
-                             takes_last_row_of_vt, zeroes_an_entry)
-from ..engine.hints import RATIO_TEST, Hint, calls, code_of, expr, keyword, mentions
+from ..engine.claims import (DIVISION, THIRD_COORDINATE, calls_any, checklist, divides_by, from_code, guard, measured,
+                             reshapes, returns_from, takes_last_row_of_vt, zeroes_an_entry)
+from ..engine.hints import RATIO_TEST, Hint, Predicate, _path, calls, code_of, expr, keyword, mentions
 from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
                       where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
@@ -329,11 +330,41 @@ def _row_error(got, expected) -> float:
     return float(per_row.max() / max(1.0, np.abs(expected).max()))
 
 
+def _first_two(node) -> bool:
+    """A slice ``[:2]``/``[0:2]`` (of a line's entries) in ``node``."""
+    return any(isinstance(n, ast.Slice) and n.step is None and isinstance(n.upper, ast.Constant) and n.upper.value == 2
+               and (n.lower is None or (isinstance(n.lower, ast.Constant) and n.lower.value == 0))
+               for n in ast.walk(node))
+
+
+def _euclidean_of_a_b(function) -> bool:
+    """sqrt(a^2 + b^2) of the lines' own first two entries: ``np.hypot``, a 2-norm (``np.linalg.norm`` without
+    another ``ord``) or a square root of the first two entries or of two squares."""
+    for node in ast.walk(function):
+        if not isinstance(node, ast.Call):
+            continue
+        last = _path(node.func).rsplit(".", 1)[-1]
+        if last == "hypot":
+            return True
+        ordered = [k.value for k in node.keywords if k.arg == "ord"] + list(node.args[1:2] if last == "norm" else [])
+        if last == "norm" and all(isinstance(o, ast.Constant) and o.value in (2, None) for o in ordered) \
+                and node.args and _first_two(node.args[0]):
+            return True
+        squares = sum(isinstance(n, ast.BinOp) and (isinstance(n.op, ast.Pow) or (
+            isinstance(n.op, ast.Mult) and ast.dump(n.left) == ast.dump(n.right))) for arg in node.args for n in ast.walk(arg))
+        if last == "sqrt" and node.args and (_first_two(node.args[0]) or squares >= 2):
+            return True
+    return False
+
+
 LINE_SCALE_HINT = Hint(
     " (divide each line by sqrt(a^2 + b^2)).",
     asks=calls_any("np.hypot", "np.sqrt", "np.linalg.norm", says="computes a norm"),
-    instead=" (your code {found}: check that each line is divided by sqrt(a^2 + b^2) of its own first "
-            "two entries, and that the divided lines are returned).")
+    instead=" (your code {found}: " + checklist(
+        "", ("each line is divided by sqrt(a^2 + b^2) of its own first two entries",
+             Predicate("computes sqrt(a^2 + b^2)", _euclidean_of_a_b)),
+        ("the divided lines are returned", returns_from(DIVISION, "returns the divided lines")),
+        none_left="look at which lines the norm is taken of (each its own, by row)") + ").")
 
 
 def judge_lines(t: Trial, what: str, got, F, pts1):
@@ -708,11 +739,32 @@ def _essential_8point_mistakes(views, figures):
     }
 
 
+def _nine_columns(function) -> bool:
+    """9 written where A is built: a constant 9 (``np.zeros((n, 9))``), a row of 9 entries, or a Kronecker product
+    of two homogeneous points (``np.kron``, ``np.einsum``)."""
+    return any((isinstance(n, ast.Constant) and n.value == 9 and type(n.value) is int)
+               or (isinstance(n, (ast.List, ast.Tuple)) and len(n.elts) == 9)
+               or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("kron", "einsum", "outer"))
+               for n in ast.walk(function))
+
+
+NINE_COLUMNS = Predicate("builds A with 9 columns", _nine_columns)
+LAST_ROW_OF_VT = takes_last_row_of_vt()
+
+
+def nine_unknowns(matrix: str) -> str:
+    """The checklist of a solve with an entry of ``matrix`` fixed to 1: A's 9 columns, the last row of Vt."""
+    vector = matrix.lower()
+    return checklist("", (f"A has 9 columns ({matrix}[2, 2] is an unknown too)", NINE_COLUMNS),
+                     (f"{vector} is the last row of Vt", LAST_ROW_OF_VT),
+                     none_left=f"look at what is solved: the 9 entries of {vector} together, by SVD, not 8 of them "
+                               "by least squares")
+
+
 FIXED_E22_HINT = Hint(
     "It looks like E[2, 2] = 1 was fixed (8 unknowns), which cannot express this motion: solve A e = 0 for all 9 "
     "entries by SVD.", asks=SOLVES_BY_SVD,
-    instead="Your code {found}: check that A has 9 columns (E[2, 2] is an unknown too) and that e is the last row "
-            "of Vt.")
+    instead="Your code {found}: " + nine_unknowns("E") + ".")
 DIVIDED_BY_E22_HINT = Hint(
     "it looks like E was divided by E[2, 2], which is 0 here. Any scale of E is accepted: leave it, or divide by "
     "its norm.", asks=~divides_by("_[2, 2]", "_[-1, -1]"),
@@ -857,8 +909,7 @@ DIVIDED_BY_F22_HINT = Hint(
 FIXED_F22_HINT = Hint(
     "It looks like F[2, 2] = 1 was fixed (8 unknowns), which cannot express this camera pair: solve "
     "A f = 0 for all 9 entries by SVD.", asks=SOLVES_BY_SVD,
-    instead="Your code {found}: check that A has 9 columns (F[2, 2] is an unknown too) and that f is "
-            "the last row of Vt.")
+    instead="Your code {found}: " + nine_unknowns("F") + ".")
 
 
 def judge_exact_fundamental(t: Trial, views, n, sideways=False):
@@ -923,10 +974,14 @@ def fundamental_exact(t):
         raise Fail(failure.message, EIGHT_POINTS_HINT.said(t)) from None
 
 
+REBUILDS = (calls("np.diag") | calls("np.diagflat") | expr("(_ * _) @ _") | expr("_ @ (_ * _)")
+            | expr("(_ * _).dot(_)")).saying("rebuilds a matrix from its SVD")
 RANK2_HINT = Hint(
     "Set the smallest singular value to 0 (F = U diag(s1, s2, 0) V^T).", asks=zeroes_an_entry(),
-    instead="Your code {found}: check that F is rebuilt from it, U diag(s1, s2, 0) V^T, and that this F "
-            "is the one returned.")
+    instead="Your code {found}: " + checklist(
+        "", ("F is rebuilt from it, U diag(s1, s2, 0) V^T", REBUILDS),
+        ("this F is the one returned", returns_from(REBUILDS, "returns the rebuilt F")),
+        none_left="look at which singular value is set to 0 (the smallest, the last of np.linalg.svd's)") + ".")
 
 
 @ex4.check("fundamental_8point returns a rank-2 matrix (noisy data)", points=2)
@@ -996,12 +1051,22 @@ def fundamental_noisy(t):
     message = (f"on {len(NOISY_SCENES) - good} of {len(NOISY_SCENES)} noisy scenes your F is farther from "
                "the true epipolar geometry than any textbook 8-point variant (mean distance of exact "
                f"held-out matches to your lines: {report})")
-    return partial(good / len(NOISY_SCENES), message, Hint(
-        "solve A f = 0 by SVD (the last row of Vt), reshape to 3 x 3, enforce rank 2 (U diag(s1, s2, 0) V^T); "
-        "normalising the points first (Hartley) makes it more accurate",
-        asks=calls("np.linalg.svd", at_least=2), instead="your code already {found} (A f = 0 and rank 2?): "
-        "compare each step with the textbook (the rows of A, which singular vector, and undoing a "
-        "normalisation: F = T2^T Fn T1)").said(t))
+    return partial(good / len(NOISY_SCENES), message, FUNDAMENTAL_STEPS_HINT.said(t))
+
+
+NORMALISES = ((calls("np.mean") | calls(".mean")) & (expr("np.sqrt(2)") | expr("2 ** 0.5") | expr("math.sqrt(2)"))
+              ).saying("normalises the points")
+UNDOES_F = (expr("_.T @ _ @ _") | expr("np.transpose(_) @ _ @ _") | expr("_.T.dot(_).dot(_)") | expr("_.T @ (_ @ _)")
+            | expr("np.dot(_.T, np.dot(_, _))") | expr("np.dot(np.dot(_.T, _), _)")).saying("computes T2^T Fn T1")
+FUNDAMENTAL_STEPS_HINT = Hint(
+    "solve A f = 0 by SVD (the last row of Vt), reshape to 3 x 3, enforce rank 2 (U diag(s1, s2, 0) V^T); "
+    "normalising the points first (Hartley) makes it more accurate",
+    asks=calls("np.linalg.svd", at_least=2), instead="your code already {found} (A f = 0 and rank 2?): " + checklist(
+        "", ("A has 9 columns, a row per match", NINE_COLUMNS), ("f is the last row of Vt", LAST_ROW_OF_VT),
+        ("the normalisation is undone: F = T2^T Fn T1", ~NORMALISES | UNDOES_F),
+        none_left="look at the normalising transforms, where there are any (T = [[s, 0, -s cx], [0, s, -s cy], [0, 0, 1]]: "
+                  "the centroid subtracted, then scaled so the mean distance is sqrt(2)) and at which points each "
+                  "is built from"))
 
 
 # ================================================================== ex5 epipoles
@@ -1223,13 +1288,29 @@ def judge_pipeline_F(t: Trial, pair, F):
     message = (f"true correspondences are {format_apart(distance, 1.5, 2)} px from your epipolar lines (median over "
                f"{len(g1)} pixels with known depth; expected below 1.5 px)")
     if distance <= 4.0:
-        return partial(0.5, message, Hint(
-            "use RANSAC (cv2.FM_RANSAC) with a threshold of about 1 px",
-            asks=(mentions("cv2.FM_RANSAC") | mentions("cv2.RANSAC") | mentions("cv2.USAC_DEFAULT")
-                  | mentions("cv2.USAC_MAGSAC") | mentions("cv2.FM_LMEDS")).saying("estimates F robustly"),
-            instead="your code already {found}: check its threshold (about 1 px) and the matches it is "
-                    "given (Lowe's ratio test, pts1 in image 1)").said(t))
+        return partial(0.5, message, ROBUST_F_HINT.said(t))
     t.fail(message)
+
+
+def _far_threshold(function) -> bool:
+    """A cv2.findFundamentalMat given a threshold constant far from 1 px (above 3, or below 0.1)."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "findFundamentalMat":
+            given = node.args[3:4] + [k.value for k in node.keywords if k.arg == "ransacReprojThreshold"]
+            if any(isinstance(g, ast.Constant) and isinstance(g.value, (int, float)) and not 0.1 <= g.value <= 3
+                   for g in given):
+                return True
+    return False
+
+
+ROBUST_F_HINT = Hint(
+    "use RANSAC (cv2.FM_RANSAC) with a threshold of about 1 px",
+    asks=(mentions("cv2.FM_RANSAC") | mentions("cv2.RANSAC") | mentions("cv2.USAC_DEFAULT")
+          | mentions("cv2.USAC_MAGSAC") | mentions("cv2.FM_LMEDS")).saying("estimates F robustly"),
+    instead="your code already {found}: " + checklist(
+        "", ("its threshold is about 1 px", ~Predicate("gives a threshold far from 1 px", _far_threshold)),
+        ("the matches it is given pass Lowe's ratio test", RATIO_TEST | keyword("cv2.BFMatcher", "crossCheck", True)),
+        none_left="look at the points it is given: pts1 from image 1 (queryIdx), pts2 from image 2 (trainIdx)"))
 
 
 @ex6.check("two_view_reconstruction returns F, pts1, pts2, points3d of matching shapes (a colour and a grey pair)",
@@ -1265,8 +1346,22 @@ def pipeline_fundamental(t):
 
 RANSAC_ESTIMATOR = (calls("cv2.findFundamentalMat") | calls("cv2.findEssentialMat")).saying(
     "keeps the inliers of a RANSAC estimator")
-MATCHES_ELSEWHERE = from_code("your code already {found}: check that the points returned are those its mask "
-                              "keeps, in the order given (pts1 in image 1)")
+
+
+def _indexes_by_a_mask(function) -> bool:
+    """Points indexed by a RANSAC mask (``pts1[mask.ravel() == 1]``, ``pts1[inliers]``): a subscript whose index
+    holds a name with "mask" or "inl" in it, or a name a findFundamentalMat/findEssentialMat result is stored in."""
+    held = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and RANSAC_ESTIMATOR.holds([n.value])
+            for target in n.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
+    return any(isinstance(n, ast.Subscript) and any(
+        isinstance(m, ast.Name) and (m.id in held or "mask" in m.id.lower() or "inl" in m.id.lower())
+        for m in ast.walk(n.slice)) for n in ast.walk(function))
+
+
+MATCHES_ELSEWHERE = "your code already {found}: " + checklist(
+    "", ("the points returned are those its mask keeps", Predicate("indexes the points by the mask",
+                                                                   _indexes_by_a_mask)),
+    none_left="look at the order of the points given and returned (pts1 in image 1, pts2 in image 2)")
 INLIERS_HINT = Hint("keep only the RANSAC inliers", asks=RANSAC_ESTIMATOR, instead=MATCHES_ELSEWHERE)
 
 
@@ -1441,13 +1536,19 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
     t.fail(summary)
 
 
+# w of homogeneous 3D points (4 coordinates): X[3], X[:, 3:], ... (the third coordinate's patterns cover [-1])
+W_OF_4D = divides_by("_[3]", "_[3:]", "_[3:4]", "_[3, :]", "_[:, 3]", "_[:, 3:]", "_[:, 3:4]", "_[:, 3, None]",
+                     "_[..., 3]", "_[..., 3:]", says="divides by the fourth coordinate")
 IN_FRONT_HINT = Hint(
     "choose the pose with the points in front of both cameras (cv2.recoverPose does) and divide by w",
     asks=calls("cv2.recoverPose"),
     instead="your code already {found}, which chooses the pose with the points in front of both cameras, "
-            "so the error is elsewhere: the cameras the points are triangulated with must match the "
-            "coordinates given to them (P = K [R | t] on pixels, [R | t] on normalised coordinates), "
-            "and the points are divided by w")
+            "so the error is elsewhere: " + checklist(
+                "", ("the cameras the points are triangulated with match the coordinates given to them (P = K [R | t] "
+                     "on pixels, [R | t] on normalised coordinates)", ~CAMERA_WITHOUT_K),
+                ("the points are divided by w", DIVIDES_BY_W | W_OF_4D | calls("cv2.convertPointsFromHomogeneous")),
+                none_left="look at which points are triangulated (those cv2.recoverPose kept, pts1 and pts2 in the "
+                          "same order)"))
 
 
 @ex6.check("two_view_reconstruction: the 3D points equal the true scene up to one global scale", points=4,

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import ast
 from dataclasses import replace
+from typing import Callable
 
 import cv2
 import numpy as np
@@ -30,9 +31,10 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
-from ..engine.claims import calls_any, divides_by, from_code, guard, measured, passes_parameters
+from ..engine.claims import calls_any, checklist, divides_by, from_code, guard, measured, passes_parameters
 from ..engine.forms import shape_form
-from ..engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, Hint, Predicate, calls, code_of, expr, keyword
+from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, Hint, Predicate, _path, calls, code_of, expr, keyword,
+                            size_given_as_shape)
 from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
@@ -121,9 +123,24 @@ LOWEST_COST_HINT = Hint(
     asks=KEEPS_LOWEST,
     # (code that keeps the lowest cost has its search written: restating the search would tell it
     # what it does; what is left is how each block's cost is computed and which blocks are compared)
-    instead="your code already {found}: the error is in the cost of a block (the sum or mean of the "
-            "squared differences over the block, computed in floats) or in which blocks are compared "
-            "(left (x, y) with right (x - d, y), d = 0..max_disparity)")
+    instead="your code already {found}: " + checklist(
+        "", ("a block's cost is the sum or mean of the squared differences over the block, computed in floats",
+             Predicate("converts the images", lambda f: _converts_an_image(f))),
+        ("the blocks compared are left (x, y) and right (x - d, y), d = 0..max_disparity",
+         Predicate("shifts by the disparity", lambda f: _shifts_by_disparity(f))),
+        none_left="look at where each cost is stored (the cost of disparity d at index d) and at the columns near "
+                  "the left border (no block at x - d there)"))
+
+
+def _shifts_by_disparity(function) -> bool:
+    """A subtraction of a disparity (``x - d``, ``right[:, :-d]``, ``np.roll(right, d)``): the right block taken at
+    x - d, read leniently (any name starting with d or disp, any roll)."""
+    return calls("np.roll").holds([function]) or any(
+        isinstance(n, ast.BinOp) and isinstance(n.op, ast.Sub) and isinstance(n.right, ast.Name)
+        and n.right.id.lower().startswith("d") for n in ast.walk(function)) or any(
+        isinstance(n, ast.Slice) and any(isinstance(b, ast.UnaryOp) and isinstance(b.operand, ast.Name)
+                                         and b.operand.id.lower().startswith("d") for b in (n.lower, n.upper))
+        for n in ast.walk(function))
 
 
 # Code that calls OpenCV's matcher has its block search done: what is left to tell is its answer.
@@ -453,12 +470,22 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
     reprojection = np.linalg.norm(truth.project(P1, got) - pts1, axis=1).mean()
     t.fail(f"{what}: 3D points are off by up to {error.max():.3g} (mean reprojection error in "
            f"image 1: {reprojection:.3g} px).",
-           hint=Hint("each view gives two rows, x p3 - p1 and y p3 - p2 (p_i the rows of P); X is the last "
-                     "right singular vector of the 4x4 matrix",
-                     asks=calls("np.linalg.svd") | calls("cv2.triangulatePoints"),
-                     instead="each view gives two rows, x p3 - p1 and y p3 - p2 (p_i the rows of P); your code "
-                             "already {found}: check which rows of P and which coordinates make the rows, and "
-                             "that the solution is divided by its fourth coordinate").said(t))
+           hint=TRIANGULATION_ROWS_HINT.said(t))
+
+
+# x p3 - p1 written with a point's coordinate times P's third row, minus its first (or OpenCV's own)
+ROWS_OF_P = (expr("_ * _[2] - _[0]") | expr("_ * _[2, :] - _[0, :]") | expr("_ * _[2, :] - _[0]")
+             | expr("_ * _[2] - _[0, :]") | expr("_[2] * _ - _[0]") | expr("_[2, :] * _ - _[0, :]")
+             | calls("cv2.triangulatePoints")).saying("builds the rows x p3 - p1")
+TRIANGULATION_ROWS_HINT = Hint(
+    "each view gives two rows, x p3 - p1 and y p3 - p2 (p_i the rows of P); X is the last right singular vector of "
+    "the 4x4 matrix", asks=calls("np.linalg.svd") | calls("cv2.triangulatePoints"),
+    instead="each view gives two rows, x p3 - p1 and y p3 - p2 (p_i the rows of P); your code already {found}: "
+            + checklist("", ("each view's rows are made of its own P's rows and its own point's x and y", ROWS_OF_P),
+                        ("the solution is divided by its fourth coordinate",
+                         FOURTH_COORDINATE | calls("cv2.convertPointsFromHomogeneous")),
+                        none_left="look at which singular vector is kept (the last row of Vt of each point's own 4x4 "
+                                  "system) and at which point each system is given"))
 
 
 def triangulation_probe(t: Trial) -> Probe:
@@ -593,10 +620,7 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     if wrong:
         t.fail(f"{what}: " + "; ".join(wrong) + ". The depth there must be 0 (invalid): no point "
                "of the scene has d <= 0.",
-               hint=Hint("np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0) (NaN > 0 is False)",
-                         asks=keyword("np.divide", "where"),
-                         instead="your code already {found}: check its condition (d > 0; NaN > 0 is False) "
-                                 "and that out starts as zeros").said(t))
+               hint=GUARDED_DIVISION_HINT.said(t))
     if not np.all(np.isfinite(got)):
         t.fail(f"{what} returned NaN or infinite depths for valid disparities")
     scale = magnitude(expected)
@@ -861,27 +885,79 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
 
 # Code that already gives both cameras one new rotation and one K is told the other half of the
 # recipe: the baseline's direction comes from the camera centres (C2 = -R^T T), not T itself.
+def _shared_by_products(function) -> bool:
+    """A name in two separate matrix products (``K_new @ R_rect @ inv(K1)`` and ``K_new @ R_rect @ R @ inv(K2)``):
+    one new rotation (and K) given to both cameras."""
+    inner = {id(n.left) for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)}
+    chains = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)
+              and id(n) not in inner]
+    names = [{m.id for m in ast.walk(chain) if isinstance(m, ast.Name)} for chain in chains]
+    return any(sum(name in held for held in names) >= 2 for held in names for name in held)
+
+
+# Code that computes the centre -R^T T is not told it (the rest of the recipe is a checklist).
+CENTRE = (expr("-R.T @ T") | expr("-_.T @ _") | expr("-(_.T @ _)") | expr("-np.dot(_.T, _)")
+          | expr("-_.T.dot(_)") | expr("_.T @ -_")).saying("computes camera 2's centre -R^T T")
+BASELINE_AXIS = (expr("_ / np.linalg.norm(_)") | calls("np.linalg.norm")).saying("divides the baseline by its length")
+AXES_AS_COLUMNS = (calls("np.column_stack") | keyword("np.stack", "axis", 1) | keyword("np.stack", "axis", -1)
+                   | expr("np.array([_, _, _]).T") | expr("np.vstack([_, _, _]).T") | expr("np.stack([_, _, _]).T")
+                   ).saying("stacks the new axes as columns")
+ONE_ROTATION = Predicate("gives both cameras one new rotation and one new K", _shared_by_products)
+
+
+def rectification_recipe(lead: str, *first: tuple) -> str:
+    """The rectification recipe's checklist after ``lead``: ``first`` items, then the new axes and the maps."""
+    return checklist(
+        lead, *first, ("the new x axis follows the baseline between the two centres", BASELINE_AXIS),
+        ("the new axes are the rows of the rectifying rotation (np.vstack([e1, e2, e3]), not its columns)",
+         ~AXES_AS_COLUMNS),
+        ("both cameras get that one new rotation and one new K", ONE_ROTATION),
+        none_left="look at the order of the products in each map (H1 = K_new R_rect K1^-1, H2 = K_new R_rect R K2^-1)")
+
+
 RECTIFY_HINT = Hint(
-    "compare your steps with the recipe: X2 = R X1 + T takes camera-1 coordinates to camera 2's, so camera 2's "
-    "centre is -R^T T (not T); the new x axis follows the baseline between the two centres; both cameras "
-    "get that one new rotation and one new K",
+    rectification_recipe("compare your steps with the recipe: ",
+                         ("camera 2's centre is -R^T T, not T (X2 = R X1 + T takes camera-1 coordinates to camera "
+                          "2's)", CENTRE)),
     asks=calls("cv2.stereoRectify"),
     instead="your code {found}; then check what it is given: R and T take camera-1 coordinates to camera "
             "2's (X2 = R X1 + T), so the second camera's centre is -R^T T, not T")
 # Code that gives cv2.stereoRectify K1, K2, R and T as they came is not told to check what it gives
 # it: the rest of that recipe, as a checklist (which output belongs to which image).
+class _Alone:
+    """One function read as a module's code (for the readings written over a Code's functions)."""
+
+    def __init__(self, function):
+        self.function = function
+
+    def reachable(self, names):
+        return [self.function]
+
+
+def _outputs_out_of_order(function) -> bool:
+    """``R1, P1, R2, P2 = cv2.stereoRectify(...)`` (its outputs are R1, R2, P1, P2, in that order)."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Tuple) and len(node.targets[0].elts) >= 4 \
+                and any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "stereoRectify"
+                        for n in ast.walk(node.value)):
+            second = node.targets[0].elts[1]
+            if isinstance(second, ast.Name) and second.id.lower().startswith("p"):
+                return True
+    return False
+
+
 GIVEN_AS_IS_HINT = Hint(RECTIFY_HINT.neutral("calls cv2.stereoRectify"),
                         asks=passes_parameters("cv2.stereoRectify", {0: "K1", 2: "K2", 5: "R", 6: "T"},
                                                says="gives cv2.stereoRectify K1, K2, R and T as they came"),
-                        instead="your code {found}, as it takes them; check the image size it is given (width, "
-                                "height) and what is done with what it returns: R1 and P1 belong to the left "
-                                "image, R2 and P2 to the right, and each image's map is H = P[:, :3] R K^-1")
-# Code that computes the centre -R^T T is not told it (the rest of the recipe is a checklist).
-CENTRE = (expr("-R.T @ T") | expr("-_.T @ _") | expr("-(_.T @ _)") | expr("-np.dot(_.T, _)")
-          | expr("-_.T.dot(_)") | expr("_.T @ -_")).saying("computes camera 2's centre -R^T T")
+                        instead="your code {found}, as it takes them; " + checklist(
+                            "", ("the image size it is given is (width, height)", ~Predicate(
+                                "gives the size rows first", lambda f: bool(size_given_as_shape(_Alone(f), ())))),
+                            ("R1 and P1 go to the left image, R2 and P2 to the right (it returns R1, R2, P1, P2 in "
+                             "that order)", ~Predicate("reads its outputs out of order", _outputs_out_of_order)),
+                            ("each image's map is H = P[:, :3] R K^-1", expr("_[:, :3] @ _") | expr("_[:3, :3] @ _")),
+                            none_left="look at which image each map is applied to, and at the output size"))
 CENTRE_HINT = Hint(RECTIFY_HINT.text, asks=CENTRE,
-                   instead="your code {found}; compare the rest with the recipe: the new x axis follows the "
-                           "baseline between the two centres, and both cameras get one new rotation and one new K")
+                   instead="your code {found}; " + rectification_recipe("compare the rest with the recipe: "))
 
 
 @ex3.check("rectify: true correspondences end up on the same row", points=4)
@@ -1319,8 +1395,9 @@ BLOCK_MEANS_HINT = Hint("Subtract each block's mean before multiplying.", asks=S
 NORMALISE_NCC_HINT = Hint(
     "Subtract each block's mean and divide by the product of the blocks' standard deviations.",
     asks=SUBTRACTS_MEANS & STD_PRODUCT,
-    instead="Your code {found}: check that each block's own mean is subtracted and that the deviations divided by "
-            "are those of the same two blocks, over the same pixels.")
+    # what it asks for is read (means, a product of deviations); which pixels they are taken over is not
+    instead="Your code {found}: look at the pixels each mean and each deviation is taken over (the two blocks of "
+            "the product, each its own, over the same window).")
 
 
 def name_ncc_normalisation(t: Trial, what: str):
@@ -1439,10 +1516,37 @@ SMOOTHNESS_IGNORED = "the smoothness term is ignored"
 
 
 WEAK_DEFAULT = "the default smoothness penalty is too weak for the cost's scale"
+# a conversion that stops uint8 differences wrapping round (a float, or a signed integer type)
+FLOATS = ("float", "float32", "float64", "double", "img_as_float", "int", "int16", "int32", "int64")
+
+
+def _converts_an_image(function) -> bool:
+    """A float conversion of one of the function's first two parameters (the images), written on it
+    (``left.astype(np.float64)``, ``np.float32(right)``, ``np.asarray(left, dtype=float)``)."""
+    arguments = function.args.posonlyargs + function.args.args
+    images = {a.arg for a in arguments[:2]}
+    for node in ast.walk(function):
+        if not isinstance(node, ast.Call):
+            continue
+        last = _path(node.func).rsplit(".", 1)[-1]
+        given = [node.func.value] if last == "astype" and isinstance(node.func, ast.Attribute) else node.args[:1]
+        kinds = [*node.args[1:], *(k.value for k in node.keywords if k.arg == "dtype")] if last != "astype" \
+            else node.args
+        floating = last in FLOATS or any(_path(k).rsplit(".", 1)[-1] in FLOATS for k in kinds
+                                         if isinstance(k, (ast.Name, ast.Attribute)))
+        if floating and any(isinstance(n, ast.Name) and n.id in images for g in given for n in ast.walk(g)):
+            return True
+    return False
+
+
 COST_SCALE_HINT = Hint("compute the data cost in float (differences of uint8 images wrap round: 10 - 12 = 254), "
                        "and choose the default penalty for that cost's scale", asks=TO_FLOAT,
-                       instead="your code {found}: check that the data cost is computed on the converted images, "
-                               "and that the default penalty suits that cost's scale")
+                       # the penalty's scale is the measurement itself (WEAK_DEFAULT); the conversion is read
+                       instead="your code {found}: " + checklist(
+                           "", ("the data cost is computed on the converted images",
+                                Predicate("converts the images to float", _converts_an_image)),
+                           none_left="the cost is computed in float; the default penalty is what is too weak for "
+                                     "that cost's scale"))
 
 
 def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, scene, compared_with="winner-take-all block matching",
@@ -1855,8 +1959,64 @@ def simulate_boxes(t):
     lit_expected = np.any(expected > 0, axis=0)
     t.fail(f"{what}: {format_apart(wrong.mean(), 0.0, 2, percent=True)} of the pixels differ from the projector model "
            f"({np.mean(wrong & ~lit_expected):.1%} should be black).",
-           hint="pixel (u, v) at depth Z sees projector column round(u - f*baseline/Z); black if "
-                "Z <= 0 or that column is not on the projector")
+           hint=PROJECTOR_MODEL)
+
+
+def _both_bounds(function) -> bool:
+    """A column tested against both ends of the projector: ``>= 0`` (or ``> -1``) and ``< width`` (or ``<= w - 1``);
+    a test of the depth (the first parameter: ``depth > 0``) is no test of the column."""
+    arguments = function.args.posonlyargs + function.args.args
+    depth = arguments[0].arg if arguments else ""
+    low = high = False
+    for n in ast.walk(function):
+        if isinstance(n, ast.Compare) and len(n.ops) == 1 and not any(
+                isinstance(m, ast.Name) and m.id == depth for m in ast.walk(n)):
+            right = n.comparators[0]
+            constant = right.value if isinstance(right, ast.Constant) and isinstance(right.value, (int, float)) else None
+            if isinstance(n.ops[0], (ast.GtE, ast.Gt)) and constant in (0, -1):
+                low = True
+            elif isinstance(n.ops[0], (ast.Lt, ast.LtE)) and constant is None:
+                high = True
+            elif isinstance(n.ops[0], (ast.Lt, ast.LtE)) and isinstance(n.left, ast.Constant) and n.left.value in (0, -1):
+                low = True   # 0 <= column
+    return low and high
+
+
+PROJECTOR_MODEL = checklist(
+    "", ("pixel (u, v) at depth Z sees projector column round(u - f*baseline/Z)",
+         (calls("np.round") | calls("np.rint") | calls("round") | calls("np.floor")) & expr("_ * _ / _")),
+    ("a pixel with Z <= 0 is black", expr("_ > 0") | expr("_ <= 0") | expr("0 < _")),
+    ("a pixel whose column is off the projector (below 0, or at its width and past) is black",
+     Predicate("tests the column against both ends", _both_bounds)),
+    none_left="look at which bit of the column's Gray code each image shows (the most significant first)")
+
+
+def _divide_keyword(name: str, holds: Callable) -> Callable:
+    """A test: an ``np.divide`` call given ``name=`` whose value ``holds`` (a name, computed elsewhere, holds)."""
+    def test(function) -> bool:
+        return any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide"
+                   and any(k.arg == name and (isinstance(k.value, ast.Name) or holds(k.value)) for k in n.keywords)
+                   for n in ast.walk(function))
+    return test
+
+
+def _positive_test(node) -> bool:
+    return isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], ast.Gt) \
+        and isinstance(node.comparators[0], ast.Constant) and node.comparators[0].value == 0
+
+
+def _zeros(node) -> bool:
+    return isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("zeros_like", "zeros")
+
+
+GUARDED_DIVISION_HINT = Hint(
+    "np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0) (NaN > 0 is False)",
+    asks=keyword("np.divide", "where"),
+    instead="your code already {found}: " + checklist(
+        "", ("its condition is d > 0 (NaN > 0 is False)", Predicate("divides where d > 0",
+                                                                    _divide_keyword("where", _positive_test))),
+        ("out starts as zeros", Predicate("gives np.divide zeros as out", _divide_keyword("out", _zeros))),
+        none_left="look at the value divided by (the disparity given, d = x_l - x_r) and at the array returned"))
 
 
 def sl_decoding_explained(got, images, f, baseline) -> list[str]:
@@ -1914,8 +2074,31 @@ def judge_sl_depth(t: Trial, what, got, images, f, baseline, true_depth):
         t.fail(f"{what}: pixels that are black in every image are undecodable: their depth must be 0.")
     t.fail(f"{what}: only {format_apart(agree, 0.995, 3, percent=True)} of the pixels agree with the decoded "
            "depth (at least 99.5% needed).",
-           hint="threshold each image at mid-grey, convert the Gray code to binary (most significant "
-                "bit first), projector column = (k + 0.5) * width / 2**n_bits - 0.5, Z = f b / (u - column)")
+           hint=STRUCTURED_LIGHT_RECIPE)
+
+
+def _mid_grey(function) -> bool:
+    """A comparison with a constant near mid-grey (100..160 on 0..255, 0.4..0.6 on 0..1)."""
+    return any(isinstance(n, ast.Compare) and any(isinstance(c, ast.Constant) and isinstance(c.value, (int, float))
+                                                  and (100 <= c.value <= 160 or 0.4 <= c.value <= 0.6)
+                                                  for c in [n.left, *n.comparators])
+               for n in ast.walk(function))
+
+
+XOR = Predicate("XORs bits", lambda function: any(
+    (isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.BitXor))
+    or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("bitwise_xor", "logical_xor"))
+    for n in ast.walk(function)))
+STRIPE_CENTRE = (expr("_ + 0.5") & (expr("2 ** _") | expr("1 << _") | calls("np.power") | calls("np.left_shift"))
+                 ).saying("takes the stripe's centre")
+STRUCTURED_LIGHT_RECIPE = checklist(
+    "", ("each image is thresholded at mid-grey", Predicate("thresholds at mid-grey", _mid_grey)),
+    ("the Gray code is converted to binary (most significant bit first: b0 = g0, b_i = b_(i-1) XOR g_i)", XOR),
+    ("the projector column is (k + 0.5) * width / 2**n_bits - 0.5", STRIPE_CENTRE),
+    ("Z = f b / (u - column)", expr("_ * _ / (_ - _)") | expr("_ * _ / _") | expr("_ / (_ - _)")),
+    none_left="look at the order the bits are read in (the first image is the most significant bit), at what each "
+              "XOR is taken with (the previous binary bit, not the previous Gray bit), and at the pixels left "
+              "undecoded (black in every image: depth 0)")
 
 
 # 10 bits too, as a 1024-column projector is coded: stripe indices past 255 (a uint8 accumulator of
