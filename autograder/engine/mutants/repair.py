@@ -523,27 +523,32 @@ SEEN = 8                 # a function's calls kept from a grading's checks for c
 SEEN_CONFIRMATIONS = 3   # of which a repair is confirmed on at most this many
 
 
-def _widened(call, defaults=()) -> list:
+def _widened(call, defaults=(), factors=(4.0,)) -> list:
     """The call made unlike the check's own inputs, when it can be: every float argument given alone (a
-    factor, an angle, a threshold; a numeric default it left out, given) four times larger, and every
-    image a few rows and columns smaller. A change right by coincidence on the check's inputs -- `s * s`
-    truncated to 0 where `s * height` belongs for small factors, an angle taken from the width of a
-    360-pixel image -- is wrong there. [] when nothing changes."""
+    factor, an angle, a threshold; a numeric default it left out, given) four times larger (each of
+    ``factors``), and every image a few rows and columns smaller. A change right by coincidence on the
+    check's inputs -- `s * s` truncated to 0 where `s * height` belongs for small factors, an angle taken
+    from the width of a 360-pixel image, a comparison turned round that sends enlargements the way of
+    shrinks (`w >= width` -> `w <= width`: the floats half as large) -- is wrong there. [] when nothing
+    changes."""
     function, args, kwargs = call
     kwargs = {**{name: float(value) for name, position, value in defaults
                  if position >= len(args) and name not in kwargs and isinstance(value, float)}, **kwargs}
 
-    def widen(value):
+    def widen(value, factor):
         if isinstance(value, float) and value != 0:
-            return value * 4.0
-        if isinstance(value, np.ndarray) and value.dtype == np.uint8 and value.ndim >= 2 \
+            return value * factor
+        if factor > 1 and isinstance(value, np.ndarray) and value.dtype == np.uint8 and value.ndim >= 2 \
                 and min(value.shape[:2]) > 20:
             return np.ascontiguousarray(value[:-3, :-5])
         return value
 
-    made = (function, tuple(widen(a) for a in args), {k: widen(v) for k, v in kwargs.items()})
-    changed = any(a is not b for a, b in zip(made[1], args)) or any(made[2][k] is not kwargs[k] for k in kwargs)
-    return [made] if changed else []
+    made = []
+    for factor in factors:
+        call = (function, tuple(widen(a, factor) for a in args), {k: widen(v, factor) for k, v in kwargs.items()})
+        if any(a is not b for a, b in zip(call[1], args)) or any(call[2][k] is not kwargs[k] for k in kwargs):
+            made.append(call)
+    return made
 
 
 def _close(value, reference) -> bool:
@@ -697,6 +702,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
 
 
 FIXES = 3         # the most fixes told (one per line)
+BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
 REPLAYS = 4       # the most changes a failed check is replayed with
@@ -740,6 +746,7 @@ class _Variants:
         self.companion = trial.sandbox.companion()
         self.forbid = tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
+        self.crossing: set = set()   # the variants on the other side of a threshold (see confirmed)
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
         self.projective = not any(naming.error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
@@ -870,6 +877,12 @@ class _Variants:
                 variants += naming.derived_calls(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
                                              self.model.defaults.get(self.function, ()))
                 variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
+            # (and the other side of a threshold, for a changed condition only: a student's own
+            # recipe may differ from the reference's legitimately there -- a resize's shrink)
+            crossing = [call for i in failing[:2]
+                        for call in _widened(self.inputs[i], self.model.defaults.get(self.function, ()), (0.5,))]
+            self.crossing = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(crossing)))
+            variants += crossing
             every = self.inputs + variants
             try:
                 runner = naming.helper()
@@ -880,8 +893,13 @@ class _Variants:
             except HelperFailed:   # the reference too slow on them (a whole pipeline): no confirmation here
                 self.confirmations = (every, {}, None)
         every, wanted, usable = self.confirmations
+        if usable is not None and mutant.operator not in BRANCHING:
+            usable = [i for i in usable if i not in self.crossing]
         if usable is not None and (not usable or self._right_on(mutant, usable, every, wanted)):
-            return True
+            # A condition changed sends inputs down another branch: the inputs derived from the failing
+            # ones mostly stay on the same side of it, so the grading's other checks of the function
+            # judge too (`w >= width` -> `w <= width` mended a crop and broke every shrink).
+            return mutant.operator not in BRANCHING or self.passes_other_checks(mutant)
         if mutant.key not in self.checked:
             return False
         # A function with many right answers (a rectification, an estimator on noisy points: its own
