@@ -622,6 +622,16 @@ MISSING_LINES = np.array([[0.0, 1.0, -150.0],    # y = 150, below the 120 rows
                           [0.0, 1.0, -60.0]])    # y = 60
 
 
+def _drawn(t, what: str, image, lines, why: str):
+    """draw_epipolar_lines(image, lines); an exception it raises is relayed with ``why`` these lines."""
+    try:
+        return t.call("draw_epipolar_lines", image, lines)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        raise StudentFailure(failure.outcome, f"{what}: {failure.message}\n{why}") from None
+
+
 @ex2.check("draw_epipolar_lines draws vertical and horizontal lines (b = 0, a = 0, or of rounding size); a "
            "line outside the image draws nothing", points=1)
 def draw_vertical(t):
@@ -632,30 +642,19 @@ def draw_vertical(t):
         t.images("draw_epipolar_lines(black image, lines x = 70 and y = 60)", yours=got)
     judge_drawing(t, "draw_epipolar_lines(image, [[1, 0, -70], [0, 1, -60]])", got, image, lines)
     what = "draw_epipolar_lines(image, [[1, 1e-13, -100], [1e-13, 1, -40]])"
-    try:
-        got = t.call("draw_epipolar_lines", image, NEAR_AXIS_LINES)
-    except StudentFailure as failure:
-        if failure.outcome.kind != "exception":
-            raise
-        raise StudentFailure(failure.outcome, f"{what}: {failure.message}\nThese are the lines x = 100 and y = 40 "
-                             "with b (and a) of rounding size, 1e-13, as F x gives them for a vertical (horizontal) "
-                             "camera motion; the lines with b = 0 and a = 0 are drawn. "
-                             + measured("Such a line meets the left and right borders (the top and bottom ones) "
-                                        "some 1e15 px away: draw every line between the two borders it crosses "
-                                        "inside the image.")) from None
+    got = _drawn(t, what, image, NEAR_AXIS_LINES,
+                 "These are the lines x = 100 and y = 40 with b (and a) of rounding size, 1e-13, as F x gives them "
+                 "for a vertical (horizontal) camera motion; the lines with b = 0 and a = 0 are drawn. "
+                 + measured("Such a line meets the left and right borders (the top and bottom ones) some 1e15 px "
+                            "away: draw every line between the two borders it crosses inside the image."))
     if isinstance(got, np.ndarray) and got.ndim in (2, 3):
         t.images("draw_epipolar_lines(black image, lines x = 100 and y = 40, b and a of 1e-13)", yours=got)
     judge_drawing(t, what + " (x = 100 and y = 40, b and a of rounding size)", got, image, NEAR_AXIS_LINES)
     what = "draw_epipolar_lines(image, [[0, 1, -150], [0, 1, -60]]) on a 160 x 120 image"
-    try:
-        got = t.call("draw_epipolar_lines", image, MISSING_LINES)
-    except StudentFailure as failure:
-        if failure.outcome.kind != "exception":
-            raise
-        raise StudentFailure(failure.outcome, measured(
-            f"{what}: {failure.message}\nThe first line, y = 150, misses the image (it has 120 rows), as the "
-            "epipolar line of a point whose match is out of view does; the lines above, inside it, are drawn. ")
-            + measured("A line outside the image draws nothing; the others are drawn as ever.")) from None
+    got = _drawn(t, what, image, MISSING_LINES, measured(
+        "The first line, y = 150, misses the image (it has 120 rows), as the epipolar line of a point whose "
+        "match is out of view does; the lines above, inside it, are drawn. ")
+        + measured("A line outside the image draws nothing; the others are drawn as ever."))
     judge_drawing(t, what + " (y = 150 misses the image)", got, image, MISSING_LINES)
 
 
