@@ -82,6 +82,13 @@ class StudentFailure(Exception):
         super().__init__(message)
         self.outcome, self.message = outcome, message
 
+    def said(self, message: str) -> "StudentFailure":
+        """The same failure told with ``message`` (the input it was raised on added): what was noted on
+        it on the way (whose function failed, for a validation's report) stays."""
+        told = StudentFailure(self.outcome, message)
+        told.__dict__.update({k: v for k, v in vars(self).items() if k not in ("outcome", "message")})
+        return told
+
 
 def fingerprint(*values) -> str:
     """A short key for values given to a student's function (arrays by their bytes, other

@@ -100,7 +100,7 @@ def call_on(t: Trial, what: str, function: str, *args, **kwargs):
         if failure.outcome.kind != "exception":
             raise
         first, newline, rest = failure.message.partition("\n")
-        raise StudentFailure(failure.outcome, f"{first} (raised on {what}){newline}{rest}") from None
+        raise failure.said(f"{first} (raised on {what}){newline}{rest}") from None
 
 
 # ================================================================== ex1 translation

@@ -629,7 +629,7 @@ def _drawn(t, what: str, image, lines, why: str):
     except StudentFailure as failure:
         if failure.outcome.kind != "exception":
             raise
-        raise StudentFailure(failure.outcome, f"{what}: {failure.message}\n{why}") from None
+        raise failure.said(f"{what}: {failure.message}\n{why}") from None
 
 
 @ex2.check("draw_epipolar_lines draws vertical and horizontal lines (b = 0, a = 0, or of rounding size); a "
