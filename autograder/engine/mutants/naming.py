@@ -547,38 +547,36 @@ class Clock:
     ``processes``, or where a process's CPU time cannot be read (no ``/proc``), wall-clock seconds."""
 
     def __init__(self, seconds: float, processes=None):
-        now = time.monotonic()
-        self.seconds, self.started = seconds, now
-        self.end = now + seconds                       # (wall clock)
-        self.wall_end = now + seconds * WALL_SLACK
+        self.seconds, self.started = seconds, time.monotonic()
         self._processes = processes
         self._thread = time.thread_time()
         self._cpu: dict[int, list[float]] = {}         # pid -> [CPU seconds when first seen, last seen]
-        if processes is not None and self._look() is None:
-            self._processes = None
+        if processes is not None and not self._look():
+            self._processes = None   # no /proc to read: wall-clock seconds
 
-    def _look(self) -> float | None:
-        """CPU seconds used since the start (None when a process's cannot be read)."""
+    def _look(self) -> bool:
+        """Read the CPU time of the processes working now; False when one cannot be read. A process
+        that ended since (a worker restarted after a timeout) keeps the time last read of it."""
+        readable = True
         for pid, started in self._processes():
             cpu = evidence.cpu_seconds(pid)
             if cpu is None:
-                return None
+                readable = False
+                continue
             # A process started since (a helper or worker restarted) counts all its time; one that ran
             # before (the student's worker, a helper kept from an earlier grading) from now on.
-            seen = self._cpu.setdefault(pid, [0.0 if started >= self.started else cpu, cpu])
-            seen[1] = cpu
-        return time.thread_time() - self._thread + sum(last - first for first, last in self._cpu.values())
+            self._cpu.setdefault(pid, [0.0 if started >= self.started else cpu, cpu])[1] = cpu
+        return readable
 
     def used(self) -> float:
-        """Seconds of the budget used so far."""
+        """Seconds of the budget used so far: CPU seconds, and never less than a WALL_SLACK-th of the
+        wall-clock time (a very busy machine)."""
         wall = time.monotonic() - self.started
         if self._processes is None:
             return wall
-        cpu = self._look()
-        if cpu is None:   # a process no longer readable: wall-clock time from here on
-            self._processes = None
-            return wall
-        return max(cpu, wall * self.seconds / (self.wall_end - self.started) if self.wall_end > self.started else wall)
+        self._look()
+        cpu = time.thread_time() - self._thread + sum(last - first for first, last in self._cpu.values())
+        return max(cpu, wall / WALL_SLACK)
 
     def left(self) -> float:
         return self.seconds - self.used()

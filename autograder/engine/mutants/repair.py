@@ -281,8 +281,7 @@ def _twin_swap(fix: "Fix") -> bool:
     a, b = pairs[0]
     if len(a) == len(b) and sum(x != y for x, y in zip(a, b)) == 1 and any(x.isdigit() for x in a + b):
         return True
-    split = lambda name: re.split(r"_", name)  # noqa: E731
-    parts_a, parts_b = split(a), split(b)
+    parts_a, parts_b = a.split("_"), b.split("_")
     return len(parts_a) == len(parts_b) and sum(x != y for x, y in zip(parts_a, parts_b)) == 1 and any(
         frozenset((x, y)) in _TWIN_WORDS for x, y in zip(parts_a, parts_b) if x != y)
 
