@@ -689,3 +689,43 @@ def test_a_change_found_beside_a_checks_own_name_is_told_after_it(tmp_path):
     assert told, [c.message for c in failed]
     assert "opposite way" in told[0].message and not told[0].mistake.startswith(repair.MISTAKE)
     assert told[0].message.index("opposite way") < told[0].message.index("Trying small changes")
+
+
+def test_a_change_of_a_guard_that_does_not_matter_is_not_told(tmp_path):
+    """A bounds test before cv2.circle (which clips by itself) with the shape read as (width, height):
+    points right of the image's height are skipped. Changing the test (`and` -> `or`, `cx` -> `cy`)
+    passes the checks only as removing the test does, so no change of it is told; the unpacking may be."""
+    folder = edited_reference(tmp_path, "lab09_camera", (
+        "            cv2.circle(out, (int(round(x)), int(round(y))), int(radius), color, thickness=-1)",
+        "            cx, cy = int(round(x)), int(round(y))\n"
+        "            w, h = out.shape[:2]\n"
+        "            if 0 <= cx < w and 0 <= cy < h:\n"
+        "                cv2.circle(out, (cx, cy), int(radius), color, thickness=-1)"))
+    result = grade(folder, ["lab09.ex5"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab09.ex5") if c.score < c.max_score]
+    assert checks
+    guard = "0 <= cx < w and 0 <= cy < h"
+    for check in checks:
+        told = check.message.split("Trying small changes", 1)[1:] or [""]
+        assert f"`{guard}` to" not in told[0] and "`0 <= cx < w` to" not in told[0] \
+            and "`0 <= cy < h` to" not in told[0], check.message
+
+
+def test_names_swapped_where_every_mode_reads_them_are_not_told_for_one_modes_call(tmp_path):
+    """The SSD branch takes the images in the wrong order, the NCC branch in the right one: swapping
+    them where they are made mends the SSD calls by breaking the NCC ones (confirmed on the function's
+    other mode), so only the SSD line's swap is told."""
+    folder = edited_reference(tmp_path, "lab12_stereo", (
+        "    volume = (_ssd_volume if cost == \"ssd\" else _ncc_volume)(\n"
+        "        left, right, int(max_disparity), int(block_size))\n",
+        "    if cost == \"ncc\":\n"
+        "        volume = _ncc_volume(left, right, int(max_disparity), int(block_size))\n"
+        "    else:\n"
+        "        volume = _ssd_volume(right, left, int(max_disparity), int(block_size))\n"))
+    result = grade(folder, ["lab12.ex4"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab12.ex4") if c.score < c.max_score]
+    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    assert told and any("_ssd_volume(left, right" in message for message in told), [c.message for c in checks]
+    made = "left, right = (_grey_float(left), _grey_float(right))"   # where the names are made
+    assert not any(f"`{made}` to" in message or "(_grey_float(right), _grey_float(left))" in message
+                   for message in told), told

@@ -216,6 +216,33 @@ class _Student:
             self._statements[where] = starts
         return self._statements[where].get(line, line)
 
+    def guards(self, mutant) -> list:
+        """The mutant's code with a condition it changes made constant instead, True then False
+        (each condition of an ``if``, a conditional expression or a comprehension's filter that holds
+        one of its changes): the guard removed, taken or never."""
+        made = []
+        for where, ordinal, _, _ in mutant.edits:
+            nodes, parents = self._walk(where)
+            node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+            while node is not None and id(node) in parents:
+                parent, field, _ = parents[id(node)]
+                if (isinstance(parent, (ast.If, ast.IfExp)) and field == "test") \
+                        or (isinstance(parent, ast.comprehension) and field == "ifs"):
+                    test = next(i for i, each in enumerate(nodes) if each is node)
+                    made += [replace(mutant, edits=((where, test, "constant", value),)) for value in (True, False)]
+                    break
+                node = None if isinstance(parent, ast.stmt) else parent
+        return made
+
+    def _walk(self, where: str) -> tuple[list, dict]:
+        """The def ``where``'s nodes in ast.walk order and their parents (empty when no such def)."""
+        fn = self._defs.get(where)
+        if fn is None:
+            return [], {}
+        if where not in self._walked:
+            self._walked[where] = (list(ast.walk(fn)), _parents(fn))
+        return self._walked[where]
+
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
         if mutant.key not in self.fixes:
@@ -232,9 +259,7 @@ class _Student:
         fn = self._defs.get(where)
         if fn is None:
             return None
-        if where not in self._walked:
-            self._walked[where] = (list(ast.walk(fn)), _parents(fn))
-        nodes, parents = self._walked[where]
+        nodes, parents = self._walk(where)
         if not 0 <= ordinal < len(nodes):
             return None
         edited = nodes[ordinal]
@@ -637,14 +662,17 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             ruled_out.add(mutant.key)
     if not candidates:
         # A function with many right answers (a rectification) comes only somewhat nearer the
-        # reference's when mended: the nearest changes are judged by the check itself.
-        for _, mutant in sorted(near, key=lambda pair: pair[0]):
-            if variant.replays >= REPLAYS or clock.left() <= 0:
+        # reference's when mended: the nearest changes are judged by the check itself, the first that
+        # passes it and those exactly as near (the same answers from another place: names swapped where
+        # they are made, or where they are used -- the confirmation tells them apart).
+        passed = None
+        for apart, mutant in sorted(near, key=lambda pair: pair[0]):
+            if variant.replays >= REPLAYS or clock.left() <= 0 or (passed is not None and apart > passed):
                 break
             if mutant.key in variant.checked or not variant.passes_check(mutant, near_answers[mutant.key], failing):
                 continue
             candidates.append(mutant)
-            break
+            passed = apart
     fixes, lines = [], set()
     shown = [(mutant, variant.fix(mutant)) for mutant in candidates]
     # The smallest change of the text first: the student's slip is a few characters (`R.T` for `R`),
@@ -655,7 +683,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             break
         if fix.changes[0][0] in lines:
             continue
-        if variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs):
+        if (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
+                and not variant.guard_untested(mutant, failing) and not variant.breaks_other_checks(mutant):
             fixes.append((mutant, fix))
             lines.add(fix.changes[0][0])
         elif clock.left() > 0 and not (mutant.key in variant.checked and not variant.other_checks()):
@@ -695,7 +724,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if values is not None and (variant.passes_check(both, values, failing) if subtle else all(
                 variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing))):
             fix = variant.fix(both)
-            if fix is not None and variant.confirmed(both, failing):
+            if fix is not None and variant.confirmed(both, failing) and not variant.guard_untested(both, failing):
                 return variant.repair([(both, fix)])
     return None
 
@@ -746,6 +775,7 @@ class _Variants:
         self.forbid = tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
         self.crossing: set = set()   # the variants on the other side of a threshold (see confirmed)
+        self.modes: set = set()      # the variants in the function's other modes (see confirmed)
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
         self.projective = not any(naming.error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
@@ -756,6 +786,7 @@ class _Variants:
         self.screenings = 0         # changes run on the screening input
         self.theirs: dict = {}      # confirmation input -> the student's own answer there
         self.confirmed_by_checks = False   # a change the check judged, confirmed by its other checks
+        self.passed_others: set = set()    # changes with which the function's other checks passed
         # Changes the check judged whose answers on the failing inputs were close to the reference's
         # (a couple of grey levels, 1%): only their spread says what the student's recipe legitimately
         # gives elsewhere; a change far from the reference (a copy removed, no rectification at all)
@@ -882,6 +913,12 @@ class _Variants:
                         for call in _widened(self.inputs[i], self.model.defaults.get(self.function, ()), (0.5,))]
             self.crossing = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(crossing)))
             variants += crossing
+            # (and the function's other modes, cost="ncc" beside "ssd": there a change must leave the
+            # student's answers as they are, or make them right -- names swapped where both modes read
+            # them mend one mode's call by breaking the other's)
+            modes = naming.mode_calls(self.inputs[failing[0]], getattr(self.model, "modes", {}).get(self.function, ()))
+            self.modes = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(modes)))
+            variants += modes
             every = self.inputs + variants
             try:
                 runner = naming.helper()
@@ -892,8 +929,11 @@ class _Variants:
             except HelperFailed:   # the reference too slow on them (a whole pipeline): no confirmation here
                 self.confirmations = (every, {}, None)
         every, wanted, usable = self.confirmations
-        if usable is not None and mutant.operator not in BRANCHING:
-            usable = [i for i in usable if i not in self.crossing]
+        if usable is not None and self.modes and not self._other_modes_kept(mutant, every, wanted):
+            return False
+        if usable is not None:
+            usable = [i for i in usable if i not in self.modes
+                      and (mutant.operator in BRANCHING or i not in self.crossing)]
         if usable is not None and (not usable or self._right_on(mutant, usable, every, wanted)):
             # A condition changed sends inputs down another branch: the inputs derived from the failing
             # ones mostly stay on the same side of it, so the grading's other checks of the function
@@ -911,6 +951,53 @@ class _Variants:
             self.confirmed_by_checks = True
             return True
         return False
+
+    def guard_untested(self, mutant, failing) -> bool:
+        """Whether a change of a condition mends no more than removing the condition does: the code
+        with that condition always true, or always false, is right on the failing inputs too (or
+        passes the check, where the check judged the change) and on the function's other checks. The
+        checks then cannot tell the change from dropping a guard that does not matter (a bounds test
+        before cv2.circle, which clips): the change is not confirmed as the slip."""
+        for guard in self.student.guards(mutant):
+            values = self.answers(guard, failing, self.inputs)
+            if values is None:
+                continue
+            right = all(self.right(v, self.references[i], self.students[i]) for v, i in zip(values, failing)) or (
+                mutant.key in self.checked
+                and self._replay(guard, (self.trial.check, self.trial.property_examples)) is True)
+            if right and (not self.other_checks() or self.passes_other_checks(guard)):
+                return True
+        return False
+
+    def breaks_other_checks(self, mutant) -> bool:
+        """Whether the variant fails one of the grading's other checks of the function: a change that
+        mends the failing calls by breaking what other calls need is not the slip (names swapped where
+        they are made, mending a call that takes them in the wrong order and breaking the cost="ncc"
+        branch that takes them in the right one). Unknown (out of time, not replayable): False."""
+        if mutant.key in self.passed_others:
+            return False
+        for kept in self.other_checks():
+            if self.clock.left() <= 0:
+                return False
+            if self._replay(mutant, kept) is False and self.clock.left() > 0:
+                return True
+        return False
+
+    def _other_modes_kept(self, mutant, every, wanted) -> bool:
+        """Whether in the function's other modes the variant answers as the student's own code does,
+        or as the reference does."""
+        indices = sorted(i for i in self.modes if naming.error_kind(wanted.get(i)) is None)
+        if not indices:
+            return True
+        values = self.answers(mutant, indices, every)
+        missing = [i for i in indices if i not in self.theirs]
+        own = self.answers(None, missing, every) if missing else []
+        if values is None or own is None:
+            return False
+        self.theirs.update(zip(missing, own))
+        kept = lambda v, theirs: naming.error_kind(v) == naming.error_kind(theirs) if naming.error_kind(theirs) \
+            else self.right(v, theirs, confirming=True)  # noqa: E731 - (the same exception counts as the same answer)
+        return all(self.right(v, wanted[i], confirming=True) or kept(v, self.theirs[i]) for v, i in zip(values, indices))
 
     def other_checks(self) -> list:
         """The grading's other checks that called the function, with their properties' examples; then
@@ -943,6 +1030,8 @@ class _Variants:
             if outcome is False:
                 return False
             confirming += outcome is True
+        if confirming:
+            self.passed_others.add(mutant.key)
         return confirming > 0
 
     def repair(self, fixes, complete: bool = True) -> Repair:
