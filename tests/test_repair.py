@@ -729,3 +729,38 @@ def test_names_swapped_where_every_mode_reads_them_are_not_told_for_one_modes_ca
     made = "left, right = (_grey_float(left), _grey_float(right))"   # where the names are made
     assert not any(f"`{made}` to" in message or "(_grey_float(right), _grey_float(left))" in message
                    for message in told), told
+
+
+def test_a_loop_that_starts_each_step_from_the_input_again_is_told_to_carry_its_result(tmp_path):
+    """`canvas = cv2.line(image.copy(), ...)` in the loop over lines: each line drawn on a fresh copy,
+    only the last one kept. The change told is to draw on the running canvas; drawing on `image` itself
+    (the caller's array) would mend the picture by writing into the input, so it is not told."""
+    folder = edited_reference(tmp_path, "lab11_two_view", (
+        "            cv2.line(canvas, p, q, colour, 1, cv2.LINE_8)",
+        "            canvas = cv2.line(image.copy(), p, q, colour, 1, cv2.LINE_8)"))
+    result = grade(folder, ["lab11.ex2"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab11.ex2") if c.score < c.max_score]
+    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    assert any("changing `image.copy()` to `canvas`" in message for message in told), [c.message for c in checks]
+    assert not any("`image.copy()` to `image`" in message for message in told), told
+
+
+def test_the_running_result_is_offered_only_where_the_loop_restarts_from_its_own_input():
+    """`out = f(image.copy(), ...)` in a loop, `out` made from `image` before it: `image.copy()` -> `out`.
+    Not for a loop that already carries its result, nor for other names of the line."""
+    carried = {m.edits[0][3] for m in repair.mutants_of(textwrap.dedent("""
+        def graded(image, items):
+            out = image.copy()
+            for item in items:
+                out = draw(image.copy(), item, scale)
+            return out
+    """), {"graded"}, phrased=False)["graded"] if m.operator == "carry"}
+    assert carried == {"out"}
+    right = textwrap.dedent("""
+        def graded(image, items):
+            out = image.copy()
+            for item in items:
+                out = draw(out, item, scale)
+            return out
+    """)
+    assert not [m for m in repair.mutants_of(right, {"graded"}, phrased=False)["graded"] if m.operator == "carry"]

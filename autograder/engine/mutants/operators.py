@@ -88,6 +88,7 @@ OPERATORS = {
     "flip_keyword": ("true", "false", "keyword"),     # full_matrices=False -> True
     "float32": ("float32", "dtype", "float"),
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
+    "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),                 # m1 & m2 -> m1 | m2, a and b -> a or b          # cv2.remap(img, mx, my) -> np.float32(mx), ...
 }
@@ -652,6 +653,10 @@ def _make_accumulate(node, payload):
     return ast.AugAssign(target, getattr(ast, payload)(), copy.deepcopy(node.value))
 
 
+def _make_carry(node, payload):
+    return ast.Name(payload, ast.Load())   # the running result where the loop restarted from the input
+
+
 def _make_negate(node, payload):
     if payload == "drop":   # not m -> m
         return copy.deepcopy(node.operand)
@@ -674,7 +679,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {"constant": _make_constant, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+_MAKE = {"constant": _make_constant, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1419,6 +1424,40 @@ def _logic_changes(node, parent, parents):
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], (ast.Name, ast.Subscript)) \
             and _in_loop(node, parents):
         yield "accumulate", "Add", ""
+    running = _restarted(node, parents)
+    if running:
+        yield "carry", running, ""
+
+
+def _restarted(node, parents) -> str | None:
+    """The running result a loop's step starts from the input again instead of (`out = cv2.line(image.copy(),
+    ...)` each time round, where `out` was made before the loop and belongs there): its name, or None.
+    ``node``: a name read (`image`) or a copy of one (`image.copy()`, `np.copy(image)`)."""
+    copied = isinstance(node, ast.Call) and not node.keywords and (
+        (isinstance(node.func, ast.Attribute) and node.func.attr == "copy" and not node.args
+         and isinstance(node.func.value, ast.Name))
+        or (_dotted(node.func) in ("np.copy", "numpy.copy") and len(node.args) == 1 and isinstance(node.args[0], ast.Name)))
+    if not (copied or (isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)
+                       and not isinstance(parents.get(id(node), (None,))[0], ast.Attribute))):
+        return None
+    source = node if isinstance(node, ast.Name) else node.func.value if isinstance(node.func, ast.Attribute) else node.args[0]
+    statement, fn = node, None
+    while id(statement) in parents and not isinstance(statement, ast.stmt):
+        statement = parents[id(statement)][0]
+    if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name)
+            and _in_loop(statement, parents)):
+        return None
+    running = statement.targets[0].id
+    if running == source.id or any(isinstance(n, ast.Name) and n.id == running for n in ast.walk(statement.value)):
+        return None
+    fn = statement
+    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        fn = parents[id(fn)][0]
+    # (made before the loop from the same input: `out = image.copy()`, `out = np.array(image)`)
+    made = any(isinstance(n, ast.Assign) and n.lineno < statement.lineno and not _in_loop(n, parents)
+               and any(isinstance(t, ast.Name) and t.id == running for t in n.targets)
+               and any(isinstance(m, ast.Name) and m.id == source.id for m in ast.walk(n.value)) for n in ast.walk(fn))
+    return running if made else None
 
 
 def _discarded_result(statement: ast.Expr):

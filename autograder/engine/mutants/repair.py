@@ -684,7 +684,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if fix.changes[0][0] in lines:
             continue
         if (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
-                and not variant.guard_untested(mutant, failing) and not variant.breaks_other_checks(mutant):
+                and not variant.writes_inputs(mutant) and not variant.guard_untested(mutant, failing) \
+                and not variant.breaks_other_checks(mutant):
             fixes.append((mutant, fix))
             lines.add(fix.changes[0][0])
         elif clock.left() > 0 and not (mutant.key in variant.checked and not variant.other_checks()):
@@ -787,6 +788,7 @@ class _Variants:
         self.theirs: dict = {}      # confirmation input -> the student's own answer there
         self.confirmed_by_checks = False   # a change the check judged, confirmed by its other checks
         self.passed_others: set = set()    # changes with which the function's other checks passed
+        self.writes: dict = {}   # change (None: the student's own code) -> the calls it changed an input of
         # Changes the check judged whose answers on the failing inputs were close to the reference's
         # (a couple of grey levels, 1%): only their spread says what the student's recipe legitimately
         # gives elsewhere; a change far from the reference (a copy removed, no rectification at all)
@@ -813,6 +815,10 @@ class _Variants:
             self.trial.lab.module, source, self.function, [every[i][1:] for i in indices], forbid=self.forbid,
             timeout=max(0.05, min(timeout, self.clock.left())))
         value = outcome.value if outcome.ok else None
+        for said in outcome.modified if outcome.ok else ():   # "k:name": the k-th call changed its input
+            number = said.partition(":")[0]
+            if number.isdigit() and int(number) < len(indices):
+                self.writes.setdefault(None if mutant is None else mutant.key, set()).add(_key(every[indices[int(number)]]))
         return value if isinstance(value, list) and len(value) == len(indices) else None
 
     def fix(self, mutant) -> Fix | None:
@@ -950,6 +956,17 @@ class _Variants:
         if self.passes_other_checks(mutant):
             self.confirmed_by_checks = True
             return True
+        return False
+
+    def writes_inputs(self, mutant) -> bool:
+        """Whether the variant wrote into its caller's arrays on a call where the student's own code
+        does not (drawing on `image` where `image.copy()` belonged mends the picture by changing the
+        caller's): not a fix a caller can use."""
+        calls = {_key(call): call for call in self.inputs + list(self.confirmations[0] if self.confirmations else [])}
+        for key in self.writes.get(mutant.key, set()) - self.writes.get(None, set()):
+            if key in calls and self.answers(None, [0], [calls[key]]) is not None \
+                    and key not in self.writes.get(None, set()):
+                return True
         return False
 
     def guard_untested(self, mutant, failing) -> bool:
