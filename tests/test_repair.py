@@ -764,3 +764,55 @@ def test_the_running_result_is_offered_only_where_the_loop_restarts_from_its_own
             return out
     """)
     assert not [m for m in repair.mutants_of(right, {"graded"}, phrased=False)["graded"] if m.operator == "carry"]
+
+
+def test_an_eigenvector_picked_by_the_smallest_value_where_its_magnitude_belongs(tmp_path):
+    """Epipoles from np.linalg.eig with np.argmin(values) twice: a negative eigenvalue wins over the
+    zero one. Mended by taking the magnitude at both places (the same slip twice), confirmed on inputs
+    of F's own rank (a perturbed F of rank 3 has no null vector) and up to the sign of a unit vector."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab11_two_view", """
+        def epipoles(F):
+            F = np.asarray(F, dtype=float)
+            w, V = np.linalg.eig(F)
+            w_t, V_t = np.linalg.eig(F.T)
+            e1 = np.real(V[:, np.argmin(w)])
+            e2 = np.real(V_t[:, np.argmin(w_t)])
+            return e1 / np.linalg.norm(e1), e2 / np.linalg.norm(e2)
+        """)
+    result = grade(folder, ["lab11.ex5"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab11.ex5") if c.score < c.max_score]
+    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    assert any("`np.argmin(w)` to `np.argmin(np.abs(w))`" in m and "`np.argmin(w_t)` to `np.argmin(np.abs(w_t))`" in m
+               for m in told), [c.message for c in checks]
+
+
+def test_a_perturbed_matrix_short_of_full_rank_keeps_its_rank():
+    from autograder.engine.mutants import naming
+
+    F = np.array([[0.0, -1.0, 2.0], [1.0, 0.0, -3.0], [-2.0, 3.0, 0.0]])   # a cross-product matrix: rank 2
+    moved = naming._perturbed(F, np.random.default_rng(0))
+    assert not np.allclose(moved, F) and np.linalg.matrix_rank(moved) == 2
+    full = np.diag([1.0, 2.0, 3.0])
+    assert np.linalg.matrix_rank(naming._perturbed(full, np.random.default_rng(0))) == 3
+
+
+def test_a_unit_vector_is_right_up_to_its_sign_only():
+    e = np.array([0.6, 0.8, 0.0])
+    assert repair.right((-e, e), (e, e))
+    assert not repair.right((-2 * e, e), (e, e)) and not repair.right((np.array([0.8, 0.6, 0.0]), e), (e, e))
+    assert not repair.right((-e, e), (e, e), projective=False)
+
+
+def test_a_change_of_code_written_twice_in_a_statement_is_shown_with_enough_to_say_which():
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(r, a):
+            return np.stack([r * np.cos(a), r * np.cos(a)], axis=-1)
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    shown = {student.fix(m).changes[0][1:] for m in student.mutants("graded")
+             if m.operator == "function" and student.fix(m) is not None}
+    assert ("[r * np.cos(a), r * np.cos(a)]", "[r * np.cos(a), r * np.sin(a)]") in shown, shown

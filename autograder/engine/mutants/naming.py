@@ -552,7 +552,7 @@ def _perturbed(value, rng, depth=0):
             finite = value[np.isfinite(value)]
             spread = float(finite.std()) if finite.size > 1 else float(abs(finite).mean() if finite.size else 1.0)
             noise = rng.normal(0, 0.15 * (spread or 1.0), value.shape)
-            return value + np.where(_structure(value), 0.0, noise).astype(value.dtype)
+            return _same_rank(value, value + np.where(_structure(value), 0.0, noise).astype(value.dtype))
         if value.dtype == np.uint8 and value.ndim >= 2:  # an image: the same picture, moved and relit
             moved = np.roll(value, (int(rng.integers(-9, 10)), int(rng.integers(-9, 10))), axis=(0, 1))
             return np.clip(moved.astype(np.int16) + int(rng.integers(-20, 21)), 0, 255).astype(np.uint8)
@@ -563,6 +563,22 @@ def _perturbed(value, rng, depth=0):
     if isinstance(value, dict) and depth < 3:
         return {k: _perturbed(v, rng, depth + 1) for k, v in value.items()}
     return value
+
+
+def _same_rank(value, moved):
+    """``moved`` brought back to ``value``'s rank where ``value`` is a small square matrix short of full
+    rank (a fundamental matrix, of rank 2: its null vectors are what an epipole is; a perturbed F of rank
+    3 has none, and every method of finding them answers differently)."""
+    if value.ndim != 2 or value.shape[0] != value.shape[1] or not 2 <= value.shape[0] <= 4 \
+            or not np.isfinite(value).all() or not np.isfinite(moved).all():
+        return moved
+    singular = np.linalg.svd(value, compute_uv=False)
+    rank = int((singular > 1e-9 * singular[0]).sum()) if singular[0] > 0 else 0
+    if rank in (0, value.shape[0]):
+        return moved
+    U, S, Vt = np.linalg.svd(moved.astype(np.float64))
+    S[rank:] = 0.0
+    return ((U * S) @ Vt).astype(value.dtype)
 
 
 def derived_calls(call, count, seed, defaults=()):

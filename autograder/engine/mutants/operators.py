@@ -88,6 +88,7 @@ OPERATORS = {
     "flip_keyword": ("true", "false", "keyword"),     # full_matrices=False -> True
     "float32": ("float32", "dtype", "float"),
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
+    "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),                 # m1 & m2 -> m1 | m2, a and b -> a or b          # cv2.remap(img, mx, my) -> np.float32(mx), ...
@@ -653,6 +654,12 @@ def _make_accumulate(node, payload):
     return ast.AugAssign(target, getattr(ast, payload)(), copy.deepcopy(node.value))
 
 
+def _make_magnitude(node, payload):
+    new = copy.deepcopy(node)   # np.argmin(v) -> np.argmin(np.abs(v))
+    new.args[0] = ast.Call(_name("np.abs"), [new.args[0]], [])
+    return new
+
+
 def _make_carry(node, payload):
     return ast.Name(payload, ast.Load())   # the running result where the loop restarted from the input
 
@@ -679,7 +686,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {"constant": _make_constant, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+_MAKE = {"constant": _make_constant, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1427,6 +1434,13 @@ def _logic_changes(node, parent, parents):
     running = _restarted(node, parents)
     if running:
         yield "carry", running, ""
+    if isinstance(node, ast.Call) and node.args and _dotted(node.func).rsplit(".", 1)[-1] in _EXTREMES \
+            and not (isinstance(node.args[0], ast.Call) and _dotted(node.args[0].func).rsplit(".", 1)[-1] in _MAGNITUDES):
+        yield "magnitude", None, ""   # the smallest value where the smallest magnitude belongs (an eigenvalue)
+
+
+_EXTREMES = {"argmin", "argmax", "argsort", "nanargmin", "nanargmax"}
+_MAGNITUDES = {"abs", "absolute", "fabs", "norm", "square"}
 
 
 def _restarted(node, parents) -> str | None:

@@ -271,6 +271,17 @@ class _Student:
                     or _width(parent) > _SHOWN:
                 break
             context = parent
+        # (the same code twice in the statement -- `[r * np.cos(a), r * np.cos(a)]` -- is shown with
+        # enough around it to say which one)
+        statement = context
+        while not isinstance(statement, ast.stmt) and id(statement) in parents:
+            statement = parents[id(statement)][0]
+        whole = ast.unparse(statement)
+        while whole.count(ast.unparse(context)) > 1:
+            parent = parents.get(id(context), (None,))[0]
+            if parent is None or isinstance(parent, (ast.stmt, ast.FunctionDef)) or _width(parent) > _SHOWN:
+                break
+            context = parent
         before = ast.unparse(context)
         copied = copy.deepcopy(context)
         position = next(i for i, node in enumerate(ast.walk(context)) if node is edited)
@@ -465,6 +476,11 @@ def _within(value, reference, rtol: float, grey: float, projective: bool = True)
             continue
         small = projective and got.ndim == 2 and got.size <= 16 and np.isfinite(got).all()
         scale = np.vdot(got, want) / np.vdot(got, got) if small and np.vdot(got, got) != 0 else 0
+        # (a unit vector -- an epipole, a singular vector -- has no sign of its own: up to sign only)
+        unit = projective and got.ndim == 1 and got.shape == want.shape and got.size <= 4 and np.isfinite(got).all() \
+            and all(abs(np.linalg.norm(v) - 1) < 1e-6 for v in (got, want))
+        if unit and np.allclose(-got, want, rtol=rtol, atol=floor):
+            continue
         if not (small and scale != 0 and np.allclose(got * scale, want, rtol=rtol, atol=floor)):
             return False
     return True
