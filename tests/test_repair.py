@@ -816,3 +816,34 @@ def test_a_change_of_code_written_twice_in_a_statement_is_shown_with_enough_to_s
     shown = {student.fix(m).changes[0][1:] for m in student.mutants("graded")
              if m.operator == "function" and student.fix(m) is not None}
     assert ("[r * np.cos(a), r * np.cos(a)]", "[r * np.cos(a), r * np.sin(a)]") in shown, shown
+
+
+def test_two_neighbouring_names_copied_from_the_other_image_are_told_as_one_change(tmp_path):
+    """An 8-point row written out with image 2's `x2, y2` where image 1's `x1, y1` belong, side by side:
+    the slip made twice (both names' `2` for `1`), found among the pairs of neighbours, and told as one
+    change of the row."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab11_two_view", """
+        def essential_8point(pts1, pts2, K1, K2):
+            a = np.column_stack([pts1, np.ones(len(pts1))]) @ np.linalg.inv(K1).T
+            b = np.column_stack([pts2, np.ones(len(pts2))]) @ np.linalg.inv(K2).T
+            x1, y1 = a[:, 0] / a[:, 2], a[:, 1] / a[:, 2]
+            x2, y2 = b[:, 0] / b[:, 2], b[:, 1] / b[:, 2]
+            rows = np.column_stack([x2 * x1, x2 * y1, x2, y2 * x1, y2 * y1, y2, x2, y2, np.ones(len(x1))])
+            E = np.linalg.svd(rows)[2][-1].reshape(3, 3)
+            U, _, Vt = np.linalg.svd(E)
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+        """)
+    result = grade(folder, ["lab11.ex3"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab11.ex3") if c.score < c.max_score]
+    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    assert any("y2 * y1, y2, x1, y1, np.ones(len(x1))]` (line" in m and " and `" not in m.split("Trying", 1)[1]
+               for m in told), [c.message for c in checks]
+
+
+def test_two_changes_of_one_line_are_shown_together_unless_they_overlap():
+    line = (7, "[a, b2, c2, 1]", "[a, b1, c2, 1]")
+    assert repair._together([line, (7, "[a, b2, c2, 1]", "[a, b2, c1, 1]")]) == [(7, "[a, b2, c2, 1]", "[a, b1, c1, 1]")]
+    assert len(repair._together([line, (7, "[a, b2, c2, 1]", "[a, b3, c2, 1]")])) == 2
+    assert len(repair._together([line, (8, "[a, b2, c2, 1]", "[a, b2, c1, 1]")])) == 2

@@ -2185,6 +2185,20 @@ def _replaceable(node: ast.Name, parent) -> bool:
                                ast.List, ast.UnaryOp, ast.Compare))
 
 
+_TWIN_WORDS = {frozenset(pair) for pair in (("left", "right"), ("src", "dst"), ("l", "r"), ("x", "y"), ("u", "v"),
+                                            ("rows", "cols"), ("h", "w"), ("height", "width"), ("first", "second"))}
+
+
+def twin_names(a: str, b: str) -> bool:
+    """Whether two names are twins: one digit apart (`R1`/`R2`, `x1`/`x2`) or a pair's other half
+    (`left`/`right`, `src`/`dst`, `l`/`r` in `img_l`/`img_r`)."""
+    if len(a) == len(b) and sum(x != y for x, y in zip(a, b)) == 1 and any(x.isdigit() for x in a + b):
+        return True
+    parts_a, parts_b = a.split("_"), b.split("_")
+    return len(parts_a) == len(parts_b) and sum(x != y for x, y in zip(parts_a, parts_b)) == 1 and any(
+        frozenset((x, y)) in _TWIN_WORDS for x, y in zip(parts_a, parts_b) if x != y)
+
+
 def _name_changes(node: ast.Name, words: _Words, what, line):
     if node.id in ("np", "cv2", "math", "None", "True", "False"):
         return
@@ -2209,7 +2223,9 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     together = {other for line_at, value, _ in words.definitions.get(node.id, ())
                 for other, defs in words.definitions.items() if any(d[0] == line_at and d[1] is value for d in defs)}
     tail = own.rsplit(" of ", 1)[-1]
-    others.sort(key=lambda pair: (pair[0] not in together, pair[1].rsplit(" of ", 1)[-1] != tail or " of " not in own))
+    # (then the name's twin: `x1` for `x2`, a line copied from image 2's with its names half changed)
+    others.sort(key=lambda pair: (pair[0] not in together, not twin_names(node.id, pair[0]),
+                                  pair[1].rsplit(" of ", 1)[-1] != tail or " of " not in own))
     count = 0
     for other, phrase in others:
         if (other in params) != kind and phrase in alike:

@@ -42,7 +42,7 @@ from ...loading.reading import MAX_SOURCE_BYTES
 from ..checks import Trial, Verdict, fingerprint
 from . import naming
 from .helper import HelperFailed
-from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_defs, runs
+from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
@@ -234,6 +234,33 @@ class _Student:
                 node = None if isinstance(parent, ast.stmt) else parent
         return made
 
+    def neighbours(self, first, second) -> bool:
+        """Whether two changes are of items side by side: the same list's, tuple's or call's (`[..., x2,
+        y2, 1]`)."""
+        (where_a, ordinal_a, _, _), (where_b, ordinal_b, _, _) = first.edits[0], second.edits[0]
+        if where_a != where_b:
+            return False
+        nodes, parents = self._walk(where_a)
+        if not (0 <= ordinal_a < len(nodes) and 0 <= ordinal_b < len(nodes)):
+            return False
+        a, b = (parents.get(id(nodes[o]), (None, None, None)) for o in (ordinal_a, ordinal_b))
+        return a[0] is not None and a[0] is b[0] and a[1] == b[1] and a[2] is not None and b[2] is not None \
+            and abs(a[2] - b[2]) == 1
+
+    def slip(self, mutant) -> str:
+        """What the mutant's (first) change does, alike for the same slip at two places: its payload,
+        or for a name used in another's place the part of the name changed (`x2` -> `x1` and `y2` ->
+        `y1` are both "2 -> 1": a line copied from image 2's with image 1's names half changed)."""
+        where, ordinal, operator, payload = mutant.edits[0]
+        nodes, _ = self._walk(where)
+        old = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        if operator != "other_name" or not isinstance(old, ast.Name) or not isinstance(payload, str):
+            return repr(payload)
+        a, b = old.id, payload
+        head = len(os.path.commonprefix([a, b]))
+        tail = len(os.path.commonprefix([a[head:][::-1], b[head:][::-1]]))
+        return repr((a[head:len(a) - tail], b[head:len(b) - tail])) if head or tail else repr(payload)
+
     def _walk(self, where: str) -> tuple[list, dict]:
         """The def ``where``'s nodes in ast.walk order and their parents (empty when no such def)."""
         fn = self._defs.get(where)
@@ -246,7 +273,7 @@ class _Student:
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
         if mutant.key not in self.fixes:
-            shown = [self.shown(edit) for edit in mutant.edits]
+            shown = _together([self.shown(edit) for edit in mutant.edits])
             self.fixes[mutant.key] = None if any(each is None for each in shown) else \
                 Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
         return self.fixes[mutant.key]
@@ -301,25 +328,33 @@ class _Student:
         return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
 
 
-_TWIN_WORDS = {frozenset(pair) for pair in (("left", "right"), ("src", "dst"), ("l", "r"), ("x", "y"), ("u", "v"),
-                                            ("rows", "cols"), ("h", "w"), ("height", "width"), ("first", "second"))}
-
-
 def _twin_swap(fix: "Fix") -> bool:
-    """Whether the fix's one change puts a name for its twin: one digit apart (`R1`/`R2`, `pts1`/`pts2`)
-    or a pair's other half (`left`/`right`, `src`/`dst`, `l`/`r` in `img_l`/`img_r`)."""
+    """Whether the fix's one change puts a name for its twin (:func:`.operators.twin_names`)."""
     if fix.operator not in ("other_name", "swap_names", "other_name_line") or len(fix.changes) != 1:
         return False
     before, after = (re.findall(r"\w+", text) for text in fix.changes[0][1:])
     pairs = [(a, b) for a, b in zip(before, after) if a != b]
-    if len(before) != len(after) or len(pairs) != 1:
-        return False
-    a, b = pairs[0]
-    if len(a) == len(b) and sum(x != y for x, y in zip(a, b)) == 1 and any(x.isdigit() for x in a + b):
-        return True
-    parts_a, parts_b = a.split("_"), b.split("_")
-    return len(parts_a) == len(parts_b) and sum(x != y for x, y in zip(parts_a, parts_b)) == 1 and any(
-        frozenset((x, y)) in _TWIN_WORDS for x, y in zip(parts_a, parts_b) if x != y)
+    return len(before) == len(after) and len(pairs) == 1 and twin_names(*pairs[0])
+
+
+def _together(shown: list) -> list:
+    """Changes shown in the same code of the same line told as one (`[..., x2, y2, 1]` to `[..., x1, y1,
+    1]`), where they change different characters of it."""
+    if len(shown) != 2 or any(each is None for each in shown) or shown[0][:2] != shown[1][:2]:
+        return shown
+    (line, before, first), (_, _, second) = shown
+    edits = []
+    for after in (first, second):
+        matcher = difflib.SequenceMatcher(None, before, after, autojunk=False)
+        edits += [(i1, i2, after[j1:j2]) for tag, i1, i2, j1, j2 in matcher.get_opcodes() if tag != "equal"]
+    edits.sort()
+    if any(a[1] > b[0] or (a[0] == a[1] == b[0]) for a, b in zip(edits, edits[1:])):
+        return shown   # (they overlap: told apart)
+    merged, at = [], 0
+    for start, end, text in edits:
+        merged += [before[at:start], text]
+        at = end
+    return [(line, before, "".join(merged) + before[at:])]
 
 
 def _first_run(fn) -> int:
@@ -724,12 +759,18 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     tried = {(a.key, b.key) for a, b in pairs}
     slips: dict = {}
     for mutant in runnable:   # (of the lines the failing input runs, as the single changes)
-        slips.setdefault((mutant.where, mutant.edits[0][2], repr(mutant.edits[0][3])), []).append(mutant)
+        slips.setdefault((mutant.where, mutant.edits[0][2], student.slip(mutant)), []).append(mutant)
     size = lambda pair: student.fix(pair[0]).size + student.fix(pair[1]).size  # noqa: E731
-    # Each slip's pairs, smallest first, one slip after another in turns (as the single changes):
+    new = lambda a, b: _apart(a, b) and (a.key, b.key) not in tried  # noqa: E731
+    # The slip made at two neighbours first, of all its places: `x2, y2` written where `x1, y1`
+    # belong, side by side in one row (a line copied from image 2's with its names half changed).
+    side = sorted(((a, b) for same in slips.values() for a, b in itertools.combinations(same[:40], 2)
+                   if student.neighbours(a, b) and new(a, b)), key=size)[:NEIGHBOUR_PAIRS]
+    pairs += side
+    # Then each slip's pairs, smallest first, one slip after another in turns (as the single changes):
     # many small slips' pairs would otherwise fill the count before a larger slip's second pair.
-    turns = [sorted(((a, b) for a, b in itertools.combinations(same[:8], 2)
-                     if _apart(a, b) and (a.key, b.key) not in tried), key=size) for same in slips.values()]
+    turns = [sorted(((a, b) for a, b in itertools.combinations(same[:8], 2) if new(a, b) and (a, b) not in side),
+                    key=size) for same in slips.values()]
     twice = sorted(((turn, pair) for group in turns for turn, pair in enumerate(group)),
                    key=lambda item: (item[0], size(item[1])))
     pairs += [pair for _, pair in twice[:SAME_SLIP_PAIRS]]
@@ -754,6 +795,7 @@ REPLAYS = 4       # the most changes a failed check is replayed with
 OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by a check must pass too
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
+NEIGHBOUR_PAIRS = 8    # of which at two neighbouring items (of one list, tuple or call), tried first
 
 
 RAISE_REACH = 6   # lines before the one that raised where a change is tried first
