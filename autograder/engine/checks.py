@@ -343,6 +343,24 @@ class Trial:
         found = none_returned(code_of(self), function, in_tuple=in_tuple)
         return f": your `{function}` {found}" if found else ""
 
+    def _why_misread(self, value) -> tuple[str, str] | None:
+        """(sentence, mistake) when ``value`` -- the last call's answer, or one of the results it
+        returned -- is made from an OpenCV output the student's unpack names as another
+        (:mod:`autograder.engine.outputs`: ``rms, dist, K, ... = cv2.calibrateCamera(...)``)."""
+        if not self.calls:
+            return None
+        function, _, _, answer = self.calls[-1]
+        if answer is value:
+            index, count = None, None
+        elif isinstance(answer, (tuple, list)) and any(part is value for part in answer):
+            index, count = next(i for i, part in enumerate(answer) if part is value), len(answer)
+        else:
+            return None
+        from . import outputs
+        from .hints import code_of
+
+        return outputs.told(code_of(self), function, index, count)
+
     def _why_swapped(self, got, expected) -> str:
         """For an image returned (W, H) where (H, W) is asked, the OpenCV call the student's code
         gives a size rows first (": your code passes `image.shape[:2]` ... to cv2.resize ...")."""
@@ -390,6 +408,10 @@ class Trial:
                       + (f" of shape {_shape_text(shape)}" if shape is not None else "") + self._why_none(value))
         if shape is not None:
             if value.ndim != len(shape) or any(s is not None and s != v for s, v in zip(shape, value.shape)):
+                misread = self._why_misread(value)
+                if misread is not None:   # the code's own names say which output it is
+                    self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
+                              f"{misread[0]}", mistake=misread[1])
                 form = shape_form(value.shape, tuple(shape))
                 if form is not None:
                     self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "

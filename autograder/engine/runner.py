@@ -448,6 +448,25 @@ def _explained_from_the_line(trial: Trial, traceback_text: str):
     return raised.explained(code_of(trial), traceback_text, message, function, args, kwargs)
 
 
+def _named_by_misread_output(verdict: Verdict, trial: Trial) -> Verdict:
+    """A failing verdict that names no mistake, naming an OpenCV output the student's code unpacks
+    under another output's name (``rms, dist, K, ... = cv2.calibrateCamera(...)``) when what a
+    function the check called returns is made from it (:mod:`autograder.engine.outputs`)."""
+    from . import outputs
+    from .hints import code_of
+
+    code = code_of(trial)
+    for function in dict.fromkeys(call[0] for call in reversed(trial.calls)):
+        found = outputs.told(code, function)
+        if found is not None:
+            first, newline, rest = str(verdict.message).partition("\n")
+            lead = first.rstrip()
+            lead += "" if not lead or lead[-1] in ".:;!?" else "."
+            sentence, mistake = found
+            return replace(verdict, message=f"{lead} Reading your code: {sentence}.{newline}{rest}", mistake=mistake)
+    return verdict
+
+
 def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:
     """A failing verdict that names no mistake, naming a parameter the check's calls gave a value and
     the student's function never reads (:mod:`autograder.engine.ignored`)."""
@@ -722,6 +741,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_repair(verdict, check, trial)
     if student_failure == "exception" and not verdict.mistake:
         verdict = _named_by_exception(verdict, trial, tb)
+    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure == "" and not inherited:
+        verdict = _named_by_misread_output(verdict, trial)
     if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
             and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_reading(verdict, reading, check, trial)

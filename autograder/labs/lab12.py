@@ -935,6 +935,67 @@ class _Alone:
 
 
 def _outputs_out_of_order(function) -> bool:
+    """``R1, P1, R2, P2, ... = cv2.stereoRectify(...)`` (its outputs are R1, R2, P1, P2, in that order)."""
+    from ..engine.outputs import out_of_order
+
+    return out_of_order(function, "stereoRectify")
+
+
+GIVEN_AS_IS_HINT.said(t) if RECTIFY_HINT.contradicts(code_of(t), ["rectify"]) else CENTRE_HINT.said(t))
+
+
+# Code that already gives both cameras one new rotation and one K is told the other half of the
+# recipe: the baseline's direction comes from the camera centres (C2 = -R^T T), not T itself.
+def _shared_by_products(function) -> bool:
+    """A name in two separate matrix products (``K_new @ R_rect @ inv(K1)`` and ``K_new @ R_rect @ R @ inv(K2)``):
+    one new rotation (and K) given to both cameras."""
+    inner = {id(n.left) for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)}
+    chains = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)
+              and id(n) not in inner]
+    names = [{m.id for m in ast.walk(chain) if isinstance(m, ast.Name)} for chain in chains]
+    return any(sum(name in held for held in names) >= 2 for held in names for name in held)
+
+
+# Code that computes the centre -R^T T is not told it (the rest of the recipe is a checklist).
+CENTRE = (expr("-R.T @ T") | expr("-_.T @ _") | expr("-(_.T @ _)") | expr("-np.dot(_.T, _)")
+          | expr("-_.T.dot(_)") | expr("_.T @ -_")).saying("computes camera 2's centre -R^T T")
+BASELINE_AXIS = (expr("_ / np.linalg.norm(_)") | calls("np.linalg.norm")).saying("divides the baseline by its length")
+AXES_AS_COLUMNS = (calls("np.column_stack") | keyword("np.stack", "axis", 1) | keyword("np.stack", "axis", -1)
+                   | expr("np.array([_, _, _]).T") | expr("np.vstack([_, _, _]).T") | expr("np.stack([_, _, _]).T")
+                   ).saying("stacks the new axes as columns")
+ONE_ROTATION = Predicate("gives both cameras one new rotation and one new K", _shared_by_products)
+
+
+def rectification_recipe(lead: str, *first: tuple) -> str:
+    """The rectification recipe's checklist after ``lead``: ``first`` items, then the new axes and the maps."""
+    return checklist(
+        lead, *first, ("the new x axis follows the baseline between the two centres", BASELINE_AXIS),
+        ("the new axes are the rows of the rectifying rotation (np.vstack([e1, e2, e3]), not its columns)",
+         ~AXES_AS_COLUMNS),
+        ("both cameras get that one new rotation and one new K", ONE_ROTATION),
+        none_left="look at the order of the products in each map (H1 = K_new R_rect K1^-1, H2 = K_new R_rect R K2^-1)")
+
+
+RECTIFY_HINT = Hint(
+    rectification_recipe("compare your steps with the recipe: ",
+                         ("camera 2's centre is -R^T T, not T (X2 = R X1 + T takes camera-1 coordinates to camera "
+                          "2's)", CENTRE)),
+    asks=calls("cv2.stereoRectify"),
+    instead="your code {found}; then check what it is given: R and T take camera-1 coordinates to camera "
+            "2's (X2 = R X1 + T), so the second camera's centre is -R^T T, not T")
+# Code that gives cv2.stereoRectify K1, K2, R and T as they came is not told to check what it gives
+# it: the rest of that recipe, as a checklist (which output belongs to which image).
+class _Alone:
+    """One function read as a module's code (for the readings written over a Code's functions)."""
+
+    def __init__(self, function):
+        self.function = function
+
+    def reachable(self, names):
+        return [self.function]
+
+
+def _outputs_out_of_order(function) -> bool:
     """``R1, P1, R2, P2 = cv2.stereoRectify(...)`` (its outputs are R1, R2, P1, P2, in that order)."""
     for node in ast.walk(function):
         if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Tuple) and len(node.targets[0].elts) >= 4 \
