@@ -175,7 +175,10 @@ _FLOAT_CONVERSIONS = ("astype", "float32", "float64", "asarray", "array")
 
 
 def _float_made(node) -> bool:
-    """``x.astype(np.float32)``, ``np.float64(x)``, ``np.asarray(x, dtype=float)``: an array made float."""
+    """``x.astype(np.float32)``, ``np.float64(x)``, ``np.asarray(x, dtype=float)``, ``x / 255`` (a true
+    division is float whatever it divides), or arithmetic on one of them: an array made float."""
+    if isinstance(node, ast.BinOp):
+        return isinstance(node.op, ast.Div) or _float_made(node.left) or _float_made(node.right)
     if not isinstance(node, ast.Call):
         return False
     last = _path(node.func).rpartition(".")[2]

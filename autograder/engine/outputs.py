@@ -201,17 +201,31 @@ def misread(function) -> list[Misread]:
         called = opencv_called(node.value, function)
         order = ORDER.get(called)
         elements = node.targets[0].elts
-        if not order or len(elements) != len(order) or any(isinstance(e, ast.Starred) for e in elements):
+        positions = _positions(elements, len(order)) if order else None
+        if positions is None:
             continue
         targets = ", ".join(ast.unparse(e) for e in elements)
-        for position, element in enumerate(elements):
-            if not isinstance(element, ast.Name):
+        for position, element in zip(positions, elements):
+            if position < 0 or not isinstance(element, ast.Name):
                 continue
             positions = reads_as(element.id, order)
             if len(positions) == 1 and positions[0] != position:
                 found.append(Misread(called, node.lineno, targets, element.id, position, positions[0],
                                      function.name))
     return found
+
+
+def _positions(elements, count: int) -> list[int] | None:
+    """The output each target of an unpack of ``count`` outputs takes (``R1, R2, *_``: 0, 1, and the
+    starred rest after them); None when they cannot all be given one."""
+    starred = [i for i, e in enumerate(elements) if isinstance(e, ast.Starred)]
+    if not starred:
+        return list(range(count)) if len(elements) == count else None
+    if len(starred) > 1 or len(elements) - 1 > count:
+        return None
+    split = starred[0]
+    after = len(elements) - split - 1
+    return list(range(split)) + [-1] + list(range(count - after, count))
 
 
 def _names_read(node) -> set[str]:
