@@ -344,16 +344,17 @@ class Trial:
         return f": your `{function}` {found}" if found else ""
 
     def _why_misread(self, value) -> tuple[str, str] | None:
-        """(sentence, mistake) when ``value`` -- the last call's answer, or one of the results it
-        returned -- is made from an OpenCV output the student's unpack names as another
-        (:mod:`autograder.engine.outputs`: ``rms, dist, K, ... = cv2.calibrateCamera(...)``)."""
-        if not self.calls:
-            return None
-        function, _, _, answer = self.calls[-1]
-        if answer is value:
-            index, count = None, None
-        elif isinstance(answer, (tuple, list)) and any(part is value for part in answer):
-            index, count = next(i for i, part in enumerate(answer) if part is value), len(answer)
+        """(sentence, mistake) when ``value`` -- a call's answer, or one of the results it returned,
+        in this check or served to it from another's (:meth:`shared`) -- is made from an OpenCV
+        output the student's unpack names as another (:mod:`autograder.engine.outputs`:
+        ``rms, dist, K, ... = cv2.calibrateCamera(...)``)."""
+        for function, _, _, answer in reversed(self.calls + getattr(self, "served", [])):
+            if answer is value:
+                index, count = None, None
+                break
+            if isinstance(answer, (tuple, list)) and any(part is value for part in answer):
+                index, count = next(i for i, part in enumerate(answer) if part is value), len(answer)
+                break
         else:
             return None
         from . import outputs

@@ -23,7 +23,7 @@ from .hints import _own_nodes, _path
 _KINDS = {
     "rms": r"ret|retval|rval|rms|rmse|err|error|reproj\w*|rep_?err\w*|mean_?error|re|reprojection_?error|calib_?error",
     "ok": r"ret|retval|rval|ok|success|found|flag|is_?found|pattern_?found",
-    "count": r"ret|retval|rval|n|count|num_?inliers|n_?inliers|inlier_?count|good|n_?good|points_?in_?front",
+    "count": r"ret|retval|rval|n|count|inliers|num_?inliers|n_?inliers|inlier_?count|good|n_?good|points_?in_?front",
     "K": r"k|mtx|camera_?matrix|cam_?matrix|cam_?mtx|cameramatrix|intrinsics?|matrix|k_?mat|kmatrix|k_?matrix|"
          r"intrinsic_?matrix|new_?k|new_?camera_?matrix",
     "dist": r"dist|dists|distortion|dist_?coeffs?|distcoeffs?|dist_?coefs?|coeffs|distortion_?coeffs?|d|dc|kc",
@@ -50,6 +50,7 @@ _KINDS = {
 _PATTERNS = {kind: re.compile(f"^(?:{pattern})$") for kind, pattern in _KINDS.items()}
 _SIDE = re.compile(r"^(.+?)_?(1|2|left|right)$")
 _SIDES = {"1": 1, "left": 1, "2": 2, "right": 2}
+_UPPER = frozenset("rpqhfek")   # single letters that name a matrix only written upper case
 
 
 @dataclass(frozen=True)
@@ -156,6 +157,8 @@ def reads_as(name: str, order: tuple) -> list[int]:
     found = _SIDE.match(lowered)
     if found and found.group(1):
         side, base = _SIDES[found.group(2)], found.group(1)
+    if base in _UPPER and (name.strip("_")[:1]).islower():
+        return []   # a lone r, p, k...: not the matrices' R, P, K (an ROI's r1, a point's p)
     positions = []
     for position, output in enumerate(order):
         pattern = _PATTERNS.get(output.kind)

@@ -456,7 +456,7 @@ def _named_by_misread_output(verdict: Verdict, trial: Trial) -> Verdict:
     from .hints import code_of
 
     code = code_of(trial)
-    for function in dict.fromkeys(call[0] for call in reversed(trial.calls)):
+    for function in dict.fromkeys(call[0] for call in reversed(list(trial.calls) + list(getattr(trial, "served", ())))):
         found = outputs.told(code, function)
         if found is not None:
             first, newline, rest = str(verdict.message).partition("\n")
