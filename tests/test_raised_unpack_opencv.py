@@ -420,3 +420,12 @@ def test_lab12_reads_stereo_rectify_out_of_order_with_the_shared_table():
     assert not _outputs_out_of_order(code.functions["pose"])   # another call's order: not stereoRectify's
     right = read_code("import cv2\ndef f(a):\n    R1, R2, P1, P2, Q, r1, r2 = cv2.stereoRectify(*a)\n    return P1\n")
     assert not _outputs_out_of_order(right.functions["f"])
+
+
+def test_a_slice_of_the_outputs_is_read_from_where_it_starts():
+    sliced = read_code("import cv2\ndef f(a):\n    R1, P1, R2, P2 = cv2.stereoRectify(*a)[:4]\n    return P1\n"
+                       "def g(a):\n    K, dist = cv2.calibrateCamera(*a)[1:3]\n    return K\n"
+                       "def h(a):\n    dist, K = cv2.calibrateCamera(*a)[1:3]\n    return K\n")
+    assert outputs.told(sliced, "f") is not None and outputs.told(sliced, "g") is None
+    assert "your `K` takes its 2nd output" not in outputs.told(sliced, "h")[0]
+    assert "your `K` takes its 3rd output" in outputs.told(sliced, "h")[0]

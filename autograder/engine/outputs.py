@@ -115,8 +115,8 @@ NAMES = {"findContours": "contours, hierarchy", "threshold": "retval, dst",
          "getOptimalNewCameraMatrix": "newK, roi", "estimateAffine2D": "A, inliers",
          "estimateAffinePartial2D": "A, inliers", "calcOpticalFlowPyrLK": "next_points, status, err",
          "initUndistortRectifyMap": "map1, map2", "RQDecomp3x3": "angles, R, Q, Qx, Qy, Qz",
-         "decomposeHomographyMat": "count, rotations, translations, normals",
-         "connectedComponentsWithStats": "count, labels, stats, centroids",
+         "decomposeHomographyMat": "retval, rotations, translations, normals",
+         "connectedComponentsWithStats": "retval, labels, stats, centroids",
          "minMaxLoc": "min_value, max_value, min_location, max_location", "cartToPolar": "magnitude, angle",
          "polarToCart": "x, y"}
 # methods (detector.detectAndCompute) are read by their name alone; the rest must be cv2's
@@ -201,12 +201,17 @@ def misread(function) -> list[Misread]:
         if not isinstance(node, ast.Assign) or len(node.targets) != 1 \
                 or not isinstance(node.targets[0], (ast.Tuple, ast.List)):
             continue
-        called = opencv_called(node.value, function)
+        value, first, last = _sliced(node.value)
+        called = opencv_called(value, function)
         order = ORDER.get(called)
         elements = node.targets[0].elts
-        positions = _positions(elements, len(order)) if order else None
+        if not order:
+            continue
+        last = len(order) if last is None else min(last, len(order))
+        positions = _positions(elements, last - first)
         if positions is None:
             continue
+        positions = [p + first if p >= 0 else p for p in positions]
         targets = ", ".join(ast.unparse(e) for e in elements)
         for position, element in zip(positions, elements):
             if position < 0 or not isinstance(element, ast.Name):
@@ -216,6 +221,17 @@ def misread(function) -> list[Misread]:
                 found.append(Misread(called, node.lineno, targets, element.id, position, positions[0],
                                      function.name))
     return found
+
+
+def _sliced(value) -> tuple[ast.AST, int, int | None]:
+    """``(call, first, end)`` for ``call(...)[first:end]`` (``cv2.stereoRectify(...)[:4]``: 0, 4), and
+    ``(value, 0, None)`` for anything else."""
+    if isinstance(value, ast.Subscript) and isinstance(value.slice, ast.Slice) and value.slice.step is None:
+        bounds = [value.slice.lower, value.slice.upper]
+        if all(b is None or isinstance(b, ast.Constant) and type(b.value) is int and b.value >= 0 for b in bounds):
+            lower, upper = (b.value if b is not None else None for b in bounds)
+            return value.value, lower or 0, upper
+    return value, 0, None
 
 
 def _positions(elements, count: int) -> list[int] | None:
