@@ -24,8 +24,8 @@ import pytest
 
 from autograder.engine import outputs, raised
 from autograder.engine.checks import Fail, Trial, Verdict
-from autograder.engine.cv_raised import (FLANN_KDTREE_BINARY, FLANN_LSH_FLOAT, HAMMING_FLOAT, REMAP_TYPES,
-                                         DETECT_FLOAT)
+from autograder.engine.cv_raised import (CROSS_CHECK_KNN, DETECT_FLOAT, FLANN_KDTREE_BINARY, FLANN_LSH_FLOAT,
+                                         HAMMING_FLOAT, REMAP_TYPES)
 from autograder.engine.hints import read_code
 from autograder.engine.runner import _named_by_misread_output, grade
 from conftest import check_results, mutant
@@ -102,6 +102,18 @@ UNPACKING = """
         w, h = _size(image * 2)
         return image
 
+    def converted(image):
+        img = np.float32(image)
+        h, w = img.shape
+        return img
+
+    def converted_twice(image, grey):
+        img = np.float32(image)
+        if grey:
+            img = img[..., 0]
+        h, w = img.shape
+        return img
+
     def _some(x):
         if x:
             return 1, 2
@@ -125,6 +137,8 @@ UNPACK_NAMED = {
         [("loop", 25)], TOO_MANY, (np.ones((10, 3)), 0), raised.UNPACK_MISTAKE, "holds 3 values"),
     "cv2.findContours's outputs counted as OpenCV 3's": (
         [("outlines", 30)], NOT_ENOUGH, (GREY,), raised.OUTPUTS_COUNTED, "cv2.findContours returns 2 values"),
+    "a converted copy of a colour image": (
+        [("converted", 57)], TOO_MANY, (COLOUR,), raised.COLOUR_SHAPE, "`img.shape` is (12, 16, 3)"),
     "a helper of the module returning three": (
         [("two_of_three", 39)], TOO_MANY, (1,), raised.UNPACK_MISTAKE, "your `_three` returns 3 values"),
 }
@@ -133,7 +147,8 @@ UNPACK_NOT_NAMED = {
     "the count in the message is not the given shape's": ([("shear", 6)], TOO_MANY, (GREY,)),
     "an array made on the line": ([("made_here", 48)], TOO_MANY, (GREY, GREY)),
     "a helper given a computed value": ([("computed_for_helper", 52), ("_size", 10)], NOT_ENOUGH, (GREY,)),
-    "a helper whose returns differ in length": ([("varied", 61)], TOO_MANY, (0,)),
+    "a helper whose returns differ in length": ([("varied", 72)], TOO_MANY, (0,)),
+    "a converted copy bound twice": ([("converted_twice", 64)], TOO_MANY, (COLOUR, False)),
     "the outermost frame is not the function called": ([("_size", 10)], NOT_ENOUGH, (GREY,), "resize_half"),
 }
 
@@ -182,6 +197,7 @@ LSH_ON_FLOAT = opencv_error(lambda: cv2.FlannBasedMatcher(
 HAMMING_ON_FLOAT = opencv_error(lambda: cv2.BFMatcher(cv2.NORM_HAMMING).match(FLOAT32, FLOAT32))
 ys, xs = np.indices((8, 8))
 REMAP_FLOAT64 = opencv_error(lambda: cv2.remap(COLOUR, xs - 0.5 * ys, ys.astype(float), cv2.INTER_LINEAR))
+ONE_NEIGHBOUR = opencv_error(lambda: cv2.BFMatcher(cv2.NORM_HAMMING, crossCheck=True).knnMatch(UINT8, UINT8, k=2))
 DETECT_ON_FLOAT = opencv_error(lambda: cv2.SIFT_create().detectAndCompute(np.zeros((40, 40), np.float32), None))
 
 MATCHING = """
@@ -228,6 +244,14 @@ MATCHING = """
     def detect_given(image, other=None):
         return cv2.SIFT_create().detectAndCompute(image, None)
 
+    def ratio_cross_checked(a, b):
+        matcher = cv2.BFMatcher(cv2.NORM_HAMMING, crossCheck=True)
+        return [m for m, n in matcher.knnMatch(a, b, k=2) if m.distance < 0.75 * n.distance]
+
+    def cross_checked_once(a, b):
+        matcher = cv2.BFMatcher(cv2.NORM_HAMMING, crossCheck=True)
+        return matcher.knnMatch(a, b, k=1, mask=a)
+
     def kd_tree(a, b):
         matcher = cv2.FlannBasedMatcher(dict(algorithm=1, trees=5), {})
         return matcher.knnMatch(a, b, k=2)
@@ -245,13 +269,19 @@ OPENCV_NAMED = {
     "a detector given an image the code divided": (
         [("detect", 34)], DETECT_ON_FLOAT, DETECT_FLOAT, ("a float array", "line 33")),
     "a KD-tree index and uint8 descriptors, no detector in sight": (
-        [("kd_tree", 45)], KD_ON_BINARY, FLANN_KDTREE_BINARY, ("binary descriptors. Match",)),
+        [("kd_tree", 53)], KD_ON_BINARY, FLANN_KDTREE_BINARY, ("binary descriptors. Match",)),
+    "two neighbours of a cross-checking matcher": (
+        [("ratio_cross_checked", 47)], ONE_NEIGHBOUR, CROSS_CHECK_KNN, ("crossCheck=True (line 46)",
+                                                                        "crossCheck=False")),
 }
 OPENCV_NOT_NAMED = {
     "the Hamming assertion where the code asks for L2": ([("l2_match", 37)], HAMMING_ON_FLOAT),
     "remap given one map": ([("one_map", 40)], REMAP_FLOAT64),
     "a detector given the caller's image": ([("detect_given", 43)], DETECT_ON_FLOAT),
-    "FLANN's float32 error where the code builds a KD-tree": ([("kd_tree", 45)], LSH_ON_FLOAT),
+    "FLANN's float32 error where the code builds a KD-tree": ([("kd_tree", 53)], LSH_ON_FLOAT),
+    "the one-neighbour assertion where the code builds no cross-check": ([("kd_tree", 53)], ONE_NEIGHBOUR),
+    "the one-neighbour assertion where one neighbour is asked (with a mask)": (
+        [("cross_checked_once", 51)], ONE_NEIGHBOUR),
     "FLANN's uint8 error where the code builds an LSH index": ([("sift_lsh", 19)], KD_ON_BINARY),
 }
 

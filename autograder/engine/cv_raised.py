@@ -21,6 +21,7 @@ from .hints import _own_nodes, _path
 
 _BUILD_INDEX = re.compile(r"in function 'buildIndex_'.*?type=(\d+)", re.S)
 _HAMMING_FLOATS = re.compile(r"\(type == CV_8U && dtype == CV_32S\) \|\| dtype == CV_32F in function 'batchDistance'")
+_ONE_NEIGHBOUR = re.compile(r"K == 1 && update == 0 && mask\.empty\(\) in function 'batchDistance'")
 _REMAP_TYPES = re.compile(r"map1\.type\(\) == CV_32FC2.*in function 'remap'", re.S)
 _DETECT_DEPTH = re.compile(r"incorrect depth \(!=CV_8U\) in function '(detectAndCompute|detect)'")
 # FLANN's index algorithms (flann::flann_algorithm_t): the KD-trees take float32 rows, LSH binary (uint8) ones
@@ -29,6 +30,7 @@ FLANN_KDTREE_BINARY = "FLANN's KD-tree index given binary (uint8) descriptors"
 FLANN_LSH_FLOAT = "FLANN's LSH index given float descriptors"
 FLANN_FLOAT64 = "float64 descriptors given to FLANN"
 HAMMING_FLOAT = "Hamming distance on float descriptors"
+CROSS_CHECK_KNN = "two nearest neighbours asked of a cross-checking matcher"
 REMAP_TYPES = "remap's maps not float32"
 DETECT_FLOAT = "a float image given to a feature detector"
 BINARY_DETECTORS = ("ORB_create", "BRISK_create", "AKAZE_create")
@@ -47,6 +49,8 @@ def opencv_explained(code, fn, line: int, given: dict, message: str, function: s
         return _flann(functions, int(found.group(1)))
     if _HAMMING_FLOATS.search(message):
         return _hamming(functions)
+    if _ONE_NEIGHBOUR.search(message):
+        return _cross_checked(functions, fn, line)
     if _REMAP_TYPES.search(message):
         return _remap(fn, line)
     found = _DETECT_DEPTH.search(message)
@@ -153,6 +157,29 @@ def _hamming(functions) -> Form | None:
         f"your code gives cv2.BFMatcher cv2.NORM_HAMMING (line {lines[0]}), a distance between binary (uint8) "
         f"descriptors such as ORB's, and these are not uint8{whose}: compare float descriptors with cv2.NORM_L2"),
         HAMMING_FLOAT)
+
+
+def _cross_checked(functions, fn, line: int) -> Form | None:
+    """A BFMatcher built with crossCheck=True asked for k > 1 neighbours (its batchDistance takes K == 1)."""
+    lines = [call.lineno for _, call in _calls(functions, "BFMatcher", "BFMatcher_create")
+             if any(k.arg == "crossCheck" and isinstance(k.value, ast.Constant) and k.value.value is True
+                    for k in call.keywords)
+             or len(call.args) >= 2 and isinstance(call.args[1], ast.Constant) and call.args[1].value is True]
+    asked = [n for n in _own_nodes(fn) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
+             and n.func.attr == "knnMatch" and n.lineno <= line <= n.end_lineno]
+    if not lines or len(asked) != 1 or not _neighbours_asked(asked[0]) > 1:
+        return None   # k = 1 (or unknown): the assertion's mask or update part failed, not its K
+    return Form(from_code(
+        f"your code builds cv2.BFMatcher with crossCheck=True (line {lines[0]}), which keeps only mutual best "
+        f"matches, one per descriptor, and asks it for more than one neighbour with knnMatch (line {line}): for "
+        "the two neighbours of the ratio test, build it with crossCheck=False (the ratio test already drops "
+        "ambiguous matches)"), CROSS_CHECK_KNN)
+
+
+def _neighbours_asked(call: ast.Call) -> int:
+    """The ``k`` a ``knnMatch(query, train, k)`` call writes as a number (0 when it is not one)."""
+    k = next((kw.value for kw in call.keywords if kw.arg == "k"), call.args[2] if len(call.args) >= 3 else None)
+    return k.value if isinstance(k, ast.Constant) and type(k.value) is int else 0
 
 
 def _remap(fn, line: int) -> Form | None:

@@ -321,10 +321,18 @@ def unpacked(code: Code, fn, line: int, given: dict, message: str) -> Form | Non
 
 
 def _as_given(fn, line: int, given: dict, node) -> tuple[str, object] | None:
-    """(name, value) when ``node`` is a parameter of ``fn`` holding, at ``line``, the shape it was given."""
+    """(name, value) when ``node`` is a parameter of ``fn`` holding, at ``line``, the shape it was given,
+    or a name bound once, before, to such a parameter converted without reshaping."""
     node = _unwrapped(node)
     if isinstance(node, ast.Name) and node.id in given and not _changed(fn, node.id, line):
         return node.id, given[node.id]
+    if isinstance(node, ast.Name) and node.id not in given:   # img = np.float32(image): one conversion
+        bound = _assignments(fn, node.id, line)
+        if len(bound) == 1 and isinstance(bound[0], ast.Assign) and len(bound[0].targets) == 1 \
+                and isinstance(bound[0].targets[0], ast.Name) and bound[0].value is not _unwrapped(bound[0].value):
+            source = _unwrapped(bound[0].value)
+            if isinstance(source, ast.Name) and source.id in given and not _changed(fn, source.id, bound[0].lineno):
+                return node.id, given[source.id]
     return None
 
 
