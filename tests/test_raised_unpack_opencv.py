@@ -335,7 +335,7 @@ ORDERS = """
 
     def calibrate_unnamed(objects, images, size):
         a, b, c, d, e = cv2.calibrateCamera(objects, images, size, None, None)
-        return b, c.ravel(), a
+        return b, c.ravel(), d
 
     def rectify(K1, d1, K2, d2, size, R, T):
         R1, P1, R2, P2, *_ = cv2.stereoRectify(K1, d1, K2, d2, size, R, T)
@@ -365,6 +365,10 @@ ORDERS = """
     def ambiguous(E, a, b, K):
         n, inliers, R, t = cv2.recoverPose(E, a, b, K)
         return inliers
+
+    def calibrate_rotated(objects, images, size):
+        K, dist, rvecs, tvecs, rms = cv2.calibrateCamera(objects, images, size, None, None)
+        return K
 """
 ORDER_NAMED = {   # function, result index and count (None: any), the misread variable
     "calibrateCamera's K at the distortion's place": ("calibrate", 0, 3, "`K` takes its 3rd output"),
@@ -373,10 +377,11 @@ ORDER_NAMED = {   # function, result index and count (None: any), the misread va
     "recoverPose's R and t exchanged": ("pose", None, None, "recoverPose returns (retval, R, t, mask)"),
     "findHomography's mask first": ("homography", None, None, "`H` takes its 2nd output, the inlier mask"),
     "in a helper whose return the result is made of": ("pose_through_helper", None, None, "your `_pose` unpacks"),
+    "every name one place early": ("calibrate_rotated", None, None, "`K` takes its 1st output, the RMS"),
 }
 ORDER_NOT_NAMED = {
     "the documented order": ("calibrate_right", None, None),
-    "names that read as no output": ("calibrate_unnamed", None, None),
+    "names that read as no output, or one that no other name shows misplaced (d)": ("calibrate_unnamed", None, None),
     "a result made of the right output only": ("calibrate", 2, 3),
     "a misread output the result is not made of": ("unused", None, None),
     "a name that reads as two outputs (inliers: a count or a mask)": ("ambiguous", None, None),

@@ -195,7 +195,8 @@ class Misread:
 
 def misread(function) -> list[Misread]:
     """The variables of ``function``'s unpacks of OpenCV calls that hold another output than their
-    names read as (each name reading as one output only, of another position)."""
+    names read as: each name reading as one output only, of another position, while another name of
+    the unpack reads as the output it holds."""
     found = []
     for node in _own_nodes(function):
         if not isinstance(node, ast.Assign) or len(node.targets) != 1 \
@@ -213,14 +214,20 @@ def misread(function) -> list[Misread]:
             continue
         positions = [p + first if p >= 0 else p for p in positions]
         targets = ", ".join(ast.unparse(e) for e in elements)
-        for position, element in zip(positions, elements):
-            if position < 0 or not isinstance(element, ast.Name):
-                continue
-            positions = reads_as(element.id, order)
-            if len(positions) == 1 and positions[0] != position:
-                found.append(Misread(called, node.lineno, targets, element.id, position, positions[0],
-                                     function.name))
+        # each target's position and the one output its name reads as (None: none, or several)
+        read = [(position, element.id, _one(reads_as(element.id, order)))
+                for position, element in zip(positions, elements) if position >= 0 and isinstance(element, ast.Name)]
+        claimed = {meant for _, _, meant in read if meant is not None}
+        for position, name, meant in read:
+            # out of order: its name reads as another output, and another name reads as the one it holds
+            # (``a, b, c, d, e``'s d reads as distortion, but no name there claims the rotations it holds)
+            if meant is not None and meant != position and position in claimed:
+                found.append(Misread(called, node.lineno, targets, name, position, meant, function.name))
     return found
+
+
+def _one(positions: list[int]) -> int | None:
+    return positions[0] if len(positions) == 1 else None
 
 
 def _sliced(value) -> tuple[ast.AST, int, int | None]:
