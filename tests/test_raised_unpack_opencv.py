@@ -181,6 +181,43 @@ def test_a_colour_image_unpacked_in_two_is_told_in_grading(tmp_path):
                           for c in failed), [c.message for c in failed]
 
 
+SINGLE = """
+    def rotate(image, angle, center=None):
+        cx, cy = center
+        return image
+
+    def scale(image, s):
+        sx, sy = s
+        return image
+
+    def recentred(image, center=None):
+        if center is None:
+            center = image.shape[1] / 2
+        cx, cy = center
+        return image
+"""
+
+
+@pytest.mark.parametrize("function, line, args, kwargs, kind, words", [
+    ("rotate", 3, (COLOUR, 30), {}, "NoneType", "does not give `center`, so it holds its default, None"),
+    ("scale", 7, (COLOUR, 1.5), {}, "float", "`s` is given a single value here (1.5)"),
+])
+def test_a_single_value_unpacked_names_the_parameter(function, line, args, kwargs, kind, words):
+    message = f"TypeError: cannot unpack non-iterable {kind} object"
+    form = explain(SINGLE, [(function, line)], message, args, kwargs)
+    assert form is not None and form.mistake == raised.NOT_ITERABLE and words in form.sentence
+
+
+@pytest.mark.parametrize("function, line, args, kwargs, kind", [
+    ("rotate", 3, (COLOUR, 30), {"center": 4}, "NoneType"),      # given: not the default the message names
+    ("scale", 7, (COLOUR, 2), {}, "float"),                       # an int given, the message says float
+    ("recentred", 13, (COLOUR,), {}, "float"),                    # changed before the line
+])
+def test_a_single_value_the_inputs_do_not_show_is_not_named(function, line, args, kwargs, kind):
+    message = f"TypeError: cannot unpack non-iterable {kind} object"
+    assert explain(SINGLE, [(function, line)], message, args, kwargs) is None
+
+
 # ------------------------------------------------------------------ OpenCV's errors of methods
 def opencv_error(operation) -> str:
     """The message this OpenCV raises for ``operation``, as the worker relays it."""

@@ -116,6 +116,9 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
         return _fraction_sliced(fn, line, given)
     if _TOO_MANY.search(message) or _NOT_ENOUGH.search(message):
         return unpacked(code, fn, line, given, message)
+    found = _NOT_ITERABLE.search(message)
+    if found:
+        return _single_unpacked(fn, line, given, found.group(1))
     if "OpenCV(" in message:
         from .cv_raised import opencv_explained
 
@@ -264,6 +267,37 @@ COLOUR_SHAPE = "a colour image's shape unpacked into two values"
 GREY_SHAPE = "a grey image's shape unpacked into three values"
 ROWS_UNPACKED = "an array's rows unpacked as its columns"
 OUTPUTS_COUNTED = "an OpenCV call's outputs unpacked into the wrong number of names"
+
+
+_NOT_ITERABLE = re.compile(r"cannot unpack non-iterable (\w+) object")
+NOT_ITERABLE = "a single value (or None) unpacked into several names"
+
+
+def _defaults(fn) -> dict:
+    """The parameters of ``fn`` whose default is written as a constant (``center=None``), and it."""
+    arguments = fn.args
+    positional = arguments.posonlyargs + arguments.args
+    pairs = list(zip(positional[len(positional) - len(arguments.defaults):], arguments.defaults)) + \
+        [(a, d) for a, d in zip(arguments.kwonlyargs, arguments.kw_defaults) if d is not None]
+    return {a.arg: d.value for a, d in pairs if isinstance(d, ast.Constant)}
+
+
+def _single_unpacked(fn, line: int, given: dict, kind: str) -> Form | None:
+    """``cx, cy = center`` raising "cannot unpack non-iterable NoneType object": a parameter given a
+    single value, or not given and holding its written default, of the type the message names."""
+    for names, source, loop in _unpack_sites(fn, line):
+        if loop or not isinstance(source, ast.Name) or _changed(fn, source.id, line):
+            continue
+        name, written = source.id, ", ".join(ast.unparse(n) for n in names)
+        if name in given and type(given[name]).__name__ == kind:
+            return Form(measured(f"`{name}` is given a single value here ({given[name]!r}), and your code unpacks it "
+                                 f"into `{written}` (line {line})"), NOT_ITERABLE)
+        defaults = _defaults(fn)
+        if name not in given and name in defaults and type(defaults[name]).__name__ == kind:
+            return Form(measured(f"this call does not give `{name}`, so it holds its default, {defaults[name]!r}, and "
+                                 f"your code unpacks it into `{written}` (line {line}): give it a value when it is "
+                                 f"{defaults[name]!r} before unpacking it"), NOT_ITERABLE)
+    return None
 
 
 def _counts(message: str) -> tuple[int, int | None, bool] | None:
