@@ -7,6 +7,13 @@ dimensions" for a translation given as a (3,) vector, and which array is ``t``, 
 the caller gave it that shape, only the line and the call's arguments say. The line is read
 with :mod:`ast` (never run), and a cause is named only when the array the error points at is
 one of the function's own parameters, unchanged before that line, whose given shape shows it.
+
+The same reading explains Python's unpacking errors ("too many values to unpack (expected 2)"
+for ``height, width = image.shape`` given a colour image): the count comes from a parameter as
+given, from what an OpenCV call returns (:mod:`autograder.engine.outputs`) or from a function of
+the module; and OpenCV's errors of methods, from what the code builds
+(:mod:`autograder.engine.cv_raised`). A parameter passed on to a helper as it came (or converted
+without reshaping) is followed into the helper's frame.
 """
 
 from __future__ import annotations
@@ -32,6 +39,8 @@ def innermost_frame(traceback_text: str) -> tuple[str, int, str, str] | None:
         return None
     filename, line, function, code = frames[-1]
     return filename, int(line), function, code.strip()
+
+
 def frames_of(traceback_text: str) -> list[tuple[str, int, str, str]]:
     """Every ``(file, line, function, code)`` of a student traceback, outermost first."""
     return [(f, int(n), fn, c.strip()) for f, n, fn, c in _FRAME.findall(traceback_text or "")]
@@ -107,7 +116,7 @@ MISTAKE = "a 1-D vector joined to a 2-D array"
 def explained(code: Code, traceback_text: str, message: str, function: str, args, kwargs) -> Form | None:
     """The cause of the exception ``message`` that ``function`` (called with ``args``,
     ``kwargs``) raised, read from its innermost line in ``traceback_text`` when that line is in
-    ``function`` itself; None otherwise."""
+    ``function`` itself or in a function of the module it calls (:func:`raising_place`); None otherwise."""
     place = raising_place(code, traceback_text, function, args, kwargs)
     if place is None:
         return None
