@@ -25,9 +25,9 @@ import pytest
 from autograder.engine import outputs, raised
 from autograder.engine.checks import Fail, Trial, Verdict
 from autograder.engine.cv_raised import (CROSS_CHECK_KNN, DETECT_FLOAT, FLANN_KDTREE_BINARY, FLANN_LSH_FLOAT,
-                                         HAMMING_FLOAT, REMAP_TYPES)
+                                         HAMMING_FLOAT, PASSED_AS_GIVEN, REMAP_TYPES)
 from autograder.engine.hints import read_code
-from autograder.engine.runner import _named_by_misread_output, grade
+from autograder.engine.runner import _named_by_exception, _named_by_misread_output, grade
 from conftest import check_results, mutant
 
 COLOUR, GREY = np.zeros((12, 16, 3), np.uint8), np.zeros((12, 16), np.uint8)
@@ -501,3 +501,66 @@ def test_a_slice_of_the_outputs_is_read_from_where_it_starts():
     assert outputs.told(sliced, "f") is not None and outputs.told(sliced, "g") is None
     assert "your `K` takes its 2nd output" not in outputs.told(sliced, "h")[0]
     assert "your `K` takes its 3rd output" in outputs.told(sliced, "h")[0]
+
+
+# ------------------------------------------------------------------ which input reached OpenCV as it came
+QUAD = """
+    import cv2
+    import numpy as np
+
+    def warp_quad(image, corners, target):
+        M = cv2.getPerspectiveTransform(corners, target)
+        return cv2.warpPerspective(image, M, (100, 100))
+
+    def warp_quad_converted(image, corners, target):
+        corners = np.asarray(corners, np.float64)
+        M = cv2.getPerspectiveTransform(corners, target)
+        return cv2.warpPerspective(image, M, (100, 100))
+
+    def warp_quad_helper(image, corners, target):
+        return _quad(np.asarray(corners, np.float64), target)
+
+    def _quad(corners, target):
+        return cv2.getPerspectiveTransform(corners, target)
+"""
+CORNERS = np.array([[0, 0], [10, 0], [10, 10], [0, 10]], np.float64)
+
+
+def worker_message(function: str) -> str:
+    """The message the worker relays for getPerspectiveTransform given float64 corners: its sentence first."""
+    from autograder.sandbox import beginner
+
+    error = opencv_error(lambda: cv2.getPerspectiveTransform(CORNERS, CORNERS + 1))
+    sentence = beginner.explain_opencv("cv2.getPerspectiveTransform", error, [("src", CORNERS), ("dst", CORNERS + 1)])
+    assert sentence.startswith("cv2.getPerspectiveTransform needs src")
+    return f"{sentence}\n{function}() raised {error}"
+
+
+def test_the_callers_input_reaching_opencv_as_it_came_is_named():
+    form = raised.explained(read_code(textwrap.dedent(QUAD)), traceback_of([("warp_quad", 6)], "error: ..."),
+                            worker_message("warp_quad"), "warp_quad", (COLOUR, CORNERS, CORNERS + 1), {})
+    assert form is not None and form.mistake == PASSED_AS_GIVEN
+    assert "that src is `corners` (line 6) as your `warp_quad` was given it (shape (4, 2), float64)" in form.sentence
+
+
+@pytest.mark.parametrize("frames, function", [
+    ([("warp_quad_converted", 12)], "warp_quad_converted"),            # a converted copy reached it
+    ([("warp_quad_helper", 16), ("_quad", 19)], "warp_quad_helper"),   # a helper's parameter: maybe converted
+])
+def test_a_converted_input_reaching_opencv_is_not_said_to_be_the_callers(frames, function):
+    form = raised.explained(read_code(textwrap.dedent(QUAD)), traceback_of(frames, "error: ..."),
+                            worker_message(function), function, (COLOUR, CORNERS, CORNERS + 1), {})
+    assert form is None
+
+
+def test_the_workers_sentence_leads_and_the_input_follows_it(tmp_path):
+    trial = _StandIn(tmp_path, QUAD, [])
+    message = worker_message("warp_quad")
+    trial.raised = ("warp_quad", (COLOUR, CORNERS, CORNERS + 1), {}, message)
+    told = _named_by_exception(Verdict(0.0, message), trial, traceback_of([("warp_quad", 6)], "error: ..."))
+    first = told.message.splitlines()[0]
+    assert told.mistake == PASSED_AS_GIVEN and first.startswith("cv2.getPerspectiveTransform needs src")
+    assert first.endswith("np.float32(src). That src is `corners` (line 6) as your `warp_quad` was given it (shape "
+                          "(4, 2), float64): inputs may come in that form, so convert `corners` in your function "
+                          "before it reaches cv2.getPerspectiveTransform.")
+    assert told.message.splitlines()[1].startswith("warp_quad() raised error: OpenCV")

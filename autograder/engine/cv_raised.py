@@ -33,6 +33,9 @@ HAMMING_FLOAT = "Hamming distance on float descriptors"
 CROSS_CHECK_KNN = "two nearest neighbours asked of a cross-checking matcher"
 REMAP_TYPES = "remap's maps not float32"
 DETECT_FLOAT = "a float image given to a feature detector"
+PASSED_AS_GIVEN = "an input passed to OpenCV in the form the caller gave it"
+# the worker's sentence on a cv2 function's argument (autograder.sandbox.beginner): its parameter's name
+_WORKER_NAMES = re.compile(r"^cv2\.(\w+) (?:needs (?:the points in )?|cannot work on |cannot convert )(\w+)\b")
 BINARY_DETECTORS = ("ORB_create", "BRISK_create", "AKAZE_create")
 FLOAT_DETECTORS = ("SIFT_create", "xfeatures2d.SURF_create", "KAZE_create")
 
@@ -42,7 +45,8 @@ def opencv_explained(code, fn, line: int, given: dict, message: str, function: s
     module called from ``function``), when a rule ties it to the code; None otherwise. An error the
     worker explained already (its sentence leads the message) is left as it was."""
     if not message.startswith(f"{function}() raised"):
-        return None
+        # in the function called only: a helper's parameters may hold a converted copy (another dtype)
+        return _argument_as_given(fn, line, given, message) if fn.name == function else None
     functions = code.reachable([function]) or [fn]
     found = _BUILD_INDEX.search(message)
     if found:
@@ -57,6 +61,41 @@ def opencv_explained(code, fn, line: int, given: dict, message: str, function: s
     if found:
         return _detect_float(fn, line, found.group(1))
     return None
+
+
+def _argument_as_given(fn, line: int, given: dict, message: str) -> Form | None:
+    """The worker explained a cv2 function's error from the argument it was given (``cv2.X needs src
+    as ...; yours is ...``): when that argument, on the raising line, is one of the function's own
+    parameters as the caller gave it (the same object: never reassigned), which input it is."""
+    found = _WORKER_NAMES.match(message)
+    if not found:
+        return None
+    function, parameter = found.groups()
+    import cv2
+
+    from ..sandbox.beginner import _parameters
+
+    names = _parameters(getattr(getattr(cv2, function, None), "__doc__", "") or "")
+    calls = [n for n in _own_nodes(fn) if isinstance(n, ast.Call) and _path(n.func).rpartition(".")[2] == function
+             and n.lineno <= line <= n.end_lineno]
+    if parameter not in names or len(calls) != 1:
+        return None
+    index = names.index(parameter)
+    call = calls[0]
+    argument = call.args[index] if index < len(call.args) and not any(
+        isinstance(a, ast.Starred) for a in call.args[:index + 1]) else next(
+        (k.value for k in call.keywords if k.arg == parameter), None)
+    from .raised import _reassigned
+
+    if not isinstance(argument, ast.Name) or argument.id not in given or _reassigned(fn, argument.id, line):
+        return None
+    value = given[argument.id]
+    form = f"shape {value.shape}, {value.dtype}" if hasattr(value, "shape") and hasattr(value, "dtype") else \
+        type(value).__name__
+    return Form(measured(
+        f"that {parameter} is `{argument.id}` (line {line}) as your `{fn.name}` was given it ({form}): inputs may "
+        f"come in that form, so convert `{argument.id}` in your function before it reaches cv2.{function}"),
+        PASSED_AS_GIVEN)
 
 
 def _calls(functions, *names: str):

@@ -435,7 +435,11 @@ def _named_by_exception(verdict: Verdict, trial: Trial, traceback_text: str) -> 
     if form is None:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
-    return replace(verdict, message=f"{first.rstrip()}: {form.sentence}.{newline}{rest}", mistake=form.mistake)
+    if " raised " in first:
+        said = f"{first.rstrip()}: {form.sentence}."
+    else:   # the worker's sentence on the OpenCV call leads: this one follows it
+        said = f"{first.rstrip().rstrip('.')}. {form.sentence[:1].upper()}{form.sentence[1:]}."
+    return replace(verdict, message=f"{said}{newline}{rest}", mistake=form.mistake)
 
 
 def _explained_from_the_line(trial: Trial, traceback_text: str):
