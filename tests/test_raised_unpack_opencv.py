@@ -564,3 +564,9 @@ def test_the_workers_sentence_leads_and_the_input_follows_it(tmp_path):
                           "(4, 2), float64): inputs may come in that form, so convert `corners` in your function "
                           "before it reaches cv2.getPerspectiveTransform.")
     assert told.message.splitlines()[1].startswith("warp_quad() raised error: OpenCV")
+
+
+def test_a_methods_outputs_are_read_and_written_as_a_method():
+    code = read_code("import cv2\ndef f(a):\n    des, kp = cv2.SIFT_create().detectAndCompute(a, None)\n    return kp\n")
+    sentence, _ = outputs.told(code, "f")
+    assert sentence.startswith(".detectAndCompute returns (keypoints, descriptors)") and "cv2.detect" not in sentence

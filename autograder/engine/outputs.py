@@ -125,6 +125,11 @@ MISTAKE = "OpenCV's outputs unpacked out of order"
 _ORDINALS = ("1st", "2nd", "3rd", "4th", "5th", "6th", "7th", "8th", "9th")
 
 
+def shown(function: str) -> str:
+    """How a call is written: ``cv2.calibrateCamera``, a method as ``.detectAndCompute``."""
+    return f".{function}" if function in _METHODS else f"cv2.{function}"
+
+
 def order_text(function: str) -> str:
     """``rms, K, dist, rvecs, tvecs`` for cv2.calibrateCamera."""
     order = ORDER.get(function)
@@ -139,7 +144,7 @@ def opencv_called(node, function=None) -> str:
     from .hints import _resolved, _scope
 
     head, _, last = _path(node.func).rpartition(".")
-    if last in _METHODS and head:
+    if last in _METHODS and isinstance(node.func, ast.Attribute):
         return last
     if function is None:
         return last if head in ("cv2", "cv") else ""
@@ -183,9 +188,10 @@ class Misread:
     def sentence(self, others: list["Misread"] = ()) -> str:
         order = ORDER[self.function]
         held = order[self.position]
-        text = (f"cv2.{self.function} returns ({order_text(self.function)}) in that order, and your `{self.owner}` "
+        text = (f"{shown(self.function)} returns ({order_text(self.function)}) in that order, and your `{self.owner}` "
                 f"unpacks it as `{self.targets}` (line {self.line}): your `{self.name}` takes its "
-                f"{_ORDINALS[self.position]} output, {held.words} ({held.short}), not {order[self.meant].words}")
+                f"{_ORDINALS[self.position]} output, {held.words}"
+                f"{'' if held.short in held.words else f' ({held.short})'}, not {order[self.meant].words}")
         more = [o for o in others if o.name != self.name and o.line == self.line][:1]
         for other in more:
             text += (f", and your `{other.name}` its {_ORDINALS[other.position]}, "

@@ -402,14 +402,14 @@ def _unpacked_from(code, fn, line, given, names, source, loop, counts) -> Form |
     found = _as_given(fn, line, given, source)
     if found is not None:
         return _value_unpacked(found[0], found[1], written, where, counts)
-    from .outputs import COUNTS, NAMES, opencv_called, order_text
+    from .outputs import COUNTS, NAMES, opencv_called, order_text, shown
 
     called = opencv_called(source, fn)
     if called in COUNTS and _fits_count(COUNTS[called], expected, got, too_many):
         outputs = order_text(called) or NAMES.get(called, "")
         old = (" (OpenCV 3 returned 3: image, contours, hierarchy)" if called == "findContours" and expected == 3
                else "")
-        return Form(measured(f"cv2.{called} returns {COUNTS[called]} values ({outputs}){old}, and your code unpacks "
+        return Form(measured(f"{shown(called)} returns {COUNTS[called]} values ({outputs}){old}, and your code unpacks "
                              f"{expected} (`{written}`, {where})"), OUTPUTS_COUNTED)
     if isinstance(source, ast.Call) and isinstance(source.func, ast.Name) and source.func.id in code.functions:
         return _own_returns(code.functions[source.func.id], expected, got, too_many, written, where)
