@@ -403,6 +403,10 @@ ORDERS = """
         n, inliers, R, t = cv2.recoverPose(E, a, b, K)
         return inliers
 
+    def rotation(rvec):
+        _, R = cv2.Rodrigues(rvec)
+        return R
+
     def calibrate_rotated(objects, images, size):
         K, dist, rvecs, tvecs, rms = cv2.calibrateCamera(objects, images, size, None, None)
         return K
@@ -414,6 +418,7 @@ ORDER_NAMED = {   # function, result index and count (None: any), the misread va
     "recoverPose's R and t exchanged": ("pose", None, None, "recoverPose returns (retval, R, t, mask)"),
     "findHomography's mask first": ("homography", None, None, "`H` takes its 2nd output, the inlier mask"),
     "in a helper whose return the result is made of": ("pose_through_helper", None, None, "your `_pose` unpacks"),
+    "the place of the output named thrown away": ("rotation", None, None, "`R` takes its 2nd output, the Jacobian"),
     "every name one place early": ("calibrate_rotated", None, None, "`K` takes its 1st output, the RMS"),
 }
 ORDER_NOT_NAMED = {

@@ -202,7 +202,7 @@ class Misread:
 def misread(function) -> list[Misread]:
     """The variables of ``function``'s unpacks of OpenCV calls that hold another output than their
     names read as: each name reading as one output only, of another position, while another name of
-    the unpack reads as the output it holds."""
+    the unpack reads as the output it holds, or the output it reads as is thrown away (``_``)."""
     found = []
     for node in _own_nodes(function):
         if not isinstance(node, ast.Assign) or len(node.targets) != 1 \
@@ -224,10 +224,12 @@ def misread(function) -> list[Misread]:
         read = [(position, element.id, _one(reads_as(element.id, order)))
                 for position, element in zip(positions, elements) if position >= 0 and isinstance(element, ast.Name)]
         claimed = {meant for _, _, meant in read if meant is not None}
+        discarded = {position for position, name, _ in read if not name.strip("_")}
         for position, name, meant in read:
-            # out of order: its name reads as another output, and another name reads as the one it holds
-            # (``a, b, c, d, e``'s d reads as distortion, but no name there claims the rotations it holds)
-            if meant is not None and meant != position and position in claimed:
+            # out of order: its name reads as another output, and another name reads as the one it holds,
+            # or the place of the one it reads as is thrown away (``_, R = cv2.Rodrigues(rvec)``); ``a, b,
+            # c, d, e``'s d reads as the distortion, but nothing there says c is not it
+            if meant is not None and meant != position and (position in claimed or meant in discarded):
                 found.append(Misread(called, node.lineno, targets, name, position, meant, function.name))
     return found
 
