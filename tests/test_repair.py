@@ -847,3 +847,32 @@ def test_two_changes_of_one_line_are_shown_together_unless_they_overlap():
     assert repair._together([line, (7, "[a, b2, c2, 1]", "[a, b2, c1, 1]")]) == [(7, "[a, b2, c2, 1]", "[a, b1, c1, 1]")]
     assert len(repair._together([line, (7, "[a, b2, c2, 1]", "[a, b3, c2, 1]")])) == 2
     assert len(repair._together([line, (8, "[a, b2, c2, 1]", "[a, b2, c1, 1]")])) == 2
+
+
+def test_one_item_taken_where_the_mean_belongs_is_told_at_both_places(tmp_path):
+    """An affine fit on centred points whose translation comes from the first pair, `dst[0] - A @ src[0]`,
+    where the centroids belong: the same slip at two places, told as one change."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab07_transformations", """
+        def affine_lstsq(src, dst):
+            src, dst = np.asarray(src, float), np.asarray(dst, float)
+            c_src, c_dst = src.mean(axis=0), dst.mean(axis=0)
+            At, *_ = np.linalg.lstsq(src - c_src, dst - c_dst, rcond=None)
+            A = At.T
+            return np.column_stack([A, dst[0] - A @ src[0]])
+        """)
+    result = grade(folder, ["lab07.ex6"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab07.ex6") if c.score < c.max_score]
+    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    assert any("`dst[0] - A @ src[0]` to `c_dst - A @ c_src`" in m for m in told), [c.message for c in checks]
+
+
+def test_twins_are_names_not_numbers_and_an_answer_with_rows_for_columns_is_seen():
+    from autograder.engine.mutants.operators import twin_names
+
+    assert twin_names("x1", "x2") and twin_names("img_l", "img_r") and twin_names("y_max", "x_max")
+    assert not twin_names("1", "0") and not twin_names("x1", "y2") and not twin_names("width", "depth")
+    assert repair._rows_for_columns(np.zeros((5, 7, 3)), np.zeros((7, 5, 3)))
+    assert not repair._rows_for_columns(np.zeros((5, 7, 3)), np.zeros((5, 7, 3)))
+    assert not repair._rows_for_columns(np.zeros((5, 7)), np.zeros((7, 5, 3)))

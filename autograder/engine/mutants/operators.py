@@ -89,7 +89,8 @@ OPERATORS = {
     "float32": ("float32", "dtype", "float"),
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
-    "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
+    "carry": ("each", "again", "running", "restart"),
+    "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),                 # m1 & m2 -> m1 | m2, a and b -> a or b          # cv2.remap(img, mx, my) -> np.float32(mx), ...
 }
@@ -660,6 +661,10 @@ def _make_magnitude(node, payload):
     return new
 
 
+def _make_summary(node, payload):
+    return ast.Name(payload, ast.Load())   # the array's mean (a local) where one of its items was taken
+
+
 def _make_carry(node, payload):
     return ast.Name(payload, ast.Load())   # the running result where the loop restarted from the input
 
@@ -686,7 +691,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {"constant": _make_constant, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+_MAKE = {"constant": _make_constant, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1434,9 +1439,39 @@ def _logic_changes(node, parent, parents):
     running = _restarted(node, parents)
     if running:
         yield "carry", running, ""
+    for mean in _summaries(node, parents):
+        yield "summary", mean, ""
     if isinstance(node, ast.Call) and node.args and _dotted(node.func).rsplit(".", 1)[-1] in _EXTREMES \
             and not (isinstance(node.args[0], ast.Call) and _dotted(node.args[0].func).rsplit(".", 1)[-1] in _MAGNITUDES):
         yield "magnitude", None, ""   # the smallest value where the smallest magnitude belongs (an eigenvalue)
+
+
+_REDUCED = {"mean", "median", "average", "nanmean"}
+
+
+def _summaries(node, parents) -> list:
+    """The locals holding a mean of the array one item of which ``node`` takes (`dst[0]` where `dst_mean
+    = dst.mean(axis=0)` was made: a translation from the first pair where the centroids belong)."""
+    if not (isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name)
+            and _constant_index(node.slice) is not None):
+        return []
+    fn = node
+    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        fn = parents[id(fn)][0]
+    array, found = node.value.id, []
+    for assign in (n for n in ast.walk(fn) if isinstance(n, ast.Assign) and len(n.targets) == 1 and n.lineno < node.lineno):
+        target, value = assign.targets[0], assign.value
+        pairs = zip(target.elts, value.elts) if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) \
+            and len(target.elts) == len(value.elts) else [(target, value)]   # (`c1, c2 = a.mean(0), b.mean(0)`)
+        for name, call in pairs:
+            if not (isinstance(name, ast.Name) and isinstance(call, ast.Call)
+                    and _dotted(call.func).rsplit(".", 1)[-1] in _REDUCED):
+                continue
+            if (isinstance(call.func, ast.Attribute) and isinstance(call.func.value, ast.Name) and call.func.value.id == array) \
+                    or (call.args and isinstance(call.args[0], ast.Name) and call.args[0].id == array
+                        and _dotted(call.func).startswith("np.")):
+                found.append(name.id)
+    return found
 
 
 _EXTREMES = {"argmin", "argmax", "argsort", "nanargmin", "nanargmax"}
@@ -2191,7 +2226,9 @@ _TWIN_WORDS = {frozenset(pair) for pair in (("left", "right"), ("src", "dst"), (
 
 def twin_names(a: str, b: str) -> bool:
     """Whether two names are twins: one digit apart (`R1`/`R2`, `x1`/`x2`) or a pair's other half
-    (`left`/`right`, `src`/`dst`, `l`/`r` in `img_l`/`img_r`)."""
+    (`left`/`right`, `src`/`dst`, `l`/`r` in `img_l`/`img_r`); names only, not numbers."""
+    if not (a.isidentifier() and b.isidentifier()):
+        return False
     if len(a) == len(b) and sum(x != y for x, y in zip(a, b)) == 1 and any(x.isdigit() for x in a + b):
         return True
     parts_a, parts_b = a.split("_"), b.split("_")

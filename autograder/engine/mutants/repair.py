@@ -173,7 +173,7 @@ class _Student:
                 # (a name swapped for its twin -- R1 for R2, left for right -- first of its kind: the
                 # likeliest slip among a function's many names that might be another's)
                 smallest = sorted(shown, key=lambda m: (
-                    m.where != function, not _twin_swap(self.fixes[m.key]), self.fixes[m.key].size,
+                    m.where != function, not (_twin_swap(self.fixes[m.key]) or self.twin_items(m)), self.fixes[m.key].size,
                     self.fixes[m.key].written, m.line))
                 # Each kind of slip has its turn: the k-th smallest change of every operator before the
                 # (k+1)-th of any (a function's 150 names that might be another's would otherwise come
@@ -234,6 +234,20 @@ class _Student:
                 node = None if isinstance(parent, ast.stmt) else parent
         return made
 
+    def twin_items(self, mutant) -> bool:
+        """Whether the mutant exchanges two items that are each other's twins (`(int(y_max - y_min) + 1,
+        int(x_max - x_min) + 1)`: the same code with x for y, a size given rows first)."""
+        where, ordinal, operator, payload = mutant.edits[0]
+        if operator != "swap_items" or len(mutant.edits) != 1:
+            return False
+        nodes, _ = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        if not isinstance(node, (ast.Tuple, ast.List)) or max(payload) >= len(node.elts):
+            return False
+        first, second = (re.findall(r"\w+", ast.unparse(node.elts[k])) for k in payload)
+        pairs = [(a, b) for a, b in zip(first, second) if a != b]
+        return len(first) == len(second) and bool(pairs) and all(twin_names(a, b) for a, b in pairs)
+
     def neighbours(self, first, second) -> bool:
         """Whether two changes are of items side by side: the same list's, tuple's or call's (`[..., x2,
         y2, 1]`)."""
@@ -254,6 +268,8 @@ class _Student:
         where, ordinal, operator, payload = mutant.edits[0]
         nodes, _ = self._walk(where)
         old = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        if operator == "summary":
+            return repr(operator)   # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`)
         if operator != "other_name" or not isinstance(old, ast.Name) or not isinstance(payload, str):
             return repr(payload)
         a, b = old.id, payload
@@ -681,6 +697,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # there as it is: only changes of the lines it runs are tried (a cost="ncc" branch, unused helpers).
     ran = student.ran_here(function, variant.ran(screen))
     runnable = [m for m in student.ordered(function) if student.runs(m, ran)]
+    if any(_rows_for_columns(variant.students[i], references[i]) for i in failing):
+        # An answer with rows and columns exchanged (a canvas sized (height, width)): the exchanges
+        # of twins first, wherever they are (`(y_max - y_min, x_max - x_min)`, `w, h = shape[:2]`).
+        twins = [m for m in runnable if _twin_swap(student.fix(m)) or student.twin_items(m)]
+        runnable = twins + [m for m in runnable if m not in twins]
     for mutant in list(earlier) + _near_the_raise([m for m in runnable if m.key not in known], trial, function):
         if clock.left() <= (RESERVE if candidates or (near and variant.replayable) else 0) \
                 or (tries is not None and variant.screenings >= tries):
@@ -811,6 +832,14 @@ def _near_the_raise(mutants, trial, function) -> list:
         return mutants
     near = lambda m: any(0 <= line - m.line <= RAISE_REACH for line in lines)  # noqa: E731
     return [m for m in mutants if near(m)] + [m for m in mutants if not near(m)]
+
+
+def _rows_for_columns(answer, reference) -> bool:
+    """Whether the answer's first array is the reference's shape with rows and columns exchanged."""
+    first = lambda value: value[0] if isinstance(value, (tuple, list)) and value else value  # noqa: E731
+    got, want = np.shape(first(answer)) if isinstance(first(answer), np.ndarray) else (), \
+        np.shape(first(reference)) if isinstance(first(reference), np.ndarray) else ()
+    return len(got) >= 2 and len(want) >= 2 and got[:2] != want[:2] and got[:2] == want[1::-1] and got[2:] == want[2:]
 
 
 def _apart(first, second) -> bool:
