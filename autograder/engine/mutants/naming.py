@@ -77,6 +77,7 @@ class ErrorModel:
     defaults: dict   # function -> [(parameter, position, default)] for its numeric defaults
     optional: dict = field(default_factory=dict)   # function -> [(parameter, position, None)]
     modes: dict = field(default_factory=dict)      # function -> [(parameter, position, default, values)]
+    twins: dict = field(default_factory=dict)      # function -> [(position, position)] of twin parameters
 
 
 def _numeric_defaults(source: str) -> dict:
@@ -137,6 +138,40 @@ def _modes(source: str) -> dict:
     return out
 
 
+def _twin_parameters(source: str) -> dict:
+    """function -> [(position, position), ...]: its parameters that come in twin pairs (`img1`/`img2`,
+    `pts1`/`pts2`, `img_l`/`img_r`, `src`/`dst`): exchanging every pair at once gives another input of
+    the same kind, the roles of the two views turned round."""
+    import ast
+
+    from .operators import twin_names
+
+    out = {}
+    for node in parse(source, max_chars=None, max_statements=None).body:
+        if isinstance(node, ast.FunctionDef):
+            names = [a.arg for a in node.args.args]
+            pairs, used = [], set()
+            for i, a in enumerate(names):
+                for j in range(i + 1, len(names)):
+                    if i not in used and j not in used and twin_names(a, names[j]):
+                        pairs.append((i, j))
+                        used |= {i, j}
+            out[node.name] = pairs
+    return out
+
+
+def twins_exchanged(call, pairs) -> list:
+    """``call`` with every twin pair of its positional arguments exchanged ([] when it has none given)."""
+    function, args, kwargs = call
+    pairs = [(i, j) for i, j in pairs if j < len(args)]
+    if not pairs:
+        return []
+    turned = list(args)
+    for i, j in pairs:
+        turned[i], turned[j] = turned[j], turned[i]
+    return [(function, tuple(turned), dict(kwargs))]
+
+
 def mode_calls(call, modes) -> list:
     """Copies of ``call`` (function, args, kwargs) in each other mode its function has (``modes``:
     see :func:`_modes`)."""
@@ -187,7 +222,7 @@ def model_for(lab) -> ErrorModel | None:
             for function in mutants:  # simplest first: the time may end before the last
                 mutants[function].sort(key=lambda m: m.rank)
             _MODELS[key] = ErrorModel(lab.module, source, mutants, _numeric_defaults(source), _none_defaults(source),
-                                      _modes(source))
+                                      _modes(source), _twin_parameters(source))
         return _MODELS[key]
 
 

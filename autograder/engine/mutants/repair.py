@@ -1000,6 +1000,9 @@ class _Variants:
                 variants += naming.derived_calls(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
                                              self.model.defaults.get(self.function, ()))
                 variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
+                # (the two views' roles turned round: a canvas as high as img2, right where img2 is
+                # the taller, is wrong where img1 is)
+                variants += naming.twins_exchanged(self.inputs[i], getattr(self.model, "twins", {}).get(self.function, ()))
             # (and the other side of a threshold, for a changed condition only: a student's own
             # recipe may differ from the reference's legitimately there -- a resize's shrink)
             crossing = [call for i in failing[:2]

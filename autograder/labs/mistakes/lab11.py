@@ -476,8 +476,9 @@ MISTAKES = {
     "pipeline keeps every match": ("lab11.ex6", """
         def two_view_reconstruction(img1, img2, K):
             sift = cv2.SIFT_create()
-            kp1, des1 = sift.detectAndCompute(cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY), None)
-            kp2, des2 = sift.detectAndCompute(cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY), None)
+            grey = lambda img: cv2.cvtColor(img, cv2.COLOR_BGR2GRAY) if img.ndim == 3 else img
+            kp1, des1 = sift.detectAndCompute(grey(img1), None)
+            kp2, des2 = sift.detectAndCompute(grey(img2), None)
             matches = cv2.BFMatcher(cv2.NORM_L2).match(des1, des2)
             pts1 = np.float64([kp1[m.queryIdx].pt for m in matches])
             pts2 = np.float64([kp2[m.trainIdx].pt for m in matches])
