@@ -450,7 +450,10 @@ TRIANGULATE = """
 
 def test_lab12_triangulation_rows(speak):
     said = speak(lab12.TRIANGULATION_ROWS_HINT, TRIANGULATE, "triangulate")
-    assert "check that" not in said and "look at which singular vector is kept" in said
+    assert "check that" not in said and "look at" not in said and said.endswith("your code already calls np.linalg.svd.")
+    first_vector = TRIANGULATE.replace("np.linalg.svd(A)[2][-1]", "np.linalg.svd(A)[2][0]")
+    assert speak(lab12.TRIANGULATION_ROWS_HINT, first_vector, "triangulate").endswith(
+        "look at which singular vector is kept (the last row of Vt of each point's own 4x4 system)")
     undivided = TRIANGULATE.replace("X[:3] / X[3]", "X[:3]")
     assert speak(lab12.TRIANGULATION_ROWS_HINT, undivided, "triangulate").endswith(
         "check that the solution is divided by its fourth coordinate")
@@ -478,7 +481,11 @@ RECTIFY = """
 
 def test_lab12_rectify_recipe(speak):
     said = speak(lab12.CENTRE_HINT, RECTIFY, "rectify")
-    assert "check that" not in said and "look at the order of the products" in said
+    assert "check that" not in said and "look at" not in said and said.endswith("the difference is inside one of them")
+    inverse_first = RECTIFY.replace("K_new @ R_rect @ np.linalg.inv(K1)", "np.linalg.inv(K1) @ R_rect @ K_new").replace(
+        "K_new @ R_rect @ R.T @ np.linalg.inv(K2)", "np.linalg.inv(K2) @ R.T @ R_rect @ K_new")
+    assert speak(lab12.CENTRE_HINT, inverse_first, "rectify").endswith("look at the order of the products in each map "
+                                                                      "(H1 = K_new R_rect K1^-1, H2 = K_new R_rect R K2^-1)")
     columns = RECTIFY.replace("np.vstack([e1, e2, e3])", "np.column_stack([e1, e2, e3])")
     assert speak(lab12.CENTRE_HINT, columns, "rectify").endswith(
         "check that the new axes are the rows of the rectifying rotation (np.vstack([e1, e2, e3]), not its columns)")
@@ -500,7 +507,19 @@ STEREO_RECTIFY = """
 
 def test_lab12_stereo_rectify_given_as_is(speak):
     said = speak(lab12.GIVEN_AS_IS_HINT, STEREO_RECTIFY, "rectify")
-    assert "check that" not in said and "look at which image each map is applied to" in said
+    assert said == "your code gives cv2.stereoRectify K1, K2, R and T as they came, as it takes them."
+    warped = STEREO_RECTIFY.replace("return warp(img_l, H1), warp(img_r, H2), H1, H2",
+                                    "rect_l = cv2.warpPerspective(img_l, H1, (w, h))\n"
+                                    "        rect_r = cv2.warpPerspective(img_r, H2, (w, h))\n"
+                                    "        return rect_l, rect_r, H1, H2")
+    assert speak(lab12.GIVEN_AS_IS_HINT, warped, "rectify") == said   # each image its own map, those maps returned
+    # the blind set's 29d 12/03: the images warped right, the rotations returned
+    rotations = warped.replace("return rect_l, rect_r, H1, H2", "return rect_l, rect_r, R1, R2")
+    assert speak(lab12.GIVEN_AS_IS_HINT, rotations, "rectify").endswith(
+        "as it takes them; look at which matrices are returned as H1 and H2 (the maps the images are warped with)")
+    one_map = warped.replace("cv2.warpPerspective(img_r, H2, (w, h))", "cv2.warpPerspective(img_r, H1, (w, h))")
+    assert "as it takes them; look at which image each map is applied to (img_l by H1, img_r by H2)" in speak(
+        lab12.GIVEN_AS_IS_HINT, one_map, "rectify")
     rows_first = STEREO_RECTIFY.replace("(w, h)", "img_l.shape[:2]")
     assert speak(lab12.GIVEN_AS_IS_HINT, rows_first, "rectify").endswith(
         "check that the image size it is given is (width, height)")
@@ -542,7 +561,18 @@ STRUCTURED = """
 
 def test_lab12_structured_light_recipe(speak):
     said = speak(lab12.STRUCTURED_LIGHT_RECIPE, STRUCTURED, "depth_from_structured_light")
-    assert "check that" not in said and said.startswith("look at the order the bits are read in")
+    # bits read most significant first and each XOR with the previous binary bit: only the undecoded pixels
+    assert said == "look at the pixels left undecoded (black in every image: depth 0)"
+    marked = STRUCTURED.replace("return f * baseline / (u - column)",
+                                "return np.where(bits.any(axis=0), f * baseline / (u - column), 0)")
+    assert speak(lab12.STRUCTURED_LIGHT_RECIPE, marked, "depth_from_structured_light") == ""
+    gray_bits = marked.replace("binary[i] = binary[i - 1] ^ bits[i]", "binary[i] = bits[i - 1] ^ bits[i]")
+    assert speak(lab12.STRUCTURED_LIGHT_RECIPE, gray_bits, "depth_from_structured_light") == (
+        "look at what each XOR is taken with (the previous binary bit, not the previous Gray bit)")
+    reversed_bits = marked.replace("<< (len(bits) - 1 - i) for i, b in enumerate(binary)",
+                                   "<< i for i in range(len(binary)) for b in [binary[i]]")
+    assert speak(lab12.STRUCTURED_LIGHT_RECIPE, reversed_bits, "depth_from_structured_light") == (
+        "look at the order the bits are read in (the first image is the most significant bit)")
     plain = STRUCTURED.replace("binary[i] = binary[i - 1] ^ bits[i]", "pass")
     assert speak(lab12.STRUCTURED_LIGHT_RECIPE, plain, "depth_from_structured_light") == (
         "check that the Gray code is converted to binary (most significant bit first: b0 = g0, b_i = b_(i-1) XOR g_i)")
@@ -564,7 +594,10 @@ SSD = """
 
 def test_lab12_lowest_cost(speak):
     said = speak(lab12.LOWEST_COST_HINT, SSD, "block_matching")
-    assert "check that" not in said and "look at where each cost is stored" in said
+    assert said == "your code already keeps the lowest cost (argmin, or argmax of the cost negated)."
+    zero_border = SSD.replace("np.full((max_disparity + 1,) + L.shape, np.inf)", "np.zeros((max_disparity + 1,) + L.shape)")
+    assert speak(lab12.LOWEST_COST_HINT, zero_border, "block_matching").endswith(
+        "look at the columns near the left border (no block at x - d there)")
     in_uint8 = SSD.replace("left.astype(np.float64), right.astype(np.float64)", "left, right")
     assert speak(lab12.LOWEST_COST_HINT, in_uint8, "block_matching").endswith(
         "check that a block's cost is the sum or mean of the squared differences over the block, computed in floats")
@@ -579,7 +612,13 @@ DEPTH = """
 
 def test_lab12_guarded_division(speak):
     said = speak(lab12.GUARDED_DIVISION_HINT, DEPTH, "depth_from_disparity")
-    assert "check that" not in said and "look at the value divided by" in said
+    assert said == "your code already passes where= to np.divide."
+    unreturned = DEPTH.replace("return np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0)",
+                               "np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0)\n        return d")
+    assert speak(lab12.GUARDED_DIVISION_HINT, unreturned, "depth_from_disparity").endswith("look at the array returned")
+    by_baseline = DEPTH.replace("np.divide(f * baseline, d,", "np.divide(f * d, baseline,")
+    assert speak(lab12.GUARDED_DIVISION_HINT, by_baseline, "depth_from_disparity").endswith(
+        "look at the value divided by (the disparity given, d = x_l - x_r)")
     nonzero = DEPTH.replace("where=d > 0", "where=d != 0")
     assert speak(lab12.GUARDED_DIVISION_HINT, nonzero, "depth_from_disparity").endswith(
         "check that its condition is d > 0 (NaN > 0 is False)")
@@ -601,7 +640,19 @@ SIMULATE = """
 
 def test_lab12_projector_model(speak):
     said = speak(lab12.PROJECTOR_MODEL, SIMULATE, "simulate_structured_light")
-    assert said == "look at which bit of the column's Gray code each image shows (the most significant first)"
+    assert said == ""   # every item done, and no bit read in an order this reading follows
+    coded = SIMULATE.replace("return patterns(column, lit, n_bits)",
+                             "k = (column * 2 ** n_bits) // w\n        g = k ^ (k >> 1)\n"
+                             "        return np.stack([((g >> (n_bits - 1 - i)) & 1) * 255 * lit for i in range(n_bits)])")
+    assert speak(lab12.PROJECTOR_MODEL, coded, "simulate_structured_light") == ""
+    # the blind set's 29d 12/07: the column's own Gray code
+    of_column = coded.replace("g = k ^ (k >> 1)", "g = column ^ (column >> 1)")
+    assert speak(lab12.PROJECTOR_MODEL, of_column, "simulate_structured_light") == (
+        "check that the Gray code shown is that of the column's stripe k = (column * 2**n_bits) // width, not of the "
+        "column itself")
+    lowest_first = coded.replace("(g >> (n_bits - 1 - i))", "(g >> i)")
+    assert speak(lab12.PROJECTOR_MODEL, lowest_first, "simulate_structured_light") == (
+        "look at which bit of the Gray code each image shows (the most significant first)")
     one_end = SIMULATE.replace(" & (column >= 0)", "")
     assert speak(lab12.PROJECTOR_MODEL, one_end, "simulate_structured_light") == (
         "check that a pixel whose column is off the projector (below 0, or at its width and past) is black")
