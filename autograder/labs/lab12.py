@@ -615,7 +615,7 @@ def disparities_from_x(t):
     what = "disparity_from_matches(xl[:2], xr[:2])"
     got = t.call("disparity_from_matches", xl[:2], xr[:2])
     if isinstance(got, (np.ndarray, float, np.floating, int, np.integer)) and np.ndim(got) == 0:
-        taken = measured(" as if the two x coordinates were one (x, y) point (x_l - x_r of the first match)") \
+        taken = measured(", as if the two x coordinates were one (x, y) point (x_l - x_r of the first match)") \
             if np.isclose(float(got), xl[0] - xr[0]) else ""
         t.fail(f"{what} returned the single number {float(got):g}, not 2 disparities{taken}: 1-D inputs are x "
                "coordinates whatever their length, (N, 2) arrays are points.")
@@ -893,6 +893,29 @@ def orientation(H, shape) -> tuple[bool, bool, bool]:
     return bool(mapped[1, 0] < mapped[0, 0]), bool(mapped[3, 1] < mapped[2, 1]), behind
 
 
+def _crosses_in_order(function) -> bool:
+    """e2 = z x e1 and e3 = e1 x e2, in this order: a name assigned ``np.cross(z, e1)`` crossed after e1
+    (``np.cross(e1, e2)``); code without a cross product of its own (cv2.stereoRectify) counts as doing it."""
+    crosses = [n for n in ast.walk(function) if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "cross"
+               and len(n.args) == 2]
+    if not crosses:
+        return True
+    values = _assigned_values(function)
+
+    def second_axis(name, e1) -> bool:   # name holds np.cross(_, e1), perhaps divided by its norm afterwards
+        return any(isinstance(m, ast.Call) and m in crosses and isinstance(m.args[1], ast.Name) and m.args[1].id == e1
+                   for v in values.get(name, []) for m in ast.walk(v))
+    return any(isinstance(n.args[0], ast.Name) and isinstance(n.args[1], ast.Name)
+               and second_axis(n.args[1].id, n.args[0].id) for n in crosses)
+
+
+# Measured (the message): both new cameras look away. The order of the cross products is told only to code
+# that does not visibly write them in this order.
+CROSS_ORDER_HINT = Hint("e2 = z x e1 (the mean optical axis crossed with e1, in this order) and e3 = e1 x e2 keep the "
+                        "new z axis towards the scene",
+                        asks=Predicate("crosses z with e1, then e1 with e2", _crosses_in_order), instead="")
+
+
 INVERT_HINT = Hint(" (invert them)", asks=calls_any("np.linalg.inv", "np.linalg.pinv", "cv2.invert",
                                                   says="inverts a matrix"),
                    instead=" (your code {found}: look at which way each matrix it inverts maps)")
@@ -913,13 +936,12 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                        "negative third coordinate), which mirrors both images: the rectifying rotation's "
                        "second and third axes point the opposite way.",
                        mistake="the rectifying rotation looks backwards: e2 and e3 point the opposite way",
-                       hint=measured("e2 = z x e1 (the mean optical axis crossed with e1, in this order) and "
-                                     "e3 = e1 x e2 keep the new z axis towards the scene"))
+                       hint=CROSS_ORDER_HINT.said(t))
             if x1 and x2 and not (back1 or back2):
                 t.fail(f"{negative}: both rectified images are mirrored left to right with the new cameras "
                        "facing the scene: the new x axis points from camera 2 to camera 1.",
                        mistake="the new x axis points from camera 2 to camera 1 (the images are mirrored)",
-                       hint="camera 2's centre in camera-1 coordinates is -R^T T: the new x axis points towards it")
+                       hint=TOWARDS_CENTRE_HINT.said(t))
             if not (x1 or x2 or y1 or y2 or back1 or back2):
                 t.fail(f"{negative}, and neither image is turned or mirrored: the left and right roles are "
                        "swapped.", mistake="the left and right roles are swapped in the rectification")
@@ -970,6 +992,9 @@ AXES_AS_COLUMNS = (calls("np.column_stack") | keyword("np.stack", "axis", 1) | k
                    | expr("np.array([_, _, _]).T") | expr("np.vstack([_, _, _]).T") | expr("np.stack([_, _, _]).T")
                    ).saying("stacks the new axes as columns")
 ONE_ROTATION = Predicate("gives both cameras one new rotation and one new K", _shared_by_products)
+TOWARDS_CENTRE_HINT = Hint("camera 2's centre in camera-1 coordinates is -R^T T: the new x axis points towards it",
+                           asks=CENTRE, instead="your code {found}: the new x axis e1 points towards that centre "
+                                                "(C2 / |C2|), from camera 1 to camera 2")
 
 
 def rectification_recipe(lead: str, *first: tuple) -> str:
@@ -1200,8 +1225,23 @@ def rectify_colour(t):
         return passed("the grey pair's images do not match their homographies either: judged by the grey check")
     t.fail(f"rectify of a colour pair: {wrong[0]} differs from the colour input warped by your "
            f"{'H1' if wrong[0] == 'rect_l' else 'H2'} by {errors[wrong[0]]:.0f} levels on average, while "
-           "a grey pair's images match their homographies: "
-           + measured("warp the colour images as they are (cv2.warpPerspective takes BGR images)."))
+           "a grey pair's images match their homographies" + (f": {told}" if (told := COLOUR_HINT.said(t)) else "."))
+
+
+def _converts_colour(function) -> bool:
+    """A colour image turned into something else before the warp: cv2.cvtColor, a channel taken (``img[..., 0]``,
+    ``img[:, :, 1]``) or averaged (``.mean(axis=2)``)."""
+    return calls("cv2.cvtColor").holds([function]) or any(
+        isinstance(n, ast.Subscript) and isinstance(n.slice, ast.Tuple) and n.slice.elts
+        and isinstance(n.slice.elts[-1], ast.Constant) and n.slice.elts[-1].value in (0, 1, 2)
+        and (len(n.slice.elts) == 3 or isinstance(n.slice.elts[0], ast.Constant) and n.slice.elts[0].value is Ellipsis)
+        for n in ast.walk(function)) or keyword("np.mean", "axis", 2).holds([function]) \
+        or keyword(".mean", "axis", 2).holds([function])
+
+
+# Told only to code that converts the images somewhere (code warping them as they come does what it says).
+COLOUR_HINT = Hint("warp the colour images as they are (cv2.warpPerspective takes BGR images).",
+                   asks=~Predicate("converts a colour image", _converts_colour), instead="")
 
 
 def _warped_or_inf(image, H, got) -> float:
@@ -1433,8 +1473,16 @@ def judge_left_strip(t: Trial, what: str, got, max_disparity: int, function: str
            + (from_code(" Your code calls np.roll, which brings the right image's last columns round to its "
                         "left edge: blocks there are compared with the far side of the image.") if rolled else ""),
            mistake=PAST_THE_EDGE_MISTAKE,
-           hint=measured("where x - d < 0 the block has no partner in the right image: give those disparities an "
-                         "infinite cost (or leave the pixel invalid)"))
+           hint=NO_PARTNER_HINT.said(t, [function]))
+
+
+# Told only to code that marks no column as without a partner (an infinite cost, a slice up to d, a test against d).
+NO_PARTNER_HINT = Hint(measured("where x - d < 0 the block has no partner in the right image: ")
+                       + "give those disparities an infinite cost (or leave the pixel invalid)",
+                       asks=Predicate("marks the columns without a partner", _marks_left_border),
+                       instead=measured("where x - d < 0 the block has no partner in the right image: ")
+                       + "your code {found}: look at which columns it marks for each d, and at what becomes of "
+                         "them afterwards")
 
 
 @ex4.check("block_matching (SSD, block_size=9) on random-dot planes", points=3, timeout=STEREO_TIMEOUT)
@@ -1704,8 +1752,29 @@ def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, scene, compared_with=
                hint=COST_SCALE_HINT.said(t), mistake=WEAK_DEFAULT)
     t.fail(f"{what}: it looks like {SMOOTHNESS_IGNORED} (winner-take-all): {jumps:.1%} of "
            f"neighbouring pixels jump by more than 1 px, as many as {compared_with} ({wta_jumps:.1%}).",
-           hint="with smoothness=None, use a default penalty suited to your cost's scale",
+           hint=from_code("your code sets smoothness to 0 when it is None, which switches the smoothness term off: "
+                          "the default is a positive penalty suited to your cost's scale")
+           if ZERO_DEFAULT.holds(code_of(t).reachable([DP_FUNCTION])) else
+           "with smoothness=None, use a default penalty suited to your cost's scale",
            mistake=SMOOTHNESS_IGNORED)
+
+
+def _zero_default(function) -> bool:
+    """The smoothness parameter given 0 where it is None: ``smoothness = 0.0`` (under ``if smoothness is None``),
+    ``smoothness = 0 if smoothness is None else smoothness``, ``smoothness = smoothness or 0``."""
+    def zero(node) -> bool:
+        return isinstance(node, ast.Constant) and not isinstance(node.value, bool) and node.value == 0
+
+    for n in ast.walk(function):
+        if isinstance(n, ast.Assign) and any(isinstance(t, ast.Name) and "smooth" in t.id.lower() for t in n.targets):
+            value = n.value
+            if zero(value) or isinstance(value, ast.IfExp) and zero(value.body) \
+                    or isinstance(value, ast.BoolOp) and isinstance(value.op, ast.Or) and zero(value.values[-1]):
+                return True
+    return False
+
+
+ZERO_DEFAULT = Predicate("sets smoothness to 0 when it is None", _zero_default)
 
 
 # Said of the map, not of the code: a last column wrong alone shows where the backtracking starts,
@@ -2037,7 +2106,7 @@ def name_wrapped_stripes(t: Trial, what, got, width, n_bits):
         return
     if isinstance(again, np.ndarray) and np.array_equal(again, _patterns_of(np.arange(1024) % 256, 10)):
         t.fail(f"{what} is wrong: it looks like {WRAPPED_STRIPES} (gray_code_patterns(1024, 10) too gives "
-               "stripes 256 to 1023 the codes of 0 to 767).", mistake=WRAPPED_STRIPES)
+               "each stripe k from 256 on the code of k mod 256).", mistake=WRAPPED_STRIPES)
 
 
 def codes_differ_within_stripes(patterns, stripes) -> bool:
