@@ -690,3 +690,80 @@ def test_lab11_inliers_kept(speak):
     assert "check that" not in said and "look at the order of the points" in said
     assert speak(lab11.INLIERS_HINT, RECONSTRUCTION, "two_view_reconstruction").endswith(
         "check that the points returned are those its mask keeps")
+
+
+# ------------------------------------------------------------------ lab 12: fixed hints held to the code
+def test_lab12_cross_order(speak):
+    said = speak(lab12.CROSS_ORDER_HINT, RECTIFY.replace("np.cross([0, 0, 1], e1)", "np.cross(z, e1)"), "rectify")
+    assert said == ""   # e2 = z x e1 and e3 = e1 x e2 written: the measured message alone
+    reversed_order = RECTIFY.replace("np.cross([0, 0, 1], e1)", "np.cross(e1, z)")
+    assert speak(lab12.CROSS_ORDER_HINT, reversed_order, "rectify") == lab12.CROSS_ORDER_HINT.text
+    assert speak(lab12.CROSS_ORDER_HINT, STEREO_RECTIFY, "rectify") == ""   # no cross product of its own
+
+
+def test_lab12_towards_camera_2(speak):
+    assert speak(lab12.TOWARDS_CENTRE_HINT, RECTIFY, "rectify") == ""   # -R^T T written: the measured message alone
+    from_t = RECTIFY.replace("C2 = -R.T @ T.ravel()", "C2 = T.ravel()")
+    assert speak(lab12.TOWARDS_CENTRE_HINT, from_t, "rectify") == lab12.TOWARDS_CENTRE_HINT.text
+
+
+def test_lab12_colour_warped_as_it_is(speak):
+    warped = STEREO_RECTIFY.replace("return warp(img_l, H1), warp(img_r, H2), H1, H2",
+                                    "return cv2.warpPerspective(img_l, H1, (w, h)), "
+                                    "cv2.warpPerspective(img_r, H2, (w, h)), H1, H2")
+    assert speak(lab12.COLOUR_HINT, warped, "rectify") == ""
+    grey = warped.replace("cv2.warpPerspective(img_l,", "cv2.warpPerspective(cv2.cvtColor(img_l, cv2.COLOR_BGR2GRAY),")
+    assert speak(lab12.COLOUR_HINT, grey, "rectify") == lab12.COLOUR_HINT.text
+    channel = warped.replace("cv2.warpPerspective(img_l,", "cv2.warpPerspective(img_l[..., 0],")
+    assert speak(lab12.COLOUR_HINT, channel, "rectify") == lab12.COLOUR_HINT.text
+
+
+def test_lab12_no_partner_columns(speak):
+    said = speak(lab12.NO_PARTNER_HINT, SSD, "block_matching")   # the costs start at np.inf
+    assert "infinite cost" not in said and "look at which columns it marks for each d" in said
+    zero_border = SSD.replace("np.full((max_disparity + 1,) + L.shape, np.inf)", "np.zeros((max_disparity + 1,) + L.shape)")
+    assert speak(lab12.NO_PARTNER_HINT, zero_border, "block_matching").endswith(
+        "give those disparities an infinite cost (or leave the pixel invalid)")
+
+
+PATTERNS = """
+    def gray_code_patterns(width, n_bits):
+        k = (np.arange(width) * 2 ** n_bits) // width
+        g = k ^ (k >> 1)
+        return (((g[None, :] >> np.arange(n_bits - 1, -1, -1)[:, None]) & 1) * 255).astype(np.uint8)
+    """
+
+
+def test_lab12_stripe_formula(speak):
+    said = speak(lab12.STRIPE_FORMULA_HINT, PATTERNS, "gray_code_patterns")
+    assert "//" not in said and said.startswith(" (your code computes k with an integer division")
+    in_floats = PATTERNS.replace("(np.arange(width) * 2 ** n_bits) // width",
+                                 "np.floor(np.arange(width) * 2 ** n_bits / width).astype(int)")
+    assert speak(lab12.STRIPE_FORMULA_HINT, in_floats, "gray_code_patterns") == lab12.STRIPE_FORMULA_HINT.text
+
+
+def test_lab12_gray_code_formula(speak):
+    said = speak(lab12.GRAY_CODE_HINT, PATTERNS, "gray_code_patterns")
+    assert "k XOR (k >> 1), bit i" not in said and "your code computes k XOR (k >> 1)" in said
+    binary = PATTERNS.replace("g = k ^ (k >> 1)", "g = k")
+    assert speak(lab12.GRAY_CODE_HINT, binary, "gray_code_patterns") == lab12.GRAY_CODE_HINT.text
+
+
+def test_lab12_zero_default_read():
+    from autograder.engine.hints import read_code
+
+    def reads(source):
+        code = read_code(textwrap.dedent(source))
+        return lab12.ZERO_DEFAULT.holds(code.reachable(["dp_stereo"]))
+    base = """
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            if smoothness is None:
+                smoothness = 60.0
+            return scanlines(left, right, smoothness)
+        """
+    assert not reads(base)
+    assert reads(base.replace("60.0", "0.0"))   # the blind set 29d's 12/05
+    assert reads(base.replace("if smoothness is None:\n                smoothness = 60.0",
+                              "smoothness = 0 if smoothness is None else smoothness"))
+    assert not reads(base.replace("if smoothness is None:\n                smoothness = 60.0",
+                                  "smoothness = 40.0 if smoothness is None else smoothness"))

@@ -993,8 +993,7 @@ AXES_AS_COLUMNS = (calls("np.column_stack") | keyword("np.stack", "axis", 1) | k
                    ).saying("stacks the new axes as columns")
 ONE_ROTATION = Predicate("gives both cameras one new rotation and one new K", _shared_by_products)
 TOWARDS_CENTRE_HINT = Hint("camera 2's centre in camera-1 coordinates is -R^T T: the new x axis points towards it",
-                           asks=CENTRE, instead="your code {found}: the new x axis e1 points towards that centre "
-                                                "(C2 / |C2|), from camera 1 to camera 2")
+                           asks=CENTRE, instead="")   # the message's measured cause alone
 
 
 def rectification_recipe(lead: str, *first: tuple) -> str:
