@@ -146,8 +146,8 @@ class Checklist:
 def _listed(lead: str, items: list, none_left: str) -> str:
     if not items:
         said = f"{lead}{none_left}".strip()
-        # a lead with nothing after it ("your code already calls X:") ends as a sentence
-        return said.rstrip(" :;,") + "." if said and not none_left else said
+        # a lead with nothing after it ("your code already calls X:") loses its colon
+        return said if none_left else said.rstrip(" :;,")
     return f"{lead}check that {', and that '.join(items)}"
 
 
@@ -646,3 +646,39 @@ DIVISION = Predicate("divides", lambda node: any(
 def registered(texts: Iterable[str]) -> list[str]:
     """Of ``texts``, those neither :func:`guard`-ed nor :func:`measured`."""
     return [text for text in texts if text not in GUARDED and text not in MEASURED]
+
+
+def _is_mean(node) -> bool:
+    return isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("mean", "average")
+
+
+def subtracts_a_mean(says: str = "") -> Predicate:
+    """A centroid subtracted: ``pts - pts.mean(axis=0)``, ``x - c[0]`` or ``-s * c[0]`` (a translation's entry) for
+    a ``c`` assigned a mean, directly or through one name; read leniently (any mean subtracted or negated)."""
+    def test(function) -> bool:
+        means = _assigned_names(function, lambda value: any(_is_mean(n) for n in ast.walk(value)))
+
+        def meanish(node) -> bool:
+            return any(_is_mean(n) or (isinstance(n, ast.Name) and n.id in means) for n in ast.walk(node))
+        for node in ast.walk(function):
+            if isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, ast.Sub) \
+                    and meanish(node.right if isinstance(node, ast.BinOp) else node.value):
+                return True
+            if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and meanish(node.operand):
+                return True
+            if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and any(
+                    isinstance(side, ast.UnaryOp) and isinstance(side.op, ast.USub) for side in (node.left, node.right)) \
+                    and meanish(node):
+                return True
+        return False
+    return Predicate(says or "subtracts the centroid", test)
+
+
+def wherever_written(says: str, test: Callable) -> Predicate:
+    """A predicate over the functions read together: ``test(function)`` is True (the step done), False (done
+    otherwise than asked) or None (not written in that function); it holds unless a function writes the step
+    otherwise than asked (leaning towards "done" where nothing is written: a helper without the step, or code
+    this reading cannot follow)."""
+    def over(functions) -> bool:
+        return all(found for found in (test(f) for f in functions) if found is not None)
+    return Predicate(says, over, kind="all")

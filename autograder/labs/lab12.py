@@ -32,7 +32,7 @@ from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
 from ..engine.claims import (calls_any, checklist, divides_by, from_code, guard, look_at, measured,
-                             passes_parameters, takes_last_row_of_vt)
+                             passes_parameters, takes_last_row_of_vt, wherever_written)
 from ..engine.forms import shape_form
 from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, Hint, Predicate, _path, calls, code_of, expr, keyword,
                             size_given_as_shape)
@@ -893,13 +893,13 @@ def orientation(H, shape) -> tuple[bool, bool, bool]:
     return bool(mapped[1, 0] < mapped[0, 0]), bool(mapped[3, 1] < mapped[2, 1]), behind
 
 
-def _crosses_in_order(function) -> bool:
+def _crosses_in_order(function) -> bool | None:
     """e2 = z x e1 and e3 = e1 x e2, in this order: a name assigned ``np.cross(z, e1)`` crossed after e1
     (``np.cross(e1, e2)``); code without a cross product of its own (cv2.stereoRectify) counts as doing it."""
     crosses = [n for n in ast.walk(function) if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "cross"
                and len(n.args) == 2]
     if not crosses:
-        return True
+        return None
     values = _assigned_values(function)
 
     def second_axis(name, e1) -> bool:   # name holds np.cross(_, e1), perhaps divided by its norm afterwards
@@ -913,7 +913,7 @@ def _crosses_in_order(function) -> bool:
 # that does not visibly write them in this order.
 CROSS_ORDER_HINT = Hint("e2 = z x e1 (the mean optical axis crossed with e1, in this order) and e3 = e1 x e2 keep the "
                         "new z axis towards the scene",
-                        asks=Predicate("crosses z with e1, then e1 with e2", _crosses_in_order), instead="")
+                        asks=wherever_written("crosses z with e1, then e1 with e2", _crosses_in_order), instead="")
 
 
 INVERT_HINT = Hint(" (invert them)", asks=calls_any("np.linalg.inv", "np.linalg.pinv", "cv2.invert",
@@ -1073,26 +1073,26 @@ def _names_in(node) -> set:
     return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
 
 
-def _warps_each_by_its_own(function) -> bool:
+def _warps_each_by_its_own(function) -> bool | None:
     """img_l (the first parameter) and img_r (the second) each warped by a different map; code that warps in a
     helper or with cv2.remap cannot be read and counts as doing it."""
     parameters = [a.arg for a in function.args.posonlyargs + function.args.args]
     warps = _warps(function)
     if len(parameters) < 2 or not warps:
-        return True
+        return None
     left = [_names_in(m) for image, m in warps if parameters[0] in _names_in(image)]
     right = [_names_in(m) for image, m in warps if parameters[1] in _names_in(image)]
     return any(a != b for a in left for b in right)
 
 
-def _returns_its_warps(function) -> bool:
+def _returns_its_warps(function) -> bool | None:
     """The last two values returned (H1, H2) are names the images were warped with (``return rect_l, rect_r, H1,
     H2`` after ``cv2.warpPerspective(img_l, H1, ...)``); code that cannot be read that way counts as doing it."""
     warped_with = {m.id for _, m in _warps(function) if isinstance(m, ast.Name)}
     returns = [n.value for n in ast.walk(function) if isinstance(n, ast.Return) and isinstance(n.value, ast.Tuple)
                and len(n.value.elts) == 4]
     if not warped_with or not returns:
-        return True
+        return None
     return all(all(not isinstance(e, ast.Name) or e.id in warped_with for e in r.elts[2:]) for r in returns)
 
 
@@ -1107,10 +1107,11 @@ GIVEN_AS_IS_HINT = Hint(RECTIFY_HINT.neutral("calls cv2.stereoRectify"),
                             ("each image's map is H = P[:, :3] R K^-1", expr("_[:, :3] @ _") | expr("_[:3, :3] @ _")),
                             # (the output size is the first item's predicate: every OpenCV size is read)
                             none_left=look_at(("which image each map is applied to (img_l by H1, img_r by H2)",
-                                               Predicate("warps each image by its own map", _warps_each_by_its_own)),
+                                               wherever_written("warps each image by its own map",
+                                                                _warps_each_by_its_own)),
                                               ("which matrices are returned as H1 and H2 (the maps the images are "
-                                               "warped with)", Predicate("returns the maps it warps with",
-                                                                         _returns_its_warps)))))
+                                               "warped with)", wherever_written("returns the maps it warps with",
+                                                                                _returns_its_warps)))))
 CENTRE_HINT = Hint(RECTIFY_HINT.text, asks=CENTRE,
                    instead="your code {found}; " + rectification_recipe("compare the rest with the recipe: "))
 
@@ -2264,17 +2265,17 @@ def _stripe_like(node, values, depth=0) -> bool:
     return False
 
 
-def _codes_the_stripe(function) -> bool:
+def _codes_the_stripe(function) -> bool | None:
     """Every Gray code written out (``a ^ (a >> 1)``) is taken of a value scaled as a stripe index is
     (``(column * 2**n) // width``); code that computes no Gray code itself (a helper in another function, the
     patterns indexed by column) counts as doing it."""
     values = _assigned_values(function)
     codes = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.BitXor)
              and isinstance(n.right, ast.BinOp) and isinstance(n.right.op, ast.RShift)]
-    return all(_stripe_like(n.left, values) for n in codes)
+    return all(_stripe_like(n.left, values) for n in codes) if codes else None
 
 
-def _bits_in_order(function) -> bool:
+def _bits_in_order(function) -> bool | None:
     """Bits read most significant first, or bits read in a way this reading does not follow (counted as done):
     only a shift by the image's own index (``code >> i`` for ``i`` of ``range(n)``, the least significant first)
     counts as not done."""
@@ -2283,10 +2284,10 @@ def _bits_in_order(function) -> bool:
              and _path(n.iter.func) == "range" and len(n.iter.args) == 1}
     shifts = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.RShift)
               and not (isinstance(n.right, ast.Constant) and n.right.value == 1)]
-    return not shifts or not all(isinstance(n.right, ast.Name) and n.right.id in loops for n in shifts)
+    return not all(isinstance(n.right, ast.Name) and n.right.id in loops for n in shifts) if shifts else None
 
 
-BITS_IN_ORDER = Predicate("reads the bits most significant first", _bits_in_order)
+BITS_IN_ORDER = wherever_written("reads the bits most significant first", _bits_in_order)
 
 
 PROJECTOR_MODEL = checklist(
@@ -2296,7 +2297,7 @@ PROJECTOR_MODEL = checklist(
     ("a pixel whose column is off the projector (below 0, or at its width and past) is black",
      Predicate("tests the column against both ends", _both_bounds)),
     ("the Gray code shown is that of the column's stripe k = (column * 2**n_bits) // width, not of the column itself",
-     Predicate("codes the stripe", _codes_the_stripe)),
+     wherever_written("codes the stripe", _codes_the_stripe)),
     none_left=look_at(("which bit of the Gray code each image shows (the most significant first)", BITS_IN_ORDER)))
 
 
@@ -2327,7 +2328,7 @@ def _divides_by_the_parameter(function) -> bool:
     (``d = np.asarray(disparity, float)``); read leniently."""
     parameters = [a.arg for a in function.args.posonlyargs + function.args.args]
     if not parameters:
-        return True
+        return False
     values = _assigned_values(function)
 
     def reads(node, depth=0) -> bool:
@@ -2461,14 +2462,14 @@ def _root_name(node):
     return node.id if isinstance(node, ast.Name) else None
 
 
-def _bits_assembled_in_order(function) -> bool:
+def _bits_assembled_in_order(function) -> bool | None:
     """Bits assembled most significant first, or in a way this reading does not follow (counted as done): only a
     shift left by the image's own index (``bit << i`` for ``i`` of ``range(n)``) counts as not done."""
     loops = {n.target.id for n in ast.walk(function) if isinstance(n, (ast.For, ast.comprehension))
              and isinstance(n.target, ast.Name) and isinstance(n.iter, ast.Call)
              and _path(n.iter.func) == "range" and len(n.iter.args) == 1}
     shifts = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.LShift)]
-    return not shifts or not all(isinstance(n.right, ast.Name) and n.right.id in loops for n in shifts)
+    return not all(isinstance(n.right, ast.Name) and n.right.id in loops for n in shifts) if shifts else None
 
 
 STRUCTURED_LIGHT_RECIPE = checklist(
@@ -2478,7 +2479,7 @@ STRUCTURED_LIGHT_RECIPE = checklist(
     ("Z = f b / (u - column)", expr("_ * _ / (_ - _)") | expr("_ * _ / _") | expr("_ / (_ - _)")),
     none_left=look_at(
         ("the order the bits are read in (the first image is the most significant bit)",
-         Predicate("reads the first image as the most significant bit", _bits_assembled_in_order)),
+         wherever_written("reads the first image as the most significant bit", _bits_assembled_in_order)),
         ("what each XOR is taken with (the previous binary bit, not the previous Gray bit)",
          Predicate("XORs with the previous binary bit", _xor_accumulates)),
         ("the pixels left undecoded (black in every image: depth 0)",
