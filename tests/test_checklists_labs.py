@@ -812,3 +812,23 @@ def test_lab12_zero_default_read():
                               "smoothness = 0 if smoothness is None else smoothness"))
     assert not reads(base.replace("if smoothness is None:\n                smoothness = 60.0",
                                   "smoothness = 40.0 if smoothness is None else smoothness"))
+
+
+def test_lab10_colour_pose(speak):
+    assert speak(lab10.COLOUR_POSE_HINT, POSE, "estimate_pose") == lab10.COLOUR_POSE_HINT.text
+    grey = POSE.replace("cv2.findChessboardCorners(image,",
+                        "cv2.findChessboardCorners(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY),")
+    said = speak(lab10.COLOUR_POSE_HINT, grey, "estimate_pose")
+    assert "convert" not in said and said.startswith("estimate_pose takes either; your code calls cv2.cvtColor")
+
+
+UNDISTORT = """
+    def undistort_image(image, K, dist):
+        return cv2.undistort(image, K, dist)
+    """
+
+
+def test_lab10_undistort_channels(speak):
+    assert speak(lab10.UNDISTORT_CHANNELS_HINT, UNDISTORT, "undistort_image") == ""   # the BGR image as it is
+    grey = UNDISTORT.replace("cv2.undistort(image,", "cv2.undistort(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY),")
+    assert speak(lab10.UNDISTORT_CHANNELS_HINT, grey, "undistort_image") == lab10.UNDISTORT_CHANNELS_HINT.text

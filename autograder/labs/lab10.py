@@ -1003,6 +1003,13 @@ def colour_photo(grey) -> np.ndarray:
     return np.dstack([np.round(grey * 0.92).astype(np.uint8), grey, grey])
 
 
+# Code that converts already is pointed at where a colour view still reaches a call wanting one channel.
+COLOUR_POSE_HINT = Hint("estimate_pose takes either: convert a colour image to grey where OpenCV wants one channel "
+                        "(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)).", asks=calls("cv2.cvtColor"),
+                        instead="estimate_pose takes either; your code {found}: look at which view each OpenCV call "
+                                "is given (one that wants one channel still gets the colour one).")
+
+
 @ex6.check("estimate_pose on three rendered views with known pose (one a colour photo, BGR)", points=5)
 def pose_views(t):
     messages = []
@@ -1016,9 +1023,7 @@ def pose_views(t):
                 raise
             raise StudentFailure(failure.outcome, measured(
                 f"estimate_pose(colour image, ...): {failure.message}\nThis view is a colour photo (BGR, as "
-                "cv2.imread reads one); the grey view before it passed. ") + measured(
-                "estimate_pose takes either: convert a colour image to grey where OpenCV wants one channel "
-                "(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)).")) from None
+                "cv2.imread reads one); the grey view before it passed. ") + COLOUR_POSE_HINT.said(t)) from None
         what = what.replace("(image,", "(colour image,") if i == 1 else what
         verdict = judge_pose(t, what, got, image, R, tv, corners, truth.POSE_PATTERN, truth.POSE_SQUARE,
                              truth.POSE_K, show=(i == 0))
@@ -1240,9 +1245,16 @@ def undistort_colour(t):
     if blurred_difference(got, np.dstack(per_channel), valid) <= UNDISTORT_TOLERANCE:
         return passed("each channel is undistorted as your code undistorts a grey image "
                       "(the undistortion itself is the other check's)")
+    told = UNDISTORT_CHANNELS_HINT.said(t)
     t.fail(f"{what} differs by {error:.0f} levels on average from the distortion-free view, and is not your "
-           "own undistortion of each channel either: " + measured(
-               "undistort the three channels alike (cv2.undistort takes a BGR image as it is)."))
+           "own undistortion of each channel either" + (f": {told}" if told else "."))
+
+
+# Told only to code that converts or splits the colour image (code undistorting it as it comes does what it says).
+UNDISTORT_CHANNELS_HINT = Hint(
+    "undistort the three channels alike (cv2.undistort takes a BGR image as it is).",
+    asks=~(calls("cv2.cvtColor") | calls("cv2.split") | expr("_[..., 0]") | expr("_[:, :, 0]")).saying(
+        "converts or splits the image"), instead="")
 
 
 # ================================================================== ext2 dolly zoom
