@@ -2152,6 +2152,11 @@ def patterns_property(t):
               max_examples=20, describe=lambda c: f"width={c[0]}, n_bits={c[1]}")
 
 
+# measured: the images are those of each column's own Gray code (its low n_bits bits), here and on another scene
+COLUMN_CODED = ("each pixel shows the Gray code of its projector column itself, not of the column's stripe "
+                "k = (column * 2**n_bits) // width")
+
+
 def simulation_explained(got, depth, f, baseline, n_bits) -> list[str]:
     """The simulation mistakes whose images are ``got`` (pixels of tied columns aside)."""
     width = depth.shape[1]
@@ -2166,6 +2171,7 @@ def simulation_explained(got, depth, f, baseline, n_bits) -> list[str]:
             dict(clip=True),
         "the images are in the wrong order: image 0 is lit by the most significant pattern (row 0)":
             dict(reverse=True),
+        COLUMN_CODED: dict(patterns=_patterns_of(np.arange(width), n_bits)),
     }
     found = []
     for mistake, kwargs in mistakes.items():

@@ -553,6 +553,23 @@ MISTAKES = {
             return np.where(bits.any(axis=0), z, 0.0)
         """, ["depth_from_structured_light(10 images", "with 6 images it decodes exactly",
               "the stripe indices k reach 1023"]),
+    # the blind set 29d's 12/07: the stripe computed, the column Gray-coded
+    "simulation showing the Gray code of the column, not of its stripe": ("lab12.ex6", """
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            depth = np.asarray(depth, dtype=np.float64)
+            height, width = depth.shape
+            u = np.arange(width, dtype=np.float64)[None, :]
+            lit = np.isfinite(depth) & (depth > 0)
+            column = np.floor(u - f * baseline / np.where(lit, depth, 1.0) + 0.5).astype(np.int64)
+            lit &= (column >= 0) & (column < width)
+            stripe = (column * (1 << n_bits)) // width
+            code = column ^ (column >> 1)
+            images = np.zeros((n_bits, height, width), dtype=np.uint8)
+            for i in range(n_bits):
+                bit = (code >> (n_bits - 1 - i)) & 1
+                images[i][lit] = (bit[lit] * 255).astype(np.uint8)
+            return images
+        """, ["each pixel shows the Gray code of its projector column itself"]),
     # the blind set 29d's 12/06: right up to 8 bits
     "patterns with the stripe index cast to uint8": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
