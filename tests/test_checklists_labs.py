@@ -832,3 +832,31 @@ def test_lab10_undistort_channels(speak):
     assert speak(lab10.UNDISTORT_CHANNELS_HINT, UNDISTORT, "undistort_image") == ""   # the BGR image as it is
     grey = UNDISTORT.replace("cv2.undistort(image,", "cv2.undistort(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY),")
     assert speak(lab10.UNDISTORT_CHANNELS_HINT, grey, "undistort_image") == lab10.UNDISTORT_CHANNELS_HINT.text
+
+
+STEREO_BM = """
+    def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+        grey_l, grey_r = grey(left), grey(right)
+        n = 16 * int(np.ceil((max_disparity + 1) / 16))
+        matcher = cv2.StereoBM_create(numDisparities=n, blockSize=block_size)
+        d = matcher.compute(grey_l.astype(np.uint8), grey_r.astype(np.uint8)).astype(np.float64) / 16.0
+        d[d <= 0] = 0
+        return d
+    """
+
+
+def test_lab12_opencv_matcher(speak):
+    said = speak(lab12.OPENCV_MATCHER_HINT, STEREO_BM, "block_matching")
+    assert said == "your code uses OpenCV's block matcher (cv2.StereoBM or StereoSGBM), which compares the blocks and " \
+                   "keeps the lowest cost itself."
+    # the blind set 29d's 12/04: compute(right, left)
+    swapped = STEREO_BM.replace("matcher.compute(grey_l.astype(np.uint8), grey_r.astype(np.uint8))",
+                                "matcher.compute(grey_r.astype(np.uint8), grey_l.astype(np.uint8))")
+    assert speak(lab12.OPENCV_MATCHER_HINT, swapped, "block_matching").endswith(
+        "itself: check that it is given the left image first (matcher.compute(left, right))")
+    fixed_point = STEREO_BM.replace(" / 16.0", "")
+    assert speak(lab12.OPENCV_MATCHER_HINT, fixed_point, "block_matching").endswith(
+        "itself: check that its int16 answer is divided by 16 (disparities in 1/16 px)")
+    unmarked = STEREO_BM.replace("        d[d <= 0] = 0\n", "")
+    assert speak(lab12.OPENCV_MATCHER_HINT, unmarked, "block_matching").endswith(
+        "itself: look at the pixels where no match is found (-16 in its answer)")

@@ -34,7 +34,8 @@ from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_differen
 from ..engine.claims import (calls_any, checklist, divides_by, from_code, guard, look_at, measured,
                              passes_parameters, takes_last_row_of_vt, wherever_written)
 from ..engine.forms import shape_form
-from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, Hint, Predicate, _path, calls, code_of, expr, keyword,
+from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
+                            keyword, mentions,
                             size_given_as_shape)
 from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
@@ -180,13 +181,61 @@ def _shifts_by_disparity(function) -> bool:
         for n in ast.walk(function))
 
 
-# Code that calls OpenCV's matcher has its block search done: what is left to tell is its answer.
+def _parameters_read(function) -> tuple:
+    """``(read, of)``: name -> the positions of the function's parameters its value is computed from (through
+    assignments, tuples unpacked element by element: ``grey_l, grey_r = f(left), f(right)``), and ``of(node)``,
+    the positions an expression reads."""
+    parameters = [a.arg for a in function.args.posonlyargs + function.args.args]
+    read = {name: {i} for i, name in enumerate(parameters)}
+
+    def of(node) -> set:
+        return set().union(*[read.get(n.id, set()) for n in ast.walk(node) if isinstance(n, ast.Name)])
+    pairs = []
+    for n in ast.walk(function):
+        if isinstance(n, ast.Assign):
+            for target in n.targets:
+                if isinstance(target, ast.Tuple) and isinstance(n.value, ast.Tuple) \
+                        and len(target.elts) == len(n.value.elts):
+                    pairs += [(t, v) for t, v in zip(target.elts, n.value.elts) if isinstance(t, ast.Name)]
+                elif isinstance(target, ast.Name):
+                    pairs.append((target, n.value))
+    for _ in range(3):   # names from names, a few steps
+        for target, value in pairs:
+            if target.id not in parameters:
+                read[target.id] = read.get(target.id, set()) | of(value)
+    return read, of
+
+
+def _computes_left_first(function) -> bool | None:
+    """``matcher.compute(left, right)``: the first image read from the first parameter (left); False only where the
+    first is read from the right image alone and the second from the left alone."""
+    computes = [n for n in ast.walk(function) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
+                and n.func.attr == "compute" and len(n.args) >= 2]
+    if not computes:
+        return None
+    _, of = _parameters_read(function)
+    return not any(of(n.args[0]) == {1} and of(n.args[1]) == {0} for n in computes)
+
+
+def _sixteens(function) -> bool:
+    """A 16 written (numDisparities rounded to a multiple of 16); read leniently."""
+    return any(isinstance(n, ast.Constant) and not isinstance(n.value, bool) and n.value in (16, 16.0)
+               for n in ast.walk(function))
+
+
+# Code that calls OpenCV's matcher has its block search done: what is left to tell is what it is given and what
+# is done with its answer, each item held to the code.
 OPENCV_MATCHER_HINT = Hint(
     LOWEST_COST_HINT.text, asks=STEREO_MATCHER,
-    instead="your code {found}, which compares the blocks and keeps the lowest cost itself: look at what "
-            "is done with its answer (int16 disparities in 1/16 px, -16 where no match is found) and at "
-            "what it is given (grey uint8 images, numDisparities a multiple of 16 above max_disparity, an "
-            "odd blockSize of 5 or more)")
+    instead="your code {found}, which compares the blocks and keeps the lowest cost itself: " + checklist(
+        "", ("it is given the left image first (matcher.compute(left, right))",
+             wherever_written("gives compute the left image first", _computes_left_first)),
+        ("its int16 answer is divided by 16 (disparities in 1/16 px)", DIVIDES_BY_16),
+        ("numDisparities is a multiple of 16 above max_disparity", Predicate("writes a 16", _sixteens)),
+        ("it is given grey uint8 images", TO_UINT8 | calls("cv2.cvtColor") | mentions("np.uint8")),
+        none_left=look_at(("the pixels where no match is found (-16 in its answer)",
+                           expr("_ <= 0") | expr("_ < 0") | expr("_ > 0") | expr("_ >= 0") | expr("_ == -16")
+                           | expr("_ < 1") | expr("_ > _")))))
 
 
 DP_STEPS = ("the difference can come from any step of the lab sheet's: the matching cost, the accumulation along "
