@@ -44,7 +44,7 @@ CODE = re.compile(r"\b(?:cv2|np)\.\w+|\border\s*=|\bfull_matrices\b|\.reshape\b|
 CALL_SHOWN = re.compile(r"^[\w.]+\(.*\)$")   # "pinhole_project(np.array([1, 1, 2]), f=1)": the call judged
 
 # Calls whose string arguments are held to the code, marked, or code patterns.
-HELD = {"Hint", "guard", "nan_behind", "checklist"}
+HELD = {"Hint", "guard", "nan_behind", "checklist", "look_at"}
 MARKED = {"measured", "from_code"}
 PATTERNS = {"expr", "calls", "calls_any", "mentions", "keyword", "saying", "divides_by", "matmul_of",
             "passes_product", "passes_argument", "uses_attr", "reshapes", "Predicate"}
@@ -85,7 +85,7 @@ def unheld(path: Path) -> list[tuple[int, str]]:
                 name = _called(node)
                 if name in MARKED or name in PATTERNS:
                     return True
-                if name in HELD and (name in ("nan_behind", "checklist") or any(k.arg == "asks" for k in node.keywords)
+                if name in HELD and (name in ("nan_behind", "checklist", "look_at") or any(k.arg == "asks" for k in node.keywords)
                                      or (name == "guard" and len(node.args) >= 2)):
                     return True
                 if name in NAMES and child in node.args[:1]:

@@ -292,3 +292,18 @@ def test_a_chain_of_homographies_in_the_reverse_order_is_named(tmp_path):
     result = grade(mutant(tmp_path, "lab08_homographies", source), ["lab08.ext2"], pictures="none")
     failed = failing(result, "lab08.ext2")
     assert failed and any(c.mistake == lab08.REVERSED_CHAIN for c in failed), [(c.name, c.message) for c in failed]
+
+
+def test_the_new_principal_point_is_the_in_view_cause_only_of_maps_that_rectify(tmp_path):
+    """Maps that rectify but push the images aside are told of the new K; maps that do not rectify (K where K^-1
+    belongs) are not: their cause is the rows check's."""
+    from autograder.labs.mistakes.lab12 import MISTAKES
+
+    def in_view(source):
+        result = grade(mutant(tmp_path / str(len(source)), "lab12_stereo", source), ["lab12.ex3"], pictures="none")
+        [check] = [c for c in check_results(result, "lab12.ex3") if c.name == "rectify: most of each image stays in view"]
+        return check.message
+    pushed = in_view(MISTAKES["rectify pushes the images out of view"][1])
+    assert "H1 and H2 rectify the pair, but the new principal point" in pushed
+    k_for_inverse = in_view(MISTAKES["rectify with K where K^-1 belongs"][1])
+    assert "principal point" not in k_for_inverse and "do not rectify the pair either" in k_for_inverse

@@ -90,14 +90,45 @@ def guard(text: str, asks: Predicate, instead: str | None = None, functions: tup
     return text
 
 
+class LookAt:
+    """What a :func:`checklist` points to when none of its items is left: "look at A, and at B", each
+    pointer said only where the student's code does not visibly do that step already (a pointer to a
+    step the code does sends the student the wrong way, as an item would); ``otherwise`` (a sentence
+    naming no step, or nothing) when the code does them all."""
+
+    def __init__(self, pointers: tuple, otherwise: str = ""):
+        if not pointers or any(not isinstance(done, Predicate) for _, done in pointers):
+            raise ValueError("look_at: every pointer needs the predicate of the code that does its step")
+        self.pointers, self.otherwise = pointers, otherwise
+        self.text = self._joined([text for text, _ in pointers])
+
+    def _joined(self, texts: list) -> str:
+        return "look at " + ", and at ".join(texts) if texts else self.otherwise
+
+    def told(self, read) -> str:
+        return self._joined([text for text, done in self.pointers if not done.holds(read)])
+
+
+def look_at(*pointers: tuple[str, Predicate], otherwise: str = "") -> LookAt:
+    """A checklist's ``none_left`` made of pointers, each (what to look at, the code that already does
+    that step): "look at which image each map is applied to" is left out for code that visibly warps
+    img_l by H1 and img_r by H2. Predicates lean towards "the code does it" where they cannot tell."""
+    return LookAt(tuple(pointers), otherwise)
+
+
 class Checklist:
     """Things to check, each said only where the student's code does not visibly do it already
     (:func:`checklist`): "check that A, and that B" becomes "check that B" for code doing A, and
-    ``none_left`` for code doing both."""
+    ``none_left`` for code doing both (a :class:`LookAt`'s pointers themselves held to the code)."""
 
-    def __init__(self, lead: str, items: tuple, none_left: str, functions: tuple):
+    def __init__(self, lead: str, items: tuple, none_left, functions: tuple):
         self.lead, self.items, self.none_left, self.functions = lead, items, none_left, functions
-        self.text = _listed(lead, [text for text, _ in items], none_left)
+        self.text = _listed(lead, [text for text, _ in items], self._pointer(None))
+
+    def _pointer(self, read) -> str:
+        if isinstance(self.none_left, LookAt):
+            return self.none_left.text if read is None else self.none_left.told(read)
+        return self.none_left
 
     def said(self, t) -> str:
         code = code_of(t)
@@ -108,21 +139,25 @@ class Checklist:
         if not code.functions:   # nothing to read: every item is said
             return self.text
         read = code.reachable(functions)
-        return _listed(self.lead, [text for text, done in self.items if not done.holds(read)], self.none_left)
+        left = [text for text, done in self.items if not done.holds(read)]
+        return _listed(self.lead, left, "" if left else self._pointer(read))
 
 
 def _listed(lead: str, items: list, none_left: str) -> str:
     if not items:
-        return f"{lead}{none_left}".strip()
+        said = f"{lead}{none_left}".strip()
+        # a lead with nothing after it ("your code already calls X:") loses its colon
+        return said if none_left else said.rstrip(" :;,")
     return f"{lead}check that {', and that '.join(items)}"
 
 
-def checklist(lead: str, *items: tuple[str, Predicate], none_left: str = "the error is elsewhere",
+def checklist(lead: str, *items: tuple[str, Predicate], none_left: "str | LookAt" = "the error is elsewhere",
               functions: tuple = ()) -> str:
     """Register a list of things to check: ``lead`` ("your code already calls X: ") then "check that
     A, and that B" of the ``items`` -- (what to check, the code that does it) -- whose code the
     student's functions (those the check calls, or ``functions``) do not already hold; ``none_left``
-    after ``lead`` when they hold every one. An item the code does is a hint that contradicts it
+    after ``lead`` when they hold every one: a sentence naming no step, or :func:`look_at`'s pointers,
+    each held to the code as the items are. An item the code does is a hint that contradicts it
     (issue 35); an item no predicate can read is no item (write it as a measurement, or leave it
     out). Returns the full text (a ``str``, said as it is without code to read), registered as
     :func:`guard`'s sentences are: wherever a failed check's message or hint holds it, it is replaced."""
@@ -133,13 +168,28 @@ def checklist(lead: str, *items: tuple[str, Predicate], none_left: str = "the er
     return made.text
 
 
+def _replaced(text: str, sentence: str, by: str) -> str:
+    """``text`` with ``sentence`` replaced by ``by``; where ``by`` is empty, the separator written before
+    it goes too ("your code calls X; " + nothing -> "your code calls X.")."""
+    if by:
+        return text.replace(sentence, by)
+    while sentence in text:
+        before, _, after = text.partition(sentence)
+        stripped = before.rstrip(" :;,")
+        if stripped and (stripped != before.rstrip() or not after.strip()):
+            ended = after.lstrip().startswith((".", ")")) or stripped.endswith((".", "!", "?"))
+            before = stripped + ("" if ended else ".")
+        text = before + after
+    return text
+
+
 def said(t, text: str) -> str:
     """``text`` with every registered diagnosis in it replaced by what it says for ``t``'s code."""
     if not text:
         return text
     for sentence in sorted((s for s in GUARDED if s in text), key=len, reverse=True):
         if sentence in text:   # a longer sentence replaced first may hold a shorter one
-            text = text.replace(sentence, GUARDED[sentence].said(t))
+            text = _replaced(text, sentence, GUARDED[sentence].said(t))
     return text
 
 
@@ -596,3 +646,39 @@ DIVISION = Predicate("divides", lambda node: any(
 def registered(texts: Iterable[str]) -> list[str]:
     """Of ``texts``, those neither :func:`guard`-ed nor :func:`measured`."""
     return [text for text in texts if text not in GUARDED and text not in MEASURED]
+
+
+def _is_mean(node) -> bool:
+    return isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("mean", "average")
+
+
+def subtracts_a_mean(says: str = "") -> Predicate:
+    """A centroid subtracted: ``pts - pts.mean(axis=0)``, ``x - c[0]`` or ``-s * c[0]`` (a translation's entry) for
+    a ``c`` assigned a mean, directly or through one name; read leniently (any mean subtracted or negated)."""
+    def test(function) -> bool:
+        means = _assigned_names(function, lambda value: any(_is_mean(n) for n in ast.walk(value)))
+
+        def meanish(node) -> bool:
+            return any(_is_mean(n) or (isinstance(n, ast.Name) and n.id in means) for n in ast.walk(node))
+        for node in ast.walk(function):
+            if isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, ast.Sub) \
+                    and meanish(node.right if isinstance(node, ast.BinOp) else node.value):
+                return True
+            if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and meanish(node.operand):
+                return True
+            if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and any(
+                    isinstance(side, ast.UnaryOp) and isinstance(side.op, ast.USub) for side in (node.left, node.right)) \
+                    and meanish(node):
+                return True
+        return False
+    return Predicate(says or "subtracts the centroid", test)
+
+
+def wherever_written(says: str, test: Callable) -> Predicate:
+    """A predicate over the functions read together: ``test(function)`` is True (the step done), False (done
+    otherwise than asked) or None (not written in that function); it holds unless a function writes the step
+    otherwise than asked (leaning towards "done" where nothing is written: a helper without the step, or code
+    this reading cannot follow)."""
+    def over(functions) -> bool:
+        return all(found for found in (test(f) for f in functions) if found is not None)
+    return Predicate(says, over, kind="all")

@@ -31,7 +31,8 @@ from fixtures.images import coverage, photo, warp
 from ..engine import strategies as st
 from ..engine.checks import StudentFailure, Trial, partial, passed
 from ..engine.claims import (THIRD_COORDINATE, THRESHOLD_NAMES, assigns, calls_any, checklist, compares_a_distance_with, divides_by,
-                             from_code, guard, measured, takes_last_row_of_vt, treats_each_of)
+                             from_code, guard, look_at, measured, subtracts_a_mean, takes_last_row_of_vt,
+                             treats_each_of)
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
 from ..engine.hints import (RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope, calls, code_of,
                              expr, functions_read, keyword, matmul_of, mentions, passes_product)
@@ -368,8 +369,8 @@ DLT_NORMALISE_HINT = Hint(
         "the error is elsewhere: ",
         ("each set has its own transform", treats_each_of(0, 1)),
         ("it is undone: H = T_dst^-1 @ H_n @ T_src", UNDOES_A_TRANSFORM),
-        none_left="look at the transforms themselves (a centroid subtracted, a scale making the mean distance "
-                  "sqrt(2))") + ".")
+        none_left=look_at(("the transforms themselves (a centroid subtracted, a scale making the mean distance "
+                           "sqrt(2))", subtracts_a_mean()))) + ".")
 
 
 @ex2.advice("homography_dlt normalises its points")
@@ -949,13 +950,30 @@ def _is_threshold(node) -> bool:
     return isinstance(node, ast.Name) and node.id in THRESHOLD_NAMES
 
 
+def _root_of_summed_squares(function) -> bool:
+    """A distance per pair written out: np.hypot, a norm along an axis, or a square root of a sum along an axis or
+    of a sum of squares (``np.sqrt(np.sum(d ** 2, axis=1))``, ``np.sqrt(dx ** 2 + dy ** 2)``); read leniently."""
+    for n in ast.walk(function):
+        if not isinstance(n, ast.Call):
+            continue
+        name = _path(n.func).rsplit(".", 1)[-1]
+        if name == "hypot" or name == "norm" and any(k.arg == "axis" for k in n.keywords):
+            return True
+        if name == "sqrt" and n.args and any(
+                (isinstance(m, ast.Call) and any(k.arg == "axis" for k in m.keywords))
+                or (isinstance(m, ast.BinOp) and isinstance(m.op, ast.Add)) for m in ast.walk(n.args[0])):
+            return True
+    return False
+
+
+ROOT_OF_SUMMED_SQUARES = Predicate("takes the root of each pair's summed squares", _root_of_summed_squares)
 SQUARED_HINT = Hint("compare the distance |H src - dst| itself with the threshold (pixels)",
                     asks=compares_a_distance_with(),
                     instead="your code {found}: " + checklist(
                         "", ("the root's value is not squared again before the comparison", ~SQUARED_DISTANCE),
                         ("the threshold itself is not squared", ~SQUARED_THRESHOLD),
-                        none_left="look at what the square root is taken of (the sum of the squared differences "
-                                  "of x and of y, per pair)"))
+                        none_left=look_at(("what the square root is taken of (the sum of the squared differences "
+                                           "of x and of y, per pair)", ROOT_OF_SUMMED_SQUARES))))
 
 
 def name_squared_threshold(t: Trial, what: str, H, inliers, src, dst, threshold: float):
@@ -1927,12 +1945,30 @@ def _pastes_an_image(function) -> bool:
                for n in ast.walk(function))
 
 
+def _builds_a_shift(function) -> bool:
+    """A translation written: a 3x3 literal [[1, 0, tx], [0, 1, ty], [0, 0, 1]], or a matrix's last column set
+    (``T[0, 2] = ...``, ``T[:2, 2] = ...``); read leniently."""
+    def translation_literal(node) -> bool:
+        return isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 3 and all(
+            isinstance(row, (ast.List, ast.Tuple)) and len(row.elts) == 3 for row in node.elts)
+
+    def last_column(target) -> bool:
+        return isinstance(target, ast.Subscript) and isinstance(target.slice, ast.Tuple) \
+            and len(target.slice.elts) == 2 and isinstance(target.slice.elts[1], ast.Constant) \
+            and target.slice.elts[1].value in (2, -1)
+    return any(translation_literal(n) for n in ast.walk(function)) or any(
+        isinstance(n, (ast.Assign, ast.AugAssign)) and any(
+            last_column(t) for t in (n.targets if isinstance(n, ast.Assign) else [n.target])) for n in ast.walk(function))
+
+
 REFERENCE_FRAME_CHECKLIST = checklist(
     "", ("one image is the reference frame (only shifted: its homography is the identity)",
          calls("np.eye") | calls("np.identity") | Predicate("places an image only shifted", _pastes_an_image)),
     ("the others are warped into it", calls("cv2.warpPerspective") | calls("warp_to_reference")),
-    none_left="your code gives one image no warp and warps the others: look at the direction of each homography "
-              "used (from image k to the reference frame, not the reverse) and at the shift applied to every image")
+    none_left=look_at(("the direction of each homography used (from image k to the reference frame, not the "
+                       "reverse)", calls_any("np.linalg.inv", "np.linalg.pinv") | matmul_of(None, None)),
+                      ("the shift applied to every image", Predicate("builds a shift", _builds_a_shift)),
+                      otherwise="your code gives one image no warp and warps the others"))
 
 
 def many_names(n):
@@ -2612,7 +2648,8 @@ MASK_PYRAMID_HINT = Hint(
         ("the levels stay float (in uint8 the levels of a 0/1 mask round back to 0 or 1)",
          TO_FLOAT | mentions("float") | mentions("np.float32") | mentions("np.float64") | expr("_ / 255.0")),
         ("each band is weighted by the mask's level of its size", BANDS_WEIGHTED_BY_MASK),
-        none_left="look at the mask's level each band is weighted with (its size, its values)",
+        # (the bands weighted by the mask's levels is the last item: nothing is left to point at)
+        none_left="",
         functions=("blend_multiband",)))
 
 

@@ -20,7 +20,7 @@ from fixtures.lab09 import photo
 from ..engine import strategies as st
 from ..engine import judges
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
-from ..engine.claims import THIRD_COORDINATE, checklist, divides_by, from_code, guard, measured
+from ..engine.claims import THIRD_COORDINATE, checklist, divides_by, from_code, guard, look_at, measured
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
 from ..engine.hints import Hint, Predicate, _resolved, _scope, calls, code_of, expr, matmul_of, mentions, nan_behind
 from ..engine.hints import _path as _hints_path
@@ -840,7 +840,8 @@ UNIFORM_DISC_HINT = Hint(
         ("the angle is uniform in [0, 2 pi)", TWO_PI),
         ("the radius is aperture * sqrt(u)", expr("_ * np.sqrt(_)") | expr("np.sqrt(_) * _") | expr("_ * _ ** 0.5")
          | expr("_ ** 0.5 * _") | expr("_ * np.sqrt(_)[:, None]")),
-        none_left="look at how the angle and the radius become the two coordinates (r cos t, r sin t)"))
+        none_left=look_at(("how the angle and the radius become the two coordinates (r cos t, r sin t)",
+                           (calls("np.cos") & calls("np.sin")).saying("computes a cosine and a sine")))))
 
 
 def _ks_distance(samples, cdf) -> float:
@@ -962,8 +963,8 @@ SEED_HINT = Hint(
         "", ("it is given seed", Predicate("gives the generator the seed", _seeds_the_generator)),
         ("every random number is drawn from that generator (none from np.random's own functions)",
          ~Predicate("calls np.random's own functions", _draws_from_np_random)),
-        none_left="look at where the generator is made (once per call, not once per module?) and what it is "
-                  "given") + ".")
+        # (what it is given is the first item; a generator made in the function read is made once per call)
+        none_left="") + ".")
 
 
 @ex4.check("simulate_aperture is reproducible with a seed", points=1)
@@ -1184,7 +1185,8 @@ COPY_HINT = Hint(
         "", ("each point is drawn on the copy, not on `image`",
              ~Predicate("draws on the caller's image", _draws_on_the_callers_image)),
         ("the copy is returned", Predicate("returns the copy", _returns_a_copy)),
-        none_left="look at every array the points are drawn on (a helper given `image`?)"))
+        # (the arrays drawn on are the first item's reading, helpers included: nothing is left to point at)
+        none_left=""))
 
 
 @ex5.check("draw_points twice on the same image: each drawing shows its own points only", points=1)
@@ -1355,6 +1357,23 @@ def _views_appended_apart(function) -> bool:
     return bool(blocks["obj"] and blocks["corner"] and not blocks["obj"] & blocks["corner"])
 
 
+def _scales_by_square_size(function) -> bool:
+    """A product with a name holding "square" (the parameter square_size, a copy of it); read leniently."""
+    return any(isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.Mult)
+               and any(isinstance(m, ast.Name) and "square" in m.id.lower() for m in ast.walk(n))
+               for n in ast.walk(function))
+
+
+def _tests_a_found_flag(function) -> bool:
+    """A test of a name (``if found:``, ``if not ret: continue``, ``[... if ok]``): the views whose corners were
+    found kept; read leniently."""
+    def flag(test) -> bool:
+        test = test.operand if isinstance(test, ast.UnaryOp) and isinstance(test.op, ast.Not) else test
+        return isinstance(test, ast.Name) or isinstance(test, ast.Compare) and isinstance(test.left, ast.Name)
+    return any(isinstance(n, (ast.If, ast.IfExp)) and flag(n.test) for n in ast.walk(function)) or any(
+        isinstance(n, ast.comprehension) and any(flag(test) for test in n.ifs) for n in ast.walk(function))
+
+
 OBJECT_POINTS_HINT = Hint(
     "build them row by row, x fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.",
     asks=OBJECT_POINTS_ROW_BY_ROW,
@@ -1363,7 +1382,9 @@ OBJECT_POINTS_HINT = Hint(
                                                                 _pattern_read_rows_first)),
         ("each view's object points go with that view's corners",
          ~Predicate("appends object points and corners apart", _views_appended_apart)),
-        none_left="look at the square size and at the views kept (those whose corners were found)") + ".")
+        none_left=look_at(("the square size", Predicate("scales by the square size", _scales_by_square_size)),
+                          ("the views kept (those whose corners were found)",
+                           Predicate("keeps the views whose corners were found", _tests_a_found_flag)))) + ".")
 ext1 = lab.exercise("ext1", "Extension: camera calibration", functions=[
     "calibrate(images, pattern_size, square_size)"])
 
@@ -1506,7 +1527,8 @@ GREY_FOR_OPENCV = Hint(
              ~Predicate("gives cv2.cornerSubPix a view not converted", _unconverted_to_one_channel, kind="all")),
         ("the image size passed is (width, height), not the shape of a 3-channel array",
          ~Predicate("gives cv2.calibrateCamera a colour view's shape", _size_of_three_channels, kind="all")),
-        none_left="look at the views each OpenCV call is given when they have 3 channels"))
+        # (the views each call is given are the items' readings: nothing is left to point at)
+        none_left=""))
 
 
 @ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners), with 3 channels as "

@@ -21,7 +21,7 @@ from fixtures.images import tinted
 
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
-from ..engine.claims import (calls_any, checklist, divides_by, guard, measured, negates_on_negative_det,
+from ..engine.claims import (calls_any, checklist, divides_by, guard, look_at, measured, negates_on_negative_det,
                              passes_argument, reshapes, takes_last_row_of_vt)
 from ..engine.compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
                        projective_distance)
@@ -128,7 +128,8 @@ SIGN_FIX = Hint(
     instead="for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): your code already {found}; " + checklist(
         "", ("the negated P is the one decomposed and solved for t", NEGATES_P),
         ("flipping K's columns flips the same rows of R", FLIPS_BOTH_SIDES),
-        none_left="look at which P the translation is solved from (t = K^-1 times the negated P's last column)"))
+        # (the negated P solved for t is the first item: nothing is left to point at)
+        none_left=""))
 def _orthogonal_first(function) -> bool:
     """``R, K = scipy.linalg.rq(M)`` (or ``Q, K = ...``, cv2.RQDecomp3x3's): an RQ's first factor, the upper
     triangular one, stored under an orthogonal matrix's name."""
@@ -142,6 +143,9 @@ def _orthogonal_first(function) -> bool:
     return False
 
 
+# Signs fixed after a decomposition: np.sign, a test of a diagonal entry's sign; read leniently.
+SIGNS_READ = (calls("np.sign") | expr("np.diag(_) < 0") | expr("_[_, _] < 0") | expr("np.diag(_) > 0")
+              | expr("_[_, _] > 0")).saying("fixes the signs of K's diagonal")
 RQ_HINT = Hint(" (use an RQ decomposition of the left 3x3 block)",
                asks=calls_any("scipy.linalg.rq", "cv2.RQDecomp3x3", "cv2.decomposeProjectionMatrix", "np.linalg.qr",
                               says="decomposes P[:, :3]"),
@@ -151,7 +155,8 @@ RQ_HINT = Hint(" (use an RQ decomposition of the left 3x3 block)",
                    ("the rows and columns are reversed to turn a QR into an RQ",
                     ~calls("np.linalg.qr") | calls_any("np.flipud", "np.fliplr", "np.flip") | expr("_[::-1]")
                     | expr("_[::-1, ::-1]")),
-                   none_left="look at the signs fixed after it, and at K divided by K[2, 2]") + ")")
+                   none_left=look_at(("the signs fixed after it", SIGNS_READ),
+                                     ("K divided by K[2, 2]", divides_by("_[2, 2]", "_[-1, -1]")))) + ")")
 NORMALISE_K_HINT = Hint("divide K by K[2, 2] (P is only known up to scale)",
                         asks=divides_by("_[2, 2]", "_[-1, -1]", says="divides by K[2, 2]"),
                         instead="your code {found}, but the K returned is not the divided one (or is changed "
@@ -162,7 +167,8 @@ SIGNS_HINT = Hint("multiply the offending columns of K and the same rows of R by
                   instead="your code {found}: " + checklist(
                       "", ("it flips the same columns of K and rows of R (K D and D R with one D)", FLIPS_BOTH_SIDES),
                       ("the fixed K and R are the ones returned", RETURNS_THE_FIXED),
-                      none_left="look at which signs are fixed (those of K's diagonal, to make it positive)"))
+                      none_left=look_at(("which signs are fixed (those of K's diagonal, to make it positive)",
+                                         expr("np.sign(np.diag(_))") | expr("np.diag(_) < 0") | expr("_[_, _] < 0")))))
 DIST_TO_PROJECT = passes_argument("cv2.projectPoints", 4, "distCoeffs", says="passes a distortion to cv2.projectPoints")
 guard("the corners are projected without dist (pass dist to cv2.projectPoints too)", asks=DIST_TO_PROJECT,
       instead="the corners are projected without dist: your code {found}, but not the dist given (None or zeros?)")
@@ -421,7 +427,8 @@ FIXED_P23_HINT = Hint(
     instead="Your code {found}: " + checklist(
         "", ("A has 12 columns (P[2, 3] is an unknown too)", TWELVE_COLUMNS), ("p is the last row of Vt",
                                                                                 takes_last_row_of_vt()),
-        none_left="look at the rows of A (the u and v equations of each point)") + ".")
+        # (no reading tells the rows right from wrong: nothing is pointed at rather than rows that may be right)
+        none_left="") + ".")
 
 
 def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_principal_plane=False):
@@ -784,8 +791,8 @@ PROJECT_POINTS_HINT = Hint(
         "", ("it is given the object points, rvec, tvec, K and dist of this pose, in that order",
              Predicate("gives cv2.projectPoints its arguments in order", _projects_in_order)),
         ("its output is what is returned", Predicate("returns cv2.projectPoints' output", _returns_the_projection)),
-        none_left="look at the pose it is given (the one returned?) and at the object points (the board's, in "
-                  "square units)") + ".")
+        # (the pose and points given, in order, are the first item: nothing is left to point at)
+        none_left="") + ".")
 CORNER_ORDER_HINT = Hint(
     ": np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size.", asks=OBJECT_POINTS_ROW_BY_ROW,
     instead=" (your code {found}: check how pattern_size is read, as (cols, rows)).")
@@ -996,6 +1003,13 @@ def colour_photo(grey) -> np.ndarray:
     return np.dstack([np.round(grey * 0.92).astype(np.uint8), grey, grey])
 
 
+# Code that converts already is pointed at where a colour view still reaches a call wanting one channel.
+COLOUR_POSE_HINT = Hint("estimate_pose takes either: convert a colour image to grey where OpenCV wants one channel "
+                        "(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)).", asks=calls("cv2.cvtColor"),
+                        instead="estimate_pose takes either; your code {found}: look at which view each OpenCV call "
+                                "is given (one that wants one channel still gets the colour one).")
+
+
 @ex6.check("estimate_pose on three rendered views with known pose (one a colour photo, BGR)", points=5)
 def pose_views(t):
     messages = []
@@ -1009,9 +1023,7 @@ def pose_views(t):
                 raise
             raise StudentFailure(failure.outcome, measured(
                 f"estimate_pose(colour image, ...): {failure.message}\nThis view is a colour photo (BGR, as "
-                "cv2.imread reads one); the grey view before it passed. ") + measured(
-                "estimate_pose takes either: convert a colour image to grey where OpenCV wants one channel "
-                "(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)).")) from None
+                "cv2.imread reads one); the grey view before it passed. ") + COLOUR_POSE_HINT.said(t)) from None
         what = what.replace("(image,", "(colour image,") if i == 1 else what
         verdict = judge_pose(t, what, got, image, R, tv, corners, truth.POSE_PATTERN, truth.POSE_SQUARE,
                              truth.POSE_K, show=(i == 0))
@@ -1233,9 +1245,16 @@ def undistort_colour(t):
     if blurred_difference(got, np.dstack(per_channel), valid) <= UNDISTORT_TOLERANCE:
         return passed("each channel is undistorted as your code undistorts a grey image "
                       "(the undistortion itself is the other check's)")
+    told = UNDISTORT_CHANNELS_HINT.said(t)
     t.fail(f"{what} differs by {error:.0f} levels on average from the distortion-free view, and is not your "
-           "own undistortion of each channel either: " + measured(
-               "undistort the three channels alike (cv2.undistort takes a BGR image as it is)."))
+           "own undistortion of each channel either" + (f": {told}" if told else "."))
+
+
+# Told only to code that converts or splits the colour image (code undistorting it as it comes does what it says).
+UNDISTORT_CHANNELS_HINT = Hint(
+    "undistort the three channels alike (cv2.undistort takes a BGR image as it is).",
+    asks=~(calls("cv2.cvtColor") | calls("cv2.split") | expr("_[..., 0]") | expr("_[:, :, 0]")).saying(
+        "converts or splits the image"), instead="")
 
 
 # ================================================================== ext2 dolly zoom

@@ -25,8 +25,9 @@ from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
                        projective_distance)
 from ..engine.forms import shape_form
-from ..engine.claims import (DIVISION, THIRD_COORDINATE, calls_any, checklist, divides_by, from_code, guard, measured,
-                             reshapes, returns_from, takes_last_row_of_vt, zeroes_an_entry)
+from ..engine.claims import (DIVISION, THIRD_COORDINATE, calls_any, checklist, divides_by, from_code, guard, look_at,
+                             measured, reshapes, returns_from, subtracts_a_mean, takes_last_row_of_vt,
+                             treats_each_of, wherever_written, zeroes_an_entry)
 from ..engine.hints import RATIO_TEST, Hint, Predicate, _path, calls, code_of, expr, keyword, mentions
 from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
                       where_points_differ)
@@ -364,7 +365,8 @@ LINE_SCALE_HINT = Hint(
         "", ("each line is divided by sqrt(a^2 + b^2) of its own first two entries",
              Predicate("computes sqrt(a^2 + b^2)", _euclidean_of_a_b)),
         ("the divided lines are returned", returns_from(DIVISION, "returns the divided lines")),
-        none_left="look at which lines the norm is taken of (each its own, by row)") + ").")
+        # (each line divided by its own norm is the first item: nothing is left to point at)
+        none_left="") + ").")
 
 
 def judge_lines(t: Trial, what: str, got, F, pts1):
@@ -756,8 +758,12 @@ def nine_unknowns(matrix: str) -> str:
     vector = matrix.lower()
     return checklist("", (f"A has 9 columns ({matrix}[2, 2] is an unknown too)", NINE_COLUMNS),
                      (f"{vector} is the last row of Vt", LAST_ROW_OF_VT),
-                     none_left=f"look at what is solved: the 9 entries of {vector} together, by SVD, not 8 of them "
-                               "by least squares")
+                     none_left=look_at((f"what is solved: the 9 entries of {vector} together, by SVD, not 8 of them "
+                                        "by least squares", SOLVED_BY_SVD_ALONE)))
+
+
+SOLVED_BY_SVD_ALONE = (calls("np.linalg.svd") & ~calls_any("np.linalg.lstsq", "np.linalg.solve", "np.linalg.pinv")
+                       ).saying("solves by np.linalg.svd alone")
 
 
 FIXED_E22_HINT = Hint(
@@ -975,12 +981,33 @@ def fundamental_exact(t):
 
 REBUILDS = (calls("np.diag") | calls("np.diagflat") | expr("(_ * _) @ _") | expr("_ @ (_ * _)")
             | expr("(_ * _).dot(_)")).saying("rebuilds a matrix from its SVD")
+def _zeroes_the_last(function) -> bool | None:
+    """The last singular value set to 0 (``s[2] = 0``, ``s[-1] = 0``, ``np.diag([s[0], s[1], 0])``), or any entry
+    zeroed in a way this reading does not follow (counted as done)."""
+    def zero(node) -> bool:
+        return isinstance(node, ast.Constant) and not isinstance(node.value, bool) and node.value == 0
+
+    def last(index) -> bool:
+        return isinstance(index, ast.Constant) and index.value == 2 or isinstance(index, ast.UnaryOp) \
+            and isinstance(index.op, ast.USub) and isinstance(index.operand, ast.Constant) and index.operand.value == 1
+    zeroed = []
+    for n in ast.walk(function):
+        if isinstance(n, ast.Assign) and zero(n.value):
+            zeroed += [last(t.slice) for t in n.targets if isinstance(t, ast.Subscript)
+                       and not isinstance(t.slice, (ast.Tuple, ast.Slice))]
+        if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "diag" and n.args \
+                and isinstance(n.args[0], (ast.List, ast.Tuple)) and any(zero(e) for e in n.args[0].elts):
+            zeroed.append(zero(n.args[0].elts[-1]))
+    return any(zeroed) if zeroed else None
+
+
 RANK2_HINT = Hint(
     "Set the smallest singular value to 0 (F = U diag(s1, s2, 0) V^T).", asks=zeroes_an_entry(),
     instead="Your code {found}: " + checklist(
         "", ("F is rebuilt from it, U diag(s1, s2, 0) V^T", REBUILDS),
         ("this F is the one returned", returns_from(REBUILDS, "returns the rebuilt F")),
-        none_left="look at which singular value is set to 0 (the smallest, the last of np.linalg.svd's)") + ".")
+        none_left=look_at(("which singular value is set to 0 (the smallest, the last of np.linalg.svd's)",
+                           wherever_written("sets the last singular value to 0", _zeroes_the_last)))) + ".")
 
 
 @ex4.check("fundamental_8point returns a rank-2 matrix (noisy data)", points=2)
@@ -1063,9 +1090,9 @@ FUNDAMENTAL_STEPS_HINT = Hint(
     asks=calls("np.linalg.svd", at_least=2), instead="your code already {found} (A f = 0 and rank 2?): " + checklist(
         "", ("A has 9 columns, a row per match", NINE_COLUMNS), ("f is the last row of Vt", LAST_ROW_OF_VT),
         ("the normalisation is undone: F = T2^T Fn T1", ~NORMALISES | UNDOES_F),
-        none_left="look at the normalising transforms, where there are any (T = [[s, 0, -s cx], [0, s, -s cy], [0, 0, 1]]: "
-                  "the centroid subtracted, then scaled so the mean distance is sqrt(2)) and at which points each "
-                  "is built from"))
+        none_left=look_at(("the normalising transforms (T = [[s, 0, -s cx], [0, s, -s cy], [0, 0, 1]]: the centroid "
+                           "subtracted, then scaled so the mean distance is sqrt(2))", ~NORMALISES | subtracts_a_mean()),
+                          ("which points each transform is built from", ~NORMALISES | treats_each_of(0, 1)))))
 
 
 # ================================================================== ex5 epipoles
@@ -1309,7 +1336,10 @@ ROBUST_F_HINT = Hint(
     instead="your code already {found}: " + checklist(
         "", ("its threshold is about 1 px", ~Predicate("gives a threshold far from 1 px", _far_threshold)),
         ("the matches it is given pass Lowe's ratio test", RATIO_TEST | keyword("cv2.BFMatcher", "crossCheck", True)),
-        none_left="look at the points it is given: pts1 from image 1 (queryIdx), pts2 from image 2 (trainIdx)"))
+        # the order is readable only where the code matches itself: queryIdx and trainIdx both read, or neither
+        none_left=look_at(("the points it is given: pts1 from image 1 (queryIdx), pts2 from image 2 (trainIdx)",
+                           (mentions(".queryIdx") & mentions(".trainIdx"))
+                           | ~(mentions(".queryIdx") | mentions(".trainIdx"))))))
 
 
 @ex6.check("two_view_reconstruction returns F, pts1, pts2, points3d of matching shapes (a colour and a grey pair)",
@@ -1357,10 +1387,25 @@ def _indexes_by_a_mask(function) -> bool:
         for m in ast.walk(n.slice)) for n in ast.walk(function))
 
 
+def _points_in_order(function) -> bool | None:
+    """The estimator (cv2.findFundamentalMat, cv2.findEssentialMat, cv2.recoverPose, cv2.triangulatePoints) given the
+    points of image 1 before those of image 2: only names saying the reverse (a 2 before a 1) count as not done."""
+    for n in ast.walk(function):
+        if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in (
+                "findFundamentalMat", "findEssentialMat", "recoverPose", "triangulatePoints"):
+            # the points' names ending in 1 or 2 (camera matrices P1, P2 aside)
+            digits = [a.id[-1] for a in n.args if isinstance(a, ast.Name) and a.id[-1:] in ("1", "2")
+                      and not (len(a.id) <= 2 and a.id[0] in "Pp")]
+            if digits[:2] == ["2", "1"]:
+                return False
+    return None
+
+
 MATCHES_ELSEWHERE = "your code already {found}: " + checklist(
     "", ("the points returned are those its mask keeps", Predicate("indexes the points by the mask",
                                                                    _indexes_by_a_mask)),
-    none_left="look at the order of the points given and returned (pts1 in image 1, pts2 in image 2)")
+    none_left=look_at(("the order of the points given and returned (pts1 in image 1, pts2 in image 2)",
+                       wherever_written("gives the estimator the points in order", _points_in_order))))
 INLIERS_HINT = Hint("keep only the RANSAC inliers", asks=RANSAC_ESTIMATOR, instead=MATCHES_ELSEWHERE)
 
 
@@ -1546,8 +1591,10 @@ IN_FRONT_HINT = Hint(
                 "", ("the cameras the points are triangulated with match the coordinates given to them (P = K [R | t] "
                      "on pixels, [R | t] on normalised coordinates)", ~CAMERA_WITHOUT_K),
                 ("the points are divided by w", DIVIDES_BY_W | W_OF_4D | calls("cv2.convertPointsFromHomogeneous")),
-                none_left="look at which points are triangulated (those cv2.recoverPose kept, pts1 and pts2 in the "
-                          "same order)"))
+                none_left=look_at(("which points are triangulated (those cv2.recoverPose kept, pts1 and pts2 in the "
+                                   "same order)", wherever_written("triangulates the kept points in order",
+                                                                   lambda f: _points_in_order(f))
+                                   & Predicate("indexes the points by the mask", _indexes_by_a_mask)))))
 
 
 @ex6.check("two_view_reconstruction: the 3D points equal the true scene up to one global scale", points=4,

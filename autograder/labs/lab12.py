@@ -31,9 +31,11 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
-from ..engine.claims import calls_any, checklist, divides_by, from_code, guard, measured, passes_parameters
+from ..engine.claims import (calls_any, checklist, divides_by, from_code, guard, look_at, measured,
+                             passes_parameters, takes_last_row_of_vt, wherever_written)
 from ..engine.forms import shape_form
-from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, Hint, Predicate, _path, calls, code_of, expr, keyword,
+from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
+                            keyword, mentions,
                             size_given_as_shape)
 from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
@@ -117,6 +119,38 @@ def expect_disparity(t: Trial, what: str, got, scene) -> np.ndarray:
     return t.expect_array(got, what, shape=shape, kind="iuf")
 
 
+def _disparity_name(node) -> bool:
+    return isinstance(node, ast.Name) and node.id.lower().startswith("d")
+
+
+def _stores_by_disparity(function) -> bool:
+    """A cost stored at an index read from the disparity (``costs[d] = ...``, ``volume[:, :, d] = ...``), or costs
+    collected in order (``.append``, ``np.stack``): read leniently."""
+    for n in ast.walk(function):
+        if isinstance(n, (ast.Assign, ast.AugAssign)):
+            targets = n.targets if isinstance(n, ast.Assign) else [n.target]
+            if any(isinstance(t, ast.Subscript) and any(_disparity_name(m) for m in ast.walk(t.slice)) for t in targets):
+                return True
+        if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("append", "stack", "dstack", "array"):
+            return True
+    return False
+
+
+def _marks_left_border(function) -> bool:
+    """The columns x < d given a cost of their own (``np.inf``, a slice up to d, a test against d): read leniently;
+    a slice from d on alone (``costs[d][:, d:] = ...``) leaves the columns before d as they were."""
+    for n in ast.walk(function):
+        if isinstance(n, (ast.Name, ast.Attribute)) and _path(n).rsplit(".", 1)[-1] in ("inf", "nan", "Inf", "NaN"):
+            return True
+        if isinstance(n, ast.Constant) and isinstance(n.value, (int, float)) and abs(n.value) >= 1e6:
+            return True
+        if isinstance(n, ast.Slice) and _disparity_name(n.upper) and n.lower is None:   # costs[d, :, :d] = ...
+            return True
+        if isinstance(n, ast.Compare) and any(_disparity_name(m) for m in [n.left, *n.comparators]):
+            return True
+    return False
+
+
 LOWEST_COST_HINT = Hint(
     "for left pixel (x, y) compare its block with the block around (x - d, y) in the right image, "
     "d = 0..max_disparity, and keep the d with the lowest cost",
@@ -128,8 +162,12 @@ LOWEST_COST_HINT = Hint(
              Predicate("converts the images", lambda f: _converts_an_image(f))),
         ("the blocks compared are left (x, y) and right (x - d, y), d = 0..max_disparity",
          Predicate("shifts by the disparity", lambda f: _shifts_by_disparity(f))),
-        none_left="look at where each cost is stored (the cost of disparity d at index d) and at the columns near "
-                  "the left border (no block at x - d there)"))
+        none_left=look_at(("where each cost is stored (the cost of disparity d at index d)",
+                           Predicate("stores each cost at its disparity", _stores_by_disparity)),
+                          ("the columns near the left border (no block at x - d there)",
+                           Predicate("marks the columns without a block at x - d", _marks_left_border)))))
+
+
 
 
 def _shifts_by_disparity(function) -> bool:
@@ -143,13 +181,61 @@ def _shifts_by_disparity(function) -> bool:
         for n in ast.walk(function))
 
 
-# Code that calls OpenCV's matcher has its block search done: what is left to tell is its answer.
+def _parameters_read(function) -> tuple:
+    """``(read, of)``: name -> the positions of the function's parameters its value is computed from (through
+    assignments, tuples unpacked element by element: ``grey_l, grey_r = f(left), f(right)``), and ``of(node)``,
+    the positions an expression reads."""
+    parameters = [a.arg for a in function.args.posonlyargs + function.args.args]
+    read = {name: {i} for i, name in enumerate(parameters)}
+
+    def of(node) -> set:
+        return set().union(*[read.get(n.id, set()) for n in ast.walk(node) if isinstance(n, ast.Name)])
+    pairs = []
+    for n in ast.walk(function):
+        if isinstance(n, ast.Assign):
+            for target in n.targets:
+                if isinstance(target, ast.Tuple) and isinstance(n.value, ast.Tuple) \
+                        and len(target.elts) == len(n.value.elts):
+                    pairs += [(t, v) for t, v in zip(target.elts, n.value.elts) if isinstance(t, ast.Name)]
+                elif isinstance(target, ast.Name):
+                    pairs.append((target, n.value))
+    for _ in range(3):   # names from names, a few steps
+        for target, value in pairs:
+            if target.id not in parameters:
+                read[target.id] = read.get(target.id, set()) | of(value)
+    return read, of
+
+
+def _computes_left_first(function) -> bool | None:
+    """``matcher.compute(left, right)``: the first image read from the first parameter (left); False only where the
+    first is read from the right image alone and the second from the left alone."""
+    computes = [n for n in ast.walk(function) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
+                and n.func.attr == "compute" and len(n.args) >= 2]
+    if not computes:
+        return None
+    _, of = _parameters_read(function)
+    return not any(of(n.args[0]) == {1} and of(n.args[1]) == {0} for n in computes)
+
+
+def _sixteens(function) -> bool:
+    """A 16 written (numDisparities rounded to a multiple of 16); read leniently."""
+    return any(isinstance(n, ast.Constant) and not isinstance(n.value, bool) and n.value in (16, 16.0)
+               for n in ast.walk(function))
+
+
+# Code that calls OpenCV's matcher has its block search done: what is left to tell is what it is given and what
+# is done with its answer, each item held to the code.
 OPENCV_MATCHER_HINT = Hint(
     LOWEST_COST_HINT.text, asks=STEREO_MATCHER,
-    instead="your code {found}, which compares the blocks and keeps the lowest cost itself: look at what "
-            "is done with its answer (int16 disparities in 1/16 px, -16 where no match is found) and at "
-            "what it is given (grey uint8 images, numDisparities a multiple of 16 above max_disparity, an "
-            "odd blockSize of 5 or more)")
+    instead="your code {found}, which compares the blocks and keeps the lowest cost itself: " + checklist(
+        "", ("it is given the left image first (matcher.compute(left, right))",
+             wherever_written("gives compute the left image first", _computes_left_first)),
+        ("its int16 answer is divided by 16 (disparities in 1/16 px)", DIVIDES_BY_16),
+        ("numDisparities is a multiple of 16 above max_disparity", Predicate("writes a 16", _sixteens)),
+        ("it is given grey uint8 images", TO_UINT8 | calls("cv2.cvtColor") | mentions("np.uint8")),
+        none_left=look_at(("the pixels where no match is found (-16 in its answer)",
+                           expr("_ <= 0") | expr("_ < 0") | expr("_ > 0") | expr("_ >= 0") | expr("_ == -16")
+                           | expr("_ < 1") | expr("_ > _")))))
 
 
 DP_STEPS = ("the difference can come from any step of the lab sheet's: the matching cost, the accumulation along "
@@ -477,6 +563,9 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
 ROWS_OF_P = (expr("_ * _[2] - _[0]") | expr("_ * _[2, :] - _[0, :]") | expr("_ * _[2, :] - _[0]")
              | expr("_ * _[2] - _[0, :]") | expr("_[2] * _ - _[0]") | expr("_[2, :] * _ - _[0, :]")
              | calls("cv2.triangulatePoints")).saying("builds the rows x p3 - p1")
+# the last row of Vt, one system's (takes_last_row_of_vt) or a stack's (Vt[:, -1], Vt[..., -1, :])
+LAST_SINGULAR_VECTOR = (takes_last_row_of_vt() | expr("_[:, -1]") | expr("_[:, -1, :]") | expr("_[..., -1, :]")
+                        | calls("cv2.triangulatePoints")).saying("keeps the last row of Vt")
 TRIANGULATION_ROWS_HINT = Hint(
     "each view gives two rows, x p3 - p1 and y p3 - p2 (p_i the rows of P); X is the last right singular vector of "
     "the 4x4 matrix", asks=calls("np.linalg.svd") | calls("cv2.triangulatePoints"),
@@ -484,8 +573,9 @@ TRIANGULATION_ROWS_HINT = Hint(
             + checklist("", ("each view's rows are made of its own P's rows and its own point's x and y", ROWS_OF_P),
                         ("the solution is divided by its fourth coordinate",
                          FOURTH_COORDINATE | calls("cv2.convertPointsFromHomogeneous")),
-                        none_left="look at which singular vector is kept (the last row of Vt of each point's own 4x4 "
-                                  "system) and at which point each system is given"))
+                        # (which point each system is given is no step a reading can find wrong: not pointed at)
+                        none_left=look_at(("which singular vector is kept (the last row of Vt of each point's own "
+                                           "4x4 system)", LAST_SINGULAR_VECTOR))))
 
 
 def triangulation_probe(t: Trial) -> Probe:
@@ -569,6 +659,16 @@ def disparities_from_x(t):
     xl = np.array([120.5, 80.0, 33.25, 150.0, 12.0])
     xr = np.array([100.5, 72.0, 30.0, 110.0, 19.5])
     judge_disparities(t, "disparity_from_matches(xl, xr)", t.call("disparity_from_matches", xl, xr), xl, xr, 5)
+    # Two matches too: two x coordinates have a last axis of length 2, as one (x, y) point has; the contract's
+    # (N,) arrays are told from (N, 2) points by their number of dimensions.
+    what = "disparity_from_matches(xl[:2], xr[:2])"
+    got = t.call("disparity_from_matches", xl[:2], xr[:2])
+    if isinstance(got, (np.ndarray, float, np.floating, int, np.integer)) and np.ndim(got) == 0:
+        taken = measured(", as if the two x coordinates were one (x, y) point (x_l - x_r of the first match)") \
+            if np.isclose(float(got), xl[0] - xr[0]) else ""
+        t.fail(f"{what} returned the single number {float(got):g}, not 2 disparities{taken}: 1-D inputs are x "
+               "coordinates whatever their length, (N, 2) arrays are points.")
+    judge_disparities(t, what, got, xl[:2], xr[:2], 2)
 
 
 @ex2.check("disparity_from_matches on (N, 2) matched points of a rectified pair", points=2)
@@ -748,6 +848,21 @@ def call_rectify(t: Trial, pair):
     return rect_l, rect_r, H1.astype(np.float64), H2.astype(np.float64)
 
 
+# Measured: H1 and H2 orthonormal with determinant 1. A pixel map K_new R K^-1 never is (K's focal length and
+# principal point are in pixels), so both so are rotations returned where the pixel maps belong.
+ROTATIONS_RETURNED = "the rectifying rotations are returned as H1 and H2, where the pixel maps K_new R_rect K^-1 belong"
+
+
+def name_rotations(t: Trial, H1, H2, what="rectify"):
+    """Fail naming :data:`ROTATIONS_RETURNED` when both maps returned are rotation matrices."""
+    def rotation(H) -> bool:
+        return bool(np.allclose(H @ H.T, np.eye(3), atol=1e-6) and abs(np.linalg.det(H) - 1) <= 1e-6)
+    if rotation(H1) and rotation(H2):
+        t.fail(f"{what}: H1 and H2 are rotation matrices (orthonormal, determinant 1), not pixel-to-pixel maps: "
+               f"it looks like {ROTATIONS_RETURNED} (a rotation moves rays, and the pixels are "
+               "first turned into rays by K^-1).", mistake=ROTATIONS_RETURNED)
+
+
 def row_errors(H1, H2, pair):
     a = truth.apply_homography(H1, pair.pts1)
     b = truth.apply_homography(H2, pair.pts2)
@@ -827,6 +942,29 @@ def orientation(H, shape) -> tuple[bool, bool, bool]:
     return bool(mapped[1, 0] < mapped[0, 0]), bool(mapped[3, 1] < mapped[2, 1]), behind
 
 
+def _crosses_in_order(function) -> bool | None:
+    """e2 = z x e1 and e3 = e1 x e2, in this order: a name assigned ``np.cross(z, e1)`` crossed after e1
+    (``np.cross(e1, e2)``); code without a cross product of its own (cv2.stereoRectify) counts as doing it."""
+    crosses = [n for n in ast.walk(function) if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "cross"
+               and len(n.args) == 2]
+    if not crosses:
+        return None
+    values = _assigned_values(function)
+
+    def second_axis(name, e1) -> bool:   # name holds np.cross(_, e1), perhaps divided by its norm afterwards
+        return any(isinstance(m, ast.Call) and m in crosses and isinstance(m.args[1], ast.Name) and m.args[1].id == e1
+                   for v in values.get(name, []) for m in ast.walk(v))
+    return any(isinstance(n.args[0], ast.Name) and isinstance(n.args[1], ast.Name)
+               and second_axis(n.args[1].id, n.args[0].id) for n in crosses)
+
+
+# Measured (the message): both new cameras look away. The order of the cross products is told only to code
+# that does not visibly write them in this order.
+CROSS_ORDER_HINT = Hint("e2 = z x e1 (the mean optical axis crossed with e1, in this order) and e3 = e1 x e2 keep the "
+                        "new z axis towards the scene",
+                        asks=wherever_written("crosses z with e1, then e1 with e2", _crosses_in_order), instead="")
+
+
 INVERT_HINT = Hint(" (invert them)", asks=calls_any("np.linalg.inv", "np.linalg.pinv", "cv2.invert",
                                                   says="inverts a matrix"),
                    instead=" (your code {found}: look at which way each matrix it inverts maps)")
@@ -847,13 +985,12 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                        "negative third coordinate), which mirrors both images: the rectifying rotation's "
                        "second and third axes point the opposite way.",
                        mistake="the rectifying rotation looks backwards: e2 and e3 point the opposite way",
-                       hint=measured("e2 = z x e1 (the mean optical axis crossed with e1, in this order) and "
-                                     "e3 = e1 x e2 keep the new z axis towards the scene"))
+                       hint=CROSS_ORDER_HINT.said(t))
             if x1 and x2 and not (back1 or back2):
                 t.fail(f"{negative}: both rectified images are mirrored left to right with the new cameras "
                        "facing the scene: the new x axis points from camera 2 to camera 1.",
                        mistake="the new x axis points from camera 2 to camera 1 (the images are mirrored)",
-                       hint="camera 2's centre in camera-1 coordinates is -R^T T: the new x axis points towards it")
+                       hint=TOWARDS_CENTRE_HINT.said(t))
             if not (x1 or x2 or y1 or y2 or back1 or back2):
                 t.fail(f"{negative}, and neither image is turned or mirrored: the left and right roles are "
                        "swapped.", mistake="the left and right roles are swapped in the rectification")
@@ -861,6 +998,7 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                    f"{'mirrored' if x1 else 'not mirrored'}, {'upside down' if y1 else 'upright'}; right: "
                    f"{'mirrored' if x2 else 'not mirrored'}, {'upside down' if y2 else 'upright'}).")
         return worst, float(np.median(dx))
+    name_rotations(t, H1, H2, what)
     name_pose_mistake(t, pair, what)
     # Undoing a mistake of the construction must rectify exactly (the rows agree to rounding
     # error): nearly rectified pairs leave room for other wrong maps to come close by chance.
@@ -903,6 +1041,8 @@ AXES_AS_COLUMNS = (calls("np.column_stack") | keyword("np.stack", "axis", 1) | k
                    | expr("np.array([_, _, _]).T") | expr("np.vstack([_, _, _]).T") | expr("np.stack([_, _, _]).T")
                    ).saying("stacks the new axes as columns")
 ONE_ROTATION = Predicate("gives both cameras one new rotation and one new K", _shared_by_products)
+TOWARDS_CENTRE_HINT = Hint("camera 2's centre in camera-1 coordinates is -R^T T: the new x axis points towards it",
+                           asks=CENTRE, instead="")   # the message's measured cause alone
 
 
 def rectification_recipe(lead: str, *first: tuple) -> str:
@@ -912,7 +1052,27 @@ def rectification_recipe(lead: str, *first: tuple) -> str:
         ("the new axes are the rows of the rectifying rotation (np.vstack([e1, e2, e3]), not its columns)",
          ~AXES_AS_COLUMNS),
         ("both cameras get that one new rotation and one new K", ONE_ROTATION),
-        none_left="look at the order of the products in each map (H1 = K_new R_rect K1^-1, H2 = K_new R_rect R K2^-1)")
+        none_left=look_at(("the order of the products in each map (H1 = K_new R_rect K1^-1, H2 = K_new R_rect R K2^-1)",
+                           INVERSE_RIGHTMOST), otherwise="each of its steps is written in your code, so the "
+                                                         "difference is inside one of them"))
+
+
+def _inverse_rightmost(function) -> bool:
+    """A matrix product whose rightmost factor is an inverse (``K_new @ R_rect @ np.linalg.inv(K1)``, or a name
+    assigned one): each map written with K^-1 applied first; read leniently (any inverse)."""
+    inverses = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and _is_inverse(n.value)
+                for t in n.targets if isinstance(t, ast.Name)}
+    return any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)
+               and (_is_inverse(n.right) or isinstance(n.right, ast.Name) and (n.right.id in inverses
+                                                                               or "inv" in n.right.id.lower()))
+               for n in ast.walk(function))
+
+
+def _is_inverse(node) -> bool:
+    return isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("inv", "pinv", "invert")
+
+
+INVERSE_RIGHTMOST = Predicate("applies K^-1 first in each map", _inverse_rightmost)
 
 
 RECTIFY_HINT = Hint(
@@ -941,6 +1101,45 @@ def _outputs_out_of_order(function) -> bool:
     return out_of_order(function, "stereoRectify")
 
 
+def _warps(function) -> list:
+    """The ``cv2.warpPerspective`` calls of ``function``: (image, map) argument nodes."""
+    found = []
+    for n in ast.walk(function):
+        if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "warpPerspective":
+            given = dict(enumerate(n.args[:2]))
+            given.update({{"src": 0, "M": 1}[k.arg]: k.value for k in n.keywords if k.arg in ("src", "M")})
+            if len(given) == 2:
+                found.append((given[0], given[1]))
+    return found
+
+
+def _names_in(node) -> set:
+    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+
+
+def _warps_each_by_its_own(function) -> bool | None:
+    """img_l (the first parameter) and img_r (the second) each warped by a different map; code that warps in a
+    helper or with cv2.remap cannot be read and counts as doing it."""
+    parameters = [a.arg for a in function.args.posonlyargs + function.args.args]
+    warps = _warps(function)
+    if len(parameters) < 2 or not warps:
+        return None
+    left = [_names_in(m) for image, m in warps if parameters[0] in _names_in(image)]
+    right = [_names_in(m) for image, m in warps if parameters[1] in _names_in(image)]
+    return any(a != b for a in left for b in right)
+
+
+def _returns_its_warps(function) -> bool | None:
+    """The last two values returned (H1, H2) are names the images were warped with (``return rect_l, rect_r, H1,
+    H2`` after ``cv2.warpPerspective(img_l, H1, ...)``); code that cannot be read that way counts as doing it."""
+    warped_with = {m.id for _, m in _warps(function) if isinstance(m, ast.Name)}
+    returns = [n.value for n in ast.walk(function) if isinstance(n, ast.Return) and isinstance(n.value, ast.Tuple)
+               and len(n.value.elts) == 4]
+    if not warped_with or not returns:
+        return None
+    return all(all(not isinstance(e, ast.Name) or e.id in warped_with for e in r.elts[2:]) for r in returns)
+
+
 GIVEN_AS_IS_HINT = Hint(RECTIFY_HINT.neutral("calls cv2.stereoRectify"),
                         asks=passes_parameters("cv2.stereoRectify", {0: "K1", 2: "K2", 5: "R", 6: "T"},
                                                says="gives cv2.stereoRectify K1, K2, R and T as they came"),
@@ -950,7 +1149,13 @@ GIVEN_AS_IS_HINT = Hint(RECTIFY_HINT.neutral("calls cv2.stereoRectify"),
                             ("R1 and P1 go to the left image, R2 and P2 to the right (it returns R1, R2, P1, P2 in "
                              "that order)", ~Predicate("reads its outputs out of order", _outputs_out_of_order)),
                             ("each image's map is H = P[:, :3] R K^-1", expr("_[:, :3] @ _") | expr("_[:3, :3] @ _")),
-                            none_left="look at which image each map is applied to, and at the output size"))
+                            # (the output size is the first item's predicate: every OpenCV size is read)
+                            none_left=look_at(("which image each map is applied to (img_l by H1, img_r by H2)",
+                                               wherever_written("warps each image by its own map",
+                                                                _warps_each_by_its_own)),
+                                              ("which matrices are returned as H1 and H2 (the maps the images are "
+                                               "warped with)", wherever_written("returns the maps it warps with",
+                                                                                _returns_its_warps)))))
 CENTRE_HINT = Hint(RECTIFY_HINT.text, asks=CENTRE,
                    instead="your code {found}; " + rectification_recipe("compare the rest with the recipe: "))
 
@@ -1020,6 +1225,7 @@ def rectify_images(t):
                                f"{'H2' if homography is H2 else 'H1'}.", mistake=mistake)
                 except np.linalg.LinAlgError:
                     continue
+            name_rotations(t, H1, H2)
             height, width = image.shape[:2]
             expected = cv2.warpPerspective(image, H, (width, height))
             t.compare_images(f"{name} against the input warped by your homography", image, expected, got)
@@ -1063,8 +1269,23 @@ def rectify_colour(t):
         return passed("the grey pair's images do not match their homographies either: judged by the grey check")
     t.fail(f"rectify of a colour pair: {wrong[0]} differs from the colour input warped by your "
            f"{'H1' if wrong[0] == 'rect_l' else 'H2'} by {errors[wrong[0]]:.0f} levels on average, while "
-           "a grey pair's images match their homographies: "
-           + measured("warp the colour images as they are (cv2.warpPerspective takes BGR images)."))
+           "a grey pair's images match their homographies" + (f": {told}" if (told := COLOUR_HINT.said(t)) else "."))
+
+
+def _converts_colour(function) -> bool:
+    """A colour image turned into something else before the warp: cv2.cvtColor, a channel taken (``img[..., 0]``,
+    ``img[:, :, 1]``) or averaged (``.mean(axis=2)``)."""
+    return calls("cv2.cvtColor").holds([function]) or any(
+        isinstance(n, ast.Subscript) and isinstance(n.slice, ast.Tuple) and n.slice.elts
+        and isinstance(n.slice.elts[-1], ast.Constant) and n.slice.elts[-1].value in (0, 1, 2)
+        and (len(n.slice.elts) == 3 or isinstance(n.slice.elts[0], ast.Constant) and n.slice.elts[0].value is Ellipsis)
+        for n in ast.walk(function)) or keyword("np.mean", "axis", 2).holds([function]) \
+        or keyword(".mean", "axis", 2).holds([function])
+
+
+# Told only to code that converts the images somewhere (code warping them as they come does what it says).
+COLOUR_HINT = Hint("warp the colour images as they are (cv2.warpPerspective takes BGR images).",
+                   asks=~Predicate("converts a colour image", _converts_colour), instead="")
 
 
 def _warped_or_inf(image, H, got) -> float:
@@ -1079,14 +1300,20 @@ def rectify_in_view(t):
     pair = truth.unrectified_pair(seed=4)
     _, _, H1, H2 = call_rectify(t, pair)
     height, width = pair.img_l.shape[:2]
+    # The new camera's K is the cause only of maps that rectify: other maps fail the rows check for their own cause.
+    dy, dx = row_errors(H1, H2, pair)
+    rectifies = bool(np.all(np.isfinite(dy)) and dy.max() <= ROW_TOLERANCE and np.median(dx) > 0)
     for name, H in (("left", H1), ("right", H2)):
         kept = truth.fraction_in_view(H, width, height)
         covered = truth.frame_coverage(H, width, height)
+        if min(kept, covered) < IN_VIEW:
+            name_rotations(t, H1, H2)
         if kept < IN_VIEW:
             t.fail(f"rectify: only {format_apart(kept, IN_VIEW, 2, percent=True)} of the {name} image stays "
-                   "inside the rectified frame "
-                   f"(at least {IN_VIEW:.0%} should): the new principal point (and focal length) do not keep "
-                   "the rectified images in view.")
+                   f"inside the rectified frame (at least {IN_VIEW:.0%} should)"
+                   + (": H1 and H2 rectify the pair, but the new principal point (and focal length) do not keep "
+                      "the rectified images in view." if rectifies else
+                      "; H1 and H2 do not rectify the pair either (see the rows check)."))
         if covered < IN_VIEW:
             t.fail(f"rectify: the {name} image covers only {format_apart(covered, IN_VIEW, 2, percent=True)} of "
                    "its rectified frame "
@@ -1290,8 +1517,16 @@ def judge_left_strip(t: Trial, what: str, got, max_disparity: int, function: str
            + (from_code(" Your code calls np.roll, which brings the right image's last columns round to its "
                         "left edge: blocks there are compared with the far side of the image.") if rolled else ""),
            mistake=PAST_THE_EDGE_MISTAKE,
-           hint=measured("where x - d < 0 the block has no partner in the right image: give those disparities an "
-                         "infinite cost (or leave the pixel invalid)"))
+           hint=NO_PARTNER_HINT.said(t, [function]))
+
+
+# Told only to code that marks no column as without a partner (an infinite cost, a slice up to d, a test against d).
+NO_PARTNER_HINT = Hint(measured("where x - d < 0 the block has no partner in the right image: ")
+                       + "give those disparities an infinite cost (or leave the pixel invalid)",
+                       asks=Predicate("marks the columns without a partner", _marks_left_border),
+                       instead=measured("where x - d < 0 the block has no partner in the right image: ")
+                       + "your code {found}: look at which columns it marks for each d, and at what becomes of "
+                         "them afterwards")
 
 
 @ex4.check("block_matching (SSD, block_size=9) on random-dot planes", points=3, timeout=STEREO_TIMEOUT)
@@ -1561,8 +1796,29 @@ def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, scene, compared_with=
                hint=COST_SCALE_HINT.said(t), mistake=WEAK_DEFAULT)
     t.fail(f"{what}: it looks like {SMOOTHNESS_IGNORED} (winner-take-all): {jumps:.1%} of "
            f"neighbouring pixels jump by more than 1 px, as many as {compared_with} ({wta_jumps:.1%}).",
-           hint="with smoothness=None, use a default penalty suited to your cost's scale",
+           hint=from_code("your code sets smoothness to 0 when it is None, which switches the smoothness term off: "
+                          "the default is a positive penalty suited to your cost's scale")
+           if ZERO_DEFAULT.holds(code_of(t).reachable([DP_FUNCTION])) else
+           "with smoothness=None, use a default penalty suited to your cost's scale",
            mistake=SMOOTHNESS_IGNORED)
+
+
+def _zero_default(function) -> bool:
+    """The smoothness parameter given 0 where it is None: ``smoothness = 0.0`` (under ``if smoothness is None``),
+    ``smoothness = 0 if smoothness is None else smoothness``, ``smoothness = smoothness or 0``."""
+    def zero(node) -> bool:
+        return isinstance(node, ast.Constant) and not isinstance(node.value, bool) and node.value == 0
+
+    for n in ast.walk(function):
+        if isinstance(n, ast.Assign) and any(isinstance(t, ast.Name) and "smooth" in t.id.lower() for t in n.targets):
+            value = n.value
+            if zero(value) or isinstance(value, ast.IfExp) and zero(value.body) \
+                    or isinstance(value, ast.BoolOp) and isinstance(value.op, ast.Or) and zero(value.values[-1]):
+                return True
+    return False
+
+
+ZERO_DEFAULT = Predicate("sets smoothness to 0 when it is None", _zero_default)
 
 
 # Said of the map, not of the code: a last column wrong alone shows where the backtracking starts,
@@ -1859,19 +2115,66 @@ def judge_patterns(t: Trial, width, n_bits):
     if np.array_equal(got, expected):
         return
     name_pattern_mistake(t, what, got, width, n_bits)
+    name_wrapped_stripes(t, what, got, width, n_bits)
     stripes = truth._stripe(width, n_bits)
     column = int(np.argmax(np.any(got != expected, axis=0)))
+    if one_code_per_stripe(got, stripes):
+        hint = GRAY_CODE_HINT.said(t)
+    elif codes_differ_within_stripes(got, stripes):
+        hint = STRIPE_HINT + STRIPE_FORMULA_HINT.said(t)
+    else:
+        hint = SHARED_CODES
     t.fail(f"{what}: column {column} (stripe k = {stripes[column]}) is {got[:, column].tolist()}; "
-           f"expected {expected[:, column].tolist()}",
-           hint=GRAY_CODE_HINT if one_code_per_stripe(got, stripes) else STRIPE_HINT)
+           f"expected {expected[:, column].tolist()}", hint=hint)
+
+
+def _patterns_of(k, n_bits) -> np.ndarray:
+    """The (n_bits, len(k)) Gray-code patterns of stripe indices ``k``."""
+    k = np.asarray(k, dtype=np.int64)
+    return truth._bit_rows(k ^ (k >> 1), n_bits)
+
+
+# measured: the patterns are exactly those of k mod 256, here and on a 1024-column 10-bit projector
+WRAPPED_STRIPES = "the stripe index k is kept in 8 bits (uint8): from k = 256 on it wraps round to k - 256"
+
+
+def name_wrapped_stripes(t: Trial, what, got, width, n_bits):
+    """Fail naming :data:`WRAPPED_STRIPES` for patterns that are those of k mod 256 (more than 8 bits), on this
+    input and on a projector where most stripes are past 255."""
+    stripes = truth._stripe(width, n_bits)
+    if stripes.max() < 256 or not np.array_equal(got, _patterns_of(stripes % 256, n_bits)):
+        return
+    try:
+        again = t.call("gray_code_patterns", 1024, 10)
+    except StudentFailure:
+        return
+    if isinstance(again, np.ndarray) and np.array_equal(again, _patterns_of(np.arange(1024) % 256, 10)):
+        t.fail(f"{what} is wrong: it looks like {WRAPPED_STRIPES} (gray_code_patterns(1024, 10) too gives "
+               "each stripe k from 256 on the code of k mod 256).", mistake=WRAPPED_STRIPES)
+
+
+def codes_differ_within_stripes(patterns, stripes) -> bool:
+    """Whether two columns of one stripe carry different bits (patterns (n_bits, width), read at mid-grey)."""
+    codes = np.packbits(patterns > 127, axis=0).T.copy().view(f"V{(patterns.shape[0] + 7) // 8}").ravel()
+    return len(set(zip(stripes.tolist(), codes.tolist()))) > len(set(stripes.tolist()))
 
 
 # measured: every column of a stripe carries the same code (the stripe index is right), not its Gray code
-GRAY_CODE_HINT = measured("each stripe k gets one code, but not the binary-reflected Gray code of k: "
-                          "g = k XOR (k >> 1), bit i of g (most significant first) in row i")
+GRAY_CODE_FORMULA = expr("_ ^ (_ >> 1)") | calls("np.bitwise_xor")
+GRAY_CODE_HINT = Hint(measured("each stripe k gets one code, but not the binary-reflected Gray code of k: ")
+                      + "g = k XOR (k >> 1), bit i of g (most significant first) in row i",
+                      asks=GRAY_CODE_FORMULA.saying("computes k XOR (k >> 1)"),
+                      instead=measured("each stripe k gets one code, but not the binary-reflected Gray code of k: ")
+                      + "your code {found}: look at which k it is taken of and which bit of g each row shows")
 # measured: columns of one stripe carry different codes, so k itself differs
-STRIPE_HINT = measured("the columns of one stripe carry different codes: k = floor(u * 2**n_bits / width), "
-                       "with integer arithmetic (u * 2**n_bits) // width")
+STRIPE_HINT = measured("the columns of one stripe carry different codes")
+STRIPE_FORMULA_HINT = Hint(": k = floor(u * 2**n_bits / width), with integer arithmetic (u * 2**n_bits) // width",
+                           asks=(expr("_ * _ // _") | expr("(_ << _) // _") | calls("np.floor_divide")
+                                 ).saying("computes k with an integer division"),
+                           instead=" (your code {found}: look at the values of k it gives the columns of the failing "
+                                   "stripe)")
+# measured: no stripe's columns differ, but different stripes share a code
+SHARED_CODES = measured("different stripes carry the same code: each stripe's Gray code is its own")
 
 
 def one_code_per_stripe(patterns, stripes) -> bool:
@@ -1893,6 +2196,11 @@ def patterns_property(t):
               max_examples=20, describe=lambda c: f"width={c[0]}, n_bits={c[1]}")
 
 
+# measured: the images are those of each column's own Gray code (its low n_bits bits), here and on another scene
+COLUMN_CODED = ("each pixel shows the Gray code of its projector column itself, not of the column's stripe "
+                "k = (column * 2**n_bits) // width")
+
+
 def simulation_explained(got, depth, f, baseline, n_bits) -> list[str]:
     """The simulation mistakes whose images are ``got`` (pixels of tied columns aside)."""
     width = depth.shape[1]
@@ -1907,6 +2215,7 @@ def simulation_explained(got, depth, f, baseline, n_bits) -> list[str]:
             dict(clip=True),
         "the images are in the wrong order: image 0 is lit by the most significant pattern (row 0)":
             dict(reverse=True),
+        COLUMN_CODED: dict(patterns=_patterns_of(np.arange(width), n_bits)),
     }
     found = []
     for mistake, kwargs in mistakes.items():
@@ -1977,13 +2286,69 @@ def _both_bounds(function) -> bool:
     return low and high
 
 
+def _assigned_values(function) -> dict:
+    """name -> the values the function assigns it."""
+    values: dict = {}
+    for n in ast.walk(function):
+        if isinstance(n, ast.Assign):
+            for target in n.targets:
+                if isinstance(target, ast.Name):
+                    values.setdefault(target.id, []).append(n.value)
+    return values
+
+
+def _stripe_like(node, values, depth=0) -> bool:
+    """A value computed through the stripe's scaling (an integer division, a power of two, a shift left), directly
+    or through the names it reads."""
+    if depth > 4:
+        return False
+    for n in ast.walk(node):
+        if isinstance(n, ast.BinOp) and isinstance(n.op, (ast.FloorDiv, ast.LShift, ast.Pow)):
+            return True
+        if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("floor_divide", "left_shift", "power"):
+            return True
+        if isinstance(n, ast.Name) and n is not node and any(_stripe_like(v, values, depth + 1)
+                                                            for v in values.get(n.id, [])):
+            return True
+    if isinstance(node, ast.Name):
+        return any(_stripe_like(v, values, depth + 1) for v in values.get(node.id, []))
+    return False
+
+
+def _codes_the_stripe(function) -> bool | None:
+    """Every Gray code written out (``a ^ (a >> 1)``) is taken of a value scaled as a stripe index is
+    (``(column * 2**n) // width``); code that computes no Gray code itself (a helper in another function, the
+    patterns indexed by column) counts as doing it."""
+    values = _assigned_values(function)
+    codes = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.BitXor)
+             and isinstance(n.right, ast.BinOp) and isinstance(n.right.op, ast.RShift)]
+    return all(_stripe_like(n.left, values) for n in codes) if codes else None
+
+
+def _bits_in_order(function) -> bool | None:
+    """Bits read most significant first, or bits read in a way this reading does not follow (counted as done):
+    only a shift by the image's own index (``code >> i`` for ``i`` of ``range(n)``, the least significant first)
+    counts as not done."""
+    loops = {n.target.id for n in ast.walk(function) if isinstance(n, (ast.For, ast.comprehension))
+             and isinstance(n.target, ast.Name) and isinstance(n.iter, ast.Call)
+             and _path(n.iter.func) == "range" and len(n.iter.args) == 1}
+    shifts = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.RShift)
+              and not (isinstance(n.right, ast.Constant) and n.right.value == 1)]
+    return not all(isinstance(n.right, ast.Name) and n.right.id in loops for n in shifts) if shifts else None
+
+
+BITS_IN_ORDER = wherever_written("reads the bits most significant first", _bits_in_order)
+
+
 PROJECTOR_MODEL = checklist(
     "", ("pixel (u, v) at depth Z sees projector column round(u - f*baseline/Z)",
          (calls("np.round") | calls("np.rint") | calls("round") | calls("np.floor")) & expr("_ * _ / _")),
     ("a pixel with Z <= 0 is black", expr("_ > 0") | expr("_ <= 0") | expr("0 < _")),
     ("a pixel whose column is off the projector (below 0, or at its width and past) is black",
      Predicate("tests the column against both ends", _both_bounds)),
-    none_left="look at which bit of the column's Gray code each image shows (the most significant first)")
+    ("the Gray code shown is that of the column's stripe k = (column * 2**n_bits) // width, not of the column itself",
+     wherever_written("codes the stripe", _codes_the_stripe)),
+    none_left=look_at(("which bit of the Gray code each image shows (the most significant first)", BITS_IN_ORDER)))
 
 
 def _divide_keyword(name: str, holds: Callable) -> Callable:
@@ -2004,6 +2369,39 @@ def _zeros(node) -> bool:
     return isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("zeros_like", "zeros")
 
 
+def _divisions(function) -> list:
+    return [n for n in ast.walk(function) if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide"]
+
+
+def _divides_by_the_parameter(function) -> bool:
+    """np.divide's divisor reads the first parameter (the disparity), directly or through names assigned from it
+    (``d = np.asarray(disparity, float)``); read leniently."""
+    parameters = [a.arg for a in function.args.posonlyargs + function.args.args]
+    if not parameters:
+        return False
+    values = _assigned_values(function)
+
+    def reads(node, depth=0) -> bool:
+        return depth <= 4 and any(isinstance(n, ast.Name) and (n.id == parameters[0] or any(
+            reads(v, depth + 1) for v in values.get(n.id, []))) for n in ast.walk(node))
+    return any(len(n.args) >= 2 and reads(n.args[1]) for n in _divisions(function))
+
+
+def _returns_the_division(function) -> bool:
+    """A return of np.divide's result or of the array given as its ``out=`` (read leniently: a return of
+    anything computed from either)."""
+    held = set()
+    for n in _divisions(function):
+        held |= {k.value.id for k in n.keywords if k.arg == "out" and isinstance(k.value, ast.Name)}
+    for n in ast.walk(function):
+        if isinstance(n, ast.Assign) and any(isinstance(m, ast.Call) and m in _divisions(function)
+                                             for m in ast.walk(n.value)):
+            held |= {t.id for t in n.targets if isinstance(t, ast.Name)}
+    return any(isinstance(n, ast.Return) and n.value is not None and any(
+        (isinstance(m, ast.Name) and m.id in held) or (isinstance(m, ast.Call) and _path(m.func).endswith("divide"))
+        for m in ast.walk(n.value)) for n in ast.walk(function))
+
+
 GUARDED_DIVISION_HINT = Hint(
     "np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0) (NaN > 0 is False)",
     asks=keyword("np.divide", "where"),
@@ -2011,7 +2409,9 @@ GUARDED_DIVISION_HINT = Hint(
         "", ("its condition is d > 0 (NaN > 0 is False)", Predicate("divides where d > 0",
                                                                     _divide_keyword("where", _positive_test))),
         ("out starts as zeros", Predicate("gives np.divide zeros as out", _divide_keyword("out", _zeros))),
-        none_left="look at the value divided by (the disparity given, d = x_l - x_r) and at the array returned"))
+        none_left=look_at(("the value divided by (the disparity given, d = x_l - x_r)",
+                           Predicate("divides by the disparity given", _divides_by_the_parameter)),
+                          ("the array returned", Predicate("returns what np.divide fills", _returns_the_division)))))
 
 
 def sl_decoding_explained(got, images, f, baseline) -> list[str]:
@@ -2086,14 +2486,58 @@ XOR = Predicate("XORs bits", lambda function: any(
     for n in ast.walk(function)))
 STRIPE_CENTRE = (expr("_ + 0.5") & (expr("2 ** _") | expr("1 << _") | calls("np.power") | calls("np.left_shift"))
                  ).saying("takes the stripe's centre")
+def _xor_accumulates(function) -> bool:
+    """An XOR whose result feeds the next one (``b = b ^ g[i]``, ``b ^= g``, ``binary[i] = binary[i - 1] ^ bits[i]``,
+    ``np.bitwise_xor.accumulate``): each bit XORed with the previous binary bit; read leniently (a name or array
+    XORed into itself)."""
+    for n in ast.walk(function):
+        if isinstance(n, ast.AugAssign) and isinstance(n.op, ast.BitXor):
+            return True
+        if isinstance(n, ast.Attribute) and n.attr == "accumulate":
+            return True
+        if isinstance(n, ast.Assign) and isinstance(n.value, ast.BinOp) and isinstance(n.value.op, ast.BitXor):
+            written = {_root_name(t) for t in n.targets}
+            read = {_root_name(side) for side in (n.value.left, n.value.right)}
+            if written & read - {None}:
+                return True
+        if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("bitwise_xor", "logical_xor") \
+                and any(k.arg == "out" for k in n.keywords):
+            return True
+    return False
+
+
+def _root_name(node):
+    while isinstance(node, (ast.Subscript, ast.Attribute)):
+        node = node.value
+    return node.id if isinstance(node, ast.Name) else None
+
+
+def _bits_assembled_in_order(function) -> bool | None:
+    """Bits assembled most significant first, or in a way this reading does not follow (counted as done): only a
+    shift left by the image's own index (``bit << i`` for ``i`` of ``range(n)``) counts as not done."""
+    loops = {n.target.id for n in ast.walk(function) if isinstance(n, (ast.For, ast.comprehension))
+             and isinstance(n.target, ast.Name) and isinstance(n.iter, ast.Call)
+             and _path(n.iter.func) == "range" and len(n.iter.args) == 1}
+    shifts = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.LShift)]
+    return not all(isinstance(n.right, ast.Name) and n.right.id in loops for n in shifts) if shifts else None
+
+
 STRUCTURED_LIGHT_RECIPE = checklist(
     "", ("each image is thresholded at mid-grey", Predicate("thresholds at mid-grey", _mid_grey)),
     ("the Gray code is converted to binary (most significant bit first: b0 = g0, b_i = b_(i-1) XOR g_i)", XOR),
     ("the projector column is (k + 0.5) * width / 2**n_bits - 0.5", STRIPE_CENTRE),
     ("Z = f b / (u - column)", expr("_ * _ / (_ - _)") | expr("_ * _ / _") | expr("_ / (_ - _)")),
-    none_left="look at the order the bits are read in (the first image is the most significant bit), at what each "
-              "XOR is taken with (the previous binary bit, not the previous Gray bit), and at the pixels left "
-              "undecoded (black in every image: depth 0)")
+    none_left=look_at(
+        ("the order the bits are read in (the first image is the most significant bit)",
+         wherever_written("reads the first image as the most significant bit", _bits_assembled_in_order)),
+        ("what each XOR is taken with (the previous binary bit, not the previous Gray bit)",
+         Predicate("XORs with the previous binary bit", _xor_accumulates)),
+        ("the pixels left undecoded (black in every image: depth 0)",
+         calls("np.any") | calls(".any") | calls("np.all") | calls(".all") | calls("np.max") | calls(".max")
+         | calls("np.where") | calls("np.count_nonzero") | calls("np.sum") | calls(".sum")),
+        otherwise=""))
+
+
 
 
 # 10 bits too, as a 1024-column projector is coded: stripe indices past 255 (a uint8 accumulator of

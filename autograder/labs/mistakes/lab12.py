@@ -134,6 +134,14 @@ MISTAKES = {
                 xl, xr = xl[:, 1], xr[:, 1]
             return xl - xr
         """, ["y coordinates"]),
+    # the blind set 29d's 12/01: points told from x coordinates by the last axis's length, not the dimensions
+    "disparity_from_matches taking any last axis of length 2 for (x, y) points": ("lab12.ex2", """
+        def disparity_from_matches(xl, xr):
+            def x_of(a):
+                a = np.asarray(a, dtype=np.float64)
+                return a[..., 0] if a.shape[-1] == 2 else a
+            return x_of(xl) - x_of(xr)
+        """, ["returned the single number", "as if the two x coordinates were one (x, y) point"]),
     "depth with d and b swapped (f d / b)": ("lab12.ex2", """
         def depth_from_disparity(disparity, f, baseline):
             d = np.asarray(disparity, float)
@@ -154,6 +162,20 @@ MISTAKES = {
             a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
             return a, b, np.linalg.inv(H1), np.linalg.inv(H2)
         """, ["back to the originals"]),
+    # the blind set 29d's 12/03: the images warped right, stereoRectify's rotations returned
+    "rectify returning the rectifying rotations R1, R2 as H1, H2": ("lab12.ex3", """
+        def rectify(img_l, img_r, K1, K2, R, T):
+            K1 = np.asarray(K1, float); K2 = np.asarray(K2, float)
+            h, w = np.asarray(img_l).shape[:2]
+            R1, R2, P1, P2, _, _, _ = cv2.stereoRectify(K1, np.zeros(5), K2, np.zeros(5), (w, h), np.asarray(R, float),
+                                                        np.asarray(T, float).reshape(3, 1),
+                                                        flags=cv2.CALIB_ZERO_DISPARITY, alpha=-1)
+            H1 = P1[:, :3] @ R1 @ np.linalg.inv(K1)
+            H2 = P2[:, :3] @ R2 @ np.linalg.inv(K2)
+            rect_l = cv2.warpPerspective(np.asarray(img_l), H1, (w, h))
+            rect_r = cv2.warpPerspective(np.asarray(img_r), H2, (w, h))
+            return rect_l, rect_r, R1, R2
+        """, ["rotation matrices (orthonormal, determinant 1)", "the rectifying rotations are returned as H1 and H2"]),
     "rectify with the homographies swapped": ("lab12.ex3", """
         _rectify = rectify
         def rectify(img_l, img_r, K1, K2, R, T):
@@ -531,6 +553,30 @@ MISTAKES = {
             return np.where(bits.any(axis=0), z, 0.0)
         """, ["depth_from_structured_light(10 images", "with 6 images it decodes exactly",
               "the stripe indices k reach 1023"]),
+    # the blind set 29d's 12/07: the stripe computed, the column Gray-coded
+    "simulation showing the Gray code of the column, not of its stripe": ("lab12.ex6", """
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            depth = np.asarray(depth, dtype=np.float64)
+            height, width = depth.shape
+            u = np.arange(width, dtype=np.float64)[None, :]
+            lit = np.isfinite(depth) & (depth > 0)
+            column = np.floor(u - f * baseline / np.where(lit, depth, 1.0) + 0.5).astype(np.int64)
+            lit &= (column >= 0) & (column < width)
+            stripe = (column * (1 << n_bits)) // width
+            code = column ^ (column >> 1)
+            images = np.zeros((n_bits, height, width), dtype=np.uint8)
+            for i in range(n_bits):
+                bit = (code >> (n_bits - 1 - i)) & 1
+                images[i][lit] = (bit[lit] * 255).astype(np.uint8)
+            return images
+        """, ["each pixel shows the Gray code of its projector column itself"]),
+    # the blind set 29d's 12/06: right up to 8 bits
+    "patterns with the stripe index cast to uint8": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            k = ((np.arange(width) * (1 << n_bits)) // width).astype(np.uint8)
+            g = k ^ (k >> 1)
+            return (((g[None, :] >> np.arange(n_bits - 1, -1, -1)[:, None]) & 1) * 255).astype(np.uint8)
+        """, ["the stripe index k is kept in 8 bits (uint8)", "the code of k mod 256"]),
     "patterns with the stripe index rounded": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
             k = np.minimum(np.round(np.arange(width) * 2**n_bits / width).astype(int), 2**n_bits - 1)
