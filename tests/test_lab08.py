@@ -258,3 +258,15 @@ def test_a_line_joining_no_match_loses_points(tmp_path):
     for check in drawing_checks(tmp_path, extra):
         assert not check.passed and check.mistake == "a line that joins no match is drawn", check.message
         assert "every match has its line, but a line from about (" in check.message
+
+
+def test_a_pyramid_counting_levels_as_downsamplings_keeps_full_marks(tmp_path):
+    """levels + 1 pyramid levels (downsampled `levels` times), as OpenCV's stitching module counts
+    them (detail::createLaplacePyr(img, num_levels) builds num_levels + 1): neither the lab sheet nor
+    the API says which count `levels` is, and one more level only smooths the seam further, so it is
+    a legitimate variant (the blind set's 2026-11-29d lab08 08), not a mistake."""
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, MODULE, ("    for _ in range(levels - 1):", "    for _ in range(levels):"))
+    [graded] = grade(folder, ["lab08.ext3"], pictures="none").exercises
+    assert graded.score == graded.max_score, [(c.name, c.message) for c in graded.checks if not c.passed]

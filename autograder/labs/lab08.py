@@ -2372,6 +2372,12 @@ def blend_seam(t):
     t.fail(f"{what}: far from the seam the result should equal the dark image.")
 
 
+# Fewer levels than asked are named only where the seam shows (SEAM_STEP). One more level is no
+# mistake: neither the lab sheet nor the API says whether `levels` counts the full-resolution level
+# (the skeleton's choice) or the downsamplings (OpenCV's stitching module: detail::createLaplacePyr(
+# img, num_levels) builds num_levels + 1 levels), and a coarser top level only widens the blend of
+# the coarsest band -- the seam is smoother, detail as sharp, an image blended with itself unchanged
+# (tests/test_lab08.py: the blind set 2026-11-29d's lab08 08 keeps full marks).
 def pyramid_depths(img1, img2, mask) -> dict:
     """What a pyramid of 2, 3 or 4 levels gives where levels=5 is asked for."""
     return {f"the pyramid has {k} levels where levels=5 asks for 5 (off by {5 - k}; levels counts "
