@@ -724,7 +724,7 @@ LINE_FOUND = 0.5
 
 def matches_listed(indices, starts, ends) -> str:
     """Matches by index with their two ends on the canvas, at most four."""
-    shown = [f"match {i} from ({starts[i][0]:.0f}, {starts[i][1]:.0f}) to ({ends[i][0]:.0f}, {ends[i][1]:.0f})"
+    shown = [f"from pts1[{i}] = ({starts[i][0]:.0f}, {starts[i][1]:.0f}) to ({ends[i][0]:.0f}, {ends[i][1]:.0f})"
              for i in indices[:4]]
     return ", ".join(shown) + (f" and {len(indices) - 4} more" if len(indices) > 4 else "")
 

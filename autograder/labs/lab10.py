@@ -1270,8 +1270,8 @@ def undistort_off_centre(t):
     if error <= UNDISTORT_TOLERANCE:
         return passed(f"mean difference {error:.1f} grey levels from the distortion-free view")
     if _new_camera_matrix_view(got, clean, K, dist):   # a new camera matrix loses its points once, in the first check
-        return passed("the distortion-free view in cv2.getOptimalNewCameraMatrix's camera matrix, as in the first "
-                      "check, which judges that choice")
+        return passed(measured("the distortion-free view in cv2.getOptimalNewCameraMatrix's camera matrix, as in the "
+                               "first check, which judges that choice"))
     mistake = name_mistake(t, got, off_centre_mistakes(distorted, K, dist),
                            lambda a, b: blurred_difference(a, b, valid), UNDISTORT_TOLERANCE, truth=clean,
                            probe=off_centre_probe(t))
