@@ -270,3 +270,39 @@ def test_a_pyramid_counting_levels_as_downsamplings_keeps_full_marks(tmp_path):
     folder = edited_reference(tmp_path, MODULE, ("    for _ in range(levels - 1):", "    for _ in range(levels):"))
     [graded] = grade(folder, ["lab08.ext3"], pictures="none").exercises
     assert graded.score == graded.max_score, [(c.name, c.message) for c in graded.checks if not c.passed]
+
+
+def test_a_ransac_measuring_its_error_before_the_division_is_not_told_src_and_dst_swapped(tmp_path):
+    """An own RANSAC loop comparing (u, v) with dst where (u / w, v / w) belongs: a wrong H with a
+    mask of its own making, which by chance also agrees with H read backwards. H does not map dst
+    onto src, so the swap is not said."""
+    folder = mutant(tmp_path, "lab08_homographies", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float).reshape(-1, 2)
+            dst = np.asarray(dst, float).reshape(-1, 2)
+            rng = np.random.default_rng(seed)
+            src_h = np.hstack([src, np.ones((len(src), 1))])
+
+            def inliers_of(H):
+                mapped = src_h @ H.T
+                return np.linalg.norm(mapped[:, :2] - dst, axis=1) < threshold
+
+            best = np.zeros(len(src), dtype=bool)
+            for _ in range(1000):
+                sample = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[sample], dst[sample])
+                if np.all(np.isfinite(H)) and inliers_of(H).sum() > best.sum():
+                    best = inliers_of(H)
+            if best.sum() < 4:
+                return homography_dlt(src, dst), np.ones(len(src), dtype=bool)
+            H = homography_dlt(src[best], dst[best])
+            inliers = inliers_of(H)
+            if inliers.sum() >= 4:
+                H = homography_dlt(src[inliers], dst[inliers])
+            return H, inliers
+        """)
+    result = grade(folder, ["lab08.ex4"], pictures="none")
+    failed = [c for c in check_results(result, "lab08.ex4") if not c.passed]
+    assert failed
+    text = " ".join(c.message + c.hint + c.mistake for c in failed)
+    assert "swapped" not in text and "maps dst onto src" not in text, text

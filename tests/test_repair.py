@@ -689,3 +689,190 @@ def test_a_change_found_beside_a_checks_own_name_is_told_after_it(tmp_path):
     assert told, [c.message for c in failed]
     assert "opposite way" in told[0].message and not told[0].mistake.startswith(repair.MISTAKE)
     assert told[0].message.index("opposite way") < told[0].message.index("Trying small changes")
+
+
+def test_a_change_of_a_guard_that_does_not_matter_is_not_told(tmp_path):
+    """A bounds test before cv2.circle (which clips by itself) with the shape read as (width, height):
+    points right of the image's height are skipped. Changing the test (`and` -> `or`, `cx` -> `cy`)
+    passes the checks only as removing the test does, so no change of it is told; the unpacking may be."""
+    folder = edited_reference(tmp_path, "lab09_camera", (
+        "            cv2.circle(out, (int(round(x)), int(round(y))), int(radius), color, thickness=-1)",
+        "            cx, cy = int(round(x)), int(round(y))\n"
+        "            w, h = out.shape[:2]\n"
+        "            if 0 <= cx < w and 0 <= cy < h:\n"
+        "                cv2.circle(out, (cx, cy), int(radius), color, thickness=-1)"))
+    result = grade(folder, ["lab09.ex5"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab09.ex5") if c.score < c.max_score]
+    assert checks
+    guard = "0 <= cx < w and 0 <= cy < h"
+    for check in checks:
+        told = check.message.split("Trying small changes", 1)[1:] or [""]
+        assert f"`{guard}` to" not in told[0] and "`0 <= cx < w` to" not in told[0] \
+            and "`0 <= cy < h` to" not in told[0], check.message
+
+
+def test_names_swapped_where_every_mode_reads_them_are_not_told_for_one_modes_call(tmp_path):
+    """The SSD branch takes the images in the wrong order, the NCC branch in the right one: swapping
+    them where they are made mends the SSD calls by breaking the NCC ones (confirmed on the function's
+    other mode), so only the SSD line's swap is told."""
+    folder = edited_reference(tmp_path, "lab12_stereo", (
+        "    volume = (_ssd_volume if cost == \"ssd\" else _ncc_volume)(\n"
+        "        left, right, int(max_disparity), int(block_size))\n",
+        "    if cost == \"ncc\":\n"
+        "        volume = _ncc_volume(left, right, int(max_disparity), int(block_size))\n"
+        "    else:\n"
+        "        volume = _ssd_volume(right, left, int(max_disparity), int(block_size))\n"))
+    result = grade(folder, ["lab12.ex4"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab12.ex4") if c.score < c.max_score]
+    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    assert told and any("_ssd_volume(left, right" in message for message in told), [c.message for c in checks]
+    made = "left, right = (_grey_float(left), _grey_float(right))"   # where the names are made
+    assert not any(f"`{made}` to" in message or "(_grey_float(right), _grey_float(left))" in message
+                   for message in told), told
+
+
+def test_a_loop_that_starts_each_step_from_the_input_again_is_told_to_carry_its_result(tmp_path):
+    """`canvas = cv2.line(image.copy(), ...)` in the loop over lines: each line drawn on a fresh copy,
+    only the last one kept. The change told is to draw on the running canvas; drawing on `image` itself
+    (the caller's array) would mend the picture by writing into the input, so it is not told."""
+    folder = edited_reference(tmp_path, "lab11_two_view", (
+        "            cv2.line(canvas, p, q, colour, 1, cv2.LINE_8)",
+        "            canvas = cv2.line(image.copy(), p, q, colour, 1, cv2.LINE_8)"))
+    result = grade(folder, ["lab11.ex2"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab11.ex2") if c.score < c.max_score]
+    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    assert any("changing `image.copy()` to `canvas`" in message for message in told), [c.message for c in checks]
+    assert not any("`image.copy()` to `image`" in message for message in told), told
+
+
+def test_the_running_result_is_offered_only_where_the_loop_restarts_from_its_own_input():
+    """`out = f(image.copy(), ...)` in a loop, `out` made from `image` before it: `image.copy()` -> `out`.
+    Not for a loop that already carries its result, nor for other names of the line."""
+    carried = {m.edits[0][3] for m in repair.mutants_of(textwrap.dedent("""
+        def graded(image, items):
+            out = image.copy()
+            for item in items:
+                out = draw(image.copy(), item, scale)
+            return out
+    """), {"graded"}, phrased=False)["graded"] if m.operator == "carry"}
+    assert carried == {"out"}
+    right = textwrap.dedent("""
+        def graded(image, items):
+            out = image.copy()
+            for item in items:
+                out = draw(out, item, scale)
+            return out
+    """)
+    assert not [m for m in repair.mutants_of(right, {"graded"}, phrased=False)["graded"] if m.operator == "carry"]
+
+
+def test_an_eigenvector_picked_by_the_smallest_value_where_its_magnitude_belongs(tmp_path):
+    """Epipoles from np.linalg.eig with np.argmin(values) twice: a negative eigenvalue wins over the
+    zero one. Mended by taking the magnitude at both places (the same slip twice), confirmed on inputs
+    of F's own rank (a perturbed F of rank 3 has no null vector) and up to the sign of a unit vector."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab11_two_view", """
+        def epipoles(F):
+            F = np.asarray(F, dtype=float)
+            w, V = np.linalg.eig(F)
+            w_t, V_t = np.linalg.eig(F.T)
+            e1 = np.real(V[:, np.argmin(w)])
+            e2 = np.real(V_t[:, np.argmin(w_t)])
+            return e1 / np.linalg.norm(e1), e2 / np.linalg.norm(e2)
+        """)
+    result = grade(folder, ["lab11.ex5"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab11.ex5") if c.score < c.max_score]
+    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    assert any("`np.argmin(w)` to `np.argmin(np.abs(w))`" in m and "`np.argmin(w_t)` to `np.argmin(np.abs(w_t))`" in m
+               for m in told), [c.message for c in checks]
+
+
+def test_a_perturbed_matrix_short_of_full_rank_keeps_its_rank():
+    from autograder.engine.mutants import naming
+
+    F = np.array([[0.0, -1.0, 2.0], [1.0, 0.0, -3.0], [-2.0, 3.0, 0.0]])   # a cross-product matrix: rank 2
+    moved = naming._perturbed(F, np.random.default_rng(0))
+    assert not np.allclose(moved, F) and np.linalg.matrix_rank(moved) == 2
+    full = np.diag([1.0, 2.0, 3.0])
+    assert np.linalg.matrix_rank(naming._perturbed(full, np.random.default_rng(0))) == 3
+
+
+def test_a_unit_vector_is_right_up_to_its_sign_only():
+    e = np.array([0.6, 0.8, 0.0])
+    assert repair.right((-e, e), (e, e))
+    assert not repair.right((-2 * e, e), (e, e)) and not repair.right((np.array([0.8, 0.6, 0.0]), e), (e, e))
+    assert not repair.right((-e, e), (e, e), projective=False)
+
+
+def test_a_change_of_code_written_twice_in_a_statement_is_shown_with_enough_to_say_which():
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(r, a):
+            return np.stack([r * np.cos(a), r * np.cos(a)], axis=-1)
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    shown = {student.fix(m).changes[0][1:] for m in student.mutants("graded")
+             if m.operator == "function" and student.fix(m) is not None}
+    assert ("[r * np.cos(a), r * np.cos(a)]", "[r * np.cos(a), r * np.sin(a)]") in shown, shown
+
+
+def test_two_neighbouring_names_copied_from_the_other_image_are_told_as_one_change(tmp_path):
+    """An 8-point row written out with image 2's `x2, y2` where image 1's `x1, y1` belong, side by side:
+    the slip made twice (both names' `2` for `1`), found among the pairs of neighbours, and told as one
+    change of the row."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab11_two_view", """
+        def essential_8point(pts1, pts2, K1, K2):
+            a = np.column_stack([pts1, np.ones(len(pts1))]) @ np.linalg.inv(K1).T
+            b = np.column_stack([pts2, np.ones(len(pts2))]) @ np.linalg.inv(K2).T
+            x1, y1 = a[:, 0] / a[:, 2], a[:, 1] / a[:, 2]
+            x2, y2 = b[:, 0] / b[:, 2], b[:, 1] / b[:, 2]
+            rows = np.column_stack([x2 * x1, x2 * y1, x2, y2 * x1, y2 * y1, y2, x2, y2, np.ones(len(x1))])
+            E = np.linalg.svd(rows)[2][-1].reshape(3, 3)
+            U, _, Vt = np.linalg.svd(E)
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+        """)
+    result = grade(folder, ["lab11.ex3"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab11.ex3") if c.score < c.max_score]
+    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    assert any("y2 * y1, y2, x1, y1, np.ones(len(x1))]` (line" in m and " and `" not in m.split("Trying", 1)[1]
+               for m in told), [c.message for c in checks]
+
+
+def test_two_changes_of_one_line_are_shown_together_unless_they_overlap():
+    line = (7, "[a, b2, c2, 1]", "[a, b1, c2, 1]")
+    assert repair._together([line, (7, "[a, b2, c2, 1]", "[a, b2, c1, 1]")]) == [(7, "[a, b2, c2, 1]", "[a, b1, c1, 1]")]
+    assert len(repair._together([line, (7, "[a, b2, c2, 1]", "[a, b3, c2, 1]")])) == 2
+    assert len(repair._together([line, (8, "[a, b2, c2, 1]", "[a, b2, c1, 1]")])) == 2
+
+
+def test_one_item_taken_where_the_mean_belongs_is_told_at_both_places(tmp_path):
+    """An affine fit on centred points whose translation comes from the first pair, `dst[0] - A @ src[0]`,
+    where the centroids belong: the same slip at two places, told as one change."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab07_transformations", """
+        def affine_lstsq(src, dst):
+            src, dst = np.asarray(src, float), np.asarray(dst, float)
+            c_src, c_dst = src.mean(axis=0), dst.mean(axis=0)
+            At, *_ = np.linalg.lstsq(src - c_src, dst - c_dst, rcond=None)
+            A = At.T
+            return np.column_stack([A, dst[0] - A @ src[0]])
+        """)
+    result = grade(folder, ["lab07.ex6"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab07.ex6") if c.score < c.max_score]
+    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    assert any("`dst[0] - A @ src[0]` to `c_dst - A @ c_src`" in m for m in told), [c.message for c in checks]
+
+
+def test_twins_are_names_not_numbers_and_an_answer_with_rows_for_columns_is_seen():
+    from autograder.engine.mutants.operators import twin_names
+
+    assert twin_names("x1", "x2") and twin_names("img_l", "img_r") and twin_names("y_max", "x_max")
+    assert not twin_names("1", "0") and not twin_names("x1", "y2") and not twin_names("width", "depth")
+    assert repair._rows_for_columns(np.zeros((5, 7, 3)), np.zeros((7, 5, 3)))
+    assert not repair._rows_for_columns(np.zeros((5, 7, 3)), np.zeros((5, 7, 3)))
+    assert not repair._rows_for_columns(np.zeros((5, 7)), np.zeros((7, 5, 3)))

@@ -343,6 +343,25 @@ class Trial:
         found = none_returned(code_of(self), function, in_tuple=in_tuple)
         return f": your `{function}` {found}" if found else ""
 
+    def _why_misread(self, value) -> tuple[str, str] | None:
+        """(sentence, mistake) when ``value`` -- a call's answer, or one of the results it returned,
+        in this check or served to it from another's (:meth:`shared`) -- is made from an OpenCV
+        output the student's unpack names as another (:mod:`autograder.engine.outputs`:
+        ``rms, dist, K, ... = cv2.calibrateCamera(...)``)."""
+        for function, _, _, answer in reversed(self.calls + getattr(self, "served", [])):
+            if answer is value:
+                index, count = None, None
+                break
+            if isinstance(answer, (tuple, list)) and any(part is value for part in answer):
+                index, count = next(i for i, part in enumerate(answer) if part is value), len(answer)
+                break
+        else:
+            return None
+        from . import outputs
+        from .hints import code_of
+
+        return outputs.told(code_of(self), function, index, count)
+
     def _why_swapped(self, got, expected) -> str:
         """For an image returned (W, H) where (H, W) is asked, the OpenCV call the student's code
         gives a size rows first (": your code passes `image.shape[:2]` ... to cv2.resize ...")."""
@@ -390,6 +409,10 @@ class Trial:
                       + (f" of shape {_shape_text(shape)}" if shape is not None else "") + self._why_none(value))
         if shape is not None:
             if value.ndim != len(shape) or any(s is not None and s != v for s, v in zip(shape, value.shape)):
+                misread = self._why_misread(value)
+                if misread is not None:   # the code's own names say which output it is
+                    self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
+                              f"{misread[0]}", mistake=misread[1])
                 form = shape_form(value.shape, tuple(shape))
                 if form is not None:
                     self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "

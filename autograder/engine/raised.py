@@ -7,6 +7,13 @@ dimensions" for a translation given as a (3,) vector, and which array is ``t``, 
 the caller gave it that shape, only the line and the call's arguments say. The line is read
 with :mod:`ast` (never run), and a cause is named only when the array the error points at is
 one of the function's own parameters, unchanged before that line, whose given shape shows it.
+
+The same reading explains Python's unpacking errors ("too many values to unpack (expected 2)"
+for ``height, width = image.shape`` given a colour image): the count comes from a parameter as
+given, from what an OpenCV call returns (:mod:`autograder.engine.outputs`) or from a function of
+the module; and OpenCV's errors of methods, from what the code builds
+(:mod:`autograder.engine.cv_raised`). A parameter passed on to a helper as it came (or converted
+without reshaping) is followed into the helper's frame.
 """
 
 from __future__ import annotations
@@ -16,7 +23,7 @@ import re
 
 import numpy as np
 
-from .claims import measured
+from .claims import from_code, measured
 from .forms import Form
 from .hints import Code, _own_nodes, signature_of_def
 
@@ -32,6 +39,70 @@ def innermost_frame(traceback_text: str) -> tuple[str, int, str, str] | None:
         return None
     filename, line, function, code = frames[-1]
     return filename, int(line), function, code.strip()
+
+
+def frames_of(traceback_text: str) -> list[tuple[str, int, str, str]]:
+    """Every ``(file, line, function, code)`` of a student traceback, outermost first."""
+    return [(f, int(n), fn, c.strip()) for f, n, fn, c in _FRAME.findall(traceback_text or "")]
+
+
+def raising_place(code: Code, traceback_text: str, function: str, args, kwargs):
+    """``(def, line, given)`` of the innermost frame of ``function``'s traceback: the def that
+    raised, its line, and what its parameters were given -- the caller's arguments bound to
+    ``function``'s parameters, and through each call of a helper of the module on the way, those of
+    its arguments that are the caller's parameters passed on as they came (``_warp(image, M)``).
+    None when a frame is not one of the module's functions or ``function`` is not the outermost."""
+    frames = frames_of(traceback_text)
+    line = frames[-1][1] if frames else 0
+    while frames and frames[-1][2] in _COMPREHENSIONS:   # Python 3.11 runs them in frames of their own
+        frames.pop()
+    if not frames or frames[0][2] != function or any(f[0] != frames[0][0] for f in frames):
+        return None
+    fn = code.functions.get(function)
+    signature = signature_of_def(fn) if fn is not None else None
+    if signature is None:
+        return None
+    try:
+        given = dict(signature.bind(*args, **kwargs).arguments)
+    except TypeError:
+        return None
+    for (_, calling, _, _), (_, _, callee, _) in zip(frames, frames[1:]):
+        helper = code.functions.get(callee)
+        if helper is None:
+            return None
+        given = _passed_on(fn, calling, helper, given)
+        fn = helper
+    return fn, line, given
+
+
+_UNKNOWN = object()
+_COMPREHENSIONS = frozenset({"<listcomp>", "<genexpr>", "<setcomp>", "<dictcomp>"})
+
+
+def _passed_on(caller, line: int, helper, given: dict) -> dict:
+    """What ``helper``'s parameters were given by ``caller``'s call of it on ``line``: the caller's
+    parameters passed as they came (or converted without reshaping); nothing else is known."""
+    calls = [n for n in _own_nodes(caller) if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
+             and n.func.id == helper.name and n.lineno <= line <= getattr(n, "end_lineno", n.lineno)]
+    signature = signature_of_def(helper)
+    if len(calls) != 1 or signature is None or any(isinstance(a, ast.Starred) for a in calls[0].args) \
+            or any(k.arg is None for k in calls[0].keywords):
+        return {}
+
+    def value(node):
+        node = _unwrapped(node)
+        if isinstance(node, ast.Name) and node.id in given and not _changed(caller, node.id, line):
+            return given[node.id]
+        return _UNKNOWN
+
+    call = calls[0]
+    try:
+        bound = signature.bind(*[value(a) for a in call.args], **{k.arg: value(k.value) for k in call.keywords})
+    except TypeError:
+        return {}
+    return {name: v for name, v in bound.arguments.items() if v is not _UNKNOWN}
+
+
 _NDIM = re.compile(r"the array at index (\d+) has (\d+) dimension\(s\) and the array at index (\d+) has "
                    r"(\d+) dimension\(s\)")
 _SIZE = re.compile(r"along dimension (\d+), the array at index (\d+) has size (\d+) and the array at "
@@ -45,19 +116,22 @@ MISTAKE = "a 1-D vector joined to a 2-D array"
 def explained(code: Code, traceback_text: str, message: str, function: str, args, kwargs) -> Form | None:
     """The cause of the exception ``message`` that ``function`` (called with ``args``,
     ``kwargs``) raised, read from its innermost line in ``traceback_text`` when that line is in
-    ``function`` itself; None otherwise."""
-    frame = innermost_frame(traceback_text)
-    fn = code.functions.get(function)
-    if frame is None or fn is None or frame[2] != function:
+    ``function`` itself or in a function of the module it calls (:func:`raising_place`); None otherwise."""
+    place = raising_place(code, traceback_text, function, args, kwargs)
+    if place is None:
         return None
-    line = frame[1]
-    signature = signature_of_def(fn)
-    try:
-        given = signature.bind(*args, **kwargs).arguments if signature else {}
-    except TypeError:
-        return None
+    fn, line, given = place
     if _SLICE.search(message):
         return _fraction_sliced(fn, line, given)
+    if _TOO_MANY.search(message) or _NOT_ENOUGH.search(message):
+        return unpacked(code, fn, line, given, message)
+    found = _NOT_ITERABLE.search(message)
+    if found:
+        return _single_unpacked(fn, line, given, found.group(1))
+    if "OpenCV(" in message:
+        from .cv_raised import opencv_explained
+
+        return opencv_explained(code, fn, line, given, message, function)
     found = _NDIM.search(message) or _SIZE.search(message)
     if found is None:
         return None
@@ -156,3 +230,241 @@ def _reassigned(fn, name: str, line: int) -> bool:
             if any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(target)) and node.lineno < line:
                 return True
     return False
+
+
+def _assignments(fn, name: str, line: int) -> list[ast.AST]:
+    """The statements of ``fn`` that bind ``name`` and may run before ``line``: those above it, and
+    any in a loop holding ``line``."""
+    loops = [n for n in _own_nodes(fn) if isinstance(n, (ast.For, ast.While))
+             and n.lineno <= line <= getattr(n, "end_lineno", n.lineno)]
+    inside = {id(n) for loop in loops for n in ast.walk(loop)}
+    found = []
+    for node in _own_nodes(fn):
+        if isinstance(node, ast.Assign):
+            targets = node.targets
+        elif isinstance(node, (ast.AugAssign, ast.AnnAssign, ast.For)):
+            targets = [node.target]
+        elif isinstance(node, ast.NamedExpr):
+            targets = [node.target]
+        elif isinstance(node, (ast.With, ast.AsyncWith)):
+            targets = [item.optional_vars for item in node.items if item.optional_vars is not None]
+        else:
+            continue
+        if any(isinstance(n, ast.Name) and n.id == name for t in targets for n in ast.walk(t)) \
+                and (node.lineno < line or id(node) in inside):
+            found.append(node)
+    return found
+
+
+def _changed(fn, name: str, line: int) -> bool:
+    """Whether ``name``'s shape may differ at ``line`` from what it was given: it is bound there by
+    anything but a conversion of itself that keeps shapes (``image = np.asarray(image, float)``)."""
+    for node in _assignments(fn, name, line):
+        value = getattr(node, "value", None)
+        if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
+                and value is not None and value is not _unwrapped(value)
+                and isinstance(_unwrapped(value), ast.Name) and _unwrapped(value).id == name):
+            return True
+    return False
+
+
+# "too many values to unpack (expected 2)" (Python 3.11; 3.13 adds ", got 3"), "not enough ... got 2)"
+_TOO_MANY = re.compile(r"too many values to unpack \(expected (\d+)(?:, got (\d+))?\)")
+_NOT_ENOUGH = re.compile(r"not enough values to unpack \(expected (\d+), got (\d+)\)")
+UNPACK_MISTAKE = "a value unpacked into the wrong number of names"
+COLOUR_SHAPE = "a colour image's shape unpacked into two values"
+GREY_SHAPE = "a grey image's shape unpacked into three values"
+ROWS_UNPACKED = "an array's rows unpacked as its columns"
+OUTPUTS_COUNTED = "an OpenCV call's outputs unpacked into the wrong number of names"
+
+
+_NOT_ITERABLE = re.compile(r"cannot unpack non-iterable (\w+) object")
+NOT_ITERABLE = "a single value (or None) unpacked into several names"
+
+
+def _defaults(fn) -> dict:
+    """The parameters of ``fn`` whose default is written as a constant (``center=None``), and it."""
+    arguments = fn.args
+    positional = arguments.posonlyargs + arguments.args
+    pairs = list(zip(positional[len(positional) - len(arguments.defaults):], arguments.defaults)) + \
+        [(a, d) for a, d in zip(arguments.kwonlyargs, arguments.kw_defaults) if d is not None]
+    return {a.arg: d.value for a, d in pairs if isinstance(d, ast.Constant)}
+
+
+def _single_unpacked(fn, line: int, given: dict, kind: str) -> Form | None:
+    """``cx, cy = center`` raising "cannot unpack non-iterable NoneType object": a parameter given a
+    single value, or not given and holding its written default, of the type the message names."""
+    for names, source, loop in _unpack_sites(fn, line):
+        if loop or not isinstance(source, ast.Name) or _changed(fn, source.id, line):
+            continue
+        name, written = source.id, ", ".join(ast.unparse(n) for n in names)
+        if name in given and type(given[name]).__name__ == kind:
+            return Form(measured(f"`{name}` is given a single value here ({given[name]!r}), and your code unpacks it "
+                                 f"into `{written}` (line {line})"), NOT_ITERABLE)
+        defaults = _defaults(fn)
+        if name not in given and name in defaults and type(defaults[name]).__name__ == kind:
+            return Form(measured(f"this call does not give `{name}`, so it holds its default, {defaults[name]!r}, and "
+                                 f"your code unpacks it into `{written}` (line {line}): give it a value when it is "
+                                 f"{defaults[name]!r} before unpacking it"), NOT_ITERABLE)
+    return None
+
+
+def _counts(message: str) -> tuple[int, int | None, bool] | None:
+    """(names expected, values there if told, too many) from Python's unpacking error."""
+    found = _TOO_MANY.search(message)
+    if found:
+        return int(found.group(1)), int(found.group(2)) if found.group(2) else None, True
+    found = _NOT_ENOUGH.search(message)
+    return (int(found.group(1)), int(found.group(2)), False) if found else None
+
+
+def _fits_count(count: int, expected: int, got: int | None, too_many: bool) -> bool:
+    """Whether ``count`` values unpacked into ``expected`` names raise the error measured."""
+    return count == got if got is not None else (count > expected if too_many else False)
+
+
+def _unpack_sites(fn, line: int):
+    """``(names, source, loop)`` for each unpacking on ``line``: an assignment's target tuple and its
+    value, or a loop's (or comprehension's) target tuple and what it iterates (``loop`` True); a loop
+    over ``enumerate(x)`` or ``zip(x, y)`` gives the tuple unpacking each of x's, y's items."""
+    for node in _own_nodes(fn):
+        if isinstance(node, ast.Assign) and node.lineno <= line <= node.end_lineno and len(node.targets) == 1:
+            target = node.targets[0]
+            if isinstance(target, (ast.Tuple, ast.List)):
+                yield target.elts, node.value, False
+        elif isinstance(node, ast.For) and node.lineno == line or isinstance(node, ast.comprehension) and \
+                node.target.lineno <= line <= node.iter.end_lineno:
+            yield from _loop_sites(node.target, node.iter)
+
+
+def _loop_sites(target, iterated):
+    if not isinstance(target, (ast.Tuple, ast.List)):
+        return
+    yield target.elts, iterated, True
+    called = iterated.func.id if isinstance(iterated, ast.Call) and isinstance(iterated.func, ast.Name) else ""
+    if called == "enumerate" and len(target.elts) == 2 and iterated.args:
+        yield from _loop_sites(target.elts[1], iterated.args[0])
+    elif called == "zip" and len(target.elts) == len(iterated.args):
+        for part, source in zip(target.elts, iterated.args):
+            yield from _loop_sites(part, source)
+
+
+def unpacked(code: Code, fn, line: int, given: dict, message: str) -> Form | None:
+    """What is unpacked on ``line`` into the wrong number of names, when the value given, or what the
+    code unpacks (an OpenCV call, a function of the module), shows how many values it holds."""
+    counts = _counts(message)
+    if counts is None:
+        return None
+    expected, got, too_many = counts
+    sites = [(names, source, loop) for names, source, loop in _unpack_sites(fn, line)
+             if len(names) == expected and not any(isinstance(n, ast.Starred) for n in names)]
+    forms = [form for names, source, loop in sites
+             for form in [_unpacked_from(code, fn, line, given, names, source, loop, counts)] if form is not None]
+    return forms[0] if len(forms) == 1 else None
+
+
+def _as_given(fn, line: int, given: dict, node) -> tuple[str, object] | None:
+    """(name, value) when ``node`` is a parameter of ``fn`` holding, at ``line``, the shape it was given,
+    or a name bound once, before, to such a parameter converted without reshaping."""
+    node = _unwrapped(node)
+    if isinstance(node, ast.Name) and node.id in given and not _changed(fn, node.id, line):
+        return node.id, given[node.id]
+    if isinstance(node, ast.Name) and node.id not in given:   # img = np.float32(image): one conversion
+        bound = _assignments(fn, node.id, line)
+        if len(bound) == 1 and isinstance(bound[0], ast.Assign) and len(bound[0].targets) == 1 \
+                and isinstance(bound[0].targets[0], ast.Name) and bound[0].value is not _unwrapped(bound[0].value):
+            source = _unwrapped(bound[0].value)
+            if isinstance(source, ast.Name) and source.id in given and not _changed(fn, source.id, bound[0].lineno):
+                return node.id, given[source.id]
+    return None
+
+
+def _unpacked_from(code, fn, line, given, names, source, loop, counts) -> Form | None:
+    expected, got, too_many = counts
+    written = ", ".join(ast.unparse(n) for n in names)
+    where = f"line {line}"
+    if not loop and isinstance(source, ast.Attribute) and source.attr == "shape":
+        found = _as_given(fn, line, given, source.value)
+        shape = getattr(found[1], "shape", None) if found else None
+        if shape is None or not _fits_count(len(shape), expected, got, too_many):
+            return None
+        return _shape_unpacked(found[0], tuple(shape), expected, written, where)
+    if loop:
+        found = _as_given(fn, line, given, source)
+        value = found[1] if found else None
+        if isinstance(value, np.ndarray) and value.ndim == 2 and _fits_count(value.shape[1], expected, got, too_many):
+            n, k = value.shape
+            return Form(measured(f"each row of `{found[0]}`, given with shape ({n}, {k}) here, holds {k} values, and "
+                                 f"your loop unpacks each into {expected} (`for {written} in "
+                                 f"{_short(ast.unparse(source))}`, {where})"),
+                        UNPACK_MISTAKE)
+        return None
+    found = _as_given(fn, line, given, source)
+    if found is not None:
+        return _value_unpacked(found[0], found[1], written, where, counts)
+    from .outputs import COUNTS, NAMES, opencv_called, order_text, shown
+
+    called = opencv_called(source, fn)
+    if called in COUNTS and _fits_count(COUNTS[called], expected, got, too_many):
+        outputs = order_text(called) or NAMES.get(called, "")
+        old = (" (OpenCV 3 returned 3: image, contours, hierarchy)" if called == "findContours" and expected == 3
+               else "")
+        return Form(measured(f"{shown(called)} returns {COUNTS[called]} values ({outputs}){old}, and your code unpacks "
+                             f"{expected} (`{written}`, {where})"), OUTPUTS_COUNTED)
+    if isinstance(source, ast.Call) and isinstance(source.func, ast.Name) and source.func.id in code.functions:
+        return _own_returns(code.functions[source.func.id], expected, got, too_many, written, where)
+    return None
+
+
+def _shape_unpacked(name: str, shape: tuple, expected: int, written: str, where: str) -> Form:
+    n = len(shape)
+    if len(shape) == 3 and shape[2] in (3, 4) and expected == 2:
+        return Form(measured(f"`{name}.shape` is {shape} for the colour image given here: {n} values, and your code "
+                             f"unpacks 2 (`{written} = {name}.shape`, {where}); take `{name}.shape[:2]` (height and "
+                             "width), which a grey image has too"), COLOUR_SHAPE)
+    if len(shape) == 2 and expected == 3:
+        return Form(measured(f"`{name}.shape` is {shape} for the grey image given here: 2 values, no channel axis, and "
+                             f"your code unpacks 3 (`{written} = {name}.shape`, {where}); take `{name}.shape[:2]`, "
+                             f"and `{name}.ndim` tells a grey image (2) from a colour one (3)"), GREY_SHAPE)
+    return Form(measured(f"`{name}.shape` is {shape} here ({n} values), and your code unpacks it into "
+                         f"{expected} (`{written}`, {where})"), UNPACK_MISTAKE)
+
+
+def _value_unpacked(name: str, value, written: str, where: str, counts) -> Form | None:
+    expected, got, too_many = counts
+    if isinstance(value, np.ndarray) and value.ndim >= 1:
+        if not _fits_count(value.shape[0], expected, got, too_many):
+            return None
+        if value.ndim == 2 and value.shape[1] == expected:
+            n, k = value.shape
+            return Form(measured(f"`{name}` is given with shape ({n}, {k}) here, and unpacking it (`{written} = "
+                                 f"{name}`, {where}) takes its {n} rows, not its {k} columns: write "
+                                 f"`{written} = {name}.T` (or index the columns, {name}[:, 0])"), ROWS_UNPACKED)
+        return Form(measured(f"`{name}` is given with shape {value.shape} here: unpacking it takes its "
+                             f"{value.shape[0]} entries along the first axis, and your code unpacks {expected} "
+                             f"(`{written}`, {where})"), UNPACK_MISTAKE)
+    if isinstance(value, (tuple, list)) and _fits_count(len(value), expected, got, too_many):
+        shown = repr(value)
+        shown = shown if len(shown) <= 40 else shown[:37] + "..."
+        return Form(measured(f"`{name}` is given {len(value)} values here ({shown}), and your code unpacks "
+                             f"{expected} (`{written}`, {where})"), UNPACK_MISTAKE)
+    return None
+
+
+def _own_returns(helper, expected, got, too_many, written, where) -> Form | None:
+    """Every ``return`` of ``helper`` a tuple of one length that raises the error measured."""
+    returns = [n for n in _own_nodes(helper) if isinstance(n, ast.Return)]
+    lengths = {len(n.value.elts) if isinstance(n.value, (ast.Tuple, ast.List)) else None for n in returns}
+    if len(lengths) != 1 or None in lengths:
+        return None
+    count = lengths.pop()
+    if not _fits_count(count, expected, got, too_many):
+        return None
+    first = min(returns, key=lambda n: n.lineno)
+    # from the code: every return of the helper is a tuple of that many values
+    return Form(from_code(f"your `{helper.name}` returns {count} values (`{_short(ast.unparse(first.value))}`, line "
+                          f"{first.lineno}), and your code unpacks {expected} (`{written}`, {where})"), UNPACK_MISTAKE)
+
+
+def _short(text: str, limit: int = 50) -> str:
+    return text if len(text) <= limit else text[:limit - 3] + "..."

@@ -435,7 +435,11 @@ def _named_by_exception(verdict: Verdict, trial: Trial, traceback_text: str) -> 
     if form is None:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
-    return replace(verdict, message=f"{first.rstrip()}: {form.sentence}.{newline}{rest}", mistake=form.mistake)
+    if " raised " in first:
+        said = f"{first.rstrip()}: {form.sentence}."
+    else:   # the worker's sentence on the OpenCV call leads: this one follows it
+        said = f"{first.rstrip().rstrip('.')}. {form.sentence[:1].upper()}{form.sentence[1:]}."
+    return replace(verdict, message=f"{said}{newline}{rest}", mistake=form.mistake)
 
 
 def _explained_from_the_line(trial: Trial, traceback_text: str):
@@ -446,6 +450,25 @@ def _explained_from_the_line(trial: Trial, traceback_text: str):
         return None
     function, args, kwargs, message = trial.raised
     return raised.explained(code_of(trial), traceback_text, message, function, args, kwargs)
+
+
+def _named_by_misread_output(verdict: Verdict, trial: Trial) -> Verdict:
+    """A failing verdict that names no mistake, naming an OpenCV output the student's code unpacks
+    under another output's name (``rms, dist, K, ... = cv2.calibrateCamera(...)``) when what a
+    function the check called returns is made from it (:mod:`autograder.engine.outputs`)."""
+    from . import outputs
+    from .hints import code_of
+
+    code = code_of(trial)
+    for function in dict.fromkeys(call[0] for call in reversed(list(trial.calls) + list(getattr(trial, "served", ())))):
+        found = outputs.told(code, function)
+        if found is not None:
+            first, newline, rest = str(verdict.message).partition("\n")
+            lead = first.rstrip()
+            lead += "" if not lead or lead[-1] in ".:;!?" else "."
+            sentence, mistake = found
+            return replace(verdict, message=f"{lead} Reading your code: {sentence}.{newline}{rest}", mistake=mistake)
+    return verdict
 
 
 def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:
@@ -722,6 +745,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_repair(verdict, check, trial)
     if student_failure == "exception" and not verdict.mistake:
         verdict = _named_by_exception(verdict, trial, tb)
+    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure == "" and not inherited:
+        verdict = _named_by_misread_output(verdict, trial)
     if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
             and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_reading(verdict, reading, check, trial)

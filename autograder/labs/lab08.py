@@ -1169,9 +1169,12 @@ def ransac_mask_of_h(t):
             t.fail(f"{what}: the mask marks the pairs your H sends within {errors[inliers].max():.2g} px "
                    f"(the farthest marked) and leaves out pairs from {errors[~inliers].min():.2g} px on: they "
                    "are H's inliers at another threshold than the one given (3 px).")
-        if np.bitwise_or(*mask_disagreement(H, inliers, dst, src, 3.0)).mean() <= MASK_DISAGREEMENT:
+        backwards = consensus(H, dst, src, 3.0) >= 0.9 * consensus(H_true, src, dst, 3.0)
+        if backwards and np.bitwise_or(*mask_disagreement(H, inliers, dst, src, 3.0)).mean() <= MASK_DISAGREEMENT:
             # H and the mask agree with each other, read the other way round: the two come from one
-            # fit of dst onto src (cv2.findHomography(dst, src, ...)), not from different fits
+            # fit of dst onto src (cv2.findHomography(dst, src, ...)), not from different fits -- when
+            # H does map dst onto src (a wrong H agrees with its own wrong mask both ways by chance:
+            # distances taken before the division by w)
             t.fail(f"{what}: the mask is the pairs your H sends within the threshold when H is applied "
                    f"to dst and compared with src (|H dst - src| < 3 px): H and the mask agree with each other, "
                    f"but H maps dst onto src: it looks like {SWAPPED_ENDS}; H must map src onto dst.",
@@ -1186,6 +1189,9 @@ def ransac_mask_of_h(t):
             t.fail(f"{measured}: the mask marks every pair, as if every pair counted as an inlier, although your "
                    f"H sends {int(far.sum())} of them beyond the threshold.",
                    mistake="the inlier mask is not the inliers of the returned H")
+        if not inliers.any():   # no pair marked: no set within any distance to speak of
+            t.fail(f"{measured}: the mask marks no pair at all, although your H sends {int(near.sum())} pairs "
+                   f"within {3.0 / MASK_BAND:g} px.", mistake="the inlier mask is not the inliers of the returned H")
         closer = int((~inliers & (errors < errors[inliers].max())).sum()) if inliers.any() else 0
         other = (" (the mask is the inliers of another homography: the fit to the pairs it marks sends them "
                  "within the threshold and no others)" if another_hypothesis(inliers, src, dst) else "")

@@ -935,15 +935,10 @@ class _Alone:
 
 
 def _outputs_out_of_order(function) -> bool:
-    """``R1, P1, R2, P2 = cv2.stereoRectify(...)`` (its outputs are R1, R2, P1, P2, in that order)."""
-    for node in ast.walk(function):
-        if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Tuple) and len(node.targets[0].elts) >= 4 \
-                and any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "stereoRectify"
-                        for n in ast.walk(node.value)):
-            second = node.targets[0].elts[1]
-            if isinstance(second, ast.Name) and second.id.lower().startswith("p"):
-                return True
-    return False
+    """``R1, P1, R2, P2, ... = cv2.stereoRectify(...)`` (its outputs are R1, R2, P1, P2, in that order)."""
+    from ..engine.outputs import out_of_order
+
+    return out_of_order(function, "stereoRectify")
 
 
 GIVEN_AS_IS_HINT = Hint(RECTIFY_HINT.neutral("calls cv2.stereoRectify"),

@@ -497,15 +497,18 @@ class Worker:
         key = f"{base.__name__} (variant)"
         self.modules[key] = variant   # so that the tripwires reach names it imported itself
         restore = self.install_tripwires(request.get("forbid") or [])
-        values = []
+        values, modified = [], []
         traced = _LineTrace(getattr(base, "__file__", None)) if request.get("trace") and not request["source"] else None
         try:
-            for args, kwargs in request.get("calls", ()):
+            for number, (args, kwargs) in enumerate(request.get("calls", ())):
                 self.forbidden_called = []
+                inputs = snapshot_arrays(args, kwargs)
                 try:
                     if traced is not None:
                         _settrace(traced.enter)
                     value = function(*args, **kwargs)
+                    # (a variant that writes into its caller's arrays mends nothing a caller can use)
+                    modified += [f"{number}:{name}" for name in modified_arguments(function, inputs)]
                 except BaseException as exc:  # noqa: BLE001 - the variant's exception is its answer
                     value = {"__error__": _exception_line(exc)[:300]}
                 finally:
@@ -519,7 +522,7 @@ class Worker:
             del self.modules[key]
         if traced is not None:   # (the lines its own code ran: the grader skips changes of others)
             values = {"values": values, "lines": sorted(traced.lines)}
-        return {"ok": True, "value": values, "seconds": time.perf_counter() - start}
+        return {"ok": True, "value": values, "seconds": time.perf_counter() - start, "modified": modified}
 
     @staticmethod
     def _forbidden_message(qualified, function_name):

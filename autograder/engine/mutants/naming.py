@@ -76,6 +76,7 @@ class ErrorModel:
     mutants: dict
     defaults: dict   # function -> [(parameter, position, default)] for its numeric defaults
     optional: dict = field(default_factory=dict)   # function -> [(parameter, position, None)]
+    modes: dict = field(default_factory=dict)      # function -> [(parameter, position, default, values)]
 
 
 def _numeric_defaults(source: str) -> dict:
@@ -110,6 +111,49 @@ def _defaults(source: str, keep) -> dict:
     return out
 
 
+def _modes(source: str) -> dict:
+    """function -> [(parameter, position, default, values)] for the parameters that choose a mode by
+    name: a string default, compared in the function with string constants (``cost="ssd"``; "ncc").
+    A change made where every mode reads it is confirmed on the other modes too."""
+    import ast
+
+    tree = parse(source, max_chars=None, max_statements=None)   # the reference, under the lock
+    named = {}   # a name -> the strings it is compared with anywhere (a helper given the parameter)
+    for compare in (n for n in ast.walk(tree) if isinstance(n, ast.Compare) and isinstance(n.left, ast.Name)):
+        for right in compare.comparators:
+            values = [right] if isinstance(right, ast.Constant) else \
+                list(right.elts) if isinstance(right, (ast.Tuple, ast.List, ast.Set)) else []
+            named.setdefault(compare.left.id, set()).update(
+                v.value for v in values if isinstance(v, ast.Constant) and isinstance(v.value, str))
+    out = {}
+    for node in tree.body:
+        if not isinstance(node, ast.FunctionDef):
+            continue
+        found = []
+        for parameter, position, default in _defaults(source, lambda value: isinstance(value, str)).get(node.name, ()):
+            if len(named.get(parameter, ())) > 1 and default in named[parameter]:
+                found.append((parameter, position, default, tuple(sorted(named[parameter]))))
+        out[node.name] = found
+    return out
+
+
+def mode_calls(call, modes) -> list:
+    """Copies of ``call`` (function, args, kwargs) in each other mode its function has (``modes``:
+    see :func:`_modes`)."""
+    function, args, kwargs = call
+    made = []
+    for parameter, position, default, values in modes:
+        given = args[position] if position < len(args) else kwargs.get(parameter, default)
+        for value in values:
+            if value == given:
+                continue
+            if position < len(args):
+                made.append((function, args[:position] + (value,) + args[position + 1:], dict(kwargs)))
+            else:
+                made.append((function, tuple(args), {**kwargs, parameter: value}))
+    return made
+
+
 _MODELS: dict = {}
 _MODELS_LOCK = threading.Lock()
 
@@ -142,7 +186,8 @@ def model_for(lab) -> ErrorModel | None:
                 return None
             for function in mutants:  # simplest first: the time may end before the last
                 mutants[function].sort(key=lambda m: m.rank)
-            _MODELS[key] = ErrorModel(lab.module, source, mutants, _numeric_defaults(source), _none_defaults(source))
+            _MODELS[key] = ErrorModel(lab.module, source, mutants, _numeric_defaults(source), _none_defaults(source),
+                                      _modes(source))
         return _MODELS[key]
 
 
@@ -507,7 +552,7 @@ def _perturbed(value, rng, depth=0):
             finite = value[np.isfinite(value)]
             spread = float(finite.std()) if finite.size > 1 else float(abs(finite).mean() if finite.size else 1.0)
             noise = rng.normal(0, 0.15 * (spread or 1.0), value.shape)
-            return value + np.where(_structure(value), 0.0, noise).astype(value.dtype)
+            return _same_rank(value, value + np.where(_structure(value), 0.0, noise).astype(value.dtype))
         if value.dtype == np.uint8 and value.ndim >= 2:  # an image: the same picture, moved and relit
             moved = np.roll(value, (int(rng.integers(-9, 10)), int(rng.integers(-9, 10))), axis=(0, 1))
             return np.clip(moved.astype(np.int16) + int(rng.integers(-20, 21)), 0, 255).astype(np.uint8)
@@ -518,6 +563,22 @@ def _perturbed(value, rng, depth=0):
     if isinstance(value, dict) and depth < 3:
         return {k: _perturbed(v, rng, depth + 1) for k, v in value.items()}
     return value
+
+
+def _same_rank(value, moved):
+    """``moved`` brought back to ``value``'s rank where ``value`` is a small square matrix short of full
+    rank (a fundamental matrix, of rank 2: its null vectors are what an epipole is; a perturbed F of rank
+    3 has none, and every method of finding them answers differently)."""
+    if value.ndim != 2 or value.shape[0] != value.shape[1] or not 2 <= value.shape[0] <= 4 \
+            or not np.isfinite(value).all() or not np.isfinite(moved).all():
+        return moved
+    singular = np.linalg.svd(value, compute_uv=False)
+    rank = int((singular > 1e-9 * singular[0]).sum()) if singular[0] > 0 else 0
+    if rank in (0, value.shape[0]):
+        return moved
+    U, S, Vt = np.linalg.svd(moved.astype(np.float64))
+    S[rank:] = 0.0
+    return ((U * S) @ Vt).astype(value.dtype)
 
 
 def derived_calls(call, count, seed, defaults=()):

@@ -88,6 +88,9 @@ OPERATORS = {
     "flip_keyword": ("true", "false", "keyword"),     # full_matrices=False -> True
     "float32": ("float32", "dtype", "float"),
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
+    "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
+    "carry": ("each", "again", "running", "restart"),
+    "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),                 # m1 & m2 -> m1 | m2, a and b -> a or b          # cv2.remap(img, mx, my) -> np.float32(mx), ...
 }
@@ -652,6 +655,20 @@ def _make_accumulate(node, payload):
     return ast.AugAssign(target, getattr(ast, payload)(), copy.deepcopy(node.value))
 
 
+def _make_magnitude(node, payload):
+    new = copy.deepcopy(node)   # np.argmin(v) -> np.argmin(np.abs(v))
+    new.args[0] = ast.Call(_name("np.abs"), [new.args[0]], [])
+    return new
+
+
+def _make_summary(node, payload):
+    return ast.Name(payload, ast.Load())   # the array's mean (a local) where one of its items was taken
+
+
+def _make_carry(node, payload):
+    return ast.Name(payload, ast.Load())   # the running result where the loop restarted from the input
+
+
 def _make_negate(node, payload):
     if payload == "drop":   # not m -> m
         return copy.deepcopy(node.operand)
@@ -670,7 +687,11 @@ def _make_function(node, payload):
     return new
 
 
-_MAKE = {"accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+def _make_constant(node, payload):
+    return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
+
+
+_MAKE = {"constant": _make_constant, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1415,6 +1436,77 @@ def _logic_changes(node, parent, parents):
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], (ast.Name, ast.Subscript)) \
             and _in_loop(node, parents):
         yield "accumulate", "Add", ""
+    running = _restarted(node, parents)
+    if running:
+        yield "carry", running, ""
+    for mean in _summaries(node, parents):
+        yield "summary", mean, ""
+    if isinstance(node, ast.Call) and node.args and _dotted(node.func).rsplit(".", 1)[-1] in _EXTREMES \
+            and not (isinstance(node.args[0], ast.Call) and _dotted(node.args[0].func).rsplit(".", 1)[-1] in _MAGNITUDES):
+        yield "magnitude", None, ""   # the smallest value where the smallest magnitude belongs (an eigenvalue)
+
+
+_REDUCED = {"mean", "median", "average", "nanmean"}
+
+
+def _summaries(node, parents) -> list:
+    """The locals holding a mean of the array one item of which ``node`` takes (`dst[0]` where `dst_mean
+    = dst.mean(axis=0)` was made: a translation from the first pair where the centroids belong)."""
+    if not (isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name)
+            and _constant_index(node.slice) is not None):
+        return []
+    fn = node
+    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        fn = parents[id(fn)][0]
+    array, found = node.value.id, []
+    for assign in (n for n in ast.walk(fn) if isinstance(n, ast.Assign) and len(n.targets) == 1 and n.lineno < node.lineno):
+        target, value = assign.targets[0], assign.value
+        pairs = zip(target.elts, value.elts) if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) \
+            and len(target.elts) == len(value.elts) else [(target, value)]   # (`c1, c2 = a.mean(0), b.mean(0)`)
+        for name, call in pairs:
+            if not (isinstance(name, ast.Name) and isinstance(call, ast.Call)
+                    and _dotted(call.func).rsplit(".", 1)[-1] in _REDUCED):
+                continue
+            if (isinstance(call.func, ast.Attribute) and isinstance(call.func.value, ast.Name) and call.func.value.id == array) \
+                    or (call.args and isinstance(call.args[0], ast.Name) and call.args[0].id == array
+                        and _dotted(call.func).startswith("np.")):
+                found.append(name.id)
+    return found
+
+
+_EXTREMES = {"argmin", "argmax", "argsort", "nanargmin", "nanargmax"}
+_MAGNITUDES = {"abs", "absolute", "fabs", "norm", "square"}
+
+
+def _restarted(node, parents) -> str | None:
+    """The running result a loop's step starts from the input again instead of (`out = cv2.line(image.copy(),
+    ...)` each time round, where `out` was made before the loop and belongs there): its name, or None.
+    ``node``: a name read (`image`) or a copy of one (`image.copy()`, `np.copy(image)`)."""
+    copied = isinstance(node, ast.Call) and not node.keywords and (
+        (isinstance(node.func, ast.Attribute) and node.func.attr == "copy" and not node.args
+         and isinstance(node.func.value, ast.Name))
+        or (_dotted(node.func) in ("np.copy", "numpy.copy") and len(node.args) == 1 and isinstance(node.args[0], ast.Name)))
+    if not (copied or (isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)
+                       and not isinstance(parents.get(id(node), (None,))[0], ast.Attribute))):
+        return None
+    source = node if isinstance(node, ast.Name) else node.func.value if isinstance(node.func, ast.Attribute) else node.args[0]
+    statement, fn = node, None
+    while id(statement) in parents and not isinstance(statement, ast.stmt):
+        statement = parents[id(statement)][0]
+    if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name)
+            and _in_loop(statement, parents)):
+        return None
+    running = statement.targets[0].id
+    if running == source.id or any(isinstance(n, ast.Name) and n.id == running for n in ast.walk(statement.value)):
+        return None
+    fn = statement
+    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        fn = parents[id(fn)][0]
+    # (made before the loop from the same input: `out = image.copy()`, `out = np.array(image)`)
+    made = any(isinstance(n, ast.Assign) and n.lineno < statement.lineno and not _in_loop(n, parents)
+               and any(isinstance(t, ast.Name) and t.id == running for t in n.targets)
+               and any(isinstance(m, ast.Name) and m.id == source.id for m in ast.walk(n.value)) for n in ast.walk(fn))
+    return running if made else None
 
 
 def _discarded_result(statement: ast.Expr):
@@ -2128,6 +2220,22 @@ def _replaceable(node: ast.Name, parent) -> bool:
                                ast.List, ast.UnaryOp, ast.Compare))
 
 
+_TWIN_WORDS = {frozenset(pair) for pair in (("left", "right"), ("src", "dst"), ("l", "r"), ("x", "y"), ("u", "v"),
+                                            ("rows", "cols"), ("h", "w"), ("height", "width"), ("first", "second"))}
+
+
+def twin_names(a: str, b: str) -> bool:
+    """Whether two names are twins: one digit apart (`R1`/`R2`, `x1`/`x2`) or a pair's other half
+    (`left`/`right`, `src`/`dst`, `l`/`r` in `img_l`/`img_r`); names only, not numbers."""
+    if not (a.isidentifier() and b.isidentifier()):
+        return False
+    if len(a) == len(b) and sum(x != y for x, y in zip(a, b)) == 1 and any(x.isdigit() for x in a + b):
+        return True
+    parts_a, parts_b = a.split("_"), b.split("_")
+    return len(parts_a) == len(parts_b) and sum(x != y for x, y in zip(parts_a, parts_b)) == 1 and any(
+        frozenset((x, y)) in _TWIN_WORDS for x, y in zip(parts_a, parts_b) if x != y)
+
+
 def _name_changes(node: ast.Name, words: _Words, what, line):
     if node.id in ("np", "cv2", "math", "None", "True", "False"):
         return
@@ -2152,7 +2260,9 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     together = {other for line_at, value, _ in words.definitions.get(node.id, ())
                 for other, defs in words.definitions.items() if any(d[0] == line_at and d[1] is value for d in defs)}
     tail = own.rsplit(" of ", 1)[-1]
-    others.sort(key=lambda pair: (pair[0] not in together, pair[1].rsplit(" of ", 1)[-1] != tail or " of " not in own))
+    # (then the name's twin: `x1` for `x2`, a line copied from image 2's with its names half changed)
+    others.sort(key=lambda pair: (pair[0] not in together, not twin_names(node.id, pair[0]),
+                                  pair[1].rsplit(" of ", 1)[-1] != tail or " of " not in own))
     count = 0
     for other, phrase in others:
         if (other in params) != kind and phrase in alike:

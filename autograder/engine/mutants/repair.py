@@ -42,7 +42,7 @@ from ...loading.reading import MAX_SOURCE_BYTES
 from ..checks import Trial, Verdict, fingerprint
 from . import naming
 from .helper import HelperFailed
-from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_defs, runs
+from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
@@ -173,7 +173,7 @@ class _Student:
                 # (a name swapped for its twin -- R1 for R2, left for right -- first of its kind: the
                 # likeliest slip among a function's many names that might be another's)
                 smallest = sorted(shown, key=lambda m: (
-                    m.where != function, not _twin_swap(self.fixes[m.key]), self.fixes[m.key].size,
+                    m.where != function, not (_twin_swap(self.fixes[m.key]) or self.twin_items(m)), self.fixes[m.key].size,
                     self.fixes[m.key].written, m.line))
                 # Each kind of slip has its turn: the k-th smallest change of every operator before the
                 # (k+1)-th of any (a function's 150 names that might be another's would otherwise come
@@ -216,10 +216,80 @@ class _Student:
             self._statements[where] = starts
         return self._statements[where].get(line, line)
 
+    def guards(self, mutant) -> list:
+        """The mutant's code with a condition it changes made constant instead, True then False
+        (each condition of an ``if``, a conditional expression or a comprehension's filter that holds
+        one of its changes): the guard removed, taken or never."""
+        made = []
+        for where, ordinal, _, _ in mutant.edits:
+            nodes, parents = self._walk(where)
+            node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+            while node is not None and id(node) in parents:
+                parent, field, _ = parents[id(node)]
+                if (isinstance(parent, (ast.If, ast.IfExp)) and field == "test") \
+                        or (isinstance(parent, ast.comprehension) and field == "ifs"):
+                    test = next(i for i, each in enumerate(nodes) if each is node)
+                    made += [replace(mutant, edits=((where, test, "constant", value),)) for value in (True, False)]
+                    break
+                node = None if isinstance(parent, ast.stmt) else parent
+        return made
+
+    def twin_items(self, mutant) -> bool:
+        """Whether the mutant exchanges two items that are each other's twins (`(int(y_max - y_min) + 1,
+        int(x_max - x_min) + 1)`: the same code with x for y, a size given rows first)."""
+        where, ordinal, operator, payload = mutant.edits[0]
+        if operator != "swap_items" or len(mutant.edits) != 1:
+            return False
+        nodes, _ = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        if not isinstance(node, (ast.Tuple, ast.List)) or max(payload) >= len(node.elts):
+            return False
+        first, second = (re.findall(r"\w+", ast.unparse(node.elts[k])) for k in payload)
+        pairs = [(a, b) for a, b in zip(first, second) if a != b]
+        return len(first) == len(second) and bool(pairs) and all(twin_names(a, b) for a, b in pairs)
+
+    def neighbours(self, first, second) -> bool:
+        """Whether two changes are of items side by side: the same list's, tuple's or call's (`[..., x2,
+        y2, 1]`)."""
+        (where_a, ordinal_a, _, _), (where_b, ordinal_b, _, _) = first.edits[0], second.edits[0]
+        if where_a != where_b:
+            return False
+        nodes, parents = self._walk(where_a)
+        if not (0 <= ordinal_a < len(nodes) and 0 <= ordinal_b < len(nodes)):
+            return False
+        a, b = (parents.get(id(nodes[o]), (None, None, None)) for o in (ordinal_a, ordinal_b))
+        return a[0] is not None and a[0] is b[0] and a[1] == b[1] and a[2] is not None and b[2] is not None \
+            and abs(a[2] - b[2]) == 1
+
+    def slip(self, mutant) -> str:
+        """What the mutant's (first) change does, alike for the same slip at two places: its payload,
+        or for a name used in another's place the part of the name changed (`x2` -> `x1` and `y2` ->
+        `y1` are both "2 -> 1": a line copied from image 2's with image 1's names half changed)."""
+        where, ordinal, operator, payload = mutant.edits[0]
+        nodes, _ = self._walk(where)
+        old = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        if operator == "summary":
+            return repr(operator)   # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`)
+        if operator != "other_name" or not isinstance(old, ast.Name) or not isinstance(payload, str):
+            return repr(payload)
+        a, b = old.id, payload
+        head = len(os.path.commonprefix([a, b]))
+        tail = len(os.path.commonprefix([a[head:][::-1], b[head:][::-1]]))
+        return repr((a[head:len(a) - tail], b[head:len(b) - tail])) if head or tail else repr(payload)
+
+    def _walk(self, where: str) -> tuple[list, dict]:
+        """The def ``where``'s nodes in ast.walk order and their parents (empty when no such def)."""
+        fn = self._defs.get(where)
+        if fn is None:
+            return [], {}
+        if where not in self._walked:
+            self._walked[where] = (list(ast.walk(fn)), _parents(fn))
+        return self._walked[where]
+
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
         if mutant.key not in self.fixes:
-            shown = [self.shown(edit) for edit in mutant.edits]
+            shown = _together([self.shown(edit) for edit in mutant.edits])
             self.fixes[mutant.key] = None if any(each is None for each in shown) else \
                 Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
         return self.fixes[mutant.key]
@@ -232,9 +302,7 @@ class _Student:
         fn = self._defs.get(where)
         if fn is None:
             return None
-        if where not in self._walked:
-            self._walked[where] = (list(ast.walk(fn)), _parents(fn))
-        nodes, parents = self._walked[where]
+        nodes, parents = self._walk(where)
         if not 0 <= ordinal < len(nodes):
             return None
         edited = nodes[ordinal]
@@ -244,6 +312,17 @@ class _Student:
             parent = parents.get(id(context), (None,))[0]
             if parent is None or isinstance(parent, (ast.FunctionDef, ast.AsyncFunctionDef)) \
                     or _width(parent) > _SHOWN:
+                break
+            context = parent
+        # (the same code twice in the statement -- `[r * np.cos(a), r * np.cos(a)]` -- is shown with
+        # enough around it to say which one)
+        statement = context
+        while not isinstance(statement, ast.stmt) and id(statement) in parents:
+            statement = parents[id(statement)][0]
+        whole = ast.unparse(statement)
+        while whole.count(ast.unparse(context)) > 1:
+            parent = parents.get(id(context), (None,))[0]
+            if parent is None or isinstance(parent, (ast.stmt, ast.FunctionDef)) or _width(parent) > _SHOWN:
                 break
             context = parent
         before = ast.unparse(context)
@@ -265,25 +344,33 @@ class _Student:
         return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
 
 
-_TWIN_WORDS = {frozenset(pair) for pair in (("left", "right"), ("src", "dst"), ("l", "r"), ("x", "y"), ("u", "v"),
-                                            ("rows", "cols"), ("h", "w"), ("height", "width"), ("first", "second"))}
-
-
 def _twin_swap(fix: "Fix") -> bool:
-    """Whether the fix's one change puts a name for its twin: one digit apart (`R1`/`R2`, `pts1`/`pts2`)
-    or a pair's other half (`left`/`right`, `src`/`dst`, `l`/`r` in `img_l`/`img_r`)."""
+    """Whether the fix's one change puts a name for its twin (:func:`.operators.twin_names`)."""
     if fix.operator not in ("other_name", "swap_names", "other_name_line") or len(fix.changes) != 1:
         return False
     before, after = (re.findall(r"\w+", text) for text in fix.changes[0][1:])
     pairs = [(a, b) for a, b in zip(before, after) if a != b]
-    if len(before) != len(after) or len(pairs) != 1:
-        return False
-    a, b = pairs[0]
-    if len(a) == len(b) and sum(x != y for x, y in zip(a, b)) == 1 and any(x.isdigit() for x in a + b):
-        return True
-    parts_a, parts_b = a.split("_"), b.split("_")
-    return len(parts_a) == len(parts_b) and sum(x != y for x, y in zip(parts_a, parts_b)) == 1 and any(
-        frozenset((x, y)) in _TWIN_WORDS for x, y in zip(parts_a, parts_b) if x != y)
+    return len(before) == len(after) and len(pairs) == 1 and twin_names(*pairs[0])
+
+
+def _together(shown: list) -> list:
+    """Changes shown in the same code of the same line told as one (`[..., x2, y2, 1]` to `[..., x1, y1,
+    1]`), where they change different characters of it."""
+    if len(shown) != 2 or any(each is None for each in shown) or shown[0][:2] != shown[1][:2]:
+        return shown
+    (line, before, first), (_, _, second) = shown
+    edits = []
+    for after in (first, second):
+        matcher = difflib.SequenceMatcher(None, before, after, autojunk=False)
+        edits += [(i1, i2, after[j1:j2]) for tag, i1, i2, j1, j2 in matcher.get_opcodes() if tag != "equal"]
+    edits.sort()
+    if any(a[1] > b[0] or (a[0] == a[1] == b[0]) for a, b in zip(edits, edits[1:])):
+        return shown   # (they overlap: told apart)
+    merged, at = [], 0
+    for start, end, text in edits:
+        merged += [before[at:start], text]
+        at = end
+    return [(line, before, "".join(merged) + before[at:])]
 
 
 def _first_run(fn) -> int:
@@ -440,6 +527,11 @@ def _within(value, reference, rtol: float, grey: float, projective: bool = True)
             continue
         small = projective and got.ndim == 2 and got.size <= 16 and np.isfinite(got).all()
         scale = np.vdot(got, want) / np.vdot(got, got) if small and np.vdot(got, got) != 0 else 0
+        # (a unit vector -- an epipole, a singular vector -- has no sign of its own: up to sign only)
+        unit = projective and got.ndim == 1 and got.shape == want.shape and got.size <= 4 and np.isfinite(got).all() \
+            and all(abs(np.linalg.norm(v) - 1) < 1e-6 for v in (got, want))
+        if unit and np.allclose(-got, want, rtol=rtol, atol=floor):
+            continue
         if not (small and scale != 0 and np.allclose(got * scale, want, rtol=rtol, atol=floor)):
             return False
     return True
@@ -605,6 +697,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # there as it is: only changes of the lines it runs are tried (a cost="ncc" branch, unused helpers).
     ran = student.ran_here(function, variant.ran(screen))
     runnable = [m for m in student.ordered(function) if student.runs(m, ran)]
+    if any(_rows_for_columns(variant.students[i], references[i]) for i in failing):
+        # An answer with rows and columns exchanged (a canvas sized (height, width)): the exchanges
+        # of twins first, wherever they are (`(y_max - y_min, x_max - x_min)`, `w, h = shape[:2]`).
+        twins = [m for m in runnable if _twin_swap(student.fix(m)) or student.twin_items(m)]
+        runnable = twins + [m for m in runnable if m not in twins]
     for mutant in list(earlier) + _near_the_raise([m for m in runnable if m.key not in known], trial, function):
         if clock.left() <= (RESERVE if candidates or (near and variant.replayable) else 0) \
                 or (tries is not None and variant.screenings >= tries):
@@ -637,14 +734,17 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             ruled_out.add(mutant.key)
     if not candidates:
         # A function with many right answers (a rectification) comes only somewhat nearer the
-        # reference's when mended: the nearest changes are judged by the check itself.
-        for _, mutant in sorted(near, key=lambda pair: pair[0]):
-            if variant.replays >= REPLAYS or clock.left() <= 0:
+        # reference's when mended: the nearest changes are judged by the check itself, the first that
+        # passes it and those exactly as near (the same answers from another place: names swapped where
+        # they are made, or where they are used -- the confirmation tells them apart).
+        passed = None
+        for apart, mutant in sorted(near, key=lambda pair: pair[0]):
+            if variant.replays >= REPLAYS or clock.left() <= 0 or (passed is not None and apart > passed):
                 break
             if mutant.key in variant.checked or not variant.passes_check(mutant, near_answers[mutant.key], failing):
                 continue
             candidates.append(mutant)
-            break
+            passed = apart
     fixes, lines = [], set()
     shown = [(mutant, variant.fix(mutant)) for mutant in candidates]
     # The smallest change of the text first: the student's slip is a few characters (`R.T` for `R`),
@@ -655,7 +755,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             break
         if fix.changes[0][0] in lines:
             continue
-        if variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs):
+        if (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
+                and not variant.writes_inputs(mutant) and not variant.guard_untested(mutant, failing) \
+                and not variant.breaks_other_checks(mutant):
             fixes.append((mutant, fix))
             lines.add(fix.changes[0][0])
         elif clock.left() > 0 and not (mutant.key in variant.checked and not variant.other_checks()):
@@ -678,12 +780,18 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     tried = {(a.key, b.key) for a, b in pairs}
     slips: dict = {}
     for mutant in runnable:   # (of the lines the failing input runs, as the single changes)
-        slips.setdefault((mutant.where, mutant.edits[0][2], repr(mutant.edits[0][3])), []).append(mutant)
+        slips.setdefault((mutant.where, mutant.edits[0][2], student.slip(mutant)), []).append(mutant)
     size = lambda pair: student.fix(pair[0]).size + student.fix(pair[1]).size  # noqa: E731
-    # Each slip's pairs, smallest first, one slip after another in turns (as the single changes):
+    new = lambda a, b: _apart(a, b) and (a.key, b.key) not in tried  # noqa: E731
+    # The slip made at two neighbours first, of all its places: `x2, y2` written where `x1, y1`
+    # belong, side by side in one row (a line copied from image 2's with its names half changed).
+    side = sorted(((a, b) for same in slips.values() for a, b in itertools.combinations(same[:40], 2)
+                   if student.neighbours(a, b) and new(a, b)), key=size)[:NEIGHBOUR_PAIRS]
+    pairs += side
+    # Then each slip's pairs, smallest first, one slip after another in turns (as the single changes):
     # many small slips' pairs would otherwise fill the count before a larger slip's second pair.
-    turns = [sorted(((a, b) for a, b in itertools.combinations(same[:8], 2)
-                     if _apart(a, b) and (a.key, b.key) not in tried), key=size) for same in slips.values()]
+    turns = [sorted(((a, b) for a, b in itertools.combinations(same[:8], 2) if new(a, b) and (a, b) not in side),
+                    key=size) for same in slips.values()]
     twice = sorted(((turn, pair) for group in turns for turn, pair in enumerate(group)),
                    key=lambda item: (item[0], size(item[1])))
     pairs += [pair for _, pair in twice[:SAME_SLIP_PAIRS]]
@@ -695,7 +803,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if values is not None and (variant.passes_check(both, values, failing) if subtle else all(
                 variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing))):
             fix = variant.fix(both)
-            if fix is not None and variant.confirmed(both, failing):
+            if fix is not None and variant.confirmed(both, failing) and not variant.guard_untested(both, failing):
                 return variant.repair([(both, fix)])
     return None
 
@@ -708,6 +816,7 @@ REPLAYS = 4       # the most changes a failed check is replayed with
 OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by a check must pass too
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
+NEIGHBOUR_PAIRS = 8    # of which at two neighbouring items (of one list, tuple or call), tried first
 
 
 RAISE_REACH = 6   # lines before the one that raised where a change is tried first
@@ -723,6 +832,14 @@ def _near_the_raise(mutants, trial, function) -> list:
         return mutants
     near = lambda m: any(0 <= line - m.line <= RAISE_REACH for line in lines)  # noqa: E731
     return [m for m in mutants if near(m)] + [m for m in mutants if not near(m)]
+
+
+def _rows_for_columns(answer, reference) -> bool:
+    """Whether the answer's first array is the reference's shape with rows and columns exchanged."""
+    first = lambda value: value[0] if isinstance(value, (tuple, list)) and value else value  # noqa: E731
+    got, want = np.shape(first(answer)) if isinstance(first(answer), np.ndarray) else (), \
+        np.shape(first(reference)) if isinstance(first(reference), np.ndarray) else ()
+    return len(got) >= 2 and len(want) >= 2 and got[:2] != want[:2] and got[:2] == want[1::-1] and got[2:] == want[2:]
 
 
 def _apart(first, second) -> bool:
@@ -746,6 +863,7 @@ class _Variants:
         self.forbid = tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
         self.crossing: set = set()   # the variants on the other side of a threshold (see confirmed)
+        self.modes: set = set()      # the variants in the function's other modes (see confirmed)
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
         self.projective = not any(naming.error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
@@ -756,6 +874,8 @@ class _Variants:
         self.screenings = 0         # changes run on the screening input
         self.theirs: dict = {}      # confirmation input -> the student's own answer there
         self.confirmed_by_checks = False   # a change the check judged, confirmed by its other checks
+        self.passed_others: set = set()    # changes with which the function's other checks passed
+        self.writes: dict = {}   # change (None: the student's own code) -> the calls it changed an input of
         # Changes the check judged whose answers on the failing inputs were close to the reference's
         # (a couple of grey levels, 1%): only their spread says what the student's recipe legitimately
         # gives elsewhere; a change far from the reference (a copy removed, no rectification at all)
@@ -782,6 +902,10 @@ class _Variants:
             self.trial.lab.module, source, self.function, [every[i][1:] for i in indices], forbid=self.forbid,
             timeout=max(0.05, min(timeout, self.clock.left())))
         value = outcome.value if outcome.ok else None
+        for said in outcome.modified if outcome.ok else ():   # "k:name": the k-th call changed its input
+            number = said.partition(":")[0]
+            if number.isdigit() and int(number) < len(indices):
+                self.writes.setdefault(None if mutant is None else mutant.key, set()).add(_key(every[indices[int(number)]]))
         return value if isinstance(value, list) and len(value) == len(indices) else None
 
     def fix(self, mutant) -> Fix | None:
@@ -882,6 +1006,12 @@ class _Variants:
                         for call in _widened(self.inputs[i], self.model.defaults.get(self.function, ()), (0.5,))]
             self.crossing = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(crossing)))
             variants += crossing
+            # (and the function's other modes, cost="ncc" beside "ssd": there a change must leave the
+            # student's answers as they are, or make them right -- names swapped where both modes read
+            # them mend one mode's call by breaking the other's)
+            modes = naming.mode_calls(self.inputs[failing[0]], getattr(self.model, "modes", {}).get(self.function, ()))
+            self.modes = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(modes)))
+            variants += modes
             every = self.inputs + variants
             try:
                 runner = naming.helper()
@@ -892,8 +1022,11 @@ class _Variants:
             except HelperFailed:   # the reference too slow on them (a whole pipeline): no confirmation here
                 self.confirmations = (every, {}, None)
         every, wanted, usable = self.confirmations
-        if usable is not None and mutant.operator not in BRANCHING:
-            usable = [i for i in usable if i not in self.crossing]
+        if usable is not None and self.modes and not self._other_modes_kept(mutant, every, wanted):
+            return False
+        if usable is not None:
+            usable = [i for i in usable if i not in self.modes
+                      and (mutant.operator in BRANCHING or i not in self.crossing)]
         if usable is not None and (not usable or self._right_on(mutant, usable, every, wanted)):
             # A condition changed sends inputs down another branch: the inputs derived from the failing
             # ones mostly stay on the same side of it, so the grading's other checks of the function
@@ -911,6 +1044,64 @@ class _Variants:
             self.confirmed_by_checks = True
             return True
         return False
+
+    def writes_inputs(self, mutant) -> bool:
+        """Whether the variant wrote into its caller's arrays on a call where the student's own code
+        does not (drawing on `image` where `image.copy()` belonged mends the picture by changing the
+        caller's): not a fix a caller can use."""
+        calls = {_key(call): call for call in self.inputs + list(self.confirmations[0] if self.confirmations else [])}
+        for key in self.writes.get(mutant.key, set()) - self.writes.get(None, set()):
+            if key in calls and self.answers(None, [0], [calls[key]]) is not None \
+                    and key not in self.writes.get(None, set()):
+                return True
+        return False
+
+    def guard_untested(self, mutant, failing) -> bool:
+        """Whether a change of a condition mends no more than removing the condition does: the code
+        with that condition always true, or always false, is right on the failing inputs too (or
+        passes the check, where the check judged the change) and on the function's other checks. The
+        checks then cannot tell the change from dropping a guard that does not matter (a bounds test
+        before cv2.circle, which clips): the change is not confirmed as the slip."""
+        for guard in self.student.guards(mutant):
+            values = self.answers(guard, failing, self.inputs)
+            if values is None:
+                continue
+            right = all(self.right(v, self.references[i], self.students[i]) for v, i in zip(values, failing)) or (
+                mutant.key in self.checked
+                and self._replay(guard, (self.trial.check, self.trial.property_examples)) is True)
+            if right and (not self.other_checks() or self.passes_other_checks(guard)):
+                return True
+        return False
+
+    def breaks_other_checks(self, mutant) -> bool:
+        """Whether the variant fails one of the grading's other checks of the function: a change that
+        mends the failing calls by breaking what other calls need is not the slip (names swapped where
+        they are made, mending a call that takes them in the wrong order and breaking the cost="ncc"
+        branch that takes them in the right one). Unknown (out of time, not replayable): False."""
+        if mutant.key in self.passed_others:
+            return False
+        for kept in self.other_checks():
+            if self.clock.left() <= 0:
+                return False
+            if self._replay(mutant, kept) is False and self.clock.left() > 0:
+                return True
+        return False
+
+    def _other_modes_kept(self, mutant, every, wanted) -> bool:
+        """Whether in the function's other modes the variant answers as the student's own code does,
+        or as the reference does."""
+        indices = sorted(i for i in self.modes if naming.error_kind(wanted.get(i)) is None)
+        if not indices:
+            return True
+        values = self.answers(mutant, indices, every)
+        missing = [i for i in indices if i not in self.theirs]
+        own = self.answers(None, missing, every) if missing else []
+        if values is None or own is None:
+            return False
+        self.theirs.update(zip(missing, own))
+        kept = lambda v, theirs: naming.error_kind(v) == naming.error_kind(theirs) if naming.error_kind(theirs) \
+            else self.right(v, theirs, confirming=True)  # noqa: E731 - (the same exception counts as the same answer)
+        return all(self.right(v, wanted[i], confirming=True) or kept(v, self.theirs[i]) for v, i in zip(values, indices))
 
     def other_checks(self) -> list:
         """The grading's other checks that called the function, with their properties' examples; then
@@ -943,6 +1134,8 @@ class _Variants:
             if outcome is False:
                 return False
             confirming += outcome is True
+        if confirming:
+            self.passed_others.add(mutant.key)
         return confirming > 0
 
     def repair(self, fixes, complete: bool = True) -> Repair:
