@@ -183,6 +183,95 @@ def test_a_ransac_measuring_its_error_backwards_is_not_told_an_inverted_mask_or_
     assert "the mask marks every pair" in mask.message, mask.message
 
 
+DRAWING_CHECKS = ("draw_matches shows both images and a line per match",
+                  "draw_matches of a narrow, short img1 and a wide, tall img2: the lines end at x2 + W1")
+
+
+def drawing_checks(tmp_path, source):
+    result = grade(mutant(tmp_path, MODULE, source), ["lab08.ex3"], pictures="none")
+    checks = {c.name: c for c in check_results(result, "lab08.ex3")}
+    return [checks[name] for name in DRAWING_CHECKS]
+
+
+# Legitimate drawings (benchmarks/spread_draw_matches.py measures many more): OpenCV's with the
+# random colour that left a line hardest to see under the old rule, rich keypoints and a fixed
+# colour; a student's own cv2.line drawing in black (LINE_8), numbered, with a divider and a frame.
+OWN_DRAWING = """
+    def draw_matches(img1, img2, pts1, pts2):
+        h1, w1 = img1.shape[:2]
+        h2, w2 = img2.shape[:2]
+        canvas = np.zeros((max(h1, h2), w1 + w2, 3), np.uint8)
+        canvas[:h1, :w1] = _bgr(img1)
+        canvas[:h2, w1:] = _bgr(img2)
+        for i, ((x1, y1), (x2, y2)) in enumerate(zip(pts1, pts2)):
+            cv2.line(canvas, (int(x1), int(y1)), (int(x2) + w1, int(y2)), (0, 0, 0), 1, cv2.LINE_8)
+            cv2.putText(canvas, str(i), (int(x1) + 4, int(y1) - 4), cv2.FONT_HERSHEY_SIMPLEX, 0.4, (0, 255, 255), 1)
+        cv2.line(canvas, (w1, 0), (w1, canvas.shape[0] - 1), (255, 255, 255), 1)
+        cv2.rectangle(canvas, (0, 0), (canvas.shape[1] - 1, canvas.shape[0] - 1), (0, 255, 255), 1)
+        return canvas
+    """
+
+
+def opencv_drawing(matches="[cv2.DMatch(i, i, 0) for i in range(len(k1))]", seed=126, **options):
+    keywords = "".join(f", {k}={v}" for k, v in options.items())
+    return f"""
+    def draw_matches(img1, img2, pts1, pts2):
+        cv2.setRNGSeed({seed})
+        k1 = [cv2.KeyPoint(float(x), float(y), 20) for x, y in pts1]
+        k2 = [cv2.KeyPoint(float(x), float(y), 20) for x, y in pts2]
+        return cv2.drawMatches(_bgr(img1), k1, _bgr(img2), k2, {matches}, None{keywords})
+    """
+
+
+@pytest.mark.parametrize("source", [
+    opencv_drawing(), opencv_drawing(seed=241),
+    opencv_drawing(flags="cv2.DrawMatchesFlags_DRAW_RICH_KEYPOINTS", matchColor=(0, 255, 0)), OWN_DRAWING],
+    ids=["drawMatches seed 126", "drawMatches seed 241", "drawMatches rich keypoints, green", "own black lines"])
+def test_legitimate_match_drawings_keep_full_marks(tmp_path, source):
+    for check in drawing_checks(tmp_path, source):
+        assert check.passed, f"{check.name}: {check.message}"
+
+
+def test_a_drawing_leaving_out_the_last_match_loses_points_naming_it(tmp_path):
+    """The blind set's cv2.drawMatches given range(len(pts1) - 1): 11 of 12 lines were enough."""
+    for check in drawing_checks(tmp_path, opencv_drawing("[cv2.DMatch(i, i, 0) for i in range(len(k1) - 1)]")):
+        assert not check.passed and check.mistake == "the last match has no line", check.message
+        assert "has no line: the last one (from pts1[" in check.message, check.message
+        assert "shifted" not in check.message
+
+
+def test_a_drawing_leaving_out_the_first_match_names_it(tmp_path):
+    content, _ = drawing_checks(tmp_path, opencv_drawing("[cv2.DMatch(i, i, 0) for i in range(1, len(k1))]"))
+    assert not content.passed and content.mistake == "the first match has no line", content.message
+    assert "1 of the 12 matches has no line: the first one (from pts1[0] = (" in content.message
+
+
+def test_matches_paired_off_by_one_lose_points(tmp_path):
+    _, unequal = drawing_checks(tmp_path, opencv_drawing("[cv2.DMatch(i, (i + 1) % len(k1), 0) for i in range(len(k1))]"))
+    assert not unequal.passed and "matches have no line" in unequal.message, unequal.message
+
+
+def test_a_line_joining_no_match_loses_points(tmp_path):
+    extra = OWN_DRAWING.replace("        cv2.line(canvas, (w1, 0)",
+                                "        cv2.line(canvas, (0, 0), (int(pts2[-1][0]) + w1, int(pts2[-1][1])), (0, 255, 0), 1)\n"
+                                "        cv2.line(canvas, (w1, 0)")
+    for check in drawing_checks(tmp_path, extra):
+        assert not check.passed and check.mistake == "a line that joins no match is drawn", check.message
+        assert "every match has its line, but a line from about (" in check.message
+
+
+def test_a_pyramid_counting_levels_as_downsamplings_keeps_full_marks(tmp_path):
+    """levels + 1 pyramid levels (downsampled `levels` times), as OpenCV's stitching module counts
+    them (detail::createLaplacePyr(img, num_levels) builds num_levels + 1): neither the lab sheet nor
+    the API says which count `levels` is, and one more level only smooths the seam further, so it is
+    a legitimate variant (the blind set's 2026-11-29d lab08 08), not a mistake."""
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, MODULE, ("    for _ in range(levels - 1):", "    for _ in range(levels):"))
+    [graded] = grade(folder, ["lab08.ext3"], pictures="none").exercises
+    assert graded.score == graded.max_score, [(c.name, c.message) for c in graded.checks if not c.passed]
+
+
 def test_a_ransac_measuring_its_error_before_the_division_is_not_told_src_and_dst_swapped(tmp_path):
     """An own RANSAC loop comparing (u, v) with dst where (u / w, v / w) belongs: a wrong H with a
     mask of its own making, which by chance also agrees with H read backwards. H does not map dst

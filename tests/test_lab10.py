@@ -79,6 +79,12 @@ VARIANTS = {
             map1, map2 = cv2.initUndistortRectifyMap(K, dist, None, K, (w, h), cv2.CV_16SC2)
             return cv2.remap(image, map1, map2, cv2.INTER_LINEAR)
         """),
+    "undistortion by cv.undistort given K as the new camera matrix": ("lab10.ext1", """
+        import cv2 as cv
+        def undistort_image(image, K, dist):
+            K = np.asarray(K, float)
+            return cv.undistort(image, K, np.asarray(dist, float), None, newCameraMatrix=K)
+        """),
     "undistortion with float32 K and dist, nearest-neighbour remap": ("lab10.ext1", """
         def undistort_image(image, K, dist):
             K, dist = np.float32(K), np.float32(dist)
@@ -163,6 +169,37 @@ def test_a_new_camera_matrix_loses_half_the_undistortion_check_and_nothing_else(
     assert main.score == pytest.approx(main.max_score / 2)
     assert main.mistake == "undistorted into a new camera matrix (cv2.getOptimalNewCameraMatrix), not K"
     assert checks["undistort_image keeps a colour image in colour (BGR in, BGR out)"].passed
+    assert checks[OFF_CENTRE].passed, checks[OFF_CENTRE].message
+
+
+OFF_CENTRE = "undistort_image keeps K's principal point off the image centre (and fx != fy)"
+MAIN_UNDISTORTION = ("undistort_image straightens views through two distorting lenses (the second with large "
+                     "tangential terms p1, p2)")
+
+
+@pytest.mark.parametrize("new_matrix, told", [
+    ("None", True),                                                 # OpenCV then centres the principal point
+    ("cv2.getDefaultNewCameraMatrix(K, (w, h), True)", False),     # a new matrix is given: not told to give one
+])
+def test_a_recentred_principal_point_loses_the_off_centre_check(tmp_path, new_matrix, told):
+    """The blind set's initUndistortRectifyMap without a new camera matrix: right where K's principal
+    point is at the image centre (the first check's K), shifted elsewhere: named, confirmed on a
+    second camera; the hint to pass K only to code that passes no new camera matrix."""
+    source = f"""
+        def undistort_image(image, K, dist):
+            K = np.asarray(K, np.float64)
+            h, w = image.shape[:2]
+            maps = cv2.initUndistortRectifyMap(K, np.asarray(dist, np.float64), None, {new_matrix}, (w, h),
+                                               cv2.CV_32FC1)
+            return cv2.remap(image, *maps, cv2.INTER_LINEAR)
+        """
+    checks = {c.name: c for c in check_results(grade(mutant(tmp_path, MODULE, source), ["lab10.ext1"]), "lab10.ext1")}
+    assert checks[MAIN_UNDISTORTION].passed
+    off = checks[OFF_CENTRE]
+    assert not off.passed and off.mistake.startswith("the principal point is moved to the image centre"), off.message
+    assert "shifted by (-15.5, +9.5) px (on a second camera too)" in off.message
+    assert ("pass K as newCameraMatrix" in off.message + off.hint) == told, off.message
+    assert ("look at where your code puts the principal point" in off.message + off.hint) != told, off.message
 
 
 @pytest.mark.parametrize("case", sorted(VARIANTS))

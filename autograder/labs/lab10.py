@@ -1224,6 +1224,82 @@ def undistort_probe(t: Trial, lens=UNDISTORT_PROBE_DIST) -> Probe:
                  distance=lambda a, b: blurred_difference(a, b, valid), tolerance=UNDISTORT_TOLERANCE)
 
 
+# The API's K is any camera matrix; the first check's POSE_K has its principal point at the image
+# centre ((w - 1) / 2, (h - 1) / 2), where cv2.initUndistortRectifyMap given no new camera matrix
+# puts it too (OpenCV's getDefaultNewCameraMatrix(K, size, True)), so that mistake passed there.
+# Here K's is off the centre, and fx != fy. Measured (benchmarks/spread_undistort_off_centre.py,
+# this camera and the probe's, both lenses): cv2.undistort, float32 K and dist,
+# initUndistortRectifyMap with K as the new matrix (CV_32FC1 or CV_16SC2 maps, linear, cubic or
+# nearest remap) and an own map of OpenCV's model 0.7-2.4 grey levels from the distortion-free view;
+# the principal point recentred 91.6-95.6: UNDISTORT_TOLERANCE (6) holds.
+RECENTRED = "the principal point is moved to the image centre ((w - 1) / 2, (h - 1) / 2) instead of kept at K's"
+KEEPS_NEW_MATRIX = passes_argument("cv2.initUndistortRectifyMap", 3, "newCameraMatrix",
+                                   says="passes a new camera matrix to cv2.initUndistortRectifyMap")
+RECENTRED_HINT = Hint(
+    "cv2.initUndistortRectifyMap given no newCameraMatrix (None) builds one with the principal point at "
+    "the image centre: pass K as newCameraMatrix to keep K",
+    asks=KEEPS_NEW_MATRIX | ~calls("cv2.initUndistortRectifyMap"),
+    instead="look at where your code puts the principal point of the output: at K's (cx, cy)")
+
+
+def off_centre_mistakes(distorted, K, dist) -> dict:
+    """The usual undistortion mistakes on the camera ``K``, and the principal point recentred."""
+    w, h = truth.POSE_SIZE
+    centred = K.copy()
+    centred[:2, 2] = (w - 1) / 2, (h - 1) / 2
+    return {RECENTRED: cv2.undistort(distorted, K, dist, None, centred), **undistortion_mistakes(distorted, K, dist)}
+
+
+def off_centre_probe(t: Trial) -> Probe:
+    """undistort_image of the board through a camera whose principal point is off on the other side."""
+    K, dist = truth.OFF_CENTRE_PROBE_K, truth.DIST
+    distorted, clean, _, _, _ = truth.distorted_view(tuple(dist), tuple(K.ravel()))
+    valid = truth.undistortion_valid(K, dist, truth.POSE_SIZE)
+
+    def answer():
+        got = t.call("undistort_image", distorted, K, dist)
+        ok = isinstance(got, np.ndarray) and got.shape == distorted.shape and got.dtype == np.uint8
+        return got if ok else None
+
+    return Probe("undistort_image/off-centre probe", answer, lambda: off_centre_mistakes(distorted, K, dist), clean,
+                 distance=lambda a, b: blurred_difference(a, b, valid), tolerance=UNDISTORT_TOLERANCE)
+
+
+@ext1.check("undistort_image keeps K's principal point off the image centre (and fx != fy)", points=2)
+def undistort_off_centre(t):
+    K, dist = truth.OFF_CENTRE_K, truth.DIST
+    (w, h), (cx, cy) = truth.POSE_SIZE, K[:2, 2]
+    distorted, clean, _, _, _ = truth.distorted_view(tuple(dist), tuple(K.ravel()))
+    what = (f"undistort_image(image, K, dist) with fx = {K[0, 0]:g}, fy = {K[1, 1]:g} and the principal point "
+            f"({cx:g}, {cy:g})")
+    got = t.call("undistort_image", distorted, K, dist)
+    valid = truth.undistortion_valid(K, dist, truth.POSE_SIZE)
+    if isinstance(got, np.ndarray):
+        t.compare_images(what, distorted, clean, got, valid=valid,
+                         caption="expected: the same view rendered without distortion, with the same K")
+    got = t.expect_array(got, what, shape=distorted.shape, dtype=np.uint8)
+    error = blurred_difference(got, clean, valid)
+    if error <= UNDISTORT_TOLERANCE:
+        return passed(f"mean difference {error:.1f} grey levels from the distortion-free view")
+    if _new_camera_matrix_view(got, clean, K, dist):   # a new camera matrix loses its points once, in the first check
+        return passed(measured("the distortion-free view in cv2.getOptimalNewCameraMatrix's camera matrix, as in the "
+                               "first check, which judges that choice"))
+    mistake = name_mistake(t, got, off_centre_mistakes(distorted, K, dist),
+                           lambda a, b: blurred_difference(a, b, valid), UNDISTORT_TOLERANCE, truth=clean,
+                           probe=off_centre_probe(t))
+    if mistake == RECENTRED:
+        t.fail(f"{what} is wrong: the result is the distortion-free view with the principal point at the image "
+               f"centre ({(w - 1) / 2:g}, {(h - 1) / 2:g}) instead of K's ({cx:g}, {cy:g}), so it is shifted by "
+               f"({(w - 1) / 2 - cx:+g}, {(h - 1) / 2 - cy:+g}) px (on a second camera too). The first check's K "
+               "has its principal point at the centre, which hides this. " + RECENTRED_HINT.said(t),
+               mistake=RECENTRED)
+    if mistake:
+        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    t.fail(f"{what} differs from the distortion-free view by {format_apart(error, UNDISTORT_TOLERANCE, 2)} grey "
+           f"levels on average (at most {UNDISTORT_TOLERANCE:g} accepted). Here K's principal point is off the "
+           f"image centre ({(w - 1) / 2:g}, {(h - 1) / 2:g}) and fx != fy.")
+
+
 @ext1.check("undistort_image keeps a colour image in colour (BGR in, BGR out)", points=1)
 def undistort_colour(t):
     """The skeleton: (H, W) or (H, W, 3) in, the same shape out. One question, the colour: what

@@ -208,7 +208,7 @@ MISTAKES = {
                 cv2.line(canvas, (int(round(x1)), int(round(y1))), (int(round(x2 + w2)), int(round(y2))),
                          (0, 255, 0), 1, cv2.LINE_AA)
             return canvas
-        """, ["shifted by img2's width (280 px)", "x2 + w1"]),
+        """, ["shifted by img2's width", "x2 + w1"]),
     "images stacked vertically": ("lab08.ex3", """
         def draw_matches(img1, img2, pts1, pts2):
             h1, w1 = img1.shape[:2]

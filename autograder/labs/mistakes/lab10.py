@@ -327,6 +327,14 @@ MISTAKES = {
         def undistort_image(image, K, dist):
             return cv2.undistort(image, np.asarray(K, np.float64), None)
         """, ["unchanged"]),
+    "undistort by initUndistortRectifyMap given no new camera matrix": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            h, w = image.shape[:2]
+            maps = cv2.initUndistortRectifyMap(np.asarray(K, np.float64), np.asarray(dist, np.float64), None, None,
+                                               (w, h), cv2.CV_32FC1)
+            return cv2.remap(image, *maps, cv2.INTER_LINEAR)
+        """, ["with the principal point at the image centre (159.5, 119.5) instead of k's (175, 110)",
+              "pass k as newcameramatrix"]),
     "undistort by an own map of the radial terms only": ("lab10.ext1", """
         def undistort_image(image, K, dist):
             K = np.asarray(K, np.float64)
