@@ -722,9 +722,7 @@ def test_names_swapped_where_every_mode_reads_them_are_not_told_for_one_modes_ca
         "        volume = _ncc_volume(left, right, int(max_disparity), int(block_size))\n"
         "    else:\n"
         "        volume = _ssd_volume(right, left, int(max_disparity), int(block_size))\n"))
-    result = grade(folder, ["lab12.ex4"], pictures="none", include_hidden=False)
-    checks = [c for c in check_results(result, "lab12.ex4") if c.score < c.max_score]
-    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    checks, told = _failed_and_repaired(folder, "lab12.ex4")
     assert told and any("_ssd_volume(left, right" in message for message in told), [c.message for c in checks]
     made = "left, right = (_grey_float(left), _grey_float(right))"   # where the names are made
     assert not any(f"`{made}` to" in message or "(_grey_float(right), _grey_float(left))" in message
@@ -738,9 +736,7 @@ def test_a_loop_that_starts_each_step_from_the_input_again_is_told_to_carry_its_
     folder = edited_reference(tmp_path, "lab11_two_view", (
         "            cv2.line(canvas, p, q, colour, 1, cv2.LINE_8)",
         "            canvas = cv2.line(image.copy(), p, q, colour, 1, cv2.LINE_8)"))
-    result = grade(folder, ["lab11.ex2"], pictures="none", include_hidden=False)
-    checks = [c for c in check_results(result, "lab11.ex2") if c.score < c.max_score]
-    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    checks, told = _failed_and_repaired(folder, "lab11.ex2")
     assert any("changing `image.copy()` to `canvas`" in message for message in told), [c.message for c in checks]
     assert not any("`image.copy()` to `image`" in message for message in told), told
 
@@ -781,9 +777,7 @@ def test_an_eigenvector_picked_by_the_smallest_value_where_its_magnitude_belongs
             e2 = np.real(V_t[:, np.argmin(w_t)])
             return e1 / np.linalg.norm(e1), e2 / np.linalg.norm(e2)
         """)
-    result = grade(folder, ["lab11.ex5"], pictures="none", include_hidden=False)
-    checks = [c for c in check_results(result, "lab11.ex5") if c.score < c.max_score]
-    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    checks, told = _failed_and_repaired(folder, "lab11.ex5")
     assert any("`np.argmin(w)` to `np.argmin(np.abs(w))`" in m and "`np.argmin(w_t)` to `np.argmin(np.abs(w_t))`" in m
                for m in told), [c.message for c in checks]
 
@@ -835,9 +829,7 @@ def test_two_neighbouring_names_copied_from_the_other_image_are_told_as_one_chan
             U, _, Vt = np.linalg.svd(E)
             return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
         """)
-    result = grade(folder, ["lab11.ex3"], pictures="none", include_hidden=False)
-    checks = [c for c in check_results(result, "lab11.ex3") if c.score < c.max_score]
-    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    checks, told = _failed_and_repaired(folder, "lab11.ex3")
     assert any("y2 * y1, y2, x1, y1, np.ones(len(x1))]` (line" in m and " and `" not in m.split("Trying", 1)[1]
                for m in told), [c.message for c in checks]
 
@@ -862,9 +854,7 @@ def test_one_item_taken_where_the_mean_belongs_is_told_at_both_places(tmp_path):
             A = At.T
             return np.column_stack([A, dst[0] - A @ src[0]])
         """)
-    result = grade(folder, ["lab07.ex6"], pictures="none", include_hidden=False)
-    checks = [c for c in check_results(result, "lab07.ex6") if c.score < c.max_score]
-    told = [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+    checks, told = _failed_and_repaired(folder, "lab07.ex6")
     assert any("`dst[0] - A @ src[0]` to `c_dst - A @ c_src`" in m for m in told), [c.message for c in checks]
 
 
@@ -876,3 +866,10 @@ def test_twins_are_names_not_numbers_and_an_answer_with_rows_for_columns_is_seen
     assert repair._rows_for_columns(np.zeros((5, 7, 3)), np.zeros((7, 5, 3)))
     assert not repair._rows_for_columns(np.zeros((5, 7, 3)), np.zeros((5, 7, 3)))
     assert not repair._rows_for_columns(np.zeros((5, 7)), np.zeros((7, 5, 3)))
+
+
+def _failed_and_repaired(folder, exercise):
+    """The exercise's failed checks, and the messages of those that tell a repair."""
+    result = grade(folder, [exercise], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, exercise) if c.score < c.max_score]
+    return checks, [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
