@@ -868,6 +868,28 @@ def test_twins_are_names_not_numbers_and_an_answer_with_rows_for_columns_is_seen
     assert not repair._rows_for_columns(np.zeros((5, 7)), np.zeros((7, 5, 3)))
 
 
+def test_of_two_changes_that_pass_the_checks_the_one_nearer_the_reference_on_noisy_points_is_told(tmp_path):
+    """The normalisation undone with T1 transposed: mended where it is undone, or -- compensating --
+    by transposing T1 where the points are normalised. Both pass the checks; on noisy confirmation
+    points only the fix gives the reference's least squares, so only it is told."""
+    folder = edited_reference(tmp_path, "lab11_two_view", ("    F = T2.T @ Fn @ T1\n", "    F = T2.T @ Fn @ T1.T\n"))
+    checks, told = _failed_and_repaired(folder, "lab11.ex4")
+    assert told and all("`T2.T @ Fn @ T1.T` to `T2.T @ Fn @ T1`" in m for m in told), [c.message for c in checks]
+    assert not any("_homogeneous(pts1) @ T1.T` to" in m for m in told), told
+
+
+def test_a_change_that_mends_a_colour_image_by_breaking_a_grey_one_is_not_told(tmp_path):
+    """The warp's size read as `image.shape[::-1][:2]` (channels, width for a colour image):
+    `[1:]` mends the colour images and makes every grey one raise, where the student's own code
+    was right: confirmed on the image in the other number of channels, it is not told."""
+    folder = edited_reference(tmp_path, "lab07_transformations", (
+        "    return _warp(image, A, dsize)\n",
+        "    return cv2.warpAffine(image, np.asarray(A, np.float64), dsize or image.shape[::-1][:2])\n"))
+    checks, told = _failed_and_repaired(folder, "lab07.ex5")
+    assert checks
+    assert not any("`image.shape[::-1][1:]`" in m for m in told), told
+
+
 def _failed_and_repaired(folder, exercise):
     """The exercise's failed checks, and the messages of those that tell a repair."""
     result = grade(folder, [exercise], pictures="none", include_hidden=False)

@@ -172,6 +172,21 @@ def twins_exchanged(call, pairs) -> list:
     return [(function, tuple(turned), dict(kwargs))]
 
 
+def other_channels(call) -> list:
+    """``call`` with its images in the other number of channels: BGR images (uint8, (H, W, 3)) made
+    grey, or grey ones (uint8, (H, W)) made BGR ([] when it has no image). Both are images a caller
+    may give."""
+    import cv2
+
+    function, args, kwargs = call
+    turned = lambda v: (cv2.cvtColor(v, cv2.COLOR_BGR2GRAY) if v.ndim == 3 else cv2.cvtColor(v, cv2.COLOR_GRAY2BGR)) \
+        if isinstance(v, np.ndarray) and v.dtype == np.uint8 and min(v.shape[:2], default=0) >= 8 \
+        and (v.ndim == 2 or (v.ndim == 3 and v.shape[2] == 3)) else v  # noqa: E731
+    new_args, new_kwargs = tuple(turned(a) for a in args), {k: turned(v) for k, v in kwargs.items()}
+    changed = any(a is not b for a, b in zip(new_args, args)) or any(new_kwargs[k] is not kwargs[k] for k in kwargs)
+    return [(function, new_args, new_kwargs)] if changed else []
+
+
 def mode_calls(call, modes) -> list:
     """Copies of ``call`` (function, args, kwargs) in each other mode its function has (``modes``:
     see :func:`_modes`)."""

@@ -768,7 +768,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # change in its own code and one in a helper only it runs are both told (a band's sign
         # flipped where the pyramid is built, or undone where it is collapsed).
         kept = [pair for pair in fixes if not student.shared(pair[1].where, function)]
-        return variant.repair(kept or fixes, complete)
+        return variant.repair(variant.nearest(kept or fixes), complete)
     if tries is not None:
         return None   # (pairs: a search bounded by its tries makes none)
     near = [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
@@ -1009,10 +1009,12 @@ class _Variants:
                         for call in _widened(self.inputs[i], self.model.defaults.get(self.function, ()), (0.5,))]
             self.crossing = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(crossing)))
             variants += crossing
-            # (and the function's other modes, cost="ncc" beside "ssd": there a change must leave the
-            # student's answers as they are, or make them right -- names swapped where both modes read
-            # them mend one mode's call by breaking the other's)
-            modes = naming.mode_calls(self.inputs[failing[0]], getattr(self.model, "modes", {}).get(self.function, ()))
+            # (and the function's other modes, cost="ncc" beside "ssd", and its images in the other
+            # number of channels: there a change must leave the student's answers as they are, or make
+            # them right -- names swapped where both modes read them mend one mode's call by breaking
+            # the other's; `shape[::-1][1:]` mends a colour image's size by breaking a grey one's)
+            modes = naming.mode_calls(self.inputs[failing[0]], getattr(self.model, "modes", {}).get(self.function, ())) \
+                + naming.other_channels(self.inputs[failing[0]])
             self.modes = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(modes)))
             variants += modes
             every = self.inputs + variants
@@ -1090,9 +1092,27 @@ class _Variants:
                 return True
         return False
 
+    def nearest(self, fixes) -> list:
+        """Of several confirmed fixes [(mutant, fix)], those whose answers on the confirmation inputs
+        are as near the reference's as the nearest's (within half as far again): a change compensating
+        for the slip elsewhere -- the normalisation undone by dropping the centring it undoes -- passes
+        the checks too, but on noisy points answers with another least squares than the fix's."""
+        every, wanted, usable = self.confirmations or ((), {}, None)
+        if len(fixes) < 2 or not usable or self.clock.left() <= 0:
+            return fixes
+        apart = []
+        for mutant, fix in fixes:
+            values = self.answers(mutant, usable, every)
+            apart.append(float("inf") if values is None else
+                         sum(naming.distance(v, wanted[i]) for v, i in zip(values, usable)))
+        best = min(apart)
+        if not np.isfinite(best):
+            return fixes
+        return [pair for pair, far in zip(fixes, apart) if far <= 1.5 * best + 1e-9 * (1.0 + best)]
+
     def _other_modes_kept(self, mutant, every, wanted) -> bool:
-        """Whether in the function's other modes the variant answers as the student's own code does,
-        or as the reference does."""
+        """Whether in the function's other modes (and on its images in the other number of channels)
+        the variant answers as the student's own code does, or as the reference does."""
         indices = sorted(i for i in self.modes if naming.error_kind(wanted.get(i)) is None)
         if not indices:
             return True
