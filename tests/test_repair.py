@@ -890,6 +890,17 @@ def test_a_change_that_mends_a_colour_image_by_breaking_a_grey_one_is_not_told(t
     assert not any("`image.shape[::-1][1:]`" in m for m in told), told
 
 
+def test_a_condition_is_told_where_removing_it_would_be_wrong_on_the_other_kind_of_image(tmp_path):
+    """The colour chosen with the test the wrong way round (`canvas.ndim == 2` for `== 3`): a grey
+    drawing gets palette tuples. Always taking 255 would mend the grey images too, but not the colour
+    ones (a colour per line): the condition matters, and its change is told."""
+    folder = edited_reference(tmp_path, "lab11_two_view", (
+        "colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 255",
+        "colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 2 else 255"))
+    checks, told = _failed_and_repaired(folder, "lab11.ex2")
+    assert any("`canvas.ndim == 2` to" in m for m in told), [c.message for c in checks]
+
+
 def _failed_and_repaired(folder, exercise):
     """The exercise's failed checks, and the messages of those that tell a repair."""
     result = grade(folder, [exercise], pictures="none", include_hidden=False)

@@ -1063,20 +1063,37 @@ class _Variants:
 
     def guard_untested(self, mutant, failing) -> bool:
         """Whether a change of a condition mends no more than removing the condition does: the code
-        with that condition always true, or always false, is right on the failing inputs too (or
-        passes the check, where the check judged the change) and on the function's other checks. The
+        with that condition always true, or always false, is confirmed as the change was (right on
+        the failing and the confirmation inputs; or, where the check judged the change, passing it
+        and the function's other checks). The
         checks then cannot tell the change from dropping a guard that does not matter (a bounds test
         before cv2.circle, which clips): the change is not confirmed as the slip."""
         for guard in self.student.guards(mutant):
             values = self.answers(guard, failing, self.inputs)
             if values is None:
                 continue
-            right = all(self.right(v, self.references[i], self.students[i]) for v, i in zip(values, failing)) or (
-                mutant.key in self.checked
-                and self._replay(guard, (self.trial.check, self.trial.property_examples)) is True)
-            if right and (not self.other_checks() or self.passes_other_checks(guard)):
-                return True
+            if mutant.key in self.checked:   # (the change was judged by the check: so is the guard)
+                if self._replay(guard, (self.trial.check, self.trial.property_examples)) is True \
+                        and (not self.other_checks() or self.passes_other_checks(guard)):
+                    return True
+            elif all(self.right(v, self.references[i], self.students[i]) for v, i in zip(values, failing)) \
+                    and self.confirmed(guard, failing) and not self._righter_elsewhere(mutant, guard):
+                return True   # (as the change was: right on the confirmation inputs too)
         return False
+
+    def _righter_elsewhere(self, mutant, other) -> bool:
+        """Whether on the function's other modes (and images of the other number of channels) the
+        change answers as the reference where ``other`` does not (a colour per line on BGR images:
+        the change mends it, a condition made always false does not)."""
+        every, wanted, _ = self.confirmations or ((), {}, None)
+        indices = sorted(i for i in self.modes if naming.error_kind(wanted.get(i)) is None)
+        if not indices:
+            return False
+        mine, theirs = self.answers(mutant, indices, every), self.answers(other, indices, every)
+        if mine is None or theirs is None:
+            return False
+        return any(self.right(a, wanted[i], confirming=True) and not self.right(b, wanted[i], confirming=True)
+                   for a, b, i in zip(mine, theirs, indices))
 
     def breaks_other_checks(self, mutant) -> bool:
         """Whether the variant fails one of the grading's other checks of the function: a change that
