@@ -906,3 +906,16 @@ def _failed_and_repaired(folder, exercise):
     result = grade(folder, [exercise], pictures="none", include_hidden=False)
     checks = [c for c in check_results(result, exercise) if c.score < c.max_score]
     return checks, [c.message for c in checks if c.mistake and c.mistake.startswith(repair.MISTAKE)]
+
+
+def test_a_power_moved_across_a_students_own_average_is_a_change_tried():
+    """`_box_mean(x, k) ** 2` where `_box_mean(x ** 2, k)` belongs: the student's own averaging helper,
+    known by its name, takes the power inside as NumPy's and OpenCV's averages do."""
+    source = textwrap.dedent("""
+        def graded(x, k):
+            m = _box_mean(x, k)
+            return _box_mean(x, k) ** 2 - m ** 2
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    shown = {student.fix(m).changes[0][1:] for m in student.mutants("graded") if m.operator == "power_inside"}
+    assert ("_box_mean(x, k) ** 2", "_box_mean(x ** 2, k)") in shown, shown

@@ -749,7 +749,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     shown = [(mutant, variant.fix(mutant)) for mutant in candidates]
     # The smallest change of the text first: the student's slip is a few characters (`R.T` for `R`),
     # where a change that compensates for it elsewhere on the line rewrites more (`c @ R.T`).
-    shown = sorted(((m, f) for m, f in shown if f is not None), key=lambda pair: (pair[1].size, pair[1].written))
+    # (a change an earlier check of the function confirmed first: one mistake, one repair told)
+    shown = sorted(((m, f) for m, f in shown if f is not None),
+                   key=lambda pair: (pair[0].key not in known, pair[1].size, pair[1].written))
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
