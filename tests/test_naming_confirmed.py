@@ -328,6 +328,10 @@ DIRECT_EVIDENCE = {
     "judge_decomposition": "R K gives back P[:, :3]: a QR decomposition",
     "blend_identity": "the image blended with itself is its coarsest level upsampled, here and on "
                       "another photo (probe)",
+    "name_rotations": "both maps returned are rotation matrices (orthonormal, determinant 1), measured: "
+                      "the claim itself",
+    "name_wrapped_stripes": "the patterns are those of k mod 256 bit for bit, here and on a 1024-column "
+                            "projector with 10 bits (probe)",
     "blend_sharp": "one weight per pixel explains the image near the seam (a feather, not bands)",
     "name_image_left_out": "the panorama is exactly the bounding box of the other images, and the "
                            "image's own part is missing",
