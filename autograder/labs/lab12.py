@@ -710,10 +710,6 @@ def depth_probe(t: Trial) -> Probe:
                       truth=expected, shape=d.shape, tolerance=1e-6 * float(expected.max()))
 
 
-# named from the answers themselves (no mutant of the reference needed: the error model's is not said beside it)
-INVALID_DEPTHS = "invalid disparities (0, negative, NaN) not given depth 0"
-
-
 def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     disparity = np.asarray(disparity, dtype=np.float64)
     valid = np.isfinite(disparity) & (disparity > 0)
@@ -724,7 +720,7 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     if wrong:
         t.fail(f"{what}: " + "; ".join(wrong) + ". The depth there must be 0 (invalid): no point "
                "of the scene has d <= 0.",
-               hint=GUARDED_DIVISION_HINT.said(t), mistake=INVALID_DEPTHS)
+               hint=GUARDED_DIVISION_HINT.said(t))
     if not np.all(np.isfinite(got)):
         t.fail(f"{what} returned NaN or infinite depths for valid disparities")
     scale = magnitude(expected)
