@@ -1143,7 +1143,12 @@ class _Variants:
         self.theirs.update(zip(missing, own))
         kept = lambda v, theirs: naming.error_kind(v) == naming.error_kind(theirs) if naming.error_kind(theirs) \
             else self.right(v, theirs, confirming=True)  # noqa: E731 - (the same exception counts as the same answer)
-        return all(self.right(v, wanted[i], confirming=True) or kept(v, self.theirs[i]) for v, i in zip(values, indices))
+        # (a change the check judged -- the student's own recipe -- is held to the spread the check accepted)
+        spread = 1.5 * self.checked[mutant.key] + 1e-9 if mutant.key in self.checked else None
+        near = lambda v, i: spread is not None and naming.error_kind(v) is None \
+            and naming.distance(v, wanted[i]) <= spread  # noqa: E731
+        return all(self.right(v, wanted[i], confirming=True) or near(v, i) or kept(v, self.theirs[i])
+                   for v, i in zip(values, indices))
 
     def other_checks(self) -> list:
         """The grading's other checks that called the function, with their properties' examples; then
