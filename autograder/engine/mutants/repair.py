@@ -865,7 +865,7 @@ class _Variants:
         self.forbid = tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
         self.crossing: set = set()   # the variants on the other side of a threshold (see confirmed)
-        self.modes: set = set()      # the variants in the function's other modes (see confirmed)
+        self.keeping: set = set()    # variants (other modes, other channels) where answers must be kept or mended
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
         self.projective = not any(naming.error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
@@ -1017,7 +1017,7 @@ class _Variants:
             # the other's; `shape[::-1][1:]` mends a colour image's size by breaking a grey one's)
             modes = naming.mode_calls(self.inputs[failing[0]], getattr(self.model, "modes", {}).get(self.function, ())) \
                 + naming.other_channels(self.inputs[failing[0]])
-            self.modes = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(modes)))
+            self.keeping = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(modes)))
             variants += modes
             every = self.inputs + variants
             try:
@@ -1029,10 +1029,10 @@ class _Variants:
             except HelperFailed:   # the reference too slow on them (a whole pipeline): no confirmation here
                 self.confirmations = (every, {}, None)
         every, wanted, usable = self.confirmations
-        if usable is not None and self.modes and not self._other_modes_kept(mutant, every, wanted):
+        if usable is not None and self.keeping and not self._answers_kept(mutant, every, wanted):
             return False
         if usable is not None:
-            usable = [i for i in usable if i not in self.modes
+            usable = [i for i in usable if i not in self.keeping
                       and (mutant.operator in BRANCHING or i not in self.crossing)]
         if usable is not None and (not usable or self._right_on(mutant, usable, every, wanted)):
             # A condition changed sends inputs down another branch: the inputs derived from the failing
@@ -1088,7 +1088,7 @@ class _Variants:
         change answers as the reference where ``other`` does not (a colour per line on BGR images:
         the change mends it, a condition made always false does not)."""
         every, wanted, _ = self.confirmations or ((), {}, None)
-        indices = sorted(i for i in self.modes if naming.error_kind(wanted.get(i)) is None)
+        indices = sorted(i for i in self.keeping if naming.error_kind(wanted.get(i)) is None)
         if not indices:
             return False
         mine, theirs = self.answers(mutant, indices, every), self.answers(other, indices, every)
@@ -1129,10 +1129,10 @@ class _Variants:
             return fixes
         return [pair for pair, far in zip(fixes, apart) if far <= 1.5 * best + 1e-9 * (1.0 + best)]
 
-    def _other_modes_kept(self, mutant, every, wanted) -> bool:
+    def _answers_kept(self, mutant, every, wanted) -> bool:
         """Whether in the function's other modes (and on its images in the other number of channels)
         the variant answers as the student's own code does, or as the reference does."""
-        indices = sorted(i for i in self.modes if naming.error_kind(wanted.get(i)) is None)
+        indices = sorted(i for i in self.keeping if naming.error_kind(wanted.get(i)) is None)
         if not indices:
             return True
         values = self.answers(mutant, indices, every)
