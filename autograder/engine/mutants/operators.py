@@ -1449,6 +1449,31 @@ def _logic_changes(node, parent, parents):
 _REDUCED = {"mean", "median", "average", "nanmean"}
 
 
+def _index(fn, parents) -> tuple[dict, dict]:
+    """A def read once for the slips below (each of its nodes asks: a walk per node would make reading
+    a long function quadratic): (name -> [(line, names read)] of its assignments outside loops, array ->
+    [(line, name)] of the locals holding its mean)."""
+    if not hasattr(fn, "_slip_index"):
+        made, means = {}, {}
+        for assign in (n for n in ast.walk(fn) if isinstance(n, ast.Assign) and len(n.targets) == 1):
+            target, value = assign.targets[0], assign.value
+            if isinstance(target, ast.Name) and not _in_loop(assign, parents):
+                made.setdefault(target.id, []).append(
+                    (assign.lineno, frozenset(m.id for m in ast.walk(value) if isinstance(m, ast.Name))))
+            pairs = zip(target.elts, value.elts) if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) \
+                and len(target.elts) == len(value.elts) else [(target, value)]   # (`c1, c2 = a.mean(0), b.mean(0)`)
+            for name, call in pairs:
+                if not (isinstance(name, ast.Name) and isinstance(call, ast.Call)
+                        and _dotted(call.func).rsplit(".", 1)[-1] in _REDUCED):
+                    continue
+                if isinstance(call.func, ast.Attribute) and isinstance(call.func.value, ast.Name):
+                    means.setdefault(call.func.value.id, []).append((assign.lineno, name.id))
+                elif call.args and isinstance(call.args[0], ast.Name) and _dotted(call.func).startswith("np."):
+                    means.setdefault(call.args[0].id, []).append((assign.lineno, name.id))
+        fn._slip_index = (made, means)
+    return fn._slip_index
+
+
 def _summaries(node, parents) -> list:
     """The locals holding a mean of the array one item of which ``node`` takes (`dst[0]` where `dst_mean
     = dst.mean(axis=0)` was made: a translation from the first pair where the centroids belong)."""
@@ -1458,20 +1483,8 @@ def _summaries(node, parents) -> list:
     fn = node
     while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
         fn = parents[id(fn)][0]
-    array, found = node.value.id, []
-    for assign in (n for n in ast.walk(fn) if isinstance(n, ast.Assign) and len(n.targets) == 1 and n.lineno < node.lineno):
-        target, value = assign.targets[0], assign.value
-        pairs = zip(target.elts, value.elts) if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) \
-            and len(target.elts) == len(value.elts) else [(target, value)]   # (`c1, c2 = a.mean(0), b.mean(0)`)
-        for name, call in pairs:
-            if not (isinstance(name, ast.Name) and isinstance(call, ast.Call)
-                    and _dotted(call.func).rsplit(".", 1)[-1] in _REDUCED):
-                continue
-            if (isinstance(call.func, ast.Attribute) and isinstance(call.func.value, ast.Name) and call.func.value.id == array) \
-                    or (call.args and isinstance(call.args[0], ast.Name) and call.args[0].id == array
-                        and _dotted(call.func).startswith("np.")):
-                found.append(name.id)
-    return found
+    before = [name for line, name in _index(fn, parents)[1].get(node.value.id, ()) if line < node.lineno]
+    return before[-2:]   # (the latest: a long function's every mean would make many changes per item)
 
 
 _EXTREMES = {"argmin", "argmax", "argsort", "nanargmin", "nanargmax"}
@@ -1503,9 +1516,7 @@ def _restarted(node, parents) -> str | None:
     while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
         fn = parents[id(fn)][0]
     # (made before the loop from the same input: `out = image.copy()`, `out = np.array(image)`)
-    made = any(isinstance(n, ast.Assign) and n.lineno < statement.lineno and not _in_loop(n, parents)
-               and any(isinstance(t, ast.Name) and t.id == running for t in n.targets)
-               and any(isinstance(m, ast.Name) and m.id == source.id for m in ast.walk(n.value)) for n in ast.walk(fn))
+    made = any(line < statement.lineno and source.id in read for line, read in _index(fn, parents)[0].get(running, ()))
     return running if made else None
 
 
