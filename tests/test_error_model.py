@@ -163,6 +163,24 @@ def test_a_student_no_mutant_explains_is_not_named():
     assert naming.name_failure(trial, seconds=60) is None
 
 
+def test_a_mutant_dividing_by_zero_where_the_student_gives_a_number_is_not_named():
+    """A depth map tested with d != 0 where d > 0 belongs: the mutant whose validity test is always
+    true gives inf at d = 0, where the student (like the reference) gives 0; the NaN leniency is for
+    the reference's own marks, so that mutant is not the student's mistake (it was told as "`f` is
+    used where `disparity` belongs")."""
+    student = ("def depth_from_disparity(disparity, f, baseline):\n"
+               "    d = np.asarray(disparity, dtype=np.float64)\n"
+               "    ok = np.isfinite(d) & (d != 0)\n"
+               "    return np.where(ok, f * baseline / np.where(ok, d, 1.0), 0.0)\n")
+    disparities = np.array([[0.0, -3.0, np.nan, 5.0], [10.0, 0.0, -1.0, 20.0]])
+    trial = _trial("lab12", student, [("depth_from_disparity", (disparities, 400.0, 0.2), {})])
+    assert naming.reproduces(np.array([[np.inf, -26.7, 0.0, 16.0], [8.0, np.inf, -80.0, 4.0]]),
+                             np.array([[0.0, -26.7, 0.0, 16.0], [8.0, 0.0, -80.0, 4.0]]),
+                             np.array([[0.0, 0.0, 0.0, 16.0], [8.0, 0.0, 0.0, 4.0]])) is False
+    found = naming.name_failure(trial, seconds=60)
+    assert found is None or "`f` is used" not in found.sentence
+
+
 def test_a_right_answer_is_not_named():
     trial = _trial("lab07", "", [("rotation_matrix", (30.0,), {})])
     assert naming.name_failure(trial, seconds=60) is None

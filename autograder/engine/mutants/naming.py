@@ -415,6 +415,8 @@ def reproduces(mutant, student, reference) -> bool:
     tolerance, scale = _measures(student)
     if not has_image(student):
         size = max(largest_entry(student), 1e-12)
+        if not _non_finite_as_reference(mutant, student, reference):
+            return False
         if _largest_difference(mutant, student) <= 1e-4 * size:
             return True
         return _largest_difference(mutant, student, projective=True) <= 1e-4 * size \
@@ -427,6 +429,21 @@ def reproduces(mutant, student, reference) -> bool:
     if not wrong(student, reference):   # the student is right here: the mutant must be as near
         return apart <= 2 * off
     return apart <= min(off / IMAGE_CLOSER, 0.05 * scale) and _explains_changed_pixels(mutant, student, reference)
+
+
+def _non_finite_as_reference(mutant, student, reference) -> bool:
+    """Whether the mutant's NaN and infinities, where the student's answer has numbers, are where the
+    reference's are too: the leniency of :func:`distance` is for the reference's own marking (points
+    behind the camera), not for a mutant dividing by zero where the student's code, like the
+    reference, gives a number (a validity test made always true gives inf at d = 0, where the student
+    tests d != 0 and gives 0). True when the forms differ (judged elsewhere)."""
+    with_student, with_reference = numeric_pairs(mutant, student), numeric_pairs(mutant, reference)
+    if with_student is None or with_reference is None:
+        return True
+    for (mine, theirs), (_, right) in zip(with_student, with_reference):
+        if (~np.isfinite(mine) & np.isfinite(theirs) & np.isfinite(right)).any():
+            return False
+    return True
 
 
 IMAGE_CLOSER = 30        # how many times closer than the reference a mutant's image must be to the student's
