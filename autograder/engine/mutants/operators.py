@@ -92,7 +92,10 @@ OPERATORS = {
     "carry": ("each", "again", "running", "restart"),
     "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
-    "logic": ("and", "or", "&", "|"),                 # m1 & m2 -> m1 | m2, a and b -> a or b          # cv2.remap(img, mx, my) -> np.float32(mx), ...
+    "logic": ("and", "or", "&", "|"),
+    "literal": ("argument", "value", "flag"),         # cv2.computeCorrespondEpilines(p, 2, F) -> (p, 1, F)
+    "negative_index": ("negative", "index", "abs", "wrap"),   # ramp[i - j] -> ramp[np.abs(i - j)]
+    "part": ("column", "part", "whole", "component"),   # np.linalg.norm(X, axis=1) -> X[:, 2] (seen elsewhere)                 # m1 & m2 -> m1 | m2, a and b -> a or b          # cv2.remap(img, mx, my) -> np.float32(mx), ...
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -656,6 +659,8 @@ def _make_accumulate(node, payload):
 
 
 def _make_magnitude(node, payload):
+    if payload == "wrap":   # a[i - j] -> a[np.abs(i - j)]
+        return ast.Call(_name("np.abs"), [copy.deepcopy(node)], [])
     new = copy.deepcopy(node)   # np.argmin(v) -> np.argmin(np.abs(v))
     new.args[0] = ast.Call(_name("np.abs"), [new.args[0]], [])
     return new
@@ -687,11 +692,15 @@ def _make_function(node, payload):
     return new
 
 
+def _make_part(node, payload):
+    return ast.parse(payload, mode="eval").body   # a part of the array, as the function writes it elsewhere
+
+
 def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {"constant": _make_constant, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+_MAKE = {"constant": _make_constant, "literal": _make_constant, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1209,7 +1218,7 @@ def _changes(node, parents, words: _Words, line):
         if isinstance(loop, ast.For) and loop.iter is parent and isinstance(loop.target, ast.Name):
             yield from _counted_loop_changes(loop)
     if words.student:
-        yield from _student_changes(node, parent)
+        yield from _student_changes(node, parent, parents)
         yield from _sibling_changes(node, words)
         yield from _logic_changes(node, parent, parents)
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.RShift)):
@@ -1244,7 +1253,7 @@ _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin",
              "log": "log10", "log10": "log"}
 
 
-def _student_changes(node, parent):
+def _student_changes(node, parent, parents):
     """Changes made to a student's code only (:mod:`.repair`), told by showing them: a function applied
     that does not belong (``np.tan(s)`` for ``s``), one mistaken for its sibling (``np.sin`` for
     ``np.cos``), a reshape where a transpose belongs, an inversion missing in a matrix product, points
@@ -1259,6 +1268,13 @@ def _student_changes(node, parent):
     if isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult)) \
             and isinstance(node, (ast.Name, ast.Subscript)) and node is parent.right:
         yield "sign", "insert", ""   # a term's sign: `x + s * y` for `x - s * y`
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult):
+        for dropped, factor in (("left", node.left), ("right", node.right)):
+            if not (isinstance(factor, ast.UnaryOp) or (isinstance(factor, ast.Constant) and factor.value in (1, -1))):
+                yield "drop_factor", dropped, ""   # a factor that does not belong: `f * Z` for `Z`
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) and _indexes(node, parent, parents) \
+            and not isinstance(node.left, ast.Constant) and not isinstance(node.right, ast.Constant):
+        yield "negative_index", "wrap", ""   # `ramp[i - j]`: a negative index wraps round where |i - j| belongs
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load):
         last = node.slice.elts[-1] if isinstance(node.slice, ast.Tuple) and node.slice.elts else node.slice
         if isinstance(last, ast.Slice) and last.lower is None and last.step is None \
@@ -1324,6 +1340,14 @@ _INTEGER_TYPES = {"int", "np.int32", "np.int64", "np.uint8", "np.int16", "np.uin
 # a subtraction or division is regrouped with (`a - b + c` is not `a - (b + c)`).
 _COMPARED = {ast.Lt: ("LtE", "Gt"), ast.LtE: ("Lt", "GtE"), ast.Gt: ("GtE", "Lt"), ast.GtE: ("Gt", "LtE")}
 _REGROUPED = {ast.Sub: (ast.Add, ast.Sub), ast.Div: (ast.Mult, ast.Div)}
+
+
+def _indexes(node, parent, parents) -> bool:
+    """Whether ``node`` is an index (not a slice bound) of a subscript: ``a[node]``, ``a[node, j]``."""
+    if isinstance(parent, ast.Tuple):
+        holder = parents.get(id(parent), (None,))[0]
+        return isinstance(holder, ast.Subscript) and holder.slice is parent
+    return isinstance(parent, ast.Subscript) and parent.slice is node
 
 
 def _dtype_changes(node: ast.Call):
@@ -1441,6 +1465,8 @@ def _logic_changes(node, parent, parents):
         yield "carry", running, ""
     for mean in _summaries(node, parents):
         yield "summary", mean, ""
+    for part in _parts(node, parents):
+        yield "part", part, ""
     if isinstance(node, ast.Call) and node.args and _dotted(node.func).rsplit(".", 1)[-1] in _EXTREMES \
             and not (isinstance(node.args[0], ast.Call) and _dotted(node.args[0].func).rsplit(".", 1)[-1] in _MAGNITUDES):
         yield "magnitude", None, ""   # the smallest value where the smallest magnitude belongs (an eigenvalue)
@@ -1472,6 +1498,30 @@ def _index(fn, parents) -> tuple[dict, dict]:
                     means.setdefault(call.args[0].id, []).append((assign.lineno, name.id))
         fn._slip_index = (made, means)
     return fn._slip_index
+
+
+def _parts(node, parents) -> list:
+    """The parts of an array the function takes elsewhere (`X[:, 2]`), in place of a statistic of the whole
+    of it (`np.linalg.norm(X, axis=1)`: the distance where the depth belongs); the first three written."""
+    if not (isinstance(node, ast.Call) and node.args and isinstance(node.args[0], ast.Name)
+            and _dotted(node.func).rsplit(".", 1)[-1] in _WHOLE):
+        return []
+    fn = node
+    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        fn = parents[id(fn)][0]
+    if not hasattr(fn, "_parts_index"):
+        parts = {}
+        for sub in ast.walk(fn):
+            if isinstance(sub, ast.Subscript) and isinstance(sub.ctx, ast.Load) and isinstance(sub.value, ast.Name) \
+                    and not any(isinstance(n, ast.Call) for n in ast.walk(sub.slice)):
+                text = ast.unparse(sub)
+                if text not in parts.setdefault(sub.value.id, []):
+                    parts[sub.value.id].append(text)
+        fn._parts_index = parts
+    return fn._parts_index.get(node.args[0].id, [])[:3]
+
+
+_WHOLE = {"norm", "sum", "mean", "max", "min", "amax", "amin", "sqrt", "hypot", "prod"}
 
 
 def _summaries(node, parents) -> list:
@@ -2164,6 +2214,14 @@ def _constant_changes(node: ast.Constant, parents, words, what):
             if other != value:
                 yield "axis", other, f"the sum/statistic runs over axis {other} where axis {value} belongs"
         return
+    call = parents.get(id(parent), (None,))[0] if isinstance(parent, ast.keyword) else parent
+    if words.student and isinstance(call, ast.Call) and _dotted(call.func).startswith(("cv2.", "cv.")) \
+            and (node in call.args[1:] or isinstance(parent, ast.keyword)) and value in _LITERALS:
+        # an OpenCV argument given as a number (`whichImage=2` for 1, a flip code): the nearest first
+        for other in sorted(_LITERALS, key=lambda other: (abs(other - value), -other)):
+            if other != value:
+                yield "literal", other, ""
+        return
     if words.student and isinstance(parent, ast.Call) and _dotted(parent.func) == "range" and node in parent.args:
         for delta in (-1, 1):   # a loop that starts or stops one early or late: `range(1, n)` for `range(n)`
             if value + delta >= 0:
@@ -2203,6 +2261,9 @@ def _constant_changes(node: ast.Constant, parents, words, what):
             phrase = _index_phrase(inner, elements, position, value, other)
             if phrase:
                 yield "axis", other, phrase
+
+
+_LITERALS = (-1, 0, 1, 2)
 
 
 def _transposable(node, parent) -> bool:
