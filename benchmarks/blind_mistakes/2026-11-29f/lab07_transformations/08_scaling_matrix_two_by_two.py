@@ -51,14 +51,14 @@ def rotation_matrix(angle_deg, center=(0.0, 0.0)):
 def rotate(image, angle_deg=45):
     """Rotate the image about its centre; corners that leave the frame are cut off."""
     height, width = image.shape[:2]
-    centre = ((width - 1) / 2.0, (width - 1) / 2.0)
+    centre = ((width - 1) / 2.0, (height - 1) / 2.0)
     return _warp(image, rotation_matrix(angle_deg, centre))
 
 
 # --------------------------------------------------------------------- ex3
 def scaling_matrix(sx, sy):
     """diag(sx, sy, 1): scales about the origin (the top-left pixel)."""
-    return np.diag([float(sx), float(sy), 1.0])
+    return np.diag([float(sx), float(sy)])
 
 
 def scale(image, sx=1.5, sy=1.5):

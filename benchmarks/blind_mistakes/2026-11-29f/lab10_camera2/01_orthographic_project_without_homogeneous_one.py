@@ -17,17 +17,12 @@ def _points(points):
 
 # --------------------------------------------------------------------- ex1
 def perspective_project(points, f):
-    """``x = f X / Z``, ``y = f Y / Z`` point by point; NaN for ``Z <= 0``."""
-    pts = np.asarray(points)
-    single = pts.ndim == 1
-    pts = np.atleast_2d(pts)
-    out = np.zeros_like(pts[:, :2])
-    for i, (X, Y, Z) in enumerate(pts):
-        if Z > 0:
-            out[i] = (f * X / Z, f * Y / Z)
-        else:
-            out[i] = np.nan
-    return out[0] if single else out
+    """``x = f X / Z``, ``y = f Y / Z``; NaN for points with ``Z <= 0``."""
+    X, single = _points(points)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = f * X[:, :2] / X[:, 2:3]
+    x[X[:, 2] <= 0] = np.nan
+    return x[0] if single else x
 
 
 # --------------------------------------------------------------------- ex2
@@ -51,11 +46,17 @@ ORTHOGRAPHIC = np.array([[1.0, 0.0, 0.0, 0.0],
 
 
 def orthographic_project(points):
-    """``[x, y, w] = M [X, Y, Z, 1]`` with the lab sheet's M: simply ``(X, Y)``."""
-    X, single = _points(points)
-    homogeneous = np.column_stack([X, np.ones(len(X))]) @ ORTHOGRAPHIC.T
-    x = homogeneous[:, :2] / homogeneous[:, 2:3]
-    return x[0] if single else x
+    """x = M [X, Y, Z, 1] with the lab sheet's orthographic M, then divide by the third coordinate."""
+    pts = np.asarray(points, dtype=np.float64)
+    single = pts.ndim == 1
+    pts = np.atleast_2d(pts)
+    M = np.array([[1.0, 0.0, 0.0, 0.0],
+                  [0.0, 1.0, 0.0, 0.0],
+                  [0.0, 0.0, 0.0, 1.0]])
+    h = pts @ M[:, :3].T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xy = h[:, :2] / h[:, 2:3]
+    return xy[0] if single else xy
 
 
 # --------------------------------------------------------------------- ex4

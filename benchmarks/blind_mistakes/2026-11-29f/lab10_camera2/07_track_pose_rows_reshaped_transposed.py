@@ -131,7 +131,7 @@ def estimate_pose(image, pattern_size, square_size, K, dist=None):
     grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
     found, corners = cv2.findChessboardCorners(grey, tuple(pattern_size))
     if not found:
-        return np.full(3, np.nan), np.full(3, np.nan), np.zeros(0)
+        return np.full(3, np.nan), np.full(3, np.nan), np.zeros((0, 2))
     criteria = (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3)
     corners = cv2.cornerSubPix(grey, corners, (5, 5), (-1, -1), criteria)
     objp = _object_points(pattern_size, square_size)
@@ -166,4 +166,4 @@ def track_pose(frames, pattern_size, square_size, K, dist=None):
     for frame in frames:
         rvec, tvec, _ = estimate_pose(frame, pattern_size, square_size, K, dist)
         rows.append(np.concatenate([rvec, tvec]))
-    return np.array(rows, dtype=np.float64).reshape(-1, 6)
+    return np.array(rows, dtype=np.float64).reshape(6, -1)
