@@ -919,3 +919,70 @@ def test_a_power_moved_across_a_students_own_average_is_a_change_tried():
     student = repair._Student(source, ast.parse(source), {"graded"})
     shown = {student.fix(m).changes[0][1:] for m in student.mutants("graded") if m.operator == "power_inside"}
     assert ("_box_mean(x, k) ** 2", "_box_mean(x ** 2, k)") in shown, shown
+
+
+def _shown_changes(source: str, operator: str) -> list:
+    """(before, after) of the operator's changes of `graded` in ``source``, in the order they are made."""
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    return list(dict.fromkeys(student.fix(m).changes[0][1:] for m in student.mutants("graded") if m.operator == operator))
+
+
+def test_a_factor_a_number_given_to_opencv_a_wrapped_index_and_a_whole_for_its_part_are_changes_tried():
+    """Four slips of a student's own code: a factor that does not belong (`f * X[:, 2]` in the depth), an
+    OpenCV argument given as the wrong number (nearest first), a difference of two arrays used as an index
+    (a negative index wraps round silently), and a statistic of the whole array where a part of it the
+    function takes elsewhere belongs. Not offered: a product with -1 (the sign's slip), a difference with a
+    constant as an index (`e[x - 1]`: a loop's previous step), a number given to a function of NumPy's."""
+    source = textwrap.dedent("""
+        def graded(X, f, F, ramp, a, b, e, x):
+            depth = np.linalg.norm(X, axis=1)
+            xy = np.column_stack([f * X[:, 0], -1 * X[:, 1], f * X[:, 2]])
+            lines = cv2.computeCorrespondEpilines(X[:, :2], 2, F)
+            flipped = cv2.flip(F, flipCode=0)
+            jump = ramp[a - b] + e[x - 1] + np.roll(a, 2)
+            return xy / depth[:, None], lines, flipped, jump
+    """)
+    dropped = _shown_changes(source, "drop_factor")
+    assert any(after.endswith("-1 * X[:, 1], X[:, 2]]") for _, after in dropped), dropped
+    assert not any("-1 * X[:, 1]" not in after for _, after in dropped if "f * X[:, 2]" in after), dropped
+    literals = _shown_changes(source, "literal")
+    assert [after for before, after in literals if "computeCorrespondEpilines" in before][0] \
+        == "cv2.computeCorrespondEpilines(X[:, :2], 1, F)", literals   # the nearest number first
+    assert {after for before, after in literals if "flip" in before} \
+        == {"cv2.flip(F, flipCode=1)", "cv2.flip(F, flipCode=-1)", "cv2.flip(F, flipCode=2)"}
+    assert not any("np.roll" in before for before, _ in literals)
+    assert {after for _, after in _shown_changes(source, "negative_index")} == {"ramp[np.abs(a - b)] + e[x - 1]"}
+    parts = _shown_changes(source, "part")
+    assert ("np.linalg.norm(X, axis=1)", "X[:, 2]") in parts, parts
+
+
+def test_an_opencv_argument_given_as_the_wrong_number_is_told(tmp_path):
+    """Epipolar lines from cv2.computeCorrespondEpilines with the points said to be of image 2: the lines
+    are F^T x (the check's own name says F looks transposed); the change told is the number."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab11_two_view", """
+        def epipolar_lines(F, pts1):
+            points = np.asarray(pts1, dtype=np.float64).reshape(-1, 1, 2)
+            found = cv2.computeCorrespondEpilines(points, 2, np.asarray(F, dtype=np.float64))
+            return found.reshape(-1, 3)
+        """)
+    checks, _ = _failed_and_repaired(folder, "lab11.ex2")
+    assert checks and all("`cv2.computeCorrespondEpilines(points, 2, ...)` to `cv2.computeCorrespondEpilines(points, 1, "
+                          "...)`" in c.message for c in checks), [c.message for c in checks]
+
+
+def test_a_statistic_of_the_whole_array_where_one_column_belongs_is_told(tmp_path):
+    """A pinhole projection dividing by each point's distance from the centre where its depth belongs."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab09_camera", """
+        def pinhole_project(points, f):
+            P = np.atleast_2d(np.asarray(points, dtype=np.float64))
+            r = np.linalg.norm(P, axis=1)
+            out = f * P[:, :2] / r[:, None]
+            out[P[:, 2] <= 0] = np.nan
+            return out[0] if np.ndim(points) == 1 else out
+        """)
+    checks, told = _failed_and_repaired(folder, "lab09.ex1")
+    assert any("`np.linalg.norm(P, axis=1)` to `P[:, 2]`" in m for m in told), [c.message for c in checks]

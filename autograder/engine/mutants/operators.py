@@ -1517,8 +1517,10 @@ def _parts(node, parents) -> list:
                 text = ast.unparse(sub)
                 if text not in parts.setdefault(sub.value.id, []):
                     parts[sub.value.id].append(text)
-        fn._parts_index = parts
-    return fn._parts_index.get(node.args[0].id, [])[:3]
+        # (one component -- `X[:, 2]`, an index, not a slice -- is what a statistic of the whole replaces)
+        fn._parts_index = {name: sorted(texts, key=lambda text: ":" in text.split(",")[-1])
+                           for name, texts in parts.items()}
+    return fn._parts_index.get(node.args[0].id, [])[:4]
 
 
 _WHOLE = {"norm", "sum", "mean", "max", "min", "amax", "amin", "sqrt", "hypot", "prod"}

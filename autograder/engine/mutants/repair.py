@@ -311,8 +311,8 @@ class _Student:
                 or (isinstance(context, ast.expr) and _width(context) < 12):
             parent = parents.get(id(context), (None,))[0]
             if parent is None or isinstance(parent, (ast.FunctionDef, ast.AsyncFunctionDef)) \
-                    or _width(parent) > _SHOWN:
-                break
+                    or (_width(parent) > _SHOWN and not isinstance(context, ast.Constant)):
+                break   # (a number alone says nothing: its call is shown, long arguments as `...`)
             context = parent
         # (the same code twice in the statement -- `[r * np.cos(a), r * np.cos(a)]` -- is shown with
         # enough around it to say which one)
@@ -338,7 +338,11 @@ class _Student:
         before, after = (" ".join(text.split()) for text in (before, after))
         if before == after:
             return None
-        shortened = _elided(before, after) or _elided(*_abbreviated(context, copied))
+        # (a long line: its calls with the unchanged arguments as `...` where that fits whole, so the
+        # function called stays in sight; else cut to the change and a few characters around it)
+        whole = _abbreviated(context, copied) if max(len(before), len(after)) > _SHOWN else None
+        shortened = (whole if whole is not None and max(map(len, whole)) <= _SHOWN else None) \
+            or _elided(before, after) or _elided(*_abbreviated(context, copied))
         if shortened is None:
             return None
         return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
