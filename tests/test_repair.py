@@ -986,3 +986,32 @@ def test_a_statistic_of_the_whole_array_where_one_column_belongs_is_told(tmp_pat
         """)
     checks, told = _failed_and_repaired(folder, "lab09.ex1")
     assert any("`np.linalg.norm(P, axis=1)` to `P[:, 2]`" in m for m in told), [c.message for c in checks]
+
+
+def test_a_sibling_of_the_students_own_helper_or_of_an_opencv_function_is_a_change_tried():
+    """`_laplacian_pyramid(mask, n)` where the weights are the mask's Gaussian pyramid: another of the
+    student's defs whose name shares a word and that takes the call's arguments; and OpenCV's affine
+    fit of 4 degrees of freedom where the full affine one belongs. Not offered: a def of another name,
+    or one that cannot take the call's arguments."""
+    source = textwrap.dedent("""
+        def _gaussian_pyramid(image, levels):
+            return [image] * levels
+
+        def _laplacian_pyramid(image, levels):
+            return [image] * levels
+
+        def _pyramid_depth(image):
+            return 3
+
+        def _blend(a, b):
+            return a
+
+        def graded(a, mask, levels, src, dst):
+            weights = _laplacian_pyramid(mask, levels)
+            M, _ = cv2.estimateAffinePartial2D(src, dst)
+            return weights, M
+    """)
+    offered = _shown_changes(source, "function")
+    assert ("_laplacian_pyramid(mask, levels)", "_gaussian_pyramid(mask, levels)") in offered, offered
+    assert ("cv2.estimateAffinePartial2D(src, dst)", "cv2.estimateAffine2D(src, dst)") in offered, offered
+    assert not any("_pyramid_depth" in after or "_blend" in after for _, after in offered), offered

@@ -327,7 +327,7 @@ def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     shown, wanted = format_arrays_apart(got, expected, 6)
     t.fail(f"{what} sends the points up to {digits_apart(error, tolerance)} px away from where the "
-           f"true map sends them (at most {tolerance:.3g} px expected). It returned\n{shown}\n"
+           f"true map sends them (at most {tolerance:.3g} px expected).\nIt returned\n{shown}\n"
            f"expected\n{wanted}")
 
 

@@ -1220,6 +1220,7 @@ def _changes(node, parents, words: _Words, line):
     if words.student:
         yield from _student_changes(node, parent, parents)
         yield from _sibling_changes(node, words)
+        yield from _helper_changes(node, words)
         yield from _logic_changes(node, parent, parents)
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.RShift)):
         wrong, right = ("<<", ">>") if isinstance(node.op, ast.RShift) else (">>", "<<")
@@ -1246,6 +1247,9 @@ _LOOPED_POSITIONS = {"range", "enumerate", "zip"}   # loops whose targets are po
 
 
 # Functions a student applies where they do not belong, and those mistaken for each other.
+# OpenCV functions taken for their sibling (the same arguments, another model or direction).
+_CV_MISTAKEN = {"estimateAffinePartial2D": "estimateAffine2D", "estimateAffine2D": "estimateAffinePartial2D",
+                "pyrDown": "pyrUp", "pyrUp": "pyrDown", "add": "subtract", "subtract": "add"}
 _UNARY = {"sin", "cos", "tan", "arcsin", "arccos", "arctan", "abs", "absolute", "fabs", "sqrt", "square", "exp",
           "log", "round", "rint", "floor", "ceil", "deg2rad", "rad2deg", "radians", "degrees"}
 _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin", "tan": "arctan", "arctan": "tan",
@@ -1327,6 +1331,8 @@ def _student_changes(node, parent, parents):
         yield "unwrap", None, ""
     if short in _MISTAKEN and prefix in ("np.", "numpy.", "math."):
         yield "function", prefix + _MISTAKEN[short], ""
+    if short in _CV_MISTAKEN and prefix in ("cv2.", "cv."):
+        yield "function", prefix + _CV_MISTAKEN[short], ""
     if isinstance(node.func, ast.Attribute) and node.func.attr == "reshape":
         yield "transpose", "for_reshape", ""
 
@@ -1340,6 +1346,25 @@ _INTEGER_TYPES = {"int", "np.int32", "np.int64", "np.uint8", "np.int16", "np.uin
 # a subtraction or division is regrouped with (`a - b + c` is not `a - (b + c)`).
 _COMPARED = {ast.Lt: ("LtE", "Gt"), ast.LtE: ("Lt", "GtE"), ast.Gt: ("GtE", "Lt"), ast.GtE: ("Gt", "LtE")}
 _REGROUPED = {ast.Sub: (ast.Add, ast.Sub), ast.Div: (ast.Mult, ast.Div)}
+
+
+def _helper_changes(node, words):
+    """Another of the student's own functions called where a sibling belongs (`_laplacian_pyramid(mask)`
+    where `_gaussian_pyramid(mask)` does): defs of the module whose names share a word with the one
+    called and that take the call's arguments."""
+    if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in words.module_defs
+            and not node.keywords and not any(isinstance(a, ast.Starred) for a in node.args)):
+        return
+    called = node.func.id
+    mine = {word for word in called.lower().split("_") if len(word) >= 3}
+    offered = 0
+    for name, fn in words.module_defs.items():
+        if name in (called, words.fn.name) or not mine & {w for w in name.lower().split("_") if len(w) >= 3}:
+            continue
+        positional = fn.args.posonlyargs + fn.args.args
+        if len(positional) - len(fn.args.defaults) <= len(node.args) <= len(positional) and offered < 3:
+            offered += 1
+            yield "function", name, ""
 
 
 def _indexes(node, parent, parents) -> bool:
