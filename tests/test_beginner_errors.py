@@ -213,3 +213,28 @@ def test_a_forbidden_function_imported_by_name_is_still_caught(tmp_path):
     result = grade(mutant(tmp_path, "lab07_transformations", FORBIDDEN_IMPORTED), ["lab07.ex6"], pictures="none")
     failures = {c.failure for e in result.exercises for c in e.checks if c.max_score}
     assert failures == {"forbidden_call"}
+
+
+@pytest.mark.parametrize("ending, told", [
+    ("", "Besides, the answer it gave is wrong: triangulate(P1, P2, pts1, pts2) returned shape (3, 5); "
+         "expected (5, 3)"),
+    (".T", "The answer it gave passes this check otherwise"),
+])
+def test_a_forbidden_call_is_told_with_what_its_answer_was_worth(tmp_path, ending, told):
+    """cv2.triangulatePoints in the exercise that asks for triangulation by hand: the points are lost
+    for the call; what its answer is worth is told after the rule (the call's result left as columns
+    is a second mistake the rule alone would hide), and the points stay lost either way."""
+    source = f"""
+        def triangulate(P1, P2, pts1, pts2):
+            a = np.asarray(pts1, dtype=np.float64).reshape(-1, 2).T
+            b = np.asarray(pts2, dtype=np.float64).reshape(-1, 2).T
+            X = cv2.triangulatePoints(np.asarray(P1, dtype=np.float64), np.asarray(P2, dtype=np.float64), a, b)
+            return (X[:3] / X[3]){ending}
+        """
+    result = grade(mutant(tmp_path, "lab11_two_view", source), ["lab11.ex1"], pictures="none",
+                   include_hidden=False)
+    checks = [c for e in result.exercises for c in e.checks if c.max_score]
+    assert all(c.failure == "forbidden_call" and c.score == 0 for c in checks)
+    first = next(c for c in checks if "worked example" in c.name)
+    assert first.message.startswith("triangulate() called cv2.triangulatePoints") and told in first.message, \
+        first.message

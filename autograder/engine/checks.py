@@ -140,6 +140,7 @@ class Trial:
         self.lab = check.exercise.lab
         self._thread = threading.get_ident()  # the sandbox's one caller
         self.forbid = forbid or {}
+        self.forbidden_allowed = False   # (a second look at what a forbidden call's answer was worth)
         self._pictures: list = []  # made into Artifacts only if the grading keeps them
         self.outputs: list[str] = []
         self.student_seconds = 0.0
@@ -199,9 +200,7 @@ class Trial:
         failure = self._fatal.get(function)
         if failure is None:
             outcome = self.sandbox.call(self.lab.module, function, args, kwargs,
-                                        timeout=self.check.timeout,
-                                        forbid=self.lab.forbidden.get(function, ())
-                                        + self.forbid.get(function, ()))
+                                        timeout=self.check.timeout, forbid=self.forbidden(function))
             self.student_seconds += outcome.seconds
             if outcome.output.strip():
                 self.outputs.append(outcome.output)
@@ -228,6 +227,13 @@ class Trial:
         # apart by where they are raised, and re-raising one object grows its traceback.
         raise StudentFailure(failure.outcome, failure.message)
 
+    def forbidden(self, function: str) -> tuple[str, ...]:
+        """The library functions ``function`` may not call in this trial: the lab's and the instructor's
+        (none in a trial that judges the answer a forbidden call gave: :func:`.runner.besides_forbidden`)."""
+        if self.forbidden_allowed:
+            return ()
+        return self.lab.forbidden.get(function, ()) + self.forbid.get(function, ())
+
     def _changed_in_place(self, function: str, args: tuple, kwargs: dict, outcome: CallOutcome):
         """Fail the check when ``function`` changed its caller's arrays and a second call on them,
         as the caller now holds them, answers differently (:mod:`autograder.engine.inplace`): in the
@@ -244,8 +250,7 @@ class Trial:
         if given not in self._in_place:
             def again(call_args, call_kwargs):
                 more = self.sandbox.call(self.lab.module, function, call_args, call_kwargs,
-                                         timeout=self.check.timeout,
-                                         forbid=self.lab.forbidden.get(function, ()) + self.forbid.get(function, ()))
+                                         timeout=self.check.timeout, forbid=self.forbidden(function))
                 self.student_seconds += more.seconds
                 return more.value if more.ok else None
 

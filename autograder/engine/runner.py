@@ -698,6 +698,33 @@ def _in_place_advice(modified) -> CheckResult:
                        hint=measured("work on a copy (e.g. image = image.copy()) or write into a new array"))
 
 
+def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: dict | None,
+                      inputs: Inputs | None) -> Verdict:
+    """A check lost for a forbidden library call, with what the answer that call gave is worth told
+    after the rule (the points stay lost): whether writing the step themselves is all that is left, or
+    the answer is wrong besides (a result of the library's left as columns: the rule alone would hide
+    it). The check is run once more with the calls allowed; anything but a verdict tells nothing."""
+    trial = Trial(sandbox, check, rules, inputs)
+    trial.forbidden_allowed = True
+    try:
+        again = check.func(trial)
+    except Fail as failure:
+        first = str(failure.message).split("\n", 1)[0].rstrip()
+        return replace(verdict, message=f"{_sentence(verdict.message)} Besides, the answer it gave is wrong: "
+                                        f"{first}", mistake=failure.mistake or verdict.mistake)
+    except Exception:  # noqa: BLE001 - the student's code raising, or anything else: nothing more to tell
+        return verdict
+    if again is None or (isinstance(again, Verdict) and again.fraction >= 1.0):
+        return replace(verdict, message=f"{_sentence(verdict.message)} The answer it gave passes this check "
+                                        "otherwise: writing that step yourself is what is left to do.")
+    return verdict
+
+
+def _sentence(message) -> str:
+    message = str(message).rstrip()
+    return message if not message or message[-1] in ".:;!?" else message + "."
+
+
 def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
               modified: list | None = None, rules: dict | None = None,
               painter: "Painter | None" = None, inputs: Inputs | None = None,
@@ -730,6 +757,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = Verdict(0.0, failure.message)
         status = {"not_implemented": NOT_IMPLEMENTED, "grader_error": ERROR}.get(failure.outcome.kind, FAILED)
         tb, student_failure = failure.outcome.traceback, failure.outcome.kind
+        if student_failure == "forbidden_call" and not check.hidden:
+            verdict = besides_forbidden(verdict, sandbox, check, rules, inputs)
     except Exception as exc:  # noqa: BLE001 - a bug in the grader must not stop grading
         verdict, status = Verdict(0.0, f"grader error in this check ({type(exc).__name__}: {exc}); "
                                        "the rest was graded - please tell your instructor"), ERROR
