@@ -1015,3 +1015,58 @@ def test_a_sibling_of_the_students_own_helper_or_of_an_opencv_function_is_a_chan
     assert ("_laplacian_pyramid(mask, levels)", "_gaussian_pyramid(mask, levels)") in offered, offered
     assert ("cv2.estimateAffinePartial2D(src, dst)", "cv2.estimateAffine2D(src, dst)") in offered, offered
     assert not any("_pyramid_depth" in after or "_blend" in after for _, after in offered), offered
+
+
+def test_the_same_slip_in_two_lines_written_alike_or_down_a_matrix_column_is_a_pair_of_neighbours():
+    """A pad written before the image in two lines copied from each other (one for each image), and a
+    translation entry's sign in two rows of a matrix literal: pairs of the same slip tried first. Not
+    neighbours: the same change in two lines written differently."""
+    source = textwrap.dedent("""
+        def graded(a, b, h, s, c):
+            a = np.pad(a, ((h - a.shape[0], 0), (0, 0)))
+            b = np.pad(b, ((h - b.shape[0], 0), (0, 0)))
+            other = np.pad(a, ((0, 0), (h - 1, 0)))
+            T = np.array([[s, 0.0, s * c[0]], [0.0, s, s * c[1]], [0.0, 0.0, 1.0]])
+            return a, b, other, T, 2 ^ h, np.column_stack([a, b])
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    mutants = student.mutants("graded")
+
+    def change(operator, line, after):   # (the change shown: the smallest expression around it)
+        return next(m for m in mutants if m.operator == operator and student.fix(m).changes[0][0] == line
+                    and student.fix(m).changes[0][2] == after)
+
+    pad_a, pad_b = change("swap_items", 3, "(0, h - a.shape[0])"), change("swap_items", 4, "(0, h - b.shape[0])")
+    other = change("swap_items", 5, "((0, 0), (0, h - 1))")
+    assert student.mirrored(pad_a, pad_b) and not student.mirrored(pad_a, other)
+    sign_x, sign_y = change("sign", 6, "[s, 0.0, -(s * c[0])]"), change("sign", 6, "[0.0, s, -(s * c[1])]")
+    assert student.neighbours(sign_x, sign_y) and not student.neighbours(sign_x, change("sign", 6, "[-s, 0.0, s * c[0]]"))
+    assert any("2 ** h" in student.fix(m).changes[0][2] for m in mutants if m.operator == "arithmetic")
+    assert ("np.column_stack([a, b])", "np.vstack([a, b])") in \
+        [student.fix(m).changes[0][1:] for m in mutants if m.operator == "function"]
+
+
+def test_a_slip_copied_into_the_line_written_alike_for_the_other_image_is_told_at_both(tmp_path):
+    """Side-by-side matches with each image padded at the top where the padding belongs below it, in two
+    lines written alike (one per image): mending one line passes the check whose shorter image it pads,
+    not the others; the pair of the same change in both lines is tried first and told."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab08_homographies", """
+        def draw_matches(img1, img2, pts1, pts2):
+            a = cv2.cvtColor(img1, cv2.COLOR_GRAY2BGR) if img1.ndim == 2 else img1
+            b = cv2.cvtColor(img2, cv2.COLOR_GRAY2BGR) if img2.ndim == 2 else img2
+            height = max(a.shape[0], b.shape[0])
+            a = np.pad(a, ((height - a.shape[0], 0), (0, 0), (0, 0)))
+            b = np.pad(b, ((height - b.shape[0], 0), (0, 0), (0, 0)))
+            canvas = np.ascontiguousarray(np.hstack([a, b]))
+            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                p = (int(round(x1)), int(round(y1)))
+                q = (int(round(x2 + a.shape[1])), int(round(y2)))
+                cv2.line(canvas, p, q, (0, 255, 0), 1)
+            return canvas
+        """)
+    checks, told = _failed_and_repaired(folder, "lab08.ex3")
+    assert checks and any("`(height - a.shape[0], 0)` to `(0, height - a.shape[0])`" in m
+                          and "`(height - b.shape[0], 0)` to `(0, height - b.shape[0])`" in m for m in told), \
+        [c.message for c in checks]

@@ -462,7 +462,8 @@ def _make_drop_statement(node, payload):
     return ast.Pass()
 
 
-_ARITHMETIC = {"mul_div": ast.Div, "div_mul": ast.Mult, "matmul_mult": ast.Mult, "mult_matmul": ast.MatMult}
+_ARITHMETIC = {"mul_div": ast.Div, "div_mul": ast.Mult, "matmul_mult": ast.Mult, "mult_matmul": ast.MatMult,
+               "xor_pow": ast.Pow}
 
 
 def _make_other_name_line(node, payload):
@@ -1254,7 +1255,8 @@ _UNARY = {"sin", "cos", "tan", "arcsin", "arccos", "arctan", "abs", "absolute", 
           "log", "round", "rint", "floor", "ceil", "deg2rad", "rad2deg", "radians", "degrees"}
 _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin", "tan": "arctan", "arctan": "tan",
              "floor": "ceil", "ceil": "floor", "round": "floor", "mean": "median", "median": "mean", "sum": "mean",
-             "log": "log10", "log10": "log"}
+             "log": "log10", "log10": "log",
+             "column_stack": "vstack", "vstack": "column_stack", "hstack": "vstack"}
 
 
 def _student_changes(node, parent, parents):
@@ -1272,6 +1274,8 @@ def _student_changes(node, parent, parents):
     if isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult)) \
             and isinstance(node, (ast.Name, ast.Subscript)) and node is parent.right:
         yield "sign", "insert", ""   # a term's sign: `x + s * y` for `x - s * y`
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitXor) and isinstance(node.left, ast.Constant):
+        yield "arithmetic", "xor_pow", ""   # `2 ^ n` (bitwise exclusive or, in Python) where `2 ** n` belongs
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult):
         for dropped, factor in (("left", node.left), ("right", node.right)):
             if not (isinstance(factor, ast.UnaryOp) or (isinstance(factor, ast.Constant) and factor.value in (1, -1))):

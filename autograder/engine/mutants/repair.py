@@ -42,7 +42,7 @@ from ...loading.reading import MAX_SOURCE_BYTES
 from ..checks import Trial, Verdict, fingerprint
 from . import naming
 from .helper import HelperFailed
-from .operators import _MAKE, _defs, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
+from .operators import _MAKE, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
@@ -250,7 +250,8 @@ class _Student:
 
     def neighbours(self, first, second) -> bool:
         """Whether two changes are of items side by side: the same list's, tuple's or call's (`[..., x2,
-        y2, 1]`)."""
+        y2, 1]`), or a matrix literal's entries one above the other (its translation column, `s * c[0]`
+        over `s * c[1]`)."""
         (where_a, ordinal_a, _, _), (where_b, ordinal_b, _, _) = first.edits[0], second.edits[0]
         if where_a != where_b:
             return False
@@ -258,8 +259,34 @@ class _Student:
         if not (0 <= ordinal_a < len(nodes) and 0 <= ordinal_b < len(nodes)):
             return False
         a, b = (parents.get(id(nodes[o]), (None, None, None)) for o in (ordinal_a, ordinal_b))
-        return a[0] is not None and a[0] is b[0] and a[1] == b[1] and a[2] is not None and b[2] is not None \
-            and abs(a[2] - b[2]) == 1
+        if a[0] is not None and a[0] is b[0] and a[1] == b[1] and a[2] is not None and b[2] is not None \
+                and abs(a[2] - b[2]) == 1:
+            return True
+        entries = [_entry_of_literal(nodes[o], parents) for o in (ordinal_a, ordinal_b)]
+        if None in entries or entries[0][1] != entries[1][1] or abs(entries[0][0] - entries[1][0]) != 1:
+            return False
+        matrices = [_matrix_of(nodes[o], parents) for o in (ordinal_a, ordinal_b)]
+        return matrices[0] is not None and matrices[0] is matrices[1]
+
+    def mirrored(self, first, second) -> bool:
+        """Whether two changes are the same change of two statements written alike but for their names
+        (`a = np.pad(a, ((h - a.shape[0], 0), ...))` beside `b = np.pad(b, ...)`: one image's line
+        copied for the other's, the slip with it), at the same place of each."""
+        (where_a, ordinal_a, _, _), (where_b, ordinal_b, _, _) = first.edits[0], second.edits[0]
+        if where_a != where_b:
+            return False
+        nodes, parents = self._walk(where_a)
+        if not (0 <= ordinal_a < len(nodes) and 0 <= ordinal_b < len(nodes)):
+            return False
+        places = []
+        for ordinal in (ordinal_a, ordinal_b):
+            statement = nodes[ordinal]
+            while not isinstance(statement, ast.stmt) and id(statement) in parents:
+                statement = parents[id(statement)][0]
+            inside = list(ast.walk(statement))
+            places.append((statement, next((i for i, node in enumerate(inside) if node is nodes[ordinal]), None)))
+        (one, at_one), (other, at_other) = places
+        return one is not other and at_one == at_other and _shape_of(one) == _shape_of(other)
 
     def slip(self, mutant) -> str:
         """What the mutant's (first) change does, alike for the same slip at two places: its payload,
@@ -346,6 +373,24 @@ class _Student:
         if shortened is None:
             return None
         return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
+
+
+def _shape_of(statement) -> str:
+    """A statement's code with every name the same: two lines written alike for two images compare equal."""
+    masked = copy.deepcopy(statement)
+    for node in ast.walk(masked):
+        if isinstance(node, ast.Name):
+            node.id = "_"
+    return ast.dump(masked)
+
+
+def _matrix_of(node, parents):
+    """The nested list literal an entry (or its minus) belongs to."""
+    for _ in range(3):
+        node = parents.get(id(node), (None,))[0]
+        if isinstance(node, ast.List) and node.elts and all(isinstance(row, ast.List) for row in node.elts):
+            return node
+    return None
 
 
 def _twin_swap(fix: "Fix") -> bool:
@@ -749,7 +794,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                 continue
             candidates.append(mutant)
             passed = apart
-    fixes, lines = [], set()
+    fixes, lines, halfway = [], set(), set()
     shown = [(mutant, variant.fix(mutant)) for mutant in candidates]
     # The smallest change of the text first: the student's slip is a few characters (`R.T` for `R`),
     # where a change that compensates for it elsewhere on the line rewrites more (`c @ R.T`).
@@ -768,6 +813,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             lines.add(fix.changes[0][0])
         elif clock.left() > 0 and not (mutant.key in variant.checked and not variant.other_checks()):
             ruled_out.add(mutant.key)   # (one the check passed with waits for another check to confirm it)
+            halfway.add(mutant.key)     # right on the failing inputs, not on all: half of a slip made twice?
     if fixes:
         # A change in a helper this function shares with other graded functions (the warp's
         # interpolation) mends its answers by breaking theirs: told only when nothing else is. A
@@ -791,9 +837,15 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     new = lambda a, b: _apart(a, b) and (a.key, b.key) not in tried  # noqa: E731
     # The slip made at two neighbours first, of all its places: `x2, y2` written where `x1, y1`
     # belong, side by side in one row (a line copied from image 2's with its names half changed).
-    side = sorted(((a, b) for same in slips.values() for a, b in itertools.combinations(same[:40], 2)
-                   if student.neighbours(a, b) and new(a, b)), key=size)[:NEIGHBOUR_PAIRS]
-    pairs += side
+    # (or at the same place of two lines written alike for two images: one line copied for the other),
+    # before the nearest changes' pairs: where the code says the slip was made twice, it is tried first.
+    alike = [(a, b) for same in slips.values() for a, b in itertools.combinations(same[:40], 2) if _apart(a, b)]
+    halves = lambda pair: pair[0].key in halfway or pair[1].key in halfway  # noqa: E731
+    side = sorted((pair for pair in alike if student.neighbours(*pair)), key=lambda pair: (not halves(pair), size(pair)))
+    copied = sorted((pair for pair in alike if student.mirrored(*pair)), key=lambda pair: (not halves(pair), size(pair)))
+    side = sorted(side[:NEIGHBOUR_PAIRS] + copied[:NEIGHBOUR_PAIRS], key=lambda pair: not halves(pair))
+    sides = {(a.key, b.key) for a, b in side}
+    pairs = side + [(a, b) for a, b in pairs if (a.key, b.key) not in sides and (b.key, a.key) not in sides]
     # Then each slip's pairs, smallest first, one slip after another in turns (as the single changes):
     # many small slips' pairs would otherwise fill the count before a larger slip's second pair.
     turns = [sorted(((a, b) for a, b in itertools.combinations(same[:8], 2) if new(a, b) and (a, b) not in side),
@@ -807,7 +859,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         both = replace(first, edits=first.edits + second.edits)
         values = variant.answers(both, failing, inputs)
         if values is not None and (variant.passes_check(both, values, failing) if subtle else all(
-                variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing))):
+                variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing))
+                or (np.isfinite(off) and PAIR_NEARER * sum(naming.distance(v, references[i]) for v, i in
+                                                           zip(values, failing)) <= off
+                    and variant.passes_check(both, values, failing))):   # (the student's own recipe: as singles)
             fix = variant.fix(both)
             if fix is not None and variant.confirmed(both, failing) and not variant.guard_untested(both, failing):
                 return variant.repair([(both, fix)])
@@ -818,6 +873,7 @@ FIXES = 3         # the most fixes told (one per line)
 BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
+PAIR_NEARER = 3   # (a pair of changes, fewer than the single ones: judged by the check from this many times)
 REPLAYS = 4       # the most changes a failed check is replayed with
 OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by a check must pass too
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
