@@ -1070,3 +1070,18 @@ def test_a_slip_copied_into_the_line_written_alike_for_the_other_image_is_told_a
     assert checks and any("`(height - a.shape[0], 0)` to `(0, height - a.shape[0])`" in m
                           and "`(height - b.shape[0], 0)` to `(0, height - b.shape[0])`" in m for m in told), \
         [c.message for c in checks]
+
+
+def test_opencvs_zero_one_mask_taken_as_indices_is_made_a_boolean_mask():
+    """`inliers = mask.ravel()` then `pts1[inliers]`: the 0/1 mask findFundamentalMat returns picks points
+    0 and 1 over and over; `.astype(bool)` where it is made or where it indexes. Not offered for an index
+    that is no mask by its name, nor for a mask already made boolean."""
+    source = textwrap.dedent("""
+        def graded(pts1, pts2, mask, k):
+            inliers = mask.ravel()
+            kept = pts1[inliers], pts2[k], pts2[mask.astype(bool)]
+            return kept
+    """)
+    offered = [after for _, after in _shown_changes(source, "boolean_mask")]
+    assert "mask.ravel().astype(bool)" in offered and any("pts1[inliers.astype(bool)]" in a for a in offered), offered
+    assert not any("k.astype" in a or "astype(bool).astype" in a for a in offered), offered

@@ -94,6 +94,7 @@ OPERATORS = {
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),
     "literal": ("argument", "value", "flag"),         # cv2.computeCorrespondEpilines(p, 2, F) -> (p, 1, F)
+    "boolean_mask": ("mask", "boolean", "index"),   # pts[mask.ravel()] -> pts[mask.ravel().astype(bool)]
     "negative_index": ("negative", "index", "abs", "wrap"),   # ramp[i - j] -> ramp[np.abs(i - j)]
     "part": ("column", "part", "whole", "component"),   # np.linalg.norm(X, axis=1) -> X[:, 2] (seen elsewhere)                 # m1 & m2 -> m1 | m2, a and b -> a or b          # cv2.remap(img, mx, my) -> np.float32(mx), ...
 }
@@ -693,6 +694,10 @@ def _make_function(node, payload):
     return new
 
 
+def _make_boolean_mask(node, payload):
+    return ast.Call(ast.Attribute(copy.deepcopy(node), "astype", ast.Load()), [ast.Name("bool", ast.Load())], [])
+
+
 def _make_part(node, payload):
     return ast.parse(payload, mode="eval").body   # a part of the array, as the function writes it elsewhere
 
@@ -701,7 +706,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {"constant": _make_constant, "literal": _make_constant, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+_MAKE = {"constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1280,6 +1285,14 @@ def _student_changes(node, parent, parents):
         for dropped, factor in (("left", node.left), ("right", node.right)):
             if not (isinstance(factor, ast.UnaryOp) or (isinstance(factor, ast.Constant) and factor.value in (1, -1))):
                 yield "drop_factor", dropped, ""   # a factor that does not belong: `f * Z` for `Z`
+    # OpenCV's 0/1 masks (findFundamentalMat's, findHomography's) used as indices pick items 0 and 1: a
+    # mask, known by its name, indexing (`pts[mask.ravel()]`) or made for it (`inliers = mask.ravel()`)
+    if isinstance(parent, ast.Subscript) and parent.slice is node and isinstance(parent.ctx, ast.Load) \
+            and isinstance(node, (ast.Name, ast.Call, ast.Attribute)) and not _is_astype(node) and _a_mask(node):
+        yield "boolean_mask", None, ""
+    if isinstance(parent, ast.Assign) and parent.value is node and isinstance(node, (ast.Call, ast.Attribute)) \
+            and not _is_astype(node) and any(_a_mask(part) for part in (*parent.targets, node)):
+        yield "boolean_mask", None, ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) and _indexes(node, parent, parents) \
             and not isinstance(node.left, ast.Constant) and not isinstance(node.right, ast.Constant):
         yield "negative_index", "wrap", ""   # `ramp[i - j]`: a negative index wraps round where |i - j| belongs
@@ -1369,6 +1382,14 @@ def _helper_changes(node, words):
         if len(positional) - len(fn.args.defaults) <= len(node.args) <= len(positional) and offered < 3:
             offered += 1
             yield "function", name, ""
+
+
+def _a_mask(node) -> bool:
+    return any(word in ast.unparse(node).lower() for word in ("mask", "inlier"))
+
+
+def _is_astype(node) -> bool:
+    return isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "astype"
 
 
 def _indexes(node, parent, parents) -> bool:
