@@ -1085,3 +1085,24 @@ def test_opencvs_zero_one_mask_taken_as_indices_is_made_a_boolean_mask():
     offered = [after for _, after in _shown_changes(source, "boolean_mask")]
     assert "mask.ravel().astype(bool)" in offered and any("pts1[inliers.astype(bool)]" in a for a in offered), offered
     assert not any("k.astype" in a or "astype(bool).astype" in a for a in offered), offered
+
+
+def test_a_step_taken_out_below_the_line_another_fix_mends_is_read_as_working_on_its_value():
+    """`den = std_l * std_r` reads what the line making `std_l` makes: dropping `std_l` there works on the
+    value the other fix mends (a compensation, when both are confirmed, is not told: `nearest`); a line
+    that reads nothing the first makes is not fed by it."""
+    source = textwrap.dedent("""
+        def graded(left, right, k):
+            std_l = np.sqrt(box(left, k) ** 2 - box(left, k) ** 2)
+            std_r = np.sqrt(box(right * right, k))
+            den = std_l * std_r
+            return den
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    mutants = student.mutants("graded")
+    inside = next(m for m in mutants if m.operator == "power_inside" and m.line == 3)
+    dropped = next(m for m in mutants if m.operator == "drop_factor" and m.line == 5
+                   and student.fix(m).changes[0][2] == "std_r")
+    elsewhere = next(m for m in mutants if m.line == 4)
+    assert student.feeds(inside, dropped) and not student.feeds(dropped, inside)
+    assert not student.feeds(inside, elsewhere)

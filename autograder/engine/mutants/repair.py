@@ -268,6 +268,28 @@ class _Student:
         matrices = [_matrix_of(nodes[o], parents) for o in (ordinal_a, ordinal_b)]
         return matrices[0] is not None and matrices[0] is matrices[1]
 
+    def feeds(self, first, second) -> bool:
+        """Whether the statement ``first`` changes assigns a name the statement ``second`` changes reads
+        (both in one def, ``first`` above): ``second`` works on what ``first`` makes."""
+        (where_a, ordinal_a, _, _), (where_b, ordinal_b, _, _) = first.edits[0], second.edits[0]
+        if where_a != where_b or len(first.edits) != 1 or len(second.edits) != 1:
+            return False
+        nodes, parents = self._walk(where_a)
+        if not (0 <= ordinal_a < len(nodes) and 0 <= ordinal_b < len(nodes)):
+            return False
+        made, using = (self._statement_node(nodes[o], parents) for o in (ordinal_a, ordinal_b))
+        if made is using or not isinstance(made, (ast.Assign, ast.AugAssign)) or made.lineno >= using.lineno:
+            return False
+        targets = made.targets if isinstance(made, ast.Assign) else [made.target]
+        assigned = {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+        return any(isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load) and n.id in assigned for n in ast.walk(using))
+
+    @staticmethod
+    def _statement_node(node, parents):
+        while not isinstance(node, ast.stmt) and id(node) in parents:
+            node = parents[id(node)][0]
+        return node
+
     def mirrored(self, first, second) -> bool:
         """Whether two changes are the same change of two statements written alike but for their names
         (`a = np.pad(a, ((h - a.shape[0], 0), ...))` beside `b = np.pad(b, ...)`: one image's line
@@ -870,6 +892,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
 
 
 FIXES = 3         # the most fixes told (one per line)
+REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "unwrap", "drop_conversion",
+            "drop_mask", "drop_slice"}   # changes that take a step out
 BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
@@ -1187,7 +1211,12 @@ class _Variants:
         best = min(apart)
         if not np.isfinite(best):
             return fixes
-        return [pair for pair, far in zip(fixes, apart) if far <= 1.5 * best + 1e-9 * (1.0 + best)]
+        near = [pair for pair, far in zip(fixes, apart) if far <= 1.5 * best + 1e-9 * (1.0 + best)]
+        # A step removed from a line that reads what another fix's line makes (`std_l * std_r` -> `std_r`
+        # below the line making `std_l` wrong) undoes the slip's effect there without mending it: not told.
+        return [(mutant, fix) for mutant, fix in near
+                if not (mutant.operator in REMOVALS and any(self.student.feeds(other, mutant)
+                                                            for other, _ in near if other is not mutant))] or near
 
     def _answers_kept(self, mutant, every, wanted) -> bool:
         """Whether in the function's other modes (and on its images in the other number of channels)
