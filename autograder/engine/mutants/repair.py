@@ -252,37 +252,42 @@ class _Student:
         """Whether two changes are of items side by side: the same list's, tuple's or call's (`[..., x2,
         y2, 1]`), or a matrix literal's entries one above the other (its translation column, `s * c[0]`
         over `s * c[1]`)."""
-        (where_a, ordinal_a, _, _), (where_b, ordinal_b, _, _) = first.edits[0], second.edits[0]
-        if where_a != where_b:
+        edited = self._edited(first, second)
+        if edited is None:
             return False
-        nodes, parents = self._walk(where_a)
-        if not (0 <= ordinal_a < len(nodes) and 0 <= ordinal_b < len(nodes)):
-            return False
-        a, b = (parents.get(id(nodes[o]), (None, None, None)) for o in (ordinal_a, ordinal_b))
+        (node_a, node_b), parents = edited
+        a, b = (parents.get(id(node), (None, None, None)) for node in (node_a, node_b))
         if a[0] is not None and a[0] is b[0] and a[1] == b[1] and a[2] is not None and b[2] is not None \
                 and abs(a[2] - b[2]) == 1:
             return True
-        entries = [_entry_of_literal(nodes[o], parents) for o in (ordinal_a, ordinal_b)]
+        entries = [_entry_of_literal(node, parents) for node in (node_a, node_b)]
         if None in entries or entries[0][1] != entries[1][1] or abs(entries[0][0] - entries[1][0]) != 1:
             return False
-        matrices = [_matrix_of(nodes[o], parents) for o in (ordinal_a, ordinal_b)]
+        matrices = [_matrix_of(node, parents) for node in (node_a, node_b)]
         return matrices[0] is not None and matrices[0] is matrices[1]
 
     def feeds(self, first, second) -> bool:
         """Whether the statement ``first`` changes assigns a name the statement ``second`` changes reads
         (both in one def, ``first`` above): ``second`` works on what ``first`` makes."""
-        (where_a, ordinal_a, _, _), (where_b, ordinal_b, _, _) = first.edits[0], second.edits[0]
-        if where_a != where_b or len(first.edits) != 1 or len(second.edits) != 1:
+        edited = self._edited(first, second) if len(first.edits) == len(second.edits) == 1 else None
+        if edited is None:
             return False
-        nodes, parents = self._walk(where_a)
-        if not (0 <= ordinal_a < len(nodes) and 0 <= ordinal_b < len(nodes)):
-            return False
-        made, using = (self._statement_node(nodes[o], parents) for o in (ordinal_a, ordinal_b))
+        made, using = (self._statement_node(node, edited[1]) for node in edited[0])
         if made is using or not isinstance(made, (ast.Assign, ast.AugAssign)) or made.lineno >= using.lineno:
             return False
         targets = made.targets if isinstance(made, ast.Assign) else [made.target]
         assigned = {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
         return any(isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load) and n.id in assigned for n in ast.walk(using))
+
+    def _edited(self, first, second):
+        """((the node the first change edits, the second's), the def's parents), both in one def; or None."""
+        (where_a, ordinal_a, _, _), (where_b, ordinal_b, _, _) = first.edits[0], second.edits[0]
+        if where_a != where_b:
+            return None
+        nodes, parents = self._walk(where_a)
+        if not (0 <= ordinal_a < len(nodes) and 0 <= ordinal_b < len(nodes)):
+            return None
+        return (nodes[ordinal_a], nodes[ordinal_b]), parents
 
     @staticmethod
     def _statement_node(node, parents):
@@ -294,19 +299,13 @@ class _Student:
         """Whether two changes are the same change of two statements written alike but for their names
         (`a = np.pad(a, ((h - a.shape[0], 0), ...))` beside `b = np.pad(b, ...)`: one image's line
         copied for the other's, the slip with it), at the same place of each."""
-        (where_a, ordinal_a, _, _), (where_b, ordinal_b, _, _) = first.edits[0], second.edits[0]
-        if where_a != where_b:
-            return False
-        nodes, parents = self._walk(where_a)
-        if not (0 <= ordinal_a < len(nodes) and 0 <= ordinal_b < len(nodes)):
+        edited = self._edited(first, second)
+        if edited is None:
             return False
         places = []
-        for ordinal in (ordinal_a, ordinal_b):
-            statement = nodes[ordinal]
-            while not isinstance(statement, ast.stmt) and id(statement) in parents:
-                statement = parents[id(statement)][0]
-            inside = list(ast.walk(statement))
-            places.append((statement, next((i for i, node in enumerate(inside) if node is nodes[ordinal]), None)))
+        for node in edited[0]:
+            statement = self._statement_node(node, edited[1])
+            places.append((statement, next((i for i, held in enumerate(ast.walk(statement)) if held is node), None)))
         (one, at_one), (other, at_other) = places
         return one is not other and at_one == at_other and _shape_of(one) == _shape_of(other)
 
