@@ -921,6 +921,16 @@ def test_a_power_moved_across_a_students_own_average_is_a_change_tried():
     assert ("_box_mean(x, k) ** 2", "_box_mean(x ** 2, k)") in shown, shown
 
 
+def test_a_mean_of_ratios_where_the_ratio_to_the_mean_belongs_is_a_change_tried():
+    """A weak-perspective scale taken as the mean of every point's f / Z where f over the mean depth
+    belongs: the mean moved inside the ratio's denominator."""
+    shown = _shown_changes(textwrap.dedent("""
+        def graded(X, f):
+            return np.mean(f / X[:, 2]) * X[:, :2]
+    """), "power_inside")
+    assert ("np.mean(f / X[:, 2])", "f / np.mean(X[:, 2])") in shown, shown
+
+
 def _shown_changes(source: str, operator: str) -> list:
     """(before, after) of the operator's changes of `graded` in ``source``, in the order they are made."""
     student = repair._Student(source, ast.parse(source), {"graded"})

@@ -592,6 +592,11 @@ def _make_measure(node, payload):
 
 
 def _make_power_inside(node, payload):
+    if payload == "ratio":   # np.mean(f / z) -> f / np.mean(z): the ratio of the mean, not the mean of ratios
+        call = copy.deepcopy(node)
+        ratio = call.args[0]
+        call.args[0] = ratio.right
+        return ast.BinOp(ratio.left, ast.Div(), call)
     if payload == "inside":   # np.mean(d) ** 2 -> np.mean(d ** 2)
         call = copy.deepcopy(node.left)
         call.args[0] = ast.BinOp(call.args[0], ast.Pow(), copy.deepcopy(node.right))
@@ -1662,6 +1667,9 @@ def _measure_changes(node):
     if isinstance(node, ast.Call) and node.args and isinstance(node.args[0], ast.BinOp) \
             and isinstance(node.args[0].op, ast.Pow) and _averages(_dotted(node.func)):
         yield "power_inside", "outside", ""
+    if isinstance(node, ast.Call) and len(node.args) == 1 and isinstance(node.args[0], ast.BinOp) \
+            and isinstance(node.args[0].op, ast.Div) and _dotted(node.func).rsplit(".", 1)[-1] in _REDUCED:
+        yield "power_inside", "ratio", ""   # a mean of ratios where the ratio to the mean belongs
 
 
 def _averages(dotted: str) -> bool:
