@@ -178,10 +178,21 @@ def rotate_default(t):
         probe=image_probe(t, "rotate"))
 
 
-@ex2.check("rotate keeps a grey image grey and its size", points=2)
+@ex2.check("rotate keeps a grey image grey and its size, a quarter turn too", points=2)
 def rotate_grey(t):
     source = photo("camera", (160, 120), grey=True)
     centre = truth.image_centre(source.shape)
+    # A quarter turn of a non-square image stays in the input's frame (warps keep the input's size):
+    # np.rot90 would give a (W, H) image with nothing cut off.
+    quarter = t.call("rotate", source, angle_deg=90)
+    if isinstance(quarter, np.ndarray) and quarter.shape[:2] == source.shape[1::-1]:
+        t.fail(f"rotate(grey 160x120 image, angle_deg=90) returned shape {quarter.shape}; expected {source.shape}: "
+               "a rotation keeps the input's size, its corners cut off and the rest filled black, also for "
+               "multiples of 90 degrees (np.rot90 turns the frame with the image)")
+    verdict = judge_warp(t, "rotate(grey image, angle_deg=90)", quarter, source, truth.rotation(90, centre),
+                         truth.rotation_mistakes(90, centre), show=False)
+    if verdict.fraction < 1.0:
+        return verdict
     return judge_warp(t, "rotate(grey image, angle_deg=-30)",
                       t.call("rotate", source, angle_deg=-30), source,
                       truth.rotation(-30, centre), truth.rotation_mistakes(-30, centre),

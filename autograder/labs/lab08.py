@@ -1217,6 +1217,18 @@ def ransac_mask_of_h(t):
                f"({closer} unmarked pairs are closer than the farthest marked one){other}, so the two do not come "
                "from one model (e.g. the mask of another sample than the H returned).",
                mistake="the inlier mask is not the inliers of the returned H")
+    # The threshold given is the one used: pairs 1.6-2.4 px off are inliers at 3 px, not at 1 px.
+    src, dst, _, off = truth.threshold_problem(12)
+    what = "homography_ransac(src, dst, threshold=1.0, seed=0)"
+    H, inliers = ransac_result(t, src, dst, what, threshold=1.0, seed=0)
+    far, near = mask_disagreement(H, inliers, src, dst, 1.0)
+    if (far | near).mean() > MASK_DISAGREEMENT:
+        kept = int((inliers & off).sum())
+        larger = " (as if a larger threshold were used: is `threshold` passed on?)" if kept >= 0.8 * off.sum() else ""
+        t.fail(f"{what}: the mask marks {kept} of the {int(off.sum())} pairs 1.6 to 2.4 px off, and "
+               f"{int(far.sum())} marked pairs are more than {MASK_BAND:g} px from where your H sends them: "
+               f"the mask is not H's inliers at the threshold given{larger}")
+    notes.append(f"threshold 1 px: {int((inliers & off).sum())} of the {int(off.sum())} pairs 2 px off marked")
     return passed("; ".join(notes))
 
 
@@ -2434,7 +2446,7 @@ def depth_probe(t: Trial) -> Probe:
     def answer():
         return blend_probe(t, dark, bright, mask, levels=5)
 
-    return Probe(f"blend_multiband/depth probe", answer, lambda: pyramid_depths(dark, bright, mask),
+    return Probe("blend_multiband/depth probe", answer, lambda: pyramid_depths(dark, bright, mask),
                  truth.multiband(dark, bright, mask, 5))
 
 

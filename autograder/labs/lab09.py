@@ -445,12 +445,21 @@ def pinhole_property(t):
               describe=lambda c: f"fixtures.lab09.points_in_front(seed={c[0]}, n=10), f={c[1]!r}")
 
 
-@ex1.check("a single (3,) point gives a single (2,) result, the lab sheet's (1, 1, 2) with f = 1 too",
-           points=1)
+@ex1.check("a single (3,) point gives a single (2,) result, the lab sheet's (1, 1, 2) with f = 1 too; "
+           "one row (1, 3) gives (1, 2)", points=1)
 def pinhole_single(t):
     X = np.array([0.3, -0.2, 4.0])
     judge_single_point(t, "pinhole_project((3,) point, f=100)", t.call("pinhole_project", X, 100.0),
                        truth.pinhole(X, 100.0)[0])
+    # An (N, 3) array with N = 1 is an array of points like any other: one row back, not a single point.
+    row = t.call("pinhole_project", X[None], 100.0)
+    if isinstance(row, np.ndarray) and row.shape == (2,):
+        t.fail("pinhole_project((1, 3) array, f=100) returned shape (2,); expected (1, 2): only a (3,) point "
+               "gives a (2,) result, an (N, 3) array gives (N, 2) for N = 1 too (np.squeeze drops that row's axis)")
+    row = t.expect_array(row, "pinhole_project((1, 3) array, f=100)", shape=(1, 2), kind="iuf")
+    if point_error(row, truth.pinhole(X[None], 100.0)) > at_precision(1e-6 * magnitude(row), magnitude(row)):
+        shown, wanted = format_arrays_apart(row, truth.pinhole(X[None], 100.0))
+        t.fail(f"pinhole_project((1, 3) array, f=100) returned {shown}; expected {wanted}")
     # The sheet's own sample, as a student types it: whole numbers, so an integer array.
     sample = np.array([1, 1, 2])
     judge_single_point(t, "pinhole_project(np.array([1, 1, 2]), f=1)", t.call("pinhole_project", sample, 1),
@@ -675,6 +684,16 @@ def focal_lengths(t):
     for i, f in enumerate(fs):
         judge_points(t, f"project_focal_lengths(...)[{i}] (f = {f:g})", got[i], expected[i],
                      truth.projection_mistakes(f, X), probe=points_probe(t, "project_focal_lengths"))
+    # A single (3,) point is one point: one projection per focal length, (F, 2) or (F, 1, 2).
+    single = t.call("project_focal_lengths", X[0], fs)
+    if not (isinstance(single, np.ndarray) and single.shape in ((3, 2), (3, 1, 2))):
+        shape = single.shape if isinstance(single, np.ndarray) else type(single).__name__
+        t.fail(f"project_focal_lengths((3,) point, [100, 500, 1000]) returned shape {shape}; expected (3, 2) or "
+               "(3, 1, 2): a single point gives one projection per focal length (size the result by the points "
+               "after making them 2-D, not by len() of the argument)")
+    if point_error(np.asarray(single, float).reshape(3, 2), expected[:, 0]) > at_precision(1e-6 * scale, scale):
+        t.fail("project_focal_lengths((3,) point, [100, 500, 1000]) is wrong for a single point: "
+               f"{format_arrays_apart(np.asarray(single, float).reshape(3, 2), expected[:, 0])[0]}")
     return passed("the image grows in proportion to f")
 
 
@@ -1136,12 +1155,21 @@ def _drawn_radius(got, image, pts, color):
     return best + 1 if differences[best] < 2e-4 and differences[best] * 3 < min(others) else None
 
 
-@ex5.check("draw_points draws filled circles at the points, anywhere on a 400x300 image", points=2)
+@ex5.check("draw_points draws filled circles at the points, anywhere on a 400x300 image, grey or colour",
+           points=2)
 def draw_example(t):
     image = photo("astronaut", (400, 300))
     # x and y past 255 too: pixel coordinates of an ordinary photo do not fit in 8 bits
     pts = np.array([[20.3, 30.7], [300.0, 75.0], [380.6, 20.2], [50.5, 280.4], [270.2, 260.9], [150.2, 130.9]])
-    return judge_drawing(t, "draw_points(400x300 image, pts)", t.call("draw_points", image, pts), image, pts)
+    verdict = judge_drawing(t, "draw_points(400x300 image, pts)", t.call("draw_points", image, pts), image, pts)
+    grey = photo("astronaut", (400, 300), grey=True)
+    drawn = t.call("draw_points", grey, pts)
+    if isinstance(drawn, np.ndarray) and drawn.shape != grey.shape:
+        t.fail(f"draw_points(grey 400x300 image, pts) returned shape {drawn.shape}; expected {grey.shape}: a grey "
+               "image comes back grey (a function returns the channel count it is given; cv2.circle draws on a "
+               "grey image with the colour's first value)")
+    t.expect_array(drawn, "draw_points(grey 400x300 image, pts)", shape=grey.shape, dtype=np.uint8)
+    return verdict
 
 
 DRAWING = ("circle", "line", "rectangle", "drawMarker", "putText", "ellipse", "polylines", "fillPoly")
@@ -1462,6 +1490,9 @@ CONSISTENCY_SLACK = 0.05   # px the recomputed error may exceed the returned rms
 def calibration_consistent(t):
     images, _, corners = truth.calibration_views()
     what, K, dist, rms = calibration_result(t, images, truth.CALIBRATION_PATTERN)
+    if dist.size == 4:   # (the K may still be right: only this check, of the three, asks for all five)
+        t.fail(f"{what}[1] (dist) has 4 values; expected OpenCV's five (k1, k2, p1, p2, k3), as "
+               "cv2.calibrateCamera returns them: without k3 the lens it estimated is not the one returned")
     recomputed = truth.reprojection_rms(K, dist, corners)
     if np.isnan(recomputed):
         t.fail(f"{what}[1] (dist) has {dist.size} values, a length OpenCV's distortion model does not have "

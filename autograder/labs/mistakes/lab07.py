@@ -128,12 +128,19 @@ MISTAKES = {
         def scaling_matrix(sx, sy):
             return np.diag([float(sx), float(sx), 1.0])
         """, ["sy is ignored"]),
-    "shear about the centre": ("lab07.ex4", """
+    "shear about the centre, its offset written in": ("lab07.ex4", """
         def shear(image, s=0.5):
             h, w = image.shape[:2]
             M = shear_matrix(s); M[0, 2] = -s * (h - 1) / 2
             return _warp(image, M)
         """, ["about the image centre"]),
+    "a quarter turn by np.rot90": ("lab07.ex2", """
+        _reference_rotate = rotate
+        def rotate(image, angle_deg=45):
+            if angle_deg % 90 == 0:
+                return np.ascontiguousarray(np.rot90(image, int(angle_deg // 90)))
+            return _reference_rotate(image, angle_deg)
+        """, ["keeps the input's size", "np.rot90"]),
     "shear ignores s": ("lab07.ex4", """
         def shear(image, s=0.5):
             return _warp(image, shear_matrix(0.5))

@@ -321,6 +321,11 @@ MISTAKES = {
         def homography_ransac(src, dst, threshold=3.0, seed=None):
             return _reference_ransac(src, dst, 1.0, seed)
         """, ["threshold=1.0 and threshold=20.0 give the same h and inlier mask: threshold is ignored"]),
+    "RANSAC at OpenCV's default threshold (the argument not passed on)": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H, mask = cv2.findHomography(np.asarray(src, np.float64), np.asarray(dst, np.float64), cv2.RANSAC)
+            return H / H[2, 2], mask.ravel().astype(bool)
+        """, ["not H's inliers at the threshold given"]),
     "RANSAC keeping the last model drawn": ("lab08.ex4", """
         def homography_ransac(src, dst, threshold=3.0, seed=None):
             src = np.asarray(src, float); dst = np.asarray(dst, float)

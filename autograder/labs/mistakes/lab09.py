@@ -35,6 +35,31 @@ MISTAKES = {
             X, single = _points(points)
             return _divide(np.column_stack([f * X[:, 0], f * X[:, 1], X[:, 2]]), False)
         """, ["(1, 2)", "(2,)"]),
+    "a one-row array squeezed to a single point": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X = np.atleast_2d(np.asarray(points, float))
+            return (f * X[:, :2] / X[:, 2:3]).squeeze()
+        """, ["(1, 3) array", "(1, 2)"]),
+    "focal lengths sized by len() of a single point": ("lab09.ex4", """
+        def project_focal_lengths(points, focal_lengths):
+            out = np.zeros((len(focal_lengths), len(points), 2))
+            for i, f in enumerate(focal_lengths):
+                out[i] = pinhole_project(np.atleast_2d(points), f)
+            return out
+        """, ["single point", "(3, 2) or (3, 1, 2)"]),
+    "a grey image drawn on in colour": ("lab09.ex5", """
+        _reference_draw_points = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            if image.ndim == 2:
+                image = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR)
+            return _reference_draw_points(image, pts, radius, color)
+        """, ["grey image comes back grey"]),
+    "calibration returns four distortion coefficients": ("lab09.ext1", """
+        _reference_calibrate = calibrate
+        def calibrate(images, pattern_size, square_size):
+            K, dist, rms = _reference_calibrate(images, pattern_size, square_size)
+            return K, np.ravel(dist)[:4], rms
+        """, ["has 4 values", "k3"]),
     "K transposed": ("lab09.ex2", """
         def intrinsic_matrix(f, px, py):
             return np.array([[f, 0.0, 0.0], [0.0, f, 0.0], [px, py, 1.0]])
