@@ -1116,3 +1116,29 @@ def test_a_step_taken_out_below_the_line_another_fix_mends_is_read_as_working_on
     elsewhere = next(m for m in mutants if m.line == 4)
     assert student.feeds(inside, dropped) and not student.feeds(dropped, inside)
     assert not student.feeds(inside, elsewhere)
+
+
+def test_a_change_leaving_the_twin_exchanged_input_as_wrong_as_it_was_is_not_told(tmp_path):
+    """cv2.resize given a dsize of max(new size, old size) (fx, fy then ignored): right when both factors
+    enlarge. `max(new_h, h)` -> `max(new_h, sx)` mends the check's sx=2.0, sy=0.8 and passes the other
+    public checks, but on sx=0.8, sy=2.0 (the twin parameters exchanged, by keyword too) answers exactly
+    as the student's code does, wrong: not told."""
+    from autograder.engine.mutants import naming
+    from autograder.engine.mutants.operators import twin_names
+    from conftest import mutant
+
+    assert twin_names("sx", "sy") and twin_names("tx", "ty") and not twin_names("sx", "sz")
+    assert naming.twins_exchanged(("scale", ("image",), {"sx": 2.0, "sy": 0.8}), [(1, 2, "sx", "sy")]) == \
+        [("scale", ("image",), {"sx": 0.8, "sy": 2.0})]
+    assert naming.twins_exchanged(("scale", ("image", 2.0), {}), [(1, 2, "sx", "sy")]) == []
+    folder = mutant(tmp_path, "lab07_transformations", """
+        def scale(image, sx=1.5, sy=1.5):
+            h, w = image.shape[:2]
+            new_w, new_h = int(round(w * sx)), int(round(h * sy))
+            resized = cv2.resize(image, (max(new_w, w), max(new_h, h)), fx=sx, fy=sy)
+            out = np.zeros_like(image)
+            out[:min(h, new_h), :min(w, new_w)] = resized[:min(h, new_h), :min(w, new_w)]
+            return out
+        """)
+    checks, told = _failed_and_repaired(folder, "lab07.ex3")
+    assert checks and not any("sx)`" in m or "sy)`" in m for m in told), told

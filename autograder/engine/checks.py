@@ -542,8 +542,6 @@ class Trial:
                   "fail when it was tried again: does your function depend on randomness or on "
                   "earlier calls?)", hint=hint)
 
-        examples.record(where, seen)
-
     def _replay(self, recorded: list | None, body) -> list | None:
         """Run ``body`` on recorded examples: None if every one passed, else those
         that passed before the first that did not (Hypothesis then takes over)."""

@@ -37,7 +37,7 @@ from ..engine.forms import shape_form
 from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
                             keyword, mentions,
                             size_given_as_shape)
-from ..engine.judges import (Probe, call_probe, fingerprint, format_matrix, judge_parameter_changes_result,
+from ..engine.judges import (Probe, call_probe, fingerprint, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..engine.registry import Lab

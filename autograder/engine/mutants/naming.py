@@ -154,22 +154,32 @@ def _twin_parameters(source: str) -> dict:
             for i, a in enumerate(names):
                 for j in range(i + 1, len(names)):
                     if i not in used and j not in used and twin_names(a, names[j]):
-                        pairs.append((i, j))
+                        pairs.append((i, j, a, names[j]))
                         used |= {i, j}
             out[node.name] = pairs
     return out
 
 
 def twins_exchanged(call, pairs) -> list:
-    """``call`` with every twin pair of its positional arguments exchanged ([] when it has none given)."""
+    """``call`` with every twin pair of its arguments exchanged, given by position or by keyword
+    (`scale(image, sx=2.0, sy=0.8)` -> `sy=2.0, sx=0.8`); [] when it gives neither of any pair both."""
     function, args, kwargs = call
-    pairs = [(i, j) for i, j in pairs if j < len(args)]
-    if not pairs:
-        return []
-    turned = list(args)
-    for i, j in pairs:
-        turned[i], turned[j] = turned[j], turned[i]
-    return [(function, tuple(turned), dict(kwargs))]
+    turned, named, exchanged = list(args), dict(kwargs), False
+    for i, j, first, second in pairs:
+        values = [turned[i] if i < len(turned) else named.get(first, _ABSENT),
+                  turned[j] if j < len(turned) else named.get(second, _ABSENT)]
+        if _ABSENT in values:
+            continue
+        for position, name, value in ((i, first, values[1]), (j, second, values[0])):
+            if position < len(turned):
+                turned[position] = value
+            else:
+                named[name] = value
+        exchanged = True
+    return [(function, tuple(turned), named)] if exchanged else []
+
+
+_ABSENT = object()
 
 
 def other_channels(call) -> list:

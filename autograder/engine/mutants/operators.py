@@ -2127,7 +2127,7 @@ def _entry_of_literal(node, parents):
         node, up = up[0], parents.get(id(up[0]))
     if not up or not isinstance(up[0], ast.List) or up[2] is None:
         return None
-    row, above = up[0], parents.get(id(up[0]))
+    above = parents.get(id(up[0]))
     if not above or not isinstance(above[0], ast.List) or above[2] is None:
         return None
     if not all(isinstance(r, ast.List) for r in above[0].elts):
@@ -2364,13 +2364,17 @@ _TWIN_WORDS = {frozenset(pair) for pair in (("left", "right"), ("src", "dst"), (
                                             ("rows", "cols"), ("h", "w"), ("height", "width"), ("first", "second"))}
 
 
+_TWIN_LETTERS = {frozenset("xy"), frozenset("uv")}
+
+
 def twin_names(a: str, b: str) -> bool:
     """Whether two names are twins: one digit apart (`R1`/`R2`, `x1`/`x2`) or a pair's other half
     (`left`/`right`, `src`/`dst`, `l`/`r` in `img_l`/`img_r`); names only, not numbers."""
     if not (a.isidentifier() and b.isidentifier()):
         return False
-    if len(a) == len(b) and sum(x != y for x, y in zip(a, b)) == 1 and any(x.isdigit() for x in a + b):
-        return True
+    differing = [frozenset((x, y)) for x, y in zip(a, b) if x != y] if len(a) == len(b) else []
+    if len(differing) == 1 and (any(x.isdigit() for x in differing[0]) or differing[0] in _TWIN_LETTERS):
+        return True   # (`x1`/`x2`; `sx`/`sy`, `tx`/`ty`: the two axes' halves of a pair)
     parts_a, parts_b = a.split("_"), b.split("_")
     return len(parts_a) == len(parts_b) and sum(x != y for x, y in zip(parts_a, parts_b)) == 1 and any(
         frozenset((x, y)) in _TWIN_WORDS for x, y in zip(parts_a, parts_b) if x != y)

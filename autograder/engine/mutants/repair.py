@@ -949,6 +949,7 @@ class _Variants:
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
         self.crossing: set = set()   # the variants on the other side of a threshold (see confirmed)
         self.keeping: set = set()    # variants (other modes, other channels) where answers must be kept or mended
+        self.exchanged: set = set()  # the variants with the twin parameters exchanged (see _unmended_exchange)
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
         self.projective = not any(naming.error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
@@ -1087,7 +1088,9 @@ class _Variants:
                 variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
                 # (the two views' roles turned round: a canvas as high as img2, right where img2 is
                 # the taller, is wrong where img1 is)
-                variants += naming.twins_exchanged(self.inputs[i], getattr(self.model, "twins", {}).get(self.function, ()))
+                exchanged = naming.twins_exchanged(self.inputs[i], getattr(self.model, "twins", {}).get(self.function, ()))
+                self.exchanged.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(exchanged)))
+                variants += exchanged
             # (and the other side of a threshold, for a changed condition only: a student's own
             # recipe may differ from the reference's legitimately there -- a resize's shrink)
             crossing = [call for i in failing[:2]
@@ -1130,10 +1133,27 @@ class _Variants:
         # confirmation: where theirs are far off, a degenerate change is nearer too (a pyramid of no
         # levels passed "blending an image with itself leaves it unchanged"); and numbers on inputs
         # that lost the check's structure (a perturbed F is no longer of rank 2) are nearer by chance.
-        if self.passes_other_checks(mutant):
+        if not self._unmended_exchange(mutant, every, wanted) and self.passes_other_checks(mutant):
             self.confirmed_by_checks = True
             return True
         return False
+
+    def _unmended_exchange(self, mutant, every, wanted) -> bool:
+        """Whether, on an input with the twin parameters exchanged (`sx=0.8, sy=2.0` for `sx=2.0, sy=0.8`:
+        an input of the check's own kind, not a perturbed one), the variant answers exactly as the student's
+        code does while that answer is far outside the spread the check accepted: a change that leaves a
+        wrong answer as it was is not the fix, whatever the other checks say (`max(new_h, h)` ->
+        `max(new_h, sx)` mends a shrink in y and leaves the same shrink in x wrong)."""
+        indices = sorted(i for i in self.exchanged if naming.error_kind(wanted.get(i)) is None)
+        if not indices or mutant.key not in self.checked:
+            return False
+        values, own = self.answers(mutant, indices, every), self.answers(None, indices, every)
+        if values is None or own is None:
+            return False
+        spread = 1.5 * self.checked[mutant.key] + 1e-9
+        return any(naming.distance(theirs, wanted[i]) > 3 * spread
+                   and naming.distance(value, theirs) <= 0.01 * naming.distance(theirs, wanted[i])
+                   for value, theirs, i in zip(values, own, indices))
 
     def writes_inputs(self, mutant) -> bool:
         """Whether the variant wrote into its caller's arrays on a call where the student's own code
