@@ -1131,6 +1131,9 @@ def test_a_change_leaving_the_twin_exchanged_input_as_wrong_as_it_was_is_not_tol
     assert naming.twins_exchanged(("scale", ("image",), {"sx": 2.0, "sy": 0.8}), [(1, 2, "sx", "sy")]) == \
         [("scale", ("image",), {"sx": 0.8, "sy": 2.0})]
     assert naming.twins_exchanged(("scale", ("image", 2.0), {}), [(1, 2, "sx", "sy")]) == []
+    a, b = np.zeros((2, 2)), np.ones((3, 2))   # arrays, given by position and by keyword
+    [(_, turned, named)] = naming.twins_exchanged(("f", (a,), {"pts2": b}), [(0, 1, "pts1", "pts2")])
+    assert turned[0] is b and named["pts2"] is a
     folder = mutant(tmp_path, "lab07_transformations", """
         def scale(image, sx=1.5, sy=1.5):
             h, w = image.shape[:2]

@@ -783,6 +783,13 @@ def judge_match_drawing(t: Trial, what: str, got, img1, img2, pts1, pts2):
             other = segments_drawn(drawn_on, starts, other_ends) >= LINE_FOUND
             return other.mean() >= 0.75 and other.sum() > found.sum()
 
+        # (lines from pts2's points in the left image to pts1's in the right one hold the segments to
+        # (x2, y2) too, where a match moves little: the point sets exchanged first)
+        exchanged = segments_drawn(drawn_on, pts2, pts1 + [w1, 0]) >= LINE_FOUND
+        if exchanged.mean() >= 0.75 and exchanged.sum() > found.sum():
+            t.fail(f"{what}: the lines go from (x2, y2) in the left image to (x1 + W1, y1) in the right one: the "
+                   "two point sets are exchanged (each line goes from pts1[i] in img1 to pts2[i] in img2)",
+                   mistake="pts1 and pts2 are exchanged")
         if explains(pts2):
             t.fail(f"{what}: the lines end at (x2, y2) in the left image; the second image starts at "
                    "x = W1, so draw each line to (x2 + W1, y2)")

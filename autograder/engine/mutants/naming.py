@@ -168,7 +168,7 @@ def twins_exchanged(call, pairs) -> list:
     for i, j, first, second in pairs:
         values = [turned[i] if i < len(turned) else named.get(first, _ABSENT),
                   turned[j] if j < len(turned) else named.get(second, _ABSENT)]
-        if _ABSENT in values:
+        if any(value is _ABSENT for value in values):   # (`is`: arrays compare entry by entry)
             continue
         for position, name, value in ((i, first, values[1]), (j, second, values[0])):
             if position < len(turned):

@@ -231,6 +231,11 @@ MISTAKES = {
             return canvas
         """, ["`(max(h1, h2), w1 + w2, 3)`"]),
     # ---------------------------------------------------------------- ex4
+    "draw_matches with the two point sets exchanged": ("lab08.ex3", """
+        _reference_draw_matches = draw_matches
+        def draw_matches(img1, img2, pts1, pts2):
+            return _reference_draw_matches(img1, img2, pts2, pts1)
+        """, ["point sets are exchanged"]),
     "RANSAC without the final refit": ("lab08.ex4", """
         def homography_ransac(src, dst, threshold=3.0, seed=None):
             src = np.asarray(src, float); dst = np.asarray(dst, float)
