@@ -373,3 +373,17 @@ def test_in_a_notebook_the_finding_points_at_the_cell(tmp_path):
     named = [m for _, m in named_mistakes(result, "lab08.ex2")]
     assert named and all(f"{MODULE8}.ipynb, cell 2, line" in m for m in named), named
     assert not any(f"{MODULE8}.py" in m for m in named)
+
+
+@pytest.mark.xdist_group("lab12")
+def test_a_float_binary_image_is_not_blamed_on_a_floor_division_elsewhere():
+    """Structured-light frames allocated as float64 (np.zeros without a dtype) hold 0.0 and 255.0: the
+    dtype is wrong, no fraction was cut off, so gray_code_patterns' // (floor by the API) is not told."""
+    named = graded_case("lab12_stereo", "lab12.ex6", """
+        _reference_simulate = simulate_structured_light
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            return _reference_simulate(depth, f, baseline, n_bits).astype(np.float64)
+        """)
+    failed = [c.message for c in check_results(named, "lab12.ex6") if not c.passed]
+    assert failed and any("float64" in m for m in failed), failed
+    assert not any("floor division" in m or "//" in m for m in failed), failed

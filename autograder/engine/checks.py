@@ -698,8 +698,9 @@ def _whole_numbers(value) -> bool:
         if _has_fraction(array.ravel()[:_GLANCE]):   # most float results tell at once
             continue
         finite = array[np.isfinite(array)]
-        if finite.size and np.any(finite != 0) and not _has_fraction(finite):
-            return True
+        if finite.size and np.any(finite != 0) and not _has_fraction(finite) \
+                and not (array.ndim >= 2 and np.isin(finite, (0.0, 1.0, 255.0)).all()):
+            return True   # (a binary image or mask, 0 and 255 or 0 and 1, is whole by nature: no fraction lost)
     return False
 
 
