@@ -380,9 +380,19 @@ def test_a_float_binary_image_is_not_blamed_on_a_floor_division_elsewhere():
     """Structured-light frames allocated as float64 (np.zeros without a dtype) hold 0.0 and 255.0: the
     dtype is wrong, no fraction was cut off, so gray_code_patterns' // (floor by the API) is not told."""
     named = graded_case("lab12_stereo", "lab12.ex6", """
-        _reference_simulate = simulate_structured_light
         def simulate_structured_light(depth, f, baseline, n_bits):
-            return _reference_simulate(depth, f, baseline, n_bits).astype(np.float64)
+            depth = np.asarray(depth, dtype=np.float64)
+            h, w = depth.shape
+            patterns = gray_code_patterns(w, n_bits)
+            valid = np.isfinite(depth) & (depth > 0)
+            cols = np.floor(np.arange(w)[None, :] - f * baseline / np.where(valid, depth, 1.0) + 0.5).astype(int)
+            lit = valid & (cols >= 0) & (cols < w)
+            frames = []
+            for i in range(int(n_bits)):
+                frame = np.zeros((h, w))
+                frame[lit] = patterns[i][cols[lit]]
+                frames.append(frame)
+            return np.stack(frames)
         """)
     failed = [c.message for c in check_results(named, "lab12.ex6") if not c.passed]
     assert failed and any("float64" in m for m in failed), failed
