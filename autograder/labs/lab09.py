@@ -1491,8 +1491,8 @@ def calibration_consistent(t):
     images, _, corners = truth.calibration_views()
     what, K, dist, rms = calibration_result(t, images, truth.CALIBRATION_PATTERN)
     if dist.size == 4:   # (the K may still be right: only this check, of the three, asks for all five)
-        t.fail(f"{what}[1] (dist) has 4 values; expected OpenCV's five (k1, k2, p1, p2, k3), as "
-               "cv2.calibrateCamera returns them: without k3 the lens it estimated is not the one returned")
+        t.fail(f"{what}[1] (dist) has 4 values; expected OpenCV's five (k1, k2, p1, p2, k3): without k3 the "
+               "lens the calibration estimated is not the one returned")
     recomputed = truth.reprojection_rms(K, dist, corners)
     if np.isnan(recomputed):
         t.fail(f"{what}[1] (dist) has {dist.size} values, a length OpenCV's distortion model does not have "

@@ -704,7 +704,7 @@ def _make_boolean_mask(node, payload):
 
 
 def _make_part(node, payload):
-    return ast.parse(payload, mode="eval").body   # a part of the array, as the function writes it elsewhere
+    return parse(payload, mode="eval").body   # a part of the array, as the function writes it elsewhere
 
 
 def _make_constant(node, payload):

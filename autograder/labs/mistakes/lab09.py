@@ -59,7 +59,7 @@ MISTAKES = {
         def calibrate(images, pattern_size, square_size):
             K, dist, rms = _reference_calibrate(images, pattern_size, square_size)
             return K, np.ravel(dist)[:4], rms
-        """, ["has 4 values", "k3"]),
+        """, ["has 4 values", "without k3"]),
     "K transposed": ("lab09.ex2", """
         def intrinsic_matrix(f, px, py):
             return np.array([[f, 0.0, 0.0], [0.0, f, 0.0], [px, py, 1.0]])
