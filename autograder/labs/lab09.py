@@ -684,16 +684,6 @@ def focal_lengths(t):
     for i, f in enumerate(fs):
         judge_points(t, f"project_focal_lengths(...)[{i}] (f = {f:g})", got[i], expected[i],
                      truth.projection_mistakes(f, X), probe=points_probe(t, "project_focal_lengths"))
-    # A single (3,) point is one point: one projection per focal length, (F, 2) or (F, 1, 2).
-    single = t.call("project_focal_lengths", X[0], fs)
-    if not (isinstance(single, np.ndarray) and single.shape in ((3, 2), (3, 1, 2))):
-        shape = single.shape if isinstance(single, np.ndarray) else type(single).__name__
-        t.fail(f"project_focal_lengths((3,) point, [100, 500, 1000]) returned shape {shape}; expected (3, 2) or "
-               "(3, 1, 2): a single point gives one projection per focal length (size the result by the points "
-               "after making them 2-D, not by len() of the argument)")
-    if point_error(np.asarray(single, float).reshape(3, 2), expected[:, 0]) > at_precision(1e-6 * scale, scale):
-        t.fail("project_focal_lengths((3,) point, [100, 500, 1000]) is wrong for a single point: "
-               f"{format_arrays_apart(np.asarray(single, float).reshape(3, 2), expected[:, 0])[0]}")
     return passed("the image grows in proportion to f")
 
 

@@ -40,13 +40,6 @@ MISTAKES = {
             X = np.atleast_2d(np.asarray(points, float))
             return (f * X[:, :2] / X[:, 2:3]).squeeze()
         """, ["(1, 3) array", "(1, 2)"]),
-    "focal lengths sized by len() of a single point": ("lab09.ex4", """
-        def project_focal_lengths(points, focal_lengths):
-            out = np.zeros((len(focal_lengths), len(points), 2))
-            for i, f in enumerate(focal_lengths):
-                out[i] = pinhole_project(np.atleast_2d(points), f)
-            return out
-        """, ["single point", "(3, 2) or (3, 1, 2)"]),
     "a grey image drawn on in colour": ("lab09.ex5", """
         _reference_draw_points = draw_points
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
