@@ -188,7 +188,8 @@ def rotate_grey(t):
     if isinstance(quarter, np.ndarray) and quarter.shape[:2] == source.shape[1::-1]:
         t.fail(f"rotate(grey 160x120 image, angle_deg=90) returned shape {quarter.shape}; expected {source.shape}: "
                "a rotation keeps the input's size, its corners cut off and the rest filled black, also for "
-               "multiples of 90 degrees (np.rot90 turns the frame with the image)")
+               "multiples of 90 degrees (a quarter turn of the whole array, as np.rot90 makes, turns the frame "
+               "with the image)")
     verdict = judge_warp(t, "rotate(grey image, angle_deg=90)", quarter, source, truth.rotation(90, centre),
                          truth.rotation_mistakes(90, centre), show=False)
     if verdict.fraction < 1.0:

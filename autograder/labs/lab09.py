@@ -455,10 +455,12 @@ def pinhole_single(t):
     row = t.call("pinhole_project", X[None], 100.0)
     if isinstance(row, np.ndarray) and row.shape == (2,):
         t.fail("pinhole_project((1, 3) array, f=100) returned shape (2,); expected (1, 2): only a (3,) point "
-               "gives a (2,) result, an (N, 3) array gives (N, 2) for N = 1 too (np.squeeze drops that row's axis)")
-    row = t.expect_array(row, "pinhole_project((1, 3) array, f=100)", shape=(1, 2), kind="iuf")
-    if point_error(row, truth.pinhole(X[None], 100.0)) > at_precision(1e-6 * magnitude(row), magnitude(row)):
-        shown, wanted = format_arrays_apart(row, truth.pinhole(X[None], 100.0))
+               "gives a (2,) result, an (N, 3) array gives (N, 2) for N = 1 too (tell them apart by the input's "
+               "number of dimensions, not by its length)")
+    row, expected = t.expect_array(row, "pinhole_project((1, 3) array, f=100)", shape=(1, 2), kind="iuf"), \
+        truth.pinhole(X[None], 100.0)
+    if point_error(row, expected) > at_precision(1e-6 * magnitude(expected), magnitude(expected)):
+        shown, wanted = format_arrays_apart(row, expected)
         t.fail(f"pinhole_project((1, 3) array, f=100) returned {shown}; expected {wanted}")
     # The sheet's own sample, as a student types it: whole numbers, so an integer array.
     sample = np.array([1, 1, 2])

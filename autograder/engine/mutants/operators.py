@@ -86,17 +86,17 @@ OPERATORS = {
     "keep_result": ("result", "returned", "discard", "assign"),   # draw(img, p) -> img = draw(img, p)
     "add_axis": ("axis",),                             # np.delete(X, 2) -> np.delete(X, 2, axis=1)
     "flip_keyword": ("true", "false", "keyword"),     # full_matrices=False -> True
-    "float32": ("float32", "dtype", "float"),
+    "float32": ("float32", "dtype", "float"),         # cv2.remap(img, mx, my) -> cv2.remap(img, np.float32(mx), ...)
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
-    "carry": ("each", "again", "running", "restart"),
-    "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
+    "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
+    "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
-    "logic": ("and", "or", "&", "|"),
+    "logic": ("and", "or", "&", "|"),                 # m1 & m2 -> m1 | m2, a and b -> a or b
     "literal": ("argument", "value", "flag"),         # cv2.computeCorrespondEpilines(p, 2, F) -> (p, 1, F)
     "boolean_mask": ("mask", "boolean", "index"),   # pts[mask.ravel()] -> pts[mask.ravel().astype(bool)]
     "negative_index": ("negative", "index", "abs", "wrap"),   # ramp[i - j] -> ramp[np.abs(i - j)]
-    "part": ("column", "part", "whole", "component"),   # np.linalg.norm(X, axis=1) -> X[:, 2] (seen elsewhere)                 # m1 & m2 -> m1 | m2, a and b -> a or b          # cv2.remap(img, mx, my) -> np.float32(mx), ...
+    "part": ("column", "part", "whole", "component"),   # np.linalg.norm(X, axis=1) -> X[:, 2] (seen elsewhere)
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -1569,9 +1569,7 @@ def _parts(node, parents) -> list:
         for sub in ast.walk(fn):
             if isinstance(sub, ast.Subscript) and isinstance(sub.ctx, ast.Load) and isinstance(sub.value, ast.Name) \
                     and not any(isinstance(n, ast.Call) for n in ast.walk(sub.slice)):
-                text = ast.unparse(sub)
-                if text not in parts.setdefault(sub.value.id, []):
-                    parts[sub.value.id].append(text)
+                parts.setdefault(sub.value.id, {})[ast.unparse(sub)] = None   # (a dict: ordered, no repeats)
         # (one component -- `X[:, 2]`, an index, not a slice -- is what a statistic of the whole replaces)
         fn._parts_index = {name: sorted(texts, key=lambda text: ":" in text.split(",")[-1])
                            for name, texts in parts.items()}

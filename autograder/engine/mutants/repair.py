@@ -147,6 +147,7 @@ class _Student:
         self._ordered: dict = {}     # function -> its mutants that can be shown, smallest change first
         self._statements: dict = {}   # def -> line -> the first line of the statement holding it
         self._walked: dict = {}      # def name -> (its nodes in ast.walk order, their parents)
+        self._shapes: dict = {}      # id of a statement (kept alive in _walked) -> its code with names masked
         self._lock = threading.Lock()
 
     def mutants(self, function: str) -> list:
@@ -302,12 +303,20 @@ class _Student:
         edited = self._edited(first, second)
         if edited is None:
             return False
-        places = []
-        for node in edited[0]:
-            statement = self._statement_node(node, edited[1])
-            places.append((statement, next((i for i, held in enumerate(ast.walk(statement)) if held is node), None)))
-        (one, at_one), (other, at_other) = places
-        return one is not other and at_one == at_other and _shape_of(one) == _shape_of(other)
+        (one, at_one), (other, at_other) = (self._place_in_statement(node, edited[1]) for node in edited[0])
+        return one is not other and at_one == at_other and self._shape(one) == self._shape(other)
+
+    def _place_in_statement(self, node, parents) -> tuple:
+        """(the statement holding ``node``, its position among the statement's nodes)."""
+        statement = self._statement_node(node, parents)
+        return statement, next((i for i, held in enumerate(ast.walk(statement)) if held is node), None)
+
+    def _shape(self, statement) -> str:
+        """:func:`_shape_of` ``statement``, made once per statement (asked for many pairs of changes)."""
+        key = id(statement)
+        if key not in self._shapes:
+            self._shapes[key] = _shape_of(statement)
+        return self._shapes[key]
 
     def slip(self, mutant) -> str:
         """What the mutant's (first) change does, alike for the same slip at two places: its payload,
@@ -862,9 +871,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # before the nearest changes' pairs: where the code says the slip was made twice, it is tried first.
     alike = [(a, b) for same in slips.values() for a, b in itertools.combinations(same[:40], 2) if _apart(a, b)]
     halves = lambda pair: pair[0].key in halfway or pair[1].key in halfway  # noqa: E731
-    side = sorted((pair for pair in alike if student.neighbours(*pair)), key=lambda pair: (not halves(pair), size(pair)))
-    copied = sorted((pair for pair in alike if student.mirrored(*pair)), key=lambda pair: (not halves(pair), size(pair)))
-    side = sorted(side[:NEIGHBOUR_PAIRS] + copied[:NEIGHBOUR_PAIRS], key=lambda pair: not halves(pair))
+    first = lambda pair: (not halves(pair), size(pair))  # noqa: E731
+    beside = sorted((pair for pair in alike if student.neighbours(*pair)), key=first)[:NEIGHBOUR_PAIRS]
+    copied = sorted((pair for pair in alike if student.mirrored(*pair)), key=first)[:NEIGHBOUR_PAIRS]
+    side = sorted(beside + copied, key=lambda pair: not halves(pair))
     sides = {(a.key, b.key) for a, b in side}
     pairs = side + [(a, b) for a, b in pairs if (a.key, b.key) not in sides and (b.key, a.key) not in sides]
     # Then each slip's pairs, smallest first, one slip after another in turns (as the single changes):
@@ -1147,7 +1157,7 @@ class _Variants:
         indices = sorted(i for i in self.exchanged if naming.error_kind(wanted.get(i)) is None)
         if not indices or mutant.key not in self.checked:
             return False
-        values, own = self.answers(mutant, indices, every), self.answers(None, indices, every)
+        values, own = self.answers(mutant, indices, every), self._own(indices, every)
         if values is None or own is None:
             return False
         spread = 1.5 * self.checked[mutant.key] + 1e-9
@@ -1243,20 +1253,28 @@ class _Variants:
         indices = sorted(i for i in self.keeping if naming.error_kind(wanted.get(i)) is None)
         if not indices:
             return True
-        values = self.answers(mutant, indices, every)
-        missing = [i for i in indices if i not in self.theirs]
-        own = self.answers(None, missing, every) if missing else []
+        values, own = self.answers(mutant, indices, every), self._own(indices, every)
         if values is None or own is None:
             return False
-        self.theirs.update(zip(missing, own))
         kept = lambda v, theirs: naming.error_kind(v) == naming.error_kind(theirs) if naming.error_kind(theirs) \
             else self.right(v, theirs, confirming=True)  # noqa: E731 - (the same exception counts as the same answer)
         # (a change the check judged -- the student's own recipe -- is held to the spread the check accepted)
         spread = 1.5 * self.checked[mutant.key] + 1e-9 if mutant.key in self.checked else None
         near = lambda v, i: spread is not None and naming.error_kind(v) is None \
             and naming.distance(v, wanted[i]) <= spread  # noqa: E731
-        return all(self.right(v, wanted[i], confirming=True) or near(v, i) or kept(v, self.theirs[i])
-                   for v, i in zip(values, indices))
+        return all(self.right(v, wanted[i], confirming=True) or near(v, i) or kept(v, theirs)
+                   for v, theirs, i in zip(values, own, indices))
+
+    def _own(self, indices, every) -> list | None:
+        """The student's own answers on ``every[i]`` for ``indices`` (the trial's, or asked once per
+        confirmation input and kept); None when their code failed to answer."""
+        missing = [i for i in indices if i >= len(self.students) and i not in self.theirs]
+        if missing:
+            own = self.answers(None, missing, every)
+            if own is None:
+                return None
+            self.theirs.update(zip(missing, own))
+        return [self.students[i] if i < len(self.students) else self.theirs[i] for i in indices]
 
     def other_checks(self) -> list:
         """The grading's other checks that called the function, with their properties' examples; then
@@ -1314,14 +1332,10 @@ class _Variants:
         # differs from the reference's legitimately, by a measure the check knows, not this): within
         # the spread the check accepted, and where theirs are wrong, half as far at most.
         spread = 1.5 * self.checked[mutant.key] + 1e-9
-        missing = [i for i in indices if i not in self.theirs and i >= len(self.students)]
-        if missing:
-            own = self.answers(None, missing, every)
-            if own is None:
-                return False
-            self.theirs.update(zip(missing, own))
-        for value, i in zip(values, indices):
-            theirs = self.students[i] if i < len(self.students) else self.theirs[i]
+        own = self._own(indices, every)
+        if own is None:
+            return False
+        for value, theirs, i in zip(values, own, indices):
             if self.right(value, wanted[i], confirming=True):
                 continue
             # Within the spread the check accepted, always: "far nearer than theirs" alone is no
