@@ -238,3 +238,23 @@ def test_a_forbidden_call_is_told_with_what_its_answer_was_worth(tmp_path, endin
     first = next(c for c in checks if "worked example" in c.name)
     assert first.message.startswith("triangulate() called cv2.triangulatePoints") and told in first.message, \
         first.message
+
+
+def test_what_a_forbidden_calls_second_look_computes_is_never_shared_with_the_other_checks():
+    """The check run again with the forbidden call allowed shares nothing it computes with the grading's
+    other checks (a panorama one check computes is served to the next): they judge under the rules."""
+    from types import SimpleNamespace
+
+    from autograder.engine.checks import Fail, Verdict
+    from autograder.engine.runner import besides_forbidden
+
+    def check_func(t):
+        t.shared("the student's panorama", lambda: "computed with the call allowed")
+        raise Fail("the panorama is wrong")
+
+    sandbox = SimpleNamespace(shared={"earlier": 1})
+    lab = SimpleNamespace(forbidden={}, module="m")
+    check = SimpleNamespace(func=check_func, hidden=False, exercise=SimpleNamespace(lab=lab), timeout=1)
+    verdict = besides_forbidden(Verdict(0.0, "f() called cv2.f"), sandbox, check, None, None)
+    assert "Besides, the answer it gave is wrong: the panorama is wrong" in verdict.message
+    assert sandbox.shared == {"earlier": 1}

@@ -704,7 +704,7 @@ def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: d
     after the rule (the points stay lost): whether writing the step themselves is all that is left, or
     the answer is wrong besides (a result of the library's left as columns: the rule alone would hide
     it). The check is run once more with the calls allowed; anything but a verdict tells nothing."""
-    trial = Trial(sandbox, check, rules, inputs)
+    trial = Trial(_SharedApart(sandbox), check, rules, inputs)
     trial.forbidden_allowed = True
     try:
         again = check.func(trial)
@@ -718,6 +718,18 @@ def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: d
         return replace(verdict, message=f"{_sentence(verdict.message)} The answer it gave passes this check "
                                         "otherwise: writing that step yourself is what is left to do.")
     return verdict
+
+
+class _SharedApart:
+    """The sandbox, with a copy of what the grading's checks share (``shared``): a value computed with
+    the forbidden calls allowed (a panorama another check would be served) must never reach a check
+    that judges the student's code under the rules. Everything else is the sandbox's own."""
+
+    def __init__(self, sandbox: Sandbox):
+        self._sandbox, self.shared = sandbox, dict(sandbox.shared)
+
+    def __getattr__(self, name):
+        return getattr(self._sandbox, name)
 
 
 def _sentence(message) -> str:
