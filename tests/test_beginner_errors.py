@@ -238,6 +238,7 @@ def test_a_forbidden_call_is_told_with_what_its_answer_was_worth(tmp_path, endin
     first = next(c for c in checks if "worked example" in c.name)
     assert first.message.startswith("triangulate() called cv2.triangulatePoints") and told in first.message, \
         first.message
+    assert sum("Besides" in c.message or "passes this check otherwise" in c.message for c in checks) == 1
 
 
 def test_what_a_forbidden_calls_second_look_computes_is_never_shared_with_the_other_checks():
@@ -254,7 +255,10 @@ def test_what_a_forbidden_calls_second_look_computes_is_never_shared_with_the_ot
 
     sandbox = SimpleNamespace(shared={"earlier": 1})
     lab = SimpleNamespace(forbidden={}, module="m")
-    check = SimpleNamespace(func=check_func, hidden=False, exercise=SimpleNamespace(lab=lab), timeout=1)
+    check = SimpleNamespace(func=check_func, hidden=False, exercise=SimpleNamespace(lab=lab, id="lab98.ex1"),
+                            timeout=1)
     verdict = besides_forbidden(Verdict(0.0, "f() called cv2.f"), sandbox, check, None, None)
     assert "Besides, the answer it gave is wrong: the panorama is wrong" in verdict.message
-    assert sandbox.shared == {"earlier": 1}
+    assert "the student's panorama" not in sandbox.shared and sandbox.shared["earlier"] == 1
+    # once per exercise: its time comes out of the exercise's budget
+    assert besides_forbidden(Verdict(0.0, "f() called cv2.f"), sandbox, check, None, None).message == "f() called cv2.f"

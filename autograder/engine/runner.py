@@ -703,7 +703,13 @@ def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: d
     """A check lost for a forbidden library call, with what the answer that call gave is worth told
     after the rule (the points stay lost): whether writing the step themselves is all that is left, or
     the answer is wrong besides (a result of the library's left as columns: the rule alone would hide
-    it). The check is run once more with the calls allowed; anything but a verdict tells nothing."""
+    it). The check is run once more with the calls allowed, in the first public check of its exercise
+    that lost points so (once: the second run's time comes out of the exercise's budget, which the
+    exercise's other functions need); anything but a verdict tells nothing."""
+    looked = sandbox.shared.setdefault("forbidden call looked at", set())
+    if check.exercise.id in looked:
+        return verdict
+    looked.add(check.exercise.id)
     trial = Trial(_SharedApart(sandbox), check, rules, inputs)
     trial.forbidden_allowed = True
     try:
