@@ -1378,15 +1378,21 @@ def _helper_changes(node, words):
             and not node.keywords and not any(isinstance(a, ast.Starred) for a in node.args)):
         return
     called = node.func.id
-    mine = {word for word in called.lower().split("_") if len(word) >= 3}
+    mine = _name_words(called)
     offered = 0
     for name, fn in words.module_defs.items():
-        if name in (called, words.fn.name) or not mine & {w for w in name.lower().split("_") if len(w) >= 3}:
+        if name in (called, words.fn.name) or not mine & _name_words(name):
             continue
         positional = fn.args.posonlyargs + fn.args.args
         if len(positional) - len(fn.args.defaults) <= len(node.args) <= len(positional) and offered < 3:
             offered += 1
             yield "function", name, ""
+
+
+@functools.lru_cache(maxsize=4096)
+def _name_words(name: str) -> frozenset:
+    """The words of a def's name (`_laplacian_pyramid`: laplacian, pyramid), three letters or more."""
+    return frozenset(word for word in name.lower().split("_") if len(word) >= 3)
 
 
 def _a_mask(node) -> bool:

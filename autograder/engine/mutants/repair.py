@@ -148,6 +148,7 @@ class _Student:
         self._statements: dict = {}   # def -> line -> the first line of the statement holding it
         self._walked: dict = {}      # def name -> (its nodes in ast.walk order, their parents)
         self._shapes: dict = {}      # id of a statement (kept alive in _walked) -> its code with names masked
+        self._places: dict = {}      # id of a node (kept alive in _walked) -> (its statement, its position there)
         self._lock = threading.Lock()
 
     def mutants(self, function: str) -> list:
@@ -307,9 +308,11 @@ class _Student:
         return one is not other and at_one == at_other and self._shape(one) == self._shape(other)
 
     def _place_in_statement(self, node, parents) -> tuple:
-        """(the statement holding ``node``, its position among the statement's nodes)."""
-        statement = self._statement_node(node, parents)
-        return statement, next((i for i, held in enumerate(ast.walk(statement)) if held is node), None)
+        """(the statement holding ``node``, its position among the statement's nodes), found once per node."""
+        if id(node) not in self._places:
+            statement = self._statement_node(node, parents)
+            self._places[id(node)] = statement, next((i for i, held in enumerate(ast.walk(statement)) if held is node), None)
+        return self._places[id(node)]
 
     def _shape(self, statement) -> str:
         """:func:`_shape_of` ``statement``, made once per statement (asked for many pairs of changes)."""
