@@ -1145,3 +1145,83 @@ def test_a_change_leaving_the_twin_exchanged_input_as_wrong_as_it_was_is_not_tol
         """)
     checks, told = _failed_and_repaired(folder, "lab07.ex3")
     assert checks and not any("sx)`" in m or "sy)`" in m for m in told), told
+
+
+def test_a_change_mending_a_matrix_up_to_sign_is_judged_up_to_sign(tmp_path):
+    """essential_8point passing K2, K1 to essential_from_fundamental in the wrong order: the swap mends E,
+    whose SVD gives it back with either sign; measured plainly, the mended E is as far from the
+    reference's as the student's own and the change was never tried on the check."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab11_two_view", """
+        def essential_8point(pts1, pts2, K1, K2):
+            F = fundamental_8point(pts1, pts2)
+            E = essential_from_fundamental(F, K2, K1)
+            U, _, Vt = np.linalg.svd(E)
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+        """)
+    checks, told = _failed_and_repaired(folder, "lab11.ex3")
+    assert any("`essential_from_fundamental(F, K1, K2)`" in m for m in told), [c.message for c in checks]
+
+
+def test_a_homogeneous_vector_filled_with_zeros_is_mended_with_ones(tmp_path):
+    """The second view's point made from np.zeros(3) (w = 0, a point at infinity) where np.ones(3)
+    belongs; on the noisy inputs the student's cross-product equations legitimately give another least
+    squares than the reference's, so the change is right on some failing inputs only: the check judges."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab11_two_view", """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.asarray(pts1, np.float64).reshape(-1, 2)
+            pts2 = np.asarray(pts2, np.float64).reshape(-1, 2)
+
+            def cross(v):
+                return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+            points = np.empty((len(pts1), 3))
+            for i in range(len(pts1)):
+                h1 = np.ones(3)
+                h1[:2] = pts1[i]
+                h2 = np.zeros(3)
+                h2[:2] = pts2[i]
+                X = np.linalg.svd(np.vstack([cross(h1) @ P1, cross(h2) @ P2]))[2][-1]
+                points[i] = X[:3] / X[3]
+            return points
+        """)
+    checks, told = _failed_and_repaired(folder, "lab11.ex1")
+    assert any("`h2 = np.ones(3)`" in m for m in told), [c.message for c in checks]
+
+
+def test_a_validity_threshold_and_its_strictness_are_changed_together(tmp_path):
+    """Disparities valid from 1 (`d >= 1`) where every positive one is (`d > 0`): neither the
+    strictness alone (`d > 1`) nor the threshold alone (`d >= 0`) mends it."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab12_stereo", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, dtype=np.float64)
+            ok = np.isfinite(d) & (d >= 1)
+            depth = np.zeros(d.shape)
+            depth[ok] = f * baseline / d[ok]
+            return depth
+        """)
+    checks, told = _failed_and_repaired(folder, "lab12.ex2")
+    assert told and all("`np.isfinite(d) & (d > 0)`" in m for m in told), [c.message for c in checks]
+
+
+def test_a_term_of_a_row_of_signed_terms_has_its_sign_tried(tmp_path):
+    """A DLT row typed out with `v` where `-v` belongs, among its other signed terms: a row built
+    per point (a flat list, not a matrix literal) has each term's sign tried."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab10_camera2", """
+        def camera_matrix_dlt(points3d, points2d):
+            rows = []
+            for (X, Y, Z), (u, v) in zip(np.asarray(points3d, float), np.asarray(points2d, float)):
+                rows.append([X, Y, Z, 1, 0, 0, 0, 0, -u * X, -u * Y, -u * Z, -u])
+                rows.append([0, 0, 0, 0, X, Y, Z, 1, -v * X, -v * Y, -v * Z, v])
+            P = np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
+            return P / np.linalg.norm(P)
+        """)
+    checks, told = _failed_and_repaired(folder, "lab10.ex4")
+    assert any("-v * Z, -v]`" in m for m in told), [c.message for c in checks]

@@ -530,7 +530,10 @@ def _make_swap_items(node, payload):
 
 def _make_compare(node, payload):
     new = copy.deepcopy(node)
-    new.ops = [getattr(ast, payload)()]
+    operator, threshold = payload if isinstance(payload, tuple) else (payload, None)
+    new.ops = [getattr(ast, operator)()]
+    if threshold is not None:   # `d >= 1` -> `d > 0`: the test and its threshold
+        new.comparators = [ast.Constant(threshold)]
     return new
 
 
@@ -1266,7 +1269,8 @@ _UNARY = {"sin", "cos", "tan", "arcsin", "arccos", "arctan", "abs", "absolute", 
 _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin", "tan": "arctan", "arctan": "tan",
              "floor": "ceil", "ceil": "floor", "round": "floor", "mean": "median", "median": "mean", "sum": "mean",
              "log": "log10", "log10": "log",
-             "column_stack": "vstack", "vstack": "column_stack", "hstack": "vstack"}
+             "column_stack": "vstack", "vstack": "column_stack", "hstack": "vstack",
+             "zeros": "ones", "ones": "zeros", "zeros_like": "ones_like", "ones_like": "zeros_like"}
 
 
 def _student_changes(node, parent, parents):
@@ -1337,6 +1341,12 @@ def _student_changes(node, parent, parents):
     if isinstance(node, ast.Compare) and len(node.ops) == 1 and type(node.ops[0]) in _COMPARED:
         for other in _COMPARED[type(node.ops[0])]:
             yield "compare", other, ""   # `x > 0` for `x >= 0`, or the other way
+        yield from _threshold_changes(node)
+    if isinstance(parent, ast.List) and len(parent.elts) >= 3 and not _entry_of_literal(node, parents) \
+            and isinstance(node, (ast.Name, ast.Subscript, ast.Attribute, ast.BinOp, ast.Call)) \
+            and any(_negated(item) for item in parent.elts):
+        # an entry of a row of signed terms built from a formula (`[..., -v * Z, v]` for `-v`)
+        yield "sign", "insert", ""
     if isinstance(node, ast.BinOp) and type(node.op) in (ast.Sub, ast.Div) \
             and type(node.right) is ast.BinOp and type(node.right.op) in _REGROUPED[type(node.op)]:
         yield "regroup", "flat", ""      # `a - (b + c)` for `a - b + c`
@@ -1357,6 +1367,27 @@ def _student_changes(node, parent, parents):
         yield "function", prefix + _CV_MISTAKEN[short], ""
     if isinstance(node.func, ast.Attribute) and node.func.attr == "reshape":
         yield "transpose", "for_reshape", ""
+
+
+def _negated(node) -> bool:
+    """Whether a term is written with a minus in front (`-v`, `-v * Z`)."""
+    while isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div, ast.MatMult)):
+        node = node.left
+    return isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub)
+
+
+def _threshold_changes(node: ast.Compare):
+    """A validity test with the wrong threshold or strictness (`d >= 1` where `d > 0` belongs: a
+    sub-pixel disparity is valid): the same direction, the threshold one either side or 0."""
+    threshold = node.comparators[0]
+    if not (isinstance(threshold, ast.Constant) and type(threshold.value) in (int, float)):
+        return
+    value = threshold.value
+    strict, loose = ("Gt", "GtE") if isinstance(node.ops[0], (ast.Gt, ast.GtE)) else ("Lt", "LtE")
+    for other in dict.fromkeys((value - 1, value + 1, 0)):
+        if other != value and (other >= 0 or value < 0):
+            for operator in (strict, loose):
+                yield "compare", (operator, type(value)(other)), ""
 
 
 _FILLED = {"zeros", "ones", "empty", "full", "zeros_like", "ones_like", "empty_like", "full_like"}

@@ -590,7 +590,8 @@ def right(value, reference, student=None, confirming: bool = False, projective: 
     if confirming:
         return True
     nearer = 30 if naming.has_image(reference) else 100
-    return naming.distance(value, reference) * nearer <= naming.distance(student, reference)
+    return naming.distance(value, reference, projective=projective) * nearer \
+        <= naming.distance(student, reference, projective=projective)
 
 
 def _within(value, reference, rtol: float, grey: float, projective: bool = True) -> bool:
@@ -768,7 +769,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     kept_near = shared.setdefault("repair near", {}).setdefault(function, [])
     earlier = shared.setdefault("repair found", {}).get(function, [])
     variant = _Variants(trial, model, student, function, inputs, references, clock)
-    off = sum(naming.distance(references[i], variant.students[i]) for i in failing)
+    off = sum(variant.distance(references[i], variant.students[i]) for i in failing)
     # A slow function's variants are tried on its smallest failing input first (a matcher's crop
     # offered to the error model): only those right or nearer there run on the others.
     screen = min(failing, key=lambda i: _weight(inputs[i]))
@@ -792,21 +793,25 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if mutant.key in ruled_out:
             continue
         values = variant.screened(mutant, failing, screen, subtle)
-        if values is not None and not subtle and all(variant.right(v, references[i], variant.students[i])
-                                                     for v, i in zip(values, failing)):
+        exact = [] if values is None or subtle else [variant.right(v, references[i], variant.students[i])
+                                                     for v, i in zip(values, failing)]
+        if exact and all(exact):
             candidates.append(mutant)
             continue
         if values is not None and np.isfinite(off):
-            apart = sum(naming.distance(v, references[i]) for v, i in zip(values, failing))
+            apart = sum(variant.distance(v, references[i]) for v, i in zip(values, failing))
             if apart < 0.9 * off:
                 near.append((apart, mutant))
                 near_answers[mutant.key] = values
             # Far nearer, not the reference's to the last grey level (the student's own recipe: a
-            # resize where the reference warps): the check's own tolerances judge it.
-            if apart * (2 if subtle else REPLAY_NEARER) <= off and variant.passes_check(mutant, values, failing):
+            # resize where the reference warps), or the reference's exactly on some failing inputs
+            # and not on others (their own least squares on noisy points, where one ill-posed point
+            # outweighs every other in a sum): the check's own tolerances judge it.
+            if (apart * (2 if subtle else REPLAY_NEARER) <= off or any(exact)) \
+                    and variant.passes_check(mutant, values, failing):
                 candidates.append(mutant)
                 continue
-        elif values is not None and np.isfinite(sum(naming.distance(v, references[i]) for v, i in zip(values, failing))) \
+        elif values is not None and np.isfinite(sum(variant.distance(v, references[i]) for v, i in zip(values, failing))) \
                 and variant.passes_check(mutant, values, failing):
             # The student's answers were not of the reference's form (no matches kept at all, an
             # exception): a change that gives answers of that form is judged by the check itself.
@@ -894,7 +899,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         values = variant.answers(both, failing, inputs)
         if values is not None and (variant.passes_check(both, values, failing) if subtle else all(
                 variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing))
-                or (np.isfinite(off) and PAIR_NEARER * sum(naming.distance(v, references[i]) for v, i in
+                or (np.isfinite(off) and PAIR_NEARER * sum(variant.distance(v, references[i]) for v, i in
                                                            zip(values, failing)) <= off
                     and variant.passes_check(both, values, failing))):   # (the student's own recipe: as singles)
             fix = variant.fix(both)
@@ -1035,7 +1040,7 @@ class _Variants:
             return first
         value, reference, theirs = first[0], self.references[screen], self.students[screen]
         if (subtle or not self.right(value, reference, theirs)) \
-                and not naming.distance(value, reference) < 0.9 * naming.distance(theirs, reference):
+                and not self.distance(value, reference) < 0.9 * self.distance(theirs, reference):
             return None
         rest = [i for i in failing if i != screen]
         others = self.answers(mutant, rest, self.inputs)
@@ -1056,7 +1061,7 @@ class _Variants:
         self.replays += 1
         if self._replay(mutant, (self.trial.check, self.trial.property_examples)) is not True:
             return False
-        self.checked[mutant.key] = max((naming.distance(v, self.references[i]) for v, i in zip(values, failing)),
+        self.checked[mutant.key] = max((self.distance(v, self.references[i]) for v, i in zip(values, failing)),
                                        default=0.0)
         if values and all(_close(v, self.references[i]) for v, i in zip(values, failing)):
             self.close.add(mutant.key)
@@ -1164,8 +1169,8 @@ class _Variants:
         if values is None or own is None:
             return False
         spread = 1.5 * self.checked[mutant.key] + 1e-9
-        return any(naming.distance(theirs, wanted[i]) > 3 * spread
-                   and naming.distance(value, theirs) <= 0.01 * naming.distance(theirs, wanted[i])
+        return any(self.distance(theirs, wanted[i]) > 3 * spread
+                   and self.distance(value, theirs) <= 0.01 * self.distance(theirs, wanted[i])
                    for value, theirs, i in zip(values, own, indices))
 
     def writes_inputs(self, mutant) -> bool:
@@ -1239,7 +1244,7 @@ class _Variants:
         for mutant, fix in fixes:
             values = self.answers(mutant, usable, every)
             apart.append(float("inf") if values is None else
-                         sum(naming.distance(v, wanted[i]) for v, i in zip(values, usable)))
+                         sum(self.distance(v, wanted[i]) for v, i in zip(values, usable)))
         best = min(apart)
         if not np.isfinite(best):
             return fixes
@@ -1264,7 +1269,7 @@ class _Variants:
         # (a change the check judged -- the student's own recipe -- is held to the spread the check accepted)
         spread = 1.5 * self.checked[mutant.key] + 1e-9 if mutant.key in self.checked else None
         near = lambda v, i: spread is not None and naming.error_kind(v) is None \
-            and naming.distance(v, wanted[i]) <= spread  # noqa: E731
+            and self.distance(v, wanted[i]) <= spread  # noqa: E731
         return all(self.right(v, wanted[i], confirming=True) or near(v, i) or kept(v, theirs)
                    for v, theirs, i in zip(values, own, indices))
 
@@ -1344,10 +1349,16 @@ class _Variants:
             # Within the spread the check accepted, always: "far nearer than theirs" alone is no
             # confirmation where theirs are far off (a pyramid of no levels blends an image with
             # itself exactly, and is nearer the reference's blend than uint8 bands that wrap round).
-            apart, off = naming.distance(value, wanted[i]), naming.distance(theirs, wanted[i])
+            apart, off = self.distance(value, wanted[i]), self.distance(theirs, wanted[i])
             if apart > spread or (2 * apart > off if _wrong(theirs, wanted[i]) else apart > max(spread, 1.5 * off)):
                 return False
         return True
+
+    def distance(self, value, reference) -> float:
+        """:func:`naming.distance`, up to scale and sign where :meth:`right` judges so: an essential
+        matrix mended is the reference's up to sign, and its plain distance says it is as far as the
+        student's own."""
+        return naming.distance(value, reference, projective=self.projective)
 
     def right(self, value, reference, student=None, confirming: bool = False) -> bool:
         """:func:`right`, up to scale only where no failing answer of the student's is the reference's
