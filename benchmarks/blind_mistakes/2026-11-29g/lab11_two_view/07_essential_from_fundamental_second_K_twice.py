@@ -81,7 +81,7 @@ def _to_int(point, width, height):
 # --------------------------------------------------------------------- ex3
 def essential_from_fundamental(F, K1, K2):
     """``E = K2^T F K1``: F acts on pixels, E on normalised coordinates ``K^-1 x``."""
-    return np.asarray(K2, np.float64).T @ np.asarray(F, np.float64) @ np.asarray(K1, np.float64)
+    return np.asarray(K2, np.float64).T @ np.asarray(F, np.float64) @ np.asarray(K2, np.float64)
 
 
 def essential_8point(pts1, pts2, K1, K2):
@@ -102,7 +102,7 @@ def _eight_point_core(x1, x2):
 # --------------------------------------------------------------------- ex4
 def _hartley_normalisation(pts):
     """Similarity moving the centroid to the origin with mean distance sqrt(2)."""
-    centre = pts.mean(axis=1)
+    centre = pts.mean(axis=0)
     scale = np.sqrt(2.0) / np.mean(np.linalg.norm(pts - centre, axis=1))
     return np.array([[scale, 0.0, -scale * centre[0]],
                      [0.0, scale, -scale * centre[1]],
