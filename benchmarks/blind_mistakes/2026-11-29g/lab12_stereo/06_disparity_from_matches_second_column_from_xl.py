@@ -68,8 +68,9 @@ def triangulate(P1, P2, pts1, pts2):
     """
     P1 = np.asarray(P1, dtype=np.float64)
     P2 = np.asarray(P2, dtype=np.float64)
-    pts1 = np.asarray(pts1, dtype=np.float64).reshape(-1, 2)
+    pts1 = np.asarray(pts1, dtype=np.float64)
     single = pts1.ndim == 1
+    pts1 = pts1.reshape(-1, 2)
     pts2 = np.asarray(pts2, dtype=np.float64).reshape(-1, 2)
     A = np.stack([
         pts1[:, :1] * P1[2] - P1[0],
@@ -101,7 +102,7 @@ def disparity_from_matches(xl, xr):
     if xl.ndim == 2:
         xl = xl[:, 0]
     if xr.ndim == 2:
-        xr = xr[:, 0]
+        xr = xl[:, 0]
     return xl - xr
 
 
