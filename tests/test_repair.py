@@ -1225,3 +1225,28 @@ def test_a_term_of_a_row_of_signed_terms_has_its_sign_tried(tmp_path):
         """)
     checks, told = _failed_and_repaired(folder, "lab10.ex4")
     assert any("-v * Z, -v]`" in m for m in told), [c.message for c in checks]
+
+
+def test_a_helper_a_passing_function_shares_has_its_changes_tried_last():
+    """`_normalise` serves `fit`, which passed its checks, and `graded`, which failed: a change of it is
+    likelier wrong than one of `graded`'s own `_blend`, and is tried after it."""
+    source = textwrap.dedent("""
+        def _normalise(p):
+            return (p - p.mean(axis=0)) / p.std()
+
+        def _blend(a, b):
+            return (a + b) / 3
+
+        def fit(p):
+            return _normalise(p) * 2
+
+        def graded(p, q):
+            return _blend(_normalise(p), q)
+    """)
+    student = repair._Student(source, ast.parse(source), {"fit", "graded"})
+    ordered = student.ordered("graded")
+    assert {m.where for m in ordered} >= {"_normalise", "_blend"}
+    last = student.vouched_last(ordered, "graded", {"fit"})
+    wheres = [m.where for m in last]
+    assert wheres.index("_normalise") > max(i for i, w in enumerate(wheres) if w != "_normalise")
+    assert student.vouched_last(ordered, "graded", set()) == ordered

@@ -1846,7 +1846,7 @@ SECOND_WARP_HINT = Hint(
 
 INVERSE_SECOND_WARP = guard(
     "img2 was warped with the inverse homography: use the H that maps img2's pixels onto img1's (match img2 -> "
-    "img1, or invert)", asks=calls_any("np.linalg.inv", "np.linalg.pinv", says="inverts a homography"),
+    "img1, or invert)", asks=calls_any("np.linalg.inv", "np.linalg.pinv", says="inverts a matrix"),
     instead="img2 was warped with the inverse homography (the one mapping img1 onto img2): your code {found}, so "
             "look at which H is inverted, and at the direction of the matches (img2 -> img1)")
 # The shift on the left of H, and no product with H on the left: T @ H written, H @ T not.

@@ -40,6 +40,7 @@ import numpy as np
 from ...loading.parsing import parse
 from ...loading.reading import MAX_SOURCE_BYTES
 from ..checks import Trial, Verdict, fingerprint
+from ..inherited import SHARED_FAILING
 from . import naming
 from .helper import HelperFailed
 from .operators import _MAKE, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
@@ -186,6 +187,13 @@ class _Student:
                     taken[(m.where != function, m.operator)] += 1
                 self._ordered[function] = sorted(smallest, key=lambda m: (m.where != function, turn[m.key]))
             return self._ordered[function]
+
+    def vouched_last(self, mutants, function: str, passing) -> list:
+        """``mutants`` of ``function``, those in a private helper that one of the ``passing`` graded
+        functions runs too moved last (in their order)."""
+        vouched = {m.key for m in mutants if m.where != function and any(
+            other in passing and other != function and m.where in runs(self._defs, other) for other in self.api)}
+        return [m for m in mutants if m.key not in vouched] + [m for m in mutants if m.key in vouched]
 
     def runs(self, mutant, lines) -> bool:
         """Whether code the ``lines`` ran holds each of the mutant's changes (True when nothing is
@@ -697,6 +705,14 @@ SEEN = 8                 # a function's calls kept from a grading's checks for c
 SEEN_CONFIRMATIONS = 3   # of which a repair is confirmed on at most this many
 
 
+def _passing(trial) -> set:
+    """The graded functions every check of which, run so far in this grading, passed (one at least)."""
+    shared = trial.sandbox.shared
+    failing = shared.get((SHARED_FAILING, trial.lab.module), set())
+    return {key[1] for key, kept in list(shared.items())
+            if isinstance(key, tuple) and key[0] == "checks calling" and kept} - failing
+
+
 def _widened(call, defaults=(), factors=(4.0,)) -> list:
     """The call made unlike the check's own inputs, when it can be: every float argument given alone (a
     factor, an angle, a threshold; a numeric default it left out, given) four times larger (each of
@@ -780,6 +796,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # there as it is: only changes of the lines it runs are tried (a cost="ncc" branch, unused helpers).
     ran = student.ran_here(function, variant.ran(screen))
     runnable = [m for m in student.ordered(function) if student.runs(m, ran)]
+    # A private helper another graded function runs, whose checks all passed, is likelier right than
+    # this function's own code: its changes are tried last (a panorama's compositing before the
+    # normalisation its homography estimate shares with a DLT that passed).
+    runnable = student.vouched_last(runnable, function, _passing(trial))
     if any(_rows_for_columns(variant.students[i], references[i]) for i in failing):
         # An answer with rows and columns exchanged (a canvas sized (height, width)): the exchanges
         # of twins first, wherever they are (`(y_max - y_min, x_max - x_min)`, `w, h = shape[:2]`).
