@@ -746,6 +746,14 @@ def test_lab12_cross_order(speak):
     assert speak(lab12.CROSS_ORDER_HINT, STEREO_RECTIFY, "rectify") == ""   # no cross product of its own
 
 
+def test_lab12_third_axis_order(speak):
+    """The third axis alone reversed (a reflection): the hint tells e3 = e1 x e2 only, never the e2 the
+    code already writes, and nothing where e3 is crossed in order."""
+    said = speak(lab12.THIRD_AXIS_HINT, RECTIFY.replace("np.cross(e1, e2)", "np.cross(e2, e1)"), "rectify")
+    assert said == lab12.THIRD_AXIS_HINT.text and "e2 =" not in said
+    assert speak(lab12.THIRD_AXIS_HINT, RECTIFY, "rectify") == ""
+
+
 def test_lab12_towards_camera_2(speak):
     assert speak(lab12.TOWARDS_CENTRE_HINT, RECTIFY, "rectify") == ""   # -R^T T written: the measured message alone
     from_t = RECTIFY.replace("C2 = -R.T @ T.ravel()", "C2 = T.ravel()")

@@ -965,6 +965,10 @@ CROSS_ORDER_HINT = Hint("e2 = z x e1 (the mean optical axis crossed with e1, in 
                         asks=wherever_written("crosses z with e1, then e1 with e2", _crosses_in_order), instead="")
 
 
+THIRD_AXIS_HINT = Hint("e3 = e1 x e2 (e1 crossed with e2, in this order) keeps the new z axis towards the scene",
+                       asks=wherever_written("crosses e1 with e2", _crosses_in_order), instead="")
+
+
 INVERT_HINT = Hint(" (invert them)", asks=calls_any("np.linalg.inv", "np.linalg.pinv", "cv2.invert",
                                                   says="inverts a matrix"),
                    instead=" (your code {found}: look at which way each matrix it inverts maps)")
@@ -980,6 +984,14 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
             (x1, y1, back1), (x2, y2, back2) = orientation(H1, shape), orientation(H2, shape)
             negative = (f"{what}: matches are on the same rows, but the disparities x_l - x_r are "
                         f"negative (median {np.median(dx):.3g} px)")
+            if back1 and back2 and np.linalg.det(np.asarray(H1, float)) < 0 and np.linalg.det(np.asarray(H2, float)) < 0:
+                # (K's and K_new's determinants are positive: the rectifying "rotation" is a reflection,
+                # its third axis alone reversed -- e1 and e2 right, the image turned half round)
+                t.fail(f"{negative}: the new cameras look away from the scene (each image's centre maps to a "
+                       "negative third coordinate), and each map is a reflection (negative determinant): the "
+                       "rectifying rotation's third axis alone points the opposite way.",
+                       mistake="the rectifying rotation's third axis points the opposite way (e3 = e2 x e1)",
+                       hint=THIRD_AXIS_HINT.said(t))
             if back1 and back2:
                 t.fail(f"{negative}: the new cameras look away from the scene (each image's centre maps to a "
                        "negative third coordinate), which mirrors both images: the rectifying rotation's "

@@ -1260,15 +1260,22 @@ class _Variants:
         every, wanted, usable = self.confirmations or ((), {}, None)
         if len(fixes) < 2 or not usable or self.clock.left() <= 0:
             return fixes
-        apart = []
+        apart, plain = [], []
         for mutant, fix in fixes:
             values = self.answers(mutant, usable, every)
             apart.append(float("inf") if values is None else
                          sum(self.distance(v, wanted[i]) for v, i in zip(values, usable)))
+            plain.append(float("inf") if values is None else
+                         sum(naming.distance(v, wanted[i]) for v, i in zip(values, usable)))
         best = min(apart)
         if not np.isfinite(best):
             return fixes
-        near = [pair for pair, far in zip(fixes, apart) if far <= 1.5 * best + 1e-9 * (1.0 + best)]
+        near = [(pair, flat) for pair, far, flat in zip(fixes, apart, plain) if far <= 1.5 * best + 1e-9 * (1.0 + best)]
+        # Of those alike up to scale and sign, those that give the reference's very numbers: a camera centre's
+        # sign flipped turns a rectifying rotation R into -R, the same homographies up to sign, where the
+        # fix of the cross product's order gives R itself.
+        exact = min(flat for _, flat in near)
+        near = [pair for pair, flat in near if not np.isfinite(exact) or flat <= 1.5 * exact + 1e-9 * (1.0 + exact)]
         # A step removed from a line that reads what another fix's line makes (`std_l * std_r` -> `std_r`
         # below the line making `std_l` wrong) undoes the slip's effect there without mending it: not told.
         return [(mutant, fix) for mutant, fix in near

@@ -234,6 +234,19 @@ MISTAKES = {
             H1, H2 = K_new @ R_rect @ K1, K_new @ R_rect @ R.T @ K2
             return cv2.warpPerspective(img_l, H1, (w, h)), cv2.warpPerspective(img_r, H2, (w, h)), H1, H2
         """, ["k is used where k^-1 belongs"]),
+    "rectify with the third axis crossed the other way (e3 = e2 x e1)": ("lab12.ex3", """
+        def rectify(img_l, img_r, K1, K2, R, T):
+            K1 = np.asarray(K1, float); K2 = np.asarray(K2, float)
+            R = np.asarray(R, float); T = np.asarray(T, float).reshape(3)
+            h, w = np.asarray(img_l).shape[:2]
+            e1 = -R.T @ T / np.linalg.norm(T)
+            e2 = np.cross(np.array([0, 0, 1.0]) + R.T @ np.array([0, 0, 1.0]), e1)
+            e2 /= np.linalg.norm(e2)
+            R_rect = np.vstack([e1, e2, np.cross(e2, e1)])
+            K_new = np.array([[K1[0, 0], 0, w / 2], [0, K1[0, 0], h / 2], [0, 0, 1.0]])
+            H1, H2 = K_new @ R_rect @ np.linalg.inv(K1), K_new @ R_rect @ R.T @ np.linalg.inv(K2)
+            return cv2.warpPerspective(img_l, H1, (w, h)), cv2.warpPerspective(img_r, H2, (w, h)), H1, H2
+        """, ["third axis alone points the opposite way"]),
     # ---------------------------------------------------------------- ex4
     "block matching in the wrong direction": ("lab12.ex4", """
         def _shift_right(image, d):
