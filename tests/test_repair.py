@@ -1250,3 +1250,23 @@ def test_a_helper_a_passing_function_shares_has_its_changes_tried_last():
     wheres = [m.where for m in last]
     assert wheres.index("_normalise") > max(i for i, w in enumerate(wheres) if w != "_normalise")
     assert student.vouched_last(ordered, "graded", set()) == ordered
+
+
+def test_a_matrix_used_without_its_last_column_has_it_added_back(tmp_path):
+    """`pts @ M[:, :3].T` where the homogeneous 1 belongs: the translation column is added back (the
+    fix at the slip), and dropping the later division by the third coordinate -- which compensates
+    for the missing 1 there, as M's last row is [0, 0, 0, 1] -- is not told beside it."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab10_camera2", """
+        def orthographic_project(points):
+            pts = np.atleast_2d(np.asarray(points, dtype=np.float64))
+            M = np.array([[1.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 0, 1.0]])
+            h = pts @ M[:, :3].T
+            with np.errstate(divide="ignore", invalid="ignore"):
+                xy = h[:, :2] / h[:, 2:3]
+            return xy[0] if np.ndim(points) == 1 else xy
+        """)
+    checks, told = _failed_and_repaired(folder, "lab10.ex3")
+    assert told and all("`pts @ M[:, :3].T + M[:, 3]`" in m and "`h[:, :2]`" not in m.split("Trying", 1)[1]
+                        for m in told), [c.message for c in checks]

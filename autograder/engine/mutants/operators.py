@@ -97,6 +97,7 @@ OPERATORS = {
     "boolean_mask": ("mask", "boolean", "index"),   # pts[mask.ravel()] -> pts[mask.ravel().astype(bool)]
     "negative_index": ("negative", "index", "abs", "wrap"),   # ramp[i - j] -> ramp[np.abs(i - j)]
     "part": ("column", "part", "whole", "component"),   # np.linalg.norm(X, axis=1) -> X[:, 2] (seen elsewhere)
+    "translation": ("translation", "homogeneous", "column", "1"),   # pts @ M[:, :3].T -> ... + M[:, 3]
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -517,6 +518,28 @@ def _make_dehomogenise(node, payload):
     return ast.BinOp(copy.deepcopy(node), ast.Div(), last)
 
 
+def _make_translation(node, payload):
+    # pts @ M[:, :3].T -> pts @ M[:, :3].T + M[:, 3]: the last column (the homogeneous 1's) added back
+    block, column = _sliced_block(node.right if payload[0] == "right" else node.left)
+    bound = column if payload[1] == "row" else ast.Slice(column, ast.Constant(column.value + 1))
+    last = ast.Subscript(copy.deepcopy(block.value), ast.Tuple([ast.Slice(), bound], ast.Load()), ast.Load())
+    return ast.BinOp(copy.deepcopy(node), ast.Add(), last)
+
+
+def _sliced_block(node):
+    """``(M[:, :k], Constant(k))`` when ``node`` is ``M[:, :k]`` or its transpose (a matrix's first
+    columns, its last left out), else ``(None, None)``."""
+    if isinstance(node, ast.Attribute) and node.attr == "T":
+        node = node.value
+    if isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2:
+        rows, columns = node.slice.elts
+        if isinstance(rows, ast.Slice) and rows.lower is None and rows.upper is None and rows.step is None \
+                and isinstance(columns, ast.Slice) and columns.lower is None and columns.step is None \
+                and isinstance(columns.upper, ast.Constant) and columns.upper.value in (2, 3):
+            return node, ast.Constant(columns.upper.value)
+    return None, None
+
+
 def _make_unwrap(node, payload):
     return copy.deepcopy(node.args[0])
 
@@ -714,7 +737,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {"constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+_MAKE = {"translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1310,6 +1333,13 @@ def _student_changes(node, parent, parents):
         if isinstance(last, ast.Slice) and last.lower is None and last.step is None \
                 and isinstance(last.upper, ast.Constant) and last.upper.value in (2, 3):
             yield "dehomogenise", last.upper.value, ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult):
+        # `pts @ M[:, :3].T` (or `M[:, :3] @ X`) where the homogeneous 1 belongs: M's last column missing,
+        # added as a row (points in rows, or a single point) or as a column (points in columns)
+        for side, factor in (("right", node.right), ("left", node.left)):
+            if _sliced_block(factor)[0] is not None:
+                for shape in ("row", "column"):
+                    yield "translation", (side, shape), ""
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
     yield from _measure_changes(node)
