@@ -1270,3 +1270,17 @@ def test_a_matrix_used_without_its_last_column_has_it_added_back(tmp_path):
     checks, told = _failed_and_repaired(folder, "lab10.ex3")
     assert told and all("`pts @ M[:, :3].T + M[:, 3]`" in m and "`h[:, :2]`" not in m.split("Trying", 1)[1]
                         for m in told), [c.message for c in checks]
+
+
+def test_a_copy_of_one_item_over_its_neighbour_comes_after_their_exchange():
+    """`(0, 0, height, width)` where `(0, 0, width, height)` belongs: `width` copied over `height` is a
+    smaller change, and right wherever the image is wider than high; the exchange is tried first."""
+    source = textwrap.dedent("""
+        def graded(canvas, p, q):
+            height, width = canvas.shape[:2]
+            return cv2.clipLine((0, 0, height, width), p, q)
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    copies = [m for m in student.ordered("graded") if student.copies_an_item(m)]
+    shown = {student.fix(m).changes[0][2] for m in copies}
+    assert "(0, 0, width, width)" in shown and "(0, 0, width, height)" not in shown, shown

@@ -244,6 +244,21 @@ class _Student:
                 node = None if isinstance(parent, ast.stmt) else parent
         return made
 
+    def copies_an_item(self, mutant) -> bool:
+        """Whether the mutant puts a name in place of another item of the same tuple, list or call that
+        holds it already (`(0, 0, height, width)` -> `(0, 0, width, width)`): where a size or a pair is
+        given in the wrong order, such a copy is right on the inputs whose larger side it happens to
+        keep, and the exchange of the two items is the fix."""
+        where, ordinal, operator, payload = mutant.edits[0]
+        if operator != "other_name" or len(mutant.edits) != 1:
+            return False
+        nodes, parents = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        holder = parents.get(id(node), (None,))[0] if node is not None else None
+        items = holder.elts if isinstance(holder, (ast.Tuple, ast.List)) else \
+            holder.args if isinstance(holder, ast.Call) else []
+        return any(isinstance(item, ast.Name) and item.id == payload for item in items if item is not node)
+
     def twin_items(self, mutant) -> bool:
         """Whether the mutant exchanges two items that are each other's twins (`(int(y_max - y_min) + 1,
         int(x_max - x_min) + 1)`: the same code with x for y, a size given rows first)."""
@@ -857,8 +872,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # The smallest change of the text first: the student's slip is a few characters (`R.T` for `R`),
     # where a change that compensates for it elsewhere on the line rewrites more (`c @ R.T`).
     # (a change an earlier check of the function confirmed first: one mistake, one repair told)
+    # (and an exchange of two items before a copy of one over the other, on the same line)
     shown = sorted(((m, f) for m, f in shown if f is not None),
-                   key=lambda pair: (pair[0].key not in known, pair[1].size, pair[1].written))
+                   key=lambda pair: (pair[0].key not in known, student.copies_an_item(pair[0]), pair[1].size,
+                                     pair[1].written))
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
