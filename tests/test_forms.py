@@ -21,6 +21,8 @@ def numpy_error(operation) -> str:
     ((2, 3), (3, 3), "2x3 affine form"),
     ((3, 3), (2, 3), "3x3 homogeneous matrix; its top 2 rows"),
     ((3, 3), (3, 4), "last column is missing"),
+    ((2, 2), (3, 3), "2x2 linear part alone"),
+    ((3, 3), (4, 4), "3x3 linear part alone"),
     ((4, 2), (2, 4), "transposed"),
     ((12, 1, 2), (None, 2), "(N, 1, 2) point layout"),
     ((12, 3), (None, 2), "still homogeneous"),
@@ -40,7 +42,7 @@ def test_a_recognised_form_is_named_from_the_shape(got, expected, words):
 
 @pytest.mark.parametrize("got, expected", [
     ((1, 2), (2, 2)), ((2, 2), (1, 2)),                    # no affine form of that size
-    ((4, 4), (3, 3)), ((3, 3, 3), (3, 3)), ((12, 5), (None, 2)), ((7,), (3, 3)), ((2, 2), (2,)),
+    ((4, 4), (3, 3)), ((2, 2), (4, 4)), ((3, 3, 3), (3, 3)), ((12, 5), (None, 2)), ((7,), (3, 3)), ((2, 2), (2,)),
     ((12, 1, 3), (None, 2)),
     ((3, 3, 3), (3, 3)), ((120, 160, 2), (120, 160)), ((120, 160, 3), (None, 160)),   # no image of a known size
 ])

@@ -119,6 +119,10 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
             return Form(f"it looks like the {_size(got)} homogeneous matrix; its top {rows} rows "
                         f"({_size(expected)}) are asked",
                         f"the {_size(got)} homogeneous matrix instead of its {_size(expected)} top rows")
+        if got == (rows - 1, columns - 1) and rows == columns in (3, 4):
+            return Form(f"it looks like the {_size(got)} linear part alone; a {_size(expected)} homogeneous matrix "
+                        f"is asked (that block, a last column for the translation, and a last row [0 ... 0 1])",
+                        f"the {_size(got)} linear part instead of the {_size(expected)} homogeneous matrix")
         if got == (rows, columns - 1):
             return Form(f"it looks like the last column is missing ({_size(got)} for {_size(expected)})",
                         "the matrix's last column is missing")
