@@ -241,6 +241,24 @@ def test_a_forbidden_call_is_told_with_what_its_answer_was_worth(tmp_path, endin
     assert sum("Besides" in c.message or "passes this check otherwise" in c.message for c in checks) == 1
 
 
+def test_a_forbidden_calls_wrong_answer_is_named_in_the_students_code(tmp_path):
+    """The library's 2 x N point arrays made by reshape where a transpose belongs, beside a forbidden
+    cv2.triangulatePoints: the second look names the reshapes (both lines: one slip made twice), and
+    the library's own least squares -- not the reference's -- is judged by the check."""
+    source = """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.asarray(pts1, dtype=np.float64)
+            a = pts1.reshape(2, -1)
+            b = np.asarray(pts2, dtype=np.float64).reshape(2, -1)
+            X = cv2.triangulatePoints(np.asarray(P1, dtype=np.float64), np.asarray(P2, dtype=np.float64), a, b)
+            return (X[:3] / X[3]).T
+        """
+    result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ex1"], pictures="none", include_hidden=False)
+    besides = [c for e in result.exercises for c in e.checks if "Besides" in c.message]
+    assert besides and "to `pts1.T`" in besides[0].message and besides[0].score == 0, \
+        [c.message for e in result.exercises for c in e.checks]
+
+
 def test_what_a_forbidden_calls_second_look_computes_is_never_shared_with_the_other_checks():
     """The check run again with the forbidden call allowed shares nothing it computes with the grading's
     other checks (a panorama one check computes is served to the next): they judge under the rules."""

@@ -22,6 +22,7 @@ running, so no ground truth or pictures are built for it.
 from __future__ import annotations
 
 import contextlib
+import copy
 import logging
 import os
 import threading
@@ -715,9 +716,12 @@ def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: d
     try:
         again = check.func(trial)
     except Fail as failure:
-        first = str(failure.message).split("\n", 1)[0].rstrip()
+        # (and where in their code, as for any failed check: the library's result reshaped where it is
+        # transposed is a mistake of its own, which writing the step themselves would not mend)
+        named = _named_by_repair(Verdict(0.0, failure.message, failure.hint, failure.mistake), check, trial)
+        first = str(named.message).split("\n", 1)[0].rstrip()
         return replace(verdict, message=f"{_sentence(verdict.message)} Besides, the answer it gave is wrong: "
-                                        f"{first}", mistake=failure.mistake or verdict.mistake)
+                                        f"{first}", mistake=named.mistake or verdict.mistake)
     except Exception:  # noqa: BLE001 - the student's code raising, or anything else: nothing more to tell
         return verdict
     if again is None or (isinstance(again, Verdict) and again.fraction >= 1.0):
@@ -732,7 +736,11 @@ class _SharedApart:
     that judges the student's code under the rules. Everything else is the sandbox's own."""
 
     def __init__(self, sandbox: Sandbox):
-        self._sandbox, self.shared = sandbox, dict(sandbox.shared)
+        # (the repairs' notes too -- changes ruled out, found -- are of the call allowed; the naming
+        # time, a list, stays the grading's one)
+        self._sandbox = sandbox
+        self.shared = {key: copy.deepcopy(value) if isinstance(value, (dict, set)) else value
+                       for key, value in sandbox.shared.items()}
 
     def __getattr__(self, name):
         return getattr(self._sandbox, name)

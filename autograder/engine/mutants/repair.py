@@ -861,7 +861,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # they are made, or where they are used -- the confirmation tells them apart).
         passed = None
         for apart, mutant in sorted(near, key=lambda pair: pair[0]):
-            if variant.replays >= REPLAYS or clock.left() <= 0 or (passed is not None and apart > passed):
+            if variant.replays >= REPLAYS - PAIR_REPLAYS or clock.left() <= 0 or (passed is not None and apart > passed):
                 break
             if mutant.key in variant.checked or not variant.passes_check(mutant, near_answers[mutant.key], failing):
                 continue
@@ -929,19 +929,35 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     twice = sorted(((turn, pair) for group in turns for turn, pair in enumerate(group)),
                    key=lambda item: (item[0], size(item[1])))
     pairs += [pair for _, pair in twice[:SAME_SLIP_PAIRS]]
+    # Each pair's answers first; those right on the failing inputs are confirmed at once, and judged by
+    # the check before those only nearer (where the student's answers are absurd -- a division by a w
+    # of nearly 0 -- every pair is far nearer, and the check's replays would go to the first few).
+    exact_pairs, near_pairs = [], []
     for first, second in pairs:
         if clock.left() <= 0:
-            return None
+            break
         both = replace(first, edits=first.edits + second.edits)
         values = variant.answers(both, failing, inputs)
-        if values is not None and (variant.passes_check(both, values, failing) if subtle else all(
-                variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing))
-                or (np.isfinite(off) and PAIR_NEARER * sum(variant.distance(v, references[i]) for v, i in
-                                                           zip(values, failing)) <= off
-                    and variant.passes_check(both, values, failing))):   # (the student's own recipe: as singles)
-            fix = variant.fix(both)
-            if fix is not None and variant.confirmed(both, failing) and not variant.guard_untested(both, failing):
-                return variant.repair([(both, fix)])
+        if values is None or variant.fix(both) is None:
+            continue
+        if subtle:
+            near_pairs.append((0.0, len(near_pairs), both, values))
+        elif all(variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing)):
+            if variant.confirmed(both, failing) and not variant.guard_untested(both, failing):
+                return variant.repair([(both, variant.fix(both))])
+            exact_pairs.append((both, values))
+        elif np.isfinite(off):
+            apart = sum(variant.distance(v, references[i]) for v, i in zip(values, failing))
+            if PAIR_NEARER * apart <= off:   # (the student's own recipe: as singles)
+                near_pairs.append((apart, len(near_pairs), both, values))
+    # (right on the failing inputs, and not on inputs derived from them: their own recipe -- the library's
+    # triangulation where the reference solves its own system -- judged by the checks)
+    for both, values in exact_pairs + [(both, values) for _, _, both, values in sorted(near_pairs, key=lambda n: n[:2])]:
+        if clock.left() <= 0 or variant.replays >= REPLAYS:
+            return None
+        if both.key not in variant.checked and variant.passes_check(both, values, failing, pair=True) \
+                and variant.confirmed(both, failing) and not variant.guard_untested(both, failing):
+            return variant.repair([(both, variant.fix(both))])
     return None
 
 
@@ -952,7 +968,8 @@ BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branc
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
 PAIR_NEARER = 3   # (a pair of changes, fewer than the single ones: judged by the check from this many times)
-REPLAYS = 4       # the most changes a failed check is replayed with
+REPLAYS = 5       # the most changes a failed check is replayed with
+PAIR_REPLAYS = 1  # of which kept for pairs of changes
 OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by a check must pass too
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
@@ -1000,7 +1017,8 @@ class _Variants:
         self.inputs, self.references, self.clock = inputs, references, clock
         self.students = [call[3] for call in _recorded(trial)[function][-CALLS_PER_FUNCTION:]]
         self.companion = trial.sandbox.companion()
-        self.forbid = tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
+        self.forbid = () if getattr(trial, "forbidden_allowed", False) else \
+            tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
         self.crossing: set = set()   # the variants on the other side of a threshold (see confirmed)
         self.keeping: set = set()    # variants (other modes, other channels) where answers must be kept or mended
@@ -1086,16 +1104,16 @@ class _Variants:
         answered = {**dict(zip(rest, others)), screen: value}
         return [answered[i] for i in failing]
 
-    def passes_check(self, mutant, values, failing) -> bool:
+    def passes_check(self, mutant, values, failing, pair: bool = False) -> bool:
         """Whether the failed check, run again with every call answered by the variant, passes: its
         tolerances come from the spread of legitimate work, where :func:`right`'s are the reference's
         rounding. At most :data:`REPLAYS` per check; a property on the examples that decided it (its
         failing one: Hypothesis would draw and shrink anew for each variant). ``values``: the variant's
         answers on the ``failing`` inputs (how far from the reference's the check accepts them is the
         spread its confirmation allows)."""
-        if not self.replayable or self.replays >= REPLAYS or self.clock.left() <= 0:
-            return False
-        self.replays += 1
+        if not self.replayable or self.replays >= REPLAYS - (0 if pair else PAIR_REPLAYS) or self.clock.left() <= 0:
+            return False   # (a replay is kept for the pairs: where a single change's answers are absurd,
+        self.replays += 1  # every change looks far nearer, and the single ones would use them all)
         if self._replay(mutant, (self.trial.check, self.trial.property_examples)) is not True:
             return False
         self.checked[mutant.key] = max((self.distance(v, self.references[i]) for v, i in zip(values, failing)),
@@ -1113,6 +1131,7 @@ class _Variants:
         if source is None or self.clock.left() <= 0:
             return False
         replayed = _ReplayedTrial(_Replayed(self, source), check, self.trial.forbid, self.trial.inputs, examples)
+        replayed.forbidden_allowed = getattr(self.trial, "forbidden_allowed", False)
         try:
             verdict = check.func(replayed)
         except _NotReplayed:
