@@ -48,6 +48,46 @@ def test_a_variant_of_a_helper_is_the_one_the_function_calls(box):
     assert box.call("student", "graded", (3,)).value == 8
 
 
+def test_an_unchanged_helpers_answers_are_kept_across_variants(tmp_path):
+    """A helper the rewrite leaves alone, calling nothing it changes, answers a variant's call as it
+    answered the same arguments for an earlier variant (its work is not done again); a helper that
+    calls a changed one, or writes into its arguments, runs each time."""
+    folder = submission_from_source(tmp_path, "student", """
+        import numpy as np
+        RUNS = {"slow": 0, "writer": 0, "caller": 0}
+
+        def slow(x):
+            RUNS["slow"] += 1
+            return np.asarray(x, float) * 10
+
+        def changed(x):
+            return x
+
+        def caller(x):
+            RUNS["caller"] += 1
+            return changed(x)
+
+        def writer(x):
+            RUNS["writer"] += 1
+            x[0] = -1
+            return x.sum()
+
+        def graded(x):
+            return slow(x).sum() + caller(x).sum() + writer(np.array(x, float)), dict(RUNS)
+    """)
+    with Sandbox(folder, SMALL) as sandbox:
+        companion = sandbox.companion()
+        answers = []
+        for rewrite in ("def changed(x):\n    return x + 1\n", "def changed(x):\n    return x + 2\n"):
+            outcome = companion.call_variant("student", rewrite, "graded", [((np.arange(3.0),), {})], timeout=5.0)
+            assert outcome.ok, outcome.message
+            answers.append(outcome.value[0])
+    (first, runs_first), (second, runs_second) = answers
+    assert (first, second) == (30.0 + 6.0 + 2.0, 30.0 + 9.0 + 2.0)   # each variant's own change shows
+    assert runs_second["slow"] == runs_first["slow"] == 1               # kept from the first variant
+    assert runs_second["caller"] == 2 and runs_second["writer"] == 2     # run again each time
+
+
 def test_each_call_of_a_variant_answers_or_raises_on_its_own(box):
     source = "def helper(x):\n    return 1 / x\n"
     outcome = box.companion().call_variant("student", source, "graded", [((0,), {}), ((2,), {})], timeout=5.0)

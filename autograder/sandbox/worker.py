@@ -23,7 +23,9 @@ Usage (by the parent only)::
 """
 
 import builtins
+import copy
 import errno
+import hashlib
 import importlib
 import importlib.util
 import json
@@ -360,6 +362,7 @@ class Worker:
         self.max_result_elements = max_result_elements  # the grader checks it too: this only saves a restart
         self.modules = {}
         self.forbidden_called = []
+        self.memo = _Memo()   # the variants' calls of the student's unchanged helpers (see handle_variant)
 
     # -- import
     def load(self, name):
@@ -485,11 +488,17 @@ class Worker:
             _exec(_compile(request["source"], getattr(base, "__file__", None) or "<variant>", "exec"), space)
         except BaseException as exc:  # noqa: BLE001 - a rewrite that cannot run is no variant
             return failure("exception", f"the variant did not run: {_exception_line(exc)}")
+        # A helper the rewrite leaves as it was, calling nothing it changed, answers the same arguments
+        # as it did for the variant before: its answer is kept and given again (a panorama's feature
+        # matching, run once for the many changes of its compositing, instead of once for each).
+        unchanged = _unchanged(own, space) if request["source"] else set()
+        forbid = tuple(request.get("forbid") or ())
         for key, value in list(space.items()):   # the copy's functions read the copy's globals
             if isinstance(value, _FunctionType) and value.__globals__ is own:
                 rebound = _FunctionType(value.__code__, space, value.__name__, value.__defaults__, value.__closure__)
                 rebound.__kwdefaults__ = value.__kwdefaults__
-                space[key] = rebound
+                space[key] = rebound if key not in unchanged or key == request["function"] \
+                    else self.memo.wrapped(rebound, key, forbid)
         function = space.get(request["function"])
         if not callable(function):
             return failure("missing_function", f"function {request['function']} not found in the variant")
@@ -592,6 +601,111 @@ class Worker:
             # Nothing of this call is held while the worker waits: the grader weighs what the
             # worker holds now (memory a call keeps would be the next call's missing).
             request = response = None
+
+
+def _names_used(code) -> set:
+    """The global names a function's code (and the code nested in it) reads."""
+    names = set(code.co_names)
+    for constant in code.co_consts:
+        if isinstance(constant, type(code)):
+            names |= _names_used(constant)
+    return names
+
+
+def _unchanged(own, space) -> set:
+    """The student's functions that a variant's rewrite (``space``: ``own`` with its defs executed over
+    it) leaves as they were, and that call none of those it changed, however indirectly."""
+    functions = {key: value for key, value in space.items() if isinstance(value, _FunctionType)}
+    dirty = {key for key, value in functions.items() if value is not own.get(key)}
+    used = {key: _names_used(value.__code__) for key, value in functions.items() if key not in dirty}
+    grown = True
+    while grown:
+        grown = False
+        for key, names in used.items():
+            if key not in dirty and names & dirty:
+                dirty.add(key)
+                grown = True
+    return {key for key, value in functions.items() if key not in dirty and value.__globals__ is own}
+
+
+class _Memo:
+    """The answers of the student's unchanged helpers in a companion's variants, by their arguments
+    (arrays by their bytes), given again as copies. Kept only for calls that left their arguments as
+    they were and raised nothing, at most :data:`ENTRIES` answers of :data:`BYTES` in all; it lives
+    in the companion worker of one sandbox (one phase of one grading) and dies with it."""
+
+    ENTRIES, BYTES = 256, 32 * 2**20
+
+    def __init__(self):
+        self.answers, self.size = {}, 0
+
+    def wrapped(self, function, name, forbid):
+        memo = self
+
+        def remembered(*args, **kwargs):
+            key = _memo_key((name, forbid, args, kwargs))
+            if key is not None and key in memo.answers:
+                return _copied(memo.answers[key])
+            snapshot = snapshot_arrays(args, kwargs) if key is not None else None
+            value = function(*args, **kwargs)
+            if key is not None and len(memo.answers) < memo.ENTRIES and not modified_arguments(function, snapshot):
+                kept, size = _copied(value), _bytes_of(value)
+                if kept is not _UNCOPIED and size is not None and memo.size + size <= memo.BYTES:
+                    memo.answers[key], memo.size = kept, memo.size + size
+            return value
+        return remembered
+
+
+_UNCOPIED = object()
+
+
+def _copied(value):
+    try:
+        return copy.deepcopy(value)
+    except Exception:  # noqa: BLE001 - an answer that cannot be copied is not kept
+        return _UNCOPIED
+
+
+def _bytes_of(value, depth=0):
+    """The bytes of the arrays in an answer (and a little for the rest); None for an object of the
+    student's own kind (its size unknown)."""
+    import numpy
+    if depth > 6:
+        return None
+    if isinstance(value, numpy.ndarray):
+        return value.nbytes if value.dtype.kind != "O" else None
+    if value is None or isinstance(value, (bool, int, float, complex, str, bytes, numpy.generic)):
+        return 64 + (len(value) if isinstance(value, (str, bytes)) else 0)
+    if isinstance(value, (tuple, list)):
+        sizes = [_bytes_of(item, depth + 1) for item in value]
+        return None if None in sizes else 64 + sum(sizes)
+    if isinstance(value, dict):
+        sizes = [_bytes_of(item, depth + 1) for pair in value.items() for item in pair]
+        return None if None in sizes else 64 + sum(sizes)
+    return None
+
+
+def _memo_key(value, depth=0):
+    """A key standing for an argument (an array by its dtype, shape and bytes), or None."""
+    import numpy
+    if depth > 6:
+        return None
+    if value is None or isinstance(value, (bool, int, float, complex, str, bytes)):
+        return (type(value).__name__, value)
+    if isinstance(value, numpy.generic):
+        return (type(value).__name__, value.item())
+    if isinstance(value, numpy.ndarray):
+        if value.dtype.kind not in "biufc":
+            return None
+        digest = hashlib.blake2b(numpy.ascontiguousarray(value).tobytes(), digest_size=16).hexdigest()
+        return ("ndarray", value.dtype.str, value.shape, digest)
+    if isinstance(value, (tuple, list)):
+        items = tuple(_memo_key(item, depth + 1) for item in value)
+        return None if any(item is None for item in items) else (type(value).__name__, items)
+    if isinstance(value, dict):
+        items = tuple(sorted(((repr(k), _memo_key(v, depth + 1)) for k, v in value.items()), key=lambda item: item[0]))
+        return None if any(item[1] is None for item in items) else ("dict", items)
+    return None
 
 
 class _LineTrace:

@@ -1218,7 +1218,7 @@ class _Variants:
         code does while that answer is far outside the spread the check accepted: a change that leaves a
         wrong answer as it was is not the fix, whatever the other checks say (`max(new_h, h)` ->
         `max(new_h, sx)` mends a shrink in y and leaves the same shrink in x wrong)."""
-        indices = sorted(i for i in self.exchanged if naming.error_kind(wanted.get(i)) is None)
+        indices = sorted(i for i in self.exchanged if i in wanted and naming.error_kind(wanted[i]) is None)
         if not indices or mutant.key not in self.checked:
             return False
         values, own = self.answers(mutant, indices, every), self._own(indices, every)
@@ -1265,7 +1265,7 @@ class _Variants:
         change answers as the reference where ``other`` does not (a colour per line on BGR images:
         the change mends it, a condition made always false does not)."""
         every, wanted, _ = self.confirmations or ((), {}, None)
-        indices = sorted(i for i in self.keeping if naming.error_kind(wanted.get(i)) is None)
+        indices = sorted(i for i in self.keeping if i in wanted and naming.error_kind(wanted[i]) is None)
         if not indices:
             return False
         mine, theirs = self.answers(mutant, indices, every), self.answers(other, indices, every)
@@ -1321,7 +1321,7 @@ class _Variants:
     def _answers_kept(self, mutant, every, wanted) -> bool:
         """Whether in the function's other modes (and on its images in the other number of channels)
         the variant answers as the student's own code does, or as the reference does."""
-        indices = sorted(i for i in self.keeping if naming.error_kind(wanted.get(i)) is None)
+        indices = sorted(i for i in self.keeping if i in wanted and naming.error_kind(wanted[i]) is None)
         if not indices:
             return True
         values, own = self.answers(mutant, indices, every), self._own(indices, every)
