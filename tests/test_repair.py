@@ -1324,3 +1324,35 @@ def test_a_copy_of_one_item_over_its_neighbour_comes_after_their_exchange():
     copies = [m for m in student.ordered("graded") if student.copies_an_item(m)]
     shown = {student.fix(m).changes[0][2] for m in copies}
     assert "(0, 0, width, width)" in shown and "(0, 0, width, height)" not in shown, shown
+
+
+@pytest.mark.parametrize("body, before, after", [
+    ("return f * b // z", "f * b // z", "f * b / z"),                                   # floor for true division
+    ("return a * np.pi / 360.0", "a * np.pi / 360.0", "a * np.pi / 180.0"),             # a factor of two
+    ("return h[:, :2] / np.linalg.norm(h, axis=1, keepdims=True)",
+     "np.linalg.norm(h, axis=1, keepdims=True)", "h[..., -1:]"),                        # unit length for w = 1
+    ("return np.divide(f * b, z, where=z > 0)",
+     "np.divide(f * b, z, where=z > 0)", "np.divide(f * b, z, where=z > 0, out=np.zeros(np.shape(z > 0)))"),
+    ("s = np.zeros_like(h)\n    s[:, z:] = h[:, :-z]\n    return s",
+     "s[:, z:] = h[:, :-z]", "s[:, z:] = h[:, :h.shape[1] - z]"),                       # empty for z = 0
+])
+def test_pythons_and_numpys_traps_are_changes_tried(body, before, after):
+    """A floor division, a constant twice what it should be, a scaling to unit length where the last
+    coordinate divides, a ufunc's `where=` without `out=` (the other entries are whatever the memory
+    held), and `x[:, :-d]` (empty for d = 0): each undone by one change of the student's code."""
+    source = f"def graded(h, f, b, z, a):\n    {body}\n"
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    shown = {student.fix(m).changes[0][1:] for m in student.ordered("graded")}
+    assert any(was.endswith(before) and now.endswith(after) for was, now in shown), sorted(shown)
+
+
+def test_a_ufuncs_where_without_out_is_named(tmp_path):
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab12_stereo", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, dtype=np.float64)
+            return np.divide(f * baseline, d, where=np.isfinite(d) & (d > 0))
+        """)
+    checks, told = _failed_and_repaired(folder, "lab12.ex2")
+    assert told and all("out=np.zeros(" in m for m in told), [c.message for c in checks]
