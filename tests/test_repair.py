@@ -1335,6 +1335,7 @@ def test_a_copy_of_one_item_over_its_neighbour_comes_after_their_exchange():
      "np.divide(f * b, z, where=z > 0)", "np.divide(f * b, z, where=z > 0, out=np.zeros(np.shape(z > 0)))"),
     ("s = np.zeros_like(h)\n    s[:, z:] = h[:, :-z]\n    return s",
      "s[:, z:] = h[:, :-z]", "s[:, z:] = h[:, :h.shape[1] - z]"),                       # empty for z = 0
+    ("s = h @ b\n    return s[0]", "s[0]", "s[0] / s[2]"),                               # w never divided
 ])
 def test_pythons_and_numpys_traps_are_changes_tried(body, before, after):
     """A floor division, a constant twice what it should be, a scaling to unit length where the last
@@ -1356,3 +1357,21 @@ def test_a_ufuncs_where_without_out_is_named(tmp_path):
         """)
     checks, told = _failed_and_repaired(folder, "lab12.ex2")
     assert told and all("out=np.zeros(" in m for m in told), [c.message for c in checks]
+
+
+def test_a_call_the_checks_name_quotes_has_its_lines_changes_tried_first():
+    """A check's own name of the mistake that quotes the code ("your code fixes signs with np.sign")
+    says where to look: the changes of the lines holding that call come first."""
+    source = textwrap.dedent("""
+        def graded(K, R):
+            Q = K @ R.T
+            signs = np.diag(np.sign(np.diag(R)))
+            return K @ signs, signs @ Q
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    ordered = student.ordered("graded")
+    first = student.quoted_first(ordered, "K has a negative diagonal entry: your code fixes signs with np.sign.")
+    lines = [student.fix(m).changes[0][0] for m in first]
+    quoted = sum(line == 4 for line in lines)
+    assert quoted and set(lines[:quoted]) == {4} and lines != [student.fix(m).changes[0][0] for m in ordered]
+    assert student.quoted_first(ordered, "the answer is wrong") == ordered

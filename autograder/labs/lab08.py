@@ -995,10 +995,33 @@ def poor_consensus_cause(t: Trial) -> str | None:
         return NO_DIVISION
     if wins <= 2:
         drawn = _fixed_sample_counts(t)
-        if drawn and min(drawn) >= SAMPLES_ENOUGH:   # (code drawing 1000 samples does not draw too few)
-            return NOT_THE_BEST.replace(", or draws too few samples", "")
-        return NOT_THE_BEST
+        enough = bool(drawn) and min(drawn) >= SAMPLES_ENOUGH   # (code drawing 1000 samples does not draw too few)
+        if _keeps_the_best(t):
+            # (a loop that keeps the model whose count beats the best so far: what it counts is wrong,
+            # or it draws too few samples)
+            return MISCOUNTED if enough else (f"your loop keeps the model with the most inliers but draws only "
+                                               f"{min(drawn)} samples: too few" if drawn else None)
+        return NOT_THE_BEST.replace(", or draws too few samples", "") if enough else NOT_THE_BEST
     return None
+
+
+MISCOUNTED = ("your loop keeps the model with the most inliers, yet what it counts as an inlier is not a pair "
+              "whose transfer error |H(src) - dst|, in pixels, is below the threshold")
+
+
+def _keeps_the_best(t: Trial) -> bool:
+    """Whether the student's RANSAC loop (in homography_ransac or a helper it runs) keeps a model when
+    its count beats the best so far: an `if ... > ...:` (or `>=`) in a loop whose branch assigns."""
+    for function in code_of(t).reachable(["homography_ransac"]):
+        for loop in ast.walk(function):
+            if not isinstance(loop, (ast.For, ast.While)):
+                continue
+            for branch in ast.walk(loop):
+                if isinstance(branch, ast.If) and isinstance(branch.test, ast.Compare) \
+                        and any(isinstance(op, (ast.Gt, ast.GtE, ast.Lt, ast.LtE)) for op in branch.test.ops) \
+                        and any(isinstance(node, (ast.Assign, ast.AugAssign)) for node in branch.body):
+                    return True
+    return False
 
 
 SAMPLES_ENOUGH = 200   # a loop this long keeps a good model of half-wrong pairs (4-point samples)

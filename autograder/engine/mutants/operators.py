@@ -103,6 +103,7 @@ OPERATORS = {
     "by_last": ("homogeneous", "third", "last", "norm"),   # h / np.linalg.norm(h, ...) -> h / h[..., -1:]
     "ufunc_out": ("out", "where", "uninitialised"),       # np.divide(a, b, where=m) -> (..., out=np.zeros(...))
     "empty_slice": ("slice", "empty", "0"),                # right[:, :-d] -> right[:, :right.shape[1] - d]
+    "divided_by_w": ("homogeneous", "divid", "third", "w"),   # (H @ grid)[0] -> (H @ grid)[0] / (H @ grid)[2]
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -746,7 +747,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice")},
+_MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w")},
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -1350,7 +1351,7 @@ def _student_changes(node, parent, parents):
             if _sliced_block(factor)[0] is not None:
                 for shape in ("row", "column"):
                     yield "translation", (side, shape), ""
-    yield from _numpy_slips(node, parent)
+    yield from _numpy_slips(node, parent, parents)
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
     yield from _measure_changes(node)
@@ -1420,7 +1421,7 @@ def _negated(node) -> bool:
 _WHERE_UFUNCS = {"divide", "true_divide", "sqrt", "log", "log10", "reciprocal", "power", "multiply", "arctan2"}
 
 
-def _numpy_slips(node, parent):
+def _numpy_slips(node, parent, parents):
     """Python's and NumPy's traps, each written out whole: a floor division where a true one belongs
     (`f * b // Z`); a constant twice or half what it should be (`pi / 360` for `pi / 180`, a radius for
     a diameter); points scaled to unit length where they are divided by their last coordinate
@@ -1445,6 +1446,11 @@ def _numpy_slips(node, parent):
         if where is not None and not any(k.arg == "out" for k in node.keywords):
             out = ast.keyword("out", parse(f"np.zeros(np.shape({ast.unparse(where)}))", mode="eval").body)
             yield "ufunc_out", ast.unparse(ast.Call(node.func, node.args, [*node.keywords, out])), ""
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name) \
+            and isinstance(node.slice, ast.Constant) and node.slice.value in (0, 1) \
+            and not isinstance(parent, ast.BinOp) and _made_by_product(node.value.id, parents):
+        # a homogeneous product's first rows used as coordinates, never divided by the third
+        yield "divided_by_w", f"{node.value.id}[{node.slice.value}] / {node.value.id}[2]", ""
     if isinstance(node, ast.Subscript) and isinstance(node.value, (ast.Name, ast.Attribute)):
         items = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
         for axis, item in enumerate(items):
@@ -1455,6 +1461,22 @@ def _numpy_slips(node, parent):
                           f"{ast.unparse(item.lower) if item.lower else ''}:{array}.shape[{axis}] - ({count})"
                           for i in items]
                 yield "empty_slice", f"{array}[{', '.join(bounds)}]", ""
+
+
+_PRODUCTS: dict = {}   # id of a function's parents map -> (the map, kept alive; the names it assigns a product)
+
+
+def _made_by_product(name: str, parents) -> bool:
+    """Whether the function (of ``parents``, :func:`_parents`) assigns ``name`` a matrix product
+    (`source = H_inv @ grid`); read once per function."""
+    if id(parents) not in _PRODUCTS:
+        if len(_PRODUCTS) > 64:
+            _PRODUCTS.clear()
+        names = {target.id for node, _, _ in parents.values() if isinstance(node, ast.Assign)
+                 and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.MatMult)
+                 for target in node.targets if isinstance(target, ast.Name)}
+        _PRODUCTS[id(parents)] = (parents, names)
+    return name in _PRODUCTS[id(parents)][1]
 
 
 def _threshold_changes(node: ast.Compare):

@@ -188,6 +188,19 @@ class _Student:
                 self._ordered[function] = sorted(smallest, key=lambda m: (m.where != function, turn[m.key]))
             return self._ordered[function]
 
+    def quoted_first(self, mutants, said: str) -> list:
+        """``mutants``, those on a line holding a call the text ``said`` quotes (`np.sign`, `cv2.remap`)
+        first (in their order)."""
+        quoted = set(re.findall(r"\b(?:np|numpy|cv2|cv|math)\.[A-Za-z_][\w.]*\w", said or ""))
+        if not quoted:
+            return mutants
+        lines = self.text.splitlines()
+        fix = {m.key: self.fix(m) for m in mutants}
+        near = {m.key for m in mutants if fix[m.key] is not None and all(
+            0 < change[0] <= len(lines) and any(name in lines[change[0] - 1] for name in quoted)
+            for change in fix[m.key].changes)}
+        return [m for m in mutants if m.key in near] + [m for m in mutants if m.key not in near]
+
     def vouched_last(self, mutants, function: str, passing) -> list:
         """``mutants`` of ``function``, those in a private helper that one of the ``passing`` graded
         functions runs too moved last (in their order)."""
@@ -351,8 +364,10 @@ class _Student:
         where, ordinal, operator, payload = mutant.edits[0]
         nodes, _ = self._walk(where)
         old = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
-        if operator == "summary":
-            return repr(operator)   # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`)
+        if operator in ("summary", "divided_by_w", "true_division", "by_last", "ufunc_out", "empty_slice"):
+            # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
+            # by the third: the change is written out whole, alike in kind only)
+            return repr(operator)
         if operator != "other_name" or not isinstance(old, ast.Name) or not isinstance(payload, str):
             return repr(payload)
         a, b = old.id, payload
@@ -644,7 +659,7 @@ def _within(value, reference, rtol: float, grey: float, projective: bool = True)
 
 
 # ------------------------------------------------------------------ the search
-def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = None) -> Repair | None:
+def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = None, said: str = "") -> Repair | None:
     """A change of the student's code that makes the failed trial's answers right, confirmed; or None.
     ``tries``: at most this many single changes, no pairs (a search whose outcome does not depend on
     the machine's speed, within ``seconds``).
@@ -668,7 +683,7 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = No
         student = _student_code(trial)
         if student is None:
             return None
-        return _search(trial, model, student, clock, tries)
+        return _search(trial, model, student, clock, tries, said)
     except HelperFailed:
         return None
     finally:
@@ -690,7 +705,7 @@ def _recorded(trial) -> dict:
     return recorded
 
 
-def _search(trial, model, student: _Student, clock, tries=None) -> Repair | None:
+def _search(trial, model, student: _Student, clock, tries=None, said: str = "") -> Repair | None:
     runner = naming.helper()
     for function, calls in _recorded(trial).items():
         if function not in model.mutants or not student.ordered(function):
@@ -707,7 +722,7 @@ def _search(trial, model, student: _Student, clock, tries=None) -> Repair | None
                        if naming.error_kind(reference) is None and _differs(call[3], reference)]
         if not failing:
             continue
-        found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle, tries)
+        found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle, tries, said)
         seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         known = {_key(call) for call in seen}
         seen += [call for call in inputs if _key(call) not in known][:max(0, SEEN - len(seen))]
@@ -789,7 +804,7 @@ def _wrong(answer, reference) -> bool:
 
 
 def _repaired(trial, model, student, function, inputs, references, failing, clock, subtle=False,
-              tries=None) -> Repair | None:
+              tries=None, said="") -> Repair | None:
     """The confirmed single changes of ``function``'s code (or of a helper it runs) whose answers on
     the ``failing`` inputs are the reference's (up to :data:`FIXES`, one per line), or with which the
     failed check itself passes (:meth:`_Variants.passes_check`; only that where the student's answers
@@ -815,6 +830,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # this function's own code: its changes are tried last (a panorama's compositing before the
     # normalisation its homography estimate shares with a DLT that passed).
     runnable = student.vouched_last(runnable, function, _passing(trial))
+    # The check's own name of the mistake, where it quotes the student's code ("your code fixes signs
+    # with np.sign"), says where to look first.
+    runnable = student.quoted_first(runnable, said)
     if any(_rows_for_columns(variant.students[i], references[i]) for i in failing):
         # An answer with rows and columns exchanged (a canvas sized (height, width)): the exchanges
         # of twins first, wherever they are (`(y_max - y_min, x_max - x_min)`, `w, h = shape[:2]`).
@@ -1529,7 +1547,8 @@ def named_by_repair(verdict, trial):
     by_hand = not by_mutant and bool(verdict.mistake or "looks like" in str(verdict.message).lower())
     if by_hand and not _beside(verdict):
         return verdict
-    repair = name_by_repair(trial, BESIDE_SECONDS, BESIDE_TRIES) if by_hand else name_by_repair(trial)
+    repair = name_by_repair(trial, BESIDE_SECONDS, BESIDE_TRIES, said=str(verdict.message)) if by_hand \
+        else name_by_repair(trial)
     if repair is None:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
