@@ -1375,3 +1375,48 @@ def test_a_call_the_checks_name_quotes_has_its_lines_changes_tried_first():
     quoted = sum(line == 4 for line in lines)
     assert quoted and set(lines[:quoted]) == {4} and lines != [student.fix(m).changes[0][0] for m in ordered]
     assert student.quoted_first(ordered, "the answer is wrong") == ordered
+
+
+def test_an_angle_written_in_radians_is_not_converted_again():
+    """`phi = 2 * np.pi * u` is in radians: `np.sin(np.deg2rad(phi))` is no slip of the student's (it shrinks
+    the angles and can pass a check of spreads); an angle given as a parameter may be in degrees."""
+    source = textwrap.dedent("""
+        def graded(u, angle):
+            phi = 2 * np.pi * u
+            return np.sin(phi) + np.cos(angle) + np.tan(np.pi * u)
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    converted = {student.fix(m).changes[0][2] for m in student.ordered("graded") if m.operator == "degrees"}
+    assert any("np.cos(np.deg2rad(angle))" in text for text in converted), converted
+    assert not any("deg2rad(phi)" in text or "deg2rad(np.pi" in text for text in converted), converted
+
+
+def test_a_change_of_what_an_argmin_reads_is_judged_by_the_other_checks_too():
+    """An index chosen (argmin, argmax, argsort) is a branch: inputs near the failing ones choose the same,
+    and `np.argmin(S)` -> `np.argmin(P)` picked the right row there by chance."""
+    source = textwrap.dedent("""
+        def graded(P):
+            U, S, Vt = np.linalg.svd(P)
+            return Vt[np.argmin(S)]
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    changes = {student.fix(m).changes[0][2]: student.chooses(m) for m in student.ordered("graded")}
+    assert changes.get("np.argmin(P)") is True or changes.get("Vt[np.argmin(P)]") is True, changes
+    assert not student.chooses(next(m for m in student.ordered("graded") if "U, S, Vt" in student.fix(m).changes[0][1]))
+
+
+def test_a_twins_step_added_beside_a_line_is_not_told_where_the_name_used_is_mended(tmp_path):
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab12_stereo", """
+        def disparity_from_matches(xl, xr):
+            xl = np.asarray(xl, dtype=np.float64)
+            xr = np.asarray(xr, dtype=np.float64)
+            if xl.ndim == 2:
+                xl = xl[:, 0]
+            if xr.ndim == 2:
+                xr = xl[:, 0]
+            return xl - xr
+        """)
+    checks, told = _failed_and_repaired(folder, "lab12.ex2")
+    assert told and all("`xr = xr[:, 0]`" in m and "xl, xr =" not in m for m in told), [c.message for c in checks]

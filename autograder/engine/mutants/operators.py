@@ -1317,7 +1317,8 @@ def _student_changes(node, parent, parents):
         yield "inverse", "wrap", ""
     if isinstance(parent, ast.Call) and node in parent.args and len(parent.args) == 1 \
             and _dotted(parent.func).rsplit(".", 1)[-1] in ("sin", "cos", "tan") \
-            and not (isinstance(node, ast.Call) and _dotted(node.func) in _ANGLE_CONVERSIONS):
+            and not (isinstance(node, ast.Call) and _dotted(node.func) in _ANGLE_CONVERSIONS) \
+            and not _in_radians(node, parents):
         yield "degrees", "np.deg2rad", ""   # an angle in degrees given to the sine
     if isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult)) \
             and isinstance(node, (ast.Name, ast.Subscript)) and node is parent.right:
@@ -1464,6 +1465,21 @@ def _numpy_slips(node, parent, parents):
 
 
 _PRODUCTS: dict = {}   # id of a function's parents map -> (the map, kept alive; the names it assigns a product)
+
+
+def _in_radians(node, parents) -> bool:
+    """Whether an angle is visibly in radians already: written with pi (`2 * np.pi * u`), or a name the
+    function assigns only such values (a conversion to radians of it is no slip of the student's)."""
+    def with_pi(value) -> bool:
+        return any(isinstance(n, (ast.Name, ast.Attribute)) and _dotted(n).rsplit(".", 1)[-1] == "pi"
+                   or isinstance(n, ast.Call) and _dotted(n.func) in _ANGLE_CONVERSIONS for n in ast.walk(value))
+    if with_pi(node):
+        return True
+    if not isinstance(node, ast.Name):
+        return False
+    values = [statement.value for statement, _, _ in parents.values() if isinstance(statement, ast.Assign)
+              and any(isinstance(t, ast.Name) and t.id == node.id for t in statement.targets)]
+    return bool(values) and all(with_pi(value) for value in values)
 
 
 def _made_by_product(name: str, parents) -> bool:

@@ -257,6 +257,19 @@ class _Student:
                 node = None if isinstance(parent, ast.stmt) else parent
         return made
 
+    def chooses(self, mutant) -> bool:
+        """Whether one of the mutant's changes is in what an argmin, argmax or argsort reads (an index
+        chosen, as a branch is)."""
+        for where, ordinal, _, _ in mutant.edits:
+            nodes, parents = self._walk(where)
+            node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+            for _ in range(4):
+                node = parents.get(id(node), (None,))[0] if node is not None else None
+                if isinstance(node, ast.Call) and _call_name(node).startswith(("argmin", "argmax", "argsort",
+                                                                               "nanargmin", "nanargmax")):
+                    return True
+        return False
+
     def copies_an_item(self, mutant) -> bool:
         """Whether the mutant puts a name in place of another item of the same tuple, list or call that
         holds it already (`(0, 0, height, width)` -> `(0, 0, width, width)`): where a size or a pair is
@@ -444,6 +457,12 @@ class _Student:
         if shortened is None:
             return None
         return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
+
+
+def _call_name(call: ast.Call) -> str:
+    """The called function's own name (`np.argmin` -> `argmin`, `x.argmin` -> `argmin`)."""
+    func = call.func
+    return func.attr if isinstance(func, ast.Attribute) else func.id if isinstance(func, ast.Name) else ""
 
 
 def _shape_of(statement) -> str:
@@ -983,6 +1002,7 @@ FIXES = 3         # the most fixes told (one per line)
 REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "unwrap", "drop_conversion",
             "drop_mask", "drop_slice"}   # changes that take a step out
 BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
+ADDITIONS = {"sibling_step", "twin_step", "sibling_argument"}   # changes that add a twin's step beside a line
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
 PAIR_NEARER = 3   # (a pair of changes, fewer than the single ones: judged by the check from this many times)
@@ -1216,7 +1236,10 @@ class _Variants:
             # A condition changed sends inputs down another branch: the inputs derived from the failing
             # ones mostly stay on the same side of it, so the grading's other checks of the function
             # judge too (`w >= width` -> `w <= width` mended a crop and broke every shrink).
-            return mutant.operator not in BRANCHING or self.passes_other_checks(mutant)
+            # (and so does a change of what an argmin/argmax reads: a choice, like a branch, made the same
+            # on inputs near the failing ones -- `np.argmin(S)` -> `np.argmin(P)` picks index 3 there by chance)
+            return (mutant.operator not in BRANCHING and not self.student.chooses(mutant)) \
+                or self.passes_other_checks(mutant)
         if mutant.key not in self.checked:
             return False
         # A function with many right answers (a rectification, an estimator on noisy points: its own
@@ -1332,9 +1355,14 @@ class _Variants:
         near = [pair for pair, flat in near if not np.isfinite(exact) or flat <= 1.5 * exact + 1e-9 * (1.0 + exact)]
         # A step removed from a line that reads what another fix's line makes (`std_l * std_r` -> `std_r`
         # below the line making `std_l` wrong) undoes the slip's effect there without mending it: not told.
-        return [(mutant, fix) for mutant, fix in near
+        near = [(mutant, fix) for mutant, fix in near
                 if not (mutant.operator in REMOVALS and any(self.student.feeds(other, mutant)
                                                             for other, _ in near if other is not mutant))] or near
+        # A step added to a twin beside a line of its own (`xl = xl[:, 0]` -> `xl, xr = xl[:, 0], xr[:, 0]`)
+        # where a name used in another's place is mended too (`xr = xl[:, 0]` -> `xr = xr[:, 0]`): the
+        # added step does the twin's work twice, and breaks inputs the two lines treat apart.
+        return [(mutant, fix) for mutant, fix in near if mutant.operator not in ADDITIONS] \
+            if any(mutant.operator not in ADDITIONS for mutant, _ in near) else near
 
     def _answers_kept(self, mutant, every, wanted) -> bool:
         """Whether in the function's other modes (and on its images in the other number of channels)
