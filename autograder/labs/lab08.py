@@ -999,8 +999,8 @@ def poor_consensus_cause(t: Trial) -> str | None:
         if _keeps_the_best(t):
             # (a loop that keeps the model whose count beats the best so far: what it counts is wrong,
             # or it draws too few samples)
-            return MISCOUNTED if enough else (f"your loop keeps the model with the most inliers but draws only "
-                                               f"{min(drawn)} samples: too few" if drawn else None)
+            return MISCOUNTED if enough else (f"your loop keeps the model with the most inliers, but draws too few "
+                                               f"samples ({min(drawn)})" if drawn else None)
         return NOT_THE_BEST.replace(", or draws too few samples", "") if enough else NOT_THE_BEST
     return None
 
