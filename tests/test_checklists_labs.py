@@ -618,6 +618,10 @@ def test_lab12_structured_light_recipe(speak):
     plain = STRUCTURED.replace("binary[i] = binary[i - 1] ^ bits[i]", "pass")
     assert speak(lab12.STRUCTURED_LIGHT_RECIPE, plain, "depth_from_structured_light") == (
         "check that the Gray code is converted to binary (most significant bit first: b0 = g0, b_i = b_(i-1) XOR g_i)")
+    # the triangulation done by their own depth_from_disparity is done: not asked of the code
+    delegated = marked.replace("f * baseline / (u - column)", "depth_from_disparity(u - column, f, baseline)") \
+        .replace("(k + 0.5) * width / 2 ** len(bits) - 0.5", "(k + 0.5) * width * 2.0 ** -len(bits) - 0.5")
+    assert "Z = f b" not in speak(lab12.STRUCTURED_LIGHT_RECIPE, delegated, "depth_from_structured_light")
     stripe_edge = STRUCTURED.replace("(k + 0.5) * width / 2 ** len(bits) - 0.5", "k * width / 2 ** len(bits)")
     assert speak(lab12.STRUCTURED_LIGHT_RECIPE, stripe_edge, "depth_from_structured_light") == (
         "check that the projector column is (k + 0.5) * width / 2**n_bits - 0.5")

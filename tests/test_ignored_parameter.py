@@ -70,3 +70,34 @@ def test_a_warp_that_ignores_dsize_is_named_in_grading(tmp_path):
     named = [c for c in check_results(result, "lab07.ex5") if c.mistake == MISTAKE]
     assert named and all("never uses its parameter `dsize`" in c.message for c in named), \
         [c.message for c in check_results(result, "lab07.ex5") if not c.passed]
+
+
+# ------------------------------------------------------------------ a value computed, never read
+@pytest.mark.parametrize("body, found", [
+    ("c1 = corners(a)\n    c2 = corners(b)\n    return box(c2)", ("graded", "c1", 2)),   # a step left out
+    ("h, w = a.shape\n    return a[:h]", None),          # one name of a tuple unpacked: no step missing
+    ("scale = 1.0\n    return a", None),                # a constant: no computation left unused
+    ("_ = setup(a)\n    return a", None),               # marked unused on purpose
+    ("c = corners(a)\n    return [c for _ in b]", None),  # read in a comprehension
+    ("c = corners(a)\n    return eval('c')", None),      # read in ways a reading cannot follow
+])
+def test_a_value_computed_and_never_read_is_found(body, found):
+    from autograder.engine.ignored import computed_unused
+
+    code = read_code(f"def graded(a, b):\n    {body}\n")
+    assert computed_unused(code, ["graded"]) == found
+
+
+def test_a_value_computed_and_never_read_is_told_where_nothing_else_names_the_failure(tmp_path):
+    from autograder.engine.ignored import UNUSED_VALUE
+
+    folder = mutant(tmp_path, "lab09_camera", """
+        def pinhole_project(points, f):
+            pts = np.asarray(points, dtype=np.float64)
+            depth = pts[..., 2:3]
+            return f * pts[..., :2]
+        """)
+    result = grade(folder, ["lab09.ex1"], pictures="none", include_hidden=False)
+    told = [c for c in check_results(result, "lab09.ex1") if c.mistake == UNUSED_VALUE]
+    assert told and "computes `depth` (line" in told[0].message, \
+        [(c.mistake, c.message) for c in check_results(result, "lab09.ex1")]

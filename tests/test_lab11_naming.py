@@ -107,3 +107,22 @@ def test_legitimate_variants_keep_full_marks_and_no_name(tmp_path, case):
     result = grade(mutant(tmp_path, MODULE, source), [exercise], pictures="none")
     for check in check_results(result, exercise):
         assert check.passed and not check.mistake, f"{check.name}: {check.message}"
+
+
+def test_points_left_at_zero_are_not_told_as_undivided(tmp_path):
+    """A loop one point short leaves the last row of np.zeros: (0, 0, 0) is parallel to every point and
+    0 times it, but no w was left undivided -- the points never computed are told as such."""
+    folder = mutant(tmp_path, "lab11_two_view", """
+        _triangulate_all = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.asarray(pts1, float).reshape(-1, 2)
+            pts2 = np.asarray(pts2, float).reshape(-1, 2)
+            X = np.zeros((len(pts1), 3))
+            for i in range(len(pts1) - 1):
+                X[i] = _triangulate_all(P1, P2, pts1[i:i + 1], pts2[i:i + 1])
+            return X
+        """)
+    result = grade(folder, ["lab11.ex1"], pictures="none", include_hidden=False)
+    failed = [c for c in check_results(result, "lab11.ex1") if c.score < c.max_score]
+    assert failed and not any("not divided by w" in c.message for c in failed)
+    assert any("(0, 0, 0), as if never computed" in c.message for c in failed), [c.message for c in failed]

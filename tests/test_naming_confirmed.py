@@ -28,6 +28,7 @@ import pytest
 from autograder.engine.checks import Trial
 from autograder.engine.compare import SAME_ANSWER, max_abs_error
 from autograder.engine.judges import Probe, confirm, name_mistake
+from autograder.engine.runner import grade
 from conftest import assert_diagnosed, check_results, graded_case, named_mistakes
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -103,6 +104,35 @@ def test_ransac_error_without_w_is_not_named_as_keeping_the_last_model():
     assert "last model drawn" not in text and "does not keep the model" not in text
     # Four affine problems (w = 1 everywhere) tell the cause: right there, wrong where w varies.
     assert_diagnosed(result, "lab08.ex4", "without the perspective division")
+
+
+@pytest.mark.xdist_group("lab08")
+def test_a_ransac_that_keeps_its_best_model_is_not_told_it_keeps_the_last(tmp_path):
+    """Transfer errors measured in the normalised coordinates, compared with a threshold in pixels:
+    the loop keeps the model with the most inliers (its code says so), so what is wrong is what it
+    counts, never "it returns the last model drawn"."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, MODULE8, """
+        def homography_ransac(src, dst, threshold=3.0, seed=None, confidence=0.999, max_iterations=5000):
+            src = np.asarray(src, float).reshape(-1, 2)
+            dst = np.asarray(dst, float).reshape(-1, 2)
+            rng = np.random.default_rng(seed)
+            scale = np.abs(dst).max()
+            best, best_count = None, -1
+            for _ in range(500):
+                sample = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[sample], dst[sample])
+                mapped = np.c_[src, np.ones(len(src))] @ H.T
+                errors = np.linalg.norm(mapped[:, :2] / mapped[:, 2:] - dst, axis=1) * scale
+                count = int((errors < threshold).sum())
+                if count > best_count:
+                    best, best_count = errors < threshold, count
+            return homography_dlt(src[best], dst[best]), best
+        """)
+    result = grade(folder, ["lab08.ex4"], pictures="none", include_hidden=False)
+    text = messages(result, "lab08.ex4")
+    assert "last model drawn" not in text and "keeps the model with the most inliers" in text, text
 
 
 @pytest.mark.xdist_group("lab08")

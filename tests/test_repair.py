@@ -1324,3 +1324,99 @@ def test_a_copy_of_one_item_over_its_neighbour_comes_after_their_exchange():
     copies = [m for m in student.ordered("graded") if student.copies_an_item(m)]
     shown = {student.fix(m).changes[0][2] for m in copies}
     assert "(0, 0, width, width)" in shown and "(0, 0, width, height)" not in shown, shown
+
+
+@pytest.mark.parametrize("body, before, after", [
+    ("return f * b // z", "f * b // z", "f * b / z"),                                   # floor for true division
+    ("return a * np.pi / 360.0", "a * np.pi / 360.0", "a * np.pi / 180.0"),             # a factor of two
+    ("return h[:, :2] / np.linalg.norm(h, axis=1, keepdims=True)",
+     "np.linalg.norm(h, axis=1, keepdims=True)", "h[..., -1:]"),                        # unit length for w = 1
+    ("return np.divide(f * b, z, where=z > 0)",
+     "np.divide(f * b, z, where=z > 0)", "np.divide(f * b, z, where=z > 0, out=np.zeros(np.shape(z > 0)))"),
+    ("s = np.zeros_like(h)\n    s[:, z:] = h[:, :-z]\n    return s",
+     "s[:, z:] = h[:, :-z]", "s[:, z:] = h[:, :h.shape[1] - z]"),                       # empty for z = 0
+    ("s = h @ b\n    return s[0]", "s[0]", "s[0] / s[2]"),                               # w never divided
+])
+def test_pythons_and_numpys_traps_are_changes_tried(body, before, after):
+    """A floor division, a constant twice what it should be, a scaling to unit length where the last
+    coordinate divides, a ufunc's `where=` without `out=` (the other entries are whatever the memory
+    held), and `x[:, :-d]` (empty for d = 0): each undone by one change of the student's code."""
+    source = f"def graded(h, f, b, z, a):\n    {body}\n"
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    shown = {student.fix(m).changes[0][1:] for m in student.ordered("graded")}
+    assert any(was.endswith(before) and now.endswith(after) for was, now in shown), sorted(shown)
+
+
+def test_a_ufuncs_where_without_out_is_named(tmp_path):
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab12_stereo", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, dtype=np.float64)
+            return np.divide(f * baseline, d, where=np.isfinite(d) & (d > 0))
+        """)
+    checks, told = _failed_and_repaired(folder, "lab12.ex2")
+    assert told and all("out=np.zeros(" in m for m in told), [c.message for c in checks]
+
+
+def test_a_call_the_checks_name_quotes_has_its_lines_changes_tried_first():
+    """A check's own name of the mistake that quotes the code ("your code fixes signs with np.sign")
+    says where to look: the changes of the lines holding that call come first."""
+    source = textwrap.dedent("""
+        def graded(K, R):
+            Q = K @ R.T
+            signs = np.diag(np.sign(np.diag(R)))
+            return K @ signs, signs @ Q
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    ordered = student.ordered("graded")
+    first = student.quoted_first(ordered, "K has a negative diagonal entry: your code fixes signs with np.sign.")
+    lines = [student.fix(m).changes[0][0] for m in first]
+    quoted = sum(line == 4 for line in lines)
+    assert quoted and set(lines[:quoted]) == {4} and lines != [student.fix(m).changes[0][0] for m in ordered]
+    assert student.quoted_first(ordered, "the answer is wrong") == ordered
+
+
+def test_an_angle_written_in_radians_is_not_converted_again():
+    """`phi = 2 * np.pi * u` is in radians: `np.sin(np.deg2rad(phi))` is no slip of the student's (it shrinks
+    the angles and can pass a check of spreads); an angle given as a parameter may be in degrees."""
+    source = textwrap.dedent("""
+        def graded(u, angle):
+            phi = 2 * np.pi * u
+            return np.sin(phi) + np.cos(angle) + np.tan(np.pi * u)
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    converted = {student.fix(m).changes[0][2] for m in student.ordered("graded") if m.operator == "degrees"}
+    assert any("np.cos(np.deg2rad(angle))" in text for text in converted), converted
+    assert not any("deg2rad(phi)" in text or "deg2rad(np.pi" in text for text in converted), converted
+
+
+def test_a_change_of_what_an_argmin_reads_is_judged_by_the_other_checks_too():
+    """An index chosen (argmin, argmax, argsort) is a branch: inputs near the failing ones choose the same,
+    and `np.argmin(S)` -> `np.argmin(P)` picked the right row there by chance."""
+    source = textwrap.dedent("""
+        def graded(P):
+            U, S, Vt = np.linalg.svd(P)
+            return Vt[np.argmin(S)]
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    changes = {student.fix(m).changes[0][2]: student.chooses(m) for m in student.ordered("graded")}
+    assert changes.get("np.argmin(P)") is True or changes.get("Vt[np.argmin(P)]") is True, changes
+    assert not student.chooses(next(m for m in student.ordered("graded") if "U, S, Vt" in student.fix(m).changes[0][1]))
+
+
+def test_a_twins_step_added_beside_a_line_is_not_told_where_the_name_used_is_mended(tmp_path):
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab12_stereo", """
+        def disparity_from_matches(xl, xr):
+            xl = np.asarray(xl, dtype=np.float64)
+            xr = np.asarray(xr, dtype=np.float64)
+            if xl.ndim == 2:
+                xl = xl[:, 0]
+            if xr.ndim == 2:
+                xr = xl[:, 0]
+            return xl - xr
+        """)
+    checks, told = _failed_and_repaired(folder, "lab12.ex2")
+    assert told and all("`xr = xr[:, 0]`" in m and "xl, xr =" not in m for m in told), [c.message for c in checks]

@@ -86,3 +86,51 @@ def sentence(function: str, parameter: str, value) -> str:
     shown = shown if len(shown) <= 40 else shown[:37] + "..."
     # from the code: its body never loads the name (never_read)
     return from_code(f"your `{function}` never uses its parameter `{parameter}` (given {shown} here)")
+
+
+UNUSED_VALUE = "a value computed is never used"
+
+
+def computed_unused(code: Code, functions) -> tuple[str, str, int] | None:
+    """``(function, name, line)``: a value one of ``functions`` computes into a local name and never
+    reads (`corners1 = ...` beside a canvas built from `corners2` alone: the step that needs it is
+    missing); None if there is none. Only a plain `name = <an expression that computes>` counts (not a
+    constant, not one name of a tuple unpacked: `h, w = shape` leaving `w` is no step left out)."""
+    for function in functions:
+        fn = code.functions.get(function)
+        if fn is None:
+            continue
+        loaded, stored = set(), []
+        for node in ast.walk(fn):
+            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
+                if node.id in _INTROSPECTION:
+                    loaded = None
+                    break
+                loaded.add(node.id)
+        if loaded is None:
+            continue
+        for node in _own_statements(fn):
+            if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                    and not isinstance(node.value, ast.Constant) and not node.targets[0].id.startswith("_"):
+                stored.append((node.lineno, node.targets[0].id))
+        for line, name in sorted(stored):
+            if name not in loaded:
+                return function, name, line
+    return None
+
+
+def _own_statements(fn):
+    """The statements of ``fn``'s body, not those of the functions defined in it."""
+    todo = list(fn.body)
+    while todo:
+        node = todo.pop()
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef, ast.Lambda)):
+            continue
+        yield node
+        todo.extend(child for child in ast.iter_child_nodes(node) if isinstance(child, ast.stmt))
+
+
+def unused_value_sentence(function: str, name: str, line: int) -> str:
+    # from the code: the name is stored once and never loaded in the function
+    return from_code(f"your `{function}` computes `{name}` (line {line}) and never uses it: a step that "
+                     f"needs it may be missing")

@@ -229,6 +229,10 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
     distance = projective_distance if up_to_scale else max_abs_error
     tolerance = at_precision(rtol * scale, scale)
     if distance(got, expected) <= tolerance:
+        if got.dtype.kind in "iu":   # (right here, as whole-number arguments give: any fraction is cut off)
+            t.fail(f"{what} returned an integer matrix (dtype {got.dtype}): matrices are float arrays, and "
+                   "an integer one cuts off every fraction written into it or computed with it",
+                   mistake="an integer matrix: its fractions are cut off")
         return got
     integers = integer_entries(got, expected)
     if integers:

@@ -479,14 +479,21 @@ def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:
     from .hints import code_of
 
     calls = list(trial.calls) + ([trial.raised] if getattr(trial, "raised", None) else [])
-    found = ignored.unused_given(code_of(trial), calls) if calls else None
-    if found is None:
-        return verdict
+    code = code_of(trial)
+    found = ignored.unused_given(code, calls) if calls else None
+    if found is not None:
+        said, mistake = ignored.sentence(*found), ignored.MISTAKE
+    else:   # (or a value it computes and never reads: the functions it judged, served ones too)
+        judged = list(dict.fromkeys([call[0] for call in calls + list(getattr(trial, "served", ()))]
+                                    + sorted(functions_called(trial.check))))
+        unused = ignored.computed_unused(code, judged) if code.functions else None
+        if unused is None:
+            return verdict
+        said, mistake = ignored.unused_value_sentence(*unused), ignored.UNUSED_VALUE
     first, newline, rest = str(verdict.message).partition("\n")
     lead = first.rstrip()
     lead += "" if not lead or lead[-1] in ".:;!?" else "."
-    said = ignored.sentence(*found)
-    return replace(verdict, message=f"{lead} {said[:1].upper()}{said[1:]}.{newline}{rest}", mistake=ignored.MISTAKE)
+    return replace(verdict, message=f"{lead} {said[:1].upper()}{said[1:]}.{newline}{rest}", mistake=mistake)
 
 
 def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: Trial) -> Verdict:

@@ -995,10 +995,33 @@ def poor_consensus_cause(t: Trial) -> str | None:
         return NO_DIVISION
     if wins <= 2:
         drawn = _fixed_sample_counts(t)
-        if drawn and min(drawn) >= SAMPLES_ENOUGH:   # (code drawing 1000 samples does not draw too few)
-            return NOT_THE_BEST.replace(", or draws too few samples", "")
-        return NOT_THE_BEST
+        enough = bool(drawn) and min(drawn) >= SAMPLES_ENOUGH   # (code drawing 1000 samples does not draw too few)
+        if _keeps_the_best(t):
+            # (a loop that keeps the model whose count beats the best so far: what it counts is wrong,
+            # or it draws too few samples)
+            return MISCOUNTED if enough else (f"your loop keeps the model with the most inliers, but draws too few "
+                                               f"samples ({min(drawn)})" if drawn else None)
+        return NOT_THE_BEST.replace(", or draws too few samples", "") if enough else NOT_THE_BEST
     return None
+
+
+MISCOUNTED = ("your loop keeps the model with the most inliers, yet what it counts as an inlier is not a pair "
+              "whose transfer error |H(src) - dst|, in pixels, is below the threshold")
+
+
+def _keeps_the_best(t: Trial) -> bool:
+    """Whether the student's RANSAC loop (in homography_ransac or a helper it runs) keeps a model when
+    its count beats the best so far: an `if ... > ...:` (or `>=`) in a loop whose branch assigns."""
+    for function in code_of(t).reachable(["homography_ransac"]):
+        for loop in ast.walk(function):
+            if not isinstance(loop, (ast.For, ast.While)):
+                continue
+            for branch in ast.walk(loop):
+                if isinstance(branch, ast.If) and isinstance(branch.test, ast.Compare) \
+                        and any(isinstance(op, (ast.Gt, ast.GtE, ast.Lt, ast.LtE)) for op in branch.test.ops) \
+                        and any(isinstance(node, (ast.Assign, ast.AugAssign)) for node in branch.body):
+                    return True
+    return False
 
 
 SAMPLES_ENOUGH = 200   # a loop this long keeps a good model of half-wrong pairs (4-point samples)
@@ -1554,10 +1577,35 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
                    f"average: {shown}.")
         t.images(what, yours=panorama, img1=img1, img2=img2)
         t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs "
-               f"from img1 by {error:.0f} grey levels; {shown}): img1 is the reference frame and must only "
-               "be shifted")
+               f"from img1 by {error:.0f} grey levels; {shown}): {IMG1_SHIFTED.said(t, ['stitch'])}")
     store[key + "/judge"] = PanoramaJudge(scene, panorama, 0, offset)
     return store[key + "/judge"]
+
+
+def _img1_only_shifted(function) -> bool:
+    """Whether the code places img1 by a shift alone: warps it with a matrix whose names hold no H
+    (`cv2.warpPerspective(img1, T, size)`), or copies it into a slice of the canvas."""
+    def mentions_img1(node) -> bool:
+        return any(isinstance(n, ast.Name) and n.id == "img1" for n in ast.walk(node))
+
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in (
+                "warpPerspective", "warpAffine", "apply_homography") and len(node.args) >= 2 \
+                and mentions_img1(node.args[0]) and not any(
+                    isinstance(n, ast.Name) and ("H" in n.id or "homograph" in n.id.lower()) for n in ast.walk(node.args[1])):
+            return True
+        if isinstance(node, ast.Assign) and any(isinstance(t, ast.Subscript) for t in node.targets) \
+                and mentions_img1(node.value):
+            return True
+    return False
+
+
+# Measured (the message): img1 is not in the panorama as it is. That it must only be shifted is told only
+# to code that does not visibly place it so; to code that does, what is left is the canvas it is placed on.
+IMG1_SHIFTED = Hint("img1 is the reference frame and must only be shifted",
+                    asks=Predicate("places img1 by a shift alone", _img1_only_shifted),
+                    instead="your code {found}, so look at the canvas: its size and its shift come from the "
+                            "corners of both images")
 
 
 def stitch_scene():

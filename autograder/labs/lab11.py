@@ -214,6 +214,12 @@ def _reprojection(P1, P2, X, pts1, pts2) -> np.ndarray:
 
 def _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise):
     X = views.X
+    zero = np.linalg.norm(got, axis=1) <= 1e-12 * np.linalg.norm(X, axis=1)
+    if zero.any():
+        # (a point left at (0, 0, 0) is parallel to any other and 0 times the truth: no factor, no w)
+        t.fail(f"{what} is wrong: {int(zero.sum())} of {len(X)} points {'is' if zero.sum() == 1 else 'are'} "
+               "(0, 0, 0), as if never computed "
+               f"(point {int(np.argmax(zero))} is the first).", mistake="points left at (0, 0, 0)")
     sine = np.linalg.norm(np.cross(got, X), axis=1) / (np.linalg.norm(got, axis=1) * np.linalg.norm(X, axis=1) + 1e-300)
     scale = np.sum(got * X, axis=1) / np.sum(X * X, axis=1)
     if np.quantile(sine, 0.9) <= 1e-6 + 0.05 * noise and np.median(np.abs(scale - 1)) > 0.1:

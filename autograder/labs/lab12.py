@@ -2538,7 +2538,9 @@ STRUCTURED_LIGHT_RECIPE = checklist(
     "", ("each image is thresholded at mid-grey", Predicate("thresholds at mid-grey", _mid_grey)),
     ("the Gray code is converted to binary (most significant bit first: b0 = g0, b_i = b_(i-1) XOR g_i)", XOR),
     ("the projector column is (k + 0.5) * width / 2**n_bits - 0.5", STRIPE_CENTRE),
-    ("Z = f b / (u - column)", expr("_ * _ / (_ - _)") | expr("_ * _ / _") | expr("_ / (_ - _)")),
+    # (or done by their own depth_from_disparity, called on the disparity u - column)
+    ("Z = f b / (u - column)", expr("_ * _ / (_ - _)") | expr("_ * _ / _") | expr("_ / (_ - _)")
+     | calls("depth_from_disparity")),
     none_left=look_at(
         ("the order the bits are read in (the first image is the most significant bit)",
          wherever_written("reads the first image as the most significant bit", _bits_assembled_in_order)),

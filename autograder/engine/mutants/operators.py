@@ -98,6 +98,12 @@ OPERATORS = {
     "negative_index": ("negative", "index", "abs", "wrap"),   # ramp[i - j] -> ramp[np.abs(i - j)]
     "part": ("column", "part", "whole", "component"),   # np.linalg.norm(X, axis=1) -> X[:, 2] (seen elsewhere)
     "translation": ("translation", "homogeneous", "column", "1"),   # pts @ M[:, :3].T -> ... + M[:, 3]
+    "true_division": ("division", "floor", "//", "integer"),   # f * b // Z -> f * b / Z
+    "factor_two": ("half", "twice", "factor", "2"),       # a * pi / 360 -> a * pi / 180
+    "by_last": ("homogeneous", "third", "last", "norm"),   # h / np.linalg.norm(h, ...) -> h / h[..., -1:]
+    "ufunc_out": ("out", "where", "uninitialised"),       # np.divide(a, b, where=m) -> (..., out=np.zeros(...))
+    "empty_slice": ("slice", "empty", "0"),                # right[:, :-d] -> right[:, :right.shape[1] - d]
+    "divided_by_w": ("homogeneous", "divid", "third", "w"),   # (H @ grid)[0] -> (H @ grid)[0] / (H @ grid)[2]
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -733,11 +739,16 @@ def _make_part(node, payload):
     return parse(payload, mode="eval").body   # a part of the array, as the function writes it elsewhere
 
 
+def _make_written(node, payload):
+    return parse(payload, mode="eval").body   # the new expression, written out by the operator
+
+
 def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {"translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+_MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w")},
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1306,7 +1317,8 @@ def _student_changes(node, parent, parents):
         yield "inverse", "wrap", ""
     if isinstance(parent, ast.Call) and node in parent.args and len(parent.args) == 1 \
             and _dotted(parent.func).rsplit(".", 1)[-1] in ("sin", "cos", "tan") \
-            and not (isinstance(node, ast.Call) and _dotted(node.func) in _ANGLE_CONVERSIONS):
+            and not (isinstance(node, ast.Call) and _dotted(node.func) in _ANGLE_CONVERSIONS) \
+            and not _in_radians(node, parents):
         yield "degrees", "np.deg2rad", ""   # an angle in degrees given to the sine
     if isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult)) \
             and isinstance(node, (ast.Name, ast.Subscript)) and node is parent.right:
@@ -1340,6 +1352,7 @@ def _student_changes(node, parent, parents):
             if _sliced_block(factor)[0] is not None:
                 for shape in ("row", "column"):
                     yield "translation", (side, shape), ""
+    yield from _numpy_slips(node, parent, parents)
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
     yield from _measure_changes(node)
@@ -1404,6 +1417,82 @@ def _negated(node) -> bool:
     while isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div, ast.MatMult)):
         node = node.left
     return isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub)
+
+
+_WHERE_UFUNCS = {"divide", "true_divide", "sqrt", "log", "log10", "reciprocal", "power", "multiply", "arctan2"}
+
+
+def _numpy_slips(node, parent, parents):
+    """Python's and NumPy's traps, each written out whole: a floor division where a true one belongs
+    (`f * b // Z`); a constant twice or half what it should be (`pi / 360` for `pi / 180`, a radius for
+    a diameter); points scaled to unit length where they are divided by their last coordinate
+    (`h / np.linalg.norm(h, ...)`); a ufunc told `where=` without `out=` (NumPy leaves the other
+    entries as the memory it got: garbage); `x[:, :-d]`, empty for d = 0."""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.FloorDiv):
+        yield "true_division", ast.unparse(ast.BinOp(node.left, ast.Div(), node.right)), ""
+    if isinstance(node, ast.Constant) and type(node.value) in (int, float) and abs(node.value) >= 2 \
+            and isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Mult, ast.Div)):
+        for other in (node.value * 2, node.value / 2):
+            yield "factor_two", repr(int(other) if type(node.value) is int and float(other).is_integer()
+                                     else float(other)), ""
+    if isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.Div) and parent.right is node:
+        norm = node.value if isinstance(node, ast.Subscript) else node
+        if isinstance(norm, ast.Call) and _dotted(norm.func).rsplit(".", 1)[-1] == "norm" and norm.args:
+            points = ast.unparse(norm.args[0])
+            for last in ("[..., -1:]", "[-1]"):
+                yield "by_last", f"({points}){last}", ""
+    if isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in _WHERE_UFUNCS \
+            and _dotted(node.func).startswith(("np.", "numpy.")):
+        where = next((k.value for k in node.keywords if k.arg == "where"), None)
+        if where is not None and not any(k.arg == "out" for k in node.keywords):
+            out = ast.keyword("out", parse(f"np.zeros(np.shape({ast.unparse(where)}))", mode="eval").body)
+            yield "ufunc_out", ast.unparse(ast.Call(node.func, node.args, [*node.keywords, out])), ""
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name) \
+            and isinstance(node.slice, ast.Constant) and node.slice.value in (0, 1) \
+            and not isinstance(parent, ast.BinOp) and _made_by_product(node.value.id, parents):
+        # a homogeneous product's first rows used as coordinates, never divided by the third
+        yield "divided_by_w", f"{node.value.id}[{node.slice.value}] / {node.value.id}[2]", ""
+    if isinstance(node, ast.Subscript) and isinstance(node.value, (ast.Name, ast.Attribute)):
+        items = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+        for axis, item in enumerate(items):
+            if isinstance(item, ast.Slice) and isinstance(item.upper, ast.UnaryOp) \
+                    and isinstance(item.upper.op, ast.USub) and not isinstance(item.upper.operand, ast.Constant):
+                array, count = ast.unparse(node.value), ast.unparse(item.upper.operand)
+                bounds = [ast.unparse(i) if i is not item else
+                          f"{ast.unparse(item.lower) if item.lower else ''}:{array}.shape[{axis}] - ({count})"
+                          for i in items]
+                yield "empty_slice", f"{array}[{', '.join(bounds)}]", ""
+
+
+_PRODUCTS: dict = {}   # id of a function's parents map -> (the map, kept alive; the names it assigns a product)
+
+
+def _in_radians(node, parents) -> bool:
+    """Whether an angle is visibly in radians already: written with pi (`2 * np.pi * u`), or a name the
+    function assigns only such values (a conversion to radians of it is no slip of the student's)."""
+    def with_pi(value) -> bool:
+        return any(isinstance(n, (ast.Name, ast.Attribute)) and _dotted(n).rsplit(".", 1)[-1] == "pi"
+                   or isinstance(n, ast.Call) and _dotted(n.func) in _ANGLE_CONVERSIONS for n in ast.walk(value))
+    if with_pi(node):
+        return True
+    if not isinstance(node, ast.Name):
+        return False
+    values = [statement.value for statement, _, _ in parents.values() if isinstance(statement, ast.Assign)
+              and any(isinstance(t, ast.Name) and t.id == node.id for t in statement.targets)]
+    return bool(values) and all(with_pi(value) for value in values)
+
+
+def _made_by_product(name: str, parents) -> bool:
+    """Whether the function (of ``parents``, :func:`_parents`) assigns ``name`` a matrix product
+    (`source = H_inv @ grid`); read once per function."""
+    if id(parents) not in _PRODUCTS:
+        if len(_PRODUCTS) > 64:
+            _PRODUCTS.clear()
+        names = {target.id for node, _, _ in parents.values() if isinstance(node, ast.Assign)
+                 and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.MatMult)
+                 for target in node.targets if isinstance(target, ast.Name)}
+        _PRODUCTS[id(parents)] = (parents, names)
+    return name in _PRODUCTS[id(parents)][1]
 
 
 def _threshold_changes(node: ast.Compare):

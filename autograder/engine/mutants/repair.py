@@ -188,6 +188,19 @@ class _Student:
                 self._ordered[function] = sorted(smallest, key=lambda m: (m.where != function, turn[m.key]))
             return self._ordered[function]
 
+    def quoted_first(self, mutants, said: str) -> list:
+        """``mutants``, those on a line holding a call the text ``said`` quotes (`np.sign`, `cv2.remap`)
+        first (in their order)."""
+        quoted = set(re.findall(r"\b(?:np|numpy|cv2|cv|math)\.[A-Za-z_][\w.]*\w", said or ""))
+        if not quoted:
+            return mutants
+        lines = self.text.splitlines()
+        fix = {m.key: self.fix(m) for m in mutants}
+        near = {m.key for m in mutants if fix[m.key] is not None and all(
+            0 < change[0] <= len(lines) and any(name in lines[change[0] - 1] for name in quoted)
+            for change in fix[m.key].changes)}
+        return [m for m in mutants if m.key in near] + [m for m in mutants if m.key not in near]
+
     def vouched_last(self, mutants, function: str, passing) -> list:
         """``mutants`` of ``function``, those in a private helper that one of the ``passing`` graded
         functions runs too moved last (in their order)."""
@@ -243,6 +256,19 @@ class _Student:
                     break
                 node = None if isinstance(parent, ast.stmt) else parent
         return made
+
+    def chooses(self, mutant) -> bool:
+        """Whether one of the mutant's changes is in what an argmin, argmax or argsort reads (an index
+        chosen, as a branch is)."""
+        for where, ordinal, _, _ in mutant.edits:
+            nodes, parents = self._walk(where)
+            node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+            for _ in range(4):
+                node = parents.get(id(node), (None,))[0] if node is not None else None
+                if isinstance(node, ast.Call) and _call_name(node).startswith(("argmin", "argmax", "argsort",
+                                                                               "nanargmin", "nanargmax")):
+                    return True
+        return False
 
     def copies_an_item(self, mutant) -> bool:
         """Whether the mutant puts a name in place of another item of the same tuple, list or call that
@@ -351,8 +377,10 @@ class _Student:
         where, ordinal, operator, payload = mutant.edits[0]
         nodes, _ = self._walk(where)
         old = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
-        if operator == "summary":
-            return repr(operator)   # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`)
+        if operator in ("summary", "divided_by_w", "true_division", "by_last", "ufunc_out", "empty_slice"):
+            # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
+            # by the third: the change is written out whole, alike in kind only)
+            return repr(operator)
         if operator != "other_name" or not isinstance(old, ast.Name) or not isinstance(payload, str):
             return repr(payload)
         a, b = old.id, payload
@@ -429,6 +457,12 @@ class _Student:
         if shortened is None:
             return None
         return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
+
+
+def _call_name(call: ast.Call) -> str:
+    """The called function's own name (`np.argmin` -> `argmin`, `x.argmin` -> `argmin`)."""
+    func = call.func
+    return func.attr if isinstance(func, ast.Attribute) else func.id if isinstance(func, ast.Name) else ""
 
 
 def _shape_of(statement) -> str:
@@ -644,7 +678,7 @@ def _within(value, reference, rtol: float, grey: float, projective: bool = True)
 
 
 # ------------------------------------------------------------------ the search
-def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = None) -> Repair | None:
+def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = None, said: str = "") -> Repair | None:
     """A change of the student's code that makes the failed trial's answers right, confirmed; or None.
     ``tries``: at most this many single changes, no pairs (a search whose outcome does not depend on
     the machine's speed, within ``seconds``).
@@ -668,7 +702,7 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = No
         student = _student_code(trial)
         if student is None:
             return None
-        return _search(trial, model, student, clock, tries)
+        return _search(trial, model, student, clock, tries, said)
     except HelperFailed:
         return None
     finally:
@@ -690,7 +724,7 @@ def _recorded(trial) -> dict:
     return recorded
 
 
-def _search(trial, model, student: _Student, clock, tries=None) -> Repair | None:
+def _search(trial, model, student: _Student, clock, tries=None, said: str = "") -> Repair | None:
     runner = naming.helper()
     for function, calls in _recorded(trial).items():
         if function not in model.mutants or not student.ordered(function):
@@ -707,7 +741,7 @@ def _search(trial, model, student: _Student, clock, tries=None) -> Repair | None
                        if naming.error_kind(reference) is None and _differs(call[3], reference)]
         if not failing:
             continue
-        found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle, tries)
+        found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle, tries, said)
         seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         known = {_key(call) for call in seen}
         seen += [call for call in inputs if _key(call) not in known][:max(0, SEEN - len(seen))]
@@ -789,7 +823,7 @@ def _wrong(answer, reference) -> bool:
 
 
 def _repaired(trial, model, student, function, inputs, references, failing, clock, subtle=False,
-              tries=None) -> Repair | None:
+              tries=None, said="") -> Repair | None:
     """The confirmed single changes of ``function``'s code (or of a helper it runs) whose answers on
     the ``failing`` inputs are the reference's (up to :data:`FIXES`, one per line), or with which the
     failed check itself passes (:meth:`_Variants.passes_check`; only that where the student's answers
@@ -815,6 +849,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # this function's own code: its changes are tried last (a panorama's compositing before the
     # normalisation its homography estimate shares with a DLT that passed).
     runnable = student.vouched_last(runnable, function, _passing(trial))
+    # The check's own name of the mistake, where it quotes the student's code ("your code fixes signs
+    # with np.sign"), says where to look first.
+    runnable = student.quoted_first(runnable, said)
     if any(_rows_for_columns(variant.students[i], references[i]) for i in failing):
         # An answer with rows and columns exchanged (a canvas sized (height, width)): the exchanges
         # of twins first, wherever they are (`(y_max - y_min, x_max - x_min)`, `w, h = shape[:2]`).
@@ -965,6 +1002,7 @@ FIXES = 3         # the most fixes told (one per line)
 REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "unwrap", "drop_conversion",
             "drop_mask", "drop_slice"}   # changes that take a step out
 BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
+ADDITIONS = {"sibling_step", "twin_step", "sibling_argument"}   # changes that add a twin's step beside a line
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
 PAIR_NEARER = 3   # (a pair of changes, fewer than the single ones: judged by the check from this many times)
@@ -1198,7 +1236,10 @@ class _Variants:
             # A condition changed sends inputs down another branch: the inputs derived from the failing
             # ones mostly stay on the same side of it, so the grading's other checks of the function
             # judge too (`w >= width` -> `w <= width` mended a crop and broke every shrink).
-            return mutant.operator not in BRANCHING or self.passes_other_checks(mutant)
+            # (and so does a change of what an argmin/argmax reads: a choice, like a branch, made the same
+            # on inputs near the failing ones -- `np.argmin(S)` -> `np.argmin(P)` picks index 3 there by chance)
+            return (mutant.operator not in BRANCHING and not self.student.chooses(mutant)) \
+                or self.passes_other_checks(mutant)
         if mutant.key not in self.checked:
             return False
         # A function with many right answers (a rectification, an estimator on noisy points: its own
@@ -1314,9 +1355,14 @@ class _Variants:
         near = [pair for pair, flat in near if not np.isfinite(exact) or flat <= 1.5 * exact + 1e-9 * (1.0 + exact)]
         # A step removed from a line that reads what another fix's line makes (`std_l * std_r` -> `std_r`
         # below the line making `std_l` wrong) undoes the slip's effect there without mending it: not told.
-        return [(mutant, fix) for mutant, fix in near
+        near = [(mutant, fix) for mutant, fix in near
                 if not (mutant.operator in REMOVALS and any(self.student.feeds(other, mutant)
                                                             for other, _ in near if other is not mutant))] or near
+        # A step added to a twin beside a line of its own (`xl = xl[:, 0]` -> `xl, xr = xl[:, 0], xr[:, 0]`)
+        # where a name used in another's place is mended too (`xr = xl[:, 0]` -> `xr = xr[:, 0]`): the
+        # added step does the twin's work twice, and breaks inputs the two lines treat apart.
+        return [(mutant, fix) for mutant, fix in near if mutant.operator not in ADDITIONS] \
+            if any(mutant.operator not in ADDITIONS for mutant, _ in near) else near
 
     def _answers_kept(self, mutant, every, wanted) -> bool:
         """Whether in the function's other modes (and on its images in the other number of channels)
@@ -1529,7 +1575,8 @@ def named_by_repair(verdict, trial):
     by_hand = not by_mutant and bool(verdict.mistake or "looks like" in str(verdict.message).lower())
     if by_hand and not _beside(verdict):
         return verdict
-    repair = name_by_repair(trial, BESIDE_SECONDS, BESIDE_TRIES) if by_hand else name_by_repair(trial)
+    repair = name_by_repair(trial, BESIDE_SECONDS, BESIDE_TRIES, said=str(verdict.message)) if by_hand \
+        else name_by_repair(trial)
     if repair is None:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")

@@ -22,6 +22,10 @@ MISTAKES = {
         def translation_matrix(tx, ty):
             return np.array([[1.0, 0, ty], [0, 1.0, tx], [0, 0, 1.0]])
         """, ["swapped"]),
+    "translation_matrix written with integer entries": ("lab07.ex1", """
+        def translation_matrix(tx, ty):
+            return np.array([[1, 0, tx], [0, 1, ty], [0, 0, 1]])
+        """, ["returned an integer matrix"]),
     "translate the wrong way": ("lab07.ex1", """
         def translate(image, tx=100, ty=50):
             return _warp(image, translation_matrix(-tx, -ty))

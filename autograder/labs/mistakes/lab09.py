@@ -57,6 +57,12 @@ MISTAKES = {
         def intrinsic_matrix(f, px, py):
             return np.array([[f, 0.0, 0.0], [0.0, f, 0.0], [px, py, 1.0]])
         """, ["transposed"]),
+    "K built on the diagonal of a whole focal length": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            K = np.diag([f, f, 1])
+            K[0, 2], K[1, 2] = px, py
+            return K
+        """, ["holds integers"]),
     "K with px typed for py": ("lab09.ex2", """
         def intrinsic_matrix(f, px, py):
             return np.array([[f, 0.0, px], [0.0, f, px], [0.0, 0.0, 1.0]])
