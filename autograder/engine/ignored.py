@@ -16,7 +16,7 @@ import ast
 import numpy as np
 
 from .claims import from_code
-from .hints import Code, signature_of_def
+from .hints import Code, _own_nodes, signature_of_def
 
 MISTAKE = "a parameter given is never used"
 _INTROSPECTION = frozenset({"locals", "vars", "globals", "eval", "exec"})
@@ -109,7 +109,7 @@ def computed_unused(code: Code, functions) -> tuple[str, str, int] | None:
                 loaded.add(node.id)
         if loaded is None:
             continue
-        for node in _own_statements(fn):
+        for node in _own_nodes(fn):   # (not those of the functions defined in it)
             if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
                     and not isinstance(node.value, ast.Constant) and not node.targets[0].id.startswith("_"):
                 stored.append((node.lineno, node.targets[0].id))
@@ -117,17 +117,6 @@ def computed_unused(code: Code, functions) -> tuple[str, str, int] | None:
             if name not in loaded:
                 return function, name, line
     return None
-
-
-def _own_statements(fn):
-    """The statements of ``fn``'s body, not those of the functions defined in it."""
-    todo = list(fn.body)
-    while todo:
-        node = todo.pop()
-        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef, ast.Lambda)):
-            continue
-        yield node
-        todo.extend(child for child in ast.iter_child_nodes(node) if isinstance(child, ast.stmt))
 
 
 def unused_value_sentence(function: str, name: str, line: int) -> str:
