@@ -148,9 +148,13 @@ def translate(image, tx=100, ty=50):
 def test_the_issues_integer_matrix_is_named_before_opencvs_assertion(tmp_path):
     result = grade(mutant(tmp_path, "lab07_transformations", INTEGER_MATRIX), ["lab07.ex1"], pictures="none")
     failed = [c for e in result.exercises for c in e.checks if c.score < c.max_score]
-    assert failed and all(c.message.startswith("cv2.warpAffine needs M as a float32 or float64 matrix; "
-                                               "yours is int64") for c in failed), [c.message for c in failed]
-    assert "Assertion failed" in failed[0].message  # OpenCV's words follow, for whoever wants them
+    warps = [c for c in failed if c.name.startswith("translate")]
+    assert warps and all(c.message.startswith("cv2.warpAffine needs M as a float32 or float64 matrix; "
+                                              "yours is int64") for c in warps), [c.message for c in failed]
+    assert "Assertion failed" in warps[0].message  # OpenCV's words follow, for whoever wants them
+    # (and the matrix itself, right in value, is told as the integer array it is: matrices are float arrays)
+    matrices = [c for c in failed if c.name.startswith("translation_matrix")]
+    assert matrices and all("returned an integer matrix (dtype int64)" in c.message for c in matrices)
 
 
 X_Y_ORDER = '''
