@@ -649,8 +649,9 @@ class _Memo:
             snapshot = snapshot_arrays(args, kwargs) if key is not None else None
             value = function(*args, **kwargs)
             if key is not None and len(memo.answers) < memo.ENTRIES and not modified_arguments(function, snapshot):
-                kept, size = _copied(value), _bytes_of(value)
-                if kept is not _UNCOPIED and size is not None and memo.size + size <= memo.BYTES:
+                size = _bytes_of(value)   # (measured before any copy: an answer too large is never copied)
+                kept = _copied(value) if size is not None and memo.size + size <= memo.BYTES else _UNCOPIED
+                if kept is not _UNCOPIED:
                     memo.answers[key], memo.size = kept, memo.size + size
             return value
         return remembered

@@ -1485,14 +1485,15 @@ def _in_radians(node, parents) -> bool:
 def _made_by_product(name: str, parents) -> bool:
     """Whether the function (of ``parents``, :func:`_parents`) assigns ``name`` a matrix product
     (`source = H_inv @ grid`); read once per function."""
-    if id(parents) not in _PRODUCTS:
+    entry = _PRODUCTS.get(id(parents))
+    if entry is None or entry[0] is not parents:   # (another thread may clear it, an id be reused)
         if len(_PRODUCTS) > 64:
             _PRODUCTS.clear()
         names = {target.id for node, _, _ in parents.values() if isinstance(node, ast.Assign)
                  and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.MatMult)
                  for target in node.targets if isinstance(target, ast.Name)}
-        _PRODUCTS[id(parents)] = (parents, names)
-    return name in _PRODUCTS[id(parents)][1]
+        entry = _PRODUCTS[id(parents)] = (parents, names)
+    return name in entry[1]
 
 
 def _threshold_changes(node: ast.Compare):
