@@ -47,14 +47,19 @@ def intrinsic_matrix(f, px, py):
 def project_with_intrinsics(K, points):
     """Camera-frame points to pixels: ``x ~ K X``, then divide by the third coordinate."""
     X, single = _points(points)
-    return _divide(X @ np.asarray(K, dtype=int).T, single)
+    return _divide(X @ np.asarray(K, dtype=np.float64).T, single)
 
 
 # --------------------------------------------------------------------- ex3
 def camera_matrix(K, R, t):
-    """P = K [R | t] (3 x 4)."""
-    Rt = np.column_stack([np.asarray(R, dtype=np.float64), np.asarray(t, dtype=np.float64).reshape(3)])
-    return np.asarray(K, dtype=np.float64) @ Rt
+    """P = K [R | t] filled block by block: K R on the left, K t as the last column."""
+    K = np.asarray(K, dtype=np.float64)
+    R = np.asarray(R, dtype=np.float64)
+    t = np.asarray(t, dtype=np.float64).reshape(3)
+    P = np.zeros((3, 4))
+    P[:, :3] = R @ K
+    P[:, 3] = K @ t
+    return P
 
 
 def project(P, points):

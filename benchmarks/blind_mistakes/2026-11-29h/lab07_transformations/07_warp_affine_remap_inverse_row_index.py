@@ -94,10 +94,18 @@ def affine_from_points(src, dst):
 
 
 def warp_affine(image, A, dsize=None):
-    """Warp the image by the 2x3 affine ``A``; ``dsize = (width, height)`` or the input size."""
-    if image.ndim == 3:
-        image = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)
-    return _warp(image, A, dsize)
+    """Inverse mapping: invert A, send every output pixel back into the input, sample there with cv2.remap."""
+    A = np.asarray(A, dtype=np.float64)
+    h, w = image.shape[:2]
+    out_w, out_h = dsize if dsize is not None else (w, h)
+    L_inv = np.linalg.inv(A[:, :2])
+    t_inv = -L_inv @ A[:, 2]
+    Ai = np.column_stack([L_inv, t_inv])
+    xs, ys = np.meshgrid(np.arange(out_w, dtype=np.float64), np.arange(out_h, dtype=np.float64))
+    map_x = Ai[0, 0] * xs + Ai[0, 1] * ys + Ai[0, 2]
+    map_y = Ai[1, 0] * xs + Ai[1, 1] * ys + Ai[0, 2]
+    return cv2.remap(image, map_x.astype(np.float32), map_y.astype(np.float32), cv2.INTER_LINEAR,
+                     borderMode=cv2.BORDER_CONSTANT, borderValue=0)
 
 
 # --------------------------------------------------------------------- ex6

@@ -38,7 +38,7 @@ def rotation_matrix(angle_deg, center=(0.0, 0.0)):
     column works out to (I - R) c.
     """
     theta = np.deg2rad(angle_deg)
-    cos, sin = np.cos(theta), np.sin(theta)
+    sin, cos = np.cos(theta), np.sin(theta)
     R = np.array([[cos, sin],
                   [-sin, cos]])
     c = np.asarray(center, dtype=np.float64)
@@ -58,7 +58,7 @@ def rotate(image, angle_deg=45):
 # --------------------------------------------------------------------- ex3
 def scaling_matrix(sx, sy):
     """diag(sx, sy, 1): scales about the origin (the top-left pixel)."""
-    return np.diag([float(sy), float(sx), 1.0])
+    return np.diag([float(sx), float(sy), 1.0])
 
 
 def scale(image, sx=1.5, sy=1.5):
