@@ -52,7 +52,7 @@ def project_with_intrinsics(K, points):
 
 # --------------------------------------------------------------------- ex3
 def camera_matrix(K, R, t):
-    """P = K [R | t] filled block by block: K R on the left, K t as the last column."""
+    """P = K [R | t], filled block by block into a 3 x 4 array."""
     K = np.asarray(K, dtype=np.float64)
     R = np.asarray(R, dtype=np.float64)
     t = np.asarray(t, dtype=np.float64).reshape(3)
