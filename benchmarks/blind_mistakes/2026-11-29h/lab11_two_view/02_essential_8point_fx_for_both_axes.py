@@ -85,11 +85,14 @@ def essential_from_fundamental(F, K1, K2):
 
 
 def _to_camera_coordinates(pts, K):
-    """Pixels -> normalised camera coordinates (zero skew): ((x - cx) / fx, (y - cy) / fy)."""
+    """Pixels -> normalised camera coordinates, K^-1 x written out for an upper-triangular K."""
     pts = np.asarray(pts, dtype=np.float64).reshape(-1, 2)
     K = np.asarray(K, dtype=np.float64)
-    fx, fy, cx, cy = K[0, 0], K[1, 1], K[0, 2], K[1, 2]
-    return np.column_stack([(pts[:, 0] - cx) / fx, (pts[:, 1] - cy) / fx])
+    fx, skew, cx = K[0, 0], K[0, 1], K[0, 2]
+    fy, cy = K[1, 1], K[1, 2]
+    y = (pts[:, 1] - cy) / fx
+    x = (pts[:, 0] - cx - skew * y) / fx
+    return np.column_stack([x, y])
 
 
 def essential_8point(pts1, pts2, K1, K2):
