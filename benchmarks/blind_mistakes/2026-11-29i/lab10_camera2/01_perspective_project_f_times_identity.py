@@ -17,7 +17,7 @@ def _points(points):
 
 # --------------------------------------------------------------------- ex1
 def perspective_project(points, f):
-    """Pinhole projection with K = diag(f, f, 1): ``x = f X / Z``, ``y = f Y / Z``; NaN where ``Z <= 0``."""
+    """Pinhole projection through an intrinsic matrix: ``x = f X / Z``, ``y = f Y / Z``; NaN where ``Z <= 0``."""
     pts = np.asarray(points, dtype=np.float64)
     one_point = pts.ndim == 1
     pts = pts.reshape(-1, 3)

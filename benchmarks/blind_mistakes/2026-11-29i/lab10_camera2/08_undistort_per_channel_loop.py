@@ -144,7 +144,7 @@ def estimate_pose(image, pattern_size, square_size, K, dist=None):
 
 # --------------------------------------------------------------------- ext1
 def undistort_image(image, K, dist):
-    """``cv2.undistort`` on every channel, keeping K as the new camera matrix."""
+    """``cv2.undistort`` channel by channel, keeping K as the new camera matrix."""
     K = np.asarray(K, dtype=np.float64)
     dist = np.asarray(dist, dtype=np.float64)
     if image.ndim == 2:
