@@ -104,6 +104,9 @@ OPERATORS = {
     "ufunc_out": ("out", "where", "uninitialised"),       # np.divide(a, b, where=m) -> (..., out=np.zeros(...))
     "empty_slice": ("slice", "empty", "0"),                # right[:, :-d] -> right[:, :right.shape[1] - d]
     "divided_by_w": ("homogeneous", "divid", "third", "w"),   # (H @ grid)[0] -> (H @ grid)[0] / (H @ grid)[2]
+    "drop_keyword": ("argument", "keyword", "remov"),     # cv2.undistortPoints(p, K, None, P=K) -> (p, K, None)
+    "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
+    "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -683,6 +686,27 @@ def _make_flip_keyword(node, payload):
     return new
 
 
+def _make_drop_keyword(node, payload):
+    new = copy.deepcopy(node)   # cv2.undistortPoints(p, K, None, P=K) -> cv2.undistortPoints(p, K, None)
+    new.keywords = [k for k in new.keywords if k.arg != payload]
+    return new
+
+
+def _make_stride(node, payload):
+    # A[i] -> A[2 * i], A[i + 1] -> A[2 * i + 1]: two rows (entries) per item where one was written
+    new = copy.deepcopy(node)
+    index = new.slice.elts[0] if isinstance(new.slice, ast.Tuple) else new.slice
+    counter = index.left if isinstance(index, ast.BinOp) else index
+    doubled = ast.BinOp(ast.Constant(2), ast.Mult(), counter)
+    if isinstance(index, ast.BinOp):
+        index.left = doubled
+    elif isinstance(new.slice, ast.Tuple):
+        new.slice.elts[0] = doubled
+    else:
+        new.slice = doubled
+    return new
+
+
 def _make_float32(node, payload):
     new = copy.deepcopy(node)   # cv2.remap(img, mx, my, ...) -> np.float32(mx), np.float32(my)
     new.args = [_call("np.float32", arg) if position in payload else arg for position, arg in enumerate(new.args)]
@@ -747,7 +771,9 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w")},
+_MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
+                                              "keep_axis")},
+         "drop_keyword": _make_drop_keyword, "stride": _make_stride,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -1452,6 +1478,17 @@ def _numpy_slips(node, parent, parents):
             and not isinstance(parent, ast.BinOp) and _made_by_product(node.value.id, parents):
         # a homogeneous product's first rows used as coordinates, never divided by the third
         yield "divided_by_w", f"{node.value.id}[{node.slice.value}] / {node.value.id}[2]", ""
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(parent, ast.BinOp) \
+            and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult, ast.Div)) and isinstance(node.slice, ast.Tuple) \
+            and len(node.slice.elts) >= 2 and all(_whole_slice(e) for e in node.slice.elts[:-1]) \
+            and isinstance(node.slice.elts[-1], ast.Constant) and type(node.slice.elts[-1].value) is int:
+        # one column of an (N, k) array in arithmetic with an (N, m) one: broadcast against the rows
+        # (or raising) where the column, kept 2-D, belongs (`pts[:, :2] / pts[:, 2]`)
+        k = node.slice.elts[-1].value
+        kept = [ast.unparse(e) for e in node.slice.elts[:-1]] + [f"{k}:{k + 1}" if k != -1 else "-1:"]
+        yield "keep_axis", f"{ast.unparse(node.value)}[{', '.join(kept)}]", ""
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Store) and _looped_index(node, parents) is not None:
+        yield "stride", None, ""   # rows written at `i` and `i + 1` where `2 * i` and `2 * i + 1` belong
     if isinstance(node, ast.Subscript) and isinstance(node.value, (ast.Name, ast.Attribute)):
         items = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
         for axis, item in enumerate(items):
@@ -1462,6 +1499,24 @@ def _numpy_slips(node, parent, parents):
                           f"{ast.unparse(item.lower) if item.lower else ''}:{array}.shape[{axis}] - ({count})"
                           for i in items]
                 yield "empty_slice", f"{array}[{', '.join(bounds)}]", ""
+
+
+def _looped_index(node: ast.Subscript, parents):
+    """The first index of ``node`` (`A[i]`, `A[i + 1, :]`) when it is a ``for`` loop's counter (``for i
+    in range(...)`` around it), alone or plus a constant; else None. (A stride's place: two rows per
+    point written at `i` and `i + 1`.)"""
+    index = node.slice.elts[0] if isinstance(node.slice, ast.Tuple) and node.slice.elts else node.slice
+    counter = index.left if isinstance(index, ast.BinOp) and isinstance(index.op, ast.Add) \
+        and isinstance(index.right, ast.Constant) and type(index.right.value) is int else index
+    if not isinstance(counter, ast.Name) or not isinstance(node.value, ast.Name):
+        return None
+    up = node
+    while id(up) in parents:
+        up = parents[id(up)][0]
+        if isinstance(up, ast.For) and isinstance(up.target, ast.Name) and up.target.id == counter.id \
+                and isinstance(up.iter, ast.Call) and _dotted(up.iter.func) == "range":
+            return index
+    return None
 
 
 _PRODUCTS: dict = {}   # id of a function's parents map -> (the map, kept alive; the names it assigns a product)
@@ -1617,6 +1672,12 @@ def _call_slips(node: ast.Call):
     for keyword in node.keywords:
         if keyword.arg and isinstance(keyword.value, ast.Constant) and isinstance(keyword.value.value, bool):
             yield "flip_keyword", keyword.arg, ""
+    if dotted.startswith(("cv2.", "cv.", "np.", "numpy.", "scipy.")):
+        # an optional argument that does not belong (`P=K` makes cv2.undistortPoints map the normalised
+        # points back to pixels): a library's keyword left out, its default used
+        for keyword in node.keywords:
+            if keyword.arg and keyword.arg not in _KEPT_KEYWORDS:
+                yield "drop_keyword", keyword.arg, ""
     if dotted.startswith(("cv2.", "cv.")) and short in _FLOAT32_ONLY and len(node.args) >= 2:
         arrays = [i for i, a in enumerate(node.args) if isinstance(a, (ast.Name, ast.Subscript))]
         if any(i >= 1 for i in arrays):
@@ -1625,6 +1686,7 @@ def _call_slips(node: ast.Call):
             yield "float32", arrays, ""
 
 
+_KEPT_KEYWORDS = {"dtype", "axis", "out", "where"}   # (changed by their own operators, or never a slip left in)
 _ACCUMULATED = {ast.Add: "Add", ast.Sub: "Sub", ast.Mult: "Mult"}
 
 

@@ -933,10 +933,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # flipped where the pyramid is built, or undone where it is collapsed).
         kept = [pair for pair in fixes if not student.shared(pair[1].where, function)]
         return variant.repair(variant.nearest(kept or fixes), complete)
-    if tries is not None:
-        return None   # (pairs: a search bounded by its tries makes none)
-    near = [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
-    kept_near[:] = near
+    # (a search bounded by its tries -- beside a check's own name -- makes only the pairs of one slip
+    # made twice, which the code shows, not those of the nearest changes)
+    near = [] if tries is not None else [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
+    if tries is None:
+        kept_near[:] = near
     pairs = [(a, b) for a, b in itertools.combinations(near, 2) if _apart(a, b)]
     pairs.sort(key=lambda pair: not _same_slip(*pair))   # the same slip twice first
     # The same slip at two places, even where mending one alone brings the answers no nearer (two
@@ -966,14 +967,21 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     twice = sorted(((turn, pair) for group in turns for turn, pair in enumerate(group)),
                    key=lambda item: (item[0], size(item[1])))
     pairs += [pair for _, pair in twice[:SAME_SLIP_PAIRS]]
+    # One slip made at every place it can be (three to a few: rows written at `i`, `i + 1` of A and of
+    # b where `2 * i`, `2 * i + 1` belong), before any pair: a pair mends half of it.
+    everywhere = sorted((same for same in slips.values() if 3 <= len(same) <= EVERYWHERE
+                         and all(_apart(a, b) for a, b in itertools.combinations(same, 2))),
+                        key=lambda same: sum(student.fix(m).size for m in same))[:EVERYWHERE_GROUPS]
+    combined = [replace(same[0], edits=tuple(edit for m in sorted(same, key=lambda m: m.line) for edit in m.edits))
+                for same in everywhere] \
+        + [replace(first, edits=first.edits + second.edits) for first, second in pairs]
     # Each pair's answers first; those right on the failing inputs are confirmed at once, and judged by
     # the check before those only nearer (where the student's answers are absurd -- a division by a w
     # of nearly 0 -- every pair is far nearer, and the check's replays would go to the first few).
     exact_pairs, near_pairs = [], []
-    for first, second in pairs:
+    for both in combined:
         if clock.left() <= 0:
             break
-        both = replace(first, edits=first.edits + second.edits)
         values = variant.answers(both, failing, inputs)
         if values is None or variant.fix(both) is None:
             continue
@@ -1012,6 +1020,8 @@ OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by 
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
 NEIGHBOUR_PAIRS = 8    # of which at two neighbouring items (of one list, tuple or call), tried first
+EVERYWHERE = 6         # the most places of one slip changed at once
+EVERYWHERE_GROUPS = 6  # slips so changed (the smallest first)
 
 
 RAISE_REACH = 6   # lines before the one that raised where a change is tried first
