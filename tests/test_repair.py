@@ -1420,3 +1420,77 @@ def test_a_twins_step_added_beside_a_line_is_not_told_where_the_name_used_is_men
         """)
     checks, told = _failed_and_repaired(folder, "lab12.ex2")
     assert told and all("`xr = xr[:, 0]`" in m and "xl, xr =" not in m for m in told), [c.message for c in checks]
+
+
+def test_a_keyword_a_row_index_a_column_and_an_update_a_student_gets_wrong_are_changes_tried():
+    """Generic slips of a student's own code: a library call given a keyword that does not belong (`P=K`
+    makes cv2.undistortPoints map the points back to pixels), rows written at `i` and `i + 1` where `2 * i`
+    and `2 * i + 1` belong (only the rows written), one column of an (N, k) array in arithmetic where the
+    column kept 2-D belongs, an accumulation's sign, and a coordinate updated before its twin is computed
+    from it (both belong computed from the old values)."""
+    source = textwrap.dedent("""
+        def graded(pts, K, dist):
+            q = cv2.undistortPoints(pts, K, None, P=K)
+            A = np.zeros((2 * len(pts), 3))
+            total = 0
+            for i in range(len(pts)):
+                A[i] = [pts[i, 0], 1, 0]
+                A[i + 1] = [0, pts[i, 1], 1]
+                total -= pts[i, 0]
+            h = pts[:, :2] / pts[:, 2]
+            x, y = pts[:, 0], pts[:, 1]
+            x = x * dist + y
+            y = y * dist + x
+            return q, A, total, h, x, y
+    """)
+    assert _shown_changes(source, "drop_keyword") == [("cv2.undistortPoints(pts, K, None, P=K)",
+                                                       "cv2.undistortPoints(pts, K, None)")]
+    assert _shown_changes(source, "stride") == [("A[i] = [pts[i, 0], 1, 0]", "A[2 * i] = [pts[i, 0], 1, 0]"),
+                                                ("A[i + 1] = [0, pts[i, 1], 1]", "A[2 * i + 1] = [0, pts[i, 1], 1]")]
+    assert _shown_changes(source, "keep_axis") == [("pts[:, :2] / pts[:, 2]", "pts[:, :2] / pts[:, 2:3]")]
+    assert ("total -= pts[i, 0]", "total += pts[i, 0]") in _shown_changes(source, "add_sub")
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    [update] = [m for m in student.mutants("graded") if m.operator == "simultaneous"]
+    assert "assigning `x` and `y` together (`x, y = ..., ...`, line 12: `y` from the `x` of before that line" \
+        in student.fix(update).told("graded")
+    written = ast.unparse(repair.mutated_defs(ast.parse(source), update.edits, source))
+    assert "x, y = (x * dist + y, y * dist + x)" in written and "y = y * dist + x\n" not in written
+
+
+# A least-squares affine fit written with a loop whose rows overwrite each other (A[i], A[i + 1]) and
+# a distortion whose y is computed from the x already distorted.
+_ROWS_PER_PAIR = ("""    M = np.zeros((2 * n, 6))
+    M[0::2, 0:2] = src
+    M[0::2, 2] = 1.0
+    M[1::2, 3:5] = src
+    M[1::2, 5] = 1.0
+    b = dst.reshape(-1)  # x'_0, y'_0, x'_1, y'_1, ...
+""", """    M = np.zeros((2 * n, 6))
+    b = np.zeros(2 * n)
+    for i in range(n):
+        M[i] = [src[i, 0], src[i, 1], 1.0, 0.0, 0.0, 0.0]
+        M[i + 1] = [0.0, 0.0, 0.0, src[i, 0], src[i, 1], 1.0]
+        b[i] = dst[i, 0]
+        b[i + 1] = dst[i, 1]
+""")
+_UPDATED_X = ("""    xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x)
+    yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y
+    out = np.column_stack([xd, yd])""", """    x = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x)
+    y = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y
+    out = np.column_stack([x, y])""")
+
+
+def test_one_slip_made_at_four_places_and_an_update_made_too_early_are_told(tmp_path):
+    result = grade(edited_reference(tmp_path / "rows", "lab07_transformations", _ROWS_PER_PAIR), ["lab07.ex6"],
+                   pictures="none", include_hidden=False)
+    told = [c for c in check_results(result, "lab07.ex6") if c.mistake == repair.MISTAKE + "stride"]
+    assert told, [c.message for c in check_results(result, "lab07.ex6")]
+    for row in ("`M[2 * i] = [", "`M[2 * i + 1] = [", "`b[2 * i] = dst[i, 0]`", "`b[2 * i + 1] = dst[i, 1]`"):
+        assert row in told[0].message
+    result = grade(edited_reference(tmp_path / "update", "lab09_camera", _UPDATED_X), ["lab09.ext2"],
+                   pictures="none", include_hidden=False)
+    checks = check_results(result, "lab09.ext2")
+    told = [c for c in checks if c.mistake == repair.MISTAKE + "simultaneous"]
+    assert told and all(c.mistake == told[0].mistake for c in checks if c.score < c.max_score), \
+        [c.message for c in checks]
+    assert "assigning `x` and `y` together" in told[0].message

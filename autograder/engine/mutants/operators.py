@@ -107,6 +107,7 @@ OPERATORS = {
     "drop_keyword": ("argument", "keyword", "remov"),     # cv2.undistortPoints(p, K, None, P=K) -> (p, K, None)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
+    "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
 }
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
@@ -686,6 +687,13 @@ def _make_flip_keyword(node, payload):
     return new
 
 
+def _make_simultaneous(node, payload):
+    _, target, value = payload   # x = f(x, y) (then y = g(x, y)) -> x, y = f(x, y), g(x, y)
+    return ast.copy_location(ast.Assign(
+        [ast.Tuple([copy.deepcopy(node.targets[0]), parse(target, mode="eval").body], ast.Store())],
+        ast.Tuple([copy.deepcopy(node.value), parse(value, mode="eval").body], ast.Load())), node)
+
+
 def _make_drop_keyword(node, payload):
     new = copy.deepcopy(node)   # cv2.undistortPoints(p, K, None, P=K) -> cv2.undistortPoints(p, K, None)
     new.keywords = [k for k in new.keywords if k.arg != payload]
@@ -773,7 +781,7 @@ def _make_constant(node, payload):
 
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis")},
-         "drop_keyword": _make_drop_keyword, "stride": _make_stride,
+         "drop_keyword": _make_drop_keyword, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -1103,8 +1111,10 @@ def mutants_of(source: str, api, phrased: bool = True, functions=None) -> dict[s
             context = _context(function, where, defs, api)
             for operator, ordinal, payload, line, phrase in _def_sites(source, api, phrased, where):
                 place = f"in `{function}`{context}, "
-                mutants.append(Mutant(operator, function, where, line, ((where, ordinal, operator, payload),),
-                                      place + phrase, place))
+                edits = ((where, ordinal, operator, payload),)
+                if operator == "simultaneous":   # (the second assignment is made by the first, now)
+                    edits += ((where, payload[0], "drop_statement", None),)
+                mutants.append(Mutant(operator, function, where, line, edits, place + phrase, place))
         out[function] = mutants
     return out
 
@@ -1140,6 +1150,31 @@ def _sites(fn: ast.FunctionDef, words: _Words, phrased: bool = True):
                 continue
             seen.add((ordinal, after))
             yield operator, ordinal, payload, line, phrase
+    if words.student:
+        ordinals = {id(node): ordinal for ordinal, node in enumerate(nodes)}
+        for first, second in _sequential_updates(fn):
+            yield "simultaneous", ordinals[id(first)], (ordinals[id(second)], ast.unparse(second.targets[0]),
+                                                         ast.unparse(second.value)), first.lineno, ""
+
+
+def _sequential_updates(fn):
+    """(first, second): an assignment updating a name from its own value (`x = x * r + ...`) followed
+    by one reading the updated name (`y = y * r + ... x ...`), where both belong computed from the old
+    values at once (`x, y = ..., ...`: a point's coordinates updated one after the other)."""
+    for block in ast.walk(fn):
+        for field in ("body", "orelse"):
+            statements = getattr(block, field, None)
+            if not isinstance(statements, list):
+                continue
+            for first, second in zip(statements, statements[1:]):
+                if not all(isinstance(s, ast.Assign) and len(s.targets) == 1 and isinstance(s.targets[0], ast.Name)
+                           for s in (first, second)):
+                    continue
+                a, b = first.targets[0].id, second.targets[0].id
+                reads = lambda value, name: any(isinstance(n, ast.Name) and n.id == name  # noqa: E731
+                                                and isinstance(n.ctx, ast.Load) for n in ast.walk(value))
+                if a != b and reads(first.value, a) and reads(second.value, a):
+                    yield first, second
 
 
 def _in_docstring(node, fn) -> bool:
@@ -1398,6 +1433,8 @@ def _student_changes(node, parent, parents):
         yield from _call_slips(node)
     if isinstance(node, ast.Expr):
         yield from _discarded_result(node)
+    if isinstance(node, ast.AugAssign) and isinstance(node.op, (ast.Add, ast.Sub)):
+        yield "add_sub", None, ""   # `total -= d` for `total += d`
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.left, ast.BinOp) \
             and isinstance(node.left.op, (ast.Add, ast.Sub)) and isinstance(node.right, ast.Constant):
         yield "power_spread", None, ""   # `(x + y) ** 2` where `x ** 2 + y ** 2` belongs

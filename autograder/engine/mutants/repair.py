@@ -93,6 +93,11 @@ class Fix:
 
     def told(self, function: str) -> str:
         inside = "" if self.where == function else f", in `{self.where}`"
+        if self.operator == "simultaneous":
+            line, before, after = self.changes[0]
+            first, second = before.split(" = ...; ")[0], after.split(", ")[1].split(" = ")[0]
+            return f"assigning `{first}` and `{second}` together (`{after}`, line {line}{inside}: `{second}` from " \
+                   f"the `{first}` of before that line, not the one it sets)"
         said = [f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
                 for line, before, after in self.changes]
         return ("removing " if self.changes[0][2] == "pass" else "changing ") + " and ".join(said)
@@ -399,6 +404,12 @@ class _Student:
 
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
+        if mutant.key not in self.fixes and mutant.edits[0][2] == "simultaneous":
+            (where, ordinal, _, (_, second, _)), nodes = mutant.edits[0], self._walk(mutant.edits[0][0])[0]
+            first = nodes[ordinal].targets[0].id if 0 <= ordinal < len(nodes) else "?"
+            # (told in words: both statements whole would be too long to show)
+            self.fixes[mutant.key] = Fix(((mutant.line, f"{first} = ...; {second} = ...", f"{first}, {second} = ..., ..."),),
+                                         mutant.where, mutant.operator, mutant.edits)
         if mutant.key not in self.fixes:
             shown = _together([self.shown(edit) for edit in mutant.edits])
             self.fixes[mutant.key] = None if any(each is None for each in shown) else \
@@ -969,9 +980,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     pairs += [pair for _, pair in twice[:SAME_SLIP_PAIRS]]
     # One slip made at every place it can be (three to a few: rows written at `i`, `i + 1` of A and of
     # b where `2 * i`, `2 * i + 1` belong), before any pair: a pair mends half of it.
-    everywhere = sorted((same for same in slips.values() if 3 <= len(same) <= EVERYWHERE
+    # (those made line after line first, as a block of rows is written; then the smallest changes)
+    everywhere = sorted((same for (_, kind, _), same in slips.items() if 3 <= len(same) <= EVERYWHERE
+                         and kind not in NOT_EVERYWHERE
                          and all(_apart(a, b) for a, b in itertools.combinations(same, 2))),
-                        key=lambda same: sum(student.fix(m).size for m in same))[:EVERYWHERE_GROUPS]
+                        key=lambda same: (max(m.line for m in same) - min(m.line for m in same) > 2 * len(same),
+                                          sum(student.fix(m).size for m in same) / len(same)))[:EVERYWHERE_GROUPS]
     combined = [replace(same[0], edits=tuple(edit for m in sorted(same, key=lambda m: m.line) for edit in m.edits))
                 for same in everywhere] \
         + [replace(first, edits=first.edits + second.edits) for first, second in pairs]
@@ -1021,7 +1035,9 @@ PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
 NEIGHBOUR_PAIRS = 8    # of which at two neighbouring items (of one list, tuple or call), tried first
 EVERYWHERE = 6         # the most places of one slip changed at once
-EVERYWHERE_GROUPS = 6  # slips so changed (the smallest first)
+EVERYWHERE_GROUPS = 10  # slips so changed
+# changes that say nothing made everywhere at once (every sign, every index's axis, every statement)
+NOT_EVERYWHERE = {"accumulate", "axis", "sign", "add_sub", "drop_statement", "bound", "compare", "negate", "logic"}
 
 
 RAISE_REACH = 6   # lines before the one that raised where a change is tried first
