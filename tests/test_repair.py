@@ -1494,3 +1494,17 @@ def test_one_slip_made_at_four_places_and_an_update_made_too_early_are_told(tmp_
     assert told and all(c.mistake == told[0].mistake for c in checks if c.score < c.max_score), \
         [c.message for c in checks]
     assert "assigning `x` and `y` together" in told[0].message
+
+
+def test_a_measure_missing_its_square_root_or_its_absolute_value_and_row_column_pairs_are_changes_tried():
+    source = textwrap.dedent("""
+        def graded(d, left, right, mask):
+            close = np.sum(d ** 2, axis=1) < 3.0
+            sad = np.sum(left - right)
+            points = np.argwhere(mask)
+            return close, sad, points
+    """)
+    measures = _shown_changes(source, "measure")
+    assert ("np.sum(d ** 2, axis=1)", "np.sqrt(np.sum(d ** 2, axis=1))") in measures, measures
+    assert ("np.sum(left - right)", "np.sum(np.abs(left - right))") in measures, measures
+    assert ("np.argwhere(mask)", "np.argwhere(mask)[:, ::-1]") in _shown_changes(source, "column_order")

@@ -107,8 +107,13 @@ OPERATORS = {
     "drop_keyword": ("argument", "keyword", "remov"),     # cv2.undistortPoints(p, K, None, P=K) -> (p, K, None)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
+    "column_order": ("row", "column", "x", "y", "order"),   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
+    "move": ("before", "after", "order", "too early", "too late"),   # K = K / K[2, 2] moved after t = ... K ...
+    "indent": ("inside", "loop", "if", "indent"),        # best = inliers moved into `if count > best_count:`
+    "dedent": ("after", "loop", "outside", "indent"),    # a return inside a loop moved after it
 }
+_MOVES = {"simultaneous", "move", "indent", "dedent"}   # changes of where statements are
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
 _NON_COMMUTATIVE = {ast.Sub: "subtraction", ast.Div: "division", ast.MatMult: "matrix product",
@@ -621,6 +626,12 @@ def _make_twin_step(node, payload):
 
 
 def _make_measure(node, payload):
+    if payload == "sqrt":   # np.sum(d ** 2, axis=1) -> np.sqrt(np.sum(d ** 2, axis=1))
+        return ast.Call(_name("np.sqrt"), [copy.deepcopy(node)], [])
+    if payload == "abs_inside":   # np.sum(l - r) -> np.sum(np.abs(l - r))
+        new = copy.deepcopy(node)
+        new.args[0] = ast.Call(_name("np.abs"), [new.args[0]], [])
+        return new
     if payload == "square":   # np.abs(d) -> d ** 2
         return ast.BinOp(copy.deepcopy(node.args[0]), ast.Pow(), ast.Constant(2))
     inner = node.left if isinstance(node, ast.BinOp) else node.args[0]   # d ** 2, np.square(d) -> np.abs(d)
@@ -692,6 +703,25 @@ def _make_simultaneous(node, payload):
     return ast.copy_location(ast.Assign(
         [ast.Tuple([copy.deepcopy(node.targets[0]), parse(target, mode="eval").body], ast.Store())],
         ast.Tuple([copy.deepcopy(node.value), parse(value, mode="eval").body], ast.Load())), node)
+
+
+def _make_move(node, payload):
+    _, moved, _, side = payload   # a statement made again beside the edited one (an `if True:` holds both)
+    made = parse(moved).body[0]
+    pair = [copy.deepcopy(node), made] if side == "after" else [made, copy.deepcopy(node)]
+    return ast.copy_location(ast.If(ast.Constant(True), pair, []), node)
+
+
+def _make_indent(node, payload):
+    new = copy.deepcopy(node)   # for ...: body; s -> for ...: body; s
+    new.body = [*new.body, parse(payload[1]).body[0]]
+    return new
+
+
+def _make_dedent(node, payload):
+    new = copy.deepcopy(node)   # for ...: body; s -> for ...: body / s
+    last = new.body.pop()
+    return ast.copy_location(ast.If(ast.Constant(True), [new, last], []), node)
 
 
 def _make_drop_keyword(node, payload):
@@ -780,8 +810,9 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
-                                              "keep_axis")},
+                                              "keep_axis", "column_order")},
          "drop_keyword": _make_drop_keyword, "stride": _make_stride, "simultaneous": _make_simultaneous,
+         "move": _make_move, "indent": _make_indent, "dedent": _make_dedent,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -1112,8 +1143,8 @@ def mutants_of(source: str, api, phrased: bool = True, functions=None) -> dict[s
             for operator, ordinal, payload, line, phrase in _def_sites(source, api, phrased, where):
                 place = f"in `{function}`{context}, "
                 edits = ((where, ordinal, operator, payload),)
-                if operator == "simultaneous":   # (the second assignment is made by the first, now)
-                    edits += ((where, payload[0], "drop_statement", None),)
+                if operator in _MOVES and payload[0] is not None:   # (the statement made at the edited node
+                    edits += ((where, payload[0], "drop_statement", None),)   # is removed where it was)
                 mutants.append(Mutant(operator, function, where, line, edits, place + phrase, place))
         out[function] = mutants
     return out
@@ -1155,6 +1186,70 @@ def _sites(fn: ast.FunctionDef, words: _Words, phrased: bool = True):
         for first, second in _sequential_updates(fn):
             yield "simultaneous", ordinals[id(first)], (ordinals[id(second)], ast.unparse(second.targets[0]),
                                                          ast.unparse(second.value)), first.lineno, ""
+        # A statement in the wrong place: the payload's first item is the statement the change removes
+        # from where it was (made again at the edited node), None when the edited node holds it.
+        for operator, edited, moved, side in _statement_moves(fn):
+            removed = ordinals[id(moved)] if operator != "dedent" else None
+            yield operator, ordinals[id(edited)], (removed, ast.unparse(moved), moved.lineno, side), moved.lineno, ""
+
+
+_SIMPLE = (ast.Assign, ast.AugAssign, ast.Expr, ast.Return)
+_MOVE_REACH = 3   # statements a statement is moved past, at most
+
+
+def _assigned(statement) -> set:
+    targets = statement.targets if isinstance(statement, ast.Assign) else \
+        [statement.target] if isinstance(statement, ast.AugAssign) else []
+    return {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+
+
+def _read(node) -> set:
+    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+
+
+def _statement_moves(fn):
+    """(operator, edited, moved, side): statements a student puts in the wrong place. An update of a
+    name (`K = K / K[2, 2]`, `x += d`) made before a statement reading the old value, or after one that
+    needs the new (moved past it: "move", side "after" or "before" the edited statement); a statement
+    just after a loop or an ``if`` that belongs as its body's last ("indent": `best = inliers` left out
+    of `if count > best_count:`); a loop's or an ``if``'s last statement that belongs after it
+    ("dedent": a `return` inside the loop)."""
+    for block in ast.walk(fn):
+        for field in ("body", "orelse"):
+            statements = getattr(block, field, None)
+            if not isinstance(statements, list) or not statements or not isinstance(statements[0], ast.stmt):
+                continue
+            for k, statement in enumerate(statements):
+                updated = _assigned(statement) & _read(statement) if isinstance(statement, (ast.Assign, ast.AugAssign)) \
+                    else set()
+                if isinstance(statement, ast.AugAssign):
+                    updated |= _assigned(statement)
+                if updated:
+                    later = statements[k + 1:k + 1 + _MOVE_REACH]
+                    reader = next((s for s in later if isinstance(s, _SIMPLE) and _read(s) & updated), None)
+                    if reader is not None and not any(_assigned(s) & updated for s in later[:later.index(reader)]):
+                        yield "move", reader, statement, "after"
+                    earlier = statements[max(0, k - _MOVE_REACH):k]
+                    reader = next((s for s in reversed(earlier) if isinstance(s, _SIMPLE) and _read(s) & updated), None)
+                    if reader is not None and not any(_assigned(s) & updated for s in earlier[earlier.index(reader):]):
+                        yield "move", reader, statement, "before"
+                if isinstance(statement, (ast.For, ast.While, ast.If)) and k + 1 < len(statements):
+                    following = statements[k + 1]
+                    # (after a loop: a statement reading what the loop sets, its own variable too; after an
+                    # `if`: any update, which the condition was to guard)
+                    inside = {n for s in statement.body for n in _assigned_anywhere(s)} | (
+                        {n.id for n in ast.walk(statement.target) if isinstance(n, ast.Name)}
+                        if isinstance(statement, ast.For) else set())
+                    if isinstance(following, _SIMPLE) and not isinstance(following, ast.Return) \
+                            and (_read(following) & inside or (isinstance(statement, ast.If) and _assigned(following))):
+                        yield "indent", statement, following, "into"
+                if isinstance(statement, (ast.For, ast.While, ast.If)) and len(statement.body) >= 2 \
+                        and isinstance(statement.body[-1], _SIMPLE) and not statement.orelse:
+                    yield "dedent", statement, statement.body[-1], "out"
+
+
+def _assigned_anywhere(statement) -> set:
+    return {n for s in ast.walk(statement) if isinstance(s, (ast.Assign, ast.AugAssign)) for n in _assigned(s)}
 
 
 def _sequential_updates(fn):
@@ -1414,6 +1509,7 @@ def _student_changes(node, parent, parents):
                 for shape in ("row", "column"):
                     yield "translation", (side, shape), ""
     yield from _numpy_slips(node, parent, parents)
+    yield from _column_order(node, parent)
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
     yield from _measure_changes(node)
@@ -1924,6 +2020,33 @@ def _measure_changes(node):
     if isinstance(node, ast.Call) and len(node.args) == 1 and isinstance(node.args[0], ast.BinOp) \
             and isinstance(node.args[0].op, ast.Div) and _dotted(node.func).rsplit(".", 1)[-1] in _REDUCED:
         yield "power_inside", "ratio", ""   # a mean of ratios where the ratio to the mean belongs
+    yield from _missing_measure(node)
+
+
+def _column_order(node, parent):
+    """`np.argwhere(mask)` gives (row, column) pairs: used as (x, y) points they are the other way round."""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.argwhere", "numpy.argwhere") \
+            and not (isinstance(parent, ast.Subscript) and parent.value is node):
+        yield "column_order", f"{ast.unparse(node)}[:, ::-1]", ""
+
+
+def _missing_measure(node):
+    """A step of a measure left out: a sum of squares where its square root -- the distance -- belongs
+    (`np.sum(d ** 2, axis=1) < t` for a threshold in pixels), and a sum of differences where the sum
+    of their absolute values belongs (`np.sum(l - r)` for the SAD)."""
+    if not isinstance(node, ast.Call) or not node.args or isinstance(node.args[0], ast.Starred):
+        return
+    short = _dotted(node.func).rsplit(".", 1)[-1]
+    if short not in ("sum", "mean") or not _dotted(node.func).startswith(("np.", "numpy.")):
+        return
+    argument = node.args[0]
+    squares = any((isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and isinstance(n.right, ast.Constant)
+                   and n.right.value == 2) or (isinstance(n, ast.Call) and _dotted(n.func) in ("np.square", "numpy.square"))
+                  for n in ast.walk(argument))
+    if squares:
+        yield "measure", "sqrt", ""
+    if isinstance(argument, ast.BinOp) and isinstance(argument.op, ast.Sub):
+        yield "measure", "abs_inside", ""
 
 
 def _averages(dotted: str) -> bool:

@@ -43,7 +43,7 @@ from ..checks import Trial, Verdict, fingerprint
 from ..inherited import SHARED_FAILING
 from . import naming
 from .helper import HelperFailed
-from .operators import _MAKE, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
+from .operators import _MAKE, _MOVES, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
@@ -78,8 +78,8 @@ class Fix:
     def size(self) -> int:
         """How many characters the change adds and removes (a statement removed: its own; two
         things exchanged, however long: as a few characters, one slip)."""
-        if all(edit[2] in _EXCHANGES for edit in self.edits):
-            return 3 * len(self.edits)
+        if all(edit[2] in _EXCHANGES for edit in self.edits) or self.operator in _MOVES:
+            return 3 * len(self.edits)   # (a statement moved, however long: one slip)
         changed = [(before, "" if after == "pass" else after) for _, before, after in self.changes]
         kept = sum(sum(block.size for block in difflib.SequenceMatcher(None, before, after, autojunk=False)
                        .get_matching_blocks()) for before, after in changed)
@@ -93,11 +93,8 @@ class Fix:
 
     def told(self, function: str) -> str:
         inside = "" if self.where == function else f", in `{self.where}`"
-        if self.operator == "simultaneous":
-            line, before, after = self.changes[0]
-            first, second = before.split(" = ...; ")[0], after.split(", ")[1].split(" = ")[0]
-            return f"assigning `{first}` and `{second}` together (`{after}`, line {line}{inside}: `{second}` from " \
-                   f"the `{first}` of before that line, not the one it sets)"
+        if self.operator in _MOVES:   # (told in words: see _Student._moved)
+            return self.changes[0][2].replace("{inside}", inside)
         said = [f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
                 for line, before, after in self.changes]
         return ("removing " if self.changes[0][2] == "pass" else "changing ") + " and ".join(said)
@@ -382,7 +379,8 @@ class _Student:
         where, ordinal, operator, payload = mutant.edits[0]
         nodes, _ = self._walk(where)
         old = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
-        if operator in ("summary", "divided_by_w", "true_division", "by_last", "ufunc_out", "empty_slice"):
+        if operator in ("summary", "divided_by_w", "true_division", "by_last", "ufunc_out", "empty_slice", "keep_axis",
+                        "column_order"):
             # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
             # by the third: the change is written out whole, alike in kind only)
             return repr(operator)
@@ -404,17 +402,40 @@ class _Student:
 
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
-        if mutant.key not in self.fixes and mutant.edits[0][2] == "simultaneous":
-            (where, ordinal, _, (_, second, _)), nodes = mutant.edits[0], self._walk(mutant.edits[0][0])[0]
-            first = nodes[ordinal].targets[0].id if 0 <= ordinal < len(nodes) else "?"
-            # (told in words: both statements whole would be too long to show)
-            self.fixes[mutant.key] = Fix(((mutant.line, f"{first} = ...; {second} = ...", f"{first}, {second} = ..., ..."),),
-                                         mutant.where, mutant.operator, mutant.edits)
+        if mutant.key not in self.fixes and mutant.edits[0][2] in _MOVES:
+            self.fixes[mutant.key] = self._moved(mutant)
         if mutant.key not in self.fixes:
             shown = _together([self.shown(edit) for edit in mutant.edits])
             self.fixes[mutant.key] = None if any(each is None for each in shown) else \
                 Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
         return self.fixes[mutant.key]
+
+    def _moved(self, mutant) -> Fix | None:
+        """A change of where statements are, told in words (the statements whole would be too long to
+        show): the change's line is the moved statement's, its "after" the sentence."""
+        where, ordinal, operator, payload = mutant.edits[0]
+        nodes = self._walk(where)[0]
+        if not 0 <= ordinal < len(nodes):
+            return None
+        edited = nodes[ordinal]
+        if operator == "simultaneous":
+            first, second = ast.unparse(edited.targets[0]), payload[1]
+            together = f"{first}, {second} = ..., ..."
+            return Fix(((edited.lineno, f"{first} = ...; {second} = ...",
+                         f"assigning `{first}` and `{second}` together (`{together}`, line {edited.lineno}{{inside}}: "
+                         f"`{second}` from the `{first}` of before that line, not the one it sets)"),),
+                       where, operator, mutant.edits)
+        _, text, line, side = payload
+        shown = " ".join(text.split())
+        if len(shown) > _SHOWN:
+            shown = shown[:_SHOWN - 4].rsplit(" ", 1)[0] + " ..."
+        block = {ast.For: "`for` loop", ast.While: "`while` loop", ast.If: "`if` block"}.get(type(edited), "block")
+        said = {"move": f"moving `{shown}` (line {line}{{inside}}) {side} line {edited.lineno}",
+                "indent": f"moving `{shown}` (line {line}{{inside}}) into the {block} above it (line {edited.lineno}), "
+                          "as its last statement",
+                "dedent": f"moving `{shown}` (line {line}{{inside}}) out of the {block} of line {edited.lineno}, "
+                          "to just after it"}[operator]
+        return Fix(((line, text, said),), where, operator, mutant.edits)
 
     def shown(self, edit) -> tuple[int, str, str] | None:
         """(line, before, after): the smallest expression or statement around the change that shows
