@@ -1508,3 +1508,38 @@ def test_a_measure_missing_its_square_root_or_its_absolute_value_and_row_column_
     assert ("np.sum(d ** 2, axis=1)", "np.sqrt(np.sum(d ** 2, axis=1))") in measures, measures
     assert ("np.sum(left - right)", "np.sum(np.abs(left - right))") in measures, measures
     assert ("np.argwhere(mask)", "np.argwhere(mask)[:, ::-1]") in _shown_changes(source, "column_order")
+
+
+def test_statements_in_the_wrong_place_are_changes_tried_and_told_in_words():
+    """An update made before the statement that needs the old value (moved after it), a statement left
+    after the `if` that was to guard it (moved in), a `return` inside a loop (moved after it)."""
+    source = textwrap.dedent("""
+        def graded(P, pts, n):
+            K, R = rq(P[:, :3])
+            K = K / K[2, 2]
+            t = np.linalg.solve(K, P[:, 3])
+            best, best_count = None, 0
+            for i in range(n):
+                inliers = pts > i
+                count = inliers.sum()
+                if count > best_count:
+                    best_count = count
+                best = inliers
+            out = []
+            for p in pts:
+                out.append(p * 2)
+                return out
+            return K, t, best
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    told = {m.operator: [] for m in student.mutants("graded")}
+    for m in student.mutants("graded"):
+        told[m.operator].append((student.fix(m).told("graded"), m))
+    said = {operator: [sentence for sentence, _ in pairs] for operator, pairs in told.items()}
+    assert "moving `K = K / K[2, 2]` (line 4) after line 5" in said["move"]
+    assert "moving `best = inliers` (line 12) into the `if` block above it (line 10), as its last statement" \
+        in said["indent"]
+    assert "moving `return out` (line 16) out of the `for` loop of line 14, to just after it" in said["dedent"]
+    [(_, indent)] = [pair for pair in told["indent"] if "best = inliers" in pair[0]]
+    written = ast.unparse(repair.mutated_defs(ast.parse(source), indent.edits, source))
+    assert "best_count = count\n            best = inliers" in written.replace("    ", " " * 4), written
