@@ -1543,3 +1543,19 @@ def test_statements_in_the_wrong_place_are_changes_tried_and_told_in_words():
     [(_, indent)] = [pair for pair in told["indent"] if "best = inliers" in pair[0]]
     written = ast.unparse(repair.mutated_defs(ast.parse(source), indent.edits, source))
     assert "best_count = count\n            best = inliers" in written.replace("    ", " " * 4), written
+
+
+def test_a_truncation_a_wrapping_conversion_and_a_constant_one_off_are_changes_tried():
+    source = textwrap.dedent("""
+        def graded(x, image, n):
+            column = int(x * 2.5)
+            out = (image * 1.5).astype(np.uint8)
+            levels = 2 ** n - 1
+            return column, out, levels
+    """)
+    rounded = _shown_changes(source, "rounding")
+    assert ("int(x * 2.5)", "int(round(x * 2.5))") in rounded, rounded
+    assert ("(image * 1.5).astype(np.uint8)", "np.clip(np.round(image * 1.5), 0, 255).astype(np.uint8)") in rounded
+    bounds = _shown_changes(source, "bound")
+    assert ("levels = 2 ** n - 1", "levels = 2 ** n - 2") in bounds and ("levels = 2 ** n - 1", "levels = 2 ** n - 0") \
+        not in bounds, bounds

@@ -107,7 +107,8 @@ OPERATORS = {
     "drop_keyword": ("argument", "keyword", "remov"),     # cv2.undistortPoints(p, K, None, P=K) -> (p, K, None)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
-    "column_order": ("row", "column", "x", "y", "order"),   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
+    "column_order": ("row", "column", "x", "y", "order"),
+    "rounding": ("round", "truncat", "clip", "wrap", "uint8"),   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
     "move": ("before", "after", "order", "too early", "too late"),   # K = K / K[2, 2] moved after t = ... K ...
     "indent": ("inside", "loop", "if", "indent"),        # best = inliers moved into `if count > best_count:`
@@ -810,7 +811,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
-                                              "keep_axis", "column_order")},
+                                              "keep_axis", "column_order", "rounding")},
          "drop_keyword": _make_drop_keyword, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1510,6 +1511,7 @@ def _student_changes(node, parent, parents):
                     yield "translation", (side, shape), ""
     yield from _numpy_slips(node, parent, parents)
     yield from _column_order(node, parent)
+    yield from _conversion_slips(node, parent)
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
     yield from _measure_changes(node)
@@ -2028,6 +2030,28 @@ def _column_order(node, parent):
     if isinstance(node, ast.Call) and _dotted(node.func) in ("np.argwhere", "numpy.argwhere") \
             and not (isinstance(parent, ast.Subscript) and parent.value is node):
         yield "column_order", f"{ast.unparse(node)}[:, ::-1]", ""
+
+
+def _conversion_slips(node, parent):
+    """A conversion that truncates where it should round (`int(x)`, `x.astype(int)`: 2.9 becomes 2), one
+    to uint8 that wraps round where it should saturate (`x.astype(np.uint8)`: 256 becomes 0, -1 255),
+    and an integer constant of an arithmetic step one off (`2 ** n - 1` for `2 ** n`, `% 8` for `% 9`)."""
+    if isinstance(node, ast.Call) and _dotted(node.func) == "int" and len(node.args) == 1 and not node.keywords \
+            and not (isinstance(node.args[0], ast.Call) and _dotted(node.args[0].func) in ("round", "np.round")):
+        yield "rounding", f"int(round({ast.unparse(node.args[0])}))", ""
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "astype" \
+            and len(node.args) == 1 and (_dotted(node.args[0]) in _INTEGER_TYPES | {"int"}
+                                         or (isinstance(node.args[0], ast.Constant) and node.args[0].value in ("uint8", "int"))):
+        array, kind = ast.unparse(node.func.value), ast.unparse(node.args[0])
+        if not (isinstance(node.func.value, ast.Call) and _dotted(node.func.value.func) in ("np.round", "np.rint", "np.clip")):
+            yield "rounding", f"np.round({array}).astype({kind})", ""
+            if "uint8" in kind:
+                yield "rounding", f"np.clip(np.round({array}), 0, 255).astype({kind})", ""
+    if isinstance(node, ast.Constant) and type(node.value) is int and isinstance(parent, ast.BinOp) \
+            and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mod, ast.FloorDiv)) and 0 <= node.value <= 16:
+        for other in (node.value - 1, node.value + 1):   # (`x - 0`: the term dropped, a change made already)
+            if other >= (1 if isinstance(parent.op, (ast.Add, ast.Sub)) else 0):
+                yield "bound", other, ""
 
 
 def _missing_measure(node):
