@@ -1529,6 +1529,10 @@ def test_statements_in_the_wrong_place_are_changes_tried_and_told_in_words():
             for p in pts:
                 out.append(p * 2)
                 return out
+            for q in pts:
+                if q is None:
+                    continue
+                out.append(q)
             return K, t, best
     """)
     student = repair._Student(source, ast.parse(source), {"graded"})
@@ -1540,6 +1544,7 @@ def test_statements_in_the_wrong_place_are_changes_tried_and_told_in_words():
     assert "moving `best = inliers` (line 12) into the `if` block above it (line 10), as its last statement" \
         in said["indent"]
     assert "moving `return out` (line 16) out of the `for` loop of line 14, to just after it" in said["dedent"]
+    assert not any("out.append(q)" in sentence for sentence in said["indent"])   # (after a `continue`: never run)
     [(_, indent)] = [pair for pair in told["indent"] if "best = inliers" in pair[0]]
     written = ast.unparse(repair.mutated_defs(ast.parse(source), indent.edits, source))
     assert "best_count = count\n            best = inliers" in written.replace("    ", " " * 4), written

@@ -1196,6 +1196,7 @@ def _sites(fn: ast.FunctionDef, words: _Words, phrased: bool = True):
 
 _SIMPLE = (ast.Assign, ast.AugAssign, ast.Expr, ast.Return)
 _MOVE_REACH = 3   # statements a statement is moved past, at most
+_LEAVES = (ast.Continue, ast.Break, ast.Return, ast.Raise)
 
 
 def _assigned(statement) -> set:
@@ -1234,7 +1235,8 @@ def _statement_moves(fn):
                     reader = next((s for s in reversed(earlier) if isinstance(s, _SIMPLE) and _read(s) & updated), None)
                     if reader is not None and not any(_assigned(s) & updated for s in earlier[earlier.index(reader):]):
                         yield "move", reader, statement, "before"
-                if isinstance(statement, (ast.For, ast.While, ast.If)) and k + 1 < len(statements):
+                if isinstance(statement, (ast.For, ast.While, ast.If)) and k + 1 < len(statements) \
+                        and not isinstance(statement.body[-1], _LEAVES):   # (moved after a `continue`: never run)
                     following = statements[k + 1]
                     # (after a loop: a statement reading what the loop sets, its own variable too; after an
                     # `if`: any update, which the condition was to guard)
