@@ -974,7 +974,8 @@ def test_a_mean_of_ratios_where_the_ratio_to_the_mean_belongs_is_a_change_tried(
 def _shown_changes(source: str, operator: str) -> list:
     """(before, after) of the operator's changes of `graded` in ``source``, in the order they are made."""
     student = repair._Student(source, ast.parse(source), {"graded"})
-    return list(dict.fromkeys(student.fix(m).changes[0][1:] for m in student.mutants("graded") if m.operator == operator))
+    return list(dict.fromkeys(student.fix(m).changes[0][1:] for m in student.mutants("graded")
+                              if m.operator == operator and student.fix(m) is not None))
 
 
 def test_a_factor_a_number_given_to_opencv_a_wrapped_index_and_a_whole_for_its_part_are_changes_tried():
@@ -1564,3 +1565,25 @@ def test_a_truncation_a_wrapping_conversion_and_a_constant_one_off_are_changes_t
     bounds = _shown_changes(source, "bound")
     assert ("levels = 2 ** n - 1", "levels = 2 ** n - 2") in bounds and ("levels = 2 ** n - 1", "levels = 2 ** n - 0") \
         not in bounds, bounds
+
+
+def test_an_opencv_argument_that_does_not_belong_a_colour_image_and_a_flat_column_of_ones_are_changes_tried():
+    source = textwrap.dedent("""
+        def graded(image, size, s, pts, matcher, left, right):
+            big = cv2.resize(image, size, fx=s, fy=s)
+            corners = cv2.cornerSubPix(image, pts, (5, 5), (-1, -1), None)
+            disparity = matcher.compute(left, right)
+            h = np.hstack([pts, np.ones(len(pts))])
+            return big, corners, disparity, h
+    """)
+    assert ("cv2.resize(image, size, fx=s, fy=s)", "cv2.resize(image, None, fx=s, fy=s)") \
+        in _shown_changes(source, "drop_keyword")
+    grey = [after for _, after in _shown_changes(source, "grey")]
+    assert "giving `cv2.cornerSubPix` the grey view of `image` (`cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)` where it " \
+           "has 3 channels, line 4{inside})" in grey, grey
+    assert any("`matcher.compute` the grey view of `right`" in after for after in grey), grey
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    [corner] = [m for m in student.mutants("graded") if m.operator == "grey" and m.line == 4]
+    assert "if image.ndim == 3 else image" in ast.unparse(repair.mutated_defs(ast.parse(source), corner.edits, source))
+    assert ("np.hstack([pts, np.ones(len(pts))])", "np.hstack([pts, np.ones((len(pts), 1))])") \
+        in _shown_changes(source, "keep_axis")

@@ -108,7 +108,8 @@ OPERATORS = {
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
-    "rounding": ("round", "truncat", "clip", "wrap", "uint8"),   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
+    "rounding": ("round", "truncat", "clip", "wrap", "uint8"),
+    "grey": ("grey", "gray", "channel", "colour", "color"),   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
     "move": ("before", "after", "order", "too early", "too late"),   # K = K / K[2, 2] moved after t = ... K ...
     "indent": ("inside", "loop", "if", "indent"),        # best = inliers moved into `if count > best_count:`
@@ -727,7 +728,17 @@ def _make_dedent(node, payload):
 
 def _make_drop_keyword(node, payload):
     new = copy.deepcopy(node)   # cv2.undistortPoints(p, K, None, P=K) -> cv2.undistortPoints(p, K, None)
+    if isinstance(payload, int):   # cv2.resize(image, size, fx=s) -> cv2.resize(image, None, fx=s)
+        new.args[payload] = ast.Constant(None)
     new.keywords = [k for k in new.keywords if k.arg != payload]
+    return new
+
+
+def _make_grey(node, payload):
+    new = copy.deepcopy(node)   # cv2.cornerSubPix(image, ...) -> the image in grey where it has 3 channels
+    image = ast.unparse(new.args[payload])
+    new.args[payload] = parse(f"(cv2.cvtColor({image}, cv2.COLOR_BGR2GRAY) if {image}.ndim == 3 else {image})",
+                              mode="eval").body
     return new
 
 
@@ -813,7 +824,7 @@ def _make_constant(node, payload):
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding")},
          "drop_keyword": _make_drop_keyword, "stride": _make_stride, "simultaneous": _make_simultaneous,
-         "move": _make_move, "indent": _make_indent, "dedent": _make_dedent,
+         "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -1815,6 +1826,28 @@ def _call_slips(node: ast.Call):
         for keyword in node.keywords:
             if keyword.arg and keyword.arg not in _KEPT_KEYWORDS:
                 yield "drop_keyword", keyword.arg, ""
+    if dotted.startswith(("cv2.", "cv.")):
+        # (OpenCV's optional arguments given by position: `cv2.resize(image, size, fx=s, fy=s)` resizes
+        # to `size` whatever the factors; None there lets them count)
+        for position, argument in enumerate(node.args[1:], start=1):
+            if isinstance(argument, (ast.Name, ast.Tuple, ast.Subscript)) and not isinstance(argument, ast.Starred):
+                yield "drop_keyword", position, ""
+    if dotted.startswith(("cv2.", "cv.")) and short in _GREY_ONLY and node.args \
+            and isinstance(node.args[0], (ast.Name, ast.Subscript)):
+        yield "grey", 0, ""   # a colour image given to a function that takes one channel
+    if isinstance(node.func, ast.Attribute) and node.func.attr == "compute" and len(node.args) == 2 \
+            and all(isinstance(a, (ast.Name, ast.Subscript)) for a in node.args):
+        for position in (0, 1):
+            yield "grey", position, ""   # a stereo matcher's images in colour (StereoBM takes 8-bit grey)
+    if short in ("hstack", "concatenate") and dotted.startswith(("np.", "numpy.")) and node.args \
+            and isinstance(node.args[0], (ast.List, ast.Tuple)):
+        for item in node.args[0].elts:
+            if isinstance(item, ast.Call) and _dotted(item.func) in ("np.ones", "np.zeros", "numpy.ones", "numpy.zeros") \
+                    and len(item.args) == 1 and not isinstance(item.args[0], ast.Tuple):
+                # `np.hstack([pts, np.ones(n)])`: a column of ones made 1-D
+                yield "keep_axis", ast.unparse(ast.Call(node.func, [ast.List(
+                    [parse(f"{_dotted(e.func)}(({ast.unparse(e.args[0])}, 1))", mode="eval").body if e is item else e
+                     for e in node.args[0].elts], ast.Load())] + node.args[1:], node.keywords)), ""
     if dotted.startswith(("cv2.", "cv.")) and short in _FLOAT32_ONLY and len(node.args) >= 2:
         arrays = [i for i, a in enumerate(node.args) if isinstance(a, (ast.Name, ast.Subscript))]
         if any(i >= 1 for i in arrays):
@@ -1823,7 +1856,8 @@ def _call_slips(node: ast.Call):
             yield "float32", arrays, ""
 
 
-_KEPT_KEYWORDS = {"dtype", "axis", "out", "where"}   # (changed by their own operators, or never a slip left in)
+_KEPT_KEYWORDS = {"dtype", "axis", "out", "where"}
+_GREY_ONLY = {"cornerSubPix", "equalizeHist", "goodFeaturesToTrack", "cornerHarris", "threshold", "adaptiveThreshold"}   # (changed by their own operators, or never a slip left in)
 _ACCUMULATED = {ast.Add: "Add", ast.Sub: "Sub", ast.Mult: "Mult"}
 
 

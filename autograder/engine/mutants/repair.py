@@ -56,6 +56,7 @@ _SHOWN = 70               # the longest code shown before and after a change
 # reading it never outlasts the time the repairs are given.
 MAX_NODES = 15_000
 _EXCHANGES = {"swap_operands", "swap_args", "stack_order"}   # operators that exchange two things
+_IN_WORDS = _MOVES | {"grey"}   # changes told in words (their code would be too long to show)
 
 
 @dataclass(frozen=True)
@@ -78,7 +79,7 @@ class Fix:
     def size(self) -> int:
         """How many characters the change adds and removes (a statement removed: its own; two
         things exchanged, however long: as a few characters, one slip)."""
-        if all(edit[2] in _EXCHANGES for edit in self.edits) or self.operator in _MOVES:
+        if all(edit[2] in _EXCHANGES for edit in self.edits) or self.operator in _IN_WORDS:
             return 3 * len(self.edits)   # (a statement moved, however long: one slip)
         changed = [(before, "" if after == "pass" else after) for _, before, after in self.changes]
         kept = sum(sum(block.size for block in difflib.SequenceMatcher(None, before, after, autojunk=False)
@@ -93,7 +94,7 @@ class Fix:
 
     def told(self, function: str) -> str:
         inside = "" if self.where == function else f", in `{self.where}`"
-        if self.operator in _MOVES:   # (told in words: see _Student._moved)
+        if self.operator in _IN_WORDS:   # (told in words: see _Student._moved)
             return self.changes[0][2].replace("{inside}", inside)
         said = [f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
                 for line, before, after in self.changes]
@@ -380,7 +381,7 @@ class _Student:
         nodes, _ = self._walk(where)
         old = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
         if operator in ("summary", "divided_by_w", "true_division", "by_last", "ufunc_out", "empty_slice", "keep_axis",
-                        "column_order"):
+                        "column_order", "grey"):
             # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
             # by the third: the change is written out whole, alike in kind only)
             return repr(operator)
@@ -402,7 +403,7 @@ class _Student:
 
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
-        if mutant.key not in self.fixes and mutant.edits[0][2] in _MOVES:
+        if mutant.key not in self.fixes and mutant.edits[0][2] in _IN_WORDS:
             self.fixes[mutant.key] = self._moved(mutant)
         if mutant.key not in self.fixes:
             shown = _together([self.shown(edit) for edit in mutant.edits])
@@ -418,6 +419,12 @@ class _Student:
         if not 0 <= ordinal < len(nodes):
             return None
         edited = nodes[ordinal]
+        if operator == "grey":
+            image = " ".join(ast.unparse(edited.args[payload]).split())
+            call = _dotted_call(edited)
+            return Fix(((edited.lineno, f"{call}({image}, ...)", f"giving `{call}` the grey view of `{image}` "
+                         f"(`cv2.cvtColor({image}, cv2.COLOR_BGR2GRAY)` where it has 3 channels, line {edited.lineno}"
+                         "{inside})"),), where, operator, mutant.edits)
         if operator == "simultaneous":
             first, second = ast.unparse(edited.targets[0]), payload[1]
             together = f"{first}, {second} = ..., ..."
@@ -489,6 +496,11 @@ class _Student:
         if shortened is None:
             return None
         return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
+
+
+def _dotted_call(call: ast.Call) -> str:
+    """`cv2.cornerSubPix`, `matcher.compute`: the function a call calls, as written."""
+    return ast.unparse(call.func) if len(ast.unparse(call.func)) <= 40 else "the call"
 
 
 def _call_name(call: ast.Call) -> str:
