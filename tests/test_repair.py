@@ -1587,3 +1587,32 @@ def test_an_opencv_argument_that_does_not_belong_a_colour_image_and_a_flat_colum
     assert "if image.ndim == 3 else image" in ast.unparse(repair.mutated_defs(ast.parse(source), corner.edits, source))
     assert ("np.hstack([pts, np.ones(len(pts))])", "np.hstack([pts, np.ones((len(pts), 1))])") \
         in _shown_changes(source, "keep_axis")
+
+
+def test_an_svd_recomposed_without_its_constraint_and_a_normalisation_never_undone_are_changes_tried():
+    source = textwrap.dedent("""
+        def graded(p1, p2):
+            n1, T1 = _normalise(p1)
+            n2, T2 = _normalise(p2)
+            U, S, Vt = np.linalg.svd(_rows(n1, n2)[-1].reshape(3, 3))
+            F = U @ np.diag(S) @ Vt
+            return F
+    """)
+    ranks = [after for _, after in _shown_changes(source, "rank")]
+    assert "U @ np.diag([S[0], S[1], 0])" in ranks and "U @ np.diag([1, 1, 0])" in ranks, ranks
+    undone = [after for _, after in _shown_changes(source, "denormalise")]
+    assert "return T2.T @ F @ T1" in undone and "return np.linalg.inv(T2) @ F @ T1" in undone, undone
+
+
+_NEVER_UNDONE = ("    F = T2.T @ Fn @ T1\n    return F / np.linalg.norm(F)", "    return Fn / np.linalg.norm(Fn)")
+
+
+def test_a_normalisation_never_undone_is_told(tmp_path):
+    result = grade(edited_reference(tmp_path, "lab11_two_view", _NEVER_UNDONE), ["lab11.ex4"], pictures="none",
+                   include_hidden=False)
+    checks = check_results(result, "lab11.ex4")
+    # (the check names the effect by hand; the change is told beside it, found first among the kinds of
+    # change the name's words speak of -- not a compensation: the normalisation taken out at both places)
+    told = [c for c in checks if "Trying small changes" in c.message]
+    assert told and all("T2.T @ Fn @ T1" in c.message for c in told), [c.message for c in checks if c.score < c.max_score]
+    assert "`Fn / np.linalg.norm(Fn)` to `T2.T @ Fn @ T1 / np.linalg.norm(Fn)`" in told[0].message

@@ -109,7 +109,9 @@ OPERATORS = {
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
     "rounding": ("round", "truncat", "clip", "wrap", "uint8"),
-    "grey": ("grey", "gray", "channel", "colour", "color"),   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
+    "grey": ("grey", "gray", "channel", "colour", "color"),
+    "rank": ("singular", "rank", "constraint", "diag"),   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
+    "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
     "move": ("before", "after", "order", "too early", "too late"),   # K = K / K[2, 2] moved after t = ... K ...
     "indent": ("inside", "loop", "if", "indent"),        # best = inliers moved into `if count > best_count:`
@@ -822,7 +824,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
-                                              "keep_axis", "column_order", "rounding")},
+                                              "keep_axis", "column_order", "rounding", "rank", "denormalise")},
          "drop_keyword": _make_drop_keyword, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1195,6 +1197,8 @@ def _sites(fn: ast.FunctionDef, words: _Words, phrased: bool = True):
             yield operator, ordinal, payload, line, phrase
     if words.student:
         ordinals = {id(node): ordinal for ordinal, node in enumerate(nodes)}
+        for returned, undone in _denormalisations(fn):
+            yield "denormalise", ordinals[id(returned)], undone, returned.lineno, ""
         for first, second in _sequential_updates(fn):
             yield "simultaneous", ordinals[id(first)], (ordinals[id(second)], ast.unparse(second.targets[0]),
                                                          ast.unparse(second.value)), first.lineno, ""
@@ -1524,6 +1528,7 @@ def _student_changes(node, parent, parents):
                     yield "translation", (side, shape), ""
     yield from _numpy_slips(node, parent, parents)
     yield from _column_order(node, parent)
+    yield from _singular_value_changes(node, parent)
     yield from _conversion_slips(node, parent)
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
@@ -2088,6 +2093,51 @@ def _conversion_slips(node, parent):
         for other in (node.value - 1, node.value + 1):   # (`x - 0`: the term dropped, a change made already)
             if other >= (1 if isinstance(parent.op, (ast.Add, ast.Sub)) else 0):
                 yield "bound", other, ""
+
+
+def _singular_value_changes(node, parent):
+    """A matrix recomposed from its SVD without its constraint (`U @ np.diag(S) @ Vt`: the rank-2 F's
+    smallest singular value left, an E's (s, s, 0) not imposed), or with the wrong one."""
+    if not (isinstance(node, ast.Call) and _dotted(node.func) in ("np.diag", "numpy.diag") and len(node.args) == 1
+            and isinstance(node.args[0], ast.Name) and isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult)):
+        return
+    values = node.args[0].id
+    for kept in (f"[{values}[0], {values}[1], 0]", "[1, 1, 0]", f"[({values}[0] + {values}[1]) / 2] * 2 + [0]"):
+        yield "rank", f"np.diag({kept})", ""
+
+
+def _denormalisations(fn):
+    """(node, payload): an estimate made in normalised coordinates and returned without the normalising
+    transforms undone (`return F` where `T2.T @ F @ T1` belongs, `return H` for `inv(T2) @ H @ T1`): the
+    transforms are what one of the student's helpers returns for each image (`T1, T2 = _norm(p1),
+    _norm(p2)`; `n1, T1 = _norm(p1)` and `n2, T2 = _norm(p2)`), the estimate the first name the return reads."""
+    made = {}
+    for node in ast.walk(fn):
+        if not (isinstance(node, ast.Assign) and len(node.targets) == 1):
+            continue
+        target, value = node.targets[0], node.value
+        pairs = list(zip(target.elts, value.elts)) if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) \
+            and len(target.elts) == len(value.elts) else [(target, value)]
+        for name, call in pairs:
+            if not isinstance(call, ast.Call) or not isinstance(call.func, ast.Name):
+                continue   # (a helper of the student's module, called by its name)
+            if isinstance(name, ast.Tuple) and len(name.elts) == 2 and isinstance(name.elts[1], ast.Name):
+                made.setdefault(_dotted(call.func), []).append(name.elts[1].id)
+            elif isinstance(name, ast.Name):
+                made.setdefault(_dotted(call.func), []).append(name.id)
+    transforms = next((names[:2] for names in made.values() if len(names) >= 2), None)
+    if transforms is None:
+        return
+    first, second = transforms
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Return) and node.value is not None:
+            estimate = next((n for n in ast.walk(node.value) if isinstance(n, ast.Name) and n.id not in transforms
+                             and isinstance(n.ctx, ast.Load) and n.id not in ("np", "numpy", "cv2")), None)
+            if estimate is None:
+                continue
+            for a, b in ((second, first), (first, second)):
+                for undone in (f"({a}.T @ {estimate.id} @ {b})", f"(np.linalg.inv({a}) @ {estimate.id} @ {b})"):
+                    yield estimate, undone
 
 
 def _missing_measure(node):
