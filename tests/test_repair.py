@@ -1619,3 +1619,18 @@ def test_a_normalisation_never_undone_is_told(tmp_path):
     told = [c for c in checks if "Trying small changes" in c.message]
     assert told and all("T2.T @ Fn @ T1" in c.message for c in told), [c.message for c in checks if c.score < c.max_score]
     assert "`Fn / np.linalg.norm(Fn)` to `T2.T @ Fn @ T1 / np.linalg.norm(Fn)`" in told[0].message
+
+
+def test_a_division_with_no_guard_is_given_one():
+    source = textwrap.dedent("""
+        def graded(disparity, f, b):
+            return f * b / disparity
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    guards = [m for m in student.mutants("graded") if m.operator == "guard"]
+    assert [student.fix(m).told("graded") for m in guards] == [
+        "dividing by `disparity` only where it is > 0 (line 3; 0 elsewhere: `np.where(disparity > 0, ..., 0.0)`)",
+        "dividing by `disparity` only where it is > 0 (line 3; NaN elsewhere: `np.where(disparity > 0, ..., np.nan)`)"]
+    namespace = {"np": np}
+    exec(ast.unparse(repair.mutated_defs(ast.parse(source), guards[0].edits, source)), namespace)
+    assert namespace["graded"](np.array([0.0, -1.0, 2.0]), 10.0, 0.5).tolist() == [0.0, 0.0, 2.5]

@@ -110,7 +110,8 @@ OPERATORS = {
     "column_order": ("row", "column", "x", "y", "order"),
     "rounding": ("round", "truncat", "clip", "wrap", "uint8"),
     "grey": ("grey", "gray", "channel", "colour", "color"),
-    "rank": ("singular", "rank", "constraint", "diag"),   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
+    "rank": ("singular", "rank", "constraint", "diag"),
+    "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
     "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
     "move": ("before", "after", "order", "too early", "too late"),   # K = K / K[2, 2] moved after t = ... K ...
@@ -728,6 +729,12 @@ def _make_dedent(node, payload):
     return ast.copy_location(ast.If(ast.Constant(True), [new, last], []), node)
 
 
+def _make_guard(node, payload):
+    # l / d -> np.where(d > 0, l / np.where(d > 0, d, 1), 0.0): divided only where the divisor is valid
+    left, right = ast.unparse(node.left), ast.unparse(node.right)
+    return parse(f"np.where({right} > 0, ({left}) / np.where({right} > 0, {right}, 1), {payload})", mode="eval").body
+
+
 def _make_drop_keyword(node, payload):
     new = copy.deepcopy(node)   # cv2.undistortPoints(p, K, None, P=K) -> cv2.undistortPoints(p, K, None)
     if isinstance(payload, int):   # cv2.resize(image, size, fx=s) -> cv2.resize(image, None, fx=s)
@@ -826,7 +833,7 @@ def _make_constant(node, payload):
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise")},
          "drop_keyword": _make_drop_keyword, "stride": _make_stride, "simultaneous": _make_simultaneous,
-         "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey,
+         "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -1529,6 +1536,10 @@ def _student_changes(node, parent, parents):
     yield from _numpy_slips(node, parent, parents)
     yield from _column_order(node, parent)
     yield from _singular_value_changes(node, parent)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) \
+            and isinstance(node.right, (ast.Name, ast.Subscript)) and not isinstance(node.left, ast.Constant):
+        for invalid in ("0.0", "np.nan"):   # a division with no guard where the divisor may be 0 or below
+            yield "guard", invalid, ""
     yield from _conversion_slips(node, parent)
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)

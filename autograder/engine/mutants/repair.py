@@ -56,7 +56,7 @@ _SHOWN = 70               # the longest code shown before and after a change
 # reading it never outlasts the time the repairs are given.
 MAX_NODES = 15_000
 _EXCHANGES = {"swap_operands", "swap_args", "stack_order"}   # operators that exchange two things
-_IN_WORDS = _MOVES | {"grey"}   # changes told in words (their code would be too long to show)
+_IN_WORDS = _MOVES | {"grey", "guard"}   # changes told in words (their code would be too long to show)
 
 
 @dataclass(frozen=True)
@@ -425,6 +425,13 @@ class _Student:
             return Fix(((edited.lineno, f"{call}({image}, ...)", f"giving `{call}` the grey view of `{image}` "
                          f"(`cv2.cvtColor({image}, cv2.COLOR_BGR2GRAY)` where it has 3 channels, line {edited.lineno}"
                          "{inside})"),), where, operator, mutant.edits)
+        if operator == "guard":
+            divisor = " ".join(ast.unparse(edited.right).split())
+            if len(divisor) > 40:
+                return None
+            return Fix(((edited.lineno, f"... / {divisor}", f"dividing by `{divisor}` only where it is > 0 (line "
+                         f"{edited.lineno}{{inside}}; {'0' if payload == '0.0' else 'NaN'} elsewhere: "
+                         f"`np.where({divisor} > 0, ..., {payload})`)"),), where, operator, mutant.edits)
         if operator == "simultaneous":
             first, second = ast.unparse(edited.targets[0]), payload[1]
             together = f"{first}, {second} = ..., ..."
