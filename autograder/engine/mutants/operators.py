@@ -1839,8 +1839,9 @@ def _call_slips(node: ast.Call):
     if dotted.startswith(("cv2.", "cv.", "np.", "numpy.", "scipy.")):
         # an optional argument that does not belong (`P=K` makes cv2.undistortPoints map the normalised
         # points back to pixels): a library's keyword left out, its default used
-        for keyword in node.keywords:
-            if keyword.arg and keyword.arg not in _KEPT_KEYWORDS:
+        for keyword in node.keywords:   # (a flag's truth value is turned instead: `crossCheck=False`)
+            if keyword.arg and keyword.arg not in _KEPT_KEYWORDS \
+                    and not (isinstance(keyword.value, ast.Constant) and isinstance(keyword.value.value, bool)):
                 yield "drop_keyword", keyword.arg, ""
     if dotted.startswith(("cv2.", "cv.")):
         # (OpenCV's optional arguments given by position: `cv2.resize(image, size, fx=s, fy=s)` resizes
