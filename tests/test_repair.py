@@ -1634,3 +1634,13 @@ def test_a_division_with_no_guard_is_given_one():
     namespace = {"np": np}
     exec(ast.unparse(repair.mutated_defs(ast.parse(source), guards[0].edits, source)), namespace)
     assert namespace["graded"](np.array([0.0, -1.0, 2.0]), 10.0, 0.5).tolist() == [0.0, 0.0, 2.5]
+
+
+def test_another_of_the_results_a_library_call_returns_is_a_change_tried():
+    source = textwrap.dedent("""
+        def graded(src, dst):
+            H = cv2.findHomography(src, dst, cv2.RANSAC, 3.0)[1]
+            return H
+    """)
+    assert ("cv2.findHomography(src, dst, cv2.RANSAC, 3.0)[1]", "cv2.findHomography(src, dst, cv2.RANSAC, 3.0)[0]") \
+        in _shown_changes(source, "other_result")

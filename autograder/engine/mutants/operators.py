@@ -111,7 +111,8 @@ OPERATORS = {
     "rounding": ("round", "truncat", "clip", "wrap", "uint8"),
     "grey": ("grey", "gray", "channel", "colour", "color"),
     "rank": ("singular", "rank", "constraint", "diag"),
-    "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
+    "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),
+    "other_result": ("result", "return", "mask", "index"),   # cv2.findHomography(...)[1] -> [0]   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
     "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
     "move": ("before", "after", "order", "too early", "too late"),   # K = K / K[2, 2] moved after t = ... K ...
@@ -831,7 +832,8 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
-                                              "keep_axis", "column_order", "rounding", "rank", "denormalise")},
+                                              "keep_axis", "column_order", "rounding", "rank", "denormalise",
+                                              "other_result")},
          "drop_keyword": _make_drop_keyword, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1536,6 +1538,13 @@ def _student_changes(node, parent, parents):
     yield from _numpy_slips(node, parent, parents)
     yield from _column_order(node, parent)
     yield from _singular_value_changes(node, parent)
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Call) \
+            and _dotted(node.value.func).startswith(("cv2.", "cv.", "np.linalg.", "numpy.linalg.")) \
+            and isinstance(node.slice, ast.Constant) and type(node.slice.value) is int and 0 <= node.slice.value <= 4:
+        # another of the results a library call returns (`cv2.findHomography(...)[1]`: the mask, not H)
+        for other in range(5):
+            if other != node.slice.value:
+                yield "other_result", f"{ast.unparse(node.value)}[{other}]", ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) \
             and isinstance(node.right, (ast.Name, ast.Subscript)) and not isinstance(node.left, ast.Constant):
         for invalid in ("0.0", "np.nan"):   # a division with no guard where the divisor may be 0 or below
