@@ -1644,3 +1644,14 @@ def test_another_of_the_results_a_library_call_returns_is_a_change_tried():
     """)
     assert ("cv2.findHomography(src, dst, cv2.RANSAC, 3.0)[1]", "cv2.findHomography(src, dst, cv2.RANSAC, 3.0)[0]") \
         in _shown_changes(source, "other_result")
+
+
+def test_the_other_end_of_a_slice_with_a_computed_bound_is_a_change_tried():
+    source = textwrap.dedent("""
+        def graded(costs, d):
+            costs[d, :, d:] = np.inf
+            return costs[:, :-d]
+    """)
+    ends = _shown_changes(source, "slice")
+    assert ("costs[d, :, d:]", "costs[d, :, :d]") in ends, ends
+    assert ("costs[:, :-d]", "costs[:, -d:]") in ends, ends

@@ -661,6 +661,8 @@ def _make_power_inside(node, payload):
 
 
 def _make_slice(node, payload):
+    if payload == "other_end":   # costs[:, d:] -> costs[:, :d]: the part before the bound, not after it
+        return ast.Slice(copy.deepcopy(node.upper), copy.deepcopy(node.lower), None)
     lower, upper = payload   # l[:, 1:] -> l[:, :2]; A[r, 3:7] -> A[r, 4:8]
     return ast.Slice(None if lower is None else _signed(lower), None if upper is None else _signed(upper), None)
 
@@ -2193,6 +2195,9 @@ def _slice_changes(node: ast.Slice):
     last entries taken where the first belong (`1:` for `:2` of a 3-vector, and back)."""
     if node.step is not None:
         return
+    if (node.lower is None) != (node.upper is None) and _constant_index(node.lower or node.upper) is None:
+        yield "slice", "other_end", ""   # `x[d:]` <-> `x[:d]` for a bound the code computes
+        return
     lower, upper = (None if b is None else _constant_index(b) for b in (node.lower, node.upper))
     if (node.lower is not None and lower is None) or (node.upper is not None and upper is None):
         return
@@ -2862,6 +2867,8 @@ def _index_phrase(inner, elements, position, value, other) -> str:
 def _replaceable(node: ast.Name, parent) -> bool:
     if isinstance(parent, ast.Call) and parent.func is node:
         return False
+    if isinstance(parent, ast.Compare) and _mode_test(parent):
+        return False   # (`cost == "ssd"` -> `block_size == "ssd"` runs another mode's code: no slip)
     if isinstance(parent, ast.Attribute):
         return False
     return isinstance(parent, (ast.Call, ast.BinOp, ast.Subscript, ast.Return, ast.keyword, ast.Tuple,

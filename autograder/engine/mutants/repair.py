@@ -1372,12 +1372,13 @@ class _Variants:
         before cv2.circle, which clips): the change is not confirmed as the slip."""
         for guard in self.student.guards(mutant):
             values = self.answers(guard, failing, self.inputs)
-            if values is None:
-                continue
+            if values is None or self.clock.left() <= 0:
+                return True   # (the guard could not be tried in the time: the change cannot be told from it)
             if mutant.key in self.checked:   # (the change was judged by the check: so is the guard)
-                if self._replay(guard, (self.trial.check, self.trial.property_examples)) is True \
-                        and (not self.other_checks() or self.passes_other_checks(guard)):
-                    return True
+                replayed = self._replay(guard, (self.trial.check, self.trial.property_examples))
+                if replayed is None or (replayed is True
+                                        and (not self.other_checks() or self.passes_other_checks(guard))):
+                    return True   # (a guard not replayed, out of replays, is as untested)
             elif all(self.right(v, self.references[i], self.students[i]) for v, i in zip(values, failing)) \
                     and self.confirmed(guard, failing) and not self._righter_elsewhere(mutant, guard):
                 return True   # (as the change was: right on the confirmation inputs too)
