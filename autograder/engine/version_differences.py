@@ -156,6 +156,8 @@ def with_version_note(verdict, t):
     (lab12's "cost argument is ignored" needs two informative maps, not two maps of zeros)."""
     from dataclasses import replace
 
+    if str(getattr(verdict, "mistake", "")).startswith("repair:"):
+        return verdict   # (a change of their code, confirmed under this OpenCV, explains the failure)
     try:
         note = version_note(t)
     except Exception:   # noqa: BLE001 - a note is a bonus: the verdict stands without it
