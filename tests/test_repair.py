@@ -1655,3 +1655,22 @@ def test_the_other_end_of_a_slice_with_a_computed_bound_is_a_change_tried():
     ends = _shown_changes(source, "slice")
     assert ("costs[d, :, d:]", "costs[d, :, :d]") in ends, ends
     assert ("costs[:, :-d]", "costs[:, -d:]") in ends, ends
+
+
+def test_changes_that_are_no_ones_slip_are_not_tried_and_a_change_of_ties_alone_is_not_told_beside_a_fix():
+    """Another name in a mode's test runs another mode's code (`cost == "ssd"` -> `block_size == "ssd"`);
+    NumPy's data exchanged with a bound (`np.clip(limit, 0, v)`); a comparison made strict or not beside
+    another fix changes ties alone. OpenCV's DECOMP_* flags are told one for another."""
+    source = textwrap.dedent("""
+        def graded(cost, block_size, v, limit, A, b):
+            volume = (_ssd if cost == "ssd" else _ncc)(block_size)
+            x = np.clip(v, 0, limit)
+            return volume, x, cv2.solve(A, b, flags=cv2.DECOMP_LU)
+    """)
+    assert not any("block_size ==" in after for _, after in _shown_changes(source, "other_name"))
+    assert not any(after.startswith("np.clip(limit") for _, after in _shown_changes(source, "swap_args"))
+    assert ("cv2.solve(A, b, flags=cv2.DECOMP_LU)", "cv2.solve(A, b, flags=cv2.DECOMP_SVD)") \
+        in _shown_changes(source, "flag")
+    ties = repair.Fix(((3, "ssd < best_cost", "ssd <= best_cost"),), "graded", "compare", ())
+    turned = repair.Fix(((3, "ssd < best_cost", "ssd > best_cost"),), "graded", "compare", ())
+    assert repair._ties_only(ties) and not repair._ties_only(turned)

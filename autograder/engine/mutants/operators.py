@@ -1889,6 +1889,9 @@ def _call_slips(node: ast.Call):
 
 
 _KEPT_KEYWORDS = {"dtype", "axis", "out", "where"}
+# NumPy functions whose first argument is the data and the others its bounds, fill or shape
+_DATA_FIRST = {"clip", "where", "full", "full_like", "pad", "reshape", "repeat", "tile", "round", "around",
+               "percentile", "quantile", "linspace", "arange"}
 _GREY_ONLY = {"cornerSubPix", "equalizeHist", "goodFeaturesToTrack", "cornerHarris", "threshold", "adaptiveThreshold"}   # (changed by their own operators, or never a slip left in)
 _ACCUMULATED = {ast.Add: "Add", ast.Sub: "Sub", ast.Mult: "Mult"}
 
@@ -2683,6 +2686,8 @@ def _call_changes(node: ast.Call, words, what, parents):
     if len(positional) == len(node.args) and len(node.args) >= 2 and shown:
         for i in range(len(node.args)):
             for j in range(i + 1, min(len(node.args), i + 3)):
+                if i == 0 and short in _DATA_FIRST and dotted.startswith(("np.", "numpy.")):
+                    continue   # (`np.clip(limit, 0, v)`: the data exchanged with a bound is no one's slip)
                 a, b = what(node.args[i]), what(node.args[j])
                 ordinal = ("first", "second", "third", "fourth", "fifth", "sixth")
                 if i < 6 and j < 6:

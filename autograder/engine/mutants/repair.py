@@ -986,6 +986,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # change in its own code and one in a helper only it runs are both told (a band's sign
         # flipped where the pyramid is built, or undone where it is collapsed).
         kept = [pair for pair in fixes if not student.shared(pair[1].where, function)]
+        # (a comparison made strict or not changes only ties: beside another fix it is one by chance --
+        # `ssd <= best` beside the update moved where it belongs -- and is not told)
+        kept = [pair for pair in (kept or fixes) if not _ties_only(pair[1])] or kept
         return variant.repair(variant.nearest(kept or fixes), complete)
     # (a search bounded by its tries -- beside a check's own name -- makes only the pairs of one slip
     # made twice, which the code shows, not those of the nearest changes)
@@ -1098,6 +1101,15 @@ def _near_the_raise(mutants, trial, function) -> list:
         return mutants
     near = lambda m: any(0 <= line - m.line <= RAISE_REACH for line in lines)  # noqa: E731
     return [m for m in mutants if near(m)] + [m for m in mutants if not near(m)]
+
+
+def _ties_only(fix: "Fix") -> bool:
+    """Whether the fix only makes a comparison strict or not (`<` <-> `<=`): it changes ties alone."""
+    if fix.operator != "compare" or len(fix.changes) != 1:
+        return False
+    _, before, after = fix.changes[0]
+    loose = lambda text: re.sub(r"([<>])=", r"\1", text)  # noqa: E731
+    return before != after and loose(before) == loose(after)
 
 
 def _worded_first(mutants, said: str) -> list:
