@@ -307,3 +307,23 @@ def test_flat_rows_are_not_blamed_on_the_smoothness_when_they_stay_flat_without_
     checks = check_results(result, "lab12.ex5")
     assert any(c.score < c.max_score for c in checks)
     assert not any("far too large" in c.message for c in checks), [c.message for c in checks]
+
+
+def test_an_xor_carried_through_a_name_is_read_as_the_running_xor():
+    import ast
+
+    from autograder.labs.lab12 import _xor_accumulates
+
+    carried = ast.parse(textwrap.dedent("""
+        def f(lit, n):
+            previous = lit[0] * 0
+            for i in range(n):
+                b = np.logical_xor(previous, lit[i])
+                previous = b
+    """)).body[0]
+    gray_to_gray = ast.parse(textwrap.dedent("""
+        def f(lit, n):
+            for i in range(1, n):
+                b = np.logical_xor(lit[i - 1], lit[i])
+    """)).body[0]
+    assert _xor_accumulates(carried) and not _xor_accumulates(gray_to_gray)

@@ -2524,7 +2524,14 @@ def _xor_accumulates(function) -> bool:
         if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("bitwise_xor", "logical_xor") \
                 and any(k.arg == "out" for k in n.keywords):
             return True
-    return False
+    # carried through a name: `b = np.logical_xor(previous, lit[i])` then `previous = b`
+    xors = [n for n in ast.walk(function) if isinstance(n, ast.Assign) and (
+        (isinstance(n.value, ast.BinOp) and isinstance(n.value.op, ast.BitXor))
+        or (isinstance(n.value, ast.Call) and _path(n.value.func).rsplit(".", 1)[-1] in ("bitwise_xor", "logical_xor")))]
+    made = {_root_name(t) for n in xors for t in n.targets} - {None}
+    carried = made | {_root_name(t) for n in ast.walk(function) if isinstance(n, ast.Assign)
+                      and isinstance(n.value, ast.Name) and n.value.id in made for t in n.targets}
+    return any(isinstance(r, ast.Name) and r.id in carried for n in xors for r in ast.walk(n.value))
 
 
 def _root_name(node):
