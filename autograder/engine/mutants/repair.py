@@ -43,7 +43,7 @@ from ..checks import Trial, Verdict, fingerprint
 from ..inherited import SHARED_FAILING
 from . import naming
 from .helper import HelperFailed
-from .operators import _MAKE, _MOVES, OPERATORS, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
+from .operators import _MAKE, _MOVES, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
@@ -903,9 +903,6 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # The check's own name of the mistake, where it quotes the student's code ("your code fixes signs
     # with np.sign"), says where to look first.
     runnable = student.quoted_first(runnable, said)
-    # Beside a check's own name of the effect ("the normalisation is not undone"), the kinds of change its
-    # words speak of come first (an inversion undone, a normalisation's transforms applied).
-    runnable = _worded_first(runnable, said)
     if any(_rows_for_columns(variant.students[i], references[i]) for i in failing):
         # An answer with rows and columns exchanged (a canvas sized (height, width)): the exchanges
         # of twins first, wherever they are (`(y_max - y_min, x_max - x_min)`, `w, h = shape[:2]`).
@@ -1110,17 +1107,6 @@ def _ties_only(fix: "Fix") -> bool:
     _, before, after = fix.changes[0]
     loose = lambda text: re.sub(r"([<>])=", r"\1", text)  # noqa: E731
     return before != after and loose(before) == loose(after)
-
-
-def _worded_first(mutants, said: str) -> list:
-    """``mutants``, those of an operator whose words (:data:`.operators.OPERATORS`, four letters or more)
-    ``said`` uses first (in their order)."""
-    if not said:
-        return mutants
-    text = said.lower()
-    worded = {operator for operator, words in OPERATORS.items()
-              if any(len(word) >= 4 and word in text for word in words)}
-    return [m for m in mutants if m.operator in worded] + [m for m in mutants if m.operator not in worded]
 
 
 def _rows_for_columns(answer, reference) -> bool:
