@@ -1614,8 +1614,8 @@ def test_a_normalisation_never_undone_is_told(tmp_path):
     result = grade(edited_reference(tmp_path, "lab11_two_view", _NEVER_UNDONE), ["lab11.ex4"], pictures="none",
                    include_hidden=False)
     checks = check_results(result, "lab11.ex4")
-    # (the check names the effect by hand; the change is told beside it, found first among the kinds of
-    # change the name's words speak of -- not a compensation: the normalisation taken out at both places)
+    # (the check names the effect by hand; the change is told beside it -- not a compensation: the
+    # normalisation taken out at both places, a pair of removals no longer tried beside a name)
     told = [c for c in checks if "Trying small changes" in c.message]
     assert told and all("T2.T @ Fn @ T1" in c.message for c in told), [c.message for c in checks if c.score < c.max_score]
     assert "`Fn / np.linalg.norm(Fn)` to `T2.T @ Fn @ T1 / np.linalg.norm(Fn)`" in told[0].message
