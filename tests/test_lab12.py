@@ -292,3 +292,38 @@ def test_one_image_warped_with_the_other_homography_is_told_alone(tmp_path, edit
     result = grade(edited_reference(tmp_path, "lab12_stereo", edit), ["lab12.ex3"], pictures="none")
     [check] = [c for c in check_results(result, "lab12.ex3") if c.name.startswith("rectify: the rectified images")]
     assert not check.passed and words in check.message and "each image" not in check.message, check.message
+
+
+def test_flat_rows_are_not_blamed_on_the_smoothness_when_they_stay_flat_without_it(tmp_path):
+    """A DP whose rows come out flat whatever the penalty (a minimum taken over the wrong axis, here a
+    constant map): the default smoothness is not the cause, and is not named."""
+    from conftest import mutant
+
+    folder = mutant(tmp_path, "lab12_stereo", """
+        def dp_stereo(left, right, max_disparity=64, smoothness=None, block_size=5):
+            return np.full(np.shape(left)[:2], 4.0)
+        """)
+    result = grade(folder, ["lab12.ex5"], pictures="none", include_hidden=False)
+    checks = check_results(result, "lab12.ex5")
+    assert any(c.score < c.max_score for c in checks)
+    assert not any("far too large" in c.message for c in checks), [c.message for c in checks]
+
+
+def test_an_xor_carried_through_a_name_is_read_as_the_running_xor():
+    import ast
+
+    from autograder.labs.lab12 import _xor_accumulates
+
+    carried = ast.parse(textwrap.dedent("""
+        def f(lit, n):
+            previous = lit[0] * 0
+            for i in range(n):
+                b = np.logical_xor(previous, lit[i])
+                previous = b
+    """)).body[0]
+    gray_to_gray = ast.parse(textwrap.dedent("""
+        def f(lit, n):
+            for i in range(1, n):
+                b = np.logical_xor(lit[i - 1], lit[i])
+    """)).body[0]
+    assert _xor_accumulates(carried) and not _xor_accumulates(gray_to_gray)

@@ -5,6 +5,7 @@ reference's on the failing inputs, the other calls and confirmation inputs."""
 from __future__ import annotations
 
 import ast
+import re
 import textwrap
 from pathlib import Path
 
@@ -974,7 +975,8 @@ def test_a_mean_of_ratios_where_the_ratio_to_the_mean_belongs_is_a_change_tried(
 def _shown_changes(source: str, operator: str) -> list:
     """(before, after) of the operator's changes of `graded` in ``source``, in the order they are made."""
     student = repair._Student(source, ast.parse(source), {"graded"})
-    return list(dict.fromkeys(student.fix(m).changes[0][1:] for m in student.mutants("graded") if m.operator == operator))
+    return list(dict.fromkeys(student.fix(m).changes[0][1:] for m in student.mutants("graded")
+                              if m.operator == operator and student.fix(m) is not None))
 
 
 def test_a_factor_a_number_given_to_opencv_a_wrapped_index_and_a_whole_for_its_part_are_changes_tried():
@@ -1162,7 +1164,7 @@ def test_a_change_leaving_the_twin_exchanged_input_as_wrong_as_it_was_is_not_tol
     """cv2.resize given a dsize of max(new size, old size) (fx, fy then ignored): right when both factors
     enlarge. `max(new_h, h)` -> `max(new_h, sx)` mends the check's sx=2.0, sy=0.8 and passes the other
     public checks, but on sx=0.8, sy=2.0 (the twin parameters exchanged, by keyword too) answers exactly
-    as the student's code does, wrong: not told."""
+    as the student's code does, wrong: not told. The size given where the factors are to count is."""
     from autograder.engine.mutants import naming
     from autograder.engine.mutants.operators import twin_names
     from conftest import mutant
@@ -1184,7 +1186,9 @@ def test_a_change_leaving_the_twin_exchanged_input_as_wrong_as_it_was_is_not_tol
             return out
         """)
     checks, told = _failed_and_repaired(folder, "lab07.ex3")
-    assert checks and not any("sx)`" in m or "sy)`" in m for m in told), told
+    assert checks and not any(re.search(r"max\(new_[wh], s[xy]\)", m) for m in told), told
+    # (the fix is told: the size given by position where the factors are to count)
+    assert any("`cv2.resize(image, None, fx=sx, fy=sy)`" in m for m in told), told
 
 
 def test_a_change_mending_a_matrix_up_to_sign_is_judged_up_to_sign(tmp_path):
@@ -1420,3 +1424,253 @@ def test_a_twins_step_added_beside_a_line_is_not_told_where_the_name_used_is_men
         """)
     checks, told = _failed_and_repaired(folder, "lab12.ex2")
     assert told and all("`xr = xr[:, 0]`" in m and "xl, xr =" not in m for m in told), [c.message for c in checks]
+
+
+def test_a_keyword_a_row_index_a_column_and_an_update_a_student_gets_wrong_are_changes_tried():
+    """Generic slips of a student's own code: a library call given a keyword that does not belong (`P=K`
+    makes cv2.undistortPoints map the points back to pixels), rows written at `i` and `i + 1` where `2 * i`
+    and `2 * i + 1` belong (only the rows written), one column of an (N, k) array in arithmetic where the
+    column kept 2-D belongs, an accumulation's sign, and a coordinate updated before its twin is computed
+    from it (both belong computed from the old values)."""
+    source = textwrap.dedent("""
+        def graded(pts, K, dist):
+            q = cv2.undistortPoints(pts, K, None, P=K)
+            A = np.zeros((2 * len(pts), 3))
+            total = 0
+            for i in range(len(pts)):
+                A[i] = [pts[i, 0], 1, 0]
+                A[i + 1] = [0, pts[i, 1], 1]
+                total -= pts[i, 0]
+            h = pts[:, :2] / pts[:, 2]
+            x, y = pts[:, 0], pts[:, 1]
+            x = x * dist + y
+            y = y * dist + x
+            return q, A, total, h, x, y
+    """)
+    assert ("cv2.undistortPoints(pts, K, None, P=K)", "cv2.undistortPoints(pts, K, None)") \
+        in _shown_changes(source, "drop_keyword")
+    assert _shown_changes(source, "stride") == [("A[i] = [pts[i, 0], 1, 0]", "A[2 * i] = [pts[i, 0], 1, 0]"),
+                                                ("A[i + 1] = [0, pts[i, 1], 1]", "A[2 * i + 1] = [0, pts[i, 1], 1]")]
+    assert _shown_changes(source, "keep_axis") == [("pts[:, :2] / pts[:, 2]", "pts[:, :2] / pts[:, 2:3]")]
+    assert ("total -= pts[i, 0]", "total += pts[i, 0]") in _shown_changes(source, "add_sub")
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    [update] = [m for m in student.mutants("graded") if m.operator == "simultaneous"]
+    assert "assigning `x` and `y` together (`x, y = ..., ...`, line 12: `y` from the `x` of before that line" \
+        in student.fix(update).told("graded")
+    written = ast.unparse(repair.mutated_defs(ast.parse(source), update.edits, source))
+    assert "x, y = (x * dist + y, y * dist + x)" in written and "y = y * dist + x\n" not in written
+
+
+# A least-squares affine fit written with a loop whose rows overwrite each other (A[i], A[i + 1]) and
+# a distortion whose y is computed from the x already distorted.
+_ROWS_PER_PAIR = ("""    M = np.zeros((2 * n, 6))
+    M[0::2, 0:2] = src
+    M[0::2, 2] = 1.0
+    M[1::2, 3:5] = src
+    M[1::2, 5] = 1.0
+    b = dst.reshape(-1)  # x'_0, y'_0, x'_1, y'_1, ...
+""", """    M = np.zeros((2 * n, 6))
+    b = np.zeros(2 * n)
+    for i in range(n):
+        M[i] = [src[i, 0], src[i, 1], 1.0, 0.0, 0.0, 0.0]
+        M[i + 1] = [0.0, 0.0, 0.0, src[i, 0], src[i, 1], 1.0]
+        b[i] = dst[i, 0]
+        b[i + 1] = dst[i, 1]
+""")
+_UPDATED_X = ("""    xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x)
+    yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y
+    out = np.column_stack([xd, yd])""", """    x = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x)
+    y = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y
+    out = np.column_stack([x, y])""")
+
+
+def test_one_slip_made_at_four_places_and_an_update_made_too_early_are_told(tmp_path):
+    result = grade(edited_reference(tmp_path / "rows", "lab07_transformations", _ROWS_PER_PAIR), ["lab07.ex6"],
+                   pictures="none", include_hidden=False)
+    told = [c for c in check_results(result, "lab07.ex6") if c.mistake == repair.MISTAKE + "stride"]
+    assert told, [c.message for c in check_results(result, "lab07.ex6")]
+    for row in ("`M[2 * i] = [", "`M[2 * i + 1] = [", "`b[2 * i] = dst[i, 0]`", "`b[2 * i + 1] = dst[i, 1]`"):
+        assert row in told[0].message
+    result = grade(edited_reference(tmp_path / "update", "lab09_camera", _UPDATED_X), ["lab09.ext2"],
+                   pictures="none", include_hidden=False)
+    checks = check_results(result, "lab09.ext2")
+    told = [c for c in checks if c.mistake == repair.MISTAKE + "simultaneous"]
+    assert told and all(c.mistake == told[0].mistake for c in checks if c.score < c.max_score), \
+        [c.message for c in checks]
+    assert "assigning `x` and `y` together" in told[0].message
+
+
+def test_a_measure_missing_its_square_root_or_its_absolute_value_and_row_column_pairs_are_changes_tried():
+    source = textwrap.dedent("""
+        def graded(d, left, right, mask):
+            close = np.sum(d ** 2, axis=1) < 3.0
+            sad = np.sum(left - right)
+            points = np.argwhere(mask)
+            return close, sad, points
+    """)
+    measures = _shown_changes(source, "measure")
+    assert ("np.sum(d ** 2, axis=1)", "np.sqrt(np.sum(d ** 2, axis=1))") in measures, measures
+    assert ("np.sum(left - right)", "np.sum(np.abs(left - right))") in measures, measures
+    assert ("np.argwhere(mask)", "np.argwhere(mask)[:, ::-1]") in _shown_changes(source, "column_order")
+
+
+def test_statements_in_the_wrong_place_are_changes_tried_and_told_in_words():
+    """An update made before the statement that needs the old value (moved after it), a statement left
+    after the `if` that was to guard it (moved in), a `return` inside a loop (moved after it)."""
+    source = textwrap.dedent("""
+        def graded(P, pts, n):
+            K, R = rq(P[:, :3])
+            K = K / K[2, 2]
+            t = np.linalg.solve(K, P[:, 3])
+            best, best_count = None, 0
+            for i in range(n):
+                inliers = pts > i
+                count = inliers.sum()
+                if count > best_count:
+                    best_count = count
+                best = inliers
+            out = []
+            for p in pts:
+                out.append(p * 2)
+                return out
+            for q in pts:
+                if q is None:
+                    continue
+                out.append(q)
+            return K, t, best
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    told = {m.operator: [] for m in student.mutants("graded")}
+    for m in student.mutants("graded"):
+        told[m.operator].append((student.fix(m).told("graded"), m))
+    said = {operator: [sentence for sentence, _ in pairs] for operator, pairs in told.items()}
+    assert "moving `K = K / K[2, 2]` (line 4) after line 5" in said["move"]
+    assert "moving `best = inliers` (line 12) into the `if` block above it (line 10), as its last statement" \
+        in said["indent"]
+    assert "moving `return out` (line 16) out of the `for` loop of line 14, to just after it" in said["dedent"]
+    assert not any("out.append(q)" in sentence for sentence in said["indent"])   # (after a `continue`: never run)
+    [(_, indent)] = [pair for pair in told["indent"] if "best = inliers" in pair[0]]
+    written = ast.unparse(repair.mutated_defs(ast.parse(source), indent.edits, source))
+    assert "best_count = count\n            best = inliers" in written.replace("    ", " " * 4), written
+
+
+def test_a_truncation_a_wrapping_conversion_and_a_constant_one_off_are_changes_tried():
+    source = textwrap.dedent("""
+        def graded(x, image, n):
+            column = int(x * 2.5)
+            out = (image * 1.5).astype(np.uint8)
+            levels = 2 ** n - 1
+            return column, out, levels
+    """)
+    rounded = _shown_changes(source, "rounding")
+    assert ("int(x * 2.5)", "int(round(x * 2.5))") in rounded, rounded
+    assert ("(image * 1.5).astype(np.uint8)", "np.clip(np.round(image * 1.5), 0, 255).astype(np.uint8)") in rounded
+    bounds = _shown_changes(source, "bound")
+    assert ("levels = 2 ** n - 1", "levels = 2 ** n - 2") in bounds and ("levels = 2 ** n - 1", "levels = 2 ** n - 0") \
+        not in bounds, bounds
+
+
+def test_an_opencv_argument_that_does_not_belong_a_colour_image_and_a_flat_column_of_ones_are_changes_tried():
+    source = textwrap.dedent("""
+        def graded(image, size, s, pts, matcher, left, right):
+            big = cv2.resize(image, size, fx=s, fy=s)
+            corners = cv2.cornerSubPix(image, pts, (5, 5), (-1, -1), None)
+            disparity = matcher.compute(left, right)
+            h = np.hstack([pts, np.ones(len(pts))])
+            return big, corners, disparity, h
+    """)
+    assert ("cv2.resize(image, size, fx=s, fy=s)", "cv2.resize(image, None, fx=s, fy=s)") \
+        in _shown_changes(source, "drop_keyword")
+    grey = [after for _, after in _shown_changes(source, "grey")]
+    assert "giving `cv2.cornerSubPix` the grey view of `image` (`cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)` where it " \
+           "has 3 channels, line 4{inside})" in grey, grey
+    assert any("`matcher.compute` the grey view of `right`" in after for after in grey), grey
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    [corner] = [m for m in student.mutants("graded") if m.operator == "grey" and m.line == 4]
+    assert "if image.ndim == 3 else image" in ast.unparse(repair.mutated_defs(ast.parse(source), corner.edits, source))
+    assert ("np.hstack([pts, np.ones(len(pts))])", "np.hstack([pts, np.ones((len(pts), 1))])") \
+        in _shown_changes(source, "keep_axis")
+
+
+def test_an_svd_recomposed_without_its_constraint_and_a_normalisation_never_undone_are_changes_tried():
+    source = textwrap.dedent("""
+        def graded(p1, p2):
+            n1, T1 = _normalise(p1)
+            n2, T2 = _normalise(p2)
+            U, S, Vt = np.linalg.svd(_rows(n1, n2)[-1].reshape(3, 3))
+            F = U @ np.diag(S) @ Vt
+            return F
+    """)
+    ranks = [after for _, after in _shown_changes(source, "rank")]
+    assert "U @ np.diag([S[0], S[1], 0])" in ranks and "U @ np.diag([1, 1, 0])" in ranks, ranks
+    undone = [after for _, after in _shown_changes(source, "denormalise")]
+    assert "return T2.T @ F @ T1" in undone and "return np.linalg.inv(T2) @ F @ T1" in undone, undone
+
+
+_NEVER_UNDONE = ("    F = T2.T @ Fn @ T1\n    return F / np.linalg.norm(F)", "    return Fn / np.linalg.norm(Fn)")
+
+
+def test_a_normalisation_never_undone_is_told(tmp_path):
+    result = grade(edited_reference(tmp_path, "lab11_two_view", _NEVER_UNDONE), ["lab11.ex4"], pictures="none",
+                   include_hidden=False)
+    checks = check_results(result, "lab11.ex4")
+    # (the check names the effect by hand; the change is told beside it -- not a compensation: the
+    # normalisation taken out at both places, a pair of removals no longer tried beside a name)
+    told = [c for c in checks if "Trying small changes" in c.message]
+    assert told and all("T2.T @ Fn @ T1" in c.message for c in told), [c.message for c in checks if c.score < c.max_score]
+    assert "`Fn / np.linalg.norm(Fn)` to `T2.T @ Fn @ T1 / np.linalg.norm(Fn)`" in told[0].message
+
+
+def test_a_division_with_no_guard_is_given_one():
+    source = textwrap.dedent("""
+        def graded(disparity, f, b):
+            return f * b / disparity
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    guards = [m for m in student.mutants("graded") if m.operator == "guard"]
+    assert [student.fix(m).told("graded") for m in guards] == [
+        "dividing by `disparity` only where it is > 0 (line 3; 0 elsewhere: `np.where(disparity > 0, ..., 0.0)`)",
+        "dividing by `disparity` only where it is > 0 (line 3; NaN elsewhere: `np.where(disparity > 0, ..., np.nan)`)"]
+    namespace = {"np": np}
+    exec(ast.unparse(repair.mutated_defs(ast.parse(source), guards[0].edits, source)), namespace)
+    assert namespace["graded"](np.array([0.0, -1.0, 2.0]), 10.0, 0.5).tolist() == [0.0, 0.0, 2.5]
+
+
+def test_another_of_the_results_a_library_call_returns_is_a_change_tried():
+    source = textwrap.dedent("""
+        def graded(src, dst):
+            H = cv2.findHomography(src, dst, cv2.RANSAC, 3.0)[1]
+            return H
+    """)
+    assert ("cv2.findHomography(src, dst, cv2.RANSAC, 3.0)[1]", "cv2.findHomography(src, dst, cv2.RANSAC, 3.0)[0]") \
+        in _shown_changes(source, "other_result")
+
+
+def test_the_other_end_of_a_slice_with_a_computed_bound_is_a_change_tried():
+    source = textwrap.dedent("""
+        def graded(costs, d):
+            costs[d, :, d:] = np.inf
+            return costs[:, :-d]
+    """)
+    ends = _shown_changes(source, "slice")
+    assert ("costs[d, :, d:]", "costs[d, :, :d]") in ends, ends
+    assert ("costs[:, :-d]", "costs[:, -d:]") in ends, ends
+
+
+def test_changes_that_are_no_ones_slip_are_not_tried_and_a_change_of_ties_alone_is_not_told_beside_a_fix():
+    """Another name in a mode's test runs another mode's code (`cost == "ssd"` -> `block_size == "ssd"`);
+    NumPy's data exchanged with a bound (`np.clip(limit, 0, v)`); a comparison made strict or not beside
+    another fix changes ties alone. OpenCV's DECOMP_* flags are told one for another."""
+    source = textwrap.dedent("""
+        def graded(cost, block_size, v, limit, A, b):
+            volume = (_ssd if cost == "ssd" else _ncc)(block_size)
+            x = np.clip(v, 0, limit)
+            return volume, x, cv2.solve(A, b, flags=cv2.DECOMP_LU)
+    """)
+    assert not any("block_size ==" in after for _, after in _shown_changes(source, "other_name"))
+    assert not any(after.startswith("np.clip(limit") for _, after in _shown_changes(source, "swap_args"))
+    assert ("cv2.solve(A, b, flags=cv2.DECOMP_LU)", "cv2.solve(A, b, flags=cv2.DECOMP_SVD)") \
+        in _shown_changes(source, "flag")
+    ties = repair.Fix(((3, "ssd < best_cost", "ssd <= best_cost"),), "graded", "compare", ())
+    turned = repair.Fix(((3, "ssd < best_cost", "ssd > best_cost"),), "graded", "compare", ())
+    assert repair._ties_only(ties) and not repair._ties_only(turned)

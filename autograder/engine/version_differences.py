@@ -113,8 +113,9 @@ KNOWN = (
     VersionDifference(
         "cv2.solve / cv2.gemm with a 1-D vector",
         _opencv_call("solve") | _opencv_call("gemm"),
-        "your code calls cv2.solve or cv2.gemm; a one-dimensional vector is a column to OpenCV 4 and "
-        "a row to OpenCV 5, which refuses it",
+        "your code calls cv2.solve or cv2.gemm; if one of the arrays it gives them is one-dimensional, "
+        "OpenCV 4 reads it as a column and OpenCV 5 as a row, which it refuses (an (N, 1) column is read "
+        "alike by both)",
         lambda: _outcome(lambda: __import__("cv2").solve(np.eye(2), np.array([1.0, 2.0]))[1].ravel().tolist()),
         {"4": [1.0, 2.0], "5": "error"}),
 )

@@ -1844,9 +1844,18 @@ def name_oversmoothing(t: Trial, what: str, got, scene, allowed: float):
     got = np.nan_to_num(np.asarray(got, np.float64))
     if got.shape != scene.disparity.shape or truth.bad_pixel_rate(got, scene.judged, scene.threshold) <= allowed:
         return
-    inner = got[truth.JUDGE_BORDER:-truth.JUDGE_BORDER, truth.JUDGE_BORDER:-truth.JUDGE_BORDER]
-    flat = float(np.mean(np.all(np.diff(inner, axis=1) == 0, axis=1)))
+    def flat_rows(disparity) -> float:
+        inner = np.nan_to_num(np.asarray(disparity, np.float64))[
+            truth.JUDGE_BORDER:-truth.JUDGE_BORDER, truth.JUDGE_BORDER:-truth.JUDGE_BORDER]
+        return float(np.mean(np.all(np.diff(inner, axis=1) == 0, axis=1)))
+
+    flat = flat_rows(got)
     if flat >= 0.9:
+        # With no smoothness at all the rows must vary: if they come out flat still, the penalty is not
+        # the cause (a minimum over the wrong axis flattens them whatever it is).
+        unsmoothed = call_dp(t, scene, smoothness=0)
+        if np.shape(unsmoothed) != got.shape or flat_rows(unsmoothed) >= 0.9:
+            return
         t.fail(f"{what}: it looks like {OVERSMOOTHED}: {flat:.0%} of the rows have a single disparity "
                "(with smoothness=None, use a penalty of the order of your data cost's differences).",
                mistake=OVERSMOOTHED)
@@ -2515,7 +2524,14 @@ def _xor_accumulates(function) -> bool:
         if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("bitwise_xor", "logical_xor") \
                 and any(k.arg == "out" for k in n.keywords):
             return True
-    return False
+    # carried through a name: `b = np.logical_xor(previous, lit[i])` then `previous = b`
+    xors = [n for n in ast.walk(function) if isinstance(n, ast.Assign) and (
+        (isinstance(n.value, ast.BinOp) and isinstance(n.value.op, ast.BitXor))
+        or (isinstance(n.value, ast.Call) and _path(n.value.func).rsplit(".", 1)[-1] in ("bitwise_xor", "logical_xor")))]
+    made = {_root_name(t) for n in xors for t in n.targets} - {None}
+    carried = made | {_root_name(t) for n in ast.walk(function) if isinstance(n, ast.Assign)
+                      and isinstance(n.value, ast.Name) and n.value.id in made for t in n.targets}
+    return any(isinstance(r, ast.Name) and r.id in carried for n in xors for r in ast.walk(n.value))
 
 
 def _root_name(node):

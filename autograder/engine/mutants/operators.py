@@ -104,7 +104,22 @@ OPERATORS = {
     "ufunc_out": ("out", "where", "uninitialised"),       # np.divide(a, b, where=m) -> (..., out=np.zeros(...))
     "empty_slice": ("slice", "empty", "0"),                # right[:, :-d] -> right[:, :right.shape[1] - d]
     "divided_by_w": ("homogeneous", "divid", "third", "w"),   # (H @ grid)[0] -> (H @ grid)[0] / (H @ grid)[2]
+    "drop_keyword": ("argument", "keyword", "remov"),     # cv2.undistortPoints(p, K, None, P=K) -> (p, K, None)
+    "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
+    "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
+    "column_order": ("row", "column", "x", "y", "order"),
+    "rounding": ("round", "truncat", "clip", "wrap", "uint8"),
+    "grey": ("grey", "gray", "channel", "colour", "color"),
+    "rank": ("singular", "rank", "constraint", "diag"),
+    "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),
+    "other_result": ("result", "return", "mask", "index"),   # cv2.findHomography(...)[1] -> [0]   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
+    "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
+    "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
+    "move": ("before", "after", "order", "too early", "too late"),   # K = K / K[2, 2] moved after t = ... K ...
+    "indent": ("inside", "loop", "if", "indent"),        # best = inliers moved into `if count > best_count:`
+    "dedent": ("after", "loop", "outside", "indent"),    # a return inside a loop moved after it
 }
+_MOVES = {"simultaneous", "move", "indent", "dedent"}   # changes of where statements are
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
 _NON_COMMUTATIVE = {ast.Sub: "subtraction", ast.Div: "division", ast.MatMult: "matrix product",
@@ -128,6 +143,10 @@ _FLAG_FAMILIES = [
     ("THRESH_BINARY", "THRESH_BINARY_INV"),
     ("SOLVEPNP_ITERATIVE", "SOLVEPNP_EPNP", "SOLVEPNP_SQPNP"),
     ("CALIB_FIX_PRINCIPAL_POINT", "CALIB_ZERO_TANGENT_DIST", "CALIB_FIX_ASPECT_RATIO"),
+    ("DECOMP_LU", "DECOMP_SVD", "DECOMP_NORMAL", "DECOMP_QR", "DECOMP_CHOLESKY", "DECOMP_EIG"),
+    ("STEREO_SGBM_MODE_SGBM", "STEREO_SGBM_MODE_HH", "STEREO_SGBM_MODE_SGBM_3WAY"),
+    ("CALIB_ZERO_DISPARITY", "CALIB_USE_INTRINSIC_GUESS", "CALIB_FIX_INTRINSIC"),
+    ("COLOR_BGR2LAB", "COLOR_BGR2YCrCb"),
 ]
 _ORDERED = {"reshape": "reshaped", "ravel": "flattened", "flatten": "flattened"}   # order="C" unless told
 _FLAG_FAMILY = {name: family for family in _FLAG_FAMILIES for name in family}
@@ -617,6 +636,12 @@ def _make_twin_step(node, payload):
 
 
 def _make_measure(node, payload):
+    if payload == "sqrt":   # np.sum(d ** 2, axis=1) -> np.sqrt(np.sum(d ** 2, axis=1))
+        return ast.Call(_name("np.sqrt"), [copy.deepcopy(node)], [])
+    if payload == "abs_inside":   # np.sum(l - r) -> np.sum(np.abs(l - r))
+        new = copy.deepcopy(node)
+        new.args[0] = ast.Call(_name("np.abs"), [new.args[0]], [])
+        return new
     if payload == "square":   # np.abs(d) -> d ** 2
         return ast.BinOp(copy.deepcopy(node.args[0]), ast.Pow(), ast.Constant(2))
     inner = node.left if isinstance(node, ast.BinOp) else node.args[0]   # d ** 2, np.square(d) -> np.abs(d)
@@ -640,6 +665,8 @@ def _make_power_inside(node, payload):
 
 
 def _make_slice(node, payload):
+    if payload == "other_end":   # costs[:, d:] -> costs[:, :d]: the part before the bound, not after it
+        return ast.Slice(copy.deepcopy(node.upper), copy.deepcopy(node.lower), None)
     lower, upper = payload   # l[:, 1:] -> l[:, :2]; A[r, 3:7] -> A[r, 4:8]
     return ast.Slice(None if lower is None else _signed(lower), None if upper is None else _signed(upper), None)
 
@@ -680,6 +707,69 @@ def _make_flip_keyword(node, payload):
     new = copy.deepcopy(node)   # np.linalg.svd(A, full_matrices=False) -> full_matrices=True
     new.keywords = [ast.keyword(k.arg, ast.Constant(not k.value.value)) if k.arg == payload else k
                     for k in new.keywords]
+    return new
+
+
+def _make_simultaneous(node, payload):
+    _, target, value = payload   # x = f(x, y) (then y = g(x, y)) -> x, y = f(x, y), g(x, y)
+    return ast.copy_location(ast.Assign(
+        [ast.Tuple([copy.deepcopy(node.targets[0]), parse(target, mode="eval").body], ast.Store())],
+        ast.Tuple([copy.deepcopy(node.value), parse(value, mode="eval").body], ast.Load())), node)
+
+
+def _make_move(node, payload):
+    _, moved, _, side = payload   # a statement made again beside the edited one (an `if True:` holds both)
+    made = parse(moved).body[0]
+    pair = [copy.deepcopy(node), made] if side == "after" else [made, copy.deepcopy(node)]
+    return ast.copy_location(ast.If(ast.Constant(True), pair, []), node)
+
+
+def _make_indent(node, payload):
+    new = copy.deepcopy(node)   # for ...: body; s -> for ...: body; s
+    new.body = [*new.body, parse(payload[1]).body[0]]
+    return new
+
+
+def _make_dedent(node, payload):
+    new = copy.deepcopy(node)   # for ...: body; s -> for ...: body / s
+    last = new.body.pop()
+    return ast.copy_location(ast.If(ast.Constant(True), [new, last], []), node)
+
+
+def _make_guard(node, payload):
+    # l / d -> np.where(d > 0, l / np.where(d > 0, d, 1), 0.0): divided only where the divisor is valid
+    left, right = ast.unparse(node.left), ast.unparse(node.right)
+    return parse(f"np.where({right} > 0, ({left}) / np.where({right} > 0, {right}, 1), {payload})", mode="eval").body
+
+
+def _make_drop_keyword(node, payload):
+    new = copy.deepcopy(node)   # cv2.undistortPoints(p, K, None, P=K) -> cv2.undistortPoints(p, K, None)
+    if isinstance(payload, int):   # cv2.resize(image, size, fx=s) -> cv2.resize(image, None, fx=s)
+        new.args[payload] = ast.Constant(None)
+    new.keywords = [k for k in new.keywords if k.arg != payload]
+    return new
+
+
+def _make_grey(node, payload):
+    new = copy.deepcopy(node)   # cv2.cornerSubPix(image, ...) -> the image in grey where it has 3 channels
+    image = ast.unparse(new.args[payload])
+    new.args[payload] = parse(f"(cv2.cvtColor({image}, cv2.COLOR_BGR2GRAY) if {image}.ndim == 3 else {image})",
+                              mode="eval").body
+    return new
+
+
+def _make_stride(node, payload):
+    # A[i] -> A[2 * i], A[i + 1] -> A[2 * i + 1]: two rows (entries) per item where one was written
+    new = copy.deepcopy(node)
+    index = new.slice.elts[0] if isinstance(new.slice, ast.Tuple) else new.slice
+    counter = index.left if isinstance(index, ast.BinOp) else index
+    doubled = ast.BinOp(ast.Constant(2), ast.Mult(), counter)
+    if isinstance(index, ast.BinOp):
+        index.left = doubled
+    elif isinstance(new.slice, ast.Tuple):
+        new.slice.elts[0] = doubled
+    else:
+        new.slice = doubled
     return new
 
 
@@ -747,7 +837,11 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w")},
+_MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
+                                              "keep_axis", "column_order", "rounding", "rank", "denormalise",
+                                              "other_result")},
+         "drop_keyword": _make_drop_keyword, "stride": _make_stride, "simultaneous": _make_simultaneous,
+         "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -1077,8 +1171,10 @@ def mutants_of(source: str, api, phrased: bool = True, functions=None) -> dict[s
             context = _context(function, where, defs, api)
             for operator, ordinal, payload, line, phrase in _def_sites(source, api, phrased, where):
                 place = f"in `{function}`{context}, "
-                mutants.append(Mutant(operator, function, where, line, ((where, ordinal, operator, payload),),
-                                      place + phrase, place))
+                edits = ((where, ordinal, operator, payload),)
+                if operator in _MOVES and payload[0] is not None:   # (the statement made at the edited node
+                    edits += ((where, payload[0], "drop_statement", None),)   # is removed where it was)
+                mutants.append(Mutant(operator, function, where, line, edits, place + phrase, place))
         out[function] = mutants
     return out
 
@@ -1114,6 +1210,99 @@ def _sites(fn: ast.FunctionDef, words: _Words, phrased: bool = True):
                 continue
             seen.add((ordinal, after))
             yield operator, ordinal, payload, line, phrase
+    if words.student:
+        ordinals = {id(node): ordinal for ordinal, node in enumerate(nodes)}
+        for returned, undone in _denormalisations(fn):
+            yield "denormalise", ordinals[id(returned)], undone, returned.lineno, ""
+        for first, second in _sequential_updates(fn):
+            yield "simultaneous", ordinals[id(first)], (ordinals[id(second)], ast.unparse(second.targets[0]),
+                                                         ast.unparse(second.value)), first.lineno, ""
+        # A statement in the wrong place: the payload's first item is the statement the change removes
+        # from where it was (made again at the edited node), None when the edited node holds it.
+        for operator, edited, moved, side in _statement_moves(fn):
+            removed = ordinals[id(moved)] if operator != "dedent" else None
+            yield operator, ordinals[id(edited)], (removed, ast.unparse(moved), moved.lineno, side), moved.lineno, ""
+
+
+_SIMPLE = (ast.Assign, ast.AugAssign, ast.Expr, ast.Return)
+_MOVE_REACH = 3   # statements a statement is moved past, at most
+_LEAVES = (ast.Continue, ast.Break, ast.Return, ast.Raise)
+
+
+def _assigned(statement) -> set:
+    targets = statement.targets if isinstance(statement, ast.Assign) else \
+        [statement.target] if isinstance(statement, ast.AugAssign) else []
+    return {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+
+
+def _read(node) -> set:
+    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+
+
+def _statement_moves(fn):
+    """(operator, edited, moved, side): statements a student puts in the wrong place. An update of a
+    name (`K = K / K[2, 2]`, `x += d`) made before a statement reading the old value, or after one that
+    needs the new (moved past it: "move", side "after" or "before" the edited statement); a statement
+    just after a loop or an ``if`` that belongs as its body's last ("indent": `best = inliers` left out
+    of `if count > best_count:`); a loop's or an ``if``'s last statement that belongs after it
+    ("dedent": a `return` inside the loop)."""
+    for block in ast.walk(fn):
+        for field in ("body", "orelse"):
+            statements = getattr(block, field, None)
+            if not isinstance(statements, list) or not statements or not isinstance(statements[0], ast.stmt):
+                continue
+            for k, statement in enumerate(statements):
+                updated = _assigned(statement) & _read(statement) if isinstance(statement, (ast.Assign, ast.AugAssign)) \
+                    else set()
+                if isinstance(statement, ast.AugAssign):
+                    updated |= _assigned(statement)
+                if updated:
+                    later = statements[k + 1:k + 1 + _MOVE_REACH]
+                    reader = next((s for s in later if isinstance(s, _SIMPLE) and _read(s) & updated), None)
+                    if reader is not None and not any(_assigned(s) & updated for s in later[:later.index(reader)]):
+                        yield "move", reader, statement, "after"
+                    earlier = statements[max(0, k - _MOVE_REACH):k]
+                    reader = next((s for s in reversed(earlier) if isinstance(s, _SIMPLE) and _read(s) & updated), None)
+                    if reader is not None and not any(_assigned(s) & updated for s in earlier[earlier.index(reader):]):
+                        yield "move", reader, statement, "before"
+                if isinstance(statement, (ast.For, ast.While, ast.If)) and k + 1 < len(statements) \
+                        and not isinstance(statement.body[-1], _LEAVES):   # (moved after a `continue`: never run)
+                    following = statements[k + 1]
+                    # (after a loop: a statement reading what the loop sets, its own variable too; after an
+                    # `if`: any update, which the condition was to guard)
+                    inside = {n for s in statement.body for n in _assigned_anywhere(s)} | (
+                        {n.id for n in ast.walk(statement.target) if isinstance(n, ast.Name)}
+                        if isinstance(statement, ast.For) else set())
+                    if isinstance(following, _SIMPLE) and not isinstance(following, ast.Return) \
+                            and (_read(following) & inside or (isinstance(statement, ast.If) and _assigned(following))):
+                        yield "indent", statement, following, "into"
+                if isinstance(statement, (ast.For, ast.While, ast.If)) and len(statement.body) >= 2 \
+                        and isinstance(statement.body[-1], _SIMPLE) and not statement.orelse:
+                    yield "dedent", statement, statement.body[-1], "out"
+
+
+def _assigned_anywhere(statement) -> set:
+    return {n for s in ast.walk(statement) if isinstance(s, (ast.Assign, ast.AugAssign)) for n in _assigned(s)}
+
+
+def _sequential_updates(fn):
+    """(first, second): an assignment updating a name from its own value (`x = x * r + ...`) followed
+    by one reading the updated name (`y = y * r + ... x ...`), where both belong computed from the old
+    values at once (`x, y = ..., ...`: a point's coordinates updated one after the other)."""
+    for block in ast.walk(fn):
+        for field in ("body", "orelse"):
+            statements = getattr(block, field, None)
+            if not isinstance(statements, list):
+                continue
+            for first, second in zip(statements, statements[1:]):
+                if not all(isinstance(s, ast.Assign) and len(s.targets) == 1 and isinstance(s.targets[0], ast.Name)
+                           for s in (first, second)):
+                    continue
+                a, b = first.targets[0].id, second.targets[0].id
+                reads = lambda value, name: any(isinstance(n, ast.Name) and n.id == name  # noqa: E731
+                                                and isinstance(n.ctx, ast.Load) for n in ast.walk(value))
+                if a != b and reads(first.value, a) and reads(second.value, a):
+                    yield first, second
 
 
 def _in_docstring(node, fn) -> bool:
@@ -1353,6 +1542,20 @@ def _student_changes(node, parent, parents):
                 for shape in ("row", "column"):
                     yield "translation", (side, shape), ""
     yield from _numpy_slips(node, parent, parents)
+    yield from _column_order(node, parent)
+    yield from _singular_value_changes(node, parent)
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Call) \
+            and _dotted(node.value.func).startswith(("cv2.", "cv.", "np.linalg.", "numpy.linalg.")) \
+            and isinstance(node.slice, ast.Constant) and type(node.slice.value) is int and 0 <= node.slice.value <= 4:
+        # another of the results a library call returns (`cv2.findHomography(...)[1]`: the mask, not H)
+        for other in range(5):
+            if other != node.slice.value:
+                yield "other_result", f"{ast.unparse(node.value)}[{other}]", ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) \
+            and isinstance(node.right, (ast.Name, ast.Subscript)) and not isinstance(node.left, ast.Constant):
+        for invalid in ("0.0", "np.nan"):   # a division with no guard where the divisor may be 0 or below
+            yield "guard", invalid, ""
+    yield from _conversion_slips(node, parent)
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
     yield from _measure_changes(node)
@@ -1372,6 +1575,8 @@ def _student_changes(node, parent, parents):
         yield from _call_slips(node)
     if isinstance(node, ast.Expr):
         yield from _discarded_result(node)
+    if isinstance(node, ast.AugAssign) and isinstance(node.op, (ast.Add, ast.Sub)):
+        yield "add_sub", None, ""   # `total -= d` for `total += d`
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.left, ast.BinOp) \
             and isinstance(node.left.op, (ast.Add, ast.Sub)) and isinstance(node.right, ast.Constant):
         yield "power_spread", None, ""   # `(x + y) ** 2` where `x ** 2 + y ** 2` belongs
@@ -1452,6 +1657,17 @@ def _numpy_slips(node, parent, parents):
             and not isinstance(parent, ast.BinOp) and _made_by_product(node.value.id, parents):
         # a homogeneous product's first rows used as coordinates, never divided by the third
         yield "divided_by_w", f"{node.value.id}[{node.slice.value}] / {node.value.id}[2]", ""
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(parent, ast.BinOp) \
+            and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult, ast.Div)) and isinstance(node.slice, ast.Tuple) \
+            and len(node.slice.elts) >= 2 and all(_whole_slice(e) for e in node.slice.elts[:-1]) \
+            and isinstance(node.slice.elts[-1], ast.Constant) and type(node.slice.elts[-1].value) is int:
+        # one column of an (N, k) array in arithmetic with an (N, m) one: broadcast against the rows
+        # (or raising) where the column, kept 2-D, belongs (`pts[:, :2] / pts[:, 2]`)
+        k = node.slice.elts[-1].value
+        kept = [ast.unparse(e) for e in node.slice.elts[:-1]] + [f"{k}:{k + 1}" if k != -1 else "-1:"]
+        yield "keep_axis", f"{ast.unparse(node.value)}[{', '.join(kept)}]", ""
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Store) and _looped_index(node, parents) is not None:
+        yield "stride", None, ""   # rows written at `i` and `i + 1` where `2 * i` and `2 * i + 1` belong
     if isinstance(node, ast.Subscript) and isinstance(node.value, (ast.Name, ast.Attribute)):
         items = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
         for axis, item in enumerate(items):
@@ -1462,6 +1678,24 @@ def _numpy_slips(node, parent, parents):
                           f"{ast.unparse(item.lower) if item.lower else ''}:{array}.shape[{axis}] - ({count})"
                           for i in items]
                 yield "empty_slice", f"{array}[{', '.join(bounds)}]", ""
+
+
+def _looped_index(node: ast.Subscript, parents):
+    """The first index of ``node`` (`A[i]`, `A[i + 1, :]`) when it is a ``for`` loop's counter (``for i
+    in range(...)`` around it), alone or plus a constant; else None. (A stride's place: two rows per
+    point written at `i` and `i + 1`.)"""
+    index = node.slice.elts[0] if isinstance(node.slice, ast.Tuple) and node.slice.elts else node.slice
+    counter = index.left if isinstance(index, ast.BinOp) and isinstance(index.op, ast.Add) \
+        and isinstance(index.right, ast.Constant) and type(index.right.value) is int else index
+    if not isinstance(counter, ast.Name) or not isinstance(node.value, ast.Name):
+        return None
+    up = node
+    while id(up) in parents:
+        up = parents[id(up)][0]
+        if isinstance(up, ast.For) and isinstance(up.target, ast.Name) and up.target.id == counter.id \
+                and isinstance(up.iter, ast.Call) and _dotted(up.iter.func) == "range":
+            return index
+    return None
 
 
 _PRODUCTS: dict = {}   # id of a function's parents map -> (the map, kept alive; the names it assigns a product)
@@ -1617,6 +1851,35 @@ def _call_slips(node: ast.Call):
     for keyword in node.keywords:
         if keyword.arg and isinstance(keyword.value, ast.Constant) and isinstance(keyword.value.value, bool):
             yield "flip_keyword", keyword.arg, ""
+    if dotted.startswith(("cv2.", "cv.", "np.", "numpy.", "scipy.")):
+        # an optional argument that does not belong (`P=K` makes cv2.undistortPoints map the normalised
+        # points back to pixels): a library's keyword left out, its default used
+        for keyword in node.keywords:   # (a flag's truth value is turned instead: `crossCheck=False`)
+            if keyword.arg and keyword.arg not in _KEPT_KEYWORDS \
+                    and not (isinstance(keyword.value, ast.Constant) and isinstance(keyword.value.value, bool)):
+                yield "drop_keyword", keyword.arg, ""
+    if dotted.startswith(("cv2.", "cv.")):
+        # (OpenCV's optional arguments given by position: `cv2.resize(image, size, fx=s, fy=s)` resizes
+        # to `size` whatever the factors; None there lets them count)
+        for position, argument in enumerate(node.args[1:], start=1):
+            if isinstance(argument, (ast.Name, ast.Tuple, ast.Subscript)) and not isinstance(argument, ast.Starred):
+                yield "drop_keyword", position, ""
+    if dotted.startswith(("cv2.", "cv.")) and short in _GREY_ONLY and node.args \
+            and isinstance(node.args[0], (ast.Name, ast.Subscript)):
+        yield "grey", 0, ""   # a colour image given to a function that takes one channel
+    if isinstance(node.func, ast.Attribute) and node.func.attr == "compute" and len(node.args) == 2 \
+            and all(isinstance(a, (ast.Name, ast.Subscript)) for a in node.args):
+        for position in (0, 1):
+            yield "grey", position, ""   # a stereo matcher's images in colour (StereoBM takes 8-bit grey)
+    if short in ("hstack", "concatenate") and dotted.startswith(("np.", "numpy.")) and node.args \
+            and isinstance(node.args[0], (ast.List, ast.Tuple)):
+        for item in node.args[0].elts:
+            if isinstance(item, ast.Call) and _dotted(item.func) in ("np.ones", "np.zeros", "numpy.ones", "numpy.zeros") \
+                    and len(item.args) == 1 and not isinstance(item.args[0], ast.Tuple):
+                # `np.hstack([pts, np.ones(n)])`: a column of ones made 1-D
+                yield "keep_axis", ast.unparse(ast.Call(node.func, [ast.List(
+                    [parse(f"{_dotted(e.func)}(({ast.unparse(e.args[0])}, 1))", mode="eval").body if e is item else e
+                     for e in node.args[0].elts], ast.Load())] + node.args[1:], node.keywords)), ""
     if dotted.startswith(("cv2.", "cv.")) and short in _FLOAT32_ONLY and len(node.args) >= 2:
         arrays = [i for i, a in enumerate(node.args) if isinstance(a, (ast.Name, ast.Subscript))]
         if any(i >= 1 for i in arrays):
@@ -1625,6 +1888,11 @@ def _call_slips(node: ast.Call):
             yield "float32", arrays, ""
 
 
+_KEPT_KEYWORDS = {"dtype", "axis", "out", "where"}
+# NumPy functions whose first argument is the data and the others its bounds, fill or shape
+_DATA_FIRST = {"clip", "where", "full", "full_like", "pad", "reshape", "repeat", "tile", "round", "around",
+               "percentile", "quantile", "linspace", "arange"}
+_GREY_ONLY = {"cornerSubPix", "equalizeHist", "goodFeaturesToTrack", "cornerHarris", "threshold", "adaptiveThreshold"}   # (changed by their own operators, or never a slip left in)
 _ACCUMULATED = {ast.Add: "Add", ast.Sub: "Sub", ast.Mult: "Mult"}
 
 
@@ -1825,6 +2093,100 @@ def _measure_changes(node):
     if isinstance(node, ast.Call) and len(node.args) == 1 and isinstance(node.args[0], ast.BinOp) \
             and isinstance(node.args[0].op, ast.Div) and _dotted(node.func).rsplit(".", 1)[-1] in _REDUCED:
         yield "power_inside", "ratio", ""   # a mean of ratios where the ratio to the mean belongs
+    yield from _missing_measure(node)
+
+
+def _column_order(node, parent):
+    """`np.argwhere(mask)` gives (row, column) pairs: used as (x, y) points they are the other way round."""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.argwhere", "numpy.argwhere") \
+            and not (isinstance(parent, ast.Subscript) and parent.value is node):
+        yield "column_order", f"{ast.unparse(node)}[:, ::-1]", ""
+
+
+def _conversion_slips(node, parent):
+    """A conversion that truncates where it should round (`int(x)`, `x.astype(int)`: 2.9 becomes 2), one
+    to uint8 that wraps round where it should saturate (`x.astype(np.uint8)`: 256 becomes 0, -1 255),
+    and an integer constant of an arithmetic step one off (`2 ** n - 1` for `2 ** n`, `% 8` for `% 9`)."""
+    if isinstance(node, ast.Call) and _dotted(node.func) == "int" and len(node.args) == 1 and not node.keywords \
+            and not (isinstance(node.args[0], ast.Call) and _dotted(node.args[0].func) in ("round", "np.round")):
+        yield "rounding", f"int(round({ast.unparse(node.args[0])}))", ""
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "astype" \
+            and len(node.args) == 1 and (_dotted(node.args[0]) in _INTEGER_TYPES | {"int"}
+                                         or (isinstance(node.args[0], ast.Constant) and node.args[0].value in ("uint8", "int"))):
+        array, kind = ast.unparse(node.func.value), ast.unparse(node.args[0])
+        if not (isinstance(node.func.value, ast.Call) and _dotted(node.func.value.func) in ("np.round", "np.rint", "np.clip")):
+            yield "rounding", f"np.round({array}).astype({kind})", ""
+            if "uint8" in kind:
+                yield "rounding", f"np.clip(np.round({array}), 0, 255).astype({kind})", ""
+    if isinstance(node, ast.Constant) and type(node.value) is int and isinstance(parent, ast.BinOp) \
+            and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mod, ast.FloorDiv)) and 0 <= node.value <= 16:
+        for other in (node.value - 1, node.value + 1):   # (`x - 0`: the term dropped, a change made already)
+            if other >= (1 if isinstance(parent.op, (ast.Add, ast.Sub)) else 0):
+                yield "bound", other, ""
+
+
+def _singular_value_changes(node, parent):
+    """A matrix recomposed from its SVD without its constraint (`U @ np.diag(S) @ Vt`: the rank-2 F's
+    smallest singular value left, an E's (s, s, 0) not imposed), or with the wrong one."""
+    if not (isinstance(node, ast.Call) and _dotted(node.func) in ("np.diag", "numpy.diag") and len(node.args) == 1
+            and isinstance(node.args[0], ast.Name) and isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult)):
+        return
+    values = node.args[0].id
+    for kept in (f"[{values}[0], {values}[1], 0]", "[1, 1, 0]", f"[({values}[0] + {values}[1]) / 2] * 2 + [0]"):
+        yield "rank", f"np.diag({kept})", ""
+
+
+def _denormalisations(fn):
+    """(node, payload): an estimate made in normalised coordinates and returned without the normalising
+    transforms undone (`return F` where `T2.T @ F @ T1` belongs, `return H` for `inv(T2) @ H @ T1`): the
+    transforms are what one of the student's helpers returns for each image (`T1, T2 = _norm(p1),
+    _norm(p2)`; `n1, T1 = _norm(p1)` and `n2, T2 = _norm(p2)`), the estimate the first name the return reads."""
+    made = {}
+    for node in ast.walk(fn):
+        if not (isinstance(node, ast.Assign) and len(node.targets) == 1):
+            continue
+        target, value = node.targets[0], node.value
+        pairs = list(zip(target.elts, value.elts)) if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) \
+            and len(target.elts) == len(value.elts) else [(target, value)]
+        for name, call in pairs:
+            if not isinstance(call, ast.Call) or not isinstance(call.func, ast.Name):
+                continue   # (a helper of the student's module, called by its name)
+            if isinstance(name, ast.Tuple) and len(name.elts) == 2 and isinstance(name.elts[1], ast.Name):
+                made.setdefault(_dotted(call.func), []).append(name.elts[1].id)
+            elif isinstance(name, ast.Name):
+                made.setdefault(_dotted(call.func), []).append(name.id)
+    transforms = next((names[:2] for names in made.values() if len(names) >= 2), None)
+    if transforms is None:
+        return
+    first, second = transforms
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Return) and node.value is not None:
+            estimate = next((n for n in ast.walk(node.value) if isinstance(n, ast.Name) and n.id not in transforms
+                             and isinstance(n.ctx, ast.Load) and n.id not in ("np", "numpy", "cv2")), None)
+            if estimate is None:
+                continue
+            for a, b in ((second, first), (first, second)):
+                for undone in (f"({a}.T @ {estimate.id} @ {b})", f"(np.linalg.inv({a}) @ {estimate.id} @ {b})"):
+                    yield estimate, undone
+
+
+def _missing_measure(node):
+    """A step of a measure left out: a sum of squares where its square root -- the distance -- belongs
+    (`np.sum(d ** 2, axis=1) < t` for a threshold in pixels), and a sum of differences where the sum
+    of their absolute values belongs (`np.sum(l - r)` for the SAD)."""
+    if not isinstance(node, ast.Call) or not node.args or isinstance(node.args[0], ast.Starred):
+        return
+    short = _dotted(node.func).rsplit(".", 1)[-1]
+    if short not in ("sum", "mean") or not _dotted(node.func).startswith(("np.", "numpy.")):
+        return
+    argument = node.args[0]
+    squares = any((isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and isinstance(n.right, ast.Constant)
+                   and n.right.value == 2) or (isinstance(n, ast.Call) and _dotted(n.func) in ("np.square", "numpy.square"))
+                  for n in ast.walk(argument))
+    if squares:
+        yield "measure", "sqrt", ""
+    if isinstance(argument, ast.BinOp) and isinstance(argument.op, ast.Sub):
+        yield "measure", "abs_inside", ""
 
 
 def _averages(dotted: str) -> bool:
@@ -1839,6 +2201,9 @@ def _slice_changes(node: ast.Slice):
     """A slice of constant bounds one place off: the window moved by one (`3:7` for `4:8`), or the
     last entries taken where the first belong (`1:` for `:2` of a 3-vector, and back)."""
     if node.step is not None:
+        return
+    if (node.lower is None) != (node.upper is None) and _constant_index(node.lower or node.upper) is None:
+        yield "slice", "other_end", ""   # `x[d:]` <-> `x[:d]` for a bound the code computes
         return
     lower, upper = (None if b is None else _constant_index(b) for b in (node.lower, node.upper))
     if (node.lower is not None and lower is None) or (node.upper is not None and upper is None):
@@ -2321,6 +2686,8 @@ def _call_changes(node: ast.Call, words, what, parents):
     if len(positional) == len(node.args) and len(node.args) >= 2 and shown:
         for i in range(len(node.args)):
             for j in range(i + 1, min(len(node.args), i + 3)):
+                if i == 0 and short in _DATA_FIRST and dotted.startswith(("np.", "numpy.")):
+                    continue   # (`np.clip(limit, 0, v)`: the data exchanged with a bound is no one's slip)
                 a, b = what(node.args[i]), what(node.args[j])
                 ordinal = ("first", "second", "third", "fourth", "fifth", "sixth")
                 if i < 6 and j < 6:
@@ -2509,6 +2876,8 @@ def _index_phrase(inner, elements, position, value, other) -> str:
 def _replaceable(node: ast.Name, parent) -> bool:
     if isinstance(parent, ast.Call) and parent.func is node:
         return False
+    if isinstance(parent, ast.Compare) and _mode_test(parent):
+        return False   # (`cost == "ssd"` -> `block_size == "ssd"` runs another mode's code: no slip)
     if isinstance(parent, ast.Attribute):
         return False
     return isinstance(parent, (ast.Call, ast.BinOp, ast.Subscript, ast.Return, ast.keyword, ast.Tuple,

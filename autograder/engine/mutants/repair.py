@@ -43,7 +43,7 @@ from ..checks import Trial, Verdict, fingerprint
 from ..inherited import SHARED_FAILING
 from . import naming
 from .helper import HelperFailed
-from .operators import _MAKE, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
+from .operators import _MAKE, _MOVES, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
@@ -56,6 +56,7 @@ _SHOWN = 70               # the longest code shown before and after a change
 # reading it never outlasts the time the repairs are given.
 MAX_NODES = 15_000
 _EXCHANGES = {"swap_operands", "swap_args", "stack_order"}   # operators that exchange two things
+_IN_WORDS = _MOVES | {"grey", "guard"}   # changes told in words (their code would be too long to show)
 
 
 @dataclass(frozen=True)
@@ -78,8 +79,8 @@ class Fix:
     def size(self) -> int:
         """How many characters the change adds and removes (a statement removed: its own; two
         things exchanged, however long: as a few characters, one slip)."""
-        if all(edit[2] in _EXCHANGES for edit in self.edits):
-            return 3 * len(self.edits)
+        if all(edit[2] in _EXCHANGES for edit in self.edits) or self.operator in _IN_WORDS:
+            return 3 * len(self.edits)   # (a statement moved, however long: one slip)
         changed = [(before, "" if after == "pass" else after) for _, before, after in self.changes]
         kept = sum(sum(block.size for block in difflib.SequenceMatcher(None, before, after, autojunk=False)
                        .get_matching_blocks()) for before, after in changed)
@@ -93,6 +94,8 @@ class Fix:
 
     def told(self, function: str) -> str:
         inside = "" if self.where == function else f", in `{self.where}`"
+        if self.operator in _IN_WORDS:   # (told in words: see _Student._moved)
+            return self.changes[0][2].replace("{inside}", inside)
         said = [f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
                 for line, before, after in self.changes]
         return ("removing " if self.changes[0][2] == "pass" else "changing ") + " and ".join(said)
@@ -377,7 +380,8 @@ class _Student:
         where, ordinal, operator, payload = mutant.edits[0]
         nodes, _ = self._walk(where)
         old = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
-        if operator in ("summary", "divided_by_w", "true_division", "by_last", "ufunc_out", "empty_slice"):
+        if operator in ("summary", "divided_by_w", "true_division", "by_last", "ufunc_out", "empty_slice", "keep_axis",
+                        "column_order", "grey"):
             # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
             # by the third: the change is written out whole, alike in kind only)
             return repr(operator)
@@ -399,11 +403,53 @@ class _Student:
 
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
+        if mutant.key not in self.fixes and mutant.edits[0][2] in _IN_WORDS:
+            self.fixes[mutant.key] = self._moved(mutant)
         if mutant.key not in self.fixes:
             shown = _together([self.shown(edit) for edit in mutant.edits])
             self.fixes[mutant.key] = None if any(each is None for each in shown) else \
                 Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
         return self.fixes[mutant.key]
+
+    def _moved(self, mutant) -> Fix | None:
+        """A change of where statements are, told in words (the statements whole would be too long to
+        show): the change's line is the moved statement's, its "after" the sentence."""
+        where, ordinal, operator, payload = mutant.edits[0]
+        nodes = self._walk(where)[0]
+        if not 0 <= ordinal < len(nodes):
+            return None
+        edited = nodes[ordinal]
+        if operator == "grey":
+            image = " ".join(ast.unparse(edited.args[payload]).split())
+            call = _dotted_call(edited)
+            return Fix(((edited.lineno, f"{call}({image}, ...)", f"giving `{call}` the grey view of `{image}` "
+                         f"(`cv2.cvtColor({image}, cv2.COLOR_BGR2GRAY)` where it has 3 channels, line {edited.lineno}"
+                         "{inside})"),), where, operator, mutant.edits)
+        if operator == "guard":
+            divisor = " ".join(ast.unparse(edited.right).split())
+            if len(divisor) > 40:
+                return None
+            return Fix(((edited.lineno, f"... / {divisor}", f"dividing by `{divisor}` only where it is > 0 (line "
+                         f"{edited.lineno}{{inside}}; {'0' if payload == '0.0' else 'NaN'} elsewhere: "
+                         f"`np.where({divisor} > 0, ..., {payload})`)"),), where, operator, mutant.edits)
+        if operator == "simultaneous":
+            first, second = ast.unparse(edited.targets[0]), payload[1]
+            together = f"{first}, {second} = ..., ..."
+            return Fix(((edited.lineno, f"{first} = ...; {second} = ...",
+                         f"assigning `{first}` and `{second}` together (`{together}`, line {edited.lineno}{{inside}}: "
+                         f"`{second}` from the `{first}` of before that line, not the one it sets)"),),
+                       where, operator, mutant.edits)
+        _, text, line, side = payload
+        shown = " ".join(text.split())
+        if len(shown) > _SHOWN:
+            shown = shown[:_SHOWN - 4].rsplit(" ", 1)[0] + " ..."
+        block = {ast.For: "`for` loop", ast.While: "`while` loop", ast.If: "`if` block"}.get(type(edited), "block")
+        said = {"move": f"moving `{shown}` (line {line}{{inside}}) {side} line {edited.lineno}",
+                "indent": f"moving `{shown}` (line {line}{{inside}}) into the {block} above it (line {edited.lineno}), "
+                          "as its last statement",
+                "dedent": f"moving `{shown}` (line {line}{{inside}}) out of the {block} of line {edited.lineno}, "
+                          "to just after it"}[operator]
+        return Fix(((line, text, said),), where, operator, mutant.edits)
 
     def shown(self, edit) -> tuple[int, str, str] | None:
         """(line, before, after): the smallest expression or statement around the change that shows
@@ -457,6 +503,11 @@ class _Student:
         if shortened is None:
             return None
         return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
+
+
+def _dotted_call(call: ast.Call) -> str:
+    """`cv2.cornerSubPix`, `matcher.compute`: the function a call calls, as written."""
+    return ast.unparse(call.func) if len(ast.unparse(call.func)) <= 40 else "the call"
 
 
 def _call_name(call: ast.Call) -> str:
@@ -932,11 +983,15 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # change in its own code and one in a helper only it runs are both told (a band's sign
         # flipped where the pyramid is built, or undone where it is collapsed).
         kept = [pair for pair in fixes if not student.shared(pair[1].where, function)]
+        # (a comparison made strict or not changes only ties: beside another fix it is one by chance --
+        # `ssd <= best` beside the update moved where it belongs -- and is not told)
+        kept = [pair for pair in (kept or fixes) if not _ties_only(pair[1])] or kept
         return variant.repair(variant.nearest(kept or fixes), complete)
-    if tries is not None:
-        return None   # (pairs: a search bounded by its tries makes none)
-    near = [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
-    kept_near[:] = near
+    # (a search bounded by its tries -- beside a check's own name -- makes only the pairs of one slip
+    # made twice, which the code shows, not those of the nearest changes)
+    near = [] if tries is not None else [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
+    if tries is None:
+        kept_near[:] = near
     pairs = [(a, b) for a, b in itertools.combinations(near, 2) if _apart(a, b)]
     pairs.sort(key=lambda pair: not _same_slip(*pair))   # the same slip twice first
     # The same slip at two places, even where mending one alone brings the answers no nearer (two
@@ -944,6 +999,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     tried = {(a.key, b.key) for a, b in pairs}
     slips: dict = {}
     for mutant in runnable:   # (of the lines the failing input runs, as the single changes)
+        if tries is not None and mutant.operator in REMOVALS:
+            continue   # (beside a name of the effect, a step taken out twice compensates for it: a normalisation)
         slips.setdefault((mutant.where, mutant.edits[0][2], student.slip(mutant)), []).append(mutant)
     size = lambda pair: student.fix(pair[0]).size + student.fix(pair[1]).size  # noqa: E731
     new = lambda a, b: _apart(a, b) and (a.key, b.key) not in tried  # noqa: E731
@@ -966,14 +1023,24 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     twice = sorted(((turn, pair) for group in turns for turn, pair in enumerate(group)),
                    key=lambda item: (item[0], size(item[1])))
     pairs += [pair for _, pair in twice[:SAME_SLIP_PAIRS]]
+    # One slip made at every place it can be (three to a few: rows written at `i`, `i + 1` of A and of
+    # b where `2 * i`, `2 * i + 1` belong), before any pair: a pair mends half of it.
+    # (those made line after line first, as a block of rows is written; then the smallest changes)
+    everywhere = sorted((same for (_, kind, _), same in slips.items() if 3 <= len(same) <= EVERYWHERE
+                         and kind not in NOT_EVERYWHERE
+                         and all(_apart(a, b) for a, b in itertools.combinations(same, 2))),
+                        key=lambda same: (max(m.line for m in same) - min(m.line for m in same) > 2 * len(same),
+                                          sum(student.fix(m).size for m in same) / len(same)))[:EVERYWHERE_GROUPS]
+    combined = [replace(same[0], edits=tuple(edit for m in sorted(same, key=lambda m: m.line) for edit in m.edits))
+                for same in everywhere] \
+        + [replace(first, edits=first.edits + second.edits) for first, second in pairs]
     # Each pair's answers first; those right on the failing inputs are confirmed at once, and judged by
     # the check before those only nearer (where the student's answers are absurd -- a division by a w
     # of nearly 0 -- every pair is far nearer, and the check's replays would go to the first few).
     exact_pairs, near_pairs = [], []
-    for first, second in pairs:
+    for both in combined:
         if clock.left() <= 0:
             break
-        both = replace(first, edits=first.edits + second.edits)
         values = variant.answers(both, failing, inputs)
         if values is None or variant.fix(both) is None:
             continue
@@ -1012,6 +1079,10 @@ OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by 
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
 NEIGHBOUR_PAIRS = 8    # of which at two neighbouring items (of one list, tuple or call), tried first
+EVERYWHERE = 6         # the most places of one slip changed at once
+EVERYWHERE_GROUPS = 10  # slips so changed
+# changes that say nothing made everywhere at once (every sign, every index's axis, every statement)
+NOT_EVERYWHERE = {"accumulate", "axis", "sign", "add_sub", "drop_statement", "bound", "compare", "negate", "logic"}
 
 
 RAISE_REACH = 6   # lines before the one that raised where a change is tried first
@@ -1027,6 +1098,15 @@ def _near_the_raise(mutants, trial, function) -> list:
         return mutants
     near = lambda m: any(0 <= line - m.line <= RAISE_REACH for line in lines)  # noqa: E731
     return [m for m in mutants if near(m)] + [m for m in mutants if not near(m)]
+
+
+def _ties_only(fix: "Fix") -> bool:
+    """Whether the fix only makes a comparison strict or not (`<` <-> `<=`): it changes ties alone."""
+    if fix.operator != "compare" or len(fix.changes) != 1:
+        return False
+    _, before, after = fix.changes[0]
+    loose = lambda text: re.sub(r"([<>])=", r"\1", text)  # noqa: E731
+    return before != after and loose(before) == loose(after)
 
 
 def _rows_for_columns(answer, reference) -> bool:
@@ -1290,12 +1370,13 @@ class _Variants:
         before cv2.circle, which clips): the change is not confirmed as the slip."""
         for guard in self.student.guards(mutant):
             values = self.answers(guard, failing, self.inputs)
-            if values is None:
-                continue
+            if values is None or self.clock.left() <= 0:
+                return True   # (the guard could not be tried in the time: the change cannot be told from it)
             if mutant.key in self.checked:   # (the change was judged by the check: so is the guard)
-                if self._replay(guard, (self.trial.check, self.trial.property_examples)) is True \
-                        and (not self.other_checks() or self.passes_other_checks(guard)):
-                    return True
+                replayed = self._replay(guard, (self.trial.check, self.trial.property_examples))
+                if replayed is None or (replayed is True
+                                        and (not self.other_checks() or self.passes_other_checks(guard))):
+                    return True   # (a guard not replayed, out of replays, is as untested)
             elif all(self.right(v, self.references[i], self.students[i]) for v, i in zip(values, failing)) \
                     and self.confirmed(guard, failing) and not self._righter_elsewhere(mutant, guard):
                 return True   # (as the change was: right on the confirmation inputs too)
