@@ -1674,3 +1674,12 @@ def test_changes_that_are_no_ones_slip_are_not_tried_and_a_change_of_ties_alone_
     ties = repair.Fix(((3, "ssd < best_cost", "ssd <= best_cost"),), "graded", "compare", ())
     turned = repair.Fix(((3, "ssd < best_cost", "ssd > best_cost"),), "graded", "compare", ())
     assert repair._ties_only(ties) and not repair._ties_only(turned)
+
+
+def test_a_homogeneous_coordinate_written_0_where_1_belongs_is_a_change_tried():
+    source = textwrap.dedent("""
+        def graded(M, X, Y, Z):
+            x, y, w = M @ np.array([X, Y, Z, 0.0])
+            return x / w, y / w
+    """)
+    assert ("[X, Y, Z, 0.0]", "[X, Y, Z, 1.0]") in _shown_changes(source, "literal")

@@ -1544,6 +1544,12 @@ def _student_changes(node, parent, parents):
     yield from _numpy_slips(node, parent, parents)
     yield from _column_order(node, parent)
     yield from _singular_value_changes(node, parent)
+    if isinstance(node, ast.Constant) and type(node.value) in (int, float) and node.value in (0, 1) \
+            and isinstance(parent, (ast.List, ast.Tuple)) and 3 <= len(parent.elts) <= 4 and parent.elts[-1] is node \
+            and not all(isinstance(e, ast.Constant) for e in parent.elts):
+        # a point's homogeneous coordinate written 0 where 1 belongs (`[X, Y, Z, 0.0]`: w = 0), or 1 for 0 (a
+        # direction)
+        yield "literal", type(node.value)(1 - node.value), ""
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Call) \
             and _dotted(node.value.func).startswith(("cv2.", "cv.", "np.linalg.", "numpy.linalg.")) \
             and isinstance(node.slice, ast.Constant) and type(node.slice.value) is int and 0 <= node.slice.value <= 4:
