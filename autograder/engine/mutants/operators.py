@@ -2935,7 +2935,10 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
                 for other, defs in words.definitions.items() if any(d[0] == line_at and d[1] is value for d in defs)}
     tail = own.rsplit(" of ", 1)[-1]
     # (then the name's twin: `x1` for `x2`, a line copied from image 2's with its names half changed)
+    # (and a processed version of the name, or the raw one it came from: `x_norm` for `x`, `pts` for
+    # `pts_h` -- the raw points used where their normalised copy belongs, or the other way round)
     others.sort(key=lambda pair: (pair[0] not in together, not twin_names(node.id, pair[0]),
+                                  not _derived_names(node.id, pair[0]),
                                   pair[1].rsplit(" of ", 1)[-1] != tail or " of " not in own))
     count = 0
     for other, phrase in others:
@@ -2949,6 +2952,12 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
         count += 1
         if count >= _OTHER_NAMES_PER_SITE:
             return
+
+
+def _derived_names(a: str, b: str) -> bool:
+    """Whether one name is the other with a suffix (`x` / `x_norm`, `pts` / `pts_h`, `K` / `Kn`)."""
+    short, long = sorted((a, b), key=len)
+    return short != long and long.startswith(short) and (long[len(short)] == "_" or len(long) - len(short) <= 2)
 
 
 def _line_name_changes(node: ast.Assign, words: _Words, line):

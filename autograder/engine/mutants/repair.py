@@ -986,11 +986,20 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # (a comparison made strict or not changes only ties: beside another fix it is one by chance --
         # `ssd <= best` beside the update moved where it belongs -- and is not told)
         kept = [pair for pair in (kept or fixes) if not _ties_only(pair[1])] or kept
-        return variant.repair(variant.nearest(kept or fixes), complete)
+        found = variant.repair(variant.nearest(kept or fixes), complete)
+        if not all(fix.operator in REMOVALS for _, fix in fixes) or clock.left() <= RESERVE:
+            return found
+        # Only steps taken out mend it (the division by a w written 0, an inv(T) undoing rows filled with
+        # raw pixels): likely compensations. One slip made at several places, if it mends the answers too,
+        # is told instead (`x[i, 0], x[i, 1]` where `x_norm`'s belong).
+        fallback, near = found, []
+    else:
+        fallback = None
     # (a search bounded by its tries -- beside a check's own name -- makes only the pairs of one slip
     # made twice, which the code shows, not those of the nearest changes)
-    near = [] if tries is not None else [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
-    if tries is None:
+    near = [] if tries is not None or fallback is not None else \
+        [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
+    if tries is None and fallback is None:
         kept_near[:] = near
     pairs = [(a, b) for a, b in itertools.combinations(near, 2) if _apart(a, b)]
     pairs.sort(key=lambda pair: not _same_slip(*pair))   # the same slip twice first
@@ -999,8 +1008,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     tried = {(a.key, b.key) for a, b in pairs}
     slips: dict = {}
     for mutant in runnable:   # (of the lines the failing input runs, as the single changes)
-        if tries is not None and mutant.operator in REMOVALS:
-            continue   # (beside a name of the effect, a step taken out twice compensates for it: a normalisation)
+        if (tries is not None or fallback is not None) and mutant.operator in REMOVALS:
+            continue   # (beside a name of the effect, or a removal found, a step taken out twice compensates)
         slips.setdefault((mutant.where, mutant.edits[0][2], student.slip(mutant)), []).append(mutant)
     size = lambda pair: student.fix(pair[0]).size + student.fix(pair[1]).size  # noqa: E731
     new = lambda a, b: _apart(a, b) and (a.key, b.key) not in tried  # noqa: E731
@@ -1031,9 +1040,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                          and all(_apart(a, b) for a, b in itertools.combinations(same, 2))),
                         key=lambda same: (max(m.line for m in same) - min(m.line for m in same) > 2 * len(same),
                                           sum(student.fix(m).size for m in same) / len(same)))[:EVERYWHERE_GROUPS]
-    combined = [replace(same[0], edits=tuple(edit for m in sorted(same, key=lambda m: m.line) for edit in m.edits))
-                for same in everywhere] \
-        + [replace(first, edits=first.edits + second.edits) for first, second in pairs]
+    # (after the slip made at two neighbours, the likelier where the code shows it)
+    grouped = [replace(same[0], edits=tuple(edit for m in sorted(same, key=lambda m: m.line) for edit in m.edits))
+               for same in everywhere]
+    combined = [replace(first, edits=first.edits + second.edits) for first, second in pairs[:len(side)]] + grouped \
+        + [replace(first, edits=first.edits + second.edits) for first, second in pairs[len(side):]]
     # Each pair's answers first; those right on the failing inputs are confirmed at once, and judged by
     # the check before those only nearer (where the student's answers are absurd -- a division by a w
     # of nearly 0 -- every pair is far nearer, and the check's replays would go to the first few).
@@ -1050,7 +1061,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             if variant.confirmed(both, failing) and not variant.guard_untested(both, failing):
                 return variant.repair([(both, variant.fix(both))])
             exact_pairs.append((both, values))
-        elif np.isfinite(off):
+        elif np.isfinite(off) and fallback is None:   # (beside a removal found: only exact pairs replace it)
             apart = sum(variant.distance(v, references[i]) for v, i in zip(values, failing))
             if PAIR_NEARER * apart <= off:   # (the student's own recipe: as singles)
                 near_pairs.append((apart, len(near_pairs), both, values))
@@ -1058,11 +1069,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # triangulation where the reference solves its own system -- judged by the checks)
     for both, values in exact_pairs + [(both, values) for _, _, both, values in sorted(near_pairs, key=lambda n: n[:2])]:
         if clock.left() <= 0 or variant.replays >= REPLAYS:
-            return None
+            return fallback
         if both.key not in variant.checked and variant.passes_check(both, values, failing, pair=True) \
                 and variant.confirmed(both, failing) and not variant.guard_untested(both, failing):
             return variant.repair([(both, variant.fix(both))])
-    return None
+    return fallback
 
 
 FIXES = 3         # the most fixes told (one per line)
