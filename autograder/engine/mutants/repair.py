@@ -1093,7 +1093,8 @@ NEIGHBOUR_PAIRS = 8    # of which at two neighbouring items (of one list, tuple 
 EVERYWHERE = 6         # the most places of one slip changed at once
 EVERYWHERE_GROUPS = 10  # slips so changed
 # changes that say nothing made everywhere at once (every sign, every index's axis, every statement)
-NOT_EVERYWHERE = {"accumulate", "axis", "sign", "add_sub", "drop_statement", "bound", "compare", "negate", "logic"}
+NOT_EVERYWHERE = {"accumulate", "axis", "sign", "add_sub", "drop_statement", "bound", "compare", "negate", "logic",
+                  "drop_keyword", "literal", "guard"}   # (an argument's position, a number: alike in kind only)
 
 
 RAISE_REACH = 6   # lines before the one that raised where a change is tried first
