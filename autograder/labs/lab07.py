@@ -13,6 +13,7 @@ import numpy as np
 from fixtures import lab07 as truth
 from fixtures.images import photo
 
+from ..engine import conventions
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, passed
 from ..engine.claims import calls_any, guard
@@ -442,3 +443,13 @@ def lstsq_property(t):
 
     t.for_all(st.tuples(st.integers(0, 2**32 - 1), st.integers(4, 60)), holds, max_examples=15,
               describe=lambda c: f"fixtures.lab07.noisy_correspondences(seed={c[0]}, n={c[1]})")
+
+
+# ================================================================== the API's conventions judged elsewhere
+for _function, _check in (("translate", "translate keeps a grey image grey"),
+                          ("rotate", "rotate keeps a grey image grey and its size, a quarter turn too"),
+                          ("scale", "scale with different sx and sy"), ("shear", "shear keeps a grey image grey"),
+                          ("warp_affine", "warp_affine with dsize=(width, height)")):
+    conventions.not_judged("channels", _function, f"judged on a grey image against the truth by \u201c{_check}\u201d")
+for _function in ("affine_from_points", "affine_lstsq"):
+    conventions.not_judged("rows", _function, "one model fitted to all the points together")

@@ -28,6 +28,7 @@ import numpy as np
 from fixtures import lab08 as truth
 from fixtures.images import coverage, photo, warp
 
+from ..engine import conventions
 from ..engine import strategies as st
 from ..engine.checks import StudentFailure, Trial, partial, passed
 from ..engine.claims import (THIRD_COORDINATE, THRESHOLD_NAMES, assigns, calls_any, checklist, compares_a_distance_with, divides_by,
@@ -394,12 +395,16 @@ def warp_to_reference_probe(t: Trial) -> Probe:
                       dsize=(w, h))
 
 
+def warp_to_reference_inputs():
+    """A panorama view as the reference, a crop of another as the moving image, and their H."""
+    scene = truth.panorama_scene()
+    moving = np.ascontiguousarray(scene.views[1][:150, :200])   # cropping keeps its coordinates
+    return scene.views[0], moving, scene.h(1, 0)
+
+
 @ex2.check("warp_to_reference: moving image in the reference's frame and size", points=3)
 def warp_to_reference_check(t):
-    scene = truth.panorama_scene()
-    reference = scene.views[0]
-    moving = np.ascontiguousarray(scene.views[1][:150, :200])   # cropping keeps its coordinates
-    H = scene.h(1, 0)
+    reference, moving, H = warp_to_reference_inputs()
     what = "warp_to_reference(reference, moving, H)"
     got = t.call("warp_to_reference", reference, moving, H)
     h, w = reference.shape[:2]
@@ -414,6 +419,10 @@ def warp_to_reference_check(t):
         t.images("your warp over the reference (the overlap should look sharp, not doubled)",
                  reference=reference, overlay=overlay)
     return verdict
+
+
+conventions.keeps_grey(ex2, "warp_to_reference", warp_to_reference_inputs, images=(0, 1),
+                       described="reference, moving, H")
 
 
 # ================================================================== ex3 features
@@ -2868,3 +2877,18 @@ def blend_mask_pyramid(t):
             "(cv2.pyrDown at every level: a blur, then every second pixel), so each level's weights are the "
             "mask averaged at that level's scale."), mistake=MASK_NOT_SMOOTHED)
     t.fail(f"{measurement}.{damaged}", hint=MASK_PYRAMID_HINT.said(t))
+
+
+# ================================================================== the API's conventions judged elsewhere
+for _function, _why in (
+        ("apply_homography", "judged on a grey image against the truth (its dsize check)"),
+        ("match_features", "its answer is points; a grey pair is judged by a hidden check"),
+        ("draw_matches", "its answer has 3 channels whatever the inputs' (the API says so)"),
+        ("stitch", "a panorama may be BGR whatever its views (views of either kind meet in it)"),
+        ("stitch_many", "a panorama may be BGR whatever its views (views of either kind meet in it)"),
+        ("blend_multiband", "judged on a grey image of odd size by a hidden check")):
+    conventions.not_judged("channels", _function, _why)
+conventions.not_judged("rows", "transform_points", "judged on a single point, pts of shape (1, 2)")
+for _function in ("homography_dlt", "homography_ransac"):
+    conventions.not_judged("rows", _function, "one model fitted to all the points together")
+conventions.not_judged("rows", "draw_matches", "its answer is an image")

@@ -17,6 +17,7 @@ import numpy as np
 from fixtures import lab09 as truth
 from fixtures.lab09 import photo
 
+from ..engine import conventions
 from ..engine import strategies as st
 from ..engine import judges
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
@@ -1608,3 +1609,25 @@ def distortion_property(t):
 
     t.for_all(seeds, holds, max_examples=12,
               describe=lambda s: f"points = uniform(-0.7, 0.7, (12, 2)), dist random, from seed {s}")
+
+
+# ================================================================== the API's conventions
+# Each point alone, as among many (one row (1, 3) gives one row (1, 2); a (3,) point is judged by
+# the checks above), and a grey image answered in grey.
+conventions.point_by_point(ex2, "project_with_intrinsics", lambda: (_example_camera()[0], truth.points_in_front(41, n=6)),
+                           rows=(1,), described="K, points")
+conventions.point_by_point(ex3, "project", lambda: _photo_scene()[1:], rows=(1,), described="P, points")
+conventions.point_by_point(ext2, "distort_points", lambda: (truth.points_in_front(42, n=6)[:, :2] / 10.0, DIST_EXAMPLE),
+                           described="points, dist")
+conventions.keeps_grey(ex5, "project_onto_image", _photo_scene, described="image, P, points")
+conventions.not_judged("rows", "pinhole_project", "judged on a single (3,) point and one row (1, 3) against the truth")
+for _function, _why in (
+        ("project_focal_lengths", "its answer is (F, N, 2): the points are its second axis"),
+        ("simulate_aperture", "its rays are random: the same point among many draws other rays"),
+        ("project_onto_image", "its image shows every point drawn; its points are judged with project's"),
+        ("draw_points", "its answer is an image")):
+    conventions.not_judged("rows", _function, _why)
+for _function, _why in (
+        ("draw_points", "judged on grey and colour images against the truth"),
+        ("calibrate", "its answer is no image; views with 3 channels are judged against the truth")):
+    conventions.not_judged("channels", _function, _why)

@@ -19,6 +19,7 @@ from fixtures import lab10 as truth
 from fixtures import scene
 from fixtures.images import tinted
 
+from ..engine import conventions
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (calls_any, checklist, divides_by, guard, look_at, measured, negates_on_negative_det,
@@ -1572,3 +1573,22 @@ def judge_track(t: Trial, frames, poses, dist=None, what=None):
           + (" (through the distorting lens)" if dist is not None else ""), svg_points(
         {"true": trajectory[:, [0, 2]], "yours": got[:, [3, 5]]}, flip_y=False))
     return passed(f"every frame within {max(errors):.2f} degrees")
+
+
+# ================================================================== the API's conventions
+# Each point alone, as among many: one row (1, 3) gives one row (1, 2) (a (3,) point is judged by the
+# checks above).
+conventions.point_by_point(ex1, "perspective_project", lambda: (truth.points_in_front(141, n=6), 500.0),
+                           described="points, f=500")
+conventions.point_by_point(ex2, "weak_perspective_project",
+                           lambda: (truth.scene_points(142, n=6, depth=15.0, relief=3.0), 300.0, 12.0),
+                           described="points, f=300, z_avg=12.0")
+conventions.point_by_point(ex3, "orthographic_project", lambda: (truth.points_in_front(143, n=6),),
+                           described="points")
+conventions.not_judged("rows", "dolly_zoom", "its projections are (F, N, 2): the points are their second axis")
+conventions.not_judged("rows", "camera_matrix_dlt", "one model fitted to all the points together")
+for _function, _why in (
+        ("undistort_image", "judged on a grey image against the truth, and on a colour one"),
+        ("estimate_pose", "its answer is no image; a colour photo and grey renders are judged against the truth"),
+        ("track_pose", "its answer is no image; its frames are judged against the true trajectory")):
+    conventions.not_judged("channels", _function, _why)

@@ -20,6 +20,7 @@ from fixtures import lab11 as truth
 from fixtures.lab12 import (linear_triangulation, triangulation_distance, triangulation_mistakes,
                             triangulation_variants)
 
+from ..engine import conventions
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
@@ -1610,3 +1611,15 @@ def pipeline_structure(t):
     pair = truth.rendered_pair(0)
     F, pts1, pts2, points3d = call_reconstruction(t, pair)
     return judge_structure(t, pair, pts1, pts2, points3d, F=F)
+
+
+# ================================================================== the API's conventions
+for _function, _why in (
+        ("draw_epipolar_lines", "judged on a grey image against the truth"),
+        ("two_view_reconstruction", "its answer is no image; a colour and a grey pair are judged")):
+    conventions.not_judged("channels", _function, _why)
+for _function, _why in (("triangulate", "judged on N = 1 against the truth"),
+                        ("epipolar_lines", "judged on one point against the truth")):
+    conventions.not_judged("rows", _function, _why)
+for _function in ("essential_8point", "fundamental_8point"):
+    conventions.not_judged("rows", _function, "one model fitted to all the points together")

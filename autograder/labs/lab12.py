@@ -27,6 +27,7 @@ from fixtures import lab12 as truth
 from fixtures.images import tinted
 
 from ..engine import inplace
+from ..engine import conventions
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
@@ -2602,3 +2603,15 @@ def sl_depth_noisy(t):
     dim = np.clip(np.rint(dim), 0, 255).astype(np.uint8)
     got = t.call("depth_from_structured_light", dim, f, baseline)
     return judge_sl_depth(t, "depth_from_structured_light(dim, noisy images)", got, dim, f, baseline, depth)
+
+
+# ================================================================== the API's conventions
+conventions.point_by_point(ex2, "disparity_from_matches", lambda: truth.stereo_points(seed=18, n=6)[3:],
+                           rows=(0, 1), described="pts_left, pts_right")
+for _function, _why in (
+        ("rectify", "judged on grey pairs against the truth, and on a colour pair"),
+        ("block_matching", "the API asks for grey images only"),
+        ("dp_stereo", "the API asks for grey images only"),
+        ("depth_from_structured_light", "its images are the API's stack of grey patterns, (n_bits, H, W)")):
+    conventions.not_judged("channels", _function, _why)
+conventions.not_judged("rows", "triangulate", "judged on N = 1 against the truth")

@@ -672,6 +672,14 @@ MISTAKES = {
                 image = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)   # assumes a colour image
             return _detect_right(image, method)
         """, ['raised']),
+    # ---------------------------------------------------------------- the API's conventions
+    "warp_to_reference makes a grey moving image BGR": ("lab08.ex2", """
+        def warp_to_reference(reference, moving, H):
+            if moving.ndim == 2:
+                moving = cv2.cvtColor(moving, cv2.COLOR_GRAY2BGR)
+            h, w = reference.shape[:2]
+            return cv2.warpPerspective(moving, np.asarray(H, dtype=np.float64), (w, h))
+        """, ["grey images", "channels are not kept"]),
 }
 
 

@@ -457,6 +457,31 @@ MISTAKES = {
             k1, k2, p1, p2, k3 = dist
             return _right(points, [k1, 0.0, p1, p2, k3])
         """, ["k2 is ignored"]),
+    # ---------------------------------------------------------------- the API's conventions
+    "project_with_intrinsics squeezes its answer": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X = np.atleast_2d(np.asarray(points, dtype=np.float64))
+            x = X @ np.asarray(K, dtype=np.float64).T
+            return np.squeeze(x[:, :2] / x[:, 2:3])
+        """, ["one-row array", "(1, 2)"]),
+    "project squeezes its answer": ("lab09.ex3", """
+        def project(P, points):
+            X = np.atleast_2d(np.asarray(points, dtype=np.float64))
+            x = np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, dtype=np.float64).T
+            return np.squeeze(x[:, :2] / x[:, 2:3])
+        """, ["one-row array", "(1, 2)"]),
+    "distort_points squeezes its answer": ("lab09.ext2", """
+        _reference_distort = distort_points
+        def distort_points(points, dist):
+            return np.squeeze(_reference_distort(points, dist))
+        """, ["one-row array", "(1, 2)"]),
+    "project_onto_image draws on a BGR copy of a grey image": ("lab09.ex5", """
+        def project_onto_image(image, P, points):
+            if image.ndim == 2:
+                image = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR)   # to draw the points in colour
+            pts = project(P, points).reshape(-1, 2)
+            return draw_points(image, pts), pts
+        """, ["grey images", "channels are not kept"]),
 }
 
 

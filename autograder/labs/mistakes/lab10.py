@@ -613,6 +613,22 @@ MISTAKES = {
             objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) / square_size
             return objp
         """, ["not in the units of square_size"]),
+    # ---------------------------------------------------------------- the API's conventions
+    "perspective_project squeezes its answer": ("lab10.ex1", """
+        _reference_perspective = perspective_project
+        def perspective_project(points, f):
+            return np.squeeze(_reference_perspective(points, f))
+        """, ["one-row array", "(1, 2)"]),
+    "weak_perspective_project squeezes its answer": ("lab10.ex2", """
+        _reference_weak = weak_perspective_project
+        def weak_perspective_project(points, f, z_avg=None):
+            return np.squeeze(_reference_weak(points, f, z_avg))
+        """, ["one-row array", "(1, 2)"]),
+    "orthographic_project squeezes its answer": ("lab10.ex3", """
+        _reference_orthographic = orthographic_project
+        def orthographic_project(points):
+            return np.squeeze(_reference_orthographic(points))
+        """, ["one-row array", "(1, 2)"]),
 }
 
 

@@ -601,4 +601,10 @@ MISTAKES = {
         def simulate_structured_light(depth, f, baseline, n_bits):
             return _simulate(depth, f, baseline, n_bits)[::-1]
         """, ["the images are in the wrong order"]),
+    # ---------------------------------------------------------------- the API's conventions
+    "disparity_from_matches squeezes its answer": ("lab12.ex2", """
+        _reference_disparity = disparity_from_matches
+        def disparity_from_matches(xl, xr):
+            return np.squeeze(_reference_disparity(xl, xr))
+        """, ["one-row array", "(1,)"]),
 }

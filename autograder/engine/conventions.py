@@ -1,0 +1,168 @@
+"""The API's conventions on forms, judged as relations between a student's own answers.
+
+Two conventions of the API hold for every function they apply to, yet no worked example of a
+lab shows them, so a submission breaking one could score full marks (issue 35's blind sets: a
+grey image warped as BGR, a (1, 3) input squeezed away, a single point counted by its length):
+
+- **channels**: a function that takes images and returns one answers in the input's number of
+  channels -- the grey version of its BGR inputs gives the grey form of its BGR answer (the same
+  size, uint8, no channel axis), and its other arrays in the same shapes;
+- **points one by one**: a function of N points treats each point alone -- the first point given
+  as a one-row array, (1, k), is answered as the first row of its answer for all N (N = 1 is a
+  number of points like any other: a squeezed (k,) answer is no row).
+
+Both are relations between two answers of the same student, so they need neither the reference
+nor a tolerance for legitimate variants: a recipe the lab sheet allows answers the grey or single
+form of an input as it answers the input itself. How right an answer is stays the other checks'
+to judge; these take points only for a form, or a point's value, that changes with how the same
+input is given. A lab declares them with :func:`keeps_grey` and :func:`point_by_point` (each adds
+one check to an exercise) and says why a function is not judged with :func:`not_judged`;
+``tests/test_conventions.py`` holds every lab to saying one or the other of each function with
+images or points.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import cv2
+import numpy as np
+
+from .checks import StudentFailure, Trial, passed
+from .claims import measured
+
+# per convention ("channels", "rows"): function -> its lab's key; "not judged": (convention, function) -> why
+DECLARED: dict[str, dict] = {"channels": {}, "rows": {}, "not judged": {}}
+
+GREY_NOT_KEPT = "a grey image is not answered in grey"
+ROW_DEPENDS = "a point's answer depends on how many points are given"
+SIZE_SLACK = 2     # pixels an image answered in grey may differ in size from the BGR one's
+RELATIVE = 1e-7   # the same point's answer among many and alone: the same float operations, up to BLAS order
+
+
+def keeps_grey(exercise, function: str, inputs: Callable[[], tuple], images=(0,), points: float = 1,
+               hidden: bool = False, described: str = "") -> None:
+    """Register on ``exercise`` the check that ``function`` answers grey images in grey:
+    ``inputs()`` gives its arguments with BGR images at the positions ``images``; ``described``
+    names them for the student (``"reference, moving, H"``)."""
+    def check(t: Trial):
+        return judge_grey(t, function, inputs(), images, described)
+    check.__name__ = f"{function}_keeps_grey"
+    DECLARED["channels"][function] = exercise.lab.key
+    exercise.check(f"{function} answers grey images in grey (the API: an image's channels are kept)",
+                   points=points, hidden=hidden)(check)
+
+
+def point_by_point(exercise, function: str, inputs: Callable[[], tuple], rows=(0,), points: float = 1,
+                   hidden: bool = False, described: str = "") -> None:
+    """Register on ``exercise`` the check that ``function`` treats each point alone: ``inputs()``
+    gives its arguments with N >= 2 points at the positions ``rows`` (sliced together). (The API's
+    single (3,) point is judged against the truth by each lab's own checks.)"""
+    def check(t: Trial):
+        return judge_rows(t, function, inputs(), rows, described)
+    check.__name__ = f"{function}_point_by_point"
+    DECLARED["rows"][function] = exercise.lab.key
+    exercise.check(f"{function} answers a one-row array as the same point among many", points=points,
+                   hidden=hidden)(check)
+
+
+def not_judged(convention: str, function: str, why: str) -> None:
+    """Say why ``function`` has no check of ``convention`` ("channels" or "rows"): another check
+    judges it already, its answer is no image of the input's channels, the API asks for one kind
+    of image only..."""
+    DECLARED["not judged"][(convention, function)] = why
+
+
+def _grey(images):
+    """BGR images made grey (a list of them, one by one)."""
+    if isinstance(images, (list, tuple)):
+        return [_grey(image) for image in images]
+    return cv2.cvtColor(images, cv2.COLOR_BGR2GRAY)
+
+
+def _parts(answer) -> list:
+    """The answer's parts: the items of a tuple or list of arrays, else the answer itself."""
+    if isinstance(answer, (tuple, list)) and any(isinstance(part, np.ndarray) for part in answer):
+        return list(answer)
+    return [answer]
+
+
+def _name(call: str, index: int, count: int, given: str) -> str:
+    """How a part of the answer to ``call`` on the ``given`` form of its input is named."""
+    return f"{call}{'' if count == 1 else f'[{index}]'} {given}"
+
+
+def _asked(t: Trial, function: str, args: tuple, said: str):
+    """The student's answer on ``args``; an exception is told with the input it was raised on."""
+    try:
+        return t.call(function, *args)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        raise failure.said(f"{said}: {failure.message}") from None
+
+
+def _same_parts(t: Trial, what: str, first, second, mistake: str) -> list:
+    """``second``'s parts, failing when they are not as many as ``first``'s."""
+    ours, theirs = _parts(first), _parts(second)
+    if len(ours) != len(theirs):
+        t.fail(measured(f"{what} returned {len(theirs)} value(s), where the other form of the input gives "
+                        f"{len(ours)}"), mistake=mistake)
+    return theirs
+
+
+def judge_grey(t: Trial, function: str, args: tuple, images, described: str = ""):
+    """Judge ``function`` on the grey versions of its BGR inputs against its own BGR answer."""
+    call = f"{function}({described or '...'})"
+    what = f"{call} on grey images"
+    colour = t.call(function, *args)
+    grey_args = tuple(_grey(a) if i in images else a for i, a in enumerate(args))
+    grey = _asked(t, function, grey_args, f"{what} (the BGR inputs converted with cv2.cvtColor: "
+                                          "an image may be grey (H, W) as well as BGR)")
+    theirs = _same_parts(t, what, colour, grey, GREY_NOT_KEPT)
+    shapes = []
+    for index, (ours, given) in enumerate(zip(_parts(colour), theirs)):
+        if not isinstance(ours, np.ndarray):
+            continue
+        name = _name(call, index, len(theirs), "on grey images")
+        if ours.dtype == np.uint8 and ours.ndim == 3 and ours.shape[2] == 3:   # an image: its grey form
+            # (of about the same size: a canvas fitted to features found anew may move by a pixel)
+            near = isinstance(given, np.ndarray) and given.ndim in (2, 3) and \
+                all(abs(a - b) <= SIZE_SLACK for a, b in zip(given.shape[:2], ours.shape[:2]))
+            shape, dtype = (given.shape[:2] if near else ours.shape[:2]), np.uint8
+        else:   # a matrix, points: the same whatever the images' channels
+            shape, dtype = ours.shape, None
+        got = t.expect_array(given, name, shape=shape, dtype=dtype)
+        if dtype is None and got.dtype.kind != ours.dtype.kind:
+            t.fail(measured(f"{name} returned dtype {got.dtype}, where on BGR images it returns {ours.dtype}"))
+        shapes.append(str(got.shape))
+    return passed(f"on grey images: {', '.join(shapes) or 'the same form'}")
+
+
+def _close(got, expected) -> bool:
+    got, expected = np.asarray(got, np.float64), np.asarray(expected, np.float64)
+    scale = max(1.0, float(np.nanmax(np.abs(expected)))) if np.isfinite(expected).any() else 1.0
+    return got.shape == expected.shape and bool(np.allclose(got, expected, rtol=RELATIVE, atol=RELATIVE * scale,
+                                                           equal_nan=True))
+
+
+def judge_rows(t: Trial, function: str, args: tuple, rows, described: str = ""):
+    """Judge ``function`` on its first point alone, as a one-row array, against its answer for all
+    the points."""
+    n = len(args[rows[0]])
+    many = t.call(function, *args)
+    call = f"{function}({described or '...'})"
+    given = f"with a one-row array of shape {np.shape(np.asarray(args[rows[0]])[:1])}"
+    alone = _asked(t, function, tuple(np.asarray(a)[:1] if i in rows else a for i, a in enumerate(args)),
+                   f"{call} {given}")
+    theirs = _same_parts(t, f"{call} {given}", many, alone, ROW_DEPENDS)
+    for index, (ours, answer) in enumerate(zip(_parts(many), theirs)):
+        if not (isinstance(ours, np.ndarray) and ours.ndim >= 1 and len(ours) == n and ours.dtype.kind in "biuf"):
+            continue   # not one row per point (a wrong answer for all N is the other checks' to judge)
+        name = _name(call, index, len(theirs), given)
+        got = t.expect_array(answer, name, shape=ours[:1].shape, kind="biuf")
+        if not _close(got, ours[:1]):
+            t.fail(measured(f"{name} returned {np.array2string(got, precision=6)}, but the same point among {n} "
+                            f"gives {np.array2string(ours[:1], precision=6)}: a point's answer must not depend "
+                            "on how many points are given"), mistake=ROW_DEPENDS)
+    return passed(f"the first point, as a one-row array, answered as the same point among {n}")

@@ -1,0 +1,106 @@
+"""The API's conventions on forms (autograder/engine/conventions.py): every lab says, for each of its
+functions with images or points, which check judges the convention or why none does; the judges
+pass a right answer whatever its form of computing, and fail a form that changes with how the same
+input is given, in words."""
+
+import re
+
+import pytest
+
+from autograder.engine import conventions
+from autograder.engine.registry import discover
+from conftest import mutant
+from autograder.engine.runner import grade
+
+BUILT_IN = re.compile(r"lab(0[7-9]|1[0-2])")
+IMAGES = {"image", "img1", "img2", "reference", "moving", "img_l", "img_r", "left", "right", "images", "frames"}
+POINTS = {"points", "pts", "pts1", "pts2", "xl", "xr", "points3d", "points2d", "src", "dst"}
+
+
+def _parameters(signature: str) -> set[str]:
+    inside = signature[signature.index("(") + 1:signature.rindex(")")]
+    return {part.split("=")[0].strip() for part in inside.split(",")}
+
+
+def _functions():
+    for lab in discover().values():
+        if BUILT_IN.fullmatch(lab.key):
+            for exercise in lab.exercises.values():
+                yield from exercise.signatures.items()
+
+
+@pytest.mark.parametrize("convention, names", [("channels", IMAGES), ("rows", POINTS)])
+def test_every_function_with_images_or_points_is_judged_or_says_why_not(convention, names):
+    unsaid = sorted(function for function, signature in _functions() if _parameters(signature) & names
+                    and function not in conventions.DECLARED[convention]
+                    and (convention, function) not in conventions.DECLARED["not judged"])
+    assert unsaid == []
+
+
+def test_what_is_declared_exists_and_is_declared_once():
+    functions = {function for function, _ in _functions()}
+    declared = {**conventions.DECLARED["channels"], **conventions.DECLARED["rows"]}
+    reasons = conventions.DECLARED["not judged"]
+    assert set(declared) <= functions
+    assert {function for _, function in reasons} <= functions
+    assert all(function not in conventions.DECLARED[convention] for convention, function in reasons)
+    assert all(why.strip() for why in reasons.values())
+
+
+def _failed(result, exercise_id):
+    return {c.name: c for e in result.exercises if e.id == exercise_id for c in e.checks if c.score < c.max_score}
+
+
+def test_a_squeezed_answer_fails_only_the_one_row_check_in_words(tmp_path):
+    submission = mutant(tmp_path, "lab10_camera2", """
+        _reference = perspective_project
+        def perspective_project(points, f):
+            return np.squeeze(_reference(points, f))
+        """)
+    failed = _failed(grade(submission, ["lab10.ex1"]), "lab10.ex1")
+    assert list(failed) == ["perspective_project answers a one-row array as the same point among many"]
+    message = next(iter(failed.values())).message
+    assert "one-row array of shape (1, 3)" in message and "shape (2,); expected (1, 2)" in message
+
+
+def test_an_answer_for_one_point_that_differs_from_the_same_point_among_many_is_told(tmp_path):
+    # (1, 3) read as the single point's coordinates in another order: one row only
+    submission = mutant(tmp_path, "lab09_camera", """
+        _reference = project_with_intrinsics
+        def project_with_intrinsics(K, points):
+            X = np.asarray(points, dtype=np.float64)
+            if X.shape == (1, 3):
+                X = X[:, [1, 0, 2]]
+            return _reference(K, X)
+        """)
+    failed = _failed(grade(submission, ["lab09.ex2"]), "lab09.ex2")
+    assert list(failed) == ["project_with_intrinsics answers a one-row array as the same point among many"]
+    check = next(iter(failed.values()))
+    assert "but the same point among 6 gives" in check.message and check.mistake == conventions.ROW_DEPENDS
+
+
+def test_other_right_recipes_pass(tmp_path):
+    # a float32 warp and points returned as float32: the form of the answer, not its precision, is judged
+    submission = mutant(tmp_path, "lab09_camera", """
+        _reference = project_onto_image
+        def project_onto_image(image, P, points):
+            drawn, pts = _reference(image, P, points)
+            return drawn, pts.astype(np.float32)
+        """)
+    result = grade(submission, ["lab09.ex5"])
+    names = [c.name for e in result.exercises for c in e.checks]
+    assert "project_onto_image answers grey images in grey (the API: an image's channels are kept)" in names
+    assert not any("grey images in grey" in name for name in _failed(result, "lab09.ex5"))
+
+
+def test_a_grey_image_answered_in_bgr_is_told_and_an_exception_on_grey_names_its_input(tmp_path):
+    submission = mutant(tmp_path, "lab08_homographies", """
+        def warp_to_reference(reference, moving, H):
+            grey = cv2.cvtColor(moving, cv2.COLOR_BGR2GRAY)   # raises for a grey image
+            h, w = reference.shape[:2]
+            return cv2.warpPerspective(moving, np.asarray(H, dtype=np.float64), (w, h))
+        """)
+    failed = _failed(grade(submission, ["lab08.ex2"]), "lab08.ex2")
+    assert list(failed) == ["warp_to_reference answers grey images in grey (the API: an image's channels are kept)"]
+    message = next(iter(failed.values())).message
+    assert message.startswith("warp_to_reference(reference, moving, H) on grey images (the BGR inputs converted")
