@@ -35,7 +35,6 @@ from .claims import measured
 DECLARED: dict[str, dict] = {"channels": {}, "rows": {}, "not judged": {}}
 
 GREY_NOT_KEPT = "a grey image is not answered in grey"
-ROW_DEPENDS = "a point's answer depends on how many points are given"
 SIZE_SLACK = 2     # pixels an image answered in grey may differ in size from the BGR one's
 RELATIVE = 1e-7   # the same point's answer among many and alone: the same float operations, up to BLAS order
 
@@ -102,7 +101,7 @@ def _asked(t: Trial, function: str, args: tuple, said: str):
         raise failure.said(f"{said}: {failure.message}") from None
 
 
-def _same_parts(t: Trial, what: str, first, second, mistake: str) -> list:
+def _same_parts(t: Trial, what: str, first, second, mistake: str = "") -> list:
     """``second``'s parts, failing when they are not as many as ``first``'s."""
     ours, theirs = _parts(first), _parts(second)
     if len(ours) != len(theirs):
@@ -155,7 +154,9 @@ def judge_rows(t: Trial, function: str, args: tuple, rows, described: str = ""):
     given = f"with a one-row array of shape {np.shape(np.asarray(args[rows[0]])[:1])}"
     alone = _asked(t, function, tuple(np.asarray(a)[:1] if i in rows else a for i, a in enumerate(args)),
                    f"{call} {given}")
-    theirs = _same_parts(t, f"{call} {given}", many, alone, ROW_DEPENDS)
+    # (measured, not named: a slip in one point's form, or a formula reading every point -- a mean
+    # depth where each point's own belongs -- both show so)
+    theirs = _same_parts(t, f"{call} {given}", many, alone)
     for index, (ours, answer) in enumerate(zip(_parts(many), theirs)):
         if not (isinstance(ours, np.ndarray) and ours.ndim >= 1 and len(ours) == n and ours.dtype.kind in "biuf"):
             continue   # not one row per point (a wrong answer for all N is the other checks' to judge)
@@ -164,5 +165,5 @@ def judge_rows(t: Trial, function: str, args: tuple, rows, described: str = ""):
         if not _close(got, ours[:1]):
             t.fail(measured(f"{name} returned {np.array2string(got, precision=6)}, but the same point among {n} "
                             f"gives {np.array2string(ours[:1], precision=6)}: a point's answer must not depend "
-                            "on how many points are given"), mistake=ROW_DEPENDS)
+                            "on how many points are given"))
     return passed(f"the first point, as a one-row array, answered as the same point among {n}")

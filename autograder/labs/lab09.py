@@ -1033,7 +1033,9 @@ ex5 = lab.exercise("ex5", "Points on a real image", functions=[
     "draw_points(image, pts, radius=3, color=(0, 0, 255))", "project_onto_image(image, P, points)"])
 
 
-def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 255), show=True):
+def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 255), show=True, redraw=None):
+    """Judge ``got``, ``image`` with filled circles of ``radius`` and ``color`` drawn at ``pts``;
+    ``redraw(r)``, the same drawing asked with radius r, tells how a wrong radius comes about."""
     expected = truth.expected_drawing(image, pts, radius, color)
     if isinstance(got, np.ndarray) and show:
         t.compare_images(what, image, expected, got)
@@ -1083,12 +1085,8 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
                mistake="only the first point is drawn" if first else "some points are not drawn")
     drawn_radius = _drawn_radius(got, image, pts, color)
     if drawn_radius is not None and drawn_radius != radius:
-        ignored = "the radius argument is ignored" if drawn_radius == 3 else \
-            "the radius is doubled (it is the radius, not the diameter)" if drawn_radius == 2 * radius else \
-            "the radius is halved (it is the radius, not the diameter)" if 2 * drawn_radius in (radius, radius - 1, radius + 1) \
-            else "the radius is used wrongly"
-        t.fail(f"{what}: the circles have radius {drawn_radius}, not {radius}: {ignored}.",
-               mistake=ignored)
+        misused = _radius_misused(drawn_radius, radius, redraw)
+        t.fail(f"{what}: the circles have radius {drawn_radius}, not {radius}: {misused}.", mistake=misused)
     if coverage < 0.97:
         t.fail(f"{what}: only {coverage:.0%} of the pixels that should be covered by the circles "
                f"(radius {radius}, colour {tuple(color)}) are.")
@@ -1135,6 +1133,26 @@ def _points_not_drawn(painted, shape, pts, radius):
         if disc.any() and not painted[disc].any():
             missing.append(i)
     return missing
+
+
+RADIUS_IGNORED = "the radius argument is ignored"
+RADIUS_HALVED = "the radius is halved (it is the radius, not the diameter)"
+RADIUS_DOUBLED = "the radius is doubled (it is the radius, not the diameter)"
+RADIUS_MISUSED = "the radius is used wrongly"
+
+
+def _radius_misused(drawn: int, radius: int, redraw=None) -> str:
+    """How a circle of radius ``drawn`` comes from the ``radius`` asked: doubled, halved, ignored (the
+    default, 3). Where two fit (3 for 6 is halved and the default), the drawing asked with another
+    radius (``redraw``: the radius drawn for a radius asked, None when it tells nothing) decides."""
+    fits = [mistake for mistake, holds in (
+        (RADIUS_DOUBLED, drawn == 2 * radius), (RADIUS_HALVED, 2 * drawn in (radius - 1, radius, radius + 1)),
+        (RADIUS_IGNORED, drawn == 3)) if holds]
+    if len(fits) > 1 and redraw is not None:
+        other = 2 * radius + 4
+        again = redraw(other)
+        fits = [] if again is None else [mistake for mistake in fits if _radius_misused(again, other) == mistake]
+    return fits[0] if len(fits) == 1 else RADIUS_MISUSED
 
 
 def _drawn_radius(got, image, pts, color):
@@ -1238,9 +1256,16 @@ def draw_options(t):
     image = photo("coffee", (160, 120))
     # off the image, then on its first and last columns and rows (the ends of 0..W-1, 0..H-1)
     pts = np.array([[40.0, 40.0], [120.4, 80.6], [-30.0, 50.0], [500.0, 60.0], [0.0, 119.0], [159.0, 0.0]])
+    def redraw(radius: int) -> int | None:   # the radius drawn when another is asked
+        try:
+            got = t.call("draw_points", image, pts, radius=radius, color=(0, 255, 0))
+        except StudentFailure:
+            return None
+        return _drawn_radius(got, image, pts, (0, 255, 0)) if isinstance(got, np.ndarray) else None
+
     return judge_drawing(t, "draw_points(image, pts, radius=6, color=(0, 255, 0))",
                          t.call("draw_points", image, pts, radius=6, color=(0, 255, 0)),
-                         image, pts, radius=6, color=(0, 255, 0))
+                         image, pts, radius=6, color=(0, 255, 0), redraw=redraw)
 
 
 # The API does not say what draw_points does with a NaN point (a projection

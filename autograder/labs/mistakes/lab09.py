@@ -40,6 +40,16 @@ MISTAKES = {
             X = np.atleast_2d(np.asarray(points, float))
             return (f * X[:, :2] / X[:, 2:3]).squeeze()
         """, ["(1, 3) array", "(1, 2)"]),
+    "draw_points halves the radius (taken as a diameter)": ("lab09.ex5", """
+        _reference_draw_points = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            return _reference_draw_points(image, pts, radius // 2, color)
+        """, ["the radius is halved"]),
+    "draw_points ignores its radius": ("lab09.ex5", """
+        _reference_draw_points = draw_points
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            return _reference_draw_points(image, pts, 3, color)
+        """, ["radius 3, not 6", "the radius argument is ignored"]),
     "a grey image drawn on in colour": ("lab09.ex5", """
         _reference_draw_points = draw_points
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
