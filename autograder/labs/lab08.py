@@ -2524,7 +2524,8 @@ NO_LAPLACIAN = ("it looks like the images are blended with one smoothed mask for
 
 
 def one_weight_per_pixel(got, img1, img2, seam: int, reach: int = 32) -> bool:
-    """Whether, near the seam, ``got`` is ``m * img1 + (1 - m) * img2`` with one weight m per pixel.
+    """Whether, near the seam, ``got`` is ``m * img1 + (1 - m) * img2`` with one weight m per pixel,
+    going from one image to the other across it.
 
     A feather or alpha blend is (residual about 0.3 grey levels, measured); a multi-band
     blend weights each band differently (levels=4: 1.8, levels=5: 4.0 on brick/astronaut).
@@ -2539,7 +2540,12 @@ def one_weight_per_pixel(got, img1, img2, seam: int, reach: int = 32) -> bool:
     near = np.zeros(strength.shape, bool)
     near[:, seam - reach : seam + reach] = True
     near &= strength > 30 ** 2
-    return near.sum() > 500 and float(residual[near].mean()) < 0.8
+    # (and the weight goes across the seam: one weight everywhere -- a mask that does nothing, img2
+    # throughout -- is no feather)
+    sides = [near.copy(), near.copy()]
+    sides[0][:, seam - reach // 2:], sides[1][:, :seam + reach // 2] = False, False
+    crosses = all(side.sum() > 50 for side in sides) and abs(m[sides[0]].mean() - m[sides[1]].mean()) > 0.4
+    return near.sum() > 500 and float(residual[near].mean()) < 0.8 and crosses
 
 
 @ext3.check("detail stays sharp at the seam: no ghosting (levels=5)", points=2)

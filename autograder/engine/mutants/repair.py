@@ -841,6 +841,33 @@ def _widened(call, defaults=(), factors=(4.0,)) -> list:
     return made
 
 
+def _beyond(call, defaults=()) -> list:
+    """The call with the values its check chose given as the contract's other values of the same kind:
+    whole numbers (an int argument: a shift of 100 px) made fractional, a float mask of 0s and 1s made
+    soft, one value at a time. A change right only on the check's choice -- nearest-neighbour interpolation where the shifts
+    are whole, a mask multiplied by 255 and clipped, exact on 0 and 1 -- is wrong there. [] when the
+    call holds neither. (Where the student's own code does not take such a value, the input says
+    nothing of a change: :meth:`_Variants.confirmed` leaves it out.)"""
+    import cv2
+
+    function, args, kwargs = call
+    kwargs = {**{name: value for name, position, value in defaults   # (a whole-number default left out, given)
+                 if position >= len(args) and name not in kwargs and type(value) is int}, **kwargs}
+
+    def other(value):
+        if isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_)) and value != 0:
+            return float(value) + 0.5
+        if isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.ndim == 2 and min(value.shape) >= 8 \
+                and np.isin(value, (0.0, 1.0)).all() and 0 < value.mean() < 1:
+            return cv2.GaussianBlur(value, (0, 0), max(2.0, min(value.shape) / 16))
+        return value
+
+    # one value at a time: a count given a fraction (levels=5.5) makes the call no input at all
+    made = [(function, args[:i] + (other(a),) + args[i + 1:], dict(kwargs))
+            for i, a in enumerate(args) if other(a) is not a]
+    return made + [(function, tuple(args), {**kwargs, k: other(v)}) for k, v in kwargs.items() if other(v) is not v]
+
+
 def _close(value, reference) -> bool:
     """Whether an answer is near the reference's as legitimate recipes are: images within 3 grey levels
     on average (their own interpolation may differ at edges), numbers within 1%."""
@@ -1151,6 +1178,8 @@ class _Variants:
             tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
         self.crossing: set = set()   # the variants on the other side of a threshold (see confirmed)
+        self.beyond: set = set()     # the variants with the check's whole numbers and 0/1 masks given otherwise
+        self.untaken: set | None = None   # of which those the student's own code does not answer
         self.keeping: set = set()    # variants (other modes, other channels) where answers must be kept or mended
         self.exchanged: set = set()  # the variants with the twin parameters exchanged (see _unmended_exchange)
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
@@ -1295,6 +1324,11 @@ class _Variants:
                 exchanged = naming.twins_exchanged(self.inputs[i], getattr(self.model, "twins", {}).get(self.function, ()))
                 self.exchanged.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(exchanged)))
                 variants += exchanged
+            # (and the values the check chose given otherwise: whole numbers made fractional, 0/1 masks soft)
+            beyond = [call for i in failing[:2]
+                      for call in _beyond(self.inputs[i], self.model.defaults.get(self.function, ()))]
+            self.beyond = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(beyond)))
+            variants += beyond
             # (and the other side of a threshold, for a changed condition only: a student's own
             # recipe may differ from the reference's legitimately there -- a resize's shrink)
             crossing = [call for i in failing[:2]
@@ -1321,8 +1355,15 @@ class _Variants:
         every, wanted, usable = self.confirmations
         if usable is not None and self.keeping and not self._answers_kept(mutant, every, wanted):
             return False
+        if usable is not None and self.untaken is None:   # (values the student's own code does not take)
+            asked = sorted(self.beyond.intersection(usable))
+            own = self._own(asked, every) if asked else []
+            self.untaken = set(asked) if own is None else \
+                {i for i, answer in zip(asked, own) if naming.error_kind(answer) is not None}
+        if usable is not None and mutant.key in self.checked and self._refuted_beyond(mutant, every, wanted):
+            return False
         if usable is not None:
-            usable = [i for i in usable if i not in self.keeping
+            usable = [i for i in usable if i not in self.keeping and i not in self.untaken
                       and (mutant.operator in BRANCHING or i not in self.crossing)]
         if usable is not None and (not usable or self._right_on(mutant, usable, every, wanted)):
             # A condition changed sends inputs down another branch: the inputs derived from the failing
@@ -1344,6 +1385,24 @@ class _Variants:
             self.confirmed_by_checks = True
             return True
         return False
+
+    def _refuted_beyond(self, mutant, every, wanted) -> bool:
+        """Whether a change the check judged is wrong where the check's whole numbers or 0/1 masks are
+        given otherwise (:func:`_beyond`): not the reference's answer there, and farther from it than
+        three times the spread the check accepted of it (the student's recipe may differ from the
+        reference's legitimately, as on the check's own inputs) -- right only on the check's choice of
+        values (`*` where `/` belongs mends a 0/1 mask clipped to [0, 1], and breaks every soft one;
+        `INTER_LINEAR & WARP_INVERSE_MAP`, nearest-neighbour, mends whole shifts only)."""
+        indices = sorted(i for i in self.beyond - (self.untaken or set())
+                         if i in wanted and naming.error_kind(wanted[i]) is None)
+        values = self.answers(mutant, indices, every) if indices else None
+        if values is None:
+            return False
+        # (a change giving exactly the reference's answers on the check's inputs follows the reference's
+        # recipe: there it must give them up to rounding, not within the leeway of another recipe)
+        spread, exact = 1.5 * self.checked[mutant.key], self.checked[mutant.key] == 0
+        return any(not self.right(value, wanted[i], confirming=not exact) and self.distance(value, wanted[i]) > 3 * spread
+                   for value, i in zip(values, indices))
 
     def _unmended_exchange(self, mutant, every, wanted) -> bool:
         """Whether, on an input with the twin parameters exchanged (`sx=0.8, sy=2.0` for `sx=2.0, sy=0.8`:
