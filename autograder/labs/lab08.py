@@ -1020,14 +1020,17 @@ MISCOUNTED = ("your loop keeps the model with the most inliers, yet what it coun
 
 def _keeps_the_best(t: Trial) -> bool:
     """Whether the student's RANSAC loop (in homography_ransac or a helper it runs) keeps a model when
-    its count beats the best so far: an `if ... > ...:` (or `>=`) in a loop whose branch assigns."""
+    its count beats the best so far: an `if ... > ...:` (or `>=`, alone or within `or`/`and`: a tie
+    broken by the error) in a loop whose branch assigns."""
+    def ordering(test) -> bool:
+        return any(isinstance(node, ast.Compare) and any(isinstance(op, (ast.Gt, ast.GtE, ast.Lt, ast.LtE))
+                                                         for op in node.ops) for node in ast.walk(test))
     for function in code_of(t).reachable(["homography_ransac"]):
         for loop in ast.walk(function):
             if not isinstance(loop, (ast.For, ast.While)):
                 continue
             for branch in ast.walk(loop):
-                if isinstance(branch, ast.If) and isinstance(branch.test, ast.Compare) \
-                        and any(isinstance(op, (ast.Gt, ast.GtE, ast.Lt, ast.LtE)) for op in branch.test.ops) \
+                if isinstance(branch, ast.If) and ordering(branch.test) \
                         and any(isinstance(node, (ast.Assign, ast.AugAssign)) for node in branch.body):
                     return True
     return False
@@ -1036,14 +1039,21 @@ def _keeps_the_best(t: Trial) -> bool:
 SAMPLES_ENOUGH = 200   # a loop this long keeps a good model of half-wrong pairs (4-point samples)
 
 
+_DRAWS = ("random", "choice", "permutation", "shuffle", "sample", "integers", "randint")
+
+
 def _fixed_sample_counts(t: Trial) -> list[int]:
     """The constant counts of the `for ... in range(N)` loops of the student's homography_ransac (and
-    its helpers); [] when it has none (a count from a variable)."""
+    its helpers) that draw at random (a refit loop, `for _ in range(2)`, draws no sample); [] when
+    it has none (a count from a variable, a while loop)."""
+    def draws(loop) -> bool:
+        return any(isinstance(node, ast.Call) and any(word in _path(node.func).lower() for word in _DRAWS)
+                   for node in ast.walk(loop))
     counts = []
     for function in code_of(t).reachable(["homography_ransac"]):
         for node in ast.walk(function):
             if isinstance(node, ast.For) and isinstance(node.iter, ast.Call) and _path(node.iter.func) == "range" \
-                    and node.iter.args:
+                    and node.iter.args and draws(node):
                 bound = node.iter.args[0 if len(node.iter.args) == 1 else 1]
                 if isinstance(bound, ast.Constant) and isinstance(bound.value, int):
                     counts.append(bound.value)
