@@ -2239,12 +2239,14 @@ def simulation_explained(got, depth, f, baseline, n_bits) -> list[str]:
         "the images are in the wrong order: image 0 is lit by the most significant pattern (row 0)":
             dict(reverse=True),
         COLUMN_CODED: dict(patterns=_patterns_of(np.arange(width), n_bits)),
+        "the lit pixels are 1, not 255 (each bit is written as 0 or 1)": dict(bits=True),
     }
     found = []
     for mistake, kwargs in mistakes.items():
-        reverse = kwargs.pop("reverse", False)
+        reverse, bits = kwargs.pop("reverse", False), kwargs.pop("bits", False)
         candidate = truth.simulate_structured_light(depth, f, baseline, n_bits, **kwargs)
         candidate = candidate[::-1] if reverse else candidate
+        candidate = candidate // 255 if bits else candidate
         if not (np.any(got != candidate, axis=0) & ~ties).any():
             found.append(mistake)
     return found

@@ -527,12 +527,18 @@ def _largest_difference(a, b, projective: bool = False) -> float:
 
 
 def _constant(value) -> bool:
-    """Whether every array of an answer holds one value only (then it tells no cause apart)."""
+    """Whether every array of an answer holds one value only (then it tells no cause apart): an 8-bit
+    image within BLANK grey levels of one value too (lit pixels of level 1 where 255 belongs are as
+    black as an image a wrong column sends off the projector)."""
     leaves = []
     if not _leaves(value, leaves):
         return True
     arrays = [v for v in leaves if isinstance(v, np.ndarray) and v.size > 1]
-    return bool(arrays) and all(np.all(v == v.flat[0]) for v in arrays)
+    return bool(arrays) and all(int(v.max()) - int(v.min()) <= BLANK if v.dtype == np.uint8 else np.all(v == v.flat[0])
+                                for v in arrays)
+
+
+BLANK = 2   # grey levels an 8-bit answer may span and still be blank
 
 
 def _tells_nothing(value) -> bool:

@@ -607,4 +607,9 @@ MISTAKES = {
         def disparity_from_matches(xl, xr):
             return np.squeeze(_reference_disparity(xl, xr))
         """, ["one-row array", "(1,)"]),
+    "structured light frames of 0 and 1 (the bits not scaled to 255)": ("lab12.ex6", """
+        _simulate = simulate_structured_light
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            return (_simulate(depth, f, baseline, n_bits) > 0).astype(np.uint8)
+        """, ["the lit pixels are 1, not 255"]),
 }
