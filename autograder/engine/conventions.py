@@ -116,8 +116,8 @@ def judge_grey(t: Trial, function: str, args: tuple, images, described: str = ""
     what = f"{call} on grey images"
     colour = t.call(function, *args)
     grey_args = tuple(_grey(a) if i in images else a for i, a in enumerate(args))
-    grey = _asked(t, function, grey_args, f"{what} (the BGR inputs converted with cv2.cvtColor: "
-                                          "an image may be grey (H, W) as well as BGR)")
+    grey = _asked(t, function, grey_args, measured(f"{what} (the BGR inputs converted with cv2.cvtColor: "
+                                                   "an image may be grey (H, W) as well as BGR)"))
     theirs = _same_parts(t, what, colour, grey, GREY_NOT_KEPT)
     shapes = []
     for index, (ours, given) in enumerate(zip(_parts(colour), theirs)):
