@@ -55,6 +55,7 @@ FILLS = {
 KEPT_INPUT = measured("still hold the input image (the output started as a copy of it?)")
 BORDER_NAMES = {cv2.BORDER_WRAP: "BORDER_WRAP", cv2.BORDER_REPLICATE: "BORDER_REPLICATE",
                 cv2.BORDER_REFLECT: "BORDER_REFLECT", cv2.BORDER_REFLECT_101: "BORDER_REFLECT_101"}
+CLIPS = calls("np.clip") | calls("np.minimum") | calls("np.maximum")
 ROLL_HINT = from_code("np.roll moves the pixels that leave one side back in on the other: set the rows and "
                       "columns it brought round to 0, or warp with cv2.warpAffine (black fill)")
 
@@ -390,11 +391,16 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
             rolls = held == FILLS[cv2.BORDER_WRAP] and calls("np.roll").found(read)
             rule = next((name for border, name in BORDER_NAMES.items() if held == FILLS[border]
                          and mentions(f"cv2.{name}").found(read)), None)
-            cause = from_code(f" Your code uses cv2.{rule}, which fills them so.") if rule else ""
+            # (coordinates clipped into the image all find a source pixel, the edge's: a replicated fill
+            # with no border rule asking for it comes from there)
+            clipped = held == FILLS[cv2.BORDER_REPLICATE] and not rule and CLIPS.found(read)
+            cause = from_code(f" Your code uses cv2.{rule}, which fills them so.") if rule else \
+                from_code(f" Your code {clipped}: a coordinate clipped into the image samples the edge pixel, so "
+                          "no pixel is left without a source for the fill to make black.") if clipped else ""
             return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
                                 "pixels with no source pixel are not black" + (f": they {held}." if held else ".")
                            + cause,
-                           hint=ROLL_HINT if rolls else BLACK_FILL_HINT.said(t),
+                           hint=ROLL_HINT if rolls else "" if clipped else BLACK_FILL_HINT.said(t),
                            mistake="the fill is not black")
         return passed(f"mean difference {error:.1f} grey levels on the covered area")
     if channels_reversed(got, expected):

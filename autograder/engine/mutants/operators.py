@@ -1259,7 +1259,9 @@ def _statement_moves(fn):
                 if updated:
                     later = statements[k + 1:k + 1 + _MOVE_REACH]
                     reader = next((s for s in later if isinstance(s, _SIMPLE) and _read(s) & updated), None)
-                    if reader is not None and not any(_assigned(s) & updated for s in later[:later.index(reader)]):
+                    # (never past a `return`: after it the statement is dead, a removal, and is told as one)
+                    if reader is not None and not isinstance(reader, _LEAVES) \
+                            and not any(_assigned(s) & updated for s in later[:later.index(reader)]):
                         yield "move", reader, statement, "after"
                     earlier = statements[max(0, k - _MOVE_REACH):k]
                     reader = next((s for s in reversed(earlier) if isinstance(s, _SIMPLE) and _read(s) & updated), None)

@@ -843,9 +843,10 @@ def _widened(call, defaults=(), factors=(4.0,)) -> list:
 
 def _beyond(call, defaults=()) -> list:
     """The call with the values its check chose given as the contract's other values of the same kind:
-    whole numbers (an int argument: a shift of 100 px) made fractional, a float mask of 0s and 1s made
-    soft, one value at a time. A change right only on the check's choice -- nearest-neighbour interpolation where the shifts
-    are whole, a mask multiplied by 255 and clipped, exact on 0 and 1 -- is wrong there. [] when the
+    whole numbers (an int argument: a shift of 100 px) made fractional, a number given with the other
+    sign, a float mask of 0s and 1s made soft, one value at a time. A change right only on the check's
+    choice -- nearest-neighbour interpolation where the shifts are whole, a clip bound moved by 2 where
+    the shear is negative, a mask multiplied by 255 and clipped, exact on 0 and 1 -- is wrong there. [] when the
     call holds neither. (Where the student's own code does not take such a value, the input says
     nothing of a change: :meth:`_Variants.confirmed` leaves it out.)"""
     import cv2
@@ -857,6 +858,8 @@ def _beyond(call, defaults=()) -> list:
     def other(value):
         if isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_)) and value != 0:
             return float(value) + 0.5
+        if isinstance(value, float) and value != 0 and np.isfinite(value):
+            return -value
         if isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.ndim == 2 and min(value.shape) >= 8 \
                 and np.isin(value, (0.0, 1.0)).all() and 0 < value.mean() < 1:
             return cv2.GaussianBlur(value, (0, 0), max(2.0, min(value.shape) / 16))
