@@ -137,6 +137,70 @@ class Repair:
 
 
 # ------------------------------------------------------------------ the student's code
+def _live(fn) -> set[str]:
+    """The local names whose values reach what ``fn`` returns (flow-insensitive: a name is live when a
+    return, a condition, or the value of an assignment to a live name reads it; a method call on a
+    live name, `rows.append(...)`, reads its arguments into it)."""
+    live: set[str] = set()
+    reads = lambda node: {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}  # noqa: E731
+    flows = []   # (the names a statement sets, the names it reads)
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Return) and node.value is not None:
+            live |= reads(node.value)
+        elif isinstance(node, (ast.If, ast.While)):
+            live |= reads(node.test)
+        elif isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign)) and node.value is not None:
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            flows.append(({n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)},
+                          reads(node.value) | {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)
+                                               and isinstance(n.ctx, ast.Load)}))
+        elif isinstance(node, ast.For):
+            flows.append(({n.id for n in ast.walk(node.target) if isinstance(n, ast.Name)}, reads(node.iter)))
+        elif isinstance(node, ast.Expr) and isinstance(node.value, ast.Call) \
+                and isinstance(node.value.func, ast.Attribute) and isinstance(node.value.func.value, ast.Name):
+            flows.append(({node.value.func.value.id}, reads(node.value)))
+    grown = True
+    while grown:
+        grown = False
+        for sets, read in flows:
+            if sets & live and not read <= live:
+                live |= read
+                grown = True
+    return live
+
+
+def _left_out(fn) -> tuple[set, set]:
+    """The names whose values ``fn`` computes and never uses (`x_norm = T @ ...`, no read of x_norm),
+    and the names and helpers those values read (T, _normalising_transform through `T = ...(x)`)."""
+    loaded = {n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    assignments = [node for node in ast.walk(fn) if isinstance(node, ast.Assign) and len(node.targets) == 1
+                   and isinstance(node.targets[0], ast.Name)]
+    left = {a.targets[0].id for a in assignments if a.targets[0].id not in loaded and not isinstance(a.value, ast.Constant)
+            and not a.targets[0].id.startswith("_")}
+    feeding = {n.id for a in assignments if a.targets[0].id in left
+               for n in ast.walk(a.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    helpers = {_dotted_call(c) for a in assignments if a.targets[0].id in feeding | left
+               for c in ast.walk(a.value) if isinstance(c, ast.Call)}
+    return left, feeding | helpers
+
+
+def _disconnects(before, after, helpers_changed=frozenset()) -> bool:
+    """Whether a change (``after``: the def ``before`` changed; ``helpers_changed``: the other defs it
+    changes) works around a step the student left out: ``before`` computes a value it never uses
+    (`x_norm`, the rows built from `x`), the change leaves it unused, and either takes out of what the
+    function returns a name that value reads (`inv(T) @ P` -> `P`: T then reaches nothing) or changes a
+    helper that computes one (T made the identity). The answers come right; the step is still missing."""
+    left, feeding = _left_out(before)
+    if not left:
+        return False
+    if left & {n.id for n in ast.walk(after) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}:
+        return False   # (the change puts the value to use: the step taken up)
+    if feeding & set(helpers_changed):
+        return True
+    assigned = {n.id for n in ast.walk(before) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    return bool((feeding & assigned & _live(before)) - _live(after))
+
+
 class _Student:
     """The student's module read once: its tree, the operators' changes per API function, and each
     change shown (made lazily, for the functions that fail: showing every change of a long module
@@ -1233,6 +1297,19 @@ class _Variants:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
         return self.student.fix(mutant)
 
+    def disconnects(self, mutant) -> bool:
+        """Whether the change works around a step the graded function leaves out (:func:`_disconnects`)."""
+        source = self.source(mutant)
+        try:
+            changed = parse(source).body if source else []
+        except (SyntaxError, ValueError, RecursionError, MemoryError):
+            return False
+        before = _defs(self.student.tree)
+        edited = {fn.name: fn for fn in changed if isinstance(fn, ast.FunctionDef) and fn.name in before}
+        graded = before.get(self.function)
+        return graded is not None and _disconnects(graded, edited.get(self.function, graded),
+                                                   frozenset(edited) - {self.function})
+
     def ran(self, index) -> set | None:
         """The lines of the student's file their own code runs on ``self.inputs[index]`` (a change
         elsewhere leaves that answer as it is, so it mends nothing there), kept per input; None when
@@ -1306,7 +1383,10 @@ class _Variants:
 
     def confirmed(self, mutant, failing) -> bool:
         """Whether the variant is also right on the trial's other calls and on confirmation inputs
-        derived from the failing ones (where the reference answers)."""
+        derived from the failing ones (where the reference answers); never one that disconnects the
+        half of a step the student left out (:func:`_disconnects`)."""
+        if self.disconnects(mutant):
+            return False
         others = [i for i in range(len(self.inputs)) if i not in failing]
         if others and mutant.key not in self.checked and not self._right_on(mutant, others, self.inputs,
                                                                              self.references):
