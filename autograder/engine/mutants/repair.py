@@ -1443,10 +1443,10 @@ class _Variants:
             own = self._own(asked, every) if asked else []
             self.untaken = set(asked) if own is None else \
                 {i for i, answer in zip(asked, own) if naming.error_kind(answer) is not None}
-        if usable is not None and mutant.key in self.checked and self._refuted_beyond(mutant, every, wanted):
+        if usable is not None and self._refuted_beyond(mutant, every, wanted):
             return False
-        if usable is not None:
-            usable = [i for i in usable if i not in self.keeping and i not in self.untaken
+        if usable is not None:   # (those given otherwise refute a change only by a wrong answer: above)
+            usable = [i for i in usable if i not in self.keeping and i not in self.beyond
                       and (mutant.operator in BRANCHING or i not in self.crossing)]
         if usable is not None and (not usable or self._right_on(mutant, usable, every, wanted)):
             # A condition changed sends inputs down another branch: the inputs derived from the failing
@@ -1470,10 +1470,11 @@ class _Variants:
         return False
 
     def _refuted_beyond(self, mutant, every, wanted) -> bool:
-        """Whether a change the check judged is wrong where the check's whole numbers or 0/1 masks are
-        given otherwise (:func:`_beyond`): not the reference's answer there, and farther from it than
-        three times the spread the check accepted of it (the student's recipe may differ from the
-        reference's legitimately, as on the check's own inputs) -- right only on the check's choice of
+        """Whether a change is wrong where the check's numbers or 0/1 masks are given otherwise
+        (:func:`_beyond`): not the reference's answer there, and farther from it than three times the
+        spread the check accepted of it (the student's recipe may differ from the reference's
+        legitimately, as on the check's own inputs; a change the check did not judge, within the
+        leeway of a confirmation input) -- right only on the check's choice of
         values (`*` where `/` belongs mends a 0/1 mask clipped to [0, 1], and breaks every soft one;
         `INTER_LINEAR & WARP_INVERSE_MAP`, nearest-neighbour, mends whole shifts only)."""
         indices = sorted(i for i in self.beyond - (self.untaken or set())
@@ -1483,9 +1484,12 @@ class _Variants:
             return False
         # (a change giving exactly the reference's answers on the check's inputs follows the reference's
         # recipe: there it must give them up to rounding, not within the leeway of another recipe)
-        spread, exact = 1.5 * self.checked[mutant.key], self.checked[mutant.key] == 0
-        return any(not self.right(value, wanted[i], confirming=not exact) and self.distance(value, wanted[i]) > 3 * spread
-                   for value, i in zip(values, indices))
+        spread = 1.5 * self.checked.get(mutant.key, 0.0)
+        exact = mutant.key in self.checked and spread == 0
+        # (a change that raises there only shows its recipe does not take such a value -- cv2.resize no
+        # negative factor -- where a wrong answer shows the change is right by the check's choice alone)
+        return any(naming.error_kind(value) is None and not self.right(value, wanted[i], confirming=not exact)
+                   and self.distance(value, wanted[i]) > 3 * spread for value, i in zip(values, indices))
 
     def _unmended_exchange(self, mutant, every, wanted) -> bool:
         """Whether, on an input with the twin parameters exchanged (`sx=0.8, sy=2.0` for `sx=2.0, sy=0.8`:
