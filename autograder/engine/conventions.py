@@ -65,11 +65,15 @@ def point_by_point(exercise, function: str, inputs: Callable[[], tuple], rows=(0
                    hidden=hidden)(check)
 
 
-def not_judged(convention: str, function: str, why: str) -> None:
-    """Say why ``function`` has no check of ``convention`` ("channels" or "rows"): another check
-    judges it already, its answer is no image of the input's channels, the API asks for one kind
-    of image only..."""
-    DECLARED["not judged"][(convention, function)] = why
+FITTED = "one model fitted to all the points together"   # an estimator's points are no rows of its answer
+
+
+def not_judged(convention: str, **why: str) -> None:
+    """Say, function by function (``function="why"``), why it has no check of ``convention``
+    ("channels" or "rows"): another check judges it already, its answer is no image of the input's
+    channels, the API asks for one kind of image only, one model is fitted to all the points..."""
+    for function, reason in why.items():
+        DECLARED["not judged"][(convention, function)] = reason
 
 
 def _grey(images):

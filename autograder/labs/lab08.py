@@ -2896,15 +2896,12 @@ def blend_mask_pyramid(t):
 
 
 # ================================================================== the API's conventions judged elsewhere
-for _function, _why in (
-        ("apply_homography", "judged on a grey image against the truth (its dsize check)"),
-        ("match_features", "its answer is points; a grey pair is judged by a hidden check"),
-        ("draw_matches", "its answer has 3 channels whatever the inputs' (the API says so)"),
-        ("stitch", "a panorama may be BGR whatever its views (views of either kind meet in it)"),
-        ("stitch_many", "a panorama may be BGR whatever its views (views of either kind meet in it)"),
-        ("blend_multiband", "judged on a grey image of odd size by a hidden check")):
-    conventions.not_judged("channels", _function, _why)
-conventions.not_judged("rows", "transform_points", "judged on a single point, pts of shape (1, 2)")
-for _function in ("homography_dlt", "homography_ransac"):
-    conventions.not_judged("rows", _function, "one model fitted to all the points together")
-conventions.not_judged("rows", "draw_matches", "its answer is an image")
+_PANORAMA = "a panorama may be BGR whatever its views (views of either kind meet in it)"
+conventions.not_judged(
+    "channels", apply_homography="judged on a grey image against the truth (its dsize check)",
+    match_features="its answer is points; a grey pair is judged by a hidden check",
+    draw_matches="its answer has 3 channels whatever the inputs' (the API says so)",
+    stitch=_PANORAMA, stitch_many=_PANORAMA, blend_multiband="judged on a grey image of odd size by a hidden check")
+conventions.not_judged("rows", transform_points="judged on a single point, pts of shape (1, 2)",
+                       homography_dlt=conventions.FITTED, homography_ransac=conventions.FITTED,
+                       draw_matches="its answer is an image")

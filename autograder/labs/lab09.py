@@ -1645,14 +1645,12 @@ conventions.point_by_point(ex3, "project", lambda: _photo_scene()[1:], rows=(1,)
 conventions.point_by_point(ext2, "distort_points", lambda: (truth.points_in_front(42, n=6)[:, :2] / 10.0, DIST_EXAMPLE),
                            described="points, dist")
 conventions.keeps_grey(ex5, "project_onto_image", _photo_scene, described="image, P, points")
-conventions.not_judged("rows", "pinhole_project", "judged on a single (3,) point and one row (1, 3) against the truth")
-for _function, _why in (
-        ("project_focal_lengths", "its answer is (F, N, 2): the points are its second axis"),
-        ("simulate_aperture", "its rays are random: the same point among many draws other rays"),
-        ("project_onto_image", "its image shows every point drawn; its points are judged with project's"),
-        ("draw_points", "its answer is an image")):
-    conventions.not_judged("rows", _function, _why)
-for _function, _why in (
-        ("draw_points", "judged on grey and colour images against the truth"),
-        ("calibrate", "its answer is no image; views with 3 channels are judged against the truth")):
-    conventions.not_judged("channels", _function, _why)
+conventions.not_judged(
+    "rows", pinhole_project="judged on a single (3,) point and one row (1, 3) against the truth",
+    project_focal_lengths="its answer is (F, N, 2): the points are its second axis",
+    simulate_aperture="its rays are random: the same point among many draws other rays",
+    project_onto_image="its image shows every point drawn; its points are judged with project's",
+    draw_points="its answer is an image")
+conventions.not_judged(
+    "channels", draw_points="judged on grey and colour images against the truth",
+    calibrate="its answer is no image; views with 3 channels are judged against the truth")

@@ -1585,10 +1585,9 @@ conventions.point_by_point(ex2, "weak_perspective_project",
                            described="points, f=300, z_avg=12.0")
 conventions.point_by_point(ex3, "orthographic_project", lambda: (truth.points_in_front(143, n=6),),
                            described="points")
-conventions.not_judged("rows", "dolly_zoom", "its projections are (F, N, 2): the points are their second axis")
-conventions.not_judged("rows", "camera_matrix_dlt", "one model fitted to all the points together")
-for _function, _why in (
-        ("undistort_image", "judged on a grey image against the truth, and on a colour one"),
-        ("estimate_pose", "its answer is no image; a colour photo and grey renders are judged against the truth"),
-        ("track_pose", "its answer is no image; its frames are judged against the true trajectory")):
-    conventions.not_judged("channels", _function, _why)
+conventions.not_judged("rows", dolly_zoom="its projections are (F, N, 2): the points are their second axis",
+                       camera_matrix_dlt=conventions.FITTED)
+conventions.not_judged(
+    "channels", undistort_image="judged on a grey image against the truth, and on a colour one",
+    estimate_pose="its answer is no image; a colour photo and grey renders are judged against the truth",
+    track_pose="its answer is no image; its frames are judged against the true trajectory")

@@ -1614,12 +1614,8 @@ def pipeline_structure(t):
 
 
 # ================================================================== the API's conventions
-for _function, _why in (
-        ("draw_epipolar_lines", "judged on a grey image against the truth"),
-        ("two_view_reconstruction", "its answer is no image; a colour and a grey pair are judged")):
-    conventions.not_judged("channels", _function, _why)
-for _function, _why in (("triangulate", "judged on N = 1 against the truth"),
-                        ("epipolar_lines", "judged on one point against the truth")):
-    conventions.not_judged("rows", _function, _why)
-for _function in ("essential_8point", "fundamental_8point"):
-    conventions.not_judged("rows", _function, "one model fitted to all the points together")
+conventions.not_judged("channels", draw_epipolar_lines="judged on a grey image against the truth",
+                       two_view_reconstruction="its answer is no image; a colour and a grey pair are judged")
+conventions.not_judged("rows", triangulate="judged on N = 1 against the truth",
+                       epipolar_lines="judged on one point against the truth",
+                       essential_8point=conventions.FITTED, fundamental_8point=conventions.FITTED)

@@ -2610,10 +2610,9 @@ def sl_depth_noisy(t):
 # ================================================================== the API's conventions
 conventions.point_by_point(ex2, "disparity_from_matches", lambda: truth.stereo_points(seed=18, n=6)[3:],
                            rows=(0, 1), described="pts_left, pts_right")
-for _function, _why in (
-        ("rectify", "judged on grey pairs against the truth, and on a colour pair"),
-        ("block_matching", "the API asks for grey images only"),
-        ("dp_stereo", "the API asks for grey images only"),
-        ("depth_from_structured_light", "its images are the API's stack of grey patterns, (n_bits, H, W)")):
-    conventions.not_judged("channels", _function, _why)
-conventions.not_judged("rows", "triangulate", "judged on N = 1 against the truth")
+_GREY_ONLY = "the API asks for grey images only"
+conventions.not_judged(
+    "channels", rectify="judged on grey pairs against the truth, and on a colour pair", block_matching=_GREY_ONLY,
+    dp_stereo=_GREY_ONLY,
+    depth_from_structured_light="its images are the API's stack of grey patterns, (n_bits, H, W)")
+conventions.not_judged("rows", triangulate="judged on N = 1 against the truth")
