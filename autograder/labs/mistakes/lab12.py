@@ -612,4 +612,18 @@ MISTAKES = {
         def simulate_structured_light(depth, f, baseline, n_bits):
             return (_simulate(depth, f, baseline, n_bits) > 0).astype(np.uint8)
         """, ["the lit pixels are 1, not 255"]),
+    "structured light bits put together least significant first": ("lab12.ex6", """
+        def depth_from_structured_light(images, f, baseline):
+            images = np.asarray(images)
+            n_bits, height, width = images.shape
+            bits = images > 127
+            binary = np.zeros((height, width), dtype=np.int64)
+            bit = np.zeros((height, width), dtype=bool)
+            for i in range(n_bits):
+                bit = bit ^ bits[i]
+                binary = binary | (bit.astype(np.int64) << i)
+            column = (binary + 0.5) * width / (1 << n_bits) - 0.5
+            disparity = np.arange(width)[None, :] - column
+            return np.where(bits.any(axis=0), depth_from_disparity(disparity, f, baseline), 0.0)
+        """, ["put together least significant first"]),
 }
