@@ -514,3 +514,21 @@ def test_a_reshape_in_the_other_order_is_named(tmp_path):
     result = grade(folder, ["lab10.ex4"], pictures="none")
     named = [c for e in result.exercises for c in e.checks if c.mistake == "mutant:reshape_order"]
     assert named and mutant.sentence in named[0].message
+
+
+def test_a_name_a_later_check_of_the_function_refutes_is_taken_back_and_a_hidden_one_changes_no_public_word():
+    """One account per function: the student's code is the same in every check, so a mutant named on one
+    check whose answers another check's failing calls do not reproduce is no name there either."""
+    from autograder.engine.mutants.naming import APPENDED, take_back_refuted
+    from autograder.engine.results import CheckResult
+
+    sentence = "in `draw_matches`, the width of `img1` is subtracted instead of added"
+    told = lambda hidden: CheckResult("c", 0.0, 2.0, "failed", f"draw_matches(...) is wrong. {APPENDED}{sentence} "  # noqa: E731
+                                      "(add sub).\nmore", mistake="mutant:add_sub", hidden=hidden)
+    public, hidden = told(False), told(True)
+    take_back_refuted([public, hidden], [(sentence, True)])   # refuted by a hidden check
+    assert APPENDED in public.message and public.mistake and APPENDED not in hidden.message and not hidden.mistake
+    take_back_refuted([public], [("another sentence", False)])
+    assert APPENDED in public.message
+    take_back_refuted([public], [(sentence, False)])
+    assert public.message == "draw_matches(...) is wrong.\nmore" and public.mistake == ""

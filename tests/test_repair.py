@@ -1683,3 +1683,69 @@ def test_a_homogeneous_coordinate_written_0_where_1_belongs_is_a_change_tried():
             return x / w, y / w
     """)
     assert ("[X, Y, Z, 0.0]", "[X, Y, Z, 1.0]") in _shown_changes(source, "literal")
+
+
+# ------------------------------------------------------------------ values given otherwise; steps left out
+def test_the_checks_values_are_given_otherwise_one_at_a_time():
+    """Whole numbers made fractional, numbers given the other sign, a 0/1 float mask blurred, a
+    whole-number default left out given fractional: one value changed per call (`levels=5.5` alone
+    makes no input)."""
+    mask = np.zeros((16, 16))
+    mask[:, :8] = 1.0
+    made = repair._beyond(("blend", (mask, 2.5), {"levels": 5}), defaults=[("tx", 9, 100)])
+    changed = [(i, a) for _, args, kwargs in made for i, a in [*enumerate(args), *kwargs.items()]
+               if not (a is mask or (not isinstance(a, np.ndarray) and a in (2.5, 5, 100)))]
+    assert len(made) == len(changed) == 4
+    soft = next(a for _, a in changed if isinstance(a, np.ndarray))
+    assert 0 < soft.min() < 0.5 < soft.max() < 1 and not np.isin(soft, (0.0, 1.0)).all()
+    assert {a for _, a in changed if not isinstance(a, np.ndarray)} == {-2.5, 5.5, 100.5}
+    assert repair._beyond(("f", (np.eye(3), True, None, "ssd"), {})) == []   # (nothing of the kind)
+
+
+def _defs_of(source: str) -> dict:
+    return {fn.name: fn for fn in ast.parse(textwrap.dedent(source)).body if isinstance(fn, ast.FunctionDef)}
+
+
+LEFT_OUT = """
+    def dlt(X, x):
+        T = normalising(x)
+        x_norm = (T @ np.vstack([x.T, np.ones(len(x))])).T
+        A = rows(X, x)
+        P_norm = solve(A)
+        P = np.linalg.inv(T) @ P_norm
+        return P
+"""
+
+
+def test_a_change_that_works_around_a_step_left_out_is_no_repair():
+    """`x_norm` computed and never used (the rows built from `x`): dropping the undo of T mends the answers
+    by cutting T out of them, and changing the helper that makes T works around it too; putting
+    `x_norm` to use is the fix; a change elsewhere in a function with no such value is judged as ever."""
+    before = _defs_of(LEFT_OUT)["dlt"]
+    dropped = _defs_of(LEFT_OUT.replace("np.linalg.inv(T) @ P_norm", "P_norm"))["dlt"]
+    used = _defs_of(LEFT_OUT.replace("rows(X, x)", "rows(X, x_norm)"))["dlt"]
+    assert repair._disconnects(before, dropped)
+    assert repair._disconnects(before, before, frozenset({"normalising"}))
+    assert not repair._disconnects(before, used)
+    assert not repair._disconnects(before, before, frozenset({"solve"}))   # (a helper the value does not read)
+    spurious = _defs_of("""
+        def project(X, f):
+            norm = np.linalg.norm(X)
+            return f * X[:, :2] / X[:, 2:] / norm
+    """)["project"]
+    assert not repair._disconnects(spurious, _defs_of("""
+        def project(X, f):
+            norm = np.linalg.norm(X)
+            return f * X[:, :2] / X[:, 2:]
+    """)["project"])
+
+
+def test_a_float_mask_divided_by_255_is_mended_by_the_division_taken_out_not_a_product(tmp_path):
+    """The mask scaled as an 8-bit image: on the checks' 0/1 masks `* 255` clipped to [0, 1] mends the
+    blend as exactly as taking the division out; on a soft mask only the latter does."""
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, "lab08_homographies", (
+        "np.clip(np.asarray(mask, dtype=np.float32), 0, 1)", "np.clip(np.asarray(mask, dtype=np.float32) / 255.0, 0, 1)"))
+    checks, told = _failed_and_repaired(folder, "lab08.ext3")
+    assert checks and told and not any("* 255" in m for m in told), told

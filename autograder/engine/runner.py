@@ -237,6 +237,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
         result.exercises = [graded[exercise.id] for exercise in exercises]
         for graded_exercise in result.exercises:   # public and hidden checks together
             _defer_to_hand_written(graded_exercise.checks)
+            _take_back_refuted(graded_exercise.checks, sandboxes)
         _hints_beside_a_name(list(zip(exercises, result.exercises)))
         result.student_seconds = round(sum(sandbox.student_seconds for sandbox in sandboxes), 6)
         result.student_wall_seconds = round(_covered([span for s in sandboxes for span in s.billed_spans]), 6)
@@ -584,6 +585,14 @@ def _defer_to_hand_written(results) -> None:
     public = [result for result in results if not result.hidden]
     defer_to_hand_written(public)
     defer_to_hand_written([result for result in results if result.hidden], evidence=results)
+
+
+def _take_back_refuted(results, sandboxes) -> None:
+    """The error model's names a later check of the function refuted, in any worker of the grading,
+    are taken back (:func:`autograder.engine.mutants.naming.take_back_refuted`)."""
+    from .mutants.naming import REFUTED, take_back_refuted
+
+    take_back_refuted(results, [taken for sandbox in sandboxes for taken in getattr(sandbox, "shared", {}).get(REFUTED, [])])
 
 
 def _hints_beside_a_name(graded: list) -> None:

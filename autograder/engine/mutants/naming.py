@@ -839,9 +839,14 @@ def _name_function(trial, model, function, inputs, answers, references, failing,
     # is named again without asking the student's function once more.
     named = trial.sandbox.shared.setdefault("error model named", [])
     for mutant in named:
-        if mutant.function == function and \
-                _reproduces(runner, mutant.edits, failing, others, answers, references, clock) is True:
+        if mutant.function != function:
+            continue
+        outcome = _reproduces(runner, mutant.edits, failing, others, answers, references, clock)
+        if outcome is True:
             return Naming(mutant, len(inputs), 0)
+        if outcome is not None:   # (the same code answering otherwise here: the name is taken back there)
+            trial.sandbox.shared.setdefault(REFUTED, []).append(
+                (mutant.sentence, bool(getattr(getattr(trial, "check", None), "hidden", False))))
     # The student's function is the same code in every check of a grading: a mutant that did not
     # reproduce its answers in an earlier check is not its mistake, and is not run again.
     ruled_out = trial.sandbox.shared.setdefault("error model ruled out", {}).setdefault(function, set())
@@ -1233,6 +1238,21 @@ def _appended(message: str, naming: Naming) -> str:
 
 
 APPENDED = "The error model: it looks like "
+REFUTED = "error model refuted"   # the shared key of (a name's sentence, whether a hidden check refuted it)
+
+
+def take_back_refuted(results, refuted) -> None:
+    """One account per function: the error model's names, in ``results`` (check results), that a later
+    check of the same function refuted (``refuted``: (sentence, by a hidden check) pairs; its failing
+    answers are not the named mutant's: the student's code is the same in every check) are taken back.
+    A hidden check's refutation changes no public check's words. In place."""
+    for result in results:
+        if not (result.mistake.startswith("mutant:") and APPENDED in result.message):
+            continue
+        first, newline, rest = result.message.partition("\n")
+        if any(sentence in first and (result.hidden or not by_hidden) for sentence, by_hidden in refuted):
+            result.message = first.split(" " + APPENDED, 1)[0] + newline + rest
+            result.mistake = ""
 
 
 def defer_to_hand_written(graded, evidence=None) -> None:
