@@ -54,7 +54,7 @@ def project_with_intrinsics(K, points):
 def camera_matrix(K, R, t):
     """P = K [R | t] (3 x 4)."""
     Rt = np.column_stack([np.asarray(R, dtype=np.float64), np.asarray(t, dtype=np.float64).reshape(3)])
-    return np.asarray(K, dtype=np.float64) @ Rt
+    return np.linalg.inv(np.asarray(K, dtype=np.float64)) @ Rt
 
 
 def project(P, points):
@@ -157,4 +157,4 @@ def distort_points(points, dist):
     xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x)
     yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y
     out = np.column_stack([xd, yd])
-    return out
+    return out[0] if single else out
