@@ -363,7 +363,7 @@ def simulate_structured_light(depth, f, baseline, n_bits):
             if not (np.isfinite(Z) and Z > 0):
                 continue
             column = int(np.floor(u - f * baseline / Z + 0.5))
-            if 0 < column < w:
+            if 0 <= column < h:
                 frames[:, v, u] = patterns[:, column]
     return frames
 
