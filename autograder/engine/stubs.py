@@ -91,7 +91,7 @@ def _named_in(func, names: frozenset[str]) -> frozenset[str]:
 @lru_cache(maxsize=None)
 def _mentions(function):
     """The string constants in ``function``'s code (its lambdas and inner functions
-    included), and the module-level functions of the same package it refers to
+    included) and closure, and the module-level functions of the same package it refers to
     (helpers that may call students too)."""
     strings, names, codes = set(), set(), [function.__code__]
     while codes:
@@ -106,6 +106,13 @@ def _mentions(function):
                 constants += constant
             elif isinstance(constant, types.CodeType):
                 codes.append(constant)
+    # (a check made by a factory holds the function's name in its closure: conventions.keeps_grey)
+    for cell in function.__closure__ or ():
+        try:
+            if isinstance(cell.cell_contents, str):
+                strings.add(cell.cell_contents)
+        except ValueError:   # an empty cell
+            continue
     namespace = function.__globals__
     helpers = [namespace[name] for name in names if inspect.isfunction(namespace.get(name))
                and _package(namespace[name]) == _package(function)]
