@@ -291,7 +291,7 @@ def judge_exact_fit(t: Trial, src, dst, H_true, region):
     shown, wanted = format_arrays_apart(truth.normalised(got), truth.normalised(H_true))
     t.fail(f"{what} is off by {error:.3g} px (RMS over the image), wrong "
            f"{where_matrices_differ(got, H_true, up_to_scale=True)}; from exact points the DLT "
-           f"recovers H exactly. Got\n{shown}\nexpected (up to scale)\n{wanted}")
+           f"recovers H exactly.\nIt returned\n{shown}\nexpected (up to scale)\n{wanted}")
 
 
 @ex2.check("homography_dlt from exactly 4 points", points=2)
