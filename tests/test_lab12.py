@@ -327,3 +327,21 @@ def test_an_xor_carried_through_a_name_is_read_as_the_running_xor():
                 b = np.logical_xor(lit[i - 1], lit[i])
     """)).body[0]
     assert _xor_accumulates(carried) and not _xor_accumulates(gray_to_gray)
+
+
+def test_images_warped_by_homographies_that_send_them_out_of_the_frame_agree_with_them(tmp_path):
+    """A rectification whose H2 sends img_r almost all out of the frame, with rect_r that very warp: the
+    images and the homographies agree (the rows and the coverage are the other checks' to judge), so
+    the check of their agreement passes rather than telling an infinite difference."""
+    folder = mutant(tmp_path, "lab12_stereo", """
+        _reference_rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            rect_l, _, H1, H2 = _reference_rectify(img_l, img_r, K1, K2, R, T)
+            h, w = img_r.shape[:2]
+            H2 = np.array([[1.0, 0.0, 0.97 * w], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]) @ H2
+            return rect_l, cv2.warpPerspective(img_r, H2, (w, h)), H1, H2
+        """)
+    result = grade(folder, ["lab12.ex3"], pictures="none", include_hidden=False)
+    checks = {c.name: c for e in result.exercises for c in e.checks}
+    assert checks["rectify: the rectified images are the inputs warped by H1 and H2"].score == 2
+    assert checks["rectify: most of each image stays in view"].score == 0
