@@ -1749,3 +1749,20 @@ def test_a_float_mask_divided_by_255_is_mended_by_the_division_taken_out_not_a_p
         "np.clip(np.asarray(mask, dtype=np.float32), 0, 1)", "np.clip(np.asarray(mask, dtype=np.float32) / 255.0, 0, 1)"))
     checks, told = _failed_and_repaired(folder, "lab08.ext3")
     assert checks and told and not any("* 255" in m for m in told), told
+
+
+def test_a_graded_functions_results_are_never_taken_in_another_order():
+    """The API fixes what a graded function returns, in which order: `K, t, R = decompose(P)` mends
+    `-R @ t` (a 1-D vector @ R is R^T t) but is never the fix; the product itself is changed instead."""
+    source = textwrap.dedent("""
+        def decompose(P):
+            return P[:, :3], P[:, :3], P[:, 3]
+
+        def centre(P):
+            K, R, t = decompose(P)
+            return -R @ t
+    """)
+    student = repair._Student(source, ast.parse(source), {"decompose", "centre"})
+    told = [student.fix(m).told("centre") for m in student.ordered("centre")]
+    assert told and not any("K, t, R" in said or "t, R" in said.split("=")[0] for said in told), told
+    assert any("R" in said and "@" in said for said in told)

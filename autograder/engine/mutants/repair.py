@@ -239,7 +239,8 @@ class _Student:
         with self._lock:
             if function not in self._ordered:
                 shown = [m for m in self.mutants(function)
-                         if (m.where == function or m.where not in self.api) and self.fix(m) is not None]
+                         if (m.where == function or m.where not in self.api) and self.fix(m) is not None
+                         and not self.reorders_api_results(m)]
                 # (a name swapped for its twin -- R1 for R2, left for right -- first of its kind: the
                 # likeliest slip among a function's many names that might be another's)
                 smallest = sorted(shown, key=lambda m: (
@@ -254,6 +255,21 @@ class _Student:
                     taken[(m.where != function, m.operator)] += 1
                 self._ordered[function] = sorted(smallest, key=lambda m: (m.where != function, turn[m.key]))
             return self._ordered[function]
+
+    def reorders_api_results(self, mutant) -> bool:
+        """Whether the change exchanges the names a graded function's results are unpacked into
+        (`K, R, t = decompose_camera_matrix(P)` -> `K, t, R = ...`): the API fixes the order of what
+        it returns, so taking its results in another order is never the fix, whatever it mends
+        (`-R @ t` with the two exchanged is `-t @ R`, R^T t)."""
+        names = lambda text: re.findall(r"\w+", text.split("=", 1)[0])  # noqa: E731  (the targets, in order)
+        for line, before, after in self.fix(mutant).changes:
+            for node in ast.walk(self.tree):
+                if isinstance(node, ast.Assign) and node.lineno == line and isinstance(node.value, ast.Call) \
+                        and _call_name(node.value) in self.api and len(node.targets) == 1 \
+                        and isinstance(node.targets[0], (ast.Tuple, ast.List)) \
+                        and names(before) != names(after) and sorted(names(before)) == sorted(names(after)):
+                    return True
+        return False
 
     def quoted_first(self, mutants, said: str) -> list:
         """``mutants``, those on a line holding a call the text ``said`` quotes (`np.sign`, `cv2.remap`)
