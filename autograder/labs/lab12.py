@@ -1406,6 +1406,10 @@ def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, agai
 
 
 TOP_MISSED = "the search stops at max_disparity - 1"
+TOP_RANGE_HINT = Hint("the search must include d = max_disparity: range(max_disparity + 1)",
+                      asks=expr("max_disparity + 1"),
+                      instead="your code's search reaches max_disparity ({found}): what the square gets comes "
+                              "from elsewhere (its matching costs, or the choice among them)")
 
 
 def judge_top_of_range(t: Trial, what: str, got, scene, top, legitimate: float, legitimate_name: str,
@@ -1436,9 +1440,10 @@ def judge_top_of_range(t: Trial, what: str, got, scene, top, legitimate: float, 
                hint=hint, mistake=TOP_MISSED)
     if mistakes is not None:
         name_matching_mistake(t, what, got, scene, scene.judged, mistakes)
+    # (not one below it: the range is one cause among others -- its costs, the choice among them)
     t.fail(f"{what}: the square at the top of the search range (true disparity {top_d} = max_disparity) "
            f"gets it at only {format_apart(found, allowed, 2, percent=True)} of its pixels ({legitimate_name}: "
-           f"at least {legitimate:.0%}): the search must include d = max_disparity.", hint=hint)
+           f"at least {legitimate:.0%}).", hint=TOP_RANGE_HINT.said(t))
 
 
 def judge_range_ends(t: Trial, what: str, got, scene, reference: dict, show=True):
@@ -1751,9 +1756,11 @@ def call_dp(t: Trial, scene, **kwargs):
 
 
 def smoothness_probe(t: Trial, scene):
-    """Fail naming ``smoothness`` as ignored when 0 and a huge penalty give the same map."""
-    judge_parameter_used(t, "dp_stereo(left, right)", lambda **kw: call_dp(t, scene, **kw),
-                         "smoothness", (0, 1e7), "disparity map")
+    """Fail naming ``smoothness`` as ignored when 0 and a huge penalty give the same map, or a penalty
+    of 1 and a huge one do (its value read only to tell 0 from the rest: the winner-take-all branch)."""
+    for values in ((0, 1e7), (1, 1e7)):
+        judge_parameter_used(t, "dp_stereo(left, right)", lambda **kw: call_dp(t, scene, **kw),
+                             "smoothness", values, "disparity map")
 
 
 SMOOTHNESS_IGNORED = "the smoothness term is ignored"
