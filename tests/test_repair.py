@@ -1766,3 +1766,22 @@ def test_a_graded_functions_results_are_never_taken_in_another_order():
     told = [student.fix(m).told("centre") for m in student.ordered("centre")]
     assert told and not any("K, t, R" in said or "t, R" in said.split("=")[0] for said in told), told
     assert any("R" in said and "@" in said for said in told)
+
+
+def test_a_repair_a_later_check_of_the_function_refutes_is_taken_back_with_its_sentence():
+    """One account per function: the change told on one check, which another check of the same code
+    ran again and failed with, is no account of the mistake; a hidden check's refutation changes no
+    public word, and a hand-written name beside the change stays."""
+    from autograder.engine.results import CheckResult
+
+    change = "changing `ramp` to `-ramp` (line 318)"
+    sentence = f"{repair.HEAD}: {change} makes `dp` pass this check, so the mistake may be there."
+    public = CheckResult("a", 2.0, 4.0, "partial", f"dp(left, right): 60% of the square. {sentence}\nmore",
+                         mistake="repair:negate")
+    named = CheckResult("b", 0.0, 2.0, "failed", f"dp: it looks like the sign is wrong. {sentence}",
+                        mistake="the sign is wrong", hidden=True)
+    repair.take_back_refuted([public, named], [(change, True)])
+    assert repair.HEAD in public.message and named.message == "dp: it looks like the sign is wrong."
+    assert named.mistake == "the sign is wrong"
+    repair.take_back_refuted([public], [(change, False)])
+    assert public.message == "dp(left, right): 60% of the square.\nmore" and public.mistake == ""

@@ -588,11 +588,14 @@ def _defer_to_hand_written(results) -> None:
 
 
 def _take_back_refuted(results, sandboxes) -> None:
-    """The error model's names a later check of the function refuted, in any worker of the grading,
-    are taken back (:func:`autograder.engine.mutants.naming.take_back_refuted`)."""
-    from .mutants.naming import REFUTED, take_back_refuted
+    """The error model's names and the repairs a later check of the function refuted, in any worker of
+    the grading, are taken back (:func:`autograder.engine.mutants.naming.take_back_refuted`,
+    :func:`autograder.engine.mutants.repair.take_back_refuted`)."""
+    from .mutants import naming, repair
 
-    take_back_refuted(results, [taken for sandbox in sandboxes for taken in getattr(sandbox, "shared", {}).get(REFUTED, [])])
+    for module in (naming, repair):
+        module.take_back_refuted(results, [taken for sandbox in sandboxes
+                                           for taken in getattr(sandbox, "shared", {}).get(module.REFUTED, [])])
 
 
 def _hints_beside_a_name(graded: list) -> None:

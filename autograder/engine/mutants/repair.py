@@ -120,7 +120,7 @@ class Repair:
 
     @property
     def sentence(self) -> str:
-        head = "Trying small changes to your code"
+        head = HEAD
         said = f"the expected answers on all {self.inputs} inputs tried"
         makes = f"makes `{self.function}` give {said}"
         if self.checked:   # (the student's own recipe, or a function with many right answers)
@@ -585,6 +585,32 @@ class _Student:
         return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), *shortened)
 
 
+REFUTED = "repair refuted"   # the shared key of (a change as told, whether a hidden check refuted it)
+HEAD = "Trying small changes to your code"
+
+
+def _refuted(trial, fix, function: str) -> None:
+    """Keep, for the grading's end, that a change told on an earlier check of ``function`` does not mend
+    this one (the student's code is the same in every check: the change is no account of it)."""
+    if fix is not None:
+        trial.sandbox.shared.setdefault(REFUTED, []).append(
+            (fix.told(function), bool(getattr(getattr(trial, "check", None), "hidden", False))))
+
+
+def take_back_refuted(results, refuted) -> None:
+    """One account per function: a repair told on a check (``results``: check results) that a later check
+    of the same function refuted (``refuted``: (the change as told, by a hidden check) pairs) is taken
+    back, with its sentence; a hidden check's refutation changes no public check's words. In place."""
+    for result in results:
+        first, newline, rest = result.message.partition("\n")
+        if f" {HEAD}" not in first:
+            continue
+        told = first.split(f" {HEAD}", 1)[1]
+        if any(change in told and (result.hidden or not by_hidden) for change, by_hidden in refuted):
+            result.message = first.split(f" {HEAD}", 1)[0] + newline + rest
+            result.mistake = "" if result.mistake.startswith(MISTAKE) else result.mistake
+
+
 def _dotted_call(call: ast.Call) -> str:
     """`cv2.cornerSubPix`, `matcher.compute`: the function a call calls, as written."""
     return ast.unparse(call.func) if len(ast.unparse(call.func)) <= 40 else "the call"
@@ -1025,6 +1051,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             break
         if mutant.key in ruled_out:
             continue
+        failed_check = False
         values = variant.screened(mutant, failing, screen, subtle)
         exact = [] if values is None or subtle else [variant.right(v, references[i], variant.students[i])
                                                      for v, i in zip(values, failing)]
@@ -1040,10 +1067,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             # resize where the reference warps), or the reference's exactly on some failing inputs
             # and not on others (their own least squares on noisy points, where one ill-posed point
             # outweighs every other in a sum): the check's own tolerances judge it.
+            replays = variant.replays
             if (apart * (2 if subtle else REPLAY_NEARER) <= off or any(exact)) \
                     and variant.passes_check(mutant, values, failing):
                 candidates.append(mutant)
                 continue
+            failed_check = variant.replays > replays   # (the check run again with it, and failed)
         elif values is not None and np.isfinite(sum(variant.distance(v, references[i]) for v, i in zip(values, failing))) \
                 and variant.passes_check(mutant, values, failing):
             # The student's answers were not of the reference's form (no matches kept at all, an
@@ -1052,6 +1081,13 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             continue
         if clock.left() > 0:
             ruled_out.add(mutant.key)
+            # (told on an earlier check of the function, and here not even nearer the expected answers,
+            # or the check run again with it failed: no account of this failure -- one nearer but not
+            # judged in the time is no refutation)
+            if mutant.key in known and values is not None and np.isfinite(off) and not any(exact) and (
+                    failed_check or not sum(variant.distance(v, references[i]) for v, i in zip(values, failing))
+                    < 0.9 * off):
+                _refuted(trial, student.fix(mutant), function)
     if not candidates:
         # A function with many right answers (a rectification) comes only somewhat nearer the
         # reference's when mended: the nearest changes are judged by the check itself, the first that
