@@ -1078,11 +1078,13 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             continue
         if clock.left() > 0:
             ruled_out.add(mutant.key)
-            # (told on an earlier check of the function, and here not even nearer the expected answers:
-            # no account of this failure -- one nearer, but not confirmed, is no refutation: the check
-            # run again with it may fail for want of time, or of what the grading shared)
-            if mutant.key in known and values is not None and np.isfinite(off) and not any(exact) \
-                    and not sum(variant.distance(v, references[i]) for v, i in zip(values, failing)) < 0.9 * off:
+            # (told on an earlier check of the function, and here nearer the expected answers on none
+            # of the failing inputs: no account of this failure -- one nearer somewhere, but not
+            # confirmed, is no refutation: a legitimate least squares is far off on an ill-posed point,
+            # and the check run again with it may fail for want of time or of what the grading shared)
+            if mutant.key in known and values is not None and not any(exact) and all(
+                    not variant.distance(v, references[i]) < 0.9 * variant.distance(variant.students[i], references[i])
+                    for v, i in zip(values, failing)):
                 _refuted(trial, student.fix(mutant), function)
     if not candidates:
         # A function with many right answers (a rectification) comes only somewhat nearer the
