@@ -26,3 +26,19 @@ def test_mistake_is_diagnosed(name):
 @pytest.mark.xdist_group("lab09")
 def test_convention_is_advice_not_points(name):
     assert_advice_case(MODULE, *ADVICE[name])
+
+
+def test_the_pattern_given_to_find_the_corners_is_read_from_the_call():
+    """`cv2.findChessboardCorners(grey, (rows, cols))` turns the board found by 90 degrees against object
+    points laid out for (cols, rows): the calibration's checklist asks for it only where the call has it."""
+    import ast as _ast
+    from autograder.labs.lab09 import _corners_asked_cols_first
+
+    def reads(call: str) -> bool:
+        return _corners_asked_cols_first(_ast.parse(f"def calibrate(images, pattern_size, s):\n    {call}").body[0])
+
+    assert not reads("found, c = cv2.findChessboardCorners(grey, (rows, cols))")
+    assert not reads("found, c = cv2.findChessboardCorners(grey, (pattern_size[1], pattern_size[0]))")
+    assert reads("found, c = cv2.findChessboardCorners(grey, pattern_size)")
+    assert reads("found, c = cv2.findChessboardCorners(grey, (cols, rows), None)")
+    assert reads("found, c = cv2.findChessboardCornersSB(grey, patternSize=(nx, ny))")

@@ -1389,6 +1389,25 @@ def _pattern_read_rows_first(function) -> bool:
     return expr("np.mgrid[0:_[1], 0:_[0]]").holds([function])
 
 
+def _corners_asked_cols_first(function) -> bool:
+    """Whether every cv2.findChessboardCorners call is given the pattern as pattern_size comes, (cols,
+    rows): a name holding "pattern", or a pair whose first item is not a count of rows (``(rows, cols)``,
+    ``(h, w)``, ``(p[1], p[0])`` are); read leniently (anything else counts as given rightly)."""
+    for node in ast.walk(function):
+        if not (isinstance(node, ast.Call) and _hints_path(node.func).endswith(("findChessboardCorners",
+                                                                                  "findChessboardCornersSB"))):
+            continue
+        given = node.args[1] if len(node.args) > 1 else next(
+            (k.value for k in node.keywords if k.arg == "patternSize"), None)
+        if isinstance(given, (ast.Tuple, ast.List)) and len(given.elts) == 2:
+            first = given.elts[0]
+            if isinstance(first, ast.Name) and (first.id.lower() in ROWS_FIRST or first.id.lower().startswith("row")):
+                return False
+            if isinstance(first, ast.Subscript) and isinstance(first.slice, ast.Constant) and first.slice.value == 1:
+                return False
+    return True
+
+
 def _views_appended_apart(function) -> bool:
     """Object points and corners appended in different blocks (one under ``if found:``, the other not):
     a view's object points may then go with another view's corners, or with none."""
@@ -1431,6 +1450,8 @@ OBJECT_POINTS_HINT = Hint(
                                                                 _pattern_read_rows_first)),
         ("each view's object points go with that view's corners",
          ~Predicate("appends object points and corners apart", _views_appended_apart)),
+        ("cv2.findChessboardCorners is given the pattern as (cols, rows), as pattern_size comes",
+         Predicate("gives cv2.findChessboardCorners the pattern as (cols, rows)", _corners_asked_cols_first)),
         none_left=look_at(("the square size", Predicate("scales by the square size", _scales_by_square_size)),
                           ("the views kept (those whose corners were found)",
                            Predicate("keeps the views whose corners were found", _tests_a_found_flag)))) + ".")
