@@ -5,6 +5,8 @@ input is given, in words."""
 
 import re
 
+import numpy as np
+
 import pytest
 
 from autograder.engine import conventions
@@ -105,3 +107,14 @@ def test_a_grey_image_answered_in_bgr_is_told_and_an_exception_on_grey_names_its
     assert list(failed) == ["warp_to_reference answers grey images in grey (the API: an image's channels are kept)"]
     message = next(iter(failed.values())).message
     assert message.startswith("warp_to_reference(reference, moving, H) on grey images (the BGR inputs converted")
+
+
+def test_a_float32_answer_is_judged_at_float32s_precision():
+    """One row and many rows of a float32 product may round differently (BLAS sums them in another
+    order): a float32 rounding apart is the same answer; a float64 answer that far apart is not."""
+    from autograder.engine.conventions import _close
+
+    many = np.array([[123.456, 78.9]], dtype=np.float32)
+    alone = many * np.float32(1 + 2 ** -22)   # a couple of float32 roundings apart
+    assert _close(alone, many)
+    assert not _close(many.astype(np.float64) * (1 + 1e-5), many.astype(np.float64))
