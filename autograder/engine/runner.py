@@ -527,6 +527,18 @@ def _named_by_error_model(verdict: Verdict, check: Check, trial: Trial, raised: 
         return verdict
 
 
+def _named_by_trace(verdict: Verdict, check: Check, trial: Trial, traceback_text: str = "") -> Verdict:
+    """A failed verdict that names nothing, named by what the student's own expressions held on the
+    failing call (:mod:`autograder.engine.traced`). Never costs the verdict (logged)."""
+    from . import traced
+
+    try:
+        return traced.named(verdict, trial, traceback_text)
+    except Exception as exc:  # noqa: BLE001 - naming is a bonus: the verdict stands without it
+        _log_grader_error(check, exc)
+        return verdict
+
+
 def _named_by_repair(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
     """A failed verdict that names nothing, named by a change of the student's own code that makes
     their answers right (:mod:`autograder.engine.mutants.repair`). Never costs the verdict (logged)."""
@@ -819,6 +831,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_repair(verdict, check, trial)
     if student_failure == "exception" and not verdict.mistake:
         verdict = _named_by_exception(verdict, trial, tb)
+    if student_failure == "exception" and not verdict.mistake and not inherited:
+        verdict = _named_by_trace(verdict, check, trial, tb)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure == "" and not inherited:
         verdict = _named_by_misread_output(verdict, trial)
     if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
@@ -828,6 +842,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
     if status in (FAILED, PARTIAL) and student_failure == "" and not inherited:   # (an exception's: above)
         verdict = _named_by_repair(verdict, check, trial)
+    if status in (FAILED, PARTIAL) and student_failure == "" and not inherited:
+        verdict = _named_by_trace(verdict, check, trial)   # an answer of the wrong shape: where it was made
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") \
             and not inherited and "looks like" not in str(verdict.message).lower():
         verdict = _named_by_unused_parameter(verdict, trial)   # the last resort: true, but not confirmed

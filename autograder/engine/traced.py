@@ -1,0 +1,729 @@
+"""A failure explained from what the student's own expressions held when it happened.
+
+NumPy's error names shapes ("operands could not be broadcast together with shapes (192,256)
+(192,256,3)") and a check measures the shape of a wrong answer ("(6, 6, 20, 2); expected
+(6, 20, 2)"); neither says which of the student's expressions made them, and reading the code
+cannot know the shape of an array it computes. So the student's functions are run once more on
+the failing input, in the companion sandbox (:meth:`~autograder.sandbox.supervisor.Sandbox.companion`),
+rewritten so that every expression records what it gave -- an array's shape and dtype, a number,
+a short tuple of numbers -- and returns it unchanged (:func:`recording_source`). Only those
+descriptions cross back; the values never do.
+
+The recording is then read against the code (:mod:`ast`, never run here), and a cause is said
+only as what the recording shows of the student's own expression:
+
+- an exception NumPy or OpenCV raised on a line: the expression of that line whose operands have
+  the shapes the error names (``mask * band``: ``mask`` is (192, 256), ``band`` (192, 256, 3)),
+  a slice bound that was negative (it counts from the end), an index past its axis, the arrays
+  an OpenCV call was given and where each came from when they differ in kind;
+- an answer of the wrong shape: following the returned value back through the student's
+  assignments to the first expression that made that shape from operands that did not have it
+  (``spread[:, None, None] * offsets``: (6, 1, 1, 1) against (6, 20, 2)), with the branch it was
+  on.
+
+The sentences are measurements of the student's code on the failing input: they hold whatever
+the student meant, and they name the place, never the reference's code.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+from .forms import Form
+
+MISTAKE = "an expression of another shape than its use needs"
+RECORDER, RECORDED, DESCRIBE, STORE = "__ag_seen__", "__ag_recorded__", "__ag_describe__", "__ag_record__"
+RECORDS_PER_CALL = 200_000            # evaluations recorded per call (a pixel loop stops recording, not running)
+ARRAY_ATTRIBUTES = frozenset({"T", "shape", "size", "ndim", "real", "imag"})
+TRACE_SECONDS = 3.0
+
+
+# ------------------------------------------------------------------ the rewrite (grader side: text only)
+def node_key(node: ast.AST) -> str:
+    """Where ``node`` is in the student's file: the key its recording is kept under."""
+    return f"{node.lineno}:{node.col_offset}:{node.end_lineno}:{node.end_col_offset}"
+
+
+class _Recording(ast.NodeTransformer):
+    """Wraps each value-giving expression of a def in ``__ag_seen__(key, expression)``."""
+
+    def __init__(self, local_names: frozenset[str]):
+        self.local_names = local_names
+
+    def _recorded(self, original: ast.AST, node: ast.AST) -> ast.AST:
+        call = ast.Call(ast.Name(RECORDER, ast.Load()), [ast.Constant(node_key(original)), node], [])
+        return ast.copy_location(call, original)
+
+    def visit_FunctionDef(self, node):
+        # decorators, defaults and annotations run once, when the def runs: left as written
+        node.body = [self.visit(statement) for statement in node.body]
+        return node
+
+    visit_AsyncFunctionDef = visit_FunctionDef
+
+    def visit_Lambda(self, node):
+        node.body = self.visit(node.body)
+        return node
+
+    def visit_ClassDef(self, node):
+        return node
+
+    def visit_Call(self, node):
+        original = node
+        node.func = self._callee(node.func)
+        node.args = [self.visit(a) for a in node.args]
+        node.keywords = [self.visit(k) for k in node.keywords]
+        return self._recorded(original, node)
+
+    def _callee(self, func):
+        """A called name or method: its receiver is recorded (``band.astype``: ``band``), not itself."""
+        if isinstance(func, ast.Attribute):
+            func.value = self.visit(func.value)
+            return func
+        return func if isinstance(func, ast.Name) else self.visit(func)
+
+    def visit_Name(self, node):
+        if isinstance(node.ctx, ast.Load) and node.id in self.local_names:
+            return self._recorded(node, node)
+        return node
+
+    def visit_Attribute(self, node):
+        original = node
+        self.generic_visit(node)
+        if isinstance(node.ctx, ast.Load) and node.attr in ARRAY_ATTRIBUTES:
+            return self._recorded(original, node)
+        return node
+
+    def _value_node(self, node):
+        original = node
+        self.generic_visit(node)
+        loads = not hasattr(node, "ctx") or isinstance(node.ctx, ast.Load)
+        return self._recorded(original, node) if loads else node
+
+    visit_BinOp = visit_UnaryOp = visit_Subscript = _value_node
+
+
+def _local_names(fn: ast.AST) -> frozenset[str]:
+    """The names a def binds itself (its parameters, what it assigns): the ones worth recording."""
+    names = {a.arg for a in ast.walk(fn) if isinstance(a, ast.arg)}   # (a nested def's too)
+    names |= {n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    return frozenset(names)
+
+
+_PRELUDE = f'''
+import numpy as __ag_np__
+{STORE} = {{}}
+__ag_count__ = [0]
+
+def {DESCRIBE}(value, depth=0):
+    kind = type(value)
+    if kind is __ag_np__.ndarray:
+        return ["array", [int(n) for n in value.shape], str(value.dtype)]
+    if kind in (bool, int, float) or isinstance(value, (__ag_np__.integer, __ag_np__.floating, __ag_np__.bool_)):
+        return ["number", float(value)]
+    if kind in (tuple, list):
+        if depth == 0 and len(value) <= 8 and all(type(v) in (int, float, bool) for v in value):
+            return ["tuple", [float(v) for v in value]]
+        first = {DESCRIBE}(value[0], 1) if depth == 0 and len(value) else None
+        return ["sequence", kind.__name__, len(value), first]
+    return ["other", kind.__name__[:40]]
+
+def {RECORDER}(key, value):
+    if __ag_count__[0] < {RECORDS_PER_CALL}:
+        __ag_count__[0] += 1
+        try:
+            {STORE}[key] = {DESCRIBE}(value)
+        except Exception:
+            pass
+    return value
+'''
+
+
+def recording_source(code, function: str) -> str | None:
+    """The student's ``function`` and the module's functions it calls, rewritten to record their
+    expressions, with ``__ag_recorded__(*args, **kwargs)`` calling ``function`` and answering
+    ``{"record": {key: description}, "returned": description}`` (``"raised"``: the exception's type)
+    -- plain data; None when the code is not read."""
+    reached = code.reachable([function])
+    if not reached or reached[0].name != function:
+        return None
+    import copy
+
+    defs = []
+    for fn in reached:
+        rewritten = _Recording(_local_names(fn)).visit(copy.deepcopy(fn))
+        defs.append(ast.unparse(ast.fix_missing_locations(rewritten)))
+    entry = f'''
+def {RECORDED}(*args, **kwargs):
+    {STORE}.clear()
+    __ag_count__[0] = 0
+    try:
+        value = {function}(*args, **kwargs)
+    except Exception as exc:
+        return {{"record": dict({STORE}), "raised": type(exc).__name__}}
+    return {{"record": dict({STORE}), "returned": {DESCRIBE}(value)}}
+'''
+    return _PRELUDE + "\n\n".join(defs) + "\n" + entry
+
+
+# ------------------------------------------------------------------ the recording
+@dataclass(frozen=True)
+class Recording:
+    """What each expression of the student's functions gave on one call (its last evaluation)."""
+
+    values: dict
+    returned: tuple | None = None
+    raised: str = ""
+
+    def shape(self, node) -> tuple | None:
+        found = self.values.get(node_key(node))
+        return found[1] if found and found[0] == "array" else None
+
+    def dtype(self, node) -> str:
+        found = self.values.get(node_key(node))
+        return found[2] if found and found[0] == "array" else ""
+
+    def number(self, node) -> float | None:
+        found = self.values.get(node_key(node))
+        return found[1] if found and found[0] == "number" else None
+
+
+def _description(value):
+    """A recorded description checked for form (what came back is the student's process's)."""
+    if not isinstance(value, (list, tuple)) or not value or not isinstance(value[0], str):
+        return None
+    kind = value[0]
+    if kind == "array" and len(value) == 3 and isinstance(value[1], (list, tuple)) and len(value[1]) <= 32 \
+            and all(isinstance(n, int) and 0 <= n < 2**62 for n in value[1]) and isinstance(value[2], str):
+        return ("array", tuple(value[1]), value[2][:20])
+    if kind == "number" and len(value) == 2 and isinstance(value[1], (int, float)):
+        return ("number", float(value[1]))
+    if kind == "tuple" and len(value) == 2 and isinstance(value[1], (list, tuple)) and len(value[1]) <= 8 \
+            and all(isinstance(v, (int, float)) for v in value[1]):
+        return ("tuple", tuple(float(v) for v in value[1]))
+    return ("other",)
+
+
+_KEY = re.compile(r"\d+:\d+:\d+:\d+\Z")
+
+
+def recording_of(value) -> Recording | None:
+    """The :class:`Recording` in a variant's answer, or None when it is not one."""
+    if not isinstance(value, dict) or not isinstance(value.get("record"), dict):
+        return None
+    values = {}
+    for key, described in list(value["record"].items())[:100_000]:
+        if isinstance(key, str) and _KEY.match(key):
+            found = _description(described)
+            if found is not None:
+                values[key] = found
+    raised = value.get("raised")
+    return Recording(values, _description(value.get("returned")), raised[:60] if isinstance(raised, str) else "")
+
+
+def record(trial, function: str, args, kwargs) -> Recording | None:
+    """The recording of the student's ``function`` called with ``args``/``kwargs``, run in the
+    trial's companion sandbox within the grading's naming time; None when it cannot be had."""
+    from .hints import code_of
+    from .mutants.naming import GRADING_SECONDS, SPENT
+
+    sandbox = getattr(trial, "sandbox", None)
+    if sandbox is None or not hasattr(sandbox, "companion"):
+        return None
+    cache = sandbox.shared.setdefault("traced recordings", {})
+    key = (function, _fingerprint(args, kwargs))
+    if key in cache:
+        return cache[key]
+    source = recording_source(code_of(trial), function)
+    spent = sandbox.shared.setdefault(SPENT, [0.0])
+    seconds = min(TRACE_SECONDS, GRADING_SECONDS - spent[0])
+    if source is None or seconds <= 0.2:
+        return None
+    import time
+
+    started = time.monotonic()
+    forbid = () if getattr(trial, "forbidden_allowed", False) else tuple(trial.forbidden(function))
+    try:
+        outcome = sandbox.companion().call_variant(trial.lab.module, source, RECORDED, [(tuple(args), dict(kwargs))],
+                                                   timeout=seconds, forbid=forbid)
+    finally:
+        spent[0] += time.monotonic() - started
+    values = outcome.value if outcome.ok else None
+    found = recording_of(values[0]) if isinstance(values, list) and len(values) == 1 else None
+    cache[key] = found
+    return found
+
+
+def _fingerprint(args, kwargs) -> tuple:
+    def one(value):
+        if isinstance(value, np.ndarray):
+            return ("array", value.shape, str(value.dtype), hash(value.tobytes()) if value.size <= 1 << 22 else id(value))
+        if isinstance(value, (list, tuple)):
+            return tuple(one(v) for v in value)
+        return repr(value)[:200]
+    return (one(tuple(args)), one(tuple(sorted(kwargs.items()))))
+
+
+# ------------------------------------------------------------------ reading it
+def _shape_text(shape) -> str:
+    return "(" + ", ".join(str(n) for n in shape) + ("," if len(shape) == 1 else "") + ")"
+
+
+def _quote(node, limit: int = 60) -> str:
+    text = ast.unparse(node)
+    return f"`{text}`" if len(text) <= limit else f"`{text[:limit - 3]}...`"
+
+
+def _statement_at(fn, line: int):
+    """The innermost statement of ``fn`` running ``line``: its own expressions, not its body's."""
+    found = None
+    for node in ast.walk(fn):
+        if isinstance(node, ast.stmt) and node is not fn and node.lineno <= line <= (node.end_lineno or node.lineno):
+            if found is None or node.lineno >= found.lineno and (node.end_lineno or 0) <= (found.end_lineno or 0):
+                found = node
+    return found
+
+
+def _own_expressions(statement) -> list[ast.AST]:
+    """The expressions of ``statement`` itself (a loop's header, not its body), innermost first."""
+    bodies = {id(s) for field in ("body", "orelse", "finalbody", "handlers")
+              for s in getattr(statement, field, []) or []}
+    out = []
+
+    def walk(node):
+        for child in ast.iter_child_nodes(node):
+            if id(child) in bodies or isinstance(child, (ast.FunctionDef, ast.Lambda, ast.ClassDef)):
+                continue
+            walk(child)
+            if isinstance(child, ast.expr):
+                out.append(child)
+    walk(statement)
+    return out
+
+
+def _conditions(fn, statement) -> list[ast.AST]:
+    """The ``if`` tests whose body holds ``statement`` (outermost first)."""
+    found = []
+
+    def walk(node, tests):
+        for field in ("body", "orelse"):
+            for child in getattr(node, field, []) or []:
+                here = tests + ([node.test] if isinstance(node, ast.If) and field == "body" else [])
+                if child is statement:
+                    found.extend(here)
+                    return True
+                if walk(child, here):
+                    return True
+        return False
+    walk(fn, [])
+    return found
+
+
+def _operands(node) -> list[ast.AST]:
+    if isinstance(node, ast.BinOp):
+        return [node.left, node.right]
+    if isinstance(node, ast.Call):
+        return list(node.args) + [k.value for k in node.keywords]
+    if isinstance(node, ast.Compare):
+        return [node.left, *node.comparators]
+    return []
+
+
+_SHAPES = re.compile(r"\(([\d,\s]*)\)")
+_BROADCAST = re.compile(r"operands could not be broadcast together with (?:remapped )?shapes")
+_INTO = re.compile(r"could not broadcast input array from shape \(([\d,\s]*)\) into shape \(([\d,\s]*)\)")
+_MATMUL = re.compile(r"matmul: Input operand \d has a mismatch|shapes \([\d,\s]*\) and \([\d,\s]*\) not aligned")
+_OPENCV_KINDS = re.compile(r"type\(\) *==|depth\(\) *==|types? (?:do not|don't) match|same type")
+_OPENCV_SIZES = re.compile(r"size\(\) *==|[Ss]izes? of input arguments do not match|same size")
+_OUT_OF_BOUNDS = re.compile(r"index (-?\d+) is out of bounds for axis (\d+) with size (\d+)")
+
+
+def _parsed(text: str) -> tuple:
+    return tuple(int(n) for n in text.replace(" ", "").split(",") if n)
+
+
+def explain_raised(code, recording: Recording, fn, line: int, message: str, frames=()) -> Form | None:
+    """The cause of the error ``message`` raised on ``line`` of ``fn``, from the recording (``frames``:
+    the traceback's ``(file, line, function, code)``, outermost first, the innermost ``fn``'s)."""
+    frames = list(frames) or [("", line, fn.name, "")]
+    statement = _statement_at(fn, line)
+    if statement is None:
+        return None
+    where = f"(line {line})"
+    expressions = _own_expressions(statement)
+    if _BROADCAST.search(message):
+        shapes = [_parsed(s) for s in _SHAPES.findall(message.split("shapes", 1)[1])]
+        return _broadcast_named(recording, expressions, shapes, where)
+    found = _INTO.search(message)
+    if found:
+        return _assigned_named(recording, statement, _parsed(found.group(1)), _parsed(found.group(2)), where)
+    if _MATMUL.search(message):
+        return _product_named(recording, expressions, where)
+    found = _OUT_OF_BOUNDS.search(message)
+    if found:
+        return _index_named(recording, expressions, *(int(g) for g in found.groups()), where)
+    if "OpenCV(" in message and _OPENCV_KINDS.search(message):
+        return _opencv_named(code, recording, fn, statement, expressions, where, frames, by_type=True)
+    if "OpenCV(" in message and _OPENCV_SIZES.search(message):
+        return _opencv_named(code, recording, fn, statement, expressions, where, frames, by_type=False)
+    return None
+
+
+def _broadcast_named(recording, expressions, shapes, where) -> Form | None:
+    for node in expressions:
+        operands = [(o, recording.shape(o)) for o in _operands(node)]
+        arrays = [(o, s) for o, s in operands if s is not None]
+        if len(arrays) < 2 or sorted(s for _, s in arrays[:len(shapes)]) != sorted(shapes[:len(arrays)]):
+            continue
+        (a, sa), (b, sb) = arrays[:2]
+        said = f"in {_quote(node)} {where}, {_quote(a)} has shape {_shape_text(sa)} and {_quote(b)} {_shape_text(sb)}"
+        return Form(said + _why_not_broadcast(a, sa, b, sb), MISTAKE)
+    return None
+
+
+def _why_not_broadcast(a, sa, b, sb) -> str:
+    short, long_, ss, sl = (a, b, sa, sb) if len(sa) < len(sb) else (b, a, sb, sa)
+    if len(ss) < len(sl) and tuple(sl[:len(ss)]) == tuple(ss):
+        extra = len(sl) - len(ss)
+        return (f": NumPy lines shapes up from their last axes, so {_quote(short)} has no axis for the last "
+                f"{'axis' if extra == 1 else f'{extra} axes'} of {_quote(long_)} "
+                f"({_quote(short)[:-1]}[..., None]` gives it one)")
+    if len(sa) == len(sb):
+        differ = [i for i, (m, n) in enumerate(zip(sa, sb)) if m != n and 1 not in (m, n)]
+        if differ:
+            i = differ[0]
+            return f": they differ on axis {i} ({sa[i]} and {sb[i]}), where neither is 1"
+    return ": NumPy lines shapes up from their last axes"
+
+
+def _assigned_named(recording, statement, given, into, where) -> Form | None:
+    if not isinstance(statement, (ast.Assign, ast.AugAssign)):
+        return None
+    targets = statement.targets if isinstance(statement, ast.Assign) else [statement.target]
+    for target in targets:
+        if not isinstance(target, ast.Subscript):
+            continue
+        for bound in _slice_bounds(target.slice):
+            value = recording.number(bound)
+            if value is not None and value < 0 and not _written_negative(bound):
+                return Form(f"{_quote(bound)} is {value:g} here {where}, and a negative slice bound "
+                                     f"counts from the end of the axis: {_quote(target)} is then "
+                                     f"{_shape_text(into)}, for a value of shape {_shape_text(given)}", MISTAKE)
+        said = f"{_quote(target)} {where} has shape {_shape_text(into)} and is given a value of shape {_shape_text(given)}"
+        bounds = [(b, recording.number(b)) for b in _slice_bounds(target.slice)]
+        known = [f"{_quote(b)} = {v:g}" for b, v in bounds if v is not None and not isinstance(b, ast.Constant)]
+        return Form(said + (f" ({', '.join(known[:4])})" if known else ""), MISTAKE)
+    return None
+
+
+def _slice_bounds(index) -> list[ast.AST]:
+    parts = index.elts if isinstance(index, ast.Tuple) else [index]
+    return [b for p in parts if isinstance(p, ast.Slice) for b in (p.lower, p.upper) if b is not None]
+
+
+def _written_negative(node) -> bool:
+    return isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) or \
+        isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and node.value < 0
+
+
+def _product_named(recording, expressions, where) -> Form | None:
+    for node in expressions:
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult) or \
+                isinstance(node, ast.Call) and _called_name(node) in ("dot", "matmul"):
+            arrays = [(o, recording.shape(o)) for o in _operands(node)]
+            if len(arrays) == 2 and all(s for _, s in arrays):
+                (a, sa), (b, sb) = arrays
+                inner = sb[-2] if len(sb) >= 2 else sb[0]
+                return Form(f"in {_quote(node)} {where}, {_quote(a)} has shape {_shape_text(sa)} and "
+                                     f"{_quote(b)} {_shape_text(sb)}: a product needs the last size of the first "
+                                     f"({sa[-1]}) to equal the {'first' if len(sb) < 2 else 'next-to-last'} of the "
+                                     f"second ({inner})", MISTAKE)
+    return None
+
+
+def _called_name(call) -> str:
+    func = call.func
+    return func.attr if isinstance(func, ast.Attribute) else func.id if isinstance(func, ast.Name) else ""
+
+
+def _index_named(recording, expressions, index, axis, size, where) -> Form | None:
+    for node in expressions:
+        if not isinstance(node, ast.Subscript):
+            continue
+        parts = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+        for part in parts:
+            if isinstance(part, (ast.Slice, ast.Constant)):
+                continue
+            if recording.number(part) == index:
+                shape = recording.shape(node.value)
+                of = f" of {_quote(node.value)} (shape {_shape_text(shape)})" if shape else ""
+                return Form(f"{_quote(part)} is {index} in {_quote(node)} {where}: axis {axis}{of} "
+                                     f"has {size} entries, numbered 0 to {size - 1}", MISTAKE)
+    return None
+
+
+def _opencv_named(code, recording, fn, statement, expressions, where, frames, by_type: bool) -> Form | None:
+    """OpenCV asserted that two arrays agree in type (or in size): the arrays the call on the line was
+    given, when they do not, and where each came from."""
+    for node in expressions:
+        if not isinstance(node, ast.Call):
+            continue
+        arrays = [(o, recording.shape(o), recording.dtype(o)) for o in node.args]
+        arrays = [a for a in arrays if a[1] is not None]
+        kinds = {dtype if by_type else shape for _, shape, dtype in arrays}
+        if len(arrays) < 2 or len(kinds) < 2:
+            continue
+        given = ", ".join(f"{_quote(o)} {dtype} of shape {_shape_text(s)}" for o, s, dtype in arrays[:3])
+        said = f"{_quote(node)} {where} was given {given}: arrays of different {'types' if by_type else 'sizes'}"
+        origins = [_origin(code, fn, o, statement, frames) for o, _, _ in arrays[:3]]
+        origins = [o for o in origins if o]
+        if len(origins) >= 2:
+            said += " (" + "; ".join(origins) + ")"
+        return Form(said, MISTAKE)
+    return None
+
+
+def _origin(code, fn, node, before, frames) -> str:
+    """``"`des2` comes from `_detect(img2)` (line 40)"``: the value a name was last given before a
+    statement, followed through tuple unpacking and, for a parameter, to the call in the frame that
+    called ``fn`` (``frames``: the traceback's, outermost first)."""
+    if not isinstance(node, ast.Name):
+        return ""
+    expression, line, depth = node, before.lineno, len(frames) - 1
+    for _ in range(6):
+        if not isinstance(expression, ast.Name):
+            break
+        given = _last_given(fn, expression.id, line)
+        if given is not None:
+            expression, line = given
+            continue
+        caller = _caller_argument(code, fn, expression.id, frames, depth)
+        if caller is None:
+            break
+        fn, expression, line, depth = caller
+    if expression is node:
+        return ""
+    return f"{_quote(node)} comes from {_quote(expression)} (line {line})"
+
+
+def _last_given(fn, name: str, line: int):
+    """``(expression, line)`` of the last assignment to ``name`` in ``fn`` before ``line`` (the element
+    of a tuple assigned to it when the value is written as one), or None."""
+    found = None
+    for statement in _own_nodes(fn):
+        if isinstance(statement, ast.Assign) and statement.lineno < line:
+            for target in statement.targets:
+                value = _element_for(target, statement.value, name)
+                if value is not None and (found is None or statement.lineno > found[1]):
+                    found = (value, statement.lineno)
+    return found
+
+
+def _element_for(target, value, name):
+    if isinstance(target, ast.Name):
+        return value if target.id == name else None
+    if isinstance(target, (ast.Tuple, ast.List)):
+        for i, part in enumerate(target.elts):
+            if isinstance(value, (ast.Tuple, ast.List)) and len(value.elts) == len(target.elts):
+                found = _element_for(part, value.elts[i], name)
+            else:
+                found = value if name in {n.id for n in ast.walk(part) if isinstance(n, ast.Name)} else None
+            if found is not None:
+                return found
+    return None
+
+
+def _caller_argument(code, fn, name: str, frames, depth: int):
+    """``(caller def, argument expression, line, depth)`` for the parameter ``name`` of ``fn``, from the
+    call in the traceback frame that called it; None when that frame or call is not there."""
+    parameters = [a.arg for a in fn.args.posonlyargs + fn.args.args]
+    if depth < 1 or frames[depth][2] != fn.name or name not in parameters + [a.arg for a in fn.args.kwonlyargs]:
+        return None
+    _, line, caller_name, _ = frames[depth - 1]
+    caller = code.functions.get(caller_name)
+    if caller is None:
+        return None
+    for call in _own_nodes(caller):
+        if isinstance(call, ast.Call) and isinstance(call.func, ast.Name) and call.func.id == fn.name \
+                and call.lineno <= line <= (call.end_lineno or call.lineno):
+            keyword = [k.value for k in call.keywords if k.arg == name]
+            index = parameters.index(name) if name in parameters else len(call.args)
+            argument = keyword[0] if keyword else call.args[index] if index < len(call.args) \
+                and not any(isinstance(a, ast.Starred) for a in call.args[:index + 1]) else None
+            return (caller, argument, call.lineno, depth - 1) if argument is not None else None
+    return None
+
+
+# ------------------------------------------------------------------ a wrong shape
+def explain_shape(code, recording: Recording, function: str, got: tuple, expected: tuple) -> Form | None:
+    """Where the answer of shape ``got`` (``expected`` asked) was given that shape: the first expression on
+    the returned value's way that makes ``got`` from operands that do not have it."""
+    fn = code.functions.get(function)
+    if fn is None or recording.returned is None or recording.returned[:2] != ("array", tuple(got)):
+        return None
+    statement = _returning(fn, recording, got)
+    if statement is None:
+        return None
+    node, seen = statement.value, 0
+    while seen < 16:
+        seen += 1
+        helper = _helper(code, fn, node)
+        inner = _returning(helper, recording, got) if helper is not None and helper is not fn else None
+        if inner is not None:   # a helper of the module made it: on into the helper
+            fn, statement, node = helper, inner, inner.value
+            continue
+        if isinstance(node, ast.Name):
+            assigned = _assignment_giving(fn, node, recording, got, statement)
+            if assigned is None:
+                return None
+            statement, node = assigned, assigned.value
+            continue
+        same = [o for o in _children(node) if recording.shape(o) == tuple(got)]
+        if same:
+            node = same[0]
+            continue
+        return _made_here(fn, recording, node, statement, got, expected)
+    return None
+
+
+def _returning(fn, recording, got):
+    """``fn``'s one ``return`` (not a nested def's) whose value the recording shows with shape ``got``."""
+    returns = [r for r in _own_nodes(fn) if isinstance(r, ast.Return) and r.value is not None
+               and recording.shape(r.value) == tuple(got)]
+    return returns[0] if len(returns) == 1 else None
+
+
+def _own_nodes(fn):
+    """The nodes of ``fn``'s body, not those of the defs nested in it."""
+    todo = list(ast.iter_child_nodes(fn))
+    while todo:
+        node = todo.pop()
+        yield node
+        if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+            todo.extend(ast.iter_child_nodes(node))
+
+
+def _helper(code, fn, node):
+    """The def a call ``helper(...)`` runs: one nested in ``fn``, or a function of the module."""
+    if not isinstance(node, ast.Call) or not isinstance(node.func, ast.Name):
+        return None
+    nested = [d for d in _own_nodes(fn) if isinstance(d, ast.FunctionDef) and d.name == node.func.id]
+    return nested[-1] if nested else code.functions.get(node.func.id)
+
+
+def _children(node) -> list[ast.AST]:
+    if isinstance(node, ast.Subscript):
+        return [node.value]
+    if isinstance(node, ast.Attribute):
+        return [node.value]
+    if isinstance(node, ast.Call):
+        receiver = [node.func.value] if isinstance(node.func, ast.Attribute) else []
+        return receiver + list(node.args) + [k.value for k in node.keywords]
+    if isinstance(node, ast.UnaryOp):
+        return [node.operand]
+    return _operands(node)
+
+
+def _assignment_giving(fn, name, recording, got, before):
+    """The latest assignment of ``name`` before ``before`` whose value the recording shows with shape ``got``."""
+    found = None
+    for statement in ast.walk(fn):
+        if isinstance(statement, (ast.Assign, ast.AnnAssign)) and statement.value is not None \
+                and statement.lineno < before.lineno \
+                and any(isinstance(t, ast.Name) and t.id == name.id
+                        for t in (statement.targets if isinstance(statement, ast.Assign) else [statement.target])) \
+                and recording.shape(statement.value) == tuple(got):
+            if found is None or statement.lineno > found.lineno:
+                found = statement
+    return found
+
+
+def _made_here(fn, recording, node, statement, got, expected) -> Form | None:
+    operands = [(o, recording.shape(o)) for o in _children(node)]
+    arrays = [(o, s) for o, s in operands if s is not None]
+    if not arrays:
+        return None
+    line = getattr(node, "lineno", statement.lineno)
+    parts = []
+    for operand, shape in arrays[:3]:
+        inner = [(o, s) for o, s in ((o, recording.shape(o)) for o in _children(operand)) if s is not None and s != shape]
+        deeper = f" ({_quote(inner[0][0])} is {_shape_text(inner[0][1])})" if inner and not isinstance(operand, ast.Name) else ""
+        parts.append(f"{_quote(operand)} of shape {_shape_text(shape)}{deeper}")
+    said = f"{_quote(node)} (line {line}) makes the shape {_shape_text(got)} from {' and '.join(parts)}"
+    if isinstance(node, ast.BinOp) and len(arrays) == 2 and np.prod(got) > max(np.prod(s) for _, s in arrays):
+        said += ": NumPy broadcasts them against each other, every entry of one with every entry of the other"
+    if any(s == tuple(expected) for _, s in arrays):
+        said += f" ({' and '.join(_quote(o) for o, s in arrays if s == tuple(expected))} has the shape asked, {_shape_text(expected)})"
+    tests = [t for t in _conditions(fn, statement) if getattr(t, "lineno", 0)]
+    if tests:
+        test = tests[-1]
+        said += f", on the branch `if {ast.unparse(test)}:` (line {test.lineno})"
+        given = _last_given(fn, test.id, test.lineno) if isinstance(test, ast.Name) else None
+        if given is not None:   # (a flag: what set it)
+            said += f", where {_quote(test)} is {_quote(given[0])} (line {given[1]})"
+    return Form(said, MISTAKE)
+
+
+# ------------------------------------------------------------------ a failed check's verdict
+_WRONG_SHAPE = re.compile(r"(\w+)\(.*?\) returned (?:an array of |homogeneous points of )?shape \(([\d, ]*)\)"
+                          r"(?:, i\.e\. \([^)]*\))?; expected \(([\d, ]*)\)")
+LEAD = "On this input,"
+
+
+def named(verdict, trial, traceback_text: str = ""):
+    """A failed verdict that names nothing, with what the recording of the failing call shows
+    (:func:`explain_raised` for the exception the trial's last call raised, :func:`explain_shape`
+    for an answer of the wrong shape), or unchanged."""
+    from dataclasses import replace
+
+    from .hints import code_of
+    from .raised import frames_of
+
+    first, newline, rest = str(verdict.message).partition("\n")
+    code = code_of(trial)
+    form = None
+    if traceback_text and getattr(trial, "raised", None):
+        function, args, kwargs, message = trial.raised
+        frames = frames_of(traceback_text)
+        frame = frames[-1] if frames else None
+        fn = code.functions.get(frame[2]) if frame and frame[0] == f"{trial.lab.module}.py" else None
+        if fn is not None:
+            recording = record(trial, function, args, kwargs)
+            if recording is not None and recording.raised:
+                form = explain_raised(code, recording, fn, frame[1], message, frames)
+    elif not _named_by_a_change(verdict):
+        found = _WRONG_SHAPE.search(first)
+        call = _call_answering(trial, found.group(1), _parsed(found.group(2))) if found else None
+        if call is not None:
+            function, args, kwargs = call
+            recording = record(trial, function, args, kwargs)
+            if recording is not None:
+                form = explain_shape(code, recording, function, _parsed(found.group(2)), _parsed(found.group(3)))
+    if form is None:
+        return verdict
+    lead = first.rstrip()
+    lead += "" if not lead or lead[-1] in ".:;!?" else "."
+    # (a shape the check named by its form -- "it looks flattened" -- keeps that name: this says where)
+    return replace(verdict, message=f"{lead} {LEAD} {form.sentence}.{newline}{rest}",
+                   mistake=verdict.mistake or form.mistake)
+
+
+def _named_by_a_change(verdict) -> bool:
+    """Whether a change confirmed on the student's answers already names the failure (a repair of their
+    code, a mutant of the reference): where it comes from is then said."""
+    from .mutants import naming, repair
+
+    message = str(verdict.message)
+    return str(verdict.mistake).startswith("mutant:") or naming.APPENDED in message or repair.HEAD in message
+
+
+def _call_answering(trial, function: str, shape: tuple):
+    """``(function, args, kwargs)`` of the trial's last call of ``function`` answering an array of ``shape``."""
+    for name, args, kwargs, answer in reversed(list(getattr(trial, "calls", ()))):
+        if name == function and isinstance(answer, np.ndarray) and answer.shape == tuple(shape):
+            return name, args, kwargs
+    return None
