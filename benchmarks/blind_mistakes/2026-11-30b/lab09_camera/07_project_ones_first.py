@@ -31,17 +31,9 @@ def _divide(homogeneous, single):
 
 # --------------------------------------------------------------------- ex1
 def pinhole_project(points, f):
-    """x = f X / Z, y = f Y / Z for each point; NaN for points with Z <= 0."""
-    pts = np.asarray(points)
-    single = pts.ndim == 1
-    pts = pts.reshape(-1, 3)
-    out = np.zeros((len(pts), 2), dtype=pts.dtype)
-    for i, (X, Y, Z) in enumerate(pts):
-        if Z > 0:
-            out[i] = (f * X / Z, f * Y / Z)
-        else:
-            out[i] = np.nan
-    return out[0] if single else out
+    """``x = f X / Z``, ``y = f Y / Z`` (image origin on the optical axis)."""
+    X, single = _points(points)
+    return _divide(np.column_stack([f * X[:, 0], f * X[:, 1], X[:, 2]]), single)
 
 
 # --------------------------------------------------------------------- ex2
@@ -68,7 +60,7 @@ def camera_matrix(K, R, t):
 def project(P, points):
     """World points to pixels: ``x ~ P [X, 1]``, then the perspective division."""
     X, single = _points(points)
-    homogeneous = np.column_stack([X, np.ones(len(X))])
+    homogeneous = np.column_stack([np.ones(len(X)), X])
     return _divide(homogeneous @ np.asarray(P, dtype=np.float64).T, single)
 
 

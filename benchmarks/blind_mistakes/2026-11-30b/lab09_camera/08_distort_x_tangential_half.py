@@ -154,7 +154,7 @@ def distort_points(points, dist):
     x, y = pts[:, 0], pts[:, 1]
     r2 = x * x + y * y
     radial = 1.0 + k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
-    xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x)
+    xd = x * radial + p1 * x * y + p2 * (r2 + 2 * x * x)
     yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y
     out = np.column_stack([xd, yd])
-    return out
+    return out[0] if single else out

@@ -66,9 +66,15 @@ def project(P, points):
 
 # --------------------------------------------------------------------- ex4
 def project_focal_lengths(points, focal_lengths):
-    """The pinhole projection for every focal length: (F, N, 2)."""
-    X, _ = _points(points)
-    return np.stack([pinhole_project(X, f) for f in np.asarray(focal_lengths, dtype=np.float64).ravel()])
+    """Project the points once per focal length (x = f X / Z, y = f Y / Z) into an (F, N, 2) array."""
+    pts = np.atleast_2d(np.asarray(points, dtype=np.float64))
+    fs = np.asarray(focal_lengths, dtype=np.float64).ravel()
+    out = np.empty((len(fs), len(pts), 2))
+    for i, f in enumerate(fs):
+        scaled = pts
+        scaled[:, :2] *= f
+        out[i] = pinhole_project(scaled, 1.0)
+    return out
 
 
 def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
@@ -108,7 +114,7 @@ def project_onto_image(image, P, points):
     """Project world points with ``P`` and draw them on (a copy of) ``image``."""
     pts = project(P, points)
     pts = pts.reshape(-1, 2)
-    return draw_points(image, np.nan_to_num(pts)), pts
+    return draw_points(image, pts), pts
 
 
 # --------------------------------------------------------------------- ext1
