@@ -1,0 +1,264 @@
+"""A failure explained from what the student's own expressions held on the failing input (issue 35:
+"relayed exceptions that do not say which input or why", shapes measured without a cause).
+
+:mod:`autograder.engine.traced` rewrites the student's functions so that every expression records
+its shape (or number) and runs them once more on the failing input; the sentence quotes the
+student's expression and the shapes it had. Here the rewrite runs in this process on the tests' own
+small functions (never a student's: grading runs it in the companion sandbox), and the end-to-end
+tests grade submissions through the sandbox.
+"""
+
+from __future__ import annotations
+
+import textwrap
+import traceback
+
+import cv2
+import numpy as np
+import pytest
+
+from autograder.engine import traced
+from autograder.engine.hints import read_code
+from autograder.engine.runner import grade
+from conftest import check_results, mutant
+
+
+def recorded(source: str, function: str, *args, **kwargs):
+    """``(code, recording, original namespace)`` of ``function`` of ``source`` run on ``args``."""
+    source = textwrap.dedent(source)
+    code = read_code(source)
+    original = {"np": np, "cv2": cv2, "__name__": "student"}
+    exec(compile(source, "student.py", "exec"), original)
+    rewritten = dict(original)
+    exec(compile(traced.recording_source(code, function), "student.py", "exec"), rewritten)
+    return code, traced.recording_of(rewritten[traced.RECORDED](*args, **kwargs)), original
+
+
+def raised_sentence(source: str, function: str, *args) -> str | None:
+    code, recording, original = recorded(source, function, *args)
+    assert recording.raised
+    try:
+        original[function](*args)
+    except Exception as exc:   # noqa: BLE001 - the tests' own code, raising on purpose
+        frames = [(f"{f.filename}", f.lineno, f.name, f.line or "")
+                  for f in traceback.extract_tb(exc.__traceback__) if f.filename == "student.py"]
+        form = traced.explain_raised(code, recording, code.functions[frames[-1][2]], frames[-1][1], str(exc), frames)
+        return None if form is None else form.sentence
+    raise AssertionError("it did not raise")
+
+
+def shape_sentence(source: str, function: str, expected: tuple, *args) -> str | None:
+    code, recording, _ = recorded(source, function, *args)
+    form = traced.explain_shape(code, recording, function, recording.returned[1], expected)
+    return None if form is None else form.sentence
+
+
+# ------------------------------------------------------------------ the rewrite changes no answer
+SOURCES = {
+    "loops, slices and in-place updates": ("""
+        def f(image, k=2):
+            out = np.zeros_like(image)
+            for y in range(image.shape[0]):
+                out[y, k:] = image[y, :image.shape[1] - k]
+            out[out > 100] += 1
+            return out
+        """, (np.arange(48, dtype=np.uint8).reshape(4, 12) * 5,)),
+    "comprehensions, lambdas, nested defs and unpacking": ("""
+        def f(points, scale=2.0):
+            def shifted(p, by=1.0):
+                return p + by
+            rows = [shifted(p) * scale for p in points if p.sum() > -100]
+            first, *rest = rows
+            key = lambda r: float(r[0])
+            best = max(rows, key=key)
+            return np.stack([first, best] + rest), (total := len(rows)), f"{total}"
+        """, (np.arange(6.0).reshape(3, 2),)),
+    "try, with, while and a walrus": ("""
+        def f(values):
+            total, i = 0.0, 0
+            while (n := len(values)) > i:
+                try:
+                    total += 1.0 / values[i]
+                except ZeroDivisionError:
+                    total += 0
+                i += 1
+            return total, n, values.T.shape, -values[::-1]
+        """, (np.array([1.0, 0.5, 4.0]),)),
+}
+
+
+@pytest.mark.parametrize("name", sorted(SOURCES))
+def test_the_recording_rewrite_gives_the_same_answers(name):
+    source, args = SOURCES[name]
+    code, recording, original = recorded(source, "f", *args)
+    expected = original["f"](*args)
+    rewritten = dict(original)
+    exec(compile(traced.recording_source(code, "f"), "student.py", "exec"), rewritten)
+    got = rewritten["f"](*args)
+    for a, b in zip(expected if isinstance(expected, tuple) else (expected,), got if isinstance(got, tuple) else (got,)):
+        np.testing.assert_array_equal(np.asarray(a), np.asarray(b))
+    assert recording.values and not recording.raised
+
+
+def test_a_recording_that_is_not_one_is_refused():
+    found = traced.recording_of({"record": {"1:0:1:5": ["array", [2, -1], "float64"], "x": ["number", 1]}})
+    assert found.values == {"1:0:1:5": ("other",)}   # (a negative size is no shape; "x" is no place)
+    assert traced.recording_of({"record": "nothing"}) is None
+    assert traced.recording_of(["record"]) is None
+
+
+# ------------------------------------------------------------------ exceptions
+def test_operands_that_do_not_broadcast_are_named_with_their_shapes():
+    sentence = raised_sentence("""
+        def blend(a, b, mask):
+            weight = mask.astype(float)
+            return weight * a + (1 - weight) * b
+        """, "blend", np.ones((4, 5, 3)), np.zeros((4, 5, 3)), np.ones((4, 5)))
+    assert sentence.startswith("in `weight * a` (line 4), `weight` has shape (4, 5) and `a` (4, 5, 3)")
+    assert "`weight[..., None]` gives it one" in sentence
+
+
+def test_a_negative_slice_bound_is_named_with_its_value():
+    sentence = raised_sentence("""
+        def shift_rows(image, s):
+            out = np.zeros_like(image)
+            for y in range(image.shape[0]):
+                shift = int(round(s * y))
+                out[y, shift:] = image[y, :image.shape[1] - shift]
+            return out
+        """, "shift_rows", np.ones((6, 10)), -0.5)
+    assert sentence.startswith("`shift` is -1 here (line 6), and a negative slice bound counts from the end")
+    assert "`out[y, shift:]` is then (1,)" in sentence
+
+
+def test_a_product_of_other_inner_sizes_is_named():
+    sentence = raised_sentence("""
+        def apply(H, pts):
+            return (H @ pts)[:2]
+        """, "apply", np.eye(3), np.ones((5, 3)))
+    assert "in `H @ pts` (line 3), `H` has shape (3, 3) and `pts` (5, 3)" in sentence
+    assert "(3) to equal the next-to-last of the second (5)" in sentence
+
+
+def test_an_index_past_its_axis_is_named_with_its_value():
+    sentence = raised_sentence("""
+        def last_pairs(values):
+            out = []
+            for i in range(len(values)):
+                out.append(values[i + 1] - values[i])
+            return out
+        """, "last_pairs", np.arange(4.0))
+    assert sentence.startswith("`i + 1` is 4 in `values[i + 1]` (line 5): axis 0 of `values` (shape (4,)) has 4 entries")
+
+
+def test_arrays_of_different_types_given_to_opencv_are_named_with_where_they_came_from():
+    sentence = raised_sentence("""
+        def describe(image, kind="sift"):
+            detector = cv2.ORB_create() if kind == "orb" else cv2.SIFT_create()
+            return detector.detectAndCompute(image, None)[1]
+
+        def match(img1, img2, kind="orb"):
+            d1, d2 = describe(img1, kind), describe(img2)
+            return cv2.BFMatcher(cv2.NORM_HAMMING).knnMatch(d1, d2, k=2)
+        """, "match", *_textured_pair())
+    assert "was given `d1` uint8 of shape" in sentence and "`d2` float32 of shape" in sentence
+    assert "`d1` comes from `describe(img1, kind)` (line 7)" in sentence
+    assert "`d2` comes from `describe(img2)` (line 7)" in sentence
+
+
+def _textured_pair():
+    rng = np.random.default_rng(0)
+    image = cv2.GaussianBlur(rng.integers(0, 255, (200, 200), dtype=np.uint8), (5, 5), 0)
+    return image, np.roll(image, 7, axis=1)
+
+
+def test_an_opencv_error_of_another_kind_is_not_explained_by_types():
+    """A warp given a uint8 image and a float64 matrix is right: an OpenCV error that is not a type
+    assertion says nothing of the arrays' kinds."""
+    code, recording, _ = recorded("""
+        def warp(image, M):
+            return cv2.warpAffine(image, M, (0, 0))
+        """, "warp", np.ones((4, 4), np.uint8), np.eye(2, 3))
+    message = "OpenCV(4.10) error: (-215:Assertion failed) dsize.area() > 0 in function 'warpAffine'"
+    assert traced.explain_raised(code, recording, code.functions["warp"], 3, message) is None
+
+
+# ------------------------------------------------------------------ answers of the wrong shape
+def test_an_outer_broadcast_is_named_where_it_makes_the_answer():
+    sentence = shape_sentence("""
+        def spread(points, n=4):
+            scale = 1.0 + points[:, 2:3]
+            offsets = np.ones((len(points), n, 2))
+            rays = points[:, None, :2] + offsets * scale[:, None, None]
+            return rays
+        """, "spread", (3, 4, 2), np.ones((3, 3)))
+    assert sentence.startswith("`offsets * scale[:, None, None]` (line 5) makes the shape (3, 3, 4, 2) from "
+                               "`offsets` of shape (3, 4, 2) and `scale[:, None, None]` of shape (3, 1, 1, 1) "
+                               "(`scale` is (3, 1))")
+    assert "every entry of one with every entry of the other" in sentence
+
+
+def test_an_axis_lost_in_a_nested_helper_is_followed_there():
+    sentence = shape_sentence("""
+        def difference(xl, xr):
+            def xs(values):
+                values = np.asarray(values, dtype=float)
+                return np.atleast_2d(values)[:, 0]
+            return xs(xl) - xs(xr)
+        """, "difference", (5,), np.arange(5.0), np.zeros(5))
+    assert sentence == ("`np.atleast_2d(values)[:, 0]` (line 5) makes the shape (1,) from "
+                        "`np.atleast_2d(values)` of shape (1, 5) (`values` is (5,))")
+
+
+def test_a_branch_that_flattens_is_named_with_its_condition():
+    sentence = shape_sentence("""
+        def project(pts, f=1.0):
+            pts = np.asarray(pts, dtype=float)
+            single = pts.size == 3
+            out = f * pts.reshape(-1, 3)[:, :2] / pts.reshape(-1, 3)[:, 2:]
+            if single:
+                return out[0]
+            return out
+        """, "project", (1, 2), np.array([[1.0, 2.0, 4.0]]))
+    assert sentence == ("`out[0]` (line 7) makes the shape (2,) from `out` of shape (1, 2) (`out` has the shape "
+                        "asked, (1, 2)), on the branch `if single:` (line 6), where `single` is `pts.size == 3` (line 4)")
+
+
+def test_a_shape_the_recording_does_not_show_made_is_not_named():
+    """An answer built from a list (no array on its way) names nothing."""
+    assert shape_sentence("""
+        def f(values):
+            rows = []
+            for v in values:
+                rows.append([v, v])
+            return np.array(rows)
+        """, "f", (3,), [1.0, 2.0, 3.0]) is None
+
+
+# ------------------------------------------------------------------ through the sandbox
+def test_grading_names_a_wrong_shape_where_the_student_made_it(tmp_path):
+    folder = mutant(tmp_path, "lab12_stereo", '''
+def disparity_from_matches(xl, xr):
+    def x_coordinates(values):
+        values = np.asarray(values, dtype=np.float64)
+        return np.atleast_2d(values)[:, 0]
+    return x_coordinates(xl) - x_coordinates(xr)
+''')
+    result = grade(str(folder), ["lab12.ex2"])
+    messages = [c.message for c in check_results(result, "lab12.ex2") if c.score < c.max_score]
+    assert any("`np.atleast_2d(values)[:, 0]`" in m and "(`values` is (" in m for m in messages), messages
+
+
+def test_grading_names_operands_that_do_not_broadcast(tmp_path):
+    folder = mutant(tmp_path, "lab07_transformations", '''
+def shear(image, s):
+    h, w = image.shape[:2]
+    out = np.zeros_like(image)
+    for y in range(h):
+        shift = int(round(s * y))
+        out[y, shift:] = image[y, :w - shift]
+    return out
+''')
+    result = grade(str(folder), ["lab07.ex4"])
+    messages = [c.message for c in check_results(result, "lab07.ex4") if c.score < c.max_score]
+    assert any("a negative slice bound counts from the end of the axis" in m for m in messages), messages
