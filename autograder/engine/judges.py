@@ -562,3 +562,24 @@ def judge_parameter_changes_result(t: Trial, what: str, call, parameter: str, va
         _ignored(t, what, parameter, values, result)
     first_value, second_value = values
     return passed(f"{parameter}={first_value!r} and {parameter}={second_value!r} give different {result}s")
+
+
+BLANK_CANVAS = "the drawing is made on a new blank image, not on a copy of the input"
+
+
+def blank_canvas(got, image, away) -> str:
+    """What a drawing says of the input where nothing is drawn (``away``: those pixels): when it kept
+    none of the input's own there -- one value everywhere, where the input varies -- the sentence naming
+    a drawing made on a new blank image (``np.zeros_like(image)``); else ``""``. Measured only."""
+    if not isinstance(got, np.ndarray) or got.shape[:2] != image.shape[:2] or not away.any():
+        return ""
+    mine = got[away].reshape(-1, got.shape[2] if got.ndim == 3 else 1).astype(np.int16)
+    theirs = image[away].reshape(-1, image.shape[2] if image.ndim == 3 else 1).astype(np.int16)
+    if theirs.shape[1] != mine.shape[1]:
+        theirs = np.repeat(theirs.mean(axis=1, keepdims=True), mine.shape[1], axis=1)
+    kept = float(np.mean(np.all(np.abs(mine - theirs) <= 25, axis=1)))
+    if kept > 0.2 or np.ptp(mine, axis=0).max() > 2 or np.ptp(theirs, axis=0).max() < 50:
+        return ""
+    value = tuple(int(v) for v in mine[0]) if mine.shape[1] > 1 else int(mine[0, 0])
+    return (f"away from what is drawn every pixel is {value}, where the input image has its own "
+            f"({kept:.0%} of them kept): it looks like {BLANK_CANVAS}")

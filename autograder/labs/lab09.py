@@ -25,7 +25,7 @@ from ..engine.claims import THIRD_COORDINATE, checklist, divides_by, from_code, 
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
 from ..engine.hints import Hint, Predicate, _resolved, _scope, calls, code_of, expr, matmul_of, mentions, nan_behind
 from ..engine.hints import _path as _hints_path
-from ..engine.judges import Probe, call_probe, confirm, fingerprint, format_matrix
+from ..engine.judges import BLANK_CANVAS, Probe, blank_canvas, call_probe, confirm, fingerprint, format_matrix
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
 from ..sandbox.beginner import integer_entries
@@ -1047,6 +1047,9 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     coverage = painted[core].mean() if core.any() else 1.0
     if coverage >= 0.97 and untouched >= 0.999:
         return passed(f"every circle drawn, {coverage:.0%} of the disc pixels in the colour {tuple(color)}")
+    blank = blank_canvas(got, image, far)
+    if blank:
+        t.fail(f"{what}: {blank} (draw on image.copy()).", mistake=BLANK_CANVAS)
     pts = np.asarray(pts, float).reshape(-1, 2)
     swapped_core, _ = truth.circle_regions(image.shape, pts[:, ::-1], radius)
     if swapped_core.any() and painted[swapped_core].mean() > 0.9:

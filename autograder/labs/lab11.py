@@ -30,8 +30,8 @@ from ..engine.claims import (DIVISION, THIRD_COORDINATE, calls_any, checklist, d
                              measured, reshapes, returns_from, subtracts_a_mean, takes_last_row_of_vt,
                              treats_each_of, wherever_written, zeroes_an_entry)
 from ..engine.hints import RATIO_TEST, Hint, Predicate, _path, calls, code_of, expr, keyword, mentions
-from ..engine.judges import (Probe, call_probe, confirm, format_matrix, name_mistake, over_variants, where_matrices_differ,
-                      where_points_differ)
+from ..engine.judges import (BLANK_CANVAS, Probe, blank_canvas, call_probe, confirm, format_matrix, name_mistake,
+                              over_variants, where_matrices_differ, where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
 from .code_signs import CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, constant_factor, factor_words, name_batched_vt_row
@@ -470,6 +470,15 @@ def draw_judgement(got, base, lines):
     return np.array(coverage), stray, changed
 
 
+def _far_from_lines(lines, height, width, margin: float):
+    """The pixels farther than ``margin`` px from every one of ``lines`` (a, b, c)."""
+    ys, xs = np.mgrid[0:height, 0:width]
+    far = np.ones((height, width), bool)
+    for a, b, c in lines:   # (one line at a time: a mask, not an array per line)
+        far &= np.abs(a * xs + b * ys + c) > margin * max(np.hypot(a, b), 1e-12)
+    return far
+
+
 def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     """Judge the drawn lines. A grey input's drawing is judged for its lines whether it came back
     grey (the API's rule: the input's channel count) or BGR; the channel count is the grey-input
@@ -484,6 +493,10 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     if not changed.any():
         t.fail(f"{what} returned the image unchanged: no line was drawn (or in a colour too close "
                "to the image's own)")
+    away = _far_from_lines(np.asarray(lines, float).reshape(-1, 3), height, width, 4.0)
+    blank = blank_canvas(got, image if image.ndim == 3 else cv2.cvtColor(image, cv2.COLOR_GRAY2BGR), away)
+    if blank:
+        t.fail(f"{what}: {blank} (draw on image.copy()).", mistake=BLANK_CANVAS)
     swapped_lines = np.asarray(lines, float)[:, [1, 0, 2]]
     swapped_coverage, swapped_stray, _ = draw_judgement(got, image, swapped_lines)
     if swapped_coverage.min() >= min_coverage and swapped_stray <= 0.05:
