@@ -16,7 +16,7 @@ from autograder.engine.mutants import repair
 from autograder.engine.mutants.operators import Mutant
 from autograder.engine.runner import grade
 from autograder.sandbox.supervisor import Limits, Sandbox
-from conftest import check_results, edited_reference, submission_from_source
+from conftest import check_results, edited_reference, mutant, submission_from_source
 
 SMALL = Limits(call_timeout=5.0)
 
@@ -1785,3 +1785,22 @@ def test_a_repair_a_later_check_of_the_function_refutes_is_taken_back_with_its_s
     assert named.mistake == "the sign is wrong"
     repair.take_back_refuted([public], [(change, False)])
     assert public.message == "dp(left, right): 60% of the square.\nmore" and public.mistake == ""
+
+
+def test_a_change_that_raises_on_a_nan_point_both_codes_answer_is_no_repair(tmp_path):
+    """Removing the `continue` that skips points off the image (x <= 0 where x < 0 belongs) mends the
+    border points and breaks every NaN point, which the student's code and the reference both skip:
+    the change is not told (a point given as NaN, the API's value for one that has none)."""
+    folder = mutant(tmp_path, "lab09_camera", '''
+def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+    out = image.copy()
+    fill = color if out.ndim == 3 else color[0]
+    for x, y in np.asarray(pts, float).reshape(-1, 2):
+        if not (x > 0 and y > 0):
+            continue
+        cv2.circle(out, (int(round(x)), int(round(y))), radius, fill, -1)
+    return out
+''')
+    result = grade(str(folder), ["lab09.ex5"])
+    failed = [c for c in check_results(result, "lab09.ex5") if c.score < c.max_score]
+    assert failed and not any("removing `continue`" in c.message for c in failed), [c.message for c in failed]

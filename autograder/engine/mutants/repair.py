@@ -977,6 +977,25 @@ def _beyond(call, defaults=()) -> list:
     return made + [(function, tuple(args), {**kwargs, k: other(v)}) for k, v in kwargs.items() if other(v) is not v]
 
 
+def _holed(call) -> list:
+    """The call with the last row of a float point array ((N, 2) or (N, 3), N >= 2) given as NaN, one
+    array at a time ([] when the call has none)."""
+    function, args, kwargs = call
+
+    def holed(value):
+        if isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.ndim == 2 \
+                and value.shape[1] in (2, 3) and value.shape[0] >= 2:
+            value = value.copy()
+            value[-1] = np.nan
+            return value
+        return None
+
+    made = [(function, args[:i] + (holed(a),) + args[i + 1:], dict(kwargs))
+            for i, a in enumerate(args) if holed(a) is not None]
+    made += [(function, tuple(args), {**kwargs, k: holed(v)}) for k, v in kwargs.items() if holed(v) is not None]
+    return made[:2]
+
+
 def _close(value, reference) -> bool:
     """Whether an answer is near the reference's as legitimate recipes are: images within 3 grey levels
     on average (their own interpolation may differ at edges), numbers within 1%."""
@@ -1299,6 +1318,7 @@ class _Variants:
         self.untaken: set | None = None   # of which those the student's own code does not answer
         self.keeping: set = set()    # variants (other modes, other channels) where answers must be kept or mended
         self.exchanged: set = set()  # the variants with the twin parameters exchanged (see _unmended_exchange)
+        self.holed: set = set()      # the variants with a point given as NaN (see _breaks_holed)
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
         self.projective = not any(naming.error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
@@ -1462,6 +1482,10 @@ class _Variants:
                       for call in _beyond(self.inputs[i], self.model.defaults.get(self.function, ()))]
             self.beyond = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(beyond)))
             variants += beyond
+            # (and a point given as NaN, the API's value for one that has none)
+            holed = _holed(self.inputs[failing[0]])
+            self.holed = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(holed)))
+            variants += holed
             # (and the other side of a threshold, for a changed condition only: a student's own
             # recipe may differ from the reference's legitimately there -- a resize's shrink)
             crossing = [call for i in failing[:2]
@@ -1493,10 +1517,11 @@ class _Variants:
             own = self._own(asked, every) if asked else []
             self.untaken = set(asked) if own is None else \
                 {i for i, answer in zip(asked, own) if naming.error_kind(answer) is not None}
-        if usable is not None and self._refuted_beyond(mutant, every, wanted):
+        if usable is not None and (self._refuted_beyond(mutant, every, wanted)
+                                   or self._breaks_holed(mutant, every, wanted)):
             return False
         if usable is not None:   # (those given otherwise refute a change only by a wrong answer: above)
-            usable = [i for i in usable if i not in self.keeping and i not in self.beyond
+            usable = [i for i in usable if i not in self.keeping and i not in self.beyond and i not in self.holed
                       and (mutant.operator in BRANCHING or i not in self.crossing)]
         if usable is not None and (not usable or self._right_on(mutant, usable, every, wanted)):
             # A condition changed sends inputs down another branch: the inputs derived from the failing
@@ -1540,6 +1565,17 @@ class _Variants:
         # negative factor -- where a wrong answer shows the change is right by the check's choice alone)
         return any(naming.error_kind(value) is None and not self.right(value, wanted[i], confirming=not exact)
                    and self.distance(value, wanted[i]) > 3 * spread for value, i in zip(values, indices))
+
+    def _breaks_holed(self, mutant, every, wanted) -> bool:
+        """Whether a change raises where a point is given as NaN (:func:`_holed`) while the reference and
+        the student's own code both answer there: it breaks what their code handles (removing the
+        `continue` that skips a point off the image skips no NaN point either). What either answers
+        there is not judged: the API only recommends what a NaN point gives."""
+        indices = sorted(i for i in self.holed if i in wanted and naming.error_kind(wanted[i]) is None)
+        own = self._own(indices, every) if indices else None
+        answering = [i for i, answer in zip(indices, own or ()) if naming.error_kind(answer) is None]
+        values = self.answers(mutant, answering, every) if answering else None
+        return values is not None and any(naming.error_kind(value) is not None for value in values)
 
     def _unmended_exchange(self, mutant, every, wanted) -> bool:
         """Whether, on an input with the twin parameters exchanged (`sx=0.8, sy=2.0` for `sx=2.0, sy=0.8`:
