@@ -262,3 +262,32 @@ def shear(image, s):
     result = grade(str(folder), ["lab07.ex4"])
     messages = [c.message for c in check_results(result, "lab07.ex4") if c.score < c.max_score]
     assert any("a negative slice bound counts from the end of the axis" in m for m in messages), messages
+
+
+def test_an_array_asked_for_one_truth_value_is_named():
+    sentence = raised_sentence("""
+        def keep_front(points):
+            z = points[:, 2]
+            if z > 0:
+                return points
+            return points[:0]
+        """, "keep_front", np.ones((4, 3)))
+    assert sentence.startswith("`z > 0` (line 4) is an array of shape (4,) where one truth value is asked")
+
+
+def test_an_array_indexed_on_more_axes_than_it_has_is_named():
+    sentence = raised_sentence("""
+        def xs(point):
+            p = np.asarray(point, float)
+            return p[:, 0]
+        """, "xs", np.array([1.0, 2.0, 3.0]))
+    assert sentence == "in `p[:, 0]` (line 4), `p` has shape (3,): 1 axis, indexed with 2"
+
+
+def test_a_reshape_of_another_size_is_named_with_the_shape_reshaped():
+    sentence = raised_sentence("""
+        def as_rows(H, pts):
+            moved = pts @ H.T
+            return np.reshape(moved, (len(pts), 2))
+        """, "as_rows", np.eye(3), np.ones((5, 3)))
+    assert sentence == "in `np.reshape(moved, (len(pts), 2))` (line 4), `moved` has shape (5, 3) (15 values)"

@@ -104,7 +104,7 @@ class _Recording(ast.NodeTransformer):
         loads = not hasattr(node, "ctx") or isinstance(node.ctx, ast.Load)
         return self._recorded(original, node) if loads else node
 
-    visit_BinOp = visit_UnaryOp = visit_Subscript = _value_node
+    visit_BinOp = visit_UnaryOp = visit_Subscript = visit_Compare = _value_node
 
 
 def _local_names(fn: ast.AST) -> frozenset[str]:
@@ -337,6 +337,9 @@ _SHAPES = re.compile(r"\(([\d,\s]*)\)")
 _BROADCAST = re.compile(r"operands could not be broadcast together with (?:remapped )?shapes")
 _INTO = re.compile(r"could not broadcast input array from shape \(([\d,\s]*)\) into shape \(([\d,\s]*)\)")
 _MATMUL = re.compile(r"matmul: Input operand \d has a mismatch|shapes \([\d,\s]*\) and \([\d,\s]*\) not aligned")
+_TOO_MANY_INDICES = re.compile(r"too many indices for array: array is (\d+)-dimensional")
+_AMBIGUOUS = re.compile(r"truth value of an array with more than one element is ambiguous")
+_RESHAPE = re.compile(r"cannot reshape array of size (\d+) into shape")
 _OPENCV_KINDS = re.compile(r"type\(\) *==|depth\(\) *==|types? (?:do not|don't) match|same type")
 _OPENCV_SIZES = re.compile(r"size\(\) *==|[Ss]izes? of input arguments do not match|same size")
 _OUT_OF_BOUNDS = re.compile(r"index (-?\d+) is out of bounds for axis (\d+) with size (\d+)")
@@ -366,6 +369,14 @@ def explain_raised(code, recording: Recording, fn, line: int, message: str, fram
     found = _OUT_OF_BOUNDS.search(message)
     if found:
         return _index_named(recording, expressions, *(int(g) for g in found.groups()), where)
+    found = _TOO_MANY_INDICES.search(message)
+    if found:
+        return _indexed_named(recording, expressions, int(found.group(1)), where)
+    if _AMBIGUOUS.search(message):
+        return _truth_named(recording, statement, expressions, where)
+    found = _RESHAPE.search(message)
+    if found:
+        return _reshape_named(recording, expressions, int(found.group(1)), where)
     if "OpenCV(" in message and _OPENCV_KINDS.search(message):
         return _opencv_named(code, recording, fn, statement, expressions, where, frames, by_type=True)
     if "OpenCV(" in message and _OPENCV_SIZES.search(message):
@@ -463,6 +474,45 @@ def _index_named(recording, expressions, index, axis, size, where) -> Form | Non
                 of = f" of {_quote(node.value)} (shape {_shape_text(shape)})" if shape else ""
                 return Form(f"{_quote(part)} is {index} in {_quote(node)} {where}: axis {axis}{of} "
                                      f"has {size} entries, numbered 0 to {size - 1}", MISTAKE)
+    return None
+
+
+def _indexed_named(recording, expressions, ndim: int, where) -> Form | None:
+    for node in expressions:
+        if isinstance(node, ast.Subscript):
+            shape = recording.shape(node.value)
+            parts = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+            indexed = sum(1 for p in parts if not (isinstance(p, ast.Constant) and p.value in (None, Ellipsis)))
+            if shape is not None and len(shape) == ndim and indexed > ndim:
+                return Form(f"in {_quote(node)} {where}, {_quote(node.value)} has shape {_shape_text(shape)}: "
+                            f"{ndim} ax{'is' if ndim == 1 else 'es'}, indexed with {indexed}", MISTAKE)
+    return None
+
+
+def _truth_named(recording, statement, expressions, where) -> Form | None:
+    """An array where one truth value is asked: an ``if``/``while`` test, ``and``/``or``/``not``."""
+    asked = [statement.test] if isinstance(statement, (ast.If, ast.While, ast.Assert)) else []
+    asked += [v for node in expressions if isinstance(node, ast.BoolOp) for v in node.values]
+    asked += [node.operand for node in expressions if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not)]
+    asked += [node.test for node in expressions if isinstance(node, ast.IfExp)]
+    for node in asked:
+        shape = recording.shape(node)
+        if shape is not None and int(np.prod(shape)) > 1:
+            return Form(f"{_quote(node)} {where} is an array of shape {_shape_text(shape)} where one truth value is "
+                        "asked (`if`, `and`, `or`, `not` take one: an element-wise test needs `&`, `|`, `~`, "
+                        "`np.where` or a mask; a question about all of them, `.all()` or `.any()`)", MISTAKE)
+    return None
+
+
+def _reshape_named(recording, expressions, size: int, where) -> Form | None:
+    for node in expressions:
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "reshape":
+            numpy_function = isinstance(node.func.value, ast.Name) and node.func.value.id in ("np", "numpy")
+            source = (node.args[0] if node.args else None) if numpy_function else node.func.value
+            shape = recording.shape(source) if source is not None else None
+            if shape is not None and int(np.prod(shape)) == size:
+                return Form(f"in {_quote(node)} {where}, {_quote(source)} has shape {_shape_text(shape)} "
+                            f"({size} values)", MISTAKE)
     return None
 
 
