@@ -831,8 +831,6 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_repair(verdict, check, trial)
     if student_failure == "exception" and not verdict.mistake:
         verdict = _named_by_exception(verdict, trial, tb)
-    if student_failure == "exception" and not verdict.mistake and not inherited:
-        verdict = _named_by_trace(verdict, check, trial, tb)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure == "" and not inherited:
         verdict = _named_by_misread_output(verdict, trial)
     if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
@@ -842,8 +840,11 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
     if status in (FAILED, PARTIAL) and student_failure == "" and not inherited:   # (an exception's: above)
         verdict = _named_by_repair(verdict, check, trial)
-    if status in (FAILED, PARTIAL) and student_failure == "" and not inherited:
-        verdict = _named_by_trace(verdict, check, trial)   # an answer of the wrong shape: where it was made
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
+        # what the student's expressions held: the operands an exception refused, where an answer of the
+        # wrong shape was made (after the error model: a place is no cause, and a name set here would
+        # keep the model from the function's later checks)
+        verdict = _named_by_trace(verdict, check, trial, tb if student_failure == "exception" else "")
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") \
             and not inherited and "looks like" not in str(verdict.message).lower():
         verdict = _named_by_unused_parameter(verdict, trial)   # the last resort: true, but not confirmed

@@ -737,6 +737,8 @@ def named(verdict, trial, traceback_text: str = ""):
     code = code_of(trial)
     form = None
     if traceback_text and getattr(trial, "raised", None):
+        if verdict.mistake or _named_by_a_change(verdict):
+            return verdict
         function, args, kwargs, message = trial.raised
         frames = frames_of(traceback_text)
         frame = frames[-1] if frames else None
