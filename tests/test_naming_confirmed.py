@@ -386,6 +386,8 @@ DIRECT_EVIDENCE = {
                             "fixed point only where the code calls StereoBM/SGBM and never divides by 16 (read)",
     "block_matching_form": "disparities far above the search range, from code calling StereoBM/SGBM that "
                            "never divides by 16 (read)",
+    "blank_canvas": "away from what is drawn, every pixel of the drawing has one value where the input image varies, "
+                    "and few of them are the input's (measured)",
     "name_zero_smoothness": "the smoothness=0 map is the default's (measured), and the code tests "
                             "smoothness for truth, 'smoothness or X' / 'if not smoothness' (read)",
 }

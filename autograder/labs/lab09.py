@@ -1049,7 +1049,7 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
         return passed(f"every circle drawn, {coverage:.0%} of the disc pixels in the colour {tuple(color)}")
     blank = blank_canvas(got, image, far)
     if blank:
-        t.fail(f"{what}: {blank} (draw on image.copy()).", mistake=BLANK_CANVAS)
+        t.fail(f"{what}: {blank} ({measured('draw on image.copy()')}).", mistake=BLANK_CANVAS)
     pts = np.asarray(pts, float).reshape(-1, 2)
     swapped_core, _ = truth.circle_regions(image.shape, pts[:, ::-1], radius)
     if swapped_core.any() and painted[swapped_core].mean() > 0.9:

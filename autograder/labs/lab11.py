@@ -496,7 +496,7 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     away = _far_from_lines(np.asarray(lines, float).reshape(-1, 3), height, width, 4.0)
     blank = blank_canvas(got, image if image.ndim == 3 else cv2.cvtColor(image, cv2.COLOR_GRAY2BGR), away)
     if blank:
-        t.fail(f"{what}: {blank} (draw on image.copy()).", mistake=BLANK_CANVAS)
+        t.fail(f"{what}: {blank} ({measured('draw on image.copy()')}).", mistake=BLANK_CANVAS)
     swapped_lines = np.asarray(lines, float)[:, [1, 0, 2]]
     swapped_coverage, swapped_stray, _ = draw_judgement(got, image, swapped_lines)
     if swapped_coverage.min() >= min_coverage and swapped_stray <= 0.05:
