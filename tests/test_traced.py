@@ -291,3 +291,62 @@ def test_a_reshape_of_another_size_is_named_with_the_shape_reshaped():
             return np.reshape(moved, (len(pts), 2))
         """, "as_rows", np.eye(3), np.ones((5, 3)))
     assert sentence == "in `np.reshape(moved, (len(pts), 2))` (line 4), `moved` has shape (5, 3) (15 values)"
+
+
+# ------------------------------------------------------------------ a value departing from the reference's
+CAMERA = np.array([[500.0, 0, 320], [0, 500, 240], [0, 0, 1]]), cv2.Rodrigues(np.array([0.1, 0.2, 0.3]))[0], \
+    np.array([0.1, 0.2, 2.0])
+REFERENCE_CAMERA = """
+def camera(K, R, t):
+    P = K @ np.hstack([R, t.reshape(3, 1)])
+    return P / P[2, 3]
+"""
+
+
+def departures(student: str, reference: str = REFERENCE_CAMERA, args=CAMERA):
+    code, mine, _ = recorded(student, "camera", *args)
+    _, theirs, _ = recorded(reference, "camera", *args)
+    return list(traced.explain_values(code, mine, theirs, "camera"))
+
+
+def test_the_first_value_departing_by_a_transpose_is_found_and_undone():
+    [(form, fn, node, relation)] = departures("""
+        def camera(K, R, t):
+            Rt = np.column_stack([R.T, t])
+            return (K @ Rt) / (K @ Rt)[2, 3]
+        """)
+    assert relation == "the transpose of" and form.sentence.startswith("`R.T` (line 3) gives the transpose of a value")
+    assert traced.undo_text(node, relation) == "R"
+    assert "np.column_stack([R, t])" in traced.undone(fn, node, relation)
+
+
+def test_a_value_scaled_by_a_slip_factor_is_found_and_a_homogeneous_rescaling_is_not():
+    [(form, _, node, relation)] = departures("""
+        def camera(K, R, t):
+            half = K / 2
+            P = half @ np.hstack([R, t.reshape(3, 1)])
+            return P / P[2, 3]
+        """)
+    assert relation == "0.5 times" and traced.undo_text(node, relation) == "(K / 2) / 0.5"
+    assert departures("""
+        def camera(K, R, t):
+            P = (K * 3.7) @ np.hstack([R, t.reshape(3, 1)])
+            return P / P[2, 3]
+        """) == []   # (3.7 is no slip's factor: a homogeneous matrix is right at any scale)
+
+
+def test_a_departure_made_from_a_departed_value_is_not_the_first():
+    """`K @ Rt` departs too, but from `Rt`, which departed before: only `R.T` is told."""
+    found = departures("""
+        def camera(K, R, t):
+            Rt = np.column_stack([R.T, t])
+            P = K @ Rt
+            return P / P[2, 3]
+        """)
+    assert [ast_text(f[2]) for f in found] == ["R.T"]
+
+
+def ast_text(node) -> str:
+    import ast
+
+    return ast.unparse(node)

@@ -533,7 +533,8 @@ def _named_by_trace(verdict: Verdict, check: Check, trial: Trial, traceback_text
     from . import traced
 
     try:
-        return traced.named(verdict, trial, traceback_text)
+        verdict = traced.named(verdict, trial, traceback_text)
+        return verdict if traceback_text else traced.named_by_values(verdict, trial)
     except Exception as exc:  # noqa: BLE001 - naming is a bonus: the verdict stands without it
         _log_grader_error(check, exc)
         return verdict

@@ -37,9 +37,11 @@ from .forms import Form
 
 MISTAKE = "an expression of another shape than its use needs"
 RECORDER, RECORDED, DESCRIBE, STORE = "__ag_seen__", "__ag_recorded__", "__ag_describe__", "__ag_record__"
+SMALL = 128                           # an array of at most this many numbers is recorded with its values
 RECORDS_PER_CALL = 200_000            # evaluations recorded per call (a pixel loop stops recording, not running)
 ARRAY_ATTRIBUTES = frozenset({"T", "shape", "size", "ndim", "real", "imag"})
 TRACE_SECONDS = 3.0
+CONFIRMATIONS = 3                     # departures of the student's values confirmed at most, per failed check
 
 
 # ------------------------------------------------------------------ the rewrite (grader side: text only)
@@ -122,6 +124,8 @@ __ag_count__ = [0]
 def {DESCRIBE}(value, depth=0):
     kind = type(value)
     if kind is __ag_np__.ndarray:
+        if value.size <= {SMALL} and value.dtype.kind in "biuf":   # (a small one's values too)
+            return ["array", [int(n) for n in value.shape], str(value.dtype), value.astype(float).ravel().tolist()]
         return ["array", [int(n) for n in value.shape], str(value.dtype)]
     if kind in (bool, int, float) or isinstance(value, (__ag_np__.integer, __ag_np__.floating, __ag_np__.bool_)):
         return ["number", float(value)]
@@ -187,6 +191,13 @@ class Recording:
         found = self.values.get(node_key(node))
         return found[2] if found and found[0] == "array" else ""
 
+    def value(self, node) -> np.ndarray | None:
+        """The values of a small array (:data:`SMALL`) or of a number the node gave, as floats."""
+        found = self.values.get(node_key(node))
+        if found and found[0] == "array" and len(found) == 4:
+            return found[3]
+        return np.array(found[1]) if found and found[0] == "number" else None
+
     def number(self, node) -> float | None:
         found = self.values.get(node_key(node))
         return found[1] if found and found[0] == "number" else None
@@ -197,8 +208,12 @@ def _description(value):
     if not isinstance(value, (list, tuple)) or not value or not isinstance(value[0], str):
         return None
     kind = value[0]
-    if kind == "array" and len(value) == 3 and isinstance(value[1], (list, tuple)) and len(value[1]) <= 32 \
+    if kind == "array" and len(value) in (3, 4) and isinstance(value[1], (list, tuple)) and len(value[1]) <= 32 \
             and all(isinstance(n, int) and 0 <= n < 2**62 for n in value[1]) and isinstance(value[2], str):
+        numbers = value[3] if len(value) == 4 else None
+        if isinstance(numbers, (list, tuple)) and len(numbers) == int(np.prod(value[1])) <= SMALL \
+                and all(isinstance(v, (int, float)) for v in numbers):
+            return ("array", tuple(value[1]), value[2][:20], np.array(numbers, float).reshape(value[1]))
         return ("array", tuple(value[1]), value[2][:20])
     if kind == "number" and len(value) == 2 and isinstance(value[1], (int, float)):
         return ("number", float(value[1]))
@@ -779,3 +794,249 @@ def _call_answering(trial, function: str, shape: tuple):
         if name == function and isinstance(answer, np.ndarray) and answer.shape == tuple(shape):
             return name, args, kwargs
     return None
+
+
+# ------------------------------------------------------------------ a value that departs from the reference's
+def reference_recording(trial, function: str, args, kwargs) -> Recording | None:
+    """The recording of the reference's ``function`` on the same input, run in the error model's helper
+    process (trusted code, bounded in time); None without a reference or in time."""
+    from .hints import read_code
+    from .mutants.helper import HelperFailed
+    from .mutants.naming import GRADING_SECONDS, SPENT, helper, model_for, release_helper
+
+    model = model_for(trial.lab)
+    spent = trial.sandbox.shared.setdefault(SPENT, [0.0])
+    seconds = min(TRACE_SECONDS, GRADING_SECONDS - spent[0])
+    if model is None or seconds <= 0.2:
+        return None
+    source = recording_source(read_code(model.source), function)
+    if source is None:
+        return None
+    import time
+
+    started = time.monotonic()
+    try:
+        runner = helper()
+        runner.prepare(model.source + "\n" + source, model.module, [(RECORDED, tuple(args), dict(kwargs))], seconds)
+        [value] = runner.run((), [0], seconds)
+    except HelperFailed:
+        return None
+    finally:
+        spent[0] += time.monotonic() - started
+        release_helper()
+    return recording_of(value)
+
+
+RELATIONS = ("the transpose of", "the inverse of", "the negative of", "the reciprocal of", "in reverse order",
+             "times")
+
+
+def explain_values(code, mine: Recording, reference: Recording, function: str):
+    """The student's values (small arrays) that depart from every value the reference's computation has
+    on the same input while what they are computed from agrees, and are one of those values transposed,
+    inverted, negated, reversed or scaled: ``(form, def, node, relation)`` for each, in the order the code
+    is written (:func:`undone` confirms one). A departure not confirmed is taken as the student's own
+    legitimate step: what is computed from it agrees too (``R.T`` kept for ``-R.T @ t``)."""
+    theirs = [found[3] for found in reference.values.values() if found[0] == "array" and len(found) == 4
+              and found[3].size >= 2 and np.isfinite(found[3]).all()]
+    fn = code.functions.get(function)
+    if not theirs or fn is None:
+        return
+    for fn, node, relation in _departures(code, fn, mine, theirs, depth=0):
+        made_from = ", ".join(_quote(c) for c in _inputs(node) if mine.value(c) is not None)
+        gives = "gives, in reverse order, a value" if relation == "in reverse order" else f"gives {relation} a value"
+        yield (Form(f"{_quote(node)} (line {node.lineno}) {gives} the reference's computation has at that point, "
+                    f"where what it is computed from ({made_from[:160]}) agrees with the reference's", MISTAKE_OF_VALUE),
+               fn, node, relation)
+        theirs.append(mine.value(node))   # (not confirmed, if asked for the next one: the student's own step)
+
+
+def _agrees(value, theirs) -> bool:
+    return any(value.shape == other.shape and _close(value, other) for other in theirs)
+
+
+def _close(value, other) -> bool:
+    if value.shape != other.shape:
+        return False
+    scale = max(1.0, float(np.abs(other).max(initial=0.0)))
+    return bool(np.allclose(value, other, rtol=1e-5, atol=1e-8 * scale))
+
+
+def _inputs(node) -> list:
+    """What an expression is computed from: its operands, a call's arguments (a list's items too)."""
+    found = []
+    for child in _children(node):
+        found += list(child.elts) if isinstance(child, (ast.List, ast.Tuple)) else [child]
+    return found
+
+
+def _departures(code, fn, mine, theirs, depth: int):
+    """``(def, node, relation)`` of each of the student's values departing from the reference's."""
+    kinds = (ast.BinOp, ast.Call, ast.Subscript, ast.UnaryOp, ast.Attribute)
+    nodes = sorted((n for n in _own_nodes(fn) if isinstance(n, kinds) and mine.value(n) is not None),
+                   key=lambda n: (n.lineno, n.col_offset))
+    for node in nodes:
+        value = mine.value(node)
+        if value.size < 2 or not np.isfinite(value).all() or _agrees(value, theirs):
+            continue
+        inputs = [mine.value(c) for c in _inputs(node)]
+        inputs = [v for v in inputs if v is not None and v.size >= 2]
+        if not inputs or not all(_agrees(v, theirs) for v in inputs):
+            continue   # (made from a value that departed before, or from nothing to compare)
+        helper = _helper(code, fn, node)
+        if helper is not None and helper is not fn and depth < 3:
+            yield from _departures(code, helper, mine, theirs, depth + 1)
+        relation = _relation(value, theirs)
+        if relation is not None:
+            yield fn, node, relation
+
+
+MISTAKE_OF_VALUE = "a value transposed, inverted, negated, reversed or scaled"
+
+
+def _relation(value, theirs) -> str | None:
+    found = []
+    for other in theirs:
+        if _close(value, other):
+            return None
+        if value.ndim == 2 and value.shape == other.T.shape and not _close(other, other.T) and _close(value, other.T):
+            found.append("the transpose of")
+        elif value.ndim == 2 and value.shape == other.shape and value.shape[0] == value.shape[1]:
+            inverse = _inverse(other)
+            if inverse is not None and not _close(inverse, other) and _close(value, inverse):
+                found.append("the inverse of")
+        if value.shape == other.shape and np.abs(other).max() > 0 and _close(value, -other):
+            found.append("the negative of")
+        if value.shape == other.shape and np.all(other != 0) and not _close(np.abs(other), np.ones_like(other)) \
+                and _close(value, 1.0 / other):
+            found.append("the reciprocal of")
+        if value.shape == other.shape and value.shape[0] > 1 and not _close(other, other[::-1]) \
+                and _close(value, other[::-1]):
+            found.append("in reverse order")
+        if value.shape == other.shape and np.count_nonzero(other) >= 2:
+            ratio = _constant_ratio(value, other)
+            if ratio is not None:
+                found.append(f"{ratio:.6g} times")
+    kinds = {kind.split()[0] if kind[0].isdigit() else kind for kind in found}
+    if len(kinds) != 1:
+        return None
+    relation = found[0]
+    return "in reverse order" if relation == "in reverse order" else relation
+
+
+def _inverse(matrix):
+    try:
+        if abs(np.linalg.det(matrix)) < 1e-12 * max(1.0, float(np.abs(matrix).max())) ** matrix.shape[0]:
+            return None
+        return np.linalg.inv(matrix)
+    except np.linalg.LinAlgError:
+        return None
+
+
+def _constant_ratio(value, other) -> float | None:
+    """k when ``value`` is k times ``other`` (k not 1 nor -1), else None."""
+    nonzero = other != 0
+    if np.any(value[~nonzero] != 0):
+        return None
+    ratios = value[nonzero] / other[nonzero]
+    k = float(np.median(ratios))
+    if not np.isfinite(k) or not np.allclose(ratios, k, rtol=1e-6):
+        return None
+    # (the slips' factors only: a value of a homogeneous quantity is right at any scale)
+    return k if any(abs(k - f) <= 1e-6 * abs(f) for f in FACTORS) else None
+
+
+FACTORS = (2.0, 0.5, np.pi / 180, 180 / np.pi, 255.0, 1 / 255, np.sqrt(2), 1 / np.sqrt(2), 0.25, 4.0)
+
+
+_UNDO = {"the transpose of": "({}).T", "the inverse of": "np.linalg.inv({})", "the negative of": "-({})",
+         "the reciprocal of": "1.0 / ({})", "in reverse order": "({})[::-1]"}
+
+
+def undo_text(node, relation: str) -> str:
+    """``node``'s code with its value turned back by ``relation``: ``R`` for ``R.T`` transposed back,
+    ``(expr).T`` otherwise."""
+    if relation == "the transpose of" and isinstance(node, ast.Attribute) and node.attr == "T":
+        return ast.unparse(node.value)
+    if relation == "the negative of" and isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+        return ast.unparse(node.operand)
+    if relation == "the inverse of" and isinstance(node, ast.Call) and _called_name(node) == "inv" and len(node.args) == 1:
+        return ast.unparse(node.args[0])
+    text = ast.unparse(node)
+    if relation in _UNDO:
+        return ast.unparse(ast.parse(_UNDO[relation].format(text), mode="eval"))
+    return f"({text}) / {float(relation.split()[0])!r}"
+
+
+def undone(fn, node, relation: str) -> str | None:
+    """The source of ``fn`` with ``node``'s value turned back by ``relation`` (``(expr).T`` for a
+    transpose, ``(expr) / 2.0`` for twice), or None."""
+    import copy
+
+    wrapped = undo_text(node, relation)
+    key = node_key(node)
+
+    class Swap(ast.NodeTransformer):
+        def generic_visit(self, child):
+            if isinstance(child, ast.expr) and hasattr(child, "lineno") and node_key(child) == key:
+                return ast.parse(wrapped, mode="eval").body
+            return super().generic_visit(child)
+
+    changed = Swap().visit(copy.deepcopy(fn))
+    return ast.unparse(ast.fix_missing_locations(changed))
+
+
+def named_by_values(verdict, trial):
+    """A failed verdict that names nothing, named by the first of the student's values to depart from the
+    reference's on the failing call (:func:`explain_values`), confirmed by turning that value back in
+    their code: the function then gives the reference's answer on that input."""
+    from dataclasses import replace
+
+    from .hints import code_of
+    from .mutants import naming, repair
+    from .mutants.helper import HelperFailed
+    from .mutants.naming import helper, model_for, release_helper
+
+    if verdict.mistake or _named_by_a_change(verdict) or not getattr(trial, "calls", None):
+        return verdict
+    function, args, kwargs, _ = trial.calls[-1]
+    code = code_of(trial)
+    mine = record(trial, function, args, kwargs)
+    theirs = reference_recording(trial, function, args, kwargs) if mine is not None and not mine.raised else None
+    model = model_for(trial.lab)
+    if theirs is None or model is None:
+        return verdict
+    expected = None
+    for tried, (form, fn, node, relation) in enumerate(explain_values(code, mine, theirs, function)):
+        if tried >= CONFIRMATIONS:
+            return verdict
+        top = next((f for f in code.functions.values() if f.lineno <= node.lineno <= (f.end_lineno or f.lineno)), None)
+        source = undone(top, node, relation) if top is not None else None   # (a nested def: the def holding it)
+        if source is None:
+            continue
+        if expected is None:
+            try:
+                runner = helper()
+                runner.prepare(model.source, model.module, [(function, tuple(args), dict(kwargs))], TRACE_SECONDS)
+                [expected] = runner.run((), [0], TRACE_SECONDS)
+            except HelperFailed:
+                return verdict
+            finally:
+                release_helper()
+            if repair._close(trial.calls[-1][3], expected):
+                return verdict   # (this call's answer is right: another call failed the check)
+        forbid = () if getattr(trial, "forbidden_allowed", False) else tuple(trial.forbidden(function))
+        outcome = trial.sandbox.companion().call_variant(trial.lab.module, source, function,
+                                                         [(tuple(args), dict(kwargs))], timeout=TRACE_SECONDS,
+                                                         forbid=forbid)
+        answers = outcome.value if outcome.ok and isinstance(outcome.value, list) and len(outcome.value) == 1 else None
+        if answers is not None and naming.error_kind(answers[0]) is None and repair._close(answers[0], expected):
+            break
+    else:
+        return verdict
+    first, newline, rest = str(verdict.message).partition("\n")
+    lead = first.rstrip()
+    lead += "" if not lead or lead[-1] in ".:;!?" else "."
+    undo = undo_text(node, relation)
+    said = f"{LEAD} {form.sentence}; with `{undo}` there, `{function}` gives the expected answer on this input"
+    return replace(verdict, message=f"{lead} {said}.{newline}{rest}", mistake=form.mistake)
