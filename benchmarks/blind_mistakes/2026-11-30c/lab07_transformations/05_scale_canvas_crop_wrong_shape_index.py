@@ -64,13 +64,15 @@ def scaling_matrix(sx, sy):
 def scale(image, sx=1.5, sy=1.5):
     """Scale about the top-left corner, keeping the image size.
 
-    Resize by (sx, sy), then copy the top-left part that fits into a black
+    Warp by diag(sx, sy) onto a canvas of the scaled size, then copy the top-left part that fits into a black
     canvas of the original size (cropped when larger, padded when smaller).
     """
     h, w = image.shape[:2]
     new_w = int(round(w * sx))
     new_h = int(round(h * sy))
-    scaled = cv2.resize(image, (new_w, new_h), interpolation=cv2.INTER_LINEAR)
+    M = np.float32([[sx, 0, 0], [0, sy, 0]])
+    scaled = cv2.warpAffine(image, M, (new_w, new_h), flags=cv2.INTER_LINEAR,
+                            borderMode=cv2.BORDER_CONSTANT, borderValue=0)
     out = np.zeros_like(image)
     keep_h = min(h, scaled.shape[1])
     keep_w = min(w, scaled.shape[1])
