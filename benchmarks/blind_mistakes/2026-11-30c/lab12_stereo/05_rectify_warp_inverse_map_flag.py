@@ -182,7 +182,7 @@ def rectify(img_l, img_r, K1, K2, R, T):
     K_new = np.array([[f, 0.0, cx], [0.0, f, cy], [0.0, 0.0, 1.0]])
     H1 = K_new @ rot1
     H2 = K_new @ rot2
-    rect_l = cv2.warpPerspective(np.asarray(img_l), H1, (width, height), flags=cv2.INTER_LINEAR)
+    rect_l = cv2.warpPerspective(np.asarray(img_l), H1, (width, height), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
     rect_r = cv2.warpPerspective(np.asarray(img_r), H2, (width, height), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
     return rect_l, rect_r, H1, H2
 
