@@ -543,10 +543,11 @@ def _named_by_trace(verdict: Verdict, check: Check, trial: Trial, traceback_text
 def _named_by_repair(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
     """A failed verdict that names nothing, named by a change of the student's own code that makes
     their answers right (:mod:`autograder.engine.mutants.repair`). Never costs the verdict (logged)."""
+    from . import traced
     from .mutants.repair import named_by_repair
 
-    try:
-        return named_by_repair(verdict, trial)
+    try:   # (a change after the first of the student's values to go wrong undoes it there: that value is told)
+        return traced.departure_before_repair(named_by_repair(verdict, trial), trial)
     except Exception as exc:  # noqa: BLE001 - naming is a bonus: the verdict stands without it
         _log_grader_error(check, exc)
         return verdict

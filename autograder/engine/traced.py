@@ -986,30 +986,30 @@ def undone(fn, node, relation: str) -> str | None:
     return ast.unparse(ast.fix_missing_locations(changed))
 
 
-def named_by_values(verdict, trial):
-    """A failed verdict that names nothing, named by the first of the student's values to depart from the
-    reference's on the failing call (:func:`explain_values`), confirmed by turning that value back in
-    their code: the function then gives the reference's answer on that input."""
-    from dataclasses import replace
-
+def confirmed_departure(trial):
+    """``(form, node, relation, function)``: the first of the student's values to depart from the
+    reference's on the trial's last call (:func:`explain_values`), confirmed by turning it back in their
+    code -- the function then gives the reference's answers on every call of it the trial made (at most
+    :data:`CONFIRMATIONS` departures tried); None otherwise."""
     from .hints import code_of
     from .mutants import naming, repair
     from .mutants.helper import HelperFailed
     from .mutants.naming import helper, model_for, release_helper
 
-    if verdict.mistake or _named_by_a_change(verdict) or not getattr(trial, "calls", None):
-        return verdict
+    if not getattr(trial, "calls", None):
+        return None
     function, args, kwargs, _ = trial.calls[-1]
+    calls = [call for call in trial.calls if call[0] == function][-4:]
     code = code_of(trial)
     mine = record(trial, function, args, kwargs)
     theirs = reference_recording(trial, function, args, kwargs) if mine is not None and not mine.raised else None
     model = model_for(trial.lab)
     if theirs is None or model is None:
-        return verdict
+        return None
     expected = None
     for tried, (form, fn, node, relation) in enumerate(explain_values(code, mine, theirs, function)):
         if tried >= CONFIRMATIONS:
-            return verdict
+            return None
         top = next((f for f in code.functions.values() if f.lineno <= node.lineno <= (f.end_lineno or f.lineno)), None)
         source = undone(top, node, relation) if top is not None else None   # (a nested def: the def holding it)
         if source is None:
@@ -1017,26 +1017,68 @@ def named_by_values(verdict, trial):
         if expected is None:
             try:
                 runner = helper()
-                runner.prepare(model.source, model.module, [(function, tuple(args), dict(kwargs))], TRACE_SECONDS)
-                [expected] = runner.run((), [0], TRACE_SECONDS)
+                runner.prepare(model.source, model.module, [(f, tuple(a), dict(k)) for f, a, k, _ in calls], TRACE_SECONDS)
+                expected = runner.run((), range(len(calls)), TRACE_SECONDS)
             except HelperFailed:
-                return verdict
+                return None
             finally:
                 release_helper()
-            if repair._close(trial.calls[-1][3], expected):
-                return verdict   # (this call's answer is right: another call failed the check)
+            if repair._close(calls[-1][3], expected[-1]):
+                return None   # (this call's answer is right: another call failed the check)
         forbid = () if getattr(trial, "forbidden_allowed", False) else tuple(trial.forbidden(function))
         outcome = trial.sandbox.companion().call_variant(trial.lab.module, source, function,
-                                                         [(tuple(args), dict(kwargs))], timeout=TRACE_SECONDS,
-                                                         forbid=forbid)
-        answers = outcome.value if outcome.ok and isinstance(outcome.value, list) and len(outcome.value) == 1 else None
-        if answers is not None and naming.error_kind(answers[0]) is None and repair._close(answers[0], expected):
-            break
-    else:
+                                                         [(tuple(a), dict(k)) for _, a, k, _ in calls],
+                                                         timeout=TRACE_SECONDS, forbid=forbid)
+        answers = outcome.value if outcome.ok and isinstance(outcome.value, list) and len(outcome.value) == len(calls) \
+            else None
+        if answers is not None and all(naming.error_kind(a) is None and naming.error_kind(e) is None
+                                       and repair._close(a, e) for a, e in zip(answers, expected)):
+            return form, node, relation, function
+    return None
+
+
+def departure_sentence(found) -> str:
+    form, node, relation, function = found
+    return f"{LEAD} {form.sentence}; with `{undo_text(node, relation)}` there, `{function}` gives the expected answers"
+
+
+def named_by_values(verdict, trial):
+    """A failed verdict that names nothing, named by a :func:`confirmed_departure` of the student's values."""
+    from dataclasses import replace
+
+    if verdict.mistake or _named_by_a_change(verdict):
+        return verdict
+    found = confirmed_departure(trial)
+    if found is None:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
     lead = first.rstrip()
     lead += "" if not lead or lead[-1] in ".:;!?" else "."
-    undo = undo_text(node, relation)
-    said = f"{LEAD} {form.sentence}; with `{undo}` there, `{function}` gives the expected answer on this input"
-    return replace(verdict, message=f"{lead} {said}.{newline}{rest}", mistake=form.mistake)
+    return replace(verdict, message=f"{lead} {departure_sentence(found)}.{newline}{rest}", mistake=found[0].mistake)
+
+
+_LINES = re.compile(r"\(line (\d+)")
+
+
+def departure_before_repair(verdict, trial):
+    """A verdict named by a repair of the student's code (:mod:`autograder.engine.mutants.repair`) whose
+    changes are all at lines after a :func:`confirmed_departure` of their values: the departure is where
+    the values first go wrong, and a change after it undoes it (`H_norm.T` after a reshape in column
+    order); the departure is told in the repair's place. Otherwise unchanged."""
+    from dataclasses import replace
+
+    from .mutants import repair
+
+    message = str(verdict.message)
+    if not str(verdict.mistake).startswith(repair.MISTAKE) or repair.HEAD not in message:
+        return verdict
+    first, newline, rest = message.partition("\n")
+    lead, _, told = first.partition(repair.HEAD)
+    lines = [int(n) for n in _LINES.findall(told)]
+    found = confirmed_departure(trial) if lines else None
+    if found is None or min(lines) <= found[1].lineno:
+        return verdict
+    lead = lead.rstrip()
+    lead += "" if not lead or lead[-1] in ".:;!?" else "."
+    return replace(verdict, message=f"{lead} {departure_sentence(found)}.{newline}{rest}", mistake=found[0].mistake,
+                   hint="")

@@ -92,7 +92,8 @@ OPERATORS = {
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
-    "logic": ("and", "or", "&", "|"),                 # m1 & m2 -> m1 | m2, a and b -> a or b
+    "logic": ("and", "or", "&", "|"),
+    "drop_flag": ("flag", "cv2.", "remov", "|"),          # INTER_LINEAR | WARP_INVERSE_MAP -> INTER_LINEAR                 # m1 & m2 -> m1 | m2, a and b -> a or b
     "literal": ("argument", "value", "flag"),         # cv2.computeCorrespondEpilines(p, 2, F) -> (p, 1, F)
     "boolean_mask": ("mask", "boolean", "index"),   # pts[mask.ravel()] -> pts[mask.ravel().astype(bool)]
     "negative_index": ("negative", "index", "abs", "wrap"),   # ramp[i - j] -> ramp[np.abs(i - j)]
@@ -750,6 +751,10 @@ def _make_drop_keyword(node, payload):
     return new
 
 
+def _make_drop_flag(node, payload):
+    return copy.deepcopy(node.right if payload == "left" else node.left)   # a | b -> b (or a)
+
+
 def _make_grey(node, payload):
     new = copy.deepcopy(node)   # cv2.cornerSubPix(image, ...) -> the image in grey where it has 3 channels
     image = ast.unparse(new.args[payload])
@@ -840,7 +845,7 @@ def _make_constant(node, payload):
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result")},
-         "drop_keyword": _make_drop_keyword, "stride": _make_stride, "simultaneous": _make_simultaneous,
+         "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
@@ -1929,6 +1934,18 @@ def _mode_test(test) -> bool:
     return False
 
 
+def _opencv_flags(node) -> bool:
+    """Whether ``node`` combines OpenCV constants (``cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP``)."""
+    parts = [node.left, node.right]
+    while parts:
+        part = parts.pop()
+        if isinstance(part, ast.BinOp) and isinstance(part.op, ast.BitOr):
+            parts += [part.left, part.right]
+        elif not (isinstance(part, ast.Attribute) and _dotted(part).startswith("cv2.") and part.attr.isupper()):
+            return False
+    return True
+
+
 def _logic_changes(node, parent, parents):
     """Slips of logic and accumulation: a condition the wrong way round (`if x > t:` where `if not x >
     t:` belongs, a `not` too many), masks combined with & where | belongs (or `and`/`or`), and a sum
@@ -1938,7 +1955,12 @@ def _logic_changes(node, parent, parents):
         yield "negate", "insert", ""
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not) and not _mode_test(node.operand):
         yield "negate", "drop", ""
-    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.BitAnd, ast.BitOr)) \
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitOr) and _opencv_flags(node):
+        # OpenCV's flags are combined with |, never &: a flag too many is the slip (WARP_INVERSE_MAP
+        # beside a forward map); `&` of two flags is 0, another flag altogether (INTER_NEAREST)
+        yield "drop_flag", "left", ""
+        yield "drop_flag", "right", ""
+    elif isinstance(node, ast.BinOp) and isinstance(node.op, (ast.BitAnd, ast.BitOr)) \
             and not isinstance(node.right, ast.Constant) and not isinstance(node.left, ast.Constant):
         yield "logic", "BitOr" if isinstance(node.op, ast.BitAnd) else "BitAnd", ""
     if isinstance(node, ast.BoolOp):

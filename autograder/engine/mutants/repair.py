@@ -218,6 +218,7 @@ class _Student:
         self._shapes: dict = {}      # id of a statement (kept alive in _walked) -> its code with names masked
         self._places: dict = {}      # id of a node (kept alive in _walked) -> (its statement, its position there)
         self._lock = threading.Lock()
+        self.reference_parts: frozenset = frozenset()   # (name, its parts' names) the reference unpacks
 
     def mutants(self, function: str) -> list:
         """The operators' changes of the code ``function`` runs (made at its first failure: a long
@@ -264,10 +265,15 @@ class _Student:
         names = lambda text: re.findall(r"\w+", text.split("=", 1)[0])  # noqa: E731  (the targets, in order)
         for line, before, after in self.fix(mutant).changes:
             for node in ast.walk(self.tree):
-                if isinstance(node, ast.Assign) and node.lineno == line and isinstance(node.value, ast.Call) \
-                        and _call_name(node.value) in self.api and len(node.targets) == 1 \
-                        and isinstance(node.targets[0], (ast.Tuple, ast.List)) \
-                        and names(before) != names(after) and sorted(names(before)) == sorted(names(after)):
+                if not (isinstance(node, ast.Assign) and node.lineno == line and len(node.targets) == 1
+                        and isinstance(node.targets[0], (ast.Tuple, ast.List))
+                        and names(before) != names(after) and sorted(names(before)) == sorted(names(after))):
+                    continue
+                if isinstance(node.value, ast.Call) and _call_name(node.value) in self.api:
+                    return True
+                # (a value's parts named as the reference names them -- `cols, rows = pattern_size` --
+                # are right: naming them the other way mends a later swap by making the names lie)
+                if isinstance(node.value, ast.Name) and (node.value.id, tuple(names(before))) in self.reference_parts:
                     return True
         return False
 
@@ -711,6 +717,8 @@ def _student_code(trial) -> _Student | None:
         tree = parse(text)   # the student's text: within the bounds, under the parse lock
         if sum(1 for _ in ast.walk(tree)) <= MAX_NODES:
             read = _Student(text, tree, api)
+            model = naming.model_for(trial.lab)
+            read.reference_parts = _named_parts(model.source) if model is not None else frozenset()
     except Exception:  # noqa: BLE001 - code the operators cannot read has no repairs (said once, not per check)
         read = None
     with _READ_LOCK:
@@ -718,6 +726,19 @@ def _student_code(trial) -> _Student | None:
         while len(_READ) > 8:
             _READ.popitem(last=False)
     return read
+
+
+def _named_parts(source: str) -> frozenset:
+    """``(name, (part, ...))`` of each name the reference unpacks into named parts (``cols, rows =
+    pattern_size``)."""
+    try:
+        tree = parse(source)
+    except (SyntaxError, ValueError, RecursionError, MemoryError):
+        return frozenset()
+    return frozenset((node.value.id, tuple(t.id for t in node.targets[0].elts)) for node in ast.walk(tree)
+                     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.value, ast.Name)
+                     and isinstance(node.targets[0], (ast.Tuple, ast.List))
+                     and all(isinstance(t, ast.Name) for t in node.targets[0].elts))
 
 
 _AROUND = 30   # characters kept on each side of a change shown in a long line
@@ -795,6 +816,8 @@ def right(value, reference, student=None, confirming: bool = False, projective: 
     An error is never right."""
     if naming.error_kind(value) is not None or naming.error_kind(reference) is not None:
         return False
+    if naming.has_image(reference) and _kinds(value) != _kinds(reference):
+        return False   # (an image of floats where 8 bits are asked is not right however near its values)
     if _within(value, reference, rtol=1e-4, grey=1.0, projective=projective):
         return True
     if student is None and not confirming:
@@ -1007,11 +1030,12 @@ def _close(value, reference) -> bool:
 def _differs(answer, reference) -> bool:
     """Whether an answer differs from the reference's at all: in a value, or in its arrays' kind (the
     right values as float64 where uint8 is asked for)."""
-    if naming.distance(answer, reference) > 0:
-        return True
-    kinds = lambda value: [v.dtype.kind for v in (value if isinstance(value, (tuple, list)) else [value])  # noqa: E731
-                           if isinstance(v, np.ndarray)]
-    return kinds(answer) != kinds(reference)
+    return naming.distance(answer, reference) > 0 or _kinds(answer) != _kinds(reference)
+
+
+def _kinds(value) -> list:
+    """The kinds of the arrays of an answer (``"u"`` for an 8-bit image, ``"f"``...)."""
+    return [v.dtype.kind for v in (value if isinstance(value, (tuple, list)) else [value]) if isinstance(v, np.ndarray)]
 
 
 def _weight(call) -> int:
