@@ -1222,9 +1222,31 @@ def named_by_error_model(verdict, trial, raised: bool = False):
     if called and called <= hand_named:
         return verdict
     naming = name_raised(trial) if raised else name_failure(trial)
-    if naming is None:
+    if naming is None or not _code_can(naming, trial, called):
         return verdict
     return replace(verdict, message=_appended(str(verdict.message), naming), mistake=naming.mistake)
+
+
+# An operation a mutant's words say the code does, and what the code must hold to do it: a name saying the
+# student's values are truncated to integers is not said of code that never makes an integer (a translation
+# left unscaled gave the same numbers on the check's inputs as a truncation: 30b's lab11/05).
+_INTEGER_MAKERS = re.compile(r"//|\bint\s*\(|astype\(\s*(?:int|np\.u?int|numpy\.u?int|['\"]u?int)|np\.(?:floor|trunc|fix|"
+                             r"rint|round|around)\b|\bround\s*\(|dtype\s*=\s*(?:int|np\.u?int|['\"]u?int)|np\.u?int\d*\(")
+
+
+def _code_can(naming: Naming, trial, called) -> bool:
+    """Whether the student's code that ``called`` functions run can do what the mutant's words say it does."""
+    if naming.mutant.operator != "int_division":
+        return True
+    from ..hints import code_of
+
+    code = code_of(trial)
+    if not code.functions:
+        return True
+    import ast as _ast
+
+    text = "\n".join(_ast.unparse(fn) for fn in code.reachable(sorted(called)))
+    return bool(_INTEGER_MAKERS.search(text))
 
 
 def _appended(message: str, naming: Naming) -> str:
