@@ -4,7 +4,7 @@ import pytest
 
 from autograder.engine.runner import grade
 from autograder.labs.mistakes.lab08 import ADVICE, MISTAKES
-from conftest import assert_advice_case, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
+from conftest import assert_advice_case, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, edited_reference, mutant
 
 MODULE = "lab08_homographies"
 
@@ -306,3 +306,14 @@ def test_a_ransac_measuring_its_error_before_the_division_is_not_told_src_and_ds
     assert failed
     text = " ".join(c.message + c.hint + c.mistake for c in failed)
     assert "swapped" not in text and "maps dst onto src" not in text, text
+
+
+def test_a_blend_whose_weights_are_overwritten_is_told_by_its_white_panorama(tmp_path):
+    """The reference's `_compose` with `weights = weight` where `weights += weight` belongs: where only
+    img1 is, the weighted sum is divided by weights that are 0 and clipped to white. The message says so
+    (measured), not that img1 must only be shifted -- the code places it by the identity already."""
+    folder = edited_reference(tmp_path, "lab08_homographies", ("weights += weight", "weights = weight"))
+    result = grade(str(folder), ["lab08.ex5"])
+    failed = [c for c in check_results(result, "lab08.ex5") if c.score < c.max_score]
+    assert any("of your panorama is pure white (255)" in c.message for c in failed), [c.message for c in failed]
+    assert not any("must only be shifted" in c.message for c in failed)

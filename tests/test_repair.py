@@ -1804,3 +1804,45 @@ def draw_points(image, pts, radius=3, color=(0, 0, 255)):
     result = grade(str(folder), ["lab09.ex5"])
     failed = [c for c in check_results(result, "lab09.ex5") if c.score < c.max_score]
     assert failed and not any("removing `continue`" in c.message for c in failed), [c.message for c in failed]
+
+
+def test_a_flag_too_many_is_dropped_not_turned_into_another_flag(tmp_path):
+    """`INTER_LINEAR | WARP_INVERSE_MAP` beside a forward map: the fix drops the flag; `&` of the two
+    (0: nearest-neighbour, another interpolation) is within the check's spread and no fix."""
+    folder = mutant(tmp_path, "lab07_transformations", '''
+def rotate(image, angle_deg=45):
+    h, w = image.shape[:2]
+    M = cv2.getRotationMatrix2D(((w - 1) / 2.0, (h - 1) / 2.0), angle_deg, 1.0)
+    return cv2.warpAffine(image, M, (w, h), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP,
+                          borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+''')
+    messages = [c.message for c in check_results(grade(str(folder), ["lab07.ex2"]), "lab07.ex2") if c.score < c.max_score]
+    assert any("to `cv2.INTER_LINEAR` (line" in m for m in messages), messages
+    assert not any("cv2.INTER_LINEAR & cv2.WARP_INVERSE_MAP" in m for m in messages)
+
+
+def test_an_image_of_floats_is_never_the_right_answer_for_an_8_bit_one():
+    """A uint8 image warped as float32 and returned so: a change that keeps it float32 (the matrix's dtype
+    changed) is no fix, however near its values are (30b's lab07/04 got `np.float32(...)` ->
+    `np.asarray(...)`)."""
+    from autograder.engine.mutants.repair import right
+
+    reference = np.arange(48, dtype=np.uint8).reshape(4, 4, 3) * 5
+    assert right(reference.copy(), reference)
+    assert not right(reference.astype(np.float32), reference)
+    assert not right(reference.astype(np.float32), reference, confirming=True)
+
+
+def test_a_value_s_parts_named_as_the_reference_names_them_are_not_renamed(tmp_path):
+    """`cols, rows = pattern_size` is right (the reference names the parts so); the grid built
+    `np.mgrid[0:rows, 0:cols]` is the slip. Renaming the parts mends it too, by making the names lie."""
+    folder = mutant(tmp_path, "lab10_camera2", '''
+def _object_points(pattern_size, square_size):
+    cols, rows = pattern_size
+    objp = np.zeros((cols * rows, 3), np.float64)
+    objp[:, :2] = np.mgrid[0:rows, 0:cols].T.reshape(-1, 2) * square_size
+    return objp
+''')
+    messages = [c.message for c in check_results(grade(str(folder), ["lab10.ex6"]), "lab10.ex6") if c.score < c.max_score]
+    assert any("(0:cols, 0:rows)" in m for m in messages), messages
+    assert not any("`rows, cols = pattern_size`" in m for m in messages)

@@ -1595,8 +1595,10 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
             t.fail(f"{what}: at its best place the panorama differs from img1 by {error:.0f} grey levels on "
                    f"average: {shown}.")
         t.images(what, yours=panorama, img1=img1, img2=img2)
+        saturated = _saturated(panorama, (img1, img2))
         t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs "
-               f"from img1 by {error:.0f} grey levels; {shown}): {IMG1_SHIFTED.said(t, ['stitch'])}")
+               f"from img1 by {error:.0f} grey levels; {shown}): "
+               + (saturated if saturated else IMG1_SHIFTED.said(t, ['stitch'])))
     store[key + "/judge"] = PanoramaJudge(scene, panorama, 0, offset)
     return store[key + "/judge"]
 
@@ -1616,6 +1618,40 @@ def _img1_only_shifted(function) -> bool:
         if isinstance(node, ast.Assign) and any(isinstance(t, ast.Subscript) for t in node.targets) \
                 and mentions_img1(node.value):
             return True
+        if isinstance(node, ast.Call) and _identity_beside_img1(node):
+            return True
+    return False
+
+
+def _saturated(panorama, images) -> str:
+    """A measured sentence when much of a panorama is pure white where the images are not (values far
+    above 255 clipped: a blend divided by a sum of weights near 0), else ``""``."""
+    if not isinstance(panorama, np.ndarray) or panorama.ndim != 3 or panorama.dtype != np.uint8:
+        return ""
+    white = float(np.all(panorama == 255, axis=2).mean())
+    theirs = max(float(np.all(_as_bgr(image) == 255, axis=2).mean()) for image in images)
+    if white < 0.2 or white < 10 * theirs:
+        return ""
+    return measured(f"{white:.0%} of your panorama is pure white (255), where the images have {theirs:.0%}: "
+                    "the values there are far above 255 before they are clipped, as when a weighted sum is divided "
+                    "by weights that are 0 there (are the weights added up over the images?)")
+
+
+def _as_bgr(image):
+    return cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image
+
+
+def _identity_beside_img1(call) -> bool:
+    """Whether a call is given img1 in a list and the identity at the same place of another list
+    (`_compose([img1, img2], [np.eye(3), H21])`: img1 placed by the canvas's shift alone)."""
+    lists = [a.elts for a in call.args if isinstance(a, (ast.List, ast.Tuple))]
+    for images in lists:
+        places = [i for i, e in enumerate(images) if isinstance(e, ast.Name) and e.id == "img1"]
+        for other in lists:
+            if other is not images and any(i < len(other) and isinstance(other[i], ast.Call)
+                                           and _path(other[i].func).rsplit(".", 1)[-1] in ("eye", "identity")
+                                           for i in places):
+                return True
     return False
 
 
