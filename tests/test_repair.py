@@ -1827,7 +1827,7 @@ def test_an_image_of_floats_is_never_the_right_answer_for_an_8_bit_one():
     `np.asarray(...)`)."""
     from autograder.engine.mutants.repair import right
 
-    reference = np.arange(48, dtype=np.uint8).reshape(4, 4, 3) * 5
+    reference = (np.arange(1200) % 251).astype(np.uint8).reshape(20, 20, 3)
     assert right(reference.copy(), reference)
     assert not right(reference.astype(np.float32), reference)
     assert not right(reference.astype(np.float32), reference, confirming=True)
