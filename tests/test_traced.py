@@ -350,3 +350,15 @@ def ast_text(node) -> str:
     import ast
 
     return ast.unparse(node)
+
+
+def test_an_opencv_type_assertion_against_a_type_it_takes_is_not_explained_by_the_arrays_kinds():
+    """`cv2.warpAffine(image, M)` with an integer M asserts `M0.type() == CV_32F`: the image and M differ in
+    kind by design, so nothing is said of their kinds (the beginner's sentence names M's dtype)."""
+    code, recording, _ = recorded("""
+        def scale(image, sx=2, sy=1):
+            return cv2.warpAffine(image, np.array([[sx, 0, 0], [0, sy, 0]]), (4, 4))
+        """, "scale", np.ones((4, 4), np.uint8))
+    message = ("OpenCV(4.10) error: (-215:Assertion failed) (M0.type() == CV_32F || M0.type() == CV_64F) && "
+               "M0.rows == 2 && M0.cols == 3 in function 'warpAffine'")
+    assert traced.explain_raised(code, recording, code.functions["scale"], 3, message) is None

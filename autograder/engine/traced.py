@@ -355,8 +355,10 @@ _MATMUL = re.compile(r"matmul: Input operand \d has a mismatch|shapes \([\d,\s]*
 _TOO_MANY_INDICES = re.compile(r"too many indices for array: array is (\d+)-dimensional")
 _AMBIGUOUS = re.compile(r"truth value of an array with more than one element is ambiguous")
 _RESHAPE = re.compile(r"cannot reshape array of size (\d+) into shape")
-_OPENCV_KINDS = re.compile(r"type\(\) *==|depth\(\) *==|types? (?:do not|don't) match|same type")
-_OPENCV_SIZES = re.compile(r"size\(\) *==|[Ss]izes? of input arguments do not match|same size")
+# (two of the call's arrays compared with each other: `_queryDescriptors.type() == trainDescType`; not one
+# compared with a type OpenCV takes, `M0.type() == CV_32F`, where the arrays' kinds differ by design)
+_OPENCV_KINDS = re.compile(r"(?:type|depth)\(\) *== *(?!CV_)[A-Za-z_]|types? (?:do not|don't) match|same type")
+_OPENCV_SIZES = re.compile(r"size\(\) *== *(?!Size\b)[A-Za-z_]|[Ss]izes? of input arguments do not match|same size")
 _OUT_OF_BOUNDS = re.compile(r"index (-?\d+) is out of bounds for axis (\d+) with size (\d+)")
 
 

@@ -16,7 +16,7 @@ from fixtures.images import photo
 from ..engine import conventions
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, passed
-from ..engine.claims import calls_any, guard
+from ..engine.claims import calls_any, guard, measured
 from ..engine.compare import format_arrays_apart
 from ..engine.judges import (Probe, call_probe, digits_apart, judge_matrix, judge_parameter_used, judge_warp,
                       name_mistake, warp_probe)
@@ -201,6 +201,24 @@ def rotate_grey(t):
         probe=image_probe(t, "rotate"))
 
 
+@ex2.check("rotate by a fractional angle (30.5 degrees)", points=1)
+def rotate_fractional(t):
+    """Every other check's angle is whole, where an angle cut to an integer (`int(angle_deg)`) is exact;
+    half a degree moves the image's corners by about a pixel, which the image comparison may forgive, so
+    the answer is also held to being another image than the whole angle's."""
+    source = photo("astronaut", (200, 150))
+    centre = truth.image_centre(source.shape)
+    half = t.call("rotate", source, angle_deg=30.5)
+    verdict = judge_warp(t, "rotate(image, angle_deg=30.5)", half, source, truth.rotation(30.5, centre),
+                         truth.rotation_mistakes(30.5, centre), probe=image_probe(t, "rotate"))
+    whole = t.call("rotate", source, angle_deg=30)
+    if isinstance(whole, np.ndarray) and isinstance(half, np.ndarray) and np.array_equal(whole, half):
+        t.fail("rotate(image, angle_deg=30.5) is exactly rotate(image, angle_deg=30): "
+               + measured("the angle's fractional part is lost (is it made an integer, int() or //, on its way?)"),
+               mistake="the angle is cut to a whole number of degrees")
+    return verdict
+
+
 # ================================================================== ex3 scaling
 ex3 = lab.exercise("ex3", "Scaling", functions=[
     "scaling_matrix(sx, sy)", "scale(image, sx=1.5, sy=1.5)"])
@@ -223,6 +241,16 @@ def scale_default(t):
     return judge_warp(t, "scale(image)", t.call("scale", source), source,
                       truth.scaling(1.5, 1.5), truth.scaling_mistakes(1.5, 1.5, source.shape),
         probe=image_probe(t, "scale"))
+
+
+@ex3.check("scale with whole-number factors (sx=2, sy=1)", points=1)
+def scale_whole_factors(t):
+    """The factors are numbers, and a caller's 2 is one: a matrix made from them must still be of floats
+    for cv2.warpAffine (`np.array([[sx, 0, 0], [0, sy, 0]])` of two ints is an integer matrix)."""
+    source = photo("coffee", (200, 150))
+    return judge_warp(t, "scale(image, sx=2, sy=1)", t.call("scale", source, sx=2, sy=1), source,
+                      truth.scaling(2.0, 1.0), truth.scaling_mistakes(2.0, 1.0, source.shape),
+                      probe=image_probe(t, "scale"))
 
 
 def judge_warp_using(t: Trial, function: str, parameter: str, values, judge):

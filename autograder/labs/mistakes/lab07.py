@@ -18,6 +18,16 @@ MISTAKES = {
             grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
             return _rotate(grey, angle_deg)
         """, ["channels are not kept", "BGR in, BGR out"]),
+    "rotate cutting the angle to a whole number of degrees": ("lab07.ex2", """
+        _rotate = rotate
+        def rotate(image, angle_deg=45):
+            return _rotate(image, int(angle_deg))
+        """, ["fractional part is lost"]),
+    "scale building its matrix from the factors as given (integers for whole factors)": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            h, w = image.shape[:2]
+            return cv2.warpAffine(image, np.array([[sx, 0, 0], [0, sy, 0]]), (w, h))
+        """, ["yours is int64"]),
     "tx/ty swapped": ("lab07.ex1", """
         def translation_matrix(tx, ty):
             return np.array([[1.0, 0, ty], [0, 1.0, tx], [0, 0, 1.0]])
