@@ -20,7 +20,7 @@ import pytest
 from autograder.engine import traced
 from autograder.engine.hints import read_code
 from autograder.engine.runner import grade
-from conftest import check_results, mutant
+from conftest import check_results, edited_reference, mutant
 
 
 def recorded(source: str, function: str, *args, **kwargs):
@@ -327,7 +327,7 @@ def test_a_value_scaled_by_a_slip_factor_is_found_and_a_homogeneous_rescaling_is
             P = half @ np.hstack([R, t.reshape(3, 1)])
             return P / P[2, 3]
         """)
-    assert relation == "0.5 times" and traced.undo_text(node, relation) == "(K / 2) / 0.5"
+    assert relation == "0.5 times" and traced.undo_text(node, relation) == "2 * (K / 2)"
     assert departures("""
         def camera(K, R, t):
             P = (K * 3.7) @ np.hstack([R, t.reshape(3, 1)])
@@ -362,3 +362,26 @@ def test_an_opencv_type_assertion_against_a_type_it_takes_is_not_explained_by_th
     message = ("OpenCV(4.10) error: (-215:Assertion failed) (M0.type() == CV_32F || M0.type() == CV_64F) && "
                "M0.rows == 2 && M0.cols == 3 in function 'warpAffine'")
     assert traced.explain_raised(code, recording, code.functions["scale"], 3, message) is None
+
+
+def test_grading_names_a_value_half_what_it_should_be_and_confirms_it(tmp_path):
+    """The first tangential term written `p1 x y` for `2 p1 x y`: `p1 * x` is half the reference's value
+    there, and doubling it gives the expected answers (the departure told, the fix shown)."""
+    folder = edited_reference(tmp_path, "lab09_camera", ("xd = x * radial + 2 * p1 * x * y", "xd = x * radial + p1 * x * y"))
+    result = grade(str(folder), ["lab09.ext2"])
+    messages = [c.message for c in check_results(result, "lab09.ext2") if c.score < c.max_score]
+    assert any("`p1 * x` (line" in m and "gives 0.5 times a value" in m and "with `2 * (p1 * x)` there" in m
+               for m in messages), messages
+
+
+def test_a_change_after_the_first_value_to_go_wrong_gives_way_to_that_value(tmp_path):
+    """A DLT whose null vector is reshaped column by column: transposing the result a line later mends it
+    (a repair), but the reshape is where the values first go wrong -- that is told."""
+    folder = edited_reference(tmp_path, "lab08_homographies", (
+        "    H = np.linalg.inv(T2) @ Vt[-1].reshape(3, 3) @ T1\n",
+        "    H_norm = Vt[-1].reshape(3, 3, order='F')\n    H = np.linalg.inv(T2) @ H_norm @ T1\n"))
+    result = grade(str(folder), ["lab08.ex2"])
+    messages = [c.message for c in check_results(result, "lab08.ex2") if c.score < c.max_score]
+    assert messages and any("reshape(3, 3, order='F')` (line" in m and "gives the transpose of a value" in m
+                            for m in messages), messages
+    assert not any("`H_norm` to `H_norm.T`" in m for m in messages)

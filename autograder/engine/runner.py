@@ -556,11 +556,13 @@ def _named_by_repair(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
 def _one_naming_time(sandboxes: list) -> None:
     """One time per grading for naming failures (the error model's and repairs',
     ``naming.GRADING_SECONDS``; the inherited failures' own), whatever its lanes and phases: every
-    worker's shared values hold the same counters -- seconds only, nothing of a hidden check's."""
+    worker's shared values hold the same counters -- seconds only, nothing of a hidden check's; and the
+    recordings' own, :data:`autograder.engine.traced.GRADING_SECONDS`)."""
     from .inherited import SHARED_SECONDS
     from .mutants.naming import SPENT
+    from .traced import SPENT as TRACED
 
-    for key in (SPENT, SHARED_SECONDS):
+    for key in (SPENT, SHARED_SECONDS, TRACED):
         counter = [0.0]
         for sandbox in sandboxes:
             sandbox.shared[key] = counter

@@ -41,6 +41,8 @@ SMALL = 128                           # an array of at most this many numbers is
 RECORDS_PER_CALL = 200_000            # evaluations recorded per call (a pixel loop stops recording, not running)
 ARRAY_ATTRIBUTES = frozenset({"T", "shape", "size", "ndim", "real", "imag"})
 TRACE_SECONDS = 3.0
+GRADING_SECONDS = 8.0                 # the recordings' own time per grading (not the error model's: they come after it)
+SPENT = "traced seconds"
 CONFIRMATIONS = 3                     # departures of the student's values confirmed at most, per failed check
 
 
@@ -244,7 +246,6 @@ def record(trial, function: str, args, kwargs) -> Recording | None:
     """The recording of the student's ``function`` called with ``args``/``kwargs``, run in the
     trial's companion sandbox within the grading's naming time; None when it cannot be had."""
     from .hints import code_of
-    from .mutants.naming import GRADING_SECONDS, SPENT
 
     sandbox = getattr(trial, "sandbox", None)
     if sandbox is None or not hasattr(sandbox, "companion"):
@@ -804,7 +805,7 @@ def reference_recording(trial, function: str, args, kwargs) -> Recording | None:
     process (trusted code, bounded in time); None without a reference or in time."""
     from .hints import read_code
     from .mutants.helper import HelperFailed
-    from .mutants.naming import GRADING_SECONDS, SPENT, helper, model_for, release_helper
+    from .mutants.naming import helper, model_for, release_helper
 
     model = model_for(trial.lab)
     spent = trial.sandbox.shared.setdefault(SPENT, [0.0])
@@ -967,7 +968,10 @@ def undo_text(node, relation: str) -> str:
     text = ast.unparse(node)
     if relation in _UNDO:
         return ast.unparse(ast.parse(_UNDO[relation].format(text), mode="eval"))
-    return f"({text}) / {float(relation.split()[0])!r}"
+    k = float(relation.split()[0])
+    if abs(1 / k - round(1 / k)) < 1e-9:   # (half of it: twice that)
+        return f"{round(1 / k)} * ({text})"
+    return f"({text}) / {k!r}"
 
 
 def undone(fn, node, relation: str) -> str | None:
@@ -993,10 +997,10 @@ def confirmed_departure(trial):
     reference's on the trial's last call (:func:`explain_values`), confirmed by turning it back in their
     code -- the function then gives the reference's answers on every call of it the trial made (at most
     :data:`CONFIRMATIONS` departures tried); None otherwise."""
+    import time
+
     from .hints import code_of
-    from .mutants import naming, repair
-    from .mutants.helper import HelperFailed
-    from .mutants.naming import helper, model_for, release_helper
+    from .mutants.naming import model_for
 
     if not getattr(trial, "calls", None):
         return None
@@ -1008,35 +1012,56 @@ def confirmed_departure(trial):
     model = model_for(trial.lab)
     if theirs is None or model is None:
         return None
-    expected = None
+    expected = [None]   # (the reference's answers, asked once)
+    spent = trial.sandbox.shared.setdefault(SPENT, [0.0])
     for tried, (form, fn, node, relation) in enumerate(explain_values(code, mine, theirs, function)):
-        if tried >= CONFIRMATIONS:
+        if tried >= CONFIRMATIONS or GRADING_SECONDS - spent[0] <= 0.2 or expected[0] is False:
             return None
-        top = next((f for f in code.functions.values() if f.lineno <= node.lineno <= (f.end_lineno or f.lineno)), None)
-        source = undone(top, node, relation) if top is not None else None   # (a nested def: the def holding it)
-        if source is None:
-            continue
-        if expected is None:
-            try:
-                runner = helper()
-                runner.prepare(model.source, model.module, [(f, tuple(a), dict(k)) for f, a, k, _ in calls], TRACE_SECONDS)
-                expected = runner.run((), range(len(calls)), TRACE_SECONDS)
-            except HelperFailed:
-                return None
-            finally:
-                release_helper()
-            if repair._close(calls[-1][3], expected[-1]):
-                return None   # (this call's answer is right: another call failed the check)
-        forbid = () if getattr(trial, "forbidden_allowed", False) else tuple(trial.forbidden(function))
-        outcome = trial.sandbox.companion().call_variant(trial.lab.module, source, function,
-                                                         [(tuple(a), dict(k)) for _, a, k, _ in calls],
-                                                         timeout=TRACE_SECONDS, forbid=forbid)
-        answers = outcome.value if outcome.ok and isinstance(outcome.value, list) and len(outcome.value) == len(calls) \
-            else None
-        if answers is not None and all(naming.error_kind(a) is None and naming.error_kind(e) is None
-                                       and repair._close(a, e) for a, e in zip(answers, expected)):
-            return form, node, relation, function
+        started = time.monotonic()
+        try:
+            if _confirmed(trial, code, model, node, relation, function, calls, expected):
+                return form, node, relation, function
+        finally:
+            spent[0] += time.monotonic() - started
     return None
+
+
+def _confirmed(trial, code, model, node, relation, function, calls, expected_of) -> bool:
+    """Whether turning ``node``'s value back by ``relation`` in the student's code gives the reference's
+    answers on ``calls`` (``expected_of[0]``: those answers, asked of the reference once and kept there;
+    False when this call's answer is right, so that nothing is to be confirmed)."""
+    from .mutants import repair
+    from .mutants.helper import HelperFailed
+    from .mutants.naming import helper, release_helper
+
+    seconds = min(TRACE_SECONDS, GRADING_SECONDS - trial.sandbox.shared.setdefault(SPENT, [0.0])[0])
+    top = next((f for f in code.functions.values() if f.lineno <= node.lineno <= (f.end_lineno or f.lineno)), None)
+    source = undone(top, node, relation) if top is not None else None   # (a nested def: the def holding it)
+    if source is None or seconds <= 0.2:
+        return False
+    expected = expected_of[0]
+    if expected is None:
+        try:
+            runner = helper()
+            runner.prepare(model.source, model.module, [(f, tuple(a), dict(k)) for f, a, k, _ in calls], seconds)
+            expected = runner.run((), range(len(calls)), seconds)
+        except HelperFailed:
+            expected_of[0] = False
+            return False
+        finally:
+            release_helper()
+        if repair.right(calls[-1][3], expected[-1]):
+            expected_of[0] = False   # (this call's answer is right: another call failed the check)
+            return False
+        expected_of[0] = expected
+    forbid = () if getattr(trial, "forbidden_allowed", False) else tuple(trial.forbidden(function))
+    outcome = trial.sandbox.companion().call_variant(trial.lab.module, source, function,
+                                                     [(tuple(a), dict(k)) for _, a, k, _ in calls],
+                                                     timeout=seconds, forbid=forbid)
+    answers = outcome.value if outcome.ok and isinstance(outcome.value, list) and len(outcome.value) == len(calls) \
+        else None
+    # (right as a repair is: exactly, or near where the student's own answer is far off)
+    return answers is not None and all(repair.right(a, e, student=call[3]) for a, e, call in zip(answers, expected, calls))
 
 
 def departure_sentence(found) -> str:
