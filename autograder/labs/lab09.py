@@ -1073,6 +1073,15 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     if inner.any() and painted[inner].mean() < 0.5 and near.any() and (d[near] >= radius - 1).mean() > 0.9:
         t.fail(f"{what}: the circles are outlines; they should be filled (thickness=-1).",
                mistake="the circles are outlines, not filled")
+    # thick rings: the centres empty, a band around them painted past the radius (a thickness given the radius)
+    centres, band = d <= 0.5, (d >= radius - 1) & (d <= radius)
+    if radius >= 2 and centres.any() and painted[centres].mean() < 0.2 and band.any() and painted[band].mean() > 0.8:
+        outside = painted[(d > radius + 0.5) & (d <= radius + 2)].mean()
+        t.fail(f"{what}: " + measured(f"the circles are rings: no centre pixel is painted, {painted[band].mean():.0%} "
+                                      f"of the pixels at the radius are, and {outside:.0%} of those up to 2 px beyond it; "
+                                      "a filled disc is drawn with thickness=-1 (cv2.FILLED), a positive thickness "
+                                      "draws a ring that wide around the circle."),
+               mistake="the circles are outlines, not filled")
     wrapped = _wrapped_at_256(got, image, pts, radius, color)
     if wrapped:
         t.fail(f"{what}: {wrapped}.", mistake=wrapped.split(":")[0])

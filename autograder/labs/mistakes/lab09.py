@@ -40,6 +40,24 @@ MISTAKES = {
             X = np.atleast_2d(np.asarray(points, float))
             return (f * X[:, :2] / X[:, 2:3]).squeeze()
         """, ["(1, 3) array", "(1, 2)"]),
+    "draw_points passing the radius as the thickness (rings)": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            color = tuple(int(c) for c in color)
+            for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(out, (int(round(x)), int(round(y))), int(radius), color, int(radius))
+            return out
+        """, ["the circles are rings"]),
+    "draw_points drawing on a new black image (np.zeros_like)": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = np.zeros_like(image)
+            color = tuple(int(c) for c in color)
+            for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(out, (int(round(x)), int(round(y))), int(radius), color if out.ndim == 3 else color[0], -1)
+            return out
+        """, ["new blank image"]),
     "draw_points halves the radius (taken as a diameter)": ("lab09.ex5", """
         _reference_draw_points = draw_points
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
