@@ -180,6 +180,11 @@ MISTAKES = {
                          (0, 0, 255), 1)
             return canvas
         """, ["stop short"]),
+    "draw_epipolar_lines drawing on a new black image (np.zeros_like)": ("lab11.ex2", """
+        _draw = draw_epipolar_lines
+        def draw_epipolar_lines(image, lines):
+            return _draw(np.zeros_like(image), lines)
+        """, ["new blank image"]),
     "draw_epipolar_lines returning BGR for a grey input (the tutorial's way)": ("lab11.ex2", """
         _draw = draw_epipolar_lines
         def draw_epipolar_lines(image, lines):
