@@ -244,14 +244,17 @@ def recording_of(value) -> Recording | None:
 
 def record(trial, function: str, args, kwargs) -> Recording | None:
     """The recording of the student's ``function`` called with ``args``/``kwargs``, run in the
-    trial's companion sandbox within the grading's naming time; None when it cannot be had."""
+    trial's companion sandbox within the recordings' time (:data:`GRADING_SECONDS`); None when it cannot
+    be had (kept per sandbox: a hidden check's recording is never a public one's)."""
     from .hints import code_of
 
     sandbox = getattr(trial, "sandbox", None)
     if sandbox is None or not hasattr(sandbox, "companion"):
         return None
+    from .checks import fingerprint
+
     cache = sandbox.shared.setdefault("traced recordings", {})
-    key = (function, _fingerprint(args, kwargs))
+    key = fingerprint(function, tuple(args), dict(kwargs))
     if key in cache:
         return cache[key]
     source = recording_source(code_of(trial), function)
@@ -272,16 +275,6 @@ def record(trial, function: str, args, kwargs) -> Recording | None:
     found = recording_of(values[0]) if isinstance(values, list) and len(values) == 1 else None
     cache[key] = found
     return found
-
-
-def _fingerprint(args, kwargs) -> tuple:
-    def one(value):
-        if isinstance(value, np.ndarray):
-            return ("array", value.shape, str(value.dtype), hash(value.tobytes()) if value.size <= 1 << 22 else id(value))
-        if isinstance(value, (list, tuple)):
-            return tuple(one(v) for v in value)
-        return repr(value)[:200]
-    return (one(tuple(args)), one(tuple(sorted(kwargs.items()))))
 
 
 # ------------------------------------------------------------------ reading it
