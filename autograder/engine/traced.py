@@ -1078,26 +1078,31 @@ def named_by_values(verdict, trial):
 
 
 _LINES = re.compile(r"\(line (\d+)")
+GUESS = ": it looks like "
 
 
 def departure_before_repair(verdict, trial):
-    """A verdict named by a repair of the student's code (:mod:`autograder.engine.mutants.repair`) whose
-    changes are all at lines after a :func:`confirmed_departure` of their values: the departure is where
-    the values first go wrong, and a change after it undoes it (`H_norm.T` after a reshape in column
-    order); the departure is told in the repair's place. Otherwise unchanged."""
+    """A verdict named by a repair of the student's code (:mod:`autograder.engine.mutants.repair`) -- alone,
+    or beside a check's guess from the answer ("it looks like pts1 and pts2 are swapped") -- whose changes
+    are all at lines after a :func:`confirmed_departure` of their values: the departure is where the values
+    first go wrong, and a change after it undoes it (`H_norm.T` after a reshape in column order); the
+    departure is told in the repair's place (and the guess's). Otherwise unchanged."""
     from dataclasses import replace
 
     from .mutants import repair
 
     message = str(verdict.message)
-    if not str(verdict.mistake).startswith(repair.MISTAKE) or repair.HEAD not in message:
-        return verdict
     first, newline, rest = message.partition("\n")
+    guessed = GUESS in first and not str(verdict.mistake).startswith(repair.MISTAKE)
+    if not (str(verdict.mistake).startswith(repair.MISTAKE) or guessed) or repair.HEAD not in first:
+        return verdict
     lead, _, told = first.partition(repair.HEAD)
     lines = [int(n) for n in _LINES.findall(told)]
     found = confirmed_departure(trial) if lines else None
     if found is None or min(lines) <= found[1].lineno:
         return verdict
+    if guessed:   # (a check's guess from the answer alone -- "it looks like pts1 and pts2 are swapped" -- whose
+        lead = lead.split(GUESS, 1)[0]   # repair undoes the departure later: the departure is the cause shown)
     lead = lead.rstrip()
     lead += "" if not lead or lead[-1] in ".:;!?" else "."
     return replace(verdict, message=f"{lead} {departure_sentence(found)}.{newline}{rest}", mistake=found[0].mistake,
