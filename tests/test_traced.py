@@ -385,3 +385,23 @@ def test_a_change_after_the_first_value_to_go_wrong_gives_way_to_that_value(tmp_
     assert messages and any("reshape(3, 3, order='F')` (line" in m and "gives the transpose of a value" in m
                             for m in messages), messages
     assert not any("H_norm.T`" in m for m in messages)   # (the change a line later, undoing it)
+
+
+def test_a_guess_from_the_answer_gives_way_to_a_confirmed_departure_before_its_repair(tmp_path):
+    """E reshaped column by column inside essential_8point: the answer is E^T, which a check's guess reads
+    as "pts1 and pts2 are swapped"; the repair beside it transposes E a line later. The reshape is where
+    the values first go wrong: that is told, and neither the guess nor the later change."""
+    folder = mutant(tmp_path, "lab11_two_view", '''
+def essential_8point(pts1, pts2, K1, K2):
+    x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
+    x2 = _homogeneous(pts2) @ np.linalg.inv(K2).T
+    A = (x2[:, :, None] * x1[:, None, :]).reshape(len(x1), 9)
+    _, _, Vt = np.linalg.svd(A)
+    E = Vt[-1].reshape(3, 3, order='F')
+    U, _, Vt = np.linalg.svd(E)
+    return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+''')
+    result = grade(str(folder), ["lab11.ex3"])
+    messages = [c.message for c in check_results(result, "lab11.ex3") if c.score < c.max_score]
+    assert messages and all("reshape(3, 3, order='F')` (line" in m for m in messages), messages
+    assert not any("swapped" in m for m in messages)
