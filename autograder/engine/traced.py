@@ -69,6 +69,26 @@ class _Recording(ast.NodeTransformer):
 
     visit_AsyncFunctionDef = visit_FunctionDef
 
+    def visit_Assign(self, node):
+        """``T[2, :2] = v`` records ``T`` as it is after (under the target's place): a matrix filled entry by
+        entry has no expression of its own."""
+        self.generic_visit(node)
+        return [node] + self._containers(node.targets if isinstance(node, ast.Assign) else [node.target])
+
+    visit_AugAssign = visit_Assign
+
+    def _containers(self, targets) -> list:
+        after = []
+        for target in targets:
+            if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Call) \
+                    and isinstance(target.value.func, ast.Name) and target.value.func.id == RECORDER:
+                base = target.value.args[1]   # (the container's name, recorded before: the same name after)
+                if isinstance(base, ast.Name):
+                    call = ast.Call(ast.Name(RECORDER, ast.Load()),
+                                    [ast.Constant(node_key(target)), ast.Name(base.id, ast.Load())], [])
+                    after.append(ast.copy_location(ast.Expr(call), target))
+        return after
+
     def visit_Lambda(self, node):
         node.body = self.visit(node.body)
         return node
@@ -866,24 +886,32 @@ def _inputs(node) -> list:
     return found
 
 
-def _departures(code, fn, mine, theirs, depth: int):
-    """``(def, node, relation)`` of each of the student's values departing from the reference's."""
+def _departures(code, fn, mine, theirs, depth: int, related: bool = True):
+    """``(def, node, relation)`` of each of the student's values departing from the reference's (only
+    those with a relation to one of the reference's values, unless not ``related``: relation None)."""
     kinds = (ast.BinOp, ast.Call, ast.Subscript, ast.UnaryOp, ast.Attribute)
+    filled = {id(t): s.value for s in _own_nodes(fn) if isinstance(s, (ast.Assign, ast.AugAssign))
+              for t in (s.targets if isinstance(s, ast.Assign) else [s.target]) if isinstance(t, ast.Subscript)}
     nodes = sorted((n for n in _own_nodes(fn) if isinstance(n, kinds) and mine.value(n) is not None),
                    key=lambda n: (n.lineno, n.col_offset))
     for node in nodes:
         value = mine.value(node)
         if value.size < 2 or not np.isfinite(value).all() or _agrees(value, theirs):
             continue
-        inputs = [mine.value(c) for c in _inputs(node)]
+        # (a container filled in place -- `T[2, :2] = v` -- is made from itself before and the value put in)
+        made_from = [node.value, filled[id(node)]] if id(node) in filled else _inputs(node)
+        inputs = [mine.value(c) for c in made_from]
         inputs = [v for v in inputs if v is not None and v.size >= 2]
         if not inputs or not all(_agrees(v, theirs) for v in inputs):
             continue   # (made from a value that departed before, or from nothing to compare)
         helper = _helper(code, fn, node)
         if helper is not None and helper is not fn and depth < 3:
-            yield from _departures(code, helper, mine, theirs, depth + 1)
+            yield from _departures(code, helper, mine, theirs, depth + 1, related)
+        if not related:
+            yield fn, node, None
+            continue
         relation = _relation(value, theirs)
-        if relation is not None:
+        if relation is not None and id(node) not in filled:   # (a target cannot be turned back in place)
             yield fn, node, relation
 
 
@@ -1107,3 +1135,24 @@ def departure_before_repair(verdict, trial):
     lead += "" if not lead or lead[-1] in ".:;!?" else "."
     return replace(verdict, message=f"{lead} {departure_sentence(found)}.{newline}{rest}", mistake=found[0].mistake,
                    hint="")
+
+
+def first_departure(trial, function: str, args, kwargs):
+    """``(def name, line)`` of the first of the student's values (small arrays) on this call that departs
+    from every value of the reference's computation while what it is computed from agrees, related to
+    them or not: where the values first go wrong, or the student's own step; None when none is seen."""
+    from .hints import code_of
+
+    mine = record(trial, function, args, kwargs)
+    theirs = reference_recording(trial, function, args, kwargs) if mine is not None and not mine.raised else None
+    if theirs is None:
+        return None
+    values = [found[3] for found in theirs.values.values() if found[0] == "array" and len(found) == 4
+              and found[3].size >= 2 and np.isfinite(found[3]).all()]
+    code = code_of(trial)
+    fn = code.functions.get(function)
+    if fn is None or not values:
+        return None
+    for where, node, _ in _departures(code, fn, mine, values, depth=0, related=False):
+        return where.name, node.lineno
+    return None

@@ -1910,6 +1910,38 @@ def _beside(verdict) -> bool:
         and re.search(r"\(line \d+\)", message) is None
 
 
+def _upstream(repair: Repair, trial) -> Repair:
+    """``repair`` without the places after the first of the student's values to go wrong
+    (:func:`autograder.engine.traced.first_departure`), in the def where it does, when another place
+    is at it or before: a change downstream of it undoes it (`return T.T` after T built transposed; a
+    column taken from the wrong one of two names unpacked in the wrong order)."""
+    if len(repair.fixes) < 2 or not trial.calls:
+        return repair
+    # A returned value changed whole (`return T` -> `return T.T`) beside a change of a line of the same
+    # def that makes it: the first undoes the second's slip after the fact.
+    wrapped = lambda fix: len(fix.changes) == 1 and fix.changes[0][1].startswith("return ") \
+        and fix.changes[0][1][len("return "):] in fix.changes[0][2][len("return "):]  # noqa: E731
+    kept = tuple(fix for fix in repair.fixes if not (wrapped(fix) and any(
+        other is not fix and other.where == fix.where and other.changes[0][0] < fix.changes[0][0]
+        and not wrapped(other) for other in repair.fixes)))
+    repair = replace(repair, fixes=kept) if kept else repair
+    if len(repair.fixes) < 2:
+        return repair
+    from .. import traced
+
+    function, args, kwargs, _ = next((c for c in reversed(trial.calls) if c[0] == repair.function), trial.calls[-1])
+    try:
+        found = traced.first_departure(trial, function, args, kwargs)
+    except Exception:  # noqa: BLE001 - the repair stands without it
+        return repair
+    if found is None:
+        return repair
+    where, line = found
+    after = lambda fix: fix.where == where and min(change[0] for change in fix.changes) > line  # noqa: E731
+    kept = tuple(fix for fix in repair.fixes if not after(fix))
+    return replace(repair, fixes=kept) if kept and len(kept) < len(repair.fixes) else repair
+
+
 def named_by_repair(verdict, trial):
     """A failed check's verdict with a confirmed repair told at the end of its first line (in place of
     its fixed hint), when the verdict names nothing or only the error model names it; beside the
@@ -1928,6 +1960,7 @@ def named_by_repair(verdict, trial):
         else name_by_repair(trial)
     if repair is None:
         return verdict
+    repair = _upstream(repair, trial)
     first, newline, rest = str(verdict.message).partition("\n")
     if by_hand:   # the check's name of the effect stays, with where it comes from in their code
         lead = first.rstrip()
