@@ -575,3 +575,26 @@ def test_a_methods_outputs_are_read_and_written_as_a_method():
     code = read_code("import cv2\ndef f(a):\n    des, kp = cv2.SIFT_create().detectAndCompute(a, None)\n    return kp\n")
     sentence, _ = outputs.told(code, "f")
     assert sentence.startswith(".detectAndCompute returns (keypoints, descriptors)") and "cv2.detect" not in sentence
+
+
+def test_opencv_s_svd_unpacked_in_numpy_s_order_is_misread_and_its_downstream_repair_not_told(tmp_path):
+    """cv2.SVDecomp answers (w, u, vt), np.linalg.svd (u, s, vt): `u, w, vt = cv2.SVDecomp(F)` names the
+    singular values u. The code reading says so; a repair reading `w[:, -1]` for `u[:, -1]` mends the one
+    use downstream and is not told beside it."""
+    code = read_code(textwrap.dedent("""
+        def epipoles(F):
+            u, w, vt = cv2.SVDecomp(F)
+            return vt[-1], u[:, -1]
+        """))
+    assert [m.name for m in outputs.misread(code.functions["epipoles"])] == ["u", "w"]
+    folder = mutant(tmp_path, "lab11_two_view", '''
+def epipoles(F):
+    F = np.asarray(F, dtype=np.float64)
+    u, w, vt = cv2.SVDecomp(F)
+    e1 = vt[-1]
+    e2 = u[:, -1]
+    return e1, e2
+''')
+    messages = [c.message for c in check_results(grade(str(folder), ["lab11.ex5"]), "lab11.ex5") if c.score < c.max_score]
+    assert messages and all("cv2.SVDecomp returns (w, u, vt)" in m for m in messages), messages
+    assert not any("w[:, -1]" in m for m in messages)

@@ -46,6 +46,9 @@ _KINDS = {
     "hierarchy": r"hierarchy|hier",
     "keypoints": r"kp|kps|keypoints|key_?points|kpts",
     "descriptors": r"des|desc|descs|descriptors|descriptor|features",
+    "singular": r"w|s|sigma|sv|singular(?:_?values)?|d",
+    "U": r"u|u_?mat|left",
+    "Vt": r"vt|v_?t|vh|v",
 }
 _PATTERNS = {kind: re.compile(f"^(?:{pattern})$") for kind, pattern in _KINDS.items()}
 _SIDE = re.compile(r"^(.+?)_?(1|2|left|right)$")
@@ -103,6 +106,9 @@ ORDER = {
     "findContours": (_o("contours", "the contours"), _o("hierarchy", "their hierarchy")),
     "projectPoints": (_o("corners", "the projected points", "imagePoints"), _o("jacobian", "the Jacobian")),
     "detectAndCompute": (_o("keypoints", "the keypoints"), _o("descriptors", "the descriptors")),
+    # (OpenCV's SVD answers the singular values first, where np.linalg.svd answers U first)
+    "SVDecomp": (_o("singular", "the singular values", "w"), _o("U", "the left singular vectors", "u"),
+                 _o("Vt", "the right singular vectors, transposed", "vt")),
 }
 # Calls whose count of outputs is the same in every OpenCV version the labs meet and every overload
 # (recoverPose has a 5-output overload; findContours returned 3 before OpenCV 4).

@@ -1927,7 +1927,18 @@ def _upstream(repair: Repair, trial) -> Repair:
     repair = replace(repair, fixes=kept) if kept else repair
     if len(repair.fixes) < 2:
         return repair
-    from .. import traced
+    from .. import outputs, traced
+    from ..hints import code_of
+
+    # An OpenCV call's outputs unpacked out of their documented order: reordering that unpack is the fix,
+    # a name read in its sibling's place downstream only mends one of its uses (`u, w, vt = cv2.SVDecomp(F)`
+    # read as `w[:, -1]`).
+    code = code_of(trial)
+    misread = {(fix.where, m.line) for fix in repair.fixes if fix.where in code.functions
+               for m in outputs.misread(code.functions[fix.where])}
+    kept = tuple(fix for fix in repair.fixes if (fix.where, fix.changes[0][0]) in misread)
+    if kept and len(kept) < len(repair.fixes):
+        return replace(repair, fixes=kept)
 
     function, args, kwargs, _ = next((c for c in reversed(trial.calls) if c[0] == repair.function), trial.calls[-1])
     try:
