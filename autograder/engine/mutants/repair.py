@@ -1343,6 +1343,7 @@ class _Variants:
         self.keeping: set = set()    # variants (other modes, other channels) where answers must be kept or mended
         self.exchanged: set = set()  # the variants with the twin parameters exchanged (see _unmended_exchange)
         self.holed: set = set()      # the variants with a point given as NaN (see _breaks_holed)
+        self.channels: set = set()   # of keeping, the variants with the images in the other number of channels
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
         self.projective = not any(naming.error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
@@ -1520,10 +1521,12 @@ class _Variants:
             # number of channels: there a change must leave the student's answers as they are, or make
             # them right -- names swapped where both modes read them mend one mode's call by breaking
             # the other's; `shape[::-1][1:]` mends a colour image's size by breaking a grey one's)
-            modes = naming.mode_calls(self.inputs[failing[0]], getattr(self.model, "modes", {}).get(self.function, ())) \
-                + naming.other_channels(self.inputs[failing[0]])
-            self.keeping = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(modes)))
-            variants += modes
+            modes = naming.mode_calls(self.inputs[failing[0]], getattr(self.model, "modes", {}).get(self.function, ()))
+            channels = naming.other_channels(self.inputs[failing[0]])
+            start = len(self.inputs) + len(variants)
+            self.keeping = set(range(start, start + len(modes) + len(channels)))
+            self.channels = set(range(start + len(modes), start + len(modes) + len(channels)))
+            variants += modes + channels
             every = self.inputs + variants
             try:
                 runner = naming.helper()
@@ -1722,13 +1725,16 @@ class _Variants:
         values, own = self.answers(mutant, indices, every), self._own(indices, every)
         if values is None or own is None:
             return False
-        kept = lambda v, theirs: naming.error_kind(v) == naming.error_kind(theirs) if naming.error_kind(theirs) \
-            else self.right(v, theirs, confirming=True)  # noqa: E731 - (the same exception counts as the same answer)
+        # (the same exception counts as the same answer -- except on the images of the other channel count:
+        # code that raises there for the mistake that is mended here raises no more once it is mended, so a
+        # change leaving it raising is no fix: `w = w[..., None]` removed where its test is inverted)
+        kept = lambda v, theirs, i: (naming.error_kind(v) == naming.error_kind(theirs) and i not in self.channels) \
+            if naming.error_kind(theirs) else self.right(v, theirs, confirming=True)  # noqa: E731
         # (a change the check judged -- the student's own recipe -- is held to the spread the check accepted)
         spread = 1.5 * self.checked[mutant.key] + 1e-9 if mutant.key in self.checked else None
         near = lambda v, i: spread is not None and naming.error_kind(v) is None \
             and self.distance(v, wanted[i]) <= spread  # noqa: E731
-        return all(self.right(v, wanted[i], confirming=True) or near(v, i) or kept(v, theirs)
+        return all(self.right(v, wanted[i], confirming=True) or near(v, i) or kept(v, theirs, i)
                    for v, theirs, i in zip(values, own, indices))
 
     def _own(self, indices, every) -> list | None:
