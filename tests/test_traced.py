@@ -405,3 +405,15 @@ def essential_8point(pts1, pts2, K1, K2):
     messages = [c.message for c in check_results(result, "lab11.ex3") if c.score < c.max_score]
     assert messages and all("reshape(3, 3, order='F')` (line" in m for m in messages), messages
     assert not any("swapped" in m for m in messages)
+
+
+def test_an_axis_of_one_added_to_the_wrong_operand_is_not_asked_of_the_other():
+    """A grey band (h, w) against a mask given an axis (h, w, 1) for colour: adding one to the band too
+    would make a grey answer (h, w, 1); the sentence asks which operand needs it."""
+    sentence = raised_sentence("""
+        def blend(a, mask):
+            w = mask[..., None]
+            return w * a
+        """, "blend", np.ones((4, 5)), np.ones((4, 5)))
+    assert "`w` has an axis of size 1 at the end that `a` has not" in sentence
+    assert "gives it one" not in sentence

@@ -431,9 +431,12 @@ def _why_not_broadcast(a, sa, b, sb) -> str:
     short, long_, ss, sl = (a, b, sa, sb) if len(sa) < len(sb) else (b, a, sb, sa)
     if len(ss) < len(sl) and tuple(sl[:len(ss)]) == tuple(ss):
         extra = len(sl) - len(ss)
+        axes = 'axis' if extra == 1 else f'{extra} axes'
+        if all(n == 1 for n in sl[len(ss):]):   # (an axis of 1 added to the longer one: which one is right?)
+            return (f": NumPy lines shapes up from their last axes, and {_quote(long_)} has an {axes} of size 1 "
+                    f"at the end that {_quote(short)} has not (was it added to the one that does not need it?)")
         return (f": NumPy lines shapes up from their last axes, so {_quote(short)} has no axis for the last "
-                f"{'axis' if extra == 1 else f'{extra} axes'} of {_quote(long_)} "
-                f"({_quote(short)[:-1]}[..., None]` gives it one)")
+                f"{axes} of {_quote(long_)} ({_quote(short)[:-1]}[..., None]` gives it one)")
     if len(sa) == len(sb):
         differ = [i for i, (m, n) in enumerate(zip(sa, sb)) if m != n and 1 not in (m, n)]
         if differ:
