@@ -215,14 +215,18 @@ def _name_matches(node, wanted: str, scope: Scope) -> bool:
 
 
 def calls(name: str, at_least: int = 1) -> Predicate:
-    """A call of ``name`` (see :func:`_name_matches` for how prefixes match), in at least
-    ``at_least`` places of one function."""
+    """A call of ``name`` (see :func:`_name_matches` for how prefixes match); with ``at_least``, in at
+    least that many places of the functions read together (a helper may make one of them: the 8-point
+    solve's SVD in a helper, the rank-2 one in the function)."""
     shown = name.lstrip(".")
 
-    def test(function) -> bool:
+    def count(function) -> int:
         return sum(1 for node in ast.walk(function)
-                   if isinstance(node, ast.Call) and _name_matches(node.func, name, _scope(function))) >= at_least
-    return Predicate(f"calls {shown}" + (f" in {at_least} places" if at_least > 1 else ""), test)
+                   if isinstance(node, ast.Call) and _name_matches(node.func, name, _scope(function)))
+    if at_least <= 1:
+        return Predicate(f"calls {shown}", lambda function: count(function) >= 1)
+    return Predicate(f"calls {shown} in {at_least} places", lambda functions: sum(map(count, functions)) >= at_least,
+                     kind="all")
 
 
 def mentions(name: str) -> Predicate:
