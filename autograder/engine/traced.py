@@ -30,15 +30,17 @@ from __future__ import annotations
 import ast
 import re
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
+from ..loading.parsing import parse
+from .claims import measured
 from .forms import Form
+from .recorder import SMALL_ARRAY as SMALL   # (the recorder's own bound: it is sent with it)
 
 MISTAKE = "an expression of another shape than its use needs"
 RECORDER, RECORDED, DESCRIBE, STORE = "__ag_seen__", "__ag_recorded__", "__ag_describe__", "__ag_record__"
-SMALL = 128                           # an array of at most this many numbers is recorded with its values
-RECORDS_PER_CALL = 200_000            # evaluations recorded per call (a pixel loop stops recording, not running)
 ARRAY_ATTRIBUTES = frozenset({"T", "shape", "size", "ndim", "real", "imag"})
 TRACE_SECONDS = 3.0
 GRADING_SECONDS = 8.0                 # the recordings' own time per grading (not the error model's: they come after it)
@@ -138,35 +140,7 @@ def _local_names(fn: ast.AST) -> frozenset[str]:
     return frozenset(names)
 
 
-_PRELUDE = f'''
-import numpy as __ag_np__
-{STORE} = {{}}
-__ag_count__ = [0]
-
-def {DESCRIBE}(value, depth=0):
-    kind = type(value)
-    if kind is __ag_np__.ndarray:
-        if value.size <= {SMALL} and value.dtype.kind in "biuf":   # (a small one's values too)
-            return ["array", [int(n) for n in value.shape], str(value.dtype), value.astype(float).ravel().tolist()]
-        return ["array", [int(n) for n in value.shape], str(value.dtype)]
-    if kind in (bool, int, float) or isinstance(value, (__ag_np__.integer, __ag_np__.floating, __ag_np__.bool_)):
-        return ["number", float(value)]
-    if kind in (tuple, list):
-        if depth == 0 and len(value) <= 8 and all(type(v) in (int, float, bool) for v in value):
-            return ["tuple", [float(v) for v in value]]
-        first = {DESCRIBE}(value[0], 1) if depth == 0 and len(value) else None
-        return ["sequence", kind.__name__, len(value), first]
-    return ["other", kind.__name__[:40]]
-
-def {RECORDER}(key, value):
-    if __ag_count__[0] < {RECORDS_PER_CALL}:
-        __ag_count__[0] += 1
-        try:
-            {STORE}[key] = {DESCRIBE}(value)
-        except Exception:
-            pass
-    return value
-'''
+_RECORDER = Path(__file__).with_name("recorder.py")   # the recorder's code, sent as text (see there)
 
 
 def recording_source(code, function: str) -> str | None:
@@ -183,17 +157,8 @@ def recording_source(code, function: str) -> str | None:
     for fn in reached:
         rewritten = _Recording(_local_names(fn)).visit(copy.deepcopy(fn))
         defs.append(ast.unparse(ast.fix_missing_locations(rewritten)))
-    entry = f'''
-def {RECORDED}(*args, **kwargs):
-    {STORE}.clear()
-    __ag_count__[0] = 0
-    try:
-        value = {function}(*args, **kwargs)
-    except Exception as exc:
-        return {{"record": dict({STORE}), "raised": type(exc).__name__}}
-    return {{"record": dict({STORE}), "returned": {DESCRIBE}(value)}}
-'''
-    return _PRELUDE + "\n\n".join(defs) + "\n" + entry
+    recorder = _RECORDER.read_text(encoding="utf-8")
+    return recorder + "\n\n" + "\n\n".join(defs) + f"\n\n__ag_target__ = {function!r}\n"
 
 
 # ------------------------------------------------------------------ the recording
@@ -371,7 +336,7 @@ _AMBIGUOUS = re.compile(r"truth value of an array with more than one element is 
 _RESHAPE = re.compile(r"cannot reshape array of size (\d+) into shape")
 # (two of the call's arrays compared with each other: `_queryDescriptors.type() == trainDescType`; not one
 # compared with a type OpenCV takes, `M0.type() == CV_32F`, where the arrays' kinds differ by design)
-_OPENCV_KINDS = re.compile(r"(?:type|depth)\(\) *== *(?!CV_)[A-Za-z_]|types? (?:do not|don't) match|same type")
+_OPENCV_KINDS = re.compile(r"(?:type|depth)\(\) *== *(?!CV_)[A-Za-z_]|types? do(?: not|n't) match|same type")
 _OPENCV_SIZES = re.compile(r"size\(\) *== *(?!Size\b)[A-Za-z_]|[Ss]izes? of input arguments do not match|same size")
 _OUT_OF_BOUNDS = re.compile(r"index (-?\d+) is out of bounds for axis (\d+) with size (\d+)")
 
@@ -533,8 +498,8 @@ def _truth_named(recording, statement, expressions, where) -> Form | None:
         shape = recording.shape(node)
         if shape is not None and int(np.prod(shape)) > 1:
             return Form(f"{_quote(node)} {where} is an array of shape {_shape_text(shape)} where one truth value is "
-                        "asked (`if`, `and`, `or`, `not` take one: an element-wise test needs `&`, `|`, `~`, "
-                        "`np.where` or a mask; a question about all of them, `.all()` or `.any()`)", MISTAKE)
+                        + measured("asked (`if`, `and`, `or`, `not` take one: an element-wise test needs `&`, `|`, `~`, "
+                                   "`np.where` or a mask; a question about all of them, `.all()` or `.any()`)"), MISTAKE)
     return None
 
 
@@ -991,7 +956,7 @@ def undo_text(node, relation: str) -> str:
         return ast.unparse(node.args[0])
     text = ast.unparse(node)
     if relation in _UNDO:
-        return ast.unparse(ast.parse(_UNDO[relation].format(text), mode="eval"))
+        return ast.unparse(parse(_UNDO[relation].format(text), mode="eval"))
     k = float(relation.split()[0])
     if abs(1 / k - round(1 / k)) < 1e-9:   # (half of it: twice that)
         return f"{round(1 / k)} * ({text})"
@@ -1009,7 +974,7 @@ def undone(fn, node, relation: str) -> str | None:
     class Swap(ast.NodeTransformer):
         def generic_visit(self, child):
             if isinstance(child, ast.expr) and hasattr(child, "lineno") and node_key(child) == key:
-                return ast.parse(wrapped, mode="eval").body
+                return parse(wrapped, mode="eval").body
             return super().generic_visit(child)
 
     changed = Swap().visit(copy.deepcopy(fn))
