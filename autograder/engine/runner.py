@@ -527,6 +527,12 @@ def _named_by_error_model(verdict: Verdict, check: Check, trial: Trial, raised: 
         return verdict
 
 
+def _unused_mistakes() -> tuple[str, str]:
+    from . import ignored
+
+    return ignored.MISTAKE, ignored.UNUSED_VALUE
+
+
 def _named_by_trace(verdict: Verdict, check: Check, trial: Trial, traceback_text: str = "") -> Verdict:
     """A failed verdict that names nothing, named by what the student's own expressions held on the
     failing call (:mod:`autograder.engine.traced`). Never costs the verdict (logged)."""
@@ -844,14 +850,15 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
     if status in (FAILED, PARTIAL) and student_failure == "" and not inherited:   # (an exception's: above)
         verdict = _named_by_repair(verdict, check, trial)
-    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
-        # what the student's expressions held: the operands an exception refused, where an answer of the
-        # wrong shape was made (after the error model: a place is no cause, and a name set here would
-        # keep the model from the function's later checks)
-        verdict = _named_by_trace(verdict, check, trial, tb if student_failure == "exception" else "")
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") \
             and not inherited and "looks like" not in str(verdict.message).lower():
-        verdict = _named_by_unused_parameter(verdict, trial)   # the last resort: true, but not confirmed
+        verdict = _named_by_unused_parameter(verdict, trial)   # true, but not confirmed
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited \
+            and verdict.mistake not in _unused_mistakes():
+        # what the student's expressions held: the operands an exception refused, where an answer of the
+        # wrong shape was made (after the error model: a place is no cause, and a name set here would
+        # keep the model from the function's later checks; after a parameter never read, the cause)
+        verdict = _named_by_trace(verdict, check, trial, tb if student_failure == "exception" else "")
     if status in (FAILED, PARTIAL):   # a diagnosis asking for code the student wrote is not said
         verdict = rewritten(verdict, trial)
     if status in (FAILED, PARTIAL):   # code relying on what only one OpenCV major does is told so
