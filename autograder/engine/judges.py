@@ -245,8 +245,26 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
         if mistake:
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     shown, wanted = format_arrays_apart(got, expected)
+    last = _last_row_only(got, expected, tolerance) if not up_to_scale else ""
+    if last:
+        t.fail(f"{what} is wrong: {last}.\nIt returned\n{shown}\nexpected\n{wanted}", mistake=LAST_ROW)
     t.fail(f"{what} is wrong {where_matrices_differ(got, expected, up_to_scale)}.\n"
            f"It returned\n{shown}\nexpected\n{wanted}")
+
+
+LAST_ROW = "the homogeneous matrix's last row is not [0, 0, 1]"
+
+
+def _last_row_only(got, expected, tolerance: float) -> str:
+    """The sentence for a homogeneous 2D transform right in its first two rows and wrong in its last
+    (which must be [0, 0, 1]: a point's third coordinate stays 1), else ``""``. Measured."""
+    expected = np.asarray(expected, np.float64)
+    if expected.shape != (3, 3) or got.shape != (3, 3) or not np.allclose(expected[2], (0, 0, 1)) \
+            or max_abs_error(got[:2], expected[:2]) > tolerance or max_abs_error(got[2], expected[2]) <= tolerance:
+        return ""
+    row = ", ".join(f"{v:g}" for v in np.asarray(got[2], np.float64))
+    return measured(f"its first two rows are right and its last row is [{row}], where a 2D transformation's "
+                    "homogeneous matrix ends with [0, 0, 1] (so that a point's third coordinate stays 1)")
 
 
 def where_points_differ(got, expected, tolerance: float, names=("x", "y")) -> str:

@@ -28,6 +28,10 @@ MISTAKES = {
             h, w = image.shape[:2]
             return cv2.warpAffine(image, np.array([[sx, 0, 0], [0, sy, 0]]), (w, h))
         """, ["yours is int64"]),
+    "translation_matrix with a last row of zeros": ("lab07.ex1", """
+        def translation_matrix(tx, ty):
+            return np.array([[1.0, 0, tx], [0, 1.0, ty], [0, 0, 0.0]])
+        """, ["last row is [0, 0, 0]"]),
     "tx/ty swapped": ("lab07.ex1", """
         def translation_matrix(tx, ty):
             return np.array([[1.0, 0, ty], [0, 1.0, tx], [0, 0, 1.0]])
