@@ -417,3 +417,13 @@ def test_an_axis_of_one_added_to_the_wrong_operand_is_not_asked_of_the_other():
         """, "blend", np.ones((4, 5)), np.ones((4, 5)))
     assert "`w` has an axis of size 1 at the end that `a` has not" in sentence
     assert "gives it one" not in sentence
+
+
+def test_an_index_array_holding_a_value_past_its_axis_is_named_with_its_range():
+    sentence = raised_sentence("""
+        def pick(points, rng_values):
+            order = np.argsort(rng_values, axis=0)[:, :4]
+            return points[order]
+        """, "pick", np.ones((10, 2)), np.random.default_rng(0).random((300, 10)))
+    assert "`order` holds" in sentence and "(its values go from 0 to 299)" in sentence
+    assert "axis 0 of `points` (shape (10, 2)) has 10 entries" in sentence

@@ -19,6 +19,8 @@ def __ag_describe__(value, depth=0):
     if kind is __ag_np__.ndarray:
         if value.size <= SMALL_ARRAY and value.dtype.kind in "biuf":   # (a small one's numbers too)
             return ["array", [int(n) for n in value.shape], str(value.dtype), value.astype(float).ravel().tolist()]
+        if value.dtype.kind in "iu" and value.size:   # (an index array: its range)
+            return ["array", [int(n) for n in value.shape], str(value.dtype), None, int(value.min()), int(value.max())]
         return ["array", [int(n) for n in value.shape], str(value.dtype)]
     if kind in (bool, int, float) or isinstance(value, (__ag_np__.integer, __ag_np__.floating, __ag_np__.bool_)):
         return ["number", float(value)]

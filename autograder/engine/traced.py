@@ -181,9 +181,17 @@ class Recording:
     def value(self, node) -> np.ndarray | None:
         """The values of a small array (:data:`SMALL`) or of a number the node gave, as floats."""
         found = self.values.get(node_key(node))
-        if found and found[0] == "array" and len(found) == 4:
+        if found and found[0] == "array" and len(found) >= 4 and found[3] is not None:
             return found[3]
         return np.array(found[1]) if found and found[0] == "number" else None
+
+    def range(self, node) -> tuple | None:
+        """``(smallest, largest)`` of an integer array the node gave (an index array)."""
+        found = self.values.get(node_key(node))
+        if found and found[0] == "array" and len(found) == 6:
+            return found[4], found[5]
+        values = self.value(node)
+        return (float(values.min()), float(values.max())) if values is not None and values.size else None
 
     def number(self, node) -> float | None:
         found = self.values.get(node_key(node))
@@ -195,6 +203,10 @@ def _description(value):
     if not isinstance(value, (list, tuple)) or not value or not isinstance(value[0], str):
         return None
     kind = value[0]
+    if kind == "array" and len(value) == 6 and isinstance(value[1], (list, tuple)) and len(value[1]) <= 32 \
+            and all(isinstance(n, int) and 0 <= n < 2**62 for n in value[1]) and isinstance(value[2], str) \
+            and all(isinstance(v, int) for v in value[4:]):
+        return ("array", tuple(value[1]), value[2][:20], None, value[4], value[5])   # (an index array's range)
     if kind == "array" and len(value) in (3, 4) and isinstance(value[1], (list, tuple)) and len(value[1]) <= 32 \
             and all(isinstance(n, int) and 0 <= n < 2**62 for n in value[1]) and isinstance(value[2], str):
         numbers = value[3] if len(value) == 4 else None
@@ -468,11 +480,16 @@ def _index_named(recording, expressions, index, axis, size, where) -> Form | Non
         for part in parts:
             if isinstance(part, (ast.Slice, ast.Constant)):
                 continue
-            if recording.number(part) == index:
+            span = recording.range(part) if recording.shape(part) else None
+            values = recording.value(part)
+            holds = span is not None and (values is None or bool(np.any(values == index))) \
+                and (span[0] <= index <= span[1])
+            if recording.number(part) == index or holds:
                 shape = recording.shape(node.value)
                 of = f" of {_quote(node.value)} (shape {_shape_text(shape)})" if shape else ""
-                return Form(f"{_quote(part)} is {index} in {_quote(node)} {where}: axis {axis}{of} "
-                                     f"has {size} entries, numbered 0 to {size - 1}", MISTAKE)
+                said = f"holds {index} (its values go from {span[0]:g} to {span[1]:g})" if holds else f"is {index}"
+                return Form(f"{_quote(part)} {said} in {_quote(node)} {where}: axis {axis}{of} "
+                            f"has {size} entries, numbered 0 to {size - 1}", MISTAKE)
     return None
 
 
