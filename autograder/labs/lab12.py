@@ -830,6 +830,9 @@ EXACT_ROWS = 1e-3        # pixels: rows agree to rounding error (a mistake undon
 IN_VIEW = 0.5            # fraction of each image kept in view / of each frame covered
 
 
+INVERSE_WARP = "the images are warped by the inverse of the homographies"
+
+
 def call_rectify(t: Trial, pair):
     what = "rectify(img_l, img_r, K1, K2, R, T)"
     result = t.call("rectify", pair.img_l, pair.img_r, pair.K1, pair.K2, pair.R, pair.T)
@@ -1239,6 +1242,16 @@ def rectify_images(t):
                                f"{'H2' if homography is H2 else 'H1'}.", mistake=mistake)
                 except np.linalg.LinAlgError:
                     continue
+            try:   # right homographies, applied the other way round: the image warped by H's inverse
+                inverted = warped_error(image, np.linalg.inv(H), got) <= 8.0 \
+                    and np.nanmax(row_errors(H1, H2, pair)[0]) <= EXACT_ROWS
+            except np.linalg.LinAlgError:
+                inverted = False
+            if inverted:
+                t.fail(f"rectify: {name} is the input warped by the inverse of your {'H1' if name == 'rect_l' else 'H2'}: "
+                       + measured("the homography is applied the other way round (a warp with cv2.WARP_INVERSE_MAP "
+                                  "takes the map from the result back to the input, or H was inverted before the warp)"),
+                       mistake=INVERSE_WARP)
             name_rotations(t, H1, H2)
             height, width = image.shape[:2]
             expected = cv2.warpPerspective(image, H, (width, height))

@@ -176,6 +176,15 @@ MISTAKES = {
             rect_r = cv2.warpPerspective(np.asarray(img_r), H2, (w, h))
             return rect_l, rect_r, R1, R2
         """, ["rotation matrices (orthonormal, determinant 1)", "the rectifying rotations are returned as H1 and H2"]),
+    "rectify warping with cv2.WARP_INVERSE_MAP (the homographies applied the other way round)": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            h, w = np.asarray(img_l).shape[:2]
+            flags = cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP
+            return (cv2.warpPerspective(np.asarray(img_l), H1, (w, h), flags=flags),
+                    cv2.warpPerspective(np.asarray(img_r), H2, (w, h), flags=flags), H1, H2)
+        """, ["warped by the inverse of your H1"]),
     "rectify with the homographies swapped": ("lab12.ex3", """
         _rectify = rectify
         def rectify(img_l, img_r, K1, K2, R, T):
