@@ -583,6 +583,10 @@ def judge_parameter_changes_result(t: Trial, what: str, call, parameter: str, va
 
 
 BLANK_CANVAS = "the drawing is made on a new blank image, not on a copy of the input"
+# (code that copies the image already: a copy made, and another array drawn on or returned)
+BLANK_CANVAS_HINT = Hint("draw on a copy of the input, image.copy()", asks=calls(".copy") | calls("np.copy"),
+                         instead="your code copies the image ({found}): is that copy what is drawn on and returned, "
+                                 "rather than a new array such as np.zeros_like(image)?")
 
 
 def blank_canvas(got, image, away) -> str:

@@ -9,6 +9,8 @@ import numpy as __ag_np__
 
 SMALL_ARRAY = 128             # an array of at most this many numbers is described with its numbers
 RECORDS_PER_CALL = 200_000    # evaluations described per call (a pixel loop stops recording, not running)
+INDEX_ARRAY = 65_536          # an integer array of at most this many is described with its range (not an image
+                              # read at every pixel of a loop: its range would cost a pass over it each time)
 __ag_target__ = ""
 __ag_record__ = {}
 __ag_count__ = [0]
@@ -19,7 +21,7 @@ def __ag_describe__(value, depth=0):
     if kind is __ag_np__.ndarray:
         if value.size <= SMALL_ARRAY and value.dtype.kind in "biuf":   # (a small one's numbers too)
             return ["array", [int(n) for n in value.shape], str(value.dtype), value.astype(float).ravel().tolist()]
-        if value.dtype.kind in "iu" and value.size:   # (an index array: its range)
+        if value.dtype.kind in "iu" and 0 < value.size <= INDEX_ARRAY:   # (an index array: its range)
             return ["array", [int(n) for n in value.shape], str(value.dtype), None, int(value.min()), int(value.max())]
         return ["array", [int(n) for n in value.shape], str(value.dtype)]
     if kind in (bool, int, float) or isinstance(value, (__ag_np__.integer, __ag_np__.floating, __ag_np__.bool_)):

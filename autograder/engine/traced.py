@@ -28,6 +28,7 @@ the student meant, and they name the place, never the reference's code.
 from __future__ import annotations
 
 import ast
+import functools
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -677,8 +678,15 @@ def _helper(code, fn, node):
     """The def a call ``helper(...)`` runs: one nested in ``fn``, or a function of the module."""
     if not isinstance(node, ast.Call) or not isinstance(node.func, ast.Name):
         return None
-    nested = [d for d in _own_nodes(fn) if isinstance(d, ast.FunctionDef) and d.name == node.func.id]
-    return nested[-1] if nested else code.functions.get(node.func.id)
+    return _nested_defs(fn).get(node.func.id) or code.functions.get(node.func.id)
+
+
+@functools.lru_cache(maxsize=64)
+def _nested_defs(fn) -> dict:
+    """The defs nested in ``fn`` by name (the last of a name wins), read once per def: asked for every
+    call the reading meets, a walk each time would make it quadratic in the function's size."""
+    return {d.name: d for d in sorted((d for d in _own_nodes(fn) if isinstance(d, ast.FunctionDef)),
+                                      key=lambda d: d.lineno)}
 
 
 def _children(node) -> list[ast.AST]:

@@ -25,7 +25,8 @@ from ..engine.claims import THIRD_COORDINATE, checklist, divides_by, from_code, 
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
 from ..engine.hints import Hint, Predicate, _resolved, _scope, calls, code_of, expr, matmul_of, mentions, nan_behind
 from ..engine.hints import _path as _hints_path
-from ..engine.judges import BLANK_CANVAS, Probe, blank_canvas, call_probe, confirm, fingerprint, format_matrix
+from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canvas, call_probe, confirm, fingerprint,
+                              format_matrix)
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
 from ..sandbox.beginner import integer_entries
@@ -1049,7 +1050,7 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
         return passed(f"every circle drawn, {coverage:.0%} of the disc pixels in the colour {tuple(color)}")
     blank = blank_canvas(got, image, far)
     if blank:
-        t.fail(f"{what}: {blank} ({measured('draw on image.copy()')}).", mistake=BLANK_CANVAS)
+        t.fail(f"{what}: {blank}.", hint=BLANK_CANVAS_HINT.said(t, ["draw_points"]), mistake=BLANK_CANVAS)
     pts = np.asarray(pts, float).reshape(-1, 2)
     swapped_core, _ = truth.circle_regions(image.shape, pts[:, ::-1], radius)
     if swapped_core.any() and painted[swapped_core].mean() > 0.9:
@@ -1076,9 +1077,10 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     # thick rings: the centres empty, a band around them painted past the radius (a thickness given the radius)
     centres, band = d <= 0.5, (d >= radius - 1) & (d <= radius)
     if radius >= 2 and centres.any() and painted[centres].mean() < 0.2 and band.any() and painted[band].mean() > 0.8:
-        outside = painted[(d > radius + 0.5) & (d <= radius + 2)].mean()
+        beyond = (d > radius + 0.5) & (d <= radius + 2)
+        outside = f", and {painted[beyond].mean():.0%} of those up to 2 px beyond it" if beyond.any() else ""
         t.fail(f"{what}: " + measured(f"the circles are rings: no centre pixel is painted, {painted[band].mean():.0%} "
-                                      f"of the pixels at the radius are, and {outside:.0%} of those up to 2 px beyond it; "
+                                      f"of the pixels at the radius are{outside}; "
                                       "a filled disc is drawn with thickness=-1 (cv2.FILLED), a positive thickness "
                                       "draws a ring that wide around the circle."),
                mistake="the circles are outlines, not filled")

@@ -30,8 +30,8 @@ from ..engine.claims import (DIVISION, THIRD_COORDINATE, calls_any, checklist, d
                              measured, reshapes, returns_from, subtracts_a_mean, takes_last_row_of_vt,
                              treats_each_of, wherever_written, zeroes_an_entry)
 from ..engine.hints import RATIO_TEST, Hint, Predicate, _path, calls, code_of, expr, keyword, mentions
-from ..engine.judges import (BLANK_CANVAS, Probe, blank_canvas, call_probe, confirm, format_matrix, name_mistake,
-                              over_variants, where_matrices_differ, where_points_differ)
+from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canvas, call_probe, confirm, format_matrix,
+                              name_mistake, over_variants, where_matrices_differ, where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
 from .code_signs import CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, constant_factor, factor_words, name_batched_vt_row
@@ -496,7 +496,7 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     away = _far_from_lines(np.asarray(lines, float).reshape(-1, 3), height, width, 4.0)
     blank = blank_canvas(got, image if image.ndim == 3 else cv2.cvtColor(image, cv2.COLOR_GRAY2BGR), away)
     if blank:
-        t.fail(f"{what}: {blank} ({measured('draw on image.copy()')}).", mistake=BLANK_CANVAS)
+        t.fail(f"{what}: {blank}.", hint=BLANK_CANVAS_HINT.said(t, ["draw_epipolar_lines"]), mistake=BLANK_CANVAS)
     swapped_lines = np.asarray(lines, float)[:, [1, 0, 2]]
     swapped_coverage, swapped_stray, _ = draw_judgement(got, image, swapped_lines)
     if swapped_coverage.min() >= min_coverage and swapped_stray <= 0.05:

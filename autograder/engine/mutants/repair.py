@@ -26,6 +26,7 @@ from __future__ import annotations
 import ast
 import copy
 import difflib
+import functools
 import hashlib
 import itertools
 import os
@@ -728,6 +729,7 @@ def _student_code(trial) -> _Student | None:
     return read
 
 
+@functools.lru_cache(maxsize=8)
 def _named_parts(source: str) -> frozenset:
     """``(name, (part, ...))`` of each name the reference unpacks into named parts (``cols, rows =
     pattern_size``)."""
