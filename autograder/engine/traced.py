@@ -41,7 +41,10 @@ from .forms import Form
 from .recorder import SMALL_ARRAY as SMALL   # (the recorder's own bound: it is sent with it)
 
 MISTAKE = "an expression of another shape than its use needs"
-RECORDER, RECORDED, DESCRIBE, STORE = "__ag_seen__", "__ag_recorded__", "__ag_describe__", "__ag_record__"
+INDEX = "an index past the end of its axis"
+TRUTH = "an array where one truth value is asked"
+KINDS = "arrays of different kinds given to one OpenCV call"
+RECORDER, RECORDED = "__ag_seen__", "__ag_recorded__"   # (the names recorder.py defines)
 ARRAY_ATTRIBUTES = frozenset({"T", "shape", "size", "ndim", "real", "imag"})
 TRACE_SECONDS = 3.0
 GRADING_SECONDS = 8.0                 # the recordings' own time per grading (not the error model's: they come after it)
@@ -490,7 +493,7 @@ def _index_named(recording, expressions, index, axis, size, where) -> Form | Non
                 of = f" of {_quote(node.value)} (shape {_shape_text(shape)})" if shape else ""
                 said = f"holds {index} (its values go from {span[0]:g} to {span[1]:g})" if holds else f"is {index}"
                 return Form(f"{_quote(part)} {said} in {_quote(node)} {where}: axis {axis}{of} "
-                            f"has {size} entries, numbered 0 to {size - 1}", MISTAKE)
+                            f"has {size} entries, numbered 0 to {size - 1}", INDEX)
     return None
 
 
@@ -517,7 +520,7 @@ def _truth_named(recording, statement, expressions, where) -> Form | None:
         if shape is not None and int(np.prod(shape)) > 1:
             return Form(f"{_quote(node)} {where} is an array of shape {_shape_text(shape)} where one truth value is "
                         + measured("asked (`if`, `and`, `or`, `not` take one: an element-wise test needs `&`, `|`, `~`, "
-                                   "`np.where` or a mask; a question about all of them, `.all()` or `.any()`)"), MISTAKE)
+                                   "`np.where` or a mask; a question about all of them, `.all()` or `.any()`)"), TRUTH)
     return None
 
 
@@ -550,7 +553,7 @@ def _opencv_named(code, recording, fn, statement, expressions, where, frames, by
         origins = [o for o in origins if o]
         if len(origins) >= 2:
             said += " (" + "; ".join(origins) + ")"
-        return Form(said, MISTAKE)
+        return Form(said, KINDS)
     return None
 
 
@@ -813,6 +816,12 @@ def reference_recording(trial, function: str, args, kwargs) -> Recording | None:
     from .mutants.helper import HelperFailed
     from .mutants.naming import helper, model_for, release_helper
 
+    from .checks import fingerprint
+
+    cache = trial.sandbox.shared.setdefault("traced reference recordings", {})
+    key = fingerprint(function, tuple(args), dict(kwargs))
+    if key in cache:   # (a departure confirmed, then the repairs' pruning: one recording of the call)
+        return cache[key]
     model = model_for(trial.lab)
     spent = trial.sandbox.shared.setdefault(SPENT, [0.0])
     seconds = min(TRACE_SECONDS, GRADING_SECONDS - spent[0])
@@ -833,11 +842,8 @@ def reference_recording(trial, function: str, args, kwargs) -> Recording | None:
     finally:
         spent[0] += time.monotonic() - started
         release_helper()
-    return recording_of(value)
-
-
-RELATIONS = ("the transpose of", "the inverse of", "the negative of", "the reciprocal of", "in reverse order",
-             "times")
+    cache[key] = recording_of(value)
+    return cache[key]
 
 
 def explain_values(code, mine: Recording, reference: Recording, function: str):
