@@ -262,7 +262,7 @@ def _sad_volume(left, right, max_disparity, block_size):
     match exists: the cost is 255, worse than any real one.
     """
     height, width = left.shape
-    costs = np.full((max_disparity + 1, height, width), 0.0, dtype=np.float32)
+    costs = np.full((max_disparity + 1, height, width), 255.0, dtype=np.float32)
     for d in range(min(max_disparity, width - 1) + 1):
         costs[d, :, d:] = _box_mean(np.abs(left - _shift_right(right, d)), block_size)[:, d:]
     return np.ascontiguousarray(costs.transpose(2, 1, 0))
@@ -324,7 +324,7 @@ def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
     candidates = np.arange(D)
     for x in range(width - 1, 0, -1):
         jump = ramp[np.abs(candidates[None, :] - disparity[x][:, None])]
-        disparity[x - 1] = np.argmin(energy[x - 1] + jump, axis=1)
+        disparity[x - 1] = np.argmin(energy[x] + jump, axis=1)
     return disparity.T.astype(np.float64)
 
 
