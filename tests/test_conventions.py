@@ -31,7 +31,7 @@ def _functions():
                 yield from exercise.signatures.items()
 
 
-@pytest.mark.parametrize("convention, names", [("channels", IMAGES), ("rows", POINTS)])
+@pytest.mark.parametrize("convention, names", [("channels", IMAGES), ("rows", POINTS), ("integers", POINTS)])
 def test_every_function_with_images_or_points_is_judged_or_says_why_not(convention, names):
     unsaid = sorted(function for function, signature in _functions() if _parameters(signature) & names
                     and function not in conventions.DECLARED[convention]
@@ -41,7 +41,7 @@ def test_every_function_with_images_or_points_is_judged_or_says_why_not(conventi
 
 def test_what_is_declared_exists_and_is_declared_once():
     functions = {function for function, _ in _functions()}
-    declared = {**conventions.DECLARED["channels"], **conventions.DECLARED["rows"]}
+    declared = {**conventions.DECLARED["channels"], **conventions.DECLARED["rows"], **conventions.DECLARED["integers"]}
     reasons = conventions.DECLARED["not judged"]
     assert set(declared) <= functions
     assert {function for _, function in reasons} <= functions
@@ -118,3 +118,69 @@ def test_a_float32_answer_is_judged_at_float32s_precision():
     alone = many * np.float32(1 + 2 ** -22)   # a couple of float32 roundings apart
     assert _close(alone, many)
     assert not _close(many.astype(np.float64) * (1 + 1e-5), many.astype(np.float64))
+
+
+def test_points_given_as_integers_answered_in_integers_are_told_with_the_line_that_makes_the_array(tmp_path):
+    submission = mutant(tmp_path, "lab10_camera2", """
+        _reference = weak_perspective_project
+        def weak_perspective_project(points, f, z_avg=None):
+            pts = np.asarray(points)
+            projected = np.zeros_like(pts[..., :2])
+            projected[...] = _reference(points, f, z_avg)
+            return projected
+        """)
+    failed = _failed(grade(submission, ["lab10.ex2"]), "lab10.ex2")
+    assert list(failed) == ["weak_perspective_project answers whole numbers given as integers as it answers them as floats"]
+    message = next(iter(failed.values())).message
+    assert "(dtype int64)" in message and "your answer is an integer array" in message
+    assert "`projected = np.zeros_like(pts[..., :2])` (line" in message and "then writes into it" in message
+
+
+def test_an_integer_answer_from_code_that_makes_no_array_of_the_inputs_dtype_names_no_line(tmp_path):
+    # the answer converted to the input's dtype on its way out: no array is written into, no line is named
+    submission = mutant(tmp_path, "lab12_stereo", """
+        _reference = depth_from_disparity
+        def depth_from_disparity(disparity, f, baseline):
+            return _reference(disparity, f, baseline).astype(np.asarray(disparity).dtype)
+        """)
+    failed = _failed(grade(submission, ["lab12.ex2"]), "lab12.ex2")
+    check = failed["depth_from_disparity answers whole numbers given as integers as it answers them as floats"]
+    assert "your answer is an integer array" in check.message and "of the input's dtype" not in check.message
+
+
+def test_refusing_integer_points_is_allowed_and_float_recipes_pass(tmp_path):
+    # the API gives floats: raising on integers is no mistake; OpenCV's float32 recipe answers alike
+    submission = mutant(tmp_path, "lab08_homographies", """
+        def transform_points(H, pts):
+            if np.asarray(pts).dtype.kind != "f":
+                raise TypeError("pts must be a float array")
+            moved = cv2.perspectiveTransform(np.asarray(pts, np.float64).reshape(-1, 1, 2), np.asarray(H, np.float64))
+            return moved.reshape(-1, 2)
+        _reference = homography_dlt
+        def homography_dlt(src, dst):
+            return _reference(np.float32(src), np.float32(dst))
+        """)
+    result = grade(submission, ["lab08.ex1", "lab08.ex2"])
+    checks = {c.name: c for e in result.exercises for c in e.checks}
+    refused = checks["transform_points answers whole numbers given as integers as it answers them as floats"]
+    assert refused.score == refused.max_score and "refusing integers is allowed" in refused.message
+    fitted = checks["homography_dlt answers whole numbers given as integers as it answers them as floats"]
+    assert fitted.score == fitted.max_score
+
+
+def test_the_code_reading_follows_names_read_from_an_input_and_wants_a_write():
+    import ast
+
+    from autograder.engine.conventions import _made_like
+
+    def lines(source):
+        function = ast.parse(source).body[0]
+        return [text for _, text in _made_like([function], {a.arg for a in function.args.args})]
+
+    assert lines("def f(pts1):\n    pts = np.asarray(pts1).reshape(-1, 2)\n"
+                 "    out = np.zeros((len(pts), 3), dtype=pts.dtype)\n    out[0] = 1.5\n    return out") \
+        == ["out = np.zeros((len(pts), 3), dtype=pts.dtype)"]
+    assert lines("def f(points):\n    X = points.copy()\n    X /= X[:, 2:]\n    return X") == ["X = points.copy()"]
+    # made like the input but never written into, or made as floats: nothing to name
+    assert lines("def f(points):\n    X = np.asarray(points)\n    return X[:, :2] / X[:, 2:]") == []
+    assert lines("def f(points):\n    out = np.zeros_like(points, dtype=float)\n    out[0] = 1.5\n    return out") == []

@@ -1,40 +1,48 @@
 """The API's conventions on forms, judged as relations between a student's own answers.
 
-Two conventions of the API hold for every function they apply to, yet no worked example of a
+Three conventions of the API hold for every function they apply to, yet no worked example of a
 lab shows them, so a submission breaking one could score full marks (issue 35's blind sets: a
-grey image warped as BGR, a (1, 3) input squeezed away, a single point counted by its length):
+grey image warped as BGR, a (1, 3) input squeezed away, a single point counted by its length,
+points given as integers answered in integers):
 
 - **channels**: a function that takes images and returns one answers in the input's number of
   channels -- the grey version of its BGR inputs gives the grey form of its BGR answer (the same
   size, uint8, no channel axis), and its other arrays in the same shapes;
 - **points one by one**: a function of N points treats each point alone -- the first point given
   as a one-row array, (1, k), is answered as the first row of its answer for all N (N = 1 is a
-  number of points like any other: a squeezed (k,) answer is no row).
+  number of points like any other: a squeezed (k,) answer is no row);
+- **whole numbers as integers**: points and matrices of whole numbers given as integer arrays
+  (the sheet's own sample point (1, 1, 2) with f = 1 is one) are answered as the same numbers
+  given as floats. The API gives floats, so a function may refuse integers (raise); what it may
+  not do is answer them otherwise -- an array made like the input (``np.zeros_like(points)``)
+  holds integers, and what is written into it is cut to whole numbers.
 
 Both are relations between two answers of the same student, so they need neither the reference
 nor a tolerance for legitimate variants: a recipe the lab sheet allows answers the grey or single
 form of an input as it answers the input itself. How right an answer is stays the other checks'
 to judge; these take points only for a form, or a point's value, that changes with how the same
-input is given. A lab declares them with :func:`keeps_grey` and :func:`point_by_point` (each adds
-one check to an exercise) and says why a function is not judged with :func:`not_judged`;
-``tests/test_conventions.py`` holds every lab to saying one or the other of each function with
-images or points.
+input is given. A lab declares them with :func:`keeps_grey`, :func:`point_by_point` and
+:func:`whole_numbers` (each adds one check to an exercise) and says why a function is not judged
+with :func:`not_judged`; ``tests/test_conventions.py`` holds every lab to saying one or the other
+of each function with images or points.
 """
 
 from __future__ import annotations
 
+import ast
 from typing import Callable
 
 import cv2
 import numpy as np
 
 from .checks import StudentFailure, Trial, passed
-from .claims import measured
+from .claims import from_code, measured
 
 # per convention ("channels", "rows"): function -> its lab's key; "not judged": (convention, function) -> why
-DECLARED: dict[str, dict] = {"channels": {}, "rows": {}, "not judged": {}}
+DECLARED: dict[str, dict] = {"channels": {}, "rows": {}, "integers": {}, "not judged": {}}
 
 GREY_NOT_KEPT = "a grey image is not answered in grey"
+INTEGERS_CUT = "integer inputs are answered in integers"
 SIZE_SLACK = 2     # pixels an image answered in grey may differ in size from the BGR one's
 RELATIVE = 1e-7   # the same point's answer among many and alone: the same float operations, up to BLAS order
 
@@ -65,12 +73,26 @@ def point_by_point(exercise, function: str, inputs: Callable[[], tuple], rows=(0
                    hidden=hidden)(check)
 
 
+def whole_numbers(exercise, function: str, inputs: Callable[[], tuple], points: float = 1, hidden: bool = False,
+                  described: str = "", projective: bool = False) -> None:
+    """Register on ``exercise`` the check that ``function`` answers its inputs' whole numbers given as
+    integers as it answers them given as floats: ``inputs()`` gives float arguments, some arrays (or
+    numbers) of which hold whole numbers only; those are given again as ``int64`` arrays (Python
+    ints). ``projective``: the answer's 3x3 and 3x4 matrices are compared up to scale."""
+    def check(t: Trial):
+        return judge_integers(t, function, inputs(), described, projective)
+    check.__name__ = f"{function}_whole_numbers"
+    DECLARED["integers"][function] = exercise.lab.key
+    exercise.check(f"{function} answers whole numbers given as integers as it answers them as floats",
+                   points=points, hidden=hidden)(check)
+
+
 FITTED = "one model fitted to all the points together"   # an estimator's points are no rows of its answer
 
 
 def not_judged(convention: str, **why: str) -> None:
     """Say, function by function (``function="why"``), why it has no check of ``convention``
-    ("channels" or "rows"): another check judges it already, its answer is no image of the input's
+    ("channels", "rows" or "integers"): another check judges it already, its answer is no image of the input's
     channels, the API asks for one kind of image only, one model is fitted to all the points..."""
     for function, reason in why.items():
         DECLARED["not judged"][(convention, function)] = reason
@@ -176,3 +198,139 @@ def judge_rows(t: Trial, function: str, args: tuple, rows, described: str = ""):
                             f"gives {np.array2string(ours[:1], precision=6)}: a point's answer must not depend "
                             "on how many points are given"))
     return passed(f"the first point, as a one-row array, answered as the same point among {n}")
+
+
+def _as_integers(value):
+    """``value`` given as integers when it is a float array (or a float) of whole numbers only, else
+    itself."""
+    if isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.size \
+            and np.isfinite(value).all() and (value == np.round(value)).all():
+        return value.astype(np.int64)
+    if isinstance(value, float) and value.is_integer():
+        return int(value)
+    return value
+
+
+def _up_to_scale(matrix) -> np.ndarray:
+    """A 3x3 or 3x4 matrix scaled to unit norm with its largest entry positive (others as they are)."""
+    matrix = np.asarray(matrix, np.float64)
+    if matrix.shape not in ((3, 3), (3, 4)) or not np.isfinite(matrix).all() or not np.abs(matrix).max() > 0:
+        return matrix
+    largest = matrix.flat[np.argmax(np.abs(matrix))]
+    return matrix / (np.linalg.norm(matrix) * np.sign(largest))
+
+
+LIKE_INPUT = ("zeros_like", "empty_like", "ones_like", "full_like", "copy", "array", "asarray", "asanyarray")
+PASSES_ON = LIKE_INPUT + ("reshape", "atleast_2d", "squeeze", "ravel", "flatten", "transpose")
+
+
+def _root(node) -> str:
+    """The name an expression is read from through indexing, attributes and the calls that pass an
+    array on in its dtype (``np.asarray(pts1).reshape(-1, 2)`` -> ``pts1``); "" for anything else."""
+    while True:
+        if isinstance(node, (ast.Subscript, ast.Attribute)):
+            node = node.value
+        elif isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in PASSES_ON \
+                and not any(k.arg == "dtype" for k in node.keywords):
+            module = isinstance(node.func.value, ast.Name) and node.func.value.id in ("np", "numpy")
+            if module and not node.args:
+                return ""
+            node = node.args[0] if module else node.func.value
+        else:
+            return node.id if isinstance(node, ast.Name) else ""
+
+
+def _made_like(functions, parameters: set) -> list:
+    """The lines of ``functions`` (the student's, read never run) that make an array in an input's
+    dtype and then write into it: ``out = np.zeros_like(points[:, :2])``, ``out = pts.copy()``,
+    ``np.zeros((n, 3), dtype=pts.dtype)`` (``pts`` read from a parameter), ... followed by
+    ``out[i] = ...`` or ``out /= w``; as (line, text)."""
+    found = []
+    for function in functions:
+        inputs = set(parameters)
+        assigned = [node for node in ast.walk(function) if isinstance(node, ast.Assign) and len(node.targets) == 1
+                    and isinstance(node.targets[0], ast.Name)]
+        for _ in range(3):   # names read from an input (``pts = np.asarray(pts1).reshape(-1, 2)``)
+            inputs |= {node.targets[0].id for node in assigned if _root(node.value) in inputs}
+        written = {node.target.id for node in ast.walk(function)
+                   if isinstance(node, ast.AugAssign) and isinstance(node.target, ast.Name)}
+        written |= {_root(target) for node in ast.walk(function) if isinstance(node, (ast.Assign, ast.AugAssign))
+                    for target in (node.targets if isinstance(node, ast.Assign) else [node.target])
+                    if isinstance(target, ast.Subscript)}
+        for node in assigned:
+            call = node.value
+            if not isinstance(call, ast.Call) or node.targets[0].id not in written:
+                continue
+            name = call.func.attr if isinstance(call.func, ast.Attribute) else getattr(call.func, "id", "")
+            keywords = {k.arg: k.value for k in call.keywords}
+            dtype = keywords.get("dtype")
+            typed = isinstance(dtype, ast.Attribute) and dtype.attr == "dtype" and _root(dtype.value) in inputs
+            like = dtype is None and name in LIKE_INPUT and (
+                _root(call.args[0]) in inputs if call.args and name != "copy" or (
+                    name == "copy" and call.args) else
+                name == "copy" and isinstance(call.func, ast.Attribute) and _root(call.func.value) in inputs)
+            if typed or like:
+                found.append((node.lineno, ast.unparse(node)))
+    return sorted(set(found))[:2]
+
+
+def _why_integers(t: Trial, function: str) -> str:
+    """Where the student's code makes an array of its input's dtype (read, never run), in words; ""
+    when it makes none that the reading sees."""
+    from .hints import code_of
+
+    code = code_of(t)
+    functions = code.reachable([function])
+    if not functions:
+        return ""
+    parameters = {a.arg for f in functions for a in (*f.args.posonlyargs, *f.args.args, *f.args.kwonlyargs)}
+    made = _made_like(functions, parameters)
+    if not made:
+        return ""
+    where = " and ".join(f"`{text}` (line {line})" for line, text in made)
+    return from_code(f" {where} {'makes an array' if len(made) == 1 else 'make arrays'} of the input's dtype, "
+                     f"then {'writes into it' if len(made) == 1 else 'write into them'}: given integers, what is "
+                     "written is cut to whole numbers; give it dtype=float.")
+
+
+def _first(array: np.ndarray) -> str:
+    """An answer shown on one line: its first row when it has several ("[...] in its first row")."""
+    shown = array[0] if array.ndim >= 2 and len(array) > 1 else array
+    text = np.array2string(shown, precision=4, separator=", ", threshold=12, max_line_width=10**6)
+    return " ".join(text.split()) + (" in its first row" if shown is not array else "")
+
+
+def judge_integers(t: Trial, function: str, args: tuple, described: str = "", projective: bool = False):
+    """Judge ``function`` on the whole numbers of ``args`` given as integers against its own answer on
+    them as floats."""
+    call = f"{function}({described or '...'})"
+    integers = tuple(_as_integers(a) for a in args)
+    if all(a is b for a, b in zip(integers, args)):
+        raise ValueError(f"{call}: the check's inputs hold no whole-number float array")
+    floats = t.call(function, *args)
+    given = "with its whole-number inputs given as integer arrays"
+    try:
+        answer = t.call(function, *integers)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        return passed(f"raises on integer arrays ({failure.message.splitlines()[0][:120]}): the API gives floats, "
+                      "so refusing integers is allowed")
+    theirs = _same_parts(t, f"{call} {given}", floats, answer, INTEGERS_CUT)
+    for index, (ours, got) in enumerate(zip(_parts(floats), theirs)):
+        if not (isinstance(ours, np.ndarray) and ours.dtype.kind in "biuf"):
+            continue
+        name = _name(call, index, len(theirs), given)
+        got = t.expect_array(got, name, shape=ours.shape, kind="biuf")
+        same = (_close(_up_to_scale(got), _up_to_scale(ours)) if projective else _close(got, ours))
+        if same:
+            continue
+        cut = got.dtype.kind in "iu" and ours.dtype.kind == "f"
+        said = (f"{name} returned {_first(got)} (dtype {got.dtype}), but the same numbers given as floats give "
+                f"{_first(ours)}: whole numbers given as integers (the sheet's own sample point (1, 1, 2)) must give "
+                "the same answer")
+        if cut:
+            said += "; your answer is an integer array, its values cut to whole numbers."
+            t.fail(measured(said) + _why_integers(t, function), mistake=INTEGERS_CUT)
+        t.fail(measured(said + "."), mistake=INTEGERS_CUT)
+    return passed("whole numbers given as integers are answered as the same numbers given as floats")

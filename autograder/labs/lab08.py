@@ -2941,3 +2941,26 @@ conventions.not_judged(
 conventions.not_judged("rows", transform_points="judged on a single point, pts of shape (1, 2)",
                        homography_dlt=conventions.FITTED, homography_ransac=conventions.FITTED,
                        draw_matches="its answer is an image")
+
+WHOLE_H = np.array([[220.0, 15.0, 3000.0], [-10.0, 190.0, 1500.0], [1.0, 2.0, 1000.0]])   # w = x + 2y + 1000
+
+
+def _whole_pairs(seed: int, n: int, outliers: int = 0):
+    """``n`` pairs of whole pixel coordinates, ``dst`` = :data:`WHOLE_H` ``src`` rounded, the last
+    ``outliers`` of them replaced by random points."""
+    rng = np.random.default_rng(seed)
+    src = np.round(rng.uniform(0, 400, size=(n, 2)))
+    dst = np.round(truth.apply_h(WHOLE_H, src))
+    dst[n - outliers:] = np.round(rng.uniform(0, 400, size=(outliers, 2)))
+    return src, dst
+
+
+# Whole numbers given as integers (the sheet's own sample point is (1, 1, 2)) answered as the same
+# numbers given as floats: an array made like an integer input holds integers only.
+conventions.whole_numbers(ex1, "transform_points", lambda: (WHOLE_H, _whole_pairs(81, 8)[0]), described="H, pts")
+conventions.whole_numbers(ex2, "homography_dlt", lambda: _whole_pairs(82, 10), described="src, dst", projective=True)
+conventions.whole_numbers(ex3, "draw_matches", lambda: (photo("astronaut", (160, 120)), photo("coffee", (160, 120)),
+                                                        *(np.round(p / 2.5) for p in _whole_pairs(83, 6))),
+                          described="img1, img2, pts1, pts2")
+conventions.whole_numbers(ex4, "homography_ransac", lambda: (*_whole_pairs(84, 40, outliers=8), 3.0, 0),
+                          described="src, dst, threshold=3, seed=0", projective=True)

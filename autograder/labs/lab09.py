@@ -1686,6 +1686,31 @@ conventions.not_judged(
     simulate_aperture="its rays are random: the same point among many draws other rays",
     project_onto_image="its image shows every point drawn; its points are judged with project's",
     draw_points="its answer is an image")
+WHOLE_K = np.array([[400.0, 0.0, 160.0], [0.0, 410.0, 120.0], [0.0, 0.0, 1.0]])
+WHOLE_P = WHOLE_K @ np.array([[0.0, -1.0, 0.0, 1.0], [1.0, 0.0, 0.0, -2.0], [0.0, 0.0, 1.0, 30.0]])   # R: 90 degrees
+
+
+def _whole_points(seed: int, n: int = 6) -> np.ndarray:
+    """``n`` points in front of the camera, of whole coordinates (depths 20 to 100)."""
+    return np.round(truth.points_in_front(seed, n=n) * 10.0)
+
+
+# Whole numbers given as integers (the sheet's own sample point is (1, 1, 2)) answered as the same
+# numbers given as floats: an array made like an integer input holds integers only.
+conventions.whole_numbers(ex1, "pinhole_project", lambda: (np.array([[1.0, 1.0, 2.0], [3.0, -2.0, 5.0], [0.0, 4.0, 7.0]]), 1.0),
+                          described="points, f=1")
+conventions.whole_numbers(ex2, "project_with_intrinsics", lambda: (WHOLE_K, _whole_points(43)), described="K, points")
+conventions.whole_numbers(ex3, "project", lambda: (WHOLE_P, _whole_points(44)), described="P, points")
+conventions.whole_numbers(ex4, "project_focal_lengths", lambda: (_whole_points(45), np.array([0.5, 1.0, 2.0])),
+                          described="points, focal_lengths=[0.5, 1, 2]")
+conventions.whole_numbers(ex5, "draw_points", lambda: (photo("coffee", (160, 120)),
+                                                       np.round(truth.points_in_front(46, n=6)[:, :2] * 20 + [80, 60])),
+                          described="image, pts")
+conventions.whole_numbers(ex5, "project_onto_image", lambda: (photo("chelsea", (320, 240)), WHOLE_P, _whole_points(47)),
+                          described="image, P, points")
+conventions.not_judged("integers", simulate_aperture="its rays are random: each call draws other rays",
+                       distort_points="its points are normalised coordinates (about -1 to 1): whole numbers are "
+                       "no sensible input")
 conventions.not_judged(
     "channels", draw_points="judged on grey and colour images against the truth",
     calibrate="its answer is no image; views with 3 channels are judged against the truth")

@@ -2637,3 +2637,10 @@ conventions.not_judged(
     dp_stereo=_GREY_ONLY,
     depth_from_structured_light="its images are the API's stack of grey patterns, (n_bits, H, W)")
 conventions.not_judged("rows", triangulate="judged on N = 1 against the truth")
+# Whole numbers given as integers (the sheet's own sample point is (1, 1, 2)) answered as the same
+# numbers given as floats: an array made like an integer input holds integers only.
+conventions.whole_numbers(ex1, "triangulate", lambda: (lambda P1, P2, X, x1, x2: (P1, P2, np.round(x1), np.round(x2)))(
+    *truth.stereo_points(seed=171, n=6)), described="P1, P2, pts1, pts2")
+conventions.whole_numbers(ex2, "depth_from_disparity", lambda: (np.array([[0.0, 3.0, 7.0], [12.0, -1.0, 64.0]]), 500.0,
+                                                                 0.12), described="an integer disparity map, f=500, baseline=0.12")
+conventions.not_judged("integers", disparity_from_matches="d = xl - xr of whole numbers is whole: integers cut nothing")
