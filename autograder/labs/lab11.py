@@ -631,6 +631,48 @@ def draw_full_width(t):
                        mistake=form.mistake)
 
 
+# A line a x + b y + c = 0 is the same line given as (-a, -b, -c): epipolar_lines scales it to
+# a^2 + b^2 = 1, which leaves its sign free (F itself has any sign). Judged as a relation between the
+# student's own two drawings, so no interpolation or thickness convention enters.
+SIGN_LINES = np.array([[0.2, 1.0, -90.0], [0.01, 1.0, -40.0], [0.004, -1.0, 70.0],   # nearly horizontal: far
+                       [3.0, -1.0, -200.0], [-1.0, -0.05, 120.0], [-1.0, 0.008, 30.0]])   # ends off the sides
+
+
+@ex2.check("draw_epipolar_lines draws a line given with the other sign, (-a, -b, -c), as the same line", points=1)
+def draw_either_sign(t):
+    image = np.zeros((120, 160), np.uint8)
+    lines = truth.normalise_lines(SIGN_LINES)
+    what = "draw_epipolar_lines(grey image, -lines)"
+    drawn = t.expect_array(t.call("draw_epipolar_lines", image, lines), "draw_epipolar_lines(grey image, lines)",
+                           kind="u")
+    negated = t.expect_array(_drawn(t, what, image, -lines, "(the same lines, each given as (-a, -b, -c))"), what,
+                             kind="u")
+    if negated.shape != drawn.shape:
+        t.fail(measured(f"{what} returned shape {negated.shape}, where the same lines with their own signs give "
+                        f"{drawn.shape}"))
+    apart = np.any(np.abs(negated.astype(np.int16) - drawn.astype(np.int16)) > 25,
+                   axis=tuple(range(2, drawn.ndim)))
+    marked = np.any(drawn != image[..., None] if drawn.ndim == 3 else drawn != image, axis=tuple(range(2, drawn.ndim)))
+    if apart.sum() <= max(4, 0.02 * marked.sum()):
+        return passed(f"the two drawings agree ({int(apart.sum())} pixels apart)")
+    moved = [i for i, line in enumerate(lines)
+             if _pixels_near(apart, line) > 0.2 * max(1, _pixels_near(marked, line))]
+    t.images(f"draw_epipolar_lines(black grey image, {len(lines)} lines), then the same lines as (-a, -b, -c)",
+             lines=drawn, negated=negated)
+    which = ", ".join(format_matrix(np.round(lines[i], 3)) for i in moved) or "none of them alone"
+    t.fail(measured(f"{what}: {int(apart.sum())} pixels differ from the drawing of the same lines given with their "
+                    f"own signs (lines drawn otherwise: {which}). (a, b, c) and (-a, -b, -c) are one line, "
+                    "a x + b y + c = 0 either way, so its drawing may not depend on the signs: a test of a, b "
+                    "or c (b > 0, b >= |a|) where their sizes are meant (|b| >= |a|) draws them otherwise."),
+           mistake="a line drawn otherwise with the other sign")
+
+
+def _pixels_near(mask, line, width: float = 1.5) -> int:
+    """How many pixels of ``mask`` lie within ``width`` px of ``line`` (a^2 + b^2 = 1)."""
+    ys, xs = np.nonzero(mask)
+    return int(np.sum(np.abs(line[0] * xs + line[1] * ys + line[2]) <= width))
+
+
 # Lines l' = F x of a vertical (or horizontal) camera motion are vertical (horizontal) up to
 # rounding: b (or a) comes out as 1e-13 rather than 0. The lab sheet's line a x + b y + c = 0 is
 # the same whatever their size; the reference, cv2.clipLine on far end points and a branch on
