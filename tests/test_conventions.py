@@ -138,34 +138,40 @@ def test_points_given_as_integers_answered_in_integers_are_told_with_the_line_th
 
 def test_an_integer_answer_from_code_that_makes_no_array_of_the_inputs_dtype_names_no_line(tmp_path):
     # the answer converted to the input's dtype on its way out: no array is written into, no line is named
-    submission = mutant(tmp_path, "lab12_stereo", """
-        _reference = depth_from_disparity
-        def depth_from_disparity(disparity, f, baseline):
-            return _reference(disparity, f, baseline).astype(np.asarray(disparity).dtype)
+    submission = mutant(tmp_path, "lab11_two_view", """
+        _reference = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            return _reference(P1, P2, pts1, pts2).astype(np.asarray(pts1).dtype)
         """)
-    failed = _failed(grade(submission, ["lab12.ex2"]), "lab12.ex2")
-    check = failed["depth_from_disparity answers whole numbers given as integers as it answers them as floats"]
+    failed = _failed(grade(submission, ["lab11.ex1"]), "lab11.ex1")
+    check = failed["triangulate answers whole numbers given as integers as it answers them as floats"]
     assert "your answer is an integer array" in check.message and "of the input's dtype" not in check.message
 
 
-def test_refusing_integer_points_is_allowed_and_float_recipes_pass(tmp_path):
-    # the API gives floats: raising on integers is no mistake; OpenCV's float32 recipe answers alike
+def test_refusing_integer_points_is_allowed_and_opencv_recipes_pass(tmp_path):
+    # the API gives floats: raising on integers is no mistake; cv2.projectPoints on float32 answers alike
     submission = mutant(tmp_path, "lab08_homographies", """
         def transform_points(H, pts):
             if np.asarray(pts).dtype.kind != "f":
                 raise TypeError("pts must be a float array")
             moved = cv2.perspectiveTransform(np.asarray(pts, np.float64).reshape(-1, 1, 2), np.asarray(H, np.float64))
             return moved.reshape(-1, 2)
-        _reference = homography_dlt
-        def homography_dlt(src, dst):
-            return _reference(np.float32(src), np.float32(dst))
         """)
-    result = grade(submission, ["lab08.ex1", "lab08.ex2"])
-    checks = {c.name: c for e in result.exercises for c in e.checks}
+    checks = {c.name: c for e in grade(submission, ["lab08.ex1"]).exercises for c in e.checks}
     refused = checks["transform_points answers whole numbers given as integers as it answers them as floats"]
     assert refused.score == refused.max_score and "refusing integers is allowed" in refused.message
-    fitted = checks["homography_dlt answers whole numbers given as integers as it answers them as floats"]
-    assert fitted.score == fitted.max_score
+    submission = mutant(tmp_path / "projected", "lab09_camera", """
+        def project(P, points):
+            K, R, t = cv2.decomposeProjectionMatrix(np.asarray(P, np.float64))[:3]
+            C = t[:3, 0] / t[3, 0]
+            X = np.asarray(points, np.float32).reshape(-1, 3)
+            rvec = cv2.Rodrigues(R)[0]
+            uv, _ = cv2.projectPoints(X, rvec, -R @ C, K / K[2, 2], None)
+            uv = uv.reshape(-1, 2).astype(np.float64)
+            return uv[0] if np.ndim(points) == 1 else uv
+        """)
+    checks = {c.name: c for e in grade(submission, ["lab09.ex3"]).exercises for c in e.checks}
+    assert checks["project answers whole numbers given as integers as it answers them as floats"].score == 1
 
 
 def test_the_code_reading_follows_names_read_from_an_input_and_wants_a_write():

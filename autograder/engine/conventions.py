@@ -74,19 +74,21 @@ def point_by_point(exercise, function: str, inputs: Callable[[], tuple], rows=(0
 
 
 def whole_numbers(exercise, function: str, inputs: Callable[[], tuple], points: float = 1, hidden: bool = False,
-                  described: str = "", projective: bool = False) -> None:
+                  described: str = "") -> None:
     """Register on ``exercise`` the check that ``function`` answers its inputs' whole numbers given as
     integers as it answers them given as floats: ``inputs()`` gives float arguments, some arrays (or
     numbers) of which hold whole numbers only; those are given again as ``int64`` arrays (Python
-    ints). ``projective``: the answer's 3x3 and 3x4 matrices are compared up to scale."""
+    ints)."""
     def check(t: Trial):
-        return judge_integers(t, function, inputs(), described, projective)
+        return judge_integers(t, function, inputs(), described)
     check.__name__ = f"{function}_whole_numbers"
     DECLARED["integers"][function] = exercise.lab.key
     exercise.check(f"{function} answers whole numbers given as integers as it answers them as floats",
                    points=points, hidden=hidden)(check)
 
 
+MODEL = "its answer is a model fitted to the points, made in no array of theirs"
+DRAWN = "its answer is an image drawn at whole pixels: whole numbers given as integers draw alike"
 FITTED = "one model fitted to all the points together"   # an estimator's points are no rows of its answer
 
 
@@ -211,15 +213,6 @@ def _as_integers(value):
     return value
 
 
-def _up_to_scale(matrix) -> np.ndarray:
-    """A 3x3 or 3x4 matrix scaled to unit norm with its largest entry positive (others as they are)."""
-    matrix = np.asarray(matrix, np.float64)
-    if matrix.shape not in ((3, 3), (3, 4)) or not np.isfinite(matrix).all() or not np.abs(matrix).max() > 0:
-        return matrix
-    largest = matrix.flat[np.argmax(np.abs(matrix))]
-    return matrix / (np.linalg.norm(matrix) * np.sign(largest))
-
-
 LIKE_INPUT = ("zeros_like", "empty_like", "ones_like", "full_like", "copy", "array", "asarray", "asanyarray")
 PASSES_ON = LIKE_INPUT + ("reshape", "atleast_2d", "squeeze", "ravel", "flatten", "transpose")
 
@@ -259,6 +252,8 @@ def _made_like(functions, parameters: set) -> list:
                     if isinstance(target, ast.Subscript)}
         for node in assigned:
             call = node.value
+            while isinstance(call, ast.Subscript):   # ``np.array(points)[..., :2]``: a view of the array made
+                call = call.value
             if not isinstance(call, ast.Call) or node.targets[0].id not in written:
                 continue
             name = call.func.attr if isinstance(call.func, ast.Attribute) else getattr(call.func, "id", "")
@@ -274,7 +269,7 @@ def _made_like(functions, parameters: set) -> list:
     return sorted(set(found))[:2]
 
 
-def _why_integers(t: Trial, function: str) -> str:
+def why_integers(t: Trial, function: str) -> str:
     """Where the student's code makes an array of its input's dtype (read, never run), in words; ""
     when it makes none that the reading sees."""
     from .hints import code_of
@@ -300,7 +295,7 @@ def _first(array: np.ndarray) -> str:
     return " ".join(text.split()) + (" in its first row" if shown is not array else "")
 
 
-def judge_integers(t: Trial, function: str, args: tuple, described: str = "", projective: bool = False):
+def judge_integers(t: Trial, function: str, args: tuple, described: str = ""):
     """Judge ``function`` on the whole numbers of ``args`` given as integers against its own answer on
     them as floats."""
     call = f"{function}({described or '...'})"
@@ -322,8 +317,7 @@ def judge_integers(t: Trial, function: str, args: tuple, described: str = "", pr
             continue
         name = _name(call, index, len(theirs), given)
         got = t.expect_array(got, name, shape=ours.shape, kind="biuf")
-        same = (_close(_up_to_scale(got), _up_to_scale(ours)) if projective else _close(got, ours))
-        if same:
+        if _close(got, ours):
             continue
         cut = got.dtype.kind in "iu" and ours.dtype.kind == "f"
         said = (f"{name} returned {_first(got)} (dtype {got.dtype}), but the same numbers given as floats give "
@@ -331,6 +325,6 @@ def judge_integers(t: Trial, function: str, args: tuple, described: str = "", pr
                 "the same answer")
         if cut:
             said += "; your answer is an integer array, its values cut to whole numbers."
-            t.fail(measured(said) + _why_integers(t, function), mistake=INTEGERS_CUT)
+            t.fail(measured(said) + why_integers(t, function), mistake=INTEGERS_CUT)
         t.fail(measured(said + "."), mistake=INTEGERS_CUT)
     return passed("whole numbers given as integers are answered as the same numbers given as floats")

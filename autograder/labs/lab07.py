@@ -480,15 +480,4 @@ conventions.not_judged("channels", translate=_OWN_GREY, rotate=_OWN_GREY, scale=
 conventions.not_judged("rows", affine_from_points=conventions.FITTED, affine_lstsq=conventions.FITTED)
 
 
-def _whole_correspondences(seed: int, n: int):
-    """``n`` point pairs of whole pixel coordinates related by an affine map (then rounded)."""
-    rng = np.random.default_rng(seed)
-    src = np.round(rng.uniform(0, 300, size=(n, 2)))
-    dst = np.round(src @ np.array([[0.9, 0.25], [-0.3, 1.1]]) + [12.5, -7.0])
-    return src, dst
-
-
-# Whole numbers given as integers (the sheet's own sample point is (1, 1, 2)) answered as the same
-# numbers given as floats: an array made like an integer input holds integers only.
-conventions.whole_numbers(ex5, "affine_from_points", lambda: _whole_correspondences(71, 3), described="src, dst")
-conventions.whole_numbers(ex6, "affine_lstsq", lambda: _whole_correspondences(72, 12), described="src, dst")
+conventions.not_judged("integers", affine_from_points=conventions.MODEL, affine_lstsq=conventions.MODEL)

@@ -30,7 +30,7 @@ from fixtures.images import coverage, photo, warp
 
 from ..engine import conventions
 from ..engine import strategies as st
-from ..engine.checks import StudentFailure, Trial, partial, passed
+from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (THIRD_COORDINATE, THRESHOLD_NAMES, assigns, calls_any, checklist, compares_a_distance_with, divides_by,
                              from_code, guard, look_at, measured, subtracts_a_mean, takes_last_row_of_vt,
                              treats_each_of)
@@ -204,6 +204,32 @@ def apply_homography_dsize(t):
     return judge_homography_warp(t, "apply_homography(grey image, H, dsize=(200, 150))",
                       t.call("apply_homography", source, H, dsize=(200, 150)), source, H,
                       dsize=(200, 150))
+
+
+# A homography whose last entry is 0 is as valid as any: its horizon (the points it sends to infinity,
+# H[2] . (x, y, 1) = 0) passes through the image's corner (0, 0). Any scale of H is accepted, so code that
+# first makes H[2, 2] = 1 (H / H[2, 2]) has no H left here.
+CORNER_AT_INFINITY = np.array([[0.5, 0.1, 40.0], [0.05, 0.5, 30.0], [1 / 300, 1 / 300, 0.0]])
+DIVIDES_BY_LAST_ENTRY = divides_by("_[2, 2]", "_[-1, -1]", "_[2][2]", "_[-1][-1]", says="divides by H[2, 2]")
+LAST_ENTRY_ZERO = "H divided by H[2, 2], which is 0"
+
+
+@ex1.check("transform_points and apply_homography with an H whose last entry H[2, 2] is 0 (its horizon through "
+           "the corner (0, 0))", points=1)
+def last_entry_zero(t):
+    source, H = photo("astronaut", (240, 180)), CORNER_AT_INFINITY
+    pts = np.array([[120.0, 90.0], [239.0, 179.0], [30.0, 150.0], [200.0, 10.0]])
+    try:
+        judge_points(t, "transform_points(H with H[2, 2] = 0, pts)", t.call("transform_points", H, pts), H, pts)
+        return judge_homography_warp(t, "apply_homography(image, H with H[2, 2] = 0)",
+                                     t.call("apply_homography", source, H), source, H)
+    except Fail as failure:
+        found = DIVIDES_BY_LAST_ENTRY.found(code_of(t).reachable(["transform_points", "apply_homography"]))
+        if not found:
+            raise
+        t.fail(f"{failure.message} " + from_code(
+            "Reading your code: it divides by H[2, 2], which is 0 here; any scale of H is accepted, so use H "
+            "as given (the division by w comes per point, after H is applied)."), mistake=LAST_ENTRY_ZERO)
 
 
 # ================================================================== ex2 DLT
@@ -2945,22 +2971,13 @@ conventions.not_judged("rows", transform_points="judged on a single point, pts o
 WHOLE_H = np.array([[220.0, 15.0, 3000.0], [-10.0, 190.0, 1500.0], [1.0, 2.0, 1000.0]])   # w = x + 2y + 1000
 
 
-def _whole_pairs(seed: int, n: int, outliers: int = 0):
-    """``n`` pairs of whole pixel coordinates, ``dst`` = :data:`WHOLE_H` ``src`` rounded, the last
-    ``outliers`` of them replaced by random points."""
-    rng = np.random.default_rng(seed)
-    src = np.round(rng.uniform(0, 400, size=(n, 2)))
-    dst = np.round(truth.apply_h(WHOLE_H, src))
-    dst[n - outliers:] = np.round(rng.uniform(0, 400, size=(outliers, 2)))
-    return src, dst
+def _whole_points(seed: int, n: int) -> np.ndarray:
+    """``n`` points of whole pixel coordinates in [0, 400]^2."""
+    return np.round(np.random.default_rng(seed).uniform(0, 400, size=(n, 2)))
 
 
 # Whole numbers given as integers (the sheet's own sample point is (1, 1, 2)) answered as the same
 # numbers given as floats: an array made like an integer input holds integers only.
-conventions.whole_numbers(ex1, "transform_points", lambda: (WHOLE_H, _whole_pairs(81, 8)[0]), described="H, pts")
-conventions.whole_numbers(ex2, "homography_dlt", lambda: _whole_pairs(82, 10), described="src, dst", projective=True)
-conventions.whole_numbers(ex3, "draw_matches", lambda: (photo("astronaut", (160, 120)), photo("coffee", (160, 120)),
-                                                        *(np.round(p / 2.5) for p in _whole_pairs(83, 6))),
-                          described="img1, img2, pts1, pts2")
-conventions.whole_numbers(ex4, "homography_ransac", lambda: (*_whole_pairs(84, 40, outliers=8), 3.0, 0),
-                          described="src, dst, threshold=3, seed=0", projective=True)
+conventions.whole_numbers(ex1, "transform_points", lambda: (WHOLE_H, _whole_points(81, 8)), described="H, pts")
+conventions.not_judged("integers", homography_dlt=conventions.MODEL, homography_ransac=conventions.MODEL,
+                       draw_matches=conventions.DRAWN)

@@ -331,8 +331,10 @@ def judge_single_point(t: Trial, what: str, got, expected):
     scale = magnitude(expected)
     if point_error(got[None], np.asarray(expected)[None]) > at_precision(1e-6 * scale, scale):
         integers = integer_entries(got, expected)
-        if integers:
-            t.fail(f"{what} is wrong: {integers}", mistake="integer arithmetic: the fractions are cut off")
+        if integers:   # (where the code makes an array like its integer input and writes into it: that line)
+            why = conventions.why_integers(t, what.split("(")[0])
+            t.fail(f"{what} is wrong: " + (f"it holds integers ({got.dtype}), where the answer has fractions.{why}"
+                                           if why else integers), mistake="integer arithmetic: the fractions are cut off")
         shown, wanted = format_arrays_apart(got, expected)
         t.fail(f"{what} returned {shown}; expected {wanted}")
 
@@ -1703,12 +1705,9 @@ conventions.whole_numbers(ex2, "project_with_intrinsics", lambda: (WHOLE_K, _who
 conventions.whole_numbers(ex3, "project", lambda: (WHOLE_P, _whole_points(44)), described="P, points")
 conventions.whole_numbers(ex4, "project_focal_lengths", lambda: (_whole_points(45), np.array([0.5, 1.0, 2.0])),
                           described="points, focal_lengths=[0.5, 1, 2]")
-conventions.whole_numbers(ex5, "draw_points", lambda: (photo("coffee", (160, 120)),
-                                                       np.round(truth.points_in_front(46, n=6)[:, :2] * 20 + [80, 60])),
-                          described="image, pts")
 conventions.whole_numbers(ex5, "project_onto_image", lambda: (photo("chelsea", (320, 240)), WHOLE_P, _whole_points(47)),
                           described="image, P, points")
-conventions.not_judged("integers", simulate_aperture="its rays are random: each call draws other rays",
+conventions.not_judged("integers", draw_points=conventions.DRAWN, simulate_aperture="its rays are random: each call draws other rays",
                        distort_points="its points are normalised coordinates (about -1 to 1): whole numbers are "
                        "no sensible input")
 conventions.not_judged(

@@ -2641,6 +2641,5 @@ conventions.not_judged("rows", triangulate="judged on N = 1 against the truth")
 # numbers given as floats: an array made like an integer input holds integers only.
 conventions.whole_numbers(ex1, "triangulate", lambda: (lambda P1, P2, X, x1, x2: (P1, P2, np.round(x1), np.round(x2)))(
     *truth.stereo_points(seed=171, n=6)), described="P1, P2, pts1, pts2")
-conventions.whole_numbers(ex2, "depth_from_disparity", lambda: (np.array([[0.0, 3.0, 7.0], [12.0, -1.0, 64.0]]), 500.0,
-                                                                 0.12), described="an integer disparity map, f=500, baseline=0.12")
-conventions.not_judged("integers", disparity_from_matches="d = xl - xr of whole numbers is whole: integers cut nothing")
+conventions.not_judged("integers", disparity_from_matches="d = xl - xr of whole numbers is whole: integers cut nothing",
+                       depth_from_disparity="judged on an int16 disparity map (StereoBM's kind) by a check of its own")

@@ -680,6 +680,20 @@ MISTAKES = {
             h, w = reference.shape[:2]
             return cv2.warpPerspective(moving, np.asarray(H, dtype=np.float64), (w, h))
         """, ["grey images", "channels are not kept"]),
+    # ---- whole numbers given as integers; an H whose last entry is 0
+    "transform_points answers integer points in integers": ("lab08.ex1", """
+        _reference_transform = transform_points
+        def transform_points(H, pts):
+            moved = np.zeros_like(np.asarray(pts))
+            moved[...] = _reference_transform(H, pts)
+            return moved
+        """, ["your answer is an integer array", "`moved = np.zeros_like(np.asarray(pts))`", "then writes into it"]),
+    "apply_homography divides H by H[2, 2]": ("lab08.ex1", """
+        _reference_apply = apply_homography
+        def apply_homography(image, H, dsize=None):
+            H = np.asarray(H, np.float64)
+            return _reference_apply(image, H / H[2, 2], dsize)
+        """, ["it divides by H[2, 2], which is 0 here"]),
 }
 
 

@@ -510,6 +510,42 @@ MISTAKES = {
             pts = project(P, points).reshape(-1, 2)
             return draw_points(image, pts), pts
         """, ["grey images", "channels are not kept"]),
+    # ---- whole numbers given as integers (the sheet's own (1, 1, 2), f = 1)
+    "pinhole_project answers integer points in integers": ("lab09.ex1", """
+        _reference_pinhole = pinhole_project
+        def pinhole_project(points, f):
+            image_points = np.zeros_like(np.asarray(points)[..., :2])
+            image_points[...] = _reference_pinhole(points, f)
+            return image_points
+        """, ["`image_points = np.zeros_like(np.asarray(points)[..., :2])` (line", "then writes into it"]),
+    "project_with_intrinsics answers integer points in integers": ("lab09.ex2", """
+        _reference_intrinsics = project_with_intrinsics
+        def project_with_intrinsics(K, points):
+            pixels = np.array(points)[..., :2]
+            pixels[...] = _reference_intrinsics(K, points)
+            return pixels
+        """, ["your answer is an integer array", "`pixels = np.array(points)[..., :2]`"]),
+    "project answers integer points in integers": ("lab09.ex3", """
+        _reference_project = project
+        def project(P, points):
+            uv = np.empty(np.shape(points)[:-1] + (2,), dtype=np.asarray(points).dtype)
+            uv[...] = _reference_project(P, points)
+            return uv
+        """, ["your answer is an integer array", "dtype=np.asarray(points).dtype"]),
+    "project_focal_lengths answers integer points in integers": ("lab09.ex4", """
+        _reference_focal = project_focal_lengths
+        def project_focal_lengths(points, focal_lengths):
+            answers = _reference_focal(points, focal_lengths)
+            return answers.astype(np.asarray(points).dtype)
+        """, ["your answer is an integer array"]),
+    "project_onto_image answers integer points in integers": ("lab09.ex5", """
+        _reference_onto = project_onto_image
+        def project_onto_image(image, P, points):
+            drawn, pts = _reference_onto(image, P, points)
+            pixels = np.zeros_like(np.asarray(points)[:, :2])
+            pixels[...] = pts
+            return drawn, pixels
+        """, ["your answer is an integer array", "`pixels = np.zeros_like(np.asarray(points)[:, :2])`"]),
 }
 
 

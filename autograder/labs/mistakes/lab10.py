@@ -629,6 +629,30 @@ MISTAKES = {
         def orthographic_project(points):
             return np.squeeze(_reference_orthographic(points))
         """, ["one-row array", "(1, 2)"]),
+    # ---- whole numbers given as integers
+    "perspective_project answers integer points in integers": ("lab10.ex1", """
+        _reference_perspective_int = perspective_project
+        def perspective_project(points, f):
+            projected = np.zeros_like(np.asarray(points)[..., :2])
+            projected[...] = _reference_perspective_int(points, f)
+            return projected
+        """, ["your answer is an integer array", "`projected = np.zeros_like(np.asarray(points)[..., :2])`"]),
+    "weak_perspective_project answers integer points in integers": ("lab10.ex2", """
+        _reference_weak_int = weak_perspective_project
+        def weak_perspective_project(points, f, z_avg=None):
+            pts = np.asarray(points)
+            projected = pts[..., :2].copy()
+            projected[...] = _reference_weak_int(points, f, z_avg)
+            return projected
+        """, ["your answer is an integer array", "`projected = pts[..., :2].copy()`"]),
+    "dolly_zoom answers integer points in integers": ("lab10.ext2", """
+        _reference_dolly = dolly_zoom
+        def dolly_zoom(points, f0, z0, distances):
+            focal_lengths, projections = _reference_dolly(points, f0, z0, distances)
+            views = np.zeros(projections.shape, dtype=np.asarray(points).dtype)
+            views[...] = projections
+            return focal_lengths, views
+        """, ["your answer is an integer array", "dtype=np.asarray(points).dtype"]),
 }
 
 

@@ -509,4 +509,35 @@ MISTAKES = {
         ["the matching is not what is short", "the cameras are built without k"]),
     "pipeline with cameras built without K": ("lab11.ex6", _WITHOUT_K.replace("IN_FRONT", "np.ones(len(points3d), bool)"),
                                                ["the cameras are built without k"]),
+    # ---- whole numbers given as integers; a line given with the other sign
+    "triangulate answers integer pixels in integers": ("lab11.ex1", """
+        _reference_triangulate = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            X = _reference_triangulate(P1, P2, pts1, pts2)
+            return X.astype(np.asarray(pts1).dtype)
+        """, ["your answer is an integer array"]),
+    "epipolar_lines answers integer points in integers": ("lab11.ex2", """
+        _reference_lines = epipolar_lines
+        def epipolar_lines(F, pts1):
+            pts = np.asarray(pts1).reshape(-1, 2)
+            lines = np.zeros((len(pts), 3), dtype=pts.dtype)
+            lines[...] = _reference_lines(F, pts1)
+            return lines
+        """, ["your answer is an integer array", "dtype=pts.dtype)` (line", "then writes into it"]),
+    "draw_epipolar_lines tests the sign of b": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            canvas = np.array(image, dtype=np.uint8, copy=True)
+            height, width = canvas.shape[:2]
+            for a, b, c in np.asarray(lines, np.float64).reshape(-1, 3):
+                if b >= abs(a):
+                    p, q = (0.0, -c / b), (width - 1.0, -(c + a * (width - 1)) / b)
+                else:
+                    p, q = (-c / a, 0.0), (-(c + b * (height - 1)) / a, height - 1.0)
+                limit = 4.0 * (width + height)
+                p, q = (tuple(int(round(np.clip(v, -limit, limit))) for v in end) for end in (p, q))
+                inside, p, q = cv2.clipLine((0, 0, width, height), p, q)
+                if inside:
+                    cv2.line(canvas, p, q, (0, 0, 255) if canvas.ndim == 3 else 255, 1)
+            return canvas
+        """, ["(a, b, c) and (-a, -b, -c) are one line", "lines drawn otherwise"]),
 }
