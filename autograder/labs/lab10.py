@@ -22,13 +22,14 @@ from fixtures.images import tinted
 from ..engine import conventions
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
-from ..engine.claims import (calls_any, checklist, divides_by, guard, look_at, measured, negates_on_negative_det,
+from ..engine.claims import (calls_any, checklist, divides_by, from_code, guard, look_at, measured, negates_on_negative_det,
                              passes_argument, reshapes, takes_last_row_of_vt)
-from ..engine.compare import (at_precision, blurred_difference, closest, format_apart, format_arrays_apart, magnitude,
-                       projective_distance)
+from ..engine.compare import (at_precision, blurred_difference, closest, fill_fraction, format_apart, format_arrays_apart,
+                       magnitude, projective_distance)
 from ..engine.forms import scale_form
 from ..engine.hints import Hint, Predicate, _path, calls, code_of, expr, mentions, nan_behind
-from ..engine.judges import Probe, call_probe, fingerprint, format_matrix, name_mistake, where_matrices_differ
+from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, format_matrix, name_mistake,
+                             where_matrices_differ)
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed
@@ -1299,6 +1300,40 @@ def undistort_off_centre(t):
     t.fail(f"{what} differs from the distortion-free view by {format_apart(error, UNDISTORT_TOLERANCE, 2)} grey "
            f"levels on average (at most {UNDISTORT_TOLERANCE:g} accepted). Here K's principal point is off the "
            f"image centre ({(w - 1) / 2:g}, {(h - 1) / 2:g}) and fx != fy.")
+
+
+# "Black fill" (the API): undistorting a pincushion lens (k1 > 0) samples the corners beyond the distorted
+# image, so they are 0 -- as cv2.undistort and cv2.remap's default constant border leave them. The other
+# checks' barrel lenses sample inside the image everywhere, where no fill shows.
+PINCUSHION = np.array([0.35, 0.1, 0.0, 0.0, 0.0])
+REPEATING_BORDERS = ("BORDER_REPLICATE", "BORDER_REFLECT", "BORDER_REFLECT_101", "BORDER_REFLECT101", "BORDER_WRAP",
+                     "BORDER_DEFAULT")
+
+
+@ext1.check("undistort_image leaves black the pixels whose source lies outside the image (a pincushion lens)",
+            points=1)
+def undistort_black_fill(t):
+    from fixtures.images import photo
+
+    K, image = truth.POSE_K, photo("astronaut", truth.POSE_SIZE)
+    outside = ~truth.undistortion_valid(K, PINCUSHION, truth.POSE_SIZE, margin=-1.5)   # 1.5 px beyond the image
+    what = f"undistort_image(image, K, dist={format_matrix(PINCUSHION)}) (a pincushion lens)"
+    got = t.call("undistort_image", image, K, PINCUSHION)
+    if isinstance(got, np.ndarray):
+        t.images(what, "the corners sample beyond the distorted image: black fill", input=image, yours=got)
+    got = t.expect_array(got, what, shape=image.shape, dtype=np.uint8)
+    nonblack = fill_fraction(got, outside)
+    if nonblack <= FILL_TOLERANCE:
+        return passed(f"{nonblack:.0%} of the {int(outside.sum())} pixels with no source pixel are not black")
+    read = code_of(t).reachable(["undistort_image"])
+    if calls("cv2.getOptimalNewCameraMatrix").found(read):   # another camera matrix: the first check's to judge
+        return passed(measured("the view in cv2.getOptimalNewCameraMatrix's camera matrix, which the first check "
+                               "judges"))
+    rule = next((name for name in REPEATING_BORDERS if mentions(f"cv2.{name}").found(read)), None)
+    t.fail(measured(f"{what}: {nonblack:.0%} of the pixels whose source lies outside the distorted image are not "
+                    "black (the API's black fill: a pixel with no source pixel is 0)")
+           + (from_code(f"; your code uses cv2.{rule}, which fills them from the image's edge.") if rule else "."),
+           hint=BLACK_FILL_HINT.said(t), mistake="the fill is not black")
 
 
 @ext1.check("undistort_image keeps a colour image in colour (BGR in, BGR out)", points=1)

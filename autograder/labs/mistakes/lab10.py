@@ -653,6 +653,14 @@ MISTAKES = {
             views[...] = projections
             return focal_lengths, views
         """, ["your answer is an integer array", "dtype=np.asarray(points).dtype"]),
+    # ---- black fill where the source lies outside the image
+    "undistort_image fills with the edge pixels": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            K = np.asarray(K, np.float64)
+            h, w = image.shape[:2]
+            map_x, map_y = cv2.initUndistortRectifyMap(K, np.asarray(dist, np.float64), None, K, (w, h), cv2.CV_32FC1)
+            return cv2.remap(image, map_x, map_y, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
+        """, ["are not black", "your code uses cv2.BORDER_REPLICATE"]),
 }
 
 
