@@ -1166,6 +1166,32 @@ def name_squared_threshold(t: Trial, what: str, H, inliers, src, dst, threshold:
                "threshold; " + SQUARED_HINT.said(t), mistake="the squared error is compared with the threshold")
 
 
+# Distances a mask may have been drawn with instead of |H src - dst|, each by how it reads the offset
+# (du, dv) between where H sends a pair and its dst: a mask that is exactly one of them, and is not the
+# Euclidean distance's, names it (measured: the mask against each candidate, the same H).
+OTHER_DISTANCES = {
+    "|du| alone (the x offset; dv is left out)": lambda du, dv: np.abs(du),
+    "|dv| alone (the y offset; du is left out)": lambda du, dv: np.abs(dv),
+    "|du| + |dv| (the L1 distance)": lambda du, dv: np.abs(du) + np.abs(dv),
+    "max(|du|, |dv|)": lambda du, dv: np.maximum(np.abs(du), np.abs(dv)),
+}
+DISTANCE_OF_MASK = "the mask is drawn with another distance than |H src - dst|"
+
+
+def name_mask_distance(t: Trial, what: str, H, inliers, src, dst, threshold: float):
+    """Fail naming the distance a mask was drawn with, when it is one of :data:`OTHER_DISTANCES` at the
+    threshold given (and not the Euclidean one)."""
+    with np.errstate(all="ignore"):
+        du, dv = (truth.apply_h(np.asarray(H, np.float64), src) - dst).T
+    if (inliers == (np.hypot(du, dv) < threshold)).mean() >= 0.98:
+        return
+    for words, distance in OTHER_DISTANCES.items():
+        if (inliers == (distance(du, dv) < threshold)).mean() >= 0.99:
+            t.fail(measured(f"{what}: the mask is exactly the pairs whose {words} from where your H sends them is "
+                            f"below the threshold ({threshold:g} px), not those whose distance |H src - dst| = "
+                            "sqrt(du^2 + dv^2) is."), mistake=DISTANCE_OF_MASK)
+
+
 @ex4.check("homography_ransac with 30% outliers: H within 1.5 px of the truth", points=3)
 def ransac_h(t):
     src, dst, H_true, true_inliers = truth.ransac_problem(10, 100, 0.3, 1.0)
@@ -1254,6 +1280,7 @@ def ransac_mask_of_h(t):
         if right_h and np.bitwise_or(*mask_disagreement(H, ~inliers, src, dst, 3.0)).mean() <= MASK_DISAGREEMENT:
             fail_inverted_mask(t, what)
         name_squared_threshold(t, what, H, inliers, src, dst, 3.0)
+        name_mask_distance(t, what, H, inliers, src, dst, 3.0)
         probe_ransac_threshold(t, src, dst, k)
         errors = np.linalg.norm(truth.apply_h(np.asarray(H, np.float64), src) - dst, axis=1)
         if inliers.any() and not inliers.all() and errors[inliers].max() < errors[~inliers].min():
@@ -1298,6 +1325,7 @@ def ransac_mask_of_h(t):
     H, inliers = ransac_result(t, src, dst, what, threshold=1.0, seed=0)
     far, near = mask_disagreement(H, inliers, src, dst, 1.0)
     if (far | near).mean() > MASK_DISAGREEMENT:
+        name_mask_distance(t, what, H, inliers, src, dst, 1.0)
         kept = int((inliers & off).sum())
         larger = " (as if a larger threshold were used: is `threshold` passed on?)" if kept >= 0.8 * off.sum() else ""
         t.fail(f"{what}: the mask marks {kept} of the {int(off.sum())} pairs 1.6 to 2.4 px off, and "
@@ -1374,11 +1402,24 @@ def ransac_refit(t):
            hint=REFIT_HINT.said(t))
 
 
+def _draws_in_a_loop(function) -> bool:
+    """A loop (``for`` or ``while``) drawing random samples in it (``rng.choice``, ``random.sample``...)."""
+    draws = ("choice", "sample", "permutation", "shuffle", "integers", "randint")
+    return any(isinstance(node, (ast.For, ast.While)) and any(
+        isinstance(call, ast.Call) and isinstance(call.func, (ast.Attribute, ast.Name))
+        and (call.func.attr if isinstance(call.func, ast.Attribute) else call.func.id) in draws
+        for call in ast.walk(node)) for node in ast.walk(function))
+
+
+OWN_RANSAC_LOOP = Predicate("draws samples in a loop and fits homography_dlt again after it", kind="and", parts=(
+    Predicate("draws samples in a loop", _draws_in_a_loop), calls("homography_dlt", at_least=2)))
 SAMPLES_HINT = Hint("With half the pairs wrong, a random 4-point sample is all inliers only 1 time in 16: "
                    "draw enough samples (log(1 - 0.99) / log(1 - 0.5**4) is about 72, more is safer), "
-                   "keep the H with the most inliers, then refit on them.", asks=OPENCV_RANSAC.asks,
-                   instead="your code {found}, whose loop draws enough samples and keeps the best model: compare "
-                           "what it is given (src, dst, the method cv2.RANSAC, the threshold) with what it returns")
+                   "keep the H with the most inliers, then refit on them.",
+                   asks=OPENCV_RANSAC.asks | OWN_RANSAC_LOOP,
+                   instead="your code {found}: look at how many samples it draws, what decides that a pair is an "
+                           "inlier (the distance |H src - dst|, in pixels, against the threshold) and which model "
+                           "it keeps")
 
 
 @ex4.check("homography_ransac with 50% outliers, judged over 5 seeds", points=3)

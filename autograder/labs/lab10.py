@@ -350,6 +350,9 @@ def weak_given(t):
     judge_single_point(t, "weak_perspective_project((3,) point, f=300, z_avg=12.0)",
                        t.call("weak_perspective_project", X, 300.0, z_avg=12.0),
                        truth.weak_perspective(X, 300.0, 12.0)[0])
+    # (and with z_avg left out: the mean depth of one point is its own)
+    judge_single_point(t, "weak_perspective_project((3,) point, f=300) with z_avg left out",
+                       t.call("weak_perspective_project", X, 300.0), truth.weak_perspective(X[None], 300.0)[0])
 
 
 @ex2.check("weak perspective approaches perspective for a shallow, distant object", points=1)

@@ -766,6 +766,16 @@ def essential_from_F_property(t):
 
     t.for_all(seeds, holds, max_examples=10,
               describe=lambda s: f"fixtures.lab11.two_views(seed={s})")
+    # (and a rectified pair, the commonest stereo set-up: E = [t]x has E[2, 2] = 0)
+    sideways = truth.sideways_views(seed=24, n=8)
+    K = sideways.cam1.K
+    what = "essential_from_fundamental(F, K, K) of a sideways motion (a rectified pair: the true E[2, 2] is 0)"
+    got = t.call("essential_from_fundamental", sideways.F, K, K)
+    if isinstance(got, np.ndarray) and got.shape == (3, 3) and got.dtype.kind in "iuf" \
+            and not np.all(np.isfinite(got)):
+        t.fail(f"{what} returned NaN or infinite entries: " + DIVIDED_BY_E22_HINT.said(t),
+               mistake="E divided by E[2, 2], which is 0")
+    judge_projective(t, what, got, sideways.E, truth.essential_mistakes(sideways.F, K, K))
 
 
 ESSENTIAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for each problem
@@ -834,8 +844,8 @@ FIXED_E22_HINT = Hint(
     "entries by SVD.", asks=SOLVES_BY_SVD,
     instead="Your code {found}: " + nine_unknowns("E") + ".")
 DIVIDED_BY_E22_HINT = Hint(
-    "it looks like E was divided by E[2, 2], which is 0 here. Any scale of E is accepted: leave it, or divide by "
-    "its norm.", asks=~divides_by("_[2, 2]", "_[-1, -1]"),
+    "reading your code: it divides by an entry [2, 2], and the true E[2, 2] is 0 here. Any scale of E is accepted: "
+    "leave it, or divide by its norm.", asks=~divides_by("_[2, 2]", "_[-1, -1]"),
     instead="the true E[2, 2] is 0 here, so nothing may be divided by it; any scale of E is accepted.")
 
 
@@ -970,8 +980,8 @@ def fundamental_8point_mistakes(stored: dict) -> dict:
 
 
 DIVIDED_BY_F22_HINT = Hint(
-    "it looks like F was divided by F[2, 2], which is 0 here. Any scale of F is accepted: leave it, "
-    "or divide by its norm.", asks=~divides_by("_[2, 2]", "_[-1, -1]"),
+    "reading your code: it divides by an entry [2, 2], and the true F[2, 2] is 0 here. Any scale of F is "
+    "accepted: leave it, or divide by its norm.", asks=~divides_by("_[2, 2]", "_[-1, -1]"),
     instead="the true F[2, 2] is 0 here, so nothing may be divided by it; any scale of F is "
             "accepted.")
 FIXED_F22_HINT = Hint(

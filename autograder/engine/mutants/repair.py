@@ -231,7 +231,13 @@ class _Student:
 
     def shared(self, where: str, function: str) -> bool:
         """Whether the def ``where`` (not ``function`` itself) is run by another graded function too."""
-        return where != function and any(other != function and where in runs(self._defs, other) for other in self.api)
+        return bool(self.sharing(where, function))
+
+    def sharing(self, where: str, function: str) -> set:
+        """The graded functions other than ``function`` that run the def ``where`` (none for ``function``'s own)."""
+        if where == function:
+            return set()
+        return {other for other in self.api if other != function and where in runs(self._defs, other)}
 
     def ordered(self, function: str) -> list:
         """``function``'s changes that can be shown: its own code's first, then its private helpers'
@@ -1166,6 +1172,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         elif clock.left() > 0 and not (mutant.key in variant.checked and not variant.other_checks()):
             ruled_out.add(mutant.key)   # (one the check passed with waits for another check to confirm it)
             halfway.add(mutant.key)     # right on the failing inputs, not on all: half of a slip made twice?
+    # A change in a helper shared with other graded functions is told at all only where each of them has
+    # failed a check of its own in this grading: a helper they run rightly is no place for this function's
+    # fix (`dsize or size` -> `dsize and size` in a warp helper mends a scale by breaking the warps).
+    failing_here = trial.sandbox.shared.get((SHARED_FAILING, trial.lab.module), set())
+    fixes = [pair for pair in fixes if student.sharing(pair[1].where, function) <= failing_here]
     if fixes:
         # A change in a helper this function shares with other graded functions (the warp's
         # interpolation) mends its answers by breaking theirs: told only when nothing else is. A
@@ -1914,7 +1925,7 @@ def _beside(verdict) -> bool:
     """Whether a repair may be told beside the check's own name of the mistake: not beside a name that
     already points into the code (a reading of it, a line) nor one a repair made."""
     message = str(verdict.message)
-    return BESIDE_NAMES and not verdict.mistake.startswith(MISTAKE) and "Reading your code" not in message \
+    return BESIDE_NAMES and not verdict.mistake.startswith(MISTAKE) and "reading your code" not in message.lower() \
         and re.search(r"\(line \d+\)", message) is None
 
 

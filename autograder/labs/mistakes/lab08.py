@@ -694,6 +694,14 @@ MISTAKES = {
             H = np.asarray(H, np.float64)
             return _reference_apply(image, H / H[2, 2], dsize)
         """, ["it divides by H[2, 2], which is 0 here"]),
+    # ---- the distance the inlier mask is drawn with
+    "RANSAC inliers by the x offset alone": ("lab08.ex4", """
+        _reference_ransac = homography_ransac
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H, _ = _reference_ransac(src, dst, threshold, seed)
+            moved = transform_points(H, np.asarray(src, np.float64))
+            return H, np.abs(moved[:, 0] - np.asarray(dst, np.float64)[:, 0]) < threshold
+        """, ["the mask is exactly the pairs whose |du| alone"]),
 }
 
 

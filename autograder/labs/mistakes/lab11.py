@@ -348,7 +348,7 @@ MISTAKES = {
             F = np.round(_fundamental(pts1, pts2), 9)
             with np.errstate(divide="ignore", invalid="ignore"):
                 return F / F[2, 2]
-        """, ["divided by f[2, 2]", "0 here"]),
+        """, ["divides by an entry [2, 2]", "f[2, 2] is 0 here"]),
     "8-point with F[2, 2] fixed to 1": ("lab11.ex4", """
         def fundamental_8point(pts1, pts2):
             x1 = np.asarray(pts1, float); x2 = np.asarray(pts2, float)
@@ -540,4 +540,11 @@ MISTAKES = {
                     cv2.line(canvas, p, q, (0, 0, 255) if canvas.ndim == 3 else 255, 1)
             return canvas
         """, ["(a, b, c) and (-a, -b, -c) are one line", "lines drawn otherwise"]),
+    "essential_from_fundamental divided by E[2, 2]": ("lab11.ex3", """
+        _reference_essential = essential_from_fundamental
+        def essential_from_fundamental(F, K1, K2):
+            E = _reference_essential(F, K1, K2)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                return E / E[2, 2]
+        """, ["divides by an entry [2, 2]", "e[2, 2] is 0 here"]),
 }

@@ -635,4 +635,10 @@ MISTAKES = {
             disparity = np.arange(width)[None, :] - column
             return np.where(bits.any(axis=0), depth_from_disparity(disparity, f, baseline), 0.0)
         """, ["put together least significant first"]),
+    # ---- the window's size
+    "block_matching sums a window of half the block size": ("lab12.ex4", """
+        def _box_mean(image, block_size):
+            radius = max(1, block_size // 2)
+            return cv2.blur(image, (radius, radius), borderType=cv2.BORDER_REFLECT)
+        """, ["keeps the square at its own disparity", "a window smaller than 9 x 9"]),
 }
