@@ -2366,6 +2366,31 @@ def simulate_boxes(t):
            hint=PROJECTOR_MODEL)
 
 
+# A projector as wide as a 320-pixel image has columns above 255: a column kept in 8 bits (uint8)
+# wraps round there (256 -> 0), and a negative one (off the projector, black) to 256 + column.
+WIDE_DEPTH = np.hstack([np.full((24, 40), 6.0), np.full((24, 280), 3.0)])   # disparities 10 and 20 px
+COLUMN_IN_8_BITS = "the projector column is kept in 8 bits (uint8): it wraps round above 255 and below 0"
+
+
+@ex6.check("simulate_structured_light on a projector 320 pixels wide (columns above 255)", points=1)
+def simulate_wide(t):
+    f, baseline, n_bits = 300.0, 0.2, 8
+    what = f"simulate_structured_light(depth of a 320 x 24 image, f={f:g}, baseline={baseline:g}, n_bits={n_bits})"
+    got = t.expect_array(t.call("simulate_structured_light", WIDE_DEPTH.copy(), f, baseline, n_bits), what,
+                         shape=(n_bits,) + WIDE_DEPTH.shape, dtype=np.uint8)
+    ties = truth.simulation_ties(WIDE_DEPTH, f, baseline)
+    wrong = np.any(got != truth.simulate_structured_light(WIDE_DEPTH, f, baseline, n_bits), axis=0) & ~ties
+    if not wrong.any():
+        return passed("every pixel sees the right projector column, columns above 255 too")
+    wrapped = truth.simulate_structured_light(WIDE_DEPTH, f, baseline, n_bits, column_dtype=np.uint8)
+    if not (np.any(got != wrapped, axis=0) & ~ties).any():
+        t.fail(measured(f"{what}: {wrong.mean():.0%} of the pixels light the wrong stripes, exactly as if {COLUMN_IN_8_BITS} "
+                        "(column 300 read as 44, column -5 as 251): keep it in a wide integer type "
+                        "(np.int64, or np.rint(...).astype(int))."), mistake=COLUMN_IN_8_BITS)
+    t.fail(f"{what}: {format_apart(wrong.mean(), 0.0, 2, percent=True)} of the pixels differ from the projector "
+           "model; the other checks' 160-pixel images have no column above 255.", hint=PROJECTOR_MODEL)
+
+
 def _both_bounds(function) -> bool:
     """A column tested against both ends of the projector: ``>= 0`` (or ``> -1``) and ``< width`` (or ``<= w - 1``);
     a test of the depth (the first parameter: ``depth > 0``) is no test of the column."""

@@ -641,4 +641,18 @@ MISTAKES = {
             radius = max(1, block_size // 2)
             return cv2.blur(image, (radius, radius), borderType=cv2.BORDER_REFLECT)
         """, ["keeps the square at its own disparity", "a window smaller than 9 x 9"]),
+    "structured light columns kept in uint8": ("lab12.ex6", """
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            depth = np.asarray(depth, dtype=np.float64)
+            height, width = depth.shape
+            patterns = gray_code_patterns(width, n_bits)
+            valid = np.isfinite(depth) & (depth > 0)
+            u = np.broadcast_to(np.arange(width, dtype=np.float64), depth.shape)
+            disparity = np.divide(float(f) * float(baseline), depth, out=np.zeros_like(depth), where=valid)
+            column = np.rint(u - disparity).astype(np.uint8).astype(np.int64)
+            lit = valid & (column >= 0) & (column < width)
+            images = np.zeros((int(n_bits), height, width), dtype=np.uint8)
+            images[:, lit] = patterns[:, column[lit]]
+            return images
+        """, ["exactly as if the projector column is kept in 8 bits (uint8)"]),
 }
