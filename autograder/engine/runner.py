@@ -30,7 +30,7 @@ import time
 import traceback
 from dataclasses import replace
 from datetime import datetime, timezone
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 from typing import Callable, Sequence
 
 from .. import __version__
@@ -207,8 +207,10 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                 return
             with ThreadPoolExecutor(len(lane_sandboxes), thread_name_prefix="lane") as pool:
                 lanes_running = [pool.submit(lane, sandbox, work, into, spent, until) for sandbox in lane_sandboxes]
-                try:
-                    for finished in lanes_running:
+                try:   # (the first lane to fail, whichever it is: waiting on them in order would let the
+                    # others run their labs out first)
+                    done, _ = wait(lanes_running, return_when=FIRST_EXCEPTION)
+                    for finished in sorted(lanes_running, key=lambda future: future not in done):
                         finished.result()
                 except BaseException:  # Ctrl-C included: the other lanes stop too, at once
                     stopping.set()

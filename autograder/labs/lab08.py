@@ -219,6 +219,13 @@ LAST_ENTRY_ZERO = "H divided by H[2, 2], which is 0"
 def last_entry_zero(t):
     source, H = photo("astronaut", (240, 180)), CORNER_AT_INFINITY
     pts = np.array([[120.0, 90.0], [239.0, 179.0], [30.0, 150.0], [200.0, 10.0]])
+    ordinary = truth.corner_homography(np.random.default_rng(5), (240, 180), 0.15)
+    try:   # (wrong for an ordinary H too: the other checks' to judge, one mistake told once)
+        judge_points(t, "transform_points(H, pts)", t.call("transform_points", ordinary, pts), ordinary, pts)
+        judge_homography_warp(t, "apply_homography(image, H)", t.call("apply_homography", source, ordinary), source,
+                              ordinary, show=False)
+    except Fail:
+        return passed(measured("wrong for an ordinary H too: the other checks judge that"))
     try:
         judge_points(t, "transform_points(H with H[2, 2] = 0, pts)", t.call("transform_points", H, pts), H, pts)
         return judge_homography_warp(t, "apply_homography(image, H with H[2, 2] = 0)",

@@ -1172,11 +1172,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         elif clock.left() > 0 and not (mutant.key in variant.checked and not variant.other_checks()):
             ruled_out.add(mutant.key)   # (one the check passed with waits for another check to confirm it)
             halfway.add(mutant.key)     # right on the failing inputs, not on all: half of a slip made twice?
-    # A change in a helper shared with other graded functions is told at all only where each of them has
-    # failed a check of its own in this grading: a helper they run rightly is no place for this function's
-    # fix (`dsize or size` -> `dsize and size` in a warp helper mends a scale by breaking the warps).
-    failing_here = trial.sandbox.shared.get((SHARED_FAILING, trial.lab.module), set())
-    fixes = [pair for pair in fixes if student.sharing(pair[1].where, function) <= failing_here]
+    # A change in a helper shared with other graded functions is not told where one of them has passed
+    # every check of its own so far in this grading: a helper it runs rightly is no place for this
+    # function's fix (`dsize or size` -> `dsize and size` in a warp helper mends a scale by breaking the
+    # warps). (One not graded yet says nothing: the helper may be where the slip is, `_object_points`.)
+    passing = _passing(trial)
+    fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:
         # A change in a helper this function shares with other graded functions (the warp's
         # interpolation) mends its answers by breaking theirs: told only when nothing else is. A
