@@ -412,6 +412,8 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
             # (coordinates clipped into the image all find a source pixel, the edge's: a replicated fill
             # with no border rule asking for it comes from there)
             clipped = held == FILLS[cv2.BORDER_REPLICATE] and not rule and CLIPS.found(read)
+            if held == KEPT_INPUT and not rule and mentions("cv2.BORDER_TRANSPARENT").found(read):
+                rule = "BORDER_TRANSPARENT"   # (it leaves the output's pixels as they were: the input's, here)
             cause = from_code(f" Your code uses cv2.{rule}, which fills them so.") if rule else \
                 from_code(f" Your code {clipped}: a coordinate clipped into the image samples the edge pixel, so "
                           "no pixel is left without a source for the fill to make black.") if clipped else ""
@@ -449,15 +451,20 @@ def fill_held(got, source, M, dsize, outside) -> str:
     got = np.asarray(got, dtype=np.float32)
     width, height = dsize or (source.shape[1], source.shape[0])
 
-    def fits(candidate) -> bool:
+    def fit(candidate) -> tuple[float, float]:
+        """(the share of the pixels within 24 levels, minus their mean distance): the larger, the better."""
         apart = np.abs(got - np.asarray(candidate, dtype=np.float32))
-        apart = apart.max(axis=2) if apart.ndim == 3 else apart
-        return float(np.mean(apart[outside] <= 24)) >= 0.9
-    for border, words in FILLS.items():
-        if fits(cv2.warpPerspective(source, as_homography(M), (width, height), borderMode=border)):
-            return words
-    if source.shape[:2] == (height, width) and fits(source):
-        return KEPT_INPUT
+        apart = (apart.max(axis=2) if apart.ndim == 3 else apart)[outside]
+        return float(np.mean(apart <= 24)), -float(apart.mean())
+    # (the best fit of them all, not the first that fits: an image written into the input's own array keeps
+    # the input there, which a smooth photo's replicated edge may resemble at 90% too)
+    candidates = [(fit(cv2.warpPerspective(source, as_homography(M), (width, height), borderMode=border)), words)
+                  for border, words in FILLS.items()]
+    if source.shape[:2] == (height, width):
+        candidates.append((fit(source), KEPT_INPUT))
+    best, words = max(candidates, key=lambda candidate: candidate[0])
+    if best[0] >= 0.9:
+        return words
     levels = got[outside]
     if np.ptp(levels) <= 2:
         return f"are all {format_apart(float(levels.mean()), 0.0, 1)} (a constant fill, not 0)"
