@@ -1846,3 +1846,22 @@ def _object_points(pattern_size, square_size):
     messages = [c.message for c in check_results(grade(str(folder), ["lab10.ex6"]), "lab10.ex6") if c.score < c.max_score]
     assert any("(0:cols, 0:rows)" in m for m in messages), messages
     assert not any("`rows, cols = pattern_size`" in m for m in messages)
+
+
+ENLARGED_SCALE = '''
+def scale(image, sx=1.5, sy=1.5):
+    height, width = image.shape[:2]
+    return _warp(image, scaling_matrix(sx, sy), (int(round(width * sx)), int(round(height * sy))))
+'''
+
+
+def test_a_factor_of_an_image_size_is_never_negated_and_a_helper_others_run_rightly_is_not_changed(tmp_path):
+    """The canvas sized to the scaled image is the slip. `width * -sx` mends it only because OpenCV reads a
+    negative size as the input's; `dsize or size` -> `dsize and size` in the warp helper mends it by
+    breaking the warps translate and rotate (graded first, passing) run through it."""
+    folder = mutant(tmp_path, "lab07_transformations", ENLARGED_SCALE)
+    result = grade(str(folder), ["lab07.ex1", "lab07.ex3"])
+    messages = [c.message for c in check_results(result, "lab07.ex3") if c.score < c.max_score]
+    assert messages and all("the input's size times the transform's scale" in m for m in messages), messages
+    assert not any("-sx" in m or "-sy" in m for m in messages), messages
+    assert not any("`dsize and" in m for m in messages), messages

@@ -1318,6 +1318,16 @@ def _in_docstring(node, fn) -> bool:
         and node is body[0].value
 
 
+_SIZE_NAMES = frozenset({"width", "height", "w", "h", "cols", "rows", "W", "H", "n_cols", "n_rows", "ncols", "nrows"})
+
+
+def _image_size(node) -> bool:
+    """An image's size: a name for one (`width`, `h`, `cols`) or an entry of a `.shape`."""
+    if isinstance(node, ast.Name):
+        return node.id in _SIZE_NAMES
+    return isinstance(node, ast.Subscript) and isinstance(node.value, ast.Attribute) and node.value.attr == "shape"
+
+
 def _changes(node, parents, words: _Words, line):
     """The operators' changes of one node: (operator, payload, phrase)."""
     what = lambda n: words.what(n, line=line)  # noqa: E731
@@ -1517,8 +1527,11 @@ def _student_changes(node, parent, parents):
             and not _in_radians(node, parents):
         yield "degrees", "np.deg2rad", ""   # an angle in degrees given to the sine
     if isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult)) \
-            and isinstance(node, (ast.Name, ast.Subscript)) and node is parent.right:
-        yield "sign", "insert", ""   # a term's sign: `x + s * y` for `x - s * y`
+            and isinstance(node, (ast.Name, ast.Subscript)) and node is parent.right \
+            and not (isinstance(parent.op, ast.Mult) and _image_size(parent.left)):
+        # a term's sign: `x + s * y` for `x - s * y` (never a factor of an image's size, `width * -sx`: a
+        # size is never negative, and OpenCV reads one as "the input's", right by that alone)
+        yield "sign", "insert", ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitXor) and isinstance(node.left, ast.Constant):
         yield "arithmetic", "xor_pow", ""   # `2 ^ n` (bitwise exclusive or, in Python) where `2 ** n` belongs
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult):

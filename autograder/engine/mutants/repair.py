@@ -989,8 +989,10 @@ def _beyond(call, defaults=()) -> list:
     import cv2
 
     function, args, kwargs = call
-    kwargs = {**{name: value for name, position, value in defaults   # (a whole-number default left out, given)
-                 if position >= len(args) and name not in kwargs and type(value) is int}, **kwargs}
+    # (a numeric default left out, given: `scale(image)`'s sx=1.5 with the other sign too -- a size made
+    # negative by a changed sign falls back to the input's in OpenCV, right by that alone)
+    kwargs = {**{name: value for name, position, value in defaults
+                 if position >= len(args) and name not in kwargs and type(value) in (int, float)}, **kwargs}
 
     def other(value):
         if isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_)) and value != 0:
