@@ -190,3 +190,5 @@ def test_the_code_reading_follows_names_read_from_an_input_and_wants_a_write():
     # made like the input but never written into, or made as floats: nothing to name
     assert lines("def f(points):\n    X = np.asarray(points)\n    return X[:, :2] / X[:, 2:]") == []
     assert lines("def f(points):\n    out = np.zeros_like(points, dtype=float)\n    out[0] = 1.5\n    return out") == []
+    assert lines("def f(points):\n    out = np.array(points, float)\n    out[0] = 1.5\n    return out") == []
+    assert lines("def f(points):\n    out = np.copy(points)\n    out[0] = 1.5\n    return out") == ["out = np.copy(points)"]

@@ -17,7 +17,7 @@ points given as integers answered in integers):
   not do is answer them otherwise -- an array made like the input (``np.zeros_like(points)``)
   holds integers, and what is written into it is cut to whole numbers.
 
-Both are relations between two answers of the same student, so they need neither the reference
+All three are relations between two answers of the same student, so they need neither the reference
 nor a tolerance for legitimate variants: a recipe the lab sheet allows answers the grey or single
 form of an input as it answers the input itself. How right an answer is stays the other checks'
 to judge; these take points only for a form, or a point's value, that changes with how the same
@@ -38,7 +38,7 @@ import numpy as np
 from .checks import StudentFailure, Trial, passed
 from .claims import from_code, measured
 
-# per convention ("channels", "rows"): function -> its lab's key; "not judged": (convention, function) -> why
+# per convention ("channels", "rows", "integers"): function -> its lab's key; "not judged": (convention, function) -> why
 DECLARED: dict[str, dict] = {"channels": {}, "rows": {}, "integers": {}, "not judged": {}}
 
 GREY_NOT_KEPT = "a grey image is not answered in grey"
@@ -233,6 +233,19 @@ def _root(node) -> str:
             return node.id if isinstance(node, ast.Name) else ""
 
 
+def _copied(call: ast.Call):
+    """The array ``call`` makes a new one like, its dtype kept (``np.zeros_like(x)``, ``np.array(x)``,
+    ``x.copy()``, ``np.copy(x)``: ``x``); None for another call, or one given a dtype (by keyword or in
+    its place: ``np.array(x, float)``)."""
+    name = call.func.attr if isinstance(call.func, ast.Attribute) else getattr(call.func, "id", "")
+    if name not in LIKE_INPUT or any(k.arg == "dtype" for k in call.keywords):
+        return None
+    if name == "copy":   # x.copy() or np.copy(x)
+        return call.args[0] if call.args else call.func.value if isinstance(call.func, ast.Attribute) else None
+    dtype_at = 2 if name == "full_like" else 1
+    return call.args[0] if call.args and len(call.args) <= dtype_at else None
+
+
 def _made_like(functions, parameters: set) -> list:
     """The lines of ``functions`` (the student's, read never run) that make an array in an input's
     dtype and then write into it: ``out = np.zeros_like(points[:, :2])``, ``out = pts.copy()``,
@@ -256,15 +269,10 @@ def _made_like(functions, parameters: set) -> list:
                 call = call.value
             if not isinstance(call, ast.Call) or node.targets[0].id not in written:
                 continue
-            name = call.func.attr if isinstance(call.func, ast.Attribute) else getattr(call.func, "id", "")
-            keywords = {k.arg: k.value for k in call.keywords}
-            dtype = keywords.get("dtype")
+            dtype = next((k.value for k in call.keywords if k.arg == "dtype"), None)
             typed = isinstance(dtype, ast.Attribute) and dtype.attr == "dtype" and _root(dtype.value) in inputs
-            like = dtype is None and name in LIKE_INPUT and (
-                _root(call.args[0]) in inputs if call.args and name != "copy" or (
-                    name == "copy" and call.args) else
-                name == "copy" and isinstance(call.func, ast.Attribute) and _root(call.func.value) in inputs)
-            if typed or like:
+            source = _copied(call)
+            if typed or (source is not None and _root(source) in inputs):
                 found.append((node.lineno, ast.unparse(node)))
     return sorted(set(found))[:2]
 
