@@ -38,7 +38,8 @@ import numpy as np
 from .checks import StudentFailure, Trial, passed
 from .claims import from_code, measured
 
-# per convention ("channels", "rows", "integers"): function -> its lab's key; "not judged": (convention, function) -> why
+# per convention ("channels", "rows", "integers"): function -> its lab's key;
+# "not judged": (convention, function) -> why
 DECLARED: dict[str, dict] = {"channels": {}, "rows": {}, "integers": {}, "not judged": {}}
 
 GREY_NOT_KEPT = "a grey image is not answered in grey"

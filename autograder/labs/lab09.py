@@ -333,8 +333,8 @@ def judge_single_point(t: Trial, what: str, got, expected):
         integers = integer_entries(got, expected)
         if integers:   # (where the code makes an array like its integer input and writes into it: that line)
             why = conventions.why_integers(t, what.split("(")[0])
-            t.fail(f"{what} is wrong: " + (f"it holds integers ({got.dtype}), where the answer has fractions.{why}"
-                                           if why else integers), mistake="integer arithmetic: the fractions are cut off")
+            said = f"it holds integers ({got.dtype}), where the answer has fractions.{why}" if why else integers
+            t.fail(f"{what} is wrong: {said}", mistake="integer arithmetic: the fractions are cut off")
         shown, wanted = format_arrays_apart(got, expected)
         t.fail(f"{what} returned {shown}; expected {wanted}")
 
@@ -1699,15 +1699,16 @@ def _whole_points(seed: int, n: int = 6) -> np.ndarray:
 
 # Whole numbers given as integers (the sheet's own sample point is (1, 1, 2)) answered as the same
 # numbers given as floats: an array made like an integer input holds integers only.
-conventions.whole_numbers(ex1, "pinhole_project", lambda: (np.array([[1.0, 1.0, 2.0], [3.0, -2.0, 5.0], [0.0, 4.0, 7.0]]), 1.0),
-                          described="points, f=1")
+SHEET_SAMPLES = np.array([[1.0, 1.0, 2.0], [3.0, -2.0, 5.0], [0.0, 4.0, 7.0]])   # the sheet's (1, 1, 2) first
+conventions.whole_numbers(ex1, "pinhole_project", lambda: (SHEET_SAMPLES, 1.0), described="points, f=1")
 conventions.whole_numbers(ex2, "project_with_intrinsics", lambda: (WHOLE_K, _whole_points(43)), described="K, points")
 conventions.whole_numbers(ex3, "project", lambda: (WHOLE_P, _whole_points(44)), described="P, points")
 conventions.whole_numbers(ex4, "project_focal_lengths", lambda: (_whole_points(45), np.array([0.5, 1.0, 2.0])),
                           described="points, focal_lengths=[0.5, 1, 2]")
 conventions.whole_numbers(ex5, "project_onto_image", lambda: (photo("chelsea", (320, 240)), WHOLE_P, _whole_points(47)),
                           described="image, P, points")
-conventions.not_judged("integers", draw_points=conventions.DRAWN, simulate_aperture="its rays are random: each call draws other rays",
+conventions.not_judged("integers", draw_points=conventions.DRAWN,
+                       simulate_aperture="its rays are random: each call draws other rays",
                        distort_points="its points are normalised coordinates (about -1 to 1): whole numbers are "
                        "no sensible input")
 conventions.not_judged(

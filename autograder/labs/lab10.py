@@ -1630,8 +1630,8 @@ conventions.point_by_point(ex3, "orthographic_project", lambda: (truth.points_in
 # numbers given as floats: an array made like an integer input holds integers only.
 conventions.whole_numbers(ex1, "perspective_project", lambda: (np.round(truth.points_in_front(151, n=6) * 10.0), 500.0),
                           described="points, f=500")
-conventions.whole_numbers(ex2, "weak_perspective_project", lambda: (np.round(truth.scene_points(152, n=6, depth=15.0,
-                                                                                                relief=3.0) * 10.0), 300.0),
+conventions.whole_numbers(ex2, "weak_perspective_project",
+                          lambda: (np.round(truth.scene_points(152, n=6, depth=15.0, relief=3.0) * 10.0), 300.0),
                           described="points, f=300")
 conventions.whole_numbers(ext2, "dolly_zoom", lambda: (np.round(truth.points_in_front(154, n=6) * 10.0), 500.0, 60.0,
                                                        np.array([60.0, 75.0, 90.0])),

@@ -662,10 +662,11 @@ def draw_either_sign(t):
     t.images(f"draw_epipolar_lines(black grey image, {len(lines)} lines), then the same lines as (-a, -b, -c)",
              lines=drawn, negated=negated)
     which = ", ".join(format_matrix(np.round(lines[i], 3)) for i in moved) or "none of them alone"
-    t.fail(measured(f"{what}: {int(apart.sum())} pixels are drawn more than a pixel away from the drawing of the same "
-                    f"lines given with their own signs (lines drawn otherwise: {which}). (a, b, c) and (-a, -b, -c) are one line, "
-                    "a x + b y + c = 0 either way, so its drawing may not depend on the signs: a test of a, b "
-                    "or c (b > 0, b >= |a|) where their sizes are meant (|b| >= |a|) draws them otherwise."),
+    t.fail(measured(f"{what}: {int(apart.sum())} pixels are drawn more than a pixel away from the drawing of the "
+                    f"same lines given with their own signs (lines drawn otherwise: {which}). (a, b, c) and "
+                    "(-a, -b, -c) are one line, a x + b y + c = 0 either way, so its drawing may not depend on the "
+                    "signs: a test of a, b or c (b > 0, b >= |a|) where their sizes are meant (|b| >= |a|) draws "
+                    "them otherwise."),
            mistake="a line drawn otherwise with the other sign")
 
 
@@ -1683,18 +1684,22 @@ def pipeline_structure(t):
 # ================================================================== the API's conventions
 conventions.not_judged("channels", draw_epipolar_lines="judged on a grey image against the truth",
                        two_view_reconstruction="its answer is no image; a colour and a grey pair are judged")
-def _whole_views(seed: int, n: int = 12):
-    """Two views with their points' pixel coordinates rounded to whole numbers."""
-    views = truth.two_views(seed, n=n)
-    return views, np.round(views.pts1), np.round(views.pts2)
+def _whole_triangulation():
+    """(P1, P2, pts1, pts2) of two views, the pixel coordinates rounded to whole numbers."""
+    views = truth.two_views(161, n=12)
+    return views.P1, views.P2, np.round(views.pts1), np.round(views.pts2)
+
+
+def _whole_lines():
+    """(F, pts1) of two views, the pixel coordinates rounded to whole numbers."""
+    views = truth.two_views(162, n=12)
+    return views.F, np.round(views.pts1)
 
 
 # Whole numbers given as integers (the sheet's own sample point is (1, 1, 2)) answered as the same
 # numbers given as floats: an array made like an integer input holds integers only.
-conventions.whole_numbers(ex1, "triangulate", lambda: (lambda v, p1, p2: (v.P1, v.P2, p1, p2))(*_whole_views(161)),
-                          described="P1, P2, pts1, pts2")
-conventions.whole_numbers(ex2, "epipolar_lines", lambda: (lambda v, p1, p2: (v.F, p1))(*_whole_views(162)),
-                          described="F, pts1")
+conventions.whole_numbers(ex1, "triangulate", _whole_triangulation, described="P1, P2, pts1, pts2")
+conventions.whole_numbers(ex2, "epipolar_lines", _whole_lines, described="F, pts1")
 conventions.not_judged("integers", essential_8point=conventions.MODEL, fundamental_8point=conventions.MODEL)
 conventions.not_judged("rows", triangulate="judged on N = 1 against the truth",
                        epipolar_lines="judged on one point against the truth",

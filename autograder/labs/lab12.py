@@ -2390,9 +2390,9 @@ def simulate_wide(t):
                                "the simulation"))
     wrapped = truth.simulate_structured_light(WIDE_DEPTH, f, baseline, n_bits, column_dtype=np.uint8)
     if not (np.any(got != wrapped, axis=0) & ~ties).any():
-        t.fail(measured(f"{what}: {wrong.mean():.0%} of the pixels light the wrong stripes, exactly as if {COLUMN_IN_8_BITS} "
-                        "(column 300 read as 44, column -5 as 251): keep it in a wide integer type "
-                        "(np.int64, or np.rint(...).astype(int))."), mistake=COLUMN_IN_8_BITS)
+        t.fail(measured(f"{what}: {wrong.mean():.0%} of the pixels light the wrong stripes, exactly as if "
+                        f"{COLUMN_IN_8_BITS} (column 300 read as 44, column -5 as 251): keep it in a wide integer "
+                        "type (np.int64, or np.rint(...).astype(int))."), mistake=COLUMN_IN_8_BITS)
     t.fail(f"{what}: {format_apart(wrong.mean(), 0.0, 2, percent=True)} of the pixels differ from the projector "
            "model; the other checks' 160-pixel images have no column above 255.", hint=PROJECTOR_MODEL)
 
@@ -2724,7 +2724,12 @@ conventions.not_judged(
 conventions.not_judged("rows", triangulate="judged on N = 1 against the truth")
 # Whole numbers given as integers (the sheet's own sample point is (1, 1, 2)) answered as the same
 # numbers given as floats: an array made like an integer input holds integers only.
-conventions.whole_numbers(ex1, "triangulate", lambda: (lambda P1, P2, X, x1, x2: (P1, P2, np.round(x1), np.round(x2)))(
-    *truth.stereo_points(seed=171, n=6)), described="P1, P2, pts1, pts2")
+def _whole_triangulation():
+    """(P1, P2, pts1, pts2) of the rectified rig, the pixel coordinates rounded to whole numbers."""
+    P1, P2, _, pts1, pts2 = truth.stereo_points(seed=171, n=6)
+    return P1, P2, np.round(pts1), np.round(pts2)
+
+
+conventions.whole_numbers(ex1, "triangulate", _whole_triangulation, described="P1, P2, pts1, pts2")
 conventions.not_judged("integers", disparity_from_matches="d = xl - xr of whole numbers is whole: integers cut nothing",
                        depth_from_disparity="judged on an int16 disparity map (StereoBM's kind) by a check of its own")
