@@ -239,7 +239,7 @@ def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
     best_d = np.zeros((height, width))
     for d in range(min(int(max_disparity), width - 1) + 1):
         shifted = _shift_right(R, d)
-        diff = L - shifted
+        diff = (L - shifted).astype(np.float64)
         ssd = cv2.blur(diff * diff, (block_size, block_size), borderType=cv2.BORDER_REFLECT)
         ssd[:, :d] = np.inf
         better = ssd < best_cost

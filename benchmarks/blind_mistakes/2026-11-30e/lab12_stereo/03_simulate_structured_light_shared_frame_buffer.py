@@ -356,10 +356,10 @@ def simulate_structured_light(depth, f, baseline, n_bits):
     safe_depth = np.where(good, depth, 1.0)
     u = np.tile(np.arange(width, dtype=np.float64), (height, 1))
     proj_col = np.floor(u - f * baseline / safe_depth + 0.5).astype(int)
-    proj_col = np.clip(proj_col, 0, width - 1)
+    good &= (proj_col >= 0) & (proj_col < width)
     frames = []
+    frame = np.zeros((height, width), dtype=np.uint8)
     for i in range(int(n_bits)):
-        frame = np.zeros((height, width), dtype=np.uint8)
         frame[good] = patterns[i][proj_col[good]]
         frames.append(frame)
     return np.array(frames, dtype=np.uint8).reshape(int(n_bits), height, width)

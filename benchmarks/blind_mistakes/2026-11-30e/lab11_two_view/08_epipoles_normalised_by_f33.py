@@ -80,11 +80,8 @@ def _to_int(point, width, height):
 
 # --------------------------------------------------------------------- ex3
 def essential_from_fundamental(F, K1, K2):
-    """E = K2^T F K1."""
-    F = np.array(F, dtype=np.float64)
-    K1 = np.array(K1, dtype=int)
-    K2 = np.array(K2, dtype=int)
-    return K2.T.dot(F).dot(K1)
+    """``E = K2^T F K1``: F acts on pixels, E on normalised coordinates ``K^-1 x``."""
+    return np.asarray(K2, np.float64).T @ np.asarray(F, np.float64) @ np.asarray(K1, np.float64)
 
 
 def essential_8point(pts1, pts2, K1, K2):
@@ -132,13 +129,12 @@ def fundamental_8point(pts1, pts2):
 
 # --------------------------------------------------------------------- ex5
 def epipoles(F):
-    """Right and left null vectors of F: ``F e1 = 0``, ``F^T e2 = 0``.
-
-    Returned as homogeneous unit vectors (not divided by w, which is 0 for an
-    epipole at infinity).
-    """
-    U, _, Vt = np.linalg.svd(np.asarray(F, np.float64))
-    return Vt[-1], U[:, -1]
+    """e1 spans the null space of F, e2 that of F^T (last singular vectors), as unit vectors."""
+    F = np.asarray(F, dtype=np.float64)
+    F = F / F[2, 2]
+    e1 = np.linalg.svd(F)[2][-1]
+    e2 = np.linalg.svd(F.T)[2][-1]
+    return e1 / np.linalg.norm(e1), e2 / np.linalg.norm(e2)
 
 
 # --------------------------------------------------------------------- ex6
