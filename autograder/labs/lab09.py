@@ -496,7 +496,8 @@ ex2 = lab.exercise("ex2", "The intrinsic matrix", functions=[
 
 @ex2.check("intrinsic_matrix(500, 320, 240)", points=2)
 def intrinsic_example(t):
-    judge_matrix(t, "intrinsic_matrix(500, 320, 240)", t.call("intrinsic_matrix", 500.0, 320.0, 240.0),
+    # (the numbers as written, whole: a K of integers cuts off every fraction computed with it)
+    judge_matrix(t, "intrinsic_matrix(500, 320, 240)", t.call("intrinsic_matrix", 500, 320, 240),
                  truth.intrinsic(500, 320, 240), truth.intrinsic_mistakes(500, 320, 240))
     # (a whole focal length given as an int, the principal point at a pixel's edge: 640 x 480's centre)
     judge_matrix(t, "intrinsic_matrix(500, 319.5, 239.5)", t.call("intrinsic_matrix", 500, 319.5, 239.5),

@@ -1590,11 +1590,12 @@ def block_matching_uses_block_size(t):
 
 # The window is block_size x block_size: a 9 x 9 window centred on a 5 x 5 square in front of a
 # background holds 25 of the square's pixels and 56 of the background's, so the background's disparity
-# wins there; on a 7 x 7 square (49 against 32) the square's does. Measured: the reference (SSD and
+# wins there; on a 7 x 7 square (49 against 32) the square's does (a map that loses it is wrong in other
+# ways too -- costs in uint8 -- and is left to the other checks). Measured: the reference (SSD and
 # NCC) and cv2.StereoBM (blockSize=9) give the background on the 5 x 5 square (median 4, 3.75) and the
 # square on the 7 x 7 one (12, 11.9); a 4 x 4 window (block_size // 2) or a 9 x 1 strip keep the small
 # square (12).
-SQUARES = ((5, "background"), (7, "square"))
+SQUARES = ((7, "square"), (5, "background"))   # (the larger first: a map that loses it is judged elsewhere)
 
 
 @ex4.check("block_matching compares block_size x block_size windows: a square smaller than the window takes "
@@ -1604,11 +1605,8 @@ def block_matching_window_size(t):
     for side, wins in SQUARES:
         left, right, square = truth.square_on_background(side)
         what = f"block_matching(left, right, max_disparity=32, block_size=9) on a {side} x {side} square"
-
-        def matched(block_size):
-            got = t.call("block_matching", np.array(left), np.array(right), max_disparity=32, block_size=block_size)
-            return np.asarray(t.expect_array(got, what, shape=left.shape, kind="iuf"), np.float64)
-        got = matched(9)
+        got = t.call("block_matching", np.array(left), np.array(right), max_disparity=32, block_size=9)
+        got = np.asarray(t.expect_array(got, what, shape=left.shape, kind="iuf"), np.float64)
         # (a map wrong on the background too -- another direction, another unit -- is the other checks' to judge)
         background = np.ones(left.shape, bool)
         background[:, :40] = False   # (left of the search band: no match there)
@@ -1628,14 +1626,9 @@ def block_matching_window_size(t):
                             "cv2.StereoBM with blockSize=9. Your map acts as a window smaller than 9 x 9 (half the "
                             "size, or one row?): the cost is summed over block_size x block_size pixels."),
                    mistake="the matching window is smaller than block_size x block_size")
-        if wins == "square" and not kept:
-            if np.array_equal(matched(5), got, equal_nan=True):
-                return passed("block_size changes nothing here: its own check judges that")
-            t.fail(measured(f"{what} gives {median:g} px in the median where the square's 12 px belong: a 9 x 9 "
-                            f"window centred on it holds {side * side} of its pixels and only {81 - side * side} "
-                            "of the background's. Your map acts as a window larger than 9 x 9: the cost is summed "
-                            "over block_size x block_size pixels."),
-                   mistake="the matching window is larger than block_size x block_size")
+        if wins == "square" and not kept:   # (a costs computed wrongly loses it too: the other checks judge)
+            return passed(measured(f"the {side} x {side} square is not found ({median:g} px): the other checks "
+                                   "judge the map"))
     return passed("; ".join(found))
 
 

@@ -546,6 +546,10 @@ MISTAKES = {
             pixels[...] = pts
             return drawn, pixels
         """, ["your answer is an integer array", "`pixels = np.zeros_like(np.asarray(points)[:, :2])`"]),
+    "intrinsic matrix of the arguments' own type": ("lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            return np.array([[f, 0, px], [0, f, py], [0, 0, 1]])
+        """, ["returned an integer matrix", "matrices are float arrays"]),
 }
 
 
