@@ -90,7 +90,7 @@ MISTAKES = {
             K = np.diag([f, f, 1])
             K[0, 2], K[1, 2] = px, py
             return K
-        """, ["holds integers"]),
+        """, ["integer", "int64"]),
     "K with px typed for py": ("lab09.ex2", """
         def intrinsic_matrix(f, px, py):
             return np.array([[f, 0.0, px], [0.0, f, px], [0.0, 0.0, 1.0]])
