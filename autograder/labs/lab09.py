@@ -1268,6 +1268,29 @@ def draw_twice(t):
     return judge_drawing(t, what, got, image, second_pts)
 
 
+@ex5.check("project_onto_image twice on the same image: each drawing shows its own points only", points=1)
+def project_onto_twice(t):
+    """The caller's image as the first call left it, drawn on again, against the student's own drawing of the
+    same points on a fresh copy: no truth, no drawing convention enters."""
+    image, P, X = _photo_scene()
+    what = "project_onto_image(image, P, points) called a second time on the same image, with other points"
+    t.call("project_onto_image", image, P, X[:5])
+    (held, _, _), _ = t.held(image, P, X[:5])
+    if np.array_equal(held, image):
+        return passed("the caller's image is left as it was")
+    again = t.call("project_onto_image", held, P, X[5:])
+    fresh = t.call("project_onto_image", image.copy(), P, X[5:])
+    drawn, own = (answer[0] if isinstance(answer, (tuple, list)) and answer else answer for answer in (again, fresh))
+    if isinstance(drawn, np.ndarray) and isinstance(own, np.ndarray) and drawn.shape == own.shape \
+            and np.mean(np.any(drawn != own, axis=tuple(range(2, drawn.ndim)))) > 0.0005:
+        t.images(what, first_points_then_second=drawn, second_points_alone=own)
+        t.fail(f"{what}: the second drawing shows the first one's points too: project_onto_image draws on the "
+               "caller's `image` (the array given) instead of on a copy, so whoever calls it twice, or uses the "
+               "image afterwards, finds points drawn on it.", hint=COPY_HINT.said(t),
+               mistake="project_onto_image draws on the caller's image")
+    return passed("the second drawing shows its own points only")
+
+
 @ex5.check("draw_points with radius, colour, and points off the image and on its border", points=2)
 def draw_options(t):
     image = photo("coffee", (160, 120))

@@ -550,6 +550,14 @@ MISTAKES = {
         def intrinsic_matrix(f, px, py):
             return np.array([[f, 0, px], [0, f, py], [0, 0, 1]])
         """, ["returned an integer matrix", "matrices are float arrays"]),
+    "project_onto_image draws on the caller's image": ("lab09.ex5", """
+        def project_onto_image(image, P, points):
+            pts = project(P, points).reshape(-1, 2)
+            for x, y in pts:
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(image, (int(round(x)), int(round(y))), 3, (0, 0, 255), -1)
+            return image, pts
+        """, ["draws on the caller's `image`"]),
 }
 
 
