@@ -198,3 +198,26 @@ def test_lines_scaled_by_another_norm_are_not_told_the_unit_length_mistake():
         """)
     failed = [c.message for c in check_results(result, "lab11.ex2") if not c.passed]
     assert failed and not any("all three entries" in m for m in failed), failed
+
+
+def test_a_line_drawn_in_a_random_colour_is_the_same_line_with_the_other_sign(tmp_path):
+    """OpenCV's tutorial draws each line in a colour drawn at random: on the sign check's black grey image a
+    line may come out dark, and each call draws other colours; the relation judges where, not how bright."""
+    submission = mutant(tmp_path, "lab11_two_view", """
+        def draw_epipolar_lines(image, lines):
+            out = image.copy()
+            w = out.shape[1]
+            for a, b, c in np.asarray(lines, float):
+                colour = tuple(np.random.randint(0, 255, 3).tolist())
+                if abs(b) < 1e-9:   # (the tutorial divides by b: a vertical line drawn across the rows)
+                    x = int(round(-c / a))
+                    cv2.line(out, (x, 0), (x, out.shape[0] - 1), colour, 1)
+                    continue
+                x0, y0 = map(int, [0, -c / b])
+                x1, y1 = map(int, [w, -(c + a * w) / b])
+                cv2.line(out, (x0, y0), (x1, y1), colour, 1)
+            return out
+        """)
+    checks = {c.name: c for e in grade(submission, ["lab11.ex2"]).exercises for c in e.checks}
+    sign = checks["draw_epipolar_lines draws a line given with the other sign, (-a, -b, -c), as the same line"]
+    assert sign.score == sign.max_score, sign.message

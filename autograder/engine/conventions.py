@@ -37,6 +37,7 @@ import numpy as np
 
 from .checks import StudentFailure, Trial, passed
 from .claims import from_code, measured
+from .hints import code_of
 
 # per convention ("channels", "rows", "integers"): function -> its lab's key;
 # "not judged": (convention, function) -> why
@@ -281,8 +282,6 @@ def _made_like(functions, parameters: set) -> list:
 def why_integers(t: Trial, function: str) -> str:
     """Where the student's code makes an array of its input's dtype (read, never run), in words; ""
     when it makes none that the reading sees."""
-    from .hints import code_of
-
     code = code_of(t)
     functions = code.reachable([function])
     if not functions:

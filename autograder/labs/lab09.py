@@ -332,7 +332,7 @@ def judge_single_point(t: Trial, what: str, got, expected):
     if point_error(got[None], np.asarray(expected)[None]) > at_precision(1e-6 * scale, scale):
         integers = integer_entries(got, expected)
         if integers:   # (where the code makes an array like its integer input and writes into it: that line)
-            why = conventions.why_integers(t, what.split("(")[0])
+            why = conventions.why_integers(t, t.calls[-1][0]) if t.calls else ""   # (the function just called)
             said = f"it holds integers ({got.dtype}), where the answer has fractions.{why}" if why else integers
             t.fail(f"{what} is wrong: {said}", mistake="integer arithmetic: the fractions are cut off")
         shown, wanted = format_arrays_apart(got, expected)

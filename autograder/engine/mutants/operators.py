@@ -1318,7 +1318,7 @@ def _in_docstring(node, fn) -> bool:
         and node is body[0].value
 
 
-_SIZE_NAMES = frozenset({"width", "height", "w", "h", "cols", "rows", "W", "H", "n_cols", "n_rows", "ncols", "nrows"})
+_SIZE_NAMES = frozenset({"width", "height", "w", "h", "cols", "rows", "n_cols", "n_rows", "ncols", "nrows"})
 
 
 def _image_size(node) -> bool:

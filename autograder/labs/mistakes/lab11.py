@@ -539,7 +539,7 @@ MISTAKES = {
                 if inside:
                     cv2.line(canvas, p, q, (0, 0, 255) if canvas.ndim == 3 else 255, 1)
             return canvas
-        """, ["(a, b, c) and (-a, -b, -c) are one line", "lines drawn otherwise"]),
+        """, ["(a, b, c) and (-a, -b, -c) are one line", "drawn where none of the lines passes"]),
     "essential_from_fundamental divided by E[2, 2]": ("lab11.ex3", """
         _reference_essential = essential_from_fundamental
         def essential_from_fundamental(F, K1, K2):
