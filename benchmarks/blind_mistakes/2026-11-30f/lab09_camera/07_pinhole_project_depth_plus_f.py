@@ -33,7 +33,7 @@ def _divide(homogeneous, single):
 def pinhole_project(points, f):
     """``x = f X / Z``, ``y = f Y / Z`` (image origin on the optical axis)."""
     X, single = _points(points)
-    return _divide(np.column_stack([f * X[:, 0], f * X[:, 1], X[:, 2]]), single)
+    return _divide(np.column_stack([f * X[:, 0], f * X[:, 1], X[:, 2] + f]), single)
 
 
 # --------------------------------------------------------------------- ex2
@@ -61,7 +61,7 @@ def project(P, points):
     """World points to pixels: ``x ~ P [X, 1]``, then the perspective division."""
     X, single = _points(points)
     homogeneous = np.column_stack([X, np.ones(len(X))])
-    return _divide(homogeneous @ np.asarray(P, dtype=np.float64).T, False)
+    return _divide(homogeneous @ np.asarray(P, dtype=np.float64).T, single)
 
 
 # --------------------------------------------------------------------- ex4

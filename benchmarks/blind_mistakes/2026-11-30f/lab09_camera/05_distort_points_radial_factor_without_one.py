@@ -151,8 +151,8 @@ def distort_points(points, dist):
     k1, k2, p1, p2, k3 = coeffs
     x, y = pts[:, 0], pts[:, 1]
     r2 = x ** 2 + y ** 2
-    radial = 1 + k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
+    radial = k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
     out = np.empty_like(pts)
-    out[:, 0] = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x)
+    out[:, 0] = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x ** 2)
     out[:, 1] = y * radial + p1 * (r2 + 2 * y ** 2) + 2 * p2 * x * y
     return out[0] if single else out
