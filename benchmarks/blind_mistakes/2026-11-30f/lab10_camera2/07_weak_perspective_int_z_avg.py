@@ -17,17 +17,12 @@ def _points(points):
 
 # --------------------------------------------------------------------- ex1
 def perspective_project(points, f):
-    """Pinhole projection ``x = f X / Z``, ``y = f Y / Z``; NaN for points not in front of the camera."""
-    pts = np.asarray(points, dtype=np.float64)
-    one_point = pts.ndim == 1
-    pts = pts.reshape(-1, 3)
-    out = np.empty((len(pts), 2))
-    for i, (X, Y, Z) in enumerate(pts):
-        if Z < 0:
-            out[i] = np.nan
-        else:
-            out[i] = (f * X / Z, f * Y / Z)
-    return out[0] if one_point else out
+    """``x = f X / Z``, ``y = f Y / Z``; NaN for points with ``Z <= 0``."""
+    X, single = _points(points)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = f * X[:, :2] / X[:, 2:3]
+    x[X[:, 2] <= 0] = np.nan
+    return x[0] if single else x
 
 
 # --------------------------------------------------------------------- ex2
@@ -39,7 +34,7 @@ def weak_perspective_project(points, f, z_avg=None):
     ``f / z_avg``.
     """
     X, single = _points(points)
-    z = X[:, 2].mean() if z_avg is None else float(z_avg)
+    z = X[:, 2].mean() if z_avg is None else int(z_avg)
     x = (f / z) * X[:, :2]
     return x[0] if single else x
 

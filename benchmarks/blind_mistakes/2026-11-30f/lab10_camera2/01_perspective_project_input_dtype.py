@@ -17,12 +17,17 @@ def _points(points):
 
 # --------------------------------------------------------------------- ex1
 def perspective_project(points, f):
-    """``x = f X / Z``, ``y = f Y / Z``; NaN for points with ``Z <= 0``."""
-    X, single = _points(points)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        x = f * X[:, :2] / X[:, 2:3]
-    x[X[:, 2] <= 0] = np.nan
-    return x[0] if single else x
+    """Pinhole projection ``x = f X / Z``, ``y = f Y / Z``; NaN for points not in front of the camera."""
+    pts = np.asarray(points)
+    one_point = pts.ndim == 1
+    pts = pts.reshape(-1, 3)
+    out = np.empty_like(pts[:, :2])
+    for i, (X, Y, Z) in enumerate(pts):
+        if Z <= 0:
+            out[i] = np.nan
+        else:
+            out[i] = (f * X / Z, f * Y / Z)
+    return out[0] if one_point else out
 
 
 # --------------------------------------------------------------------- ex2
@@ -34,7 +39,7 @@ def weak_perspective_project(points, f, z_avg=None):
     ``f / z_avg``.
     """
     X, single = _points(points)
-    z = X[X[:, 2] > 0, 2].mean() if z_avg is None else float(z_avg)
+    z = X[:, 2].mean() if z_avg is None else float(z_avg)
     x = (f / z) * X[:, :2]
     return x[0] if single else x
 
