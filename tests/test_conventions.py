@@ -192,3 +192,66 @@ def test_the_code_reading_follows_names_read_from_an_input_and_wants_a_write():
     assert lines("def f(points):\n    out = np.zeros_like(points, dtype=float)\n    out[0] = 1.5\n    return out") == []
     assert lines("def f(points):\n    out = np.array(points, float)\n    out[0] = 1.5\n    return out") == []
     assert lines("def f(points):\n    out = np.copy(points)\n    out[0] = 1.5\n    return out") == ["out = np.copy(points)"]
+
+
+SQUARE = "answers as many points as a point has coordinates as the same points among many"
+
+
+def test_three_points_taken_for_one_point_fail_the_square_check_naming_the_length_test(tmp_path):
+    # the blind sets' single point told by its length: a (3, 3) array is three points
+    submission = mutant(tmp_path, "lab09_camera", """
+        _reference = pinhole_project
+        def pinhole_project(points, f):
+            pts = np.asarray(points, dtype=np.float64)
+            one_point = len(pts) == 3
+            answer = _reference(pts.reshape(-1, 3), f)
+            return answer[0] if one_point else answer
+        """)
+    failed = _failed(grade(submission, ["lab09.ex1"]), "lab09.ex1")
+    assert list(failed) == [f"pinhole_project {SQUARE}"]
+    message = failed[f"pinhole_project {SQUARE}"].message
+    assert "with 3 points, an array of shape (3, 3) returned shape (2,)" in message
+    assert "`len(pts) == 3` (line" in message and "np.ndim(points) == 1" in message
+
+
+def test_two_points_read_as_columns_fail_the_square_check_and_right_recipes_pass(tmp_path):
+    # (2, N) accepted by transposing when the first axis is 2: two 2D points are transposed too
+    wrong = mutant(tmp_path / "wrong", "lab08_homographies", """
+        _reference = transform_points
+        def transform_points(H, pts):
+            pts = np.asarray(pts, dtype=np.float64)
+            if pts.shape[0] == 2:
+                pts = pts.T
+            return _reference(H, pts)
+        """)
+    failed = _failed(grade(wrong, ["lab08.ex1"]), "lab08.ex1")
+    assert list(failed) == [f"transform_points {SQUARE}"]
+    assert "`pts.shape[0] == 2` (line" in failed[f"transform_points {SQUARE}"].message
+    # OpenCV's recipe (cv2.perspectiveTransform on (N, 1, 2)) and a single point told by its dimensions pass
+    right = mutant(tmp_path / "right", "lab08_homographies", """
+        def transform_points(H, pts):
+            pts = np.asarray(pts, dtype=np.float64)
+            if pts.ndim == 1:
+                return transform_points(H, pts[None])[0]
+            return cv2.perspectiveTransform(pts.reshape(-1, 1, 2), np.asarray(H, np.float64)).reshape(-1, 2)
+        """)
+    assert not any(SQUARE in name for name in _failed(grade(right, ["lab08.ex1"]), "lab08.ex1"))
+
+
+def test_the_length_test_reading_sees_len_shape_and_size_of_an_input_only():
+    import ast
+
+    from autograder.engine.conventions import _length_tests
+
+    def tests(source, k=3):
+        function = ast.parse(source).body[0]
+        return [text for _, text in _length_tests([function], {a.arg for a in function.args.args}, k)]
+
+    assert tests("def f(points):\n    X = np.asarray(points, float)\n    if X.shape[0] == 3:\n        X = X[None]") \
+        == ["X.shape[0] == 3"]
+    assert tests("def f(points):\n    single = len(points) in (2, 3)") == ["len(points) in (2, 3)"]
+    assert tests("def f(pts):\n    if np.shape(pts)[0] != 2:\n        pass", k=2) == ["np.shape(pts)[0] != 2"]
+    # the number of dimensions, another length than k, or a name not read from an input: nothing
+    assert tests("def f(points):\n    if np.ndim(points) == 1:\n        pass") == []
+    assert tests("def f(points):\n    if len(points) == 4:\n        pass") == []
+    assert tests("def f(points):\n    corners = [1, 2, 3]\n    if len(corners) == 3:\n        pass") == []

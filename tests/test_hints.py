@@ -254,3 +254,21 @@ def test_a_vectorised_running_minimum_of_the_negated_ncc_keeps_the_highest(sign,
     code = read_code(textwrap.dedent(_RUNNING_BEST.format(sign=sign)))
     assert bool(NCC_HINT.contradicts(code, ["block_matching"])) == keeps_highest
     assert KEEPS_LOWEST.found(code.reachable(["block_matching"]))
+
+
+def test_an_expression_in_a_helper_given_another_value_of_the_name_is_not_the_callers():
+    # the blind set's DP: `_sad_volume(left, right, D - 1, ...)`: its `max_disparity + 1` is D, not the API's + 1
+    rebound = """
+        def f(left, right, max_disparity=64):
+            D = int(max_disparity)
+            return _volume(left, right, D - 1)
+        def _volume(left, right, max_disparity):
+            return np.zeros((max_disparity + 1,) + left.shape)
+        """
+    assert found(expr("max_disparity + 1"), rebound) == ""
+    # the same value passed on, as itself or converted (directly, or through a name assigned so): found
+    for call in ("_volume(left, right, max_disparity)", "_volume(left, right, int(max_disparity))",
+                 "_volume(left, right, D)", "_volume(left, right, max_disparity=D)"):
+        source = rebound.replace("_volume(left, right, D - 1)", call)
+        assert found(expr("max_disparity + 1"), source) == "computes max_disparity + 1", call
+

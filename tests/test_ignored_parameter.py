@@ -11,7 +11,7 @@ import pytest
 from autograder.engine.hints import read_code
 from autograder.engine.ignored import MISTAKE, never_read, unused_given
 from autograder.engine.runner import grade
-from conftest import check_results, mutant
+from conftest import check_results, edited_reference, mutant
 
 
 def code(source: str):
@@ -101,3 +101,39 @@ def test_a_value_computed_and_never_read_is_told_where_nothing_else_names_the_fa
     told = [c for c in check_results(result, "lab09.ex1") if c.mistake == UNUSED_VALUE]
     assert told and "computes `depth` (line" in told[0].message, \
         [(c.mistake, c.message) for c in check_results(result, "lab09.ex1")]
+
+
+def test_a_parameter_that_reaches_a_use_flows_and_one_passed_only_to_a_helper_that_ignores_it_does_not():
+    from autograder.engine.hints import parameter_flows
+
+    source = code("""
+        def ransac(src, dst, threshold=3.0):
+            inliers = errors(src, dst) < threshold
+            return inliers
+        def fixed(src, dst, threshold=3.0):
+            return _count(src, dst, threshold)
+        def _count(src, dst, limit):
+            return (errors(src, dst) < 1.0).sum()
+        def passed_on(src, dst, threshold=3.0):
+            return _count2(src, dst, limit=threshold)
+        def _count2(src, dst, limit):
+            return (errors(src, dst) < limit).sum()
+        def overwritten(src, dst, threshold=3.0):
+            threshold = 1.0
+            return errors(src, dst) < threshold
+        """)
+    assert parameter_flows(source, "ransac", "threshold")
+    assert not parameter_flows(source, "fixed", "threshold")
+    assert parameter_flows(source, "passed_on", "threshold")
+    assert not parameter_flows(source, "overwritten", "threshold")
+
+
+def test_a_threshold_the_code_uses_that_changes_nothing_on_the_input_is_not_named_ignored(tmp_path):
+    # the blind set's RANSAC keeping the sample with the FEWEST inliers (a 4-point sample fits itself at any
+    # threshold): 1 px and 20 px give the same H, yet the code uses its threshold -- "ignored" would be false
+    submission = edited_reference(tmp_path, "lab08_homographies",
+                                  ("np.lexsort((spread, -counts))[0]", "np.lexsort((spread, counts))[0]"))
+    failed = [c for c in check_results(grade(submission, ["lab08.ex4"]), "lab08.ex4") if c.score < c.max_score]
+    assert failed and not any("threshold is ignored" in c.message or c.mistake == "threshold is ignored"
+                              for c in failed)
+    assert any("though your code uses threshold" in c.message for c in failed)

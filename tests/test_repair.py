@@ -1865,3 +1865,27 @@ def test_a_factor_of_an_image_size_is_never_negated_and_a_helper_others_run_righ
     assert messages and all("the input's size times the transform's scale" in m for m in messages), messages
     assert not any("-sx" in m or "-sy" in m for m in messages), messages
     assert not any("`dsize and" in m for m in messages), messages
+
+
+def test_confirmation_images_come_in_every_mix_of_channels():
+    # a test of img1's channels where img2's belongs mends BGR + grey and breaks grey + grey: every mix is tried
+    from autograder.engine.mutants.naming import other_channels
+
+    bgr, grey = np.zeros((20, 30, 3), np.uint8), np.zeros((20, 30), np.uint8)
+    mixes = [tuple(a.ndim for a in args[:2]) for _, args, _ in other_channels(("f", (bgr, grey, 5), {}))]
+    assert mixes == [(2, 3), (2, 2), (3, 3)]   # (all turned first, as with one image)
+    assert [args[0].ndim for _, args, _ in other_channels(("f", (grey,), {}))] == [3]
+    assert [(args[0].ndim, kwargs["b"].ndim) for _, args, kwargs in other_channels(("f", (bgr,), {"b": bgr}))] \
+        == [(2, 2), (2, 3), (3, 2)]
+    assert other_channels(("f", (np.zeros((3, 2)),), {})) == []
+
+
+def test_a_channel_test_of_the_other_image_is_not_mended_by_inverting_it(tmp_path):
+    # the second image converted when the FIRST is grey: `not img1.ndim == 2` mends BGR + grey and breaks
+    # grey + grey and BGR + BGR, which the student's code answers rightly: no such change is told
+    submission = edited_reference(tmp_path, "lab08_homographies", (
+        "    canvas[:h2, w1:] = _bgr(img2)\n",
+        "    canvas[:h2, w1:] = cv2.cvtColor(img2, cv2.COLOR_GRAY2BGR) if img1.ndim == 2 else img2\n"))
+    result = grade(submission, ["lab08.ex3"])
+    failed = [c for e in result.exercises for c in e.checks if c.score < c.max_score]
+    assert failed and not any("not img1.ndim == 2" in c.message for c in failed)

@@ -63,16 +63,26 @@ def keeps_grey(exercise, function: str, inputs: Callable[[], tuple], images=(0,)
 
 
 def point_by_point(exercise, function: str, inputs: Callable[[], tuple], rows=(0,), points: float = 1,
-                   hidden: bool = False, described: str = "") -> None:
-    """Register on ``exercise`` the check that ``function`` treats each point alone: ``inputs()``
-    gives its arguments with N >= 2 points at the positions ``rows`` (sliced together). (The API's
-    single (3,) point is judged against the truth by each lab's own checks.)"""
+                   hidden: bool = False, described: str = "", one_row: bool = True) -> None:
+    """Register on ``exercise`` the checks that ``function`` treats each point alone: ``inputs()``
+    gives its arguments with N points at the positions ``rows`` (sliced together), N larger than a
+    point's coordinates. Two relations, one check each: the first point as a one-row array (left
+    out with ``one_row=False`` where a lab's own checks judge the one-row form against the truth),
+    and the first k points where k is a point's number of coordinates -- a (3, 3) array is three
+    points, not one point told by its length. (The API's single (3,) point is judged against the
+    truth by each lab's own checks.)"""
     def check(t: Trial):
         return judge_rows(t, function, inputs(), rows, described)
-    check.__name__ = f"{function}_point_by_point"
+
+    def square(t: Trial):
+        return judge_square(t, function, inputs(), rows, described)
+    check.__name__, square.__name__ = f"{function}_point_by_point", f"{function}_as_many_as_coordinates"
     DECLARED["rows"][function] = exercise.lab.key
-    exercise.check(f"{function} answers a one-row array as the same point among many", points=points,
-                   hidden=hidden)(check)
+    if one_row:
+        exercise.check(f"{function} answers a one-row array as the same point among many", points=points,
+                       hidden=hidden)(check)
+    exercise.check(f"{function} answers as many points as a point has coordinates as the same points among many",
+                   points=points, hidden=hidden)(square)
 
 
 def whole_numbers(exercise, function: str, inputs: Callable[[], tuple], points: float = 1, hidden: bool = False,
@@ -204,6 +214,91 @@ def judge_rows(t: Trial, function: str, args: tuple, rows, described: str = ""):
     return passed(f"the first point, as a one-row array, answered as the same point among {n}")
 
 
+SQUARE_TAKEN = "as many points as coordinates are taken for one point"
+
+
+def judge_square(t: Trial, function: str, args: tuple, rows, described: str = ""):
+    """Judge ``function`` on its first k points, k the number of coordinates of a point (three 3D
+    points, a (3, 3) array; two 2D points, (2, 2)), against its answer for all the points: code that
+    tells a single point by its length (``len(points) == 3``) or a transposed input by its first
+    axis (``if pts.shape[0] == 2: pts = pts.T``) answers those otherwise."""
+    given_all = np.asarray(args[rows[0]])
+    n, k = len(given_all), given_all.shape[-1] if given_all.ndim == 2 else 0
+    if not 1 < k < n:
+        raise ValueError(f"{function}: the check needs N > k points of k >= 2 coordinates, not {given_all.shape}")
+    many = t.call(function, *args)
+    call = f"{function}({described or '...'})"
+    given = f"with {k} points, an array of shape {(k, k)}"
+    few = _asked(t, function, tuple(np.asarray(a)[:k] if i in rows else a for i, a in enumerate(args)),
+                 f"{call} {given}")
+    theirs = _same_parts(t, f"{call} {given}", many, few, SQUARE_TAKEN)
+    for index, (ours, answer) in enumerate(zip(_parts(many), theirs)):
+        if not (isinstance(ours, np.ndarray) and ours.ndim >= 1 and len(ours) == n and ours.dtype.kind in "biuf"):
+            continue   # not one row per point (a wrong answer for all N is the other checks' to judge)
+        name = _name(call, index, len(theirs), given)
+        expected = ours[:k]
+        shaped = isinstance(answer, np.ndarray) and answer.shape == expected.shape
+        if shaped and _close(answer, expected):
+            continue
+        shown = f"shape {answer.shape}" if isinstance(answer, np.ndarray) and not shaped else \
+            _first(np.asarray(answer)) if shaped else type(answer).__name__
+        t.fail(measured(f"{name} returned {shown}, but the same {k} points among {n} give {_first(expected)}: "
+                        f"{k} points are {k} rows of the answer, whatever a point's number of coordinates.")
+               + why_square(t, function, k), mistake=SQUARE_TAKEN)
+    return passed(f"the first {k} points, as many as a point has coordinates, answered as the same points among {n}")
+
+
+def _counts_rows(node) -> str:
+    """The name whose number of rows ``node`` reads (``len(pts)``, ``pts.shape[0]``, ``np.shape(pts)[0]``,
+    ``pts.size``); "" for anything else."""
+    if isinstance(node, ast.Call) and getattr(node.func, "id", "") == "len" and len(node.args) == 1:
+        return _root(node.args[0], any_dtype=True)
+    if isinstance(node, ast.Attribute) and node.attr == "size":
+        return _root(node.value, any_dtype=True)
+    if isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Constant) and node.slice.value == 0:
+        shape = node.value
+        if isinstance(shape, ast.Attribute) and shape.attr == "shape":
+            return _root(shape.value, any_dtype=True)
+        if isinstance(shape, ast.Call) and getattr(shape.func, "attr", "") == "shape" and shape.args:
+            return _root(shape.args[0], any_dtype=True)
+    return ""
+
+
+def _length_tests(functions, parameters: set, k: int) -> list:
+    """The tests in ``functions`` (read, never run) of an input's number of rows against ``k``
+    (``len(points) == 3``, ``pts.shape[0] != 2``, ``X.size == 3``, ``len(p) in (2, 3)``); as (line, text)."""
+    found = []
+    for function in functions:
+        inputs = set(parameters)
+        assigned = [node for node in ast.walk(function) if isinstance(node, ast.Assign) and len(node.targets) == 1
+                    and isinstance(node.targets[0], ast.Name)]
+        for _ in range(3):
+            inputs |= {node.targets[0].id for node in assigned if _root(node.value, any_dtype=True) in inputs}
+        for node in ast.walk(function):
+            if not isinstance(node, ast.Compare) or len(node.ops) != 1 or _counts_rows(node.left) not in inputs:
+                continue
+            right = node.comparators[0]
+            values = [right.value] if isinstance(right, ast.Constant) else \
+                [e.value for e in right.elts if isinstance(e, ast.Constant)] if isinstance(right, (ast.Tuple, ast.List, ast.Set)) else []
+            if k in values and isinstance(node.ops[0], (ast.Eq, ast.NotEq, ast.In, ast.NotIn)):
+                found.append((node.lineno, ast.unparse(node)))
+    return sorted(set(found))[:2]
+
+
+def why_square(t: Trial, function: str, k: int) -> str:
+    """Where the student's code tells a point's form by its number of rows (read, never run), in
+    words; "" when the reading sees no such test."""
+    functions = code_of(t).reachable([function])
+    parameters = {a.arg for f in functions for a in (*f.args.posonlyargs, *f.args.args, *f.args.kwonlyargs)}
+    tests = _length_tests(functions, parameters, k)
+    if not tests:
+        return ""
+    where = " and ".join(f"`{text}` (line {line})" for line, text in tests)
+    return from_code(f" Reading your code: {where} {'tests' if len(tests) == 1 else 'test'} the input's number of "
+                     f"rows against {k}, and {k} points have {k} rows: tell a single point by its number of "
+                     "dimensions (`np.ndim(points) == 1`).")
+
+
 def _as_integers(value):
     """``value`` given as integers when it is a float array (or a float) of whole numbers only, else
     itself."""
@@ -219,14 +314,15 @@ LIKE_INPUT = ("zeros_like", "empty_like", "ones_like", "full_like", "copy", "arr
 PASSES_ON = LIKE_INPUT + ("reshape", "atleast_2d", "squeeze", "ravel", "flatten", "transpose")
 
 
-def _root(node) -> str:
+def _root(node, any_dtype: bool = False) -> str:
     """The name an expression is read from through indexing, attributes and the calls that pass an
-    array on in its dtype (``np.asarray(pts1).reshape(-1, 2)`` -> ``pts1``); "" for anything else."""
+    array on in its dtype (``np.asarray(pts1).reshape(-1, 2)`` -> ``pts1``; with ``any_dtype``, also
+    those given another dtype: its rows are the same); "" for anything else."""
     while True:
         if isinstance(node, (ast.Subscript, ast.Attribute)):
             node = node.value
         elif isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in PASSES_ON \
-                and not any(k.arg == "dtype" for k in node.keywords):
+                and (any_dtype or not any(k.arg == "dtype" for k in node.keywords)):
             module = isinstance(node.func.value, ast.Name) and node.func.value.id in ("np", "numpy")
             if module and not node.args:
                 return ""

@@ -41,7 +41,9 @@ from __future__ import annotations
 
 import ast
 import inspect
+import itertools
 import re
+from collections import Counter
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from pathlib import Path
@@ -327,7 +329,11 @@ def expr(pattern: str) -> Predicate:
     """A sub-expression shaped like ``pattern`` (``"max_disparity + 1"``; ``_`` matches anything)."""
     wanted = parse(pattern, mode="eval", max_chars=None, max_statements=None).body
 
+    named = {node.id for node in ast.walk(wanted) if isinstance(node, ast.Name)}
+
     def test(function) -> bool:
+        if named & getattr(function, "_rebound", set()):
+            return False   # (a helper's parameter of that name holds another value: not the caller's expression)
         return any(_same(node, wanted) for node in ast.walk(function))
     return Predicate("computes " + re.sub(r"\b_\b", "...", pattern), test)
 
@@ -607,6 +613,40 @@ class Code:
 NO_CODE = Code({}, {})
 
 
+def parameter_flows(code: Code, function: str, parameter: str, depth: int = 4) -> bool:
+    """Whether the parameter ``parameter`` of the student's ``function`` reaches a use (read, never
+    run): read anywhere but as an argument of one of the module's own functions, or passed to one
+    whose own parameter there flows. False when the function never reads it, when it is assigned
+    (overwritten: its value may never be used), or when it goes only to helpers that ignore it."""
+    node = code.functions.get(function)
+    if node is None or depth < 0:
+        return False
+    if parameter not in {a.arg for a in (*node.args.posonlyargs, *node.args.args, *node.args.kwonlyargs)}:
+        return False
+    names = [n for n in ast.walk(node) if isinstance(n, ast.Name) and n.id == parameter]
+    if any(not isinstance(n.ctx, ast.Load) for n in names):
+        return False   # (assigned somewhere: what is used may be another value)
+    parents = {id(child): parent for parent in ast.walk(node) for child in ast.iter_child_nodes(parent)}
+    for name in names:
+        parent = parents.get(id(name))
+        call = parents.get(id(parent)) if isinstance(parent, ast.keyword) else parent
+        own = isinstance(call, ast.Call) and isinstance(call.func, ast.Name) and call.func.id in code.functions
+        if not own:
+            return True
+        callee = code.functions[call.func.id]
+        if isinstance(parent, ast.keyword):
+            target = parent.arg
+        elif name in call.args and not any(isinstance(a, ast.Starred) for a in call.args):
+            positional = [a.arg for a in (*callee.args.posonlyargs, *callee.args.args)]
+            index = call.args.index(name)
+            target = positional[index] if index < len(positional) else None
+        else:
+            return True
+        if target is None or parameter_flows(code, call.func.id, target, depth - 1):
+            return True
+    return False
+
+
 def read_code(text: str) -> Code:
     """The functions of the module ``text`` (nothing when it cannot be parsed, or is too large)."""
     try:
@@ -625,7 +665,48 @@ def read_code(text: str) -> Code:
     # a helper passed as a callback, under another name, or as an attribute of the module itself
     aliases = _aliases(tree, functions, scope)
     calls = {name: _own_references(node, name, functions, aliases, scope) for name, node in functions.items()}
+    for name, rebound in _rebound(functions).items():
+        functions[name]._rebound = rebound
     return Code(functions, calls)
+
+
+_SAME_VALUE = {"int", "float", "round", "abs", "np.int32", "np.int64", "np.float32", "np.float64"}
+
+
+def _rebound(functions: dict) -> dict:
+    """Per function, its parameters that one of the module's calls of it gives another value than the
+    caller's own of that name (``_sad_volume(left, right, D - 1, ...)`` from ``dp_stereo(...,
+    max_disparity)``): ``max_disparity + 1`` there is not the API's ``max_disparity + 1``. A name
+    given as itself, converted (``int(max_disparity)``) or through a name assigned so (``D =
+    int(max_disparity)``) is the same value."""
+    rebound = {name: set() for name in functions}
+
+    def origin(node, assigned) -> str:
+        for _ in range(4):
+            if isinstance(node, ast.Call) and len(node.args) == 1 and not node.keywords \
+                    and ast.unparse(node.func) in _SAME_VALUE:
+                node = node.args[0]
+            elif isinstance(node, ast.Name) and node.id in assigned:
+                node = assigned[node.id]
+            else:
+                break
+        return node.id if isinstance(node, ast.Name) else ""
+
+    for caller in functions.values():
+        stores = [n for n in ast.walk(caller) if isinstance(n, ast.Assign) and len(n.targets) == 1
+                  and isinstance(n.targets[0], ast.Name)]
+        counts = Counter(n.targets[0].id for n in stores)
+        assigned = {n.targets[0].id: n.value for n in stores if counts[n.targets[0].id] == 1}
+        for call in ast.walk(caller):
+            if not (isinstance(call, ast.Call) and isinstance(call.func, ast.Name) and call.func.id in functions):
+                continue
+            callee = functions[call.func.id]
+            positional = [a.arg for a in (*callee.args.posonlyargs, *callee.args.args)]
+            given = [(param, arg) for param, arg in zip(positional, itertools.takewhile(
+                lambda a: not isinstance(a, ast.Starred), call.args))]
+            given += [(k.arg, k.value) for k in call.keywords if k.arg]
+            rebound[call.func.id] |= {param for param, arg in given if origin(arg, assigned) != param}
+    return rebound
 
 
 # Libraries a student imports: ``x.f`` of one of them, or an ``f`` imported from one, is never the

@@ -34,7 +34,8 @@ from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
 from .claims import from_code, measured
 from .forms import shape_form
-from .hints import Hint, Predicate, calls, code_of, functions_read, keyword, mentions, size_given_as_shape
+from .hints import (Hint, Predicate, calls, code_of, functions_read, keyword, mentions, parameter_flows,
+                    size_given_as_shape)
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
 
@@ -553,8 +554,14 @@ def unused_parameter_hint(parameter: str) -> Hint:
 
 def _ignored(t: Trial, what: str, parameter: str, values, result: str):
     first_value, second_value = values
-    t.fail(f"{what}: {parameter}={first_value!r} and {parameter}={second_value!r} give the same "
-           f"{result}: {parameter} is ignored.",
+    same = f"{what}: {parameter}={first_value!r} and {parameter}={second_value!r} give the same {result}"
+    code = code_of(t)
+    if any(parameter_flows(code, function, parameter) for function in functions_read(t)):
+        # (the code uses it: on these inputs its value decides nothing -- a count that never reaches it,
+        # a model chosen otherwise -- which is no parameter ignored; measured, not named)
+        t.fail(from_code(f"{same} on this input, though your code uses {parameter}: follow what its value "
+                         "decides (a comparison, a count, a selection); here it decides nothing."))
+    t.fail(f"{same}: {parameter} is ignored.",
            hint=unused_parameter_hint(parameter).said(t),
            mistake=f"{parameter} is ignored")
 

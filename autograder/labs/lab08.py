@@ -3012,8 +3012,7 @@ conventions.not_judged(
     match_features="its answer is points; a grey pair is judged by a hidden check",
     draw_matches="its answer has 3 channels whatever the inputs' (the API says so)",
     stitch=_PANORAMA, stitch_many=_PANORAMA, blend_multiband="judged on a grey image of odd size by a hidden check")
-conventions.not_judged("rows", transform_points="judged on a single point, pts of shape (1, 2)",
-                       homography_dlt=conventions.FITTED, homography_ransac=conventions.FITTED,
+conventions.not_judged("rows", homography_dlt=conventions.FITTED, homography_ransac=conventions.FITTED,
                        draw_matches="its answer is an image")
 
 WHOLE_H = np.array([[220.0, 15.0, 3000.0], [-10.0, 190.0, 1500.0], [1.0, 2.0, 1000.0]])   # w = x + 2y + 1000
@@ -3027,5 +3026,8 @@ def _whole_points(seed: int, n: int) -> np.ndarray:
 # Whole numbers given as integers (the sheet's own sample point is (1, 1, 2)) answered as the same
 # numbers given as floats: an array made like an integer input holds integers only.
 conventions.whole_numbers(ex1, "transform_points", lambda: (WHOLE_H, _whole_points(81, 8)), described="H, pts")
+# (its one-row form, pts of shape (1, 2), is judged against the truth by the checks above)
+conventions.point_by_point(ex1, "transform_points", lambda: (WHOLE_H, _whole_points(82, 6) + 0.25), rows=(1,), described="H, pts",
+                           one_row=False)
 conventions.not_judged("integers", homography_dlt=conventions.MODEL, homography_ransac=conventions.MODEL,
                        draw_matches=conventions.DRAWN)

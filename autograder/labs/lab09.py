@@ -1705,10 +1705,11 @@ conventions.point_by_point(ex2, "project_with_intrinsics", lambda: (_example_cam
 conventions.point_by_point(ex3, "project", lambda: _photo_scene()[1:], rows=(1,), described="P, points")
 conventions.point_by_point(ext2, "distort_points", lambda: (truth.points_in_front(42, n=6)[:, :2] / 10.0, DIST_EXAMPLE),
                            described="points, dist")
+conventions.point_by_point(ex1, "pinhole_project", lambda: (truth.points_in_front(40, n=6), 500.0),
+                           described="points, f=500", one_row=False)   # its (1, 3) row is judged against the truth
 conventions.keeps_grey(ex5, "project_onto_image", _photo_scene, described="image, P, points")
 conventions.not_judged(
-    "rows", pinhole_project="judged on a single (3,) point and one row (1, 3) against the truth",
-    project_focal_lengths="its answer is (F, N, 2): the points are its second axis",
+    "rows", project_focal_lengths="its answer is (F, N, 2): the points are its second axis",
     simulate_aperture="its rays are random: the same point among many draws other rays",
     project_onto_image="its image shows every point drawn; its points are judged with project's",
     draw_points="its answer is an image")

@@ -1686,6 +1686,12 @@ def _whole_triangulation():
     return views.P1, views.P2, np.round(views.pts1), np.round(views.pts2)
 
 
+def _views_for_rows():
+    """(P1, P2, pts1, pts2, F) of two views of six points."""
+    views = truth.two_views(163, n=6)
+    return views.P1, views.P2, views.pts1, views.pts2, views.F
+
+
 def _whole_lines():
     """(F, pts1) of two views, the pixel coordinates rounded to whole numbers."""
     views = truth.two_views(162, n=12)
@@ -1697,6 +1703,9 @@ def _whole_lines():
 conventions.whole_numbers(ex1, "triangulate", _whole_triangulation, described="P1, P2, pts1, pts2")
 conventions.whole_numbers(ex2, "epipolar_lines", _whole_lines, described="F, pts1")
 conventions.not_judged("integers", essential_8point=conventions.MODEL, fundamental_8point=conventions.MODEL)
-conventions.not_judged("rows", triangulate="judged on N = 1 against the truth",
-                       epipolar_lines="judged on one point against the truth",
-                       essential_8point=conventions.FITTED, fundamental_8point=conventions.FITTED)
+# (their one-row forms, N = 1, are judged against the truth by the checks above)
+conventions.point_by_point(ex1, "triangulate", lambda: _views_for_rows()[:4],
+                           rows=(2, 3), described="P1, P2, pts1, pts2", one_row=False)
+conventions.point_by_point(ex2, "epipolar_lines", lambda: (_views_for_rows()[4], _views_for_rows()[2]), rows=(1,),
+                           described="F, pts1", one_row=False)
+conventions.not_judged("rows", essential_8point=conventions.FITTED, fundamental_8point=conventions.FITTED)

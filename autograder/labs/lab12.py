@@ -2714,7 +2714,15 @@ conventions.not_judged(
     "channels", rectify="judged on grey pairs against the truth, and on a colour pair", block_matching=_GREY_ONLY,
     dp_stereo=_GREY_ONLY,
     depth_from_structured_light="its images are the API's stack of grey patterns, (n_bits, H, W)")
-conventions.not_judged("rows", triangulate="judged on N = 1 against the truth")
+def _rows_triangulation():
+    """(P1, P2, pts1, pts2) of the rectified rig, six points."""
+    P1, P2, _, pts1, pts2 = truth.stereo_points(seed=172, n=6)
+    return P1, P2, pts1, pts2
+
+
+# (triangulate's one-row form, N = 1, is judged against the truth by the checks above)
+conventions.point_by_point(ex1, "triangulate", _rows_triangulation, rows=(2, 3), described="P1, P2, pts1, pts2",
+                           one_row=False)
 # Whole numbers given as integers (the sheet's own sample point is (1, 1, 2)) answered as the same
 # numbers given as floats: an array made like an integer input holds integers only.
 def _whole_triangulation():

@@ -183,18 +183,40 @@ _ABSENT = object()
 
 
 def other_channels(call) -> list:
-    """``call`` with its images in the other number of channels: BGR images (uint8, (H, W, 3)) made
-    grey, or grey ones (uint8, (H, W)) made BGR ([] when it has no image). Both are images a caller
-    may give."""
+    """``call`` with its images in the other numbers of channels: BGR images (uint8, (H, W, 3)) made
+    grey, grey ones (uint8, (H, W)) made BGR; with two images, every other mix of the two (grey and
+    grey, BGR and BGR, each turned alone: a test of the first image's channels made where the second's
+    belongs mends a BGR-and-grey call and breaks the grey-and-grey one); with more, all turned, all
+    grey and all BGR ([] when it has no image). All are images a caller may give."""
     import cv2
 
     function, args, kwargs = call
-    turned = lambda v: (cv2.cvtColor(v, cv2.COLOR_BGR2GRAY) if v.ndim == 3 else cv2.cvtColor(v, cv2.COLOR_GRAY2BGR)) \
-        if isinstance(v, np.ndarray) and v.dtype == np.uint8 and min(v.shape[:2], default=0) >= 8 \
-        and (v.ndim == 2 or (v.ndim == 3 and v.shape[2] == 3)) else v  # noqa: E731
-    new_args, new_kwargs = tuple(turned(a) for a in args), {k: turned(v) for k, v in kwargs.items()}
-    changed = any(a is not b for a, b in zip(new_args, args)) or any(new_kwargs[k] is not kwargs[k] for k in kwargs)
-    return [(function, new_args, new_kwargs)] if changed else []
+    image = lambda v: isinstance(v, np.ndarray) and v.dtype == np.uint8 and min(v.shape[:2], default=0) >= 8 \
+        and (v.ndim == 2 or (v.ndim == 3 and v.shape[2] == 3))  # noqa: E731
+    as_grey = lambda v: cv2.cvtColor(v, cv2.COLOR_BGR2GRAY) if v.ndim == 3 else v  # noqa: E731
+    as_bgr = lambda v: cv2.cvtColor(v, cv2.COLOR_GRAY2BGR) if v.ndim == 2 else v  # noqa: E731
+    places = [("a", i) for i, a in enumerate(args) if image(a)] + [("k", k) for k, v in kwargs.items() if image(v)]
+    if not places:
+        return []
+    grey_now = tuple((args[i] if kind == "a" else kwargs[i]).ndim == 2 for kind, i in places)
+    if len(places) == 2:
+        mixes = [mix for mix in itertools.product((True, False), repeat=2) if mix != grey_now]
+        mixes.sort(key=lambda mix: mix != tuple(not g for g in grey_now))   # (all turned first, as before)
+    else:
+        mixes = list(dict.fromkeys([tuple(not g for g in grey_now), (True,) * len(places), (False,) * len(places)]))
+        mixes = [mix for mix in mixes if mix != grey_now]
+    made = []
+    for mix in mixes:
+        new_args, new_kwargs = list(args), dict(kwargs)
+        for (kind, i), grey in zip(places, mix):
+            value = args[i] if kind == "a" else kwargs[i]
+            value = as_grey(value) if grey else as_bgr(value)
+            if kind == "a":
+                new_args[i] = value
+            else:
+                new_kwargs[i] = value
+        made.append((function, tuple(new_args), new_kwargs))
+    return made
 
 
 def mode_calls(call, modes) -> list:

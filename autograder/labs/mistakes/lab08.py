@@ -673,6 +673,14 @@ MISTAKES = {
             return _detect_right(image, method)
         """, ['raised']),
     # ---------------------------------------------------------------- the API's conventions
+    "transform_points takes 2 points for points given as columns": ("lab08.ex1", """
+        _reference_transform_rows = transform_points
+        def transform_points(H, pts):
+            pts = np.asarray(pts, dtype=np.float64)
+            if pts.shape[0] == 2:   # points given as columns, (2, N)
+                pts = pts.T
+            return _reference_transform_rows(H, pts)
+        """, ["`pts.shape[0] == 2` (line", "2 points are 2 rows"]),
     "warp_to_reference makes a grey moving image BGR": ("lab08.ex2", """
         def warp_to_reference(reference, moving, H):
             if moving.ndim == 2:

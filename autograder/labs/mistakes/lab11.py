@@ -516,6 +516,23 @@ MISTAKES = {
             X = _reference_triangulate(P1, P2, pts1, pts2)
             return X.astype(np.asarray(pts1).dtype)
         """, ["your answer is an integer array"]),
+    "triangulate takes 2 points for points given as columns": ("lab11.ex1", """
+        _reference_triangulate_rows = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.asarray(pts1, dtype=np.float64)
+            pts2 = np.asarray(pts2, dtype=np.float64)
+            if pts1.shape[0] == 2:   # points given as columns, (2, N)
+                pts1, pts2 = pts1.T, pts2.T
+            return _reference_triangulate_rows(P1, P2, pts1, pts2)
+        """, ["`pts1.shape[0] == 2` (line", "2 points are 2 rows"]),
+    "epipolar_lines takes 2 points for points given as columns": ("lab11.ex2", """
+        _reference_lines_rows = epipolar_lines
+        def epipolar_lines(F, pts1):
+            pts1 = np.asarray(pts1, dtype=np.float64)
+            if len(pts1) == 2:   # points given as columns, (2, N)
+                pts1 = pts1.T
+            return _reference_lines_rows(F, pts1)
+        """, ["`len(pts1) == 2` (line", "2 points are 2 rows"]),
     "epipolar_lines answers integer points in integers": ("lab11.ex2", """
         _reference_lines = epipolar_lines
         def epipolar_lines(F, pts1):
