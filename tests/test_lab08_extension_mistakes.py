@@ -306,3 +306,35 @@ def test_a_plain_alpha_blend_fails_the_grain_check_unnamed():
 def test_the_orb_tip_is_worth_no_points():
     [tip] = [c for c in lab08.ext1.checks if c.name == ORB_TIP]
     assert tip.advice and tip.points == 0
+
+
+PARTIAL_WEIGHT = "a mask's weights are used as given: 0.25 everywhere is a quarter of img1"
+
+
+def test_a_mask_stretched_to_its_maximum_fails_the_partial_weight_check_named_from_the_code(tmp_path):
+    # the blind set's `mask / mask.max()`: right for every mask reaching 1, wrong for weights below 1
+    stretched = mutant(tmp_path / "stretched", MODULE, """
+        _reference_blend = blend_multiband
+        def blend_multiband(img1, img2, mask, levels=4):
+            m = np.asarray(mask, dtype=np.float32)
+            m = m / m.max()
+            return _reference_blend(img1, img2, m, levels)
+        """)
+    failed = {c.name: c for c in check_results(grade(stretched, ["lab08.ext3"]), "lab08.ext3") if c.score < c.max_score}
+    assert list(failed) == [PARTIAL_WEIGHT]
+    assert "`m / m.max()` (line" in failed[PARTIAL_WEIGHT].message and failed[PARTIAL_WEIGHT].mistake
+    # a mask clipped to [0, 1] (a weight kept as given) passes; one thresholded to 0 or 1 fails, unnamed
+    clipped = mutant(tmp_path / "clipped", MODULE, """
+        _reference_blend = blend_multiband
+        def blend_multiband(img1, img2, mask, levels=4):
+            return _reference_blend(img1, img2, np.clip(mask, 0.0, 1.0), levels)
+        """)
+    assert all(c.score == c.max_score for c in check_results(grade(clipped, ["lab08.ext3"]), "lab08.ext3")
+               if c.name == PARTIAL_WEIGHT)
+    thresholded = mutant(tmp_path / "thresholded", MODULE, """
+        _reference_blend = blend_multiband
+        def blend_multiband(img1, img2, mask, levels=4):
+            return _reference_blend(img1, img2, (np.asarray(mask) > 0.5).astype(float), levels)
+        """)
+    [check] = [c for c in check_results(grade(thresholded, ["lab08.ext3"]), "lab08.ext3") if c.name == PARTIAL_WEIGHT]
+    assert check.score < check.max_score and not check.mistake and "mask of 0 everywhere" in check.message

@@ -1313,15 +1313,16 @@ def draw_options(t):
 @ex5.advice("draw_points skips NaN points")
 def draw_nan(t):
     image = photo("coffee", (160, 120))
-    pts = np.array([[40.0, 40.0], [np.nan, np.nan], [120.4, 80.6]])
-    what = "draw_points(image, pts with a NaN row)"
+    # (and an infinite one: the sheet's formula f X / Z gives inf for a point at Z = 0)
+    pts = np.array([[40.0, 40.0], [np.nan, np.nan], [120.4, 80.6], [np.inf, 60.0]])
+    what = "draw_points(image, pts with a NaN row and an infinite one)"
     try:
         got = t.call("draw_points", image, pts)
         judge_drawing(t, what, got, image, pts, radius=3, color=(0, 0, 255))
     except (StudentFailure, Fail) as failure:
         t.advise(f"{what} failed: {failure.message.splitlines()[0]} -- projections of points "
-                 "behind the camera are NaN if you follow that advice, so skip the rows that "
-                 "are not finite. No points depend on it.",
+                 "behind the camera are NaN if you follow that advice, and f X / Z is infinite at Z = 0, "
+                 "so skip the rows that are not finite (NaN or infinite). No points depend on it.",
                  hint=Hint("if np.isfinite(x) and np.isfinite(y): cv2.circle(...)", asks=calls("np.isfinite"),
                            instead="your code already {found}: check that the rows it skips are those not "
                                    "finite, before any int() conversion").said(t))

@@ -561,6 +561,13 @@ MISTAKES = {
                 m = m[..., None]
             return np.clip(np.round(m * img1 + (1 - m) * img2), 0, 255).astype(np.uint8)
         """, ["narrow feather"]),
+    "multi-band blend with the mask divided by its maximum": ("lab08.ext3", """
+        _reference_blend = blend_multiband
+        def blend_multiband(img1, img2, mask, levels=4):
+            weights = np.asarray(mask, dtype=np.float64)
+            weights = weights / weights.max()
+            return _reference_blend(img1, img2, weights, levels)
+        """, ["gives the same image as a mask of 1 everywhere", "`weights / weights.max()` (line"]),
     "multi-band blend with a fixed 2-level pyramid (levels ignored)": ("lab08.ext3", """
         _reference_blend = blend_multiband
         def blend_multiband(img1, img2, mask, levels=4):
