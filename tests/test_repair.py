@@ -1889,3 +1889,56 @@ def test_a_channel_test_of_the_other_image_is_not_mended_by_inverting_it(tmp_pat
     result = grade(submission, ["lab08.ex3"])
     failed = [c for e in result.exercises for c in e.checks if c.score < c.max_score]
     assert failed and not any("not img1.ndim == 2" in c.message for c in failed)
+
+
+@pytest.mark.parametrize("module, exercise, source, told", [
+    # an output allocated by the input's length: an IndexError for a disparity map (H, W)
+    ("lab12_stereo", "lab12.ex2", '''
+def depth_from_disparity(disparity, f, baseline):
+    d = np.asarray(disparity, dtype=np.float64)
+    valid = np.isfinite(d) & (d > 0)
+    depth = np.zeros(len(d))
+    depth[valid] = f * baseline / d[valid]
+    return depth
+''', "`np.zeros(len(d))` to `np.zeros(np.shape(d))`"),
+    # a matrix made in the image's dtype: uint8 cannot hold a negative shift
+    ("lab07_transformations", "lab07.ex1", '''
+def translate(image, tx=100, ty=50):
+    rows, cols = image.shape[:2]
+    M = np.array([[1, 0, tx], [0, 1, ty]], dtype=image.dtype).astype(np.float32)
+    return cv2.warpAffine(image, M, (cols, rows))
+''', "dtype=np.float64)` (line"),
+    # the first two points read where the two columns belong: one slip at two places
+    ("lab09_camera", "lab09.ext2", '''
+_reference_distort = distort_points
+def distort_points(points, dist):
+    pts = np.asarray(points, dtype=np.float64)
+    x, y = pts[0], pts[1]
+    return _reference_distort(np.column_stack([x, y]), dist)
+''', "`(pts[0], pts[1])` to `(pts[:, 0], pts[:, 1])`"),
+])
+def test_a_shape_a_dtype_and_a_row_for_a_column_are_told_as_the_change_that_mends_them(tmp_path, module, exercise,
+                                                                                      source, told):
+    result = grade(str(mutant(tmp_path, module, source)), [exercise], pictures="none")
+    messages = [c.message for c in check_results(result, exercise) if c.score < c.max_score]
+    assert any(told in m for m in messages), messages
+
+
+def test_the_hidden_phase_gets_a_copy_of_what_the_public_checks_left_one_way():
+    from types import SimpleNamespace
+
+    from autograder.engine.inherited import SHARED_FAILING
+    from autograder.engine.runner import _public_memory_to
+
+    check_a, check_b = object(), object()
+    public = [SimpleNamespace(shared={("checks calling", "f"): [(check_a, [])], (SHARED_FAILING, "m"): {"g"},
+                                      "repair seen": {"f": [("f", (1,), {})]}, "error model named": ["x"]}),
+              SimpleNamespace(shared={("checks calling", "f"): [(check_a, []), (check_b, [])]})]
+    fresh = [SimpleNamespace(shared={})]
+    _public_memory_to(fresh, public)
+    hidden = fresh[0].shared
+    assert [entry[0] for entry in hidden[("checks calling", "f")]] == [check_a, check_b]
+    assert hidden[(SHARED_FAILING, "m")] == {"g"} and hidden["repair seen"] == {"f": [("f", (1,), {})]}
+    assert "error model named" not in hidden
+    hidden[("checks calling", "f")].append((object(), []))   # a hidden check remembered: never the public's
+    assert len(public[0].shared[("checks calling", "f")]) == 1 and len(public[1].shared[("checks calling", "f")]) == 2

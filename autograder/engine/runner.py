@@ -224,6 +224,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
             if hidden and not fresh:   # no hidden check calls the student's code
                 run_lanes(sandboxes, hidden, graded_hidden)
             elif hidden:
+                _public_memory_to(fresh, sandboxes)
                 for sandbox in sandboxes:  # the public phase's workers are done: free their memory
                     sandbox.close()
                 spent = {exercise_id: sum(c.student_seconds for c in done.checks)
@@ -574,6 +575,26 @@ def _one_naming_time(sandboxes: list) -> None:
         counter = [0.0]
         for sandbox in sandboxes:
             sandbox.shared[key] = counter
+
+
+def _public_memory_to(fresh: list, public: list) -> None:
+    """Give the hidden phase's workers what the public checks left for confirming repairs: the checks
+    that called each function (their inputs are public), the functions failing their own checks and
+    the calls seen. Copies, one way: what a hidden check adds never reaches a public worker's, and
+    the public phase has ended."""
+    from .inherited import SHARED_FAILING
+
+    for sandbox in fresh:
+        for done in public:
+            for key, value in getattr(done, "shared", {}).items():
+                if isinstance(key, tuple) and key[0] == "checks calling":
+                    kept = sandbox.shared.setdefault(key, [])
+                    kept += [entry for entry in value if all(entry[0] is not mine[0] for mine in kept)]
+                elif isinstance(key, tuple) and key[0] == SHARED_FAILING:
+                    sandbox.shared.setdefault(key, set()).update(value)
+                elif key == "repair seen":
+                    for function, calls in value.items():
+                        sandbox.shared.setdefault(key, {}).setdefault(function, []).extend(calls)
 
 
 def _remember_check(check: Check, trial: Trial) -> None:

@@ -113,6 +113,7 @@ OPERATORS = {
     "grey": ("grey", "gray", "channel", "colour", "color"),
     "rank": ("singular", "rank", "constraint", "diag"),
     "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),
+    "whole_shape": ("shape", "length", "len", "dimension"),   # np.zeros(len(d)) -> np.zeros(np.shape(d))
     "other_result": ("result", "return", "mask", "index"),   # cv2.findHomography(...)[1] -> [0]   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
     "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
@@ -844,7 +845,7 @@ def _make_constant(node, payload):
 
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
-                                              "other_result")},
+                                              "other_result", "whole_shape")},
          "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1598,6 +1599,7 @@ def _student_changes(node, parent, parents):
         yield "inverse", "undone_never", ""   # `K2.T @ F @ K1` -> `F`: a transform applied twice, or too early
     if isinstance(node, ast.Call):
         yield from _dtype_changes(node)
+        yield from _shape_changes(node)
         yield from _call_slips(node)
     if isinstance(node, ast.Expr):
         yield from _discarded_result(node)
@@ -1822,6 +1824,26 @@ def _indexes(node, parent, parents) -> bool:
     return isinstance(parent, ast.Subscript) and parent.slice is node
 
 
+def _shape_changes(node: ast.Call):
+    """An array allocated with an input's length where its whole shape belongs (``np.zeros(len(d))``,
+    ``np.full(d.shape[0], np.nan)``): right for a 1-D input only, an IndexError for an image."""
+    dotted = _dotted(node.func)
+    if not dotted.startswith(("np.", "numpy.")) or dotted.rsplit(".", 1)[-1] not in ("zeros", "ones", "empty", "full") \
+            or not node.args:
+        return
+    size = node.args[0]
+    if isinstance(size, ast.Call) and _dotted(size.func) == "len" and len(size.args) == 1:
+        array = size.args[0]
+    elif isinstance(size, ast.Subscript) and isinstance(size.value, ast.Attribute) and size.value.attr == "shape" \
+            and isinstance(size.slice, ast.Constant) and size.slice.value == 0:
+        array = size.value.value
+    else:
+        return
+    new = copy.deepcopy(node)
+    new.args[0] = ast.Call(_name("np.shape"), [copy.deepcopy(array)], [])
+    yield "whole_shape", ast.unparse(new), ""
+
+
 def _dtype_changes(node: ast.Call):
     """An array made of the wrong type: a canvas allocated without its dtype (np.zeros is float64: an
     image built on it is not uint8; np.zeros_like(image) is uint8: sums on it wrap round), or values
@@ -1830,7 +1852,10 @@ def _dtype_changes(node: ast.Call):
     if not dotted.startswith(("np.", "numpy.")) or dotted.rsplit(".", 1)[-1] not in _MADE:
         return
     given = next((k for k in node.keywords if k.arg == "dtype"), None)
-    if given is not None and _dotted(given.value) in _INTEGER_TYPES:
+    if given is not None and isinstance(given.value, ast.Attribute) and given.value.attr == "dtype" \
+            and not dotted.endswith("_like"):
+        yield "dtype", "np.float64", ""   # (a matrix made in an image's dtype, `dtype=image.dtype`: uint8)
+    elif given is not None and _dotted(given.value) in _INTEGER_TYPES:
         yield "dtype", "np.float64", ""
         if _dotted(given.value) != "np.uint8":
             yield "dtype", "np.uint8", ""   # (an image built in an int array: right values, not uint8)

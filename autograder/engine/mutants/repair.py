@@ -474,10 +474,13 @@ class _Student:
         nodes, _ = self._walk(where)
         old = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
         if operator in ("summary", "divided_by_w", "true_division", "by_last", "ufunc_out", "empty_slice", "keep_axis",
-                        "column_order", "grey"):
+                        "column_order", "grey", "whole_shape"):
             # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
             # by the third: the change is written out whole, alike in kind only)
             return repr(operator)
+        if operator == "axis" and isinstance(payload, list):
+            # (an index moved to another axis, alike wherever it is: `pts[0]` and `pts[1]` both to columns)
+            return repr(("axis", tuple(isinstance(part, str) and part == ":" for part in payload)))
         if operator != "other_name" or not isinstance(old, ast.Name) or not isinstance(payload, str):
             return repr(payload)
         a, b = old.id, payload
