@@ -196,3 +196,17 @@ def test_a_dp_on_uint8_costs_is_not_told_its_backtracking_or_smoothness_is_missi
     said = " ".join(c.message + " " + (c.mistake or "") for c in failed)
     assert "where the backtracking starts, is wrong" not in said
     assert "the smoothness term is ignored" not in said
+
+
+def test_two_costs_swapped_are_named_from_the_ssd_robust_to_a_gain(tmp_path):
+    # the blind set's dispatch `(_ncc_volume if cost == "ssd" else _ssd_volume)`: not "your NCC is not normalised"
+    from autograder.labs.lab12 import COSTS_SWAPPED
+
+    submission = mutant(tmp_path, "lab12_stereo", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            return _block_matching(left, right, max_disparity, block_size, "ncc" if cost == "ssd" else "ssd")
+        """)
+    failed = [c for c in check_results(grade(submission, ["lab12.ext1"]), "lab12.ext1") if c.score < c.max_score]
+    gain = [c for c in failed if c.name.startswith("NCC is robust to a brightness")]
+    assert gain and gain[0].mistake == COSTS_SWAPPED and "not fully normalised" not in gain[0].message

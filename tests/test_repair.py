@@ -1942,3 +1942,47 @@ def test_the_hidden_phase_gets_a_copy_of_what_the_public_checks_left_one_way():
     assert "error model named" not in hidden
     hidden[("checks calling", "f")].append((object(), []))   # a hidden check remembered: never the public's
     assert len(public[0].shared[("checks calling", "f")]) == 1 and len(public[1].shared[("checks calling", "f")]) == 2
+
+
+def test_a_factor_taken_inside_a_square_root_is_told_moved_out_not_dropped(tmp_path):
+    # `np.sqrt(aperture * u)`: the fix moves the factor out; `aperture * u` (uniform radii, crowding the centre)
+    # passes the checks too, but is not the reference's draw -- the nearest fix is told, never that one
+    folder = edited_reference(tmp_path, "lab09_camera", (
+        "radius = aperture * np.sqrt(rng.uniform(0.0, 1.0, size=(len(X), n_rays)))",
+        "radius = np.sqrt(aperture * rng.uniform(0.0, 1.0, size=(len(X), n_rays)))"))
+    messages = [c.message for c in check_results(grade(str(folder), ["lab09.ex4"]), "lab09.ex4") if c.score < c.max_score]
+    assert any("to `aperture * np.sqrt(rng.uniform(0.0, 1.0, size=(len(X), n_rays)))`" in m for m in messages), messages
+    assert not any("to `aperture * rng.uniform" in m for m in messages), messages
+
+
+def test_a_matrix_divided_by_another_of_its_entries_is_not_the_fix_of_a_division_by_one_that_is_zero(tmp_path):
+    # F / F[2, 2] fails where F[2, 2] = 0 (epipoles at infinity); F / F[1, 2] mends it only while F[1, 2] is not 0
+    folder = mutant(tmp_path, "lab11_two_view", '''
+def epipoles(F):
+    F = np.asarray(F, dtype=np.float64)
+    F = F / F[2, 2]
+    U, _, Vt = np.linalg.svd(F)
+    return Vt[-1], U[:, -1]
+''')
+    messages = [c.message for c in check_results(grade(str(folder), ["lab11.ex5"]), "lab11.ex5") if c.score < c.max_score]
+    assert messages and not any("F / F[1, 2]" in m or "F / F[0, 2]" in m or "F / F[2, 1]" in m for m in messages), \
+        messages
+
+
+def test_renormalising_is_read_from_the_division_of_the_same_array_only():
+    from types import SimpleNamespace
+
+    source = "def f(F, G, v):\n    A = F / F[2, 2]\n    B = G / F[2, 2]\n    v /= v[-1]\n    return A, B, v\n"
+    student = repair._Student(source, ast.parse(source), api=["f"])
+    nodes, _ = student._walk("f")
+
+    def divisor_index(line: str) -> int:   # the ordinal of the divisor's index in the statement `line...`
+        statement = next(n for n in nodes if isinstance(n, (ast.Assign, ast.AugAssign)) and ast.unparse(n).startswith(line))
+        index = next(n for n in ast.walk(statement) if isinstance(n, ast.Subscript)).slice
+        return next(i for i, n in enumerate(nodes) if n is index)
+
+    def renormalises(line: str) -> bool:
+        return student.renormalises(SimpleNamespace(edits=(("f", divisor_index(line), "bound", 1),)))
+
+    assert renormalises("A =") and renormalises("v /=")
+    assert not renormalises("B =")   # (another array divided by F's entry: not F's own scale)

@@ -1762,6 +1762,9 @@ def ncc_motorcycle(t):
     return verdict
 
 
+COSTS_SWAPPED = "the two costs are swapped: cost=\"ncc\" runs the SSD matching and cost=\"ssd\" the NCC"
+
+
 @ext1.check("NCC is robust to a brightness and contrast change between the views", points=4,
             timeout=STEREO_TIMEOUT)
 def ncc_gain(t):
@@ -1788,6 +1791,14 @@ def ncc_gain(t):
     if isinstance(ssd, np.ndarray) and ssd.shape == got.shape and same_informative_result(ssd, got):
         t.fail(f"{what} gives exactly the SSD result: the cost argument is ignored.",
                mistake="the cost argument is ignored")
+    # cost="ssd" robust where cost="ncc" is not: each cost runs the other's matching (SSD cannot be robust
+    # to a gain -- the reference's SSD fails here -- so its map being right says it is normalised)
+    if isinstance(ssd, np.ndarray) and ssd.shape == got.shape \
+            and truth.bad_pixel_rate(ssd, scene.judged, scene.threshold) <= reference + MARGIN:
+        t.fail(measured(f"{what}: bad-pixel rate {bad:.1%} (reference {reference:.1%}), while cost=\"ssd\" on the same "
+                        f"pair gives {truth.bad_pixel_rate(ssd, scene.judged, scene.threshold):.1%}, as only a "
+                        "normalised cost can (the sum of squared differences changes with the gain): it looks like "
+                        f"{COSTS_SWAPPED}."), mistake=COSTS_SWAPPED)
     if (isinstance(unchanged, np.ndarray) and unchanged.shape == plain.disparity.shape
             and truth.bad_pixel_rate(unchanged, plain.judged, plain.threshold)
             <= figures("motorcycle", "bm_ncc_9")["bad"] + MARGIN):

@@ -114,6 +114,7 @@ OPERATORS = {
     "rank": ("singular", "rank", "constraint", "diag"),
     "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),
     "whole_shape": ("shape", "length", "len", "dimension"),   # np.zeros(len(d)) -> np.zeros(np.shape(d))
+    "move_factor": ("square root", "sqrt", "factor", "inside", "outside"),   # np.sqrt(a * u) -> a * np.sqrt(u)
     "other_result": ("result", "return", "mask", "index"),   # cv2.findHomography(...)[1] -> [0]   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
     "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
@@ -845,7 +846,7 @@ def _make_constant(node, payload):
 
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
-                                              "other_result", "whole_shape")},
+                                              "other_result", "whole_shape", "move_factor")},
          "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1600,7 +1601,10 @@ def _student_changes(node, parent, parents):
     if isinstance(node, ast.Call):
         yield from _dtype_changes(node)
         yield from _shape_changes(node)
+        yield from _factor_moves(node)
         yield from _call_slips(node)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult):
+        yield from _factor_moves(node)
     if isinstance(node, ast.Expr):
         yield from _discarded_result(node)
     if isinstance(node, ast.AugAssign) and isinstance(node.op, (ast.Add, ast.Sub)):
@@ -1822,6 +1826,24 @@ def _indexes(node, parent, parents) -> bool:
         holder = parents.get(id(parent), (None,))[0]
         return isinstance(holder, ast.Subscript) and holder.slice is parent
     return isinstance(parent, ast.Subscript) and parent.slice is node
+
+
+_ROOTS = {"np.sqrt", "numpy.sqrt", "math.sqrt"}
+
+
+def _factor_moves(node):
+    """A factor taken inside a square root where it belongs outside, or the other way round
+    (``np.sqrt(aperture * u)`` for ``aperture * np.sqrt(u)``: a radius scaled by the root of the scale)."""
+    if isinstance(node, ast.Call) and _dotted(node.func) in _ROOTS and len(node.args) == 1 and not node.keywords \
+            and isinstance(node.args[0], ast.BinOp) and isinstance(node.args[0].op, ast.Mult):
+        product, root = node.args[0], _dotted(node.func)
+        yield "move_factor", f"{ast.unparse(product.left)} * {root}({ast.unparse(product.right)})", ""
+        yield "move_factor", f"{root}({ast.unparse(product.left)}) * {ast.unparse(product.right)}", ""
+    elif isinstance(node, ast.BinOp):
+        for factor, other in ((node.left, node.right), (node.right, node.left)):
+            if isinstance(other, ast.Call) and _dotted(other.func) in _ROOTS and len(other.args) == 1 \
+                    and not other.keywords:
+                yield "move_factor", f"{_dotted(other.func)}({ast.unparse(factor)} * {ast.unparse(other.args[0])})", ""
 
 
 def _shape_changes(node: ast.Call):

@@ -366,6 +366,27 @@ class _Student:
                     return True
         return False
 
+    def renormalises(self, mutant) -> bool:
+        """Whether the mutant changes which of an array's own entries divides it (``F / F[2, 2]``: the
+        index, or the entry, of the divisor ``F[...]`` of a division of ``F``)."""
+        where, ordinal = mutant.edits[0][0], mutant.edits[0][1]
+        nodes, parents = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        while node is not None:
+            parent = parents.get(id(node), (None,))[0]
+            if isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.Div) and parent.right is node:
+                divided = parent.left
+            elif isinstance(parent, ast.AugAssign) and isinstance(parent.op, ast.Div) and parent.value is node:
+                divided = parent.target
+            else:
+                if not isinstance(parent, (ast.Subscript, ast.Tuple, ast.Constant, ast.UnaryOp, ast.Slice)):
+                    return False
+                node = parent
+                continue
+            return isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) \
+                and isinstance(divided, ast.Name) and divided.id == node.value.id
+        return False
+
     def copies_an_item(self, mutant) -> bool:
         """Whether the mutant puts a name in place of another item of the same tuple, list or call that
         holds it already (`(0, 0, height, width)` -> `(0, 0, width, width)`): where a size or a pair is
@@ -474,7 +495,7 @@ class _Student:
         nodes, _ = self._walk(where)
         old = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
         if operator in ("summary", "divided_by_w", "true_division", "by_last", "ufunc_out", "empty_slice", "keep_axis",
-                        "column_order", "grey", "whole_shape"):
+                        "column_order", "grey", "whole_shape", "move_factor"):
             # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
             # by the third: the change is written out whole, alike in kind only)
             return repr(operator)
@@ -1161,7 +1182,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # where a change that compensates for it elsewhere on the line rewrites more (`c @ R.T`).
     # (a change an earlier check of the function confirmed first: one mistake, one repair told)
     # (and an exchange of two items before a copy of one over the other, on the same line)
-    shown = sorted(((m, f) for m, f in shown if f is not None),
+    # (a matrix divided by another of its own entries, `F / F[2, 2]` -> `F / F[1, 2]`, changes only its
+    # scale: it mends by that entry's not being 0 on these inputs -- the division is the slip, not the entry)
+    shown = sorted(((m, f) for m, f in shown if f is not None and not student.renormalises(m)),
                    key=lambda pair: (pair[0].key not in known, student.copies_an_item(pair[0]), pair[1].size,
                                      pair[1].written))
     for mutant, fix in shown:

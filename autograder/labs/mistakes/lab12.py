@@ -404,6 +404,12 @@ MISTAKES = {
                 costs[d, :, :d] = np.inf
             return costs
         """, ["fails even when both views have the same brightness"]),
+    "block_matching with the two costs swapped": ("lab12.ext1", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            other = {"ssd": "ncc", "ncc": "ssd"}.get(cost, cost)
+            return _block_matching(left, right, max_disparity, block_size, other)
+        """, ["the two costs are swapped"]),
     "NCC with block_size ignored (a fixed 21 x 21 block)": ("lab12.ext1", """
         _block_matching = block_matching
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
