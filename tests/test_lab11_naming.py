@@ -126,3 +126,14 @@ def test_points_left_at_zero_are_not_told_as_undivided(tmp_path):
     failed = [c for c in check_results(result, "lab11.ex1") if c.score < c.max_score]
     assert failed and not any("not divided by w" in c.message for c in failed)
     assert any("(0, 0, 0), as if never computed" in c.message for c in failed), [c.message for c in failed]
+
+
+def test_of_mistakes_giving_the_same_f_transposed_the_one_seen_in_the_code_is_said_alone(tmp_path):
+    # order='F' gives F^T, as do kron(x1, x2) rows and pts1/pts2 swapped: the code shows which one it is
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, "lab11_two_view", ("return np.linalg.svd(A)[2][-1].reshape(3, 3)",
+                                                           "return np.linalg.svd(A)[2][-1].reshape(3, 3, order='F')"))
+    failed = [c for c in check_results(grade(str(folder), ["lab11.ex4"]), "lab11.ex4") if c.score < c.max_score]
+    named = [c for c in failed if "reshaped column by column" in c.message]
+    assert named and all("kron(x1, x2)" not in c.message and "the same answer here" not in c.message for c in named)

@@ -90,6 +90,31 @@ def guard(text: str, asks: Predicate, instead: str | None = None, functions: tup
     return text
 
 
+EVIDENCED: dict[str, Predicate] = {}   # a mistake's name -> the code that does that mistake, where visible
+
+
+def evidenced(text: str, does: Predicate) -> str:
+    """Register what in the student's code shows the mistake ``text`` is theirs (``does``): where
+    several mistakes give the same answer and are named together ("A; or, the same answer here, B"),
+    the ones whose code is seen are said alone (:func:`seen_in_code`). Returns ``text``."""
+    known = EVIDENCED.get(text)
+    if known is not None and known != does:
+        raise ValueError(f"evidenced: {text!r} is registered twice with different predicates")
+    EVIDENCED[text] = does
+    return text
+
+
+def seen_in_code(t, names: list) -> list:
+    """Of mistakes that give the same answer, those whose code the student's functions (the check's)
+    visibly do; all of them when none is seen, or when the code cannot be read."""
+    code = code_of(t)
+    if len(names) < 2 or not code.functions:
+        return names
+    read = code.reachable(functions_read(t))
+    seen = [name for name in names if name in EVIDENCED and EVIDENCED[name].found(read)]
+    return seen or names
+
+
 class LookAt:
     """What a :func:`checklist` points to when none of its items is left: "look at A, and at B", each
     pointer said only where the student's code does not visibly do that step already (a pointer to a

@@ -32,7 +32,7 @@ from fixtures.images import as_homography, coverage, warp
 
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
-from .claims import from_code, measured
+from .claims import from_code, measured, seen_in_code
 from .forms import shape_form
 from .hints import (Hint, Predicate, calls, code_of, functions_read, keyword, mentions, parameter_flows,
                     size_given_as_shape)
@@ -153,7 +153,7 @@ def confirm(t: Trial, named: str | None, probe: Probe | None, margin: float = 3.
         rivals.append(apart(answer, probe.truth))
     if any(d <= margin * best for d in rivals):
         return None
-    return SAME_ANSWER.join(kept)
+    return SAME_ANSWER.join(seen_in_code(t, kept))
 
 
 def name_mistake(t: Trial, got, candidates: dict, distance, tolerance: float, truth=None,

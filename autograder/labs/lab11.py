@@ -26,7 +26,8 @@ from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (at_precision, closest, format_apart, format_arrays_apart, magnitude, nearest_variants,
                        projective_distance)
 from ..engine.forms import shape_form
-from ..engine.claims import (DIVISION, THIRD_COORDINATE, calls_any, checklist, divides_by, from_code, guard, look_at,
+from ..engine.claims import (DIVISION, THIRD_COORDINATE, calls_any, checklist, divides_by, evidenced, from_code, guard,
+                             look_at,
                              measured, reshapes, returns_from, subtracts_a_mean, takes_last_row_of_vt,
                              treats_each_of, wherever_written, zeroes_an_entry)
 from ..engine.hints import RATIO_TEST, Hint, Predicate, _path, calls, code_of, expr, keyword, mentions
@@ -938,19 +939,22 @@ ex4 = lab.exercise("ex4", "Fundamental matrix (8-point algorithm)", functions=["
 lab.forbid("fundamental_8point", "cv2.findFundamentalMat")
 
 
+# f reshaped column by column, seen in the code (an F^T that kron(x1, x2) rows or pts swapped give too)
+TRANSPOSED_RESHAPE = (reshapes(3, 3, order="F") | expr("_.reshape(3, 3).T") | expr("_.reshape((3, 3)).T")
+                      | expr("np.reshape(_, (3, 3)).T")).saying("reshapes f column by column")
 FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for each problem
     "swapped": "pts1 and pts2 are swapped (this is F^T: x2^T F x1 = 0 has pts2 on the left)",
     "xy": "x and y are swapped in the rows of A (x is the column: each row is "
           "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1])",
     "design_x1x2": "the rows of A are kron(x1, x2); x2^T F x1 = 0 gives kron(x2, x1) = "
                    "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]",
-    "column_order": guard(
+    "column_order": evidenced(guard(
         "the null vector f was reshaped column by column (order='F'): F = f.reshape(3, 3)",
         asks=reshapes(3, 3) & ~reshapes(3, 3, order="F") & ~expr("_.reshape(3, 3).T")
         & ~expr("_.reshape((3, 3)).T") & ~expr("np.reshape(_, (3, 3)).T"),
         instead="F comes out transposed, as if f were reshaped column by column; your code reshapes f row by "
                 "row, so look at the order of the columns of A (each row is [x2 x1, x2 y1, x2, y2 x1, y2 y1, "
-                "y2, x1, y1, 1])"),
+                "y2, x1, y1, 1])"), TRANSPOSED_RESHAPE),
     "design_columns": "two columns of A are exchanged (x2 y1 and y2 x1): each row is "
                       "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]",
     "no_rank2": "rank 2 was not enforced",
