@@ -958,6 +958,8 @@ FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores fo
     "design_columns": "two columns of A are exchanged (x2 y1 and y2 x1): each row is "
                       "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]",
     "no_rank2": "rank 2 was not enforced",
+    "essential_values": "the singular values were set to (1, 1, 0), an essential matrix's: F keeps its own two, "
+                        "U diag(s1, s2, 0) V^T",
     "largest_zeroed": "the largest singular value was set to 0; rank 2 is enforced by zeroing the "
                       "smallest (U diag(s1, s2, 0) V^T)",
     "middle_zeroed": "the middle singular value was set to 0; rank 2 is enforced by zeroing the "
@@ -1012,7 +1014,8 @@ def judge_exact_fundamental(t: Trial, views, n, sideways=False):
         # zeroing "the largest" or "the middle" one leaves any rank-1 matrix of their plane (the
         # LAPACK build picks which), nothing to recognise
         mistakes = {name: answers for name, answers in mistakes.items() if name not in (
-            FUNDAMENTAL_MISTAKES["largest_zeroed"], FUNDAMENTAL_MISTAKES["middle_zeroed"])}
+            FUNDAMENTAL_MISTAKES["largest_zeroed"], FUNDAMENTAL_MISTAKES["middle_zeroed"],
+            FUNDAMENTAL_MISTAKES["essential_values"])}   # (and (1, 1, 0) is then F's own)
     judge_projective(t, what, got, views.F, mistakes, tolerance=1e-4,
                      distance=conditioned_distance(views.pts1[:n], views.pts2[:n]),
                      probe=fundamental_probe(t, exact=False))

@@ -337,6 +337,14 @@ MISTAKES = {
             Fn = _eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T)
             return T2.T @ Fn @ T1
         """, ["rank 2 was not enforced"]),
+    "8-point with an essential matrix's singular values (1, 1, 0)": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
+            T1, T2 = _hartley_normalisation(pts1), _hartley_normalisation(pts2)
+            Fn = _eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T)
+            U, _, Vt = np.linalg.svd(Fn)
+            return T2.T @ (U @ np.diag([1.0, 1.0, 0.0]) @ Vt) @ T1
+        """, ["set to (1, 1, 0), an essential matrix's"]),
     "8-point with points swapped": ("lab11.ex4", """
         _f8 = fundamental_8point
         def fundamental_8point(pts1, pts2):
