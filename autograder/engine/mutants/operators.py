@@ -115,6 +115,7 @@ OPERATORS = {
     "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),
     "whole_shape": ("shape", "length", "len", "dimension"),   # np.zeros(len(d)) -> np.zeros(np.shape(d))
     "move_factor": ("square root", "sqrt", "factor", "inside", "outside"),   # np.sqrt(a * u) -> a * np.sqrt(u)
+    "convert_first": ("convert", "uint8", "wrap", "before"),   # (a - b).astype(float) -> a.astype(float) - b
     "other_result": ("result", "return", "mask", "index"),   # cv2.findHomography(...)[1] -> [0]   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
     "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
@@ -846,7 +847,7 @@ def _make_constant(node, payload):
 
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
-                                              "other_result", "whole_shape", "move_factor")},
+                                              "other_result", "whole_shape", "move_factor", "convert_first")},
          "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1602,6 +1603,7 @@ def _student_changes(node, parent, parents):
         yield from _dtype_changes(node)
         yield from _shape_changes(node)
         yield from _factor_moves(node)
+        yield from _converted_late(node)
         yield from _call_slips(node)
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult):
         yield from _factor_moves(node)
@@ -1826,6 +1828,22 @@ def _indexes(node, parent, parents) -> bool:
         holder = parents.get(id(parent), (None,))[0]
         return isinstance(holder, ast.Subscript) and holder.slice is parent
     return isinstance(parent, ast.Subscript) and parent.slice is node
+
+
+def _converted_late(node: ast.Call):
+    """A difference (sum, product) converted after it is taken: ``(L - R).astype(np.float64)`` of two
+    uint8 images has wrapped round already; converting the first operand before it is the fix."""
+    if isinstance(node.func, ast.Attribute) and node.func.attr == "astype" and len(node.args) == 1 \
+            and isinstance(node.func.value, ast.BinOp) and isinstance(node.func.value.op, (ast.Sub, ast.Add, ast.Mult)):
+        inner, kind = node.func.value, ast.unparse(node.args[0])
+        operator = {ast.Sub: "-", ast.Add: "+", ast.Mult: "*"}[type(inner.op)]
+        yield "convert_first", f"{_grouped(inner.left)}.astype({kind}) {operator} {_grouped(inner.right)}", ""
+
+
+def _grouped(node) -> str:
+    """``node``'s code, in brackets where an attribute after it would bind to its last part."""
+    text = ast.unparse(node)
+    return text if isinstance(node, (ast.Name, ast.Attribute, ast.Subscript, ast.Call, ast.Constant)) else f"({text})"
 
 
 _ROOTS = {"np.sqrt", "numpy.sqrt", "math.sqrt"}
