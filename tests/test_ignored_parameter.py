@@ -118,6 +118,8 @@ def test_a_parameter_that_reaches_a_use_flows_and_one_passed_only_to_a_helper_th
             return _count2(src, dst, limit=threshold)
         def _count2(src, dst, limit):
             return (errors(src, dst) < limit).sum()
+        def converted(src, dst, threshold=3.0):
+            return _count(src, dst, int(threshold))
         def overwritten(src, dst, threshold=3.0):
             threshold = 1.0
             return errors(src, dst) < threshold
@@ -126,6 +128,7 @@ def test_a_parameter_that_reaches_a_use_flows_and_one_passed_only_to_a_helper_th
     assert not parameter_flows(source, "fixed", "threshold")
     assert parameter_flows(source, "passed_on", "threshold")
     assert not parameter_flows(source, "overwritten", "threshold")
+    assert not parameter_flows(source, "converted", "threshold")   # (int() on the way to a helper ignoring it)
 
 
 def test_a_threshold_the_code_uses_that_changes_nothing_on_the_input_is_not_named_ignored(tmp_path):

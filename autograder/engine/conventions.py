@@ -242,9 +242,12 @@ def judge_square(t: Trial, function: str, args: tuple, rows, described: str = ""
             continue
         shown = f"shape {answer.shape}" if isinstance(answer, np.ndarray) and not shaped else \
             _first(np.asarray(answer)) if shaped else type(answer).__name__
+        why = why_square(t, function, k)
+        # (named only where the form changed or the code tests the length: other values alone may come
+        # from a formula reading every point -- a mean depth where each point's own belongs)
         t.fail(measured(f"{name} returned {shown}, but the same {k} points among {n} give {_first(expected)}: "
-                        f"{k} points are {k} rows of the answer, whatever a point's number of coordinates.")
-               + why_square(t, function, k), mistake=SQUARE_TAKEN)
+                        f"{k} points are {k} rows of the answer, whatever a point's number of coordinates.") + why,
+               mistake=SQUARE_TAKEN if why or not shaped else "")
     return passed(f"the first {k} points, as many as a point has coordinates, answered as the same points among {n}")
 
 

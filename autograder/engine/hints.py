@@ -629,6 +629,9 @@ def parameter_flows(code: Code, function: str, parameter: str, depth: int = 4) -
     parents = {id(child): parent for parent in ast.walk(node) for child in ast.iter_child_nodes(parent)}
     for name in names:
         parent = parents.get(id(name))
+        while isinstance(parent, ast.Call) and len(parent.args) == 1 and parent.args[0] is name \
+                and ast.unparse(parent.func) in _SAME_VALUE:   # (converted on the way: `int(block_size)`)
+            name, parent = parent, parents.get(id(parent))
         call = parents.get(id(parent)) if isinstance(parent, ast.keyword) else parent
         own = isinstance(call, ast.Call) and isinstance(call.func, ast.Name) and call.func.id in code.functions
         if not own:

@@ -621,7 +621,7 @@ ADVICE["draw_points on NaN points raises"] = ("lab09.ex5", """
         for x, y in np.asarray(pts, float).reshape(-1, 2):
             cv2.circle(out, (int(round(x)), int(round(y))), radius, color, -1)
         return out
-    """, ["draw_points(image, pts with a nan row) failed", "skip the rows that are not finite"])
+    """, ["draw_points(image, pts with a nan row and an infinite one) failed", "skip the rows that are not finite"])
 
 
 # Random points of the pinhole (the API) need not be uniform over its area: a radius drawn
