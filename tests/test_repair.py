@@ -1916,6 +1916,18 @@ def distort_points(points, dist):
     x, y = pts[0], pts[1]
     return _reference_distort(np.column_stack([x, y]), dist)
 ''', "`(pts[0], pts[1])` to `(pts[:, 0], pts[:, 1])`"),
+    # the radial factor on x only: the first term of y's sum is bare where x's has the factor
+    ("lab09_camera", "lab09.ext2", """
+def distort_points(points, dist):
+    pts = np.asarray(points, dtype=np.float64)
+    k1, k2, p1, p2, k3 = (list(np.asarray(dist, dtype=np.float64).ravel()) + [0.0] * 5)[:5]
+    x, y = pts[..., 0], pts[..., 1]
+    r2 = x ** 2 + y ** 2
+    radial = 1 + k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
+    x_d = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x ** 2)
+    y_d = y + p1 * (r2 + 2 * y ** 2) + 2 * p2 * x * y
+    return np.stack([x_d, y_d], axis=-1)
+""", "to `y_d = y * radial + p1 * (r2 + 2 * y ** 2) + 2 * p2 * x * y`"),
 ])
 def test_a_shape_a_dtype_and_a_row_for_a_column_are_told_as_the_change_that_mends_them(tmp_path, module, exercise,
                                                                                       source, told):

@@ -2416,6 +2416,24 @@ def _sibling_changes(node, words):
             for position, text in _twin_steps([node.value, twin.value]):
                 if position == 0:
                     yield "twin_step", (None, text), ""
+    if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS) \
+            and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, (ast.Add, ast.Sub)):
+        # the first term of a sum left bare where its twin's has a step: `y_d = y + ...` beside
+        # `x_d = x * radial + ...` (the radial factor applied to x only)
+        leading = _leading_term(node.value)
+        if isinstance(leading, _TERMS):
+            for twin in _twin_assignments(node, words):
+                other = _leading_term(twin.value) if isinstance(twin.value, ast.BinOp) else None
+                if other is None or isinstance(other, (*_TERMS, ast.Constant)):
+                    continue
+                for _, text in _twin_steps([leading, other]):
+                    whole = copy.deepcopy(node.value)
+                    holder = whole
+                    while isinstance(holder.left, ast.BinOp) and isinstance(holder.left.op, (ast.Add, ast.Sub)):
+                        holder = holder.left
+                    holder.left = _parse(text).body[0].value
+                    yield "twin_step", (None, ast.unparse(whole)), ""
+                    break
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
         name = node.targets[0].id
         if any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(node.value)):
@@ -2457,6 +2475,13 @@ def _canvas_changes(node, words):
         if twin[:1] == node.id[:1] and _twins(ast.Name(twin), ast.Name(node.id)):
             yield "canvas", f"max({node.id}, {twin})", ""
             yield "canvas", f"{node.id} + {twin}", ""
+
+
+def _leading_term(value):
+    """The first term of a sum or difference (``a`` of ``a + b - c``)."""
+    while isinstance(value, ast.BinOp) and isinstance(value.op, (ast.Add, ast.Sub)):
+        value = value.left
+    return value
 
 
 def _twin_assignments(node, words):
