@@ -1998,3 +1998,16 @@ def test_renormalising_is_read_from_the_division_of_the_same_array_only():
 
     assert renormalises("A =") and renormalises("v /=")
     assert not renormalises("B =")   # (another array divided by F's entry: not F's own scale)
+
+
+def test_a_comparison_beside_an_and_without_brackets_is_changed_to_the_bracketed_one():
+    # `d > 0 & seen` is `d > (0 & seen)`; `m & d > 0` is `(m & d) > 0`: the brackets the precedence needs
+    from autograder.engine.mutants.operators import _precedence_slips
+
+    def changes(text):
+        node = ast.parse(text, mode="eval").body
+        return [payload for _, payload, _ in _precedence_slips(node)] if isinstance(node, ast.Compare) else []
+
+    assert changes("disparity > 0 & seen") == ["(disparity > 0) & seen"]
+    assert changes("mask & depth >= 1") == ["mask & (depth >= 1)"]
+    assert changes("(disparity > 0) & seen") == [] and changes("a > b") == []

@@ -116,6 +116,7 @@ OPERATORS = {
     "whole_shape": ("shape", "length", "len", "dimension"),   # np.zeros(len(d)) -> np.zeros(np.shape(d))
     "move_factor": ("square root", "sqrt", "factor", "inside", "outside"),   # np.sqrt(a * u) -> a * np.sqrt(u)
     "convert_first": ("convert", "uint8", "wrap", "before"),   # (a - b).astype(float) -> a.astype(float) - b
+    "precedence": ("bracket", "parenthes", "precedence", "&", "|"),   # d > 0 & m -> (d > 0) & m
     "other_result": ("result", "return", "mask", "index"),   # cv2.findHomography(...)[1] -> [0]   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
     "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
@@ -847,7 +848,7 @@ def _make_constant(node, payload):
 
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
-                                              "other_result", "whole_shape", "move_factor", "convert_first")},
+                                              "other_result", "whole_shape", "move_factor", "convert_first", "precedence")},
          "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1620,6 +1621,8 @@ def _student_changes(node, parent, parents):
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)) \
             and isinstance(node.left, ast.BinOp) and isinstance(node.left.op, _BINDS_TIGHTER):
         yield "regroup", "last", ""      # `a * b + c` for `a * (b + c)`
+    if isinstance(node, ast.Compare) and len(node.ops) == 1:
+        yield from _precedence_slips(node)
     if isinstance(node, ast.Compare) and len(node.ops) == 1 and type(node.ops[0]) in _COMPARED:
         for other in _COMPARED[type(node.ops[0])]:
             yield "compare", other, ""   # `x > 0` for `x >= 0`, or the other way
@@ -1828,6 +1831,20 @@ def _indexes(node, parent, parents) -> bool:
         holder = parents.get(id(parent), (None,))[0]
         return isinstance(holder, ast.Subscript) and holder.slice is parent
     return isinstance(parent, ast.Subscript) and parent.slice is node
+
+
+def _precedence_slips(node: ast.Compare):
+    """A comparison written beside ``&`` or ``|`` without brackets, which bind tighter than it:
+    ``d > 0 & seen`` is ``d > (0 & seen)``; ``(d > 0) & seen`` was meant (and ``m & d > 0`` likewise)."""
+    bitwise = (ast.BitAnd, ast.BitOr)
+    op = ast.unparse(ast.Compare(ast.Name("a"), node.ops, [ast.Name("b")])).split()[1]
+    right, left = node.comparators[0], node.left
+    if isinstance(right, ast.BinOp) and isinstance(right.op, bitwise):
+        joined = "&" if isinstance(right.op, ast.BitAnd) else "|"
+        yield "precedence", f"({_grouped(left)} {op} {_grouped(right.left)}) {joined} {_grouped(right.right)}", ""
+    if isinstance(left, ast.BinOp) and isinstance(left.op, bitwise):
+        joined = "&" if isinstance(left.op, ast.BitAnd) else "|"
+        yield "precedence", f"{_grouped(left.left)} {joined} ({_grouped(left.right)} {op} {_grouped(right)})", ""
 
 
 def _converted_late(node: ast.Call):
