@@ -1928,6 +1928,19 @@ def distort_points(points, dist):
     y_d = y + p1 * (r2 + 2 * y ** 2) + 2 * p2 * x * y
     return np.stack([x_d, y_d], axis=-1)
 """, "to `y_d = y * radial + p1 * (r2 + 2 * y ** 2) + 2 * p2 * x * y`"),
+    # a term that does not belong (the depth plus f), and a conversion that does not (z_avg cut to an integer)
+    ("lab09_camera", "lab09.ex1", """
+def pinhole_project(points, f):
+    X, single = _points(points)
+    return _divide(np.column_stack([f * X[:, 0], f * X[:, 1], X[:, 2] + f]), single)
+""", "to `[f * X[:, 0], f * X[:, 1], X[:, 2]]`"),
+    ("lab10_camera2", "lab10.ex2", """
+_reference_weak = weak_perspective_project
+def weak_perspective_project(points, f, z_avg=None):
+    X = np.atleast_2d(np.asarray(points, dtype=np.float64))
+    z = X[:, 2].mean() if z_avg is None else int(z_avg)
+    return _reference_weak(points, f, z)
+""", "else int(z_avg)` to `X[:, 2].mean() if z_avg is None else z_avg`"),
 ])
 def test_a_shape_a_dtype_and_a_row_for_a_column_are_told_as_the_change_that_mends_them(tmp_path, module, exercise,
                                                                                       source, told):

@@ -117,6 +117,7 @@ OPERATORS = {
     "move_factor": ("square root", "sqrt", "factor", "inside", "outside"),   # np.sqrt(a * u) -> a * np.sqrt(u)
     "convert_first": ("convert", "uint8", "wrap", "before"),   # (a - b).astype(float) -> a.astype(float) - b
     "precedence": ("bracket", "parenthes", "precedence", "&", "|"),   # d > 0 & m -> (d > 0) & m
+    "drop_term": ("term", "added", "subtracted", "extra"),   # Z + f -> Z: a term that does not belong
     "other_result": ("result", "return", "mask", "index"),   # cv2.findHomography(...)[1] -> [0]   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
     "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
@@ -848,7 +849,8 @@ def _make_constant(node, payload):
 
 _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
-                                              "other_result", "whole_shape", "move_factor", "convert_first", "precedence")},
+                                              "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
+                                              "drop_term")},
          "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1509,7 +1511,7 @@ _LOOPED_POSITIONS = {"range", "enumerate", "zip"}   # loops whose targets are po
 _CV_MISTAKEN = {"estimateAffinePartial2D": "estimateAffine2D", "estimateAffine2D": "estimateAffinePartial2D",
                 "pyrDown": "pyrUp", "pyrUp": "pyrDown", "add": "subtract", "subtract": "add"}
 _UNARY = {"sin", "cos", "tan", "arcsin", "arccos", "arctan", "abs", "absolute", "fabs", "sqrt", "square", "exp",
-          "log", "round", "rint", "floor", "ceil", "deg2rad", "rad2deg", "radians", "degrees"}
+          "log", "round", "rint", "floor", "ceil", "deg2rad", "rad2deg", "radians", "degrees", "int"}
 _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin", "tan": "arctan", "arctan": "tan",
              "floor": "ceil", "ceil": "floor", "round": "floor", "mean": "median", "median": "mean", "sum": "mean",
              "log": "log10", "log10": "log",
@@ -1608,6 +1610,9 @@ def _student_changes(node, parent, parents):
         yield from _call_slips(node)
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult):
         yield from _factor_moves(node)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)) \
+            and not isinstance(node.right, ast.Constant) and not isinstance(parent, ast.Subscript):
+        yield "drop_term", ast.unparse(node.left), ""   # `X[:, 2] + f` where `X[:, 2]` belongs (an extra term)
     if isinstance(node, ast.Expr):
         yield from _discarded_result(node)
     if isinstance(node, ast.AugAssign) and isinstance(node.op, (ast.Add, ast.Sub)):

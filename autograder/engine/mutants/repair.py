@@ -496,7 +496,7 @@ class _Student:
         old = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
         if operator in ("summary", "divided_by_w", "true_division", "by_last", "ufunc_out", "empty_slice", "keep_axis",
                         "column_order", "grey", "whole_shape", "move_factor", "convert_first",
-                        "precedence"):
+                        "precedence", "drop_term"):
             # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
             # by the third: the change is written out whole, alike in kind only)
             return repr(operator)
@@ -1568,7 +1568,9 @@ class _Variants:
             channels = naming.other_channels(self.inputs[failing[0]])
             start = len(self.inputs) + len(variants)
             self.keeping = set(range(start, start + len(modes) + len(channels)))
-            self.channels = set(range(start + len(modes), start + len(modes) + len(channels)))
+            # (strict -- no exception kept -- only where every image is turned: a mix of a grey and a
+            # BGR image, a stereo pair's halves unlike, may be refused by right code and by the fix alike)
+            self.channels = set(range(start + len(modes), start + len(modes) + min(1, len(channels))))
             variants += modes + channels
             every = self.inputs + variants
             try:
