@@ -201,6 +201,23 @@ CASES = {
         def blend_multiband(img1, img2, mask, levels=4):
             return mask * img2 + (1 - mask) * img1
         """),
+    # (30f lab08/03: a generator made again in the loop draws one sample over and over, and was told its
+    # inlier test -- exactly |H src - dst| < threshold -- counts otherwise)
+    "lab08 RANSAC miscounted": (G[lab08.MISCOUNTED], "homography_ransac", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            for _ in range(500):
+                rng = np.random.default_rng(seed)
+                H = homography_dlt(src[rng.choice(len(src), 4)], dst[rng.choice(len(src), 4)])
+                inliers = np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+            return H, inliers
+        """, """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            rng = np.random.default_rng(seed)
+            for _ in range(500):
+                H = homography_dlt(src[rng.choice(len(src), 4)], dst[rng.choice(len(src), 4)])
+                inliers = np.abs(transform_points(H, src) - dst).sum(axis=1) < threshold
+            return H, inliers
+        """),
     "lab08 pyrUp without dstsize": (G[lab08.ODD_SIZES_LOST], "blend_multiband", """
         def blend_multiband(img1, img2, mask, levels=4):
             return cv2.pyrUp(cv2.pyrDown(img1), dstsize=img1.shape[1::-1])

@@ -34,7 +34,7 @@ from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
 from .claims import from_code, measured, seen_in_code
 from .forms import shape_form
-from .hints import (Hint, Predicate, calls, code_of, functions_read, keyword, mentions, parameter_flows,
+from .hints import (Hint, Predicate, calls, code_of, functions_read, mentions, parameter_flows,
                     size_given_as_shape)
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
