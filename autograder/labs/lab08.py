@@ -1047,13 +1047,14 @@ def poor_consensus_cause(t: Trial) -> str | None:
     return None
 
 
-# (held to the code: a loop whose inlier test visibly compares a distance with the threshold is told where
-# else to look -- what changes from one iteration to the next, and which model is returned)
+# (held to the code: a loop whose inlier test visibly compares a distance with the threshold is pointed at
+# the places left -- the distance's units, what changes from one iteration to the next, the model returned)
 MISCOUNTED = guard("your loop keeps the model with the most inliers, yet what it counts as an inlier is not a pair "
                    "whose transfer error |H(src) - dst|, in pixels, is below the threshold",
                    asks=compares_a_distance_with(),
-                   instead="your loop keeps the model with the most inliers, and {found}; look at what changes from "
-                           "one iteration to the next (the sample drawn) and at which model is returned")
+                   instead="your loop keeps the model with the most inliers, and {found}: look at the distance "
+                           "compared (|H src - dst| in pixels, as it is), at what changes from one iteration to the "
+                           "next (the sample drawn) and at which model is returned")
 
 
 def _keeps_the_best(t: Trial) -> bool:
