@@ -2556,60 +2556,6 @@ def blend_mask(t):
            f"mask = 0; it differs by {err_left:.0f} and {err_right:.0f} grey levels.")
 
 
-# A weight below 1 is a weight: the mask is used as given. Judged as a relation between the student's own
-# blends (one account: a blend wrong in its bands is wrong alike for every mask, and is the other checks' to
-# judge): a mask of 0.25 everywhere must not blend as a mask of 1, nor as one of 0.
-STRETCHED_MASK = "the mask's weights are stretched to reach 1 (divided by their maximum)"
-def _divided_by_its_maximum(function) -> str:
-    """``x / x.max()`` (or ``np.max(x)``, ``np.amax(x)``; ``x /= ...``) in ``function``: the code and its
-    line, or ""."""
-    def maximum_of(node) -> str:
-        if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in ("max", "amax"):
-            inner = node.args[0] if node.args and ast.unparse(node.func.value) in ("np", "numpy") else node.func.value
-            return inner.id if isinstance(inner, ast.Name) else ""
-        return ""
-    for node in ast.walk(function):
-        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) and isinstance(node.left, ast.Name) \
-                and maximum_of(node.right) == node.left.id:
-            return f"`{ast.unparse(node)}` (line {node.lineno})"
-        if isinstance(node, ast.AugAssign) and isinstance(node.op, ast.Div) and isinstance(node.target, ast.Name) \
-                and maximum_of(node.value) == node.target.id:
-            return f"`{ast.unparse(node)}` (line {node.lineno})"
-    return ""
-
-
-@ext3.check("a mask's weights are used as given: 0.25 everywhere is a quarter of img1", points=1)
-def blend_partial_weight(t):
-    img1, img2 = photo("astronaut", (128, 96)), photo("coffee", (128, 96))
-    shape = img1.shape[:2]
-    what = "blend_multiband(img1, img2, mask = 0.25 everywhere)"
-    quarter = blended(t, what, img1, img2, np.full(shape, 0.25))
-    ones = blended(t, "blend_multiband(img1, img2, mask = 1 everywhere)", img1, img2, np.ones(shape))
-    zeros = blended(t, "blend_multiband(img1, img2, mask = 0 everywhere)", img1, img2, np.zeros(shape))
-    expected = 0.25 * img1.astype(np.float64) + 0.75 * img2
-    if mean_difference(ones, zeros) < 20 or mean_difference(quarter, expected) <= 1.5:
-        return passed(f"mean difference {mean_difference(quarter, expected):.1f} grey levels from "
-                      "0.25 img1 + 0.75 img2")
-    for same, as_mask in ((ones, 1), (zeros, 0)):
-        if mean_difference(quarter, same) > 0.5:
-            continue
-        t.images(what, img1=img1, img2=img2, yours=quarter, expected=np.clip(np.round(expected), 0, 255)
-                 .astype(np.uint8))
-        said = measured(f"{what} gives the same image as a mask of {as_mask} everywhere (mean difference "
-                        f"{mean_difference(quarter, same):.2f} grey levels): a constant mask of 0.25 blends every "
-                        "band a quarter img1 and three quarters img2, so the result is 0.25 img1 + 0.75 img2; the "
-                        "mask is a weight in [0, 1], used as given")
-        stretched = next(filter(None, map(_divided_by_its_maximum, code_of(t).reachable(["blend_multiband"]))), "") \
-            if as_mask == 1 else ""
-        if stretched:
-            t.fail(f"{said}. " + from_code(f"Reading your code: {stretched} divides by the maximum: a mask whose "
-                                           "weights stay below 1 is stretched to reach 1, so img1 gets more weight "
-                                           "than asked for."),
-                   mistake=STRETCHED_MASK)
-        t.fail(f"{said}.")
-    return passed("the blend of a quarter-weight mask differs from the all-img1 and all-img2 blends")
-
-
 def seam_step(got, dark, columns) -> float:
     """Largest jump (grey levels) between neighbouring columns of the mean difference to ``dark``."""
     diff = got.astype(np.float64) - dark
@@ -3065,7 +3011,64 @@ def blend_mask_pyramid(t):
     t.fail(f"{measurement}.{damaged}", hint=MASK_PYRAMID_HINT.said(t))
 
 
+# A weight below 1 is a weight: the mask is used as given. Judged as a relation between the student's own
+# blends (one account: a blend wrong in its bands is wrong alike for every mask, and is the other checks' to
+# judge): a mask of 0.25 everywhere must not blend as a mask of 1, nor as one of 0.
+STRETCHED_MASK = "the mask's weights are stretched to reach 1 (divided by their maximum)"
+
+
+def _divided_by_its_maximum(function) -> str:
+    """``x / x.max()`` (or ``np.max(x)``, ``np.amax(x)``; ``x /= ...``) in ``function``: the code and its
+    line, or ""."""
+    def maximum_of(node) -> str:
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in ("max", "amax"):
+            inner = node.args[0] if node.args and ast.unparse(node.func.value) in ("np", "numpy") else node.func.value
+            return inner.id if isinstance(inner, ast.Name) else ""
+        return ""
+    for node in ast.walk(function):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) and isinstance(node.left, ast.Name) \
+                and maximum_of(node.right) == node.left.id:
+            return f"`{ast.unparse(node)}` (line {node.lineno})"
+        if isinstance(node, ast.AugAssign) and isinstance(node.op, ast.Div) and isinstance(node.target, ast.Name) \
+                and maximum_of(node.value) == node.target.id:
+            return f"`{ast.unparse(node)}` (line {node.lineno})"
+    return ""
+
+
+@ext3.check("a mask's weights are used as given: 0.25 everywhere is a quarter of img1", points=1)
+def blend_partial_weight(t):
+    img1, img2 = photo("astronaut", (128, 96)), photo("coffee", (128, 96))
+    shape = img1.shape[:2]
+    what = "blend_multiband(img1, img2, mask = 0.25 everywhere)"
+    quarter = blended(t, what, img1, img2, np.full(shape, 0.25))
+    ones = blended(t, "blend_multiband(img1, img2, mask = 1 everywhere)", img1, img2, np.ones(shape))
+    zeros = blended(t, "blend_multiband(img1, img2, mask = 0 everywhere)", img1, img2, np.zeros(shape))
+    expected = 0.25 * img1.astype(np.float64) + 0.75 * img2
+    if mean_difference(ones, zeros) < 20 or mean_difference(quarter, expected) <= 1.5:
+        return passed(f"mean difference {mean_difference(quarter, expected):.1f} grey levels from "
+                      "0.25 img1 + 0.75 img2")
+    for same, as_mask in ((ones, 1), (zeros, 0)):
+        if mean_difference(quarter, same) > 0.5:
+            continue
+        t.images(what, img1=img1, img2=img2, yours=quarter, expected=np.clip(np.round(expected), 0, 255)
+                 .astype(np.uint8))
+        said = measured(f"{what} gives the same image as a mask of {as_mask} everywhere (mean difference "
+                        f"{mean_difference(quarter, same):.2f} grey levels): a constant mask of 0.25 blends every "
+                        "band a quarter img1 and three quarters img2, so the result is 0.25 img1 + 0.75 img2; the "
+                        "mask is a weight in [0, 1], used as given")
+        stretched = next(filter(None, map(_divided_by_its_maximum, code_of(t).reachable(["blend_multiband"]))), "") \
+            if as_mask == 1 else ""
+        if stretched:
+            t.fail(f"{said}. " + from_code(f"Reading your code: {stretched} divides by the maximum: a mask whose "
+                                           "weights stay below 1 is stretched to reach 1, so img1 gets more weight "
+                                           "than asked for."),
+                   mistake=STRETCHED_MASK)
+        t.fail(f"{said}.")
+    return passed("the blend of a quarter-weight mask differs from the all-img1 and all-img2 blends")
+
+
 # ================================================================== the API's conventions judged elsewhere
+
 _PANORAMA = "a panorama may be BGR whatever its views (views of either kind meet in it)"
 conventions.not_judged(
     "channels", apply_homography="judged on a grey image against the truth (its dsize check)",
