@@ -872,3 +872,21 @@ def test_lab12_opencv_matcher(speak):
     unmarked = STEREO_BM.replace("        d[d <= 0] = 0\n", "")
     assert speak(lab12.OPENCV_MATCHER_HINT, unmarked, "block_matching").endswith(
         "itself: look at the pixels where no match is found (-16 in its answer)")
+
+
+def test_lab11_fundamental_steps_of_code_that_solves_by_least_squares(speak):
+    # (30f lab11/04: F[2, 2] = 1 solved by lstsq, rank 2 and Hartley done: told neither of those two)
+    lstsq = EIGHT.replace("Fn = np.linalg.svd(A)[2][-1].reshape(3, 3)",
+                          "f = np.linalg.lstsq(A[:, :8], -A[:, 8], rcond=None)[0]\n"
+                          "        Fn = np.append(f, 1.0).reshape(3, 3)")
+    said = speak(lab11.FUNDAMENTAL_STEPS_HINT, lstsq, "fundamental_8point")
+    assert said == "check that f is the last row of Vt from np.linalg.svd(A), reshaped to 3 x 3 (A f = 0 for all 9 entries)"
+    # code doing none of the steps is told all three
+    bare = """
+    def fundamental_8point(pts1, pts2):
+        A = np.column_stack([pts2[:, :1] * pts1, pts2[:, :1], pts2[:, 1:] * pts1, pts2[:, 1:], pts1,
+                             np.ones(len(pts1))])
+        return np.linalg.lstsq(A[:, :8], -A[:, 8], rcond=None)[0]
+    """
+    said = speak(lab11.FUNDAMENTAL_STEPS_HINT, bare, "fundamental_8point")
+    assert "rank 2 is enforced" in said and "normalised first (Hartley)" in said and "last row of Vt" in said

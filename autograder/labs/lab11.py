@@ -1163,9 +1163,15 @@ NORMALISES = ((calls("np.mean") | calls(".mean")) & (expr("np.sqrt(2)") | expr("
               ).saying("normalises the points")
 UNDOES_F = (expr("_.T @ _ @ _") | expr("np.transpose(_) @ _ @ _") | expr("_.T.dot(_).dot(_)") | expr("_.T @ (_ @ _)")
             | expr("np.dot(_.T, np.dot(_, _))") | expr("np.dot(np.dot(_.T, _), _)")).saying("computes T2^T Fn T1")
+# (said to code that does not call np.linalg.svd twice: each step held to the code -- a solve by lstsq with
+# rank 2 enforced on Hartley-normalised points is not told to enforce rank 2 or to normalise)
 FUNDAMENTAL_STEPS_HINT = Hint(
-    "solve A f = 0 by SVD (the last row of Vt), reshape to 3 x 3, enforce rank 2 (U diag(s1, s2, 0) V^T); "
-    "normalising the points first (Hartley) makes it more accurate",
+    checklist("", ("f is the last row of Vt from np.linalg.svd(A), reshaped to 3 x 3 (A f = 0 for all 9 entries)",
+                   LAST_ROW_OF_VT),
+              ("rank 2 is enforced, U diag(s1, s2, 0) V^T", zeroes_an_entry()),
+              ("the points are normalised first (Hartley), which makes it more accurate", NORMALISES),
+              none_left="look at how A f = 0 is built and solved (each row of A, and the sign of a right-hand "
+                        "side if it is solved by least squares)"),
     asks=calls("np.linalg.svd", at_least=2), instead="your code already {found} (A f = 0 and rank 2?): " + checklist(
         "", ("A has 9 columns, a row per match", NINE_COLUMNS), ("f is the last row of Vt", LAST_ROW_OF_VT),
         ("the normalisation is undone: F = T2^T Fn T1", ~NORMALISES | UNDOES_F),
