@@ -272,11 +272,7 @@ def _length_tests(functions, parameters: set, k: int) -> list:
     (``len(points) == 3``, ``pts.shape[0] != 2``, ``X.size == 3``, ``len(p) in (2, 3)``); as (line, text)."""
     found = []
     for function in functions:
-        inputs = set(parameters)
-        assigned = [node for node in ast.walk(function) if isinstance(node, ast.Assign) and len(node.targets) == 1
-                    and isinstance(node.targets[0], ast.Name)]
-        for _ in range(3):
-            inputs |= {node.targets[0].id for node in assigned if _root(node.value, any_dtype=True) in inputs}
+        inputs, _ = _read_from_inputs(function, parameters, any_dtype=True)
         for node in ast.walk(function):
             if not isinstance(node, ast.Compare) or len(node.ops) != 1 or _counts_rows(node.left) not in inputs:
                 continue
@@ -291,9 +287,7 @@ def _length_tests(functions, parameters: set, k: int) -> list:
 def why_square(t: Trial, function: str, k: int) -> str:
     """Where the student's code tells a point's form by its number of rows (read, never run), in
     words; "" when the reading sees no such test."""
-    functions = code_of(t).reachable([function])
-    parameters = {a.arg for f in functions for a in (*f.args.posonlyargs, *f.args.args, *f.args.kwonlyargs)}
-    tests = _length_tests(functions, parameters, k)
+    tests = _length_tests(*_reached(t, function), k)
     if not tests:
         return ""
     where = " and ".join(f"`{text}` (line {line})" for line, text in tests)
@@ -334,6 +328,25 @@ def _root(node, any_dtype: bool = False) -> str:
             return node.id if isinstance(node, ast.Name) else ""
 
 
+def _reached(t: Trial, function: str) -> tuple[list, set]:
+    """The student's ``function`` and the module functions it runs (read, never run), and all their
+    parameters: the inputs a reading follows."""
+    functions = code_of(t).reachable([function])
+    return functions, {a.arg for f in functions for a in (*f.args.posonlyargs, *f.args.args, *f.args.kwonlyargs)}
+
+
+def _read_from_inputs(function, parameters: set, any_dtype: bool = False) -> tuple[set, list]:
+    """The names ``function`` reads from its inputs (the ``parameters``, and names assigned from them:
+    ``pts = np.asarray(pts1).reshape(-1, 2)``, followed three assignments deep), and its assignments
+    to a single name."""
+    inputs = set(parameters)
+    assigned = [node for node in ast.walk(function) if isinstance(node, ast.Assign) and len(node.targets) == 1
+                and isinstance(node.targets[0], ast.Name)]
+    for _ in range(3):
+        inputs |= {node.targets[0].id for node in assigned if _root(node.value, any_dtype) in inputs}
+    return inputs, assigned
+
+
 def _copied(call: ast.Call):
     """The array ``call`` makes a new one like, its dtype kept (``np.zeros_like(x)``, ``np.array(x)``,
     ``x.copy()``, ``np.copy(x)``: ``x``); None for another call, or one given a dtype (by keyword or in
@@ -354,11 +367,7 @@ def _made_like(functions, parameters: set) -> list:
     ``out[i] = ...`` or ``out /= w``; as (line, text)."""
     found = []
     for function in functions:
-        inputs = set(parameters)
-        assigned = [node for node in ast.walk(function) if isinstance(node, ast.Assign) and len(node.targets) == 1
-                    and isinstance(node.targets[0], ast.Name)]
-        for _ in range(3):   # names read from an input (``pts = np.asarray(pts1).reshape(-1, 2)``)
-            inputs |= {node.targets[0].id for node in assigned if _root(node.value) in inputs}
+        inputs, assigned = _read_from_inputs(function, parameters)
         written = {node.target.id for node in ast.walk(function)
                    if isinstance(node, ast.AugAssign) and isinstance(node.target, ast.Name)}
         written |= {_root(target) for node in ast.walk(function) if isinstance(node, (ast.Assign, ast.AugAssign))
@@ -381,12 +390,7 @@ def _made_like(functions, parameters: set) -> list:
 def why_integers(t: Trial, function: str) -> str:
     """Where the student's code makes an array of its input's dtype (read, never run), in words; ""
     when it makes none that the reading sees."""
-    code = code_of(t)
-    functions = code.reachable([function])
-    if not functions:
-        return ""
-    parameters = {a.arg for f in functions for a in (*f.args.posonlyargs, *f.args.args, *f.args.kwonlyargs)}
-    made = _made_like(functions, parameters)
+    made = _made_like(*_reached(t, function))
     if not made:
         return ""
     where = " and ".join(f"`{text}` (line {line})" for line, text in made)

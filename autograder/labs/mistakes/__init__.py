@@ -11,3 +11,34 @@ The tables are the grader's, not the students': they describe the checks' answer
 closely (a case is the reference with one slip), so neither the student bundle nor
 the Gradescope zip ships this folder, as neither ships the hidden checks.
 """
+
+
+# ------------------------------------------------------------------ cases made alike in every lab
+def one_point_by_length(function: str, exercise: str, signature: str, points: str, test: str) -> dict:
+    """The case of ``function`` telling a single (X, Y, Z) point by its number of rows (``test``, on the
+    parameter ``points``): three points are taken for one (the API's convention of k points of k
+    coordinates)."""
+    call = ", ".join(part.split("=")[0].strip() for part in signature.split(","))
+    single = call.replace(points, f"{points}.reshape(-1)[:3]", 1)
+    return {f"{function} takes 3 points for one point": (exercise, f"""
+        _reference_rows = {function}
+        def {function}({signature}):
+            {points} = np.asarray({points}, dtype=np.float64)
+            if {test}:   # a single (X, Y, Z) point
+                return _reference_rows({single})
+            return _reference_rows({call})
+        """, [f"`{test}` (line", "3 points are 3 rows"])}
+
+
+def columns_by_first_axis(function: str, exercise: str, signature: str, arrays: tuple, test: str) -> dict:
+    """The case of ``function`` accepting 2D points given as columns, (2, N), by their first axis (``test``):
+    two points, (2, 2), are transposed too."""
+    converted = "\n".join(f"            {name} = np.asarray({name}, dtype=np.float64)" for name in arrays)
+    return {f"{function} takes 2 points for points given as columns": (exercise, f"""
+        _reference_rows = {function}
+        def {function}({signature}):
+{converted}
+            if {test}:   # points given as columns, (2, N)
+                {", ".join(arrays)} = {", ".join(f"{name}.T" for name in arrays)}
+            return _reference_rows({signature})
+        """, [f"`{test}` (line", "2 points are 2 rows"])}

@@ -3,6 +3,8 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
+from . import columns_by_first_axis
+
 MISTAKES = {
     "apply_homography with H transposed": ("lab08.ex1", """
         def apply_homography(image, H, dsize=None):
@@ -680,14 +682,8 @@ MISTAKES = {
             return _detect_right(image, method)
         """, ['raised']),
     # ---------------------------------------------------------------- the API's conventions
-    "transform_points takes 2 points for points given as columns": ("lab08.ex1", """
-        _reference_transform_rows = transform_points
-        def transform_points(H, pts):
-            pts = np.asarray(pts, dtype=np.float64)
-            if pts.shape[0] == 2:   # points given as columns, (2, N)
-                pts = pts.T
-            return _reference_transform_rows(H, pts)
-        """, ["`pts.shape[0] == 2` (line", "2 points are 2 rows"]),
+    # k points of k coordinates taken for one point, or for points given as columns
+    **columns_by_first_axis("transform_points", "lab08.ex1", "H, pts", ("pts",), "pts.shape[0] == 2"),
     "warp_to_reference makes a grey moving image BGR": ("lab08.ex2", """
         def warp_to_reference(reference, moving, H):
             if moving.ndim == 2:

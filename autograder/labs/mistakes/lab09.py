@@ -3,6 +3,8 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
+from . import columns_by_first_axis, one_point_by_length
+
 DROPS_BEHIND = """
     def _divide(homogeneous, single):       # keeps only the points in front
         front = homogeneous[:, 2] > 0
@@ -486,38 +488,11 @@ MISTAKES = {
             return _right(points, [k1, 0.0, p1, p2, k3])
         """, ["k2 is ignored"]),
     # ---------------------------------------------------------------- the API's conventions
-    "pinhole_project takes 3 points for one point": ("lab09.ex1", """
-        _reference_pinhole_rows = pinhole_project
-        def pinhole_project(points, f):
-            points = np.asarray(points, dtype=np.float64)
-            if points.shape[0] == 3:   # a single (X, Y, Z) point
-                return _reference_pinhole_rows(points.reshape(-1)[:3], f)
-            return _reference_pinhole_rows(points, f)
-        """, ["`points.shape[0] == 3` (line", "3 points are 3 rows"]),
-    "project_with_intrinsics takes 3 points for one point": ("lab09.ex2", """
-        _reference_intrinsics_rows = project_with_intrinsics
-        def project_with_intrinsics(K, points):
-            points = np.asarray(points, dtype=np.float64)
-            if len(points) == 3:   # a single (X, Y, Z) point
-                return _reference_intrinsics_rows(K, points.reshape(-1)[:3])
-            return _reference_intrinsics_rows(K, points)
-        """, ["`len(points) == 3` (line", "3 points are 3 rows"]),
-    "project takes 3 points for one point": ("lab09.ex3", """
-        _reference_project_rows = project
-        def project(P, points):
-            points = np.asarray(points, dtype=np.float64)
-            if len(points) == 3:   # a single (X, Y, Z) point
-                return _reference_project_rows(P, points.reshape(-1)[:3])
-            return _reference_project_rows(P, points)
-        """, ["`len(points) == 3` (line", "3 points are 3 rows"]),
-    "distort_points takes 2 points for points given as columns": ("lab09.ext2", """
-        _reference_distort_rows = distort_points
-        def distort_points(points, dist):
-            points = np.asarray(points, dtype=np.float64)
-            if points.shape[0] == 2:   # points given as columns, (2, N)
-                points = points.T
-            return _reference_distort_rows(points, dist)
-        """, ["`points.shape[0] == 2` (line", "2 points are 2 rows"]),
+    # k points of k coordinates taken for one point, or for points given as columns
+    **one_point_by_length("pinhole_project", "lab09.ex1", "points, f", "points", "points.shape[0] == 3"),
+    **one_point_by_length("project_with_intrinsics", "lab09.ex2", "K, points", "points", "len(points) == 3"),
+    **one_point_by_length("project", "lab09.ex3", "P, points", "points", "len(points) == 3"),
+    **columns_by_first_axis("distort_points", "lab09.ext2", "points, dist", ("points",), "points.shape[0] == 2"),
     "project_with_intrinsics squeezes its answer": ("lab09.ex2", """
         def project_with_intrinsics(K, points):
             X = np.atleast_2d(np.asarray(points, dtype=np.float64))

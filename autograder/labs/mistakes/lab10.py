@@ -3,6 +3,8 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
+from . import one_point_by_length
+
 MISTAKES = {
     "perspective without division": ("lab10.ex1", """
         def perspective_project(points, f):
@@ -614,30 +616,10 @@ MISTAKES = {
             return objp
         """, ["not in the units of square_size"]),
     # ---------------------------------------------------------------- the API's conventions
-    "perspective_project takes 3 points for one point": ("lab10.ex1", """
-        _reference_perspective_rows = perspective_project
-        def perspective_project(points, f):
-            points = np.asarray(points, dtype=np.float64)
-            if len(points) == 3:   # a single (X, Y, Z) point
-                return _reference_perspective_rows(points.reshape(-1)[:3], f)
-            return _reference_perspective_rows(points, f)
-        """, ["`len(points) == 3` (line", "3 points are 3 rows"]),
-    "weak_perspective_project takes 3 points for one point": ("lab10.ex2", """
-        _reference_weak_rows = weak_perspective_project
-        def weak_perspective_project(points, f, z_avg=None):
-            points = np.asarray(points, dtype=np.float64)
-            if points.shape[0] == 3:   # a single (X, Y, Z) point
-                return _reference_weak_rows(points.reshape(-1)[:3], f, z_avg)
-            return _reference_weak_rows(points, f, z_avg)
-        """, ["`points.shape[0] == 3` (line", "3 points are 3 rows"]),
-    "orthographic_project takes 3 points for one point": ("lab10.ex3", """
-        _reference_orthographic_rows = orthographic_project
-        def orthographic_project(points):
-            points = np.asarray(points, dtype=np.float64)
-            if len(points) == 3:   # a single (X, Y, Z) point
-                return _reference_orthographic_rows(points.reshape(-1)[:3])
-            return _reference_orthographic_rows(points)
-        """, ["`len(points) == 3` (line", "3 points are 3 rows"]),
+    # k points of k coordinates taken for one point, or for points given as columns
+    **one_point_by_length("perspective_project", "lab10.ex1", "points, f", "points", "len(points) == 3"),
+    **one_point_by_length("weak_perspective_project", "lab10.ex2", "points, f, z_avg=None", "points", "points.shape[0] == 3"),
+    **one_point_by_length("orthographic_project", "lab10.ex3", "points", "points", "len(points) == 3"),
     "perspective_project squeezes its answer": ("lab10.ex1", """
         _reference_perspective = perspective_project
         def perspective_project(points, f):

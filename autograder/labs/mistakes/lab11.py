@@ -3,6 +3,8 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
+from . import columns_by_first_axis
+
 # a two-view pipeline whose cameras lack K ([R | t] on pixel coordinates); IN_FRONT: what it keeps
 _WITHOUT_K = """
         def two_view_reconstruction(img1, img2, K):
@@ -524,23 +526,9 @@ MISTAKES = {
             X = _reference_triangulate(P1, P2, pts1, pts2)
             return X.astype(np.asarray(pts1).dtype)
         """, ["your answer is an integer array"]),
-    "triangulate takes 2 points for points given as columns": ("lab11.ex1", """
-        _reference_triangulate_rows = triangulate
-        def triangulate(P1, P2, pts1, pts2):
-            pts1 = np.asarray(pts1, dtype=np.float64)
-            pts2 = np.asarray(pts2, dtype=np.float64)
-            if pts1.shape[0] == 2:   # points given as columns, (2, N)
-                pts1, pts2 = pts1.T, pts2.T
-            return _reference_triangulate_rows(P1, P2, pts1, pts2)
-        """, ["`pts1.shape[0] == 2` (line", "2 points are 2 rows"]),
-    "epipolar_lines takes 2 points for points given as columns": ("lab11.ex2", """
-        _reference_lines_rows = epipolar_lines
-        def epipolar_lines(F, pts1):
-            pts1 = np.asarray(pts1, dtype=np.float64)
-            if len(pts1) == 2:   # points given as columns, (2, N)
-                pts1 = pts1.T
-            return _reference_lines_rows(F, pts1)
-        """, ["`len(pts1) == 2` (line", "2 points are 2 rows"]),
+    # k points of k coordinates taken for one point, or for points given as columns
+    **columns_by_first_axis("triangulate", "lab11.ex1", "P1, P2, pts1, pts2", ("pts1", "pts2"), "pts1.shape[0] == 2"),
+    **columns_by_first_axis("epipolar_lines", "lab11.ex2", "F, pts1", ("pts1",), "len(pts1) == 2"),
     "epipolar_lines answers integer points in integers": ("lab11.ex2", """
         _reference_lines = epipolar_lines
         def epipolar_lines(F, pts1):

@@ -3,6 +3,8 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
+from . import columns_by_first_axis
+
 MISTAKES = {
     "block matching with block_size ignored": ("lab12.ex4", """
         _block_matching_own = block_matching
@@ -617,24 +619,9 @@ MISTAKES = {
             return _simulate(depth, f, baseline, n_bits)[::-1]
         """, ["the images are in the wrong order"]),
     # ---------------------------------------------------------------- the API's conventions
-    "triangulate takes 2 points for points given as columns": ("lab12.ex1", """
-        _reference_triangulate_rows = triangulate
-        def triangulate(P1, P2, pts1, pts2):
-            pts1 = np.asarray(pts1, dtype=np.float64)
-            pts2 = np.asarray(pts2, dtype=np.float64)
-            if pts1.shape[0] == 2:   # points given as columns, (2, N)
-                pts1, pts2 = pts1.T, pts2.T
-            return _reference_triangulate_rows(P1, P2, pts1, pts2)
-        """, ["`pts1.shape[0] == 2` (line", "2 points are 2 rows"]),
-    "disparity_from_matches takes 2 points for points given as columns": ("lab12.ex2", """
-        _reference_disparity_rows = disparity_from_matches
-        def disparity_from_matches(xl, xr):
-            xl = np.asarray(xl, dtype=np.float64)
-            xr = np.asarray(xr, dtype=np.float64)
-            if len(xl) == 2:   # points given as columns, (2, N)
-                xl, xr = xl.T, xr.T
-            return _reference_disparity_rows(xl, xr)
-        """, ["`len(xl) == 2` (line", "2 points are 2 rows"]),
+    # k points of k coordinates taken for one point, or for points given as columns
+    **columns_by_first_axis("triangulate", "lab12.ex1", "P1, P2, pts1, pts2", ("pts1", "pts2"), "pts1.shape[0] == 2"),
+    **columns_by_first_axis("disparity_from_matches", "lab12.ex2", "xl, xr", ("xl", "xr"), "len(xl) == 2"),
     "disparity_from_matches squeezes its answer": ("lab12.ex2", """
         _reference_disparity = disparity_from_matches
         def disparity_from_matches(xl, xr):
