@@ -91,6 +91,8 @@ OPERATORS = {
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs
+    "per_item": ("first", "each", "every", "once", "loop"),
+    "grid_axis": ("row", "column", "axis", "width", "height"),   # np.arange(h)[:, None] -> np.arange(w)[None, :]   # a scale made once from the first item, used for each
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),
     "drop_flag": ("flag", "cv2.", "remov", "|"),          # INTER_LINEAR | WARP_INVERSE_MAP -> INTER_LINEAR                 # m1 & m2 -> m1 | m2, a and b -> a or b
@@ -572,7 +574,21 @@ def _sliced_block(node):
 
 
 def _make_unwrap(node, payload):
-    return copy.deepcopy(node.args[0])
+    if payload == "method":   # depth.mean() -> depth
+        return copy.deepcopy(node.func.value)
+    inner = node.args[0]
+    while payload == "chain" and _unary_call(inner):   # np.tan(np.deg2rad(s)) -> s: both calls at once
+        inner = inner.args[0]
+    return copy.deepcopy(inner)
+
+
+def _unary_call(node) -> bool:
+    """Whether ``node`` is a one-argument call of a numeric function (`np.tan(s)`, `int(z)`)."""
+    if not isinstance(node, ast.Call) or len(node.args) != 1 or node.keywords or isinstance(node.args[0], ast.Starred):
+        return False
+    dotted = _dotted(node.func)
+    short = dotted.rsplit(".", 1)[-1]
+    return short in _UNARY and dotted[: -len(short)] in ("np.", "numpy.", "math.", "")
 
 
 def _make_swap_items(node, payload):
@@ -853,7 +869,7 @@ _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_
                                               "drop_term")},
          "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "per_item": _make_canvas, "grid_axis": _make_canvas, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -932,6 +948,23 @@ class _Words:
         before = self._first_lines[:bisect.bisect_left(self._first_lines, (line, ""))]
         names += [name for _, name in before[-nearest:]]
         return list(dict.fromkeys(names))
+
+    def related(self, line: int) -> frozenset:
+        """The names read where the names read on ``line`` are assigned (`lit = ... (proj >= 0) ...` for a
+        line reading `cols[lit]`): what the line's values were made from, kept per line."""
+        if not hasattr(self, "_related"):
+            self._related, self._read_on = {}, {}
+            for node in ast.walk(self.fn):
+                if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
+                    self._read_on.setdefault(node.lineno, set()).add(node.id)
+        if line not in self._related:
+            made_from = set()
+            for name in self._read_on.get(line, ()):
+                for at, value, _ in self.definitions.get(name, ())[-2:]:
+                    if at < line:
+                        made_from |= {n.id for n in ast.walk(value) if isinstance(n, ast.Name)}
+            self._related[line] = frozenset(made_from)
+        return self._related[line]
 
     def what(self, node, depth: int = 0, line: int | None = None) -> str:
         """A short phrase for ``node`` (never a local or private name); "" when none fits. (The
@@ -1512,6 +1545,8 @@ _CV_MISTAKEN = {"estimateAffinePartial2D": "estimateAffine2D", "estimateAffine2D
                 "pyrDown": "pyrUp", "pyrUp": "pyrDown", "add": "subtract", "subtract": "add"}
 _UNARY = {"sin", "cos", "tan", "arcsin", "arccos", "arctan", "abs", "absolute", "fabs", "sqrt", "square", "exp",
           "log", "round", "rint", "floor", "ceil", "deg2rad", "rad2deg", "radians", "degrees", "int"}
+_REDUCED = {"mean", "sum", "max", "min", "median"}
+_WHOLE_REDUCTIONS = {"np.mean", "np.median", "np.sum", "np.max", "np.min", "np.amax", "np.amin"}
 _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin", "tan": "arctan", "arctan": "tan",
              "floor": "ceil", "ceil": "floor", "round": "floor", "mean": "median", "median": "mean", "sum": "mean",
              "log": "log10", "log10": "log",
@@ -1527,6 +1562,7 @@ def _student_changes(node, parent, parents):
     if isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult) \
             and isinstance(node, (ast.Name, ast.Subscript, ast.Call)) and not _is_inverse(node):
         yield "inverse", "wrap", ""
+    yield from _grid_axis_changes(node)
     if isinstance(parent, ast.Call) and node in parent.args and len(parent.args) == 1 \
             and _dotted(parent.func).rsplit(".", 1)[-1] in ("sin", "cos", "tan") \
             and not (isinstance(node, ast.Call) and _dotted(node.func) in _ANGLE_CONVERSIONS) \
@@ -1648,9 +1684,12 @@ def _student_changes(node, parent, parents):
     dotted = _dotted(node.func)
     short = dotted.rsplit(".", 1)[-1]
     prefix = dotted[: -len(short)]
-    one_argument = len(node.args) == 1 and not node.keywords and not isinstance(node.args[0], ast.Starred)
-    if one_argument and short in _UNARY and prefix in ("np.", "numpy.", "math.", ""):
+    if _unary_call(node) or (len(node.args) == 1 and not node.keywords and dotted in _WHOLE_REDUCTIONS):
         yield "unwrap", None, ""
+        if _unary_call(node.args[0]):
+            yield "unwrap", "chain", ""   # two functions applied that do not belong (an angle's tan of its radians)
+    if isinstance(node.func, ast.Attribute) and node.func.attr in _REDUCED and not node.args and not node.keywords:
+        yield "unwrap", "method", ""   # one value of the whole array where each item's own belongs (a mean depth)
     if short in _MISTAKEN and prefix in ("np.", "numpy.", "math."):
         yield "function", prefix + _MISTAKEN[short], ""
     if short in _CV_MISTAKEN and prefix in ("cv2.", "cv."):
@@ -2259,7 +2298,16 @@ def _singular_value_changes(node, parent):
     """A matrix recomposed from its SVD without its constraint (`U @ np.diag(S) @ Vt`: the rank-2 F's
     smallest singular value left, an E's (s, s, 0) not imposed), or with the wrong one."""
     if not (isinstance(node, ast.Call) and _dotted(node.func) in ("np.diag", "numpy.diag") and len(node.args) == 1
-            and isinstance(node.args[0], ast.Name) and isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult)):
+            and isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult)):
+        return
+    listed = node.args[0]
+    if isinstance(listed, (ast.List, ast.Tuple)) and len(listed.elts) == 3 \
+            and not (isinstance(listed.elts[2], ast.Constant) and listed.elts[2].value == 0):
+        # the values written out with the smallest one kept (`np.diag([s, s, S[2]])`)
+        kept = ", ".join(ast.unparse(item) for item in listed.elts[:2])
+        yield "rank", f"np.diag([{kept}, 0])", ""
+        return
+    if not isinstance(listed, ast.Name):
         return
     values = node.args[0].id
     for kept in (f"[{values}[0], {values}[1], 0]", "[1, 1, 0]", f"[({values}[0] + {values}[1]) / 2] * 2 + [0]"):
@@ -2409,6 +2457,33 @@ def _twin_steps(items):
                     yield j, text
 
 
+def _one_difference(a, b):
+    """``(a's part, b's part)`` where two expressions differ at one place only and are the same around
+    it (`v.astype(t)` and `(u / w).astype(t)`: `v` and `u / w`); None when they are alike or differ
+    at more places."""
+    if ast.dump(a) == ast.dump(b):
+        return None
+    if type(a) is not type(b) or isinstance(a, (ast.Name, ast.Constant)):
+        return a, b
+    found = None
+    for (field, x), (_, y) in zip(ast.iter_fields(a), ast.iter_fields(b)):
+        xs, ys = (x, y) if isinstance(x, list) else ([x], [y])
+        if not isinstance(ys, list) or len(xs) != len(ys):
+            return None
+        for p, q in zip(xs, ys):
+            if isinstance(p, ast.AST) and isinstance(q, ast.AST):
+                if ast.dump(p) == ast.dump(q):
+                    continue
+                if found is not None:
+                    return None
+                found = _one_difference(p, q)
+                if found is None:
+                    return None
+            elif p != q:
+                return None
+    return found
+
+
 def _swap_in(root, old, new):
     """``root`` with the node ``old`` (inside it) replaced by ``new``."""
     for parent in ast.walk(root):
@@ -2429,6 +2504,7 @@ def _sibling_changes(node, words):
     (`warp(weight, H, size)` beside `warp(image, shift @ H, size)`: the shift left out of one)."""
     done, calls, _ = _read_siblings(words)
     yield from _canvas_changes(node, words)
+    yield from _per_item_changes(node, words)
     if isinstance(node, (ast.Tuple, ast.List)) and isinstance(node.ctx, ast.Load) and 2 <= len(node.elts) <= 4:
         for position, text in _twin_steps(node.elts):
             yield "twin_step", (position, text), ""
@@ -2438,6 +2514,21 @@ def _sibling_changes(node, words):
             for position, text in _twin_steps([node.value, twin.value]):
                 if position == 0:
                     yield "twin_step", (None, text), ""
+    elif isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS):
+        # the same inside a wrapper both lines share: `map_y = v.astype(np.float32)` beside
+        # `map_x = (u / w).astype(np.float32)` (the division done for x only)
+        for twin in _twin_assignments(node, words):
+            pair = _one_difference(node.value, twin.value)
+            if pair is None or not isinstance(pair[0], _TERMS):
+                continue
+            for position, text in _twin_steps(list(pair)):
+                if position == 0:
+                    whole = copy.deepcopy(node.value)
+                    for old, new in zip(ast.walk(node.value), ast.walk(whole)):
+                        if old is pair[0]:
+                            whole = _swap_in(whole, new, _parse(text).body[0].value)
+                            break
+                    yield "twin_step", (None, ast.unparse(whole)), ""
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS) \
             and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, (ast.Add, ast.Sub)):
         # the first term of a sum left bare where its twin's has a step: `y_d = y + ...` beside
@@ -2480,18 +2571,99 @@ _TERMS = (ast.Name, ast.Subscript, ast.Attribute)
 _ALLOCATED = {"zeros", "ones", "empty", "full"}
 
 
+def _per_item_changes(node, words):
+    """A value made once before a loop from its first item, used for every item in it: `norm` of
+    `first = F @ [pts[0, 0], pts[0, 1], 1]` dividing each `line = F @ [x, y, 1]` -> the norm made of
+    `line` itself (the loop's twin of the first item's value, written alike)."""
+    if not (isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)):
+        return
+    if not hasattr(words, "loop_reads"):   # (read once per def: names read in loops, the loops' assignments)
+        words.loop_reads = {}
+        for loop in ast.walk(words.fn):
+            if isinstance(loop, ast.For):
+                made = [n for statement in loop.body for n in ast.walk(statement)
+                        if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Name)]
+                for n in ast.walk(loop):
+                    if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load) and n.lineno > loop.lineno:
+                        words.loop_reads[id(n)] = (loop, made[:8])
+    if id(node) not in words.loop_reads:
+        return
+    loop, made = words.loop_reads[id(node)]
+    defs = words.definitions.get(node.id, ())
+    if len(defs) != 1 or defs[0][0] >= loop.lineno or defs[0][2] is not None:
+        return
+    value = defs[0][1]
+    for once in {n.id for n in ast.walk(value) if isinstance(n, ast.Name)}:
+        first = words.definitions.get(once, ())
+        if len(first) != 1 or first[0][0] >= loop.lineno or first[0][2] is not None:
+            continue
+        for assigned in made:   # the loop's own value written alike (`line = F @ np.array([x, y, 1.0])`)
+            if assigned.lineno < node.lineno and assigned.targets[0].id != once \
+                    and not isinstance(first[0][1], _TERMS) and _masked(first[0][1]) == _masked(assigned.value):
+                text = ast.unparse(_renamed(copy.deepcopy(value), once, assigned.targets[0].id))
+                if len(text) <= 80:
+                    yield "per_item", f"({text})", ""
+                break
+
+
+_GRID_AXES = {"height": "width", "width": "height", "h": "w", "w": "h", "rows": "cols", "cols": "rows",
+              "H": "W", "W": "H", "n_rows": "n_cols", "n_cols": "n_rows"}
+
+
+def _grid_axis_changes(node):
+    """A coordinate grid made along the other axis: `np.arange(height)[:, None]` (each row's index)
+    where `np.arange(width)[None, :]` (each column's) belongs, or the other way round."""
+    if not (isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2):
+        return
+    first, second = node.slice.elts
+    none = lambda item: isinstance(item, ast.Constant) and item.value is None  # noqa: E731
+    whole = lambda item: isinstance(item, ast.Slice) and item.lower is item.upper is item.step is None  # noqa: E731
+    if not ((whole(first) and none(second)) or (none(first) and whole(second))):
+        return
+    sizes = [n for n in ast.walk(node.value) if isinstance(n, ast.Name) and n.id in _GRID_AXES]
+    if len(sizes) != 1:
+        return
+    other = _renamed(node.value, sizes[0].id, _GRID_AXES[sizes[0].id])
+    flipped = ast.Subscript(other, ast.Tuple([copy.deepcopy(second), copy.deepcopy(first)], ast.Load()), ast.Load())
+    yield "grid_axis", ast.unparse(flipped), ""
+
+
+def _masked(node) -> str:
+    """``node``'s code with every name, item and attribute read masked: how it is written, not what
+    it reads (`F @ np.array([pts[0, 0], pts[0, 1], 1.0])` and `F @ np.array([x, y, 1.0])` alike)."""
+    class Mask(ast.NodeTransformer):
+        def visit_Call(self, call):   # (the function called stays: np.array is not np.zeros)
+            call.args = [self.visit(a) for a in call.args]
+            call.keywords = [self.visit(k) for k in call.keywords]
+            return call
+
+        def generic_visit(self, inner):
+            if isinstance(inner, _TERMS):
+                return ast.Name("_", ast.Load())
+            return super().generic_visit(inner)
+
+    return ast.dump(Mask().visit(copy.deepcopy(node)))
+
+
 def _canvas_changes(node, words):
     """A canvas sized by one image where both belong: `np.zeros((h1, w1 + w2, 3))` with `max(h1, h2)`
     rows, or `w1` columns where `w1 + w2` belong (the names' twins: `h1`/`h2`, `w_a`/`w_b`)."""
-    if not (isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)):
-        return
-    if not hasattr(words, "canvas_sizes"):   # (read once per def: the names in allocated shapes)
+    if not hasattr(words, "canvas_sizes"):   # (read once per def: the sizes of allocated shapes)
         words.canvas_sizes = {id(size) for call in ast.walk(words.fn) if isinstance(call, ast.Call) and call.args
                               and isinstance(call.args[0], ast.Tuple)
                               and _dotted(call.func).rsplit(".", 1)[-1] in _ALLOCATED
-                              for size in call.args[0].elts if isinstance(size, ast.Name)}
+                              for size in call.args[0].elts}
         words.names_read = sorted({n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name)})
     if id(node) not in words.canvas_sizes:
+        return
+    if not isinstance(node, ast.Name):
+        # a size made from both images' in another way (`2 * max(w1, w2)` where `w1 + w2` belongs)
+        called = {id(n.func) for n in ast.walk(node) if isinstance(n, ast.Call)}
+        read = list(dict.fromkeys(n.id for n in ast.walk(node) if isinstance(n, ast.Name) and id(n) not in called))
+        if len(read) == 2 and _twins(ast.Name(read[0]), ast.Name(read[1])):
+            for text in (f"{read[0]} + {read[1]}", f"max({read[0]}, {read[1]})"):
+                if ast.dump(_parse(text).body[0].value) != ast.dump(node):
+                    yield "canvas", text, ""
         return
     for twin in words.names_read:   # (the same quantity of the other image: h1/h2, not h1/w1)
         if twin[:1] == node.id[:1] and _twins(ast.Name(twin), ast.Name(node.id)):
@@ -3086,8 +3258,13 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     # (then the name's twin: `x1` for `x2`, a line copied from image 2's with its names half changed)
     # (and a processed version of the name, or the raw one it came from: `x_norm` for `x`, `pts` for
     # `pts_h` -- the raw points used where their normalised copy belongs, or the other way round)
+    # (then, in the student's code, a name of the same kind -- a local for a local -- that the line's
+    # other values were made from: `patterns[i][cols[lit]]` with `lit` made from `proj`, the projector's
+    # columns where the camera's were read)
+    related = words.related(line) if words.student else frozenset()
     others.sort(key=lambda pair: (pair[0] not in together, not twin_names(node.id, pair[0]),
                                   not _derived_names(node.id, pair[0]),
+                                  not (pair[0] in related and (pair[0] in params) == kind),
                                   pair[1].rsplit(" of ", 1)[-1] != tail or " of " not in own))
     count = 0
     for other, phrase in others:
