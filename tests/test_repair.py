@@ -2024,3 +2024,44 @@ def test_a_comparison_beside_an_and_without_brackets_is_changed_to_the_bracketed
     assert changes("disparity > 0 & seen") == ["(disparity > 0) & seen"]
     assert changes("mask & depth >= 1") == ["mask & (depth >= 1)"]
     assert changes("(disparity > 0) & seen") == [] and changes("a > b") == []
+
+
+def test_slips_the_blind_sets_found_beyond_the_first_tables():
+    """Each a class of slip, not a case: two functions applied at once (`np.tan(np.deg2rad(s))`), one
+    value of a whole array where each item's own belongs (`depth.mean()`), a twin's step missing inside
+    a wrapper both lines share, the smallest singular value kept in a diag written out, a canvas size made
+    from both images another way, a value made once from a loop's first item, a grid along the other
+    axis; none offered as a mutant of the reference."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(s, X, F, pts, img1, img2, height, u, v, w):
+            depth = X[:, 2:3]
+            shear = np.tan(np.deg2rad(s))
+            x = X[:, :2] / depth.mean() + np.mean(depth)
+            map_x = (u / w).astype(np.float32)
+            map_y = v.astype(np.float32)
+            U, S, Vt = np.linalg.svd(F)
+            E = U @ np.diag([S[0], S[1], S[2]]) @ Vt
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((max(h1, h2), 2 * max(w1, w2), 3), np.uint8)
+            first = F @ np.array([pts[0, 0], pts[0, 1], 1.0])
+            norm = np.sqrt(first[0] ** 2 + first[1] ** 2)
+            out = []
+            for x0, y0 in pts:
+                line = F @ np.array([x0, y0, 1.0])
+                out.append(line / norm)
+            rows = np.arange(height)[:, None] - x
+            return shear, x, map_x, map_y, E, canvas, out, rows
+    """)
+    made = _made(source, {"unwrap", "twin_step", "rank", "canvas", "per_item", "grid_axis"})
+    for pair in [("np.tan(np.deg2rad(s))", "s"), ("depth.mean()", "depth"), ("np.mean(depth)", "depth"),
+                 ("map_y = v.astype(np.float32)", "map_y = (v / w).astype(np.float32)"),
+                 ("np.diag([S[0], S[1], S[2]])", "np.diag([S[0], S[1], 0])"), ("2 * max(w1, w2)", "w1 + w2"),
+                 ("np.arange(height)[:, None]", "np.arange(width)[None, :]")]:
+        assert pair in made, (pair, made)
+    assert ("norm", "np.sqrt(line[0] ** 2 + line[1] ** 2)") in made, made   # (inside the loop only)
+    assert ("first", "line") not in made, made
+    reference = {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
+    assert not reference & {"unwrap", "per_item", "grid_axis", "twin_step"}
