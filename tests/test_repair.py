@@ -2065,3 +2065,31 @@ def test_slips_the_blind_sets_found_beyond_the_first_tables():
     assert ("first", "line") not in made, made
     reference = {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
     assert not reference & {"unwrap", "per_item", "grid_axis", "twin_step"}
+
+
+def test_a_value_copied_whole_and_a_last_entry_written_apart():
+    """`poses[i, 3:] = rvec` (a copy-paste of the line above) gets the name unpacked with it; the last
+    entry written apart from the first ones (`lines[i, 2] = line[2]` under `lines[i, :2] = line[:2] /
+    norm`) gets their step."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(frames, F):
+            poses = np.zeros((len(frames), 6))
+            lines = np.zeros((len(frames), 3))
+            for i, frame in enumerate(frames):
+                rvec, tvec = frame[:3], frame[3:]
+                poses[i, :3] = rvec
+                poses[i, 3:] = rvec
+                line = F @ frame[:3]
+                norm = np.sqrt(line[0] ** 2 + line[1] ** 2)
+                lines[i, :2] = line[:2] / norm
+                lines[i, 2] = line[2]
+            return poses, lines
+    """)
+    made = _made(source, {"other_name", "twin_step"})
+    assert ("rvec", "tvec") in made, made
+    assert ("lines[i, 2] = line[2]", "lines[i, 2] = line[2] / norm") in made, made
+    reference = repair.mutants_of(source, {"graded"})["graded"]
+    assert not any(m.operator == "other_name" and m.edits[0][3] == "tvec" and m.line == 10 for m in reference)
+    # (a whole value copied: the student's code only)

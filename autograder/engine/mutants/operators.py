@@ -1466,7 +1466,7 @@ def _changes(node, parents, words: _Words, line):
         inner = what(node.left)
         sign = "- 1" if isinstance(node.op, ast.Sub) else "+ 1"
         yield "bound", "drop", f"the {sign} after {inner} is missing (off by one)" if inner else ""
-    if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and _replaceable(node, parent) \
+    if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and _replaceable(node, parent, words.student) \
             and not (words.student and isinstance(parent, ast.Subscript) and isinstance(parent.ctx, ast.Store)):
         # (the student's code: another array written into, `F[:, 2] = 1.0` for `lines[:, 2] = 1.0`,
         # "mends" a statement by writing into the caller's array instead -- that is no fix)
@@ -2435,6 +2435,21 @@ def _twins(a, b) -> bool:
     return apart == 1
 
 
+def _index_twins(a, b) -> bool:
+    """Two parts of one array taken at one index apart in kind: an item and a slice (`line[2]` and
+    `line[:2]`, `out[i, 2]` and `out[i, :2]`): the last entry written apart from the first ones."""
+    if not (isinstance(a, ast.Subscript) and isinstance(b, ast.Subscript)) or ast.dump(a.value) != ast.dump(b.value):
+        return False
+    first, second = a.slice, b.slice
+    if isinstance(first, ast.Tuple) and isinstance(second, ast.Tuple) and len(first.elts) == len(second.elts):
+        differ = [(x, y) for x, y in zip(first.elts, second.elts) if ast.dump(x) != ast.dump(y)]
+        if len(differ) != 1:
+            return False
+        first, second = differ[0]
+    kinds = {type(first), type(second)}
+    return kinds == {ast.Constant, ast.Slice}
+
+
 def _twin_steps(items):
     """For each bare term among ``items`` (a tuple's entries, the values of twin assignments), its
     twin's step done to it too: `(x / w, y)` -> `y / w`, `(int(u), v)` -> `int(v)`. (position, text)."""
@@ -2445,7 +2460,8 @@ def _twin_steps(items):
         for i, stepped in enumerate(items):
             if i == j or isinstance(stepped, (*_TERMS, ast.Constant)):
                 continue
-            for inner in itertools.islice((n for n in ast.walk(stepped) if n is not stepped and _twins(n, bare)), 3):
+            for inner in itertools.islice((n for n in ast.walk(stepped) if n is not stepped
+                                           and (_twins(n, bare) or _index_twins(n, bare))), 3):
                 twin = copy.deepcopy(stepped)
                 for old, new in zip(ast.walk(stepped), ast.walk(twin)):
                     if old is inner:
@@ -2682,7 +2698,8 @@ def _twin_assignments(node, words):
     """The def's assignments to ``node``'s target's twin (`u = ...` for `v = ...`, `out[i, 0] = ...`
     for `out[i, 1] = ...`)."""
     return [other for other in _read_siblings(words)[2]
-            if other is not node and _twins(other.targets[0], node.targets[0])][:2]
+            if other is not node and (_twins(other.targets[0], node.targets[0])
+                                      or _index_twins(other.targets[0], node.targets[0]))][:2]
 
 
 def _read_siblings(words):
@@ -3200,13 +3217,15 @@ def _index_phrase(inner, elements, position, value, other) -> str:
     return f"another index ({other} for {value}) is used in {inner}"
 
 
-def _replaceable(node: ast.Name, parent) -> bool:
+def _replaceable(node: ast.Name, parent, student: bool = False) -> bool:
     if isinstance(parent, ast.Call) and parent.func is node:
         return False
     if isinstance(parent, ast.Compare) and _mode_test(parent):
         return False   # (`cost == "ssd"` -> `block_size == "ssd"` runs another mode's code: no slip)
     if isinstance(parent, ast.Attribute):
         return False
+    if student and isinstance(parent, ast.Assign) and parent.value is node:
+        return True   # (a value copied as it is: `poses[i, 3:] = rvec` where `tvec` belongs)
     return isinstance(parent, (ast.Call, ast.BinOp, ast.Subscript, ast.Return, ast.keyword, ast.Tuple,
                                ast.List, ast.UnaryOp, ast.Compare))
 
