@@ -2093,3 +2093,24 @@ def test_a_value_copied_whole_and_a_last_entry_written_apart():
     reference = repair.mutants_of(source, {"graded"})["graded"]
     assert not any(m.operator == "other_name" and m.edits[0][3] == "tvec" and m.line == 10 for m in reference)
     # (a whole value copied: the student's code only)
+
+
+def test_a_product_of_three_in_another_order_and_a_line_copied_from_its_twin():
+    """`K2.T @ K1 @ F` gets its neighbouring factors exchanged; `grey2 = f(img1) if img2...` under
+    `grey1 = f(img1) if img1...` gets its twin line's name at the one place they differ."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(F, K1, K2, img1, img2):
+            E = K2.T @ K1 @ F
+            grey1 = np.mean(img1, axis=2) if img1.ndim == 3 else img1
+            grey2 = np.mean(img1, axis=2) if img2.ndim == 3 else img2
+            return E, grey1, grey2
+    """)
+    made = _made(source, {"chain_order", "mirror"})
+    assert ("K2.T @ K1 @ F", "K2.T @ F @ K1") in made, made
+    assert ("grey2 = np.mean(img1, axis=2) if img2.ndim == 3 else img2",
+            "grey2 = np.mean(img2, axis=2) if img2.ndim == 3 else img2") in made, made
+    assert not any(before.startswith("grey1") for before, _ in made), made   # (the line its twin was copied from)
+    reference = {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
+    assert not reference & {"chain_order", "mirror"}

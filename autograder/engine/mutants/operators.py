@@ -92,7 +92,9 @@ OPERATORS = {
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs
     "per_item": ("first", "each", "every", "once", "loop"),
-    "grid_axis": ("row", "column", "axis", "width", "height"),   # np.arange(h)[:, None] -> np.arange(w)[None, :]   # a scale made once from the first item, used for each
+    "grid_axis": ("row", "column", "axis", "width", "height"),
+    "mirror": ("copied", "copy", "instead of", "other image"),
+    "chain_order": ("order", "product", "exchang", "swap"),   # K2.T @ K1 @ F -> K2.T @ F @ K1: two factors swapped   # grey2 = f(img1) if img2... -> f(img2): its twin line's   # np.arange(h)[:, None] -> np.arange(w)[None, :]   # a scale made once from the first item, used for each
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),
     "drop_flag": ("flag", "cv2.", "remov", "|"),          # INTER_LINEAR | WARP_INVERSE_MAP -> INTER_LINEAR                 # m1 & m2 -> m1 | m2, a and b -> a or b
@@ -701,6 +703,12 @@ def _make_canvas(node, payload):
     return _parse(payload).body[0].value   # h1 -> max(h1, h2), w1 -> w1 + w2
 
 
+def _make_chain_order(node, payload):
+    first, middle, last = (copy.deepcopy(f) for f in _chain_of_three(node))
+    factors = [middle, first, last] if payload == "first" else [first, last, middle]
+    return ast.BinOp(ast.BinOp(factors[0], ast.MatMult(), factors[1]), ast.MatMult(), factors[2])
+
+
 def _make_loop_all(node, payload):
     return _parse(payload).body[0].value   # range(8) -> range(len(p1))
 
@@ -869,7 +877,7 @@ _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_
                                               "drop_term")},
          "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "per_item": _make_canvas, "grid_axis": _make_canvas, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "per_item": _make_canvas, "grid_axis": _make_canvas, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -905,6 +913,7 @@ class _Words:
         self.helper_params = {} if fn.name in api else {
             a.arg: _PARAMETER_WORDS[a.arg] for a in fn.args.args if a.arg in _PARAMETER_WORDS}
         self.definitions: dict[str, list[tuple[int, ast.AST, int | None]]] = {}
+        self.zipped: dict[str, set] = {}   # name -> the names looped over beside it (zip)
         for node in ast.walk(fn):
             if isinstance(node, ast.Assign):
                 for target in node.targets:
@@ -924,6 +933,10 @@ class _Words:
                 and len(target.elts) == len(iterable.args):
             for part, sequence in zip(target.elts, iterable.args):
                 self._define_loop(part, sequence, line)
+            # (the items of sequences zipped together: `p, q` of `zip(pts1, pts2)`, each the other's sibling)
+            names = {part.id for part in target.elts if isinstance(part, ast.Name)}
+            for name in names:
+                self.zipped.setdefault(name, set()).update(names - {name})
         else:
             self._define(target, ast.Call(ast.Name("__loop__", ast.Load()), [iterable], []), line)
 
@@ -1562,6 +1575,9 @@ def _student_changes(node, parent, parents):
     if isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult) \
             and isinstance(node, (ast.Name, ast.Subscript, ast.Call)) and not _is_inverse(node):
         yield "inverse", "wrap", ""
+    if _chain_of_three(node) is not None and not (isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult)):
+        yield "chain_order", "first", ""   # `A @ B @ C` -> `B @ A @ C`
+        yield "chain_order", "last", ""    # `A @ B @ C` -> `A @ C @ B` (K2.T @ K1 @ F for K2.T @ F @ K1)
     yield from _grid_axis_changes(node)
     if isinstance(parent, ast.Call) and node in parent.args and len(parent.args) == 1 \
             and _dotted(parent.func).rsplit(".", 1)[-1] in ("sin", "cos", "tan") \
@@ -2545,6 +2561,8 @@ def _sibling_changes(node, words):
                             whole = _swap_in(whole, new, _parse(text).body[0].value)
                             break
                     yield "twin_step", (None, ast.unparse(whole)), ""
+    if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS):
+        yield from _mirror_changes(node, words)
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS) \
             and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, (ast.Add, ast.Sub)):
         # the first term of a sum left bare where its twin's has a step: `y_d = y + ...` beside
@@ -2642,6 +2660,39 @@ def _grid_axis_changes(node):
     other = _renamed(node.value, sizes[0].id, _GRID_AXES[sizes[0].id])
     flipped = ast.Subscript(other, ast.Tuple([copy.deepcopy(second), copy.deepcopy(first)], ast.Load()), ast.Load())
     yield "grid_axis", ast.unparse(flipped), ""
+
+
+def _mirror_changes(node, words):
+    """A line copied from its twin's with one name left as it was: `grey2 = cvtColor(img1) if img2.ndim
+    == 3 else img2` under `grey1 = cvtColor(img1) if img1.ndim == 3 else img1`. The twin's line with
+    its names turned the other way (each name with a `1` read as its `2`, as the targets differ) is
+    written at every place of this one but one: that place, as the twin's line has it."""
+    mine, theirs = ast.unparse(node.targets[0]), None
+    names = set(words.names_read) if hasattr(words, "names_read") else \
+        {n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name)}
+    for twin in _twin_assignments(node, words):
+        other = ast.unparse(twin.targets[0])
+        if len(other) != len(mine):
+            continue
+        apart = [(a, b) for a, b in zip(other, mine) if a != b]
+        if len(apart) != 1:
+            continue
+        old, new = apart[0]
+        turned = copy.deepcopy(twin.value)
+        for inner in ast.walk(turned):   # (a name with the twin's letter that has a partner in the def)
+            if isinstance(inner, ast.Name) and old in inner.id and inner.id.replace(old, new) in names:
+                inner.id = inner.id.replace(old, new)
+        pair = _one_difference(node.value, turned)
+        if pair is None or pair[0] is node.value or ast.dump(turned) == ast.dump(twin.value):
+            continue   # (alike, or alike nowhere: no line copied from the other)
+        whole = copy.deepcopy(node.value)
+        for before, after in zip(ast.walk(node.value), ast.walk(whole)):
+            if before is pair[0]:
+                whole = _swap_in(whole, after, copy.deepcopy(pair[1]))
+                break
+        theirs = ast.unparse(whole)
+        if len(theirs) <= 200:
+            yield "mirror", (None, theirs), ""
 
 
 def _masked(node) -> str:
@@ -3273,6 +3324,7 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     # array's other part ("column 0 of `dst`" for "column 1 of `dst`"); those are tried first.
     together = {other for line_at, value, _ in words.definitions.get(node.id, ())
                 for other, defs in words.definitions.items() if any(d[0] == line_at and d[1] is value for d in defs)}
+    together |= words.zipped.get(node.id, set()) if words.student else set()
     tail = own.rsplit(" of ", 1)[-1]
     # (then the name's twin: `x1` for `x2`, a line copied from image 2's with its names half changed)
     # (and a processed version of the name, or the raw one it came from: `x_norm` for `x`, `pts` for

@@ -218,6 +218,7 @@ class _Student:
         self._walked: dict = {}      # def name -> (its nodes in ast.walk order, their parents)
         self._shapes: dict = {}      # id of a statement (kept alive in _walked) -> its code with names masked
         self._places: dict = {}      # id of a node (kept alive in _walked) -> (its statement, its position there)
+        self._zipped: dict = {}      # def name -> the (name, name) pairs of its loops over zip
         self._lock = threading.Lock()
         self.reference_parts: frozenset = frozenset()   # (name, its parts' names) the reference unpacks
 
@@ -252,7 +253,8 @@ class _Student:
                 # (a name swapped for its twin -- R1 for R2, left for right -- first of its kind: the
                 # likeliest slip among a function's many names that might be another's)
                 smallest = sorted(shown, key=lambda m: (
-                    m.where != function, not (_twin_swap(self.fixes[m.key]) or self.twin_items(m)), self.fixes[m.key].size,
+                    m.where != function, not (_twin_swap(self.fixes[m.key]) or self.twin_items(m) or self.zipped_swap(m)),
+                    self.fixes[m.key].size,
                     self.fixes[m.key].written, m.line))
                 # Each kind of slip has its turn: the k-th smallest change of every operator before the
                 # (k+1)-th of any (a function's 150 names that might be another's would otherwise come
@@ -261,6 +263,9 @@ class _Student:
                 for m in smallest:
                     turn[m.key] = taken[(m.where != function, m.operator)]
                     taken[(m.where != function, m.operator)] += 1
+                    # (a line made its twin line's again, where the two differ at one place but their
+                    # names: the slip the code itself shows, first of all)
+                    turn[m.key] -= m.operator == "mirror"
                 self._ordered[function] = sorted(smallest, key=lambda m: (m.where != function, turn[m.key]))
             return self._ordered[function]
 
@@ -415,6 +420,30 @@ class _Student:
         first, second = (re.findall(r"\w+", ast.unparse(node.elts[k])) for k in payload)
         pairs = [(a, b) for a, b in zip(first, second) if a != b]
         return len(first) == len(second) and bool(pairs) and all(twin_names(a, b) for a, b in pairs)
+
+    def zipped_swap(self, mutant) -> bool:
+        """Whether the mutant reads, for a name, the one looped over beside it (`p[1]` -> `q[1]` in
+        `for p, q in zip(pts1, pts2)`): a line written for one of the pair with the other's name left."""
+        where, _, operator, payload = mutant.edits[0]
+        if operator != "other_name" or len(mutant.edits) != 1 or not isinstance(payload, str):
+            return False
+        fn = self._defs.get(where)
+        if fn is None:
+            return False
+        if where not in self._zipped:
+            pairs = set()
+            for loop in ast.walk(fn):
+                if isinstance(loop, ast.For) and isinstance(loop.iter, ast.Call) and ast.unparse(loop.iter.func) == "zip" \
+                        and isinstance(loop.target, ast.Tuple):
+                    names = [n.id for n in loop.target.elts if isinstance(n, ast.Name)]
+                    pairs |= {(a, b) for a in names for b in names if a != b}
+            self._zipped[where] = pairs
+        fix = self.fix(mutant)
+        if fix is None or len(fix.changes) != 1:
+            return False
+        before, after = (re.findall(r"\w+", text) for text in fix.changes[0][1:])
+        changed = [(a, b) for a, b in zip(before, after) if a != b]
+        return len(before) == len(after) and len(changed) == 1 and changed[0] in self._zipped[where]
 
     def neighbours(self, first, second) -> bool:
         """Whether two changes are of items side by side: the same list's, tuple's or call's (`[..., x2,
@@ -1122,8 +1151,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # of twins first, wherever they are (`(y_max - y_min, x_max - x_min)`, `w, h = shape[:2]`).
         twins = [m for m in runnable if _twin_swap(student.fix(m)) or student.twin_items(m)]
         runnable = twins + [m for m in runnable if m not in twins]
+    # (time kept for confirming a change found: a slow function's -- features matched on photographs --
+    # confirmation calls take as long as its own calls, a few of them)
+    reserve = min(max(RESERVE, CONFIRMATION_CALLS * variant.seconds_per_call), clock.left() / 2)
     for mutant in list(earlier) + _near_the_raise([m for m in runnable if m.key not in known], trial, function):
-        if clock.left() <= (RESERVE if candidates or (near and variant.replayable) else 0) \
+        if clock.left() <= (reserve if candidates or (near and variant.replayable) else 0) \
                 or (tries is not None and variant.screenings >= tries):
             complete = False
             break
@@ -1160,8 +1192,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             # of the failing inputs: no account of this failure -- one nearer somewhere, but not
             # confirmed, is no refutation: a legitimate least squares is far off on an ill-posed point,
             # and the check run again with it may fail for want of time or of what the grading shared)
+            # (a distance that cannot be measured -- the student's answer and the reference's apart where
+            # the API leaves the value open, NaN or not behind the camera -- refutes nothing either)
             if mutant.key in known and values is not None and not any(exact) and all(
-                    not variant.distance(v, references[i]) < 0.9 * variant.distance(variant.students[i], references[i])
+                    np.isfinite(variant.distance(variant.students[i], references[i]))
+                    and not variant.distance(v, references[i]) < 0.9 * variant.distance(variant.students[i], references[i])
                     for v, i in zip(values, failing)):
                 _refuted(trial, student.fix(mutant), function)
     if not candidates:
@@ -1312,6 +1347,7 @@ REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "
 BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
 ADDITIONS = {"sibling_step", "twin_step", "sibling_argument"}   # changes that add a twin's step beside a line
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
+CONFIRMATION_CALLS = 6   # or the time of this many of the student's calls, if longer (at most half the time)
 REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
 PAIR_NEARER = 3   # (a pair of changes, fewer than the single ones: judged by the check from this many times)
 REPLAYS = 5       # the most changes a failed check is replayed with
