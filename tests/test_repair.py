@@ -2114,3 +2114,32 @@ def test_a_product_of_three_in_another_order_and_a_line_copied_from_its_twin():
     assert not any(before.startswith("grey1") for before, _ in made), made   # (the line its twin was copied from)
     reference = {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
     assert not reference & {"chain_order", "mirror"}
+
+
+def test_a_running_best_started_at_zero_and_one_array_kept_at_every_turn():
+    """`best = np.zeros(shape)` kept only where `cost < best` starts at +inf (or -inf); `frame =
+    np.zeros(...)` made before a loop that appends it every turn is made anew inside the loop."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(costs, n):
+            best = np.zeros(costs.shape[1:])
+            shown = np.zeros(costs.shape[1:])
+            for cost in costs:
+                best = np.where(cost < best, cost, best)
+            frames = []
+            frame = np.zeros((4, 4))
+            for i in range(n):
+                frame[:] = i
+                frames.append(frame)
+            return best, shown, frames
+    """)
+    made = _made(source, {"initial"})
+    assert ("np.zeros(costs.shape[1:])", "np.full(costs.shape[1:], np.inf)") in made, made
+    assert len({before for before, _ in made}) == 1, made   # (`shown` is compared with nothing)
+    fn = next(node for node in ast.parse(source).body if isinstance(node, ast.FunctionDef))
+    moved = [m for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+             if m.operator == "indent" and m.edits[0][3][3] == "first"]
+    assert [m.edits[0][3][1] for m in moved] == ["frame = np.zeros((4, 4))"], moved
+    after = repair._MAKE["indent"](list(ast.walk(fn))[moved[0].edits[0][1]], moved[0].edits[0][3])
+    assert ast.unparse(after.body[0]) == "frame = np.zeros((4, 4))"

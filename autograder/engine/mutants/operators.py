@@ -94,7 +94,8 @@ OPERATORS = {
     "per_item": ("first", "each", "every", "once", "loop"),
     "grid_axis": ("row", "column", "axis", "width", "height"),
     "mirror": ("copied", "copy", "instead of", "other image"),
-    "chain_order": ("order", "product", "exchang", "swap"),   # K2.T @ K1 @ F -> K2.T @ F @ K1: two factors swapped   # grey2 = f(img1) if img2... -> f(img2): its twin line's   # np.arange(h)[:, None] -> np.arange(w)[None, :]   # a scale made once from the first item, used for each
+    "chain_order": ("order", "product", "exchang", "swap"),
+    "initial": ("initial", "start", "inf", "infinity", "zero"),   # best = np.zeros(s) -> np.full(s, np.inf)   # K2.T @ K1 @ F -> K2.T @ F @ K1: two factors swapped   # grey2 = f(img1) if img2... -> f(img2): its twin line's   # np.arange(h)[:, None] -> np.arange(w)[None, :]   # a scale made once from the first item, used for each
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),
     "drop_flag": ("flag", "cv2.", "remov", "|"),          # INTER_LINEAR | WARP_INVERSE_MAP -> INTER_LINEAR                 # m1 & m2 -> m1 | m2, a and b -> a or b
@@ -756,7 +757,8 @@ def _make_move(node, payload):
 
 def _make_indent(node, payload):
     new = copy.deepcopy(node)   # for ...: body; s -> for ...: body; s
-    new.body = [*new.body, parse(payload[1]).body[0]]
+    moved = parse(payload[1]).body[0]
+    new.body = [moved, *new.body] if payload[3] == "first" else [*new.body, moved]   # (s; for ...: -> for ...: s)
     return new
 
 
@@ -877,7 +879,7 @@ _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_
                                               "drop_term")},
          "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "per_item": _make_canvas, "grid_axis": _make_canvas, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "per_item": _make_canvas, "grid_axis": _make_canvas, "mirror": _make_twin_step, "chain_order": _make_chain_order, "initial": _make_canvas, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1338,6 +1340,31 @@ def _statement_moves(fn):
                 if isinstance(statement, (ast.For, ast.While, ast.If)) and len(statement.body) >= 2 \
                         and isinstance(statement.body[-1], _SIMPLE) and not statement.orelse:
                     yield "dedent", statement, statement.body[-1], "out"
+                if isinstance(statement, ast.For) and k > 0 and _allocates(statements[k - 1]) \
+                        and _kept_each_time(statement, next(iter(_assigned(statements[k - 1])))):
+                    # one array made before the loop and kept (appended, stored) at every turn: every item is
+                    # that same array, the last turn's (`frame = np.zeros(...)` above `frames.append(frame)`)
+                    yield "indent", statement, statements[k - 1], "first"
+
+
+def _allocates(statement) -> bool:
+    """Whether ``statement`` makes one new array for one name (`frame = np.zeros((h, w))`)."""
+    return isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
+        and isinstance(statement.targets[0], ast.Name) and isinstance(statement.value, ast.Call) \
+        and _dotted(statement.value.func).rsplit(".", 1)[-1] in _ALLOCATED | {"zeros_like", "empty_like", "full_like",
+                                                                               "ones_like", "copy"}
+
+
+def _kept_each_time(loop, name: str) -> bool:
+    """Whether the loop keeps ``name`` itself at every turn: appended, or stored whole as an item."""
+    for node in ast.walk(loop):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in ("append", "insert") \
+                and any(isinstance(a, ast.Name) and a.id == name for a in node.args):
+            return True
+        if isinstance(node, ast.Assign) and isinstance(node.value, ast.Name) and node.value.id == name \
+                and all(isinstance(t, ast.Subscript) for t in node.targets):
+            return True
+    return False
 
 
 def _assigned_anywhere(statement) -> set:
@@ -2537,6 +2564,7 @@ def _sibling_changes(node, words):
     done, calls, _ = _read_siblings(words)
     yield from _canvas_changes(node, words)
     yield from _per_item_changes(node, words)
+    yield from _initial_changes(node, words)
     if isinstance(node, (ast.Tuple, ast.List)) and isinstance(node.ctx, ast.Load) and 2 <= len(node.elts) <= 4:
         for position, text in _twin_steps(node.elts):
             yield "twin_step", (position, text), ""
@@ -2693,6 +2721,25 @@ def _mirror_changes(node, words):
         theirs = ast.unparse(whole)
         if len(theirs) <= 200:
             yield "mirror", (None, theirs), ""
+
+
+def _initial_changes(node, words):
+    """A running best started at 0 where nothing may beat it (`best = np.zeros(shape)` kept only where
+    `cost < best`: no cost is below 0): started at +inf (or -inf, for a running largest)."""
+    if not (isinstance(node, ast.Call) and node.args and _dotted(node.func) in ("np.zeros", "np.zeros_like")):
+        return
+    if not hasattr(words, "compared_names"):   # (read once per def: the names a comparison reads)
+        words.compared_names = {n.id for c in ast.walk(words.fn) if isinstance(c, ast.Compare)
+                                and any(isinstance(op, (ast.Lt, ast.LtE, ast.Gt, ast.GtE)) for op in c.ops)
+                                for side in [c.left, *c.comparators] for n in ast.walk(side) if isinstance(n, ast.Name)}
+        words.allocated_into = {id(a.value): a.targets[0].id for a in ast.walk(words.fn) if isinstance(a, ast.Assign)
+                                and len(a.targets) == 1 and isinstance(a.targets[0], ast.Name)}
+    if words.allocated_into.get(id(node)) not in words.compared_names:
+        return
+    full = "np.full" if _dotted(node.func) == "np.zeros" else "np.full_like"
+    first = ast.unparse(node.args[0])
+    for start in ("np.inf", "-np.inf"):
+        yield "initial", f"{full}({first}, {start})", ""
 
 
 def _masked(node) -> str:

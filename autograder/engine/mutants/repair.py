@@ -592,7 +592,9 @@ class _Student:
             shown = shown[:_SHOWN - 4].rsplit(" ", 1)[0] + " ..."
         block = {ast.For: "`for` loop", ast.While: "`while` loop", ast.If: "`if` block"}.get(type(edited), "block")
         said = {"move": f"moving `{shown}` (line {line}{{inside}}) {side} line {edited.lineno}",
-                "indent": f"moving `{shown}` (line {line}{{inside}}) into the {block} above it (line {edited.lineno}), "
+                "indent": f"moving `{shown}` (line {line}{{inside}}) into the {block} below it (line {edited.lineno}), "
+                          "as its first statement: a new one for each turn" if side == "first" else
+                          f"moving `{shown}` (line {line}{{inside}}) into the {block} above it (line {edited.lineno}), "
                           "as its last statement",
                 "dedent": f"moving `{shown}` (line {line}{{inside}}) out of the {block} of line {edited.lineno}, "
                           "to just after it"}[operator]
@@ -1112,6 +1114,14 @@ def _key(call) -> str:
     return fingerprint(call[0], call[1], call[2])
 
 
+def _answers_key(values) -> str:
+    """A key of a variant's answers (equal answers, equal keys; never raises)."""
+    try:
+        return fingerprint(*values)
+    except Exception:  # noqa: BLE001 - answers it cannot read are nobody's twins
+        return repr(id(values))
+
+
 def _wrong(answer, reference) -> bool:
     return naming.error_kind(answer) is not None or naming.wrong(answer, reference)
 
@@ -1204,11 +1214,19 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # reference's when mended: the nearest changes are judged by the check itself, the first that
         # passes it and those exactly as near (the same answers from another place: names swapped where
         # they are made, or where they are used -- the confirmation tells them apart).
-        passed = None
+        passed, refused = None, set()
         for apart, mutant in sorted(near, key=lambda pair: pair[0]):
             if variant.replays >= REPLAYS - PAIR_REPLAYS or clock.left() <= 0 or (passed is not None and apart > passed):
                 break
-            if mutant.key in variant.checked or not variant.passes_check(mutant, near_answers[mutant.key], failing):
+            # (a change whose answers are another's the check refused -- `q[0] + -w1` beside `q[0] - w1` --
+            # is refused too: its replay goes to the next nearest)
+            answers = _answers_key(near_answers[mutant.key])
+            if answers in refused:
+                continue
+            if mutant.key in variant.checked:
+                continue
+            if not variant.passes_check(mutant, near_answers[mutant.key], failing):
+                refused.add(answers)
                 continue
             candidates.append(mutant)
             passed = apart
