@@ -2143,3 +2143,30 @@ def test_a_running_best_started_at_zero_and_one_array_kept_at_every_turn():
     assert [m.edits[0][3][1] for m in moved] == ["frame = np.zeros((4, 4))"], moved
     after = repair._MAKE["indent"](list(ast.walk(fn))[moved[0].edits[0][1]], moved[0].edits[0][3])
     assert ast.unparse(after.body[0]) == "frame = np.zeros((4, 4))"
+
+
+def test_a_layout_a_type_an_order_of_division_a_colour_order_and_an_unread_parameter():
+    """`lines.reshape(3, -1).T` for `reshape(-1, 3)`, `.astype(np.uint8)` where floats belong,
+    `c // w * 2 ** n` for `c * 2 ** n // w`, a BGR image turned RGB, and a parameter never read where an
+    operand is computed otherwise (each the student's code only)."""
+    source = textwrap.dedent("""
+        import numpy as np
+        import cv2
+
+        def graded(lines, volume, c, w, n, img, X, d, z0):
+            out = lines.reshape(3, -1).T
+            disparity = np.argmin(volume, axis=0).astype(np.uint8)
+            k = c // w * 2 ** n
+            rgb = cv2.cvtColor(img, cv2.COLOR_BGR2RGB)
+            moved = X[:, 2] + d - X[:, 2].mean()
+            return out, disparity, k, rgb, moved
+    """)
+    operators = {"reshape_back", "astype_float", "divide_last", "drop_colour", "unused"}
+    made = _made(source, operators)
+    for pair in [("lines.reshape(3, -1).T", "lines.reshape(-1, 3)"),
+                 ("np.argmin(volume, axis=0).astype(np.uint8)", "np.argmin(volume, axis=0).astype(np.float64)"),
+                 ("c // w * 2 ** n", "c * 2 ** n // w"), ("cv2.cvtColor(img, cv2.COLOR_BGR2RGB)", "img"),
+                 ("X[:, 2].mean()", "z0")]:
+        assert pair in made, (pair, made)
+    reference = {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
+    assert not reference & operators

@@ -95,7 +95,12 @@ OPERATORS = {
     "grid_axis": ("row", "column", "axis", "width", "height"),
     "mirror": ("copied", "copy", "instead of", "other image"),
     "chain_order": ("order", "product", "exchang", "swap"),
-    "initial": ("initial", "start", "inf", "infinity", "zero"),   # best = np.zeros(s) -> np.full(s, np.inf)   # K2.T @ K1 @ F -> K2.T @ F @ K1: two factors swapped   # grey2 = f(img1) if img2... -> f(img2): its twin line's   # np.arange(h)[:, None] -> np.arange(w)[None, :]   # a scale made once from the first item, used for each
+    "initial": ("initial", "start", "inf", "infinity", "zero"),
+    "reshape_back": ("reshape", "transpos", "order"),   # x.reshape(2, -1).T -> x.reshape(-1, 2)
+    "astype_float": ("float", "uint8", "integer", "dtype"),   # d.astype(np.uint8) -> d.astype(np.float64)
+    "divide_last": ("floor", "//", "order", "first"),    # c // w * 2 ** n -> c * 2 ** n // w
+    "unused": ("parameter", "unused", "ignored", "instead of"),
+    "drop_colour": ("colour", "color", "rgb", "bgr", "conversion"),   # cv2.cvtColor(img, COLOR_BGR2RGB) -> img   # X[:, 2].mean() -> z0, z0 never read   # best = np.zeros(s) -> np.full(s, np.inf)   # K2.T @ K1 @ F -> K2.T @ F @ K1: two factors swapped   # grey2 = f(img1) if img2... -> f(img2): its twin line's   # np.arange(h)[:, None] -> np.arange(w)[None, :]   # a scale made once from the first item, used for each
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),
     "drop_flag": ("flag", "cv2.", "remov", "|"),          # INTER_LINEAR | WARP_INVERSE_MAP -> INTER_LINEAR                 # m1 & m2 -> m1 | m2, a and b -> a or b
@@ -879,7 +884,7 @@ _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_
                                               "drop_term")},
          "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "per_item": _make_canvas, "grid_axis": _make_canvas, "mirror": _make_twin_step, "chain_order": _make_chain_order, "initial": _make_canvas, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "per_item": _make_canvas, "grid_axis": _make_canvas, "mirror": _make_twin_step, "chain_order": _make_chain_order, "initial": _make_canvas, "reshape_back": _make_canvas, "astype_float": _make_canvas, "divide_last": _make_canvas, "unused": _make_canvas, "drop_colour": _make_canvas, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1606,6 +1611,7 @@ def _student_changes(node, parent, parents):
         yield "chain_order", "first", ""   # `A @ B @ C` -> `B @ A @ C`
         yield "chain_order", "last", ""    # `A @ B @ C` -> `A @ C @ B` (K2.T @ K1 @ F for K2.T @ F @ K1)
     yield from _grid_axis_changes(node)
+    yield from _layout_and_type_changes(node)
     if isinstance(parent, ast.Call) and node in parent.args and len(parent.args) == 1 \
             and _dotted(parent.func).rsplit(".", 1)[-1] in ("sin", "cos", "tan") \
             and not (isinstance(node, ast.Call) and _dotted(node.func) in _ANGLE_CONVERSIONS) \
@@ -2565,6 +2571,7 @@ def _sibling_changes(node, words):
     yield from _canvas_changes(node, words)
     yield from _per_item_changes(node, words)
     yield from _initial_changes(node, words)
+    yield from _unused_parameter_changes(node, parent_of(node, words), words)
     if isinstance(node, (ast.Tuple, ast.List)) and isinstance(node.ctx, ast.Load) and 2 <= len(node.elts) <= 4:
         for position, text in _twin_steps(node.elts):
             yield "twin_step", (position, text), ""
@@ -2740,6 +2747,55 @@ def _initial_changes(node, words):
     first = ast.unparse(node.args[0])
     for start in ("np.inf", "-np.inf"):
         yield "initial", f"{full}({first}, {start})", ""
+
+
+def _layout_and_type_changes(node):
+    """Three slips of layout and type: an array reshaped to (k, -1) and transposed where (-1, k) belongs
+    (`lines.reshape(3, -1).T`: the entries read across the points), an integer type where the API's
+    values are floats (`argmin(...).astype(np.uint8)`), a floor division done before the product it
+    should follow (`c // w * 2 ** n`: 0 for every c < w), and a conversion between colour orders
+    that does not belong (`cv2.cvtColor(img, cv2.COLOR_BGR2RGB)` on a BGR image)."""
+    if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.value, ast.Call) \
+            and isinstance(node.value.func, ast.Attribute) and node.value.func.attr == "reshape" \
+            and len(node.value.args) == 2 and not node.value.keywords:
+        first, second = node.value.args
+        if isinstance(second, ast.UnaryOp) and isinstance(second.op, ast.USub) \
+                and isinstance(second.operand, ast.Constant) and second.operand.value == 1:
+            array = ast.unparse(node.value.func.value)
+            yield "reshape_back", f"{array}.reshape(-1, {ast.unparse(first)})", ""
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "astype" \
+            and len(node.args) == 1 and (_dotted(node.args[0]) in _INTEGER_TYPES | {"int", "np.int_"}):
+        yield "astype_float", f"{ast.unparse(node.func.value)}.astype(np.float64)", ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div)) and isinstance(node.left, ast.BinOp) \
+            and isinstance(node.left.op, ast.FloorDiv):
+        a, b, c = (ast.unparse(x) for x in (node.left.left, node.left.right, node.right))
+        op = "*" if isinstance(node.op, ast.Mult) else "/"
+        yield "divide_last", f"({a}) {op} ({c}) // ({b})", ""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.cvtColor", "cv.cvtColor") and len(node.args) >= 2 \
+            and _dotted(node.args[1]).rsplit(".", 1)[-1] in ("COLOR_BGR2RGB", "COLOR_RGB2BGR"):
+        yield "drop_colour", ast.unparse(node.args[0]), ""
+
+
+def parent_of(node, words):
+    """``node``'s parent in the def ``words`` reads (kept per def)."""
+    if not hasattr(words, "parents"):
+        words.parents = {id(child): parent for parent in ast.walk(words.fn) for child in ast.iter_child_nodes(parent)}
+    return words.parents.get(id(node))
+
+
+def _unused_parameter_changes(node, parent, words):
+    """A parameter the def never reads, where an operand of a sum, difference or product is computed
+    otherwise: that operand is likely where it belongs (`d - X[:, 2].mean()` with `z0` unread)."""
+    if not hasattr(words, "unread"):
+        read = {n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+        args = words.fn.args
+        words.unread = [a.arg for a in args.args + args.kwonlyargs if a.arg not in read and a.arg not in ("self", "_")]
+    if not words.unread or not (isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult, ast.Div))):
+        return
+    if not isinstance(node, (ast.Name, ast.Subscript, ast.Call, ast.Attribute)) or isinstance(node, ast.Constant):
+        return
+    for name in words.unread[:2]:
+        yield "unused", name, ""
 
 
 def _masked(node) -> str:
