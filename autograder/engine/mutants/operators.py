@@ -2703,8 +2703,9 @@ def _mirror_changes(node, words):
     its names turned the other way (each name with a `1` read as its `2`, as the targets differ) is
     written at every place of this one but one: that place, as the twin's line has it."""
     mine, theirs = ast.unparse(node.targets[0]), None
-    names = set(words.names_read) if hasattr(words, "names_read") else \
-        {n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name)}
+    if not hasattr(words, "names_anywhere"):   # (read once per def)
+        words.names_anywhere = {n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name)}
+    names = words.names_anywhere
     for twin in _twin_assignments(node, words):
         other = ast.unparse(twin.targets[0])
         if len(other) != len(mine):

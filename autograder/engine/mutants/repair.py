@@ -1214,7 +1214,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # reference's when mended: the nearest changes are judged by the check itself, the first that
         # passes it and those exactly as near (the same answers from another place: names swapped where
         # they are made, or where they are used -- the confirmation tells them apart).
-        passed, refused = None, set()
+        passed, refused, judged = None, set(), set()
         for apart, mutant in sorted(near, key=lambda pair: pair[0]):
             if variant.replays >= REPLAYS - PAIR_REPLAYS or clock.left() <= 0 or (passed is not None and apart > passed):
                 break
@@ -1225,11 +1225,16 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                 continue
             if mutant.key in variant.checked:
                 continue
+            judged.add(mutant.key)
             if not variant.passes_check(mutant, near_answers[mutant.key], failing):
                 refused.add(answers)
                 continue
             candidates.append(mutant)
             passed = apart
+        # A nearer change the check had no time to judge is not ruled out for the function's later checks
+        # (a drawing's own recipe keeps every change's answers far from the reference's: the right one
+        # may be the fourth nearest).
+        ruled_out.difference_update(m.key for _, m in near if m.key not in judged)
     fixes, lines, halfway = [], set(), set()
     shown = [(mutant, variant.fix(mutant)) for mutant in candidates]
     # The smallest change of the text first: the student's slip is a few characters (`R.T` for `R`),
