@@ -2170,3 +2170,23 @@ def test_a_layout_a_type_an_order_of_division_a_colour_order_and_an_unread_param
         assert pair in made, (pair, made)
     reference = {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
     assert not reference & operators
+
+
+def test_a_step_done_to_one_of_two_locals_is_offered_for_its_twin_first():
+    """`pts1 = pts1[inliers]` without the same for `pts2` (a local, not a parameter): the step done to
+    both is offered, and comes before the same step given to the def's other parameters."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(matches, K, mask):
+            pts1 = np.float64([m[0] for m in matches])
+            pts2 = np.float64([m[1] for m in matches])
+            inliers = mask.ravel().astype(bool)
+            pts1 = pts1[inliers]
+            return pts1, pts2, K
+    """)
+    made = _made(source, {"sibling_step"})
+    assert ("pts1 = pts1[inliers]", "pts1, pts2 = (pts1[inliers], pts2[inliers])") in made, made
+    student = repair._Student(source, ast.parse(source), ["graded"])
+    siblings = [m for m in student.ordered("graded") if m.operator == "sibling_step"]
+    assert siblings and siblings[0].edits[0][3] == "pts2", [m.edits[0][3] for m in siblings]

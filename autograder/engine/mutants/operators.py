@@ -2619,7 +2619,10 @@ def _sibling_changes(node, words):
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
         name = node.targets[0].id
         if any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(node.value)):
-            for other in (a.arg for a in words.fn.args.args):
+            # (its twin first, a parameter or a local -- `pts2` beside `pts1 = pts1[inliers]` -- then the
+            # def's other parameters)
+            twins = [other for other in words.definitions if twin_names(name, other)]
+            for other in dict.fromkeys([*twins, *(a.arg for a in words.fn.args.args)]):
                 if other != name and ast.dump(_renamed(node, name, other)) not in done:
                     yield "sibling_step", other, ""
     if isinstance(node, ast.Call) and not any(isinstance(a, ast.Starred) for a in node.args):

@@ -253,7 +253,8 @@ class _Student:
                 # (a name swapped for its twin -- R1 for R2, left for right -- first of its kind: the
                 # likeliest slip among a function's many names that might be another's)
                 smallest = sorted(shown, key=lambda m: (
-                    m.where != function, not (_twin_swap(self.fixes[m.key]) or self.twin_items(m) or self.zipped_swap(m)),
+                    m.where != function, not (_twin_swap(self.fixes[m.key]) or self.twin_items(m) or self.zipped_swap(m)
+                                              or self.twin_sibling(m)),
                     self.fixes[m.key].size,
                     self.fixes[m.key].written, m.line))
                 # Each kind of slip has its turn: the k-th smallest change of every operator before the
@@ -265,7 +266,7 @@ class _Student:
                     taken[(m.where != function, m.operator)] += 1
                     # (a line made its twin line's again, where the two differ at one place but their
                     # names: the slip the code itself shows, first of all)
-                    turn[m.key] -= m.operator == "mirror"
+                    turn[m.key] -= m.operator in SHOWN_BY_THE_CODE
                 self._ordered[function] = sorted(smallest, key=lambda m: (m.where != function, turn[m.key]))
             return self._ordered[function]
 
@@ -420,6 +421,15 @@ class _Student:
         first, second = (re.findall(r"\w+", ast.unparse(node.elts[k])) for k in payload)
         pairs = [(a, b) for a, b in zip(first, second) if a != b]
         return len(first) == len(second) and bool(pairs) and all(twin_names(a, b) for a, b in pairs)
+
+    def twin_sibling(self, mutant) -> bool:
+        """Whether the mutant does a step done to one name to its twin too (`pts1 = pts1[inliers]` ->
+        `pts1, pts2 = pts1[inliers], pts2[inliers]`)."""
+        where, _, operator, payload = mutant.edits[0]
+        if operator != "sibling_step" or len(mutant.edits) != 1 or not isinstance(payload, str):
+            return False
+        fix = self.fix(mutant)
+        return fix is not None and any(twin_names(name, payload) for name in re.findall(r"\w+", fix.changes[0][1]))
 
     def zipped_swap(self, mutant) -> bool:
         """Whether the mutant reads, for a name, the one looped over beside it (`p[1]` -> `q[1]` in
@@ -1365,6 +1375,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
 
 
 FIXES = 3         # the most fixes told (one per line)
+# changes the student's code itself points at -- a line copied from its twin's with one name left, a step
+# done to one of two like inputs or twin terms only -- tried before every other kind's first
+SHOWN_BY_THE_CODE = {"mirror", "sibling_step", "twin_step"}
 REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "unwrap", "drop_conversion",
             "drop_mask", "drop_slice"}   # changes that take a step out
 BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
