@@ -2571,7 +2571,7 @@ def _sibling_changes(node, words):
     yield from _canvas_changes(node, words)
     yield from _per_item_changes(node, words)
     yield from _initial_changes(node, words)
-    yield from _unused_parameter_changes(node, parent_of(node, words), words)
+    yield from _unused_parameter_changes(node, _parent_of(node, words), words)
     if isinstance(node, (ast.Tuple, ast.List)) and isinstance(node.ctx, ast.Load) and 2 <= len(node.elts) <= 4:
         for position, text in _twin_steps(node.elts):
             yield "twin_step", (position, text), ""
@@ -2754,7 +2754,7 @@ def _initial_changes(node, words):
 
 
 def _layout_and_type_changes(node):
-    """Three slips of layout and type: an array reshaped to (k, -1) and transposed where (-1, k) belongs
+    """Slips of layout, type and order: an array reshaped to (k, -1) and transposed where (-1, k) belongs
     (`lines.reshape(3, -1).T`: the entries read across the points), an integer type where the API's
     values are floats (`argmin(...).astype(np.uint8)`), a floor division done before the product it
     should follow (`c // w * 2 ** n`: 0 for every c < w), and a conversion between colour orders
@@ -2780,7 +2780,7 @@ def _layout_and_type_changes(node):
         yield "drop_colour", ast.unparse(node.args[0]), ""
 
 
-def parent_of(node, words):
+def _parent_of(node, words):
     """``node``'s parent in the def ``words`` reads (kept per def)."""
     if not hasattr(words, "parents"):
         words.parents = {id(child): parent for parent in ast.walk(words.fn) for child in ast.iter_child_nodes(parent)}
