@@ -598,3 +598,29 @@ def test_compares_a_distance_with_follows_any_chain_of_names_each_once():
                   for i in range(200))
     source = f"def f(d, threshold):\n{web}    return w199 < threshold\n"
     assert not found(compares_a_distance_with(), source)
+
+
+def test_p1_and_p2_swapped_is_told_from_x_and_y_swapped_by_the_code():
+    """The two give the same answer; x's line with p1 beside x's square is the coefficients' slip, x's
+    line with y's square the coordinates'."""
+    import ast
+    import textwrap
+
+    from autograder.engine.claims import EVIDENCED
+    from autograder.labs import lab09  # noqa: F401  (registers the evidence)
+    from fixtures.lab09 import P1_P2_SWAPPED
+
+    def written(x_line: str):
+        return ast.parse(textwrap.dedent(f"""
+            def distort_points(pts, dist):
+                k1, k2, p1, p2, k3 = dist
+                x, y = pts[:, 0], pts[:, 1]
+                r2 = x ** 2 + y ** 2
+                {x_line}
+                return x_t
+        """)).body[0]
+
+    does = EVIDENCED[P1_P2_SWAPPED]
+    assert does.found([written("x_t = 2 * p2 * x * y + p1 * (r2 + 2 * x ** 2)")])
+    assert not does.found([written("x_t = 2 * p1 * x * y + p2 * (r2 + 2 * y ** 2)")])   # (x and y swapped)
+    assert not does.found([written("x_t = 2 * p1 * x * y + p2 * (r2 + 2 * x ** 2)")])   # (right)

@@ -2190,3 +2190,77 @@ def test_a_step_done_to_one_of_two_locals_is_offered_for_its_twin_first():
     student = repair._Student(source, ast.parse(source), ["graded"])
     siblings = [m for m in student.ordered("graded") if m.operator == "sibling_step"]
     assert siblings and siblings[0].edits[0][3] == "pts2", [m.edits[0][3] for m in siblings]
+
+
+def test_a_truth_test_of_an_optional_array_and_positions_counted_from_one():
+    """`... if dist else None` (an array has no truth value) gets `dist is not None`; `np.arange(1, w + 1)`
+    where indices belong gets `np.arange(w)`, its keywords kept."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(K, w, dist=None):
+            dist = np.asarray(dist) if dist else None
+            if not dist:
+                pass
+            cols = np.arange(1, w + 1, dtype=np.float64)
+            return dist, cols
+    """)
+    made = _made(source, {"default", "zero_based"})
+    assert ("np.asarray(dist) if dist else None", "np.asarray(dist) if dist is not None else None") not in made
+    assert ("dist", "dist is not None") in made, made
+    assert ("not dist", "dist is None") in made, made
+    assert ("np.arange(1, w + 1, dtype=np.float64)", "np.arange(w, dtype=np.float64)") in made, made
+
+
+def test_names_unpacked_as_written_are_never_exchanged_by_a_repair():
+    """`for x, y in pts` and `k1, k2, p1, p2, k3 = d` (named as the reference names them, or an axis
+    pair in order): exchanging them mends a use by making the names lie; `w, h = image.shape[:2]` (a
+    shape, rows first) stays a repair."""
+    parts = frozenset({("", ("k1", "k2", "p1", "p2", "k3")), ("", ("w", "h"))})
+    assert repair._names_as_written(["x", "y"], frozenset())
+    assert repair._names_as_written(["u1", "v1"], frozenset())
+    assert not repair._names_as_written(["y", "x"], frozenset())
+    assert repair._names_as_written(["k1", "k2", "p1", "p2", "k3"], parts)
+    shape = ast.parse("image.shape[:2]", mode="eval").body
+    assert not repair._names_as_written(["w", "h"], parts, shape)
+    assert repair._names_as_written(["w", "h"], parts, ast.parse("dsize", mode="eval").body)
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(image, pts, d):
+            k1, k2, p1, p2, k3 = d
+            for x, y in pts:
+                image[int(x), int(y)] = k1 + p2
+            w, h = image.shape[:2]
+            return image, w
+    """)
+    student = repair._Student(source, ast.parse(source), ["graded"])
+    student.reference_parts = parts
+    swaps = [m for m in student.mutants("graded") if m.operator == "swap_items" and m.edits[0][3] is not None]
+    refused = {student.fix(m).changes[0][1] for m in swaps if student.fix(m) and student.reorders_api_results(m)}
+    kept = {student.fix(m).changes[0][1] for m in swaps if student.fix(m) and not student.reorders_api_results(m)}
+    assert any("k1, k2, p1, p2, k3" in text for text in refused), refused
+    assert "(x, y)" in refused, refused
+    assert "w, h = image.shape[:2]" in kept, kept
+
+
+def test_a_fix_downstream_of_another_in_the_same_def_is_dropped():
+    """Two fixes each mending every input: the one at a line reading what the other's earlier line
+    assigns (directly or through the lines between) undoes the first one's slip after the fact."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(width, d):
+            cols = np.arange(1, width + 1)
+            u = cols[None, :]
+            proj = np.floor(u - d + 0.5)
+            return proj
+    """)
+    fn = {f.name: f for f in ast.parse(source).body if isinstance(f, ast.FunctionDef)}
+    code = type("Code", (), {"functions": fn})()
+    upstream = repair.Fix(((5, "np.arange(1, width + 1)", "np.arange(width)"),), "graded", "zero_based", ())
+    downstream = repair.Fix(((7, "u - d + 0.5", "u - d - 0.5"),), "graded", "sign", ())
+    both = repair.Repair("graded", (upstream, downstream), 9)
+    assert repair._downstream_dropped(both, code).fixes == (upstream,)
+    apart = repair.Repair("graded", (downstream, repair.Fix(((8, "proj", "proj.T"),), "graded", "transpose", ())), 9)
+    assert len(repair._downstream_dropped(apart, code).fixes) == 1   # (line 8 reads proj, which line 7 assigns)

@@ -2458,10 +2458,13 @@ def blend_identity(t):
             t.fail(f"{what} changed {bad:.0%} of the pixels: the Laplacian levels are negative in "
                    f"places, and uint8 arithmetic clips them to 0 or wraps them around; {in_float}")
         # Code in float: the same large changes say only that collapsing does not undo building.
+        # (the recipe in the hint: a name the error model or a repair finds takes its place, where the
+        # code's collapse is right -- a band-by-band undo told to code that stays in uint8 sends it the wrong way)
         t.fail(measured(f"{what} changed {bad:.0%} of the pixels, some by more than 100 grey levels: blending an "
-                        "image with itself must give it back, so each band added back when the pyramid is collapsed "
-                        "must undo the one taken out when it was built (band = level - up(next level), then level = "
-                        "up(next level) + band, with the same enlargement)"))
+                        "image with itself must give it back"),
+               hint="each band added back when the pyramid is collapsed must undo the one taken out when it was "
+                    "built (band = level - up(next level), then level = up(next level) + band, with the same "
+                    "enlargement), and every level must hold negative values (float, not uint8)")
     read = code_of(t).reachable(functions_read(t))
     if (calls("cv2.pyrUp") & calls("cv2.resize")).found(read):
         t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels: {RESIZE_AND_PYRUP}",
@@ -2511,8 +2514,8 @@ def damaged_pyramid(t: Trial) -> str:
     if changed <= 0.005:
         return ""
     return (f" Blending an image with itself already changes {changed:.0%} of its pixels by more than 2 grey "
-            "levels (see the check 'blending an image with itself leaves it unchanged'): the pyramid does not "
-            "collapse back to the image, so look there first.")
+            "levels (see the check 'blending an image with itself leaves it unchanged'): whatever breaks that "
+            "breaks this blend too, so fix that one first.")
 
 
 def feathered(t: Trial) -> bool:

@@ -21,7 +21,7 @@ from ..engine import conventions
 from ..engine import strategies as st
 from ..engine import judges
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
-from ..engine.claims import THIRD_COORDINATE, checklist, divides_by, from_code, guard, look_at, measured
+from ..engine.claims import THIRD_COORDINATE, checklist, divides_by, evidenced, from_code, guard, look_at, measured
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
 from ..engine.hints import Hint, Predicate, _resolved, _scope, calls, code_of, expr, matmul_of, mentions, nan_behind
 from ..engine.hints import _path as _hints_path
@@ -30,6 +30,24 @@ from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canva
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
 from ..sandbox.beginner import integer_entries
+
+def _tangential_coefficient_swapped(function) -> bool:
+    """Whether x's line gives p1 the term p2 belongs to (`x_t = ... p1 * (r2 + 2 * x ** 2)`), or y's line
+    p2 p1's: the coefficients written in each other's place, where x and y swapped in the formulas put
+    y's square in x's line instead."""
+    wanted = {"x": [expr("p1 * (_ + _ * x ** 2)"), expr("p1 * (_ + _ * x * x)")],
+              "y": [expr("p2 * (_ + _ * y ** 2)"), expr("p2 * (_ + _ * y * y)")]}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+            axis = node.targets[0].id[:1]
+            if axis in wanted and any(pattern.test(node.value) for pattern in wanted[axis]):
+                return True
+    return False
+
+
+# p1 and p2 swapped gives the answer x and y swapped in the formulas gives (the model is symmetric): the
+# code tells them apart
+evidenced(truth.P1_P2_SWAPPED, Predicate("writes p1 where p2 belongs", _tangential_coefficient_swapped))
 
 lab = Lab("lab09", module="lab09_camera", title="Geometric camera models")
 

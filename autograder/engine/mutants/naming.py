@@ -1136,7 +1136,7 @@ def _confirmed_raised(trial, model, function, inputs, answers, candidates, clock
     # The rest of the code, where only the raising call was made: the same point as a batch, the
     # call without an optional argument (`if not dist:` raises on an array, not on None).
     corroborating = _batched(inputs[0], int(fingerprint(function, "batched", inputs[0][1])[:8], 16)) \
-        + _left_out(inputs[0], model.optional.get(function, ()))
+        + left_out(inputs[0], model.optional.get(function, ()))
     variants += corroborating
     every, indices, reference, outputs, candidates, usable = _on_variants(model, inputs, variants, candidates, clock)
     chosen = _separating(usable, reference, [outputs[c.key] for c in candidates])
@@ -1181,7 +1181,7 @@ def _batched(call, seed) -> list:
     return [made] if _changed_call(call, made) else []
 
 
-def _left_out(call, optional) -> list:
+def left_out(call, optional) -> list:
     """The call with each optional argument it gives (a parameter defaulting to None, given a value)
     given as None instead, one call per argument."""
     function, args, kwargs = call

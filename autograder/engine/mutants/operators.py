@@ -100,7 +100,8 @@ OPERATORS = {
     "astype_float": ("float", "uint8", "integer", "dtype"),   # d.astype(np.uint8) -> d.astype(np.float64)
     "divide_last": ("floor", "//", "order", "first"),    # c // w * 2 ** n -> c * 2 ** n // w
     "unused": ("parameter", "unused", "ignored", "instead of"),
-    "drop_colour": ("colour", "color", "rgb", "bgr", "conversion"),   # cv2.cvtColor(img, COLOR_BGR2RGB) -> img   # X[:, 2].mean() -> z0, z0 never read   # best = np.zeros(s) -> np.full(s, np.inf)   # K2.T @ K1 @ F -> K2.T @ F @ K1: two factors swapped   # grey2 = f(img1) if img2... -> f(img2): its twin line's   # np.arange(h)[:, None] -> np.arange(w)[None, :]   # a scale made once from the first item, used for each
+    "drop_colour": ("colour", "color", "rgb", "bgr", "conversion"),
+    "zero_based": ("1", "one", "start", "index", "off by one"),   # np.arange(1, w + 1) -> np.arange(w)   # cv2.cvtColor(img, COLOR_BGR2RGB) -> img   # X[:, 2].mean() -> z0, z0 never read   # best = np.zeros(s) -> np.full(s, np.inf)   # K2.T @ K1 @ F -> K2.T @ F @ K1: two factors swapped   # grey2 = f(img1) if img2... -> f(img2): its twin line's   # np.arange(h)[:, None] -> np.arange(w)[None, :]   # a scale made once from the first item, used for each
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),
     "drop_flag": ("flag", "cv2.", "remov", "|"),          # INTER_LINEAR | WARP_INVERSE_MAP -> INTER_LINEAR                 # m1 & m2 -> m1 | m2, a and b -> a or b
@@ -428,7 +429,20 @@ def _make_stack_order(node, payload):
 
 
 def _make_default(node, payload):
+    if payload == "is_not_none":   # if dist: -> if dist is not None: (an array's truth is ambiguous)
+        return ast.Compare(copy.deepcopy(node), [ast.IsNot()], [ast.Constant(None)])
+    if payload == "is_none":       # if not dist: -> if dist is None:
+        return ast.Compare(copy.deepcopy(node.operand), [ast.Is()], [ast.Constant(None)])
     return ast.UnaryOp(ast.Not(), copy.deepcopy(node.left))   # x is None -> not x
+
+
+def _none_defaults(fn) -> set:
+    """The parameters of ``fn`` whose default is None."""
+    args = fn.args
+    positional = args.posonlyargs + args.args
+    given = list(zip(positional[len(positional) - len(args.defaults):], args.defaults)) \
+        + [(a, d) for a, d in zip(args.kwonlyargs, args.kw_defaults) if d is not None]
+    return {a.arg for a, d in given if isinstance(d, ast.Constant) and d.value is None}
 
 
 def _make_single_point(node, payload):
@@ -884,7 +898,7 @@ _MAKE = {**{name: _make_written for name in ("true_division", "factor_two", "by_
                                               "drop_term")},
          "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "per_item": _make_canvas, "grid_axis": _make_canvas, "mirror": _make_twin_step, "chain_order": _make_chain_order, "initial": _make_canvas, "reshape_back": _make_canvas, "astype_float": _make_canvas, "divide_last": _make_canvas, "unused": _make_canvas, "drop_colour": _make_canvas, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "per_item": _make_canvas, "grid_axis": _make_canvas, "mirror": _make_twin_step, "chain_order": _make_chain_order, "initial": _make_canvas, "reshape_back": _make_canvas, "astype_float": _make_canvas, "divide_last": _make_canvas, "unused": _make_canvas, "drop_colour": _make_canvas, "zero_based": _make_canvas, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1529,6 +1543,12 @@ def _changes(node, parents, words: _Words, line):
         yield from _index_changes(node, what)
     if isinstance(node, ast.Call):
         yield from _stack_changes(node, what)
+    if words.student and isinstance(parent, (ast.IfExp, ast.If, ast.While)) and parent.test is node:
+        # a parameter whose default is None tested for truth (`... if dist else None`): an array given
+        # has no truth value (ValueError), a list of zeros is taken as not given
+        tested = node.operand if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not) else node
+        if isinstance(tested, ast.Name) and tested.id in _none_defaults(words.fn):
+            yield "default", "is_none" if tested is not node else "is_not_none", ""
     if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], ast.Is) \
             and isinstance(node.comparators[0], ast.Constant) and node.comparators[0].value is None \
             and isinstance(node.left, ast.Name) and node.left.id in words.api_params \
@@ -2775,6 +2795,13 @@ def _layout_and_type_changes(node):
         a, b, c = (ast.unparse(x) for x in (node.left.left, node.left.right, node.right))
         op = "*" if isinstance(node.op, ast.Mult) else "/"
         yield "divide_last", f"({a}) {op} ({c}) // ({b})", ""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.arange", "range", "numpy.arange") and len(node.args) == 2 \
+            and isinstance(node.args[0], ast.Constant) and node.args[0].value == 1 and isinstance(node.args[1], ast.BinOp) \
+            and isinstance(node.args[1].op, ast.Add) and isinstance(node.args[1].right, ast.Constant) \
+            and node.args[1].right.value == 1:
+        # positions counted from 1 (`np.arange(1, width + 1)`) where they are indices, from 0
+        counted = ast.Call(copy.deepcopy(node.func), [copy.deepcopy(node.args[1].left)], copy.deepcopy(node.keywords))
+        yield "zero_based", ast.unparse(counted), ""
     if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.cvtColor", "cv.cvtColor") and len(node.args) >= 2 \
             and _dotted(node.args[1]).rsplit(".", 1)[-1] in ("COLOR_BGR2RGB", "COLOR_RGB2BGR"):
         yield "drop_colour", ast.unparse(node.args[0]), ""

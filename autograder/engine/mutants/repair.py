@@ -278,15 +278,25 @@ class _Student:
         names = lambda text: re.findall(r"\w+", text.split("=", 1)[0])  # noqa: E731  (the targets, in order)
         for line, before, after in self.fix(mutant).changes:
             for node in ast.walk(self.tree):
+                if isinstance(node, ast.For) and node.lineno == line and isinstance(node.target, ast.Tuple):
+                    # (a loop's names exchanged -- `for x, y in pts` -> `for y, x in pts` -- named as the
+                    # reference names them, or in their axes' order: the names would lie)
+                    told = [t.id for t in node.target.elts if isinstance(t, ast.Name)]
+                    if mutant.edits[0][2] == "swap_items" and _names_as_written(told, self.reference_parts):
+                        return True
+                    continue
                 if not (isinstance(node, ast.Assign) and node.lineno == line and len(node.targets) == 1
                         and isinstance(node.targets[0], (ast.Tuple, ast.List))
                         and names(before) != names(after) and sorted(names(before)) == sorted(names(after))):
                     continue
                 if isinstance(node.value, ast.Call) and _call_name(node.value) in self.api:
                     return True
-                # (a value's parts named as the reference names them -- `cols, rows = pattern_size` --
-                # are right: naming them the other way mends a later swap by making the names lie)
+                # (a value's parts named as the reference names them -- `cols, rows = pattern_size`,
+                # `k1, k2, p1, p2, k3 = d` -- are right: naming them the other way mends a later swap by
+                # making the names lie)
                 if isinstance(node.value, ast.Name) and (node.value.id, tuple(names(before))) in self.reference_parts:
+                    return True
+                if _names_as_written(names(before), self.reference_parts, node.value):
                     return True
         return False
 
@@ -804,15 +814,48 @@ def _student_code(trial) -> _Student | None:
 @functools.lru_cache(maxsize=8)
 def _named_parts(source: str) -> frozenset:
     """``(name, (part, ...))`` of each name the reference unpacks into named parts (``cols, rows =
-    pattern_size``)."""
+    pattern_size``); ``("", (part, ...))`` for the names it unpacks anything else into, a loop's too
+    (``k1, k2, p1, p2, k3 = ...``, ``for x, y in pts``)."""
     try:
         tree = parse(source)
     except (SyntaxError, ValueError, RecursionError, MemoryError):
         return frozenset()
-    return frozenset((node.value.id, tuple(t.id for t in node.targets[0].elts)) for node in ast.walk(tree)
-                     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.value, ast.Name)
-                     and isinstance(node.targets[0], (ast.Tuple, ast.List))
-                     and all(isinstance(t, ast.Name) for t in node.targets[0].elts))
+    named = set()
+    for node in ast.walk(tree):
+        target, value = (node.targets[0], node.value) if isinstance(node, ast.Assign) and len(node.targets) == 1 \
+            else (node.target, None) if isinstance(node, ast.For) else (None, None)
+        if isinstance(target, (ast.Tuple, ast.List)) and all(isinstance(t, ast.Name) for t in target.elts):
+            parts = tuple(t.id for t in target.elts)
+            named.add((_value_key(value), parts))
+            if isinstance(value, ast.Name):
+                named.add((value.id, parts))
+    return frozenset(named)
+
+
+def _value_key(value) -> str:
+    """What kind of value is unpacked, for comparing namings: "shape" for an array's shape (whose order,
+    rows first, is the slip `w, h = image.shape[:2]` makes), "" for anything else."""
+    return "shape" if value is not None and any(isinstance(n, ast.Attribute) and n.attr == "shape"
+                                                for n in ast.walk(value)) else ""
+
+
+_AXIS_ORDER = (("x", "y"), ("u", "v"), ("x", "z"), ("y", "z"))
+
+
+def _names_as_written(names, reference_parts, value=None) -> bool:
+    """Whether names a value is unpacked into are right by their own words: as the reference writes
+    them for a value of the same kind (in that order), or two of them an axis pair in its order (`x,
+    y`, `x1, y1`, `u, v`). (An array's shape is another kind: `w, h = image.shape[:2]` is the slip,
+    wherever the reference writes `w, h = dsize`.)"""
+    if _value_key(value) == "shape":
+        return (_value_key(value), tuple(names)) in reference_parts
+    if len(names) >= 2 and ("", tuple(names)) in reference_parts:
+        return True
+    for a, b in itertools.combinations(names, 2):
+        if len(a) == len(b) and any(a.replace(first, "\0", 1) == b.replace(second, "\0", 1)
+                                    and a.count(first) == 1 for first, second in _AXIS_ORDER):
+            return True
+    return False
 
 
 _AROUND = 30   # characters kept on each side of a change shown in a long line
@@ -1253,9 +1296,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # (and an exchange of two items before a copy of one over the other, on the same line)
     # (a matrix divided by another of its own entries, `F / F[2, 2]` -> `F / F[1, 2]`, changes only its
     # scale: it mends by that entry's not being 0 on these inputs -- the division is the slip, not the entry)
+    # (and a change of a step before the step's removal: a statement taken out mends an input by never
+    # running -- `dist = np.asarray(dist) if dist else None` -- where the change of its test mends every input)
     shown = sorted(((m, f) for m, f in shown if f is not None and not student.renormalises(m)),
-                   key=lambda pair: (pair[0].key not in known, student.copies_an_item(pair[0]), pair[1].size,
-                                     pair[1].written))
+                   key=lambda pair: (pair[0].key not in known, student.copies_an_item(pair[0]),
+                                     pair[1].operator in REMOVALS, pair[1].size, pair[1].written))
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
@@ -1622,6 +1667,9 @@ class _Variants:
                       for call in _beyond(self.inputs[i], self.model.defaults.get(self.function, ()))]
             self.beyond = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(beyond)))
             variants += beyond
+            # (and each optional argument given left out, as None: a test of it changed -- `if dist` ->
+            # `if dist is not None` -- and the test dropped answer alike where it is given)
+            variants += naming.left_out(self.inputs[failing[0]], self.model.optional.get(self.function, ()))
             # (and a point given as NaN, the API's value for one that has none)
             holed = _holed(self.inputs[failing[0]])
             self.holed = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(holed)))
@@ -2068,12 +2116,44 @@ def _upstream(repair: Repair, trial) -> Repair:
         found = traced.first_departure(trial, function, args, kwargs)
     except Exception:  # noqa: BLE001 - the repair stands without it
         return repair
-    if found is None:
-        return repair
+    if found is None:   # (values too large to record: the code's own data flow says what comes first)
+        return _downstream_dropped(repair, code)
     where, line = found
     after = lambda fix: fix.where == where and min(change[0] for change in fix.changes) > line  # noqa: E731
     kept = tuple(fix for fix in repair.fixes if not after(fix))
     return replace(repair, fixes=kept) if kept and len(kept) < len(repair.fixes) else repair
+
+
+def _downstream_dropped(repair: Repair, code) -> Repair:
+    """``repair`` without the fixes at a line that reads, in the same def, what another fix's earlier line
+    assigns (directly or through the lines between): each mends every input, so the later one undoes
+    the earlier one's slip after the fact (`u - d + 0.5` -> `- 0.5` for columns counted from 1 by
+    `np.arange(1, width + 1)` above it)."""
+    def assigned(fn, line) -> set:
+        return {t.id for node in ast.walk(fn) if isinstance(node, (ast.Assign, ast.AugAssign)) and node.lineno == line
+                for target in (node.targets if isinstance(node, ast.Assign) else [node.target])
+                for t in ast.walk(target) if isinstance(t, ast.Name)}
+
+    def reaches(fn, line, later) -> bool:   # what `line` assigns flows into `later`
+        names = assigned(fn, line)
+        for node in sorted((n for n in ast.walk(fn) if isinstance(n, (ast.Assign, ast.AugAssign))
+                            and line < n.lineno <= later), key=lambda n: n.lineno):
+            if {n.id for n in ast.walk(node.value) if isinstance(n, ast.Name)} & names:
+                if node.lineno == later:
+                    return True
+                names |= assigned(fn, node.lineno)
+        return any(n.id in names for node in ast.walk(fn) if getattr(node, "lineno", None) == later
+                   for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load))
+
+    kept = []
+    for fix in repair.fixes:
+        fn = code.functions.get(fix.where)
+        line = fix.changes[0][0]
+        if fn is not None and any(other is not fix and other.where == fix.where and other.changes[0][0] < line
+                                  and reaches(fn, other.changes[0][0], line) for other in repair.fixes):
+            continue
+        kept.append(fix)
+    return replace(repair, fixes=tuple(kept)) if kept and len(kept) < len(repair.fixes) else repair
 
 
 def named_by_repair(verdict, trial):
@@ -2090,12 +2170,23 @@ def named_by_repair(verdict, trial):
     by_hand = not by_mutant and bool(verdict.mistake or "looks like" in str(verdict.message).lower())
     if by_hand and not _beside(verdict):
         return verdict
+    found_before = {function: {repr(m.edits) for m in mutants}
+                    for function, mutants in trial.sandbox.shared.get("repair found", {}).items()}
     repair = name_by_repair(trial, BESIDE_SECONDS, BESIDE_TRIES, said=str(verdict.message)) if by_hand \
         else name_by_repair(trial)
     if repair is None:
         return verdict
     repair = _upstream(repair, trial)
     first, newline, rest = str(verdict.message).partition("\n")
+    if by_hand and repair.complete and len(repair.fixes) == 1 \
+            and repr(repair.fixes[0].edits) in found_before.get(repair.function, set()):
+        # One mistake, one account: the change an earlier check of the function confirmed mends this one
+        # too, so the check's guess at a cause from what it measured ("the search stops at max_disparity
+        # - 1", with its hint) gives way to it.
+        lead = first.replace(f"it looks like {verdict.mistake}: ", "").replace(f"it looks like {verdict.mistake}", "")
+        lead = lead.rstrip()
+        lead += "" if not lead or lead[-1] in ".:;!?" else "."
+        return replace(verdict, message=f"{lead} {repair.sentence}.{newline}{rest}", mistake=repair.mistake, hint="")
     if by_hand:   # the check's name of the effect stays, with where it comes from in their code
         lead = first.rstrip()
         lead += "" if not lead or lead[-1] in ".:;!?" else "."
