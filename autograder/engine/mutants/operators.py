@@ -1610,7 +1610,7 @@ _CV_MISTAKEN = {"estimateAffinePartial2D": "estimateAffine2D", "estimateAffine2D
                 "pyrDown": "pyrUp", "pyrUp": "pyrDown", "add": "subtract", "subtract": "add"}
 _UNARY = {"sin", "cos", "tan", "arcsin", "arccos", "arctan", "abs", "absolute", "fabs", "sqrt", "square", "exp",
           "log", "round", "rint", "floor", "ceil", "deg2rad", "rad2deg", "radians", "degrees", "int"}
-_REDUCED = {"mean", "sum", "max", "min", "median"}
+_WHOLE_METHODS = {"mean", "sum", "max", "min", "median"}
 _WHOLE_REDUCTIONS = {"np.mean", "np.median", "np.sum", "np.max", "np.min", "np.amax", "np.amin"}
 _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin", "tan": "arctan", "arctan": "tan",
              "floor": "ceil", "ceil": "floor", "round": "floor", "mean": "median", "median": "mean", "sum": "mean",
@@ -1757,7 +1757,7 @@ def _student_changes(node, parent, parents):
         yield "unwrap", None, ""
         if _unary_call(node.args[0]):
             yield "unwrap", "chain", ""   # two functions applied that do not belong (an angle's tan of its radians)
-    if isinstance(node.func, ast.Attribute) and node.func.attr in _REDUCED and not node.args and not node.keywords:
+    if isinstance(node.func, ast.Attribute) and node.func.attr in _WHOLE_METHODS and not node.args and not node.keywords:
         yield "unwrap", "method", ""   # one value of the whole array where each item's own belongs (a mean depth)
     if short in _MISTAKEN and prefix in ("np.", "numpy.", "math."):
         yield "function", prefix + _MISTAKEN[short], ""
