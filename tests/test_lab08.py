@@ -161,7 +161,9 @@ def test_a_band_with_its_sign_flipped_in_float_is_not_told_uint8_arithmetic(tmp_
     [check] = [c for c in check_results(result, "lab08.ext3") if c.name == "blending an image with itself leaves it unchanged"]
     assert not check.passed
     said = check.message + check.hint
-    assert "uint8" not in said and "must undo the one taken out" in said, said
+    # (what must hold, or the change of the build or the collapse that mends it)
+    repaired = "Trying small changes" in said and "cv2.pyrUp" in said.split("Trying small changes")[-1]
+    assert "uint8" not in said and ("must undo the one taken out" in said or repaired), said
 
 
 def test_a_ransac_measuring_its_error_backwards_is_not_told_an_inverted_mask_or_an_ignored_threshold(tmp_path):

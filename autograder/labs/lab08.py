@@ -2464,7 +2464,7 @@ def blend_identity(t):
                         "image with itself must give it back"),
                hint="each band added back when the pyramid is collapsed must undo the one taken out when it was "
                     "built (band = level - up(next level), then level = up(next level) + band, with the same "
-                    "enlargement), and every level must hold negative values (float, not uint8)")
+                    "enlargement)")
     read = code_of(t).reachable(functions_read(t))
     if (calls("cv2.pyrUp") & calls("cv2.resize")).found(read):
         t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels: {RESIZE_AND_PYRUP}",
