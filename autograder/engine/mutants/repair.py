@@ -44,7 +44,7 @@ from ..checks import Trial, Verdict, fingerprint
 from ..inherited import SHARED_FAILING
 from . import naming
 from .helper import HelperFailed
-from .operators import _MAKE, _MOVES, OPERATORS, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
+from .operators import _MAKE, _MOVES, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
@@ -2178,21 +2178,16 @@ def named_by_repair(verdict, trial):
         return verdict
     repair = _upstream(repair, trial)
     first, newline, rest = str(verdict.message).partition("\n")
-    if by_hand and repair.complete and len(repair.fixes) == 1 \
-            and repr(repair.fixes[0].edits) in found_before.get(repair.function, set()) \
-            and not any(word in verdict.mistake.lower() for word in OPERATORS.get(repair.fixes[0].operator, ())):
-        # One mistake, one account: the change an earlier check of the function confirmed mends this one
-        # too, so the check's guess at a cause from what it measured ("the search stops at max_disparity
-        # - 1", with its hint) gives way to it -- unless the guess says the change's own kind ("src and
-        # dst are swapped" beside two arguments exchanged).
-        lead = first.replace(f"it looks like {verdict.mistake}: ", "").replace(f"it looks like {verdict.mistake}", "")
-        lead = lead.rstrip()
-        lead += "" if not lead or lead[-1] in ".:;!?" else "."
-        return replace(verdict, message=f"{lead} {repair.sentence}.{newline}{rest}", mistake=repair.mistake, hint="")
     if by_hand:   # the check's name of the effect stays, with where it comes from in their code
         lead = first.rstrip()
         lead += "" if not lead or lead[-1] in ".:;!?" else "."
-        return replace(verdict, message=f"{lead} {repair.sentence}.{newline}{rest}")
+        # (its fixed hint gives way to a change an earlier check of the function confirmed and that mends
+        # this one too: a recipe beside the change sends the student to look elsewhere -- "check that the
+        # block shifted by max_disparity is compared too" beside two arguments exchanged)
+        known = repair.complete and len(repair.fixes) == 1 \
+            and repr(repair.fixes[0].edits) in found_before.get(repair.function, set())
+        return replace(verdict, message=f"{lead} {repair.sentence}.{newline}{rest}",
+                       hint="" if known else verdict.hint)
     if by_mutant:
         first = first.split(" " + naming.APPENDED, 1)[0]
     lead = first.rstrip()
