@@ -2224,6 +2224,8 @@ def test_names_unpacked_as_written_are_never_exchanged_by_a_repair():
     shape = ast.parse("image.shape[:2]", mode="eval").body
     assert not repair._names_as_written(["w", "h"], parts, shape)
     assert repair._names_as_written(["w", "h"], parts, ast.parse("dsize", mode="eval").body)
+    rows_first = ast.parse("np.argwhere(mask)", mode="eval").body   # (rows first: `for x, y` is the slip)
+    assert not repair._names_as_written(["x", "y"], parts, rows_first)
     source = textwrap.dedent("""
         import numpy as np
 

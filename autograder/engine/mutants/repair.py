@@ -282,7 +282,7 @@ class _Student:
                     # (a loop's names exchanged -- `for x, y in pts` -> `for y, x in pts` -- named as the
                     # reference names them, or in their axes' order: the names would lie)
                     told = [t.id for t in node.target.elts if isinstance(t, ast.Name)]
-                    if mutant.edits[0][2] == "swap_items" and _names_as_written(told, self.reference_parts):
+                    if mutant.edits[0][2] == "swap_items" and _names_as_written(told, self.reference_parts, node.iter):
                         return True
                     continue
                 if not (isinstance(node, ast.Assign) and node.lineno == line and len(node.targets) == 1
@@ -832,11 +832,16 @@ def _named_parts(source: str) -> frozenset:
     return frozenset(named)
 
 
+_ROWS_FIRST = {"nonzero", "argwhere", "where", "indices", "mgrid", "unravel_index"}
+
+
 def _value_key(value) -> str:
-    """What kind of value is unpacked, for comparing namings: "shape" for an array's shape (whose order,
-    rows first, is the slip `w, h = image.shape[:2]` makes), "" for anything else."""
-    return "shape" if value is not None and any(isinstance(n, ast.Attribute) and n.attr == "shape"
-                                                for n in ast.walk(value)) else ""
+    """What kind of value is unpacked, for comparing namings: "shape" for an array's shape or indices
+    (rows first: the slip `w, h = image.shape[:2]`, `for x, y in np.argwhere(mask)` makes), "" for
+    anything else."""
+    rows_first = lambda n: (isinstance(n, ast.Attribute) and n.attr == "shape") or (  # noqa: E731
+        isinstance(n, ast.Call) and _call_name(n).rsplit(".", 1)[-1] in _ROWS_FIRST)
+    return "shape" if value is not None and any(rows_first(n) for n in ast.walk(value)) else ""
 
 
 _AXIS_ORDER = (("x", "y"), ("u", "v"), ("x", "z"), ("y", "z"))
