@@ -1052,6 +1052,7 @@ def _search(trial, model, student: _Student, clock, tries=None, said: str = "") 
     return None
 
 
+_DRAWN = {"seed", "rng", "random_state"}   # parameters that fix a random draw (the API's `seed=None`)
 SEEN = 8                 # a function's calls kept from a grading's checks for confirming later repairs
 SEEN_CONFIRMATIONS = 3   # of which a repair is confirmed on at most this many
 
@@ -1674,7 +1675,9 @@ class _Variants:
             variants += beyond
             # (and each optional argument given left out, as None: a test of it changed -- `if dist` ->
             # `if dist is not None` -- and the test dropped answer alike where it is given)
-            variants += naming.left_out(self.inputs[failing[0]], self.model.optional.get(self.function, ()))
+            # (never the seed: left out, the answers are drawn anew and the reference's are no truth for them)
+            optional = [o for o in self.model.optional.get(self.function, ()) if o[0] not in _DRAWN]
+            variants += naming.left_out(self.inputs[failing[0]], optional)
             # (and a point given as NaN, the API's value for one that has none)
             holed = _holed(self.inputs[failing[0]])
             self.holed = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(holed)))
