@@ -367,6 +367,24 @@ class Trial:
 
         return outputs.told(code_of(self), function, index, count)
 
+    def _fail_complex(self, what: str, value: np.ndarray, wanted: str) -> None:
+        """A complex array where real numbers are asked: whether its imaginary parts are 0 (the
+        values may be real ones in a complex type), and the calls of the student's code that make
+        complex arrays (``np.linalg.eig`` of a matrix that is not symmetric)."""
+        hints = _hints()
+        with np.errstate(all="ignore"):
+            real = bool(np.all(np.abs(value.imag) <= 1e-12 * max(1.0, float(np.max(np.abs(value.real), initial=0)))))
+        said = f"{what} returned dtype {value.dtype} (complex numbers); expected {wanted}"
+        if real:
+            said += ": its imaginary parts are all 0"
+        makers = hints.complex_makers(hints.code_of(self), hints.functions_read(self))
+        if not makers:
+            self.fail(said)
+        self.fail(f"{said}. Your code calls {' and '.join(makers)}, which {'return' if len(makers) > 1 else 'returns'} "
+                  "a complex array as soon as one eigenvalue (or root) is complex, a Fourier transform always: "
+                  "keep the real part (`.real`) of what you return",
+                  mistake="complex values returned: the real part is not kept")
+
     def _why_swapped(self, got, expected) -> str:
         """For an image returned (W, H) where (H, W) is asked, the OpenCV call the student's code
         gives a size rows first (": your code passes `image.shape[:2]` ... to cv2.resize ...")."""
@@ -433,6 +451,8 @@ class Trial:
             hint = ""
             if "f" in kind and value.dtype.kind in "iub":  # a beginner's integer (or uint8) array
                 hint = uint8_wraps(value) or _hints().FLOAT_HINT.said(self)
+            if "f" in kind and value.dtype.kind == "c":
+                self._fail_complex(what, value, wanted)
             self.fail(f"{what} returned dtype {value.dtype}; expected {wanted}", hint=hint)
         if finite and value.dtype.kind in "fc" and not np.all(np.isfinite(value)):
             self.fail(f"{what} returned NaN or infinite values")

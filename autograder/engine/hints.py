@@ -964,6 +964,22 @@ def size_given_as_shape(code: Code, functions: Iterable[str]) -> str:
     return ""
 
 
+# NumPy calls whose answers are complex arrays for real input (eigen-decompositions of a matrix that
+# is not symmetric, Fourier transforms, polynomial roots).
+COMPLEX_MAKERS = ("eig", "eigvals", "fft", "fft2", "fftn", "ifft", "ifft2", "ifftn", "roots")
+
+
+def complex_makers(code: Code, functions: Iterable[str]) -> list[str]:
+    """The calls in the student's ``functions`` (and their helpers) that make complex arrays from real
+    ones, as ``np.linalg.eig`` (line N); [] when none is written."""
+    found = []
+    for function in code.reachable(functions):
+        for node in ast.walk(function):
+            if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in COMPLEX_MAKERS:
+                found.append((node.lineno, f"`{_path(node.func)}` (line {node.lineno})"))
+    return [text for _, text in sorted(set(found))]
+
+
 def functions_read(t) -> tuple[str, ...]:
     """The student functions whose code a check ``t``'s hints read: those the check calls."""
     from .stubs import functions_called

@@ -744,6 +744,31 @@ def essential_8point_probe(t: Trial, exact: bool) -> Probe:
                             tolerance=1e-4 if exact else 1e-3)
 
 
+def estimated_fundamental(seed: int):
+    """The views of a noisy problem and F fitted to its matches (OpenCV's 8-point): rank 2, but no
+    F of two cameras exactly, so K2^T F K1 has two unequal singular values (as every estimated F)."""
+    views, pts1, pts2 = truth.noisy_fundamental_problem(seed)
+    return views, cv2.findFundamentalMat(pts1, pts2, cv2.FM_8POINT)[0]
+
+
+def essential_of_estimated_mistakes(F, K1, K2) -> dict:
+    """:func:`truth.essential_mistakes` and the one only an estimated F shows: the answer made an
+    essential matrix (two equal singular values), which K2^T F K1 of a true F already is."""
+    U, _, Vt = np.linalg.svd(K2.T @ F @ K1)
+    return {**truth.essential_mistakes(F, K1, K2),
+            "K2^T F K1 is made an essential matrix afterwards (its singular values set equal, (1, 1, 0)); "
+            "essential_from_fundamental returns K2^T F K1 as it is (enforcing the constraint is "
+            "essential_8point's last step)": U @ np.diag([1.0, 1.0, 0.0]) @ Vt}
+
+
+def essential_of_estimated_probe(t: Trial) -> Probe:
+    """essential_from_fundamental of another estimated F."""
+    views, F = estimated_fundamental(seed=12)
+    K1, K2 = views.cam1.K, views.cam2.K
+    return projective_probe(t, "essential_from_fundamental", (F, K1, K2), K2.T @ F @ K1,
+                            essential_of_estimated_mistakes(F, K1, K2))
+
+
 @ex3.check("essential_from_fundamental on a worked example (K1 != K2)", points=2)
 def essential_from_F_example(t):
     views = truth.two_views(seed=7)
@@ -771,6 +796,13 @@ def essential_from_F_property(t):
     got = t.call("essential_from_fundamental", sideways.F, K, K)
     fail_if_divided_by_e22(t, what, got)
     judge_projective(t, what, got, sideways.E, truth.essential_mistakes(sideways.F, K, K))
+    # (and an F estimated from noisy matches: E = K2^T F K1 holds for every F, not only a true one)
+    views, F = estimated_fundamental(seed=5)
+    K1, K2 = views.cam1.K, views.cam2.K
+    judge_projective(t, "essential_from_fundamental(F, K1, K2) of an F fitted to noisy matches "
+                        "(cv2.findFundamentalMat, FM_8POINT)",
+                     t.call("essential_from_fundamental", F, K1, K2), K2.T @ F @ K1,
+                     essential_of_estimated_mistakes(F, K1, K2), probe=essential_of_estimated_probe(t))
 
 
 ESSENTIAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for each problem

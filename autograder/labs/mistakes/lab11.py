@@ -280,6 +280,11 @@ MISTAKES = {
         def essential_from_fundamental(F, K1, K2):
             return K1.T @ np.asarray(F, float) @ K1
         """, ["k1 is used for both images"]),
+    "essential from F projected to (1, 1, 0) afterwards": ("lab11.ex3", """
+        def essential_from_fundamental(F, K1, K2):
+            U, _, Vt = np.linalg.svd(np.linalg.multi_dot([K2.T, F, K1]))
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+        """, ["made an essential matrix afterwards", "fitted to noisy matches"]),
     "essential 8-point without (s, s, 0)": ("lab11.ex3", """
         def essential_8point(pts1, pts2, K1, K2):
             x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
@@ -394,6 +399,12 @@ MISTAKES = {
             return T2.T @ U @ np.diag([0.0, s[1], s[2]]) @ Vt @ T1
         """, ["the largest singular value was set to 0"]),
     # ---------------------------------------------------------------- ex5
+    "epipoles from np.linalg.eig without the real part": ("lab11.ex5", """
+        def epipoles(F):
+            values1, vectors1 = np.linalg.eig(F)
+            values2, vectors2 = np.linalg.eig(F.T)
+            return vectors1[:, np.argmin(np.abs(values1))], vectors2[:, np.argmin(np.abs(values2))]
+        """, ["complex", "np.linalg.eig", "`.real`"]),
     "epipoles swapped": ("lab11.ex5", """
         _ep = epipoles
         def epipoles(F):
