@@ -1554,6 +1554,46 @@ def test_statements_in_the_wrong_place_are_changes_tried_and_told_in_words():
     assert "best_count = count\n            best = inliers" in written.replace("    ", " " * 4), written
 
 
+def test_a_value_read_before_or_after_the_update_it_belongs_beside_is_a_move_tried():
+    """`scale = K[2, 2]` read before the sign fix `K = K @ signs` (moved after it); `norm` read after the
+    centring it was to come before (moved before it); never moved past a statement using what it makes."""
+    source = textwrap.dedent("""
+        def graded(K, v, w):
+            scale = K[2, 2]
+            signs = np.diag(np.sign(np.diag(K)))
+            K = K @ signs
+            v = v - v.mean()
+            norm = np.linalg.norm(v)
+            size = w.sum()
+            half = size / 2
+            w = w * 2
+            return K / scale, v / norm, half
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    said = [student.fix(m).told("graded") for m in student.mutants("graded") if m.operator == "move"]
+    assert "moving `scale = K[2, 2]` (line 3) after line 5" in said, said
+    assert "moving `norm = np.linalg.norm(v)` (line 7) before line 6" in said, said
+    assert not any("`size = w.sum()`" in sentence for sentence in said), said   # (half reads it)
+
+
+def test_a_colour_conversion_made_whatever_the_image_is_is_guarded_by_its_channels():
+    """`cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY)` raises on a grey frame the API allows: the change
+    converts only a frame with 3 channels (and GRAY2BGR only a grey one); another conversion is left."""
+    source = textwrap.dedent("""
+        def graded(frame, mask, image):
+            grey = cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY)
+            shown = cv2.cvtColor(mask, cv2.COLOR_GRAY2BGR)
+            hsv = cv2.cvtColor(image, cv2.COLOR_BGR2HSV)
+            return grey, shown, hsv
+    """)
+    changes = _shown_changes(source, "convert_if")
+    assert changes == [
+        ("cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY)",
+         "cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY) if frame.ndim == 3 else frame"),
+        ("cv2.cvtColor(mask, cv2.COLOR_GRAY2BGR)", "cv2.cvtColor(mask, cv2.COLOR_GRAY2BGR) if mask.ndim == 2 else mask"),
+    ], changes
+
+
 def test_a_truncation_a_wrapping_conversion_and_a_constant_one_off_are_changes_tried():
     source = textwrap.dedent("""
         def graded(x, image, n):

@@ -91,17 +91,18 @@ OPERATORS = {
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs
-    "per_item": ("first", "each", "every", "once", "loop"),
-    "grid_axis": ("row", "column", "axis", "width", "height"),
-    "mirror": ("copied", "copy", "instead of", "other image"),
-    "chain_order": ("order", "product", "exchang", "swap"),
-    "initial": ("initial", "start", "inf", "infinity", "zero"),
+    "per_item": ("first", "each", "every", "once", "loop"),   # a scale made once from the first item, used for each
+    "grid_axis": ("row", "column", "axis", "width", "height"),   # np.arange(h)[:, None] -> np.arange(w)[None, :]
+    "mirror": ("copied", "copy", "instead of", "other image"),   # grey2 = f(img1) -> f(img2): its twin line's
+    "chain_order": ("order", "product", "exchang", "swap"),   # K2.T @ K1 @ F -> K2.T @ F @ K1
+    "initial": ("initial", "start", "inf", "infinity", "zero"),   # best = np.zeros(s) -> np.full(s, np.inf)
     "reshape_back": ("reshape", "transpos", "order"),   # x.reshape(2, -1).T -> x.reshape(-1, 2)
     "astype_float": ("float", "uint8", "integer", "dtype"),   # d.astype(np.uint8) -> d.astype(np.float64)
     "divide_last": ("floor", "//", "order", "first"),    # c // w * 2 ** n -> c * 2 ** n // w
-    "unused": ("parameter", "unused", "ignored", "instead of"),
-    "drop_colour": ("colour", "color", "rgb", "bgr", "conversion"),
-    "zero_based": ("1", "one", "start", "index", "off by one"),   # np.arange(1, w + 1) -> np.arange(w)   # cv2.cvtColor(img, COLOR_BGR2RGB) -> img   # X[:, 2].mean() -> z0, z0 never read   # best = np.zeros(s) -> np.full(s, np.inf)   # K2.T @ K1 @ F -> K2.T @ F @ K1: two factors swapped   # grey2 = f(img1) if img2... -> f(img2): its twin line's   # np.arange(h)[:, None] -> np.arange(w)[None, :]   # a scale made once from the first item, used for each
+    "unused": ("parameter", "unused", "ignored", "instead of"),   # X[:, 2].mean() -> z0, z0 never read
+    "drop_colour": ("colour", "color", "rgb", "bgr", "conversion"),   # cv2.cvtColor(img, COLOR_BGR2RGB) -> img
+    "zero_based": ("1", "one", "start", "index", "off by one"),   # np.arange(1, w + 1) -> np.arange(w)
+    "convert_if": ("grey", "gray", "channel", "already", "ndim"),   # cvtColor(f, BGR2GRAY) -> ... if f.ndim == 3 else f
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),
     "drop_flag": ("flag", "cv2.", "remov", "|"),          # INTER_LINEAR | WARP_INVERSE_MAP -> INTER_LINEAR                 # m1 & m2 -> m1 | m2, a and b -> a or b
@@ -340,6 +341,8 @@ def _call(dotted: str, *args) -> ast.Call:
 
 # How each operator changes its node (payload from the generator).
 def _make_sign(node, payload):
+    if payload == "all":   # [-u, -v] -> [u, v]: one sign slip written into every item
+        return type(node)([copy.deepcopy(item.operand) for item in node.elts], node.ctx)
     if payload == "remove":
         return copy.deepcopy(node.operand)
     return ast.UnaryOp(ast.USub(), copy.deepcopy(node))
@@ -893,7 +896,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial", "reshape_back", "astype_float",
-                                              "divide_last", "unused", "drop_colour", "zero_based",
+                                              "divide_last", "unused", "drop_colour", "zero_based", "convert_if",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
@@ -1319,6 +1322,25 @@ def _read(node) -> set:
     return {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
 
 
+def _reader_moves(statements, k):
+    """A value read from a name before the update of that name it was to see, or after the one it
+    was to come before: `scale = K[2, 2]` above the sign fix `K = K @ signs` moved after it (and
+    back), when no statement it is moved past reads or sets what it makes."""
+    statement = statements[k]
+    made, reads = _assigned(statement), _read(statement)
+
+    def passable(passed) -> bool:
+        return not any((_read(s) | _assigned(s)) & made for s in passed)
+    later = statements[k + 1:k + 1 + _MOVE_REACH]
+    update = next((s for s in later if isinstance(s, _SIMPLE) and _assigned(s) & reads), None)
+    if update is not None and not isinstance(update, _LEAVES) and passable(later[:later.index(update) + 1]):
+        yield "move", update, statement, "after"
+    earlier = statements[max(0, k - _MOVE_REACH):k]
+    update = next((s for s in reversed(earlier) if isinstance(s, _SIMPLE) and _assigned(s) & _read(s) & reads), None)
+    if update is not None and passable(earlier[earlier.index(update):]):
+        yield "move", update, statement, "before"
+
+
 def _statement_moves(fn):
     """(operator, edited, moved, side): statements a student puts in the wrong place. An update of a
     name (`K = K / K[2, 2]`, `x += d`) made before a statement reading the old value, or after one that
@@ -1347,6 +1369,8 @@ def _statement_moves(fn):
                     reader = next((s for s in reversed(earlier) if isinstance(s, _SIMPLE) and _read(s) & updated), None)
                     if reader is not None and not any(_assigned(s) & updated for s in earlier[earlier.index(reader):]):
                         yield "move", reader, statement, "before"
+                elif isinstance(statement, ast.Assign):
+                    yield from _reader_moves(statements, k)
                 if isinstance(statement, (ast.For, ast.While, ast.If)) and k + 1 < len(statements) \
                         and not isinstance(statement.body[-1], _LEAVES):   # (moved after a `continue`: never run)
                     following = statements[k + 1]
@@ -1634,6 +1658,9 @@ def _student_changes(node, parent, parents):
         yield "chain_order", "last", ""    # `A @ B @ C` -> `A @ C @ B` (K2.T @ K1 @ F for K2.T @ F @ K1)
     yield from _grid_axis_changes(node)
     yield from _layout_and_type_changes(node)
+    if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) >= 2 and isinstance(node.ctx, ast.Load) \
+            and all(isinstance(item, ast.UnaryOp) and isinstance(item.op, ast.USub) for item in node.elts):
+        yield "sign", "all", ""   # `rhs.extend([-u, -v])`: every item's minus, one slip
     if isinstance(parent, ast.Call) and node in parent.args and len(parent.args) == 1 \
             and _dotted(parent.func).rsplit(".", 1)[-1] in ("sin", "cos", "tan") \
             and not (isinstance(node, ast.Call) and _dotted(node.func) in _ANGLE_CONVERSIONS) \
@@ -2804,9 +2831,15 @@ def _layout_and_type_changes(node):
         # positions counted from 1 (`np.arange(1, width + 1)`) where they are indices, from 0
         counted = ast.Call(copy.deepcopy(node.func), [copy.deepcopy(node.args[1].left)], copy.deepcopy(node.keywords))
         yield "zero_based", ast.unparse(counted), ""
-    if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.cvtColor", "cv.cvtColor") and len(node.args) >= 2 \
-            and _dotted(node.args[1]).rsplit(".", 1)[-1] in ("COLOR_BGR2RGB", "COLOR_RGB2BGR"):
-        yield "drop_colour", ast.unparse(node.args[0]), ""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.cvtColor", "cv.cvtColor") and len(node.args) >= 2:
+        flag = _dotted(node.args[1]).rsplit(".", 1)[-1]
+        image = ast.unparse(node.args[0])
+        if flag in ("COLOR_BGR2RGB", "COLOR_RGB2BGR"):
+            yield "drop_colour", image, ""
+        # a conversion made whatever the image is: a grey image the API allows given to BGR2GRAY raises
+        for kind, channels in (("2GRAY", 3), ("GRAY2", 2)):
+            if kind in flag and isinstance(node.args[0], (ast.Name, ast.Subscript, ast.Attribute)):
+                yield "convert_if", f"({ast.unparse(node)} if {image}.ndim == {channels} else {image})", ""
 
 
 def _parent_of(node, words):
