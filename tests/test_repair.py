@@ -1594,6 +1594,24 @@ def test_a_colour_conversion_made_whatever_the_image_is_is_guarded_by_its_channe
     ], changes
 
 
+def test_an_argument_given_to_an_own_helper_where_its_default_belongs_is_left_out():
+    """`_warp(image, M, (w + tx, h + ty))` where the helper's default size (the input's) was due: the last
+    positional argument a default covers and a defaulted keyword are left out; never a required one."""
+    source = textwrap.dedent("""
+        def _warp(image, M, dsize=None, *, border=0):
+            return image
+
+        def graded(image, M, w, h):
+            shifted = _warp(image, M, (w + 5, h + 5))
+            framed = _warp(image, M, border=1)
+            return shifted, framed, _warp(image, M)
+    """)
+    changes = _shown_changes(source, "drop_argument")
+    assert ("_warp(image, M, (w + 5, h + 5))", "_warp(image, M)") in changes, changes
+    assert ("_warp(image, M, border=1)", "_warp(image, M)") in changes, changes
+    assert len(changes) == 2, changes   # (the call giving only the required arguments keeps them)
+
+
 def test_a_truncation_a_wrapping_conversion_and_a_constant_one_off_are_changes_tried():
     source = textwrap.dedent("""
         def graded(x, image, n):

@@ -118,7 +118,7 @@ def relative_point_error(got, expected) -> float:
     return float(np.nan_to_num(err, nan=np.inf).max()) if len(err) else 0.0
 
 
-def judge_points(t: Trial, what: str, got, H, pts):
+def judge_points(t: Trial, what: str, got, H, pts, mistakes=None, probe: Probe | None = None):
     n = len(pts)
     if isinstance(got, np.ndarray) and got.shape == (n, 3):
         t.fail(f"{what} returned homogeneous points of shape {got.shape}; expected ({n}, 2): the third "
@@ -129,8 +129,8 @@ def judge_points(t: Trial, what: str, got, H, pts):
     expected = truth.apply_h(H, pts)
     if relative_point_error(got, expected) <= 1e-5:   # float32 arithmetic is accepted
         return
-    mistake = name_mistake(t, got, truth.point_mistakes(H, pts), relative_point_error, 1e-3,
-                           truth=expected, probe=transform_points_probe(t))
+    mistake = name_mistake(t, got, mistakes if mistakes is not None else truth.point_mistakes(H, pts),
+                           relative_point_error, 1e-3, truth=expected, probe=probe or transform_points_probe(t))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     where = where_points_differ(got, expected, 1e-3 * np.maximum(1.0, np.abs(expected)))
@@ -170,7 +170,7 @@ def transform_points_example(t):
     judge_points(t, "transform_points(H, pts of shape (1, 2))", got, SHEET_H, one)
 
 
-@ex1.check("transform_points: strong perspective, points far away", points=3)
+@ex1.check("transform_points: strong perspective, points far away, and an affine H at another scale", points=3)
 def transform_points_property(t):
     def holds(seed):
         rng = np.random.default_rng(seed)
@@ -184,9 +184,38 @@ def transform_points_property(t):
     t.for_all(st.integers(0, 2**32 - 1), holds, max_examples=8,
               describe=lambda s: measured(f"{ANY_SCALE[s % len(ANY_SCALE)]} * fixtures.lab08.strong_perspective("
                                           f"np.random.default_rng({s})) and 20 points in [-5000, 5000]^2"))
+    H, pts = scaled_affine(-2.5, 8081)   # (an affine H is a homography too, at any scale)
+    judge_points(t, "transform_points(-2.5 * an affine H, pts)", t.call("transform_points", H, pts), H, pts,
+                 mistakes=affine_mistakes(H, pts), probe=affine_probe(t))
 
 
 ANY_SCALE = (1.0, 0.01, -2.5, 40.0)   # the factors a homography is given in the property above
+AFFINE_UNDIVIDED = ("an affine H (last row (0, 0, s)) is applied without the division by w = s: H is known only "
+                    "up to scale, so x and y are divided by w for an affine H too")
+
+
+def scaled_affine(scale: float, seed: int):
+    """``scale`` times an affine H (last row (0, 0, 1)), and 10 points: the shortcut for an affine H
+    that skips the division by w is right only at scale 1."""
+    rng = np.random.default_rng(seed)
+    A = np.eye(3)
+    A[:2, :2] += rng.uniform(-0.3, 0.3, (2, 2))
+    A[:2, 2] = rng.uniform(-60, 60, 2)
+    return scale * A, rng.uniform(-300, 300, (10, 2))
+
+
+def affine_mistakes(H, pts) -> dict:
+    """The point mistakes for an affine H, the missing division told as the affine shortcut's (the
+    checks before it, of perspective H, judge a division missing everywhere)."""
+    named = truth.point_mistakes(H, pts)
+    named[AFFINE_UNDIVIDED] = named.pop(truth.DIVISION_MISSING)
+    return named
+
+
+def affine_probe(t: Trial) -> Probe:
+    H, pts = scaled_affine(4.0, 8082)
+    return call_probe(t, "transform_points", (H, pts), candidates=lambda: affine_mistakes(H, pts),
+                      truth=truth.apply_h(H, pts), shape=(len(pts), 2))
 
 
 @ex1.check("apply_homography(image, H) keeps the input size", points=3)

@@ -102,6 +102,7 @@ OPERATORS = {
     "unused": ("parameter", "unused", "ignored", "instead of"),   # X[:, 2].mean() -> z0, z0 never read
     "drop_colour": ("colour", "color", "rgb", "bgr", "conversion"),   # cv2.cvtColor(img, COLOR_BGR2RGB) -> img
     "zero_based": ("1", "one", "start", "index", "off by one"),   # np.arange(1, w + 1) -> np.arange(w)
+    "drop_argument": ("argument", "default", "given", "remov"),   # _warp(img, M, size) -> _warp(img, M)
     "convert_if": ("grey", "gray", "channel", "already", "ndim"),   # cvtColor(f, BGR2GRAY) -> ... if f.ndim == 3 else f
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),
@@ -804,6 +805,14 @@ def _make_drop_keyword(node, payload):
     return new
 
 
+def _make_drop_argument(node, payload):
+    new = copy.deepcopy(node)   # _warp(image, M, size) -> _warp(image, M): the helper's default used
+    if isinstance(payload, int):
+        del new.args[payload]
+    new.keywords = [k for k in new.keywords if k.arg != payload]
+    return new
+
+
 def _make_drop_flag(node, payload):
     return copy.deepcopy(node.right if payload == "left" else node.left)   # a | b -> b (or a)
 
@@ -901,7 +910,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term")},
-         "drop_keyword": _make_drop_keyword, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
+         "drop_keyword": _make_drop_keyword, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
@@ -1605,6 +1614,7 @@ def _changes(node, parents, words: _Words, line):
         yield from _student_changes(node, parent, parents)
         yield from _sibling_changes(node, words)
         yield from _helper_changes(node, words)
+        yield from _defaulted_argument_changes(node, words)
         yield from _logic_changes(node, parent, parents)
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.RShift)):
         wrong, right = ("<<", ">>") if isinstance(node.op, ast.RShift) else (">>", "<<")
@@ -1951,6 +1961,25 @@ def _helper_changes(node, words):
         if len(positional) - len(fn.args.defaults) <= len(node.args) <= len(positional) and offered < 3:
             offered += 1
             yield "function", name, ""
+
+
+def _defaulted_argument_changes(node, words):
+    """An argument given to one of the student's own functions where its default belongs
+    (`_warp(image, M, (w + tx, h + ty))`: the helper's own size, the input's, was due): the last
+    positional argument a default covers, and each keyword one, left out."""
+    if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in words.module_defs
+            and not any(isinstance(a, ast.Starred) for a in node.args)):
+        return
+    fn = words.module_defs[node.func.id]
+    positional = fn.args.posonlyargs + fn.args.args
+    required = len(positional) - len(fn.args.defaults)
+    if required < len(node.args) <= len(positional):
+        yield "drop_argument", len(node.args) - 1, ""
+    defaulted = {a.arg for a in positional[required:]} | {a.arg for a, d in zip(fn.args.kwonlyargs, fn.args.kw_defaults)
+                                                          if d is not None}
+    for keyword in node.keywords:
+        if keyword.arg in defaulted:
+            yield "drop_argument", keyword.arg, ""
 
 
 @functools.lru_cache(maxsize=4096)

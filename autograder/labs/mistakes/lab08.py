@@ -17,6 +17,14 @@ MISTAKES = {
             pts = np.asarray(pts, float)
             return (np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(H).T)[:, :2]
         """, ["perspective division is missing"]),
+    "an affine H applied without the division by w": ("lab08.ex1", """
+        _transform = transform_points
+        def transform_points(H, pts):
+            H = np.asarray(H, float)
+            if H[2, 0] == 0 and H[2, 1] == 0:   # affine: w is constant
+                return np.asarray(pts, float) @ H[:2, :2].T + H[:2, 2]
+            return _transform(H, pts)
+        """, ["an affine h", "divided by w for an affine h too"]),
     "only x divided by w (a typo in the y column)": ("lab08.ex1", """
         def transform_points(H, pts):
             pts = np.asarray(pts, float)
