@@ -1612,6 +1612,25 @@ def test_an_argument_given_to_an_own_helper_where_its_default_belongs_is_left_ou
     assert len(changes) == 2, changes   # (the call giving only the required arguments keeps them)
 
 
+def test_a_right_hand_side_moved_without_its_minus_is_negated_and_a_minus_in_every_item_dropped():
+    """Fixing one unknown of A x = 0 to 1 moves its column to the right-hand side with a minus
+    (`lstsq(A[:, :8], -A[:, 8])`); written without it, or with a minus in each item of a list of
+    right-hand sides (`rhs.extend([-u, -v])`), the change is tried; an already negated one is not negated."""
+    source = textwrap.dedent("""
+        def graded(A, M, b, u, v, rhs):
+            f = np.linalg.lstsq(A[:, :8], A[:, 8], rcond=None)[0]
+            g = np.linalg.solve(M, -b)
+            rhs.extend([-u, -v])
+            return f, g, rhs
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    written = [ast.unparse(repair.mutated_defs(ast.parse(source), m.edits, source))
+               for m in student.mutants("graded") if m.operator == "sign"]
+    assert any("np.linalg.lstsq(A[:, :8], -A[:, 8], rcond=None)" in w for w in written), written
+    assert any("rhs.extend([u, v])" in w for w in written), written
+    assert not any("--b" in w or "-(-b)" in w for w in written), written
+
+
 def test_a_truncation_a_wrapping_conversion_and_a_constant_one_off_are_changes_tried():
     source = textwrap.dedent("""
         def graded(x, image, n):

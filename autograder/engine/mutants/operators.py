@@ -1668,6 +1668,10 @@ def _student_changes(node, parent, parents):
         yield "chain_order", "last", ""    # `A @ B @ C` -> `A @ C @ B` (K2.T @ K1 @ F for K2.T @ F @ K1)
     yield from _grid_axis_changes(node)
     yield from _layout_and_type_changes(node)
+    if isinstance(parent, ast.Call) and len(parent.args) >= 2 and node is parent.args[1] \
+            and _dotted(parent.func).rsplit(".", 1)[-1] in ("lstsq", "solve") \
+            and not (isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub)):
+        yield "sign", "insert", ""   # a term moved to the right-hand side of A x = b without its minus
     if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) >= 2 and isinstance(node.ctx, ast.Load) \
             and all(isinstance(item, ast.UnaryOp) and isinstance(item.op, ast.USub) for item in node.elts):
         yield "sign", "all", ""   # `rhs.extend([-u, -v])`: every item's minus, one slip
