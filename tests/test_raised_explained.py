@@ -119,3 +119,33 @@ def test_a_grey_and_a_colour_image_written_into_each_other_are_named(message, mi
     form = exception_form(f"draw_matches() raised ValueError: {message}")
     assert form is not None and mistake in form.mistake
     assert exception_form("could not broadcast input array from shape (15,20) into shape (150,200,3)") is None
+
+
+def test_an_axis_the_given_array_lacks_is_named_at_its_line():
+    """`image.shape[2]` raising "tuple index out of range" for a grey image the check gave: the line,
+    the name and the shape given are said; not when the array was reshaped before, nor for an axis it has."""
+    raised = "tuple index out of range"
+    grey = np.zeros((4, 5), np.uint8)
+
+    def told(source: str, line: int):
+        text = f'Traceback (your code):\n  File "lab.py", line {line}, in f\n    ...\nIndexError: {raised}'
+        return explained(read_code(textwrap.dedent(source)), text, raised, "f", (grey,), {})
+
+    form = told("""
+        def f(image):
+            out = np.zeros_like(image)
+            for c in range(image.shape[2]):
+                out[..., c] = image[..., c]
+            return out
+        """, 4)
+    assert form is not None and "`image.shape[2]` (line 4)" in form.sentence and "(4, 5)" in form.sentence, form
+    assert "grey image" in form.sentence
+    assert told("""
+        def f(image):
+            image = image.reshape(4, 5, 1)
+            return image.shape[2]
+        """, 4) is None
+    assert told("""
+        def f(image):
+            return [image.shape[1]][3]
+        """, 3) is None

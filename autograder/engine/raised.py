@@ -123,6 +123,8 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
     fn, line, given = place
     if _SLICE.search(message):
         return _fraction_sliced(fn, line, given)
+    if _TUPLE_INDEX.search(message):
+        return _axis_missing(fn, line, given)
     if _TOO_MANY.search(message) or _NOT_ENOUGH.search(message):
         return unpacked(code, fn, line, given, message)
     found = _NOT_ITERABLE.search(message)
@@ -156,6 +158,32 @@ def _fraction_sliced(fn, line: int, given: dict) -> Form | None:
                     return Form(measured(f"your `{fn.name}` uses `{name}`, given {value!r} here, in a slice "
                                          f"(line {line}), and slice bounds must be whole numbers: a slice moves "
                                          "whole pixels only"), SLICED_MISTAKE)
+    return None
+
+
+_TUPLE_INDEX = re.compile(r"tuple index out of range")
+AXIS_MISSING = "an axis read that the array given does not have (a grey image has no channel axis)"
+
+
+def _axis_missing(fn, line: int, given: dict) -> Form | None:
+    """``x.shape[k]`` on the raising line, where ``x`` is a parameter as given with fewer than k + 1
+    axes: a grey (H, W) image read as a colour one (``image.shape[2]``), a single point as a stack."""
+    for node in _own_nodes(fn):
+        if not (isinstance(node, ast.Subscript) and node.lineno <= line <= getattr(node, "end_lineno", node.lineno)
+                and isinstance(node.value, ast.Attribute) and node.value.attr == "shape"
+                and isinstance(node.slice, ast.Constant) and isinstance(node.slice.value, int)):
+            continue
+        found = _as_given(fn, line, given, node.value.value)
+        shape = np.shape(found[1]) if found is not None else None
+        axis = node.slice.value
+        if shape is None or not (axis >= len(shape) or -axis > len(shape)):
+            continue
+        name, written = found[0], ast.unparse(node)
+        grey = len(shape) == 2 and axis in (2, -3)
+        return Form(measured(f"your `{fn.name}` reads `{written}` (line {line}), but `{name}` has shape "
+                             f"{tuple(shape)} here: it has no axis {axis}"
+                             + (f" -- a grey image (H, W) has no channel axis, and grey images are given here: "
+                                f"handle both (`{name}.ndim == 2`)" if grey else "")), AXIS_MISSING)
     return None
 
 
