@@ -245,6 +245,24 @@ def test_a_forbidden_call_is_told_with_what_its_answer_was_worth(tmp_path, endin
     assert sum("Besides" in c.message or "passes this check otherwise" in c.message for c in checks) == 1
 
 
+def test_a_forbidden_call_whose_code_raises_is_told_with_the_change_that_mends_it(tmp_path):
+    """cv2.triangulatePoints' 4 x N result given to cv2.convertPointsFromHomogeneous (which reads points
+    as rows): with the call allowed the code raises; the second look says so, and names the transpose."""
+    source = """
+        def triangulate(P1, P2, pts1, pts2):
+            a = np.asarray(pts1, dtype=np.float64).reshape(-1, 2)
+            b = np.asarray(pts2, dtype=np.float64).reshape(-1, 2)
+            X = cv2.triangulatePoints(np.asarray(P1, dtype=np.float64), np.asarray(P2, dtype=np.float64), a.T, b.T)
+            return cv2.convertPointsFromHomogeneous(X).reshape(-1, 3)
+        """
+    result = grade(mutant(tmp_path, "lab11_two_view", source), ["lab11.ex1"], pictures="none",
+                   include_hidden=False)
+    first = next(c for e in result.exercises for c in e.checks if "worked example" in c.name)
+    assert first.failure == "forbidden_call" and first.score == 0, first
+    assert "Besides, with that call allowed your code fails" in first.message, first.message
+    assert "`cv2.convertPointsFromHomogeneous(X.T)`" in first.message, first.message
+
+
 def test_a_forbidden_calls_wrong_answer_is_named_in_the_students_code(tmp_path):
     """The library's 2 x N point arrays made by reshape where a transpose belongs, beside a forbidden
     cv2.triangulatePoints: the second look names the reshapes (both lines: one slip made twice), and

@@ -786,7 +786,15 @@ def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: d
         first = str(named.message).split("\n", 1)[0].rstrip()
         return replace(verdict, message=f"{_sentence(verdict.message)} Besides, the answer it gave is wrong: "
                                         f"{first}", mistake=named.mistake or verdict.mistake)
-    except Exception:  # noqa: BLE001 - the student's code raising, or anything else: nothing more to tell
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":   # (a timeout, a crash: nothing more to tell)
+            return verdict
+        # (the code around the call raising: `cv2.convertPointsFromHomogeneous(Xh)` of a 4 x N result)
+        named = _named_by_repair(Verdict(0.0, failure.message), check, trial)
+        first = str(named.message).split("\n", 1)[0].rstrip()
+        return replace(verdict, message=f"{_sentence(verdict.message)} Besides, with that call allowed your code "
+                                        f"fails: {first}", mistake=named.mistake or verdict.mistake)
+    except Exception:  # noqa: BLE001 - anything else: nothing more to tell
         return verdict
     if again is None or (isinstance(again, Verdict) and again.fraction >= 1.0):
         return replace(verdict, message=f"{_sentence(verdict.message)} The answer it gave passes this check "

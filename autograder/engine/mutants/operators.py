@@ -1540,7 +1540,7 @@ def _changes(node, parents, words: _Words, line):
         inner = what(node.value)
         yield "transpose", "remove", f"{inner} is used untransposed (its transpose belongs there)" if inner else \
             _placed("a transpose is missing", place())
-    if isinstance(node, ast.expr) and _transposable(node, parent):
+    if isinstance(node, ast.expr) and (_transposable(node, parent) or (words.student and _cv_points(node, parent))):
         inner = what(node)
         yield "transpose", "insert", f"{inner} is used transposed" if inner else \
             _placed("a matrix is used transposed", place())
@@ -3455,6 +3455,21 @@ def _transposable(node, parent) -> bool:
     if isinstance(parent, ast.Call) and node in parent.args and _dotted(parent.func).startswith("np.linalg."):
         return True
     return isinstance(parent, ast.Return) and isinstance(node, (ast.Name, ast.Call, ast.BinOp))
+
+
+# OpenCV functions whose arrays are point sets, one point per row ((N, 2), (N, 3), (N, 4)); a (k, N)
+# stack of columns is read as k points of N coordinates (triangulatePoints' 2 x N and 4 x N the other way).
+_CV_POINT_SETS = {"convertPointsFromHomogeneous", "convertPointsToHomogeneous", "perspectiveTransform",
+                  "undistortPoints", "findHomography", "findFundamentalMat", "findEssentialMat",
+                  "computeCorrespondEpilines", "triangulatePoints", "projectPoints", "solvePnP", "solvePnPRansac",
+                  "estimateAffine2D", "estimateAffinePartial2D", "getAffineTransform", "getPerspectiveTransform",
+                  "recoverPose"}
+
+
+def _cv_points(node, parent) -> bool:
+    """A name (or part of one) given to an OpenCV point-set function: given as columns where rows belong."""
+    return isinstance(parent, ast.Call) and node in parent.args and isinstance(node, (ast.Name, ast.Subscript)) \
+        and _dotted(parent.func).startswith(("cv2.", "cv.")) and _dotted(parent.func).rsplit(".", 1)[-1] in _CV_POINT_SETS
 
 
 def _index_phrase(inner, elements, position, value, other) -> str:
