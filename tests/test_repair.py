@@ -1631,6 +1631,23 @@ def test_a_right_hand_side_moved_without_its_minus_is_negated_and_a_minus_in_eve
     assert not any("--b" in w or "-(-b)" in w for w in written), written
 
 
+def test_the_two_parts_of_one_item_exchanged_in_a_comparison_are_a_change_tried_first():
+    """A ratio test written the other way round (`n.distance < 0.75 * m.distance`, `m, n` one knnMatch
+    pair): the two names exchanged throughout the comparison, among the first changes tried; names
+    that are not parts of one item are not exchanged."""
+    source = textwrap.dedent("""
+        def graded(pairs, limit, scale):
+            good = [m for m, n in pairs if n.distance < 0.75 * m.distance]
+            few = limit < scale * len(good)
+            return good, few
+    """)
+    assert _shown_changes(source, "exchange") == [
+        ("n.distance < 0.75 * m.distance", "m.distance < 0.75 * n.distance")]
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    first = student.ordered("graded")[:3]
+    assert any(m.operator == "exchange" for m in first), [(m.operator, student.fix(m).changes) for m in first]
+
+
 def test_a_truncation_a_wrapping_conversion_and_a_constant_one_off_are_changes_tried():
     source = textwrap.dedent("""
         def graded(x, image, n):

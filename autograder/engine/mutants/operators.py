@@ -102,6 +102,7 @@ OPERATORS = {
     "unused": ("parameter", "unused", "ignored", "instead of"),   # X[:, 2].mean() -> z0, z0 never read
     "drop_colour": ("colour", "color", "rgb", "bgr", "conversion"),   # cv2.cvtColor(img, COLOR_BGR2RGB) -> img
     "zero_based": ("1", "one", "start", "index", "off by one"),   # np.arange(1, w + 1) -> np.arange(w)
+    "exchange": ("exchang", "swap", "other way", "revers"),   # n.d < 0.75 * m.d -> m.d < 0.75 * n.d
     "drop_argument": ("argument", "default", "given", "remov"),   # _warp(img, M, size) -> _warp(img, M)
     "convert_if": ("grey", "gray", "channel", "already", "ndim"),   # cvtColor(f, BGR2GRAY) -> ... if f.ndim == 3 else f
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
@@ -905,7 +906,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial", "reshape_back", "astype_float",
-                                              "divide_last", "unused", "drop_colour", "zero_based", "convert_if",
+                                              "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
@@ -974,6 +975,10 @@ class _Words:
                 self.zipped.setdefault(name, set()).update(names - {name})
         else:
             self._define(target, ast.Call(ast.Name("__loop__", ast.Load()), [iterable], []), line)
+            if isinstance(target, ast.Tuple):   # (the parts of one item, `m, n` of a knnMatch pair: siblings)
+                names = {part.id for part in target.elts if isinstance(part, ast.Name)}
+                for name in names:
+                    self.zipped.setdefault(name, set()).update(names - {name})
 
     def _define(self, target, value, line):
         if isinstance(target, ast.Name):
@@ -1560,7 +1565,8 @@ def _changes(node, parents, words: _Words, line):
         inner = what(node.left)
         sign = "- 1" if isinstance(node.op, ast.Sub) else "+ 1"
         yield "bound", "drop", f"the {sign} after {inner} is missing (off by one)" if inner else ""
-    if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and _replaceable(node, parent, words.student) \
+    if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) \
+            and (_replaceable(node, parent, words.student) or _sibling_item_read(node, parent, words)) \
             and not (words.student and isinstance(parent, ast.Subscript) and isinstance(parent.ctx, ast.Store)):
         # (the student's code: another array written into, `F[:, 2] = 1.0` for `lines[:, 2] = 1.0`,
         # "mends" a statement by writing into the caller's array instead -- that is no fix)
@@ -1615,6 +1621,7 @@ def _changes(node, parents, words: _Words, line):
         yield from _sibling_changes(node, words)
         yield from _helper_changes(node, words)
         yield from _defaulted_argument_changes(node, words)
+        yield from _exchanged_sides(node, words)
         yield from _logic_changes(node, parent, parents)
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.RShift)):
         wrong, right = ("<<", ">>") if isinstance(node.op, ast.RShift) else (">>", "<<")
@@ -1965,6 +1972,22 @@ def _helper_changes(node, words):
         if len(positional) - len(fn.args.defaults) <= len(node.args) <= len(positional) and offered < 3:
             offered += 1
             yield "function", name, ""
+
+
+def _exchanged_sides(node, words):
+    """A comparison of two siblings' values written the other way round (`n.distance < 0.75 * m.distance`
+    where `m, n` come from one pair: the ratio test inverted): the two names exchanged throughout it."""
+    if not (isinstance(node, ast.Compare) and len(node.comparators) == 1):
+        return
+    left = {n.id for n in ast.walk(node.left) if isinstance(n, ast.Name)}
+    right = {n.id for n in ast.walk(node.comparators[0]) if isinstance(n, ast.Name)}
+    for a in sorted(left - right):
+        for b in sorted((right - left) & words.zipped.get(a, set())):
+            exchanged = copy.deepcopy(node)
+            for name in ast.walk(exchanged):
+                if isinstance(name, ast.Name) and name.id in (a, b):
+                    name.id = b if name.id == a else a
+            yield "exchange", ast.unparse(exchanged), ""
 
 
 def _defaulted_argument_changes(node, words):
@@ -3485,6 +3508,13 @@ def _index_phrase(inner, elements, position, value, other) -> str:
     return f"another index ({other} for {value}) is used in {inner}"
 
 
+def _sibling_item_read(node: ast.Name, parent, words) -> bool:
+    """In the student's code, an attribute read of a loop item with siblings (`m.distance` where `m, n`
+    come from one pair): `n.distance < 0.75 * m.distance` has the two exchanged."""
+    return words.student and isinstance(parent, ast.Attribute) and parent.value is node \
+        and bool(words.zipped.get(node.id))
+
+
 def _replaceable(node: ast.Name, parent, student: bool = False) -> bool:
     if isinstance(parent, ast.Call) and parent.func is node:
         return False
@@ -3532,6 +3562,9 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
         phrase = words.what(ast.Name(other, ast.Load()), line=line)
         if phrase and phrase != own:
             others.append((other, phrase))
+    if words.student:   # (the parts of one item, made on this very line: `n.distance < 0.75 * m.distance`)
+        listed = {other for other, _ in others}
+        others += [(other, f"`{other}`") for other in sorted(words.zipped.get(node.id, ())) if other not in listed]
     # Two names told alike (`img2`, and its float copy told as `img2` too): only the one of the
     # replaced name's kind (a parameter for a parameter, a local for a local) is that mistake; the
     # other one also drops the copy's conversion, which its sentence would not say.

@@ -445,16 +445,17 @@ class _Student:
         """Whether the mutant reads, for a name, the one looped over beside it (`p[1]` -> `q[1]` in
         `for p, q in zip(pts1, pts2)`): a line written for one of the pair with the other's name left."""
         where, _, operator, payload = mutant.edits[0]
-        if operator != "other_name" or len(mutant.edits) != 1 or not isinstance(payload, str):
+        if operator not in ("other_name", "swap_names", "exchange") or len(mutant.edits) != 1:
             return False
         fn = self._defs.get(where)
         if fn is None:
             return False
         if where not in self._zipped:
+            # (and names a loop unpacks together, `for m, n in pairs`: a ratio test written
+            # `n.distance < 0.75 * m.distance` has the two exchanged)
             pairs = set()
             for loop in ast.walk(fn):
-                if isinstance(loop, ast.For) and isinstance(loop.iter, ast.Call) and ast.unparse(loop.iter.func) == "zip" \
-                        and isinstance(loop.target, ast.Tuple):
+                if isinstance(loop, (ast.For, ast.comprehension)) and isinstance(loop.target, ast.Tuple):
                     names = [n.id for n in loop.target.elts if isinstance(n, ast.Name)]
                     pairs |= {(a, b) for a in names for b in names if a != b}
             self._zipped[where] = pairs
@@ -462,8 +463,10 @@ class _Student:
         if fix is None or len(fix.changes) != 1:
             return False
         before, after = (re.findall(r"\w+", text) for text in fix.changes[0][1:])
-        changed = [(a, b) for a, b in zip(before, after) if a != b]
-        return len(before) == len(after) and len(changed) == 1 and changed[0] in self._zipped[where]
+        changed = {(a, b) for a, b in zip(before, after) if a != b}
+        if len(before) != len(after) or not changed <= self._zipped[where]:
+            return False
+        return len(changed) == 1 if operator == "other_name" else len(changed) == 2
 
     def neighbours(self, first, second) -> bool:
         """Whether two changes are of items side by side: the same list's, tuple's or call's (`[..., x2,
@@ -1223,8 +1226,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # (time kept for confirming a change found: a slow function's -- features matched on photographs --
     # confirmation calls take as long as its own calls, a few of them)
     reserve = min(max(RESERVE, CONFIRMATION_CALLS * variant.seconds_per_call), clock.left() / 2)
+    # (and once a change is found, the time its confirmation takes: the reference and the change each
+    # run on every confirmation input -- a whole pipeline each for a slow function)
+    confirming = max(reserve, 2 * CONFIRMATION_INPUTS * variant.seconds_per_call)
     for mutant in list(earlier) + _near_the_raise([m for m in runnable if m.key not in known], trial, function):
-        if clock.left() <= (reserve if candidates or (near and variant.replayable) else 0) \
+        if clock.left() <= (confirming if candidates else reserve if near and variant.replayable else 0) \
                 or (tries is not None and variant.screenings >= tries):
             complete = False
             break
@@ -1435,6 +1441,7 @@ BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branc
 ADDITIONS = {"sibling_step", "twin_step", "sibling_argument"}   # changes that add a twin's step beside a line
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 CONFIRMATION_CALLS = 6   # or the time of this many of the student's calls, if longer (at most half the time)
+CONFIRMATION_INPUTS = 15  # about as many inputs a change is confirmed on (derived, seen, given otherwise, ...)
 REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
 PAIR_NEARER = 3   # (a pair of changes, fewer than the single ones: judged by the check from this many times)
 REPLAYS = 5       # the most changes a failed check is replayed with
