@@ -149,3 +149,31 @@ def test_an_axis_the_given_array_lacks_is_named_at_its_line():
         def f(image):
             return [image.shape[1]][3]
         """, 3) is None
+
+
+def test_an_index_beyond_the_given_array_is_named_at_its_line():
+    """`pts[:, 2]` raising "index 2 is out of bounds for axis 1 with size 2" for (N, 2) points: the line,
+    the name and the shape given are said; not when the index is computed, nor for another array."""
+    raised = "index 2 is out of bounds for axis 1 with size 2"
+    pts = np.zeros((5, 2))
+
+    def told(source: str, line: int):
+        text = f'Traceback (your code):\n  File "lab.py", line {line}, in f\n    ...\nIndexError: {raised}'
+        return explained(read_code(textwrap.dedent(source)), text, raised, "f", (pts,), {})
+
+    form = told("""
+        def f(pts):
+            w = pts[:, 2]
+            return pts[:, :2] / w[:, None]
+        """, 3)
+    assert form is not None and "`pts[:, 2]` (line 3)" in form.sentence and "(5, 2)" in form.sentence, form
+    assert told("""
+        def f(pts):
+            k = 2
+            return pts[:, k]
+        """, 4) is None
+    assert told("""
+        def f(pts):
+            other = np.zeros((5, 2))
+            return other[:, 2]
+        """, 4) is None

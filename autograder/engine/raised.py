@@ -125,6 +125,9 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
         return _fraction_sliced(fn, line, given)
     if _TUPLE_INDEX.search(message):
         return _axis_missing(fn, line, given)
+    found = _OUT_OF_BOUNDS.search(message)
+    if found:
+        return _index_beyond(fn, line, given, *map(int, found.groups()))
     if _TOO_MANY.search(message) or _NOT_ENOUGH.search(message):
         return unpacked(code, fn, line, given, message)
     found = _NOT_ITERABLE.search(message)
@@ -184,6 +187,32 @@ def _axis_missing(fn, line: int, given: dict) -> Form | None:
                              f"{tuple(shape)} here: it has no axis {axis}"
                              + (f" -- a grey image (H, W) has no channel axis, and grey images are given here: "
                                 f"handle both (`{name}.ndim == 2`)" if grey else "")), AXIS_MISSING)
+    return None
+
+
+_OUT_OF_BOUNDS = re.compile(r"index (-?\d+) is out of bounds for axis (\d+) with size (\d+)")
+INDEX_BEYOND = "an index beyond the array given (a column or channel it does not have)"
+
+
+def _index_beyond(fn, line: int, given: dict, index: int, axis: int, size: int) -> Form | None:
+    """``x[:, 2]`` (an index written as a number, at ``axis``) on the raising line, where ``x`` is a
+    parameter as given with only ``size`` entries along that axis: points given (N, 2) read as
+    homogeneous (N, 3), a grey image's channel read."""
+    for node in _own_nodes(fn):
+        if not (isinstance(node, ast.Subscript) and node.lineno <= line <= getattr(node, "end_lineno", node.lineno)):
+            continue
+        parts = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+        if axis >= len(parts) or not (isinstance(parts[axis], ast.Constant) and parts[axis].value == index) \
+                or any(isinstance(part, ast.Constant) and part.value is Ellipsis for part in parts):
+            continue
+        found = _as_given(fn, line, given, node.value)
+        shape = np.shape(found[1]) if found is not None else ()
+        if len(shape) <= axis or shape[axis] != size:
+            continue
+        name = found[0]
+        return Form(measured(f"your `{fn.name}` reads `{ast.unparse(node)}` (line {line}), but `{name}` has shape "
+                             f"{tuple(shape)} here: axis {axis} has {size} entries, so index {index} is beyond it"),
+                    INDEX_BEYOND)
     return None
 
 
