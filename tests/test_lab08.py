@@ -1,5 +1,6 @@
 """Lab 8: the reference passes, the skeleton scores 0, usual mistakes are named."""
 
+import numpy as np
 import pytest
 
 from autograder.engine.runner import grade
@@ -319,3 +320,29 @@ def test_a_blend_whose_weights_are_overwritten_is_told_by_its_white_panorama(tmp
     failed = [c for c in check_results(result, "lab08.ex5") if c.score < c.max_score]
     assert any("of your panorama is pure white (255)" in c.message for c in failed), [c.message for c in failed]
     assert not any("must only be shifted" in c.message for c in failed)
+
+
+def test_a_mask_at_the_squared_error_of_the_h_before_a_last_refit_is_named():
+    """RANSAC's mask drawn at the squared error (|e|^2 < 3: within 1.73 px) by the H before a final
+    refit: the returned H is a little off that one, so the mask agrees with the squared rule a little
+    less than exactly -- as well as any one threshold does -- and is named; a mask of another model
+    (agreeing with no threshold) is not."""
+    from autograder.engine.checks import Fail
+    from autograder.labs.lab08 import name_squared_threshold
+
+    class Told:   # a stand-in trial: fail raises, as a check's does; no code to read
+        sandbox = None
+
+        def fail(self, message, hint="", mistake=""):
+            raise Fail(message, hint, mistake)
+
+    rng = np.random.default_rng(3)
+    src = rng.uniform(0, 300, (200, 2))
+    dst = src + rng.normal(0, 1.2, (200, 2))          # H = I, errors of about 1.5 px
+    errors = np.linalg.norm(dst - src, axis=1)
+    previous = errors + rng.normal(0, 0.1, 200)       # the H before the refit: errors a little apart
+    with pytest.raises(Fail) as told:
+        name_squared_threshold(Told(), "ransac", np.eye(3), previous ** 2 < 3.0, src, dst, 3.0)
+    assert told.value.mistake == "the squared error is compared with the threshold"
+    other = rng.random(200) < 0.5                     # no function of the distances
+    name_squared_threshold(Told(), "ransac", np.eye(3), other, src, dst, 3.0)   # (nothing named: no raise)

@@ -1202,8 +1202,11 @@ SQUARED_HINT = Hint("compare the distance |H src - dst| itself with the threshol
 def name_squared_threshold(t: Trial, what: str, H, inliers, src, dst, threshold: float):
     """Fail naming a mask of the pairs whose *squared* error is below the threshold, when it is one."""
     errors = np.linalg.norm(truth.apply_h(H, src) - dst, axis=1)
-    if (inliers == (errors ** 2 < threshold)).mean() >= 0.98 and \
-            (inliers == (errors < threshold)).mean() < 0.95:
+    squared, plain = (inliers == (errors ** 2 < threshold)).mean(), (inliers == (errors < threshold)).mean()
+    # (the mask of the H before the final refit, at the squared error, agrees with the returned H's
+    # distances a little less than exactly: as well as any one threshold does, within 3 %)
+    best = max((inliers == (errors < limit)).mean() for limit in np.linspace(0.2, 2.0, 37) * threshold)
+    if squared >= 0.95 and squared >= best - 0.03 and plain < min(0.95, squared - 0.05):
         t.fail(f"{what}: the inlier mask marks the pairs whose *squared* error is below the "
                "threshold; " + SQUARED_HINT.said(t), mistake="the squared error is compared with the threshold")
 

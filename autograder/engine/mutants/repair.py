@@ -1205,6 +1205,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # offered to the error model): only those right or nearer there run on the others.
     screen = min(failing, key=lambda i: _weight(inputs[i]))
     candidates, near, near_answers = [], [], {}
+    exactly = set()   # the candidates giving the reference's answers on every failing input
     known = {m.key for m in earlier}
     complete = True   # every change tried (or ruled out in an earlier check)
     # A change in code the smallest failing input does not run leaves the student's wrong answer
@@ -1241,6 +1242,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                                                      for v, i in zip(values, failing)]
         if exact and all(exact):
             candidates.append(mutant)
+            exactly.add(mutant.key)
             continue
         if values is not None and np.isfinite(off):
             apart = sum(variant.distance(v, references[i]) for v, i in zip(values, failing))
@@ -1310,8 +1312,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # scale: it mends by that entry's not being 0 on these inputs -- the division is the slip, not the entry)
     # (and a change of a step before the step's removal: a statement taken out mends an input by never
     # running -- `dist = np.asarray(dist) if dist else None` -- where the change of its test mends every input)
+    # (and a change giving the reference's very answers before one the check only accepts: on noisy points
+    # `x2 * P2[2]` for `y2 * P2[2]` -- view 2's y equation dropped -- passes, `P2[0]` -> `P2[1]` is exact)
     shown = sorted(((m, f) for m, f in shown if f is not None and not student.renormalises(m)),
-                   key=lambda pair: (pair[0].key not in known, student.copies_an_item(pair[0]),
+                   key=lambda pair: (pair[0].key not in known, pair[0].key not in exactly,
+                                     student.copies_an_item(pair[0]),
                                      pair[1].operator in REMOVALS, pair[1].size, pair[1].written))
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:

@@ -274,6 +274,13 @@ MISTAKES = {
             H = homography_dlt(src[inliers], dst[inliers]) if inliers.sum() >= 4 else best
             return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
         """, ["draws too few samples"]),
+    "RANSAC with squared distances, H refit once more after the mask": ("lab08.ex4", """
+        _ransac = homography_ransac
+        def homography_ransac(src, dst, threshold=3.0, seed=None, confidence=0.999, max_iterations=5000):
+            H, mask = _ransac(src, dst, np.sqrt(threshold), seed, confidence, max_iterations)
+            keep = np.asarray(mask).ravel().astype(bool)
+            return homography_dlt(np.asarray(src, float)[keep], np.asarray(dst, float)[keep]), mask
+        """, ["*squared* error"]),
     "RANSAC with squared distances": ("lab08.ex4", """
         _reference_ransac = homography_ransac
         def homography_ransac(src, dst, threshold=3.0, seed=None):
