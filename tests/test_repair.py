@@ -770,6 +770,22 @@ def test_names_swapped_where_every_mode_reads_them_are_not_told_for_one_modes_ca
                    for message in told), told
 
 
+def test_an_entry_made_0_is_told_before_a_change_that_makes_it_vanish_on_large_images(tmp_path):
+    """A shear about the middle row (`-s * (h - 1) / 2` in the matrix): `*` -> `/` leaves a shift of a
+    thousandth of a pixel on the check's images, within rounding of the answers; the entry made 0 gives
+    the reference's very numbers, and is the change told."""
+    folder = mutant(tmp_path, "lab07_transformations", """
+        def shear(image, s=0.5):
+            h, w = image.shape[:2]
+            M = np.float32([[1, s, -s * (h - 1) / 2], [0, 1, 0]])
+            return cv2.warpAffine(image, M, (w, h), flags=cv2.INTER_LINEAR,
+                                  borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+        """)
+    checks, told = _failed_and_repaired(folder, "lab07.ex4")
+    assert told and all("changing `-s * (h - 1) / 2` to `0`" in message for message in told), \
+        [c.message for c in checks]
+
+
 def test_a_loop_that_starts_each_step_from_the_input_again_is_told_to_carry_its_result(tmp_path):
     """`canvas = cv2.line(image.copy(), ...)` in the loop over lines: each line drawn on a fresh copy,
     only the last one kept. The change told is to draw on the running canvas; drawing on `image` itself
@@ -1646,6 +1662,18 @@ def test_the_two_parts_of_one_item_exchanged_in_a_comparison_are_a_change_tried_
     student = repair._Student(source, ast.parse(source), {"graded"})
     first = student.ordered("graded")[:3]
     assert any(m.operator == "exchange" for m in first), [(m.operator, student.fix(m).changes) for m in first]
+
+
+def test_an_entry_of_a_matrix_literal_that_does_not_belong_is_made_0():
+    """`[[1, s, -s * (h - 1) / 2], [0, 1, 0]]`: a shear about the middle row where the origin's is asked;
+    the computed entry made 0 is a change tried (constants and a flat list's items are not)."""
+    source = textwrap.dedent("""
+        def graded(s, h, t):
+            M = np.float32([[1, s, -s * (h - 1) / 2], [0, 1, 0]])
+            v = [t * 2, 1]
+            return M, v
+    """)
+    assert _shown_changes(source, "zero_entry") == [("-s * (h - 1) / 2", "0")]
 
 
 def test_a_truncation_a_wrapping_conversion_and_a_constant_one_off_are_changes_tried():

@@ -102,6 +102,7 @@ OPERATORS = {
     "unused": ("parameter", "unused", "ignored", "instead of"),   # X[:, 2].mean() -> z0, z0 never read
     "drop_colour": ("colour", "color", "rgb", "bgr", "conversion"),   # cv2.cvtColor(img, COLOR_BGR2RGB) -> img
     "zero_based": ("1", "one", "start", "index", "off by one"),   # np.arange(1, w + 1) -> np.arange(w)
+    "zero_entry": ("entry", "0", "zero", "translation", "term"),   # [1, s, -s * h / 2] -> [1, s, 0]
     "exchange": ("exchang", "swap", "other way", "revers"),   # n.d < 0.75 * m.d -> m.d < 0.75 * n.d
     "drop_argument": ("argument", "default", "given", "remov"),   # _warp(img, M, size) -> _warp(img, M)
     "convert_if": ("grey", "gray", "channel", "already", "ndim"),   # cvtColor(f, BGR2GRAY) -> ... if f.ndim == 3 else f
@@ -906,7 +907,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial", "reshape_back", "astype_float",
-                                              "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange",
+                                              "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
@@ -1679,6 +1680,9 @@ def _student_changes(node, parent, parents):
             and _dotted(parent.func).rsplit(".", 1)[-1] in ("lstsq", "solve") \
             and not (isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub)):
         yield "sign", "insert", ""   # a term moved to the right-hand side of A x = b without its minus
+    if isinstance(parent, ast.List) and isinstance(parents.get(id(parent), (None,))[0], ast.List) \
+            and isinstance(node, (ast.BinOp, ast.UnaryOp, ast.Call)):
+        yield "zero_entry", "0", ""   # a matrix literal's entry that does not belong: `[1, s, -s * (h - 1) / 2]`
     if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) >= 2 and isinstance(node.ctx, ast.Load) \
             and all(isinstance(item, ast.UnaryOp) and isinstance(item.op, ast.USub) for item in node.elts):
         yield "sign", "all", ""   # `rhs.extend([-u, -v])`: every item's minus, one slip

@@ -1206,6 +1206,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     screen = min(failing, key=lambda i: _weight(inputs[i]))
     candidates, near, near_answers = [], [], {}
     exactly = set()   # the candidates giving the reference's answers on every failing input
+    to_the_bit = set()   # of which those giving its very numbers (its computation, not one within rounding)
     known = {m.key for m in earlier}
     complete = True   # every change tried (or ruled out in an earlier check)
     # A change in code the smallest failing input does not run leaves the student's wrong answer
@@ -1243,6 +1244,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if exact and all(exact):
             candidates.append(mutant)
             exactly.add(mutant.key)
+            if all(variant.distance(v, references[i]) == 0 for v, i in zip(values, failing)):
+                to_the_bit.add(mutant.key)
             continue
         if values is not None and np.isfinite(off):
             apart = sum(variant.distance(v, references[i]) for v, i in zip(values, failing))
@@ -1312,10 +1315,13 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # scale: it mends by that entry's not being 0 on these inputs -- the division is the slip, not the entry)
     # (and a change of a step before the step's removal: a statement taken out mends an input by never
     # running -- `dist = np.asarray(dist) if dist else None` -- where the change of its test mends every input)
-    # (and a change giving the reference's very answers before one the check only accepts: on noisy points
-    # `x2 * P2[2]` for `y2 * P2[2]` -- view 2's y equation dropped -- passes, `P2[0]` -> `P2[1]` is exact)
+    # (and a change giving the reference's answers before one the check only accepts: on noisy points
+    # `x2 * P2[2]` for `y2 * P2[2]` -- view 2's y equation dropped -- passes, `P2[0]` -> `P2[1]` is exact;
+    # and its very numbers before answers within rounding: `-s * (h - 1) / 2` -> `-s / (h - 1) / 2`, a
+    # shift of a thousandth of a pixel on a large image, beside the entry made 0)
     shown = sorted(((m, f) for m, f in shown if f is not None and not student.renormalises(m)),
                    key=lambda pair: (pair[0].key not in known, pair[0].key not in exactly,
+                                     pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]),
                                      pair[1].operator in REMOVALS, pair[1].size, pair[1].written))
     for mutant, fix in shown:
