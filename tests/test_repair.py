@@ -770,6 +770,24 @@ def test_names_swapped_where_every_mode_reads_them_are_not_told_for_one_modes_ca
                    for message in told), told
 
 
+def test_a_pair_of_changes_that_breaks_another_check_of_the_function_is_not_told(tmp_path):
+    """The default depth taken as the harmonic mean (`len(z) / np.sum(1.0 / z)`): `/` -> `*` there and in
+    `f / float(z_avg)` mend the default by breaking a given z_avg (another check's): no such pair is told."""
+    folder = mutant(tmp_path, "lab10_camera2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            pts = np.asarray(points, dtype=np.float64)
+            single = pts.ndim == 1
+            pts = pts.reshape(-1, 3)
+            if z_avg is None:
+                z_avg = len(pts) / np.sum(1.0 / pts[:, 2])
+            scale = f / float(z_avg)
+            out = scale * pts[:, :2]
+            return out[0] if single else out
+        """)
+    checks, told = _failed_and_repaired(folder, "lab10.ex2")
+    assert checks and not any("f * float(z_avg)" in message for message in told), told
+
+
 def test_an_entry_made_0_is_told_before_a_change_that_makes_it_vanish_on_large_images(tmp_path):
     """A shear about the middle row (`-s * (h - 1) / 2` in the matrix): `*` -> `/` leaves a shift of a
     thousandth of a pixel on the check's images, within rounding of the answers; the entry made 0 gives

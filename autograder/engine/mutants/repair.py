@@ -1424,7 +1424,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if subtle:
             near_pairs.append((0.0, len(near_pairs), both, values))
         elif all(variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing)):
-            if variant.confirmed(both, failing) and not variant.guard_untested(both, failing):
+            if _accepted_pair(variant, both, failing):
                 return variant.repair([(both, variant.fix(both))])
             exact_pairs.append((both, values))
         elif np.isfinite(off) and fallback is None:   # (beside a removal found: only exact pairs replace it)
@@ -1437,9 +1437,17 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if clock.left() <= 0 or variant.replays >= REPLAYS:
             return fallback
         if both.key not in variant.checked and variant.passes_check(both, values, failing, pair=True) \
-                and variant.confirmed(both, failing) and not variant.guard_untested(both, failing):
+                and _accepted_pair(variant, both, failing):
             return variant.repair([(both, variant.fix(both))])
     return fallback
+
+
+def _accepted_pair(variant, both, failing) -> bool:
+    """A pair of changes held to what a single change is: confirmed, writing into no input, testing its
+    guard, and breaking none of the grading's other checks of the function (two compensating changes --
+    the mean depth inverted twice -- mend the default z_avg and break a given one)."""
+    return variant.confirmed(both, failing) and not variant.writes_inputs(both) \
+        and not variant.guard_untested(both, failing) and not variant.breaks_other_checks(both)
 
 
 FIXES = 3         # the most fixes told (one per line)
