@@ -45,6 +45,11 @@ NAMED = {
             return Rt
         """, 3),
 }
+NAMED["the vector converted in place first"] = ("""
+        def f(R, t):
+            t = np.asarray(t, dtype=np.float64)
+            return np.hstack([R, t])
+        """, 4)
 NOT_NAMED = {
     "the vector was reshaped before": ("""
         def f(R, t):

@@ -246,12 +246,13 @@ def _join_named(fn, call, parts, found, given, line) -> Form | None:
     if len(flat) != 1 or flat[0] >= len(parts):
         return None
     part = _unwrapped(parts[flat[0]])
-    if not isinstance(part, ast.Name) or part.id not in given or _reassigned(fn, part.id, line):
+    # (converted in place first, `t = np.asarray(t, float)`, it keeps the shape it was given)
+    if not isinstance(part, ast.Name) or part.id not in given or _changed(fn, part.id, line):
         return None
     value = given[part.id]
-    if not isinstance(value, np.ndarray) or value.ndim != 1:
+    if not isinstance(value, (np.ndarray, list, tuple)) or np.ndim(value) != 1:
         return None
-    n = value.shape[0]
+    n = np.shape(value)[0]
     joined = ast.unparse(call)
     joined = joined if len(joined) <= 60 else joined[:57] + "..."
     # measured: the line raised with this argument as given, so it was not made a column before
