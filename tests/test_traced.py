@@ -118,6 +118,27 @@ def test_operands_that_do_not_broadcast_are_named_with_their_shapes():
     assert "`weight[..., None]` gives it one" in sentence
 
 
+def test_operands_meant_axis_by_axis_from_the_first_are_told_the_axes_to_add():
+    """`fs[:, None] * xy[None]`, (3, 1) against (1, 9, 2): one axis of 1 more at the end of the shorter
+    lines the two up as meant."""
+    sentence = raised_sentence("""
+        def scaled(fs, xy):
+            return fs[:, None] * xy[None, :, :]
+        """, "scaled", np.array([1.0, 2.0, 3.0]), np.ones((9, 2)))
+    assert "shape (3, 1, 1), `fs[:, None]` would line up with `xy[None, :, :]`" in sentence, sentence
+    assert "`fs[:, None][..., None]`" in sentence, sentence
+
+
+def test_a_pyramid_level_brought_up_without_its_size_is_told_dstsize():
+    """`cv2.pyrUp(result) + band` with an odd side below: pyrUp doubles it, one pixel too many."""
+    sentence = raised_sentence("""
+        def collapse(result, band):
+            return cv2.pyrUp(result) + band
+        """, "collapse", np.zeros((22, 32, 3), np.float32), np.zeros((43, 63, 3), np.float32))
+    assert "they differ on axis 0 (44 and 43)" in sentence, sentence
+    assert "`dstsize=(band.shape[1], band.shape[0])`" in sentence, sentence
+
+
 def test_a_negative_slice_bound_is_named_with_its_value():
     sentence = raised_sentence("""
         def shift_rows(image, s):

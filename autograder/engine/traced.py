@@ -404,8 +404,22 @@ def _broadcast_named(recording, expressions, shapes, where) -> Form | None:
             continue
         (a, sa), (b, sb) = arrays[:2]
         said = f"in {_quote(node)} {where}, {_quote(a)} has shape {_shape_text(sa)} and {_quote(b)} {_shape_text(sb)}"
-        return Form(said + _why_not_broadcast(a, sa, b, sb), MISTAKE)
+        return Form(said + _why_not_broadcast(a, sa, b, sb) + _pyramid_sizes(a, sa, b, sb), MISTAKE)
     return None
+
+
+def _pyramid_sizes(a, sa, b, sb) -> str:
+    """A pyramid level brought back up by cv2.pyrUp without ``dstsize`` beside the level it is added to:
+    pyrUp doubles each side, one too many for an odd side."""
+    for up, su, other, so in ((a, sa, b, sb), (b, sb, a, sa)):
+        if isinstance(up, ast.Call) and ast.unparse(up.func).endswith("pyrUp") \
+                and not any(k.arg == "dstsize" for k in up.keywords) and len(up.args) < 3 \
+                and len(su) == len(so) >= 2 and all(0 <= m - n <= 1 for m, n in zip(su[:2], so[:2])):
+            finer = ast.unparse(other)
+            return (f"; cv2.pyrUp doubles each side of the coarser level, one pixel too many where the finer "
+                    f"level's side is odd: give it the finer level's size, `dstsize=({finer}.shape[1], "
+                    f"{finer}.shape[0])`")
+    return ""
 
 
 def _why_not_broadcast(a, sa, b, sb) -> str:
@@ -418,6 +432,12 @@ def _why_not_broadcast(a, sa, b, sb) -> str:
                     f"at the end that {_quote(short)} has not (was it added to the one that does not need it?)")
         return (f": NumPy lines shapes up from their last axes, so {_quote(short)} has no axis for the last "
                 f"{axes} of {_quote(long_)} ({_quote(short)[:-1]}[..., None]` gives it one)")
+    if len(ss) < len(sl) and all(m == n or 1 in (m, n) for m, n in zip(tuple(ss) + (1,) * (len(sl) - len(ss)), sl)):
+        # (its axes meant as the longer one's first ones: `fs[:, None] * xy[None]`, (3, 1) and (1, 9, 2))
+        extra = len(sl) - len(ss)
+        return (f": NumPy lines shapes up from their last axes; with {'an axis' if extra == 1 else f'{extra} axes'} "
+                f"of size 1 added at its end, shape {_shape_text(tuple(ss) + (1,) * extra)}, {_quote(short)} would "
+                f"line up with {_quote(long_)} axis by axis ({_quote(short)[:-1]}{'[..., None]' * extra}`)")
     if len(sa) == len(sb):
         differ = [i for i, (m, n) in enumerate(zip(sa, sb)) if m != n and 1 not in (m, n)]
         if differ:
