@@ -380,10 +380,12 @@ class Trial:
         makers = hints.complex_makers(hints.code_of(self), hints.functions_read(self))
         if not makers:
             self.fail(said)
-        self.fail(f"{said}. Your code calls {' and '.join(makers)}, which {'return' if len(makers) > 1 else 'returns'} "
-                  "a complex array as soon as one eigenvalue (or root) is complex, a Fourier transform always: "
-                  "keep the real part (`.real`) of what you return",
-                  mistake="complex values returned: the real part is not kept")
+        from .claims import measured   # (the answer measured complex; the calls read in the code)
+
+        self.fail(measured(f"{said}. Your code calls {' and '.join(makers)}, which "
+                           f"{'return' if len(makers) > 1 else 'returns'} a complex array as soon as one eigenvalue "
+                           "(or root) is complex, a Fourier transform always: keep the real part (`.real`) of what "
+                           "you return"), mistake="complex values returned: the real part is not kept")
 
     def _why_swapped(self, got, expected) -> str:
         """For an image returned (W, H) where (H, W) is asked, the OpenCV call the student's code

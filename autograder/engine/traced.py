@@ -416,9 +416,10 @@ def _pyramid_sizes(a, sa, b, sb) -> str:
                 and not any(k.arg == "dstsize" for k in up.keywords) and len(up.args) < 3 \
                 and len(su) == len(so) >= 2 and all(0 <= m - n <= 1 for m, n in zip(su[:2], so[:2])):
             finer = ast.unparse(other)
-            return (f"; cv2.pyrUp doubles each side of the coarser level, one pixel too many where the finer "
-                    f"level's side is odd: give it the finer level's size, `dstsize=({finer}.shape[1], "
-                    f"{finer}.shape[0])`")
+            # measured: the two shapes at the raising line, one side one pixel longer after pyrUp
+            return measured(f"; cv2.pyrUp doubles each side of the coarser level, one pixel too many where the "
+                            f"finer level's side is odd: give it the finer level's size, `dstsize=({finer}.shape[1], "
+                            f"{finer}.shape[0])`")
     return ""
 
 
