@@ -38,6 +38,22 @@ def test_projection_by_the_formula_alone_gets_full_marks_and_a_tip(tmp_path):
     assert_advised(result, "lab10.ex1", "behind the camera", "nan")
 
 
+def test_infinite_values_on_the_camera_plane_get_the_same_tip(tmp_path):
+    """NaN only for Z < 0 (`Z < 0` where `Z <= 0` is meant): the point at Z = 0 comes out infinite;
+    full marks, and the tip names the row on the camera plane."""
+    result = grade(mutant(tmp_path, MODULE, """
+        def perspective_project(points, f):
+            X, single = _points(points)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                x = f * X[:, :2] / X[:, 2:3]
+            x[X[:, 2] < 0] = np.nan
+            return x[0] if single else x
+        """), ["lab10.ex1"])
+    [exercise] = result.exercises
+    assert exercise.score == exercise.max_score
+    assert_advised(result, "lab10.ex1", "infinite values", "camera plane", "nan")
+
+
 def test_decomposition_remedy_fits_the_input(tmp_path):
     """With det(P[:, :3]) > 0 a negative diagonal of K is fixed by flipping signs, and the
     message says so (not 'negate P', which would be wrong for that input)."""

@@ -401,12 +401,17 @@ def advise_nan_behind(t: Trial, what: str, got, behind):
     if got is None or got.shape != (len(behind), 2):
         return  # the graded check says what is wrong with the shape
     finite = behind & np.isfinite(got).all(axis=1)
+    infinite = behind & ~np.isnan(got).any(axis=1) & ~finite   # (Z = 0 divided by: inf)
     if finite.any():
         t.advise(f"{what} gave finite pixels for the points with Z <= 0 (rows "
                  f"{np.nonzero(finite)[0].tolist()}): they are behind the camera and have no "
                  "image (the formula mirrors them through the pinhole); NaN tells the caller so. "
                  "No points depend on it.",
                  hint=NAN_BEHIND_HINT.said(t))
+    if infinite.any():
+        t.advise(f"{what} gave infinite values for the points on the camera plane (rows "
+                 f"{np.nonzero(infinite)[0].tolist()}: Z = 0, the division by Z): they have no image; NaN tells the "
+                 "caller so. No points depend on it.", hint=NAN_BEHIND_HINT.said(t))
 
 
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3), up_to_scale=False):

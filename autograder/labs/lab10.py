@@ -27,13 +27,13 @@ from ..engine.claims import (calls_any, checklist, divides_by, from_code, guard,
 from ..engine.compare import (at_precision, blurred_difference, closest, fill_fraction, format_apart, format_arrays_apart,
                        magnitude, projective_distance)
 from ..engine.forms import scale_form
-from ..engine.hints import Hint, Predicate, _path, calls, code_of, expr, mentions, nan_behind
+from ..engine.hints import Hint, Predicate, _path, calls, code_of, expr, mentions
 from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, format_matrix, name_mistake,
                              where_matrices_differ)
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed
-from .lab09 import (OBJECT_POINTS_ROW_BY_ROW, call_behind, expect_points, judge_in_front, judge_points,
+from .lab09 import (OBJECT_POINTS_ROW_BY_ROW, advise_nan_behind, call_behind, expect_points, judge_in_front, judge_points,
                     judge_single_point, make_points_probe, pinhole_formulas, point_error)
 
 lab = Lab("lab10", module="lab10_camera2", title="Geometric camera models (continued)")
@@ -277,21 +277,14 @@ def perspective_in_front(t):
     judge_in_front(t, what, got, truth.pinhole(X, 500.0), behind)
 
 
-NAN_BEHIND_HINT = nan_behind("np.where(Z > 0, f * X / Z, np.nan)")
-
-
 @ex1.advice("NaN for points behind the camera")
 def perspective_behind(t):
     # The API leaves points with Z <= 0 to the lab sheet's formula (cv2.projectPoints
     # gives finite pixels too); NaN is only recommended.
     _, X, behind = perspective_behind_case()
     got = t.call("perspective_project", X, 500.0)
-    if isinstance(got, np.ndarray) and got.shape == (len(X), 2) and got.dtype.kind == "f" \
-            and np.isfinite(got[behind]).all(axis=1).any():
-        t.advise("perspective_project(points with some Z <= 0, f=500) returned finite pixels for the "
-                 f"points behind the camera (rows {np.nonzero(behind)[0].tolist()}): they have no image "
-                 "(the formula mirrors them through the pinhole); NaN there tells the caller so.",
-                 hint=NAN_BEHIND_HINT.said(t))
+    if isinstance(got, np.ndarray) and got.dtype.kind == "f":
+        advise_nan_behind(t, "perspective_project(points with some Z <= 0, f=500)", got, behind)
 
 
 # ================================================================== ex2 weak perspective
