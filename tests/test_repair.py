@@ -1682,6 +1682,22 @@ def test_the_two_parts_of_one_item_exchanged_in_a_comparison_are_a_change_tried_
     assert any(m.operator == "exchange" for m in first), [(m.operator, student.fix(m).changes) for m in first]
 
 
+def test_a_grid_counted_from_1_an_integer_reciprocal_and_a_block_set_where_it_is_scaled_are_changes_tried():
+    """`np.mgrid[1:cols + 1, 1:rows + 1]` (corners numbered from 1), `np.reciprocal(d)` of integers (1 // d),
+    `T[:2, :2] = s` where the block was to be scaled (`*=`): each has its change."""
+    source = textwrap.dedent("""
+        def graded(cols, rows, d, s):
+            grid = np.mgrid[1:cols + 1, 1:rows + 1]
+            inverse = np.reciprocal(d)
+            T = np.eye(3)
+            T[:2, :2] = s
+            return grid, inverse, T
+    """)
+    assert ("np.mgrid[1:cols + 1, 1:rows + 1]", "np.mgrid[0:cols, 0:rows]") in _shown_changes(source, "zero_based")
+    assert ("np.reciprocal(d)", "np.reciprocal(np.asarray(d, dtype=np.float64))") in _shown_changes(source, "astype_float")
+    assert ("T[:2, :2] = s", "T[:2, :2] *= s") in _shown_changes(source, "accumulate")
+
+
 def test_an_entry_of_a_matrix_literal_that_does_not_belong_is_made_0():
     """`[[1, s, -s * (h - 1) / 2], [0, 1, 0]]`: a shear about the middle row where the origin's is asked;
     the computed entry made 0 is a change tried (constants and a flat list's items are not)."""

@@ -2267,6 +2267,10 @@ def _logic_changes(node, parent, parents):
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], (ast.Name, ast.Subscript)) \
             and _in_loop(node, parents):
         yield "accumulate", "Add", ""
+    if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Subscript) \
+            and any(isinstance(part, ast.Slice) for part in ast.walk(node.targets[0].slice)) \
+            and isinstance(node.value, (ast.Name, ast.Constant)):
+        yield "accumulate", "Mult", ""   # a block set to a scale where it was to be scaled: T[:2, :2] = s
     running = _restarted(node, parents)
     if running:
         yield "carry", running, ""
@@ -2891,6 +2895,19 @@ def _layout_and_type_changes(node):
         # positions counted from 1 (`np.arange(1, width + 1)`) where they are indices, from 0
         counted = ast.Call(copy.deepcopy(node.func), [copy.deepcopy(node.args[1].left)], copy.deepcopy(node.keywords))
         yield "zero_based", ast.unparse(counted), ""
+    if isinstance(node, ast.Subscript) and _dotted(node.value) in ("np.mgrid", "np.ogrid", "numpy.mgrid", "numpy.ogrid"):
+        counted = copy.deepcopy(node)   # np.mgrid[1:cols + 1, 1:rows + 1] -> np.mgrid[0:cols, 0:rows]
+        changed = False
+        for part in ast.walk(counted.slice):
+            if isinstance(part, ast.Slice) and isinstance(part.lower, ast.Constant) and part.lower.value == 1 \
+                    and isinstance(part.upper, ast.BinOp) and isinstance(part.upper.op, ast.Add) \
+                    and isinstance(part.upper.right, ast.Constant) and part.upper.right.value == 1:
+                part.lower, part.upper, changed = ast.Constant(0), part.upper.left, True
+        if changed:
+            yield "zero_based", ast.unparse(counted), ""
+    if isinstance(node, ast.Call) and len(node.args) == 1 and _dotted(node.func) in ("np.reciprocal", "numpy.reciprocal"):
+        # (integers given: np.reciprocal of an int array is integer division, 1 // d)
+        yield "astype_float", f"{_dotted(node.func)}(np.asarray({ast.unparse(node.args[0])}, dtype=np.float64))", ""
     if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.cvtColor", "cv.cvtColor") and len(node.args) >= 2:
         flag = _dotted(node.args[1]).rsplit(".", 1)[-1]
         image = ast.unparse(node.args[0])
