@@ -1452,6 +1452,19 @@ def dolly_example(t):
     return passed("subject fixed, background moving")
 
 
+@ext2.advice("NaN for points the dolly moves behind the camera")
+def dolly_behind(t):
+    # A dolly towards the subject moves the nearer points to Z <= 0 (one exactly onto the camera plane):
+    # they have no image, as perspective_project's points behind the camera (NaN recommended, 0 points).
+    X = np.array([[0.5, -0.3, 5.0], [1.0, 0.8, 2.0], [-1.2, 0.4, 9.0], [0.3, 0.2, 3.0]])
+    z0, distances = 5.0, np.array([5.0, 2.0])   # at d = 2 every depth drops by 3: -1 and 0 for rows 1, 3
+    got = t.call("dolly_zoom", X, 400.0, z0, distances)
+    if isinstance(got, (tuple, list)) and len(got) == 2 and isinstance(got[1], np.ndarray) \
+            and got[1].shape == (2, len(X), 2) and got[1].dtype.kind == "f":
+        advise_nan_behind(t, "dolly_zoom(points, f0=400, z0=5, distances=[5, 2]), in its frame at d = 2,",
+                          got[1][1], X[:, 2] + (distances[1] - z0) <= 0)
+
+
 @ext2.check("dolly_zoom for other focal lengths and distances (in any order, repeated, a single one)", points=2)
 def dolly_property(t):
     def points(rng, z0):
