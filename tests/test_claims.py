@@ -581,6 +581,12 @@ def test_an_angle_in_degrees_from_code_that_converts_it_is_not_told_to_convert(t
      "    return errors < threshold\n"
      "def _norm(p):\n    return np.sqrt(2) / p.std()\n"
      "def _errors(H, src, dst):\n    e = ((apply(H, src) - dst) ** 2).sum(axis=1)\n    return np.where(e > 0, e, 0)\n", False),
+    # the same through a def inside the function (read by its returns, as a helper is), and its root
+    ("def f(src, dst, threshold):\n    H = fit(src) @ _norm(src)\n    def errors(H):\n"
+     "        return ((apply(H, src) - dst) ** 2).sum(axis=1)\n    return errors(H) < threshold\n"
+     "def _norm(p):\n    return np.sqrt(2) / p.std()\n", False),
+    ("def f(src, dst, threshold):\n    H = fit(src)\n    def errors(H):\n"
+     "        return np.sqrt(((apply(H, src) - dst) ** 2).sum(axis=1))\n    return errors(H) < threshold\n", True),
 ])
 def test_compares_a_distance_with_the_threshold_follows_the_compared_value(source, compares):
     from autograder.engine.claims import compares_a_distance_with
