@@ -47,6 +47,7 @@ def main(argv=None) -> int:
     os.environ.setdefault("AUTOGRADER_CACHE_DIR", tempfile.mkdtemp(prefix="blind-store-"))
     from autograder.engine.registry import select  # noqa: E402  (the copy chosen above)
     from autograder.engine.runner import grade  # noqa: E402
+    from autograder.engine.results import ADVICE  # noqa: E402
 
     manifest = json.loads((args.set / "MANIFEST.json").read_text())
     cases = []
@@ -70,7 +71,11 @@ def main(argv=None) -> int:
                       "caught": bool(failed),
                       "failed": [{"check": c.name, "hidden": c.hidden, "mistake": c.mistake,
                                   "message": "\n".join(c.message.splitlines()[:6])[:1200], "hint": c.hint[:400]}
-                                 for c in failed]})
+                                 for c in failed],
+                      # (tips, 0 points: what the student reads besides the checks that cost points)
+                      "tips": [{"check": c.name, "message": "\n".join(c.message.splitlines()[:6])[:1200],
+                                "hint": c.hint[:400]}
+                               for e in result.exercises for c in e.checks if c.status == ADVICE and c.message]})
         print(f"{entry['file']:<60} {'caught' if failed else 'NOT CAUGHT':<10} "
               f"{cases[-1]['score']}/{cases[-1]['max']}  {seconds:.0f}s", flush=True)
         args.json.write_text(json.dumps(cases, indent=1))

@@ -408,10 +408,10 @@ def advise_nan_behind(t: Trial, what: str, got, behind):
                  "image (the formula mirrors them through the pinhole); NaN tells the caller so. "
                  "No points depend on it.",
                  hint=NAN_BEHIND_HINT.said(t))
-    if infinite.any():
+    if infinite.any():   # (the hint once, beside the finite rows' tip when there is one)
         t.advise(f"{what} gave infinite values for the points on the camera plane (rows "
                  f"{np.nonzero(infinite)[0].tolist()}: Z = 0, the division by Z): they have no image; NaN tells the "
-                 "caller so. No points depend on it.", hint=NAN_BEHIND_HINT.said(t))
+                 "caller so. No points depend on it.", hint="" if finite.any() else NAN_BEHIND_HINT.said(t))
 
 
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3), up_to_scale=False):
