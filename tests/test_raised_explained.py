@@ -182,3 +182,27 @@ def test_an_index_beyond_the_given_array_is_named_at_its_line():
             other = np.zeros((5, 2))
             return other[:, 2]
         """, 4) is None
+
+
+def test_a_singular_solve_of_a_vector_fixed_to_1_is_named():
+    """`np.append(np.linalg.solve(F[:2, :2], -F[:2, 2]), 1.0)` raising "Singular matrix" (an epipole at
+    infinity): the solve, its matrix, and the last entry fixed to 1 are said; a solve whose answer gets no
+    1 appended is only located."""
+    raised = "Singular matrix"
+    F = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+
+    def told(source: str, line: int):
+        text = f'Traceback (your code):\n  File "lab.py", line {line}, in f\n    ...\nLinAlgError: {raised}'
+        return explained(read_code(textwrap.dedent(source)), text, raised, "f", (F,), {})
+
+    form = told("""
+        def f(F):
+            e = np.append(np.linalg.solve(F[:2, :2], -F[:2, 2]), 1.0)
+            return e / np.linalg.norm(e)
+        """, 3)
+    assert form is not None and "`F[:2, :2]` is singular" in form.sentence and "fixed to 1" in form.sentence, form
+    plain = told("""
+        def f(F):
+            return np.linalg.solve(F[:2, :2], -F[:2, 2])
+        """, 3)
+    assert plain is not None and "is singular" in plain.sentence and "fixed to 1" not in plain.sentence, plain

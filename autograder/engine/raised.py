@@ -128,6 +128,8 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
     found = _OUT_OF_BOUNDS.search(message)
     if found:
         return _index_beyond(fn, line, given, *map(int, found.groups()))
+    if _SINGULAR.search(message):
+        return _singular_solved(fn, line)
     if _TOO_MANY.search(message) or _NOT_ENOUGH.search(message):
         return unpacked(code, fn, line, given, message)
     found = _NOT_ITERABLE.search(message)
@@ -213,6 +215,38 @@ def _index_beyond(fn, line: int, given: dict, index: int, axis: int, size: int) 
         return Form(measured(f"your `{fn.name}` reads `{ast.unparse(node)}` (line {line}), but `{name}` has shape "
                              f"{tuple(shape)} here: axis {axis} has {size} entries, so index {index} is beyond it"),
                     INDEX_BEYOND)
+    return None
+
+
+_SINGULAR = re.compile(r"Singular matrix")
+SINGULAR_MISTAKE = "a homogeneous unknown fixed to 1 (a point at infinity has it 0)"
+
+
+def _singular_solved(fn, line: int) -> Form | None:
+    """``np.linalg.solve`` (or ``inv``) raising "Singular matrix" on the raising line; where its answer
+    gets a last coordinate of 1 appended (``np.append(np.linalg.solve(A, b), 1.0)``), the cause: a
+    homogeneous vector solved with its last unknown fixed to 1, which a point at infinity (0 there)
+    cannot have."""
+    parents = {id(child): node for node in _own_nodes(fn) for child in ast.iter_child_nodes(node)}
+    for node in _own_nodes(fn):
+        if not (isinstance(node, ast.Call) and _called(node) in ("solve", "inv") and node.args
+                and node.lineno <= line <= getattr(node, "end_lineno", node.lineno)):
+            continue
+        said = (f"your `{fn.name}` calls `{_short(ast.unparse(node), 60)}` (line {line}), and its matrix "
+                f"`{_short(ast.unparse(node.args[0]), 40)}` is singular for this input: the system has no single "
+                "solution")
+        holder = parents.get(id(node))
+        if isinstance(holder, ast.List):
+            holder = parents.get(id(holder))
+        appended = isinstance(holder, ast.Call) and _called(holder) in ("append", "hstack", "concatenate", "r_") \
+            and any(isinstance(c, ast.Constant) and c.value == 1 for c in ast.walk(holder))
+        if not appended:
+            return Form(measured(said), "a singular system solved")
+        # measured: the solve raised here, and the code appends a 1 to what it solves
+        return Form(measured(f"{said}. The answer gets a last coordinate of 1 appended: the homogeneous vector "
+                             "is solved with its last entry fixed to 1, which a vector whose last entry is 0 (a "
+                             "point at infinity) cannot be; the null vector by SVD (the last row of Vt) covers "
+                             "every case"), SINGULAR_MISTAKE)
     return None
 
 
