@@ -139,6 +139,23 @@ def test_a_pyramid_level_brought_up_without_its_size_is_told_dstsize():
     assert "`dstsize=(band.shape[1], band.shape[0])`" in sentence, sentence
 
 
+def test_a_crop_of_an_array_smaller_than_asked_is_told_that_a_slice_never_pads():
+    """`resized[:h, :w]` of a shrunk image: the slice keeps the smaller shape; it is told to copy it into
+    an array of the size asked."""
+    sentence = shape_sentence("""
+        def framed(image, resized):
+            h, w = image.shape[:2]
+            return resized[:h, :w]
+        """, "framed", (6, 8), np.ones((6, 8)), np.ones((3, 12)))
+    assert "`resized[:h, :w]` (line 4) makes the shape (3, 8)" in sentence, sentence
+    assert "a slice crops but never pads" in sentence, sentence
+    shrunk = shape_sentence("""
+        def halved(image):
+            return image[::2, ::2]
+        """, "halved", (6, 8), np.ones((6, 8)))
+    assert shrunk is None or "never pads" not in shrunk, shrunk   # (a step shrinks what has the size asked)
+
+
 def test_a_negative_slice_bound_is_named_with_its_value():
     sentence = raised_sentence("""
         def shift_rows(image, s):

@@ -756,6 +756,14 @@ def _made_here(fn, recording, node, statement, got, expected) -> Form | None:
         said += ": NumPy broadcasts them against each other, every entry of one with every entry of the other"
     if any(s == tuple(expected) for _, s in arrays):
         said += f" ({' and '.join(_quote(o) for o, s in arrays if s == tuple(expected))} has the shape asked, {_shape_text(expected)})"
+    source = arrays[0][1]
+    if isinstance(node, ast.Subscript) and len(arrays) == 1 and len(got) == len(expected) == len(source) \
+            and any(s < e for s, e in zip(source, expected)) \
+            and tuple(got) == tuple(min(s, e) for s, e in zip(source, expected)) \
+            and any(isinstance(part, ast.Slice) for part in ast.walk(node.slice)):
+        # (a crop written for a larger array: a slice never pads; measured: the slice's shapes here)
+        said += measured(f": a slice crops but never pads -- where {_quote(arrays[0][0])} is smaller than "
+                         f"{_shape_text(expected)}, copy it into an array of that size (black elsewhere)")
     tests = [t for t in _conditions(fn, statement) if getattr(t, "lineno", 0)]
     if tests:
         test = tests[-1]
