@@ -221,3 +221,17 @@ def test_a_line_drawn_in_a_random_colour_is_the_same_line_with_the_other_sign(tm
     checks = {c.name: c for e in grade(submission, ["lab11.ex2"]).exercises for c in e.checks}
     sign = checks["draw_epipolar_lines draws a line given with the other sign, (-a, -b, -c), as the same line"]
     assert sign.score == sign.max_score, sign.message
+
+
+def test_complex_values_that_are_not_real_are_not_told_to_keep_their_real_part(tmp_path):
+    """An eigenvector of a complex eigenvalue returned (the smallest-magnitude one is not taken): the
+    values are complex themselves, so `.real` is not offered as the fix."""
+    result = grade(mutant(tmp_path, MODULE, """
+        def epipoles(F):
+            values1, vectors1 = np.linalg.eig(F)
+            values2, vectors2 = np.linalg.eig(F.T)
+            return vectors1[:, np.argmax(np.abs(values1.imag))], vectors2[:, np.argmax(np.abs(values2.imag))]
+        """), ["lab11.ex5"], pictures="none")
+    messages = [c.message for c in check_results(result, "lab11.ex5") if not c.passed]
+    complex_told = [m for m in messages if "complex numbers" in m]
+    assert complex_told and all("not 0" in m and "`.real`" not in m for m in complex_told), complex_told

@@ -206,3 +206,23 @@ def test_a_singular_solve_of_a_vector_fixed_to_1_is_named():
             return np.linalg.solve(F[:2, :2], -F[:2, 2])
         """, 3)
     assert plain is not None and "is singular" in plain.sentence and "fixed to 1" not in plain.sentence, plain
+
+
+def test_what_is_said_of_a_missing_axis_or_a_singular_solve_holds_for_the_code_it_reads():
+    """Points (N, 2) read with `.shape[2]` are not called a grey image; a 1 written before the solve's
+    answer (or inside its arguments) is not the last entry fixed to 1."""
+    def told(source: str, line: int, raised: str, args):
+        text = f'Traceback (your code):\n  File "lab.py", line {line}, in f\n    ...\nError: {raised}'
+        return explained(read_code(textwrap.dedent(source)), text, raised, "f", args, {})
+
+    form = told("""
+        def f(pts):
+            return pts.shape[2]
+        """, 3, "tuple index out of range", (np.zeros((10, 2)),))
+    assert form is not None and "has no axis 2" in form.sentence and "grey" not in form.sentence, form
+    F = np.zeros((3, 3))
+    before = told("""
+        def f(F):
+            return np.append(1.0, np.linalg.solve(F[:2, :2], F[:2, 2] - 1))
+        """, 3, "Singular matrix", (F,))
+    assert before is not None and "is singular" in before.sentence and "fixed to 1" not in before.sentence, before

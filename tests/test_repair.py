@@ -1610,6 +1610,21 @@ def test_a_value_read_before_or_after_the_update_it_belongs_beside_is_a_move_tri
     assert not any("`size = w.sum()`" in sentence for sentence in said), said   # (half reads it)
 
 
+def test_an_opencv_point_set_may_be_transposed_but_not_its_matrices():
+    """`cv2.convertPointsFromHomogeneous(X)` of a 4 x N result: the point set transposed is a change tried;
+    the camera matrix given to `cv2.solvePnP` beside its points is not one (it is no point set)."""
+    source = textwrap.dedent("""
+        def graded(X, obj, img, K, dist):
+            pts = cv2.convertPointsFromHomogeneous(X)
+            ok, r, t = cv2.solvePnP(obj, img, K, dist)
+            return pts, r, t
+    """)
+    changed = [after for _, after in _shown_changes(source, "transpose")]
+    assert any("convertPointsFromHomogeneous(X.T)" in after for after in changed), changed
+    assert any("solvePnP(obj.T" in after for after in changed), changed
+    assert not any("K.T" in after or "dist.T" in after for after in changed), changed
+
+
 def test_a_colour_conversion_made_whatever_the_image_is_is_guarded_by_its_channels():
     """`cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY)` raises on a grey frame the API allows: the change
     converts only a frame with 3 channels (and GRAY2BGR only a grey one); another conversion is left."""

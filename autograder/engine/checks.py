@@ -375,17 +375,19 @@ class Trial:
         with np.errstate(all="ignore"):
             real = bool(np.all(np.abs(value.imag) <= 1e-12 * max(1.0, float(np.max(np.abs(value.real), initial=0)))))
         said = f"{what} returned dtype {value.dtype} (complex numbers); expected {wanted}"
-        if real:
-            said += ": its imaginary parts are all 0"
+        said += ": its imaginary parts are all 0" if real else ": some imaginary parts are not 0"
         makers = hints.complex_makers(hints.code_of(self), hints.functions_read(self))
         if not makers:
             self.fail(said)
         from .claims import measured   # (the answer measured complex; the calls read in the code)
 
-        self.fail(measured(f"{said}. Your code calls {' and '.join(makers)}, which "
-                           f"{'return' if len(makers) > 1 else 'returns'} a complex array as soon as one eigenvalue "
-                           "(or root) is complex, a Fourier transform always: keep the real part (`.real`) of what "
-                           "you return"), mistake="complex values returned: the real part is not kept")
+        made = (f"{said}. Your code calls {' and '.join(makers)}, which {'return' if len(makers) > 1 else 'returns'} "
+                "a complex array as soon as one eigenvalue (or root) is complex, a Fourier transform always")
+        if not real:   # (the real part would not be the answer: the vector taken is a complex one itself)
+            self.fail(measured(f"{made}: the values returned are complex themselves, not real values in a "
+                               "complex type"))
+        self.fail(measured(f"{made}: keep the real part (`.real`) of what you return"),
+                  mistake="complex values returned: the real part is not kept")
 
     def _why_swapped(self, got, expected) -> str:
         """For an image returned (W, H) where (H, W) is asked, the OpenCV call the student's code

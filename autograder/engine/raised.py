@@ -179,17 +179,26 @@ def _axis_missing(fn, line: int, given: dict) -> Form | None:
                 and isinstance(node.slice, ast.Constant) and isinstance(node.slice.value, int)):
             continue
         found = _as_given(fn, line, given, node.value.value)
-        shape = np.shape(found[1]) if found is not None else None
+        shape = _shape_given(found[1]) if found is not None else None
         axis = node.slice.value
         if shape is None or not (axis >= len(shape) or -axis > len(shape)):
             continue
-        name, written = found[0], ast.unparse(node)
-        grey = len(shape) == 2 and axis in (2, -3)
+        name, written = found[0], _short(ast.unparse(node), 60)
+        # (a grey image: 8 bits, or both sides longer than a point's few coordinates -- (N, 2) points are not)
+        grey = len(shape) == 2 and axis in (2, -3) and (getattr(found[1], "dtype", None) == np.uint8 or min(shape) > 4)
         return Form(measured(f"your `{fn.name}` reads `{written}` (line {line}), but `{name}` has shape "
                              f"{tuple(shape)} here: it has no axis {axis}"
                              + (f" -- a grey image (H, W) has no channel axis, and grey images are given here: "
                                 f"handle both (`{name}.ndim == 2`)" if grey else "")), AXIS_MISSING)
     return None
+
+
+def _shape_given(value) -> tuple | None:
+    """The shape of an argument as the check gave it; None for a value that has none (a ragged list)."""
+    try:
+        return tuple(np.shape(value))
+    except (ValueError, TypeError):
+        return None
 
 
 _OUT_OF_BOUNDS = re.compile(r"index (-?\d+) is out of bounds for axis (\d+) with size (\d+)")
@@ -208,11 +217,11 @@ def _index_beyond(fn, line: int, given: dict, index: int, axis: int, size: int) 
                 or any(isinstance(part, ast.Constant) and part.value is Ellipsis for part in parts):
             continue
         found = _as_given(fn, line, given, node.value)
-        shape = np.shape(found[1]) if found is not None else ()
+        shape = (_shape_given(found[1]) if found is not None else None) or ()
         if len(shape) <= axis or shape[axis] != size:
             continue
         name = found[0]
-        return Form(measured(f"your `{fn.name}` reads `{ast.unparse(node)}` (line {line}), but `{name}` has shape "
+        return Form(measured(f"your `{fn.name}` reads `{_short(ast.unparse(node), 60)}` (line {line}), but `{name}` has shape "
                              f"{tuple(shape)} here: axis {axis} has {size} entries, so index {index} is beyond it"),
                     INDEX_BEYOND)
     return None
@@ -235,12 +244,7 @@ def _singular_solved(fn, line: int) -> Form | None:
         said = (f"your `{fn.name}` calls `{_short(ast.unparse(node), 60)}` (line {line}), and its matrix "
                 f"`{_short(ast.unparse(node.args[0]), 40)}` is singular for this input: the system has no single "
                 "solution")
-        holder = parents.get(id(node))
-        if isinstance(holder, ast.List):
-            holder = parents.get(id(holder))
-        appended = isinstance(holder, ast.Call) and _called(holder) in ("append", "hstack", "concatenate", "r_") \
-            and any(isinstance(c, ast.Constant) and c.value == 1 for c in ast.walk(holder))
-        if not appended:
+        if not _one_appended(node, parents):
             return Form(measured(said), "a singular system solved")
         # measured: the solve raised here, and the code appends a 1 to what it solves
         return Form(measured(f"{said}. The answer gets a last coordinate of 1 appended: the homogeneous vector "
@@ -248,6 +252,32 @@ def _singular_solved(fn, line: int) -> Form | None:
                              "point at infinity) cannot be; the null vector by SVD (the last row of Vt) covers "
                              "every case"), SINGULAR_MISTAKE)
     return None
+
+
+def _one_appended(solved, parents) -> bool:
+    """Whether a 1 follows ``solved`` among the items it is joined with: ``np.append(solve(A, b), 1.0)``,
+    ``np.hstack([solve(A, b), [1]])`` (a 1 inside the solve's own arguments, or before it, is not)."""
+    holder, item = parents.get(id(solved)), solved
+    if isinstance(holder, (ast.List, ast.Tuple)):
+        holder, item = parents.get(id(holder)), holder
+        items = item.elts
+        after = items[items.index(solved) + 1:]
+    else:
+        after = None
+    if not (isinstance(holder, ast.Call) and _called(holder) in ("append", "hstack", "concatenate")):
+        return False
+    if after is None:
+        if item not in holder.args:
+            return False
+        after = holder.args[holder.args.index(item) + 1:]
+    elif not (holder.args and holder.args[0] is item):
+        return False
+
+    def one(node) -> bool:
+        values = node.elts if isinstance(node, (ast.List, ast.Tuple)) else [node]
+        return len(values) == 1 and isinstance(values[0], ast.Constant) and type(values[0].value) in (int, float) \
+            and values[0].value == 1
+    return len(after) == 1 and one(after[0])
 
 
 def _calls_on_line(fn, line: int) -> list[ast.Call]:

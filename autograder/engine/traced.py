@@ -415,11 +415,13 @@ def _pyramid_sizes(a, sa, b, sb) -> str:
         if isinstance(up, ast.Call) and ast.unparse(up.func).endswith("pyrUp") \
                 and not any(k.arg == "dstsize" for k in up.keywords) and len(up.args) < 3 \
                 and len(su) == len(so) >= 2 and all(0 <= m - n <= 1 for m, n in zip(su[:2], so[:2])):
-            finer = ast.unparse(other)
+            finer = ast.unparse(other)   # (written as the student wrote it, when short and one term)
+            size = f"`dstsize=({finer}.shape[1], {finer}.shape[0])`" \
+                if isinstance(other, (ast.Name, ast.Subscript, ast.Attribute)) and len(finer) <= 30 else \
+                "`dstsize` = (its width, its height)"
             # measured: the two shapes at the raising line, one side one pixel longer after pyrUp
             return measured(f"; cv2.pyrUp doubles each side of the coarser level, one pixel too many where the "
-                            f"finer level's side is odd: give it the finer level's size, `dstsize=({finer}.shape[1], "
-                            f"{finer}.shape[0])`")
+                            f"finer level's side is odd: give it the finer level's size, {size}")
     return ""
 
 
@@ -763,7 +765,7 @@ def _made_here(fn, recording, node, statement, got, expected) -> Form | None:
             and any(isinstance(part, ast.Slice) for part in ast.walk(node.slice)):
         # (a crop written for a larger array: a slice never pads; measured: the slice's shapes here)
         said += measured(f": a slice crops but never pads -- where {_quote(arrays[0][0])} is smaller than "
-                         f"{_shape_text(expected)}, copy it into an array of that size (black elsewhere)")
+                         f"{_shape_text(expected)}, copy it into an array of that size (zeros elsewhere: black for an image)")
     tests = [t for t in _conditions(fn, statement) if getattr(t, "lineno", 0)]
     if tests:
         test = tests[-1]

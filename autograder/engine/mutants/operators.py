@@ -950,7 +950,7 @@ class _Words:
         self.helper_params = {} if fn.name in api else {
             a.arg: _PARAMETER_WORDS[a.arg] for a in fn.args.args if a.arg in _PARAMETER_WORDS}
         self.definitions: dict[str, list[tuple[int, ast.AST, int | None]]] = {}
-        self.zipped: dict[str, set] = {}   # name -> the names looped over beside it (zip)
+        self.zipped: dict[str, set] = {}   # name -> its siblings: looped over beside it (zip), or one item's parts
         for node in ast.walk(fn):
             if isinstance(node, ast.Assign):
                 for target in node.targets:
@@ -3501,19 +3501,24 @@ def _transposable(node, parent) -> bool:
     return isinstance(parent, ast.Return) and isinstance(node, (ast.Name, ast.Call, ast.BinOp))
 
 
-# OpenCV functions whose arrays are point sets, one point per row ((N, 2), (N, 3), (N, 4)); a (k, N)
-# stack of columns is read as k points of N coordinates (triangulatePoints' 2 x N and 4 x N the other way).
-_CV_POINT_SETS = {"convertPointsFromHomogeneous", "convertPointsToHomogeneous", "perspectiveTransform",
-                  "undistortPoints", "findHomography", "findFundamentalMat", "findEssentialMat",
-                  "computeCorrespondEpilines", "triangulatePoints", "projectPoints", "solvePnP", "solvePnPRansac",
-                  "estimateAffine2D", "estimateAffinePartial2D", "getAffineTransform", "getPerspectiveTransform",
-                  "recoverPose"}
+# OpenCV functions' point-set arguments (by position), one point per row ((N, 2), (N, 3), (N, 4)); a
+# (k, N) stack of columns is read as k points of N coordinates (triangulatePoints' 2 x N and its 4 x N
+# result the other way round). Their matrices (K, F, P) are not point sets.
+_CV_POINT_SETS = {"convertPointsFromHomogeneous": (0,), "convertPointsToHomogeneous": (0,),
+                  "perspectiveTransform": (0,), "undistortPoints": (0,), "computeCorrespondEpilines": (0,),
+                  "projectPoints": (0,), "findHomography": (0, 1), "findFundamentalMat": (0, 1),
+                  "findEssentialMat": (0, 1), "solvePnP": (0, 1), "solvePnPRansac": (0, 1),
+                  "estimateAffine2D": (0, 1), "estimateAffinePartial2D": (0, 1), "getAffineTransform": (0, 1),
+                  "getPerspectiveTransform": (0, 1), "triangulatePoints": (2, 3), "recoverPose": (1, 2)}
 
 
 def _cv_points(node, parent) -> bool:
-    """A name (or part of one) given to an OpenCV point-set function: given as columns where rows belong."""
-    return isinstance(parent, ast.Call) and node in parent.args and isinstance(node, (ast.Name, ast.Subscript)) \
-        and _dotted(parent.func).startswith(("cv2.", "cv.")) and _dotted(parent.func).rsplit(".", 1)[-1] in _CV_POINT_SETS
+    """A name (or part of one) given to an OpenCV function as a point set: given as columns where rows belong."""
+    if not (isinstance(parent, ast.Call) and isinstance(node, (ast.Name, ast.Subscript))
+            and _dotted(parent.func).startswith(("cv2.", "cv."))):
+        return False
+    positions = _CV_POINT_SETS.get(_dotted(parent.func).rsplit(".", 1)[-1], ())
+    return any(p < len(parent.args) and parent.args[p] is node for p in positions)
 
 
 def _index_phrase(inner, elements, position, value, other) -> str:
