@@ -2869,9 +2869,11 @@ def _initial_changes(node, words):
 def _layout_and_type_changes(node):
     """Slips of layout, type and order: an array reshaped to (k, -1) and transposed where (-1, k) belongs
     (`lines.reshape(3, -1).T`: the entries read across the points), an integer type where the API's
-    values are floats (`argmin(...).astype(np.uint8)`), a floor division done before the product it
-    should follow (`c // w * 2 ** n`: 0 for every c < w), and a conversion between colour orders
-    that does not belong (`cv2.cvtColor(img, cv2.COLOR_BGR2RGB)` on a BGR image)."""
+    values are floats (`argmin(...).astype(np.uint8)`, `np.reciprocal` of integers: 1 // d), a floor
+    division done before the product it should follow (`c // w * 2 ** n`: 0 for every c < w), positions
+    counted from 1 (`np.arange(1, w + 1)`, `np.mgrid[1:n + 1]`), a conversion between colour orders that
+    does not belong (`cv2.cvtColor(img, cv2.COLOR_BGR2RGB)` on a BGR image), and a grey conversion made
+    whatever the image is (`cv2.COLOR_BGR2GRAY` of a grey frame the API allows)."""
     if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.value, ast.Call) \
             and isinstance(node.value.func, ast.Attribute) and node.value.func.attr == "reshape" \
             and len(node.value.args) == 2 and not node.value.keywords:
