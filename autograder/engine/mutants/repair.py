@@ -219,6 +219,7 @@ class _Student:
         self._shapes: dict = {}      # id of a statement (kept alive in _walked) -> its code with names masked
         self._places: dict = {}      # id of a node (kept alive in _walked) -> (its statement, its position there)
         self._zipped: dict = {}      # def name -> the (name, name) pairs of its loops over zip
+        self._unpacking: dict | None = None   # line -> the loops and assignments with several targets there
         self._lock = threading.Lock()
         self.reference_parts: frozenset = frozenset()   # (name, its parts' names) the reference unpacks
 
@@ -277,17 +278,15 @@ class _Student:
         (`-R @ t` with the two exchanged is `-t @ R`, R^T t)."""
         names = lambda text: re.findall(r"\w+", text.split("=", 1)[0])  # noqa: E731  (the targets, in order)
         for line, before, after in self.fix(mutant).changes:
-            for node in ast.walk(self.tree):
-                if isinstance(node, ast.For) and node.lineno == line and isinstance(node.target, ast.Tuple):
+            for node in self.unpacking_at(line):
+                if isinstance(node, ast.For):
                     # (a loop's names exchanged -- `for x, y in pts` -> `for y, x in pts` -- named as the
                     # reference names them, or in their axes' order: the names would lie)
                     told = [t.id for t in node.target.elts if isinstance(t, ast.Name)]
                     if mutant.edits[0][2] == "swap_items" and _names_as_written(told, self.reference_parts, node.iter):
                         return True
                     continue
-                if not (isinstance(node, ast.Assign) and node.lineno == line and len(node.targets) == 1
-                        and isinstance(node.targets[0], (ast.Tuple, ast.List))
-                        and names(before) != names(after) and sorted(names(before)) == sorted(names(after))):
+                if not (names(before) != names(after) and sorted(names(before)) == sorted(names(after))):
                     continue
                 if isinstance(node.value, ast.Call) and _call_name(node.value) in self.api:
                     return True
@@ -299,6 +298,19 @@ class _Student:
                 if _names_as_written(names(before), self.reference_parts, node.value):
                     return True
         return False
+
+    def unpacking_at(self, line: int) -> list:
+        """The loops over tuples (`for x, y in pts`) and the assignments to several names
+        (`K, R, t = ...`) that start at ``line``: the module walked once, not once per change."""
+        if self._unpacking is None:
+            found: dict = {}
+            for node in ast.walk(self.tree):
+                if (isinstance(node, ast.For) and isinstance(node.target, ast.Tuple)) or (
+                        isinstance(node, ast.Assign) and len(node.targets) == 1
+                        and isinstance(node.targets[0], (ast.Tuple, ast.List))):
+                    found.setdefault(node.lineno, []).append(node)
+            self._unpacking = found
+        return self._unpacking.get(line, [])
 
     def quoted_first(self, mutants, said: str) -> list:
         """``mutants``, those on a line holding a call the text ``said`` quotes (`np.sign`, `cv2.remap`)
