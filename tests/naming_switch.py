@@ -25,10 +25,12 @@ def turn_naming_off(setattr=setattr) -> None:
     from autograder.engine import inherited
     from autograder.engine.mutants import naming, repair
 
+    # (any further arguments a caller gives -- ``said``, a number of tries -- are taken and ignored:
+    # a signature narrower than the real one would make each call a logged grader error)
     for name in ("name_failure", "name_raised", "name_in_place"):
-        setattr(naming, name, lambda trial, seconds=0: None)
-    setattr(repair, "name_by_repair", lambda trial, seconds=0: None)
-    setattr(inherited, "decide", lambda trial, function, substitutes, seconds=0: None)
+        setattr(naming, name, lambda trial, *args, **kwargs: None)
+    setattr(repair, "name_by_repair", lambda trial, *args, **kwargs: None)
+    setattr(inherited, "decide", lambda trial, function, substitutes, *args, **kwargs: None)
 
 
 def pythonpath_without_naming(*paths: Path) -> str:
