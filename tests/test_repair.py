@@ -2394,6 +2394,13 @@ def test_names_unpacked_as_written_are_never_exchanged_by_a_repair():
     assert repair._names_as_written(["k1", "k2", "p1", "p2", "k3"], parts)
     shape = ast.parse("image.shape[:2]", mode="eval").body
     assert not repair._names_as_written(["w", "h"], parts, shape)
+    # (a shape's sides rows first by their own words, whatever the reference calls them: exchanging
+    # `h, w = image.shape[:2]` mends a later `(h, w)` given where OpenCV reads (width, height) by
+    # making the names lie)
+    for rows_first in (["h", "w"], ["height", "width"], ["H1", "W1"], ["rows", "cols", "channels"]):
+        assert repair._names_as_written(rows_first, frozenset(), shape), rows_first
+    assert not repair._names_as_written(["w", "h"], frozenset(), shape)
+    assert not repair._names_as_written(["hw", "ww"], frozenset(), shape)
     assert repair._names_as_written(["w", "h"], parts, ast.parse("dsize", mode="eval").body)
     rows_first = ast.parse("np.argwhere(mask)", mode="eval").body   # (rows first: `for x, y` is the slip)
     assert not repair._names_as_written(["x", "y"], parts, rows_first)

@@ -860,6 +860,10 @@ def _value_key(value) -> str:
 
 
 _AXIS_ORDER = (("x", "y"), ("u", "v"), ("x", "z"), ("y", "z"))
+# A shape's two sides by their own words, rows first (`h, w = image.shape[:2]`, `rows, cols`,
+# `height1, width1`): unpacked so, the names are right whatever the reference calls them.
+_ROWS_THEN_COLUMNS = (("height", "width"), ("rows", "cols"), ("rows", "columns"), ("nrows", "ncols"),
+                      ("n_rows", "n_cols"), ("ny", "nx"), ("h", "w"), ("H", "W"))
 
 
 def _names_as_written(names, reference_parts, value=None) -> bool:
@@ -868,13 +872,27 @@ def _names_as_written(names, reference_parts, value=None) -> bool:
     y`, `x1, y1`, `u, v`). (An array's shape is another kind: `w, h = image.shape[:2]` is the slip,
     wherever the reference writes `w, h = dsize`.)"""
     if _value_key(value) == "shape":
-        return (_value_key(value), tuple(names)) in reference_parts
+        return (_value_key(value), tuple(names)) in reference_parts or _rows_then_columns(names)
     if len(names) >= 2 and ("", tuple(names)) in reference_parts:
         return True
     for a, b in itertools.combinations(names, 2):
         if len(a) == len(b) and any(a.replace(first, "\0", 1) == b.replace(second, "\0", 1)
                                     and a.count(first) == 1 for first, second in _AXIS_ORDER):
             return True
+    return False
+
+
+def _rows_then_columns(names) -> bool:
+    """Whether the first two names are a shape's sides in its order by their own words (`h, w`,
+    `height_left, width_left`, `rows, cols`), the rest of each name alike."""
+    if len(names) < 2:
+        return False
+    a, b = names[0], names[1]
+    for rows, columns in _ROWS_THEN_COLUMNS:
+        for case in (str, str.lower):
+            if case(a).startswith(rows) and case(b).startswith(columns) \
+                    and case(a)[len(rows):] == case(b)[len(columns):] and not case(a)[len(rows):].isalpha():
+                return True
     return False
 
 
