@@ -242,7 +242,14 @@ def test_a_forbidden_call_is_told_with_what_its_answer_was_worth(tmp_path, endin
     first = next(c for c in checks if "worked example" in c.name)
     assert first.message.startswith("triangulate() called cv2.triangulatePoints") and told in first.message, \
         first.message
-    assert sum("Besides" in c.message or "passes this check otherwise" in c.message for c in checks) == 1
+    looked = [c for c in checks if "Besides, the answer it gave" in c.message or "passes this check otherwise" in c.message]
+    assert looked == [first]
+    # (the look is made once; the exercise's other checks lost for the call point to what it found when
+    # the answer was wrong besides -- "called cv2.triangulatePoints" alone would hide it -- and say nothing
+    # more where it was right)
+    pointing = [c for c in checks if f"the answer it gave in the check '{first.name}' was wrong" in c.message]
+    assert pointing == ([c for c in checks if c is not first] if ending == "" else []), \
+        [c.message for c in checks]
 
 
 def test_a_forbidden_call_whose_code_raises_is_told_with_the_change_that_mends_it(tmp_path):
@@ -289,16 +296,21 @@ def test_what_a_forbidden_calls_second_look_computes_is_never_shared_with_the_ot
     from autograder.engine.checks import Fail, Verdict
     from autograder.engine.runner import besides_forbidden
 
+    runs = []
+
     def check_func(t):
+        runs.append(t)
         t.shared("the student's panorama", lambda: "computed with the call allowed")
         raise Fail("the panorama is wrong")
 
     sandbox = SimpleNamespace(shared={"earlier": 1})
     lab = SimpleNamespace(forbidden={}, module="m")
     check = SimpleNamespace(func=check_func, hidden=False, exercise=SimpleNamespace(lab=lab, id="lab98.ex1"),
-                            timeout=1)
+                            timeout=1, name="the panorama")
     verdict = besides_forbidden(Verdict(0.0, "f() called cv2.f"), sandbox, check, None, None)
     assert "Besides, the answer it gave is wrong: the panorama is wrong" in verdict.message
     assert "the student's panorama" not in sandbox.shared and sandbox.shared["earlier"] == 1
-    # once per exercise: its time comes out of the exercise's budget
-    assert besides_forbidden(Verdict(0.0, "f() called cv2.f"), sandbox, check, None, None).message == "f() called cv2.f"
+    # once per exercise: its time comes out of the exercise's budget (another check points to it)
+    again = besides_forbidden(Verdict(0.0, "f() called cv2.f"), sandbox, check, None, None).message
+    assert len(runs) == 1 and again == ("f() called cv2.f. Besides, with that call allowed, the answer it gave in "
+                                        "the check 'the panorama' was wrong: see there."), again

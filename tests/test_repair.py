@@ -2444,3 +2444,43 @@ def test_a_fix_downstream_of_another_in_the_same_def_is_dropped():
     assert repair._downstream_dropped(both, code).fixes == (upstream,)
     apart = repair.Repair("graded", (downstream, repair.Fix(((8, "proj", "proj.T"),), "graded", "transpose", ())), 9)
     assert len(repair._downstream_dropped(apart, code).fixes) == 1   # (line 8 reads proj, which line 7 assigns)
+
+
+def test_a_change_that_only_shrinks_a_size_term_is_refuted_on_small_images(tmp_path):
+    """Scaling about the image centre where the top-left corner belongs: on large images `2 / w` where
+    `w / 2` was shifts by a fraction of a pixel, as the translation made 0 does not; on the small-image
+    confirmation input (judged to rounding) it is wrong, and the change told is the translation's."""
+    folder = mutant(tmp_path, "lab07_transformations", """
+        def scale(image, sx=1.5, sy=1.5):
+            h, w = image.shape[:2]
+            cx = w / 2
+            cy = h / 2
+            M = np.array([[sx, 0.0, cx - sx * cx], [0.0, sy, cy - sy * cy]], dtype=np.float32)
+            return cv2.warpAffine(image, M, (w, h), flags=cv2.INTER_LINEAR,
+                                  borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+        """)
+    result = grade(folder, ["lab07.ex3"], pictures="none", include_hidden=False)
+    told = [c.message for c in check_results(result, "lab07.ex3") if not c.passed and "Trying small changes" in c.message]
+    assert told, [c.message for c in check_results(result, "lab07.ex3")]
+    assert not any("to `2 / w`" in m or "to `2 / h`" in m for m in told), told
+    assert any("to `0`" in m for m in told), told
+
+
+def test_the_small_image_input_cuts_every_image_alike_and_reads_sizes_through_names():
+    left, right = np.zeros((60, 80, 3), np.uint8), np.ones((60, 80, 3), np.uint8)
+    [small] = repair._small(("f", (left, right, 3.0), {"mask": np.zeros((10, 10), np.uint8)}))
+    assert small[1][0].shape == (*repair.SMALL_IMAGE, 3) and small[1][1].shape == (*repair.SMALL_IMAGE, 3)
+    assert small[1][2] == 3.0 and small[2]["mask"].shape == (10, 10)   # (too small to cut: as it was)
+    assert repair._small(("f", (np.zeros((5, 5), np.uint8),), {})) == []
+    source = textwrap.dedent("""
+        def graded(image, s):
+            h, w = image.shape[:2]
+            c = (w - 1) / 2
+            t = c - s * c
+            k = s * 2
+            return image * k + t
+    """)
+    student = repair._Student(source, ast.parse(source), ["graded"])
+    assert student._size_names("graded") == {"h", "w", "c", "t"}
+    lines = {m.line: student.reads_size(m) for m in student.mutants("graded")}
+    assert lines.get(4) and lines.get(5) and lines.get(7) and lines.get(6) is False, lines

@@ -771,10 +771,33 @@ def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: d
     it). The check is run once more with the calls allowed, in the first public check of its exercise
     that lost points so (once: the second run's time comes out of the exercise's budget, which the
     exercise's other functions need); anything but a verdict tells nothing."""
-    looked = sandbox.shared.setdefault("forbidden call looked at", set())
+    # (the exercise -> what the look found, in the check it was made in: the exercise's other checks
+    # lost so point to it -- "called X" alone would hide that the answer was wrong besides)
+    looked = sandbox.shared.setdefault("forbidden call looked at", {})
     if check.exercise.id in looked:
-        return verdict
-    looked.add(check.exercise.id)
+        found = looked[check.exercise.id]
+        if found is None:
+            return verdict
+        name, what, mistake = found
+        # (the mistake in words where it has them -- "the two images' points are swapped" -- not a
+        # machine label such as "repair:swap_items")
+        said = f" ({mistake})" if mistake and ":" not in mistake and len(mistake) <= 200 else ""
+        return replace(verdict, message=f"{_sentence(verdict.message)} Besides, with that call allowed, the answer "
+                                        f"it gave in the check '{name}' was {what}{said}: see there.",
+                       mistake=verdict.mistake or mistake)
+    looked[check.exercise.id] = None
+    verdict = _looked_besides_forbidden(verdict, sandbox, check, rules, inputs)
+    told = {"Besides, the answer it gave is wrong": "wrong", "Besides, with that call allowed your code fails":
+            "an exception", "The answer it gave passes this check otherwise": None}
+    for sentence, what in told.items():
+        if what and sentence in str(verdict.message):
+            looked[check.exercise.id] = (check.name, what, verdict.mistake)
+    return verdict
+
+
+def _looked_besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: dict | None,
+                              inputs: Inputs | None) -> Verdict:
+    """:func:`besides_forbidden`'s look: the check run again with the calls allowed."""
     trial = Trial(_SharedApart(sandbox), check, rules, inputs)
     trial.forbidden_allowed = True
     try:

@@ -381,6 +381,34 @@ class _Student:
                 node = None if isinstance(parent, ast.stmt) else parent
         return made
 
+    def reads_size(self, mutant) -> bool:
+        """Whether one of the mutant's changes is in a statement that reads an array's size: its
+        ``.shape`` or ``.size``, ``len(...)``, or a name computed from them in the same def (`h, w =
+        image.shape[:2]`, then `cx = (w - 1) / 2`)."""
+        for where, ordinal, _, _ in mutant.edits:
+            nodes, parents = self._walk(where)
+            node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+            while node is not None and not isinstance(node, ast.stmt):
+                node = parents.get(id(node), (None,))[0]
+            if node is not None and _reads_size(node, self._size_names(where)):
+                return True
+        return False
+
+    def _size_names(self, where: str) -> set:
+        """The names the def ``where`` computes from an array's size (directly or through one another)."""
+        nodes, _ = self._walk(where)
+        assigned = [n for n in nodes if isinstance(n, (ast.Assign, ast.AugAssign, ast.AnnAssign)) and n.value is not None]
+        names: set = set()
+        for _ in range(4):   # (a few rounds: `h, w = shape[:2]`, `cx = w / 2`, `tx = cx - s * cx`)
+            before = len(names)
+            for node in assigned:
+                if _reads_size(node.value, names):
+                    targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+                    names |= {t.id for target in targets for t in ast.walk(target) if isinstance(t, ast.Name)}
+            if len(names) == before:
+                break
+        return names
+
     def chooses(self, mutant) -> bool:
         """Whether one of the mutant's changes is in what an argmin, argmax or argsort reads (an index
         chosen, as a branch is)."""
@@ -1126,6 +1154,37 @@ def _widened(call, defaults=(), factors=(4.0,)) -> list:
     return made
 
 
+def _reads_size(node, names) -> bool:
+    """Whether the code ``node`` reads an array's size (``.shape``, ``.size``, ``len``) or one of ``names``."""
+    for n in ast.walk(node):
+        if (isinstance(n, ast.Attribute) and n.attr in ("shape", "size")) or (isinstance(n, ast.Name) and n.id in names) \
+                or (isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "len"):
+            return True
+    return False
+
+
+SMALL_IMAGE = (7, 9)   # rows, columns of the images of a change's small-image confirmation input
+
+
+def _small(call) -> list:
+    """The call with every 8-bit image (both sides above 20 pixels) cut to a window of
+    :data:`SMALL_IMAGE` at its centre -- images of one shape alike: a stereo pair stays a pair --
+    ([] when it has none). A change in what is computed from an image's size must hold at every size:
+    `2 / (w - 1)` where `(w - 1) / 2` was is almost 0 on a 320-pixel image, as a translation of 0 would
+    be, and a quarter pixel on a 9-pixel one."""
+    function, args, kwargs = call
+
+    def cut(value):
+        if isinstance(value, np.ndarray) and value.dtype == np.uint8 and value.ndim >= 2 and min(value.shape[:2]) > 20:
+            top, left = (value.shape[0] - SMALL_IMAGE[0]) // 2, (value.shape[1] - SMALL_IMAGE[1]) // 2
+            return np.ascontiguousarray(value[top:top + SMALL_IMAGE[0], left:left + SMALL_IMAGE[1]])
+        return value
+
+    made = (function, tuple(cut(a) for a in args), {k: cut(v) for k, v in kwargs.items()})
+    changed = any(a is not b for a, b in zip(made[1], args)) or any(made[2][k] is not kwargs[k] for k in kwargs)
+    return [made] if changed else []
+
+
 def _beyond(call, defaults=()) -> list:
     """The call with the values its check chose given as the contract's other values of the same kind:
     whole numbers (an int argument: a shift of 100 px) made fractional, a number given with the other
@@ -1565,6 +1624,7 @@ class _Variants:
         self.keeping: set = set()    # variants (other modes, other channels) where answers must be kept or mended
         self.exchanged: set = set()  # the variants with the twin parameters exchanged (see _unmended_exchange)
         self.holed: set = set()      # the variants with a point given as NaN (see _breaks_holed)
+        self.small: set = set()      # the variants with the images small (a change in what their size gives only)
         self.channels: set = set()   # of keeping, the variants with the images in the other number of channels
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
@@ -1724,6 +1784,12 @@ class _Variants:
                 exchanged = naming.twins_exchanged(self.inputs[i], getattr(self.model, "twins", {}).get(self.function, ()))
                 self.exchanged.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(exchanged)))
                 variants += exchanged
+            # (and its images small, for a change in what is computed from their size only: there a
+            # student's own recipe may differ from the reference's legitimately -- at the borders, which
+            # a small image is mostly made of)
+            small = [call for call in _small(self.inputs[failing[0]])]
+            self.small = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(small)))
+            variants += small
             # (and the values the check chose given otherwise: whole numbers made fractional, 0/1 masks soft)
             beyond = [call for i in failing[:2]
                       for call in _beyond(self.inputs[i], self.model.defaults.get(self.function, ()))]
@@ -1778,7 +1844,8 @@ class _Variants:
             return False
         if usable is not None:   # (those given otherwise refute a change only by a wrong answer: above)
             usable = [i for i in usable if i not in self.keeping and i not in self.beyond and i not in self.holed
-                      and (mutant.operator in BRANCHING or i not in self.crossing)]
+                      and (mutant.operator in BRANCHING or i not in self.crossing)
+                      and (i not in self.small or self.student.reads_size(mutant))]
         if usable is not None and (not usable or self._right_on(mutant, usable, every, wanted)):
             # A condition changed sends inputs down another branch: the inputs derived from the failing
             # ones mostly stay on the same side of it, so the grading's other checks of the function
@@ -2025,8 +2092,11 @@ class _Variants:
         values = self.answers(mutant, indices, every)
         if values is None:
             return False
+        # (on the small images, a change is right only as the reference is, to rounding, or as near as it
+        # was on the check's own inputs: what a change to an image's size mends alike at every size -- a
+        # fraction of a pixel on a large image -- is three grey levels on a small one)
         if mutant.key not in self.checked:
-            return all(self.right(v, wanted[i], confirming=True) for v, i in zip(values, indices))
+            return all(self.right(v, wanted[i], confirming=i not in self.small) for v, i in zip(values, indices))
         if mutant.key not in self.close:
             return False
         # A change the check judged right is confirmed against the student's own answers (their recipe
@@ -2037,7 +2107,7 @@ class _Variants:
         if own is None:
             return False
         for value, theirs, i in zip(values, own, indices):
-            if self.right(value, wanted[i], confirming=True):
+            if self.right(value, wanted[i], confirming=i not in self.small):
                 continue
             # Within the spread the check accepted, always: "far nearer than theirs" alone is no
             # confirmation where theirs are far off (a pyramid of no levels blends an image with
