@@ -2484,3 +2484,21 @@ def test_the_small_image_input_cuts_every_image_alike_and_reads_sizes_through_na
     assert student._size_names("graded") == {"h", "w", "c", "t"}
     lines = {m.line: student.reads_size(m) for m in student.mutants("graded")}
     assert lines.get(4) and lines.get(5) and lines.get(7) and lines.get(6) is False, lines
+
+
+def test_a_pair_of_changes_that_divides_a_matrix_by_another_of_its_entries_is_never_told(tmp_path):
+    """`P / P[2, 3]` (t_z: 0 for a camera at the world origin) made `P / P[0, 0]` by two index changes
+    only changes P's scale -- by an entry that happens to be positive on the inputs tried -- as one
+    index change does: the division taken out is the change told."""
+    folder = mutant(tmp_path, "lab09_camera", """
+        def project(P, points):
+            X, single = _points(points)
+            P = np.asarray(P, dtype=np.float64)
+            Pn = P / P[2, 3]
+            homogeneous = np.column_stack([X, np.ones(len(X))])
+            return _divide(homogeneous @ Pn.T, single)
+        """)
+    result = grade(folder, ["lab09.ex3"], pictures="none", include_hidden=False)
+    told = [c.message for c in check_results(result, "lab09.ex3") if not c.passed]
+    assert told and not any(re.search(r"P\[\d, \d\]` \(line", m) for m in told), told
+    assert any("to `Pn = P`" in m for m in told), told

@@ -424,8 +424,11 @@ class _Student:
 
     def renormalises(self, mutant) -> bool:
         """Whether the mutant changes which of an array's own entries divides it (``F / F[2, 2]``: the
-        index, or the entry, of the divisor ``F[...]`` of a division of ``F``)."""
-        where, ordinal = mutant.edits[0][0], mutant.edits[0][1]
+        index, or the entry, of the divisor ``F[...]`` of a division of ``F``), in any of its edits (a
+        pair: both indices of `P[2, 3]` made 0)."""
+        return any(self._renormalises(where, ordinal) for where, ordinal, _, _ in mutant.edits)
+
+    def _renormalises(self, where: str, ordinal: int) -> bool:
         nodes, parents = self._walk(where)
         node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
         while node is not None:
@@ -1535,7 +1538,7 @@ def _accepted_pair(variant, both, failing) -> bool:
     """A pair of changes held to what a single change is: confirmed, writing into no input, testing its
     guard, and breaking none of the grading's other checks of the function (two compensating changes --
     the mean depth inverted twice -- mend the default z_avg and break a given one)."""
-    return variant.confirmed(both, failing) and not variant.writes_inputs(both) \
+    return not variant.student.renormalises(both) and variant.confirmed(both, failing) and not variant.writes_inputs(both) \
         and not variant.guard_untested(both, failing) and not variant.breaks_other_checks(both)
 
 
