@@ -837,6 +837,17 @@ def aperture_statistics(t):
     if np.any(mean_error > 0.1):
         t.fail(f"{what}: the rays of a point are not centred on its ideal projection f X / Z "
                f"(their mean is off by up to {mean_error.max():.2f} blur radii).")
+    # A round pinhole spreads a point's rays alike in x and in y (half a blur radius RMS each; 0.41 where
+    # the radius is drawn uniformly): rays along a line or a thin ellipse stay inside the disc with a
+    # plausible overall RMS, and fill none of it.
+    along = np.sqrt(np.mean((got - ideal[:, None, :]) ** 2, axis=1)) / radius[:, None]   # (N, 2): x, y
+    lopsided = along.min(axis=1) / np.maximum(along.max(axis=1), 1e-300)
+    if np.all(np.isfinite(along)) and np.any(lopsided < 0.6):
+        point = int(np.argmin(lopsided))
+        axis = int(np.argmin(along[point]))
+        t.fail(f"{what}: the rays spread in one direction only: {along[point, axis]:.2f} blur radii RMS in "
+               f"{'xy'[axis]} against {along[point, 1 - axis]:.2f} in {'yx'[axis]} (point {point}); a round "
+               "pinhole spreads them alike in x and in y (0.5 radii RMS each, uniform over the disc).")
     ratio = d.max(axis=1) / radius
     per_point = rms / radius
     if np.all(np.abs(ratio - 2.0) < 0.1):

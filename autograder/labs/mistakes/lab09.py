@@ -132,6 +132,16 @@ MISTAKES = {
             A = np.stack([r * np.cos(a), r * np.sin(a)], axis=-1)
             return pinhole_project(X, f)[:, None, :] + 30 * A
         """, ["depend on depth"]),
+    "rays spread in x divided by the depth factor": ("lab09.ex4", """
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            X, _ = _points(points)
+            rng = np.random.default_rng(seed)
+            r = aperture * np.sqrt(rng.uniform(size=(len(X), n_rays)))
+            a = rng.uniform(0, 2 * np.pi, size=(len(X), n_rays))
+            k = 1.0 + f / X[:, 2:3]
+            offsets = np.stack([r * np.cos(a) / k, r * np.sin(a) * k], axis=-1)
+            return pinhole_project(X, f)[:, None, :] - offsets
+        """, ["spread in one direction only", "in x against"]),
     "seed ignored": ("lab09.ex4", """
         _right = simulate_aperture
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
