@@ -2502,3 +2502,27 @@ def test_a_pair_of_changes_that_divides_a_matrix_by_another_of_its_entries_is_ne
     told = [c.message for c in check_results(result, "lab09.ex3") if not c.passed]
     assert told and not any(re.search(r"P\[\d, \d\]` \(line", m) for m in told), told
     assert any("to `Pn = P`" in m for m in told), told
+
+
+def test_the_parts_of_an_item_unpacked_inside_the_loop_are_siblings_too():
+    """`for pair in matches:` then `m, n = pair`: the second neighbour's index kept where the best's
+    belongs (`kp2[n.trainIdx]`) is a change tried among the first of its kind, as for `for m, n in
+    matches`; names unpacked from anything but a loop's item are not siblings."""
+    source = textwrap.dedent("""
+        def graded(matches, kp1, kp2, size):
+            pts1, pts2 = [], []
+            w, h = size
+            for pair in matches:
+                m, n = pair
+                if m.distance < 0.75 * n.distance:
+                    pts1.append(kp1[m.queryIdx].pt)
+                    pts2.append(kp2[n.trainIdx].pt)
+            return pts1, pts2, w * h
+    """)
+    tree = ast.parse(source)
+    assert repair.unpacked_items(tree.body[0]) == [{"m", "n"}]
+    student = repair._Student(source, tree, {"graded"})
+    swaps = [m for m in student.mutants("graded") if student.zipped_swap(m)]
+    assert any(student.fix(m).changes[0][1:] == ("kp2[n.trainIdx]", "kp2[m.trainIdx]") for m in swaps), \
+        [student.fix(m).changes for m in swaps]
+    assert not any("h" in re.findall(r"\w+", student.fix(m).changes[0][2]) for m in swaps)

@@ -959,6 +959,9 @@ class _Words:
                 self._define(node.target, node.value if isinstance(node, ast.AnnAssign) else node, node.lineno)
             elif isinstance(node, (ast.For, ast.comprehension)):
                 self._define_loop(node.target, node.iter, getattr(node, "lineno", getattr(node.iter, "lineno", 0)))
+        for names in unpacked_items(fn):   # (`m, n = pair` in a loop over knnMatch's pairs: siblings too)
+            for name in names:
+                self.zipped.setdefault(name, set()).update(names - {name})
 
     def _define_loop(self, target, iterable, line):
         """A loop's targets: through ``enumerate`` (its item) and ``zip`` (each its own sequence),
@@ -3534,6 +3537,23 @@ def _index_phrase(inner, elements, position, value, other) -> str:
     if len(elements) == 2 and position == 0 and _whole_slice(elements[1]):
         return f"row {other} of {inner} is used where row {value} belongs"
     return f"another index ({other} for {value}) is used in {inner}"
+
+
+def unpacked_items(fn) -> list[set]:
+    """The sets of names a loop's item is unpacked into by an assignment in the loop (`for pair in
+    matches:` then `m, n = pair`): the parts of one item, as a loop's own tuple target makes them."""
+    items = set()
+    for loop in ast.walk(fn):
+        if isinstance(loop, (ast.For, ast.comprehension)):
+            items |= {n.id for n in ast.walk(loop.target) if isinstance(n, ast.Name)}
+    found = []
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
+                and isinstance(node.value, ast.Name) and node.value.id in items:
+            names = {n.id for n in node.targets[0].elts if isinstance(n, ast.Name)}
+            if len(names) >= 2:
+                found.append(names)
+    return found
 
 
 def _sibling_item_read(node: ast.Name, parent, words) -> bool:

@@ -44,7 +44,8 @@ from ..checks import Trial, Verdict, fingerprint
 from ..inherited import SHARED_FAILING
 from . import naming
 from .helper import HelperFailed
-from .operators import _MAKE, _MOVES, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs, twin_names
+from .operators import (_MAKE, _MOVES, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs,
+                        twin_names, unpacked_items)
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
@@ -501,6 +502,8 @@ class _Student:
                 if isinstance(loop, (ast.For, ast.comprehension)) and isinstance(loop.target, ast.Tuple):
                     names = [n.id for n in loop.target.elts if isinstance(n, ast.Name)]
                     pairs |= {(a, b) for a in names for b in names if a != b}
+            for names in unpacked_items(fn):   # (or unpacked in the loop: `m, n = pair`)
+                pairs |= {(a, b) for a in names for b in names if a != b}
             self._zipped[where] = pairs
         fix = self.fix(mutant)
         if fix is None or len(fix.changes) != 1:
