@@ -2526,3 +2526,23 @@ def test_the_parts_of_an_item_unpacked_inside_the_loop_are_siblings_too():
     assert any(student.fix(m).changes[0][1:] == ("kp2[n.trainIdx]", "kp2[m.trainIdx]") for m in swaps), \
         [student.fix(m).changes for m in swaps]
     assert not any("h" in re.findall(r"\w+", student.fix(m).changes[0][2]) for m in swaps)
+
+
+def test_a_block_of_columns_moved_by_its_own_width_is_a_change_tried():
+    """A design matrix's second row written with the first row's columns (`A[r + 1, 0:4] = X` where
+    `4:8` belongs: the line copied, its block left): the window moved by its width, either way (never
+    below 0), beside the window moved by one."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(X, r):
+            A = np.zeros((2, 12))
+            A[0, 0:4] = X
+            A[1, 0:4] = X
+            A[1, 8:12] = -r * X
+            return A
+    """)
+    changes = _shown_changes(source, "slice")
+    assert ("A[1, 0:4] = X", "A[1, 4:8] = X") in changes, changes
+    assert ("A[1, 8:12] = -r * X", "A[1, 4:8] = -r * X") in changes, changes
+    assert ("A[1, 0:4] = X", "A[1, 1:5] = X") in changes and not any("[1, -" in after for _, after in changes), changes

@@ -2555,6 +2555,13 @@ def _slice_changes(node: ast.Slice):
         for delta in (-1, 1):
             if lower + delta >= 0 and (upper + delta != 0 or upper < 0):
                 yield "slice", (lower + delta, upper + delta), ""
+        # (and the block beside it, of the same width: a row of a design matrix written `A[k, 0:4] = X`
+        # where its second block `4:8` belongs -- the line copied from the row above, its columns left)
+        width = upper - lower
+        if 0 <= lower < upper and width >= 2:
+            for delta in (-width, width):
+                if lower + delta >= 0:
+                    yield "slice", (lower + delta, upper + delta), ""
     elif lower == 1 and upper is None:
         yield "slice", (None, 2), ""
         yield "slice", (None, -1), ""
