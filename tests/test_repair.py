@@ -2546,3 +2546,21 @@ def test_a_block_of_columns_moved_by_its_own_width_is_a_change_tried():
     assert ("A[1, 0:4] = X", "A[1, 4:8] = X") in changes, changes
     assert ("A[1, 8:12] = -r * X", "A[1, 4:8] = -r * X") in changes, changes
     assert ("A[1, 0:4] = X", "A[1, 1:5] = X") in changes and not any("[1, -" in after for _, after in changes), changes
+
+
+def test_a_function_changed_for_its_opposite_keeps_its_arguments():
+    """`np.argmin(d, axis=2)` -> `np.argmax(d, axis=2)`, and an array's own method (`bits.all(axis=0)`
+    -> `bits.any(axis=0)`: every bit lit where one lit bit belongs): the call with its arguments, never
+    the bare function (`np.argmax`, a value no caller wants)."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(d, bits):
+            best = np.argmin(d, axis=2)
+            lit = bits.all(axis=0)
+            return best, lit, max(1, 2)
+    """)
+    changes = _shown_changes(source, "minmax")
+    assert ("np.argmin(d, axis=2)", "np.argmax(d, axis=2)") in changes, changes
+    assert ("bits.all(axis=0)", "bits.any(axis=0)") in changes, changes
+    assert ("max(1, 2)", "min(1, 2)") in changes, changes

@@ -149,7 +149,9 @@ _ANGLE_CONVERSIONS = {"np.deg2rad": "radians", "np.radians": "radians", "math.ra
                       "np.rad2deg": "degrees", "np.degrees": "degrees", "math.degrees": "degrees"}
 _OPPOSITES = {"argmin": "argmax", "argmax": "argmin", "min": "max", "max": "min", "amin": "amax",
               "amax": "amin", "minimum": "maximum", "maximum": "minimum", "nanargmin": "nanargmax",
-              "nanargmax": "nanargmin", "nanmin": "nanmax", "nanmax": "nanmin"}
+              "nanargmax": "nanargmin", "nanmin": "nanmax", "nanmax": "nanmin", "all": "any", "any": "all"}
+# the array methods among them (`mask.any(axis=0)`, `d.argmax(axis=2)`), told on a name's array
+_ARRAY_METHODS = {"all", "any", "min", "max", "argmin", "argmax"}
 # OpenCV constants that stand for one another (a student picks another member of the family).
 _FLAG_FAMILIES = [
     ("INTER_NEAREST", "INTER_LINEAR", "INTER_CUBIC", "INTER_AREA"),
@@ -456,6 +458,10 @@ def _make_single_point(node, payload):
 
 
 def _make_minmax(node, payload):
+    """The call with its opposite function (`np.argmin(d, axis=2)` -> `np.argmax(d, axis=2)`), its
+    arguments kept."""
+    if isinstance(node, ast.Call):
+        return ast.Call(_name(payload), copy.deepcopy(node.args), copy.deepcopy(node.keywords))
     return _name(payload)
 
 
@@ -3358,7 +3364,8 @@ def _call_changes(node: ast.Call, words, what, parents):
         array = what(node.args[0]) if dotted.startswith(("np.", "numpy.")) and node.args else what(node.func.value)
         yield "reshape_order", "F", f"{array or 'an array'} is {_ORDERED[method]} column by column " \
                                     "(Fortran order) instead of row by row"
-    if short in _OPPOSITES and (dotted.startswith(("np.", "numpy.")) or dotted in ("min", "max")):
+    method_of_array = short in _ARRAY_METHODS and "." in dotted and not dotted.startswith(("cv2.", "cv.", "math."))
+    if short in _OPPOSITES and (dotted.startswith(("np.", "numpy.")) or dotted in ("min", "max") or method_of_array):
         other = dotted[: -len(short)] + _OPPOSITES[short]
         on = what(node.args[0]) if node.args else ""
         yield "minmax", other, f"`{other}` is used where `{dotted}` belongs" + (f" (on {on})" if on else "")
