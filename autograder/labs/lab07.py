@@ -8,6 +8,8 @@ feedback can name the mistake.
 
 from __future__ import annotations
 
+import ast
+
 import numpy as np
 
 from fixtures import lab07 as truth
@@ -20,7 +22,7 @@ from ..engine.claims import calls_any, guard, measured
 from ..engine.compare import format_arrays_apart
 from ..engine.judges import (Probe, call_probe, digits_apart, judge_matrix, judge_parameter_used, judge_warp,
                       name_mistake, warp_probe)
-from ..engine.hints import expr, mentions
+from ..engine.hints import Predicate, expr, mentions
 from ..engine.registry import Lab
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
@@ -34,6 +36,25 @@ DEGREES_TO_RADIANS = (calls_any("np.deg2rad", "np.radians", "math.radians") | ex
 guard(truth.ANGLE_AS_RADIANS, asks=DEGREES_TO_RADIANS,
       instead="the angle is used as radians: your code {found}, but cos and sin are given the angle "
               "before the conversion (or converted back)")
+# The column of ones of an affine system written: np.ones, a 1 set into an array's entries
+# (`M[0::2, 2] = 1`), or a literal row ending in 1 (`[x, y, 1, 0, 0, 0]`). A fit with no
+# translation from code that has one is another slip (how the system is solved, or read back).
+def _sets_ones(function) -> bool:
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and isinstance(node.value, ast.Constant) and node.value.value == 1 \
+                and any(isinstance(target, ast.Subscript) for target in node.targets):
+            return True
+        if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) >= 3 and any(
+                isinstance(e, ast.Constant) and e.value == 1 and type(e.value) in (int, float) for e in node.elts):
+            return True
+    return False
+
+
+ONES_COLUMN = (calls_any("np.ones", "np.ones_like", "cv2.convertPointsToHomogeneous")
+               | Predicate("sets entries of the system to 1", _sets_ones)).saying("builds the column of ones")
+guard(truth.NO_ONES_COLUMN, asks=ONES_COLUMN,
+      instead="the fit has no translation (its last column is 0), yet your code {found}: look at how the system "
+              "is solved and how its solution is read back into the matrix")
 guard(truth.RADIANS_TO_OPENCV, asks=~calls_any("cv2.getRotationMatrix2D"),
       instead="the rotation is by angle_deg * pi / 180 degrees: the angle is converted to radians twice")
 guard(truth.INVERSE_MAP, asks=~(calls_any("np.linalg.inv", "np.linalg.pinv", "cv2.invertAffineTransform")

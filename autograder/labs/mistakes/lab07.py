@@ -175,6 +175,17 @@ MISTAKES = {
             p = np.linalg.solve(M, np.asarray(dst, float).reshape(-1))
             return p.reshape(3, 2).T
         """, ["wrong order"]),
+    "lstsq whose rcond cuts the column of ones off": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, float)
+            M = np.zeros((2 * len(src), 6))
+            M[0::2, 0:2] = src
+            M[0::2, 2] = 1
+            M[1::2, 3:5] = src
+            M[1::2, 5] = 1
+            p, *_ = np.linalg.lstsq(M, np.asarray(dst, float).reshape(-1), rcond=0.05)
+            return p.reshape(2, 3)
+        """, ["yet your code builds the column of ones"]),
     "lstsq without the column of ones": ("lab07.ex6", """
         def affine_lstsq(src, dst):
             X, *_ = np.linalg.lstsq(np.asarray(src, float), np.asarray(dst, float), rcond=None)
