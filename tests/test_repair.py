@@ -2564,3 +2564,48 @@ def test_a_function_changed_for_its_opposite_keeps_its_arguments():
     assert ("np.argmin(d, axis=2)", "np.argmax(d, axis=2)") in changes, changes
     assert ("bits.all(axis=0)", "bits.any(axis=0)") in changes, changes
     assert ("(best, lit, max(1, 2))", "(best, lit, min(1, 2))") in changes, changes
+
+
+def test_a_conjugation_turned_round_is_told_as_its_outer_factors_exchanged_not_as_a_passing_helpers_slip(tmp_path):
+    """rotate as T(-c) R T(c) where T(c) R T(-c) belongs: the reference's rotate with rotation_matrix's
+    subtraction swapped answers alike, but the student's rotation_matrix passes its own checks -- the
+    error model names nothing there; the change told exchanges the product's outer factors."""
+    folder = edited_reference(tmp_path, "lab07_transformations", (
+        "    return _warp(image, rotation_matrix(angle_deg, centre))",
+        "    M = translation_matrix(-centre[0], -centre[1]) @ rotation_matrix(angle_deg) @ translation_matrix(*centre)\n"
+        "    return _warp(image, M)"))
+    result = grade(folder, ["lab07.ex2"], pictures="none", include_hidden=False)
+    failed = [c for c in check_results(result, "lab07.ex2") if not c.passed]
+    assert failed and all("rotation_matrix`, which it calls" not in c.message for c in failed), \
+        [c.message for c in failed]
+    assert any("to `translation_matrix(*centre) @ ... @ translation_matrix(-centre[0], -centre[1])`" in c.message
+               for c in failed), [c.message for c in failed]
+
+
+def test_two_calls_of_one_function_moved_to_each_others_place_keep_their_arguments_when_shown():
+    before = ast.parse("f(a_long_name, 1) @ g(x) @ f(another_long_name, 2)", mode="eval").body
+    after = ast.parse("f(another_long_name, 2) @ g(x) @ f(a_long_name, 1)", mode="eval").body
+    shown_before, shown_after = repair._abbreviated(before, after)
+    assert shown_before != shown_after and "a_long_name" in shown_before and "another_long_name" in shown_after
+
+
+def test_the_error_model_names_no_change_inside_a_graded_function_whose_checks_all_passed():
+    """A mutant of rotate's reference whose change sits in rotation_matrix reproduces a rotate that
+    composes its translations the other way round; the student's rotation_matrix passed every check of
+    its own in this grading, so the slip is not there: nothing is named. Where it failed (or was not
+    graded yet), the name stands."""
+    from types import SimpleNamespace
+
+    from autograder.engine.inherited import SHARED_FAILING
+    from autograder.engine.mutants import naming
+
+    inside = Mutant("swap_operands", "rotate", "rotation_matrix", 30, (("rotation_matrix", 5, "swap_operands", None),),
+                    "in `rotate` (in `rotation_matrix`, which it calls), the subtraction has its operands swapped")
+    own = Mutant("sign", "rotate", "rotate", 40, (("rotate", 3, "sign", None),), "in `rotate`, a sign")
+    shared = {("checks calling", "rotation_matrix"): ["a check"], ("checks calling", "rotate"): ["a check"],
+              (SHARED_FAILING, "lab07_transformations"): {"rotate"}}
+    trial = SimpleNamespace(sandbox=SimpleNamespace(shared=shared), lab=SimpleNamespace(module="lab07_transformations"))
+    assert naming._vouched_for(naming.Naming(inside, 1, 1), trial)
+    assert not naming._vouched_for(naming.Naming(own, 1, 1), trial)
+    shared[(SHARED_FAILING, "lab07_transformations")].add("rotation_matrix")
+    assert not naming._vouched_for(naming.Naming(inside, 1, 1), trial)

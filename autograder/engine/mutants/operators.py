@@ -737,7 +737,8 @@ def _make_canvas(node, payload):
 
 def _make_chain_order(node, payload):
     first, middle, last = (copy.deepcopy(f) for f in _chain_of_three(node))
-    factors = [middle, first, last] if payload == "first" else [first, last, middle]
+    factors = {"first": [middle, first, last], "last": [first, last, middle],
+               "outer": [last, middle, first]}[payload]   # (a conjugation turned round: T(-c) R T(c) for T(c) R T(-c))
     return ast.BinOp(ast.BinOp(factors[0], ast.MatMult(), factors[1]), ast.MatMult(), factors[2])
 
 
@@ -1683,6 +1684,7 @@ def _student_changes(node, parent, parents):
     if _chain_of_three(node) is not None and not (isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult)):
         yield "chain_order", "first", ""   # `A @ B @ C` -> `B @ A @ C`
         yield "chain_order", "last", ""    # `A @ B @ C` -> `A @ C @ B` (K2.T @ K1 @ F for K2.T @ F @ K1)
+        yield "chain_order", "outer", ""   # `A @ B @ C` -> `C @ B @ A` (T(-c) @ R @ T(c) for T(c) @ R @ T(-c))
     yield from _grid_axis_changes(node)
     yield from _layout_and_type_changes(node)
     if isinstance(parent, ast.Call) and len(parent.args) >= 2 and node is parent.args[1] \

@@ -715,6 +715,14 @@ class _Student:
             return None
         # (a long line: its calls with the unchanged arguments as `...` where that fits whole, so the
         # function called stays in sight; else cut to the change and a few characters around it)
+        if operator == "chain_order" and payload == "outer" and max(len(before), len(after)) > _SHOWN:
+            # (the outer factors exchanged: the middle one, where it stays, as "...")
+            context, copied = (ast.BinOp(ast.BinOp(n.left.left, ast.MatMult(), _ELLIPSIS), ast.MatMult(), n.right)
+                               if isinstance(n, ast.BinOp) and isinstance(n.left, ast.BinOp) else n
+                               for n in (context, copied))
+            before, after = (" ".join(ast.unparse(n).split()) for n in (context, copied))
+            if max(len(before), len(after)) <= 2 * _SHOWN:   # (two whole factors: no shorter way to show it)
+                return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), before, after)
         whole = _abbreviated(context, copied) if max(len(before), len(after)) > _SHOWN else None
         shortened = (whole if whole is not None and max(map(len, whole)) <= _SHOWN else None) \
             or _elided(before, after) or _elided(*_abbreviated(context, copied))
@@ -940,20 +948,18 @@ def _abbreviated(before, after) -> tuple[str, str]:
 
     def cut(node) -> str:
         node = copy.deepcopy(node)
-        for call in ast.walk(node):
-            if isinstance(call, ast.Call):
-                function = ast.dump(call.func)
-                call.args = [_ELLIPSIS if (function, i, ast.dump(a)) in kept and len(ast.unparse(a)) > 8 else a
-                             for i, a in enumerate(call.args)]
-                unchanged = [(function, k.arg, ast.dump(k.value)) in kept for k in call.keywords]
-                if call.keywords and all(unchanged):   # keywords as they were, and the arguments' tail: one "..."
-                    call.keywords = []
-                    while call.args and call.args[-1] is _ELLIPSIS:
-                        call.args.pop()
-                    call.args.append(_ELLIPSIS)
-                for keyword in call.keywords:
-                    if (function, keyword.arg, ast.dump(keyword.value)) in kept and len(ast.unparse(keyword.value)) > 8:
-                        keyword.value = _ELLIPSIS
+        for call, function in _calls_counted(node):
+            call.args = [_ELLIPSIS if (function, i, ast.dump(a)) in kept and len(ast.unparse(a)) > 8 else a
+                         for i, a in enumerate(call.args)]
+            unchanged = [(function, k.arg, ast.dump(k.value)) in kept for k in call.keywords]
+            if call.keywords and all(unchanged):   # keywords as they were, and the arguments' tail: one "..."
+                call.keywords = []
+                while call.args and call.args[-1] is _ELLIPSIS:
+                    call.args.pop()
+                call.args.append(_ELLIPSIS)
+            for keyword in call.keywords:
+                if (function, keyword.arg, ast.dump(keyword.value)) in kept and len(ast.unparse(keyword.value)) > 8:
+                    keyword.value = _ELLIPSIS
         return " ".join(ast.unparse(ast.fix_missing_locations(node)).split())
 
     return cut(before), cut(after)
@@ -962,12 +968,24 @@ def _abbreviated(before, after) -> tuple[str, str]:
 _ELLIPSIS = ast.Constant(...)
 
 
+def _calls_counted(node) -> list:
+    """(call, its function with the how-many-th call of that function it is) of every call in ``node``:
+    two calls of one function moved to each other's place (`T(-c) @ R @ T(c)` -> `T(c) @ R @ T(-c)`)
+    keep their arguments apart."""
+    seen: Counter = Counter()
+    counted = []
+    for call in ast.walk(node):
+        if isinstance(call, ast.Call):
+            function = ast.dump(call.func)
+            counted.append((call, (function, seen[function])))
+            seen[function] += 1
+    return counted
+
+
 def _arguments(node) -> set:
-    """(function, position or keyword, argument) of every call in ``node`` (dumped)."""
-    return {(ast.dump(call.func), i, ast.dump(a)) for call in ast.walk(node) if isinstance(call, ast.Call)
-            for i, a in enumerate(call.args)} | \
-        {(ast.dump(call.func), k.arg, ast.dump(k.value)) for call in ast.walk(node) if isinstance(call, ast.Call)
-         for k in call.keywords}
+    """(function and its count, position or keyword, argument) of every call in ``node`` (dumped)."""
+    return {(function, i, ast.dump(a)) for call, function in _calls_counted(node) for i, a in enumerate(call.args)} | \
+        {(function, k.arg, ast.dump(k.value)) for call, function in _calls_counted(node) for k in call.keywords}
 
 
 def _elided(before: str, after: str) -> tuple[str, str] | None:
