@@ -235,3 +235,23 @@ def test_complex_values_that_are_not_real_are_not_told_to_keep_their_real_part(t
     messages = [c.message for c in check_results(result, "lab11.ex5") if not c.passed]
     complex_told = [m for m in messages if "complex numbers" in m]
     assert complex_told and all("not 0" in m and "`.real`" not in m for m in complex_told), complex_told
+
+
+def test_points_indexed_by_an_estimators_mask_are_its_inliers_only_when_the_mask_is_made_boolean():
+    """cv2.findFundamentalMat's mask is 0/1 uint8: `pts1[mask.ravel()]` picks points 0 and 1 over and
+    over. Only an index boolean by its code (a comparison, astype(bool), np.where, a name holding one)
+    is told "keeps the inliers"."""
+    import ast as _ast
+
+    from autograder.labs import lab11
+
+    def reads(body):
+        source = "def f(pts1, pts2):\n    F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC)\n" + body
+        return lab11._indexes_by_a_mask(_ast.parse(source).body[0])
+
+    assert not reads("    return pts1[mask.ravel()]\n")
+    assert not reads("    inliers = mask.ravel()\n    return pts1[inliers]\n")
+    assert reads("    return pts1[mask.ravel() == 1]\n")
+    assert reads("    inliers = mask.ravel().astype(bool)\n    return pts1[inliers]\n")
+    assert reads("    keep = mask.ravel() > 0\n    inliers = keep\n    return pts1[inliers]\n")
+    assert reads("    idx = np.flatnonzero(mask)\n    return pts1[idx], pts2[mask.ravel() != 0]\n")

@@ -1495,13 +1495,54 @@ RANSAC_ESTIMATOR = (calls("cv2.findFundamentalMat") | calls("cv2.findEssentialMa
 
 
 def _indexes_by_a_mask(function) -> bool:
-    """Points indexed by a RANSAC mask (``pts1[mask.ravel() == 1]``, ``pts1[inliers]``): a subscript whose index
-    holds a name with "mask" or "inl" in it, or a name a findFundamentalMat/findEssentialMat result is stored in."""
+    """Points indexed by a RANSAC mask made boolean (``pts1[mask.ravel() == 1]``, ``pts1[inliers]`` with
+    ``inliers = mask.ravel().astype(bool)``): a subscript whose index holds a name with "mask" or "inl" in it,
+    or a name a findFundamentalMat/findEssentialMat result is stored in, and is boolean by its code. The
+    estimators' masks are 0/1 uint8: ``pts1[mask.ravel()]`` picks points 0 and 1 over and over, keeping none."""
     held = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and RANSAC_ESTIMATOR.holds([n.value])
             for target in n.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
-    return any(isinstance(n, ast.Subscript) and any(
+    boolean = _boolean_names(function)
+    return any(isinstance(n, ast.Subscript) and _is_boolean(n.slice, boolean) and any(
         isinstance(m, ast.Name) and (m.id in held or "mask" in m.id.lower() or "inl" in m.id.lower())
         for m in ast.walk(n.slice)) for n in ast.walk(function))
+
+
+_TO_INDICES = {"where", "nonzero", "flatnonzero", "argwhere"}
+
+
+def _is_boolean(node, names) -> bool:
+    """Whether an index is boolean (or positions) by its code: a comparison, a conversion to bool, the
+    positions of a mask's nonzero entries, a logical operation, or a name assigned one of those."""
+    for n in ast.walk(node):
+        if isinstance(n, (ast.Compare, ast.BoolOp)) or (isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.Not)):
+            return True
+        if isinstance(n, ast.Name) and n.id in names:
+            return True
+        if isinstance(n, ast.Call):
+            called = _path(n.func).rsplit(".", 1)[-1]
+            if called in _TO_INDICES or called in ("logical_and", "logical_or", "logical_not", "bool_"):
+                return True
+            if called == "astype" and n.args and ast.unparse(n.args[0]) in ("bool", "np.bool_", "'bool'", '"bool"', "np.bool"):
+                return True
+            if any(k.arg == "dtype" and ast.unparse(k.value) in ("bool", "np.bool_", "np.bool") for k in n.keywords):
+                return True
+        if isinstance(n, ast.BinOp) and isinstance(n.op, (ast.BitAnd, ast.BitOr)) and _is_boolean(n.left, names):
+            return True
+    return False
+
+
+def _boolean_names(function) -> set:
+    """The names the function assigns a boolean index (:func:`_is_boolean`), through one another."""
+    names: set = set()
+    assigned = [n for n in ast.walk(function) if isinstance(n, ast.Assign)]
+    for _ in range(3):
+        before = len(names)
+        for n in assigned:
+            if _is_boolean(n.value, names):
+                names |= {t.id for target in n.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
+        if len(names) == before:
+            break
+    return names
 
 
 def _points_in_order(function) -> bool | None:
@@ -1523,7 +1564,10 @@ MATCHES_ELSEWHERE = "your code already {found}: " + checklist(
                                                                    _indexes_by_a_mask)),
     none_left=look_at(("the order of the points given and returned (pts1 in image 1, pts2 in image 2)",
                        wherever_written("gives the estimator the points in order", _points_in_order))))
-INLIERS_HINT = Hint("keep only the RANSAC inliers", asks=RANSAC_ESTIMATOR, instead=MATCHES_ELSEWHERE)
+# (calling the estimator is not keeping its inliers: its mask must index the points, made boolean)
+KEEPS_INLIERS = (RANSAC_ESTIMATOR & Predicate("indexes the points by the mask", _indexes_by_a_mask)).saying(
+    "keeps the inliers of a RANSAC estimator")
+INLIERS_HINT = Hint("keep only the RANSAC inliers", asks=KEEPS_INLIERS, instead=MATCHES_ELSEWHERE)
 
 
 def judge_matches(t: Trial, pair, pts1, pts2):
@@ -1545,7 +1589,7 @@ def judge_matches(t: Trial, pair, pts1, pts2):
     if correct >= 0.5:
         return partial(0.5, message, INLIERS_HINT.said(t))
     t.fail(message, hint=Hint(f"{INLIERS_HINT.text}; use Lowe's ratio test when matching",
-                              asks=RATIO_TEST & RANSAC_ESTIMATOR, instead=MATCHES_ELSEWHERE).said(t))
+                              asks=RATIO_TEST & KEEPS_INLIERS, instead=MATCHES_ELSEWHERE).said(t))
 
 
 @ex6.check("two_view_reconstruction: the matches are mostly correct", points=2, timeout=PIPELINE_TIMEOUT)
