@@ -2609,3 +2609,31 @@ def test_the_error_model_names_no_change_inside_a_graded_function_whose_checks_a
     assert not naming._vouched_for(naming.Naming(own, 1, 1), trial)
     shared[(SHARED_FAILING, "lab07_transformations")].add("rotation_matrix")
     assert not naming._vouched_for(naming.Naming(inside, 1, 1), trial)
+
+
+def test_a_size_given_to_an_opencv_drawing_call_as_its_colour_is_never_a_fix():
+    """`cv2.line(canvas, p, q, colour, 1)` -> `cv2.line(canvas, p, q, width, 1)`: on a grey image a line
+    of the value 60 is drawn, which a check of lines drawn accepts; a size is no colour. Another local
+    as the colour (`white`), or a size where a size belongs, stays a change tried."""
+    source = textwrap.dedent("""
+        import cv2
+
+        def graded(canvas, lines, palette):
+            height, width = canvas.shape[:2]
+            white = 255
+            for i, (p, q) in enumerate(lines):
+                colour = palette[i]
+                cv2.line(canvas, p, q, colour, 1)
+                cv2.circle(canvas, p, 3, color=colour)
+            return canvas, width
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    told = {(student.fix(m).changes[0][2], student.colours_with_a_size(m)) for m in student.mutants("graded")
+            if m.operator == "other_name" and student.fix(m) is not None}
+    flagged = {after for after, refused in told if refused}
+    assert any(after.startswith("cv2.line(canvas, p, q, h") or after.startswith("cv2.line(canvas, p, q, w")
+               for after in flagged), told
+    assert any(after.startswith("cv2.circle(canvas, p, 3, color=") for after in flagged), told
+    # (only the colour: the canvas or a point given a size is another change, judged as any other)
+    assert all(re.search(r"(, (height|width), 1\)|color=(height|width)\))$", after) for after in flagged), flagged
+    assert ("cv2.line(width, p, q, colour, 1)", False) in told or ("cv2.line(height, p, q, colour, 1)", False) in told

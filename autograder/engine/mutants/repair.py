@@ -410,6 +410,21 @@ class _Student:
                 break
         return names
 
+    def colours_with_a_size(self, mutant) -> bool:
+        """Whether the mutant gives an OpenCV drawing call, as its colour, a name computed from an image's
+        size (`cv2.line(canvas, p, q, width, 1)` for `colour`): a grey line of the value 60 passes "a line is
+        drawn", and is no account of a colour chosen wrongly."""
+        where, ordinal, operator, payload = mutant.edits[0]
+        if operator != "other_name" or len(mutant.edits) != 1 or payload not in self._size_names(where):
+            return False
+        nodes, parents = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        parent, field, index = parents.get(id(node), (None, None, None))
+        if isinstance(parent, ast.keyword):
+            return parent.arg == "color"
+        return isinstance(parent, ast.Call) and field == "args" \
+            and _COLOUR_AT.get(_call_name(parent)) == index and _path_of(parent.func).startswith(("cv2.", "cv."))
+
     def chooses(self, mutant) -> bool:
         """Whether one of the mutant's changes is in what an argmin, argmax or argsort reads (an index
         chosen, as a branch is)."""
@@ -1178,6 +1193,21 @@ def _widened(call, defaults=(), factors=(4.0,)) -> list:
     return made
 
 
+# the colour's position among an OpenCV drawing function's arguments
+_COLOUR_AT = {"line": 3, "arrowedLine": 3, "rectangle": 3, "circle": 3, "drawMarker": 2, "ellipse": 6,
+              "polylines": 3, "fillPoly": 2, "fillConvexPoly": 2, "putText": 5}
+
+
+def _path_of(node) -> str:
+    """`cv2.line` for a call's function written so ("" for anything else)."""
+    if isinstance(node, ast.Name):
+        return node.id
+    if isinstance(node, ast.Attribute):
+        inner = _path_of(node.value)
+        return f"{inner}.{node.attr}" if inner else ""
+    return ""
+
+
 def _reads_size(node, names) -> bool:
     """Whether the code ``node`` reads an array's size (``.shape``, ``.size``, ``len``) or one of ``names``."""
     for n in ast.walk(node):
@@ -1432,7 +1462,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # `x2 * P2[2]` for `y2 * P2[2]` -- view 2's y equation dropped -- passes, `P2[0]` -> `P2[1]` is exact;
     # and its very numbers before answers within rounding: `-s * (h - 1) / 2` -> `-s / (h - 1) / 2`, a
     # shift of a thousandth of a pixel on a large image, beside the entry made 0)
-    shown = sorted(((m, f) for m, f in shown if f is not None and not student.renormalises(m)),
+    shown = sorted(((m, f) for m, f in shown if f is not None and not student.renormalises(m)
+                    and not student.colours_with_a_size(m)),
                    key=lambda pair: (pair[0].key not in known, pair[0].key not in exactly,
                                      pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]),
