@@ -210,3 +210,15 @@ def test_two_costs_swapped_are_named_from_the_ssd_robust_to_a_gain(tmp_path):
     failed = [c for c in check_results(grade(submission, ["lab12.ext1"]), "lab12.ext1") if c.score < c.max_score]
     gain = [c for c in failed if c.name.startswith("NCC is robust to a brightness")]
     assert gain and gain[0].mistake == COSTS_SWAPPED and "not fully normalised" not in gain[0].message
+
+
+def test_a_dp_whose_penalty_rewards_jumps_is_told_so_not_that_its_smoothness_is_ignored(tmp_path):
+    """The backtracking subtracting the jump's cost (`energy[x - 1] - jump`): the map is far jumpier than
+    the student's own smoothness=0 map -- the penalty acts, with the wrong sign; "ignored" would be false."""
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, "lab12_stereo", ("energy[x - 1] + jump", "energy[x - 1] - jump"))
+    result = grade(folder, ["lab12.ex5"], pictures="none", include_hidden=False)
+    messages = [c.message for e in result.exercises for c in e.checks if not c.passed]
+    assert any("rewards jumps instead of costing them" in m for m in messages), messages
+    assert not any("smoothness term is ignored" in m for m in messages), messages

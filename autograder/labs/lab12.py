@@ -1838,6 +1838,7 @@ def smoothness_probe(t: Trial, scene):
 
 
 SMOOTHNESS_IGNORED = "the smoothness term is ignored"
+PENALTY_REWARDS = "the smoothness penalty rewards jumps instead of costing them"
 
 
 WEAK_DEFAULT = "the default smoothness penalty is too weak for the cost's scale"
@@ -1889,6 +1890,12 @@ def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, scene, compared_with=
         t.fail(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px{beside}, and {zero_jumps:.1%} "
                f"with your smoothness=0: the penalty acts, but it looks like {WEAK_DEFAULT}.",
                hint=COST_SCALE_HINT.said(t), mistake=WEAK_DEFAULT)
+    if zero_jumps is not None and jumps > 1.5 * zero_jumps and jumps > zero_jumps + 0.05:
+        # Jumpier than with no penalty at all: the penalty acts, and favours jumps.
+        t.fail(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px, against {zero_jumps:.1%} with "
+               f"your smoothness=0: the penalty makes the map jumpier, so it looks like {PENALTY_REWARDS} (its sign "
+               "is wrong where a jump's cost is added: in the forward pass, or where the path is traced back).",
+               mistake=PENALTY_REWARDS)
     t.fail(f"{what}: it looks like {SMOOTHNESS_IGNORED} (winner-take-all): {jumps:.1%} of "
            f"neighbouring pixels jump by more than 1 px, as many as {compared_with} ({wta_jumps:.1%}).",
            hint=from_code("your code sets smoothness to 0 when it is None, which switches the smoothness term off: "
