@@ -2637,3 +2637,20 @@ def test_a_size_given_to_an_opencv_drawing_call_as_its_colour_is_never_a_fix():
     # (only the colour: the canvas or a point given a size is another change, judged as any other)
     assert all(re.search(r"(, (height|width), 1\)|color=(height|width)\))$", after) for after in flagged), flagged
     assert ("cv2.line(width, p, q, colour, 1)", False) in told or ("cv2.line(height, p, q, colour, 1)", False) in told
+
+
+def test_a_name_bounding_a_slice_is_a_change_tried():
+    """img2 pasted at its own width (`canvas[:h2, w2:]` where `w1:` belongs): a slice's bound is a
+    place a name's twin is tried, as in a call or a product."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(img1, img2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((max(h1, h2), w1 + w2), np.uint8)
+            canvas[:h1, :w1] = img1
+            canvas[:h2, w2:] = img2
+            return canvas
+    """)
+    assert ("canvas[:h2, w2:]", "canvas[:h2, w1:]") in _shown_changes(source, "other_name")

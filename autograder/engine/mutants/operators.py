@@ -3588,8 +3588,9 @@ def _replaceable(node: ast.Name, parent, student: bool = False) -> bool:
         return False
     if student and isinstance(parent, ast.Assign) and parent.value is node:
         return True   # (a value copied as it is: `poses[i, 3:] = rvec` where `tvec` belongs)
+    # (a slice's bound too: `canvas[:h2, w2:]` where img2 goes right of img1, at `w1:`)
     return isinstance(parent, (ast.Call, ast.BinOp, ast.Subscript, ast.Return, ast.keyword, ast.Tuple,
-                               ast.List, ast.UnaryOp, ast.Compare))
+                               ast.List, ast.UnaryOp, ast.Compare, ast.Slice))
 
 
 _TWIN_WORDS = {frozenset(pair) for pair in (("left", "right"), ("src", "dst"), ("l", "r"), ("x", "y"), ("u", "v"),
