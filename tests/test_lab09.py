@@ -42,3 +42,24 @@ def test_the_pattern_given_to_find_the_corners_is_read_from_the_call():
     assert reads("found, c = cv2.findChessboardCorners(grey, pattern_size)")
     assert reads("found, c = cv2.findChessboardCorners(grey, (cols, rows), None)")
     assert reads("found, c = cv2.findChessboardCornersSB(grey, patternSize=(nx, ny))")
+
+
+def test_outlined_markers_drawn_without_cv2_circle_are_not_told_to_pass_thickness_minus_1(tmp_path):
+    """cv2.drawMarker's squares are outlines too, and refuse thickness=-1: the code is told it does not
+    call cv2.circle, which fills; cv2.circle drawn with thickness 1 is told thickness=-1."""
+    from autograder.engine.runner import grade
+    from conftest import mutant
+
+    source = """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.drawMarker(out, (int(round(x)), int(round(y))), tuple(int(c) for c in color),
+                                   cv2.MARKER_SQUARE, 2 * int(radius) + 1, 1)
+            return out
+        """
+    result = grade(mutant(tmp_path, "lab09_camera", source), ["lab09.ex5"], pictures="none", include_hidden=False)
+    messages = [c.message for e in result.exercises for c in e.checks if not c.passed]
+    assert any("does not call cv2.circle" in m for m in messages), messages
+    assert not any("should be filled (thickness=-1)" in m for m in messages), messages

@@ -1109,7 +1109,12 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     d = truth.distance_map(image.shape, np.round(pts))
     inner, near = d <= radius - 1.5, painted & (d <= radius + 1)
     if inner.any() and painted[inner].mean() < 0.5 and near.any() and (d[near] >= radius - 1).mean() > 0.9:
-        t.fail(f"{what}: the circles are outlines; they should be filled (thickness=-1).",
+        # (thickness=-1 is cv2.circle's: code drawing otherwise -- cv2.drawMarker, which refuses it -- is
+        # told what to draw, not that argument)
+        circles = calls("cv2.circle").holds(code_of(t).reachable(["draw_points"])) or not code_of(t).functions
+        t.fail(f"{what}: the circles are outlines; they should be filled (thickness=-1)." if circles else
+               f"{what}: " + from_code("the points are drawn as outlines, not filled discs: your code does not call "
+                                       "cv2.circle, which draws a filled disc with thickness=-1."),
                mistake="the circles are outlines, not filled")
     # thick rings: the centres empty, a band around them painted past the radius (a thickness given the radius)
     centres, band = d <= 0.5, (d >= radius - 1) & (d <= radius)
