@@ -2654,3 +2654,19 @@ def test_a_name_bounding_a_slice_is_a_change_tried():
             return canvas
     """)
     assert ("canvas[:h2, w2:]", "canvas[:h2, w1:]") in _shown_changes(source, "other_name")
+
+
+def test_every_product_of_a_chain_taken_element_by_element_is_one_change():
+    """`K2.T * F * K1` where `K2.T @ F @ K1` belongs: one `*` made `@` at a time crosses the other's place
+    (no pair of them can be made), so the chain's products are changed together; and the reverse."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(F, K1, K2):
+            E = K2.T * F * K1
+            H = K1 @ F @ K2
+            return E, H
+    """)
+    changes = _shown_changes(source, "arithmetic")
+    assert ("K2.T * F * K1", "K2.T @ F @ K1") in changes, changes
+    assert ("H = K1 @ F @ K2", "H = K1 * F * K2") in changes, changes

@@ -545,7 +545,18 @@ def _make_other_name_line(node, payload):
 
 
 def _make_arithmetic(node, payload):
+    if payload in _CHAINED:   # every product of the chain `a * b * c` made the other kind (its left spine)
+        made = copy.deepcopy(node)
+        link, was = made, _CHAINED[payload][0]
+        while isinstance(link, ast.BinOp) and isinstance(link.op, was):
+            link.op = _CHAINED[payload][1]()
+            link = link.left
+        return made
     return ast.BinOp(copy.deepcopy(node.left), _ARITHMETIC[payload](), copy.deepcopy(node.right))
+
+
+# a chain of products written element by element where matrix products belong (`K2.T * F * K1`), and back
+_CHAINED = {"chain_matmul": (ast.Mult, ast.MatMult), "chain_mult": (ast.MatMult, ast.Mult)}
 
 
 def _make_stack_kind(node, payload):
@@ -3155,6 +3166,15 @@ def _arithmetic_changes(node, what, place):
     left, right = what(node.left), what(node.right)
     told = bool(left or right)
     left, right = left or "a term", right or "a term"
+    if isinstance(node.left, ast.BinOp) and type(node.left.op) is type(node.op) \
+            and isinstance(node.op, (ast.Mult, ast.MatMult)):
+        # (the same slip at every product of a chain: one change each would cross the other's place)
+        if isinstance(node.op, ast.Mult):
+            yield "arithmetic", "chain_matmul", _placed(
+                "matrix products (@) stand where every product of the chain is element by element", place())
+        else:
+            yield "arithmetic", "chain_mult", _placed(
+                "the matrices are multiplied element by element (*) where their matrix products (@) belong", place())
     if isinstance(node.op, ast.Mult):
         yield "arithmetic", "mul_div", (f"{left} is divided by {right} where it is multiplied by it" if told
                                         else _placed("a division stands where a multiplication belongs", place()))
