@@ -44,8 +44,8 @@ from ..checks import Trial, Verdict, fingerprint
 from ..inherited import SHARED_FAILING
 from . import naming
 from .helper import HelperFailed
-from .operators import (_MAKE, _MOVES, _defs, _entry_of_literal, _parents, _replace, mutants_of, mutated_defs, runs,
-                        twin_names, unpacked_items)
+from .operators import (_MAKE, _MOVES, _defs, _dotted, _entry_of_literal, _parents, _replace, mutants_of,
+                        mutated_defs, runs, twin_names, unpacked_items)
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
 CALLS_PER_FUNCTION = 6    # the trial's last calls of the function that are compared
@@ -423,7 +423,7 @@ class _Student:
         if isinstance(parent, ast.keyword):
             return parent.arg == "color"
         return isinstance(parent, ast.Call) and field == "args" \
-            and _COLOUR_AT.get(_call_name(parent)) == index and _path_of(parent.func).startswith(("cv2.", "cv."))
+            and _COLOUR_AT.get(_call_name(parent)) == index and _dotted(parent.func).startswith(("cv2.", "cv."))
 
     def chooses(self, mutant) -> bool:
         """Whether one of the mutant's changes is in what an argmin, argmax or argsort reads (an index
@@ -1196,16 +1196,6 @@ def _widened(call, defaults=(), factors=(4.0,)) -> list:
 # the colour's position among an OpenCV drawing function's arguments
 _COLOUR_AT = {"line": 3, "arrowedLine": 3, "rectangle": 3, "circle": 3, "drawMarker": 2, "ellipse": 6,
               "polylines": 3, "fillPoly": 2, "fillConvexPoly": 2, "putText": 5}
-
-
-def _path_of(node) -> str:
-    """`cv2.line` for a call's function written so ("" for anything else)."""
-    if isinstance(node, ast.Name):
-        return node.id
-    if isinstance(node, ast.Attribute):
-        inner = _path_of(node.value)
-        return f"{inner}.{node.attr}" if inner else ""
-    return ""
 
 
 def _reads_size(node, names) -> bool:
