@@ -737,8 +737,12 @@ def test_lab11_inliers_kept(speak):
     reversed_points = masked.replace("cv2.findFundamentalMat(pts1, pts2,", "cv2.findFundamentalMat(pts2, pts1,")
     assert speak(lab11.INLIERS_HINT, reversed_points, "two_view_reconstruction").endswith(
         "look at the order of the points given and returned (pts1 in image 1, pts2 in image 2)")
-    assert speak(lab11.INLIERS_HINT, RECONSTRUCTION, "two_view_reconstruction").endswith(
-        "check that the points returned are those its mask keeps")
+    # (calling the estimator is not keeping its inliers: code that never indexes its points by the mask,
+    # or indexes them by the 0/1 uint8 mask itself -- points 0 and 1 over and over -- is told to keep them)
+    assert speak(lab11.INLIERS_HINT, RECONSTRUCTION, "two_view_reconstruction") == lab11.INLIERS_HINT.text
+    fancy = RECONSTRUCTION.replace("E = K.T @ F @ K", "pts1, pts2 = pts1[mask.ravel()], pts2[mask.ravel()]\n"
+                                   "        E = K.T @ F @ K")
+    assert speak(lab11.INLIERS_HINT, fancy, "two_view_reconstruction") == lab11.INLIERS_HINT.text
 
 
 # ------------------------------------------------------------------ lab 12: fixed hints held to the code

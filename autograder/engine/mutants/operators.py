@@ -3387,10 +3387,14 @@ def _call_changes(node: ast.Call, words, what, parents):
         yield "reshape_order", "F", f"{array or 'an array'} is {_ORDERED[method]} column by column " \
                                     "(Fortran order) instead of row by row"
     method_of_array = short in _ARRAY_METHODS and "." in dotted and not dotted.startswith(("cv2.", "cv.", "math."))
-    if short in _OPPOSITES and (dotted.startswith(("np.", "numpy.")) or dotted in ("min", "max") or method_of_array):
+    if short in _OPPOSITES and (dotted.startswith(("np.", "numpy.")) or dotted in ("min", "max")):
         other = dotted[: -len(short)] + _OPPOSITES[short]
         on = what(node.args[0]) if node.args else ""
         yield "minmax", other, f"`{other}` is used where `{dotted}` belongs" + (f" (on {on})" if on else "")
+    elif short in _OPPOSITES and method_of_array:   # (an array's own method: told without the array's local name)
+        other = dotted[: -len(short)] + _OPPOSITES[short]
+        on = what(node.func.value)
+        yield "minmax", other, f"{_OPPOSITES[short]}() is taken where {short}() belongs" + (f" (of {on})" if on else "")
 
 
 _FLOAT_TYPES = {"float", "np.float32", "np.float64", "np.double", "numpy.float32", "numpy.float64"}
