@@ -97,3 +97,19 @@ def test_a_scale_made_with_cv2_resize_is_told_it_resizes(tmp_path):
     failed = [c for c in check_results(result, "lab07.ex3") if not c.passed and c.max_score]
     assert failed and all(c.mistake == RESIZED and "your code calls cv2.resize" in c.message for c in failed
                           if "returned shape" in c.message), [c.message for c in failed]
+
+
+def test_the_column_of_ones_is_read_in_the_code_not_in_a_shape():
+    """`M[0::2, 2] = 1`, a row `[x, y, 1, 0, 0, 0]` or np.ones build the column of ones; a shape holding a 1
+    (`reshape(-1, 2, 1)`, `np.zeros((n, 3, 1))`) does not, and the missing column is still told there."""
+    import ast
+
+    from autograder.labs import lab07
+
+    def builds(body: str) -> bool:
+        return bool(lab07.ONES_COLUMN.found([ast.parse("def f(src, dst, n):\n" + body).body[0]]))
+
+    assert builds("    M = np.zeros((2 * n, 6))\n    M[0::2, 2] = 1\n")
+    assert builds("    rows = [[x, y, 1, 0, 0, 0] for x, y in src]\n")
+    assert builds("    A = np.hstack([src, np.ones((n, 1))])\n")
+    assert not builds("    A = src.reshape(-1, 2, 1)\n    B = np.zeros((n, 3, 1))\n")

@@ -786,18 +786,17 @@ def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: d
                                         f"it gave in the check '{name}' was {what}{said}: see there.",
                        mistake=verdict.mistake or mistake)
     looked[check.exercise.id] = None
-    verdict = _looked_besides_forbidden(verdict, sandbox, check, rules, inputs)
-    told = {"Besides, the answer it gave is wrong": "wrong", "Besides, with that call allowed your code fails":
-            "an exception", "The answer it gave passes this check otherwise": None}
-    for sentence, what in told.items():
-        if what and sentence in str(verdict.message):
-            looked[check.exercise.id] = (check.name, what, verdict.mistake)
+    verdict, what = _looked_besides_forbidden(verdict, sandbox, check, rules, inputs)
+    if what is not None:
+        looked[check.exercise.id] = (check.name, what, verdict.mistake)
     return verdict
 
 
 def _looked_besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: dict | None,
-                              inputs: Inputs | None) -> Verdict:
-    """:func:`besides_forbidden`'s look: the check run again with the calls allowed."""
+                              inputs: Inputs | None) -> tuple[Verdict, str | None]:
+    """:func:`besides_forbidden`'s look: the check run again with the calls allowed. The verdict with
+    what the look found told, and what the answer was besides the rule ("wrong", "an exception"; None
+    when nothing is wrong besides it, or nothing could be told)."""
     trial = Trial(_SharedApart(sandbox), check, rules, inputs)
     trial.forbidden_allowed = True
     try:
@@ -808,21 +807,21 @@ def _looked_besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, 
         named = _named_by_repair(Verdict(0.0, failure.message, failure.hint, failure.mistake), check, trial)
         first = str(named.message).split("\n", 1)[0].rstrip()
         return replace(verdict, message=f"{_sentence(verdict.message)} Besides, the answer it gave is wrong: "
-                                        f"{first}", mistake=named.mistake or verdict.mistake)
+                                        f"{first}", mistake=named.mistake or verdict.mistake), "wrong"
     except StudentFailure as failure:
         if failure.outcome.kind != "exception":   # (a timeout, a crash: nothing more to tell)
-            return verdict
+            return verdict, None
         # (the code around the call raising: `cv2.convertPointsFromHomogeneous(Xh)` of a 4 x N result)
         named = _named_by_repair(Verdict(0.0, failure.message), check, trial)
         first = str(named.message).split("\n", 1)[0].rstrip()
         return replace(verdict, message=f"{_sentence(verdict.message)} Besides, with that call allowed your code "
-                                        f"fails: {first}", mistake=named.mistake or verdict.mistake)
+                                        f"fails: {first}", mistake=named.mistake or verdict.mistake), "an exception"
     except Exception:  # noqa: BLE001 - anything else: nothing more to tell
-        return verdict
+        return verdict, None
     if again is None or (isinstance(again, Verdict) and again.fraction >= 1.0):
         return replace(verdict, message=f"{_sentence(verdict.message)} The answer it gave passes this check "
-                                        "otherwise: writing that step yourself is what is left to do.")
-    return verdict
+                                        "otherwise: writing that step yourself is what is left to do."), None
+    return verdict, None
 
 
 class _SharedApart:

@@ -37,17 +37,20 @@ guard(truth.ANGLE_AS_RADIANS, asks=DEGREES_TO_RADIANS,
       instead="the angle is used as radians: your code {found}, but cos and sin are given the angle "
               "before the conversion (or converted back)")
 # The column of ones of an affine system written: np.ones, a 1 set into an array's entries
-# (`M[0::2, 2] = 1`), or a literal row ending in 1 (`[x, y, 1, 0, 0, 0]`). A fit with no
+# (`M[0::2, 2] = 1`), or a literal row of a point's coordinates and a 1 (`[x, y, 1, 0, 0, 0]`; a
+# shape such as `(-1, 2, 1)` holds a 1 and at most one value, and is no row). A fit with no
 # translation from code that has one is another slip (how the system is solved, or read back).
 def _sets_ones(function) -> bool:
-    for node in ast.walk(function):
-        if isinstance(node, ast.Assign) and isinstance(node.value, ast.Constant) and node.value.value == 1 \
-                and any(isinstance(target, ast.Subscript) for target in node.targets):
-            return True
-        if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) >= 3 and any(
-                isinstance(e, ast.Constant) and e.value == 1 and type(e.value) in (int, float) for e in node.elts):
-            return True
-    return False
+    def one(node) -> bool:
+        return isinstance(node, ast.Constant) and type(node.value) in (int, float) and node.value == 1
+
+    def row(node) -> bool:
+        values = [e for e in node.elts if not isinstance(e, (ast.Constant, ast.UnaryOp))]
+        return len(node.elts) >= 3 and any(one(e) for e in node.elts) and len(values) >= 2
+
+    return any((isinstance(node, ast.Assign) and one(node.value)
+                and any(isinstance(target, ast.Subscript) for target in node.targets))
+               or (isinstance(node, (ast.List, ast.Tuple)) and row(node)) for node in ast.walk(function))
 
 
 ONES_COLUMN = (calls_any("np.ones", "np.ones_like", "cv2.convertPointsToHomogeneous")

@@ -1511,8 +1511,9 @@ _TO_INDICES = {"where", "nonzero", "flatnonzero", "argwhere"}
 
 
 def _is_boolean(node, names) -> bool:
-    """Whether an index is boolean (or positions) by its code: a comparison, a conversion to bool, the
-    positions of a mask's nonzero entries, a logical operation, or a name assigned one of those."""
+    """Whether an index is boolean (or positions) by its code: it holds a comparison, a conversion to
+    bool, the positions of a mask's nonzero entries, a logical operation, or a name assigned one of those
+    (`a & b` of two comparisons holds them)."""
     for n in ast.walk(node):
         if isinstance(n, (ast.Compare, ast.BoolOp)) or (isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.Not)):
             return True
@@ -1526,8 +1527,6 @@ def _is_boolean(node, names) -> bool:
                 return True
             if any(k.arg == "dtype" and ast.unparse(k.value) in ("bool", "np.bool_", "np.bool") for k in n.keywords):
                 return True
-        if isinstance(n, ast.BinOp) and isinstance(n.op, (ast.BitAnd, ast.BitOr)) and _is_boolean(n.left, names):
-            return True
     return False
 
 

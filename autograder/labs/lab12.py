@@ -1892,10 +1892,11 @@ def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, scene, compared_with=
                hint=COST_SCALE_HINT.said(t), mistake=WEAK_DEFAULT)
     if zero_jumps is not None and jumps > 1.5 * zero_jumps and jumps > zero_jumps + 0.05:
         # Jumpier than with no penalty at all: the penalty acts, and favours jumps.
-        t.fail(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px, against {zero_jumps:.1%} with "
-               f"your smoothness=0: the penalty makes the map jumpier, so it looks like {PENALTY_REWARDS} (its sign "
-               "is wrong where a jump's cost is added: in the forward pass, or where the path is traced back).",
-               mistake=PENALTY_REWARDS)
+        # (measured: the student's own maps with and without the penalty; where to look, not what to write)
+        t.fail(measured(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px, against {zero_jumps:.1%} "
+                        f"with your smoothness=0: the penalty makes the map jumpier, so it looks like {PENALTY_REWARDS}: "
+                        "look at how a jump's cost enters the forward pass and the choice made where the path is "
+                        "traced back."), mistake=PENALTY_REWARDS)
     t.fail(f"{what}: it looks like {SMOOTHNESS_IGNORED} (winner-take-all): {jumps:.1%} of "
            f"neighbouring pixels jump by more than 1 px, as many as {compared_with} ({wta_jumps:.1%}).",
            hint=from_code("your code sets smoothness to 0 when it is None, which switches the smoothness term off: "

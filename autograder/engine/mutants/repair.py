@@ -221,6 +221,7 @@ class _Student:
         self._places: dict = {}      # id of a node (kept alive in _walked) -> (its statement, its position there)
         self._zipped: dict = {}      # def name -> the (name, name) pairs of its loops over zip
         self._unpacking: dict | None = None   # line -> the loops and assignments with several targets there
+        self._sizes: dict = {}       # def name -> the names it computes from an array's size
         self._lock = threading.Lock()
         self.reference_parts: frozenset = frozenset()   # (name, its parts' names) the reference unpacks
 
@@ -397,6 +398,11 @@ class _Student:
 
     def _size_names(self, where: str) -> set:
         """The names the def ``where`` computes from an array's size (directly or through one another)."""
+        if where not in self._sizes:
+            self._sizes[where] = self._sized(where)
+        return self._sizes[where]
+
+    def _sized(self, where: str) -> set:
         nodes, _ = self._walk(where)
         assigned = [n for n in nodes if isinstance(n, (ast.Assign, ast.AugAssign, ast.AnnAssign)) and n.value is not None]
         names: set = set()
@@ -1157,7 +1163,7 @@ SEEN = 8                 # a function's calls kept from a grading's checks for c
 SEEN_CONFIRMATIONS = 3   # of which a repair is confirmed on at most this many
 
 
-def _passing(trial) -> set:
+def passing_functions(trial) -> set:
     """The graded functions every check of which, run so far in this grading, passed (one at least)."""
     shared = trial.sandbox.shared
     failing = shared.get((SHARED_FAILING, trial.lab.module), set())
@@ -1349,7 +1355,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # A private helper another graded function runs, whose checks all passed, is likelier right than
     # this function's own code: its changes are tried last (a panorama's compositing before the
     # normalisation its homography estimate shares with a DLT that passed).
-    runnable = student.vouched_last(runnable, function, _passing(trial))
+    runnable = student.vouched_last(runnable, function, passing_functions(trial))
     # The check's own name of the mistake, where it quotes the student's code ("your code fixes signs
     # with np.sign"), says where to look first.
     runnable = student.quoted_first(runnable, said)
@@ -1475,7 +1481,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # every check of its own so far in this grading: a helper it runs rightly is no place for this
     # function's fix (`dsize or size` -> `dsize and size` in a warp helper mends a scale by breaking the
     # warps). (One not graded yet says nothing: the helper may be where the slip is, `_object_points`.)
-    passing = _passing(trial)
+    passing = passing_functions(trial)
     fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:
         # A change in a helper this function shares with other graded functions (the warp's
@@ -1832,7 +1838,7 @@ class _Variants:
             # (and its images small, for a change in what is computed from their size only: there a
             # student's own recipe may differ from the reference's legitimately -- at the borders, which
             # a small image is mostly made of)
-            small = [call for call in _small(self.inputs[failing[0]])]
+            small = _small(self.inputs[failing[0]])
             self.small = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(small)))
             variants += small
             # (and the values the check chose given otherwise: whole numbers made fractional, 0/1 masks soft)
@@ -1888,9 +1894,10 @@ class _Variants:
                                    or self._breaks_holed(mutant, every, wanted)):
             return False
         if usable is not None:   # (those given otherwise refute a change only by a wrong answer: above)
+            sized = bool(self.small) and self.student.reads_size(mutant)
             usable = [i for i in usable if i not in self.keeping and i not in self.beyond and i not in self.holed
                       and (mutant.operator in BRANCHING or i not in self.crossing)
-                      and (i not in self.small or self.student.reads_size(mutant))]
+                      and (i not in self.small or sized)]
         if usable is not None and (not usable or self._right_on(mutant, usable, every, wanted)):
             # A condition changed sends inputs down another branch: the inputs derived from the failing
             # ones mostly stay on the same side of it, so the grading's other checks of the function
