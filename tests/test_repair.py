@@ -2478,12 +2478,14 @@ def test_the_small_image_input_cuts_every_image_alike_and_reads_sizes_through_na
             c = (w - 1) / 2
             t = c - s * c
             k = s * 2
+            M = np.eye(3)
+            M[0, 2] = t
             return image * k + t
     """)
     student = repair._Student(source, ast.parse(source), ["graded"])
-    assert student._size_names("graded") == {"h", "w", "c", "t"}
+    assert student._size_names("graded") == {"h", "w", "c", "t"}   # (M: an entry set from a size, not a size)
     lines = {m.line: student.reads_size(m) for m in student.mutants("graded")}
-    assert lines.get(4) and lines.get(5) and lines.get(7) and lines.get(6) is False, lines
+    assert lines.get(4) and lines.get(5) and lines.get(9) and lines.get(6) is False, lines
 
 
 def test_a_pair_of_changes_that_divides_a_matrix_by_another_of_its_entries_is_never_told(tmp_path):

@@ -410,8 +410,12 @@ class _Student:
             before = len(names)
             for node in assigned:
                 if _reads_size(node.value, names):
+                    # (names bound whole, `w` and `h, w`: an entry set from a size, `M[0, 2] = cx`, does not
+                    # make the whole matrix a size)
                     targets = node.targets if isinstance(node, ast.Assign) else [node.target]
-                    names |= {t.id for target in targets for t in ast.walk(target) if isinstance(t, ast.Name)}
+                    names |= {t.id for target in targets
+                              for t in (target.elts if isinstance(target, (ast.Tuple, ast.List)) else [target])
+                              if isinstance(t, ast.Name)}
             if len(names) == before:
                 break
         return names
