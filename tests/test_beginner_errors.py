@@ -220,14 +220,14 @@ def test_a_forbidden_function_imported_by_name_is_still_caught(tmp_path):
 
 
 @pytest.mark.parametrize("ending, told", [
-    ("", "Besides, the answer it gave is wrong: triangulate(P1, P2, pts1, pts2) returned shape (3, 5); "
-         "expected (5, 3)"),
+    ("", "With the forbidden call allowed, the answer is wrong: triangulate(P1, P2, pts1, pts2) returned shape "
+         "(3, 5); expected (5, 3)"),
     (".T", "The answer it gave passes this check otherwise"),
 ])
 def test_a_forbidden_call_is_told_with_what_its_answer_was_worth(tmp_path, ending, told):
     """cv2.triangulatePoints in the exercise that asks for triangulation by hand: the points are lost
-    for the call; what its answer is worth is told after the rule (the call's result left as columns
-    is a second mistake the rule alone would hide), and the points stay lost either way."""
+    for the call; what its answer is worth is told (the call's result left as columns is a second mistake
+    the rule alone would hide: told first, the rule after it), and the points stay lost either way."""
     source = f"""
         def triangulate(P1, P2, pts1, pts2):
             a = np.asarray(pts1, dtype=np.float64).reshape(-1, 2).T
@@ -240,14 +240,16 @@ def test_a_forbidden_call_is_told_with_what_its_answer_was_worth(tmp_path, endin
     checks = [c for e in result.exercises for c in e.checks if c.max_score]
     assert all(c.failure == "forbidden_call" and c.score == 0 for c in checks)
     first = next(c for c in checks if "worked example" in c.name)
-    assert first.message.startswith("triangulate() called cv2.triangulatePoints") and told in first.message, \
+    assert told in first.message and "triangulate() called cv2.triangulatePoints" in first.message, first.message
+    assert first.message.startswith("triangulate() called" if ending else "With the forbidden call allowed"), \
         first.message
-    looked = [c for c in checks if "Besides, the answer it gave" in c.message or "passes this check otherwise" in c.message]
+    looked = [c for c in checks if "the answer is wrong" in c.message or "passes this check otherwise" in c.message]
     assert looked == [first]
     # (the look is made once; the exercise's other checks lost for the call point to what it found when
     # the answer was wrong besides -- "called cv2.triangulatePoints" alone would hide it -- and say nothing
     # more where it was right)
-    pointing = [c for c in checks if f"the answer it gave in the check '{first.name}' was wrong" in c.message]
+    pointing = [c for c in checks if f"the answer in the check '{first.name}' was wrong" in c.message
+                and "Besides that mistake, triangulate() called cv2.triangulatePoints" in c.message]
     assert pointing == ([c for c in checks if c is not first] if ending == "" else []), \
         [c.message for c in checks]
 
@@ -266,7 +268,7 @@ def test_a_forbidden_call_whose_code_raises_is_told_with_the_change_that_mends_i
                    include_hidden=False)
     first = next(c for e in result.exercises for c in e.checks if "worked example" in c.name)
     assert first.failure == "forbidden_call" and first.score == 0, first
-    assert "Besides, with that call allowed your code fails" in first.message, first.message
+    assert first.message.startswith("With the forbidden call allowed, your code fails"), first.message
     assert "`cv2.convertPointsFromHomogeneous(X.T)`" in first.message, first.message
 
 
@@ -283,9 +285,27 @@ def test_a_forbidden_calls_wrong_answer_is_named_in_the_students_code(tmp_path):
             return (X[:3] / X[3]).T
         """
     result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ex1"], pictures="none", include_hidden=False)
-    besides = [c for e in result.exercises for c in e.checks if "Besides" in c.message]
+    besides = [c for e in result.exercises for c in e.checks if "the answer is wrong" in c.message]
     assert besides and "to `pts1.T`" in besides[0].message and besides[0].score == 0, \
         [c.message for e in result.exercises for c in e.checks]
+
+
+def test_point_sets_given_to_opencv_as_rows_are_named_as_one_slip(tmp_path):
+    """Both point sets given to cv2.triangulatePoints as (N, 2) where it reads 2 x N (one slip made for
+    both; each transposed alone makes OpenCV raise): the second look names the two transposes as one
+    change, and leads with it, the rule after."""
+    source = """
+        def triangulate(P1, P2, pts1, pts2):
+            a = np.asarray(pts1, dtype=np.float64).reshape(-1, 2)
+            b = np.asarray(pts2, dtype=np.float64).reshape(-1, 2)
+            X = cv2.triangulatePoints(np.asarray(P1, dtype=np.float64), np.asarray(P2, dtype=np.float64), a, b)
+            return (X[:3] / X[3]).T
+        """
+    result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ex1"], pictures="none", include_hidden=False)
+    looked = [c for e in result.exercises for c in e.checks if "the answer is wrong" in c.message]
+    assert looked and looked[0].message.startswith("With the forbidden call allowed"), \
+        [c.message for e in result.exercises for c in e.checks]
+    assert ", a.T, b.T)`" in looked[0].message and looked[0].score == 0, looked[0].message
 
 
 def test_what_a_forbidden_calls_second_look_computes_is_never_shared_with_the_other_checks():
@@ -308,9 +328,11 @@ def test_what_a_forbidden_calls_second_look_computes_is_never_shared_with_the_ot
     check = SimpleNamespace(func=check_func, hidden=False, exercise=SimpleNamespace(lab=lab, id="lab98.ex1"),
                             timeout=1, name="the panorama")
     verdict = besides_forbidden(Verdict(0.0, "f() called cv2.f"), sandbox, check, None, None)
-    assert "Besides, the answer it gave is wrong: the panorama is wrong" in verdict.message
+    assert verdict.message == ("With the forbidden call allowed, the answer is wrong: the panorama is wrong.\n"
+                               "Besides that mistake, f() called cv2.f: that alone loses this check."), verdict.message
     assert "the student's panorama" not in sandbox.shared and sandbox.shared["earlier"] == 1
     # once per exercise: its time comes out of the exercise's budget (another check points to it)
     again = besides_forbidden(Verdict(0.0, "f() called cv2.f"), sandbox, check, None, None).message
-    assert len(runs) == 1 and again == ("f() called cv2.f. Besides, with that call allowed, the answer it gave in "
-                                        "the check 'the panorama' was wrong: see there."), again
+    assert len(runs) == 1 and again == ("With the forbidden call allowed, the answer in the check 'the panorama' "
+                                        "was wrong: see there. Besides that mistake, f() called cv2.f: that alone "
+                                        "loses this check."), again

@@ -765,10 +765,10 @@ def _in_place_advice(modified) -> CheckResult:
 
 def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: dict | None,
                       inputs: Inputs | None) -> Verdict:
-    """A check lost for a forbidden library call, with what the answer that call gave is worth told
-    after the rule (the points stay lost): whether writing the step themselves is all that is left, or
-    the answer is wrong besides (a result of the library's left as columns: the rule alone would hide
-    it). The check is run once more with the calls allowed, in the first public check of its exercise
+    """A check lost for a forbidden library call, with what the answer that call gave is worth: whether
+    writing the step themselves is all that is left (told after the rule), or the answer is wrong besides
+    (a result of the library's left as columns: the rule alone would hide it), told first -- the rule,
+    after it, loses the points either way. The check is run once more with the calls allowed, in the first public check of its exercise
     that lost points so (once: the second run's time comes out of the exercise's budget, which the
     exercise's other functions need); anything but a verdict tells nothing."""
     # (the exercise -> what the look found, in the check it was made in: the exercise's other checks
@@ -782,8 +782,8 @@ def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: d
         # (the mistake in words where it has them -- "the two images' points are swapped" -- not a
         # machine label such as "repair:swap_items")
         said = f" ({mistake})" if mistake and ":" not in mistake and len(mistake) <= 200 else ""
-        return replace(verdict, message=f"{_sentence(verdict.message)} Besides, with that call allowed, the answer "
-                                        f"it gave in the check '{name}' was {what}{said}: see there.",
+        return replace(verdict, message=f"With the forbidden call allowed, the answer in the check '{name}' was {what}{said}: "
+                                        f"see there. {_rule_besides(verdict.message)}",
                        mistake=verdict.mistake or mistake)
     looked[check.exercise.id] = None
     verdict, what = _looked_besides_forbidden(verdict, sandbox, check, rules, inputs)
@@ -806,22 +806,31 @@ def _looked_besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, 
         # transposed is a mistake of its own, which writing the step themselves would not mend)
         named = _named_by_repair(Verdict(0.0, failure.message, failure.hint, failure.mistake), check, trial)
         first = str(named.message).split("\n", 1)[0].rstrip()
-        return replace(verdict, message=f"{_sentence(verdict.message)} Besides, the answer it gave is wrong: "
-                                        f"{first}", mistake=named.mistake or verdict.mistake), "wrong"
+        return replace(verdict, message=f"With the forbidden call allowed, the answer is wrong: {_sentence(first)}\n"
+                                        f"{_rule_besides(verdict.message)}",
+                       mistake=named.mistake or verdict.mistake), "wrong"
     except StudentFailure as failure:
         if failure.outcome.kind != "exception":   # (a timeout, a crash: nothing more to tell)
             return verdict, None
         # (the code around the call raising: `cv2.convertPointsFromHomogeneous(Xh)` of a 4 x N result)
         named = _named_by_repair(Verdict(0.0, failure.message), check, trial)
         first = str(named.message).split("\n", 1)[0].rstrip()
-        return replace(verdict, message=f"{_sentence(verdict.message)} Besides, with that call allowed your code "
-                                        f"fails: {first}", mistake=named.mistake or verdict.mistake), "an exception"
+        return replace(verdict, message=f"With the forbidden call allowed, your code fails: {_sentence(first)}\n"
+                                        f"{_rule_besides(verdict.message)}",
+                       mistake=named.mistake or verdict.mistake), "an exception"
     except Exception:  # noqa: BLE001 - anything else: nothing more to tell
         return verdict, None
     if again is None or (isinstance(again, Verdict) and again.fraction >= 1.0):
         return replace(verdict, message=f"{_sentence(verdict.message)} The answer it gave passes this check "
                                         "otherwise: writing that step yourself is what is left to do."), None
     return verdict, None
+
+
+def _rule_besides(rule) -> str:
+    """The forbidden call's rule told after the mistake the answer has besides it: the mistake leads (it
+    is what the student's code gets wrong however the step is written); the rule alone loses the points."""
+    rule = str(rule).rstrip().rstrip(".")
+    return f"Besides that mistake, {rule}: that alone loses this check."
 
 
 class _SharedApart:

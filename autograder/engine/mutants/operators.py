@@ -373,6 +373,11 @@ def _make_swap_args(node, payload):
 def _make_transpose(node, payload):
     if payload == "for_reshape":   # x.reshape(w, h) -> x.T
         return ast.Attribute(copy.deepcopy(node.func.value), "T", ast.Load())
+    if payload == "cv_points":   # cv2.f(a, b, pts1, pts2) -> cv2.f(a, b, pts1.T, pts2.T)
+        new = copy.deepcopy(node)
+        for p in _CV_POINT_SETS[_dotted(node.func).rsplit(".", 1)[-1]]:
+            new.args[p] = ast.Attribute(new.args[p], "T", ast.Load())
+        return new
     if payload == "remove":
         return copy.deepcopy(node.value if isinstance(node, ast.Attribute) else node.args[0])
     if payload == "literal":
@@ -1696,6 +1701,8 @@ def _student_changes(node, parent, parents):
         yield "chain_order", "first", ""   # `A @ B @ C` -> `B @ A @ C`
         yield "chain_order", "last", ""    # `A @ B @ C` -> `A @ C @ B` (K2.T @ K1 @ F for K2.T @ F @ K1)
         yield "chain_order", "outer", ""   # `A @ B @ C` -> `C @ B @ A` (T(-c) @ R @ T(c) for T(c) @ R @ T(-c))
+    if _cv_point_pair(node):
+        yield "transpose", "cv_points", ""   # both point sets given as rows where columns belong (2 x N)
     yield from _grid_axis_changes(node)
     yield from _layout_and_type_changes(node)
     if isinstance(parent, ast.Call) and len(parent.args) >= 2 and node is parent.args[1] \
@@ -3564,6 +3571,16 @@ def _cv_points(node, parent) -> bool:
         return False
     positions = _CV_POINT_SETS.get(_dotted(parent.func).rsplit(".", 1)[-1], ())
     return any(p < len(parent.args) and parent.args[p] is node for p in positions)
+
+
+def _cv_point_pair(node) -> bool:
+    """An OpenCV call given two point sets (``cv2.triangulatePoints(P1, P2, pts1, pts2)``), each a name
+    or a part of one: one slip made for both (rows where OpenCV reads columns) is one change."""
+    if not (isinstance(node, ast.Call) and _dotted(node.func).startswith(("cv2.", "cv."))):
+        return False
+    positions = _CV_POINT_SETS.get(_dotted(node.func).rsplit(".", 1)[-1], ())
+    return len(positions) == 2 and all(p < len(node.args) and isinstance(node.args[p], (ast.Name, ast.Subscript))
+                                       for p in positions)
 
 
 def _index_phrase(inner, elements, position, value, other) -> str:

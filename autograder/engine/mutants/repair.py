@@ -1969,9 +1969,13 @@ class _Variants:
         if values is None or own is None:
             return False
         spread = 1.5 * self.checked[mutant.key] + 1e-9
-        return any(self.distance(theirs, wanted[i]) > 3 * spread
-                   and self.distance(value, theirs) <= 0.01 * self.distance(theirs, wanted[i])
-                   for value, theirs, i in zip(values, own, indices))
+
+        def as_theirs(value, theirs, wanted) -> bool:
+            # (an answer of theirs that cannot be measured against the reference's -- (2, 3) where (12, 3)
+            # is asked -- is left as it was only by the very same answer: no distance is "1% of" infinity)
+            off, same = self.distance(theirs, wanted), self.distance(value, theirs)
+            return off > 3 * spread and (same <= 0.01 * off if np.isfinite(off) else same == 0)
+        return any(as_theirs(value, theirs, wanted[i]) for value, theirs, i in zip(values, own, indices))
 
     def writes_inputs(self, mutant) -> bool:
         """Whether the variant wrote into its caller's arrays on a call where the student's own code

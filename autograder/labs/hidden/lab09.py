@@ -10,6 +10,11 @@ import numpy as np
 
 from fixtures import lab09 as truth
 
+import ast
+
+from ...engine.checks import Fail, StudentFailure
+from ...engine.claims import from_code, measured
+from ...engine.hints import Predicate, code_of
 from ..lab09 import (ex3, ex4, ext1, judge_in_front, judge_calibration, judge_matrix, judge_points,
                      points_probe, project_mistakes)
 from ._draws import board_views, seed, uncached, uniform
@@ -65,12 +70,68 @@ HIDDEN_VIEWS = (
 )
 
 
+def calibration_camera(rng) -> tuple:
+    """A 320 x 240 camera's K (nested tuples, as the fixtures' caches want): focal lengths 10 px apart
+    or so, the principal point off the image centre."""
+    fx = uniform(rng, 330.0, 390.0, 1)
+    return ((fx, 0.0, uniform(rng, 150.0, 170.0, 1)),
+            (0.0, round(fx + uniform(rng, -10.0, 10.0), 1), uniform(rng, 112.0, 128.0, 1)), (0.0, 0.0, 1.0))
+
+
 @ext1.check("hidden: calibrate on views of another camera", points=2, hidden=True)
 def hidden_calibration(t):
-    fx = uniform(t.rng, 330.0, 390.0, 1)
-    K = ((fx, 0.0, uniform(t.rng, 150.0, 170.0, 1)),
-         (0.0, round(fx + uniform(t.rng, -10.0, 10.0), 1), uniform(t.rng, 112.0, 128.0, 1)), (0.0, 0.0, 1.0))
+    K = calibration_camera(t.rng)
     views = board_views(t.rng, HIDDEN_VIEWS, np.array(K), truth.CALIBRATION_PATTERN, truth.CALIBRATION_SQUARE,
                         truth.CALIBRATION_SIZE)
     images, _ = uncached(truth.render_calibration_views)(K, views)
     return judge_calibration(t, images, np.array(K), truth.CALIBRATION_PATTERN)
+
+
+def out_of_frame(K, view, pattern, square, size) -> tuple:
+    """``view`` moved sideways until two columns of its board's inner corners lie outside the image: a
+    photo in which no corner detector can find the whole board (a calibration set taken by hand has some)."""
+    tilt, spin, distance, (x, y) = view
+    cols, rows = pattern
+    for step in range(1, 60):
+        moved = (tilt, spin, distance, (round(x + 0.05 * step, 3), y))
+        R, tvec = truth.board_pose(np.array(tilt), spin, distance, pattern, square, moved[3])
+        corners = truth.homogeneous_project(truth.camera(K, R, tvec), truth.board_points(pattern, square))
+        outside = (corners[:, 0] < 0) | (corners[:, 0] > size[0] - 1) | (corners[:, 1] < 0) | (corners[:, 1] > size[1] - 1)
+        if outside.sum() >= 2 * rows:
+            return moved
+    raise RuntimeError("the board never left the image")
+
+
+def _breaks_a_loop(function) -> bool:
+    return any(isinstance(n, ast.Break) for n in ast.walk(function))
+
+
+@ext1.check("hidden: calibrate when one of the views does not show the whole board", points=1, hidden=True)
+def hidden_calibration_board_missing(t):
+    K = calibration_camera(t.rng)
+    pattern, square, size = truth.CALIBRATION_PATTERN, truth.CALIBRATION_SQUARE, truth.CALIBRATION_SIZE
+    views = board_views(t.rng, HIDDEN_VIEWS, np.array(K), pattern, square, size)
+    missing = out_of_frame(np.array(K), views[1], pattern, square, size)
+    images, _ = uncached(truth.render_calibration_views)(K, (views[0], missing) + views[1:])
+    t.images("the second view: the board leaves the image", view_2=images[1])
+    told = (f"The second of these {len(images)} views does not show the whole board (two columns of its corners are "
+            "outside the image), as happens in a set of photos taken by hand: cv2.findChessboardCorners finds no "
+            "board there, and such a view is left out (the other views calibrate the camera).")
+    try:
+        return judge_calibration(t, images, np.array(K), pattern)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        raise failure.said(f"{failure.message}\n" + told) from None
+    except Fail as failure:
+        # Judged again with that view last: right there, the views after it were never used.
+        try:
+            judge_calibration(t, images[:1] + images[2:] + images[1:2], np.array(K), pattern)
+        except (Fail, StudentFailure):
+            raise failure from None
+        stops = Predicate("leaves its loop with break", _breaks_a_loop).found(code_of(t).reachable(["calibrate"]))
+        cause = from_code(" (your code leaves its loop with `break`: `continue` goes on to the next view)") if stops else ""
+        mistake = "the views after one without a board are not used"
+        t.fail(f"{failure.message}\n{told}\n" + measured(
+            "With that view given last, your calibration is right: the views after a view without a board are "
+            "not used") + f"{cause}.", mistake=mistake)

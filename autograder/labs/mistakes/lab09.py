@@ -491,6 +491,27 @@ MISTAKES = {
             rms, K, dist, _, _ = cv2.calibrateCamera(object_points, image_points, size, None, None)
             return K, dist.ravel(), rms
         """, ["these views have 3 channels (bgr)", "cv2.cvtcolor(image, cv2.color_bgr2gray)"]),
+    # a view without a whole board (the hidden check's second view): its corners are not found
+    **{f"calibration {what} at a view without a board": ("lab09.ext1", f"""
+        def calibrate(images, pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float32)
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size
+            object_points, image_points = [], []
+            for image in images:
+                grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+                found, corners = cv2.findChessboardCorners(grey, (cols, rows))
+                if not found:
+                    {action}
+                object_points.append(objp)
+                image_points.append(corners)
+            h, w = images[0].shape[:2]
+            rms, K, dist, _, _ = cv2.calibrateCamera(object_points, image_points, (w, h), None, None)
+            return K, dist.ravel(), rms
+        """, words) for what, action, words in (
+            ("stopping", "break", ["the views after a view without a board are not used", "leaves its loop with `break`"]),
+            ("raising", 'raise ValueError("no chessboard found")', ["no chessboard found",
+                                                                    "does not show the whole board"]))},
     "k2 ignored": ("lab09.ext2", """
         _right = distort_points
         def distort_points(points, dist):
