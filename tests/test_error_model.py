@@ -532,3 +532,34 @@ def test_a_name_a_later_check_of_the_function_refutes_is_taken_back_and_a_hidden
     assert APPENDED in public.message
     take_back_refuted([public], [(sentence, False)])
     assert public.message == "draw_matches(...) is wrong.\nmore" and public.mistake == ""
+
+
+@pytest.mark.parametrize("sentence, operator, payload, makes, can", [
+    # a name used in place of a floor's result, read only inside the floor itself in the student's code
+    ("in `s`, `f` is used where the result of `np.floor` belongs", "other_name", "f", {"floor"}, False),
+    ("in `s`, `width` is used where the result of `np.floor` belongs", "other_name", "width", {"floor"}, True),
+    ("in `s`, the arguments of `cv2.remap` are swapped", "swap_args", None, {"remap"}, False),   # never called
+    ("in `s`, the result of `np.floor` is used", "sign", None, {"floor"}, True),
+    # a call the mutant takes out: the student's code lacks it by that very mistake
+    ("in `s`, `np.atleast_2d` is missing", "single_point", None, set(), True),
+])
+def test_an_error_model_name_is_said_only_of_code_that_can_make_it(monkeypatch, sentence, operator, payload, makes,
+                                                                   can):
+    """The words of a mutant of the reference are checked against the student's code read with ast: a
+    library call they quote that the mutant's code makes is called, and a name they say is used in
+    another's place is read somewhere but inside the call that makes the other."""
+    import textwrap
+
+    from autograder.engine import hints
+    from autograder.engine.mutants import naming
+    from autograder.engine.mutants.operators import Mutant
+
+    code = hints.read_code(textwrap.dedent("""
+        def s(depth, f, b, width):
+            cols = np.floor(np.arange(width)[None, :] - f * b / depth + 0.5).astype(int)
+            return cols < width
+        """))
+    monkeypatch.setattr(hints, "code_of", lambda trial: code)
+    monkeypatch.setattr(naming, "_mutant_calls", lambda trial, mutant: makes)
+    mutant = Mutant(operator, "s", "s", 3, (("s", 5, operator, payload),), sentence)
+    assert naming._code_can(naming.Naming(mutant, 1, 1), types.SimpleNamespace(), {"s"}) == can

@@ -307,3 +307,18 @@ def test_the_new_principal_point_is_the_in_view_cause_only_of_maps_that_rectify(
     assert "H1 and H2 rectify the pair, but the new principal point" in pushed
     k_for_inverse = in_view(MISTAKES["rectify with K where K^-1 belongs"][1])
     assert "principal point" not in k_for_inverse and "do not rectify the pair either" in k_for_inverse
+
+
+@pytest.mark.parametrize("overwrite, wraps", [
+    ("", True),                                  # the columns np.roll brings round are compared
+    ("shifted[:, :d] = right[:, :1]\n", False),  # written over with the first column: no wrap-round
+    ("shifted[..., :d] = 0\n", False),
+])
+def test_np_roll_is_said_to_wrap_round_only_where_its_columns_stay(overwrite, wraps):
+    source = ("def block_matching(left, right, max_disparity=64, block_size=9, cost='ssd'):\n"
+              "    for d in range(max_disparity + 1):\n"
+              "        shifted = np.roll(right, d, axis=1)\n"
+              + (f"        {overwrite}" if overwrite else "") +
+              "        cost = (left - shifted) ** 2\n"
+              "    return cost\n")
+    assert bool(found(lab12.WRAPPED_ROUND, source, "block_matching")) == wraps

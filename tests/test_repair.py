@@ -1776,6 +1776,18 @@ def test_an_svd_recomposed_without_its_constraint_and_a_normalisation_never_undo
     assert "U @ np.diag([S[0], S[1], 0])" in ranks and "U @ np.diag([1, 1, 0])" in ranks, ranks
     undone = [after for _, after in _shown_changes(source, "denormalise")]
     assert "return T2.T @ F @ T1" in undone and "return np.linalg.inv(T2) @ F @ T1" in undone, undone
+    assert "return np.linalg.inv(T2) @ F" not in undone, undone   # (neither side undone: both together)
+    # (one side only, where the other is undone already: a camera's world side, `P = p.reshape(3, 4) @ U`)
+    source = textwrap.dedent("""
+        def graded(x, X):
+            T, U = _normalise(x), _normalise(X)
+            Xn = X @ U.T
+            p = np.linalg.svd(_rows(x @ T.T, Xn))[2][-1]
+            P = p.reshape(3, 4) @ U
+            return P
+    """)
+    undone = [after for _, after in _shown_changes(source, "denormalise")]
+    assert "return np.linalg.inv(T) @ P" in undone and "return np.linalg.inv(U) @ P" not in undone, undone
 
 
 _NEVER_UNDONE = ("    F = T2.T @ Fn @ T1\n    return F / np.linalg.norm(F)", "    return Fn / np.linalg.norm(Fn)")
@@ -2390,6 +2402,8 @@ def test_names_unpacked_as_written_are_never_exchanged_by_a_repair():
     parts = frozenset({("", ("k1", "k2", "p1", "p2", "k3")), ("", ("w", "h"))})
     assert repair._names_as_written(["x", "y"], frozenset())
     assert repair._names_as_written(["u1", "v1"], frozenset())
+    assert repair._names_as_written(["X", "Y", "Z"], frozenset())
+    assert not repair._names_as_written(["Y", "X", "Z"], frozenset())
     assert not repair._names_as_written(["y", "x"], frozenset())
     assert repair._names_as_written(["k1", "k2", "p1", "p2", "k3"], parts)
     shape = ast.parse("image.shape[:2]", mode="eval").body
@@ -2411,6 +2425,8 @@ def test_names_unpacked_as_written_are_never_exchanged_by_a_repair():
             k1, k2, p1, p2, k3 = d
             for x, y in pts:
                 image[int(x), int(y)] = k1 + p2
+            for i, (X, Y, Z) in enumerate(pts):
+                image[i] = Y / Z
             w, h = image.shape[:2]
             return image, w
     """)
@@ -2421,6 +2437,7 @@ def test_names_unpacked_as_written_are_never_exchanged_by_a_repair():
     kept = {student.fix(m).changes[0][1] for m in swaps if student.fix(m) and not student.reorders_api_results(m)}
     assert any("k1, k2, p1, p2, k3" in text for text in refused), refused
     assert "(x, y)" in refused, refused
+    assert "(i, (X, Y, Z))" in refused, refused   # (a point's coordinates in capitals, in a nested tuple)
     assert "w, h = image.shape[:2]" in kept, kept
 
 
@@ -2672,3 +2689,30 @@ def test_every_product_of_a_chain_taken_element_by_element_is_one_change():
     changes = _shown_changes(source, "arithmetic")
     assert ("K2.T * F * K1", "K2.T @ F @ K1") in changes, changes
     assert ("H = K1 @ F @ K2", "H = K1 * F * K2") in changes, changes
+
+
+def test_an_index_tested_against_its_upper_end_only_is_given_its_lower_end():
+    """`cols < width` where a projector column may be negative (NumPy counts it from the end): the test
+    with its lower end too is offered; a comparison with a number is left as it is."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(cols, width, d):
+            lit = cols < width
+            near = d < 3
+            return lit, near
+    """)
+    made = _made(source, {"lower_bound"})
+    assert made == {("cols < width", "(cols >= 0) & (cols < width)")}, made
+
+
+def test_point_sets_given_to_opencv_are_transposed_together():
+    """Both point sets of one OpenCV call made columns at once (each alone is refused by OpenCV)."""
+    source = textwrap.dedent("""
+        import cv2
+
+        def graded(P1, P2, pts1, pts2):
+            return cv2.triangulatePoints(P1, P2, pts1, pts2)
+    """)
+    made = _made(source, {"transpose"})
+    assert ("cv2.triangulatePoints(P1, P2, pts1, pts2)", "cv2.triangulatePoints(P1, P2, pts1.T, pts2.T)") in made, made

@@ -1528,6 +1528,21 @@ PAST_THE_EDGE_MISTAKE = "disparities point left of the right image (x - d < 0) a
 ROLLED = calls("np.roll")
 
 
+def _overwrites_rolled_columns(function) -> bool:
+    """A rolled image's first d columns written over (``shifted = np.roll(right, d, axis=1)`` then
+    ``shifted[:, :d] = ...``): the columns np.roll brought round are no longer there."""
+    rolled = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and isinstance(n.value, ast.Call)
+              and _path(n.value.func).rsplit(".", 1)[-1] == "roll" for t in n.targets if isinstance(t, ast.Name)}
+    return any(isinstance(n, ast.Assign) and any(
+        isinstance(t, ast.Subscript) and isinstance(t.value, ast.Name) and t.value.id in rolled
+        and any(isinstance(part, ast.Slice) and part.lower is None and _disparity_name(part.upper)
+                for part in (t.slice.elts if isinstance(t.slice, ast.Tuple) else [t.slice]))
+        for t in n.targets) for n in ast.walk(function))
+
+
+WRAPPED_ROUND = ROLLED & ~Predicate("writes over the columns np.roll brings round", _overwrites_rolled_columns)
+
+
 def judge_left_strip(t: Trial, what: str, got, max_disparity: int, function: str = "block_matching"):
     """Fail when more than :data:`LEFT_STRIP_ALLOWED` of the left strip ``x < max_disparity`` of the
     map ``got`` (H, W) get a disparity above their column ``x`` (+ :data:`PAST_THE_EDGE`): a match
@@ -1540,7 +1555,7 @@ def judge_left_strip(t: Trial, what: str, got, max_disparity: int, function: str
     if past.mean() <= LEFT_STRIP_ALLOWED:
         return
     y, x = (int(v[0]) for v in np.nonzero(past))
-    rolled = ROLLED.found(code_of(t).reachable([function]))
+    rolled = WRAPPED_ROUND.found(code_of(t).reachable([function]))
     t.fail(f"{what}: {past.sum()} pixels of the left strip x < {max_disparity} ({past.mean():.0%} of it) get a "
            f"disparity larger than their column x (e.g. d = {strip[y, x]:g} at x = {x}, row {y}): their match "
            "x - d would lie left of the right image's first column, where it has no pixel. "

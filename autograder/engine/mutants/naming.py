@@ -22,6 +22,7 @@ reference module (a copy of the grader without ``reference_solutions/``) nothing
 
 from __future__ import annotations
 
+import ast
 import atexit
 import itertools
 import os
@@ -37,7 +38,7 @@ from ...loading.parsing import parse
 from ...sandbox import evidence
 from ..inplace import MISTAKE as IN_PLACE
 from .helper import ERROR, Helper, HelperFailed
-from .operators import Mutant, mutants_of
+from .operators import Mutant, mutants_of, mutated_defs
 
 CHECK_SECONDS = 3.0        # the error model's time for one failed check
 GRADING_SECONDS = 10.0     # and for one grading (all its failed checks): bounds what failing everything costs
@@ -1256,19 +1257,61 @@ _INTEGER_MAKERS = re.compile(r"//|\bint\s*\(|astype\(\s*(?:int|np\.u?int|numpy\.
                              r"rint|round|around)\b|\bround\s*\(|dtype\s*=\s*(?:int|np\.u?int|['\"]u?int)|np\.u?int\d*\(")
 
 
+_QUOTED_CALL = re.compile(r"`((?:np|numpy|cv2|cv|math)\.(\w+))`")
+
+
 def _code_can(naming: Naming, trial, called) -> bool:
-    """Whether the student's code that ``called`` functions run can do what the mutant's words say it does."""
-    if naming.mutant.operator != "int_division":
-        return True
+    """Whether the student's code that ``called`` functions run can do what the mutant's words say it does:
+    it makes integers where the words say values are truncated; it calls each library function the words
+    quote (`the result of `np.floor``); and a name the words say is used in another's place is read
+    somewhere else than inside the very call that makes the other (`f` only inside `np.floor(u - f * b / Z)`
+    is never used where the floor's result belongs)."""
     from ..hints import code_of
 
     code = code_of(trial)
     if not code.functions:
         return True
-    import ast as _ast
+    functions = code.reachable(sorted(called))
+    if naming.mutant.operator == "int_division":
+        return bool(_INTEGER_MAKERS.search("\n".join(ast.unparse(fn) for fn in functions)))
+    called_names = {_called_name(n) for fn in functions for n in ast.walk(fn) if isinstance(n, ast.Call)}
+    quoted = _QUOTED_CALL.findall(naming.sentence)
+    # (a call the mutant's own code makes: one it takes out -- "`np.atleast_2d` is missing" -- the student's
+    # code lacks by that very mistake)
+    if any(short not in called_names for _, short in quoted if short in _mutant_calls(trial, naming.mutant)):
+        return False
+    if naming.mutant.operator == "other_name" and len(naming.mutant.edits) == 1:
+        used = naming.mutant.edits[0][3]
+        makers = {short for _, short in quoted}
+        return any(_read_outside(fn, used, makers) for fn in functions)
+    return True
 
-    text = "\n".join(_ast.unparse(fn) for fn in code.reachable(sorted(called)))
-    return bool(_INTEGER_MAKERS.search(text))
+
+def _mutant_calls(trial, mutant) -> set:
+    """The names of the functions the mutant's changed defs call (empty when they cannot be made)."""
+    model = model_for(trial.lab) if hasattr(trial, "lab") else None
+    if model is None:
+        return set()
+    try:
+        changed = mutated_defs(parse(model.source), mutant.edits, model.source)
+    except (ValueError, SyntaxError):
+        return set()
+    return {_called_name(n) for n in ast.walk(changed) if isinstance(n, ast.Call)}
+
+
+def _called_name(call) -> str:
+    func = call.func
+    return func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", "")
+
+
+def _read_outside(function, name: str, makers: set) -> bool:
+    """Whether ``function`` reads ``name`` somewhere outside every call of a function in ``makers``."""
+    inside = set()
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _called_name(node) in makers:
+            inside.update(id(n) for n in ast.walk(node))
+    return any(isinstance(n, ast.Name) and n.id == name and isinstance(n.ctx, ast.Load) and id(n) not in inside
+               for n in ast.walk(function))
 
 
 def _vouched_for(naming: Naming, trial) -> bool:

@@ -128,6 +128,7 @@ OPERATORS = {
     "grey": ("grey", "gray", "channel", "colour", "color"),
     "rank": ("singular", "rank", "constraint", "diag"),
     "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),
+    "lower_bound": ("bound", "negative", ">= 0", "below 0", "left"),   # cols < w -> (cols >= 0) & (cols < w)
     "whole_shape": ("shape", "length", "len", "dimension"),   # np.zeros(len(d)) -> np.zeros(np.shape(d))
     "move_factor": ("square root", "sqrt", "factor", "inside", "outside"),   # np.sqrt(a * u) -> a * np.sqrt(u)
     "convert_first": ("convert", "uint8", "wrap", "before"),   # (a - b).astype(float) -> a.astype(float) - b
@@ -822,6 +823,12 @@ def _make_guard(node, payload):
     return parse(f"np.where({right} > 0, ({left}) / np.where({right} > 0, {right}, 1), {payload})", mode="eval").body
 
 
+def _make_lower_bound(node, payload):
+    # cols < width -> (cols >= 0) & (cols < width): an index below 0 counts from the end in NumPy
+    return ast.BinOp(ast.Compare(copy.deepcopy(node.left), [ast.GtE()], [ast.Constant(0)]), ast.BitAnd(),
+                     copy.deepcopy(node))
+
+
 def _make_drop_keyword(node, payload):
     new = copy.deepcopy(node)   # cv2.undistortPoints(p, K, None, P=K) -> cv2.undistortPoints(p, K, None)
     if isinstance(payload, int):   # cv2.resize(image, size, fx=s) -> cv2.resize(image, None, fx=s)
@@ -936,7 +943,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term")},
          "drop_keyword": _make_drop_keyword, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
-         "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard,
+         "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -1775,6 +1782,9 @@ def _student_changes(node, parent, parents):
             and isinstance(node.right, (ast.Name, ast.Subscript)) and not isinstance(node.left, ast.Constant):
         for invalid in ("0.0", "np.nan"):   # a division with no guard where the divisor may be 0 or below
             yield "guard", invalid, ""
+    if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Lt, ast.LtE)) \
+            and isinstance(node.left, ast.Name) and not isinstance(node.comparators[0], ast.Constant):
+        yield "lower_bound", None, ""   # an index tested against its upper end only: `cols < width`
     yield from _conversion_slips(node, parent)
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
@@ -2507,7 +2517,8 @@ def _singular_value_changes(node, parent):
 
 def _denormalisations(fn):
     """(node, payload): an estimate made in normalised coordinates and returned without the normalising
-    transforms undone (`return F` where `T2.T @ F @ T1` belongs, `return H` for `inv(T2) @ H @ T1`): the
+    transforms undone (`return F` where `T2.T @ F @ T1` belongs, `return H` for `inv(T2) @ H @ T1`, or
+    on one side only where the other is undone: `inv(T) @ P` for a camera whose world side is): the
     transforms are what one of the student's helpers returns for each image (`T1, T2 = _norm(p1),
     _norm(p2)`; `n1, T1 = _norm(p1)` and `n2, T2 = _norm(p2)`), the estimate the first name the return reads."""
     made = {}
@@ -2537,6 +2548,16 @@ def _denormalisations(fn):
             for a, b in ((second, first), (first, second)):
                 for undone in (f"({a}.T @ {estimate.id} @ {b})", f"(np.linalg.inv({a}) @ {estimate.id} @ {b})"):
                     yield estimate, undone
+            # (one side only, where the other is in more matrix products than it -- undone already: `P =
+            # p.reshape(3, 4) @ U` returned without `inv(T)`, U also normalising the points as T does)
+            products = {name: sum(isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult) and any(
+                isinstance(m, ast.Name) and m.id == name for side in (n.left, n.right) for m in ast.walk(side))
+                for n in ast.walk(fn)) for name in transforms}
+            for a, b in ((first, second), (second, first)):
+                if products[b] > products[a]:
+                    for undone in (f"(np.linalg.inv({a}) @ {estimate.id})", f"({a}.T @ {estimate.id})",
+                                   f"({estimate.id} @ {a})"):
+                        yield estimate, undone
 
 
 def _missing_measure(node):

@@ -282,11 +282,14 @@ class _Student:
         for line, before, after in self.fix(mutant).changes:
             for node in self.unpacking_at(line):
                 if isinstance(node, ast.For):
-                    # (a loop's names exchanged -- `for x, y in pts` -> `for y, x in pts` -- named as the
-                    # reference names them, or in their axes' order: the names would lie)
-                    told = [t.id for t in node.target.elts if isinstance(t, ast.Name)]
-                    if mutant.edits[0][2] == "swap_items" and _names_as_written(told, self.reference_parts, node.iter):
-                        return True
+                    # (a loop's names exchanged -- `for x, y in pts` -> `for y, x in pts`, `for i, (X, Y, Z) in
+                    # enumerate(pts)` -> `(Y, X, Z)` -- named as the reference names them, or in their axes'
+                    # order: the names would lie)
+                    for part in (n for n in ast.walk(node.target) if isinstance(n, ast.Tuple)):
+                        told = [t.id for t in part.elts if isinstance(t, ast.Name)]
+                        if mutant.edits[0][2] == "swap_items" and _names_as_written(told, self.reference_parts,
+                                                                                    node.iter):
+                            return True
                     continue
                 if not (names(before) != names(after) and sorted(names(before)) == sorted(names(after))):
                     continue
@@ -942,11 +945,14 @@ def _names_as_written(names, reference_parts, value=None) -> bool:
         return (_value_key(value), tuple(names)) in reference_parts or _rows_then_columns(names)
     if len(names) >= 2 and ("", tuple(names)) in reference_parts:
         return True
-    for a, b in itertools.combinations(names, 2):
-        if len(a) == len(b) and any(a.replace(first, "\0", 1) == b.replace(second, "\0", 1)
-                                    and a.count(first) == 1 for first, second in _AXIS_ORDER):
-            return True
-    return False
+    # (every axis pair among them in its order, one at least: `X, Y, Z` as `x, y`, a point's coordinates
+    # in capitals; `Y, X, Z` holds X before Z, and Y before X)
+    def in_order(a, b) -> bool:
+        a, b = (a.lower(), b.lower()) if a.isupper() and b.isupper() else (a, b)
+        return len(a) == len(b) and any(a.replace(first, "\0", 1) == b.replace(second, "\0", 1)
+                                        and a.count(first) == 1 for first, second in _AXIS_ORDER)
+    pairs = list(itertools.combinations(names, 2))
+    return any(in_order(a, b) for a, b in pairs) and not any(in_order(b, a) for a, b in pairs)
 
 
 def _rows_then_columns(names) -> bool:
