@@ -450,6 +450,26 @@ MISTAKES = {
                 homographies.append(H / H[2, 2])
             return _compose(images, homographies)
         """, ["chain"]),
+    # the reference in the middle, the chain right of it multiplied the other way round: right with 3 or 4
+    # images (one step on that side), wrong from 5 (the hidden five-view check's views do not commute)
+    "homographies right of the middle reference chained in the reverse order": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            features = [_detect(image) for image in images]
+            step = [_pairwise_homography(features[k + 1], features[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            homographies = []
+            for k in range(len(images)):
+                H = np.eye(3)
+                if k > r:
+                    for j in range(k - 1, r - 1, -1):
+                        H = H @ step[j]
+                elif k < r:
+                    for j in range(k, r):
+                        H = np.linalg.inv(step[j]) @ H
+                homographies.append(H / H[2, 2])
+            return _compose(images, homographies)
+        """, ["chained in the reverse order"]),
     "last image skipped (loop stops one short)": ("lab08.ext2", """
         def stitch_many(images):
             images = list(images)
