@@ -123,3 +123,18 @@ def test_a_vector_divided_by_its_own_entry_or_negated_is_named():
 def test_another_factor_or_a_different_vector_names_nothing(got):
     """Twice the truth (no entry is 1/2), a vector not proportional to it, and the truth itself."""
     assert scale_form(got, np.array([0.7, -0.2, 3.2])) is None
+
+
+def test_a_result_of_the_wrong_shape_is_told_its_wrong_type_too():
+    """OpenCV's (N, 1) uint8 inlier mask where a flat boolean one is asked: mending the shape alone would
+    be a second failed submission, so the type is told with it (and what 0/1 integers do as an index)."""
+    import numpy as np
+
+    from autograder.engine.checks import _kind_too
+
+    mask = np.array([[1], [0], [1]], np.uint8)
+    told = _kind_too(mask, None, "b")
+    assert "uint8 where bool is asked" in told and "astype(bool)" in told, told
+    assert _kind_too(mask.astype(bool), None, "b") == ""
+    assert "float64 where uint8 is asked" in _kind_too(np.zeros((2, 2)), np.uint8, None)
+    assert "astype(bool)" not in _kind_too(np.array([[2], [3]]), None, "b")

@@ -226,3 +226,29 @@ def test_what_is_said_of_a_missing_axis_or_a_singular_solve_holds_for_the_code_i
             return np.append(1.0, np.linalg.solve(F[:2, :2], F[:2, 2] - 1))
         """, 3, "Singular matrix", (F,))
     assert before is not None and "is singular" in before.sentence and "fixed to 1" not in before.sentence, before
+
+
+@pytest.mark.parametrize("second, message, told", [
+    (np.zeros((150, 200), np.uint8),
+     "all the input arrays must have same number of dimensions, but the array at index 0 has 3 dimension(s) and "
+     "the array at index 1 has 2 dimension(s)", "convert `img2` to BGR first"),
+    (np.zeros((200, 90, 3), np.uint8),
+     "all the input array dimensions except for the concatenation axis must match exactly, but along dimension 0, "
+     "the array at index 0 has size 180 and the array at index 1 has size 200", "as high as the taller one"),
+])
+def test_two_images_joined_as_they_came_are_named(second, message, told):
+    """A matcher's canvas made by np.hstack([img1, img2]) of the images as given: a grey and a colour one,
+    or two of different heights (both allowed by the API), raise; the line and the shapes say why."""
+    source = """
+        def f(img1, img2):
+            canvas = np.hstack([img1, img2])
+            return canvas
+        """
+    first = np.zeros((180, 240, 3), np.uint8)
+    text = f'Traceback (your code):\n  File "lab.py", line 3, in f\n    ...\nValueError: {message}'
+    form = explained(read_code(textwrap.dedent(source)), text, message, "f", (first, second), {})
+    assert form is not None and told in form.sentence, form
+    # (converted first, the images are no longer as they came: nothing is said of them)
+    converted = source.replace("canvas = np.hstack", "img2 = img2[:180]\n            canvas = np.hstack")
+    text = text.replace("line 3", "line 4")
+    assert explained(read_code(textwrap.dedent(converted)), text, message, "f", (first, second), {}) is None

@@ -2716,3 +2716,20 @@ def test_point_sets_given_to_opencv_are_transposed_together():
     """)
     made = _made(source, {"transpose"})
     assert ("cv2.triangulatePoints(P1, P2, pts1, pts2)", "cv2.triangulatePoints(P1, P2, pts1.T, pts2.T)") in made, made
+
+
+def test_a_value_per_row_reduced_flat_is_kept_as_a_column():
+    """`lines / np.linalg.norm(lines[:, :2], axis=1)`: the (N,) norms against the (N, 3) lines broadcast
+    against the columns (or raise); the reduction with keepdims=True is offered, one without an axis not."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(lines, x):
+            unit = lines / np.linalg.norm(lines[:, :2], axis=1)
+            centred = x - x.mean(axis=0)
+            return unit, centred, x / np.sum(x)
+    """)
+    made = _made(source, {"keep_axis"})
+    assert ("np.linalg.norm(lines[:, :2], axis=1)", "np.linalg.norm(lines[:, :2], axis=1, keepdims=True)") in made
+    assert ("x.mean(axis=0)", "x.mean(axis=0, keepdims=True)") in made, made
+    assert not any(before == "np.sum(x)" for before, _ in made), made

@@ -90,6 +90,27 @@ class StudentFailure(Exception):
         return told
 
 
+_KIND_NAMES = {"f": "float", "i": "integer", "u": "unsigned integer", "b": "bool", "c": "complex"}
+
+
+def _kind_too(value: np.ndarray, dtype, kind) -> str:
+    """What a result of the wrong shape gets wrong besides, in its type ("" when nothing): told with the
+    shape, so that mending the shape alone is not a second failed submission (OpenCV's (N, 1) uint8 mask
+    where a flat boolean one is asked)."""
+    if dtype is not None and value.dtype != np.dtype(dtype):
+        wanted = str(np.dtype(dtype))
+    elif kind is not None and value.dtype.kind not in kind:
+        wanted = " or ".join(_KIND_NAMES[k] for k in kind)
+    else:
+        return ""
+    from .claims import measured   # (claims reads checks: imported when a result is told)
+
+    zeros_ones = kind == "b" and value.dtype.kind in "iu" and value.size and set(np.unique(value).tolist()) <= {0, 1}
+    return measured(f"; its values are also {value.dtype} where {wanted} is asked" + (
+        " (0/1 integers used as an index pick rows 0 and 1, not the rows marked 1: astype(bool))"
+        if zeros_ones else ""))
+
+
 def fingerprint(*values) -> str:
     """A short key for values given to a student's function (arrays by their bytes, other
     values by repr): a probe's input, and every input a check gives (:attr:`Trial.given`)."""
@@ -441,17 +462,17 @@ class Trial:
                     self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
                               f"{misread[0]}", mistake=misread[1])
                 form = shape_form(value.shape, tuple(shape))
+                also = _kind_too(value, dtype, kind)
                 if form is not None:
                     self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
-                              f"{form.sentence}{self._why_swapped(value.shape, shape)}", mistake=form.mistake)
+                              f"{form.sentence}{self._why_swapped(value.shape, shape)}{also}", mistake=form.mistake)
                 self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}"
-                          + self._why_swapped(value.shape, shape))
+                          + self._why_swapped(value.shape, shape) + also)
         if dtype is not None and value.dtype != np.dtype(dtype):
             self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}",
                       hint=_hints().UINT8_HINT.said(self) if np.dtype(dtype) == np.uint8 else "")
         if kind is not None and value.dtype.kind not in kind:
-            names = {"f": "float", "i": "integer", "u": "unsigned integer", "b": "bool", "c": "complex"}
-            wanted = " or ".join(names[k] for k in kind)
+            wanted = " or ".join(_KIND_NAMES[k] for k in kind)
             hint = ""
             if "f" in kind and value.dtype.kind in "iub":  # a beginner's integer (or uint8) array
                 hint = uint8_wraps(value) or _hints().FLOAT_HINT.said(self)

@@ -300,7 +300,41 @@ def _joined(call: ast.Call) -> list[ast.AST] | None:
     return None
 
 
+IMAGES_JOINED = "two images joined as they came (of different heights or channel counts)"
+
+
+def _images_joined(fn, call, parts, found, given, line) -> Form | None:
+    """Two images the function was given (unchanged before ``line``) joined as they came, where the API
+    allows them unlike: a grey and a colour one (their dimensions), or side by side of different heights
+    (their sizes along axis 0)."""
+    names = [_unwrapped(part) for part in parts]
+    if len(names) != 2 or not all(isinstance(n, ast.Name) and n.id in given and not _changed(fn, n.id, line)
+                                  for n in names):
+        return None
+    images = [given[n.id] for n in names]
+    if not all(isinstance(v, np.ndarray) and v.ndim in (2, 3) and min(v.shape[:2]) >= 8 for v in images):
+        return None
+    a, b = (n.id for n in names)
+    joined = ast.unparse(call)
+    joined = joined if len(joined) <= 60 else joined[:57] + "..."
+    if found.re is _NDIM and {v.ndim for v in images} == {2, 3}:
+        grey = a if images[0].ndim == 2 else b
+        return Form(measured(f"your `{fn.name}` joins `{a}` {images[0].shape} and `{b}` {images[1].shape} as they came in "
+                             f"`{joined}` (line {line}): a grey image and a colour one have different numbers of "
+                             f"dimensions; convert `{grey}` to BGR first (cv2.cvtColor({grey}, cv2.COLOR_GRAY2BGR))"),
+                    IMAGES_JOINED)
+    if found.re is _SIZE and int(found.group(1)) == 0 and _called(call) in ("hstack", "concatenate"):
+        return Form(measured(f"your `{fn.name}` puts `{a}` ({images[0].shape[0]} rows) and `{b}` ({images[1].shape[0]} "
+                             f"rows) side by side as they came in `{joined}` (line {line}): images of different "
+                             "heights are joined only on a canvas as high as the taller one (np.zeros of max(H1, H2) "
+                             "rows and W1 + W2 columns, each image copied into its part)"), IMAGES_JOINED)
+    return None
+
+
 def _join_named(fn, call, parts, found, given, line) -> Form | None:
+    images = _images_joined(fn, call, parts, found, given, line)
+    if images is not None:
+        return images
     if found.re is _NDIM:
         first, first_ndim, second, second_ndim = (int(g) for g in found.groups())
         pairs = [(first, first_ndim), (second, second_ndim)]

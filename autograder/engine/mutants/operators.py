@@ -1909,6 +1909,14 @@ def _numpy_slips(node, parent, parents):
         k = node.slice.elts[-1].value
         kept = [ast.unparse(e) for e in node.slice.elts[:-1]] + [f"{k}:{k + 1}" if k != -1 else "-1:"]
         yield "keep_axis", f"{ast.unparse(node.value)}[{', '.join(kept)}]", ""
+    if isinstance(node, ast.Call) and isinstance(parent, ast.BinOp) \
+            and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult, ast.Div)) \
+            and _dotted(node.func).rsplit(".", 1)[-1] in _REDUCTIONS \
+            and any(k.arg == "axis" for k in node.keywords) and not any(k.arg == "keepdims" for k in node.keywords):
+        # a value per row reduced flat, (N,), in arithmetic with the (N, k) array: kept as a column
+        # (`lines / np.linalg.norm(lines[:, :2], axis=1)`)
+        kept = ast.Call(node.func, node.args, [*node.keywords, ast.keyword("keepdims", ast.Constant(True))])
+        yield "keep_axis", ast.unparse(kept), ""
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Store) and _looped_index(node, parents) is not None:
         yield "stride", None, ""   # rows written at `i` and `i + 1` where `2 * i` and `2 * i + 1` belong
     if isinstance(node, ast.Subscript) and isinstance(node.value, (ast.Name, ast.Attribute)):
@@ -3592,6 +3600,9 @@ def _cv_points(node, parent) -> bool:
         return False
     positions = _CV_POINT_SETS.get(_dotted(parent.func).rsplit(".", 1)[-1], ())
     return any(p < len(parent.args) and parent.args[p] is node for p in positions)
+
+
+_REDUCTIONS = {"norm", "sum", "mean", "max", "min", "std", "var", "amax", "amin", "median", "nansum", "nanmean"}
 
 
 def _cv_point_pair(node) -> bool:
