@@ -1080,8 +1080,25 @@ def undistorted(t: Trial, what: str, image, expected, seen: str, dist=None):
     if isinstance(got, np.ndarray):
         t.compare_images(what, image, expected, got, valid=valid,
                          caption=f"expected: the same view rendered without distortion{seen}")
-    got = t.expect_array(got, what, shape=image.shape, dtype=np.uint8)
+    got = undistorted_answer(t, what, got, image.shape)
     return got, blurred_difference(got, expected, valid), valid
+
+
+def undistorted_answer(t: Trial, what: str, got, shape) -> np.ndarray:
+    """``got`` checked for the input's shape and uint8; an answer of another size from code calling
+    cv2.getOptimalNewCameraMatrix is told both steps of OpenCV's calibration tutorial it took: another
+    camera matrix, and its region of interest cut out (removing the cut alone leaves the view in the
+    other camera: 26 grey levels from K's on a blind set's lens)."""
+    if isinstance(got, np.ndarray) and got.shape[:2] != tuple(shape[:2]) \
+            and NEW_CAMERA_MATRIX.found(code_of(t).reachable(["undistort_image"])):
+        t.fail(f"{what} returned an array of shape {got.shape}; expected {tuple(shape)}: "
+               + from_code("your code calls cv2.getOptimalNewCameraMatrix, as OpenCV's calibration tutorial "
+                           "does: its matrix makes the result the view of another camera, and the image is cut "
+                           "to another size. ")
+               + measured("Keep K and the whole image, as the skeleton asks: cv2.undistort(image, K, dist), "
+                          "without a newCameraMatrix and without a crop."),
+               mistake=NEW_CAMERA_MATRIX_MISTAKE)
+    return t.expect_array(got, what, shape=shape, dtype=np.uint8)
 
 
 @ext1.check("undistort_image straightens views through two distorting lenses (the second with large "
@@ -1275,7 +1292,7 @@ def undistort_off_centre(t):
     if isinstance(got, np.ndarray):
         t.compare_images(what, distorted, clean, got, valid=valid,
                          caption="expected: the same view rendered without distortion, with the same K")
-    got = t.expect_array(got, what, shape=distorted.shape, dtype=np.uint8)
+    got = undistorted_answer(t, what, got, distorted.shape)
     error = blurred_difference(got, clean, valid)
     if error <= UNDISTORT_TOLERANCE:
         return passed(f"mean difference {error:.1f} grey levels from the distortion-free view")
@@ -1317,7 +1334,7 @@ def undistort_black_fill(t):
     got = t.call("undistort_image", image, K, PINCUSHION)
     if isinstance(got, np.ndarray):
         t.images(what, "the corners sample beyond the distorted image: black fill", input=image, yours=got)
-    got = t.expect_array(got, what, shape=image.shape, dtype=np.uint8)
+    got = undistorted_answer(t, what, got, image.shape)
     valid = truth.undistortion_valid(K, PINCUSHION, truth.POSE_SIZE)
     if blurred_difference(got, cv2.undistort(image, K, PINCUSHION), valid) > UNDISTORT_TOLERANCE:
         return passed(measured("the image itself is not the undistorted one here: the other checks judge it"))

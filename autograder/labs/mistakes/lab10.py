@@ -382,6 +382,15 @@ MISTAKES = {
             new_K, roi = cv2.getOptimalNewCameraMatrix(K, dist, (w, h), 1, (w, h))
             return cv2.undistort(image, K, dist, None, new_K)
         """, ["another camera matrix", "getOptimalNewCameraMatrix(alpha=1)", "keep k"]),
+    "undistort as OpenCV's calibration tutorial does (a new camera matrix, its region of interest cut out)": (
+        "lab10.ext1", """
+        def undistort_image(image, K, dist):
+            K, dist = np.asarray(K, np.float64), np.asarray(dist, np.float64)
+            h, w = image.shape[:2]
+            new_K, (x, y, rw, rh) = cv2.getOptimalNewCameraMatrix(K, dist, (w, h), 1, (w, h))
+            undistorted = cv2.undistort(image, K, dist, None, new_K)
+            return undistorted[y:y + rh, x:x + rw]
+        """, ["calls cv2.getoptimalnewcameramatrix", "without a crop"]),
     "undistort a grey image into BGR": ("lab10.ext1", """
         _undistort = undistort_image
         def undistort_image(image, K, dist):
