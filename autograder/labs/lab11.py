@@ -509,9 +509,51 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
                f"(only {coverage.mean():.0%} of their length inside the image is drawn): "
                + measured("draw each line across the whole image"), mistake="the lines stop short")
     name_steep_lines_missed(t, what, coverage < min_coverage, lines, image.shape, stray)
+    if image.ndim == 2:
+        name_dark_on_grey(t, what, image, lines, coverage < min_coverage)
     t.fail(f"{what}: {np.sum(coverage < min_coverage)} of {len(coverage)} lines are missing or "
            f"incomplete, and {stray:.0%} of the changed pixels are away from every line "
            "(see the picture)")
+
+
+DARK_ON_GREY = "lines drawn dark on a grey image (a colour whose first value is dark)"
+
+
+def name_dark_on_grey(t: Trial, what: str, image, lines, missed):
+    """Fail naming the missed lines of a grey image drawn dark: asked again on a bright grey image (200)
+    with the same lines, along each of them the answer is black (<= 10) on four fifths of the line at
+    least. On a one-channel image OpenCV draws a colour's first value only, so a palette's red (0, 0, 255)
+    draws black -- invisible on a black image."""
+    image = np.full(image.shape, 200, np.uint8)
+    got = t.probe(f"draw_epipolar_lines/bright grey {image.shape}",
+                  lambda: t.call("draw_epipolar_lines", image, np.asarray(lines, float)))
+    if not (isinstance(got, np.ndarray) and got.dtype == np.uint8 and got.shape[:2] == image.shape[:2]
+            and got.ndim in (2, 3)):
+        return
+    got = got if got.ndim == 3 else got[..., None]
+    height, width = image.shape[:2]
+    # (within a pixel of the line: its samples and the pixels a 1-px line lights differ by rounding)
+    darkest, dimmest = cv2.erode(got[..., 0], np.ones((3, 3), np.uint8)), cv2.erode(image, np.ones((3, 3), np.uint8))
+    dark = []
+    for k in np.flatnonzero(missed):
+        samples = truth.line_samples(np.asarray(lines, float)[k], width, height, margin=2.0)
+        if len(samples) == 0:
+            return
+        xs, ys = np.round(samples).astype(int).T
+        bright = dimmest[ys, xs] > 40
+        if bright.sum() < 10 or (darkest[ys, xs][bright] <= 10).mean() < 0.8:
+            return   # (a line missing otherwise: not this)
+        dark.append(int(k) + 1)
+    if not dark:
+        return
+    drawn = f"line {dark[0]}" if len(dark) == 1 else "lines " + ", ".join(map(str, dark[:-1])) + f" and {dark[-1]}"
+    opencv = calls_any("cv2.line", "cv2.polylines", "cv2.drawMarker").found(code_of(t).reachable(["draw_epipolar_lines"]))
+    t.fail(f"{what}: {drawn} {'is' if len(dark) == 1 else 'are'} missing; on a bright grey image (every pixel 200) "
+           f"your code draws {'it' if len(dark) == 1 else 'them'} in black"
+           + (from_code(": on a one-channel image OpenCV draws only the first value of a colour (B of (B, G, R)), so "
+                        "a red (0, 0, 255) draws 0") if opencv else "")
+           + ". " + measured("On a grey image draw a bright grey level (255), and keep the image grey (grey in, grey "
+                             "out)."), mistake=DARK_ON_GREY)
 
 
 SIDES_ONLY = "each line is intersected with the left and right borders only (x = 0 and x = w - 1)"

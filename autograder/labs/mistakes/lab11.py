@@ -170,6 +170,20 @@ MISTAKES = {
             lines = _homogeneous(pts1) @ np.asarray(F, float).T
             return lines / np.linalg.norm(lines, axis=1, keepdims=True)
         """, ["over all three entries"]),
+    "draw_epipolar_lines drawing the palette's colours on a grey image too": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            canvas = np.array(image, dtype=np.uint8, copy=True)
+            height, width = canvas.shape[:2]
+            for i, (a, b, c) in enumerate(np.asarray(lines, np.float64).reshape(-1, 3)):
+                if abs(b) >= abs(a):
+                    p, q = (0.0, -c / b), (width - 1.0, -(c + a * (width - 1)) / b)
+                else:
+                    p, q = (-c / a, 0.0), (-(c + b * (height - 1)) / a, height - 1.0)
+                inside, p, q = cv2.clipLine((0, 0, width, height), _to_int(p, width, height), _to_int(q, width, height))
+                if inside:
+                    cv2.line(canvas, p, q, _PALETTE[i % len(_PALETTE)], 1, cv2.LINE_8)
+            return canvas
+        """, ["draws them in black", "first value of a colour"]),
     "draw short segments": ("lab11.ex2", """
         def draw_epipolar_lines(image, lines):
             canvas = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image.copy()
