@@ -2733,3 +2733,25 @@ def test_a_value_per_row_reduced_flat_is_kept_as_a_column():
     assert ("np.linalg.norm(lines[:, :2], axis=1)", "np.linalg.norm(lines[:, :2], axis=1, keepdims=True)") in made
     assert ("x.mean(axis=0)", "x.mean(axis=0, keepdims=True)") in made, made
     assert not any(before == "np.sum(x)" for before, _ in made), made
+
+
+def test_statements_taken_out_are_one_slip_only_where_written_alike():
+    """Two statements removed are the same slip made twice only where they are written alike, names apart
+    (`x /= 2`, `y /= 2`): the two halves of a normalisation, removed together, disable a step (30k's
+    lab10/03: its scale and its shift taken out passed the checks and broke points far from the origin)."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(x, y, c, s):
+            x /= 2
+            y /= 2
+            T = np.eye(3)
+            T[:-1, :-1] *= s
+            T[:-1, -1] = -s * c
+            return x, y, T
+    """)
+    student = repair._Student(source, ast.parse(source), ["graded"])
+    removed = {student.fix(m).changes[0][1]: student.slip(m) for m in student.mutants("graded")
+               if m.operator == "drop_statement" and student.fix(m)}
+    assert removed["x /= 2"] == removed["y /= 2"], removed
+    assert removed["T[:-1, :-1] *= s"] != removed["T[:-1, -1] = -s * c"], removed

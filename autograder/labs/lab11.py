@@ -516,9 +516,6 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
            "(see the picture)")
 
 
-DARK_ON_GREY = "lines drawn dark on a grey image (a colour whose first value is dark)"
-
-
 def name_dark_on_grey(t: Trial, what: str, image, lines, missed):
     """Fail naming the missed lines of a grey image drawn dark: asked again on a bright grey image (200)
     with the same lines, along each of them the answer is black (<= 10) on four fifths of the line at
@@ -553,7 +550,7 @@ def name_dark_on_grey(t: Trial, what: str, image, lines, missed):
            + (from_code(": on a one-channel image OpenCV draws only the first value of a colour (B of (B, G, R)), so "
                         "a red (0, 0, 255) draws 0") if opencv else "")
            + ". " + measured("On a grey image draw a bright grey level (255), and keep the image grey (grey in, grey "
-                             "out)."), mistake=DARK_ON_GREY)
+                             "out)."))   # (an effect, measured: no name of the slip, so the repairs look for it)
 
 
 SIDES_ONLY = "each line is intersected with the left and right borders only (x = 0 and x = w - 1)"
