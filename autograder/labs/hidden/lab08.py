@@ -169,14 +169,21 @@ def four_scene(rng):
     and with these steps but the views anywhere in the canvas 5 of 100 did; as drawn here, none
     of 160 did.
     """
+    return views_in_a_row(rng, 4, (60, 71), (8, 59), lambda rng: 0.02)
+
+
+def views_in_a_row(rng, count: int, steps, rows, strength):
+    """``count`` views left to right in a 560 x 250 canvas, from near its left edge, ``steps`` apart
+    (px, a range) with their rows in ``rows``, each jittered by ``strength(rng)``; drawn again (up to 100
+    times) while one leaves the canvas."""
     for _ in range(100):
-        xs = int(rng.integers(6, 14)) + np.concatenate([[0], np.cumsum(rng.integers(60, 71, size=3))])
-        ys = rng.integers(8, 59, size=4)
+        xs = int(rng.integers(6, 14)) + np.concatenate([[0], np.cumsum(rng.integers(*steps, size=count - 1))])
+        ys = rng.integers(*rows, size=count)
         placements = tuple((int(x), int(y)) for x, y in zip(xs, ys))
-        scene = panorama_or_none((560, 250), placements, 0.02, seed(rng), False)
+        scene = panorama_or_none((560, 250), placements, strength(rng), seed(rng), False)
         if scene is not None:
             return scene
-    raise RuntimeError("no four views inside the canvas after 100 draws")
+    raise RuntimeError(f"no {count} views inside the canvas after 100 draws")
 
 
 @ext2.check("stitch_many with 4 images (hidden)", points=2, hidden=True)
@@ -194,14 +201,7 @@ def five_scene(rng):
     angle (corners jittered by 6 to 8%, up to 19 x 14 px), in a 560 x 250 canvas: the pairwise
     homographies do not commute, so a chain multiplied in the reverse order puts the images two steps
     from the middle one several pixels off (the four-view scene's 2% jitter moves them a pixel)."""
-    for _ in range(100):
-        xs = int(rng.integers(6, 14)) + np.concatenate([[0], np.cumsum(rng.integers(55, 66, size=4))])
-        ys = rng.integers(8, 49, size=5)
-        placements = tuple((int(x), int(y)) for x, y in zip(xs, ys))
-        scene = panorama_or_none((560, 250), placements, uniform(rng, 0.06, 0.08), seed(rng), False)
-        if scene is not None:
-            return scene
-    raise RuntimeError("no five views inside the canvas after 100 draws")
+    return views_in_a_row(rng, 5, (55, 66), (8, 49), lambda rng: uniform(rng, 0.06, 0.08))
 
 
 @ext2.check("stitch_many with 5 images, each seen from its own angle (hidden)", points=1, hidden=True)
