@@ -109,6 +109,20 @@ def test_a_grey_image_answered_in_bgr_is_told_and_an_exception_on_grey_names_its
     assert message.startswith("warp_to_reference(reference, moving, H) on grey images (the BGR inputs converted")
 
 
+def test_an_image_of_floats_kept_grey_is_not_told_its_channels_are_lost(tmp_path):
+    """A warp returned in float32 (the dtype is another check's to judge) keeps a grey image grey: the
+    channels check passes, where it once read the BGR float answer as a matrix and told the grey one
+    "a grey (H, W) image where a BGR (H, W, 3) one is asked" (30l's lab08/04)."""
+    submission = mutant(tmp_path, "lab08_homographies", """
+        def warp_to_reference(reference, moving, H):
+            h, w = reference.shape[:2]
+            return cv2.warpPerspective(moving.astype(np.float32), np.asarray(H, dtype=np.float64), (w, h))
+        """)
+    failed = _failed(grade(submission, ["lab08.ex2"]), "lab08.ex2")
+    assert failed and not any("channels are kept" in name for name in failed), list(failed)
+    assert any("float32" in c.message for c in failed.values()), [c.message for c in failed.values()]
+
+
 def test_a_float32_answer_is_judged_at_float32s_precision():
     """One row and many rows of a float32 product may round differently (BLAS sums them in another
     order): a float32 rounding apart is the same answer; a float64 answer that far apart is not."""

@@ -46,6 +46,7 @@ DECLARED: dict[str, dict] = {"channels": {}, "rows": {}, "integers": {}, "not ju
 GREY_NOT_KEPT = "a grey image is not answered in grey"
 INTEGERS_CUT = "integer inputs are answered in integers"
 SIZE_SLACK = 2     # pixels an image answered in grey may differ in size from the BGR one's
+IMAGE_SIDE = 8     # an (H, W, 3) answer this large on both sides is an image
 RELATIVE = 1e-7   # the same point's answer among many and alone: the same float operations, up to BLAS order
 
 
@@ -164,11 +165,13 @@ def judge_grey(t: Trial, function: str, args: tuple, images, described: str = ""
         if not isinstance(ours, np.ndarray):
             continue
         name = _name(call, index, len(theirs), "on grey images")
-        if ours.dtype == np.uint8 and ours.ndim == 3 and ours.shape[2] == 3:   # an image: its grey form
+        if ours.ndim == 3 and ours.shape[2] == 3 and min(ours.shape[:2]) >= IMAGE_SIDE:   # an image: its grey form
             # (of about the same size: a canvas fitted to features found anew may move by a pixel)
+            # (and of the kind the BGR one has: an image of floats where 8 bits are asked is another
+            # check's to judge -- here it would read as channels not kept)
             near = isinstance(given, np.ndarray) and given.ndim in (2, 3) and \
                 all(abs(a - b) <= SIZE_SLACK for a, b in zip(given.shape[:2], ours.shape[:2]))
-            shape, dtype = (given.shape[:2] if near else ours.shape[:2]), np.uint8
+            shape, dtype = (given.shape[:2] if near else ours.shape[:2]), (np.uint8 if ours.dtype == np.uint8 else None)
         else:   # a matrix, points: the same whatever the images' channels
             shape, dtype = ours.shape, None
         got = t.expect_array(given, name, shape=shape, dtype=dtype)

@@ -864,7 +864,13 @@ def judge_match_drawing(t: Trial, what: str, got, img1, img2, pts1, pts2):
         if explains(pts2):
             t.fail(f"{what}: the lines end at (x2, y2) in the left image; the second image starts at "
                    "x = W1, so draw each line to (x2 + W1, y2)")
-        if w1 != w2 and explains(pts2 + [w2, 0]):
+        # (img2's width named only where it explains more lines than an offset by another side of the
+        # images: on nearly horizontal lines an offset 20 px off explains them too -- 30l's lab08/06
+        # shifted by img1.shape[0], 180 px, was told img2's width, 200)
+        def lines_for(offset) -> int:
+            return int((segments_drawn(drawn_on, starts, pts2 + [offset, 0]) >= LINE_FOUND).sum())
+        rivals = {img1.shape[0], img2.shape[0]} - {w1, w2}
+        if w1 != w2 and explains(pts2 + [w2, 0]) and all(lines_for(w2) > lines_for(h) for h in rivals):
             t.fail(f"{what}: the lines end at (x2 + W2, y2), shifted by img2's width ({w2} px); the second "
                    f"image starts at x = W1 = {w1}, so draw each line to (x2 + W1, y2)",
                    mistake="the lines are shifted by W2 instead of W1")
@@ -1880,6 +1886,9 @@ def probe_panorama(t: Trial, function: str, kind: str) -> "PanoramaJudge | None"
     return t.probe(f"stitch_many/{kind}", lambda: many_judge(t, f"many-probe-{kind}", scene, what, name=False))
 
 
+SHIFTED_WRONG_WAY = "the canvas is shifted the wrong way (by +x_min where -x_min belongs)"
+
+
 def canvas_not_shifted_on_probe(t: Trial, images: int) -> bool:
     """Whether a canvas that is not shifted for negative coordinates explains the probe of the
     panorama of ``images`` images (``stitch`` for 2, else ``stitch_many``): on a scene with
@@ -1915,6 +1924,14 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
             t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: {ONE_IMAGE_CANVAS}; "
                    "it must be the bounding box of all the warped image corners, shifted by a "
                    "translation so that negative coordinates fit", mistake=ONE_IMAGE_CANVAS)
+        if placed and set(sticking) <= {"left", "top"} and min(judge.offset) < 0:
+            # (the reference itself placed at negative coordinates: a shift was made, with the wrong sign --
+            # not shifting at all leaves it at (0, 0); 30l's lab08/07 was told "not shifted")
+            t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}, and {names[judge.reference]} "
+                   f"itself is placed at {tuple(int(v) for v in judge.offset)}, outside the canvas: "
+                   + measured("the canvas is shifted the wrong way: the shift that makes negative coordinates fit "
+                              "moves everything by (-x_min, -y_min), T = [[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]], "
+                              "with x_min, y_min the bounding box's least (negative) corner"), mistake=SHIFTED_WRONG_WAY)
         if placed and set(sticking) <= {"left", "top"} and canvas_not_shifted_on_probe(t, len(names)):
             # measured: a canvas of the bounding box's size is told only the shift
             sized = "" if canvas_has_the_bounding_box_size(judge) else \

@@ -1656,6 +1656,7 @@ def _changes(node, parents, words: _Words, line):
         yield from _helper_changes(node, words)
         yield from _defaulted_argument_changes(node, words)
         yield from _exchanged_sides(node, words)
+        yield from _exchanged_in_product(node, parent)
         yield from _logic_changes(node, parent, parents)
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.LShift, ast.RShift)):
         wrong, right = ("<<", ">>") if isinstance(node.op, ast.RShift) else (">>", "<<")
@@ -2034,6 +2035,24 @@ def _exchanged_sides(node, words):
     right = {n.id for n in ast.walk(node.comparators[0]) if isinstance(n, ast.Name)}
     for a in sorted(left - right):
         for b in sorted((right - left) & words.zipped.get(a, set())):
+            exchanged = copy.deepcopy(node)
+            for name in ast.walk(exchanged):
+                if isinstance(name, ast.Name) and name.id in (a, b):
+                    name.id = b if name.id == a else a
+            yield "exchange", ast.unparse(exchanged), ""
+
+
+def _exchanged_in_product(node, parent):
+    """A matrix product whose twin names are in each other's places (`inv(T1) @ Hn @ T2` where `inv(T2) @ Hn
+    @ T1` belongs: a normalisation undone with the two images' transforms exchanged): the two exchanged
+    throughout the whole product, one slip (exchanging one at a time makes a product of the same transform
+    twice, no nearer)."""
+    if not (isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult)) \
+            or (isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult)):
+        return
+    names = sorted({n.id for n in ast.walk(node) if isinstance(n, ast.Name)})
+    for a, b in itertools.combinations(names, 2):
+        if twin_names(a, b):
             exchanged = copy.deepcopy(node)
             for name in ast.walk(exchanged):
                 if isinstance(name, ast.Name) and name.id in (a, b):

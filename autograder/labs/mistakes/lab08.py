@@ -375,6 +375,12 @@ MISTAKES = {
             warped[: img1.shape[0], : img1.shape[1]] = img1
             return warped
         """, ["not shifted for negative coordinates"]),
+    # the shift made with the wrong sign: everything moved further out, the reference itself cut
+    "canvas shifted the wrong way": ("lab08.ex5", """
+        _translation_right = _translation
+        def _translation(tx, ty):
+            return _translation_right(-tx, -ty)
+        """, ["shifted the wrong way", "outside the canvas"]),
     "canvas of img1's size": ("lab08.ex5", """
         def stitch(img1, img2):
             H = _pairwise_homography(img2, img1)
