@@ -2755,3 +2755,19 @@ def test_statements_taken_out_are_one_slip_only_where_written_alike():
                if m.operator == "drop_statement" and student.fix(m)}
     assert removed["x /= 2"] == removed["y /= 2"], removed
     assert removed["T[:-1, :-1] *= s"] != removed["T[:-1, -1] = -s * c"], removed
+
+
+def test_a_bit_read_one_place_off_and_a_scaled_identity_are_changes_tried():
+    """`(g >> (n - i)) & 1` where `n - 1 - i` belongs (no constant to move by one: the shift's amount
+    given one more or less), and `f * np.eye(3)` for an intrinsic matrix whose last entry stays 1."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(g, n, i, f):
+            bit = (g >> (n - i)) & 1
+            K = f * np.eye(3)
+            return bit, K
+    """)
+    made = _made(source, {"zero_based", "zero_entry"})
+    assert ("g >> n - i", "g >> n - i - 1") in made and ("g >> n - i", "g >> n - i + 1") in made, made
+    assert ("f * np.eye(3)", "np.diag([f, f, 1.0])") in made, made

@@ -1711,6 +1711,16 @@ def _student_changes(node, parent, parents):
         yield "chain_order", "outer", ""   # `A @ B @ C` -> `C @ B @ A` (T(-c) @ R @ T(c) for T(c) @ R @ T(-c))
     if _cv_point_pair(node):
         yield "transpose", "cv_points", ""   # both point sets given as rows where columns belong (2 x N)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.RShift, ast.LShift)) \
+            and isinstance(node.right, ast.BinOp) and isinstance(node.right.op, (ast.Add, ast.Sub)) \
+            and not any(isinstance(part, ast.Constant) for part in (node.right.left, node.right.right)):
+        # a bit read one place off: `(g >> (n - i)) & 1` where `n - 1 - i` belongs (no constant to move)
+        for step in (" - 1", " + 1"):
+            yield "zero_based", f"{ast.unparse(node.left) if isinstance(node.left, (ast.Name, ast.Subscript, ast.Call)) else '(' + ast.unparse(node.left) + ')'} " \
+                                f"{'>>' if isinstance(node.op, ast.RShift) else '<<'} ({ast.unparse(node.right)}{step})", ""
+    scaled = _scaled_identity(node)
+    if scaled is not None:
+        yield "zero_entry", f"np.diag([{scaled}, {scaled}, 1.0])", ""   # f * np.eye(3): K's last entry is 1
     yield from _grid_axis_changes(node)
     yield from _layout_and_type_changes(node)
     if isinstance(parent, ast.Call) and len(parent.args) >= 2 and node is parent.args[1] \
@@ -3622,6 +3632,19 @@ def _cv_points(node, parent) -> bool:
 
 
 _REDUCTIONS = {"norm", "sum", "mean", "max", "min", "std", "var", "amax", "amin", "median", "nansum", "nanmean"}
+
+
+def _scaled_identity(node) -> str | None:
+    """The factor of a 3 x 3 identity scaled whole (`f * np.eye(3)`, `np.eye(3) * f`): an intrinsic matrix
+    whose last entry must stay 1; None otherwise."""
+    if not (isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult)):
+        return None
+    for eye, factor in ((node.left, node.right), (node.right, node.left)):
+        if isinstance(eye, ast.Call) and _dotted(eye.func).rsplit(".", 1)[-1] in ("eye", "identity") \
+                and len(eye.args) == 1 and isinstance(eye.args[0], ast.Constant) and eye.args[0].value == 3 \
+                and isinstance(factor, (ast.Name, ast.Attribute, ast.Subscript)):
+            return ast.unparse(factor)
+    return None
 
 
 def _cv_point_pair(node) -> bool:
