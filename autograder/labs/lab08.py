@@ -2404,8 +2404,9 @@ def judge_many_content(t: Trial, judge: PanoramaJudge, what: str, per_step: bool
     for k in range(n):
         if k == judge.reference:
             continue
-        others = np.any([judge.inside[j] for j in range(n) if j != k], axis=0)
-        own = judge.inside[k] & ~others
+        # (its own part: well outside every other image -- the band along another image's border is where
+        # a blend's seams are, the lab sheet's averaging recipe's among them: 13-31 grey levels on a thin strip)
+        own = judge.inside[k] & np.all([judge.outside[j] for j in range(n) if j != k], axis=0)
         region = own if own.sum() >= 200 else judge.inside[k]
         error = judge.error(region)
         if error > tolerance(k):
