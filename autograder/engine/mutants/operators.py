@@ -1922,7 +1922,7 @@ def _numpy_slips(node, parent, parents):
         yield "keep_axis", f"{ast.unparse(node.value)}[{', '.join(kept)}]", ""
     if isinstance(node, ast.Call) and isinstance(parent, ast.BinOp) \
             and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult, ast.Div)) \
-            and _dotted(node.func).rsplit(".", 1)[-1] in _REDUCTIONS \
+            and _dotted(node.func).rsplit(".", 1)[-1] in _PER_ROW_REDUCTIONS \
             and any(k.arg == "axis" for k in node.keywords) and not any(k.arg == "keepdims" for k in node.keywords):
         # a value per row reduced flat, (N,), in arithmetic with the (N, k) array: kept as a column
         # (`lines / np.linalg.norm(lines[:, :2], axis=1)`)
@@ -3631,7 +3631,8 @@ def _cv_points(node, parent) -> bool:
     return any(p < len(parent.args) and parent.args[p] is node for p in positions)
 
 
-_REDUCTIONS = {"norm", "sum", "mean", "max", "min", "std", "var", "amax", "amin", "median", "nansum", "nanmean"}
+_PER_ROW_REDUCTIONS = {"norm", "sum", "mean", "max", "min", "std", "var", "amax", "amin", "median", "nansum",
+                       "nanmean"}   # (reductions whose value per row may be kept as a column: keepdims)
 
 
 def _scaled_identity(node) -> str | None:

@@ -114,9 +114,11 @@ def hidden_calibration_board_missing(t):
     missing = out_of_frame(np.array(K), views[1], pattern, square, size)
     images, _ = uncached(truth.render_calibration_views)(K, (views[0], missing) + views[1:])
     t.images("the second view: the board leaves the image", view_2=images[1])
-    told = (f"The second of these {len(images)} views does not show the whole board (two columns of its corners are "
-            "outside the image), as happens in a set of photos taken by hand: cv2.findChessboardCorners finds no "
-            "board there, and such a view is left out (the other views calibrate the camera).")
+    # (measured: the view was made so, and no corner detector finds a board whose corners leave the image)
+    told = measured(f"The second of these {len(images)} views does not show the whole board (two columns of its "
+                    "corners are outside the image), as happens in a set of photos taken by hand: "
+                    "cv2.findChessboardCorners finds no board there, and such a view is left out (the other views "
+                    "calibrate the camera).")
     try:
         return judge_calibration(t, images, np.array(K), pattern)
     except StudentFailure as failure:
