@@ -37,6 +37,7 @@ import numpy as np
 
 from .checks import StudentFailure, Trial, passed
 from .claims import from_code, measured
+from .forms import IMAGE_SIDE
 from .hints import code_of
 
 # per convention ("channels", "rows", "integers"): function -> its lab's key;
@@ -46,7 +47,6 @@ DECLARED: dict[str, dict] = {"channels": {}, "rows": {}, "integers": {}, "not ju
 GREY_NOT_KEPT = "a grey image is not answered in grey"
 INTEGERS_CUT = "integer inputs are answered in integers"
 SIZE_SLACK = 2     # pixels an image answered in grey may differ in size from the BGR one's
-IMAGE_SIDE = 8     # an (H, W, 3) answer this large on both sides is an image
 RELATIVE = 1e-7   # the same point's answer among many and alone: the same float operations, up to BLAS order
 
 

@@ -517,9 +517,9 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
 
 
 def name_dark_on_grey(t: Trial, what: str, image, lines, missed):
-    """Fail naming the missed lines of a grey image drawn dark: asked again on a bright grey image (200)
-    with the same lines, along each of them the answer is black (<= 10) on four fifths of the line at
-    least. On a one-channel image OpenCV draws a colour's first value only, so a palette's red (0, 0, 255)
+    """Fail telling the missed lines of a grey image drawn dark (an effect, no name): asked again on a
+    bright grey image (200) with the same lines, along each of them the answer is black (<= 10) on four
+    fifths of the line at least. On a one-channel image OpenCV draws a colour's first value only, so a palette's red (0, 0, 255)
     draws black -- invisible on a black image."""
     image = np.full(image.shape, 200, np.uint8)
     got = t.probe(f"draw_epipolar_lines/bright grey {image.shape}",

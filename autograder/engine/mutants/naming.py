@@ -38,7 +38,7 @@ from ...loading.parsing import parse
 from ...sandbox import evidence
 from ..inplace import MISTAKE as IN_PLACE
 from .helper import ERROR, Helper, HelperFailed
-from .operators import Mutant, mutants_of, mutated_defs
+from .operators import Mutant, _dotted, mutants_of, mutated_defs
 
 CHECK_SECONDS = 3.0        # the error model's time for one failed check
 GRADING_SECONDS = 10.0     # and for one grading (all its failed checks): bounds what failing everything costs
@@ -1274,7 +1274,7 @@ def _code_can(naming: Naming, trial, called) -> bool:
     functions = code.reachable(sorted(called))
     if naming.mutant.operator == "int_division":
         return bool(_INTEGER_MAKERS.search("\n".join(ast.unparse(fn) for fn in functions)))
-    called_names = {_called_name(n) for fn in functions for n in ast.walk(fn) if isinstance(n, ast.Call)}
+    called_names = {_short(n) for fn in functions for n in ast.walk(fn) if isinstance(n, ast.Call)}
     quoted = _QUOTED_CALL.findall(naming.sentence)
     # (a call the mutant's own code makes: one it takes out -- "`np.atleast_2d` is missing" -- the student's
     # code lacks by that very mistake)
@@ -1296,19 +1296,19 @@ def _mutant_calls(trial, mutant) -> set:
         changed = mutated_defs(parse(model.source), mutant.edits, model.source)
     except (ValueError, SyntaxError):
         return set()
-    return {_called_name(n) for n in ast.walk(changed) if isinstance(n, ast.Call)}
+    return {_short(n) for n in ast.walk(changed) if isinstance(n, ast.Call)}
 
 
-def _called_name(call) -> str:
-    func = call.func
-    return func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", "")
+def _short(call) -> str:
+    """The called function's own name (`floor` of `np.floor(...)`)."""
+    return _dotted(call.func).rsplit(".", 1)[-1]
 
 
 def _read_outside(function, name: str, makers: set) -> bool:
     """Whether ``function`` reads ``name`` somewhere outside every call of a function in ``makers``."""
     inside = set()
     for node in ast.walk(function):
-        if isinstance(node, ast.Call) and _called_name(node) in makers:
+        if isinstance(node, ast.Call) and _short(node) in makers:
             inside.update(id(n) for n in ast.walk(node))
     return any(isinstance(n, ast.Name) and n.id == name and isinstance(n.ctx, ast.Load) and id(n) not in inside
                for n in ast.walk(function))

@@ -1715,9 +1715,10 @@ def _student_changes(node, parent, parents):
             and isinstance(node.right, ast.BinOp) and isinstance(node.right.op, (ast.Add, ast.Sub)) \
             and not any(isinstance(part, ast.Constant) for part in (node.right.left, node.right.right)):
         # a bit read one place off: `(g >> (n - i)) & 1` where `n - 1 - i` belongs (no constant to move)
-        for step in (" - 1", " + 1"):
-            yield "zero_based", f"{ast.unparse(node.left) if isinstance(node.left, (ast.Name, ast.Subscript, ast.Call)) else '(' + ast.unparse(node.left) + ')'} " \
-                                f"{'>>' if isinstance(node.op, ast.RShift) else '<<'} ({ast.unparse(node.right)}{step})", ""
+        for step in (ast.Sub(), ast.Add()):
+            moved = copy.deepcopy(node)
+            moved.right = ast.BinOp(moved.right, step, ast.Constant(1))
+            yield "zero_based", ast.unparse(moved), ""
     scaled = _scaled_identity(node)
     if scaled is not None:
         yield "zero_entry", f"np.diag([{scaled}, {scaled}, 1.0])", ""   # f * np.eye(3): K's last entry is 1

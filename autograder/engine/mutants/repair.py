@@ -630,7 +630,7 @@ class _Student:
             # (a statement taken out at two places is one slip only where the two are written alike, names
             # apart: `x /= 2` and `y /= 2`; the two halves of a normalisation -- `T[:-1, :-1] *= s` and
             # `T[:-1, -1] = -s * c` -- are a step disabled, no slip made twice)
-            return repr(("removed", _written_alike(old)))
+            return repr(("removed", _shape_of(old)))
         if operator == "axis" and isinstance(payload, list):
             # (an index moved to another axis, alike wherever it is: `pts[0]` and `pts[1]` both to columns)
             return repr(("axis", tuple(isinstance(part, str) and part == ":" for part in payload)))
@@ -1668,15 +1668,6 @@ def _apart(first, second) -> bool:
     """Two changes at different places (neither inside the other: the edits must both apply)."""
     (where_a, ordinal_a, _, _), (where_b, ordinal_b, _, _) = first.edits[0], second.edits[0]
     return (where_a, ordinal_a) != (where_b, ordinal_b)
-
-
-def _written_alike(node) -> str:
-    """``node``'s structure with its names left out (two statements written alike for two values)."""
-    node = copy.deepcopy(node)
-    for n in ast.walk(node):
-        if isinstance(n, ast.Name):
-            n.id = "_"
-    return ast.dump(node, annotate_fields=False, include_attributes=False)
 
 
 def _same_slip(first, second) -> bool:
