@@ -272,7 +272,7 @@ def distort_points(points, dist):
         y' = y (1 + k1 r^2 + k2 r^4 + k3 r^6) + p1 (r^2 + 2 y^2) + 2 p2 x y
 
     ``cv2.projectPoints`` of ``(x, y, 1)`` with a zero pose and ``K = I`` gives
-    the same numbers (useful to test yourself; implement the formula here).
+    the same numbers: either way is accepted (writing the formula is the better exercise).
 
     Parameters
     ----------

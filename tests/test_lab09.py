@@ -63,3 +63,23 @@ def test_outlined_markers_drawn_without_cv2_circle_are_not_told_to_pass_thicknes
     messages = [c.message for e in result.exercises for c in e.checks if not c.passed]
     assert any("does not call cv2.circle" in m for m in messages), messages
     assert not any("should be filled (thickness=-1)" in m for m in messages), messages
+
+
+def test_lens_distortion_through_cv2_project_points_scores_full_marks(tmp_path):
+    """The sheet asks to simulate lens distortion, not to write the model by hand: cv2.projectPoints
+    of (x, y, 1) with a zero pose and K = I is the same model, and loses nothing."""
+    from autograder.engine.runner import grade
+    from conftest import mutant
+
+    source = """
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+            rays = np.hstack([pts, np.ones((len(pts), 1))])
+            image, _ = cv2.projectPoints(rays, np.zeros(3), np.zeros(3), np.eye(3),
+                                         np.asarray(dist, dtype=np.float64))
+            return image.reshape(-1, 2)
+        """
+    result = grade(mutant(tmp_path, "lab09_camera", source), ["lab09.ext2"], pictures="none")
+    failed = [(c.name, c.message) for e in result.exercises for c in e.checks if not c.passed]
+    assert not failed, failed
+    assert result.total == result.max_total > 0

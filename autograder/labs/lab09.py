@@ -1702,7 +1702,8 @@ def calibrate_skimage(t):
 
 # ================================================================== ext2 lens distortion
 ext2 = lab.exercise("ext2", "Extension: lens distortion", functions=["distort_points(points, dist)"])
-lab.forbid("distort_points", "cv2.projectPoints", "cv2.undistortPoints")
+# No forbid: the sheet asks to simulate lens distortion, not to write the model by hand, so
+# cv2.projectPoints of (x, y, 1) with a zero pose and K = I is a right answer (docs/authors/fairness.md).
 
 DIST_EXAMPLE = np.array([-0.28, 0.09, 0.0015, -0.002, -0.015])
 

@@ -180,12 +180,6 @@ MISTAKES = {
             k1, k2, p1, p2, k3 = dist
             return _right(points, [k1, k2, p2, p1, k3])
         """, ["p1 and p2 are swapped"]),
-    "distortion via projectPoints": ("lab09.ext2", """
-        def distort_points(points, dist):
-            pts = np.asarray(points, float)
-            obj = np.column_stack([pts, np.ones(len(pts))])
-            return cv2.projectPoints(obj, np.zeros(3), np.zeros(3), np.eye(3), np.asarray(dist, float))[0].reshape(-1, 2)
-        """, ["cv2.projectpoints", "yourself"]),
     "inverted real image": ("lab09.ex4", """
         _right = simulate_aperture
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
