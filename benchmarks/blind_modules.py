@@ -21,6 +21,7 @@ a fresh process, as they do.
 from __future__ import annotations
 
 import argparse
+import atexit
 import json
 import os
 import shutil
@@ -44,7 +45,9 @@ def main(argv=None) -> int:
         return _cold(args)
 
     sys.path.insert(0, str(args.code.resolve()))
-    os.environ.setdefault("AUTOGRADER_CACHE_DIR", tempfile.mkdtemp(prefix="blind-store-"))
+    if "AUTOGRADER_CACHE_DIR" not in os.environ:  # a store of this run's own, removed when it ends
+        os.environ["AUTOGRADER_CACHE_DIR"] = tempfile.mkdtemp(prefix="blind-store-")
+        atexit.register(shutil.rmtree, os.environ["AUTOGRADER_CACHE_DIR"], ignore_errors=True)
     from autograder.engine.registry import select  # noqa: E402  (the copy chosen above)
     from autograder.engine.runner import grade  # noqa: E402
     from autograder.engine.results import ADVICE  # noqa: E402

@@ -26,6 +26,7 @@ mechanism was changed, and the truth of each was written with it.
 from __future__ import annotations
 
 import argparse
+import atexit
 import json
 import os
 import re
@@ -97,7 +98,9 @@ def main(argv=None) -> int:
 
     sys.path.insert(0, str(args.code.resolve()))
     sys.path.insert(0, str(HERE))
-    os.environ.setdefault("AUTOGRADER_CACHE_DIR", tempfile.mkdtemp(prefix="blind-store-"))
+    if "AUTOGRADER_CACHE_DIR" not in os.environ:  # a store of this run's own, removed when it ends
+        os.environ["AUTOGRADER_CACHE_DIR"] = tempfile.mkdtemp(prefix="blind-store-")
+        atexit.register(shutil.rmtree, os.environ["AUTOGRADER_CACHE_DIR"], ignore_errors=True)
     from autograder.engine.runner import grade  # noqa: E402  (the copy chosen above)
     from blind_mistakes import all_cases  # noqa: E402
 
