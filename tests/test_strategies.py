@@ -81,3 +81,25 @@ def test_loading_the_suites_and_grading_the_skeleton_import_no_hypothesis(tmp_pa
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True,
                          env={"PATH": "/usr/bin:/bin", "AUTOGRADER_CACHE_DIR": str(tmp_path)}).stdout
     assert out.split() == ["0.0", "False"]
+
+
+def test_a_process_killed_after_drawing_examples_leaves_no_folder_behind(tmp_path):
+    """Hypothesis's storage is private and made only when written: a grading process killed with no
+    chance to clean up (a batch stopped, a helper past its time) leaves nothing in the temp folder."""
+    code = (
+        "import os, signal\n"
+        "from hypothesis import given, settings, strategies as s\n"
+        "from autograder.engine.properties import grading_settings\n"
+        "from hypothesis.configuration import storage_directory\n"
+        "print(storage_directory(intent_to_write=False).path)\n"
+        "@settings(grading_settings())\n"
+        "@given(s.integers())\n"
+        "def holds(x):\n"
+        "    pass\n"
+        "holds()\n"
+        "os.kill(os.getpid(), signal.SIGKILL)\n")
+    run = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True,
+                         env={**__import__("os").environ, "TMPDIR": str(tmp_path)}, timeout=120)
+    assert run.returncode == -9, run.stderr
+    assert Path(run.stdout.strip()).parent == tmp_path, run.stdout    # private, in the temp folder
+    assert list(tmp_path.iterdir()) == []

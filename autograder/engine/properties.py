@@ -10,8 +10,10 @@ timeout governs time) and a bounded number of examples.
 
 import atexit
 import os
+import secrets
 import shutil
 import tempfile
+from pathlib import Path
 
 from hypothesis import HealthCheck, Phase, Verbosity, settings
 from hypothesis.configuration import set_hypothesis_home_dir
@@ -22,12 +24,15 @@ def _private_storage() -> None:
     written even without an example database) out of the working directory.
 
     A private folder per process, removed at exit: a shared one in /tmp could be
-    planted by another user of the machine to steer the generated examples.
+    planted by another user of the machine to steer the generated examples, so its
+    name is unguessable. Hypothesis makes it only when it writes there: most
+    processes never do, and one killed (a grading stopped, a helper past its time,
+    where no exit handler runs) leaves nothing behind.
     An explicit ``HYPOTHESIS_STORAGE_DIRECTORY`` is respected.
     """
     if os.environ.get("HYPOTHESIS_STORAGE_DIRECTORY"):
         return
-    folder = tempfile.mkdtemp(prefix="autograder-hypothesis-")
+    folder = Path(tempfile.gettempdir()) / f"autograder-hypothesis-{secrets.token_hex(16)}"
     atexit.register(shutil.rmtree, folder, ignore_errors=True)
     set_hypothesis_home_dir(folder)
 
