@@ -2771,3 +2771,70 @@ def test_a_bit_read_one_place_off_and_a_scaled_identity_are_changes_tried():
     made = _made(source, {"zero_based", "zero_entry"})
     assert ("g >> n - i", "g >> n - i - 1") in made and ("g >> n - i", "g >> n - i + 1") in made, made
     assert ("f * np.eye(3)", "np.diag([f, f, 1.0])") in made, made
+
+
+# ------------------------------------------------------------------ places written as the reference writes them
+def _anchored_lines(student: str, reference: str) -> set[int]:
+    from autograder.engine.mutants import anchors
+
+    mine, theirs = ast.parse(textwrap.dedent(student)).body[0], ast.parse(textwrap.dedent(reference)).body[0]
+    ids = anchors.anchored(mine, theirs)
+    return {node.lineno for node in ast.walk(mine) if id(node) in ids}
+
+
+def test_a_statement_is_anchored_only_with_everything_it_reads():
+    reference = """
+        def f(a, b):
+            x = a @ b
+            y = x / x[2]
+            z = y[:2] * 2
+            return z
+        """
+    # one line changed: the lines above it are the reference's; the lines that read it are not
+    changed = _anchored_lines(reference.replace("y = x / x[2]", "y = x / x[1]"), reference)
+    assert 3 in changed and not {4, 5, 6} & changed
+    # a step left out: `z = y[:2] * 2` is written alike but reads another value
+    missing = """
+        def f(a, b):
+            x = a @ b
+            y = x
+            z = y[:2] * 2
+            return z
+        """
+    assert _anchored_lines(missing, reference) == {3}
+    # a parameter read is the same parameter; a name read in another's place is not
+    assert _anchored_lines(reference.replace("x = a @ b", "x = b @ a"), reference) == set()
+    assert _anchored_lines(reference, reference) == {3, 4, 5, 6}
+
+
+def test_a_change_of_a_line_written_as_the_reference_writes_it_is_not_told(tmp_path):
+    # the lecture's R(theta) where the screen's R(-theta) belongs: flipping the sine where it is computed
+    # (`np.sin(-theta)`, the reference's own line) mends the answers by compensating; the matrix is the slip
+    folder = edited_reference(tmp_path, "lab07_transformations", (
+        "R = np.array([[cos, sin],\n                  [-sin, cos]])",
+        "R = np.array([[cos, -sin],\n                  [sin, cos]])"))
+    messages = [c.message for c in check_results(grade(str(folder), ["lab07.ex2"], include_hidden=False), "lab07.ex2")
+                if c.score < c.max_score]
+    assert messages and not any("np.sin(-theta)" in m or "deg2rad(-" in m for m in messages), messages
+    assert any("opposite way" in m for m in messages), messages
+
+
+def test_of_two_places_that_mend_alike_the_one_written_as_the_reference_writes_it_is_not_told(tmp_path):
+    # each bit read one place off (`g >> n_bits - i`); shifting the Gray code the other way (`k ^ k << 1`)
+    # mends it too, but `k ^ k >> 1` is the Gray code as the reference writes it
+    folder = mutant(tmp_path, "lab12_stereo", '''
+def gray_code_patterns(width, n_bits):
+    width, n_bits = int(width), int(n_bits)
+    patterns = np.zeros((n_bits, width), dtype=np.uint8)
+    for u in range(width):
+        k = (u * 2 ** n_bits) // width
+        g = k ^ (k >> 1)
+        for i in range(n_bits):
+            if (g >> (n_bits - i)) & 1:
+                patterns[i, u] = 255
+    return patterns
+''')
+    messages = [c.message for c in check_results(grade(str(folder), ["lab12.ex6"], include_hidden=False), "lab12.ex6")
+                if c.score < c.max_score and c.name.startswith("gray_code_patterns")]
+    assert messages and all("`g >> n_bits - i - 1`" in m for m in messages), messages
+    assert not any("k ^ k << 1" in m for m in messages), messages

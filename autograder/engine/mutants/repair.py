@@ -42,7 +42,7 @@ from ...loading.parsing import parse
 from ...loading.reading import MAX_SOURCE_BYTES
 from ..checks import Trial, Verdict, fingerprint
 from ..inherited import SHARED_FAILING
-from . import naming
+from . import anchors, naming
 from .helper import HelperFailed
 from .operators import (_MAKE, _MOVES, _defs, _dotted, _entry_of_literal, _parents, _replace, mutants_of,
                         mutated_defs, runs, twin_names, unpacked_items)
@@ -224,6 +224,8 @@ class _Student:
         self._sizes: dict = {}       # def name -> the names it computes from an array's size
         self._lock = threading.Lock()
         self.reference_parts: frozenset = frozenset()   # (name, its parts' names) the reference unpacks
+        self.reference_source = ""    # the lab's reference module (see follows_reference)
+        self._anchored: dict = {}    # def name -> ids of its statements anchored in the reference's
 
     def mutants(self, function: str) -> list:
         """The operators' changes of the code ``function`` runs (made at its first failure: a long
@@ -252,7 +254,7 @@ class _Student:
             if function not in self._ordered:
                 shown = [m for m in self.mutants(function)
                          if (m.where == function or m.where not in self.api) and self.fix(m) is not None
-                         and not self.reorders_api_results(m)]
+                         and not self.reorders_api_results(m) and not self.follows_reference(m)]
                 # (a name swapped for its twin -- R1 for R2, left for right -- first of its kind: the
                 # likeliest slip among a function's many names that might be another's)
                 smallest = sorted(shown, key=lambda m: (
@@ -272,6 +274,39 @@ class _Student:
                     turn[m.key] -= m.operator in SHOWN_BY_THE_CODE
                 self._ordered[function] = sorted(smallest, key=lambda m: (m.where != function, turn[m.key]))
             return self._ordered[function]
+
+    def follows_reference(self, mutant) -> bool:
+        """Whether the change rewrites a statement that is the reference's own, with all it reads
+        (:mod:`.anchors`): mending the answers there compensates for a slip elsewhere. (A statement
+        moved is not rewritten: `best = np.inf` inside the loop is the reference's line misplaced.)"""
+        if not self.reference_source:
+            return False
+        for where, ordinal, operator, _ in mutant.edits:
+            nodes, parents = self._walk(where)
+            if operator in _IN_WORDS or not 0 <= ordinal < len(nodes):
+                continue
+            statement = nodes[ordinal]
+            while not isinstance(statement, ast.stmt) and id(statement) in parents:
+                statement = parents[id(statement)][0]
+            if isinstance(statement, ast.stmt) and id(statement) in self._anchored_in(where):
+                return True
+        return False
+
+    def departs_from_reference(self, mutant) -> bool:
+        """Whether the change rewrites code the reference's def of that name writes word for word
+        (`k ^ k >> 1`, the Gray code): of two changes that mend alike, the one elsewhere is the
+        slip (`g >> n_bits - i`, a bit read one place off), this one compensates for it. Only code
+        with an operation in it counts (a lone name or number is written everywhere)."""
+        fix = self.fixes.get(mutant.key)
+        return fix is not None and _departs(fix, self.reference_source)
+
+    def _anchored_in(self, where: str) -> set:
+        if where not in self._anchored:
+            reference = _defs(_reference_tree(self.reference_source)).get(where)
+            fn = self._defs.get(where)
+            self._anchored[where] = anchors.anchored(fn, reference) if fn is not None and reference is not None \
+                else set()
+        return self._anchored[where]
 
     def reorders_api_results(self, mutant) -> bool:
         """Whether the change exchanges the names a graded function's results are unpacked into
@@ -892,6 +927,7 @@ def _student_code(trial) -> _Student | None:
             read = _Student(text, tree, api)
             model = naming.model_for(trial.lab)
             read.reference_parts = _named_parts(model.source) if model is not None else frozenset()
+            read.reference_source = model.source if model is not None else ""
     except Exception:  # noqa: BLE001 - code the operators cannot read has no repairs (said once, not per check)
         read = None
     with _READ_LOCK:
@@ -899,6 +935,32 @@ def _student_code(trial) -> _Student | None:
         while len(_READ) > 8:
             _READ.popitem(last=False)
     return read
+
+
+@functools.lru_cache(maxsize=8)
+def _reference_tree(source: str) -> ast.Module:
+    return ast.parse(source)   # (the reference: trusted, the grader's own)
+
+
+def _departs(fix: Fix, reference_source: str) -> bool:
+    """Whether ``fix`` rewrites code the reference's def of that name writes word for word
+    (:meth:`_Student.departs_from_reference`)."""
+    if not reference_source or fix.operator in _IN_WORDS:
+        return False
+    written = _reference_texts(reference_source).get(fix.where, frozenset())
+    return any(before in written and after not in written for _, before, after in fix.changes)
+
+
+@functools.lru_cache(maxsize=8)
+def _reference_texts(source: str) -> dict[str, frozenset]:
+    """def name -> the code of each of its statements and expressions with an operation in it
+    (``ast.unparse`` forms, as :class:`Fix` shows the student's)."""
+    texts = {}
+    for name, fn in _defs(_reference_tree(source)).items():
+        texts[name] = frozenset(ast.unparse(node) for node in ast.walk(fn)
+                                if isinstance(node, (ast.stmt, ast.expr)) and node is not fn
+                                and not isinstance(node, (ast.Name, ast.Constant, ast.Attribute)))
+    return texts
 
 
 @functools.lru_cache(maxsize=8)
@@ -1477,7 +1539,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                     and not student.colours_with_a_size(m)),
                    key=lambda pair: (pair[0].key not in known, pair[0].key not in exactly,
                                      pair[0].key not in to_the_bit,
-                                     student.copies_an_item(pair[0]),
+                                     student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
                                      pair[1].operator in REMOVALS, pair[1].size, pair[1].written))
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
@@ -2294,6 +2356,15 @@ def _upstream(repair: Repair, trial) -> Repair:
     column taken from the wrong one of two names unpacked in the wrong order)."""
     if len(repair.fixes) < 2 or not trial.calls:
         return repair
+    # A place written as the reference writes it (`k ^ k >> 1`) is not where the slip is, when another
+    # place mends alike: changed, it compensates for the slip further on (`g >> n_bits - i`), however
+    # the values flow from one to the other.
+    model = naming.model_for(trial.lab)
+    own = tuple(fix for fix in repair.fixes if model is None or not _departs(fix, model.source))
+    if own and len(own) < len(repair.fixes):
+        repair = replace(repair, fixes=own)
+        if len(own) < 2:
+            return repair
     # A returned value changed whole (`return T` -> `return T.T`) beside a change of a line of the same
     # def that makes it: the first undoes the second's slip after the fact.
     wrapped = lambda fix: len(fix.changes) == 1 and fix.changes[0][1].startswith("return ") \
