@@ -58,7 +58,7 @@ def main(argv=None) -> int:
         if args.only and args.only not in entry["file"]:
             continue
         lab = "lab" + entry["lab"][3:5]
-        exercises = [e.id for e in select([lab]) if entry["function"] in e.signatures]
+        exercises = _exercises_running(select([lab]), entry["function"], (args.set / entry["file"]).read_text())
         folder = Path(tempfile.mkdtemp(prefix="blind-module-"))
         try:
             (folder / f"{entry['lab']}.py").write_text((args.set / entry["file"]).read_text())
@@ -85,6 +85,21 @@ def main(argv=None) -> int:
     caught = sum(c["caught"] for c in cases)
     print(f"caught {caught} of {len(cases)}")
     return 0
+
+
+def _exercises_running(exercises, function: str, source: str) -> list[str]:
+    """The exercises grading ``function``; for a private helper, those whose functions run it in
+    the file (its whole lab when none does): never every lab, whose other modules are missing."""
+    import ast
+
+    from autograder.engine.mutants.operators import _defs, runs
+
+    graded = [e.id for e in exercises if function in e.signatures]
+    if graded:
+        return graded
+    defs = _defs(ast.parse(source))
+    running = [e.id for e in exercises if any(function in runs(defs, name) for name in e.signatures if name in defs)]
+    return running or [e.id for e in exercises]
 
 
 def _cold(args) -> int:
