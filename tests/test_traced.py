@@ -19,6 +19,7 @@ import pytest
 
 from autograder.engine import traced
 from autograder.engine.hints import read_code
+from autograder.engine.raised import without_comprehensions
 from autograder.engine.runner import grade
 from conftest import check_results, edited_reference, mutant
 
@@ -40,8 +41,8 @@ def raised_sentence(source: str, function: str, *args) -> str | None:
     try:
         original[function](*args)
     except Exception as exc:   # noqa: BLE001 - the tests' own code, raising on purpose
-        frames = [(f"{f.filename}", f.lineno, f.name, f.line or "")
-                  for f in traceback.extract_tb(exc.__traceback__) if f.filename == "student.py"]
+        frames = without_comprehensions([(f"{f.filename}", f.lineno, f.name, f.line or "")
+                                         for f in traceback.extract_tb(exc.__traceback__) if f.filename == "student.py"])
         form = traced.explain_raised(code, recording, code.functions[frames[-1][2]], frames[-1][1], str(exc), frames)
         return None if form is None else form.sentence
     raise AssertionError("it did not raise")
@@ -187,6 +188,35 @@ def test_an_index_past_its_axis_is_named_with_its_value():
             return out
         """, "last_pairs", np.arange(4.0))
     assert sentence.startswith("`i + 1` is 4 in `values[i + 1]` (line 5): axis 0 of `values` (shape (4,)) has 4 entries")
+
+
+def test_a_list_indexed_past_its_end_is_named_with_the_index_and_its_length():
+    # Python's error says neither: the module's palette and a local list alike
+    sentence = raised_sentence("""
+        PALETTE = [(255, 0, 0), (0, 255, 0), (0, 0, 255)]
+
+        def colours(n):
+            return [PALETTE[i] for i in range(n)]
+        """, "colours", 5)
+    assert sentence == "`i` is 3 in `PALETTE[i]` (line 5): `PALETTE` holds 3 items, numbered 0 to 2"
+    sentence = raised_sentence("""
+        def pairs(values):
+            items = list(values)
+            return [items[k + 1] - items[k] for k in range(len(items))]
+        """, "pairs", (1.0, 2.0))
+    assert sentence == "`k + 1` is 2 in `items[k + 1]` (line 4): `items` holds 2 items, numbered 0 to 1"
+
+
+def test_a_change_that_only_passes_the_check_gives_way_to_what_the_raise_shows(tmp_path):
+    # a colour per line taken past the palette's end: `lines[i]` as the colour mends the exception and
+    # passes the check (colours are not compared exactly), but it is no fix; the index is the cause
+    folder = edited_reference(tmp_path, "lab11_two_view", (
+        "colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 255",
+        "colour = _PALETTE[i] if canvas.ndim == 3 else 255"))
+    messages = [c.message for c in check_results(grade(str(folder), ["lab11.ex2"], include_hidden=False), "lab11.ex2")
+                if c.score < c.max_score]
+    assert messages and any("in `_PALETTE[i]` (line " in m and "`_PALETTE` holds" in m for m in messages), messages
+    assert not any("lines[i]" in m for m in messages), messages
 
 
 def test_arrays_of_different_types_given_to_opencv_are_named_with_where_they_came_from():

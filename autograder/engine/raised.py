@@ -46,16 +46,26 @@ def frames_of(traceback_text: str) -> list[tuple[str, int, str, str]]:
     return [(f, int(n), fn, c.strip()) for f, n, fn, c in _FRAME.findall(traceback_text or "")]
 
 
+def without_comprehensions(frames: list) -> list:
+    """``frames`` with a comprehension's own frames (Python 3.11 runs them apart) folded into the def
+    holding it: its innermost line stays, told of that def."""
+    frames = list(frames)
+    line = frames[-1][1] if frames else 0
+    while frames and frames[-1][2] in _COMPREHENSIONS:
+        frames.pop()
+    if frames and frames[-1][1] != line:
+        frames[-1] = (frames[-1][0], line, frames[-1][2], frames[-1][3])
+    return frames
+
+
 def raising_place(code: Code, traceback_text: str, function: str, args, kwargs):
     """``(def, line, given)`` of the innermost frame of ``function``'s traceback: the def that
     raised, its line, and what its parameters were given -- the caller's arguments bound to
     ``function``'s parameters, and through each call of a helper of the module on the way, those of
     its arguments that are the caller's parameters passed on as they came (``_warp(image, M)``).
     None when a frame is not one of the module's functions or ``function`` is not the outermost."""
-    frames = frames_of(traceback_text)
+    frames = without_comprehensions(frames_of(traceback_text))
     line = frames[-1][1] if frames else 0
-    while frames and frames[-1][2] in _COMPREHENSIONS:   # Python 3.11 runs them in frames of their own
-        frames.pop()
     if not frames or frames[0][2] != function or any(f[0] != frames[0][0] for f in frames):
         return None
     fn = code.functions.get(function)

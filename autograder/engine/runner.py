@@ -549,14 +549,15 @@ def _named_by_trace(verdict: Verdict, check: Check, trial: Trial, traceback_text
         return verdict
 
 
-def _named_by_repair(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
+def _named_by_repair(verdict: Verdict, check: Check, trial: Trial, traceback_text: str = "") -> Verdict:
     """A failed verdict that names nothing, named by a change of the student's own code that makes
-    their answers right (:mod:`autograder.engine.mutants.repair`). Never costs the verdict (logged)."""
+    their answers right (:mod:`autograder.engine.mutants.repair`; ``traceback_text``: their code
+    raised). Never costs the verdict (logged)."""
     from . import traced
     from .mutants.repair import named_by_repair
 
     try:   # (a change after the first of the student's values to go wrong undoes it there: that value is told)
-        return traced.departure_before_repair(named_by_repair(verdict, trial), trial)
+        return traced.departure_before_repair(named_by_repair(verdict, trial, traceback_text), trial)
     except Exception as exc:  # noqa: BLE001 - naming is a bonus: the verdict stands without it
         _log_grader_error(check, exc)
         return verdict
@@ -900,7 +901,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     if student_failure == "exception" and not verdict.mistake and not inherited:
         # A change of their code confirmed to mend the exception comes before the NumPy forms'
         # reading of its message, which guesses which operand is wrong ("keep it a column").
-        verdict = _named_by_repair(verdict, check, trial)
+        verdict = _named_by_repair(verdict, check, trial, tb)
     if student_failure == "exception" and not verdict.mistake:
         verdict = _named_by_exception(verdict, trial, tb)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure == "" and not inherited:

@@ -134,7 +134,17 @@ class _Recording(ast.NodeTransformer):
         loads = not hasattr(node, "ctx") or isinstance(node.ctx, ast.Load)
         return self._recorded(original, node) if loads else node
 
-    visit_BinOp = visit_UnaryOp = visit_Subscript = visit_Compare = _value_node
+    visit_BinOp = visit_UnaryOp = visit_Compare = _value_node
+
+    def visit_Subscript(self, node):
+        """A module-level name indexed (`_PALETTE[i]`) is recorded too: its length says what an index past
+        its end was past."""
+        if isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name) and node.value.id not in self.local_names:
+            original = node
+            node.value = self._recorded(node.value, node.value)
+            node.slice = self.visit(node.slice)
+            return self._recorded(original, node)
+        return self._value_node(node)
 
 
 def _local_names(fn: ast.AST) -> frozenset[str]:
@@ -201,6 +211,17 @@ class Recording:
         found = self.values.get(node_key(node))
         return found[1] if found and found[0] == "number" else None
 
+    def length(self, node) -> int | None:
+        """How many items a list, tuple or array the node gave holds (an array: along its first axis)."""
+        found = self.values.get(node_key(node))
+        if not found:
+            return None
+        if found[0] == "sequence":
+            return found[1]
+        if found[0] == "tuple":
+            return len(found[1])
+        return found[1][0] if found[0] == "array" and found[1] else None
+
 
 def _description(value):
     """A recorded description checked for form (what came back is the student's process's)."""
@@ -223,6 +244,8 @@ def _description(value):
     if kind == "tuple" and len(value) == 2 and isinstance(value[1], (list, tuple)) and len(value[1]) <= 8 \
             and all(isinstance(v, (int, float)) for v in value[1]):
         return ("tuple", tuple(float(v) for v in value[1]))
+    if kind == "sequence" and len(value) == 4 and isinstance(value[2], int) and 0 <= value[2] < 2**62:
+        return ("sequence", value[2])   # (a list or tuple: its length)
     return ("other",)
 
 
@@ -355,6 +378,7 @@ _RESHAPE = re.compile(r"cannot reshape array of size (\d+) into shape")
 _OPENCV_KINDS = re.compile(r"(?:type|depth)\(\) *== *(?!CV_)[A-Za-z_]|types? do(?: not|n't) match|same type")
 _OPENCV_SIZES = re.compile(r"size\(\) *== *(?!Size\b)[A-Za-z_]|[Ss]izes? of input arguments do not match|same size")
 _OUT_OF_BOUNDS = re.compile(r"index (-?\d+) is out of bounds for axis (\d+) with size (\d+)")
+_SEQUENCE_INDEX = re.compile(r"\b(?:list|tuple) index out of range")
 
 
 def _parsed(text: str) -> tuple:
@@ -381,6 +405,8 @@ def explain_raised(code, recording: Recording, fn, line: int, message: str, fram
     found = _OUT_OF_BOUNDS.search(message)
     if found:
         return _index_named(recording, expressions, *(int(g) for g in found.groups()), where)
+    if _SEQUENCE_INDEX.search(message):
+        return _item_named(recording, expressions, where)
     found = _TOO_MANY_INDICES.search(message)
     if found:
         return _indexed_named(recording, expressions, int(found.group(1)), where)
@@ -517,6 +543,20 @@ def _index_named(recording, expressions, index, axis, size, where) -> Form | Non
                 said = f"holds {index} (its values go from {span[0]:g} to {span[1]:g})" if holds else f"is {index}"
                 return Form(f"{_quote(part)} {said} in {_quote(node)} {where}: axis {axis}{of} "
                             f"has {size} entries, numbered 0 to {size - 1}", INDEX)
+    return None
+
+
+def _item_named(recording, expressions, where) -> Form | None:
+    """A list or tuple indexed past its end (Python's error says neither the index nor the length)."""
+    for node in expressions:
+        if not isinstance(node, ast.Subscript) or isinstance(node.slice, (ast.Slice, ast.Tuple)):
+            continue
+        size, index = recording.length(node.value), recording.number(node.slice)
+        if size is None or index is None or index != int(index) or -size <= index < size:
+            continue
+        numbered = f"numbered 0 to {size - 1}" if size else "none at all"
+        return Form(f"{_quote(node.slice)} is {int(index)} in {_quote(node)} {where}: {_quote(node.value)} holds "
+                    f"{size} item{'s' if size != 1 else ''}, {numbered}", INDEX)
     return None
 
 
@@ -789,7 +829,7 @@ def named(verdict, trial, traceback_text: str = ""):
     from dataclasses import replace
 
     from .hints import code_of
-    from .raised import frames_of
+    from .raised import frames_of, without_comprehensions
 
     first, newline, rest = str(verdict.message).partition("\n")
     code = code_of(trial)
@@ -798,7 +838,7 @@ def named(verdict, trial, traceback_text: str = ""):
         if verdict.mistake or _named_by_a_change(verdict):
             return verdict
         function, args, kwargs, message = trial.raised
-        frames = frames_of(traceback_text)
+        frames = without_comprehensions(frames_of(traceback_text))
         frame = frames[-1] if frames else None
         fn = code.functions.get(frame[2]) if frame and frame[0] == f"{trial.lab.module}.py" else None
         if fn is not None:

@@ -2433,11 +2433,16 @@ def _downstream_dropped(repair: Repair, code) -> Repair:
     return replace(repair, fixes=tuple(kept)) if kept and len(kept) < len(repair.fixes) else repair
 
 
-def named_by_repair(verdict, trial):
+def named_by_repair(verdict, trial, traceback_text: str = ""):
     """A failed check's verdict with a confirmed repair told at the end of its first line (in place of
     its fixed hint), when the verdict names nothing or only the error model names it; beside the
     check's own name of the mistake (which stays, with its hint) when :func:`_beside` allows; unchanged
     otherwise (see the module docstring).
+
+    ``traceback_text``: the student's code raised. A change that mends the exception but is confirmed
+    only by the check passing (a drawing's colours are not compared exactly: `_PALETTE[i]` -> `lines[i]`
+    passes) gives way to what the student's own values show where it raised
+    (:func:`..traced.named`: `i` is 8 where `_PALETTE` holds 8 items), a measurement of their code.
 
     A repair told where the error model named a mutant of the reference takes its place: both are
     confirmed on the student's answers, but the repair is a change of the code the student wrote,
@@ -2454,6 +2459,12 @@ def named_by_repair(verdict, trial):
     if repair is None:
         return verdict
     repair = _upstream(repair, trial)
+    if traceback_text and repair.checked and not by_hand:
+        from .. import traced
+
+        shown = traced.named(verdict, trial, traceback_text)
+        if shown.mistake:
+            return shown
     first, newline, rest = str(verdict.message).partition("\n")
     if by_hand:   # the check's name of the effect stays, with where it comes from in their code
         lead = first.rstrip()
