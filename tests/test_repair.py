@@ -2838,3 +2838,12 @@ def gray_code_patterns(width, n_bits):
                 if c.score < c.max_score and c.name.startswith("gray_code_patterns")]
     assert messages and all("`g >> n_bits - i - 1`" in m for m in messages), messages
     assert not any("k ^ k << 1" in m for m in messages), messages
+
+
+def test_the_middle_of_a_range_where_the_mean_belongs_is_told_the_mean(tmp_path):
+    # weak perspective's default depth taken as the middle of the depth range: the same on symmetric depths
+    folder = edited_reference(tmp_path, "lab10_camera2", (
+        "z = X[:, 2].mean() if z_avg is None", "z = (X[:, 2].min() + X[:, 2].max()) / 2 if z_avg is None"))
+    messages = [c.message for c in check_results(grade(str(folder), ["lab10.ex2"], include_hidden=False), "lab10.ex2")
+                if c.score < c.max_score]
+    assert messages and all("to `np.mean(X[:, 2])` (line " in m for m in messages), messages

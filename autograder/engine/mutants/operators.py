@@ -103,6 +103,7 @@ OPERATORS = {
     "drop_colour": ("colour", "color", "rgb", "bgr", "conversion"),   # cv2.cvtColor(img, COLOR_BGR2RGB) -> img
     "zero_based": ("1", "one", "start", "index", "off by one"),   # np.arange(1, w + 1) -> np.arange(w)
     "zero_entry": ("entry", "0", "zero", "translation", "term"),   # [1, s, -s * h / 2] -> [1, s, 0]
+    "midrange": ("mean", "average", "midrange", "middle"),   # (Z.min() + Z.max()) / 2 -> np.mean(Z)
     "exchange": ("exchang", "swap", "other way", "revers"),   # n.d < 0.75 * m.d -> m.d < 0.75 * n.d
     "drop_argument": ("argument", "default", "given", "remov"),   # _warp(img, M, size) -> _warp(img, M)
     "convert_if": ("grey", "gray", "channel", "already", "ndim"),   # cvtColor(f, BGR2GRAY) -> ... if f.ndim == 3 else f
@@ -941,7 +942,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term")},
+                                              "drop_term", "midrange")},
          "drop_keyword": _make_drop_keyword, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1697,6 +1698,44 @@ _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin",
              "zeros": "ones", "ones": "zeros", "zeros_like": "ones_like", "ones_like": "zeros_like"}
 
 
+def _extreme_of(node) -> tuple[str, str] | None:
+    """``("min" or "max", what it is of, with its other arguments)`` of `X.min(...)`, `np.max(X, ...)`
+    (`np.amin`, `np.amax` too); None otherwise."""
+    if not isinstance(node, ast.Call) or node.keywords and any(k.arg is None for k in node.keywords):
+        return None
+    name = _dotted(node.func)
+    short = node.func.attr if isinstance(node.func, ast.Attribute) else name.rsplit(".", 1)[-1]
+    kind = {"min": "min", "amin": "min", "max": "max", "amax": "max"}.get(short)
+    if kind is None:
+        return None
+    if name in (f"np.{short}", f"numpy.{short}") and node.args:
+        of = [ast.unparse(a) for a in node.args] + [ast.unparse(k) for k in node.keywords]
+    elif isinstance(node.func, ast.Attribute) and short in ("min", "max") and name.split(".", 1)[0] not in ("np", "numpy"):
+        of = [ast.unparse(node.func.value)] + [ast.unparse(a) for a in node.args] + [ast.unparse(k) for k in node.keywords]
+    else:
+        return None
+    return kind, ", ".join(of)
+
+
+def _midrange(node) -> str | None:
+    """`np.mean(X, ...)` for the middle of X's range, `(X.min() + X.max()) / 2` or `0.5 * (...)`; None
+    for anything else."""
+    if not isinstance(node, ast.BinOp):
+        return None
+    if isinstance(node.op, ast.Div) and isinstance(node.right, ast.Constant) and node.right.value == 2:
+        total = node.left
+    elif isinstance(node.op, ast.Mult) and isinstance(node.left, ast.Constant) and node.left.value == 0.5:
+        total = node.right
+    else:
+        return None
+    if not (isinstance(total, ast.BinOp) and isinstance(total.op, ast.Add)):
+        return None
+    ends = [_extreme_of(total.left), _extreme_of(total.right)]
+    if None in ends or {e[0] for e in ends} != {"min", "max"} or ends[0][1] != ends[1][1]:
+        return None
+    return f"np.mean({ends[0][1]})"
+
+
 def _student_changes(node, parent, parents):
     """Changes made to a student's code only (:mod:`.repair`), told by showing them: a function applied
     that does not belong (``np.tan(s)`` for ``s``), one mistaken for its sibling (``np.sin`` for
@@ -1719,6 +1758,9 @@ def _student_changes(node, parent, parents):
             moved = copy.deepcopy(node)
             moved.right = ast.BinOp(moved.right, step, ast.Constant(1))
             yield "zero_based", ast.unparse(moved), ""
+    middle = _midrange(node)
+    if middle is not None:
+        yield "midrange", middle, ""   # the middle of the range where the mean belongs: (Z.min() + Z.max()) / 2
     scaled = _scaled_identity(node)
     if scaled is not None:
         yield "zero_entry", f"np.diag([{scaled}, {scaled}, 1.0])", ""   # f * np.eye(3): K's last entry is 1
