@@ -9,8 +9,8 @@ import textwrap
 
 import pytest
 
-from autograder.engine.hints import (NAN_WHERE, RATIO_TEST, TO_UINT8, Hint, calls, expr, keyword, matmul_of,
-                                     mentions, passes_product, read_code, uses_attr)
+from autograder.engine.hints import (NAN_WHERE, RATIO_TEST, TO_UINT8, Hint, calls, expr, fits_on_picked_points, keyword,
+                                     matmul_of, mentions, passes_product, read_code, uses_attr)
 from autograder.engine.runner import grade
 from autograder.labs.lab08 import SECOND_WARP_HINT
 from autograder.labs.lab11 import EIGHT_POINTS_HINT, IN_FRONT_HINT
@@ -49,6 +49,27 @@ def test_a_helper_the_function_calls_is_read_too_and_the_last_definition_wins():
     assert found(calls("np.argmax"), source) == "calls np.argmax"
     assert found(calls("np.argmax"), source, "g") == ""
     assert found(calls("np.argmax"), source, "missing") == ""
+
+
+def test_a_refit_is_read_from_points_a_mask_picks_not_from_how_many_fits_there_are():
+    refits = fits_on_picked_points("homography_dlt")
+    # a fit per random sample and a fallback on every point: two calls, no refit
+    assert found(refits, """
+        def f(src, dst, rng, n):
+            for _ in range(100):
+                idx = rng.permutation(n)
+                sample = idx[:4]
+                H = homography_dlt(src[sample], dst[sample])
+            if n < 8:
+                return homography_dlt(src, dst)
+            return H
+        """) == ""
+    assert found(refits, """
+        def f(src, dst, best_inliers):
+            inliers = best_inliers
+            return homography_dlt(src[inliers], dst[inliers])
+        """) == "fits homography_dlt again on the points a mask picks"
+    assert found(refits, "def f(src, dst, H):\n    return homography_dlt(src[errors(H) < 3], dst[errors(H) < 3])\n") != ""
 
 
 def test_products_expressions_keywords_and_attributes():

@@ -2847,3 +2847,37 @@ def test_the_middle_of_a_range_where_the_mean_belongs_is_told_the_mean(tmp_path)
     messages = [c.message for c in check_results(grade(str(folder), ["lab10.ex2"], include_hidden=False), "lab10.ex2")
                 if c.score < c.max_score]
     assert messages and all("to `np.mean(X[:, 2])` (line " in m for m in messages), messages
+
+
+def test_one_view_left_without_its_twins_step_is_given_that_step(tmp_path):
+    # the second image's points left unnormalised where the first's are: the step copied with its twin
+    # names (T1 -> T2), not the denormalisation below changed to compensate
+    folder = edited_reference(tmp_path, "lab11_two_view", (
+        "Fn = _eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T)",
+        "Fn = _eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2))"))
+    messages = [c.message for c in check_results(grade(str(folder), ["lab11.ex4"], include_hidden=False), "lab11.ex4")
+                if c.score < c.max_score]
+    assert messages and all("to `_eight_point_core(..., _homogeneous(pts2) @ T2.T)`" in m for m in messages), messages
+    assert not any("to `Fn @ T1`" in m for m in messages), messages
+
+
+def test_a_step_taken_out_before_every_change_was_tried_is_not_told(tmp_path):
+    # the matrix's last row copies Z where the 1 belongs, so w = Z: dropping the division by w mends the
+    # answers too, but it compensates; told only when the search was complete, else a later check says more
+    folder = mutant(tmp_path, "lab10_camera2", '''
+def orthographic_project(points):
+    pts = np.asarray(points, dtype=np.float64)
+    single = pts.ndim == 1
+    pts = pts.reshape(-1, 3)
+    M = np.array([[1.0, 0.0, 0.0, 0.0],
+                  [0.0, 1.0, 0.0, 0.0],
+                  [0.0, 0.0, 1.0, 0.0]])
+    Xh = np.hstack([pts, np.ones((len(pts), 1))])
+    proj = (M @ Xh.T).T
+    xy = proj[:, :2] / proj[:, 2:]
+    return xy[0] if single else xy
+''')
+    messages = [c.message for c in check_results(grade(str(folder), ["lab10.ex3"], include_hidden=False), "lab10.ex3")
+                if c.score < c.max_score]
+    assert any("to `[0.0, 0.0, 0.0, 1.0]`" in m for m in messages), messages
+    assert not any("to `proj[:, :2]` (line" in m for m in messages), messages

@@ -231,6 +231,48 @@ def calls(name: str, at_least: int = 1) -> Predicate:
                      kind="all")
 
 
+RANDOM_DRAWS = frozenset({"choice", "sample", "permutation", "shuffle", "integers", "randint", "random_sample"})
+
+
+def _drawn_names(function) -> set[str]:
+    """The names holding a random draw, or made from one (`idx = rng.permutation(n)`, `sample = idx[:4]`)."""
+    assignments = [node for node in ast.walk(function) if isinstance(node, ast.Assign)]
+    drawn: set[str] = set()
+    grown = True
+    while grown:
+        grown = False
+        for node in assignments:
+            reads = {n.id for n in ast.walk(node.value) if isinstance(n, ast.Name)}
+            draws = any(isinstance(c, ast.Call) and isinstance(c.func, (ast.Attribute, ast.Name))
+                        and (c.func.attr if isinstance(c.func, ast.Attribute) else c.func.id) in RANDOM_DRAWS
+                        for c in ast.walk(node.value))
+            if draws or reads & drawn:
+                made = {n.id for t in node.targets for n in ast.walk(t) if isinstance(n, ast.Name)} - drawn
+                if made:
+                    drawn |= made
+                    grown = True
+    return drawn
+
+
+def fits_on_picked_points(name: str) -> Predicate:
+    """A call of ``name`` given points some chosen subset picks (`homography_dlt(src[inliers],
+    dst[inliers])`): a refit on the inliers, not the fit of a random sample (`src[sample]`, a name
+    holding a draw) nor of every point (`homography_dlt(src, dst)`)."""
+    shown = name.lstrip(".")
+
+    def test(function) -> bool:
+        drawn = _drawn_names(function)
+        for node in ast.walk(function):
+            if isinstance(node, ast.Call) and _name_matches(node.func, name, _scope(function)):
+                for argument in node.args:
+                    if isinstance(argument, ast.Subscript) and not isinstance(argument.slice, ast.Slice) \
+                            and not {n.id for n in ast.walk(argument.slice) if isinstance(n, ast.Name)} & drawn \
+                            and any(isinstance(n, ast.Name) for n in ast.walk(argument.slice)):
+                        return True
+        return False
+    return Predicate(f"fits {shown} again on the points a mask picks", test)
+
+
 def mentions(name: str) -> Predicate:
     """A name or attribute ``name`` read anywhere (``"cv2.BORDER_CONSTANT"``, ``".T"``, ``"np.nan"``)."""
     shown = name.lstrip(".")

@@ -35,8 +35,9 @@ from ..engine.claims import (THIRD_COORDINATE, THRESHOLD_NAMES, assigns, calls_a
                              from_code, guard, look_at, measured, subtracts_a_mean, takes_last_row_of_vt,
                              treats_each_of)
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
-from ..engine.hints import (RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope, calls, code_of,
-                             expr, functions_read, keyword, matmul_of, mentions, passes_product)
+from ..engine.hints import (RANDOM_DRAWS, RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope,
+                             calls, code_of, expr, fits_on_picked_points, functions_read, keyword, matmul_of, mentions,
+                             passes_product)
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
@@ -1410,7 +1411,7 @@ def refit_distance(H, inliers, src, dst) -> float:
 REFIT_HINT = Hint(
     "H = homography_dlt(src[inliers], dst[inliers]) at the end; cv2.findHomography(src, dst, cv2.RANSAC, "
     "threshold) does it for you",
-    asks=calls("cv2.findHomography") | calls("homography_dlt", at_least=2))   # else: "the error is elsewhere"
+    asks=calls("cv2.findHomography") | fits_on_picked_points("homography_dlt"))   # else: "the error is elsewhere"
 
 
 # The message's own advice: true of code that does not refit; code that does (cv2.findHomography
@@ -1455,15 +1456,14 @@ def ransac_refit(t):
 
 def _draws_in_a_loop(function) -> bool:
     """A loop (``for`` or ``while``) drawing random samples in it (``rng.choice``, ``random.sample``...)."""
-    draws = ("choice", "sample", "permutation", "shuffle", "integers", "randint")
     return any(isinstance(node, (ast.For, ast.While)) and any(
         isinstance(call, ast.Call) and isinstance(call.func, (ast.Attribute, ast.Name))
-        and (call.func.attr if isinstance(call.func, ast.Attribute) else call.func.id) in draws
+        and (call.func.attr if isinstance(call.func, ast.Attribute) else call.func.id) in RANDOM_DRAWS
         for call in ast.walk(node)) for node in ast.walk(function))
 
 
-OWN_RANSAC_LOOP = Predicate("draws samples in a loop and fits homography_dlt again after it", kind="and", parts=(
-    Predicate("draws samples in a loop", _draws_in_a_loop), calls("homography_dlt", at_least=2)))
+OWN_RANSAC_LOOP = Predicate("draws samples in a loop and fits homography_dlt again on the inliers", kind="and", parts=(
+    Predicate("draws samples in a loop", _draws_in_a_loop), fits_on_picked_points("homography_dlt")))
 SAMPLES_HINT = Hint("With half the pairs wrong, a random 4-point sample is all inliers only 1 time in 16: "
                    "draw enough samples (log(1 - 0.99) / log(1 - 0.5**4) is about 72, more is safer), "
                    "keep the H with the most inliers, then refit on them.",

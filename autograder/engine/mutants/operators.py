@@ -76,6 +76,7 @@ OPERATORS = {
     "compare": ("compar", "strict", "equal"),         # x > 0 -> x >= 0, x < t -> x > t
     "regroup": ("bracket", "parenthes", "order"),     # a - b + c -> a - (b + c), a / b * c -> a / (b * c)
     "twin_step": ("missing", "also", "both", "only"),  # (x / w, y) -> (x / w, y / w): a step done to one twin only
+    "twin_argument": ("missing", "also", "both", "only"),  # f(A1 @ T1.T, A2) -> f(A1 @ T1.T, A2 @ T2.T)
     "measure": ("square", "absolute", "abs", "**"),   # np.abs(d) <-> d ** 2: the other measure of a difference
     "power_inside": ("square", "mean", "sum", "**"),  # np.mean(d) ** 2 <-> np.mean(d ** 2)
     "slice": ("slice", "column", "entries", "first", "last"),   # l[:, 1:] -> l[:, :2], A[r, 3:7] -> A[r, 4:8]
@@ -709,6 +710,13 @@ def _make_twin_step(node, payload):
     return new
 
 
+def _make_twin_argument(node, payload):
+    new = copy.deepcopy(node)   # f(A1 @ T1.T, A2) -> f(A1 @ T1.T, A2 @ T2.T)
+    position, text = payload
+    new.args[position] = _parse(text).body[0].value
+    return new
+
+
 def _make_measure(node, payload):
     if payload == "sqrt":   # np.sum(d ** 2, axis=1) -> np.sqrt(np.sum(d ** 2, axis=1))
         return ast.Call(_name("np.sqrt"), [copy.deepcopy(node)], [])
@@ -947,7 +955,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
-         "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "measure": _make_measure, "power_inside": _make_power_inside,
+         "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
@@ -2812,12 +2820,83 @@ def _swap_in(root, old, new):
     return root
 
 
+def _twin_mapping(inner: ast.AST, bare: ast.AST) -> dict | None:
+    """The names of ``inner`` to rename (each to its twin) to write ``bare``; None when no such renaming
+    does (or none is needed: the two are alike)."""
+    first, second = list(ast.walk(inner)), list(ast.walk(bare))
+    if len(first) != len(second) or len(first) > 16:
+        return None
+    names = {}
+    for x, y in zip(first, second):
+        if type(x) is not type(y):
+            return None
+        if isinstance(x, ast.Name):
+            if x.id != y.id and not (twin_names(x.id, y.id) and names.get(x.id, y.id) == y.id):
+                return None
+            if x.id != y.id:
+                names[x.id] = y.id
+        elif ast.dump(x) != ast.dump(y) and not list(ast.iter_child_nodes(x)):
+            return None   # (a leaf other than a name differs: a constant, an attribute's word)
+        elif isinstance(x, ast.Attribute) and x.attr != y.attr:
+            return None
+    return names or None
+
+
+def _twin_argument_changes(node, words):
+    """One argument of a call given bare where its twin argument has a step: `core(h(pts1) @ T1.T,
+    h(pts2))` -> `h(pts2) @ T2.T` (the second view's normalisation left out), the step's other names
+    renamed as the twins are (T1 -> T2) when the function has those names, and also kept as written."""
+    if not isinstance(node, ast.Call) or not 2 <= len(node.args) <= 4 or any(isinstance(a, ast.Starred) for a in node.args):
+        return
+    known = {n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name)}
+    for j, bare in enumerate(node.args):
+        if isinstance(bare, ast.Constant):
+            continue
+        made = set()
+        for i, stepped in enumerate(node.args):
+            if i == j:
+                continue
+            for inner in ast.walk(stepped):
+                if inner is stepped or not isinstance(inner, (*_TERMS, ast.Call)):
+                    continue
+                names = _twin_mapping(inner, bare)
+                if names is None:
+                    continue
+                # the step's other names renamed as the twins differ (`T1` -> `T2` beside `pts1` -> `pts2`)
+                differences = {_difference(a, b) for a, b in names.items()}
+                more = dict(names)
+                for other in {n.id for n in ast.walk(stepped) if isinstance(n, ast.Name)} - set(names):
+                    more.update((other, twin) for twin in sorted(known)
+                                if twin != other and twin_names(other, twin) and _difference(other, twin) in differences)
+                for mapping in (more, names):
+                    step = copy.deepcopy(stepped)
+                    for old_node, new_node in zip(ast.walk(stepped), ast.walk(step)):
+                        if old_node is inner:
+                            step = _swap_in(step, new_node, copy.deepcopy(bare))
+                            break
+                    for name in set(mapping) - set(names):   # (names the twins' renaming leaves: the step's own)
+                        step = _renamed(step, name, mapping[name])
+                    text = ast.unparse(step)
+                    if text not in made and len(text) <= 80:
+                        made.add(text)
+                        yield "twin_argument", (j, text), ""
+                break
+
+
+def _difference(a: str, b: str) -> tuple:
+    """Where two twin names differ: `("1", "2")` for `pts1`/`pts2` and `T1`/`T2` alike."""
+    if len(a) != len(b):
+        return (a, b)
+    return tuple((x, y) for x, y in zip(a, b) if x != y)
+
+
 def _sibling_changes(node, words):
     """Changes that copy what the student's code does for one of two like things to the other: a step
     done to one input only (`xl = xl[:, 0]` and no `xr = xr[:, 0]`: the two done together, `xl, xr =
     xl[:, 0], xr[:, 0]`), and an argument of a call that another call of the same function is given
     (`warp(weight, H, size)` beside `warp(image, shift @ H, size)`: the shift left out of one)."""
     done, calls, _ = _read_siblings(words)
+    yield from _twin_argument_changes(node, words)
     yield from _canvas_changes(node, words)
     yield from _per_item_changes(node, words)
     yield from _initial_changes(node, words)
