@@ -2881,3 +2881,24 @@ def orthographic_project(points):
                 if c.score < c.max_score]
     assert any("to `[0.0, 0.0, 0.0, 1.0]`" in m for m in messages), messages
     assert not any("to `proj[:, :2]` (line" in m for m in messages), messages
+
+
+def test_a_change_that_mends_by_skipping_a_shortcut_is_told_as_the_shortcut(tmp_path):
+    # quarter turns of a square image sent to cv2.rotate the wrong way round: making the angle anything
+    # else (`float(width)`) mends every answer by never taking the shortcut, which is where the slip is
+    folder = mutant(tmp_path, "lab07_transformations", '''
+def rotate(image, angle_deg=45):
+    height, width = image.shape[:2]
+    quarter = {90: cv2.ROTATE_90_CLOCKWISE, 180: cv2.ROTATE_180, 270: cv2.ROTATE_90_COUNTERCLOCKWISE}
+    angle = float(angle_deg) % 360
+    if height == width and angle in quarter:
+        return cv2.rotate(image, quarter[angle])
+    if angle == 0:
+        return image.copy()
+    M = cv2.getRotationMatrix2D(((width - 1) / 2.0, (height - 1) / 2.0), angle_deg, 1.0)
+    return cv2.warpAffine(image, M, (width, height))
+''')
+    messages = [c.message for c in check_results(grade(str(folder), ["lab07.ex2"], include_hidden=False), "lab07.ex2")
+                if c.score < c.max_score]
+    assert messages and all("skipping the branch `if height == width and angle in quarter:`" in m
+                            for m in messages), messages

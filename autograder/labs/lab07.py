@@ -225,6 +225,22 @@ def rotate_grey(t):
         probe=image_probe(t, "rotate"))
 
 
+@ex2.check("rotate a square image by quarter turns (90, -90 and 270 degrees)", points=1)
+def rotate_square_quarter_turns(t):
+    """A square image turned a quarter turn fills its frame exactly, so a shortcut through np.rot90 or
+    cv2.rotate is right there -- in the direction a positive angle means (counter-clockwise on screen)
+    only; the other checks' quarter turn is of a non-square image, where no such shortcut applies."""
+    source = photo("astronaut", (128, 128))
+    centre = truth.image_centre(source.shape)
+    for angle in (90, -90, 270):
+        verdict = judge_warp(t, f"rotate(square image, angle_deg={angle})", t.call("rotate", source, angle_deg=angle),
+                             source, truth.rotation(angle, centre), truth.rotation_mistakes(angle, centre),
+                             probe=image_probe(t, "rotate"))
+        if verdict.fraction < 1.0:
+            return verdict
+    return verdict
+
+
 @ex2.check("rotate by a fractional angle (30.5 degrees)", points=1)
 def rotate_fractional(t):
     """Every other check's angle is whole, where an angle cut to an integer (`int(angle_deg)`) is exact;

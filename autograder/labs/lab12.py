@@ -2396,6 +2396,31 @@ def simulate_boxes(t):
            hint=PROJECTOR_MODEL)
 
 
+@ex6.check("simulate_structured_light leaves pixels with no depth in front black (Z = 0 and Z < 0)", points=1)
+def simulate_not_in_front(t):
+    """The scene of the first check with a band of rows at Z = 0 and one behind the camera (Z = -3): a
+    negative depth gives a negative disparity, whose column u - f b / Z is often on the projector."""
+    depth, f, baseline = truth.structured_light_scene("boxes")
+    depth = np.array(depth)
+    depth[20:30], depth[60:75] = 0.0, -3.0
+    n_bits = 6
+    what = f"simulate_structured_light(depth, f={f:g}, baseline={baseline:g}, n_bits={n_bits}), rows 20-29 at Z = 0 " \
+           "and rows 60-74 at Z = -3"
+    got = t.expect_array(t.call("simulate_structured_light", depth.copy(), f, baseline, n_bits), what,
+                         shape=(n_bits,) + depth.shape, dtype=np.uint8)
+    lit = np.any(got > 0, axis=0) & (depth <= 0)
+    if not lit.any():
+        return passed("every pixel with Z <= 0 is black in every image")
+    rows = sorted({int(r) for r in np.nonzero(lit)[0]})
+    where = "Z = -3" if all(depth[r, 0] < 0 for r in rows) else "Z = 0" if all(depth[r, 0] == 0 for r in rows) \
+        else "Z = 0 or Z = -3"
+    t.images(what, "the first (most significant) image", yours_first=got[0],
+             expected_first=truth.simulate_structured_light(depth, f, baseline, n_bits)[0])
+    t.fail(f"{what}: {lit.mean():.1%} of the pixels, all at {where}, are lit: a point at Z <= 0 is not in "
+           "front of the camera, so no projector column lights it: it is black (0) in every image.",
+           mistake="pixels with Z <= 0 are lit", hint=PROJECTOR_MODEL)
+
+
 # A projector as wide as a 320-pixel image has columns above 255: a column kept in 8 bits (uint8)
 # wraps round there (256 -> 0), and a negative one (off the projector, black) to 256 + column.
 WIDE_DEPTH = np.hstack([np.full((24, 40), 6.0), np.full((24, 280), 3.0)])   # disparities 10 and 20 px

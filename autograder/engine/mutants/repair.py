@@ -58,7 +58,7 @@ _SHOWN = 70               # the longest code shown before and after a change
 # reading it never outlasts the time the repairs are given.
 MAX_NODES = 15_000
 _EXCHANGES = {"swap_operands", "swap_args", "stack_order"}   # operators that exchange two things
-_IN_WORDS = _MOVES | {"grey", "guard"}   # changes told in words (their code would be too long to show)
+_IN_WORDS = _MOVES | {"grey", "guard", "branch"}   # changes told in words (their code would be too long to show)
 
 
 @dataclass(frozen=True)
@@ -299,6 +299,60 @@ class _Student:
         with an operation in it counts (a lone name or number is written everywhere)."""
         fix = self.fixes.get(mutant.key)
         return fix is not None and _departs(fix, self.reference_source)
+
+    def around_a_branch(self, fix: Fix, ran: set | None = None) -> Fix | None:
+        """``fix`` told as the branch it makes the code skip, when it changes a value that only the tests
+        of branches ending in a return read (`angle = float(angle_deg) % 360` -> `float(width) % 360`
+        beside `if height == width and angle in quarter: return cv2.rotate(...)`): it mends by not taking
+        the shortcut, so the slip is inside that branch, not on the changed line (``ran``: the lines the
+        student's code ran on the failing inputs, to tell the branch it took). None otherwise."""
+        if len(fix.edits) != 1 or fix.operator in _IN_WORDS:
+            return None
+        where, ordinal, _, _ = fix.edits[0]
+        nodes, parents = self._walk(where)
+        fn = self._defs.get(where)
+        if fn is None or not 0 <= ordinal < len(nodes):
+            return None
+        statement = nodes[ordinal]
+        while not isinstance(statement, ast.stmt) and id(statement) in parents:
+            statement = parents[id(statement)][0]
+        if not isinstance(statement, ast.Assign):
+            return None
+        made = {n.id for t in statement.targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+        tests = {id(node.test): node for node in ast.walk(fn) if isinstance(node, ast.If)}
+        branches, reads = [], 0
+        for node in ast.walk(fn):
+            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and node.id in made \
+                    and node.lineno > statement.lineno:
+                reads += 1
+                holder, branch = node, None
+                while id(holder) in parents:   # (a read in a test, or in the body of a branch testing it)
+                    parent = parents[id(holder)][0]
+                    if id(holder) in tests:
+                        branch = tests[id(holder)]
+                        break
+                    if isinstance(parent, ast.If) and holder in parent.body and \
+                            made & {n.id for n in ast.walk(parent.test) if isinstance(n, ast.Name)}:
+                        branch = parent
+                        break
+                    holder = parent
+                if branch is None:
+                    return None   # (the value is used, not only tested)
+                if branch not in branches:
+                    branches.append(branch)
+        exits = [b for b in branches if any(isinstance(n, ast.Return) for s in b.body for n in ast.walk(s))]
+        if not reads or not exits:
+            return None
+        exits.sort(key=lambda b: (not (ran and b.body[0].lineno in ran), b.lineno))   # (the one taken first)
+        branch = exits[0]
+        test = " ".join(ast.unparse(branch.test).split())
+        if len(test) > 60:
+            return None
+        last = max(getattr(s, "end_lineno", None) or s.lineno for s in branch.body)
+        line, before, after = fix.changes[0]
+        told = (f"skipping the branch `if {test}:` (lines {branch.lineno}-{last}{{inside}}; changing `{before}` to "
+                f"`{after}` on line {line} skips it)")
+        return Fix(((line, before, told),), where, "branch", fix.edits)
 
     def _anchored_in(self, where: str) -> set:
         if where not in self._anchored:
@@ -2465,6 +2519,12 @@ def named_by_repair(verdict, trial, traceback_text: str = ""):
     if repair is None:
         return verdict
     repair = _upstream(repair, trial)
+    student = _student_code(trial)
+    ran = set().union(*(lines for (function, _), lines in trial.sandbox.shared.get("repair lines run", {}).items()
+                        if function == repair.function and lines))
+    around = [student.around_a_branch(fix, ran) for fix in repair.fixes] if student is not None else []
+    if around and all(around):   # (every place mends by skipping a shortcut: the shortcut is told)
+        repair = replace(repair, fixes=tuple(dict.fromkeys(around)))
     if traceback_text and repair.checked and not by_hand:
         from .. import traced
 

@@ -180,6 +180,14 @@ MISTAKES = {
             k1, k2, p1, p2, k3 = dist
             return _right(points, [k1, k2, p2, p1, k3])
         """, ["p1 and p2 are swapped"]),
+    "points off the image left out": ("lab09.ex5", """
+        _right = project_onto_image
+        def project_onto_image(image, P, points):
+            drawn, pts = _right(image, P, points)
+            h, w = image.shape[:2]
+            keep = (pts[:, 0] >= 0) & (pts[:, 0] < w) & (pts[:, 1] >= 0) & (pts[:, 1] < h)
+            return drawn, pts[keep]
+        """, ["fewer rows than points", "left out"]),
     "inverted real image": ("lab09.ex4", """
         _right = simulate_aperture
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):

@@ -666,4 +666,18 @@ MISTAKES = {
             images[:, lit] = patterns[:, column[lit]]
             return images
         """, ["exactly as if the projector column is kept in 8 bits (uint8)"]),
+    "structured light lights pixels behind the camera": ("lab12.ex6", """
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            depth = np.asarray(depth, dtype=np.float64)
+            height, width = depth.shape
+            patterns = gray_code_patterns(width, n_bits)
+            valid = np.isfinite(depth) & (depth != 0)
+            u = np.broadcast_to(np.arange(width, dtype=np.float64), depth.shape)
+            disparity = np.divide(float(f) * float(baseline), depth, out=np.zeros_like(depth), where=valid)
+            column = np.floor(u - disparity + 0.5).astype(np.int64)
+            lit = valid & (column >= 0) & (column < width)
+            images = np.zeros((int(n_bits), height, width), dtype=np.uint8)
+            images[:, lit] = patterns[:, column[lit]]
+            return images
+        """, ["all at Z = -3, are lit", "not in front of the camera"]),
 }
