@@ -207,6 +207,16 @@ def test_a_list_indexed_past_its_end_is_named_with_the_index_and_its_length():
     assert sentence == "`k + 1` is 2 in `items[k + 1]` (line 4): `items` holds 2 items, numbered 0 to 1"
 
 
+def test_a_matrix_that_is_not_square_given_to_a_solve_is_named_with_its_shape():
+    sentence = raised_sentence("""
+        def fit(A, b):
+            M = np.asarray(A, float)
+            return np.linalg.solve(M, b)
+        """, "fit", np.ones((8, 6)), np.ones(8))
+    assert sentence == ("in `np.linalg.solve(M, b)` (line 4), `M` has shape (8, 6): `solve` needs a square matrix -- "
+                        "8 equations in 6 unknowns are solved in the least-squares sense, by np.linalg.lstsq")
+
+
 def test_a_change_that_only_passes_the_check_gives_way_to_what_the_raise_shows(tmp_path):
     # a colour per line taken past the palette's end: `lines[i]` as the colour mends the exception and
     # passes the check (colours are not compared exactly), but it is no fix; the index is the cause

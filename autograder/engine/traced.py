@@ -379,6 +379,8 @@ _OPENCV_KINDS = re.compile(r"(?:type|depth)\(\) *== *(?!CV_)[A-Za-z_]|types? do(
 _OPENCV_SIZES = re.compile(r"size\(\) *== *(?!Size\b)[A-Za-z_]|[Ss]izes? of input arguments do not match|same size")
 _OUT_OF_BOUNDS = re.compile(r"index (-?\d+) is out of bounds for axis (\d+) with size (\d+)")
 _SEQUENCE_INDEX = re.compile(r"\b(?:list|tuple) index out of range")
+_NOT_SQUARE = re.compile(r"Last 2 dimensions of the array must be square")
+_SQUARE_ONLY = frozenset({"solve", "inv", "det", "eig", "eigvals", "cholesky", "matrix_power", "slogdet"})
 
 
 def _parsed(text: str) -> tuple:
@@ -407,6 +409,8 @@ def explain_raised(code, recording: Recording, fn, line: int, message: str, fram
         return _index_named(recording, expressions, *(int(g) for g in found.groups()), where)
     if _SEQUENCE_INDEX.search(message):
         return _item_named(recording, expressions, where)
+    if _NOT_SQUARE.search(message):
+        return _square_named(recording, expressions, where)
     found = _TOO_MANY_INDICES.search(message)
     if found:
         return _indexed_named(recording, expressions, int(found.group(1)), where)
@@ -543,6 +547,24 @@ def _index_named(recording, expressions, index, axis, size, where) -> Form | Non
                 said = f"holds {index} (its values go from {span[0]:g} to {span[1]:g})" if holds else f"is {index}"
                 return Form(f"{_quote(part)} {said} in {_quote(node)} {where}: axis {axis}{of} "
                             f"has {size} entries, numbered 0 to {size - 1}", INDEX)
+    return None
+
+
+def _square_named(recording, expressions, where) -> Form | None:
+    """A matrix that is not square given to a solve or an inverse (NumPy's error names no operand)."""
+    for node in expressions:
+        if not (isinstance(node, ast.Call) and node.args and _called_name(node) in _SQUARE_ONLY):
+            continue
+        matrix = node.args[0]
+        shape = recording.shape(matrix)
+        if shape is None or len(shape) < 2 or shape[-1] == shape[-2]:
+            continue
+        said = (f"in {_quote(node)} {where}, {_quote(matrix)} has shape {_shape_text(shape)}: "
+                f"`{_called_name(node)}` needs a square matrix")
+        if _called_name(node) in ("solve", "inv") and shape[-2] > shape[-1]:
+            said += (f" -- {shape[-2]} equations in {shape[-1]} unknowns are solved in the least-squares sense, "
+                     "by np.linalg.lstsq")
+        return Form(said, MISTAKE)
     return None
 
 
