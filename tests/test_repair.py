@@ -2902,3 +2902,15 @@ def rotate(image, angle_deg=45):
                 if c.score < c.max_score]
     assert messages and all("skipping the branch `if height == width and angle in quarter:`" in m
                             for m in messages), messages
+
+
+def test_a_row_of_values_given_to_a_square_block_is_given_as_its_diagonal(tmp_path):
+    folder = mutant(tmp_path, "lab07_transformations", '''
+def scaling_matrix(sx, sy):
+    M = np.eye(3)
+    M[:2, :2] = [sx, sy]
+    return M
+''')
+    messages = [c.message for c in check_results(grade(str(folder), ["lab07.ex3"], include_hidden=False), "lab07.ex3")
+                if c.score < c.max_score and c.name.startswith("scaling_matrix")]
+    assert messages and all("to `M[:2, :2] = np.diag([sx, sy])`" in m for m in messages), messages

@@ -1766,6 +1766,12 @@ def _student_changes(node, parent, parents):
             moved = copy.deepcopy(node)
             moved.right = ast.BinOp(moved.right, step, ast.Constant(1))
             yield "zero_based", ast.unparse(moved), ""
+    if isinstance(parent, ast.Assign) and parent.value is node and isinstance(node, (ast.List, ast.Tuple)) \
+            and 2 <= len(node.elts) <= 4 and not any(isinstance(e, (ast.List, ast.Tuple, ast.Starred)) for e in node.elts) \
+            and any(isinstance(t, ast.Subscript) and isinstance(t.slice, ast.Tuple) and len(t.slice.elts) == 2
+                    and all(isinstance(part, ast.Slice) for part in t.slice.elts) for t in parent.targets):
+        # a row of values given to a square block (`M[:2, :2] = [sx, sy]`: every row gets both): its diagonal
+        yield "zero_entry", f"np.diag({ast.unparse(node) if isinstance(node, ast.List) else '[' + ast.unparse(node)[1:-1] + ']'})", ""
     middle = _midrange(node)
     if middle is not None:
         yield "midrange", middle, ""   # the middle of the range where the mean belongs: (Z.min() + Z.max()) / 2
