@@ -2914,3 +2914,22 @@ def scaling_matrix(sx, sy):
     messages = [c.message for c in check_results(grade(str(folder), ["lab07.ex3"], include_hidden=False), "lab07.ex3")
                 if c.score < c.max_score and c.name.startswith("scaling_matrix")]
     assert messages and all("to `M[:2, :2] = np.diag([sx, sy])`" in m for m in messages), messages
+
+
+def test_a_second_name_for_an_array_written_into_is_given_a_copy(tmp_path):
+    # `moved = pts` then `moved[:, 2] += ...` in a loop: each pass starts from the last one's points
+    folder = mutant(tmp_path, "lab10_camera2", '''
+def dolly_zoom(points, f0, z0, distances):
+    pts = np.atleast_2d(np.array(points, dtype=np.float64))
+    focal_lengths, projections = [], []
+    for d in np.ravel(distances):
+        f = f0 * d / z0
+        moved = pts
+        moved[:, 2] += d - z0
+        focal_lengths.append(f)
+        projections.append(perspective_project(moved, f))
+    return np.array(focal_lengths, dtype=np.float64), np.array(projections)
+''')
+    messages = [c.message for c in check_results(grade(str(folder), ["lab10.ext2"], include_hidden=False), "lab10.ext2")
+                if c.score < c.max_score]
+    assert messages and all("to `moved = pts.copy()`" in m for m in messages), messages

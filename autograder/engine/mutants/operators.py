@@ -1706,6 +1706,22 @@ _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin",
              "zeros": "ones", "ones": "zeros", "zeros_like": "ones_like", "ones_like": "zeros_like"}
 
 
+def _root(node, parents):
+    """The outermost node ``parents`` knows above ``node`` (the def it was made for)."""
+    while id(node) in parents:
+        node = parents[id(node)][0]
+    return node
+
+
+def _written_into(fn, name: str, after: int) -> bool:
+    """Whether ``fn`` writes into the array ``name`` holds below line ``after`` (`name[...] = `, `name[...] += `,
+    `name += ` on an array is not told apart from a rebinding and does not count)."""
+    return any(isinstance(node, (ast.Assign, ast.AugAssign)) and node.lineno > after
+               and any(isinstance(t, ast.Subscript) and isinstance(t.value, ast.Name) and t.value.id == name
+                       for t in (node.targets if isinstance(node, ast.Assign) else [node.target]))
+               for node in ast.walk(fn))
+
+
 def _extreme_of(node) -> tuple[str, str] | None:
     """``("min" or "max", what it is of, with its other arguments)`` of `X.min(...)`, `np.max(X, ...)`
     (`np.amin`, `np.amax` too); None otherwise."""
@@ -1772,6 +1788,12 @@ def _student_changes(node, parent, parents):
                     and all(isinstance(part, ast.Slice) for part in t.slice.elts) for t in parent.targets):
         # a row of values given to a square block (`M[:2, :2] = [sx, sy]`: every row gets both): its diagonal
         yield "zero_entry", f"np.diag({ast.unparse(node) if isinstance(node, ast.List) else '[' + ast.unparse(node)[1:-1] + ']'})", ""
+    if isinstance(parent, ast.Assign) and parent.value is node and isinstance(node, ast.Name) \
+            and len(parent.targets) == 1 and isinstance(parent.targets[0], ast.Name) \
+            and _written_into(_root(parent, parents), parent.targets[0].id, parent.lineno):
+        # a second name for the same array, then written into (`moved = pts` then `moved[:, 2] += s`: pts
+        # changes too, and each pass of a loop starts from the last one's): a copy
+        yield "zero_entry", f"{node.id}.copy()", ""
     middle = _midrange(node)
     if middle is not None:
         yield "midrange", middle, ""   # the middle of the range where the mean belongs: (Z.min() + Z.max()) / 2
