@@ -37,6 +37,20 @@ def test_other_exercises_unaffected_by_a_mistake(tmp_path):
 
 # Textbook variants of the estimators: each scores full marks on its exercise.
 VARIANTS = {
+    "ex2 about (w / 2, h / 2), OpenCV's tutorial centre": ("lab07.ex2", """
+        def rotate(image, angle_deg=45):
+            h, w = image.shape[:2]
+            return cv2.warpAffine(image, cv2.getRotationMatrix2D((w / 2, h / 2), angle_deg, 1.0), (w, h))
+        """),
+    "ex2 with np.rot90 for quarter turns of a square image": ("lab07.ex2", """
+        def rotate(image, angle_deg=45):
+            h, w = image.shape[:2]
+            turns = float(angle_deg) % 360
+            if h == w and turns in (90.0, 180.0, 270.0):
+                return np.ascontiguousarray(np.rot90(image, int(turns // 90)))
+            M = cv2.getRotationMatrix2D(((w - 1) / 2, (h - 1) / 2), angle_deg, 1.0)
+            return cv2.warpAffine(image, M, (w, h))
+        """),
     "ex5 by the 6x6 system": ("lab07.ex5", """
         def affine_from_points(src, dst):
             M = np.zeros((6, 6))

@@ -1448,38 +1448,34 @@ def project_onto_image_check(t):
 
 
 def _scene_off_the_frame(seed=51):
-    """(image, P, world points): three of the photo scene's points in view, three whose images fall off
-    the 320x240 frame (left of it, right of it, below it) and one behind the camera, between them."""
+    """(image, P, world points): three of the photo scene's points in view and, between them, three whose
+    images fall off the 320x240 frame (left of it, right of it, below it)."""
     image = photo("chelsea", (320, 240))
     K = np.array([[350.0, 0.0, 159.5], [0.0, 350.0, 119.5], [0.0, 0.0, 1.0]])
     R, tvec = truth.random_pose(seed)
     inside = truth.world_points_for(K, R, tvec, seed=seed + 1, n=3, width=320, height=240)
-    # in the camera's frame: x = -50.5, x = 404.5 and y = 265.3 px; then Z = -3
-    seen = np.array([[-3.0, 0.2, 5.0], [2.8, -0.1, 4.0], [0.3, 2.5, 6.0], [0.5, 0.4, -3.0]])
+    seen = np.array([[-3.0, 0.2, 5.0], [2.8, -0.1, 4.0], [0.3, 2.5, 6.0]])   # in the camera: x -50.5, x 404.5, y 265.3
     outside = (seen - tvec) @ R   # (world = R^T (camera - t), row by row)
-    return image, truth.camera(K, R, tvec), np.vstack([inside[:2], outside[:2], outside[3:], inside[2:], outside[2:3]])
+    return image, truth.camera(K, R, tvec), np.vstack([inside[:2], outside[:2], inside[2:], outside[2:]])
 
 
-@ex5.check("project_onto_image with points off the image and one behind the camera: a row per point", points=1)
+@ex5.check("project_onto_image with points off the image: a row per point", points=1)
 def project_onto_image_off_the_frame(t):
     """Every point keeps its row, so that row i is point i's: off the frame it is where the camera sends
-    it (nothing is drawn there); behind the camera any value is accepted (NaN is recommended)."""
+    it (nothing is drawn there). (No point behind the camera: NaN, the skeleton's advice, would reach
+    the student's own drawing, which the API does not ask to take NaN.)"""
     image, P, X = _scene_off_the_frame()
     got = t.call("project_onto_image", image, P, X)
     if not (isinstance(got, (tuple, list)) and len(got) == 2):
         t.fail("project_onto_image should return a pair (image, pts)")
     pts, expected = got[1], truth.homogeneous_project(P, X)
-    what = f"project_onto_image(image, P, points)[1], {len(X)} points of which 3 fall off the 320x240 image " \
-           "and 1 is behind the camera"
+    what = f"project_onto_image(image, P, points)[1], {len(X)} points of which 3 fall off the 320x240 image"
     rows = getattr(pts, "shape", (None,))[0] if getattr(pts, "ndim", 0) == 2 else None
     if rows is not None and rows < len(X):
         t.fail(f"{what}, has {rows} rows: every point keeps its row (row i is point i's, its image off the frame "
-               "or NaN behind the camera), so that a caller can match the points to what it gave. "
-               + measured(f"{len(X) - rows} fewer rows than points: are the points off the image, or behind the "
-                          "camera, left out?"), mistake="points off the image or behind the camera are left out")
-    front = ~np.isnan(expected[:, 0])
-    if isinstance(pts, np.ndarray) and pts.shape == expected.shape:
-        pts = np.where(front[:, None], pts, expected)   # (behind the camera: any value)
+               "too), so that a caller can match the points to what it gave. "
+               + measured(f"{len(X) - rows} fewer rows than points: are the points off the image left out?"),
+               mistake="points off the image are left out")
     judge_points(t, what, pts, expected, project_mistakes(P, X), tolerance=1e-6,
                  probe=points_probe(t, "project_onto_image"))
 

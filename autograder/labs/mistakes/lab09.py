@@ -187,7 +187,7 @@ MISTAKES = {
             h, w = image.shape[:2]
             keep = (pts[:, 0] >= 0) & (pts[:, 0] < w) & (pts[:, 1] >= 0) & (pts[:, 1] < h)
             return drawn, pts[keep]
-        """, ["fewer rows than points", "left out"]),
+        """, ["fewer rows than points", "off the image left out"]),
     "inverted real image": ("lab09.ex4", """
         _right = simulate_aperture
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
