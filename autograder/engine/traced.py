@@ -1197,7 +1197,7 @@ def named_by_values(verdict, trial):
     return replace(verdict, message=f"{lead} {departure_sentence(found)}.{newline}{rest}", mistake=found[0].mistake)
 
 
-_LINES = re.compile(r"\(line (\d+)")
+_PLACES = re.compile(r"\(line (\d+)(?:, in `(\w+)`)?")   # a repair's places: its line, and the helper it is in
 GUESS = ": it looks like "
 
 
@@ -1217,9 +1217,18 @@ def departure_before_repair(verdict, trial):
     if not (str(verdict.mistake).startswith(repair.MISTAKE) or guessed) or repair.HEAD not in first:
         return verdict
     lead, _, told = first.partition(repair.HEAD)
-    lines = [int(n) for n in _LINES.findall(told)]
-    found = confirmed_departure(trial) if lines else None
-    if found is None or min(lines) <= found[1].lineno:
+    places = [(int(line), helper) for line, helper in _PLACES.findall(told)]
+    found = confirmed_departure(trial) if places else None
+    if found is None:
+        return verdict
+    # (lines are ordered within one def only: a change in a helper -- "(line 175, in `_core`)" -- is
+    # after the departure only where the departure is in that helper too)
+    from .hints import code_of
+
+    holder = next((name for name, fn in code_of(trial).functions.items()
+                   if fn.lineno <= found[1].lineno <= (fn.end_lineno or fn.lineno)), None)
+    graded = found[3]
+    if not all((helper or graded) == holder and line > found[1].lineno for line, helper in places):
         return verdict
     if guessed:   # (a check's guess from the answer alone -- "it looks like pts1 and pts2 are swapped" -- whose
         lead = lead.split(GUESS, 1)[0]   # repair undoes the departure later: the departure is the cause shown)

@@ -87,9 +87,39 @@ class _Function:
         return None if name in self.local else ("module", name)
 
 
-def anchored(student: ast.FunctionDef, reference: ast.FunctionDef) -> set[int]:
-    """The ids of ``student``'s statements anchored in ``reference`` (see the module's docstring)."""
+def module_bindings(tree: ast.Module) -> dict[str, str]:
+    """What each module-level name is bound to, for comparison: a def's or a class's whole code, an
+    assignment's value, an import's module (names bound otherwise, or twice, are left out: unknown)."""
+    bound: dict[str, str] = {}
+    twice: set[str] = set()
+
+    def bind(name: str, text: str):
+        if name in bound:
+            twice.add(name)
+        bound[name] = text
+    for node in tree.body:
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            bind(node.name, ast.dump(node))
+        elif isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+            bind(node.targets[0].id, ast.dump(node.value))
+        elif isinstance(node, (ast.Import, ast.ImportFrom)):
+            for alias in node.names:
+                bind(alias.asname or alias.name.split(".")[0], f"{getattr(node, 'module', '')}:{alias.name}")
+    return {name: text for name, text in bound.items() if name not in twice}
+
+
+def anchored(student: ast.FunctionDef, reference: ast.FunctionDef, student_module: ast.Module | None = None,
+             reference_module: ast.Module | None = None) -> set[int]:
+    """The ids of ``student``'s statements anchored in ``reference`` (see the module's docstring). A
+    module-level name read is the same in both only where both modules bind it alike (a helper of the
+    same name whose code differs is another value: `_eight_point_core` changed makes its callers' lines
+    unanchored); without the modules, by name alone."""
     mine, theirs = _Function(student), _Function(reference)
+    if student_module is not None and reference_module is not None:
+        own, model = module_bindings(student_module), module_bindings(reference_module)
+        differ = {name for name in set(own) | set(model) if own.get(name) != model.get(name)}
+    else:
+        differ = set()
     known: dict[tuple[int, int], bool] = {}
 
     def same(statement: ast.stmt, model: ast.stmt) -> bool:
@@ -107,7 +137,7 @@ def anchored(student: ast.FunctionDef, reference: ast.FunctionDef) -> set[int]:
         if source is None or model_source is None:
             return False
         if isinstance(source, tuple) or isinstance(model_source, tuple):
-            return source == model_source
+            return source == model_source and not (source[0] == "module" and source[1] in differ)
         return same(source, model_source)
 
     return {id(statement) for statement in mine.statements

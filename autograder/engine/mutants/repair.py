@@ -358,8 +358,8 @@ class _Student:
         if where not in self._anchored:
             reference = _defs(_reference_tree(self.reference_source)).get(where)
             fn = self._defs.get(where)
-            self._anchored[where] = anchors.anchored(fn, reference) if fn is not None and reference is not None \
-                else set()
+            self._anchored[where] = anchors.anchored(fn, reference, self.tree, _reference_tree(self.reference_source)) \
+                if fn is not None and reference is not None else set()
         return self._anchored[where]
 
     def reorders_api_results(self, mutant) -> bool:
@@ -993,7 +993,7 @@ def _student_code(trial) -> _Student | None:
 
 @functools.lru_cache(maxsize=8)
 def _reference_tree(source: str) -> ast.Module:
-    return ast.parse(source)   # (the reference: trusted, the grader's own)
+    return parse(source)   # (the reference: trusted, the grader's own; parsed under the lock all parses take)
 
 
 def _departs(fix: Fix, reference_source: str) -> bool:
