@@ -88,6 +88,16 @@ def check_results(result, exercise_id: str):
     return exercise.checks
 
 
+def failing_messages(folder, exercise_id: str, public_only: bool = True, startswith: str = "") -> list[str]:
+    """The messages of ``exercise_id``'s checks that lost points when ``folder`` is graded on that
+    exercise (its public checks only, unless asked; those whose name starts with ``startswith``)."""
+    from autograder.engine.runner import grade
+
+    result = grade(str(folder), [exercise_id], include_hidden=not public_only)
+    return [c.message for c in check_results(result, exercise_id)
+            if c.score < c.max_score and c.name.startswith(startswith)]
+
+
 def assert_diagnosed(result, exercise_id: str, *fragments: str):
     """The exercise lost points, one failure message contains every fragment, and no check
     names another mistake (:func:`autograder.instructor.verify.case_problems`)."""

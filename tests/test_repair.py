@@ -16,7 +16,7 @@ from autograder.engine.mutants import repair
 from autograder.engine.mutants.operators import Mutant
 from autograder.engine.runner import grade
 from autograder.sandbox.supervisor import Limits, Sandbox
-from conftest import check_results, edited_reference, mutant, submission_from_source
+from conftest import check_results, edited_reference, failing_messages, mutant, submission_from_source
 
 SMALL = Limits(call_timeout=5.0)
 
@@ -2813,8 +2813,7 @@ def test_a_change_of_a_line_written_as_the_reference_writes_it_is_not_told(tmp_p
     folder = edited_reference(tmp_path, "lab07_transformations", (
         "R = np.array([[cos, sin],\n                  [-sin, cos]])",
         "R = np.array([[cos, -sin],\n                  [sin, cos]])"))
-    messages = [c.message for c in check_results(grade(str(folder), ["lab07.ex2"], include_hidden=False), "lab07.ex2")
-                if c.score < c.max_score]
+    messages = failing_messages(folder, "lab07.ex2")
     assert messages and not any("np.sin(-theta)" in m or "deg2rad(-" in m for m in messages), messages
     assert any("opposite way" in m for m in messages), messages
 
@@ -2834,8 +2833,7 @@ def gray_code_patterns(width, n_bits):
                 patterns[i, u] = 255
     return patterns
 ''')
-    messages = [c.message for c in check_results(grade(str(folder), ["lab12.ex6"], include_hidden=False), "lab12.ex6")
-                if c.score < c.max_score and c.name.startswith("gray_code_patterns")]
+    messages = failing_messages(folder, "lab12.ex6", startswith="gray_code_patterns")
     assert messages and all("`g >> n_bits - i - 1`" in m for m in messages), messages
     assert not any("k ^ k << 1" in m for m in messages), messages
 
@@ -2844,8 +2842,7 @@ def test_the_middle_of_a_range_where_the_mean_belongs_is_told_the_mean(tmp_path)
     # weak perspective's default depth taken as the middle of the depth range: the same on symmetric depths
     folder = edited_reference(tmp_path, "lab10_camera2", (
         "z = X[:, 2].mean() if z_avg is None", "z = (X[:, 2].min() + X[:, 2].max()) / 2 if z_avg is None"))
-    messages = [c.message for c in check_results(grade(str(folder), ["lab10.ex2"], include_hidden=False), "lab10.ex2")
-                if c.score < c.max_score]
+    messages = failing_messages(folder, "lab10.ex2")
     assert messages and all("to `np.mean(X[:, 2])` (line " in m for m in messages), messages
 
 
@@ -2855,8 +2852,7 @@ def test_one_view_left_without_its_twins_step_is_given_that_step(tmp_path):
     folder = edited_reference(tmp_path, "lab11_two_view", (
         "Fn = _eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T)",
         "Fn = _eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2))"))
-    messages = [c.message for c in check_results(grade(str(folder), ["lab11.ex4"], include_hidden=False), "lab11.ex4")
-                if c.score < c.max_score]
+    messages = failing_messages(folder, "lab11.ex4")
     assert messages and all("to `_eight_point_core(..., _homogeneous(pts2) @ T2.T)`" in m for m in messages), messages
     assert not any("to `Fn @ T1`" in m for m in messages), messages
 
@@ -2877,8 +2873,7 @@ def orthographic_project(points):
     xy = proj[:, :2] / proj[:, 2:]
     return xy[0] if single else xy
 ''')
-    messages = [c.message for c in check_results(grade(str(folder), ["lab10.ex3"], include_hidden=False), "lab10.ex3")
-                if c.score < c.max_score]
+    messages = failing_messages(folder, "lab10.ex3")
     assert any("to `[0.0, 0.0, 0.0, 1.0]`" in m for m in messages), messages
     assert not any("to `proj[:, :2]` (line" in m for m in messages), messages
 
@@ -2898,8 +2893,7 @@ def rotate(image, angle_deg=45):
     M = cv2.getRotationMatrix2D(((width - 1) / 2.0, (height - 1) / 2.0), angle_deg, 1.0)
     return cv2.warpAffine(image, M, (width, height))
 ''')
-    messages = [c.message for c in check_results(grade(str(folder), ["lab07.ex2"], include_hidden=False), "lab07.ex2")
-                if c.score < c.max_score]
+    messages = failing_messages(folder, "lab07.ex2")
     assert messages and all("skipping the branch `if height == width and angle in quarter:`" in m
                             for m in messages), messages
 
@@ -2911,8 +2905,7 @@ def scaling_matrix(sx, sy):
     M[:2, :2] = [sx, sy]
     return M
 ''')
-    messages = [c.message for c in check_results(grade(str(folder), ["lab07.ex3"], include_hidden=False), "lab07.ex3")
-                if c.score < c.max_score and c.name.startswith("scaling_matrix")]
+    messages = failing_messages(folder, "lab07.ex3", startswith="scaling_matrix")
     assert messages and all("to `M[:2, :2] = np.diag([sx, sy])`" in m for m in messages), messages
 
 
@@ -2930,6 +2923,5 @@ def dolly_zoom(points, f0, z0, distances):
         projections.append(perspective_project(moved, f))
     return np.array(focal_lengths, dtype=np.float64), np.array(projections)
 ''')
-    messages = [c.message for c in check_results(grade(str(folder), ["lab10.ext2"], include_hidden=False), "lab10.ext2")
-                if c.score < c.max_score]
+    messages = failing_messages(folder, "lab10.ext2")
     assert messages and all("to `moved = pts.copy()`" in m for m in messages), messages

@@ -17,7 +17,7 @@ from fixtures.images import photo
 
 from ..engine import conventions
 from ..engine import strategies as st
-from ..engine.checks import Fail, StudentFailure, Trial, passed
+from ..engine.checks import Fail, StudentFailure, Trial, Verdict, passed
 from ..engine.claims import calls_any, guard, measured
 from ..engine.compare import format_arrays_apart
 from ..engine.judges import (Probe, call_probe, digits_apart, judge_matrix, judge_parameter_used, judge_warp,
@@ -230,10 +230,15 @@ def rotate_square_quarter_turns(t):
     """A square image turned a quarter turn fills its frame exactly, so a shortcut through np.rot90 or
     cv2.rotate is right there -- in the direction a positive angle means (counter-clockwise on screen)
     only; the other checks' quarter turn is of a non-square image, where no such shortcut applies."""
-    source = photo("astronaut", (128, 128))
+    return judge_rotations(t, "square image", photo("astronaut", (128, 128)), (90, -90, 270))
+
+
+def judge_rotations(t: Trial, described: str, source, angles) -> Verdict:
+    """rotate(source, angle_deg=a) judged for each of ``angles`` in turn, about the image's centre: the
+    first that fails is the verdict."""
     centre = truth.image_centre(source.shape)
-    for angle in (90, -90, 270):
-        verdict = judge_warp(t, f"rotate(square image, angle_deg={angle})", t.call("rotate", source, angle_deg=angle),
+    for angle in angles:
+        verdict = judge_warp(t, f"rotate({described}, angle_deg={angle})", t.call("rotate", source, angle_deg=angle),
                              source, truth.rotation(angle, centre), truth.rotation_mistakes(angle, centre),
                              probe=image_probe(t, "rotate"))
         if verdict.fraction < 1.0:

@@ -7,7 +7,7 @@ offsets, angles, scales and point sets, within ranges that keep each check's que
 import numpy as np
 
 from autograder.engine.judges import judge_warp
-from autograder.labs.lab07 import ex1, ex2, ex3, ex4, ex5, ex6, image_probe, judge_affine_fit, judge_lstsq
+from autograder.labs.lab07 import ex1, ex2, ex3, ex4, ex5, ex6, image_probe, judge_affine_fit, judge_lstsq, judge_rotations
 from fixtures import lab07 as truth
 
 from ._draws import crop, seed, uniform
@@ -29,16 +29,9 @@ def translate_fractional(t):
 @ex2.check("rotate by large angles, beyond 180 and negative", points=2, hidden=True)
 def rotate_large_angles(t):
     source = crop(t.rng, "chelsea", (180, 120))
-    centre = truth.image_centre(source.shape)
     # Well away from 180 degrees, where a rotation the opposite way is the same rotation.
     angles = (uniform(t.rng, 195.0, 255.0, 1), uniform(t.rng, -160.0, -60.0, 1))
-    for angle in angles:
-        verdict = judge_warp(t, f"rotate(image, angle_deg={angle})", t.call("rotate", source, angle_deg=angle),
-                             source, truth.rotation(angle, centre), truth.rotation_mistakes(angle, centre),
-                             probe=image_probe(t, "rotate"))
-        if verdict.fraction < 1:
-            return verdict
-    return verdict
+    return judge_rotations(t, "image", source, angles)
 
 
 @ex3.check("shrinking: scale(image, sx, sy) with both below 1", points=2, hidden=True)
