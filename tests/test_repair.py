@@ -2807,6 +2807,19 @@ def test_a_statement_is_anchored_only_with_everything_it_reads():
     assert _anchored_lines(reference, reference) == {3, 4, 5, 6}
 
 
+def test_module_level_names_bound_otherwise_are_told_apart_even_through_a_helper():
+    from autograder.engine.mutants.anchors import differing_names
+
+    reference = ast.parse("import numpy as np\nK = 2\ndef core(x):\n    return x * K\ndef outer(x):\n    return core(x)\n")
+    same = differing_names(reference, reference)
+    assert same == frozenset()
+    changed = ast.parse("import numpy as np\nK = 3\ndef core(x):\n    return x * K\ndef outer(x):\n    return core(x)\n")
+    assert differing_names(changed, reference) == {"K", "core", "outer"}   # (core reads K, outer reads core)
+    twice = ast.parse("import numpy as np\nK = 2\ndef core(x):\n    return x * K\ndef core(x):\n    return x * K\n"
+                      "def outer(x):\n    return core(x)\n")
+    assert {"core", "outer"} <= differing_names(twice, reference)
+
+
 def test_a_change_of_a_line_written_as_the_reference_writes_it_is_not_told(tmp_path):
     # the lecture's R(theta) where the screen's R(-theta) belongs: flipping the sine where it is computed
     # (`np.sin(-theta)`, the reference's own line) mends the answers by compensating; the matrix is the slip

@@ -87,39 +87,56 @@ class _Function:
         return None if name in self.local else ("module", name)
 
 
-def module_bindings(tree: ast.Module) -> dict[str, str]:
-    """What each module-level name is bound to, for comparison: a def's or a class's whole code, an
-    assignment's value, an import's module (names bound otherwise, or twice, are left out: unknown)."""
+def _bindings(tree: ast.Module) -> tuple[dict[str, str], dict[str, set], set[str]]:
+    """What each module-level name is bound to, for comparison (a def's or a class's whole code, an
+    assignment's value, an import's module), the module-level names each binding reads, and the names
+    bound more than once or otherwise (unknown)."""
     bound: dict[str, str] = {}
-    twice: set[str] = set()
-
-    def bind(name: str, text: str):
-        if name in bound:
-            twice.add(name)
-        bound[name] = text
+    reads: dict[str, set] = {}
+    unknown: set[str] = set()
     for node in tree.body:
         if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
-            bind(node.name, ast.dump(node))
+            named = [(node.name, ast.dump(node), node)]
         elif isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
-            bind(node.targets[0].id, ast.dump(node.value))
+            named = [(node.targets[0].id, ast.dump(node.value), node.value)]
         elif isinstance(node, (ast.Import, ast.ImportFrom)):
-            for alias in node.names:
-                bind(alias.asname or alias.name.split(".")[0], f"{getattr(node, 'module', '')}:{alias.name}")
-    return {name: text for name, text in bound.items() if name not in twice}
+            named = [(alias.asname or alias.name.split(".")[0], f"{getattr(node, 'module', '')}:{alias.name}", None)
+                     for alias in node.names]
+        else:
+            named = [(n.id, "", None) for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)]
+            unknown.update(name for name, _, _ in named)
+        for name, text, value in named:
+            if name in bound:
+                unknown.add(name)
+            bound[name] = text
+            reads[name] = set() if value is None else \
+                {n.id for n in ast.walk(value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    return bound, reads, unknown
 
 
-def anchored(student: ast.FunctionDef, reference: ast.FunctionDef, student_module: ast.Module | None = None,
-             reference_module: ast.Module | None = None) -> set[int]:
+def differing_names(student_module: ast.Module, reference_module: ast.Module) -> frozenset[str]:
+    """The module-level names the two modules do not bind alike: bound to other code or values, bound
+    in one only, bound twice, or bound alike but reading such a name (a helper of the same code calling
+    a helper that differs)."""
+    own, own_reads, own_unknown = _bindings(student_module)
+    model, _, model_unknown = _bindings(reference_module)
+    differ = {name for name in set(own) | set(model) if own.get(name) != model.get(name)}
+    differ |= own_unknown | model_unknown
+    grown = True
+    while grown:   # (at most one pass per name: each pass adds one at least)
+        grown = False
+        for name, read in own_reads.items():
+            if name not in differ and read & differ:
+                differ.add(name)
+                grown = True
+    return frozenset(differ)
+
+
+def anchored(student: ast.FunctionDef, reference: ast.FunctionDef, differ: frozenset = frozenset()) -> set[int]:
     """The ids of ``student``'s statements anchored in ``reference`` (see the module's docstring). A
-    module-level name read is the same in both only where both modules bind it alike (a helper of the
-    same name whose code differs is another value: `_eight_point_core` changed makes its callers' lines
-    unanchored); without the modules, by name alone."""
+    module-level name read is the same in both only where it is not in ``differ`` (:func:`differing_names`:
+    `_eight_point_core` changed makes its callers' lines unanchored)."""
     mine, theirs = _Function(student), _Function(reference)
-    if student_module is not None and reference_module is not None:
-        own, model = module_bindings(student_module), module_bindings(reference_module)
-        differ = {name for name in set(own) | set(model) if own.get(name) != model.get(name)}
-    else:
-        differ = set()
     known: dict[tuple[int, int], bool] = {}
 
     def same(statement: ast.stmt, model: ast.stmt) -> bool:

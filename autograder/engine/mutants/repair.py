@@ -226,6 +226,7 @@ class _Student:
         self.reference_parts: frozenset = frozenset()   # (name, its parts' names) the reference unpacks
         self.reference_source = ""    # the lab's reference module (see follows_reference)
         self._anchored: dict = {}    # def name -> ids of its statements anchored in the reference's
+        self._differ: frozenset | None = None   # module-level names bound otherwise than the reference's
 
     def mutants(self, function: str) -> list:
         """The operators' changes of the code ``function`` runs (made at its first failure: a long
@@ -358,7 +359,9 @@ class _Student:
         if where not in self._anchored:
             reference = _defs(_reference_tree(self.reference_source)).get(where)
             fn = self._defs.get(where)
-            self._anchored[where] = anchors.anchored(fn, reference, self.tree, _reference_tree(self.reference_source)) \
+            if self._differ is None:
+                self._differ = anchors.differing_names(self.tree, _reference_tree(self.reference_source))
+            self._anchored[where] = anchors.anchored(fn, reference, self._differ) \
                 if fn is not None and reference is not None else set()
         return self._anchored[where]
 
