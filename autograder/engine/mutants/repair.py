@@ -319,6 +319,17 @@ class _Student:
             statement = parents[id(statement)][0]
         if not isinstance(statement, ast.Assign):
             return None
+        # (the changed value no longer reads a parameter it read -- `float(angle_deg)` made `float(width)`:
+        # a value made unrelated to its input, not a value's slip mended, `n // 2` -> `n // 3`)
+        parameters = {a.arg for a in fn.args.args + fn.args.kwonlyargs}
+        line, before, after = fix.changes[0]
+        try:
+            read_before, read_after = ({n.id for n in ast.walk(parse(text)) if isinstance(n, ast.Name)} & parameters
+                                       for text in (before, after))
+        except SyntaxError:
+            return None
+        if read_before <= read_after:
+            return None
         made = {n.id for t in statement.targets for n in ast.walk(t) if isinstance(n, ast.Name)}
         tests = {id(node.test): node for node in ast.walk(fn) if isinstance(node, ast.If)}
         branches, reads = [], 0
@@ -350,7 +361,6 @@ class _Student:
         if len(test) > 60:
             return None
         last = max(getattr(s, "end_lineno", None) or s.lineno for s in branch.body)
-        line, before, after = fix.changes[0]
         told = (f"skipping the branch `if {test}:` (lines {branch.lineno}-{last}{{inside}}; changing `{before}` to "
                 f"`{after}` on line {line} skips it)")
         return Fix(((line, before, told),), where, "branch", fix.edits)
