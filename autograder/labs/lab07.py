@@ -447,6 +447,17 @@ def warp_affine_default(t):
         probe=image_probe(t, "warp_affine"))
 
 
+@ex5.check("warp_affine(grey image, A) keeps a grey image's size too", points=1)
+def warp_affine_grey_default(t):
+    """The default size read from a grey (H, W) image as from a colour one (`image.shape[1::-1]` is (W, H)
+    for both; a slice counted from the end, `shape[-2::-1]`, is (H,) for a grey one)."""
+    source = photo("chelsea", (160, 120), grey=True)
+    A = np.array([[0.9, -0.2, 20.0], [0.15, 1.05, -5.0]])
+    what = "warp_affine(grey image, A)"
+    return judge_warp(t, what, call_on(t, what, "warp_affine", source, A), source, A, truth.warp_mistakes(A),
+                      probe=image_probe(t, "warp_affine"))
+
+
 @ex5.check("warp_affine with dsize=(width, height)", points=2)
 def warp_affine_dsize(t):
     # grey, as the API allows (the other warp_affine check gives a colour image)

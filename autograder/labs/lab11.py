@@ -945,6 +945,17 @@ def essential_8point_exact(t):
     judge_projective(t, what, got, sideways.E, tolerance=1e-5)
 
 
+@ex3.check("essential_8point with cameras whose pixels are not square (fx != fy)", points=1)
+def essential_8point_non_square(t):
+    """K is any upper-triangular matrix: pixels are normalised with K^-1, each coordinate by its own focal
+    length (a y divided by fx is right only for square pixels)."""
+    views = truth.non_square_pixel_views()
+    what = "essential_8point(pts1, pts2, K1, K2), exact, with fy = 1.25 fx in K1 and fx = 0.85 fy in K2"
+    got = t.call("essential_8point", views.pts1, views.pts2, views.cam1.K, views.cam2.K)
+    judge_projective(t, what, got, views.E, _essential_8point_mistakes(views, truth.figures()["essential_exact"]),
+                     tolerance=1e-5)
+
+
 ESSENTIAL_VALUES_HINT = Hint(
     "Replace them by (1, 1, 0) (U diag(1, 1, 0) V^T).",
     asks=(expr("np.diag([1, 1, 0])") | expr("np.diag((1, 1, 0))")).saying("builds diag(1, 1, 0)"),

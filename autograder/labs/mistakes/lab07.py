@@ -355,4 +355,9 @@ MISTAKES = {
             out[rows[0], cols[0]] = image[rows[1], cols[1]]
             return out
         """, ["translate() raised valueerror", "(raised on translate(grey image, tx=45, ty=0))"]),
+    "a grey image's default size read from the end of its shape": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            size = image.shape[-2::-1] if dsize is None else dsize
+            return cv2.warpAffine(image, np.asarray(A, np.float64), tuple(int(n) for n in size))
+        """, ["warp_affine(grey image, A)", "dsize as 2 numbers"]),
 }

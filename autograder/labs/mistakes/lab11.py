@@ -585,4 +585,15 @@ MISTAKES = {
             with np.errstate(divide="ignore", invalid="ignore"):
                 return E / E[2, 2]
         """, ["divides by an entry [2, 2]", "e[2, 2] is 0 here"]),
+    "pixels taken for square in the normalisation": ("lab11.ex3", """
+        def essential_8point(pts1, pts2, K1, K2):
+            def normalised(pts, K):
+                pts = np.asarray(pts, np.float64)
+                y = (pts[:, 1] - K[1, 2]) / K[0, 0]
+                x = (pts[:, 0] - K[0, 2] - K[0, 1] * y) / K[0, 0]
+                return np.column_stack([x, y, np.ones(len(pts))])
+            E = _eight_point_core(normalised(pts1, K1), normalised(pts2, K2))
+            U, _, Vt = np.linalg.svd(E)
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+        """, ["fy = 1.25 fx in K1"]),
 }
