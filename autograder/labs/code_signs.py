@@ -102,7 +102,7 @@ def _divides_by_name_or_entry(names: tuple[str, ...], index: int) -> Predicate:
 
 # Lines a x + b y + c = 0 drawn as y = -(a x + c) / b only: a division by b, none by a.
 LINES_FROM_SIDES_ONLY = (_divides_by_name_or_entry(("b",), 1) & ~_divides_by_name_or_entry(("a",), 0)).saying(
-    "computes y = -(a x + c) / b at the left and right borders only (it divides by b, never by a)")
+    "computes each line's y from x, y = -(a x + c) / b (it divides by b, never by a)")
 
 
 _STACKS = ("hstack", "column_stack", "concatenate", "c_")

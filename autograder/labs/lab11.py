@@ -553,7 +553,7 @@ def name_dark_on_grey(t: Trial, what: str, image, lines, missed):
                              "out)."))   # (an effect, measured: no name of the slip, so the repairs look for it)
 
 
-SIDES_ONLY = "each line is intersected with the left and right borders only (x = 0 and x = w - 1)"
+SIDES_ONLY = "each line's y is computed from its x only, never its x from y: steep lines are missed"
 
 
 def name_steep_lines_missed(t: Trial, what: str, missed, lines, shape, stray: float):
@@ -581,9 +581,10 @@ def name_steep_lines_missed(t: Trial, what: str, missed, lines, shape, stray: fl
     found = LINES_FROM_SIDES_ONLY.found(code_of(t).reachable(["draw_epipolar_lines"]))
     if found:
         t.fail(f"{measured_part}: it looks like {SIDES_ONLY}. Your code {found}: "
-               + from_code("a line that leaves through the top or bottom has its y = -(a x + c) / b outside the image "
-                           "at x = 0 or x = w - 1 (for b = 0, undefined); intersect it with y = 0 and y = h - 1 "
-                           "(x = -(b y + c) / a), or draw between far points and let cv2.clipLine cut them."),
+               + from_code("a steep line (|a| > |b|) has few columns in the image, and its y = -(a x + c) / b falls "
+                           "outside it at the left and right borders (for b = 0, a vertical line, it is undefined); for "
+                           "those, compute x = -(b y + c) / a from y (at y = 0 and y = h - 1, or at every row), or "
+                           "draw between far points and let cv2.clipLine cut them."),
                mistake=SIDES_ONLY)
     t.fail(measured_part + ".")
 

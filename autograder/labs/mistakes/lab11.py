@@ -220,7 +220,7 @@ MISTAKES = {
                 cv2.line(canvas, (0, y0), (width - 1, y1), colour, 1)
             return canvas
         """, ["leave the image through its top or bottom border",
-              "intersected with the left and right borders only"]),
+              "computed from its x only, never its x from y"]),
     "draw each line between the left and right borders, vertical lines skipped": ("lab11.ex2", """
         def draw_epipolar_lines(image, lines):
             canvas = np.array(image, dtype=np.uint8, copy=True)
@@ -233,7 +233,7 @@ MISTAKES = {
                 colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 255
                 cv2.line(canvas, p, q, colour, 1)
             return canvas
-        """, ["line 0 of 2", "intersected with the left and right borders only"]),
+        """, ["line 0 of 2", "computed from its x only, never its x from y"]),
     "draw_epipolar_lines drawing on the caller's image": ("lab11.ex2", """
         def draw_epipolar_lines(image, lines):
             canvas = np.asarray(image)
