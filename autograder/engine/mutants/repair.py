@@ -1633,6 +1633,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # change in its own code and one in a helper only it runs are both told (a band's sign
         # flipped where the pyramid is built, or undone where it is collapsed).
         kept = [pair for pair in fixes if not student.shared(pair[1].where, function)]
+        if kept and all(student.departs_from_reference(m) for m, _ in kept) and any(
+                student.shared(f.where, function) and not student.departs_from_reference(m) for m, f in fixes):
+            # (every place of its own is written as the reference writes it -- `_eight_point_core(x1, x2)` --
+            # where the shared helper's place is not: the helper is where the slip is, for every caller)
+            kept = []
         # (a comparison made strict or not changes only ties: beside another fix it is one by chance --
         # `ssd <= best` beside the update moved where it belongs -- and is not told)
         kept = [pair for pair in (kept or fixes) if not _ties_only(pair[1])] or kept
