@@ -1720,7 +1720,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             near_pairs.append((0.0, len(near_pairs), both, values))
         elif all(variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing)):
             if _accepted_pair(variant, both, failing):
-                return variant.repair([(both, variant.fix(both))])
+                return variant.repair([_one_half_enough(variant, both, failing, inputs, references)])
             exact_pairs.append((both, values))
         elif np.isfinite(off) and fallback is None:   # (beside a removal found: only exact pairs replace it)
             apart = sum(variant.distance(v, references[i]) for v, i in zip(values, failing))
@@ -1733,8 +1733,30 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             return fallback
         if both.key not in variant.checked and variant.passes_check(both, values, failing, pair=True) \
                 and _accepted_pair(variant, both, failing):
-            return variant.repair([(both, variant.fix(both))])
+            return variant.repair([_one_half_enough(variant, both, failing, inputs, references, judged=True)])
     return fallback
+
+
+def _one_half_enough(variant, both, failing, inputs, references, judged: bool = False) -> tuple:
+    """``(mutant, fix)`` to tell for an accepted pair of changes: one of its two changes alone where it
+    is accepted as the pair was (`_transfer_errors(Hs, dst, src)` -> `(Hs, src, dst)` mends RANSAC alone;
+    the tie-break's `np.where` exchanged beside it changes nothing that matters), else the pair."""
+    if len(both.edits) == 2 and variant.clock.left() > 0:
+        for edit in both.edits:
+            half = replace(both, edits=(edit,), operator=edit[2])
+            if variant.fix(half) is None:
+                continue
+            values = variant.answers(half, failing, inputs)
+            if values is None:
+                continue
+            if judged:   # (each half is given a replay of its own: the pair's search may have used them all)
+                variant.replays = min(variant.replays, REPLAYS - 1)
+                accepted = half.key not in variant.checked and variant.passes_check(half, values, failing, pair=True)
+            else:
+                accepted = all(variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing))
+            if accepted and _accepted_pair(variant, half, failing):
+                return half, variant.fix(half)
+    return both, variant.fix(both)
 
 
 def _accepted_pair(variant, both, failing) -> bool:
