@@ -157,6 +157,18 @@ def test_a_crop_of_an_array_smaller_than_asked_is_told_that_a_slice_never_pads()
     assert shrunk is None or "never pads" not in shrunk, shrunk   # (a step shrinks what has the size asked)
 
 
+def test_an_array_made_without_the_values_last_axis_is_named_where_it_was_made():
+    sentence = raised_sentence("""
+        def paste(image):
+            h, w = image.shape[:2]
+            out = np.zeros(image.shape[:2], dtype=image.dtype)
+            out[:h, :w] = image
+            return out
+        """, "paste", np.zeros((4, 5, 3), np.uint8))
+    assert sentence.endswith("`out` comes from `np.zeros(image.shape[:2], dtype=image.dtype)` (line 4), of 2 axes "
+                             "where the value has 3"), sentence
+
+
 def test_a_negative_slice_bound_is_named_with_its_value():
     sentence = raised_sentence("""
         def shift_rows(image, s):

@@ -401,7 +401,7 @@ def explain_raised(code, recording: Recording, fn, line: int, message: str, fram
         return _broadcast_named(recording, expressions, shapes, where)
     found = _INTO.search(message)
     if found:
-        return _assigned_named(recording, statement, _parsed(found.group(1)), _parsed(found.group(2)), where)
+        return _assigned_named(recording, statement, _parsed(found.group(1)), _parsed(found.group(2)), where, fn)
     if _MATMUL.search(message):
         return _product_named(recording, expressions, where)
     found = _OUT_OF_BOUNDS.search(message)
@@ -479,7 +479,7 @@ def _why_not_broadcast(a, sa, b, sb) -> str:
     return ": NumPy lines shapes up from their last axes"
 
 
-def _assigned_named(recording, statement, given, into, where) -> Form | None:
+def _assigned_named(recording, statement, given, into, where, fn=None) -> Form | None:
     if not isinstance(statement, (ast.Assign, ast.AugAssign)):
         return None
     targets = statement.targets if isinstance(statement, ast.Assign) else [statement.target]
@@ -495,7 +495,14 @@ def _assigned_named(recording, statement, given, into, where) -> Form | None:
         said = f"{_quote(target)} {where} has shape {_shape_text(into)} and is given a value of shape {_shape_text(given)}"
         bounds = [(b, recording.number(b)) for b in _slice_bounds(target.slice)]
         known = [f"{_quote(b)} = {v:g}" for b, v in bounds if v is not None and not isinstance(b, ast.Constant)]
-        return Form(said + (f" ({', '.join(known[:4])})" if known else ""), MISTAKE)
+        said += f" ({', '.join(known[:4])})" if known else ""
+        # (an array made without the value's last axis -- a grey canvas for a colour image: where it was made)
+        made = _last_given(fn, target.value.id, statement.lineno) \
+            if fn is not None and isinstance(target.value, ast.Name) and len(given) > len(into) else None
+        if made is not None:
+            said += f"; {_quote(target.value)} comes from {_quote(made[0])} (line {made[1]}), of {len(into)} axes " \
+                    f"where the value has {len(given)}"
+        return Form(said, MISTAKE)
     return None
 
 
