@@ -24,8 +24,8 @@ import pytest
 
 from autograder.engine import outputs, raised
 from autograder.engine.checks import Fail, Trial, Verdict
-from autograder.engine.cv_raised import (CROSS_CHECK_KNN, DETECT_FLOAT, FLANN_KDTREE_BINARY, FLANN_LSH_FLOAT,
-                                         HAMMING_FLOAT, PASSED_AS_GIVEN, REMAP_TYPES)
+from autograder.engine.cv_raised import (CROSS_CHECK_KNN, DETECT_FLOAT, DISPARITIES_NOT_16, FLANN_KDTREE_BINARY,
+                                         FLANN_LSH_FLOAT, HAMMING_FLOAT, PASSED_AS_GIVEN, REMAP_TYPES)
 from autograder.engine.hints import read_code
 from autograder.engine.runner import _named_by_exception, _named_by_misread_output, grade
 from conftest import check_results, mutant
@@ -236,6 +236,7 @@ ys, xs = np.indices((8, 8))
 REMAP_FLOAT64 = opencv_error(lambda: cv2.remap(COLOUR, xs - 0.5 * ys, ys.astype(float), cv2.INTER_LINEAR))
 ONE_NEIGHBOUR = opencv_error(lambda: cv2.BFMatcher(cv2.NORM_HAMMING, crossCheck=True).knnMatch(UINT8, UINT8, k=2))
 DETECT_ON_FLOAT = opencv_error(lambda: cv2.SIFT_create().detectAndCompute(np.zeros((40, 40), np.float32), None))
+NUM_DISPARITIES = opencv_error(lambda: cv2.StereoBM_create(numDisparities=21, blockSize=9).compute(UINT8, UINT8))
 
 MATCHING = """
     import cv2
@@ -292,6 +293,14 @@ MATCHING = """
     def kd_tree(a, b):
         matcher = cv2.FlannBasedMatcher(dict(algorithm=1, trees=5), {})
         return matcher.knnMatch(a, b, k=2)
+
+    def stereo_bm(left, right, max_disparity=20):
+        matcher = cv2.StereoBM_create(numDisparities=max_disparity + 1, blockSize=9)
+        return matcher.compute(left, right)
+
+    def stereo_bm_rounded(left, right, max_disparity=20):
+        matcher = cv2.StereoBM_create(numDisparities=16 * ((max_disparity + 15) // 16), blockSize=9)
+        return matcher.compute(left, right)
 """
 OPENCV_NAMED = {
     "a KD-tree index for ORB's descriptors": (
@@ -307,6 +316,9 @@ OPENCV_NAMED = {
         [("detect", 34)], DETECT_ON_FLOAT, DETECT_FLOAT, ("a float array", "line 33")),
     "a KD-tree index and uint8 descriptors, no detector in sight": (
         [("kd_tree", 53)], KD_ON_BINARY, FLANN_KDTREE_BINARY, ("binary descriptors. Match",)),
+    "StereoBM given max_disparity + 1 disparities": (
+        [("stereo_bm", 59)], NUM_DISPARITIES, DISPARITIES_NOT_16, ("numDisparities=max_disparity + 1 (line 58)",
+                                                                   "multiple of 16")),
     "two neighbours of a cross-checking matcher": (
         [("ratio_cross_checked", 47)], ONE_NEIGHBOUR, CROSS_CHECK_KNN, ("crossCheck=True (line 46)",
                                                                         "crossCheck=False")),
@@ -314,6 +326,7 @@ OPENCV_NAMED = {
 OPENCV_NOT_NAMED = {
     "the Hamming assertion where the code asks for L2": ([("l2_match", 37)], HAMMING_ON_FLOAT),
     "remap given one map": ([("one_map", 40)], REMAP_FLOAT64),
+    "StereoBM's error where the code rounds to a multiple of 16": ([("stereo_bm_rounded", 63)], NUM_DISPARITIES),
     "a detector given the caller's image": ([("detect_given", 43)], DETECT_ON_FLOAT),
     "FLANN's float32 error where the code builds a KD-tree": ([("kd_tree", 53)], LSH_ON_FLOAT),
     "the one-neighbour assertion where the code builds no cross-check": ([("kd_tree", 53)], ONE_NEIGHBOUR),

@@ -24,6 +24,7 @@ _HAMMING_FLOATS = re.compile(r"\(type == CV_8U && dtype == CV_32S\) \|\| dtype =
 _ONE_NEIGHBOUR = re.compile(r"K == 1 && update == 0 && mask\.empty\(\) in function 'batchDistance'")
 _REMAP_TYPES = re.compile(r"map1\.type\(\) == CV_32FC2.*in function 'remap'", re.S)
 _DETECT_DEPTH = re.compile(r"incorrect depth \(!=CV_8U\) in function '(detectAndCompute|detect)'")
+_NUM_DISPARITIES = re.compile(r"numDisparities must be positive and divisible by 16")
 # FLANN's index algorithms (flann::flann_algorithm_t): the KD-trees take float32 rows, LSH binary (uint8) ones
 KDTREE, LSH = (1, 4), 6
 FLANN_KDTREE_BINARY = "FLANN's KD-tree index given binary (uint8) descriptors"
@@ -33,6 +34,7 @@ HAMMING_FLOAT = "Hamming distance on float descriptors"
 CROSS_CHECK_KNN = "two nearest neighbours asked of a cross-checking matcher"
 REMAP_TYPES = "remap's maps not float32"
 DETECT_FLOAT = "a float image given to a feature detector"
+DISPARITIES_NOT_16 = "numDisparities not a multiple of 16"
 PASSED_AS_GIVEN = "an input passed to OpenCV in the form the caller gave it"
 # the worker's sentence on a cv2 function's argument (autograder.sandbox.beginner): its parameter's name
 _WORKER_NAMES = re.compile(r"^cv2\.(\w+) (?:needs (?:the points in )?|cannot work on |cannot convert )(\w+)\b")
@@ -60,6 +62,28 @@ def opencv_explained(code, fn, line: int, given: dict, message: str, function: s
     found = _DETECT_DEPTH.search(message)
     if found:
         return _detect_float(fn, line, found.group(1))
+    if _NUM_DISPARITIES.search(message):
+        return _disparities_unrounded(functions)
+    return None
+
+
+def _disparities_unrounded(functions) -> Form | None:
+    """StereoBM refused its numDisparities (a positive multiple of 16): the value the code gives it, where no
+    16 is written in it (`numDisparities=max_disparity`)."""
+    for function in functions:
+        for node in _own_nodes(function):
+            if not (isinstance(node, ast.Call) and _path(node.func).rpartition(".")[2] in ("StereoBM_create",
+                                                                                          "StereoSGBM_create")):
+                continue
+            place = 0 if _path(node.func).endswith("StereoBM_create") else 1
+            given = next((k.value for k in node.keywords if k.arg == "numDisparities"),
+                         node.args[place] if len(node.args) > place else None)
+            if given is None or any(isinstance(n, ast.Constant) and n.value == 16 for n in ast.walk(given)):
+                continue
+            return Form(from_code(
+                f"your code gives {_path(node.func).rpartition('.')[2]} numDisparities={_short(given)} (line "
+                f"{node.lineno}), where no 16 is written, and OpenCV takes a positive multiple of 16 only: round it up "
+                f"(16 * ceil(max_disparity / 16)) and keep the disparities up to max_disparity"), DISPARITIES_NOT_16)
     return None
 
 
