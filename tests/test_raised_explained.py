@@ -252,3 +252,17 @@ def test_two_images_joined_as_they_came_are_named(second, message, told):
     converted = source.replace("canvas = np.hstack", "img2 = img2[:180]\n            canvas = np.hstack")
     text = text.replace("line 3", "line 4")
     assert explained(read_code(textwrap.dedent(converted)), text, message, "f", (first, second), {}) is None
+
+
+def test_a_single_point_joined_as_given_is_told_to_become_a_row_of_one_point():
+    # `X = np.asarray(points)` keeps a (3,) point 1-D: hstack with a column of ones refuses it; a point is a row
+    ndim = NDIM.replace("index 0 has 2", "index 0 has 1").replace("index 1 has 1", "index 1 has 2")
+    source = textwrap.dedent("""
+        def f(P, points):
+            X = np.asarray(points, dtype=np.float64)
+            Xh = np.hstack([X, np.ones((X.shape[0], 1))])
+            return Xh @ P.T
+        """)
+    tb = f'Traceback (your code):\n  File "lab.py", line 4, in f\n    ...\nValueError: {ndim}'
+    form = explained(read_code(source), tb, ndim, "f", (np.eye(3, 4), np.array([1.0, 2.0, 4.0])), {})
+    assert form is not None and "a single point" in form.sentence and "np.atleast_2d(X)" in form.sentence, form

@@ -353,20 +353,36 @@ def _join_named(fn, call, parts, found, given, line) -> Form | None:
     flat = [index for index, ndim in pairs if ndim == 1]
     if len(flat) != 1 or flat[0] >= len(parts):
         return None
-    part = _unwrapped(parts[flat[0]])
-    # (converted in place first, `t = np.asarray(t, float)`, it keeps the shape it was given)
-    if not isinstance(part, ast.Name) or part.id not in given or _changed(fn, part.id, line):
+    # (a parameter as given, or a name bound once to it converted without reshaping, `X = np.asarray(points)`)
+    found = _as_given(fn, line, given, parts[flat[0]])
+    if found is None:
         return None
-    value = given[part.id]
+    name, value = found
     if not isinstance(value, (np.ndarray, list, tuple)) or np.ndim(value) != 1:
         return None
     n = np.shape(value)[0]
     joined = ast.unparse(call)
     joined = joined if len(joined) <= 60 else joined[:57] + "..."
-    # measured: the line raised with this argument as given, so it was not made a column before
-    return Form(measured(f"your `{fn.name}` joins `{part.id}` as it was given, shape ({n},), a 1-D vector, to a 2-D array "
+    # measured: the line raised with this argument as given, so it was not made a row or a column before
+    if n in (2, 3) and _one_point(fn, name, given):
+        return Form(measured(f"your `{fn.name}` joins `{name}` as it was given, shape ({n},), a single point, to a 2-D "
+                             f"array in `{joined}` (line {line}); the API allows a single ({n},) point: make it a row "
+                             f"of one point first (np.atleast_2d({name}), or {name}.reshape(-1, {n})), and give one "
+                             f"point back"), MISTAKE)
+    return Form(measured(f"your `{fn.name}` joins `{name}` as it was given, shape ({n},), a 1-D vector, to a 2-D array "
                 f"in `{joined}` (line {line}); the API allows a ({n},) vector here: make it a column first "
-                f"({part.id}.reshape({n}, 1), or np.column_stack)"), MISTAKE)
+                f"({name}.reshape({n}, 1), or np.column_stack)"), MISTAKE)
+
+
+def _one_point(fn, name: str, given: dict) -> bool:
+    """Whether ``name`` holds the points parameter (`points`, `pts`, `X`...) of ``fn``: a (2,) or (3,) value
+    there is one point, a row, where another parameter's (3,) vector (`t`) is a column."""
+    parameters = [a.arg for a in fn.args.args]
+    source = name if name in given else next(
+        (n.id for node in ast.walk(fn) if isinstance(node, ast.Assign) and any(
+            isinstance(t, ast.Name) and t.id == name for t in node.targets)
+         for n in [_unwrapped(node.value)] if isinstance(n, ast.Name)), name)
+    return source in parameters and ("point" in source.lower() or source.lower() in ("pts", "x", "xw", "world"))
 
 
 # Calls that keep their argument's shape: np.asarray(t, float), t.astype(float), t.copy()
