@@ -2049,9 +2049,7 @@ def judge_last_column(t: Trial, what: str, got, scene):
         t.fail(measured(f"{what}: the last column (x = {got.shape[1] - 1}), where the backtracking starts, is wrong "
                         f"in {bad:.0%} of the rows (your values there: {shown}; true disparities "
                         f"{truth_column[known].min():.1f} to {truth_column[known].max():.1f}), while the map as a "
-                        "whole is mostly right: look at how that column is filled and at the first steps back "
-                        "from it (the backtracking starts at the last column and reaches every column down to "
-                        "x = 0)."), mistake=BACKTRACKING)
+                        "whole is mostly right."), mistake=BACKTRACKING)   # (where in the code: not known)
 
 
 @ex5.check("dp_stereo beats block matching where the texture is weak", points=4, timeout=STEREO_TIMEOUT)
