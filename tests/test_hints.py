@@ -70,6 +70,13 @@ def test_a_refit_is_read_from_points_a_mask_picks_not_from_how_many_fits_there_a
             return homography_dlt(src[inliers], dst[inliers])
         """) == "fits homography_dlt again on the points a mask picks"
     assert found(refits, "def f(src, dst, H):\n    return homography_dlt(src[errors(H) < 3], dst[errors(H) < 3])\n") != ""
+    assert found(refits, """
+        def f(src, dst, rng):
+            samples = np.array([rng.choice(len(src), 4, replace=False) for _ in range(100)])
+            for idx in samples:
+                H = homography_dlt(src[idx], dst[idx])
+            return H
+        """) == ""   # (a loop over drawn samples: each is a draw)
 
 
 def test_products_expressions_keywords_and_attributes():

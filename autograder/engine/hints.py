@@ -235,19 +235,21 @@ RANDOM_DRAWS = frozenset({"choice", "sample", "permutation", "shuffle", "integer
 
 
 def _drawn_names(function) -> set[str]:
-    """The names holding a random draw, or made from one (`idx = rng.permutation(n)`, `sample = idx[:4]`)."""
-    assignments = [node for node in ast.walk(function) if isinstance(node, ast.Assign)]
+    """The names holding a random draw, or made from one (`idx = rng.permutation(n)`, `sample = idx[:4]`,
+    `for idx in samples` over drawn samples)."""
+    bindings = [(node.targets, node.value) for node in ast.walk(function) if isinstance(node, ast.Assign)] + \
+        [([node.target], node.iter) for node in ast.walk(function) if isinstance(node, (ast.For, ast.comprehension))]
     drawn: set[str] = set()
     grown = True
     while grown:
         grown = False
-        for node in assignments:
-            reads = {n.id for n in ast.walk(node.value) if isinstance(n, ast.Name)}
+        for targets, value in bindings:
+            reads = {n.id for n in ast.walk(value) if isinstance(n, ast.Name)}
             draws = any(isinstance(c, ast.Call) and isinstance(c.func, (ast.Attribute, ast.Name))
                         and (c.func.attr if isinstance(c.func, ast.Attribute) else c.func.id) in RANDOM_DRAWS
-                        for c in ast.walk(node.value))
+                        for c in ast.walk(value))
             if draws or reads & drawn:
-                made = {n.id for t in node.targets for n in ast.walk(t) if isinstance(n, ast.Name)} - drawn
+                made = {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)} - drawn
                 if made:
                     drawn |= made
                     grown = True

@@ -384,7 +384,7 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
                          caption="the difference map is grey where the border is not judged"
                          if got.shape == expected_shape else "")
     if isinstance(got, np.ndarray) and got.shape != expected_shape:
-        if got.shape[:2] == expected_shape[1::-1]:
+        if got.shape[:2] == expected_shape[1::-1] and height != width:   # (a square frame shows no swap)
             read = size_given_as_shape(code_of(t), functions_read(t))
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
                    "width and height are swapped (shapes are (rows, columns), dsize is (width, height))"

@@ -569,8 +569,8 @@ def _square_named(recording, expressions, where) -> Form | None:
         said = (f"in {_quote(node)} {where}, {_quote(matrix)} has shape {_shape_text(shape)}: "
                 f"`{_called_name(node)}` needs a square matrix")
         if _called_name(node) in ("solve", "inv") and shape[-2] > shape[-1]:
-            said += (f" -- {shape[-2]} equations in {shape[-1]} unknowns are solved in the least-squares sense, "
-                     "by np.linalg.lstsq")
+            said += measured(f" -- {shape[-2]} equations in {shape[-1]} unknowns are solved in the least-squares "
+                             "sense, by np.linalg.lstsq")   # (measured: the recording's rows and columns)
         return Form(said, MISTAKE)
     return None
 

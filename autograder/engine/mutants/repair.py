@@ -2539,9 +2539,9 @@ def named_by_repair(verdict, trial, traceback_text: str = ""):
     check's own name of the mistake (which stays, with its hint) when :func:`_beside` allows; unchanged
     otherwise (see the module docstring).
 
-    ``traceback_text``: the student's code raised. A change that mends the exception but is confirmed
-    only by the check passing (a drawing's colours are not compared exactly: `_PALETTE[i]` -> `lines[i]`
-    passes) gives way to what the student's own values show where it raised
+    ``traceback_text``: the student's code raised. A change that mends an index past a sequence's end
+    but is confirmed only by the check passing (a drawing's colours are not compared exactly:
+    `_PALETTE[i]` -> `lines[i]` passes) gives way to what the student's own values show where it raised
     (:func:`..traced.named`: `i` is 8 where `_PALETTE` holds 8 items), a measurement of their code.
 
     A repair told where the error model named a mutant of the reference takes its place: both are
@@ -2569,7 +2569,7 @@ def named_by_repair(verdict, trial, traceback_text: str = ""):
         from .. import traced
 
         shown = traced.named(verdict, trial, traceback_text)
-        if shown.mistake:
+        if shown.mistake == traced.INDEX:   # (an index past a sequence's end, and a change reading another one)
             return shown
     first, newline, rest = str(verdict.message).partition("\n")
     if by_hand:   # the check's name of the effect stays, with where it comes from in their code

@@ -336,7 +336,7 @@ MISTAKES = {
             map_x = (inverse[0, 0] * xs + inverse[0, 1] * ys + inverse[0, 2]).astype(np.float32)
             map_y = (inverse[1, 0] * xs + inverse[1, 1] * ys + inverse[1, 2]).astype(np.float32)
             return cv2.remap(image, map_x, map_y, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
-        """, ["warp_affine() raised valueerror", "(raised on warp_affine(grey image, a, dsize=(220, 100)))"]),
+        """, ["warp_affine() raised valueerror", "(raised on warp_affine(grey image, a", "unpacks 3"]),
     "scale by cv2.resize and a crop, unpacking h, w, _ = image.shape (a grey image raises)": ("lab07.ex3", """
         def scale(image, sx=1.5, sy=1.5):
             h, w, _ = image.shape
