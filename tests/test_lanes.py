@@ -18,9 +18,20 @@ ROOT = Path(__file__).resolve().parents[1]
 SELECT = ["lab07", "lab09.ex1", "lab10.ex1"]
 
 
+# What names a failed check's mistake runs under a time budget (the error model, the repairs, the
+# recordings): on a loaded machine another lane may end it elsewhere. Everything before it is the verdict.
+NAMING_LEADS = ("Trying small changes", "On this input,", "it looks like")
+
+
 def _graded(submission, lanes, **options):
     result = grade(submission, SELECT, pictures="none", lanes=lanes, **options)
     data = without_timings(result.to_dict())
+    for exercise in data["exercises"]:
+        for check in exercise["checks"]:
+            for lead in NAMING_LEADS:
+                check["message"] = check["message"].split(lead, 1)[0]
+            check.pop("mistake", None)
+            check.pop("hint", None)
     return result, data
 
 
