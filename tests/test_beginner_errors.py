@@ -228,6 +228,8 @@ def test_a_forbidden_call_is_told_with_what_its_answer_was_worth(tmp_path, endin
     """cv2.triangulatePoints in the exercise that asks for triangulation by hand: the points are lost
     for the call; what its answer is worth is told (the call's result left as columns is a second mistake
     the rule alone would hide: told first, the rule after it), and the points stay lost either way."""
+    from autograder.engine.runner import FORBIDDEN_LOOKS
+
     source = f"""
         def triangulate(P1, P2, pts1, pts2):
             a = np.asarray(pts1, dtype=np.float64).reshape(-1, 2).T
@@ -244,10 +246,11 @@ def test_a_forbidden_call_is_told_with_what_its_answer_was_worth(tmp_path, endin
     assert first.message.startswith("triangulate() called" if ending else "With the forbidden call allowed"), \
         first.message
     looked = [c for c in checks if "the answer is wrong" in c.message or "passes this check otherwise" in c.message]
-    assert looked == [first]
-    # (the look is made once; the exercise's other checks lost for the call point to what it found when
-    # the answer was wrong besides -- "called cv2.triangulatePoints" alone would hide it -- and say nothing
-    # more where it was right)
+    assert looked[0] is first and len(looked) == (1 if ending == "" else min(FORBIDDEN_LOOKS, len(checks))), \
+        [c.message for c in checks]
+    # (the look is made until it finds the answer wrong, in FORBIDDEN_LOOKS checks at most; the
+    # exercise's other checks lost for the call point to what it found -- "called cv2.triangulatePoints"
+    # alone would hide it)
     pointing = [c for c in checks if f"the answer in the check '{first.name}' was wrong" in c.message
                 and "Besides that mistake, triangulate() called cv2.triangulatePoints" in c.message]
     assert pointing == ([c for c in checks if c is not first] if ending == "" else []), \
@@ -336,3 +339,21 @@ def test_what_a_forbidden_calls_second_look_computes_is_never_shared_with_the_ot
     assert len(runs) == 1 and again == ("With the forbidden call allowed, the answer in the check 'the panorama' "
                                         "was wrong: see there. Besides that mistake, f() called cv2.f: that alone "
                                         "loses this check."), again
+
+
+def test_a_forbidden_call_left_at_its_default_method_is_named_where_a_later_check_shows_it(tmp_path):
+    """cv2.findFundamentalMat called without a method in the exercise that asks for the 8-point algorithm:
+    its default (RANSAC) gives the exact correspondences' F, so the first checks' looks pass; the look is
+    made again in the next check lost for the call, where on noisy matches the answer is partly wrong, and
+    the change giving the 8-point method is named there (the rule still loses every check)."""
+    source = """
+        def fundamental_8point(pts1, pts2):
+            F, _ = cv2.findFundamentalMat(np.float64(pts1), np.float64(pts2))
+            return F / np.linalg.norm(F)
+        """
+    result = grade(mutant(tmp_path, "lab11_two_view", source), ["lab11.ex4"], pictures="none", include_hidden=False)
+    checks = [c for e in result.exercises for c in e.checks if c.max_score]
+    assert all(c.failure == "forbidden_call" and c.score == 0 for c in checks), [c.message for c in checks]
+    named = [c for c in checks if "method=cv2.FM_8POINT" in c.message]
+    assert named and named[0].message.startswith("With the forbidden call allowed, the answer is partly wrong"), \
+        [c.message for c in checks]

@@ -266,3 +266,56 @@ def test_a_single_point_joined_as_given_is_told_to_become_a_row_of_one_point():
     tb = f'Traceback (your code):\n  File "lab.py", line 4, in f\n    ...\nValueError: {ndim}'
     form = explained(read_code(source), tb, ndim, "f", (np.eye(3, 4), np.array([1.0, 2.0, 4.0])), {})
     assert form is not None and "a single point" in form.sentence and "np.atleast_2d(X)" in form.sentence, form
+
+
+ZERO = "integer division or modulo by zero"
+STRIPES = """
+    def f(width, n_bits):
+        width, n_bits = int(width), int(n_bits)
+        stripe = width // 2 ** n_bits
+        out = np.zeros(width, dtype=int)
+        for u in range(width):
+            out[u] = u // stripe
+        return out
+    """
+
+
+def test_a_floor_division_rounding_a_divisor_to_zero_is_named_with_the_numbers_given():
+    from autograder.engine.raised import ROUNDED_TO_ZERO
+
+    form = explained(read_code(textwrap.dedent(STRIPES)), traceback_at(7), ZERO, "f", (5, 3), {})
+    assert form is not None and form.mistake == ROUNDED_TO_ZERO, form
+    assert "divides by `stripe` (line 7), which is 0 here (width=5, n_bits=3): `stripe = width // 2 ** n_bits` " \
+           "(line 4) is a floor division of a smaller number by a larger one" in form.sentence
+
+
+def test_a_floor_division_written_in_the_divisor_is_named_and_a_plain_zero_only_described():
+    from autograder.engine.raised import ROUNDED_TO_ZERO, ZERO_DIVISOR
+
+    written = STRIPES.replace("u // stripe", "u // (width // 2 ** n_bits)")
+    form = explained(read_code(textwrap.dedent(written)), traceback_at(7), ZERO, "f", (5, 3), {})
+    assert form is not None and form.mistake == ROUNDED_TO_ZERO
+    assert "(width=5, n_bits=3): `width // 2 ** n_bits` is a floor division" in form.sentence
+    plain = """
+        def f(x1, x2):
+            return 1.0 / (x2 - x1)
+        """
+    form = explained(read_code(textwrap.dedent(plain)), traceback_at(3), "float division by zero", "f", (2.0, 2.0), {})
+    assert form is not None and form.mistake == ZERO_DIVISOR and "(x2=2.0, x1=2.0)" in form.sentence
+
+
+def test_a_zero_divisor_the_code_does_not_show_is_not_named():
+    looped = """
+        def f(width, n_bits):
+            stripe = 1
+            for i in range(n_bits):
+                stripe = width // 2 ** n_bits
+            return width // stripe
+        """
+    assert explained(read_code(textwrap.dedent(looped)), traceback_at(6), ZERO, "f", (5, 3), {}) is None \
+        or "stripe" not in explained(read_code(textwrap.dedent(looped)), traceback_at(6), ZERO, "f", (5, 3), {}).sentence
+    from_an_array = """
+        def f(points, n):
+            return n // points.shape[0]
+        """
+    assert explained(read_code(textwrap.dedent(from_an_array)), traceback_at(3), ZERO, "f", (np.zeros((0, 2)), 4), {}) is None

@@ -2938,3 +2938,21 @@ def dolly_zoom(points, f0, z0, distances):
 ''')
     messages = failing_messages(folder, "lab10.ext2")
     assert messages and all("to `moved = pts.copy()`" in m for m in messages), messages
+
+
+def test_an_opencv_method_left_at_its_default_is_given_each_method_as_a_change():
+    """cv2.findFundamentalMat without a method runs RANSAC (its default), cv2.findHomography a least-squares
+    fit of every point, cv2.warpAffine a forward map: each method is tried as a keyword; a method already
+    given (by position or keyword) is left to the flag operator."""
+    source = textwrap.dedent("""
+        def graded(p1, p2, image, M):
+            F, _ = cv2.findFundamentalMat(p1, p2)
+            H, _ = cv2.findHomography(p1, p2, cv2.RANSAC)
+            out = cv2.warpAffine(image, M, (40, 30))
+            small = cv2.resize(image, (20, 15), interpolation=cv2.INTER_AREA)
+            return F, H, out, small
+    """)
+    given = _shown_changes(source, "method_given")
+    assert ("cv2.findFundamentalMat(p1, p2)", "cv2.findFundamentalMat(p1, p2, method=cv2.FM_8POINT)") in given, given
+    assert any(after.endswith("(40, 30), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)") for _, after in given), given
+    assert not any("findHomography" in before or "resize" in before for before, _ in given), given

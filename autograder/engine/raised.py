@@ -140,6 +140,8 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
         return _index_beyond(fn, line, given, *map(int, found.groups()))
     if _SINGULAR.search(message):
         return _singular_solved(fn, line)
+    if _ZERO_DIVISION.search(message):
+        return _zero_divisor(fn, line, given)
     if _TOO_MANY.search(message) or _NOT_ENOUGH.search(message):
         return unpacked(code, fn, line, given, message)
     found = _NOT_ITERABLE.search(message)
@@ -261,6 +263,108 @@ def _singular_solved(fn, line: int) -> Form | None:
                              "is solved with its last entry fixed to 1, which a vector whose last entry is 0 (a "
                              "point at infinity) cannot be; the null vector by SVD (the last row of Vt) covers "
                              "every case"), SINGULAR_MISTAKE)
+    return None
+
+
+_ZERO_DIVISION = re.compile(r"(?:division|modulo) by zero")
+ROUNDED_TO_ZERO = "a floor division that rounds down to 0, used as a divisor"
+ZERO_DIVISOR = "a divisor that is 0 for this input"
+
+
+def _zero_divisor(fn, line: int, given: dict) -> Form | None:
+    """A Python division on the raising line whose divisor is worked out as 0 from the numbers the
+    parameters were given (and the plain assignments above it); where a floor division made the 0 --
+    in the divisor (``u // (width // 2 ** n_bits)`` with width < 2 ** n_bits) or in the assignment of a
+    name it reads (``stripe = width // 2 ** n_bits``) -- that is the cause."""
+    known, made = _numbers_known(fn, line, given)
+    for node in _own_nodes(fn):
+        if not (isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Div, ast.FloorDiv, ast.Mod))
+                and node.lineno <= line <= getattr(node, "end_lineno", node.lineno)
+                and _number(node.right, known) == 0):
+            continue
+        said = f"your `{fn.name}` divides by `{_short(ast.unparse(node.right), 50)}` (line {line}), which is 0 here"
+        places = [(node.right, None)] + [(made[n.id], n.id) for n in ast.walk(node.right)
+                                         if isinstance(n, ast.Name) and n.id in made]
+        for expression, name in places:
+            floored = next((n for n in ast.walk(expression) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.FloorDiv)
+                            and _number(n, known) == 0 and _number(n.left, known) not in (0, None)), None)
+            if floored is None:
+                continue
+            # measured: the floor division is worked out from the given numbers, not guessed
+            where = f"`{name} = {_short(ast.unparse(expression), 40)}` (line {expression.lineno})" if name else \
+                f"`{_short(ast.unparse(floored), 40)}`"
+            return Form(measured(f"{said} ({_values(floored, known)}): {where} is a floor division of a smaller number "
+                                 "by a larger one, which rounds down to 0 (and elsewhere drops its remainder); "
+                                 "multiply first and divide last"), ROUNDED_TO_ZERO)
+        return Form(measured(f"{said} ({_values(node.right, known)})"), ZERO_DIVISOR)
+    return None
+
+
+def _values(node, known: dict) -> str:
+    """``width=5, n_bits=3``: the known numbers of the names ``node`` reads, in their order."""
+    names = dict.fromkeys(n.id for n in ast.walk(node) if isinstance(n, ast.Name) and n.id in known)
+    return ", ".join(f"{name}={known[name]!r}" for name in names)
+
+
+def _numbers_known(fn, line: int, given: dict) -> tuple[dict, dict]:
+    """``(known, made)``: the names whose number is known at ``line`` -- the parameters given plain
+    numbers, and the names the statements above it bind to numbers worked out from them (``width =
+    int(width)``) -- and, of the latter, the expression each was bound to. A name bound in the
+    statement holding ``line`` (a loop's body) is not known there."""
+    known = {name: value.item() if isinstance(value, np.generic) else value for name, value in given.items()
+             if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))}
+    made = {}
+    for statement in fn.body:
+        holds = statement.lineno <= line <= getattr(statement, "end_lineno", statement.lineno)
+        pairs = []
+        if not holds and isinstance(statement, ast.Assign) and len(statement.targets) == 1:
+            target, value = statement.targets[0], statement.value
+            if isinstance(target, ast.Name):
+                pairs = [(target, value)]
+            elif isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) and len(target.elts) == len(value.elts):
+                pairs = list(zip(target.elts, value.elts))
+        worked = [(t.id, v, _number(v, known)) for t, v in pairs if isinstance(t, ast.Name)]
+        for node in ast.walk(statement):   # every name the statement binds is unknown, then set again
+            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+                known.pop(node.id, None)
+                made.pop(node.id, None)
+        for name, expression, value in worked:
+            if value is not None:
+                known[name] = value
+                made[name] = expression
+        if holds:
+            break
+    return known, made
+
+
+_ARITHMETIC = {ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b, ast.Mult: lambda a, b: a * b,
+               ast.Div: lambda a, b: a / b, ast.FloorDiv: lambda a, b: a // b, ast.Mod: lambda a, b: a % b,
+               ast.Pow: lambda a, b: a ** b, ast.LShift: lambda a, b: a << b, ast.RShift: lambda a, b: a >> b}
+
+
+def _number(node, known: dict):
+    """The number ``node`` works out to from ``known`` (constants, names, arithmetic, ``int()``,
+    ``float()``, ``round()``, ``abs()``), or None. Never runs the student's code: small numbers only."""
+    if isinstance(node, ast.Constant) and type(node.value) in (int, float):
+        return node.value
+    if isinstance(node, ast.Name):
+        return known.get(node.id)
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+        value = _number(node.operand, known)
+        return None if value is None else (-value if isinstance(node.op, ast.USub) else value)
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("int", "float", "round", "abs") \
+            and len(node.args) == 1 and not node.keywords:
+        value = _number(node.args[0], known)
+        return None if value is None else {"int": int, "float": float, "round": round, "abs": abs}[node.func.id](value)
+    if isinstance(node, ast.BinOp) and type(node.op) in _ARITHMETIC:
+        left, right = _number(node.left, known), _number(node.right, known)
+        if left is None or right is None or abs(left) > 2 ** 40 or abs(right) > 2 ** 40 \
+                or (isinstance(node.op, (ast.Pow, ast.LShift)) and not 0 <= right <= 64):
+            return None
+        try:
+            return _ARITHMETIC[type(node.op)](left, right)
+        except (ArithmeticError, TypeError, ValueError):
+            return None
     return None
 
 

@@ -770,15 +770,16 @@ def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: d
     writing the step themselves is all that is left (told after the rule), or the answer is wrong besides
     (a result of the library's left as columns: the rule alone would hide it), told first -- the rule,
     after it, loses the points either way. The check is run once more with the calls allowed, in the first public check of its exercise
-    that lost points so (once: the second run's time comes out of the exercise's budget, which the
+    that lost points so, and in the next ones while the answer passed there (at most
+    :data:`FORBIDDEN_LOOKS` checks: the runs' time comes out of the exercise's budget, which the
     exercise's other functions need); anything but a verdict tells nothing."""
     # (the exercise -> what the look found, in the check it was made in: the exercise's other checks
     # lost so point to it -- "called X" alone would hide that the answer was wrong besides)
     looked = sandbox.shared.setdefault("forbidden call looked at", {})
-    if check.exercise.id in looked:
-        found = looked[check.exercise.id]
-        if found is None:
-            return verdict
+    found = looked.get(check.exercise.id, 0)
+    if found == FORBIDDEN_LOOKS:
+        return verdict
+    if not isinstance(found, int):
         name, what, mistake = found
         # (the mistake in words where it has them -- "the two images' points are swapped" -- not a
         # machine label such as "repair:swap_items")
@@ -786,11 +787,16 @@ def besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: d
         return replace(verdict, message=f"With the forbidden call allowed, the answer in the check '{name}' was {what}{said}: "
                                         f"see there. {_rule_besides(verdict.message)}",
                        mistake=verdict.mistake or mistake)
-    looked[check.exercise.id] = None
+    # (looked at again in the next check while the answer passed: RANSAC in place of the 8-point
+    # algorithm gives the exact correspondences' F, and another F on noisy ones)
+    looked[check.exercise.id] = found + 1
     verdict, what = _looked_besides_forbidden(verdict, sandbox, check, rules, inputs)
     if what is not None:
         looked[check.exercise.id] = (check.name, what, verdict.mistake)
     return verdict
+
+
+FORBIDDEN_LOOKS = 3   # the checks of an exercise run again with a forbidden call allowed, at most
 
 
 def _looked_besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, rules: dict | None,
@@ -823,7 +829,13 @@ def _looked_besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, 
         return verdict, None
     if again is None or (isinstance(again, Verdict) and again.fraction >= 1.0):
         return replace(verdict, message=f"{_sentence(verdict.message)} The answer it gave passes this check "
-                                        "otherwise: writing that step yourself is what is left to do."), None
+                                        "otherwise: here, writing that step yourself is all that is left to do."), None
+    if isinstance(again, Verdict) and again.message:   # (part of the check lost besides the rule)
+        named = _named_by_repair(again, check, trial)
+        first = str(named.message).split("\n", 1)[0].rstrip()
+        return replace(verdict, message=f"With the forbidden call allowed, the answer is partly wrong: {_sentence(first)}\n"
+                                        f"{_rule_besides(verdict.message)}",
+                       mistake=named.mistake or verdict.mistake), "partly wrong"
     return verdict, None
 
 

@@ -123,6 +123,7 @@ OPERATORS = {
     "empty_slice": ("slice", "empty", "0"),                # right[:, :-d] -> right[:, :right.shape[1] - d]
     "divided_by_w": ("homogeneous", "divid", "third", "w"),   # (H @ grid)[0] -> (H @ grid)[0] / (H @ grid)[2]
     "drop_keyword": ("argument", "keyword", "remov"),     # cv2.undistortPoints(p, K, None, P=K) -> (p, K, None)
+    "method_given": ("method", "flag", "default", "cv2."),   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
@@ -846,6 +847,15 @@ def _make_drop_keyword(node, payload):
     return new
 
 
+def _make_method_given(node, payload):
+    keyword, member = payload   # cv2.findFundamentalMat(p1, p2) -> cv2.findFundamentalMat(p1, p2, method=cv2.FM_8POINT)
+    module = _dotted(node.func).split(".", 1)[0]
+    value = _parse(" | ".join(f"{module}.{name.strip()}" for name in member.split("|"))).body[0].value
+    new = copy.deepcopy(node)
+    new.keywords = list(new.keywords) + [ast.keyword(arg=keyword, value=value)]
+    return new
+
+
 def _make_drop_argument(node, payload):
     new = copy.deepcopy(node)   # _warp(image, M, size) -> _warp(image, M): the helper's default used
     if isinstance(payload, int):
@@ -951,7 +961,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange")},
-         "drop_keyword": _make_drop_keyword, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
+         "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
@@ -2329,6 +2339,14 @@ def _call_slips(node: ast.Call):
         for position, argument in enumerate(node.args[1:], start=1):
             if isinstance(argument, (ast.Name, ast.Tuple, ast.Subscript)) and not isinstance(argument, ast.Starred):
                 yield "drop_keyword", position, ""
+    if dotted.startswith(("cv2.", "cv.")) and short in _METHOD_ARGUMENTS \
+            and not any(isinstance(a, ast.Starred) for a in node.args) and not any(k.arg is None for k in node.keywords):
+        # (a method or flags argument left out, the library's default used: cv2.findFundamentalMat's is
+        # RANSAC, not the 8-point algorithm; cv2.findHomography's a least-squares fit of every point)
+        keyword, position, members = _METHOD_ARGUMENTS[short]
+        if len(node.args) <= position and not any(k.arg == keyword for k in node.keywords):
+            for member in members:
+                yield "method_given", (keyword, member), ""
     if dotted.startswith(("cv2.", "cv.")) and short in _GREY_ONLY and node.args \
             and isinstance(node.args[0], (ast.Name, ast.Subscript)):
         yield "grey", 0, ""   # a colour image given to a function that takes one channel
@@ -2354,6 +2372,17 @@ def _call_slips(node: ast.Call):
 
 
 _KEPT_KEYWORDS = {"dtype", "axis", "out", "where"}
+# OpenCV calls whose method (or interpolation) argument a student may leave at its default: its keyword,
+# its position, and the values given it (each an expression of the cv2 module's constants)
+_INTERPOLATIONS = ("INTER_NEAREST", "INTER_CUBIC", "INTER_AREA")
+_METHOD_ARGUMENTS = {
+    "findFundamentalMat": ("method", 2, ("FM_8POINT", "FM_LMEDS", "FM_7POINT")),
+    "findHomography": ("method", 2, ("RANSAC", "LMEDS", "RHO")),
+    "findEssentialMat": ("method", 3, ("LMEDS",)),
+    "resize": ("interpolation", 5, _INTERPOLATIONS),
+    "warpAffine": ("flags", 4, _INTERPOLATIONS + ("INTER_LINEAR | WARP_INVERSE_MAP",)),
+    "warpPerspective": ("flags", 4, _INTERPOLATIONS + ("INTER_LINEAR | WARP_INVERSE_MAP",)),
+}
 # NumPy functions whose first argument is the data and the others its bounds, fill or shape
 _DATA_FIRST = {"clip", "where", "full", "full_like", "pad", "reshape", "repeat", "tile", "round", "around",
                "percentile", "quantile", "linspace", "arange"}

@@ -1318,7 +1318,8 @@ def passing_functions(trial) -> set:
 def _widened(call, defaults=(), factors=(4.0,)) -> list:
     """The call made unlike the check's own inputs, when it can be: every float argument given alone (a
     factor, an angle, a threshold; a numeric default it left out, given) four times larger (each of
-    ``factors``), and every image a few rows and columns smaller. A change right by coincidence on the
+    ``factors``), every small whole number (1 to 4) two larger, and every image a few rows and columns
+    smaller. A change right by coincidence on the
     check's inputs -- `s * s` truncated to 0 where `s * height` belongs for small factors, an angle taken
     from the width of a 360-pixel image, a comparison turned round that sends enlargements the way of
     shrinks (`w >= width` -> `w <= width`: the floats half as large) -- is wrong there. [] when nothing
@@ -1330,6 +1331,10 @@ def _widened(call, defaults=(), factors=(4.0,)) -> list:
     def widen(value, factor):
         if isinstance(value, float) and value != 0:
             return value * factor
+        # (a small whole number two larger, its parity kept -- an odd window stays odd: at the smallest
+        # values a search shrinks to, `2 ** n // width` and `width // 2 ** n` agree at n = width = 1)
+        if factor > 1 and isinstance(value, int) and not isinstance(value, bool) and 1 <= value <= 4:
+            return value + 2
         if factor > 1 and isinstance(value, np.ndarray) and value.dtype == np.uint8 and value.ndim >= 2 \
                 and min(value.shape[:2]) > 20:
             return np.ascontiguousarray(value[:-3, :-5])
@@ -2086,6 +2091,8 @@ class _Variants:
                 or self.passes_other_checks(mutant)
         if mutant.key not in self.checked:
             return False
+        if usable and self.checked[mutant.key] == 0.0 and self._wrong_where_exact(mutant, usable, every, wanted):
+            return False
         # A function with many right answers (a rectification, an estimator on noisy points: its own
         # least squares) is far from the reference's where it is right: the grading's other checks of
         # it judge. Nearer the reference than the student's own answers on derived inputs is no
@@ -2118,6 +2125,16 @@ class _Variants:
         # negative factor -- where a wrong answer shows the change is right by the check's choice alone)
         return any(naming.error_kind(value) is None and not self.right(value, wanted[i], confirming=not exact)
                    and self.distance(value, wanted[i]) > 3 * spread for value, i in zip(values, indices))
+
+    def _wrong_where_exact(self, mutant, indices, every, wanted) -> bool:
+        """Whether a change that gave the reference's very answers on the check's inputs (so follows the
+        reference's recipe, not one of the many right ones) answers wrongly on a confirmation input: the
+        other checks do not judge it then (`2 ** n // width` for `width // 2 ** n` gives the reference's
+        stripes at n = width = 1, and at 16 and 4 bits -- the example check -- and at no width between).
+        A change raising there is not refuted by it: the student's other code may raise there too."""
+        values = self.answers(mutant, indices, every)
+        return values is not None and any(naming.error_kind(value) is None and not self.right(value, wanted[i])
+                                          for value, i in zip(values, indices))
 
     def _breaks_holed(self, mutant, every, wanted) -> bool:
         """Whether a change raises where a point is given as NaN (:func:`_holed`) while the reference and
