@@ -2956,3 +2956,29 @@ def test_an_opencv_method_left_at_its_default_is_given_each_method_as_a_change()
     assert ("cv2.findFundamentalMat(p1, p2)", "cv2.findFundamentalMat(p1, p2, method=cv2.FM_8POINT)") in given, given
     assert any(after.endswith("(40, 30), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)") for _, after in given), given
     assert not any("findHomography" in before or "resize" in before for before, _ in given), given
+
+
+def test_a_running_minimum_taken_from_the_far_end_is_given_its_reversal_back_as_a_change():
+    """`np.minimum.accumulate(x[:, ::-1], axis=1)` never turned back (a DP's cost from above): the
+    reversal after it is a change tried; one already turned back, or one over an axis not reversed, is not."""
+    source = textwrap.dedent("""
+        def graded(previous, ramp):
+            above = np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1) - ramp
+            below = np.minimum.accumulate(previous - ramp, axis=1) + ramp
+            turned = np.cumsum(previous[::-1], axis=0)[::-1]
+            return above, below, turned
+    """)
+    assert _shown_changes(source, "reverse_back") == [
+        ("np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)",
+         "np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)[:, ::-1]")]
+
+
+def test_a_reversal_dropped_after_a_running_minimum_is_a_mutant_of_the_reference():
+    from autograder.engine.mutants.operators import mutants_of
+
+    source = textwrap.dedent("""
+        def graded(previous, ramp):
+            return np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)[:, ::-1] - ramp
+    """)
+    dropped = [m for m in mutants_of(source, {"graded"})["graded"] if m.operator == "reverse_back"]
+    assert len(dropped) == 1 and "running minimum taken from the far end" in dropped[0].sentence, dropped

@@ -123,7 +123,8 @@ OPERATORS = {
     "empty_slice": ("slice", "empty", "0"),                # right[:, :-d] -> right[:, :right.shape[1] - d]
     "divided_by_w": ("homogeneous", "divid", "third", "w"),   # (H @ grid)[0] -> (H @ grid)[0] / (H @ grid)[2]
     "drop_keyword": ("argument", "keyword", "remov"),     # cv2.undistortPoints(p, K, None, P=K) -> (p, K, None)
-    "method_given": ("method", "flag", "default", "cv2."),   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
+    "method_given": ("method", "flag", "default", "cv2."),
+    "reverse_back": ("revers", "back", "turn", "far end"),   # acc(x[:, ::-1], axis=1) -> acc(...)[:, ::-1]   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
@@ -947,6 +948,42 @@ def _make_part(node, payload):
     return parse(payload, mode="eval").body   # a part of the array, as the function writes it elsewhere
 
 
+_CUMULATIVE = {"cumsum", "cumprod", "nancumsum", "nancumprod"}
+_RUNNING = {"cumsum": "running sum", "cumprod": "running product", "nancumsum": "running sum",
+            "nancumprod": "running product", "np.minimum": "running minimum", "np.maximum": "running maximum",
+            "numpy.minimum": "running minimum", "numpy.maximum": "running maximum"}
+
+
+def _cumulative(call: ast.Call) -> bool:
+    """A running result along an axis: ``np.cumsum``, ``np.minimum.accumulate`` (order matters)."""
+    dotted = _dotted(call.func)
+    return dotted.endswith(".accumulate") or dotted.rsplit(".", 1)[-1] in _CUMULATIVE
+
+
+def _running(call: ast.Call) -> str:
+    """"running minimum" for ``np.minimum.accumulate``, "running sum" for ``np.cumsum``."""
+    dotted = _dotted(call.func)
+    return _RUNNING.get(dotted.rsplit(".", 1)[0] if dotted.endswith(".accumulate") else dotted.rsplit(".", 1)[-1],
+                        "running result")
+
+
+def _slice_text(index) -> str:
+    """``:, ::-1`` for the index of ``x[:, ::-1]`` (unparsed alone, a tuple gets brackets)."""
+    return ", ".join(ast.unparse(part) for part in index.elts) if isinstance(index, ast.Tuple) else ast.unparse(index)
+
+
+def _reversal(node):
+    """The slice of ``node`` (a subscript) that reverses an axis (``x[:, ::-1]``, ``x[::-1]``), or None."""
+    if not isinstance(node, ast.Subscript):
+        return None
+    parts = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+    reversing = [p for p in parts if isinstance(p, ast.Slice) and p.lower is None and p.upper is None
+                 and isinstance(p.step, ast.UnaryOp) and isinstance(p.step.op, ast.USub)
+                 and isinstance(p.step.operand, ast.Constant) and p.step.operand.value == 1]
+    whole = all(isinstance(p, ast.Slice) and p.lower is None and p.upper is None for p in parts)
+    return node.slice if reversing and whole else None
+
+
 def _make_written(node, payload):
     return parse(payload, mode="eval").body   # the new expression, written out by the operator
 
@@ -960,7 +997,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term", "midrange")},
+                                              "drop_term", "midrange", "reverse_back")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1524,6 +1561,12 @@ def _changes(node, parents, words: _Words, line):
     what = lambda n: words.what(n, line=line)  # noqa: E731
     parent = parents.get(id(node), (None, None, None))[0]
     place = functools.partial(_place, node, parents, words, line)   # where, when nothing names the term
+    if not words.student and isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) \
+            and isinstance(node.value, ast.Call) and _cumulative(node.value) and _reversal(node) is not None \
+            and node.value.args and _reversal(node.value.args[0]) is not None:
+        yield "reverse_back", ast.unparse(node.value), \
+            f"the {_running(node.value)} taken from the far end (over the reversed axis) is not turned back (`[{_slice_text(node.slice)}]` " \
+            "after it is missing)"
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and not isinstance(node.operand, ast.Constant):
         yield "sign", "remove", _subject(what(node.operand), "has the wrong sign (its minus is missing)", node, parents,
                                          words) or _placed("a minus sign is missing", place())
@@ -1775,6 +1818,10 @@ def _student_changes(node, parent, parents):
     that does not belong (``np.tan(s)`` for ``s``), one mistaken for its sibling (``np.sin`` for
     ``np.cos``), a reshape where a transpose belongs, an inversion missing in a matrix product, points
     not divided by their last coordinate (``x[:, :2]``)."""
+    if isinstance(node, ast.Call) and _cumulative(node) and node.args and _reversal(node.args[0]) is not None \
+            and not (isinstance(parent, ast.Subscript) and parent.value is node and _reversal(parent) is not None):
+        # a running minimum (sum, ...) taken from the far end, never turned back
+        yield "reverse_back", f"{ast.unparse(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     if isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult) \
             and isinstance(node, (ast.Name, ast.Subscript, ast.Call)) and not _is_inverse(node):
         yield "inverse", "wrap", ""
