@@ -319,3 +319,72 @@ def test_a_zero_divisor_the_code_does_not_show_is_not_named():
             return n // points.shape[0]
         """
     assert explained(read_code(textwrap.dedent(from_an_array)), traceback_at(3), ZERO, "f", (np.zeros((0, 2)), 4), {}) is None
+
+
+NONE_SUBSCRIPT = "'NoneType' object is not subscriptable"
+
+
+def test_a_helper_without_a_return_is_named_where_its_none_is_used():
+    from autograder.engine.raised import NONE_RETURNED
+
+    source = """
+        def _normalise(points):
+            T = np.eye(3)
+            points = points @ T
+
+        def f(R, t):
+            moved = _normalise(R)
+            return moved[:, :2]
+        """
+    form = explained(read_code(textwrap.dedent(source)), traceback_at(8), NONE_SUBSCRIPT, "f", (R, t), {})
+    assert form is not None and form.mistake == NONE_RETURNED, form
+    assert form.sentence.startswith("`_normalise(R)` (line 7) gives None: your `_normalise` has no `return` of a value")
+    unpacked = """
+        def _split(points):
+            if len(points):
+                return points[:, 0], points[:, 1]
+
+        def f(R, t):
+            x, y = _split(R)
+            return x + y
+        """
+    form = explained(read_code(textwrap.dedent(unpacked)), traceback_at(7), "cannot unpack non-iterable NoneType object",
+                     "f", (R, t), {})
+    assert form is not None and "can reach the end of its body without a `return`" in form.sentence, form
+
+
+def test_a_method_that_works_in_place_is_named_and_a_none_the_code_does_not_show_is_not():
+    source = """
+        def f(R, t):
+            order = list(t).sort()
+            return order[0]
+        """
+    form = explained(read_code(textwrap.dedent(source)), traceback_at(4), NONE_SUBSCRIPT, "f", (R, t), {})
+    assert form is not None and "`.sort()` changes its object in place and returns None" in form.sentence, form
+    returning = """
+        def _helper(points):
+            return points if len(points) else None
+
+        def f(R, t):
+            moved = _helper(R)
+            return moved[:, :2]
+        """
+    assert explained(read_code(textwrap.dedent(returning)), traceback_at(7), NONE_SUBSCRIPT, "f", (R, t), {}) is None
+
+
+def test_a_helper_without_a_return_is_told_in_grading(tmp_path):
+    source = """
+        def _diagonal(sx, sy):
+            M = np.eye(3)
+            M[0, 0], M[1, 1] = sx, sy
+
+        def scaling_matrix(sx, sy):
+            M = _diagonal(float(sx), float(sy))
+            M[2, 2] = 1.0
+            return M
+        """
+    result = grade(mutant(tmp_path, "lab07_transformations", source), ["lab07.ex3"], pictures="none",
+                   include_hidden=False)
+    failed = [c for c in check_results(result, "lab07.ex3") if not c.passed]
+    assert failed and any("your `_diagonal` has no `return` of a value" in c.message for c in failed), \
+        [c.message for c in failed]

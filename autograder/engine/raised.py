@@ -25,7 +25,7 @@ import numpy as np
 
 from .claims import from_code, measured
 from .forms import Form
-from .hints import Code, _own_nodes, signature_of_def
+from .hints import Code, _always_leaves, _own_nodes, signature_of_def
 
 # 'File "lab09_camera.py", line 42, in camera_matrix' and, on the next line, the code
 _FRAME = re.compile(r'File "([^"]+)", line (\d+)(?:, in (\S+))?\n(?:    (.*))?')
@@ -145,8 +145,10 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
     if _TOO_MANY.search(message) or _NOT_ENOUGH.search(message):
         return unpacked(code, fn, line, given, message)
     found = _NOT_ITERABLE.search(message)
-    if found:
+    if found and _single_unpacked(fn, line, given, found.group(1)) is not None:
         return _single_unpacked(fn, line, given, found.group(1))
+    if "NoneType" in message:
+        return _none_returned(code, fn, line)
     if "OpenCV(" in message:
         from .cv_raised import opencv_explained
 
@@ -365,6 +367,48 @@ def _number(node, known: dict):
             return _ARITHMETIC[type(node.op)](left, right)
         except (ArithmeticError, TypeError, ValueError):
             return None
+    return None
+
+
+# methods that work in place and return None (`pts = pts.append(p)`, `order = order.sort()`)
+_IN_PLACE_METHODS = frozenset({"sort", "append", "extend", "insert", "reverse", "shuffle", "fill", "resize",
+                               "update", "remove", "clear", "setflags", "put"})
+NONE_RETURNED = "the result of a call that returns None (a function without a return, a method that works in place)"
+
+
+def _none_returned(code: Code, fn, line: int) -> Form | None:
+    """A NoneType error on the raising line, where the one value there that comes from a call (on the
+    line, or assigned from one above it) comes from a function of the module with no ``return`` of a
+    value, or one whose body can end without reaching a ``return``, or from a method that works in
+    place (``.sort()``, ``.append()``): such a call gives None."""
+    on_line = [n for n in _own_nodes(fn) if getattr(n, "lineno", 0) <= line <= getattr(n, "end_lineno", 0)]
+    calls = [n for n in on_line if isinstance(n, ast.Call)]
+    for name in dict.fromkeys(n.id for n in on_line if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)):
+        bound = _assignments(fn, name, line)
+        if len(bound) == 1 and isinstance(bound[0], ast.Assign) and len(bound[0].targets) == 1 \
+                and isinstance(bound[0].targets[0], ast.Name) and isinstance(bound[0].value, ast.Call):
+            calls.append(bound[0].value)
+    told = [said for said in (_gives_none(code, call) for call in calls) if said]
+    if len(set(told)) != 1:
+        return None   # (none, or several: which one was None the message does not say)
+    return Form(from_code(f"{told[0]} (read in line {line})"), NONE_RETURNED)
+
+
+def _gives_none(code: Code, call: ast.Call) -> str | None:
+    """What makes ``call`` give None, read from the code, or None when nothing does."""
+    written = f"`{_short(ast.unparse(call), 50)}` (line {call.lineno})"
+    if isinstance(call.func, ast.Name) and call.func.id in code.functions:
+        helper = code.functions[call.func.id]
+        returns = [n for n in _own_nodes(helper) if isinstance(n, ast.Return) and n.value is not None
+                   and not (isinstance(n.value, ast.Constant) and n.value.value is None)]
+        if not returns:
+            return f"{written} gives None: your `{helper.name}` has no `return` of a value (a function without one returns None)"
+        if not _always_leaves(helper.body):
+            return (f"{written} can give None: your `{helper.name}` can reach the end of its body without a `return` "
+                    "(a function that does returns None there)")
+        return None
+    if isinstance(call.func, ast.Attribute) and call.func.attr in _IN_PLACE_METHODS:
+        return f"{written} gives None: `.{call.func.attr}()` changes its object in place and returns None"
     return None
 
 
