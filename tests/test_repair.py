@@ -2982,3 +2982,47 @@ def test_a_reversal_dropped_after_a_running_minimum_is_a_mutant_of_the_reference
     """)
     dropped = [m for m in mutants_of(source, {"graded"})["graded"] if m.operator == "reverse_back"]
     assert len(dropped) == 1 and "running minimum taken from the far end" in dropped[0].sentence, dropped
+
+
+def test_a_name_written_in_the_other_case_is_tried_first():
+    """`f * Y / Z` (a point's own depth) where `z` (the common one) belongs, in a loop unpacking X, Y, Z:
+    the names unpacked with Z would fill every place tried at that site; a name in the other case comes
+    before them."""
+    source = textwrap.dedent("""
+        def graded(points, f, z_avg=None):
+            pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+            z = pts[:, 2].mean() if z_avg is None else float(z_avg)
+            out = np.empty((len(pts), 2))
+            for i, (X, Y, Z) in enumerate(pts):
+                out[i] = f * X / z, f * Y / Z
+            return out
+    """)
+    assert ("(f * X / z, f * Y / Z)", "(f * X / z, f * Y / z)") in _shown_changes(source, "other_name")
+
+
+def test_a_drawing_in_the_students_own_style_missing_matches_is_given_every_match(tmp_path):
+    """cv2.drawMatches given `matches[:10]`: the student's own drawing (circles, random colours) stays far
+    from the reference's whatever is changed, so the change drawing the two missing lines is only a few
+    per cent nearer; the check itself judges it, and it is named."""
+    source = """
+        def draw_matches(img1, img2, pts1, pts2):
+            kp1 = [cv2.KeyPoint(float(x), float(y), 6) for x, y in np.asarray(pts1, float).reshape(-1, 2)]
+            kp2 = [cv2.KeyPoint(float(x), float(y), 6) for x, y in np.asarray(pts2, float).reshape(-1, 2)]
+            matches = [cv2.DMatch(i, i, 0.0) for i in range(len(kp1))]
+            return cv2.drawMatches(_bgr(img1), kp1, _bgr(img2), kp2, matches[:10], None,
+                                   flags=cv2.DrawMatchesFlags_NOT_DRAW_SINGLE_POINTS)
+        """
+    messages = failing_messages(mutant(tmp_path, "lab08_homographies", source), "lab08.ex3")
+    assert any("changing `matches[:10]` to `matches`" in m for m in messages), messages
+
+
+def test_the_smallest_real_part_is_given_the_smallest_modulus_as_a_change():
+    """`np.argmin(values.real)` of np.linalg.eig's eigenvalues (a pure translation's F has 0 and +-i lambda:
+    every real part 0): the modulus of the complex values is the change tried, beside the real part's."""
+    source = textwrap.dedent("""
+        def graded(F):
+            values, vectors = np.linalg.eig(F)
+            return vectors[:, np.argmin(values.real)].real
+    """)
+    changes = _shown_changes(source, "magnitude")
+    assert ("np.argmin(values.real)", "np.argmin(np.abs(values))") in changes, changes

@@ -910,7 +910,8 @@ def _make_magnitude(node, payload):
     if payload == "wrap":   # a[i - j] -> a[np.abs(i - j)]
         return ast.Call(_name("np.abs"), [copy.deepcopy(node)], [])
     new = copy.deepcopy(node)   # np.argmin(v) -> np.argmin(np.abs(v))
-    new.args[0] = ast.Call(_name("np.abs"), [new.args[0]], [])
+    part = new.args[0].value if payload == "complex" else new.args[0]   # (v.real -> v: its modulus)
+    new.args[0] = ast.Call(_name("np.abs"), [part], [])
     return new
 
 
@@ -2512,6 +2513,8 @@ def _logic_changes(node, parent, parents):
     if isinstance(node, ast.Call) and node.args and _dotted(node.func).rsplit(".", 1)[-1] in _EXTREMES \
             and not (isinstance(node.args[0], ast.Call) and _dotted(node.args[0].func).rsplit(".", 1)[-1] in _MAGNITUDES):
         yield "magnitude", None, ""   # the smallest value where the smallest magnitude belongs (an eigenvalue)
+        if isinstance(node.args[0], ast.Attribute) and node.args[0].attr in ("real", "imag"):
+            yield "magnitude", "complex", ""   # np.argmin(v.real) -> np.argmin(np.abs(v)): a complex value's modulus
 
 
 _REDUCED = {"mean", "median", "average", "nanmean"}
@@ -3989,8 +3992,11 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     # (then, in the student's code, a name of the same kind -- a local for a local -- that the line's
     # other values were made from: `patterns[i][cols[lit]]` with `lit` made from `proj`, the projector's
     # columns where the camera's were read)
+    # (first of all, a name written in the other case: `Z`, a point's own depth, where `z`, the common one,
+    # belongs)
     related = words.related(line) if words.student else frozenset()
-    others.sort(key=lambda pair: (pair[0] not in together, not twin_names(node.id, pair[0]),
+    others.sort(key=lambda pair: (pair[0].lower() != node.id.lower(), pair[0] not in together,
+                                  not twin_names(node.id, pair[0]),
                                   not _derived_names(node.id, pair[0]),
                                   not (pair[0] in related and (pair[0] in params) == kind),
                                   pair[1].rsplit(" of ", 1)[-1] != tail or " of " not in own))
