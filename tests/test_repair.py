@@ -3026,3 +3026,15 @@ def test_the_smallest_real_part_is_given_the_smallest_modulus_as_a_change():
     """)
     changes = _shown_changes(source, "magnitude")
     assert ("np.argmin(values.real)", "np.argmin(np.abs(values))") in changes, changes
+
+
+def test_an_order_reversed_that_does_not_belong_is_given_its_removal_as_a_change():
+    """`tuple(pattern_size)[::-1]` (NumPy's rows-first habit) given to cv2.findChessboardCorners, which
+    takes (columns, rows): the reversal's removal is a change tried; a slice with bounds is not a reversal."""
+    source = textwrap.dedent("""
+        def graded(grey, pattern_size):
+            found, corners = cv2.findChessboardCorners(grey, tuple(pattern_size)[::-1])
+            top = corners[1:][::2]
+            return corners, top
+    """)
+    assert _shown_changes(source, "drop_reversal") == [("tuple(pattern_size)[::-1]", "tuple(pattern_size)")]

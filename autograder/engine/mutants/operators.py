@@ -124,7 +124,8 @@ OPERATORS = {
     "divided_by_w": ("homogeneous", "divid", "third", "w"),   # (H @ grid)[0] -> (H @ grid)[0] / (H @ grid)[2]
     "drop_keyword": ("argument", "keyword", "remov"),     # cv2.undistortPoints(p, K, None, P=K) -> (p, K, None)
     "method_given": ("method", "flag", "default", "cv2."),
-    "reverse_back": ("revers", "back", "turn", "far end"),   # acc(x[:, ::-1], axis=1) -> acc(...)[:, ::-1]   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
+    "reverse_back": ("revers", "back", "turn", "far end"),   # acc(x[:, ::-1], axis=1) -> acc(...)[:, ::-1]
+    "drop_reversal": ("revers", "order", "[::-1]"),    # tuple(pattern_size)[::-1] -> tuple(pattern_size)   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
@@ -998,7 +999,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term", "midrange", "reverse_back")},
+                                              "drop_term", "midrange", "reverse_back", "drop_reversal")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1823,6 +1824,10 @@ def _student_changes(node, parent, parents):
             and not (isinstance(parent, ast.Subscript) and parent.value is node and _reversal(parent) is not None):
         # a running minimum (sum, ...) taken from the far end, never turned back
         yield "reverse_back", f"{ast.unparse(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and _reversal(node) is not None:
+        # an order reversed that does not belong: `tuple(pattern_size)[::-1]`, NumPy's (rows, columns)
+        # habit where OpenCV takes (columns, rows)
+        yield "drop_reversal", ast.unparse(node.value), ""
     if isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult) \
             and isinstance(node, (ast.Name, ast.Subscript, ast.Call)) and not _is_inverse(node):
         yield "inverse", "wrap", ""
