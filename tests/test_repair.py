@@ -3038,3 +3038,15 @@ def test_an_order_reversed_that_does_not_belong_is_given_its_removal_as_a_change
             return corners, top
     """)
     assert _shown_changes(source, "drop_reversal") == [("tuple(pattern_size)[::-1]", "tuple(pattern_size)")]
+
+
+def test_twin_names_in_each_others_places_in_a_matrix_written_as_rows_are_one_change():
+    """The cross-product matrix of (x, y, 1) written with x and y in each other's places: exchanging them
+    throughout the matrix is one change (one at a time gives a matrix of x twice, no nearer)."""
+    source = textwrap.dedent("""
+        def graded(x, y, P):
+            skew = np.array([[0.0, -1.0, x], [1.0, 0.0, -y], [-x, y, 0.0]])
+            return skew @ P
+    """)
+    assert ("[[0.0, -1.0, x], [1.0, 0.0, -y], [-x, y, 0.0]]", "[[0.0, -1.0, y], [1.0, 0.0, -x], [-y, x, 0.0]]") \
+        in _shown_changes(source, "exchange")

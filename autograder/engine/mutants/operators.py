@@ -2198,9 +2198,13 @@ def _exchanged_in_product(node, parent):
     """A matrix product whose twin names are in each other's places (`inv(T1) @ Hn @ T2` where `inv(T2) @ Hn
     @ T1` belongs: a normalisation undone with the two images' transforms exchanged): the two exchanged
     throughout the whole product, one slip (exchanging one at a time makes a product of the same transform
-    twice, no nearer)."""
-    if not (isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult)) \
-            or (isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult)):
+    twice, no nearer). So is a matrix written out as rows (`[[0, -1, x], [1, 0, -y], [-x, y, 0]]`, a
+    cross-product matrix of (x, y, 1) with x and y in each other's places)."""
+    product = isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult) \
+        and not (isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult))
+    rows = isinstance(node, ast.List) and not isinstance(parent, (ast.List, ast.Tuple)) \
+        and len(node.elts) >= 2 and all(isinstance(row, (ast.List, ast.Tuple)) for row in node.elts)
+    if not (product or rows):
         return
     names = sorted({n.id for n in ast.walk(node) if isinstance(n, ast.Name)})
     for a, b in itertools.combinations(names, 2):
