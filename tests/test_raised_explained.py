@@ -338,7 +338,7 @@ def test_a_helper_without_a_return_is_named_where_its_none_is_used():
         """
     form = explained(read_code(textwrap.dedent(source)), traceback_at(8), NONE_SUBSCRIPT, "f", (R, t), {})
     assert form is not None and form.mistake == NONE_RETURNED, form
-    assert form.sentence.startswith("`_normalise(R)` (line 7) gives None: your `_normalise` has no `return` of a value")
+    assert form.sentence.startswith("`_normalise(R)` (line 7) gives None: your `_normalise` has no `return` of a value"), form
     unpacked = """
         def _split(points):
             if len(points):
@@ -350,7 +350,7 @@ def test_a_helper_without_a_return_is_named_where_its_none_is_used():
         """
     form = explained(read_code(textwrap.dedent(unpacked)), traceback_at(7), "cannot unpack non-iterable NoneType object",
                      "f", (R, t), {})
-    assert form is not None and "can reach the end of its body without a `return`" in form.sentence, form
+    assert form is not None and "your `_split` can reach its end without a `return`" in form.sentence, form
 
 
 def test_a_method_that_works_in_place_is_named_and_a_none_the_code_does_not_show_is_not():

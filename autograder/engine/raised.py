@@ -25,7 +25,7 @@ import numpy as np
 
 from .claims import from_code, measured
 from .forms import Form
-from .hints import Code, _always_leaves, _own_nodes, signature_of_def
+from .hints import Code, _own_nodes, none_returned, signature_of_def
 
 # 'File "lab09_camera.py", line 42, in camera_matrix' and, on the next line, the code
 _FRAME = re.compile(r'File "([^"]+)", line (\d+)(?:, in (\S+))?\n(?:    (.*))?')
@@ -378,9 +378,9 @@ NONE_RETURNED = "the result of a call that returns None (a function without a re
 
 def _none_returned(code: Code, fn, line: int) -> Form | None:
     """A NoneType error on the raising line, where the one value there that comes from a call (on the
-    line, or assigned from one above it) comes from a function of the module with no ``return`` of a
-    value, or one whose body can end without reaching a ``return``, or from a method that works in
-    place (``.sort()``, ``.append()``): such a call gives None."""
+    line, or assigned from one above it) comes from a function of the module that returns None
+    somewhere (:func:`~autograder.engine.hints.none_returned`: no ``return`` of a value, a bare one, an
+    end reached without one), or from a method that works in place (``.sort()``, ``.append()``)."""
     on_line = [n for n in _own_nodes(fn) if getattr(n, "lineno", 0) <= line <= getattr(n, "end_lineno", 0)]
     calls = [n for n in on_line if isinstance(n, ast.Call)]
     for name in dict.fromkeys(n.id for n in on_line if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)):
@@ -398,15 +398,8 @@ def _gives_none(code: Code, call: ast.Call) -> str | None:
     """What makes ``call`` give None, read from the code, or None when nothing does."""
     written = f"`{_short(ast.unparse(call), 50)}` (line {call.lineno})"
     if isinstance(call.func, ast.Name) and call.func.id in code.functions:
-        helper = code.functions[call.func.id]
-        returns = [n for n in _own_nodes(helper) if isinstance(n, ast.Return) and n.value is not None
-                   and not (isinstance(n.value, ast.Constant) and n.value.value is None)]
-        if not returns:
-            return f"{written} gives None: your `{helper.name}` has no `return` of a value (a function without one returns None)"
-        if not _always_leaves(helper.body):
-            return (f"{written} can give None: your `{helper.name}` can reach the end of its body without a `return` "
-                    "(a function that does returns None there)")
-        return None
+        where = none_returned(code, call.func.id)   # (how the helper ends, as for a graded function)
+        return f"{written} gives None: your `{call.func.id}` {where}" if where else None
     if isinstance(call.func, ast.Attribute) and call.func.attr in _IN_PLACE_METHODS:
         return f"{written} gives None: `.{call.func.attr}()` changes its object in place and returns None"
     return None
