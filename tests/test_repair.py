@@ -3050,3 +3050,17 @@ def test_twin_names_in_each_others_places_in_a_matrix_written_as_rows_are_one_ch
     """)
     assert ("[[0.0, -1.0, x], [1.0, 0.0, -y], [-x, y, 0.0]]", "[[0.0, -1.0, y], [1.0, 0.0, -x], [-y, x, 0.0]]") \
         in _shown_changes(source, "exchange")
+
+
+def test_a_point_subtracted_without_the_matrix_the_function_made_is_given_its_image():
+    """`t = dst[0] - src[0]` beside `L = E_dst @ inv(E_src)`: the translation leaves out the linear part's
+    move of the point; `L @ src[0]` is the change tried (a matrix made above, never the name itself)."""
+    source = textwrap.dedent("""
+        def graded(src, dst):
+            E_src = np.column_stack([src[1] - src[0], src[2] - src[0]])
+            E_dst = np.column_stack([dst[1] - dst[0], dst[2] - dst[0]])
+            L = E_dst @ np.linalg.inv(E_src)
+            t = dst[0] - src[0]
+            return np.column_stack([L, t])
+    """)
+    assert _shown_changes(source, "matrix_applied") == [("dst[0] - src[0]", "dst[0] - L @ src[0]")]

@@ -125,7 +125,8 @@ OPERATORS = {
     "drop_keyword": ("argument", "keyword", "remov"),     # cv2.undistortPoints(p, K, None, P=K) -> (p, K, None)
     "method_given": ("method", "flag", "default", "cv2."),
     "reverse_back": ("revers", "back", "turn", "far end"),   # acc(x[:, ::-1], axis=1) -> acc(...)[:, ::-1]
-    "drop_reversal": ("revers", "order", "[::-1]"),    # tuple(pattern_size)[::-1] -> tuple(pattern_size)   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
+    "drop_reversal": ("revers", "order", "[::-1]"),    # tuple(pattern_size)[::-1] -> tuple(pattern_size)
+    "matrix_applied": ("matrix", "applied", "@", "map"),   # t = dst[0] - src[0] -> dst[0] - L @ src[0]   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
@@ -999,7 +1000,8 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term", "midrange", "reverse_back", "drop_reversal")},
+                                              "drop_term", "midrange", "reverse_back", "drop_reversal",
+                                              "matrix_applied")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -3006,12 +3008,37 @@ def _difference(a: str, b: str) -> tuple:
     return tuple((x, y) for x, y in zip(a, b) if x != y)
 
 
+def _matrix_applied(node, words):
+    """A point subtracted as it is where its image under a matrix the function made belongs: `t = dst[0] -
+    src[0]` for `dst[0] - L @ src[0]` (a translation that leaves out the linear part's move of the point).
+    The matrices are the locals made above by a matrix product or a ``np.linalg`` call."""
+    if not (isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub)
+            and isinstance(node.right, (ast.Name, ast.Subscript)) and isinstance(node.right.ctx, ast.Load)):
+        return
+    line = node.lineno
+    for name, defs in words.definitions.items():
+        made = [value for at, value, index in defs if at < line and index is None]
+        if not made or not _matrix_made(made[-1]) or any(isinstance(n, ast.Name) and n.id == name
+                                                         for n in ast.walk(node)):
+            continue
+        yield "matrix_applied", f"{ast.unparse(node.left)} - {name} @ {ast.unparse(node.right)}", ""
+
+
+def _matrix_made(value) -> bool:
+    """Whether ``value`` makes a matrix: a matrix product, or a call of ``np.linalg`` (inv, solve, lstsq's
+    first result)."""
+    return (isinstance(value, ast.BinOp) and isinstance(value.op, ast.MatMult)) or (
+        isinstance(value, ast.Call) and _dotted(value.func).startswith(("np.linalg.inv", "numpy.linalg.inv",
+                                                                        "np.linalg.solve", "numpy.linalg.solve")))
+
+
 def _sibling_changes(node, words):
     """Changes that copy what the student's code does for one of two like things to the other: a step
     done to one input only (`xl = xl[:, 0]` and no `xr = xr[:, 0]`: the two done together, `xl, xr =
     xl[:, 0], xr[:, 0]`), and an argument of a call that another call of the same function is given
     (`warp(weight, H, size)` beside `warp(image, shift @ H, size)`: the shift left out of one)."""
     done, calls, _ = _read_siblings(words)
+    yield from _matrix_applied(node, words)
     yield from _twin_argument_changes(node, words)
     yield from _canvas_changes(node, words)
     yield from _per_item_changes(node, words)
