@@ -3064,3 +3064,18 @@ def test_a_point_subtracted_without_the_matrix_the_function_made_is_given_its_im
             return np.column_stack([L, t])
     """)
     assert _shown_changes(source, "matrix_applied") == [("dst[0] - src[0]", "dst[0] - L @ src[0]")]
+
+
+def test_a_series_in_the_wrong_powers_of_its_variable_is_given_them_doubled_or_halved():
+    """`1 + k1 * r + k2 * r ** 2 + k3 * r ** 3` with r the radius, where the powers of r ** 2 belong: every
+    power doubled is one change; a series in even powers only is also given them halved."""
+    source = textwrap.dedent("""
+        def graded(x, y, k1, k2, k3):
+            r = np.sqrt(x * x + y * y)
+            radial = 1 + k1 * r + k2 * r ** 2 + k3 * r ** 3
+            other = 1 + k1 * y ** 2 + k2 * y ** 4
+            return radial, other
+    """)
+    changes = _shown_changes(source, "series_powers")
+    assert ("1 + k1 * r + k2 * r ** 2 + k3 * r ** 3", "1 + k1 * r ** 2 + k2 * r ** 4 + k3 * r ** 6") in changes
+    assert ("1 + k1 * y ** 2 + k2 * y ** 4", "1 + k1 * y + k2 * y ** 2") in changes, changes

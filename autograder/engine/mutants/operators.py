@@ -126,7 +126,8 @@ OPERATORS = {
     "method_given": ("method", "flag", "default", "cv2."),
     "reverse_back": ("revers", "back", "turn", "far end"),   # acc(x[:, ::-1], axis=1) -> acc(...)[:, ::-1]
     "drop_reversal": ("revers", "order", "[::-1]"),    # tuple(pattern_size)[::-1] -> tuple(pattern_size)
-    "matrix_applied": ("matrix", "applied", "@", "map"),   # t = dst[0] - src[0] -> dst[0] - L @ src[0]   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
+    "matrix_applied": ("matrix", "applied", "@", "map"),   # t = dst[0] - src[0] -> dst[0] - L @ src[0]
+    "series_powers": ("power", "square", "r^2", "**"),   # k1 * r + k2 * r ** 2 -> k1 * r ** 2 + k2 * r ** 4   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
@@ -1001,7 +1002,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal",
-                                              "matrix_applied")},
+                                              "matrix_applied", "series_powers")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1826,6 +1827,7 @@ def _student_changes(node, parent, parents):
             and not (isinstance(parent, ast.Subscript) and parent.value is node and _reversal(parent) is not None):
         # a running minimum (sum, ...) taken from the far end, never turned back
         yield "reverse_back", f"{ast.unparse(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
+    yield from _series_powers(node, parent)
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and _reversal(node) is not None:
         # an order reversed that does not belong: `tuple(pattern_size)[::-1]`, NumPy's (rows, columns)
         # habit where OpenCV takes (columns, rows)
@@ -3006,6 +3008,45 @@ def _difference(a: str, b: str) -> tuple:
     if len(a) != len(b):
         return (a, b)
     return tuple((x, y) for x, y in zip(a, b) if x != y)
+
+
+def _series_powers(node, parent):
+    """A series in the powers of one name written in the powers of its square root, or of its square:
+    `1 + k1 * r + k2 * r ** 2 + k3 * r ** 3` (r the radius) where `r ** 2, r ** 4, r ** 6` belong -- every
+    power doubled -- or every even power halved (the powers of r written on r2 = r ** 2)."""
+    def additive(n):
+        return isinstance(n, ast.BinOp) and isinstance(n.op, (ast.Add, ast.Sub))
+    if not additive(node) or additive(parent):
+        return
+    bases = {}   # name -> the powers it is raised to in the sum
+    bare = set()
+    for n in ast.walk(node):
+        if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and isinstance(n.left, ast.Name) \
+                and isinstance(n.right, ast.Constant) and type(n.right.value) is int and 1 <= n.right.value <= 8:
+            bases.setdefault(n.left.id, set()).add(n.right.value)
+            bare.add(id(n.left))
+    for n in ast.walk(node):
+        if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load) and id(n) not in bare and n.id in bases:
+            bases[n.id].add(1)
+    for name, powers in sorted(bases.items()):
+        if len(powers) < 2:
+            continue
+        for factor in (2, 0.5):
+            if factor == 0.5 and any(p % 2 for p in powers):
+                continue
+            changed = copy.deepcopy(node)
+            for n in list(ast.walk(changed)):
+                for field, child in ast.iter_fields(n):
+                    if isinstance(child, ast.Name) and child.id == name and isinstance(child.ctx, ast.Load) \
+                            and not (isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and field == "left"):
+                        setattr(n, field, ast.BinOp(ast.Name(name, ast.Load()), ast.Pow(), ast.Constant(2))
+                                if factor == 2 else child)
+                    elif isinstance(child, ast.BinOp) and isinstance(child.op, ast.Pow) and isinstance(child.left, ast.Name) \
+                            and child.left.id == name and isinstance(child.right, ast.Constant):
+                        power = int(child.right.value * factor)
+                        setattr(n, field, ast.Name(name, ast.Load()) if power == 1 else
+                                ast.BinOp(ast.Name(name, ast.Load()), ast.Pow(), ast.Constant(power)))
+            yield "series_powers", ast.unparse(changed), ""
 
 
 def _matrix_applied(node, words):
