@@ -3079,3 +3079,18 @@ def test_a_series_in_the_wrong_powers_of_its_variable_is_given_them_doubled_or_h
     changes = _shown_changes(source, "series_powers")
     assert ("1 + k1 * r + k2 * r ** 2 + k3 * r ** 3", "1 + k1 * r ** 2 + k2 * r ** 4 + k3 * r ** 6") in changes
     assert ("1 + k1 * y ** 2 + k2 * y ** 4", "1 + k1 * y + k2 * y ** 2") in changes, changes
+
+
+def test_a_term_taken_out_is_told_before_a_change_that_makes_it_vanish(tmp_path):
+    """A canvas `w + int(abs(s) * h)` wide where the input's width belongs: `int(abs(s) / h)` makes the
+    extra width 0 on every image tried (and is wrong for |s| >= h); taking the term out says the mistake."""
+    source = """
+        def shear(image, s=0.5):
+            h, w = image.shape[:2]
+            M = np.float32([[1, s, 0], [0, 1, 0]])
+            out_w = w + int(abs(s) * h)
+            return cv2.warpAffine(image, M, (out_w, h), borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+        """
+    messages = failing_messages(mutant(tmp_path, "lab07_transformations", source), "lab07.ex4")
+    assert messages and all("changing `w + int(abs(s) * h)` to `w`" in m for m in messages), messages
+    assert not any("int(abs(s) / h)" in m for m in messages), messages

@@ -1570,8 +1570,7 @@ def _changes(node, parents, words: _Words, line):
             and isinstance(node.value, ast.Call) and _cumulative(node.value) and _reversal(node) is not None \
             and node.value.args and _reversal(node.value.args[0]) is not None:
         yield "reverse_back", ast.unparse(node.value), \
-            f"the {_running(node.value)} taken from the far end (over the reversed axis) is not turned back (`[{_slice_text(node.slice)}]` " \
-            "after it is missing)"
+            f"the {_running(node.value)} taken from the far end (over a reversed axis) is not reversed back"
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and not isinstance(node.operand, ast.Constant):
         yield "sign", "remove", _subject(what(node.operand), "has the wrong sign (its minus is missing)", node, parents,
                                          words) or _placed("a minus sign is missing", place())

@@ -1492,7 +1492,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # A slow function's variants are tried on its smallest failing input first (a matcher's crop
     # offered to the error model): only those right or nearer there run on the others.
     screen = min(failing, key=lambda i: _weight(inputs[i]))
-    candidates, near, near_answers = [], [], {}
+    candidates, near, slightly, near_answers = [], [], [], {}
     exactly = set()   # the candidates giving the reference's answers on every failing input
     to_the_bit = set()   # of which those giving its very numbers (its computation, not one within rounding)
     known = {m.key for m in earlier}
@@ -1537,8 +1537,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             continue
         if values is not None and np.isfinite(off):
             apart = sum(variant.distance(v, references[i]) for v, i in zip(values, failing))
-            if apart < NEARER * off:
+            if apart < 0.9 * off:
                 near.append((apart, mutant))
+                near_answers[mutant.key] = values
+            elif apart < NEARER * off:   # (judged by the check after the nearer ones; never paired)
+                slightly.append((apart, mutant))
                 near_answers[mutant.key] = values
             # Far nearer, not the reference's to the last grey level (the student's own recipe: a
             # resize where the reference warps), or the reference's exactly on some failing inputs
@@ -1573,7 +1576,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # passes it and those exactly as near (the same answers from another place: names swapped where
         # they are made, or where they are used -- the confirmation tells them apart).
         passed, refused, judged = None, set(), set()
-        for apart, mutant in sorted(near, key=lambda pair: pair[0]):
+        for apart, mutant in sorted(near, key=lambda pair: pair[0]) + sorted(slightly, key=lambda pair: pair[0]):
             if variant.replays >= REPLAYS - PAIR_REPLAYS or clock.left() <= 0 or (passed is not None and apart > passed):
                 break
             # (a change whose answers are another's the check refused -- `q[0] + -w1` beside `q[0] - w1` --
@@ -1592,7 +1595,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # A nearer change the check had no time to judge is not ruled out for the function's later checks
         # (a drawing's own recipe keeps every change's answers far from the reference's: the right one
         # may be the fourth nearest).
-        ruled_out.difference_update(m.key for _, m in near if m.key not in judged)
+        ruled_out.difference_update(m.key for _, m in near + slightly if m.key not in judged)
     fixes, lines, halfway = [], set(), set()
     shown = [(mutant, variant.fix(mutant)) for mutant in candidates]
     # The smallest change of the text first: the student's slip is a few characters (`R.T` for `R`),
@@ -1607,11 +1610,16 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # `x2 * P2[2]` for `y2 * P2[2]` -- view 2's y equation dropped -- passes, `P2[0]` -> `P2[1]` is exact;
     # and its very numbers before answers within rounding: `-s * (h - 1) / 2` -> `-s / (h - 1) / 2`, a
     # shift of a thousandth of a pixel on a large image, beside the entry made 0)
-    shown = sorted(((m, f) for m, f in shown if f is not None and not student.renormalises(m)
+    # (and a term taken out before a change inside it that mends alike: `int(abs(s) / h)` for `int(abs(s) *
+    # h)` makes the extra width vanish on every image tried, where `w + int(abs(s) * h)` -> `w` says it)
+    shown = [(m, f) for m, f in shown if f is not None]
+    dropped = [f for m, f in shown if f.operator == "drop_term" and m.key in exactly]
+    shown = sorted(((m, f) for m, f in shown if not student.renormalises(m)
                     and not student.colours_with_a_size(m)),
                    key=lambda pair: (pair[0].key not in known, pair[0].key not in exactly,
                                      pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
+                                     _inside_a_dropped_term(pair[1], dropped),
                                      pair[1].operator in REMOVALS, pair[1].size, pair[1].written))
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
@@ -1788,8 +1796,9 @@ REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is 
 PAIR_NEARER = 3   # (a pair of changes, fewer than the single ones: judged by the check from this many times)
 REPLAYS = 5       # the most changes a failed check is replayed with
 # A change bringing the answers this much nearer the reference's is judged by the check where none gives
-# them: a drawing in the student's own style (cv2.drawMatches' circles and colours) stays far from the
-# reference's, and the two lines `matches[:10]` left out are a few per cent of the difference.
+# them, after those at least a tenth nearer: a drawing in the student's own style (cv2.drawMatches'
+# circles and colours) stays far from the reference's, and the two lines `matches[:10]` left out are a
+# few per cent of the difference.
 NEARER = 0.98
 PAIR_REPLAYS = 1  # of which kept for pairs of changes
 OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by a check must pass too
@@ -1816,6 +1825,15 @@ def _near_the_raise(mutants, trial, function) -> list:
         return mutants
     near = lambda m: any(0 <= line - m.line <= RAISE_REACH for line in lines)  # noqa: E731
     return [m for m in mutants if near(m)] + [m for m in mutants if not near(m)]
+
+
+def _inside_a_dropped_term(fix: "Fix", dropped: list) -> bool:
+    """Whether ``fix`` changes code inside a term that one of the ``dropped`` fixes (a term of a sum taken
+    out) removes from the same line: it mends by making that term vanish on the inputs tried."""
+    line, before = fix.changes[0][0], fix.changes[0][1]
+    return fix.operator != "drop_term" and any(
+        other.changes[0][0] == line and before in other.changes[0][1] and before not in other.changes[0][2]
+        for other in dropped)
 
 
 def _ties_only(fix: "Fix") -> bool:
