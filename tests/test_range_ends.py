@@ -103,6 +103,25 @@ RANGE_ENDS = {
         def stitch_many(images):
             return _stitch_many(list(images)[1:])
         """, ["the first one, is left out"]),
+    "stitch_many that loops over a count written in the code": ("lab08_homographies", "lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            features = [_detect(image) for image in images]
+            step = [_pairwise_homography(features[k + 1], features[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            homographies = []
+            for k in range(3):
+                H = np.eye(3)
+                if k > r:
+                    for j in range(k - 1, r - 1, -1):
+                        H = step[j] @ H
+                elif k < r:
+                    for j in range(k, r):
+                        H = np.linalg.inv(step[j]) @ H
+                homographies.append(H / H[2, 2])
+            return _compose(images, homographies)
+        """, ["the last one, is left out: the loop over the images runs a fixed number of times",
+              "your code loops over `range(3)`", "`range(3)` to `range(len(images))`"]),
     "draw_points that leaves out the image's border": ("lab09_camera", "lab09.ex5", """
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
             out = image.copy()

@@ -3094,3 +3094,17 @@ def test_a_term_taken_out_is_told_before_a_change_that_makes_it_vanish(tmp_path)
     messages = failing_messages(mutant(tmp_path, "lab07_transformations", source), "lab07.ex4")
     assert messages and all("changing `w + int(abs(s) * h)` to `w`" in m for m in messages), messages
     assert not any("int(abs(s) / h)" in m for m in messages), messages
+
+
+def test_a_loop_counted_by_a_number_is_given_a_parameters_length_and_a_list_one_shorter_refutes_a_bigger_number():
+    source = textwrap.dedent("""
+        def graded(images, scale):
+            out = []
+            for k in range(3):
+                out.append(images[k] * scale)
+            return out
+    """)
+    assert ("range(3)", "range(len(images))") in _shown_changes(source, "counted")
+    images = [np.zeros((4, 4)), np.ones((4, 4)), np.ones((4, 4)), np.ones((4, 4))]
+    [(function, args, kwargs)] = repair._fewer(("graded", (images, 2.0), {}))
+    assert len(args[0]) == 3 and args[1] == 2.0 and repair._fewer(("graded", (images[:2], 2.0), {})) == []

@@ -1834,18 +1834,46 @@ def _view_corners(view):
     return np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], dtype=np.float64)
 
 
+def _loop_counted(count: int) -> Predicate:
+    """A loop `for k in range(count)` (a number written in the code) whose variable is read in its body and
+    never as a channel's index (`out[:, :, k]`: a colour loop's three turns)."""
+    def test(function) -> bool:
+        for loop in ast.walk(function):
+            if not (isinstance(loop, ast.For) and isinstance(loop.target, ast.Name) and isinstance(loop.iter, ast.Call)
+                    and isinstance(loop.iter.func, ast.Name) and loop.iter.func.id == "range" and len(loop.iter.args) == 1
+                    and isinstance(loop.iter.args[0], ast.Constant) and loop.iter.args[0].value == count):
+                continue
+            read = [n for statement in loop.body for n in ast.walk(statement)
+                    if isinstance(n, ast.Name) and n.id == loop.target.id and isinstance(n.ctx, ast.Load)]
+            channel = any(isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Tuple)
+                          and any(isinstance(n, ast.Name) and n.id == loop.target.id for n in ast.walk(node.slice))
+                          for node in ast.walk(loop))
+            if read and not channel:
+                return True
+        return False
+    return Predicate(f"loops over range({count})", test)
+
+
 def fail_if_left_out(t: Trial, judge: PanoramaJudge, what: str):
     k = left_out(judge)
     if k is None:
         return
     n = len(judge.scene.views)
     which = "last" if k == n - 1 else "first"
+    judge.show(t, what)
+    # A loop counted by a number written in the code (`range(3)` for four images) is told as that, read
+    # from the code: "off by one" is no account of it, nor of its fix (a count of the images given).
+    counted = _loop_counted(n - 1).found(code_of(t).reachable(functions_read(t))) if k == n - 1 else ""
+    if counted:
+        mistake = f"image {k + 1}, the {which} one, is left out: the loop over the images runs a fixed number of times"
+        t.fail(f"{what}: {mistake} " + from_code(f"(your code loops over `range({n - 1})`, a count written in the code: "
+                                                f"loop over as many images as are given, `range(len(images))`)."),
+               mistake=mistake)
     loop = "range(len(images) - 1)" if k == n - 1 else "range(1, len(images))"
     mistake = f"image {k + 1}, the {which} one, is left out: the loop over the images is off by one"
     # said only to a loop written that way: another loop leaving the image out is not told it is this one
     every = Hint(f"loop over every image, not {loop}", asks=~expr(loop.replace("images", "_")),
                  instead="every image is to be warped and composed")
-    judge.show(t, what)
     t.fail(f"{what}: {mistake} (the panorama is exactly the one of the other images; {every.said(t)}).",
            mistake=mistake)
 

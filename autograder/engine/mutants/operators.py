@@ -127,7 +127,8 @@ OPERATORS = {
     "reverse_back": ("revers", "back", "turn", "far end"),   # acc(x[:, ::-1], axis=1) -> acc(...)[:, ::-1]
     "drop_reversal": ("revers", "order", "[::-1]"),    # tuple(pattern_size)[::-1] -> tuple(pattern_size)
     "matrix_applied": ("matrix", "applied", "@", "map"),   # t = dst[0] - src[0] -> dst[0] - L @ src[0]
-    "series_powers": ("power", "square", "r^2", "**"),   # k1 * r + k2 * r ** 2 -> k1 * r ** 2 + k2 * r ** 4   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
+    "series_powers": ("power", "square", "r^2", "**"),   # k1 * r + k2 * r ** 2 -> k1 * r ** 2 + k2 * r ** 4
+    "counted": ("count", "len", "fixed", "number"),   # for k in range(3) -> range(len(images))   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
@@ -1002,7 +1003,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal",
-                                              "matrix_applied", "series_powers")},
+                                              "matrix_applied", "series_powers", "counted")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -3048,6 +3049,17 @@ def _series_powers(node, parent):
             yield "series_powers", ast.unparse(changed), ""
 
 
+def _counted_by_length(node, words):
+    """A loop counted by a number written in the code where the length of a list the function is given
+    belongs: `for k in range(3)` for `range(len(images))` (three images in the student's own tests)."""
+    if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "range"
+            and len(node.args) == 1 and isinstance(node.args[0], ast.Constant)
+            and type(node.args[0].value) is int and node.args[0].value >= 2):
+        return
+    for parameter in words.fn.args.args:
+        yield "counted", f"range(len({parameter.arg}))", ""
+
+
 def _matrix_applied(node, words):
     """A point subtracted as it is where its image under a matrix the function made belongs: `t = dst[0] -
     src[0]` for `dst[0] - L @ src[0]` (a translation that leaves out the linear part's move of the point).
@@ -3079,6 +3091,7 @@ def _sibling_changes(node, words):
     (`warp(weight, H, size)` beside `warp(image, shift @ H, size)`: the shift left out of one)."""
     done, calls, _ = _read_siblings(words)
     yield from _matrix_applied(node, words)
+    yield from _counted_by_length(node, words)
     yield from _twin_argument_changes(node, words)
     yield from _canvas_changes(node, words)
     yield from _per_item_changes(node, words)

@@ -1365,6 +1365,19 @@ def _reads_size(node, names) -> bool:
 SMALL_IMAGE = (7, 9)   # rows, columns of the images of a change's small-image confirmation input
 
 
+def _fewer(call) -> list:
+    """The call with each list of three or more arrays it is given (the images of a panorama, the views of
+    a calibration) one item shorter ([] when it has none): a count written where the list's length belongs
+    (`range(3)` -> `range(4)` for four images) is wrong there."""
+    function, args, kwargs = call
+    made = []
+    for position, value in enumerate(args):
+        if isinstance(value, (list, tuple)) and len(value) >= 3 and all(isinstance(v, np.ndarray) for v in value):
+            shorter = type(value)(value[:-1])
+            made.append((function, args[:position] + (shorter,) + args[position + 1:], dict(kwargs)))
+    return made
+
+
 def _small(call) -> list:
     """The call with every 8-bit image (both sides above 20 pixels) cut to a window of
     :data:`SMALL_IMAGE` at its centre -- images of one shape alike: a stereo pair stays a pair --
@@ -2035,6 +2048,7 @@ class _Variants:
                 variants += naming.derived_calls(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
                                              self.model.defaults.get(self.function, ()))
                 variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
+                variants += _fewer(self.inputs[i])
                 # (the two views' roles turned round: a canvas as high as img2, right where img2 is
                 # the taller, is wrong where img1 is)
                 exchanged = naming.twins_exchanged(self.inputs[i], getattr(self.model, "twins", {}).get(self.function, ()))
