@@ -1651,6 +1651,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # every check of its own so far in this grading: a helper it runs rightly is no place for this
     # function's fix (`dsize or size` -> `dsize and size` in a warp helper mends a scale by breaking the
     # warps). (One not graded yet says nothing: the helper may be where the slip is, `_object_points`.)
+    # One mistake, one repair told: where a change an earlier check of the function confirmed mends this one
+    # too, it is told alone (a second change beside it that mends alike -- the output's entries exchanged,
+    # `[p[3], p[4], p[5]]` -> `[p[4], p[3], p[5]]`, beside the rows' `[0, 0, 0, y, x, 1]` -- compensates).
+    if any(mutant.key in known for mutant, _ in fixes):
+        fixes = [(mutant, fix) for mutant, fix in fixes if mutant.key in known]
     passing = passing_functions(trial)
     fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:
