@@ -1973,6 +1973,30 @@ NOT_BACKTRACKED = ("the disparities are not backtracked: each column takes the l
 
 
 FORWARD_AGREEMENT = 0.9   # share of pixels within 1 px of a forward-pass map
+JUMP_COST_DIFFERS = ("the backtracking weighs a jump between disparities otherwise than the forward pass (each "
+                     "step back must add the same smoothness * |d - d'| the forward pass added)")
+
+
+def _walks_back(function) -> bool:
+    """A loop that runs backwards: `range(..., ..., -1)`, `reversed(...)`, or over `x[::-1]`."""
+    for loop in ast.walk(function):
+        if not isinstance(loop, ast.For):
+            continue
+        iterated = loop.iter
+        if isinstance(iterated, ast.Call) and isinstance(iterated.func, ast.Name):
+            if iterated.func.id == "reversed":
+                return True
+            step = iterated.args[2] if iterated.func.id == "range" and len(iterated.args) == 3 else None
+            if isinstance(step, ast.UnaryOp) and isinstance(step.op, ast.USub) \
+                    or (isinstance(step, ast.Constant) and isinstance(step.value, int) and step.value < 0):
+                return True
+        if isinstance(iterated, ast.Subscript) and isinstance(iterated.slice, ast.Slice) \
+                and isinstance(iterated.slice.step, ast.UnaryOp) and isinstance(iterated.slice.step.op, ast.USub):
+            return True
+    return False
+
+
+WALKS_BACK = Predicate("loops backwards over the columns", _walks_back)
 
 
 def forward_pass_maps(scene, block_size: int = 5) -> dict[str, np.ndarray]:
@@ -2016,6 +2040,16 @@ def name_no_backtracking(t: Trial, what: str):
         return
     agreement = {name: float(np.mean(np.abs(flat - m) <= 1)) for name, m in forward_pass_maps(scene).items()}
     cost, share = max(agreement.items(), key=lambda item: item[1])
+    walking = WALKS_BACK.found(code_of(t).reachable(["dp_stereo"])) if share >= FORWARD_AGREEMENT else ""
+    if walking:
+        # (their code does walk back: then a jump costs less there than in the forward pass -- a unit
+        # penalty, |d - d'|, where smoothness * |d - d'| belongs -- and the forward pass's choice wins)
+        t.fail(f"{what}: it looks like {JUMP_COST_DIFFERS}. " + from_code(
+               f"Your code walks back from the last column (it {walking}), yet with smoothness=1e7, where a "
+               f"backtracked DP keeps one disparity per row, {changing:.0%} of your rows change, and {share:.0%} "
+               f"of your pixels are, within 1 px, the disparity with the lowest {cost} summed along the row up to "
+               "that column: the walk back weighs a jump by less than smoothness * |d - d'|."),
+               mistake=JUMP_COST_DIFFERS)
     if share >= FORWARD_AGREEMENT:
         t.fail(f"{what}: it looks like {NOT_BACKTRACKED}. With smoothness=1e7 a backtracked DP keeps one "
                f"disparity per row; {changing:.0%} of your rows change, and {share:.0%} of your pixels are, "
