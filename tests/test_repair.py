@@ -3108,3 +3108,19 @@ def test_a_loop_counted_by_a_number_is_given_a_parameters_length_and_a_list_one_
     images = [np.zeros((4, 4)), np.ones((4, 4)), np.ones((4, 4)), np.ones((4, 4))]
     [(function, args, kwargs)] = repair._fewer(("graded", (images, 2.0), {}))
     assert len(args[0]) == 3 and args[1] == 2.0 and repair._fewer(("graded", (images[:2], 2.0), {})) == []
+
+
+def test_a_scale_given_where_its_neutral_one_belongs_is_a_change_tried():
+    """cv2.getRotationMatrix2D given a zoom (so that the whole picture fits) where a rotation keeps the
+    scale 1: its 1.0 is the change tried; a scale written 1 already is not changed."""
+    source = textwrap.dedent("""
+        def graded(image, angle_deg):
+            h, w = image.shape[:2]
+            zoom = min(w, h) / np.hypot(w, h)
+            M = cv2.getRotationMatrix2D(((w - 1) / 2, (h - 1) / 2), angle_deg, zoom)
+            N = cv2.getRotationMatrix2D((0, 0), angle_deg, 1)
+            return M, N
+    """)
+    assert _shown_changes(source, "neutral_argument") == [
+        ("cv2.getRotationMatrix2D(((w - 1) / 2, (h - 1) / 2), angle_deg, zoom)",
+         "cv2.getRotationMatrix2D(((w - 1) / 2, (h - 1) / 2), angle_deg, 1.0)")]

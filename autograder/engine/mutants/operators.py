@@ -128,7 +128,8 @@ OPERATORS = {
     "drop_reversal": ("revers", "order", "[::-1]"),    # tuple(pattern_size)[::-1] -> tuple(pattern_size)
     "matrix_applied": ("matrix", "applied", "@", "map"),   # t = dst[0] - src[0] -> dst[0] - L @ src[0]
     "series_powers": ("power", "square", "r^2", "**"),   # k1 * r + k2 * r ** 2 -> k1 * r ** 2 + k2 * r ** 4
-    "counted": ("count", "len", "fixed", "number"),   # for k in range(3) -> range(len(images))   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
+    "counted": ("count", "len", "fixed", "number"),   # for k in range(3) -> range(len(images))
+    "neutral_argument": ("scale", "1", "argument", "zoom"),   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
@@ -852,6 +853,15 @@ def _make_drop_keyword(node, payload):
     return new
 
 
+def _make_neutral_argument(node, payload):
+    new = copy.deepcopy(node)   # cv2.getRotationMatrix2D(centre, angle, zoom) -> (centre, angle, 1.0)
+    if isinstance(payload, int):
+        new.args[payload] = ast.Constant(1.0)
+    else:
+        new.keywords = [ast.keyword(k.arg, ast.Constant(1.0)) if k.arg == payload else k for k in new.keywords]
+    return new
+
+
 def _make_method_given(node, payload):
     keyword, member = payload   # cv2.findFundamentalMat(p1, p2) -> cv2.findFundamentalMat(p1, p2, method=cv2.FM_8POINT)
     module = _dotted(node.func).split(".", 1)[0]
@@ -1004,7 +1014,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal",
                                               "matrix_applied", "series_powers", "counted")},
-         "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
+         "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
@@ -2400,6 +2410,13 @@ def _call_slips(node: ast.Call):
         for position, argument in enumerate(node.args[1:], start=1):
             if isinstance(argument, (ast.Name, ast.Tuple, ast.Subscript)) and not isinstance(argument, ast.Starred):
                 yield "drop_keyword", position, ""
+    if dotted.startswith(("cv2.", "cv.")) and short in _NEUTRAL_ONE:
+        # (a scale that does not belong, given where its neutral 1 does: a rotation that also zooms)
+        keyword, position = _NEUTRAL_ONE[short]
+        given = node.args[position] if len(node.args) > position else \
+            next((k.value for k in node.keywords if k.arg == keyword), None)
+        if given is not None and not (isinstance(given, ast.Constant) and given.value == 1):
+            yield "neutral_argument", position if len(node.args) > position else keyword, ""
     if dotted.startswith(("cv2.", "cv.")) and short in _METHOD_ARGUMENTS \
             and not any(isinstance(a, ast.Starred) for a in node.args) and not any(k.arg is None for k in node.keywords):
         # (a method or flags argument left out, the library's default used: cv2.findFundamentalMat's is
@@ -2433,6 +2450,8 @@ def _call_slips(node: ast.Call):
 
 
 _KEPT_KEYWORDS = {"dtype", "axis", "out", "where"}
+# OpenCV arguments whose neutral value is 1 (a scale): the keyword and the position
+_NEUTRAL_ONE = {"getRotationMatrix2D": ("scale", 2), "convertScaleAbs": ("alpha", 2)}
 # OpenCV calls whose method (or interpolation) argument a student may leave at its default: its keyword,
 # its position, and the values given it (each an expression of the cv2 module's constants)
 _INTERPOLATIONS = ("INTER_NEAREST", "INTER_CUBIC", "INTER_AREA")
