@@ -664,6 +664,19 @@ def center_mistakes(R, tv) -> dict:
     }
 
 
+def minor_sign_mistakes(R, tv) -> dict:
+    """The centre from P's 3x3 minors, C = (det[p2 p3 p4], -det[p1 p3 p4], det[p1 p2 p4], -det[p1 p2 p3]),
+    with the alternating signs left out: all four taken +, Y's and W's signs are both lost, so X and Z come
+    out negated; only Y's sign left out, Y comes out negated."""
+    C = -R.T @ tv
+    return {
+        "the 3x3 minors of P enter C with alternating signs (+, -, +, -): with all four taken +, X and Z come "
+        "out with the wrong sign": C * [-1.0, 1.0, -1.0],
+        "the minor for Y, det[p1 p3 p4], enters C with a minus sign (the signs alternate +, -, +, -): Y comes out "
+        "with the wrong sign": C * [1.0, -1.0, 1.0],
+    }
+
+
 def judge_center(t: Trial, P, R, tv):
     what = "camera_center(P)"
     got = t.call("camera_center", P)
@@ -676,12 +689,17 @@ def judge_center(t: Trial, P, R, tv):
     if np.abs(got - C).max() <= at_precision(1e-6 * scale, scale):
         return
     mistakes = center_mistakes(R, tv)
+    minors = calls("np.linalg.det").found(code_of(t).reachable(["camera_center"]))
+    if minors:   # (read from the code: the centre made of P's 3x3 minors, Hartley & Zisserman's formula)
+        mistakes.update(minor_sign_mistakes(R, tv))
     null = np.append(C, 1.0) / np.linalg.norm(np.append(C, 1.0))      # the SVD's null vector, up to sign
     if min(np.abs(got - null[:3]).max(), np.abs(got + null[:3]).max()) <= at_precision(1e-6):
         t.fail(f"{what} is wrong: it returned the first three entries of the null vector of P without "
                "dividing by the fourth (C = v[:3] / v[3]).", mistake="the null vector is not de-homogenised")
     P2, _, R2, tv2, _ = truth.random_camera_matrix(10_031)
-    probe = call_probe(t, "camera_center", (P2,), candidates=lambda: center_mistakes(R2, tv2), truth=-R2.T @ tv2,
+    probe = call_probe(t, "camera_center", (P2,), candidates=lambda: {**center_mistakes(R2, tv2),
+                                                                      **(minor_sign_mistakes(R2, tv2) if minors else {})},
+                       truth=-R2.T @ tv2,
                        shape=(3,), tolerance=1e-6 * magnitude(-R2.T @ tv2))
     mistake = name_mistake(t, got, mistakes, lambda a, b: float(np.abs(a - b).max()), 1e-6 * scale, truth=C,
                            probe=probe)

@@ -505,6 +505,21 @@ MISTAKES = {
         def camera_center(P):
             return np.linalg.svd(np.asarray(P, dtype=np.float64))[2][-1][:3]
         """, ["without dividing by the fourth"]),
+    "camera centre from P's minors, all taken with a plus sign": ("lab10.ex5", """
+        def camera_center(P):
+            P = np.asarray(P, dtype=np.float64)
+            minors = [np.linalg.det(np.delete(P, column, axis=1)) for column in range(4)]
+            return np.array(minors[:3]) / minors[3]
+        """, ["minors of p enter c with alternating signs", "x and z come out with the wrong sign"]),
+    "camera centre from P's minors, Y's without its minus": ("lab10.ex5", """
+        def camera_center(P):
+            P = np.asarray(P, dtype=np.float64)
+            X = np.linalg.det(P[:, [1, 2, 3]])
+            Y = np.linalg.det(P[:, [0, 2, 3]])
+            Z = np.linalg.det(P[:, [0, 1, 3]])
+            W = -np.linalg.det(P[:, [0, 1, 2]])
+            return np.array([X, Y, Z]) / W
+        """, ["the minor for y", "y comes out with the wrong sign"]),
     "pose with the grid built for (rows, cols)": ("lab10.ex6", """
         def _object_points(pattern_size, square_size):
             cols, rows = pattern_size
