@@ -3124,3 +3124,16 @@ def test_a_scale_given_where_its_neutral_one_belongs_is_a_change_tried():
     assert _shown_changes(source, "neutral_argument") == [
         ("cv2.getRotationMatrix2D(((w - 1) / 2, (h - 1) / 2), angle_deg, zoom)",
          "cv2.getRotationMatrix2D(((w - 1) / 2, (h - 1) / 2), angle_deg, 1.0)")]
+
+
+def test_a_grid_reshaped_in_memory_order_is_given_its_transpose_first():
+    """`np.mgrid[0:c, 0:r].reshape(-1, 2)` reads the grid's x's, then its y's, in runs: the transpose
+    before the reshape is a change tried; a reshape of a transposed array already is not given another."""
+    source = textwrap.dedent("""
+        def graded(cols, rows):
+            grid = np.mgrid[0:cols, 0:rows].reshape(-1, 2)
+            done = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)
+            return grid, done
+    """)
+    given = [pair for pair in _shown_changes(source, "transpose") if pair[1].endswith(".T.reshape(-1, 2)")]
+    assert given == [("np.mgrid[0:cols, 0:rows].reshape(-1, 2)", "np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)")], given

@@ -383,6 +383,10 @@ def _make_swap_args(node, payload):
 def _make_transpose(node, payload):
     if payload == "for_reshape":   # x.reshape(w, h) -> x.T
         return ast.Attribute(copy.deepcopy(node.func.value), "T", ast.Load())
+    if payload == "before_reshape":   # x.reshape(-1, 2) -> x.T.reshape(-1, 2)
+        new = copy.deepcopy(node)
+        new.func.value = ast.Attribute(new.func.value, "T", ast.Load())
+        return new
     if payload == "cv_points":   # cv2.f(a, b, pts1, pts2) -> cv2.f(a, b, pts1.T, pts2.T)
         new = copy.deepcopy(node)
         for p in _CV_POINT_SETS[_dotted(node.func).rsplit(".", 1)[-1]]:
@@ -2025,6 +2029,12 @@ def _student_changes(node, parent, parents):
         yield "function", prefix + _CV_MISTAKEN[short], ""
     if isinstance(node.func, ast.Attribute) and node.func.attr == "reshape":
         yield "transpose", "for_reshape", ""
+        inner = node.func.value
+        if not (isinstance(inner, ast.Attribute) and inner.attr == "T") and not (
+                isinstance(inner, ast.Call) and _dotted(inner.func).rsplit(".", 1)[-1] in ("transpose", "swapaxes")):
+            # (a grid read in memory order: `np.mgrid[0:c, 0:r].reshape(-1, 2)`, its x's and y's in runs, where
+            # each point's (x, y) -- `.T.reshape(-1, 2)` -- belongs)
+            yield "transpose", "before_reshape", ""
 
 
 def _negated(node) -> bool:
