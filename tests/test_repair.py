@@ -3137,3 +3137,12 @@ def test_a_grid_reshaped_in_memory_order_is_given_its_transpose_first():
     """)
     given = [pair for pair in _shown_changes(source, "transpose") if pair[1].endswith(".T.reshape(-1, 2)")]
     assert given == [("np.mgrid[0:cols, 0:rows].reshape(-1, 2)", "np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)")], given
+
+
+def test_a_whole_arrays_norm_dividing_it_is_given_each_rows_with_its_axis_kept():
+    source = textwrap.dedent("""
+        def graded(lines):
+            return lines / np.linalg.norm(lines[:, :2])
+    """)
+    assert ("np.linalg.norm(lines[:, :2])", "np.linalg.norm(lines[:, :2], axis=1, keepdims=True)") \
+        in _shown_changes(source, "add_axis")

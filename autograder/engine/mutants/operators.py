@@ -799,7 +799,10 @@ def _make_keep_result(node, payload):
 
 def _make_add_axis(node, payload):
     new = copy.deepcopy(node)   # np.delete(X, 2) -> np.delete(X, 2, axis=1)
-    new.keywords = [*new.keywords, ast.keyword("axis", _signed(payload))]
+    axis, kept = payload if isinstance(payload, tuple) else (payload, False)
+    new.keywords = [*new.keywords, ast.keyword("axis", _signed(axis))]
+    if kept:   # np.linalg.norm(l[:, :2]) -> (..., axis=1, keepdims=True): each row's, divided row by row
+        new.keywords.append(ast.keyword("keepdims", ast.Constant(True)))
     return new
 
 
@@ -2374,6 +2377,8 @@ def _dtype_changes(node: ast.Call):
 _BINDS_TIGHTER = (ast.Mult, ast.Div, ast.FloorDiv, ast.MatMult, ast.Mod)
 # NumPy functions that take an axis, and the position it has among their arguments: left out, the
 # array is flattened (np.delete, np.append, np.sum) or a default axis used where another belongs.
+_KEEPS_DIMS = {"sum", "mean", "max", "min", "amax", "amin", "median", "std", "var", "norm", "average", "nanmean",
+               "nansum", "nanmax", "nanmin", "any", "all"}   # reductions that take keepdims
 _AXIS_POSITIONS = {"delete": 2, "insert": 3, "append": 2, "sum": 1, "mean": 1, "max": 1, "min": 1, "amax": 1,
                    "amin": 1, "argmax": 1, "argmin": 1, "median": 1, "std": 1, "var": 1, "any": 1, "all": 1,
                    "cumsum": 1, "flip": 1, "concatenate": 1, "stack": 1, "norm": 2, "average": 1, "nanmean": 1,
@@ -2404,6 +2409,9 @@ def _call_slips(node: ast.Call):
             and len(node.args) + method <= _AXIS_POSITIONS[short]:
         for axis in (0, 1, -1):
             yield "add_axis", axis, ""
+        if short in _KEEPS_DIMS and not any(k.arg == "keepdims" for k in node.keywords):
+            for axis in (1, -1):   # (a whole array's norm dividing it, where each row's belongs)
+                yield "add_axis", (axis, True), ""
     for keyword in node.keywords:
         if keyword.arg and isinstance(keyword.value, ast.Constant) and isinstance(keyword.value.value, bool):
             yield "flip_keyword", keyword.arg, ""
