@@ -3146,3 +3146,12 @@ def test_a_whole_arrays_norm_dividing_it_is_given_each_rows_with_its_axis_kept()
     """)
     assert ("np.linalg.norm(lines[:, :2])", "np.linalg.norm(lines[:, :2], axis=1, keepdims=True)") \
         in _shown_changes(source, "add_axis")
+
+
+def test_a_transpose_of_a_whole_product_is_given_to_one_factor():
+    source = textwrap.dedent("""
+        def graded(F, K1, K2):
+            return (K2 @ F).T @ K1
+    """)
+    changes = _shown_changes(source, "factor_transposed")
+    assert ("(K2 @ F).T", "K2.T @ F") in changes and ("(K2 @ F).T", "K2 @ F.T") in changes, changes

@@ -129,7 +129,8 @@ OPERATORS = {
     "matrix_applied": ("matrix", "applied", "@", "map"),   # t = dst[0] - src[0] -> dst[0] - L @ src[0]
     "series_powers": ("power", "square", "r^2", "**"),   # k1 * r + k2 * r ** 2 -> k1 * r ** 2 + k2 * r ** 4
     "counted": ("count", "len", "fixed", "number"),   # for k in range(3) -> range(len(images))
-    "neutral_argument": ("scale", "1", "argument", "zoom"),   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
+    "neutral_argument": ("scale", "1", "argument", "zoom"),
+    "factor_transposed": ("transpos", "product", "factor"),   # (K2 @ F).T -> K2.T @ F   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
@@ -1020,7 +1021,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal",
-                                              "matrix_applied", "series_powers", "counted")},
+                                              "matrix_applied", "series_powers", "counted", "factor_transposed")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1845,6 +1846,16 @@ def _student_changes(node, parent, parents):
         # a running minimum (sum, ...) taken from the far end, never turned back
         yield "reverse_back", f"{ast.unparse(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
+    if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load) \
+            and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.MatMult):
+        # a transpose of a whole product where one factor's belongs: `(K2 @ F).T` for `K2.T @ F`
+        left, right = node.value.left, node.value.right
+        yield "factor_transposed", f"{ast.unparse(left)}.T @ {ast.unparse(right)}" if isinstance(left, (ast.Name, ast.Subscript,
+                                                                                                  ast.Attribute)) \
+            else f"({ast.unparse(left)}).T @ {ast.unparse(right)}", ""
+        yield "factor_transposed", f"{ast.unparse(left)} @ {ast.unparse(right)}.T" if isinstance(right, (ast.Name, ast.Subscript,
+                                                                                                   ast.Attribute)) \
+            else f"{ast.unparse(left)} @ ({ast.unparse(right)}).T", ""
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and _reversal(node) is not None:
         # an order reversed that does not belong: `tuple(pattern_size)[::-1]`, NumPy's (rows, columns)
         # habit where OpenCV takes (columns, rows)
