@@ -1459,6 +1459,21 @@ def few_matches(t: Trial, pair, what: str, F, pts1, pts2, points3d):
                        "coordinates K^-1 x only, and with cameras that do not match the coordinates most points land "
                        "behind a camera.", mistake=WITHOUT_K)
             t.fail(measured_part + ".")
+    # (none or almost none kept, while F is right: the matches were there and are lost after F; where the
+    # code builds a camera without K, most points land behind one of the cameras -- read, then said)
+    if np.all(np.isfinite(F)) and np.any(F):
+        g1, g2 = truth.grid_correspondences(pair)
+        right = np.median(truth.symmetric_epipolar_distance(F, g1, g2)) <= 1.5
+        found = CAMERA_WITHOUT_K.found(code_of(t).reachable(["two_view_reconstruction"])) if right else ""
+        if found:
+            t.fail(f"{what} returned only {m} matches, while its F agrees with the true epipolar geometry: the matching "
+                   f"is not what is short, the matches are lost after it. It looks like {WITHOUT_K} " + from_code(f"(your code {found})") + ": [R | t] acts "
+                   "on normalised coordinates K^-1 x only, and with cameras that do not match the coordinates most "
+                   "points land behind a camera and are dropped.", mistake=WITHOUT_K)
+        if right:
+            t.fail(f"{what} returned only {m} matches, while its F agrees with the true epipolar geometry: "
+                   + measured("the matching is not what is short, the matches are lost after it (in the pose, the "
+                              "triangulation or the test of which points lie in front of both cameras)") + ".")
     t.fail(f"{what} returned only {m} matches; " + measured("keep at least 20 (the photos share plenty of texture)"))
 
 

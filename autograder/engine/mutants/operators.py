@@ -130,7 +130,8 @@ OPERATORS = {
     "series_powers": ("power", "square", "r^2", "**"),   # k1 * r + k2 * r ** 2 -> k1 * r ** 2 + k2 * r ** 4
     "counted": ("count", "len", "fixed", "number"),   # for k in range(3) -> range(len(images))
     "neutral_argument": ("scale", "1", "argument", "zoom"),
-    "factor_transposed": ("transpos", "product", "factor"),   # (K2 @ F).T -> K2.T @ F   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
+    "factor_transposed": ("transpos", "product", "factor"),   # (K2 @ F).T -> K2.T @ F
+    "twin_factor": ("missing", "also", "both", "factor"),   # P1 = K @ A; P2 = B -> P2 = K @ B   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
@@ -1021,7 +1022,8 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal",
-                                              "matrix_applied", "series_powers", "counted", "factor_transposed")},
+                                              "matrix_applied", "series_powers", "counted", "factor_transposed",
+                                              "twin_factor")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -3097,6 +3099,26 @@ def _series_powers(node, parent):
             yield "series_powers", ast.unparse(changed), ""
 
 
+def _twin_factor(node, words):
+    """A matrix factor one of two twin names is given and the other is not: `P1 = K @ np.hstack([I, 0])`
+    beside `P2 = np.hstack([R, t])` (camera 2 built without K): the twin's factor given to it too."""
+    parent = _parent_of(node, words)
+    if not (isinstance(parent, ast.Assign) and parent.value is node and len(parent.targets) == 1
+            and isinstance(parent.targets[0], ast.Name)) or isinstance(node, ast.Constant):
+        return
+    name = parent.targets[0].id
+    for twin, defs in words.definitions.items():
+        if twin == name or not twin_names(name, twin):
+            continue
+        for _, value, index in defs:
+            if index is None and isinstance(value, ast.BinOp) and isinstance(value.op, ast.MatMult) \
+                    and isinstance(value.left, ast.Name) and not (
+                        isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult)
+                        and isinstance(node.left, ast.Name) and node.left.id == value.left.id):
+                yield "twin_factor", f"{value.left.id} @ {ast.unparse(node)}", ""
+                return
+
+
 def _counted_by_length(node, words):
     """A loop counted by a number written in the code where the length of a list the function is given
     belongs: `for k in range(3)` for `range(len(images))` (three images in the student's own tests)."""
@@ -3140,6 +3162,7 @@ def _sibling_changes(node, words):
     done, calls, _ = _read_siblings(words)
     yield from _matrix_applied(node, words)
     yield from _counted_by_length(node, words)
+    yield from _twin_factor(node, words)
     yield from _twin_argument_changes(node, words)
     yield from _canvas_changes(node, words)
     yield from _per_item_changes(node, words)
