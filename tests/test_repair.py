@@ -3155,3 +3155,13 @@ def test_a_transpose_of_a_whole_product_is_given_to_one_factor():
     """)
     changes = _shown_changes(source, "factor_transposed")
     assert changes == [("(K2 @ F).T @ K1", "K2.T @ F @ K1"), ("(K2 @ F).T @ K1", "K2 @ F.T @ K1")], changes
+
+
+def test_a_twins_matrix_factor_is_given_to_the_other_twin():
+    source = textwrap.dedent("""
+        def graded(K, R, t):
+            P1 = K @ np.hstack([np.eye(3), np.zeros((3, 1))])
+            P2 = np.hstack([R, t])
+            return P1, P2
+    """)
+    assert _shown_changes(source, "twin_factor") == [("np.hstack([R, t])", "K @ np.hstack([R, t])")]
