@@ -2046,8 +2046,9 @@ def _student_changes(node, parent, parents):
     if isinstance(node.func, ast.Attribute) and node.func.attr == "reshape":
         yield "transpose", "for_reshape", ""
         inner = node.func.value
-        if not (isinstance(inner, ast.Attribute) and inner.attr == "T") and not (
-                isinstance(inner, ast.Call) and _dotted(inner.func).rsplit(".", 1)[-1] in ("transpose", "swapaxes")):
+        grid = (isinstance(inner, ast.Subscript) and _dotted(inner.value) in ("np.mgrid", "numpy.mgrid")) or (
+            isinstance(inner, ast.Call) and _dotted(inner.func).rsplit(".", 1)[-1] in ("indices", "meshgrid", "stack"))
+        if grid:
             # (a grid read in memory order: `np.mgrid[0:c, 0:r].reshape(-1, 2)`, its x's and y's in runs, where
             # each point's (x, y) -- `.T.reshape(-1, 2)` -- belongs)
             yield "transpose", "before_reshape", ""

@@ -1672,13 +1672,14 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # (a comparison made strict or not changes only ties: beside another fix it is one by chance --
         # `ssd <= best` beside the update moved where it belongs -- and is not told)
         kept = [pair for pair in (kept or fixes) if not _ties_only(pair[1])] or kept
-        found = variant.repair(variant.nearest(kept or fixes), complete)
         removals = all(fix.operator in REMOVALS for _, fix in fixes)
         if removals and not complete:
             # (a step taken out, found before the other changes were all tried, is likely a compensation --
             # the division by a w made Z by the matrix's last row -- and nothing says it is not: told by none
-            # of this check; a later check of the function, given the time, finds the change or confirms it)
+            # of this check, nor kept as found; a later check of the function, given the time, finds the
+            # change or confirms it)
             return None
+        found = variant.repair(variant.nearest(kept or fixes), complete)
         if not removals or clock.left() <= RESERVE:
             return found
         # Only steps taken out mend it (the division by a w written 0, an inv(T) undoing rows filled with
