@@ -3165,3 +3165,17 @@ def test_a_twins_matrix_factor_is_given_to_the_other_twin():
             return P1, P2
     """)
     assert _shown_changes(source, "twin_factor") == [("np.hstack([R, t])", "K @ np.hstack([R, t])")]
+
+
+def test_the_other_entry_of_a_diagonal_is_a_change_tried_in_a_nested_helper_too():
+    """`y = (v - K[1, 2]) / K[0, 0]` (fx) where `K[1, 1]` (fy) belongs, written in a def inside the function."""
+    source = textwrap.dedent("""
+        def graded(p, K):
+            def normalise(p, K):
+                y = (p[:, 1] - K[1, 2]) / K[0, 0]
+                x = (p[:, 0] - K[0, 2]) / K[0, 0]
+                return x, y
+            return normalise(p, K)
+    """)
+    changes = _shown_changes(source, "axis")
+    assert ("(p[:, 1] - K[1, 2]) / K[0, 0]", "(p[:, 1] - K[1, 2]) / K[1, 1]") in changes, changes

@@ -1848,6 +1848,13 @@ def _student_changes(node, parent, parents):
         # a running minimum (sum, ...) taken from the far end, never turned back
         yield "reverse_back", f"{ast.unparse(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name) \
+            and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2 \
+            and all(isinstance(e, ast.Constant) and type(e.value) is int for e in node.slice.elts) \
+            and node.slice.elts[0].value == node.slice.elts[1].value in (0, 1):
+        # the other entry of a diagonal: `K[0, 0]` (fx) where `K[1, 1]` (fy) belongs
+        other = 1 - node.slice.elts[0].value
+        yield "axis", [other, other], ""
     if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load) \
             and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.MatMult):
         # a transpose of a whole product where one factor's belongs: `(K2 @ F).T` for `K2.T @ F`
