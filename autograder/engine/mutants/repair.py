@@ -1589,9 +1589,13 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # passes it and those exactly as near (the same answers from another place: names swapped where
         # they are made, or where they are used -- the confirmation tells them apart).
         passed, refused, judged = None, set(), set()
-        for apart, mutant in sorted(near, key=lambda pair: pair[0]) + sorted(slightly, key=lambda pair: pair[0]):
-            if variant.replays >= REPLAYS - PAIR_REPLAYS or clock.left() <= 0 or (passed is not None and apart > passed):
+        ordered = [(apart, mutant, False) for apart, mutant in sorted(near, key=lambda pair: pair[0])] \
+            + [(apart, mutant, True) for apart, mutant in sorted(slightly, key=lambda pair: pair[0])]
+        for apart, mutant, slight in ordered:
+            if clock.left() <= 0 or (passed is not None and apart > passed):
                 break
+            if (variant.slight_replays >= SLIGHT_REPLAYS) if slight else (variant.replays >= REPLAYS - PAIR_REPLAYS):
+                continue
             # (a change whose answers are another's the check refused -- `q[0] + -w1` beside `q[0] - w1` --
             # is refused too: its replay goes to the next nearest)
             answers = _answers_key(near_answers[mutant.key])
@@ -1600,7 +1604,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             if mutant.key in variant.checked:
                 continue
             judged.add(mutant.key)
-            if not variant.passes_check(mutant, near_answers[mutant.key], failing):
+            if not variant.passes_check(mutant, near_answers[mutant.key], failing, slight=slight):
                 refused.add(answers)
                 continue
             candidates.append(mutant)
@@ -1819,6 +1823,7 @@ REPLAYS = 5       # the most changes a failed check is replayed with
 # circles and colours) stays far from the reference's, and the two lines `matches[:10]` left out are a
 # few per cent of the difference.
 NEARER = 0.98
+SLIGHT_REPLAYS = 4   # the replays of a check kept for those (the check's own others and its pairs' stay theirs)
 PAIR_REPLAYS = 1  # of which kept for pairs of changes
 OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by a check must pass too
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
@@ -1921,6 +1926,7 @@ class _Variants:
         self.replayable = _replayable(trial)
         self.checked: dict = {}     # change -> its spread, where the check itself judged it right
         self.replays = 0
+        self.slight_replays = 0
         self.screenings = 0         # changes run on the screening input
         self.theirs: dict = {}      # confirmation input -> the student's own answer there
         self.confirmed_by_checks = False   # a change the check judged, confirmed by its other checks
@@ -2008,16 +2014,21 @@ class _Variants:
         answered = {**dict(zip(rest, others)), screen: value}
         return [answered[i] for i in failing]
 
-    def passes_check(self, mutant, values, failing, pair: bool = False) -> bool:
+    def passes_check(self, mutant, values, failing, pair: bool = False, slight: bool = False) -> bool:
         """Whether the failed check, run again with every call answered by the variant, passes: its
         tolerances come from the spread of legitimate work, where :func:`right`'s are the reference's
         rounding. At most :data:`REPLAYS` per check; a property on the examples that decided it (its
         failing one: Hypothesis would draw and shrink anew for each variant). ``values``: the variant's
         answers on the ``failing`` inputs (how far from the reference's the check accepts them is the
         spread its confirmation allows)."""
-        if not self.replayable or self.replays >= REPLAYS - (0 if pair else PAIR_REPLAYS) or self.clock.left() <= 0:
+        if slight:   # (a change only a few per cent nearer: replays of its own, after the others')
+            if not self.replayable or self.slight_replays >= SLIGHT_REPLAYS or self.clock.left() <= 0:
+                return False
+            self.slight_replays += 1
+        elif not self.replayable or self.replays >= REPLAYS - (0 if pair else PAIR_REPLAYS) or self.clock.left() <= 0:
             return False   # (a replay is kept for the pairs: where a single change's answers are absurd,
-        self.replays += 1  # every change looks far nearer, and the single ones would use them all)
+        else:              # every change looks far nearer, and the single ones would use them all)
+            self.replays += 1
         if self._replay(mutant, (self.trial.check, self.trial.property_examples)) is not True:
             return False
         self.checked[mutant.key] = max((self.distance(v, self.references[i]) for v, i in zip(values, failing)),
