@@ -15,7 +15,7 @@ import pytest
 from autograder.engine.hints import KEEPS_HIGHEST, KEEPS_LOWEST, read_code
 from autograder.engine.runner import grade
 from autograder.labs import lab08, lab12
-from conftest import check_results, mutant
+from conftest import check_results, edited_reference, mutant
 from fixtures import lab08 as truth08
 
 
@@ -328,31 +328,9 @@ def test_a_dp_that_walks_back_with_a_unit_penalty_is_not_told_it_never_backtrack
     """The walk back from the last column weighs a jump by |d - d'| where the forward pass added
     smoothness * |d - d'|: its maps are the forward pass's at a huge smoothness, as a DP without
     backtracking gives, but the code does walk back -- told as the jump's cost, never as no backtracking."""
-    source = """
-        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
-            s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)
-            left, right = _grey_float(left), _grey_float(right)
-            D = int(max_disparity) + 1
-            costs = _sad_volume(left, right, D - 1, int(block_size))
-            width = costs.shape[0]
-            ramp = (s * np.arange(D)).astype(np.float32)
-            energy = np.empty_like(costs)
-            energy[0] = costs[0]
-            for x in range(1, width):
-                previous = energy[x - 1]
-                below = np.minimum.accumulate(previous - ramp, axis=1) + ramp
-                above = np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)[:, ::-1] - ramp
-                best = np.minimum(below, above)
-                energy[x] = costs[x] + best - best.min(axis=1, keepdims=True)
-            disparity = np.empty((width, costs.shape[1]), dtype=np.int64)
-            disparity[-1] = np.argmin(energy[-1], axis=1)
-            candidates = np.arange(D)
-            for x in range(width - 1, 0, -1):
-                jump = np.abs(candidates[None, :] - disparity[x][:, None])
-                disparity[x - 1] = np.argmin(energy[x - 1] + jump, axis=1)
-            return disparity.T.astype(np.float64)
-        """
-    result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ex5"], pictures="none", include_hidden=False)
+    folder = edited_reference(tmp_path, "lab12_stereo", ("jump = ramp[np.abs(candidates[None, :] - disparity[x][:, None])]",
+                                                         "jump = np.abs(candidates[None, :] - disparity[x][:, None])"))
+    result = grade(folder, ["lab12.ex5"], pictures="none", include_hidden=False)
     failed = failing(result, "lab12.ex5")
     assert failed and any(c.mistake == lab12.JUMP_COST_DIFFERS for c in failed), [(c.name, c.message) for c in failed]
     assert not any(c.mistake == lab12.NOT_BACKTRACKED or "not backtracked" in c.message for c in failed)
