@@ -454,7 +454,11 @@ def _explained_from_the_line(trial: Trial, traceback_text: str):
     if not getattr(trial, "raised", None):
         return None
     function, args, kwargs, message = trial.raised
-    return raised.explained(code_of(trial), traceback_text, message, function, args, kwargs)
+    try:   # (reading is a bonus: code too deep to read, or read wrongly, says nothing)
+        return raised.explained(code_of(trial), traceback_text, message, function, args, kwargs)
+    except Exception as exc:  # noqa: BLE001 - the verdict stands without it
+        _log_grader_error(trial.check, exc)
+        return None
 
 
 def _named_by_misread_output(verdict: Verdict, trial: Trial) -> Verdict:
