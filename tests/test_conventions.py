@@ -269,3 +269,18 @@ def test_the_length_test_reading_sees_len_shape_and_size_of_an_input_only():
     assert tests("def f(points):\n    if np.ndim(points) == 1:\n        pass") == []
     assert tests("def f(points):\n    if len(points) == 4:\n        pass") == []
     assert tests("def f(points):\n    corners = [1, 2, 3]\n    if len(corners) == 3:\n        pass") == []
+
+
+def test_answers_of_the_right_form_that_depend_on_the_other_points_are_told_that_rule(tmp_path):
+    # lines scaled by the norm over every line: two points give two rows, but not the rows they give among
+    # six -- the rule said is the one the answer breaks, not "2 points are 2 rows"
+    submission = mutant(tmp_path, "lab11_two_view", """
+        def epipolar_lines(F, pts1):
+            pts = np.asarray(pts1, dtype=np.float64).reshape(-1, 2)
+            lines = np.hstack([pts, np.ones((len(pts), 1))]) @ np.asarray(F, np.float64).T
+            return lines / np.linalg.norm(lines[:, :2])
+        """)
+    failed = _failed(grade(submission, ["lab11.ex2"], include_hidden=False), "lab11.ex2")
+    message = failed[f"epipolar_lines {SQUARE}"].message
+    assert "a point's answer must not depend on the other points given with it" in message, message
+    assert "rows of the answer" not in message, message

@@ -248,9 +248,12 @@ def judge_square(t: Trial, function: str, args: tuple, rows, described: str = ""
         why = why_square(t, function, k)
         # (named only where the form changed or the code tests the length: other values alone may come
         # from a formula reading every point -- a mean depth where each point's own belongs)
+        # (the rule said is the one the answer breaks: rows for points where its form changed or the code
+        # tests the length; else, answers of the right form, a point's own answer, whatever is given beside it)
+        rule = f"{k} points are {k} rows of the answer, whatever a point's number of coordinates" if why or not shaped \
+            else "a point's answer must not depend on the other points given with it"
         t.fail(measured(f"{name} returned {shown}, but the same {k} points among {n} give {_first(expected)}: "
-                        f"{k} points are {k} rows of the answer, whatever a point's number of coordinates.") + why,
-               mistake=SQUARE_TAKEN if why or not shaped else "")
+                        f"{rule}.") + why, mistake=SQUARE_TAKEN if why or not shaped else "")
     return passed(f"the first {k} points, as many as a point has coordinates, answered as the same points among {n}")
 
 
