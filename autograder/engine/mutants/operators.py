@@ -123,15 +123,15 @@ OPERATORS = {
     "empty_slice": ("slice", "empty", "0"),                # right[:, :-d] -> right[:, :right.shape[1] - d]
     "divided_by_w": ("homogeneous", "divid", "third", "w"),   # (H @ grid)[0] -> (H @ grid)[0] / (H @ grid)[2]
     "drop_keyword": ("argument", "keyword", "remov"),     # cv2.undistortPoints(p, K, None, P=K) -> (p, K, None)
-    "method_given": ("method", "flag", "default", "cv2."),
+    "method_given": ("method", "flag", "default", "cv2."),   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
     "reverse_back": ("revers", "back", "turn", "far end"),   # acc(x[:, ::-1], axis=1) -> acc(...)[:, ::-1]
     "drop_reversal": ("revers", "order", "[::-1]"),    # tuple(pattern_size)[::-1] -> tuple(pattern_size)
     "matrix_applied": ("matrix", "applied", "@", "map"),   # t = dst[0] - src[0] -> dst[0] - L @ src[0]
     "series_powers": ("power", "square", "r^2", "**"),   # k1 * r + k2 * r ** 2 -> k1 * r ** 2 + k2 * r ** 4
     "counted": ("count", "len", "fixed", "number"),   # for k in range(3) -> range(len(images))
-    "neutral_argument": ("scale", "1", "argument", "zoom"),
+    "neutral_argument": ("scale", "1", "argument", "zoom"),   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)
     "factor_transposed": ("transpos", "product", "factor"),   # (K2 @ F).T -> K2.T @ F
-    "twin_factor": ("missing", "also", "both", "factor"),   # P1 = K @ A; P2 = B -> P2 = K @ B   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
+    "twin_factor": ("missing", "also", "both", "factor"),   # P1 = K @ A; P2 = B -> P2 = K @ B
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
