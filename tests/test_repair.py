@@ -3179,3 +3179,22 @@ def test_the_other_entry_of_a_diagonal_is_a_change_tried_in_a_nested_helper_too(
     """)
     changes = _shown_changes(source, "axis")
     assert ("(p[:, 1] - K[1, 2]) / K[0, 0]", "(p[:, 1] - K[1, 2]) / K[1, 1]") in changes, changes
+
+
+def test_a_division_by_h33_kept_beside_the_one_by_w_is_refuted_by_a_rescaled_homography(tmp_path):
+    """`p[:2] / H[2, 2]` where w belongs: adding the division by w beside it is exact where H[2, 2] = 1 (the
+    check's homographies), and wrong for the same H twice as large, which the reference maps alike."""
+    source = """
+        def transform_points(H, pts):
+            H = np.asarray(H, dtype=np.float64)
+            out = []
+            for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                p = H @ np.array([x, y, 1.0])
+                out.append(p[:2] / H[2, 2])
+            return np.array(out, dtype=np.float64).reshape(-1, 2)
+        """
+    messages = failing_messages(mutant(tmp_path, "lab08_homographies", source), "lab08.ex1")
+    assert messages and not any("p[:2] / p[2:3] / H[2, 2]" in m for m in messages), messages
+    H = np.array([[1.0, 0.1, 3.0], [0.0, 1.0, 2.0], [0.001, 0.0, 1.0]])
+    [(_, args, _)] = repair._rescaled(("transform_points", (H, np.zeros((4, 2))), {}), [(0, "H")])
+    assert np.allclose(args[0], 2 * H) and repair._rescaled(("f", (np.eye(2),), {}), [(0, "H")]) == []

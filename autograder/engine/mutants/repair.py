@@ -1365,6 +1365,36 @@ def _reads_size(node, names) -> bool:
 SMALL_IMAGE = (7, 9)   # rows, columns of the images of a change's small-image confirmation input
 
 
+# parameters that are homogeneous matrices, defined up to scale (a homography, a camera, F, E)
+_UP_TO_SCALE = frozenset({"H", "H1", "H2", "P", "P1", "P2", "F", "E"})
+
+
+@functools.lru_cache(maxsize=16)
+def _up_to_scale(source: str) -> dict:
+    """function -> [(position, name)] of its parameters that are defined up to scale (by their names)."""
+    tree = ast.parse(source)
+    return {fn.name: [(i, a.arg) for i, a in enumerate(fn.args.args) if a.arg in _UP_TO_SCALE]
+            for fn in tree.body if isinstance(fn, ast.FunctionDef)}
+
+
+def _rescaled(call, positions) -> list:
+    """The call with each matrix defined up to scale given twice as large ([] when it has none): a change
+    right only at the check's scale -- a division by `H[2, 2]` kept beside the one by w, exact where
+    H[2, 2] = 1 -- is wrong there, where the reference answers alike."""
+    function, args, kwargs = call
+    args, kwargs, scaled = list(args), dict(kwargs), False
+    for position, name in positions:
+        value = args[position] if position < len(args) else kwargs.get(name)
+        if isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.ndim == 2 \
+                and value.shape in ((3, 3), (3, 4)) and np.all(np.isfinite(value)):
+            if position < len(args):
+                args[position] = value * 2.0
+            else:
+                kwargs[name] = value * 2.0
+            scaled = True
+    return [(function, tuple(args), kwargs)] if scaled else []
+
+
 def _fewer(call) -> list:
     """The call with each list of three or more arrays it is given (the images of a panorama, the views of
     a calibration) one item shorter ([] when it has none): a count written where the list's length belongs
@@ -2079,6 +2109,7 @@ class _Variants:
                                              self.model.defaults.get(self.function, ()))
                 variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
                 variants += _fewer(self.inputs[i])
+                variants += _rescaled(self.inputs[i], _up_to_scale(self.model.source).get(self.function, ()))
                 # (the two views' roles turned round: a canvas as high as img2, right where img2 is
                 # the taller, is wrong where img1 is)
                 exchanged = naming.twins_exchanged(self.inputs[i], getattr(self.model, "twins", {}).get(self.function, ()))
