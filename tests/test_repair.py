@@ -3198,3 +3198,27 @@ def test_a_division_by_h33_kept_beside_the_one_by_w_is_refuted_by_a_rescaled_hom
     H = np.array([[1.0, 0.1, 3.0], [0.0, 1.0, 2.0], [0.001, 0.0, 1.0]])
     [(_, args, _)] = repair._rescaled(("transform_points", (H, np.zeros((4, 2))), {}), [(0, "H")])
     assert np.allclose(args[0], 2 * H) and repair._rescaled(("f", (np.eye(2),), {}), [(0, "H")]) == []
+
+
+def test_a_transpose_mending_the_batch_only_is_refuted_by_a_single_point(tmp_path):
+    """`np.stack([u, v])` ((2, N)), then `result[0]` for a single point: `return result.T` mends every batch
+    and leaves a single (3,) point wrong; the confirmation gives the first point alone, and the change at the
+    stack is told."""
+    source = """
+        def perspective_project(points, f):
+            pts = np.asarray(points, dtype=float)
+            one_point = pts.ndim == 1
+            pts = pts.reshape(-1, 3)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                u = f * pts[:, 0] / pts[:, 2]
+                v = f * pts[:, 1] / pts[:, 2]
+            result = np.stack([u, v])
+            if one_point:
+                return result[0]
+            return result
+        """
+    messages = failing_messages(mutant(tmp_path, "lab10_camera2", source), "lab10.ex1")
+    assert not any("`return result.T`" in m for m in messages), messages
+    assert any("`np.stack([u, v], axis=1)`" in m for m in messages), messages
+    [(_, args, _)] = repair._single_point(("f", (np.ones((4, 3)), 2.0), {}))
+    assert args[0].shape == (3,) and repair._single_point(("f", (np.ones((4, 3)), np.ones((5, 2))), {})) == []

@@ -1395,6 +1395,22 @@ def _rescaled(call, positions) -> list:
     return [(function, tuple(args), kwargs)] if scaled else []
 
 
+def _single_point(call) -> list:
+    """The call with its point arrays ((N, 2) or (N, 3) floats, N >= 2, all of one N) given their first point
+    alone, as a (2,) or (3,) vector ([] when it has none): the API's single point, which a change mending the
+    batch only -- `return result.T` where `result[0]` is taken for one point -- gets wrong. Where the reference
+    does not take a single point, the input is no confirmation (it raises there)."""
+    function, args, kwargs = call
+    def points(value):
+        return isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.ndim == 2 \
+            and value.shape[1] in (2, 3) and value.shape[0] >= 2
+    counts = {len(v) for v in list(args) + list(kwargs.values()) if points(v)}
+    if len(counts) != 1:
+        return []
+    one = lambda v: np.ascontiguousarray(v[0]) if points(v) else v  # noqa: E731
+    return [(function, tuple(one(a) for a in args), {k: one(v) for k, v in kwargs.items()})]
+
+
 def _fewer(call) -> list:
     """The call with each list of three or more arrays it is given (the images of a panorama, the views of
     a calibration) one item shorter ([] when it has none): a count written where the list's length belongs
@@ -2108,7 +2124,7 @@ class _Variants:
                 variants += naming.derived_calls(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
                                              self.model.defaults.get(self.function, ()))
                 variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
-                variants += _fewer(self.inputs[i])
+                variants += _fewer(self.inputs[i]) + _single_point(self.inputs[i])
                 variants += _rescaled(self.inputs[i], _up_to_scale(self.model.source).get(self.function, ()))
                 # (the two views' roles turned round: a canvas as high as img2, right where img2 is
                 # the taller, is wrong where img1 is)
