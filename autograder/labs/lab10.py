@@ -22,7 +22,8 @@ from fixtures.images import tinted
 from ..engine import conventions
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
-from ..engine.claims import (calls_any, checklist, divides_by, from_code, guard, look_at, measured, negates_on_negative_det,
+from ..engine.claims import (calls_any, checklist, divides_by, evidenced, from_code, guard, look_at, measured,
+                             negates_on_negative_det,
                              passes_argument, reshapes, takes_last_row_of_vt)
 from ..engine.compare import (at_precision, blurred_difference, closest, fill_fraction, format_apart, format_arrays_apart,
                        magnitude, projective_distance)
@@ -1405,6 +1406,27 @@ UNDISTORT_CHANNELS_HINT = Hint(
 
 # ================================================================== ext2 dolly zoom
 ext2 = lab.exercise("ext2", "Extension: dolly zoom", functions=["dolly_zoom(points, f0, z0, distances)"])
+
+
+def _scales_points_by_a_ratio_to_z0(function) -> bool:
+    """A product of the points (anything but a focal length) with a ratio to z0: `X * [1, 1, d / z0]`."""
+    def reads(node, name):
+        return any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(node))
+
+    def over_z0(node):
+        return any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) and reads(n.right, "z0") for n in ast.walk(node))
+    for node in ast.walk(function):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult):
+            for side, other in ((node.left, node.right), (node.right, node.left)):
+                if over_z0(side) and not reads(other, "f0") and not reads(other, "f") and not over_z0(other):
+                    return True
+    return False
+
+
+# Of the dolly's mistakes that give the same answers -- every depth scaled by d / z0, and a camera that does
+# not move projected with f0 -- the one the code shows is said alone (a product of the points with d / z0).
+evidenced("every depth is scaled by d / z0; the camera moves, so each depth changes by d - z0",
+          Predicate("scales the points by a ratio to z0", _scales_points_by_a_ratio_to_z0))
 
 
 def dolly_scene():

@@ -424,6 +424,13 @@ MISTAKES = {
             fs = f0 * distances / z0
             return fs, np.stack([perspective_project(X * [1.0, 1.0, d / z0], f) for f, d in zip(fs, distances)])
         """, ["scaled by d / z0"]),
+    "dolly that does not move the camera, projected with f0": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            focal_lengths = f0 * distances / z0
+            return focal_lengths, np.stack([perspective_project(X, f0) for _ in distances])
+        """, ["the camera does not move", "the projections use f0"]),
     "dolly puts every point at depth d": ("lab10.ext2", """
         def dolly_zoom(points, f0, z0, distances):
             X, _ = _points(points)
