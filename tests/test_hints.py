@@ -300,3 +300,27 @@ def test_an_expression_in_a_helper_given_another_value_of_the_name_is_not_the_ca
         source = rebound.replace("_volume(left, right, D - 1)", call)
         assert found(expr("max_disparity + 1"), source) == "computes max_disparity + 1", call
 
+
+
+def test_samples_drawn_in_a_batch_and_a_refit_on_a_mask_made_from_them_are_read_as_a_ransac_loop():
+    """`np.argsort(rng.random((256, n)))[:, :4]` draws samples; `inliers = errors < threshold` is a mask
+    (whatever it was measured from), so `homography_dlt(src[inliers], ...)` is a refit on the inliers: the
+    RANSAC recipe is not told to code that follows it."""
+    from autograder.engine.hints import read_code
+    from autograder.labs import lab08
+
+    code = read_code(textwrap.dedent("""
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            rng = np.random.default_rng(seed)
+            best, best_inliers = -1, None
+            for _ in range(10):
+                samples = np.argsort(rng.random((256, len(src))), axis=1)[:, :4]
+                errors = _errors(samples, src, dst)
+                inliers = errors < threshold
+                k = int(np.argmax(inliers.sum(axis=1)))
+                if inliers[k].sum() > best:
+                    best, best_inliers = inliers[k].sum(), inliers[k]
+            inliers = best_inliers
+            return homography_dlt(src[inliers], dst[inliers]), inliers
+        """))
+    assert lab08.OWN_RANSAC_LOOP.found(code.reachable(["homography_ransac"]))

@@ -231,12 +231,13 @@ def calls(name: str, at_least: int = 1) -> Predicate:
                      kind="all")
 
 
-RANDOM_DRAWS = frozenset({"choice", "sample", "permutation", "shuffle", "integers", "randint", "random_sample"})
+RANDOM_DRAWS = frozenset({"choice", "sample", "permutation", "shuffle", "integers", "randint", "random_sample", "random",
+                          "rand"})   # (`np.argsort(rng.random((k, n)))[:, :4]`: samples drawn in a batch)
 
 
 def _drawn_names(function) -> set[str]:
     """The names holding a random draw, or made from one (`idx = rng.permutation(n)`, `sample = idx[:4]`,
-    `for idx in samples` over drawn samples)."""
+    `for idx in samples` over drawn samples), never a mask a comparison makes."""
     bindings = [(node.targets, node.value) for node in ast.walk(function) if isinstance(node, ast.Assign)] + \
         [([node.target], node.iter) for node in ast.walk(function) if isinstance(node, (ast.For, ast.comprehension))]
     drawn: set[str] = set()
@@ -253,7 +254,11 @@ def _drawn_names(function) -> set[str]:
                 if made:
                     drawn |= made
                     grown = True
-    return drawn
+    # (a name a comparison binds is a mask, whatever it was measured from: `inliers = errors < threshold`
+    # with the errors of drawn samples picks the pairs a model keeps, not a random sample)
+    masks = {n.id for targets, value in bindings if isinstance(value, ast.Compare)
+             for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+    return drawn - masks
 
 
 def fits_on_picked_points(name: str) -> Predicate:
