@@ -480,6 +480,32 @@ def _named_by_misread_output(verdict: Verdict, trial: Trial) -> Verdict:
     return verdict
 
 
+def _named_by_defaults(verdict: Verdict, trial: Trial) -> Verdict:
+    """A failing verdict that names no mistake, naming a default the student's def gives a parameter
+    other than the API's, where a call of the check left it out (:mod:`autograder.engine.defaults_given`)."""
+    from . import defaults_given
+    from .hints import code_of
+    from .mutants import naming
+
+    model = naming.model_for(trial.lab)
+    calls = list(trial.calls) + ([trial.raised] if getattr(trial, "raised", None) else [])
+    if model is None or not calls:
+        return verdict
+    try:   # (reading is a bonus: the verdict stands without it)
+        found = defaults_given.left_out(code_of(trial), model.source, calls)
+    except Exception as exc:  # noqa: BLE001
+        _log_grader_error(trial.check, exc)
+        return verdict
+    if found is None:
+        return verdict
+    said = defaults_given.sentence(*found)
+    first, newline, rest = str(verdict.message).partition("\n")
+    lead = first.rstrip()
+    lead += "" if not lead or lead[-1] in ".:;!?" else "."
+    return replace(verdict, message=f"{lead} {said[:1].upper()}{said[1:]}.{newline}{rest}",
+                   mistake=defaults_given.MISTAKE)
+
+
 def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:
     """A failing verdict that names no mistake, naming a parameter the check's calls gave a value and
     the student's function never reads (:mod:`autograder.engine.ignored`)."""
@@ -925,6 +951,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
             and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_reading(verdict, reading, check, trial)
+    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not inherited:
+        verdict = _named_by_defaults(verdict, trial)
     if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
     if status in (FAILED, PARTIAL) and student_failure == "" and not inherited:   # (an exception's: above)
