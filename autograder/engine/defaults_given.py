@@ -12,6 +12,7 @@ from __future__ import annotations
 import ast
 import functools
 
+from ..loading.parsing import parse
 from .claims import from_code
 from .hints import Code, signature_of_def
 
@@ -36,7 +37,8 @@ def _literal_defaults(fn: ast.FunctionDef) -> dict:
 @functools.lru_cache(maxsize=16)
 def _reference_defaults(source: str) -> dict:
     """Function -> its literal defaults, of the reference module ``source`` (the API's)."""
-    return {fn.name: _literal_defaults(fn) for fn in ast.parse(source).body if isinstance(fn, ast.FunctionDef)}
+    tree = parse(source, max_chars=None, max_statements=None)   # (the reference's text: trusted)
+    return {fn.name: _literal_defaults(fn) for fn in tree.body if isinstance(fn, ast.FunctionDef)}
 
 
 def _same(a, b) -> bool:

@@ -1372,7 +1372,7 @@ _UP_TO_SCALE = frozenset({"H", "H1", "H2", "P", "P1", "P2", "F", "E"})
 @functools.lru_cache(maxsize=16)
 def _up_to_scale(source: str) -> dict:
     """function -> [(position, name)] of its parameters that are defined up to scale (by their names)."""
-    tree = ast.parse(source)
+    tree = parse(source, max_chars=None, max_statements=None)   # (the reference's text: trusted)
     return {fn.name: [(i, a.arg) for i, a in enumerate(fn.args.args) if a.arg in _UP_TO_SCALE]
             for fn in tree.body if isinstance(fn, ast.FunctionDef)}
 
