@@ -50,3 +50,10 @@ def test_a_translate_with_its_defaults_exchanged_is_told_so_in_grading(tmp_path)
     messages = failing_messages(mutant(tmp_path, "lab07_transformations", source), "lab07.ex1")
     assert any("Your `translate` gives `tx` the default 50 and `ty` the default 100, where the API's defaults "
                "are tx=100, ty=50" in m for m in messages), messages
+
+
+def test_a_long_literal_default_is_told_in_a_few_characters():
+    long = "def match(a, b, ratio=0.75, cross=False, name='" + "x" * 5000 + "', size=None):\n    return a\n"
+    found = told(long, ("match", (1, 2), {}))
+    assert found is not None and found[1][0][0] == "name"
+    assert len(defaults_given.sentence(*found)) < 200

@@ -10,6 +10,7 @@ is a parameter, unchanged before that line, given 1-D.
 
 from __future__ import annotations
 
+import ast
 import textwrap
 
 import numpy as np
@@ -388,3 +389,11 @@ def test_a_helper_without_a_return_is_told_in_grading(tmp_path):
     failed = [c for c in check_results(result, "lab07.ex3") if not c.passed]
     assert failed and any("your `_diagonal` has no `return` of a value" in c.message for c in failed), \
         [c.message for c in failed]
+
+
+def test_numbers_worked_out_from_the_code_stay_small():
+    from autograder.engine.raised import _number
+
+    assert _number(ast.parse("2 ** 40 ** 2", mode="eval").body, {}) is None
+    assert _number(ast.parse("(2 ** 40) ** 64", mode="eval").body, {}) is None
+    assert _number(ast.parse("width // 2 ** n", mode="eval").body, {"width": 5, "n": 3}) == 0

@@ -71,10 +71,16 @@ def left_out(code: Code, reference_source: str, calls) -> tuple[str, list] | Non
     return None
 
 
+def _shown(value, limit: int = 40) -> str:
+    text = repr(value)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
 def sentence(function: str, differing: list) -> str:
     """"your `translate` gives `tx` the default 50 and `ty` the default 100, where the API's are ..."."""
-    theirs = " and ".join(f"`{name}` the default {value!r}" for name, value, _ in differing)
-    api = ", ".join(f"{name}={value!r}" for name, _, value in differing)
+    differing = differing[:4]   # (bounded: a literal of any length is told in a few characters)
+    theirs = " and ".join(f"`{name}` the default {_shown(value)}" for name, value, _ in differing)
+    api = ", ".join(f"{name}={_shown(value)}" for name, _, value in differing)
     # read: the student's def and the reference's (the API's) defaults, for parameters this call left out
     return from_code(f"your `{function}` gives {theirs}, where the API's {'defaults are' if len(differing) > 1 else 'default is'} "
                      f"{api} (this call leaves {'them' if len(differing) > 1 else 'it'} out)")

@@ -364,9 +364,10 @@ def _number(node, known: dict):
                 or (isinstance(node.op, (ast.Pow, ast.LShift)) and not 0 <= right <= 64):
             return None
         try:
-            return _ARITHMETIC[type(node.op)](left, right)
+            value = _ARITHMETIC[type(node.op)](left, right)
         except (ArithmeticError, TypeError, ValueError):
             return None
+        return value if abs(value) <= 2 ** 64 else None   # (small numbers only: `2 ** 40 ** 64` is no divisor)
     return None
 
 
