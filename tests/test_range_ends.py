@@ -154,3 +154,24 @@ def test_a_loop_over_a_count_written_in_the_code_is_told_so(tmp_path):
     result = grade(folder, ["lab08.ext2"], pictures="none")
     assert_diagnosed(result, "lab08.ext2", "the last one, is left out: the loop over the images runs a fixed number of "
                      "times", "your code loops over `range(3)`", "`range(3)` to `range(len(images))`")
+
+
+@pytest.mark.parametrize("body, told", [
+    # the reference's loop over the images, counted by a number: it grows the list of maps
+    ("for k in range(3):\n    H = np.eye(3)\n    if k > r:\n        H = step[k - 1] @ H\n    homographies.append(H)", True),
+    ("for k in range(3):\n    warped.append(cv2.warpPerspective(images[k], Hs[k], size))", True),
+    # a colour loop of three turns in a four-image stitch: not the loop over the images
+    ("planes = cv2.split(panorama)\nfor c in range(3):\n    planes[c] = np.clip(planes[c] * gain, 0, 255)", False),
+    ("for c in range(3):\n    out[:, :, c] = blend(a[:, :, c], b[:, :, c])", False),
+    ("for k in range(3):\n    total = total + k", False),
+])
+def test_a_loop_counted_by_a_number_is_told_only_when_it_reaches_the_images(body, told):
+    import ast
+    import textwrap
+
+    from autograder.labs.lab08 import _loop_counted
+
+    source = ("def stitch_many(images):\n    homographies, warped, Hs = [], [], []\n"
+              + textwrap.indent(body, "    ") + "\n    return images\n")
+    function = ast.parse(source).body[0]
+    assert bool(_loop_counted(3).found([function])) is told

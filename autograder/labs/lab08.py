@@ -1835,23 +1835,57 @@ def _view_corners(view):
 
 
 def _loop_counted(count: int) -> Predicate:
-    """A loop `for k in range(count)` (a number written in the code) whose variable is read in its body and
-    never as a channel's index (`out[:, :, k]`: a colour loop's three turns)."""
+    """A loop `for k in range(count)` (a number written in the code) over the images: its variable is read
+    in its body, never as a channel's index (`out[:, :, k]`: a colour loop's three turns), and the body
+    reaches a list of the images or of their maps (`images[k]`, `homographies.append(...)`)."""
     def test(function) -> bool:
+        lists = _list_names(function)
         for loop in ast.walk(function):
             if not (isinstance(loop, ast.For) and isinstance(loop.target, ast.Name) and isinstance(loop.iter, ast.Call)
                     and isinstance(loop.iter.func, ast.Name) and loop.iter.func.id == "range" and len(loop.iter.args) == 1
                     and isinstance(loop.iter.args[0], ast.Constant) and loop.iter.args[0].value == count):
                 continue
+            variable = loop.target.id
             read = [n for statement in loop.body for n in ast.walk(statement)
-                    if isinstance(n, ast.Name) and n.id == loop.target.id and isinstance(n.ctx, ast.Load)]
+                    if isinstance(n, ast.Name) and n.id == variable and isinstance(n.ctx, ast.Load)]
             channel = any(isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Tuple)
-                          and any(isinstance(n, ast.Name) and n.id == loop.target.id for n in ast.walk(node.slice))
+                          and any(isinstance(n, ast.Name) and n.id == variable for n in ast.walk(node.slice))
                           for node in ast.walk(loop))
-            if read and not channel:
+            if read and not channel and _reaches_a_list(loop, variable, lists):
                 return True
         return False
     return Predicate(f"loops over range({count})", test)
+
+
+def _list_names(function) -> set:
+    """The function's parameters and the names it makes lists of (`[]`, a comprehension, `list(...)`),
+    leaving out a split into channels (`list(cv2.split(image))`)."""
+    names = {a.arg for a in function.args.args + function.args.kwonlyargs} if hasattr(function, "args") else set()
+    def made(value) -> bool:
+        listed = isinstance(value, (ast.List, ast.ListComp)) or (
+            isinstance(value, ast.Call) and isinstance(value.func, ast.Name) and value.func.id == "list")
+        return listed and not any(isinstance(n, ast.Call) and "split" in ast.unparse(n.func) for n in ast.walk(value))
+
+    for node in ast.walk(function):
+        if not (isinstance(node, ast.Assign) and len(node.targets) == 1):
+            continue
+        target, value = node.targets[0], node.value
+        pairs = (zip(target.elts, value.elts) if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple)
+                 and len(target.elts) == len(value.elts) else [(target, value)])   # a, b = [], []
+        names |= {name.id for name, value in pairs if isinstance(name, ast.Name) and made(value)}
+    return names
+
+
+def _reaches_a_list(loop, variable: str, lists: set) -> bool:
+    """The loop indexes one of `lists` with its variable, or grows one of them."""
+    for node in ast.walk(loop):
+        if (isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in lists
+                and any(isinstance(n, ast.Name) and n.id == variable for n in ast.walk(node.slice))):
+            return True
+        if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in ("append", "insert")
+                and isinstance(node.func.value, ast.Name) and node.func.value.id in lists):
+            return True
+    return False
 
 
 def fail_if_left_out(t: Trial, judge: PanoramaJudge, what: str):
