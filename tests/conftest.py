@@ -37,6 +37,16 @@ from naming_switch import turn_naming_off
 
 settings.load_profile(GRADING)
 
+# Every temporary folder of this test run -- the tests' own, and those of the graders, batches and
+# sandboxes they start, which inherit TMPDIR -- lies in one folder removed at the end: a process the
+# tests kill on purpose (SIGKILL leaves no clean-up) leaks nothing into the system's /tmp. Mode 711:
+# the sandbox's unprivileged worker must pass through it to reach its own folder.
+if "AUTOGRADER_TEST_TMPDIR" not in os.environ:
+    os.environ["AUTOGRADER_TEST_TMPDIR"] = tempfile.mkdtemp(prefix="autograder-tests-")
+    os.chmod(os.environ["AUTOGRADER_TEST_TMPDIR"], 0o711)
+    atexit.register(shutil.rmtree, os.environ["AUTOGRADER_TEST_TMPDIR"], ignore_errors=True)
+os.environ["TMPDIR"] = tempfile.tempdir = os.environ["AUTOGRADER_TEST_TMPDIR"]
+
 # The grader's store of ground truth and recorded examples (autograder/sandbox/cache.py) is a
 # folder of this test run, shared by its workers and removed at the end: the suite
 # writes nothing outside temporary folders.
