@@ -3222,3 +3222,31 @@ def test_a_transpose_mending_the_batch_only_is_refuted_by_a_single_point(tmp_pat
     assert any("`np.stack([u, v], axis=1)`" in m for m in messages), messages
     [(_, args, _)] = repair._single_point(("f", (np.ones((4, 3)), 2.0), {}))
     assert args[0].shape == (3,) and repair._single_point(("f", (np.ones((4, 3)), np.ones((5, 2))), {})) == []
+
+
+def test_a_homography_is_also_confirmed_as_a_translation_both_ways():
+    """A homography parameter given as a pure translation, right and down then left and up; never F or P."""
+    H, F = np.diag([2.0, 2.0, 1.0]), np.eye(3)
+    calls = repair._translated(("warp", (np.zeros((4, 4), np.uint8), H, F), {}), [(1, "H"), (2, "F")])
+    assert [tuple(args[1][:2, 2]) for _, args, _ in calls] == list(repair.SHIFTS)
+    assert all(args[2] is F and np.array_equal(args[1][:2, :2], np.eye(2)) for _, args, _ in calls)
+    assert repair._translated(("fundamental", (F,), {}), [(0, "F")]) == []
+
+
+@pytest.mark.slow
+def test_a_shift_added_to_keep_the_image_visible_is_mended_by_its_removal_not_a_sign(tmp_path):
+    """warp_to_reference pre-multiplying H by a translation that keeps the warped corners at x, y >= 0: on
+    the check's scene (corners above the top) turning the y shift's sign round makes it 0 and passes, as
+    using dx for dy does; a translation right and down refutes the one, left and up the other: the
+    shift's removal is told."""
+    folder = edited_reference(tmp_path, "lab08_homographies", (
+        "    height, width = reference.shape[:2]\n    return apply_homography(moving, H, (width, height))",
+        "    height, width = reference.shape[:2]\n    h, w = moving.shape[:2]\n"
+        "    corners = cv2.perspectiveTransform(np.float32([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]])"
+        ".reshape(-1, 1, 2), np.asarray(H, dtype=np.float64)).reshape(-1, 2)\n"
+        "    dx = max(0.0, -float(corners[:, 0].min()))\n    dy = max(0.0, -float(corners[:, 1].min()))\n"
+        "    H = np.array([[1.0, 0.0, dx], [0.0, 1.0, dy], [0.0, 0.0, 1.0]]) @ H\n"
+        "    return apply_homography(moving, H, (width, height))"))
+    failed = failing_messages(folder, "lab08.ex2")
+    assert failed and all("to `H`" in message and "float(corners[:, 1].min())` (" not in message
+                          and "dy]` to" not in message for message in failed), failed

@@ -1395,6 +1395,36 @@ def _rescaled(call, positions) -> list:
     return [(function, tuple(args), kwargs)] if scaled else []
 
 
+# homographies among them: a translation is one too, whatever the function does with it
+_HOMOGRAPHIES = frozenset({"H", "H1", "H2"})
+SHIFTS = ((7.0, 3.0), (-7.0, -3.0))   # a few pixels right and down, then left and up; unequal: x and y apart
+
+
+def _translated(call, positions) -> list:
+    """The call with each homography it is given replaced by a pure translation, one call per shift of
+    :data:`SHIFTS` ([] when it has none): a change right only where the check's homography sends the
+    image up and left -- a shift added "to keep it visible" made 0 by a sign turned round, `max(0, y)` for
+    `max(0, -y)` -- is wrong where it sends it down and right, and a name used for its twin (dx for dy)
+    where both are not 0."""
+    function, args, kwargs = call
+    made = []
+    for tx, ty in SHIFTS:
+        moved, shifted, changed = list(args), dict(kwargs), False
+        for position, name in positions:
+            value = args[position] if position < len(args) else kwargs.get(name)
+            if name in _HOMOGRAPHIES and isinstance(value, np.ndarray) and value.shape == (3, 3) \
+                    and value.dtype.kind == "f":
+                translation = np.array([[1.0, 0.0, tx], [0.0, 1.0, ty], [0.0, 0.0, 1.0]], dtype=value.dtype)
+                if position < len(args):
+                    moved[position] = translation
+                else:
+                    shifted[name] = translation
+                changed = True
+        if changed:
+            made.append((function, tuple(moved), shifted))
+    return made
+
+
 def _single_point(call) -> list:
     """The call with its point arrays ((N, 2) or (N, 3) floats, N >= 2, all of one N) given their first point
     alone, as a (2,) or (3,) vector ([] when it has none): the API's single point, which a change mending the
@@ -1962,6 +1992,7 @@ class _Variants:
         self.untaken: set | None = None   # of which those the student's own code does not answer
         self.keeping: set = set()    # variants (other modes, other channels) where answers must be kept or mended
         self.exchanged: set = set()  # the variants with the twin parameters exchanged (see _unmended_exchange)
+        self.translated: set = set()  # the variants with a translation for a homography (the check's own images)
         self.holed: set = set()      # the variants with a point given as NaN (see _breaks_holed)
         self.small: set = set()      # the variants with the images small (a change in what their size gives only)
         self.channels: set = set()   # of keeping, the variants with the images in the other number of channels
@@ -2126,6 +2157,9 @@ class _Variants:
                 variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
                 variants += _fewer(self.inputs[i]) + _single_point(self.inputs[i])
                 variants += _rescaled(self.inputs[i], _up_to_scale(self.model.source).get(self.function, ()))
+                translated = _translated(self.inputs[i], _up_to_scale(self.model.source).get(self.function, ()))
+                self.translated.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(translated)))
+                variants += translated
                 # (the two views' roles turned round: a canvas as high as img2, right where img2 is
                 # the taller, is wrong where img1 is)
                 exchanged = naming.twins_exchanged(self.inputs[i], getattr(self.model, "twins", {}).get(self.function, ()))
@@ -2246,8 +2280,11 @@ class _Variants:
         stripes at n = width = 1, and at 16 and 4 bits -- the example check -- and at no width between).
         A change raising there is not refuted by it: the student's other code may raise there too."""
         # (inputs without images only: on a perturbed photograph a pipeline's own matching differs from the
-        # reference's legitimately, as a right stitch's canvas does)
-        indices = [i for i in indices if not any(_is_image(value) for value in _flat_arguments(every[i]))]
+        # reference's legitimately, as a right stitch's canvas does -- and the check's own images warped by
+        # a translation, where no matching is done: a change following the reference's warp to the grey
+        # level on the check's input does so there)
+        indices = [i for i in indices if i in self.translated
+                   or not any(_is_image(value) for value in _flat_arguments(every[i]))]
         values = self.answers(mutant, indices, every) if indices else None
         return values is not None and any(naming.error_kind(value) is None and not self.right(value, wanted[i])
                                           for value, i in zip(values, indices))
