@@ -3250,3 +3250,37 @@ def test_a_shift_added_to_keep_the_image_visible_is_mended_by_its_removal_not_a_
     failed = failing_messages(folder, "lab08.ex2")
     assert failed and all("to `H`" in message and "float(corners[:, 1].min())` (" not in message
                           and "dy]` to" not in message for message in failed), failed
+
+
+def test_a_homogeneous_points_last_value_made_one_is_a_change_tried():
+    """`[x / Z, y / Z, Z]` where the third value is 1 after the division: the last value of a stacked point
+    made 1 (`np.ones_like`), at the place of the slip -- never offered for a matrix's rows or two values."""
+    source = textwrap.dedent("""
+        def graded(K, pts):
+            Z = pts[:, 2]
+            normalised = np.column_stack([pts[:, 0] / Z, pts[:, 1] / Z, Z])
+            pair = np.column_stack([pts[:, 0], Z])
+            M = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1]])
+            return normalised @ K.T, pair, M
+    """)
+    assert _shown_changes(source, "homogeneous_one") == [
+        ("np.column_stack([pts[:, 0] / Z, pts[:, 1] / Z, Z])",
+         "np.column_stack([pts[:, 0] / Z, pts[:, 1] / Z, np.ones_like(Z)])")]
+
+
+@pytest.mark.slow
+def test_a_depth_left_in_the_homogeneous_slot_is_mended_there_not_by_undoing_the_division(tmp_path):
+    """project_with_intrinsics normalising by depth into `[X/Z, Y/Z, Z]`: taking both divisions out makes the
+    same answers, but changes two right lines, and projecting the points themselves skips the step that
+    holds the slip; the third value made 1 is told alone."""
+    folder = edited_reference(tmp_path, "lab09_camera", (
+        "    X, single = _points(points)\n    return _divide(X @ np.asarray(K, dtype=np.float64).T, single)",
+        "    X, single = _points(points)\n    Z = X[:, 2]\n"
+        "    normalised = np.column_stack([X[:, 0] / Z, X[:, 1] / Z, Z])\n"
+        "    pixels = _divide(normalised @ np.asarray(K, dtype=np.float64).T, False)\n"
+        "    pixels[Z <= 0] = np.nan\n"
+        "    return pixels[0] if single else pixels"))
+    failed = failing_messages(folder, "lab09.ex2")
+    assert failed and all("to `np.column_stack([X[:, 0] / Z, X[:, 1] / Z, np.ones_like(Z)])`" in message
+                          and "/ Z` to `X[:, 0]`" not in message and "to `X @" not in message
+                          for message in failed), failed

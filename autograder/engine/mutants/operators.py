@@ -129,6 +129,7 @@ OPERATORS = {
     "matrix_applied": ("matrix", "applied", "@", "map"),   # t = dst[0] - src[0] -> dst[0] - L @ src[0]
     "series_powers": ("power", "square", "r^2", "**"),   # k1 * r + k2 * r ** 2 -> k1 * r ** 2 + k2 * r ** 4
     "counted": ("count", "len", "fixed", "number"),   # for k in range(3) -> range(len(images))
+    "homogeneous_one": ("homogeneous", "1", "third", "depth"),   # np.column_stack([x, y, Z]) -> [x, y, np.ones_like(Z)]
     "neutral_argument": ("scale", "1", "argument", "zoom"),   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)
     "factor_transposed": ("transpos", "product", "factor"),   # (K2 @ F).T -> K2.T @ F
     "twin_factor": ("missing", "also", "both", "factor"),   # P1 = K @ A; P2 = B -> P2 = K @ B
@@ -1023,7 +1024,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal",
                                               "matrix_applied", "series_powers", "counted", "factor_transposed",
-                                              "twin_factor")},
+                                              "twin_factor", "homogeneous_one")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -2480,6 +2481,15 @@ def _call_slips(node: ast.Call):
                 yield "keep_axis", ast.unparse(ast.Call(node.func, [ast.List(
                     [parse(f"{_dotted(e.func)}(({ast.unparse(e.args[0])}, 1))", mode="eval").body if e is item else e
                      for e in node.args[0].elts], ast.Load())] + node.args[1:], node.keywords)), ""
+    if short in _STACKS and dotted.startswith(("np.", "numpy.")) and node.args \
+            and isinstance(node.args[0], (ast.List, ast.Tuple)) and len(node.args[0].elts) in (3, 4) \
+            and isinstance(node.args[0].elts[-1], (ast.Name, ast.Subscript, ast.Attribute)):
+        # a homogeneous point's last value left as it was -- its depth Z -- where 1 belongs: `[x, y, Z]`
+        # for `[x, y, 1]` after the division by Z (the division's removal would compensate elsewhere)
+        *first, last = node.args[0].elts
+        ones = parse(f"np.ones_like({ast.unparse(last)})", mode="eval").body
+        yield "homogeneous_one", ast.unparse(ast.Call(node.func, [type(node.args[0])([*first, ones], ast.Load())]
+                                                      + node.args[1:], node.keywords)), ""
     if dotted.startswith(("cv2.", "cv.")) and short in _FLOAT32_ONLY and len(node.args) >= 2:
         arrays = [i for i, a in enumerate(node.args) if isinstance(a, (ast.Name, ast.Subscript))]
         if any(i >= 1 for i in arrays):
@@ -2489,6 +2499,7 @@ def _call_slips(node: ast.Call):
 
 
 _KEPT_KEYWORDS = {"dtype", "axis", "out", "where"}
+_STACKS = {"column_stack", "stack", "vstack", "dstack", "array"}   # NumPy calls that put a point's values together
 # OpenCV arguments whose neutral value is 1 (a scale): the keyword and the position
 _NEUTRAL_ONE = {"getRotationMatrix2D": ("scale", 2), "convertScaleAbs": ("alpha", 2)}
 # OpenCV calls whose method (or interpolation) argument a student may leave at its default: its keyword,

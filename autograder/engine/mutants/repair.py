@@ -577,6 +577,21 @@ class _Student:
                 and isinstance(divided, ast.Name) and divided.id == node.value.id
         return False
 
+    def bypasses(self, mutant) -> bool:
+        """Whether the mutant puts another name where the only reading of a value the def computes was
+        (`normalised @ K.T` -> `X @ K.T`, `normalised` read nowhere else): it mends by skipping a step, which
+        leaves the step's own slip in place, where a change inside the step mends it."""
+        where, ordinal, operator, _ = mutant.edits[0]
+        if operator != "other_name" or len(mutant.edits) != 1:
+            return False
+        nodes, _ = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        if not isinstance(node, ast.Name):
+            return False
+        stored = any(isinstance(n, ast.Name) and n.id == node.id and isinstance(n.ctx, ast.Store) for n in nodes)
+        readings = sum(isinstance(n, ast.Name) and n.id == node.id and isinstance(n.ctx, ast.Load) for n in nodes)
+        return stored and readings == 1
+
     def copies_an_item(self, mutant) -> bool:
         """Whether the mutant puts a name in place of another item of the same tuple, list or call that
         holds it already (`(0, 0, height, width)` -> `(0, 0, width, width)`): where a size or a pair is
@@ -1710,7 +1725,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     shown = sorted(((m, f) for m, f in shown if not student.renormalises(m)
                     and not student.colours_with_a_size(m)),
                    key=lambda pair: (pair[0].key not in known, pair[0].key not in exactly,
-                                     pair[0].key not in to_the_bit,
+                                     student.bypasses(pair[0]), pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
                                      _inside_a_dropped_term(pair[1], dropped),
                                      pair[1].operator in REMOVALS, pair[1].size, pair[1].written))
@@ -1736,6 +1751,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # `[p[3], p[4], p[5]]` -> `[p[4], p[3], p[5]]`, beside the rows' `[0, 0, 0, y, x, 1]` -- compensates).
     if any(mutant.key in known for mutant, _ in fixes):
         fixes = [(mutant, fix) for mutant, fix in fixes if mutant.key in known]
+    # (and a change inside a step is told alone beside one skipping the step: the skip leaves its slip)
+    fixes = [pair for pair in fixes if not student.bypasses(pair[0])] or fixes
     passing = passing_functions(trial)
     fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:
