@@ -3284,3 +3284,17 @@ def test_a_depth_left_in_the_homogeneous_slot_is_mended_there_not_by_undoing_the
     assert failed and all("to `np.column_stack([X[:, 0] / Z, X[:, 1] / Z, np.ones_like(Z)])`" in message
                           and "/ Z` to `X[:, 0]`" not in message and "to `X @" not in message
                           for message in failed), failed
+
+
+def test_a_term_added_to_one_coordinate_moved_to_its_twin_is_a_change_tried():
+    """`(q[0], q[1] + w1)` where the offset belongs to x: the term moved to the twin item; a constant term
+    (`q[1] + 1`) and items unlike each other are left alone."""
+    source = textwrap.dedent("""
+        def graded(q, w1, p):
+            end = (int(round(q[0])), int(round(q[1] + w1)))
+            other = (q[0], q[1] + 1)
+            unlike = (p.sum(), q[1] + w1)
+            return end, other, unlike
+    """)
+    assert _shown_changes(source, "moved_term") == [
+        ("(int(round(q[0])), int(round(q[1] + w1)))", "(int(round(q[0] + w1)), int(round(q[1])))")]

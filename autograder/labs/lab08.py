@@ -865,6 +865,15 @@ def judge_match_drawing(t: Trial, what: str, got, img1, img2, pts1, pts2):
         if explains(pts2):
             t.fail(f"{what}: the lines end at (x2, y2) in the left image; the second image starts at "
                    "x = W1, so draw each line to (x2 + W1, y2)")
+        if explains(pts2 + [0, w1]):
+            t.fail(f"{what}: the lines end at (x2, y2 + W1): img1's width is added to y2, where the second "
+                   "image is shifted along x: draw each line to (x2 + W1, y2)", mistake="W1 is added to y2 instead of x2")
+        # (points read as (row, column): each line from (y1, x1) to (y2 + W1, x2))
+        read = segments_drawn(drawn_on, pts1[:, ::-1], pts2[:, ::-1] + [w1, 0]) >= LINE_FOUND
+        if read.mean() >= 0.75 and read.sum() > found.sum():
+            t.fail(f"{what}: the lines go from (y1, x1) to (y2 + W1, x2): each point's coordinates are taken in the "
+                   "other order; the points are (x, y), and OpenCV draws at (x, y) too",
+                   mistake="the points' x and y are exchanged")
         # (img2's width named only where it explains more lines than an offset by another side of the
         # images: on nearly horizontal lines an offset 20 px off explains them too -- 30l's lab08/06
         # shifted by img1.shape[0], 180 px, was told img2's width, 200)

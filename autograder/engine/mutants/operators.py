@@ -129,7 +129,8 @@ OPERATORS = {
     "matrix_applied": ("matrix", "applied", "@", "map"),   # t = dst[0] - src[0] -> dst[0] - L @ src[0]
     "series_powers": ("power", "square", "r^2", "**"),   # k1 * r + k2 * r ** 2 -> k1 * r ** 2 + k2 * r ** 4
     "counted": ("count", "len", "fixed", "number"),   # for k in range(3) -> range(len(images))
-    "homogeneous_one": ("homogeneous", "1", "third", "depth"),   # np.column_stack([x, y, Z]) -> [x, y, np.ones_like(Z)]
+    "homogeneous_one": ("homogeneous", "1", "third", "depth"),
+    "moved_term": ("x", "y", "offset", "other coordinate", "twin"),   # (q[0], q[1] + w1) -> (q[0] + w1, q[1])   # np.column_stack([x, y, Z]) -> [x, y, np.ones_like(Z)]
     "neutral_argument": ("scale", "1", "argument", "zoom"),   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)
     "factor_transposed": ("transpos", "product", "factor"),   # (K2 @ F).T -> K2.T @ F
     "twin_factor": ("missing", "also", "both", "factor"),   # P1 = K @ A; P2 = B -> P2 = K @ B
@@ -1024,7 +1025,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal",
                                               "matrix_applied", "series_powers", "counted", "factor_transposed",
-                                              "twin_factor", "homogeneous_one")},
+                                              "twin_factor", "homogeneous_one", "moved_term")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -2969,6 +2970,31 @@ def _twin_steps(items):
                     yield j, text
 
 
+def _moved_terms(node):
+    """The tuple with a term added to one item moved to its twin: `(q[0], q[1] + w1)` -> `(q[0] + w1, q[1])`,
+    an offset put on y where x takes it -- the two items alike but for the term and the index (written out
+    whole, at most 3 texts)."""
+    made = []
+    for i, j in itertools.permutations(range(len(node.elts)), 2):
+        pair = _one_difference(node.elts[i], node.elts[j])
+        if pair is None:
+            continue
+        bare, offset = pair
+        if not (isinstance(offset, ast.BinOp) and isinstance(offset.op, (ast.Add, ast.Sub))
+                and not isinstance(offset.right, ast.Constant) and (_twins(offset.left, bare) or _index_twins(offset.left, bare))):
+            continue
+        moved = copy.deepcopy(node)
+        for old, new in zip(ast.walk(node), ast.walk(moved)):
+            if old is bare:
+                _swap_in(moved, new, ast.BinOp(copy.deepcopy(bare), offset.op, copy.deepcopy(offset.right)))
+            elif old is offset:
+                _swap_in(moved, new, copy.deepcopy(offset.left))
+        text = ast.unparse(moved)
+        if text not in made and len(text) <= 120:
+            made.append(text)
+    return made[:3]
+
+
 def _one_difference(a, b):
     """``(a's part, b's part)`` where two expressions differ at one place only and are the same around
     it (`v.astype(t)` and `(u / w).astype(t)`: `v` and `u / w`); None when they are alike or differ
@@ -3190,6 +3216,8 @@ def _sibling_changes(node, words):
     if isinstance(node, (ast.Tuple, ast.List)) and isinstance(node.ctx, ast.Load) and 2 <= len(node.elts) <= 4:
         for position, text in _twin_steps(node.elts):
             yield "twin_step", (position, text), ""
+        for text in _moved_terms(node):
+            yield "moved_term", text, ""
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.value, _TERMS) \
             and isinstance(node.targets[0], _TERMS):
         for twin in _twin_assignments(node, words):   # `u = x / w` beside `v = y`; `out[i, 1] = v` too

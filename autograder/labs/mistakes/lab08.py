@@ -219,6 +219,29 @@ MISTAKES = {
                          (0, 255, 0), 1, cv2.LINE_AA)
             return canvas
         """, ["shifted by img2's width", "x2 + w1"]),
+    "lines ending at y2 + W1 (the offset on the wrong coordinate)": ("lab08.ex3", """
+        def draw_matches(img1, img2, pts1, pts2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
+            canvas[:h1, :w1] = _bgr(img1)
+            canvas[:h2, w1:] = _bgr(img2)
+            for p, q in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                end = (int(round(q[0])), int(round(q[1] + w1)))
+                cv2.line(canvas, (int(round(p[0])), int(round(p[1]))), end, (0, 255, 0), 1, cv2.LINE_AA)
+            return canvas
+        """, ["(x2, y2 + W1)", "added to y2"]),
+    "points drawn as (row, column)": ("lab08.ex3", """
+        def draw_matches(img1, img2, pts1, pts2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
+            canvas[:h1, :w1] = _bgr(img1)
+            canvas[:h2, w1:] = _bgr(img2)
+            for (r1, c1), (r2, c2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                cv2.line(canvas, (int(c1), int(r1)), (int(c2) + w1, int(r2)), (0, 255, 0), 1)
+            return canvas
+        """, ["other order", "(y1, x1)"]),
     "images stacked vertically": ("lab08.ex3", """
         def draw_matches(img1, img2, pts1, pts2):
             h1, w1 = img1.shape[:2]
