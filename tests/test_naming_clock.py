@@ -70,3 +70,12 @@ def test_without_a_readable_process_the_clock_is_the_wall_clock():
     time.sleep(0.3)
     assert clock.used() >= 0.3
     assert naming.Clock(1.0).left() > 0.9   # (no processes given: wall clock)
+
+
+def test_a_call_may_take_the_cpu_seconds_left_times_the_slack_in_wall_time():
+    """A timeout for work measured in CPU seconds: on a busy machine it takes up to WALL_SLACK times as long
+    in wall time, within the naming's own wall bound; a wall clock gives its seconds left as they are."""
+    clock = naming.Clock(2.0, lambda: [])
+    assert 2.0 * naming.WALL_SLACK - 0.5 < clock.wall_left() <= 2.0 * naming.WALL_SLACK
+    wall = naming.Clock(2.0)
+    assert 1.5 < wall.wall_left() <= 2.0

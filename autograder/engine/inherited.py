@@ -297,8 +297,8 @@ def _decide_call(trial, runner, source: str, module: str, function: str, substit
         if clock.left() <= 0:
             return None
         call = (ENTRY, (function, answers, tuple(args), dict(kwargs)), {})
-        runner.prepare(source, module, [call], max(1.0, clock.left()))
-        [reply] = runner.run((), [0], max(0.2, clock.left()))
+        runner.prepare(source, module, [call], max(1.0, clock.wall_left()))
+        [reply] = runner.run((), [0], max(0.2, clock.wall_left()))
         if not isinstance(reply, dict) or ERROR in reply:
             return None   # the reference raised on the student's answers, or they cannot cross
         if reference is None:

@@ -1392,6 +1392,27 @@ def epipoles_infinity(t):
                       "parallel)", t.call("epipoles", diagonal.F), diagonal, at_infinity=True)
 
 
+SMALL_SCALE = 1e-9   # the norm of the smallest F given
+FIXED_TOLERANCE = "a fixed tolerance picks the null vector"
+
+
+def _fixed_tolerance(functions) -> str:
+    """A comparison with a fixed tolerance in ``functions`` -- `np.isclose(S, 0.0)`, `S < 1e-10`: what
+    decides which singular value is "zero" whatever F's scale -- as its code and line, or ""."""
+    def small(node) -> bool:
+        return isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) \
+            and not isinstance(node.value, bool) and abs(node.value) <= 1e-3
+    for function in functions:
+        for node in ast.walk(function):
+            name = ast.unparse(node.func) if isinstance(node, ast.Call) else ""
+            if name.rsplit(".", 1)[-1] in ("isclose", "allclose") and any(small(a) for a in node.args[1:2]):
+                return f"`{ast.unparse(node)}` (line {node.lineno})"
+            if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Lt, ast.LtE)) \
+                    and small(node.comparators[0]) and node.comparators[0].value != 0:
+                return f"`{ast.unparse(node)}` (line {node.lineno})"
+    return ""
+
+
 @ex5.check("epipoles for any camera pair and any scale of F", points=1)
 def epipoles_property(t):
     def holds(case):
@@ -1399,6 +1420,21 @@ def epipoles_property(t):
         views = truth.two_views(seed, n=4)
         judge_epipoles(t, "epipoles(F)", t.call("epipoles", scale * views.F), views, F_given=scale * views.F)
 
+    # (F at a scale where every singular value is below 1e-8 -- a camera of long focal length gives
+    # such entries: the null vector is the smallest singular value's, never one "close to 0")
+    small = SMALL_SCALE / np.linalg.norm(truth.two_views(18, n=4).F)
+    try:
+        holds((18, small))
+    except Fail as failure:
+        read = _fixed_tolerance(code_of(t).reachable(["epipoles"]))
+        if read:
+            said = (failure.message.partition(": ")[2] or failure.message).rstrip(".")
+            t.fail(f"epipoles(F) for F at norm {SMALL_SCALE:g}: {said}. "
+                   + from_code(f"Your code decides which singular value is 0 with a fixed tolerance, {read}: F is "
+                               "defined up to scale, and at this scale every singular value is below it. Take the "
+                               "singular vectors of the smallest singular value (the last row of V^T, the last "
+                               "column of U)."), mistake=FIXED_TOLERANCE)
+        raise
     t.for_all(st.tuples(seeds, st.sampled_from([1.0, -2.0, 1e-4, 1e3])), holds, max_examples=10,
               describe=lambda c: f"{c[1]} * fixtures.lab11.two_views(seed={c[0]}).F")
 

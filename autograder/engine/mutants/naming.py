@@ -748,6 +748,14 @@ class Clock:
     def left(self) -> float:
         return self.seconds - self.used()
 
+    def wall_left(self) -> float:
+        """Wall-clock seconds a call started now may take: the CPU seconds left take up to WALL_SLACK times
+        as long on a busy machine (a timeout of CPU seconds would cut the reference's confirmation answers
+        short there, and the names they decide would be lost or differ), within the naming's wall bound."""
+        if self._processes is None:
+            return self.left()
+        return min(self.left() * WALL_SLACK, self.seconds * WALL_SLACK - (time.monotonic() - self.started))
+
 
 def work_clock(trial, seconds: float) -> Clock:
     """A :class:`Clock` of ``seconds`` counting the CPU time of this thread, its reference helper and
@@ -811,7 +819,7 @@ def _name_in_place(trial, model: ErrorModel, clock: Clock) -> Naming | None:
         return None
     theirs = {(key, index): array for key, index, array in changed}
     runner = helper()
-    runner.prepare(model.source, model.module, [(function, tuple(args), dict(kwargs))], max(1.0, clock.left()))
+    runner.prepare(model.source, model.module, [(function, tuple(args), dict(kwargs))], max(1.0, clock.wall_left()))
     [reference] = runner.run((), [0], _timeout(clock))
     found = []
     for mutant in mutants:
@@ -839,8 +847,8 @@ def _name(trial, model: ErrorModel, clock: Clock) -> Naming | None:
         answers = [call[3] for call in calls]
         if all(_tells_nothing(answer) for answer in answers):
             continue   # decided from the answers alone: the helper is not asked
-        runner.prepare(model.source, model.module, inputs, max(1.0, clock.left()))
-        references = runner.run((), range(len(inputs)), max(0.5, clock.left()))
+        runner.prepare(model.source, model.module, inputs, max(1.0, clock.wall_left()))
+        references = runner.run((), range(len(inputs)), max(0.5, clock.wall_left()))
         failing = [i for i, (s, r) in enumerate(zip(answers, references)) if wrong(s, r)]
         if not failing or all(_constant(answers[i]) or not _same_kind(answers[i], references[i]) for i in failing):
             continue   # a constant answer (all zeros, a black image) is what many mistakes give;
@@ -852,7 +860,7 @@ def _name(trial, model: ErrorModel, clock: Clock) -> Naming | None:
 
 
 def _timeout(clock: Clock) -> float:
-    return max(0.05, min(1.0, clock.left()))
+    return max(0.05, min(1.0, clock.wall_left()))
 
 
 def _name_function(trial, model, function, inputs, answers, references, failing, clock) -> Naming | None:
@@ -982,7 +990,7 @@ def _on_variants(model, inputs, variants, candidates, clock):
     variants where the reference answers (positions in ``indices``)."""
     runner = helper()
     every = inputs + variants
-    runner.prepare(model.source, model.module, every, max(1.0, clock.left()))
+    runner.prepare(model.source, model.module, every, max(1.0, clock.wall_left()))
     indices = list(range(len(inputs), len(every)))
     reference = runner.run((), indices, _timeout(clock))
     outputs = {}
@@ -1101,8 +1109,8 @@ def _name_raised(trial, model: ErrorModel, clock: Clock) -> Naming | None:
     inputs = [(function, tuple(args), dict(kwargs))] + [(f, tuple(a), dict(k)) for f, a, k, _ in returned]
     answers = [theirs] + [call[3] for call in returned]
     runner = helper()
-    runner.prepare(model.source, model.module, inputs, max(1.0, clock.left()))
-    references = runner.run((), range(len(inputs)), max(0.5, clock.left()))
+    runner.prepare(model.source, model.module, inputs, max(1.0, clock.wall_left()))
+    references = runner.run((), range(len(inputs)), max(0.5, clock.wall_left()))
     if error_kind(references[0]) is not None:
         return None   # the reference raises there too: the input, not the code, is the cause
     ruled_out = trial.sandbox.shared.setdefault("error model ruled out raising", {}).setdefault(function, set())

@@ -1033,6 +1033,37 @@ def _departs(fix: Fix, reference_source: str) -> bool:
     return any(before in written and after not in written for _, before, after in fix.changes)
 
 
+def _extra_step(fix: Fix, reference_source: str, function: str) -> bool:
+    """Whether a removal takes out an operation of a kind that the reference's ``function``, and every def
+    it runs, never does (`T @ H` -> `H` where the reference warps by H as given): the step taken out is one
+    the student added, so its removal is the fix -- not a compensation, as taking out a division the
+    reference makes too would be (a division by a w the student made Z)."""
+    if not reference_source or fix.operator not in REMOVALS:
+        return False
+    removed = Counter()
+    for _, before, after in fix.changes:
+        try:
+            removed.update(_operations(before))
+            removed.subtract(_operations(after))
+        except (SyntaxError, ValueError, RecursionError):
+            return False
+    kinds = {kind for kind, count in removed.items() if count > 0}
+    return bool(kinds) and not kinds & _reference_operations(reference_source, function)
+
+
+def _operations(text: str) -> Counter:
+    """The kinds of arithmetic in a piece of code (`@`, `/`, `*`, `+`, `-`), counted."""
+    return Counter(type(node.op).__name__ for node in ast.walk(parse(text)) if isinstance(node, (ast.BinOp, ast.AugAssign)))
+
+
+@functools.lru_cache(maxsize=64)
+def _reference_operations(source: str, function: str) -> frozenset:
+    """The kinds of arithmetic the reference's ``function`` and the defs it runs do."""
+    defs = _defs(_reference_tree(source))
+    return frozenset(type(node.op).__name__ for name in runs(defs, function) for node in ast.walk(defs[name])
+                     if isinstance(node, (ast.BinOp, ast.AugAssign)))
+
+
 @functools.lru_cache(maxsize=8)
 def _reference_texts(source: str) -> dict[str, frozenset]:
     """def name -> the code of each of its statements and expressions with an operation in it
@@ -1298,8 +1329,8 @@ def _search(trial, model, student: _Student, clock, tries=None, said: str = "") 
             continue
         calls = calls[-CALLS_PER_FUNCTION:]
         inputs = [call[:3] for call in calls]
-        runner.prepare(model.source, model.module, inputs, max(1.0, clock.left()))
-        references = runner.run((), range(len(inputs)), max(0.5, clock.left()))
+        runner.prepare(model.source, model.module, inputs, max(1.0, clock.wall_left()))
+        references = runner.run((), range(len(inputs)), max(0.5, clock.wall_left()))
         failing = [i for i, (call, reference) in enumerate(zip(calls, references))
                    if naming.error_kind(reference) is None and _wrong(call[3], reference)]
         subtle = not failing   # the check failed on answers near the reference's (a line missing
@@ -1769,7 +1800,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # (a comparison made strict or not changes only ties: beside another fix it is one by chance --
         # `ssd <= best` beside the update moved where it belongs -- and is not told)
         kept = [pair for pair in (kept or fixes) if not _ties_only(pair[1])] or kept
-        removals = all(fix.operator in REMOVALS for _, fix in fixes)
+        # (a step the reference never takes, taken out, is the fix itself: told as any change is)
+        removals = all(fix.operator in REMOVALS and not _extra_step(fix, student.reference_source, function)
+                       for _, fix in fixes)
         if removals and not complete:
             # (a step taken out, found before the other changes were all tried, is likely a compensation --
             # the division by a w made Z by the matrix's last row -- and nothing says it is not: told by none
@@ -2050,7 +2083,7 @@ class _Variants:
         timeout = max(VARIANT_TIMEOUT, 3 * self.seconds_per_call * len(indices))
         outcome = self.companion.call_variant(
             self.trial.lab.module, source, self.function, [every[i][1:] for i in indices], forbid=self.forbid,
-            timeout=max(0.05, min(timeout, self.clock.left())))
+            timeout=max(0.05, min(timeout, self.clock.wall_left())))
         value = outcome.value if outcome.ok else None
         for said in outcome.modified if outcome.ok else ():   # "k:name": the k-th call changed its input
             number = said.partition(":")[0]
@@ -2085,7 +2118,7 @@ class _Variants:
             timeout = max(VARIANT_TIMEOUT, 4 * self.seconds_per_call)
             outcome = self.companion.call_variant(
                 self.trial.lab.module, "", self.function, [self.inputs[index][1:]], forbid=self.forbid,
-                timeout=max(0.05, min(timeout, self.clock.left())), trace=True)
+                timeout=max(0.05, min(timeout, self.clock.wall_left())), trace=True)
             lines = outcome.value.get("lines") if outcome.ok and isinstance(outcome.value, dict) else None
             kept[key] = {line for line in lines if isinstance(line, int)} if isinstance(lines, list) else None
         return kept[key]
@@ -2223,9 +2256,9 @@ class _Variants:
             every = self.inputs + variants
             try:
                 runner = naming.helper()
-                runner.prepare(self.model.source, self.model.module, every, max(1.0, self.clock.left()))
+                runner.prepare(self.model.source, self.model.module, every, max(1.0, self.clock.wall_left()))
                 indices = list(range(len(self.inputs), len(every)))
-                wanted = dict(zip(indices, runner.run((), indices, max(0.5, self.clock.left()))))
+                wanted = dict(zip(indices, runner.run((), indices, max(0.5, self.clock.wall_left()))))
                 self.confirmations = (every, wanted, [i for i in indices if naming.error_kind(wanted[i]) is None])
             except HelperFailed:   # the reference too slow on them (a whole pipeline): no confirmation here
                 self.confirmations = (every, {}, None)
@@ -2609,7 +2642,7 @@ class _Replayed:
 
         outcome = self.variants.companion.call_variant(
             module, self.source, function, [(tuple(args), dict(kwargs or {}))], forbid=forbid,
-            timeout=max(0.05, min(timeout or np.inf, self.variants.clock.left())))
+            timeout=max(0.05, min(timeout or np.inf, self.variants.clock.wall_left())))
         if not outcome.ok:
             return outcome
         value = outcome.value[0] if isinstance(outcome.value, list) and len(outcome.value) == 1 else None
