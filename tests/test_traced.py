@@ -373,6 +373,36 @@ def test_an_array_indexed_on_more_axes_than_it_has_is_named():
     assert sentence == "in `p[:, 0]` (line 4), `p` has shape (3,): 1 axis, indexed with 2"
 
 
+def test_a_test_of_the_last_size_that_let_a_one_axis_array_in_is_named_with_its_line():
+    """`if x.shape[-1] == 2: x = x[:, 0]`: two x coordinates pass the test made for (N, 2) points."""
+    sentence = raised_sentence("""
+        def xs(x):
+            x = np.asarray(x, float)
+            if x.shape[-1] == 2:
+                x = x[:, 0]
+            return x
+        """, "xs", np.array([3.0, 4.0]))
+    assert sentence == ("in `x[:, 0]` (line 5), `x` has shape (2,): 1 axis, indexed with 2; it got there because "
+                        "`x.shape[-1] == 2` (line 4) holds for it: an array of shape (2,) passes a test of its last "
+                        "size too -- test its number of axes, `x.ndim`")
+
+
+@pytest.mark.parametrize("d", [np.array([[2.0, 0.0], [4.0, 1.0]]), np.array([2.0, -1.0, 4.0])])
+def test_a_masked_assignment_of_the_whole_array_is_named_with_the_selection_it_needs(d):
+    """`depth[good] = f / d` assigns one value per entry of `d` where one per selected entry belongs: NumPy
+    raises a TypeError (2-D) or a ValueError (1-D, some entries not selected)."""
+    sentence = raised_sentence("""
+        def depth(d, f):
+            out = np.zeros_like(d)
+            good = d > 0
+            out[good] = f / d
+            return out
+        """, "depth", d, 2.0)
+    assert sentence == (f"in `out[good] = f / d` (line 5), the right side has shape {tuple(d.shape)}"
+                        + ", a value for every entry of the array, where `out[good]` takes one value per entry `good` "
+                        "selects: select the same entries on the right too, `d[good]`")
+
+
 def test_a_reshape_of_another_size_is_named_with_the_shape_reshaped():
     sentence = raised_sentence("""
         def as_rows(H, pts):

@@ -380,6 +380,7 @@ _OPENCV_SIZES = re.compile(r"size\(\) *== *(?!Size\b)[A-Za-z_]|[Ss]izes? of inpu
 _OUT_OF_BOUNDS = re.compile(r"index (-?\d+) is out of bounds for axis (\d+) with size (\d+)")
 _SEQUENCE_INDEX = re.compile(r"\b(?:list|tuple) index out of range")
 _NOT_SQUARE = re.compile(r"Last 2 dimensions of the array must be square")
+_MASK_ASSIGNMENT = re.compile(r"boolean array indexing assignment (?:requires a 0 or 1-dimensional input|cannot assign)")
 _SQUARE_ONLY = frozenset({"solve", "inv", "det", "eig", "eigvals", "cholesky", "matrix_power", "slogdet"})
 
 
@@ -411,9 +412,11 @@ def explain_raised(code, recording: Recording, fn, line: int, message: str, fram
         return _item_named(recording, expressions, where)
     if _NOT_SQUARE.search(message):
         return _square_named(recording, expressions, where)
+    if _MASK_ASSIGNMENT.search(message):
+        return _masked_assignment_named(recording, statement, where)
     found = _TOO_MANY_INDICES.search(message)
     if found:
-        return _indexed_named(recording, expressions, int(found.group(1)), where)
+        return _indexed_named(recording, expressions, int(found.group(1)), where, fn, statement)
     if _AMBIGUOUS.search(message):
         return _truth_named(recording, statement, expressions, where)
     found = _RESHAPE.search(message)
@@ -575,6 +578,25 @@ def _square_named(recording, expressions, where) -> Form | None:
     return None
 
 
+def _masked_assignment_named(recording, statement, where) -> Form | None:
+    """`out[mask] = expr` where ``expr`` is as large as the whole array, not one value per selected entry:
+    the right side's array of the mask's shape, which the mask is to select too."""
+    if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1
+            and isinstance(statement.targets[0], ast.Subscript) and isinstance(statement.targets[0].slice, ast.Name)):
+        return None
+    mask = statement.targets[0].slice
+    shape, value = recording.shape(mask), recording.shape(statement.value)
+    if shape is None or value is None or tuple(value) != tuple(shape):
+        return None
+    whole = [node for node in ast.walk(statement.value)
+             if isinstance(node, ast.Name) and recording.shape(node) is not None and tuple(recording.shape(node)) == tuple(shape)]
+    select = f": select the same entries on the right too, `{whole[0].id}[{mask.id}]`" if whole else \
+        f": select the same entries on the right too, with `[{mask.id}]`"
+    return Form(f"in {_quote(statement)} {where}, the right side has shape {_shape_text(value)}, a value for every entry "
+                f"of the array, where `{_quote(statement.targets[0])[1:-1]}` takes one value per entry {_quote(mask)} "
+                f"selects{select}", MISTAKE)
+
+
 def _item_named(recording, expressions, where) -> Form | None:
     """A list or tuple indexed past its end (Python's error says neither the index nor the length)."""
     for node in expressions:
@@ -589,7 +611,7 @@ def _item_named(recording, expressions, where) -> Form | None:
     return None
 
 
-def _indexed_named(recording, expressions, ndim: int, where) -> Form | None:
+def _indexed_named(recording, expressions, ndim: int, where, fn=None, statement=None) -> Form | None:
     for node in expressions:
         if isinstance(node, ast.Subscript):
             shape = recording.shape(node.value)
@@ -597,8 +619,28 @@ def _indexed_named(recording, expressions, ndim: int, where) -> Form | None:
             indexed = sum(1 for p in parts if not (isinstance(p, ast.Constant) and p.value in (None, Ellipsis)))
             if shape is not None and len(shape) == ndim and indexed > ndim:
                 return Form(f"in {_quote(node)} {where}, {_quote(node.value)} has shape {_shape_text(shape)}: "
-                            f"{ndim} ax{'is' if ndim == 1 else 'es'}, indexed with {indexed}", MISTAKE)
+                            f"{ndim} ax{'is' if ndim == 1 else 'es'}, indexed with {indexed}"
+                            + _let_in_by(fn, statement, node.value, shape), MISTAKE)
     return None
+
+
+def _let_in_by(fn, statement, array, shape) -> str:
+    """The test of the ``if`` that sent this array to a line indexing more axes than it has, when the test
+    reads the array's last size (`x.shape[-1] == 2`): an array of one axis and that many values passes it too
+    (told with the number of axes to test instead); "" otherwise."""
+    if fn is None or statement is None or not isinstance(array, ast.Name):
+        return ""
+    for branch in ast.walk(fn):
+        if not (isinstance(branch, ast.If) and any(statement is s or statement in ast.walk(s) for s in branch.body)):
+            continue
+        for size in ast.walk(branch.test):
+            if isinstance(size, ast.Subscript) and isinstance(size.value, ast.Attribute) and size.value.attr == "shape" \
+                    and isinstance(size.value.value, ast.Name) and size.value.value.id == array.id \
+                    and isinstance(size.slice, (ast.Constant, ast.UnaryOp)):
+                return (f"; it got there because {_quote(branch.test)} (line {branch.lineno}) holds for it: an array of "
+                        f"shape {_shape_text(shape)} passes a test of its last size too -- test its number of axes, "
+                        f"`{array.id}.ndim`")
+    return ""
 
 
 def _truth_named(recording, statement, expressions, where) -> Form | None:

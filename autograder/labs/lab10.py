@@ -714,11 +714,33 @@ def judge_center(t: Trial, P, R, tv):
     t.fail(f"{what} returned {shown}; expected {wanted} (|P [C, 1]| / |P| = {residual:.2g}, should be 0)")
 
 
+# P is defined up to scale, and its last entry P[2, 3] = t_z is 0 for a camera whose principal plane holds
+# the world origin: P / P[2, 3] (a homography's habit) has no centre there.
+DIVIDES_BY_P34 = divides_by("_[2, 3]", "_[-1, -1]", "_[2, -1]", "_[-1, 3]", "_[2][3]", "_[-1][-1]",
+                            says="divides P by P[2, 3]")
+P34_IS_ZERO = "P divided by P[2, 3], which is 0"
+
+
 @ex5.check("camera_center(P) satisfies P [C, 1] = 0", points=2)
 def center_check(t):
     for seed in (511, 512, 513):
         P, K, R, tv, _ = truth.random_camera_matrix(seed)
         judge_center(t, P, R, tv)
+    # the world origin on the camera's principal plane: t_z = 0, so P[2, 3] = 0
+    _, K, R, tv, s = truth.random_camera_matrix(514)
+    tv = np.array([tv[0], tv[1], 0.0])
+    P = s * K @ np.column_stack([R, tv])
+    try:
+        judge_center(t, P, R, tv)
+    except Fail as failure:
+        if DIVIDES_BY_P34.found(code_of(t).reachable(["camera_center"])):
+            said = failure.message.removeprefix("camera_center(P) ").rstrip(".")
+            t.fail(f"camera_center(P) for a camera with P[2, 3] = 0 (the world origin lies on its principal plane, "
+                   f"t_z = 0) {said}. "
+                   + from_code("Your code divides P by P[2, 3], which is 0 here: P is defined up to scale, and its "
+                               "centre needs no normalisation (C = -M^-1 p4, or P's null vector de-homogenised)."),
+                   mistake=P34_IS_ZERO)
+        raise
 
 
 # ================================================================== ex6 pose from a chessboard

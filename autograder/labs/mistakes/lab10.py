@@ -508,6 +508,12 @@ MISTAKES = {
             x = (f / z) * X[:, :2]
             return x[0] if single else x
         """, ["largest depth"]),
+    "centre of P scaled by P[2, 3] (0 for a camera with t_z = 0)": ("lab10.ex5", """
+        def camera_center(P):
+            P = np.asarray(P, dtype=np.float64)
+            P = P / P[2, 3]
+            return -np.linalg.solve(P[:, :3], P[:, 3])
+        """, ["p[2, 3] = 0", "divides p by p[2, 3]"]),
     "centre not de-homogenised": ("lab10.ex5", """
         def camera_center(P):
             return np.linalg.svd(np.asarray(P, dtype=np.float64))[2][-1][:3]
