@@ -2327,6 +2327,26 @@ def orb_norm_advice(t):
                        "keep NORM_L2 for SIFT"))
 
 
+WTA_K_GIVEN = Predicate("gives ORB a WTA_K", lambda f: any(
+    isinstance(n, ast.keyword) and n.arg == "WTA_K" for n in ast.walk(f)))
+
+
+@ext1.advice("ORB's default descriptors are matched with NORM_HAMMING, not NORM_HAMMING2")
+def orb_hamming2_advice(t):
+    """NORM_HAMMING2 counts differing pairs of bits: meant for ORB made with WTA_K = 3 or 4, whose
+    descriptor entries are 2-bit codes. The default ORB's (WTA_K = 2) are single bits: read from the code
+    only, since its matches still pass (full marks on the check above), so worth no points."""
+    functions = code_of(t).reachable(["match_features"])
+    if not (ORB_CREATED.holds(functions) and mentions("cv2.NORM_HAMMING2").holds(functions)) \
+            or mentions("cv2.NORM_HAMMING").holds(functions) or WTA_K_GIVEN.holds(functions):
+        return
+    t.advise(from_code("Your code creates ORB features with the default WTA_K = 2 and matches them with "
+                       "cv2.NORM_HAMMING2, which counts differing pairs of bits: it is meant for ORB made with "
+                       "WTA_K = 3 or 4. For the default descriptors, whose bits are independent, the distance is "
+                       "the number of bits that differ: no points depend on it here."),
+             hint=from_code("for method='orb' match with cv2.BFMatcher(cv2.NORM_HAMMING)"))
+
+
 # ================================================================== ext2 many images
 ext2 = lab.exercise("ext2", "Panorama of many images", functions=["stitch_many(images)"])
 

@@ -800,6 +800,17 @@ ADVICE = {
             return (points1[[m.queryIdx for m in good]].reshape(-1, 2),
                     points2[[m.trainIdx for m in good]].reshape(-1, 2))
         """, ["cv2.NORM_L2", "hamming", "no points"]),
+    "ORB descriptors (WTA_K = 2) matched with NORM_HAMMING2": ("lab08.ext1", """
+        def _match(features1, features2, ratio, method="sift"):
+            (points1, descriptors1), (points2, descriptors2) = features1, features2
+            if descriptors1 is None or descriptors2 is None or len(points2) < 2:
+                return np.zeros((0, 2)), np.zeros((0, 2))
+            norm = cv2.NORM_HAMMING2 if method == "orb" else cv2.NORM_L2
+            pairs = cv2.BFMatcher(norm).knnMatch(descriptors1, descriptors2, k=2)
+            good = [m for m, n in (p for p in pairs if len(p) == 2) if m.distance < ratio * n.distance]
+            return (points1[[m.queryIdx for m in good]].reshape(-1, 2),
+                    points2[[m.trainIdx for m in good]].reshape(-1, 2))
+        """, ["cv2.NORM_HAMMING2", "WTA_K = 3 or 4", "no points"]),
     "ORB descriptors matched with BFMatcher()'s default norm": ("lab08.ext1", """
         def _match(features1, features2, ratio, method="sift"):
             (points1, descriptors1), (points2, descriptors2) = features1, features2
