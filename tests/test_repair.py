@@ -3298,3 +3298,23 @@ def test_a_term_added_to_one_coordinate_moved_to_its_twin_is_a_change_tried():
     """)
     assert _shown_changes(source, "moved_term") == [
         ("(int(round(q[0])), int(round(q[1] + w1)))", "(int(round(q[0] + w1)), int(round(q[1])))")]
+
+
+def test_a_loop_counted_by_a_number_beside_an_array_sized_by_it_is_changed_with_its_sizes():
+    """`A = np.zeros((12, 12))` filled by `for i in range(6)`: only six points enter the system; the count and
+    the rows it sizes are changed together, a loop without such an array by its count alone."""
+    source = textwrap.dedent("""
+        def graded(points, other):
+            A = np.zeros((12, 12))
+            for i in range(6):
+                A[2 * i] = points[i]
+            for k in range(3):
+                other = other + k
+            return A, other
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    changes = [student.fix(m).changes for m in student.mutants("graded")
+               if m.operator == "counted" and len(m.edits) == 2 and student.fix(m) is not None]
+    assert [tuple(change[1:] for change in c) for c in changes if "points" in c[0][2]] == [
+        (("range(6)", "range(len(points))"), ("np.zeros((12, 12))", "np.zeros((2 * len(points), 12))"))]
+    assert not any("range(3)" in c[0][1] for c in changes)

@@ -1389,6 +1389,12 @@ def mutants_of(source: str, api, phrased: bool = True, functions=None) -> dict[s
                 edits = ((where, ordinal, operator, payload),)
                 if operator in _MOVES and payload[0] is not None:   # (the statement made at the edited node
                     edits += ((where, payload[0], "drop_statement", None),)   # is removed where it was)
+                if operator == "counted_sized":   # (the count and the sizes it gives, changed together)
+                    parameter, sizes = payload
+                    operator = "counted"
+                    edits = ((where, ordinal, operator, f"range(len({parameter}))"),) + tuple(
+                        (where, at, operator, f"{factor} * len({parameter})" if factor > 1 else f"len({parameter})")
+                        for at, factor in sizes)
                 mutants.append(Mutant(operator, function, where, line, edits, place + phrase, place))
         out[function] = mutants
     return out
@@ -1437,6 +1443,37 @@ def _sites(fn: ast.FunctionDef, words: _Words, phrased: bool = True):
         for operator, edited, moved, side in _statement_moves(fn):
             removed = ordinals[id(moved)] if operator != "dedent" else None
             yield operator, ordinals[id(edited)], (removed, ast.unparse(moved), moved.lineno, side), moved.lineno, ""
+        # A loop counted by a number written in the code beside an array sized by it: the count and the
+        # sizes changed together (`np.zeros((12, 12))` and `for i in range(6)`: only six points used)
+        params = [a.arg for a in fn.args.args]
+        for loop, sizes in _counted_with_sizes(fn):
+            for parameter in params:
+                yield "counted_sized", ordinals[id(loop)], (parameter, tuple(
+                    (ordinals[id(size)], factor) for size, factor in sizes)), loop.lineno, ""
+
+
+_ALLOCATIONS = {"zeros", "empty", "ones", "full"}
+
+
+def _counted_with_sizes(fn):
+    """(range(C) call, [(constant k * C in an allocation's shape, k)]) for each loop counted by a number
+    C >= 2 written in the code whose array, made in the same def, is sized by C, 2 C or 3 C (its rows)."""
+    allocated = []
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in _ALLOCATIONS and node.args \
+                and isinstance(node.args[0], ast.Tuple) and node.args[0].elts:
+            first = node.args[0].elts[0]
+            if isinstance(first, ast.Constant) and type(first.value) is int:
+                allocated.append(first)
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "range" \
+                and len(node.args) == 1 and isinstance(node.args[0], ast.Constant) \
+                and type(node.args[0].value) is int and node.args[0].value >= 2:
+            count = node.args[0].value
+            sizes = [(size, size.value // count) for size in allocated
+                     if size.value % count == 0 and 1 <= size.value // count <= 3]
+            if sizes:
+                yield node, sizes
 
 
 _SIMPLE = (ast.Assign, ast.AugAssign, ast.Expr, ast.Return)

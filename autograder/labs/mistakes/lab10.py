@@ -45,6 +45,21 @@ MISTAKES = {
             x = X[:, :2] / X[:, 2:3]
             return x[0] if single else x
         """, ["perspective"]),
+    "DLT on the first six points only (a count and a size written in the code)": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.asarray(points3d, dtype=np.float64)
+            x = np.asarray(points2d, dtype=np.float64)
+            T, U = _normalising_transform(x), _normalising_transform(X)
+            xn = np.hstack([x, np.ones((len(x), 1))]) @ T.T
+            Xn = np.hstack([X, np.ones((len(X), 1))]) @ U.T
+            A = np.zeros((12, 12))
+            for i in range(6):
+                u, v = xn[i, 0], xn[i, 1]
+                A[2 * i, 0:4], A[2 * i, 8:12] = Xn[i], -u * Xn[i]
+                A[2 * i + 1, 4:8], A[2 * i + 1, 8:12] = Xn[i], -v * Xn[i]
+            P = np.linalg.inv(T) @ np.linalg.svd(A)[2][-1].reshape(3, 4) @ U
+            return P / np.linalg.norm(P)
+        """, ["`range(6)` to `range(len(points3d))`", "`np.zeros((2 * len(points3d), 12))`"]),
     "DLT largest singular vector": ("lab10.ex4", """
         def camera_matrix_dlt(points3d, points2d):
             X = np.column_stack([points3d, np.ones(len(points3d))])
