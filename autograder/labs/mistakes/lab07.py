@@ -91,6 +91,12 @@ MISTAKES = {
             S = np.hstack([np.asarray(dst, float), np.ones((3, 1))])
             return np.linalg.solve(S, np.asarray(src, float)).T
         """, ["swapped", "inverse"]),
+    "dsize overwritten by the input's size": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            h, w = image.shape[:2]
+            dsize = (w, h)
+            return cv2.warpAffine(image, np.asarray(A, dtype=np.float64)[:2], dsize)
+        """, ["dsize=(220, 100) and dsize=(180, 140) give the same image", "dsize is ignored"]),
     "dsize as (height, width)": ("lab07.ex5", """
         def warp_affine(image, A, dsize=None):
             if dsize is not None:
