@@ -3318,3 +3318,13 @@ def test_a_loop_counted_by_a_number_beside_an_array_sized_by_it_is_changed_with_
     assert [tuple(change[1:] for change in c) for c in changes if "points" in c[0][2]] == [
         (("range(6)", "range(len(points))"), ("np.zeros((12, 12))", "np.zeros((2 * len(points), 12))"))]
     assert not any("range(3)" in c[0][1] for c in changes)
+
+
+def test_the_component_after_a_leading_slice_is_a_part_for_a_statistic_of_the_whole():
+    """`np.linalg.norm(X, axis=1)` (the distance) beside `X[:, :2]` only: the depth `X[:, 2]` is offered too."""
+    source = textwrap.dedent("""
+        def graded(X, f):
+            depth = np.linalg.norm(X, axis=1)
+            return f * X[:, :2] / depth[:, None]
+    """)
+    assert ("np.linalg.norm(X, axis=1)", "X[:, 2]") in _shown_changes(source, "part")

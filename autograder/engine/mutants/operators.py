@@ -2680,6 +2680,17 @@ def _parts(node, parents) -> list:
             if isinstance(sub, ast.Subscript) and isinstance(sub.ctx, ast.Load) and isinstance(sub.value, ast.Name) \
                     and not any(isinstance(n, ast.Call) for n in ast.walk(sub.slice)):
                 parts.setdefault(sub.value.id, {})[ast.unparse(sub)] = None   # (a dict: ordered, no repeats)
+                # (and the component after a leading slice: `X[:, 2]` beside `X[:, :2]`, a point's depth
+                # beside its first two coordinates)
+                last = sub.slice.elts[-1] if isinstance(sub.slice, ast.Tuple) else sub.slice
+                if isinstance(last, ast.Slice) and last.lower is None and last.step is None \
+                        and isinstance(last.upper, ast.Constant) and type(last.upper.value) is int and last.upper.value > 0:
+                    after = copy.deepcopy(sub)
+                    if isinstance(after.slice, ast.Tuple):
+                        after.slice.elts[-1] = ast.Constant(last.upper.value)
+                    else:
+                        after.slice = ast.Constant(last.upper.value)
+                    parts[sub.value.id][ast.unparse(after)] = None
         # (one component -- `X[:, 2]`, an index, not a slice -- is what a statistic of the whole replaces)
         fn._parts_index = {name: sorted(texts, key=lambda text: ":" in text.split(",")[-1])
                            for name, texts in parts.items()}
