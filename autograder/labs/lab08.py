@@ -1376,9 +1376,12 @@ def ransac_mask_of_h(t):
         closer = int((~inliers & (errors < errors[inliers].max())).sum()) if inliers.any() else 0
         other = (" (the mask is the inliers of another homography: the fit to the pairs it marks sends them "
                  "within the threshold and no others)" if another_hypothesis(inliers, src, dst) else "")
+        # (an example only where nothing measured says which other model: beside the fit to the marked
+        # pairs, "another sample" would be a guess -- an H refit on every pair keeps its sample's mask too)
+        example = "" if other else " (e.g. the mask of another sample than the H returned)"
         t.fail(f"{measured}: the mask is not the pairs within any one distance of where your H sends them "
                f"({closer} unmarked pairs are closer than the farthest marked one){other}, so the two do not come "
-               "from one model (e.g. the mask of another sample than the H returned).",
+               f"from one model{example}.",
                mistake="the inlier mask is not the inliers of the returned H")
     # The threshold given is the one used: pairs 1.6-2.4 px off are inliers at 3 px, not at 1 px.
     src, dst, _, off = truth.threshold_problem(12)
