@@ -590,8 +590,9 @@ def _masked_assignment_named(recording, statement, where) -> Form | None:
         return None
     whole = [node for node in ast.walk(statement.value)
              if isinstance(node, ast.Name) and recording.shape(node) is not None and tuple(recording.shape(node)) == tuple(shape)]
-    select = f": select the same entries on the right too, `{whole[0].id}[{mask.id}]`" if whole else \
-        f": select the same entries on the right too, with `[{mask.id}]`"
+    # (measured: the recording's shapes of the mask, the right side and the array named in it)
+    select = measured(f": select the same entries on the right too, `{whole[0].id}[{mask.id}]`") if whole else \
+        measured(f": select the same entries on the right too, with `[{mask.id}]`")
     return Form(f"in {_quote(statement)} {where}, the right side has shape {_shape_text(value)}, a value for every entry "
                 f"of the array, where `{_quote(statement.targets[0])[1:-1]}` takes one value per entry {_quote(mask)} "
                 f"selects{select}", MISTAKE)

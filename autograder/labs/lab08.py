@@ -866,8 +866,9 @@ def judge_match_drawing(t: Trial, what: str, got, img1, img2, pts1, pts2):
             t.fail(f"{what}: the lines end at (x2, y2) in the left image; the second image starts at "
                    "x = W1, so draw each line to (x2 + W1, y2)")
         if explains(pts2 + [0, w1]):
-            t.fail(f"{what}: the lines end at (x2, y2 + W1): img1's width is added to y2, where the second "
-                   "image is shifted along x: draw each line to (x2 + W1, y2)", mistake="W1 is added to y2 instead of x2")
+            t.fail(f"{what}: " + measured("the lines end at (x2, y2 + W1): img1's width is added to y2, where the second "
+                                          "image is shifted along x: draw each line to (x2 + W1, y2)"),
+                   mistake="W1 is added to y2 instead of x2")
         # (points read as (row, column): each line from (y1, x1) to (y2 + W1, x2))
         read = segments_drawn(drawn_on, pts1[:, ::-1], pts2[:, ::-1] + [w1, 0]) >= LINE_FOUND
         if read.mean() >= 0.75 and read.sum() > found.sum():
