@@ -2340,6 +2340,8 @@ def orb_hamming2_advice(t):
     """NORM_HAMMING2 counts differing pairs of bits: meant for ORB made with WTA_K = 3 or 4, whose
     descriptor entries are 2-bit codes. The default ORB's (WTA_K = 2) are single bits: read from the code
     only, since its matches still pass (full marks on the check above), so worth no points."""
+    img1, img2, _ = truth.matching_pair("chelsea", (240, 180), seed=3)
+    t.call("match_features", img1, img2, method="orb")   # (the pair of the check above: said only of code that runs)
     functions = code_of(t).reachable(["match_features"])
     if not (ORB_CREATED.holds(functions) and mentions("cv2.NORM_HAMMING2").holds(functions)) \
             or mentions("cv2.NORM_HAMMING").holds(functions) or WTA_K_GIVEN.holds(functions):
