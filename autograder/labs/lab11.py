@@ -1430,10 +1430,11 @@ def epipoles_property(t):
         if read:
             said = (failure.message.partition(": ")[2] or failure.message).rstrip(".")
             t.fail(f"epipoles(F) for F at norm {SMALL_SCALE:g}: {said}. "
-                   + from_code(f"Your code decides which singular value is 0 with a fixed tolerance, {read}: F is "
-                               "defined up to scale, and at this scale every singular value is below it. Take the "
-                               "singular vectors of the smallest singular value (the last row of V^T, the last "
-                               "column of U)."), mistake=FIXED_TOLERANCE)
+                   + from_code(f"Your code compares with a fixed tolerance, {read}: F is defined up to scale, and "
+                               f"at this scale all its singular values are at most {SMALL_SCALE:g}, so a tolerance fixed "
+                               "in advance decides differently at each scale. Take the singular vectors of the "
+                               "smallest singular value (the last row of V^T, the last column of U)."),
+                   mistake=FIXED_TOLERANCE)
         raise
     t.for_all(st.tuples(seeds, st.sampled_from([1.0, -2.0, 1e-4, 1e3])), holds, max_examples=10,
               describe=lambda c: f"{c[1]} * fixtures.lab11.two_views(seed={c[0]}).F")

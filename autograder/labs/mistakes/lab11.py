@@ -419,6 +419,12 @@ MISTAKES = {
             values2, vectors2 = np.linalg.eig(F.T)
             return vectors1[:, np.argmin(np.abs(values1))], vectors2[:, np.argmin(np.abs(values2))]
         """, ["complex", "np.linalg.eig", "`.real`"]),
+    "epipoles chosen by a fixed tolerance on the singular values": ("lab11.ex5", """
+        def epipoles(F):
+            U, S, Vt = np.linalg.svd(np.asarray(F, dtype=np.float64))
+            zero = np.isclose(S, 0.0)
+            return Vt[zero][0], U[:, zero][:, 0]
+        """, ["fixed tolerance", "`np.isclose(S, 0.0)`", "defined up to scale"]),
     "epipoles swapped": ("lab11.ex5", """
         _ep = epipoles
         def epipoles(F):
