@@ -3328,3 +3328,24 @@ def test_the_component_after_a_leading_slice_is_a_part_for_a_statistic_of_the_wh
             return f * X[:, :2] / depth[:, None]
     """)
     assert ("np.linalg.norm(X, axis=1)", "X[:, 2]") in _shown_changes(source, "part")
+
+
+def test_a_removal_of_a_step_the_reference_never_takes_is_the_fix_and_one_it_takes_a_compensation():
+    """`T @ H` -> `H` where the reference warps by H as given (no product anywhere it runs): the step was the
+    student's own, its removal the fix. A division taken out where the reference divides too stays a
+    likely compensation (a w the student made Z), and a change that is no removal is never judged so."""
+    reference = textwrap.dedent("""
+        def _warp(image, H):
+            return cv2.warpPerspective(image, H, (4, 4))
+        def warp(image, H):
+            return _warp(image, np.asarray(H, dtype=np.float64))
+        def project(P, X):
+            x = X @ P.T
+            return x[:, :2] / x[:, 2:]
+    """)
+    removed_product = repair.Fix(((3, "T @ H", "H"),), "warp", "drop_factor", ())
+    removed_division = repair.Fix(((5, "x[:, :2] / w", "x[:, :2]"),), "project", "drop_division", ())
+    changed_sign = repair.Fix(((3, "T @ H", "-T @ H"),), "warp", "sign", ())
+    assert repair._extra_step(removed_product, reference, "warp")
+    assert not repair._extra_step(removed_division, reference, "project")
+    assert not repair._extra_step(changed_sign, reference, "warp")
