@@ -461,6 +461,20 @@ def _explained_from_the_line(trial: Trial, traceback_text: str):
         return None
 
 
+def _told_after_the_first_line(verdict: Verdict, said: str, mistake: str) -> Verdict:
+    """``verdict`` with the sentence ``said`` after its message's first line (ended by a full stop where it
+    has no end of its own), naming ``mistake``."""
+    first, newline, rest = str(verdict.message).partition("\n")
+    lead = first.rstrip()
+    lead += "" if not lead or lead[-1] in ".:;!?" else "."
+    return replace(verdict, message=f"{lead} {said[:1].upper()}{said[1:]}.{newline}{rest}", mistake=mistake)
+
+
+def _calls_made(trial: Trial) -> list:
+    """The check's calls of the student's functions, the one that raised last."""
+    return list(trial.calls) + ([trial.raised] if getattr(trial, "raised", None) else [])
+
+
 def _named_by_misread_output(verdict: Verdict, trial: Trial) -> Verdict:
     """A failing verdict that names no mistake, naming an OpenCV output the student's code unpacks
     under another output's name (``rms, dist, K, ... = cv2.calibrateCamera(...)``) when what a
@@ -472,11 +486,8 @@ def _named_by_misread_output(verdict: Verdict, trial: Trial) -> Verdict:
     for function in dict.fromkeys(call[0] for call in reversed(list(trial.calls) + list(getattr(trial, "served", ())))):
         found = outputs.told(code, function)
         if found is not None:
-            first, newline, rest = str(verdict.message).partition("\n")
-            lead = first.rstrip()
-            lead += "" if not lead or lead[-1] in ".:;!?" else "."
             sentence, mistake = found
-            return replace(verdict, message=f"{lead} Reading your code: {sentence}.{newline}{rest}", mistake=mistake)
+            return _told_after_the_first_line(verdict, f"Reading your code: {sentence}", mistake)
     return verdict
 
 
@@ -488,7 +499,7 @@ def _named_by_defaults(verdict: Verdict, trial: Trial) -> Verdict:
     from .mutants import naming
 
     model = naming.model_for(trial.lab)
-    calls = list(trial.calls) + ([trial.raised] if getattr(trial, "raised", None) else [])
+    calls = _calls_made(trial)
     if model is None or not calls:
         return verdict
     try:   # (reading is a bonus: the verdict stands without it)
@@ -498,12 +509,7 @@ def _named_by_defaults(verdict: Verdict, trial: Trial) -> Verdict:
         return verdict
     if found is None:
         return verdict
-    said = defaults_given.sentence(*found)
-    first, newline, rest = str(verdict.message).partition("\n")
-    lead = first.rstrip()
-    lead += "" if not lead or lead[-1] in ".:;!?" else "."
-    return replace(verdict, message=f"{lead} {said[:1].upper()}{said[1:]}.{newline}{rest}",
-                   mistake=defaults_given.MISTAKE)
+    return _told_after_the_first_line(verdict, defaults_given.sentence(*found), defaults_given.MISTAKE)
 
 
 def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:
@@ -512,7 +518,7 @@ def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:
     from . import ignored
     from .hints import code_of
 
-    calls = list(trial.calls) + ([trial.raised] if getattr(trial, "raised", None) else [])
+    calls = _calls_made(trial)
     code = code_of(trial)
     found = ignored.unused_given(code, calls) if calls else None
     if found is not None:
@@ -524,10 +530,7 @@ def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:
         if unused is None:
             return verdict
         said, mistake = ignored.unused_value_sentence(*unused), ignored.UNUSED_VALUE
-    first, newline, rest = str(verdict.message).partition("\n")
-    lead = first.rstrip()
-    lead += "" if not lead or lead[-1] in ".:;!?" else "."
-    return replace(verdict, message=f"{lead} {said[:1].upper()}{said[1:]}.{newline}{rest}", mistake=mistake)
+    return _told_after_the_first_line(verdict, said, mistake)
 
 
 def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: Trial) -> Verdict:

@@ -631,9 +631,14 @@ def _let_in_by(fn, statement, array, shape) -> str:
     (told with the number of axes to test instead); "" otherwise."""
     if fn is None or statement is None or not isinstance(array, ast.Name):
         return ""
-    for branch in ast.walk(fn):
-        if not (isinstance(branch, ast.If) and any(statement is s or statement in ast.walk(s) for s in branch.body)):
-            continue
+    parents = {id(child): parent for parent in ast.walk(fn) for child in ast.iter_child_nodes(parent)}
+    branches, node = [], statement   # (the ifs whose body holds the statement, innermost first)
+    while id(node) in parents:
+        parent = parents[id(node)]
+        if isinstance(parent, ast.If) and any(node is s for s in parent.body):
+            branches.append(parent)
+        node = parent
+    for branch in branches:
         for size in ast.walk(branch.test):
             if isinstance(size, ast.Subscript) and isinstance(size.value, ast.Attribute) and size.value.attr == "shape" \
                     and isinstance(size.value.value, ast.Name) and size.value.value.id == array.id \
