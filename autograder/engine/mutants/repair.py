@@ -1423,22 +1423,29 @@ def _up_to_scale(source: str) -> dict:
             for fn in tree.body if isinstance(fn, ast.FunctionDef)}
 
 
+def _matrices_replaced(call, positions, replacement) -> list:
+    """[the call with each matrix parameter at ``positions`` ((position, name): given by position or by
+    name) replaced by ``replacement(name, value)``], or [] when it replaces none (None: kept)."""
+    function, args, kwargs = call
+    args, kwargs, replaced = list(args), dict(kwargs), False
+    for position, name in positions:
+        value = args[position] if position < len(args) else kwargs.get(name)
+        new = replacement(name, value) if isinstance(value, np.ndarray) and value.dtype.kind == "f" else None
+        if new is not None:
+            if position < len(args):
+                args[position] = new
+            else:
+                kwargs[name] = new
+            replaced = True
+    return [(function, tuple(args), kwargs)] if replaced else []
+
+
 def _rescaled(call, positions) -> list:
     """The call with each matrix defined up to scale given twice as large ([] when it has none): a change
     right only at the check's scale -- a division by `H[2, 2]` kept beside the one by w, exact where
     H[2, 2] = 1 -- is wrong there, where the reference answers alike."""
-    function, args, kwargs = call
-    args, kwargs, scaled = list(args), dict(kwargs), False
-    for position, name in positions:
-        value = args[position] if position < len(args) else kwargs.get(name)
-        if isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.ndim == 2 \
-                and value.shape in ((3, 3), (3, 4)) and np.all(np.isfinite(value)):
-            if position < len(args):
-                args[position] = value * 2.0
-            else:
-                kwargs[name] = value * 2.0
-            scaled = True
-    return [(function, tuple(args), kwargs)] if scaled else []
+    return _matrices_replaced(call, positions, lambda name, value: value * 2.0 if value.shape in ((3, 3), (3, 4))
+                              and np.all(np.isfinite(value)) else None)
 
 
 # homographies among them: a translation is one too, whatever the function does with it
@@ -1452,23 +1459,10 @@ def _translated(call, positions) -> list:
     image up and left -- a shift added "to keep it visible" made 0 by a sign turned round, `max(0, y)` for
     `max(0, -y)` -- is wrong where it sends it down and right, and a name used for its twin (dx for dy)
     where both are not 0."""
-    function, args, kwargs = call
-    made = []
-    for tx, ty in SHIFTS:
-        moved, shifted, changed = list(args), dict(kwargs), False
-        for position, name in positions:
-            value = args[position] if position < len(args) else kwargs.get(name)
-            if name in _HOMOGRAPHIES and isinstance(value, np.ndarray) and value.shape == (3, 3) \
-                    and value.dtype.kind == "f":
-                translation = np.array([[1.0, 0.0, tx], [0.0, 1.0, ty], [0.0, 0.0, 1.0]], dtype=value.dtype)
-                if position < len(args):
-                    moved[position] = translation
-                else:
-                    shifted[name] = translation
-                changed = True
-        if changed:
-            made.append((function, tuple(moved), shifted))
-    return made
+    def shifted(tx, ty):
+        return lambda name, value: np.array([[1.0, 0.0, tx], [0.0, 1.0, ty], [0.0, 0.0, 1.0]], dtype=value.dtype) \
+            if name in _HOMOGRAPHIES and value.shape == (3, 3) else None
+    return [made for tx, ty in SHIFTS for made in _matrices_replaced(call, positions, shifted(tx, ty))]
 
 
 def _single_point(call) -> list:
