@@ -1458,20 +1458,19 @@ _ALLOCATIONS = {"zeros", "empty", "ones", "full"}
 def _counted_with_sizes(fn):
     """(range(C) call, [(constant k * C in an allocation's shape, k)]) for each loop counted by a number
     C >= 2 written in the code whose array, made in the same def, is sized by C, 2 C or 3 C (its rows)."""
-    allocated = []
+    allocated = {}   # rows -> the constants writing them (looked up per loop: linear in the def)
     for node in ast.walk(fn):
         if isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in _ALLOCATIONS and node.args \
                 and isinstance(node.args[0], ast.Tuple) and node.args[0].elts:
             first = node.args[0].elts[0]
             if isinstance(first, ast.Constant) and type(first.value) is int:
-                allocated.append(first)
+                allocated.setdefault(first.value, []).append(first)
     for node in ast.walk(fn):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "range" \
                 and len(node.args) == 1 and isinstance(node.args[0], ast.Constant) \
                 and type(node.args[0].value) is int and node.args[0].value >= 2:
             count = node.args[0].value
-            sizes = [(size, size.value // count) for size in allocated
-                     if size.value % count == 0 and 1 <= size.value // count <= 3]
+            sizes = [(size, factor) for factor in (1, 2, 3) for size in allocated.get(factor * count, ())]
             if sizes:
                 yield node, sizes
 
