@@ -383,8 +383,20 @@ def test_a_test_of_the_last_size_that_let_a_one_axis_array_in_is_named_with_its_
             return x
         """, "xs", np.array([3.0, 4.0]))
     assert sentence == ("in `x[:, 0]` (line 5), `x` has shape (2,): 1 axis, indexed with 2; it got there because "
-                        "`x.shape[-1] == 2` (line 4) holds for it: an array of shape (2,) passes a test of its last "
-                        "size too -- test its number of axes, `x.ndim`")
+                        "`x.shape[-1] == 2` (line 4) holds for it: an array of shape (2,) passes that test too -- "
+                        "test its number of axes, `x.ndim`")
+
+
+def test_a_test_of_an_array_set_again_before_the_failing_line_is_not_said_to_have_let_it_in():
+    sentence = raised_sentence("""
+        def xs(x):
+            x = np.asarray(x, float)
+            if x.shape[-1] == 2:
+                x = x.ravel()
+                x = x[:, 0]
+            return x
+        """, "xs", np.array([[3.0, 4.0]]))
+    assert sentence == "in `x[:, 0]` (line 6), `x` has shape (2,): 1 axis, indexed with 2"
 
 
 @pytest.mark.parametrize("d", [np.array([[2.0, 0.0], [4.0, 1.0]]), np.array([2.0, -1.0, 4.0])])

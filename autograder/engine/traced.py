@@ -627,8 +627,9 @@ def _indexed_named(recording, expressions, ndim: int, where, fn=None, statement=
 
 def _let_in_by(fn, statement, array, shape) -> str:
     """The test of the ``if`` that sent this array to a line indexing more axes than it has, when the test
-    reads the array's last size (`x.shape[-1] == 2`): an array of one axis and that many values passes it too
-    (told with the number of axes to test instead); "" otherwise."""
+    reads one of the array's sizes (`x.shape[-1] == 2`) and the branch does not set it before that line: an
+    array of one axis and that many values passes it too (told with the number of axes to test instead);
+    "" otherwise."""
     if fn is None or statement is None or not isinstance(array, ast.Name):
         return ""
     parents = {id(child): parent for parent in ast.walk(fn) for child in ast.iter_child_nodes(parent)}
@@ -639,13 +640,17 @@ def _let_in_by(fn, statement, array, shape) -> str:
             branches.append(parent)
         node = parent
     for branch in branches:
+        # (the array tested is the one indexed only where the branch sets it nowhere before that line)
+        before = [s for s in branch.body if s.lineno < statement.lineno]
+        if any(isinstance(n, ast.Name) and n.id == array.id and isinstance(n.ctx, ast.Store)
+               for s in before for n in ast.walk(s)):
+            continue
         for size in ast.walk(branch.test):
             if isinstance(size, ast.Subscript) and isinstance(size.value, ast.Attribute) and size.value.attr == "shape" \
                     and isinstance(size.value.value, ast.Name) and size.value.value.id == array.id \
                     and isinstance(size.slice, (ast.Constant, ast.UnaryOp)):
                 return (f"; it got there because {_quote(branch.test)} (line {branch.lineno}) holds for it: an array of "
-                        f"shape {_shape_text(shape)} passes a test of its last size too -- test its number of axes, "
-                        f"`{array.id}.ndim`")
+                        f"shape {_shape_text(shape)} passes that test too -- test its number of axes, `{array.id}.ndim`")
     return ""
 
 
