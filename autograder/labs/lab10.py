@@ -716,8 +716,8 @@ def judge_center(t: Trial, P, R, tv):
 
 # P is defined up to scale, and its last entry P[2, 3] = t_z is 0 for a camera whose principal plane holds
 # the world origin: P / P[2, 3] (a homography's habit) has no centre there.
-DIVIDES_BY_P34 = divides_by("_[2, 3]", "_[-1, -1]", "_[2, -1]", "_[-1, 3]", "_[2][3]", "_[-1][-1]",
-                            says="divides P by P[2, 3]")
+DIVIDES_BY_P34 = divides_by("P[2, 3]", "P[-1, -1]", "P[2, -1]", "P[-1, 3]", "P[2][3]", "P[-1][-1]",
+                            says="divides P by P[2, 3]")   # (the API's name of the camera: P's own entry only)
 P34_IS_ZERO = "P divided by P[2, 3], which is 0"
 
 
