@@ -71,6 +71,21 @@ def left_out(code: Code, reference_source: str, calls) -> tuple[str, list] | Non
     return None
 
 
+def left_to_its_own(trial, parameter: str) -> bool:
+    """Whether a call the check ``trial`` made left ``parameter`` out, where the student's def gives it a
+    default other than the API's: a check naming what the value does (a colour "reversed") would
+    name the effect of that default as another cause."""
+    from .hints import code_of
+    from .mutants import naming
+
+    model = naming.model_for(trial.lab)
+    calls = list(trial.calls) + ([trial.raised] if getattr(trial, "raised", None) else [])
+    if model is None or not calls:
+        return False
+    found = left_out(code_of(trial), model.source, calls)
+    return found is not None and any(name == parameter for name, _, _ in found[1])
+
+
 def _shown(value, limit: int = 40) -> str:
     text = repr(value)
     return text if len(text) <= limit else text[:limit - 3] + "..."

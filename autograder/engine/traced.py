@@ -399,7 +399,7 @@ def explain_raised(code, recording: Recording, fn, line: int, message: str, fram
     expressions = _own_expressions(statement)
     if _BROADCAST.search(message):
         shapes = [_parsed(s) for s in _SHAPES.findall(message.split("shapes", 1)[1])]
-        return _broadcast_named(recording, expressions, shapes, where)
+        return _broadcast_named(recording, expressions, shapes, where, fn, line)
     found = _INTO.search(message)
     if found:
         return _assigned_named(recording, statement, _parsed(found.group(1)), _parsed(found.group(2)), where, fn)
@@ -429,7 +429,7 @@ def explain_raised(code, recording: Recording, fn, line: int, message: str, fram
     return None
 
 
-def _broadcast_named(recording, expressions, shapes, where) -> Form | None:
+def _broadcast_named(recording, expressions, shapes, where, fn=None, line: int = 0) -> Form | None:
     for node in expressions:
         operands = [(o, recording.shape(o)) for o in _operands(node)]
         arrays = [(o, s) for o, s in operands if s is not None]
@@ -437,8 +437,36 @@ def _broadcast_named(recording, expressions, shapes, where) -> Form | None:
             continue
         (a, sa), (b, sb) = arrays[:2]
         said = f"in {_quote(node)} {where}, {_quote(a)} has shape {_shape_text(sa)} and {_quote(b)} {_shape_text(sb)}"
-        return Form(said + _why_not_broadcast(a, sa, b, sb) + _pyramid_sizes(a, sa, b, sb), MISTAKE)
+        why = _channels_stacked(fn, line, a, sa, b, sb) if fn is not None else ""
+        return Form(said + (why or _why_not_broadcast(a, sa, b, sb)) + _pyramid_sizes(a, sa, b, sb), MISTAKE)
     return None
+
+
+# calls that make an array's last axis out of copies of one array (`np.dstack([w, w, w])`): channels
+_STACKS = frozenset({"dstack", "stack", "repeat", "tile", "merge", "concatenate"})
+
+
+def _channels_stacked(fn, line: int, a, sa, b, sb) -> str:
+    """Where one operand is a name the function gave its last axis by stacking copies of one array
+    (`w = np.dstack([w, w, w])`, `np.repeat(m[..., None], 3, axis=2)`, `cv2.merge([m] * 3)`) and the
+    other has no such axis (a grey image's band): that line is told, not an axis for the other operand
+    -- the copies suit colour images only, and an axis given to the grey operand would make its result
+    3-channel."""
+    for long_, sl, short, ss in ((a, sa, b, sb), (b, sb, a, sa)):
+        if not (isinstance(long_, ast.Name) and len(sl) == len(ss) + 1 and tuple(sl[:-1]) == tuple(ss)
+                and sl[-1] > 1):
+            continue
+        given = _last_given(fn, long_.id, line)
+        if given is None or not isinstance(given[0], ast.Call) or _called_name(given[0]) not in _STACKS:
+            continue
+        copies = [n for n in ast.walk(given[0]) if isinstance(n, ast.Name)
+                  and n.id not in {"np", "numpy", "cv2"}]
+        if len({n.id for n in copies}) != 1:
+            continue   # (made of several arrays: channels of their own, not copies of one)
+        return (f": NumPy lines shapes up from their last axes, and {_quote(long_)} has its last axis of "
+                f"{sl[-1]} from line {given[1]} ({_quote(given[0])}): copies of one array, where {_quote(short)} "
+                f"has no such axis; make them only where {_quote(short)} has channels (a colour image)")
+    return ""
 
 
 def _pyramid_sizes(a, sa, b, sb) -> str:

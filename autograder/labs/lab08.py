@@ -1927,6 +1927,7 @@ def fail_if_left_out(t: Trial, judge: PanoramaJudge, what: str):
 
 ONE_IMAGE_CANVAS = "the canvas is only one image's size"
 NOT_SHIFTED = "the canvas is not shifted for negative coordinates"
+SHIFT_TOO_SMALL = "the canvas's shift and size leave an image out"
 
 
 def sticking_out(judge: PanoramaJudge, names) -> dict:
@@ -2011,6 +2012,16 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
             # measured: a canvas of the bounding box's size is told only the shift
             sized = "" if canvas_has_the_bounding_box_size(judge) else \
                 measured(" and size the canvas to the bounding box of all warped corners")
+            if BUILDS_A_SHIFT.found(code_of(t).reachable(functions_read(t))):
+                # (a shift the code builds, too small: made from some images' corners only, or not applied
+                # to every image -- the panorama tells which only by its size)
+                t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}, although your code builds a "
+                       "shift: " + (measured(f"the canvas has the size of the bounding box of all warped corners, so "
+                                             f"look at whether the shift is applied to {name}'s homography too")
+                                    if not sized else measured(
+                                        f"the canvas is smaller than the bounding box of all warped corners: the "
+                                        f"shift and the size must come from every image's warped corners, {name}'s "
+                                        "too")), mistake=SHIFT_TOO_SMALL)
             t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: {NOT_SHIFTED}: "
                    "content that lands at negative coordinates must fit too, so shift everything by a "
                    "translation T = [[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]] (applied to every "
@@ -2415,13 +2426,16 @@ def _builds_a_shift(function) -> bool:
             last_column(t) for t in (n.targets if isinstance(n, ast.Assign) else [n.target])) for n in ast.walk(function))
 
 
+BUILDS_A_SHIFT = Predicate("builds a shift", _builds_a_shift)
+
+
 REFERENCE_FRAME_CHECKLIST = checklist(
     "", ("one image is the reference frame (only shifted: its homography is the identity)",
          calls("np.eye") | calls("np.identity") | Predicate("places an image only shifted", _pastes_an_image)),
     ("the others are warped into it", calls("cv2.warpPerspective") | calls("warp_to_reference")),
     none_left=look_at(("the direction of each homography used (from image k to the reference frame, not the "
                        "reverse)", calls_any("np.linalg.inv", "np.linalg.pinv") | matmul_of(None, None)),
-                      ("the shift applied to every image", Predicate("builds a shift", _builds_a_shift)),
+                      ("the shift applied to every image", BUILDS_A_SHIFT),
                       otherwise="your code gives one image no warp and warps the others"))
 
 

@@ -20,6 +20,7 @@ from fixtures.lab09 import photo
 from ..engine import conventions
 from ..engine import strategies as st
 from ..engine import judges
+from ..engine import defaults_given
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import THIRD_COORDINATE, checklist, divides_by, evidenced, from_code, guard, look_at, measured
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
@@ -1094,16 +1095,24 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
         t.fail(f"{what}: " + measured("the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = "
                                       "(column, row)."),
                mistake="x and y (column and row) are swapped")
-    if got.ndim == 3:
+    if got.ndim == 3 and core.any():
+        # (a colour the call left to a default of their own is that default, neither reversed nor ignored:
+        # the default is named after the check, from their def)
+        own_default = defaults_given.left_to_its_own(t, "color")
         reversed_colour = np.all(got == np.asarray(color[::-1], np.uint8), axis=-1)
-        if tuple(color[::-1]) != tuple(color) and core.any() and reversed_colour[core].mean() > 0.9:
+        if tuple(color[::-1]) != tuple(color) and reversed_colour[core].mean() > 0.9 and not own_default:
             t.fail(f"{what}: the circles have colour {tuple(color[::-1])}, not {tuple(color)}: the colour is "
                    "reversed (RGB for BGR); OpenCV images are BGR, so pass the colour as given.",
                    mistake="the colour is reversed (RGB vs BGR)")
         default_colour = np.all(got == np.array([0, 0, 255], np.uint8), axis=-1)
-        if tuple(color) != (0, 0, 255) and core.any() and default_colour[core].mean() > 0.9:
+        if tuple(color) != (0, 0, 255) and default_colour[core].mean() > 0.9 and not own_default:
             t.fail(f"{what}: the circles are red (0, 0, 255), not {tuple(color)}: the color argument is "
                    "ignored.", mistake="color is ignored")
+        drawn = got[core].reshape(-1, got.shape[-1])
+        colours, counts = np.unique(drawn, axis=0, return_counts=True)
+        if counts.max() > 0.9 * len(drawn) and not np.all(painted[core]):
+            other = tuple(int(v) for v in colours[counts.argmax()])
+            t.fail(measured(f"{what}: the circles are drawn, in the colour {other}, not {tuple(color)}."))
     # outlines: the centres empty, and what is painted near the points lies on rings around the
     # whole-pixel centres cv2.circle draws at (a ring through sub-pixel centres is half painted)
     d = truth.distance_map(image.shape, np.round(pts))

@@ -1525,6 +1525,7 @@ def block_matching_form(t):
 PAST_THE_EDGE = 0.5     # px beyond x: still the right image's first pixel
 LEFT_STRIP_ALLOWED = 0.01   # share of the strip's pixels (legitimate matchers: none)
 PAST_THE_EDGE_MISTAKE = "disparities point left of the right image (x - d < 0) along the left border"
+LEFT_IMAGE_SHIFTED = "the left image shifted where the right one belongs (a map of the right image's pixels)"
 ROLLED = calls("np.roll")
 
 
@@ -1543,6 +1544,44 @@ def _overwrites_rolled_columns(function) -> bool:
 WRAPPED_ROUND = ROLLED & ~Predicate("writes over the columns np.roll brings round", _overwrites_rolled_columns)
 
 
+def _derived_from(function) -> dict:
+    """Local name -> the parameters its value is computed from (`L = _grey(left)`: {"left"}), followed
+    through assignments."""
+    params = {a.arg for a in function.args.posonlyargs + function.args.args + function.args.kwonlyargs}
+    made: dict = {name: {name} for name in params}
+    bindings = [(n.targets, n.value) for n in ast.walk(function) if isinstance(n, ast.Assign)]
+    grown = True
+    while grown:
+        grown = False
+        for targets, value in bindings:
+            reads = set().union(*(made.get(n.id, set()) for n in ast.walk(value) if isinstance(n, ast.Name)))
+            for target in targets:
+                for name in (n.id for n in ast.walk(target) if isinstance(n, ast.Name)):
+                    if not reads <= made.setdefault(name, set()):
+                        made[name] |= reads
+                        grown = True
+    return made
+
+
+def _left_image_rolled_back(function) -> str:
+    """`np.roll(L, -d, axis=1)` with L made from ``left`` alone: the left image shifted left, its pixel
+    x + d compared with the right image's x -- a map of the right image's pixels (the right image
+    shifted by +d, `np.roll(right, d, axis=1)`, compares left x with right x - d). The call, as
+    written; "" when the code does not."""
+    made = _derived_from(function)
+    rolls = [node for node in ast.walk(function)
+             if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "roll"]
+    if len(rolls) != 1:   # (a cost rolled back by +d afterwards is indexed by the left image's pixels again)
+        return ""
+    for node in rolls:
+        if len(node.args) >= 2:
+            image, shift = node.args[:2]
+            origin = set().union(*(made.get(n.id, set()) for n in ast.walk(image) if isinstance(n, ast.Name)))
+            if origin == {"left"} and isinstance(shift, ast.UnaryOp) and isinstance(shift.op, ast.USub):
+                return ast.unparse(node)
+    return ""
+
+
 def judge_left_strip(t: Trial, what: str, got, max_disparity: int, function: str = "block_matching"):
     """Fail when more than :data:`LEFT_STRIP_ALLOWED` of the left strip ``x < max_disparity`` of the
     map ``got`` (H, W) get a disparity above their column ``x`` (+ :data:`PAST_THE_EDGE`): a match
@@ -1555,7 +1594,17 @@ def judge_left_strip(t: Trial, what: str, got, max_disparity: int, function: str
     if past.mean() <= LEFT_STRIP_ALLOWED:
         return
     y, x = (int(v[0]) for v in np.nonzero(past))
-    rolled = WRAPPED_ROUND.found(code_of(t).reachable([function]))
+    read = code_of(t).reachable([function])
+    backwards = next(filter(None, map(_left_image_rolled_back, read)), "")
+    if backwards:
+        t.fail(f"{what}: {past.sum()} pixels of the left strip x < {max_disparity} ({past.mean():.0%} of it) get a "
+               f"disparity larger than their column x (e.g. d = {strip[y, x]:g} at x = {x}, row {y}). "
+               + from_code(f"Your code shifts the left image (`{backwards}`): it compares the left image's pixel "
+                           "x + d with the right image's pixel x, a map of the right image's pixels. The left "
+                           "pixel x matches the right pixel x - d: shift the right image by +d instead, and "
+                           "compare it with the left image as it is."),
+               mistake=LEFT_IMAGE_SHIFTED)
+    rolled = WRAPPED_ROUND.found(read)
     t.fail(f"{what}: {past.sum()} pixels of the left strip x < {max_disparity} ({past.mean():.0%} of it) get a "
            f"disparity larger than their column x (e.g. d = {strip[y, x]:g} at x = {x}, row {y}): their match "
            "x - d would lie left of the right image's first column, where it has no pixel. "

@@ -99,8 +99,20 @@ class Fix:
         if self.operator in _IN_WORDS:   # (told in words: see _Student._moved)
             return self.changes[0][2].replace("{inside}", inside)
         said = [f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
-                for line, before, after in self.changes]
+                for line, before, after in _nested_merged(self.changes)]
         return ("removing " if self.changes[0][2] == "pass" else "changing ") + " and ".join(said)
+
+
+def _nested_merged(changes) -> tuple:
+    """Two changes of one line, one inside the code the other shows (`homographies[1:]` in
+    `zip(images[1:], homographies[1:])`), shown as one change of the outer code with both made: told
+    apart, the outer one shows the inner one's code unchanged."""
+    if len(changes) != 2 or changes[0][0] != changes[1][0] or "pass" in (changes[0][2], changes[1][2]):
+        return changes
+    for (line, inner, inner_after), (_, outer, outer_after) in (changes, changes[::-1]):
+        if inner != outer and outer.count(inner) == 1 and outer_after.count(inner) == 1:
+            return ((line, outer, outer_after.replace(inner, inner_after)),)
+    return changes
 
 
 @dataclass(frozen=True)
