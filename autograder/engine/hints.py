@@ -261,23 +261,23 @@ def _drawn_names(function) -> set[str]:
     return drawn - masks
 
 
-def fits_on_picked_points(name: str) -> Predicate:
-    """A call of ``name`` given points some chosen subset picks (`homography_dlt(src[inliers],
-    dst[inliers])`): a refit on the inliers, not the fit of a random sample (`src[sample]`, a name
-    holding a draw) nor of every point (`homography_dlt(src, dst)`)."""
-    shown = name.lstrip(".")
+def picked_point_fits(function, name: str) -> list[ast.Call]:
+    """The calls of ``name`` in ``function`` given points some chosen subset picks (`homography_dlt(
+    src[inliers], dst[inliers])`): refits on the inliers, not the fit of a random sample (`src[sample]`,
+    a name holding a draw) nor of every point (`homography_dlt(src, dst)`)."""
+    drawn = _drawn_names(function)
+    return [node for node in ast.walk(function)
+            if isinstance(node, ast.Call) and _name_matches(node.func, name, _scope(function))
+            and any(isinstance(argument, ast.Subscript) and not isinstance(argument.slice, ast.Slice)
+                    and not {n.id for n in ast.walk(argument.slice) if isinstance(n, ast.Name)} & drawn
+                    and any(isinstance(n, ast.Name) for n in ast.walk(argument.slice)) for argument in node.args)]
 
-    def test(function) -> bool:
-        drawn = _drawn_names(function)
-        for node in ast.walk(function):
-            if isinstance(node, ast.Call) and _name_matches(node.func, name, _scope(function)):
-                for argument in node.args:
-                    if isinstance(argument, ast.Subscript) and not isinstance(argument.slice, ast.Slice) \
-                            and not {n.id for n in ast.walk(argument.slice) if isinstance(n, ast.Name)} & drawn \
-                            and any(isinstance(n, ast.Name) for n in ast.walk(argument.slice)):
-                        return True
-        return False
-    return Predicate(f"fits {shown} again on the points a mask picks", test)
+
+def fits_on_picked_points(name: str) -> Predicate:
+    """A refit of ``name`` on the points a mask picks (:func:`picked_point_fits`)."""
+    shown = name.lstrip(".")
+    return Predicate(f"fits {shown} again on the points a mask picks",
+                     lambda function: bool(picked_point_fits(function, name)))
 
 
 def mentions(name: str) -> Predicate:

@@ -37,7 +37,7 @@ from ..engine.claims import (THIRD_COORDINATE, THRESHOLD_NAMES, assigns, calls_a
 from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
 from ..engine.hints import (RANDOM_DRAWS, RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope,
                              calls, code_of, expr, fits_on_picked_points, functions_read, keyword, matmul_of, mentions,
-                             passes_product)
+                             passes_product, picked_point_fits)
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
@@ -1287,7 +1287,23 @@ def ransac_mask(t):
            "marks are true inliers (at least 95% expected)."
            + (" The mask is the pairs your H sends within the threshold: it is H that is off (see the check of H)."
               if own else ""),
-           hint="" if own else "inliers = |H src - dst| < threshold, with the final H")
+           hint="" if own else MASK_HINT.said(t, ["homography_ransac"]))
+
+
+def _thresholds_after_the_refit(function) -> bool:
+    """A comparison with ``threshold`` below a refit on the points a mask picks (`refined = errors(H) <
+    threshold` after `H = homography_dlt(src[inliers], dst[inliers])`): the final H's inliers computed."""
+    fits = picked_point_fits(function, "homography_dlt") + picked_point_fits(function, "cv2.findHomography")
+    first = min((call.lineno for call in fits), default=None)
+    return first is not None and any(
+        isinstance(node, ast.Compare) and node.lineno > first
+        and any(isinstance(n, ast.Name) and n.id == "threshold" for n in ast.walk(node)) for node in ast.walk(function))
+
+
+MASK_HINT = Hint("inliers = |H src - dst| < threshold, with the final H",
+                 asks=Predicate("compares the refit H's distances with the threshold", _thresholds_after_the_refit),
+                 instead="your code {found}: look at which mask it returns in the end, and at the units of the "
+                         "distances the threshold judges (pixels)")
 
 
 # The mask and H of one call must agree: the mask marks the pairs H sends within the threshold.

@@ -909,14 +909,29 @@ def take_back_refuted(results, refuted) -> None:
     """One account per function: a repair told on a check (``results``: check results) that a later check
     of the same function refuted (``refuted``: (the change as told, by a hidden check) pairs) is taken
     back, with its sentence; a hidden check's refutation changes no public check's words. In place."""
-    for result in results:
+    def told(result) -> str:
+        first = result.message.partition("\n")[0]
+        return first.split(f" {HEAD}", 1)[1] if f" {HEAD}" in first else ""
+
+    def refuted_for(result) -> bool:
+        return any(change in told(result) for change, by_hidden in refuted if result.hidden or not by_hidden)
+
+    taken = [result for result in results if told(result) and refuted_for(result)]
+    kept = [result for result in results if told(result) and not refuted_for(result)]
+    for result in taken:
         first, newline, rest = result.message.partition("\n")
-        if f" {HEAD}" not in first:
-            continue
-        told = first.split(f" {HEAD}", 1)[1]
-        if any(change in told and (result.hidden or not by_hidden) for change, by_hidden in refuted):
-            result.message = first.split(f" {HEAD}", 1)[0] + newline + rest
-            result.mistake = "" if result.mistake.startswith(MISTAKE) else result.mistake
+        sentence = told(result)
+        result.message = first.split(f" {HEAD}", 1)[0] + newline + rest
+        result.mistake = "" if result.mistake.startswith(MISTAKE) else result.mistake
+        # (the change another check of the function confirmed, where one is, takes its place: one
+        # mistake, one repair told -- a public check's from a public check only)
+        function = re.search(r"makes `(\w+)`", sentence)
+        other = next((k for k in kept if function and f"makes `{function.group(1)}`" in told(k)
+                      and (result.hidden or not k.hidden)), None)
+        if other is not None:
+            lead, _, tail = result.message.partition("\n")
+            result.message = f"{lead} {HEAD}{told(other)}" + ("\n" + tail if tail or newline else "")
+            result.mistake = other.mistake if not result.mistake else result.mistake
 
 
 def _dotted_call(call: ast.Call) -> str:
@@ -1635,6 +1650,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     screen = min(failing, key=lambda i: _weight(inputs[i]))
     candidates, near, slightly, near_answers = [], [], [], {}
     exactly = set()   # the candidates giving the reference's answers on every failing input
+    partly = []       # changes told on an earlier check, here right on some inputs only (failing or confirming)
     to_the_bit = set()   # of which those giving its very numbers (its computation, not one within rounding)
     known = {m.key for m in earlier}
     complete = True   # every change tried (or ruled out in an earlier check)
@@ -1670,6 +1686,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         values = variant.screened(mutant, failing, screen, subtle)
         exact = [] if values is None or subtle else [variant.right(v, references[i], variant.students[i])
                                                      for v, i in zip(values, failing)]
+        if mutant.key in known and exact and not all(exact):
+            partly.append(mutant)
         if exact and all(exact):
             candidates.append(mutant)
             exactly.add(mutant.key)
@@ -1779,6 +1797,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         elif clock.left() > 0 and not (mutant.key in variant.checked and not variant.other_checks()):
             ruled_out.add(mutant.key)   # (one the check passed with waits for another check to confirm it)
             halfway.add(mutant.key)     # right on the failing inputs, not on all: half of a slip made twice?
+            if mutant.key in known:
+                partly.append(mutant)
     # A change in a helper shared with other graded functions is not told where one of them has passed
     # every check of its own so far in this grading: a helper it runs rightly is no place for this
     # function's fix (`dsize or size` -> `dsize and size` in a warp helper mends a scale by breaking the
@@ -1788,6 +1808,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # `[p[3], p[4], p[5]]` -> `[p[4], p[3], p[5]]`, beside the rows' `[0, 0, 0, y, x, 1]` -- compensates).
     if any(mutant.key in known for mutant, _ in fixes):
         fixes = [(mutant, fix) for mutant, fix in fixes if mutant.key in known]
+    elif any(mutant.key in exactly for mutant, _ in fixes):
+        # (and a change told on an earlier check, here right on some inputs only -- failing or confirming --
+        # is no account of the mistake where another is confirmed: `np.unique(src, axis=1)` mends points
+        # whose first x is below their first y, the line's removal every point set)
+        for mutant in partly:
+            _refuted(trial, student.fix(mutant), function)
     # (and a change inside a step is told alone beside one skipping the step: the skip leaves its slip)
     fixes = [pair for pair in fixes if not student.bypasses(pair[0])] or fixes
     passing = passing_functions(trial)
