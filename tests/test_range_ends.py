@@ -9,8 +9,9 @@ reference keeps full marks.
 
 Ranges with no end to cover, and why: RANSAC's iterations (the API gives no count: a
 loop one short draws other samples, not a wrong answer), ``calibrate``'s views (leaving one
-out still calibrates), ``simulate_structured_light``'s last projector column (only a pixel
-with a disparity below 0.5 px reaches it; column 0 is stripe 0, black in every pattern);
+out still calibrates), ``simulate_structured_light``'s projector column 0 (stripe 0, black in
+every pattern: its last column, which only a pixel with a disparity below 0.5 px reaches, is
+judged on a far wall);
 the ends of the other ranges were covered already (``affine_lstsq`` and the DLT with their
 minimum number of points, ``triangulate`` with one point, ``fundamental_8point`` with
 exactly 8, the ``gray_code_patterns`` property from width 1 and one bit, the epipoles at
@@ -113,6 +114,18 @@ RANGE_ENDS = {
                                tuple(int(c) for c in color), thickness=-1)
             return out
         """, ["on the image's border"]),
+    "simulate_structured_light that takes the last projector column as off the projector": (
+        "lab12_stereo", "lab12.ex6", """
+        _simulate = simulate_structured_light
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            images = _simulate(depth, f, baseline, n_bits)
+            depth = np.asarray(depth, dtype=np.float64)
+            u = np.arange(depth.shape[1])[None, :]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                column = np.floor(u - f * baseline / depth + 0.5)
+            images[:, column == depth.shape[1] - 1] = 0
+            return images
+        """, ["projector's last column (width - 1) lights nothing"]),
 }
 
 

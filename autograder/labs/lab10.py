@@ -866,6 +866,13 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
                                 f"{rel:.2%}), but the reprojected corners miss the corners by up to "
                                 f"{format_apart(reproj_error, REPROJECTION_TOLERANCE, 2)} px: "
                                 + PROJECT_POINTS_HINT.said(t))
+        apart = _apart_from_own_projection(reprojected, rvec, tvec, pattern, square, K, dist)
+        if apart > CONSISTENCY_TOLERANCE:
+            return partial(0.5, f"{what}: the pose is right, but the corners returned are not the board projected "
+                                f"with it: they are up to {apart:.3g} px from where cv2.projectPoints(object points, "
+                                f"rvec, tvec, K, dist) puts the corners with your own rvec and tvec (at most "
+                                f"{CONSISTENCY_TOLERANCE} px expected)" + _detected_returned(image, pattern, reprojected),
+                           mistake=DETECTED_RETURNED if _detected_returned(image, pattern, reprojected) else "")
         return passed(f"rotation within {angle:.2f} deg, translation within {rel:.2%}, "
                       f"reprojection within {reproj_error:.2f} px")
     # diagnosis
@@ -1013,14 +1020,53 @@ def _poses_from_wrong_grids(pattern, square, corners, K, dist) -> dict:
     return out
 
 
+def _board_projected(rvec, tvec, pattern, square, K, dist) -> np.ndarray:
+    """(M, 2): the board's corners, in OpenCV's order, projected with the pose ``rvec``, ``tvec``."""
+    objp = scene.chessboard_object_points(pattern, square)
+    out, _ = cv2.projectPoints(objp, np.asarray(rvec, float), np.asarray(tvec, float), np.asarray(K, float),
+                               None if dist is None else np.asarray(dist, float))
+    return out.reshape(-1, 2)
+
+
+# The corners returned and the pose returned must agree: ``reprojected`` is the board projected with the
+# student's own rvec and tvec. Measured on every view of the checks: the reference's, and its pose rounded
+# to float32 and projected again, agree with it within 1e-5 px; the corners
+# detected in those views (cv2.findChessboardCorners, cornerSubPix) lie 0.06 to 0.08 px (max) from them.
+CONSISTENCY_TOLERANCE = 0.02   # px, max over the corners
+DETECTED_RETURNED = "the detected corners are returned, not the board projected with the pose"
+
+
+def _apart_from_own_projection(reprojected, rvec, tvec, pattern, square, K, dist) -> float:
+    own = _board_projected(rvec, tvec, pattern, square, K, dist)
+    reprojected = np.asarray(reprojected, float).reshape(-1, 2)
+    if reprojected.shape != own.shape:
+        return float("inf")
+    # (the board's other corner order, where it is symmetric, is the same projection read backwards)
+    return float(min(np.linalg.norm(reprojected - own, axis=1).max(),
+                     np.linalg.norm(reprojected[::-1] - own, axis=1).max()))
+
+
+def _detected_returned(image, pattern, reprojected) -> str:
+    """Said where ``reprojected`` is the image's corners as OpenCV detects them (refined or not)."""
+    grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+    found, corners = cv2.findChessboardCorners(grey, tuple(pattern))
+    if not found:
+        return ""
+    criteria = (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3)
+    seen = [corners.reshape(-1, 2)] + [cv2.cornerSubPix(grey, corners.copy(), (w, w), (-1, -1), criteria).reshape(-1, 2)
+                                       for w in (3, 5, 11)]
+    got = np.asarray(reprojected, float).reshape(-1, 2)
+    if any(got.shape == c.shape and np.linalg.norm(got - c, axis=1).max() <= CONSISTENCY_TOLERANCE / 2 for c in seen):
+        return measured(": they are the corners detected in the image (cv2.findChessboardCorners, refined or not); "
+                        "reprojected must be the object points projected back with the pose found "
+                        "(cv2.projectPoints)")
+    return ""
+
+
 def _reprojection_slip(reprojected, rvec, tvec, pattern, square, K, dist):
     """The name of the slip that gives ``reprojected`` from a right pose, if one does."""
-    objp = scene.chessboard_object_points(pattern, square)
-
     def projected(dist_used):
-        out, _ = cv2.projectPoints(objp, np.asarray(rvec, float), np.asarray(tvec, float), np.asarray(K, float),
-                                   None if dist_used is None else np.asarray(dist_used, float))
-        return out.reshape(-1, 2)
+        return _board_projected(rvec, tvec, pattern, square, K, dist_used)
 
     candidates = {"the corners are projected without dist (pass dist to cv2.projectPoints too)": projected(None)} \
         if dist is not None else {}

@@ -2530,6 +2530,38 @@ def simulate_wide(t):
            "model; the other checks' 160-pixel images have no column above 255.", hint=PROJECTOR_MODEL)
 
 
+# A far wall (disparity f b / Z = 0.16 px) is the only place a camera pixel sees the projector's last
+# column, width - 1 (u - f b / Z <= width - 1 - f b / Z): a test `column < width - 1` leaves it black.
+FAR_WALL = np.hstack([np.full((16, 80), 2.0), np.full((16, 80), 1000.0)])
+LAST_COLUMN_DARK = "the projector's last column (width - 1) lights nothing: it is taken as off the projector"
+
+
+@ex6.check("simulate_structured_light on a far wall: the projector's last column lights it too", points=1)
+def simulate_far_wall(t):
+    depth, (f, baseline, n_bits) = FAR_WALL, (truth.FOCAL, 1.0, 5)
+    width = depth.shape[1]
+    what = (f"simulate_structured_light(depth: Z = 2 on the left half, a far wall at Z = 1000 on the right, "
+            f"f={f:g}, baseline={baseline:g}, n_bits={n_bits})")
+    got = t.expect_array(t.call("simulate_structured_light", depth.copy(), f, baseline, n_bits), what,
+                         shape=(n_bits,) + depth.shape, dtype=np.uint8)
+    expected = truth.simulate_structured_light(depth, f, baseline, n_bits)
+    column, _, ties = truth.projector_columns(depth, f, baseline)
+    wrong = np.any(got != expected, axis=0) & ~ties
+    if not wrong.any():
+        return passed("every lit pixel sees the right projector column, the last one too")
+    last = column == width - 1
+    if wrong[~last].any():   # (wrong elsewhere too: the other checks judge the simulation)
+        return passed(measured("pixels of other projector columns are wrong too: the other checks judge the "
+                               "simulation"))
+    if not np.any(got[:, wrong] > 0):
+        t.fail(measured(f"{what}: the {int(wrong.sum())} pixels that see projector column {width - 1} (the far "
+                        f"wall's right edge) are black in every image: {LAST_COLUMN_DARK}. The projector's "
+                        f"columns are 0 .. width - 1 ({width - 1} here): a column is off it below 0 or at width "
+                        "and past."), mistake=LAST_COLUMN_DARK, hint=PROJECTOR_MODEL)
+    t.fail(f"{what}: the {int(wrong.sum())} pixels that see projector column {width - 1} (the far wall's right "
+           "edge) are lit with another stripe's code.", hint=PROJECTOR_MODEL)
+
+
 def _both_bounds(function) -> bool:
     """A column tested against both ends of the projector: ``>= 0`` (or ``> -1``) and ``< width`` (or ``<= w - 1``);
     a test of the depth (the first parameter: ``depth > 0``) is no test of the column."""

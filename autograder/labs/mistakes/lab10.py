@@ -197,6 +197,18 @@ MISTAKES = {
             reprojected, _ = cv2.projectPoints(objp, rvec, tvec, K, dist)
             return rvec.ravel(), tvec.ravel(), reprojected.reshape(-1, 2)
         """, ['raised']),
+    "pose returning the detected corners as its reprojection": ("lab10.ex6", """
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+            found, corners = cv2.findChessboardCorners(grey, tuple(pattern_size))
+            if not found:
+                return np.full(3, np.nan), np.full(3, np.nan), np.zeros((0, 2))
+            objp = _object_points(pattern_size, square_size)
+            K = np.asarray(K, dtype=np.float64)
+            dist = None if dist is None else np.asarray(dist, dtype=np.float64)
+            _, rvec, tvec = cv2.solvePnP(objp, corners, K, dist)
+            return rvec.ravel(), tvec.ravel(), corners.reshape(-1, 2)
+        """, ["not the board projected with it", "the corners detected in the image"]),
     # ---- the wider families of each exercise (issue 17)
     "perspective with f applied twice": ("lab10.ex1", """
         def perspective_project(points, f):
