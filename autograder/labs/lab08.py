@@ -756,8 +756,15 @@ def far_from(shape, starts, ends, distance: int = 9) -> np.ndarray:
 @ex3.check("draw_matches: side by side, width W1+W2, height max(H1,H2), 3 channels", points=2)
 def draw_matches_shape(t):
     img1, img2, pts1, pts2 = drawing_case()
-    what = "draw_matches(colour 240x180 img1, grey 200x150 img2, pts1, pts2)"
-    got = t.call("draw_matches", img1, img2, pts1, pts2)
+    # (both ways round: a conversion made for one image of the two -- img2's alone -- fails the other way)
+    for first, second, ends1, ends2, what in (
+            (img1, img2, pts1, pts2, "draw_matches(colour 240x180 img1, grey 200x150 img2, pts1, pts2)"),
+            (img2, img1, pts2, pts1, "draw_matches(grey 200x150 img1, colour 240x180 img2, pts1, pts2)")):
+        _judge_drawing_shape(t, what, t.call("draw_matches", first, second, ends1, ends2))
+    return passed("shape (180, 440, 3), uint8, the grey image first or second")
+
+
+def _judge_drawing_shape(t: Trial, what: str, got) -> None:
     expected = (180, 440, 3)
     if isinstance(got, np.ndarray) and got.shape != expected:
         t.images("your drawing", yours=got)
@@ -776,7 +783,6 @@ def draw_matches_shape(t):
         t.fail(f"{what} returned shape {got.shape}; expected {expected} (height max(H1, H2), "
                "width W1 + W2)")
     t.expect_array(got, what, shape=expected, dtype=np.uint8)
-    return passed("shape (180, 440, 3), uint8")
 
 
 # A pixel is drawn on when a channel moved by more than DRAWN_LEVELS from the two images side by

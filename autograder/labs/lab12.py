@@ -1549,17 +1549,22 @@ def _derived_from(function) -> dict:
     through assignments."""
     params = {a.arg for a in function.args.posonlyargs + function.args.args + function.args.kwonlyargs}
     made: dict = {name: {name} for name in params}
-    bindings = [(n.targets, n.value) for n in ast.walk(function) if isinstance(n, ast.Assign)]
+    bindings = []
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign):
+            for target in node.targets:   # (`L, R = f(left), f(right)`: item by item)
+                paired = isinstance(target, (ast.Tuple, ast.List)) and isinstance(node.value, (ast.Tuple, ast.List)) \
+                    and len(target.elts) == len(node.value.elts)
+                bindings += list(zip(target.elts, node.value.elts)) if paired else [(target, node.value)]
     grown = True
     while grown:
         grown = False
-        for targets, value in bindings:
+        for target, value in bindings:
             reads = set().union(*(made.get(n.id, set()) for n in ast.walk(value) if isinstance(n, ast.Name)))
-            for target in targets:
-                for name in (n.id for n in ast.walk(target) if isinstance(n, ast.Name)):
-                    if not reads <= made.setdefault(name, set()):
-                        made[name] |= reads
-                        grown = True
+            for name in (n.id for n in ast.walk(target) if isinstance(n, ast.Name)):
+                if not reads <= made.setdefault(name, set()):
+                    made[name] |= reads
+                    grown = True
     return made
 
 
@@ -2152,6 +2157,9 @@ def dp_weak_texture(t):
         try:
             judge_top_of_range(t, what, got, scene, truth.top_of_range(scene.judged, scene.max_disparity),
                                reference["top_found"], "the reference", show=False)
+            # (a left pixel x matches d <= x only, as in block matching: an impossible match given the
+            # best cost -- the columns x < d of the cost volume filled with 0 -- takes the left strip)
+            judge_left_strip(t, what, got, scene.max_disparity, function="dp_stereo")
         except Fail as missed:
             return partial(0.5, f"{missed.message} {summary}.", hint=missed.hint, mistake=missed.mistake)
         return passed(summary)

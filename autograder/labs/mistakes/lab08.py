@@ -202,6 +202,20 @@ MISTAKES = {
         def match_features(img1, img2, ratio=0.75, method="sift"):
             return _match(_detect(img1, method), _detect(img1, method), ratio, method)
         """, ["same image twice"]),
+    "draw_matches converting a grey img2 only": ("lab08.ex3", """
+        def draw_matches(img1, img2, pts1, pts2):
+            if img2.ndim == 2:
+                img2 = cv2.cvtColor(img2, cv2.COLOR_GRAY2BGR)
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
+            canvas[:h1, :w1] = img1
+            canvas[:h2, w1:] = img2
+            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                cv2.line(canvas, (int(round(x1)), int(round(y1))), (int(round(x2 + w1)), int(round(y2))),
+                         (0, 255, 0), 1, cv2.LINE_AA)
+            return canvas
+        """, ["a grey image, shape (150, 200), is written into a colour array", "cv2.color_gray2bgr"]),
     "lines not shifted by W1": ("lab08.ex3", """
         _reference_draw = draw_matches
         def draw_matches(img1, img2, pts1, pts2):

@@ -42,6 +42,15 @@ MISTAKES = {
             X = np.atleast_2d(np.asarray(points, float))
             return (f * X[:, :2] / X[:, 2:3]).squeeze()
         """, ["(1, 3) array", "(1, 2)"]),
+    "draw_points with blue (255, 0, 0) as its default colour": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(255, 0, 0)):
+            out = image.copy()
+            color = tuple(int(c) for c in color)
+            for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(out, (int(round(x)), int(round(y))), int(radius), color, -1)
+            return out
+        """, ["in the colour (255, 0, 0), not (0, 0, 255)", "gives `color` the default (255, 0, 0)"]),
     "draw_points passing the radius as the thickness (rings)": ("lab09.ex5", """
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
             out = image.copy()

@@ -445,7 +445,27 @@ MISTAKES = {
                 costs[d, :, :d] = np.inf
             return costs
         """, ["the ncc is divided by the right block's variance"]),
+    "block matching shifting the left image the wrong way (np.roll(L, -d))": ("lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            L, R = _grey_float(left), _grey_float(right)
+            h, w = L.shape
+            best, disp = np.full((h, w), np.inf), np.zeros((h, w))
+            for d in range(min(int(max_disparity), w - 1) + 1):
+                ssd = _box_mean((np.roll(L, -d, axis=1) - R) ** 2, int(block_size))
+                ssd[:, w - d:] = np.inf
+                better = ssd < best
+                disp[better], best[better] = d, ssd[better]
+            return disp
+        """, ["your code shifts the left image", "a map of the right image's pixels"]),
     # ---------------------------------------------------------------- ex5
+    "DP whose cost volume gives impossible matches (x < d) cost 0": ("lab12.ex5", """
+        def _sad_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.zeros((max_disparity + 1, height, width), dtype=np.float32)
+            for d in range(min(max_disparity, width - 1) + 1):
+                costs[d, :, d:] = _box_mean(np.abs(left - _shift_right(right, d)), block_size)[:, d:]
+            return np.ascontiguousarray(costs.transpose(2, 1, 0))
+        """, ["disparities point left of the right image", "d = 0..min(x, max_disparity)"]),
     "DP without smoothness (winner-take-all)": ("lab12.ex5", """
         DEFAULT_SMOOTHNESS = 0.0
         """, ["the smoothness term is ignored (winner-take-all)"]),
