@@ -397,3 +397,127 @@ def test_a_float_binary_image_is_not_blamed_on_a_floor_division_elsewhere():
     failed = [c.message for c in check_results(named, "lab12.ex6") if not c.passed]
     assert failed and any("float64" in m for m in failed), failed
     assert not any("floor division" in m or "//" in m for m in failed), failed
+
+
+# ------------------------------------------------------------------ blind set 2026-12-01b's classes
+VIEW_OVERWRITTEN = """
+    def distort_points(points, dist):
+        pts = np.asarray(points, float)
+        x, y = pts[:, 0], pts[:, 1]
+        r2 = x * x + y * y
+        pts[:, 0] = x * (1 + dist[0] * r2) + 2 * dist[2] * x * y
+        pts[:, 1] = y * (1 + dist[0] * r2) + 2 * dist[3] * x * y
+        return pts
+    """
+
+
+def test_a_view_read_after_its_array_was_written_is_found():
+    found = read_source(textwrap.dedent(VIEW_OVERWRITTEN)).findings["distort_points"]
+    assert [f.mistake for f in found] == ["a view of an array read after the array was written"]
+    assert "reads `x` (line 7), a view of `pts[:, 0]` (line 4) that line 6 has written over" in found[0].sentence
+
+
+@pytest.mark.parametrize("source", [
+    VIEW_OVERWRITTEN.replace("x, y = pts[:, 0], pts[:, 1]", "x, y = pts[:, 0].copy(), pts[:, 1].copy()"),
+    VIEW_OVERWRITTEN.replace("x, y = pts[:, 0], pts[:, 1]", "x, y = pts[[0], 0], pts[:, 1]"),   # (a copy)
+    # (the new values written last: nothing reads x after)
+    VIEW_OVERWRITTEN.replace("2 * dist[3] * x * y", "2 * dist[3]").replace("pts[:, 1] = y *", "pts[:, 1] = y *"),
+])
+def test_a_copy_or_nothing_read_after_the_write_is_not_found(source):
+    assert "a view of an array read after the array was written" not in one(source)
+
+
+def test_a_generator_seeded_at_every_turn_is_found_and_one_made_before_the_loop_is_not():
+    loop = """
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            out = []
+            for i in range(n_rays):
+                rng = np.random.default_rng(seed)
+                out.append(rng.random(2))
+            return out
+        """
+    assert one(loop) == {"the random generator is seeded again at every turn of a loop"}
+    assert not one(loop.replace("            for i in range(n_rays):\n                rng = np.random.default_rng(seed)",
+                                "            rng = np.random.default_rng(seed)\n            for i in range(n_rays):"))
+    assert not one(loop.replace("default_rng(seed)", "default_rng(i)"))   # (a seed of each turn's own)
+
+
+def test_a_mean_of_points_already_centred_is_found():
+    source = """
+        def affine_from_points(src, dst):
+            src = np.asarray(src, float)
+            src = src - src.mean(axis=0)
+            L = np.linalg.lstsq(src, dst - dst.mean(axis=0), rcond=None)[0].T
+            t = dst.mean(axis=0) - L @ src.mean(axis=0)
+            return np.column_stack([L, t])
+        """
+    assert one(source) == {"a mean taken of an array already centred"}
+    kept = source.replace("src = src - src.mean(axis=0)", "c = src.mean(axis=0); src = src - c") \
+        .replace("L @ src.mean(axis=0)", "L @ c")
+    assert not one(kept)
+
+
+@pytest.mark.parametrize("line, named", [
+    ("X = cv2.triangulatePoints(P1, P2, x1.T, x2.T)[:3].T", True),
+    ("Xh = cv2.triangulatePoints(P1, P2, x1.T, x2.T); X = Xh[:3].T", True),
+    ("Xh = cv2.triangulatePoints(P1, P2, x1.T, x2.T); X = (Xh[:3] / Xh[3]).T", False),
+    ("X = cv2.convertPointsFromHomogeneous(cv2.triangulatePoints(P1, P2, x1.T, x2.T).T)[:, 0]", False),
+])
+def test_triangulated_points_kept_without_w_are_found(line, named):
+    source = f"""
+        def triangulate(P1, P2, x1, x2):
+            {line}
+            return X
+        """
+    assert ("the homogeneous result of cv2.triangulatePoints is not divided by w" in one(source)) == named
+
+
+def test_numpy_calls_filling_more_than_one_entry_are_found():
+    assert one("""
+        def scaling_matrix(sx, sy):
+            M = np.eye(3)
+            np.fill_diagonal(M, [sx, sy])
+            return M
+        """) == {"np.fill_diagonal repeats a list shorter than the diagonal"}
+    assert not one("""
+        def scaling_matrix(sx, sy):
+            M = np.eye(3)
+            np.fill_diagonal(M, [sx, sy, 1])
+            return M
+        """)
+    assert one("""
+        def shear_matrix(s):
+            return np.eye(3) + s * np.eye(3, k=1)
+        """) == {"np.eye(n, k) fills its whole off-diagonal"}
+
+
+def test_the_references_hold_none_of_these_findings():
+    new = {"a view of an array read after the array was written", "the random generator is seeded again at every "
+           "turn of a loop", "a mean taken of an array already centred",
+           "the homogeneous result of cv2.triangulatePoints is not divided by w",
+           "np.fill_diagonal repeats a list shorter than the diagonal", "np.eye(n, k) fills its whole off-diagonal"}
+    for path in sorted((ROOT / "reference_solutions").glob("lab*.py")):
+        assert not one(path.read_text()) & new, path.name
+
+
+def test_a_parameter_compared_with_a_string_the_api_spells_otherwise_is_named():
+    import ast
+    from autograder.engine import strings_compared
+
+    reference = (ROOT / "reference_solutions" / f"{MODULE8}.py").read_text()
+    tree = ast.parse(textwrap.dedent("""
+        def _detect(image, method):
+            if method == "ORB":
+                return 1
+            return 2
+        """))
+    found = strings_compared.misspelt(tree.body, reference)
+    assert found == ("_detect", "method", "ORB", 3, "orb")
+    assert "compares `method` with 'ORB' (line 3), where the API's value is 'orb'" in strings_compared.sentence(*found)
+    upper = ast.parse(textwrap.dedent("""
+        def _detect(image, method):
+            method = method.upper()
+            return 1 if method == "ORB" else 2
+        """))
+    assert strings_compared.misspelt(upper.body, reference) is None   # (changed before it is compared)
+    assert strings_compared.misspelt(ast.parse(reference).body, reference) is None

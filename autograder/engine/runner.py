@@ -512,6 +512,27 @@ def _named_by_defaults(verdict: Verdict, trial: Trial) -> Verdict:
     return _told_after_the_first_line(verdict, defaults_given.sentence(*found), defaults_given.MISTAKE)
 
 
+def _named_by_strings(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
+    """A failing verdict that names no mistake, naming a comparison of a parameter with a string the API
+    spells otherwise (`method == "ORB"`) in the functions the check called and their helpers
+    (:mod:`autograder.engine.strings_compared`)."""
+    from . import strings_compared
+    from .hints import code_of
+    from .mutants import naming
+
+    model = naming.model_for(trial.lab)
+    if model is None:
+        return verdict
+    try:   # (reading is a bonus: the verdict stands without it)
+        found = strings_compared.misspelt(code_of(trial).reachable(functions_called(check)), model.source)
+    except Exception as exc:  # noqa: BLE001
+        _log_grader_error(trial.check, exc)
+        return verdict
+    if found is None:
+        return verdict
+    return _told_after_the_first_line(verdict, strings_compared.sentence(*found), strings_compared.MISTAKE)
+
+
 def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:
     """A failing verdict that names no mistake, naming a parameter the check's calls gave a value and
     the student's function never reads (:mod:`autograder.engine.ignored`)."""
@@ -956,6 +977,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_reading(verdict, reading, check, trial)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_defaults(verdict, trial)
+    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not inherited:
+        verdict = _named_by_strings(verdict, check, trial)
     if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
     if status in (FAILED, PARTIAL) and student_failure == "" and not inherited:   # (an exception's: above)

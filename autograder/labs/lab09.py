@@ -73,6 +73,22 @@ PROJECTION_DIVISION_MISSING = guard(
     "the perspective division is missing (divide by the third coordinate)", asks=DIVIDES,
     instead="the perspective division is missing: your code {found}, but the points returned are not the "
             "divided ones")
+
+
+def _focal_in_third_row(function) -> bool:
+    """A matrix written as a literal of three rows (3x3 or 3x4) whose third row holds ``f``: the focal
+    length multiplies the third coordinate too, and the division by it takes f out again."""
+    for node in ast.walk(function):
+        if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 3 and all(
+                isinstance(row, (ast.List, ast.Tuple)) and len(row.elts) in (3, 4) for row in node.elts):
+            if any(isinstance(n, ast.Name) and n.id == "f" for n in ast.walk(node.elts[2])):
+                return True
+    return False
+
+
+guard(truth.FOCAL_NOT_APPLIED, asks=Predicate("puts f in its matrix's third row too", _focal_in_third_row),
+      instead="the focal length cancels (x = X / Z; it should be f X / Z): your code {found} -- f multiplies the "
+              "third coordinate as well, and the division by it takes f out again; the third row is [0, 0, 1, 0]")
 ROUNDED = measured("the pixels are rounded to integers; return the exact (float) projection")
 TRUNCATED = measured("the pixels are truncated to integers; return the exact (float) projection")
 WRONG_DIVISOR = measured("the division is by the world point's Z; divide P [X, 1] by its own third coordinate")

@@ -167,6 +167,11 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _mask_as_index(name, function)
     found += _distortion_order(name, function, parameters)
     found += _camera_left_out(name, function)
+    found += _view_overwritten(name, function)
+    found += _seeded_in_a_loop(name, function)
+    found += _mean_after_centring(name, function)
+    found += _w_never_divided(name, function)
+    found += _diagonal_refilled(name, function)
     return found
 
 
@@ -669,4 +674,194 @@ def _distortion_order(name, function, parameters) -> list[Finding]:
                 return [Finding(name, _line(node), "the distortion coefficients are read in the wrong order",
                                 f"{name} (line {_line(node)}) unpacks dist as ({', '.join(names)}); "
                                 "OpenCV's order is (k1, k2, p1, p2, k3)")]
+    return []
+
+
+# ------------------------------------------------------------------ views overwritten
+def _statements_in_order(function) -> list[ast.stmt]:
+    """The function's own simple statements, in the order of their lines (loops read top to bottom)."""
+    return sorted((node for node in ast.walk(function) if isinstance(node, ast.stmt)
+                   and not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef, ast.For,
+                                             ast.While, ast.If, ast.With, ast.Try))), key=_line)
+
+
+def _basic_view(node) -> bool:
+    """``a[:, 0]``, ``a[0]``, ``a[..., 1]``: an index NumPy answers with a view of ``a`` (slices,
+    whole numbers, ``...``), not a copy (a list or an array as index copies)."""
+    if not (isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name)):
+        return False
+    parts = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+    return all(isinstance(p, ast.Slice) or (isinstance(p, ast.Constant) and (isinstance(p.value, int)
+               or p.value is Ellipsis)) or (isinstance(p, ast.UnaryOp) and isinstance(p.operand, ast.Constant))
+               for p in parts)
+
+
+def _view_overwritten(name, function) -> list[Finding]:
+    """``x = pts[:, 0]`` (a view), then ``pts[:, 0] = ...`` written, then ``x`` read: ``x`` holds the
+    new values (the first of Brown's two formulas written back before the second reads x)."""
+    statements = _statements_in_order(function)
+    views = {}   # name -> (the subscript's text, line bound)
+    for statement in statements:
+        if isinstance(statement, ast.Assign):
+            for target in statement.targets:
+                pairs = list(zip(target.elts, statement.value.elts)) if isinstance(target, ast.Tuple) and \
+                    isinstance(statement.value, ast.Tuple) and len(target.elts) == len(statement.value.elts) \
+                    else [(target, statement.value)]
+                for bound, value in pairs:
+                    if isinstance(bound, ast.Name):
+                        views[bound.id] = (ast.unparse(value), _line(statement)) if _basic_view(value) else None
+    written = {}   # the subscript's text -> the line writing into it
+    for statement in statements:
+        targets = statement.targets if isinstance(statement, ast.Assign) else \
+            [statement.target] if isinstance(statement, ast.AugAssign) else []
+        for view_name, view in views.items():
+            if view is None:
+                continue
+            text, bound = view
+            if text in written and written[text] > bound and _line(statement) > written[text] and any(
+                    isinstance(n, ast.Name) and n.id == view_name and isinstance(n.ctx, ast.Load)
+                    for n in ast.walk(statement.value if hasattr(statement, "value") and statement.value else statement)):
+                return [Finding(name, _line(statement), "a view of an array read after the array was written",
+                                f"{name} reads `{view_name}` (line {_line(statement)}), a view of `{text}` (line "
+                                f"{bound}) that line {written[text]} has written over: it holds the new values, "
+                                f"not those it was taken from; take a copy (`{view_name} = {text}.copy()`)")]
+        for target in targets:
+            if isinstance(target, ast.Subscript) and _basic_view(target):
+                written.setdefault(ast.unparse(target), _line(statement))
+    return []
+
+
+# ------------------------------------------------------------------ a generator seeded in a loop
+SEEDING = frozenset({"default_rng", "seed", "RandomState", "Generator"})
+
+
+def _seeded_in_a_loop(name, function) -> list[Finding]:
+    """``rng = np.random.default_rng(seed)`` inside a loop, from a value the loop does not change:
+    with a seed given, every turn draws the same numbers."""
+    for loop in ast.walk(function):
+        if not isinstance(loop, (ast.For, ast.While)):
+            continue
+        turned = _names_in(loop.target) if isinstance(loop, ast.For) else set()
+        for node in (n for statement in loop.body for n in ast.walk(statement)):
+            if isinstance(node, ast.Call) and _call_name(node) in SEEDING and node.args \
+                    and "random" in _attribute_path(node.func) + ("random" if _call_name(node) == "default_rng" else "") \
+                    and not _names_in(node.args[0]) & turned and _names_in(node.args[0]):
+                return [Finding(name, _line(node), "the random generator is seeded again at every turn of a loop",
+                                f"{name} (line {_line(node)}) seeds a new generator from "
+                                f"`{ast.unparse(node.args[0])}` at every turn of the loop: with a seed given, "
+                                "each turn draws the same numbers; make the generator once, before the loop")]
+    return []
+
+
+# ------------------------------------------------------------------ a mean taken after centring
+_MEANS = frozenset({"mean", "average"})
+
+
+def _mean_call_of(node) -> str:
+    """The name whose mean ``node`` is (``x.mean(...)``, ``np.mean(x, ...)``), "" otherwise."""
+    if isinstance(node, ast.Call) and _call_name(node) in _MEANS:
+        if isinstance(node.func, ast.Attribute) and isinstance(node.func.value, ast.Name) \
+                and node.func.value.id not in ("np", "numpy"):
+            return node.func.value.id
+        if node.args and isinstance(node.args[0], ast.Name):
+            return node.args[0].id
+    return ""
+
+
+def _mean_after_centring(name, function) -> list[Finding]:
+    """``src = src - src.mean(axis=0)`` (or ``src -= ...``), then ``src.mean(...)`` read again: the
+    mean of an array centred is 0, not the centroid it had."""
+    centred = {}   # name -> the line centring it
+    for statement in _statements_in_order(function):
+        target = value = None
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name):
+            target, value = statement.targets[0].id, statement.value
+            if target in centred and not (isinstance(value, ast.BinOp) and isinstance(value.op, ast.Sub)):
+                centred.pop(target)   # (bound again to something else)
+        elif isinstance(statement, ast.AugAssign) and isinstance(statement.target, ast.Name) \
+                and isinstance(statement.op, ast.Sub):
+            target, value = statement.target.id, ast.BinOp(statement.target, ast.Sub(), statement.value)
+        for node in ast.walk(statement):
+            mean_of = _mean_call_of(node)
+            if mean_of and mean_of in centred and _line(statement) > centred[mean_of]:
+                return [Finding(name, _line(node), "a mean taken of an array already centred",
+                                f"{name} takes `{ast.unparse(node)}` (line {_line(node)}) after line "
+                                f"{centred[mean_of]} centred `{mean_of}`: it is 0 there, not the centroid the "
+                                "points had; keep the centroid in a name before centring")]
+        if target is not None and isinstance(value, ast.BinOp) and isinstance(value.op, ast.Sub) \
+                and isinstance(value.left, ast.Name) and value.left.id == target \
+                and _mean_call_of(value.right) == target:
+            centred[target] = _line(statement)
+    return []
+
+
+# ------------------------------------------------------------------ triangulatePoints' w
+def _w_never_divided(name, function) -> list[Finding]:
+    """The 4 x N homogeneous result of ``cv2.triangulatePoints`` whose first three rows are used and
+    never divided by the fourth (nor converted with ``cv2.convertPointsFromHomogeneous``)."""
+    if any(isinstance(n, ast.Call) and _call_name(n) == "convertPointsFromHomogeneous" for n in ast.walk(function)):
+        return []
+    divisions = [n for n in ast.walk(function) if isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.Div)]
+
+    def finding(line, shown):
+        return [Finding(name, line, "the homogeneous result of cv2.triangulatePoints is not divided by w",
+                        f"{name} (line {line}) keeps rows of {shown}, the 4 x N homogeneous points "
+                        "cv2.triangulatePoints returns, without dividing them by the fourth row (w): each point "
+                        "is scaled by its own w, of either sign; divide the first three rows by the fourth")]
+    for node in ast.walk(function):
+        # (sliced where it is made: `cv2.triangulatePoints(P1, P2, x1, x2)[:3].T`, nothing divided)
+        if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Call) \
+                and _call_name(node.value) == "triangulatePoints" and not any(
+                    any(isinstance(c, ast.Call) and _call_name(c) == "triangulatePoints" for c in ast.walk(d))
+                    for d in divisions):
+            return finding(_line(node), "the result")
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                and isinstance(node.value, ast.Call) and _call_name(node.value) == "triangulatePoints":
+            result = node.targets[0].id
+            used = any(isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and n.value.id == result
+                       for n in ast.walk(function))
+            if used and not any(result in _names_in(d) for d in divisions):
+                return finding(_line(node), f"`{result}`")
+    return []
+
+
+# ------------------------------------------------------------------ NumPy calls that fill more than meant
+def _square_side(node) -> int:
+    """The side of a square array a call makes (``np.eye(3)``, ``np.zeros((3, 3))``, ``np.identity(3)``), else 0."""
+    if not (isinstance(node, ast.Call) and node.args):
+        return 0
+    first = node.args[0]
+    if _call_name(node) in ("eye", "identity") and isinstance(first, ast.Constant) and isinstance(first.value, int) \
+            and (len(node.args) < 2 or ast.unparse(node.args[1]) == ast.unparse(first)):
+        return first.value
+    if _call_name(node) in ("zeros", "ones", "empty") and isinstance(first, ast.Tuple) and len(first.elts) == 2 \
+            and all(isinstance(e, ast.Constant) for e in first.elts) and first.elts[0].value == first.elts[1].value:
+        return int(first.elts[0].value)
+    return 0
+
+
+def _diagonal_refilled(name, function) -> list[Finding]:
+    """``np.fill_diagonal(M, [sx, sy])`` on a 3x3 ``M``: NumPy writes the values again and again along
+    the whole diagonal (M[2, 2] = sx); ``np.eye(3, k=1)`` has ones on its whole superdiagonal, not at
+    [0, 1] alone."""
+    sides = {target: _square_side(values[-1]) for target, values in _assigned_names(function).items() if values}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _call_name(node) == "fill_diagonal" and len(node.args) == 2 \
+                and isinstance(node.args[0], ast.Name) and isinstance(node.args[1], (ast.List, ast.Tuple)):
+            side, given = sides.get(node.args[0].id, 0), len(node.args[1].elts)
+            if 0 < given < side:
+                return [Finding(name, _line(node), "np.fill_diagonal repeats a list shorter than the diagonal",
+                                f"{name} (line {_line(node)}) calls `{ast.unparse(node)}`: np.fill_diagonal writes "
+                                f"its {given} values again and again along the whole diagonal ({side} entries), so "
+                                f"entry [{given}, {given}] gets {ast.unparse(node.args[1].elts[0])}; give all "
+                                f"{side} values")]
+        if isinstance(node, ast.Call) and _call_name(node) == "eye" and node.args and isinstance(node.args[0], ast.Constant) \
+                and isinstance(node.args[0].value, int) and node.args[0].value >= 3 and any(
+                    k.arg == "k" and isinstance(k.value, (ast.Constant, ast.UnaryOp)) and ast.unparse(k.value) not in ("0",)
+                    for k in node.keywords):
+            k = next(ast.unparse(k.value) for k in node.keywords if k.arg == "k")
+            return [Finding(name, _line(node), "np.eye(n, k) fills its whole off-diagonal",
+                            f"{name} (line {_line(node)}) uses `{ast.unparse(node)}`: it has ones along the whole "
+                            f"diagonal k = {k} ({node.args[0].value - abs(int(k)) if k.lstrip('-').isdigit() else 'several'} "
+                            "entries), not at one entry; set the entry itself")]
     return []
