@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from ..loading.parsing import parse
-from .claims import measured
+from .claims import from_code, measured
 from .forms import Form
 from .recorder import SMALL_ARRAY as SMALL   # (the recorder's own bound: it is sent with it)
 
@@ -463,9 +463,10 @@ def _channels_stacked(fn, line: int, a, sa, b, sb) -> str:
                   and n.id not in {"np", "numpy", "cv2"}]
         if len({n.id for n in copies}) != 1:
             continue   # (made of several arrays: channels of their own, not copies of one)
-        return (f": NumPy lines shapes up from their last axes, and {_quote(long_)} has its last axis of "
-                f"{sl[-1]} from line {given[1]} ({_quote(given[0])}): copies of one array, where {_quote(short)} "
-                f"has no such axis; make them only where {_quote(short)} has channels (a colour image)")
+        return from_code(f": NumPy lines shapes up from their last axes, and {_quote(long_)} has its last axis of "
+                         f"{sl[-1]} from line {given[1]} ({_quote(given[0])}): copies of one array, where "
+                         f"{_quote(short)} has no such axis; make them only where {_quote(short)} has channels "
+                         "(a colour image)")
     return ""
 
 

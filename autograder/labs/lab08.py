@@ -2034,7 +2034,7 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
             # measured: a canvas of the bounding box's size is told only the shift
             sized = "" if canvas_has_the_bounding_box_size(judge) else \
                 measured(" and size the canvas to the bounding box of all warped corners")
-            if BUILDS_A_SHIFT.found(code_of(t).reachable(functions_read(t))):
+            if BUILDS_A_TRANSLATION.found(code_of(t).reachable(functions_read(t))):
                 # (a shift the code builds, too small: made from some images' corners only, or not applied
                 # to every image -- the panorama tells which only by its size)
                 t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}, although your code builds a "
@@ -2449,6 +2449,32 @@ def _builds_a_shift(function) -> bool:
 
 
 BUILDS_A_SHIFT = Predicate("builds a shift", _builds_a_shift)
+
+
+def _builds_a_translation(function) -> bool:
+    """A translation written strictly (read to claim it is there, not to point at it): a literal
+    [[1, 0, tx], [0, 1, ty], [0, 0, 1]] with a shift that is not a constant, or ``np.eye(3)`` whose
+    last column is then set (``T[0, 2] = ...``, ``T[:2, 2] = ...``) -- never a normalising transform."""
+    def constant(node, value) -> bool:
+        return isinstance(node, ast.Constant) and node.value == value
+
+    for node in ast.walk(function):
+        if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 3 and all(
+                isinstance(row, (ast.List, ast.Tuple)) and len(row.elts) == 3 for row in node.elts):
+            (a, b, tx), (c, d, ty), last = (row.elts for row in node.elts)
+            if constant(a, 1) and constant(b, 0) and constant(c, 0) and constant(d, 1) \
+                    and all(constant(v, w) for v, w in zip(last, (0, 0, 1))) \
+                    and not (isinstance(tx, ast.Constant) and isinstance(ty, ast.Constant)):
+                return True
+    eyes = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and isinstance(n.value, ast.Call)
+            and _path(n.value.func).rsplit(".", 1)[-1] in ("eye", "identity") for t in n.targets if isinstance(t, ast.Name)}
+    return any(isinstance(n, (ast.Assign, ast.AugAssign)) and any(
+        isinstance(t, ast.Subscript) and isinstance(t.value, ast.Name) and t.value.id in eyes
+        and isinstance(t.slice, ast.Tuple) and len(t.slice.elts) == 2 and constant(t.slice.elts[1], 2)
+        for t in (n.targets if isinstance(n, ast.Assign) else [n.target])) for n in ast.walk(function))
+
+
+BUILDS_A_TRANSLATION = Predicate("builds a translation", _builds_a_translation)
 
 
 REFERENCE_FRAME_CHECKLIST = checklist(

@@ -868,10 +868,11 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
                                 + PROJECT_POINTS_HINT.said(t))
         apart = _apart_from_own_projection(reprojected, rvec, tvec, pattern, square, K, dist)
         if apart > CONSISTENCY_TOLERANCE:
-            return partial(0.5, f"{what}: the pose is right, but the corners returned are not the board projected "
-                                f"with it: they are up to {apart:.3g} px from where cv2.projectPoints(object points, "
-                                f"rvec, tvec, K, dist) puts the corners with your own rvec and tvec (at most "
-                                f"{CONSISTENCY_TOLERANCE} px expected)" + _detected_returned(image, pattern, reprojected),
+            return partial(0.5, measured(f"{what}: the pose is right, but the corners returned are not the board "
+                                         f"projected with it: they are up to {apart:.3g} px from where "
+                                         f"cv2.projectPoints(object points, rvec, tvec, K, dist) puts the corners with "
+                                         f"your own rvec and tvec (at most {CONSISTENCY_TOLERANCE} px expected)")
+                           + _detected_returned(image, pattern, reprojected),
                            mistake=DETECTED_RETURNED if _detected_returned(image, pattern, reprojected) else "")
         return passed(f"rotation within {angle:.2f} deg, translation within {rel:.2%}, "
                       f"reprojection within {reproj_error:.2f} px")

@@ -103,6 +103,14 @@ class Fix:
         return ("removing " if self.changes[0][2] == "pass" else "changing ") + " and ".join(said)
 
 
+def _drawn_otherwise(values, students) -> bool:
+    """Whether a change's answers are colour images (uint8, 3 channels) the student's own answers are
+    too, shaped alike, and differ from them: a drawing redrawn."""
+    return bool(values) and all(
+        isinstance(v, np.ndarray) and isinstance(s, np.ndarray) and v.dtype == s.dtype == np.uint8
+        and v.ndim == 3 and v.shape == s.shape and not np.array_equal(v, s) for v, s in zip(values, students))
+
+
 def _nested_merged(changes) -> tuple:
     """Two changes of one line, one inside the code the other shows (`homographies[1:]` in
     `zip(images[1:], homographies[1:])`), shown as one change of the outer code with both made: told
@@ -913,11 +921,11 @@ def take_back_refuted(results, refuted) -> None:
         first = result.message.partition("\n")[0]
         return first.split(f" {HEAD}", 1)[1] if f" {HEAD}" in first else ""
 
-    def refuted_for(result) -> bool:
-        return any(change in told(result) for change, by_hidden in refuted if result.hidden or not by_hidden)
+    def refuted_for(result, text: str) -> bool:
+        return any(change in text for change, by_hidden in refuted if result.hidden or not by_hidden)
 
-    taken = [result for result in results if told(result) and refuted_for(result)]
-    kept = [result for result in results if told(result) and not refuted_for(result)]
+    taken = [result for result in results if told(result) and refuted_for(result, told(result))]
+    kept = [result for result in results if told(result) and not refuted_for(result, told(result))]
     for result in taken:
         first, newline, rest = result.message.partition("\n")
         sentence = told(result)
@@ -927,7 +935,7 @@ def take_back_refuted(results, refuted) -> None:
         # mistake, one repair told -- a public check's from a public check only)
         function = re.search(r"makes `(\w+)`", sentence)
         other = next((k for k in kept if function and f"makes `{function.group(1)}`" in told(k)
-                      and (result.hidden or not k.hidden)), None)
+                      and (result.hidden or not k.hidden) and not refuted_for(result, told(k))), None)
         if other is not None:
             lead, _, tail = result.message.partition("\n")
             result.message = f"{lead} {HEAD}{told(other)}" + ("\n" + tail if tail or newline else "")
@@ -1364,6 +1372,11 @@ def _search(trial, model, student: _Student, clock, tries=None, said: str = "") 
         if subtle and _replayable(trial):   # of five): only the check itself tells a change right
             failing = [i for i, (call, reference) in enumerate(zip(calls, references))
                        if naming.error_kind(reference) is None and _differs(call[3], reference)]
+        # (a check that raised failed at that call: the calls before it it had taken -- a drawing of its
+        # own colours, far from the reference's and accepted -- are no failing inputs of the change)
+        raised = getattr(trial, "raised", None)
+        if raised and raised[0] == function and len(inputs) - 1 in failing:
+            failing = [len(inputs) - 1]
         if not failing:
             continue
         found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle, tries, said)
@@ -1649,6 +1662,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # offered to the error model): only those right or nearer there run on the others.
     screen = min(failing, key=lambda i: _weight(inputs[i]))
     candidates, near, slightly, near_answers = [], [], [], {}
+    restyled = []   # changes of a drawing in a style of the student's own (see _drawn_otherwise)
     exactly = set()   # the candidates giving the reference's answers on every failing input
     partly = []       # changes told on an earlier check, here right on some inputs only (failing or confirming)
     to_the_bit = set()   # of which those giving its very numbers (its computation, not one within rounding)
@@ -1702,6 +1716,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             elif apart < NEARER * off:   # (judged by the check after the nearer ones; never paired)
                 slightly.append((apart, mutant))
                 near_answers[mutant.key] = values
+            elif _drawn_otherwise(values, [variant.students[i] for i in failing]):
+                restyled.append((apart, mutant))
+                near_answers[mutant.key] = values
             # Far nearer, not the reference's to the last grey level (the student's own recipe: a
             # resize where the reference warps), or the reference's exactly on some failing inputs
             # and not on others (their own least squares on noisy points, where one ill-posed point
@@ -1735,6 +1752,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # passes it and those exactly as near (the same answers from another place: names swapped where
         # they are made, or where they are used -- the confirmation tells them apart).
         passed, refused, judged = None, set(), set()
+        # (a drawing in a style of the student's own -- OpenCV's random colours, circles at the ends --
+        # is no nearer the reference's pixels when a line is added: where no change is nearer, the
+        # changes that redraw it are judged by the check, nearest first)
+        slightly = slightly or ([] if near else restyled)
         ordered = [(apart, mutant, False) for apart, mutant in sorted(near, key=lambda pair: pair[0])] \
             + [(apart, mutant, True) for apart, mutant in sorted(slightly, key=lambda pair: pair[0])]
         for apart, mutant, slight in ordered:

@@ -465,7 +465,7 @@ MISTAKES = {
             for d in range(min(max_disparity, width - 1) + 1):
                 costs[d, :, d:] = _box_mean(np.abs(left - _shift_right(right, d)), block_size)[:, d:]
             return np.ascontiguousarray(costs.transpose(2, 1, 0))
-        """, ["disparities point left of the right image", "d = 0..min(x, max_disparity)"]),
+        """, ["get a disparity larger than their column x", "d = 0..min(x, max_disparity)"]),
     "DP without smoothness (winner-take-all)": ("lab12.ex5", """
         DEFAULT_SMOOTHNESS = 0.0
         """, ["the smoothness term is ignored (winner-take-all)"]),
