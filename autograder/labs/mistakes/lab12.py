@@ -540,6 +540,19 @@ MISTAKES = {
             images[:, lit] = patterns[:, column[lit]]
             return images
         """, ["u - f b / z"]),
+    "projector's last column taken as off the projector (column < width - 1)": ("lab12.ex6", """
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            depth = np.asarray(depth, float)
+            height, width = depth.shape
+            patterns = gray_code_patterns(width, n_bits)
+            valid = depth > 0
+            d = np.divide(f * baseline, depth, out=np.zeros_like(depth), where=valid)
+            column = np.floor(np.arange(width) - d + 0.5).astype(int)
+            lit = valid & (column >= 0) & (column < width - 1)
+            images = np.zeros((n_bits, height, width), np.uint8)
+            images[:, lit] = patterns[:, column[lit]]
+            return images
+        """, ["projector's last column (width - 1) lights nothing"]),
     "projector column truncated": ("lab12.ex6", """
         def simulate_structured_light(depth, f, baseline, n_bits):
             depth = np.asarray(depth, float)
