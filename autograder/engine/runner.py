@@ -491,25 +491,36 @@ def _named_by_misread_output(verdict: Verdict, trial: Trial) -> Verdict:
     return verdict
 
 
-def _named_by_defaults(verdict: Verdict, trial: Trial) -> Verdict:
-    """A failing verdict that names no mistake, naming a default the student's def gives a parameter
-    other than the API's, where a call of the check left it out (:mod:`autograder.engine.defaults_given`)."""
-    from . import defaults_given
+def _named_against_the_reference(verdict: Verdict, trial: Trial, read, module) -> Verdict:
+    """``verdict`` with what ``read(code, reference source)`` finds in the student's code told after its
+    first line (``module``'s ``sentence`` and ``MISTAKE``); unchanged when nothing is found, without a
+    reference, or when the reading fails (reading is a bonus: the verdict stands without it)."""
     from .hints import code_of
     from .mutants import naming
 
     model = naming.model_for(trial.lab)
-    calls = _calls_made(trial)
-    if model is None or not calls:
+    if model is None:
         return verdict
-    try:   # (reading is a bonus: the verdict stands without it)
-        found = defaults_given.left_out(code_of(trial), model.source, calls)
+    try:
+        found = read(code_of(trial), model.source)
     except Exception as exc:  # noqa: BLE001
         _log_grader_error(trial.check, exc)
         return verdict
     if found is None:
         return verdict
-    return _told_after_the_first_line(verdict, defaults_given.sentence(*found), defaults_given.MISTAKE)
+    return _told_after_the_first_line(verdict, module.sentence(*found), module.MISTAKE)
+
+
+def _named_by_defaults(verdict: Verdict, trial: Trial) -> Verdict:
+    """A failing verdict that names no mistake, naming a default the student's def gives a parameter
+    other than the API's, where a call of the check left it out (:mod:`autograder.engine.defaults_given`)."""
+    from . import defaults_given
+
+    calls = _calls_made(trial)
+    if not calls:
+        return verdict
+    return _named_against_the_reference(
+        verdict, trial, lambda code, source: defaults_given.left_out(code, source, calls), defaults_given)
 
 
 def _named_by_strings(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
@@ -517,20 +528,10 @@ def _named_by_strings(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
     spells otherwise (`method == "ORB"`) in the functions the check called and their helpers
     (:mod:`autograder.engine.strings_compared`)."""
     from . import strings_compared
-    from .hints import code_of
-    from .mutants import naming
 
-    model = naming.model_for(trial.lab)
-    if model is None:
-        return verdict
-    try:   # (reading is a bonus: the verdict stands without it)
-        found = strings_compared.misspelt(code_of(trial).reachable(functions_called(check)), model.source)
-    except Exception as exc:  # noqa: BLE001
-        _log_grader_error(trial.check, exc)
-        return verdict
-    if found is None:
-        return verdict
-    return _told_after_the_first_line(verdict, strings_compared.sentence(*found), strings_compared.MISTAKE)
+    return _named_against_the_reference(
+        verdict, trial, lambda code, source: strings_compared.misspelt(code.reachable(functions_called(check)), source),
+        strings_compared)
 
 
 def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:

@@ -718,9 +718,9 @@ def _view_overwritten(name, function) -> list[Finding]:
             if view is None:
                 continue
             text, bound = view
+            read = statement.value if isinstance(statement, (ast.Assign, ast.AugAssign)) else statement
             if text in written and written[text] > bound and _line(statement) > written[text] and any(
-                    isinstance(n, ast.Name) and n.id == view_name and isinstance(n.ctx, ast.Load)
-                    for n in ast.walk(statement.value if hasattr(statement, "value") and statement.value else statement)):
+                    isinstance(n, ast.Name) and n.id == view_name and isinstance(n.ctx, ast.Load) for n in ast.walk(read)):
                 return [Finding(name, _line(statement), "a view of an array read after the array was written",
                                 f"{name} reads `{view_name}` (line {_line(statement)}), a view of `{text}` (line "
                                 f"{bound}) that line {written[text]} has written over: it holds the new values, "
@@ -743,9 +743,9 @@ def _seeded_in_a_loop(name, function) -> list[Finding]:
             continue
         turned = _names_in(loop.target) if isinstance(loop, ast.For) else set()
         for node in (n for statement in loop.body for n in ast.walk(statement)):
-            if isinstance(node, ast.Call) and _call_name(node) in SEEDING and node.args \
-                    and "random" in _attribute_path(node.func) + ("random" if _call_name(node) == "default_rng" else "") \
-                    and not _names_in(node.args[0]) & turned and _names_in(node.args[0]):
+            seeds = isinstance(node, ast.Call) and _call_name(node) in SEEDING and bool(node.args) and (
+                _call_name(node) == "default_rng" or "random" in _attribute_path(node.func))   # (not rng.random())
+            if seeds and _names_in(node.args[0]) and not _names_in(node.args[0]) & turned:
                 return [Finding(name, _line(node), "the random generator is seeded again at every turn of a loop",
                                 f"{name} (line {_line(node)}) seeds a new generator from "
                                 f"`{ast.unparse(node.args[0])}` at every turn of the loop: with a seed given, "
@@ -774,7 +774,8 @@ def _mean_after_centring(name, function) -> list[Finding]:
     centred = {}   # name -> the line centring it
     for statement in _statements_in_order(function):
         target = value = None
-        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name):
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
+                and isinstance(statement.targets[0], ast.Name):
             target, value = statement.targets[0].id, statement.value
             if target in centred and not (isinstance(value, ast.BinOp) and isinstance(value.op, ast.Sub)):
                 centred.pop(target)   # (bound again to something else)
