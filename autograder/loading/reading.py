@@ -711,20 +711,20 @@ def _view_overwritten(name, function) -> list[Finding]:
                     if isinstance(bound, ast.Name):
                         views[bound.id] = (ast.unparse(value), _line(statement)) if _basic_view(value) else None
     written = {}   # the subscript's text -> the line writing into it
-    for statement in statements:
-        targets = statement.targets if isinstance(statement, ast.Assign) else \
-            [statement.target] if isinstance(statement, ast.AugAssign) else []
-        for view_name, view in views.items():
-            if view is None:
+    for statement in statements:   # (each statement's own names read once: linear in the function)
+        read = statement.value if isinstance(statement, (ast.Assign, ast.AugAssign)) else statement
+        loaded = {n.id for n in ast.walk(read) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+        for view_name in sorted(loaded & views.keys()):
+            if views[view_name] is None:
                 continue
-            text, bound = view
-            read = statement.value if isinstance(statement, (ast.Assign, ast.AugAssign)) else statement
-            if text in written and written[text] > bound and _line(statement) > written[text] and any(
-                    isinstance(n, ast.Name) and n.id == view_name and isinstance(n.ctx, ast.Load) for n in ast.walk(read)):
+            text, bound = views[view_name]
+            if text in written and written[text] > bound and _line(statement) > written[text]:
                 return [Finding(name, _line(statement), "a view of an array read after the array was written",
                                 f"{name} reads `{view_name}` (line {_line(statement)}), a view of `{text}` (line "
                                 f"{bound}) that line {written[text]} has written over: it holds the new values, "
                                 f"not those it was taken from; take a copy (`{view_name} = {text}.copy()`)")]
+        targets = statement.targets if isinstance(statement, ast.Assign) else \
+            [statement.target] if isinstance(statement, ast.AugAssign) else []
         for target in targets:
             if isinstance(target, ast.Subscript) and _basic_view(target):
                 written.setdefault(ast.unparse(target), _line(statement))
@@ -803,25 +803,26 @@ def _w_never_divided(name, function) -> list[Finding]:
     if any(isinstance(n, ast.Call) and _call_name(n) == "convertPointsFromHomogeneous" for n in ast.walk(function)):
         return []
     divisions = [n for n in ast.walk(function) if isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.Div)]
+    # (what the divisions hold, read once: linear in the function)
+    divided_names = set().union(*(_names_in(d) for d in divisions)) if divisions else set()
+    divides_a_result = any(isinstance(c, ast.Call) and _call_name(c) == "triangulatePoints"
+                           for d in divisions for c in ast.walk(d))
 
     def finding(line, shown):
         return [Finding(name, line, "the homogeneous result of cv2.triangulatePoints is not divided by w",
                         f"{name} (line {line}) keeps rows of {shown}, the 4 x N homogeneous points "
                         "cv2.triangulatePoints returns, without dividing them by the fourth row (w): each point "
                         "is scaled by its own w, of either sign; divide the first three rows by the fourth")]
+    subscripted = {n.value.id for n in ast.walk(function) if isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name)}
     for node in ast.walk(function):
         # (sliced where it is made: `cv2.triangulatePoints(P1, P2, x1, x2)[:3].T`, nothing divided)
         if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Call) \
-                and _call_name(node.value) == "triangulatePoints" and not any(
-                    any(isinstance(c, ast.Call) and _call_name(c) == "triangulatePoints" for c in ast.walk(d))
-                    for d in divisions):
+                and _call_name(node.value) == "triangulatePoints" and not divides_a_result:
             return finding(_line(node), "the result")
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
                 and isinstance(node.value, ast.Call) and _call_name(node.value) == "triangulatePoints":
             result = node.targets[0].id
-            used = any(isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and n.value.id == result
-                       for n in ast.walk(function))
-            if used and not any(result in _names_in(d) for d in divisions):
+            if result in subscripted and result not in divided_names:
                 return finding(_line(node), f"`{result}`")
     return []
 
