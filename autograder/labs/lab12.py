@@ -1556,15 +1556,14 @@ def _derived_from(function) -> dict:
                 paired = isinstance(target, (ast.Tuple, ast.List)) and isinstance(node.value, (ast.Tuple, ast.List)) \
                     and len(target.elts) == len(node.value.elts)
                 bindings += list(zip(target.elts, node.value.elts)) if paired else [(target, node.value)]
-    grown = True
-    while grown:
-        grown = False
+    # (in the order of the lines, twice: a loop's later line feeding an earlier one is followed too --
+    # linear in the function, where a search to a fixed point is not)
+    bindings.sort(key=lambda pair: getattr(pair[1], "lineno", 0))
+    for _ in range(2):
         for target, value in bindings:
             reads = set().union(*(made.get(n.id, set()) for n in ast.walk(value) if isinstance(n, ast.Name)))
             for name in (n.id for n in ast.walk(target) if isinstance(n, ast.Name)):
-                if not reads <= made.setdefault(name, set()):
-                    made[name] |= reads
-                    grown = True
+                made.setdefault(name, set()).update(reads)
     return made
 
 
