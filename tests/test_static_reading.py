@@ -500,6 +500,31 @@ def test_the_references_hold_none_of_these_findings():
         assert not one(path.read_text()) & new, path.name
 
 
+def test_an_opencv_constant_given_another_parameters_place_is_named():
+    assert one("""
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            for x, y in pts:
+                cv2.circle(out, (int(x), int(y)), radius, color, cv2.LINE_AA)
+            return out
+        """) == {"cv2.LINE_AA is passed as cv2.circle's thickness"}
+    assert one("""
+        def shrink(image):
+            return cv2.resize(image, (10, 10), cv2.INTER_NEAREST)
+        """) == {"cv2.INTER_NEAREST is passed as cv2.resize's dst"}
+    assert one("""
+        def smooth(image):
+            return cv2.GaussianBlur(image, (5, 5), cv2.BORDER_DEFAULT)
+        """) == {"cv2.BORDER_DEFAULT is passed as cv2.GaussianBlur's sigmaX"}
+    # each in its place, by name, after a starred argument (places unknown), or in another signature's place
+    for right in ("cv2.circle(out, c, 3, color, -1, cv2.LINE_AA)", "cv2.circle(out, c, 3, color, lineType=cv2.LINE_AA)",
+                  "cv2.line(out, *ends, color, 1, cv2.LINE_AA)", "cv2.findHomography(a, b, cv2.RANSAC, 5.0)",
+                  "cv2.findEssentialMat(a, b, K, cv2.RANSAC, 0.999, 1.0)", "cv2.remap(img, mx, my, cv2.INTER_LINEAR)",
+                  "cv2.warpAffine(img, M, size, flags=cv2.INTER_LINEAR)", "cv2.normalize(img, None, 0, 255, cv2.NORM_MINMAX)",
+                  "cv2.circle(out, c, 3, color, cv2.FILLED)", "cv2.BFMatcher(cv2.NORM_HAMMING, True)"):
+        assert not one(f"def f(out, c, color, a, b, K, img, mx, my, M, size, ends):\n    return {right}\n"), right
+
+
 def test_a_parameter_compared_with_a_string_the_api_spells_otherwise_is_named():
     import ast
     from autograder.engine import strings_compared

@@ -203,14 +203,26 @@ def closest(got, candidates: dict, distance, tolerance: float, truth=None, margi
             names.append(other)
         else:
             rivals.append(d)
-    if truth is not None:
-        try:
-            rivals.append(float(distance(got, truth)))
-        except (ValueError, np.linalg.LinAlgError):
-            pass
+    for rival in (truth, _nothing_like(answer)):
+        if rival is not None:
+            try:
+                rivals.append(float(distance(got, rival)))
+            except (ValueError, TypeError, np.linalg.LinAlgError):
+                pass
     if any(d <= margin * best for d in rivals):
         return None
     return SAME_ANSWER.join(names)
+
+
+def _nothing_like(answer):
+    """Zeros of ``answer``'s form, a rival every numeric name must beat: a mistake whose answer is
+    nearly zero (x = X / (f Z) with f = 1000) would otherwise be named for any answer of zeros (a focal
+    length of 0). None where ``answer`` is not a numeric array or is itself all zeros (that mistake is
+    "nothing returned", and is told by its own answer)."""
+    if not isinstance(answer, np.ndarray) or answer.dtype.kind not in "iuf" or not answer.size \
+            or not np.any(answer):
+        return None
+    return np.zeros_like(answer)
 
 
 def _same_answer(distance, first, second, resolution: float) -> bool:

@@ -346,6 +346,8 @@ def where_points_wrong(got, expected, tolerance) -> str:
         with np.errstate(divide="ignore", invalid="ignore"):
             ratio = got[keep] / expected[keep]
         ratio = ratio[np.abs(expected[keep]) > tolerance]
+        if ratio.size and not np.any(got[keep]):
+            return f"{where} (every coordinate returned is 0)"
         if ratio.size and np.ptp(ratio) <= 1e-6 * max(1.0, np.abs(ratio).max()):
             return f"{where} by the same factor {ratio[0]:.4g} (a scale is applied wrongly)"
     return where
@@ -1171,8 +1173,16 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     if coverage < 0.97:
         t.fail(f"{what}: only {coverage:.0%} of the pixels that should be covered by the circles "
                f"(radius {radius}, colour {tuple(color)}) are.")
+    larger = painted & far
+    if larger.any() and larger.sum() >= 0.9 * changed[far].sum() and d[larger].max() <= radius + 30:
+        t.fail(f"{what}: " + measured(f"the circles are larger than radius {radius}: the colour {tuple(color)} "
+                                      f"reaches {int(np.ceil(d[larger].max()))} px from the centres (a positive "
+                                      "thickness widens a circle by half of it on each side; filled is "
+                                      "thickness=-1)."))
+    copied = COPIES.found(code_of(t).reachable(["draw_points"]))   # (the copy is not asked of code that copies)
     t.fail(f"{what}: {1 - untouched:.1%} of the pixels far from every point were changed; "
-           "only the circles should be drawn (on a copy of the image).")
+           + ("only the circles should be drawn." if copied else
+              "only the circles should be drawn (on a copy of the image)."))
 
 
 def _wrapped_at_256(got, image, pts, radius, color) -> str:

@@ -1688,16 +1688,55 @@ def block_matching_window_size(t):
         found.append(f"{median:g} px on the {side} x {side} square")
         kept = median >= 8.0   # (halfway between the background's 4 px and the square's 12 px)
         if wins == "background" and kept:
-            t.fail(measured(f"{what} keeps the square at its own disparity ({median:g} px in the median): a 9 x 9 "
-                            f"window centred on it holds {side * side} of its pixels and {81 - side * side} of the "
-                            "background's, so the background's disparity (4 px) wins there, as it does for "
-                            "cv2.StereoBM with blockSize=9. Your map acts as a window smaller than 9 x 9 (half the "
-                            "size, or one row?): the cost is summed over block_size x block_size pixels."),
-                   mistake="the matching window is smaller than block_size x block_size")
+            kept_by = f"{what} keeps the square at its own disparity ({median:g} px in the median): a 9 x 9 " \
+                      f"window centred on it holds {side * side} of its pixels and {81 - side * side} of the " \
+                      "background's, so the background's disparity (4 px) wins there, as it does for " \
+                      "cv2.StereoBM with blockSize=9."
+            window = _smaller_window(got, left, right, square)
+            if window:   # (the map is that window's map: confirmed, not inferred from the square alone)
+                t.fail(measured(f"{kept_by} Your map is the one {window} gives (SSD), a window smaller than 9 x 9: "
+                                "the cost is summed over block_size x block_size pixels."),
+                       mistake="the matching window is smaller than block_size x block_size")
+            t.fail(measured(f"{kept_by} Your map is not that of a smaller window either ("
+                            + ", ".join(SMALLER_WINDOWS) + "): look at how your cost is computed from the 9 x 9 "
+                            "window; SSD is the mean of the squared pixel differences (L - R)^2 over it."))
         if wins == "square" and not kept:   # (a costs computed wrongly loses it too: the other checks judge)
             return passed(measured(f"the {side} x {side} square is not found ({median:g} px): the other checks "
                                    "judge the map"))
     return passed("; ".join(found))
+
+
+# The windows smaller than block_size x block_size a matcher may use instead (half the side, or one row).
+SMALLER_WINDOWS = {"a 5 x 5 window": (5, 5), "a 4 x 4 window (block_size // 2)": (4, 4), "a 3 x 3 window": (3, 3),
+                   "a 9 x 1 strip (one row)": (9, 1)}
+WINDOW_AGREEMENT = 0.9   # of the judged pixels within 1 px of that window's map
+
+
+def _square_neighbourhood(square, shape) -> np.ndarray:
+    """The pixels within 6 px of the ``square`` (rows, columns) slices."""
+    around = np.zeros(shape, bool)
+    rows, columns = square
+    around[rows.start - 6:rows.stop + 6, columns.start - 6:columns.stop + 6] = True
+    return around
+
+
+def _smaller_window(got, left, right, square, max_disparity: int = 32) -> str:
+    """Which of SMALLER_WINDOWS gives ``got`` (winner-take-all SSD) on the ``square`` and around it
+    (the pixels where windows of other sizes part); "" when none does."""
+    L, R = np.asarray(left, np.float64), np.asarray(right, np.float64)
+    on_square = np.zeros(L.shape, bool)
+    on_square[square] = True
+    around = _square_neighbourhood(square, L.shape) & ~on_square
+    for name, window in SMALLER_WINDOWS.items():
+        costs = np.full((max_disparity + 1,) + L.shape, np.inf)
+        for d in range(max_disparity + 1):
+            shifted = np.empty_like(R)
+            shifted[:, d:], shifted[:, :d] = R[:, :R.shape[1] - d], R[:, :1]
+            costs[d] = cv2.blur((L - shifted) ** 2, window, borderType=cv2.BORDER_REFLECT)
+        agrees = np.abs(np.argmin(costs, axis=0) - got) <= 1
+        if min(agrees[on_square].mean(), agrees[around].mean()) >= WINDOW_AGREEMENT:
+            return name
+    return ""
 
 
 def _valid_median(disparities) -> float:

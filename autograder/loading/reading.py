@@ -172,6 +172,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _mean_after_centring(name, function)
     found += _w_never_divided(name, function)
     found += _diagonal_refilled(name, function)
+    found += _constant_out_of_place(name, function)
     return found
 
 
@@ -866,4 +867,81 @@ def _diagonal_refilled(name, function) -> list[Finding]:
                             f"{name} (line {_line(node)}) uses `{ast.unparse(node)}`: it has ones along the whole "
                             f"diagonal k = {k} ({node.args[0].value - abs(int(k)) if k.lstrip('-').isdigit() else 'several'} "
                             "entries), not at one entry; set the entry itself")]
+    return []
+
+
+# ------------------------------------------------------------------ OpenCV constants out of place
+# Which parameters each family of OpenCV constants is made for (lower case, as OpenCV's signatures
+# name them): a constant of a family given positionally where the signature has another parameter
+# fills that one with its number (cv2.LINE_AA = 16 as a circle's thickness, cv2.INTER_NEAREST = 0 as
+# resize's dst, cv2.BORDER_DEFAULT = 4 as GaussianBlur's sigmaX).
+CONSTANT_FAMILIES = (
+    ("LINE_", {"linetype"}), ("FILLED", {"thickness"}), ("INTER_", {"interpolation", "flags"}),
+    ("WARP_", {"flags"}), ("BORDER_", {"bordermode", "bordertype"}), ("NORM_", {"normtype", "norm_type"}),
+    ("COLOR_", {"code"}), ("ADAPTIVE_THRESH_", {"adaptivemethod"}), ("THRESH_", {"type"}),
+    ("RANSAC", {"method"}), ("LMEDS", {"method"}), ("RHO", {"method"}), ("USAC_", {"method"}), ("FM_", {"method"}),
+    ("SOLVEPNP_", {"flags"}), ("CALIB_", {"flags"}), ("FONT_", {"fontface"}), ("IMREAD_", {"flags"}),
+    ("TM_", {"method"}), ("RETR_", {"mode"}), ("CHAIN_APPROX_", {"method"}), ("ROTATE_", {"rotatecode"}),
+    ("CV_", {"ddepth", "dtype", "m1type", "depth", "rtype"}))
+OPENCV_MODULES = frozenset({"cv2", "cv"})
+
+
+def _family(constant: str) -> set[str]:
+    return next((places for prefix, places in CONSTANT_FAMILIES if constant.startswith(prefix)), set())
+
+
+@lru_cache(maxsize=256)
+def _opencv_parameters(function: str) -> tuple[tuple[str, ...], ...]:
+    """The parameter names of each of OpenCV's signatures of ``cv2.<function>`` (its docstring's
+    ``circle(img, center, radius, color[, thickness[, lineType[, shift]]]) -> img`` lines)."""
+    try:
+        import cv2
+
+        doc = getattr(cv2, function).__doc__ or ""
+    except (ImportError, AttributeError):
+        return ()
+    signatures = []
+    for line in doc.splitlines():
+        line = line.strip()
+        if line.startswith(f"{function}(") and ")" in line:
+            inside = line[len(function) + 1:line.index(")")].replace("[", "").replace("]", "")
+            signatures.append(tuple(part.strip() for part in inside.split(",") if part.strip()))
+    return tuple(signatures)
+
+
+def _number_of(constant: str) -> str:
+    try:
+        import cv2
+
+        return str(int(getattr(cv2, constant)))
+    except (ImportError, AttributeError, TypeError, ValueError):
+        return "its number"
+
+
+def _constant_out_of_place(name, function) -> list[Finding]:
+    """An OpenCV constant passed positionally into a parameter of no signature its family is made for:
+    ``cv2.circle(out, c, r, color, cv2.LINE_AA)`` draws a ring 16 pixels thick."""
+    for node in ast.walk(function):
+        if not isinstance(node, ast.Call) or not isinstance(node.func, ast.Attribute) \
+                or _attribute_path(node.func.value) not in OPENCV_MODULES:
+            continue
+        signatures = _opencv_parameters(node.func.attr)
+        for position, argument in enumerate(node.args):
+            if isinstance(argument, ast.Starred):   # (the places after it are not known)
+                break
+            path = _attribute_path(argument)
+            module, _, constant = path.rpartition(".")
+            places = _family(constant) if module in OPENCV_MODULES else set()
+            fitting = [names for names in signatures if len(names) > position]
+            if not places or not fitting or any(names[position].lower() in places for names in fitting):
+                continue
+            meant = next((p for names in signatures for p in names if p.lower() in places), "")
+            if not meant:
+                continue
+            given = fitting[0][position]
+            called = f"{module}.{node.func.attr}"
+            return [Finding(name, _line(node), f"{path} is passed as {called}'s {given}",
+                            f"{name} (line {_line(node)}) passes {path} as argument {position + 1} of {called}, "
+                            f"which is `{given}` there, so {given} gets {_number_of(constant)}; {path} belongs to "
+                            f"`{meant}`: pass it by name ({meant}={path})")]
     return []

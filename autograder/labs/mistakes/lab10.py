@@ -418,6 +418,11 @@ MISTAKES = {
             undistorted = cv2.undistort(image, K, dist, None, new_K)
             return undistorted[y:y + rh, x:x + rw]
         """, ["calls cv2.getoptimalnewcameramatrix", "without a crop"]),
+    "undistort with k1, k2, p1, p2 only (k3 dropped)": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            coefficients = np.asarray(dist, np.float64).ravel()[:4]
+            return cv2.undistort(image, np.asarray(K, np.float64), coefficients)
+        """, ["k3 is left out", "outer ring"]),
     "undistort a grey image into BGR": ("lab10.ext1", """
         _undistort = undistort_image
         def undistort_image(image, K, dist):

@@ -6,6 +6,16 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 from . import columns_by_first_axis
 
 MISTAKES = {
+    # the blind set 1201c's 12/04: a 9 x 9 window, but the squared difference of the block means
+    "SSD as the squared difference of the block means": ("lab12.ex4", """
+        def _ssd_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(min(max_disparity, width - 1) + 1):
+                costs[d] = (_box_mean(left, block_size) - _box_mean(_shift_right(right, d), block_size)) ** 2
+                costs[d, :, :d] = np.inf
+            return costs
+        """, ["not that of a smaller window either", "how your cost is computed"]),
     "block matching with block_size ignored": ("lab12.ex4", """
         _block_matching_own = block_matching
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
