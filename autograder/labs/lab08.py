@@ -666,6 +666,39 @@ def match_ratio(t):
     return passed(summary)
 
 
+# The API's 2D points are floats, and SIFT places its keypoints to a fraction of a pixel (KeyPoint.pt):
+# on the check's pair none of the reference's 2 x M coordinates is a whole number. Points cast to
+# integers for drawing (np.int32) are each up to a pixel off, always towards zero, which the 3 px
+# agreement above cannot see and the homography fitted to them inherits.
+WHOLE_SHARE = 0.9   # of the coordinates whole numbers: rounded or truncated, not SIFT's own
+TO_INTEGER = (expr("np.int32(_)") | expr("_.astype(np.int32)") | expr("_.astype(int)") | expr("np.array(_, dtype=np.int32)")
+              | expr("np.array(_, dtype=int)") | expr("np.int64(_)") | expr("_.astype(np.int64)") | expr("np.round(_)")
+              | expr("np.array(_, np.int32)") | expr("np.asarray(_, dtype=np.int32)") | expr("np.asarray(_, dtype=int)")
+              | expr("np.int0(_)") | expr("np.intp(_)")).saying("makes them integers")
+
+
+@ex3.check("match_features returns the keypoints' sub-pixel positions (KeyPoint.pt), as floats", points=1)
+def match_subpixel(t):
+    img1, img2, _ = truth.matching_pair("astronaut", (240, 180), seed=1)
+    what = "match_features(img1, img2)"
+    result = t.call("match_features", img1, img2)
+    raw = [np.asarray(part) for part in result[:2]] if isinstance(result, (tuple, list)) and len(result) == 2 else []
+    pts1, pts2 = matched_points(t, what, result)
+    if len(pts1) < 10:
+        return passed(measured("too few matches to judge their positions: the check above judges them"))
+    coordinates = np.concatenate([pts1.ravel(), pts2.ravel()])
+    whole = float(np.mean(coordinates == np.round(coordinates)))
+    if whole < WHOLE_SHARE:
+        return passed(f"{1 - whole:.0%} of the coordinates are fractions of a pixel, as SIFT places them")
+    integers = any(part.dtype.kind in "iu" for part in raw)
+    read = TO_INTEGER.found(code_of(t).reachable(["match_features"]))
+    t.fail(measured(f"{what}: {whole:.0%} of the returned coordinates are whole numbers"
+                    + (f" (an array of {next(p.dtype for p in raw if p.dtype.kind in 'iu')})" if integers else "")
+                    + ", where SIFT places its keypoints to a fraction of a pixel (KeyPoint.pt): each point is up to "
+                      "a pixel off. Return the keypoints' positions as floats")
+           + (from_code(f"; your code {read}.") if read else "."),
+           mistake="the keypoint positions are cut to whole pixels")
+
 def drawing_case():
     """Colour img1 (240x180), grey img2 (200x150) showing the same scene, 12 true matches."""
     img1 = photo("chelsea", (240, 180))

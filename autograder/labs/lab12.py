@@ -2311,6 +2311,35 @@ def dp_smoothness_parameter(t):
     return passed(f"smoothness=0: {wta_jumps:.1%} jumps; smoothness=1e7: constant rows")
 
 
+# The API's smoothness is a weight of any size (smoothness * |d_p - d_q|): a weight truncated to a whole
+# number shows as plateaus -- 0.5 the map of 0 and 1.5 that of 1 -- where whole steps (0, 1, 2) each
+# change the map. Measured on the weak-texture scene: the reference changes 5295 pixels from 0 to 0.5
+# and 886 from 1 to 1.5; a truncating DP changes none (and 6016 from 0 to 1).
+FRACTIONAL_STEPS = ((0.0, 0.5), (1.0, 1.5))
+TRUNCATED = "smoothness is truncated to a whole number"
+TRUNCATES_SMOOTHNESS = (expr("int(smoothness)") | expr("round(smoothness)") | expr("np.floor(smoothness)")
+                        | expr("math.floor(smoothness)") | expr("smoothness // _") | expr("np.int32(smoothness)")
+                        | expr("np.int64(smoothness)")).saying("converts smoothness to an integer")
+
+
+@ex5.check("a fractional smoothness acts as given: 0.5 is not 0, 1.5 is not 1", points=1, timeout=STEREO_TIMEOUT)
+def dp_fractional_smoothness(t):
+    scene = truth.scene("weak_texture")
+    maps = {s: expect_disparity(t, f"dp_stereo(left, right, smoothness={s:g})", call_dp(t, scene, smoothness=s),
+                                scene) for s in (0.0, 0.5, 1.0, 1.5, 2.0)}
+    whole_steps = not same_informative_result(maps[0.0], maps[1.0]) and not same_informative_result(maps[1.0],
+                                                                                                     maps[2.0])
+    plateaus = all(same_informative_result(maps[low], maps[high]) for low, high in FRACTIONAL_STEPS)
+    if not (whole_steps and plateaus):
+        return passed("the map changes with fractional weights as with whole ones" if whole_steps else
+                      measured("whole steps of smoothness do not each change the map: the other checks judge it"))
+    read = TRUNCATES_SMOOTHNESS.found(code_of(t).reachable(["dp_stereo"]))
+    t.fail(measured("dp_stereo(left, right, smoothness=0.5) gives exactly the map of smoothness=0, and 1.5 that "
+                    "of 1, while 0, 1 and 2 each give another: the weight is rounded down to a whole number (a "
+                    "penalty of 0.5 per pixel of jump is none at all)")
+           + (from_code(f"; your code {read}: keep it a float.") if read else "."),
+           mistake=TRUNCATED)
+
 # ================================================================== ex6 structured light
 ex6 = lab.exercise("ex6", "Structured light", functions=[
     "gray_code_patterns(width, n_bits)", "simulate_structured_light(depth, f, baseline, n_bits)",

@@ -176,6 +176,13 @@ MISTAKES = {
             return T_dst_inv @ H @ T_src
         """, ["the caller's `src` in place", "called a second time on that same array"]),
     # ---------------------------------------------------------------- ex3
+    # the blind set 1201c's 08/04: the matched positions kept as int32 (as for drawing)
+    "match_features with the keypoint positions cast to int32": ("lab08.ex3", """
+        _match_features = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _match_features(img1, img2, ratio, method)
+            return np.array(pts1, dtype=np.int32), np.array(pts2, dtype=np.int32)
+        """, ["are whole numbers (an array of int32)", "your code makes them integers"]),
     "no ratio test": ("lab08.ex3", """
         _reference_match = match_features
         def match_features(img1, img2, ratio=0.75, method="sift"):

@@ -690,6 +690,13 @@ MISTAKES = {
             return np.where(bits.any(axis=0), depth_from_disparity(disparity, f, baseline), 0.0)
         """, ["put together least significant first"]),
     # ---- the window's size
+    # the blind set 1201c's 12/05: the weight converted with int()
+    "dp_stereo with the smoothness truncated to an integer": ("lab12.ex5", """
+        _dp_stereo = dp_stereo
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            weight = None if smoothness is None else int(smoothness)
+            return _dp_stereo(left, right, max_disparity, block_size, weight)
+        """, ["rounded down to a whole number", "converts smoothness to an integer"]),
     "block_matching sums a window of half the block size": ("lab12.ex4", """
         def _box_mean(image, block_size):
             radius = max(1, block_size // 2)
