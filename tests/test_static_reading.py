@@ -495,7 +495,9 @@ def test_the_references_hold_none_of_these_findings():
     new = {"a view of an array read after the array was written", "the random generator is seeded again at every "
            "turn of a loop", "a mean taken of an array already centred",
            "the homogeneous result of cv2.triangulatePoints is not divided by w",
-           "np.fill_diagonal repeats a list shorter than the diagonal", "np.eye(n, k) fills its whole off-diagonal"}
+           "np.fill_diagonal repeats a list shorter than the diagonal", "np.eye(n, k) fills its whole off-diagonal",
+           "the last turn's value is used after the loop, not the best one kept",
+           "an alias of an array is changed in place"}
     for path in sorted((ROOT / "reference_solutions").glob("lab*.py")):
         assert not one(path.read_text()) & new, path.name
 
@@ -523,6 +525,86 @@ def test_an_opencv_constant_given_another_parameters_place_is_named():
                   "cv2.warpAffine(img, M, size, flags=cv2.INTER_LINEAR)", "cv2.normalize(img, None, 0, 255, cv2.NORM_MINMAX)",
                   "cv2.circle(out, c, 3, color, cv2.FILLED)", "cv2.BFMatcher(cv2.NORM_HAMMING, True)"):
         assert not one(f"def f(out, c, color, a, b, K, img, mx, my, M, size, ends):\n    return {right}\n"), right
+
+
+def test_the_last_turns_value_read_after_a_loop_that_kept_the_best_is_named():
+    ransac = """
+        def homography_ransac(src, dst, threshold=3.0, n_iters=500, seed=None):
+            best_count, best_inliers = -1, None
+            for _ in range(n_iters):
+                H = fit(src, dst)
+                inliers = errors(H, src, dst) < threshold
+                if inliers.sum() > best_count:
+                    best_count, best_inliers = inliers.sum(), inliers
+            return fit(src[{kept}], dst[{kept}]), {kept}
+        """
+    assert one(ransac.format(kept="inliers")) == {"the last turn's value is used after the loop, not the best one kept"}
+    assert not one(ransac.format(kept="best_inliers"))
+    # assigned again after the loop, before it is read; a name the loop never assigns
+    assert not one("""
+        def f(xs):
+            best = None
+            for x in xs:
+                y = x * 2
+                if y > 0:
+                    best = y
+            y = best
+            return y
+        """)
+    assert not one("""
+        def f(xs, own):
+            for x in xs:
+                if x > 0:
+                    target = own
+            return own
+        """)
+
+
+def test_a_step_applied_to_one_of_two_twin_coordinates_is_named():
+    rotate = """
+        def rotate(image, angle_deg=45.0):
+            h, w = image.shape[:2]
+            cx, cy = (w - 1) / 2.0, (h - 1) / 2.0
+            c, s = np.cos(np.radians(angle_deg)), np.sin(np.radians(angle_deg))
+            xs, ys = np.meshgrid(np.arange(w, dtype=np.float64), np.arange(h, dtype=np.float64))
+            dx, dy = xs - cx, ys - cy
+            map_x = (cx + c * dx - s * dy).astype(np.float32)
+            map_y = ({centre}s * dx + c * dy).astype(np.float32)
+            return cv2.remap(image, map_x, map_y, cv2.INTER_LINEAR)
+        """
+    assert one(rotate.format(centre="")) == {"`map_y` lacks the `cy` its twin `map_x` has"}
+    assert not one(rotate.format(centre="cy + "))
+    # a term only one coordinate has by its formula (K's skew, beside the other coordinate's own name)
+    assert not one("""
+        def to_pixels(K, xd, yd):
+            map_x = K[0, 0] * xd + K[0, 1] * yd + K[0, 2]
+            map_y = K[1, 1] * yd + K[1, 2]
+            return map_x, map_y
+        """)
+
+
+def test_an_alias_changed_in_place_is_named():
+    scaled = """
+        def project_focal_lengths(points, focal_lengths):
+            base = pinhole_project(points, 1.0)
+            results = []
+            for f in focal_lengths:
+                xy = {copy}
+                xy *= f
+                results.append(xy)
+            return np.stack(results)
+        """
+    assert one(scaled.format(copy="base")) == {"an alias of an array is changed in place"}
+    assert not one(scaled.format(copy="base.copy()"))
+    assert not one(scaled.format(copy="base * 1"))
+    # a counter binds anew; a loop's own variable is no array
+    assert not one("""
+        def f(items):
+            for i in range(len(items)):
+                j = i
+                j += 2
+            return j
+        """)
 
 
 def test_a_parameter_compared_with_a_string_the_api_spells_otherwise_is_named():

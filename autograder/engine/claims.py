@@ -76,6 +76,19 @@ def from_code(text: str) -> str:
     return text
 
 
+GUESSED: set[str] = set()
+
+
+def guessed(name: str) -> str:
+    """``name``, a mistake's name a check infers about the student's code from what it measured (a
+    default too weak for the cost's scale), where other code would measure the same: a change of their
+    code confirmed on the check's own inputs (:mod:`autograder.engine.mutants.repair`) that mends the
+    failure elsewhere takes its place. Names of what the output shows (the rotation goes the other way)
+    stay beside such a change. Returns ``name``."""
+    GUESSED.add(name)
+    return name
+
+
 def guard(text: str, asks: Predicate, instead: str | None = None, functions: tuple = ()) -> str:
     """Register the diagnosis ``text``: wherever a failed check's message or hint holds it, it is
     said only when the student's code does not already do what ``asks`` reads (else ``instead``;

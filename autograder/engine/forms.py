@@ -137,6 +137,14 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
     channels = _channels_form(got, expected)
     if channels is not None:
         return channels
+    if len(got) == len(expected) >= 3 and None not in expected and got != expected \
+            and sorted(got) == sorted(expected) and len(set(expected)) == len(expected):
+        # (each length once: which axis went where is read from the lengths alone)
+        order = tuple(expected.index(n) for n in got)
+        moved = [i for i, axis in enumerate(order) if axis != i]
+        which = f"axes {moved[0]} and {moved[1]} exchanged" if len(moved) == 2 else f"in the order {order}"
+        return Form(measured(f"the same lengths, but the axes are in the wrong order ({which}: stacked along another "
+                             f"axis, or transposed?)"), "the axes are in the wrong order")
     if len(expected) == 1 and len(got) == 2 and 1 in got and _fits((max(got),), expected):
         return Form(measured(f"it looks like a {'column' if got[1] == 1 else 'row'} of shape {got} where a flat "
                              f"array of {max(got)} values is asked (ravel() it)"),

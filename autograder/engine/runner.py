@@ -556,11 +556,15 @@ def _named_by_unused_parameter(verdict: Verdict, trial: Trial) -> Verdict:
 
 
 def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: Trial) -> Verdict:
-    """A failing verdict that names no mistake, naming the cause the submission's code shows in the
-    functions the check called (a finding of :mod:`autograder.loading.reading`), when there is one: the
-    check measured the failure, the reading says where it comes from. It takes no points."""
+    """A failing verdict naming the cause the submission's code shows in the functions the check called
+    (a finding of :mod:`autograder.loading.reading`), when there is one: the check measured the failure,
+    the reading says where it comes from. It takes no points. Where the check named the mistake itself
+    (an effect: "the last row is not [0, 0, 1]"), only a finding that is a slip wherever it is written
+    (:attr:`Finding.certain`) is said, after that name, which stays."""
     called = functions_called(check)
     findings = findings_for(reading, called, bool(trial.whole_numbers & called))
+    if verdict.mistake:
+        findings = [f for f in findings if f.certain and f.sentence.split(" (line", 1)[-1] not in str(verdict.message)]
     if not findings:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
@@ -569,7 +573,11 @@ def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: T
     where = finding.sentence.replace(f"(line {finding.line})",
                                      f"({check.exercise.lab.module}.py, line {finding.line})", 1)
     sentence = f"Reading your code: {where}."
-    return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=finding.mistake)
+    if verdict.mistake:
+        lead = first.rstrip() + ("" if first.rstrip().endswith((".", ":", "!", "?")) else ".")
+        return replace(verdict, message=f"{lead} {sentence}{newline}{rest}")
+    # (a fixed hint beside the cause read in their code would only guess at another one)
+    return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=finding.mistake, hint="")
 
 
 def _named_by_error_model(verdict: Verdict, check: Check, trial: Trial, raised: bool = False) -> Verdict:
@@ -973,8 +981,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = _named_by_exception(verdict, trial, tb)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure == "" and not inherited:
         verdict = _named_by_misread_output(verdict, trial)
-    if reading is not None and status in (FAILED, PARTIAL) and not verdict.mistake \
-            and student_failure in ("", "exception") and not inherited:
+    if reading is not None and status in (FAILED, PARTIAL) and student_failure in ("", "exception") \
+            and not inherited:
         verdict = _named_by_reading(verdict, reading, check, trial)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_defaults(verdict, trial)

@@ -15,6 +15,7 @@ by 16 held in a module-level name) gives no such measurement and no name.
   ``if not smoothness:``), which takes 0 for "not given";
 - :data:`LINES_FROM_SIDES_ONLY` -- lines ``a x + b y + c = 0`` drawn by dividing by ``b`` only (the
   left and right borders, ``x = 0`` and ``x = w - 1``): a steep line leaves through the top and bottom;
+- :data:`SKIPS_VERTICAL` -- a line with ``b = 0`` skipped (``continue``) before dividing by ``b``;
 - :data:`CAMERA_WITHOUT_K` -- a camera matrix ``[R | t]`` stacked and never multiplied by K, in code
   that never normalises its points (``K^-1 x``, ``cv2.undistortPoints``);
 - :func:`name_batched_vt_row` -- ``Vt[-1]`` of an SVD of a stack of systems, told from an answer with
@@ -103,6 +104,24 @@ def _divides_by_name_or_entry(names: tuple[str, ...], index: int) -> Predicate:
 # Lines a x + b y + c = 0 drawn as y = -(a x + c) / b only: a division by b, none by a.
 LINES_FROM_SIDES_ONLY = (_divides_by_name_or_entry(("b",), 1) & ~_divides_by_name_or_entry(("a",), 0)).saying(
     "computes each line's y from x, y = -(a x + c) / b (it divides by b, never by a)")
+
+
+def _skips_zero_b(function) -> bool:
+    """An ``if`` testing a line's ``b`` against zero (``b == 0``, ``abs(b) < 1e-12``, ``np.isclose(b, 0)``)
+    whose body skips the line (``continue``): vertical lines are never drawn."""
+    for node in ast.walk(function):
+        if not isinstance(node, ast.If) or not any(isinstance(n, ast.Continue) for n in node.body):
+            continue
+        names = {n.id for n in ast.walk(node.test) if isinstance(n, ast.Name)}
+        numbers = [n.value for n in ast.walk(node.test) if isinstance(n, ast.Constant)
+                   and isinstance(n.value, (int, float)) and not isinstance(n.value, bool)]
+        if "b" in names and numbers and all(abs(v) < 1e-3 for v in numbers):
+            return True
+    return False
+
+
+# Lines with b = 0 (vertical) skipped before y = -(a x + c) / b is computed.
+SKIPS_VERTICAL = Predicate("skips every line with b = 0 (`if ...: continue`)", _skips_zero_b)
 
 
 _STACKS = ("hstack", "column_stack", "concatenate", "c_")

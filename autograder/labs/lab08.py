@@ -620,8 +620,11 @@ def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, 
         if truth.consistent(H, pts1[:, ::-1], pts2[:, ::-1]).mean() >= min_fraction:
             t.fail(f"{what}: x and y are swapped: " + XY_HINT.said(t), mistake="x and y are swapped")
     if len(pts1) < min_matches:
+        capped = _cut_to(code_of(t).reachable(["match_features"]), len(pts1))
         t.fail(f"{what} returned {len(pts1)} matches; at least {min_matches} are expected on this "
-               "pair (the true homography is a mild change of view)")
+               "pair (the true homography is a mild change of view)"
+               + (from_code(f": your code keeps the first {len(pts1)} (`{capped}`); return every match that passes "
+                            "the ratio test") if capped else ""), mistake=MATCHES_CUT if capped else "")
     t.fail(f"{what}: only {format_apart(fraction, min_fraction, 2, percent=True)} of the {len(pts1)} "
            f"matches agree with the true homography (within {MATCH_TOLERANCE:g} px); at least "
            f"{min_fraction:.0%} expected.",
@@ -652,6 +655,12 @@ def match_ratio(t):
     summary = (f"ratio=0.5 gave {counts[0.5]} matches ({format_apart(fractions[0.5], 0.9, 2, percent=True)} "
                "correct), "
                f"ratio=0.9 gave {counts[0.9]} ({fractions[0.9]:.0%} correct)")
+    capped = _cut_to(code_of(t).reachable(["match_features"]), counts[0.5])
+    if counts[0.5] == counts[0.9] and capped:
+        t.fail(f"{summary}: both ratios give exactly {counts[0.5]} matches. "
+               + from_code(f"Your code keeps the first {counts[0.5]} (`{capped}`): the count is the cut's, not the "
+                           "ratio test's; return every match that passes the test."),
+               mistake=MATCHES_CUT)
     if counts[0.5] == counts[0.9]:
         t.fail(f"{summary}: the ratio argument has no effect (ratio is ignored). " + RATIO_IGNORED_HINT.said(t),
                mistake="ratio is ignored")
@@ -698,6 +707,20 @@ def match_subpixel(t):
                       "a pixel off. Return the keypoints' positions as floats")
            + (from_code(f"; your code {read}.") if read else "."),
            mistake="the keypoint positions are cut to whole pixels")
+
+MATCHES_CUT = "the matches are cut to a fixed number"
+
+
+def _cut_to(functions, count: int) -> str:
+    """The slice ``x[:count]`` (or ``sorted(...)[:count]``) a function cuts a list to, as written; "" when none does."""
+    for function in functions:
+        for node in ast.walk(function):
+            if isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Slice) and node.slice.lower is None \
+                    and node.slice.step is None and isinstance(node.slice.upper, ast.Constant) \
+                    and node.slice.upper.value == count:
+                return ast.unparse(node)
+    return ""
+
 
 def drawing_case():
     """Colour img1 (240x180), grey img2 (200x150) showing the same scene, 12 true matches."""
@@ -1781,10 +1804,11 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
             t.fail(f"{what}: at its best place the panorama differs from img1 by {error:.0f} grey levels on "
                    f"average: {shown}.")
         t.images(what, yours=panorama, img1=img1, img2=img2)
-        saturated = _saturated(panorama, (img1, img2))
+        saturated = _saturated(panorama, (img1, img2), code_of(t).reachable(["stitch"]))
         t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs "
                f"from img1 by {error:.0f} grey levels; {shown}): "
-               + (saturated if saturated else IMG1_SHIFTED.said(t, ['stitch'])))
+               + (saturated if saturated else IMG1_SHIFTED.said(t, ['stitch'])),
+               mistake=NOT_DIVIDED if NOT_DIVIDED_SAID in saturated else "")
     store[key + "/judge"] = PanoramaJudge(scene, panorama, 0, offset)
     return store[key + "/judge"]
 
@@ -1809,18 +1833,48 @@ def _img1_only_shifted(function) -> bool:
     return False
 
 
-def _saturated(panorama, images) -> str:
+NOT_DIVIDED = "the weighted sum is never divided by the sum of the weights"
+NOT_DIVIDED_SAID = "never divided by the sum of its weights"
+
+
+def _weights_never_divided(functions) -> tuple[str, int] | None:
+    """(name, line) of a sum of weights added up (``weights += w``, a name holding "weight" or "wsum")
+    that nothing is divided by (``/``, ``/=``, np.divide, cv2.divide); None otherwise."""
+    for function in functions:
+        divisors = set()
+        for n in ast.walk(function):
+            if isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.Div):
+                divisor = n.right if isinstance(n, ast.BinOp) else n.value
+                divisors |= {m.id for m in ast.walk(divisor) if isinstance(m, ast.Name)}
+            if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide" and len(n.args) >= 2:
+                divisors |= {m.id for m in ast.walk(n.args[1]) if isinstance(m, ast.Name)}
+        for n in ast.walk(function):
+            if isinstance(n, ast.AugAssign) and isinstance(n.op, ast.Add) and isinstance(n.target, ast.Name) \
+                    and ("weight" in n.target.id.lower() or "wsum" in n.target.id.lower().replace("_", "")) \
+                    and n.target.id not in divisors:
+                return n.target.id, n.lineno
+    return None
+
+
+def _saturated(panorama, images, functions=()) -> str:
     """A measured sentence when much of a panorama is pure white where the images are not (values far
-    above 255 clipped: a blend divided by a sum of weights near 0), else ``""``."""
+    above 255 clipped: a blend divided by a sum of weights near 0, or never divided when ``functions``,
+    the code read, divide nothing), else ``""``."""
     if not isinstance(panorama, np.ndarray) or panorama.ndim != 3 or panorama.dtype != np.uint8:
         return ""
     white = float(np.all(panorama == 255, axis=2).mean())
     theirs = max(float(np.all(_as_bgr(image) == 255, axis=2).mean()) for image in images)
     if white < 0.2 or white < 10 * theirs:
         return ""
-    return measured(f"{white:.0%} of your panorama is pure white (255), where the images have {theirs:.0%}: "
-                    "the values there are far above 255 before they are clipped, as when a weighted sum is divided "
-                    "by weights that are 0 there (are the weights added up over the images?)")
+    said = measured(f"{white:.0%} of your panorama is pure white (255), where the images have {theirs:.0%}: "
+                    "the values there are far above 255 before they are clipped, ")
+    undivided = _weights_never_divided(functions)
+    if undivided:
+        return said + from_code(f"as when a weighted sum is never divided by the sum of its weights: your code adds "
+                                f"the weights up in `{undivided[0]}` (line {undivided[1]}) but divides nothing by it "
+                                "(a feathered blend is sum(w * image) / sum(w))")
+    return said + measured("as when a weighted sum is divided by weights that are 0 there (are the weights added up "
+                           "over the images?)")
 
 
 def _as_bgr(image):

@@ -811,7 +811,9 @@ def _aperture_call(t: Trial, X, aperture, n_rays, seed):
     what = f"simulate_aperture(points, f={APERTURE_F:g}, aperture={aperture:g}, n_rays={n_rays}, seed={seed})"
     got = t.call("simulate_aperture", X, APERTURE_F, aperture, n_rays=n_rays, seed=seed)
     if isinstance(got, np.ndarray) and got.shape == (n_rays, len(X), 2) and n_rays != len(X):
-        t.fail(f"{what} returned shape {got.shape}; expected (N, n_rays, 2) = ({len(X)}, {n_rays}, 2)")
+        t.fail(f"{what} returned shape {got.shape}; expected (N, n_rays, 2) = ({len(X)}, {n_rays}, 2): "
+               + measured("the axes are exchanged, (n_rays, N, 2): the rays are stacked along the first axis, where "
+                          "row i must hold point i's rays."), mistake="the axes are in the wrong order")
     return t.expect_array(got, what, shape=(len(X), n_rays, 2), kind="f", finite=True), what
 
 

@@ -164,6 +164,21 @@ NORMALISE_K_HINT = Hint("divide K by K[2, 2] (P is only known up to scale)",
                         asks=divides_by("_[2, 2]", "_[-1, -1]", says="divides by K[2, 2]"),
                         instead="your code {found}, but the K returned is not the divided one (or is changed "
                                 "afterwards); P is only known up to scale")
+SIGN_TEST_INVERTED = "the sign test on det(P[:, :3]) is the wrong way round (P negated where det > 0)"
+
+
+# (the same answer comes from RQ's signs left unfixed when K's whole diagonal comes out negative and the
+# division by K[2, 2] hides it: the test written the wrong way round is read, not inferred)
+INVERTED_SIGN_TEST = (expr("np.linalg.det(_) > 0") | expr("np.linalg.det(_) >= 0") | expr("0 < np.linalg.det(_)")
+                      | expr("0 <= np.linalg.det(_)")).saying("negates P where det(P[:, :3]) > 0")
+
+
+def _the_negated_camera(R, t, R_true, t_true) -> bool:
+    """Whether (R, t) is the true pose times -1 (the rotation's determinant then -1)."""
+    return np.abs(R + R_true).max() <= at_precision(1e-6) and \
+        np.abs(t + t_true).max() <= at_precision(1e-6 * magnitude(t_true), magnitude(t_true))
+
+
 SIGNS_HINT = Hint("multiply the offending columns of K and the same rows of R by -1 (R then comes out with det +1, "
                   "as the block decomposed has det > 0)", asks=(calls("np.sign") | expr("np.diag(np.sign(np.diag(_)))")).saying(
                       "fixes signs with np.sign"),
@@ -539,6 +554,14 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
                         + (sign_fix if unnegated else "RQ is unique only up to signs; " + SIGNS_HINT.said(t)))
     if not rotation:
         problems.append("R is not a rotation (R R^T != I)")
+    elif np.linalg.det(R) < 0 and not unsigned and not unnegated and _the_negated_camera(R, tv, R_true, t_true) \
+            and INVERTED_SIGN_TEST.found(code_of(t).reachable(["decompose_camera_matrix"])):
+        # (K right, R and t the true ones negated: K [R | t] = -P -- the sign test on det(P[:, :3]) went the
+        # wrong way: a P of det > 0 negated, or one of det < 0 left by code that negates P under a test)
+        labels.append(SIGN_TEST_INVERTED)
+        problems.append(measured("det(R) = -1, with K right and R and t the true ones times -1 (K [R | t] = -P, "
+                                 f"det(P[:, :3]) {'< 0' if negative else '> 0'} here)")
+                        + from_code(f": {SIGN_TEST_INVERTED}; negate P only where det(P[:, :3]) < 0"))
     elif np.linalg.det(R) < 0 and not unsigned:   # with K's signs unfixed, det(R) = -1 follows from them
         flips = SIGNS_HINT.contradicts(code_of(t), ["decompose_camera_matrix"])
         labels.append("P is not negated when det(P[:, :3]) < 0" if unnegated else

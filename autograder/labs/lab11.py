@@ -35,7 +35,7 @@ from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canva
                               name_mistake, over_variants, where_matrices_differ, where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
-from .code_signs import CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, constant_factor, factor_words, name_batched_vt_row
+from .code_signs import CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, SKIPS_VERTICAL, constant_factor, factor_words, name_batched_vt_row
 from .lab09 import COPY_HINT
 
 lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
@@ -554,6 +554,7 @@ def name_dark_on_grey(t: Trial, what: str, image, lines, missed):
 
 
 SIDES_ONLY = "each line's y is computed from its x only, never its x from y: steep lines are missed"
+VERTICAL_SKIPPED = "vertical lines (b = 0) are skipped"
 
 
 def name_steep_lines_missed(t: Trial, what: str, missed, lines, shape, stray: float):
@@ -578,13 +579,26 @@ def name_steep_lines_missed(t: Trial, what: str, missed, lines, shape, stray: fl
                         f"{'are' if crossing > 1 else 'is'} drawn right" if crossing else
                         "none crosses it from the left border to the right")
                      + f" ({stray:.0%} of the changed pixels are away from every line)")
-    found = LINES_FROM_SIDES_ONLY.found(code_of(t).reachable(["draw_epipolar_lines"]))
-    if found:
-        t.fail(f"{measured_part}: it looks like {SIDES_ONLY}. Your code {found}: "
+    vertical = np.abs(b) <= 1e-9 * np.hypot(a, b)
+    skipped = SKIPS_VERTICAL.found(code_of(t).reachable(["draw_epipolar_lines"]))
+    steep_drawn = ~missed & (np.abs(a) > np.abs(b)) & ~vertical
+    sides_only = LINES_FROM_SIDES_ONLY.found(code_of(t).reachable(["draw_epipolar_lines"]))
+    if skipped and vertical[missed].all() and vertical.any() and (steep_drawn.any() or not sides_only):
+        # (the vertical lines alone missing, and skipped by the code: not the steep ones -- those drawn
+        # here show it, where there are some)
+        shown = f"; the steep lines that are not vertical ({', '.join(map(str, np.flatnonzero(steep_drawn)))}) are " \
+                "drawn" if steep_drawn.any() else ""
+        t.fail(f"{measured_part}: the lines missing are the vertical ones (b = 0){shown}. "
+               + from_code(f"Your code {skipped}: a vertical line x = -c / a is a line of the image too; draw it from "
+                           "(x, 0) to (x, h - 1), with x = -c / a."),
+               mistake=VERTICAL_SKIPPED)
+    if sides_only:
+        t.fail(f"{measured_part}: it looks like {SIDES_ONLY}. Your code {sides_only}: "
                + from_code("a steep line (|a| > |b|) has few columns in the image, and its y = -(a x + c) / b falls "
                            "outside it at the left and right borders (for b = 0, a vertical line, it is undefined); for "
                            "those, compute x = -(b y + c) / a from y (at y = 0 and y = h - 1, or at every row), or "
-                           "draw between far points and let cv2.clipLine cut them."),
+                           "draw between far points and let cv2.clipLine cut them"
+                           + (f"; and it {skipped}." if skipped else ".")),
                mistake=SIDES_ONLY)
     t.fail(measured_part + ".")
 

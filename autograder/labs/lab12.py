@@ -32,7 +32,7 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
-from ..engine.claims import (calls_any, checklist, divides_by, from_code, guard, look_at, measured,
+from ..engine.claims import (calls_any, checklist, divides_by, from_code, guard, guessed, look_at, measured,
                              passes_parameters, takes_last_row_of_vt, wherever_written)
 from ..engine.forms import shape_form
 from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
@@ -1948,7 +1948,7 @@ SMOOTHNESS_IGNORED = "the smoothness term is ignored"
 PENALTY_REWARDS = "the smoothness penalty rewards jumps instead of costing them"
 
 
-WEAK_DEFAULT = "the default smoothness penalty is too weak for the cost's scale"
+WEAK_DEFAULT = guessed("the default smoothness penalty is too weak for the cost's scale")
 # a conversion that stops uint8 differences wrapping round (a float, or a signed integer type)
 FLOATS = ("float", "float32", "float64", "double", "img_as_float", "int", "int16", "int32", "int64")
 
@@ -2034,7 +2034,7 @@ ZERO_DEFAULT = Predicate("sets smoothness to 0 when it is None", _zero_default)
 # Said of the map, not of the code: a last column wrong alone shows where the backtracking starts,
 # not why (a start that is right meets wrong energies when the forward pass is wrong).
 BACKTRACKING = "the last column, where the backtracking starts, is wrong while the rest of the map is mostly right"
-OVERSMOOTHED = "the default smoothness is far too large for your cost's scale"
+OVERSMOOTHED = guessed("the default smoothness is far too large for your cost's scale")
 
 
 def name_oversmoothing(t: Trial, what: str, got, scene, allowed: float):

@@ -26,6 +26,7 @@ deeply to parse, or with more than :data:`MAX_NODES` syntax nodes, is not read
 from __future__ import annotations
 
 import ast
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -64,6 +65,7 @@ class Finding:
     mistake: str
     sentence: str
     needs: str = ""
+    certain: bool = False   # a slip wherever it is written: said beside a check's own name of the effect too
 
 
 @dataclass(frozen=True)
@@ -173,6 +175,10 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _w_never_divided(name, function)
     found += _diagonal_refilled(name, function)
     found += _constant_out_of_place(name, function)
+    found += _last_turn_used(name, function)
+    found += _third_operand_as_out(name, function)
+    found += _twin_lopsided(name, function)
+    found += _alias_changed(name, function)
     return found
 
 
@@ -857,7 +863,7 @@ def _diagonal_refilled(name, function) -> list[Finding]:
                                 f"{name} (line {_line(node)}) calls `{ast.unparse(node)}`: np.fill_diagonal writes "
                                 f"its {given} values again and again along the whole diagonal ({side} entries), so "
                                 f"entry [{given}, {given}] gets {ast.unparse(node.args[1].elts[0])}; give all "
-                                f"{side} values")]
+                                f"{side} values", certain=True)]
         if isinstance(node, ast.Call) and _call_name(node) == "eye" and node.args and isinstance(node.args[0], ast.Constant) \
                 and isinstance(node.args[0].value, int) and node.args[0].value >= 3 and any(
                     k.arg == "k" and isinstance(k.value, (ast.Constant, ast.UnaryOp)) and ast.unparse(k.value) not in ("0",)
@@ -943,5 +949,165 @@ def _constant_out_of_place(name, function) -> list[Finding]:
             return [Finding(name, _line(node), f"{path} is passed as {called}'s {given}",
                             f"{name} (line {_line(node)}) passes {path} as argument {position + 1} of {called}, "
                             f"which is `{given}` there, so {given} gets {_number_of(constant)}; {path} belongs to "
-                            f"`{meant}`: pass it by name ({meant}={path})")]
+                            f"`{meant}`: pass it by name ({meant}={path})", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ the last turn's value after a loop
+def _kept_copies(loop) -> dict[str, str]:
+    """In ``loop``'s body, the names an ``if <comparison>:`` copies into another (``best_inliers =
+    inliers``, ``best_H, best_mask = H, mask``): {name: the copy's name}."""
+    kept = {}
+    for node in ast.walk(loop):
+        if not (isinstance(node, ast.If) and isinstance(node.test, ast.Compare)):
+            continue
+        for statement in node.body:
+            if not isinstance(statement, ast.Assign) or len(statement.targets) != 1:
+                continue
+            target, value = statement.targets[0], statement.value
+            pairs = zip(target.elts, value.elts) if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) \
+                and len(target.elts) == len(value.elts) else [(target, value)]
+            for copy, original in pairs:
+                if isinstance(original, ast.Call) and isinstance(original.func, ast.Attribute) \
+                        and original.func.attr == "copy":
+                    original = original.func.value
+                if isinstance(copy, ast.Name) and isinstance(original, ast.Name) and copy.id != original.id:
+                    kept[original.id] = copy.id
+    return kept
+
+
+def _assigns(statement, name: str) -> bool:
+    return any(isinstance(n, ast.Name) and n.id == name and isinstance(n.ctx, ast.Store)
+               for n in ast.walk(statement))
+
+
+def _last_turn_used(name, function) -> list[Finding]:
+    """A name a loop copies into a best-so-far name under a comparison, read after the loop before it is
+    assigned again: the last turn's value where the best one was kept (``best_inliers = inliers`` in the
+    loop, ``src[inliers]`` after it)."""
+    for block in (getattr(node, field) for node in ast.walk(function) for field in ("body", "orelse", "finalbody")
+                  if isinstance(getattr(node, field, None), list)):
+        for position, loop in enumerate(block):
+            if not isinstance(loop, (ast.For, ast.While)):
+                continue
+            kept = _kept_copies(loop)
+            for original, copy in kept.items():
+                if not any(_assigns(statement, original) for statement in loop.body):   # (one value every turn)
+                    continue
+                for statement in block[position + 1:]:
+                    read = next((n for n in ast.walk(statement) if isinstance(n, ast.Name) and n.id == original
+                                 and isinstance(n.ctx, ast.Load)), None)
+                    if read is not None:
+                        return [Finding(name, _line(read), "the last turn's value is used after the loop, not the "
+                                        "best one kept",
+                                        f"{name} (line {_line(read)}) reads `{original}` after the loop: that is the "
+                                        f"value of the loop's last turn, while the best one was kept in `{copy}` "
+                                        f"(line {_line(loop)} on); use `{copy}` there", certain=True)]
+                    if _assigns(statement, original):
+                        break
+    return []
+
+
+# ------------------------------------------------------------------ a ufunc's third argument
+# NumPy's binary functions take (a, b, out): a third array given positionally is written into, not
+# multiplied (``np.matmul(K2.T, F, K1)`` is K2^T F, stored into K1).
+BINARY_UFUNCS = frozenset({"matmul", "dot", "multiply", "add", "subtract", "divide", "true_divide"})
+
+
+def _third_operand_as_out(name, function) -> list[Finding]:
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and len(node.args) == 3 and _call_name(node) in BINARY_UFUNCS \
+                and _attribute_path(node.func) in (f"np.{_call_name(node)}", f"numpy.{_call_name(node)}") \
+                and not any(isinstance(a, ast.Starred) for a in node.args) \
+                and not (isinstance(node.args[2], ast.Constant) and node.args[2].value is None):
+            called, third = _attribute_path(node.func), ast.unparse(node.args[2])
+            return [Finding(name, _line(node), f"{called}'s third argument is its output, not an operand",
+                            f"{name} (line {_line(node)}) calls `{ast.unparse(node)}`: the third argument of "
+                            f"{called} is `out`, the array the result is written into, so {called} computes "
+                            f"{ast.unparse(node.args[0])} with {ast.unparse(node.args[1])} alone and overwrites "
+                            f"`{third}`; for a product of three, write a @ b @ c", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ twins written unlike each other
+_TWIN_TOKEN = re.compile(r"^([a-z]?)([xy])([a-z0-9]?)$")
+
+
+def _twin_name(identifier: str) -> str:
+    """``identifier`` with x and y exchanged where they stand as a coordinate (``map_x`` -> ``map_y``,
+    ``cx`` -> ``cy``, ``xs`` -> ``ys``, ``x0`` -> ``y0``; ``max`` stays)."""
+    parts = identifier.split("_")
+    for i, part in enumerate(parts):
+        match = _TWIN_TOKEN.match(part)
+        if match:
+            parts[i] = match.group(1) + {"x": "y", "y": "x"}[match.group(2)] + match.group(3)
+    return "_".join(parts)
+
+
+def _twin_lopsided(name, function) -> list[Finding]:
+    """Two assignments of twin names (``map_x = cx + c * dx - s * dy``, ``map_y = s * dx + c * dy``)
+    whose right sides read the same names, x and y exchanged, but for one the other lacks, which the
+    function has (``cy``): a step applied to one coordinate only."""
+    known = set(_assigned_names(function)) | {a.arg for a in function.args.args + function.args.kwonlyargs}
+    assigned = {}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+            assigned.setdefault(node.targets[0].id, node)
+    for first, statement in assigned.items():
+        second = _twin_name(first)
+        if second == first or second not in assigned or first > second:
+            continue
+        mine = {_twin_name(n) for n in _names_in(statement.value)}
+        theirs = _names_in(assigned[second].value)
+        for lacking, kept, missing in ((second, first, mine - theirs), (first, second, theirs - mine)):
+            lone = assigned[lacking]
+            term = _twin_name(next(iter(missing))) if lacking == first and missing else next(iter(missing), "")
+            # (one name apart; the name missing is a coordinate's, is the function's, is neither twin itself, and
+            # its own twin is not there either -- x's skew term K[0, 1] * yd beside yd has no twin in y's)
+            if len(mine ^ theirs) == 1 and len(missing) == 1 and term in known and term != _twin_name(term) \
+                    and term not in (first, second) and _twin_name(term) not in _names_in(lone.value):
+                return [Finding(name, _line(lone), f"`{lacking}` lacks the `{term}` its twin `{kept}` has",
+                                f"{name} (line {_line(lone)}) computes `{lacking} = {ast.unparse(lone.value)}`, "
+                                f"without the `{term}` its twin `{kept}` has (`{_twin_name(term)}` there): a step "
+                                f"applied to one coordinate only")]
+    return []
+
+
+# ------------------------------------------------------------------ an alias changed in place
+def _alias_changed(name, function) -> list[Finding]:
+    """``b = a`` (another name for the same array, no copy), then ``b *= f`` or ``b[...] = v`` in place, in a
+    loop or with ``a`` read afterwards: ``a`` changes with it."""
+    loops = [node for node in ast.walk(function) if isinstance(node, (ast.For, ast.While))]
+    in_loop = {id(n) for loop in loops for statement in loop.body for n in ast.walk(statement)}
+    # (arrays: names made by a call or a subscript -- an int's `j += 1` binds anew, it changes nothing shared)
+    counters = {n.id for loop in loops if isinstance(loop, ast.For) for n in ast.walk(loop.target)
+                if isinstance(n, ast.Name)}
+    made = _assigned_names(function)
+    arrays = {target for target, values in made.items()
+              if values and all(isinstance(v, (ast.Call, ast.Subscript)) for v in values)} - counters
+    statements = _statements_in_order(function)
+    aliases = {}   # alias -> (original, line bound, bound in a loop)
+    for statement in statements:
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name):
+            target, value = statement.targets[0].id, statement.value
+            aliases.pop(target, None)
+            if isinstance(value, ast.Name) and value.id != target and value.id in arrays:
+                aliases[target] = (value.id, _line(statement), id(statement) in in_loop)
+            continue
+        # (`n -= 1` counts: a number binds anew)
+        changed = statement.target if isinstance(statement, ast.AugAssign) \
+            and not isinstance(statement.value, ast.Constant) else None
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0],
+                                                                                          ast.Subscript):
+            changed = statement.targets[0].value
+        if isinstance(changed, ast.Name) and changed.id in aliases:
+            original, bound, looping = aliases[changed.id]
+            later = any(isinstance(n, ast.Name) and n.id == original and isinstance(n.ctx, ast.Load)
+                        and _line(n) > _line(statement) for n in ast.walk(function))
+            if looping or later:
+                return [Finding(name, _line(statement), "an alias of an array is changed in place",
+                                f"{name} (line {_line(statement)}) changes `{changed.id}` in place, but "
+                                f"`{changed.id} = {original}` (line {bound}) made it another name for the same array, "
+                                f"so `{original}` changes with it" + (" at every turn of the loop" if looping else "")
+                                + f"; take a copy (`{changed.id} = {original}.copy()`)", certain=True)]
     return []

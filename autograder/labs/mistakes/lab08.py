@@ -177,6 +177,13 @@ MISTAKES = {
         """, ["the caller's `src` in place", "called a second time on that same array"]),
     # ---------------------------------------------------------------- ex3
     # the blind set 1201c's 08/04: the matched positions kept as int32 (as for drawing)
+    # the blind set 1201d's 08/03: the best 50 matches kept whatever the ratio
+    "match_features keeping the first 50 matches": ("lab08.ex3", """
+        _match_features = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            pts1, pts2 = _match_features(img1, img2, ratio, method)
+            return pts1[:50], pts2[:50]
+        """, ["your code keeps the first 50 (`pts1[:50]`)"]),
     "match_features with the keypoint positions cast to int32": ("lab08.ex3", """
         _match_features = match_features
         def match_features(img1, img2, ratio=0.75, method="sift"):
@@ -381,7 +388,7 @@ MISTAKES = {
                     best_count, best_inliers = inliers.sum(), inliers
             H = homography_dlt(src[best_inliers], dst[best_inliers])
             return H, inliers
-        """, ["the mask and h returned do not agree", "another sample"]),
+        """, ["reads `inliers` after the loop: that is the value of the loop's last turn"]),
     "RANSAC with a fixed threshold (the argument ignored)": ("lab08.ex4", """
         _reference_ransac = homography_ransac
         def homography_ransac(src, dst, threshold=3.0, seed=None):
@@ -405,6 +412,28 @@ MISTAKES = {
             return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
         """, ["returns the last model drawn rather than the best one."]),   # (500 samples: not "too few")
     # ---------------------------------------------------------------- ex5
+    # the blind set 1201d's 08/06: the feathered sum never divided by the summed weights
+    "panorama as the weighted sum, never divided by the weights": ("lab08.ex5", """
+        def _compose(images, homographies):
+            corners = np.vstack([transform_points(H, _corners(im)) for im, H in zip(images, homographies)])
+            x_min, y_min = np.floor(corners.min(axis=0))
+            x_max, y_max = np.ceil(corners.max(axis=0))
+            shift = _translation(-x_min, -y_min)
+            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
+            total = np.zeros((size[1], size[0], 3), np.float64)
+            weights = np.zeros((size[1], size[0]), np.float64)
+            for image, H in zip(images, homographies):
+                h, w = image.shape[:2]
+                ones = np.zeros((h + 2, w + 2), np.uint8)
+                ones[1:-1, 1:-1] = 1
+                border_distance = cv2.distanceTransform(ones, cv2.DIST_L2, 3)[1:-1, 1:-1]
+                warped = apply_homography(_bgr(image), shift @ H, size).astype(np.float64)
+                weight = apply_homography(border_distance.astype(np.float32), shift @ H, size)
+                total += warped * weight[..., None]
+                weights += weight
+            panorama = total
+            return np.clip(np.round(panorama), 0, 255).astype(np.uint8)
+        """, ["never divided by the sum of its weights", "adds the weights up in `weights`"]),
     "img2 as the reference": ("lab08.ex5", """
         def stitch(img1, img2):
             return _compose([img2, img1], [np.eye(3), _pairwise_homography(img1, img2)])

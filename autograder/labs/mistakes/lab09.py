@@ -14,6 +14,21 @@ DROPS_BEHIND = """
 
 
 MISTAKES = {
+    # the blind set 1201d's 09/06: the rays stacked along the first axis
+    "aperture rays returned as (n_rays, N, 2)": ("lab09.ex4", """
+        _simulate_aperture = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return np.swapaxes(_simulate_aperture(points, f, aperture, n_rays, seed), 0, 1)
+        """, ["the axes are exchanged, (n_rays, n, 2)"]),
+    # the blind set 1201c's 09/07: the line type given where the thickness goes
+    "circles drawn with cv2.LINE_AA as their thickness": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            for x, y in np.asarray(pts, np.float64).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(out, (int(round(x)), int(round(y))), radius, color, cv2.LINE_AA)
+            return out
+        """, ["the circles are larger than radius", "passes cv2.line_aa as argument 5 of cv2.circle"]),
     "aperture halved (taken as a diameter)": ("lab09.ex4", """
         _reference_aperture = simulate_aperture
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
@@ -126,7 +141,7 @@ MISTAKES = {
         def project_focal_lengths(points, focal_lengths):
             X, _ = _points(points)
             return np.stack([pinhole_project(X, f) for f in focal_lengths], axis=1)
-        """, ["(f, n, 2)"]),
+        """, ["axes are in the wrong order"]),
     "aperture as diameter": ("lab09.ex4", """
         _right = simulate_aperture
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):

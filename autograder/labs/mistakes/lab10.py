@@ -114,6 +114,15 @@ MISTAKES = {
             t = np.linalg.solve(K, P[:, 3])
             return K / K[2, 2], R, t
         """, ["det(p[:, :3]) < 0", "multiply p by -1 first"]),
+    # the blind set 1201d's 10/05: the determinant's sign test the wrong way round
+    "decomposition negating P when det(M) > 0": ("lab10.ex5", """
+        _decompose = decompose_camera_matrix
+        def decompose_camera_matrix(P):
+            K, R, t = _decompose(P)
+            if np.linalg.det(np.asarray(P, np.float64)[:, :3]) > 0:
+                return K, -R, -t
+            return K, R, t
+        """, ["is the wrong way round (p negated where det > 0)", "k [r | t] = -p"]),
     "t as camera centre": ("lab10.ex5", """
         _right = decompose_camera_matrix
         def decompose_camera_matrix(P):

@@ -143,6 +143,17 @@ MISTAKES = {
             return T2.T @ En @ T1
         """, ["a step after it changes the singular values again"]),
     # ---------------------------------------------------------------- ex2
+    # the blind set 1201d's 11/03: a vertical line (b = 0) skipped to avoid the division
+    "epipolar lines skipping the vertical ones": ("lab11.ex2", """
+        _draw_epipolar_lines = draw_epipolar_lines
+        def draw_epipolar_lines(image, lines):
+            canvas = np.array(image, dtype=np.uint8, copy=True)
+            for a, b, c in np.asarray(lines, np.float64).reshape(-1, 3):
+                if abs(b) < 1e-12:
+                    continue
+                canvas = _draw_epipolar_lines(canvas, np.array([[a, b, c]]))
+            return canvas
+        """, ["the lines missing are the vertical ones (b = 0)", "skips every line with b = 0"]),
     "epipolar lines with F transposed": ("lab11.ex2", """
         def epipolar_lines(F, pts1):
             lines = _homogeneous(pts1) @ np.asarray(F, float)
@@ -282,6 +293,12 @@ MISTAKES = {
             return _draw(image, np.asarray(lines, float)[:, [1, 0, 2]])
         """, ["x and y swapped"]),
     # ---------------------------------------------------------------- ex3
+    # the blind sets 1129c's 11/03 and 1201d's 11/04: np.matmul given three matrices (the third is `out`)
+    "essential by np.matmul of three matrices": ("lab11.ex3", """
+        def essential_from_fundamental(F, K1, K2):
+            K1 = np.array(K1, np.float64)
+            return np.matmul(np.asarray(K2, np.float64).T, np.asarray(F, np.float64), K1)
+        """, ["the third argument of np.matmul is `out`"]),
     "essential with K1 and K2 swapped": ("lab11.ex3", """
         def essential_from_fundamental(F, K1, K2):
             return np.asarray(K1).T @ np.asarray(F) @ np.asarray(K2)
