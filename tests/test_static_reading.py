@@ -607,6 +607,27 @@ def test_an_alias_changed_in_place_is_named():
         """)
 
 
+def test_the_strip_np_roll_brings_round_blanked_for_one_sign_only_is_named():
+    rolled = """
+        def translate(image, tx=100, ty=50):
+            dx, dy = int(tx), int(ty)
+            shifted = np.roll(image, (dy, dx), axis=(0, 1))
+            {blank}
+            return shifted
+        """
+    assert one(rolled.format(blank="shifted[:dy] = 0")) == {"the strip np.roll brings round is blanked for one sign only"}
+    # the sign handled, or a disparity of a range (never below 0)
+    assert not one(rolled.format(blank="shifted[:max(dy, 0)] = 0"))
+    assert not one(rolled.format(blank="if dy > 0: shifted[:dy] = 0"))
+    assert not one("""
+        def costs(left, right):
+            for d in range(16):
+                shifted = np.roll(right, d, axis=1)
+                shifted[:, :d] = 0
+            return shifted
+        """)
+
+
 def test_a_parameter_compared_with_a_string_the_api_spells_otherwise_is_named():
     import ast
     from autograder.engine import strings_compared

@@ -239,6 +239,8 @@ class Trial:
                 self._last_changed = outcome.changed
                 if outcome.changed:
                     self._changed_in_place(function, args, kwargs, outcome)
+                if outcome.shared:
+                    self._one_array_handed_out(function, outcome)
                 return outcome.value
             failure = StudentFailure(outcome, self._describe(function, outcome))
             if outcome.kind == "exception":
@@ -424,6 +426,19 @@ class Trial:
         found = size_given_as_shape(code_of(self), functions_read(self))
         return f"; your code {found}" if found else ""
 
+    def _one_array_handed_out(self, function: str, outcome) -> None:
+        """Fail when ``function`` returned the module-level array ``outcome.shared``, the same object an earlier
+        call returned (the worker tells), with other values than its previous call in this check: the array a
+        caller kept from that call has become this one's (each answer crosses as its own copy: only the values
+        tell)."""
+        earlier = next((value for called, _, _, value in reversed(self.calls[:-1]) if called == function), None)
+        if earlier is None or _same_values(earlier, outcome.value):
+            return
+        self.fail(f"{function}() returns the module-level array `{outcome.shared}` itself, not a new one: called "
+                  "again with other arguments it wrote other values into that same array, so the result a caller "
+                  f"kept from the first call changed too. Return a new array (made inside the function, or "
+                  f"`{outcome.shared}.copy()`).", mistake="a module-level array is returned itself")
+
     def expect_array(self, value, what: str, *, shape=None, dtype=None, kind=None,
                      finite: bool = False) -> np.ndarray:
         """Check that a returned value is an array of the documented form.
@@ -471,6 +486,10 @@ class Trial:
                 self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}"
                           + self._why_swapped(value.shape, shape) + also)
         if dtype is not None and value.dtype != np.dtype(dtype):
+            canvas = _hints().float_canvas(self) if np.dtype(dtype) == np.uint8 and value.dtype.kind == "f" else ""
+            if canvas:   # (the array returned was made float by NumPy's default dtype: read, the cause)
+                self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}: " + canvas,
+                          mistake="an image made with NumPy's default dtype (float64)")
             self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}",
                       hint=_hints().UINT8_HINT.said(self) if np.dtype(dtype) == np.uint8 else "")
         if kind is not None and value.dtype.kind not in kind:
@@ -774,3 +793,13 @@ def _type_name(value) -> str:
 def _shape_text(shape) -> str:
     inner = ", ".join("N" if s is None else str(s) for s in shape)
     return f"({inner},)" if len(shape) == 1 else f"({inner})"
+
+
+def _same_values(first, second) -> bool:
+    """Whether two answers hold the same numbers (arrays, or tuples of them); False where unsure."""
+    try:
+        if isinstance(first, (tuple, list)) and isinstance(second, (tuple, list)):
+            return len(first) == len(second) and all(_same_values(a, b) for a, b in zip(first, second))
+        return bool(np.array_equal(np.asarray(first), np.asarray(second), equal_nan=True))
+    except (TypeError, ValueError):
+        return False

@@ -99,3 +99,21 @@ def sentence(function: str, differing: list) -> str:
     # read: the student's def and the reference's (the API's) defaults, for parameters this call left out
     return from_code(f"your `{function}` gives {theirs}, where the API's {'defaults are' if len(differing) > 1 else 'default is'} "
                      f"{api} (this call leaves {'them' if len(differing) > 1 else 'it'} out)")
+
+
+def sentence_for(trial, parameter: str) -> str:
+    """The sentence naming the student's own default of ``parameter`` where the check ``trial``'s calls
+    left it out and their def writes another literal than the API's; "" otherwise."""
+    from .hints import code_of
+    from .mutants import naming
+
+    model = naming.model_for(trial.lab)
+    calls = list(trial.calls)
+    if model is None or not calls:
+        return ""
+    found = left_out(code_of(trial), model.source, calls)
+    if found is None:
+        return ""
+    function, differing = found
+    differing = [d for d in differing if d[0] == parameter]
+    return sentence(function, differing) if differing else ""

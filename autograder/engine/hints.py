@@ -1044,6 +1044,28 @@ FLOAT_HINT = Hint("build it with dtype=float (an array of whole numbers is an in
                   instead="your code {found} somewhere, but not the array it returns")
 
 
+_CANVAS_MAKERS = ("zeros", "ones", "empty", "full")
+
+
+def float_canvas(t) -> str:
+    """A sentence naming ``np.zeros(image.shape)`` (``ones``, ``empty``, ``full``) written without a dtype
+    in the functions ``t``'s calls reached -- an image made float64 by NumPy's default -- or ""."""
+    from .claims import from_code
+
+    code = code_of(t)
+    called = list(dict.fromkeys(call[0] for call in getattr(t, "calls", ()) if call))
+    for function in code.reachable(called) if called else ():
+        for node in ast.walk(function):
+            if isinstance(node, ast.Call) and _path(node.func) in {f"np.{m}" for m in _CANVAS_MAKERS} \
+                    and node.args and ".shape" in ast.unparse(node.args[0]) \
+                    and not any(k.arg == "dtype" for k in node.keywords) \
+                    and not (_path(node.func) == "np.full" and len(node.args) > 2):
+                return from_code(f"your code makes `{ast.unparse(node)}` (line {node.lineno}), which NumPy makes "
+                                 "float64 when no dtype is given; give it the image's: dtype=image.dtype "
+                                 "(or np.uint8)")
+    return ""
+
+
 def signature_of_def(fn: ast.FunctionDef) -> inspect.Signature | None:
     """The student's own def as a signature (its names; defaults only marked), to bind a call's arguments."""
     arguments = fn.args

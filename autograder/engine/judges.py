@@ -580,6 +580,23 @@ def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, resu
         _ignored(t, what, parameter, values, result)
 
 
+def judge_default_is_the_apis(t: Trial, what: str, call, parameter: str, api_value,
+                              result: str = "result") -> Verdict:
+    """A check of its own that ``parameter``'s default is the API's ``api_value``: ``call()`` (the
+    parameter left out) and ``call(**{parameter: api_value})`` must give the same result (a function
+    whose answers vary for one input cannot be judged so: call it where they do not). Named from the
+    student's def when it writes another literal (:mod:`autograder.engine.defaults_given`)."""
+    left_out, given = call(), call(**{parameter: api_value})
+    if _same_result(left_out, given) or not isinstance(left_out, (np.ndarray, tuple, list)):
+        return passed(f"{what} with {parameter} left out gives what {parameter}={api_value!r} gives")
+    from . import defaults_given
+
+    said = defaults_given.sentence_for(t, parameter)
+    t.fail(f"{what} with {parameter} left out gives another {result} than with {parameter}={api_value!r}, the "
+           f"API's default" + (f": {said}." if said else ": keep the API's default."),
+           mistake=defaults_given.MISTAKE if said else "")
+
+
 def judge_parameter_changes_result(t: Trial, what: str, call, parameter: str, values,
                                    result: str = "result") -> Verdict:
     """A check of its own that ``parameter`` is used: ``call(**{parameter: value})`` for the two

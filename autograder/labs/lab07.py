@@ -194,6 +194,17 @@ def rotation_matrix_property(t):
     t.for_all(st.tuples(finite_floats(-360, 360), centres), holds)
 
 
+@ex2.check("rotation_matrix about a centre given as a NumPy array (a 2D point), twice", points=1)
+def rotation_matrix_array_centre(t):
+    """A centre held as an array (the API's 2D points are float arrays) is the caller's: a function that
+    writes into it (``c = np.asarray(center); c -= R @ c``) answers its first call rightly and the caller's
+    next one about another centre (:mod:`autograder.engine.inplace` names it from the second call)."""
+    center = np.array([40.0, -25.5])
+    what = "rotation_matrix(30, center=np.array([40.0, -25.5]))"
+    judge_matrix(t, what, t.call("rotation_matrix", 30, center=center), truth.rotation(30, (40.0, -25.5)),
+                 truth.rotation_mistakes(30, (40.0, -25.5)), probe=matrix_probe(t, "rotation_matrix"))
+
+
 @ex2.check("rotate(image) by the default 45 degrees about the centre", points=3)
 def rotate_default(t):
     source = photo("astronaut", (200, 150))

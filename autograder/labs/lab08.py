@@ -38,7 +38,8 @@ from ..engine.compare import blurred_difference, format_apart, format_arrays_apa
 from ..engine.hints import (RANDOM_DRAWS, RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope,
                              calls, code_of, expr, fits_on_picked_points, functions_read, keyword, matmul_of, mentions,
                              passes_product, picked_point_fits)
-from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_parameter_used,
+from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_default_is_the_apis,
+                      judge_parameter_used,
                       judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
                       where_points_differ)
 from ..engine.pictures import difference_heatmap, matches_picture, svg_points
@@ -720,6 +721,14 @@ def _cut_to(functions, count: int) -> str:
                     and node.slice.upper.value == count:
                 return ast.unparse(node)
     return ""
+
+
+@ex3.check("match_features' default ratio is the API's 0.75", points=1)
+def match_default_ratio(t):
+    img1, img2, _ = truth.matching_pair("chelsea", (240, 180), seed=2)
+    return judge_default_is_the_apis(t, "match_features(img1, img2)",
+                                     lambda **kw: t.call("match_features", img1, img2, **kw), "ratio", 0.75,
+                                     "set of matches")
 
 
 def drawing_case():
@@ -2034,6 +2043,18 @@ def fail_if_left_out(t: Trial, judge: PanoramaJudge, what: str):
            mistake=mistake)
 
 
+def _corners_of_every_image(functions) -> bool:
+    """Corners warped inside a loop or a comprehension (``[transform_points(H, _corners(im)) for im, H in
+    ...]``): every image's, by whatever homography each is given."""
+    warping = ("transform_points", "perspectiveTransform", "apply_h")
+    for function in functions:
+        for node in ast.walk(function):
+            if isinstance(node, (ast.ListComp, ast.GeneratorExp, ast.For)) and any(
+                    isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in warping for n in ast.walk(node)):
+                return True
+    return False
+
+
 ONE_IMAGE_CANVAS = "the canvas is only one image's size"
 NOT_SHIFTED = "the canvas is not shifted for negative coordinates"
 SHIFT_TOO_SMALL = "the canvas's shift and size leave an image out"
@@ -2121,7 +2142,15 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
             # measured: a canvas of the bounding box's size is told only the shift
             sized = "" if canvas_has_the_bounding_box_size(judge) else \
                 measured(" and size the canvas to the bounding box of all warped corners")
-            if BUILDS_A_TRANSLATION.found(code_of(t).reachable(functions_read(t))):
+            read = code_of(t).reachable(functions_read(t))
+            if sized and BUILDS_A_TRANSLATION.found(read) and _corners_of_every_image(read):
+                # (the code already sizes the canvas from every image's warped corners: the corners it
+                # warps are off, so an image's homography is -- no cause of the canvas's own)
+                t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}: "
+                       + measured("the canvas is smaller than the bounding box of all the truly warped corners, ")
+                       + from_code("although your code sizes it from every image's warped corners: look at the "
+                                   f"homography {name} is warped with (its chain of pairwise homographies)."))
+            if BUILDS_A_TRANSLATION.found(read):
                 # (a shift the code builds, too small: made from some images' corners only, or not applied
                 # to every image -- the panorama tells which only by its size)
                 t.fail(f"{what}: {amount:.0f} px of {name} are cut off at the {side}, although your code builds a "

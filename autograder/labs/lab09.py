@@ -807,9 +807,9 @@ def focal_lengths_used(got, X, fs) -> list | None:
 APERTURE_F = 200.0
 
 
-def _aperture_call(t: Trial, X, aperture, n_rays, seed):
-    what = f"simulate_aperture(points, f={APERTURE_F:g}, aperture={aperture:g}, n_rays={n_rays}, seed={seed})"
-    got = t.call("simulate_aperture", X, APERTURE_F, aperture, n_rays=n_rays, seed=seed)
+def _aperture_call(t: Trial, X, aperture, n_rays, seed, f=APERTURE_F):
+    what = f"simulate_aperture(points, f={f:g}, aperture={aperture:g}, n_rays={n_rays}, seed={seed})"
+    got = t.call("simulate_aperture", X, f, aperture, n_rays=n_rays, seed=seed)
     if isinstance(got, np.ndarray) and got.shape == (n_rays, len(X), 2) and n_rays != len(X):
         t.fail(f"{what} returned shape {got.shape}; expected (N, n_rays, 2) = ({len(X)}, {n_rays}, 2): "
                + measured("the axes are exchanged, (n_rays, N, 2): the rays are stacked along the first axis, where "
@@ -902,6 +902,36 @@ def aperture_statistics(t):
                f"{per_point.max():.2f} radii; uniform over the disc gives 0.71).",
                hint=UNIFORM_DISC_HINT.said(t))
     return passed(f"mean on the ideal projection, RMS spread {per_point.mean():.2f} blur radii")
+
+
+# Where f is large against Z (the check above: f = 200, Z of 1 to 8) the disc's radius a (1 + f / Z) is
+# nearly a f / Z: an offset scaled by f / Z alone (the 1 dropped) spreads 96-99.5% as far and passes there.
+# With f = 1 and Z of 1 to 8 it spreads 50-11% as far; the reference's largest ray lands 0.999-1.0 radii
+# out on 4000 rays a point.
+SMALL_F = 1.0
+DROPPED_ONE = "the aperture offsets are scaled by f / Z, without the 1 of (1 + f / Z)"
+
+
+@ex4.check("simulate_aperture with a short focal length: the blur disc's radius is aperture * (1 + f / Z), "
+           "never less than the aperture", points=1)
+def aperture_short_focal(t):
+    X = truth.points_in_front(44, n=6, z_range=(1.0, 8.0))
+    aperture, n = 0.3, 4000
+    got, what = _aperture_call(t, X, aperture, n, 3, f=SMALL_F)
+    ideal = truth.pinhole(X, SMALL_F)
+    radius = truth.blur_radius(X, SMALL_F, aperture)
+    d, _ = _spread(got, ideal)
+    reach = d.max(axis=1) / radius
+    if np.all((reach > 0.97) & (reach < 1.02)):
+        return passed(f"the farthest rays land {reach.min():.3f}-{reach.max():.3f} radii from the ideal projection")
+    fraction = (SMALL_F / X[:, 2]) / (1.0 + SMALL_F / X[:, 2])
+    if np.all(np.abs(reach - fraction) < 0.03):
+        t.fail(measured(f"{what}: the farthest rays of each point land {format_matrix(reach, 2)} radii out, which is "
+                        f"(f / Z) / (1 + f / Z) for each point's Z: it looks like {DROPPED_ONE}; a ray through the "
+                        "aperture point A lands A (1 + f / Z) from the ideal projection, at least A away."),
+               mistake=DROPPED_ONE)
+    t.fail(f"{what}: the farthest rays of each point land {format_matrix(reach, 2)} radii from the ideal projection; "
+           "with the blur disc's radius aperture * (1 + f / Z) they reach 1.")
 
 
 TWO_PI = (expr("2 * np.pi") | expr("np.pi * 2") | expr("_ * 2 * np.pi") | expr("2.0 * np.pi") | expr("2 * math.pi")

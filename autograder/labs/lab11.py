@@ -346,6 +346,17 @@ def _first_two(node) -> bool:
                for n in ast.walk(node))
 
 
+def _entry_numbers(node) -> set:
+    """The constant last indices ``node`` reads entries by (``l[2]``, ``lines[:, 2]``: {2})."""
+    numbers = set()
+    for n in ast.walk(node):
+        if isinstance(n, ast.Subscript):
+            index = n.slice.elts[-1] if isinstance(n.slice, ast.Tuple) and n.slice.elts else n.slice
+            if isinstance(index, ast.Constant) and isinstance(index.value, int):
+                numbers.add(index.value)
+    return numbers
+
+
 def _euclidean_of_a_b(function) -> bool:
     """sqrt(a^2 + b^2) of the lines' own first two entries: ``np.hypot``, a 2-norm (``np.linalg.norm`` without
     another ``ord``) or a square root of the first two entries or of two squares."""
@@ -353,8 +364,10 @@ def _euclidean_of_a_b(function) -> bool:
         if not isinstance(node, ast.Call):
             continue
         last = _path(node.func).rsplit(".", 1)[-1]
-        if last == "hypot":
-            return True
+        if last == "hypot":   # (of entries 0 and 1 where it reads entries by number: not l[0] and l[2])
+            if all(not _entry_numbers(a) or _entry_numbers(a) <= {0, 1} for a in node.args[:2]):
+                return True
+            continue
         ordered = [k.value for k in node.keywords if k.arg == "ord"] + list(node.args[1:2] if last == "norm" else [])
         if last == "norm" and all(isinstance(o, ast.Constant) and o.value in (2, None) for o in ordered) \
                 and node.args and _first_two(node.args[0]):

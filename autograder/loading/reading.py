@@ -179,6 +179,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _third_operand_as_out(name, function)
     found += _twin_lopsided(name, function)
     found += _alias_changed(name, function)
+    found += _rolled_strip_one_sign(name, function)
     return found
 
 
@@ -1111,3 +1112,38 @@ def _alias_changed(name, function) -> list[Finding]:
                                 f"so `{original}` changes with it" + (" at every turn of the loop" if looping else "")
                                 + f"; take a copy (`{changed.id} = {original}.copy()`)", certain=True)]
     return []
+
+
+# ------------------------------------------------------------------ the strip np.roll brought round, for one sign
+def _rolled_strip_one_sign(name, function) -> list[Finding]:
+    """``np.roll(image, (dy, dx), ...)`` then ``shifted[:dy] = 0`` (the strip rolled round for dy >= 0) with
+    nothing in the function comparing dy with 0: for dy < 0 the strip is ``shifted[dy:]``, and ``[:dy]``
+    blanks every row but the last |dy|."""
+    shifts = {n.id for node in ast.walk(function) if isinstance(node, ast.Call) and _call_name(node) == "roll"
+              for argument in node.args[1:2] + [k.value for k in node.keywords if k.arg == "shift"]
+              for n in ast.walk(argument) if isinstance(n, ast.Name)}
+    signed = {n.id for node in ast.walk(function)
+              if isinstance(node, ast.Compare) or (isinstance(node, ast.Call) and _call_name(node) in
+                                                   ("max", "min", "abs", "maximum", "minimum", "clip", "sign"))
+              for n in ast.walk(node) if isinstance(n, ast.Name)}
+    # (a loop's `for d in range(...)` never goes below 0)
+    signed |= {node.target.id for node in ast.walk(function) if isinstance(node, ast.For)
+               and isinstance(node.target, ast.Name) and isinstance(node.iter, ast.Call) and _call_name(node.iter) == "range"}
+    blanked = []   # (line, the subscript blanked, the shift's name)
+    for node in ast.walk(function):
+        if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Subscript)):
+            continue
+        index = node.targets[0].slice
+        for part in index.elts if isinstance(index, ast.Tuple) else [index]:
+            if isinstance(part, ast.Slice) and part.step is None and (part.lower is None) != (part.upper is None):
+                bound = part.upper if part.lower is None else part.lower
+                if isinstance(bound, ast.Name) and bound.id in shifts and bound.id not in signed:
+                    blanked.append((_line(node), ast.unparse(node.targets[0]), bound.id))
+    if not blanked:
+        return []
+    blanked.sort()
+    places = " and ".join(f"`{text}` (line {line})" for line, text, _ in blanked)
+    names = ", ".join(dict.fromkeys(shift for _, _, shift in blanked))
+    return [Finding(name, blanked[0][0], "the strip np.roll brings round is blanked for one sign only",
+                    f"{name} blanks {places}: the strip np.roll brings round when {names} >= 0; for a negative "
+                    "shift that strip is at the other end of the axis, and the line blanks the image itself instead")]

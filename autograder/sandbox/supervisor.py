@@ -255,6 +255,7 @@ class CallOutcome:
     seconds: float = 0.0
     modified: tuple[str, ...] = ()
     changed: tuple = ()
+    shared: str = ""   # the module-level array the value is (worker.module_array_returned), if any
 
 
 def _changed_arrays(changed) -> tuple:
@@ -948,9 +949,11 @@ class Sandbox:
         modified = reply.get("modified")
         modified = tuple(name[:100] for name in modified[:20] if type(name) is str) \
             if type(modified) is list else ()
+        shared = reply.get("shared")
+        shared = shared if type(shared) is str and len(shared) <= 80 and shared.isidentifier() else ""
         if reply["ok"]:
             return CallOutcome(ok=True, value=reply.get("value"), seconds=seconds, modified=modified,
-                               changed=_changed_arrays(reply.get("changed")))
+                               changed=_changed_arrays(reply.get("changed")), shared=shared)
         kind = reply.get("kind") if reply.get("kind") in WORKER_KINDS else "exception"
         message = reply.get("message") if type(reply.get("message")) is str else ""
         tb = reply.get("traceback") if type(reply.get("traceback")) is str else ""

@@ -299,6 +299,26 @@ def modified_arguments(function, snapshot):
         return []
 
 
+def module_array_returned(module, value, most: int = 2000) -> tuple:
+    """(name, array) of a module-level array the returned value is, or views (``M = _IDENTITY; M[0, 2] = tx;
+    return M``), else ("", None): the first ``most`` names of the module looked at; never raises."""
+    np = sys.modules.get("numpy")   # (an array returned means NumPy is loaded; nothing is imported for this)
+    if np is None:
+        return "", None
+    try:
+        results = value if type(value) is tuple else (value,)
+        arrays = [r for r in results[:8] if type(r) is np.ndarray]
+        if not arrays:
+            return "", None
+        for key, held in list(vars(module).items())[:most]:
+            if type(key) is str and type(held) is np.ndarray and held.size \
+                    and any(np.may_share_memory(a, held) for a in arrays):
+                return key[:80], held
+    except Exception:  # noqa: BLE001 - a module's namespace is the student's: nothing in it stops the reply
+        return "", None
+    return "", None
+
+
 CHANGED_BYTES = 8 * 2**20   # the most bytes of changed argument arrays sent back with a reply
 
 
@@ -377,6 +397,7 @@ class Worker:
         self.modules = {}
         self.forbidden_called = []
         self.memo = _Memo()   # the variants' calls of the student's unchanged helpers (see handle_variant)
+        self.handed_out = {}  # module-level array name -> the array a call last returned (see _handed_out_again)
 
     # -- import
     def load(self, name):
@@ -478,7 +499,19 @@ class Worker:
             return failure("forbidden_call", self._forbidden_message(self.forbidden_called[0], name),
                            seconds=seconds)
         return {"ok": True, "value": value, "seconds": seconds,
-                "modified": modified_arguments(function, inputs), "changed": changed_arrays(inputs)}
+                "modified": modified_arguments(function, inputs), "changed": changed_arrays(inputs),
+                "shared": self._handed_out_again(module, value)}
+
+    def _handed_out_again(self, module, value) -> str:
+        """The name of a module-level array the value is or views, when an earlier call returned that same
+        array object too (one array handed to every caller; a global rebound to a new array each call is
+        not); "" otherwise."""
+        name, held = module_array_returned(module, value)
+        if not name:
+            return ""
+        again = self.handed_out.get(name) is held
+        self.handed_out[name] = held
+        return name if again else ""
 
     # -- a variant: the student's functions with some of their defs rewritten by the grader
     def handle_variant(self, request):

@@ -6,12 +6,28 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 MISTAKES = {
     # the API's rule: a function that takes an image returns its channel count (shapes named by
     # autograder.engine.forms); a grey image made BGR to "see it in colour", a colour one made grey
+    # the blind set 1201e's 07/01: one module-level identity written into and handed to every caller
+    "translation_matrix returning one module-level array": ("lab07.ex1", """
+        _IDENTITY = np.eye(3)
+        def translation_matrix(tx, ty):
+            M = _IDENTITY
+            M[0, 2], M[1, 2] = tx, ty
+            return M
+        """, ["returns the module-level array `_identity` itself"]),
     "translate returning BGR for a grey image": ("lab07.ex1", """
         _translate = translate
         def translate(image, tx=100, ty=50):
             colour = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image
             return _translate(colour, tx, ty)
         """, ["channels are not kept", "grey in, grey out"]),
+    # the blind set 1201e's 07/03: the caller's centre array written into
+    "rotation_matrix writing into the caller's centre": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            M = cv2.getRotationMatrix2D(tuple(float(v) for v in center), angle_deg, 1.0)
+            c = np.asarray(center, dtype=np.float64)
+            c -= 0.0 * c + 1.0
+            return np.vstack([M, [0.0, 0.0, 1.0]])
+        """, ["the caller's `center` in place"]),
     "rotate returning grey for a colour image": ("lab07.ex2", """
         _rotate = rotate
         def rotate(image, angle_deg=45):
@@ -23,6 +39,14 @@ MISTAKES = {
         def rotate(image, angle_deg=45):
             return _rotate(image, int(angle_deg))
         """, ["fractional part is lost"]),
+    # the blind set 1201e's 07/07: the result written into a canvas of NumPy's default dtype
+    "scale into a float64 canvas": ("lab07.ex3", """
+        _scale = scale
+        def scale(image, sx=1.5, sy=1.5):
+            canvas = np.zeros(image.shape)
+            canvas[...] = _scale(image, sx, sy)
+            return canvas
+        """, ["your code makes `np.zeros(image.shape)`", "dtype=image.dtype"]),
     "scale building its matrix from the factors as given (integers for whole factors)": ("lab07.ex3", """
         def scale(image, sx=1.5, sy=1.5):
             h, w = image.shape[:2]

@@ -178,6 +178,12 @@ MISTAKES = {
     # ---------------------------------------------------------------- ex3
     # the blind set 1201c's 08/04: the matched positions kept as int32 (as for drawing)
     # the blind set 1201d's 08/03: the best 50 matches kept whatever the ratio
+    # the blind set 1201e's 08/06: Lowe's paper's 0.8 as the default
+    "match_features with the default ratio 0.8": ("lab08.ex3", """
+        _match_features = match_features
+        def match_features(img1, img2, ratio=0.8, method="sift"):
+            return _match_features(img1, img2, ratio, method)
+        """, ["gives `ratio` the default 0.8, where the api's default is ratio=0.75"]),
     "match_features keeping the first 50 matches": ("lab08.ex3", """
         _match_features = match_features
         def match_features(img1, img2, ratio=0.75, method="sift"):

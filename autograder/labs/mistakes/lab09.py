@@ -15,6 +15,16 @@ DROPS_BEHIND = """
 
 MISTAKES = {
     # the blind set 1201d's 09/06: the rays stacked along the first axis
+    # the blind set 1201e's 09/07: the 1 of (1 + f / Z) dropped
+    "aperture offsets scaled by f / Z": ("lab09.ex4", """
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            X, _ = _points(points)
+            rng = np.random.default_rng(seed)
+            radius = aperture * np.sqrt(rng.uniform(0.0, 1.0, size=(len(X), n_rays)))
+            angle = rng.uniform(0.0, 2 * np.pi, size=(len(X), n_rays))
+            A = np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=-1)
+            return pinhole_project(X, f)[:, None, :] - A * (f / X[:, 2])[:, None, None]
+        """, ["without the 1 of (1 + f / z)"]),
     "aperture rays returned as (n_rays, N, 2)": ("lab09.ex4", """
         _simulate_aperture = simulate_aperture
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
