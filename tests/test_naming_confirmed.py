@@ -390,6 +390,8 @@ DIRECT_EVIDENCE = {
                     "and few of them are the input's (measured)",
     "name_zero_smoothness": "the smoothness=0 map is the default's (measured), and the code tests "
                             "smoothness for truth, 'smoothness or X' / 'if not smoothness' (read)",
+    "aperture_short_focal": "each point's farthest ray lands (f / Z) / (1 + f / Z) radii out, for each of six "
+                            "points' own depths (measured: no other slip gives that ratio at every depth)",
 }
 CONFIRMING = {"name_mistake", "confirm", "judge_matrix", "judge_warp", "judge_points", "judge_projective",
               "name_second_warp_mistake", "name_matching_mistake", "probe", "_disc_ratio_on_probe"}

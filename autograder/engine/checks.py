@@ -431,13 +431,15 @@ class Trial:
         call returned (the worker tells), with other values than its previous call in this check: the array a
         caller kept from that call has become this one's (each answer crosses as its own copy: only the values
         tell)."""
+        from .claims import measured   # (claims reads checks: imported when a result is told)
+
         earlier = next((value for called, _, _, value in reversed(self.calls[:-1]) if called == function), None)
         if earlier is None or _same_values(earlier, outcome.value):
             return
-        self.fail(f"{function}() returns the module-level array `{outcome.shared}` itself, not a new one: called "
-                  "again with other arguments it wrote other values into that same array, so the result a caller "
-                  f"kept from the first call changed too. Return a new array (made inside the function, or "
-                  f"`{outcome.shared}.copy()`).", mistake="a module-level array is returned itself")
+        self.fail(measured(f"{function}() returns the module-level array `{outcome.shared}` itself, not a new one: "
+                           "called again with other arguments it wrote other values into that same array, so the "
+                           "result a caller kept from the first call changed too. Return a new array (made inside "
+                           f"the function, or `{outcome.shared}.copy()`)."), mistake="a module-level array is returned itself")
 
     def expect_array(self, value, what: str, *, shape=None, dtype=None, kind=None,
                      finite: bool = False) -> np.ndarray:

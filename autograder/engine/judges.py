@@ -593,7 +593,7 @@ def judge_default_is_the_apis(t: Trial, what: str, call, parameter: str, api_val
 
     said = defaults_given.sentence_for(t, parameter)
     t.fail(f"{what} with {parameter} left out gives another {result} than with {parameter}={api_value!r}, the "
-           f"API's default" + (f": {said}." if said else ": keep the API's default."),
+           f"API's default" + (f": {said}." if said else measured(": keep the API's default.")),
            mistake=defaults_given.MISTAKE if said else "")
 
 

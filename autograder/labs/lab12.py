@@ -1688,10 +1688,10 @@ def block_matching_window_size(t):
         found.append(f"{median:g} px on the {side} x {side} square")
         kept = median >= 8.0   # (halfway between the background's 4 px and the square's 12 px)
         if wins == "background" and kept:
-            kept_by = f"{what} keeps the square at its own disparity ({median:g} px in the median): a 9 x 9 " \
-                      f"window centred on it holds {side * side} of its pixels and {81 - side * side} of the " \
-                      "background's, so the background's disparity (4 px) wins there, as it does for " \
-                      "cv2.StereoBM with blockSize=9."
+            kept_by = measured(f"{what} keeps the square at its own disparity ({median:g} px in the median): a "
+                               f"9 x 9 window centred on it holds {side * side} of its pixels and "
+                               f"{81 - side * side} of the background's, so the background's disparity (4 px) wins "
+                               "there, as it does for cv2.StereoBM with blockSize=9.")
             window = _smaller_window(got, left, right, square)
             if window:   # (the map is that window's map: confirmed, not inferred from the square alone)
                 t.fail(measured(f"{kept_by} Your map is the one {window} gives (SSD), a window smaller than 9 x 9: "
