@@ -285,9 +285,13 @@ def scaling_matrix_example(t):
     judge_matrix_call(t, "scaling_matrix", (1.5, 0.5), truth.scaling, truth.scaling_mistakes)
 
 
-@ex3.check("scaling_matrix for any sx, sy", points=1)
+# Any factor but 0: a negative one mirrors the image (diag(-1, 1, 1) flips x), and is a scaling too.
+SCALE_FACTORS = st.one_of(finite_floats(0.1, 10), finite_floats(-10, -0.1))
+
+
+@ex3.check("scaling_matrix for any sx, sy (negative ones mirror)", points=1)
 def scaling_matrix_property(t):
-    t.for_all(st.tuples(finite_floats(0.1, 10), finite_floats(0.1, 10)), lambda factors: judge_matrix_call(
+    t.for_all(st.tuples(SCALE_FACTORS, SCALE_FACTORS), lambda factors: judge_matrix_call(
         t, "scaling_matrix", factors, truth.scaling, truth.scaling_mistakes))
 
 

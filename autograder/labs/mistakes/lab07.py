@@ -40,6 +40,11 @@ MISTAKES = {
             return _rotate(image, int(angle_deg))
         """, ["fractional part is lost"]),
     # the blind set 1201e's 07/07: the result written into a canvas of NumPy's default dtype
+    # the blind set 1201f's 07/05: the factors' signs dropped
+    "scaling_matrix of the factors' absolute values": ("lab07.ex3", """
+        def scaling_matrix(sx, sy):
+            return np.diag([abs(float(sx)), abs(float(sy)), 1.0])
+        """, ["`abs(float(sx))` to `float(sx)`"]),
     "scale into a float64 canvas": ("lab07.ex3", """
         _scale = scale
         def scale(image, sx=1.5, sy=1.5):
