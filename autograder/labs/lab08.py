@@ -28,7 +28,7 @@ import numpy as np
 from fixtures import lab08 as truth
 from fixtures.images import coverage, photo, warp
 
-from ..engine import conventions
+from ..engine import conventions, inplace
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (THIRD_COORDINATE, THRESHOLD_NAMES, assigns, calls_any, checklist, compares_a_distance_with, divides_by,
@@ -492,6 +492,11 @@ conventions.keeps_grey(ex2, "warp_to_reference", warp_to_reference_inputs, image
 # ================================================================== ex3 features
 ex3 = lab.exercise("ex3", "Feature matching", functions=[
     'match_features(img1, img2, ratio=0.75, method="sift")', "draw_matches(img1, img2, pts1, pts2)"])
+# The sheet's exercises 4 and 5 warp and stitch the same two images whose matches exercise 3 draws: a
+# drawing made into the caller's images (circles at the keypoints) is carried into the panorama.
+for _image in ("img1", "img2"):
+    inplace.shown_after(lab, "draw_matches", _image, "exercises 4 and 5 warp and stitch the same two images "
+                                                     "after exercise 3 draws their matches")
 
 
 def matched_points(t: Trial, what: str, result):

@@ -179,6 +179,15 @@ MISTAKES = {
     # the blind set 1201c's 08/04: the matched positions kept as int32 (as for drawing)
     # the blind set 1201d's 08/03: the best 50 matches kept whatever the ratio
     # the blind set 1201e's 08/06: Lowe's paper's 0.8 as the default
+    # the blind set 1201f's 08/04: the keypoints circled in the caller's own images
+    "draw_matches circling the points in the caller's images": ("lab08.ex3", """
+        _draw_matches = draw_matches
+        def draw_matches(img1, img2, pts1, pts2):
+            for image, pts in ((img1, pts1), (img2, pts2)):
+                for x, y in np.asarray(pts, np.float64).reshape(-1, 2):
+                    cv2.circle(image, (int(round(x)), int(round(y))), 3, (0, 255, 255), 1)
+            return _draw_matches(img1, img2, pts1, pts2)
+        """, ["writes into the caller's `img1` in place"]),
     "match_features with the default ratio 0.8": ("lab08.ex3", """
         _match_features = match_features
         def match_features(img1, img2, ratio=0.8, method="sift"):
