@@ -986,26 +986,32 @@ def _last_turn_used(name, function) -> list[Finding]:
     """A name a loop copies into a best-so-far name under a comparison, read after the loop before it is
     assigned again: the last turn's value where the best one was kept (``best_inliers = inliers`` in the
     loop, ``src[inliers]`` after it)."""
+    # Each block read once from its end: `following` holds, per name, its first read after the statement at
+    # hand (None where it is assigned first) -- no walk of the rest of the block per loop.
     for block in (getattr(node, field) for node in ast.walk(function) for field in ("body", "orelse", "finalbody")
                   if isinstance(getattr(node, field, None), list)):
-        for position, loop in enumerate(block):
-            if not isinstance(loop, (ast.For, ast.While)):
-                continue
-            kept = _kept_copies(loop)
-            for original, copy in kept.items():
-                if not any(_assigns(statement, original) for statement in loop.body):   # (one value every turn)
-                    continue
-                for statement in block[position + 1:]:
-                    read = next((n for n in ast.walk(statement) if isinstance(n, ast.Name) and n.id == original
-                                 and isinstance(n.ctx, ast.Load)), None)
-                    if read is not None:
+        following: dict = {}
+        for statement in reversed(block):
+            if isinstance(statement, (ast.For, ast.While)):
+                stored = {n.id for part in statement.body for n in ast.walk(part)
+                          if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}   # (one value every turn)
+                for original, copy in _kept_copies(statement).items():
+                    read = following.get(original)
+                    if original in stored and read is not None:
                         return [Finding(name, _line(read), "the last turn's value is used after the loop, not the "
                                         "best one kept",
                                         f"{name} (line {_line(read)}) reads `{original}` after the loop: that is the "
                                         f"value of the loop's last turn, while the best one was kept in `{copy}` "
-                                        f"(line {_line(loop)} on); use `{copy}` there", certain=True)]
-                    if _assigns(statement, original):
-                        break
+                                        f"(line {_line(statement)} on); use `{copy}` there", certain=True)]
+            reads, stores = {}, set()
+            for n in ast.walk(statement):
+                if isinstance(n, ast.Name):
+                    if isinstance(n.ctx, ast.Load):
+                        reads.setdefault(n.id, n)
+                    else:
+                        stores.add(n.id)
+            following.update(dict.fromkeys(stores - reads.keys()))
+            following.update(reads)   # (read in the statement that assigns it: a read, as the value before)
     return []
 
 
@@ -1079,7 +1085,14 @@ def _alias_changed(name, function) -> list[Finding]:
     """``b = a`` (another name for the same array, no copy), then ``b *= f`` or ``b[...] = v`` in place, in a
     loop or with ``a`` read afterwards: ``a`` changes with it."""
     loops = [node for node in ast.walk(function) if isinstance(node, (ast.For, ast.While))]
-    in_loop = {id(n) for loop in loops for statement in loop.body for n in ast.walk(statement)}
+    in_loop: set = set()
+    for loop in loops:   # (breadth first: an outer loop marks the loops inside it, which are then skipped)
+        if id(loop) not in in_loop:
+            in_loop.update(id(n) for statement in loop.body for n in ast.walk(statement))
+    last_read: dict = {}   # name -> the last line reading it
+    for n in ast.walk(function):
+        if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load):
+            last_read[n.id] = max(last_read.get(n.id, 0), _line(n))
     # (arrays: names made by a call or a subscript -- an int's `j += 1` binds anew, it changes nothing shared)
     counters = {n.id for loop in loops if isinstance(loop, ast.For) for n in ast.walk(loop.target)
                 if isinstance(n, ast.Name)}
@@ -1103,8 +1116,7 @@ def _alias_changed(name, function) -> list[Finding]:
             changed = statement.targets[0].value
         if isinstance(changed, ast.Name) and changed.id in aliases:
             original, bound, looping = aliases[changed.id]
-            later = any(isinstance(n, ast.Name) and n.id == original and isinstance(n.ctx, ast.Load)
-                        and _line(n) > _line(statement) for n in ast.walk(function))
+            later = last_read.get(original, 0) > _line(statement)
             if looping or later:
                 return [Finding(name, _line(statement), "an alias of an array is changed in place",
                                 f"{name} (line {_line(statement)}) changes `{changed.id}` in place, but "
