@@ -437,9 +437,9 @@ class Trial:
         if earlier is None or _same_values(earlier, outcome.value):
             return
         self.fail(measured(f"{function}() returns the module-level array `{outcome.shared}` itself, not a new one: "
-                           "called again with other arguments it wrote other values into that same array, so the "
-                           "result a caller kept from the first call changed too. Return a new array (made inside "
-                           f"the function, or `{outcome.shared}.copy()`)."), mistake="a module-level array is returned itself")
+                           "called again, it returned that same array holding other values, so the result a caller "
+                           "kept from the earlier call changed too. Return a new array (made inside the function, or "
+                           f"`{outcome.shared}.copy()`)."), mistake="a module-level array is returned itself")
 
     def expect_array(self, value, what: str, *, shape=None, dtype=None, kind=None,
                      finite: bool = False) -> np.ndarray:
