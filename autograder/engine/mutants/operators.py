@@ -1948,6 +1948,9 @@ def _student_changes(node, parent, parents):
             and _dotted(parent.func).rsplit(".", 1)[-1] in ("lstsq", "solve") \
             and not (isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub)):
         yield "sign", "insert", ""   # a term moved to the right-hand side of A x = b without its minus
+    if isinstance(parent, ast.Assign) and parent.value is node and isinstance(node, ast.BinOp) \
+            and isinstance(node.op, ast.MatMult):
+        yield "sign", "insert", ""   # a product's minus dropped: `C = R.T @ t` for a camera centre's `-R.T @ t`
     if isinstance(parent, ast.List) and isinstance(parents.get(id(parent), (None,))[0], ast.List) \
             and isinstance(node, (ast.BinOp, ast.UnaryOp, ast.Call)):
         yield "zero_entry", "0", ""   # a matrix literal's entry that does not belong: `[1, s, -s * (h - 1) / 2]`
@@ -3288,6 +3291,7 @@ def _sibling_changes(node, words):
                     yield "twin_step", (None, ast.unparse(whole)), ""
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS):
         yield from _mirror_changes(node, words)
+    yield from _twin_unit_changes(node, words)
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS) \
             and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, (ast.Add, ast.Sub)):
         # the first term of a sum left bare where its twin's has a step: `y_d = y + ...` beside
@@ -3568,6 +3572,49 @@ def _leading_term(value):
     while isinstance(value, ast.BinOp) and isinstance(value.op, (ast.Add, ast.Sub)):
         value = value.left
     return value
+
+
+def _norm_call(node) -> str:
+    """The dotted name of a norm taken (`np.linalg.norm`), or ""."""
+    if isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] == "norm":
+        return _dotted(node.func)
+    return ""
+
+
+def _unit_vectors(words) -> dict:
+    """Names the def divides by their own norm (`e1 = c / np.linalg.norm(c)`, `n /= norm(n)`) -> that
+    norm's function, read once per def."""
+    if not hasattr(words, "unit_vectors"):
+        units = {}
+        for statement in ast.walk(words.fn):
+            if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
+                    and isinstance(statement.targets[0], ast.Name) and isinstance(statement.value, ast.BinOp) \
+                    and isinstance(statement.value.op, ast.Div) and _norm_call(statement.value.right):
+                units[statement.targets[0].id] = _norm_call(statement.value.right)
+            elif isinstance(statement, ast.AugAssign) and isinstance(statement.op, ast.Div) \
+                    and isinstance(statement.target, ast.Name) and _norm_call(statement.value):
+                units[statement.target.id] = _norm_call(statement.value)
+        words.unit_vectors = units
+    return words.unit_vectors
+
+
+def _twin_unit_changes(node, words):
+    """A vector left at its length where its twin is made a unit vector: `e2 = np.cross(axis, e1)` beside
+    `e1 = c / np.linalg.norm(c)` (a cross product of unit vectors not at right angles is shorter than 1,
+    and a rotation built of the two is none): the twin's division by its norm done to it too."""
+    if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
+        return
+    name, units = node.targets[0].id, _unit_vectors(words)
+    if name in units or any(_norm_call(n) for n in ast.walk(node.value)):
+        return
+    norms = [units[other] for other in units if twin_names(name, other)]
+    if not norms:
+        return
+    value = ast.unparse(node.value)
+    value = f"({value})" if isinstance(node.value, (ast.BinOp, ast.BoolOp, ast.IfExp, ast.Compare)) else value
+    text = f"{value} / {norms[0]}({value})"
+    if len(text) <= 100:
+        yield "twin_step", (None, text), ""
 
 
 def _twin_assignments(node, words):

@@ -278,9 +278,13 @@ class _Student:
                          and not self.reorders_api_results(m) and not self.follows_reference(m)]
                 # (a name swapped for its twin -- R1 for R2, left for right -- first of its kind: the
                 # likeliest slip among a function's many names that might be another's)
+                # (and of each kind, a change of code the reference writes word for word after the others:
+                # mending there likely compensates -- `np.cross(e1, e2)` exchanged beside `C2 = R.T @ T`
+                # whose minus is missing -- and a search bounded in time may end at the first it finds)
                 smallest = sorted(shown, key=lambda m: (
                     m.where != function, not (_twin_swap(self.fixes[m.key]) or self.twin_items(m) or self.zipped_swap(m)
                                               or self.twin_sibling(m)),
+                    m.operator not in ADDITIONS and self.departs_from_reference(m),
                     self.fixes[m.key].size,
                     self.fixes[m.key].written, m.line))
                 # Each kind of slip has its turn: the k-th smallest change of every operator before the
@@ -309,9 +313,28 @@ class _Student:
             statement = nodes[ordinal]
             while not isinstance(statement, ast.stmt) and id(statement) in parents:
                 statement = parents[id(statement)][0]
-            if isinstance(statement, ast.stmt) and id(statement) in self._anchored_in(where):
+            if isinstance(statement, ast.stmt) and id(statement) in self._anchored_in(where) \
+                    and not (operator in ADDITIONS and self._updated_further_in_reference(where, statement)):
                 return True
         return False
+
+    def _updated_further_in_reference(self, where: str, statement: ast.stmt) -> bool:
+        """Whether the name ``statement`` assigns is assigned more often in the reference's def than in the
+        student's: the reference's line, right at that point, is followed there by a step the student
+        left out (`e2 /= np.linalg.norm(e2)` after `e2 = np.cross(axis, e1)`), which a step added to
+        the line itself supplies."""
+        if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1
+                and isinstance(statement.targets[0], ast.Name)):
+            return False
+        name = statement.targets[0].id
+        reference = _defs(_reference_tree(self.reference_source)).get(where)
+        fn = self._defs.get(where)
+
+        def assignments(def_) -> int:
+            return sum(1 for node in ast.walk(def_) if isinstance(node, (ast.Assign, ast.AugAssign))
+                       and any(isinstance(t, ast.Name) and t.id == name
+                               for t in (node.targets if isinstance(node, ast.Assign) else [node.target])))
+        return reference is not None and fn is not None and assignments(reference) > assignments(fn)
 
     def departs_from_reference(self, mutant) -> bool:
         """Whether the change rewrites code the reference's def of that name writes word for word

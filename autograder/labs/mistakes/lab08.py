@@ -354,6 +354,15 @@ MISTAKES = {
             err = np.linalg.norm(transform_points(H, src) - np.asarray(dst), axis=1)
             return H, err ** 2 < threshold
         """, ["squared"]),
+    "RANSAC inlier test by the L1 distance |du| + |dv|": ("lab08.ex4", """
+        def _transfer_errors(Hs, src, dst):
+            homogeneous = np.hstack([src, np.ones((len(src), 1))])
+            mapped = np.einsum("kij,nj->kni", Hs, homogeneous)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                xy = mapped[..., :2] / mapped[..., 2:3]
+            errors = np.abs(xy - dst).sum(axis=2)
+            return np.where(np.isfinite(errors), errors, np.inf)
+        """, ["|du| + |dv| (the L1 distance)"]),
     "RANSAC mask inverted": ("lab08.ex4", """
         _reference_ransac = homography_ransac
         def homography_ransac(src, dst, threshold=3.0, seed=None):
