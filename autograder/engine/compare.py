@@ -247,6 +247,45 @@ def blurred_difference(got, expected, valid, sigma: float = 1.0) -> float:
     return float(diff[valid].mean()) if valid.any() else 0.0
 
 
+WRAP_SHARE = 0.05     # of the region's pixels, at least, changed by the wrap
+WRAP_AGREEMENT = 0.8  # of which, at least, as the wrap predicts (within WRAP_TOLERANCE grey levels; seams and edges differ otherwise)
+WRAP_TOLERANCE = 12
+
+
+def wrapped_around(got, expected, valid) -> int:
+    """k when ``got`` is ``expected`` computed in uint8 arithmetic that wrapped round: a sum of k uint8
+    images (k = 2 to 4) taken modulo 256 before its division by k, so that every pixel whose sum passed
+    255 lost 256 / k (a blend ``(a + b) // 2`` of two bright images: 200 and 200 give 72, not 200);
+    0 otherwise. Judged where ``valid`` (a boolean mask), on the pixels that differ from ``expected``: at
+    least :data:`WRAP_SHARE` of them, and nearly all of those as the wrap predicts."""
+    got = np.asarray(got, np.float64)
+    expected = np.asarray(expected, np.float64)
+    valid = np.asarray(valid, dtype=bool)
+    if got.shape != expected.shape or got.shape[:2] != valid.shape or not valid.any():
+        return 0
+    if got.ndim == 3:
+        valid = np.repeat(valid[..., None], got.shape[2], axis=2)
+    g, e = got[valid], expected[valid]
+    differing = np.abs(g - e) > WRAP_TOLERANCE
+    if differing.mean() < WRAP_SHARE:
+        return 0
+    # (the region may hold pixels no sum made -- where one image alone is seen -- and right there: only
+    # the pixels that differ are judged, nearly all of which the wrap must explain)
+    for k in (2, 3, 4):
+        predicted = e - (256.0 / k) * np.floor(k * e / 256.0 + 1e-9)
+        explained = (predicted < e - WRAP_TOLERANCE) & (np.abs(g - predicted) <= WRAP_TOLERANCE)
+        if explained[differing].mean() >= WRAP_AGREEMENT:
+            return k
+    return 0
+
+
+def wrapped_around_words(k: int) -> str:
+    """What :func:`wrapped_around`'s k says, in words (for "the image ...")."""
+    return (f"is what a sum of {k} uint8 images gives when it wraps round: every pixel whose sum passes 255 starts "
+            f"again at 0 before the division by {k} (it loses {256 // k} grey levels): add in a wider type "
+            "(astype(np.float32) or np.uint16), then convert back")
+
+
 def largest_channel(image: np.ndarray) -> np.ndarray:
     """(H, W, C) -> (H, W): the largest value over the channels (a 2-D image as it is).
 

@@ -35,7 +35,8 @@ from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (THIRD_COORDINATE, THRESHOLD_NAMES, assigns, calls_any, checklist, compares_a_distance_with, divides_by,
                              from_code, guard, look_at, measured, subtracts_a_mean, takes_last_row_of_vt,
                              treats_each_of)
-from ..engine.compare import blurred_difference, format_apart, format_arrays_apart, projective_distance
+from ..engine.compare import (blurred_difference, format_apart, format_arrays_apart, projective_distance,
+                              wrapped_around, wrapped_around_words)
 from ..engine.hints import (RANDOM_DRAWS, RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope,
                              calls, code_of, expr, fits_on_picked_points, functions_read, keyword, matmul_of, mentions,
                              passes_product, picked_point_fits)
@@ -735,6 +736,68 @@ def match_default_ratio(t):
     return judge_default_is_the_apis(t, "match_features(img1, img2)",
                                      lambda **kw: t.call("match_features", img1, img2, **kw), "ratio", 0.75,
                                      "matches")
+
+
+# Lowe's test keeps a match when best < ratio * second best. On a photo and its warp about half of SIFT's
+# keypoints match unambiguously (ratio below 0.5) and most others are near 1, so the share of matches a
+# ratio keeps (of those ratio=1 keeps: every keypoint whose nearest neighbour is nearer than the second,
+# squared or not) is the keypoints' own, whatever the detector's settings, the
+# matcher (brute force or FLANN) or the grey conversion: measured on four photos, those agree with the
+# grader's SIFT + brute force within 0.017 at 0.5 and 0.6, where squared distances compared with the ratio
+# (the test at sqrt(ratio)) keep 0.05 to 0.08 more.
+RATIO_PAIRS = (("chelsea", 2), ("astronaut", 1))
+RATIOS_JUDGED = (0.5, 0.6)
+SHARE_TOLERANCE = 0.03   # the mean share kept, off the test's own
+SQUARED_DISTANCES = "the ratio test compares squared distances (Lowe's test at sqrt(ratio))"
+SQUARED_TEST = Predicate("squares the distances it compares", lambda function: any(
+    isinstance(compare, ast.Compare) and any(isinstance(n, ast.Attribute) and n.attr == "distance" for n in ast.walk(compare))
+    and any((isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and isinstance(n.right, ast.Constant) and n.right.value == 2)
+            or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "square") for n in ast.walk(compare))
+    for compare in ast.walk(function)))
+
+
+def effective_ratio(ratios: np.ndarray, share: float) -> float:
+    """The ratio at which Lowe's test keeps ``share`` of what ratio=1 keeps, on these keypoints."""
+    kept = np.sort(ratios[ratios < 1.0])
+    return float(kept[min(max(int(round(share * len(kept))) - 1, 0), len(kept) - 1)]) if len(kept) else float("nan")
+
+
+@ex3.check("the ratio test keeps the share of matches Lowe's test keeps at the ratio given", points=1)
+def match_ratio_share(t):
+    offs, effective = [], []
+    notes = []
+    for name, seed in RATIO_PAIRS:
+        img1, img2, _ = truth.matching_pair(name, (240, 180), seed=seed)
+        ratios = truth.lowe_ratios(img1, img2)
+        counts = {}
+        for ratio in (*RATIOS_JUDGED, 1.0):
+            what = f"match_features(img1, img2, ratio={ratio})"
+            counts[ratio] = len(matched_points(t, what, t.call("match_features", img1, img2, ratio=ratio))[0])
+        if counts[1.0] < 20:
+            return passed(measured(f"too few matches at ratio=1.0 on {name} ({counts[1.0]}) to judge shares: the checks "
+                                   "above judge the matches"))
+        for ratio in RATIOS_JUDGED:
+            share, own = counts[ratio] / counts[1.0], float((ratios < ratio).sum() / (ratios < 1.0).sum())
+            offs.append(share - own)
+            effective.append((ratio, effective_ratio(ratios, share)))
+            notes.append(f"{name}, ratio={ratio}: {share:.0%} kept (Lowe's test {own:.0%})")
+    off = float(np.mean(offs))
+    if abs(off) <= SHARE_TOLERANCE:
+        return passed("; ".join(notes))
+    squared = np.mean([abs(r_eff - np.sqrt(r)) for r, r_eff in effective]) <= 0.04
+    said = "; ".join(notes)
+    lead = measured(f"of the matches ratio=1.0 keeps, your match_features keeps at the ratios given {said}: "
+                    f"{abs(off):.0%} {'more' if off > 0 else 'fewer'} on average than Lowe's test (best < ratio x second "
+                    "best, SIFT and brute force on these photos) keeps; the share is the keypoints' own, whatever the "
+                    "detector's settings or the matcher")
+    if squared:
+        read = SQUARED_TEST.found(code_of(t).reachable(["match_features"]))
+        t.fail(lead + measured(". It keeps what the test keeps at the square root of the ratio ("
+                               + ", ".join(f"{r_eff:.2f} for {r}" for r, r_eff in effective[:len(RATIOS_JUDGED)])
+                               + "): squared distances compared with the ratio")
+               + (from_code(f" (your code {read}); compare the distances themselves, or square the ratio too.")
+                  if read else "."), mistake=SQUARED_DISTANCES)
+    t.fail(lead + ".", hint=RATIO_HINT.said(t))
 
 
 def drawing_case():
@@ -1820,6 +1883,7 @@ class PanoramaJudge:
                  difference=difference_heatmap(self.expected, self.panorama, valid))
 
 
+SUM_WRAPPED = "uint8 arithmetic wraps round (a sum of images passing 255)"
 UINT8_HINT = Hint("convert with np.clip(x, 0, 255).astype(np.uint8)", asks=TO_UINT8,
                   instead="your code {found} somewhere, but not the array it returns")
 
@@ -2345,6 +2409,10 @@ def judge_region(t: Trial, judge: PanoramaJudge, what: str, region, name: str, h
     if error <= PANORAMA_TOLERANCE:
         return passed(f"{name}: mean difference {error:.1f} grey levels from the truth")
     judge.show(t, what)
+    wrapped = wrapped_around(judge.panorama, judge.expected, region)
+    if wrapped:
+        t.fail(measured(f"{what}: {name} differs from the true panorama by {error:.0f} grey levels on average, and "
+                        f"{wrapped_around_words(wrapped)}."), mistake=SUM_WRAPPED)
     t.fail(f"{what}: {name} differs from the true panorama by {error:.0f} grey levels on average "
            "(see the pictures).", hint)
 

@@ -67,6 +67,8 @@ OPERATORS = {
     "reshape_transpose": ("reshape", "transpos"),      # X.T -> X.reshape(X.shape[::-1])
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
+    "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
+    "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
     "dehomogenise": ("homogeneous", "divid", "last coordinate"),   # x[:, :2] -> x[:, :2] / x[:, 2:3]
     "swap_items": ("order", "swap", "exchang"),       # (rows, cols) -> (cols, rows), [0, ty, 1] -> [0, 1, ty]
@@ -422,7 +424,7 @@ def _make_axis(node, payload):
         parts = [_index_part(p) for p in payload]
         new.slice = parts[0] if len(parts) == 1 else ast.Tuple(parts, ast.Load())
         return new
-    return ast.Constant(payload)
+    return _signed(payload) if isinstance(payload, int) and not isinstance(payload, bool) else ast.Constant(payload)
 
 
 def _index_part(spec):
@@ -648,6 +650,50 @@ def _make_unwrap(node, payload):
     while payload == "chain" and _unary_call(inner):   # np.tan(np.deg2rad(s)) -> s: both calls at once
         inner = inner.args[0]
     return copy.deepcopy(inner)
+
+
+_INTEGER_NAMES = {"int", "int8", "int16", "int32", "int64", "intp", "int_", "int0", "uint16", "uint32", "uint64"}
+
+
+def _integer_type(node) -> bool:
+    """Whether ``node`` names an integer dtype (`int`, `np.int32`, `"int32"`)."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value in _INTEGER_NAMES
+    dotted = _dotted(node) if isinstance(node, (ast.Name, ast.Attribute)) else ""
+    return dotted.rsplit(".", 1)[-1] in _INTEGER_NAMES and dotted[: -len(dotted.rsplit(".", 1)[-1])] in ("", "np.", "numpy.")
+
+
+def _integer_cast(node) -> str:
+    """How ``node`` makes an array of integers: "call" (`np.int32(x)`), "astype" (`x.astype(int)`), "dtype"
+    (`np.asarray(x, np.int32)`, `np.array(x, dtype=int)`); "" for none."""
+    if not isinstance(node, ast.Call):
+        return ""
+    dotted = _dotted(node.func)
+    if len(node.args) == 1 and not node.keywords and _integer_type(node.func) and dotted != "int":
+        return "call"
+    if isinstance(node.func, ast.Attribute) and node.func.attr == "astype" and len(node.args) == 1 \
+            and _integer_type(node.args[0]):
+        return "astype"
+    if dotted in ("np.asarray", "np.array", "numpy.asarray", "numpy.array") and node.args and (
+            (len(node.args) >= 2 and _integer_type(node.args[1]))
+            or any(k.arg == "dtype" and _integer_type(k.value) for k in node.keywords)):
+        return "dtype"
+    return ""
+
+
+def _make_float_kept(node, payload):
+    """An array made of integers, kept as floats: `np.int32(x)` -> `x`, `x.astype(int)` -> `x.astype(float)`,
+    `np.asarray(x, np.int32)` -> `np.asarray(x, np.float64)`."""
+    if payload == "call":
+        return copy.deepcopy(node.args[0])
+    new = copy.deepcopy(node)
+    if payload == "astype":
+        new.args[0] = _name("np.float64")
+    elif len(new.args) >= 2 and _integer_type(new.args[1]):
+        new.args[1] = _name("np.float64")
+    else:
+        new.keywords = [ast.keyword("dtype", _name("np.float64")) if k.arg == "dtype" else k for k in new.keywords]
+    return new
 
 
 def _unary_call(node) -> bool:
@@ -1037,7 +1083,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
          "drop_factor": _make_drop_factor, "drop_centring": _make_drop_centring,
-         "drop_conversion": _make_drop_conversion, "other_name": _make_other_name, "in_place": _make_in_place,
+         "drop_conversion": _make_drop_conversion, "float_kept": _make_float_kept, "other_name": _make_other_name, "derived_name": _make_other_name, "in_place": _make_in_place,
          "drop_statement": _make_drop_statement, "reshape_order": _make_reshape_order,
          "inverse": _make_inverse, "stack_order": _make_stack_order, "default": _make_default,
          "single_point": _make_single_point}
@@ -2081,6 +2127,8 @@ def _student_changes(node, parent, parents):
     dotted = _dotted(node.func)
     short = dotted.rsplit(".", 1)[-1]
     prefix = dotted[: -len(short)]
+    if _integer_cast(node):
+        yield "float_kept", _integer_cast(node), ""   # floats cut to integers: `np.int32(pts1)`
     if _unary_call(node) or (len(node.args) == 1 and not node.keywords and dotted in _WHOLE_REDUCTIONS):
         yield "unwrap", None, ""
         if _unary_call(node.args[0]):
@@ -3292,6 +3340,8 @@ def _sibling_changes(node, words):
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS):
         yield from _mirror_changes(node, words)
     yield from _twin_unit_changes(node, words)
+    yield from _row_like_its_siblings(node, words)
+    yield from _raw_beside_derived(node, words)
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS) \
             and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, (ast.Add, ast.Sub)):
         # the first term of a sum left bare where its twin's has a step: `y_d = y + ...` beside
@@ -3426,6 +3476,93 @@ def _mirror_changes(node, words):
         theirs = ast.unparse(whole)
         if len(theirs) <= 200:
             yield "mirror", (None, theirs), ""
+
+
+def _row_index(node):
+    """(matrix name, row) of a subscript `M[k]` or `M[k, ...]` with a constant row k; None otherwise."""
+    if not (isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name)):
+        return None
+    first = node.slice.elts[0] if isinstance(node.slice, ast.Tuple) and node.slice.elts else node.slice
+    if isinstance(first, ast.Constant) and type(first.value) is int:
+        return node.value.id, first.value
+    return None
+
+
+def _row_products(words) -> dict:
+    """Matrix name -> (the other factor's code, whether it is on the left) of the def's assignments whose
+    value is a whole row of it times something (`u = Xh @ P[0]`), read once per def."""
+    if not hasattr(words, "row_products"):
+        found = {}
+        for statement in ast.walk(words.fn):
+            value = statement.value if isinstance(statement, ast.Assign) and len(statement.targets) == 1 else None
+            if isinstance(value, ast.BinOp) and isinstance(value.op, ast.MatMult):
+                for row, other, left in ((value.right, value.left, True), (value.left, value.right, False)):
+                    if isinstance(row, ast.Subscript) and not isinstance(row.slice, ast.Tuple) and _row_index(row):
+                        found.setdefault(_row_index(row)[0], (ast.unparse(other), left))
+        words.row_products = found
+    return words.row_products
+
+
+def _row_like_its_siblings(node, words):
+    """A row of a matrix used otherwise than its sibling rows are: `w = pts @ P[2, :3]` under `u = Xh @ P[0]`
+    and `v = Xh @ P[1]` (the depth without P's last column): the line written as they are, `Xh @ P[2]`."""
+    if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
+        return
+    products = _row_products(words)
+    if not products:
+        return
+    value = node.value
+    rows = [_row_index(n) for n in ast.walk(value) if _row_index(n)]
+    if not rows or len({matrix for matrix, _ in rows}) != 1 or rows[0][0] not in products:
+        return
+    matrix, row = rows[0]
+    other, left = products[matrix]
+    written = f"{other} @ {matrix}[{row}]" if left else f"{matrix}[{row}] @ {other}"
+    if ast.unparse(value) != written and ast.dump(_parse(written).body[0].value) != ast.dump(value):
+        yield "mirror", (None, written), ""
+
+
+def _derived_values(words) -> dict:
+    """Name -> [(derived name, its value's code with the name read as "{}")] for the def's assignments
+    `b = <arithmetic reading a>` (`yn = Y / Z`), read once per def."""
+    if not hasattr(words, "derived_values"):
+        derived = {}
+        for statement in ast.walk(words.fn):
+            if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1
+                    and isinstance(statement.targets[0], ast.Name) and isinstance(statement.value, ast.BinOp)):
+                continue
+            target = statement.targets[0].id
+            read = {n.id for n in ast.walk(statement.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+            for name in read - {target}:
+                form = copy.deepcopy(statement.value)
+                for inner in ast.walk(form):
+                    if isinstance(inner, ast.Name) and inner.id == name:
+                        inner.id = "_raw_"
+                derived.setdefault(name, []).append((target, ast.dump(form), statement.lineno))
+        words.derived_values = derived
+    return words.derived_values
+
+
+def _raw_beside_derived(node, words):
+    """A raw value read where its derived form belongs, beside a sibling read in that form: `K[0, 1] * Y`
+    in `u = K[0, 0] * xn + K[0, 1] * Y + K[0, 2]` with `xn = X / Z` and `yn = Y / Z` above (the skew term
+    of the unnormalised y): `Y` -> `yn`."""
+    if not (isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)):
+        return
+    derived = _derived_values(words)
+    mine = [(name, form) for name, form, line in derived.get(node.id, ()) if line < getattr(node, "lineno", 0)]
+    if not mine:
+        return
+    statement = node
+    while _parent_of(statement, words) is not None and not isinstance(statement, ast.stmt):
+        statement = _parent_of(statement, words)
+    beside = {n.id for n in ast.walk(statement) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    forms_beside = {form for raw, made in derived.items() if raw != node.id
+                    for name, form, _ in made if name in beside}
+    for name, form in mine:
+        if form in forms_beside and name != node.id:
+            yield "derived_name", name, ""
+            return
 
 
 def _initial_changes(node, words):
@@ -4073,7 +4210,9 @@ def _constant_changes(node: ast.Constant, parents, words, what):
     parent, field, _ = parents.get(id(node), (None, None, None))
     value = node.value
     if isinstance(parent, ast.keyword) and parent.arg == "axis":
-        for other in (0, 1, 2) if words.student else (0, 1):   # (a student's 3-D stacks: axis 2 too)
+        # (a student's 3-D stacks: axis 2 too; and the last, whatever the input's dimensions --
+        # `np.stack([x, y], axis=1)` where one point's (3,) gives 0-D coordinates and axis=-1 belongs)
+        for other in (0, 1, 2, -1) if words.student else (0, 1):
             if other != value:
                 yield "axis", other, f"the sum/statistic runs over axis {other} where axis {value} belongs"
         return

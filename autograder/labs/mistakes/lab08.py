@@ -180,6 +180,18 @@ MISTAKES = {
     # the blind set 1201d's 08/03: the best 50 matches kept whatever the ratio
     # the blind set 1201e's 08/06: Lowe's paper's 0.8 as the default
     # the blind set 1201f's 08/04: the keypoints circled in the caller's own images
+    "Lowe's test on squared distances (the test at sqrt(ratio))": ("lab08.ex3", """
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            sift = cv2.SIFT_create()
+            grey = [cv2.cvtColor(i, cv2.COLOR_BGR2GRAY) if i.ndim == 3 else i for i in (img1, img2)]
+            (kp1, d1), (kp2, d2) = (sift.detectAndCompute(g, None) for g in grey)
+            pts1, pts2 = [], []
+            for m, n in cv2.BFMatcher(cv2.NORM_L2).knnMatch(d1, d2, k=2):
+                if m.distance ** 2 < ratio * n.distance ** 2:
+                    pts1.append(kp1[m.queryIdx].pt)
+                    pts2.append(kp2[m.trainIdx].pt)
+            return np.array(pts1).reshape(-1, 2), np.array(pts2).reshape(-1, 2)
+        """, ["squared distances compared with the ratio", "squares the distances it compares"]),
     "draw_matches circling the points in the caller's images": ("lab08.ex3", """
         _draw_matches = draw_matches
         def draw_matches(img1, img2, pts1, pts2):
@@ -437,6 +449,21 @@ MISTAKES = {
         """, ["returns the last model drawn rather than the best one."]),   # (500 samples: not "too few")
     # ---------------------------------------------------------------- ex5
     # the blind set 1201d's 08/06: the feathered sum never divided by the summed weights
+    "stitch averaging the two warps in uint8 (the sum wraps past 255)": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H21 = _pairwise_homography(img2, img1)
+            corners = np.vstack([_corners(img1), transform_points(H21, _corners(img2))])
+            x_min, y_min = np.floor(corners.min(axis=0))
+            x_max, y_max = np.ceil(corners.max(axis=0))
+            shift = _translation(-x_min, -y_min)
+            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
+            warped1 = apply_homography(_bgr(img1), shift, size)
+            warped2 = apply_homography(_bgr(img2), shift @ H21, size)
+            both = (warped1 > 0).any(axis=2) & (warped2 > 0).any(axis=2)
+            panorama = np.maximum(warped1, warped2)
+            panorama[both] = (warped1[both] + warped2[both]) // 2
+            return panorama
+        """, ["sum of uint8 images gives when it wraps round"]),
     "panorama as the weighted sum, never divided by the weights": ("lab08.ex5", """
         def _compose(images, homographies):
             corners = np.vstack([transform_points(H, _corners(im)) for im, H in zip(images, homographies)])
