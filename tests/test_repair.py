@@ -3349,3 +3349,77 @@ def test_a_removal_of_a_step_the_reference_never_takes_is_the_fix_and_one_it_tak
     assert repair._extra_step(removed_product, reference, "warp")
     assert not repair._extra_step(removed_division, reference, "project")
     assert not repair._extra_step(changed_sign, reference, "warp")
+
+
+# ------------------------------------------------------------------ slips of 2026-12-01's blind sets, by class
+def _changes(student, mutants, operator):
+    return {student.fix(m).changes[0][1:] for m in mutants if m.operator == operator and student.fix(m) is not None}
+
+
+def test_a_products_minus_a_cast_to_integers_and_the_last_axis_are_tried():
+    student, mutants = _read("""
+        import numpy as np
+
+        def graded(R, T, pts, lines):
+            C = R.T @ T
+            p = np.int32(pts)
+            q = lines.astype(int)
+            r = np.asarray(lines, np.int32)
+            return np.stack([C, p.sum(axis=0), q.sum(axis=0), r.sum(axis=0)], axis=1)
+    """)
+    assert ("C = R.T @ T", "C = -(R.T @ T)") in _changes(student, mutants, "sign")
+    kept = _changes(student, mutants, "float_kept")
+    assert ("np.int32(pts)", "pts") in kept
+    assert ("lines.astype(int)", "lines.astype(np.float64)") in _changes(student, mutants, "astype_float")
+    assert ("np.asarray(lines, np.int32)", "np.asarray(lines, np.float64)") in kept
+    assert any(after.endswith("axis=-1)") for _, after in _changes(student, mutants, "axis"))
+
+
+def test_a_row_used_otherwise_than_its_siblings_and_a_raw_value_beside_its_derived_twin():
+    student, mutants = _read("""
+        import numpy as np
+
+        def graded(P, pts, K):
+            Xh = np.hstack([pts, np.ones((len(pts), 1))])
+            u = Xh @ P[0]
+            v = Xh @ P[1]
+            w = pts @ P[2, :3]
+            X, Y, Z = pts[:, 0], pts[:, 1], pts[:, 2]
+            xn = X / Z
+            yn = Y / Z
+            s = K[0, 0] * xn + K[0, 1] * Y
+            return u / w, v / w, s, yn
+    """)
+    assert ("w = pts @ P[2, :3]", "w = Xh @ P[2]") in _changes(student, mutants, "mirror")
+    derived = _changes(student, mutants, "derived_name")
+    assert any("K[0, 1] * yn" in after for _, after in derived), derived
+    assert not any("xn" in before and "yn" in after and "K[0, 1]" not in before for before, after in derived)
+
+
+def test_a_unit_vectors_twin_is_normalised_too():
+    student, mutants = _read("""
+        import numpy as np
+
+        def graded(c, axis):
+            e1 = c / np.linalg.norm(c)
+            e2 = np.cross(axis, e1)
+            return np.vstack([e1, e2])
+    """)
+    assert ("e2 = np.cross(axis, e1)", "e2 = np.cross(axis, e1) / np.linalg.norm(np.cross(axis, e1))") \
+        in _changes(student, mutants, "twin_step")
+
+
+@pytest.mark.parametrize("edit, told, never", [
+    # the camera centre's minus dropped: exchanging the cross product's factors (a line written as the
+    # reference writes it) mends the images by turning R_rect into -R_rect; the slip is the centre's sign
+    (("C2 = -R.T @ T", "C2 = R.T @ T"), "`C2 = -(R.T @ T)`", "np.cross(e2, e1)"),
+    # e2 never normalised: the reference's line right as far as it goes, the step after it left out
+    (("    e2 /= np.linalg.norm(e2)\n", ""), "np.cross(mean_axis, e1) / np.linalg.norm(np.cross(mean_axis, e1))",
+     "np.cross(C2, e2)"),
+])
+def test_rectify_is_repaired_where_the_slip_is_not_where_it_is_compensated(tmp_path, edit, told, never):
+    result = grade(edited_reference(tmp_path, "lab12_stereo", edit), ["lab12.ex3"], pictures="none",
+                   include_hidden=False)
+    messages = [c.message for c in check_results(result, "lab12.ex3") if c.score < c.max_score]
+    assert messages and any(told in m for m in messages), messages
+    assert not any(never in m for m in messages), messages

@@ -664,16 +664,13 @@ def _integer_type(node) -> bool:
 
 
 def _integer_cast(node) -> str:
-    """How ``node`` makes an array of integers: "call" (`np.int32(x)`), "astype" (`x.astype(int)`), "dtype"
-    (`np.asarray(x, np.int32)`, `np.array(x, dtype=int)`); "" for none."""
+    """How ``node`` makes an array of integers: "call" (`np.int32(x)`), "dtype" (`np.asarray(x, np.int32)`,
+    `np.array(x, dtype=int)`); "" for none (`x.astype(int)` is the astype_float operator's)."""
     if not isinstance(node, ast.Call):
         return ""
     dotted = _dotted(node.func)
     if len(node.args) == 1 and not node.keywords and _integer_type(node.func) and dotted != "int":
         return "call"
-    if isinstance(node.func, ast.Attribute) and node.func.attr == "astype" and len(node.args) == 1 \
-            and _integer_type(node.args[0]):
-        return "astype"
     if dotted in ("np.asarray", "np.array", "numpy.asarray", "numpy.array") and node.args and (
             (len(node.args) >= 2 and _integer_type(node.args[1]))
             or any(k.arg == "dtype" and _integer_type(k.value) for k in node.keywords)):
@@ -682,14 +679,12 @@ def _integer_cast(node) -> str:
 
 
 def _make_float_kept(node, payload):
-    """An array made of integers, kept as floats: `np.int32(x)` -> `x`, `x.astype(int)` -> `x.astype(float)`,
-    `np.asarray(x, np.int32)` -> `np.asarray(x, np.float64)`."""
+    """An array made of integers, kept as floats: `np.int32(x)` -> `x`, `np.asarray(x, np.int32)` ->
+    `np.asarray(x, np.float64)`."""
     if payload == "call":
         return copy.deepcopy(node.args[0])
     new = copy.deepcopy(node)
-    if payload == "astype":
-        new.args[0] = _name("np.float64")
-    elif len(new.args) >= 2 and _integer_type(new.args[1]):
+    if len(new.args) >= 2 and _integer_type(new.args[1]):
         new.args[1] = _name("np.float64")
     else:
         new.keywords = [ast.keyword("dtype", _name("np.float64")) if k.arg == "dtype" else k for k in new.keywords]
