@@ -10,6 +10,8 @@ import functools
 import cv2
 import numpy as np
 
+from .claims import measured
+
 # Sub-pixel offsets tried when judging warped images, so that other interpolation
 # and pixel-centre conventions (x vs x + 0.5) are not penalised.
 HALF_PIXEL_OFFSETS = [(dx, dy) for dx in (-0.5, 0.0, 0.5) for dy in (-0.5, 0.0, 0.5)]
@@ -281,9 +283,9 @@ def wrapped_around(got, expected, valid) -> int:
 
 def wrapped_around_words(k: int) -> str:
     """What :func:`wrapped_around`'s k says, in words (for "the image ...")."""
-    return (f"is what a sum of {k} uint8 images gives when it wraps round: every pixel whose sum passes 255 starts "
-            f"again at 0 before the division by {k} (it loses {256 // k} grey levels): add in a wider type "
-            "(astype(np.float32) or np.uint16), then convert back")
+    return measured(f"is what a sum of {k} uint8 images gives when it wraps round: every pixel whose sum passes 255 "
+                    f"starts again at 0 before the division by {k} (it loses {256 // k} grey levels): add in a wider "
+                    "type (astype(np.float32) or np.uint16), then convert back")
 
 
 def largest_channel(image: np.ndarray) -> np.ndarray:

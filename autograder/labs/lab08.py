@@ -35,7 +35,7 @@ from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (THIRD_COORDINATE, THRESHOLD_NAMES, assigns, calls_any, checklist, compares_a_distance_with, divides_by,
                              from_code, guard, look_at, measured, subtracts_a_mean, takes_last_row_of_vt,
                              treats_each_of)
-from ..engine.compare import (blurred_difference, format_apart, format_arrays_apart, projective_distance,
+from ..engine.compare import (blurred_difference, format_apart, format_arrays_apart, largest_channel, projective_distance,
                               wrapped_around, wrapped_around_words)
 from ..engine.hints import (RANDOM_DRAWS, RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope,
                              calls, code_of, expr, fits_on_picked_points, functions_read, keyword, matmul_of, mentions,
@@ -2360,11 +2360,25 @@ def name_image_left_out(t: Trial, judge: PanoramaJudge, what: str, names, sticki
     if own.sum() < 200 or judge.error(own) <= PANORAMA_TOLERANCE:
         return
     place = "the last" if k == len(names) - 1 else "the first" if k == 0 else "one"
+    # Left out, its own part is empty (black); warped by a wrong homography instead, something is drawn
+    # there or elsewhere on the canvas that no image's true place explains (step.T for inv(step)).
+    inside = own[: judge.panorama.shape[0], : judge.panorama.shape[1]]
+    empty = float((largest_channel(judge.panorama)[inside] <= 10).mean()) if inside.any() else 0.0
+    stray = ~np.any(judge.inside, axis=0) & (largest_channel(judge.panorama) > 10)
+    if empty < 0.95 or stray.mean() > 0.01:
+        t.fail(measured(f"{what}: {names[k]} ({place} of the images) is not where it belongs: the panorama is exactly "
+                        f"the other images' bounding box, and where only {names[k]} should be seen it differs from it by "
+                        f"{judge.error(own):.0f} grey levels on average"
+                        + (f", while {stray.mean():.0%} of the canvas, where no image belongs, holds content" if
+                           stray.mean() > 0.01 else "")
+                        + f": {names[k]} is composed, but with a homography that does not send it to its place, and "
+                          "the canvas is not sized for where it went (look at the homography built for it)."))
     mistake = f"{names[k]} is left out"
-    t.fail(f"{what}: it looks like {names[k]} ({place} of the images) is left out of the panorama: "
-           f"the panorama is exactly the other images' bounding box, so {names[k]} is neither warped nor "
-           "composed (a loop over the images that stops one short leaves the last one out).",
-           mistake=mistake)
+    t.fail(measured(f"{what}: {names[k]} ({place} of the images) is left out of the panorama: the panorama is exactly "
+                    f"the other images' bounding box, and where only {names[k]} should be seen it is black, so "
+                    f"{names[k]} is neither warped nor composed")
+           + (" (a loop over the images that stops one short leaves the last one out)." if k == len(names) - 1
+              else "."), mistake=mistake)
 
 
 def corners_of(shape) -> np.ndarray:

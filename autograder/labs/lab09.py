@@ -1547,6 +1547,39 @@ def project_onto_image_off_the_frame(t):
                  probe=points_probe(t, "project_onto_image"))
 
 
+@ex5.check("project_onto_image with a point behind the camera: still a row per point", points=1)
+def project_onto_image_behind(t):
+    """A point behind the camera keeps its row too (its value is open: NaN, the skeleton's advice, or what
+    the formulas give), so that row i stays point i's. A call that raises is not judged here: NaN given
+    to the student's own drawing may raise there, which the API does not ask it to take."""
+    image, P, X = _scene_off_the_frame()
+    R, tvec = truth.random_pose(51)
+    behind = (np.array([[0.5, -0.4, -3.0]]) - tvec) @ R   # 3 units behind the camera, in world coordinates
+    X = np.vstack([X[:3], behind, X[3:]])
+    what = f"project_onto_image(image, P, points)[1], {len(X)} points of which point 3 is behind the camera"
+    try:
+        got = t.call("project_onto_image", image, P, X)
+    except StudentFailure:
+        return passed(measured("the call raised with a point behind the camera: not judged here (NaN may reach "
+                               "the drawing, which the API does not ask to take it)"))
+    if not (isinstance(got, (tuple, list)) and len(got) == 2):
+        t.fail("project_onto_image should return a pair (image, pts)")
+    pts = got[1]
+    rows = getattr(pts, "shape", (None,))[0] if getattr(pts, "ndim", 0) == 2 else None
+    if rows is not None and rows < len(X):
+        finite = int(np.isfinite(truth.homogeneous_project(P, X)).all(axis=1).sum())
+        t.fail(f"{what}, has {rows} rows: every point keeps its row (row i is point i's; behind the camera its "
+               "value is yours to choose, NaN is the skeleton's advice), so that a caller can match the points to "
+               "what it gave. " + measured(f"{len(X) - rows} fewer rows than points"
+                                           + (": the point behind the camera is left out (are the rows that are "
+                                              "not finite dropped?)" if rows == finite else "")),
+               mistake="a point behind the camera is left out")
+    expected = truth.homogeneous_project(P, X)
+    keep = np.arange(len(X)) != 3
+    judge_points(t, what + " (the points in front)", np.asarray(pts, np.float64)[keep] if rows == len(X) else pts,
+                 expected[keep], project_mistakes(P, X[keep]), tolerance=1e-6)
+
+
 # ================================================================== ext1 calibration
 # Object points built row by row, x fastest, from pattern_size = (cols, rows) (labs 9 and 10).
 OBJECT_POINTS_ROW_BY_ROW = (expr("np.mgrid[0:_[0], 0:_[1]].T.reshape(-1, 2)")

@@ -2398,6 +2398,7 @@ def judge_patterns(t: Trial, width, n_bits):
         t.expect_array(got, what, dtype=np.uint8)
     if np.array_equal(got, expected):
         return
+    name_bits_not_isolated(t, what, got, width, n_bits)
     name_pattern_mistake(t, what, got, width, n_bits)
     name_wrapped_stripes(t, what, got, width, n_bits)
     stripes = truth._stripe(width, n_bits)
@@ -2435,6 +2436,27 @@ def name_wrapped_stripes(t: Trial, what, got, width, n_bits):
     if isinstance(again, np.ndarray) and np.array_equal(again, _patterns_of(np.arange(1024) % 256, 10)):
         t.fail(f"{what} is wrong: it looks like {WRAPPED_STRIPES} (gray_code_patterns(1024, 10) too gives "
                "each stripe k from 256 on the code of k mod 256).", mistake=WRAPPED_STRIPES)
+
+
+def name_bits_not_isolated(t: Trial, what: str, got, width: int, n_bits: int):
+    """Fail naming rows that hold more than a bit: values other than 0 and 255, each row (g >> s) & 255
+    or g >> s itself (the Gray code shifted, its bit never isolated: `(g >> s) & 1 * 255` is
+    `(g >> s) & (1 * 255)`, Python's * binding tighter than &)."""
+    values = np.unique(got)
+    if np.isin(values, (0, 255)).all():
+        return
+    stripes = truth._stripe(width, n_bits)
+    g = (stripes ^ (stripes >> 1)).astype(np.int64)
+    shifts = np.arange(n_bits - 1, -1, -1)[:, None]
+    shifted = g[None, :] >> shifts
+    shown = ", ".join(str(int(v)) for v in values[:6]) + (", ..." if len(values) > 6 else "")
+    if np.array_equal(got.astype(np.int64), shifted & 255) or np.array_equal(got.astype(np.int64), shifted % 256):
+        t.fail(measured(f"{what}: the patterns hold the values {shown}, not only 0 and 255: row i is (g >> s) & 255, "
+                        "the Gray code g shifted with its higher bits kept, where it must be the single bit "
+                        "((g >> s) & 1) * 255. Mind that * binds tighter than &: `x & 1 * 255` is `x & 255`."),
+               mistake="the bit is not isolated before it is scaled to 255")
+    t.fail(measured(f"{what}: the patterns hold the values {shown}, not only 0 and 255: each row is one bit of the "
+                    "Gray code, 0 or 255."))
 
 
 def codes_differ_within_stripes(patterns, stripes) -> bool:

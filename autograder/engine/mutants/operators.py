@@ -1853,7 +1853,8 @@ _LOOPED_POSITIONS = {"range", "enumerate", "zip"}   # loops whose targets are po
 _CV_MISTAKEN = {"estimateAffinePartial2D": "estimateAffine2D", "estimateAffine2D": "estimateAffinePartial2D",
                 "pyrDown": "pyrUp", "pyrUp": "pyrDown", "add": "subtract", "subtract": "add"}
 _UNARY = {"sin", "cos", "tan", "arcsin", "arccos", "arctan", "abs", "absolute", "fabs", "sqrt", "square", "exp",
-          "log", "round", "rint", "floor", "ceil", "deg2rad", "rad2deg", "radians", "degrees", "int"}
+          "log", "round", "rint", "floor", "ceil", "deg2rad", "rad2deg", "radians", "degrees", "int",
+          "unique", "sort"}   # (and an order imposed that does not belong: np.unique sorts and drops repeats)
 _WHOLE_METHODS = {"mean", "sum", "max", "min", "median"}
 _WHOLE_REDUCTIONS = {"np.mean", "np.median", "np.sum", "np.max", "np.min", "np.amax", "np.amin"}
 _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin", "tan": "arctan", "arctan": "tan",
@@ -2117,6 +2118,16 @@ def _student_changes(node, parent, parents):
     if isinstance(node, ast.BinOp) and type(node.left) is ast.BinOp and type(node.left.op) in (ast.Sub, ast.Div) \
             and type(node.op) in _REGROUPED[type(node.left.op)]:
         yield "regroup", "nested", ""    # `a / b * c` for `a / (b * c)`
+    if isinstance(parent, ast.Compare) and parent.left is node and len(parent.ops) == 1 \
+            and isinstance(parent.ops[0], (ast.Lt, ast.LtE)) and isinstance(parent.comparators[0], ast.Constant) \
+            and isinstance(parent.comparators[0].value, (int, float)) and 0 <= parent.comparators[0].value < 1 \
+            and not (isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in ("abs", "fabs", "absolute")):
+        holder = parents.get(id(parent), (None,))[0]
+        if isinstance(holder, ast.If) and holder.test is parent \
+                and any(isinstance(n, (ast.Raise, ast.Return)) for n in holder.body):
+            # a signed value tested where its size belongs: `if area <= 0: raise` (a degenerate triangle
+            # has area 0; one listed clockwise has a negative area and is none)
+            yield "magnitude", "wrap", ""
     if not isinstance(node, ast.Call):
         return
     dotted = _dotted(node.func)
@@ -3950,6 +3961,10 @@ def _named_matrix(node) -> bool:
     is X: the operators above say it) is not: inverting those raises everywhere, no slip of anyone's."""
     if isinstance(node, ast.Call) and _dotted(node.func) in ("np.asarray", "np.array", "numpy.asarray", "numpy.array"):
         node = node.args[0] if node.args else None
+    # (or one item of a list of them: `step[j].T` for a homography's inverse, a rotation's habit)
+    if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) \
+            and isinstance(node.slice, (ast.Name, ast.Constant)) and not isinstance(getattr(node.slice, "value", 0), str):
+        return True
     return isinstance(node, ast.Name)
 
 

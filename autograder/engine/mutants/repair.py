@@ -1544,6 +1544,47 @@ def _single_point(call) -> list:
     return [(function, tuple(one(a) for a in args), {k: one(v) for k, v in kwargs.items()})]
 
 
+def _reordered(call) -> list:
+    """The call with its point arrays ((N, 2) or (N, 3) floats, N >= 3, all of one N; no square matrix)
+    given in the reverse order, every array alike ([] when it has none): a correspondence set's order is
+    the caller's, and a change right for one order only -- a sign flipped in an orientation test that
+    rejects the triangles listed the other way round -- is wrong there."""
+    function, args, kwargs = call
+    def points(value):
+        return isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.ndim == 2 \
+            and value.shape[1] in (2, 3) and value.shape[0] >= 3 and value.shape[0] != value.shape[1]
+    counts = {len(v) for v in list(args) + list(kwargs.values()) if points(v)}
+    if len(counts) != 1:
+        return []
+    back = lambda v: np.ascontiguousarray(v[::-1]) if points(v) else v  # noqa: E731
+    return [(function, tuple(back(a) for a in args), {k: back(v) for k, v in kwargs.items()})]
+
+
+# Offsets of 2-D points: far, each with its opposite and a perpendicular pair, so that whatever the direction
+# of a difference d of the points, one offset c turns the cross product d x c against what it was (by at
+# least 0.7 |d| |c|): a point read where a difference belongs is right by chance on at most three of them.
+MOVES = ((1500.0, -1300.0), (-1500.0, 1300.0), (1300.0, 1500.0), (-1300.0, -1500.0))
+
+
+def _points_moved(call) -> list:
+    """The call with its 2-D point arrays ((N, 2) floats, N >= 3, all of one N) moved by each of
+    :data:`MOVES`, every array alike ([] when it has none): what a set of points means does not hang on where the
+    origin is, and a change reading a point where a difference of two belongs (`src[2]` for
+    `src[2] - src[0]`) is right only by where the points happen to lie."""
+    function, args, kwargs = call
+    def points(value):
+        return isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.ndim == 2 \
+            and value.shape[1] == 2 and value.shape[0] >= 3
+    counts = {len(v) for v in list(args) + list(kwargs.values()) if points(v)}
+    if len(counts) != 1:
+        return []
+    made = []
+    for move in MOVES:
+        moved = lambda v: v + np.asarray(move, v.dtype) if points(v) else v  # noqa: E731
+        made.append((function, tuple(moved(a) for a in args), {k: moved(v) for k, v in kwargs.items()}))
+    return made
+
+
 def _fewer(call) -> list:
     """The call with each list of three or more arrays it is given (the images of a panorama, the views of
     a calibration) one item shorter ([] when it has none): a count written where the list's length belongs
@@ -2281,7 +2322,8 @@ class _Variants:
                 variants += naming.derived_calls(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
                                              self.model.defaults.get(self.function, ()))
                 variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
-                variants += _fewer(self.inputs[i]) + _single_point(self.inputs[i])
+                variants += _fewer(self.inputs[i]) + _single_point(self.inputs[i]) + _reordered(self.inputs[i]) \
+                    + _points_moved(self.inputs[i])
                 variants += _rescaled(self.inputs[i], _up_to_scale(self.model.source).get(self.function, ()))
                 translated = _translated(self.inputs[i], _up_to_scale(self.model.source).get(self.function, ()))
                 self.translated.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(translated)))

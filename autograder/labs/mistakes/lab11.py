@@ -159,6 +159,12 @@ MISTAKES = {
             lines = _homogeneous(pts1) @ np.asarray(F, float)
             return lines / np.linalg.norm(lines[:, :2], axis=1, keepdims=True)
         """, ["transposed"]),
+    "epipolar lines joining the epipole e2 and the point x1": ("lab11.ex2", """
+        def epipolar_lines(F, pts1):
+            e2 = np.linalg.svd(np.asarray(F, np.float64).T)[2][-1]
+            lines = np.cross(e2, _homogeneous(pts1))
+            return lines / np.linalg.norm(lines[:, :2], axis=1, keepdims=True)
+        """, ["passes through image 2's epipole and through the point x1 itself"]),
     "epipolar lines with c = 1 (the third coordinate dropped)": ("lab11.ex2", """
         _right_lines = epipolar_lines
         def epipolar_lines(F, pts1):
@@ -486,6 +492,27 @@ MISTAKES = {
             return _null_by_cross(F), _null_by_cross(F.T)
         """, ["first two rows are parallel", "is not a null vector of f"]),
     # ---------------------------------------------------------------- ex6
+    "pipeline giving cv2.recoverPose the points the other way round": ("lab11.ex6", """
+        def two_view_reconstruction(img1, img2, K):
+            grey1 = cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY) if img1.ndim == 3 else img1
+            grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img2.ndim == 3 else img2
+            sift = cv2.SIFT_create()
+            kp1, des1 = sift.detectAndCompute(grey1, None)
+            kp2, des2 = sift.detectAndCompute(grey2, None)
+            pairs = cv2.BFMatcher(cv2.NORM_L2).knnMatch(des1, des2, k=2)
+            good = [m for m, n in (p for p in pairs if len(p) == 2) if m.distance < 0.75 * n.distance]
+            pts1 = np.float64([kp1[m.queryIdx].pt for m in good])
+            pts2 = np.float64([kp2[m.trainIdx].pt for m in good])
+            F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
+            pts1, pts2 = pts1[mask.ravel() == 1], pts2[mask.ravel() == 1]
+            K = np.asarray(K, np.float64)
+            E = K.T @ F @ K
+            _, R, t, _ = cv2.recoverPose(E, pts2, pts1, K)
+            P2 = K @ np.hstack([R, t.reshape(3, 1)])
+            points3d = triangulate(K @ np.eye(3, 4), P2, pts1, pts2)
+            in_front = (points3d[:, 2] > 0) & ((points3d @ R.T + t.reshape(3))[:, 2] > 0)
+            return F, pts1[in_front], pts2[in_front], points3d[in_front]
+        """, ["the points the other way round"]),
     "pipeline converting every image from BGR": ("lab11.ex6", """
         _pipeline = two_view_reconstruction
         def two_view_reconstruction(img1, img2, K):

@@ -526,6 +526,14 @@ MISTAKES = {
         DEFAULT_SMOOTHNESS = 400.0
         """, ["the default smoothness is far too large"]),
     # ---------------------------------------------------------------- ex6
+    "patterns of (g >> s) & 1 * 255 (the & taken after the *)": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            u = np.arange(int(width))
+            k = (u * (1 << int(n_bits))) // int(width)
+            gray = k ^ (k >> 1)
+            shifts = np.arange(int(n_bits) - 1, -1, -1)[:, None]
+            return ((gray[None, :] >> shifts) & 1 * 255).astype(np.uint8)
+        """, ["the bit is not isolated", "binds tighter than &"]),
     "plain binary patterns": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
             k = (np.arange(width) * 2**n_bits) // width
