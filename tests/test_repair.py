@@ -3423,3 +3423,25 @@ def test_rectify_is_repaired_where_the_slip_is_not_where_it_is_compensated(tmp_p
     messages = [c.message for c in check_results(result, "lab12.ex3") if c.score < c.max_score]
     assert messages and any(told in m for m in messages), messages
     assert not any(never in m for m in messages), messages
+
+
+def test_a_term_its_sibling_rows_have_a_list_items_transpose_an_order_imposed_and_a_signed_guard():
+    student, mutants = _read("""
+        import numpy as np
+
+        def graded(P, X, Y, Z, steps, d, area):
+            if area <= 0:
+                raise ValueError("degenerate")
+            u = P[0, 0] * X + P[0, 1] * Y + P[0, 2] * Z + P[0, 3]
+            v = P[1, 0] * X + P[1, 1] * Y + P[1, 2] * Z
+            w = P[2, 0] * X + P[2, 1] * Y + P[2, 2] * Z + P[2, 3]
+            H = steps[0].T @ steps[1]
+            ds = np.unique(np.asarray(d))
+            return u / w, v / w, H, ds
+    """)
+    assert ("v = P[1, 0] * X + P[1, 1] * Y + P[1, 2] * Z", "v = P[1, 0] * X + P[1, 1] * Y + P[1, 2] * Z + P[1, 3]") \
+        in _changes(student, mutants, "mirror")
+    assert any(after == "np.linalg.inv(steps[0])" or "np.linalg.inv(steps[0])" in after
+               for _, after in _changes(student, mutants, "inverse"))
+    assert ("np.unique(np.asarray(d))", "np.asarray(d)") in _changes(student, mutants, "unwrap")
+    assert ("area <= 0", "np.abs(area) <= 0") in _changes(student, mutants, "magnitude")

@@ -597,6 +597,20 @@ def test_an_alias_changed_in_place_is_named():
     assert one(scaled.format(copy="base")) == {"an alias of an array is changed in place"}
     assert not one(scaled.format(copy="base.copy()"))
     assert not one(scaled.format(copy="base * 1"))
+    # a list row made another name for, then written in parts (the y row of a least-squares system)
+    rows = """
+        def affine_lstsq(src, dst):
+            rows = []
+            for (x, y) in src:
+                row_x = [x, y, 1.0, 0.0, 0.0, 0.0]
+                row_y = {copy}
+                row_y[:3], row_y[3:] = [0.0, 0.0, 0.0], [x, y, 1.0]
+                rows += [row_x, row_y]
+            return rows
+        """
+    assert one(rows.format(copy="row_x")) == {"an alias of an array is changed in place"}
+    assert not one(rows.format(copy="list(row_x)"))
+    assert not one(rows.format(copy="row_x.copy()"))
     # a counter binds anew; a loop's own variable is no array
     assert not one("""
         def f(items):
@@ -649,3 +663,20 @@ def test_a_parameter_compared_with_a_string_the_api_spells_otherwise_is_named():
         """))
     assert strings_compared.misspelt(upper.body, reference) is None   # (changed before it is compared)
     assert strings_compared.misspelt(ast.parse(reference).body, reference) is None
+
+
+def test_an_array_scaled_in_place_at_every_turn_is_named():
+    scaled = """
+        def project_focal_lengths(points, focal_lengths):
+            xy = {made}
+            result = np.empty((len(focal_lengths), len(points), 2))
+            for i, f in enumerate(focal_lengths):
+                {scale}
+                result[i] = xy
+            return result
+        """
+    assert one(scaled.format(made="pinhole_project(points, 1.0)", scale="xy *= f")) \
+        == {"an array scaled in place at every turn of a loop"}
+    # a new array each turn; a running product started at a constant on purpose
+    assert not one(scaled.format(made="pinhole_project(points, 1.0)", scale="xy = xy * 1.0; result[i] = xy * f"))
+    assert not one(scaled.format(made="np.ones((len(points), 2))", scale="xy *= f"))

@@ -180,6 +180,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _twin_lopsided(name, function)
     found += _alias_changed(name, function)
     found += _rolled_strip_one_sign(name, function)
+    found += _scaled_in_place_per_turn(name, function)
     return found
 
 
@@ -1097,8 +1098,11 @@ def _alias_changed(name, function) -> list[Finding]:
     counters = {n.id for loop in loops if isinstance(loop, ast.For) for n in ast.walk(loop.target)
                 if isinstance(n, ast.Name)}
     made = _assigned_names(function)
+    # (and lists: `row_x = [x, y, 1, 0, 0, 0]` is as shared by `row_y = row_x`)
     arrays = {target for target, values in made.items()
-              if values and all(isinstance(v, (ast.Call, ast.Subscript)) for v in values)} - counters
+              if values and all(isinstance(v, (ast.Call, ast.Subscript, ast.List, ast.ListComp)) for v in values)} \
+        - counters
+    lists = {target for target in arrays if all(isinstance(v, (ast.List, ast.ListComp)) for v in made[target])}
     statements = _statements_in_order(function)
     aliases = {}   # alias -> (original, line bound, bound in a loop)
     for statement in statements:
@@ -1114,15 +1118,64 @@ def _alias_changed(name, function) -> list[Finding]:
         if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0],
                                                                                           ast.Subscript):
             changed = statement.targets[0].value
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
+                and isinstance(statement.targets[0], (ast.Tuple, ast.List)):
+            # (`row_y[:3], row_y[3:] = zeros, xy1`: parts written together)
+            changed = next((part.value for part in statement.targets[0].elts if isinstance(part, ast.Subscript)
+                            and isinstance(part.value, ast.Name) and part.value.id in aliases), changed)
         if isinstance(changed, ast.Name) and changed.id in aliases:
             original, bound, looping = aliases[changed.id]
             later = last_read.get(original, 0) > _line(statement)
             if looping or later:
                 return [Finding(name, _line(statement), "an alias of an array is changed in place",
                                 f"{name} (line {_line(statement)}) changes `{changed.id}` in place, but "
-                                f"`{changed.id} = {original}` (line {bound}) made it another name for the same array, "
+                                f"`{changed.id} = {original}` (line {bound}) made it another name for the same "
+                                f"{'list' if original in lists else 'array'}, "
                                 f"so `{original}` changes with it" + (" at every turn of the loop" if looping else "")
                                 + f"; take a copy (`{changed.id} = {original}.copy()`)", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ one array scaled in place at every turn
+def _scaled_in_place_per_turn(name, function) -> list[Finding]:
+    """``xy = project(X, 1.0)`` before ``for f in fs: xy *= f; out[i] = xy``: the array made once is scaled
+    in place at every turn by that turn's value, and each turn's answer kept, so turn i holds it times every
+    value so far (f_0 f_1 ... f_i), not times f_i. (A running product or sum kept on purpose starts at a
+    constant -- 1, 0, np.eye(3) -- and is read after the loop: not this.)"""
+    assignments: dict = {}   # name -> [(line, value)], in line order
+    for statement in _statements_in_order(function):
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name):
+            assignments.setdefault(statement.targets[0].id, []).append((_line(statement), statement.value))
+
+    def made_by_call(name: str, before: int) -> bool:
+        earlier = [value for line, value in assignments.get(name, ()) if line < before]
+        return bool(earlier) and isinstance(earlier[-1], ast.Call) and _call_name(earlier[-1]) not in (
+            "eye", "ones", "zeros", "identity", "ones_like", "zeros_like", "array", "asarray", "float", "int")
+
+    for statement in ast.walk(function):
+        if not isinstance(statement, ast.For):
+            continue
+        turn = {n.id for n in ast.walk(statement.target) if isinstance(n, ast.Name)}
+        assigned_inside = {t.id for s in ast.walk(statement) if isinstance(s, ast.Assign)
+                           for target in s.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
+        for inner in statement.body:
+            if not (isinstance(inner, ast.AugAssign) and isinstance(inner.op, (ast.Mult, ast.Div))
+                    and isinstance(inner.target, ast.Name)):
+                continue
+            scaled = inner.target.id
+            if not made_by_call(scaled, _line(statement)) or scaled in assigned_inside or not (_names_in(inner.value) & turn):
+                continue
+            kept = any(isinstance(s, (ast.Assign, ast.Expr)) and scaled in _names_in(s.value if isinstance(s, ast.Assign)
+                                                                                       else s)
+                       and s is not inner for s in statement.body)
+            if kept:
+                op = "*=" if isinstance(inner.op, ast.Mult) else "/="
+                return [Finding(name, _line(inner), "an array scaled in place at every turn of a loop",
+                                f"{name} (line {_line(inner)}) scales `{scaled}` in place (`{scaled} {op} "
+                                f"{ast.unparse(inner.value)}`) at every turn of the loop, and `{scaled}` was made once "
+                                "before it: each turn scales what the turns before left, so turn i holds it scaled by "
+                                "every value so far, not by its own alone; scale a new array each turn "
+                                f"(`{scaled} * {ast.unparse(inner.value)}`)", certain=True)]
     return []
 
 

@@ -3347,6 +3347,7 @@ def _sibling_changes(node, words):
         yield from _mirror_changes(node, words)
     yield from _twin_unit_changes(node, words)
     yield from _row_like_its_siblings(node, words)
+    yield from _term_its_siblings_have(node, words)
     yield from _raw_beside_derived(node, words)
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS) \
             and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, (ast.Add, ast.Sub)):
@@ -3482,6 +3483,64 @@ def _mirror_changes(node, words):
         theirs = ast.unparse(whole)
         if len(theirs) <= 200:
             yield "mirror", (None, theirs), ""
+
+
+def _summed_terms(node) -> list | None:
+    """The terms of a sum ``a + b - c`` as ``[("+", a), ("+", b), ("-", c)]``; None when ``node`` is none."""
+    if not (isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub))):
+        return None
+    terms = []
+    def walk(part, sign):
+        if isinstance(part, ast.BinOp) and isinstance(part.op, (ast.Add, ast.Sub)):
+            walk(part.left, sign)
+            walk(part.right, sign if isinstance(part.op, ast.Add) else ("-" if sign == "+" else "+"))
+        else:
+            terms.append((sign, part))
+    walk(node, "+")
+    return terms
+
+
+def _rows_read(terms) -> set:
+    """The (matrix, row) of every constant-row subscript the terms read (`P[1, 3]`: ("P", 1))."""
+    return {_row_index(n) for _, term in terms for n in ast.walk(term) if _row_index(n)}
+
+
+def _term_its_siblings_have(node, words):
+    """A term the sibling rows' sums all have, missing from this one: `v = P[1, 0] * X + P[1, 1] * Y + P[1, 2] *
+    Z` beside `u = ... + P[0, 3]` and `w = ... + P[2, 3]` (the translation's entry of v's row left out):
+    the sum with the siblings' extra term, read in this row."""
+    if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
+        return
+    mine = _summed_terms(node.value)
+    rows = _rows_read(mine) if mine else set()
+    if not mine or len(rows) != 1:
+        return
+    (matrix, row), = rows
+    texts = [(sign, ast.unparse(term)) for sign, term in mine]
+    extras = set()
+    for sibling in _read_siblings(words)[2]:
+        theirs = _summed_terms(sibling.value) if sibling is not node else None
+        their_rows = _rows_read(theirs) if theirs else set()
+        if not theirs or len(theirs) != len(mine) + 1 or len(their_rows) != 1 or next(iter(their_rows))[0] != matrix:
+            continue
+        other = next(iter(their_rows))[1]
+        moved = []
+        for sign, term in theirs:
+            term = copy.deepcopy(term)
+            for n in ast.walk(term):
+                if _row_index(n) == (matrix, other):
+                    first = n.slice.elts[0] if isinstance(n.slice, ast.Tuple) else None
+                    if first is not None:
+                        first.value = row
+                    else:
+                        n.slice = ast.Constant(row)
+            moved.append((sign, ast.unparse(term)))
+        missing = [item for item in moved if item not in texts]
+        if len(missing) == 1 and all(item in moved for item in texts):
+            extras.add(missing[0])
+    if len(extras) == 1:
+        sign, term = extras.pop()
+        yield "mirror", (None, f"{ast.unparse(node.value)} {sign} {term}"), ""
 
 
 def _row_index(node):

@@ -463,7 +463,7 @@ MISTAKES = {
             panorama = np.maximum(warped1, warped2)
             panorama[both] = (warped1[both] + warped2[both]) // 2
             return panorama
-        """, ["sum of uint8 images gives when it wraps round"]),
+        """, ["uint8 images gives when it wraps round"]),
     "panorama as the weighted sum, never divided by the weights": ("lab08.ex5", """
         def _compose(images, homographies):
             corners = np.vstack([transform_points(H, _corners(im)) for im, H in zip(images, homographies)])
