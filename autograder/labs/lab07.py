@@ -170,6 +170,26 @@ def translate_grey(t):
     return verdict
 
 
+# Shifts past the image's own size, either way: the content leaves the frame and the image is black (a shift
+# by slicing must stop at the border: a window of negative size is an error or an empty copy).
+BEYOND_SHIFTS = ((200, 30), (-20, -150))
+
+
+@ex1.check("translate by more than the image's width or height: the content leaves the frame", points=1)
+def translate_beyond(t):
+    source = photo("coffee", (160, 120))
+    for tx, ty in BEYOND_SHIFTS:
+        what = f"translate(160x120 image, tx={tx}, ty={ty})"
+        got = t.expect_array(call_on(t, what, "translate", source, tx=tx, ty=ty), what, shape=source.shape,
+                             dtype=np.uint8)
+        lit = float(np.any(got > 0, axis=-1).mean())
+        if lit > 0.001:
+            t.images(what, yours=got)
+            t.fail(measured(f"{what}: {lit:.0%} of the pixels are not black, but every pixel's source lies outside the "
+                            "image (the shift is larger than the image): the result is all black fill."))
+    return passed("all black for shifts past the image's width and height")
+
+
 # ================================================================== ex2 rotation
 ex2 = lab.exercise("ex2", "Rotation", functions=[
     "rotation_matrix(angle_deg, center=(0.0, 0.0))", "rotate(image, angle_deg=45)"])

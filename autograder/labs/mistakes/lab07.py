@@ -7,6 +7,15 @@ MISTAKES = {
     # the API's rule: a function that takes an image returns its channel count (shapes named by
     # autograder.engine.forms); a grey image made BGR to "see it in colour", a colour one made grey
     # the blind set 1201e's 07/01: one module-level identity written into and handed to every caller
+    "translate by slicing, no case for a shift past the image": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            h, w = image.shape[:2]
+            tx, ty = int(round(tx)), int(round(ty))
+            out = np.zeros_like(image)
+            out[max(ty, 0):h + min(ty, 0), max(tx, 0):w + min(tx, 0)] = \\
+                image[max(-ty, 0):h - max(ty, 0), max(-tx, 0):w - max(tx, 0)]
+            return out
+        """, ["could not broadcast"]),
     "translation_matrix returning one module-level array": ("lab07.ex1", """
         _IDENTITY = np.eye(3)
         def translation_matrix(tx, ty):
