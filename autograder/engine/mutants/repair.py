@@ -1528,20 +1528,25 @@ def _translated(call, positions) -> list:
     return [made for tx, ty in SHIFTS for made in _matrices_replaced(call, positions, shifted(tx, ty))]
 
 
+def _points_changed(call, accepts, change) -> list:
+    """The call with each of its point arrays (float arrays ``accepts`` takes, all of one length) changed by
+    ``change``, every array alike: ``[call]``, or [] when it has none or arrays of several lengths."""
+    function, args, kwargs = call
+    points = lambda v: isinstance(v, np.ndarray) and v.dtype.kind == "f" and v.ndim == 2 and accepts(v)  # noqa: E731
+    counts = {len(v) for v in list(args) + list(kwargs.values()) if points(v)}
+    if len(counts) != 1:
+        return []
+    made = lambda v: change(v) if points(v) else v  # noqa: E731
+    return [(function, tuple(made(a) for a in args), {k: made(v) for k, v in kwargs.items()})]
+
+
 def _single_point(call) -> list:
     """The call with its point arrays ((N, 2) or (N, 3) floats, N >= 2, all of one N) given their first point
     alone, as a (2,) or (3,) vector ([] when it has none): the API's single point, which a change mending the
     batch only -- `return result.T` where `result[0]` is taken for one point -- gets wrong. Where the reference
     does not take a single point, the input is no confirmation (it raises there)."""
-    function, args, kwargs = call
-    def points(value):
-        return isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.ndim == 2 \
-            and value.shape[1] in (2, 3) and value.shape[0] >= 2
-    counts = {len(v) for v in list(args) + list(kwargs.values()) if points(v)}
-    if len(counts) != 1:
-        return []
-    one = lambda v: np.ascontiguousarray(v[0]) if points(v) else v  # noqa: E731
-    return [(function, tuple(one(a) for a in args), {k: one(v) for k, v in kwargs.items()})]
+    return _points_changed(call, lambda v: v.shape[1] in (2, 3) and v.shape[0] >= 2,
+                           lambda v: np.ascontiguousarray(v[0]))
 
 
 def _reordered(call) -> list:
@@ -1549,15 +1554,8 @@ def _reordered(call) -> list:
     given in the reverse order, every array alike ([] when it has none): a correspondence set's order is
     the caller's, and a change right for one order only -- a sign flipped in an orientation test that
     rejects the triangles listed the other way round -- is wrong there."""
-    function, args, kwargs = call
-    def points(value):
-        return isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.ndim == 2 \
-            and value.shape[1] in (2, 3) and value.shape[0] >= 3 and value.shape[0] != value.shape[1]
-    counts = {len(v) for v in list(args) + list(kwargs.values()) if points(v)}
-    if len(counts) != 1:
-        return []
-    back = lambda v: np.ascontiguousarray(v[::-1]) if points(v) else v  # noqa: E731
-    return [(function, tuple(back(a) for a in args), {k: back(v) for k, v in kwargs.items()})]
+    return _points_changed(call, lambda v: v.shape[1] in (2, 3) and v.shape[0] >= 3 and v.shape[0] != v.shape[1],
+                           lambda v: np.ascontiguousarray(v[::-1]))
 
 
 # Offsets of 2-D points: far, each with its opposite and a perpendicular pair, so that whatever the direction
@@ -1571,18 +1569,9 @@ def _points_moved(call) -> list:
     :data:`MOVES`, every array alike ([] when it has none): what a set of points means does not hang on where the
     origin is, and a change reading a point where a difference of two belongs (`src[2]` for
     `src[2] - src[0]`) is right only by where the points happen to lie."""
-    function, args, kwargs = call
-    def points(value):
-        return isinstance(value, np.ndarray) and value.dtype.kind == "f" and value.ndim == 2 \
-            and value.shape[1] == 2 and value.shape[0] >= 3
-    counts = {len(v) for v in list(args) + list(kwargs.values()) if points(v)}
-    if len(counts) != 1:
-        return []
-    made = []
-    for move in MOVES:
-        moved = lambda v: v + np.asarray(move, v.dtype) if points(v) else v  # noqa: E731
-        made.append((function, tuple(moved(a) for a in args), {k: moved(v) for k, v in kwargs.items()}))
-    return made
+    return [made for move in MOVES
+            for made in _points_changed(call, lambda v: v.shape[1] == 2 and v.shape[0] >= 3,
+                                        lambda v, move=move: v + np.asarray(move, v.dtype))]
 
 
 def _fewer(call) -> list:
