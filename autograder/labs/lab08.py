@@ -1025,6 +1025,15 @@ def judge_match_drawing(t: Trial, what: str, got, img1, img2, pts1, pts2):
             t.fail(f"{what}: the lines end at (x2 + W2, y2), shifted by img2's width ({w2} px); the second "
                    f"image starts at x = W1 = {w1}, so draw each line to (x2 + W1, y2)",
                    mistake="the lines are shifted by W2 instead of W1")
+        # (every line crosses into img2's side: where nothing at all is drawn there, while the left side
+        # holds the lines' first halves, img2 covered the drawing -- pasted after it)
+        left, right = drawn_on[:, :w1], drawn_on[:img2.shape[0], w1:]
+        if right.mean() < 0.0005 and left.sum() >= 20 * len(starts):
+            t.fail(measured(f"{what}: the lines stop at x = W1 = {w1}: img2's side of the canvas is img2 itself, with "
+                            "nothing drawn on it, while img1's side holds each line's first part. The lines and "
+                            "circles drawn there were covered: img2 is placed on the canvas after the drawing (place "
+                            "both images first, then draw)."),
+                   mistake="img2 is placed on the canvas after the lines are drawn")
         missing_lines_verdict(t, what, found, starts, ends, stray_lines, w1)
     x1, y1, x2, y2 = stray_lines[0]
     t.fail(f"{what}: every match has its line, but a line from about ({x1}, {y1}) to ({x2}, {y2}) joins no "

@@ -192,6 +192,18 @@ MISTAKES = {
                     pts2.append(kp2[m.trainIdx].pt)
             return np.array(pts1).reshape(-1, 2), np.array(pts2).reshape(-1, 2)
         """, ["squared distances compared with the ratio", "squares the distances it compares"]),
+    "draw_matches placing img2 on the canvas after the lines": ("lab08.ex3", """
+        def draw_matches(img1, img2, pts1, pts2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
+            canvas[:h1, :w1] = _bgr(img1)
+            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                cv2.line(canvas, (int(round(x1)), int(round(y1))), (int(round(x2 + w1)), int(round(y2))),
+                         (0, 255, 0), 1, cv2.LINE_AA)
+            canvas[:h2, w1:] = _bgr(img2)
+            return canvas
+        """, ["img2 is placed on the canvas after the drawing"]),
     "draw_matches circling the points in the caller's images": ("lab08.ex3", """
         _draw_matches = draw_matches
         def draw_matches(img1, img2, pts1, pts2):
