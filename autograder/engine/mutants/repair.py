@@ -1342,7 +1342,7 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = No
     Never raises for the student's sake: a variant that fails is no repair; without a reference
     module, a reading of the student's code or time left, nothing is named."""
     model = naming.model_for(trial.lab)
-    if model is None or not (trial.calls or getattr(trial, "raised", None)):
+    if model is None or not (trial.calls or getattr(trial, "served", None) or getattr(trial, "raised", None)):
         return None
     raised = naming.raised_answer(trial.raised[3]) if getattr(trial, "raised", None) else None
     if raised is not None and naming.error_kind(raised)[0] in naming.NO_MUTANT_RAISES:
@@ -1368,9 +1368,10 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = No
 
 
 def _recorded(trial) -> dict:
-    """function -> [(function, args, kwargs, the student's outcome)] of the trial, raised last."""
+    """function -> [(function, args, kwargs, the student's outcome)] of the trial, raised last: those it made
+    and those behind a value another check's ``t.shared`` served it (a panorama judged by several checks)."""
     recorded = {}
-    for function, args, kwargs, value in trial.calls:
+    for function, args, kwargs, value in list(getattr(trial, "served", ())) + list(trial.calls):
         recorded.setdefault(function, []).append((function, tuple(args), dict(kwargs), value))
     if getattr(trial, "raised", None):
         function, args, kwargs, message = trial.raised
