@@ -2574,6 +2574,30 @@ def simulate_boxes(t):
            hint=PROJECTOR_MODEL)
 
 
+@ex6.check("simulate_structured_light with a baseline other than 1 (0.6): disparities f b / Z", points=1)
+def simulate_other_baseline(t):
+    """The public scenes' baseline is 1, where f b / Z, f / (b Z) and f / Z are one number: here it is 0.6."""
+    depth, f, _ = truth.structured_light_scene("boxes")
+    baseline, n_bits = 0.6, 6
+    what = f"simulate_structured_light(depth, f={f:g}, baseline={baseline:g}, n_bits={n_bits})"
+    got = t.expect_array(t.call("simulate_structured_light", np.array(depth), f, baseline, n_bits), what,
+                         shape=(n_bits, *depth.shape), dtype=np.uint8)
+    expected = truth.simulate_structured_light(depth, f, baseline, n_bits)
+    wrong = np.any(got != expected, axis=0) & ~truth.simulation_ties(depth, f, baseline)
+    if not wrong.any():
+        return passed("every lit pixel sees the right projector column at baseline 0.6")
+    for name, label, other in (("f / (b Z)", "f / (b Z)", 1.0 / baseline),
+                               ("f / Z (the baseline left out)", "f / Z", 1.0)):
+        if not (np.any(got != truth.simulate_structured_light(depth, f, other, n_bits), axis=0)
+                & ~truth.simulation_ties(depth, f, other)).any():
+            t.fail(measured(f"{what}: every pixel sees the projector column of a disparity {name} where f b / Z "
+                            "belongs: the images are exactly those of a baseline of "
+                            f"{other:g}, not {baseline:g} (at 1, the public scenes' baseline, both are one)."),
+                   mistake=f"the disparity is {label} instead of f b / Z")
+    t.fail(measured(f"{what}: {wrong.mean():.1%} of the pixels differ from the projector model, where the same scene "
+                    "at baseline 1 is right: look at how the baseline enters the disparity f b / Z."))
+
+
 @ex6.check("simulate_structured_light leaves pixels with no depth in front black (Z = 0 and Z < 0)", points=1)
 def simulate_not_in_front(t):
     """The scene of the first check with a band of rows at Z = 0 and one behind the camera (Z = -3): a

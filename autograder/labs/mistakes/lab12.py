@@ -534,6 +534,11 @@ MISTAKES = {
             shifts = np.arange(int(n_bits) - 1, -1, -1)[:, None]
             return ((gray[None, :] >> shifts) & 1 * 255).astype(np.uint8)
         """, ["the bit is not isolated", "binds tighter than &"]),
+    "structured light with the disparity f / (b Z)": ("lab12.ex6", """
+        _simulate = simulate_structured_light
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            return _simulate(depth, f, 1.0 / baseline, n_bits)
+        """, ["a disparity f / (b Z) where f b / Z belongs"]),
     "plain binary patterns": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
             k = (np.arange(width) * 2**n_bits) // width
