@@ -2772,9 +2772,13 @@ BESIDE_SECONDS = 4.0
 def _beside(verdict) -> bool:
     """Whether a repair may be told beside the check's own name of the mistake: not beside a name that
     already points into the code (a reading of it, a line) nor one a repair made."""
+    from ..inplace import MISTAKE as CHANGED_IN_PLACE
+
     message = str(verdict.message)
-    return BESIDE_NAMES and not verdict.mistake.startswith(MISTAKE) and "reading your code" not in message.lower() \
-        and re.search(r"\(line \d+\)", message) is None
+    # (nor beside a caller's array changed in place, measured where the effect shows: the write is the slip,
+    # and a change elsewhere that mends the second call's answers -- a rounding made a floor -- compensates)
+    return BESIDE_NAMES and not verdict.mistake.startswith(MISTAKE) and verdict.mistake != CHANGED_IN_PLACE \
+        and "reading your code" not in message.lower() and re.search(r"\(line \d+\)", message) is None
 
 
 def _upstream(repair: Repair, trial) -> Repair:

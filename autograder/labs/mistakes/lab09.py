@@ -31,6 +31,14 @@ MISTAKES = {
             return np.swapaxes(_simulate_aperture(points, f, aperture, n_rays, seed), 0, 1)
         """, ["the axes are exchanged, (n_rays, n, 2)"]),
     # the blind set 1201c's 09/07: the line type given where the thickness goes
+    "project_onto_image drawing on the image converted to RGB": ("lab09.ex5", """
+        def project_onto_image(image, P, points):
+            pts = project(P, points).reshape(-1, 2)
+            shown = cv2.cvtColor(image, cv2.COLOR_BGR2RGB) if image.ndim == 3 else image.copy()
+            for x, y in pts[np.isfinite(pts).all(axis=1)]:
+                cv2.circle(shown, (int(round(x)), int(round(y))), 3, (0, 0, 255), -1)
+            return shown, pts
+        """, ["the colour channels are reversed (rgb for bgr)"]),
     "project_onto_image dropping the rows that are not finite (a point behind the camera)": ("lab09.ex5", """
         def project_onto_image(image, P, points):
             pts = project(P, points).reshape(-1, 2)
