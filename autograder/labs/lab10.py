@@ -1765,9 +1765,15 @@ def judge_track(t: Trial, frames, poses, dist=None, what=None):
     if isinstance(got, np.ndarray) and got.ndim > 2 and got.shape[0] == len(frames) and got.size == 6 * len(frames):
         t.fail(f"{what} returned shape {got.shape}; expected ({len(frames)}, 6): the rows are not flattened "
                "(each row is the 6 numbers of rvec, then tvec).", mistake="the rows are not flattened to [rvec, tvec]")
-    if isinstance(got, np.ndarray) and got.shape == (len(frames) - 1, 6):
+    if isinstance(got, np.ndarray) and got.ndim == 2 and got.shape[1] == 6 and got.shape[0] < len(frames):
+        # (rows up to the first frame without a board, and none after: the loop stopped there)
+        lost = next((k for k, pose in enumerate(poses) if pose is None), None)
+        stopped = lost is not None and got.shape[0] == lost
         t.fail(f"{what} returned {got.shape[0]} rows for {len(frames)} frames: " + measured(
-            "keep one row per frame, NaN where the board is not found."))
+            (f"the rows stop at frame {lost}, the first where the board is not found, and no row follows for the later frames "
+             "(is the loop left there, with break or return?); " if stopped else "")
+            + "keep one row per frame, NaN where the board is not found."),
+            mistake="the frames after the first without a board are left out" if stopped else "")
     got = t.expect_array(got, what, shape=(len(frames), 6), kind="f")
     shifted = {
         "the rows are off by one frame (one frame late): row i must be the pose in frame i (frames[i])": (None,) + poses[:-1],

@@ -178,6 +178,16 @@ MISTAKES = {
             fs = f0 * distances / z0
             return fs, np.stack([perspective_project(X - [0.0, 0.0, d - z0], f) for f, d in zip(fs, distances)])
         """, ["wrong way"]),
+    "track_pose stopping at the first frame without a board": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows = []
+            for frame in frames:
+                rvec, tvec, _ = estimate_pose(frame, pattern_size, square_size, K, dist)
+                if not np.all(np.isfinite(rvec)):
+                    break
+                rows.append(np.concatenate([rvec, tvec]))
+            return np.array(rows, dtype=np.float64).reshape(-1, 6)
+        """, ["the rows stop at frame", "the first where the board is not found"]),
     "tracking rows [tvec, rvec]": ("lab10.ext3", """
         _right = track_pose
         def track_pose(frames, pattern_size, square_size, K, dist=None):
