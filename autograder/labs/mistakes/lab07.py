@@ -6,7 +6,6 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 MISTAKES = {
     # the API's rule: a function that takes an image returns its channel count (shapes named by
     # autograder.engine.forms); a grey image made BGR to "see it in colour", a colour one made grey
-    # the blind set 1201e's 07/01: one module-level identity written into and handed to every caller
     "translate by slicing, no case for a shift past the image": ("lab07.ex1", """
         def translate(image, tx=100, ty=50):
             h, w = image.shape[:2]
@@ -16,6 +15,7 @@ MISTAKES = {
                 image[max(-ty, 0):h - max(ty, 0), max(-tx, 0):w - max(tx, 0)]
             return out
         """, ["could not broadcast"]),
+    # the blind set 1201e's 07/01: one module-level identity written into and handed to every caller
     "translation_matrix returning one module-level array": ("lab07.ex1", """
         _IDENTITY = np.eye(3)
         def translation_matrix(tx, ty):

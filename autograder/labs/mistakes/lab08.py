@@ -176,10 +176,6 @@ MISTAKES = {
             return T_dst_inv @ H @ T_src
         """, ["the caller's `src` in place", "called a second time on that same array"]),
     # ---------------------------------------------------------------- ex3
-    # the blind set 1201c's 08/04: the matched positions kept as int32 (as for drawing)
-    # the blind set 1201d's 08/03: the best 50 matches kept whatever the ratio
-    # the blind set 1201e's 08/06: Lowe's paper's 0.8 as the default
-    # the blind set 1201f's 08/04: the keypoints circled in the caller's own images
     "Lowe's test on squared distances (the test at sqrt(ratio))": ("lab08.ex3", """
         def match_features(img1, img2, ratio=0.75, method="sift"):
             sift = cv2.SIFT_create()
@@ -204,6 +200,10 @@ MISTAKES = {
             canvas[:h2, w1:] = _bgr(img2)
             return canvas
         """, ["img2 is placed on the canvas after the drawing"]),
+    # the blind set 1201c's 08/04: the matched positions kept as int32 (as for drawing)
+    # the blind set 1201d's 08/03: the best 50 matches kept whatever the ratio
+    # the blind set 1201e's 08/06: Lowe's paper's 0.8 as the default
+    # the blind set 1201f's 08/04: the keypoints circled in the caller's own images
     "draw_matches circling the points in the caller's images": ("lab08.ex3", """
         _draw_matches = draw_matches
         def draw_matches(img1, img2, pts1, pts2):
@@ -460,7 +460,6 @@ MISTAKES = {
             return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
         """, ["returns the last model drawn rather than the best one."]),   # (500 samples: not "too few")
     # ---------------------------------------------------------------- ex5
-    # the blind set 1201d's 08/06: the feathered sum never divided by the summed weights
     "stitch averaging the two warps in uint8 (the sum wraps past 255)": ("lab08.ex5", """
         def stitch(img1, img2):
             H21 = _pairwise_homography(img2, img1)
@@ -476,6 +475,7 @@ MISTAKES = {
             panorama[both] = (warped1[both] + warped2[both]) // 2
             return panorama
         """, ["uint8 images gives when it wraps round"]),
+    # the blind set 1201d's 08/06: the feathered sum never divided by the summed weights
     "panorama as the weighted sum, never divided by the weights": ("lab08.ex5", """
         def _compose(images, homographies):
             corners = np.vstack([transform_points(H, _corners(im)) for im, H in zip(images, homographies)])

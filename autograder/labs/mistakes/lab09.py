@@ -30,7 +30,6 @@ MISTAKES = {
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
             return np.swapaxes(_simulate_aperture(points, f, aperture, n_rays, seed), 0, 1)
         """, ["the axes are exchanged, (n_rays, n, 2)"]),
-    # the blind set 1201c's 09/07: the line type given where the thickness goes
     "project_onto_image drawing on the image converted to RGB": ("lab09.ex5", """
         def project_onto_image(image, P, points):
             pts = project(P, points).reshape(-1, 2)
@@ -45,6 +44,7 @@ MISTAKES = {
             pts = pts[np.isfinite(pts).all(axis=1)]
             return draw_points(image, pts), pts
         """, ["the point behind the camera is left out"]),
+    # the blind set 1201c's 09/07: the line type given where the thickness goes
     "circles drawn with cv2.LINE_AA as their thickness": ("lab09.ex5", """
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
             out = image.copy()
