@@ -144,7 +144,7 @@ def translation_matrix_property(t):
         t, "translation_matrix", shift, truth.translation, truth.translation_mistakes))
 
 
-@ex1.check("translate(image) with the defaults tx=100, ty=50", points=4)
+@ex1.check("translate(image) with the defaults tx=100, ty=50", points=3)
 def translate_defaults(t):
     source = photo("astronaut", (240, 180))
     return judge_warp(t, "translate(image)", t.call("translate", source), source,

@@ -2576,26 +2576,32 @@ def simulate_boxes(t):
 
 @ex6.check("simulate_structured_light with a baseline other than 1 (0.6): disparities f b / Z", points=1)
 def simulate_other_baseline(t):
-    """The public scenes' baseline is 1, where f b / Z, f / (b Z) and f / Z are one number: here it is 0.6."""
+    """The public scenes' baseline is 1, where f b / Z, f / (b Z) and f / Z are one number. The baseline enters
+    only through the disparity f b / Z, so a scene at baseline b is the same scene with every depth divided by b
+    at baseline 1: the student's own two answers are compared (the rest of their model, right or not, is the
+    same on both sides), ties of the rounding left out."""
     depth, f, _ = truth.structured_light_scene("boxes")
     baseline, n_bits = 0.6, 6
     what = f"simulate_structured_light(depth, f={f:g}, baseline={baseline:g}, n_bits={n_bits})"
+    shape = (n_bits, *depth.shape)
     got = t.expect_array(t.call("simulate_structured_light", np.array(depth), f, baseline, n_bits), what,
-                         shape=(n_bits, *depth.shape), dtype=np.uint8)
-    expected = truth.simulate_structured_light(depth, f, baseline, n_bits)
-    wrong = np.any(got != expected, axis=0) & ~truth.simulation_ties(depth, f, baseline)
+                         shape=shape, dtype=np.uint8)
+    closer = t.expect_array(t.call("simulate_structured_light", np.array(depth) / baseline, f, 1.0, n_bits),
+                            f"simulate_structured_light(depth / {baseline:g}, f={f:g}, baseline=1, n_bits={n_bits})",
+                            shape=shape, dtype=np.uint8)
+    ties = truth.simulation_ties(depth, f, baseline)
+    wrong = np.any(got != closer, axis=0) & ~ties
     if not wrong.any():
-        return passed("every lit pixel sees the right projector column at baseline 0.6")
-    for name, label, other in (("f / (b Z)", "f / (b Z)", 1.0 / baseline),
-                               ("f / Z (the baseline left out)", "f / Z", 1.0)):
-        if not (np.any(got != truth.simulate_structured_light(depth, f, other, n_bits), axis=0)
-                & ~truth.simulation_ties(depth, f, other)).any():
-            t.fail(measured(f"{what}: every pixel sees the projector column of a disparity {name} where f b / Z "
-                            "belongs: the images are exactly those of a baseline of "
-                            f"{other:g}, not {baseline:g} (at 1, the public scenes' baseline, both are one)."),
-                   mistake=f"the disparity is {label} instead of f b / Z")
-    t.fail(measured(f"{what}: {wrong.mean():.1%} of the pixels differ from the projector model, where the same scene "
-                    "at baseline 1 is right: look at how the baseline enters the disparity f b / Z."))
+        return passed("the baseline enters as f b / Z: the scene at baseline 0.6 is the scene with its depths divided "
+                      "by 0.6 at baseline 1")
+    lead = (f"{what}: {wrong.mean():.1%} of the pixels differ from what your function gives for the same scene with "
+            f"every depth divided by {baseline:g} at baseline 1, where the disparity f b / Z is the same number")
+    inverse = truth.simulate_structured_light(depth, f, 1.0 / baseline, n_bits)
+    if not (np.any(got != inverse, axis=0) & ~truth.simulation_ties(depth, f, 1.0 / baseline)).any():
+        t.fail(measured(f"{lead}; yours are exactly the images of a baseline of {1 / baseline:g}: a disparity f / (b Z) "
+                        "where f b / Z belongs (at 1, the public scenes' baseline, both are one)."),
+               mistake="the disparity is f / (b Z) instead of f b / Z")
+    t.fail(measured(lead + ": look at how the baseline enters the disparity."))
 
 
 @ex6.check("simulate_structured_light leaves pixels with no depth in front black (Z = 0 and Z < 0)", points=1)

@@ -2765,7 +2765,7 @@ class _Replayed:
 # not a time, bounds it, so a grading tells the same beside a name however busy the machine is (a
 # regrade, a batch on another machine), unless the time, far above what the count takes, runs out.
 BESIDE_NAMES = True
-BESIDE_TRIES = 30
+BESIDE_TRIES = 45
 BESIDE_SECONDS = 4.0
 
 

@@ -618,13 +618,13 @@ MISTAKES = {
         """, ["your answer is an integer array", "dtype=pts.dtype)` (line", "then writes into it"]),
     "draw_epipolar_lines from the foot of the perpendicular (unit normals assumed)": ("lab11.ex2", """
         def draw_epipolar_lines(image, lines):
-            canvas = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image.copy()
-            height, width = canvas.shape[:2]
+            canvas = image.copy()
+            colour = (0, 255, 0) if canvas.ndim == 3 else 255
             for a, b, c in np.asarray(lines, np.float64).reshape(-1, 3):
                 x0, y0 = -a * c, -b * c
                 p = (int(round(x0 - 2000 * b)), int(round(y0 + 2000 * a)))
                 q = (int(round(x0 + 2000 * b)), int(round(y0 - 2000 * a)))
-                cv2.line(canvas, p, q, (0, 255, 0), 1)
+                cv2.line(canvas, p, q, colour, 1)
             return canvas
         """, ["lines are missing or incomplete"]),
     "draw_epipolar_lines tests the sign of b": ("lab11.ex2", """

@@ -533,7 +533,7 @@ MISTAKES = {
             gray = k ^ (k >> 1)
             shifts = np.arange(int(n_bits) - 1, -1, -1)[:, None]
             return ((gray[None, :] >> shifts) & 1 * 255).astype(np.uint8)
-        """, ["the bit is not isolated", "binds tighter than &"]),
+        """, ["row i is (g >> s) & 255", "binds tighter than &"]),
     "structured light with the disparity f / (b Z)": ("lab12.ex6", """
         _simulate = simulate_structured_light
         def simulate_structured_light(depth, f, baseline, n_bits):
