@@ -92,7 +92,8 @@ def make_class(root: Path, copies: int = 8) -> dict[str, tuple[str, float | None
     for i in range(copies):
         student(f"correct-{i:02d}", {f"correct-{i:02d}/{MODULE}.py": reference()})
     student("nested", {f"nested/work/labs/{MODULE}.py": reference(), "nested/work/helpers.py": "X = 1\n"})
-    student("partly-wrong", {f"partly-wrong/{MODULE}.py": reference() + WRONG_WAY}, points=4.0)
+    # (translation_matrix's two checks, and a shift past the image's size: black whichever way it goes)
+    student("partly-wrong", {f"partly-wrong/{MODULE}.py": reference() + WRONG_WAY}, points=5.0)
     student("skeleton", {f"skeleton/{MODULE}.py": skeleton()}, points=0.0)
     student("broken-import", {f"broken-import/{MODULE}.py": "import numpy_but_misspelt\n" + reference()}, points=0.0)
     student("exits-at-import", {f"exits-at-import/{MODULE}.py": "import os\nos._exit(3)\n"}, points=0.0)
@@ -309,7 +310,7 @@ def test_grades_csv_and_lms_imports_parse_with_the_documented_headers(generated,
     rows = list(csv.reader((out / "grades.csv").open(newline="")))
     assert rows[0] == ["Student ID", "Name", "Status", "lab07.ex1", "Late penalty", "Adjustments", "Total"]
     by_id = {r[0]: r for r in rows[1:]}
-    assert by_id["correct-00"][-1] == "12" and by_id["partly-wrong"][-1] == "4"
+    assert by_id["correct-00"][-1] == "12" and by_id["partly-wrong"][-1] == "5"
     assert by_id["bad-zip"][2].startswith("could not be read: ")
     canvas = list(csv.reader((out / "canvas_import.csv").open(newline="")))
     assert canvas[0] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Lab 7"]
@@ -416,17 +417,17 @@ def test_gradescope_export_with_a_group_and_a_late_submission(tmp_path):
     ada, group = by_id["ada-lovelace-s001"], by_id["alan-turing-s002"]
     assert ada["result"]["total"] == FULL and ada["lms"]["sid"] == "S001"
     assert [m["name"] for m in group["members"]] == ["Alan Turing", "Grace Hopper"]
-    assert group["result"]["total"] == 4.0 and group["submitted_at"].startswith("2026-03-03T09:30")
+    assert group["result"]["total"] == 5.0 and group["submitted_at"].startswith("2026-03-03T09:30")
     assert by_id["emmy-noether-s004"]["status"] == "unreadable"    # in the metadata, no folder
     assert summary.ignored == ["submission_999: not listed in submission_metadata.yml; not graded"]
     assert len(summary.unreadable) == 1
     grades = {r["Student ID"]: r for r in csv.DictReader((out / "grades.csv").open())}
-    assert grades["alan-turing-s002"]["Late penalty"] == "0.8"     # 2 days late: 20% of 4 points
+    assert grades["alan-turing-s002"]["Late penalty"] == "1"       # 2 days late: 20% of 5 points
     assert grades["alan-turing-s002"]["Adjustments"] == "1"         # a member's override is the group's
-    assert grades["alan-turing-s002"]["Total"] == "4.2"
+    assert grades["alan-turing-s002"]["Total"] == "5"
     assert grades["ada-lovelace-s001"]["Total"] == "12"           # on time
     canvas = list(csv.DictReader((out / "canvas_import.csv").open()))
-    assert [r["SIS User ID"] for r in canvas if r["Lab 7"] == "4.2"] == ["S002", "S003"]  # both group members
+    assert [r["SIS User ID"] for r in canvas if r["Lab 7"] == "5"] == ["S002", "S003"]  # both group members
     assert "Instructor adjustments" in (out / "alan-turing-s002" / "feedback.html").read_text()
 
 

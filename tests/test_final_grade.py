@@ -31,7 +31,7 @@ ROSTER = ("Student,ID,SIS User ID,SIS Login ID,Section,Lab 7 (4242)\n"
 def canvas_class(root):
     write(root / f"smithjohn_1234_5678_{MODULE}.py", reference())                  # 12 / 12
     write(root / f"doejane_LATE_2345_6789_{MODULE}.py", reference())               # late: -25%
-    write(root / f"leeann_3456_7890_{MODULE}.py", reference() + WRONG_WAY)          # 4 / 12, +2 by override
+    write(root / f"leeann_3456_7890_{MODULE}.py", reference() + WRONG_WAY)          # 5 / 12, +2 by override
 
 
 def run(tmp_path, hidden_points_visible):
@@ -58,7 +58,7 @@ def headline(out, student_id):
 
 def test_every_page_and_export_tells_the_same_final_grade(tmp_path):
     out, grades, canvas = run(tmp_path, hidden_points_visible=True)
-    expected = {"smithjohn-1234": ("20", "1234"), "doejane-2345": ("15", "2345"), "leeann-3456": ("8.67", "3456")}
+    expected = {"smithjohn-1234": ("20", "1234"), "doejane-2345": ("15", "2345"), "leeann-3456": ("10.33", "3456")}
     overview = (out / "index.html").read_text()
     for student_id, (total, canvas_id) in expected.items():
         assert grades[student_id]["Total"] == total

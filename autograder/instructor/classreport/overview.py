@@ -37,7 +37,8 @@ def safe_href(href: str) -> str:
 
 
 def _num(x) -> str:
-    return "–" if x is None else f"{x:.3g}" if abs(x) < 1000 else f"{x:.0f}"
+    # (to the hundredth, as the gradebook's exports write a grade: 10.33, not three significant digits' 10.3)
+    return "–" if x is None else f"{round(float(x), 2):g}" if abs(x) < 1e6 else f"{x:.0f}"
 
 
 def environment() -> Environment:
