@@ -19,6 +19,7 @@ by hand forbids it in the course configuration (``"forbid"``). ``stitch`` and
 from __future__ import annotations
 
 import ast
+import functools
 from collections import Counter
 from dataclasses import replace
 from typing import Callable
@@ -756,6 +757,13 @@ SQUARED_TEST = Predicate("squares the distances it compares", lambda function: a
     for compare in ast.walk(function)))
 
 
+@functools.lru_cache(maxsize=4)
+def _lowe_ratios_of(name: str, seed: int) -> np.ndarray:
+    """The grader's own Lowe ratios on a matching pair (fixed images: computed once per process)."""
+    img1, img2, _ = truth.matching_pair(name, (240, 180), seed=seed)
+    return truth.lowe_ratios(img1, img2)
+
+
 def effective_ratio(ratios: np.ndarray, share: float) -> float:
     """The ratio at which Lowe's test keeps ``share`` of what ratio=1 keeps, on these keypoints."""
     kept = np.sort(ratios[ratios < 1.0])
@@ -768,7 +776,7 @@ def match_ratio_share(t):
     notes = []
     for name, seed in RATIO_PAIRS:
         img1, img2, _ = truth.matching_pair(name, (240, 180), seed=seed)
-        ratios = truth.lowe_ratios(img1, img2)
+        ratios = _lowe_ratios_of(name, seed)
         counts = {}
         for ratio in (*RATIOS_JUDGED, 1.0):
             what = f"match_features(img1, img2, ratio={ratio})"
