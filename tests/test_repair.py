@@ -3445,3 +3445,78 @@ def test_a_term_its_sibling_rows_have_a_list_items_transpose_an_order_imposed_an
                for _, after in _changes(student, mutants, "inverse"))
     assert ("np.unique(np.asarray(d))", "np.asarray(d)") in _changes(student, mutants, "unwrap")
     assert ("area <= 0", "np.abs(area) <= 0") in _changes(student, mutants, "magnitude")
+
+
+def test_a_collection_started_once_where_each_turn_needs_its_own_is_started_in_the_loop():
+    """`rows = []` above a loop that appends to it and solves `np.array(rows)` at each turn: moved into
+    the loop; a list only appended to in the loop (read after it) is a legitimate accumulator."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(pts):
+            points = []
+            rows = []
+            for x, y in pts:
+                rows.append([x, y, 1.0])
+                rows.append([y, -x, 0.0])
+                points.append(np.linalg.svd(np.array(rows))[2][-1])
+            return np.array(points)
+    """)
+    fn = next(node for node in ast.parse(source).body if isinstance(node, ast.FunctionDef))
+    moved = [m for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+             if m.operator == "indent" and m.edits[0][3][3] == "first"]
+    assert [m.edits[0][3][1] for m in moved] == ["rows = []"], moved
+    after = repair._MAKE["indent"](list(ast.walk(fn))[moved[0].edits[0][1]], moved[0].edits[0][3])
+    assert ast.unparse(after.body[0]) == "rows = []"
+
+
+def test_a_loop_variable_nothing_reads_is_tried_first_where_a_name_on_its_line_is_used():
+    """`[project(X, f) for fl in f]`: `fl`, never read, is the name tried first for `f` on its own line."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(X, focal_lengths):
+            f = np.asarray(focal_lengths, dtype=float)
+            return np.stack([X * f for fl in f])
+    """)
+    fn = next(node for node in ast.parse(source).body if isinstance(node, ast.FunctionDef))
+    nodes = list(ast.walk(fn))
+    first = {}
+    for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]:
+        node = nodes[m.edits[0][1]]
+        if m.operator == "other_name" and isinstance(node, ast.Name) and node.id == "f" and node.lineno == 6:
+            first.setdefault(node.col_offset, m.edits[0][3])
+    assert first and set(first.values()) == {"fl"}, first
+
+
+def test_a_shift_written_beside_a_sum_without_brackets_and_a_matrix_started_filled():
+    """`k << 1 + bit` is `k << (1 + bit)` in Python: `(k << 1) + bit` tried; `np.ones((3, 3))` for a
+    matrix whose entries are set one by one: `np.eye(3)` tried (the entries never set keep the fill)."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(k, bit, f):
+            K = np.ones((3, 3))
+            K[0, 0] = K[1, 1] = f
+            return k << 1 + bit, K
+    """)
+    made = _made(source, {"regroup", "identity"})
+    assert {("k << 1 + bit", "(k << 1) + bit"), ("np.ones((3, 3))", "np.eye(3)")} <= made, made
+
+
+def test_points_a_mask_kept_where_every_point_belongs_are_given_whole():
+    """`src[inliers]` (a mask made by a comparison, kept as the best one, refined): `src` tried; an index
+    that is a loop's position is no mask and is kept."""
+    source = textwrap.dedent("""
+        def graded(src, errors, t):
+            best = None
+            for k in range(3):
+                inliers = errors[k] < t
+                best = inliers
+            inliers = best
+            refined = errors[0][inliers] < t
+            return src[inliers], src[refined], src[k]
+    """)
+    made = _made(source, {"drop_slice"})
+    assert {("src[inliers]", "src"), ("src[refined]", "src")} <= made, made
+    assert ("src[k]", "src") not in made, made

@@ -680,3 +680,20 @@ def test_an_array_scaled_in_place_at_every_turn_is_named():
     # a new array each turn; a running product started at a constant on purpose
     assert not one(scaled.format(made="pinhole_project(points, 1.0)", scale="xy = xy * 1.0; result[i] = xy * f"))
     assert not one(scaled.format(made="np.ones((len(points), 2))", scale="xy *= f"))
+
+
+def test_a_write_through_an_index_that_copies_is_named():
+    written = """
+        def scaling_matrix(sx, sy):
+            M = np.eye(3)
+            {index}
+            M{target} = np.diag([sx, sy])
+            return M
+        """
+    for index, target in (("d = [0, 1]", "[d][:, d]"), ("d = np.arange(2)", "[d][:, d]"),
+                          ("pass", "[[0, 1]][:, [0, 1]]")):
+        assert one(written.format(index=index, target=target)) == {"a write into a copy made by an index"}, target
+    # whole numbers and slices index views: the write lands in M
+    assert not one(written.format(index="d = 1", target="[:2][:, :2]"))
+    assert not one(written.format(index="pass", target="[0:2, 0:2]"))
+    assert not one(written.format(index="d = 0", target="[d][:2]"))

@@ -181,6 +181,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _alias_changed(name, function)
     found += _rolled_strip_one_sign(name, function)
     found += _scaled_in_place_per_turn(name, function)
+    found += _written_into_a_copy(name, function)
     return found
 
 
@@ -1212,3 +1213,41 @@ def _rolled_strip_one_sign(name, function) -> list[Finding]:
     return [Finding(name, blanked[0][0], "the strip np.roll brings round is blanked for one sign only",
                     f"{name} blanks {places}: the strip np.roll brings round when {names} >= 0; for a negative "
                     "shift that strip is at the other end of the axis, and the line blanks the image itself instead")]
+
+
+# ------------------------------------------------------------------ a write through an index that copies
+_INDEX_ARRAYS = frozenset({"array", "asarray", "arange", "where", "nonzero", "flatnonzero", "argsort", "ix_"})
+
+
+def _copying_index(node, made) -> bool:
+    """Whether indexing with ``node`` makes NumPy copy: a list, an array of positions or a mask
+    (written there, or a name only ever bound to one), never a whole number or a slice."""
+    if isinstance(node, (ast.List, ast.ListComp, ast.Compare)) or (
+            isinstance(node, ast.BinOp) and isinstance(node.op, (ast.BitAnd, ast.BitOr))):
+        return True
+    if isinstance(node, ast.Call):
+        return _call_name(node).rsplit(".", 1)[-1] in _INDEX_ARRAYS
+    if isinstance(node, ast.Name):
+        values = made.get(node.id, [])
+        return bool(values) and all(v is not _UNKNOWN and _copying_index(v, {}) for v in values)
+    return False
+
+
+def _written_into_a_copy(name, function) -> list[Finding]:
+    """``M[d][:, d] = v`` (or ``+=``) with ``d`` a list, an array of positions or a mask: ``M[d]`` is a
+    new array (NumPy copies for such an index), the write goes into it and is lost; ``M`` is unchanged."""
+    made = _assigned_names(function)
+    for node in ast.walk(function):
+        targets = node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(node, ast.AugAssign) \
+            else []
+        for target in targets:
+            if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Subscript) \
+                    and isinstance(target.value.value, ast.Name) and _copying_index(target.value.slice, made):
+                inner = ast.unparse(target.value)
+                return [Finding(name, _line(node), "a write into a copy made by an index",
+                                f"{name} (line {_line(node)}) writes into `{ast.unparse(target)}`, but `{inner}` "
+                                f"indexes `{target.value.value.id}` with a list or an array of positions, which "
+                                f"makes a new array: the values go into that copy and `{target.value.value.id}` "
+                                f"is left unchanged; index once (`{target.value.value.id}[np.ix_(rows, columns)] = "
+                                f"...`, or a slice) so the write lands in the array itself", certain=True)]
+    return []

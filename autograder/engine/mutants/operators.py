@@ -70,6 +70,7 @@ OPERATORS = {
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
+    "identity": ("identity", "eye", "diagonal", "zero"),   # np.ones((3, 3)) -> np.eye(3): a matrix started filled
     "dehomogenise": ("homogeneous", "divid", "last coordinate"),   # x[:, :2] -> x[:, :2] / x[:, 2:3]
     "swap_items": ("order", "swap", "exchang"),       # (rows, cols) -> (cols, rows), [0, ty, 1] -> [0, 1, ty]
     "sibling_step": ("missing", "also", "both"),      # xl = xl[:, 0] -> xl, xr = xl[:, 0], xr[:, 0]
@@ -1069,7 +1070,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "twin_factor", "homogeneous_one", "moved_term")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1117,6 +1118,15 @@ class _Words:
         for names in unpacked_items(fn):   # (`m, n = pair` in a loop over knnMatch's pairs: siblings too)
             for name in names:
                 self.zipped.setdefault(name, set()).update(names - {name})
+        # A loop's own variable that nothing reads (`[f(X, f) for fl in f]`): the name that was to be used
+        # in it, line of the loop -> names (a comprehension's, in scope on its own line too)
+        read = {n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+        self.unread_loop_names: dict[int, set] = {}
+        for node in ast.walk(fn):
+            if isinstance(node, (ast.For, ast.comprehension)):
+                for target in ast.walk(node.target):
+                    if isinstance(target, ast.Name) and target.id not in read and target.id != "_":
+                        self.unread_loop_names.setdefault(target.lineno, set()).add(target.id)
 
     def _define_loop(self, target, iterable, line):
         """A loop's targets: through ``enumerate`` (its item) and ``zip`` (each its own sequence),
@@ -1599,6 +1609,55 @@ def _statement_moves(fn):
                     # one array made before the loop and kept (appended, stored) at every turn: every item is
                     # that same array, the last turn's (`frame = np.zeros(...)` above `frames.append(frame)`)
                     yield "indent", statement, statements[k - 1], "first"
+                if isinstance(statement, ast.For):
+                    for made in _reset_each_turn(statements[max(0, k - _MOVE_REACH):k], statement):
+                        yield "indent", statement, made, "first"
+
+
+def _reset_each_turn(earlier, loop):
+    """Statements among ``earlier`` (just above ``loop``) starting a collection or a sum that the loop
+    grows and also reads at each turn, beside the growing: a per-turn value made once, so each turn
+    sees the turns before it too (`rows = []` above a loop appending four rows and solving
+    `np.array(rows)` in it: the first point's rows in every later system)."""
+    for k, statement in enumerate(earlier):
+        if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1
+                and isinstance(statement.targets[0], ast.Name) and _starts_empty(statement.value)):
+            continue
+        name = statement.targets[0].id
+        if any(name in _read(s) | _assigned(s) for s in earlier[k + 1:]):
+            continue
+        grown = read = False
+        for s in (n for n in ast.walk(loop) if isinstance(n, ast.stmt) and not isinstance(n, ast.For)):
+            if _grows(s, name):
+                grown = True
+            elif name in _read(s) and not isinstance(s, (ast.If, ast.While, ast.With, ast.Try)):
+                read = True
+        if grown and read:
+            yield statement
+
+
+def _starts_empty(value) -> bool:
+    """An empty list or dict, a zero, or a new array of zeros (what a collection or a sum starts from)."""
+    if isinstance(value, (ast.List, ast.Dict)) and not (value.keys if isinstance(value, ast.Dict) else value.elts):
+        return True
+    if isinstance(value, ast.Constant) and type(value.value) in (int, float) and value.value == 0:
+        return True
+    if not isinstance(value, ast.Call):
+        return False
+    called = _dotted(value.func)
+    return (called == "list" and not value.args) or (called.rsplit(".", 1)[-1] in {"zeros", "zeros_like"} and bool(value.args))
+
+
+def _grows(statement, name: str) -> bool:
+    """Whether ``statement`` adds to ``name``: `name.append(...)`, `name.extend(...)`, `name += ...`,
+    `name[...] += ...`."""
+    if isinstance(statement, ast.AugAssign):
+        target = statement.target.value if isinstance(statement.target, ast.Subscript) else statement.target
+        return isinstance(target, ast.Name) and target.id == name
+    call = statement.value if isinstance(statement, ast.Expr) else None
+    return isinstance(call, ast.Call) and isinstance(call.func, ast.Attribute) \
+        and call.func.attr in ("append", "extend", "insert") \
+        and isinstance(call.func.value, ast.Name) and call.func.value.id == name
 
 
 def _allocates(statement) -> bool:
@@ -1918,6 +1977,57 @@ def _midrange(node) -> str | None:
     return f"np.mean({ends[0][1]})"
 
 
+def _mask_names(fn) -> frozenset:
+    """The names ``fn`` binds only to masks (read once per def): a comparison (`inliers = errors < t`),
+    another mask or a row of one (`best = inliers[k]`, `inliers = best`), or None before the first."""
+    known = getattr(fn, "_grader_mask_names", None)
+    if known is None:
+        bound: dict = {}
+
+        def bind(target, value):
+            if isinstance(target, ast.Name):
+                bound.setdefault(target.id, []).append(value)
+            elif isinstance(target, (ast.Tuple, ast.List)):
+                pairs = value.elts if isinstance(value, (ast.Tuple, ast.List)) and len(value.elts) == len(target.elts) \
+                    else [None] * len(target.elts)
+                for part, part_value in zip(target.elts, pairs):
+                    bind(part, part_value)
+        for statement in ast.walk(fn):
+            if isinstance(statement, ast.Assign):
+                for target in statement.targets:
+                    bind(target, statement.value)
+            elif isinstance(statement, (ast.AugAssign, ast.AnnAssign, ast.For, ast.comprehension, ast.NamedExpr)):
+                bind(statement.target, None)
+        def a_mask(value, masks) -> bool:
+            return _masks(value) or (isinstance(value, ast.Constant) and value.value is None) \
+                or (isinstance(value, ast.Name) and value.id in masks) \
+                or (isinstance(value, ast.Subscript) and isinstance(value.value, ast.Name) and value.value.id in masks)
+        # (the largest set of names bound only to masks, their rows, each other or None; then those of them
+        # that something compared made)
+        masks = {name for name, values in bound.items() if all(v is not None for v in values)}
+        while True:
+            kept = {name for name in masks if all(a_mask(v, masks) for v in bound[name])}
+            if kept == masks:
+                break
+            masks = kept
+        made = {name for name in masks if any(_masks(v) for v in bound[name])}
+        while True:
+            grown = made | {name for name in masks if any(isinstance(v, (ast.Name, ast.Subscript)) and (
+                v.id if isinstance(v, ast.Name) else v.value.id) in made for v in bound[name])}
+            if grown == made:
+                break
+            made = grown
+        masks = made
+        known = frozenset(masks)
+        fn._grader_mask_names = known
+    return known
+
+
+def _masks(value) -> bool:
+    return isinstance(value, ast.Compare) or (isinstance(value, ast.BinOp) and isinstance(value.op, (ast.BitAnd, ast.BitOr))
+                                              and any(isinstance(side, ast.Compare) for side in (value.left, value.right)))
+
+
 def _student_changes(node, parent, parents):
     """Changes made to a student's code only (:mod:`.repair`), told by showing them: a function applied
     that does not belong (``np.tan(s)`` for ``s``), one mistaken for its sibling (``np.sin`` for
@@ -2074,6 +2184,9 @@ def _student_changes(node, parent, parents):
             and isinstance(node.slice.upper, ast.Constant) and isinstance(node.slice.upper.value, int) \
             and node.slice.upper.value >= 4:
         yield "drop_slice", None, ""   # `pts[:8]`: only the first few used where all belong
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name) \
+            and isinstance(node.slice, ast.Name) and node.slice.id in _mask_names(_root(node, parents)):
+        yield "drop_slice", None, ""   # `src[inliers]`: the points a mask kept, where every point belongs
     chain = _chain_of_three(node)
     if chain is not None and not any(_is_inverse(f) for f in (chain[0], chain[2])):
         yield "inverse", "undone_never", ""   # `K2.T @ F @ K1` -> `F`: a transform applied twice, or too early
@@ -2101,6 +2214,12 @@ def _student_changes(node, parent, parents):
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)) \
             and isinstance(node.left, ast.BinOp) and isinstance(node.left.op, _BINDS_TIGHTER):
         yield "regroup", "last", ""      # `a * b + c` for `a * (b + c)`
+    if isinstance(node, ast.BinOp) and isinstance(node.op, _BITWISE) \
+            and isinstance(node.right, ast.BinOp) and isinstance(node.right.op, _ARITHMETIC):
+        yield "regroup", "first", ""     # `k << 1 + bit` is `k << (1 + bit)`: `(k << 1) + bit` was meant
+    if isinstance(node, ast.BinOp) and isinstance(node.op, _BITWISE) \
+            and isinstance(node.left, ast.BinOp) and isinstance(node.left.op, _ARITHMETIC):
+        yield "regroup", "last", ""      # `a + b << 2` is `(a + b) << 2`: `a + (b << 2)` was meant
     if isinstance(node, ast.Compare) and len(node.ops) == 1:
         yield from _precedence_slips(node)
     if isinstance(node, ast.Compare) and len(node.ops) == 1 and type(node.ops[0]) in _COMPARED:
@@ -2143,6 +2262,11 @@ def _student_changes(node, parent, parents):
         yield "unwrap", "method", ""   # one value of the whole array where each item's own belongs (a mean depth)
     if short in _MISTAKEN and prefix in ("np.", "numpy.", "math."):
         yield "function", prefix + _MISTAKEN[short], ""
+    if short in ("ones", "zeros", "empty") and prefix in ("np.", "numpy.") and len(node.args) == 1 \
+            and isinstance(node.args[0], ast.Tuple) and len(node.args[0].elts) == 2 \
+            and ast.dump(node.args[0].elts[0]) == ast.dump(node.args[0].elts[1]):
+        # a square matrix started filled where the identity belongs (the entries never set keep the fill)
+        yield "identity", f"{prefix}eye({ast.unparse(node.args[0].elts[0])})", ""
     if short in _CV_MISTAKEN and prefix in ("cv2.", "cv."):
         yield "function", prefix + _CV_MISTAKEN[short], ""
     if isinstance(node.func, ast.Attribute) and node.func.attr == "reshape":
@@ -2398,6 +2522,12 @@ def _indexes(node, parent, parents) -> bool:
         holder = parents.get(id(parent), (None,))[0]
         return isinstance(holder, ast.Subscript) and holder.slice is parent
     return isinstance(parent, ast.Subscript) and parent.slice is node
+
+
+# Python's arithmetic binds tighter than its shifts and bit operators (a slip where a shift or a bit
+# was meant to come first)
+_BITWISE = (ast.LShift, ast.RShift, ast.BitAnd, ast.BitOr, ast.BitXor)
+_ARITHMETIC = (ast.Add, ast.Sub, ast.Mult, ast.FloorDiv, ast.Mod)
 
 
 def _precedence_slips(node: ast.Compare):
@@ -4481,9 +4611,14 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
         phrase = words.what(ast.Name(other, ast.Load()), line=line)
         if phrase and phrase != own:
             others.append((other, phrase))
+    unread = set()
     if words.student:   # (the parts of one item, made on this very line: `n.distance < 0.75 * m.distance`)
         listed = {other for other, _ in others}
         others += [(other, f"`{other}`") for other in sorted(words.zipped.get(node.id, ())) if other not in listed]
+        # (a loop variable nothing reads, of a loop on this line or above it: tried first)
+        unread = {name for at, names in words.unread_loop_names.items() if at <= line for name in names} - {node.id}
+        listed = {other for other, _ in others}
+        others += [(other, f"`{other}`") for other in sorted(unread) if other not in listed]
     # Two names told alike (`img2`, and its float copy told as `img2` too): only the one of the
     # replaced name's kind (a parameter for a parameter, a local for a local) is that mistake; the
     # other one also drops the copy's conversion, which its sentence would not say.
@@ -4504,7 +4639,7 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     # (first of all, a name written in the other case: `Z`, a point's own depth, where `z`, the common one,
     # belongs)
     related = words.related(line) if words.student else frozenset()
-    others.sort(key=lambda pair: (pair[0].lower() != node.id.lower(), pair[0] not in together,
+    others.sort(key=lambda pair: (pair[0] not in unread, pair[0].lower() != node.id.lower(), pair[0] not in together,
                                   not twin_names(node.id, pair[0]),
                                   not _derived_names(node.id, pair[0]),
                                   not (pair[0] in related and (pair[0] in params) == kind),
