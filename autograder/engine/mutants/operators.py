@@ -2215,10 +2215,10 @@ def _student_changes(node, parent, parents):
             and isinstance(node.left, ast.BinOp) and isinstance(node.left.op, _BINDS_TIGHTER):
         yield "regroup", "last", ""      # `a * b + c` for `a * (b + c)`
     if isinstance(node, ast.BinOp) and isinstance(node.op, _BITWISE) \
-            and isinstance(node.right, ast.BinOp) and isinstance(node.right.op, _ARITHMETIC):
+            and isinstance(node.right, ast.BinOp) and isinstance(node.right.op, _BINDS_BEFORE_BITS):
         yield "regroup", "first", ""     # `k << 1 + bit` is `k << (1 + bit)`: `(k << 1) + bit` was meant
     if isinstance(node, ast.BinOp) and isinstance(node.op, _BITWISE) \
-            and isinstance(node.left, ast.BinOp) and isinstance(node.left.op, _ARITHMETIC):
+            and isinstance(node.left, ast.BinOp) and isinstance(node.left.op, _BINDS_BEFORE_BITS):
         yield "regroup", "last", ""      # `a + b << 2` is `(a + b) << 2`: `a + (b << 2)` was meant
     if isinstance(node, ast.Compare) and len(node.ops) == 1:
         yield from _precedence_slips(node)
@@ -2527,7 +2527,7 @@ def _indexes(node, parent, parents) -> bool:
 # Python's arithmetic binds tighter than its shifts and bit operators (a slip where a shift or a bit
 # was meant to come first)
 _BITWISE = (ast.LShift, ast.RShift, ast.BitAnd, ast.BitOr, ast.BitXor)
-_ARITHMETIC = (ast.Add, ast.Sub, ast.Mult, ast.FloorDiv, ast.Mod)
+_BINDS_BEFORE_BITS = (ast.Add, ast.Sub, ast.Mult, ast.FloorDiv, ast.Mod)
 
 
 def _precedence_slips(node: ast.Compare):

@@ -1927,6 +1927,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         fallback = None
     # (a search bounded by its tries -- beside a check's own name -- makes only the pairs of one slip
     # made twice, which the code shows, not those of the nearest changes)
+    near_all = list(near)
     near = [] if tries is not None or fallback is not None else \
         [m for _, m in sorted(near, key=lambda pair: pair[0])][:PAIR_CHANGES] or list(kept_near)
     if tries is None and fallback is None:
@@ -1949,9 +1950,13 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # before the nearest changes' pairs: where the code says the slip was made twice, it is tried first.
     alike = [(a, b) for same in slips.values() for a, b in itertools.combinations(same[:40], 2) if _apart(a, b)]
     halves = lambda pair: pair[0].key in halfway or pair[1].key in halfway  # noqa: E731
-    first = lambda pair: (not halves(pair), size(pair))  # noqa: E731
+    # (then those whose two halves each brought the answers nearer alone: `inv(R1)` -> `R1` mends one
+    # image of a rectified pair, its copy `inv(R2)` -> `R2` the other)
+    nearer = {m.key for _, m in near_all}
+    halves_nearer = lambda pair: pair[0].key in nearer and pair[1].key in nearer  # noqa: E731
+    first = lambda pair: (not halves(pair), not halves_nearer(pair), size(pair))  # noqa: E731
     beside = sorted((pair for pair in alike if student.neighbours(*pair)), key=first)[:NEIGHBOUR_PAIRS]
-    copied = sorted((pair for pair in alike if student.mirrored(*pair)), key=first)[:NEIGHBOUR_PAIRS]
+    copied = sorted((pair for pair in alike if student.mirrored(*pair)), key=first)[:COPIED_PAIRS]
     side = sorted(beside + copied, key=lambda pair: not halves(pair))
     sides = {(a.key, b.key) for a, b in side}
     pairs = side + [(a, b) for a, b in pairs if (a.key, b.key) not in sides and (b.key, a.key) not in sides]
@@ -1993,6 +1998,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             exact_pairs.append((both, values))
         elif np.isfinite(off) and fallback is None:   # (beside a removal found: only exact pairs replace it)
             apart = sum(variant.distance(v, references[i]) for v, i in zip(values, failing))
+            if PAIR_AT_ONCE * apart <= off and both.key not in variant.checked and variant.replays < REPLAYS \
+                    and variant.passes_check(both, values, failing, pair=True) and _accepted_pair(variant, both, failing):
+                # (all but the reference's to the last grey level -- `inv(R1).T` where `R1` belongs, warped --
+                # judged by the check at once: a slow function's pairs may not all be answered in the time)
+                return variant.repair([_one_half_enough(variant, both, failing, inputs, references, judged=True)])
             if PAIR_NEARER * apart <= off:   # (the student's own recipe: as singles)
                 near_pairs.append((apart, len(near_pairs), both, values))
     # (right on the failing inputs, and not on inputs derived from them: their own recipe -- the library's
@@ -2049,7 +2059,8 @@ RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 CONFIRMATION_CALLS = 6   # or the time of this many of the student's calls, if longer (at most half the time)
 CONFIRMATION_INPUTS = 15  # about as many inputs a change is confirmed on (derived, seen, given otherwise, ...)
 REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
-PAIR_NEARER = 3   # (a pair of changes, fewer than the single ones: judged by the check from this many times)
+PAIR_NEARER = 1.5   # (a pair of changes, fewer than the single ones: judged by the check from this many times)
+PAIR_AT_ONCE = 50   # (and from this many times nearer, at once, before the other pairs are answered)
 REPLAYS = 5       # the most changes a failed check is replayed with
 # A change bringing the answers this much nearer the reference's is judged by the check where none gives
 # them, after those at least a tenth nearer: a drawing in the student's own style (cv2.drawMatches'
@@ -2062,6 +2073,7 @@ OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by 
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
 NEIGHBOUR_PAIRS = 8    # of which at two neighbouring items (of one list, tuple or call), tried first
+COPIED_PAIRS = 16      # and at the same place of two lines written alike (`H1 = ...`, `H2 = ...`), first too
 EVERYWHERE = 6         # the most places of one slip changed at once
 EVERYWHERE_GROUPS = 10  # slips so changed
 # changes that say nothing made everywhere at once (every sign, every index's axis, every statement)
