@@ -3520,3 +3520,17 @@ def test_points_a_mask_kept_where_every_point_belongs_are_given_whole():
     made = _made(source, {"drop_slice"})
     assert {("src[inliers]", "src"), ("src[refined]", "src")} <= made, made
     assert ("src[k]", "src") not in made, made
+
+
+def test_a_number_written_where_the_sibling_rows_read_their_own_entry_is_read_from_the_matrix():
+    """`w = H[2, 0] * x + H[2, 1] * y + 1.0` beside `(H[0, 0] * x + H[0, 1] * y + H[0, 2]) / w`: the number
+    replaced by row 2's own entry, `H[2, 2]`."""
+    source = textwrap.dedent("""
+        def graded(H, x, y):
+            w = H[2, 0] * x + H[2, 1] * y + 1.0
+            u = (H[0, 0] * x + H[0, 1] * y + H[0, 2]) / w
+            v = (H[1, 0] * x + H[1, 1] * y + H[1, 2]) / w
+            return u, v
+    """)
+    made = _made(source, {"mirror"})
+    assert ("w = H[2, 0] * x + H[2, 1] * y + 1.0", "w = H[2, 0] * x + H[2, 1] * y + H[2, 2]") in made, made

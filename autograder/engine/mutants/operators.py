@@ -3647,11 +3647,15 @@ def _term_its_siblings_have(node, words):
         return
     (matrix, row), = rows
     texts = [(sign, ast.unparse(term)) for sign, term in mine]
-    extras = set()
+    constants = [term for _, term in mine if isinstance(term, ast.Constant)]
+    extras, in_place = set(), set()
     for sibling in _read_siblings(words)[2]:
-        theirs = _summed_terms(sibling.value) if sibling is not node else None
+        value = sibling.value.left if isinstance(sibling.value, ast.BinOp) and isinstance(sibling.value.op, ast.Div) \
+            else sibling.value   # (`(H[0, 0] * x + ... + H[0, 2]) / w`: the sum divided)
+        theirs = _summed_terms(value) if sibling is not node else None
         their_rows = _rows_read(theirs) if theirs else set()
-        if not theirs or len(theirs) != len(mine) + 1 or len(their_rows) != 1 or next(iter(their_rows))[0] != matrix:
+        if not theirs or len(theirs) not in (len(mine), len(mine) + 1) or len(their_rows) != 1 \
+                or next(iter(their_rows))[0] != matrix:
             continue
         other = next(iter(their_rows))[1]
         moved = []
@@ -3666,11 +3670,26 @@ def _term_its_siblings_have(node, words):
                         n.slice = ast.Constant(row)
             moved.append((sign, ast.unparse(term)))
         missing = [item for item in moved if item not in texts]
-        if len(missing) == 1 and all(item in moved for item in texts):
+        if len(theirs) == len(mine) + 1 and len(missing) == 1 and all(item in moved for item in texts):
             extras.add(missing[0])
+        elif len(theirs) == len(mine) and len(missing) == 1 and len(constants) == 1 \
+                and [item for item in texts if item not in moved] == [(s, ast.unparse(constants[0])) for s, t in mine
+                                                                      if t is constants[0]]:
+            in_place.add(missing[0])   # (a number written where the siblings read their row's entry: `+ 1.0`)
     if len(extras) == 1:
         sign, term = extras.pop()
         yield "mirror", (None, f"{ast.unparse(node.value)} {sign} {term}"), ""
+    if len(in_place) == 1:
+        sign, term = in_place.pop()
+        value = copy.deepcopy(node.value)
+        for n in ast.walk(value):   # (the one constant term of the sum, found again in the copy)
+            for field in ("left", "right"):
+                part = getattr(n, field, None)
+                if isinstance(part, ast.Constant) and ast.unparse(part) == ast.unparse(constants[0]):
+                    setattr(n, field, parse(term, mode="eval").body)
+                    if sign == "-" and isinstance(n, ast.BinOp) and field == "right" and isinstance(n.op, ast.Add):
+                        n.op = ast.Sub()
+        yield "mirror", (None, ast.unparse(value)), ""
 
 
 def _row_index(node):
