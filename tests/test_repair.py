@@ -3534,3 +3534,25 @@ def test_a_number_written_where_the_sibling_rows_read_their_own_entry_is_read_fr
     """)
     made = _made(source, {"mirror"})
     assert ("w = H[2, 0] * x + H[2, 1] * y + 1.0", "w = H[2, 0] * x + H[2, 1] * y + H[2, 2]") in made, made
+
+
+def test_a_part_of_a_line_written_otherwise_than_in_its_twin_is_written_as_the_twin_writes_it():
+    """`std_r = sqrt(mean(s * s) - mean_r)` beside `std_l = sqrt(mean(l * l) - mean_l ** 2)`: the differing
+    part written as the twin writes it, in this line's names (`mean_r ** 2`), never the twin's step taken out;
+    lines differing at two places besides their names are no twins' copies."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(left, shifted, a):
+            mean_l = np.mean(left)
+            mean_r = np.mean(shifted)
+            std_l = np.sqrt(np.mean(left * left) - mean_l ** 2)
+            std_r = np.sqrt(np.mean(shifted * shifted) - mean_r)
+            x_l = np.abs(left) + 1
+            x_r = np.sqrt(shifted) + 2
+            return std_l, std_r, x_l, x_r
+    """)
+    made = {after for _, after in _made(source, {"twin_step"})}
+    assert "std_r = np.sqrt(np.mean(shifted * shifted) - mean_r ** 2)" in made, made
+    assert "std_l = np.sqrt(np.mean(left * left) - mean_l)" not in made, made   # (no step taken out of a twin)
+    assert not any(after.startswith(("x_l =", "x_r =")) for after in made), made

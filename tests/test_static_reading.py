@@ -697,3 +697,19 @@ def test_a_write_through_an_index_that_copies_is_named():
     assert not one(written.format(index="d = 1", target="[:2][:, :2]"))
     assert not one(written.format(index="pass", target="[0:2, 0:2]"))
     assert not one(written.format(index="d = 0", target="[d][:2]"))
+
+
+def test_a_pose_kept_from_the_decomposition_without_testing_its_candidates_is_named():
+    pose = """
+        def two_view_reconstruction(img1, img2, K):
+            E = K.T @ F @ K
+            {decompose}
+            points = triangulate(K, K @ np.hstack([R, t]), pts1, pts2)
+            return points[points[:, 2] > 0]
+        """
+    wanted = {"a pose taken from cv2.decomposeEssentialMat without the test of its candidates"}
+    assert one(pose.format(decompose="R, _, t = cv2.decomposeEssentialMat(E)")) == wanted
+    assert one(pose.format(decompose="R = cv2.decomposeEssentialMat(E)[0]; t = np.ones((3, 1))")) == wanted
+    # both rotations read (the four candidates tested), or recoverPose doing the test
+    assert not one(pose.format(decompose="R1, R2, t = cv2.decomposeEssentialMat(E); R = best(R1, R2, t)"))
+    assert not one(pose.format(decompose="_, R, t, _ = cv2.recoverPose(E, pts1, pts2, K); cv2.decomposeEssentialMat(E)"))

@@ -30,7 +30,7 @@ from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canva
                               format_matrix)
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
-from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
+from ..sandbox.beginner import RGB_ONLY_TO_SHOW, channels_reversed, integer_entries
 
 def _tangential_coefficient_swapped(function) -> bool:
     """Whether x's line gives p1 the term p2 belongs to (`x_t = ... p1 * (r2 + 2 * x ** 2)`), or y's line
@@ -1141,7 +1141,8 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
         t.fail(f"{what}: {blank}.", hint=BLANK_CANVAS_HINT.said(t, ["draw_points"]), mistake=BLANK_CANVAS)
     if got.ndim == 3 and channels_reversed(got, image):
         # (the picture drawn on a copy converted for display: every pixel away from the circles reversed)
-        t.fail(f"{what}: away from the circles, the image is the input with {RGB_FOR_BGR}.",
+        t.fail(f"{what}: away from the circles, the image is the input with its colour channels reversed (RGB for BGR): "
+               f"OpenCV images are BGR; {RGB_ONLY_TO_SHOW}.",
                mistake="the colour channels are reversed (RGB for BGR)")
     pts = np.asarray(pts, float).reshape(-1, 2)
     swapped_core, _ = truth.circle_regions(image.shape, pts[:, ::-1], radius)

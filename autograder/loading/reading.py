@@ -182,6 +182,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _rolled_strip_one_sign(name, function)
     found += _scaled_in_place_per_turn(name, function)
     found += _written_into_a_copy(name, function)
+    found += _pose_never_chosen(name, function)
     return found
 
 
@@ -1250,4 +1251,32 @@ def _written_into_a_copy(name, function) -> list[Finding]:
                                 f"makes a new array: the values go into that copy and `{target.value.value.id}` "
                                 f"is left unchanged; index once (`{target.value.value.id}[np.ix_(rows, columns)] = "
                                 f"...`, or a slice) so the write lands in the array itself", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ a decomposition's candidates never chosen
+def _pose_never_chosen(name, function) -> list[Finding]:
+    """``R, _, t = cv2.decomposeEssentialMat(E)`` (or ``[0]`` of it) in a function without
+    ``cv2.recoverPose``: one of the two rotations never read, so the four candidate poses (either
+    rotation, t or -t) are never tested for the one with the points in front of both cameras."""
+    calls = [node for node in ast.walk(function) if isinstance(node, ast.Call)]
+    if any(_call_name(node) == "recoverPose" for node in calls):
+        return []
+    read = {node.id for node in ast.walk(function) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}
+    for node in ast.walk(function):
+        value = node.value if isinstance(node, (ast.Assign, ast.Subscript)) else None
+        if not (isinstance(value, ast.Call) and _call_name(value) == "decomposeEssentialMat"):
+            continue
+        if isinstance(node, ast.Subscript):
+            one_rotation = True
+        else:
+            target = node.targets[0] if len(node.targets) == 1 else None
+            rotations = target.elts[:2] if isinstance(target, (ast.Tuple, ast.List)) and len(target.elts) == 3 else []
+            one_rotation = any(isinstance(r, ast.Name) and (r.id == "_" or r.id not in read) for r in rotations)
+        if one_rotation:
+            line = _line(node)
+            return [Finding(name, line, "a pose taken from cv2.decomposeEssentialMat without the test of its candidates",
+                            f"{name} (line {line}) keeps one rotation of cv2.decomposeEssentialMat and never reads the "
+                            "other, but E gives four poses (either rotation, with t or -t) and only one puts the "
+                            "points in front of both cameras; test the four by triangulating (cv2.recoverPose does it)")]
     return []

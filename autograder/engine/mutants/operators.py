@@ -21,6 +21,7 @@ import bisect
 import copy
 import functools
 import itertools
+import os
 import re
 from dataclasses import dataclass
 
@@ -3478,6 +3479,7 @@ def _sibling_changes(node, words):
     yield from _twin_unit_changes(node, words)
     yield from _row_like_its_siblings(node, words)
     yield from _term_its_siblings_have(node, words)
+    yield from _as_its_twin_line(node, words)
     yield from _raw_beside_derived(node, words)
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS) \
             and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, (ast.Add, ast.Sub)):
@@ -3966,6 +3968,101 @@ def _twin_unit_changes(node, words):
     text = f"{value} / {norms[0]}({value})"
     if len(text) <= 100:
         yield "twin_step", (None, text), ""
+
+
+def _as_its_twin_line(node, words):
+    """A twin's line written alike but for its names and one part: `std_r = sqrt(mean(s * s) - mean_r)`
+    beside `std_l = sqrt(mean(l * l) - mean_l ** 2)` -- the part written as the twin writes it, in this
+    line's names (`mean_r ** 2`): a formula misremembered in one of two lines copied from each other."""
+    if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
+        return
+    for twin in _twin_assignments(node, words):
+        if not isinstance(twin.targets[0], ast.Name):
+            continue
+        renames: dict = {}
+        pair = _one_difference_but_names(node.value, twin.value, renames)
+        if not isinstance(pair, tuple) or any(len(set(mine)) > 1 for mine in _inverted(renames).values()):
+            continue
+        mine, theirs = pair
+        if mine is node.value or isinstance(theirs, (*_TERMS, ast.Constant)):
+            continue   # (a whole value, or a step taken out: the twin's step tried on a bare term is twin_step's)
+        # (the twin's names read in this line's terms: those aligned elsewhere in the two lines, else the
+        # twin's name with this line's target's difference -- `mean_l` -> `mean_r` beside `std_l`, `std_r`)
+        here, there = node.targets[0].id, twin.targets[0].id
+        part = copy.deepcopy(theirs)
+        for name in ast.walk(part):
+            if isinstance(name, ast.Name):
+                if name.id in renames:
+                    name.id = renames[name.id]
+                else:
+                    renamed = _renamed_as(name.id, there, here)
+                    if renamed is not None and renamed in words.definitions:
+                        name.id = renamed
+        whole = copy.deepcopy(node.value)
+        for old, new in zip(ast.walk(node.value), ast.walk(whole)):
+            if old is mine:
+                whole = _swap_in(whole, new, part) if new is not whole else part
+                break
+        text = ast.unparse(whole)
+        if text != ast.unparse(node.value) and len(text) <= 160:
+            yield "twin_step", (None, text), ""
+
+
+def _inverted(mapping: dict) -> dict:
+    out: dict = {}
+    for key, value in mapping.items():
+        out.setdefault(value, []).append(key)
+    return out
+
+
+def _renamed_as(name: str, there: str, here: str) -> str | None:
+    """``name`` with the part in which ``there`` differs from ``here`` changed as it is (`mean_l` for `std_l`
+    -> `std_r`: `mean_r`); None where ``name`` does not end or start alike."""
+    head = len(os.path.commonprefix([there, here]))
+    tail = len(os.path.commonprefix([there[head:][::-1], here[head:][::-1]]))
+    old, new = there[head:len(there) - tail], here[head:len(here) - tail]
+    if not old:
+        return None
+    suffix = there[len(there) - tail:] if tail else ""
+    if name.endswith(old + suffix) and there.endswith(old + suffix):
+        return name[:len(name) - len(old + suffix)] + new + suffix
+    prefix = there[:head]
+    if name.startswith(old) and not prefix:
+        return new + name[len(old):]
+    return None
+
+
+def _one_difference_but_names(a, b, renames: dict):
+    """``(a's part, b's part)`` where two expressions differ at one place besides names read in each
+    other's place (gathered in ``renames``, b's name -> a's); "same" when only names differ; None when
+    they differ at more places or a name stands for two."""
+    if ast.dump(a) == ast.dump(b):
+        return "same"
+    if isinstance(a, ast.Name) and isinstance(b, ast.Name):
+        if renames.setdefault(b.id, a.id) != a.id:
+            return None
+        return "same"
+    if type(a) is not type(b) or isinstance(a, (ast.Name, ast.Constant)):
+        return a, b
+    found = "same"
+    for (field, x), (_, y) in zip(ast.iter_fields(a), ast.iter_fields(b)):
+        xs, ys = (x, y) if isinstance(x, list) else ([x], [y])
+        if not isinstance(ys, list) or len(xs) != len(ys):
+            return (a, b) if found == "same" else None
+        for p, q in zip(xs, ys):
+            if isinstance(p, ast.AST) and isinstance(q, ast.AST):
+                inner = _one_difference_but_names(p, q, renames)
+                if inner is None:
+                    return None
+                if inner != "same":
+                    if found != "same":
+                        return None
+                    found = inner
+            elif p != q:
+                if found != "same":
+                    return None
+                found = (a, b)
+    return found
 
 
 def _twin_assignments(node, words):
