@@ -3556,3 +3556,49 @@ def test_a_part_of_a_line_written_otherwise_than_in_its_twin_is_written_as_the_t
     assert "std_r = np.sqrt(np.mean(shifted * shifted) - mean_r ** 2)" in made, made
     assert "std_l = np.sqrt(np.mean(left * left) - mean_l)" not in made, made   # (no step taken out of a twin)
     assert not any(after.startswith(("x_l =", "x_r =")) for after in made), made
+
+
+def test_a_value_read_before_a_test_decides_it_is_moved_after_the_test():
+    """`size = (w, h)` above `if dsize is not None: w, h = dsize`: the size read before it is decided;
+    moved after the `if` block."""
+    source = textwrap.dedent("""
+        def graded(image, dsize=None):
+            h, w = image.shape[:2]
+            size = (w, h)
+            if dsize is not None:
+                w, h = dsize
+            return size
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    moves = [student.fix(m) for m in student.mutants("graded") if m.operator == "move"]
+    said = [fix.changes[0][2] for fix in moves if fix is not None]
+    assert any("moving `size = (w, h)` (line 4" in text and "after the `if` block of line 5" in text for text in said), said
+
+
+def test_the_statements_an_otherwise_reference_function_writes_its_own_way_are_tried_first():
+    """Code written as the reference's but for one line of a helper: that line's changes come before the
+    changes of the function's own lines; code of the student's own (many lines apart) keeps the usual order."""
+    reference = textwrap.dedent("""
+        import numpy as np
+
+        def _errors(H, src, dst):
+            mapped = np.column_stack([src, np.ones(len(src))]) @ H.T
+            xy = mapped[:, :2] / mapped[:, 2:3]
+            return np.linalg.norm(xy - dst, axis=1)
+
+        def graded(H, src, dst, t):
+            errors = _errors(H, src, dst)
+            kept = errors < t
+            count = int(kept.sum())
+            return count, kept
+    """)
+    edited = reference.replace("xy = mapped[:, :2] / mapped[:, 2:3]", "xy = mapped[:, :2]")
+    student = repair._Student(edited, ast.parse(edited), {"graded"})
+    student.reference_source = reference
+    ordered = student.ordered("graded")
+    assert ordered[0].where == "_errors" and ordered[0].line == 6, [(m.where, m.line) for m in ordered[:5]]
+    own = edited.replace("errors = _errors(H, src, dst)", "e = _errors(H, src, dst)").replace(
+        "kept = errors < t", "kept = np.less(e, t)").replace("count = int(kept.sum())", "count = np.sum(kept)")
+    student = repair._Student(own, ast.parse(own), {"graded"})
+    student.reference_source = reference
+    assert student.ordered("graded")[0].where == "graded"

@@ -1552,13 +1552,23 @@ def _reader_moves(statements, k):
     def passable(passed) -> bool:
         return not any((_read(s) | _assigned(s)) & made for s in passed)
     later = statements[k + 1:k + 1 + _MOVE_REACH]
-    update = next((s for s in later if isinstance(s, _SIMPLE) and _assigned(s) & reads), None)
+    # (an update made only when a test holds counts: `if dsize is not None: w, h = dsize` below
+    # `size = (w, h)`, the size read before it is decided)
+    update = next((s for s in later if (isinstance(s, _SIMPLE) and _assigned(s) & reads)
+                   or (isinstance(s, ast.If) and _updates_in_branch(s) & reads)), None)
     if update is not None and not isinstance(update, _LEAVES) and passable(later[:later.index(update) + 1]):
         yield "move", update, statement, "after"
     earlier = statements[max(0, k - _MOVE_REACH):k]
     update = next((s for s in reversed(earlier) if isinstance(s, _SIMPLE) and _assigned(s) & _read(s) & reads), None)
     if update is not None and passable(earlier[earlier.index(update):]):
         yield "move", update, statement, "before"
+
+
+def _updates_in_branch(test: ast.If) -> set:
+    """The names an ``if`` (without loops in it) assigns in its branches' simple statements."""
+    if any(isinstance(n, (ast.For, ast.While)) for n in ast.walk(test)):
+        return set()
+    return {name for s in test.body + test.orelse if isinstance(s, (ast.Assign, ast.AugAssign)) for name in _assigned(s)}
 
 
 def _statement_moves(fn):

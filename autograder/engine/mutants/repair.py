@@ -297,8 +297,48 @@ class _Student:
                     # (a line made its twin line's again, where the two differ at one place but their
                     # names: the slip the code itself shows, first of all)
                     turn[m.key] -= m.operator in SHOWN_BY_THE_CODE
-                self._ordered[function] = sorted(smallest, key=lambda m: (m.where != function, turn[m.key]))
+                # Code written as the reference's but for a statement or two: those of a private helper
+                # first (a helper's `xy = mapped[..., :2]` before the 300 changes of the function's own
+                # lines, all the reference's); the function's own keep their turns (a reshape's order
+                # changed on its own line, not compensated on the line before).
+                novel = self._novel_statements(function, shown)
+                self._ordered[function] = sorted(smallest, key=lambda m: (
+                    not (m.where != function and self._place_of(m) in novel), m.where != function, turn[m.key]))
             return self._ordered[function]
+
+    def _place_of(self, mutant):
+        """(def, line) of the statement the mutant's first change is in."""
+        where, ordinal = mutant.edits[0][0], mutant.edits[0][1]
+        nodes, parents = self._walk(where)
+        if not 0 <= ordinal < len(nodes):
+            return None
+        statement = nodes[ordinal]
+        while not isinstance(statement, ast.stmt) and id(statement) in parents:
+            statement = parents[id(statement)][0]
+        return (where, getattr(statement, "lineno", None)) if isinstance(statement, ast.stmt) else None
+
+    def _novel_statements(self, function: str, shown) -> set:
+        """The simple statements holding ``shown``'s changes that the reference writes nowhere (by their
+        text), when they are few (at most :data:`NOVEL_STATEMENTS`): the student's edits of code otherwise
+        the reference's. Empty for code of their own (many such statements)."""
+        if not self.reference_source:
+            return set()
+        written = set().union(*_reference_texts(self.reference_source).values())
+        novel = set()
+        for m in shown:
+            place = self._place_of(m)
+            if place is None or place in novel:
+                continue
+            nodes, parents = self._walk(place[0])
+            statement = nodes[m.edits[0][1]] if 0 <= m.edits[0][1] < len(nodes) else None
+            while statement is not None and not isinstance(statement, ast.stmt) and id(statement) in parents:
+                statement = parents[id(statement)][0]
+            if isinstance(statement, (ast.Assign, ast.AugAssign, ast.Expr, ast.Return)) \
+                    and ast.unparse(statement) not in written:
+                novel.add(place)
+                if len(novel) > NOVEL_STATEMENTS:
+                    return set()
+        return novel
 
     def follows_reference(self, mutant) -> bool:
         """Whether the change rewrites a statement that is the reference's own, with all it reads
@@ -853,7 +893,9 @@ class _Student:
         if len(shown) > _SHOWN:
             shown = shown[:_SHOWN - 4].rsplit(" ", 1)[0] + " ..."
         block = {ast.For: "`for` loop", ast.While: "`while` loop", ast.If: "`if` block"}.get(type(edited), "block")
-        said = {"move": f"moving `{shown}` (line {line}{{inside}}) {side} line {edited.lineno}",
+        said = {"move": f"moving `{shown}` (line {line}{{inside}}) {side} the {block} of line {edited.lineno}"
+                        if isinstance(edited, (ast.For, ast.While, ast.If)) else
+                        f"moving `{shown}` (line {line}{{inside}}) {side} line {edited.lineno}",
                 "indent": f"moving `{shown}` (line {line}{{inside}}) into the {block} below it (line {edited.lineno}), "
                           "as its first statement: a new one for each turn" if side == "first" else
                           f"moving `{shown}` (line {line}{{inside}}) into the {block} above it (line {edited.lineno}), "
@@ -2081,6 +2123,8 @@ NOT_EVERYWHERE = {"accumulate", "axis", "sign", "add_sub", "drop_statement", "bo
                   "drop_keyword", "literal", "guard"}   # (an argument's position, a number: alike in kind only)
 
 
+NOVEL_STATEMENTS = 3   # statements the reference never writes, whose changes are tried first (no more)
+RAISE_FIRST = 24   # changes of the lines up to a raise tried before the others, at most
 RAISE_REACH = 6   # lines before the one that raised where a change is tried first
 
 
@@ -2093,7 +2137,11 @@ def _near_the_raise(mutants, trial, function) -> list:
     if not lines:
         return mutants
     near = lambda m: any(0 <= line - m.line <= RAISE_REACH for line in lines)  # noqa: E731
-    return [m for m in mutants if near(m)] + [m for m in mutants if not near(m)]
+    # (a few of them first: a raise far downstream of the slip -- an overflow in an iteration count made
+    # from errors never divided by w -- must not spend the search on the lines around it)
+    first = [m for m in mutants if near(m)][:RAISE_FIRST]
+    chosen = {id(m) for m in first}
+    return first + [m for m in mutants if id(m) not in chosen]
 
 
 def _is_image(value) -> bool:
