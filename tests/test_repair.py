@@ -3602,3 +3602,18 @@ def test_the_statements_an_otherwise_reference_function_writes_its_own_way_are_t
     student = repair._Student(own, ast.parse(own), {"graded"})
     student.reference_source = reference
     assert student.ordered("graded")[0].where == "graded"
+
+
+def test_a_twins_step_added_beside_a_long_line_is_shown_whole():
+    """`xl = xl.reshape(len(xl), -1)[:, 0]` with xr's step missing: the line with both steps is longer than a
+    change usually shown, and is shown whole (the student writes it so)."""
+    source = textwrap.dedent("""
+        def graded(xl, xr):
+            if xl.ndim == 2 or xr.ndim == 2:
+                xl = xl.reshape(len(xl), -1)[:, 0]
+            return xl - xr
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    shown = [student.fix(m) for m in student.mutants("graded") if m.operator == "sibling_step"]
+    assert any(fix is not None and fix.changes[0][2] == "xl, xr = (xl.reshape(len(xl), -1)[:, 0], "
+               "xr.reshape(len(xr), -1)[:, 0])" for fix in shown), shown

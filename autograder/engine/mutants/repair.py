@@ -958,6 +958,9 @@ class _Student:
             before, after = (" ".join(ast.unparse(n).split()) for n in (context, copied))
             if max(len(before), len(after)) <= 2 * _SHOWN:   # (two whole factors: no shorter way to show it)
                 return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), before, after)
+        if operator in ADDITIONS and len(before) <= _SHOWN and len(after) <= 2 * _SHOWN:
+            # (the twin's step added beside the line doubles it: shown whole, as the student would write it)
+            return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), before, after)
         whole = _abbreviated(context, copied) if max(len(before), len(after)) > _SHOWN else None
         shortened = (whole if whole is not None and max(map(len, whole)) <= _SHOWN else None) \
             or _elided(before, after) or _elided(*_abbreviated(context, copied))
