@@ -3617,3 +3617,20 @@ def test_a_twins_step_added_beside_a_long_line_is_shown_whole():
     shown = [student.fix(m) for m in student.mutants("graded") if m.operator == "sibling_step"]
     assert any(fix is not None and fix.changes[0][2] == "xl, xr = (xl.reshape(len(xl), -1)[:, 0], "
                "xr.reshape(len(xr), -1)[:, 0])" for fix in shown), shown
+
+
+def test_a_difference_of_block_means_measured_where_the_mean_of_measured_differences_belongs():
+    """`np.abs(box(l, k) - box(r, k))`: the absolute difference taken inside the filter, `box(np.abs(l - r), k)`
+    (a block's sum of absolute differences); a pointwise function on both sides is no filter."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(l, r, k):
+            sad = np.abs(box(l, k) - box(r, k))
+            ssd = (box(l, k) - box(r, k)) ** 2
+            flat = np.abs(np.sqrt(l) - np.sqrt(r))
+            return sad, ssd, flat
+    """)
+    made = {after for _, after in _made(source, {"measure_first"})}
+    assert {"box(np.abs(l - r), k)", "box((l - r) ** 2, k)"} <= made, made
+    assert not any("sqrt" in after for after in made), made

@@ -72,6 +72,7 @@ OPERATORS = {
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
     "identity": ("identity", "eye", "diagonal", "zero"),   # np.ones((3, 3)) -> np.eye(3): a matrix started filled
+    "measure_first": ("absolute", "square", "mean", "filter", "difference"),   # |box(l) - box(r)| -> box(|l - r|)
     "dehomogenise": ("homogeneous", "divid", "last coordinate"),   # x[:, :2] -> x[:, :2] / x[:, 2:3]
     "swap_items": ("order", "swap", "exchang"),       # (rows, cols) -> (cols, rows), [0, ty, 1] -> [0, 1, ty]
     "sibling_step": ("missing", "also", "both"),      # xl = xl[:, 0] -> xl, xr = xl[:, 0], xr[:, 0]
@@ -1071,7 +1072,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "twin_factor", "homogeneous_one", "moved_term")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1988,6 +1989,33 @@ def _midrange(node) -> str | None:
     return f"np.mean({ends[0][1]})"
 
 
+def _measured_after_filtering(node) -> str | None:
+    """`np.abs(f(a, k) - f(b, k))` (or `(f(a, k) - f(b, k)) ** 2`, `np.square(...)`), one function given the
+    same other arguments on both sides: the measure taken inside it, `f(np.abs(a - b), k)` -- a block's sum
+    of absolute differences, not the difference of its means (the text, or None)."""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.abs", "np.absolute", "abs", "np.fabs", "np.square") \
+            and len(node.args) == 1 and not node.keywords:
+        difference, wrap = node.args[0], lambda inner: ast.Call(copy.deepcopy(node.func), [inner], [])
+    elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.Constant) \
+            and node.right.value == 2:
+        difference, wrap = node.left, lambda inner: ast.BinOp(inner, ast.Pow(), ast.Constant(2))
+    else:
+        return None
+    if not (isinstance(difference, ast.BinOp) and isinstance(difference.op, ast.Sub)):
+        return None
+    left, right = difference.left, difference.right
+    if not (isinstance(left, ast.Call) and isinstance(right, ast.Call) and left.args and right.args
+            and _dotted(left.func) == _dotted(right.func) and len(left.args) == len(right.args)
+            and [ast.dump(a) for a in left.args[1:]] == [ast.dump(a) for a in right.args[1:]]
+            and [ast.dump(k) for k in left.keywords] == [ast.dump(k) for k in right.keywords]):
+        return None
+    if _dotted(left.func).rsplit(".", 1)[-1] in _UNARY | {"asarray", "array", "float32", "float64"}:
+        return None   # (a conversion or a pointwise function: nothing summed over a block)
+    inner = wrap(ast.BinOp(copy.deepcopy(left.args[0]), ast.Sub(), copy.deepcopy(right.args[0])))
+    return ast.unparse(ast.Call(copy.deepcopy(left.func), [inner, *copy.deepcopy(left.args[1:])],
+                                copy.deepcopy(left.keywords)))
+
+
 def _mask_names(fn) -> frozenset:
     """The names ``fn`` binds only to masks (read once per def): a comparison (`inliers = errors < t`),
     another mask or a row of one (`best = inliers[k]`, `inliers = best`), or None before the first."""
@@ -2195,6 +2223,9 @@ def _student_changes(node, parent, parents):
             and isinstance(node.slice.upper, ast.Constant) and isinstance(node.slice.upper.value, int) \
             and node.slice.upper.value >= 4:
         yield "drop_slice", None, ""   # `pts[:8]`: only the first few used where all belong
+    measured = _measured_after_filtering(node)
+    if measured is not None:
+        yield "measure_first", measured, ""   # |box(l) - box(r)|: the difference of means where the mean of the differences belongs
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name) \
             and isinstance(node.slice, ast.Name) and node.slice.id in _mask_names(_root(node, parents)):
         yield "drop_slice", None, ""   # `src[inliers]`: the points a mask kept, where every point belongs

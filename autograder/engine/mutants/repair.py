@@ -958,8 +958,9 @@ class _Student:
             before, after = (" ".join(ast.unparse(n).split()) for n in (context, copied))
             if max(len(before), len(after)) <= 2 * _SHOWN:   # (two whole factors: no shorter way to show it)
                 return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), before, after)
-        if operator in ADDITIONS and len(before) <= _SHOWN and len(after) <= 2 * _SHOWN:
-            # (the twin's step added beside the line doubles it: shown whole, as the student would write it)
+        if operator in ADDITIONS | {"measure_first"} and len(before) <= 2 * _SHOWN and len(after) <= 2 * _SHOWN:
+            # (the twin's step added beside the line doubles it, a measure moved inside a filter rewrites both
+            # operands: shown whole, as the student would write it)
             return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), before, after)
         whole = _abbreviated(context, copied) if max(len(before), len(after)) > _SHOWN else None
         shortened = (whole if whole is not None and max(map(len, whole)) <= _SHOWN else None) \
@@ -2095,7 +2096,7 @@ FIXES = 3         # the most fixes told (one per line)
 # changes the student's code itself points at -- a line copied from its twin's with one name left, a step
 # done to one of two like inputs or twin terms only -- tried before every other kind's first
 # (and an OpenCV 0/1 mask used as an index, known by its name: a slow pipeline's search reaches it first)
-SHOWN_BY_THE_CODE = {"mirror", "sibling_step", "twin_step", "boolean_mask", "derived_name"}
+SHOWN_BY_THE_CODE = {"mirror", "sibling_step", "twin_step", "boolean_mask", "derived_name", "measure_first", "identity"}
 REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "unwrap", "drop_conversion",
             "drop_mask", "drop_slice"}   # changes that take a step out
 BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
