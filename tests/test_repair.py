@@ -3634,3 +3634,21 @@ def test_a_difference_of_block_means_measured_where_the_mean_of_measured_differe
     made = {after for _, after in _made(source, {"measure_first"})}
     assert {"box(np.abs(l - r), k)", "box((l - r) ** 2, k)"} <= made, made
     assert not any("sqrt" in after for after in made), made
+
+
+def test_samples_of_a_closed_range_and_a_recurrence_started_at_zero():
+    """`np.linspace(0, n, w)` where w samples of [0, n) belong: `endpoint=False` tried; `energy[0] = 0.0`
+    above a loop `energy[x] = costs[x] + ...`: the first item is `costs[0]`."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(costs, n, w):
+            k = np.floor(np.linspace(0, n, w))
+            energy = np.empty_like(costs)
+            energy[0] = 0.0
+            for x in range(1, len(costs)):
+                energy[x] = costs[x] + energy[x - 1].min()
+            return k, energy
+    """)
+    made = _made(source, {"flip_keyword", "first_term"})
+    assert {("np.linspace(0, n, w)", "np.linspace(0, n, w, endpoint=False)"), ("0.0", "costs[0]")} <= made, made

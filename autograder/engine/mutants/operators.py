@@ -72,6 +72,7 @@ OPERATORS = {
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
     "identity": ("identity", "eye", "diagonal", "zero"),   # np.ones((3, 3)) -> np.eye(3): a matrix started filled
+    "first_term": ("first", "initial", "start", "cost"),   # energy[0] = 0.0 -> costs[0] (the recurrence's own term)
     "measure_first": ("absolute", "square", "mean", "filter", "difference"),   # |box(l) - box(r)| -> box(|l - r|)
     "dehomogenise": ("homogeneous", "divid", "last coordinate"),   # x[:, :2] -> x[:, :2] / x[:, 2:3]
     "swap_items": ("order", "swap", "exchang"),       # (rows, cols) -> (cols, rows), [0, ty, 1] -> [0, 1, ty]
@@ -856,6 +857,9 @@ def _make_add_axis(node, payload):
 
 def _make_flip_keyword(node, payload):
     new = copy.deepcopy(node)   # np.linalg.svd(A, full_matrices=False) -> full_matrices=True
+    if isinstance(payload, tuple):   # (a keyword left at its default given: np.linspace(0, n, w) -> endpoint=False)
+        new.keywords = [*new.keywords, ast.keyword(payload[0], ast.Constant(payload[1]))]
+        return new
     new.keywords = [ast.keyword(k.arg, ast.Constant(not k.value.value)) if k.arg == payload else k
                     for k in new.keywords]
     return new
@@ -1072,7 +1076,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "twin_factor", "homogeneous_one", "moved_term")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -1493,6 +1497,8 @@ def _sites(fn: ast.FunctionDef, words: _Words, phrased: bool = True):
                                                          ast.unparse(second.value)), first.lineno, ""
         # A statement in the wrong place: the payload's first item is the statement the change removes
         # from where it was (made again at the edited node), None when the edited node holds it.
+        for start, text in _recurrence_starts(fn):
+            yield "first_term", ordinals[id(start)], text, start.lineno, ""
         for operator, edited, moved, side in _statement_moves(fn):
             removed = ordinals[id(moved)] if operator != "dedent" else None
             yield operator, ordinals[id(edited)], (removed, ast.unparse(moved), moved.lineno, side), moved.lineno, ""
@@ -1563,6 +1569,37 @@ def _reader_moves(statements, k):
     update = next((s for s in reversed(earlier) if isinstance(s, _SIMPLE) and _assigned(s) & _read(s) & reads), None)
     if update is not None and passable(earlier[earlier.index(update):]):
         yield "move", update, statement, "before"
+
+
+def _recurrence_starts(fn):
+    """(the number, the text replacing it): a recurrence's first item set to a number (`energy[0] = 0.0`)
+    above a loop filling the next items as a term of their own plus the rest (`energy[x] = costs[x] +
+    best`): the first item is that term at its own index (`costs[0]`), the sum of nothing before it."""
+    for block in ast.walk(fn):
+        statements = getattr(block, "body", None)
+        if not isinstance(statements, list):
+            continue
+        for k, statement in enumerate(statements):
+            if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1
+                    and isinstance(statement.targets[0], ast.Subscript) and isinstance(statement.targets[0].value, ast.Name)
+                    and isinstance(statement.targets[0].slice, ast.Constant) and isinstance(statement.value, ast.Constant)
+                    and isinstance(statement.value.value, (int, float))):
+                continue
+            array, first = statement.targets[0].value.id, statement.targets[0].slice.value
+            for loop in statements[k + 1:k + 3]:
+                if not (isinstance(loop, ast.For) and isinstance(loop.target, ast.Name)):
+                    continue
+                step = loop.target.id
+                for inner in ast.walk(loop):
+                    if isinstance(inner, ast.Assign) and len(inner.targets) == 1 \
+                            and isinstance(inner.targets[0], ast.Subscript) and isinstance(inner.targets[0].value, ast.Name) \
+                            and inner.targets[0].value.id == array and isinstance(inner.targets[0].slice, ast.Name) \
+                            and inner.targets[0].slice.id == step:
+                        terms = _summed_terms(inner.value) or []
+                        for sign, term in terms[:1]:
+                            if sign == "+" and isinstance(term, ast.Subscript) and isinstance(term.value, ast.Name) \
+                                    and term.value.id != array and isinstance(term.slice, ast.Name) and term.slice.id == step:
+                                yield statement.value, f"{term.value.id}[{first!r}]"
 
 
 def _updates_in_branch(test: ast.If) -> set:
@@ -2703,6 +2740,9 @@ def _call_slips(node: ast.Call):
     for keyword in node.keywords:
         if keyword.arg and isinstance(keyword.value, ast.Constant) and isinstance(keyword.value.value, bool):
             yield "flip_keyword", keyword.arg, ""
+    if dotted in ("np.linspace", "numpy.linspace") and len(node.args) == 3 \
+            and not any(k.arg == "endpoint" for k in node.keywords):
+        yield "flip_keyword", ("endpoint", False), ""   # w samples of [0, n) where [0, n] was written
     if dotted.startswith(("cv2.", "cv.", "np.", "numpy.", "scipy.")):
         # an optional argument that does not belong (`P=K` makes cv2.undistortPoints map the normalised
         # points back to pixels): a library's keyword left out, its default used
