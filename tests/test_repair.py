@@ -3652,3 +3652,23 @@ def test_samples_of_a_closed_range_and_a_recurrence_started_at_zero():
     """)
     made = _made(source, {"flip_keyword", "first_term"})
     assert {("np.linspace(0, n, w)", "np.linspace(0, n, w, endpoint=False)"), ("0.0", "costs[0]")} <= made, made
+
+
+def test_a_shortcut_returning_early_for_a_special_value_is_taken_out():
+    """`if aperture == 0: return pinhole(X, f)` (a shortcut answering otherwise than the general way): taken
+    out; an `if` with an else, or one not ending in a return, is no shortcut."""
+    source = textwrap.dedent("""
+        def graded(X, f, aperture):
+            if aperture == 0:
+                return X * f
+            if f > 1:
+                f = 1
+            else:
+                return X
+            return X * f + aperture
+    """)
+    fn = next(node for node in ast.parse(source).body if isinstance(node, ast.FunctionDef))
+    nodes = list(ast.walk(fn))
+    dropped = [nodes[m.edits[0][1]] for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+               if m.operator == "drop_statement" and isinstance(nodes[m.edits[0][1]], ast.If)]
+    assert [node.lineno for node in dropped] == [3], dropped

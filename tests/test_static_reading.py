@@ -713,3 +713,18 @@ def test_a_pose_kept_from_the_decomposition_without_testing_its_candidates_is_na
     # both rotations read (the four candidates tested), or recoverPose doing the test
     assert not one(pose.format(decompose="R1, R2, t = cv2.decomposeEssentialMat(E); R = best(R1, R2, t)"))
     assert not one(pose.format(decompose="_, R, t, _ = cv2.recoverPose(E, pts1, pts2, K); cv2.decomposeEssentialMat(E)"))
+
+
+def test_a_lens_model_evaluated_on_pixel_offsets_is_named():
+    lens = """
+        def undistort_image(image, K, dist):
+            k1, k2, p1, p2, k3 = dist
+            u, v = np.meshgrid(np.arange(640.0), np.arange(480.0))
+            x = (u - K[0, 2]){fx}
+            y = (v - K[1, 2]){fy}
+            r2 = x * x + y * y
+            radial = 1 + k1 * r2 + k2 * r2 ** 2
+            return x * radial, y * radial
+        """
+    assert one(lens.format(fx="", fy="")) == {"the lens model evaluated on pixel offsets, not normalised coordinates"}
+    assert not one(lens.format(fx=" / K[0, 0]", fy=" / K[1, 1]"))

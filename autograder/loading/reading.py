@@ -183,6 +183,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _scaled_in_place_per_turn(name, function)
     found += _written_into_a_copy(name, function)
     found += _pose_never_chosen(name, function)
+    found += _distortion_in_pixels(name, function)
     return found
 
 
@@ -1279,4 +1280,48 @@ def _pose_never_chosen(name, function) -> list[Finding]:
                             f"{name} (line {line}) keeps one rotation of cv2.decomposeEssentialMat and never reads the "
                             "other, but E gives four poses (either rotation, with t or -t) and only one puts the "
                             "points in front of both cameras; test the four by triangulating (cv2.recoverPose does it)")]
+    return []
+
+
+# ------------------------------------------------------------------ a lens model evaluated in pixels
+def _squared_names(node) -> tuple | None:
+    """(a, b) of `a * a + b * b` or `a ** 2 + b ** 2` (names only); None otherwise."""
+    if not (isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add)):
+        return None
+    names = []
+    for side in (node.left, node.right):
+        if isinstance(side, ast.BinOp) and isinstance(side.op, ast.Mult) and isinstance(side.left, ast.Name) \
+                and isinstance(side.right, ast.Name) and side.left.id == side.right.id:
+            names.append(side.left.id)
+        elif isinstance(side, ast.BinOp) and isinstance(side.op, ast.Pow) and isinstance(side.left, ast.Name) \
+                and isinstance(side.right, ast.Constant) and side.right.value == 2:
+            names.append(side.left.id)
+        else:
+            return None
+    return tuple(names)
+
+
+def _distortion_in_pixels(name, function) -> list[Finding]:
+    """A lens model (a `k1` read) whose radius is taken of pixel offsets: `r2 = x * x + y * y` with
+    `x = u - cx` and nothing divided by a focal length -- the coefficients are of normalised coordinates."""
+    read = {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    if "k1" not in read:
+        return []
+    made = _assigned_names(function)
+    for node in ast.walk(function):
+        if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
+            continue
+        pair = _squared_names(node.value)
+        if pair is None:
+            continue
+        offsets = [made.get(part, []) for part in pair]
+        if all(values and all(isinstance(v, ast.BinOp) and isinstance(v.op, ast.Sub)
+                              and not any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) for n in ast.walk(v))
+                              for v in values) for values in offsets):
+            line = _line(node)
+            shown = ", ".join(f"`{part} = {ast.unparse(made[part][0])}`" for part in pair)
+            return [Finding(name, line, "the lens model evaluated on pixel offsets, not normalised coordinates",
+                            f"{name} (line {line}) takes the radius of {shown}, offsets in pixels, but the "
+                            "distortion coefficients are of normalised coordinates ((u - cx) / fx, (v - cy) / fy): "
+                            "divide by the focal lengths before the polynomial and multiply back after")]
     return []

@@ -1883,6 +1883,9 @@ def _changes(node, parents, words: _Words, line):
         yield "drop_statement", None, _statement_phrase(node, words, line)
     if words.student and isinstance(node, (ast.Continue, ast.Break)):
         yield "drop_statement", None, ""   # a frame skipped, a loop left, where it must go on
+    if words.student and isinstance(node, ast.If) and not node.orelse and isinstance(node.body[-1], ast.Return) \
+            and isinstance(parent, (ast.FunctionDef, ast.For, ast.While, ast.If, ast.With)):
+        yield "drop_statement", None, ""   # a shortcut for a special value that answers otherwise than the general way
     if isinstance(node, ast.Assign) and len(node.targets) == 1:
         yield from _line_name_changes(node, words, line)
     yield from _in_place_changes(node, words)
