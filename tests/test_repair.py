@@ -3672,3 +3672,28 @@ def test_a_shortcut_returning_early_for_a_special_value_is_taken_out():
     dropped = [nodes[m.edits[0][1]] for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
                if m.operator == "drop_statement" and isinstance(nodes[m.edits[0][1]], ast.If)]
     assert [node.lineno for node in dropped] == [3], dropped
+
+
+def test_a_slices_stride_changed_is_told_as_a_stride_not_as_a_bound():
+    """`M[0::2, 2]` read as `M[0::1, 2]`: "takes every element where every second element belongs" (the
+    stride), never "stops one element early" (a bound)."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(n):
+            M = np.zeros((2 * n, 6))
+            M[0::2, 2] = 1.0
+            return M
+    """)
+    said = [m.sentence for m in repair.mutants_of(source, {"graded"})["graded"] if m.operator == "bound"]
+    assert any("takes every element where every second element belongs" in s for s in said), said
+    assert not any("stops one element" in s for s in said), said
+
+
+def test_points_made_homogeneous_with_zeros_is_never_the_fix_beside_another():
+    """Of two changes that mend alike, `np.ones((len(pts), 1))` -> zeros beside the points (directions, not
+    points) gives way; a camera's column of ones made zeros, `np.ones((3, 1))`, is a fix like any."""
+    text = "def f(K, pts):\n    P = np.hstack([K, np.ones((3, 1))])\n    Xh = np.hstack([pts, np.ones((len(pts), 1))])\n"
+    camera = repair.Fix(((2, "np.ones((3, 1))", "np.zeros((3, 1))"),), "f", "function", ())
+    points = repair.Fix(((3, "np.ones((len(pts), 1))", "np.zeros((len(pts), 1))"),), "f", "function", ())
+    assert repair._homogeneous_zeroed(points, text) and not repair._homogeneous_zeroed(camera, text)

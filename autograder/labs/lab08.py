@@ -1912,8 +1912,12 @@ def panorama_result(t: Trial, key: str, what: str, function: str, images):
         t.fail(f"{what} returned dtype {got.dtype}; expected uint8", hint=UINT8_HINT.said(t))
     got = t.expect_array(got, what, shape=(None, None, 3), dtype=np.uint8)
     if got.shape[0] * got.shape[1] > MAX_PANORAMA_PIXELS:
-        t.fail(f"{what} returned a {got.shape[1]}x{got.shape[0]} panorama, far larger than the "
-               "images' bounding box: size the canvas to the bounding box of the warped corners")
+        # (either the canvas is not the warped corners' bounding box, or it is, of corners a homography far
+        # off sends far away: both are told, the code may size the canvas rightly)
+        t.fail(f"{what} returned a {got.shape[1]}x{got.shape[0]} panorama, far larger than the images' bounding "
+               "box with the true homography: either the canvas is not sized to the bounding box of the warped "
+               "corners, or the homography that warps them is far off and sends a corner far away (look at the "
+               "homography your code estimates first)")
     return got
 
 

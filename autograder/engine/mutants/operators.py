@@ -4632,7 +4632,12 @@ def _constant_changes(node: ast.Constant, parents, words, what):
         subscript = parents.get(id(parent), (None,))[0]
         subscript = parents.get(id(subscript), (None,))[0] if isinstance(subscript, ast.Tuple) else subscript
         inner = what(subscript.value) if isinstance(subscript, ast.Subscript) else ""
-        if value >= 0 and inner:
+        if value >= 0 and inner and field == "step":
+            for delta in (-1, 1):   # (a stride: `M[0::2]`, the even rows, read as every row, or every third)
+                if value + delta >= 1:
+                    yield "bound", value + delta, f"a slice of {inner} takes {_every(value + delta)} where " \
+                                                  f"{_every(value)} belongs"
+        elif value >= 0 and inner:
             for delta in (-1, 1):
                 if value + delta >= 0:
                     yield "bound", value + delta, f"a slice of {inner} {'starts' if field == 'lower' else 'stops'} " \
@@ -4856,6 +4861,11 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
         count += 1
         if count >= _OTHER_NAMES_PER_SITE:
             return
+
+
+def _every(step: int) -> str:
+    """'every element', 'every second element', ... for a slice's step."""
+    return "every element" if step == 1 else f"every {_INDEX_WORDS.get(step - 1, f'{step}th')} element"
 
 
 def _derived_names(a: str, b: str) -> bool:

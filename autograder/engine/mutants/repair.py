@@ -1953,6 +1953,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # (a comparison made strict or not changes only ties: beside another fix it is one by chance --
         # `ssd <= best` beside the update moved where it belongs -- and is not told)
         kept = [pair for pair in (kept or fixes) if not _ties_only(pair[1])] or kept
+        # (points made homogeneous with a 0 where the 1 belongs are directions: beside another change that
+        # mends alike -- a camera's column of ones made zeros -- that one is the fix, this one compensates)
+        kept = [pair for pair in kept if not _homogeneous_zeroed(pair[1], student.text)] or kept
         # (a step the reference never takes, taken out, is the fix itself: told as any change is)
         removals = all(fix.operator in REMOVALS and not _extra_step(fix, student.reference_source, function)
                        for _, fix in fixes)
@@ -2169,6 +2172,21 @@ def _inside_a_dropped_term(fix: "Fix", dropped: list) -> bool:
     return fix.operator != "drop_term" and any(
         other.changes[0][0] == line and before in other.changes[0][1] and before not in other.changes[0][2]
         for other in dropped)
+
+
+def _homogeneous_zeroed(fix: "Fix", text: str) -> bool:
+    """Whether the fix makes the column of ones stacked beside points zeros (`np.hstack([X, np.ones(...)])`
+    -> `np.zeros(...)`): the points' homogeneous 1 made 0."""
+    if len(fix.changes) != 1:
+        return False
+    line, before, after = fix.changes[0]
+    lines = text.splitlines()
+    shown = lines[line - 1] if 0 < line <= len(lines) else ""
+    # (a column sized by the points' count, `np.ones((len(pts), 1))`, not a matrix's, `np.ones((3, 1))`)
+    sized = re.match(r"(?:np|numpy)\.ones\(\(([^,()]+(?:\([^()]*\))?[^,()]*),", before)
+    return sized is not None and not sized.group(1).strip().isdigit() \
+        and after.startswith(("np.zeros", "numpy.zeros")) \
+        and any(stack in shown for stack in ("hstack", "column_stack", "concatenate", "np.c_"))
 
 
 def _ties_only(fix: "Fix") -> bool:
