@@ -2040,23 +2040,20 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if values is None or variant.fix(both) is None:
             continue
         if subtle:
-            near_pairs.append((0.0, len(near_pairs), both, values))
+            near_pairs.append((False, 0.0, len(near_pairs), both, values))
         elif all(variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing)):
             if _accepted_pair(variant, both, failing):
                 return variant.repair([_one_half_enough(variant, both, failing, inputs, references)])
             exact_pairs.append((both, values))
         elif np.isfinite(off) and fallback is None:   # (beside a removal found: only exact pairs replace it)
             apart = sum(variant.distance(v, references[i]) for v, i in zip(values, failing))
-            if PAIR_AT_ONCE * apart <= off and both.key not in variant.checked and variant.replays < REPLAYS \
-                    and variant.passes_check(both, values, failing, pair=True) and _accepted_pair(variant, both, failing):
-                # (all but the reference's to the last grey level -- `inv(R1).T` where `R1` belongs, warped --
-                # judged by the check at once: a slow function's pairs may not all be answered in the time)
-                return variant.repair([_one_half_enough(variant, both, failing, inputs, references, judged=True)])
             if PAIR_NEARER * apart <= off:   # (the student's own recipe: as singles)
-                near_pairs.append((apart, len(near_pairs), both, values))
+                near_pairs.append((PAIR_FAR_NEARER * apart > off, apart, len(near_pairs), both, values))
     # (right on the failing inputs, and not on inputs derived from them: their own recipe -- the library's
     # triangulation where the reference solves its own system -- judged by the checks)
-    for both, values in exact_pairs + [(both, values) for _, _, both, values in sorted(near_pairs, key=lambda n: n[:2])]:
+    # (those far nearer first, by their distance; then those only somewhat nearer -- a function with many right
+    # answers, a rectification mended in both homographies, comes only somewhat nearer the reference's)
+    for both, values in exact_pairs + [(both, values) for *_, both, values in sorted(near_pairs, key=lambda n: n[:3])]:
         if clock.left() <= 0 or variant.replays >= REPLAYS:
             return fallback
         if both.key not in variant.checked and variant.passes_check(both, values, failing, pair=True) \
@@ -2110,7 +2107,7 @@ CONFIRMATION_CALLS = 6   # or the time of this many of the student's calls, if l
 CONFIRMATION_INPUTS = 15  # about as many inputs a change is confirmed on (derived, seen, given otherwise, ...)
 REPLAY_NEARER = 5  # a change this many times nearer the reference's answers is judged by the check itself
 PAIR_NEARER = 1.5   # (a pair of changes, fewer than the single ones: judged by the check from this many times)
-PAIR_AT_ONCE = 50   # (and from this many times nearer, at once, before the other pairs are answered)
+PAIR_FAR_NEARER = 3   # (those this many times nearer judged first)
 REPLAYS = 5       # the most changes a failed check is replayed with
 # A change bringing the answers this much nearer the reference's is judged by the check where none gives
 # them, after those at least a tenth nearer: a drawing in the student's own style (cv2.drawMatches'

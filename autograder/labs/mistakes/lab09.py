@@ -37,7 +37,7 @@ MISTAKES = {
             for x, y in pts[np.isfinite(pts).all(axis=1)]:
                 cv2.circle(shown, (int(round(x)), int(round(y))), 3, (0, 0, 255), -1)
             return shown, pts
-        """, ["the colour channels are reversed (rgb for bgr)"]),
+        """, ["its colour channels reversed (rgb for bgr)"]),
     "project_onto_image dropping the rows that are not finite (a point behind the camera)": ("lab09.ex5", """
         def project_onto_image(image, P, points):
             pts = project(P, points).reshape(-1, 2)
