@@ -1308,16 +1308,22 @@ def _distortion_in_pixels(name, function) -> list[Finding]:
     if "k1" not in read:
         return []
     made = _assigned_names(function)
+    offsets: dict = {}   # name -> whether it is only ever a difference with no division in it (read once)
+
+    def pixel_offset(part: str) -> bool:
+        if part not in offsets:
+            values = made.get(part, [])
+            offsets[part] = bool(values) and all(
+                isinstance(v, ast.BinOp) and isinstance(v.op, ast.Sub)
+                and not any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) for n in ast.walk(v)) for v in values)
+        return offsets[part]
     for node in ast.walk(function):
         if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
             continue
         pair = _squared_names(node.value)
         if pair is None:
             continue
-        offsets = [made.get(part, []) for part in pair]
-        if all(values and all(isinstance(v, ast.BinOp) and isinstance(v.op, ast.Sub)
-                              and not any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) for n in ast.walk(v))
-                              for v in values) for values in offsets):
+        if all(pixel_offset(part) for part in pair):
             line = _line(node)
             shown = ", ".join(f"`{part} = {ast.unparse(made[part][0])}`" for part in pair)
             return [Finding(name, line, "the lens model evaluated on pixel offsets, not normalised coordinates",

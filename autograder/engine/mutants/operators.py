@@ -1163,6 +1163,14 @@ class _Words:
                 if isinstance(element, ast.Name):
                     self.definitions.setdefault(element.id, []).append((line, value, index))
 
+    def loops_up_to(self, line: int, nearest: int = 2) -> list[int]:
+        """The lines of the ``nearest`` loops with an unread variable at or above ``line`` (a bisection: each
+        use looks at a bounded number of loops, whatever the def's length)."""
+        if not hasattr(self, "_unread_lines"):
+            self._unread_lines = sorted(self.unread_loop_names)
+        return self._unread_lines[max(0, bisect.bisect_right(self._unread_lines, line) - nearest):
+                                  bisect.bisect_right(self._unread_lines, line)]
+
     def locals_before(self, line: int, nearest: int | None = None) -> list[str]:
         """The def's parameters and the locals assigned before ``line`` (``nearest``: only that many
         of the locals, the last assigned before it -- the student's code: each use compared with a
@@ -1679,8 +1687,8 @@ def _reset_each_turn(earlier, loop):
         for s in (n for n in ast.walk(loop) if isinstance(n, ast.stmt) and not isinstance(n, ast.For)):
             if _grows(s, name):
                 grown = True
-            elif name in _read(s) and not isinstance(s, (ast.If, ast.While, ast.With, ast.Try)):
-                read = True
+            elif not isinstance(s, (ast.If, ast.While, ast.With, ast.Try)) and name in _read(s):
+                read = True   # (a compound statement's own reading is its parts', walked on their own)
         if grown and read:
             yield statement
 
@@ -2083,14 +2091,16 @@ def _mask_names(fn) -> frozenset:
                 or (isinstance(value, ast.Subscript) and isinstance(value.value, ast.Name) and value.value.id in masks)
         # (the largest set of names bound only to masks, their rows, each other or None; then those of them
         # that something compared made)
+        # (each round is linear in the def; a mask is followed through a few names at most, so the rounds are
+        # bounded and a long chain of names in a hostile def costs no more than _MASK_ROUNDS readings of it)
         masks = {name for name, values in bound.items() if all(v is not None for v in values)}
-        while True:
+        for _ in range(_MASK_ROUNDS):
             kept = {name for name in masks if all(a_mask(v, masks) for v in bound[name])}
             if kept == masks:
                 break
             masks = kept
         made = {name for name in masks if any(_masks(v) for v in bound[name])}
-        while True:
+        for _ in range(_MASK_ROUNDS):
             grown = made | {name for name in masks if any(isinstance(v, (ast.Name, ast.Subscript)) and (
                 v.id if isinstance(v, ast.Name) else v.value.id) in made for v in bound[name])}
             if grown == made:
@@ -2100,6 +2110,9 @@ def _mask_names(fn) -> frozenset:
         known = frozenset(masks)
         fn._grader_mask_names = known
     return known
+
+
+_MASK_ROUNDS = 6   # names a mask is followed through (`inliers` -> `best` -> `inliers[k]` ...), at most
 
 
 def _masks(value) -> bool:
@@ -4821,7 +4834,7 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
         listed = {other for other, _ in others}
         others += [(other, f"`{other}`") for other in sorted(words.zipped.get(node.id, ())) if other not in listed]
         # (a loop variable nothing reads, of a loop on this line or above it: tried first)
-        unread = {name for at, names in words.unread_loop_names.items() if at <= line for name in names} - {node.id}
+        unread = {name for at in words.loops_up_to(line) for name in words.unread_loop_names[at]} - {node.id}
         listed = {other for other, _ in others}
         others += [(other, f"`{other}`") for other in sorted(unread) if other not in listed]
     # Two names told alike (`img2`, and its float copy told as `img2` too): only the one of the

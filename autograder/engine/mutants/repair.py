@@ -324,11 +324,12 @@ class _Student:
         if not self.reference_source:
             return set()
         written = set().union(*_reference_texts(self.reference_source).values())
-        novel = set()
+        novel, seen = set(), set()
         for m in shown:
             place = self._place_of(m)
-            if place is None or place in novel:
+            if place is None or place in seen:   # (each statement read once, however many changes it holds)
                 continue
+            seen.add(place)
             nodes, parents = self._walk(place[0])
             statement = nodes[m.edits[0][1]] if 0 <= m.edits[0][1] < len(nodes) else None
             while statement is not None and not isinstance(statement, ast.stmt) and id(statement) in parents:
