@@ -1248,7 +1248,7 @@ def _written_into_a_copy(name, function) -> list[Finding]:
                 inner = ast.unparse(target.value)
                 return [Finding(name, _line(node), "a write into a copy made by an index",
                                 f"{name} (line {_line(node)}) writes into `{ast.unparse(target)}`, but `{inner}` "
-                                f"indexes `{target.value.value.id}` with a list or an array of positions, which "
+                                f"indexes `{target.value.value.id}` with a list, an array of positions or a mask, which "
                                 f"makes a new array: the values go into that copy and `{target.value.value.id}` "
                                 f"is left unchanged; index once (`{target.value.value.id}[np.ix_(rows, columns)] = "
                                 f"...`, or a slice) so the write lands in the array itself", certain=True)]
