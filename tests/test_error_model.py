@@ -563,3 +563,48 @@ def test_an_error_model_name_is_said_only_of_code_that_can_make_it(monkeypatch, 
     monkeypatch.setattr(naming, "_mutant_calls", lambda trial, mutant: makes)
     mutant = Mutant(operator, "s", "s", 3, (("s", 5, operator, payload),), sentence)
     assert naming._code_can(naming.Naming(mutant, 1, 1), types.SimpleNamespace(), {"s"}) == can
+
+
+# A student's draw_epipolar_lines choosing its end points by `b != 0` answers as the reference with
+# `abs(a) >= abs(a)`; a near copy of the reference writes that very test.
+_BY_B = """
+def draw_epipolar_lines(image, lines):
+    canvas = image.copy()
+    for a, b, c in lines:
+        if b != 0:
+            cv2.line(canvas, (0, int(-c / b)), (9, int(-(c + 9 * a) / b)), 255, 1)
+    return canvas
+"""
+_COPIED = """
+def draw_epipolar_lines(image, lines):
+    canvas = np.array(image, dtype=np.uint8, copy=True)
+    for i, (a, b, c) in enumerate(np.asarray(lines, np.float64).reshape(-1, 3)):
+        if np.abs(a) >= np.abs(a):
+            p, q = (0, int(-c / b)), (9, int(-(c + 9 * a) / b))
+            cv2.line(canvas, p, q, 255, 1)
+    return canvas
+"""
+
+
+@pytest.mark.parametrize("operator, words, code, said", [
+    ("other_name", "the first entry of each item of `lines` is used where the second", _BY_B, False),
+    ("other_name", "the first entry of each item of `lines` is used where the second", _COPIED, True),
+    # a call is judged by its function and the arguments up to the last edited one
+    ("swap_args", "`cv2.line` gets its first and third arguments", _COPIED.replace("(canvas, p, q,", "(q, p, canvas,"),
+     True),
+    ("swap_args", "`cv2.line` gets its first and third arguments", _COPIED, False),
+])
+def test_an_error_model_name_is_said_only_of_code_that_writes_the_mutated_expression(monkeypatch, operator, words,
+                                                                                     code, said):
+    """A mutant's words tell the reference's code: they are said of the student's only when it writes
+    the expression the mutant makes, names aside (its own code that answers alike has the mistake
+    elsewhere)."""
+    from autograder.engine import hints
+
+    lab = LABS["lab11"]
+    [mutant] = [m for m in naming.model_for(lab).mutants["draw_epipolar_lines"]
+                if m.operator == operator and words in m.sentence][:1]
+    read = hints.read_code(code)
+    monkeypatch.setattr(hints, "code_of", lambda trial: read)
+    trial = SimpleNamespace(lab=lab)
+    assert naming._code_can(naming.Naming(mutant, 1, 1), trial, {"draw_epipolar_lines"}) == said

@@ -244,3 +244,21 @@ def test_correct_variants_keep_full_marks(tmp_path, case):
     result = grade(mutant(tmp_path, MODULE, source), [exercise])
     [graded] = result.exercises
     assert graded.score == graded.max_score, [(c.name, c.message) for c in graded.checks if not c.passed]
+
+
+def test_points_written_into_by_a_projection_lose_one_check_though_a_second_call_agrees(tmp_path):
+    """Exercises 2 and 3 compare each projection of the points with the perspective one
+    (inplace.shown_after): a weak perspective that sets the caller's depths to their mean (its own
+    answer right, a second call the same) changes what the perspective projection gives; named."""
+    result = grade(mutant(tmp_path, MODULE, """
+        def weak_perspective_project(points, f, z_avg=None):
+            X = np.asarray(points, dtype=np.float64)   # no copy for float points
+            single = X.ndim == 1
+            X = np.atleast_2d(X)
+            X[:, 2] = X[:, 2].mean() if z_avg is None else float(z_avg)   # every point at one depth
+            x = f / X[:, 2:3] * X[:, :2]
+            return x[0] if single else x
+        """), ["lab10.ex2"], pictures="none")
+    failed = [c for c in check_results(result, "lab10.ex2") if not c.passed and not c.advice]
+    assert len(failed) == 1, [c.name for c in failed]
+    assert "writes into the caller's `points` in place" in failed[0].message, failed[0].message

@@ -266,6 +266,31 @@ def test_a_disparity_map_written_into_loses_one_check_though_a_second_call_agree
 
 
 
+def test_a_depth_map_written_into_by_the_simulation_loses_one_check_though_a_second_call_agrees(tmp_path):
+    """Exercise 6 compares the depth it triangulates with the depth map it simulated from
+    (inplace.shown_after): inf written into the caller's invalid depths (never lit, the patterns
+    right, a second call on the changed map the same) loses the first check where it shows, named."""
+    result = grade(mutant(tmp_path, MODULE, """
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            Z = np.asarray(depth, dtype=np.float64)   # no copy for a float map
+            Z[~(Z > 0)] = np.inf                      # f b / inf = 0 ... and then off by the valid test
+            height, width = Z.shape
+            patterns = gray_code_patterns(width, n_bits)
+            valid = np.isfinite(Z) & (Z > 0)
+            u = np.broadcast_to(np.arange(width, dtype=np.float64), Z.shape)
+            disparity = np.divide(float(f) * float(baseline), Z, out=np.zeros_like(Z), where=valid)
+            column = np.floor(u - disparity + 0.5).astype(np.int64)
+            lit = valid & (column >= 0) & (column < width)
+            images = np.zeros((int(n_bits), height, width), dtype=np.uint8)
+            images[:, lit] = patterns[:, column[lit]]
+            return images
+        """), ["lab12.ex6"], pictures="none")
+    failed = [c for c in check_results(result, "lab12.ex6") if not c.passed and not c.advice]
+    assert len(failed) == 1, [c.name for c in failed]
+    assert "writes into the caller's `depth` in place" in failed[0].message, failed[0].message
+    assert "became inf" in failed[0].message and "compares the depth map it triangulates" in failed[0].message
+
+
 def test_a_pattern_hint_tells_the_stripe_index_from_the_code_by_what_the_columns_carry():
     """One code per stripe: the stripe index is right, the Gray code is not (its formula is the
     hint); several codes within a stripe: k itself is wrong (the floor formula is the hint)."""

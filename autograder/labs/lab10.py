@@ -19,7 +19,7 @@ from fixtures import lab10 as truth
 from fixtures import scene
 from fixtures.images import tinted
 
-from ..engine import conventions
+from ..engine import conventions, inplace
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (calls_any, checklist, divides_by, evidenced, from_code, guard, look_at, measured,
@@ -305,6 +305,11 @@ def perspective_behind(t):
 
 # ================================================================== ex2 weak perspective
 ex2 = lab.exercise("ex2", "Weak perspective", functions=["weak_perspective_project(points, f, z_avg=None)"])
+# The sheet's exercises 2 and 3 compare each projection with the perspective one of the same points:
+# a projection that writes into the caller's points (their Z set to the mean depth) changes the other's.
+for _projection in ("perspective_project", "weak_perspective_project", "orthographic_project"):
+    inplace.shown_after(lab, _projection, "points", "exercises 2 and 3 compare the weak perspective and the "
+                                                     "orthographic projection of the same points with the perspective one")
 
 
 def weak_mistakes(X, f, z_avg=None):

@@ -2344,6 +2344,10 @@ def dp_fractional_smoothness(t):
 ex6 = lab.exercise("ex6", "Structured light", functions=[
     "gray_code_patterns(width, n_bits)", "simulate_structured_light(depth, f, baseline, n_bits)",
     "depth_from_structured_light(images, f, baseline)"])
+# The sheet's exercise 6 simulates the patterns a depth map lights and triangulates a depth map back from
+# them: the depth map it started from is what the result is compared with.
+inplace.shown_after(lab, "simulate_structured_light", "depth", "exercise 6 compares the depth map it triangulates "
+                                                                "with the one the patterns were simulated from")
 
 
 ZERO_ONE = "the values are 0 and 1, not 0 and 255"

@@ -24,6 +24,8 @@ from __future__ import annotations
 
 import ast
 import atexit
+import copy
+import functools
 import itertools
 import os
 import re
@@ -38,7 +40,7 @@ from ...loading.parsing import parse
 from ...sandbox import evidence
 from ..inplace import MISTAKE as IN_PLACE
 from .helper import ERROR, Helper, HelperFailed
-from .operators import Mutant, _dotted, mutants_of, mutated_defs
+from .operators import Mutant, _dotted, _parents, mutants_of, mutated_defs
 
 CHECK_SECONDS = 3.0        # the error model's time for one failed check
 GRADING_SECONDS = 10.0     # and for one grading (all its failed checks): bounds what failing everything costs
@@ -1291,8 +1293,146 @@ def _code_can(naming: Naming, trial, called) -> bool:
     if naming.mutant.operator == "other_name" and len(naming.mutant.edits) == 1:
         used = naming.mutant.edits[0][3]
         makers = {short for _, short in quoted}
-        return any(_read_outside(fn, used, makers) for fn in functions)
+        if not any(_read_outside(fn, used, makers) for fn in functions):
+            return False
+    return _written_alike(naming.mutant, trial, functions)
+
+
+# The expressions that carry an edit's meaning: a change is judged with its operands around it
+# (`abs(a) >= abs(a)`, not the lone `a`).
+_CARRIERS = (ast.Compare, ast.BinOp, ast.BoolOp, ast.Call, ast.Subscript, ast.UnaryOp)
+_LIBRARIES = frozenset({"np", "numpy", "math", "cv2", "cv"})
+
+
+def _written_alike(mutant, trial, functions) -> bool:
+    """Whether the student's ``functions`` write each expression the mutant's edits make, names aside
+    (`abs(a) >= abs(a)` is written alike by `np.abs(v) >= np.abs(v)`; of a call, its function and the
+    arguments up to the last edited one). A mutant's words tell the reference's code; they are said of
+    the student's only where it writes the mutated expression: code of its own that answers alike has
+    its mistake elsewhere (end points chosen by `b != 0` answered as `abs(a) >= abs(a)`, and "the
+    first entry is used where the second belongs" was false of it). An edit that makes no expression
+    (a statement moved or dropped, a name returned) is not read."""
+    model = model_for(trial.lab) if hasattr(trial, "lab") else None
+    if model is None:
+        return True
+    made = [m for m in (_mutated_expression(model.source, edit) for edit in mutant.edits) if m is not None]
+    if not made:
+        return True
+    carriers = [node for fn in functions for node in ast.walk(fn) if isinstance(node, _CARRIERS)]
+    theirs = {node.id for fn in functions for node in ast.walk(fn) if isinstance(node, ast.Name)}
+    for expression, call, kept, keywords, ours in made:
+        shared = ours & theirs   # a name both codes use is the same name (`std_l` is not `denominator`)
+        shape = _alike(expression, shared)
+        if not any(_alike(node if call is None else _cut(node, kept, keywords), shared) == shape
+                   for node in carriers if call is None or isinstance(node, ast.Call) and _short(node) == call):
+            return False
     return True
+
+
+@functools.lru_cache(maxsize=1024)
+def _mutated_expression(source: str, edit) -> tuple | None:
+    """The expression around one edit of the reference, edited: the edited node or its nearest parent
+    that carries an operation, within its statement -- of a call, cut after its last edited argument
+    -- as (the expression, the call's function name or None, how many positional arguments and which
+    keywords the cut keeps, the names the reference's def uses). None when the edit is a statement's,
+    has no such parent or cannot be made. Read only (cached)."""
+    where, ordinal = edit[0], edit[1]
+    tree = parse(source, max_chars=None, max_statements=None)
+    fn = next((n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == where), None)
+    nodes = list(ast.walk(fn)) if fn is not None else []
+    if not 0 <= ordinal < len(nodes) or not isinstance(nodes[ordinal], ast.expr):
+        return None
+    parents = _parents(fn)
+    steps, node = [], nodes[ordinal]
+    while node is not fn:
+        parent, field_name, index = parents[id(node)]
+        steps.append((field_name, index))
+        node = parent
+    try:
+        (changed_def,) = mutated_defs(ast.Module([fn], []), (edit,)).body
+    except (ValueError, KeyError, TypeError, AttributeError, IndexError):
+        return None
+    carrier, changed = fn, changed_def
+    for field_name, index in reversed(steps):
+        carrier, changed = getattr(carrier, field_name), getattr(changed, field_name)
+        if index is not None:
+            carrier, changed = carrier[index], changed[index]
+    # The nearest carrier around the edit, in the mutant (`x` made of `x.astype(float)` is judged
+    # by the arithmetic it goes into) and in the reference at the same place.
+    parents_after = _parents(changed_def)
+    while not isinstance(changed, _CARRIERS):
+        parent = parents_after[id(changed)][0]
+        if not isinstance(parent, ast.expr):
+            return None
+        changed, carrier = parent, parents[id(carrier)][0]
+    ours = frozenset(node.id for node in ast.walk(fn) if isinstance(node, ast.Name))
+    if not (isinstance(carrier, ast.Call) and isinstance(changed, ast.Call)):
+        return changed, None, 0, frozenset(), ours
+    # Of a call, only what the edit touches: `cv2.line(img, p, q, ...)` with its points swapped is
+    # written alike whatever colour and thickness follow.
+    edited = [k for k in range(max(len(carrier.args), len(changed.args)))
+              if k >= min(len(carrier.args), len(changed.args)) or ast.dump(carrier.args[k]) != ast.dump(changed.args[k])]
+    before = {k.arg: ast.dump(k.value) for k in carrier.keywords}
+    after = {k.arg: ast.dump(k.value) for k in changed.keywords}
+    keywords = frozenset(k for k in before.keys() | after.keys() if before.get(k) != after.get(k))
+    kept = max(edited) + 1 if edited else 0
+    return _cut(changed, kept, keywords), _short(changed), kept, keywords, ours
+
+
+def _cut(call: ast.Call, kept: int, keywords) -> ast.Call:
+    """``call`` with its first ``kept`` positional arguments and the ``keywords`` named."""
+    return ast.Call(call.func, call.args[:kept], [k for k in call.keywords if k.arg in keywords])
+
+
+def _alike(expression, kept=frozenset()) -> str:
+    """``expression`` written with its names (but those ``kept``) by order of first appearance and
+    library prefixes dropped (`np.abs(points[:, 0])` and `abs(p[:, 0])` are alike). Read only."""
+    names: dict = {name: name for name in kept}
+
+    class Renamed(ast.NodeTransformer):
+        def visit_Attribute(self, node):
+            if isinstance(node.value, ast.Name) and node.value.id in _LIBRARIES:
+                return ast.Name(node.attr, ast.Load())
+            return self.generic_visit(node)
+
+        def visit_Call(self, node):
+            function = node.func   # a called name is kept: it says what is done
+            if isinstance(function, ast.Attribute) and isinstance(function.value, ast.Name) \
+                    and function.value.id in _LIBRARIES:
+                function = ast.Name(function.attr, ast.Load())
+            elif not isinstance(function, ast.Name):
+                function = self.visit(function)
+            return ast.Call(function, [self.visit(a) for a in node.args],
+                            [ast.keyword(k.arg, self.visit(k.value)) for k in node.keywords])
+
+        def visit_Name(self, node):
+            return ast.Name(names.setdefault(node.id, f"#{len(names)}"), ast.Load())
+
+        def visit_Subscript(self, node):   # `a[2, :]`, `a[2, ...]` and `a[2]` index alike; `a[0:k]` is `a[:k]`
+            value = self.visit(node.value)
+            items = list(node.slice.elts) if isinstance(node.slice, ast.Tuple) else [node.slice]
+            items = [ast.Slice(None, None, None) if _ellipsis(item) else item for item in items]
+            while len(items) > 1 and _whole(items[-1]):
+                items.pop()
+            items = [ast.Slice(None if _zero(i.lower) else i.lower, i.upper, i.step) if isinstance(i, ast.Slice)
+                     else i for i in items]
+            index = items[0] if len(items) == 1 else ast.Tuple(items, ast.Load())
+            return ast.Subscript(value, self.visit(index), ast.Load())
+
+    return ast.dump(Renamed().visit(copy.deepcopy(expression)), annotate_fields=False)
+
+
+def _ellipsis(node) -> bool:
+    return isinstance(node, ast.Constant) and node.value is Ellipsis
+
+
+def _zero(node) -> bool:
+    return isinstance(node, ast.Constant) and node.value == 0 and not isinstance(node.value, bool)
+
+
+def _whole(node) -> bool:
+    return isinstance(node, ast.Slice) and (node.lower is None or _zero(node.lower)) and node.upper is None \
+        and node.step is None
 
 
 def _mutant_calls(trial, mutant) -> set:
