@@ -905,6 +905,9 @@ def essential_from_F_property(t):
                      essential_of_estimated_mistakes(F, K1, K2), probe=essential_of_estimated_probe(t))
 
 
+# The sheet's exercise 4 prints A's row as [x x', x y', x, y x', y, x', y', y', 1]: y' twice, y y' missing.
+SHEET_ROW = ("the rows of A are the lab sheet's row as printed, [x x', x y', x, y x', y, x', y', y', 1], which has a "
+             "misprint (y' twice, y y' missing): for x'^T F x = 0 each row is [x' x, x' y, x', y' x, y' y, y', x, y, 1]")
 ESSENTIAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for each problem
     "K1_both": "K1 is used for both images (pts2 are normalised with K2^-1)",
     "K2_both": "K2 is used for both images (pts1 are normalised with K1^-1)",
@@ -924,6 +927,7 @@ ESSENTIAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for 
         instead="E comes out as U diag(1, 1, 0) V, where U diag(1, 1, 0) Vt is due (Vt as np.linalg.svd "
                 "returns it)"),
     "design_x1x2": "the rows of A are kron(x1, x2); x2^T E x1 = 0 gives kron(x2, x1) (this is E^T)",
+    "sheet_row": SHEET_ROW,
 }
 
 
@@ -1100,6 +1104,7 @@ FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores fo
                 "y2, x1, y1, 1])"), TRANSPOSED_RESHAPE),
     "design_columns": "two columns of A are exchanged (x2 y1 and y2 x1): each row is "
                       "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]",
+    "sheet_row": SHEET_ROW,
     "no_rank2": "rank 2 was not enforced",
     "essential_values": "the singular values were set to (1, 1, 0), an essential matrix's: F keeps its own two, "
                         "U diag(s1, s2, 0) V^T",

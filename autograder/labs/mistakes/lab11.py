@@ -421,6 +421,19 @@ MISTAKES = {
             A = (x1[:, :, None] * x2[:, None, :]).reshape(len(x1), 9)
             return np.linalg.svd(A)[2][-1].reshape(3, 3)
         """, ["kron(x1, x2)"]),
+    # the sheet's exercise 4 prints the row [x x', x y', x, y x', y, x', y', y', 1]: copied as printed
+    "8-point with the lab sheet's row as printed": ("lab11.ex4", """
+        def _eight_point_core(x1, x2):
+            A = np.stack([x1[:, 0] * x2[:, 0], x1[:, 0] * x2[:, 1], x1[:, 0], x1[:, 1] * x2[:, 0], x1[:, 1],
+                          x2[:, 0], x2[:, 1], x2[:, 1], np.ones(len(x1))], axis=1)
+            return np.linalg.svd(A)[2][-1].reshape(3, 3)
+        """, ["the lab sheet's row as printed", "misprint"]),
+    "essential 8-point with the lab sheet's row as printed": ("lab11.ex3", """
+        def _eight_point_core(x1, x2):
+            A = np.stack([x1[:, 0] * x2[:, 0], x1[:, 0] * x2[:, 1], x1[:, 0], x1[:, 1] * x2[:, 0], x1[:, 1],
+                          x2[:, 0], x2[:, 1], x2[:, 1], np.ones(len(x1))], axis=1)
+            return np.linalg.svd(A)[2][-1].reshape(3, 3)
+        """, ["the lab sheet's row as printed", "misprint"]),
     "8-point undoing the normalisation the wrong way round": ("lab11.ex4", """
         def fundamental_8point(pts1, pts2):
             pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
