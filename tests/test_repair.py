@@ -3697,3 +3697,39 @@ def test_points_made_homogeneous_with_zeros_is_never_the_fix_beside_another():
     camera = repair.Fix(((2, "np.ones((3, 1))", "np.zeros((3, 1))"),), "f", "function", ())
     points = repair.Fix(((3, "np.ones((len(pts), 1))", "np.zeros((len(pts), 1))"),), "f", "function", ())
     assert repair._homogeneous_zeroed(points, text) and not repair._homogeneous_zeroed(camera, text)
+
+
+@pytest.mark.parametrize("module, exercise, source, told", [
+    # a slice written where one entry belongs: the translation M[0, 2] overwritten with the shear too
+    ("lab07_transformations", "lab07.ex4", """
+        def shear_matrix(s):
+            M = np.eye(3)
+            M[0, 1:] = s
+            return M
+        """, "to `M[0, 1] = s`"),
+    # a square block written where its diagonal belongs: the skew entries set to f too
+    ("lab09_camera", "lab09.ex2", """
+        def intrinsic_matrix(f, px, py):
+            K = np.zeros((3, 3))
+            K[:2, :2] = f
+            K[0, 2], K[1, 2], K[2, 2] = px, py, 1.0
+            return K
+        """, "to `K[[0, 1], [0, 1]] = f`"),
+    # a term of one coordinate's sum left without the factor the twin coordinate's term has
+    ("lab09_camera", "lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            P3, single = _points(points)
+            K = np.asarray(K, dtype=np.float64)
+            X, Y, Z = P3[:, 0], P3[:, 1], P3[:, 2]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                u = (K[0, 0] * X + K[0, 1] * Y + K[0, 2] * Z) / Z
+                v = (K[1, 1] * Y + K[1, 2]) / Z
+            out = np.column_stack([u, v])
+            out[Z <= 0] = np.nan
+            return out[0] if single else out
+        """, "to `v = (K[1, 1] * Y + K[1, 2] * Z) / Z`"),
+])
+def test_a_write_or_a_term_unlike_its_twin_is_repaired_in_the_students_terms(tmp_path, module, exercise, source, told):
+    result = grade(mutant(tmp_path, module, source), [exercise], pictures="none", include_hidden=False)
+    messages = [c.message for c in check_results(result, exercise) if not c.passed]
+    assert messages and any(told in m for m in messages), messages

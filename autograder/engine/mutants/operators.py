@@ -87,6 +87,7 @@ OPERATORS = {
     "power_inside": ("square", "mean", "sum", "**"),  # np.mean(d) ** 2 <-> np.mean(d ** 2)
     "slice": ("slice", "column", "entries", "first", "last"),   # l[:, 1:] -> l[:, :2], A[r, 3:7] -> A[r, 4:8]
     "drop_slice": ("first", "only", "all"),          # pts[:8] -> pts: every point, not the first few
+    "slice_item": ("slice", "entry", "entries"),       # M[0, 1:] = s -> M[0, 1] = s: one entry written, not a run
     "canvas": ("size", "height", "width", "max", "both"),   # np.zeros((h1, w1 + w2)) -> max(h1, h2) rows
     "loop_all": ("only", "first", "all", "every"),    # for i in range(8) -> range(len(p1)): every point
     "power_spread": ("square", "sum", "**"),          # (x + y) ** 2 -> x ** 2 + y ** 2
@@ -813,6 +814,19 @@ def _make_slice(node, payload):
     return ast.Slice(None if lower is None else _signed(lower), None if upper is None else _signed(upper), None)
 
 
+def _make_slice_item(node, payload):
+    position, start = payload
+    made = copy.deepcopy(node)
+    if position is None:   # the block's diagonal: `K[:2, :2]` -> `K[[0, 1], [0, 1]]`
+        diagonal = ast.List([ast.Constant(k) for k in range(*start)], ast.Load())
+        made.slice = ast.Tuple([diagonal, copy.deepcopy(diagonal)], ast.Load())
+    elif isinstance(made.slice, ast.Tuple):
+        made.slice.elts[position] = ast.Constant(start)
+    else:
+        made.slice = ast.Constant(start)
+    return made
+
+
 def _signed(value: int):
     return ast.UnaryOp(ast.USub(), ast.Constant(-value)) if value < 0 else ast.Constant(value)
 
@@ -1079,7 +1093,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
-         "slice": _make_slice, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+         "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -2270,6 +2284,8 @@ def _student_changes(node, parent, parents):
     yield from _measure_changes(node)
     if isinstance(node, ast.Slice):
         yield from _slice_changes(node)
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Store):
+        yield from _slice_item_changes(node)
 
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.slice, ast.Slice) \
             and node.slice.lower is None and node.slice.step is None \
@@ -3197,6 +3213,26 @@ def _averages(dotted: str) -> bool:
                                   and any(word in name.lower() for word in ("mean", "blur", "box", "average", "smooth")))
 
 
+def _slice_item_changes(node: ast.Subscript):
+    """A slice written to where one entry belongs: `M[0, 1:] = s` fills the rest of row 0 too (the
+    translation `M[0, 2]` overwritten with the shear), `K[:2, 2] = p` where `K[0, 2] = p` was meant: the
+    slice's first entry alone; a square block where its diagonal belongs (`K[:2, :2] = f`). Only slices
+    of constant bounds and no step, in a write."""
+    items = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+    for k, item in enumerate(items):
+        if isinstance(item, ast.Slice) and item.step is None and (item.lower is not None or item.upper is not None):
+            start = 0 if item.lower is None else _constant_index(item.lower)
+            if start is not None and start >= 0:
+                yield "slice_item", (k, start), ""
+    # (a square block written where its diagonal belongs: `K[:2, :2] = f` sets the skew entries to f too)
+    if len(items) == 2 and all(isinstance(item, ast.Slice) and item.step is None for item in items) \
+            and ast.dump(items[0]) == ast.dump(items[1]) and items[0].upper is not None:
+        start = 0 if items[0].lower is None else _constant_index(items[0].lower)
+        stop = _constant_index(items[0].upper)
+        if start is not None and stop is not None and 0 <= start and start + 2 <= stop <= start + 4:
+            yield "slice_item", (None, (start, stop)), ""
+
+
 def _slice_changes(node: ast.Slice):
     """A slice of constant bounds one place off: the window moved by one (`3:7` for `4:8`), or the
     last entries taken where the first belong (`1:` for `:2` of a 3-vector, and back)."""
@@ -3740,14 +3776,16 @@ def _term_its_siblings_have(node, words):
     the sum with the siblings' extra term, read in this row."""
     if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
         return
-    mine = _summed_terms(node.value)
+    divided = isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.Div)
+    summed = node.value.left if divided else node.value   # (`(K[1, 1] * Y + K[1, 2]) / Z`: the sum divided)
+    mine = _summed_terms(summed)
     rows = _rows_read(mine) if mine else set()
     if not mine or len(rows) != 1:
         return
     (matrix, row), = rows
     texts = [(sign, ast.unparse(term)) for sign, term in mine]
     constants = [term for _, term in mine if isinstance(term, ast.Constant)]
-    extras, in_place = set(), set()
+    extras, in_place, factored = set(), set(), set()
     for sibling in _read_siblings(words)[2]:
         value = sibling.value.left if isinstance(sibling.value, ast.BinOp) and isinstance(sibling.value.op, ast.Div) \
             else sibling.value   # (`(H[0, 0] * x + ... + H[0, 2]) / w`: the sum divided)
@@ -3775,9 +3813,26 @@ def _term_its_siblings_have(node, words):
                 and [item for item in texts if item not in moved] == [(s, ast.unparse(constants[0])) for s, t in mine
                                                                       if t is constants[0]]:
             in_place.add(missing[0])   # (a number written where the siblings read their row's entry: `+ 1.0`)
+        # (a term the sibling's sum has times a factor, bare in this one: `+ K[1, 2]` beside `+ K[0, 2] * Z`)
+        unmatched = [(sign, term) for sign, term in mine if (sign, ast.unparse(term)) not in moved]
+        if len(unmatched) == 1:
+            sign, term = unmatched[0]
+            times = [text for their_sign, text in moved if their_sign == sign and _times_a_factor(text, term)]
+            if len(times) == 1:
+                factored.add((ast.unparse(term), times[0]))
     if len(extras) == 1:
         sign, term = extras.pop()
-        yield "mirror", (None, f"{ast.unparse(node.value)} {sign} {term}"), ""
+        grown = f"{ast.unparse(summed)} {sign} {term}"
+        yield "mirror", (None, f"({grown}) / {ast.unparse(node.value.right)}" if divided else grown), ""
+    if len(factored) == 1:
+        bare, times = factored.pop()
+        value = copy.deepcopy(node.value)
+        for n in ast.walk(value):   # (the bare term, found again in the copy)
+            for field in ("left", "right"):
+                part = getattr(n, field, None)
+                if isinstance(part, ast.AST) and ast.unparse(part) == bare:
+                    setattr(n, field, parse(times, mode="eval").body)
+        yield "mirror", (None, ast.unparse(value)), ""
     if len(in_place) == 1:
         sign, term = in_place.pop()
         value = copy.deepcopy(node.value)
@@ -3789,6 +3844,14 @@ def _term_its_siblings_have(node, words):
                     if sign == "-" and isinstance(n, ast.BinOp) and field == "right" and isinstance(n.op, ast.Add):
                         n.op = ast.Sub()
         yield "mirror", (None, ast.unparse(value)), ""
+
+
+def _times_a_factor(text: str, term) -> bool:
+    """Whether ``text`` is ``term`` times something (either side of one product)."""
+    product = parse(text, mode="eval").body
+    bare = ast.dump(term)
+    return isinstance(product, ast.BinOp) and isinstance(product.op, ast.Mult) \
+        and bare in (ast.dump(product.left), ast.dump(product.right))
 
 
 def _row_index(node):
