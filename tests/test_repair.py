@@ -3728,6 +3728,14 @@ def test_points_made_homogeneous_with_zeros_is_never_the_fix_beside_another():
             out[Z <= 0] = np.nan
             return out[0] if single else out
         """, "to `v = (K[1, 1] * Y + K[1, 2] * Z) / Z`"),
+    # the whole tuple an OpenCV call returns kept where its first result (the matrix) belongs
+    ("lab07_transformations", "lab07.ex5", """
+        def affine_from_points(src, dst):
+            src_pts = np.asarray(src, dtype=np.float64).reshape(-1, 2)
+            dst_pts = np.asarray(dst, dtype=np.float64).reshape(-1, 2)
+            A = cv2.estimateAffine2D(src_pts, dst_pts)
+            return A
+        """, "to `cv2.estimateAffine2D(src_pts, dst_pts)[0]`"),
 ])
 def test_a_write_or_a_term_unlike_its_twin_is_repaired_in_the_students_terms(tmp_path, module, exercise, source, told):
     result = grade(mutant(tmp_path, module, source), [exercise], pictures="none", include_hidden=False)

@@ -728,3 +728,32 @@ def test_a_lens_model_evaluated_on_pixel_offsets_is_named():
         """
     assert one(lens.format(fx="", fy="")) == {"the lens model evaluated on pixel offsets, not normalised coordinates"}
     assert not one(lens.format(fx=" / K[0, 0]", fy=" / K[1, 1]"))
+
+
+def test_a_loop_variable_named_as_a_value_read_after_the_loop_is_named():
+    loop = """
+        def project(P, world):
+            out = []
+            for {target} in np.atleast_2d(world):
+                out.append(P @ np.append(point, 1.0))
+            out = np.array(out)
+            {after}
+            return out[0] if world.ndim == 1 else out
+        """
+    wanted = {"a loop variable named as a value read after the loop"}
+    assert one(loop.format(target="world", after="")) == wanted
+    assert one(loop.format(target="point", after="")) == set()   # a name of its own
+    # bound again after the loop before it is read: what it holds then is the new value
+    assert one(loop.format(target="world", after="world = np.asarray(world)")) == set()
+
+
+def test_a_homogeneous_system_solved_by_least_squares_is_named():
+    centre = """
+        def camera_center(P):
+            C = np.linalg.{solver}(P, {rhs}, rcond=None)[0]
+            return C[:3] / C[3]
+        """
+    wanted = {"a homogeneous system solved by least squares"}
+    assert one(centre.format(solver="lstsq", rhs="np.zeros(3)")) == wanted
+    assert one(centre.format(solver="lstsq", rhs="np.zeros_like(P[:, 0])")) == wanted
+    assert one(centre.format(solver="lstsq", rhs="-P[:, 3]")) == set()   # an inhomogeneous system: right

@@ -573,11 +573,11 @@ def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: T
     where = finding.sentence.replace(f"(line {finding.line})",
                                      f"({check.exercise.lab.module}.py, line {finding.line})", 1)
     sentence = f"Reading your code: {where}."
+    lead = first.rstrip() + ("" if not first.strip() or first.rstrip().endswith((".", ":", "!", "?")) else ".")
     if verdict.mistake:
-        lead = first.rstrip() + ("" if first.rstrip().endswith((".", ":", "!", "?")) else ".")
         return replace(verdict, message=f"{lead} {sentence}{newline}{rest}")
     # (a fixed hint beside the cause read in their code would only guess at another one)
-    return replace(verdict, message=f"{first.rstrip()} {sentence}{newline}{rest}", mistake=finding.mistake, hint="")
+    return replace(verdict, message=f"{lead} {sentence}{newline}{rest}", mistake=finding.mistake, hint="")
 
 
 def _named_by_error_model(verdict: Verdict, check: Check, trial: Trial, raised: bool = False) -> Verdict:

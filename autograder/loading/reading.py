@@ -26,6 +26,7 @@ deeply to parse, or with more than :data:`MAX_NODES` syntax nodes, is not read
 from __future__ import annotations
 
 import ast
+import bisect
 import re
 from dataclasses import dataclass
 from functools import lru_cache
@@ -184,6 +185,8 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _written_into_a_copy(name, function)
     found += _pose_never_chosen(name, function)
     found += _distortion_in_pixels(name, function)
+    found += _loop_variable_rebinds(name, function)
+    found += _zeros_solved_for(name, function)
     return found
 
 
@@ -1330,4 +1333,55 @@ def _distortion_in_pixels(name, function) -> list[Finding]:
                             f"{name} (line {line}) takes the radius of {shown}, offsets in pixels, but the "
                             "distortion coefficients are of normalised coordinates ((u - cx) / fx, (v - cy) / fy): "
                             "divide by the focal lengths before the polynomial and multiply back after")]
+    return []
+
+
+# ------------------------------------------------------------------ a loop variable named as a value read after it
+def _loop_variable_rebinds(name, function) -> list[Finding]:
+    """``for world in np.atleast_2d(world):`` then ``world.ndim`` after the loop: the loop rebinds a
+    name already bound (a parameter, or assigned above the loop), and a line after the loop reads it
+    before binding it again -- it reads the loop's last item, not what the name held before. (Each
+    name's places are gathered once and searched by bisection: linear in the function's size.)"""
+    places: dict[str, list] = {}   # name -> sorted [(line, column, read)]
+    for node in ast.walk(function):
+        if isinstance(node, ast.Name):
+            places.setdefault(node.id, []).append((node.lineno, node.col_offset, isinstance(node.ctx, ast.Load)))
+    for found in places.values():
+        found.sort()
+    parameters = {a.arg for a in function.args.args + function.args.kwonlyargs}
+    for loop in ast.walk(function):
+        if not isinstance(loop, ast.For):
+            continue
+        for target in (t for t in ast.walk(loop.target) if isinstance(t, ast.Name)):
+            found = places[target.id]
+            first = found[0]
+            if target.id not in parameters and not (first[0] < loop.lineno and not first[2]):
+                continue   # (bound before the loop: a parameter, or written on an earlier line first)
+            after = bisect.bisect_left(found, (loop.end_lineno + 1, -1, False))
+            if after < len(found) and found[after][2]:
+                line, read = _line(loop), found[after][0]
+                return [Finding(name, line, "a loop variable named as a value read after the loop",
+                                f"{name} (line {line}) loops with `for {ast.unparse(loop.target)} in ...`, which rebinds "
+                                f"`{target.id}`, bound before the loop; line {read} reads `{target.id}` after the "
+                                f"loop, where it holds the loop's last item, not what it held before: give the loop "
+                                f"variable a name of its own")]
+    return []
+
+
+# ------------------------------------------------------------------ a homogeneous system solved by least squares
+_ZEROS = frozenset({"zeros", "zeros_like"})
+
+
+def _zeros_solved_for(name, function) -> list[Finding]:
+    """``np.linalg.lstsq(A, np.zeros(n))`` (or ``solve``): the least-squares answer of ``A x = 0`` is
+    ``x = 0``, never the non-zero solution a homogeneous system is solved for."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _call_name(node) in ("lstsq", "solve") and len(node.args) >= 2 \
+                and isinstance(node.args[1], ast.Call) and _call_name(node.args[1]) in _ZEROS:
+            line = _line(node)
+            return [Finding(name, line, "a homogeneous system solved by least squares",
+                            f"{name} (line {line}) solves `{ast.unparse(node.args[0])} x = 0` with "
+                            f"np.linalg.{_call_name(node)}, whose answer with a zero right-hand side is x = 0; the "
+                            "non-zero solution of a homogeneous system is the right singular vector of the smallest "
+                            "singular value (the last row of Vt from np.linalg.svd)", certain=True)]
     return []

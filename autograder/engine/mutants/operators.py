@@ -2271,6 +2271,13 @@ def _student_changes(node, parent, parents):
         for other in range(5):
             if other != node.slice.value:
                 yield "other_result", f"{ast.unparse(node.value)}[{other}]", ""
+    if isinstance(node, ast.Call) and _dotted(node.func).startswith(("cv2.", "cv.", "np.linalg.", "numpy.linalg.")) \
+            and (isinstance(parent, ast.Return) or isinstance(parent, ast.Assign) and len(parent.targets) == 1
+                 and isinstance(parent.targets[0], ast.Name)):
+        # the whole tuple a library call returns kept where one of its results belongs
+        # (`A = cv2.estimateAffine2D(src, dst)`: the matrix and the inlier mask)
+        for item in range(2):
+            yield "other_result", f"{ast.unparse(node)}[{item}]", ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) \
             and isinstance(node.right, (ast.Name, ast.Subscript)) and not isinstance(node.left, ast.Constant):
         for invalid in ("0.0", "np.nan"):   # a division with no guard where the divisor may be 0 or below
