@@ -133,6 +133,7 @@ OPERATORS = {
     "method_given": ("method", "flag", "default", "cv2."),   # cv2.findFundamentalMat(p1, p2) -> (..., method=cv2.FM_8POINT)
     "reverse_back": ("revers", "back", "turn", "far end"),   # acc(x[:, ::-1], axis=1) -> acc(...)[:, ::-1]
     "drop_reversal": ("revers", "order", "[::-1]"),    # tuple(pattern_size)[::-1] -> tuple(pattern_size)
+    "loop_order": ("revers", "order", "last", "first"),  # for b in bands[:-1] -> for b in reversed(bands[:-1])
     "matrix_applied": ("matrix", "applied", "@", "map"),   # t = dst[0] - src[0] -> dst[0] - L @ src[0]
     "series_powers": ("power", "square", "r^2", "**"),   # k1 * r + k2 * r ** 2 -> k1 * r ** 2 + k2 * r ** 4
     "counted": ("count", "len", "fixed", "number"),   # for k in range(3) -> range(len(images))
@@ -730,6 +731,10 @@ def _make_regroup(node, payload):
         inner = node.left
         return ast.BinOp(copy.deepcopy(inner.left), inner.op,
                          ast.BinOp(copy.deepcopy(inner.right), node.op, copy.deepcopy(node.right)))
+    if payload == "floor_last":   # (a // c) * b -> a * b // c
+        inner = node.left
+        return ast.BinOp(ast.BinOp(copy.deepcopy(inner.left), node.op, copy.deepcopy(node.right)), inner.op,
+                         copy.deepcopy(inner.right))
     if payload == "flat":   # a - (b + c) -> a - b + c
         inner = node.right
         return ast.BinOp(ast.BinOp(copy.deepcopy(node.left), node.op, copy.deepcopy(inner.left)), inner.op,
@@ -1085,7 +1090,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term", "midrange", "reverse_back", "drop_reversal",
+                                              "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
@@ -2338,6 +2343,14 @@ def _student_changes(node, parent, parents):
     if isinstance(node, ast.BinOp) and isinstance(node.op, _BITWISE) \
             and isinstance(node.left, ast.BinOp) and isinstance(node.left.op, _BINDS_BEFORE_BITS):
         yield "regroup", "last", ""      # `a + b << 2` is `(a + b) << 2`: `a + (b << 2)` was meant
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and isinstance(node.right, ast.BinOp) \
+            and isinstance(node.right.op, ast.FloorDiv):
+        yield "regroup", "first", ""     # `u * (2 ** n // w)` for `u * 2 ** n // w`: the floor taken first
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and isinstance(node.left, ast.BinOp) \
+            and isinstance(node.left.op, ast.FloorDiv):
+        yield "regroup", "floor_last", ""   # `(2 ** n // w) * u` for `2 ** n * u // w`
+    if isinstance(parent, ast.For) and parent.iter is node:
+        yield from _loop_order_changes(node)
     if isinstance(node, ast.Compare) and len(node.ops) == 1:
         yield from _precedence_slips(node)
     if isinstance(node, ast.Compare) and len(node.ops) == 1 and type(node.ops[0]) in _COMPARED:
@@ -2376,6 +2389,12 @@ def _student_changes(node, parent, parents):
         yield "unwrap", None, ""
         if _unary_call(node.args[0]):
             yield "unwrap", "chain", ""   # two functions applied that do not belong (an angle's tan of its radians)
+    if (isinstance(node.func, ast.Name) and node.func.id.startswith("_") and len(node.args) == 1
+            and not node.keywords or short == "cvtColor" and len(node.args) == 2) \
+            and isinstance(node.args[0], ast.Name) and isinstance(parent, ast.Call) and node in parent.args:
+        # an input converted on its way into a call where the input itself belongs: `warp(_grey(moving), H)`
+        # (the grey copy made for a comparison, passed on where the colour image is warped)
+        yield "unwrap", None, ""
     if isinstance(node.func, ast.Attribute) and node.func.attr in _WHOLE_METHODS and not node.args and not node.keywords:
         yield "unwrap", "method", ""   # one value of the whole array where each item's own belongs (a mean depth)
     if short in _MISTAKEN and prefix in ("np.", "numpy.", "math."):
@@ -3218,6 +3237,16 @@ def _averages(dotted: str) -> bool:
     name = dotted.rsplit(".", 1)[-1]
     return name in _AVERAGING or (not dotted.startswith(("np.", "numpy.", "cv2.", "math."))
                                   and any(word in name.lower() for word in ("mean", "blur", "box", "average", "smooth")))
+
+
+def _loop_order_changes(iterable):
+    """A loop over a list's items in the wrong order: a pyramid collapsed from its finest level up
+    (`for band in bands[:-1]` where `reversed(bands[:-1])` belongs), or the other way round."""
+    if isinstance(iterable, ast.Call) and isinstance(iterable.func, ast.Name) and iterable.func.id == "reversed" \
+            and len(iterable.args) == 1:
+        yield "loop_order", ast.unparse(iterable.args[0]), ""
+    elif isinstance(iterable, (ast.Name, ast.Subscript, ast.Attribute)):
+        yield "loop_order", f"reversed({ast.unparse(iterable)})", ""
 
 
 def _slice_item_changes(node: ast.Subscript):
@@ -4936,9 +4965,9 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     for other, phrase in others:
         if (other in params) != kind and phrase in alike:
             continue
-        if words.helper_params and other not in together and (
+        if words.helper_params and other not in together and not twin_names(node.id, other) and (
                 " of " not in phrase or " of " not in own or phrase.rsplit(" of ", 1)[-1] != tail):
-            continue   # in a private helper, only a sibling's copy-paste slip (the count stays small)
+            continue   # in a private helper, only a sibling's or a twin's copy-paste slip (the count stays small)
         yield "other_name", other, f"{phrase} {_plural(phrase, 'is', 'are')} used where {own} " \
                                    f"{_plural(own, 'belongs', 'belong')}"
         count += 1
