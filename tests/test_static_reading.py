@@ -757,3 +757,19 @@ def test_a_homogeneous_system_solved_by_least_squares_is_named():
     assert one(centre.format(solver="lstsq", rhs="np.zeros(3)")) == wanted
     assert one(centre.format(solver="lstsq", rhs="np.zeros_like(P[:, 0])")) == wanted
     assert one(centre.format(solver="lstsq", rhs="-P[:, 3]")) == set()   # an inhomogeneous system: right
+
+
+def test_a_fundamental_matrix_given_where_the_essential_one_belongs_is_named():
+    pose = """
+        def two_view_reconstruction(pts1, pts2, K):
+            F = {make}
+            {between}
+            _, R, t, _ = cv2.recoverPose({given}, pts1, pts2, K)
+            return R, t
+        """
+    wanted = {"a fundamental matrix given where the essential matrix belongs"}
+    assert one(pose.format(make="fundamental_8point(pts1, pts2)", between="", given="F")) == wanted
+    assert one(pose.format(make="cv2.findFundamentalMat(pts1, pts2, cv2.FM_8POINT)[0]", between="", given="F")) \
+        == wanted
+    # E made from it first, and given instead
+    assert one(pose.format(make="fundamental_8point(pts1, pts2)", between="E = K.T @ F @ K", given="E")) == set()

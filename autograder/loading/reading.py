@@ -187,6 +187,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _distortion_in_pixels(name, function)
     found += _loop_variable_rebinds(name, function)
     found += _zeros_solved_for(name, function)
+    found += _fundamental_as_essential(name, function)
     return found
 
 
@@ -1384,4 +1385,36 @@ def _zeros_solved_for(name, function) -> list[Finding]:
                             f"np.linalg.{_call_name(node)}, whose answer with a zero right-hand side is x = 0; the "
                             "non-zero solution of a homogeneous system is the right singular vector of the smallest "
                             "singular value (the last row of Vt from np.linalg.svd)", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ a fundamental matrix where an essential one belongs
+_FUNDAMENTAL_MAKERS = frozenset({"fundamental_8point", "findFundamentalMat"})
+_ESSENTIAL_TAKERS = frozenset({"recoverPose", "decomposeEssentialMat"})
+
+
+def _fundamental_as_essential(name, function) -> list[Finding]:
+    """``F = fundamental_8point(pts1, pts2)`` (or ``cv2.findFundamentalMat``'s first result) given to
+    ``cv2.recoverPose(F, ...)`` or ``cv2.decomposeEssentialMat(F)``, which take the essential matrix:
+    F acts on pixels, E on coordinates normalised by K (E = K2^T F K1)."""
+    made: dict[str, int] = {}
+    for node in ast.walk(function):
+        if not (isinstance(node, ast.Assign) and len(node.targets) == 1):
+            continue
+        value, target = node.value, node.targets[0]
+        if isinstance(value, ast.Subscript):
+            value = value.value
+        if isinstance(target, (ast.Tuple, ast.List)) and target.elts:
+            target = target.elts[0]
+        if isinstance(value, ast.Call) and _call_name(value) in _FUNDAMENTAL_MAKERS and isinstance(target, ast.Name):
+            made[target.id] = _line(node)
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _call_name(node) in _ESSENTIAL_TAKERS and node.args \
+                and isinstance(node.args[0], ast.Name) and node.args[0].id in made:
+            given, line = node.args[0].id, _line(node)
+            return [Finding(name, line, "a fundamental matrix given where the essential matrix belongs",
+                            f"{name} (line {line}) gives cv2.{_call_name(node)} `{given}`, the fundamental matrix "
+                            f"made at line {made[given]}, where it takes the essential matrix: F acts on pixels, "
+                            "E on coordinates normalised by K; make E = K2^T F K1 first (essential_from_fundamental)",
+                            certain=True)]
     return []
