@@ -3737,57 +3737,25 @@ def test_points_made_homogeneous_with_zeros_is_never_the_fix_beside_another():
             return A
         """, "to `cv2.estimateAffine2D(src_pts, dst_pts)[0]`"),
     # an input converted on its way into a call where the input itself belongs
-    ("lab08_homographies", "lab08.ex2", """
-        def warp_to_reference(reference, moving, H):
-            height, width = reference.shape[:2]
-            return apply_homography(_grey(moving), H, (width, height))
-        """, "changing `_grey(moving)` to `moving`"),
+    ("lab08_homographies", "lab08.ex2", [("apply_homography(moving, H, (width, height))",
+                                          "apply_homography(_grey(moving), H, (width, height))")],
+     "changing `_grey(moving)` to `moving`"),
     # a pyramid collapsed from its finest band up
-    ("lab08_homographies", "lab08.ext3", """
-        def blend_multiband(img1, img2, mask, levels=4):
-            a = np.asarray(img1, dtype=np.float32)
-            b = np.asarray(img2, dtype=np.float32)
-            weights = _gaussian_pyramid(np.clip(np.asarray(mask, dtype=np.float32), 0, 1), levels)
-            bands = []
-            for band_a, band_b, w in zip(_laplacian_pyramid(a, levels), _laplacian_pyramid(b, levels), weights):
-                if band_a.ndim == 3:
-                    w = w[..., None]
-                bands.append(w * band_a + (1 - w) * band_b)
-            result = bands[-1]
-            for band in bands[:-1]:
-                result = cv2.pyrUp(result, dstsize=(band.shape[1], band.shape[0])) + band
-            return np.clip(np.round(result), 0, 255).astype(np.uint8)
-        """, "to `reversed(bands[:-1])`"),
+    ("lab08_homographies", "lab08.ext3", [("for band in reversed(bands[:-1]):", "for band in bands[:-1]:")],
+     "to `reversed(bands[:-1])`"),
     # the floor of a quotient taken before the product it should follow
-    ("lab12_stereo", "lab12.ex6", """
-        def gray_code_patterns(width, n_bits):
-            u = np.arange(int(width))
-            k = u * ((1 << int(n_bits)) // int(width))
-            gray = k ^ (k >> 1)
-            shifts = np.arange(int(n_bits) - 1, -1, -1)[:, None]
-            return (((gray[None, :] >> shifts) & 1) * 255).astype(np.uint8)
-        """, "to `u * (1 << int(n_bits)) // int(width)`"),
+    ("lab12_stereo", "lab12.ex6", [("k = (u * (1 << int(n_bits))) // int(width)",
+                                    "k = u * ((1 << int(n_bits)) // int(width))")],
+     "to `u * (1 << int(n_bits)) // int(width)`"),
     # in a private helper, a name used where its twin belongs (mean(L) twice in the covariance)
-    ("lab12_stereo", "lab12.ext1", """
-        def _ncc_volume(left, right, max_disparity, block_size):
-            height, width = left.shape
-            mean_l = _box_mean(left, block_size)
-            std_l = np.sqrt(np.maximum(_box_mean(left * left, block_size) - mean_l ** 2, 0.0))
-            costs = np.full((max_disparity + 1, height, width), np.inf)
-            for d in range(min(max_disparity, width - 1) + 1):
-                shifted = _shift_right(right, d)
-                mean_r = _box_mean(shifted, block_size)
-                std_r = np.sqrt(np.maximum(_box_mean(shifted * shifted, block_size) - mean_r ** 2, 0.0))
-                covariance = _box_mean(left * shifted, block_size) - mean_l * mean_l
-                denominator = std_l * std_r
-                ncc = np.divide(covariance, denominator, out=np.zeros_like(covariance),
-                                where=denominator > 1e-6)
-                costs[d] = -ncc
-                costs[d, :, :d] = np.inf
-            return costs
-        """, "changing `mean_l * mean_l` to `mean_r * mean_l`"),
+    ("lab12_stereo", "lab12.ext1", [("- mean_l * mean_r", "- mean_l * mean_l")],
+     "changing `mean_l * mean_l` to `mean_r * mean_l`"),
 ])
 def test_slips_no_table_lists_are_repaired_in_the_students_terms(tmp_path, module, exercise, source, told):
-    result = grade(mutant(tmp_path, module, source), [exercise], pictures="none", include_hidden=False)
+    """A def written anew, or the reference with text edits (old, new), repaired by a change shown in
+    the student's own code."""
+    folder = mutant(tmp_path, module, source) if isinstance(source, str) else \
+        edited_reference(tmp_path, module, *source)
+    result = grade(folder, [exercise], pictures="none", include_hidden=False)
     messages = [c.message for c in check_results(result, exercise) if not c.passed]
     assert messages and any(told in m for m in messages), messages
