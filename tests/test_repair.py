@@ -3759,3 +3759,24 @@ def test_slips_no_table_lists_are_repaired_in_the_students_terms(tmp_path, modul
     result = grade(folder, [exercise], pictures="none", include_hidden=False)
     messages = [c.message for c in check_results(result, exercise) if not c.passed]
     assert messages and any(told in m for m in messages), messages
+
+
+def test_a_change_of_a_value_only_a_raising_guard_reads_is_never_told(tmp_path):
+    """`if area <= 0: raise` rejects every triangle listed clockwise; a change of how `area` (or the edges
+    it is made of) is computed mends the answers by steering round the guard, and is no account of the
+    slip -- the guard is."""
+    folder = mutant(tmp_path, "lab07_transformations", """
+        def affine_from_points(src, dst):
+            src = np.asarray(src, dtype=np.float64).reshape(3, 2)
+            dst = np.asarray(dst, dtype=np.float64).reshape(3, 2)
+            e1, e2 = src[1] - src[0], src[2] - src[0]
+            area = e1[0] * e2[1] - e1[1] * e2[0]
+            if area <= 0:
+                raise ValueError("the three source points are collinear")
+            S = np.column_stack([src, np.ones(3)])
+            return np.stack([np.linalg.solve(S, dst[:, 0]), np.linalg.solve(S, dst[:, 1])])
+        """)
+    result = grade(folder, ["lab07.ex5"], pictures="none", include_hidden=False)
+    failed = [c.message for c in check_results(result, "lab07.ex5") if not c.passed]
+    assert failed, "the guard rejects valid triangles"
+    assert not any(re.search(r"changing `(e1|e2|src\[\d\]|area)", m) for m in failed), failed

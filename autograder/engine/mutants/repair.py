@@ -676,6 +676,55 @@ class _Student:
         readings = sum(isinstance(n, ast.Name) and n.id == node.id and isinstance(n.ctx, ast.Load) for n in nodes)
         return stored and readings == 1
 
+    def steers_round_a_guard(self, mutant) -> bool:
+        """Whether the mutant changes a value the def reads only in the tests of guards that raise (`area =
+        e1[0] * e2[1] - ...` read only by `if area <= 0: raise`): any value the guard lets through mends
+        the answers alike, so such a change steers round the guard -- the guard itself is the place to
+        look, not the value."""
+        return all(self._read_by_guards_only(where, ordinal) for where, ordinal, _, _ in mutant.edits)
+
+    def _read_by_guards_only(self, where: str, ordinal: int) -> bool:
+        nodes, parents = self._walk(where)
+        statement = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        while statement is not None and not isinstance(statement, ast.stmt):
+            statement = parents.get(id(statement), (None,))[0]
+        if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1):
+            return False
+        made = [n for n in ast.walk(statement.targets[0]) if isinstance(n, ast.Name)]
+        guarded = self._guard_only_names(where)
+        return bool(made) and all(n.id in guarded for n in made)
+
+    def _guard_only_names(self, where: str) -> set:
+        """The def's names read only in the tests of guards that raise, directly or through names made of
+        them (`e1` read only to make `area`, `area` only in `if area <= 0: raise`). Memoised per def."""
+        cache = self.__dict__.setdefault("_guarded", {})
+        if where in cache:
+            return cache[where]
+        nodes, parents = self._walk(where)
+        in_tests = {id(n) for guard in nodes if isinstance(guard, ast.If) and any(isinstance(b, ast.Raise)
+                                                                                   for b in guard.body)
+                    for n in ast.walk(guard.test)}
+        reads: dict = {}   # name -> [(read in a guard's test, the names the statement reading it makes)]
+        for node in nodes:
+            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
+                statement = node
+                while statement is not None and not isinstance(statement, ast.stmt):
+                    statement = parents.get(id(statement), (None,))[0]
+                makes = frozenset(n.id for target in getattr(statement, "targets", ())
+                                  for n in ast.walk(target) if isinstance(n, ast.Name)) \
+                    if isinstance(statement, ast.Assign) else frozenset()
+                reads.setdefault(node.id, []).append((id(node) in in_tests, makes))
+        guarded: set = set()
+        changed = True
+        while changed:   # (a name joins once every reading is a guard's or makes guarded names only)
+            changed = False
+            for name, found in reads.items():
+                if name not in guarded and all(test or (makes and makes <= guarded | {name}) for test, makes in found):
+                    guarded.add(name)
+                    changed = True
+        cache[where] = guarded
+        return guarded
+
     def copies_an_item(self, mutant) -> bool:
         """Whether the mutant puts a name in place of another item of the same tuple, list or call that
         holds it already (`(0, 0, height, width)` -> `(0, 0, width, width)`): where a size or a pair is
@@ -1913,7 +1962,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             continue
         if (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
                 and not variant.writes_inputs(mutant) and not variant.guard_untested(mutant, failing) \
-                and not variant.breaks_other_checks(mutant):
+                and not student.steers_round_a_guard(mutant) and not variant.breaks_other_checks(mutant):
             fixes.append((mutant, fix))
             lines.add(fix.changes[0][0])
         elif clock.left() > 0 and not (mutant.key in variant.checked and not variant.other_checks()):
@@ -2090,7 +2139,8 @@ def _accepted_pair(variant, both, failing) -> bool:
     guard, and breaking none of the grading's other checks of the function (two compensating changes --
     the mean depth inverted twice -- mend the default z_avg and break a given one)."""
     return not variant.student.renormalises(both) and variant.confirmed(both, failing) and not variant.writes_inputs(both) \
-        and not variant.guard_untested(both, failing) and not variant.breaks_other_checks(both)
+        and not variant.guard_untested(both, failing) and not variant.student.steers_round_a_guard(both) \
+        and not variant.breaks_other_checks(both)
 
 
 FIXES = 3         # the most fixes told (one per line)
@@ -2132,6 +2182,7 @@ NOT_EVERYWHERE = {"accumulate", "axis", "sign", "add_sub", "drop_statement", "bo
 NOVEL_STATEMENTS = 3   # statements the reference never writes, whose changes are tried first (no more)
 RAISE_FIRST = 24   # changes of the lines up to a raise tried before the others, at most
 RAISE_REACH = 6   # lines before the one that raised where a change is tried first
+GUARD_TESTS = BRANCHING | {"magnitude"}   # changes of what a test decides (the guard of a raise: tried first of all)
 
 
 def _near_the_raise(mutants, trial, function) -> list:
@@ -2146,6 +2197,11 @@ def _near_the_raise(mutants, trial, function) -> list:
     # (a few of them first: a raise far downstream of the slip -- an overflow in an iteration count made
     # from errors never divided by w -- must not spend the search on the lines around it)
     first = [m for m in mutants if near(m)][:RAISE_FIRST]
+    # (and of those, a change of the test right above the raise first: a guard that raises on valid data
+    # is wrong itself -- `if area <= 0: raise` for a triangle listed clockwise -- where a change of the
+    # value it tests would only steer round it)
+    guard = lambda m: m.operator in GUARD_TESTS and any(0 <= line - m.line <= 1 for line in lines)  # noqa: E731
+    first.sort(key=lambda m: not guard(m))
     chosen = {id(m) for m in first}
     return first + [m for m in mutants if id(m) not in chosen]
 
