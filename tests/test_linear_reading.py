@@ -123,6 +123,8 @@ SHAPES = [
      lambda n: "def f(M):\n    d = [0, 1]\n" + "    M[0][1] = 1\n" * n + "    M[d][0] = 1\n", 2_000),
     ("static reading", "loops rebinding a parameter, many of them",
      lambda n: "def f(x, y):\n" + "    for x in y:\n        y = x\n" * n + "    return x\n", 2_000),
+    ("static reading", "a fundamental matrix bound and given again and again",
+     lambda n: "def f(a, K):\n" + "    F = fundamental_8point(a, a)\n    cv2.recoverPose(F, a, a, K)\n" * n, 1_000),
     ("static reading", "a chain of helpers",
      lambda n: "".join(f"def f{i}(x):\n    return f{i + 1}(x)\n" for i in range(n)), 200),
 ]

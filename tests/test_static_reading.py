@@ -771,5 +771,6 @@ def test_a_fundamental_matrix_given_where_the_essential_one_belongs_is_named():
     assert one(pose.format(make="fundamental_8point(pts1, pts2)", between="", given="F")) == wanted
     assert one(pose.format(make="cv2.findFundamentalMat(pts1, pts2, cv2.FM_8POINT)[0]", between="", given="F")) \
         == wanted
-    # E made from it first, and given instead
+    # E made from it first, and given instead (or under the same name)
     assert one(pose.format(make="fundamental_8point(pts1, pts2)", between="E = K.T @ F @ K", given="E")) == set()
+    assert one(pose.format(make="fundamental_8point(pts1, pts2)", between="F = K.T @ F @ K", given="F")) == set()

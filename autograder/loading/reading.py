@@ -1396,25 +1396,34 @@ _ESSENTIAL_TAKERS = frozenset({"recoverPose", "decomposeEssentialMat"})
 def _fundamental_as_essential(name, function) -> list[Finding]:
     """``F = fundamental_8point(pts1, pts2)`` (or ``cv2.findFundamentalMat``'s first result) given to
     ``cv2.recoverPose(F, ...)`` or ``cv2.decomposeEssentialMat(F)``, which take the essential matrix:
-    F acts on pixels, E on coordinates normalised by K (E = K2^T F K1)."""
-    made: dict[str, int] = {}
+    F acts on pixels, E on coordinates normalised by K (E = K2^T F K1). The name's last binding above the
+    call decides (`F = K.T @ F @ K` in between makes it E)."""
+    bindings: dict[str, list] = {}   # name -> [(line, whether a fundamental matrix is bound)]
     for node in ast.walk(function):
-        if not (isinstance(node, ast.Assign) and len(node.targets) == 1):
+        targets = node.targets if isinstance(node, ast.Assign) else [node.target] \
+            if isinstance(node, (ast.AugAssign, ast.AnnAssign)) else []
+        value = getattr(node, "value", None)
+        value = value.value if isinstance(value, ast.Subscript) else value
+        fundamental = isinstance(node, ast.Assign) and isinstance(value, ast.Call) \
+            and _call_name(value) in _FUNDAMENTAL_MAKERS
+        for target in targets:
+            first = target.elts[0] if isinstance(target, (ast.Tuple, ast.List)) and target.elts else target
+            for bound in ast.walk(target):
+                if isinstance(bound, ast.Name):
+                    bindings.setdefault(bound.id, []).append((_line(node), fundamental and bound is first))
+    for found in bindings.values():
+        found.sort()
+    for node in ast.walk(function):
+        if not (isinstance(node, ast.Call) and _call_name(node) in _ESSENTIAL_TAKERS and node.args
+                and isinstance(node.args[0], ast.Name)):
             continue
-        value, target = node.value, node.targets[0]
-        if isinstance(value, ast.Subscript):
-            value = value.value
-        if isinstance(target, (ast.Tuple, ast.List)) and target.elts:
-            target = target.elts[0]
-        if isinstance(value, ast.Call) and _call_name(value) in _FUNDAMENTAL_MAKERS and isinstance(target, ast.Name):
-            made[target.id] = _line(node)
-    for node in ast.walk(function):
-        if isinstance(node, ast.Call) and _call_name(node) in _ESSENTIAL_TAKERS and node.args \
-                and isinstance(node.args[0], ast.Name) and node.args[0].id in made:
-            given, line = node.args[0].id, _line(node)
+        given, line = node.args[0].id, _line(node)
+        found = bindings.get(given, [])
+        last = bisect.bisect_left(found, (line, False)) - 1   # (the last binding above the call)
+        if last >= 0 and found[last][1]:
             return [Finding(name, line, "a fundamental matrix given where the essential matrix belongs",
                             f"{name} (line {line}) gives cv2.{_call_name(node)} `{given}`, the fundamental matrix "
-                            f"made at line {made[given]}, where it takes the essential matrix: F acts on pixels, "
+                            f"made at line {found[last][0]}, where it takes the essential matrix: F acts on pixels, "
                             "E on coordinates normalised by K; make E = K2^T F K1 first (essential_from_fundamental)",
                             certain=True)]
     return []
