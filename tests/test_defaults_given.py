@@ -57,3 +57,40 @@ def test_a_long_literal_default_is_told_in_a_few_characters():
     found = told(long, ("match", (1, 2), {}))
     assert found is not None and found[1][0][0] == "name"
     assert len(defaults_given.sentence(*found)) < 200
+
+
+def test_every_default_of_the_api_is_left_out_by_some_public_check(monkeypatch):
+    """A default other than the API's is caught only by a call that leaves the parameter out: every
+    defaulted parameter of every graded function (but a random seed's None) is left out by a public
+    check (a simulate_aperture whose n_rays defaulted to 50 got full marks: every check gave n_rays)."""
+    import ast
+    import collections
+
+    from autograder.engine import checks
+    from autograder.engine.registry import discover
+    from autograder.engine.runner import grade
+    from conftest import REFERENCE
+
+    calls = collections.defaultdict(set)   # (module, function) -> {(positional count, keywords given)}
+    original = checks.Trial.call
+
+    def recorded(self, function, *args, **kwargs):
+        calls[(self.check.exercise.lab.module, function)].add((len(args), frozenset(kwargs)))
+        return original(self, function, *args, **kwargs)
+
+    monkeypatch.setattr(checks.Trial, "call", recorded)
+    never = []
+    for key, lab in discover().items():
+        grade(str(REFERENCE), [key], pictures="none", include_hidden=False)
+        api = {name for exercise in lab.exercises.values() for name in exercise.signatures}
+        for fn in ast.parse((REFERENCE / f"{lab.module}.py").read_text()).body:
+            if not (isinstance(fn, ast.FunctionDef) and fn.name in api):
+                continue
+            names = [a.arg for a in fn.args.args]
+            for position, default in enumerate(fn.args.defaults, len(names) - len(fn.args.defaults)):
+                name = names[position]
+                if name == "seed":
+                    continue
+                if not any(given <= position and name not in keywords for given, keywords in calls[(lab.module, fn.name)]):
+                    never.append(f"{fn.name}({name}={ast.unparse(default)})")
+    assert not never, never

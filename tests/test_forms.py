@@ -138,3 +138,15 @@ def test_a_result_of_the_wrong_shape_is_told_its_wrong_type_too():
     assert _kind_too(mask.astype(bool), None, "b") == ""
     assert "float64 where uint8 is asked" in _kind_too(np.zeros((2, 2)), np.uint8, None)
     assert "astype(bool)" not in _kind_too(np.array([[2], [3]]), None, "b")
+
+
+def test_a_colour_image_turned_grey_in_bgr_form_is_named_only_where_the_input_has_colour():
+    from autograder.engine.forms import colours_lost
+
+    rng = np.random.default_rng(0)
+    colour = rng.integers(0, 256, (20, 30, 3), dtype=np.uint8)
+    grey = np.repeat(colour[..., :1], 3, axis=2)   # three equal channels
+    assert "colours are lost" in colours_lost(grey, [colour])
+    assert colours_lost(colour, [colour]) == ""             # its colours kept
+    assert colours_lost(grey, [grey]) == ""                 # a grey picture in BGR form stays grey
+    assert colours_lost(grey[..., 0], [colour]) == ""       # (another shape: the channel forms' to name)

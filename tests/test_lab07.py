@@ -1,5 +1,7 @@
 """Lab 7: the reference passes, the skeleton scores 0, usual mistakes are named."""
 
+import textwrap
+
 import pytest
 
 from autograder.engine.runner import grade
@@ -127,3 +129,37 @@ def test_the_column_of_ones_is_read_in_the_code_not_in_a_shape():
     assert builds("    rows = [[x, y, 1, 0, 0, 0] for x, y in src]\n")
     assert builds("    A = np.hstack([src, np.ones((n, 1))])\n")
     assert not builds("    A = src.reshape(-1, 2, 1)\n    B = np.zeros((n, 3, 1))\n")
+
+
+@pytest.mark.parametrize("sampling, said", [
+    # coordinates clipped into the image: every output pixel finds the edge pixel
+    ("""
+        xs = np.clip(np.arange(w) - s * y, 0, w - 1)
+        out[y] = image[y, np.round(xs).astype(int)]
+     """, "a coordinate clipped into the image samples the edge pixel"),
+    # np.interp's default outside the samples: the first and the last sample
+    ("""
+        for c in range(image.shape[2] if image.ndim == 3 else 1):
+            row = image[y, :, c] if image.ndim == 3 else image[y]
+            got = np.clip(np.interp(np.arange(w) - s * y, np.arange(w), row), 0, 255)
+            if image.ndim == 3:
+                out[y, :, c] = got
+            else:
+                out[y] = got
+     """, "np.interp without left= and right="),
+])
+def test_a_replicated_fill_is_told_from_the_code_that_makes_it(tmp_path, sampling, said):
+    """The edge pixel repeated where black belongs: a clip of coordinates, or np.interp's default; a
+    clip of pixel values (0 to 255) is never told as the cause."""
+    source = """
+        def shear(image, s=0.5):
+            out = np.zeros_like(image)
+            h, w = image.shape[:2]
+            for y in range(h):
+    """ + textwrap.indent(textwrap.dedent(sampling), " " * 16) + """
+            return out
+    """
+    result = grade(mutant(tmp_path, MODULE, source), ["lab07.ex4"], pictures="none", include_hidden=False)
+    messages = [c.message for c in check_results(result, "lab07.ex4") if not c.passed]
+    assert messages and all(said in m for m in messages if "not black" in m), messages
+    assert any("not black" in m for m in messages), messages

@@ -25,6 +25,8 @@ from __future__ import annotations
 
 import ast
 import re
+
+import numpy as np
 from dataclasses import dataclass
 
 from ..sandbox import beginner
@@ -175,6 +177,27 @@ def _channels_form(got: tuple, expected: tuple) -> Form | None:
         return Form(f"it looks like the channels are not kept: a grey (H, W) image where a BGR (H, W, 3) one is "
                     f"asked ({rule}: BGR in, BGR out)", "the channels are not kept")
     return None
+
+
+COLOURS_LOST = "the colours are lost: a grey copy used where the colour image belongs"
+
+
+def colours_lost(got, images) -> str:
+    """A sentence when ``got`` is a BGR image whose three channels are equal while one of the colour
+    ``images`` it was made from has channels that differ: a grey copy (made for a comparison or a
+    feature matching) carried into the result; "" otherwise."""
+    def equal_channels(image) -> bool:
+        return bool(np.all(image[..., 0] == image[..., 1]) and np.all(image[..., 1] == image[..., 2]))
+
+    if not (isinstance(got, np.ndarray) and got.ndim == 3 and got.shape[2] == 3 and got.size):
+        return ""
+    colour = [image for image in images if isinstance(image, np.ndarray) and image.ndim == 3 and image.shape[2] == 3
+              and not equal_channels(image)]
+    if not colour or not equal_channels(got):
+        return ""
+    return ("it looks like the colours are lost: its three channels are equal (a grey image in BGR form) where the "
+            "input is in colour: a grey copy (cv2.cvtColor(..., cv2.COLOR_BGR2GRAY), made for a comparison or "
+            "the feature matching) is used where the colour image belongs")
 
 
 def _fits(shape: tuple, expected: tuple) -> bool:

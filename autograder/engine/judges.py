@@ -33,8 +33,8 @@ from fixtures.images import as_homography, coverage, warp
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
 from .claims import from_code, measured, seen_in_code
-from .forms import shape_form
-from .hints import (Hint, Predicate, calls, code_of, functions_read, mentions, parameter_flows,
+from .forms import COLOURS_LOST, colours_lost, shape_form
+from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, mentions, parameter_flows,
                     size_given_as_shape)
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
@@ -56,7 +56,26 @@ FILLS = {
 KEPT_INPUT = measured("still hold the input image (the output started as a copy of it?)")
 BORDER_NAMES = {cv2.BORDER_WRAP: "BORDER_WRAP", cv2.BORDER_REPLICATE: "BORDER_REPLICATE",
                 cv2.BORDER_REFLECT: "BORDER_REFLECT", cv2.BORDER_REFLECT_101: "BORDER_REFLECT_101"}
-CLIPS = calls("np.clip") | calls("np.minimum") | calls("np.maximum")
+def _clips_a_coordinate(function) -> bool:
+    """A clip (`np.clip`, `np.minimum`, `np.maximum`) whose bounds are not the range of a pixel value (0 to
+    255 or 1): `np.clip(xs, 0, w - 1)` clips a coordinate, `np.clip(values, 0, 255)` a value."""
+    def value_bound(node) -> bool:
+        return isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and node.value in (0, 1, 255)
+
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("clip", "minimum", "maximum") \
+                and _path(node.func).split(".", 1)[0] in ("np", "numpy"):
+            bounds = node.args[1:] + [k.value for k in node.keywords if k.arg in ("a_min", "a_max", "min", "max")]
+            if bounds and not all(value_bound(b) for b in bounds):
+                return True
+    return False
+
+
+CLIPS = Predicate("clips coordinates into the image (np.clip)", _clips_a_coordinate)
+# np.interp gives a position outside the samples the first or the last sample, unless left= and right= say
+INTERP_EXTENDS = Predicate("calls np.interp without left= and right=", lambda function: any(
+    isinstance(node, ast.Call) and _path(node.func) in ("np.interp", "numpy.interp")
+    and not {"left", "right"} <= {k.arg for k in node.keywords} and len(node.args) < 5 for node in ast.walk(function)))
 ROLL_HINT = from_code("np.roll moves the pixels that leave one side back in on the other: set the rows and "
                       "columns it brought round to 0, or warp with cv2.warpAffine (black fill)")
 
@@ -383,6 +402,9 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
         t.compare_images(what, source, expected, got, valid=inside | outside,  # a map only for the same shape
                          caption="the difference map is grey where the border is not judged"
                          if got.shape == expected_shape else "")
+    grey = colours_lost(got, [source]) if isinstance(got, np.ndarray) and got.shape == expected_shape else ""
+    if grey and not colours_lost(expected, [source]):
+        t.fail(f"{what}: {grey}.", mistake=COLOURS_LOST)
     if isinstance(got, np.ndarray) and got.shape != expected_shape:
         if got.shape[:2] == expected_shape[1::-1] and height != width:   # (a square frame shows no swap)
             read = size_given_as_shape(code_of(t), functions_read(t))
@@ -413,15 +435,19 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
             # (coordinates clipped into the image all find a source pixel, the edge's: a replicated fill
             # with no border rule asking for it comes from there)
             clipped = held == FILLS[cv2.BORDER_REPLICATE] and not rule and CLIPS.found(read)
+            extended = held == FILLS[cv2.BORDER_REPLICATE] and not rule and not clipped and INTERP_EXTENDS.found(read)
             if held == KEPT_INPUT and not rule and mentions("cv2.BORDER_TRANSPARENT").found(read):
                 rule = "BORDER_TRANSPARENT"   # (it leaves the output's pixels as they were: the input's, here)
             cause = from_code(f" Your code uses cv2.{rule}, which fills them so.") if rule else \
                 from_code(f" Your code {clipped}: a coordinate clipped into the image samples the edge pixel, so "
-                          "no pixel is left without a source for the fill to make black.") if clipped else ""
+                          "no pixel is left without a source for the fill to make black.") if clipped else \
+                from_code(" Your code calls np.interp without left= and right=: a position outside the samples gets "
+                          "the first or the last sample, the edge pixel; pass left=0, right=0 for a black fill.") \
+                if extended else ""
             return partial(0.5, f"{what}: the image content is right, but {nonblack:.0%} of the "
                                 "pixels with no source pixel are not black" + (f": they {held}." if held else ".")
                            + cause,
-                           hint=ROLL_HINT if rolls else "" if clipped else BLACK_FILL_HINT.said(t),
+                           hint=ROLL_HINT if rolls else "" if clipped or extended else BLACK_FILL_HINT.said(t),
                            mistake="the fill is not black")
         return passed(f"mean difference {error:.1f} grey levels on the covered area")
     if channels_reversed(got, expected):

@@ -38,6 +38,7 @@ from ..engine.claims import (THIRD_COORDINATE, THRESHOLD_NAMES, assigns, calls_a
                              treats_each_of)
 from ..engine.compare import (blurred_difference, format_apart, format_arrays_apart, largest_channel, projective_distance,
                               wrapped_around, wrapped_around_words)
+from ..engine.forms import COLOURS_LOST, colours_lost
 from ..engine.hints import (RANDOM_DRAWS, RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope,
                              calls, code_of, expr, fits_on_picked_points, functions_read, keyword, matmul_of, mentions,
                              passes_product, picked_point_fits)
@@ -1955,6 +1956,9 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
             t.fail(f"{what}: at its best place the panorama differs from img1 by {error:.0f} grey levels on "
                    f"average: {shown}.")
         t.images(what, yours=panorama, img1=img1, img2=img2)
+        grey = colours_lost(panorama, (img1, img2))
+        if grey:
+            t.fail(f"{what}: img1 does not appear in your panorama as it is: {grey}.", mistake=COLOURS_LOST)
         saturated = _saturated(panorama, (img1, img2), code_of(t).reachable(["stitch"]))
         t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs "
                f"from img1 by {error:.0f} grey levels; {shown}): "

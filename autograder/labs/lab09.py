@@ -832,6 +832,10 @@ def aperture_zero(t):
         t.fail(f"{what}: with a point-sized pinhole every ray should land on the ideal projection "
                f"f X / Z; yours are up to {format_apart(error, tolerance)} px away (at most "
                f"{tolerance:.2g} px accepted).")
+    # (every other check gives n_rays: its default is judged here)
+    return judges.judge_default_is_the_apis(
+        t, f"simulate_aperture(points, f={APERTURE_F:g}, aperture=0, seed=0)",
+        lambda **kw: t.call("simulate_aperture", X, APERTURE_F, 0.0, seed=0, **kw), "n_rays", 100, "set of rays")
 
 
 def _spread(got, ideal):

@@ -38,7 +38,7 @@ from ..engine.forms import shape_form
 from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
                             keyword, mentions,
                             size_given_as_shape)
-from ..engine.judges import (Probe, call_probe, fingerprint, judge_parameter_changes_result,
+from ..engine.judges import (Probe, call_probe, fingerprint, judge_default_is_the_apis, judge_parameter_changes_result,
                       judge_parameter_used, name_mistake, over_variants, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..engine.registry import Lab
@@ -1651,9 +1651,19 @@ def block_matching_slanted(t):
 @ex4.check("block_size is used: block_size=5 and 15 give different maps", points=1, timeout=STEREO_TIMEOUT)
 def block_matching_uses_block_size(t):
     # Quality checks cannot see an ignored block_size (a fixed 9 matches as well as 7).
-    return judge_parameter_changes_result(t, "block_matching(left, right)",
-                                          matcher_on(t, truth.scene("random_dots")), "block_size",
-                                          BLOCK_SIZES, "disparity map")
+    judge_parameter_changes_result(t, "block_matching(left, right)", matcher_on(t, truth.scene("random_dots")),
+                                   "block_size", BLOCK_SIZES, "disparity map")
+    # (and every other check gives max_disparity: its default is judged here, on a small pair)
+    return judge_max_disparity_default(t, "block_matching")
+
+
+def judge_max_disparity_default(t: Trial, function: str):
+    """``function(left, right)`` with max_disparity left out gives what max_disparity=64, the API's
+    default, gives: the checks give it, each for its scene."""
+    left, right, _ = truth.square_on_background(7)
+    return judge_default_is_the_apis(t, f"{function}(left, right) on a 120 x 160 pair",
+                                     lambda **kw: t.call(function, np.array(left), np.array(right), **kw),
+                                     "max_disparity", 64, "disparity map")
 
 
 # The window is block_size x block_size: a 9 x 9 window centred on a 5 x 5 square in front of a
@@ -2244,8 +2254,9 @@ def dp_smooth(t):
 def dp_uses_block_size(t):
     # The DP checks call the default block_size=5 only: a block fixed at 5 (or a cost per pixel) passes them.
     scene = truth.scene("weak_texture")
-    return judge_parameter_changes_result(t, "dp_stereo(left, right)", lambda **kw: call_dp(t, scene, **kw),
-                                          "block_size", (3, 9), "disparity map")
+    judge_parameter_changes_result(t, "dp_stereo(left, right)", lambda **kw: call_dp(t, scene, **kw),
+                                   "block_size", (3, 9), "disparity map")
+    return judge_max_disparity_default(t, "dp_stereo")
 
 
 @ex5.check("dp_stereo on the Middlebury motorcycle", points=3, timeout=STEREO_TIMEOUT)

@@ -460,6 +460,13 @@ MISTAKES = {
             return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
         """, ["returns the last model drawn rather than the best one."]),   # (500 samples: not "too few")
     # ---------------------------------------------------------------- ex5
+    "stitch composing the grey copies made for the matching": ("lab08.ex5", """
+        def stitch(img1, img2):
+            img1, img2 = _grey(img1), _grey(img2)
+            H21 = _pairwise_homography(img2, img1)
+            return _compose([cv2.cvtColor(img1, cv2.COLOR_GRAY2BGR), cv2.cvtColor(img2, cv2.COLOR_GRAY2BGR)],
+                            [np.eye(3), H21])
+        """, ["colours are lost"]),
     "stitch averaging the two warps in uint8 (the sum wraps past 255)": ("lab08.ex5", """
         def stitch(img1, img2):
             H21 = _pairwise_homography(img2, img1)
