@@ -3780,3 +3780,45 @@ def test_a_change_of_a_value_only_a_raising_guard_reads_is_never_told(tmp_path):
     failed = [c.message for c in check_results(result, "lab07.ex5") if not c.passed]
     assert failed, "the guard rejects valid triangles"
     assert not any(re.search(r"changing `(e1|e2|src\[\d\]|area)", m) for m in failed), failed
+
+
+def test_a_division_by_the_homogeneous_coordinate_is_never_taken_out(tmp_path):
+    """`x[:, :2] / x[:, 2:3]` is the recipe for any camera: where taking it out mends (a matrix whose third
+    row reads Z), the matrix is wrong, and the division is never told as the place; the name of the effect
+    then says where to look."""
+    folder = mutant(tmp_path, "lab10_camera2", """
+        def orthographic_project(points):
+            pts = np.asarray(points, dtype=np.float64)
+            single = pts.ndim == 1
+            pts = pts.reshape(-1, 3)
+            M = np.eye(3, 4)
+            proj = (M @ np.hstack([pts, np.ones((len(pts), 1))]).T).T
+            xy = proj[:, :2] / proj[:, 2:3]
+            return xy[0] if single else xy
+        """)
+    result = grade(folder, ["lab10.ex3"], pictures="none", include_hidden=False)
+    failed = [c.message for c in check_results(result, "lab10.ex3") if not c.passed]
+    assert failed and not any("changing `proj[:, :2] / proj[:, 2:3]`" in m for m in failed), failed
+    assert any("the matrix's third row that reads Z" in m for m in failed), failed
+
+
+def test_a_name_read_in_place_of_a_right_step_made_from_it_is_a_skip_never_told():
+    """Rows filled from the raw pixels, then F denormalised as the reference does (`F = T2.T @ Fn @ T1`):
+    reading `Fn` where `F` is returned mends exact data by skipping the denormalisation, a right step
+    (`_Student.skips_a_right_step`); a name read in place of one made by a step of the student's own is
+    no such skip."""
+    source = textwrap.dedent("""
+        def graded(p1, p2, T1, T2):
+            A = np.stack([p2[:, 0] * p1[:, 0], p1[:, 1], np.ones(len(p1))], axis=1)
+            Fn = np.linalg.svd(A)[2][-1].reshape(3, 3)
+            F = T2.T @ Fn @ T1
+            G = Fn * 2 + T1
+            return F / np.linalg.norm(F) + G
+    """)
+    student = repair._Student(source, ast.parse(source), ["graded"])
+    student.reference_source = "def graded(x1, x2, A, B):\n    M = f(x1, x2)\n    return B.T @ M @ A\n"
+    read_for = {(m.line, m.edits[0][3]): student.skips_a_right_step(m) for m in student.mutants("graded")
+                if m.operator == "other_name"}
+    assert read_for[(7, "Fn")] is True, read_for           # `Fn` for `F`: the denormalisation skipped
+    assert read_for.get((7, "T1")) is not True, read_for   # (a name F is not made from)
+    assert not any(done for (line, name), done in read_for.items() if name == "Fn" and line != 7), read_for

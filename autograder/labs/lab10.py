@@ -384,10 +384,34 @@ def weak_property(t):
 ex3 = lab.exercise("ex3", "Orthographic projection", functions=["orthographic_project(points)"])
 
 
+def _dehomogenises(function) -> bool:
+    """A division of a matrix product by its own last coordinate (`x = (M @ Xh.T).T`, then `x[:, :2] /
+    x[:, 2:3]`): the lab sheet's x = P [X, 1] made Euclidean, right for any P (not the points' own Z)."""
+    products = {target.id for node in ast.walk(function) if isinstance(node, ast.Assign)
+                for target in node.targets if isinstance(target, ast.Name)
+                and any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)
+                        or isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("dot", "matmul")
+                        for n in ast.walk(node.value))}
+    for node in ast.walk(function):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) and isinstance(node.left, ast.Subscript) \
+                and isinstance(node.right, ast.Subscript) and isinstance(node.left.value, ast.Name) \
+                and isinstance(node.right.value, ast.Name) and node.left.value.id == node.right.value.id \
+                and node.left.value.id in products:
+            return True
+    return False
+
+
+DIVIDED_BY_Z = guard(
+    "the points are divided by Z: that is perspective; orthographic projection ignores depth",
+    asks=Predicate("divides x = M [X, 1] by its own third coordinate", _dehomogenises),
+    instead="the points come out divided by Z, as in a perspective projection; your code divides M [X, 1] by its "
+            "own third coordinate (the recipe), so it is the matrix's third row that reads Z: the lab sheet's "
+            "orthographic matrix has the last row [0, 0, 0, 1], so that w = 1")
+
+
 def orthographic_mistakes(X):
     return {
-        "the points are divided by Z: that is perspective; orthographic projection ignores depth":
-            X[:, :2] / X[:, 2:3],
+        DIVIDED_BY_Z: X[:, :2] / X[:, 2:3],
         "it returns (X, Z); the lab sheet's matrix keeps X and Y": X[:, [0, 2]],
         "it returns (Y, Z); the lab sheet's matrix keeps X and Y": X[:, [1, 2]],
         "x and y are swapped": X[:, [1, 0]],
@@ -417,7 +441,7 @@ def orthographic_property(t):
         X = rng.uniform(-10, 10, size=(8, 3))
         X[:, 2] = np.abs(X[:, 2]) + 0.5
         judge_points(t, "orthographic_project(points)", t.call("orthographic_project", X), truth.orthographic(X),
-                     {"the points are divided by Z: that is perspective": X[:, :2] / X[:, 2:3]},
+                     {DIVIDED_BY_Z: X[:, :2] / X[:, 2:3]},
                      probe=projection_probe(t, "orthographic_project"))
 
     t.for_all(seeds, holds, max_examples=8, describe=lambda s: f"uniform(-10, 10, (8, 3)) from seed {s}")

@@ -44,7 +44,7 @@ from ..checks import Trial, Verdict, fingerprint
 from ..inherited import SHARED_FAILING
 from . import anchors, naming
 from .helper import HelperFailed
-from .operators import (_MAKE, _MOVES, _defs, _dotted, _entry_of_literal, _parents, _replace, mutants_of,
+from .operators import (_MAKE, _MOVES, _defs, _derived_names, _dotted, _entry_of_literal, _parents, _replace, mutants_of,
                         mutated_defs, runs, twin_names, unpacked_items)
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
@@ -725,6 +725,27 @@ class _Student:
         cache[where] = guarded
         return guarded
 
+    def skips_a_right_step(self, mutant) -> bool:
+        """Whether the mutant reads, in place of a name, its earlier form that its last assignment above was
+        made from, by a step the reference writes too, names aside (`F / norm(F)` -> `Fn / norm(F)` after `F = T2.T @ Fn
+        @ T1`, the denormalisation): it mends by skipping a right step, which leaves the slip before it."""
+        where, ordinal, operator, payload = mutant.edits[0]
+        if operator != "other_name" or len(mutant.edits) != 1 or not self.reference_source:
+            return False
+        nodes, _ = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        if not isinstance(node, ast.Name):
+            return False
+        made = [n for n in nodes if isinstance(n, ast.Assign) and n.lineno < node.lineno
+                and any(isinstance(t, ast.Name) and t.id == node.id for t in n.targets)]
+        if not made:
+            return False
+        step = max(made, key=lambda n: n.lineno).value
+        if not (_derived_names(node.id, payload) and any(isinstance(n, ast.Name) and n.id == payload
+                                                         for n in ast.walk(step))):
+            return False   # (the name's own earlier form, `Fn` for `F`, not any name the step reads)
+        return naming._alike(step) in _reference_shapes(self.reference_source)
+
     def copies_an_item(self, mutant) -> bool:
         """Whether the mutant puts a name in place of another item of the same tuple, list or call that
         holds it already (`(0, 0, height, width)` -> `(0, 0, width, width)`): where a size or a pair is
@@ -1219,6 +1240,26 @@ def _reference_operations(source: str, function: str) -> frozenset:
 
 
 @functools.lru_cache(maxsize=8)
+@functools.lru_cache(maxsize=8)
+def _reference_shapes(source: str) -> frozenset:
+    """The reference's expressions with an operation in them, names aside (:func:`naming._alike`)."""
+    return frozenset(naming._alike(node) for fn in _defs(_reference_tree(source)).values() for node in ast.walk(fn)
+                     if isinstance(node, (ast.BinOp, ast.Call, ast.Compare, ast.Subscript)))
+
+
+# a point array divided by its own last coordinate (`x[:, :2] / x[:, 2:3]`, `p[:2] / p[2]`): the step that
+# leaves homogeneous coordinates, right wherever it is written
+_DEHOMOGENISED = re.compile(r"^\(?\s*(\w+)\[[^\]]*:\s*(\d)\s*\]\s*\)?\s*/\s*\(?\s*\1\[[^\]]*\b\2\b")
+
+
+def _dehomogenisation_dropped(fix: "Fix") -> bool:
+    """Whether the fix takes out the division of points by their last (homogeneous) coordinate: where
+    that mends, the matrix or the points' last coordinate is wrong (a camera whose last row reads Z),
+    and the division compensates nothing -- it is the recipe."""
+    return fix.operator == "drop_division" and len(fix.changes) == 1 \
+        and _DEHOMOGENISED.match(fix.changes[0][1].strip()) is not None
+
+
 def _reference_texts(source: str) -> dict[str, frozenset]:
     """def name -> the code of each of its statements and expressions with an operation in it
     (``ast.unparse`` forms, as :class:`Fix` shows the student's)."""
@@ -1958,7 +1999,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
-        if fix.changes[0][0] in lines:
+        if fix.changes[0][0] in lines or _dehomogenisation_dropped(fix) or student.skips_a_right_step(mutant):
             continue
         if (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
                 and not variant.writes_inputs(mutant) and not variant.guard_untested(mutant, failing) \
