@@ -835,7 +835,7 @@ def aperture_zero(t):
     # (every other check gives n_rays: its default is judged here)
     return judges.judge_default_is_the_apis(
         t, f"simulate_aperture(points, f={APERTURE_F:g}, aperture=0, seed=0)",
-        lambda **kw: t.call("simulate_aperture", X, APERTURE_F, 0.0, seed=0, **kw), "n_rays", 100, "set of rays")
+        lambda **kw: t.call("simulate_aperture", X, APERTURE_F, 0.0, seed=0, **kw), "n_rays", 100, "array of rays")
 
 
 def _spread(got, ideal):

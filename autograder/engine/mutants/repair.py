@@ -1240,7 +1240,6 @@ def _reference_operations(source: str, function: str) -> frozenset:
 
 
 @functools.lru_cache(maxsize=8)
-@functools.lru_cache(maxsize=8)
 def _reference_shapes(source: str) -> frozenset:
     """The reference's expressions with an operation in them, names aside (:func:`naming._alike`)."""
     return frozenset(naming._alike(node) for fn in _defs(_reference_tree(source)).values() for node in ast.walk(fn)
@@ -1260,6 +1259,7 @@ def _dehomogenisation_dropped(fix: "Fix") -> bool:
         and _DEHOMOGENISED.match(fix.changes[0][1].strip()) is not None
 
 
+@functools.lru_cache(maxsize=8)
 def _reference_texts(source: str) -> dict[str, frozenset]:
     """def name -> the code of each of its statements and expressions with an operation in it
     (``ast.unparse`` forms, as :class:`Fix` shows the student's)."""
