@@ -392,6 +392,7 @@ DIRECT_EVIDENCE = {
                             "smoothness for truth, 'smoothness or X' / 'if not smoothness' (read)",
     "aperture_short_focal": "each point's farthest ray lands (f / Z) / (1 + f / Z) radii out, for each of six "
                             "points' own depths (measured: no other slip gives that ratio at every depth)",
+    "colours_lost": "the result's three channels are equal at every pixel where an input's differ (measured)",
 }
 CONFIRMING = {"name_mistake", "confirm", "judge_matrix", "judge_warp", "judge_points", "judge_projective",
               "name_second_warp_mistake", "name_matching_mistake", "probe", "_disc_ratio_on_probe"}

@@ -25,9 +25,9 @@ from __future__ import annotations
 
 import ast
 import re
+from dataclasses import dataclass
 
 import numpy as np
-from dataclasses import dataclass
 
 from ..sandbox import beginner
 from .claims import divides_by, guard, measured
@@ -195,9 +195,9 @@ def colours_lost(got, images) -> str:
               and not equal_channels(image)]
     if not colour or not equal_channels(got):
         return ""
-    return ("it looks like the colours are lost: its three channels are equal (a grey image in BGR form) where the "
-            "input is in colour: a grey copy (cv2.cvtColor(..., cv2.COLOR_BGR2GRAY), made for a comparison or "
-            "the feature matching) is used where the colour image belongs")
+    return measured("it looks like the colours are lost: its three channels are equal (a grey image in BGR form) "
+                    "where the input's differ: a grey copy of the input (cv2.COLOR_BGR2GRAY, made for a comparison "
+                    "or the feature matching?) went into the result in place of the colour image")
 
 
 def _fits(shape: tuple, expected: tuple) -> bool:
