@@ -3822,3 +3822,15 @@ def test_a_name_read_in_place_of_a_right_step_made_from_it_is_a_skip_never_told(
     assert read_for[(7, "Fn")] is True, read_for           # `Fn` for `F`: the denormalisation skipped
     assert read_for.get((7, "T1")) is not True, read_for   # (a name F is not made from)
     assert not any(done for (line, name), done in read_for.items() if name == "Fn" and line != 7), read_for
+
+
+def test_names_read_only_by_raising_guards_are_found_through_a_chain_of_names():
+    """`a0` makes `a1` ... makes `area`, read only by `if area <= 0: raise`: every name of the chain is
+    read by the guard alone (a worklist: a long chain costs its length, not its square); `src`, also
+    returned, is not."""
+    chain = "".join(f"    a{k + 1} = a{k} * 2\n" for k in range(300))
+    source = ("def graded(src):\n    a0 = src[0] - src[1]\n" + chain + "    area = a300 + 1\n"
+              "    if area <= 0:\n        raise ValueError('flat')\n    return src\n")
+    student = repair._Student(source, ast.parse(source), ["graded"])
+    guarded = student._guard_only_names("graded")
+    assert {"a0", "a150", "a300", "area"} <= guarded and "src" not in guarded

@@ -714,14 +714,26 @@ class _Student:
                                   for n in ast.walk(target) if isinstance(n, ast.Name)) \
                     if isinstance(statement, ast.Assign) else frozenset()
                 reads.setdefault(node.id, []).append((id(node) in in_tests, makes))
+        # A name joins once every reading is a guard's or makes guarded names only: a worklist over the
+        # names each one waits for (linear in the readings, however long a chain of names).
+        waits = {name: set().union(*(makes for test, makes in found if not test)) - {name}
+                 for name, found in reads.items()
+                 if all(test or makes for test, makes in found)}   # (a reading that makes nothing: never)
+        waited_by: dict = {}
+        for name, needed in waits.items():
+            for other in needed:
+                waited_by.setdefault(other, []).append(name)
+        ready = [name for name, needed in waits.items() if not needed]
         guarded: set = set()
-        changed = True
-        while changed:   # (a name joins once every reading is a guard's or makes guarded names only)
-            changed = False
-            for name, found in reads.items():
-                if name not in guarded and all(test or (makes and makes <= guarded | {name}) for test, makes in found):
-                    guarded.add(name)
-                    changed = True
+        while ready:
+            name = ready.pop()
+            if name in guarded:
+                continue
+            guarded.add(name)
+            for waiting in waited_by.get(name, ()):
+                waits[waiting].discard(name)
+                if not waits[waiting]:
+                    ready.append(waiting)
         cache[where] = guarded
         return guarded
 
