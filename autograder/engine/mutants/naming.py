@@ -1318,15 +1318,30 @@ def _written_alike(mutant, trial, functions) -> bool:
     made = [m for m in (_mutated_expression(model.source, edit) for edit in mutant.edits) if m is not None]
     if not made:
         return True
+    sizes = _sizes(functions)   # (only carriers about the expression's size are written out: linear)
     carriers = [node for fn in functions for node in ast.walk(fn) if isinstance(node, _CARRIERS)]
     theirs = {node.id for fn in functions for node in ast.walk(fn) if isinstance(node, ast.Name)}
     for expression, call, kept, keywords, ours in made:
         shared = ours & theirs   # a name both codes use is the same name (`std_l` is not `denominator`)
         shape = _alike(expression, shared)
+        size = sum(1 for _ in ast.walk(expression))
         if not any(_alike(node if call is None else _cut(node, kept, keywords), shared) == shape
-                   for node in carriers if call is None or isinstance(node, ast.Call) and _short(node) == call):
+                   for node in carriers if (call is not None or size // 2 <= sizes[id(node)] <= 2 * size + 4)
+                   and (call is None or isinstance(node, ast.Call) and _short(node) == call
+                        and sum(1 for a in node.args[:kept] for _ in ast.walk(a)) <= 2 * size + 4)):
             return False
     return True
+
+
+def _sizes(functions) -> dict:
+    """id(node) -> the number of nodes under it (itself included), for every node of ``functions``, in one
+    pass (children before parents)."""
+    sizes: dict = {}
+    for fn in functions:
+        order = list(ast.walk(fn))
+        for node in reversed(order):   # (breadth-first reversed: every child comes before its parent)
+            sizes[id(node)] = 1 + sum(sizes.get(id(child), 0) for child in ast.iter_child_nodes(node))
+    return sizes
 
 
 @functools.lru_cache(maxsize=1024)
