@@ -497,7 +497,9 @@ def test_the_references_hold_none_of_these_findings():
            "the homogeneous result of cv2.triangulatePoints is not divided by w",
            "np.fill_diagonal repeats a list shorter than the diagonal", "np.eye(n, k) fills its whole off-diagonal",
            "the last turn's value is used after the loop, not the best one kept",
-           "an alias of an array is changed in place"}
+           "an alias of an array is changed in place", "a row of the eigenvector matrix taken as an eigenvector",
+           "a sine or cosine from the other by a square root: its sign is lost",
+           "a dimension tested after the array was made two-dimensional"}
     for path in sorted((ROOT / "reference_solutions").glob("lab*.py")):
         assert not one(path.read_text()) & new, path.name
 
@@ -774,3 +776,58 @@ def test_a_fundamental_matrix_given_where_the_essential_one_belongs_is_named():
     # E made from it first, and given instead (or under the same name)
     assert one(pose.format(make="fundamental_8point(pts1, pts2)", between="E = K.T @ F @ K", given="E")) == set()
     assert one(pose.format(make="fundamental_8point(pts1, pts2)", between="F = K.T @ F @ K", given="F")) == set()
+
+
+def test_a_row_of_the_eigenvector_matrix_taken_as_an_eigenvector_is_named():
+    centre = """
+        def camera_center(P):
+            {bind}
+            {between}
+            C = {taken}
+            return C[:3] / C[3]
+        """
+    wanted = {"a row of the eigenvector matrix taken as an eigenvector"}
+    pair = "vals, vecs = np.linalg.eig(P.T @ P)"
+    assert one(centre.format(bind=pair, between="", taken="vecs[np.argmin(np.abs(vals))]")) == wanted
+    assert one(centre.format(bind="vecs = np.linalg.eigh(P.T @ P)[1]", between="", taken="vecs[0]")) == wanted
+    assert one(centre.format(bind=pair, between="i = np.argmin(np.abs(vals))", taken="vecs[i, :]")) == wanted
+    # the columns, or rows of the transposed matrix, or the eigenvalues: right
+    assert one(centre.format(bind=pair, between="i = np.argmin(np.abs(vals))", taken="vecs[:, i]")) == set()
+    assert one(centre.format(bind=pair, between="vecs = vecs.T", taken="vecs[np.argmin(np.abs(vals))]")) == set()
+    assert one(centre.format(bind=pair, between="", taken="vecs.T[np.argmin(np.abs(vals))]")) == set()
+    assert one(centre.format(bind="vals = np.linalg.eigh(P.T @ P)[0]", between="", taken="vals[0] * P[0]")) == set()
+
+
+def test_a_sine_from_its_cosine_by_a_square_root_is_named():
+    rotation = """
+        def rotation_matrix(theta):
+            c = np.cos(np.deg2rad(theta))
+            s = {sine}
+            return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+        """
+    wanted = {"a sine or cosine from the other by a square root: its sign is lost"}
+    assert one(rotation.format(sine="np.sqrt(1 - c ** 2)")) == wanted
+    assert one(rotation.format(sine="math.sqrt(1.0 - c * c)")) == wanted
+    assert one(rotation.format(sine="(1 - c**2) ** 0.5")) == wanted
+    assert one(rotation.format(sine="np.sin(np.deg2rad(theta))")) == set()
+    assert one(rotation.format(sine="np.sqrt(c ** 2 + 1)")) == set()   # (a square root of another kind)
+
+
+def test_a_dimension_tested_after_the_array_was_made_two_dimensional_is_named():
+    project = """
+        def pinhole_project(points, f):
+            {first}
+            {second}
+            xy = f * P[:, :2] / P[:, 2:3]
+            return xy[0] if single else xy
+        """
+    wanted = {"a dimension tested after the array was made two-dimensional"}
+    assert one(project.format(first="P = np.atleast_2d(points)", second="single = P.ndim == 1")) == wanted
+    assert one(project.format(first="P = np.asarray(points, float).reshape(-1, 3)",
+                              second="single = len(P.shape) == 1")) == wanted
+    # tested before reshaping, or on the input as given: right
+    assert one(project.format(first="single = np.ndim(points) == 1", second="P = np.atleast_2d(points)")) == set()
+    assert one(project.format(first="P = np.atleast_2d(points)", second="single = np.asarray(points).ndim == 1")) \
+        == set()
+    assert one(project.format(first="P = np.asarray(points, float)", second="single = P.ndim == 1; "
+                              "P = np.atleast_2d(P)")) == set()

@@ -188,6 +188,9 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _loop_variable_rebinds(name, function)
     found += _zeros_solved_for(name, function)
     found += _fundamental_as_essential(name, function)
+    found += _eigenvectors_as_rows(name, function)
+    found += _sign_lost_by_a_root(name, function)
+    found += _dimension_tested_after_reshaping(name, function)
     return found
 
 
@@ -1393,37 +1396,187 @@ _FUNDAMENTAL_MAKERS = frozenset({"fundamental_8point", "findFundamentalMat"})
 _ESSENTIAL_TAKERS = frozenset({"recoverPose", "decomposeEssentialMat"})
 
 
+def _bindings(function) -> dict[str, list]:
+    """name -> its bindings in line order, each ``(line, value, position)``: the value assigned
+    (``value.value`` for a subscripted one: ``f(x)[0]``), ``position`` the name's place in a tuple
+    target (None for a lone name); an augmented or annotated assignment binds an unknown value."""
+    bindings: dict[str, list] = {}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign):
+            targets, value = node.targets, node.value
+        elif isinstance(node, (ast.AugAssign, ast.AnnAssign)):
+            targets, value = [node.target], _UNKNOWN
+        else:
+            continue
+        value = value.value if isinstance(value, ast.Subscript) else value
+        for target in targets:
+            places = list(enumerate(target.elts)) if isinstance(target, (ast.Tuple, ast.List)) else [(None, target)]
+            for position, place in places:
+                for bound in ast.walk(place):
+                    if isinstance(bound, ast.Name):
+                        bindings.setdefault(bound.id, []).append(
+                            (_line(node), value if bound is place else _UNKNOWN, position))
+    for found in bindings.values():
+        found.sort(key=lambda binding: binding[0])
+    return bindings
+
+
+def _binding_above(bindings: dict, name: str, line: int):
+    """The last binding of ``name`` on a line above ``line`` (None when there is none)."""
+    found = bindings.get(name, [])
+    last = bisect.bisect_left([binding[0] for binding in found], line) - 1
+    return found[last] if last >= 0 else None
+
+
 def _fundamental_as_essential(name, function) -> list[Finding]:
     """``F = fundamental_8point(pts1, pts2)`` (or ``cv2.findFundamentalMat``'s first result) given to
     ``cv2.recoverPose(F, ...)`` or ``cv2.decomposeEssentialMat(F)``, which take the essential matrix:
     F acts on pixels, E on coordinates normalised by K (E = K2^T F K1). The name's last binding above the
     call decides (`F = K.T @ F @ K` in between makes it E)."""
-    bindings: dict[str, list] = {}   # name -> [(line, whether a fundamental matrix is bound)]
-    for node in ast.walk(function):
-        targets = node.targets if isinstance(node, ast.Assign) else [node.target] \
-            if isinstance(node, (ast.AugAssign, ast.AnnAssign)) else []
-        value = getattr(node, "value", None)
-        value = value.value if isinstance(value, ast.Subscript) else value
-        fundamental = isinstance(node, ast.Assign) and isinstance(value, ast.Call) \
-            and _call_name(value) in _FUNDAMENTAL_MAKERS
-        for target in targets:
-            first = target.elts[0] if isinstance(target, (ast.Tuple, ast.List)) and target.elts else target
-            for bound in ast.walk(target):
-                if isinstance(bound, ast.Name):
-                    bindings.setdefault(bound.id, []).append((_line(node), fundamental and bound is first))
-    for found in bindings.values():
-        found.sort()
+    bindings = _bindings(function)
     for node in ast.walk(function):
         if not (isinstance(node, ast.Call) and _call_name(node) in _ESSENTIAL_TAKERS and node.args
                 and isinstance(node.args[0], ast.Name)):
             continue
         given, line = node.args[0].id, _line(node)
-        found = bindings.get(given, [])
-        last = bisect.bisect_left(found, (line, False)) - 1   # (the last binding above the call)
-        if last >= 0 and found[last][1]:
+        last = _binding_above(bindings, given, line)
+        if last is not None and isinstance(last[1], ast.Call) and _call_name(last[1]) in _FUNDAMENTAL_MAKERS \
+                and last[2] in (None, 0):
             return [Finding(name, line, "a fundamental matrix given where the essential matrix belongs",
                             f"{name} (line {line}) gives cv2.{_call_name(node)} `{given}`, the fundamental matrix "
-                            f"made at line {found[last][0]}, where it takes the essential matrix: F acts on pixels, "
+                            f"made at line {last[0]}, where it takes the essential matrix: F acts on pixels, "
                             "E on coordinates normalised by K; make E = K2^T F K1 first (essential_from_fundamental)",
+                            certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ an eigenvector taken as a row
+_EIGEN_SOLVERS = frozenset({"eig", "eigh"})
+
+
+def _picks_a_row(index) -> bool:
+    """``v[i]``, ``v[-1]``, ``v[np.argmin(w)]`` or ``v[i, :]``: one row of a matrix (not a slice of rows)."""
+    if isinstance(index, ast.Tuple):
+        return len(index.elts) == 2 and _picks_a_row(index.elts[0]) and isinstance(index.elts[1], ast.Slice) \
+            and index.elts[1].lower is None and index.elts[1].upper is None and index.elts[1].step is None
+    return not isinstance(index, (ast.Slice, ast.Starred, ast.List)) \
+        and not (isinstance(index, ast.Constant) and not isinstance(index.value, int))
+
+
+def _eigenvectors_as_rows(name, function) -> list[Finding]:
+    """``w, v = np.linalg.eig(M)`` (or ``eigh``, or ``eig(M)[1]``) then ``v[i]``: NumPy returns the
+    eigenvectors as the columns of ``v``; a row of it is no eigenvector. Only a name bound once, to the
+    vectors, is followed (``v = v.T`` makes the rows right)."""
+    bindings = _bindings(function)
+    for node in ast.walk(function):
+        if not (isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name)
+                and _picks_a_row(node.slice)):
+            continue
+        found = bindings.get(node.value.id, [])
+        if len(found) != 1:
+            continue
+        line, value, position = found[0]
+        made_by = _call_name(value) if isinstance(value, ast.Call) else ""
+        from_vectors = position == 1 or (position is None and _vectors_subscript(function, node.value.id))
+        if made_by in _EIGEN_SOLVERS and from_vectors and _line(node) >= line:
+            vectors, taken = node.value.id, ast.unparse(node)
+            return [Finding(name, _line(node), "a row of the eigenvector matrix taken as an eigenvector",
+                            f"{name} (line {_line(node)}) takes `{taken}`, a row of `{vectors}`, the eigenvectors "
+                            f"np.linalg.{made_by} returned at line {line}; they are its columns: "
+                            f"`{vectors}[:, i]` is the eigenvector of the i-th eigenvalue", certain=True)]
+    return []
+
+
+def _vectors_subscript(function, name: str) -> bool:
+    """Whether ``name = <eig call>[1]``: the vectors of an eigen-decomposition, subscripted at once."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                and node.targets[0].id == name and isinstance(node.value, ast.Subscript) \
+                and isinstance(node.value.slice, ast.Constant) and node.value.slice.value == 1:
+            return True
+    return False
+
+
+# ------------------------------------------------------------------ a sign lost by a square root
+def _square_of(node):
+    """``c`` for ``c ** 2`` or ``c * c`` (None for anything else)."""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.Constant) \
+            and node.right.value == 2:
+        return node.left
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and ast.dump(node.left) == ast.dump(node.right):
+        return node.left
+    return None
+
+
+def _sign_lost_by_a_root(name, function) -> list[Finding]:
+    """``np.sqrt(1 - c ** 2)`` (or ``(1 - c * c) ** 0.5``): the sine from the cosine (or the reverse) by
+    the identity sin^2 + cos^2 = 1 is never negative -- |sin| -- so its sign is lost wherever it is
+    negative (an angle past 180 degrees, a negative one)."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _call_name(node) == "sqrt" and len(node.args) == 1:
+            root = node.args[0]
+        elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.Constant) \
+                and node.right.value == 0.5:
+            root = node.left
+        else:
+            continue
+        if isinstance(root, ast.BinOp) and isinstance(root.op, ast.Sub) and isinstance(root.left, ast.Constant) \
+                and root.left.value == 1 and _square_of(root.right) is not None:
+            squared = ast.unparse(_square_of(root.right))
+            return [Finding(name, _line(node), "a sine or cosine from the other by a square root: its sign is lost",
+                            f"{name} (line {_line(node)}) computes `{ast.unparse(node)}`, which is never negative: "
+                            f"it is the size of the sine (or cosine) whose partner is `{squared}`, not its value, "
+                            "so where that value is negative (a negative angle, one past 180 degrees) its sign is "
+                            "lost; take np.sin / np.cos of the angle itself")]
+    return []
+
+
+# ------------------------------------------------------------------ a dimension tested after reshaping
+_MAKE_2D = frozenset({"atleast_2d"})
+
+
+def _makes_two_dimensional(value) -> bool:
+    """``np.atleast_2d(x)``, ``x.reshape(-1, 3)`` / ``reshape((-1, 3))``, ``np.array(x, ndmin=2)``,
+    also at the end of a chain (``np.asarray(x, float).reshape(-1, 3)``)."""
+    if not isinstance(value, ast.Call):
+        return False
+    called = _call_name(value)
+    if called in _MAKE_2D:
+        return True
+    if called == "reshape":
+        shape = value.args[0] if len(value.args) == 1 else ast.Tuple(elts=list(value.args))
+        return isinstance(shape, (ast.Tuple, ast.List)) and len(shape.elts) == 2
+    return called in ("array", "asarray") and any(k.arg == "ndmin" and isinstance(k.value, ast.Constant)
+                                                  and k.value.value == 2 for k in value.keywords)
+
+
+def _one_dimensional_test(node):
+    """The name tested by ``x.ndim == 1``, ``x.ndim < 2``, ``len(x.shape) == 1`` (None otherwise)."""
+    if not (isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.comparators[0], ast.Constant)):
+        return None
+    left, op, bound = node.left, node.ops[0], node.comparators[0].value
+    if not ((isinstance(op, ast.Eq) and bound == 1) or (isinstance(op, ast.Lt) and bound == 2)):
+        return None
+    if isinstance(left, ast.Attribute) and left.attr == "ndim" and isinstance(left.value, ast.Name):
+        return left.value.id
+    if isinstance(left, ast.Call) and _call_name(left) == "len" and len(left.args) == 1 \
+            and isinstance(left.args[0], ast.Attribute) and left.args[0].attr == "shape" \
+            and isinstance(left.args[0].value, ast.Name):
+        return left.args[0].value.id
+    return None
+
+
+def _dimension_tested_after_reshaping(name, function) -> list[Finding]:
+    """``x = np.atleast_2d(x)`` then ``single = x.ndim == 1``: the test reads the reshaped array, whose
+    dimension is 2 whatever was given, so it is never true and a single point is never told apart."""
+    bindings = _bindings(function)
+    for node in ast.walk(function):
+        tested = _one_dimensional_test(node)
+        last = _binding_above(bindings, tested, _line(node)) if tested else None
+        if last is not None and _makes_two_dimensional(last[1]):
+            return [Finding(name, _line(node), "a dimension tested after the array was made two-dimensional",
+                            f"{name} (line {_line(node)}) tests `{ast.unparse(node)}` after line {last[0]} made "
+                            f"`{tested}` two-dimensional (`{ast.unparse(last[1])}`): the test is never true, so a "
+                            "single point is never told apart; test the input as it was given, before reshaping it",
                             certain=True)]
     return []
