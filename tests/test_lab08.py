@@ -346,3 +346,18 @@ def test_a_mask_at_the_squared_error_of_the_h_before_a_last_refit_is_named():
     assert told.value.mistake == "the squared error is compared with the threshold"
     other = rng.random(200) < 0.5                     # no function of the distances
     name_squared_threshold(Told(), "ransac", np.eye(3), other, src, dst, 3.0)   # (nothing named: no raise)
+
+
+@pytest.mark.parametrize("edit", [
+    ("return bands + [gaussian[-1]]", "return bands"),                      # the top never kept
+    ("result = bands[-1]", "result = np.zeros_like(bands[-1])"),            # the collapse not started from it
+])
+def test_a_pyramid_without_its_low_pass_top_is_named(tmp_path, edit):
+    """Band-pass levels alone collapse to the image less its coarsest level upsampled: named from that
+    measurement, whichever way the top is lost, not told to add back bands the code adds back."""
+    from conftest import edited_reference
+
+    result = grade(edited_reference(tmp_path, "lab08_homographies", edit), ["lab08.ext3"], pictures="none")
+    [check] = [c for c in check_results(result, "lab08.ext3") if c.name == "blending an image with itself leaves it unchanged"]
+    assert not check.passed and check.mistake.startswith("the pyramid's low-pass top"), (check.mistake, check.message)
+    assert "must undo the one taken out" not in check.message + check.hint

@@ -2921,15 +2921,25 @@ EXACT_COLLAPSE_HINT = Hint(
             "with finer - pyrUp(coarser) and the collapse with adding them back in the same order")
 
 
-def coarsest_upsampled(image, levels: int) -> np.ndarray:
-    """The coarsest Gaussian level brought back to full size with cv2.pyrUp, no band added."""
+def coarsest_upsampled(image, levels: int, rounded: bool = True) -> np.ndarray:
+    """The coarsest Gaussian level brought back to full size with cv2.pyrUp, no band added
+    (``rounded``: to the grey levels of an image)."""
     pyramid = [np.float32(image)]
     for _ in range(levels - 1):
         pyramid.append(cv2.pyrDown(pyramid[-1]))
     out = pyramid[-1]
     for finer in reversed(pyramid[:-1]):
         out = cv2.pyrUp(out, dstsize=(finer.shape[1], finer.shape[0]))
-    return np.clip(np.round(out), 0, 255)
+    return np.clip(np.round(out), 0, 255) if rounded else out
+
+
+def without_residual(image, levels: int) -> np.ndarray:
+    """The collapse of a Laplacian pyramid whose top, the coarsest Gaussian level, was left out: the
+    bands alone add up to the image less its coarsest level upsampled."""
+    return np.clip(np.round(np.float32(image) - coarsest_upsampled(image, levels, rounded=False)), 0, 255)
+
+
+NO_RESIDUAL = "the pyramid's low-pass top (its coarsest Gaussian level) is left out"
 
 
 @ext3.check("blending an image with itself leaves it unchanged", points=2)
@@ -2948,6 +2958,11 @@ def blend_identity(t):
     if mean_difference(got, coarsest_upsampled(image, 4)) <= 1.5 and no_bands_on_probe(t):
         t.fail(f"{what} changed {bad:.0%} of the pixels: it looks like {NO_BANDS_ADDED}: " + ADD_BANDS_HINT.said(t),
                mistake=NO_BANDS_ADDED)
+    if mean_difference(got, without_residual(image, 4)) <= 1.5:
+        t.fail(f"{what} changed {bad:.0%} of the pixels: it is the image less its coarsest level upsampled (dark, "
+               f"edges only), what the band-pass levels alone add up to: it looks like {NO_RESIDUAL}; a Laplacian "
+               "pyramid keeps the coarsest Gaussian level as its last level, and the collapse starts from it",
+               mistake=NO_RESIDUAL)
     signed = got.astype(np.int16) - image
     if (np.abs(signed).max(axis=2) > 100).mean() > 0.02 or (signed.mean() > 2 and (signed >= 0).mean() > 0.95):
         in_float = Hint("compute the pyramids in float (img.astype(np.float32))", asks=TO_FLOAT, instead="").said(t)
