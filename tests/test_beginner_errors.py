@@ -64,6 +64,26 @@ CASES = [
     ("GaussianBlur", (GREY, (4, 4), 0), {}, ["odd, positive kernel size; yours is (4, 4)"]),
     ("triangulatePoints", (np.eye(3, 4), np.eye(3, 4), np.zeros((2, 5), int), np.zeros((2, 5), int)), {},
      ["as float32 or float64; yours are int64"]),
+    # sizes one argument must have from another, and point arrays OpenCV cannot read as points
+    ("pyrUp", (np.zeros((30, 40), np.float32),), {"dstsize": (60, 80)},
+     ["doubles its image", "within a pixel of (80, 60)", "(60, 80)", "the other order"]),
+    ("pyrDown", (np.zeros((30, 40), np.float32),), {"dstsize": (40, 30)},
+     ["halves its image", "(20, 15)", "the size of src itself"]),
+    ("add", (np.zeros((40, 60), np.float32), np.zeros((40, 61), np.float32)), {},
+     ["the same shape", "(40, 60)", "(40, 61)"]),
+    ("subtract", (IMAGE, GREY), {}, ["the same shape (size and channels)", "(40, 60, 3)", "(40, 60)"]),
+    ("projectPoints", (np.zeros((5, 2)), np.zeros(3), np.zeros(3), np.eye(3), np.zeros(5)), {},
+     ["objectPoints as N points of 3 coordinates", "(5, 2)"]),
+    ("solvePnP", (np.random.default_rng(0).random((3, 3)), np.random.default_rng(1).random((3, 2)), np.eye(3), None),
+     {}, ["at least 4 object points", "(3, 3)", "(3, 2)"]),
+    ("calibrateCamera", (np.zeros((10, 3), np.float32), np.zeros((10, 2), np.float32), (80, 60), None, None), {},
+     ["a list of views", "[objectPoints]"]),
+    ("triangulatePoints", (np.eye(3), np.eye(3), np.zeros((2, 5)), np.zeros((2, 5))), {},
+     ["projMatr1 of shape (3, 4); yours is (3, 3)"]),
+    ("findEssentialMat", (np.random.default_rng(0).random((10, 2)), np.random.default_rng(1).random((10, 2)),
+                          np.eye(2)), {}, ["cameraMatrix of shape (3, 3)", "(2, 2)"]),
+    ("copyMakeBorder", (GREY, -1, 2, 2, 2, cv2.BORDER_CONSTANT), {}, ["borders of 0 pixels or more", "top=-1"]),
+    ("boxFilter", (GREY, -1, (0, 5)), {}, ["kernel size of at least 1", "(0, 5)"]),
 ]
 
 
@@ -82,6 +102,15 @@ def test_an_error_of_an_opencv_method_is_explained_from_its_message():
         stereo.compute(GREY.astype(np.float64), GREY.astype(np.float64))
     said = beginner.sentence_of(raised.value)
     assert said.startswith("OpenCV's compute needs grey uint8 images"), said
+    for stereo, left, right, words in [(cv2.StereoBM_create(16, 14), GREY, GREY, "blockSize odd, within 5..255"),
+                                       (cv2.StereoBM_create(16, 15), GREY, GREY[:, 1:], "images of the same size")]:
+        with pytest.raises(cv2.error) as raised:
+            stereo.compute(left, right)
+        assert words in beginner.sentence_of(raised.value), beginner.sentence_of(raised.value)
+    matcher = cv2.BFMatcher(cv2.NORM_L2)
+    with pytest.raises(cv2.error) as raised:
+        matcher.match(np.zeros((5, 32), np.float32), np.zeros((5, 64), np.float32))
+    assert "descriptors of one type and length" in beginner.sentence_of(raised.value)
 
 
 def test_watching_opencv_changes_nothing_the_students_code_sees():

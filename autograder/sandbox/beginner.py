@@ -106,7 +106,7 @@ def explain_opencv(function: str, message: str, arguments: list[tuple[str, objec
     function = _called(function, message)
     values = dict(arguments)
     for rule in (_bad_argument, _no_screen, _wrong_matrix, _wrong_points, _wrong_image, _empty, _odd_kernel,
-                 _from_message_alone):
+                 _pyramid_size, _sizes_differ, _point_arrays, _borders, _from_message_alone):
         sentence = rule(function, message, arguments, values)
         if sentence:
             return sentence
@@ -266,8 +266,102 @@ def _odd_kernel(function, message, arguments, values) -> str:
     return ""
 
 
+def _pyramid_size(function, message, arguments, values) -> str:
+    """cv2.pyrUp doubles its image, cv2.pyrDown halves it: a ``dstsize`` (width, height) not within a pixel
+    of that size (the other level's shape, or a shape's (rows, columns) order)."""
+    up = "pyrUp" in function or "'pyrUp_'" in message
+    if not (up or "pyrDown" in function or "'pyrDown_'" in message) or not re.search(r"dsize\.width", message):
+        return ""
+    source, size = values.get("src"), values.get("dstsize")
+    if not (_is_image(source) and isinstance(size, (tuple, list)) and len(size) == 2):
+        return ""
+    height, width = source.shape[:2]
+    made = (2 * width, 2 * height) if up else ((width + 1) // 2, (height + 1) // 2)
+    fits = (lambda w, h: abs(w - made[0]) <= 1 and abs(h - made[1]) <= 1)
+    said = (f"{function} {'doubles' if up else 'halves'} its image: src of shape {tuple(source.shape[:2])} gives a "
+            f"dstsize (width, height) within a pixel of {made}; yours is {_shown(tuple(size))}")
+    if fits(size[1], size[0]):
+        return said + ", width and height in the other order (dstsize is (width, height), a shape (rows, columns))"
+    if tuple(size) == (width, height):
+        return said + ", the size of src itself"
+    return said
+
+
+def _sizes_differ(function, message, arguments, values) -> str:
+    """Two arrays an operation combines element by element, of different shapes (or channel counts)."""
+    if "Sizes of input arguments do not match" not in message:
+        return ""
+    arrays = [(n, v) for n, v in arguments if _is_array(v) and v.ndim >= 2]
+    if len(arrays) >= 2 and len({v.shape for _, v in arrays}) > 1:
+        given = "; ".join(f"{n} {_shown(v)}" for n, v in arrays)
+        return f"{function} needs its arrays of the same shape (size and channels); yours are {given}"
+    if "All the images must have the same size" in message:
+        return f"{function} needs the left and right images of the same size"
+    return ""
+
+
+# a function's point array and the coordinates each point has, where OpenCV reads "npoints" from it
+_POINTS_READ = {"projectPoints": ("objectPoints", 3), "undistortPoints": ("src", 2), "solvePnP": ("imagePoints", 2),
+                "calibrateCamera": ("objectPoints", 3)}
+
+
+def _point_arrays(function, message, arguments, values) -> str:
+    """Point arrays OpenCV could not read as points: a wrong number of coordinates, too few points, a
+    single view where a list of views belongs (cv2.calibrateCamera)."""
+    name = function.rpartition(".")[2]
+    if name == "calibrateCamera" and re.search(r"number of points in the view #\d+ is < 4", message):
+        given = values.get("objectPoints")
+        if _is_array(given):
+            return (f"{function} takes a list of views, one array of points for each, and reads a view of fewer "
+                    f"than 4 points; yours is one array, objectPoints {_shown(given)}: a single view is the list "
+                    "[objectPoints] (and [imagePoints])")
+        return f"{function} needs at least 4 points in every view"
+    if name == "solvePnP" and "npoints >= 4" in message:
+        world, image = values.get("objectPoints"), values.get("imagePoints")
+        if _is_array(world) and _is_array(image):
+            return (f"{function} needs at least 4 object points and as many image points of 2 coordinates; yours "
+                    f"are objectPoints {_shown(world)} and imagePoints {_shown(image)}")
+    if name in _POINTS_READ and re.search(r"npoints >= 0", message):
+        parameter, size = _POINTS_READ[name]
+        given = values.get(parameter)
+        if _is_array(given) and given.shape[-1] != size:
+            return (f"{function} needs {parameter} as N points of {size} coordinates, shape (N, {size}) or "
+                    f"(N, 1, {size}); yours is {_shown(given)}")
+    found = re.search(r"'requested_size' is \[(\d+) x (\d+)\].*'sz' is \[(\d+) x (\d+)\]", message, re.S)
+    if found:   # an output sized from one input: OpenCV gives [columns x rows]
+        given = (int(found.group(2)), int(found.group(1)))
+        wanted = (int(found.group(4)), int(found.group(3)))
+        named = [n for n, v in arguments if _is_matrix(v) and v.shape == given]
+        if named:
+            return f"{function} needs {named[0]} of shape {wanted}; yours is {given}"
+    return ""
+
+
+def _borders(function, message, arguments, values) -> str:
+    if "top >= 0 && bottom >= 0" not in message:
+        return ""
+    given = ", ".join(f"{n}={_scalar(values[n])}" for n in ("top", "bottom", "left", "right") if n in values)
+    return f"{function} needs borders of 0 pixels or more" + (f"; yours are {given}" if given else "")
+
+
 def _from_message_alone(function, message, arguments, values) -> str:
     """What the message says when the arguments are unknown (an OpenCV method's error)."""
+    if "SADWindowSize must be odd" in message:
+        return (f"{function} needs StereoBM's blockSize odd, within 5..255 and no larger than the images "
+                "(StereoBM_create(numDisparities, blockSize))")
+    found = re.search(r"(\w+)\.(rows|cols) == (\d) && \1\.(rows|cols) == (\d)", message)
+    if found:
+        rows = found.group(3) if found.group(2) == "rows" else found.group(5)
+        cols = found.group(5) if found.group(2) == "rows" else found.group(3)
+        given = values.get(found.group(1))
+        return (f"{function} needs {found.group(1)} of shape ({rows}, {cols})"
+                + (f"; yours is {_shown(given)}" if _is_array(given) else ""))
+    if re.search(r"type == src2\.type\(\) && src1\.cols == src2\.cols", message):
+        return (f"{function} compares descriptors of one type and length: the two sets differ in their dtype or "
+                "their number of columns (made by two different detectors, or converted one only?)")
+    if re.search(r"ksize\.width > 0 && ksize\.height > 0", message):
+        return f"{function} needs a kernel size of at least 1 in both directions" + (
+            f"; yours is {_shown(values['ksize'])}" if "ksize" in values else "")
     if re.search(r"CV_8UC1|8UC1", message):
         return (f"{function} needs grey uint8 images, shape (H, W): convert with "
                 "cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) and np.clip(x, 0, 255).astype(np.uint8)")
