@@ -339,3 +339,45 @@ def test_in_every_lab_a_right_caller_of_a_wrong_function_is_told_inherited(key):
     assert told, [(c.name, c.message) for e in result.exercises for c in e.checks if not c.passed]
     assert all(c.hint == "" and c.mistake == "" and c.score < c.max_score for c in told)
     assert_every_hint_about_a_function_exercised(result)
+
+
+# ------------------------------------------------------------------ a private helper two API functions share
+@pytest.mark.xdist_group("lab08")
+def test_a_caller_sharing_a_private_helper_with_a_failing_function_is_told_so(tmp_path):
+    """`stitch` and `match_features` both detect with the private `_detect`: keypoints sorted after their
+    positions were taken pair each position with another keypoint's descriptor. `match_features` fails its
+    own checks; stitch's failures say that they share `_detect` (no API callee of stitch failed)."""
+    from autograder.engine.runner import grade
+    from conftest import check_results, edited_reference
+
+    edit = ("keypoints, descriptors = detector.detectAndCompute(_grey(image), None)",
+            "keypoints, descriptors = detector.detectAndCompute(_grey(image), None)\n"
+            "    keypoints = sorted(keypoints, key=lambda k: -k.response)")
+    folder = edited_reference(tmp_path, "lab08_homographies", edit)
+    result = grade(folder, ["lab08.ex3", "lab08.ex5"], pictures="none")
+    matching = [c for c in check_results(result, "lab08.ex3") if c.score < c.max_score]
+    stitching = [c for c in check_results(result, "lab08.ex5") if c.score < c.max_score]
+    assert matching and stitching
+    for check in stitching:
+        assert ("Your `stitch` goes through your `_detect`" in check.message
+                and "which your `match_features` uses too, and it fails its own checks" in check.message), check.message
+
+
+def test_private_helpers_stop_at_api_functions():
+    from autograder.engine.hints import read_code
+
+    code = read_code("""
+def _grey(x):
+    return x
+def _detect(x):
+    return _grey(x)
+def match_features(a, b):
+    return _detect(a), _detect(b)
+def stitch(a, b):
+    match_features(a, b)
+    return _compose(a)
+def _compose(a):
+    return a
+""")
+    assert inherited.private_helpers(code, "stitch", {"stitch", "match_features"}) == {"_compose"}
+    assert inherited.private_helpers(code, "match_features", {"stitch", "match_features"}) == {"_detect", "_grey"}

@@ -102,6 +102,19 @@ def api_callees(code: Code, function: str, api) -> frozenset[str]:
     return frozenset(found)
 
 
+def private_helpers(code: Code, function: str, api) -> frozenset[str]:
+    """The module's functions other than API functions (``api``) that ``code``'s ``function`` goes
+    through: called by it or by such helpers (an API function's own helpers are not followed)."""
+    api = frozenset(api)
+    found, todo = set(), [function]
+    while todo:
+        for callee in sorted(code.calls.get(todo.pop(), ())):
+            if callee not in found and callee not in api and callee != function and callee in code.functions:
+                found.add(callee)
+                todo.append(callee)
+    return frozenset(found)
+
+
 def _api(lab) -> frozenset[str]:
     return frozenset(name for exercise in lab.exercises.values() for name in exercise.signatures)
 
@@ -407,6 +420,17 @@ def dependency_sentence(function: str, callees) -> str:
                     f"{'it' if len(callees) == 1 else 'them'} first, then see what this check says.")
 
 
+def shared_helper_sentence(function: str, helpers, others) -> str:
+    """The static fallback's sentence where ``function`` goes through private ``helpers`` that the API
+    functions ``others``, failing their own checks, go through too."""
+    named = ", ".join(f"`{h}`" for h in helpers[:-1]) + (" and " if len(helpers) > 1 else "") + f"`{helpers[-1]}`"
+    one = len(others) == 1
+    # measured: the others' own checks failed in this grading; the code reads that both go through the helpers
+    return measured(f"Your `{function}` goes through your {named}, which your {_names(others)} "
+                    f"{'uses' if one else 'use'} too, and {'it fails its' if one else 'they fail their'} own checks "
+                    f"in this grading: a mistake in {named} fails this check as well.")
+
+
 def _failing(trial) -> set:
     return trial.sandbox.shared.setdefault((SHARED_FAILING, trial.lab.module), set())
 
@@ -441,4 +465,24 @@ def told(verdict, trial):
     depends = sorted(callees & failing)
     if depends:
         verdict = replace(verdict, message=f"{str(verdict.message).rstrip()}\n{dependency_sentence(function, depends)}")
+    elif code.functions and failing - {function}:
+        verdict = _shared_with_failing(verdict, code, function, failing - {function}, _api(trial.lab))
     return verdict, False
+
+
+def _shared_with_failing(verdict, code: Code, function: str, failing, api):
+    """``verdict`` with :func:`shared_helper_sentence` added where ``function`` goes through private helpers
+    of failing API functions (``stitch`` and ``match_features`` both detecting with ``_detect``)."""
+    mine = private_helpers(code, function, api)
+    if not mine:
+        return verdict
+    others, helpers = [], set()
+    for other in sorted(failing):
+        shared = mine & private_helpers(code, other, api)
+        if shared:
+            others.append(other)
+            helpers |= shared
+    if not others:
+        return verdict
+    sentence = shared_helper_sentence(function, sorted(helpers), others)
+    return replace(verdict, message=f"{str(verdict.message).rstrip()}\n{sentence}")

@@ -2053,8 +2053,9 @@ def _identity_beside_img1(call) -> bool:
 # to code that does not visibly place it so; to code that does, what is left is the canvas it is placed on.
 IMG1_SHIFTED = Hint("img1 is the reference frame and must only be shifted",
                     asks=Predicate("places img1 by a shift alone", _img1_only_shifted),
-                    instead="your code {found}, so look at the canvas: its size and its shift come from the "
-                            "corners of both images")
+                    instead="your code {found}, so look at what decides where it lands and what covers it: the "
+                            "canvas's size and shift come from the corners of both images, img2's where its "
+                            "homography sends them, and img2 warped by that homography is drawn over img1's place")
 
 
 def stitch_scene():
