@@ -47,6 +47,23 @@ def test_a_worker_started_during_the_naming_counts_all_its_cpu_time():
         busy.wait()
 
 
+def test_a_helper_started_during_the_naming_does_not_count_its_start():
+    """The reference's helper, started by a cold grading's first naming: the CPU seconds it took to start
+    and import (its ``startup_cpu``) are not naming work; what it does after counts."""
+    helpers = []
+    clock = naming.Clock(10.0, lambda: helpers)
+    busy = _spinning(0.6)
+    try:
+        while (evidence.cpu_seconds(busy.pid) or 0.0) < 0.6:
+            time.sleep(0.05)
+        started = evidence.cpu_seconds(busy.pid)
+        helpers.append((busy.pid, time.monotonic(), started - 0.2))   # the last 0.2 s after its start
+        assert 0.1 <= clock.used() < 0.45
+    finally:
+        busy.kill()
+        busy.wait()
+
+
 def test_a_worker_running_before_counts_from_the_start_only():
     busy = _spinning(0.4)
     try:
@@ -79,3 +96,18 @@ def test_a_call_may_take_the_cpu_seconds_left_times_the_slack_in_wall_time():
     assert 2.0 * naming.WALL_SLACK - 0.5 < clock.wall_left() <= 2.0 * naming.WALL_SLACK
     wall = naming.Clock(2.0)
     assert 1.5 < wall.wall_left() <= 2.0
+
+
+def test_the_helper_knows_what_its_start_cost():
+    from pathlib import Path
+
+    from autograder.engine.mutants.helper import Helper
+
+    helper = Helper()
+    try:
+        source = (Path(__file__).resolve().parents[1] / "reference_solutions" / "lab07_transformations.py").read_text()
+        helper.prepare(source, "lab07_transformations", [], 20.0)
+        pid, _ = helper.running
+        assert 0.0 < helper.startup_cpu <= (evidence.cpu_seconds(pid) or 0.0)
+    finally:
+        helper.close()

@@ -35,7 +35,7 @@ import threading
 import time
 from collections import OrderedDict
 
-from ...sandbox import transport
+from ...sandbox import evidence, transport
 
 LENGTH = struct.Struct(">Q")
 MEMORY_BYTES = 3 * 2**30       # address space of the helper (NumPy, OpenCV and the mutants' arrays)
@@ -70,6 +70,7 @@ class Helper:
             preexec_fn=_limit_memory, cwd=str(_project_root()))
         self._started = time.monotonic()
         self._module, self._calls = None, None
+        self.startup_cpu = 0.0   # CPU seconds the process took to start and import (set once it has)
 
     @property
     def running(self) -> tuple[int, float] | None:
@@ -98,8 +99,11 @@ class Helper:
             self.close()
             self._start()
         if self._module != (name, source):
+            first = self._module is None
             self._request({"op": "module", "source": source, "name": name}, timeout + 5.0)  # imports cv2
             self._module = (name, source)
+            if first:   # (starting the process is not naming work: a cold grading names as a warm one)
+                self.startup_cpu = evidence.cpu_seconds(self._process.pid) or 0.0
         if self._calls is not calls:
             frames = [transport.encode(list(c)) for c in calls]
             module = hashlib.sha256(f"{name}\0{source}".encode()).digest()

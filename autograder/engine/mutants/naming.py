@@ -727,14 +727,16 @@ class Clock:
         """Read the CPU time of the processes working now; False when one cannot be read. A process
         that ended since (a worker restarted after a timeout) keeps the time last read of it."""
         readable = True
-        for pid, started in self._processes():
+        for pid, started, *startup in self._processes():
             cpu = evidence.cpu_seconds(pid)
             if cpu is None:
                 readable = False
                 continue
-            # A process started since (a helper or worker restarted) counts all its time; one that ran
-            # before (the student's worker, a helper kept from an earlier grading) from now on.
-            self._cpu.setdefault(pid, [0.0 if started >= self.started else cpu, cpu])[1] = cpu
+            # A process started since (a helper or worker restarted) counts all its time but its start
+            # (``startup``: CPU seconds it took to start, where known); one that ran before (the student's
+            # worker, a helper kept from an earlier grading) from now on.
+            seen = self._cpu.setdefault(pid, [0.0 if started >= self.started else cpu, cpu])
+            seen[0], seen[1] = max(seen[0], *startup, 0.0), cpu
         return readable
 
     def used(self) -> float:
@@ -767,7 +769,7 @@ def work_clock(trial, seconds: float) -> Clock:
     def processes() -> list[tuple[int, float]]:
         current = getattr(_USING, "helper", None)   # (this thread's, once it has one)
         running = current.running if current is not None else None
-        return list(working()) + ([running] if running is not None else [])
+        return list(working()) + ([(*running, current.startup_cpu)] if running is not None else [])
 
     return Clock(seconds, processes if working is not None else None)
 
