@@ -558,3 +558,13 @@ def test_an_index_array_holding_a_value_past_its_axis_is_named_with_its_range():
         """, "pick", np.ones((10, 2)), np.random.default_rng(0).random((300, 10)))
     assert "`order` holds" in sentence and "(its values go from 0 to 299)" in sentence
     assert "axis 0 of `points` (shape (10, 2)) has 10 entries" in sentence
+
+
+def test_a_form_read_from_numpys_message_is_told_where_it_happened_too(tmp_path):
+    """A per-row depth kept flat against (N, 2) points: the form NumPy's message shows is named, and the
+    recording says which of the student's expressions had which shape, on which line."""
+    folder = edited_reference(tmp_path, "lab10_camera2", ("z = X[:, 2].mean() if z_avg is None", "z = X[:, 2] if z_avg is None"))
+    result = grade(folder, ["lab10.ex2"], pictures="none")
+    [check] = [c for c in check_results(result, "lab10.ex2") if c.name.startswith("weak_perspective_project with the default")]
+    assert check.mistake == "a per-row value kept flat (N,) against an (N, k) array", check.message
+    assert "in `f / z * X[:, :2]` (line" in check.message and "`f / z` has shape (" in check.message, check.message

@@ -241,6 +241,11 @@ _INTO = re.compile(r"could not broadcast input array from shape \((\d+),\s*(\d+)
                    r"\((\d+),\s*(\d+)(?:,\s*(\d+))?\)")
 GREY_INTO_COLOUR = "a grey image written into a colour (3-channel) array"
 COLOUR_INTO_GREY = "a colour image written into a grey (2-D) array"
+FLAT_PER_ROW = "a per-row value kept flat (N,) against an (N, k) array"
+HOMOGENEOUS_MIXED = "homogeneous and plain coordinates mixed in a matrix product"
+ROWS_AS_COLUMNS = "points multiplied as columns while stored as rows"
+# what exception_form names from NumPy's message alone: which expression of the student's it was is still open
+EXCEPTION_FORMS = frozenset({GREY_INTO_COLOUR, COLOUR_INTO_GREY, FLAT_PER_ROW, HOMOGENEOUS_MIXED, ROWS_AS_COLUMNS})
 
 
 def _shapes(text: str) -> list[tuple[int, ...]]:
@@ -275,7 +280,7 @@ def exception_form(message: str) -> Form | None:
                                          f"column, shape ({n}, 1) (for example x[:, 2:3] or w[:, None]), or the "
                                          f"({n}, {k}) array should be one value per row too (a column of it "
                                          "taken, x[:, 0])"),
-                                "a per-row value kept flat (N,) against an (N, k) array")
+                                FLAT_PER_ROW)
         return None
     found = _MATMUL.search(message)
     if found:
@@ -292,7 +297,7 @@ def exception_form(message: str) -> Form | None:
                 return _homogeneous_product(sizes)
             if first[1] == second[1] and first[1] != second[0]:
                 return Form(measured(f"it looks like the points are rows ({_size(second)}) multiplied as "
-                                     "columns: use pts @ M.T (or M @ pts.T)"), "points multiplied as columns while stored as rows")
+                                     "columns: use pts @ M.T (or M @ pts.T)"), ROWS_AS_COLUMNS)
     return None
 
 
@@ -302,4 +307,4 @@ def _homogeneous_product(sizes: list[int]) -> Form:
     short, full = sizes
     return Form(measured(f"it looks like homogeneous and plain coordinates meet in a matrix product (inner "
                          f"sizes {short} and {full}): append a coordinate of ones to points of {short}, or use "
-                         "the matrix that fits them"), "homogeneous and plain coordinates mixed in a matrix product")
+                         "the matrix that fits them"), HOMOGENEOUS_MIXED)

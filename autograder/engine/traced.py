@@ -37,7 +37,7 @@ import numpy as np
 
 from ..loading.parsing import parse
 from .claims import from_code, measured
-from .forms import Form
+from .forms import EXCEPTION_FORMS, Form
 from .recorder import SMALL_ARRAY as SMALL   # (the recorder's own bound: it is sent with it)
 
 MISTAKE = "an expression of another shape than its use needs"
@@ -946,8 +946,8 @@ def named(verdict, trial, traceback_text: str = ""):
     code = code_of(trial)
     form = None
     if traceback_text and getattr(trial, "raised", None):
-        if verdict.mistake or _named_by_a_change(verdict):
-            return verdict
+        if (verdict.mistake and verdict.mistake not in EXCEPTION_FORMS) or _named_by_a_change(verdict):
+            return verdict   # (a form read from NumPy's message alone is told where it happened too)
         function, args, kwargs, message = trial.raised
         frames = without_comprehensions(frames_of(traceback_text))
         frame = frames[-1] if frames else None
