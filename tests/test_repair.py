@@ -3750,6 +3750,9 @@ def test_points_made_homogeneous_with_zeros_is_never_the_fix_beside_another():
     # in a private helper, a name used where its twin belongs (mean(L) twice in the covariance)
     ("lab12_stereo", "lab12.ext1", [("- mean_l * mean_r", "- mean_l * mean_l")],
      "changing `mean_l * mean_l` to `mean_r * mean_l`"),
+    # every point's own depth where the mean depth belongs (an exception: a flat (N,) against (N, 2))
+    ("lab10_camera2", "lab10.ex2", [("z = X[:, 2].mean() if z_avg is None", "z = X[:, 2] if z_avg is None")],
+     "to `X[:, 2].mean() if z_avg is None"),
 ])
 def test_slips_no_table_lists_are_repaired_in_the_students_terms(tmp_path, module, exercise, source, told):
     """A def written anew, or the reference with text edits (old, new), repaired by a change shown in

@@ -99,6 +99,7 @@ OPERATORS = {
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs
+    "reduced": ("mean", "average", "one value", "every point"),   # z = X[:, 2] -> X[:, 2].mean(): a column, its mean meant
     "per_item": ("first", "each", "every", "once", "loop"),   # a scale made once from the first item, used for each
     "grid_axis": ("row", "column", "axis", "width", "height"),   # np.arange(h)[:, None] -> np.arange(w)[None, :]
     "mirror": ("copied", "copy", "instead of", "other image"),   # grey2 = f(img1) -> f(img2): its twin line's
@@ -1092,7 +1093,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "factor_transposed",
-                                              "twin_factor", "homogeneous_one", "moved_term")},
+                                              "twin_factor", "homogeneous_one", "moved_term", "reduced")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -2166,6 +2167,10 @@ def _student_changes(node, parent, parents):
         yield "factor_transposed", f"{ast.unparse(left)} @ {ast.unparse(right)}.T" if isinstance(right, (ast.Name, ast.Subscript,
                                                                                                    ast.Attribute)) \
             else f"{ast.unparse(left)} @ ({ast.unparse(right)}).T", ""
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and _column_taken(node) \
+            and (isinstance(parent, ast.Assign) or (isinstance(parent, ast.IfExp) and parent.test is not node)):
+        # a whole column named where its mean belongs: `z = X[:, 2]` for the mean depth
+        yield "reduced", f"{ast.unparse(node)}.mean()", ""
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and _reversal(node) is not None:
         # an order reversed that does not belong: `tuple(pattern_size)[::-1]`, NumPy's (rows, columns)
         # habit where OpenCV takes (columns, rows)
@@ -4311,6 +4316,14 @@ def _item_swaps(node, parent):
     for i, j in pairs:
         if ast.dump(items[i]) != ast.dump(items[j]):
             yield "swap_items", (i, j), ""
+
+
+def _column_taken(node) -> bool:
+    """``X[:, k]``: one column of an array, every row of it."""
+    index = node.slice
+    return isinstance(index, ast.Tuple) and len(index.elts) == 2 and isinstance(index.elts[0], ast.Slice) \
+        and index.elts[0].lower is None and index.elts[0].upper is None and index.elts[0].step is None \
+        and _constant_index(index.elts[1]) is not None
 
 
 def _constant_index(node):
