@@ -466,6 +466,9 @@ def test_an_argument_given_and_an_entry_zeroed():
     assert found(zeroes_an_entry(), "def f(s):\n    s[-1] = 0.0\n    return s\n")
     assert found(zeroes_an_entry(), "def f(s):\n    return np.diag([s[0], s[1], 0])\n")
     assert not found(zeroes_an_entry(), "def f(s):\n    s = 0\n    return np.diag(s)\n")
+    assert found(zeroes_an_entry(), "def f(s):\n    S = np.diag(s)\n    S[2, 2] = 0\n    return S\n")
+    # a row of F set to 0 has rank 2, and is not the nearest rank-2 matrix: no singular value is zeroed
+    assert not found(zeroes_an_entry(), "def f(Fn):\n    Fn[2, :] = 0.0\n    return Fn\n")
 
 
 def test_a_guard_replaces_its_sentence_only_where_the_code_does_it():

@@ -831,3 +831,18 @@ def test_a_dimension_tested_after_the_array_was_made_two_dimensional_is_named():
         == set()
     assert one(project.format(first="P = np.asarray(points, float)", second="single = P.ndim == 1; "
                               "P = np.atleast_2d(P)")) == set()
+
+
+def test_the_ransac_masks_outliers_kept_are_named():
+    pipeline = """
+        def two_view_reconstruction(img1, img2, K):
+            F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
+            inliers = {selection}
+            return F, pts1[inliers], pts2[inliers]
+        """
+    wanted = {"the RANSAC mask's outliers kept"}
+    assert one(pipeline.format(selection="mask.ravel() == 0")) == wanted
+    assert one(pipeline.format(selection="mask.ravel() != 1")) == wanted
+    assert one(pipeline.format(selection="~mask.ravel().astype(bool)")) == wanted
+    assert one(pipeline.format(selection="mask.ravel() == 1")) == set()
+    assert one(pipeline.format(selection="mask.ravel().astype(bool)")) == set()

@@ -482,10 +482,17 @@ def zeroes_an_entry() -> Predicate:
     def zero(node) -> bool:
         return isinstance(node, ast.Constant) and node.value == 0 and not isinstance(node.value, bool)
 
+    def one_value(index) -> bool:
+        # `s[2]`, `s[-1]`, or a diagonal's `S[2, 2]`: not a row or a column (`Fn[2, :] = 0` is no rank 2)
+        if isinstance(index, ast.Tuple):
+            return len(index.elts) == 2 and not any(isinstance(e, ast.Slice) for e in index.elts) \
+                and ast.dump(index.elts[0]) == ast.dump(index.elts[1])
+        return not isinstance(index, ast.Slice)
+
     def test(function) -> bool:
         for node in ast.walk(function):
             if isinstance(node, ast.Assign) and zero(node.value) and any(
-                    isinstance(target, ast.Subscript) for target in node.targets):
+                    isinstance(target, ast.Subscript) and one_value(target.slice) for target in node.targets):
                 return True
             if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "diag" and node.args \
                     and isinstance(node.args[0], (ast.List, ast.Tuple)) and any(zero(e) for e in node.args[0].elts):

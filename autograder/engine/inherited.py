@@ -423,12 +423,13 @@ def dependency_sentence(function: str, callees) -> str:
 def shared_helper_sentence(function: str, helpers, others) -> str:
     """The static fallback's sentence where ``function`` goes through private ``helpers`` that the API
     functions ``others``, failing their own checks, go through too."""
-    named = ", ".join(f"`{h}`" for h in helpers[:-1]) + (" and " if len(helpers) > 1 else "") + f"`{helpers[-1]}`"
-    one = len(others) == 1
+    def joined(word: str) -> str:
+        return ", ".join(f"`{h}`" for h in helpers[:-1]) + (f" {word} " if len(helpers) > 1 else "") + f"`{helpers[-1]}`"
+    named, one = joined("and"), len(others) == 1
     # measured: the others' own checks failed in this grading; the code reads that both go through the helpers
     return measured(f"Your `{function}` goes through your {named}, which your {_names(others)} "
                     f"{'uses' if one else 'use'} too, and {'it fails its' if one else 'they fail their'} own checks "
-                    f"in this grading: a mistake in {named} fails this check as well.")
+                    f"in this grading: a mistake in {joined('or')} fails this check as well.")
 
 
 def _failing(trial) -> set:

@@ -2196,8 +2196,30 @@ def _corners_of_every_image(functions) -> bool:
     for function in functions:
         for node in ast.walk(function):
             if isinstance(node, (ast.ListComp, ast.GeneratorExp, ast.For)) and any(
-                    isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in warping for n in ast.walk(node)):
+                    isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in warping for n in ast.walk(node)) \
+                    and not any(_over_a_part(it) for it in _iterated(node)):
                 return True
+    return False
+
+
+def _iterated(node) -> list:
+    """What a loop or a comprehension goes over (each generator's iterable)."""
+    return [node.iter] if isinstance(node, ast.For) else [g.iter for g in node.generators]
+
+
+def _over_a_part(iterable) -> bool:
+    """Whether a loop goes over part of a list only: a slice of it (``images[1:]``, also inside ``zip`` or
+    ``enumerate``), or a range that does not start at 0 or stops short (``range(1, n)``, ``range(len(x) - 1)``)."""
+    for node in ast.walk(iterable):
+        if isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Slice) \
+                and (node.slice.upper is not None or (node.slice.lower is not None and not (
+                    isinstance(node.slice.lower, ast.Constant) and node.slice.lower.value == 0))):
+            return True
+        if isinstance(node, ast.Call) and _path(node.func) == "range" and (
+                (len(node.args) >= 2 and not (isinstance(node.args[0], ast.Constant) and node.args[0].value == 0))
+                or (node.args and isinstance(node.args[-1 if len(node.args) < 3 else 1], ast.BinOp)
+                    and isinstance(node.args[-1 if len(node.args) < 3 else 1].op, ast.Sub))):
+            return True
     return False
 
 
@@ -2322,8 +2344,11 @@ def judge_coverage(t: Trial, judge: PanoramaJudge, what: str, names):
     area = judge.panorama.shape[0] * judge.panorama.shape[1]
     if area > 1.5 * box + 2000:
         judge.show(t, what)
+        # (the canvas of the warped corners is this large when a homography sends a corner far: the code
+        # may size it rightly from corners warped wrongly -- both are said)
         return partial(0.5, f"{what}: the panorama covers the images but is {area / box:.1f} times "
-                            "the area of their bounding box: crop the canvas to the bounding box")
+                            "the area of their bounding box: either the canvas is not the bounding box of the "
+                            "warped corners, or a homography sends a corner far from where the image lies")
     return passed(f"{what}: {judge.panorama.shape[1]}x{judge.panorama.shape[0]}, every image inside")
 
 
@@ -3549,6 +3574,43 @@ def _divided_by_its_maximum(function) -> str:
                 and maximum_of(node.value) == node.target.id:
             return f"`{ast.unparse(node)}` (line {node.lineno})"
     return ""
+
+
+@ext3.check("levels counts the full-resolution level: levels=1 is the plain weighted blend", points=1)
+def blend_levels_counted(t):
+    # A pyramid of one level is the image itself: its blend is mask * img1 + (1 - mask) * img2, exactly. With
+    # levels=2 the image is downsampled once (the API: levels counts the full-resolution level). A chessboard
+    # mask of 8 px cells tells pyramids of 1, 2 and 3 levels apart by 10-15 grey levels on average; blends of
+    # two levels are otherwise left to the seam checks (pyramids are built in more than one legitimate way).
+    img1, img2 = photo("astronaut", (128, 96)), photo("coffee", (128, 96))
+    ys, xs = np.mgrid[0:96, 0:128]
+    mask = (((xs // 8) + (ys // 8)) % 2).astype(np.float64)
+    weights = mask[..., None]
+    plain = np.clip(np.round(weights * img1 + (1 - weights) * img2), 0, 255)
+    what = "blend_multiband(img1, img2, chessboard mask, levels={})"
+    one = blended(t, what.format(1), img1, img2, mask, levels=1)
+    error = mean_difference(one, plain)
+    if error > 1.0:
+        t.images(what.format(1), img1=img1, img2=img2, yours=one, expected=plain.astype(np.uint8))
+        if mean_difference(one, truth.multiband(img1, img2, mask, 2)) <= 0.5:
+            t.fail(measured(f"{what.format(1)} is the blend of a pyramid of 2 levels ({error:.1f} grey levels from "
+                            f"the plain weighted blend): it looks like {LEVEL_TOO_MANY}: levels counts the "
+                            "full-resolution level, so the image is downsampled levels - 1 times (none for "
+                            "levels=1)"), mistake=LEVEL_TOO_MANY)
+        t.fail(measured(f"{what.format(1)} differs from mask * img1 + (1 - mask) * img2 by {error:.1f} grey levels "
+                        "on average: a pyramid of one level is the image itself, so its blend is the plain "
+                        "weighted one"))
+    two = blended(t, what.format(2), img1, img2, mask, levels=2)
+    right, deeper = (mean_difference(two, truth.multiband(img1, img2, mask, k)) for k in (2, 3))
+    if deeper <= 0.5 < right:
+        t.images(what.format(2), img1=img1, img2=img2, yours=two)
+        t.fail(measured(f"{what.format(2)} is the blend of a pyramid of 3 levels: it looks like {LEVEL_TOO_MANY}: "
+                        "levels counts the full-resolution level, so the image is downsampled once for levels=2"),
+               mistake=LEVEL_TOO_MANY)
+    return passed(f"levels=1 gives the plain weighted blend ({error:.2f} grey levels apart)")
+
+
+LEVEL_TOO_MANY = "the pyramid has one level more than levels asks for"
 
 
 @ext3.check("a mask's weights are used as given: 0.25 everywhere is a quarter of img1", points=1)

@@ -35,6 +35,7 @@ from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canva
                               name_mistake, over_variants, where_matrices_differ, where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
+from ..loading.reading import outliers_selected
 from .code_signs import CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, SKIPS_VERTICAL, constant_factor, factor_words, name_batched_vt_row
 from .lab09 import COPY_HINT
 
@@ -766,8 +767,10 @@ def draw_either_sign(t):
     t.fail(measured(f"{what}: {int(stray.sum())} pixels are drawn where none of the lines passes, by one of the two "
                     "drawings (the lines as given, and each as (-a, -b, -c)) and not by the other. (a, b, c) and "
                     "(-a, -b, -c) are one line, a x + b y + c = 0 either way, so its drawing may not depend on the "
-                    "signs: a test of a, b or c (b > 0, b >= |a|) where their sizes are meant (|b| >= |a|) draws "
-                    "them otherwise."),
+                    "signs: each end point may depend only on the ratios of a, b and c (-(c + a x) / b is the same "
+                    "for both). Either a test of their signs where their sizes are meant (b > 0, b >= |a| for "
+                    "|b| >= |a|) or an end point's term not divided by b (or a) as the others are draws them "
+                    "otherwise."),
            mistake="a line drawn otherwise with the other sign")
 
 
@@ -1604,8 +1607,9 @@ def few_matches(t: Trial, pair, what: str, F, pts1, pts2, points3d):
             name_pose_points_swapped(t, f"{what} returned only {m} matches, while its F agrees with the true "
                                         "epipolar geometry: " + measured("the matches are lost after F."))
             t.fail(f"{what} returned only {m} matches, while its F agrees with the true epipolar geometry: "
-                   + measured("the matching is not what is short, the matches are lost after it (in the pose, the "
-                              "triangulation or the test of which points lie in front of both cameras)") + ".")
+                   + measured("the matching is not what is short, the matches are lost after it (in the "
+                              "selection of the estimator's inliers, the pose, the triangulation or the test of "
+                              "which points lie in front of both cameras)") + ".")
     t.fail(f"{what} returned only {m} matches; " + measured("keep at least 20 (the photos share plenty of texture)"))
 
 
@@ -1699,6 +1703,10 @@ def _indexes_by_a_mask(function) -> bool:
     estimators' masks are 0/1 uint8: ``pts1[mask.ravel()]`` picks points 0 and 1 over and over, keeping none."""
     held = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and RANSAC_ESTIMATOR.holds([n.value])
             for target in n.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
+    masks = {name: None for name in held} | {n.id: None for n in ast.walk(function)
+                                             if isinstance(n, ast.Name) and "mask" in n.id.lower()}
+    if any(outliers_selected(n, masks) for n in ast.walk(function)):
+        return False   # (`mask.ravel() == 0` keeps the matches the mask rejects)
     boolean = _boolean_names(function)
     return any(isinstance(n, ast.Subscript) and _is_boolean(n.slice, boolean) and any(
         isinstance(m, ast.Name) and (m.id in held or "mask" in m.id.lower() or "inl" in m.id.lower())

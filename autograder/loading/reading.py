@@ -191,6 +191,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _eigenvectors_as_rows(name, function)
     found += _sign_lost_by_a_root(name, function)
     found += _dimension_tested_after_reshaping(name, function)
+    found += _outliers_kept(name, function)
     return found
 
 
@@ -640,14 +641,7 @@ def _camera_left_out(name, function) -> list[Finding]:
 # ------------------------------------------------------------------ OpenCV masks
 def _mask_as_index(name, function) -> list[Finding]:
     """A mask OpenCV returns (uint8, 0 and 1) used as an index without turning it into booleans."""
-    masks = {}
-    for node in ast.walk(function):
-        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
-                and isinstance(node.value, ast.Call) and _call_name(node.value) in MASK_FUNCTIONS:
-            position = MASK_FUNCTIONS[_call_name(node.value)]
-            elts = node.targets[0].elts
-            if len(elts) > position and isinstance(elts[position], ast.Name):
-                masks[elts[position].id] = node
+    masks = _ransac_masks(function)
     if not masks:
         return []
     converted = set()
@@ -666,6 +660,51 @@ def _mask_as_index(name, function) -> list[Finding]:
                                 "0 and 1 OpenCV returns: as an index it selects rows 0 and 1 over and "
                                 "over, not the inliers; use "
                                 f"{index.id}.ravel().astype(bool)")]
+    return []
+
+
+def _ransac_masks(function) -> dict:
+    """name -> the assignment binding it to the 0/1 mask an OpenCV estimator returns (:data:`MASK_FUNCTIONS`)."""
+    masks = {}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
+                and isinstance(node.value, ast.Call) and _call_name(node.value) in MASK_FUNCTIONS:
+            position = MASK_FUNCTIONS[_call_name(node.value)]
+            elts = node.targets[0].elts
+            if len(elts) > position and isinstance(elts[position], ast.Name):
+                masks[elts[position].id] = node
+    return masks
+
+
+def outliers_selected(node, masks) -> bool:
+    """Whether ``node`` selects the entries a RANSAC mask marks 0 (its outliers): ``mask == 0``,
+    ``mask.ravel() != 1``, ``mask == False``, ``~mask.astype(bool)``, ``np.logical_not(mask)``."""
+    def of_a_mask(expression) -> bool:
+        return any(isinstance(n, ast.Name) and n.id in masks for n in ast.walk(expression))
+
+    if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.comparators[0], ast.Constant) \
+            and of_a_mask(node.left):
+        op, value = node.ops[0], node.comparators[0].value
+        return (isinstance(op, ast.Eq) and value in (0, False)) or (isinstance(op, ast.NotEq) and value in (1, True)) \
+            or (isinstance(op, ast.Lt) and value == 1)
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.Invert, ast.Not)):
+        return of_a_mask(node.operand)
+    return isinstance(node, ast.Call) and _call_name(node) == "logical_not" and bool(node.args) \
+        and of_a_mask(node.args[0])
+
+
+def _outliers_kept(name, function) -> list[Finding]:
+    """The matches a RANSAC mask marks 0 kept: ``inliers = mask.ravel() == 0`` -- its outliers."""
+    masks = _ransac_masks(function)
+    if not masks:
+        return []
+    for node in ast.walk(function):
+        if outliers_selected(node, masks):
+            line = _line(node)
+            return [Finding(name, line, "the RANSAC mask's outliers kept",
+                            f"{name} (line {line}) selects with `{ast.unparse(node)}` the matches the estimator's "
+                            "mask marks 0, its outliers; the inliers are those it marks 1 (mask.ravel() == 1, or "
+                            "mask.ravel().astype(bool))")]
     return []
 
 
