@@ -572,3 +572,19 @@ def test_a_form_read_from_numpys_message_is_told_where_it_happened_too(tmp_path,
     [check] = [c for c in check_results(result, "lab10.ex2") if c.name.startswith("weak_perspective_project with the default")]
     assert check.mistake == "a per-row value kept flat (N,) against an (N, k) array", check.message
     assert "in `f / z * X[:, :2]` (line" in check.message and "`f / z` has shape (" in check.message, check.message
+
+
+def test_an_item_of_a_returned_tuple_of_the_wrong_shape_is_followed_to_where_it_was_made(tmp_path):
+    folder = mutant(tmp_path, "lab11_two_view", """
+        def epipoles(F):
+            F = np.asarray(F, dtype=np.float64)
+            _, _, Vt = np.linalg.svd(F)
+            first = Vt[-1:].T
+            _, _, Vt2 = np.linalg.svd(F.T)
+            second = Vt2[-1]
+            return first, second
+        """)
+    result = grade(folder, ["lab11.ex5"], pictures="none", include_hidden=False)
+    messages = [c.message for c in check_results(result, "lab11.ex5") if not c.passed]
+    assert messages and any("e1 has shape (3, 1); expected (3,). On this input, `Vt[-1:].T` (line" in m
+                            for m in messages), messages

@@ -803,16 +803,23 @@ def _caller_argument(code, fn, name: str, frames, depth: int):
 
 
 # ------------------------------------------------------------------ a wrong shape
-def explain_shape(code, recording: Recording, function: str, got: tuple, expected: tuple) -> Form | None:
+def explain_shape(code, recording: Recording, function: str, got: tuple, expected: tuple,
+                  item: str = "") -> Form | None:
     """Where the answer of shape ``got`` (``expected`` asked) was given that shape: the first expression on
     the returned value's way that makes ``got`` from operands that do not have it."""
     fn = code.functions.get(function)
-    if fn is None or recording.returned is None or recording.returned[:2] != ("array", tuple(got)):
+    if fn is None or recording.returned is None:
         return None
-    statement = _returning(fn, recording, got)
-    if statement is None:
+    if recording.returned[:2] == ("array", tuple(got)):
+        statement = _returning(fn, recording, got)
+        node = statement.value if statement is not None else None
+    elif recording.returned[0] == "sequence":   # an item of a tuple returned (`return e1, e2`)
+        statement, node = _returning_item(fn, recording, got, item)
+    else:
         return None
-    node, seen = statement.value, 0
+    if node is None:
+        return None
+    seen = 0
     while seen < 16:
         seen += 1
         helper = _helper(code, fn, node)
@@ -839,6 +846,22 @@ def _returning(fn, recording, got):
     returns = [r for r in _own_nodes(fn) if isinstance(r, ast.Return) and r.value is not None
                and recording.shape(r.value) == tuple(got)]
     return returns[0] if len(returns) == 1 else None
+
+
+def _returning_item(fn, recording, got, name: str = ""):
+    """``(statement, item)``: ``fn``'s one ``return`` of a tuple whose item ``name`` (the API's: written so, or
+    the n-th for a name ending in n, ``e2``) the recording shows with shape ``got``, or its one item of that
+    shape ((None, None) otherwise)."""
+    returns = [r for r in _own_nodes(fn) if isinstance(r, ast.Return) and isinstance(r.value, ast.Tuple)]
+    found = [(r, item) for r in returns for item in r.value.elts if recording.shape(item) == tuple(got)]
+    if len(returns) != 1 or not found:
+        return None, None
+    items = returns[0].value.elts
+    named = [pair for pair in found if ast.unparse(pair[1]) == name]
+    if not named and name[-1:].isdigit() and 0 < int(name[-1]) <= len(items):
+        named = [pair for pair in found if pair[1] is items[int(name[-1]) - 1]]
+    chosen = named or found
+    return chosen[0] if len(chosen) == 1 else (None, None)
 
 
 def _own_nodes(fn):
@@ -930,6 +953,8 @@ def _made_here(fn, recording, node, statement, got, expected) -> Form | None:
 # ------------------------------------------------------------------ a failed check's verdict
 _WRONG_SHAPE = re.compile(r"(\w+)\(.*?\) returned (?:an array of |homogeneous points of )?shape \(([\d, ]*)\)"
                           r"(?:, i\.e\. \([^)]*\))?; expected \(([\d, ]*)\)")
+# one item of a tuple answer: "epipoles(F): e1 has shape (3, 1); expected (3,)"
+_WRONG_ITEM_SHAPE = re.compile(r"(\w+)\([^:]*?\)[^:]*: (\w+) has shape \(([\d, ]*)\); expected \(([\d, ]*)\)")
 LEAD = "On this input,"
 
 
@@ -958,12 +983,15 @@ def named(verdict, trial, traceback_text: str = ""):
                 form = explain_raised(code, recording, fn, frame[1], message, frames)
     elif not _named_by_a_change(verdict):
         found = _WRONG_SHAPE.search(first)
-        call = _call_answering(trial, found.group(1), _parsed(found.group(2))) if found else None
+        item = _WRONG_ITEM_SHAPE.search(first) if found is None else None
+        function, item_name, got, expected = (found.group(1), "", found.group(2), found.group(3)) if found else \
+            item.groups() if item else (None, "", "", "")
+        call = _call_answering(trial, function, _parsed(got)) if function else None
         if call is not None:
             function, args, kwargs = call
             recording = record(trial, function, args, kwargs)
             if recording is not None:
-                form = explain_shape(code, recording, function, _parsed(found.group(2)), _parsed(found.group(3)))
+                form = explain_shape(code, recording, function, _parsed(got), _parsed(expected), item_name)
     if form is None:
         return verdict
     lead = first.rstrip()
@@ -985,7 +1013,8 @@ def _named_by_a_change(verdict) -> bool:
 def _call_answering(trial, function: str, shape: tuple):
     """``(function, args, kwargs)`` of the trial's last call of ``function`` answering an array of ``shape``."""
     for name, args, kwargs, answer in reversed(list(getattr(trial, "calls", ()))):
-        if name == function and isinstance(answer, np.ndarray) and answer.shape == tuple(shape):
+        items = answer if isinstance(answer, (tuple, list)) else (answer,)
+        if name == function and any(isinstance(a, np.ndarray) and a.shape == tuple(shape) for a in items):
             return name, args, kwargs
     return None
 
