@@ -499,7 +499,9 @@ def test_the_references_hold_none_of_these_findings():
            "the last turn's value is used after the loop, not the best one kept",
            "an alias of an array is changed in place", "a row of the eigenvector matrix taken as an eigenvector",
            "a sine or cosine from the other by a square root: its sign is lost",
-           "a dimension tested after the array was made two-dimensional"}
+           "a dimension tested after the array was made two-dimensional", "the RANSAC mask's outliers kept",
+           "a root written as a power of 1/n (** binds tighter than /)", "a grid's rows taken for its x",
+           "the result rounded to a few decimals"}
     for path in sorted((ROOT / "reference_solutions").glob("lab*.py")):
         assert not one(path.read_text()) & new, path.name
 
@@ -846,3 +848,45 @@ def test_the_ransac_masks_outliers_kept_are_named():
     assert one(pipeline.format(selection="~mask.ravel().astype(bool)")) == wanted
     assert one(pipeline.format(selection="mask.ravel() == 1")) == set()
     assert one(pipeline.format(selection="mask.ravel().astype(bool)")) == set()
+
+
+def test_a_root_written_as_a_power_of_one_over_n_is_named():
+    lines = """
+        def epipolar_lines(F, pts):
+            lines = pts @ F.T
+            s = {scale}
+            return lines / s
+        """
+    wanted = {"a root written as a power of 1/n (** binds tighter than /)"}
+    assert one(lines.format(scale="(lines[:, 0] ** 2 + lines[:, 1] ** 2) ** 1/2")) == wanted
+    assert one("def f(lines):\n    return lines / (lines[:, :1] ** 2 + lines[:, 1:2] ** 2) ** 1/2\n") == wanted
+    assert one(lines.format(scale="(lines[:, 0] ** 2 + lines[:, 1] ** 2) ** (1 / 2)")) == set()
+    assert one(lines.format(scale="(lines[:, 0] ** 2 + lines[:, 1] ** 2) ** 0.5")) == set()
+
+
+def test_a_grid_unpacked_as_x_then_y_is_named():
+    warp = """
+        def apply_homography(image, H, dsize=None):
+            h, w = image.shape[:2]
+            {grid}
+            return xs + ys
+        """
+    wanted = {"a grid's rows taken for its x"}
+    assert one(warp.format(grid="xs, ys = np.mgrid[0:h, 0:w]")) == wanted
+    assert one(warp.format(grid="xs, ys = np.indices((image.shape[0], w))")) == wanted
+    assert one(warp.format(grid="xs, ys = np.mgrid[0:h, 0:w].astype(np.float64)")) == wanted
+    assert one(warp.format(grid="ys, xs = np.mgrid[0:h, 0:w]")) == set()
+    assert one(warp.format(grid="xs, ys = np.meshgrid(np.arange(w), np.arange(h))")) == set()   # (x first: right)
+
+
+def test_a_result_rounded_to_a_few_decimals_is_named():
+    essential = """
+        def essential_from_fundamental(F, K1, K2):
+            E = K2.T @ F @ K1
+            {end}
+        """
+    wanted = {"the result rounded to a few decimals"}
+    assert one(essential.format(end="return np.round(E, 4)")) == wanted
+    assert one(essential.format(end="E = E.round(6)\n            return E")) == wanted
+    assert one(essential.format(end="return E")) == set()
+    assert one(essential.format(end="return np.round(E)")) == set()   # (whole numbers: an image's pixels)

@@ -192,6 +192,9 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _sign_lost_by_a_root(name, function)
     found += _dimension_tested_after_reshaping(name, function)
     found += _outliers_kept(name, function)
+    found += _root_by_a_fraction(name, function)
+    found += _grid_unpacked_as_x_y(name, function)
+    found += _result_rounded(name, function)
     return found
 
 
@@ -1619,3 +1622,98 @@ def _dimension_tested_after_reshaping(name, function) -> list[Finding]:
                             "single point is never told apart; test the input as it was given, before reshaping it",
                             certain=True)]
     return []
+
+
+# ------------------------------------------------------------------ a root written x ** 1/2
+def _root_by_a_fraction(name, function) -> list[Finding]:
+    """``s ** 1/2`` (or ``** 1/3``): ``**`` binds tighter than ``/``, so it is ``(s ** 1) / 2``, half of ``s``,
+    not its square root."""
+    for node in ast.walk(function):
+        power = _rightmost_factor(node.left) if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) \
+            and isinstance(node.right, ast.Constant) and node.right.value in (2, 3) else None
+        if isinstance(power, ast.BinOp) and isinstance(power.op, ast.Pow) and isinstance(power.right, ast.Constant) \
+                and power.right.value == 1:
+            line, written = _line(node), ast.unparse(node)
+            base, n = ast.unparse(power.left), node.right.value
+            return [Finding(name, line, "a root written as a power of 1/n (** binds tighter than /)",
+                            f"{name} (line {line}) writes `{written}`: ** binds tighter than /, so it is "
+                            f"({base}) ** 1 / {n}, the value divided by {n}, not its root; write "
+                            f"({base}) ** (1 / {n})" + (" or np.sqrt(...)" if n == 2 else ""), certain=True)]
+    return []
+
+
+def _rightmost_factor(node):
+    """The last factor of a product or quotient chain (``a / b ** 1`` -> ``b ** 1``): what a ``/`` after it
+    divides first."""
+    while isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div)):
+        node = node.right
+    return node
+
+
+# ------------------------------------------------------------------ np.mgrid unpacked as (x, y)
+_GRIDS = frozenset({"mgrid", "ogrid", "indices"})
+_X_NAME = re.compile(r"^(x|xs|xx|x_?grid|gx|cols?|u|us|map_?x|x_?coords?)$", re.I)
+_HEIGHT = re.compile(r"(^|[^a-z0-9])(h|height|rows?|n_?rows|hh)($|[^a-z0-9])|shape\[0\]", re.I)
+
+
+def _grid_unpacked_as_x_y(name, function) -> list[Finding]:
+    """``xs, ys = np.mgrid[0:h, 0:w]`` (or ``np.indices((h, w))``): NumPy's grids give the row index (y)
+    first, so the name meant for x holds the rows. Only where the first axis runs over the height."""
+    for node in ast.walk(function):
+        if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple)
+                and len(node.targets[0].elts) == 2 and all(isinstance(e, ast.Name) for e in node.targets[0].elts)):
+            continue
+        value = node.value
+        while isinstance(value, ast.Call) and isinstance(value.func, ast.Attribute) \
+                and value.func.attr in ("astype", "copy"):
+            value = value.func.value   # (np.mgrid[...].astype(float): the grid itself)
+        grid = value.value if isinstance(value, ast.Subscript) else value.func if isinstance(value, ast.Call) else None
+        called = grid.attr if isinstance(grid, ast.Attribute) else grid.id if isinstance(grid, ast.Name) else ""
+        if called not in _GRIDS:
+            continue
+        first_axis = value.slice.elts[0] if isinstance(value, ast.Subscript) and isinstance(value.slice, ast.Tuple) \
+            and value.slice.elts else value.args[0].elts[0] if isinstance(value, ast.Call) and value.args \
+            and isinstance(value.args[0], (ast.Tuple, ast.List)) and value.args[0].elts else None
+        first, second = (e.id for e in node.targets[0].elts)
+        if first_axis is not None and _X_NAME.match(first) and _HEIGHT.search(ast.unparse(first_axis)):
+            line = _line(node)
+            return [Finding(name, line, "a grid's rows taken for its x",
+                            f"{name} (line {line}) unpacks `{first}, {second} = {ast.unparse(value)}`: NumPy's "
+                            f"{called} gives the row index (y) first, over the height, then the column index (x), "
+                            f"so `{first}` holds rows and `{second}` columns; unpack it as `{second}, {first}`")]
+    return []
+
+
+# ------------------------------------------------------------------ a result rounded to a few decimals
+def _result_rounded(name, function) -> list[Finding]:
+    """``return np.round(E, 4)`` (or a name so made and returned): a habit of printing a matrix in a report,
+    which cuts the result's digits -- to nothing for a matrix given at a small scale."""
+    rounded: dict[str, ast.AST] = {}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                and _rounds_to_decimals(node.value):
+            rounded[node.targets[0].id] = node.value
+    for node in ast.walk(function):
+        if isinstance(node, ast.Return) and node.value is not None:
+            made = node.value if _rounds_to_decimals(node.value) else rounded.get(getattr(node.value, "id", None))
+            if made is not None:
+                line = _line(node)
+                return [Finding(name, line, "the result rounded to a few decimals",
+                                f"{name} (line {line}) returns `{ast.unparse(made)}`, its result rounded to a few "
+                                "decimals: every digit past them is lost (all of them for a small value); round "
+                                "only where a number is printed")]
+    return []
+
+
+def _rounds_to_decimals(node) -> bool:
+    """``np.round(x, 4)``, ``np.around(x, decimals=3)``, ``round(x, 2)``, ``x.round(4)``: decimals >= 1 given."""
+    if not isinstance(node, ast.Call):
+        return False
+    called = _call_name(node)
+    method = isinstance(node.func, ast.Attribute) and called == "round" and not _attribute_path(node.func) \
+        in ("np.round", "numpy.round")
+    if called not in ("round", "around", "round_"):
+        return False
+    given = node.args[0] if method and node.args else node.args[1] if len(node.args) > 1 else next(
+        (k.value for k in node.keywords if k.arg in ("decimals", "ndigits")), None)
+    return isinstance(given, ast.Constant) and isinstance(given.value, int) and given.value >= 1
