@@ -3750,6 +3750,14 @@ def test_points_made_homogeneous_with_zeros_is_never_the_fix_beside_another():
     # in a private helper, a name used where its twin belongs (mean(L) twice in the covariance)
     ("lab12_stereo", "lab12.ext1", [("- mean_l * mean_r", "- mean_l * mean_l")],
      "changing `mean_l * mean_l` to `mean_r * mean_l`"),
+    # a centre truncated to whole pixels in both coordinates: both truncations are told, not one (the inputs
+    # tried move a 0 off it too, and the checks' centres are fractional in x and y)
+    ("lab07_transformations", "lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            cx, cy = int(center[0]), int(center[1])
+            M = cv2.getRotationMatrix2D((cx, cy), angle_deg, 1.0)
+            return np.vstack([M, [0.0, 0.0, 1.0]])
+        """, "changing `int(center[0])` to `center[0]` (line"),
     # every point's own depth where the mean depth belongs (an exception: a flat (N,) against (N, 2))
     ("lab10_camera2", "lab10.ex2", [("z = X[:, 2].mean() if z_avg is None", "z = X[:, 2] if z_avg is None")],
      "to `X[:, 2].mean() if z_avg is None"),

@@ -219,8 +219,8 @@ def rotation_matrix_array_centre(t):
     """A centre held as an array (the API's 2D points are float arrays) is the caller's: a function that
     writes into it (``c = np.asarray(center); c -= R @ c``) answers its first call rightly and the caller's
     next one about another centre (:mod:`autograder.engine.inplace` names it from the second call)."""
-    center = np.array([40.0, -25.5])
-    what = "rotation_matrix(30, center=np.array([40.0, -25.5]))"
+    center = np.array([40.25, -25.5])
+    what = "rotation_matrix(30, center=np.array([40.25, -25.5]))"
     try:
         got = t.call("rotation_matrix", 30, center=center)
     except StudentFailure as failure:
@@ -229,7 +229,7 @@ def rotation_matrix_array_centre(t):
         # (the API's centre is a pair: code taking only tuples is not wrong, and this check asks no more)
         return passed(measured("a centre given as an array raises here; the API asks for a pair, which the other "
                                "checks give"))
-    judge_matrix(t, what, got, truth.rotation(30, (40.0, -25.5)), truth.rotation_mistakes(30, (40.0, -25.5)),
+    judge_matrix(t, what, got, truth.rotation(30, (40.25, -25.5)), truth.rotation_mistakes(30, (40.25, -25.5)),
                  probe=matrix_probe(t, "rotation_matrix"))
 
 

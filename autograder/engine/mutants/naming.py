@@ -643,13 +643,17 @@ def _structure(value: np.ndarray) -> np.ndarray:
     return kept
 
 
-def _perturbed(value, rng, depth=0):
+def _perturbed(value, rng, depth=0, zeros=None):
     """Another input of the same form: other values of the same shape, dtype and range, and the
-    same structure (a rotation stays a rotation, :func:`_structure`)."""
+    same structure (a rotation stays a rotation, :func:`_structure`). A number 0 stays 0 (``zeros``
+    False), moves off it (True), or either, at random (None): a mistake may show only at 0 (`x or
+    DEFAULT`), another only off it (a centre truncated by int(), which 0 hides)."""
     if isinstance(value, bool) or value is None or isinstance(value, str):
         return value
-    if isinstance(value, float):   # 0 stays 0 half the time: a mistake may show only at 0 (`x or DEFAULT`)
+    if isinstance(value, float):
         factor, shift = rng.uniform(0.6, 1.4), (rng.uniform(-1, 1) if value == 0 else 0.0)
+        if value == 0 and zeros is not None:
+            shift = abs(shift) + 0.1 if zeros else 0.0
         return value * factor + (shift if shift > 0 else 0.0)
     if isinstance(value, int):
         return value + 2 * int(rng.integers(-2, 3)) if abs(value) > 4 else value
@@ -666,10 +670,10 @@ def _perturbed(value, rng, depth=0):
             return np.clip(moved.astype(np.int16) + int(rng.integers(-20, 21)), 0, 255).astype(np.uint8)
         return value.copy()
     if isinstance(value, (tuple, list)) and depth < 3:
-        made = [_perturbed(v, rng, depth + 1) for v in value]
+        made = [_perturbed(v, rng, depth + 1, zeros) for v in value]
         return tuple(made) if isinstance(value, tuple) else made
     if isinstance(value, dict) and depth < 3:
-        return {k: _perturbed(v, rng, depth + 1) for k, v in value.items()}
+        return {k: _perturbed(v, rng, depth + 1, zeros) for k, v in value.items()}
     return value
 
 
@@ -698,7 +702,10 @@ def derived_calls(call, count, seed, defaults=()):
     for index in range(count):
         extra = {name: default for name, position, default in defaults
                  if position >= len(args) and name not in kwargs} if index % 2 else {}
-        made.append((function, _perturbed(tuple(args), rng), _perturbed({**kwargs, **extra}, rng)))
+        # (the second of each pair moves every 0 off it, the first keeps them: both kinds are tried)
+        zeros = None if count < 2 else bool(index % 2)
+        made.append((function, _perturbed(tuple(args), rng, zeros=zeros),
+                     _perturbed({**kwargs, **extra}, rng, zeros=zeros)))
     return made
 
 
