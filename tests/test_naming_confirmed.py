@@ -359,8 +359,6 @@ DIRECT_EVIDENCE = {
     "blend_identity": "the image blended with itself is its coarsest level upsampled, here and on "
                       "another photo (probe); or, to 1.5 grey levels on average, the image less that level "
                       "(what band-pass levels alone collapse to)",
-    "blend_levels_counted": "the whole blend equals, to half a grey level on average, the blend of a pyramid "
-                            "one level deeper, on a chessboard mask that tells 1, 2 and 3 levels apart by 10-15",
     "name_rotations": "both maps returned are rotation matrices (orthonormal, determinant 1), measured: "
                       "the claim itself",
     "name_wrapped_stripes": "the patterns are those of k mod 256 bit for bit, here and on a 1024-column "

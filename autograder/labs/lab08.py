@@ -3576,43 +3576,6 @@ def _divided_by_its_maximum(function) -> str:
     return ""
 
 
-@ext3.check("levels counts the full-resolution level: levels=1 is the plain weighted blend", points=1)
-def blend_levels_counted(t):
-    # A pyramid of one level is the image itself: its blend is mask * img1 + (1 - mask) * img2, exactly. With
-    # levels=2 the image is downsampled once (the API: levels counts the full-resolution level). A chessboard
-    # mask of 8 px cells tells pyramids of 1, 2 and 3 levels apart by 10-15 grey levels on average; blends of
-    # two levels are otherwise left to the seam checks (pyramids are built in more than one legitimate way).
-    img1, img2 = photo("astronaut", (128, 96)), photo("coffee", (128, 96))
-    ys, xs = np.mgrid[0:96, 0:128]
-    mask = (((xs // 8) + (ys // 8)) % 2).astype(np.float64)
-    weights = mask[..., None]
-    plain = np.clip(np.round(weights * img1 + (1 - weights) * img2), 0, 255)
-    what = "blend_multiband(img1, img2, chessboard mask, levels={})"
-    one = blended(t, what.format(1), img1, img2, mask, levels=1)
-    error = mean_difference(one, plain)
-    if error > 1.0:
-        t.images(what.format(1), img1=img1, img2=img2, yours=one, expected=plain.astype(np.uint8))
-        if mean_difference(one, truth.multiband(img1, img2, mask, 2)) <= 0.5:
-            t.fail(measured(f"{what.format(1)} is the blend of a pyramid of 2 levels ({error:.1f} grey levels from "
-                            f"the plain weighted blend): it looks like {LEVEL_TOO_MANY}: levels counts the "
-                            "full-resolution level, so the image is downsampled levels - 1 times (none for "
-                            "levels=1)"), mistake=LEVEL_TOO_MANY)
-        t.fail(measured(f"{what.format(1)} differs from mask * img1 + (1 - mask) * img2 by {error:.1f} grey levels "
-                        "on average: a pyramid of one level is the image itself, so its blend is the plain "
-                        "weighted one"))
-    two = blended(t, what.format(2), img1, img2, mask, levels=2)
-    right, deeper = (mean_difference(two, truth.multiband(img1, img2, mask, k)) for k in (2, 3))
-    if deeper <= 0.5 < right:
-        t.images(what.format(2), img1=img1, img2=img2, yours=two)
-        t.fail(measured(f"{what.format(2)} is the blend of a pyramid of 3 levels: it looks like {LEVEL_TOO_MANY}: "
-                        "levels counts the full-resolution level, so the image is downsampled once for levels=2"),
-               mistake=LEVEL_TOO_MANY)
-    return passed(f"levels=1 gives the plain weighted blend ({error:.2f} grey levels apart)")
-
-
-LEVEL_TOO_MANY = "the pyramid has one level more than levels asks for"
-
-
 @ext3.check("a mask's weights are used as given: 0.25 everywhere is a quarter of img1", points=1)
 def blend_partial_weight(t):
     img1, img2 = photo("astronaut", (128, 96)), photo("coffee", (128, 96))

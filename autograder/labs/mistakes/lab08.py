@@ -759,13 +759,6 @@ MISTAKES = {
         def blend_multiband(img1, img2, mask, levels=4):
             return _reference_blend(img1, img2, mask, 2)
         """, ["levels=1 and levels=6 give the same image: levels is ignored"]),
-    "a pyramid of one level more than levels asks for": ("lab08.ext3", """
-        def _gaussian_pyramid(image, levels):
-            pyramid = [image]
-            for _ in range(levels):          # levels - 1: levels counts the full-resolution level
-                pyramid.append(cv2.pyrDown(pyramid[-1]))
-            return pyramid
-        """, ["the pyramid has one level more than levels asks for"]),
     "one smoothed mask for the whole image (no Laplacian pyramid)": ("lab08.ext3", """
         def blend_multiband(img1, img2, mask, levels=4):
             weights = _gaussian_pyramid(np.asarray(mask, np.float32), levels)
