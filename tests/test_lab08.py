@@ -361,3 +361,19 @@ def test_a_pyramid_without_its_low_pass_top_is_named(tmp_path, edit):
     [check] = [c for c in check_results(result, "lab08.ext3") if c.name == "blending an image with itself leaves it unchanged"]
     assert not check.passed and check.mistake.startswith("the pyramid's low-pass top"), (check.mistake, check.message)
     assert "must undo the one taken out" not in check.message + check.hint
+
+
+@pytest.mark.parametrize("iterable, part", [
+    ("images", False), ("zip(images, homographies)", False), ("range(len(images))", False),
+    ("range(0, len(images))", False), ("images[0:]", False),
+    ("images[1:]", True), ("zip(images[1:], homographies[1:])", True), ("range(1, len(images))", True),
+    ("range(len(images) - 1)", True), ("enumerate(images[:-1])", True),
+])
+def test_a_loop_over_part_of_the_images_is_not_every_image(iterable, part):
+    """The canvas sentence "your code sizes it from every image's warped corners" is said only of a loop
+    over every image: `images[1:]` leaves the reference frame's corners out."""
+    import ast as python_ast
+
+    from autograder.labs import lab08
+
+    assert lab08._over_a_part(python_ast.parse(iterable, mode="eval").body) == part

@@ -833,6 +833,8 @@ def test_a_dimension_tested_after_the_array_was_made_two_dimensional_is_named():
         == set()
     assert one(project.format(first="P = np.asarray(points, float)", second="single = P.ndim == 1; "
                               "P = np.atleast_2d(P)")) == set()
+    # one row of the 2-D array taken at once: the name is 1-D again
+    assert one(project.format(first="P = np.atleast_2d(points)[0]", second="single = P.ndim == 1")) == set()
 
 
 def test_the_ransac_masks_outliers_kept_are_named():

@@ -429,7 +429,7 @@ def shared_helper_sentence(function: str, helpers, others) -> str:
     # measured: the others' own checks failed in this grading; the code reads that both go through the helpers
     return measured(f"Your `{function}` goes through your {named}, which your {_names(others)} "
                     f"{'uses' if one else 'use'} too, and {'it fails its' if one else 'they fail their'} own checks "
-                    f"in this grading: a mistake in {joined('or')} fails this check as well.")
+                    f"in this grading: a mistake in {joined('or')} would fail this check as well.")
 
 
 def _failing(trial) -> set:

@@ -2053,9 +2053,9 @@ def _identity_beside_img1(call) -> bool:
 # to code that does not visibly place it so; to code that does, what is left is the canvas it is placed on.
 IMG1_SHIFTED = Hint("img1 is the reference frame and must only be shifted",
                     asks=Predicate("places img1 by a shift alone", _img1_only_shifted),
-                    instead="your code {found}, so look at what decides where it lands and what covers it: the "
+                    instead="your code {found}, so look at what decides where it lands and what may cover it: the "
                             "canvas's size and shift come from the corners of both images, img2's where its "
-                            "homography sends them, and img2 warped by that homography is drawn over img1's place")
+                            "homography sends them, and img2 warped by a wrong homography can be drawn over img1")
 
 
 def stitch_scene():
@@ -2215,11 +2215,12 @@ def _over_a_part(iterable) -> bool:
                 and (node.slice.upper is not None or (node.slice.lower is not None and not (
                     isinstance(node.slice.lower, ast.Constant) and node.slice.lower.value == 0))):
             return True
-        if isinstance(node, ast.Call) and _path(node.func) == "range" and (
-                (len(node.args) >= 2 and not (isinstance(node.args[0], ast.Constant) and node.args[0].value == 0))
-                or (node.args and isinstance(node.args[-1 if len(node.args) < 3 else 1], ast.BinOp)
-                    and isinstance(node.args[-1 if len(node.args) < 3 else 1].op, ast.Sub))):
-            return True
+        if isinstance(node, ast.Call) and _path(node.func) == "range" and node.args:
+            start = node.args[0] if len(node.args) >= 2 else ast.Constant(0)
+            stop = node.args[min(len(node.args), 2) - 1]
+            if not (isinstance(start, ast.Constant) and start.value == 0) \
+                    or (isinstance(stop, ast.BinOp) and isinstance(stop.op, ast.Sub)):
+                return True
     return False
 
 

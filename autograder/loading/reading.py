@@ -1439,9 +1439,10 @@ _ESSENTIAL_TAKERS = frozenset({"recoverPose", "decomposeEssentialMat"})
 
 
 def _bindings(function) -> dict[str, list]:
-    """name -> its bindings in line order, each ``(line, value, position)``: the value assigned
-    (``value.value`` for a subscripted one: ``f(x)[0]``), ``position`` the name's place in a tuple
-    target (None for a lone name); an augmented or annotated assignment binds an unknown value."""
+    """name -> its bindings in line order, each ``(line, value, position)``: the value assigned and which of
+    its results the name gets -- ``position`` is the name's place in a tuple target (``F, mask = f(x)``) or
+    the constant index taken at once (``v = f(x)[1]``), None for the value itself. Any other subscript, an
+    augmented or an annotated assignment binds an unknown value."""
     bindings: dict[str, list] = {}
     for node in ast.walk(function):
         if isinstance(node, ast.Assign):
@@ -1450,23 +1451,28 @@ def _bindings(function) -> dict[str, list]:
             targets, value = [node.target], _UNKNOWN
         else:
             continue
-        value = value.value if isinstance(value, ast.Subscript) else value
+        taken = None
+        if isinstance(value, ast.Subscript):
+            index = value.slice
+            taken = index.value if isinstance(index, ast.Constant) and type(index.value) is int else None
+            value = value.value if taken is not None else _UNKNOWN
         for target in targets:
-            places = list(enumerate(target.elts)) if isinstance(target, (ast.Tuple, ast.List)) else [(None, target)]
+            places = list(enumerate(target.elts)) if isinstance(target, (ast.Tuple, ast.List)) else [(taken, target)]
             for position, place in places:
                 for bound in ast.walk(place):
                     if isinstance(bound, ast.Name):
                         bindings.setdefault(bound.id, []).append(
-                            (_line(node), value if bound is place else _UNKNOWN, position))
+                            (_line(node), value if bound is place and (taken is None or place is target) else _UNKNOWN,
+                             position))
     for found in bindings.values():
         found.sort(key=lambda binding: binding[0])
     return bindings
 
 
 def _binding_above(bindings: dict, name: str, line: int):
-    """The last binding of ``name`` on a line above ``line`` (None when there is none)."""
+    """The last binding of ``name`` on a line above ``line`` (None when there is none); by bisection."""
     found = bindings.get(name, [])
-    last = bisect.bisect_left([binding[0] for binding in found], line) - 1
+    last = bisect.bisect_left(found, line, key=lambda binding: binding[0]) - 1
     return found[last] if last >= 0 else None
 
 
@@ -1519,24 +1525,13 @@ def _eigenvectors_as_rows(name, function) -> list[Finding]:
             continue
         line, value, position = found[0]
         made_by = _call_name(value) if isinstance(value, ast.Call) else ""
-        from_vectors = position == 1 or (position is None and _vectors_subscript(function, node.value.id))
-        if made_by in _EIGEN_SOLVERS and from_vectors and _line(node) >= line:
+        if made_by in _EIGEN_SOLVERS and position == 1 and _line(node) >= line:   # (the vectors: result 1)
             vectors, taken = node.value.id, ast.unparse(node)
             return [Finding(name, _line(node), "a row of the eigenvector matrix taken as an eigenvector",
                             f"{name} (line {_line(node)}) takes `{taken}`, a row of `{vectors}`, the eigenvectors "
                             f"np.linalg.{made_by} returned at line {line}; they are its columns: "
                             f"`{vectors}[:, i]` is the eigenvector of the i-th eigenvalue", certain=True)]
     return []
-
-
-def _vectors_subscript(function, name: str) -> bool:
-    """Whether ``name = <eig call>[1]``: the vectors of an eigen-decomposition, subscripted at once."""
-    for node in ast.walk(function):
-        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
-                and node.targets[0].id == name and isinstance(node.value, ast.Subscript) \
-                and isinstance(node.value.slice, ast.Constant) and node.value.slice.value == 1:
-            return True
-    return False
 
 
 # ------------------------------------------------------------------ a sign lost by a square root
@@ -1615,7 +1610,7 @@ def _dimension_tested_after_reshaping(name, function) -> list[Finding]:
     for node in ast.walk(function):
         tested = _one_dimensional_test(node)
         last = _binding_above(bindings, tested, _line(node)) if tested else None
-        if last is not None and _makes_two_dimensional(last[1]):
+        if last is not None and last[2] is None and _makes_two_dimensional(last[1]):
             return [Finding(name, _line(node), "a dimension tested after the array was made two-dimensional",
                             f"{name} (line {_line(node)}) tests `{ast.unparse(node)}` after line {last[0]} made "
                             f"`{tested}` two-dimensional (`{ast.unparse(last[1])}`): the test is never true, so a "
