@@ -612,7 +612,8 @@ KEEPS_LOWEST = (Predicate("picks the lowest cost", _picks(False, COST_NAMES), ki
 # Predicates several labs' hints share.
 RATIO_TEST = (expr("_.distance < _ * _.distance") | expr("_.distance < _.distance * _")
               | expr("_ * _.distance > _.distance") | expr("_.distance / _.distance < _")).saying(
-    "applies Lowe's ratio test (best.distance < ratio * second.distance)")
+    # (the comparison's form only: the factor may be a number of the code's own, not the `ratio` asked for)
+    "applies a ratio test (best.distance < r * second.distance)")
 TO_UINT8 = (expr("_.astype(np.uint8)") | expr("_.astype('uint8')") | expr("np.uint8(_)")
             | keyword("np.clip", "dtype") | expr("_.astype(dtype=np.uint8)")).saying("converts to uint8")
 NAN_WHERE = (calls("np.where") & mentions("np.nan")).saying("uses np.where with np.nan")
