@@ -52,13 +52,18 @@ GUARDED: dict[str, "Hint | Checklist"] = {}
 MEASURED: set[str] = set()
 
 
-def _remember(text: str) -> None:
+READ_IN_CODE: set[str] = set()   # names said only after reading the code (from_code), made while a module loads
+
+
+def _remember(text: str, read: bool = False) -> None:
     """Keep a mark made while a module loads (a table's sentence, which the coverage tests then
     find wherever it is used); a mark made in a check holds the student's figures and is never
     said again: kept, a long batch would grow the set without end. Literals written inside
     measured(...)/from_code(...) are recognised by the coverage tests where they stand."""
     if sys._getframe(2).f_code.co_name == "<module>":
         MEASURED.add(text)
+        if read:
+            READ_IN_CODE.add(text)
 
 
 def measured(text: str) -> str:
@@ -72,7 +77,7 @@ def measured(text: str) -> str:
 def from_code(text: str) -> str:
     """``text``, marked as said only where the check has read the student's code to do what it
     says (``calls("cv2.getOptimalNewCameraMatrix").found(...)`` before naming it). Returns ``text``."""
-    _remember(text)
+    _remember(text, read=True)
     return text
 
 
@@ -104,28 +109,35 @@ def guard(text: str, asks: Predicate, instead: str | None = None, functions: tup
 
 
 EVIDENCED: dict[str, Predicate] = {}   # a mistake's name -> the code that does that mistake, where visible
+ONLY_WHERE_SEEN: set[str] = set()      # names said only where their code is seen
 
 
-def evidenced(text: str, does: Predicate) -> str:
+def evidenced(text: str, does: Predicate, only_where_seen: bool = False) -> str:
     """Register what in the student's code shows the mistake ``text`` is theirs (``does``): where
     several mistakes give the same answer and are named together ("A; or, the same answer here, B"),
-    the ones whose code is seen are said alone (:func:`seen_in_code`). Returns ``text``."""
+    the ones whose code is seen are said alone (:func:`seen_in_code`). ``only_where_seen``: the name is
+    a reading of one written form (`reshape(3, 3, order='F')`), never said of code that does not show
+    it (beside the others, it would tell code reshaping row by row that it reshapes column by column).
+    Returns ``text``."""
     known = EVIDENCED.get(text)
     if known is not None and known != does:
         raise ValueError(f"evidenced: {text!r} is registered twice with different predicates")
     EVIDENCED[text] = does
+    if only_where_seen:
+        ONLY_WHERE_SEEN.add(text)
     return text
 
 
 def seen_in_code(t, names: list) -> list:
     """Of mistakes that give the same answer, those whose code the student's functions (the check's)
-    visibly do; all of them when none is seen, or when the code cannot be read."""
+    visibly do; all of them (but those said only where seen) when none is seen, or when the code cannot
+    be read."""
     code = code_of(t)
     if len(names) < 2 or not code.functions:
         return names
     read = code.reachable(functions_read(t))
     seen = [name for name in names if name in EVIDENCED and EVIDENCED[name].found(read)]
-    return seen or names
+    return seen or [name for name in names if name not in ONLY_WHERE_SEEN] or names
 
 
 class LookAt:

@@ -643,8 +643,8 @@ def _one_naming_time(sandboxes: list) -> None:
 
 def _public_memory_to(fresh: list, public: list) -> None:
     """Give the hidden phase's workers what the public checks left for confirming repairs: the checks
-    that called each function (their inputs are public), the functions failing their own checks and
-    the calls seen. Copies, one way: what a hidden check adds never reaches a public worker's, and
+    that called each function (their inputs are public), the functions failing their own checks, the
+    calls seen and the changes told. Copies, one way: what a hidden check adds never reaches a public worker's, and
     the public phase has ended."""
     from .inherited import SHARED_FAILING
 
@@ -659,6 +659,9 @@ def _public_memory_to(fresh: list, public: list) -> None:
                 elif key == "repair seen":
                     for function, calls in value.items():
                         sandbox.shared.setdefault(key, {}).setdefault(function, []).extend(calls)
+                elif key == "repair found":   # (the changes told: one mistake, one repair, hidden checks too)
+                    for function, mutants in value.items():
+                        sandbox.shared.setdefault(key, {}).setdefault(function, list(mutants))
 
 
 def _remember_check(check: Check, trial: Trial) -> None:

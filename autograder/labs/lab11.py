@@ -908,6 +908,14 @@ def essential_from_F_property(t):
                      essential_of_estimated_mistakes(F, K1, K2), probe=essential_of_estimated_probe(t))
 
 
+# f reshaped column by column, seen in the code (an F^T that kron(x1, x2) rows or pts swapped give too)
+TRANSPOSED_RESHAPE = (reshapes(3, 3, order="F") | expr("_.reshape(3, 3).T") | expr("_.reshape((3, 3)).T")
+                      | expr("np.reshape(_, (3, 3)).T")).saying("reshapes f column by column")
+# The same slip in the essential matrix's solve gives E^T, the answer of pts1 and pts2 swapped or of rows kron(x1, x2)
+E_COLUMN_ORDER = evidenced(from_code("the null vector e was reshaped column by column (order='F'), which gives E^T: "
+                                     "E = e.reshape(3, 3)"), TRANSPOSED_RESHAPE, only_where_seen=True)
+
+
 # The sheet's exercise 4 prints A's row as [x x', x y', x, y x', y, x', y', y', 1]: y' twice, y y' missing.
 SHEET_ROW = ("the rows of A are the lab sheet's row as printed, [x x', x y', x, y x', y, x', y', y', 1], which has a "
              "misprint (y' twice, y y' missing): for x'^T F x = 0 each row is [x' x, x' y, x', y' x, y' y, y', x, y, 1]")
@@ -938,6 +946,7 @@ def _essential_8point_mistakes(views, figures):
     """Named wrong answers; ``figures`` holds the variants' results on this problem."""
     return {
         "pts1 and pts2 are swapped (this is E^T)": figures["gold"].T,
+        E_COLUMN_ORDER: figures["gold"].T,
         "the fundamental matrix: the pixels were not normalised with K^-1 first": views.F,
         "the pixels were not normalised with K^-1 first (this is F forced to singular values (1, 1, 0))":
             figures["pixels"],
@@ -1089,9 +1098,6 @@ ex4 = lab.exercise("ex4", "Fundamental matrix (8-point algorithm)", functions=["
 lab.forbid("fundamental_8point", "cv2.findFundamentalMat")
 
 
-# f reshaped column by column, seen in the code (an F^T that kron(x1, x2) rows or pts swapped give too)
-TRANSPOSED_RESHAPE = (reshapes(3, 3, order="F") | expr("_.reshape(3, 3).T") | expr("_.reshape((3, 3)).T")
-                      | expr("np.reshape(_, (3, 3)).T")).saying("reshapes f column by column")
 FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores for each problem
     "swapped": "pts1 and pts2 are swapped (this is F^T: x2^T F x1 = 0 has pts2 on the left)",
     "xy": "x and y are swapped in the rows of A (x is the column: each row is "

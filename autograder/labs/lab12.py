@@ -2641,7 +2641,10 @@ def simulate_not_in_front(t):
              expected_first=truth.simulate_structured_light(depth, f, baseline, n_bits)[0])
     t.fail(f"{what}: {lit.mean():.1%} of the pixels, all at {where}, are lit: a point at Z <= 0 is not in "
            "front of the camera, so no projector column lights it: it is black (0) in every image.",
-           mistake="pixels with Z <= 0 are lit", hint=PROJECTOR_MODEL)
+           mistake="pixels with Z <= 0 are lit", hint=measured(
+               "a pixel whose depth is not > 0 must be left out of the pixels the patterns are written to (black "
+               "in every image), whatever column its disparity gives (a disparity set to 0 there gives column u, "
+               "inside the projector)"))
 
 
 # A projector as wide as a 320-pixel image has columns above 255: a column kept in 8 bits (uint8)
@@ -2778,9 +2781,12 @@ def _bits_in_order(function) -> bool | None:
 BITS_IN_ORDER = wherever_written("reads the bits most significant first", _bits_in_order)
 
 
+# A column rounded, written any way (np.round, np.rint, round, np.floor(x + 0.5), int(x + 0.5)), from a division
+# written any way (`f * b / Z`, `np.divide(f * b, Z, where=valid)`): predicates lean towards "the code does it".
+ROUNDS = calls_any("np.round", "np.rint", "round", "np.around", "np.floor", "math.floor") | expr("_ + 0.5")
+DIVIDES = expr("_ / _") | calls_any("np.divide", "np.true_divide")
 PROJECTOR_MODEL = checklist(
-    "", ("pixel (u, v) at depth Z sees projector column round(u - f*baseline/Z)",
-         (calls("np.round") | calls("np.rint") | calls("round") | calls("np.floor")) & expr("_ * _ / _")),
+    "", ("pixel (u, v) at depth Z sees projector column round(u - f*baseline/Z)", ROUNDS & DIVIDES),
     ("a pixel with Z <= 0 is black", expr("_ > 0") | expr("_ <= 0") | expr("0 < _")),
     ("a pixel whose column is off the projector (below 0, or at its width and past) is black",
      Predicate("tests the column against both ends", _both_bounds)),

@@ -70,12 +70,16 @@ class Fix:
     where : the ``def`` changed (the graded function or a module function it runs).
     operator : the operator that made the (first) change.
     edits : the change, as :func:`.operators.apply_edits` takes it.
+    skips : ``(line, name, source, module names)`` where the change reads ``source`` in the place of
+        ``name``, which ``line`` computes from ``source`` (:meth:`_Student.skipped_step`): the answers come
+        right by skipping that step, so the step is where to look; ``()`` otherwise.
     """
 
     changes: tuple
     where: str
     operator: str
     edits: tuple
+    skips: tuple = ()
 
     @property
     def size(self) -> int:
@@ -100,7 +104,20 @@ class Fix:
             return self.changes[0][2].replace("{inside}", inside)
         said = [f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
                 for line, before, after in _nested_merged(self.changes)]
-        return ("removing " if self.changes[0][2] == "pass" else "changing ") + " and ".join(said)
+        told = ("removing " if self.changes[0][2] == "pass" else "changing ") + " and ".join(said)
+        if self.skips:
+            line, name, source, constants = self.skips
+            reads = " and ".join(f"`{c}`" for c in constants)
+            told += (f", which skips the step of line {line} that computes `{name}` from `{source}`"
+                     + (f" (and reads {reads}, defined outside the function)" if reads else "") + ",")
+        return told
+
+    @property
+    def likely(self) -> str:
+        """Where the mistake likely is, after a sentence telling this change alone."""
+        if self.skips:
+            return f"so the mistake is likely in that step (line {self.skips[0]}), or the step does not belong there"
+        return "so the mistake is likely there"
 
 
 def _drawn_otherwise(values, students) -> bool:
@@ -151,7 +168,7 @@ class Repair:
                 f"and its answers on the {self.inputs} inputs tried are no farther from the expected ones")
         if len(self.fixes) == 1:
             return f"{head}: {self.fixes[0].told(self.function)} {makes}, " \
-                   + ("so the mistake is likely there" if self.complete
+                   + (self.fixes[0].likely if self.complete
                       else "so the mistake may be there (other changes were not all tried in the time)")
         listed = "; ".join(fix.told(self.function) for fix in self.fixes)
         return f"{head}: each of these {makes}, so the mistake is likely at one " \
@@ -940,8 +957,35 @@ class _Student:
         if mutant.key not in self.fixes:
             shown = _together([self.shown(edit) for edit in mutant.edits])
             self.fixes[mutant.key] = None if any(each is None for each in shown) else \
-                Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
+                Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits, self.skipped_step(mutant))
         return self.fixes[mutant.key]
+
+    def skipped_step(self, mutant) -> tuple:
+        """``(line, name, source, module names)`` where the mutant reads ``source`` in the place of ``name``,
+        the value the def's last assignment of ``name`` before that place computes from ``source``
+        (`homogeneous[:, :2]` -> `X[:, :2]` below `homogeneous = ... X ... @ M.T`): the step between them
+        is skipped, and the module's own names that step reads (a constant matrix `M`); ``()`` otherwise."""
+        where, ordinal, operator, payload = mutant.edits[0]
+        if operator != "other_name" or len(mutant.edits) != 1 or not isinstance(payload, str):
+            return ()
+        nodes, _ = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        if not isinstance(node, ast.Name):
+            return ()
+        made = [n for n in nodes if isinstance(n, ast.Assign) and n.lineno < node.lineno
+                and any(isinstance(t, ast.Name) and t.id == node.id for t in n.targets)]
+        if not made:
+            return ()
+        step = max(made, key=lambda n: n.lineno)
+        read = {n.id for n in ast.walk(step.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+        if payload not in read:
+            return ()
+        local = {n.id for n in nodes if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)} \
+            | {a.arg for a in ast.walk(self._defs[where].args) if isinstance(a, ast.arg)}
+        module = {t.id for statement in self.tree.body if isinstance(statement, ast.Assign)
+                  for t in statement.targets if isinstance(t, ast.Name)}
+        constants = tuple(sorted(n for n in read if n in module and n not in local))
+        return (step.lineno, node.id, payload, constants)
 
     def _moved(self, mutant) -> Fix | None:
         """A change of where statements are, told in words (the statements whole would be too long to
@@ -2961,10 +3005,14 @@ BESIDE_SECONDS = 4.0
 
 def _beside(verdict) -> bool:
     """Whether a repair may be told beside the check's own name of the mistake: not beside a name that
-    already points into the code (a reading of it, a line) nor one a repair made."""
+    already points into the code (a reading of it -- :func:`..claims.from_code` --, a line) nor one a repair
+    made."""
+    from ..claims import READ_IN_CODE
     from ..inplace import MISTAKE as CHANGED_IN_PLACE
 
     message = str(verdict.message)
+    if verdict.mistake in READ_IN_CODE:   # (a name said after reading the code points into it already)
+        return False
     # (nor beside a caller's array changed in place, measured where the effect shows: the write is the slip,
     # and a change elsewhere that mends the second call's answers -- a rounding made a floor -- compensates)
     return BESIDE_NAMES and not verdict.mistake.startswith(MISTAKE) and verdict.mistake != CHANGED_IN_PLACE \
@@ -3019,7 +3067,11 @@ def _upstream(repair: Repair, trial) -> Repair:
         return _downstream_dropped(repair, code)
     where, line = found
     after = lambda fix: fix.where == where and min(change[0] for change in fix.changes) > line  # noqa: E731
-    kept = tuple(fix for fix in repair.fixes if not after(fix))
+    # (and a change of a line before it, whose values are the reference's, compensates for the slip further on:
+    # A built as A^T by `np.column_stack` makes `A @ A.T` right, where `A.T @ A` is the fix)
+    before = lambda fix: fix.where == where and max(change[0] for change in fix.changes) < line  # noqa: E731
+    kept = tuple(fix for fix in repair.fixes if not after(fix) and not before(fix)) \
+        or tuple(fix for fix in repair.fixes if not after(fix))
     return replace(repair, fixes=kept) if kept and len(kept) < len(repair.fixes) else repair
 
 
@@ -3096,6 +3148,11 @@ def named_by_repair(verdict, trial, traceback_text: str = ""):
     if repair is None:
         return verdict
     repair = _upstream(repair, trial)
+    # (what later checks take as known is what is told: a compensation dropped here is no fix for them)
+    found = trial.sandbox.shared.setdefault("repair found", {})
+    told = {repr(fix.edits) for fix in repair.fixes}
+    found[repair.function] = [m for m in found.get(repair.function, []) if repr(m.edits) in told] \
+        or found.get(repair.function, [])
     student = _student_code(trial)
     ran = set().union(*(lines for (function, _), lines in trial.sandbox.shared.get("repair lines run", {}).items()
                         if function == repair.function and lines))

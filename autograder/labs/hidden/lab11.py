@@ -15,7 +15,8 @@ from fixtures import lab11 as truth
 from fixtures.lab12 import triangulation_variants
 
 from ...engine.checks import partial
-from ..lab11 import (PIPELINE_TIMEOUT, call_reconstruction, conditioned_distance, ex1, ex2, ex3, ex4, ex5, ex6, judge_epipoles,
+from ..lab11 import (E_COLUMN_ORDER, PIPELINE_TIMEOUT, call_reconstruction, conditioned_distance, ex1, ex2, ex3, ex4,
+                     ex5, ex6, judge_epipoles,
                      judge_lines, judge_pipeline_F, judge_projective, judge_structure, judge_triangulation)
 from ._draws import seed, uniform
 
@@ -61,7 +62,8 @@ def hidden_essential_8(t):
     views = truth.two_views(seed=seed(t.rng), n=8)
     judge_projective(t, "essential_8point(pts1, pts2, K1, K2) with N=8",
                      t.call("essential_8point", views.pts1, views.pts2, views.cam1.K, views.cam2.K),
-                     views.E, {"pts1 and pts2 are swapped (this is E^T)": views.E.T}, tolerance=1e-5)
+                     views.E, {"pts1 and pts2 are swapped (this is E^T)": views.E.T, E_COLUMN_ORDER: views.E.T},
+                     tolerance=1e-5)
 
 
 @ex4.check("hidden: fundamental_8point on exact problems of any size", points=1, hidden=True)
