@@ -137,3 +137,29 @@ def test_of_mistakes_giving_the_same_f_transposed_the_one_seen_in_the_code_is_sa
     failed = [c for c in check_results(grade(str(folder), ["lab11.ex4"]), "lab11.ex4") if c.score < c.max_score]
     named = [c for c in failed if "reshaped column by column" in c.message]
     assert named and all("kron(x1, x2)" not in c.message and "the same answer here" not in c.message for c in named)
+
+
+ESSENTIAL_TRANSPOSED = """
+    def essential_8point(pts1, pts2, K1, K2):
+        x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
+        x2 = _homogeneous(pts2) @ np.linalg.inv(K2).T
+        A = ({rows}[:, :, None] * {columns}[:, None, :]).reshape(len(x1), 9)
+        E = np.linalg.svd(A)[2][-1].reshape(3, 3{order})
+        U, _, Vt = np.linalg.svd(E)
+        return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+    """
+
+
+@pytest.mark.parametrize("rows, columns, order, column_order_said", [
+    ("x2", "x1", ", order='F'", True),    # the null vector reshaped column by column: said alone
+    ("x1", "x2", "", False),              # rows kron(x1, x2), reshaped row by row: never told it reshapes by columns
+])
+def test_e_transposed_is_a_column_major_reshape_only_where_the_code_shows_one(tmp_path, rows, columns, order,
+                                                                               column_order_said):
+    folder = mutant(tmp_path, MODULE, ESSENTIAL_TRANSPOSED.format(rows=rows, columns=columns, order=order))
+    result = grade(folder, ["lab11.ex3"], pictures="none", include_hidden=False)
+    exact = next(c for c in check_results(result, "lab11.ex3") if c.name.startswith("essential_8point recovers E"))
+    assert exact.score < exact.max_score
+    assert ("reshaped column by column" in exact.message) == column_order_said, exact.message
+    if column_order_said:
+        assert "swapped" not in exact.message and "kron(x1, x2)" not in exact.message, exact.message

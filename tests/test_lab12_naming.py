@@ -222,3 +222,34 @@ def test_a_dp_whose_penalty_rewards_jumps_is_told_so_not_that_its_smoothness_is_
     messages = [c.message for e in result.exercises for c in e.checks if not c.passed]
     assert any("rewards jumps instead of costing them" in m for m in messages), messages
     assert not any("smoothness term is ignored" in m for m in messages), messages
+
+
+LIT_WITHOUT_VALIDITY = """
+    def simulate_structured_light(depth, f, baseline, n_bits):
+        depth = np.asarray(depth, dtype=np.float64)
+        height, width = depth.shape
+        patterns = gray_code_patterns(width, n_bits)
+        valid = np.isfinite(depth) & (depth > 0)
+        u = np.broadcast_to(np.arange(width, dtype=np.float64), depth.shape)
+        disparity = np.divide(float(f) * float(baseline), depth, out=np.zeros_like(depth), where=valid)
+        column = np.floor(u - disparity + 0.5).astype(np.int64)
+        lit = (column >= 0) & (column < width)
+        images = np.zeros((int(n_bits), height, width), dtype=np.uint8)
+        images[:, lit] = patterns[:, column[lit]]
+        return images
+    """
+
+
+def test_the_projector_column_is_read_however_rounded_and_divided(tmp_path):
+    """`np.floor(u - np.divide(f * b, Z, where=valid) + 0.5)` computes the sheet's column: no hint asks for it;
+    the lit mask without the validity test is told by what the check measured."""
+    from autograder.engine.claims import GUARDED
+
+    code = read_code(textwrap.dedent(LIT_WITHOUT_VALIDITY))
+    told = GUARDED[lab12.PROJECTOR_MODEL].told(code, ["simulate_structured_light"])
+    assert "round(u - f*baseline/Z)" not in told, told
+    folder = mutant(tmp_path, MODULE, LIT_WITHOUT_VALIDITY)
+    result = grade(folder, ["lab12.ex6"], pictures="none", include_hidden=False)
+    black = next(c for c in check_results(result, "lab12.ex6") if "no depth in front black" in c.name)
+    assert black.score < black.max_score
+    assert "round(u - f*baseline/Z)" not in black.hint and "left out of the pixels" in black.hint, black.hint

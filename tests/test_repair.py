@@ -3845,3 +3845,66 @@ def test_names_read_only_by_raising_guards_are_found_through_a_chain_of_names():
     student = repair._Student(source, ast.parse(source), ["graded"])
     guarded = student._guard_only_names("graded")
     assert {"a0", "a150", "a300", "area"} <= guarded and "src" not in guarded
+
+
+def test_a_change_before_the_first_departure_compensates_and_is_not_told(tmp_path):
+    """A^T A where A A^T was written: building A transposed (`np.column_stack`) mends the answers as
+    well as the product's order does, but A itself is right (each point's A is an item of the
+    reference's stack): the change told, in the public checks and the hidden ones, is the product's."""
+    folder = mutant(tmp_path, "lab11_two_view", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1, P2 = np.asarray(P1, np.float64), np.asarray(P2, np.float64)
+            pts1 = np.asarray(pts1, np.float64).reshape(-1, 2)
+            pts2 = np.asarray(pts2, np.float64).reshape(-1, 2)
+            result = []
+            for (x1, y1), (x2, y2) in zip(pts1, pts2):
+                A = np.vstack([x1 * P1[2] - P1[0],
+                               y1 * P1[2] - P1[1],
+                               x2 * P2[2] - P2[0],
+                               y2 * P2[2] - P2[1]])
+                values, vectors = np.linalg.eigh(A @ A.T)
+                X = vectors[:, 0]
+                result.append(X[:3] / X[3])
+            return np.array(result)
+        """)
+    result = grade(folder, ["lab11.ex1"], pictures="none", include_hidden=True)
+    told = [c.message for c in check_results(result, "lab11.ex1") if c.score < c.max_score]
+    assert told and all("A.T @ A" in m for m in told), told
+    assert not any("column_stack" in m for m in told), told
+
+
+def test_a_change_skipping_a_step_points_at_the_step(tmp_path):
+    """`homogeneous[:, :2]` -> `X[:, :2]` mends a matrix typed with a wrong row by skipping the product:
+    the sentence says which step is skipped, the module's matrix it reads, and that the step is where to look."""
+    folder = mutant(tmp_path, "lab10_camera2", """
+        ORTHOGRAPHIC = np.array([[1.0, 0.0, 0.0, 0.0],
+                                 [0.0, 0.0, 1.0, 0.0],
+                                 [0.0, 0.0, 0.0, 1.0]])
+
+        def orthographic_project(points):
+            X = np.atleast_2d(np.asarray(points, dtype=np.float64))
+            homogeneous = np.column_stack([X, np.ones(len(X))]) @ ORTHOGRAPHIC.T
+            x = homogeneous[:, :2] / homogeneous[:, 2:3]
+            return x[0] if np.ndim(points) == 1 else x
+        """)
+    _, repaired = _failed_and_repaired(folder, "lab10.ex3")
+    assert repaired, "no change told"
+    said = repaired[0]
+    assert "skips the step of line" in said and "computes `homogeneous` from `X`" in said, said
+    assert "`ORTHOGRAPHIC`" in said and "likely in that step" in said, said
+    assert "so the mistake is likely there" not in said, said
+
+
+def test_a_name_replaced_by_what_it_is_computed_from_skips_a_step():
+    """`y` -> `x1` where `y = x1 * 2` skips the step of line 3; `y` -> `x2` (y is not made from x2), a name
+    replaced where it is assigned, or a name read in another's place (`x1` -> `y`) skip nothing."""
+    source = textwrap.dedent("""
+        def graded(x1, x2):
+            y = x1 * 2
+            return y + x1
+    """)
+    student = repair._Student(source, ast.parse(source), ["graded"])
+    skips = {student.fix(m).changes[0][2]: student.skipped_step(m)
+             for m in student.mutants("graded") if m.operator == "other_name" and student.fix(m)}
+    assert skips["return x1 + x1"] == (3, "y", "x1", ())
+    assert skips["return x2 + x1"] == () and skips["y = x2 * 2"] == () and skips["return y + y"] == ()

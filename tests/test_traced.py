@@ -521,7 +521,8 @@ def test_a_change_after_the_first_value_to_go_wrong_gives_way_to_that_value(tmp_
 def test_a_guess_from_the_answer_gives_way_to_a_confirmed_departure_before_its_repair(tmp_path):
     """E reshaped column by column inside essential_8point: the answer is E^T, which a check's guess reads
     as "pts1 and pts2 are swapped"; the repair beside it transposes E a line later. The reshape is where
-    the values first go wrong: that is told, and neither the guess nor the later change."""
+    the values first go wrong: that is told (or, where a check reads the reshape in the code, that), and neither
+    the guess nor the later change."""
     folder = mutant(tmp_path, "lab11_two_view", '''
 def essential_8point(pts1, pts2, K1, K2):
     x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
@@ -534,7 +535,10 @@ def essential_8point(pts1, pts2, K1, K2):
 ''')
     result = grade(str(folder), ["lab11.ex3"])
     messages = [c.message for c in check_results(result, "lab11.ex3") if c.score < c.max_score]
-    assert messages and all("reshape(3, 3, order='F')` (line" in m for m in messages), messages
+    # (told by the departure's line, or by the check's reading of the reshape in the code: never as the guess)
+    assert messages and all("reshape(3, 3, order='F')` (line" in m or "reshaped column by column (order='F')" in m
+                            for m in messages), messages
+    assert any("reshape(3, 3, order='F')` (line" in m for m in messages), messages
     assert not any("swapped" in m for m in messages)
 
 
@@ -588,3 +592,14 @@ def test_an_item_of_a_returned_tuple_of_the_wrong_shape_is_followed_to_where_it_
     messages = [c.message for c in check_results(result, "lab11.ex5") if not c.passed]
     assert messages and any("e1 has shape (3, 1); expected (3,). On this input, `Vt[-1:].T` (line" in m
                             for m in messages), messages
+
+
+def test_a_value_computed_per_item_agrees_with_an_item_of_the_references_stack():
+    """A loop over the points (`A` of one point, 4 x 4) where the reference stacks them all ((N, 4, 4)):
+    the student's value is one item of the reference's, so it agrees; another matrix does not."""
+    rng = np.random.default_rng(0)
+    stack = rng.normal(size=(5, 4, 4))
+    assert traced._agrees(stack[3].copy(), [stack])
+    assert not traced._agrees(stack[3].T.copy(), [stack])
+    assert not traced._agrees(rng.normal(size=(4, 4)), [stack])
+    assert not traced._agrees(stack[3, :3].copy(), [stack])   # (a part of an item is no item)
