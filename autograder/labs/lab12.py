@@ -2351,6 +2351,83 @@ def dp_fractional_smoothness(t):
            + (from_code(f"; your code {read}: keep it a float.") if read else "."),
            mistake=TRUNCATED)
 
+
+# Per scanline, data cost + s |d_p - d_q| with a huge s is least for one disparity over the whole row: the one
+# most of its columns support, whatever the data cost's form. Rows at disparity 6 whose last 16 columns are at 12
+# tell a DP that minimises the row's energy (6: the reference, every legitimate variant) from one decided by its
+# last columns alone (12: the forward pass carrying the previous column's data cost C(x - 1, d') where its
+# accumulated energy M(x - 1, d') belongs, or the backtracking started from the last column's least data cost).
+WHOLE_ROW = (6, 12, 16, 16)   # the row's disparity, the strip's, the strip's width, max_disparity
+LAST_COLUMNS_DECIDE = "each row's disparity is decided by its last columns alone, not by the energy of the whole row"
+FORWARD_PASS_DATA_COST = from_code("the forward pass carries the previous column's data cost, not its accumulated "
+                                   "energy")
+
+
+def _one_before(index, variable: str) -> bool:
+    """Whether a subscript's index holds ``variable - 1`` (``x - 1``, ``[:, x - 1]``)."""
+    return any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Sub) and isinstance(n.left, ast.Name)
+               and n.left.id == variable and isinstance(n.right, ast.Constant) and n.right.value == 1
+               for n in ast.walk(index))
+
+
+def recurrence_without_itself(functions) -> str:
+    """A loop filling ``built[x]`` from ``other[x - 1]`` that never reads ``built[x - 1]`` (a recurrence that does
+    not recur: `energy[x] = costs[x] + min(costs[x - 1] + ...)`), said as "`energy[x]` (line 12) is computed from
+    `costs[x - 1]` and never from `energy[x - 1]`"; "" where no loop does so."""
+    for function in functions:
+        for loop in (n for n in ast.walk(function) if isinstance(n, ast.For) and isinstance(n.target, ast.Name)):
+            variable = loop.target.id
+            body = [n for statement in loop.body for n in ast.walk(statement)]
+            before = {}   # name -> its first subscript one before (`costs[x - 1]`)
+            for n in body:
+                if isinstance(n, ast.Subscript) and isinstance(n.ctx, ast.Load) and isinstance(n.value, ast.Name) \
+                        and _one_before(n.slice, variable):
+                    before.setdefault(n.value.id, ast.unparse(n))
+            for assign in (n for n in body if isinstance(n, ast.Assign)):
+                for target in assign.targets:
+                    index = target.slice.elts if isinstance(getattr(target, "slice", None), ast.Tuple) else \
+                        [getattr(target, "slice", None)]
+                    # (filled at x itself -- `energy[x]`, `M[:, x]` -- not at x - 1: a backtracking's `d[x - 1]`)
+                    if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Name) \
+                            and any(isinstance(i, ast.Name) and i.id == variable for i in index) \
+                            and before and target.value.id not in before:
+                        other = before[sorted(before)[0]]
+                        return (f"`{ast.unparse(target)}` (line {assign.lineno}) is computed from `{other}` and never "
+                                f"from `{target.value.id}` at {variable} - 1")
+    return ""
+
+
+@ex5.check("with a huge smoothness each row takes the disparity its whole length supports (not its last columns')",
+           points=1, timeout=STEREO_TIMEOUT)
+def dp_whole_row(t):
+    d_row, d_strip, strip, max_disparity = WHOLE_ROW
+    left, right = truth.strip_at_the_end(d_row, d_strip, strip, max_disparity)
+    what = (f"dp_stereo(left, right, max_disparity={max_disparity}, smoothness=1e7) on rows at disparity {d_row} "
+            f"whose last {strip} columns are at {d_strip}")
+    got = t.expect_array(t.call("dp_stereo", left.copy(), right.copy(), max_disparity=max_disparity,
+                                smoothness=1e7), what, shape=left.shape, kind="iuf")
+    judged = np.asarray(got, np.float64)[:, max_disparity:]   # (the first columns can see no disparity above x)
+    modes = np.array([np.median(row[np.isfinite(row)]) if np.isfinite(row).any() else np.nan for row in judged])
+    at_strip = float(np.mean(np.abs(modes - d_strip) <= 0.5))
+    if at_strip < 0.5:   # (rows not constant, or at another disparity: the other checks judge the DP)
+        return passed(f"{float(np.mean(np.abs(modes - d_row) <= 0.5)):.0%} of the rows at disparity {d_row}")
+    columns = judged.shape[1]
+    read = recurrence_without_itself(code_of(t).reachable(["dp_stereo"]))
+    if read:
+        t.fail(f"{what}: {at_strip:.0%} of the rows take disparity {d_strip}, that of their last {strip} columns, where "
+               f"the other {columns - strip} columns judged are at {d_row}: {LAST_COLUMNS_DECIDE}. Reading your code: "
+               + from_code(f"{read}: the forward pass does not accumulate the energy along the row. Each column "
+                           "carries the previous column's accumulated energy, M(x, d) = C(x, d) + min_d' "
+                           f"[M(x - 1, d') + s |d - d'|], not its data cost."),
+               mistake=FORWARD_PASS_DATA_COST)
+    t.fail(measured(f"{what}: {at_strip:.0%} of the rows take disparity {d_strip}, that of their last {strip} "
+                    f"columns, where the other {columns - strip} columns judged are at {d_row}: {LAST_COLUMNS_DECIDE}. "
+                    "With a huge penalty a row keeps one disparity, the one whose data cost summed over the whole "
+                    "row is least. The energy carried from column to column is the accumulated one, "
+                    "M(x, d) = C(x, d) + min_d' [M(x - 1, d') + s |d - d'|], and the backtracking starts from the "
+                    "least M of the last column."), mistake=LAST_COLUMNS_DECIDE)
+
+
 # ================================================================== ex6 structured light
 ex6 = lab.exercise("ex6", "Structured light", functions=[
     "gray_code_patterns(width, n_bits)", "simulate_structured_light(depth, f, baseline, n_bits)",
