@@ -708,26 +708,41 @@ def decompose_property(t):
               describe=lambda s: f"fixtures.lab10.random_camera_matrix({s}) (negative scale included)")
 
 
+SIGN_OF_THE_CENTRE = "it returned R^T t; the centre is C = -R^T t (the sign is wrong)"
+
+
 def center_mistakes(R, tv) -> dict:
     return {
         "it returned t; the centre is C = -R^T t (the point with P [C, 1] = 0)": tv,
         "it returned -t; the centre is C = -R^T t (the rotation matters)": -tv,
         "it returned -R t; the centre is C = -R^T t (R transposed)": -R @ tv,
-        "it returned R^T t; the centre is C = -R^T t (the sign is wrong)": R.T @ tv,
+        SIGN_OF_THE_CENTRE: R.T @ tv,
     }
 
 
 def minor_sign_mistakes(R, tv) -> dict:
     """The centre from P's 3x3 minors, C = (det[p2 p3 p4], -det[p1 p3 p4], det[p1 p2 p4], -det[p1 p2 p3]),
     with the alternating signs left out: all four taken +, Y's and W's signs are both lost, so X and Z come
-    out negated; only Y's sign left out, Y comes out negated."""
+    out negated; only Y's sign left out, Y comes out negated; only W's, the whole centre (-C, which is R^T t:
+    said so of code made of minors, in the place of :data:`SIGN_OF_THE_CENTRE`)."""
     C = -R.T @ tv
     return {
         "the 3x3 minors of P enter C with alternating signs (+, -, +, -): with all four taken +, X and Z come "
         "out with the wrong sign": C * [-1.0, 1.0, -1.0],
         "the minor for Y, det[p1 p3 p4], enters C with a minus sign (the signs alternate +, -, +, -): Y comes out "
         "with the wrong sign": C * [1.0, -1.0, 1.0],
+        "the 3x3 minors enter the homogeneous centre with alternating signs (+, -, +, -: W = -det[p1 p2 p3]), "
+        "and W's sign is flipped against X's, Y's and Z's (W taken +, or X, Y, Z all negated): every coordinate "
+        "comes out with the wrong sign (-C)": -C,
     }
+
+
+def centre_mistakes_for(R, tv, minors: bool) -> dict:
+    """The centre's named mistakes; for code made of P's minors, its sign told as the minors' (read)."""
+    if not minors:
+        return center_mistakes(R, tv)
+    named = {name: value for name, value in center_mistakes(R, tv).items() if name != SIGN_OF_THE_CENTRE}
+    return {**named, **minor_sign_mistakes(R, tv)}
 
 
 def judge_center(t: Trial, P, R, tv):
@@ -741,17 +756,15 @@ def judge_center(t: Trial, P, R, tv):
     scale = magnitude(C)
     if np.abs(got - C).max() <= at_precision(1e-6 * scale, scale):
         return
-    mistakes = center_mistakes(R, tv)
-    minors = calls("np.linalg.det").found(code_of(t).reachable(["camera_center"]))
-    if minors:   # (read from the code: the centre made of P's 3x3 minors, Hartley & Zisserman's formula)
-        mistakes.update(minor_sign_mistakes(R, tv))
+    # (read from the code: the centre made of P's 3x3 minors, Hartley & Zisserman's formula)
+    minors = bool(calls("np.linalg.det").found(code_of(t).reachable(["camera_center"])))
+    mistakes = centre_mistakes_for(R, tv, minors)
     null = np.append(C, 1.0) / np.linalg.norm(np.append(C, 1.0))      # the SVD's null vector, up to sign
     if min(np.abs(got - null[:3]).max(), np.abs(got + null[:3]).max()) <= at_precision(1e-6):
         t.fail(f"{what} is wrong: it returned the first three entries of the null vector of P without "
                "dividing by the fourth (C = v[:3] / v[3]).", mistake="the null vector is not de-homogenised")
     P2, _, R2, tv2, _ = truth.random_camera_matrix(10_031)
-    probe = call_probe(t, "camera_center", (P2,), candidates=lambda: {**center_mistakes(R2, tv2),
-                                                                      **(minor_sign_mistakes(R2, tv2) if minors else {})},
+    probe = call_probe(t, "camera_center", (P2,), candidates=lambda: centre_mistakes_for(R2, tv2, minors),
                        truth=-R2.T @ tv2,
                        shape=(3,), tolerance=1e-6 * magnitude(-R2.T @ tv2))
     mistake = name_mistake(t, got, mistakes, lambda a, b: float(np.abs(a - b).max()), 1e-6 * scale, truth=C,

@@ -584,6 +584,16 @@ MISTAKES = {
             W = -np.linalg.det(P[:, [0, 1, 2]])
             return np.array([X, Y, Z]) / W
         """, ["the minor for y", "y comes out with the wrong sign"]),
+    # the blind set 1202c's 10/05: X, -Y, Z signed, W not
+    "camera centre from P's minors, W's without its minus": ("lab10.ex5", """
+        def camera_center(P):
+            P = np.asarray(P, dtype=np.float64)
+            X = np.linalg.det(P[:, [1, 2, 3]])
+            Y = -np.linalg.det(P[:, [0, 2, 3]])
+            Z = np.linalg.det(P[:, [0, 1, 3]])
+            W = np.linalg.det(P[:, [0, 1, 2]])
+            return np.array([X, Y, Z]) / W
+        """, ["w's sign is flipped against x's, y's and z's", "(-c)"]),
     "pose with the grid built for (rows, cols)": ("lab10.ex6", """
         def _object_points(pattern_size, square_size):
             cols, rows = pattern_size
