@@ -262,3 +262,25 @@ def test_points_written_into_by_a_projection_lose_one_check_though_a_second_call
     failed = [c for c in check_results(result, "lab10.ex2") if not c.passed and not c.advice]
     assert len(failed) == 1, [c.name for c in failed]
     assert "writes into the caller's `points` in place" in failed[0].message, failed[0].message
+
+
+def test_correspondences_left_out_are_told_only_when_all_the_others_fit_exactly():
+    """The last of 6 correspondences missed by 40 px while the others fit to 1e-9 px: left out. Every point
+    off a little (noise), or half of them missed, is no point left out."""
+    from autograder.engine.checks import Fail
+    from autograder.labs.lab10 import CORRESPONDENCES_LEFT_OUT, name_correspondences_left_out
+
+    class Said:
+        def fail(self, message, mistake=None):
+            raise Fail(message, mistake=mistake)
+
+    x = np.arange(12, dtype=float).reshape(6, 2)
+    projected = x + 1e-10
+    projected[5] += [40.0, 0.0]
+    with pytest.raises(Fail) as told:
+        name_correspondences_left_out(Said(), "dlt", projected, x)
+    assert told.value.mistake == CORRESPONDENCES_LEFT_OUT and "misses the last one (point 5" in told.value.message
+    name_correspondences_left_out(Said(), "dlt", x + 0.3, x)            # (noise everywhere: nothing said)
+    half = x.copy()
+    half[:3] += 5.0
+    name_correspondences_left_out(Said(), "dlt", half, x)                # (half of them: nothing said)

@@ -584,6 +584,20 @@ MISTAKES = {
             W = -np.linalg.det(P[:, [0, 1, 2]])
             return np.array([X, Y, Z]) / W
         """, ["the minor for y", "y comes out with the wrong sign"]),
+    # the blind set 1202c's 10/03: a loop over range(n - 1) rows
+    "DLT whose system leaves out the last correspondence": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.asarray(points3d, float); x = np.asarray(points2d, float)
+            n = len(X)
+            A = np.zeros((2 * (n - 1), 12))
+            for i in range(n - 1):
+                Xh = np.append(X[i], 1.0)
+                A[2 * i, :4] = Xh
+                A[2 * i, 8:] = -x[i, 0] * Xh
+                A[2 * i + 1, 4:8] = Xh
+                A[2 * i + 1, 8:] = -x[i, 1] * Xh
+            return np.linalg.svd(A)[2][-1].reshape(3, 4)
+        """, ["misses the last one", "left out of the system"]),
     # the blind set 1202c's 10/05: X, -Y, Z signed, W not
     "camera centre from P's minors, W's without its minus": ("lab10.ex5", """
         def camera_center(P):
