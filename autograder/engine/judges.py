@@ -175,6 +175,28 @@ def confirm(t: Trial, named: str | None, probe: Probe | None, margin: float = 3.
     return SAME_ANSWER.join(seen_in_code(t, kept))
 
 
+CORRESPONDENCES_LEFT_OUT = "some correspondences are left out of the system solved"
+
+
+def name_correspondences_left_out(t: Trial, what: str, errors, unknowns: str, exact: float = 1e-6,
+                                  missed: float = 1e-3) -> None:
+    """Fail naming the exact correspondences an estimate misses (``errors``: each one's distance in pixels)
+    while it satisfies every other one to ``exact``: they are not in its system (measured, whatever the code:
+    a loop or a row count over n - 1, the first or last point skipped). ``unknowns``: what the rows left
+    leave undetermined ("P's 11 unknowns up to scale"). At most a third of them: more is no estimate."""
+    errors = np.asarray(errors, np.float64)
+    errors = np.where(np.isfinite(errors), errors, np.inf)
+    off = np.flatnonzero(errors > missed)
+    if not 0 < len(off) <= len(errors) // 3 or errors[errors <= missed].max(initial=0.0) > exact:
+        return
+    n = len(errors)
+    which = "the last one" if list(off) == [n - 1] else "the first one" if list(off) == [0] else "some"
+    t.fail(measured(f"{what}: the answer fits {n - len(off)} of the {n} correspondences exactly and misses "
+                    f"{which} (point {', '.join(str(i) for i in off)}, by {errors[off].max():.3g} px): "
+                    f"{CORRESPONDENCES_LEFT_OUT} (each correspondence gives two rows: {2 * (n - len(off))} rows for "
+                    f"{unknowns} leave it undetermined)."), mistake=CORRESPONDENCES_LEFT_OUT)
+
+
 def name_mistake(t: Trial, got, candidates: dict, distance, tolerance: float, truth=None,
                  probe: Probe | None = None, margin: float = 3.0) -> str | None:
     """The mistake that explains ``got`` on the failing input (:func:`~autograder.engine.compare.closest`)

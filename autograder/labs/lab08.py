@@ -44,7 +44,8 @@ from ..engine.hints import (RANDOM_DRAWS, RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, 
                              passes_product, picked_point_fits)
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_default_is_the_apis,
                       judge_parameter_used,
-                      judge_warp, name_mistake, parameter_ignored, warp_probe, where_matrices_differ,
+                      judge_warp, name_correspondences_left_out, name_mistake, parameter_ignored, warp_probe,
+                      where_matrices_differ,
                       where_points_differ)
 from ..engine.pictures import difference_heatmap, matches_picture, svg_points
 from ..engine.registry import Lab
@@ -356,6 +357,8 @@ def judge_exact_fit(t: Trial, src, dst, H_true, region):
     if error <= 1e-2:
         return
     diagnose_h(t, what, got, H_true, src, dst)
+    name_correspondences_left_out(t, what, np.linalg.norm(truth.apply_h(got, src) - dst, axis=1),
+                                  "H's 8 unknowns up to scale")
     shown, wanted = format_arrays_apart(truth.normalised(got), truth.normalised(H_true))
     t.fail(f"{what} is off by {error:.3g} px (RMS over the image), wrong "
            f"{where_matrices_differ(got, H_true, up_to_scale=True)}; from exact points the DLT "

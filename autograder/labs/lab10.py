@@ -30,7 +30,7 @@ from ..engine.compare import (at_precision, blurred_difference, closest, fill_fr
 from ..engine.forms import scale_form
 from ..engine.hints import Hint, Predicate, _path, calls, code_of, expr, mentions
 from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, format_matrix, name_mistake,
-                             where_matrices_differ)
+                             name_correspondences_left_out, where_matrices_differ)
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed
@@ -506,30 +506,11 @@ def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_p
                f"yours is {got[2, 3] / np.linalg.norm(got):.3g} of |P|. " + FIXED_P23_HINT.said(t),
                mistake="P[2, 3] is fixed to 1")
     if noise == 0:
-        name_correspondences_left_out(t, what, truth.project_any_sign(got, X), x)
+        name_correspondences_left_out(t, what, np.linalg.norm(truth.project_any_sign(got, X) - x, axis=1),
+                                      "P's 11 unknowns up to scale")
     t.fail(f"{what}: P is wrong {where_matrices_differ(got, P, up_to_scale=True)} (compared with the "
            f"true camera up to scale): projecting new points with it misses their true projections by "
            f"{np.mean(fresh):.3g} px on average.")
-
-
-CORRESPONDENCES_LEFT_OUT = "some correspondences are left out of the system A p = 0"
-
-
-def name_correspondences_left_out(t: Trial, what: str, projected, x) -> None:
-    """Fail naming the exact correspondences a P misses while it satisfies all the others exactly: those are
-    not in its system (measured: a loop or a row count over n - 1, the first or last point skipped)."""
-    errors = np.linalg.norm(np.asarray(projected, float) - x, axis=1)
-    errors = np.where(np.isfinite(errors), errors, np.inf)
-    missed = np.flatnonzero(errors > 1e-3)
-    if not 0 < len(missed) <= len(x) // 3 or errors[errors <= 1e-3].max(initial=0.0) > 1e-6:
-        return
-    n = len(x)
-    which = "the last one" if list(missed) == [n - 1] else "the first one" if list(missed) == [0] else \
-        "numbers " + ", ".join(str(i) for i in missed)
-    t.fail(measured(f"{what}: P reprojects {n - len(missed)} of the {n} correspondences exactly and misses "
-                    f"{which} (point {', '.join(str(i) for i in missed)}, by {errors[missed].max():.3g} px): "
-                    f"{CORRESPONDENCES_LEFT_OUT} (each correspondence gives two rows: {2 * (n - len(missed))} rows for "
-                    "P's 11 unknowns up to scale leave it undetermined)."), mistake=CORRESPONDENCES_LEFT_OUT)
 
 
 def dlt_probe(t: Trial) -> Probe:

@@ -69,6 +69,17 @@ MISTAKES = {
             return cv2.warpAffine(image, H[:2], dsize or (w, h))
         """, ["perspective row", "warpPerspective"]),
     # ---------------------------------------------------------------- ex2
+    "DLT whose rows leave out the last pair": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src = np.asarray(src, dtype=np.float64).reshape(-1, 2)
+            dst = np.asarray(dst, dtype=np.float64).reshape(-1, 2)
+            rows = []
+            for (x, y), (u, v) in zip(src[:-1], dst[:-1]):
+                rows.append([-x, -y, -1, 0, 0, 0, u * x, u * y, u])
+                rows.append([0, 0, 0, -x, -y, -1, v * x, v * y, v])
+            H = np.linalg.svd(np.array(rows))[2][-1].reshape(3, 3)
+            return H / H[2, 2]
+        """, ["misses the last one", "left out of the system solved"]),
     "DLT src and dst swapped": ("lab08.ex2", """
         _reference_dlt = homography_dlt
         def homography_dlt(src, dst):

@@ -597,7 +597,7 @@ MISTAKES = {
                 A[2 * i + 1, 4:8] = Xh
                 A[2 * i + 1, 8:] = -x[i, 1] * Xh
             return np.linalg.svd(A)[2][-1].reshape(3, 4)
-        """, ["misses the last one", "left out of the system"]),
+        """, ["misses the last one", "left out of the system solved"]),
     # the blind set 1202c's 10/05: X, -Y, Z signed, W not
     "camera centre from P's minors, W's without its minus": ("lab10.ex5", """
         def camera_center(P):
