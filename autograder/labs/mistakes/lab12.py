@@ -5,6 +5,34 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 
 from . import columns_by_first_axis
 
+# The reference's DP with the previous column's energy and the backtracking's start as given (two slips of one form).
+_DP = """
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)
+            left, right = _grey_float(left), _grey_float(right)
+            D = int(max_disparity) + 1
+            costs = _sad_volume(left, right, D - 1, int(block_size))
+            if s == 0:
+                return np.argmin(costs, axis=2).T.astype(np.float64)
+            width = costs.shape[0]
+            ramp = (s * np.arange(D)).astype(np.float32)
+            energy = np.empty_like(costs)
+            energy[0] = costs[0]
+            for x in range(1, width):
+                previous = {previous}
+                from_below = np.minimum.accumulate(previous - ramp, axis=1) + ramp
+                from_above = np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)[:, ::-1] - ramp
+                best = np.minimum(from_below, from_above)
+                energy[x] = costs[x] + best - best.min(axis=1, keepdims=True)
+            disparity = np.empty((width, costs.shape[1]), dtype=np.int64)
+            disparity[-1] = np.argmin({last}, axis=1)
+            candidates = np.arange(D)
+            for x in range(width - 1, 0, -1):
+                jump = ramp[np.abs(candidates[None, :] - disparity[x][:, None])]
+                disparity[x - 1] = np.argmin(energy[x - 1] + jump, axis=1)
+            return disparity.T.astype(np.float64)
+"""
+
 MISTAKES = {
     # the blind set 1201c's 12/04: a 9 x 9 window, but the squared difference of the block means
     "SSD as the squared difference of the block means": ("lab12.ex4", """
@@ -523,58 +551,10 @@ MISTAKES = {
             return _sad(left, right, max_disparity, 5)
         """, ["block_size=3 and block_size=9 give the same disparity map: block_size is ignored"]),
     # the blind set 1202c's 12/08: the recurrence reads the previous column's data cost
-    "DP whose forward pass carries the previous column's data cost": ("lab12.ex5", """
-        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
-            s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)
-            left, right = _grey_float(left), _grey_float(right)
-            D = int(max_disparity) + 1
-            costs = _sad_volume(left, right, D - 1, int(block_size))
-            if s == 0:
-                return np.argmin(costs, axis=2).T.astype(np.float64)
-            width = costs.shape[0]
-            ramp = (s * np.arange(D)).astype(np.float32)
-            energy = np.empty_like(costs)
-            energy[0] = costs[0]
-            for x in range(1, width):
-                previous = costs[x - 1]
-                from_below = np.minimum.accumulate(previous - ramp, axis=1) + ramp
-                from_above = np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)[:, ::-1] - ramp
-                best = np.minimum(from_below, from_above)
-                energy[x] = costs[x] + best - best.min(axis=1, keepdims=True)
-            disparity = np.empty((width, costs.shape[1]), dtype=np.int64)
-            disparity[-1] = np.argmin(energy[-1], axis=1)
-            candidates = np.arange(D)
-            for x in range(width - 1, 0, -1):
-                jump = ramp[np.abs(candidates[None, :] - disparity[x][:, None])]
-                disparity[x - 1] = np.argmin(energy[x - 1] + jump, axis=1)
-            return disparity.T.astype(np.float64)
-        """, ["is computed from `costs[x - 1]` and never from `energy` at x - 1"]),
-    "DP whose backtracking starts from the last column's least data cost": ("lab12.ex5", """
-        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
-            s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)
-            left, right = _grey_float(left), _grey_float(right)
-            D = int(max_disparity) + 1
-            costs = _sad_volume(left, right, D - 1, int(block_size))
-            if s == 0:
-                return np.argmin(costs, axis=2).T.astype(np.float64)
-            width = costs.shape[0]
-            ramp = (s * np.arange(D)).astype(np.float32)
-            energy = np.empty_like(costs)
-            energy[0] = costs[0]
-            for x in range(1, width):
-                previous = energy[x - 1]
-                from_below = np.minimum.accumulate(previous - ramp, axis=1) + ramp
-                from_above = np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)[:, ::-1] - ramp
-                best = np.minimum(from_below, from_above)
-                energy[x] = costs[x] + best - best.min(axis=1, keepdims=True)
-            disparity = np.empty((width, costs.shape[1]), dtype=np.int64)
-            disparity[-1] = np.argmin(costs[-1], axis=1)
-            candidates = np.arange(D)
-            for x in range(width - 1, 0, -1):
-                jump = ramp[np.abs(candidates[None, :] - disparity[x][:, None])]
-                disparity[x - 1] = np.argmin(energy[x - 1] + jump, axis=1)
-            return disparity.T.astype(np.float64)
-        """, ["decided by its last columns alone"]),
+    "DP whose forward pass carries the previous column's data cost": ("lab12.ex5", _DP.format(
+        previous="costs[x - 1]", last="energy[-1]"), ["is computed from `costs[x - 1]` and never from `energy` at x - 1"]),
+    "DP whose backtracking starts from the last column's least data cost": ("lab12.ex5", _DP.format(
+        previous="energy[x - 1]", last="costs[-1]"), ["decided by its last columns alone"]),
     "DP with a default smoothness far too large": ("lab12.ex5", """
         DEFAULT_SMOOTHNESS = 400.0
         """, ["the default smoothness is far too large"]),
