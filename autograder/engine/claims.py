@@ -517,17 +517,18 @@ def _is_svd(node) -> bool:
     return isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "svd"
 
 
-def takes_last_row_of_vt() -> Predicate:
-    """The last row of an SVD's V^T taken: ``np.linalg.svd(A)[2][-1]``, ``Vt[-1]`` or ``Vt[-1, :]``
-    for a ``Vt`` unpacked from (or indexed out of) an ``svd`` call."""
-    def last(index) -> bool:
-        if isinstance(index, ast.Tuple) and index.elts:
-            index, rest = index.elts[0], index.elts[1:]
-            if not all(isinstance(e, ast.Slice) and e.lower is e.upper is e.step is None for e in rest):
-                return False
-        return isinstance(index, ast.UnaryOp) and isinstance(index.op, ast.USub) \
-            and isinstance(index.operand, ast.Constant) and index.operand.value == 1
+def _minus_one(index) -> bool:
+    return isinstance(index, ast.UnaryOp) and isinstance(index.op, ast.USub) \
+        and isinstance(index.operand, ast.Constant) and index.operand.value == 1
 
+
+def _whole(index) -> bool:
+    return isinstance(index, ast.Slice) and index.lower is index.upper is index.step is None
+
+
+def _vt_indexed(taken: Callable, says: str) -> Predicate:
+    """An index of an SVD's V^T that ``taken`` reads (its slice), for a ``Vt`` unpacked from (or indexed out
+    of) an ``svd`` call: ``np.linalg.svd(A)[2][...]``, ``Vt[...]``."""
     def vt(node, held) -> bool:
         if isinstance(node, ast.Name):
             return node.id in held
@@ -539,9 +540,31 @@ def takes_last_row_of_vt() -> Predicate:
                 for target in node.targets if isinstance(target, ast.Tuple) and len(target.elts) == 3
                 and isinstance(target.elts[2], ast.Name)}
         held |= _assigned_names(function, lambda value: vt(value, set()))
-        return any(isinstance(node, ast.Subscript) and vt(node.value, held) and last(node.slice)
+        return any(isinstance(node, ast.Subscript) and vt(node.value, held) and taken(node.slice)
                    for node in ast.walk(function))
-    return Predicate("takes the last row of Vt", test)
+    return Predicate(says, test)
+
+
+def takes_last_row_of_vt() -> Predicate:
+    """The last row of an SVD's V^T taken: ``np.linalg.svd(A)[2][-1]``, ``Vt[-1]`` or ``Vt[-1, :]``
+    for a ``Vt`` unpacked from (or indexed out of) an ``svd`` call."""
+    def last_row(index) -> bool:
+        if isinstance(index, ast.Tuple) and index.elts:
+            index, rest = index.elts[0], index.elts[1:]
+            if not all(_whole(e) for e in rest):
+                return False
+        return _minus_one(index)
+    return _vt_indexed(last_row, "takes the last row of Vt")
+
+
+def takes_last_column_of_vt() -> Predicate:
+    """The last column of an SVD's V^T taken (``Vt[:, -1]``, ``np.linalg.svd(A)[2][:, -1]``): numpy returns V
+    transposed, so the right singular vectors are its rows; the column's entries belong to different vectors,
+    each of a sign of its own (no number to compare with: only the code shows it)."""
+    def last_column(index) -> bool:
+        return isinstance(index, ast.Tuple) and len(index.elts) == 2 and _whole(index.elts[0]) \
+            and _minus_one(index.elts[1])
+    return _vt_indexed(last_column, "takes the last column of Vt")
 
 
 THRESHOLD_NAMES = ("threshold", "thresh", "thr", "tol", "max_error", "reproj_threshold", "ransac_threshold")

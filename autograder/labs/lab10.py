@@ -24,7 +24,7 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (calls_any, checklist, divides_by, evidenced, from_code, guard, look_at, measured,
                              negates_on_negative_det,
-                             passes_argument, reshapes, takes_last_row_of_vt)
+                             passes_argument, reshapes, takes_last_column_of_vt, takes_last_row_of_vt)
 from ..engine.compare import (at_precision, blurred_difference, closest, fill_fraction, format_apart, format_arrays_apart,
                        magnitude, projective_distance)
 from ..engine.forms import scale_form
@@ -53,6 +53,7 @@ for _taken in (truth.LARGEST_TAKEN, truth.LAST_COLUMN_TAKEN):
 guard(truth.NOT_UNDONE, asks=calls_any("np.linalg.inv", "np.linalg.solve", says="inverts a normalising transform"),
       instead="the normalisation is not undone (the P returned is the camera of the normalised points): your "
               "code {found}; check that the P returned is T2^-1 P_n T3")
+LAST_COLUMN = takes_last_column_of_vt()
 # the sign fix's own place: P negated (not K, not R) under a test of det(P[:, :3]) < 0
 NEGATES_P = negates_on_negative_det(0, says="negates P when det(P[:, :3]) < 0")
 
@@ -501,6 +502,12 @@ def judge_dlt(t: Trial, seed: int, n: int, noise: float, show=False, origin_on_p
                            probe=dlt_probe(t))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    # (Vt's last column mixes entries of every singular vector, each of a sign LAPACK chooses: no number to
+    # compare with holds on every machine, the code shows it)
+    column = LAST_COLUMN.found(code_of(t).reachable(["camera_matrix_dlt"]))
+    if column:
+        t.fail(f"{what} is wrong: your code {column}: " + from_code(truth.LAST_COLUMN_TAKEN) + ".",
+               mistake=truth.LAST_COLUMN_TAKEN)
     if origin_on_principal_plane and abs(got[2, 3]) > 1e-3 * np.linalg.norm(got) and dlt_right_on_probe(t):
         t.fail(f"{what}: here the true P[2, 3] is 0 (P[2, 3] = t_z, the depth of the world origin), "
                f"yours is {got[2, 3] / np.linalg.norm(got):.3g} of |P|. " + FIXED_P23_HINT.said(t),

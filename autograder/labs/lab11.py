@@ -30,7 +30,7 @@ from ..engine.claims import (DIVISION, THIRD_COORDINATE, calls_any, checklist, d
                              look_at,
                              measured, reshapes, returns_from, subtracts_a_mean, takes_last_row_of_vt,
                              treats_each_of, wherever_written, zeroes_an_entry)
-from ..engine.hints import RATIO_TEST, Hint, Predicate, _path, calls, code_of, expr, keyword, mentions
+from ..engine.hints import RATIO_TEST, Hint, Predicate, _path, calls, code_of, expr, functions_read, keyword, mentions
 from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canvas, call_probe, confirm, format_matrix,
                               name_mistake, over_variants, where_matrices_differ, where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
@@ -86,6 +86,27 @@ def projective_probe(t: Trial, function: str, args, expected, mistakes, distance
                       distance=over_variants(distance, len(shape)), tolerance=tolerance)
 
 
+REPEATED_COLUMN = from_code("two columns of A are the same expression (as in the lab sheet's row as printed, "
+                            "whose misprint has y' twice)")
+
+
+def repeated_column(functions) -> str:
+    """A row of A written with 9 entries (a list, or the list given to np.stack / np.column_stack / np.array)
+    holding one expression twice, said as "the row of A at line 12 holds `x2[:, 1]` twice"; "" where none is."""
+    for function in functions:
+        for node in ast.walk(function):
+            if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 9:
+                seen = {}
+                for item in node.elts:
+                    if isinstance(item, ast.Constant):
+                        continue
+                    key = ast.dump(item)
+                    if key in seen:
+                        return f"the row of A at line {node.lineno} holds `{ast.unparse(item)}` twice"
+                    seen[key] = item
+    return ""
+
+
 def judge_projective(t: Trial, what: str, got, expected, mistakes=None, tolerance=EXACT,
                      shape=(3, 3), distance=projective_distance, probe: Probe | None = None) -> np.ndarray:
     """A matrix or homogeneous vector equal to ``expected`` up to scale and sign; ``mistakes``
@@ -96,6 +117,13 @@ def judge_projective(t: Trial, what: str, got, expected, mistakes=None, toleranc
         t.fail(f"{what} returned all zeros")
     if projective_distance(got, expected) <= at_precision(tolerance):
         return got
+    if shape == (3, 3):   # (a 9-entry row with an entry twice leaves A's null space two-dimensional: no answer
+        read = repeated_column(code_of(t).reachable(functions_read(t)))   # to compare, only the code to read)
+        if read:
+            t.fail(f"{what} is wrong: reading your code, " + from_code(
+                f"{read}: two columns of A are equal, so A's null space has two dimensions and the answer is any mix "
+                "of them. The lab sheet's row as printed has such a misprint (y' twice, y y' missing): for "
+                "x2^T F x1 = 0 each row is [x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]."), mistake=REPEATED_COLUMN)
     mistakes = nearest_variants(got, {name: answer if np.ndim(answer) > len(shape) else [answer]
                                       for name, answer in (mistakes or {}).items()}, distance)
     mistake = confirm(t, closest(got, mistakes, distance, max(tolerance, 1e-4), truth=expected), probe)
