@@ -2392,8 +2392,8 @@ def recurrence_without_itself(functions) -> str:
                             and any(isinstance(i, ast.Name) and i.id == variable for i in index) \
                             and before and target.value.id not in before:
                         other = before[sorted(before)[0]]
-                        return (f"`{ast.unparse(target)}` (line {assign.lineno}) is computed from `{other}` and never "
-                                f"from `{target.value.id}` at {variable} - 1")
+                        return from_code(f"`{ast.unparse(target)}` (line {assign.lineno}) is computed from `{other}` "
+                                         f"and never from `{target.value.id}` at {variable} - 1")
     return ""
 
 
