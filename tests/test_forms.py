@@ -150,3 +150,5 @@ def test_a_colour_image_turned_grey_in_bgr_form_is_named_only_where_the_input_ha
     assert colours_lost(colour, [colour]) == ""             # its colours kept
     assert colours_lost(grey, [grey]) == ""                 # a grey picture in BGR form stays grey
     assert colours_lost(grey[..., 0], [colour]) == ""       # (another shape: the channel forms' to name)
+    black = (colour / 255.0).astype(np.uint8)               # a [0, 1] float cast to uint8: 0 nearly everywhere
+    assert colours_lost(black, [colour]) == ""              # (equal channels, but no grey copy of anything)

@@ -195,6 +195,10 @@ def colours_lost(got, images) -> str:
               and not equal_channels(image)]
     if not colour or not equal_channels(got):
         return ""
+    # (a black or nearly uniform result has equal channels too -- a float in [0, 1] cast to uint8 -- and is no
+    # grey copy of a photo, which spans many grey levels)
+    if int(np.ptp(got[..., 0])) < 16:
+        return ""
     return measured("it looks like the colours are lost: its three channels are equal (a grey image in BGR form) "
                     "where the input's differ: a grey copy of the input (cv2.COLOR_BGR2GRAY, made for a comparison "
                     "or the feature matching?) went into the result in place of the colour image")

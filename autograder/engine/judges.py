@@ -32,7 +32,7 @@ from fixtures.images import as_homography, coverage, warp
 
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
-from .claims import from_code, measured, seen_in_code
+from .claims import calls_any, from_code, measured, seen_in_code
 from .forms import COLOURS_LOST, colours_lost, shape_form
 from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, mentions, parameter_flows,
                     size_given_as_shape)
@@ -628,6 +628,9 @@ def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, resu
         _ignored(t, what, parameter, values, result)
 
 
+NOT_DETERMINISTIC = "two calls with the same arguments give different answers"
+
+
 def judge_default_is_the_apis(t: Trial, what: str, call, parameter: str, api_value,
                               result: str = "result") -> Verdict:
     """A check of its own that ``parameter``'s default is the API's ``api_value``: ``call()`` (the
@@ -637,6 +640,14 @@ def judge_default_is_the_apis(t: Trial, what: str, call, parameter: str, api_val
     left_out, given = call(), call(**{parameter: api_value})
     if _same_result(left_out, given) or not isinstance(left_out, (np.ndarray, tuple, list)):
         return passed(f"{what} with {parameter} left out gives what {parameter}={api_value!r} gives")
+    # (the answers vary from call to call: the default is not what makes them differ)
+    if not (_same_result(given, call(**{parameter: api_value})) and _same_result(left_out, call())):
+        empty = calls_any("np.empty_like", "np.empty").found(code_of(t).reachable(functions_read(t)))
+        t.fail(measured(f"{what} with {parameter}={api_value!r}, called twice, gives two different {result}s: the "
+                        "answer depends on more than the arguments")
+               + (from_code(f"; your code {empty}, whose entries hold whatever was in memory until they are "
+                            "written: is every one written before it is read?") if empty else "."),
+               mistake=NOT_DETERMINISTIC)
     from . import defaults_given
 
     said = defaults_given.sentence_for(t, parameter)

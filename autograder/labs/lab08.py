@@ -1048,6 +1048,13 @@ def judge_match_drawing(t: Trial, what: str, got, img1, img2, pts1, pts2):
                             "both images first, then draw)."),
                    mistake="img2 is placed on the canvas after the lines are drawn")
         missing_lines_verdict(t, what, found, starts, ends, stray_lines, w1)
+    # (strokes among broad changes away from the lines are the images' own pixels altered -- their contrast
+    # stretched, a colour conversion -- not lines: a stray line covers a sliver of the background)
+    altered = float(drawn_on[background].mean())
+    if altered > 0.03:
+        t.fail(measured(f"{what}: {altered:.0%} of the pixels away from the match lines differ from the two images "
+                        f"placed side by side by more than {DRAWN_LEVELS} levels: the images themselves are changed "
+                        "on the canvas, not only drawn on (they are shown as they are)"))
     x1, y1, x2, y2 = stray_lines[0]
     t.fail(f"{what}: every match has its line, but a line from about ({x1}, {y1}) to ({x2}, {y2}) joins no "
            f"match (each line goes from pts1[i] to pts2[i] shifted right by W1 = {w1} px)"
@@ -3483,8 +3490,16 @@ def _smooths_mask(node, function, names) -> bool:
 
 
 def _pyramid_of_mask(node, function, names) -> bool:
-    return isinstance(node, ast.Call) and any(_holds_any(a, names) for a in node.args) \
-        and _path(node.func).rsplit(".", 1)[-1] in PYRAMID_STEPS
+    """A pyramid step given the mask, or a def nested in ``function`` given it whose body takes one
+    (`gm = gaussian(mask)` with `def gaussian(im): ... cv2.pyrDown(...)` inside blend_multiband)."""
+    if not (isinstance(node, ast.Call) and any(_holds_any(a, names) for a in node.args)):
+        return False
+    called = _path(node.func).rsplit(".", 1)[-1]
+    if called in PYRAMID_STEPS:
+        return True
+    nested = [d for d in ast.walk(function) if isinstance(d, ast.FunctionDef) and d is not function and d.name == called]
+    return any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in PYRAMID_STEPS
+               for d in nested for n in ast.walk(d))
 
 
 def _weighs_by_mask(node, function, names) -> bool:

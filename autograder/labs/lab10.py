@@ -166,6 +166,18 @@ NORMALISE_K_HINT = Hint("divide K by K[2, 2] (P is only known up to scale)",
                         instead="your code {found}, but the K returned is not the divided one (or is changed "
                                 "afterwards); P is only known up to scale")
 SIGN_TEST_INVERTED = "the sign test on det(P[:, :3]) is the wrong way round (P negated where det > 0)"
+SIGN_TEST_MISSED = ("the test deciding P's negation does not follow the sign of det(P[:, :3]) (negate P exactly "
+                    "where det(P[:, :3]) < 0)")
+
+
+def _negated(P, K, R) -> bool | None:
+    """Whether K R is P's left 3x3 block times a negative number (P negated before it was decomposed), or a
+    positive one (not negated); None where K R is no multiple of it."""
+    M, KR = np.asarray(P, float)[:, :3], np.asarray(K, float) @ np.asarray(R, float)
+    scale = float(np.sum(KR * M) / np.sum(M * M))
+    if scale == 0 or np.abs(KR - scale * M).max() > 1e-6 * np.abs(KR).max():
+        return None
+    return bool(scale < 0)
 
 
 # (the same answer comes from RQ's signs left unfixed when K's whole diagonal comes out negative and the
@@ -601,6 +613,15 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
         problems.append(measured("det(R) = -1, with K right and R and t the true ones times -1 (K [R | t] = -P, "
                                  f"det(P[:, :3]) {'< 0' if negative else '> 0'} here)")
                         + from_code(f": {SIGN_TEST_INVERTED}; negate P only where det(P[:, :3]) < 0"))
+    elif np.linalg.det(R) < 0 and not unsigned and not unnegated and _negated(P, K, R) not in (None, negative):
+        # (the code negates P under a test, which went the wrong way for this P: K R is P's own block times a
+        # number of the wrong sign, measured -- the test reads another block)
+        negated = _negated(P, K, R)
+        labels.append(SIGN_TEST_MISSED)
+        problems.append(measured(f"det(R) = -1: here det(P[:, :3]) {'<' if negative else '>'} 0 and your K R is "
+                                 f"P[:, :3] times a {'negative' if negated else 'positive'} number: P was "
+                                 f"{'negated' if negated else 'not negated'}")
+                        + from_code(f", under your code's test: {SIGN_TEST_MISSED}"))
     elif np.linalg.det(R) < 0 and not unsigned:   # with K's signs unfixed, det(R) = -1 follows from them
         flips = SIGNS_HINT.contradicts(code_of(t), ["decompose_camera_matrix"])
         labels.append("P is not negated when det(P[:, :3]) < 0" if unnegated else

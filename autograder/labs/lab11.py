@@ -1394,7 +1394,8 @@ def epipoles_probe(t: Trial) -> Probe:
 
 EPIPOLE_NOT_FINITE_HINT = Hint(
     "so do not divide by w (w = 0); return the homogeneous vector", asks=~DIVIDES_BY_W,
-    instead="and an entry is divided by it somewhere; the homogeneous vector is expected")
+    instead="and the vector returned holds NaN or infinite entries; the homogeneous vector (x, y, 0) is expected, "
+            "at any scale")
 EPIPOLE_DIVIDED_HINT = Hint(
     "it looks like it was divided by its last entry w, which is w = 0 (up to rounding) for an epipole "
     "at infinity; return the homogeneous vector without dividing", asks=~DIVIDES_BY_W,
@@ -1417,8 +1418,12 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=N
         if g.shape != (3,):
             t.fail(f"{what}: {name} has shape {g.shape}; expected (3,)")
         if not np.all(np.isfinite(g)):
-            t.fail(f"{what}: {name} = {g} is not finite: an epipole at infinity has w = 0, "
-                   + EPIPOLE_NOT_FINITE_HINT.said(t))
+            true = e1 if name == "e1" else e2
+            if abs(true[2]) <= 1e-9 * np.linalg.norm(true):   # (only where the true epipole is at infinity)
+                t.fail(f"{what}: {name} = {g} is not finite: an epipole at infinity has w = 0, "
+                       + EPIPOLE_NOT_FINITE_HINT.said(t))
+            t.fail(f"{what}: {name} = {g} is not finite (NaN or infinite entries), where the true {name} is the "
+                   f"finite {format_matrix(true / np.linalg.norm(true))} up to scale.")
         if not np.any(g):
             t.fail(f"{what}: {name} is all zeros")
         if at_infinity and abs(g[2]) == 1 and np.abs(g[:2]).max() > 1e8:

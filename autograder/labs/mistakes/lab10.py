@@ -129,6 +129,21 @@ MISTAKES = {
             K, R, t = _right(P)
             return K, R, -R.T @ t
         """, ["camera centre"]),
+    # the blind set 1202d's 10/04: the negation decided from the last three columns' determinant
+    "decomposition negating P by the sign of another block": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            if np.linalg.det(P[:, 1:]) < 0:
+                P = -P
+            flip = np.eye(3)[::-1]
+            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
+            K = flip @ U.T @ flip
+            R = flip @ Q.T
+            signs = np.diag(np.sign(np.diag(K)))
+            K, R = K @ signs, signs @ R
+            t = np.linalg.solve(K, P[:, 3])
+            return K / K[2, 2], R, t
+        """, ["does not follow the sign of det(p[:, :3])"]),
     "no sign fix": ("lab10.ex5", """
         def decompose_camera_matrix(P):
             P = np.asarray(P, dtype=np.float64)
