@@ -152,3 +152,15 @@ def test_a_colour_image_turned_grey_in_bgr_form_is_named_only_where_the_input_ha
     assert colours_lost(grey[..., 0], [colour]) == ""       # (another shape: the channel forms' to name)
     black = (colour / 255.0).astype(np.uint8)               # a [0, 1] float cast to uint8: 0 nearly everywhere
     assert colours_lost(black, [colour]) == ""              # (equal channels, but no grey copy of anything)
+
+
+def test_an_image_in_the_unit_range_cast_to_uint8_is_named_only_where_it_holds_nothing_but_0_and_1():
+    from autograder.engine.forms import UNIT_RANGE_CAST, unit_range_cast
+
+    rng = np.random.default_rng(1)
+    expected = rng.integers(0, 256, (20, 30), dtype=np.uint8)
+    cast = (expected / 255.0).astype(np.uint8)             # 0 everywhere but where expected is 255
+    assert UNIT_RANGE_CAST in unit_range_cast(cast, expected)
+    assert unit_range_cast(expected, expected) == ""         # the right image
+    assert unit_range_cast(np.zeros_like(expected), np.full_like(expected, 7)) == ""   # (a dark expected image)
+    assert unit_range_cast(cast.astype(float), expected) == ""                         # (not uint8: another form)

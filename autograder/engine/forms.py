@@ -204,6 +204,22 @@ def colours_lost(got, images) -> str:
                     "or the feature matching?) went into the result in place of the colour image")
 
 
+UNIT_RANGE_CAST = "an image of values in [0, 1] is cast to uint8 (everything but 1.0 becomes 0)"
+
+
+def unit_range_cast(got, expected) -> str:
+    """A sentence when ``got`` (uint8) holds only 0 and 1 where ``expected`` spans many grey levels: a float
+    image in [0, 1] cast to uint8 without scaling it back (measured); "" otherwise."""
+    if not (isinstance(got, np.ndarray) and got.dtype == np.uint8 and got.size and isinstance(expected, np.ndarray)):
+        return ""
+    if int(got.max()) > 1 or int(np.ptp(expected)) < 32:
+        return ""
+    return measured(f"its pixels are all 0 or 1, where the expected image spans {int(expected.min())} to "
+                    f"{int(expected.max())}: it looks like {UNIT_RANGE_CAST}. Scale a float image in [0, 1] (what "
+                    "skimage's transforms return unless preserve_range=True, or an image divided by 255) back to "
+                    "0-255 before the cast")
+
+
 def _fits(shape: tuple, expected: tuple) -> bool:
     return len(shape) == len(expected) and all(e is None or e == s for s, e in zip(shape, expected))
 

@@ -33,7 +33,7 @@ from fixtures.images import as_homography, coverage, warp
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
 from .claims import calls_any, from_code, measured, seen_in_code
-from .forms import COLOURS_LOST, colours_lost, shape_form
+from .forms import COLOURS_LOST, UNIT_RANGE_CAST, colours_lost, shape_form, unit_range_cast
 from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, mentions, parameter_flows,
                     size_given_as_shape)
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
@@ -474,6 +474,9 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
         return passed(f"mean difference {error:.1f} grey levels on the covered area")
     if channels_reversed(got, expected):
         t.fail(f"{what} is wrong: {RGB_FOR_BGR}.", mistake="the colour channels are reversed (RGB for BGR)")
+    cast = unit_range_cast(got, expected)
+    if cast:
+        t.fail(f"{what}: {cast}.", mistake=UNIT_RANGE_CAST)
     explained = []  # the mistakes whose map explains the image (a name only when one does)
     for mistake, wrong_M in (mistakes or {}).items():
         try:

@@ -30,6 +30,12 @@ MISTAKES = {
             return _translate(colour, tx, ty)
         """, ["channels are not kept", "grey in, grey out"]),
     # the blind set 1201e's 07/03: the caller's centre array written into
+    # the blind set 1202d's 07/03: skimage's float result in [0, 1] cast back to uint8
+    "rotate whose [0, 1] float result is cast to uint8": ("lab07.ex2", """
+        _right_rotate = rotate
+        def rotate(image, angle_deg=45):
+            return (_right_rotate(image, angle_deg) / 255.0).astype(np.uint8)
+        """, ["values in [0, 1] is cast to uint8"]),
     "rotation_matrix writing into the caller's centre": ("lab07.ex2", """
         def rotation_matrix(angle_deg, center=(0.0, 0.0)):
             M = cv2.getRotationMatrix2D(tuple(float(v) for v in center), angle_deg, 1.0)

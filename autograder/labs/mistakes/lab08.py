@@ -187,6 +187,13 @@ MISTAKES = {
             return T_dst_inv @ H @ T_src
         """, ["the caller's `src` in place", "called a second time on that same array"]),
     # ---------------------------------------------------------------- ex3
+    # the blind set 1202d's 08/07: each image's contrast stretched before it is placed
+    "draw_matches stretching each image's contrast": ("lab08.ex3", """
+        _right_draw = draw_matches
+        def draw_matches(img1, img2, pts1, pts2):
+            stretch = lambda im: cv2.normalize(im, None, 0, 255, cv2.NORM_MINMAX)
+            return _right_draw(stretch(img1), stretch(img2), pts1, pts2)
+        """, ["the images themselves are changed"]),
     "Lowe's test on squared distances (the test at sqrt(ratio))": ("lab08.ex3", """
         def match_features(img1, img2, ratio=0.75, method="sift"):
             sift = cv2.SIFT_create()

@@ -449,6 +449,14 @@ MISTAKES = {
             return T2.T @ U @ np.diag([0.0, s[1], s[2]]) @ Vt @ T1
         """, ["the largest singular value was set to 0"]),
     # ---------------------------------------------------------------- ex5
+    # the blind set 1202d's 11/07: e2 from lstsq with a zero right-hand side (0, then 0 / 0)
+    "epipoles with e2 solved by lstsq": ("lab11.ex5", """
+        def epipoles(F):
+            F = np.asarray(F, dtype=float)
+            e1 = np.linalg.svd(F)[2][-1]
+            e2 = np.linalg.lstsq(F.T, np.zeros(3), rcond=None)[0]
+            return e1 / np.linalg.norm(e1), e2 / np.linalg.norm(e2)
+        """, ["is not finite (nan or infinite entries)", "np.linalg.lstsq"]),
     "epipoles from np.linalg.eig without the real part": ("lab11.ex5", """
         def epipoles(F):
             values1, vectors1 = np.linalg.eig(F)
