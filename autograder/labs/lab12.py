@@ -685,6 +685,19 @@ def disparities_from_points(t):
     if max_abs_error(got, pts1[:, 1] - pts2[:, 1]) <= tolerance < max_abs_error(got, pts1[:, 0] - pts2[:, 0]):
         t.fail(f"{what} subtracts the y coordinates; x (column 0) is what differs in a rectified pair.")
     judge_disparities(t, what, got, pts1[:, 0], pts2[:, 0], 10)
+    # (matched points of a real pair are a fraction of a pixel off each other's row: each is still a match)
+    off_row = pts2 + np.column_stack([np.zeros(10), np.random.default_rng(9).uniform(-1.5, 1.5, 10)])
+    what = "disparity_from_matches(pts_left, pts_right) with the right points up to 1.5 px off the left ones' rows"
+    got = t.call("disparity_from_matches", pts1, off_row)
+    if np.shape(got) != (10,):
+        t.fail(measured(f"{what} returned shape {np.shape(got)} for 10 matches: every match gets its disparity "
+                        "d = x_l - x_r, whatever its rows (the API keeps the N matches; none is dropped)"),
+               mistake=MATCHES_DROPPED)
+    judge_disparities(t, what, t.expect_array(got, what, shape=(10,), kind="iuf", finite=True),
+                      pts1[:, 0], off_row[:, 0], 10)
+
+
+MATCHES_DROPPED = "matches off each other's row are dropped"
 
 
 def _invalid_depths(got, disparity) -> list[str]:
@@ -771,6 +784,21 @@ def depth_any_shape(t):
     shapes = st.lists(st.integers(1, 6), min_size=1, max_size=3).map(tuple)
     t.for_all(st.tuples(shapes, st.integers(0, 2**32 - 1)), holds, max_examples=10,
               describe=lambda c: f"shape {c[0]}, seed {c[1]}")
+    # (and no axis at all: one pixel's disparity as a 0-d array gives a 0-d depth, or a plain number)
+    what = "depth_from_disparity(np.array(8.0), f=400, baseline=0.1), a 0-d array"
+    got = t.call("depth_from_disparity", np.array(8.0), 400.0, 0.1)
+    if np.shape(got) != ():   # (every other shape kept: half the points)
+        added = ADDS_AN_AXIS.found(code_of(t).reachable(["depth_from_disparity"]))
+        return partial(0.5, measured(f"{what} returned shape {np.shape(got)}; the depth of a 0-d disparity is 0-d "
+                                     "too (or a plain number): the shape is kept, whatever it is")
+                       + (from_code(f"; your code {added}, which gives a 0-d array an axis") if added else "."),
+                       mistake=AXIS_ADDED)
+    judge_depth(t, what, np.asarray(got), np.array(8.0), 400.0, 0.1)
+    return passed("the depths keep the disparities' shape, a 0-d one too")
+
+
+AXIS_ADDED = "a 0-d disparity gets an axis"
+ADDS_AN_AXIS = calls_any("np.atleast_1d", "np.atleast_2d", ".ravel", ".flatten", "np.ravel") | expr("_.reshape(-1)")
 
 
 @ex2.check("depth_from_disparity on a rendered scene's disparity map", points=1)

@@ -60,6 +60,14 @@ MISTAKES = {
         """, ["halved"]),
     **{f"drops the points behind the camera ({ex})": (f"lab09.{ex}", DROPS_BEHIND, ["drops the points behind"])
        for ex in ("ex1", "ex2", "ex3")},
+    # the blind set 1202d's 09/01: a depth guard at 1 where only Z <= 0 has no image
+    "pinhole with the depth clamped at 1": ("lab09.ex1", """
+        _right_pinhole = pinhole_project
+        def pinhole_project(points, f):
+            X = np.array(points, dtype=np.float64)
+            X[..., 2] = np.maximum(X[..., 2], 1.0)
+            return _right_pinhole(X, f)
+        """, ["depths below 1 are taken as 1"]),
     "x/y swapped": ("lab09.ex1", """
         def pinhole_project(points, f):
             X, single = _points(points)

@@ -100,6 +100,21 @@ MISTAKES = {
             return (X[:3] / X[3]).T
         """, ["cv2.triangulatePoints", "yourself"]),
     # ---------------------------------------------------------------- ex2
+    # the blind set 1202d's 12/02 and 12/01: a 0-d disparity given an axis; matches off the row dropped
+    "depth of a 0-d disparity given an axis": ("lab12.ex2", """
+        _right_depth = depth_from_disparity
+        def depth_from_disparity(disparity, f, baseline):
+            return _right_depth(np.atleast_1d(np.asarray(disparity, np.float64)), f, baseline)
+        """, ["0-d disparity is 0-d too", "np.atleast_1d"]),
+    "disparities of matches off the same row dropped": ("lab12.ex2", """
+        _right_disparity = disparity_from_matches
+        def disparity_from_matches(xl, xr):
+            xl, xr = np.asarray(xl, np.float64), np.asarray(xr, np.float64)
+            if xl.ndim == 2:
+                same_row = np.abs(xl[:, 1] - xr[:, 1]) < 0.5
+                xl, xr = xl[same_row], xr[same_row]
+            return _right_disparity(xl, xr)
+        """, ["none is dropped"]),
     "depth b / (f d)": ("lab12.ex2", """
         def depth_from_disparity(disparity, f, baseline):
             d = np.asarray(disparity, float)
