@@ -892,3 +892,25 @@ def test_a_result_rounded_to_a_few_decimals_is_named():
     assert one(essential.format(end="E = E.round(6)\n            return E")) == wanted
     assert one(essential.format(end="return E")) == set()
     assert one(essential.format(end="return np.round(E)")) == set()   # (whole numbers: an image's pixels)
+
+
+def test_a_list_outside_the_function_grown_at_every_call_is_named():
+    kept = """
+        {head}
+        def project_focal_lengths(points, focal_lengths):
+            {made}
+            for f in focal_lengths:
+                results.append(points * f)
+            return np.array(results)
+        """
+    wanted = {"a container outside the function keeps what earlier calls put in"}
+    assert one(kept.format(head="results = []", made="pass")) == wanted
+    assert one(kept.format(head="", made="results = []")) == set()          # made anew at each call
+    assert one(kept.format(head="results = []", made="results = list()")) == set()
+    cache = """
+        _CACHE = {}
+        def f(x):
+            _CACHE.update({x: x})                                            # (a dict cache: no mistake)
+            return _CACHE[x]
+        """
+    assert one(cache) == set()

@@ -195,6 +195,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _root_by_a_fraction(name, function)
     found += _grid_unpacked_as_x_y(name, function)
     found += _result_rounded(name, function)
+    found += _state_kept_between_calls(name, function)
     return found
 
 
@@ -1697,6 +1698,29 @@ def _result_rounded(name, function) -> list[Finding]:
                                 f"{name} (line {line}) returns `{ast.unparse(made)}`, its result rounded to a few "
                                 "decimals: every digit past them is lost (all of them for a small value); round "
                                 "only where a number is printed")]
+    return []
+
+
+GROWS = frozenset({"append", "extend", "insert", "appendleft"})   # (a list grown: a cache's dict is no mistake)
+
+
+def _state_kept_between_calls(name, function) -> list[Finding]:
+    """``results.append(x)`` (``extend``, ``insert``) on a name the function neither makes nor is given: a list
+    made once, outside it, that keeps what every earlier call put in."""
+    own = {a.arg for a in ast.walk(function.args) if isinstance(a, ast.arg)} | set(_assigned_names(function))
+    own |= {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    declared = {g for n in ast.walk(function) if isinstance(n, ast.Global) for g in n.names}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in GROWS \
+                and isinstance(node.func.value, ast.Name):
+            held = node.func.value.id
+            if (held not in own or held in declared) and held not in ("self", "cls"):
+                line = _line(node)
+                return [Finding(name, line, "a container outside the function keeps what earlier calls put in",
+                                f"{name} (line {line}) calls `{held}.{node.func.attr}(...)` on `{held}`, which the "
+                                "function neither makes nor is given: it is made once, outside the function, and "
+                                "keeps what every earlier call put in it; make it inside the function, anew at "
+                                "each call")]
     return []
 
 
