@@ -914,3 +914,16 @@ def test_a_list_outside_the_function_grown_at_every_call_is_named():
             return _CACHE[x]
         """
     assert one(cache) == set()
+
+
+def test_a_view_read_after_its_whole_array_changed_in_place_is_named():
+    source = """
+        def affine_from_points(src, dst):
+            src, dst = np.array(src, float), np.array(dst, float)
+            p0, q0 = src[0], dst[0]
+            src {op} p0
+            return q0 - p0
+        """
+    wanted = {"a view of an array read after the array was written"}
+    assert one(source.format(op="-=")) == wanted        # (p0 is src[0]: it is 0 after the subtraction)
+    assert one(source.format(op="= src -")) == set()   # (src bound anew: p0 keeps the old row)

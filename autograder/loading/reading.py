@@ -773,6 +773,7 @@ def _view_overwritten(name, function) -> list[Finding]:
                     if isinstance(bound, ast.Name):
                         views[bound.id] = (ast.unparse(value), _line(statement)) if _basic_view(value) else None
     written = {}   # the subscript's text -> the line writing into it
+    changed = {}   # an array changed whole in place (`src -= p0`) -> the line: every view of it changes too
     for statement in statements:   # (each statement's own names read once: linear in the function)
         read = statement.value if isinstance(statement, (ast.Assign, ast.AugAssign)) else statement
         loaded = {n.id for n in ast.walk(read) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
@@ -780,16 +781,20 @@ def _view_overwritten(name, function) -> list[Finding]:
             if views[view_name] is None:
                 continue
             text, bound = views[view_name]
-            if text in written and written[text] > bound and _line(statement) > written[text]:
+            base = text.split("[", 1)[0]
+            line = written.get(text) if text in written else changed.get(base)
+            if line is not None and line > bound and _line(statement) > line:
                 return [Finding(name, _line(statement), "a view of an array read after the array was written",
                                 f"{name} reads `{view_name}` (line {_line(statement)}), a view of `{text}` (line "
-                                f"{bound}) that line {written[text]} has written over: it holds the new values, "
+                                f"{bound}) that line {line} has written over: it holds the new values, "
                                 f"not those it was taken from; take a copy (`{view_name} = {text}.copy()`)")]
         targets = statement.targets if isinstance(statement, ast.Assign) else \
             [statement.target] if isinstance(statement, ast.AugAssign) else []
         for target in targets:
             if isinstance(target, ast.Subscript) and _basic_view(target):
                 written.setdefault(ast.unparse(target), _line(statement))
+            elif isinstance(statement, ast.AugAssign) and isinstance(target, ast.Name):
+                changed.setdefault(target.id, _line(statement))
     return []
 
 
