@@ -987,13 +987,7 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
             t.fail(f"{what}: the rotation is right but tvec is {factor:.3g} times the true one: {ignored}: "
                    "the object points must be in real units, i.e. the grid multiplied by square_size.",
                    mistake=ignored)
-    normal_angle = np.degrees(np.arccos(np.clip(abs(R_got[:, 2] @ R[:, 2]), -1.0, 1.0)))
-    in_plane = np.degrees(np.arccos(np.clip(abs(R_got[:, 0] @ R[:, 0]), -1.0, 1.0)))
-    if normal_angle < 2.0 and abs(in_plane - 90.0) < 2.0:
-        t.fail(f"{what}: the board plane is right but its x and y axes are exchanged (the pose is turned "
-               "by 90 degrees in the board plane): pattern_size is (cols, rows) = (inner corners per row, "
-               "per column), " + PATTERN_AXES_HINT.said(t),
-               mistake="pattern_size's cols and rows are exchanged")
+    fail_if_axes_exchanged(t, what, R_got, R)
     if truth.rotation_angle_deg(R_got, R.T) <= 2 * ANGLE_TOLERANCE and rel <= TRANSLATION_TOLERANCE:
         t.fail(f"{what}: the translation is right but the rotation is transposed (rvec has the wrong "
                "sign): " + measured("return rvec as cv2.solvePnP gives it, the board's rotation into the camera "
@@ -1022,6 +1016,17 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
            f"{format_apart(rel, TRANSLATION_TOLERANCE, 2, percent=True)} of the distance (at most "
            f"{ANGLE_TOLERANCE:g} degrees and {TRANSLATION_TOLERANCE:.0%} accepted; reprojection off by up to "
            f"{reproj_error:.1f} px).")
+
+
+def fail_if_axes_exchanged(t: Trial, what: str, R_got, R) -> None:
+    """Fail naming the board's x and y axes exchanged: the plane right, the pose turned by 90 degrees in it."""
+    normal_angle = np.degrees(np.arccos(np.clip(abs(R_got[:, 2] @ R[:, 2]), -1.0, 1.0)))
+    in_plane = np.degrees(np.arccos(np.clip(abs(R_got[:, 0] @ R[:, 0]), -1.0, 1.0)))
+    if normal_angle < 2.0 and abs(in_plane - 90.0) < 2.0:
+        t.fail(f"{what}: the board plane is right but its x and y axes are exchanged (the pose is turned "
+               "by 90 degrees in the board plane): pattern_size is (cols, rows) = (inner corners per row, "
+               "per column), " + PATTERN_AXES_HINT.said(t),
+               mistake="pattern_size's cols and rows are exchanged")
 
 
 def _wrong_grids_explaining(rvec, tvec, pattern, square, corners, K, dist) -> list:
@@ -1887,6 +1892,7 @@ def judge_track(t: Trial, frames, poses, dist=None, what=None):
             if swapped[0] <= ANGLE_TOLERANCE and swapped[1] <= TRANSLATION_TOLERANCE * np.linalg.norm(tv):
                 t.fail(f"{what}: the rows are [tvec, rvec]; the API wants [rvec, tvec].")
             off = None if dist is None else _without_dist(got, frames, poses, K)
+            fail_if_axes_exchanged(t, f"{what}: frame {i}", scene.rotation_from_rvec(row[:3]), R)
             if off is not None:
                 t.fail(measured(f"{what}: every row is the pose cv2.solvePnP finds for the frame's corners without "
                                 f"dist, as if the lens had no distortion (up to {off:.1%} of the distance off the true "
