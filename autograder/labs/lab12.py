@@ -2479,6 +2479,9 @@ def pattern_mistakes(width, n_bits) -> dict:
         ZERO_ONE: expected // 255,
         "the stripe index is rounded; it is floor(u * 2**n_bits / width), (u * 2**n_bits) // width":
             truth.rounded_stripe_patterns(width, n_bits),
+        "the columns are numbered from 1 (u = 1 .. width, column u shows column u + 1's code); u runs from 0: "
+        "k = (u * 2**n_bits) // width for u = 0 .. width - 1":
+            _patterns_of(((np.arange(width) + 1) * (1 << n_bits)) // width, n_bits),
     }
 
 

@@ -581,6 +581,15 @@ MISTAKES = {
         DEFAULT_SMOOTHNESS = 400.0
         """, ["the default smoothness is far too large"]),
     # ---------------------------------------------------------------- ex6
+    # the blind set 1202d's 12/06: u = 1 .. width
+    "Gray-code columns numbered from 1": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            u = np.arange(1, int(width) + 1)
+            k = (u * (1 << int(n_bits))) // int(width)
+            gray = k ^ (k >> 1)
+            bits = (gray[None, :] >> np.arange(int(n_bits) - 1, -1, -1)[:, None]) & 1
+            return (bits * 255).astype(np.uint8)
+        """, ["the columns are numbered from 1"]),
     "patterns of (g >> s) & 1 * 255 (the & taken after the *)": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
             u = np.arange(int(width))
