@@ -914,6 +914,10 @@ def test_a_list_outside_the_function_grown_at_every_call_is_named():
             return _CACHE[x]
         """
     assert one(cache) == set()
+    assert one("""
+        def f(x):
+            return np.append(x, 1.0)                                         # (numpy's function: nothing grown)
+        """) == set()
 
 
 def test_a_view_read_after_its_whole_array_changed_in_place_is_named():

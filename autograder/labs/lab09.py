@@ -56,6 +56,8 @@ lab = Lab("lab09", module="lab09_camera", title="Geometric camera models")
 DIVIDES = (THIRD_COORDINATE | divides_by("Z", "z", "Z[:, None]", "z[:, None]", "Z[..., None]",
                                            says="divides by Z")).saying(
     "divides by a third coordinate")
+# (named only where the answers are exactly the clamped ones, on the failing points and on the probe's)
+measured(truth.DEPTH_CLAMPED)
 for _missing in (truth.DIVISION_MISSING, truth.DIVISION_MISSING_KX):
     guard(_missing, asks=DIVIDES, instead="the perspective division is missing: your code {found}, but the "
           "points returned are not the divided ones")

@@ -166,18 +166,29 @@ NORMALISE_K_HINT = Hint("divide K by K[2, 2] (P is only known up to scale)",
                         instead="your code {found}, but the K returned is not the divided one (or is changed "
                                 "afterwards); P is only known up to scale")
 SIGN_TEST_INVERTED = "the sign test on det(P[:, :3]) is the wrong way round (P negated where det > 0)"
-SIGN_TEST_MISSED = ("the test deciding P's negation does not follow the sign of det(P[:, :3]) (negate P exactly "
-                    "where det(P[:, :3]) < 0)")
+SIGN_TEST_MISSED = from_code("the test deciding P's negation does not follow the sign of det(P[:, :3]) (negate P "
+                             "exactly where det(P[:, :3]) < 0, the left 3x3 block)")
 
 
-def _negated(P, K, R) -> bool | None:
-    """Whether K R is P's left 3x3 block times a negative number (P negated before it was decomposed), or a
-    positive one (not negated); None where K R is no multiple of it."""
-    M, KR = np.asarray(P, float)[:, :3], np.asarray(K, float) @ np.asarray(R, float)
-    scale = float(np.sum(KR * M) / np.sum(M * M))
-    if scale == 0 or np.abs(KR - scale * M).max() > 1e-6 * np.abs(KR).max():
-        return None
-    return bool(scale < 0)
+def another_block_tested(functions) -> str:
+    """A test (``if``, ``np.where``, a conditional expression) of ``np.linalg.det`` of a block of a matrix other
+    than its left three columns (``P[:, 1:]``, ``P[:, -3:]``), as written; "" where none is."""
+    def left_three(index) -> bool:
+        if not (isinstance(index, ast.Tuple) and len(index.elts) == 2 and isinstance(index.elts[1], ast.Slice)):
+            return True   # (not a column block: another reading's business)
+        columns = index.elts[1]
+        low = columns.lower.value if isinstance(columns.lower, ast.Constant) else 0 if columns.lower is None else None
+        high = columns.upper.value if isinstance(columns.upper, ast.Constant) else \
+            -1 if isinstance(columns.upper, ast.UnaryOp) and isinstance(columns.upper.operand, ast.Constant) \
+            and columns.upper.operand.value == 1 else None
+        return low == 0 and high in (3, -1)
+    tests = [n.test for f in functions for n in ast.walk(f) if isinstance(n, (ast.If, ast.IfExp))]
+    for test in tests:
+        for call in ast.walk(test):
+            if isinstance(call, ast.Call) and _path(call.func).endswith("det") and call.args \
+                    and isinstance(call.args[0], ast.Subscript) and not left_three(call.args[0].slice):
+                return ast.unparse(call)
+    return ""
 
 
 # (the same answer comes from RQ's signs left unfixed when K's whole diagonal comes out negative and the
@@ -591,6 +602,7 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     # a P the code negates (det < 0) leaves RQ's own sign ambiguity as the cause, as for det > 0
     unnegated = negative and not NEGATES_P.found(code_of(t).reachable(["decompose_camera_matrix"]))
     sign_fix = SIGN_FIX.said(t)
+    other_block = another_block_tested(code_of(t).reachable(["decompose_camera_matrix"]))
     K_scale = magnitude(K)
     if np.abs(np.tril(K, -1)).max() > at_precision(1e-6 * np.abs(K).max(), K_scale):
         problems.append("K is not upper triangular" + RQ_HINT.said(t))
@@ -613,15 +625,11 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
         problems.append(measured("det(R) = -1, with K right and R and t the true ones times -1 (K [R | t] = -P, "
                                  f"det(P[:, :3]) {'< 0' if negative else '> 0'} here)")
                         + from_code(f": {SIGN_TEST_INVERTED}; negate P only where det(P[:, :3]) < 0"))
-    elif np.linalg.det(R) < 0 and not unsigned and not unnegated and _negated(P, K, R) not in (None, negative):
-        # (the code negates P under a test, which went the wrong way for this P: K R is P's own block times a
-        # number of the wrong sign, measured -- the test reads another block)
-        negated = _negated(P, K, R)
+    elif np.linalg.det(R) < 0 and not unsigned and not unnegated and other_block:
+        # (the code negates P under a test of another block's determinant, read: its sign is not det(P[:, :3])'s)
         labels.append(SIGN_TEST_MISSED)
-        problems.append(measured(f"det(R) = -1: here det(P[:, :3]) {'<' if negative else '>'} 0 and your K R is "
-                                 f"P[:, :3] times a {'negative' if negated else 'positive'} number: P was "
-                                 f"{'negated' if negated else 'not negated'}")
-                        + from_code(f", under your code's test: {SIGN_TEST_MISSED}"))
+        problems.append(f"det(R) = -1 (det(P[:, :3]) {'<' if negative else '>'} 0 here): "
+                        + from_code(f"your code tests `{other_block}`: {SIGN_TEST_MISSED}"))
     elif np.linalg.det(R) < 0 and not unsigned:   # with K's signs unfixed, det(R) = -1 follows from them
         flips = SIGNS_HINT.contradicts(code_of(t), ["decompose_camera_matrix"])
         labels.append("P is not negated when det(P[:, :3]) < 0" if unnegated else

@@ -785,7 +785,7 @@ def depth_any_shape(t):
     t.for_all(st.tuples(shapes, st.integers(0, 2**32 - 1)), holds, max_examples=10,
               describe=lambda c: f"shape {c[0]}, seed {c[1]}")
     # (and no axis at all: one pixel's disparity as a 0-d array gives a 0-d depth, or a plain number)
-    what = "depth_from_disparity(np.array(8.0), f=400, baseline=0.1), a 0-d array"
+    what = measured("depth_from_disparity(np.array(8.0), f=400, baseline=0.1), a 0-d array")
     got = t.call("depth_from_disparity", np.array(8.0), 400.0, 0.1)
     if np.shape(got) != ():   # (every other shape kept: half the points)
         added = ADDS_AN_AXIS.found(code_of(t).reachable(["depth_from_disparity"]))

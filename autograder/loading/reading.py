@@ -1707,6 +1707,8 @@ def _result_rounded(name, function) -> list[Finding]:
 
 
 GROWS = frozenset({"append", "extend", "insert", "appendleft"})   # (a list grown: a cache's dict is no mistake)
+# (names of modules whose functions have those names -- `np.append(f, 1.0)` grows nothing -- and an object's own)
+MODULES_CALLED = frozenset({"np", "numpy", "cv2", "math", "scipy", "skimage", "ski", "plt", "os", "sys", "self", "cls"})
 
 
 def _state_kept_between_calls(name, function) -> list[Finding]:
@@ -1719,7 +1721,7 @@ def _state_kept_between_calls(name, function) -> list[Finding]:
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in GROWS \
                 and isinstance(node.func.value, ast.Name):
             held = node.func.value.id
-            if (held not in own or held in declared) and held not in ("self", "cls"):
+            if (held not in own or held in declared) and held not in MODULES_CALLED:
                 line = _line(node)
                 return [Finding(name, line, "a container outside the function keeps what earlier calls put in",
                                 f"{name} (line {line}) calls `{held}.{node.func.attr}(...)` on `{held}`, which the "

@@ -143,7 +143,7 @@ MISTAKES = {
             K, R = K @ signs, signs @ R
             t = np.linalg.solve(K, P[:, 3])
             return K / K[2, 2], R, t
-        """, ["does not follow the sign of det(p[:, :3])"]),
+        """, ["your code tests `np.linalg.det(p[:, 1:])`", "does not follow the sign of det(p[:, :3])"]),
     "no sign fix": ("lab10.ex5", """
         def decompose_camera_matrix(P):
             P = np.asarray(P, dtype=np.float64)
