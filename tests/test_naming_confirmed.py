@@ -325,6 +325,7 @@ DIRECT_EVIDENCE = {
     "shape_form": "the result's shape is the named form's (2x3 for 3x3, (N, 1, 2), one coordinate more...)",
     "exception_form": "the shapes in NumPy's own error are the named form's",
     "scale_form": "the answer is the truth times one factor, measured, and the factor is -1 or 1 / an entry",
+    "unit_range_cast": "a uint8 image holding only 0 and 1 where the expected one spans many grey levels",
     "_homogeneous_product": "the product's inner sizes differ by the homogeneous coordinate",
     "_channels_form": "the image's size is the asked one and only its channel axis differs (measured)",
     "judge_matrix": "an integer matrix: the entries are whole numbers where the truth's are not",

@@ -65,7 +65,8 @@ CONVERSIONS = {   # name -> (what, body of _convert for an ndarray ``value``)
     "float32": ("as float32 where it is float64 (integer and other results as they are)",
                 "    return value.astype(_np.float32) if value.dtype == _np.float64 else value"),
     "fortran_readonly": ("Fortran-ordered and read-only",
-                         "    value = _np.asfortranarray(value)\n"
+                         # (np.asfortranarray gives a 0-d array an axis: a 0-d result is only made read-only)
+                         "    value = _np.asfortranarray(value) if value.ndim else value.copy()\n"
                          "    value.flags.writeable = False\n"
                          "    return value"),
 }
