@@ -1080,8 +1080,11 @@ def explain_values(code, mine: Recording, reference: Recording, function: str):
 def _agrees(value, theirs) -> bool:
     """Whether ``value`` is one of the reference's values, or one item of one (``A[i]`` of an ``(N, 4, 4)``
     stack: a loop over the points where the reference computes them all at once)."""
+    # (an item of 4 numbers at least -- a row of a system, a matrix --: a point equal to a row of an input,
+    # `pts[0]`, says nothing of the step)
     return any((value.shape == other.shape and _close(value, other))
-               or (other.ndim == value.ndim + 1 and other.shape[1:] == value.shape and _an_item(value, other))
+               or (value.size >= 4 and other.ndim == value.ndim + 1 and other.shape[1:] == value.shape
+                   and _an_item(value, other))
                for other in theirs)
 
 

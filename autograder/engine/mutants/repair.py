@@ -968,10 +968,16 @@ class _Student:
         where, ordinal, operator, payload = mutant.edits[0]
         if operator != "other_name" or len(mutant.edits) != 1 or not isinstance(payload, str):
             return ()
-        nodes, _ = self._walk(where)
+        nodes, parents = self._walk(where)
         node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
         if not isinstance(node, ast.Name):
             return ()
+        above = parents.get(id(node), (None,))[0]
+        while above is not None and not isinstance(above, ast.stmt):
+            if isinstance(above, (ast.Compare, ast.BoolOp)) or (isinstance(above, ast.UnaryOp)
+                                                                 and isinstance(above.op, (ast.Not, ast.Invert))):
+                return ()   # (a name read in a test -- `depth[~(depth > 0)] = 0` -- selects; it skips no step)
+            above = parents.get(id(above), (None,))[0]
         made = [n for n in nodes if isinstance(n, ast.Assign) and n.lineno < node.lineno
                 and any(isinstance(t, ast.Name) and t.id == node.id for t in n.targets)]
         if not made:
