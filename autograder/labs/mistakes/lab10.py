@@ -5,6 +5,20 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 
 from . import one_point_by_length
 
+# The reference's decomposition (RQ by a QR of the flipped block, K's signs fixed) with the negation of P as given.
+_DECOMPOSE = """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+{negation}            flip = np.eye(3)[::-1]
+            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
+            K = flip @ U.T @ flip
+            R = flip @ Q.T
+            signs = np.diag(np.sign(np.diag(K)))
+            K, R = K @ signs, signs @ R
+            t = np.linalg.solve(K, P[:, 3])
+            return K / K[2, 2], R, t
+        """
+
 MISTAKES = {
     "perspective without division": ("lab10.ex1", """
         def perspective_project(points, f):
@@ -102,18 +116,8 @@ MISTAKES = {
             p = np.linalg.lstsq(np.array(A), np.array(b), rcond=None)[0]
             return np.append(p, 1.0).reshape(3, 4)
         """, ["t_z = 0", "fixed to 1", "svd"]),
-    "decomposition that fixes K's signs but never negates P": ("lab10.ex5", """
-        def decompose_camera_matrix(P):
-            P = np.asarray(P, dtype=np.float64)
-            flip = np.eye(3)[::-1]
-            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
-            K = flip @ U.T @ flip
-            R = flip @ Q.T
-            signs = np.diag(np.sign(np.diag(K)))
-            K, R = K @ signs, signs @ R
-            t = np.linalg.solve(K, P[:, 3])
-            return K / K[2, 2], R, t
-        """, ["det(p[:, :3]) < 0", "multiply p by -1 first"]),
+    "decomposition that fixes K's signs but never negates P": ("lab10.ex5", _DECOMPOSE.format(negation=""),
+                                                               ["det(p[:, :3]) < 0", "multiply p by -1 first"]),
     # the blind set 1201d's 10/05: the determinant's sign test the wrong way round
     "decomposition negating P when det(M) > 0": ("lab10.ex5", """
         _decompose = decompose_camera_matrix
@@ -130,20 +134,9 @@ MISTAKES = {
             return K, R, -R.T @ t
         """, ["camera centre"]),
     # the blind set 1202d's 10/04: the negation decided from the last three columns' determinant
-    "decomposition negating P by the sign of another block": ("lab10.ex5", """
-        def decompose_camera_matrix(P):
-            P = np.asarray(P, dtype=np.float64)
-            if np.linalg.det(P[:, 1:]) < 0:
-                P = -P
-            flip = np.eye(3)[::-1]
-            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
-            K = flip @ U.T @ flip
-            R = flip @ Q.T
-            signs = np.diag(np.sign(np.diag(K)))
-            K, R = K @ signs, signs @ R
-            t = np.linalg.solve(K, P[:, 3])
-            return K / K[2, 2], R, t
-        """, ["your code tests `np.linalg.det(p[:, 1:])`", "does not follow the sign of det(p[:, :3])"]),
+    "decomposition negating P by the sign of another block": ("lab10.ex5", _DECOMPOSE.format(
+        negation="            if np.linalg.det(P[:, 1:]) < 0:\n                P = -P\n"),
+        ["your code tests `np.linalg.det(p[:, 1:])`", "does not follow the sign of det(p[:, :3])"]),
     "no sign fix": ("lab10.ex5", """
         def decompose_camera_matrix(P):
             P = np.asarray(P, dtype=np.float64)
