@@ -931,3 +931,22 @@ def test_a_view_read_after_its_whole_array_changed_in_place_is_named():
     wanted = {"a view of an array read after the array was written"}
     assert one(source.format(op="-=")) == wanted        # (p0 is src[0]: it is 0 after the subtraction)
     assert one(source.format(op="= src -")) == set()   # (src bound anew: p0 keeps the old row)
+
+
+def test_a_camera_matrix_augmented_with_a_zero_column_is_no_homogeneous_point():
+    """`np.hstack([K, np.zeros((3, 1))])` is K [I | 0] (1202e lab09/04 was told "homogeneous with 0"); points given
+    a constant zero column still are."""
+    camera = """
+        def project(K, X):
+            P = np.hstack([{first}, np.zeros((3, 1))])
+            x = np.hstack([X, np.ones((len(X), 1))]) @ P.T
+            return x[:, :2] / x[:, 2:]
+        """
+    assert one(camera.format(first="K")) == set()
+    assert one(camera.format(first="K1")) == set()
+    assert one(camera.format(first="np.asarray(K, dtype=np.float64)")) == set()
+    assert one("""
+        def f(H, pts):
+            p = np.hstack([pts, np.zeros((3, 1))])
+            return p @ H.T
+        """) == {"the homogeneous coordinate is 0 instead of 1"}

@@ -524,7 +524,16 @@ def _stacks_zero_column(node, zeros=frozenset(), data=frozenset()) -> bool:
         is_zeros, constant_size = True, True
     if not is_zeros:
         return False
+    # (a constant column beside a camera's intrinsics or a rotation -- `[K | 0]`, `[R | 0]` -- is a matrix
+    # augmented, whatever data K came from)
+    while isinstance(first, ast.Call) and _call_name(first) in {"asarray", "array", "float64", "copy"} and first.args:
+        first = first.args[0]   # (np.asarray(K, dtype=np.float64): K still)
+    if constant_size and isinstance(first, ast.Name) and (first.id in MATRIX_NAMES or first.id.startswith("K")):
+        return False
     return not constant_size or bool(_names_in(first) & set(data))
+
+
+MATRIX_NAMES = frozenset({"R", "R1", "R2", "M", "intrinsics", "camera_matrix", "cam_matrix", "A"})
 
 
 def _ends_in_zero(node) -> bool:
