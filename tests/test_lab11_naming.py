@@ -163,3 +163,18 @@ def test_e_transposed_is_a_column_major_reshape_only_where_the_code_shows_one(tm
     assert ("reshaped column by column" in exact.message) == column_order_said, exact.message
     if column_order_said:
         assert "swapped" not in exact.message and "kron(x1, x2)" not in exact.message, exact.message
+
+
+def test_a_repeated_entry_is_read_in_a_row_of_a_not_in_a_matrix_written_flat():
+    """The sheet's misprinted row (y2 twice among products of the two points) is read; a 3 x 3 matrix written as
+    9 entries (diag(s, s, 0), a skew matrix) repeats entries and is no row of A."""
+    from autograder.labs.lab11 import repeated_column
+
+    def read(row: str) -> str:
+        return repeated_column(read_code(f"def f(x1, y1, x2, y2, s, t):\n    return np.array({row})\n")
+                               .reachable(["f"]))
+
+    assert "`y2` twice" in read("[x1 * x2, x1 * y2, x1, y1 * x2, y1, x2, y2, y2, 1]")
+    assert read("[x2 * x1, x2 * y1, x2, y2 * x1, y2 * y1, y2, x1, y1, 1]") == ""
+    assert read("[s, 0, 0, 0, s, 0, 0, 0, 0]") == ""
+    assert read("[0, -t[2], t[1], t[2], 0, -t[0], -t[1], t[0], 0]") == ""

@@ -915,8 +915,17 @@ def test_a_list_outside_the_function_grown_at_every_call_is_named():
         """
     assert one(cache) == set()
     assert one("""
+        import numpy as np
         def f(x):
             return np.append(x, 1.0)                                         # (numpy's function: nothing grown)
+        """) == set()
+    assert one("""
+        results = []
+        def f(x):
+            global results
+            results = []                                                     # (made anew at each call)
+            results.append(x)
+            return results
         """) == set()
 
 

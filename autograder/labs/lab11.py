@@ -92,10 +92,13 @@ REPEATED_COLUMN = from_code("two columns of A are the same expression (as in the
 
 def repeated_column(functions) -> str:
     """A row of A written with 9 entries (a list, or the list given to np.stack / np.column_stack / np.array)
-    holding one expression twice, said as "the row of A at line 12 holds `x2[:, 1]` twice"; "" where none is."""
+    holding one expression twice, said as "the row of A at line 12 holds `x2[:, 1]` twice"; "" where none is.
+    A row of A holds products of the two points' coordinates (three at least, as the misprinted row): a 3 x 3
+    matrix written as 9 entries (`[s, 0, 0, 0, s, 0, 0, 0, 0]`, a skew matrix) is no row."""
     for function in functions:
         for node in ast.walk(function):
-            if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 9:
+            if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 9 and sum(
+                    isinstance(e, ast.BinOp) and isinstance(e.op, ast.Mult) for e in node.elts) >= 3:
                 seen = {}
                 for item in node.elts:
                     if isinstance(item, ast.Constant):

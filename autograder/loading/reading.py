@@ -128,9 +128,14 @@ def read_source(text: str, api=frozenset()) -> Reading:
         if sum(1 for _ in ast.walk(tree)) > MAX_NODES:
             return _not_read(f"more than {MAX_NODES:,} syntax nodes")
         functions = {node.name: node for node in tree.body if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))}
+        # (the module's own lists: `results = []` at the top level, which a function may grow at every call)
+        lists = frozenset(target.id for node in tree.body if isinstance(node, ast.Assign)
+                          and (isinstance(node.value, (ast.List, ast.ListComp))
+                               or isinstance(node.value, ast.Call) and _call_name(node.value) == "list")
+                          for target in node.targets if isinstance(target, ast.Name))
         findings, calls = {}, {}
         for name, node in functions.items():
-            findings[name] = _read_function(node, name in api)
+            findings[name] = _read_function(node, name in api, lists)
             calls[name] = {called for called in _called_names(node) if called in functions and called != name}
         return Reading(findings, calls)
     except TooLarge as exc:
@@ -156,7 +161,7 @@ def findings_for(reading: Reading, functions, values_show_whole_numbers: bool) -
 
 
 # ------------------------------------------------------------------ one function
-def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding]:
+def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset()) -> list[Finding]:
     name = function.name
     parameters = {a.arg for a in function.args.args + function.args.kwonlyargs + function.args.posonlyargs}
     images = parameters if api else set()
@@ -195,7 +200,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False) -> list[Finding
     found += _root_by_a_fraction(name, function)
     found += _grid_unpacked_as_x_y(name, function)
     found += _result_rounded(name, function)
-    found += _state_kept_between_calls(name, function)
+    found += _state_kept_between_calls(name, function, lists)
     return found
 
 
@@ -1716,27 +1721,24 @@ def _result_rounded(name, function) -> list[Finding]:
 
 
 GROWS = frozenset({"append", "extend", "insert", "appendleft"})   # (a list grown: a cache's dict is no mistake)
-# (names of modules whose functions have those names -- `np.append(f, 1.0)` grows nothing -- and an object's own)
-MODULES_CALLED = frozenset({"np", "numpy", "cv2", "math", "scipy", "skimage", "ski", "plt", "os", "sys", "self", "cls"})
 
 
-def _state_kept_between_calls(name, function) -> list[Finding]:
-    """``results.append(x)`` (``extend``, ``insert``) on a name the function neither makes nor is given: a list
-    made once, outside it, that keeps what every earlier call put in."""
+def _state_kept_between_calls(name, function, lists=frozenset()) -> list[Finding]:
+    """``results.append(x)`` (``extend``, ``insert``) on ``results``, one of the module's ``lists`` (made at its
+    top level) that the function neither makes anew (a `global` list reset inside it is) nor is given: made once,
+    it keeps what every earlier call put in (``np.append(f, 1.0)`` grows no list of the module's)."""
     own = {a.arg for a in ast.walk(function.args) if isinstance(a, ast.arg)} | set(_assigned_names(function))
     own |= {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
-    declared = {g for n in ast.walk(function) if isinstance(n, ast.Global) for g in n.names}
     for node in ast.walk(function):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in GROWS \
                 and isinstance(node.func.value, ast.Name):
             held = node.func.value.id
-            if (held not in own or held in declared) and held not in MODULES_CALLED:
+            if held in lists and held not in own:
                 line = _line(node)
                 return [Finding(name, line, "a container outside the function keeps what earlier calls put in",
-                                f"{name} (line {line}) calls `{held}.{node.func.attr}(...)` on `{held}`, which the "
-                                "function neither makes nor is given: it is made once, outside the function, and "
-                                "keeps what every earlier call put in it; make it inside the function, anew at "
-                                "each call")]
+                                f"{name} (line {line}) calls `{held}.{node.func.attr}(...)` on `{held}`, a list made "
+                                "once, at the top of the module, outside the function: it keeps what every earlier "
+                                "call put in it; make it inside the function, anew at each call")]
     return []
 
 

@@ -957,7 +957,7 @@ class _Student:
         if mutant.key not in self.fixes:
             shown = _together([self.shown(edit) for edit in mutant.edits])
             self.fixes[mutant.key] = None if any(each is None for each in shown) else \
-                Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits, self.skipped_step(mutant))
+                Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
         return self.fixes[mutant.key]
 
     def skipped_step(self, mutant) -> tuple:
@@ -2885,7 +2885,9 @@ class _Variants:
         """The repair told for ``fixes`` [(mutant, fix)], kept for the grading's later checks."""
         self.trial.sandbox.shared["repair found"][self.function] = [mutant for mutant, _ in fixes]
         usable = (self.confirmations[2] or []) if self.confirmations else []
-        told = sorted((fix for _, fix in fixes), key=lambda fix: (fix.where != self.function, fix.changes[0][0]))
+        # (the step a change skips is read for the changes told only: reading it walks the def, once per change)
+        told = sorted((replace(fix, skips=self.student.skipped_step(mutant)) for mutant, fix in fixes),
+                      key=lambda fix: (fix.where != self.function, fix.changes[0][0]))
         checked = "" if not any(mutant.key in self.checked for mutant, _ in fixes) else \
             "checks" if self.confirmed_by_checks else "nearer"
         return Repair(self.function, tuple(told), len(self.inputs) + len(usable), complete, checked)   # as the code runs
