@@ -46,6 +46,15 @@ BLACK_FILL_HINT = Hint("use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black
                        instead="your code already {found}: the pixels with no source pixel are filled "
                                "elsewhere (borderValue, or what is written into the output afterwards)")
 FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
+# border rules that fill the pixels with no source pixel from the image's own edge
+REPEATING_BORDERS = ("BORDER_REPLICATE", "BORDER_REFLECT", "BORDER_REFLECT_101", "BORDER_REFLECT101", "BORDER_WRAP",
+                     "BORDER_DEFAULT")
+
+
+def repeating_border(read) -> str | None:
+    """The first border rule of :data:`REPEATING_BORDERS` the code ``read`` names (cv2.BORDER_...), or None."""
+    return next((name for name in REPEATING_BORDERS if mentions(f"cv2.{name}").found(read)), None)
+
 # what the pixels with no source pixel hold instead of black, by the border rule that gives them
 FILLS = {
     cv2.BORDER_WRAP: measured("wrap around from the opposite side (as np.roll and cv2.BORDER_WRAP do)"),

@@ -1563,15 +1563,20 @@ def project_onto_image_off_the_frame(t):
                  probe=points_probe(t, "project_onto_image"))
 
 
+def _scene_with_a_point_behind():
+    """The off-the-frame scene with a point 3 units behind the camera as point 3."""
+    image, P, X = _scene_off_the_frame()
+    R, tvec = truth.random_pose(51)
+    behind = (np.array([[0.5, -0.4, -3.0]]) - tvec) @ R   # 3 units behind the camera, in world coordinates
+    return image, P, np.vstack([X[:3], behind, X[3:]])
+
+
 @ex5.check("project_onto_image with a point behind the camera: still a row per point", points=1)
 def project_onto_image_behind(t):
     """A point behind the camera keeps its row too (its value is open: NaN, the skeleton's advice, or what
     the formulas give), so that row i stays point i's. A call that raises is not judged here: NaN given
     to the student's own drawing may raise there, which the API does not ask it to take."""
-    image, P, X = _scene_off_the_frame()
-    R, tvec = truth.random_pose(51)
-    behind = (np.array([[0.5, -0.4, -3.0]]) - tvec) @ R   # 3 units behind the camera, in world coordinates
-    X = np.vstack([X[:3], behind, X[3:]])
+    image, P, X = _scene_with_a_point_behind()
     what = f"project_onto_image(image, P, points)[1], {len(X)} points of which point 3 is behind the camera"
     try:
         got = t.call("project_onto_image", image, P, X)
@@ -1596,6 +1601,44 @@ def project_onto_image_behind(t):
     keep = np.arange(len(X)) != 3
     judge_points(t, what + " (the points in front)", np.asarray(pts, np.float64)[keep] if rows == len(X) else pts,
                  expected[keep], project_mistakes(P, X[keep]), tolerance=1e-6)
+
+
+NAN_TO_ZERO = calls("np.nan_to_num")
+
+
+@ex5.check("project_onto_image draws nothing where none of its points is (a point behind the camera)", points=1)
+def project_onto_image_draws_its_points(t):
+    """One call's two results agree: the image shows a circle at each finite returned point and nothing
+    elsewhere. A point behind the camera is the question: whatever value its row holds (NaN, the skeleton's
+    advice, or the formulas'), nothing may be drawn where no returned point is. A call that raises is not
+    judged here (see the rows check)."""
+    image, P, X = _scene_with_a_point_behind()
+    try:
+        got = t.call("project_onto_image", image, P, X)
+    except StudentFailure:
+        return passed(measured("the call raised with a point behind the camera: not judged here"))
+    drawn, pts = got if isinstance(got, (tuple, list)) and len(got) == 2 else (None, None)
+    pts = np.asarray(pts, dtype=np.float64) if isinstance(pts, np.ndarray) and pts.dtype.kind in "iuf" else None
+    if not (isinstance(drawn, np.ndarray) and drawn.shape == image.shape and pts is not None
+            and pts.shape == (len(X), 2)):
+        return passed(measured("the form of the answer is the other checks' to judge"))
+    shown = pts[np.isfinite(pts).all(axis=1)]
+    _, far = truth.circle_regions(image.shape, shown, 3) if len(shown) else (None, np.ones(image.shape[:2], bool))
+    stray = np.any(drawn != image, axis=-1) & far
+    if stray.sum() <= 3:
+        return passed(measured("every drawn pixel is near a returned point"))
+    ys, xs = np.nonzero(stray)
+    at = (int(round(xs.mean())), int(round(ys.mean())))
+    corner = max(at) <= 6 and not np.isfinite(pts[3]).all()
+    t.images("project_onto_image(image, P, points)[0]", "point 3 is behind the camera", input=image, yours=drawn)
+    t.fail(measured(f"project_onto_image(image, P, points), point 3 behind the camera: {int(stray.sum())} pixels "
+                    f"are drawn around (x, y) = {at}, where none of the returned points is (row 3 is "
+                    f"{format_matrix(pts[3])})")
+           + (measured(": the point whose projection is NaN is drawn at the corner (0, 0)")
+              + (from_code(", where np.nan_to_num puts it (NaN becomes 0): draw only the finite points.")
+                 if NAN_TO_ZERO.found(code_of(t).reachable(["project_onto_image"])) else ".") if corner else
+              ". The image and the points returned should agree: draw the points you return."),
+           mistake="a point behind the camera is drawn" if corner else "the drawing is not of the returned points")
 
 
 # ================================================================== ext1 calibration

@@ -30,7 +30,7 @@ from ..engine.compare import (at_precision, blurred_difference, closest, fill_fr
 from ..engine.forms import scale_form
 from ..engine.hints import Hint, Predicate, _path, calls, code_of, expr, mentions
 from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, format_matrix, name_mistake,
-                             name_correspondences_left_out, where_matrices_differ)
+                             name_correspondences_left_out, repeating_border, where_matrices_differ)
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed
@@ -1569,8 +1569,6 @@ def undistort_off_centre(t):
 # image, so they are 0 -- as cv2.undistort and cv2.remap's default constant border leave them. The other
 # checks' barrel lenses sample inside the image everywhere, where no fill shows.
 PINCUSHION = np.array([0.35, 0.1, 0.0, 0.0, 0.0])
-REPEATING_BORDERS = ("BORDER_REPLICATE", "BORDER_REFLECT", "BORDER_REFLECT_101", "BORDER_REFLECT101", "BORDER_WRAP",
-                     "BORDER_DEFAULT")
 
 
 @ext1.check("undistort_image leaves black the pixels whose source lies outside the image (a pincushion lens)",
@@ -1595,7 +1593,7 @@ def undistort_black_fill(t):
     if calls("cv2.getOptimalNewCameraMatrix").found(read):   # another camera matrix: the first check's to judge
         return passed(measured("the view in cv2.getOptimalNewCameraMatrix's camera matrix, which the first check "
                                "judges"))
-    rule = next((name for name in REPEATING_BORDERS if mentions(f"cv2.{name}").found(read)), None)
+    rule = repeating_border(read)
     t.fail(measured(f"{what}: {nonblack:.0%} of the pixels whose source lies outside the distorted image are not "
                     "black (the API's black fill: a pixel with no source pixel is 0)")
            + (from_code(f"; your code uses cv2.{rule}, which fills them from the image's edge.") if rule else "."),

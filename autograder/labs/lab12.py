@@ -24,22 +24,23 @@ import cv2
 import numpy as np
 
 from fixtures import lab12 as truth
-from fixtures.images import tinted
+from fixtures.images import coverage, tinted
 
 from ..engine import inplace
 from ..engine import conventions
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
-                       format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
+                       fill_fraction, format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
 from ..engine.claims import (calls_any, checklist, divides_by, from_code, guard, guessed, look_at, measured,
                              passes_parameters, takes_last_row_of_vt, wherever_written)
 from ..engine.forms import shape_form
 from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
                             keyword, mentions,
                             size_given_as_shape)
-from ..engine.judges import (Probe, call_probe, fingerprint, judge_default_is_the_apis, judge_parameter_changes_result,
-                      judge_parameter_used, name_mistake, over_variants, same_informative_result)
+from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, judge_default_is_the_apis, judge_parameter_changes_result,
+                      judge_parameter_used, name_mistake, over_variants, repeating_border,
+                      same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..engine.registry import Lab
 from .code_signs import (DIVIDES_BY_16, STEREO_MATCHER, constant_factor, factor_words, name_batched_vt_row,
@@ -1303,6 +1304,34 @@ def _warped_with_the_other(t, name, pair, rect_l, rect_r, H1, H2) -> str:
         return "each image is warped with the other one's homography"
     own, wrong = ("H1", "H2") if name == "rect_l" else ("H2", "H1")
     return f"{name} alone is warped with {wrong}, the other image's homography, where {own} belongs"
+
+
+@ex3.check("rectify leaves black the pixels whose source lies outside the image", points=1)
+def rectify_black_fill(t):
+    """The API's black fill: the rectifying rotation brings in pixels from beyond each input (here about
+    10% of the left frame and 2% of the right), which are 0, as cv2.warpPerspective and cv2.remap leave
+    them by default. Judged with the student's own H1 and H2 (their images are the other checks')."""
+    pair = truth.unrectified_pair(seed=4)
+    rect_l, rect_r, H1, H2 = call_rectify(t, pair)
+    for name, image, H, got in (("rect_l", pair.img_l, H1, rect_l), ("rect_r", pair.img_r, H2, rect_r)):
+        try:
+            if warped_error(image, H, got) > 8.0:
+                return passed(measured(f"{name} is not the input warped by its homography: the images check "
+                                       "judges it"))
+            _, outside = coverage(H, image.shape, margin=1.5)
+        except np.linalg.LinAlgError:
+            return passed(measured("a homography is singular: the other checks judge it"))
+        nonblack = fill_fraction(got, outside)
+        if nonblack > FILL_TOLERANCE:
+            t.images(f"rectify(...): {name}", "the pixels with no source pixel: black fill", input=image, yours=got)
+            rule = repeating_border(code_of(t).reachable(["rectify"]))
+            t.fail(measured(f"rectify: {nonblack:.0%} of the {int(outside.sum())} pixels of {name} whose source "
+                            "lies outside the input image are not black (the API's black fill: a pixel with no "
+                            "source pixel is 0)")
+                   + (from_code(f"; your code uses cv2.{rule}, which fills them from the image's edge.") if rule
+                      else "."),
+                   hint=BLACK_FILL_HINT.said(t), mistake="the fill is not black")
+    return passed(measured("the pixels with no source pixel are black in both images"))
 
 
 @ex3.check("rectify keeps a colour pair in colour (BGR in, BGR out)", points=1)

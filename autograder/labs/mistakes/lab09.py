@@ -38,6 +38,12 @@ MISTAKES = {
                 cv2.circle(shown, (int(round(x)), int(round(y))), 3, (0, 0, 255), -1)
             return shown, pts
         """, ["its colour channels reversed (rgb for bgr)"]),
+    # the blind set 1202e's 09/06: NaN turned into 0 for the drawing, so a point behind the camera is a dot at (0, 0)
+    "project_onto_image drawing np.nan_to_num of the points": ("lab09.ex5", """
+        def project_onto_image(image, P, points):
+            pts = project(P, points).reshape(-1, 2)
+            return draw_points(image, np.nan_to_num(pts)), pts
+        """, ["drawn at the corner (0, 0)", "np.nan_to_num"]),
     "project_onto_image dropping the rows that are not finite (a point behind the camera)": ("lab09.ex5", """
         def project_onto_image(image, P, points):
             pts = project(P, points).reshape(-1, 2)

@@ -211,6 +211,15 @@ MISTAKES = {
                 img_l, img_r = cv2.cvtColor(img_l, cv2.COLOR_BGR2GRAY), cv2.cvtColor(img_r, cv2.COLOR_BGR2GRAY)
             return _rectify(img_l, img_r, K1, K2, R, T)
         """, ["channels are not kept", "BGR in, BGR out"]),
+    # the blind set 1202e's 12/04: the rotation brings in pixels from beyond the frame, filled from its edge
+    "rectify warping with cv2.BORDER_REPLICATE": ("lab12.ex3", """
+        _rectify = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            a, b, H1, H2 = _rectify(img_l, img_r, K1, K2, R, T)
+            h, w = np.asarray(img_l).shape[:2]
+            return (cv2.warpPerspective(np.asarray(img_l), H1, (w, h), borderMode=cv2.BORDER_REPLICATE),
+                    cv2.warpPerspective(np.asarray(img_r), H2, (w, h), borderMode=cv2.BORDER_REPLICATE), H1, H2)
+        """, ["are not black", "your code uses cv2.BORDER_REPLICATE"]),
     "rectify returns inverse homographies": ("lab12.ex3", """
         _rectify = rectify
         def rectify(img_l, img_r, K1, K2, R, T):
