@@ -595,6 +595,25 @@ def _keeps_the_closer(functions) -> bool:
     return True
 
 
+def _fixed_distance_cut(functions) -> str:
+    """A match distance compared with a fixed number (``m.distance < 64``, a cut-off from ORB's Hamming
+    tutorials that drops most SIFT matches, whose L2 distances are in the hundreds), as written; "" if none."""
+    for function in functions:
+        for node in ast.walk(function):
+            if isinstance(node, ast.Compare) and len(node.ops) == 1:
+                sides = (node.left, node.comparators[0])
+                if any(isinstance(side, ast.Attribute) and side.attr == "distance" for side in sides) and any(
+                        isinstance(side, ast.Constant) and isinstance(side.value, (int, float)) for side in sides):
+                    return ast.unparse(node)
+    return ""
+
+
+def _no_fixed_distance_cut(functions) -> bool:
+    return not _fixed_distance_cut(functions)
+
+
+NO_FIXED_DISTANCE_CUT = Predicate("compares no match distance with a fixed number", _no_fixed_distance_cut,
+                                  kind="all")
 KEPT_MATCHES_READ = Predicate("returns the matches passing the test", _kept_matches_read, kind="all")
 KEEPS_THE_CLOSER = Predicate("keeps the closer of the two neighbours", _keeps_the_closer, kind="all")
 RATIO_IGNORED_HINT = Hint(
@@ -613,6 +632,8 @@ RATIO_HINT = Hint("keep a match only when best.distance < ratio * second_best.di
                       ("the match kept is the closer of the two neighbours (m of each m, n pair)", KEEPS_THE_CLOSER),
                       ("pts1 come from img1's keypoints by queryIdx", mentions(".queryIdx")),
                       ("pts2 come from img2's keypoints by trainIdx", mentions(".trainIdx")),
+                      ("the ratio test alone chooses the matches, with no fixed cut-off on the distance (SIFT's L2 "
+                       "distances are in the hundreds)", NO_FIXED_DISTANCE_CUT),
                       none_left="look at which points are returned, and in which order"))
 
 
@@ -634,11 +655,15 @@ def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, 
         if truth.consistent(H, pts1[:, ::-1], pts2[:, ::-1]).mean() >= min_fraction:
             t.fail(f"{what}: x and y are swapped: " + XY_HINT.said(t), mistake="x and y are swapped")
     if len(pts1) < min_matches:
-        capped = _cut_to(code_of(t).reachable(["match_features"]), len(pts1))
+        read = code_of(t).reachable(["match_features"])
+        capped, cut = _cut_to(read, len(pts1)), _fixed_distance_cut(read)
         t.fail(f"{what} returned {len(pts1)} matches; at least {min_matches} are expected on this "
                "pair (the true homography is a mild change of view)"
                + (from_code(f": your code keeps the first {len(pts1)} (`{capped}`); return every match that passes "
-                            "the ratio test") if capped else ""), mistake=MATCHES_CUT if capped else "")
+                            "the ratio test") if capped else
+                  from_code(f": your code also keeps only the matches that pass `{cut}`, a fixed cut-off the sheet "
+                            "does not ask for (SIFT's L2 distances are in the hundreds): let the ratio test alone "
+                            "choose") if cut else ""), mistake=MATCHES_CUT if capped else "")
     t.fail(f"{what}: only {format_apart(fraction, min_fraction, 2, percent=True)} of the {len(pts1)} "
            f"matches agree with the true homography (within {MATCH_TOLERANCE:g} px); at least "
            f"{min_fraction:.0%} expected.",

@@ -235,6 +235,17 @@ MISTAKES = {
         def match_features(img1, img2, ratio=0.8, method="sift"):
             return _match_features(img1, img2, ratio, method)
         """, ["gives `ratio` the default 0.8, where the api's default is ratio=0.75"]),
+    # the blind set 1202e's 08/08: an ORB tutorial's absolute cut-off beside Lowe's test
+    "match_features with a fixed distance cut-off beside the ratio test": ("lab08.ex3", """
+        def _match(features1, features2, ratio, method="sift"):
+            (points1, descriptors1), (points2, descriptors2) = features1, features2
+            norm = cv2.NORM_HAMMING if method == "orb" else cv2.NORM_L2
+            pairs = cv2.BFMatcher(norm).knnMatch(descriptors1, descriptors2, k=2)
+            good = [m for m, n in (p for p in pairs if len(p) == 2) if m.distance < ratio * n.distance and m.distance < 64]
+            query = np.array([m.queryIdx for m in good], dtype=int)
+            train = np.array([m.trainIdx for m in good], dtype=int)
+            return points1[query].reshape(-1, 2), points2[train].reshape(-1, 2)
+        """, ["a fixed cut-off", "m.distance < 64"]),
     "match_features keeping the first 50 matches": ("lab08.ex3", """
         _match_features = match_features
         def match_features(img1, img2, ratio=0.75, method="sift"):
