@@ -2706,6 +2706,23 @@ def test_an_index_tested_against_its_upper_end_only_is_given_its_lower_end():
     assert made == {("cols < width", "(cols >= 0) & (cols < width)")}, made
 
 
+def test_a_squared_distance_is_compared_with_a_squared_bound():
+    """`dx ** 2 + dy ** 2 <= r` (a disc of radius sqrt(r)): the bound squared is offered; a distance with its
+    root taken compared with `r ** 2` gets the bound unsquared; a comparison of two unsquared values is left."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(xx, yy, cx, cy, radius, a, b):
+            disc = (xx - cx) ** 2 + (yy - cy) ** 2 <= radius
+            ring = np.hypot(xx - cx, yy - cy) < radius ** 2
+            plain = a < b
+            return disc, ring, plain
+    """)
+    made = _made(source, {"squared_bound"})
+    assert made == {("(xx - cx) ** 2 + (yy - cy) ** 2 <= radius", "(xx - cx) ** 2 + (yy - cy) ** 2 <= radius ** 2"),
+                    ("np.hypot(xx - cx, yy - cy) < radius ** 2", "np.hypot(xx - cx, yy - cy) < radius")}, made
+
+
 def test_point_sets_given_to_opencv_are_transposed_together():
     """Both point sets of one OpenCV call made columns at once (each alone is refused by OpenCV)."""
     source = textwrap.dedent("""

@@ -150,6 +150,7 @@ OPERATORS = {
     "grey": ("grey", "gray", "channel", "colour", "color"),
     "rank": ("singular", "rank", "constraint", "diag"),
     "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),
+    "squared_bound": ("square", "radius", "**", "root"),   # dx ** 2 + dy ** 2 <= r -> <= r ** 2 (and back)
     "lower_bound": ("bound", "negative", ">= 0", "below 0", "left"),   # cols < w -> (cols >= 0) & (cols < w)
     "whole_shape": ("shape", "length", "len", "dimension"),   # np.zeros(len(d)) -> np.zeros(np.shape(d))
     "move_factor": ("square root", "sqrt", "factor", "inside", "outside"),   # np.sqrt(a * u) -> a * np.sqrt(u)
@@ -1093,7 +1094,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "factor_transposed",
-                                              "twin_factor", "homogeneous_one", "moved_term", "reduced")},
+                                              "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -2295,6 +2296,9 @@ def _student_changes(node, parent, parents):
     if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Lt, ast.LtE)) \
             and isinstance(node.left, ast.Name) and not isinstance(node.comparators[0], ast.Constant):
         yield "lower_bound", None, ""   # an index tested against its upper end only: `cols < width`
+    if isinstance(node, ast.Compare) and len(node.ops) == 1 \
+            and isinstance(node.ops[0], (ast.Lt, ast.LtE, ast.Gt, ast.GtE)):
+        yield from _squared_bounds(node)
     yield from _conversion_slips(node, parent)
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
@@ -3091,6 +3095,35 @@ def _discarded_result(statement: ast.Expr):
 
 
 _SQUARED = {"abs", "absolute", "fabs"}
+def _squares(node) -> bool:
+    return any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and isinstance(n.right, ast.Constant)
+               and n.right.value == 2 or isinstance(n, ast.Call) and _dotted(n.func) in ("np.square", "numpy.square")
+               for n in ast.walk(node))
+
+
+_ROOTS = ("np.sqrt", "numpy.sqrt", "math.sqrt", "np.hypot", "numpy.hypot", "math.hypot", "np.linalg.norm",
+          "numpy.linalg.norm", "cv2.norm")
+
+
+def _squared_bounds(node):
+    """A squared distance compared with a bound that is not squared (`dx ** 2 + dy ** 2 <= r`, a disc of
+    radius sqrt(r)), or a distance compared with a squared bound (`np.hypot(dx, dy) <= r ** 2`)."""
+    for side, other in ((node.left, node.comparators[0]), (node.comparators[0], node.left)):
+        bare = isinstance(other, (ast.Name, ast.Attribute, ast.Subscript, ast.Constant)) \
+            or isinstance(other, ast.Call) and _dotted(other.func) in ("float", "int")
+        rooted = any(isinstance(n, ast.Call) and _dotted(n.func) in _ROOTS for n in ast.walk(side))
+        if bare and _squares(side) and not rooted:
+            written = ast.unparse(ast.Compare(side, node.ops, [ast.BinOp(other, ast.Pow(), ast.Constant(2))])
+                                  if side is node.left else
+                                  ast.Compare(ast.BinOp(other, ast.Pow(), ast.Constant(2)), node.ops, [side]))
+            yield "squared_bound", written, ""
+        if rooted and isinstance(other, ast.BinOp) and isinstance(other.op, ast.Pow) \
+                and isinstance(other.right, ast.Constant) and other.right.value == 2:
+            written = ast.unparse(ast.Compare(side, node.ops, [other.left]) if side is node.left else
+                                  ast.Compare(other.left, node.ops, [side]))
+            yield "squared_bound", written, ""
+
+
 # Calls a power may be taken inside or outside of: reductions and box/blur filters (a mean of squares
 # is not the square of a mean).
 _AVERAGING = {"mean", "sum", "average", "nanmean", "nansum", "blur", "boxFilter", "filter2D", "GaussianBlur",

@@ -127,6 +127,16 @@ MISTAKES = {
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
             return _reference_draw_points(image, pts, radius // 2, color)
         """, ["the radius is halved"]),
+    # the blind set 1202e's 09/07: a mask disc whose squared distance is compared with the radius, not its square
+    "draw_points with a mask disc of radius sqrt(radius)": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            yy, xx = np.mgrid[0:image.shape[0], 0:image.shape[1]]
+            for cx, cy in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                if np.isfinite(cx) and np.isfinite(cy):
+                    out[(xx - round(cx)) ** 2 + (yy - round(cy)) ** 2 <= radius] = color if out.ndim == 3 else color[0]
+            return out
+        """, ["<= radius ** 2"]),
     "draw_points ignores its radius": ("lab09.ex5", """
         _reference_draw_points = draw_points
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
