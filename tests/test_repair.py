@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from autograder.engine import traced
 from autograder.engine.mutants import repair
 from autograder.engine.mutants.operators import Mutant
 from autograder.engine.runner import grade
@@ -3888,6 +3889,58 @@ def test_a_change_before_the_first_departure_compensates_and_is_not_told(tmp_pat
     told = [c.message for c in check_results(result, "lab11.ex1") if c.score < c.max_score]
     assert told and all("A.T @ A" in m for m in told), told
     assert not any("column_stack" in m for m in told), told
+
+
+def test_a_value_made_homogeneous_is_no_departure(tmp_path):
+    """[dst | 1] and the 3 x 3 map with its [0, 0, 1] row hold the reference's numbers: the slip is the
+    rows returned (`full[1:]`), not the ones column that, moved first, compensates for it (1202e 07/03)."""
+    folder = mutant(tmp_path, "lab07_transformations", """
+        def affine_from_points(src, dst):
+            src_h = np.column_stack([np.asarray(src, dtype=np.float64), np.ones(3)])
+            dst_h = np.column_stack([np.asarray(dst, dtype=np.float64), np.ones(3)])
+            full = np.linalg.solve(src_h, dst_h).T
+            return full[1:]
+        """)
+    _, repaired = _failed_and_repaired(folder, "lab07.ex5")
+    assert repaired and all("`return full[:2]`" in said for said in repaired), repaired
+    assert not any("column_stack" in said for said in repaired), repaired
+
+
+def test_names_exchanged_between_twin_lines_are_exchanged_back_where_they_are_used(tmp_path):
+    """Each image's points normalised with the other's K^-1 (`K2_inv @ p1`, `K1_inv @ p2`): exchanging the
+    two inverses where they are made mends alike, but they are right; the exchange told is at their use
+    (1202e 11/05)."""
+    folder = mutant(tmp_path, "lab11_two_view", """
+        def essential_8point(pts1, pts2, K1, K2):
+            p1 = np.asarray(pts1, dtype=np.float64).reshape(-1, 2)
+            p2 = np.asarray(pts2, dtype=np.float64).reshape(-1, 2)
+            K1_inv = np.linalg.inv(np.asarray(K1, dtype=np.float64))
+            K2_inv = np.linalg.inv(np.asarray(K2, dtype=np.float64))
+            n1 = (K2_inv @ np.column_stack([p1, np.ones(len(p1))]).T).T
+            n2 = (K1_inv @ np.column_stack([p2, np.ones(len(p2))]).T).T
+            A = np.zeros((len(n1), 9))
+            for i in range(len(n1)):
+                x1, y1, w1 = n1[i]
+                x2, y2, w2 = n2[i]
+                A[i] = [x2 * x1, x2 * y1, x2 * w1, y2 * x1, y2 * y1, y2 * w1, w2 * x1, w2 * y1, w2 * w1]
+            E = np.linalg.svd(A)[2][-1].reshape(3, 3)
+            U, S, Vt = np.linalg.svd(E)
+            s = (S[0] + S[1]) / 2.0
+            return U @ np.diag([s, s, 0.0]) @ Vt
+        """)
+    result = grade(folder, ["lab11.ex3"], pictures="none", include_hidden=True)
+    told = [c.message for c in check_results(result, "lab11.ex3") if c.score < c.max_score and "Trying small" in c.message]
+    assert told and all("to `K1_inv @ np.column_stack" in m for m in told), told
+    assert any("np.asarray(K1, dtype=np.float64)` to `np.asarray(K2" not in m for m in told), told
+
+
+def test_made_homogeneous_needs_the_reference_numbers_and_a_constant_or_unit_slice():
+    A = np.array([[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]])
+    assert traced._made_homogeneous(np.vstack([A, [0.0, 0.0, 1.0]]), A)
+    assert traced._made_homogeneous(np.column_stack([np.ones(2), A]), A)
+    assert not traced._made_homogeneous(np.vstack([A, [0.0, 2.0, 1.0]]), A)
+    assert not traced._made_homogeneous(np.vstack([A[::-1], [0.0, 0.0, 1.0]]), A)
+    assert not traced._made_homogeneous(np.vstack([A, A]), A)
 
 
 def test_a_change_skipping_a_step_points_at_the_step(tmp_path):

@@ -1085,7 +1085,27 @@ def _agrees(value, theirs) -> bool:
     return any((value.shape == other.shape and _close(value, other))
                or (value.size >= 4 and other.ndim == value.ndim + 1 and other.shape[1:] == value.shape
                    and _an_item(value, other))
+               or _made_homogeneous(value, other)
                for other in theirs)
+
+
+def _made_homogeneous(value, other) -> bool:
+    """Whether ``value`` is ``other`` with one more row or column, first or last, that is constant (a
+    column of ones: points made homogeneous) or a unit vector (a matrix's [0, 0, 1] row): the student's
+    own homogeneous form of the reference's value, where it keeps the reference's numbers."""
+    if value.ndim != other.ndim or value.ndim == 0 or other.size < 2:
+        return False
+    grown = [axis for axis in range(value.ndim) if value.shape[axis] != other.shape[axis]]
+    if len(grown) != 1 or value.shape[grown[0]] != other.shape[grown[0]] + 1:
+        return False
+    axis = grown[0]
+    for kept, extra in ((slice(None, -1), -1), (slice(1, None), 0)):
+        if not _close(np.take(value, np.arange(value.shape[axis])[kept], axis=axis), other):
+            continue
+        added = np.take(value, extra, axis=axis).ravel()
+        if np.allclose(added, added[0]) or (np.count_nonzero(added) == 1 and np.isclose(np.abs(added).max(), 1.0)):
+            return True
+    return False
 
 
 def _an_item(value, stack) -> bool:

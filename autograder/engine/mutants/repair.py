@@ -2158,7 +2158,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     halves_nearer = lambda pair: pair[0].key in nearer and pair[1].key in nearer  # noqa: E731
     first = lambda pair: (not halves(pair), not halves_nearer(pair), size(pair))  # noqa: E731
     beside = sorted((pair for pair in alike if student.neighbours(*pair)), key=first)[:NEIGHBOUR_PAIRS]
-    copied = sorted((pair for pair in alike if student.mirrored(*pair)), key=first)[:COPIED_PAIRS]
+    # (and two names exchanged between two lines written alike: `K2_inv @ p1`, `K1_inv @ p2` where each
+    # image's own belongs -- "2 -> 1" at one line, "1 -> 2" at its twin)
+    crossed = [(a, b) for (where, kind, slip), same in slips.items() if kind == "other_name"
+               for b in slips.get((where, kind, _crossed_slip(slip)), [])[:40] for a in same[:40]
+               if a.line < b.line and _apart(a, b) and student.mirrored(a, b)]
+    copied = sorted((pair for pair in alike + crossed if student.mirrored(*pair)), key=first)[:COPIED_PAIRS]
     side = sorted(beside + copied, key=lambda pair: not halves(pair))
     sides = {(a.key, b.key) for a, b in side}
     pairs = side + [(a, b) for a, b in pairs if (a.key, b.key) not in sides and (b.key, a.key) not in sides]
@@ -2186,8 +2191,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # the check before those only nearer (where the student's answers are absurd -- a division by a w
     # of nearly 0 -- every pair is far nearer, and the check's replays would go to the first few).
     exact_pairs, near_pairs = [], []
-    for both in combined:
-        if clock.left() <= 0:
+    # (a pair the code shows -- at neighbours, or copied between two lines -- accepted, the other such pairs
+    # accepted too are told beside it: one exchange at the lines that make two values and its twin at the
+    # lines that use them mend alike, and where the values first go wrong chooses between them (_upstream))
+    shown: list = []
+    for index, both in enumerate(combined):
+        if clock.left() <= 0 or (shown and index >= len(side)):
             break
         values = variant.answers(both, failing, inputs)
         if values is None or variant.fix(both) is None:
@@ -2196,12 +2205,17 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             near_pairs.append((False, 0.0, len(near_pairs), both, values))
         elif all(variant.right(v, references[i], variant.students[i]) for v, i in zip(values, failing)):
             if _accepted_pair(variant, both, failing):
-                return variant.repair([_one_half_enough(variant, both, failing, inputs, references)])
+                if index >= len(side):
+                    return variant.repair([_one_half_enough(variant, both, failing, inputs, references)])
+                shown.append(_one_half_enough(variant, both, failing, inputs, references))
+                continue
             exact_pairs.append((both, values))
         elif np.isfinite(off) and fallback is None:   # (beside a removal found: only exact pairs replace it)
             apart = sum(variant.distance(v, references[i]) for v, i in zip(values, failing))
             if PAIR_NEARER * apart <= off:   # (the student's own recipe: as singles)
                 near_pairs.append((PAIR_FAR_NEARER * apart > off, apart, len(near_pairs), both, values))
+    if shown:
+        return variant.repair(shown)
     # (right on the failing inputs, and not on inputs derived from them: their own recipe -- the library's
     # triangulation where the reference solves its own system -- judged by the checks)
     # (those far nearer first, by their distance; then those only somewhat nearer -- a function with many right
@@ -2213,6 +2227,15 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                 and _accepted_pair(variant, both, failing):
             return variant.repair([_one_half_enough(variant, both, failing, inputs, references, judged=True)])
     return fallback
+
+
+def _crossed_slip(slip: str) -> str:
+    """The slip undoing ``slip`` of a name (:meth:`_Student.slip`): "2 -> 1" for "1 -> 2"."""
+    try:
+        parts = ast.literal_eval(slip)
+    except (ValueError, SyntaxError):
+        return ""
+    return repr(parts[::-1]) if isinstance(parts, tuple) and len(parts) == 2 else ""
 
 
 def _one_half_enough(variant, both, failing, inputs, references, judged: bool = False) -> tuple:
