@@ -2724,6 +2724,17 @@ def test_a_squared_distance_is_compared_with_a_squared_bound():
                     ("np.hypot(xx - cx, yy - cy) < radius ** 2", "np.hypot(xx - cx, yy - cy) < radius")}, made
 
 
+def test_an_entry_of_a_shape_is_read_on_the_next_axis_and_the_last():
+    """`images.shape[1]` of an (n, H, W) stack where the width belongs: the next axis and the last are offered
+    beside the swap of height and width (1202e 12/08)."""
+    source = textwrap.dedent("""
+        def graded(images, k, n):
+            return (k + 0.5) * images.shape[1] / 2 ** n
+    """)
+    made = _made(source, {"axis"})   # (the index changed: `1` of `images.shape[1]`)
+    assert {("1", "0"), ("1", "2"), ("1", "-1")} <= made, made
+
+
 def test_point_sets_given_to_opencv_are_transposed_together():
     """Both point sets of one OpenCV call made columns at once (each alone is refused by OpenCV)."""
     source = textwrap.dedent("""

@@ -4813,6 +4813,10 @@ def _constant_changes(node: ast.Constant, parents, words, what):
         target = what(subscript.value.value)
         if target:
             yield "axis", 1 - value, f"the width and height of {target} are swapped"
+        if words.student:   # (a stack's (n, H, W) shape read an axis early: `shape[1]`, the height, for the width)
+            for other in (value + 1, -1):
+                if other != 1 - value:
+                    yield "axis", other, ""
         return
     inner = what(subscript.value)
     if words.student:   # (shown, not told: another of the first four, `P[:, 2]` for `P[:, 3]`, or the last)
