@@ -2735,6 +2735,19 @@ def test_an_entry_of_a_shape_is_read_on_the_next_axis_and_the_last():
     assert {("1", "0"), ("1", "2"), ("1", "-1")} <= made, made
 
 
+def test_a_value_rounded_to_some_decimals_is_offered_exact():
+    """`np.round(np.cos(t), 2)`, `round(s, 3)` and `c.round(2)`: the rounding taken off is offered (as it is of
+    `np.round(x)`, a one-argument call)."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(t, s, c, x):
+            return np.round(np.cos(t), 2), round(s, 3), c.round(2), np.round(x)
+    """)
+    made = _made(source, {"unwrap"})
+    assert {("np.round(np.cos(t), 2)", "np.cos(t)"), ("round(s, 3)", "s"), ("c.round(2)", "c")} <= made, made
+
+
 def test_point_sets_given_to_opencv_are_transposed_together():
     """Both point sets of one OpenCV call made columns at once (each alone is refused by OpenCV)."""
     source = textwrap.dedent("""

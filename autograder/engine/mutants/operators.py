@@ -708,6 +708,15 @@ def _unary_call(node) -> bool:
     return short in _UNARY and dotted[: -len(short)] in ("np.", "numpy.", "math.", "")
 
 
+_ROUNDING = ("np.round", "numpy.round", "np.around", "numpy.around", "round")
+
+
+def _rounded_to_decimals(node, dotted: str) -> bool:
+    """`np.round(x, 2)`, `round(x, 3)`, `np.around(x, decimals=2)`: a number rounded to some decimals."""
+    return dotted in _ROUNDING and len(node.args) in (1, 2) and not isinstance(node.args[0], ast.Starred) \
+        and (len(node.args) == 2 or any(k.arg in ("decimals", "ndigits") for k in node.keywords))
+
+
 def _make_swap_items(node, payload):
     new = copy.deepcopy(node)   # (h, w) -> (w, h): the same for a tuple assigned to, `w, h = image.shape[:2]`
     i, j = payload
@@ -2406,6 +2415,11 @@ def _student_changes(node, parent, parents):
         yield "unwrap", None, ""
     if isinstance(node.func, ast.Attribute) and node.func.attr in _WHOLE_METHODS and not node.args and not node.keywords:
         yield "unwrap", "method", ""   # one value of the whole array where each item's own belongs (a mean depth)
+    if _rounded_to_decimals(node, dotted):
+        yield "unwrap", None, ""   # a value rounded to a few decimals where the exact one belongs: `np.round(c, 2)`
+    if isinstance(node.func, ast.Attribute) and node.func.attr == "round" and dotted not in _ROUNDING \
+            and dotted.split(".")[0] not in ("np", "numpy", "math") and (node.args or node.keywords):
+        yield "unwrap", "method", ""   # `np.cos(t).round(2)` -> `np.cos(t)`
     if short in _MISTAKEN and prefix in ("np.", "numpy.", "math."):
         yield "function", prefix + _MISTAKEN[short], ""
     if short in ("ones", "zeros", "empty") and prefix in ("np.", "numpy.") and len(node.args) == 1 \

@@ -2151,7 +2151,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # (or at the same place of two lines written alike for two images: one line copied for the other),
     # before the nearest changes' pairs: where the code says the slip was made twice, it is tried first.
     alike = [(a, b) for same in slips.values() for a, b in itertools.combinations(same[:40], 2) if _apart(a, b)]
-    halves = lambda pair: pair[0].key in halfway or pair[1].key in halfway  # noqa: E731
+    # (a change told on an earlier check of the function is likely half of such a slip where it mends no more:
+    # `np.round(np.cos(t), 2)` mended where the angle's sine rounds exactly, its twin with it at another angle)
+    halves = lambda pair: pair[0].key in halfway or pair[1].key in halfway \
+        or pair[0].key in known or pair[1].key in known  # noqa: E731
     # (then those whose two halves each brought the answers nearer alone: `inv(R1)` -> `R1` mends one
     # image of a rectified pair, its copy `inv(R2)` -> `R2` the other)
     nearer = {m.key for _, m in near_all}
