@@ -959,3 +959,28 @@ def test_a_camera_matrix_augmented_with_a_zero_column_is_no_homogeneous_point():
             p = np.hstack([pts, np.zeros((3, 1))])
             return p @ H.T
         """) == {"the homogeneous coordinate is 0 instead of 1"}
+
+
+@pytest.mark.parametrize("product", ["np.dot(K2.T, F, K1)", "K2.T.dot(F, K1)", "np.asarray(K2).T.dot(F, K1)"])
+def test_a_third_factor_given_where_dot_takes_its_output_is_read(product):
+    """np.dot(a, b, c) and a.dot(b, c): the last argument is `out` (written into, not multiplied)."""
+    source = f"""
+        import numpy as np
+
+        def essential_from_fundamental(F, K1, K2):
+            return {product}
+        """
+    assert one(source) in ({"np.dot's third argument is its output, not an operand"},
+                           {"ndarray.dot's second argument is its output, not an operand"}), one(source)
+
+
+@pytest.mark.parametrize("product", ["K2.T.dot(F).dot(K1)", "np.dot(np.dot(K2.T, F), K1)", "K2.T.dot(F, out=None)",
+                                     "K2.T @ F @ K1"])
+def test_a_product_of_three_written_rightly_is_not_read_as_an_output(product):
+    source = f"""
+        import numpy as np
+
+        def essential_from_fundamental(F, K1, K2):
+            return {product}
+        """
+    assert not one(source), one(source)

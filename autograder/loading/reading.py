@@ -1106,6 +1106,18 @@ def _third_operand_as_out(name, function) -> list[Finding]:
                             f"{called} is `out`, the array the result is written into, so {called} computes "
                             f"{ast.unparse(node.args[0])} with {ast.unparse(node.args[1])} alone and overwrites "
                             f"`{third}`; for a product of three, write a @ b @ c", certain=True)]
+        # (the method's own: `a.dot(b, c)` -- ndarray.dot(b, out) -- the second argument is `out`)
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "dot" \
+                and len(node.args) == 2 and not any(isinstance(a, ast.Starred) for a in node.args) \
+                and _attribute_path(node.func) not in ("np.dot", "numpy.dot") \
+                and not (isinstance(node.args[1], ast.Constant) and node.args[1].value is None):
+            first, second = ast.unparse(node.func.value), ast.unparse(node.args[0])
+            third = ast.unparse(node.args[1])
+            return [Finding(name, _line(node), "ndarray.dot's second argument is its output, not an operand",
+                            f"{name} (line {_line(node)}) calls `{ast.unparse(node)}`: the second argument of the "
+                            f"method .dot is `out`, the array the result is written into, so it computes {first} "
+                            f"with {second} alone and overwrites `{third}`; for a product of three, write "
+                            f"{first} @ {second} @ {third}", certain=True)]
     return []
 
 
