@@ -2748,6 +2748,23 @@ def test_a_value_rounded_to_some_decimals_is_offered_exact():
     assert {("np.round(np.cos(t), 2)", "np.cos(t)"), ("round(s, 3)", "s"), ("c.round(2)", "c")} <= made, made
 
 
+def test_a_similarity_gets_its_translation_scaled_or_unscaled():
+    """[[s, 0, -c[0]], [0, s, -c[1]], [0, 0, 1]] (the scale and the shift composed in the other order) gets
+    `-s * c[0]`, `-s * c[1]`; the scaled one gets them unscaled; a matrix whose diagonal is not one name, not."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(s, c, a, b):
+            T = np.array([[s, 0.0, -c[0]], [0.0, s, -c[1]], [0.0, 0.0, 1.0]])
+            U = np.array([[s, 0.0, -s * c[0]], [0.0, s, -s * c[1]], [0.0, 0.0, 1.0]])
+            V = np.array([[a, 0.0, -c[0]], [0.0, b, -c[1]], [0.0, 0.0, 1.0]])
+            return T, U, V
+    """)
+    made = {after for _, after in _made(source, {"translation_scaled"})}
+    assert made == {"[[s, 0.0, -s * c[0]], [0.0, s, -s * c[1]], [0.0, 0.0, 1.0]]",
+                    "[[s, 0.0, -c[0]], [0.0, s, -c[1]], [0.0, 0.0, 1.0]]"}, made
+
+
 def test_point_sets_given_to_opencv_are_transposed_together():
     """Both point sets of one OpenCV call made columns at once (each alone is refused by OpenCV)."""
     source = textwrap.dedent("""

@@ -150,7 +150,8 @@ OPERATORS = {
     "grey": ("grey", "gray", "channel", "colour", "color"),
     "rank": ("singular", "rank", "constraint", "diag"),
     "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),
-    "squared_bound": ("square", "radius", "**", "root"),   # dx ** 2 + dy ** 2 <= r -> <= r ** 2 (and back)
+    "squared_bound": ("square", "radius", "**", "root"),
+    "translation_scaled": ("scale", "translation", "order", "centr"),   # [[s, 0, -c]] <-> [[s, 0, -s * c]]   # dx ** 2 + dy ** 2 <= r -> <= r ** 2 (and back)
     "lower_bound": ("bound", "negative", ">= 0", "below 0", "left"),   # cols < w -> (cols >= 0) & (cols < w)
     "whole_shape": ("shape", "length", "len", "dimension"),   # np.zeros(len(d)) -> np.zeros(np.shape(d))
     "move_factor": ("square root", "sqrt", "factor", "inside", "outside"),   # np.sqrt(a * u) -> a * np.sqrt(u)
@@ -1103,7 +1104,8 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "factor_transposed",
-                                              "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound")},
+                                              "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
+                                              "translation_scaled")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -2308,6 +2310,8 @@ def _student_changes(node, parent, parents):
     if isinstance(node, ast.Compare) and len(node.ops) == 1 \
             and isinstance(node.ops[0], (ast.Lt, ast.LtE, ast.Gt, ast.GtE)):
         yield from _squared_bounds(node)
+    if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 3:
+        yield from _translation_scaled(node)
     yield from _conversion_slips(node, parent)
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
@@ -3136,6 +3140,45 @@ def _squared_bounds(node):
             written = ast.unparse(ast.Compare(side, node.ops, [other.left]) if side is node.left else
                                   ast.Compare(other.left, node.ops, [side]))
             yield "squared_bound", written, ""
+
+
+def _translation_scaled(node):
+    """A similarity written [[s, 0, t_x], [0, s, t_y], [0, 0, 1]] with its translation scaled or not by s:
+    the scale and the translation composed in the other order (`-c` where S T(-c) has `-s * c`, and back)."""
+    rows = node.elts
+    if not all(isinstance(row, (ast.List, ast.Tuple)) and len(row.elts) == 3 for row in rows):
+        return
+    scale = ast.unparse(rows[0].elts[0])
+    if isinstance(rows[0].elts[0], ast.Constant) or ast.unparse(rows[1].elts[1]) != scale:
+        return
+    shifts = [rows[0].elts[2], rows[1].elts[2]]
+    if any(isinstance(shift, ast.Constant) for shift in shifts):
+        return
+
+    def unscaled(shift):   # `-s * c[0]`, `s * -c[0]`, `-(s * c[0])` -> `-c[0]`; None where s is no factor
+        negated = isinstance(shift, ast.UnaryOp) and isinstance(shift.op, ast.USub)
+        inner = shift.operand if negated else shift
+        if isinstance(inner, ast.BinOp) and isinstance(inner.op, ast.Mult):
+            for factor, other in ((inner.left, inner.right), (inner.right, inner.left)):
+                plain = factor.operand if isinstance(factor, ast.UnaryOp) and isinstance(factor.op, ast.USub) else factor
+                if ast.unparse(plain) == scale:
+                    sign = negated != (plain is not factor)
+                    return f"-{ast.unparse(other)}" if sign else ast.unparse(other)
+        return None
+
+    texts = [ast.unparse(shift) for shift in shifts]
+    plain = [unscaled(shift) for shift in shifts]
+    if all(text is not None for text in plain):
+        changed = plain
+    elif not any(scale in {n.id for n in ast.walk(shift) if isinstance(n, ast.Name)} for shift in shifts) \
+            and scale.isidentifier():
+        changed = [f"{scale} * {text}" if not text.startswith("-") else f"-{scale} * {text[1:]}" for text in texts]
+    else:
+        return
+    made = copy.deepcopy(node)
+    for row, text in zip(made.elts[:2], changed):
+        row.elts[2] = parse(text, mode="eval").body
+    yield "translation_scaled", ast.unparse(made), ""
 
 
 # Calls a power may be taken inside or outside of: reductions and box/blur filters (a mean of squares
