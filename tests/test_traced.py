@@ -605,3 +605,26 @@ def test_a_value_computed_per_item_agrees_with_an_item_of_the_references_stack()
     assert not traced._agrees(stack[3, :3].copy(), [stack])   # (a part of an item is no item)
     points = rng.normal(size=(6, 2))
     assert not traced._agrees(points[2].copy(), [points])     # (a point is no matrix: a row of an input)
+
+
+def test_a_loop_over_the_channels_given_a_grey_image_says_the_last_axis_is_the_width():
+    """`for c in range(image.shape[-1]): out[..., c] = f(image[..., c])` on a grey (H, W) image: the
+    assignment is told as a column where a channel was meant (1202e 07/05)."""
+    said = raised_sentence("""
+        def scale(image, s=2.0):
+            out = np.zeros_like(image)
+            for c in range(image.shape[-1]):
+                out[..., c] = image * s
+            return out
+        """, "scale", np.zeros((15, 20), np.uint8))
+    assert said is not None and "a grey image's (H, W)" in said and "is a column, not a channel" in said, said
+
+
+def test_a_colour_canvas_too_small_for_its_value_is_not_told_as_a_grey_loop():
+    said = raised_sentence("""
+        def paste(image):
+            out = np.zeros((10, 12, 3), np.uint8)
+            out[..., 0] = image
+            return out
+        """, "paste", np.zeros((15, 20), np.uint8))
+    assert said is None or "not a channel" not in said, said

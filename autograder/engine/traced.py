@@ -531,9 +531,19 @@ def _assigned_named(recording, statement, given, into, where, fn=None) -> Form |
         # (an array made without the value's last axis -- a grey canvas for a colour image: where it was made)
         made = _last_given(fn, target.value.id, statement.lineno) \
             if fn is not None and isinstance(target.value, ast.Name) and len(given) > len(into) else None
+        base = recording.shape(target.value)
+        last_item = isinstance(target.slice, ast.Tuple) and len(target.slice.elts) == 2 \
+            and isinstance(target.slice.elts[0], ast.Constant) and target.slice.elts[0].value is Ellipsis
+        if last_item and base is not None and len(base) == 2:
+            # (a loop over the channels, `for c in range(image.shape[-1])`, given a grey (H, W) image: the last
+            # axis is the width, and `out[..., c]` a column)
+            return Form(said + f"; {_quote(target.value)} has shape {_shape_text(base)}, a grey image's (H, W): "
+                        f"its last axis is the width, so {_quote(target)} is a column, not a channel (a loop over "
+                        "`range(image.shape[-1])` runs over the columns there); treat a grey image apart", MISTAKE)
         if made is not None:
-            said += f"; {_quote(target.value)} comes from {_quote(made[0])} (line {made[1]}), of {len(into)} axes " \
-                    f"where the value has {len(given)}"
+            axes = len(base) if base is not None else len(into)
+            said += f"; {_quote(target.value)} comes from {_quote(made[0])} (line {made[1]}), of {axes} axes " \
+                    f"where the value has {len(given) + axes - len(into)}"
         return Form(said, MISTAKE)
     return None
 
