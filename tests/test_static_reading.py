@@ -984,3 +984,35 @@ def test_a_product_of_three_written_rightly_is_not_read_as_an_output(product):
             return {product}
         """
     assert not one(source), one(source)
+
+
+def test_one_array_overwritten_and_appended_at_every_turn_is_read():
+    source = """
+        import numpy as np
+
+        def project_focal_lengths(points, focal_lengths):
+            xy = np.empty((len(points), 2))
+            results = []
+            for f in focal_lengths:
+                xy[:] = f * points[:, :2] / points[:, 2:]
+                results.append(xy)
+            return np.array(results)
+        """
+    assert one(source) == {"one array is appended at every turn"}, one(source)
+
+
+@pytest.mark.parametrize("turn", ["xy = f * points[:, :2]\\n                results.append(xy)",
+                                  "xy[:] = f * points[:, :2]\\n                results.append(xy.copy())",
+                                  "xy[:] = f * points[:, :2]\\n                results.append(np.array(xy))"])
+def test_an_array_made_anew_or_copied_at_every_turn_is_not_read_as_one(turn):
+    source = f"""
+        import numpy as np
+
+        def project_focal_lengths(points, focal_lengths):
+            xy = np.empty((len(points), 2))
+            results = []
+            for f in focal_lengths:
+                {turn}
+            return np.array(results)
+        """
+    assert "one array is appended at every turn" not in one(source), one(source)

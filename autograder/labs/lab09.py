@@ -755,7 +755,9 @@ def focal_order_named(used, fs) -> tuple[str, str, str]:
     found = f"project_focal_lengths: projection i is the one for f = {format_matrix(np.array(used))}"
     hint = "projection i belongs to focal_lengths[i]"
     if len(set(used)) == 1:
-        which = {0: "the first", len(fs) - 1: "the last"}.get(fs.index(used[0]), f"focal_lengths[{fs.index(used[0])}]")
+        # (a value given twice is named by its last place where that is the list's end: the last one given)
+        at = len(fs) - 1 if fs[-1] == used[0] else fs.index(used[0])
+        which = {0: "the first", len(fs) - 1: "the last"}.get(at, f"focal_lengths[{at}]")
         return (f"{found}: every projection is made with {which} focal length (f = {used[0]:g}).", hint,
                 f"every projection uses {which} focal length")
     if sorted(used) == sorted(fs):

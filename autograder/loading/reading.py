@@ -185,6 +185,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _third_operand_as_out(name, function)
     found += _twin_lopsided(name, function)
     found += _alias_changed(name, function)
+    found += _same_array_appended(name, function)
     found += _rolled_strip_one_sign(name, function)
     found += _scaled_in_place_per_turn(name, function)
     found += _written_into_a_copy(name, function)
@@ -1162,6 +1163,51 @@ def _twin_lopsided(name, function) -> list[Finding]:
                                 f"{name} (line {_line(lone)}) computes `{lacking} = {ast.unparse(lone.value)}`, "
                                 f"without the `{term}` its twin `{kept}` has (`{_twin_name(term)}` there): a step "
                                 f"applied to one coordinate only")]
+    return []
+
+
+# ------------------------------------------------------------------ one array appended at every turn
+_MADE_ARRAYS = frozenset({"empty", "zeros", "ones", "full", "empty_like", "zeros_like", "ones_like", "full_like",
+                          "array", "copy"})
+
+
+def _same_array_appended(name, function) -> list[Finding]:
+    """``buf = np.empty(...)`` before a loop, ``buf[:] = ...`` (or ``buf *= ...``) in it, and ``out.append(buf)``:
+    each item of the list is that one array, which ends with the last turn's values."""
+    made_before: dict = {}
+    for statement in sorted((node for node in ast.walk(function) if isinstance(node, (ast.Assign, ast.For, ast.While))),
+                            key=_line):
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name):
+            value = statement.value
+            if isinstance(value, ast.Call) and _call_name(value) in _MADE_ARRAYS:
+                made_before[statement.targets[0].id] = _line(statement)
+            else:
+                made_before.pop(statement.targets[0].id, None)
+        if not isinstance(statement, (ast.For, ast.While)):
+            continue
+        inside = [n for part in statement.body for n in ast.walk(part)]
+        rebound = {t.id for n in inside if isinstance(n, (ast.Assign, ast.AugAssign, ast.For))
+                   for target in (n.targets if isinstance(n, ast.Assign) else [n.target])
+                   for t in ([target] if isinstance(target, ast.Name) else
+                             [e for e in getattr(target, "elts", []) if isinstance(e, ast.Name)])
+                   if not isinstance(n, ast.AugAssign)}
+        changed = {n.targets[0].value.id: _line(n) for n in inside
+                   if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Subscript)
+                   and isinstance(n.targets[0].value, ast.Name)}
+        changed.update({n.target.id: _line(n) for n in inside if isinstance(n, ast.AugAssign)
+                        and isinstance(n.target, ast.Name)})
+        for call in inside:
+            if isinstance(call, ast.Call) and isinstance(call.func, ast.Attribute) and call.func.attr == "append" \
+                    and len(call.args) == 1 and isinstance(call.args[0], ast.Name):
+                array = call.args[0].id
+                if array in made_before and array in changed and array not in rebound:
+                    listed = ast.unparse(call.func.value)
+                    return [Finding(name, _line(call), "one array is appended at every turn",
+                                    f"{name} (line {_line(call)}) appends `{array}` to `{listed}` at every turn of the "
+                                    f"loop, and line {changed[array]} overwrites `{array}` in place: every item of "
+                                    f"`{listed}` is that one array (made on line {made_before[array]}), holding the "
+                                    f"last turn's values; append a copy (`{array}.copy()`) or make a new array at "
+                                    "each turn", certain=True)]
     return []
 
 
