@@ -31,6 +31,12 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+MESSAGE_LINES = 24      # of each message kept for the evaluator (a matrix printed after "expected" included)
+MESSAGE_CHARS = 3000
+
+
+def _kept(message: str) -> str:
+    return "\n".join(message.splitlines()[:MESSAGE_LINES])[:MESSAGE_CHARS]
 
 
 def main(argv=None) -> int:
@@ -73,10 +79,10 @@ def main(argv=None) -> int:
                       "score": round(sum(c.score for c in checks), 2), "max": round(sum(c.max_score for c in checks), 2),
                       "caught": bool(failed),
                       "failed": [{"check": c.name, "hidden": c.hidden, "mistake": c.mistake,
-                                  "message": "\n".join(c.message.splitlines()[:6])[:1200], "hint": c.hint[:400]}
+                                  "message": _kept(c.message), "hint": c.hint[:400]}
                                  for c in failed],
                       # (tips, 0 points: what the student reads besides the checks that cost points)
-                      "tips": [{"check": c.name, "message": "\n".join(c.message.splitlines()[:6])[:1200],
+                      "tips": [{"check": c.name, "message": _kept(c.message),
                                 "hint": c.hint[:400]}
                                for e in result.exercises for c in e.checks if c.status == ADVICE and c.message]})
         print(f"{entry['file']:<60} {'caught' if failed else 'NOT CAUGHT':<10} "
