@@ -621,9 +621,33 @@ def _ignored(t: Trial, what: str, parameter: str, values, result: str):
         # a model chosen otherwise -- which is no parameter ignored; measured, not named)
         t.fail(from_code(f"{same} on this input, though your code uses {parameter}: follow what its value "
                          "decides (a comparison, a count, a selection); here it decides nothing."))
+    overwritten = next((found for found in (_overwritten_before_read(code, function, parameter)
+                                            for function in functions_read(t)) if found), None)
+    if overwritten:
+        line, statement = overwritten
+        t.fail(f"{same}: {parameter} is ignored. " + from_code(
+            f"Your code sets `{statement}` (line {line}) before it reads {parameter}: the value the caller gives "
+            "is never used."), mistake=f"{parameter} is ignored")
     t.fail(f"{same}: {parameter} is ignored.",
            hint=unused_parameter_hint(parameter).said(t),
            mistake=f"{parameter} is ignored")
+
+
+def _overwritten_before_read(code, function: str, parameter: str) -> tuple[int, str] | None:
+    """(line, statement) of a plain assignment of ``parameter`` in ``function``'s own body, at its top level,
+    before any line that reads it (a leftover `levels = 4`); None otherwise."""
+    node = code.functions.get(function)
+    if node is None or parameter not in {a.arg for a in (*node.args.posonlyargs, *node.args.args, *node.args.kwonlyargs)}:
+        return None
+    reads = [n.lineno for n in ast.walk(node) if isinstance(n, ast.Name) and n.id == parameter
+             and isinstance(n.ctx, ast.Load)]
+    for statement in node.body:
+        if isinstance(statement, ast.Assign) and any(isinstance(target, ast.Name) and target.id == parameter
+                                                     for target in statement.targets) \
+                and parameter not in {n.id for n in ast.walk(statement.value) if isinstance(n, ast.Name)}:
+            return (statement.lineno, " ".join(ast.unparse(statement).split())) \
+                if not reads or min(reads) >= statement.lineno else None
+    return None
 
 
 def judge_parameter_used(t: Trial, what: str, call, parameter: str, values, result: str = "result",

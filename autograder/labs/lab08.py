@@ -43,7 +43,7 @@ from ..engine.hints import (RANDOM_DRAWS, RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, 
                              calls, code_of, expr, fits_on_picked_points, functions_read, keyword, matmul_of, mentions,
                              passes_product, picked_point_fits)
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_default_is_the_apis,
-                      judge_parameter_used,
+                      judge_parameter_changes_result, judge_parameter_used,
                       judge_warp, name_correspondences_left_out, name_mistake, parameter_ignored, warp_probe,
                       where_matrices_differ,
                       where_points_differ)
@@ -3291,6 +3291,17 @@ PYRUP_DSTSIZE = Hint("pass dstsize=(width, height) of the finer level to cv2.pyr
 
 ODD_SIZES_LOST = guard("the sizes of odd levels are lost (cv2.pyrUp without dstsize)", asks=PYRUP_DSTSIZE.asks,
                        instead="the sizes of odd levels are lost")
+
+
+@ext3.check("blend_multiband uses its levels: 2 and 6 levels blend a seam differently", points=1)
+def blend_levels_used(t):
+    """The seam's width is the pyramid's depth: two bands and six blend a brightness step over different
+    widths (an argument overwritten by a leftover `levels = 4` gives one blend whatever is asked)."""
+    dark, bright = truth.exposure_pair("coffee", (256, 192), 0.7, 60)
+    mask = truth.step_mask((256, 192), 128)
+    return judge_parameter_changes_result(t, "blend_multiband(dark, bright, step mask, levels=...)",
+                                          lambda **kw: t.call("blend_multiband", dark, bright, mask, **kw),
+                                          "levels", (2, 6), "blend")
 
 
 @ext3.check("blend_multiband on sizes that are not multiples of 2**levels", points=1)

@@ -737,6 +737,13 @@ MISTAKES = {
             return _compose(images, homographies)
         """, ["image 1 was warped with the inverse homography"]),
     # ---------------------------------------------------------------- ext3
+    # the blind set 1202f's 08/08: a leftover line overwrites the argument
+    "blend_multiband with levels overwritten by a leftover levels = 4": ("lab08.ext3", """
+        _blend_multiband = blend_multiband
+        def blend_multiband(img1, img2, mask, levels=4):
+            levels = 4
+            return _blend_multiband(img1, img2, mask, levels)
+        """, ["levels is ignored", "sets `levels = 4`"]),
     "plain alpha blend": ("lab08.ext3", """
         def blend_multiband(img1, img2, mask, levels=4):
             m = np.asarray(mask, np.float64)
