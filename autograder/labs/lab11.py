@@ -469,6 +469,33 @@ def lines_property(t):
               describe=lambda c: f"F = {c[1]} * fixtures.lab11.two_views(seed={c[0]}, n={c[2]}).F and its pts1")
 
 
+# A rectified pair's F: the epipolar line of (x, y) is the row y' = y, (0, -1, y) up to scale; the points of
+# row 0 give lines through the origin, c = 0 (a sign taken from c is 0 there).
+RECTIFIED_F = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+SIGN_OF = calls("np.sign")
+ZEROED_BY_SIGN = from_code("a line through the origin (c = 0) is zeroed by np.sign of its c")
+
+
+@ex2.check("epipolar_lines of a rectified pair: each line is its point's row, row 0 (c = 0) too", points=1)
+def lines_rectified(t):
+    pts1 = np.array([[10.0, 0.0], [50.0, 20.0], [0.0, 0.0], [80.0, 45.5], [33.0, 0.0]])
+    what = "epipolar_lines(F of a rectified pair, points of which three on row 0)"
+    got = t.expect_array(t.call("epipolar_lines", RECTIFIED_F, pts1), what, shape=(len(pts1), 3), kind="iuf")
+    zero = np.all(np.asarray(got, np.float64) == 0, axis=1)
+    if zero.any():
+        rows = ("lines " if zero.sum() > 1 else "line ") + ", ".join(str(i) for i in np.flatnonzero(zero))
+        signed = SIGN_OF.found(code_of(t).reachable(["epipolar_lines"]))
+        t.fail(measured(f"{what}: {rows} {'are' if zero.sum() > 1 else 'is'} (0, 0, 0), no line at all; the line of "
+                        "a point on row 0 is "
+                        "(0, -1, 0) up to sign: it passes through the origin, so its c is 0")
+               + (from_code(": your code calls np.sign, which is 0 for a c of 0, and a line multiplied by it "
+                            "vanishes; choose the sign so that 0 keeps the line (np.where(c < 0, -1, 1)).")
+                  if signed else "."),
+               mistake=ZEROED_BY_SIGN if signed else "a line through the origin (c = 0) is zeroed")
+    judge_lines(t, what, got, RECTIFIED_F, pts1)
+    return passed("every line is its point's row, y' = y")
+
+
 @ex2.check("the epipolar lines pass through the corresponding points", points=1)
 def lines_through_points(t):
     views = truth.two_views(seed=5, n=12)

@@ -629,6 +629,13 @@ MISTAKES = {
     # k points of k coordinates taken for one point, or for points given as columns
     **columns_by_first_axis("triangulate", "lab11.ex1", "P1, P2, pts1, pts2", ("pts1", "pts2"), "pts1.shape[0] == 2"),
     **columns_by_first_axis("epipolar_lines", "lab11.ex2", "F, pts1", ("pts1",), "len(pts1) == 2"),
+    # the blind set 1202f's 11/02: every line given the sign of its c, np.sign(0) = 0 zeroes those through the origin
+    "epipolar_lines multiplying each line by np.sign of its c": ("lab11.ex2", """
+        _epipolar_lines = epipolar_lines
+        def epipolar_lines(F, pts1):
+            lines = _epipolar_lines(F, pts1)
+            return lines * np.sign(lines[:, 2:3])
+        """, ["(0, 0, 0), no line at all", "np.sign, which is 0"]),
     "epipolar_lines answers integer points in integers": ("lab11.ex2", """
         _reference_lines = epipolar_lines
         def epipolar_lines(F, pts1):
