@@ -1550,6 +1550,45 @@ def _fixed_tolerance(functions) -> str:
     return ""
 
 
+NULL_SPACE = calls_any("scipy.linalg.null_space", "null_space", says="calls scipy.linalg.null_space")
+NULL_SPACE_TOLERANCE = from_code("scipy.linalg.null_space's default tolerance finds no null vector of an F that is "
+                                 "rank 2 only up to rounding")
+
+
+@ex5.check("epipoles of an F written to 6 decimals (rank 2 up to rounding, as typed from a sheet)", points=1)
+def epipoles_rounded(t):
+    """An F typed with 6 decimals is rank 2 only up to its rounding (its smallest singular value about 1e-7 of
+    the largest): its epipoles are the singular vectors of that smallest singular value, as for any F
+    estimated from real matches."""
+    views = truth.two_views(seed=18)
+    F = np.round(views.F / np.abs(views.F).max(), 6)
+    what = "epipoles(F given to 6 decimals)"
+    try:
+        got = t.call("epipoles", F)
+    except StudentFailure as failure:
+        if NULL_SPACE.found(code_of(t).reachable(["epipoles"])):
+            singular = np.linalg.svd(F, compute_uv=False)
+            t.fail(f"{failure.message.rstrip('. ')}. " + measured(
+                f"This F's smallest singular value is {singular[2] / singular[0]:.1e} of its largest: rank 2 "
+                "only up to its rounding.") + " " + from_code(
+                "Your code calls scipy.linalg.null_space: with its default tolerance (rcond about 1e-16 of the "
+                "largest singular value) it finds no null vector of such an F and returns an empty (3, 0) array. "
+                "Take the singular vectors of the smallest singular value (the last row of V^T, the last column "
+                "of U)."), mistake=NULL_SPACE_TOLERANCE)
+        raise
+    _, _, Vt = np.linalg.svd(F)
+    U = np.linalg.svd(F)[0]
+    nearest = (Vt[-1], U[:, -1])
+    if not (isinstance(got, (tuple, list)) and len(got) == 2):
+        t.fail(f"{what} returned {type(got).__name__}; expected a pair (e1, e2)")
+    for g, e, name in ((got[0], nearest[0], "e1"), (got[1], nearest[1], "e2")):
+        g = t.expect_array(g, f"{what}: {name}", shape=(3,), kind="iuf", finite=True)
+        if projective_distance(g, e) > 1e-6:
+            t.fail(f"{what}: {name} = {format_matrix(g)}, expected a multiple of {format_matrix(e)}, the singular "
+                   "vector of F's smallest singular value")
+    return passed("the singular vectors of the smallest singular value")
+
+
 @ex5.check("epipoles for any camera pair and any scale of F", points=1)
 def epipoles_property(t):
     def holds(case):
