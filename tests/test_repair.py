@@ -4019,3 +4019,21 @@ def test_a_name_replaced_by_what_it_is_computed_from_skips_a_step():
              for m in student.mutants("graded") if m.operator == "other_name" and student.fix(m)}
     assert skips["return x1 + x1"] == (3, "y", "x1", ())
     assert skips["return x2 + x1"] == () and skips["y = x2 * 2"] == () and skips["return y + y"] == ()
+
+
+def test_a_name_read_in_place_of_its_stacked_form_skips_no_step():
+    """`Xh[:, -1]` -> `pts[:, -1]` where `Xh = np.hstack([pts, ones])`: another column is read (Z, not the ones),
+    no step is skipped (1202f 10/01); `y` -> `x1` where `y = x1 * 2` still skips one."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(pts, x1):
+            Xh = np.hstack([pts, np.ones((len(pts), 1))])
+            y = x1 * 2
+            return Xh[:, -1].mean() + y
+    """)
+    student = repair._Student(source, ast.parse(source), ["graded"])
+    skips = {student.fix(m).changes[0][2]: student.skipped_step(m)
+             for m in student.mutants("graded") if m.operator == "other_name" and student.fix(m)}
+    assert skips["pts[:, -1].mean()"] == (), skips
+    assert skips["Xh[:, -1].mean() + x1"][:3] == (6, "y", "x1"), skips

@@ -32,7 +32,7 @@ from fixtures.images import as_homography, coverage, warp
 
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
-from .claims import calls_any, from_code, measured, seen_in_code
+from .claims import calls_any, checklist, from_code, measured, seen_in_code
 from .forms import COLOURS_LOST, UNIT_RANGE_CAST, colours_lost, shape_form, unit_range_cast
 from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, mentions, parameter_flows,
                     size_given_as_shape)
@@ -41,10 +41,23 @@ from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fi
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
 # (a border mode passed is "already done" only when it is the constant one: BORDER_REPLICATE is not)
+def _border_constant_by_name(function) -> bool:
+    """cv2.BORDER_CONSTANT given by name where it is given (`borderMode=cv2.BORDER_CONSTANT`), not in a place
+    of its own (a warp's fifth argument is flags)."""
+    return all(any(k.arg == "borderMode" and k.value is node for call in ast.walk(function) if isinstance(call, ast.Call)
+                   for k in call.keywords)
+               for node in ast.walk(function) if isinstance(node, ast.Attribute) and node.attr == "BORDER_CONSTANT"
+               and isinstance(node.value, ast.Name) and node.value.id in ("cv2", "cv"))
+
+
 BLACK_FILL_HINT = Hint("use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)",
                        asks=mentions("cv2.BORDER_CONSTANT"),
-                       instead="your code already {found}: the pixels with no source pixel are filled "
-                               "elsewhere (borderValue, or what is written into the output afterwards)")
+                       instead="your code already {found}: " + checklist(
+                           "", ("cv2.BORDER_CONSTANT is given by name, borderMode=cv2.BORDER_CONSTANT (given in a "
+                                "warp's fifth place, it is taken as flags)",
+                                Predicate("gives cv2.BORDER_CONSTANT by name", _border_constant_by_name)),
+                           none_left="the pixels with no source pixel are filled elsewhere (borderValue, or what is "
+                                     "written into the output afterwards)"))
 FILL_TOLERANCE = 0.02   # fraction of should-be-black pixels allowed to be non-zero
 # border rules that fill the pixels with no source pixel from the image's own edge
 REPEATING_BORDERS = ("BORDER_REPLICATE", "BORDER_REFLECT", "BORDER_REFLECT_101", "BORDER_REFLECT101", "BORDER_WRAP",

@@ -986,6 +986,9 @@ class _Student:
         read = {n.id for n in ast.walk(step.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
         if payload not in read:
             return ()
+        if _stacks(step.value, payload):
+            return ()   # (a name made by stacking a column onto the other -- `Xh = [pts | 1]` -- holds it: its
+            # column read from the other, `pts[:, -1]` for `Xh[:, -1]`, is another column, no step skipped)
         local = {n.id for n in nodes if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)} \
             | {a.arg for a in ast.walk(self._defs[where].args) if isinstance(a, ast.arg)}
         module = {t.id for statement in self.tree.body if isinstance(statement, ast.Assign)
@@ -2230,6 +2233,20 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                 and _accepted_pair(variant, both, failing):
             return variant.repair([_one_half_enough(variant, both, failing, inputs, references, judged=True)])
     return fallback
+
+
+_STACKING = ("column_stack", "hstack", "vstack", "concatenate", "stack", "append", "dstack", "c_", "r_", "pad")
+
+
+def _stacks(value, name: str) -> bool:
+    """Whether ``value`` stacks ``name`` whole with something else (`np.column_stack([pts, ones])`,
+    `np.c_[pts, 1]`, `np.hstack((pts, np.ones((n, 1))))`)."""
+    call = value.func if isinstance(value, ast.Call) else value.value if isinstance(value, ast.Subscript) else None
+    if call is None or _dotted(call).rsplit(".", 1)[-1] not in _STACKING:
+        return False
+    items = value.args if isinstance(value, ast.Call) else [value.slice]
+    pieces = [e for item in items for e in (item.elts if isinstance(item, (ast.List, ast.Tuple)) else [item])]
+    return any(isinstance(piece, ast.Name) and piece.id == name for piece in pieces)
 
 
 def _crossed_slip(slip: str) -> str:
