@@ -4037,3 +4037,35 @@ def test_a_name_read_in_place_of_its_stacked_form_skips_no_step():
              for m in student.mutants("graded") if m.operator == "other_name" and student.fix(m)}
     assert skips["pts[:, -1].mean()"] == (), skips
     assert skips["Xh[:, -1].mean() + x1"][:3] == (6, "y", "x1"), skips
+
+
+def test_a_centring_taken_out_where_a_right_solution_centres_points_at_its_undoing(tmp_path):
+    """U = diag(s, s, s, 1) without its translation: taking out the world points' centring mends the DLT, but
+    the centring is right; the sentence sends the student to where it is undone (1202f 10/05)."""
+    folder = mutant(tmp_path, "lab10_camera2", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.asarray(points3d, dtype=np.float64)
+            x = np.asarray(points2d, dtype=np.float64)
+            c2 = x.mean(axis=0)
+            s2 = np.sqrt(2.0) / np.mean(np.linalg.norm(x - c2, axis=1))
+            T = np.array([[s2, 0.0, -s2 * c2[0]], [0.0, s2, -s2 * c2[1]], [0.0, 0.0, 1.0]])
+            c3 = X.mean(axis=0)
+            s3 = np.sqrt(3.0) / np.mean(np.linalg.norm(X - c3, axis=1))
+            U = np.diag([s3, s3, s3, 1.0])
+            xn = s2 * (x - c2)
+            Xn = s3 * (X - c3)
+            A = []
+            for (Xi, Yi, Zi), (ui, vi) in zip(Xn, xn):
+                Xh = [Xi, Yi, Zi, 1.0]
+                A.append(Xh + [0.0, 0.0, 0.0, 0.0] + [-ui * c for c in Xh])
+                A.append([0.0, 0.0, 0.0, 0.0] + Xh + [-vi * c for c in Xh])
+            _, _, Vt = np.linalg.svd(np.array(A))
+            P = np.linalg.inv(T) @ Vt[-1].reshape(3, 4) @ U
+            return P / np.linalg.norm(P)
+        """)
+    _, repaired = _failed_and_repaired(folder, "lab10.ex4")
+    assert repaired, "no change told"
+    centring = [said for said in repaired if "s3 * (X - c3)" in said]
+    assert centring and all("more likely where the centring is undone" in said for said in centring), repaired
+    assert not any("s3 * (X - c3)` to `s3 * X` (line" in said and "so the mistake is likely there" in said
+                   for said in repaired), repaired

@@ -80,6 +80,7 @@ class Fix:
     operator: str
     edits: tuple
     skips: tuple = ()
+    needed: bool = False   # a centring taken out that a right solution makes too (see _Variants.repair)
 
     @property
     def size(self) -> int:
@@ -117,6 +118,8 @@ class Fix:
         """Where the mistake likely is, after a sentence telling this change alone."""
         if self.skips:
             return f"so the mistake is likely in that step (line {self.skips[0]}), or the step does not belong there"
+        if self.needed:
+            return "but a right solution centres there too: the mistake is more likely where the centring is undone"
         return "so the mistake is likely there"
 
 
@@ -2929,7 +2932,12 @@ class _Variants:
         self.trial.sandbox.shared["repair found"][self.function] = [mutant for mutant, _ in fixes]
         usable = (self.confirmations[2] or []) if self.confirmations else []
         # (the step a change skips is read for the changes told only: reading it walks the def, once per change)
-        told = sorted((replace(fix, skips=self.student.skipped_step(mutant)) for mutant, fix in fixes),
+        # (a centring taken out, where the reference centres too, mends by making the two ends agree: the end
+        # that does not account for it -- a denormalising matrix without its translation -- is where to look)
+        told = sorted((replace(fix, skips=self.student.skipped_step(mutant),
+                               needed=fix.operator == "drop_centring" and len(fixes) == 1
+                               and not _extra_step(fix, self.student.reference_source, self.function))
+                       for mutant, fix in fixes),
                       key=lambda fix: (fix.where != self.function, fix.changes[0][0]))
         checked = "" if not any(mutant.key in self.checked for mutant, _ in fixes) else \
             "checks" if self.confirmed_by_checks else "nearer"
