@@ -1768,6 +1768,13 @@ def block_matching_window_size(t):
                             + ", ".join(SMALLER_WINDOWS) + "): look at how your cost is computed from the 9 x 9 "
                             "window; SSD is the mean of the squared pixel differences (L - R)^2 over it."))
         if wins == "square" and not kept:   # (a costs computed wrongly loses it too: the other checks judge)
+            window = _smaller_window(got, left, right, square, windows=LARGER_WINDOWS)
+            if window:   # (the map is that larger window's map: confirmed, not inferred from the square alone)
+                t.fail(measured(f"{what} gives the {side} x {side} square its background's disparity ({median:g} px "
+                                f"in the median), where {side * side} of the 81 pixels of a 9 x 9 window centred on "
+                                f"it are the square's, so it keeps its own 12 px: your map is the one {window} gives "
+                                "(SSD), a window larger than block_size x block_size."),
+                       mistake="the matching window is larger than block_size x block_size")
             return passed(measured(f"the {side} x {side} square is not found ({median:g} px): the other checks "
                                    "judge the map"))
     return passed("; ".join(found))
@@ -1776,6 +1783,9 @@ def block_matching_window_size(t):
 # The windows smaller than block_size x block_size a matcher may use instead (half the side, or one row).
 SMALLER_WINDOWS = {"a 5 x 5 window": (5, 5), "a 4 x 4 window (block_size // 2)": (4, 4), "a 3 x 3 window": (3, 3),
                    "a 9 x 1 strip (one row)": (9, 1)}
+# and the larger ones: block_size taken as the half-width (2 block_size + 1), or doubled.
+LARGER_WINDOWS = {"a 19 x 19 window (2 block_size + 1: block_size taken as the half-width)": (19, 19),
+                  "an 18 x 18 window (2 block_size)": (18, 18)}
 WINDOW_AGREEMENT = 0.9   # of the judged pixels within 1 px of that window's map
 
 
@@ -1787,14 +1797,14 @@ def _square_neighbourhood(square, shape) -> np.ndarray:
     return around
 
 
-def _smaller_window(got, left, right, square, max_disparity: int = 32) -> str:
-    """Which of SMALLER_WINDOWS gives ``got`` (winner-take-all SSD) on the ``square`` and around it
-    (the pixels where windows of other sizes part); "" when none does."""
+def _smaller_window(got, left, right, square, max_disparity: int = 32, windows=None) -> str:
+    """Which of ``windows`` (:data:`SMALLER_WINDOWS`) gives ``got`` (winner-take-all SSD) on the ``square`` and
+    around it (the pixels where windows of other sizes part); "" when none does."""
     L, R = np.asarray(left, np.float64), np.asarray(right, np.float64)
     on_square = np.zeros(L.shape, bool)
     on_square[square] = True
     around = _square_neighbourhood(square, L.shape) & ~on_square
-    for name, window in SMALLER_WINDOWS.items():
+    for name, window in (windows or SMALLER_WINDOWS).items():
         costs = np.full((max_disparity + 1,) + L.shape, np.inf)
         for d in range(max_disparity + 1):
             shifted = np.empty_like(R)

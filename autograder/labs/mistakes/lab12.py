@@ -44,6 +44,16 @@ MISTAKES = {
                 costs[d, :, :d] = np.inf
             return costs
         """, ["not that of a smaller window either", "how your cost is computed"]),
+    # the blind set 1202f's 12/06: block_size taken as the half-width, a (2 block_size + 1)-wide window
+    "block matching with block_size as the window's half-width": ("lab12.ex4", """
+        def _ssd_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(min(max_disparity, width - 1) + 1):
+                costs[d] = _box_mean((left - _shift_right(right, d)) ** 2, 2 * block_size + 1)
+                costs[d, :, :d] = np.inf
+            return costs
+        """, ["a 19 x 19 window (2 block_size + 1"]),
     "block matching with block_size ignored": ("lab12.ex4", """
         _block_matching_own = block_matching
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
