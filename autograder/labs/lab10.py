@@ -731,6 +731,9 @@ def decomposition_on_probe(t: Trial) -> list[str]:
     return [] if got is None else decomposition_explained(got, K / K[2, 2], R, tv)
 
 
+SLICED_COLUMN = expr("_[:, 3:]").saying("slices the last column as P[:, 3:]")
+
+
 @ex5.check("decompose_camera_matrix of P = K [R | t]", points=3)
 def decompose_example(t):
     _, K, R, tv, _ = truth.random_camera_matrix(501)
@@ -745,6 +748,23 @@ def decompose_property(t):
 
     t.for_all(seeds, holds, max_examples=15,
               describe=lambda s: f"fixtures.lab10.random_camera_matrix({s}) (negative scale included)")
+
+
+@ex5.check("decompose_camera_matrix returns t as a (3,) vector, the API's shape", points=1)
+def decompose_t_shape(t):
+    """The values are the other checks' (which read a (3, 1) column's numbers too); this one asks the shape
+    the API gives t, so that `R @ X + t` and `np.hstack([R, t[:, None]])` work as written."""
+    _, K, R, tv, _ = truth.random_camera_matrix(501)
+    got = t.call("decompose_camera_matrix", truth.camera(K, R, tv))
+    shape = getattr(got[2], "shape", None) if isinstance(got, (tuple, list)) and len(got) == 3 else None
+    if shape in ((3, 1), (1, 3)):
+        column = SLICED_COLUMN.found(code_of(t).reachable(["decompose_camera_matrix"]))
+        t.fail(measured(f"decompose_camera_matrix(P)[2] (t) has shape {shape}; the API's t is a (3,) vector "
+                        "(its numbers are judged by the other checks)")
+               + (from_code(f": your code {column}, a (3, 1) column; P[:, 3] is the (3,) vector.") if column
+                  else ": give it as a (3,) vector (t.ravel())."),
+               mistake="t is returned as a column, not a (3,) vector")
+    return passed(measured("t has the API's shape" if shape == (3,) else "t's form is the other checks' to judge"))
 
 
 SIGN_OF_THE_CENTRE = "it returned R^T t; the centre is C = -R^T t (the sign is wrong)"

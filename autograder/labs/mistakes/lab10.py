@@ -116,6 +116,13 @@ MISTAKES = {
             p = np.linalg.lstsq(np.array(A), np.array(b), rcond=None)[0]
             return np.append(p, 1.0).reshape(3, 4)
         """, ["t_z = 0", "fixed to 1", "svd"]),
+    # the blind set 1202f's 10/04: t solved from P[:, 3:], a (3, 1) column
+    "decompose_camera_matrix returning t as a (3, 1) column": ("lab10.ex5", """
+        _decompose_camera_matrix = decompose_camera_matrix
+        def decompose_camera_matrix(P):
+            K, R, t = _decompose_camera_matrix(P)
+            return K, R, np.asarray(t).reshape(3, 1)
+        """, ["has shape (3, 1)", "the API's t is a (3,) vector"]),
     "decomposition that fixes K's signs but never negates P": ("lab10.ex5", _DECOMPOSE.format(negation=""),
                                                                ["det(p[:, :3]) < 0", "multiply p by -1 first"]),
     # the blind set 1201d's 10/05: the determinant's sign test the wrong way round
