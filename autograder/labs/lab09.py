@@ -1432,6 +1432,29 @@ def draw_options(t):
                          image, pts, radius=6, color=(0, 255, 0), redraw=redraw)
 
 
+@ex5.check("draw_points draws the part in view of a circle centred just off the image", points=1)
+def draw_partly_in_view(t):
+    """A point a few pixels left of or above the image (a projection just off the frame) has a filled circle
+    that reaches into the image: that part is drawn, as cv2.circle draws it (a test that keeps only the
+    points inside the frame loses it)."""
+    image = photo("coffee", (160, 120))
+    pts = np.array([[40.0, 40.0], [-3.0, 70.0], [90.0, -2.0]])
+    what = "draw_points(image, pts, radius=8) with points at (-3, 70) and (90, -2), just off the image"
+    got = t.call("draw_points", image, pts, radius=8)
+    got = t.expect_array(got, what, shape=image.shape, dtype=np.uint8)
+    painted = np.all(got == np.array([0, 0, 255], np.uint8), axis=-1) if got.ndim == 3 else got == 255
+    shares = [painted[core].mean() if core.any() else 1.0
+              for core in (truth.circle_regions(image.shape, pts[i:i + 1], 8)[0] for i in range(len(pts)))]
+    if shares[0] >= 0.97 and min(shares[1:]) < 0.97:   # (the point in view drawn: this check's question only)
+        missing = [f"({x:g}, {y:g})" for (x, y), share in zip(pts[1:], shares[1:]) if share < 0.97]
+        t.images(what, "the circles of points just off the image reach into it", input=image, yours=got)
+        t.fail(measured(f"{what}: the part of the circle{'s' if len(missing) > 1 else ''} at {', '.join(missing)} "
+                        "inside the image is not drawn: a circle centred just off the image reaches into it "
+                        "(cv2.circle draws that part; a point may be left out only where its circle misses the "
+                        "image)"), mistake="circles centred just off the image are left out")
+    return passed(measured("the circles' parts in view are drawn"))
+
+
 # The API does not say what draw_points does with a NaN point (a projection
 # behind the camera, if the student follows the NaN advice): advice.
 @ex5.advice("draw_points skips NaN points")

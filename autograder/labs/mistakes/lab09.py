@@ -137,6 +137,16 @@ MISTAKES = {
                     out[(xx - round(cx)) ** 2 + (yy - round(cy)) ** 2 <= radius] = color if out.ndim == 3 else color[0]
             return out
         """, ["<= radius ** 2"]),
+    # the blind set 1202f's 09/06: points kept only where both coordinates are >= 0
+    "draw_points keeping only the points inside the image": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            h, w = image.shape[:2]
+            for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                if 0 <= x < w and 0 <= y < h:
+                    cv2.circle(out, (int(round(x)), int(round(y))), int(radius), tuple(int(c) for c in color), -1)
+            return out
+        """, ["circles at (-3, 70), (90, -2) inside the image is not drawn"]),
     "draw_points ignores its radius": ("lab09.ex5", """
         _reference_draw_points = draw_points
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
