@@ -628,3 +628,22 @@ def test_a_colour_canvas_too_small_for_its_value_is_not_told_as_a_grey_loop():
             return out
         """, "paste", np.zeros((15, 20), np.uint8))
     assert said is None or "not a channel" not in said, said
+
+
+def test_an_unpacking_of_a_grey_image_shape_says_what_the_shape_holds():
+    said = raised_sentence("""
+        def translate(image, tx=1.0):
+            h, w = image.shape[:-1]
+            return image[:h, :w]
+        """, "translate", np.zeros((12, 16), np.uint8))
+    assert said is not None and "unpacks into 2 names a value of 1 item" in said and "(12,)" in said, said
+    assert "a grey image's (H, W)" in said, said
+
+
+def test_the_students_own_assert_is_quoted_with_the_values_it_compared():
+    said = raised_sentence("""
+        def essential(pts1):
+            assert len(pts1) > 8, "needs 8"
+            return pts1
+        """, "essential", np.zeros((8, 2)))
+    assert said is not None and "`assert len(pts1) > 8`" in said and "`len(pts1)` is 8" in said, said

@@ -381,6 +381,8 @@ _OUT_OF_BOUNDS = re.compile(r"index (-?\d+) is out of bounds for axis (\d+) with
 _SEQUENCE_INDEX = re.compile(r"\b(?:list|tuple) index out of range")
 _NOT_SQUARE = re.compile(r"Last 2 dimensions of the array must be square")
 _MASK_ASSIGNMENT = re.compile(r"boolean array indexing assignment (?:requires a 0 or 1-dimensional input|cannot assign)")
+ASSERTION = "the code's own assert fails on this input"
+_UNPACK = re.compile(r"(?:not enough|too many) values to unpack \(expected (\d+)")
 _SQUARE_ONLY = frozenset({"solve", "inv", "det", "eig", "eigvals", "cholesky", "matrix_power", "slogdet"})
 
 
@@ -422,6 +424,11 @@ def explain_raised(code, recording: Recording, fn, line: int, message: str, fram
     found = _RESHAPE.search(message)
     if found:
         return _reshape_named(recording, expressions, int(found.group(1)), where)
+    found = _UNPACK.search(message)
+    if found:
+        return _unpack_named(recording, statement, int(found.group(1)), where)
+    if isinstance(statement, ast.Assert) and not message.strip().startswith(("ValueError", "TypeError")):
+        return _assertion_named(recording, statement, where)
     if "OpenCV(" in message and _OPENCV_KINDS.search(message):
         return _opencv_named(code, recording, fn, statement, expressions, where, frames, by_type=True)
     if "OpenCV(" in message and _OPENCV_SIZES.search(message):
@@ -706,6 +713,41 @@ def _truth_named(recording, statement, expressions, where) -> Form | None:
                         + measured("asked (`if`, `and`, `or`, `not` take one: an element-wise test needs `&`, `|`, `~`, "
                                    "`np.where` or a mask; a question about all of them, `.all()` or `.any()`)"), TRUTH)
     return None
+
+
+def _unpack_named(recording, statement, expected: int, where) -> Form | None:
+    """`h, w = image.shape[:-1]` given another number of values than names: how many the value holds here,
+    and where it is a slice of a shape, the array's own shape (a grey image's (H, W) has no channel axis)."""
+    targets = statement.targets if isinstance(statement, ast.Assign) else \
+        [statement.target] if isinstance(statement, ast.For) else []
+    value = statement.value if isinstance(statement, ast.Assign) else getattr(statement, "iter", None)
+    if not targets or not isinstance(targets[0], (ast.Tuple, ast.List)) or value is None:
+        return None
+    count = recording.length(value)
+    if count is None or count == expected:
+        return None
+    found = recording.values.get(node_key(value))
+    shown = f" ({', '.join(f'{v:g}' for v in found[1])}{',' if len(found[1]) == 1 else ''})" \
+        if found and found[0] == "tuple" else ""
+    said = (f"{_quote(statement if isinstance(statement, ast.Assign) else targets[0])} {where} unpacks into "
+            f"{expected} names a value of {count} item{'s' if count != 1 else ''} here: {_quote(value)} is{shown or ' that'}")
+    sliced = value.value if isinstance(value, ast.Subscript) else value
+    if isinstance(sliced, ast.Attribute) and sliced.attr == "shape":
+        shape = recording.shape(sliced.value)
+        if shape is not None:
+            said += (f"; {_quote(sliced.value)} has shape {_shape_text(shape)}"
+                     + (", a grey image's (H, W), with no channel axis" if len(shape) == 2 else ""))
+    return Form(said, MISTAKE)
+
+
+def _assertion_named(recording, statement, where) -> Form | None:
+    """The student's own `assert` that failed on this input, with the values its test compared."""
+    test = statement.test
+    parts = [test.left, *test.comparators] if isinstance(test, ast.Compare) else [test]
+    known = [f"{_quote(part)} is {recording.number(part):g}" for part in parts
+             if not isinstance(part, ast.Constant) and recording.number(part) is not None]
+    return Form(f"your own `assert {' '.join(ast.unparse(test).split())}` {where} fails"
+                + (f" ({', '.join(known[:3])})" if known else ""), ASSERTION)
 
 
 def _reshape_named(recording, expressions, size: int, where) -> Form | None:
