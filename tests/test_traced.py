@@ -647,3 +647,20 @@ def test_the_students_own_assert_is_quoted_with_the_values_it_compared():
             return pts1
         """, "essential", np.zeros((8, 2)))
     assert said is not None and "`assert len(pts1) > 8`" in said and "`len(pts1)` is 8" in said, said
+
+
+def test_an_index_after_an_ellipsis_on_a_one_axis_array_is_told_as_a_single_number():
+    """`xl[..., 0]` meant for (N, 2) points, given (N,) x coordinates: one number (1202f 12/04)."""
+    code, recording, _ = recorded("""
+        def disparity_from_matches(xl, xr):
+            left = np.asarray(xl, dtype=np.float64)
+            right = np.asarray(xr, dtype=np.float64)
+            return left[..., 0] - right[..., 0]
+        """, "disparity_from_matches", np.arange(5.0) + 10, np.arange(5.0))
+    form = traced.explain_scalar(code, recording, "disparity_from_matches")
+    assert form is not None and "`left[..., 0]`" in form.sentence and "is a single number" in form.sentence, form
+    code, recording, _ = recorded("""
+        def disparity_from_matches(xl, xr):
+            return np.asarray(xl)[..., 0] - np.asarray(xr)[..., 0]
+        """, "disparity_from_matches", np.ones((5, 2)), np.zeros((5, 2)))
+    assert traced.explain_scalar(code, recording, "disparity_from_matches") is None

@@ -1003,10 +1003,13 @@ def _made_here(fn, recording, node, statement, got, expected) -> Form | None:
 
 
 # ------------------------------------------------------------------ a failed check's verdict
-_WRONG_SHAPE = re.compile(r"(\w+)\(.*?\) returned (?:an array of |homogeneous points of )?shape \(([\d, ]*)\)"
+_WRONG_SHAPE = re.compile(r"(\w+)\(.*?\)(?: with [\w=.,\- ]*?)? returned (?:an array of |homogeneous points of )?shape "
+                          r"\(([\d, ]*)\)"
                           r"(?:, i\.e\. \([^)]*\))?; expected \(([\d, ]*)\)")
 # one item of a tuple answer: "epipoles(F): e1 has shape (3, 1); expected (3,)"
 _WRONG_ITEM_SHAPE = re.compile(r"(\w+)\([^:]*?\)[^:]*: (\w+) has shape \(([\d, ]*)\); expected \(([\d, ]*)\)")
+_WRONG_SCALAR = re.compile(r"(\w+)\(.*?\)(?: with [\w=.,\- ]*?)? returned an? (?:float|int|integer|number)\b[^;]*; "
+                           r"expected a numpy array of shape")
 LEAD = "On this input,"
 
 
@@ -1044,6 +1047,13 @@ def named(verdict, trial, traceback_text: str = ""):
             recording = record(trial, function, args, kwargs)
             if recording is not None:
                 form = explain_shape(code, recording, function, _parsed(got), _parsed(expected), item_name)
+        scalar = _WRONG_SCALAR.search(first) if function is None else None
+        call = _call_answering(trial, scalar.group(1), None) if scalar else None
+        if call is not None:
+            function, args, kwargs = call
+            recording = record(trial, function, args, kwargs)
+            if recording is not None:
+                form = explain_scalar(code, recording, function)
     if form is None:
         return verdict
     lead = first.rstrip()
@@ -1062,12 +1072,35 @@ def _named_by_a_change(verdict) -> bool:
     return str(verdict.mistake).startswith("mutant:") or naming.APPENDED in message or repair.HEAD in message
 
 
-def _call_answering(trial, function: str, shape: tuple):
-    """``(function, args, kwargs)`` of the trial's last call of ``function`` answering an array of ``shape``."""
+def _call_answering(trial, function: str, shape: tuple | None):
+    """``(function, args, kwargs)`` of the trial's last call of ``function`` answering an array of ``shape``
+    (None: a single number)."""
     for name, args, kwargs, answer in reversed(list(getattr(trial, "calls", ()))):
         items = answer if isinstance(answer, (tuple, list)) else (answer,)
-        if name == function and any(isinstance(a, np.ndarray) and a.shape == tuple(shape) for a in items):
+        if name == function and any(isinstance(a, np.ndarray) and a.shape == tuple(shape) if shape is not None
+                                    else isinstance(a, (int, float, np.number)) and not isinstance(a, bool)
+                                    for a in items):
             return name, args, kwargs
+    return None
+
+
+def explain_scalar(code, recording: Recording, function: str) -> Form | None:
+    """Where an answer that should be an array came out a single number: an index after `...` (`xl[..., 0]`)
+    on an array with no other axis, which takes one of its values where a column of (N, 2) points was meant."""
+    fn = code.functions.get(function)
+    if fn is None or recording.returned is None or not (recording.returned[0] == "number"
+                                                         or tuple(recording.returned[:2]) == ("array", ())):
+        return None
+    for node in sorted((n for n in _own_nodes(fn) if isinstance(n, ast.Subscript)),
+                       key=lambda n: (n.lineno, n.col_offset)):
+        if isinstance(node.slice, ast.Tuple) and node.slice.elts \
+                and isinstance(node.slice.elts[0], ast.Constant) and node.slice.elts[0].value is Ellipsis:
+            base = recording.shape(node.value)
+            single = recording.number(node) is not None or recording.shape(node) == ()
+            if base is not None and len(base) == len(node.slice.elts) - 1 and single:
+                return Form(f"{_quote(node)} (line {node.lineno}) is a single number: {_quote(node.value)} has "
+                            f"shape {_shape_text(base)}, and `...` then stands for no axis, so the index after it "
+                            "takes one value of its only axis (on (N, 2) points it is the x column)", MISTAKE)
     return None
 
 
