@@ -4069,3 +4069,22 @@ def test_a_centring_taken_out_where_a_right_solution_centres_points_at_its_undoi
     assert centring and all("more likely where the centring is undone" in said for said in centring), repaired
     assert not any("s3 * (X - c3)` to `s3 * X` (line" in said and "so the mistake is likely there" in said
                    for said in repaired), repaired
+
+
+def test_a_built_copy_and_its_raw_name_are_tried_in_each_others_place():
+    """`new_K` built from K's entries, passed where K belongs: `new_K` -> `K` is offered (a prefixed name is a
+    processed copy, as a suffixed one is: 1202f 10/06)."""
+    from autograder.engine.mutants.operators import _derived_names
+
+    assert _derived_names("K", "new_K") and _derived_names("pts", "raw_pts") and _derived_names("x", "x_norm")
+    assert not _derived_names("K", "mask") and not _derived_names("a", "banana")
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(image, K, dist):
+            K = np.asarray(K, dtype=np.float64)
+            f, cx, cy = K[0, 0], K[0, 2], K[1, 2]
+            new_K = np.array([[f, 0.0, cx], [0.0, f, cy], [0.0, 0.0, 1.0]])
+            return np.dot(new_K, dist)
+    """)
+    assert ("new_K", "K") in _made(source, {"other_name"}), _made(source, {"other_name"})

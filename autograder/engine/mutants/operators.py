@@ -5070,8 +5070,8 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
                                   pair[1].rsplit(" of ", 1)[-1] != tail or " of " not in own))
     count = 0
     for other, phrase in others:
-        if (other in params) != kind and phrase in alike:
-            continue
+        if (other in params) != kind and phrase in alike and not _derived_names(node.id, other):
+            continue   # (a processed copy and its raw name -- `new_K` and `K` -- are tried whatever their kinds)
         if words.helper_params and other not in together and not twin_names(node.id, other) and (
                 " of " not in phrase or " of " not in own or phrase.rsplit(" of ", 1)[-1] != tail):
             continue   # in a private helper, only a sibling's or a twin's copy-paste slip (the count stays small)
@@ -5088,9 +5088,11 @@ def _every(step: int) -> str:
 
 
 def _derived_names(a: str, b: str) -> bool:
-    """Whether one name is the other with a suffix (`x` / `x_norm`, `pts` / `pts_h`, `K` / `Kn`)."""
+    """Whether one name is the other with a suffix (`x` / `x_norm`, `pts` / `pts_h`, `K` / `Kn`), or with a
+    prefix of its own word (`K` / `new_K`, `pts` / `raw_pts`)."""
     short, long = sorted((a, b), key=len)
-    return short != long and long.startswith(short) and (long[len(short)] == "_" or len(long) - len(short) <= 2)
+    return short != long and (long.startswith(short) and (long[len(short)] == "_" or len(long) - len(short) <= 2)
+                              or long.endswith("_" + short))
 
 
 def _line_name_changes(node: ast.Assign, words: _Words, line):
