@@ -1432,6 +1432,21 @@ def draw_options(t):
                          image, pts, radius=6, color=(0, 255, 0), redraw=redraw)
 
 
+LEFT_OUT_OFF_THE_IMAGE = from_code("circles centred just off the image are left out by a test of the image's bounds")
+
+
+def _bounds_test(functions) -> str:
+    """A comparison of a value with 0 (`x >= 0`, `0 <= x < w`), as written; "" when none is made."""
+    for function in functions:
+        for node in ast.walk(function):
+            if isinstance(node, ast.Compare) and any(isinstance(op, (ast.Lt, ast.LtE, ast.Gt, ast.GtE))
+                                                     for op in node.ops) \
+                    and any(isinstance(side, ast.Constant) and side.value == 0 and not isinstance(side.value, bool)
+                            for side in [node.left, *node.comparators]):
+                return " ".join(ast.unparse(node).split())
+    return ""
+
+
 @ex5.check("draw_points draws the part in view of a circle centred just off the image", points=1)
 def draw_partly_in_view(t):
     """A point a few pixels left of or above the image (a projection just off the frame) has a filled circle
@@ -1448,10 +1463,13 @@ def draw_partly_in_view(t):
     if shares[0] >= 0.97 and min(shares[1:]) < 0.97:   # (the point in view drawn: this check's question only)
         missing = [f"({x:g}, {y:g})" for (x, y), share in zip(pts[1:], shares[1:]) if share < 0.97]
         t.images(what, "the circles of points just off the image reach into it", input=image, yours=got)
+        bound = _bounds_test(code_of(t).reachable(["draw_points"]))
         t.fail(measured(f"{what}: the part of the circle{'s' if len(missing) > 1 else ''} at {', '.join(missing)} "
-                        "inside the image is not drawn: a circle centred just off the image reaches into it "
-                        "(cv2.circle draws that part; a point may be left out only where its circle misses the "
-                        "image)"), mistake="circles centred just off the image are left out")
+                        "inside the image is not drawn: a circle centred just off the image reaches into it, and "
+                        "cv2.circle draws that part")
+               + (from_code(f"; your code tests the points against the image's bounds (`{bound}`): a point may be "
+                            "left out only where its whole circle misses the image.") if bound else "."),
+               mistake=LEFT_OUT_OFF_THE_IMAGE if bound else "")
     return passed(measured("the circles' parts in view are drawn"))
 
 
@@ -1652,6 +1670,8 @@ def project_onto_image_draws_its_points(t):
     stray = np.any(drawn != image, axis=-1) & far
     if stray.sum() <= 3:
         return passed(measured("every drawn pixel is near a returned point"))
+    if stray.sum() > 0.01 * far.sum():   # (the whole image changed -- its colours, a blank canvas: the other checks')
+        return passed(measured("the image itself is changed away from the points: the other checks judge it"))
     ys, xs = np.nonzero(stray)
     at = (int(round(xs.mean())), int(round(ys.mean())))
     corner = max(at) <= 6 and not np.isfinite(pts[3]).all()

@@ -146,7 +146,7 @@ MISTAKES = {
                 if 0 <= x < w and 0 <= y < h:
                     cv2.circle(out, (int(round(x)), int(round(y))), int(radius), tuple(int(c) for c in color), -1)
             return out
-        """, ["circles at (-3, 70), (90, -2) inside the image is not drawn"]),
+        """, ["circles at (-3, 70), (90, -2) inside the image is not drawn", "tests the points against the image's bounds"]),
     "draw_points ignores its radius": ("lab09.ex5", """
         _reference_draw_points = draw_points
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
