@@ -634,7 +634,7 @@ def _ignored(t: Trial, what: str, parameter: str, values, result: str):
         # a model chosen otherwise -- which is no parameter ignored; measured, not named)
         t.fail(from_code(f"{same} on this input, though your code uses {parameter}: follow what its value "
                          "decides (a comparison, a count, a selection); here it decides nothing."))
-    overwritten = next((found for found in (_overwritten_before_read(code, function, parameter)
+    overwritten = next((found for found in (overwritten_before_read(code, function, parameter)
                                             for function in functions_read(t)) if found), None)
     if overwritten:
         line, statement = overwritten
@@ -646,7 +646,7 @@ def _ignored(t: Trial, what: str, parameter: str, values, result: str):
            mistake=f"{parameter} is ignored")
 
 
-def _overwritten_before_read(code, function: str, parameter: str) -> tuple[int, str] | None:
+def overwritten_before_read(code, function: str, parameter: str) -> tuple[int, str] | None:
     """(line, statement) of a plain assignment of ``parameter`` in ``function``'s own body, at its top level,
     before any line that reads it (a leftover `levels = 4`); None otherwise."""
     node = code.functions.get(function)

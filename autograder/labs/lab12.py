@@ -1321,6 +1321,10 @@ def rectify_black_fill(t):
             _, outside = coverage(H, image.shape, margin=1.5)
         except np.linalg.LinAlgError:
             return passed(measured("a homography is singular: the other checks judge it"))
+        if outside.mean() > 0.5:   # (a map sending most of the frame beyond the input -- or behind, where
+            # cv2.warpPerspective samples the input all the same -- is the other checks' to judge)
+            return passed(measured(f"{name}'s homography sends most of the frame outside the input: the other "
+                                   "checks judge it"))
         nonblack = fill_fraction(got, outside)
         if nonblack > FILL_TOLERANCE:
             t.images(f"rectify(...): {name}", "the pixels with no source pixel: black fill", input=image, yours=got)
@@ -1768,7 +1772,16 @@ def block_matching_window_size(t):
                             + ", ".join(SMALLER_WINDOWS) + "): look at how your cost is computed from the 9 x 9 "
                             "window; SSD is the mean of the squared pixel differences (L - R)^2 over it."))
         if wins == "square" and not kept:   # (a costs computed wrongly loses it too: the other checks judge)
-            window = _smaller_window(got, left, right, square, windows=LARGER_WINDOWS)
+            window = _smaller_window(got, left, right, square, windows=_larger_windows(9))
+            if window:   # (confirmed with block_size=5: the same rule gives its own window there, a fixed
+                # window -- block_size ignored -- does not)
+                rule = next(name for name in LARGER_RULES if name in window)
+                again = t.call("block_matching", np.array(left), np.array(right), max_disparity=32, block_size=5)
+                again = np.asarray(t.expect_array(again, what.replace("block_size=9", "block_size=5"),
+                                                  shape=left.shape, kind="iuf"), np.float64)
+                fives = {name: size for name, size in _larger_windows(5).items() if rule in name}
+                if not _smaller_window(again, left, right, square, windows=fives):
+                    window = ""
             if window:   # (the map is that larger window's map: confirmed, not inferred from the square alone)
                 t.fail(measured(f"{what} gives the {side} x {side} square its background's disparity ({median:g} px "
                                 f"in the median), where {side * side} of the 81 pixels of a 9 x 9 window centred on "
@@ -1784,8 +1797,14 @@ def block_matching_window_size(t):
 SMALLER_WINDOWS = {"a 5 x 5 window": (5, 5), "a 4 x 4 window (block_size // 2)": (4, 4), "a 3 x 3 window": (3, 3),
                    "a 9 x 1 strip (one row)": (9, 1)}
 # and the larger ones: block_size taken as the half-width (2 block_size + 1), or doubled.
-LARGER_WINDOWS = {"a 19 x 19 window (2 block_size + 1: block_size taken as the half-width)": (19, 19),
-                  "an 18 x 18 window (2 block_size)": (18, 18)}
+LARGER_RULES = {"2 block_size + 1: block_size taken as the half-width": lambda b: 2 * b + 1,
+                "2 block_size": lambda b: 2 * b}
+
+
+def _larger_windows(block_size: int) -> dict:
+    """{name: (side, side)} of the windows :data:`LARGER_RULES` make of ``block_size``."""
+    return {f"a {rule(block_size)} x {rule(block_size)} window ({name})": (rule(block_size), rule(block_size))
+            for name, rule in LARGER_RULES.items()}
 WINDOW_AGREEMENT = 0.9   # of the judged pixels within 1 px of that window's map
 
 
