@@ -1567,6 +1567,14 @@ def epipoles_rounded(t):
     try:
         got = t.call("epipoles", F)
     except StudentFailure as failure:
+        tolerance = _fixed_tolerance(code_of(t).reachable(["epipoles"]))
+        if tolerance:
+            t.fail(f"{failure.message.rstrip('. ')}. " + from_code(
+                f"Your code compares with a fixed tolerance, {tolerance}: F is defined up to scale, and this one, "
+                "typed to 6 decimals, is rank 2 only up to its rounding, so no singular value need be below a "
+                "tolerance fixed in advance. Take the singular "
+                "vectors of the smallest singular value (the last row of V^T, the last column of U)."),
+                mistake=FIXED_TOLERANCE)
         if NULL_SPACE.found(code_of(t).reachable(["epipoles"])):
             singular = np.linalg.svd(F, compute_uv=False)
             t.fail(f"{failure.message.rstrip('. ')}. " + measured(
