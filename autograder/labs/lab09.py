@@ -1682,7 +1682,7 @@ def project_onto_image_draws_its_points(t):
            + (measured(": the point whose projection is NaN is drawn at the corner (0, 0)")
               + (from_code(", where np.nan_to_num puts it (NaN becomes 0): draw only the finite points.")
                  if NAN_TO_ZERO.found(code_of(t).reachable(["project_onto_image"])) else ".") if corner else
-              ". The image and the points returned should agree: draw the points you return."),
+              measured(". The image and the points returned should agree: draw the points you return.")),
            mistake="a point behind the camera is drawn" if corner else "the drawing is not of the returned points")
 
 

@@ -762,7 +762,7 @@ def decompose_t_shape(t):
         t.fail(measured(f"decompose_camera_matrix(P)[2] (t) has shape {shape}; the API's t is a (3,) vector "
                         "(its numbers are judged by the other checks)")
                + (from_code(f": your code {column}, a (3, 1) column; P[:, 3] is the (3,) vector.") if column
-                  else ": give it as a (3,) vector (t.ravel())."),
+                  else measured(": give it as a (3,) vector (t.ravel()).")),
                mistake="t is returned as a column, not a (3,) vector")
     return passed(measured("t has the API's shape" if shape == (3,) else "t's form is the other checks' to judge"))
 
