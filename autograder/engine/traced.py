@@ -544,9 +544,11 @@ def _assigned_named(recording, statement, given, into, where, fn=None) -> Form |
         if last_item and base is not None and len(base) == 2:
             # (a loop over the channels, `for c in range(image.shape[-1])`, given a grey (H, W) image: the last
             # axis is the width, and `out[..., c]` a column)
-            return Form(said + f"; {_quote(target.value)} has shape {_shape_text(base)}, a grey image's (H, W): "
-                        f"its last axis is the width, so {_quote(target)} is a column, not a channel (a loop over "
-                        "`range(image.shape[-1])` runs over the columns there); treat a grey image apart", MISTAKE)
+            # (measured: the recording's shape of the array written into, and the item index after `...`)
+            return Form(said + measured(f"; {_quote(target.value)} has shape {_shape_text(base)}, a grey image's "
+                                        f"(H, W): its last axis is the width, so {_quote(target)} is a column, not a "
+                                        "channel (a loop over `range(image.shape[-1])` runs over the columns "
+                                        "there); treat a grey image apart"), MISTAKE)
         if made is not None:
             axes = len(base) if base is not None else len(into)
             said += f"; {_quote(target.value)} comes from {_quote(made[0])} (line {made[1]}), of {axes} axes " \

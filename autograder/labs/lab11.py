@@ -1550,58 +1550,6 @@ def _fixed_tolerance(functions) -> str:
     return ""
 
 
-ROUNDED_RESIDUAL = 1e-4   # |F e| / |F| of a unit e: ~1e-7 for the SVD's, eig's or two rows' cross product
-NULL_SPACE = calls_any("scipy.linalg.null_space", "null_space", says="calls scipy.linalg.null_space")
-NULL_SPACE_TOLERANCE = from_code("scipy.linalg.null_space's default tolerance finds no null vector of an F that is "
-                                 "rank 2 only up to rounding")
-
-
-@ex5.check("epipoles of an F written to 6 decimals (rank 2 up to rounding, as typed from a sheet)", points=1)
-def epipoles_rounded(t):
-    """An F typed with 6 decimals is rank 2 only up to its rounding (its smallest singular value about 1e-7 of
-    the largest): its epipoles are the singular vectors of that smallest singular value, as for any F
-    estimated from real matches."""
-    views = truth.two_views(seed=18)
-    F = np.round(views.F / np.abs(views.F).max(), 6)
-    what = "epipoles(F given to 6 decimals)"
-    try:
-        got = t.call("epipoles", F)
-    except StudentFailure as failure:
-        tolerance = _fixed_tolerance(code_of(t).reachable(["epipoles"]))
-        if tolerance:
-            t.fail(f"{failure.message.rstrip('. ')}. " + from_code(
-                f"Your code compares with a fixed tolerance, {tolerance}: F is defined up to scale, and this one, "
-                "typed to 6 decimals, is rank 2 only up to its rounding, so no singular value need be below a "
-                "tolerance fixed in advance. Take the singular "
-                "vectors of the smallest singular value (the last row of V^T, the last column of U)."),
-                mistake=FIXED_TOLERANCE)
-        if NULL_SPACE.found(code_of(t).reachable(["epipoles"])):
-            singular = np.linalg.svd(F, compute_uv=False)
-            t.fail(f"{failure.message.rstrip('. ')}. " + measured(
-                f"This F's smallest singular value is {singular[2] / singular[0]:.1e} of its largest: rank 2 "
-                "only up to its rounding.") + " " + from_code(
-                "Your code calls scipy.linalg.null_space: with its default tolerance (rcond about 1e-16 of the "
-                "largest singular value) it finds no null vector of such an F and returns an empty (3, 0) array. "
-                "Take the singular vectors of the smallest singular value (the last row of V^T, the last column "
-                "of U)."), mistake=NULL_SPACE_TOLERANCE)
-        raise
-    if not (isinstance(got, (tuple, list)) and len(got) == 2):
-        t.fail(f"{what} returned {type(got).__name__}; expected a pair (e1, e2)")
-    # (judged by the residual |F e| of the unit vector: the SVD's, eig's and a cross product of two rows are all
-    # null vectors to F's rounding, up to 1e-2 apart from each other; a vector that is none is ~ 1)
-    scale = np.linalg.norm(F)
-    for g, M, name, where in ((got[0], F, "e1", "F e1 = 0"), (got[1], F.T, "e2", "F^T e2 = 0")):
-        g = t.expect_array(g, f"{what}: {name}", shape=(3,), kind="iuf", finite=True)
-        if not np.any(g):
-            t.fail(f"{what}: {name} is all zeros")
-        residual = np.linalg.norm(M @ (g / np.linalg.norm(g))) / scale
-        if residual > ROUNDED_RESIDUAL:
-            t.fail(f"{what}: {name} = {format_matrix(g)} is not a null vector of F ({where}: |{where[:-4]}| is "
-                   f"{format_apart(residual, ROUNDED_RESIDUAL, 2)} of |F| at unit norm; at most "
-                   f"{ROUNDED_RESIDUAL:g} accepted)")
-    return passed("both are null vectors of F up to its rounding")
-
-
 @ex5.check("epipoles for any camera pair and any scale of F", points=1)
 def epipoles_property(t):
     def holds(case):
