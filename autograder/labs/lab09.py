@@ -1467,8 +1467,9 @@ def draw_partly_in_view(t):
         t.fail(measured(f"{what}: the part of the circle{'s' if len(missing) > 1 else ''} at {', '.join(missing)} "
                         "inside the image is not drawn: a circle centred just off the image reaches into it, and "
                         "cv2.circle draws that part")
-               + (from_code(f"; your code tests the points against the image's bounds (`{bound}`): a point may be "
-                            "left out only where its whole circle misses the image.") if bound else "."),
+               + (from_code(f"; your code tests the points against the image's bounds (`{bound}`): a point off the "
+                            "image or on the image's border may be left out only where its whole circle misses "
+                            "the image.") if bound else "."),
                mistake=LEFT_OUT_OFF_THE_IMAGE if bound else "")
     return passed(measured("the circles' parts in view are drawn"))
 

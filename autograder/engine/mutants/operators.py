@@ -3119,8 +3119,8 @@ def _squares(node) -> bool:
                for n in ast.walk(node))
 
 
-_ROOTS = ("np.sqrt", "numpy.sqrt", "math.sqrt", "np.hypot", "numpy.hypot", "math.hypot", "np.linalg.norm",
-          "numpy.linalg.norm", "cv2.norm")
+_ROOT_CALLS = ("np.sqrt", "numpy.sqrt", "math.sqrt", "np.hypot", "numpy.hypot", "math.hypot", "np.linalg.norm",
+               "numpy.linalg.norm", "cv2.norm")
 
 
 def _squared_bounds(node):
@@ -3129,7 +3129,7 @@ def _squared_bounds(node):
     for side, other in ((node.left, node.comparators[0]), (node.comparators[0], node.left)):
         bare = isinstance(other, (ast.Name, ast.Attribute, ast.Subscript, ast.Constant)) \
             or isinstance(other, ast.Call) and _dotted(other.func) in ("float", "int")
-        rooted = any(isinstance(n, ast.Call) and _dotted(n.func) in _ROOTS for n in ast.walk(side))
+        rooted = any(isinstance(n, ast.Call) and _dotted(n.func) in _ROOT_CALLS for n in ast.walk(side))
         if bare and _squares(side) and not rooted:
             written = ast.unparse(ast.Compare(side, node.ops, [ast.BinOp(other, ast.Pow(), ast.Constant(2))])
                                   if side is node.left else
