@@ -1660,7 +1660,9 @@ def project_onto_image_draws_its_points(t):
     try:
         got = t.call("project_onto_image", image, P, X)
     except StudentFailure:
-        return passed(measured("the call raised with a point behind the camera: not judged here"))
+        # (raising with the points in front too is a failure of its own: told as it is)
+        t.call("project_onto_image", image, P, np.delete(X, 3, axis=0))
+        return passed(measured("the call raised with a point behind the camera only: not judged here"))
     drawn, pts = got if isinstance(got, (tuple, list)) and len(got) == 2 else (None, None)
     pts = np.asarray(pts, dtype=np.float64) if isinstance(pts, np.ndarray) and pts.dtype.kind in "iuf" else None
     if not (isinstance(drawn, np.ndarray) and drawn.shape == image.shape and pts is not None
