@@ -4088,3 +4088,38 @@ def test_a_built_copy_and_its_raw_name_are_tried_in_each_others_place():
             return np.dot(new_K, dist)
     """)
     assert ("new_K", "K") in _made(source, {"other_name"}), _made(source, {"other_name"})
+
+
+def test_a_constant_typed_with_a_few_digits_is_offered_exact():
+    """`3.14` -> `np.pi`, `57.3` -> `180 / np.pi`; a 3.0 or an exact np.pi is left as it is (1202g 07/02)."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(a, b):
+            return a * 3.14 / 180, b * 57.3, a * 3.0, b * np.pi
+    """)
+    made = _made(source, {"exact_constant"})
+    assert made == {("3.14", "np.pi"), ("57.3", "180 / np.pi")}, made
+
+
+def test_a_sum_made_once_above_nested_loops_is_reset_in_the_loop_that_stores_it():
+    """`total = 0.0` above `for i` / `for j`, grown in `for k` and stored as E[i, j] in `for j`: moved into
+    `for j` as its first statement (1202g 11/04); not into `for k`, where nothing reads it."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(A, B):
+            E = np.zeros((3, 3))
+            total = 0.0
+            for i in range(3):
+                for j in range(3):
+                    for k in range(3):
+                        total += A[i, k] * B[k, j]
+                    E[i, j] = total
+            return E
+    """)
+    fn = next(node for node in ast.parse(source).body if isinstance(node, ast.FunctionDef))
+    into = {ast.unparse(list(ast.walk(fn))[m.edits[0][1]]).splitlines()[0]
+            for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+            if m.operator == "indent" and "total = 0.0" in str(m.edits[0][3])}
+    assert "for j in range(3):" in into and "for k in range(3):" not in into, into

@@ -21,6 +21,7 @@ import bisect
 import copy
 import functools
 import itertools
+import math
 import os
 import re
 from dataclasses import dataclass
@@ -151,6 +152,7 @@ OPERATORS = {
     "rank": ("singular", "rank", "constraint", "diag"),
     "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),
     "squared_bound": ("square", "radius", "**", "root"),
+    "exact_constant": ("pi", "constant", "round", "digits"),   # 3.14 -> np.pi, 57.3 -> 180 / np.pi
     "translation_scaled": ("scale", "translation", "order", "centr"),   # [[s, 0, -c]] <-> [[s, 0, -s * c]]   # dx ** 2 + dy ** 2 <= r -> <= r ** 2 (and back)
     "lower_bound": ("bound", "negative", ">= 0", "below 0", "left"),   # cols < w -> (cols >= 0) & (cols < w)
     "whole_shape": ("shape", "length", "len", "dimension"),   # np.zeros(len(d)) -> np.zeros(np.shape(d))
@@ -1105,7 +1107,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
-                                              "translation_scaled")},
+                                              "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
@@ -1701,6 +1703,11 @@ def _statement_moves(fn):
                 if isinstance(statement, ast.For):
                     for made in _reset_each_turn(statements[max(0, k - _MOVE_REACH):k], statement):
                         yield "indent", statement, made, "first"
+                    # (and a loop nested in it, whose turns each need their own sum: `total = 0.0` above
+                    # `for i`, grown in `for k` and stored as E[i, j] in `for j`, where it belongs first)
+                    for inner in (n for n in ast.walk(statement) if isinstance(n, ast.For) and n is not statement):
+                        for made in _reset_each_turn(statements[max(0, k - _MOVE_REACH):k], inner):
+                            yield "indent", inner, made, "first"
 
 
 def _reset_each_turn(earlier, loop):
@@ -2312,6 +2319,10 @@ def _student_changes(node, parent, parents):
         yield from _squared_bounds(node)
     if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 3:
         yield from _translation_scaled(node)
+    if isinstance(node, ast.Constant) and type(node.value) is float:
+        exact = _exact_constant(node.value)
+        if exact:
+            yield "exact_constant", exact, ""   # a constant typed with a few digits: `3.14` where np.pi belongs
     yield from _conversion_slips(node, parent)
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
@@ -3140,6 +3151,21 @@ def _squared_bounds(node):
             written = ast.unparse(ast.Compare(side, node.ops, [other.left]) if side is node.left else
                                   ast.Compare(other.left, node.ops, [side]))
             yield "squared_bound", written, ""
+
+
+# Constants a student types with a few digits: each with the expression that is exact.
+_EXACT_CONSTANTS = ((math.pi, "np.pi"), (2 * math.pi, "2 * np.pi"), (math.pi / 2, "np.pi / 2"),
+                    (math.pi / 180, "np.pi / 180"), (180 / math.pi, "180 / np.pi"), (math.sqrt(2), "np.sqrt(2)"),
+                    (math.sqrt(3), "np.sqrt(3)"), (1 / math.sqrt(2), "1 / np.sqrt(2)"), (math.e, "np.e"))
+
+
+def _exact_constant(value: float) -> str:
+    """The exact expression of a known constant ``value`` approximates to a few digits (within 0.2%, not
+    exactly: `3.14`, `57.3`, `1.414`), or ""."""
+    for exact, text in _EXACT_CONSTANTS:
+        if value != exact and abs(value - exact) <= 2e-3 * exact and abs(value - exact) > 1e-12 * exact:
+            return text
+    return ""
 
 
 def _translation_scaled(node):
