@@ -41,7 +41,7 @@ from ..engine.compare import (blurred_difference, format_apart, format_arrays_ap
 from ..engine.forms import COLOURS_LOST, colours_lost
 from ..engine.hints import (RANDOM_DRAWS, RATIO_TEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, _resolved, _scope,
                              calls, code_of, expr, fits_on_picked_points, functions_read, keyword, matmul_of, mentions,
-                             passes_product, picked_point_fits)
+                             parameter_flows, passes_product, picked_point_fits)
 from ..engine.ignored import MISTAKE as UNUSED_PARAMETER
 from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, fingerprint, judge_default_is_the_apis,
                       judge_parameter_used, overwritten_before_read, same_informative_result, unused_parameter_hint,
@@ -3313,6 +3313,11 @@ def blend_levels_used(t):
         t.fail(said + " " + from_code(f"Your code sets `{overwritten[1]}` (line {overwritten[0]}) before it reads "
                                       "levels: the value the caller gives is never used."),
                mistake=LEVELS_OVERWRITTEN)
+    if parameter_flows(code_of(t), "blend_multiband", "levels"):
+        # (the code uses it: on this input its value decides nothing -- measured, not named)
+        t.fail(from_code("blend_multiband(dark, bright, step mask, levels=...): levels=2 and levels=6 give the same "
+                         "image on this input, though your code uses levels: follow what its value decides (the "
+                         "pyramids' depth, and which of their levels the result is built from)."))
     t.fail(said, hint=unused_parameter_hint("levels").said(t), mistake=UNUSED_PARAMETER)
 
 
