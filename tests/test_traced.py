@@ -664,3 +664,14 @@ def test_an_index_after_an_ellipsis_on_a_one_axis_array_is_told_as_a_single_numb
             return np.asarray(xl)[..., 0] - np.asarray(xr)[..., 0]
         """, "disparity_from_matches", np.ones((5, 2)), np.zeros((5, 2)))
     assert traced.explain_scalar(code, recording, "disparity_from_matches") is None
+
+
+def test_two_columns_joined_end_to_end_are_told_where_and_how():
+    said = shape_sentence("""
+        def pinhole_project(points, f):
+            pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+            x = f * pts[:, 0] / pts[:, 2]
+            y = f * pts[:, 1] / pts[:, 2]
+            return np.hstack([x, y])
+        """, "pinhole_project", (4, 2), np.array([[1.0, 2, 4], [2, 1, 5], [0, 1, 3], [1, 1, 2]]), 500.0)
+    assert said is not None and "`np.hstack([x, y])`" in said and "np.column_stack" in said, said

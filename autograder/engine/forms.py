@@ -152,8 +152,10 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
                              f"array of {max(got)} values is asked (ravel() it)"),
                     "a 2-D column or row where a flat array is asked")
     if len(got) == 1 and len(expected) == 2 and None not in expected and got[0] == expected[0] * expected[1]:
-        return Form(measured(f"it looks flattened: {got[0]} values where a {_size(expected)} matrix is asked "
-                             f"(reshape({expected[0]}, {expected[1]}))"), "the matrix is flattened")
+        # (no way back is told: a reshape mends rows written one after the other, and scrambles columns
+        # written one after the other -- np.hstack of an x and a y column)
+        return Form(measured(f"it looks flattened: {got[0]} values where a {_size(expected)} matrix is asked"),
+                    "the matrix is flattened")
     return None
 
 

@@ -971,7 +971,8 @@ def _assignment_giving(fn, name, recording, got, before):
 
 
 def _made_here(fn, recording, node, statement, got, expected) -> Form | None:
-    operands = [(o, recording.shape(o)) for o in _children(node)]
+    # (a list's items are the operands of a call given it: `np.hstack([x, y])`)
+    operands = [(o, recording.shape(o)) for o in _inputs(node)]
     arrays = [(o, s) for o, s in operands if s is not None]
     if not arrays:
         return None
@@ -986,6 +987,12 @@ def _made_here(fn, recording, node, statement, got, expected) -> Form | None:
         said += ": NumPy broadcasts them against each other, every entry of one with every entry of the other"
     if any(s == tuple(expected) for _, s in arrays):
         said += f" ({' and '.join(_quote(o) for o, s in arrays if s == tuple(expected))} has the shape asked, {_shape_text(expected)})"
+    if isinstance(node, ast.Call) and _called_name(node) in ("hstack", "concatenate") and len(arrays) >= 2 \
+            and all(len(s) == 1 for _, s in arrays) and len(expected) == 2 and expected[1] == len(arrays) \
+            and all(s[0] == expected[0] for _, s in arrays):
+        # (measured: the recording's shapes, each (N,), and the (N, k) asked)
+        said += measured(": NumPy joins (N,) arrays end to end; as the columns of an (N, k) array they go side by "
+                         "side (np.column_stack)")
     source = arrays[0][1]
     if isinstance(node, ast.Subscript) and len(arrays) == 1 and len(got) == len(expected) == len(source) \
             and any(s < e for s, e in zip(source, expected)) \

@@ -507,9 +507,13 @@ def pinhole_single(t):
     # An (N, 3) array with N = 1 is an array of points like any other: one row back, not a single point.
     row = t.call("pinhole_project", X[None], 100.0)
     if isinstance(row, np.ndarray) and row.shape == (2,):
+        by_ndim = any(isinstance(node, ast.Attribute) and node.attr == "ndim" or isinstance(node, ast.Call)
+                      and _hints_path(node.func) in ("np.ndim", "numpy.ndim")
+                      for function in code_of(t).reachable(["pinhole_project"]) for node in ast.walk(function))
         t.fail("pinhole_project((1, 3) array, f=100) returned shape (2,); expected (1, 2): only a (3,) point "
-               "gives a (2,) result, an (N, 3) array gives (N, 2) for N = 1 too (tell them apart by the input's "
-               "number of dimensions, not by its length)")
+               "gives a (2,) result, an (N, 3) array gives (N, 2) for N = 1 too"
+               + (" (your code reads the input's number of dimensions: follow where the (2,) is made)" if by_ndim
+                  else " (tell them apart by the input's number of dimensions, not by its length)"))
     row, expected = t.expect_array(row, "pinhole_project((1, 3) array, f=100)", shape=(1, 2), kind="iuf"), \
         truth.pinhole(X[None], 100.0)
     if point_error(row, expected) > at_precision(1e-6 * magnitude(expected), magnitude(expected)):
