@@ -1007,6 +1007,11 @@ INVERT_HINT = Hint(" (invert them)", asks=calls_any("np.linalg.inv", "np.linalg.
                    instead=" (your code {found}: look at which way each matrix it inverts maps)")
 
 
+PRINCIPAL_POINTS_DIFFER = "the rectified cameras' principal points differ (every disparity shifted)"
+ZERO_DISPARITY_LEFT_OUT = from_code("cv2.stereoRectify without cv2.CALIB_ZERO_DISPARITY: the principal points differ")
+SHIFT_TREND = 0.9   # correlation of the disparities with 1/Z above which they still grow with nearness
+
+
 def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
     dy, dx = row_errors(H1, H2, pair)
     worst = float(np.nanmax(dy)) if np.all(np.isfinite(dy)) else float("inf")
@@ -1037,6 +1042,21 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                        mistake="the new x axis points from camera 2 to camera 1 (the images are mirrored)",
                        hint=TOWARDS_CENTRE_HINT.said(t))
             if not (x1 or x2 or y1 or y2 or back1 or back2):
+                # (the disparities' trend tells a swap from a shift: swapped roles negate them, so they fall as
+                # the points come nearer; principal points that differ add one constant, so they still grow)
+                nearness = 1.0 / np.asarray(pair.X, float)[:, 2]
+                trend = float(np.corrcoef(dx, nearness)[0, 1]) if np.std(dx) > 0 else 0.0
+                if trend >= SHIFT_TREND:
+                    slope, at_infinity = np.polyfit(nearness, dx, 1)
+                    read = code_of(t).reachable(["rectify"])
+                    unflagged = calls("cv2.stereoRectify").found(read) and not mentions("cv2.CALIB_ZERO_DISPARITY").found(read)
+                    t.fail(measured(f"{negative}, though they grow as the points come nearer, as they should "
+                                    f"(correlation {trend:.2f} with 1/Z): they are all shifted, by about "
+                                    f"{at_infinity:.3g} px at infinity, where a disparity is 0: the two rectified "
+                                    "cameras' principal points differ")
+                           + (from_code("; your code calls cv2.stereoRectify without cv2.CALIB_ZERO_DISPARITY, "
+                                        "which gives them the same principal point.") if unflagged else "."),
+                           mistake=ZERO_DISPARITY_LEFT_OUT if unflagged else PRINCIPAL_POINTS_DIFFER)
                 t.fail(f"{negative}, and neither image is turned or mirrored: the left and right roles are "
                        "swapped.", mistake="the left and right roles are swapped in the rectification")
             t.fail(f"{negative}: the two maps turn the images differently (left image: "
