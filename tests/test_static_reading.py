@@ -1016,3 +1016,32 @@ def test_an_array_made_anew_or_copied_at_every_turn_is_not_read_as_one(turn):
             return np.array(results)
         """
     assert "one array is appended at every turn" not in one(source), one(source)
+
+
+def test_the_unbound_method_with_its_array_first_is_not_read_as_an_output():
+    """`np.ndarray.dot(a, b)` is `a.dot(b)`: two operands, no output."""
+    source = """
+        import numpy as np
+
+        def essential_from_fundamental(F, K1, K2):
+            return np.ndarray.dot(np.ndarray.dot(K2.T, F), K1)
+        """
+    assert not one(source), one(source)
+
+
+def test_an_array_appended_in_nested_loops_is_read_once():
+    """The buffer overwritten and appended inside an inner loop is found from the outermost loop (each node is
+    read once: nested loops cost no more than their size)."""
+    source = """
+        import numpy as np
+
+        def graded(blocks):
+            buf = np.zeros(3)
+            out = []
+            for block in blocks:
+                for row in block:
+                    buf[:] = row
+                    out.append(buf)
+            return out
+        """
+    assert one(source) == {"one array is appended at every turn"}, one(source)

@@ -40,7 +40,8 @@ from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fi
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
-# (a border mode passed is "already done" only when it is the constant one: BORDER_REPLICATE is not)
+
+
 def _border_constant_by_name(function) -> bool:
     """cv2.BORDER_CONSTANT given by name where it is given (`borderMode=cv2.BORDER_CONSTANT`), not in a place
     of its own (a warp's fifth argument is flags)."""
@@ -50,6 +51,7 @@ def _border_constant_by_name(function) -> bool:
                and isinstance(node.value, ast.Name) and node.value.id in ("cv2", "cv"))
 
 
+# (a border mode passed is "already done" only when it is the constant one: BORDER_REPLICATE is not)
 BLACK_FILL_HINT = Hint("use borderMode=cv2.BORDER_CONSTANT, borderValue=0 (black fill)",
                        asks=mentions("cv2.BORDER_CONSTANT"),
                        instead="your code already {found}: " + checklist(
@@ -625,7 +627,10 @@ def unused_parameter_hint(parameter: str) -> Hint:
                         "its value goes (is it overwritten before it is used, or used where it has no effect?)")
 
 
-def _ignored(t: Trial, what: str, parameter: str, values, result: str):
+OVERWRITTEN = from_code("a parameter is overwritten before it is read")
+
+
+def _ignored(t: Trial, what: str, parameter: str, values, result: str, mistake: str = ""):
     first_value, second_value = values
     same = f"{what}: {parameter}={first_value!r} and {parameter}={second_value!r} give the same {result}"
     code = code_of(t)
@@ -634,19 +639,19 @@ def _ignored(t: Trial, what: str, parameter: str, values, result: str):
         # a model chosen otherwise -- which is no parameter ignored; measured, not named)
         t.fail(from_code(f"{same} on this input, though your code uses {parameter}: follow what its value "
                          "decides (a comparison, a count, a selection); here it decides nothing."))
-    overwritten = next((found for found in (overwritten_before_read(code, function, parameter)
+    overwritten = next((found for found in (_overwritten_before_read(code, function, parameter)
                                             for function in functions_read(t)) if found), None)
     if overwritten:
         line, statement = overwritten
         t.fail(f"{same}: {parameter} is ignored. " + from_code(
             f"Your code sets `{statement}` (line {line}) before it reads {parameter}: the value the caller gives "
-            "is never used."), mistake=f"{parameter} is ignored")
+            "is never used."), mistake=OVERWRITTEN)
     t.fail(f"{same}: {parameter} is ignored.",
            hint=unused_parameter_hint(parameter).said(t),
-           mistake=f"{parameter} is ignored")
+           mistake=mistake or f"{parameter} is ignored")
 
 
-def overwritten_before_read(code, function: str, parameter: str) -> tuple[int, str] | None:
+def _overwritten_before_read(code, function: str, parameter: str) -> tuple[int, str] | None:
     """(line, statement) of a plain assignment of ``parameter`` in ``function``'s own body, at its top level,
     before any line that reads it (a leftover `levels = 4`); None otherwise."""
     node = code.functions.get(function)
@@ -658,7 +663,8 @@ def overwritten_before_read(code, function: str, parameter: str) -> tuple[int, s
         if isinstance(statement, ast.Assign) and any(isinstance(target, ast.Name) and target.id == parameter
                                                      for target in statement.targets) \
                 and parameter not in {n.id for n in ast.walk(statement.value) if isinstance(n, ast.Name)}:
-            return (statement.lineno, " ".join(ast.unparse(statement).split())) \
+            written = " ".join(ast.unparse(statement).split())
+            return (statement.lineno, written if len(written) <= 80 else written[:77] + "...") \
                 if not reads or min(reads) >= statement.lineno else None
     return None
 
@@ -706,17 +712,18 @@ def judge_default_is_the_apis(t: Trial, what: str, call, parameter: str, api_val
 
 
 def judge_parameter_changes_result(t: Trial, what: str, call, parameter: str, values,
-                                   result: str = "result") -> Verdict:
+                                   result: str = "result", mistake: str = "") -> Verdict:
     """A check of its own that ``parameter`` is used: ``call(**{parameter: value})`` for the two
     ``values`` must not give exactly the same result.
 
     For parameters whose effect the quality checks cannot see (a block size fixed at
     its default still matches well). Unlike :func:`judge_parameter_used`, a failing
-    call fails the check (a stub is "not implemented", never "uses its parameter").
+    call fails the check (a stub is "not implemented", never "uses its parameter"). ``mistake``: the name
+    told for an ignored parameter (default "<parameter> is ignored").
     """
     first, second = (call(**{parameter: value}) for value in values)
     if same_informative_result(first, second):
-        _ignored(t, what, parameter, values, result)
+        _ignored(t, what, parameter, values, result, mistake)
     first_value, second_value = values
     return passed(f"{parameter}={first_value!r} and {parameter}={second_value!r} give different {result}s")
 

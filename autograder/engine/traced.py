@@ -729,10 +729,10 @@ def _unpack_named(recording, statement, expected: int, where) -> Form | None:
     if count is None or count == expected:
         return None
     found = recording.values.get(node_key(value))
-    shown = f" ({', '.join(f'{v:g}' for v in found[1])}{',' if len(found[1]) == 1 else ''})" \
-        if found and found[0] == "tuple" else ""
+    shown = f": {_quote(value)} is ({', '.join(f'{v:g}' for v in found[1])}{',' if len(found[1]) == 1 else ''})" \
+        if found and found[0] == "tuple" else f" ({_quote(value)})"
     said = (f"{_quote(statement if isinstance(statement, ast.Assign) else targets[0])} {where} unpacks into "
-            f"{expected} names a value of {count} item{'s' if count != 1 else ''} here: {_quote(value)} is{shown or ' that'}")
+            f"{expected} names a value of {count} item{'s' if count != 1 else ''} here{shown}")
     sliced = value.value if isinstance(value, ast.Subscript) else value
     if isinstance(sliced, ast.Attribute) and sliced.attr == "shape":
         shape = recording.shape(sliced.value)

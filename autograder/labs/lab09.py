@@ -498,6 +498,9 @@ def pinhole_property(t):
 ANY_DEPTH = (0.1, 10.0)
 
 
+READS_NDIM = expr("_.ndim") | calls("np.ndim")
+
+
 @ex1.check("a single (3,) point gives a single (2,) result, the lab sheet's (1, 1, 2) with f = 1 too; "
            "one row (1, 3) gives (1, 2)", points=1)
 def pinhole_single(t):
@@ -507,9 +510,7 @@ def pinhole_single(t):
     # An (N, 3) array with N = 1 is an array of points like any other: one row back, not a single point.
     row = t.call("pinhole_project", X[None], 100.0)
     if isinstance(row, np.ndarray) and row.shape == (2,):
-        by_ndim = any(isinstance(node, ast.Attribute) and node.attr == "ndim" or isinstance(node, ast.Call)
-                      and _hints_path(node.func) in ("np.ndim", "numpy.ndim")
-                      for function in code_of(t).reachable(["pinhole_project"]) for node in ast.walk(function))
+        by_ndim = READS_NDIM.found(code_of(t).reachable(["pinhole_project"]))
         t.fail("pinhole_project((1, 3) array, f=100) returned shape (2,); expected (1, 2): only a (3,) point "
                "gives a (2,) result, an (N, 3) array gives (N, 2) for N = 1 too"
                + (" (your code reads the input's number of dimensions: follow where the (2,) is made)" if by_ndim
@@ -1440,13 +1441,19 @@ LEFT_OUT_OFF_THE_IMAGE = from_code("circles centred just off the image are left 
 
 
 def _bounds_test(functions) -> str:
-    """A comparison of a value with 0 (`x >= 0`, `0 <= x < w`), as written; "" when none is made."""
+    """A comparison of a point's coordinate with 0 (`x >= 0`, `0 <= x < w`, `pts[:, 0] >= 0`), as written: a
+    name the def loops over, or its points parameter, compared with 0; "" when none is made (`radius > 0` is no
+    test of a point)."""
     for function in functions:
+        params = [a.arg for a in function.args.args]
+        coordinates = set(params[1:2]) | {n.id for loop in ast.walk(function) if isinstance(loop, ast.For)
+                                          for n in ast.walk(loop.target) if isinstance(n, ast.Name)}
         for node in ast.walk(function):
-            if isinstance(node, ast.Compare) and any(isinstance(op, (ast.Lt, ast.LtE, ast.Gt, ast.GtE))
-                                                     for op in node.ops) \
+            sides = [node.left, *node.comparators] if isinstance(node, ast.Compare) else []
+            if any(isinstance(op, (ast.Lt, ast.LtE, ast.Gt, ast.GtE)) for op in getattr(node, "ops", ())) \
                     and any(isinstance(side, ast.Constant) and side.value == 0 and not isinstance(side.value, bool)
-                            for side in [node.left, *node.comparators]):
+                            for side in sides) \
+                    and any(isinstance(n, ast.Name) and n.id in coordinates for side in sides for n in ast.walk(side)):
                 return " ".join(ast.unparse(node).split())
     return ""
 

@@ -38,9 +38,9 @@ from ..engine.forms import shape_form
 from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
                             keyword, mentions,
                             size_given_as_shape)
-from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, judge_default_is_the_apis, judge_parameter_changes_result,
-                      judge_parameter_used, name_mistake, over_variants, repeating_border,
-                      same_informative_result)
+from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, judge_default_is_the_apis,
+                      judge_parameter_changes_result, judge_parameter_used, name_mistake, over_variants,
+                      repeating_border, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..engine.registry import Lab
 from .code_signs import (DIVIDES_BY_16, STEREO_MATCHER, constant_factor, factor_words, name_batched_vt_row,
@@ -1047,9 +1047,10 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                 nearness = 1.0 / np.asarray(pair.X, float)[:, 2]
                 trend = float(np.corrcoef(dx, nearness)[0, 1]) if np.std(dx) > 0 else 0.0
                 if trend >= SHIFT_TREND:
-                    slope, at_infinity = np.polyfit(nearness, dx, 1)
+                    _, at_infinity = np.polyfit(nearness, dx, 1)
                     read = code_of(t).reachable(["rectify"])
-                    unflagged = calls("cv2.stereoRectify").found(read) and not mentions("cv2.CALIB_ZERO_DISPARITY").found(read)
+                    unflagged = calls("cv2.stereoRectify").found(read) \
+                        and not mentions("cv2.CALIB_ZERO_DISPARITY").found(read)
                     t.fail(measured(f"{negative}, though they grow as the points come nearer, as they should "
                                     f"(correlation {trend:.2f} with 1/Z): they are all shifted, by about "
                                     f"{at_infinity:.3g} px at infinity, where a disparity is 0: the two rectified "
@@ -1783,7 +1784,7 @@ def block_matching_window_size(t):
                                f"9 x 9 window centred on it holds {side * side} of its pixels and "
                                f"{81 - side * side} of the background's, so the background's disparity (4 px) wins "
                                "there, as it does for cv2.StereoBM with blockSize=9.")
-            window = _smaller_window(got, left, right, square)
+            window = _window_giving(got, left, right, square)
             if window:   # (the map is that window's map: confirmed, not inferred from the square alone)
                 t.fail(measured(f"{kept_by} Your map is the one {window} gives (SSD), a window smaller than 9 x 9: "
                                 "the cost is summed over block_size x block_size pixels."),
@@ -1792,7 +1793,7 @@ def block_matching_window_size(t):
                             + ", ".join(SMALLER_WINDOWS) + "): look at how your cost is computed from the 9 x 9 "
                             "window; SSD is the mean of the squared pixel differences (L - R)^2 over it."))
         if wins == "square" and not kept:   # (a costs computed wrongly loses it too: the other checks judge)
-            window = _smaller_window(got, left, right, square, windows=_larger_windows(9))
+            window = _window_giving(got, left, right, square, windows=_larger_windows(9))
             if window:   # (confirmed with block_size=5: the same rule gives its own window there, a fixed
                 # window -- block_size ignored -- does not)
                 rule = next(name for name in LARGER_RULES if name in window)
@@ -1800,7 +1801,7 @@ def block_matching_window_size(t):
                 again = np.asarray(t.expect_array(again, what.replace("block_size=9", "block_size=5"),
                                                   shape=left.shape, kind="iuf"), np.float64)
                 fives = {name: size for name, size in _larger_windows(5).items() if rule in name}
-                if not _smaller_window(again, left, right, square, windows=fives):
+                if not _window_giving(again, left, right, square, windows=fives):
                     window = ""
             if window:   # (the map is that larger window's map: confirmed, not inferred from the square alone)
                 t.fail(measured(f"{what} gives the {side} x {side} square its background's disparity ({median:g} px "
@@ -1825,6 +1826,8 @@ def _larger_windows(block_size: int) -> dict:
     """{name: (side, side)} of the windows :data:`LARGER_RULES` make of ``block_size``."""
     return {f"a {rule(block_size)} x {rule(block_size)} window ({name})": (rule(block_size), rule(block_size))
             for name, rule in LARGER_RULES.items()}
+
+
 WINDOW_AGREEMENT = 0.9   # of the judged pixels within 1 px of that window's map
 
 
@@ -1836,9 +1839,9 @@ def _square_neighbourhood(square, shape) -> np.ndarray:
     return around
 
 
-def _smaller_window(got, left, right, square, max_disparity: int = 32, windows=None) -> str:
-    """Which of ``windows`` (:data:`SMALLER_WINDOWS`) gives ``got`` (winner-take-all SSD) on the ``square`` and
-    around it (the pixels where windows of other sizes part); "" when none does."""
+def _window_giving(got, left, right, square, max_disparity: int = 32, windows=None) -> str:
+    """Which of ``windows`` (by default :data:`SMALLER_WINDOWS`) gives ``got`` (winner-take-all SSD) on the
+    ``square`` and around it (the pixels where windows of other sizes part); "" when none does."""
     L, R = np.asarray(left, np.float64), np.asarray(right, np.float64)
     on_square = np.zeros(L.shape, bool)
     on_square[square] = True

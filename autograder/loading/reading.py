@@ -1110,7 +1110,8 @@ def _third_operand_as_out(name, function) -> list[Finding]:
         # (the method's own: `a.dot(b, c)` -- ndarray.dot(b, out) -- the second argument is `out`)
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "dot" \
                 and len(node.args) == 2 and not any(isinstance(a, ast.Starred) for a in node.args) \
-                and _attribute_path(node.func) not in ("np.dot", "numpy.dot") \
+                and _attribute_path(node.func) not in ("np.dot", "numpy.dot", "np.ndarray.dot", "numpy.ndarray.dot",
+                                                       "ndarray.dot") \
                 and not (isinstance(node.args[1], ast.Constant) and node.args[1].value is None):
             first, second = ast.unparse(node.func.value), ast.unparse(node.args[0])
             third = ast.unparse(node.args[1])
@@ -1175,6 +1176,7 @@ def _same_array_appended(name, function) -> list[Finding]:
     """``buf = np.empty(...)`` before a loop, ``buf[:] = ...`` (or ``buf *= ...``) in it, and ``out.append(buf)``:
     each item of the list is that one array, which ends with the last turn's values."""
     made_before: dict = {}
+    within: set = set()   # (the nodes of a loop already read: only outermost loops are, each node once)
     for statement in sorted((node for node in ast.walk(function) if isinstance(node, (ast.Assign, ast.For, ast.While))),
                             key=_line):
         if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name):
@@ -1183,9 +1185,10 @@ def _same_array_appended(name, function) -> list[Finding]:
                 made_before[statement.targets[0].id] = _line(statement)
             else:
                 made_before.pop(statement.targets[0].id, None)
-        if not isinstance(statement, (ast.For, ast.While)):
+        if not isinstance(statement, (ast.For, ast.While)) or id(statement) in within:
             continue
         inside = [n for part in statement.body for n in ast.walk(part)]
+        within.update(id(n) for n in inside)
         rebound = {t.id for n in inside if isinstance(n, (ast.Assign, ast.AugAssign, ast.For))
                    for target in (n.targets if isinstance(n, ast.Assign) else [n.target])
                    for t in ([target] if isinstance(target, ast.Name) else

@@ -151,9 +151,9 @@ OPERATORS = {
     "grey": ("grey", "gray", "channel", "colour", "color"),
     "rank": ("singular", "rank", "constraint", "diag"),
     "guard": ("invalid", "zero", "where", "nan", "inf", "divid"),
-    "squared_bound": ("square", "radius", "**", "root"),
+    "squared_bound": ("square", "radius", "**", "root"),   # dx ** 2 + dy ** 2 <= r -> <= r ** 2 (and back)
     "exact_constant": ("pi", "constant", "round", "digits"),   # 3.14 -> np.pi, 57.3 -> 180 / np.pi
-    "translation_scaled": ("scale", "translation", "order", "centr"),   # [[s, 0, -c]] <-> [[s, 0, -s * c]]   # dx ** 2 + dy ** 2 <= r -> <= r ** 2 (and back)
+    "translation_scaled": ("scale", "translation", "order", "centr"),   # [[s, 0, -c]] <-> [[s, 0, -s * c]]
     "lower_bound": ("bound", "negative", ">= 0", "below 0", "left"),   # cols < w -> (cols >= 0) & (cols < w)
     "whole_shape": ("shape", "length", "len", "dimension"),   # np.zeros(len(d)) -> np.zeros(np.shape(d))
     "move_factor": ("square root", "sqrt", "factor", "inside", "outside"),   # np.sqrt(a * u) -> a * np.sqrt(u)
@@ -3124,6 +3124,8 @@ def _discarded_result(statement: ast.Expr):
 
 
 _SQUARED = {"abs", "absolute", "fabs"}
+
+
 def _squares(node) -> bool:
     return any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and isinstance(n.right, ast.Constant)
                and n.right.value == 2 or isinstance(n, ast.Call) and _dotted(n.func) in ("np.square", "numpy.square")

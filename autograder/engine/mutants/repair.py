@@ -2957,8 +2957,8 @@ class _Variants:
             # (an input derived for confirming -- a single point, fewer points -- on which the change raises as
             # the student's own code raises there refutes nothing: the slip mended need not change how the code
             # meets a degenerate input, `s = sqrt(2) / 0` of one point)
-            if any(naming.error_kind(v) is None or i < len(self.inputs) for v, i in wrong):
-                return False
+            if any(naming.error_kind(v) is None or i < len(self.inputs) for v, i in wrong) or len(wrong) == len(values):
+                return False   # (and a change no input confirms -- every one raising -- is no confirmed change)
             own = self._own([i for _, i in wrong], every)
             return own is not None and all(naming.error_kind(theirs) == naming.error_kind(v)
                                            for (v, _), theirs in zip(wrong, own))
