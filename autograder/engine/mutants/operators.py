@@ -96,6 +96,7 @@ OPERATORS = {
     "add_axis": ("axis",),                             # np.delete(X, 2) -> np.delete(X, 2, axis=1)
     "flip_keyword": ("true", "false", "keyword"),     # full_matrices=False -> True
     "float32": ("float32", "dtype", "float"),         # cv2.remap(img, mx, my) -> cv2.remap(img, np.float32(mx), ...)
+    "python_numbers": ("int", "numeric", "tuple", "type"),   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
@@ -1004,6 +1005,10 @@ def _make_float32(node, payload):
     return new
 
 
+def _make_python_numbers(node, payload):
+    return ast.Call(_name("tuple"), [ast.Call(_name("map"), [_name("int"), copy.deepcopy(node.args[0])], [])], [])
+
+
 def _make_accumulate(node, payload):
     if payload == "assign":   # total += x -> total = x
         return ast.Assign([copy.deepcopy(node.target)], copy.deepcopy(node.value))
@@ -1112,7 +1117,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
-         "flip_keyword": _make_flip_keyword, "float32": _make_float32, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
+         "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
@@ -2347,7 +2352,9 @@ def _student_changes(node, parent, parents):
     if chain is not None and not any(_is_inverse(f) for f in (chain[0], chain[2])):
         yield "inverse", "undone_never", ""   # `K2.T @ F @ K1` -> `F`: a transform applied twice, or too early
     if isinstance(node, ast.Call):
-        yield from _dtype_changes(node)
+        yield from _dtype_changes(node, _calls_opencv(_root(node, parents)))
+        if _calls_opencv(_root(node, parents)):
+            yield from _python_numbers(node)
         yield from _shape_changes(node)
         yield from _factor_moves(node)
         yield from _converted_late(node)
@@ -2773,10 +2780,27 @@ def _shape_changes(node: ast.Call):
     yield "whole_shape", ast.unparse(new), ""
 
 
-def _dtype_changes(node: ast.Call):
+@functools.lru_cache(maxsize=64)
+def _calls_opencv(fn) -> bool:
+    """Whether the def ``fn`` calls OpenCV (whose functions take float32 points and Python numbers only)."""
+    return any(isinstance(n, ast.Call) and _dotted(n.func).startswith(("cv2.", "cv.")) for n in ast.walk(fn))
+
+
+def _python_numbers(node: ast.Call):
+    """NumPy numbers given where OpenCV takes Python ones: `tuple(rng.integers(0, 256, 3))` as a colour
+    (cv2.line: "Scalar value for argument 'color' is not numeric")."""
+    if _dotted(node.func) == "tuple" and len(node.args) == 1 and not node.keywords \
+            and isinstance(node.args[0], (ast.Call, ast.Name, ast.Subscript)) \
+            and not (isinstance(node.args[0], ast.Call) and _dotted(node.args[0].func) in ("map", "range", "zip")):
+        yield "python_numbers", None, ""
+
+
+def _dtype_changes(node: ast.Call, opencv: bool = False):
     """An array made of the wrong type: a canvas allocated without its dtype (np.zeros is float64: an
-    image built on it is not uint8; np.zeros_like(image) is uint8: sums on it wrap round), or values
-    cast to integers where they are not (`np.asarray(f, dtype=int)`)."""
+    image built on it is not uint8; np.zeros_like(image) is uint8: sums on it wrap round), values
+    cast to integers where they are not (`np.asarray(f, dtype=int)`), and (``opencv``: the student's
+    function calls OpenCV) points made float64 where OpenCV takes float32 (cv2.calibrateCamera's
+    object points)."""
     dotted = _dotted(node.func)
     if not dotted.startswith(("np.", "numpy.")) or dotted.rsplit(".", 1)[-1] not in _MADE:
         return
@@ -2793,6 +2817,8 @@ def _dtype_changes(node: ast.Call):
         yield "dtype", "np.uint8", ""
         if dotted.endswith("_like"):
             yield "dtype", "np.float64", ""
+        elif opencv:
+            yield "dtype", "np.float32", ""
 
 
 _BINDS_TIGHTER = (ast.Mult, ast.Div, ast.FloorDiv, ast.MatMult, ast.Mod)

@@ -2057,9 +2057,14 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # h)` makes the extra width vanish on every image tried, where `w + int(abs(s) * h)` -> `w` says it)
     shown = [(m, f) for m, f in shown if f is not None]
     dropped = [f for m, f in shown if f.operator == "drop_term" and m.key in exactly]
+    # (and where a library refused a value's type, a conversion before the changes that only steer round
+    # the value: an empty colour, None, mends a drawing that NumPy integers broke)
+    refused_type = bool(getattr(trial, "raised", None)) and trial.raised[0] == function \
+        and _TYPE_REFUSED.search(str(trial.raised[3] or "")) is not None
     shown = sorted(((m, f) for m, f in shown if not student.renormalises(m)
                     and not student.colours_with_a_size(m)),
-                   key=lambda pair: (pair[0].key not in known, pair[0].key not in exactly,
+                   key=lambda pair: (pair[0].key not in known, not (refused_type and _converts(pair[0])),
+                                     pair[0].key not in exactly,
                                      student.bypasses(pair[0]), pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
                                      _inside_a_dropped_term(pair[1], dropped),
@@ -2334,14 +2339,24 @@ RAISE_REACH = 6   # lines before the one that raised where a change is tried fir
 GUARD_TESTS = BRANCHING | {"magnitude"}   # changes of what a test decides (the guard of a raise: tried first of all)
 
 
+# what a library says when it is given a value of the wrong type (OpenCV's format and parsing errors)
+_TYPE_REFUSED = re.compile(r"Point[23][fd]|not numeric|Unsupported format|wrong type|data type|CV_32F|depth")
+
+
+def _converts(mutant) -> bool:
+    """Whether ``mutant`` changes a value's type only (float32 where float64 was made, Python numbers)."""
+    return all(e[2] in ("python_numbers", "float32") or (e[2] == "dtype" and e[3] == "np.float32")
+               for e in mutant.edits)
+
+
 def _near_the_raise(mutants, trial, function) -> list:
     """``mutants`` with those of the few lines up to the one where the student's ``function`` raised
     first (each group in its order): the slip is mostly there or just before (a canvas one image
     high, then an image copied into it)."""
     raised = getattr(trial, "raised", None)
-    lines = getattr(trial, "raised_lines", ()) if raised and raised[0] == function else ()
-    if not lines:
+    if not raised or raised[0] != function:
         return mutants
+    lines = getattr(trial, "raised_lines", ())
     near = lambda m: any(0 <= line - m.line <= RAISE_REACH for line in lines)  # noqa: E731
     # (a few of them first: a raise far downstream of the slip -- an overflow in an iteration count made
     # from errors never divided by w -- must not spend the search on the lines around it)
@@ -2351,6 +2366,11 @@ def _near_the_raise(mutants, trial, function) -> list:
     # value it tests would only steer round it)
     guard = lambda m: m.operator in GUARD_TESTS and any(0 <= line - m.line <= 1 for line in lines)  # noqa: E731
     first.sort(key=lambda m: not guard(m))
+    # (and where a library says it was given a value of the wrong type -- "objectPoints should contain
+    # ... Point3f", "Scalar value for argument 'color' is not numeric" -- a conversion anywhere in the
+    # function before them: the array is made far from the call it reaches)
+    if _TYPE_REFUSED.search(str(raised[3] or "")):
+        first = [m for m in mutants if _converts(m)] + [m for m in first if not _converts(m)]
     chosen = {id(m) for m in first}
     return first + [m for m in mutants if id(m) not in chosen]
 

@@ -933,6 +933,20 @@ MISTAKES = {
             moved = transform_points(H, np.asarray(src, np.float64))
             return H, np.abs(moved[:, 0] - np.asarray(dst, np.float64)[:, 0]) < threshold
         """, ["the mask is exactly the pairs whose |du| alone"]),
+    "draw_matches colouring with NumPy integers": ("lab08.ex3", """
+        def draw_matches(img1, img2, pts1, pts2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
+            canvas[:h1, :w1] = _bgr(img1)
+            canvas[:h2, w1:] = _bgr(img2)
+            for p, q in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                colour = tuple(np.random.randint(0, 256, 3))
+                start = (int(round(p[0])), int(round(p[1])))
+                end = (int(round(q[0] + w1)), int(round(q[1])))
+                cv2.line(canvas, start, end, colour, 1)
+            return canvas
+        """, ["changing `tuple(np.random.randint(0, 256, 3))` to `tuple(map(int, np.random.randint(0, 256, 3)))`"]),
 }
 
 

@@ -680,6 +680,24 @@ MISTAKES = {
                     cv2.circle(image, (int(round(x)), int(round(y))), 3, (0, 0, 255), -1)
             return image, pts
         """, ["draws on the caller's `image`"]),
+    "calibration object points made float64": ("lab09.ext1", """
+        def calibrate(images, pattern_size, square_size):
+            cols, rows = pattern_size
+            board = np.zeros((rows * cols, 3))
+            board[:, 0] = np.tile(np.arange(cols), rows) * square_size
+            board[:, 1] = np.repeat(np.arange(rows), cols) * square_size
+            seen, found_corners = [], []
+            for image in images:
+                grey = image if image.ndim == 2 else cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)
+                ok, corners = cv2.findChessboardCorners(grey, (cols, rows))
+                if ok:
+                    seen.append(board)
+                    found_corners.append(cv2.cornerSubPix(grey, corners, (5, 5), (-1, -1),
+                                                          (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3)))
+            h, w = images[0].shape[:2]
+            rms, K, dist, _, _ = cv2.calibrateCamera(seen, found_corners, (w, h), None, None)
+            return K, dist.ravel()[:5], float(rms)
+        """, ["changing `np.zeros((rows * cols, 3))` to `np.zeros((rows * cols, 3), dtype=np.float32)`"]),
 }
 
 
