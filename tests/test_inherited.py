@@ -106,6 +106,7 @@ def test_same_answer_holds_images_to_a_pixel_in_a_thousand_and_numbers_to_float3
     assert not inherited.same_answer(np.nan_to_num(x), x)          # NaN in other places
     assert not inherited.same_answer((x, x), [x])                  # another structure
     assert inherited.same_answer((x.astype(np.float32), 3), [x, 3.0])
+    assert not inherited.same_answer([None, x[0]], [x[0], None])   # an array where another kind of value is
 
 
 def test_calls_are_shown_as_the_student_writes_them():

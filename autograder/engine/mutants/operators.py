@@ -96,7 +96,8 @@ OPERATORS = {
     "add_axis": ("axis",),                             # np.delete(X, 2) -> np.delete(X, 2, axis=1)
     "flip_keyword": ("true", "false", "keyword"),     # full_matrices=False -> True
     "float32": ("float32", "dtype", "float"),         # cv2.remap(img, mx, my) -> cv2.remap(img, np.float32(mx), ...)
-    "python_numbers": ("int", "numeric", "tuple", "type"),   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
+    "python_numbers": ("int", "numeric", "tuple", "type"),
+    "size_given": ("size", "frame", "crop", "default"),   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
@@ -1009,6 +1010,13 @@ def _make_python_numbers(node, payload):
     return ast.Call(_name("tuple"), [ast.Call(_name("map"), [_name("int"), copy.deepcopy(node.args[0])], [])], [])
 
 
+def _make_size_given(node, payload):
+    parameter, size = payload   # apply_homography(moving, H) -> apply_homography(moving, H, dsize=(w, h))
+    new = copy.deepcopy(node)
+    new.keywords.append(ast.keyword(parameter, parse(size, mode="eval").body))
+    return new
+
+
 def _make_accumulate(node, payload):
     if payload == "assign":   # total += x -> total = x
         return ast.Assign([copy.deepcopy(node.target)], copy.deepcopy(node.value))
@@ -1117,7 +1125,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial",
          "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
-         "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
+         "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
@@ -2682,6 +2690,32 @@ def _defaulted_argument_changes(node, words):
     for keyword in node.keywords:
         if keyword.arg in defaulted:
             yield "drop_argument", keyword.arg, ""
+    # and the converse: an output size left to its default (the input's own) where the caller holds the
+    # size it was due -- `apply_homography(moving, H)` made into `reference`'s frame from `h, w = reference.shape[:2]`
+    given = {a.arg for a in positional[:len(node.args)]} | {k.arg for k in node.keywords}
+    for parameter in (a.arg for a in positional[required:] if a.arg not in given):
+        if parameter in _SIZE_PARAMETERS:
+            for height, width in _sizes_unpacked(words.fn, node.lineno):
+                order = (width, height) if _SIZE_PARAMETERS[parameter] == "xy" else (height, width)
+                yield "size_given", (parameter, f"({order[0]}, {order[1]})"), ""
+
+
+# the parameters of a student's helper (or of an API function) that take an output size, and their order
+_SIZE_PARAMETERS = {"dsize": "xy", "size": "xy", "out_size": "xy", "output_shape": "yx", "out_shape": "yx"}
+
+
+def _sizes_unpacked(fn, before: int) -> list:
+    """The (height, width) names ``fn`` unpacks from an image's shape above line ``before`` (`h, w = X.shape[:2]`)."""
+    pairs = []
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Assign) and node.lineno < before and len(node.targets) == 1 \
+                and isinstance(node.targets[0], ast.Tuple) and len(node.targets[0].elts) == 2 \
+                and all(isinstance(e, ast.Name) for e in node.targets[0].elts) \
+                and isinstance(node.value, ast.Subscript) and isinstance(node.value.value, ast.Attribute) \
+                and node.value.value.attr == "shape":
+            pairs.append(tuple(e.id for e in node.targets[0].elts))
+    return pairs
+
 
 
 @functools.lru_cache(maxsize=4096)

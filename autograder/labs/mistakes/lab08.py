@@ -153,6 +153,15 @@ MISTAKES = {
         def warp_to_reference(reference, moving, H):
             return apply_homography(moving, H)
         """, ["reference's size"]),
+    "warp_to_reference cropping the moving-size warp": ("lab08.ex2", """
+        def warp_to_reference(reference, moving, H):
+            rows, cols = reference.shape[:2]
+            out = np.zeros_like(reference if reference.ndim == moving.ndim else moving[:1, :1].repeat(rows, 0).repeat(cols, 1))
+            warped = apply_homography(moving, H)
+            keep_r, keep_c = min(rows, warped.shape[0]), min(cols, warped.shape[1])
+            out[:keep_r, :keep_c] = warped[:keep_r, :keep_c]
+            return out
+        """, ["changing `apply_homography(moving, H)` to `apply_homography(moving, H, dsize=(cols, rows))`"]),
     "every point divided by the first point's w": ("lab08.ex1", """
         def transform_points(H, pts):
             q = np.hstack([np.asarray(pts, float), np.ones((len(pts), 1))]) @ np.asarray(H, float).T
