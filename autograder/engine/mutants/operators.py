@@ -97,7 +97,8 @@ OPERATORS = {
     "flip_keyword": ("true", "false", "keyword"),     # full_matrices=False -> True
     "float32": ("float32", "dtype", "float"),         # cv2.remap(img, mx, my) -> cv2.remap(img, np.float32(mx), ...)
     "python_numbers": ("int", "numeric", "tuple", "type"),
-    "size_given": ("size", "frame", "crop", "default"),   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
+    "size_given": ("size", "frame", "crop", "default"),
+    "middle_axis": ("shape", "axis", "(n, 1"),   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
@@ -1112,7 +1113,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "grid_axis", "initial", "reshape_back", "astype_float",
+_MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
@@ -2182,6 +2183,13 @@ def _student_changes(node, parent, parents):
         # a running minimum (sum, ...) taken from the far end, never turned back
         yield "reverse_back", f"{ast.unparse(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
+    if isinstance(node, ast.Call) and _dotted(node.func).startswith(("cv2.", "cv.")) \
+            and _dotted(node.func).rsplit(".", 1)[-1] in _NESTED_POINTS \
+            and not isinstance(parent, ast.Subscript) \
+            and not (isinstance(parent, ast.Attribute) and parent.attr in ("reshape", "squeeze")):
+        # OpenCV's points one per (1, k) row -- (N, 1, 3) from cv2.convertPointsToHomogeneous -- used as
+        # (N, k): every product and index on them broadcasts otherwise
+        yield "middle_axis", f"{ast.unparse(node)}[:, 0]", ""
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name) \
             and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2 \
             and all(isinstance(e, ast.Constant) and type(e.value) is int for e in node.slice.elts) \
@@ -5011,6 +5019,9 @@ def _cv_points(node, parent) -> bool:
     return any(p < len(parent.args) and parent.args[p] is node for p in positions)
 
 
+# OpenCV functions that return their points as an (N, 1, k) array
+_NESTED_POINTS = {"convertPointsToHomogeneous", "convertPointsFromHomogeneous", "perspectiveTransform",
+                  "undistortPoints", "undistortPointsIter", "computeCorrespondEpilines"}
 _PER_ROW_REDUCTIONS = {"norm", "sum", "mean", "max", "min", "std", "var", "amax", "amin", "median", "nansum",
                        "nanmean"}   # (reductions whose value per row may be kept as a column: keepdims)
 

@@ -143,6 +143,14 @@ MISTAKES = {
             return T2.T @ En @ T1
         """, ["a step after it changes the singular values again"]),
     # ---------------------------------------------------------------- ex2
+    "epipolar lines from OpenCV's (N, 1, 3) homogeneous points": ("lab11.ex2", """
+        def epipolar_lines(F, pts1):
+            x1 = cv2.convertPointsToHomogeneous(np.float64(pts1))
+            lines = x1 @ np.asarray(F, np.float64).T
+            scale = np.sqrt((lines[:, :2] ** 2).sum(axis=1, keepdims=True))
+            return (lines / scale).reshape(-1, 3)
+        """, ["changing `cv2.convertPointsToHomogeneous(np.float64(pts1))` to "
+              "`cv2.convertPointsToHomogeneous(np.float64(pts1))[:, 0]`"]),
     # the blind set 1201d's 11/03: a vertical line (b = 0) skipped to avoid the division
     "epipolar lines skipping the vertical ones": ("lab11.ex2", """
         _draw_epipolar_lines = draw_epipolar_lines
