@@ -1477,13 +1477,22 @@ def _short(call) -> str:
 
 
 def _read_outside(function, name: str, makers: set) -> bool:
-    """Whether ``function`` reads ``name`` somewhere outside every call of a function in ``makers``."""
+    """Whether ``function`` reads ``name`` somewhere outside every call of a function in ``makers``, and
+    outside the statements that only rebind it (`dst = np.asarray(dst, float)` and never read again: the
+    value is not used anywhere)."""
     inside = set()
     for node in ast.walk(function):
         if isinstance(node, ast.Call) and _short(node) in makers:
             inside.update(id(n) for n in ast.walk(node))
+        if isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign)) and node.value is not None \
+                and [_target_name(t) for t in getattr(node, "targets", [getattr(node, "target", None)])] == [name]:
+            inside.update(id(n) for n in ast.walk(node.value))
     return any(isinstance(n, ast.Name) and n.id == name and isinstance(n.ctx, ast.Load) and id(n) not in inside
                for n in ast.walk(function))
+
+
+def _target_name(target) -> str | None:
+    return target.id if isinstance(target, ast.Name) else None
 
 
 def _vouched_for(naming: Naming, trial) -> bool:

@@ -1935,8 +1935,11 @@ def _changes(node, parents, words: _Words, line):
         sign = "- 1" if isinstance(node.op, ast.Sub) else "+ 1"
         yield "bound", "drop", f"the {sign} after {inner} is missing (off by one)" if inner else ""
     if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) \
-            and (_replaceable(node, parent, words.student) or _sibling_item_read(node, parent, words)) \
+            and (_replaceable(node, parent, words.student) or _sibling_item_read(node, parent, words)
+                 or (words.student and isinstance(parent, ast.Attribute) and parent.attr in _RESHAPING_METHODS)) \
             and not (words.student and isinstance(parent, ast.Subscript) and isinstance(parent.ctx, ast.Store)):
+        # (and in the student's code an array reshaped by a method of its own: `src.reshape(-1)` where the
+        # right-hand side is `dst`'s)
         # (the student's code: another array written into, `F[:, 2] = 1.0` for `lines[:, 2] = 1.0`,
         # "mends" a statement by writing into the caller's array instead -- that is no fix)
         yield from _name_changes(node, words, what, line)
@@ -5100,6 +5103,7 @@ def _replaceable(node: ast.Name, parent, student: bool = False) -> bool:
                                ast.List, ast.UnaryOp, ast.Compare, ast.Slice))
 
 
+_RESHAPING_METHODS = {"reshape", "ravel", "flatten", "T", "astype", "copy"}
 _TWIN_WORDS = {frozenset(pair) for pair in (("left", "right"), ("src", "dst"), ("l", "r"), ("x", "y"), ("u", "v"),
                                             ("rows", "cols"), ("h", "w"), ("height", "width"), ("first", "second"))}
 

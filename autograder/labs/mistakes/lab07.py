@@ -157,6 +157,17 @@ MISTAKES = {
             p, *_ = np.linalg.lstsq(M, dst.reshape(-1), rcond=None)
             return p.reshape(2, 3)
         """, ["wrong order"]),
+    "lstsq right-hand side from the source points": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, dtype=np.float64)
+            dst = np.asarray(dst, dtype=np.float64)
+            rows = []
+            for x, y in src:
+                rows += [[x, y, 1, 0, 0, 0], [0, 0, 0, x, y, 1]]
+            rhs = src.ravel()
+            p = np.linalg.lstsq(np.array(rows), rhs, rcond=None)[0]
+            return p.reshape(2, 3)
+        """, ["changing `rhs = src.ravel()` to `rhs = dst.ravel()`"]),
     "lstsq with three points only": ("lab07.ex6", """
         def affine_lstsq(src, dst):
             return affine_from_points(np.asarray(src)[:3], np.asarray(dst)[:3])

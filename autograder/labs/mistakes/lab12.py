@@ -838,4 +838,21 @@ MISTAKES = {
             images[:, lit] = patterns[:, column[lit]]
             return images
         """, ["all at Z = -3, are lit", "not in front of the camera"]),
+    "structured light depth as f b / d wherever decoded": ("lab12.ex6", """
+        _decoded_depth = depth_from_structured_light
+        def depth_from_structured_light(images, f, baseline):
+            images = np.asarray(images)
+            n, h, w = images.shape
+            gray = (images > 127).astype(np.int64)
+            k = gray[0].copy()
+            bit = gray[0].copy()
+            for i in range(1, n):
+                bit = bit ^ gray[i]
+                k = k * 2 + bit
+            centre = (k + 0.5) * w / 2 ** n - 0.5
+            with np.errstate(divide="ignore"):
+                z = f * baseline / (np.arange(w) - centre)
+            z[~(images > 127).any(axis=0)] = 0
+            return z
+        """, ["decoded disparity", "is not positive"]),
 }
