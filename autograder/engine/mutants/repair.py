@@ -508,6 +508,11 @@ class _Student:
                     return True
                 if _names_as_written(names(before), self.reference_parts, node.value):
                     return True
+                # (and names in the order the value is known to hold its parts -- `b, g, r = cv2.split(image)`,
+                # `h, w = image.shape[:2]`, `k1, k2, p1, p2, k3 = dist` -- are right whatever the reference calls
+                # them: relabelling them mends a later swap by making the names lie)
+                if _in_known_order(names(before), node.value):
+                    return True
         return False
 
     def unpacking_at(self, line: int) -> list:
@@ -573,6 +578,18 @@ class _Student:
                     starts[held] = _first_run(fn)
             self._statements[where] = starts
         return self._statements[where].get(line, line)
+
+    def raising_guard(self, mutant, raised_lines) -> bool:
+        """Whether ``mutant`` changes the test of an `if` whose own `raise` the student's call raised at
+        (``raised_lines``): `if len(pts1) <= 8: raise ValueError(...)` refusing the 8 points it was given."""
+        fix = self.fix(mutant)
+        lines = {line for line, _, _ in fix.changes} if fix is not None else set()
+        if not raised_lines or not lines:
+            return False
+        return any(isinstance(node, ast.If) and node.test.lineno in lines
+                   and any(isinstance(statement, ast.Raise) and statement.lineno in raised_lines
+                           for statement in node.body)
+                   for node in ast.walk(self.tree))
 
     def guards(self, mutant) -> list:
         """The mutant's code with a condition it changes made constant instead, True then False
@@ -1396,6 +1413,33 @@ def _names_as_written(names, reference_parts, value=None) -> bool:
                                         and a.count(first) == 1 for first, second in _AXIS_ORDER)
     pairs = list(itertools.combinations(names, 2))
     return any(in_order(a, b) for a, b in pairs) and not any(in_order(b, a) for a, b in pairs)
+
+
+# Parts of a value in the order it holds them, by the start of their names: OpenCV's channels, a shape's
+# axes, OpenCV's distortion coefficients.
+_CHANNELS = (("b", "g", "r"), ("b", "g", "r", "a"))
+_AXES = (("h", "w"), ("h", "w", "c"), ("height", "width"), ("height", "width", "c"), ("rows", "cols"),
+         ("rows", "cols", "c"), ("n_rows", "n_cols"), ("nrows", "ncols"), ("r", "c"))
+_DISTORTION = (("k1", "k2", "p1", "p2"), ("k1", "k2", "p1", "p2", "k3"))
+
+
+def _in_known_order(names, value) -> bool:
+    """Whether ``names`` unpack ``value`` in the order it is known to hold its parts: `b, g, r` (or `blue,
+    green, red`) from cv2.split, `h, w` (`rows, cols`, `height, width`) from a shape, `k1, k2, p1, p2, k3`
+    from anything."""
+    lowered = [n.lower().strip("_") for n in names]
+    if any(tuple(n[:len(k)] for n, k in zip(lowered, known)) == known and len(known) == len(lowered)
+           for known in _DISTORTION):
+        return True
+    if isinstance(value, ast.Call) and _dotted(value.func).rsplit(".", 1)[-1] == "split" \
+            and _dotted(value.func).startswith(("cv2.", "cv.")):
+        return any(len(known) == len(lowered) and all(n.startswith(k) for n, k in zip(lowered, known))
+                   for known in _CHANNELS)
+    text = ast.unparse(value)
+    if re.search(r"\.shape\b|\bnp\.shape\(", text):
+        return any(len(known) == len(lowered) and all(n == k or (len(k) == 1 and n.startswith(k) and len(n) <= 3)
+                                                     for n, k in zip(lowered, known)) for known in _AXES)
+    return False
 
 
 def _rows_then_columns(names) -> bool:
@@ -2803,6 +2847,8 @@ class _Variants:
         and the function's other checks). The
         checks then cannot tell the change from dropping a guard that does not matter (a bounds test
         before cv2.circle, which clips): the change is not confirmed as the slip."""
+        if self.student.raising_guard(mutant, getattr(self.trial, "raised_lines", ())):
+            return False   # (the student's own test raised on a valid input: that test is the slip, not a guard)
         for guard in self.student.guards(mutant):
             values = self.answers(guard, failing, self.inputs)
             if values is None or self.clock.left() <= 0:

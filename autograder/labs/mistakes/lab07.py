@@ -16,6 +16,16 @@ MISTAKES = {
             return out
         """, ["could not broadcast"]),
     # the blind set 1201e's 07/01: one module-level identity written into and handed to every caller
+    "translate merging the split channels as R, G, B": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            M = translation_matrix(tx, ty)[:2]
+            size = (image.shape[1], image.shape[0])
+            if image.ndim == 2:
+                return cv2.warpAffine(image, M, size)
+            b, g, r = cv2.split(image)
+            moved = [cv2.warpAffine(channel, M, size) for channel in (r, g, b)]
+            return cv2.merge(moved)
+        """, ["changing `for channel in (r, g, b)` to `for channel in (b, g, r)`"]),
     "translation_matrix returning one module-level array": ("lab07.ex1", """
         _IDENTITY = np.eye(3)
         def translation_matrix(tx, ty):

@@ -377,6 +377,13 @@ MISTAKES = {
             return U @ np.diag([1.0, 1.0, 0.0]) @ Vt.T
         """, ["returns v^t already"]),
     # ---------------------------------------------------------------- ex4
+    "8-point refusing exactly eight points": ("lab11.ex4", """
+        _fundamental = fundamental_8point
+        def fundamental_8point(pts1, pts2):
+            if len(pts1) <= 8 or len(pts2) != len(pts1):
+                raise ValueError("need at least 8 point pairs")
+            return _fundamental(pts1, pts2)
+        """, ["changing `len(pts1) <= 8` to `len(pts1) < 8`"]),
     "8-point with a reduced SVD": ("lab11.ex4", """
         def _eight_point_core(x1, x2):
             A = (x2[:, :, None] * x1[:, None, :]).reshape(len(x1), 9)
