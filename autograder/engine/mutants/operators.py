@@ -98,7 +98,8 @@ OPERATORS = {
     "float32": ("float32", "dtype", "float"),         # cv2.remap(img, mx, my) -> cv2.remap(img, np.float32(mx), ...)
     "python_numbers": ("int", "numeric", "tuple", "type"),
     "size_given": ("size", "frame", "crop", "default"),
-    "middle_axis": ("shape", "axis", "(n, 1"),   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
+    "middle_axis": ("shape", "axis", "(n, 1"),
+    "widen": ("uint8", "overflow", "wrap", "float"),   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
@@ -1113,7 +1114,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "grid_axis", "initial", "reshape_back", "astype_float",
+_MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
@@ -2186,6 +2187,11 @@ def _student_changes(node, parent, parents):
         # a running minimum (sum, ...) taken from the far end, never turned back
         yield "reverse_back", f"{ast.unparse(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.Constant) \
+            and node.right.value == 2 and isinstance(node.left, (ast.Name, ast.Subscript)) \
+            and _holds_bytes(_root(node, parents)):
+        # a square taken in the image's own 8 bits (`cv2.absdiff(L, R) ** 2` wraps round from 16 on)
+        yield "widen", f"{ast.unparse(node.left)}.astype(np.float64) ** 2", ""
     if isinstance(node, ast.Call) and _dotted(node.func).startswith(("cv2.", "cv.")) \
             and _dotted(node.func).rsplit(".", 1)[-1] in _NESTED_POINTS \
             and not isinstance(parent, ast.Subscript) \
@@ -2823,6 +2829,14 @@ def _shape_changes(node: ast.Call):
     new = copy.deepcopy(node)
     new.args[0] = ast.Call(_name("np.shape"), [copy.deepcopy(array)], [])
     yield "whole_shape", ast.unparse(new), ""
+
+
+@functools.lru_cache(maxsize=64)
+def _holds_bytes(fn) -> bool:
+    """Whether the def ``fn`` makes 8-bit values (uint8 named, or an OpenCV difference of images)."""
+    return any((isinstance(n, ast.Attribute) and n.attr == "uint8") or (isinstance(n, ast.Constant) and n.value == "uint8")
+               or (isinstance(n, ast.Call) and _dotted(n.func) in ("cv2.absdiff", "cv2.subtract"))
+               for n in ast.walk(fn))
 
 
 @functools.lru_cache(maxsize=64)

@@ -54,6 +54,22 @@ MISTAKES = {
                 costs[d, :, :d] = np.inf
             return costs
         """, ["a 19 x 19 window (2 block_size + 1"]),
+    "block matching squaring the 8-bit differences": ("lab12.ex4", """
+        _block_matching_own = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            if cost != "ssd":
+                return _block_matching_own(left, right, max_disparity, block_size, cost)
+            L, R = _grey_float(left).astype(np.uint8), _grey_float(right).astype(np.uint8)
+            best = np.full(L.shape, np.inf)
+            disparity = np.zeros(L.shape)
+            for d in range(min(max_disparity, L.shape[1] - 1) + 1):
+                e = cv2.absdiff(L, _shift_right(R, d))
+                cost_d = _box_mean(e ** 2, block_size).astype(np.float64)
+                cost_d[:, :d] = np.inf
+                disparity[cost_d < best] = d
+                best = np.minimum(best, cost_d)
+            return disparity
+        """, ["changing `_box_mean(e ** 2, block_size)` to `_box_mean(e.astype(np.float64) ** 2, block_size)`"]),
     "block matching with block_size ignored": ("lab12.ex4", """
         _block_matching_own = block_matching
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
