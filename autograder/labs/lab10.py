@@ -126,6 +126,16 @@ def _returns_the_fixed(function) -> bool:
 
 
 RETURNS_THE_FIXED = Predicate("returns the fixed K and R", _returns_the_fixed)
+BLOCK_NOT_NEGATED = "the block decomposed is P[:, :3] as given, not the negated P's, where det(P[:, :3]) < 0"
+
+
+def _positive_multiple(a, b) -> bool:
+    """Whether ``a`` is ``b`` times a positive number (to float64 precision of their size)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    scale = float(np.sum(a * b) / max(np.sum(b * b), 1e-300))
+    return scale > 0 and np.abs(a - scale * b).max() <= at_precision(1e-6 * np.abs(a).max(), magnitude(a))
+
+
 SIGN_FIX = Hint(
     "for this P, det(P[:, :3]) < 0 (P is -1 times a K [R | t]): multiply P by -1 first, then decompose; flipping "
     "signs of K's columns alone would leave det(R) = -1", asks=negates_on_negative_det(),
@@ -630,6 +640,14 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
         labels.append(SIGN_TEST_MISSED)
         problems.append(f"det(R) = -1 (det(P[:, :3]) {'<' if negative else '>'} 0 here): "
                         + from_code(f"your code tests `{other_block}`: {SIGN_TEST_MISSED}"))
+    elif np.linalg.det(R) < 0 and not unsigned and not unnegated and negative \
+            and _positive_multiple(K @ R, np.asarray(P, float)[:, :3]):
+        # (K R is the given block itself, det < 0: the block decomposed was never negated -- code that negates
+        # P after taking its block, `M = P[:, :3]` above `P = -P` -- whatever it flips after the RQ)
+        labels.append(BLOCK_NOT_NEGATED)
+        problems.append("det(R) = -1: " + measured("K R is P[:, :3] itself times a positive number, and det(P[:, :3]) "
+                                                   "< 0 here: the block decomposed was not negated")
+                        + "; " + sign_fix)
     elif np.linalg.det(R) < 0 and not unsigned:   # with K's signs unfixed, det(R) = -1 follows from them
         flips = SIGNS_HINT.contradicts(code_of(t), ["decompose_camera_matrix"])
         labels.append("P is not negated when det(P[:, :3]) < 0" if unnegated else

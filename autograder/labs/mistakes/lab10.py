@@ -117,6 +117,20 @@ MISTAKES = {
             return np.append(p, 1.0).reshape(3, 4)
         """, ["t_z = 0", "fixed to 1", "svd"]),
     # the blind set 1202f's 10/04: t solved from P[:, 3:], a (3, 1) column
+    "decomposition of the block taken before P is negated": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.array(P, dtype=np.float64)
+            M, p4 = P[:, :3], P[:, 3].copy()
+            if np.linalg.det(M) < 0:
+                P = -P
+                p4 = -p4
+            flip = np.eye(3)[::-1]
+            Q, U = np.linalg.qr((flip @ M).T)
+            K, R = flip @ U.T @ flip, flip @ Q.T
+            signs = np.diag(np.sign(np.diag(K)))
+            K, R = K @ signs, signs @ R
+            return K / K[2, 2], R, np.linalg.solve(K, p4)
+        """, ["the block decomposed was not negated"]),
     "decompose_camera_matrix returning t as a (3, 1) column": ("lab10.ex5", """
         _decompose_camera_matrix = decompose_camera_matrix
         def decompose_camera_matrix(P):
