@@ -2101,6 +2101,43 @@ COST_SCALE_HINT = Hint("compute the data cost in float (differences of uint8 ima
                                      "that cost's scale"))
 
 
+# half to a thousand times the reference's default (6 grey levels a step), past an SSD cost's scale
+STRONGER_PENALTIES = (3.0, 10.0, 30.0, 100.0, 1000.0, 10000.0)
+_SCENE_KEYS = ("weak_texture", "motorcycle", "random_dots", "slanted", "zero_disparity")
+
+
+def stronger_penalty_rates(t: Trial, scene) -> list:
+    """The bad-pixel rates of the student's dp_stereo on ``scene`` with :data:`STRONGER_PENALTIES` (1.0 where a
+    call fails or answers in another form), up to the first as good as the reference's DP; asked once per trial."""
+    key = next((k for k in _SCENE_KEYS if truth.scene(k).name == scene.name), None)
+    good = figures(key, "dp_5")["bad"] + MARGIN if key is not None else 0.0
+
+    def rates():
+        out = []
+        for smoothness in STRONGER_PENALTIES:
+            if out and out[-1] <= good:
+                break
+            try:
+                got = call_dp(t, scene, smoothness=smoothness)
+            except StudentFailure:
+                got = None
+            usable = isinstance(got, np.ndarray) and got.shape == scene.disparity.shape and got.dtype.kind in "iuf"
+            out.append(truth.bad_pixel_rate(np.nan_to_num(got.astype(np.float64)), scene.judged, scene.threshold)
+                       if usable else 1.0)
+        return out
+    return t.probe(f"dp_stereo/stronger penalties/{scene.name}", rates) or []
+
+
+def stronger_penalty_mends(t: Trial, scene) -> bool | None:
+    """Whether a penalty stronger than the student's default makes their map as good as the reference's DP
+    (the guess that the default is too weak for the cost's scale, tried); None where it cannot be told."""
+    key = next((k for k in _SCENE_KEYS if truth.scene(k).name == scene.name), None)
+    rates = stronger_penalty_rates(t, scene) if key is not None else []
+    if not rates:
+        return None
+    return min(rates) <= figures(key, "dp_5")["bad"] + MARGIN
+
+
 def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, scene, compared_with="winner-take-all block matching",
                          zero_jumps=None):
     """The map is as jumpy as winner-take-all matching. Named "ignored" only when the student's own
@@ -2113,9 +2150,15 @@ def fail_winner_take_all(t: Trial, what, jumps, wta_jumps, scene, compared_with=
         zero_jumps = truth.jump_rate(np.nan_to_num(zero.astype(np.float64)), scene.judged) if usable else None
     if zero_jumps is not None and jumps < 0.85 * zero_jumps:
         beside = "" if zero_jumps == wta_jumps else f" ({compared_with}: {wta_jumps:.1%})"
-        t.fail(f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px{beside}, and {zero_jumps:.1%} "
-               f"with your smoothness=0: the penalty acts, but it looks like {WEAK_DEFAULT}.",
-               hint=COST_SCALE_HINT.said(t), mistake=WEAK_DEFAULT)
+        said = f"{what}: {jumps:.1%} of neighbouring pixels jump by more than 1 px{beside}, and {zero_jumps:.1%} " \
+               "with your smoothness=0: the penalty acts"
+        if stronger_penalty_mends(t, scene) is False:
+            # (the guess tried: no penalty up to a thousand times the default makes the map right, so the
+            # default's scale is not the cause -- a path traced back from the wrong neighbour is)
+            t.fail(measured(f"{said}, but no other penalty makes the map right (smoothness "
+                            f"{', '.join(f'{p:g}' for p in STRONGER_PENALTIES)} tried: bad-pixel rates "
+                            f"{', '.join(f'{r:.0%}' for r in stronger_penalty_rates(t, scene))})."))
+        t.fail(f"{said}, but it looks like {WEAK_DEFAULT}.", hint=COST_SCALE_HINT.said(t), mistake=WEAK_DEFAULT)
     if zero_jumps is not None and jumps > 1.5 * zero_jumps and jumps > zero_jumps + 0.05:
         # Jumpier than with no penalty at all: the penalty acts, and favours jumps.
         # (measured: the student's own maps with and without the penalty; where to look, not what to write)

@@ -871,4 +871,9 @@ MISTAKES = {
             z[~(images > 127).any(axis=0)] = 0
             return z
         """, ["decoded disparity", "is not positive"]),
+    "dp_stereo with a default penalty far too weak": ("lab12.ex5", """
+        _dp_right = dp_stereo
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            return _dp_right(left, right, max_disparity, block_size, 0.02 if smoothness is None else smoothness)
+        """, ["the default smoothness penalty is too weak"]),
 }
