@@ -479,6 +479,14 @@ def affine_from_points_property(t):
 
     t.for_all(st.integers(0, 2**32 - 1), holds, max_examples=20,
               describe=lambda seed: f"fixtures.lab07 triangle/affine from seed {seed}")
+    # and a triangle in normalised coordinates (area 0.35: no collinearity test in square pixels refuses it)
+    A = np.array([[0.9, -0.2, 0.3], [0.3, 1.1, -0.1]])
+    judge_affine_fit(t, "affine_from_points(src, dst) for a triangle of normalised coordinates",
+                     t.call("affine_from_points", SMALL_TRIANGLE, truth.apply_affine(A, SMALL_TRIANGLE)),
+                     A, SMALL_TRIANGLE, truth.apply_affine(A, SMALL_TRIANGLE))
+
+
+SMALL_TRIANGLE = np.array([[0.0, 0.0], [0.8, 0.1], [0.2, 0.9]])
 
 
 @ex5.check("warp_affine(image, A) keeps the input size", points=3)

@@ -140,6 +140,14 @@ MISTAKES = {
         def shear_matrix(s):
             return np.array([[1.0, 0, 0], [s, 1.0, 0], [0, 0, 1.0]])
         """, ["along y"]),
+    "affine from points refusing triangles smaller than a pixel": ("lab07.ex5", """
+        _affine_right = affine_from_points
+        def affine_from_points(src, dst):
+            (x0, y0), (x1, y1), (x2, y2) = np.asarray(src, float)
+            if abs((x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)) < 2.0:
+                raise ValueError("collinear points")
+            return _affine_right(src, dst)
+        """, ["changing `abs((x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)) < 2.0`"]),
     "affine from points inverted": ("lab07.ex5", """
         def affine_from_points(src, dst):
             S = np.hstack([np.asarray(dst, float), np.ones((3, 1))])
