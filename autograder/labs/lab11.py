@@ -1527,6 +1527,32 @@ def epipoles_infinity(t):
     diagonal = truth.sideways_views(seed=22, direction=0.6)
     judge_epipoles(t, "epipoles(F) for a motion along a diagonal of the image plane (F's first two rows are "
                       "parallel)", t.call("epipoles", diagonal.F), diagonal, at_infinity=True)
+    judge_exact_translation(t)
+
+
+# F = [t]x of a translation in the image plane, in normalised coordinates: both epipoles are t, at infinity,
+# with an exact 0 third entry (and SVD may return them with every other entry negative)
+PLANAR_TRANSLATION = np.array([0.6, 0.8, 0.0])
+
+
+def judge_exact_translation(t: Trial):
+    x, y, _ = PLANAR_TRANSLATION
+    F = np.array([[0.0, 0.0, y], [0.0, 0.0, -x], [-y, x, 0.0]])
+    what = f"epipoles(F) for F = [t]x, t = ({x:g}, {y:g}, 0) (a translation in the image plane, normalised coordinates)"
+    got = t.call("epipoles", F)
+    if not (isinstance(got, (tuple, list)) and len(got) == 2):
+        t.fail(f"{what} returned {type(got).__name__}; expected a pair (e1, e2)")
+    for name, e in zip(("e1", "e2"), got):
+        e = t.expect_array(e, f"{what}: {name}", shape=(3,), kind="iuf").astype(np.float64)
+        if np.any(np.isinf(e)):   # (x / 0 for x != 0: a division by an entry that is 0 here)
+            t.fail(measured(f"{what} returned {name} = {format_matrix(e)}: not finite. Both epipoles are t up to scale, "
+                            "at infinity (third entry 0); a homogeneous vector divided by one of its entries is not "
+                            "finite where that entry is 0 (the third here; and the largest where SVD returns "
+                            "(-0.6, -0.8, 0))."), mistake="an epipole divided by one of its entries that is 0")
+        if not np.all(np.isfinite(e)):
+            t.fail(f"{what} returned {name} = {format_matrix(e)}: not finite; expected ({x:g}, {y:g}, 0) up to scale.")
+        if projective_distance(e, PLANAR_TRANSLATION) > at_precision(1e-6):
+            t.fail(f"{what}: {name} = {format_matrix(e)}; expected ({x:g}, {y:g}, 0) up to scale.")
 
 
 SMALL_SCALE = 1e-9   # the norm of the smallest F given

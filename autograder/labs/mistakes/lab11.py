@@ -465,6 +465,13 @@ MISTAKES = {
         """, ["the largest singular value was set to 0"]),
     # ---------------------------------------------------------------- ex5
     # the blind set 1202d's 11/07: e2 from lstsq with a zero right-hand side (0, then 0 / 0)
+    "epipoles scaled by their largest entry": ("lab11.ex5", """
+        def epipoles(F):
+            F = np.asarray(F, np.float64)
+            e1 = np.linalg.svd(F)[2][-1]
+            e2 = np.linalg.svd(F.T)[2][-1]
+            return e1 / e1.max(), e2 / e2.max()
+        """, ["divided by one of its entries", "where that entry is 0"]),
     "epipoles with e2 solved by lstsq": ("lab11.ex5", """
         def epipoles(F):
             F = np.asarray(F, dtype=float)
