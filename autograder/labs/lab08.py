@@ -1749,6 +1749,44 @@ SAMPLES_HINT = Hint("With half the pairs wrong, a random 4-point sample is all i
                            "it keeps")
 
 
+# Pairs a few pixels off: a threshold of 3 px leaves out a pair 5 to 8 px from where the true H sends it
+# (its error with the refitted H differs by the noise, 0.5 px), where the far outliers (20 px and more,
+# truth.ransac_problem) leave no mark of a threshold acting as a larger one (a distance compared with
+# threshold ** 2: 9 px).
+NEAR_OFFSETS = (5.0, 8.0)
+NEAR_COUNT = 15
+
+
+def near_outlier_problem(seed: int = 12):
+    """(src, dst, near): truth.ransac_problem's with NEAR_COUNT of its inliers moved NEAR_OFFSETS px off."""
+    src, dst, _, inliers = truth.ransac_problem(seed, 100, 0.3, 0.5)
+    rng = np.random.default_rng(seed + 1)
+    near = np.zeros(len(src), dtype=bool)
+    near[rng.choice(np.flatnonzero(inliers), NEAR_COUNT, replace=False)] = True
+    angle = rng.uniform(0, 2 * np.pi, NEAR_COUNT)
+    offset = rng.uniform(*NEAR_OFFSETS, NEAR_COUNT)
+    dst = dst.copy()
+    dst[near] += offset[:, None] * np.column_stack([np.cos(angle), np.sin(angle)])
+    return src, dst, near
+
+
+@ex4.check("homography_ransac leaves out pairs a few pixels off (5 to 8 px, threshold 3)", points=1)
+def ransac_near_outliers(t):
+    src, dst, near = near_outlier_problem()
+    what = (f"homography_ransac(src, dst, seed=0) with 30% outliers and {NEAR_COUNT} pairs moved "
+            f"{NEAR_OFFSETS[0]:g} to {NEAR_OFFSETS[1]:g} px off")
+    H, inliers = ransac_result(t, src, dst, what, seed=0)
+    taken = int((inliers & near).sum())
+    if taken <= 2:
+        return passed(f"{NEAR_COUNT - taken} of the {NEAR_COUNT} pairs a few pixels off are left out")
+    with np.errstate(all="ignore"):
+        errors = np.linalg.norm(truth.apply_h(np.asarray(H, np.float64), src) - dst, axis=1)
+    t.fail(measured(f"{what}: {taken} of those {NEAR_COUNT} pairs are marked as inliers, with errors "
+                    f"|H src - dst| up to {np.nanmax(errors[inliers & near]):.1f} px under your own H: the mask "
+                    "acts as if the threshold were larger than 3 px (a pair is an inlier when |H src - dst| < "
+                    "threshold, in pixels)."))
+
+
 @ex4.check("homography_ransac with 50% outliers, judged over 5 seeds", points=3)
 def ransac_seeds(t):
     wins, notes = 0, []

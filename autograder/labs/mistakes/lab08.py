@@ -387,6 +387,21 @@ MISTAKES = {
                     best, best_count = H, count
             return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
         """, ["refit h on all the inliers"]),
+    "RANSAC comparing distances with the threshold squared": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            best, best_count = None, -1
+            for _ in range(500):
+                idx = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[idx], dst[idx])
+                count = (np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold ** 2).sum()
+                if count > best_count:
+                    best, best_count = H, count
+            inliers = np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold ** 2
+            H = homography_dlt(src[inliers], dst[inliers])
+            return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold ** 2
+        """, ["the mask acts as if the threshold were larger than 3 px"]),
     "RANSAC with too few samples": ("lab08.ex4", """
         def homography_ransac(src, dst, threshold=3.0, seed=None):
             src = np.asarray(src, float); dst = np.asarray(dst, float)
