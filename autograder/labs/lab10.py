@@ -641,9 +641,11 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
         problems.append(f"det(R) = -1 (det(P[:, :3]) {'<' if negative else '>'} 0 here): "
                         + from_code(f"your code tests `{other_block}`: {SIGN_TEST_MISSED}"))
     elif np.linalg.det(R) < 0 and not unsigned and not unnegated and negative \
-            and _positive_multiple(K @ R, np.asarray(P, float)[:, :3]):
-        # (K R is the given block itself, det < 0: the block decomposed was never negated -- code that negates
-        # P after taking its block, `M = P[:, :3]` above `P = -P` -- whatever it flips after the RQ)
+            and _positive_multiple(K @ R, np.asarray(P, float)[:, :3]) \
+            and SIGNS_HINT.contradicts(code_of(t), ["decompose_camera_matrix"]):
+        # (K R is the given block itself, det < 0, from code that negates P and fixes RQ's signs: the block
+        # decomposed was never negated -- `M = P[:, :3]` above `P = -P`. Without a sign fix, K divided by a
+        # negative K[2, 2] gives the same product: RQ's signs are the cause there.)
         labels.append(BLOCK_NOT_NEGATED)
         problems.append("det(R) = -1: " + measured("K R is P[:, :3] itself times a positive number, and det(P[:, :3]) "
                                                    "< 0 here: the block decomposed was not negated")

@@ -5117,7 +5117,7 @@ def _replaceable(node: ast.Name, parent, student: bool = False) -> bool:
                                ast.List, ast.UnaryOp, ast.Compare, ast.Slice))
 
 
-_RESHAPING_METHODS = {"reshape", "ravel", "flatten", "T", "astype", "copy"}
+_RESHAPING_METHODS = {"reshape", "ravel", "flatten", "T", "astype"}   # (not copy: `image.copy()` in a loop is the carry operator's)
 _TWIN_WORDS = {frozenset(pair) for pair in (("left", "right"), ("src", "dst"), ("l", "r"), ("x", "y"), ("u", "v"),
                                             ("rows", "cols"), ("h", "w"), ("height", "width"), ("first", "second"))}
 

@@ -25,7 +25,7 @@ MISTAKES = {
             b, g, r = cv2.split(image)
             moved = [cv2.warpAffine(channel, M, size) for channel in (r, g, b)]
             return cv2.merge(moved)
-        """, ["changing `for channel in (r, g, b)` to `for channel in (b, g, r)`"]),
+        """, ["the colour channels are reversed", "in r, g, b order"]),
     "translation_matrix returning one module-level array": ("lab07.ex1", """
         _IDENTITY = np.eye(3)
         def translation_matrix(tx, ty):
