@@ -99,7 +99,8 @@ OPERATORS = {
     "python_numbers": ("int", "numeric", "tuple", "type"),
     "size_given": ("size", "frame", "crop", "default"),
     "middle_axis": ("shape", "axis", "(n, 1"),
-    "widen": ("uint8", "overflow", "wrap", "float"),   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
+    "widen": ("uint8", "overflow", "wrap", "float"),
+    "bracket": ("bracket", "parenthes", "factor", "term"),   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
@@ -1114,7 +1115,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "grid_axis", "initial", "reshape_back", "astype_float",
+_MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "bracket", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
@@ -2187,6 +2188,10 @@ def _student_changes(node, parent, parents):
         # a running minimum (sum, ...) taken from the far end, never turned back
         yield "reverse_back", f"{ast.unparse(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
+    bracketed = _brackets_left_out(node)
+    if bracketed is not None:
+        # a factor's brackets left out: `p2 * r2 + 2 * x * x` where `p2 * (r2 + 2 * x * x)` belongs
+        yield "bracket", bracketed, ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.Constant) \
             and node.right.value == 2 and isinstance(node.left, (ast.Name, ast.Subscript)) \
             and _holds_bytes(_root(node, parents)):
@@ -2829,6 +2834,23 @@ def _shape_changes(node: ast.Call):
     new = copy.deepcopy(node)
     new.args[0] = ast.Call(_name("np.shape"), [copy.deepcopy(array)], [])
     yield "whole_shape", ast.unparse(new), ""
+
+
+def _brackets_left_out(node) -> str | None:
+    """``... + c * u + v`` (or ``- v``) with the factor ``c`` over ``u + v`` too (`p2 * (r2 + 2 * x * x)`), as
+    text; None where ``node`` is no such sum. Only where ``v`` is a product or a name (a constant added
+    after a product is rarely a bracket's)."""
+    if not (isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub))
+            and isinstance(node.right, (ast.BinOp, ast.Name)) and not isinstance(node.right, ast.Constant)):
+        return None
+    before, product = (node.left.left, node.left.right) if isinstance(node.left, ast.BinOp) \
+        and isinstance(node.left.op, (ast.Add, ast.Sub)) else (None, node.left)
+    if not (isinstance(product, ast.BinOp) and isinstance(product.op, ast.Mult)):
+        return None
+    inner = ast.BinOp(copy.deepcopy(product.right), node.op, copy.deepcopy(node.right))
+    grouped = ast.BinOp(copy.deepcopy(product.left), ast.Mult(), inner)
+    whole = grouped if before is None else ast.BinOp(copy.deepcopy(before), node.left.op, grouped)
+    return ast.unparse(whole)
 
 
 @functools.lru_cache(maxsize=64)

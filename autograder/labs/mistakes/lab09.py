@@ -256,6 +256,17 @@ MISTAKES = {
             rms, K, dist, _, _ = cv2.calibrateCamera([objp] * len(pts), pts, (w, h), None, None)
             return K, dist.ravel(), rms
         """, ["object points"]),
+    "distortion with the brackets of p1's term left out": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64)
+            k1, k2, p1, p2, k3 = (list(np.ravel(dist)) + [0.0] * 5)[:5]
+            x, y = pts[..., 0], pts[..., 1]
+            rr = x ** 2 + y ** 2
+            scale = 1 + k1 * rr + k2 * rr ** 2 + k3 * rr ** 3
+            xd = x * scale + 2 * p1 * x * y + p2 * (rr + 2 * x ** 2)
+            yd = y * scale + p1 * rr + 2 * y ** 2 + 2 * p2 * x * y
+            return np.stack([xd, yd], axis=-1)
+        """, ["changing `y * scale + p1 * rr + 2 * y ** 2` to `y * scale + p1 * (rr + 2 * y ** 2)`"]),
     "tangential swapped": ("lab09.ext2", """
         _right = distort_points
         def distort_points(points, dist):
