@@ -100,7 +100,8 @@ OPERATORS = {
     "size_given": ("size", "frame", "crop", "default"),
     "middle_axis": ("shape", "axis", "(n, 1"),
     "widen": ("uint8", "overflow", "wrap", "float"),
-    "bracket": ("bracket", "parenthes", "factor", "term"),   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
+    "bracket": ("bracket", "parenthes", "factor", "term"),
+    "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
@@ -1115,7 +1116,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "bracket", "grid_axis", "initial", "reshape_back", "astype_float",
+_MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "bracket", "perspective_warp", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
@@ -2188,6 +2189,15 @@ def _student_changes(node, parent, parents):
         # a running minimum (sum, ...) taken from the far end, never turned back
         yield "reverse_back", f"{ast.unparse(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.warpAffine", "cv.warpAffine") and len(node.args) >= 2 \
+            and isinstance(node.args[1], ast.Subscript) and isinstance(node.args[1].slice, ast.Slice) \
+            and node.args[1].slice.lower is None and isinstance(node.args[1].slice.upper, ast.Constant) \
+            and node.args[1].slice.upper.value == 2:
+        # a homography's first two rows given to an affine warp: `cv2.warpAffine(img, H[:2], size)`
+        new = copy.deepcopy(node)
+        new.func = _name(_dotted(node.func).replace("warpAffine", "warpPerspective"))
+        new.args[1] = copy.deepcopy(node.args[1].value)
+        yield "perspective_warp", ast.unparse(new), ""
     bracketed = _brackets_left_out(node)
     if bracketed is not None:
         # a factor's brackets left out: `p2 * r2 + 2 * x * x` where `p2 * (r2 + 2 * x * x)` belongs

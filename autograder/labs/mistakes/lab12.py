@@ -238,6 +238,15 @@ MISTAKES = {
             return _rectify(img_l, img_r, K1, K2, R, T)
         """, ["channels are not kept", "BGR in, BGR out"]),
     # the blind set 1202e's 12/04: the rotation brings in pixels from beyond the frame, filled from its edge
+    "rectify warping with the homographies' first two rows (an affine warp)": ("lab12.ex3", """
+        _rectify_right = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            _, _, H1, H2 = _rectify_right(img_l, img_r, K1, K2, R, T)
+            size = (np.asarray(img_l).shape[1], np.asarray(img_l).shape[0])
+            left = cv2.warpAffine(np.asarray(img_l), H1[:2], size)
+            right = cv2.warpAffine(np.asarray(img_r), H2[:2], size)
+            return left, right, H1, H2
+        """, ["to `cv2.warpPerspective(np.asarray(img_l), H1, size)`"]),
     "rectify warping with cv2.BORDER_REPLICATE": ("lab12.ex3", """
         _rectify = rectify
         def rectify(img_l, img_r, K1, K2, R, T):
