@@ -192,6 +192,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _pose_never_chosen(name, function)
     found += _distortion_in_pixels(name, function)
     found += _loop_variable_rebinds(name, function)
+    found += _value_of_an_earlier_loop(name, function)
     found += _zeros_solved_for(name, function)
     found += _fundamental_as_essential(name, function)
     found += _eigenvectors_as_rows(name, function)
@@ -1464,6 +1465,53 @@ def _distortion_in_pixels(name, function) -> list[Finding]:
 
 
 # ------------------------------------------------------------------ a loop variable named as a value read after it
+def _value_of_an_earlier_loop(name, function) -> list[Finding]:
+    """Two loops of one block, the first computing a value per turn from its own variable and keeping each
+    (``f = f0 * d / z0; focal_lengths.append(f)``), the second reading that value without computing it
+    (``perspective_project(moved, f)`` in ``for d in distances:``): every turn of the second reads the first
+    loop's last value. (Each block is read once, its loops' bodies walked once each.)"""
+    for block in (getattr(node, field) for node in ast.walk(function) for field in ("body", "orelse")
+                  if isinstance(getattr(node, field, None), list)):
+        kept: dict[str, ast.For] = {}   # name -> the earlier loop whose per-turn value it holds after it
+        for statement in block:
+            if not isinstance(statement, ast.For):
+                for bound in (n.id for n in ast.walk(statement) if isinstance(n, ast.Name)
+                              and isinstance(n.ctx, ast.Store)):
+                    kept.pop(bound, None)
+                continue
+            stored = {n.id for part in statement.body for n in ast.walk(part)
+                      if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)} \
+                | {n.id for n in ast.walk(statement.target) if isinstance(n, ast.Name)}
+            for value, earlier in kept.items():
+                if value in stored:
+                    continue
+                read = next((n for part in statement.body for n in ast.walk(part)
+                             if isinstance(n, ast.Name) and n.id == value and isinstance(n.ctx, ast.Load)), None)
+                if read is not None:
+                    return [Finding(name, _line(read), "a loop reads the value an earlier loop left",
+                                    f"{name} (line {_line(read)}) reads `{value}` in the loop of line "
+                                    f"{_line(statement)}, which never computes it: every turn there gets the value "
+                                    f"the loop of line {_line(earlier)} left, its last turn's (that loop kept each "
+                                    f"turn's `{value}`)", certain=True)]
+            for bound in stored:
+                kept.pop(bound, None)
+            for value in _kept_per_turn(statement):
+                kept[value] = statement
+    return []
+
+
+def _kept_per_turn(loop: ast.For) -> set:
+    """The names ``loop``'s body computes from its own variable and appends to a list (``f = f0 * d / z0`` then
+    ``focal_lengths.append(f)``)."""
+    variables = {n.id for n in ast.walk(loop.target) if isinstance(n, ast.Name)}
+    computed = {target.id for statement in loop.body if isinstance(statement, ast.Assign)
+                for target in statement.targets if isinstance(target, ast.Name)
+                and variables & {n.id for n in ast.walk(statement.value) if isinstance(n, ast.Name)}}
+    appended = {a.id for n in ast.walk(loop) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
+                and n.func.attr == "append" for a in n.args if isinstance(a, ast.Name)}
+    return computed & appended
+
+
 def _loop_variable_rebinds(name, function) -> list[Finding]:
     """``for world in np.atleast_2d(world):`` then ``world.ndim`` after the loop: the loop rebinds a
     name already bound (a parameter, or assigned above the loop), and a line after the loop reads it

@@ -200,6 +200,18 @@ MISTAKES = {
         def undistort_image(image, K, dist):
             return cv2.undistort(image, K, -np.asarray(dist, float))
         """, ["sign"]),
+    "dolly zoom projecting every frame with the last focal length": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X = np.asarray(points, dtype=np.float64)
+            lengths = []
+            for d in distances:
+                focal = f0 * d / z0
+                lengths.append(focal)
+            views = []
+            for d in distances:
+                views.append(perspective_project(X + [0.0, 0.0, d - z0], focal))
+            return np.array(lengths), np.stack(views)
+        """, ["reads `focal` in the loop of line", "the value the loop of line"]),
     "dolly moves the wrong way": ("lab10.ext2", """
         def dolly_zoom(points, f0, z0, distances):
             X, _ = _points(points)
