@@ -193,6 +193,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _distortion_in_pixels(name, function)
     found += _loop_variable_rebinds(name, function)
     found += _value_of_an_earlier_loop(name, function)
+    found += _running_halves(name, function)
     found += _zeros_solved_for(name, function)
     found += _fundamental_as_essential(name, function)
     found += _eigenvectors_as_rows(name, function)
@@ -1498,6 +1499,43 @@ def _value_of_an_earlier_loop(name, function) -> list[Finding]:
             for value in _kept_per_turn(statement):
                 kept[value] = statement
     return []
+
+
+def _running_halves(name, function) -> list[Finding]:
+    """``z = (z + depth) / 2`` at every turn of a loop over the values (straight in its body, not under a
+    test: a bisection halves its bracket under one): a running average of pairs, where the last value
+    weighs 1/2 and the first 1/2^(n-1) -- not the mean."""
+    for loop in (n for n in ast.walk(function) if isinstance(n, ast.For)):
+        variables = {n.id for n in ast.walk(loop.target) if isinstance(n, ast.Name)}
+        for statement in loop.body:
+            if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1
+                    and isinstance(statement.targets[0], ast.Name)):
+                continue
+            total, target = _halved_sum(statement.value), statement.targets[0].id
+            if total is None:
+                continue
+            operands = [ast.unparse(side) for side in (total.left, total.right)]
+            other = total.right if operands[0] == target else total.left if operands[1] == target else None
+            if other is not None and variables & {n.id for n in ast.walk(other) if isinstance(n, ast.Name)}:
+                return [Finding(name, _line(statement), "a running average of pairs where the mean belongs",
+                                f"{name} (line {_line(statement)}) sets `{ast.unparse(statement)}` at every turn of "
+                                f"the loop of line {_line(loop)}: each turn halves the weight of every earlier value "
+                                "(the last weighs 1/2, the first 1/2^(n-1)), which is not their mean (the sum "
+                                "divided by the count, np.mean)", certain=True)]
+    return []
+
+
+def _halved_sum(node):
+    """The sum ``a + b`` of ``(a + b) / 2``, ``0.5 * (a + b)`` or ``(a + b) * 0.5``; None otherwise."""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) and isinstance(node.right, ast.Constant) \
+            and node.right.value == 2:
+        inner = node.left
+    elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult):
+        half = [side for side in (node.left, node.right) if isinstance(side, ast.Constant) and side.value == 0.5]
+        inner = (node.right if half[0] is node.left else node.left) if half else None
+    else:
+        inner = None
+    return inner if isinstance(inner, ast.BinOp) and isinstance(inner.op, ast.Add) else None
 
 
 def _kept_per_turn(loop: ast.For) -> set:

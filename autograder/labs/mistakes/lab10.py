@@ -37,6 +37,16 @@ MISTAKES = {
         def perspective_project(points, f):
             return weak_perspective_project(points, f)
         """, ["weak perspective"]),
+    "weak perspective depth as a running average of pairs": ("lab10.ex2", """
+        _weak_right = weak_perspective_project
+        def weak_perspective_project(points, f, z_avg=None):
+            if z_avg is None:
+                depths = np.asarray(points, dtype=np.float64).reshape(-1, 3)[:, 2]
+                z_avg = depths[0]
+                for i in range(1, len(depths)):
+                    z_avg = 0.5 * (z_avg + depths[i])
+            return _weak_right(points, f, z_avg)
+        """, ["at every turn of the loop of line", "not their mean"]),
     "weak perspective = perspective": ("lab10.ex2", """
         def weak_perspective_project(points, f, z_avg=None):
             return perspective_project(points, f)
