@@ -850,13 +850,15 @@ def drawing_case():
     return img1, img2, pts1, truth.apply_h(H, pts1)
 
 
-def plain_composite(left, right):
-    """The two images side by side with nothing drawn (3 channels, black padding)."""
+def plain_composite(left, right, centred: bool = False):
+    """The two images side by side with nothing drawn (3 channels, black padding below the shorter;
+    ``centred``: each image centred vertically instead, at row (H - h) // 2)."""
     bgr = [cv2.cvtColor(i, cv2.COLOR_GRAY2BGR) if i.ndim == 2 else i for i in (left, right)]
     height = max(b.shape[0] for b in bgr)
     canvas = np.zeros((height, bgr[0].shape[1] + bgr[1].shape[1], 3), np.uint8)
-    canvas[: bgr[0].shape[0], : bgr[0].shape[1]] = bgr[0]
-    canvas[: bgr[1].shape[0], bgr[0].shape[1]:] = bgr[1]
+    top = [(height - b.shape[0]) // 2 if centred else 0 for b in bgr]
+    canvas[top[0]:top[0] + bgr[0].shape[0], : bgr[0].shape[1]] = bgr[0]
+    canvas[top[1]:top[1] + bgr[1].shape[0], bgr[0].shape[1]:] = bgr[1]
     return canvas
 
 
@@ -1019,6 +1021,14 @@ def judge_match_drawing(t: Trial, what: str, got, img1, img2, pts1, pts2):
         if swapped.shape == got.shape and \
                 (np.abs(got.astype(np.int16) - swapped).max(axis=2) > 40)[background].mean() < 0.05:
             t.fail(f"{what}: img1 and img2 are swapped: img1 goes on the left", mistake="img1 and img2 are swapped")
+        centred = plain_composite(img1, img2, centred=True)
+        if img1.shape[0] != img2.shape[0] and \
+                (np.abs(got.astype(np.int16) - centred).max(axis=2) > 40)[background].mean() < 0.05:
+            shorter = "img1" if img1.shape[0] < img2.shape[0] else "img2"
+            t.fail(measured(f"{what}: away from the match lines the canvas is the two images with {shorter} centred "
+                            f"vertically (from row {abs(img1.shape[0] - img2.shape[0]) // 2}): both go at the top "
+                            "(row 0), the black padding below the shorter one, and a match's ends at (x1, y1) and "
+                            "(x2 + W1, y2)."), mistake="the shorter image is centred vertically, not at the top")
         t.fail(f"{what}: {stray:.0%} of the pixels away from the match lines differ from the two "
                "images placed side by side (img1 at the left, img2 right after it, black "
                "padding below the shorter one)")

@@ -957,6 +957,19 @@ MISTAKES = {
             moved = transform_points(H, np.asarray(src, np.float64))
             return H, np.abs(moved[:, 0] - np.asarray(dst, np.float64)[:, 0]) < threshold
         """, ["the mask is exactly the pairs whose |du| alone"]),
+    "draw_matches centring the shorter image vertically": ("lab08.ex3", """
+        def draw_matches(img1, img2, pts1, pts2):
+            a, b = _bgr(img1), _bgr(img2)
+            height = max(a.shape[0], b.shape[0])
+            canvas = np.zeros((height, a.shape[1] + b.shape[1], 3), dtype=np.uint8)
+            top1, top2 = (height - a.shape[0]) // 2, (height - b.shape[0]) // 2
+            canvas[top1:top1 + a.shape[0], :a.shape[1]] = a
+            canvas[top2:top2 + b.shape[0], a.shape[1]:] = b
+            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                cv2.line(canvas, (int(round(x1)), int(round(y1)) + top1),
+                         (int(round(x2)) + a.shape[1], int(round(y2)) + top2), (0, 255, 0), 1)
+            return canvas
+        """, ["centred vertically"]),
     "draw_matches colouring with NumPy integers": ("lab08.ex3", """
         def draw_matches(img1, img2, pts1, pts2):
             h1, w1 = img1.shape[:2]
