@@ -1045,3 +1045,74 @@ def test_an_array_appended_in_nested_loops_is_read_once():
             return out
         """
     assert one(source) == {"one array is appended at every turn"}, one(source)
+
+
+# ------------------------------------------------------------------ loops over values
+RUNNING_HALVES = "a running average of pairs where the mean belongs"
+
+
+@pytest.mark.parametrize("update", ["z = (z + d) / 2", "z = 0.5 * (d + z)", "z = (z + d) * 0.5"])
+def test_a_running_average_of_pairs_is_read(update):
+    assert RUNNING_HALVES in one(f"""
+        def depth(values):
+            z = values[0]
+            for d in values[1:]:
+                {update}
+            return z
+        """)
+
+
+@pytest.mark.parametrize("loop", [
+    # a bisection halves its bracket under a test
+    """for _ in range(40):
+                mid = (lo + hi) / 2
+                if f(mid) > 0:
+                    hi = (lo + hi) / 2
+                else:
+                    lo = mid""",
+    # the midpoint of two values of the turn, not a running value
+    """for a, b in pairs:
+                m = (a + b) / 2""",
+    # the mean itself
+    """for d in values:
+                total = total + d""",
+])
+def test_other_halvings_are_not_read_as_a_running_average(loop):
+    assert RUNNING_HALVES not in one(f"""
+        def solve(f, lo, hi, pairs, values, total):
+            {loop}
+            return lo
+        """)
+
+
+EARLIER_LOOP = "a loop reads the value an earlier loop left"
+
+
+def test_a_value_an_earlier_loop_kept_per_turn_is_read_in_a_later_loop():
+    assert EARLIER_LOOP in one("""
+        def frames(points, f0, z0, distances):
+            lengths, views = [], []
+            for d in distances:
+                f = f0 * d / z0
+                lengths.append(f)
+            for d in distances:
+                views.append(project(points, f))
+            return lengths, views
+        """)
+
+
+@pytest.mark.parametrize("second", [
+    "for d, f in zip(distances, lengths):",      # the kept values, paired again
+    "for d in distances:\n                f = f0 * d / z0",   # computed again in the loop
+])
+def test_a_later_loop_that_computes_or_pairs_the_value_is_not_read(second):
+    assert EARLIER_LOOP not in one(f"""
+        def frames(points, f0, z0, distances):
+            lengths, views = [], []
+            for d in distances:
+                f = f0 * d / z0
+                lengths.append(f)
+            {second}
+                views.append(project(points, f))
+            return lengths, views
+        """)
