@@ -465,8 +465,9 @@ class _Student:
         if len(test) > 60:
             return None
         last = max(getattr(s, "end_lineno", None) or s.lineno for s in branch.body)
-        told = (f"skipping the branch `if {test}:` (lines {branch.lineno}-{last}{{inside}}; changing `{before}` to "
-                f"`{after}` on line {line} skips it)")
+        # (the change that skipped it is how it was tried, no fix: it makes a value unrelated to its input)
+        told = (f"skipping the branch `if {test}:` (lines {branch.lineno}-{last}{{inside}}; tried by changing "
+                f"`{before}` to `{after}` on line {line}, which only steers round it)")
         return Fix(((line, before, told),), where, "branch", fix.edits)
 
     def _anchored_in(self, where: str) -> set:
