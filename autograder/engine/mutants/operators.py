@@ -101,6 +101,7 @@ OPERATORS = {
     "middle_axis": ("shape", "axis", "(n, 1"),
     "widen": ("uint8", "overflow", "wrap", "float"),
     "bracket": ("bracket", "parenthes", "factor", "term"),
+    "x_difference": ("x", "distance", "difference", "disparit"),   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
     "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
@@ -1116,7 +1117,8 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "bracket", "perspective_warp", "grid_axis", "initial", "reshape_back", "astype_float",
+_MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "bracket", "perspective_warp",
+                                              "x_difference", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
@@ -2198,6 +2200,11 @@ def _student_changes(node, parent, parents):
         new.func = _name(_dotted(node.func).replace("warpAffine", "warpPerspective"))
         new.args[1] = copy.deepcopy(node.args[1].value)
         yield "perspective_warp", ast.unparse(new), ""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.linalg.norm", "numpy.linalg.norm") and node.args \
+            and isinstance(node.args[0], ast.BinOp) and isinstance(node.args[0].op, ast.Sub) \
+            and any(k.arg == "axis" and isinstance(k.value, (ast.Constant, ast.UnaryOp)) for k in node.keywords):
+        # the distance between two points where the difference of their x belongs (a disparity x_l - x_r)
+        yield "x_difference", f"({ast.unparse(node.args[0])})[:, 0]", ""
     bracketed = _brackets_left_out(node)
     if bracketed is not None:
         # a factor's brackets left out: `p2 * r2 + 2 * x * x` where `p2 * (r2 + 2 * x * x)` belongs

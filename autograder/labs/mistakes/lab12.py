@@ -127,6 +127,14 @@ MISTAKES = {
         """, ["cv2.triangulatePoints", "yourself"]),
     # ---------------------------------------------------------------- ex2
     # the blind set 1202d's 12/02 and 12/01: a 0-d disparity given an axis; matches off the row dropped
+    "disparity as the distance between the matched points": ("lab12.ex2", """
+        _disparity_right = disparity_from_matches
+        def disparity_from_matches(xl, xr):
+            a, b = np.asarray(xl, dtype=np.float64), np.asarray(xr, dtype=np.float64)
+            if a.ndim == 2 and b.ndim == 2:
+                return np.linalg.norm(a - b, axis=-1)
+            return _disparity_right(xl, xr)
+        """, ["changing `np.linalg.norm(a - b, axis=-1)` to `(a - b)[:, 0]`"]),
     "depth of a 0-d disparity given an axis": ("lab12.ex2", """
         _right_depth = depth_from_disparity
         def depth_from_disparity(disparity, f, baseline):
