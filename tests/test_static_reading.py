@@ -1116,3 +1116,36 @@ def test_a_later_loop_that_computes_or_pairs_the_value_is_not_read(second):
                 views.append(project(points, f))
             return lengths, views
         """)
+
+
+NORM_AT_ONCE = "a norm of every pair at once, where one per pair belongs"
+
+
+@pytest.mark.parametrize("use", ["return errors < threshold", "mask = errors < threshold\n    return src[mask]",
+                                 "inliers = errors < threshold\n    return int(np.sum(inliers))"])
+def test_a_norm_without_axis_used_as_a_mask_of_the_pairs_is_read(use):
+    assert NORM_AT_ONCE in one(f"""
+def inliers(H, src, dst, threshold):
+    errors = np.linalg.norm(project(H, src) - dst)
+    {use}
+""")
+
+
+@pytest.mark.parametrize("source", [
+    # one distance per pair
+    """
+def inliers(H, src, dst, threshold):
+    errors = np.linalg.norm(project(H, src) - dst, axis=1)
+    return errors < threshold
+""",
+    # two single points compared with a tolerance
+    """
+def same_centre(c1, c2):
+    gap = np.linalg.norm(c1 - c2)
+    if gap < 1e-9:
+        return True
+    return False
+""",
+])
+def test_a_norm_with_its_axis_or_of_one_point_is_not_read(source):
+    assert NORM_AT_ONCE not in one(source)

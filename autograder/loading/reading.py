@@ -194,6 +194,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _loop_variable_rebinds(name, function)
     found += _value_of_an_earlier_loop(name, function)
     found += _running_halves(name, function)
+    found += _norm_of_every_pair_at_once(name, function)
     found += _zeros_solved_for(name, function)
     found += _fundamental_as_essential(name, function)
     found += _eigenvectors_as_rows(name, function)
@@ -1522,6 +1523,41 @@ def _running_halves(name, function) -> list[Finding]:
                                 f"the loop of line {_line(loop)}: each turn halves the weight of every earlier value "
                                 "(the last weighs 1/2, the first 1/2^(n-1)), which is not their mean (the sum "
                                 "divided by the count, np.mean)", certain=True)]
+    return []
+
+
+def _norm_of_every_pair_at_once(name, function) -> list[Finding]:
+    """``errors = np.linalg.norm(H_src - dst)`` (no axis) then ``errors < threshold``: the norm of the whole
+    difference is one number, so the comparison is one True or False, where one per pair was meant."""
+    norms = {}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                and isinstance(node.value, ast.Call) and _call_name(node.value) == "norm" \
+                and _attribute_path(node.value.func).startswith(("np.linalg", "numpy.linalg")) \
+                and len(node.value.args) == 1 and not node.value.keywords \
+                and isinstance(node.value.args[0], ast.BinOp) and isinstance(node.value.args[0].op, ast.Sub):
+            norms[node.targets[0].id] = node
+    if not norms:
+        return []
+    # (a comparison used as a mask of the pairs: returned, or kept and then counted or used as an index --
+    # `np.linalg.norm(c1 - c2) < tol` of two single points tests one thing rightly)
+    masks = {t.id: n.value for n in ast.walk(function) if isinstance(n, ast.Assign) and isinstance(n.value, ast.Compare)
+             for t in n.targets if isinstance(t, ast.Name)}
+    used = {n.slice.id for n in ast.walk(function) if isinstance(n, ast.Subscript) and isinstance(n.slice, ast.Name)} \
+        | {a.id for n in ast.walk(function) if isinstance(n, ast.Call)
+           and _call_name(n) in ("sum", "count_nonzero", "flatnonzero", "where", "nonzero", "mean")
+           for a in [*n.args, *([n.func.value] if isinstance(n.func, ast.Attribute) else [])] if isinstance(a, ast.Name)}
+    returned = {id(n.value) for n in ast.walk(function) if isinstance(n, ast.Return) and n.value is not None}
+    as_masks = {id(value) for name_, value in masks.items() if name_ in used} | returned
+    for node in ast.walk(function):
+        if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Lt, ast.LtE)) \
+                and isinstance(node.left, ast.Name) and node.left.id in norms and id(node) in as_masks:
+            made = norms[node.left.id]
+            return [Finding(name, _line(made), "a norm of every pair at once, where one per pair belongs",
+                            f"{name} (line {_line(made)}) computes `{ast.unparse(made)}` without an axis: the norm "
+                            f"of the whole difference, one number, so `{ast.unparse(node)}` (line {_line(node)}) is "
+                            "one True or False for all the pairs; axis=1 gives each row's distance",
+                            certain=True)]
     return []
 
 

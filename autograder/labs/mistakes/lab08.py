@@ -402,6 +402,23 @@ MISTAKES = {
             H = homography_dlt(src[inliers], dst[inliers])
             return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold ** 2
         """, ["the mask acts as if the threshold were larger than 3 px"]),
+    "RANSAC taking the norm of every pair at once": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+
+            def inliers_of(H):
+                errors = np.linalg.norm(transform_points(H, src) - dst)
+                return errors < threshold
+
+            best = np.ones(len(src), dtype=bool)
+            for _ in range(300):
+                mask = inliers_of(homography_dlt(*(p[rng.choice(len(src), 4, replace=False)] for p in (src, dst))))
+                if np.sum(mask) > np.sum(best):
+                    best = mask
+            H = homography_dlt(src[best], dst[best]) if np.ndim(best) else homography_dlt(src, dst)
+            return H, inliers_of(H)
+        """, ["without an axis", "one true or false for all the pairs"]),
     "RANSAC with too few samples": ("lab08.ex4", """
         def homography_ransac(src, dst, threshold=3.0, seed=None):
             src = np.asarray(src, float); dst = np.asarray(dst, float)
