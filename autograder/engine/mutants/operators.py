@@ -101,7 +101,8 @@ OPERATORS = {
     "middle_axis": ("shape", "axis", "(n, 1"),
     "widen": ("uint8", "overflow", "wrap", "float"),
     "bracket": ("bracket", "parenthes", "factor", "term"),
-    "x_difference": ("x", "distance", "difference", "disparit"),   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
+    "x_difference": ("x", "distance", "difference", "disparit"),
+    "colour_axis": ("channel", "grey", "gray", "axis"),   # f(img, channel_axis=-1) -> channel_axis=-1 if img.ndim == 3 else None   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
     "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
@@ -1118,7 +1119,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "bracket", "perspective_warp",
-                                              "x_difference", "grid_axis", "initial", "reshape_back", "astype_float",
+                                              "x_difference", "colour_axis", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
@@ -2205,6 +2206,17 @@ def _student_changes(node, parent, parents):
             and any(k.arg == "axis" and isinstance(k.value, (ast.Constant, ast.UnaryOp)) for k in node.keywords):
         # the distance between two points where the difference of their x belongs (a disparity x_l - x_r)
         yield "x_difference", f"({ast.unparse(node.args[0])})[:, 0]", ""
+    given = next((k for k in getattr(node, "keywords", ()) if k.arg == "channel_axis"), None) \
+        if isinstance(node, ast.Call) and node.args and isinstance(node.args[0], ast.Name) else None
+    if given is not None and not (isinstance(given.value, ast.Constant) and given.value.value is None) \
+            and not isinstance(given.value, ast.IfExp):
+        # scikit-image told the last axis holds colours on a grey image too (its columns taken for channels)
+        new = copy.deepcopy(node)
+        image = node.args[0].id
+        new.keywords = [ast.keyword("channel_axis", parse(f"{ast.unparse(given.value)} if {image}.ndim == 3 else None",
+                                                          mode="eval").body) if k.arg == "channel_axis" else k
+                        for k in new.keywords]
+        yield "colour_axis", ast.unparse(new), ""
     bracketed = _brackets_left_out(node)
     if bracketed is not None:
         # a factor's brackets left out: `p2 * r2 + 2 * x * x` where `p2 * (r2 + 2 * x * x)` belongs

@@ -66,6 +66,15 @@ MISTAKES = {
         """, ["fractional part is lost"]),
     # the blind set 1201e's 07/07: the result written into a canvas of NumPy's default dtype
     # the blind set 1201f's 07/05: the factors' signs dropped
+    "scale with scikit-image's rescale told the last axis is colour": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            from skimage.transform import rescale
+            out = np.zeros_like(image)
+            big = rescale(image, (sy, sx), order=1, preserve_range=True, anti_aliasing=False, channel_axis=-1)
+            rows, cols = min(out.shape[0], big.shape[0]), min(out.shape[1], big.shape[1])
+            out[:rows, :cols] = np.clip(np.round(big[:rows, :cols]), 0, 255).astype(image.dtype)
+            return out
+        """, ["to `... channel_axis=-1 if image.ndim == 3 else None)`"]),
     "scaling_matrix of the factors' absolute values": ("lab07.ex3", """
         def scaling_matrix(sx, sy):
             return np.diag([abs(float(sx)), abs(float(sy)), 1.0])
