@@ -102,7 +102,8 @@ OPERATORS = {
     "widen": ("uint8", "overflow", "wrap", "float"),
     "bracket": ("bracket", "parenthes", "factor", "term"),
     "x_difference": ("x", "distance", "difference", "disparit"),
-    "colour_axis": ("channel", "grey", "gray", "axis"),   # f(img, channel_axis=-1) -> channel_axis=-1 if img.ndim == 3 else None   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
+    "colour_axis": ("channel", "grey", "gray", "axis"),
+    "drop_w": ("homogeneous", "(n, 3)", "(n, 2)", "column"),   # f(x1, x2), x1 homogeneous -> f(x1[:, :2], x2)   # f(img, channel_axis=-1) -> channel_axis=-1 if img.ndim == 3 else None   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
     "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
@@ -1119,7 +1120,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "bracket", "perspective_warp",
-                                              "x_difference", "colour_axis", "grid_axis", "initial", "reshape_back", "astype_float",
+                                              "x_difference", "colour_axis", "drop_w", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
@@ -2002,6 +2003,7 @@ def _changes(node, parents, words: _Words, line):
         yield from _sibling_changes(node, words)
         yield from _helper_changes(node, words)
         yield from _defaulted_argument_changes(node, words)
+        yield from _homogeneous_arguments(node, words)
         yield from _exchanged_sides(node, words)
         yield from _exchanged_in_product(node, parent)
         yield from _logic_changes(node, parent, parents)
@@ -2749,6 +2751,22 @@ def _defaulted_argument_changes(node, words):
             for height, width in _sizes_unpacked(words.fn, node.lineno):
                 order = (width, height) if _SIZE_PARAMETERS[parameter] == "xy" else (height, width)
                 yield "size_given", (parameter, f"({order[0]}, {order[1]})"), ""
+
+
+def _homogeneous_arguments(node, words):
+    """Homogeneous (N, 3) points given to one of the module's functions that takes (N, 2) pixels
+    (`fundamental_8point(x1, x2)` with `x1 = _homogeneous(pts1) @ K1_inv.T`): each such argument's first
+    two columns, all at once (one slip made for both images), and each alone."""
+    if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in words.module_defs):
+        return
+    homogeneous = [position for position, argument in enumerate(node.args) if isinstance(argument, ast.Name) and any(
+        index is None and value is not None and re.search(r"homogeneous|\bones(_like)?\(", ast.unparse(value))
+        for _, value, index in words.definitions.get(argument.id, ()))]
+    for positions in ([homogeneous] if len(homogeneous) > 1 else []) + [[p] for p in homogeneous]:
+        new = copy.deepcopy(node)
+        for position in positions:
+            new.args[position] = parse(f"{node.args[position].id}[:, :2]", mode="eval").body
+        yield "drop_w", ast.unparse(new), ""
 
 
 # the parameters of a student's helper (or of an API function) that take an output size, and their order
