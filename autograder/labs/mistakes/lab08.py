@@ -974,6 +974,12 @@ MISTAKES = {
             moved = transform_points(H, np.asarray(src, np.float64))
             return H, np.abs(moved[:, 0] - np.asarray(dst, np.float64)[:, 0]) < threshold
         """, ["the mask is exactly the pairs whose |du| alone"]),
+    "match_features on a copy halved for speed, points never scaled back": ("lab08.ex3", """
+        _match_right = match_features
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            small = [cv2.pyrDown(i) if max(i.shape[:2]) > 800 else i for i in (img1, img2)]
+            return _match_right(small[0], small[1], ratio, method)
+        """, ["scaled by 1/2", "scaled back"]),
     "draw_matches centring the shorter image vertically": ("lab08.ex3", """
         def draw_matches(img1, img2, pts1, pts2):
             a, b = _bgr(img1), _bgr(img2)
