@@ -1149,3 +1149,24 @@ def same_centre(c1, c2):
 ])
 def test_a_norm_with_its_axis_or_of_one_point_is_not_read(source):
     assert NORM_AT_ONCE not in one(source)
+
+
+ROWS_TRANSPOSED = "points transposed into a function that reads them as rows"
+OWN_TRIANGULATE = """
+def triangulate(P1, P2, pts1, pts2):
+    pts1 = np.asarray(pts1, np.float64).reshape(-1, 2)
+    return solve(P1, P2, pts1, pts2)
+
+def pipeline(P1, P2, pts1, pts2):
+    return triangulate(P1, P2, {given})
+"""
+
+
+def test_points_transposed_into_a_function_that_reads_rows_are_read():
+    found = mistakes_in(OWN_TRIANGULATE.format(given="pts1.T, pts2.T"))
+    assert ROWS_TRANSPOSED in found.get("pipeline", set()), found
+
+
+@pytest.mark.parametrize("given", ["pts1, pts2", "pts1, pts2.T"])   # (pts2 is not read as rows there)
+def test_points_given_as_rows_or_to_a_parameter_read_otherwise_are_not(given):
+    assert ROWS_TRANSPOSED not in one(OWN_TRIANGULATE.format(given=given))

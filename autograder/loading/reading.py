@@ -134,8 +134,9 @@ def read_source(text: str, api=frozenset()) -> Reading:
                                or isinstance(node.value, ast.Call) and _call_name(node.value) == "list")
                           for target in node.targets if isinstance(target, ast.Name))
         findings, calls = {}, {}
+        rows = {name: _read_as_rows(node) for name, node in functions.items()}
         for name, node in functions.items():
-            findings[name] = _read_function(node, name in api, lists)
+            findings[name] = _read_function(node, name in api, lists) + _transposed_into_rows(name, node, functions, rows)
             calls[name] = {called for called in _called_names(node) if called in functions and called != name}
         return Reading(findings, calls)
     except TooLarge as exc:
@@ -158,6 +159,49 @@ def findings_for(reading: Reading, functions, values_show_whole_numbers: bool) -
                     kinds.add(finding.mistake)
                     chosen.append(finding)
     return chosen
+
+
+# ------------------------------------------------------------------ one function calling another
+def _read_as_rows(function) -> dict[str, str]:
+    """The parameters ``function`` reads as one point per row, with the code that shows it: reshaped to
+    (-1, k) (`np.asarray(pts1).reshape(-1, 2)`) or sliced by column (`pts1[:, 0]`)."""
+    parameters = {a.arg for a in function.args.posonlyargs + function.args.args}
+    found = {}
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "reshape" \
+                and len(node.args) == 2 and isinstance(node.args[0], ast.UnaryOp) \
+                and isinstance(node.args[1], ast.Constant) and node.args[1].value in (2, 3):
+            named = {n.id for n in ast.walk(node.func.value) if isinstance(n, ast.Name)} & parameters
+        elif isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in parameters \
+                and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2 \
+                and isinstance(node.slice.elts[0], ast.Slice) and node.slice.elts[0].lower is None \
+                and node.slice.elts[0].upper is None and isinstance(node.slice.elts[1], ast.Constant):
+            named = {node.value.id}
+        else:
+            continue
+        for parameter in named:
+            found.setdefault(parameter, f"`{ast.unparse(node)}` (line {_line(node)})")
+    return found
+
+
+def _transposed_into_rows(name, function, functions, rows) -> list[Finding]:
+    """A transposed array (`pts1.T`) given to one of the module's own functions that reads that parameter
+    as one point per row: OpenCV's 2 x N convention (cv2.triangulatePoints) kept for a function of the
+    (N, 2) kind, whose rows then mix the points' coordinates."""
+    for node in ast.walk(function):
+        if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in functions
+                and node.func.id != name):
+            continue
+        callee = functions[node.func.id]
+        parameters = [a.arg for a in callee.args.posonlyargs + callee.args.args]
+        for parameter, argument in zip(parameters, node.args):
+            if isinstance(argument, ast.Attribute) and argument.attr == "T" and parameter in rows[callee.name]:
+                return [Finding(name, _line(node), "points transposed into a function that reads them as rows",
+                                f"{name} (line {_line(node)}) calls `{ast.unparse(node)}`: `{callee.name}` reads "
+                                f"`{parameter}` as one point per row ({rows[callee.name][parameter]}), so "
+                                f"`{ast.unparse(argument)}` (a row per coordinate, as cv2.triangulatePoints takes "
+                                "points) has its coordinates mixed into wrong points")]
+    return []
 
 
 # ------------------------------------------------------------------ one function

@@ -563,6 +563,26 @@ MISTAKES = {
             in_front = (points3d[:, 2] > 0) & ((points3d @ R.T + t.reshape(3))[:, 2] > 0)
             return F, pts1[in_front], pts2[in_front], points3d[in_front]
         """, ["the points the other way round"]),
+    "pipeline triangulating the points as OpenCV's 2 x N columns": ("lab11.ex6", """
+        def two_view_reconstruction(img1, img2, K):
+            grey1 = cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY) if img1.ndim == 3 else img1
+            grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img2.ndim == 3 else img2
+            sift = cv2.SIFT_create()
+            kp1, des1 = sift.detectAndCompute(grey1, None)
+            kp2, des2 = sift.detectAndCompute(grey2, None)
+            pairs = cv2.BFMatcher(cv2.NORM_L2).knnMatch(des1, des2, k=2)
+            good = [m for m, n in (p for p in pairs if len(p) == 2) if m.distance < 0.75 * n.distance]
+            pts1 = np.float64([kp1[m.queryIdx].pt for m in good])
+            pts2 = np.float64([kp2[m.trainIdx].pt for m in good])
+            F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
+            pts1, pts2 = pts1[mask.ravel() == 1], pts2[mask.ravel() == 1]
+            K = np.asarray(K, np.float64)
+            _, R, t, _ = cv2.recoverPose(K.T @ F @ K, pts1, pts2, K)
+            P1, P2 = K @ np.eye(3, 4), K @ np.hstack([R, t.reshape(3, 1)])
+            points3d = triangulate(P1, P2, pts1.T, pts2.T)
+            in_front = (points3d[:, 2] > 0) & ((points3d @ R.T + t.reshape(3))[:, 2] > 0)
+            return F, pts1[in_front], pts2[in_front], points3d[in_front]
+        """, ["calls `triangulate(P1, P2, pts1.T, pts2.T)`", "as one point per row"]),
     "pipeline converting every image from BGR": ("lab11.ex6", """
         _pipeline = two_view_reconstruction
         def two_view_reconstruction(img1, img2, K):
