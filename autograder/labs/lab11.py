@@ -601,6 +601,13 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     name_steep_lines_missed(t, what, coverage < min_coverage, lines, image.shape, stray)
     if image.ndim == 2:
         name_dark_on_grey(t, what, image, lines, coverage < min_coverage)
+    elif stray > 0.05:
+        # (the lines drawn on the image made grey: away from them the colours are gone, the grey levels kept)
+        greyed = cv2.cvtColor(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY), cv2.COLOR_GRAY2BGR)
+        if np.abs(got[away].astype(np.int16) - greyed[away]).max(axis=-1).mean() <= 2.0:
+            t.fail(measured(f"{what}: away from the lines the picture is the image converted to grey (its colours "
+                            "lost): the lines are drawn on a grey copy, where a BGR image keeps its colours (drawn on "
+                            "a copy of it)."), mistake="the lines are drawn on a grey copy of a colour image")
     t.fail(f"{what}: {np.sum(coverage < min_coverage)} of {len(coverage)} lines are missing or "
            f"incomplete, and {stray:.0%} of the changed pixels are away from every line "
            "(see the picture)")

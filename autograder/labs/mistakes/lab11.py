@@ -150,6 +150,14 @@ MISTAKES = {
             return T2.T @ En @ T1
         """, ["a step after it changes the singular values again"]),
     # ---------------------------------------------------------------- ex2
+    "epipolar lines drawn on a grey copy of a colour image": ("lab11.ex2", """
+        _draw_lines_right = draw_epipolar_lines
+        def draw_epipolar_lines(image, lines):
+            if image.ndim == 3:
+                backdrop = cv2.cvtColor(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY), cv2.COLOR_GRAY2BGR)
+                return _draw_lines_right(backdrop, lines)
+            return _draw_lines_right(image, lines)
+        """, ["the image converted to grey", "drawn on a grey copy"]),
     "epipolar lines from OpenCV's (N, 1, 3) homogeneous points": ("lab11.ex2", """
         def epipolar_lines(F, pts1):
             x1 = cv2.convertPointsToHomogeneous(np.float64(pts1))
