@@ -1906,6 +1906,12 @@ def judge_track(t: Trial, frames, poses, dist=None, what=None):
                  "the rows are the board's pose in the camera frame, as cv2.solvePnP gives it"):
             tuple(None if p is None else (p[0].T, -p[0].T @ p[1]) for p in poses),
     }
+    found = [p for p in poses if p is not None]
+    if tuple(found) + (None,) * (len(poses) - len(found)) != tuple(poses):
+        # (the rows kept in a list of the found poses, the frames without a board appended after the loop)
+        shifted[measured("the rows of the frames with a board come first, in their order, and the NaN rows of "
+                         "the frames without one last: row i must be frame i's pose (NaN in its own place)")] = \
+            tuple(found) + (None,) * (len(poses) - len(found))
     for k, pose in enumerate(poses):
         if pose is not None:
             shifted[f"every row is the pose in frame {k}: the same frame is used for every row"

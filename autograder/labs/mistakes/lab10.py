@@ -229,6 +229,17 @@ MISTAKES = {
             fs = f0 * distances / z0
             return fs, np.stack([perspective_project(X - [0.0, 0.0, d - z0], f) for f, d in zip(fs, distances)])
         """, ["wrong way"]),
+    "track_pose appending the lost frames' NaN rows at the end": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            found, lost = [], 0
+            for frame in frames:
+                rvec, tvec, ok = estimate_pose(frame, pattern_size, square_size, K, dist)
+                if np.all(np.isfinite(rvec)):
+                    found.append(np.concatenate([rvec, tvec]))
+                else:
+                    lost += 1
+            return np.array(found + [np.full(6, np.nan)] * lost, dtype=np.float64).reshape(-1, 6)
+        """, ["the nan rows of the frames without one last"]),
     "track_pose stopping at the first frame without a board": ("lab10.ext3", """
         def track_pose(frames, pattern_size, square_size, K, dist=None):
             rows = []
