@@ -678,28 +678,6 @@ def match_sift(t):
                          t.call("match_features", img1, img2), min_matches=60, min_fraction=0.85)
 
 
-# A photo as a phone or a camera takes it is a thousand pixels wide or more; SIFT on it is slower, and code
-# that matches a downsized copy must give the points back in the full images' coordinates.
-LARGE_PAIR = ("rocket", (1000, 750), 4)
-
-
-@ex3.check("match_features on photos 1000 pixels wide: the points in the full images' coordinates", points=1)
-def match_large(t):
-    name, size, seed = LARGE_PAIR
-    img1, img2, H = truth.matching_pair(name, size, seed=seed)
-    what = f"match_features(img1, img2) on a {size[0]} x {size[1]} pair"
-    result = t.call("match_features", img1, img2)
-    pts1, pts2 = matched_points(t, what, result)
-    if len(pts1) >= 10:
-        for factor in (2.0, 4.0):   # (a copy halved, or quartered, and its coordinates never scaled back)
-            if truth.consistent(H, pts1 * factor, pts2 * factor).mean() >= 0.85 > truth.consistent(H, pts1, pts2).mean():
-                t.fail(measured(f"{what}: the points are those of the images scaled by 1/{factor:g}: times {factor:g}, "
-                                "they agree with the true homography; the matches must be given in the coordinates "
-                                "of the images passed (a keypoint found on a downsized copy is scaled back)."),
-                       mistake="points of a downsized copy, not scaled back")
-    return judge_matches(t, what, img1, img2, H, result, min_matches=40, min_fraction=0.85)
-
-
 @ex3.check("the ratio test filters: a stricter ratio keeps fewer, cleaner matches", points=3)
 def match_ratio(t):
     img1, img2, H = truth.matching_pair("chelsea", (240, 180), seed=2)
@@ -948,6 +926,28 @@ def far_from(shape, starts, ends, distance: int = 9) -> np.ndarray:
         cv2.circle(mask, pa, distance + 4, 1, -1)
         cv2.circle(mask, pb, distance + 4, 1, -1)
     return mask == 0
+
+
+# A photo as a phone or a camera takes it is a thousand pixels wide or more; SIFT on it is slower, and code
+# that matches a downsized copy must give the points back in the full images' coordinates.
+LARGE_PAIR = ("rocket", (1000, 750), 4)
+
+
+@ex3.check("match_features on photos 1000 pixels wide: the points in the full images' coordinates", points=1)
+def match_large(t):
+    name, size, seed = LARGE_PAIR
+    img1, img2, H = truth.matching_pair(name, size, seed=seed)
+    what = f"match_features(img1, img2) on a {size[0]} x {size[1]} pair"
+    result = t.call("match_features", img1, img2)
+    pts1, pts2 = matched_points(t, what, result)
+    if len(pts1) >= 10:
+        for factor in (2.0, 4.0):   # (a copy halved, or quartered, and its coordinates never scaled back)
+            if truth.consistent(H, pts1 * factor, pts2 * factor).mean() >= 0.85 > truth.consistent(H, pts1, pts2).mean():
+                t.fail(measured(f"{what}: the points are those of the images scaled by 1/{factor:g}: times {factor:g}, "
+                                "they agree with the true homography; the matches must be given in the coordinates "
+                                "of the images passed (a keypoint found on a downsized copy is scaled back)."),
+                       mistake="points of a downsized copy, not scaled back")
+    return judge_matches(t, what, img1, img2, H, result, min_matches=40, min_fraction=0.85)
 
 
 @ex3.check("draw_matches: side by side, width W1+W2, height max(H1,H2), 3 channels", points=2)
