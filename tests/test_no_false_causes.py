@@ -334,3 +334,20 @@ def test_a_dp_that_walks_back_with_a_unit_penalty_is_not_told_it_never_backtrack
     failed = failing(result, "lab12.ex5")
     assert failed and any(c.mistake == lab12.JUMP_COST_DIFFERS for c in failed), [(c.name, c.message) for c in failed]
     assert not any(c.mistake == lab12.NOT_BACKTRACKED or "not backtracked" in c.message for c in failed)
+
+
+def test_a_black_warp_from_code_that_makes_no_unit_range_image_is_not_told_a_cast(tmp_path):
+    """An affine made 3x3 with a [0, 0, 0] row sends every pixel to infinity: the warp comes back black (all
+    0, as a [0, 1] image cast to uint8 would), but nothing in the code makes values in [0, 1] -- no division
+    by 255, no scikit-image transform -- so the cast is not named."""
+    source = """
+        def warp_affine(image, A, dsize=None):
+            M = np.vstack([np.asarray(A, dtype=np.float64), [0.0, 0.0, 0.0]])
+            height, width = image.shape[:2]
+            return cv2.warpPerspective(image, M, dsize or (width, height))
+        """
+    result = grade(mutant(tmp_path, "lab07_transformations", source), ["lab07.ex5"], pictures="none")
+    failed = failing(result, "lab07.ex5")
+    assert failed
+    assert not any("values in [0, 1]" in c.message or "[0, 1]" in c.mistake for c in failed), \
+        [(c.name, c.message) for c in failed]

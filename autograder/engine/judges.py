@@ -499,7 +499,7 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
     if channels_reversed(got, expected):
         t.fail(f"{what} is wrong: {RGB_FOR_BGR}.", mistake="the colour channels are reversed (RGB for BGR)")
     cast = unit_range_cast(got, expected)
-    if cast:
+    if cast and _makes_unit_range(code_of(t)):
         t.fail(f"{what}: {cast}.", mistake=UNIT_RANGE_CAST)
     explained = []  # the mistakes whose map explains the image (a name only when one does)
     for mistake, wrong_M in (mistakes or {}).items():
@@ -709,6 +709,29 @@ def judge_default_is_the_apis(t: Trial, what: str, call, parameter: str, api_val
     t.fail(f"{what} with {parameter} left out gives another {result} than with {parameter}={api_value!r}, the "
            f"API's default" + (f": {said}." if said else measured(": keep the API's default.")),
            mistake=defaults_given.MISTAKE if said else "")
+
+
+# Code that makes an image of values in [0, 1]: a division by 255, skimage's float conversions, and its
+# transforms, which return floats in [0, 1] unless told preserve_range=True.
+_UNIT_RANGE_CALLS = {"img_as_float", "img_as_float32", "img_as_float64", "warp", "rotate", "rescale", "resize",
+                     "swirl", "warp_polar", "resize_local_mean", "AffineTransform"}
+
+
+def _makes_unit_range(code) -> bool:
+    """Whether the student's code (any function of it: the image may be made in a helper) makes values in
+    [0, 1] that a cast to uint8 would floor to 0: a black or binary image from code that never does has
+    another cause (a warp matrix that sends every pixel away). Without their code, True."""
+    functions = list(code.functions.values())
+    if not functions:
+        return True
+    for node in (n for fn in functions for n in ast.walk(fn)):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) and isinstance(node.right, ast.Constant) \
+                and node.right.value in (255, 255.0):
+            return True
+        if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in _UNIT_RANGE_CALLS \
+                and not any(k.arg == "preserve_range" for k in node.keywords):
+            return True
+    return False
 
 
 def judge_parameter_changes_result(t: Trial, what: str, call, parameter: str, values,

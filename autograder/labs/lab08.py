@@ -2067,9 +2067,10 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
         if grey:
             t.fail(f"{what}: img1 does not appear in your panorama as it is: {grey}.", mistake=COLOURS_LOST)
         saturated = _saturated(panorama, (img1, img2), code_of(t).reachable(["stitch"]))
+        # (where to look is the hint's: a change of their code confirmed on these inputs takes its place)
         t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs "
-               f"from img1 by {error:.0f} grey levels; {shown}): "
-               + (saturated if saturated else IMG1_SHIFTED.said(t, ['stitch'])),
+               f"from img1 by {error:.0f} grey levels; {shown})" + (f": {saturated}" if saturated else "."),
+               hint="" if saturated else IMG1_SHIFTED.said(t, ['stitch']),
                mistake=NOT_DIVIDED if saturated and _weights_never_divided(code_of(t).reachable(["stitch"])) else "")
     store[key + "/judge"] = PanoramaJudge(scene, panorama, 0, offset)
     return store[key + "/judge"]

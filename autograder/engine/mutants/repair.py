@@ -499,6 +499,13 @@ class _Student:
                             return True
                     continue
                 if not (names(before) != names(after) and sorted(names(before)) == sorted(names(after))):
+                    # (or the value's items exchanged under names that say their order: `x, y = (Y, X)` for a
+                    # right `x, y = (X, Y)` compensates as a relabelling does)
+                    if isinstance(node, ast.Assign) and isinstance(node.value, ast.Tuple) \
+                            and _in_known_order([t.id for t in getattr(node.targets[0], "elts", ())
+                                                 if isinstance(t, ast.Name)], node.value) \
+                            and mutant.edits[0][2] in _EXCHANGES | {"swap_items"}:
+                        return True
                     continue
                 if isinstance(node.value, ast.Call) and _call_name(node.value) in self.api:
                     return True
@@ -1423,6 +1430,8 @@ _CHANNELS = (("b", "g", "r"), ("b", "g", "r", "a"))
 _AXES = (("h", "w"), ("h", "w", "c"), ("height", "width"), ("height", "width", "c"), ("rows", "cols"),
          ("rows", "cols", "c"), ("n_rows", "n_cols"), ("nrows", "ncols"), ("r", "c"))
 _DISTORTION = (("k1", "k2", "p1", "p2"), ("k1", "k2", "p1", "p2", "k3"))
+_X_NAMES = {"x", "u", "col", "column", "xs", "us", "cols", "x_img", "px"}
+_Y_NAMES = {"y", "v", "row", "ys", "vs", "rows", "y_img", "py"}
 
 
 def _in_known_order(names, value) -> bool:
@@ -1437,6 +1446,11 @@ def _in_known_order(names, value) -> bool:
             and _dotted(value.func).startswith(("cv2.", "cv.")):
         return any(len(known) == len(lowered) and all(n.startswith(k) for n, k in zip(lowered, known))
                    for known in _CHANNELS)
+    if isinstance(value, ast.Tuple) and len(value.elts) == len(lowered) == 2:
+        # (`col, row = u / w, v / w`: each name says the axis of the value it takes -- x, u, col; y, v, row)
+        read = [next((n.id.lower() for n in ast.walk(e) if isinstance(n, ast.Name)), "") for e in value.elts]
+        if all(name in axis and given in axis for name, given, axis in zip(lowered, read, (_X_NAMES, _Y_NAMES))):
+            return True
     text = ast.unparse(value)
     if re.search(r"\.shape\b|\bnp\.shape\(", text):
         return any(len(known) == len(lowered) and all(n == k or (len(k) == 1 and n.startswith(k) and len(n) <= 3)

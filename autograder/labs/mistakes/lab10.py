@@ -63,6 +63,16 @@ MISTAKES = {
             x = (f / X[:, 2].mean()) * X[:, :2]
             return x[0] if single else x
         """, ["z_avg is ignored"]),
+    "orthographic projection storing (row, col)": ("lab10.ex3", """
+        def orthographic_project(points):
+            pts = np.asarray(points, dtype=np.float64)
+            flat = pts.reshape(-1, 3)
+            out = np.zeros((len(flat), 2))
+            for i, (X, Y, Z) in enumerate(flat):
+                x, y = X, Y
+                out[i] = (y, x)
+            return out[0] if pts.ndim == 1 else out
+        """, ["changing `out[i] = (y, x)` to `out[i] = (x, y)`"]),
     "orthographic divides by Z": ("lab10.ex3", """
         def orthographic_project(points):
             X, single = _points(points)
