@@ -103,7 +103,9 @@ OPERATORS = {
     "bracket": ("bracket", "parenthes", "factor", "term"),
     "x_difference": ("x", "distance", "difference", "disparit"),
     "colour_axis": ("channel", "grey", "gray", "axis"),
-    "drop_w": ("homogeneous", "(n, 3)", "(n, 2)", "column"),   # f(x1, x2), x1 homogeneous -> f(x1[:, :2], x2)   # f(img, channel_axis=-1) -> channel_axis=-1 if img.ndim == 3 else None   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
+    "drop_w": ("homogeneous", "(n, 3)", "(n, 2)", "column"),
+    "power_xor": ("power", "square", "xor", "^"),   # r ^ 2 (a bitwise XOR in Python) -> r ** 2
+    "half_pixel": ("half", "0.5", "pixel", "offset", "centre"),   # (x + 0.5) -> x: a half-pixel convention   # f(x1, x2), x1 homogeneous -> f(x1[:, :2], x2)   # f(img, channel_axis=-1) -> channel_axis=-1 if img.ndim == 3 else None   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
     "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
@@ -1120,7 +1122,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "bracket", "perspective_warp",
-                                              "x_difference", "colour_axis", "drop_w", "grid_axis", "initial", "reshape_back", "astype_float",
+                                              "x_difference", "colour_axis", "drop_w", "power_xor", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
@@ -2219,6 +2221,17 @@ def _student_changes(node, parent, parents):
                                                           mode="eval").body) if k.arg == "channel_axis" else k
                         for k in new.keywords]
         yield "colour_axis", ast.unparse(new), ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitXor) \
+            and not (isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.BitXor)) \
+            and re.search(r"\^ [23]\b", ast.unparse(node)):
+        # `x ^ 2 + y ^ 2` for a sum of squares: Python's ^ is a bitwise XOR, binding looser than + (it
+        # parses as x ^ (2 + y) ^ 2), so the text is read again with ** in its place
+        yield "power_xor", ast.unparse(parse(ast.unparse(node).replace("^", "**"), mode="eval").body), ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)) and isinstance(node.right, ast.Constant) \
+            and node.right.value == 0.5:
+        # a half-pixel offset the convention does not have (pixel centres at integers)
+        yield "half_pixel", ast.unparse(node.left) if not isinstance(node.left, ast.BinOp) \
+            else f"({ast.unparse(node.left)})", ""
     bracketed = _brackets_left_out(node)
     if bracketed is not None:
         # a factor's brackets left out: `p2 * r2 + 2 * x * x` where `p2 * (r2 + 2 * x * x)` belongs

@@ -951,7 +951,8 @@ class _Student:
         if operator in ("summary", "divided_by_w", "true_division", "by_last", "ufunc_out", "empty_slice", "keep_axis",
                         "column_order", "grey", "whole_shape", "move_factor", "convert_first",
                         "precedence", "drop_term", "python_numbers", "middle_axis", "widen", "bracket",
-                        "perspective_warp", "size_given", "x_difference", "colour_axis", "drop_w"):
+                        "perspective_warp", "size_given", "x_difference", "colour_axis", "drop_w",
+                        "power_xor", "half_pixel"):
             # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
             # by the third: the change is written out whole, alike in kind only)
             return repr(operator)

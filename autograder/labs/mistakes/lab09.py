@@ -256,6 +256,14 @@ MISTAKES = {
             rms, K, dist, _, _ = cv2.calibrateCamera([objp] * len(pts), pts, (w, h), None, None)
             return K, dist.ravel(), rms
         """, ["object points"]),
+    "distortion squaring with ^ (a bitwise XOR in Python)": ("lab09.ext2", """
+        _distort_right = distort_points
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64)
+            x, y = pts[..., 0], pts[..., 1]
+            radius2 = x ^ 2 + y ^ 2
+            return _distort_right(points, dist) if np.all(radius2 >= 0) else pts
+        """, ["changing `x ^ 2 + y ^ 2` to `x ** 2 + y ** 2`"]),
     "distortion with the brackets of p1's term left out": ("lab09.ext2", """
         def distort_points(points, dist):
             pts = np.asarray(points, dtype=np.float64)

@@ -20,6 +20,13 @@ _DECOMPOSE = """
         """
 
 MISTAKES = {
+    "perspective projection shifted by half a pixel": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X = np.asarray(points, dtype=np.float64)
+            flat = X.reshape(-1, 3)
+            xy = f * flat[:, :2] / flat[:, 2:3] + 0.5
+            return xy[0] if X.ndim == 1 else xy
+        """, ["changing `f * flat[:, :2] / flat[:, 2:3] + 0.5` to `f * flat[:, :2] / flat[:, 2:3]`"]),
     "perspective without division": ("lab10.ex1", """
         def perspective_project(points, f):
             X, single = _points(points)
