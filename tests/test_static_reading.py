@@ -1170,3 +1170,22 @@ def test_points_transposed_into_a_function_that_reads_rows_are_read():
 @pytest.mark.parametrize("given", ["pts1, pts2", "pts1, pts2.T"])   # (pts2 is not read as rows there)
 def test_points_given_as_rows_or_to_a_parameter_read_otherwise_are_not(given):
     assert ROWS_TRANSPOSED not in one(OWN_TRIANGULATE.format(given=given))
+
+
+SVD_FACTOR = "a factor of an SVD left out of the rebuild"
+
+
+def test_an_svd_rebuilt_without_one_factor_is_read():
+    assert SVD_FACTOR in one("""
+def essential(E):
+    U, S, Vt = np.linalg.svd(E)
+    return np.diag([1.0, 1.0, 0.0]) @ Vt
+""")
+
+
+@pytest.mark.parametrize("source", [
+    "def null(A):\n    U, S, Vt = np.linalg.svd(A)\n    return Vt[-1]",                                 # a null vector
+    "def rank2(F):\n    U, S, Vt = np.linalg.svd(F)\n    return U @ np.diag([S[0], S[1], 0.0]) @ Vt",   # both used
+])
+def test_an_svd_whose_factors_are_used_as_needed_is_not_read(source):
+    assert SVD_FACTOR not in one(source)

@@ -239,6 +239,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _value_of_an_earlier_loop(name, function)
     found += _running_halves(name, function)
     found += _norm_of_every_pair_at_once(name, function)
+    found += _singular_vectors_unused(name, function)
     found += _zeros_solved_for(name, function)
     found += _fundamental_as_essential(name, function)
     found += _eigenvectors_as_rows(name, function)
@@ -1602,6 +1603,31 @@ def _norm_of_every_pair_at_once(name, function) -> list[Finding]:
                             f"of the whole difference, one number, so `{ast.unparse(node)}` (line {_line(node)}) is "
                             "one True or False for all the pairs; axis=1 gives each row's distance",
                             certain=True)]
+    return []
+
+
+def _singular_vectors_unused(name, function) -> list[Finding]:
+    """``U, S, Vt = np.linalg.svd(M)`` where ``U`` (or ``Vt``) is never read while the other is: a matrix
+    rebuilt from its SVD without one of its factors (``np.diag([1, 1, 0]) @ Vt``)."""
+    reads = {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    for node in ast.walk(function):
+        if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple)
+                and len(node.targets[0].elts) == 3 and isinstance(node.value, ast.Call)
+                and _call_name(node.value) == "svd"):
+            continue
+        left, _, right = (e.id if isinstance(e, ast.Name) else "_" for e in node.targets[0].elts)
+        for unused, used in ((left, right), (right, left)):
+            # (only where a product rebuilds a matrix from `used` and a diagonal: a null vector read from Vt
+            # alone, `Vt[-1]`, needs no U)
+            rebuilt = any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)
+                          and used in {m.id for m in ast.walk(n) if isinstance(m, ast.Name)}
+                          and any(isinstance(m, ast.Call) and _call_name(m) == "diag" for m in ast.walk(n))
+                          for n in ast.walk(function))
+            if rebuilt and unused != "_" and not unused.startswith("_") and unused not in reads and used in reads:
+                return [Finding(name, _line(node), "a factor of an SVD left out of the rebuild",
+                                f"{name} (line {_line(node)}) unpacks `{unused}` from `{ast.unparse(node.value)}` and "
+                                f"never uses it: a matrix rebuilt from its SVD needs both factors, "
+                                f"`{left} @ np.diag(...) @ {right}`")]
     return []
 
 

@@ -133,6 +133,13 @@ MISTAKES = {
                 out[i] = np.linalg.lstsq(A[:, :3], A[:, 3], rcond=None)[0]
             return out
         """, ["every point is the true one negated"]),
+    "essential_8point rebuilt without U": ("lab11.ex3", """
+        def essential_8point(pts1, pts2, K1, K2):
+            x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
+            x2 = _homogeneous(pts2) @ np.linalg.inv(K2).T
+            U, S, Vt = np.linalg.svd(_eight_point_core(x1, x2))
+            return np.diag([1.0, 1.0, 0.0]) @ Vt
+        """, ["unpacks `u` from", "and never uses it"]),
     "essential_8point handing homogeneous points to fundamental_8point": ("lab11.ex3", """
         def essential_8point(pts1, pts2, K1, K2):
             n1 = np.column_stack([np.asarray(pts1, np.float64), np.ones(len(pts1))]) @ np.linalg.inv(K1).T
