@@ -971,6 +971,13 @@ def essential_from_F_property(t):
                         "(cv2.findFundamentalMat, FM_8POINT)",
                      t.call("essential_from_fundamental", F, K1, K2), K2.T @ F @ K1,
                      essential_of_estimated_mistakes(F, K1, K2), probe=essential_of_estimated_probe(t))
+    # (and one whose rank was never made 2 -- a least-squares F before its last step: K2^T F K1 all the same)
+    U, S, Vt = np.linalg.svd(F)
+    full = U @ np.diag([S[0], S[1], 0.05 * S[1]]) @ Vt
+    judge_projective(t, "essential_from_fundamental(F, K1, K2) of an F of rank 3 (a least-squares F before its rank "
+                        "is made 2)",
+                     t.call("essential_from_fundamental", full, K1, K2), K2.T @ full @ K1,
+                     essential_of_estimated_mistakes(full, K1, K2))
 
 
 # f reshaped column by column, seen in the code (an F^T that kron(x1, x2) rows or pts swapped give too)

@@ -1959,6 +1959,9 @@ def _changes(node, parents, words: _Words, line):
     if words.student and isinstance(node, ast.If) and not node.orelse and isinstance(node.body[-1], ast.Return) \
             and isinstance(parent, (ast.FunctionDef, ast.For, ast.While, ast.If, ast.With)):
         yield "drop_statement", None, ""   # a shortcut for a special value that answers otherwise than the general way
+    if words.student and isinstance(node, ast.If) and not node.orelse and len(node.body) == 1 \
+            and isinstance(node.body[0], ast.Raise) and node.body[0].exc is not None:
+        yield "drop_statement", None, ""   # a test of its own that refuses valid input (`matrix_rank(F) != 2`)
     if isinstance(node, ast.Assign) and len(node.targets) == 1:
         yield from _line_name_changes(node, words, line)
     yield from _in_place_changes(node, words)

@@ -1082,6 +1082,11 @@ class _Student:
         if not 0 <= ordinal < len(nodes):
             return None
         edited = nodes[ordinal]
+        if operator == "drop_statement" and isinstance(edited, ast.If) and len(edited.body) == 1 \
+                and isinstance(edited.body[0], ast.Raise):
+            # (a test of the student's own that raises, taken out whole: "removing `if ...: raise ...`")
+            test = " ".join(ast.unparse(edited.test).split())
+            return (edited.lineno, f"if {test}: raise ...", "pass") if len(test) <= _SHOWN else None
         context = edited
         while isinstance(context, (ast.Name, ast.Constant, ast.Attribute, ast.keyword, ast.Slice)) \
                 or (isinstance(context, ast.expr) and _width(context) < 12):

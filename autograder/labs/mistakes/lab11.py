@@ -133,6 +133,13 @@ MISTAKES = {
                 out[i] = np.linalg.lstsq(A[:, :3], A[:, 3], rcond=None)[0]
             return out
         """, ["every point is the true one negated"]),
+    "essential_from_fundamental refusing an F whose rank is not 2": ("lab11.ex3", """
+        def essential_from_fundamental(F, K1, K2):
+            F = np.asarray(F, np.float64)
+            if np.linalg.matrix_rank(F) != 2:
+                raise ValueError("F must have rank 2")
+            return np.asarray(K2, np.float64).T @ F @ np.asarray(K1, np.float64)
+        """, ["removing `if np.linalg.matrix_rank(F) != 2: raise ...`"]),
     "essential_8point rebuilt without U": ("lab11.ex3", """
         def essential_8point(pts1, pts2, K1, K2):
             x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
