@@ -79,7 +79,7 @@ MISTAKES = {
                 x, y = X, Y
                 out[i] = (y, x)
             return out[0] if pts.ndim == 1 else out
-        """, ["changing `out[i] = (y, x)` to `out[i] = (x, y)`"]),
+        """, ["x and y are swapped"]),
     "orthographic divides by Z": ("lab10.ex3", """
         def orthographic_project(points):
             X, single = _points(points)
