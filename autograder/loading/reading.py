@@ -1610,6 +1610,16 @@ def _singular_vectors_unused(name, function) -> list[Finding]:
     """``U, S, Vt = np.linalg.svd(M)`` where ``U`` (or ``Vt``) is never read while the other is: a matrix
     rebuilt from its SVD without one of its factors (``np.diag([1, 1, 0]) @ Vt``)."""
     reads = {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    # (the names a product with a diagonal rebuilds a matrix from -- `np.diag([1, 1, 0]) @ Vt` -- gathered once,
+    # from the outermost such products: a null vector read from Vt alone, `Vt[-1]`, needs no U)
+    rebuilt, inside = set(), set()
+    for n in ast.walk(function):
+        if id(n) in inside or not (isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)):
+            continue
+        below = list(ast.walk(n))
+        inside.update(id(m) for m in below)
+        if any(isinstance(m, ast.Call) and _call_name(m) == "diag" for m in below):
+            rebuilt.update(m.id for m in below if isinstance(m, ast.Name))
     for node in ast.walk(function):
         if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple)
                 and len(node.targets[0].elts) == 3 and isinstance(node.value, ast.Call)
@@ -1617,13 +1627,8 @@ def _singular_vectors_unused(name, function) -> list[Finding]:
             continue
         left, _, right = (e.id if isinstance(e, ast.Name) else "_" for e in node.targets[0].elts)
         for unused, used in ((left, right), (right, left)):
-            # (only where a product rebuilds a matrix from `used` and a diagonal: a null vector read from Vt
-            # alone, `Vt[-1]`, needs no U)
-            rebuilt = any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)
-                          and used in {m.id for m in ast.walk(n) if isinstance(m, ast.Name)}
-                          and any(isinstance(m, ast.Call) and _call_name(m) == "diag" for m in ast.walk(n))
-                          for n in ast.walk(function))
-            if rebuilt and unused != "_" and not unused.startswith("_") and unused not in reads and used in reads:
+            if used in rebuilt and unused != "_" and not unused.startswith("_") and unused not in reads \
+                    and used in reads:
                 return [Finding(name, _line(node), "a factor of an SVD left out of the rebuild",
                                 f"{name} (line {_line(node)}) unpacks `{unused}` from `{ast.unparse(node.value)}` and "
                                 f"never uses it: a matrix rebuilt from its SVD needs both factors, "

@@ -2791,15 +2791,22 @@ _SIZE_PARAMETERS = {"dsize": "xy", "size": "xy", "out_size": "xy", "output_shape
 
 def _sizes_unpacked(fn, before: int) -> list:
     """The (height, width) names ``fn`` unpacks from an image's shape above line ``before`` (`h, w = X.shape[:2]`)."""
+    return [pair for line, pair in _shape_unpackings(fn) if line < before]
+
+
+@functools.lru_cache(maxsize=64)
+def _shape_unpackings(fn) -> tuple:
+    """``((line, (height, width)), ...)``: every `h, w = X.shape[:2]` of the def ``fn``, read once (each call of a
+    helper asks for those above it)."""
     pairs = []
     for node in ast.walk(fn):
-        if isinstance(node, ast.Assign) and node.lineno < before and len(node.targets) == 1 \
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 \
                 and isinstance(node.targets[0], ast.Tuple) and len(node.targets[0].elts) == 2 \
                 and all(isinstance(e, ast.Name) for e in node.targets[0].elts) \
                 and isinstance(node.value, ast.Subscript) and isinstance(node.value.value, ast.Attribute) \
                 and node.value.value.attr == "shape":
-            pairs.append(tuple(e.id for e in node.targets[0].elts))
-    return pairs
+            pairs.append((node.lineno, tuple(e.id for e in node.targets[0].elts)))
+    return tuple(pairs)
 
 
 
