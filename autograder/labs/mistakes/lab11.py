@@ -5,8 +5,8 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 
 from . import columns_by_first_axis
 
-# a two-view pipeline whose cameras lack K ([R | t] on pixel coordinates); IN_FRONT: what it keeps
-_WITHOUT_K = """
+# the start of the lab sheet's two-view pipeline, written out: SIFT, Lowe's test, F by RANSAC
+_MATCHED = """
         def two_view_reconstruction(img1, img2, K):
             grey1 = cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY) if img1.ndim == 3 else img1
             grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img2.ndim == 3 else img2
@@ -18,7 +18,21 @@ _WITHOUT_K = """
             pts1 = np.float64([kp1[m.queryIdx].pt for m in good])
             pts2 = np.float64([kp2[m.trainIdx].pt for m in good])
             F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
-            inliers = mask.ravel().astype(bool)
+"""
+
+# the lab sheet's pipeline, written out (SIFT, Lowe's test, F by RANSAC, pose, triangulation), with the points
+# given to cv2.recoverPose (POSE_POINTS) and to triangulate (TRIANGULATED) left to each case
+_PIPELINE = _MATCHED + """            pts1, pts2 = pts1[mask.ravel() == 1], pts2[mask.ravel() == 1]
+            K = np.asarray(K, np.float64)
+            _, R, t, _ = cv2.recoverPose(K.T @ F @ K, POSE_POINTS, K)
+            P1, P2 = K @ np.eye(3, 4), K @ np.hstack([R, t.reshape(3, 1)])
+            points3d = triangulate(P1, P2, TRIANGULATED)
+            in_front = (points3d[:, 2] > 0) & ((points3d @ R.T + t.reshape(3))[:, 2] > 0)
+            return F, pts1[in_front], pts2[in_front], points3d[in_front]
+        """
+
+# a two-view pipeline whose cameras lack K ([R | t] on pixel coordinates); IN_FRONT: what it keeps
+_WITHOUT_K = _MATCHED + """            inliers = mask.ravel().astype(bool)
             pts1, pts2 = pts1[inliers], pts2[inliers]
             K = np.asarray(K, np.float64)
             E = K.T @ F @ K
@@ -564,47 +578,11 @@ MISTAKES = {
             return _null_by_cross(F), _null_by_cross(F.T)
         """, ["first two rows are parallel", "is not a null vector of f"]),
     # ---------------------------------------------------------------- ex6
-    "pipeline giving cv2.recoverPose the points the other way round": ("lab11.ex6", """
-        def two_view_reconstruction(img1, img2, K):
-            grey1 = cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY) if img1.ndim == 3 else img1
-            grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img2.ndim == 3 else img2
-            sift = cv2.SIFT_create()
-            kp1, des1 = sift.detectAndCompute(grey1, None)
-            kp2, des2 = sift.detectAndCompute(grey2, None)
-            pairs = cv2.BFMatcher(cv2.NORM_L2).knnMatch(des1, des2, k=2)
-            good = [m for m, n in (p for p in pairs if len(p) == 2) if m.distance < 0.75 * n.distance]
-            pts1 = np.float64([kp1[m.queryIdx].pt for m in good])
-            pts2 = np.float64([kp2[m.trainIdx].pt for m in good])
-            F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
-            pts1, pts2 = pts1[mask.ravel() == 1], pts2[mask.ravel() == 1]
-            K = np.asarray(K, np.float64)
-            E = K.T @ F @ K
-            _, R, t, _ = cv2.recoverPose(E, pts2, pts1, K)
-            P2 = K @ np.hstack([R, t.reshape(3, 1)])
-            points3d = triangulate(K @ np.eye(3, 4), P2, pts1, pts2)
-            in_front = (points3d[:, 2] > 0) & ((points3d @ R.T + t.reshape(3))[:, 2] > 0)
-            return F, pts1[in_front], pts2[in_front], points3d[in_front]
-        """, ["the points the other way round"]),
-    "pipeline triangulating the points as OpenCV's 2 x N columns": ("lab11.ex6", """
-        def two_view_reconstruction(img1, img2, K):
-            grey1 = cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY) if img1.ndim == 3 else img1
-            grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img2.ndim == 3 else img2
-            sift = cv2.SIFT_create()
-            kp1, des1 = sift.detectAndCompute(grey1, None)
-            kp2, des2 = sift.detectAndCompute(grey2, None)
-            pairs = cv2.BFMatcher(cv2.NORM_L2).knnMatch(des1, des2, k=2)
-            good = [m for m, n in (p for p in pairs if len(p) == 2) if m.distance < 0.75 * n.distance]
-            pts1 = np.float64([kp1[m.queryIdx].pt for m in good])
-            pts2 = np.float64([kp2[m.trainIdx].pt for m in good])
-            F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
-            pts1, pts2 = pts1[mask.ravel() == 1], pts2[mask.ravel() == 1]
-            K = np.asarray(K, np.float64)
-            _, R, t, _ = cv2.recoverPose(K.T @ F @ K, pts1, pts2, K)
-            P1, P2 = K @ np.eye(3, 4), K @ np.hstack([R, t.reshape(3, 1)])
-            points3d = triangulate(P1, P2, pts1.T, pts2.T)
-            in_front = (points3d[:, 2] > 0) & ((points3d @ R.T + t.reshape(3))[:, 2] > 0)
-            return F, pts1[in_front], pts2[in_front], points3d[in_front]
-        """, ["calls `triangulate(P1, P2, pts1.T, pts2.T)`", "as one point per row"]),
+    "pipeline giving cv2.recoverPose the points the other way round": ("lab11.ex6", _PIPELINE.replace(
+        "POSE_POINTS", "pts2, pts1").replace("TRIANGULATED", "pts1, pts2"), ["the points the other way round"]),
+    "pipeline triangulating the points as OpenCV's 2 x N columns": ("lab11.ex6", _PIPELINE.replace(
+        "POSE_POINTS", "pts1, pts2").replace("TRIANGULATED", "pts1.T, pts2.T"),
+        ["calls `triangulate(P1, P2, pts1.T, pts2.T)`", "as one point per row"]),
     "pipeline converting every image from BGR": ("lab11.ex6", """
         _pipeline = two_view_reconstruction
         def two_view_reconstruction(img1, img2, K):
