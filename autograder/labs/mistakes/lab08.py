@@ -5,6 +5,16 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 
 from . import columns_by_first_axis
 
+# draw_matches' start as the sheet has it: both images side by side on a black canvas (each case draws its lines)
+_SIDE_BY_SIDE = """
+        def draw_matches(img1, img2, pts1, pts2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
+            canvas[:h1, :w1] = _bgr(img1)
+            canvas[:h2, w1:] = _bgr(img2)
+"""
+
 MISTAKES = {
     "apply_homography with H transposed": ("lab08.ex1", """
         def apply_homography(image, H, dsize=None):
@@ -312,38 +322,17 @@ MISTAKES = {
         def draw_matches(img1, img2, pts1, pts2):
             return _reference_draw(img1, img2, pts1, np.asarray(pts2) - [img1.shape[1], 0])
         """, ["x2 + w1"]),
-    "lines shifted by W2 instead of W1": ("lab08.ex3", """
-        def draw_matches(img1, img2, pts1, pts2):
-            h1, w1 = img1.shape[:2]
-            h2, w2 = img2.shape[:2]
-            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
-            canvas[:h1, :w1] = _bgr(img1)
-            canvas[:h2, w1:] = _bgr(img2)
-            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+    "lines shifted by W2 instead of W1": ("lab08.ex3", _SIDE_BY_SIDE + """            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
                 cv2.line(canvas, (int(round(x1)), int(round(y1))), (int(round(x2 + w2)), int(round(y2))),
                          (0, 255, 0), 1, cv2.LINE_AA)
             return canvas
         """, ["shifted by img2's width", "x2 + w1"]),
-    "lines ending at y2 + W1 (the offset on the wrong coordinate)": ("lab08.ex3", """
-        def draw_matches(img1, img2, pts1, pts2):
-            h1, w1 = img1.shape[:2]
-            h2, w2 = img2.shape[:2]
-            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
-            canvas[:h1, :w1] = _bgr(img1)
-            canvas[:h2, w1:] = _bgr(img2)
-            for p, q in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+    "lines ending at y2 + W1 (the offset on the wrong coordinate)": ("lab08.ex3", _SIDE_BY_SIDE + """            for p, q in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
                 end = (int(round(q[0])), int(round(q[1] + w1)))
                 cv2.line(canvas, (int(round(p[0])), int(round(p[1]))), end, (0, 255, 0), 1, cv2.LINE_AA)
             return canvas
         """, ["(x2, y2 + W1)", "added to y2"]),
-    "points drawn as (row, column)": ("lab08.ex3", """
-        def draw_matches(img1, img2, pts1, pts2):
-            h1, w1 = img1.shape[:2]
-            h2, w2 = img2.shape[:2]
-            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
-            canvas[:h1, :w1] = _bgr(img1)
-            canvas[:h2, w1:] = _bgr(img2)
-            for (r1, c1), (r2, c2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+    "points drawn as (row, column)": ("lab08.ex3", _SIDE_BY_SIDE + """            for (r1, c1), (r2, c2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
                 cv2.line(canvas, (int(c1), int(r1)), (int(c2) + w1, int(r2)), (0, 255, 0), 1)
             return canvas
         """, ["other order", "(y1, x1)"]),
@@ -993,14 +982,7 @@ MISTAKES = {
                          (int(round(x2)) + a.shape[1], int(round(y2)) + top2), (0, 255, 0), 1)
             return canvas
         """, ["centred vertically"]),
-    "draw_matches colouring with NumPy integers": ("lab08.ex3", """
-        def draw_matches(img1, img2, pts1, pts2):
-            h1, w1 = img1.shape[:2]
-            h2, w2 = img2.shape[:2]
-            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
-            canvas[:h1, :w1] = _bgr(img1)
-            canvas[:h2, w1:] = _bgr(img2)
-            for p, q in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+    "draw_matches colouring with NumPy integers": ("lab08.ex3", _SIDE_BY_SIDE + """            for p, q in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
                 colour = tuple(np.random.randint(0, 256, 3))
                 start = (int(round(p[0])), int(round(p[1])))
                 end = (int(round(q[0] + w1)), int(round(q[1])))
