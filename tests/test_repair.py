@@ -235,6 +235,33 @@ def test_changes_of_the_students_own_code_only():
     assert ("inverse", "wrap") not in {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"})["graded"]}
 
 
+def test_a_default_written_out_a_count_for_a_share_and_twin_names_crossed_in_one_entry():
+    """`_pyramid(a, 4)` beside `levels=4` (the parameter where its default is written), `w = best.sum()`
+    (a share where a count is), `beta * cy + (1 - alpha) * cx` (cx and cy exchanged throughout one entry),
+    and a method taken on a sum bracketed (`(x - 0.5).astype(...)`, not `x - 0.5.astype(...)`): the
+    student's code only."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(a, cx, cy, levels=4, radius=1):
+            best = a > 0
+            w = best.sum()
+            entry = np.sin(a) * cy + (1 - np.cos(a)) * cx
+            column = ((a + 0.5) * 3 - 0.5).astype(np.int64)
+            return _pyramid(a, 4), w, [entry, column], radius + 1
+    """)
+    student = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
+    assert {("default_written", "levels"), ("fraction", "best.mean()"),
+            ("crossed", "np.sin(a) * cx + (1 - np.cos(a)) * cy"),
+            ("astype_float", "((a + 0.5) * 3 - 0.5).astype(np.float64)")} <= student
+    assert ("default_written", "radius") not in student   # (1 is everywhere: no default told from it)
+    for operator, text in student:   # every change written out is code
+        if isinstance(text, str) and operator in ("fraction", "crossed", "astype_float", "reduced", "middle_axis"):
+            ast.parse(text)
+    reference = {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
+    assert not reference & {"default_written", "fraction", "crossed"}
+
+
 def test_two_entries_of_a_sequence_written_in_each_others_place():
     """A size given as (rows, cols), a matrix row's entries, names assigned the other way round: every
     pair of a short tuple or list is exchanged (the student's code only); a stacking call's pieces are

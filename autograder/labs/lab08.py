@@ -3119,6 +3119,29 @@ def blend_identity(t):
     t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels; " + EXACT_COLLAPSE_HINT.said(t))
 
 
+@ext3.check("blending an image with itself leaves it unchanged at any number of levels (2, 3, 6)", points=1)
+def blend_identity_levels(t):
+    """The default's identity (the check above) at the other depths the parameter allows: code that builds
+    one of its pyramids with 4 levels whatever ``levels`` says is right at the default only."""
+    image = photo("coffee", (200, 152))
+    mask = truth.step_mask((200, 152), 90)
+    for levels in (2, 3, 6):
+        what = f"blend_multiband(img, img, mask, levels={levels})"
+        got = blended(t, what, image, image, mask, levels=levels)
+        bad = float((np.abs(got.astype(np.int16) - image).max(axis=2) > 2).mean())
+        if bad <= 0.005:
+            continue
+        t.images(what, input=image, yours=got, difference=difference_heatmap(image, got))
+        default = blend_probe(t, image, image, mask)
+        kept = default is not None and float((np.abs(default.astype(np.int16) - image).max(axis=2) > 2).mean()) <= 0.005
+        t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels"
+               + (measured(f", while with the default levels=4 it gives the image back: a pyramid of the blend "
+                           f"does not follow levels (it is right only when levels is 4), or a depth of {levels} "
+                           "is not handled") if kept else
+                  ": a multi-band blend collapses back to the image exactly, at every depth"))
+    return passed("the image comes back unchanged with 2, 3 and 6 levels")
+
+
 # from the code: it calls both; a band made with one enlargement is undone only by the same one
 RESIZE_AND_PYRUP = from_code("your code enlarges levels both with cv2.pyrUp and with cv2.resize: a band made "
                              "as finer - pyrUp(coarser) is undone only by that same pyrUp when the pyramid "

@@ -1618,6 +1618,21 @@ def project_onto_image_off_the_frame(t):
                  probe=points_probe(t, "project_onto_image"))
 
 
+@ex5.check("project_onto_image for any camera: the world origin on or behind the camera's plane", points=1)
+def project_onto_image_any_camera(t):
+    """The cameras ``project`` is checked with beyond the usual set-up (P at another scale, P[2, 3] = 0
+    and < 0), through project_onto_image: the same camera gives the same points in both functions."""
+    image = photo("chelsea", (320, 240))
+    for name, P, X in other_cameras():
+        got = t.call("project_onto_image", image, P, X)
+        if not (isinstance(got, (tuple, list)) and len(got) == 2):
+            t.fail("project_onto_image should return a pair (image, pts)")
+        judge_points(t, f"project_onto_image(image, {name}, points)[1] (the points)", got[1],
+                     truth.homogeneous_project(P, X), project_mistakes(P, X), tolerance=1e-6,
+                     probe=points_probe(t, "project_onto_image"))
+    return passed("the same points as project gives, for every camera")
+
+
 def _scene_with_a_point_behind():
     """The off-the-frame scene with a point 3 units behind the camera as point 3."""
     image, P, X = _scene_off_the_frame()
@@ -1859,6 +1874,25 @@ def calibrate_rendered(t):
 # from cv2.getOptimalNewCameraMatrix (alpha 1, its focal lengths 1.5% off: within recovers-K's
 # tolerance) 0.159 / 0.037; alpha 0.5 0.098; without cornerSubPix 0.217 / 0.041 (>= +0.06).
 CONSISTENCY_SLACK = 0.05   # px the recomputed error may exceed the returned rms
+# And no detection finds the rendered corners exactly: cv2.calibrateCamera's rms on these views is
+# 0.037 px (findChessboardCorners + cornerSubPix 5x5, any calibration flags), 0.041 without
+# cornerSubPix, 0.044 / 0.095 with 3x3 / 11x11 windows, 0.094 with findChessboardCornersSB. The
+# OpenCV tutorial's "mean error" (each view's error norm divided by its corner count, averaged) is
+# about rms / sqrt(corners): 0.006-0.014 px for the same detections. Below this, the number returned
+# is not an RMS of detected corners.
+RMS_FLOOR = 0.02   # px
+
+
+def _divides_a_norm(function) -> bool:
+    """A division whose numerator takes a norm (``cv2.norm(a, b, cv2.NORM_L2) / len(p)``,
+    ``np.linalg.norm(e) / n``): the error vector's length divided by its count, not its RMS."""
+    return any(isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div)
+               and any(isinstance(n, ast.Call) and _hints_path(n.func).rsplit(".", 1)[-1] == "norm"
+                       for n in ast.walk(node.left))
+               for node in ast.walk(function))
+
+
+NORM_OVER_COUNT = Predicate("divides an error norm by a count", _divides_a_norm)
 
 
 @ext1.check("calibrate: the K, dist and rms it returns agree with each other", points=1)
@@ -1872,6 +1906,8 @@ def calibration_consistent(t):
     if np.isnan(recomputed):
         t.fail(f"{what}[1] (dist) has {dist.size} values, a length OpenCV's distortion model does not have "
                "(4, 5, 8, 12 or 14)")
+    if 0 <= rms < RMS_FLOOR:
+        _fail_rms_below_detection(t, what, rms, corners)
     if recomputed <= rms + CONSISTENCY_SLACK:
         return passed(f"the board's corners reprojected with your K and dist (best pose per view) are "
                       f"{recomputed:.3f} px RMS from the true corners; your rms says {rms:.3f} px")
@@ -1888,6 +1924,22 @@ def calibration_consistent(t):
            f"view reprojects the board's corners {shown} RMS from the true corners, while the rms returned "
            f"says {rms:.3f} px: {cause}. " + measured("Return K, dist and rms from the same cv2.calibrateCamera call."),
            mistake=from_code("K from cv2.getOptimalNewCameraMatrix instead of the calibrated K") if reading else "")
+
+
+def _fail_rms_below_detection(t: Trial, what: str, rms: float, corners) -> None:
+    """The rms returned is below what any corner detection reaches on these views: it is not
+    cv2.calibrateCamera's RMS. Named as the tutorial's mean error where the code computes one."""
+    per_view = int(np.asarray(corners[0]).reshape(-1, 2).shape[0])
+    cause = ""
+    if NORM_OVER_COUNT.found(code_of(t).reachable(["calibrate"])):
+        cause = from_code(
+            f" Your code divides a norm of the reprojection errors by their count (the OpenCV tutorial's mean "
+            f"error): ||e|| / N is the RMS divided by sqrt(N) (N = {per_view} corners per view here), not the "
+            "RMS. Return the rms cv2.calibrateCamera returns (its first result).")
+    t.fail(measured(f"{what}: the rms returned is {rms:.4f} px, below what any corner detection reaches on these "
+                    f"rendered views (cv2.calibrateCamera's RMS reprojection error is 0.04-0.1 px here, whatever the "
+                    f"detector and flags): it is not the RMS reprojection error of the calibration.") + cause,
+           mistake=from_code("a mean error norm per corner (the tutorial's error) returned as the rms") if cause else "")
 
 
 def _converted_names(function) -> set[str]:

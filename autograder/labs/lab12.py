@@ -2043,6 +2043,59 @@ def ncc_gain(t):
            hint=NCC_HINT.said(t))
 
 
+# A flat area (a rectified pair's black border) has no texture: a block inside it has standard
+# deviation 0 and its NCC is 0/0. Where a flat block falls in a textured pixel's search range, the
+# match must not change: the reference scores flat blocks 0 (so do an epsilon in the denominator and
+# cv2.matchTemplate's TM_CCOEFF_NORMED). Measured on the motorcycle with a 24-px black strip down both
+# views' left side, max_disparity=32: the reference's map changes on 0.0% of the textured pixels whose
+# range reaches the strip, NaN left in the costs (np.argmin takes it as the lowest) on 47%.
+FLAT_STRIP = 24
+FLAT_CHANGED = 0.10   # of the textured pixels whose search range reaches the strip
+FLAT_NAN = measured("a flat block (standard deviation 0) gets the NCC 0/0 = NaN, and np.argmin takes NaN as the lowest "
+            "cost: a textured pixel is matched to the first flat block in its range")
+
+
+@ext1.check("block_matching(cost=\"ncc\") with a flat black border: textured pixels keep their matches",
+            points=1, timeout=STEREO_TIMEOUT)
+def ncc_flat_border(t):
+    scene = truth.scene("motorcycle")
+    left, right = np.array(scene.left), np.array(scene.right)
+    flat_left, flat_right = left.copy(), right.copy()
+    flat_left[:, :FLAT_STRIP] = 0
+    flat_right[:, :FLAT_STRIP] = 0
+    max_disparity, block = 32, 9
+    what = (f"block_matching(left, right, max_disparity={max_disparity}, cost=\"ncc\") with the {FLAT_STRIP} "
+            "left columns of both views black")
+    plain = expect_disparity(t, what.split(" with")[0], t.call("block_matching", left, right, max_disparity=max_disparity,
+                                                               block_size=block, cost="ncc"), scene)
+    got = expect_disparity(t, what, t.call("block_matching", flat_left, flat_right, max_disparity=max_disparity,
+                                           block_size=block, cost="ncc"), scene)
+    # the left pixels whose own block and true match are textured (the scene's disparities are at most
+    # its own search range) and whose search range reaches a block inside the strip
+    first = FLAT_STRIP + block // 2 + scene.max_disparity
+    reach = np.zeros(got.shape, bool)
+    reach[:, first:FLAT_STRIP + block // 2 + max_disparity] = True
+    changed = np.abs(np.asarray(got, np.float64) - plain) > 0.5
+    share = float(changed[reach].mean())
+    if share <= FLAT_CHANGED:
+        return passed(f"{share:.1%} of the textured pixels near the border change their match")
+    t.images(what, left_image=flat_left, without_the_border=disparity_picture(plain, max_disparity),
+             yours=disparity_picture(got, max_disparity))
+    # np.argmin over NaN costs: the first disparity whose right block lies wholly in the strip
+    columns = np.broadcast_to(np.arange(got.shape[1]), got.shape)
+    first_flat = columns + block // 2 - FLAT_STRIP + 1
+    at_first_flat = float((np.abs(np.asarray(got, np.float64) - first_flat) < 0.5)[changed & reach].mean())
+    message = (f"{what}: {share:.0%} of the textured pixels whose search range reaches the black border get "
+               "another disparity than without the border (their own blocks and true matches are "
+               f"unchanged; at most {FLAT_CHANGED:.0%} allowed). A flat block has no texture: its NCC is 0/0")
+    if at_first_flat > 0.5:
+        t.fail(measured(f"{message}, and {at_first_flat:.0%} of those pixels take the first disparity whose right "
+                        f"block lies wholly in the border: it looks like {FLAT_NAN}. Give flat blocks a score "
+                        "of 0 (np.divide(cov, std_l * std_r, out=np.zeros_like(cov), where=std_l * std_r > 1e-6), "
+                        "or a small epsilon in the denominator)."), mistake=FLAT_NAN)
+    t.fail(measured(f"{message}, which must lose to a real match, as a score of 0 does."))
+
+
 # ================================================================== ex5 dynamic programming
 ex5 = lab.exercise("ex5", "Smoothness: scanline dynamic programming", functions=[
     "dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None)"])

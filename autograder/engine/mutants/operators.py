@@ -150,6 +150,9 @@ OPERATORS = {
     "matrix_applied": ("matrix", "applied", "@", "map"),   # t = dst[0] - src[0] -> dst[0] - L @ src[0]
     "series_powers": ("power", "square", "r^2", "**"),   # k1 * r + k2 * r ** 2 -> k1 * r ** 2 + k2 * r ** 4
     "counted": ("count", "len", "fixed", "number"),   # for k in range(3) -> range(len(images))
+    "default_written": ("default", "fixed", "parameter", "ignored"),   # _pyramid(a, 4) -> _pyramid(a, levels)
+    "crossed": ("exchang", "swap", "other way", "x and y"),   # beta * cy + a * cx -> beta * cx + a * cy
+    "fraction": ("ratio", "fraction", "share", "count"),   # w = best.sum() -> best.mean(): a count where a share belongs
     "homogeneous_one": ("homogeneous", "1", "third", "depth"),
     "moved_term": ("x", "y", "offset", "other coordinate", "twin"),   # (q[0], q[1] + w1) -> (q[0] + w1, q[1])   # np.column_stack([x, y, Z]) -> [x, y, np.ones_like(Z)]
     "neutral_argument": ("scale", "1", "argument", "zoom"),   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)
@@ -1128,7 +1131,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
-                                              "matrix_applied", "series_powers", "counted", "factor_transposed",
+                                              "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
@@ -2189,6 +2192,30 @@ def _masks(value) -> bool:
                                               and any(isinstance(side, ast.Compare) for side in (value.left, value.right)))
 
 
+def _operand(node) -> str:
+    """``node``'s code, ready to take an attribute or an index: bracketed unless it is a name, an
+    attribute, an index or a call (`(k + 0.5) * w`.astype(...), not `... - 0.5.astype(...)`)."""
+    text = ast.unparse(node)
+    return text if isinstance(node, (ast.Name, ast.Attribute, ast.Subscript, ast.Call)) else f"({text})"
+
+
+def _fraction_changes(node):
+    """A count where a share belongs: `w = inliers.sum()` for `inliers.mean()` (RANSAC's inlier ratio),
+    `np.sum(m)` for `np.mean(m)`, `np.count_nonzero(m)` for it divided by `m.size`. Whole sums only
+    (no axis): a count of one array."""
+    if not (isinstance(node, ast.Call) and not node.keywords):
+        return
+    dotted = _dotted(node.func)
+    if isinstance(node.func, ast.Attribute) and node.func.attr == "sum" and not node.args \
+            and not dotted.startswith(("np.", "numpy.")):
+        yield "fraction", f"{_operand(node.func.value)}.mean()", ""
+    elif dotted in ("np.sum", "numpy.sum") and len(node.args) == 1:
+        yield "fraction", f"np.mean({ast.unparse(node.args[0])})", ""
+    elif dotted in ("np.count_nonzero", "numpy.count_nonzero") and len(node.args) == 1:
+        argument = ast.unparse(node.args[0])
+        yield "fraction", f"np.count_nonzero({argument}) / np.size({argument})", ""
+
+
 def _student_changes(node, parent, parents):
     """Changes made to a student's code only (:mod:`.repair`), told by showing them: a function applied
     that does not belong (``np.tan(s)`` for ``s``), one mistaken for its sibling (``np.sin`` for
@@ -2197,8 +2224,9 @@ def _student_changes(node, parent, parents):
     if isinstance(node, ast.Call) and _cumulative(node) and node.args and _reversal(node.args[0]) is not None \
             and not (isinstance(parent, ast.Subscript) and parent.value is node and _reversal(parent) is not None):
         # a running minimum (sum, ...) taken from the far end, never turned back
-        yield "reverse_back", f"{ast.unparse(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
+        yield "reverse_back", f"{_operand(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
+    yield from _fraction_changes(node)
     if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.warpAffine", "cv.warpAffine") and len(node.args) >= 2 \
             and isinstance(node.args[1], ast.Subscript) and isinstance(node.args[1].slice, ast.Slice) \
             and node.args[1].slice.lower is None and isinstance(node.args[1].slice.upper, ast.Constant) \
@@ -2243,14 +2271,14 @@ def _student_changes(node, parent, parents):
             and node.right.value == 2 and isinstance(node.left, (ast.Name, ast.Subscript)) \
             and _holds_bytes(_root(node, parents)):
         # a square taken in the image's own 8 bits (`cv2.absdiff(L, R) ** 2` wraps round from 16 on)
-        yield "widen", f"{ast.unparse(node.left)}.astype(np.float64) ** 2", ""
+        yield "widen", f"{_operand(node.left)}.astype(np.float64) ** 2", ""
     if isinstance(node, ast.Call) and _dotted(node.func).startswith(("cv2.", "cv.")) \
             and _dotted(node.func).rsplit(".", 1)[-1] in _NESTED_POINTS \
             and not isinstance(parent, ast.Subscript) \
             and not (isinstance(parent, ast.Attribute) and parent.attr in ("reshape", "squeeze")):
         # OpenCV's points one per (1, k) row -- (N, 1, 3) from cv2.convertPointsToHomogeneous -- used as
         # (N, k): every product and index on them broadcasts otherwise
-        yield "middle_axis", f"{ast.unparse(node)}[:, 0]", ""
+        yield "middle_axis", f"{_operand(node)}[:, 0]", ""
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name) \
             and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2 \
             and all(isinstance(e, ast.Constant) and type(e.value) is int for e in node.slice.elts) \
@@ -2262,16 +2290,16 @@ def _student_changes(node, parent, parents):
             and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.MatMult):
         # a transpose of a whole product where one factor's belongs: `(K2 @ F).T` for `K2.T @ F`
         left, right = node.value.left, node.value.right
-        yield "factor_transposed", f"{ast.unparse(left)}.T @ {ast.unparse(right)}" if isinstance(left, (ast.Name, ast.Subscript,
+        yield "factor_transposed", f"{_operand(left)}.T @ {ast.unparse(right)}" if isinstance(left, (ast.Name, ast.Subscript,
                                                                                                   ast.Attribute)) \
             else f"({ast.unparse(left)}).T @ {ast.unparse(right)}", ""
-        yield "factor_transposed", f"{ast.unparse(left)} @ {ast.unparse(right)}.T" if isinstance(right, (ast.Name, ast.Subscript,
+        yield "factor_transposed", f"{ast.unparse(left)} @ {_operand(right)}.T" if isinstance(right, (ast.Name, ast.Subscript,
                                                                                                    ast.Attribute)) \
             else f"{ast.unparse(left)} @ ({ast.unparse(right)}).T", ""
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and _column_taken(node) \
             and (isinstance(parent, ast.Assign) or (isinstance(parent, ast.IfExp) and parent.test is not node)):
         # a whole column named where its mean belongs: `z = X[:, 2]` for the mean depth
-        yield "reduced", f"{ast.unparse(node)}.mean()", ""
+        yield "reduced", f"{_operand(node)}.mean()", ""
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and _reversal(node) is not None:
         # an order reversed that does not belong: `tuple(pattern_size)[::-1]`, NumPy's (rows, columns)
         # habit where OpenCV takes (columns, rows)
@@ -2381,14 +2409,14 @@ def _student_changes(node, parent, parents):
         # another of the results a library call returns (`cv2.findHomography(...)[1]`: the mask, not H)
         for other in range(5):
             if other != node.slice.value:
-                yield "other_result", f"{ast.unparse(node.value)}[{other}]", ""
+                yield "other_result", f"{_operand(node.value)}[{other}]", ""
     if isinstance(node, ast.Call) and _dotted(node.func).startswith(("cv2.", "cv.", "np.linalg.", "numpy.linalg.")) \
             and (isinstance(parent, ast.Return) or isinstance(parent, ast.Assign) and len(parent.targets) == 1
                  and isinstance(parent.targets[0], ast.Name)):
         # the whole tuple a library call returns kept where one of its results belongs
         # (`A = cv2.estimateAffine2D(src, dst)`: the matrix and the inlier mask)
         for item in range(2):
-            yield "other_result", f"{ast.unparse(node)}[{item}]", ""
+            yield "other_result", f"{_operand(node)}[{item}]", ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) \
             and isinstance(node.right, (ast.Name, ast.Subscript)) and not isinstance(node.left, ast.Constant):
         for invalid in ("0.0", "np.nan"):   # a division with no guard where the divisor may be 0 or below
@@ -2587,7 +2615,7 @@ def _numpy_slips(node, parent, parents):
         # (or raising) where the column, kept 2-D, belongs (`pts[:, :2] / pts[:, 2]`)
         k = node.slice.elts[-1].value
         kept = [ast.unparse(e) for e in node.slice.elts[:-1]] + [f"{k}:{k + 1}" if k != -1 else "-1:"]
-        yield "keep_axis", f"{ast.unparse(node.value)}[{', '.join(kept)}]", ""
+        yield "keep_axis", f"{_operand(node.value)}[{', '.join(kept)}]", ""
     if isinstance(node, ast.Call) and isinstance(parent, ast.BinOp) \
             and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult, ast.Div)) \
             and _dotted(node.func).rsplit(".", 1)[-1] in _PER_ROW_REDUCTIONS \
@@ -3422,7 +3450,7 @@ def _column_order(node, parent):
     """`np.argwhere(mask)` gives (row, column) pairs: used as (x, y) points they are the other way round."""
     if isinstance(node, ast.Call) and _dotted(node.func) in ("np.argwhere", "numpy.argwhere") \
             and not (isinstance(parent, ast.Subscript) and parent.value is node):
-        yield "column_order", f"{ast.unparse(node)}[:, ::-1]", ""
+        yield "column_order", f"{_operand(node)}[:, ::-1]", ""
 
 
 def _conversion_slips(node, parent):
@@ -3879,6 +3907,51 @@ def _counted_by_length(node, words):
         yield "counted", f"range(len({parameter.arg}))", ""
 
 
+def _crossed_twins(node, words):
+    """Two twin names exchanged throughout one entry of a matrix written out, or one assigned value:
+    `beta * cy + (1 - alpha) * cx` for `beta * cx + (1 - alpha) * cy` (each name alone is wrong,
+    so no single change of one name mends the entry)."""
+    parent = _parent_of(node, words)
+    if not ((isinstance(parent, (ast.List, ast.Tuple)) and isinstance(parent.ctx, ast.Load))
+            or (isinstance(parent, ast.Assign) and parent.value is node)) \
+            or not isinstance(node, (ast.BinOp, ast.Call, ast.UnaryOp)):
+        return
+    read = list(dict.fromkeys(n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)))
+    pairs = [(a, b) for i, a in enumerate(read) for b in read[i + 1:] if twin_names(a, b)]
+    if len(pairs) != 1:
+        return
+    a, b = pairs[0]
+    # (names in an index or a tuple -- `np.mgrid[0:rows, 0:cols]`, `(h, w)` -- are swap_items' to exchange,
+    # shown as the smaller change)
+    inside = {id(n) for part in ast.walk(node) if isinstance(part, (ast.Slice, ast.Tuple, ast.List))
+              for n in ast.walk(part)}
+    if any(isinstance(n, ast.Name) and n.id in (a, b) and id(n) in inside for n in ast.walk(node)):
+        return
+    crossed = copy.deepcopy(node)
+    for n in ast.walk(crossed):
+        if isinstance(n, ast.Name) and n.id in (a, b):
+            n.id = b if n.id == a else a
+    yield "crossed", ast.unparse(crossed), ""
+
+
+def _default_written_out(node, words):
+    """A parameter's default value written where the parameter belongs: `_pyramid(a, 4)` beside
+    `levels=4` (right for the default, wrong for every other value given). Numbers other than 0 and
+    1, which are everywhere for reasons of their own."""
+    if not (isinstance(node, ast.Constant) and type(node.value) in (int, float) and node.value not in (0, 1)):
+        return
+    if not hasattr(words, "numeric_defaults"):
+        args = words.fn.args
+        positional = args.posonlyargs + args.args
+        given = list(zip(positional[len(positional) - len(args.defaults):], args.defaults)) \
+            + [(a, d) for a, d in zip(args.kwonlyargs, args.kw_defaults) if d is not None]
+        words.numeric_defaults = [(a.arg, d.value) for a, d in given if isinstance(d, ast.Constant)
+                                  and type(d.value) in (int, float) and d.value not in (0, 1)]
+    for parameter, value in words.numeric_defaults:
+        if value == node.value:
+            yield "default_written", parameter, ""
+
+
 def _matrix_applied(node, words):
     """A point subtracted as it is where its image under a matrix the function made belongs: `t = dst[0] -
     src[0]` for `dst[0] - L @ src[0]` (a translation that leaves out the linear part's move of the point).
@@ -3911,6 +3984,8 @@ def _sibling_changes(node, words):
     done, calls, _ = _read_siblings(words)
     yield from _matrix_applied(node, words)
     yield from _counted_by_length(node, words)
+    yield from _default_written_out(node, words)
+    yield from _crossed_twins(node, words)
     yield from _twin_factor(node, words)
     yield from _twin_argument_changes(node, words)
     yield from _canvas_changes(node, words)
@@ -4314,7 +4389,7 @@ def _layout_and_type_changes(node):
             yield "reshape_back", f"{array}.reshape(-1, {ast.unparse(first)})", ""
     if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "astype" \
             and len(node.args) == 1 and (_dotted(node.args[0]) in _INTEGER_TYPES | {"int", "np.int_"}):
-        yield "astype_float", f"{ast.unparse(node.func.value)}.astype(np.float64)", ""
+        yield "astype_float", f"{_operand(node.func.value)}.astype(np.float64)", ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div)) and isinstance(node.left, ast.BinOp) \
             and isinstance(node.left.op, ast.FloorDiv):
         a, b, c = (ast.unparse(x) for x in (node.left.left, node.left.right, node.right))

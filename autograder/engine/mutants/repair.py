@@ -231,7 +231,13 @@ def _disconnects(before, after, helpers_changed=frozenset()) -> bool:
     changes) works around a step the student left out: ``before`` computes a value it never uses
     (`x_norm`, the rows built from `x`), the change leaves it unused, and either takes out of what the
     function returns a name that value reads (`inv(T) @ P` -> `P`: T then reaches nothing) or changes a
-    helper that computes one (T made the identity). The answers come right; the step is still missing."""
+    helper that computes one (T made the identity). The answers come right; the step is still missing.
+    So does a change after which a parameter the function used no longer reaches its answers."""
+    # A parameter whose value reached the answers and no longer does: the change makes the caller's
+    # argument irrelevant (a penalty `s` replaced by `block_size`, which happens to suit the inputs).
+    parameters = {a.arg for a in (*before.args.posonlyargs, *before.args.args, *before.args.kwonlyargs)}
+    if parameters & _live(before) - _live(after):
+        return True
     left, feeding = _left_out(before)
     if not left:
         return False

@@ -21,6 +21,21 @@ MISTAKES = {
             h, w = image.shape[:2]
             return cv2.warpPerspective(image, np.asarray(H, float).T, dsize or (w, h))
         """, ["h is transposed"]),
+    # the blind set 1202i's 08/01: each source pixel sent through H and copied to the nearest output pixel
+    "apply_homography mapping the source pixels forward": ("lab08.ex1", """
+        def apply_homography(image, H, dsize=None):
+            height, width = image.shape[:2]
+            out_w, out_h = dsize or (width, height)
+            ys, xs = np.mgrid[0:height, 0:width]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                target = transform_points(H, np.column_stack([xs.ravel(), ys.ravel()]).astype(np.float64))
+            target[~np.isfinite(target)] = -1e6
+            u, v = np.round(target[:, 0]).astype(np.int64), np.round(target[:, 1]).astype(np.int64)
+            keep = (u >= 0) & (u < out_w) & (v >= 0) & (v < out_h)
+            out = np.zeros((out_h, out_w) + image.shape[2:], dtype=image.dtype)
+            out[v[keep], u[keep]] = image[ys.ravel()[keep], xs.ravel()[keep]]
+            return out
+        """, ["the image is mapped forward", "holes"]),
     # ---------------------------------------------------------------- ex1
     "no perspective division": ("lab08.ex1", """
         def transform_points(H, pts):
@@ -774,6 +789,22 @@ MISTAKES = {
             levels = 4
             return _blend_multiband(img1, img2, mask, levels)
         """, ["levels is ignored", "sets `levels = 4`"]),
+    # the blind set 1202i's 08/08: the image pyramids built with the default's 4 levels, the mask's with levels
+    "blend_multiband building the image pyramids with 4 levels whatever levels says": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            a = np.asarray(img1, dtype=np.float32)
+            b = np.asarray(img2, dtype=np.float32)
+            weights = _gaussian_pyramid(np.clip(np.asarray(mask, dtype=np.float32), 0, 1), levels)
+            bands = []
+            for band_a, band_b, w in zip(_laplacian_pyramid(a, 4), _laplacian_pyramid(b, 4), weights):
+                if band_a.ndim == 3:
+                    w = w[..., None]
+                bands.append(w * band_a + (1 - w) * band_b)
+            result = bands[-1]
+            for band in reversed(bands[:-1]):
+                result = cv2.pyrUp(result, dstsize=(band.shape[1], band.shape[0])) + band
+            return np.clip(np.round(result), 0, 255).astype(np.uint8)
+        """, ["with the default levels=4 it gives the image back"]),
     "plain alpha blend": ("lab08.ext3", """
         def blend_multiband(img1, img2, mask, levels=4):
             m = np.asarray(mask, np.float64)

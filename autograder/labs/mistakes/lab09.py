@@ -165,6 +165,20 @@ MISTAKES = {
             K, dist, rms = _reference_calibrate(images, pattern_size, square_size)
             return K, np.ravel(dist)[:4], rms
         """, ["has 4 values", "without k3"]),
+    # the blind set 1202i's 09/03: the OpenCV tutorial's mean error returned as the rms
+    "calibration returning the tutorial's mean error as the rms": ("lab09.ext1", """
+        _reference_calibrate = calibrate
+        def calibrate(images, pattern_size, square_size):
+            K, dist, rms = _reference_calibrate(images, pattern_size, square_size)
+            corners = rms * np.ones((pattern_size[0] * pattern_size[1], 2)) / np.sqrt(2)
+            return K, dist, float(np.linalg.norm(corners) / len(corners))
+        """, ["tutorial's mean error", "not the rms reprojection error"]),
+    # the blind set 1202i's 09/04: P "normalised" by P[2, 3], 0 for a camera at the world origin
+    "project_onto_image with P divided by P[2, 3]": ("lab09.ex5", """
+        def project_onto_image(image, P, points):
+            pts = project(P / P[2, 3], points).reshape(-1, 2)
+            return draw_points(image, pts), pts
+        """, ["camera at the world origin", "nan for points in front of the camera"]),
     "K transposed": ("lab09.ex2", """
         def intrinsic_matrix(f, px, py):
             return np.array([[f, 0.0, 0.0], [0.0, f, 0.0], [px, py, 1.0]])

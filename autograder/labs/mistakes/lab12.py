@@ -546,6 +546,23 @@ MISTAKES = {
             costs[~np.isfinite(costs)] = np.inf
             return costs
         """, ["the disparity with the lowest ncc is kept"]),
+    # the blind set 1202i's 12/04: no guard for flat blocks, 0/0 = NaN wins np.argmin
+    "NCC without a guard for flat blocks": ("lab12.ext1", """
+        def _ncc_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            mean_l = _box_mean(left, block_size)
+            std_l = np.sqrt(np.maximum(_box_mean(left * left, block_size) - mean_l ** 2, 0.0))
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(min(max_disparity, width - 1) + 1):
+                shifted = _shift_right(right, d)
+                mean_r = _box_mean(shifted, block_size)
+                std_r = np.sqrt(np.maximum(_box_mean(shifted * shifted, block_size) - mean_r ** 2, 0.0))
+                covariance = _box_mean(left * shifted, block_size) - mean_l * mean_r
+                with np.errstate(invalid="ignore", divide="ignore"):
+                    costs[d] = -covariance / (std_l * std_r)
+                costs[d, :, :d] = np.inf
+            return costs
+        """, ["np.argmin takes nan as the lowest cost"]),
     "NCC divided by the variances": ("lab12.ext1", """
         def _ncc_volume(left, right, max_disparity, block_size):
             height, width = left.shape
