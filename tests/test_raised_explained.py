@@ -397,3 +397,43 @@ def test_numbers_worked_out_from_the_code_stay_small():
     assert _number(ast.parse("2 ** 40 ** 2", mode="eval").body, {}) is None
     assert _number(ast.parse("(2 ** 40) ** 64", mode="eval").body, {}) is None
     assert _number(ast.parse("width // 2 ** n", mode="eval").body, {"width": 5, "n": 3}) == 0
+
+
+def test_a_write_into_a_read_only_view_or_into_the_callers_array_is_named():
+    """"assignment destination is read-only": the view NumPy made (`S.diagonal()`, a name holding one)
+    or the caller's array (the grader's inputs are read-only) is named on the raising line; a write into
+    the function's own array says nothing of either."""
+    from autograder.engine.raised import INPUT_WRITTEN, READ_ONLY_VIEW
+
+    message = "assignment destination is read-only"
+    view = """
+        def f(sx, sy):
+            S = np.eye(3)
+            S.diagonal()[:2] = sx, sy
+            return S
+        """
+    named = """
+        def f(sx, sy):
+            S = np.eye(3)
+            d = np.diagonal(S)
+            d[:2] = sx, sy
+            return S
+        """
+    given = """
+        def f(points, s):
+            points /= s
+            return points
+        """
+    own = """
+        def f(points, s):
+            out = np.zeros(3)
+            out[0] = s
+            return out
+        """
+    form = explained(read_code(textwrap.dedent(view)), traceback_at(4), message, "f", (2.0, 3.0), {})
+    assert form.mistake == READ_ONLY_VIEW and "`S.diagonal()` (line 4)" in form.sentence
+    form = explained(read_code(textwrap.dedent(named)), traceback_at(5), message, "f", (2.0, 3.0), {})
+    assert form.mistake == READ_ONLY_VIEW and "`np.diagonal(S)`" in form.sentence
+    form = explained(read_code(textwrap.dedent(given)), traceback_at(3), message, "f", (np.ones((4, 2)), 2.0), {})
+    assert form.mistake == INPUT_WRITTEN and "`points` (line 3)" in form.sentence
+    assert explained(read_code(textwrap.dedent(own)), traceback_at(4), message, "f", (np.ones(3), 2.0), {}) is None

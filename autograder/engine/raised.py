@@ -142,6 +142,8 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
         return _singular_solved(fn, line)
     if _ZERO_DIVISION.search(message):
         return _zero_divisor(fn, line, given)
+    if _READ_ONLY.search(message):
+        return _read_only_written(fn, line, given)
     if _TOO_MANY.search(message) or _NOT_ENOUGH.search(message):
         return unpacked(code, fn, line, given, message)
     found = _NOT_ITERABLE.search(message)
@@ -300,6 +302,55 @@ def _zero_divisor(fn, line: int, given: dict) -> Form | None:
                                  "multiply first and divide last"), ROUNDED_TO_ZERO)
         return Form(measured(f"{said} ({_values(node.right, known)})"), ZERO_DIVISOR)
     return None
+
+
+_READ_ONLY = re.compile(r"(?:assignment destination|output array) is read-only")
+READ_ONLY_VIEW = from_code("a write into a read-only view (np.diagonal, np.broadcast_to give one)")
+INPUT_WRITTEN = from_code("a write into an array the caller gave (read-only here)")
+_VIEWS = ("diagonal", "broadcast_to", "broadcast_arrays")
+
+
+def _read_only_written(fn, line: int, given: dict) -> Form | None:
+    """The array written into on the raising line: a read-only view NumPy made (``S.diagonal()[:2] = ...``,
+    or a name assigned one above) or a parameter as the caller gave it (the grader's inputs are read-only,
+    so a function never changes its caller's arrays)."""
+    views = {}   # name -> the call that made it a view
+    for node in _own_nodes(fn):
+        if isinstance(node, ast.Assign) and node.lineno < line and len(node.targets) == 1 \
+                and isinstance(node.targets[0], ast.Name) and isinstance(node.value, ast.Call) \
+                and _path_end(node.value.func) in _VIEWS:
+            views[node.targets[0].id] = node.value
+    for node in _own_nodes(fn):
+        if not (isinstance(node, (ast.Assign, ast.AugAssign)) and node.lineno <= line <= getattr(node, "end_lineno", node.lineno)):
+            continue
+        for target in (node.targets if isinstance(node, ast.Assign) else [node.target]):
+            base = target
+            while isinstance(base, ast.Subscript):
+                base = base.value
+            if isinstance(base, ast.Call) and _path_end(base.func) in _VIEWS:
+                made = base
+            elif isinstance(base, ast.Name) and base.id in views:
+                made = views[base.id]
+            else:
+                made = None
+            if made is not None:
+                call = _short(ast.unparse(made), 40)
+                return Form(measured(f"your `{fn.name}` writes into `{call}` (line {line}), a read-only view NumPy "
+                                     f"returns: write into the array itself (`np.fill_diagonal`, an index such as "
+                                     f"`S[i, i] = ...`) or build it whole (`np.diag([...])`)"), READ_ONLY_VIEW)
+            # (an entry or slice written, `x[0] = ...`, or the whole array updated, `x /= s`)
+            written = target is not base or isinstance(node, ast.AugAssign)
+            if written and isinstance(base, ast.Name) and isinstance(given.get(base.id), np.ndarray):
+                return Form(measured(f"your `{fn.name}` writes into `{base.id}` (line {line}), the array the caller "
+                                     "gave, which is read-only here: a function must not change its caller's arrays; "
+                                     f"work on a copy (`{base.id} = {base.id}.copy()`, or `x = x / s` rather than "
+                                     "`x /= s`)"), INPUT_WRITTEN)
+    return None
+
+
+def _path_end(func) -> str:
+    """The last name of a called function (`diagonal` of `S.diagonal`, `broadcast_to` of `np.broadcast_to`)."""
+    return func.attr if isinstance(func, ast.Attribute) else func.id if isinstance(func, ast.Name) else ""
 
 
 def _values(node, known: dict) -> str:
