@@ -250,7 +250,8 @@ def rewritten(verdict, t):
     the opposite of) is dropped: instructors read labels in the overview and the review app too."""
     message, hint = said(t, str(verdict.message)), said(t, str(verdict.hint))
     mistake = verdict.mistake
-    if isinstance(mistake, str) and mistake and said(t, mistake) != mistake:
+    # (kept where what replaces it still says it first: a cause the code shows, added to the name)
+    if isinstance(mistake, str) and mistake and not said(t, mistake).startswith(mistake):
         mistake = ""
     if message == verdict.message and hint == verdict.hint and mistake == verdict.mistake:
         return verdict

@@ -18,11 +18,11 @@ from fixtures.images import photo
 from ..engine import conventions
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, Verdict, passed
-from ..engine.claims import calls_any, guard, measured
+from ..engine.claims import calls_any, from_code, guard, measured
 from ..engine.compare import format_arrays_apart
 from ..engine.judges import (Probe, call_probe, digits_apart, judge_matrix, judge_parameter_used, judge_warp, reads,
                       name_mistake, warp_probe)
-from ..engine.hints import Predicate, code_of, expr, mentions
+from ..engine.hints import Predicate, calls, code_of, expr, mentions, uses_attr
 from ..engine.registry import Lab
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
@@ -65,6 +65,22 @@ guard(truth.INVERSE_MAP, asks=~(calls_any("np.linalg.inv", "np.linalg.pinv", "cv
       instead="the inverse map is applied (A maps source pixels to output pixels); your code neither inverts "
               "A nor passes cv2.WARP_INVERSE_MAP: look at how each output pixel is looked up (reading the "
               "source at A x applies the inverse of A)")
+
+# skimage.transform.warp's transform is the inverse map (each output pixel's source), where OpenCV's
+# warps take the forward one: a forward transform passed to it moves the image the other way. Every
+# name of an image moved the other way is told so to code that warps with it and never inverts.
+SKIMAGE_FORWARD = (calls("skimage.transform.warp") & ~uses_attr(".inverse")
+                   & ~calls_any("np.linalg.inv", "np.linalg.pinv", "cv2.invertAffineTransform")).saying(
+    "warps with skimage.transform.warp and never inverts the transform")
+SKIMAGE_INVERSE_MAP = from_code("your code warps with skimage.transform.warp, whose transform maps each output pixel to the "
+                       "input pixel it samples (the inverse map), where the lab's matrix maps input to output: "
+                       "pass tform.inverse (or the inverse matrix)")
+OTHER_WAY = sorted({name for mistakes in (truth.translation_mistakes(3.0, 4.0), truth.rotation_mistakes(30.0, (5.0, 7.0)),
+                                           truth.scaling_mistakes(2.0, 3.0), truth.shear_mistakes(0.3))
+                     for name in mistakes if "opposite way" in name or "inverted" in name or "inverse map" in name})
+for _other_way in OTHER_WAY:
+    guard(_other_way, asks=SKIMAGE_FORWARD, instead=f"{_other_way}: {SKIMAGE_INVERSE_MAP}")
+
 
 # The confirmation probes' inputs (see autograder.engine.judges.Probe): values no usual mistake leaves
 # unchanged -- fractional, of both signs, x apart from y, an angle far from 0 and 90 degrees, a

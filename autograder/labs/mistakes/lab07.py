@@ -75,6 +75,14 @@ MISTAKES = {
             out[:rows, :cols] = np.clip(np.round(big[:rows, :cols]), 0, 255).astype(image.dtype)
             return out
         """, ["to `... channel_axis=-1 if image.ndim == 3 else None)`"]),
+    # the blind set 1202i's 07/04: skimage's warp takes the inverse map, given the forward one
+    "scale through skimage.transform.warp with the forward transform": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            from skimage import transform
+            tform = transform.AffineTransform(scale=(sx, sy))
+            out = transform.warp(image, tform, order=1, mode="constant", cval=0, preserve_range=True)
+            return np.clip(np.round(out), 0, 255).astype(image.dtype)
+        """, ["the scale is inverted", "tform.inverse"]),
     "scaling_matrix of the factors' absolute values": ("lab07.ex3", """
         def scaling_matrix(sx, sy):
             return np.diag([abs(float(sx)), abs(float(sy)), 1.0])
