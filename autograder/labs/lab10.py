@@ -1827,7 +1827,10 @@ def _track_rows_match(rows, candidate, poses, pattern, square) -> bool:
             return False
         R, tv = pose
         angle, shift, _ = truth.pose_error(row[:3], row[3:], R, tv, pattern, square)
-        if angle > ANGLE_TOLERANCE or shift > TRANSLATION_TOLERANCE * np.linalg.norm(tv):
+        # (a candidate's translation may be 0 -- a motion since the first frame --: the board's own distance
+        # is the scale then)
+        distance = max(np.linalg.norm(tv), 0.0 if true_pose is None else np.linalg.norm(true_pose[1]))
+        if angle > ANGLE_TOLERANCE or shift > TRANSLATION_TOLERANCE * distance:
             return False
         differs = differs or true_pose is None or truth.rotation_angle_deg(R, true_pose[0]) > ANGLE_TOLERANCE
     return differs
@@ -1880,6 +1883,11 @@ def track_check(t):
                        failure.mistake)
 
 
+RELATIVE_TO_FIRST = measured("each row is the pose relative to the first frame with a board (its row is the identity, "
+                     "R = I and t = 0): every row must be the board's own pose in that frame's camera, as "
+                     "estimate_pose (cv2.solvePnP) gives it, not the motion since the first frame")
+
+
 def judge_track(t: Trial, frames, poses, dist=None, what=None):
     """track_pose on ``frames`` (with ``dist`` when given) against the true ``poses``."""
     pattern, square, K = truth.POSE_PATTERN, truth.POSE_SQUARE, truth.POSE_K
@@ -1907,6 +1915,12 @@ def judge_track(t: Trial, frames, poses, dist=None, what=None):
             tuple(None if p is None else (p[0].T, -p[0].T @ p[1]) for p in poses),
     }
     found = [p for p in poses if p is not None]
+    if len(found) > 1:   # (a camera's motion since the first frame, in either frame: not the board's pose)
+        R0, t0 = found[0]
+        shifted[measured(RELATIVE_TO_FIRST)] = tuple(None if p is None else (p[0] @ R0.T, p[1] - p[0] @ R0.T @ t0)
+                                                     for p in poses)
+        shifted[measured(RELATIVE_TO_FIRST + " (composed the other way, R0^T R)")] = tuple(
+            None if p is None else (R0.T @ p[0], R0.T @ (p[1] - t0)) for p in poses)
     if tuple(found) + (None,) * (len(poses) - len(found)) != tuple(poses):
         # (the rows kept in a list of the found poses, the frames without a board appended after the loop)
         shifted[measured("the rows of the frames with a board come first, in their order, and the NaN rows of "

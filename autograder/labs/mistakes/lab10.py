@@ -257,6 +257,22 @@ MISTAKES = {
                     lost += 1
             return np.array(found + [np.full(6, np.nan)] * lost, dtype=np.float64).reshape(-1, 6)
         """, ["the nan rows of the frames without one last"]),
+    # the blind set 1202i's 10/08: each pose relative to the first frame's (the camera's motion)
+    "track_pose returning the motion since the first frame": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            poses = np.full((len(frames), 6), np.nan)
+            R0 = t0 = None
+            for i, frame in enumerate(frames):
+                rvec, tvec, _ = estimate_pose(frame, pattern_size, square_size, K, dist)
+                if np.isnan(rvec).any():
+                    continue
+                R, _ = cv2.Rodrigues(rvec)
+                if R0 is None:
+                    R0, t0 = R, tvec
+                poses[i, :3] = cv2.Rodrigues(R @ R0.T)[0].ravel()
+                poses[i, 3:] = tvec - R @ R0.T @ t0
+            return poses
+        """, ["relative to the first frame"]),
     "track_pose stopping at the first frame without a board": ("lab10.ext3", """
         def track_pose(frames, pattern_size, square_size, K, dist=None):
             rows = []
