@@ -262,6 +262,20 @@ def test_a_default_written_out_a_count_for_a_share_and_twin_names_crossed_in_one
     assert not reference & {"default_written", "fraction", "crossed"}
 
 
+def test_a_loop_restarting_from_a_fixed_item_of_its_input_is_offered_the_running_result():
+    """`panorama = images[0]`, then `panorama = stitch(images[0], image)` each time round: the running
+    result where the loop restarts from the first item (a stale name: only the first and last stitched)."""
+    source = textwrap.dedent("""
+        def graded(images):
+            panorama = images[0]
+            for image in images[1:]:
+                panorama = stitch(images[0], image)
+            return panorama
+    """)
+    student = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
+    assert ("carry", "panorama") in student
+
+
 def test_two_entries_of_a_sequence_written_in_each_others_place():
     """A size given as (rows, cols), a matrix row's entries, names assigned the other way round: every
     pair of a short tuple or list is exchanged (the student's code only); a stacking call's pieces are

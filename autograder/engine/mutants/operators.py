@@ -3289,15 +3289,20 @@ _MAGNITUDES = {"abs", "absolute", "fabs", "norm", "square"}
 def _restarted(node, parents) -> str | None:
     """The running result a loop's step starts from the input again instead of (`out = cv2.line(image.copy(),
     ...)` each time round, where `out` was made before the loop and belongs there): its name, or None.
-    ``node``: a name read (`image`) or a copy of one (`image.copy()`, `np.copy(image)`)."""
+    ``node``: a name read (`image`), a copy of one (`image.copy()`, `np.copy(image)`) or a fixed item of
+    one (`images[0]`)."""
     copied = isinstance(node, ast.Call) and not node.keywords and (
         (isinstance(node.func, ast.Attribute) and node.func.attr == "copy" and not node.args
          and isinstance(node.func.value, ast.Name))
         or (_dotted(node.func) in ("np.copy", "numpy.copy") and len(node.args) == 1 and isinstance(node.args[0], ast.Name)))
-    if not (copied or (isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)
-                       and not isinstance(parents.get(id(node), (None,))[0], ast.Attribute))):
+    # (or an item of one: `stitch(images[0], image)` after `panorama = images[0]`)
+    item = isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and isinstance(node.ctx, ast.Load) \
+        and isinstance(node.slice, ast.Constant)
+    if not (copied or item or (isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)
+                               and not isinstance(parents.get(id(node), (None,))[0], ast.Attribute))):
         return None
-    source = node if isinstance(node, ast.Name) else node.func.value if isinstance(node.func, ast.Attribute) else node.args[0]
+    source = node if isinstance(node, ast.Name) else node.value if item else \
+        node.func.value if isinstance(node.func, ast.Attribute) else node.args[0]
     statement, fn = node, None
     while id(statement) in parents and not isinstance(statement, ast.stmt):
         statement = parents[id(statement)][0]
