@@ -272,7 +272,7 @@ def test_a_loop_restarting_from_a_fixed_item_of_its_input_is_offered_the_running
                 panorama = stitch(images[0], image)
             return panorama
     """)
-    student = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
+    student = [(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]]
     assert ("carry", "panorama") in student
 
 
