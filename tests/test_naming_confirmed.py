@@ -352,7 +352,8 @@ DIRECT_EVIDENCE = {
                          "rectify rectifies exactly (probes of its own)",
     "judge_pipeline_F": "F transposed, or K^-T F K^-1, is right over thousands of true correspondences",
     "judge_track": "row by row over the sequence's frames, the rows are the poses of the frame before "
-                   "or after, or inverted, or one frame's everywhere (each frame an input of its own)",
+                   "or after, or inverted, or one frame's everywhere, or relative to the first frame's (each frame an "
+                   "input of its own)",
     "name_pattern_mistake": "the patterns equal the mistake's bit for bit, and again at PATTERN_PROBE "
                             "when few columns tell them apart",
     "judge_dlt": "with t_z = 0, P[2, 3] is not 0, and the DLT is right on a camera with t_z != 0 (probe)",
@@ -395,6 +396,9 @@ DIRECT_EVIDENCE = {
     "aperture_short_focal": "each point's farthest ray lands (f / Z) / (1 + f / Z) radii out, for each of six "
                             "points' own depths (measured: no other slip gives that ratio at every depth)",
     "colours_lost": "the result's three channels are equal at every pixel where an input's differ (measured)",
+    "ncc_flat_border": "more than half the pixels changed by the border take exactly the first disparity whose "
+                       "right block lies wholly in it, where np.argmin over NaN costs lands (measured: a guard, an "
+                       "epsilon or a cost not normalised lands elsewhere)",
 }
 CONFIRMING = {"name_mistake", "confirm", "judge_matrix", "judge_warp", "judge_points", "judge_projective",
               "name_second_warp_mistake", "name_matching_mistake", "probe", "_disc_ratio_on_probe"}

@@ -2087,13 +2087,17 @@ def ncc_flat_border(t):
     at_first_flat = float((np.abs(np.asarray(got, np.float64) - first_flat) < 0.5)[changed & reach].mean())
     message = (f"{what}: {share:.0%} of the textured pixels whose search range reaches the black border get "
                "another disparity than without the border (their own blocks and true matches are "
-               f"unchanged; at most {FLAT_CHANGED:.0%} allowed). A flat block has no texture: its NCC is 0/0")
+               f"unchanged; at most {FLAT_CHANGED:.0%} allowed)")
     if at_first_flat > 0.5:
-        t.fail(measured(f"{message}, and {at_first_flat:.0%} of those pixels take the first disparity whose right "
-                        f"block lies wholly in the border: it looks like {FLAT_NAN}. Give flat blocks a score "
-                        "of 0 (np.divide(cov, std_l * std_r, out=np.zeros_like(cov), where=std_l * std_r > 1e-6), "
-                        "or a small epsilon in the denominator)."), mistake=FLAT_NAN)
-    t.fail(measured(f"{message}, which must lose to a real match, as a score of 0 does."))
+        t.fail(measured(f"{message}. A flat block has no texture: its NCC is 0/0, and {at_first_flat:.0%} of those "
+                        "pixels take the first disparity whose right block lies wholly in the border: it looks like "
+                        f"{FLAT_NAN}. Give flat blocks a score of 0 (np.divide(cov, std_l * std_r, "
+                        "out=np.zeros_like(cov), where=std_l * std_r > 1e-6), or a small epsilon in the "
+                        "denominator)."), mistake=FLAT_NAN)
+    # (an NCC not normalised scores the blocks half in the border highest: that is its own mistake)
+    name_ncc_normalisation(t, what)
+    t.fail(measured(f"{message}: the blocks in and at the border, with little or no texture, win over the real "
+                    "matches."))
 
 
 # ================================================================== ex5 dynamic programming
