@@ -2741,11 +2741,7 @@ def _exchanged_sides(node, words):
     right = {n.id for n in ast.walk(node.comparators[0]) if isinstance(n, ast.Name)}
     for a in sorted(left - right):
         for b in sorted((right - left) & words.zipped.get(a, set())):
-            exchanged = copy.deepcopy(node)
-            for name in ast.walk(exchanged):
-                if isinstance(name, ast.Name) and name.id in (a, b):
-                    name.id = b if name.id == a else a
-            yield "exchange", ast.unparse(exchanged), ""
+            yield "exchange", _names_exchanged(node, a, b), ""
 
 
 def _exchanged_in_product(node, parent):
@@ -3932,11 +3928,16 @@ def _crossed_twins(node, words):
               for n in ast.walk(part)}
     if any(isinstance(n, ast.Name) and n.id in (a, b) and id(n) in inside for n in ast.walk(node)):
         return
-    crossed = copy.deepcopy(node)
-    for n in ast.walk(crossed):
-        if isinstance(n, ast.Name) and n.id in (a, b):
-            n.id = b if n.id == a else a
-    yield "crossed", ast.unparse(crossed), ""
+    yield "crossed", _names_exchanged(node, a, b), ""
+
+
+def _names_exchanged(node, a: str, b: str) -> str:
+    """``node``'s code with every name ``a`` read as ``b`` and the other way round."""
+    exchanged = copy.deepcopy(node)
+    for name in ast.walk(exchanged):
+        if isinstance(name, ast.Name) and name.id in (a, b):
+            name.id = b if name.id == a else a
+    return ast.unparse(exchanged)
 
 
 def _default_written_out(node, words):
