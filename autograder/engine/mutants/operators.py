@@ -2488,11 +2488,13 @@ def _student_changes(node, parent, parents):
     if isinstance(node, ast.BinOp) and isinstance(node.op, _BITWISE) \
             and isinstance(node.left, ast.BinOp) and isinstance(node.left.op, _BINDS_BEFORE_BITS):
         yield "regroup", "last", ""      # `a + b << 2` is `(a + b) << 2`: `a + (b << 2)` was meant
+    # (and `u * (2 ** n / w)`: the factor rounded first, so an exact integer u * 2 ** n / w comes out a hair
+    # below it and its floor one less)
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and isinstance(node.right, ast.BinOp) \
-            and isinstance(node.right.op, ast.FloorDiv):
+            and isinstance(node.right.op, (ast.FloorDiv, ast.Div)):
         yield "regroup", "first", ""     # `u * (2 ** n // w)` for `u * 2 ** n // w`: the floor taken first
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and isinstance(node.left, ast.BinOp) \
-            and isinstance(node.left.op, ast.FloorDiv):
+            and isinstance(node.left.op, (ast.FloorDiv, ast.Div)):
         yield "regroup", "floor_last", ""   # `(2 ** n // w) * u` for `2 ** n * u // w`
     if isinstance(parent, ast.For) and parent.iter is node:
         yield from _loop_order_changes(node)
