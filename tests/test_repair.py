@@ -276,6 +276,33 @@ def test_a_loop_restarting_from_a_fixed_item_of_its_input_is_offered_the_running
     assert ("carry", "panorama") in student
 
 
+def test_a_fixed_item_read_in_a_loop_over_its_items_and_a_factor_divided_first():
+    """`disparity[-1]` in a backtracking loop over x that writes `disparity[x - 1]`: the column just chosen
+    (`disparity[x]`) or the loop's other index; `u * (n / w)` (a rounded factor) regrouped to divide last.
+    Student-only; a fixed item outside a loop, or of an array the loop never indexes by its variable, is not."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(energy, ramp, u, n, w):
+            disparity = np.empty(energy.shape[:2], dtype=int)
+            disparity[-1] = np.argmin(energy[-1], axis=1)
+            for x in range(len(energy) - 1, 0, -1):
+                jump = ramp[disparity[-1]] + energy[0]
+                disparity[x - 1] = np.argmin(energy[x - 1] + jump, axis=1)
+            return disparity, (u * (n / w)).astype(int)
+    """)
+    items = [m for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"] if m.operator == "loop_item"]
+    # (energy[0] in the loop too: the loop indexes energy by x as well)
+    assert {m.edits[0][3] for m in items} == {"disparity[x]", "disparity[x - 1]", "energy[x]", "energy[x - 1]"}
+    assert {m.line for m in items} == {8}   # (not the items read before the loop)
+    regrouped = [m for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"] if m.operator == "regroup"]
+    tree = ast.parse(source)
+    made = {ast.unparse(repair._MAKE["regroup"](list(ast.walk(tree.body[1]))[m.edits[0][1]], m.edits[0][3]))
+            for m in regrouped}
+    assert "u * n / w" in made
+    assert "loop_item" not in {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
+
+
 def test_two_entries_of_a_sequence_written_in_each_others_place():
     """A size given as (rows, cols), a matrix row's entries, names assigned the other way round: every
     pair of a short tuple or list is exchanged (the student's code only); a stacking call's pieces are

@@ -152,7 +152,8 @@ OPERATORS = {
     "counted": ("count", "len", "fixed", "number"),   # for k in range(3) -> range(len(images))
     "default_written": ("default", "fixed", "parameter", "ignored"),   # _pyramid(a, 4) -> _pyramid(a, levels)
     "crossed": ("exchang", "swap", "other way", "x and y"),   # beta * cy + a * cx -> beta * cx + a * cy
-    "fraction": ("ratio", "fraction", "share", "count"),   # w = best.sum() -> best.mean(): a count where a share belongs
+    "fraction": ("ratio", "fraction", "share", "count"),
+    "loop_item": ("loop", "index", "each", "last", "first"),   # d[-1] in a loop over x beside d[x - 1] -> d[x]   # w = best.sum() -> best.mean(): a count where a share belongs
     "homogeneous_one": ("homogeneous", "1", "third", "depth"),
     "moved_term": ("x", "y", "offset", "other coordinate", "twin"),   # (q[0], q[1] + w1) -> (q[0] + w1, q[1])   # np.column_stack([x, y, Z]) -> [x, y, np.ones_like(Z)]
     "neutral_argument": ("scale", "1", "argument", "zoom"),   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)
@@ -1131,7 +1132,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
-                                              "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "factor_transposed",
+                                              "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
@@ -2199,6 +2200,35 @@ def _operand(node) -> str:
     return text if isinstance(node, (ast.Name, ast.Attribute, ast.Subscript, ast.Call)) else f"({text})"
 
 
+def _fixed_index(node) -> bool:
+    """`-1`, `0`: an index written as a number."""
+    return (isinstance(node, ast.Constant) and type(node.value) is int) or (
+        isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and isinstance(node.operand, ast.Constant)
+        and type(node.operand.value) is int)
+
+
+def _loop_item_changes(node, parents):
+    """A fixed item read in a loop where the loop's own item belongs: `disparity[-1]` inside `for x in ...`
+    whose body writes `disparity[x - 1]` (the last column's value each time round, where the column just
+    chosen belongs). Offered: the array at the loop variable, and at each index the loop gives it elsewhere."""
+    if not (isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name)
+            and _fixed_index(node.slice)):
+        return
+    loop = node
+    while id(loop) in parents and not isinstance(loop, (ast.For, ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+        loop = parents[id(loop)][0]
+    if not (isinstance(loop, ast.For) and isinstance(loop.target, ast.Name)):
+        return
+    variable, array = loop.target.id, node.value.id
+    indices = {ast.unparse(n.slice) for statement in loop.body for n in ast.walk(statement)
+               if isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and n.value.id == array
+               and any(isinstance(m, ast.Name) and m.id == variable for m in ast.walk(n.slice))}
+    if not indices:
+        return
+    for index in sorted(indices | {variable}):
+        yield "loop_item", f"{array}[{index}]", ""
+
+
 def _fraction_changes(node):
     """A count where a share belongs: `w = inliers.sum()` for `inliers.mean()` (RANSAC's inlier ratio),
     `np.sum(m)` for `np.mean(m)`, `np.count_nonzero(m)` for it divided by `m.size`. Whole sums only
@@ -2227,6 +2257,7 @@ def _student_changes(node, parent, parents):
         yield "reverse_back", f"{_operand(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
     yield from _fraction_changes(node)
+    yield from _loop_item_changes(node, parents)
     if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.warpAffine", "cv.warpAffine") and len(node.args) >= 2 \
             and isinstance(node.args[1], ast.Subscript) and isinstance(node.args[1].slice, ast.Slice) \
             and node.args[1].slice.lower is None and isinstance(node.args[1].slice.upper, ast.Constant) \
