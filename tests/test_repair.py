@@ -303,6 +303,24 @@ def test_a_fixed_item_read_in_a_loop_over_its_items_and_a_factor_divided_first()
     assert "loop_item" not in {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
 
 
+def test_a_ufuncs_output_buffer_made_as_a_copy_of_its_data_is_offered_zeros():
+    """`depth = d.copy()` then `np.divide(fb, d, out=depth, where=ok)`: where ok is false the buffer keeps d;
+    a buffer never given as a masked ufunc's out= is left alone."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(disparity, fb):
+            d = np.asarray(disparity, dtype=np.float64)
+            depth = d.copy()
+            kept = d.copy()
+            np.divide(fb, d, out=depth, where=d > 0)
+            return depth, kept
+    """)
+    made = [(m.line, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+            if m.operator == "initial"]
+    assert made == [(6, "np.zeros_like(d, dtype=np.float64)")]
+
+
 def test_two_entries_of_a_sequence_written_in_each_others_place():
     """A size given as (rows, cols), a matrix row's entries, names assigned the other way round: every
     pair of a short tuple or list is exchanged (the student's code only); a stacking call's pieces are

@@ -4030,6 +4030,7 @@ def _sibling_changes(node, words):
     yield from _canvas_changes(node, words)
     yield from _per_item_changes(node, words)
     yield from _initial_changes(node, words)
+    yield from _out_buffer_changes(node, words)
     yield from _unused_parameter_changes(node, _parent_of(node, words), words)
     if isinstance(node, (ast.Tuple, ast.List)) and isinstance(node.ctx, ast.Load) and 2 <= len(node.elts) <= 4:
         for position, text in _twin_steps(node.elts):
@@ -4389,6 +4390,27 @@ def _raw_beside_derived(node, words):
         if form in forms_beside and name != node.id:
             yield "derived_name", name, ""
             return
+
+
+def _out_buffer_changes(node, words):
+    """A ufunc's output buffer made as a copy of its data (`depth = d.copy()` for `np.divide(fb, d,
+    out=depth, where=ok)`): where the mask is false the buffer keeps the data, where 0 belongs."""
+    copied = isinstance(node, ast.Call) and (
+        (isinstance(node.func, ast.Attribute) and node.func.attr in ("copy", "astype"))
+        or _dotted(node.func) in ("np.copy", "np.array", "np.asarray", "numpy.copy", "numpy.array"))
+    if not copied:
+        return
+    if not hasattr(words, "masked_outputs"):   # (read once per def: the names given as out= beside a where=)
+        words.masked_outputs = {k.value.id for c in ast.walk(words.fn) if isinstance(c, ast.Call)
+                                and any(k.arg == "where" for k in c.keywords)
+                                for k in c.keywords if k.arg == "out" and isinstance(k.value, ast.Name)}
+        words.allocated_into = getattr(words, "allocated_into", None) or {
+            id(a.value): a.targets[0].id for a in ast.walk(words.fn) if isinstance(a, ast.Assign)
+            and len(a.targets) == 1 and isinstance(a.targets[0], ast.Name)}
+    if words.allocated_into.get(id(node)) in words.masked_outputs:
+        data = node.func.value if isinstance(node.func, ast.Attribute) else node.args[0] if node.args else None
+        if data is not None:
+            yield "initial", f"np.zeros_like({ast.unparse(data)}, dtype=np.float64)", ""
 
 
 def _initial_changes(node, words):
