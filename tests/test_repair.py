@@ -321,6 +321,27 @@ def test_a_ufuncs_output_buffer_made_as_a_copy_of_its_data_is_offered_zeros():
     assert made == [(6, "np.zeros_like(d, dtype=np.float64)")]
 
 
+def test_an_angle_conversion_upside_down_and_a_list_started_with_the_first_items_result():
+    """`a * 180 / np.pi` where `a * np.pi / 180` belongs (the factor upside down, one change of the whole
+    product, not of its inner half); `views = [f(X, fs[0])]` then `for f in fs: views.append(f(X, f))` (the
+    first item twice): the list started empty. Student-only."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(angle_deg, X, fs):
+            a = angle_deg * 180.0 / np.pi
+            views = [project(X, fs[0])]
+            for f in fs:
+                views.append(project(X, f))
+            kept = [project(X, fs[0])]
+            return np.cos(a), views, kept
+    """)
+    student = [(m.operator, m.line, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]]
+    assert [c for c in student if c[0] == "conversion_inverted"] == [("conversion_inverted", 5, "angle_deg * np.pi / 180.0")]
+    assert [c for c in student if c[0] == "initial"] == [("initial", 6, "[]")]   # (not `kept`: no loop appends to it)
+    assert not {"conversion_inverted", "initial"} & {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
+
+
 def test_two_entries_of_a_sequence_written_in_each_others_place():
     """A size given as (rows, cols), a matrix row's entries, names assigned the other way round: every
     pair of a short tuple or list is exchanged (the student's code only); a stacking call's pieces are

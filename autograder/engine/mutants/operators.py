@@ -153,7 +153,8 @@ OPERATORS = {
     "default_written": ("default", "fixed", "parameter", "ignored"),   # _pyramid(a, 4) -> _pyramid(a, levels)
     "crossed": ("exchang", "swap", "other way", "x and y"),   # beta * cy + a * cx -> beta * cx + a * cy
     "fraction": ("ratio", "fraction", "share", "count"),
-    "loop_item": ("loop", "index", "each", "last", "first"),   # d[-1] in a loop over x beside d[x - 1] -> d[x]   # w = best.sum() -> best.mean(): a count where a share belongs
+    "loop_item": ("loop", "index", "each", "last", "first"),
+    "conversion_inverted": ("degree", "radian", "180", "pi"),   # a * 180 / np.pi -> a * np.pi / 180   # d[-1] in a loop over x beside d[x - 1] -> d[x]   # w = best.sum() -> best.mean(): a count where a share belongs
     "homogeneous_one": ("homogeneous", "1", "third", "depth"),
     "moved_term": ("x", "y", "offset", "other coordinate", "twin"),   # (q[0], q[1] + w1) -> (q[0] + w1, q[1])   # np.column_stack([x, y, Z]) -> [x, y, np.ones_like(Z)]
     "neutral_argument": ("scale", "1", "argument", "zoom"),   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)
@@ -1132,7 +1133,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
-                                              "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "factor_transposed",
+                                              "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
@@ -2200,6 +2201,28 @@ def _operand(node) -> str:
     return text if isinstance(node, (ast.Name, ast.Attribute, ast.Subscript, ast.Call)) else f"({text})"
 
 
+def _conversion_inverted(node, parent):
+    """An angle converted with the factor upside down, written out: `a * 180 / np.pi` where `a * np.pi /
+    180` belongs (or the other way round): the 180 and the pi of one product exchanged. The outermost
+    product holding both only."""
+    if not (isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div))) \
+            or (isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Mult, ast.Div))):
+        return
+    hundred = [n for n in ast.walk(node) if isinstance(n, ast.Constant) and type(n.value) in (int, float) and n.value == 180]
+    pi = [n for n in ast.walk(node) if isinstance(n, ast.Attribute) and n.attr == "pi"
+          and _dotted(n) in ("np.pi", "numpy.pi", "math.pi")]
+    if len(hundred) != 1 or len(pi) != 1:
+        return
+    swapped = copy.deepcopy(node)
+    for n in ast.walk(swapped):
+        for field, child in ast.iter_fields(n):
+            if isinstance(child, ast.Constant) and type(child.value) in (int, float) and child.value == 180:
+                setattr(n, field, _name(_dotted(pi[0])))
+            elif isinstance(child, ast.Attribute) and child.attr == "pi" and _dotted(child) == _dotted(pi[0]):
+                setattr(n, field, ast.Constant(hundred[0].value))
+    yield "conversion_inverted", ast.unparse(swapped), ""
+
+
 def _fixed_index(node) -> bool:
     """`-1`, `0`: an index written as a number."""
     return (isinstance(node, ast.Constant) and type(node.value) is int) or (
@@ -2258,6 +2281,7 @@ def _student_changes(node, parent, parents):
     yield from _series_powers(node, parent)
     yield from _fraction_changes(node)
     yield from _loop_item_changes(node, parents)
+    yield from _conversion_inverted(node, parent)
     if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.warpAffine", "cv.warpAffine") and len(node.args) >= 2 \
             and isinstance(node.args[1], ast.Subscript) and isinstance(node.args[1].slice, ast.Slice) \
             and node.args[1].slice.lower is None and isinstance(node.args[1].slice.upper, ast.Constant) \
@@ -4031,6 +4055,7 @@ def _sibling_changes(node, words):
     yield from _per_item_changes(node, words)
     yield from _initial_changes(node, words)
     yield from _out_buffer_changes(node, words)
+    yield from _started_with_an_item(node, words)
     yield from _unused_parameter_changes(node, _parent_of(node, words), words)
     if isinstance(node, (ast.Tuple, ast.List)) and isinstance(node.ctx, ast.Load) and 2 <= len(node.elts) <= 4:
         for position, text in _twin_steps(node.elts):
@@ -4389,6 +4414,27 @@ def _raw_beside_derived(node, words):
     for name, form in mine:
         if form in forms_beside and name != node.id:
             yield "derived_name", name, ""
+            return
+
+
+def _started_with_an_item(node, words):
+    """A list started with the first item's result where a loop over every item appends it too
+    (`views = [project(X, fs[0])]`, then `for f in fs: views.append(project(X, f))`): the first item
+    twice. Offered: the list started empty."""
+    if not (isinstance(node, ast.List) and len(node.elts) == 1 and isinstance(node.elts[0], ast.Call)):
+        return
+    parent = _parent_of(node, words)
+    if not (isinstance(parent, ast.Assign) and parent.value is node and len(parent.targets) == 1
+            and isinstance(parent.targets[0], ast.Name)):
+        return
+    name, called = parent.targets[0].id, _dotted(node.elts[0].func)
+    for loop in ast.walk(words.fn):
+        if isinstance(loop, ast.For) and loop.lineno > parent.lineno and any(
+                isinstance(c, ast.Call) and isinstance(c.func, ast.Attribute) and c.func.attr == "append"
+                and isinstance(c.func.value, ast.Name) and c.func.value.id == name and c.args
+                and isinstance(c.args[0], ast.Call) and _dotted(c.args[0].func) == called
+                for statement in loop.body for c in ast.walk(statement)):
+            yield "initial", "[]", ""
             return
 
 
@@ -5386,6 +5432,13 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
         others += [(other, f"`{other}`") for other in sorted(words.zipped.get(node.id, ())) if other not in listed]
         # (a loop variable nothing reads, of a loop on this line or above it: tried first)
         unread = {name for at in words.loops_up_to(line) for name in words.unread_loop_names[at]} - {node.id}
+        # (and a local assigned above and never read anywhere: `n1, T1 = normalise(p1)` with the rows built
+        # from p1 -- the value made for this use, left out of it)
+        if not hasattr(words, "unread_locals"):
+            loaded = {n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+            words.unread_locals = {name for name in words.definitions if name not in loaded and not name.startswith("_")}
+        unread |= {name for name in words.unread_locals if name != node.id
+                   and any(at < line for at, _, _ in words.definitions[name])}
         listed = {other for other, _ in others}
         others += [(other, f"`{other}`") for other in sorted(unread) if other not in listed]
     # Two names told alike (`img2`, and its float copy told as `img2` too): only the one of the

@@ -169,11 +169,13 @@ class Repair:
             makes = f"makes `{self.function}` pass this check, " + (
                 "and the grading's other checks of it" if self.checked == "checks" else
                 f"and its answers on the {self.inputs} inputs tried are no farther from the expected ones")
-        if len(self.fixes) == 1:
-            return f"{head}: {self.fixes[0].told(self.function)} {makes}, " \
+        # (two operators may make the same change: it is told once)
+        told = list(dict.fromkeys(fix.told(self.function) for fix in self.fixes))
+        if len(told) == 1:
+            return f"{head}: {told[0]} {makes}, " \
                    + (self.fixes[0].likely if self.complete
                       else "so the mistake may be there (other changes were not all tried in the time)")
-        listed = "; ".join(fix.told(self.function) for fix in self.fixes)
+        listed = "; ".join(told)
         return f"{head}: each of these {makes}, so the mistake is likely at one " \
                f"of them: {listed}"
 
@@ -221,6 +223,17 @@ def _left_out(fn) -> tuple[set, set]:
             and not a.targets[0].id.startswith("_")}
     feeding = {n.id for a in assignments if a.targets[0].id in left
                for n in ast.walk(a.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    # A step made of one call's results unpacked (`n1, T1 = normalise(p1)`): the unused result is left out,
+    # its siblings are the same step's (T1 is n1's transform: dropping T1 downstream works round n1 unused).
+    for a in ast.walk(fn):
+        if isinstance(a, ast.Assign) and len(a.targets) == 1 and isinstance(a.targets[0], (ast.Tuple, ast.List)) \
+                and all(isinstance(e, ast.Name) for e in a.targets[0].elts) and isinstance(a.value, ast.Call):
+            names = [e.id for e in a.targets[0].elts]
+            unused = {n for n in names if n not in loaded and not n.startswith("_")}
+            if unused and len(unused) < len(names):
+                left |= unused
+                feeding |= set(names) - unused
+                feeding |= {n.id for n in ast.walk(a.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
     helpers = {_dotted_call(c) for a in assignments if a.targets[0].id in feeding | left
                for c in ast.walk(a.value) if isinstance(c, ast.Call)}
     return left, feeding | helpers
