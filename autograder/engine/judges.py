@@ -645,9 +645,13 @@ def same_informative_result(first, second) -> bool:
 
 
 def reads(name: str) -> Predicate:
-    """The value of the name ``name`` read (``ast.Load``) somewhere: a parameter used, whatever
-    becomes of its value (``k = 5`` before it still reads ``k`` afterwards)."""
+    """The parameter ``name`` read (``ast.Load``) in a function that has it: a parameter used, whatever
+    becomes of its value (``k = 5`` before it still reads ``k`` afterwards). A helper's own parameter of
+    the same name is another value (`scale` calling `scaling_matrix(1.5, 1.5)`, whose `sy` is its own)."""
     def test(function) -> bool:
+        arguments = function.args
+        if name not in {a.arg for a in (*arguments.posonlyargs, *arguments.args, *arguments.kwonlyargs)}:
+            return False
         return any(isinstance(node, ast.Name) and node.id == name and isinstance(node.ctx, ast.Load)
                    for node in ast.walk(function))
     return Predicate(f"reads {name}", test)
@@ -681,8 +685,12 @@ def _ignored(t: Trial, what: str, parameter: str, values, result: str, mistake: 
         t.fail(f"{same}: {parameter} is ignored. " + from_code(
             f"Your code sets `{statement}` (line {line}) before it reads {parameter}: the value the caller gives "
             "is never used."), mistake=OVERWRITTEN)
+    # (read in the functions called, not in their helpers: `scale` passing 1.5 to scaling_matrix(sx, sy)
+    # does not read its own sy because the helper reads a parameter of that name)
+    hint = unused_parameter_hint(parameter)
+    called = [code.functions[function] for function in functions_read(t) if function in code.functions]
     t.fail(f"{same}: {parameter} is ignored.",
-           hint=unused_parameter_hint(parameter).said(t),
+           hint=hint.neutral(hint.asks.found(called)) if called and hint.asks.found(called) else hint.text,
            mistake=mistake or f"{parameter} is ignored")
 
 
