@@ -659,7 +659,7 @@ MISTAKES = {
         _reference_match = match_features
         def match_features(img1, img2, ratio=0.75, method="sift"):
             return _reference_match(img1, img2, ratio)
-        """, ["method argument is ignored"]),
+        """, ["the method argument is not followed"]),
     # ---------------------------------------------------------------- ext2
     "homographies chained in the wrong order": ("lab08.ext2", """
         def stitch_many(images):
