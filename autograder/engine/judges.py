@@ -688,9 +688,9 @@ def _ignored(t: Trial, what: str, parameter: str, values, result: str, mistake: 
     # (read in the functions called, not in their helpers: `scale` passing 1.5 to scaling_matrix(sx, sy)
     # does not read its own sy because the helper reads a parameter of that name)
     hint = unused_parameter_hint(parameter)
-    called = [code.functions[function] for function in functions_read(t) if function in code.functions]
+    read = hint.asks.found([code.functions[function] for function in functions_read(t) if function in code.functions])
     t.fail(f"{same}: {parameter} is ignored.",
-           hint=hint.neutral(hint.asks.found(called)) if called and hint.asks.found(called) else hint.text,
+           hint=hint.neutral(read) if read else hint.text,
            mistake=mistake or f"{parameter} is ignored")
 
 

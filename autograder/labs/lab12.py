@@ -2064,10 +2064,10 @@ def ncc_flat_border(t):
     flat_left[:, :FLAT_STRIP] = 0
     flat_right[:, :FLAT_STRIP] = 0
     max_disparity, block = 32, 9
-    what = (f"block_matching(left, right, max_disparity={max_disparity}, cost=\"ncc\") with the {FLAT_STRIP} "
-            "left columns of both views black")
-    plain = expect_disparity(t, what.split(" with")[0], t.call("block_matching", left, right, max_disparity=max_disparity,
-                                                               block_size=block, cost="ncc"), scene)
+    called = f"block_matching(left, right, max_disparity={max_disparity}, cost=\"ncc\")"
+    what = f"{called} with the {FLAT_STRIP} left columns of both views black"
+    plain = expect_disparity(t, called, t.call("block_matching", left, right, max_disparity=max_disparity,
+                                               block_size=block, cost="ncc"), scene)
     got = expect_disparity(t, what, t.call("block_matching", flat_left, flat_right, max_disparity=max_disparity,
                                            block_size=block, cost="ncc"), scene)
     # the left pixels whose own block and true match are textured (the scene's disparities are at most

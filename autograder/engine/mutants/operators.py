@@ -2230,26 +2230,33 @@ def _fixed_index(node) -> bool:
         and type(node.operand.value) is int)
 
 
-def _loop_item_changes(node, parents):
+def _loop_item_changes(node, words):
     """A fixed item read in a loop where the loop's own item belongs: `disparity[-1]` inside `for x in ...`
     whose body writes `disparity[x - 1]` (the last column's value each time round, where the column just
-    chosen belongs). Offered: the array at the loop variable, and at each index the loop gives it elsewhere."""
+    chosen belongs). Offered: the array at the loop variable, and at each index the loop gives it elsewhere.
+    Each loop's indices are read once (a long loop with many fixed items stays linear)."""
     if not (isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name)
             and _fixed_index(node.slice)):
         return
-    loop = node
-    while id(loop) in parents and not isinstance(loop, (ast.For, ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
-        loop = parents[id(loop)][0]
+    loop = _parent_of(node, words)
+    while loop is not None and not isinstance(loop, (ast.For, ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+        loop = _parent_of(loop, words)
     if not (isinstance(loop, ast.For) and isinstance(loop.target, ast.Name)):
         return
-    variable, array = loop.target.id, node.value.id
-    indices = {ast.unparse(n.slice) for statement in loop.body for n in ast.walk(statement)
-               if isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and n.value.id == array
-               and any(isinstance(m, ast.Name) and m.id == variable for m in ast.walk(n.slice))}
-    if not indices:
-        return
-    for index in sorted(indices | {variable}):
-        yield "loop_item", f"{array}[{index}]", ""
+    if not hasattr(words, "loop_indices"):
+        words.loop_indices = {}
+    if id(loop) not in words.loop_indices:   # array name -> the indices the loop's variable gives it
+        variable, indexed = loop.target.id, {}
+        for statement in loop.body:
+            for n in ast.walk(statement):
+                if isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) \
+                        and any(isinstance(m, ast.Name) and m.id == variable for m in ast.walk(n.slice)):
+                    indexed.setdefault(n.value.id, set()).add(ast.unparse(n.slice))
+        words.loop_indices[id(loop)] = indexed
+    indices = words.loop_indices[id(loop)].get(node.value.id)
+    if indices:
+        for index in sorted(indices | {loop.target.id}):
+            yield "loop_item", f"{node.value.id}[{index}]", ""
 
 
 def _fraction_changes(node):
@@ -2280,7 +2287,6 @@ def _student_changes(node, parent, parents):
         yield "reverse_back", f"{_operand(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
     yield from _fraction_changes(node)
-    yield from _loop_item_changes(node, parents)
     yield from _conversion_inverted(node, parent)
     if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.warpAffine", "cv.warpAffine") and len(node.args) >= 2 \
             and isinstance(node.args[1], ast.Subscript) and isinstance(node.args[1].slice, ast.Slice) \
@@ -4056,6 +4062,7 @@ def _sibling_changes(node, words):
     yield from _initial_changes(node, words)
     yield from _out_buffer_changes(node, words)
     yield from _started_with_an_item(node, words)
+    yield from _loop_item_changes(node, words)
     yield from _unused_parameter_changes(node, _parent_of(node, words), words)
     if isinstance(node, (ast.Tuple, ast.List)) and isinstance(node.ctx, ast.Load) and 2 <= len(node.elts) <= 4:
         for position, text in _twin_steps(node.elts):
@@ -4427,15 +4434,17 @@ def _started_with_an_item(node, words):
     if not (isinstance(parent, ast.Assign) and parent.value is node and len(parent.targets) == 1
             and isinstance(parent.targets[0], ast.Name)):
         return
+    if not hasattr(words, "appended_in_loops"):   # (read once per def: (loop's line, list, function appended))
+        words.appended_in_loops = {(loop.lineno, c.func.value.id, _dotted(c.args[0].func))
+                                   for loop in ast.walk(words.fn) if isinstance(loop, ast.For)
+                                   for statement in loop.body for c in ast.walk(statement)
+                                   if isinstance(c, ast.Call) and isinstance(c.func, ast.Attribute)
+                                   and c.func.attr == "append" and isinstance(c.func.value, ast.Name) and c.args
+                                   and isinstance(c.args[0], ast.Call)}
     name, called = parent.targets[0].id, _dotted(node.elts[0].func)
-    for loop in ast.walk(words.fn):
-        if isinstance(loop, ast.For) and loop.lineno > parent.lineno and any(
-                isinstance(c, ast.Call) and isinstance(c.func, ast.Attribute) and c.func.attr == "append"
-                and isinstance(c.func.value, ast.Name) and c.func.value.id == name and c.args
-                and isinstance(c.args[0], ast.Call) and _dotted(c.args[0].func) == called
-                for statement in loop.body for c in ast.walk(statement)):
-            yield "initial", "[]", ""
-            return
+    if any(line > parent.lineno and (name, called) == (appended, function)
+           for line, appended, function in words.appended_in_loops):
+        yield "initial", "[]", ""
 
 
 def _out_buffer_changes(node, words):

@@ -249,7 +249,7 @@ def _disconnects(before, after, helpers_changed=frozenset()) -> bool:
     # A parameter whose value reached the answers and no longer does: the change makes the caller's
     # argument irrelevant (a penalty `s` replaced by `block_size`, which happens to suit the inputs).
     parameters = {a.arg for a in (*before.args.posonlyargs, *before.args.args, *before.args.kwonlyargs)}
-    if parameters & _live(before) - _live(after):
+    if parameters & (_live(before) - _live(after)):
         return True
     left, feeding = _left_out(before)
     if not left:
