@@ -25,7 +25,7 @@ import numpy as np
 
 from .claims import from_code, measured
 from .forms import Form
-from .hints import Code, _own_nodes, none_returned, signature_of_def
+from .hints import Code, _own_nodes, _path, none_returned, signature_of_def
 
 # 'File "lab09_camera.py", line 42, in camera_matrix' and, on the next line, the code
 _FRAME = re.compile(r'File "([^"]+)", line (\d+)(?:, in (\S+))?\n(?:    (.*))?')
@@ -318,7 +318,7 @@ def _read_only_written(fn, line: int, given: dict) -> Form | None:
     for node in _own_nodes(fn):
         if isinstance(node, ast.Assign) and node.lineno < line and len(node.targets) == 1 \
                 and isinstance(node.targets[0], ast.Name) and isinstance(node.value, ast.Call) \
-                and _path_end(node.value.func) in _VIEWS:
+                and _path(node.value.func).rsplit(".", 1)[-1] in _VIEWS:
             views[node.targets[0].id] = node.value
     for node in _own_nodes(fn):
         if not (isinstance(node, (ast.Assign, ast.AugAssign)) and node.lineno <= line <= getattr(node, "end_lineno", node.lineno)):
@@ -327,7 +327,7 @@ def _read_only_written(fn, line: int, given: dict) -> Form | None:
             base = target
             while isinstance(base, ast.Subscript):
                 base = base.value
-            if isinstance(base, ast.Call) and _path_end(base.func) in _VIEWS:
+            if isinstance(base, ast.Call) and _path(base.func).rsplit(".", 1)[-1] in _VIEWS:
                 made = base
             elif isinstance(base, ast.Name) and base.id in views:
                 made = views[base.id]
@@ -346,11 +346,6 @@ def _read_only_written(fn, line: int, given: dict) -> Form | None:
                                      f"work on a copy (`{base.id} = {base.id}.copy()`, or `x = x / s` rather than "
                                      "`x /= s`)"), INPUT_WRITTEN)
     return None
-
-
-def _path_end(func) -> str:
-    """The last name of a called function (`diagonal` of `S.diagonal`, `broadcast_to` of `np.broadcast_to`)."""
-    return func.attr if isinstance(func, ast.Attribute) else func.id if isinstance(func, ast.Name) else ""
 
 
 def _values(node, known: dict) -> str:
