@@ -1993,6 +1993,37 @@ def test_the_checks_values_are_given_otherwise_one_at_a_time():
     assert repair._beyond(("f", (np.eye(3), True, None, "ssd"), {})) == []   # (nothing of the kind)
 
 
+def test_an_optional_number_the_reference_resolves_is_given_for_confirmation():
+    """A parameter defaulting to None that the reference resolves to a fixed number (a module constant,
+    a literal) is given four times that number, one argument at a time; None given counts as left out."""
+    from autograder.engine.mutants.naming import _resolved_defaults
+
+    source = textwrap.dedent("""
+        DEFAULT = 6.0
+        def f(x, k=5, smoothness=None, z=None, w=None):
+            s = DEFAULT if smoothness is None else float(smoothness)
+            if w is None:
+                w = 2
+            z = x.mean() if z is None else z
+            return x * s * w * z
+        """)
+    resolved = _resolved_defaults(source)["f"]
+    assert resolved == [("smoothness", 2, 6.0), ("w", 4, 2.0)]   # (z: the data's mean, no fixed number)
+    made = repair._given(("f", (np.eye(2),), {"w": None}), resolved)
+    assert [call[2] for call in made] == [{"w": None, "smoothness": 24.0}, {"w": 8.0}]
+    assert repair._given(("f", (np.eye(2), 5, 1.0), {"w": 3}), resolved) == []
+
+
+def test_a_change_right_only_with_the_defaults_own_number_is_no_repair(tmp_path):
+    """A DP whose default smoothness is 400 (right: 6): `s` -> `block_size` (5) mends the default and
+    breaks every smoothness the caller gives, which the student's code takes rightly: not told."""
+    folder = edited_reference(tmp_path, "lab12_stereo", ("DEFAULT_SMOOTHNESS = 6.0", "DEFAULT_SMOOTHNESS = 400.0"))
+    result = grade(folder, ["lab12.ex5"], pictures="none", include_hidden=False)
+    checks = [c for c in check_results(result, "lab12.ex5") if c.score < c.max_score]
+    assert checks and any("default smoothness is far too large" in c.message for c in checks)
+    assert not any("block_size * np.arange(D)" in c.message for c in checks), [c.message for c in checks]
+
+
 def _defs_of(source: str) -> dict:
     return {fn.name: fn for fn in ast.parse(textwrap.dedent(source)).body if isinstance(fn, ast.FunctionDef)}
 

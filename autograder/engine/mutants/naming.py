@@ -81,6 +81,7 @@ class ErrorModel:
     optional: dict = field(default_factory=dict)   # function -> [(parameter, position, None)]
     modes: dict = field(default_factory=dict)      # function -> [(parameter, position, default, values)]
     twins: dict = field(default_factory=dict)      # function -> [(position, position)] of twin parameters
+    resolved: dict = field(default_factory=dict)   # function -> [(parameter, position, number)]: None stands for it
 
 
 def _numeric_defaults(source: str) -> dict:
@@ -93,6 +94,60 @@ def _none_defaults(source: str) -> dict:
     """function -> [(parameter, position, None)] for the parameters that default to None (an
     exception raised on a value given there is confirmed on the call without it)."""
     return _defaults(source, lambda value: value is None)
+
+
+def _resolved_defaults(source: str) -> dict:
+    """function -> [(parameter, position, number)] for the parameters defaulting to None that the def
+    resolves to a fixed number (`s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)`,
+    `if p is None: p = 6.0`; a module constant or a literal). Confirmation gives them a value too: a
+    change right only with the default's own number (`s` -> `block_size`, 5 beside a default of 6) is
+    wrong where the caller chooses it."""
+    tree = parse(source, max_chars=None, max_statements=None)   # the reference, under the lock
+    constants = {}
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+            value = _number(node.value, {})
+            if value is not None:
+                constants[node.targets[0].id] = value
+
+    def tested(test, name) -> bool:   # `name is None`
+        return isinstance(test, ast.Compare) and isinstance(test.left, ast.Name) and test.left.id == name \
+            and len(test.ops) == 1 and isinstance(test.ops[0], ast.Is) \
+            and isinstance(test.comparators[0], ast.Constant) and test.comparators[0].value is None
+
+    out = {}
+    for def_ in (n for n in tree.body if isinstance(n, ast.FunctionDef)):
+        for name, position, _ in _none_defaults_of(def_):
+            for node in ast.walk(def_):
+                value = None
+                if isinstance(node, ast.IfExp) and tested(node.test, name):
+                    value = _number(node.body, constants)
+                elif isinstance(node, ast.If) and tested(node.test, name) and len(node.body) == 1 \
+                        and isinstance(node.body[0], ast.Assign):
+                    value = _number(node.body[0].value, constants)
+                if value is not None:
+                    out.setdefault(def_.name, []).append((name, position, value))
+                    break
+    return out
+
+
+def _number(node, constants):
+    """The number ``node`` writes (a literal, or a name in ``constants``); None otherwise."""
+    if isinstance(node, ast.Name):
+        return constants.get(node.id)
+    try:
+        value = ast.literal_eval(node)
+    except ValueError:
+        return None
+    return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else None
+
+
+def _none_defaults_of(def_: ast.FunctionDef) -> list:
+    """[(parameter, position, None)] for the def's parameters defaulting to None."""
+    params = def_.args.args
+    first = len(params) - len(def_.args.defaults)
+    return [(params[first + offset].arg, first + offset, None) for offset, default in enumerate(def_.args.defaults)
+            if isinstance(default, ast.Constant) and default.value is None]
 
 
 def _defaults(source: str, keep) -> dict:
@@ -272,7 +327,7 @@ def model_for(lab) -> ErrorModel | None:
             for function in mutants:  # simplest first: the time may end before the last
                 mutants[function].sort(key=lambda m: m.rank)
             _MODELS[key] = ErrorModel(lab.module, source, mutants, _numeric_defaults(source), _none_defaults(source),
-                                      _modes(source), _twin_parameters(source))
+                                      _modes(source), _twin_parameters(source), _resolved_defaults(source))
         return _MODELS[key]
 
 

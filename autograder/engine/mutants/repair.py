@@ -1929,6 +1929,22 @@ def _beyond(call, defaults=()) -> list:
     return made + [(function, tuple(args), {**kwargs, k: other(v)}) for k, v in kwargs.items() if other(v) is not v]
 
 
+def _given(call, resolved) -> list:
+    """The call with each optional argument it leaves out (or gives as None) that the reference resolves
+    to a number (``resolved``: [(parameter, position, number)]) given as four times that number, one
+    argument at a time: a change right only with the default's own number -- `s` -> `block_size`, 5 beside
+    a default smoothness of 6 -- is wrong where the caller chooses it."""
+    function, args, kwargs = call
+    made = []
+    for name, position, number in resolved:
+        if position < len(args):
+            if args[position] is None:
+                made.append((function, args[:position] + (4.0 * number,) + args[position + 1:], dict(kwargs)))
+        elif kwargs.get(name) is None:
+            made.append((function, tuple(args), {**kwargs, name: 4.0 * number}))
+    return made
+
+
 def _holed(call) -> list:
     """The call with the last row of a float point array ((N, 2) or (N, 3), N >= 2) given as NaN, one
     array at a time ([] when the call has none)."""
@@ -2763,6 +2779,13 @@ class _Variants:
             # BGR image, a stereo pair's halves unlike, may be refused by right code and by the fix alike)
             self.channels = set(range(start + len(modes), start + len(modes) + min(1, len(channels))))
             variants += modes + channels
+            # (and an optional argument the reference resolves to a number given one: the student's code
+            # that takes it rightly must keep doing so -- `s` -> `block_size` mends a default smoothness
+            # of 400 by 5, near the right 6, and breaks every smoothness the caller gives)
+            resolved = getattr(self.model, "resolved", {}).get(self.function, ())
+            given = [call for i in failing[:2] for call in _given(self.inputs[i], resolved)]
+            self.keeping.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(given)))
+            variants += given
             every = self.inputs + variants
             try:
                 runner = naming.helper()
@@ -2979,8 +3002,8 @@ class _Variants:
             if any(mutant.operator not in ADDITIONS for mutant, _ in near) else near
 
     def _answers_kept(self, mutant, every, wanted) -> bool:
-        """Whether in the function's other modes (and on its images in the other number of channels)
-        the variant answers as the student's own code does, or as the reference does."""
+        """Whether in the function's other modes (on its images in the other number of channels, with an
+        optional number given) the variant answers as the student's own code does, or as the reference does."""
         indices = sorted(i for i in self.keeping if i in wanted and naming.error_kind(wanted[i]) is None)
         if not indices:
             return True
