@@ -322,6 +322,30 @@ def test_a_zero_divisor_the_code_does_not_show_is_not_named():
     assert explained(read_code(textwrap.dedent(from_an_array)), traceback_at(3), ZERO, "f", (np.zeros((0, 2)), 4), {}) is None
 
 
+def test_a_negative_shift_count_is_named_with_the_numbers_given():
+    """`u >> (int(np.log2(width)) - n_bits)` with n_bits > log2(width): the count is worked out; a shift
+    whose count cannot be, the only one on the line, is still the one; two such shifts name neither."""
+    from autograder.engine.raised import NEGATIVE_SHIFT
+
+    shifted = """
+        def f(width, n_bits):
+            width, n_bits = int(width), int(n_bits)
+            out = np.zeros(width, dtype=int)
+            for u in range(width):
+                out[u] = u >> (int(np.log2(width)) - n_bits)
+            return out
+        """
+    negative = "negative shift count"
+    form = explained(read_code(textwrap.dedent(shifted)), traceback_at(6), negative, "f", (905, 10), {})
+    assert form is not None and form.mistake == NEGATIVE_SHIFT, form
+    assert "shifts by `int(np.log2(width)) - n_bits` (line 6), which is -1 here (n_bits=10, width=905)" in form.sentence
+    unknown = shifted.replace("(int(np.log2(width)) - n_bits)", "(u - n_bits)")
+    form = explained(read_code(textwrap.dedent(unknown)), traceback_at(6), negative, "f", (905, 10), {})
+    assert form is not None and "shifts by `u - n_bits` (line 6), which is negative here" in form.sentence
+    two = shifted.replace("u >> (int(np.log2(width)) - n_bits)", "(u >> (u - n_bits)) + (u << (n_bits - u))")
+    assert explained(read_code(textwrap.dedent(two)), traceback_at(6), negative, "f", (905, 10), {}) is None
+
+
 NONE_SUBSCRIPT = "'NoneType' object is not subscriptable"
 
 

@@ -19,6 +19,7 @@ without reshaping) is followed into the helper's frame.
 from __future__ import annotations
 
 import ast
+import math
 import re
 
 import numpy as np
@@ -142,6 +143,8 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
         return _singular_solved(fn, line)
     if _ZERO_DIVISION.search(message):
         return _zero_divisor(fn, line, given)
+    if _NEGATIVE_SHIFT.search(message):
+        return _negative_shift(fn, line, given)
     if _READ_ONLY.search(message):
         return _read_only_written(fn, line, given)
     if _TOO_MANY.search(message) or _NOT_ENOUGH.search(message):
@@ -304,6 +307,28 @@ def _zero_divisor(fn, line: int, given: dict) -> Form | None:
     return None
 
 
+_NEGATIVE_SHIFT = re.compile(r"negative shift count")
+NEGATIVE_SHIFT = "a bit shift by a count that is negative for this input"
+
+
+def _negative_shift(fn, line: int, given: dict) -> Form | None:
+    """The shift (``a >> n``, ``a << n``) on the raising line whose count is worked out as negative
+    from the numbers the parameters were given (``u >> (int(np.log2(width)) - n_bits)`` with
+    ``n_bits > log2(width)``), or the only shift there by a count that is not a constant."""
+    known, _ = _numbers_known(fn, line, given)
+    shifts = [node for node in _own_nodes(fn) if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.RShift, ast.LShift))
+              and node.lineno <= line <= getattr(node, "end_lineno", node.lineno)
+              and not (isinstance(node.right, ast.Constant) and isinstance(node.right.value, int) and node.right.value >= 0)]
+    for node in shifts:
+        count = _number(node.right, known)
+        if (count is not None and count < 0) or (count is None and len(shifts) == 1):
+            worked = f"{count!r} here ({_values(node.right, known)})" if count is not None else "negative here"
+            # measured: the shift raised on this line, and its count is worked out (or the only candidate)
+            return Form(measured(f"your `{fn.name}` shifts by `{_short(ast.unparse(node.right), 50)}` (line {line}), "
+                                 f"which is {worked}, and a shift count must be 0 or more"), NEGATIVE_SHIFT)
+    return None
+
+
 _READ_ONLY = re.compile(r"(?:assignment destination|output array) is read-only")
 READ_ONLY_VIEW = from_code("a write into a read-only view (np.diagonal, np.broadcast_to give one)")
 INPUT_WRITTEN = from_code("a write into an array the caller gave (read-only here)")
@@ -390,9 +415,12 @@ _ARITHMETIC = {ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b, ast.Mul
                ast.Pow: lambda a, b: a ** b, ast.LShift: lambda a, b: a << b, ast.RShift: lambda a, b: a >> b}
 
 
+_LOGS = {"log2": math.log2, "log10": math.log10, "log": math.log}
+
+
 def _number(node, known: dict):
     """The number ``node`` works out to from ``known`` (constants, names, arithmetic, ``int()``,
-    ``float()``, ``round()``, ``abs()``), or None. Never runs the student's code: small numbers only."""
+    ``float()``, ``round()``, ``abs()``, ``np.log2()`` and its kin), or None. Never runs the student's code: small numbers only."""
     if isinstance(node, ast.Constant) and type(node.value) in (int, float):
         return node.value
     if isinstance(node, ast.Name):
@@ -400,6 +428,11 @@ def _number(node, known: dict):
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
         value = _number(node.operand, known)
         return None if value is None else (-value if isinstance(node.op, ast.USub) else value)
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in _LOGS \
+            and isinstance(node.func.value, ast.Name) and node.func.value.id in ("np", "numpy", "math") \
+            and len(node.args) == 1 and not node.keywords:
+        value = _number(node.args[0], known)
+        return None if value is None or value <= 0 else _LOGS[node.func.attr](value)
     if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("int", "float", "round", "abs") \
             and len(node.args) == 1 and not node.keywords:
         value = _number(node.args[0], known)

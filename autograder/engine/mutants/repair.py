@@ -2570,6 +2570,7 @@ class _Variants:
         self.translated: set = set()  # the variants with a translation for a homography (the check's own images)
         self.holed: set = set()      # the variants with a point given as NaN (see _breaks_holed)
         self.small: set = set()      # the variants with the images small (a change in what their size gives only)
+        self.widened: set = set()    # the variants made unlike the check's inputs (see _widened)
         self.channels: set = set()   # of keeping, the variants with the images in the other number of channels
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
@@ -2729,7 +2730,9 @@ class _Variants:
                 seed = int(fingerprint(self.function, "repair", i, self.inputs[i][1])[:8], 16)
                 variants += naming.derived_calls(self.inputs[i], VARIANTS // min(2, len(failing)), seed,
                                              self.model.defaults.get(self.function, ()))
-                variants += _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
+                widened = _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
+                self.widened.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(widened)))
+                variants += widened
                 variants += _fewer(self.inputs[i]) + _single_point(self.inputs[i]) + _reordered(self.inputs[i]) \
                     + _points_moved(self.inputs[i])
                 variants += _rescaled(self.inputs[i], _up_to_scale(self.model.source).get(self.function, ()))
@@ -3098,7 +3101,10 @@ class _Variants:
             # (an input derived for confirming -- a single point, fewer points -- on which the change raises as
             # the student's own code raises there refutes nothing: the slip mended need not change how the code
             # meets a degenerate input, `s = sqrt(2) / 0` of one point)
-            if any(naming.error_kind(v) is None or i < len(self.inputs) for v, i in wrong) or len(wrong) == len(values):
+            # (but not on an input made larger, which nothing makes degenerate: `- n_bits` -> `- u` shifts by a
+            # negative count at width 3 as the student's code does, and is right at the width 1 a search shrank to)
+            if any(naming.error_kind(v) is None or i < len(self.inputs) or i in self.widened for v, i in wrong) \
+                    or len(wrong) == len(values):
                 return False   # (and a change no input confirms -- every one raising -- is no confirmed change)
             own = self._own([i for _, i in wrong], every)
             return own is not None and all(naming.error_kind(theirs) == naming.error_kind(v)
