@@ -2014,6 +2014,29 @@ def test_an_optional_number_the_reference_resolves_is_given_for_confirmation():
     assert repair._given(("f", (np.eye(2), 5, 1.0), {"w": 3}), resolved) == []
 
 
+def test_a_logs_base_in_a_ratio_of_logs_is_never_the_slip_and_a_redraw_is_never_judged_by_the_check():
+    """`np.log(a) / np.log(b)`: the base cancels, so one log made `np.log10` only scales the ratio (a RANSAC's
+    count of samples, 2.3 times larger, passed by running longer): not offered there, offered elsewhere. A
+    change of a random draw's keyword (`replace=False` -> `True`) draws other samples: never judged by a check
+    on a few seeds."""
+    from autograder.engine.mutants.operators import mutants_of
+
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(w, p):
+            n = np.log(1 - p) / np.log(1 - w)
+            return n + np.log(p)
+        """)
+    offered = [m.edits for m in mutants_of(source, {"graded"}, phrased=False)["graded"] if m.operator == "function"]
+    assert any("np.log10" in str(e) for e in offered)   # (the lone log)
+    assert len([e for e in offered if "np.log10" in str(e)]) == 1, offered
+    redraw = repair.Fix(((4, "rng.choice(n, 4, replace=False)", "rng.choice(n, 4, replace=True)"),), "graded",
+                        "flip_keyword", ())
+    assert repair._redraws(redraw)
+    sized = repair.Fix(((4, "rng.choice(n, 3, replace=False)", "rng.choice(n, 4, replace=False)"),), "graded", "bound", ())
+    assert not repair._redraws(sized) and not repair._redraws(None)
+
+
 def test_a_change_right_only_with_the_defaults_own_number_is_no_repair(tmp_path):
     """A DP whose default smoothness is 400 (right: 6): `s` -> `block_size` (5) mends the default and
     breaks every smoothness the caller gives, which the student's code takes rightly: not told."""

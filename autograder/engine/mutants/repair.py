@@ -1945,6 +1945,35 @@ def _given(call, resolved) -> list:
     return made
 
 
+# a generator's (or np.random's) methods that draw
+_DRAWS = frozenset({"choice", "integers", "permutation", "shuffle", "sample", "randint", "rand", "randn", "random",
+                    "uniform", "normal", "standard_normal", "random_sample"})
+
+
+def _redraws(fix) -> bool:
+    """Whether ``fix`` changes only how a random draw is made -- a keyword of the draw (`replace=False` ->
+    `replace=True`): the samples drawn are then others, and a check judged on a few seeds may pass by luck
+    (a RANSAC stopping too early passed five seeds with its samples drawn with replacement). Such a change is
+    told only where it gives the reference's very answers, never on the check's word."""
+    if fix is None:
+        return False
+
+    def draws(code):
+        try:
+            tree = ast.parse(code)
+        except SyntaxError:
+            return {}
+        return {ast.dump(n.func) + "|" + "|".join(ast.dump(a) for a in n.args): {ast.dump(k) for k in n.keywords}
+                for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
+                and n.func.attr in _DRAWS and _dotted(n.func).split(".")[0] not in ("cv2", "cv")}
+
+    for _, before, after in fix.changes:
+        old, new = draws(before), draws(after)
+        if any(key in new and new[key] != kept for key, kept in old.items()):
+            return True
+    return False
+
+
 def _holed(call) -> list:
     """The call with the last row of a float point array ((N, 2) or (N, 3), N >= 2) given as NaN, one
     array at a time ([] when the call has none)."""
@@ -2682,7 +2711,7 @@ class _Variants:
             return False   # (a replay is kept for the pairs: where a single change's answers are absurd,
         else:              # every change looks far nearer, and the single ones would use them all)
             self.replays += 1
-        if self._replay(mutant, (self.trial.check, self.trial.property_examples)) is not True:
+        if _redraws(self.fix(mutant)) or self._replay(mutant, (self.trial.check, self.trial.property_examples)) is not True:
             return False
         self.checked[mutant.key] = max((self.distance(v, self.references[i]) for v, i in zip(values, failing)),
                                        default=0.0)
