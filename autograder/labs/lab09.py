@@ -1807,6 +1807,19 @@ ext1 = lab.exercise("ext1", "Extension: camera calibration", functions=[
     "calibrate(images, pattern_size, square_size)"])
 
 
+def _calibration_in_a_loop(functions) -> int:
+    """The line of a cv2.calibrateCamera call made in a loop's body (or a comprehension) of the functions read,
+    0 when none is: each view calibrated alone."""
+    for function in functions:
+        for loop in ast.walk(function):
+            body = loop.body if isinstance(loop, (ast.For, ast.While)) else [loop.elt] \
+                if isinstance(loop, (ast.ListComp, ast.GeneratorExp)) else []
+            for node in (n for part in body for n in ast.walk(part)):
+                if isinstance(node, ast.Call) and _hints_path(node.func).rsplit(".", 1)[-1] == "calibrateCamera":
+                    return node.lineno
+    return 0
+
+
 def calibration_result(t: Trial, images, pattern) -> tuple[str, np.ndarray, np.ndarray, float]:
     """``calibrate(images, pattern, square)`` called once per grading (the checks of one set of
     views share it), checked for its form: (what, K, dist, rms)."""
@@ -1847,9 +1860,13 @@ def judge_calibration(t: Trial, images, K_true, pattern):
         t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
                "(rows, cols)? OpenCV wants (width, height).", mistake="the principal point is swapped")
     if f_error.max() > 0.015 or c_error.max() > 3.0:
+        looped = _calibration_in_a_loop(code_of(t).reachable(["calibrate"]))
+        cause = from_code(f" Your code calls cv2.calibrateCamera inside a loop (line {looped}), a calibration of each "
+                          "view alone (one view cannot fix the focal lengths and the principal point): calibrate "
+                          "once, with the object points and corners of every view together.") if looped else ""
         t.fail(f"{what}: K is off: its focal lengths by {f_error.max():.1%}, its principal point by "
-               f"{c_error.max():.1f} px.\nIt is\n{format_matrix(K)}\nbut the views were rendered with\n"
-               f"{format_matrix(K_true)}")
+               f"{c_error.max():.1f} px.{cause}\nIt is\n{format_matrix(K)}\nbut the views were rendered with\n"
+               f"{format_matrix(K_true)}", mistake=from_code("cv2.calibrateCamera called on each view alone") if looped else "")
     if rms > 0.5:
         return partial(0.5, f"{what}: K is right, but the reported reprojection error is {rms:.2f} px; "
                             "these clean views allow < 0.2 px.",
@@ -1921,11 +1938,14 @@ def calibration_consistent(t):
     # transposed, another call's K or dist, a calibration of some of the views only, whose rms is
     # theirs), which the message leaves to the student (the blind set 1203a's 09/08: "not the pair
     # the rms was computed for" told to code whose one call used only the last view).
+    looped = _calibration_in_a_loop(read)
     cause = from_code(": your code calls cv2.getOptimalNewCameraMatrix, and K is measured not to be the calibrated "
                       "camera's: that matrix is for undistorted images (cv2.undistort's newCameraMatrix), not the "
                       "calibrated camera's K") if reading else \
         from_code(f": your code calls cv2.calibrateCamera {calibrations} times; return K, dist and rms of the same "
-                  "call") if calibrations > 1 else ""
+                  "call") if calibrations > 1 else \
+        from_code(f": your code calls cv2.calibrateCamera inside a loop (line {looped}), one calibration per view; "
+                  "calibrate once, with every view's points, and return that call's K, dist and rms") if looped else ""
     t.fail(measured(f"{what}: the K, dist and rms returned do not agree: with your K and dist, the best pose of each "
                     f"view reprojects the board's corners {shown} RMS from the true corners, while the rms returned "
                     f"says {rms:.3f} px") + (cause or "."),

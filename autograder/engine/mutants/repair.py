@@ -41,6 +41,7 @@ import numpy as np
 from ...loading.parsing import parse
 from ...loading.reading import MAX_SOURCE_BYTES
 from ..checks import Trial, Verdict, fingerprint
+from ..hints import RANDOM_DRAWS
 from ..inherited import SHARED_FAILING
 from . import anchors, naming
 from .helper import HelperFailed
@@ -1945,11 +1946,6 @@ def _given(call, resolved) -> list:
     return made
 
 
-# a generator's (or np.random's) methods that draw
-_DRAWS = frozenset({"choice", "integers", "permutation", "shuffle", "sample", "randint", "rand", "randn", "random",
-                    "uniform", "normal", "standard_normal", "random_sample"})
-
-
 def _redraws(fix) -> bool:
     """Whether ``fix`` changes only how a random draw is made -- a keyword of the draw (`replace=False` ->
     `replace=True`): the samples drawn are then others, and a check judged on a few seeds may pass by luck
@@ -1965,7 +1961,7 @@ def _redraws(fix) -> bool:
             return {}
         return {ast.dump(n.func) + "|" + "|".join(ast.dump(a) for a in n.args): {ast.dump(k) for k in n.keywords}
                 for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
-                and n.func.attr in _DRAWS and _dotted(n.func).split(".")[0] not in ("cv2", "cv")}
+                and n.func.attr in RANDOM_DRAWS and _dotted(n.func).split(".")[0] not in ("cv2", "cv")}
 
     for _, before, after in fix.changes:
         old, new = draws(before), draws(after)

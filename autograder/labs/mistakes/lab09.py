@@ -165,6 +165,25 @@ MISTAKES = {
             K, dist, rms = _reference_calibrate(images, pattern_size, square_size)
             return K, np.ravel(dist)[:4], rms
         """, ["has 4 values", "without k3"]),
+    # the blind set 1203c's 09/07: each view calibrated alone, the results averaged
+    "calibration of each view alone, averaged": ("lab09.ext1", """
+        def calibrate(images, pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float32)
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size
+            Ks, dists, errors = [], [], []
+            for image in images:
+                grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+                found, corners = cv2.findChessboardCorners(grey, (cols, rows))
+                if not found:
+                    continue
+                h, w = grey.shape
+                rms, K, dist, _, _ = cv2.calibrateCamera([objp], [corners], (w, h), None, None)
+                Ks.append(K)
+                dists.append(dist.ravel()[:5])
+                errors.append(rms)
+            return np.mean(Ks, axis=0), np.mean(dists, axis=0), float(np.mean(errors))
+        """, ["calls cv2.calibrateCamera inside a loop", "calibrate once"]),
     # the blind set 1202i's 09/03: the OpenCV tutorial's mean error returned as the rms
     "calibration returning the tutorial's mean error as the rms": ("lab09.ext1", """
         _reference_calibrate = calibrate
