@@ -1189,8 +1189,11 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     # outlines: the centres empty, and what is painted near the points lies on rings around the
     # whole-pixel centres cv2.circle draws at (a ring through sub-pixel centres is half painted)
     d = truth.distance_map(image.shape, np.round(pts))
+    # (and an unpainted centre keeps the image's pixel: another drawing over the circles -- a polyline through
+    # their centres -- is not an outline)
     inner, near = d <= radius - 1.5, painted & (d <= radius + 1)
-    if inner.any() and painted[inner].mean() < 0.5 and near.any() and (d[near] >= radius - 1).mean() > 0.9:
+    if inner.any() and painted[inner].mean() < 0.5 and near.any() and (d[near] >= radius - 1).mean() > 0.9 \
+            and not changed[inner & ~painted].mean() > 0.5:
         # (thickness=-1 is cv2.circle's: code drawing otherwise -- cv2.drawMarker, which refuses it -- is
         # told what to draw, not that argument)
         circles = calls("cv2.circle").holds(code_of(t).reachable(["draw_points"])) or not code_of(t).functions
@@ -1200,7 +1203,8 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
                mistake="the circles are outlines, not filled")
     # thick rings: the centres empty, a band around them painted past the radius (a thickness given the radius)
     centres, band = d <= 0.5, (d >= radius - 1) & (d <= radius)
-    if radius >= 2 and centres.any() and painted[centres].mean() < 0.2 and band.any() and painted[band].mean() > 0.8:
+    if radius >= 2 and centres.any() and painted[centres].mean() < 0.2 and band.any() and painted[band].mean() > 0.8 \
+            and not changed[centres & ~painted].mean() > 0.5:
         beyond = (d > radius + 0.5) & (d <= radius + 2)
         outside = f", and {painted[beyond].mean():.0%} of those up to 2 px beyond it" if beyond.any() else ""
         t.fail(f"{what}: " + measured(f"the circles are rings: no centre pixel is painted, {painted[band].mean():.0%} "
@@ -1225,6 +1229,13 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     if drawn_radius is not None and drawn_radius != radius:
         misused = _radius_misused(drawn_radius, radius, redraw)
         t.fail(f"{what}: the circles have radius {drawn_radius}, not {radius}: {misused}.", mistake=misused)
+    # (something else drawn, far from the points and over the circles: the drawing the code adds is the cause)
+    read = code_of(t).reachable([what.split("(", 1)[0]])
+    others = _other_drawings(read) if untouched < 0.999 else ""
+    if others:
+        t.fail(f"{what}: {1 - untouched:.1%} of the pixels far from every point were changed: "
+               + from_code(f"your code also draws with {others}; only the filled circles should be drawn."),
+               mistake=from_code("more drawn than the circles"))
     if coverage < 0.97:
         t.fail(f"{what}: only {coverage:.0%} of the pixels that should be covered by the circles "
                f"(radius {radius}, colour {tuple(color)}) are.")
@@ -1234,10 +1245,26 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
                                       f"reaches {int(np.ceil(d[larger].max()))} px from the centres (a positive "
                                       "thickness widens a circle by half of it on each side; filled is "
                                       "thickness=-1)."))
-    copied = COPIES.found(code_of(t).reachable(["draw_points"]))   # (the copy is not asked of code that copies)
+    copied = COPIES.found(read)   # (the copy is not asked of code that copies)
     t.fail(f"{what}: {1 - untouched:.1%} of the pixels far from every point were changed; "
            + ("only the circles should be drawn." if copied else
               "only the circles should be drawn (on a copy of the image)."))
+
+
+_DRAWINGS = ("line", "polylines", "rectangle", "putText", "drawMarker", "arrowedLine", "ellipse", "fillPoly",
+             "fillConvexPoly", "drawContours")
+
+
+def _other_drawings(functions) -> str:
+    """The OpenCV drawing calls other than cv2.circle in the functions read, as `cv2.polylines` (line 12);
+    "" when there are none."""
+    found = {}
+    for function in functions:
+        for node in ast.walk(function):
+            if isinstance(node, ast.Call) and _hints_path(node.func).startswith(("cv2.", "cv.")) \
+                    and _hints_path(node.func).rsplit(".", 1)[-1] in _DRAWINGS:
+                found.setdefault(_hints_path(node.func), node.lineno)
+    return " and ".join(f"`{name}` (line {line})" for name, line in found.items())
 
 
 def _wrapped_at_256(got, image, pts, radius, color) -> str:

@@ -38,6 +38,14 @@ MISTAKES = {
                 cv2.circle(shown, (int(round(x)), int(round(y))), 3, (0, 0, 255), -1)
             return shown, pts
         """, ["its colour channels reversed (rgb for bgr)"]),
+    # the blind set 1203c's 09/06: the points joined by a polyline besides their circles
+    "project_onto_image joining the points with a polyline": ("lab09.ex5", """
+        def project_onto_image(image, P, points):
+            pts = project(P, points).reshape(-1, 2)
+            out = draw_points(image, pts)
+            cv2.polylines(out, [np.round(pts[np.isfinite(pts).all(axis=1)]).astype(np.int32)], False, (0, 255, 0), 1)
+            return out, pts
+        """, ["also draws with `cv2.polylines`"]),
     # the blind set 1202e's 09/06: NaN turned into 0 for the drawing, so a point behind the camera is a dot at (0, 0)
     "project_onto_image drawing np.nan_to_num of the points": ("lab09.ex5", """
         def project_onto_image(image, P, points):
