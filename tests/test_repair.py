@@ -2037,6 +2037,22 @@ def test_a_logs_base_in_a_ratio_of_logs_is_never_the_slip_and_a_redraw_is_never_
     assert not repair._redraws(sized) and not repair._redraws(None)
 
 
+def test_the_numbers_a_students_tests_compare_a_parameter_with_are_confirmation_values():
+    """`if angle_deg % 180 == 0:` -> angle_deg=180 (the modulus; 0, the value given, is not repeated), one
+    value at a time, for a number given or left to its default; a parameter never tested gives none."""
+    fn = _defs_of("""
+        def rotate(image, angle_deg=45, scale=1.0):
+            if angle_deg % 180 == 0 or scale < 0:
+                return image[::-1, ::-1]
+            return image
+        """)["rotate"]
+    image = np.zeros((4, 4))
+    made = repair._branch_values(("rotate", (image, 0), {}), fn)
+    assert [(call[1][1:], call[2]) for call in made] == [((180,), {}), ((0,), {"scale": 0.0})]
+    assert repair._branch_values(("rotate", (image,), {}), fn)[0][2] == {"angle_deg": 180}
+    assert repair._branch_values(("rotate", (image, 0), {}), None) == []
+
+
 def test_a_change_right_only_with_the_defaults_own_number_is_no_repair(tmp_path):
     """A DP whose default smoothness is 400 (right: 6): `s` -> `block_size` (5) mends the default and
     breaks every smoothness the caller gives, which the student's code takes rightly: not told."""

@@ -1866,6 +1866,46 @@ def _points_moved(call) -> list:
                                         lambda v, move=move: v + np.asarray(move, v.dtype))]
 
 
+def _branch_values(call, fn) -> list:
+    """The call with a number it gives (or leaves to its default) set to each other whole number the student's
+    def ``fn`` compares that parameter with, or takes it modulo (`if angle_deg % 180 == 0:` -> 180), one value
+    at a time: the inputs that take the branch the failing one took, or the other way, without being it. A
+    change of what the branch does, right for the failing input alone (a half-turn shortcut taken at 0 degrees:
+    its flip dropped, and 180 degrees is no longer turned), is wrong there. [] without such a test."""
+    if not isinstance(fn, ast.FunctionDef):
+        return []
+    function, args, kwargs = call
+    params = [a.arg for a in fn.args.posonlyargs + fn.args.args]
+    defaults = dict(zip(params[len(params) - len(fn.args.defaults):], fn.args.defaults))
+    made = []
+    for position, name in enumerate(params):
+        given = args[position] if position < len(args) else kwargs.get(name, _literal(defaults.get(name)))
+        if type(given) not in (int, float):
+            continue
+        values = []
+        for test in (n for n in ast.walk(fn) if isinstance(n, ast.Compare)):
+            if not any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(test.left)):
+                continue
+            moduli = [n.right for n in ast.walk(test.left) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Mod)]
+            for node in moduli + list(test.comparators):
+                value = _literal(node)
+                if type(value) is int and value != given and value not in values:
+                    values.append(value)
+        for value in values[:2]:
+            value = type(given)(value)
+            made.append((function, args[:position] + (value,) + args[position + 1:], dict(kwargs))
+                        if position < len(args) else (function, tuple(args), {**kwargs, name: value}))
+    return made
+
+
+def _literal(node):
+    """The number a literal node writes (`180`, `-1`); None otherwise."""
+    try:
+        return ast.literal_eval(node) if node is not None else None
+    except (ValueError, SyntaxError, TypeError):
+        return None
+
+
 def _fewer(call) -> list:
     """The call with each list of three or more arrays it is given (the images of a panorama, the views of
     a calibration) one item shorter ([] when it has none): a count written where the list's length belongs
@@ -2812,6 +2852,10 @@ class _Variants:
             # of 400 by 5, near the right 6, and breaks every smoothness the caller gives)
             resolved = getattr(self.model, "resolved", {}).get(self.function, ())
             given = [call for i in failing[:2] for call in _given(self.inputs[i], resolved)]
+            # (and the values the student's own tests compare a number with: there too -- `angle_deg % 180 == 0`
+            # at 180 -- a change of what a branch does must keep their answers or make them right)
+            own = _defs(self.student.tree).get(self.function)
+            given += [call for i in failing[:2] for call in _branch_values(self.inputs[i], own)]
             self.keeping.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(given)))
             variants += given
             every = self.inputs + variants

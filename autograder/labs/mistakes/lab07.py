@@ -53,6 +53,14 @@ MISTAKES = {
             c -= 0.0 * c + 1.0
             return np.vstack([M, [0.0, 0.0, 1.0]])
         """, ["the caller's `center` in place"]),
+    # the blind set 1203c's 07/03: a half-turn shortcut taken at every multiple of 180 degrees
+    "rotate flipping the image for no turn and a whole turn": ("lab07.ex2", """
+        _right_rotate = rotate
+        def rotate(image, angle_deg=45):
+            if angle_deg % 180 == 0:
+                return np.ascontiguousarray(image[::-1, ::-1])
+            return _right_rotate(image, angle_deg)
+        """, ["rotate(square image, angle_deg=0) differs"]),
     "rotate returning grey for a colour image": ("lab07.ex2", """
         _rotate = rotate
         def rotate(image, angle_deg=45):
