@@ -2060,13 +2060,22 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
                 return judge
             name_second_warp_mistake(t, judge, what)
             judge.show(t, what)
+            stitcher = _stitcher_called(code_of(t).reachable(["stitch"]))
             t.fail(f"{what}: at its best place the panorama differs from img1 by {error:.0f} grey levels on "
-                   f"average: {shown}.")
+                   f"average: {shown}" + (from_code(f": your code stitches with `{stitcher}`, {STITCHER_WARPS}")
+                                          if stitcher else "."),
+                   mistake=from_code(STITCHER) if stitcher else "")
         t.images(what, yours=panorama, img1=img1, img2=img2)
         grey = colours_lost(panorama, (img1, img2))
         if grey:
             t.fail(f"{what}: img1 does not appear in your panorama as it is: {grey}.", mistake=COLOURS_LOST)
-        saturated = _saturated(panorama, (img1, img2), code_of(t).reachable(["stitch"]))
+        read = code_of(t).reachable(["stitch"])
+        stitcher = _stitcher_called(read)
+        if stitcher:
+            t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs from img1 by "
+                   f"{error:.0f} grey levels; {shown}): " + from_code(
+                       f"your code stitches with `{stitcher}`, {STITCHER_WARPS}"), mistake=from_code(STITCHER))
+        saturated = _saturated(panorama, (img1, img2), read)
         # (where to look is the hint's: a change of their code confirmed on these inputs takes its place)
         t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs "
                f"from img1 by {error:.0f} grey levels; {shown})" + (f": {saturated}" if saturated else "."),
@@ -2074,6 +2083,23 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
                mistake=NOT_DIVIDED if saturated and _weights_never_divided(code_of(t).reachable(["stitch"])) else "")
     store[key + "/judge"] = PanoramaJudge(scene, panorama, 0, offset)
     return store[key + "/judge"]
+
+
+STITCHER = "cv2.Stitcher used for the homography panorama"
+STITCHER_WARPS = ("which warps every image, img1 too, onto a surface of its own (spherical by default) and blends "
+                  "them; the exercise's panorama keeps img1 as the reference frame, only shifted, and warps img2 "
+                  "onto it with the homography.")
+
+
+def _stitcher_called(functions) -> str:
+    """The OpenCV stitcher the functions read create or call (`cv2.Stitcher_create`, `cv2.Stitcher.create`,
+    `cv2.createStitcher`), as written; "" when none."""
+    for function in functions:
+        for node in ast.walk(function):
+            if isinstance(node, ast.Call) and "stitcher" in _path(node.func).lower() \
+                    and _path(node.func).startswith(("cv2.", "cv.")):
+                return _path(node.func)
+    return ""
 
 
 def _img1_only_shifted(function) -> bool:

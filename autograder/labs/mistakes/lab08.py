@@ -534,6 +534,14 @@ MISTAKES = {
             return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
         """, ["returns the last model drawn rather than the best one."]),   # (500 samples: not "too few")
     # ---------------------------------------------------------------- ex5
+    # the blind set 1203c's 08/06: OpenCV's stitching pipeline, which warps img1 too
+    "stitch through cv2.Stitcher": ("lab08.ex5", """
+        def stitch(img1, img2):
+            status, panorama = cv2.Stitcher_create(cv2.Stitcher_PANORAMA).stitch([img1, img2])
+            if status != cv2.Stitcher_OK:
+                raise RuntimeError(f"stitching failed (status {status})")
+            return panorama
+        """, ["your code stitches with `cv2.Stitcher_create`"]),
     "stitch composing the grey copies made for the matching": ("lab08.ex5", """
         def stitch(img1, img2):
             img1, img2 = _grey(img1), _grey(img2)
