@@ -346,6 +346,25 @@ def test_a_negative_shift_count_is_named_with_the_numbers_given():
     assert explained(read_code(textwrap.dedent(two)), traceback_at(6), negative, "f", (905, 10), {}) is None
 
 
+def test_one_value_per_axis_given_for_another_number_of_axes_is_named():
+    """`ndimage.shift(image, (ty, tx))` on a colour image: two values for three axes, from the shape given; an
+    array whose shape is not known (made in the function) names nothing."""
+    from autograder.engine.raised import SEQUENCE_PER_AXIS
+
+    shifted = """
+        def f(image, tx, ty):
+            from scipy import ndimage
+            return ndimage.shift(image, (ty, tx), order=1)
+        """
+    rank = "sequence argument must have length equal to input rank"
+    form = explained(read_code(textwrap.dedent(shifted)), traceback_at(4), rank, "f", (np.zeros((5, 6, 3)), 1, 2), {})
+    assert form is not None and form.mistake == SEQUENCE_PER_AXIS, form
+    assert "gives `ndimage.shift` `(ty, tx)`, 2 values, for `image` of shape (5, 6, 3), which has 3 axes (a colour " \
+           "image" in form.sentence
+    made = shifted.replace("ndimage.shift(image,", "ndimage.shift(image[..., None] * 1,")
+    assert explained(read_code(textwrap.dedent(made)), traceback_at(4), rank, "f", (np.zeros((5, 6, 3)), 1, 2), {}) is None
+
+
 NONE_SUBSCRIPT = "'NoneType' object is not subscriptable"
 
 

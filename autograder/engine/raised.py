@@ -145,6 +145,8 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
         return _zero_divisor(fn, line, given)
     if _NEGATIVE_SHIFT.search(message):
         return _negative_shift(fn, line, given)
+    if _RANK.search(message):
+        return _sequence_per_axis(fn, line, given)
     if _READ_ONLY.search(message):
         return _read_only_written(fn, line, given)
     if _TOO_MANY.search(message) or _NOT_ENOUGH.search(message):
@@ -326,6 +328,32 @@ def _negative_shift(fn, line: int, given: dict) -> Form | None:
             # measured: the shift raised on this line, and its count is worked out (or the only candidate)
             return Form(measured(f"your `{fn.name}` shifts by `{_short(ast.unparse(node.right), 50)}` (line {line}), "
                                  f"which is {worked}, and a shift count must be 0 or more"), NEGATIVE_SHIFT)
+    return None
+
+
+_RANK = re.compile(r"sequence argument must have length equal to input rank")
+SEQUENCE_PER_AXIS = "values given per axis for another number of axes than the array has (a colour image's channels)"
+
+
+def _sequence_per_axis(fn, line: int, given: dict) -> Form | None:
+    """scipy.ndimage's "one value per axis" refused on the raising line: a call there gives an array the
+    parameter holds as it came (its shape known) and a tuple or list of fewer (or more) values than its axes
+    (`ndimage.shift(image, (ty, tx))` for a colour image)."""
+    for call in (n for n in _own_nodes(fn) if isinstance(n, ast.Call) and n.lineno <= line <= getattr(n, "end_lineno", n.lineno)):
+        arrays = [found for found in (_as_given(fn, line, given, a) for a in call.args[:1]) if found is not None]
+        shape = _shape_given(arrays[0][1]) if arrays else None
+        if not shape:
+            continue
+        for sequence in (a for a in list(call.args[1:]) + [k.value for k in call.keywords] if isinstance(a, (ast.Tuple, ast.List))):
+            count = len(sequence.elts)
+            if count != len(shape):
+                colour = " (a colour image: the channel axis needs its 0 too)" if len(shape) == 3 and shape[2] in (3, 4) \
+                    and count == 2 else ""
+                # measured: the shape is the argument's as given; the values are counted in the code
+                return Form(measured(f"your `{fn.name}` gives `{_short(ast.unparse(call.func), 30)}` "
+                                     f"`{_short(ast.unparse(sequence), 30)}`, {count} values, for `{arrays[0][0]}` of "
+                                     f"shape {shape}, which has {len(shape)} axes{colour} (line {line}): scipy.ndimage "
+                                     "takes one value per axis"), SEQUENCE_PER_AXIS)
     return None
 
 
