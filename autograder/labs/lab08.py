@@ -2064,7 +2064,7 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
             t.fail(f"{what}: at its best place the panorama differs from img1 by {error:.0f} grey levels on "
                    f"average: {shown}" + (from_code(f": your code stitches with `{stitcher}`, {STITCHER_WARPS}")
                                           if stitcher else "."),
-                   mistake=from_code(STITCHER) if stitcher else "")
+                   mistake=STITCHER if stitcher else "")
         t.images(what, yours=panorama, img1=img1, img2=img2)
         grey = colours_lost(panorama, (img1, img2))
         if grey:
@@ -2074,7 +2074,7 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
         if stitcher:
             t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs from img1 by "
                    f"{error:.0f} grey levels; {shown}): " + from_code(
-                       f"your code stitches with `{stitcher}`, {STITCHER_WARPS}"), mistake=from_code(STITCHER))
+                       f"your code stitches with `{stitcher}`, {STITCHER_WARPS}"), mistake=STITCHER)
         saturated = _saturated(panorama, (img1, img2), read)
         # (where to look is the hint's: a change of their code confirmed on these inputs takes its place)
         t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs "
@@ -2085,7 +2085,7 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
     return store[key + "/judge"]
 
 
-STITCHER = "cv2.Stitcher used for the homography panorama"
+STITCHER = from_code("cv2.Stitcher used for the homography panorama")
 STITCHER_WARPS = ("which warps every image, img1 too, onto a surface of its own (spherical by default) and blends "
                   "them; the exercise's panorama keeps img1 as the reference frame, only shifted, and warps img2 "
                   "onto it with the homography.")
