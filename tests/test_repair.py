@@ -1121,6 +1121,21 @@ def _shown_changes(source: str, operator: str) -> list:
                               if m.operator == operator and student.fix(m) is not None))
 
 
+def test_a_clip_of_an_intermediate_value_is_a_change_tried_and_the_final_conversions_is_not():
+    """`np.clip(w * a + (1 - w) * b, 0, 255)` on a band-pass level (signed): the clip taken out; the clip of the
+    final `.astype(np.uint8)` conversion stays (taking it out lets values wrap: never the fix)."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(a, b, w):
+            band = np.clip(w * a + (1 - w) * b, 0, 255)
+            return np.clip(np.round(band), 0, 255).astype(np.uint8)
+        """)
+    changes = _shown_changes(source, "unwrap")
+    assert ("np.clip(w * a + (1 - w) * b, 0, 255)", "w * a + (1 - w) * b") in changes, changes
+    assert not any(before.startswith("np.clip(np.round(band)") and after.startswith("np.round(band)")
+                   for before, after in changes), changes
+
+
 def test_a_factor_a_number_given_to_opencv_a_wrapped_index_and_a_whole_for_its_part_are_changes_tried():
     """Four slips of a student's own code: a factor that does not belong (`f * X[:, 2]` in the depth), an
     OpenCV argument given as the wrong number (nearest first), a difference of two arrays used as an index

@@ -2620,6 +2620,8 @@ def _student_changes(node, parent, parents):
         yield "unwrap", "method", ""   # one value of the whole array where each item's own belongs (a mean depth)
     if _rounded_to_decimals(node, dotted):
         yield "unwrap", None, ""   # a value rounded to a few decimals where the exact one belongs: `np.round(c, 2)`
+    if dotted in ("np.clip", "numpy.clip") and node.args and not (isinstance(parent, ast.Attribute) and parent.attr == "astype"):
+        yield "unwrap", None, ""   # a clip of an intermediate value that may be signed or beyond 255: a band-pass level
     if isinstance(node.func, ast.Attribute) and node.func.attr == "round" and dotted not in _ROUNDING \
             and dotted.split(".")[0] not in ("np", "numpy", "math") and (node.args or node.keywords):
         yield "unwrap", "method", ""   # `np.cos(t).round(2)` -> `np.cos(t)`
