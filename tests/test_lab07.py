@@ -163,3 +163,20 @@ def test_a_replicated_fill_is_told_from_the_code_that_makes_it(tmp_path, samplin
     messages = [c.message for c in check_results(result, "lab07.ex4") if not c.passed]
     assert messages and all(said in m for m in messages if "not black" in m), messages
     assert any("not black" in m for m in messages), messages
+
+
+def test_a_matrix_of_the_right_numbers_in_other_places_is_told_where_each_belongs():
+    """Entries that are the expected ones, each once, some moved: each moved one is told with the place it
+    belongs in; a matrix with an entry not among the expected, or with repeated values, tells nothing."""
+    import numpy as np
+
+    from autograder.engine.judges import entries_misplaced
+
+    expected = np.array([[0.9, -0.2, 30.0], [0.3, 1.1, 20.0]])
+    reshaped = np.array([[0.9, -0.2, 0.3], [1.1, 30.0, 20.0]])
+    assert entries_misplaced(reshaped, expected) == ("[0, 2] holds the value that belongs in [1, 0], [1, 0] holds the "
+                                                     "value that belongs in [1, 1], [1, 1] holds the value that "
+                                                     "belongs in [0, 2]")
+    assert entries_misplaced(expected, expected) == ""
+    assert entries_misplaced(reshaped + np.array([[0, 0, 0], [0, 0, 1e-3]]), expected) == ""
+    assert entries_misplaced(np.ones((2, 3)), np.ones((2, 3))) == ""

@@ -389,6 +389,27 @@ def where_matrices_differ(got, expected, up_to_scale: bool = False) -> str:
     return f"in its {listed} {kind}{'s' if len(names) > 1 else ''}"
 
 
+def entries_misplaced(got, expected, rtol: float = 1e-6) -> str:
+    """Where a matrix holds the expected numbers, each once, but some in other places ("[0, 2] holds the
+    value that belongs in [1, 0], ..."): the unknowns of a solved vector put into the matrix in another order
+    than the equations use them. "" otherwise (entries that are not all distinct say nothing)."""
+    got, expected = np.asarray(got, np.float64), np.asarray(expected, np.float64)
+    if got.shape != expected.shape or got.ndim != 2 or not np.isfinite(got).all() or not np.isfinite(expected).all():
+        return ""
+    flat_got, flat_expected = got.ravel(), expected.ravel()
+    scale = max(np.abs(flat_expected).max(), 1e-300)
+    close = np.abs(flat_got[:, None] - flat_expected[None, :]) <= rtol * scale
+    if not (close.sum(axis=0) == 1).all() or not (close.sum(axis=1) == 1).all():
+        return ""   # (not a permutation of distinct values)
+    source = close.argmax(axis=1)   # the expected entry each of got's holds
+    moved = [(i, int(j)) for i, j in enumerate(source) if i != j]
+    if not moved:
+        return ""
+    columns = got.shape[1]
+    return ", ".join(f"[{i // columns}, {i % columns}] holds the value that belongs in [{j // columns}, {j % columns}]"
+                     for i, j in moved)
+
+
 def warp_probe(t: Trial, function: str, source, M, mistakes: dict, args=None, kwargs=None,
                dsize=None) -> Probe:
     """A :class:`Probe` for image warps: the student's ``function(*args, **kwargs)`` (``args``

@@ -20,7 +20,7 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, Verdict, passed
 from ..engine.claims import calls_any, from_code, guard, measured
 from ..engine.compare import format_arrays_apart
-from ..engine.judges import (Probe, call_probe, digits_apart, judge_matrix, judge_parameter_used, judge_warp, reads,
+from ..engine.judges import (Probe, call_probe, digits_apart, entries_misplaced, judge_matrix, judge_parameter_used, judge_warp, reads,
                       name_mistake, warp_probe)
 from ..engine.hints import Predicate, calls, code_of, expr, mentions, uses_attr
 from ..engine.registry import Lab
@@ -461,6 +461,9 @@ def fit_probe(t: Trial, function: str) -> Probe:
                       shape=(2, 3), distance=lambda a, b: point_error(a, b, region), tolerance=1.0)
 
 
+ENTRIES_MISPLACED = "the solved unknowns put into the matrix in another order than the equations use them"
+
+
 def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
     """An affine fit from point pairs: right within :func:`point_tolerance` over the data."""
     got = t.expect_array(got, what, shape=(2, 3), kind="iuf", finite=True)
@@ -473,6 +476,13 @@ def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     shown, wanted = format_arrays_apart(got, expected, 6)
+    misplaced = entries_misplaced(got, expected)
+    if misplaced:
+        # measured: each returned entry is one of the expected six, all of them once
+        t.fail(f"{what} holds the six right numbers, in other places: " + measured(
+            f"{misplaced}. The solved unknowns are put into A in another order than the equations use them (is "
+            "the solution vector reshaped in its own order, (a, b, c, d, tx, ty) say, where A is [[a, b, tx], "
+            "[c, d, ty]]?)") + f"\nIt returned\n{shown}\nexpected\n{wanted}", mistake=ENTRIES_MISPLACED)
     t.fail(f"{what} sends the points up to {digits_apart(error, tolerance)} px away from where the "
            f"true map sends them (at most {tolerance:.3g} px expected).\nIt returned\n{shown}\n"
            f"expected\n{wanted}")

@@ -165,6 +165,15 @@ MISTAKES = {
         def shear_matrix(s):
             return np.array([[1.0, 0, 0], [s, 1.0, 0], [0, 0, 1.0]])
         """, ["along y"]),
+    # the blind set 1203c's 07/07: the unknowns solved as (a, b, c, d, tx, ty), the vector reshaped row by row
+    "affine_from_points reshaping its solution in the unknowns' own order": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            src, dst = np.asarray(src, np.float64), np.asarray(dst, np.float64)
+            M = np.zeros((6, 6))
+            M[0::2, 0:2], M[0::2, 4] = src, 1.0
+            M[1::2, 2:4], M[1::2, 5] = src, 1.0
+            return np.linalg.solve(M, dst.reshape(-1)).reshape(2, 3)
+        """, ["holds the six right numbers, in other places"]),
     "affine from points refusing triangles smaller than a pixel": ("lab07.ex5", """
         _affine_right = affine_from_points
         def affine_from_points(src, dst):
