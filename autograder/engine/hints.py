@@ -108,6 +108,20 @@ class Predicate:
         return Predicate(f"does not: {self.says}", kind="not", parts=(self,))
 
 
+def call_in_a_loop(functions, names) -> tuple[str, int] | None:
+    """(the call as written, its line) of the first call of one of ``names`` (the last part of its dotted
+    name: "calibrateCamera") made in a loop's body or a comprehension of ``functions``: a step the sheet makes
+    once, made for each item (each view calibrated alone); None when there is none."""
+    for function in functions:
+        for loop in ast.walk(function):
+            body = loop.body if isinstance(loop, (ast.For, ast.While)) else [loop.elt] \
+                if isinstance(loop, (ast.ListComp, ast.GeneratorExp, ast.SetComp)) else []
+            for node in (n for part in body for n in ast.walk(part)):
+                if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in names:
+                    return _path(node.func), node.lineno
+    return None
+
+
 def _path(node) -> str:
     """``np.linalg.svd`` for that expression, ``.argmax`` for ``x.argmax`` on anything else."""
     parts = []

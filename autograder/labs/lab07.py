@@ -22,7 +22,7 @@ from ..engine.claims import calls_any, from_code, guard, measured
 from ..engine.compare import format_arrays_apart
 from ..engine.judges import (Probe, call_probe, digits_apart, entries_misplaced, judge_matrix, judge_parameter_used, judge_warp, reads,
                       name_mistake, warp_probe)
-from ..engine.hints import Predicate, calls, code_of, expr, mentions, uses_attr
+from ..engine.hints import Predicate, call_in_a_loop, calls, code_of, expr, mentions, uses_attr
 from ..engine.registry import Lab
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
@@ -583,10 +583,17 @@ def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
     # The residual grows only to second order in the error: quoted only when the digits show it.
     residuals = f"; RMS residual {residual:.4f} px where the least-squares fit has {best:.4f} px" \
         if f"{residual:.4f}" != f"{best:.4f}" else ""
+    subsets = call_in_a_loop(code_of(t).reachable(["affine_lstsq"]), _EXACT_FITS)
+    cause = from_code(f" Your code fits the map exactly to a few points at a time (`{subsets[0]}` in a loop, line "
+                      f"{subsets[1]}) and combines the fits: an average of exact fits is not the least-squares fit "
+                      "of all the points; solve the one system of all 2N equations (np.linalg.lstsq).") if subsets else ""
     t.fail(f"{what} is not the least-squares fit: it sends a source point "
            f"{digits_apart(error, tolerance)} px away from where the least-squares fit sends it "
            f"(at most {tolerance:.3g} px expected)"
-           f"{residuals}.")
+           f"{residuals}.{cause}", mistake=from_code("exact fits of a few points combined") if subsets else "")
+
+
+_EXACT_FITS = ("affine_from_points", "getAffineTransform")   # three-point fits
 
 
 @ex6.check("affine_lstsq on exact correspondences (N=3 and N=12)", points=3)

@@ -24,7 +24,8 @@ from ..engine import defaults_given
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import THIRD_COORDINATE, checklist, divides_by, evidenced, from_code, guard, look_at, measured
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
-from ..engine.hints import Hint, Predicate, _resolved, _scope, calls, code_of, expr, matmul_of, mentions, nan_behind
+from ..engine.hints import (Hint, Predicate, _resolved, _scope, call_in_a_loop, calls, code_of, expr, matmul_of, mentions,
+                            nan_behind)
 from ..engine.hints import _path as _hints_path
 from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canvas, call_probe, confirm, fingerprint,
                               format_matrix)
@@ -1834,19 +1835,6 @@ ext1 = lab.exercise("ext1", "Extension: camera calibration", functions=[
     "calibrate(images, pattern_size, square_size)"])
 
 
-def _calibration_in_a_loop(functions) -> int:
-    """The line of a cv2.calibrateCamera call made in a loop's body (or a comprehension) of the functions read,
-    0 when none is: each view calibrated alone."""
-    for function in functions:
-        for loop in ast.walk(function):
-            body = loop.body if isinstance(loop, (ast.For, ast.While)) else [loop.elt] \
-                if isinstance(loop, (ast.ListComp, ast.GeneratorExp)) else []
-            for node in (n for part in body for n in ast.walk(part)):
-                if isinstance(node, ast.Call) and _hints_path(node.func).rsplit(".", 1)[-1] == "calibrateCamera":
-                    return node.lineno
-    return 0
-
-
 def calibration_result(t: Trial, images, pattern) -> tuple[str, np.ndarray, np.ndarray, float]:
     """``calibrate(images, pattern, square)`` called once per grading (the checks of one set of
     views share it), checked for its form: (what, K, dist, rms)."""
@@ -1887,7 +1875,7 @@ def judge_calibration(t: Trial, images, K_true, pattern):
         t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
                "(rows, cols)? OpenCV wants (width, height).", mistake="the principal point is swapped")
     if f_error.max() > 0.015 or c_error.max() > 3.0:
-        looped = _calibration_in_a_loop(code_of(t).reachable(["calibrate"]))
+        looped = (call_in_a_loop(code_of(t).reachable(["calibrate"]), ("calibrateCamera",)) or ("", 0))[1]
         cause = from_code(f" Your code calls cv2.calibrateCamera inside a loop (line {looped}), a calibration of each "
                           "view alone (one view cannot fix the focal lengths and the principal point): calibrate "
                           "once, with the object points and corners of every view together.") if looped else ""
@@ -1965,7 +1953,7 @@ def calibration_consistent(t):
     # transposed, another call's K or dist, a calibration of some of the views only, whose rms is
     # theirs), which the message leaves to the student (the blind set 1203a's 09/08: "not the pair
     # the rms was computed for" told to code whose one call used only the last view).
-    looped = _calibration_in_a_loop(read)
+    looped = (call_in_a_loop(read, ("calibrateCamera",)) or ("", 0))[1]
     cause = from_code(": your code calls cv2.getOptimalNewCameraMatrix, and K is measured not to be the calibrated "
                       "camera's: that matrix is for undistorted images (cv2.undistort's newCameraMatrix), not the "
                       "calibrated camera's K") if reading else \

@@ -199,6 +199,14 @@ MISTAKES = {
                 dsize = (dsize[1], dsize[0])
             return _warp(image, A, dsize)
         """, ["width and height are swapped"]),
+    # the blind set 1203c's 07/08: exact fits of consecutive triples, averaged
+    "affine_lstsq averaging the exact fits of point triples": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src, dst = np.asarray(src, np.float64), np.asarray(dst, np.float64)
+            if len(src) == 3:
+                return affine_from_points(src, dst)
+            return np.mean([affine_from_points(src[i:i + 3], dst[i:i + 3]) for i in range(len(src) - 2)], axis=0)
+        """, ["fits the map exactly to a few points at a time", "np.linalg.lstsq"]),
     "lstsq unknowns in the wrong order": ("lab07.ex6", """
         def affine_lstsq(src, dst):
             src = np.asarray(src, float); dst = np.asarray(dst, float)
