@@ -1996,8 +1996,8 @@ def _redraws(fix) -> bool:
 
     def draws(code):
         try:
-            tree = ast.parse(code)
-        except SyntaxError:
+            tree = parse(code)
+        except (SyntaxError, ValueError, RecursionError, MemoryError):
             return {}
         return {ast.dump(n.func) + "|" + "|".join(ast.dump(a) for a in n.args): {ast.dump(k) for k in n.keywords}
                 for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
