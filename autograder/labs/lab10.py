@@ -160,15 +160,33 @@ def _orthogonal_first(function) -> bool:
 # Signs fixed after a decomposition: np.sign, a test of a diagonal entry's sign; read leniently.
 SIGNS_READ = (calls("np.sign") | expr("np.diag(_) < 0") | expr("_[_, _] < 0") | expr("np.diag(_) > 0")
               | expr("_[_, _] > 0")).saying("fixes the signs of K's diagonal")
+def _rotations_written_out(function) -> bool:
+    """A 3x3 rotation written out entry by entry (`np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])`): an
+    RQ by Givens rotations, each meant to zero one entry below K's diagonal."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _path(node.func) in ("np.array", "numpy.array") and node.args \
+                and isinstance(node.args[0], ast.List) and len(node.args[0].elts) == 3:
+            entries = [e for row in node.args[0].elts if isinstance(row, ast.List) for e in row.elts]
+            minus = {ast.dump(e.operand) for e in entries if isinstance(e, ast.UnaryOp) and isinstance(e.op, ast.USub)}
+            if len(entries) == 9 and any(ast.dump(e) in minus for e in entries):
+                return True
+    return False
+
+
+ROTATIONS_WRITTEN_OUT = Predicate("writes the RQ's rotations out (Givens rotations)", _rotations_written_out)
 RQ_HINT = Hint(" (use an RQ decomposition of the left 3x3 block)",
                asks=calls_any("scipy.linalg.rq", "cv2.RQDecomp3x3", "cv2.decomposeProjectionMatrix", "np.linalg.qr",
-                              says="decomposes P[:, :3]"),
+                              says="decomposes P[:, :3]") | ROTATIONS_WRITTEN_OUT,
                instead=" (your code {found}: " + checklist(
                    "", ("the upper-triangular factor becomes K (P[:, :3] = K R)",
                         ~Predicate("takes the orthogonal factor of an RQ as K", _orthogonal_first)),
                    ("the rows and columns are reversed to turn a QR into an RQ",
                     ~calls("np.linalg.qr") | calls_any("np.flipud", "np.fliplr", "np.flip") | expr("_[::-1]")
                     | expr("_[::-1, ::-1]")),
+                   # (a rotation written out zeroes its entry only with its sines' signs right: the entries
+                   # left below the diagonal, said in the message, point at the rotation meant for them)
+                   ("each rotation written out zeroes its entry below the diagonal (the signs of its sines)",
+                    ~ROTATIONS_WRITTEN_OUT),
                    none_left=look_at(("the signs fixed after it", SIGNS_READ),
                                      ("K divided by K[2, 2]", divides_by("_[2, 2]", "_[-1, -1]")))) + ")")
 NORMALISE_K_HINT = Hint("divide K by K[2, 2] (P is only known up to scale)",
@@ -614,8 +632,11 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     sign_fix = SIGN_FIX.said(t)
     other_block = another_block_tested(code_of(t).reachable(["decompose_camera_matrix"]))
     K_scale = magnitude(K)
-    if np.abs(np.tril(K, -1)).max() > at_precision(1e-6 * np.abs(K).max(), K_scale):
-        problems.append("K is not upper triangular" + RQ_HINT.said(t))
+    triangular = np.abs(np.tril(K, -1)).max() <= at_precision(1e-6 * np.abs(K).max(), K_scale)
+    if not triangular:
+        below = [f"K[{i}, {j}] = {K[i, j]:.3g}" for i, j in zip(*np.tril_indices(3, -1))
+                 if abs(K[i, j]) > at_precision(1e-6 * np.abs(K).max(), K_scale)]
+        problems.append("K is not upper triangular" + measured(f" ({', '.join(below)})") + RQ_HINT.said(t))
     if abs(K[2, 2] - 1) > at_precision(1e-6):
         problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: K is not normalised; " + NORMALISE_K_HINT.said(t))
         labels.append("K is not normalised (K[2, 2] != 1)")
@@ -650,8 +671,12 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
         problems.append("det(R) = -1: " + measured("K R is P[:, :3] itself times a positive number, and det(P[:, :3]) "
                                                    "< 0 here: the block decomposed was not negated")
                         + "; " + sign_fix)
+    elif np.linalg.det(R) < 0 and not unsigned and not triangular and not unnegated:
+        # (K R is no RQ of the block: the signs fixed after it follow from its diagonal, whatever they are)
+        problems.append("det(R) = -1 as well")
     elif np.linalg.det(R) < 0 and not unsigned:   # with K's signs unfixed, det(R) = -1 follows from them
-        flips = SIGNS_HINT.contradicts(code_of(t), ["decompose_camera_matrix"])
+        flips = SIGNS_HINT.contradicts(code_of(t), ["decompose_camera_matrix"]) \
+            and not FLIPS_BOTH_SIDES.found(code_of(t).reachable(["decompose_camera_matrix"]))
         labels.append("P is not negated when det(P[:, :3]) < 0" if unnegated else
                       "K's columns are flipped without R's rows" if flips else "the signs of K's diagonal are not fixed")
         problems.append("det(R) = -1: " + (
@@ -1883,6 +1908,18 @@ def track_check(t):
                        failure.mistake)
 
 
+def _warm_started(function) -> bool:
+    """cv2.solvePnP given a starting pose: ``useExtrinsicGuess=True`` (a keyword or the 7th argument)."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "solvePnP":
+            given = [k.value for k in node.keywords if k.arg == "useExtrinsicGuess"] + node.args[6:7]
+            if any(not (isinstance(v, ast.Constant) and not v.value) for v in given):
+                return True
+    return False
+
+
+WARM_START = Predicate("starts cv2.solvePnP from a given pose (useExtrinsicGuess)", _warm_started)
+WARM_START_FROM_NAN = from_code("the solve after a frame without a board starts from that frame's NaN row")
 RELATIVE_TO_FIRST = measured("each row is the pose relative to the first frame with a board (its row is the identity, "
                      "R = I and t = 0): every row must be the board's own pose in that frame's camera, as "
                      "estimate_pose (cv2.solvePnP) gives it, not the motion since the first frame")
@@ -1951,6 +1988,17 @@ def judge_track(t: Trial, frames, poses, dist=None, what=None):
             continue
         R, tv = pose
         if not np.isfinite(row).all():
+            lost = [k for k, p in enumerate(poses) if p is not None and not np.isfinite(got[k]).all()]
+            if i > 0 and all(k > 0 and poses[k - 1] is None for k in lost) \
+                    and WARM_START.found(code_of(t).reachable(["track_pose"])):
+                # (every such frame follows one without a board, and each solve starts from the previous row)
+                t.fail(f"{what}: frame {i} shows the whole board, but its row is NaN: "
+                       + measured(f"frame {i - 1} shows none, and every frame with a board whose row is NaN follows "
+                                  "a frame without one")
+                       + "; " + from_code("your code starts each cv2.solvePnP from the previous pose "
+                                          "(useExtrinsicGuess=True), and after a frame without a board that pose is its "
+                                          "NaN row: start from the last pose found (or solve without a guess)"),
+                       mistake=WARM_START_FROM_NAN)
             t.fail(f"{what}: frame {i} shows the whole board, but its row is NaN.")
         angle, shift, _ = truth.pose_error(row[:3], row[3:], R, tv, pattern, square)
         if angle > ANGLE_TOLERANCE or shift > TRANSLATION_TOLERANCE * np.linalg.norm(tv):

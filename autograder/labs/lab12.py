@@ -3160,18 +3160,23 @@ def sl_decoding_explained(got, images, f, baseline) -> list[str]:
     with np.errstate(invalid="ignore"):
         got_valid = np.isfinite(got) & (got > 0)
     truth_valid = truth.depth_from_structured_light(images, f, baseline) > 0
-    found = []
+    found, few_lit = [], []
     for mistake, wrong in truth.structured_light_mistakes(images, f, baseline).items():
         wrong_valid = wrong > 0
         with np.errstate(invalid="ignore"):
-            match = (got_valid & wrong_valid & (np.abs(got - wrong) <= at_precision(
-                1e-6 * np.maximum(wrong, 1.0), np.maximum(wrong, 1.0)))) | (~got_valid & ~wrong_valid)
+            lit_alike = got_valid & wrong_valid & (np.abs(got - wrong) <= at_precision(
+                1e-6 * np.maximum(wrong, 1.0), np.maximum(wrong, 1.0)))
+        if (lit_alike | (~got_valid & ~wrong_valid)).mean() < 0.995:
+            continue
         # agreeing on pixels both leave undecoded is no evidence: a candidate that decodes too
         # little of what the truth decodes names nothing (a decoder lighting almost no pixel
-        # agrees with every mistake whose disparities come out negative)
-        if match.mean() >= 0.995 and (got_valid | wrong_valid).mean() >= 0.5 * truth_valid.mean():
+        # agrees with every mistake whose disparities come out negative) -- unless it is the one
+        # candidate agreeing, on a twentieth of the truth's pixels at least, each to its depth
+        if (got_valid | wrong_valid).mean() >= 0.5 * truth_valid.mean():
             found.append(mistake)
-    return found
+        elif lit_alike.sum() >= 0.05 * truth_valid.sum():
+            few_lit.append(mistake)
+    return found or (few_lit if len(few_lit) == 1 else [])
 
 
 def sl_decoding_on_probe(t: Trial) -> list[str]:
@@ -3222,7 +3227,9 @@ def _mid_grey(function) -> bool:
 
 XOR = Predicate("XORs bits", lambda function: any(
     (isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.BitXor))
-    or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("bitwise_xor", "logical_xor"))
+    # (np.logical_xor called, or its ufunc methods: np.logical_xor.accumulate(bits, axis=0))
+    or (isinstance(n, ast.Attribute) and n.attr in ("bitwise_xor", "logical_xor"))
+    or (isinstance(n, ast.Name) and n.id in ("bitwise_xor", "logical_xor"))
     for n in ast.walk(function)))
 STRIPE_CENTRE = (expr("_ + 0.5") & (expr("2 ** _") | expr("1 << _") | calls("np.power") | calls("np.left_shift"))
                  ).saying("takes the stripe's centre")

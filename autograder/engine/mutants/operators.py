@@ -2415,6 +2415,10 @@ def _student_changes(node, parent, parents):
         yield "zero_entry", f"np.diag([{scaled}, {scaled}, 1.0])", ""   # f * np.eye(3): K's last entry is 1
     yield from _grid_axis_changes(node)
     yield from _layout_and_type_changes(node)
+    if _antisymmetric_literal(node):
+        # a rotation written out transposed (`[[c, 0, -s], [0, 1, 0], [s, 0, c]]` for the y rotation's
+        # `[[c, 0, s], ..., [-s, 0, c]]`): the sine terms have each other's signs, one slip in two places
+        yield "transpose", "literal", "the matrix written out has its sine terms' signs exchanged (it is transposed)"
     if isinstance(parent, ast.Call) and len(parent.args) >= 2 and node is parent.args[1] \
             and _dotted(parent.func).rsplit(".", 1)[-1] in ("lstsq", "solve") \
             and not (isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub)):
@@ -5074,6 +5078,24 @@ def _subject(phrase: str, predicate: str, node, parents, words) -> str:
         where = f"entry [{place[0]}, {place[1]}] of the matrix built there"
         return f"{phrase} at {where} {predicate}" if phrase else f"{where} {predicate}"
     return f"{phrase} {predicate}" if phrase else ""
+
+
+def _antisymmetric_literal(node) -> bool:
+    """Whether ``node`` is ``np.array([[...], ...])`` of a square matrix written out with an entry and its
+    minus in mirrored places (row i, column j and row j, column i): a rotation's sines."""
+    if not (isinstance(node, ast.Call) and _dotted(node.func) in ("np.array", "numpy.array", "np.asarray")
+            and node.args and isinstance(node.args[0], ast.List)):
+        return False
+    rows = node.args[0].elts
+    if len(rows) < 2 or not all(isinstance(r, ast.List) and len(r.elts) == len(rows) for r in rows):
+        return False
+
+    def negated(a, b) -> bool:
+        return isinstance(a, ast.UnaryOp) and isinstance(a.op, ast.USub) and not isinstance(a.operand, ast.Constant) \
+            and ast.dump(a.operand) == ast.dump(b)
+
+    return any(negated(rows[i].elts[j], rows[j].elts[i]) or negated(rows[j].elts[i], rows[i].elts[j])
+               for i in range(len(rows)) for j in range(i + 1, len(rows)))
 
 
 def _entry_of_literal(node, parents):

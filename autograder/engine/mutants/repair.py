@@ -240,17 +240,34 @@ def _left_out(fn) -> tuple[set, set]:
     return left, feeding | helpers
 
 
-def _disconnects(before, after, helpers_changed=frozenset()) -> bool:
+def _own_results(fn, own: frozenset) -> set[str]:
+    """The names ``fn`` assigns from a call of the student's own defs (the module's, or one nested in
+    ``fn``): `U = _normalising_transform(X)`, `T1, T2 = conditioner(a), conditioner(b)`."""
+    own = own | {n.name for n in ast.walk(fn) if isinstance(n, ast.FunctionDef) and n is not fn}
+    results = set()
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Assign) and any(isinstance(c, ast.Call) and isinstance(c.func, ast.Name)
+                                                and c.func.id in own for c in ast.walk(node.value)):
+            results |= {n.id for t in node.targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+    return results
+
+
+def _disconnects(before, after, helpers_changed=frozenset(), own=frozenset()) -> bool:
     """Whether a change (``after``: the def ``before`` changed; ``helpers_changed``: the other defs it
     changes) works around a step the student left out: ``before`` computes a value it never uses
     (`x_norm`, the rows built from `x`), the change leaves it unused, and either takes out of what the
     function returns a name that value reads (`inv(T) @ P` -> `P`: T then reaches nothing) or changes a
     helper that computes one (T made the identity). The answers come right; the step is still missing.
-    So does a change after which a parameter the function used no longer reaches its answers."""
+    So does a change after which a parameter the function used no longer reaches its answers, or a
+    value it computed with a def of the student's own (``own``: the module's defs)."""
     # A parameter whose value reached the answers and no longer does: the change makes the caller's
     # argument irrelevant (a penalty `s` replaced by `block_size`, which happens to suit the inputs).
+    # A helper of the student's whose result no longer does: the student wrote it for that step, and
+    # the change throws the step away (`inv(T) @ P @ U` -> `inv(T) @ P` where the points were never
+    # normalised by U; the raw points in the rows where the cameras were never conditioned).
     parameters = {a.arg for a in (*before.args.posonlyargs, *before.args.args, *before.args.kwonlyargs)}
-    if parameters & (_live(before) - _live(after)):
+    dropped = _live(before) - _live(after)
+    if dropped & (parameters | _own_results(before, frozenset(own))):
         return True
     left, feeding = _left_out(before)
     if not left:
@@ -2697,7 +2714,7 @@ class _Variants:
         edited = {fn.name: fn for fn in changed if isinstance(fn, ast.FunctionDef) and fn.name in before}
         graded = before.get(self.function)
         return graded is not None and _disconnects(graded, edited.get(self.function, graded),
-                                                   frozenset(edited) - {self.function})
+                                                   frozenset(edited) - {self.function}, frozenset(before))
 
     def ran(self, index) -> set | None:
         """The lines of the student's file their own code runs on ``self.inputs[index]`` (a change

@@ -158,6 +158,32 @@ MISTAKES = {
             K, R = K @ signs, signs @ R
             return K / K[2, 2], R, np.linalg.solve(K, p4)
         """, ["the block decomposed was not negated"]),
+    # the blind set 1203b's 10/04: an RQ by three Givens rotations, the y rotation written out transposed
+    "decomposition by Givens rotations, one written transposed": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            if np.linalg.det(P[:, :3]) < 0:
+                P = -P
+            M = P[:, :3].copy()
+            r = np.hypot(M[2, 1], M[2, 2])
+            c, s = -M[2, 2] / r, M[2, 1] / r
+            Qx = np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+            M1 = M @ Qx
+            r = np.hypot(M1[2, 0], M1[2, 2])
+            c, s = M1[2, 2] / r, M1[2, 0] / r
+            Qy = np.array([[c, 0.0, -s], [0.0, 1.0, 0.0], [s, 0.0, c]])
+            M2 = M1 @ Qy
+            r = np.hypot(M2[1, 0], M2[1, 1])
+            c, s = -M2[1, 1] / r, M2[1, 0] / r
+            Qz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+            K = M2 @ Qz
+            R = Qz.T @ Qy.T @ Qx.T
+            D = np.diag(np.sign(np.diag(K)))
+            K, R = K @ D, D @ R
+            t = np.linalg.solve(K, P[:, 3])
+            return K / K[2, 2], R, t
+        """, ["K is not upper triangular (K[2, 0]", "writes the RQ's rotations out",
+              "to `np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])`"]),
     "decompose_camera_matrix returning t as a (3, 1) column": ("lab10.ex5", """
         _decompose_camera_matrix = decompose_camera_matrix
         def decompose_camera_matrix(P):
@@ -273,6 +299,25 @@ MISTAKES = {
                 poses[i, 3:] = tvec - R @ R0.T @ t0
             return poses
         """, ["relative to the first frame"]),
+    # the blind set 1203b's 10/08: each solve started from the previous row, NaN after a frame without a board
+    "track_pose warm-started from a NaN row": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            board = _object_points(pattern_size, square_size)
+            poses = np.full((len(frames), 6), np.nan)
+            last = None
+            for i, frame in enumerate(frames):
+                grey = cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY) if frame.ndim == 3 else frame
+                found, corners = cv2.findChessboardCorners(grey, tuple(pattern_size))
+                if found:
+                    if last is None:
+                        _, rvec, tvec = cv2.solvePnP(board, corners, K, dist)
+                    else:
+                        _, rvec, tvec = cv2.solvePnP(board, corners, K, dist, last[:3].reshape(3, 1).copy(),
+                                                     last[3:].reshape(3, 1).copy(), useExtrinsicGuess=True)
+                    poses[i] = np.concatenate([rvec.ravel(), tvec.ravel()])
+                last = poses[i]
+            return poses
+        """, ["starts each cv2.solvePnP from the previous pose", "follows a frame without one"]),
     "track_pose stopping at the first frame without a board": ("lab10.ext3", """
         def track_pose(frames, pattern_size, square_size, K, dist=None):
             rows = []

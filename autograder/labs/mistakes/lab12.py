@@ -769,6 +769,19 @@ MISTAKES = {
             column = (k + 0.5) * width / 2**n - 0.5
             return depth_from_disparity(np.arange(width) - column, f, baseline)
         """, ["undecodable pixels"]),
+    # the blind set 1203b's 12/07: a running XOR along the images, packed with np.packbits (left-aligned in a byte)
+    "decoding packed into a byte by np.packbits": ("lab12.ex6", """
+        def depth_from_structured_light(images, f, baseline):
+            stack = np.asarray(images)
+            n, height, width = stack.shape
+            bits = stack > 127
+            binary = np.logical_xor.accumulate(bits, axis=0)
+            k = np.packbits(binary, axis=0)[0].astype(np.int64)
+            column = (k + 0.5) * width / 2 ** n - 0.5
+            depth = depth_from_disparity(np.arange(width)[None, :] - column, f, baseline)
+            depth[~bits.any(axis=0)] = 0.0
+            return depth
+        """, ["left-aligned in a byte", "times 2^(8 - n)"]),
     # 10 bits code a 1024-column projector: stripe indices past 255.
     "decoding into a uint8 accumulator (np.zeros_like(images[0]))": ("lab12.ex6", """
         def depth_from_structured_light(images, f, baseline):
