@@ -398,3 +398,33 @@ def nearest_variants(got, candidates: dict, distance) -> dict:
         if scored:
             reduced[name] = min(scored, key=lambda item: item[0])[1]
     return reduced
+
+
+def rows_left_out(got, expected, tolerance) -> list[int] | None:
+    """The rows of ``expected`` that ``got`` leaves out, when ``got`` is ``expected`` with some of its rows
+    removed and the rest in order (each within ``tolerance``: a number, or one per row of ``expected``);
+    None otherwise. A function returning fewer rows than it was given points drops some of them: which
+    ones tells why (those behind the camera, those not found)."""
+    got, expected = np.asarray(got, dtype=np.float64), np.asarray(expected, dtype=np.float64)
+    if got.ndim != 2 or expected.ndim != 2 or got.shape[1] != expected.shape[1] or not 0 < len(got) < len(expected):
+        return None
+    tolerance = np.broadcast_to(np.asarray(tolerance, dtype=np.float64), (len(expected),))
+    left, j = [], 0
+    for i, row in enumerate(expected):
+        if j < len(got) and np.all(np.isfinite(got[j])) and np.linalg.norm(got[j] - row) <= tolerance[i]:
+            j += 1
+        else:
+            left.append(i)
+    return left if j == len(got) else None
+
+
+def rows_left_out_words(left: list[int], expected, kept_where: dict) -> str:
+    """What the rows ``left`` out of ``expected`` have in common, of ``kept_where`` (words -> a boolean per
+    row: "whose Z is <= 0": the rows it holds for), or which they are."""
+    left_set = set(left)
+    for words, holds in kept_where.items():
+        holds = np.asarray(holds, dtype=bool)
+        if all(holds[i] == (i in left_set) for i in range(len(expected))):
+            return f"the {len(left)} left out are exactly the ones {words}"
+    shown = ", ".join(str(i) for i in left[:8]) + (", ..." if len(left) > 8 else "")
+    return f"rows {shown} are left out"

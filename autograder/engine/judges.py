@@ -36,7 +36,7 @@ from .claims import calls_any, checklist, from_code, measured, seen_in_code
 from .forms import COLOURS_LOST, UNIT_RANGE_CAST, colours_lost, shape_form, unit_range_cast
 from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, mentions, parameter_flows,
                     size_given_as_shape)
-from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
+from .compare import (SAME_ANSWER, rows_left_out, rows_left_out_words, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, warp_error)
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
@@ -838,3 +838,21 @@ def blank_canvas(got, image, away) -> str:
     value = tuple(int(v) for v in mine[0]) if mine.shape[1] > 1 else int(mine[0, 0])
     return (f"away from what is drawn every pixel is {value}, where the input image has its own "
             f"({kept:.0%} of them kept): it looks like {BLANK_CANVAS}")
+
+
+def fail_if_points_left_out(t: Trial, what: str, got, expected, P1):
+    """A triangulation (labs 11 and 12) returning fewer rows than correspondences, each the answer
+    (``expected``, its rows) of one of them in order: which are left out, and what they share."""
+    if not isinstance(got, np.ndarray):
+        return
+    expected = np.asarray(expected, dtype=np.float64)
+    depth = np.linalg.norm(expected, axis=1)
+    left = rows_left_out(got, expected, 1e-3 * np.maximum(depth, 1e-9))
+    if left:
+        w = np.column_stack([expected, np.ones(len(expected))]) @ np.asarray(P1, np.float64)[2] \
+            * np.sign(np.linalg.det(np.asarray(P1, np.float64)[:, :3]))
+        t.fail(f"{what} returned {len(got)} rows for {len(expected)} correspondences: " + measured(
+            "each row is the answer of one correspondence, in order, and " + rows_left_out_words(
+                left, expected, {"whose Z is <= 0": expected[:, 2] <= 0, "behind camera 1 (negative depth)": w <= 0})
+            + ": return one row per correspondence, whatever its depth (a wrong match too: its point is its answer)"),
+            mistake="some correspondences' points are left out")

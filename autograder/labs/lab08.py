@@ -2692,6 +2692,44 @@ def stitch_overlap(t):
     return judge_region(t, judge, STITCH_WHAT, judge.inside[0] & judge.inside[1], "the overlap")
 
 
+def dimmed_scene():
+    """stitch_scene with img2 at 75% brightness (another exposure): a blend shows both in the overlap."""
+    scene = stitch_scene()
+    dim = np.round(scene.views[1] * 0.75).astype(np.uint8)
+    dim.setflags(write=False)
+    return replace(scene, views=(scene.views[0], dim))
+
+
+# The API's stitch blends the overlap; the lab sheet's recipe ends with "blend images". Any blend passes
+# (an average, a feathering, a seam cut anywhere inside the overlap): only an overlap that is one of the
+# two images alone on almost every pixel, the other pasted under it, fails.
+ALONE_SHARE = 0.95   # of the overlap's pixels within ALONE_LEVELS of one image placed alone
+ALONE_LEVELS = 3.0
+
+
+@ex5.check("stitch blends the overlap (img2 at 75% brightness: both images show in it)", points=1)
+def stitch_blends(t):
+    what = "stitch(img1, img2 at 75% brightness)"
+    judge = stitch_judge(t, "stitch-dimmed", dimmed_scene(), what)
+    overlap = judge.inside[0] & judge.inside[1]
+    if overlap.sum() < 100:
+        t.fail(f"{what}: the overlap is not inside the panorama")
+    size = (judge.panorama.shape[1], judge.panorama.shape[0])
+    blur = lambda image: cv2.GaussianBlur(image.astype(np.float32), (0, 0), 1.0)  # noqa: E731  (interpolation)
+    panorama = blur(judge.panorama)
+    placed = [blur(warp(view, judge.view_to_panorama(k), size)) for k, view in enumerate(judge.scene.views)]
+    apart = np.abs(placed[0] - placed[1]).max(axis=-1)[overlap].mean()
+    for k, (alone, under) in enumerate((("img1", "img2"), ("img2", "img1"))):
+        same = np.abs(panorama - placed[k]).max(axis=-1)[overlap] <= ALONE_LEVELS
+        if same.mean() >= ALONE_SHARE and apart >= 5 * ALONE_LEVELS:
+            judge.show(t, what)
+            t.fail(measured(f"{what}: the overlap is {alone} alone on {same.mean():.0%} of its pixels, where the two "
+                            f"images differ by {apart:.0f} grey levels on average: {under} is pasted under {alone}, "
+                            f"not blended with it (the overlap shows both: an average, a feathered weight, ...)"),
+                   mistake=f"the overlap is {alone} pasted over {under}, not blended")
+    return passed(measured("both images show in the overlap"))
+
+
 # ================================================================== ext1 ORB
 ext1 = lab.exercise("ext1", "ORB features", functions=['match_features(img1, img2, ratio=0.75, method="orb")'])
 ORB_HINT = Hint("use cv2.ORB_create() for 'orb', and match its binary descriptors with cv2.NORM_HAMMING",

@@ -749,7 +749,26 @@ def focal_lengths(t):
     for i, f in enumerate(fs):
         judge_points(t, f"project_focal_lengths(...)[{i}] (f = {f:g})", got[i], expected[i],
                      truth.projection_mistakes(f, X), probe=points_probe(t, "project_focal_lengths"))
+    judge_single_point_axis(t, "project_focal_lengths((3,) point, [100, 500, 1000])",
+                            t.call("project_focal_lengths", X[0], fs), expected[:, :1], axis=1)
     return passed("the image grows in proportion to f")
+
+
+def judge_single_point_axis(t: Trial, what: str, got, expected, axis: int):
+    """A single (3,) point given where the API documents (N, 3) points, to a function whose answer has
+    the points along ``axis`` among other axes (``expected``: the answer for that point as a one-row
+    array): its answer without that axis, or with it of length 1 -- the API says a single point gives a
+    single result, and for these answers either reading is fair; raising is not."""
+    expected = np.asarray(expected, dtype=np.float64)
+    dropped = expected.shape[:axis] + expected.shape[axis + 1:]
+    if isinstance(got, np.ndarray) and got.shape == dropped:
+        got = np.expand_dims(got, axis)
+    got = t.expect_array(got, what, shape=expected.shape, kind="iuf", finite=True)
+    scale = magnitude(expected)
+    if np.abs(got - expected).max() > at_precision(1e-6 * scale, scale):
+        shown, wanted = format_arrays_apart(got.reshape(-1, 2)[:3], expected.reshape(-1, 2)[:3])
+        t.fail(f"{what} is wrong for a single point (first rows {shown}; expected {wanted}), where the same point "
+               "among others is right.")
 
 
 def focal_order_named(used, fs) -> tuple[str, str, str]:
@@ -847,6 +866,9 @@ def aperture_zero(t):
         t.fail(f"{what}: with a point-sized pinhole every ray should land on the ideal projection "
                f"f X / Z; yours are up to {format_apart(error, tolerance)} px away (at most "
                f"{tolerance:.2g} px accepted).")
+    judge_single_point_axis(t, "simulate_aperture((3,) point, f=" + f"{APERTURE_F:g}, aperture=0, n_rays=20, seed=0)",
+                            t.call("simulate_aperture", X[0], APERTURE_F, 0.0, n_rays=20, seed=0),
+                            np.repeat(ideal[:1, None, :], 20, axis=1), axis=0)
     # (every other check gives n_rays: its default is judged here)
     return judges.judge_default_is_the_apis(
         t, f"simulate_aperture(points, f={APERTURE_F:g}, aperture=0, seed=0)",

@@ -38,7 +38,7 @@ from ..engine.forms import shape_form
 from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
                             keyword, mentions,
                             size_given_as_shape)
-from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, judge_default_is_the_apis,
+from ..engine.judges import (fail_if_points_left_out, BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, judge_default_is_the_apis,
                       judge_parameter_changes_result, judge_parameter_used, name_mistake, over_variants,
                       repeating_border, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
@@ -528,8 +528,9 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
     if isinstance(got, np.ndarray) and got.shape == (3, n) and n != 3:
         t.fail(f"{what} returned shape {got.shape}; expected ({n}, 3): one row per point (this is its transpose).")
     name_batched_vt_row(t, what, got, n)
-    got = t.expect_array(got, what, shape=(n, 3), kind="iuf", finite=True)
     linear = truth.linear_triangulation(P1, P2, pts1, pts2)
+    fail_if_points_left_out(t, what, got, linear, P1)
+    got = t.expect_array(got, what, shape=(n, 3), kind="iuf", finite=True)
     scale = max(1.0, float(np.abs(X_true).max()))
     error = np.linalg.norm(got - (X_true if exact else linear), axis=1)
     if exact and error.max() <= at_precision(1e-6 * scale, scale):
@@ -1404,9 +1405,22 @@ def _warped_or_inf(image, H, got) -> float:
         return float("inf")
 
 
-@ex3.check("rectify: most of each image stays in view", points=2)
+# A short baseline too (0.12 units: a stereo camera's few centimetres): a rectification's maps do not depend
+# on the baseline's length, where an unnormalised axis (e1 = C2) scales the images by it.
+SHORT_BASELINE = 0.12
+
+
+@ex3.check("rectify: most of each image stays in view", points=2)   # (a short baseline too)
 def rectify_in_view(t):
-    pair = truth.unrectified_pair(seed=4)
+    for pair, said in ((truth.unrectified_pair(seed=4), ""),
+                       (truth.unrectified_pair(seed=4, baseline=SHORT_BASELINE), f" (baseline {SHORT_BASELINE:g})")):
+        judge_in_view(t, pair, said, short=bool(said))
+    return passed(measured("both images stay mostly in view and fill their frames"))
+
+
+def judge_in_view(t: Trial, pair, said: str, short: bool = False):
+    """Both of rectify's maps keep most of their image in view and fill their frames, on ``pair`` (``short``:
+    its baseline is the short one, and the same cameras at the usual baseline passed)."""
     _, _, H1, H2 = call_rectify(t, pair)
     height, width = pair.img_l.shape[:2]
     # The new camera's K is the cause only of maps that rectify: other maps fail the rows check for their own cause.
@@ -1418,16 +1432,22 @@ def rectify_in_view(t):
         if min(kept, covered) < IN_VIEW:
             name_rotations(t, H1, H2)
         if kept < IN_VIEW:
-            t.fail(f"rectify: only {format_apart(kept, IN_VIEW, 2, percent=True)} of the {name} image stays "
+            t.fail(f"rectify{said}: only {format_apart(kept, IN_VIEW, 2, percent=True)} of the {name} image stays "
                    f"inside the rectified frame (at least {IN_VIEW:.0%} should)"
-                   + (": H1 and H2 rectify the pair, but the new principal point (and focal length) do not keep "
+                   + (": H1 and H2 rectify the pair, but " + measured(
+                       "the same cameras 0.6 units apart stay in view: your maps change with the baseline's length, "
+                       "where a rectification depends only on its direction (the new x axis is C2's direction, a unit "
+                       "vector).") if rectifies and short else
+                      ": H1 and H2 rectify the pair, but the new principal point (and focal length) do not keep "
                       "the rectified images in view." if rectifies else
                       "; H1 and H2 do not rectify the pair either (see the rows check)."))
         if covered < IN_VIEW:
-            t.fail(f"rectify: the {name} image covers only {format_apart(covered, IN_VIEW, 2, percent=True)} of "
+            t.fail(f"rectify{said}: the {name} image covers only {format_apart(covered, IN_VIEW, 2, percent=True)} of "
                    "its rectified frame "
-                   f"(at least {IN_VIEW:.0%} should): the result is shrunk or pushed aside.")
-    return passed(measured("both images stay mostly in view and fill their frames"))
+                   f"(at least {IN_VIEW:.0%} should): " + (
+                       measured("the same cameras 0.6 units apart fill their frames: your maps change with the "
+                                "baseline's length, where a rectification depends only on its direction.")
+                       if short else "the result is shrunk or pushed aside."))
 
 
 # ================================================================== ex4 block matching (SSD)

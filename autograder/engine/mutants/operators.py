@@ -24,6 +24,7 @@ import itertools
 import math
 import os
 import re
+from collections import Counter
 from dataclasses import dataclass
 
 from ...loading.parsing import parse
@@ -182,6 +183,8 @@ OPERATORS = {
     "move": ("before", "after", "order", "too early", "too late"),   # K = K / K[2, 2] moved after t = ... K ...
     "indent": ("inside", "loop", "if", "indent"),        # best = inliers moved into `if count > best_count:`
     "dedent": ("after", "loop", "outside", "indent"),    # a return inside a loop moved after it
+    "keep_parameter": ("overwrit", "each turn", "previous turn", "parameter"),   # f0 = f0 * d / z0 in a loop
+    "undecomposed": ("decompos", "rebuilt", "singular", "svd"),   # return U @ diag(s') @ Vt -> return E
 }
 _MOVES = {"simultaneous", "move", "indent", "dedent"}   # changes of where statements are
 RANK = {name: index for index, name in enumerate(OPERATORS)}
@@ -670,9 +673,16 @@ def _sliced_block(node):
     return None, None
 
 
+def _bare(node):
+    """``node`` without a unary minus (a negative bound is a constant too)."""
+    return node.operand if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) else node
+
+
 def _make_unwrap(node, payload):
     if payload == "method":   # depth.mean() -> depth
         return copy.deepcopy(node.func.value)
+    if payload == "clamped":   # np.maximum(d, 1.0) -> d
+        return copy.deepcopy(next(a for a in node.args if not isinstance(_bare(a), ast.Constant)))
     inner = node.args[0]
     while payload == "chain" and _unary_call(inner):   # np.tan(np.deg2rad(s)) -> s: both calls at once
         inner = inner.args[0]
@@ -935,6 +945,25 @@ def _make_indent(node, payload):
     return new
 
 
+def _make_undecomposed(node, payload):
+    return parse(payload, mode="eval").body   # U @ np.diag([s[0], s[1], 0.0]) @ Vt -> E
+
+
+def _make_keep_parameter(node, payload):
+    # for d in ...: f0 = f0 * d / z0; ... f0 ... -> for d in ...: f = f0 * d / z0; ... f ...
+    k, name, fresh = payload
+    new = copy.deepcopy(node)
+    statement = new.body[k]
+    value = statement.value if isinstance(statement, ast.Assign) else \
+        ast.BinOp(ast.Name(name, ast.Load()), statement.op, statement.value)
+    new.body[k] = ast.copy_location(ast.Assign([ast.Name(fresh, ast.Store())], value), statement)
+    for later in new.body[k + 1:]:
+        for n in ast.walk(later):
+            if isinstance(n, ast.Name) and n.id == name:
+                n.id = fresh
+    return new
+
+
 def _make_dedent(node, payload):
     new = copy.deepcopy(node)   # for ...: body; s -> for ...: body / s
     last = new.body.pop()
@@ -1137,7 +1166,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
-         "move": _make_move, "indent": _make_indent, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
+         "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -1569,6 +1598,8 @@ def _sites(fn: ast.FunctionDef, words: _Words, phrased: bool = True):
         # from where it was (made again at the edited node), None when the edited node holds it.
         for start, text in _recurrence_starts(fn):
             yield "first_term", ordinals[id(start)], text, start.lineno, ""
+        for loop, k, name, fresh in _overwritten_in_loop(fn):
+            yield "keep_parameter", ordinals[id(loop)], (k, name, fresh), loop.body[k].lineno, ""
         for operator, edited, moved, side in _statement_moves(fn):
             removed = ordinals[id(moved)] if operator != "dedent" else None
             yield operator, ordinals[id(edited)], (removed, ast.unparse(moved), moved.lineno, side), moved.lineno, ""
@@ -1677,6 +1708,26 @@ def _updates_in_branch(test: ast.If) -> set:
     if any(isinstance(n, (ast.For, ast.While)) for n in ast.walk(test)):
         return set()
     return {name for s in test.body + test.orelse if isinstance(s, (ast.Assign, ast.AugAssign)) for name in _assigned(s)}
+
+
+def _overwritten_in_loop(fn):
+    """(loop, k, name, fresh): a parameter given a new value from its own in a loop's body, its k-th
+    statement (`f0 = f0 * d / z0`, `scale *= s`), and nowhere else: each turn after the first starts from
+    the turn before's value where the parameter's own was meant. ``fresh``: a name for each turn's value."""
+    params = {a.arg for a in (*fn.args.posonlyargs, *fn.args.args, *fn.args.kwonlyargs)}
+    used = params | {n.id for n in ast.walk(fn) if isinstance(n, ast.Name)}
+    stores = Counter(n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store))
+    for loop in (n for n in ast.walk(fn) if isinstance(n, ast.For)):
+        for k, statement in enumerate(loop.body):
+            target = statement.targets[0] if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
+                else statement.target if isinstance(statement, ast.AugAssign) else None
+            if not (isinstance(target, ast.Name) and target.id in params and stores[target.id] == 1):
+                continue
+            if isinstance(statement, ast.Assign) and target.id not in _read(statement.value):
+                continue
+            base = target.id.rstrip("0123456789_")
+            fresh = next(name for name in (base, f"{base}_now", f"{target.id}_now") if name and name not in used)
+            yield loop, k, target.id, fresh
 
 
 def _statement_moves(fn):
@@ -2415,6 +2466,12 @@ def _student_changes(node, parent, parents):
         yield "zero_entry", f"np.diag([{scaled}, {scaled}, 1.0])", ""   # f * np.eye(3): K's last entry is 1
     yield from _grid_axis_changes(node)
     yield from _layout_and_type_changes(node)
+    if isinstance(parent, ast.Return) and parent.value is node:
+        rebuilt = _rebuilt_from(node, _root(node, parents))
+        if rebuilt is not None:
+            # `U @ np.diag([s[0], s[1], 0]) @ Vt` returned where the matrix decomposed belongs: a step the
+            # function was not to take (E = K2^T F K1 made rank 2 on the way out)
+            yield "undecomposed", rebuilt, ""
     if _antisymmetric_literal(node):
         # a rotation written out transposed (`[[c, 0, -s], [0, 1, 0], [s, 0, c]]` for the y rotation's
         # `[[c, 0, s], ..., [-s, 0, c]]`): the sine terms have each other's signs, one slip in two places
@@ -2626,6 +2683,9 @@ def _student_changes(node, parent, parents):
         yield "unwrap", None, ""   # a value rounded to a few decimals where the exact one belongs: `np.round(c, 2)`
     if dotted in ("np.clip", "numpy.clip") and node.args and not (isinstance(parent, ast.Attribute) and parent.attr == "astype"):
         yield "unwrap", None, ""   # a clip of an intermediate value that may be signed or beyond 255: a band-pass level
+    if dotted in ("np.maximum", "numpy.maximum", "np.minimum", "numpy.minimum", "max", "min") and len(node.args) == 2 \
+            and not node.keywords and sum(isinstance(_bare(a), ast.Constant) for a in node.args) == 1:
+        yield "unwrap", "clamped", ""   # a value clamped to a bound where it belongs whole: `f * b / np.maximum(d, 1.0)`
     if isinstance(node.func, ast.Attribute) and node.func.attr == "round" and dotted not in _ROUNDING \
             and dotted.split(".")[0] not in ("np", "numpy", "math") and (node.args or node.keywords):
         yield "unwrap", "method", ""   # `np.cos(t).round(2)` -> `np.cos(t)`
@@ -5078,6 +5138,22 @@ def _subject(phrase: str, predicate: str, node, parents, words) -> str:
         where = f"entry [{place[0]}, {place[1]}] of the matrix built there"
         return f"{phrase} at {where} {predicate}" if phrase else f"{where} {predicate}"
     return f"{phrase} {predicate}" if phrase else ""
+
+
+def _rebuilt_from(node, fn) -> str | None:
+    """The matrix (its code) that ``node`` rebuilds from its factors, when every name ``node`` reads (but
+    modules) comes from one unpacking of one decomposition of it in ``fn`` (`U, s, Vt = np.linalg.svd(E)`)."""
+    read = {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)} - {"np", "numpy",
+                                                                                                     "cv2", "scipy"}
+    for statement in ast.walk(fn):
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
+                and isinstance(statement.targets[0], ast.Tuple) and isinstance(statement.value, ast.Call) \
+                and _dotted(statement.value.func).rsplit(".", 1)[-1] in ("svd", "eig", "eigh", "qr", "rq", "SVDecomp") \
+                and len(statement.value.args) == 1:
+            factors = {e.id for e in statement.targets[0].elts if isinstance(e, ast.Name)}
+            if read and read <= factors:
+                return ast.unparse(statement.value.args[0])
+    return None
 
 
 def _antisymmetric_literal(node) -> bool:

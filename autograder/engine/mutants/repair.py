@@ -59,7 +59,7 @@ _SHOWN = 70               # the longest code shown before and after a change
 # reading it never outlasts the time the repairs are given.
 MAX_NODES = 15_000
 _EXCHANGES = {"swap_operands", "swap_args", "stack_order"}   # operators that exchange two things
-_IN_WORDS = _MOVES | {"grey", "guard", "branch"}   # changes told in words (their code would be too long to show)
+_IN_WORDS = _MOVES | {"grey", "guard", "branch", "keep_parameter"}   # changes told in words (their code would be too long to show)
 
 
 @dataclass(frozen=True)
@@ -1084,6 +1084,13 @@ class _Student:
             return Fix(((edited.lineno, f"... / {divisor}", f"dividing by `{divisor}` only where it is > 0 (line "
                          f"{edited.lineno}{{inside}}; {'0' if payload == '0.0' else 'NaN'} elsewhere: "
                          f"`np.where({divisor} > 0, ..., {payload})`)"),), where, operator, mutant.edits)
+        if operator == "keep_parameter":
+            k, name, fresh = payload
+            line = edited.body[k].lineno
+            return Fix(((line, f"{name} = ...", f"giving each turn's value a name of its own (`{fresh} = ...` at line "
+                         f"{line}{{inside}}, `{fresh}` read below it in the loop; the parameter `{name}`, overwritten "
+                         f"at each turn, makes every turn after the first start from the turn before's value)"),),
+                       where, operator, mutant.edits)
         if operator == "simultaneous":
             first, second = ast.unparse(edited.targets[0]), payload[1]
             together = f"{first}, {second} = ..., ..."

@@ -586,6 +586,20 @@ MISTAKES = {
             panorama = total
             return np.clip(np.round(panorama), 0, 255).astype(np.uint8)
         """, ["never divided by the sum of its weights", "adds the weights up in `weights`"]),
+    # the blind set 1203b's 08/07: img2 warped onto the canvas, img1 pasted over it (nothing blended)
+    "stitch pasting img1 over the warped img2": ("lab08.ex5", """
+        def stitch(img1, img2):
+            H21 = _pairwise_homography(img2, img1)
+            corners = np.vstack([_corners(img1), transform_points(H21, _corners(img2))])
+            x_min, y_min = np.floor(corners.min(axis=0))
+            x_max, y_max = np.ceil(corners.max(axis=0))
+            shift = _translation(-x_min, -y_min)
+            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
+            panorama = apply_homography(_bgr(img2), shift @ H21, size)
+            x, y = int(-x_min), int(-y_min)
+            panorama[y:y + img1.shape[0], x:x + img1.shape[1]] = _bgr(img1)
+            return panorama
+        """, ["the overlap is img1 alone", "img2 is pasted under img1, not blended"]),
     "img2 as the reference": ("lab08.ex5", """
         def stitch(img1, img2):
             return _compose([img2, img1], [np.eye(3), _pairwise_homography(img1, img2)])

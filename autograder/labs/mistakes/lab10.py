@@ -265,6 +265,19 @@ MISTAKES = {
                 views.append(perspective_project(X + [0.0, 0.0, d - z0], focal))
             return np.array(lengths), np.stack(views)
         """, ["reads `focal` in the loop of line", "the value the loop of line"]),
+    # the blind set 1203b's 10/07: the parameter f0 overwritten at each turn of the loop over the distances
+    "dolly zoom overwriting f0 in its loop": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            focal_lengths, views = [], []
+            for d in np.asarray(distances, dtype=np.float64).ravel():
+                f0 = f0 * d / z0
+                moved = X.copy()
+                moved[:, 2] += d - z0
+                views.append(perspective_project(moved, f0))
+                focal_lengths.append(f0)
+            return np.array(focal_lengths), np.stack(views)
+        """, ["giving each turn's value a name of its own (`f = ...`", "overwritten at each turn"]),
     "dolly moves the wrong way": ("lab10.ext2", """
         def dolly_zoom(points, f0, z0, distances):
             X, _ = _points(points)

@@ -147,6 +147,13 @@ MISTAKES = {
                 out[i] = np.linalg.lstsq(A[:, :3], A[:, 3], rcond=None)[0]
             return out
         """, ["every point is the true one negated"]),
+    # the blind set 1203b's 11/04: K2^T F K1 made rank 2 on the way out, where the API asks for K2^T F K1 itself
+    "essential_from_fundamental making E rank 2": ("lab11.ex3", """
+        def essential_from_fundamental(F, K1, K2):
+            E = np.asarray(K2, np.float64).T @ np.asarray(F, np.float64) @ np.asarray(K1, np.float64)
+            U, s, Vt = np.linalg.svd(E)
+            return U @ np.diag([s[0], s[1], 0.0]) @ Vt
+        """, ["changing `U @ np.diag([s[0], s[1], 0.0]) @ Vt` to `E`"]),
     "essential_from_fundamental refusing an F whose rank is not 2": ("lab11.ex3", """
         def essential_from_fundamental(F, K1, K2):
             F = np.asarray(F, np.float64)

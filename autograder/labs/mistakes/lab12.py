@@ -81,6 +81,13 @@ MISTAKES = {
         def triangulate(P1, P2, pts1, pts2):
             return _triangulate(P1, P2, pts2, pts1)
         """, ["swapped"]),
+    # the blind set 1203b's 12/01: the points behind camera 1 (wrong matches) dropped, so rows no longer line up
+    "triangulate keeping only the points in front (Z > 0)": ("lab12.ex1", """
+        _triangulate = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            X = _triangulate(P1, P2, pts1, pts2)
+            return X[X[:, 2] > 0]
+        """, ["left out are exactly the ones whose z is <= 0", "one row per correspondence"]),
     "triangulate with P1 used for both views": ("lab12.ex1", """
         _triangulate = triangulate
         def triangulate(P1, P2, pts1, pts2):
@@ -127,6 +134,15 @@ MISTAKES = {
         """, ["cv2.triangulatePoints", "yourself"]),
     # ---------------------------------------------------------------- ex2
     # the blind set 1202d's 12/02 and 12/01: a 0-d disparity given an axis; matches off the row dropped
+    # the blind set 1203b's 12/02: the divisor clamped to 1, so sub-pixel disparities get the depth f b
+    "depth with the disparity clamped to 1": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, dtype=np.float64)
+            valid = np.isfinite(d) & (d > 0)
+            depth = np.zeros_like(d)
+            np.divide(float(f) * float(baseline), np.maximum(d, 1.0), out=depth, where=valid)
+            return depth
+        """, ["changing `np.maximum(d, 1.0)` to `d`"]),
     "disparity as the distance between the matched points": ("lab12.ex2", """
         _disparity_right = disparity_from_matches
         def disparity_from_matches(xl, xr):
