@@ -2718,6 +2718,12 @@ def stitch_blends(t):
     blur = lambda image: cv2.GaussianBlur(image.astype(np.float32), (0, 0), 1.0)  # noqa: E731  (interpolation)
     panorama = blur(judge.panorama)
     placed = [blur(warp(view, judge.view_to_panorama(k), size)) for k, view in enumerate(judge.scene.views)]
+    # The blend is judged only where both images are in place: where only img2 is seen it must be img2 there
+    # (a warp or a canvas gone wrong is the other checks' to tell; the overlap would then hold anything)
+    only_img2 = judge.inside[1] & judge.outside[0]
+    if only_img2.sum() < 100 or blurred_difference(judge.panorama, warp(judge.scene.views[1], judge.view_to_panorama(1),
+                                                                        size), only_img2) > PANORAMA_TOLERANCE:
+        return passed(measured("not judged: img2 is not in its place where only it is seen (see the other checks)"))
     apart = np.abs(placed[0] - placed[1]).max(axis=-1)[overlap].mean()
     for k, (alone, under) in enumerate((("img1", "img2"), ("img2", "img1"))):
         same = np.abs(panorama - placed[k]).max(axis=-1)[overlap] <= ALONE_LEVELS

@@ -611,8 +611,12 @@ MISTAKES = {
             w = int(max(corners[:, 0].max(), img1.shape[1] - 1)) + 1
             h = int(max(corners[:, 1].max(), img1.shape[0] - 1)) + 1
             warped = apply_homography(img2, H, (w, h))
-            warped[: img1.shape[0], : img1.shape[1]] = img1
-            return warped
+            first = np.zeros_like(warped)
+            first[: img1.shape[0], : img1.shape[1]] = img1
+            both = (warped > 0).any(axis=2) & (first > 0).any(axis=2)
+            panorama = np.maximum(warped, first)
+            panorama[both] = ((warped[both].astype(np.float64) + first[both]) / 2).astype(np.uint8)
+            return panorama
         """, ["not shifted for negative coordinates"]),
     # the shift made with the wrong sign: everything moved further out, the reference itself cut
     "canvas shifted the wrong way": ("lab08.ex5", """
