@@ -15,6 +15,17 @@ _SIDE_BY_SIDE = """
             canvas[:h2, w1:] = _bgr(img2)
 """
 
+# A stitch's first lines as the reference's _compose writes them (img2's H, the canvas of both images' corners),
+# before each case's own way of putting the two warps on it.
+_STITCH_CANVAS = """
+        def stitch(img1, img2):
+            H21 = _pairwise_homography(img2, img1)
+            corners = np.vstack([_corners(img1), transform_points(H21, _corners(img2))])
+            x_min, y_min = np.floor(corners.min(axis=0))
+            x_max, y_max = np.ceil(corners.max(axis=0))
+            shift = _translation(-x_min, -y_min)
+            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)"""
+
 MISTAKES = {
     "apply_homography with H transposed": ("lab08.ex1", """
         def apply_homography(image, H, dsize=None):
@@ -549,14 +560,7 @@ MISTAKES = {
             return _compose([cv2.cvtColor(img1, cv2.COLOR_GRAY2BGR), cv2.cvtColor(img2, cv2.COLOR_GRAY2BGR)],
                             [np.eye(3), H21])
         """, ["colours are lost"]),
-    "stitch averaging the two warps in uint8 (the sum wraps past 255)": ("lab08.ex5", """
-        def stitch(img1, img2):
-            H21 = _pairwise_homography(img2, img1)
-            corners = np.vstack([_corners(img1), transform_points(H21, _corners(img2))])
-            x_min, y_min = np.floor(corners.min(axis=0))
-            x_max, y_max = np.ceil(corners.max(axis=0))
-            shift = _translation(-x_min, -y_min)
-            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
+    "stitch averaging the two warps in uint8 (the sum wraps past 255)": ("lab08.ex5", _STITCH_CANVAS + """
             warped1 = apply_homography(_bgr(img1), shift, size)
             warped2 = apply_homography(_bgr(img2), shift @ H21, size)
             both = (warped1 > 0).any(axis=2) & (warped2 > 0).any(axis=2)
@@ -587,14 +591,7 @@ MISTAKES = {
             return np.clip(np.round(panorama), 0, 255).astype(np.uint8)
         """, ["never divided by the sum of its weights", "adds the weights up in `weights`"]),
     # the blind set 1203b's 08/07: img2 warped onto the canvas, img1 pasted over it (nothing blended)
-    "stitch pasting img1 over the warped img2": ("lab08.ex5", """
-        def stitch(img1, img2):
-            H21 = _pairwise_homography(img2, img1)
-            corners = np.vstack([_corners(img1), transform_points(H21, _corners(img2))])
-            x_min, y_min = np.floor(corners.min(axis=0))
-            x_max, y_max = np.ceil(corners.max(axis=0))
-            shift = _translation(-x_min, -y_min)
-            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
+    "stitch pasting img1 over the warped img2": ("lab08.ex5", _STITCH_CANVAS + """
             panorama = apply_homography(_bgr(img2), shift @ H21, size)
             x, y = int(-x_min), int(-y_min)
             panorama[y:y + img1.shape[0], x:x + img1.shape[1]] = _bgr(img1)
