@@ -185,6 +185,7 @@ OPERATORS = {
     "dedent": ("after", "loop", "outside", "indent"),    # a return inside a loop moved after it
     "keep_parameter": ("overwrit", "each turn", "previous turn", "parameter"),   # f0 = f0 * d / z0 in a loop
     "undecomposed": ("decompos", "rebuilt", "singular", "svd"),   # return U @ diag(s') @ Vt -> return E
+    "slice_order": ("revers", "order", "slice", "last"),   # shape[::-1][:2] -> shape[:2][::-1]
 }
 _MOVES = {"simultaneous", "move", "indent", "dedent"}   # changes of where statements are
 RANK = {name: index for index, name in enumerate(OPERATORS)}
@@ -945,6 +946,12 @@ def _make_indent(node, payload):
     return new
 
 
+def _make_slice_order(node, payload):
+    inner = copy.deepcopy(node.value.value)   # x[a][b] -> x[b][a]
+    return ast.Subscript(ast.Subscript(inner, copy.deepcopy(node.slice), ast.Load()), copy.deepcopy(node.value.slice),
+                         ast.Load())
+
+
 def _make_undecomposed(node, payload):
     return parse(payload, mode="eval").body   # U @ np.diag([s[0], s[1], 0.0]) @ Vt -> E
 
@@ -1166,7 +1173,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
-         "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
+         "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -2472,6 +2479,12 @@ def _student_changes(node, parent, parents):
             # `U @ np.diag([s[0], s[1], 0]) @ Vt` returned where the matrix decomposed belongs: a step the
             # function was not to take (E = K2^T F K1 made rank 2 on the way out)
             yield "undecomposed", rebuilt, ""
+    if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Subscript) \
+            and (_reversal(node.value) is not None) != (_reversal(node) is not None) \
+            and isinstance(node.slice, ast.Slice) and isinstance(node.value.slice, ast.Slice):
+        # `image.shape[::-1][:2]` (the last two sizes, reversed: (3, W) of a colour image) for
+        # `image.shape[:2][::-1]` (W, H): a reversal and a slice taken in the other order
+        yield "slice_order", None, ""
     if _antisymmetric_literal(node):
         # a rotation written out transposed (`[[c, 0, -s], [0, 1, 0], [s, 0, c]]` for the y rotation's
         # `[[c, 0, s], ..., [-s, 0, c]]`): the sine terms have each other's signs, one slip in two places

@@ -249,6 +249,14 @@ MISTAKES = {
         def estimate_pose(image, pattern_size, square_size, K, dist=None):
             return _right(image, pattern_size[::-1], square_size, K, dist)
         """, ["(cols, rows)"]),
+    # the blind set 1203b's 10/06 (and 29e's 07/04 in warp_affine): the size reversed before it is cut to two
+    "undistort by remap with the size taken from the reversed shape": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            K = np.asarray(K, np.float64)
+            size = image.shape[::-1][:2]
+            map1, map2 = cv2.initUndistortRectifyMap(K, np.asarray(dist, np.float64), None, K, size, cv2.CV_32FC1)
+            return cv2.remap(image, map1, map2, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT)
+        """, ["changing `image.shape[::-1][:2]` to `image.shape[:2][::-1]`"]),
     "undistort the wrong way": ("lab10.ext1", """
         def undistort_image(image, K, dist):
             return cv2.undistort(image, K, -np.asarray(dist, float))
