@@ -186,6 +186,7 @@ OPERATORS = {
     "keep_parameter": ("overwrit", "each turn", "previous turn", "parameter"),   # f0 = f0 * d / z0 in a loop
     "undecomposed": ("decompos", "rebuilt", "singular", "svd"),   # return U @ diag(s') @ Vt -> return E
     "slice_order": ("revers", "order", "slice", "last"),   # shape[::-1][:2] -> shape[:2][::-1]
+    "map_term": ("mapped", "linear part", "centroid", "transform"),   # dst_mean - src_mean -> dst_mean - L @ src_mean
 }
 _MOVES = {"simultaneous", "move", "indent", "dedent"}   # changes of where statements are
 RANK = {name: index for index, name in enumerate(OPERATORS)}
@@ -946,6 +947,26 @@ def _make_indent(node, payload):
     return new
 
 
+def _made_from(name: str, fn, line: int) -> list[str]:
+    """The names assigned above ``line`` in ``fn`` from a call's answer that reads ``name`` (a matrix fitted on
+    values ``name`` moved: `L = np.linalg.lstsq(src - src_mean, ...)[0].T`), at most two, nearest first."""
+    made = []
+    for statement in ast.walk(fn):
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
+                and isinstance(statement.targets[0], ast.Name) and statement.targets[0].id != name \
+                and statement.lineno < line and name in _read(statement.value) \
+                and any(isinstance(c, ast.Call) and _dotted(c.func).split(".")[0] in ("np", "numpy", "cv2", "scipy")
+                        for c in ast.walk(statement.value)):
+            made.append((statement.lineno, statement.targets[0].id))
+    return [target for _, target in sorted(made, reverse=True)[:2]]
+
+
+def _make_map_term(node, payload):
+    new = copy.deepcopy(node)   # a - b -> a - M @ b
+    new.right = ast.BinOp(ast.Name(payload, ast.Load()), ast.MatMult(), new.right)
+    return new
+
+
 def _make_slice_order(node, payload):
     inner = copy.deepcopy(node.value.value)   # x[a][b] -> x[b][a]
     return ast.Subscript(ast.Subscript(inner, copy.deepcopy(node.slice), ast.Load()), copy.deepcopy(node.value.slice),
@@ -1173,7 +1194,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
-         "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
+         "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -2485,6 +2506,10 @@ def _student_changes(node, parent, parents):
         # `image.shape[::-1][:2]` (the last two sizes, reversed: (3, W) of a colour image) for
         # `image.shape[:2][::-1]` (W, H): a reversal and a slice taken in the other order
         yield "slice_order", None, ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Sub, ast.Add)) and isinstance(node.right, ast.Name):
+        for matrix in _made_from(node.right.id, _root(node, parents), node.lineno):
+            # `t = dst_mean - src_mean` where L was fitted on points moved by src_mean: `dst_mean - L @ src_mean`
+            yield "map_term", matrix, ""
     if _antisymmetric_literal(node):
         # a rotation written out transposed (`[[c, 0, -s], [0, 1, 0], [s, 0, c]]` for the y rotation's
         # `[[c, 0, s], ..., [-s, 0, c]]`): the sine terms have each other's signs, one slip in two places

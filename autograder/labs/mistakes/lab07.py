@@ -166,6 +166,15 @@ MISTAKES = {
             return np.array([[1.0, 0, 0], [s, 1.0, 0], [0, 0, 1.0]])
         """, ["along y"]),
     # the blind set 1203c's 07/07: the unknowns solved as (a, b, c, d, tx, ty), the vector reshaped row by row
+    # the blind set 1203b's 07/07: the linear part fitted on centred triangles, the translation left unmapped by it
+    "affine_from_points with the translation of the centroids alone": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            src, dst = np.asarray(src, dtype=np.float64), np.asarray(dst, dtype=np.float64)
+            src_mean, dst_mean = src.mean(axis=0), dst.mean(axis=0)
+            L = np.linalg.lstsq(src - src_mean, dst - dst_mean, rcond=None)[0].T
+            t = dst_mean - src_mean
+            return np.column_stack([L, t])
+        """, ["changing `dst_mean - src_mean` to `dst_mean - L @ src_mean`"]),
     "affine_from_points reshaping its solution in the unknowns' own order": ("lab07.ex5", """
         def affine_from_points(src, dst):
             src, dst = np.asarray(src, np.float64), np.asarray(dst, np.float64)
