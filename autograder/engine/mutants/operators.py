@@ -187,6 +187,7 @@ OPERATORS = {
     "undecomposed": ("decompos", "rebuilt", "singular", "svd"),   # return U @ diag(s') @ Vt -> return E
     "slice_order": ("revers", "order", "slice", "last"),   # shape[::-1][:2] -> shape[:2][::-1]
     "map_term": ("mapped", "linear part", "centroid", "transform"),   # dst_mean - src_mean -> dst_mean - L @ src_mean
+    "centre_translation": ("centre", "center", "translation", "-R"),   # tvec = C -> tvec = -R @ C
 }
 _MOVES = {"simultaneous", "move", "indent", "dedent"}   # changes of where statements are
 RANK = {name: index for index, name in enumerate(OPERATORS)}
@@ -961,6 +962,36 @@ def _made_from(name: str, fn, line: int) -> list[str]:
     return [target for _, target in sorted(made, reverse=True)[:2]]
 
 
+def _centre_and_translation(node, parent, fn):
+    """(R, inverse) for a name given where the other of a camera's centre and translation belongs: assigned to
+    a translation's name (`tvec = C`, `t = C`) or given as cv2.projectPoints' tvec -- tried as ``-R @ C`` --, or
+    assigned to a centre's name (`C = t`) -- tried as ``-R.T @ t`` --, with R a 3x3 rotation the def made
+    above (a name R, or one unpacked from cv2.Rodrigues or cv2.decomposeProjectionMatrix)."""
+    target = parent.targets[0].id if isinstance(parent, ast.Assign) and parent.value is node \
+        and len(parent.targets) == 1 and isinstance(parent.targets[0], ast.Name) else None
+    given_as_tvec = isinstance(parent, ast.Call) and _dotted(parent.func).endswith("projectPoints") \
+        and len(parent.args) > 2 and parent.args[2] is node
+    to_translation = given_as_tvec or (target is not None and target.lower() in ("t", "tvec", "trans", "translation"))
+    to_centre = target is not None and target.lower() in ("c", "centre", "center", "camera_centre", "camera_center")
+    if not (to_translation or to_centre) or node.id.lower() in ("r", "rvec"):
+        return []
+    rotations = []
+    for statement in ast.walk(fn):
+        if not (isinstance(statement, ast.Assign) and statement.lineno < node.lineno):
+            continue
+        names = [n.id for t in statement.targets for n in ast.walk(t) if isinstance(n, ast.Name)]
+        called = {_dotted(c.func).rsplit(".", 1)[-1] for c in ast.walk(statement.value) if isinstance(c, ast.Call)}
+        rotations += [n for n in names if n == "R" or (n.lower().startswith("r") and n != "rvec"
+                                                        and called & {"decomposeProjectionMatrix", "Rodrigues"})]
+    return [(rotation, to_centre) for rotation in dict.fromkeys(rotations) if rotation != node.id][:1]
+
+
+def _make_centre_translation(node, payload):
+    rotation, inverse = payload   # C -> -R @ C (a translation), t -> -R.T @ t (a centre)
+    matrix = ast.Attribute(ast.Name(rotation, ast.Load()), "T", ast.Load()) if inverse else ast.Name(rotation, ast.Load())
+    return ast.UnaryOp(ast.USub(), ast.BinOp(matrix, ast.MatMult(), copy.deepcopy(node)))
+
+
 def _make_map_term(node, payload):
     new = copy.deepcopy(node)   # a - b -> a - M @ b
     new.right = ast.BinOp(ast.Name(payload, ast.Load()), ast.MatMult(), new.right)
@@ -1194,7 +1225,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
-         "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
+         "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
@@ -2510,6 +2541,10 @@ def _student_changes(node, parent, parents):
         for matrix in _made_from(node.right.id, _root(node, parents), node.lineno):
             # `t = dst_mean - src_mean` where L was fitted on points moved by src_mean: `dst_mean - L @ src_mean`
             yield "map_term", matrix, ""
+    if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
+        for rotation, inverse in _centre_and_translation(node, parent, _root(node, parents)):
+            # t = -R C: the camera centre given where the translation belongs (`tvec = C`), or the other way
+            yield "centre_translation", (rotation, inverse), ""
     if _antisymmetric_literal(node):
         # a rotation written out transposed (`[[c, 0, -s], [0, 1, 0], [s, 0, c]]` for the y rotation's
         # `[[c, 0, s], ..., [-s, 0, c]]`): the sine terms have each other's signs, one slip in two places

@@ -226,6 +226,22 @@ MISTAKES = {
             K = np.asarray(K, float).copy(); K[:2, 2] = 0
             return _divide(X @ K.T, single)
         """, ["principal point is left out"]),
+    # the blind set 1203b's 09/04: P split by cv2.decomposeProjectionMatrix, its camera centre given as tvec
+    "project with the camera centre given as tvec": ("lab09.ex3", """
+        def project(P, points):
+            X = np.asarray(points, dtype=np.float64)
+            single = X.ndim == 1
+            X = X.reshape(-1, 3)
+            K, R, C = cv2.decomposeProjectionMatrix(np.asarray(P, dtype=np.float64))[:3]
+            K = K / K[2, 2]
+            C = (C[:3] / C[3]).ravel()
+            rvec, _ = cv2.Rodrigues(R)
+            tvec = C
+            pts, _ = cv2.projectPoints(X, rvec, tvec, K, None)
+            pts = pts.reshape(-1, 2)
+            pts[(X - C) @ R[2] <= 0] = np.nan
+            return pts[0] if single else pts
+        """, ["changing `tvec = C` to `tvec = -(R @ C)`"]),
     "t as camera centre": ("lab09.ex3", """
         def camera_matrix(K, R, t):
             R = np.asarray(R, float)
