@@ -3174,6 +3174,9 @@ GUARDED_DIVISION_HINT = Hint(
                           ("the array returned", Predicate("returns what np.divide fills", _returns_the_division)))))
 
 
+measured(truth.SL_PACKED_IN_A_BYTE)   # (named only where the decoded depth is that decoding's, on two scenes)
+
+
 def sl_decoding_explained(got, images, f, baseline) -> list[str]:
     """The decoding mistakes whose depth map is ``got`` (at 99.5% of the pixels)."""
     got = np.asarray(got, dtype=np.float64)
