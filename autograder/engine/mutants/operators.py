@@ -3327,6 +3327,8 @@ _METHOD_ARGUMENTS = {
     "findFundamentalMat": ("method", 2, ("FM_8POINT", "FM_LMEDS", "FM_7POINT")),
     "findHomography": ("method", 2, ("RANSAC", "LMEDS", "RHO")),
     "findEssentialMat": ("method", 3, ("LMEDS",)),
+    # (DECOMP_LU, the default, solves square systems only: a least-squares system needs SVD or QR)
+    "solve": ("flags", 3, ("DECOMP_SVD", "DECOMP_QR")),
     "resize": ("interpolation", 5, _INTERPOLATIONS),
     "warpAffine": ("flags", 4, _INTERPOLATIONS + ("INTER_LINEAR | WARP_INVERSE_MAP",)),
     "warpPerspective": ("flags", 4, _INTERPOLATIONS + ("INTER_LINEAR | WARP_INVERSE_MAP",)),

@@ -209,6 +209,16 @@ MISTAKES = {
             return _warp(image, A, dsize)
         """, ["width and height are swapped"]),
     # the blind set 1203c's 07/08: exact fits of consecutive triples, averaged
+    # the blind set 1203b's 07/08: the 2N x 6 system given to cv2.solve with its default DECOMP_LU (square only)
+    "affine_lstsq by cv2.solve without a least-squares method": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            rows, rhs = [], []
+            for (x, y), (xp, yp) in zip(np.asarray(src, dtype=np.float64), np.asarray(dst, dtype=np.float64)):
+                rows += [[x, y, 1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, x, y, 1.0]]
+                rhs += [xp, yp]
+            _, params = cv2.solve(np.array(rows), np.array(rhs).reshape(-1, 1))
+            return params.reshape(2, 3)
+        """, ["cv2.DECOMP_"]),
     "affine_lstsq averaging the exact fits of point triples": ("lab07.ex6", """
         def affine_lstsq(src, dst):
             src, dst = np.asarray(src, np.float64), np.asarray(dst, np.float64)
