@@ -36,8 +36,9 @@ from .claims import calls_any, checklist, from_code, measured, seen_in_code
 from .forms import COLOURS_LOST, UNIT_RANGE_CAST, colours_lost, shape_form, unit_range_cast
 from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, mentions, parameter_flows,
                     size_given_as_shape)
-from .compare import (SAME_ANSWER, rows_left_out, rows_left_out_words, at_precision, blurred_difference, closest, fill_fraction, format_apart,
-                      format_arrays_apart, max_abs_error, projective_distance, warp_error)
+from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
+                      format_arrays_apart, max_abs_error, projective_distance, rows_left_out, rows_left_out_words,
+                      warp_error)
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
 

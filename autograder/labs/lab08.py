@@ -2702,7 +2702,7 @@ def dimmed_scene():
 
 # The API's stitch blends the overlap; the lab sheet's recipe ends with "blend images". Any blend passes
 # (an average, a feathering, a seam cut anywhere inside the overlap): only an overlap that is one of the
-# two images alone on almost every pixel, the other pasted under it, fails.
+# two images alone on almost every pixel (the other pasted under it, or lost to a np.maximum), fails.
 ALONE_SHARE = 0.95   # of the overlap's pixels within ALONE_LEVELS of one image placed alone
 ALONE_LEVELS = 3.0
 
@@ -2715,24 +2715,24 @@ def stitch_blends(t):
     if overlap.sum() < 100:
         t.fail(f"{what}: the overlap is not inside the panorama")
     size = (judge.panorama.shape[1], judge.panorama.shape[0])
-    blur = lambda image: cv2.GaussianBlur(image.astype(np.float32), (0, 0), 1.0)  # noqa: E731  (interpolation)
-    panorama = blur(judge.panorama)
-    placed = [blur(warp(view, judge.view_to_panorama(k), size)) for k, view in enumerate(judge.scene.views)]
+    placed = [warp(view, judge.view_to_panorama(k), size) for k, view in enumerate(judge.scene.views)]
     # The blend is judged only where both images are in place: where only img2 is seen it must be img2 there
     # (a warp or a canvas gone wrong is the other checks' to tell; the overlap would then hold anything)
     only_img2 = judge.inside[1] & judge.outside[0]
-    if only_img2.sum() < 100 or blurred_difference(judge.panorama, warp(judge.scene.views[1], judge.view_to_panorama(1),
-                                                                        size), only_img2) > PANORAMA_TOLERANCE:
+    if only_img2.sum() < 100 or blurred_difference(judge.panorama, placed[1], only_img2) > PANORAMA_TOLERANCE:
         return passed(measured("not judged: img2 is not in its place where only it is seen (see the other checks)"))
+    blur = lambda image: cv2.GaussianBlur(image.astype(np.float32), (0, 0), 1.0)  # noqa: E731  (interpolation)
+    panorama, placed = blur(judge.panorama), [blur(image) for image in placed]
     apart = np.abs(placed[0] - placed[1]).max(axis=-1)[overlap].mean()
-    for k, (alone, under) in enumerate((("img1", "img2"), ("img2", "img1"))):
+    for k, (alone, other) in enumerate((("img1", "img2"), ("img2", "img1"))):
         same = np.abs(panorama - placed[k]).max(axis=-1)[overlap] <= ALONE_LEVELS
+        # (only where the two images differ clearly -- here by 32 grey levels -- can one alone be told apart)
         if same.mean() >= ALONE_SHARE and apart >= 5 * ALONE_LEVELS:
             judge.show(t, what)
             t.fail(measured(f"{what}: the overlap is {alone} alone on {same.mean():.0%} of its pixels, where the two "
-                            f"images differ by {apart:.0f} grey levels on average: {under} is pasted under {alone}, "
-                            f"not blended with it (the overlap shows both: an average, a feathered weight, ...)"),
-                   mistake=f"the overlap is {alone} pasted over {under}, not blended")
+                            f"images differ by {apart:.0f} grey levels on average: nothing of {other} is blended "
+                            "into it (an overlap shows both images: an average, a feathered weight, ...)"),
+                   mistake=f"the overlap is {alone} alone: {other} is not blended into it")
     return passed(measured("both images show in the overlap"))
 
 

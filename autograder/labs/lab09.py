@@ -752,20 +752,17 @@ def focal_lengths(t):
     return passed("the image grows in proportion to f")
 
 
-def judge_single_point_axis(t: Trial, what: str, got, expected, axis: int):
-    """A single (3,) point given where the API documents (N, 3) points, to a function whose answer has
-    the points along ``axis`` among other axes (``expected``: the answer for that point as a one-row
-    array): its answer without that axis, or with it of length 1 -- the API says a single point gives a
-    single result, and for these answers either reading is fair; raising is not."""
-    expected = np.asarray(expected, dtype=np.float64)
-    dropped = expected.shape[:axis] + expected.shape[axis + 1:]
-    if isinstance(got, np.ndarray) and got.shape == dropped:
-        got = np.expand_dims(got, axis)
+def judge_single_point_rays(t: Trial, what: str, got, expected):
+    """simulate_aperture given a single (3,) point, where the API documents (N, 3) points and promises a single
+    point a single result (``expected``: that point's (1, n_rays, 2) answer): (n_rays, 2) or (1, n_rays, 2) are
+    both fair readings of it; raising is not."""
+    if isinstance(got, np.ndarray) and got.shape == expected.shape[1:]:
+        got = got[None]
     got = t.expect_array(got, what, shape=expected.shape, kind="iuf", finite=True)
     scale = magnitude(expected)
     if np.abs(got - expected).max() > at_precision(1e-6 * scale, scale):
-        shown, wanted = format_arrays_apart(got.reshape(-1, 2)[:3], expected.reshape(-1, 2)[:3])
-        t.fail(f"{what} is wrong for a single point (first rows {shown}; expected {wanted}), where the same point "
+        shown, wanted = format_arrays_apart(got[0, :3], expected[0, :3])
+        t.fail(f"{what} is wrong for a single point (first rays {shown}; expected {wanted}), where the same point "
                "among others is right.")
 
 
@@ -864,9 +861,9 @@ def aperture_zero(t):
         t.fail(f"{what}: with a point-sized pinhole every ray should land on the ideal projection "
                f"f X / Z; yours are up to {format_apart(error, tolerance)} px away (at most "
                f"{tolerance:.2g} px accepted).")
-    judge_single_point_axis(t, "simulate_aperture((3,) point, f=" + f"{APERTURE_F:g}, aperture=0, n_rays=20, seed=0)",
+    judge_single_point_rays(t, f"simulate_aperture((3,) point, f={APERTURE_F:g}, aperture=0, n_rays=20, seed=0)",
                             t.call("simulate_aperture", X[0], APERTURE_F, 0.0, n_rays=20, seed=0),
-                            np.repeat(ideal[:1, None, :], 20, axis=1), axis=0)
+                            np.repeat(ideal[:1, None, :], 20, axis=1))
     # (every other check gives n_rays: its default is judged here)
     return judges.judge_default_is_the_apis(
         t, f"simulate_aperture(points, f={APERTURE_F:g}, aperture=0, seed=0)",

@@ -160,6 +160,8 @@ def _orthogonal_first(function) -> bool:
 # Signs fixed after a decomposition: np.sign, a test of a diagonal entry's sign; read leniently.
 SIGNS_READ = (calls("np.sign") | expr("np.diag(_) < 0") | expr("_[_, _] < 0") | expr("np.diag(_) > 0")
               | expr("_[_, _] > 0")).saying("fixes the signs of K's diagonal")
+
+
 def _rotations_written_out(function) -> bool:
     """A 3x3 rotation written out entry by entry (`np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])`): an
     RQ by Givens rotations, each meant to zero one entry below K's diagonal."""
@@ -1995,9 +1997,10 @@ def judge_track(t: Trial, frames, poses, dist=None, what=None):
                 t.fail(f"{what}: frame {i} shows the whole board, but its row is NaN: "
                        + measured(f"frame {i - 1} shows none, and every frame with a board whose row is NaN follows "
                                   "a frame without one")
-                       + "; " + from_code("your code starts each cv2.solvePnP from the previous pose "
-                                          "(useExtrinsicGuess=True), and after a frame without a board that pose is its "
-                                          "NaN row: start from the last pose found (or solve without a guess)"),
+                       + "; " + from_code("your code gives cv2.solvePnP a starting pose (useExtrinsicGuess=True): "
+                                          "a start taken from the row of a frame without a board is NaN, and so is "
+                                          "the pose solved from it; start from the last pose found (or solve without "
+                                          "a guess)"),
                        mistake=WARM_START_FROM_NAN)
             t.fail(f"{what}: frame {i} shows the whole board, but its row is NaN.")
         angle, shift, _ = truth.pose_error(row[:3], row[3:], R, tv, pattern, square)

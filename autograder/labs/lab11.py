@@ -31,8 +31,9 @@ from ..engine.claims import (DIVISION, THIRD_COORDINATE, calls_any, checklist, d
                              measured, reshapes, returns_from, subtracts_a_mean, takes_last_row_of_vt,
                              treats_each_of, wherever_written, zeroes_an_entry)
 from ..engine.hints import RATIO_TEST, Hint, Predicate, _path, calls, code_of, expr, functions_read, keyword, mentions
-from ..engine.judges import (fail_if_points_left_out, BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canvas, call_probe, confirm, format_matrix,
-                              name_mistake, over_variants, where_matrices_differ, where_points_differ)
+from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canvas, call_probe, confirm,
+                              fail_if_points_left_out, format_matrix, name_mistake, over_variants,
+                              where_matrices_differ, where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
 from ..loading.reading import outliers_selected

@@ -38,7 +38,8 @@ from ..engine.forms import shape_form
 from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
                             keyword, mentions,
                             size_given_as_shape)
-from ..engine.judges import (fail_if_points_left_out, BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, judge_default_is_the_apis,
+from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fail_if_points_left_out, fingerprint,
+                      judge_default_is_the_apis,
                       judge_parameter_changes_result, judge_parameter_used, name_mistake, over_variants,
                       repeating_border, same_informative_result)
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
@@ -1435,9 +1436,9 @@ def judge_in_view(t: Trial, pair, said: str, short: bool = False):
             t.fail(f"rectify{said}: only {format_apart(kept, IN_VIEW, 2, percent=True)} of the {name} image stays "
                    f"inside the rectified frame (at least {IN_VIEW:.0%} should)"
                    + (": H1 and H2 rectify the pair, but " + measured(
-                       "the same cameras 0.6 units apart stay in view: your maps change with the baseline's length, "
-                       "where a rectification depends only on its direction (the new x axis is C2's direction, a unit "
-                       "vector).") if rectifies and short else
+                       "the same cameras at the usual baseline (about 0.6 units) stay in view: your maps change with "
+                       "the baseline's length, where a rectification depends only on its direction.")
+                       if rectifies and short else
                       ": H1 and H2 rectify the pair, but the new principal point (and focal length) do not keep "
                       "the rectified images in view." if rectifies else
                       "; H1 and H2 do not rectify the pair either (see the rows check)."))
@@ -1445,8 +1446,9 @@ def judge_in_view(t: Trial, pair, said: str, short: bool = False):
             t.fail(f"rectify{said}: the {name} image covers only {format_apart(covered, IN_VIEW, 2, percent=True)} of "
                    "its rectified frame "
                    f"(at least {IN_VIEW:.0%} should): " + (
-                       measured("the same cameras 0.6 units apart fill their frames: your maps change with the "
-                                "baseline's length, where a rectification depends only on its direction.")
+                       measured("the same cameras at the usual baseline (about 0.6 units) fill their frames: your "
+                                "maps change with the baseline's length, where a rectification depends only on its "
+                                "direction.")
                        if short else "the result is shrunk or pushed aside."))
 
 

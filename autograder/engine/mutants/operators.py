@@ -948,21 +948,50 @@ def _make_indent(node, payload):
     return new
 
 
-def _made_from(name: str, fn, line: int) -> list[str]:
-    """The names assigned above ``line`` in ``fn`` from a call's answer that reads ``name`` (a matrix fitted on
-    values ``name`` moved: `L = np.linalg.lstsq(src - src_mean, ...)[0].T`), at most two, nearest first."""
-    made = []
+@dataclass(frozen=True)
+class _Assigned:
+    """One assignment of a def, read once (:func:`_assignments`)."""
+    line: int
+    names: tuple          # every name it assigns, in order (`U, s, Vt = ...`)
+    single: str | None    # the name, when it assigns one name alone
+    reads: frozenset      # the names its value reads
+    calls: frozenset      # the dotted names its value calls (`np.linalg.lstsq`, `cv2.Rodrigues`)
+    value: ast.expr
+
+
+def _assignments(words) -> tuple:
+    """The def's assignments, read once per def (kept on ``words``, as :func:`_read_siblings` keeps its own):
+    the operators asking what was assigned above a place look them up here, so that a def of many such
+    places is read in linear time."""
+    if not hasattr(words, "assignments"):
+        words.assignments = _assignments_of(words.fn)
+    return words.assignments
+
+
+def _assignments_of(fn) -> tuple:
+    found = []
     for statement in ast.walk(fn):
-        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
-                and isinstance(statement.targets[0], ast.Name) and statement.targets[0].id != name \
-                and statement.lineno < line and name in _read(statement.value) \
-                and any(isinstance(c, ast.Call) and _dotted(c.func).split(".")[0] in ("np", "numpy", "cv2", "scipy")
-                        for c in ast.walk(statement.value)):
-            made.append((statement.lineno, statement.targets[0].id))
+        if isinstance(statement, ast.Assign):
+            names = tuple(n.id for t in statement.targets for n in ast.walk(t) if isinstance(n, ast.Name))
+            single = statement.targets[0].id if len(statement.targets) == 1 \
+                and isinstance(statement.targets[0], ast.Name) else None
+            calls = frozenset(_dotted(c.func) for c in ast.walk(statement.value) if isinstance(c, ast.Call))
+            found.append(_Assigned(statement.lineno, names, single, frozenset(_read(statement.value)), calls,
+                                   statement.value))
+    return tuple(found)
+
+
+def _made_from(name: str, words, line: int) -> list[str]:
+    """The names assigned above ``line`` in the def from a library call's answer that reads ``name`` (a matrix
+    fitted on values ``name`` moved: `L = np.linalg.lstsq(src - src_mean, ...)[0].T`), at most two, nearest
+    first."""
+    made = [(a.line, a.single) for a in _assignments(words)
+            if a.single not in (None, name) and a.line < line and name in a.reads
+            and any(call.split(".")[0] in ("np", "numpy", "cv2", "scipy") for call in a.calls)]
     return [target for _, target in sorted(made, reverse=True)[:2]]
 
 
-def _centre_and_translation(node, parent, fn):
+def _centre_and_translation(node, parent, words):
     """(R, inverse) for a name given where the other of a camera's centre and translation belongs: assigned to
     a translation's name (`tvec = C`, `t = C`) or given as cv2.projectPoints' tvec -- tried as ``-R @ C`` --, or
     assigned to a centre's name (`C = t`) -- tried as ``-R.T @ t`` --, with R a 3x3 rotation the def made
@@ -975,14 +1004,9 @@ def _centre_and_translation(node, parent, fn):
     to_centre = target is not None and target.lower() in ("c", "centre", "center", "camera_centre", "camera_center")
     if not (to_translation or to_centre) or node.id.lower() in ("r", "rvec"):
         return []
-    rotations = []
-    for statement in ast.walk(fn):
-        if not (isinstance(statement, ast.Assign) and statement.lineno < node.lineno):
-            continue
-        names = [n.id for t in statement.targets for n in ast.walk(t) if isinstance(n, ast.Name)]
-        called = {_dotted(c.func).rsplit(".", 1)[-1] for c in ast.walk(statement.value) if isinstance(c, ast.Call)}
-        rotations += [n for n in names if n == "R" or (n.lower().startswith("r") and n != "rvec"
-                                                        and called & {"decomposeProjectionMatrix", "Rodrigues"})]
+    rotations = [n for a in _assignments(words) if a.line < node.lineno for n in a.names
+                 if n == "R" or (n.lower().startswith("r") and n != "rvec"
+                                 and {c.rsplit(".", 1)[-1] for c in a.calls} & {"decomposeProjectionMatrix", "Rodrigues"})]
     return [(rotation, to_centre) for rotation in dict.fromkeys(rotations) if rotation != node.id][:1]
 
 
@@ -2119,7 +2143,7 @@ def _changes(node, parents, words: _Words, line):
         if isinstance(loop, ast.For) and loop.iter is parent and isinstance(loop.target, ast.Name):
             yield from _counted_loop_changes(loop)
     if words.student:
-        yield from _student_changes(node, parent, parents)
+        yield from _student_changes(node, parent, parents, words)
         yield from _sibling_changes(node, words)
         yield from _helper_changes(node, words)
         yield from _defaulted_argument_changes(node, words)
@@ -2399,7 +2423,7 @@ def _fraction_changes(node):
         yield "fraction", f"np.count_nonzero({argument}) / np.size({argument})", ""
 
 
-def _student_changes(node, parent, parents):
+def _student_changes(node, parent, parents, words):
     """Changes made to a student's code only (:mod:`.repair`), told by showing them: a function applied
     that does not belong (``np.tan(s)`` for ``s``), one mistaken for its sibling (``np.sin`` for
     ``np.cos``), a reshape where a transpose belongs, an inversion missing in a matrix product, points
@@ -2526,7 +2550,7 @@ def _student_changes(node, parent, parents):
     yield from _grid_axis_changes(node)
     yield from _layout_and_type_changes(node)
     if isinstance(parent, ast.Return) and parent.value is node:
-        rebuilt = _rebuilt_from(node, _root(node, parents))
+        rebuilt = _rebuilt_from(node, words)
         if rebuilt is not None:
             # `U @ np.diag([s[0], s[1], 0]) @ Vt` returned where the matrix decomposed belongs: a step the
             # function was not to take (E = K2^T F K1 made rank 2 on the way out)
@@ -2538,11 +2562,11 @@ def _student_changes(node, parent, parents):
         # `image.shape[:2][::-1]` (W, H): a reversal and a slice taken in the other order
         yield "slice_order", None, ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Sub, ast.Add)) and isinstance(node.right, ast.Name):
-        for matrix in _made_from(node.right.id, _root(node, parents), node.lineno):
+        for matrix in _made_from(node.right.id, words, node.lineno):
             # `t = dst_mean - src_mean` where L was fitted on points moved by src_mean: `dst_mean - L @ src_mean`
             yield "map_term", matrix, ""
     if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
-        for rotation, inverse in _centre_and_translation(node, parent, _root(node, parents)):
+        for rotation, inverse in _centre_and_translation(node, parent, words):
             # t = -R C: the camera centre given where the translation belongs (`tvec = C`), or the other way
             yield "centre_translation", (rotation, inverse), ""
     if _antisymmetric_literal(node):
@@ -5215,19 +5239,15 @@ def _subject(phrase: str, predicate: str, node, parents, words) -> str:
     return f"{phrase} {predicate}" if phrase else ""
 
 
-def _rebuilt_from(node, fn) -> str | None:
+def _rebuilt_from(node, words) -> str | None:
     """The matrix (its code) that ``node`` rebuilds from its factors, when every name ``node`` reads (but
-    modules) comes from one unpacking of one decomposition of it in ``fn`` (`U, s, Vt = np.linalg.svd(E)`)."""
-    read = {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)} - {"np", "numpy",
-                                                                                                     "cv2", "scipy"}
-    for statement in ast.walk(fn):
-        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
-                and isinstance(statement.targets[0], ast.Tuple) and isinstance(statement.value, ast.Call) \
-                and _dotted(statement.value.func).rsplit(".", 1)[-1] in ("svd", "eig", "eigh", "qr", "rq", "SVDecomp") \
-                and len(statement.value.args) == 1:
-            factors = {e.id for e in statement.targets[0].elts if isinstance(e, ast.Name)}
-            if read and read <= factors:
-                return ast.unparse(statement.value.args[0])
+    modules) comes from one unpacking of one decomposition of it in the def (`U, s, Vt = np.linalg.svd(E)`)."""
+    read = _read(node) - {"np", "numpy", "cv2", "scipy"}
+    for a in _assignments(words):
+        if len(a.names) > 1 and a.single is None and isinstance(a.value, ast.Call) and len(a.value.args) == 1 \
+                and _dotted(a.value.func).rsplit(".", 1)[-1] in ("svd", "eig", "eigh", "qr", "rq", "SVDecomp") \
+                and read and read <= set(a.names):
+            return ast.unparse(a.value.args[0])
     return None
 
 

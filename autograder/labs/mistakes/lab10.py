@@ -338,7 +338,7 @@ MISTAKES = {
                     poses[i] = np.concatenate([rvec.ravel(), tvec.ravel()])
                 last = poses[i]
             return poses
-        """, ["starts each cv2.solvePnP from the previous pose", "follows a frame without one"]),
+        """, ["gives cv2.solvePnP a starting pose (useExtrinsicGuess=True)", "follows a frame without one"]),
     "track_pose stopping at the first frame without a board": ("lab10.ext3", """
         def track_pose(frames, pattern_size, square_size, K, dist=None):
             rows = []
