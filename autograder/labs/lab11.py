@@ -980,6 +980,46 @@ def essential_from_F_property(t):
                         "is made 2)",
                      t.call("essential_from_fundamental", full, K1, K2), K2.T @ full @ K1,
                      essential_of_estimated_mistakes(full, K1, K2))
+    # (and cameras whose K uses every entry an upper-triangular K has: fx != fy, a skew, an off-centre principal point)
+    views = truth.general_intrinsics_views()
+    K1, K2 = views.cam1.K, views.cam2.K
+    judge_projective(t, "essential_from_fundamental(F, K1, K2) with K1, K2 of non-square pixels, a skew entry "
+                        "K[0, 1] (as decomposing a camera matrix gives) and an off-centre principal point",
+                     t.call("essential_from_fundamental", views.F, K1, K2), views.E,
+                     general_intrinsics_mistakes(views), probe=general_intrinsics_probe(t))
+
+
+def general_intrinsics_mistakes(views) -> dict:
+    F, K1, K2 = views.F, views.cam1.K, views.cam2.K
+    return {**truth.essential_mistakes(F, K1, K2), **partial_intrinsics_mistakes(F, K1, K2)}
+
+
+def general_intrinsics_probe(t: Trial) -> Probe:
+    """essential_from_fundamental for another pair of cameras with general intrinsics."""
+    views = truth.general_intrinsics_views(seed=11_061)
+    return projective_probe(t, "essential_from_fundamental", (views.F, views.cam1.K, views.cam2.K), views.E,
+                            general_intrinsics_mistakes(views))
+
+
+def partial_intrinsics_mistakes(F, K1, K2) -> dict:
+    """K2^T F K1 with each K rebuilt from some of its entries only (E = K2^T F K1 takes each K whole)."""
+    def rebuilt(K, *, skew=True, fy=True, centre=True):
+        K = np.array(K, dtype=np.float64)
+        K[0, 1] = K[0, 1] if skew else 0.0
+        K[1, 1] = K[1, 1] if fy else K[0, 0]
+        K[:2, 2] = K[:2, 2] if centre else 0.0
+        return K
+
+    def made_with(**left_out):
+        return rebuilt(K2, **left_out).T @ F @ rebuilt(K1, **left_out)
+
+    return {"each K is used without its skew entry K[0, 1] (K rebuilt from fx, fy, cx, cy): E = K2^T F K1 takes "
+            "the whole K": made_with(skew=False),
+            "fx is used for fy (square pixels assumed): E = K2^T F K1 takes the whole K": made_with(fy=False),
+            "fx is used for fy and the skew entry K[0, 1] is left out: E = K2^T F K1 takes the whole K":
+                made_with(skew=False, fy=False),
+            "each K is used without its principal point (cx, cy): E = K2^T F K1 takes the whole K":
+                made_with(centre=False)}
 
 
 # f reshaped column by column, seen in the code (an F^T that kron(x1, x2) rows or pts swapped give too)
