@@ -441,6 +441,35 @@ class Trial:
                            "kept from the earlier call changed too. Return a new array (made inside the function, or "
                            f"`{outcome.shared}.copy()`)."), mistake="a module-level array is returned itself")
 
+    def expect_results(self, value, what: str, names: tuple[str, ...]) -> tuple:
+        """Check that a function documented to return several results returned them as a tuple (or list) of
+        ``len(names)`` items, and return it; fail saying what came instead (an array of the results stacked
+        together, a tuple of another length, None).
+
+        Parameters
+        ----------
+        value : object
+            What the student returned.
+        what : str
+            How to name the call in messages, e.g. ``"epipoles(F)"``.
+        names : tuple of str
+            The results' names in their order, e.g. ``("e1", "e2")``.
+        """
+        n, listed = len(names), ", ".join(names)
+        if isinstance(value, (tuple, list)) and len(value) == n:
+            return tuple(value)
+        expected = f"expected the {n} results as a tuple ({listed}): `return {listed}`"
+        if isinstance(value, (tuple, list)):
+            self.fail(f"{what} returned a {type(value).__name__} of {len(value)} items; {expected}")
+        if isinstance(value, np.ndarray):
+            stacked = [axis for axis, size in enumerate(value.shape) if size == n]
+            how = ""
+            if value.ndim == 2 and stacked:
+                how = (f": it looks like the {n} results were stacked as its "
+                       f"{'rows' if stacked[0] == 0 else 'columns'} (np.stack / np.column_stack / np.array of them)")
+            self.fail(f"{what} returned an array of shape {value.shape}{how}; {expected}")
+        self.fail(f"{what} returned {type(value).__name__}; {expected}")
+
     def expect_array(self, value, what: str, *, shape=None, dtype=None, kind=None,
                      finite: bool = False) -> np.ndarray:
         """Check that a returned value is an array of the documented form.

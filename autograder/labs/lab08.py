@@ -510,8 +510,7 @@ for _image in ("img1", "img2"):
 
 def matched_points(t: Trial, what: str, result):
     """Validate the (pts1, pts2) pair returned by match_features."""
-    if not isinstance(result, (tuple, list)) or len(result) != 2:
-        t.fail(f"{what} returned {type(result).__name__}; expected a pair (pts1, pts2)")
+    result = t.expect_results(result, what, ("pts1", "pts2"))
     pts1 = t.expect_array(result[0], f"{what}[0] (pts1)", shape=(None, 2), kind="iuf", finite=True)
     pts2 = t.expect_array(result[1], f"{what}[1] (pts2)", shape=(None, 2), kind="iuf", finite=True)
     if len(pts1) != len(pts2):
@@ -1169,8 +1168,7 @@ RANSAC_REGION = (0, 0, 640, 480)
 
 def ransac_result(t: Trial, src, dst, what: str, **kwargs):
     result = t.call("homography_ransac", src, dst, **kwargs)
-    if not isinstance(result, (tuple, list)) or len(result) != 2:
-        t.fail(f"{what} returned {type(result).__name__}; expected a pair (H, inliers)")
+    result = t.expect_results(result, what, ("H", "inliers"))
     H = t.expect_array(result[0], f"{what}[0] (H)", shape=(3, 3), kind="iuf", finite=True)
     inliers = result[1]
     if isinstance(inliers, (list, tuple)):

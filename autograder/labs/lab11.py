@@ -1493,8 +1493,7 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=N
     """``F_given`` is the F passed to the student (default ``views.F``), for the mistakes' answers."""
     e1, e2 = truth.epipoles(views.cam1, views.cam2)
     F_given = views.F if F_given is None else F_given
-    if not isinstance(got, (tuple, list)) or len(got) != 2:
-        t.fail(f"{what} returned {type(got).__name__}; expected a pair (e1, e2)")
+    got = t.expect_results(got, what, ("e1", "e2"))
     g1 = t.expect_array(got[0], f"{what}[0] (e1)", shape=None, kind="iuf")
     g2 = t.expect_array(got[1], f"{what}[1] (e2)", shape=None, kind="iuf")
     for g, name in ((g1, "e1"), (g2, "e2")):
@@ -1596,8 +1595,7 @@ def judge_exact_translation(t: Trial):
     F = np.array([[0.0, 0.0, y], [0.0, 0.0, -x], [-y, x, 0.0]])
     what = f"epipoles(F) for F = [t]x, t = ({x:g}, {y:g}, 0) (a translation in the image plane, normalised coordinates)"
     got = t.call("epipoles", F)
-    if not (isinstance(got, (tuple, list)) and len(got) == 2):
-        t.fail(f"{what} returned {type(got).__name__}; expected a pair (e1, e2)")
+    got = t.expect_results(got, what, ("e1", "e2"))
     for name, e in zip(("e1", "e2"), got):
         e = t.expect_array(e, f"{what}: {name}", shape=(3,), kind="iuf").astype(np.float64)
         if np.any(np.isinf(e)):   # (x / 0 for x != 0: a division by an entry that is 0 here)
@@ -1671,10 +1669,7 @@ def call_reconstruction(t: Trial, pair):
     """Call the student's pipeline on ``pair`` and check the form of its answer."""
     what = "two_view_reconstruction(img1, img2, K)"
     got = t.call("two_view_reconstruction", pair.img1, pair.img2, pair.K)
-    if not isinstance(got, (tuple, list)) or len(got) != 4:
-        t.fail(f"{what} returned {type(got).__name__}"
-               + (f" of length {len(got)}" if isinstance(got, (tuple, list)) else "")
-               + "; expected a tuple (F, pts1, pts2, points3d)")
+    got = t.expect_results(got, what, ("F", "pts1", "pts2", "points3d"))
     F = t.expect_array(got[0], f"{what}: F", shape=(3, 3), kind="iuf", finite=True)
     pts1 = t.expect_array(got[1], f"{what}: pts1", shape=(None, 2), kind="iuf", finite=True)
     m = len(pts1)

@@ -867,9 +867,7 @@ INVERSE_WARP = "the images are warped by the inverse of the homographies"
 def call_rectify(t: Trial, pair):
     what = "rectify(img_l, img_r, K1, K2, R, T)"
     result = t.call("rectify", pair.img_l, pair.img_r, pair.K1, pair.K2, pair.R, pair.T)
-    if not isinstance(result, (tuple, list)) or len(result) != 4:
-        t.fail(f"{what} must return four values (rect_l, rect_r, H1, H2)")
-    rect_l, rect_r, H1, H2 = result
+    rect_l, rect_r, H1, H2 = t.expect_results(result, what, ("rect_l", "rect_r", "H1", "H2"))
     H1 = t.expect_array(H1, f"{what}: H1", shape=(3, 3), kind="iuf", finite=True)
     H2 = t.expect_array(H2, f"{what}: H2", shape=(3, 3), kind="iuf", finite=True)
     shape = pair.img_l.shape

@@ -529,6 +529,11 @@ MISTAKES = {
         """, ["the largest singular value was set to 0"]),
     # ---------------------------------------------------------------- ex5
     # the blind set 1202d's 11/07: e2 from lstsq with a zero right-hand side (0, then 0 / 0)
+    "epipoles returned as one array": ("lab11.ex5", """
+        _epipole_pair = epipoles
+        def epipoles(F):
+            return np.column_stack(_epipole_pair(F))
+        """, ["stacked as its columns", "`return e1, e2`"]),
     "epipoles scaled by their largest entry": ("lab11.ex5", """
         def epipoles(F):
             F = np.asarray(F, np.float64)
