@@ -40,6 +40,7 @@ the student's module with :mod:`ast`, never executing it:
 from __future__ import annotations
 
 import ast
+import re
 import sys
 from dataclasses import replace
 from typing import Callable, Iterable
@@ -92,6 +93,19 @@ def guessed(name: str) -> str:
     stay beside such a change. Returns ``name``."""
     GUESSED.add(name)
     return name
+
+
+def without_guessed_cause(sentence: str, mistake) -> str:
+    """``sentence`` without its clause "it looks like <mistake>..." (up to the clause's full stop), the
+    punctuation mended; ``sentence`` itself where it holds no such clause."""
+    if not isinstance(mistake, str) or mistake not in GUESSED:
+        return sentence
+    match = re.search(r"(?:[,;:]?\s*(?:but|so)?\s*)?\bit looks like " + re.escape(mistake) + r"[^.]*", sentence,
+                      flags=re.IGNORECASE)
+    if match is None:
+        return sentence
+    kept = (sentence[:match.start()].rstrip(" ,;:") + sentence[match.end():]).strip()
+    return kept if kept.endswith((".", "!", "?")) else kept + "."
 
 
 def guard(text: str, asks: Predicate, instead: str | None = None, functions: tuple = ()) -> str:

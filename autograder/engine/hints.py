@@ -50,7 +50,7 @@ from pathlib import Path
 from typing import Callable, Iterable
 
 from ..loading.parsing import parse
-from ..loading.reading import MAX_NODES, MAX_SOURCE_BYTES
+from ..loading.reading import MAX_NODES, MAX_SOURCE_BYTES, overwritten_running_bests
 
 
 # ------------------------------------------------------------------ predicates
@@ -595,8 +595,10 @@ def _running_best(highest: bool) -> Callable[[ast.AST], bool]:
         for node in ast.walk(function):
             if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
                 (negated if _negation(node.value) is not None else plain).add(node.targets[0].id)
+        overwritten = {id(compare) for compare, *_ in overwritten_running_bests(function)}
         for node in ast.walk(function):
-            if not (isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Lt, ast.Gt))):
+            if not (isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Lt, ast.Gt))) \
+                    or id(node) in overwritten:   # (a best set to every turn's value is not kept)
                 continue
             left, right, smaller = node.left, node.comparators[0], isinstance(node.ops[0], ast.Lt)
             if _named(left, ("best",)) and isinstance(right, ast.Name):

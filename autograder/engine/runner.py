@@ -41,7 +41,7 @@ from ..loading.submission import load_submission
 from ..sandbox import cache, confine
 from ..sandbox.supervisor import CallOutcome, Limits, Sandbox
 from .checks import Fail, StudentFailure, Trial, Verdict
-from .claims import measured, rewritten
+from .claims import measured, rewritten, without_guessed_cause
 from .forms import exception_form
 from .inputs import Inputs
 from .registry import Check, Exercise, discover, hidden_checks_installed, select
@@ -575,6 +575,11 @@ def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: T
     sentence = f"Reading your code: {where}."
     lead = first.rstrip() + ("" if not first.strip() or first.rstrip().endswith((".", ":", "!", "?")) else ".")
     if verdict.mistake:
+        # (a cause the check guessed from its measures gives way to a slip read in the code: "the default
+        # smoothness is far too large" where one array appended at every turn makes every row the last)
+        guessed = without_guessed_cause(lead, verdict.mistake)
+        if guessed != lead:
+            return replace(verdict, message=f"{guessed} {sentence}{newline}{rest}", mistake=finding.mistake, hint="")
         return replace(verdict, message=f"{lead} {sentence}{newline}{rest}")
     # (a fixed hint beside the cause read in their code would only guess at another one)
     return replace(verdict, message=f"{lead} {sentence}{newline}{rest}", mistake=finding.mistake, hint="")

@@ -230,6 +230,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _twin_lopsided(name, function)
     found += _alias_changed(name, function)
     found += _same_array_appended(name, function)
+    found += _running_best_overwritten(name, function)
     found += _rolled_strip_one_sign(name, function)
     found += _scaled_in_place_per_turn(name, function)
     found += _written_into_a_copy(name, function)
@@ -1259,6 +1260,56 @@ def _same_array_appended(name, function) -> list[Finding]:
                                     f"`{listed}` is that one array (made on line {made_before[array]}), holding the "
                                     f"last turn's values; append a copy (`{array}.copy()`) or make a new array at "
                                     "each turn", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ a running best overwritten
+def _loop_body_nodes(loop):
+    """The nodes of ``loop``'s body outside the loops nested in it (each node is read with its nearest loop)."""
+    pending = list(loop.body)
+    while pending:
+        node = pending.pop()
+        yield node
+        if not isinstance(node, (ast.For, ast.While)):
+            pending.extend(ast.iter_child_nodes(node))
+
+
+def overwritten_running_bests(function) -> list[tuple[ast.Compare, ast.Assign, str, str, bool]]:
+    """In a loop, a value compared with a best so far (``better = ssd < best_cost``, ``if score > best:``) and
+    that best then set to the value whole at every turn (``best_cost = ssd`` outside the ``if`` of the
+    comparison): the best holds the last turn's value, not the lowest (highest). Each as (the comparison,
+    the assignment, the value's name, the best's name, whether the lowest is kept)."""
+    found = []
+    for loop in (node for node in ast.walk(function) if isinstance(node, (ast.For, ast.While))):
+        nodes = list(_loop_body_nodes(loop))
+        guarded = {id(statement) for node in nodes if isinstance(node, ast.If)
+                   for part in node.body for statement in ast.walk(part)}
+        compares = {}
+        for node in nodes:
+            if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Lt, ast.Gt, ast.LtE, ast.GtE)) \
+                    and isinstance(node.left, ast.Name) and isinstance(node.comparators[0], ast.Name):
+                lower = isinstance(node.ops[0], (ast.Lt, ast.LtE))
+                value, best = node.left.id, node.comparators[0].id
+                compares.setdefault((value, best), (node, lower))
+                compares.setdefault((best, value), (node, not lower))   # (best > c: c is lower)
+        for node in nodes:
+            if isinstance(node, ast.Assign) and id(node) not in guarded and len(node.targets) == 1 \
+                    and isinstance(node.targets[0], ast.Name) and isinstance(node.value, ast.Name):
+                best, value = node.targets[0].id, node.value.id
+                if (value, best) in compares and best != value:
+                    compare, lower = compares[(value, best)]
+                    found.append((compare, node, value, best, lower))
+    return found
+
+
+def _running_best_overwritten(name, function) -> list[Finding]:
+    for compare, assign, value, best, lower in overwritten_running_bests(function):
+        keep = "np.minimum" if lower else "np.maximum"
+        return [Finding(name, _line(assign), "the best so far is overwritten at every turn",
+                        f"{name} compares `{value}` with the best so far `{best}` (line {_line(compare)}), then sets "
+                        f"`{best} = {value}` at every turn of the loop (line {_line(assign)}): `{best}` holds the last "
+                        f"turn's values, not the {'lowest' if lower else 'highest'} found; keep it where it is beaten "
+                        f"(`{best} = {keep}({best}, {value})`, or `{best}[better] = {value}[better]`)", certain=True)]
     return []
 
 

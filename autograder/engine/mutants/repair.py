@@ -3416,21 +3416,6 @@ def _downstream_dropped(repair: Repair, code) -> Repair:
     return replace(repair, fixes=tuple(kept)) if kept and len(kept) < len(repair.fixes) else repair
 
 
-def _guessed_cause_removed(sentence: str, mistake) -> str:
-    """``sentence`` without its clause "it looks like <mistake>..." (up to the clause's full stop), the
-    punctuation mended; ``sentence`` itself where it holds no such clause."""
-    from ..claims import GUESSED
-
-    if not isinstance(mistake, str) or mistake not in GUESSED:
-        return sentence
-    match = re.search(r"(?:[,;:]?\s*(?:but|so)?\s*)?\bit looks like " + re.escape(mistake) + r"[^.]*", sentence,
-                      flags=re.IGNORECASE)
-    if match is None:
-        return sentence
-    kept = (sentence[:match.start()].rstrip(" ,;:") + sentence[match.end():]).strip()
-    return kept if kept.endswith((".", "!", "?")) else kept + "."
-
-
 def named_by_repair(verdict, trial, traceback_text: str = ""):
     """A failed check's verdict with a confirmed repair told at the end of its first line (in place of
     its fixed hint), when the verdict names nothing or only the error model names it; beside the
@@ -3485,7 +3470,9 @@ def named_by_repair(verdict, trial, traceback_text: str = ""):
             and repr(repair.fixes[0].edits) in found_before.get(repair.function, set())
         # (a cause the check guessed from its measures (claims.guessed) is refuted by a change confirmed on
         # this check's inputs too: the change takes its place)
-        guessed = _guessed_cause_removed(lead, verdict.mistake)
+        from ..claims import without_guessed_cause
+
+        guessed = without_guessed_cause(lead, verdict.mistake)
         if guessed != lead:
             return replace(verdict, message=f"{guessed} {repair.sentence}.{newline}{rest}", mistake=repair.mistake,
                            hint="")

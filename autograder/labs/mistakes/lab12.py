@@ -35,6 +35,19 @@ _DP = """
 
 MISTAKES = {
     # the blind set 1201c's 12/04: a 9 x 9 window, but the squared difference of the block means
+    # a running minimum kept for the disparity but not for the cost it is compared with
+    "block matching whose best cost is overwritten at every disparity": ("lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            volume = (_ssd_volume if cost == "ssd" else _ncc_volume)(
+                _grey_float(left), _grey_float(right), int(max_disparity), int(block_size))
+            lowest = np.full(volume.shape[1:], np.inf)
+            disparity = np.zeros(volume.shape[1:])
+            for d, here in enumerate(volume):
+                smaller = here < lowest
+                disparity[smaller] = d
+                lowest = here
+            return disparity
+        """, ["sets `lowest = here` at every turn", "np.minimum(lowest, here)"]),
     "SSD as the squared difference of the block means": ("lab12.ex4", """
         def _ssd_volume(left, right, max_disparity, block_size):
             height, width = left.shape
