@@ -758,6 +758,58 @@ class _Student:
         readings = sum(isinstance(n, ast.Name) and n.id == node.id and isinstance(n.ctx, ast.Load) for n in nodes)
         return stored and readings == 1
 
+    def removes_a_mask_guard(self, mutant) -> bool:
+        """Whether the mutant takes out whole an `if` that raises when a mask is not all (or any) true, the
+        mask read again after it (`valid = d > 0`, `if not valid.all(): raise`, then `np.divide(...,
+        where=valid)`): the function goes on to treat the entries the guard refuses, so the guard is the slip."""
+        if len(mutant.edits) != 1 or mutant.edits[0][2] != "drop_statement":
+            return False
+        where, ordinal, _, _ = mutant.edits[0]
+        nodes, _ = self._walk(where)
+        return 0 <= ordinal < len(nodes) and id(nodes[ordinal]) in self._mask_guards(where)
+
+    def narrows_a_mask_guard(self, mutant) -> bool:
+        """Whether the mutant changes the test of such a guard (`.all()` -> `.any()`, the mask for another
+        name): that only narrows what it refuses -- an all-invalid map still raises --, where the guard
+        taken out is the fix."""
+        for where, ordinal, _, _ in mutant.edits:
+            guards = self._mask_guards(where)
+            nodes, parents = self._walk(where)
+            node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+            while node is not None and id(node) in parents:
+                parent, field, _ = parents[id(node)]
+                if id(parent) in guards and field == "test":
+                    return True
+                node = parent
+        return False
+
+    def _mask_guards(self, where: str) -> dict:
+        """The def's `if`s that raise when a mask is not all (any) true and whose mask is read after them
+        (id -> node). Memoised per def."""
+        cache = self.__dict__.setdefault("_mask_guard_cache", {})
+        if where in cache:
+            return cache[where]
+        nodes, _ = self._walk(where)
+        loads: dict = {}
+        for n in nodes:
+            if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load):
+                loads[n.id] = max(loads.get(n.id, 0), getattr(n, "lineno", 0))
+        found = {}
+        for guard in nodes:
+            if not (isinstance(guard, ast.If) and len(guard.body) == 1 and isinstance(guard.body[0], ast.Raise)):
+                continue
+            test = guard.test.operand if isinstance(guard.test, ast.UnaryOp) else guard.test
+            mask = None
+            if isinstance(test, ast.Call) and isinstance(test.func, ast.Attribute) and test.func.attr in ("all", "any"):
+                if not test.args and isinstance(test.func.value, ast.Name):
+                    mask = test.func.value.id              # valid.all()
+                elif len(test.args) == 1 and isinstance(test.args[0], ast.Name):
+                    mask = test.args[0].id                 # np.all(valid)
+            if mask is not None and loads.get(mask, 0) > (guard.end_lineno or guard.lineno):
+                found[id(guard)] = guard
+        cache[where] = found
+        return found
+
     def steers_round_a_guard(self, mutant) -> bool:
         """Whether the mutant changes a value the def reads only in the tests of guards that raise (`area =
         e1[0] * e2[1] - ...` read only by `if area <= 0: raise`): any value the guard lets through mends
@@ -2254,7 +2306,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         and _TYPE_REFUSED.search(str(trial.raised[3] or "")) is not None
     shown = sorted(((m, f) for m, f in shown if not student.renormalises(m)
                     and not student.colours_with_a_size(m)),
-                   key=lambda pair: (pair[0].key not in known, not (refused_type and _converts(pair[0])),
+                   key=lambda pair: (pair[0].key not in known, not student.removes_a_mask_guard(pair[0]),
+                                     not (refused_type and _converts(pair[0])),
                                      pair[0].key not in exactly,
                                      student.bypasses(pair[0]), pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
@@ -2267,7 +2320,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             continue
         if (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
                 and not variant.writes_inputs(mutant) and not variant.guard_untested(mutant, failing) \
-                and not student.steers_round_a_guard(mutant) and not variant.breaks_other_checks(mutant):
+                and not student.steers_round_a_guard(mutant) and not student.narrows_a_mask_guard(mutant) \
+                and not variant.breaks_other_checks(mutant):
             fixes.append((mutant, fix))
             lines.add(fix.changes[0][0])
         elif clock.left() > 0 and not (mutant.key in variant.checked and not variant.other_checks()):
@@ -2312,8 +2366,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # mends alike -- a camera's column of ones made zeros -- that one is the fix, this one compensates)
         kept = [pair for pair in kept if not _homogeneous_zeroed(pair[1], student.text)] or kept
         # (a step the reference never takes, taken out, is the fix itself: told as any change is)
+        # (and a guard refusing entries the function goes on to treat, taken out, is the fix too)
         removals = all(fix.operator in REMOVALS and not _extra_step(fix, student.reference_source, function)
-                       for _, fix in fixes)
+                       and not student.removes_a_mask_guard(mutant) for mutant, fix in fixes)
         if removals and not complete:
             # (a step taken out, found before the other changes were all tried, is likely a compensation --
             # the division by a w made Z by the matrix's last row -- and nothing says it is not: told by none

@@ -190,6 +190,15 @@ MISTAKES = {
             return _depth_from_disparity(disparity, f, baseline * 1000.0)
         """, ["the depths are 1000 times the expected"]),
     # An integer map (a matcher's int16, an argmin's int64): the depth array made like it is integer.
+    # a mask of the valid disparities made, used, and first made a reason to refuse the map
+    "depth_from_disparity refusing a map with holes": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, dtype=np.float64)
+            ok = np.isfinite(d) & (d > 0)
+            if not np.all(ok):
+                raise ValueError("invalid disparities")
+            return np.where(ok, f * baseline / np.where(ok, d, 1.0), 0.0)
+        """, ["removing `if not np.all(ok): raise ...`"]),
     "depth into np.zeros_like(disparity): an integer map raises": ("lab12.ex2", """
         def depth_from_disparity(disparity, f, baseline):
             depth = np.zeros_like(disparity)
