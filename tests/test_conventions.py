@@ -284,3 +284,21 @@ def test_answers_of_the_right_form_that_depend_on_the_other_points_are_told_that
     message = failed[f"epipolar_lines {SQUARE}"].message
     assert "a point's answer must not depend on the other points given with it" in message, message
     assert "rows of the answer" not in message, message
+
+
+def test_answers_that_change_from_call_to_call_are_told_so_not_blamed_on_the_inputs_form(tmp_path):
+    # a counter of the module's, grown at every call: each call answers otherwise, whatever its input's form
+    submission = mutant(tmp_path, "lab10_camera2", """
+        _CALLS = []
+        _reference = weak_perspective_project
+        def weak_perspective_project(points, f, z_avg=None):
+            _CALLS.append(1)
+            return _reference(points, f, z_avg) * (1.0 + 0.01 * len(_CALLS))
+        """)
+    failed = _failed(grade(submission, ["lab10.ex2"]), "lab10.ex2")
+    told = [c for name, c in failed.items() if "integers" in name or "one-row" in name]
+    assert told, list(failed)
+    for check in told:
+        assert "called twice with the same arguments" in check.message, check.message
+        assert check.mistake == conventions.STATE_BETWEEN_CALLS or "_CALLS" in check.message
+        assert "answered in integers" not in check.mistake

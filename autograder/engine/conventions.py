@@ -151,6 +151,24 @@ def _same_parts(t: Trial, what: str, first, second, mistake: str = "") -> list:
     return theirs
 
 
+STATE_BETWEEN_CALLS = "the answers depend on earlier calls"
+
+
+def fail_if_answers_drift(t: Trial, function: str, args: tuple, first, call: str) -> None:
+    """Before a difference between two forms of an input is blamed on the form: ``function`` called again
+    with ``args``, whose answer was ``first``; fail when the same call answers otherwise -- the function
+    keeps or changes something between calls (a module-level array changed in place, a list that grows),
+    and the second form's answer differed for that, not for its form."""
+    again = t.call(function, *args)
+    for ours, theirs in zip(_parts(first), _parts(again)):
+        if isinstance(ours, np.ndarray) and ours.dtype.kind in "biuf" and isinstance(theirs, np.ndarray) \
+                and theirs.shape == ours.shape and theirs.dtype.kind in "biuf" and not _close(theirs, ours):
+            t.fail(measured(f"{call} called twice with the same arguments returned {_first(ours)}, then "
+                            f"{_first(theirs)}: your {function} keeps or changes something between calls (an array of "
+                            "the module changed in place, a list that grows), so each call answers otherwise; a "
+                            "function's answer may depend on its arguments only."), mistake=STATE_BETWEEN_CALLS)
+
+
 def judge_grey(t: Trial, function: str, args: tuple, images, described: str = ""):
     """Judge ``function`` on the grey versions of its BGR inputs against its own BGR answer."""
     call = f"{function}({described or '...'})"
@@ -211,6 +229,7 @@ def judge_rows(t: Trial, function: str, args: tuple, rows, described: str = ""):
         name = _name(call, index, len(theirs), given)
         got = t.expect_array(answer, name, shape=ours[:1].shape, kind="biuf")
         if not _close(got, ours[:1]):
+            fail_if_answers_drift(t, function, args, many, call)
             t.fail(measured(f"{name} returned {np.array2string(got, precision=6)}, but the same point among {n} "
                             f"gives {np.array2string(ours[:1], precision=6)}: a point's answer must not depend "
                             "on how many points are given"))
@@ -246,6 +265,8 @@ def judge_square(t: Trial, function: str, args: tuple, rows, described: str = ""
         shown = f"shape {answer.shape}" if isinstance(answer, np.ndarray) and not shaped else \
             _first(np.asarray(answer)) if shaped else type(answer).__name__
         why = why_square(t, function, k)
+        if not why and shaped:
+            fail_if_answers_drift(t, function, args, many, call)
         # (named only where the form changed or the code tests the length: other values alone may come
         # from a formula reading every point -- a mean depth where each point's own belongs)
         # (the rule said is the one the answer breaks: rows for points where its form changed or the code
@@ -437,6 +458,8 @@ def judge_integers(t: Trial, function: str, args: tuple, described: str = ""):
         if _close(got, ours):
             continue
         cut = got.dtype.kind in "iu" and ours.dtype.kind == "f"
+        if not cut:
+            fail_if_answers_drift(t, function, args, floats, call)
         said = (f"{name} returned {_first(got)} (dtype {got.dtype}), but the same numbers given as floats give "
                 f"{_first(ours)}: whole numbers given as integers (the sheet's own sample point (1, 1, 2)) must give "
                 "the same answer")

@@ -133,10 +133,15 @@ def read_source(text: str, api=frozenset()) -> Reading:
                           and (isinstance(node.value, (ast.List, ast.ListComp))
                                or isinstance(node.value, ast.Call) and _call_name(node.value) == "list")
                           for target in node.targets if isinstance(target, ast.Name))
+        # (and its arrays: `ORTHOGRAPHIC = np.array(...)` at the top level, which a function may change in place)
+        arrays = frozenset(target.id for node in tree.body if isinstance(node, ast.Assign)
+                           and isinstance(node.value, ast.Call) and _call_name(node.value) in _MODULE_ARRAYS
+                           for target in node.targets if isinstance(target, ast.Name))
         findings, calls = {}, {}
         rows = {name: _read_as_rows(node) for name, node in functions.items()}
         for name, node in functions.items():
-            findings[name] = _read_function(node, name in api, lists) + _transposed_into_rows(name, node, functions, rows)
+            findings[name] = _read_function(node, name in api, lists) + _transposed_into_rows(name, node, functions, rows) \
+                + _module_array_changed(name, node, arrays)
             calls[name] = {called for called in _called_names(node) if called in functions and called != name}
         return Reading(findings, calls)
     except TooLarge as exc:
@@ -2048,6 +2053,45 @@ def _state_kept_between_calls(name, function, lists=frozenset()) -> list[Finding
                                 f"{name} (line {line}) calls `{held}.{node.func.attr}(...)` on `{held}`, a list made "
                                 "once, at the top of the module, outside the function: it keeps what every earlier "
                                 "call put in it; make it inside the function, anew at each call")]
+    return []
+
+
+_MODULE_ARRAYS = frozenset({"array", "asarray", "eye", "identity", "zeros", "ones", "full", "diag", "float64",
+                            "float32"})
+
+
+def _module_array_changed(name, function, arrays) -> list[Finding]:
+    """An array made at the top of the module changed in place by the function, directly (``ORTHO[:2] *= s``)
+    or through a name given it without a copy (``M = ORTHO``, then ``M[:2] *= s``): the module's array itself
+    changes, so every later call (and every other function reading it) sees it changed."""
+    if not arrays:
+        return []
+    own = {a.arg for a in ast.walk(function.args) if isinstance(a, ast.arg)}
+    aliases: dict = {}   # a name of the function -> the module's array it was given (no copy)
+    for statement in _statements_in_order(function):
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name):
+            target, value = statement.targets[0].id, statement.value
+            if isinstance(value, ast.Name) and (value.id in arrays or value.id in aliases) and value.id not in own:
+                aliases[target] = aliases.get(value.id, value.id)
+            else:
+                aliases.pop(target, None)
+            continue
+        targets = statement.targets if isinstance(statement, ast.Assign) else \
+            [statement.target] if isinstance(statement, ast.AugAssign) else []
+        for target in targets:
+            held = target.value if isinstance(target, ast.Subscript) else target if isinstance(statement, ast.AugAssign) else None
+            if not isinstance(held, ast.Name):
+                continue
+            array = aliases.get(held.id) or (held.id if held.id in arrays and held.id not in own else None)
+            if array is None:
+                continue
+            line = _line(statement)
+            through = f"`{held.id}`, which is `{array}` itself (`{held.id} = {array}` makes no copy)" \
+                if held.id != array else f"`{array}`"
+            return [Finding(name, line, "an array of the module changed in place",
+                            f"{name} (line {line}) changes {through} in place: `{array}` is made once, at the top of "
+                            f"the module, so every later call (and every function reading `{array}`) gets it changed; "
+                            f"work on a copy (`{held.id} = {array}.copy()`)", certain=True)]
     return []
 
 

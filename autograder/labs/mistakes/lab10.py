@@ -44,6 +44,17 @@ MISTAKES = {
         def perspective_project(points, f):
             return weak_perspective_project(points, f)
         """, ["weak perspective"]),
+    # the module's matrix scaled in place through a name given it without a copy: right once, then compounding
+    "weak perspective scaling a module matrix in place": ("lab10.ex2", """
+        _SCALED_XY = np.eye(2)
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = X[:, 2].mean() if z_avg is None else float(z_avg)
+            S = _SCALED_XY
+            S *= f / z
+            x = X[:, :2] @ S.T
+            return x[0] if single else x
+        """, ["`S`, which is `_SCALED_XY` itself"]),
     "weak perspective depth as a running average of pairs": ("lab10.ex2", """
         _weak_right = weak_perspective_project
         def weak_perspective_project(points, f, z_avg=None):
