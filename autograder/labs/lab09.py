@@ -1892,6 +1892,7 @@ def judge_calibration(t: Trial, images, K_true, pattern):
         t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
                "(rows, cols)? OpenCV wants (width, height).", mistake="the principal point is swapped")
     if f_error.max() > 0.015 or c_error.max() > 3.0:
+        fail_if_calibrated_at_another_scale(t, what, K, K_true)
         looped = (call_in_a_loop(code_of(t).reachable(["calibrate"]), ("calibrateCamera",)) or ("", 0))[1]
         cause = from_code(f" Your code calls cv2.calibrateCamera inside a loop (line {looped}), a calibration of each "
                           "view alone (one view cannot fix the focal lengths and the principal point): calibrate "
@@ -1907,6 +1908,34 @@ def judge_calibration(t: Trial, images, K_true, pattern):
                                          "is cv2.calibrateCamera's, for the K and distortion returned)").said(t))
     return passed(f"focal lengths within {f_error.max():.2%}, principal point within {c_error.max():.2f} px, "
                   f"rms {rms:.3f} px")
+
+
+RESCALED = "the corners are in the pixels of the views resized"
+
+
+def fail_if_calibrated_at_another_scale(t: Trial, what: str, K: np.ndarray, K_true: np.ndarray) -> None:
+    """Fail naming a K that is the true one at another scale as a whole -- both focal lengths and the principal
+    point by one factor s (a pixel centre x of a view resized by s is at s (x + 0.5) - 0.5) --: the corners were
+    found on resized views and never scaled back to the pixels of the views given."""
+    s = K[0, 0] / K_true[0, 0]
+    if not 0.05 < s < 20 or abs(s - 1.0) < 0.05:
+        return
+    scaled = K_true[:2, 2] * s + (s - 1.0) / 2
+    if abs(K[1, 1] / (s * K_true[1, 1]) - 1.0) > 0.015 or np.abs(K[:2, 2] - scaled).max() > 3.0 * max(s, 1.0):
+        return
+    resized = (calls("cv2.resize") | calls("cv2.pyrDown")).found(code_of(t).reachable(["calibrate"]))
+    t.fail(measured(f"{what}: your K is the true K scaled by {s:.3g} as a whole (focal lengths and principal point "
+                    f"alike): it looks like {RESCALED} by {s:.3g} and not scaled back to the pixels of the views "
+                    f"given ({1 / s:.3g} times the corners found there), so K describes the resized camera.")
+           + (from_code(f" Your code {resized} in calibrate.") if resized else "")
+           + f"\nIt is\n{format_matrix(K)}\nbut the views were rendered with\n{format_matrix(K_true)}",
+           mistake=f"{RESCALED} and not scaled back")
+
+
+@ext1.check("calibrate on views of 1280 x 960 pixels (a webcam's frames)", points=1)
+def calibrate_large(t):
+    images, K, _ = truth.large_calibration_views()
+    return judge_calibration(t, images, K, truth.CALIBRATION_PATTERN)
 
 
 @ext1.check("calibrate on six rendered chessboard views recovers K", points=4)

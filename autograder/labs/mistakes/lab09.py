@@ -167,6 +167,15 @@ MISTAKES = {
                 image = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR)
             return _reference_draw_points(image, pts, radius, color)
         """, ["grey image comes back grey"]),
+    # views shrunk for a faster detection, the corners left in the shrunk views' pixels
+    "calibrate finding corners on views shrunk to a third": ("lab09.ext1", """
+        _calibrate_right = calibrate
+        def calibrate(images, pattern_size, square_size):
+            shrunk = [cv2.resize(image, None, fx=1 / 3, fy=1 / 3, interpolation=cv2.INTER_AREA)
+                      if image.shape[1] > 900 else image for image in images]
+            K, dist, rms = _calibrate_right(shrunk, pattern_size, square_size)
+            return K, dist, rms
+        """, ["your k is the true k scaled by 0.333", "resized by 0.333"]),
     "calibration returns four distortion coefficients": ("lab09.ext1", """
         _reference_calibrate = calibrate
         def calibrate(images, pattern_size, square_size):
