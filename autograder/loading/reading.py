@@ -226,6 +226,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _camera_left_out(name, function)
     found += _view_overwritten(name, function)
     found += _seeded_in_a_loop(name, function)
+    found += _data_shuffled_in_a_loop(name, function)
     found += _mean_after_centring(name, function)
     found += _w_never_divided(name, function)
     found += _diagonal_refilled(name, function)
@@ -886,6 +887,41 @@ def _seeded_in_a_loop(name, function) -> list[Finding]:
                                 f"{name} (line {_line(node)}) seeds a new generator from "
                                 f"`{ast.unparse(node.args[0])}` at every turn of the loop: with a seed given, "
                                 "each turn draws the same numbers; make the generator once, before the loop")]
+    return []
+
+
+# ------------------------------------------------------------------ data shuffled in place in a loop
+_INDEX_MAKERS = frozenset({"arange", "range", "permutation", "indices"})
+
+
+def _data_shuffled_in_a_loop(name, function) -> list[Finding]:
+    """``rng.shuffle(pairs)`` (``np.random.shuffle``) inside a loop, on an array of data (not of indices made by
+    ``np.arange`` / ``range``) that the function indexes by a name (``pairs[best]``): each turn reorders the
+    data itself, so a mask or an index found in one turn's order points at other rows after the next shuffle,
+    and what the function answers is in the shuffled order, not its caller's."""
+    made_as_indices = {target.id for node in ast.walk(function) if isinstance(node, ast.Assign)
+                       and isinstance(node.value, ast.Call) and _call_name(node.value) in _INDEX_MAKERS
+                       or isinstance(node, ast.Assign) and isinstance(node.value, ast.Call)
+                       and _call_name(node.value) == "list" and node.value.args
+                       and isinstance(node.value.args[0], ast.Call) and _call_name(node.value.args[0]) == "range"
+                       for target in node.targets if isinstance(target, ast.Name)}
+    indexed = {node.value.id for node in ast.walk(function) if isinstance(node, ast.Subscript)
+               and isinstance(node.value, ast.Name) and (isinstance(node.slice, ast.Name) or (   # pairs[best]
+                   isinstance(node.slice, ast.Tuple) and node.slice.elts and isinstance(node.slice.elts[0], ast.Name)))}
+    for loop in ast.walk(function):
+        if not isinstance(loop, (ast.For, ast.While)):
+            continue
+        for node in (n for statement in loop.body for n in ast.walk(statement)):
+            if isinstance(node, ast.Call) and _call_name(node) == "shuffle" and len(node.args) == 1 \
+                    and isinstance(node.args[0], ast.Name):
+                data = node.args[0].id
+                if data in indexed and data not in made_as_indices:
+                    return [Finding(name, _line(node), "the data are shuffled in place at every turn",
+                                    f"{name} (line {_line(node)}) shuffles `{data}` itself at every turn of the loop: "
+                                    f"a mask or an index found in one turn's order points at other rows of `{data}` "
+                                    "after the next shuffle, and what is answered is in the shuffled order, not in "
+                                    "the order the points were given; draw random indices instead "
+                                    "(`rng.choice(n, 4, replace=False)`) and leave the data in place", certain=True)]
     return []
 
 

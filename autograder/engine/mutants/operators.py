@@ -106,6 +106,7 @@ OPERATORS = {
     "colour_axis": ("channel", "grey", "gray", "axis"),
     "drop_w": ("homogeneous", "(n, 3)", "(n, 2)", "column"),
     "power_xor": ("power", "square", "xor", "^"),   # r ^ 2 (a bitwise XOR in Python) -> r ** 2
+    "identity": ("identity", "eye", "diagonal", "1 -"),   # (1 - R) @ c -> (np.eye(len(R)) - R) @ c
     "half_pixel": ("half", "0.5", "pixel", "offset", "centre"),   # (x + 0.5) -> x: a half-pixel convention   # f(x1, x2), x1 homogeneous -> f(x1[:, :2], x2)   # f(img, channel_axis=-1) -> channel_axis=-1 if img.ndim == 3 else None   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
     "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
@@ -1239,7 +1240,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "bracket", "perspective_warp",
-                                              "x_difference", "colour_axis", "drop_w", "power_xor", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
+                                              "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
@@ -2460,6 +2461,14 @@ def _student_changes(node, parent, parents, words):
                                                           mode="eval").body) if k.arg == "channel_axis" else k
                         for k in new.keywords]
         yield "colour_axis", ast.unparse(new), ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Sub, ast.Add)) and isinstance(node.left, ast.Constant) \
+            and node.left.value in (1, 1.0) and type(node.left.value) in (int, float) \
+            and isinstance(node.right, (ast.Name, ast.Attribute, ast.Subscript, ast.Call)) \
+            and isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult):
+        # the number 1 where the identity matrix belongs (`(1 - R) @ c` for `(I - R) c`): NumPy takes every
+        # entry from 1, not the diagonal's alone
+        sign = "-" if isinstance(node.op, ast.Sub) else "+"
+        yield "identity", f"np.eye(len({_operand(node.right)})) {sign} {_operand(node.right)}", ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitXor) \
             and not (isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.BitXor)) \
             and re.search(r"\^ [23]\b", ast.unparse(node)):

@@ -41,6 +41,16 @@ MISTAKES = {
         """, ["channels are not kept", "grey in, grey out"]),
     # the blind set 1201e's 07/03: the caller's centre array written into
     # the blind set 1202d's 07/03: skimage's float result in [0, 1] cast back to uint8
+    # the textbook's (I - R) c written with the number 1: NumPy takes every entry of R from 1
+    "rotation_matrix with 1 - R for I - R": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            a = np.deg2rad(angle_deg)
+            rot = np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
+            M = np.eye(3)
+            M[:2, :2] = rot
+            M[:2, 2] = (1 - rot) @ np.asarray(center, dtype=np.float64)
+            return M
+        """, ["to `(np.eye(len(rot)) - rot) @"]),
     "rotate whose [0, 1] float result is cast to uint8": ("lab07.ex2", """
         _right_rotate = rotate
         def rotate(image, angle_deg=45):

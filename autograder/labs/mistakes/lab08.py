@@ -389,6 +389,20 @@ MISTAKES = {
         def draw_matches(img1, img2, pts1, pts2):
             return _reference_draw_matches(img1, img2, pts2, pts1)
         """, ["point sets are exchanged"]),
+    # samples drawn by shuffling the correspondences themselves: the best mask is in some earlier turn's order
+    "RANSAC shuffling its correspondences in place": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None, confidence=0.999, max_iterations=5000):
+            rng = np.random.default_rng(seed)
+            both = np.hstack([np.asarray(src, np.float64).reshape(-1, 2), np.asarray(dst, np.float64).reshape(-1, 2)])
+            keep = np.zeros(len(both), bool)
+            for _ in range(500):
+                rng.shuffle(both)
+                H = homography_dlt(both[:4, :2], both[:4, 2:])
+                near = np.linalg.norm(transform_points(H, both[:, :2]) - both[:, 2:], axis=1) < threshold
+                if near.sum() > keep.sum():
+                    keep = near
+            return homography_dlt(both[keep, :2], both[keep, 2:]), keep
+        """, ["shuffles `both` itself at every turn"]),
     "RANSAC without the final refit": ("lab08.ex4", """
         def homography_ransac(src, dst, threshold=3.0, seed=None):
             src = np.asarray(src, float); dst = np.asarray(dst, float)
