@@ -82,6 +82,20 @@ for _other_way in OTHER_WAY:
     guard(_other_way, asks=SKIMAGE_FORWARD, instead=f"{_other_way}: {SKIMAGE_INVERSE_MAP}")
 
 
+# scipy.ndimage indexes arrays (row, col) = (y, x): a map written in (x, y) there acts on the other axis, which is
+# the cause of an x/y exchange in code that warps with it (its matrix and offset in the lab's (x, y) order)
+NDIMAGE_WARP = (calls("scipy.ndimage.affine_transform") | calls("scipy.ndimage.shift") | calls("scipy.ndimage.zoom")
+                ).saying("warps with scipy.ndimage")
+AXES_EXCHANGED = sorted({name for mistakes in (truth.translation_mistakes(3.0, 4.0), truth.scaling_mistakes(2.0, 3.0),
+                                               truth.shear_mistakes(0.3))
+                         for name in mistakes if "swapped" in name or "along y" in name})
+for _exchanged in AXES_EXCHANGED:
+    guard(_exchanged, asks=NDIMAGE_WARP, instead=f"{_exchanged}: " + from_code(
+        "your code {found}, which indexes arrays (row, col) = (y, x): a matrix (or offset) written in the lab's (x, y) "
+        "order acts there on the other axis -- exchange its rows and columns (and the offset's two entries) for "
+        "ndimage, or warp with cv2.warpAffine, which takes (x, y)"))
+
+
 # The confirmation probes' inputs (see autograder.engine.judges.Probe): values no usual mistake leaves
 # unchanged -- fractional, of both signs, x apart from y, an angle far from 0 and 90 degrees, a
 # centre off the origin -- so that the mistakes answer them differently.

@@ -16,6 +16,13 @@ MISTAKES = {
             return out
         """, ["could not broadcast"]),
     # the blind set 1201e's 07/01: one module-level identity written into and handed to every caller
+    # scipy.ndimage's shift given (tx, ty) in the lab's (x, y) order, where it takes (rows, columns)
+    "translate by scipy.ndimage.shift in (x, y) order": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            from scipy import ndimage
+            offset = (float(tx), float(ty)) + (0.0,) * (image.ndim - 2)
+            return ndimage.shift(image, offset, order=1, mode="constant", cval=0)
+        """, ["tx and ty are swapped", "which indexes arrays (row, col) = (y, x)"]),
     "translate merging the split channels as R, G, B": ("lab07.ex1", """
         def translate(image, tx=100, ty=50):
             M = translation_matrix(tx, ty)[:2]
