@@ -1323,8 +1323,8 @@ def overwritten_running_bests(function) -> list[tuple[ast.Compare, ast.Assign, s
     found = []
     for loop in (node for node in ast.walk(function) if isinstance(node, (ast.For, ast.While))):
         nodes = list(_loop_body_nodes(loop))
-        guarded = {id(statement) for node in nodes if isinstance(node, ast.If)
-                   for part in node.body for statement in ast.walk(part)}
+        # (an assignment under an `if` of the loop -- `if c < best: best = c` -- keeps the best; each node read once)
+        guarded = {id(statement) for node in nodes if isinstance(node, ast.If) for statement in node.body + node.orelse}
         compares = {}
         for node in nodes:
             if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Lt, ast.Gt, ast.LtE, ast.GtE)) \
