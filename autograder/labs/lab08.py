@@ -761,6 +761,24 @@ def _cut_to(functions, count: int) -> str:
     return ""
 
 
+@ex3.check("match_features answers (0, 2) arrays when no match passes the ratio test (two unrelated photos)",
+           points=1)
+def match_none_passing(t):
+    """Two unrelated photos at a ratio no pair of SIFT descriptors passes: no match, but the API's form -- an
+    empty list made an array without its (M, 2) shape is (0,)."""
+    what = "match_features(chelsea, coffee, ratio=0.05) (two unrelated photos: no match passes)"
+    got = t.call("match_features", truth.photo("chelsea", (240, 180)), truth.photo("coffee", (240, 180)), ratio=0.05)
+    for index, name in enumerate(("pts1", "pts2")):
+        part = got[index] if isinstance(got, (tuple, list)) and len(got) == 2 else None
+        if isinstance(part, np.ndarray) and part.shape == (0,):
+            t.fail(f"{what}: {name} has shape (0,); expected (0, 2): " + measured(
+                "an empty list of points made an array has no second axis: give it its shape "
+                "(`np.array(points, dtype=np.float64).reshape(-1, 2)`), so that a caller's pts[:, 0] works when "
+                "nothing matched."), mistake="no match answered as arrays of shape (0,)")
+    pts1, _ = matched_points(t, what, got)
+    return passed(f"{len(pts1)} matches, as (M, 2) arrays")
+
+
 @ex3.check("match_features' default ratio is the API's 0.75", points=1)
 def match_default_ratio(t):
     img1, img2, _ = truth.matching_pair("chelsea", (240, 180), seed=2)

@@ -233,6 +233,19 @@ MISTAKES = {
         """, ["the caller's `src` in place", "called a second time on that same array"]),
     # ---------------------------------------------------------------- ex3
     # the blind set 1202d's 08/07: each image's contrast stretched before it is placed
+    # the tutorial's list comprehension made an array without its shape: (0,) when nothing passes the test
+    "match_features answering (0,) arrays when no match passes": ("lab08.ex3", """
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            grey = lambda im: cv2.cvtColor(im, cv2.COLOR_BGR2GRAY) if im.ndim == 3 else im
+            sift = cv2.SIFT_create() if method == "sift" else cv2.ORB_create(1000)
+            k1, d1 = sift.detectAndCompute(grey(img1), None)
+            k2, d2 = sift.detectAndCompute(grey(img2), None)
+            if d1 is None or d2 is None or len(k2) < 2:
+                return np.zeros((0, 2)), np.zeros((0, 2))
+            norm = cv2.NORM_L2 if method == "sift" else cv2.NORM_HAMMING
+            good = [m for m, n in cv2.BFMatcher(norm).knnMatch(d1, d2, k=2) if m.distance < ratio * n.distance]
+            return np.float64([k1[m.queryIdx].pt for m in good]), np.float64([k2[m.trainIdx].pt for m in good])
+        """, ["pts1 has shape (0,); expected (0, 2)"]),
     "draw_matches stretching each image's contrast": ("lab08.ex3", """
         _right_draw = draw_matches
         def draw_matches(img1, img2, pts1, pts2):
