@@ -379,6 +379,8 @@ _OPENCV_KINDS = re.compile(r"(?:type|depth)\(\) *== *(?!CV_)[A-Za-z_]|types? do(
 _OPENCV_SIZES = re.compile(r"size\(\) *== *(?!Size\b)[A-Za-z_]|[Ss]izes? of input arguments do not match|same size")
 _OUT_OF_BOUNDS = re.compile(r"index (-?\d+) is out of bounds for axis (\d+) with size (\d+)")
 _SEQUENCE_INDEX = re.compile(r"\b(?:list|tuple) index out of range")
+_ZERO_DIVISION = re.compile(r"ZeroDivisionError|division by zero|divide by zero")
+ZERO_DIVISOR = "a division by a value that is 0 on this input"
 _NOT_SQUARE = re.compile(r"Last 2 dimensions of the array must be square")
 _MASK_ASSIGNMENT = re.compile(r"boolean array indexing assignment (?:requires a 0 or 1-dimensional input|cannot assign)")
 ASSERTION = "the code's own assert fails on this input"
@@ -412,6 +414,8 @@ def explain_raised(code, recording: Recording, fn, line: int, message: str, fram
         return _index_named(recording, expressions, *(int(g) for g in found.groups()), where)
     if _SEQUENCE_INDEX.search(message):
         return _item_named(recording, expressions, where)
+    if _ZERO_DIVISION.search(message):
+        return _divisor_named(recording, expressions, where)
     if _NOT_SQUARE.search(message):
         return _square_named(recording, expressions, where)
     if _MASK_ASSIGNMENT.search(message):
@@ -658,6 +662,30 @@ def _item_named(recording, expressions, where) -> Form | None:
         return Form(f"{_quote(node.slice)} is {int(index)} in {_quote(node)} {where}: {_quote(node.value)} holds "
                     f"{size} item{'s' if size != 1 else ''}, {numbered}", INDEX)
     return None
+
+
+def _divisor_named(recording, expressions, where) -> Form | None:
+    """A Python number divided by 0 (ZeroDivisionError: its message names no value): which divisor is 0; an entry
+    on a diagonal (`A[k][k]`, `A[k, k]`) is the pivot of an elimination written without exchanging rows."""
+    for node in expressions:
+        if not (isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Div, ast.FloorDiv, ast.Mod))) \
+                or recording.number(node.right) != 0:
+            continue
+        said = f"{_quote(node.right)} is 0 in {_quote(node)} {where}"
+        if _on_a_diagonal(node.right):
+            said += (": a pivot of your elimination is 0 -- bring up the row with the largest entry of the column "
+                     "first (partial pivoting), or solve with np.linalg.solve")
+        return Form(said, ZERO_DIVISOR)
+    return None
+
+
+def _on_a_diagonal(node) -> bool:
+    """`A[k][k]` or `A[k, k]`: the same index on both axes."""
+    if isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2:
+        first, second = node.slice.elts
+        return ast.dump(first) == ast.dump(second)
+    return isinstance(node, ast.Subscript) and isinstance(node.value, ast.Subscript) \
+        and not isinstance(node.slice, (ast.Slice, ast.Tuple)) and ast.dump(node.slice) == ast.dump(node.value.slice)
 
 
 def _indexed_named(recording, expressions, ndim: int, where, fn=None, statement=None) -> Form | None:

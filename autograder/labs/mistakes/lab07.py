@@ -208,6 +208,17 @@ MISTAKES = {
                 raise ValueError("collinear points")
             return _affine_right(src, dst)
         """, ["changing `abs((x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)) < 2.0`"]),
+    # Gauss-Jordan written by hand, dividing by each diagonal entry as it comes (no row exchanged)
+    "affine_from_points by elimination without pivoting": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            rows = [[float(x), float(y), 1.0, float(u), float(v)] for (x, y), (u, v) in zip(src, dst)]
+            for k in range(3):
+                rows[k] = [value / rows[k][k] for value in rows[k]]
+                for i in range(3):
+                    if i != k:
+                        rows[i] = [a - rows[i][k] * b for a, b in zip(rows[i], rows[k])]
+            return np.array([[rows[0][3], rows[1][3], rows[2][3]], [rows[0][4], rows[1][4], rows[2][4]]])
+        """, ["a pivot of your elimination is 0"]),
     "affine from points inverted": ("lab07.ex5", """
         def affine_from_points(src, dst):
             S = np.hstack([np.asarray(dst, float), np.ones((3, 1))])
