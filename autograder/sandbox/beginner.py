@@ -283,7 +283,10 @@ def _pyramid_size(function, message, arguments, values) -> str:
     if fits(size[1], size[0]):
         return said + ", width and height in the other order (dstsize is (width, height), a shape (rows, columns))"
     if tuple(size) == (width, height):
-        return said + ", the size of src itself"
+        # (the src given is as large as the level it is to make: the size asked is right where the src is a level
+        # never halved -- a Gaussian level kept as it was --, or the size is that of src's own level)
+        return said + (", the size of src itself: either src is a level too large (a pyramid level that was never "
+                       "halved by cv2.pyrDown) or the dstsize is src's own level's")
     return said
 
 
