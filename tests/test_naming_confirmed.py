@@ -395,6 +395,9 @@ DIRECT_EVIDENCE = {
                             "smoothness for truth, 'smoothness or X' / 'if not smoothness' (read)",
     "aperture_short_focal": "each point's farthest ray lands (f / Z) / (1 + f / Z) radii out, for each of six "
                             "points' own depths (measured: no other slip gives that ratio at every depth)",
+    "fail_if_calibrated_at_another_scale": "K is the true one times one factor in all four of fx, fy, cx and cy "
+                                           "(the principal point as a resized pixel centre), within the "
+                                           "calibration's own tolerances (measured)",
     "colours_lost": "the result's three channels are equal at every pixel where an input's differ (measured)",
     "ncc_flat_border": "more than half the pixels changed by the border take exactly the first disparity whose "
                        "right block lies wholly in it, where np.argmin over NaN costs lands (measured: a guard, an "

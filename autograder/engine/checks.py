@@ -465,8 +465,7 @@ class Trial:
             stacked = [axis for axis, size in enumerate(value.shape) if size == n]
             how = ""
             if value.ndim == 2 and stacked:
-                how = (f": it looks like the {n} results were stacked as its "
-                       f"{'rows' if stacked[0] == 0 else 'columns'} (np.stack / np.column_stack / np.array of them)")
+                how = f": it looks like the {n} results were stacked as its {'rows' if stacked[0] == 0 else 'columns'}"
             self.fail(f"{what} returned an array of shape {value.shape}{how}; {expected}")
         self.fail(f"{what} returned {type(value).__name__}; {expected}")
 

@@ -673,8 +673,8 @@ def _divisor_named(recording, expressions, where) -> Form | None:
             continue
         said = f"{_quote(node.right)} is 0 in {_quote(node)} {where}"
         if _on_a_diagonal(node.right):
-            said += (": a pivot of your elimination is 0 -- bring up the row with the largest entry of the column "
-                     "first (partial pivoting), or solve with np.linalg.solve")
+            said += measured(": a pivot of your elimination is 0 -- bring up the row with the largest entry of the "
+                             "column first (partial pivoting), or solve with np.linalg.solve")
         return Form(said, ZERO_DIVISOR)
     return None
 
