@@ -2092,8 +2092,7 @@ def _state_kept_between_calls(name, function, lists=frozenset()) -> list[Finding
     return []
 
 
-_MODULE_ARRAYS = frozenset({"array", "asarray", "eye", "identity", "zeros", "ones", "full", "diag", "float64",
-                            "float32"})
+_MODULE_ARRAYS = frozenset({"array", "asarray", "eye", "identity", "zeros", "ones", "full", "diag"})
 
 
 def _module_array_changed(name, function, arrays) -> list[Finding]:
@@ -2102,7 +2101,10 @@ def _module_array_changed(name, function, arrays) -> list[Finding]:
     changes, so every later call (and every other function reading it) sees it changed."""
     if not arrays:
         return []
-    own = {a.arg for a in ast.walk(function.args) if isinstance(a, ast.arg)}
+    # (a name the function assigns anywhere is its own, unless declared global: Python's rule)
+    declared = {name for node in ast.walk(function) if isinstance(node, ast.Global) for name in node.names}
+    own = {a.arg for a in ast.walk(function.args) if isinstance(a, ast.arg)} | (
+        {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)} - declared)
     aliases: dict = {}   # a name of the function -> the module's array it was given (no copy)
     for statement in _statements_in_order(function):
         if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name):
