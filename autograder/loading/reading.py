@@ -172,7 +172,7 @@ def _read_as_rows(function) -> dict[str, str]:
     (-1, k) (`np.asarray(pts1).reshape(-1, 2)`) or sliced by column (`pts1[:, 0]`)."""
     parameters = {a.arg for a in function.args.posonlyargs + function.args.args}
     found = {}
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "reshape" \
                 and len(node.args) == 2 and isinstance(node.args[0], ast.UnaryOp) \
                 and isinstance(node.args[1], ast.Constant) and node.args[1].value in (2, 3):
@@ -193,7 +193,7 @@ def _transposed_into_rows(name, function, functions, rows) -> list[Finding]:
     """A transposed array (`pts1.T`) given to one of the module's own functions that reads that parameter
     as one point per row: OpenCV's 2 x N convention (cv2.triangulatePoints) kept for a function of the
     (N, 2) kind, whose rows then mix the points' coordinates."""
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in functions
                 and node.func.id != name):
             continue
@@ -272,6 +272,17 @@ def _attribute_path(node) -> str:
     return ""
 
 
+def _nodes(function) -> tuple[ast.AST, ...]:
+    """Every node of ``function`` in ``ast.walk`` order, walked once and kept on the node: some forty
+    findings each look through the whole function, and walking it afresh for each costs more than
+    all their tests together."""
+    nodes = getattr(function, "_walked", None)
+    if nodes is None:
+        nodes = tuple(ast.walk(function))
+        function._walked = nodes
+    return nodes
+
+
 def _call_name(call: ast.Call) -> str:
     """The last name of what is called: ``eig`` for ``np.linalg.eig(...)``, ``hstack`` ..."""
     func = call.func
@@ -283,7 +294,7 @@ def _call_name(call: ast.Call) -> str:
 
 
 def _called_names(function) -> set[str]:
-    return {node.func.id for node in ast.walk(function)
+    return {node.func.id for node in _nodes(function)
             if isinstance(node, ast.Call) and isinstance(node.func, ast.Name)}
 
 
@@ -310,7 +321,7 @@ def _assigned_names(function) -> dict[str, list[ast.AST]]:
         elif isinstance(target, ast.Starred):
             bind(target.value, _UNKNOWN)
 
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Assign):
             for target in node.targets:
                 bind(target, node.value)
@@ -332,10 +343,10 @@ def _line(node) -> int:
 # ------------------------------------------------------------------ np.linalg.eig
 def _eig_unsorted(name, function) -> list[Finding]:
     """``eig`` (not ``eigh``) whose eigenvalues are never used to choose a vector."""
-    eig_calls = [node for node in ast.walk(function) if isinstance(node, ast.Call) and _call_name(node) == "eig"]
+    eig_calls = [node for node in _nodes(function) if isinstance(node, ast.Call) and _call_name(node) == "eig"]
     if not eig_calls:
         return []
-    ordering = {_call_name(node) for node in ast.walk(function) if isinstance(node, ast.Call)}
+    ordering = {_call_name(node) for node in _nodes(function) if isinstance(node, ast.Call)}
     if ordering & EIGEN_ORDERING:
         return []   # the eigenvalues may well choose the vector: no finding
     call = eig_calls[0]
@@ -359,13 +370,13 @@ def _is_integer_dtype(node) -> bool:
 def _integer_arrays(name, function) -> list[Finding]:
     """An array made with an integer dtype, then written into with computed values."""
     integer_arrays = {}
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
                 and isinstance(node.value, ast.Call) \
                 and _call_name(node.value) in {"zeros", "ones", "empty", "eye", "identity", "full", "zeros_like"} \
                 and any(k.arg == "dtype" and _is_integer_dtype(k.value) for k in node.value.keywords):
             integer_arrays[node.targets[0].id] = node
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if not isinstance(node, ast.Assign):
             continue
         for target in node.targets:
@@ -425,7 +436,7 @@ def _constant_integer_nodes(tree) -> set[int]:
 # ------------------------------------------------------------------ floor division
 def _floor_division(name, function) -> list[Finding]:
     """``//`` between expressions that are not both integer constants (floors fractions)."""
-    divisions = [node for node in ast.walk(function)
+    divisions = [node for node in _nodes(function)
                  if isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, ast.FloorDiv)]
     constant = _constant_integer_nodes(function) if divisions else set()
     for node in divisions:
@@ -505,7 +516,7 @@ def _uint8_arithmetic(name, function, parameters) -> list[Finding]:
     images = _uint8_names(function, parameters)
     if not images:
         return []
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub, ast.Mult, ast.Pow)):
             sides = (node.left, node.right)
             if isinstance(node.op, ast.Pow):
@@ -555,7 +566,7 @@ def _homogeneous_zero(name, function) -> list[Finding]:
         for value in values:
             if (zero_column(value) or _ends_in_zero(value)) and target in products:
                 return [_homogeneous_finding(name, value)]
-    for node in ast.walk(function):   # a stack used at once: (np.hstack([X, zeros]) @ P.T)
+    for node in _nodes(function):   # a stack used at once: (np.hstack([X, zeros]) @ P.T)
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult):
             for side in (node.left, node.right):
                 if zero_column(side):
@@ -627,14 +638,14 @@ def _query_train(name, function) -> list[Finding]:
     (``(points1, descriptors1), (points2, descriptors2) = features1, features2``), or names
     ending alike (``kp1``/``des1``, ``pts_l``/``desc_l``); the index may be ``m.trainIdx``
     itself or a name holding only train (or only query) indices (``train = [m.trainIdx for m in good]``)."""
-    matched = [node for node in ast.walk(function) if isinstance(node, ast.Call)
+    matched = [node for node in _nodes(function) if isinstance(node, ast.Call)
                and _call_name(node) in {"knnMatch", "match", "radiusMatch"} and len(node.args) >= 2
                and all(isinstance(a, ast.Name) for a in node.args[:2]) and node.args[0].id != node.args[1].id]
     if not matched:
         return []
     role_of_descriptors = {matched[0].args[0].id: "query", matched[0].args[1].id: "train"}
     roles = {}   # points or keypoints name -> "query" / "train"
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple):
             groups = [node.targets[0].elts]
             groups += [e.elts for e in node.targets[0].elts if isinstance(e, ast.Tuple)]
@@ -644,7 +655,7 @@ def _query_train(name, function) -> list[Finding]:
                     for other in names:
                         if other != descriptors:
                             roles.setdefault(other, role_of_descriptors[descriptors])
-    names = {n.id for n in ast.walk(function) if isinstance(n, ast.Name)}
+    names = {n.id for n in _nodes(function) if isinstance(n, ast.Name)}
     for descriptors, role in role_of_descriptors.items():
         ending = _index_ending(descriptors)
         for other in names - set(role_of_descriptors):
@@ -658,7 +669,7 @@ def _query_train(name, function) -> list[Finding]:
                  if isinstance(n, ast.Attribute) and n.attr in ("queryIdx", "trainIdx")}
         if len(kinds) == 1:
             indices[target] = kinds.pop()
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if not (isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in roles):
             continue
         index = node.slice.attr if isinstance(node.slice, ast.Attribute) and node.slice.attr in ("queryIdx", "trainIdx") \
@@ -696,9 +707,9 @@ NORMALISING = frozenset({"inv", "solve", "undistortPoints", "pinv"})
 def _camera_left_out(name, function) -> list[Finding]:
     """``cv2.recoverPose(E, pts1, pts2)`` (or ``cv2.findEssentialMat(pts1, pts2)``) without the
     camera matrix, in a function that never normalises its points with K."""
-    if any(_call_name(node) in NORMALISING for node in ast.walk(function) if isinstance(node, ast.Call)):
+    if any(_call_name(node) in NORMALISING for node in _nodes(function) if isinstance(node, ast.Call)):
         return []
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if not isinstance(node, ast.Call) or _call_name(node) not in CAMERA_DEFAULTED \
                 or _attribute_path(node.func) not in (f"cv2.{_call_name(node)}", _call_name(node)):
             continue
@@ -722,7 +733,7 @@ def _mask_as_index(name, function) -> list[Finding]:
     for target, values in _assigned_names(function).items():
         if target in masks and any(_makes_boolean(v) for v in values):
             converted.add(target)
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Subscript):
             index = node.slice
             while isinstance(index, ast.Call) and isinstance(index.func, ast.Attribute) \
@@ -740,7 +751,7 @@ def _mask_as_index(name, function) -> list[Finding]:
 def _ransac_masks(function) -> dict:
     """name -> the assignment binding it to the 0/1 mask an OpenCV estimator returns (:data:`MASK_FUNCTIONS`)."""
     masks = {}
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
                 and isinstance(node.value, ast.Call) and _call_name(node.value) in MASK_FUNCTIONS:
             position = MASK_FUNCTIONS[_call_name(node.value)]
@@ -772,7 +783,7 @@ def _outliers_kept(name, function) -> list[Finding]:
     masks = _ransac_masks(function)
     if not masks:
         return []
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if outliers_selected(node, masks):
             line = _line(node)
             return [Finding(name, line, "the RANSAC mask's outliers kept",
@@ -798,7 +809,7 @@ def _distortion_order(name, function, parameters) -> list[Finding]:
     """``k1, k2, k3, p1, p2 = dist``: OpenCV's order is (k1, k2, p1, p2, k3)."""
     if "dist" not in parameters:
         return []
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
                 and "dist" in _names_in(node.value):
             names = [e.id.lower() if isinstance(e, ast.Name) else "" for e in node.targets[0].elts]
@@ -812,7 +823,7 @@ def _distortion_order(name, function, parameters) -> list[Finding]:
 # ------------------------------------------------------------------ views overwritten
 def _statements_in_order(function) -> list[ast.stmt]:
     """The function's own simple statements, in the order of their lines (loops read top to bottom)."""
-    return sorted((node for node in ast.walk(function) if isinstance(node, ast.stmt)
+    return sorted((node for node in _nodes(function) if isinstance(node, ast.stmt)
                    and not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef, ast.For,
                                              ast.While, ast.If, ast.With, ast.Try))), key=_line)
 
@@ -875,7 +886,7 @@ SEEDING = frozenset({"default_rng", "seed", "RandomState", "Generator"})
 def _seeded_in_a_loop(name, function) -> list[Finding]:
     """``rng = np.random.default_rng(seed)`` inside a loop, from a value the loop does not change:
     with a seed given, every turn draws the same numbers."""
-    for loop in ast.walk(function):
+    for loop in _nodes(function):
         if not isinstance(loop, (ast.For, ast.While)):
             continue
         turned = _names_in(loop.target) if isinstance(loop, ast.For) else set()
@@ -899,16 +910,16 @@ def _data_shuffled_in_a_loop(name, function) -> list[Finding]:
     ``np.arange`` / ``range``) that the function indexes by a name (``pairs[best]``): each turn reorders the
     data itself, so a mask or an index found in one turn's order points at other rows after the next shuffle,
     and what the function answers is in the shuffled order, not its caller's."""
-    made_as_indices = {target.id for node in ast.walk(function) if isinstance(node, ast.Assign)
+    made_as_indices = {target.id for node in _nodes(function) if isinstance(node, ast.Assign)
                        and isinstance(node.value, ast.Call) and _call_name(node.value) in _INDEX_MAKERS
                        or isinstance(node, ast.Assign) and isinstance(node.value, ast.Call)
                        and _call_name(node.value) == "list" and node.value.args
                        and isinstance(node.value.args[0], ast.Call) and _call_name(node.value.args[0]) == "range"
                        for target in node.targets if isinstance(target, ast.Name)}
-    indexed = {node.value.id for node in ast.walk(function) if isinstance(node, ast.Subscript)
+    indexed = {node.value.id for node in _nodes(function) if isinstance(node, ast.Subscript)
                and isinstance(node.value, ast.Name) and (isinstance(node.slice, ast.Name) or (   # pairs[best]
                    isinstance(node.slice, ast.Tuple) and node.slice.elts and isinstance(node.slice.elts[0], ast.Name)))}
-    for loop in ast.walk(function):
+    for loop in _nodes(function):
         if not isinstance(loop, (ast.For, ast.While)):
             continue
         for node in (n for statement in loop.body for n in ast.walk(statement)):
@@ -972,9 +983,9 @@ def _mean_after_centring(name, function) -> list[Finding]:
 def _w_never_divided(name, function) -> list[Finding]:
     """The 4 x N homogeneous result of ``cv2.triangulatePoints`` whose first three rows are used and
     never divided by the fourth (nor converted with ``cv2.convertPointsFromHomogeneous``)."""
-    if any(isinstance(n, ast.Call) and _call_name(n) == "convertPointsFromHomogeneous" for n in ast.walk(function)):
+    if any(isinstance(n, ast.Call) and _call_name(n) == "convertPointsFromHomogeneous" for n in _nodes(function)):
         return []
-    divisions = [n for n in ast.walk(function) if isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.Div)]
+    divisions = [n for n in _nodes(function) if isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.Div)]
     # (what the divisions hold, read once: linear in the function)
     divided_names = set().union(*(_names_in(d) for d in divisions)) if divisions else set()
     divides_a_result = any(isinstance(c, ast.Call) and _call_name(c) == "triangulatePoints"
@@ -985,8 +996,8 @@ def _w_never_divided(name, function) -> list[Finding]:
                         f"{name} (line {line}) keeps rows of {shown}, the 4 x N homogeneous points "
                         "cv2.triangulatePoints returns, without dividing them by the fourth row (w): each point "
                         "is scaled by its own w, of either sign; divide the first three rows by the fourth")]
-    subscripted = {n.value.id for n in ast.walk(function) if isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name)}
-    for node in ast.walk(function):
+    subscripted = {n.value.id for n in _nodes(function) if isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name)}
+    for node in _nodes(function):
         # (sliced where it is made: `cv2.triangulatePoints(P1, P2, x1, x2)[:3].T`, nothing divided)
         if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Call) \
                 and _call_name(node.value) == "triangulatePoints" and not divides_a_result:
@@ -1019,7 +1030,7 @@ def _diagonal_refilled(name, function) -> list[Finding]:
     the whole diagonal (M[2, 2] = sx); ``np.eye(3, k=1)`` has ones on its whole superdiagonal, not at
     [0, 1] alone."""
     sides = {target: _square_side(values[-1]) for target, values in _assigned_names(function).items() if values}
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Call) and _call_name(node) == "fill_diagonal" and len(node.args) == 2 \
                 and isinstance(node.args[0], ast.Name) and isinstance(node.args[1], (ast.List, ast.Tuple)):
             side, given = sides.get(node.args[0].id, 0), len(node.args[1].elts)
@@ -1092,7 +1103,7 @@ def _number_of(constant: str) -> str:
 def _constant_out_of_place(name, function) -> list[Finding]:
     """An OpenCV constant passed positionally into a parameter of no signature its family is made for:
     ``cv2.circle(out, c, r, color, cv2.LINE_AA)`` draws a ring 16 pixels thick."""
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if not isinstance(node, ast.Call) or not isinstance(node.func, ast.Attribute) \
                 or _attribute_path(node.func.value) not in OPENCV_MODULES:
             continue
@@ -1152,7 +1163,7 @@ def _last_turn_used(name, function) -> list[Finding]:
     loop, ``src[inliers]`` after it)."""
     # Each block read once from its end: `following` holds, per name, its first read after the statement at
     # hand (None where it is assigned first) -- no walk of the rest of the block per loop.
-    for block in (getattr(node, field) for node in ast.walk(function) for field in ("body", "orelse", "finalbody")
+    for block in (getattr(node, field) for node in _nodes(function) for field in ("body", "orelse", "finalbody")
                   if isinstance(getattr(node, field, None), list)):
         following: dict = {}
         for statement in reversed(block):
@@ -1186,7 +1197,7 @@ BINARY_UFUNCS = frozenset({"matmul", "dot", "multiply", "add", "subtract", "divi
 
 
 def _third_operand_as_out(name, function) -> list[Finding]:
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Call) and len(node.args) == 3 and _call_name(node) in BINARY_UFUNCS \
                 and _attribute_path(node.func) in (f"np.{_call_name(node)}", f"numpy.{_call_name(node)}") \
                 and not any(isinstance(a, ast.Starred) for a in node.args) \
@@ -1234,7 +1245,7 @@ def _twin_lopsided(name, function) -> list[Finding]:
     function has (``cy``): a step applied to one coordinate only."""
     known = set(_assigned_names(function)) | {a.arg for a in function.args.args + function.args.kwonlyargs}
     assigned = {}
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
             assigned.setdefault(node.targets[0].id, node)
     for first, statement in assigned.items():
@@ -1267,7 +1278,7 @@ def _same_array_appended(name, function) -> list[Finding]:
     each item of the list is that one array, which ends with the last turn's values."""
     made_before: dict = {}
     within: set = set()   # (the nodes of a loop already read: only outermost loops are, each node once)
-    for statement in sorted((node for node in ast.walk(function) if isinstance(node, (ast.Assign, ast.For, ast.While))),
+    for statement in sorted((node for node in _nodes(function) if isinstance(node, (ast.Assign, ast.For, ast.While))),
                             key=_line):
         if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name):
             value = statement.value
@@ -1321,7 +1332,7 @@ def overwritten_running_bests(function) -> list[tuple[ast.Compare, ast.Assign, s
     comparison): the best holds the last turn's value, not the lowest (highest). Each as (the comparison,
     the assignment, the value's name, the best's name, whether the lowest is kept)."""
     found = []
-    for loop in (node for node in ast.walk(function) if isinstance(node, (ast.For, ast.While))):
+    for loop in (node for node in _nodes(function) if isinstance(node, (ast.For, ast.While))):
         nodes = list(_loop_body_nodes(loop))
         # (an assignment under an `if` of the loop -- `if c < best: best = c` -- keeps the best; each node read once)
         guarded = {id(statement) for node in nodes if isinstance(node, ast.If) for statement in node.body + node.orelse}
@@ -1358,13 +1369,13 @@ def _running_best_overwritten(name, function) -> list[Finding]:
 def _alias_changed(name, function) -> list[Finding]:
     """``b = a`` (another name for the same array, no copy), then ``b *= f`` or ``b[...] = v`` in place, in a
     loop or with ``a`` read afterwards: ``a`` changes with it."""
-    loops = [node for node in ast.walk(function) if isinstance(node, (ast.For, ast.While))]
+    loops = [node for node in _nodes(function) if isinstance(node, (ast.For, ast.While))]
     in_loop: set = set()
     for loop in loops:   # (breadth first: an outer loop marks the loops inside it, which are then skipped)
         if id(loop) not in in_loop:
             in_loop.update(id(n) for statement in loop.body for n in ast.walk(statement))
     last_read: dict = {}   # name -> the last line reading it
-    for n in ast.walk(function):
+    for n in _nodes(function):
         if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load):
             last_read[n.id] = max(last_read.get(n.id, 0), _line(n))
     # (arrays: names made by a call or a subscript -- an int's `j += 1` binds anew, it changes nothing shared)
@@ -1425,7 +1436,7 @@ def _scaled_in_place_per_turn(name, function) -> list[Finding]:
         return bool(earlier) and isinstance(earlier[-1], ast.Call) and _call_name(earlier[-1]) not in (
             "eye", "ones", "zeros", "identity", "ones_like", "zeros_like", "array", "asarray", "float", "int")
 
-    for statement in ast.walk(function):
+    for statement in _nodes(function):
         if not isinstance(statement, ast.For):
             continue
         turn = {n.id for n in ast.walk(statement.target) if isinstance(n, ast.Name)}
@@ -1457,18 +1468,18 @@ def _rolled_strip_one_sign(name, function) -> list[Finding]:
     """``np.roll(image, (dy, dx), ...)`` then ``shifted[:dy] = 0`` (the strip rolled round for dy >= 0) with
     nothing in the function comparing dy with 0: for dy < 0 the strip is ``shifted[dy:]``, and ``[:dy]``
     blanks every row but the last |dy|."""
-    shifts = {n.id for node in ast.walk(function) if isinstance(node, ast.Call) and _call_name(node) == "roll"
+    shifts = {n.id for node in _nodes(function) if isinstance(node, ast.Call) and _call_name(node) == "roll"
               for argument in node.args[1:2] + [k.value for k in node.keywords if k.arg == "shift"]
               for n in ast.walk(argument) if isinstance(n, ast.Name)}
-    signed = {n.id for node in ast.walk(function)
+    signed = {n.id for node in _nodes(function)
               if isinstance(node, ast.Compare) or (isinstance(node, ast.Call) and _call_name(node) in
                                                    ("max", "min", "abs", "maximum", "minimum", "clip", "sign"))
               for n in ast.walk(node) if isinstance(n, ast.Name)}
     # (a loop's `for d in range(...)` never goes below 0)
-    signed |= {node.target.id for node in ast.walk(function) if isinstance(node, ast.For)
+    signed |= {node.target.id for node in _nodes(function) if isinstance(node, ast.For)
                and isinstance(node.target, ast.Name) and isinstance(node.iter, ast.Call) and _call_name(node.iter) == "range"}
     blanked = []   # (line, the subscript blanked, the shift's name)
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Subscript)):
             continue
         index = node.targets[0].slice
@@ -1509,7 +1520,7 @@ def _written_into_a_copy(name, function) -> list[Finding]:
     """``M[d][:, d] = v`` (or ``+=``) with ``d`` a list, an array of positions or a mask: ``M[d]`` is a
     new array (NumPy copies for such an index), the write goes into it and is lost; ``M`` is unchanged."""
     made = _assigned_names(function)
-    for node in ast.walk(function):
+    for node in _nodes(function):
         targets = node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(node, ast.AugAssign) \
             else []
         for target in targets:
@@ -1530,11 +1541,11 @@ def _pose_never_chosen(name, function) -> list[Finding]:
     """``R, _, t = cv2.decomposeEssentialMat(E)`` (or ``[0]`` of it) in a function without
     ``cv2.recoverPose``: one of the two rotations never read, so the four candidate poses (either
     rotation, t or -t) are never tested for the one with the points in front of both cameras."""
-    calls = [node for node in ast.walk(function) if isinstance(node, ast.Call)]
+    calls = [node for node in _nodes(function) if isinstance(node, ast.Call)]
     if any(_call_name(node) == "recoverPose" for node in calls):
         return []
-    read = {node.id for node in ast.walk(function) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}
-    for node in ast.walk(function):
+    read = {node.id for node in _nodes(function) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}
+    for node in _nodes(function):
         value = node.value if isinstance(node, (ast.Assign, ast.Subscript)) else None
         if not (isinstance(value, ast.Call) and _call_name(value) == "decomposeEssentialMat"):
             continue
@@ -1574,7 +1585,7 @@ def _squared_names(node) -> tuple | None:
 def _distortion_in_pixels(name, function) -> list[Finding]:
     """A lens model (a `k1` read) whose radius is taken of pixel offsets: `r2 = x * x + y * y` with
     `x = u - cx` and nothing divided by a focal length -- the coefficients are of normalised coordinates."""
-    read = {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    read = {n.id for n in _nodes(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
     if "k1" not in read:
         return []
     made = _assigned_names(function)
@@ -1587,7 +1598,7 @@ def _distortion_in_pixels(name, function) -> list[Finding]:
                 isinstance(v, ast.BinOp) and isinstance(v.op, ast.Sub)
                 and not any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) for n in ast.walk(v)) for v in values)
         return offsets[part]
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
             continue
         pair = _squared_names(node.value)
@@ -1609,7 +1620,7 @@ def _value_of_an_earlier_loop(name, function) -> list[Finding]:
     (``f = f0 * d / z0; focal_lengths.append(f)``), the second reading that value without computing it
     (``perspective_project(moved, f)`` in ``for d in distances:``): every turn of the second reads the first
     loop's last value. (Each block is read once, its loops' bodies walked once each.)"""
-    for block in (getattr(node, field) for node in ast.walk(function) for field in ("body", "orelse")
+    for block in (getattr(node, field) for node in _nodes(function) for field in ("body", "orelse")
                   if isinstance(getattr(node, field, None), list)):
         kept: dict[str, ast.For] = {}   # name -> the earlier loop whose per-turn value it holds after it
         for statement in block:
@@ -1643,7 +1654,7 @@ def _running_halves(name, function) -> list[Finding]:
     """``z = (z + depth) / 2`` at every turn of a loop over the values (straight in its body, not under a
     test: a bisection halves its bracket under one): a running average of pairs, where the last value
     weighs 1/2 and the first 1/2^(n-1) -- not the mean."""
-    for loop in (n for n in ast.walk(function) if isinstance(n, ast.For)):
+    for loop in (n for n in _nodes(function) if isinstance(n, ast.For)):
         variables = {n.id for n in ast.walk(loop.target) if isinstance(n, ast.Name)}
         for statement in loop.body:
             if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1
@@ -1667,7 +1678,7 @@ def _norm_of_every_pair_at_once(name, function) -> list[Finding]:
     """``errors = np.linalg.norm(H_src - dst)`` (no axis) then ``errors < threshold``: the norm of the whole
     difference is one number, so the comparison is one True or False, where one per pair was meant."""
     norms = {}
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
                 and isinstance(node.value, ast.Call) and _call_name(node.value) == "norm" \
                 and _attribute_path(node.value.func).startswith(("np.linalg", "numpy.linalg")) \
@@ -1678,15 +1689,15 @@ def _norm_of_every_pair_at_once(name, function) -> list[Finding]:
         return []
     # (a comparison used as a mask of the pairs: returned, or kept and then counted or used as an index --
     # `np.linalg.norm(c1 - c2) < tol` of two single points tests one thing rightly)
-    masks = {t.id: n.value for n in ast.walk(function) if isinstance(n, ast.Assign) and isinstance(n.value, ast.Compare)
+    masks = {t.id: n.value for n in _nodes(function) if isinstance(n, ast.Assign) and isinstance(n.value, ast.Compare)
              for t in n.targets if isinstance(t, ast.Name)}
-    used = {n.slice.id for n in ast.walk(function) if isinstance(n, ast.Subscript) and isinstance(n.slice, ast.Name)} \
-        | {a.id for n in ast.walk(function) if isinstance(n, ast.Call)
+    used = {n.slice.id for n in _nodes(function) if isinstance(n, ast.Subscript) and isinstance(n.slice, ast.Name)} \
+        | {a.id for n in _nodes(function) if isinstance(n, ast.Call)
            and _call_name(n) in ("sum", "count_nonzero", "flatnonzero", "where", "nonzero", "mean")
            for a in [*n.args, *([n.func.value] if isinstance(n.func, ast.Attribute) else [])] if isinstance(a, ast.Name)}
-    returned = {id(n.value) for n in ast.walk(function) if isinstance(n, ast.Return) and n.value is not None}
+    returned = {id(n.value) for n in _nodes(function) if isinstance(n, ast.Return) and n.value is not None}
     as_masks = {id(value) for name_, value in masks.items() if name_ in used} | returned
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Lt, ast.LtE)) \
                 and isinstance(node.left, ast.Name) and node.left.id in norms and id(node) in as_masks:
             made = norms[node.left.id]
@@ -1701,18 +1712,18 @@ def _norm_of_every_pair_at_once(name, function) -> list[Finding]:
 def _singular_vectors_unused(name, function) -> list[Finding]:
     """``U, S, Vt = np.linalg.svd(M)`` where ``U`` (or ``Vt``) is never read while the other is: a matrix
     rebuilt from its SVD without one of its factors (``np.diag([1, 1, 0]) @ Vt``)."""
-    reads = {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    reads = {n.id for n in _nodes(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
     # (the names a product with a diagonal rebuilds a matrix from -- `np.diag([1, 1, 0]) @ Vt` -- gathered once,
     # from the outermost such products: a null vector read from Vt alone, `Vt[-1]`, needs no U)
     rebuilt, inside = set(), set()
-    for n in ast.walk(function):
+    for n in _nodes(function):
         if id(n) in inside or not (isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)):
             continue
         below = list(ast.walk(n))
         inside.update(id(m) for m in below)
         if any(isinstance(m, ast.Call) and _call_name(m) == "diag" for m in below):
             rebuilt.update(m.id for m in below if isinstance(m, ast.Name))
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple)
                 and len(node.targets[0].elts) == 3 and isinstance(node.value, ast.Call)
                 and _call_name(node.value) == "svd"):
@@ -1759,13 +1770,13 @@ def _loop_variable_rebinds(name, function) -> list[Finding]:
     before binding it again -- it reads the loop's last item, not what the name held before. (Each
     name's places are gathered once and searched by bisection: linear in the function's size.)"""
     places: dict[str, list] = {}   # name -> sorted [(line, column, read)]
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Name):
             places.setdefault(node.id, []).append((node.lineno, node.col_offset, isinstance(node.ctx, ast.Load)))
     for found in places.values():
         found.sort()
     parameters = {a.arg for a in function.args.args + function.args.kwonlyargs}
-    for loop in ast.walk(function):
+    for loop in _nodes(function):
         if not isinstance(loop, ast.For):
             continue
         for target in (t for t in ast.walk(loop.target) if isinstance(t, ast.Name)):
@@ -1791,7 +1802,7 @@ _ZEROS = frozenset({"zeros", "zeros_like"})
 def _zeros_solved_for(name, function) -> list[Finding]:
     """``np.linalg.lstsq(A, np.zeros(n))`` (or ``solve``): the least-squares answer of ``A x = 0`` is
     ``x = 0``, never the non-zero solution a homogeneous system is solved for."""
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Call) and _call_name(node) in ("lstsq", "solve") and len(node.args) >= 2 \
                 and isinstance(node.args[1], ast.Call) and _call_name(node.args[1]) in _ZEROS:
             line = _line(node)
@@ -1814,7 +1825,7 @@ def _bindings(function) -> dict[str, list]:
     the constant index taken at once (``v = f(x)[1]``), None for the value itself. Any other subscript, an
     augmented or an annotated assignment binds an unknown value."""
     bindings: dict[str, list] = {}
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Assign):
             targets, value = node.targets, node.value
         elif isinstance(node, (ast.AugAssign, ast.AnnAssign)):
@@ -1852,7 +1863,7 @@ def _fundamental_as_essential(name, function) -> list[Finding]:
     F acts on pixels, E on coordinates normalised by K (E = K2^T F K1). The name's last binding above the
     call decides (`F = K.T @ F @ K` in between makes it E)."""
     bindings = _bindings(function)
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if not (isinstance(node, ast.Call) and _call_name(node) in _ESSENTIAL_TAKERS and node.args
                 and isinstance(node.args[0], ast.Name)):
             continue
@@ -1886,7 +1897,7 @@ def _eigenvectors_as_rows(name, function) -> list[Finding]:
     eigenvectors as the columns of ``v``; a row of it is no eigenvector. Only a name bound once, to the
     vectors, is followed (``v = v.T`` makes the rows right)."""
     bindings = _bindings(function)
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if not (isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name)
                 and _picks_a_row(node.slice)):
             continue
@@ -1919,7 +1930,7 @@ def _sign_lost_by_a_root(name, function) -> list[Finding]:
     """``np.sqrt(1 - c ** 2)`` (or ``(1 - c * c) ** 0.5``): the sine from the cosine (or the reverse) by
     the identity sin^2 + cos^2 = 1 is never negative -- |sin| -- so its sign is lost wherever it is
     negative (an angle past 180 degrees, a negative one)."""
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Call) and _call_name(node) == "sqrt" and len(node.args) == 1:
             root = node.args[0]
         elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.Constant) \
@@ -1977,7 +1988,7 @@ def _dimension_tested_after_reshaping(name, function) -> list[Finding]:
     """``x = np.atleast_2d(x)`` then ``single = x.ndim == 1``: the test reads the reshaped array, whose
     dimension is 2 whatever was given, so it is never true and a single point is never told apart."""
     bindings = _bindings(function)
-    for node in ast.walk(function):
+    for node in _nodes(function):
         tested = _one_dimensional_test(node)
         last = _binding_above(bindings, tested, _line(node)) if tested else None
         if last is not None and last[2] is None and _makes_two_dimensional(last[1]):
@@ -1993,7 +2004,7 @@ def _dimension_tested_after_reshaping(name, function) -> list[Finding]:
 def _root_by_a_fraction(name, function) -> list[Finding]:
     """``s ** 1/2`` (or ``** 1/3``): ``**`` binds tighter than ``/``, so it is ``(s ** 1) / 2``, half of ``s``,
     not its square root."""
-    for node in ast.walk(function):
+    for node in _nodes(function):
         power = _rightmost_factor(node.left) if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) \
             and isinstance(node.right, ast.Constant) and node.right.value in (2, 3) else None
         if isinstance(power, ast.BinOp) and isinstance(power.op, ast.Pow) and isinstance(power.right, ast.Constant) \
@@ -2024,7 +2035,7 @@ _HEIGHT = re.compile(r"(^|[^a-z0-9])(h|height|rows?|n_?rows|hh)($|[^a-z0-9])|sha
 def _grid_unpacked_as_x_y(name, function) -> list[Finding]:
     """``xs, ys = np.mgrid[0:h, 0:w]`` (or ``np.indices((h, w))``): NumPy's grids give the row index (y)
     first, so the name meant for x holds the rows. Only where the first axis runs over the height."""
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple)
                 and len(node.targets[0].elts) == 2 and all(isinstance(e, ast.Name) for e in node.targets[0].elts)):
             continue
@@ -2054,11 +2065,11 @@ def _result_rounded(name, function) -> list[Finding]:
     """``return np.round(E, 4)`` (or a name so made and returned): a habit of printing a matrix in a report,
     which cuts the result's digits -- to nothing for a matrix given at a small scale."""
     rounded: dict[str, ast.AST] = {}
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
                 and _rounds_to_decimals(node.value):
             rounded[node.targets[0].id] = node.value
-    for node in ast.walk(function):
+    for node in _nodes(function):
         if isinstance(node, ast.Return) and node.value is not None:
             made = node.value if _rounds_to_decimals(node.value) else rounded.get(getattr(node.value, "id", None))
             if made is not None:
@@ -2078,8 +2089,8 @@ def _state_kept_between_calls(name, function, lists=frozenset()) -> list[Finding
     top level) that the function neither makes anew (a `global` list reset inside it is) nor is given: made once,
     it keeps what every earlier call put in (``np.append(f, 1.0)`` grows no list of the module's)."""
     own = {a.arg for a in ast.walk(function.args) if isinstance(a, ast.arg)} | set(_assigned_names(function))
-    own |= {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
-    for node in ast.walk(function):
+    own |= {n.id for n in _nodes(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    for node in _nodes(function):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in GROWS \
                 and isinstance(node.func.value, ast.Name):
             held = node.func.value.id
@@ -2102,9 +2113,9 @@ def _module_array_changed(name, function, arrays) -> list[Finding]:
     if not arrays:
         return []
     # (a name the function assigns anywhere is its own, unless declared global: Python's rule)
-    declared = {name for node in ast.walk(function) if isinstance(node, ast.Global) for name in node.names}
+    declared = {name for node in _nodes(function) if isinstance(node, ast.Global) for name in node.names}
     own = {a.arg for a in ast.walk(function.args) if isinstance(a, ast.arg)} | (
-        {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)} - declared)
+        {n.id for n in _nodes(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)} - declared)
     aliases: dict = {}   # a name of the function -> the module's array it was given (no copy)
     for statement in _statements_in_order(function):
         if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name):
