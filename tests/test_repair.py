@@ -4317,3 +4317,26 @@ def test_a_sum_made_once_above_nested_loops_is_reset_in_the_loop_that_stores_it(
             for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
             if m.operator == "indent" and "total = 0.0" in str(m.edits[0][3])}
     assert "for j in range(3):" in into and "for k in range(3):" not in into, into
+
+
+def test_a_chain_of_matrices_replaced_at_every_step_is_multiplied_instead():
+    """`H = step[j]` in a loop after `H = np.eye(3)`: the chain's product never kept (an image two steps
+    from the reference placed with its neighbour's homography). Both orders of the product are changes
+    tried; an assignment in a loop that starts from no identity has none, and `H @= S` may be assigned."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(step, k, r, S):
+            H = np.eye(3)
+            for j in range(k - 1, r - 1, -1):
+                H = step[j]
+            total = 0
+            for j in range(k):
+                total = step[j]
+            G = np.eye(3)
+            G @= S
+            return H, total, G
+    """)
+    changes = _shown_changes(source, "accumulate")
+    assert ("H = step[j]", "H = step[j] @ H") in changes and ("H = step[j]", "H @= step[j]") in changes
+    assert not any(after.endswith("@ total") or after == "total @= step[j]" for _, after in changes)
+    assert ("G @= S", "G = S") in changes

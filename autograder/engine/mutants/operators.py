@@ -1147,6 +1147,10 @@ def _make_size_given(node, payload):
 def _make_accumulate(node, payload):
     if payload == "assign":   # total += x -> total = x
         return ast.Assign([copy.deepcopy(node.target)], copy.deepcopy(node.value))
+    if payload == "MatMultLeft":   # H = step[j] -> H = step[j] @ H (a chain multiplied on the left)
+        running = copy.deepcopy(node.targets[0])
+        running.ctx = ast.Load()
+        return ast.Assign([copy.deepcopy(node.targets[0])], ast.BinOp(copy.deepcopy(node.value), ast.MatMult(), running))
     target = copy.deepcopy(node.targets[0])   # total = x -> total += x
     target.ctx = ast.Store()
     return ast.AugAssign(target, getattr(ast, payload)(), copy.deepcopy(node.value))
@@ -3370,7 +3374,24 @@ _METHOD_ARGUMENTS = {
 _DATA_FIRST = {"clip", "where", "full", "full_like", "pad", "reshape", "repeat", "tile", "round", "around",
                "percentile", "quantile", "linspace", "arange"}
 _GREY_ONLY = {"cornerSubPix", "equalizeHist", "goodFeaturesToTrack", "cornerHarris", "threshold", "adaptiveThreshold"}   # (changed by their own operators, or never a slip left in)
-_ACCUMULATED = {ast.Add: "Add", ast.Sub: "Sub", ast.Mult: "Mult"}
+_ACCUMULATED = {ast.Add: "Add", ast.Sub: "Sub", ast.Mult: "Mult", ast.MatMult: "MatMult"}
+
+
+def _chained_product(assign, parents) -> bool:
+    """``assign`` (`H = step[j]` in a loop) sets a matrix that the function started before the loop
+    as the identity (`H = np.eye(3)`): a product along a chain, whose factors each turn were to multiply
+    it, not replace it."""
+    if not isinstance(assign.targets[0], ast.Name):
+        return False
+    name = assign.targets[0].id
+    fn = assign
+    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        fn = parents[id(fn)][0]
+    if not hasattr(fn, "_identities"):   # (read once per def: every assignment in a loop asks)
+        fn._identities = [(n.targets[0].id, n.lineno) for n in ast.walk(fn)
+                          if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Name)
+                          and isinstance(n.value, ast.Call) and _dotted(n.value.func).rsplit(".", 1)[-1] in ("eye", "identity")]
+    return any(started == name and line < assign.lineno for started, line in fn._identities)
 
 
 def _in_loop(node, parents) -> bool:
@@ -3434,6 +3455,9 @@ def _logic_changes(node, parent, parents):
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], (ast.Name, ast.Subscript)) \
             and _in_loop(node, parents):
         yield "accumulate", "Add", ""
+        if _chained_product(node, parents):   # H = step[j] -> H = step[j] @ H: a chain's product kept
+            yield "accumulate", "MatMultLeft", ""
+            yield "accumulate", "MatMult", ""
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Subscript) \
             and any(isinstance(part, ast.Slice) for part in ast.walk(node.targets[0].slice)) \
             and isinstance(node.value, (ast.Name, ast.Constant)):
