@@ -276,6 +276,31 @@ def last_entry_zero(t):
             "as given (the division by w comes per point, after H is applied)."), mistake=LAST_ENTRY_ZERO)
 
 
+NEGATIVE_SCALE = "the warp depends on H's sign (-H is the same homography)"
+
+
+@ex1.check("apply_homography with -H: a homography is defined up to scale, sign included", points=1)
+def apply_homography_negative_scale(t):
+    source = photo("astronaut", (240, 180))
+    H = truth.corner_homography(np.random.default_rng(5), (240, 180), 0.15)
+    try:   # (wrong for H itself: the other checks' to judge, one mistake told once)
+        judge_homography_warp(t, "apply_homography(image, H)", t.call("apply_homography", source, H), source, H,
+                              show=False)
+    except Fail:
+        return passed(measured("wrong for H itself too: the other checks judge that"))
+    try:
+        return judge_homography_warp(t, "apply_homography(image, -H)", t.call("apply_homography", source, -H),
+                                     source, -H)
+    except Fail as failure:
+        # (right for H, wrong for -H: only the sign differs, so the code depends on it -- every w = h31 x +
+        # h32 y + h33 is negative under -H)
+        t.fail(f"{failure.message} " + measured(
+            "Your apply_homography is right for H and wrong for -H, which is the same homography (any non-zero "
+            "scale, sign included): under -H every third coordinate w = h31 x + h32 y + h33 is negative, so code "
+            "that keeps only w > 0 (or takes the sign of w as the side of the horizon) loses the picture; test "
+            "w != 0, or divide and keep what lands inside."), mistake=NEGATIVE_SCALE)
+
+
 # ================================================================== ex2 DLT
 ex2 = lab.exercise("ex2", "Homography from point pairs (DLT)", functions=[
     "homography_dlt(src, dst)", "warp_to_reference(reference, moving, H)"])
@@ -1547,6 +1572,37 @@ def ransac_h(t):
     diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
     t.fail(f"{what}: H is {format_apart(error, RANSAC_H_TOLERANCE)} px (RMS over the 640x480 image) "
            f"from the true H; at most {RANSAC_H_TOLERANCE} px expected.")
+
+
+# The minimal set: four pairs in general position fix H exactly (the API's N >= 4); cv2.findHomography with
+# cv2.RANSAC returns it, with every pair an inlier.
+MINIMAL_SRC = np.array([[60.0, 50.0], [580.0, 70.0], [560.0, 420.0], [90.0, 400.0]])
+MINIMAL_SET_REFUSED = "the minimal set of 4 pairs refused"
+
+
+@ex4.check("homography_ransac on exactly 4 pairs (the minimal set): the exact H, every pair an inlier", points=1)
+def ransac_minimal_set(t):
+    H_true = truth.corner_homography(np.random.default_rng(1404), (640, 480), 0.15)
+    src = MINIMAL_SRC.copy()
+    dst = truth.apply_h(H_true, src)
+    what = "homography_ransac(src, dst, seed=0) with exactly 4 exact pairs"
+    try:
+        H, inliers = ransac_result(t, src, dst, what, seed=0)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        t.fail(f"{what}: {failure.message.rstrip('.')}. " + measured(
+            "Four pairs are the minimal set a homography needs (N >= 4 is valid input), and your function refuses "
+            "them: look for a guard that turns them away (`n <= 4` where `n < 4` is meant) or a sample drawn from "
+            "more pairs than there are."), mistake=MINIMAL_SET_REFUSED)
+    error, recall, _ = ransac_success(H, inliers, H_true, np.ones(4, bool))
+    if error > RANSAC_H_TOLERANCE:
+        t.fail(f"{what}: H is {format_apart(error, RANSAC_H_TOLERANCE)} px (RMS over the 640x480 image) from the "
+               "true H, which four exact pairs fix exactly")
+    if recall < 1:
+        t.fail(f"{what}: the mask marks {int(inliers.sum())} of the 4 pairs as inliers; all 4 are exact (each lies "
+               "0 px from where H sends it)")
+    return passed(f"{error:.2g} px RMS from the true H, all 4 pairs inliers")
 
 
 @ex4.check("homography_ransac with 30% outliers: the inlier mask", points=2)

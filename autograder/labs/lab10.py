@@ -897,6 +897,11 @@ def center_check(t):
     for seed in (511, 512, 513):
         P, K, R, tv, _ = truth.random_camera_matrix(seed)
         judge_center(t, P, R, tv)
+    # a camera far from the world origin (3 m away in millimetres): the SVD's unit null vector has a last
+    # entry of about 1 / |C|, 3e-4, which is no camera at infinity
+    _, K, R, _, s = truth.random_camera_matrix(515)
+    tv = -R @ np.array([1500.0, -800.0, 3000.0])
+    judge_center(t, s * K @ np.column_stack([R, tv]), R, tv)
     # the world origin on the camera's principal plane: t_z = 0, so P[2, 3] = 0
     _, K, R, tv, s = truth.random_camera_matrix(514)
     tv = np.array([tv[0], tv[1], 0.0])

@@ -600,6 +600,8 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
         t.fail(f"{what}: the lines are in the right place but stop short "
                f"(only {coverage.mean():.0%} of their length inside the image is drawn): "
                + measured("draw each line across the whole image"), mistake="the lines stop short")
+    if stray > 0.05:
+        name_wrapped_indices(t, what, changed, lines)
     name_steep_lines_missed(t, what, coverage < min_coverage, lines, image.shape, stray)
     if image.ndim == 2:
         name_dark_on_grey(t, what, image, lines, coverage < min_coverage)
@@ -613,6 +615,31 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     t.fail(f"{what}: {np.sum(coverage < min_coverage)} of {len(coverage)} lines are missing or "
            f"incomplete, and {stray:.0%} of the changed pixels are away from every line "
            "(see the picture)")
+
+
+WRAPPED_INDICES = "negative pixel indices wrap round (a line's part outside the image drawn at the far side)"
+
+
+def name_wrapped_indices(t: Trial, what: str, changed, lines):
+    """Fail naming the stray pixels when nearly all of them lie on the lines' parts above or left of the
+    image moved by its height or width: a row -30 indexed as NumPy reads it, row H - 30 (an effect of the
+    answer, whatever the code)."""
+    height, width = changed.shape
+    lines = np.asarray(lines, float).reshape(-1, 3)
+    ys, xs = np.nonzero(changed & _far_from_lines(lines, height, width, 2.5))
+    if len(xs) < 10:
+        return
+    norms = np.linalg.norm(lines[:, :2], axis=1)
+    wrapped = np.zeros(len(xs), bool)
+    for dx, dy in ((0, height), (width, 0), (width, height)):   # (the pixel's place before the wrap)
+        distance = np.abs(np.column_stack([xs - dx, ys - dy, np.ones(len(xs))]) @ lines.T) / norms
+        wrapped |= distance.min(axis=1) <= 2.5
+    if wrapped.mean() >= 0.9:
+        t.fail(measured(f"{what}: the lines' parts above or left of the image are drawn at its bottom or right "
+                        f"({wrapped.mean():.0%} of the stray pixels lie on them moved by the image's height or "
+                        "width): a negative row or column index counts from the end in NumPy, so keep only "
+                        "0 <= x < width and 0 <= y < height (or let cv2.line clip the line)."),
+               mistake=WRAPPED_INDICES)
 
 
 def name_dark_on_grey(t: Trial, what: str, image, lines, missed):
@@ -852,6 +879,8 @@ NEAR_AXIS_LINES = np.array([[1.0, 1e-13, -100.0],   # x = 100, b of rounding siz
 # An epipolar line may miss the other image altogether (a point whose match is out of view): it
 # draws nothing, and the other lines are drawn as ever.
 MISSING_LINES = np.array([[0.0, 1.0, -150.0],    # y = 150, below the 120 rows
+                          [0.0, 1.0, 30.0],      # y = -30, above them (a negative row wraps round in NumPy)
+                          [1.0, 0.0, 25.0],      # x = -25, left of the 160 columns
                           [0.0, 1.0, -60.0]])    # y = 60
 
 
@@ -883,12 +912,12 @@ def draw_vertical(t):
     if isinstance(got, np.ndarray) and got.ndim in (2, 3):
         t.images("draw_epipolar_lines(black image, lines x = 100 and y = 40, b and a of 1e-13)", yours=got)
     judge_drawing(t, what + " (x = 100 and y = 40, b and a of rounding size)", got, image, NEAR_AXIS_LINES)
-    what = "draw_epipolar_lines(image, [[0, 1, -150], [0, 1, -60]]) on a 160 x 120 image"
+    what = "draw_epipolar_lines(image, [[0, 1, -150], [0, 1, 30], [1, 0, 25], [0, 1, -60]]) on a 160 x 120 image"
     got = _drawn(t, what, image, MISSING_LINES, measured(
-        "The first line, y = 150, misses the image (it has 120 rows), as the epipolar line of a point whose "
-        "match is out of view does; the lines above, inside it, are drawn. ")
+        "The first three lines, y = 150, y = -30 and x = -25, miss the image (it has 120 rows and 160 columns), "
+        "as the epipolar line of a point whose match is out of view does; the last, y = 60, is inside it. ")
         + measured("A line outside the image draws nothing; the others are drawn as ever."))
-    judge_drawing(t, what + " (y = 150 misses the image)", got, image, MISSING_LINES)
+    judge_drawing(t, what + " (y = 150, y = -30 and x = -25 miss the image)", got, image, MISSING_LINES)
 
 
 # ================================================================== ex3 essential matrix
@@ -1543,10 +1572,17 @@ def epipoles_general(t):
     judge_epipoles(t, "epipoles(F)", t.call("epipoles", views.F), views)
 
 
-@ex5.check("epipoles when camera 2 moves forward (both at the principal point)", points=1)
+@ex5.check("epipoles when camera 2 moves forward (both at the principal point, also where it is the image "
+           "origin: e = (0, 0, 1))", points=1)
 def epipoles_forward(t):
     views = truth.forward_views(seed=19)
     judge_epipoles(t, "epipoles(F) for forward motion", t.call("epipoles", views.F), views)
+    # (cameras whose principal point is the origin, as normalised coordinates have it: the epipoles'
+    # first two entries are 0, up to rounding -- nothing of them to divide by)
+    views = truth.forward_views_at_the_origin(seed=23)
+    F = np.where(np.abs(views.F) < 1e-12 * np.abs(views.F).max(), 0.0, views.F)   # (its zeros exact, as F = [t]x R has them)
+    judge_epipoles(t, "epipoles(F) for forward motion, principal points at the image origin (e = (0, 0, 1))",
+                   t.call("epipoles", F), views, F_given=F)
 
 
 def _finite_pair(got) -> bool:

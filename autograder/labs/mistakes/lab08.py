@@ -27,6 +27,28 @@ _STITCH_CANVAS = """
             size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)"""
 
 MISTAKES = {
+    # the blind set 1204b's 08/01: an own inverse map keeping only the pixels whose source has w > 0
+    "apply_homography keeping only w > 0": ("lab08.ex1", """
+        def apply_homography(image, H, dsize=None):
+            width, height = dsize if dsize is not None else (image.shape[1], image.shape[0])
+            xs, ys = np.meshgrid(np.arange(width, dtype=np.float64), np.arange(height, dtype=np.float64))
+            q = np.stack([xs.ravel(), ys.ravel(), np.ones(xs.size)]) 
+            src = np.linalg.inv(np.asarray(H, np.float64)) @ q
+            w = src[2]
+            valid = w > 0
+            safe = np.where(valid, w, 1.0)
+            map_x = np.where(valid, src[0] / safe, -1e6).reshape(height, width).astype(np.float32)
+            map_y = np.where(valid, src[1] / safe, -1e6).reshape(height, width).astype(np.float32)
+            return cv2.remap(image, map_x, map_y, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+        """, ["right for h and wrong for -h", "w > 0"]),
+    # the blind set 1204b's 08/06: the minimal set refused by a guard one too strict
+    "homography_ransac refusing exactly 4 pairs": ("lab08.ex4", """
+        _ransac_right = homography_ransac
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            if len(src) <= 4:
+                raise ValueError("need at least 4 correspondences")
+            return _ransac_right(src, dst, threshold, seed)
+        """, ["minimal set", "refuses them"]),
     "apply_homography with H transposed": ("lab08.ex1", """
         def apply_homography(image, H, dsize=None):
             h, w = image.shape[:2]

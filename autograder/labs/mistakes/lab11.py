@@ -199,6 +199,31 @@ MISTAKES = {
             return T2.T @ En @ T1
         """, ["a step after it changes the singular values again"]),
     # ---------------------------------------------------------------- ex2
+    # the blind set 1204b's 11/07: the epipoles scaled as epipolar lines are, by the length of (x, y)
+    "epipoles scaled by the length of their first two entries": ("lab11.ex5", """
+        def epipoles(F):
+            U, _, Vt = np.linalg.svd(np.asarray(F, np.float64))
+            e1, e2 = Vt[-1], U[:, -1]
+            return e1 / np.linalg.norm(e1[:2]), e2 / np.linalg.norm(e2[:2])
+        """, ["is not finite", "changing `e1 / np.linalg.norm(e1[:2])` to `e1`"]),
+    # the blind set 1204b's 11/03: an own rasteriser whose negative rows and columns wrap round
+    "epipolar lines rasterised with negative indices wrapping round": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            out = image.copy()
+            height, width = out.shape[:2]
+            for k, (a, b, c) in enumerate(np.asarray(lines, np.float64)):
+                colour = 255 if out.ndim == 2 else (0, 0, 255) if k % 2 == 0 else (0, 255, 0)
+                if abs(b) >= abs(a):
+                    xs = np.arange(width)
+                    ys = np.round(-(a * xs + c) / b).astype(int)
+                    keep = ys <= height - 1
+                else:
+                    ys = np.arange(height)
+                    xs = np.round(-(b * ys + c) / a).astype(int)
+                    keep = xs <= width - 1
+                out[ys[keep], xs[keep]] = colour
+            return out
+        """, ["negative row or column index counts from the end"]),
     "epipolar lines drawn on a grey copy of a colour image": ("lab11.ex2", """
         _draw_lines_right = draw_epipolar_lines
         def draw_epipolar_lines(image, lines):
