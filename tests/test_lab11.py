@@ -261,3 +261,17 @@ def test_points_indexed_by_an_estimators_mask_are_its_inliers_only_when_the_mask
     assert reads("    inliers = mask.ravel().astype(bool)\n    return pts1[inliers]\n")
     assert reads("    keep = mask.ravel() > 0\n    inliers = keep\n    return pts1[inliers]\n")
     assert reads("    idx = np.flatnonzero(mask)\n    return pts1[idx], pts2[mask.ravel() != 0]\n")
+
+
+def test_the_truth_behind_no_point_or_points_seen_by_one_camera_only_is_empty_not_an_error():
+    """A pipeline that keeps no correct match (0 of its points land inside image 2) is judged, never a grader
+    error: cv2.remap refuses an empty map, so the truth's bilinear sampling asks it for no point."""
+    import numpy as np
+
+    from fixtures import lab11 as truth
+
+    pair = truth.rendered_pair(seed=3)
+    X, pts2, valid = truth.true_correspondences(pair, np.zeros((0, 2)))
+    assert X.shape == (0, 3) and pts2.shape == (0, 2) and valid.shape == (0,)
+    X, pts2, valid = truth.true_correspondences(pair, np.array([[-500.0, -500.0], [5000.0, 10.0]]))
+    assert not valid.any()

@@ -1263,6 +1263,12 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
                                       f"reaches {int(np.ceil(d[larger].max()))} px from the centres (a positive "
                                       "thickness widens a circle by half of it on each side; filled is "
                                       "thickness=-1)."))
+    if clipped_into_view(image.shape, pts, changed & far, radius):
+        t.fail(f"{what}: {1 - untouched:.1%} of the pixels far from every point were changed: " + measured(
+            "they are circles at the image's border where points off the image are moved to the nearest border "
+            "pixel (clipped into it). A point off the image draws only the part of its circle inside the image "
+            "(cv2.circle clips it), nothing when it is farther than the radius: draw it where it is."),
+            mistake=CLIPPED_INTO_VIEW)
     copied = COPIES.found(read)   # (the copy is not asked of code that copies)
     t.fail(f"{what}: {1 - untouched:.1%} of the pixels far from every point were changed; "
            + ("only the circles should be drawn." if copied else
@@ -1306,6 +1312,23 @@ def _wrapped_at_256(got, image, pts, radius, color) -> str:
     return measured(f"the circles are wrong for coordinates of 256 and more (or below 0): they are drawn with "
                     f"the coordinate taken modulo 256 ({shown}: all an 8-bit integer keeps of it); pass cv2.circle "
                     "the centre as Python integers (int(round(x)), int(round(y)))")
+
+
+CLIPPED_INTO_VIEW = "points off the image drawn at its border (clipped into it)"
+
+
+def clipped_into_view(shape, pts, stray, radius) -> bool:
+    """Whether the ``stray`` pixels (changed where no circle belongs) are nearly all within the radius of
+    where the finite points off the image land when clipped to its border."""
+    h, w = shape[:2]
+    pts = np.asarray(pts, np.float64).reshape(-1, 2)
+    off = [i for i in _off_image(shape, pts) if np.isfinite(pts[i]).all()]
+    if not off or stray.sum() < 5:
+        return False
+    clipped = np.clip(pts[off], 0, [w - 1, h - 1])
+    ys, xs = np.nonzero(stray)
+    near = np.hypot(xs[:, None] - clipped[:, 0], ys[:, None] - clipped[:, 1]).min(axis=1) <= radius + 1.5
+    return bool(near.mean() >= 0.9)
 
 
 def _off_image(shape, pts):
@@ -1721,6 +1744,38 @@ def project_onto_image_behind(t):
 NAN_TO_ZERO = calls("np.nan_to_num")
 
 
+DRAWS_A_POINT_NOT_FINITE = "draw_points draws a point that is not finite"
+
+
+def name_draw_points_stray(t: Trial, image, pts, stray):
+    """Fail naming draw_points when, given the very points project_onto_image returned, it draws the same
+    stray pixels: they are draw_points' own (an effect measured on it, whatever project_onto_image's code):
+    the points off the image clipped into it, or a row that is not finite (NaN behind the camera) drawn."""
+    try:
+        own = t.probe("draw_points/the returned points", lambda: t.call("draw_points", image.copy(), pts))
+    except StudentFailure:
+        return
+    if not (isinstance(own, np.ndarray) and own.shape == image.shape):
+        return
+    again = np.any(own != image, axis=-1) & stray
+    if again.sum() < 0.8 * stray.sum():
+        return
+    said = (f"project_onto_image(image, P, points), point 3 behind the camera: {int(stray.sum())} pixels are drawn "
+            "where none of the returned points is, and draw_points(image, pts), given the very points returned, "
+            "draws them too: ")
+    if clipped_into_view(image.shape, pts, stray, 3):
+        t.fail(measured(said + "your draw_points draws the points off the image at its border (moved to the nearest "
+                               "border pixel, clipped into it); a point off the image draws only the part of its "
+                               "circle inside the image, nothing when it is farther than the radius."),
+               mistake=CLIPPED_INTO_VIEW)
+    if np.isfinite(pts).all():
+        return
+    rows = ", ".join(str(i) for i in np.flatnonzero(~np.isfinite(pts).all(axis=1)))
+    t.fail(measured(said + f"your draw_points draws the row(s) {rows} that are not finite ({format_matrix(pts[3])}) "
+                           "somewhere in the image. Draw only the finite points (a NaN turned into a number -- cast "
+                           "to int, replaced by 0 -- lands in the image)."), mistake=DRAWS_A_POINT_NOT_FINITE)
+
+
 @ex5.check("project_onto_image draws nothing where none of its points is (a point behind the camera)", points=1)
 def project_onto_image_draws_its_points(t):
     """One call's two results agree: the image shows a circle at each finite returned point and nothing
@@ -1750,6 +1805,8 @@ def project_onto_image_draws_its_points(t):
     at = (int(round(xs.mean())), int(round(ys.mean())))
     corner = max(at) <= 6 and not np.isfinite(pts[3]).all()
     t.images("project_onto_image(image, P, points)[0]", "point 3 is behind the camera", input=image, yours=drawn)
+    if not corner:
+        name_draw_points_stray(t, image, pts, stray)
     t.fail(measured(f"project_onto_image(image, P, points), point 3 behind the camera: {int(stray.sum())} pixels "
                     f"are drawn around (x, y) = {at}, where none of the returned points is (row 3 is "
                     f"{format_matrix(pts[3])})")

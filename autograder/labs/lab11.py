@@ -1890,8 +1890,13 @@ def _indexes_by_a_mask(function) -> bool:
     if any(outliers_selected(n, masks) for n in ast.walk(function)):
         return False   # (`mask.ravel() == 0` keeps the matches the mask rejects)
     boolean = _boolean_names(function)
+    is_mask = lambda name: name in held or "mask" in name.lower() or "inl" in name.lower()  # noqa: E731
+    # (and a name made of a mask: `keep = mask.ravel() == 1`, then `pts1[keep]`)
+    made_of_masks = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign)
+                     and any(isinstance(m, ast.Name) and is_mask(m.id) for m in ast.walk(n.value))
+                     for target in n.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
     return any(isinstance(n, ast.Subscript) and _is_boolean(n.slice, boolean) and any(
-        isinstance(m, ast.Name) and (m.id in held or "mask" in m.id.lower() or "inl" in m.id.lower())
+        isinstance(m, ast.Name) and (is_mask(m.id) or m.id in made_of_masks)
         for m in ast.walk(n.slice)) for n in ast.walk(function))
 
 
@@ -1957,6 +1962,27 @@ KEEPS_INLIERS = (RANSAC_ESTIMATOR & Predicate("indexes the points by the mask", 
 INLIERS_HINT = Hint("keep only the RANSAC inliers", asks=KEEPS_INLIERS, instead=MATCHES_ELSEWHERE)
 
 
+NORMALISED_POINTS = "the points returned in normalised camera coordinates (K^-1 x), not in pixels"
+
+
+def name_normalised_points(t: Trial, pair, pts1, pts2):
+    """Fail naming points returned in normalised camera coordinates (what cv2.undistortPoints gives, or
+    K^-1 x), when taken back to pixels with each camera's K they are the true matches (an effect of the
+    answer: K applied to it is right)."""
+    if len(pts1) < 10 or len(pts1) != len(pts2):
+        return
+    pixels1, pixels2 = (np.column_stack([p, np.ones(len(p))]) @ cam.K.T for p, cam in ((pts1, pair.cam1), (pts2, pair.cam2)))
+    with np.errstate(all="ignore"):
+        pixels1, pixels2 = pixels1[:, :2] / pixels1[:, 2:], pixels2[:, :2] / pixels2[:, 2:]
+    _, true2, valid = truth.true_correspondences(pair, pixels1)
+    if valid.sum() >= 10 and np.mean(np.linalg.norm(pixels2[valid] - true2[valid], axis=1) <= 2.0) >= 0.8:
+        t.fail(measured("the matches are returned in normalised camera coordinates: taken back to pixels with K "
+                        "(x = K [x_n, 1]), 80% or more of them are within 2 px of the true position. pts1 and pts2 "
+                        "are asked in pixels (x = column, y = row): keep the pixel coordinates to return (and to "
+                        "triangulate with P = K [R | t]), and normalise a copy (cv2.undistortPoints, or K^-1 x) "
+                        "where normalised points are needed."), mistake=NORMALISED_POINTS)
+
+
 def judge_matches(t: Trial, pair, pts1, pts2):
     _, true2, valid = truth.true_correspondences(pair, pts1)
     if valid.sum() < 10:
@@ -1971,6 +1997,7 @@ def judge_matches(t: Trial, pair, pts1, pts2):
             pts1[valid_swapped] - true2_swapped[valid_swapped], axis=1) <= 2.0) >= 0.8:
         t.fail("pts1 and pts2 are swapped: pts1 must be the points of img1",
                mistake="pts1 and pts2 are swapped")
+    name_normalised_points(t, pair, pts1, pts2)
     message = (f"only {format_apart(correct, 0.8, 2, percent=True)} of your matches are within 2 px of the "
                "true position (need 80%)")
     if correct >= 0.5:
@@ -2078,6 +2105,7 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
     good = valid & (np.linalg.norm(pts2 - np.nan_to_num(true2), axis=1) <= 2.0)
     good &= np.all(np.isfinite(points3d), axis=1)
     if good.sum() < 10:
+        name_normalised_points(t, pair, pts1, pts2)
         t.fail(f"only {good.sum()} of your matches are correct, too few to judge the 3D points")
     got, X = points3d[good], X[good]
     ratios = np.linalg.norm(X, axis=1) / np.maximum(np.linalg.norm(got, axis=1), 1e-300)

@@ -58,6 +58,17 @@ MISTAKES = {
             pts = pts[np.isfinite(pts).all(axis=1)]
             return draw_points(image, pts), pts
         """, ["the point behind the camera is left out"]),
+    # the blind set 1204b's 09/05: the points clipped into the image before drawing
+    "draw_points clipping the points off the image to its border": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            height, width = image.shape[:2]
+            pts = np.clip(np.asarray(pts, dtype=np.float64).reshape(-1, 2), 0, [width - 1, height - 1])
+            for x, y in pts:
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(out, (int(round(x)), int(round(y))), int(radius), tuple(int(c) for c in color), -1)
+            return out
+        """, ["clipped into it"]),
     # the blind set 1201c's 09/07: the line type given where the thickness goes
     "circles drawn with cv2.LINE_AA as their thickness": ("lab09.ex5", """
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):

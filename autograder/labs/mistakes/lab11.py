@@ -640,6 +640,16 @@ MISTAKES = {
             grey1, grey2 = cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY), cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY)
             return _pipeline(grey1, grey2, K)
         """, ["grey img1", "the same pair in colour (bgr) passed"]),
+    # the blind set 1204b's 11/08: the matches overwritten by their normalised coordinates, then returned
+    "pipeline returning the matches in normalised coordinates": ("lab11.ex6", """
+        _tvr = two_view_reconstruction
+        def two_view_reconstruction(img1, img2, K):
+            F, pts1, pts2, X = _tvr(img1, img2, K)
+            K = np.asarray(K, np.float64)
+            pts1 = cv2.undistortPoints(pts1.reshape(-1, 1, 2), K, None).reshape(-1, 2)
+            pts2 = cv2.undistortPoints(pts2.reshape(-1, 1, 2), K, None).reshape(-1, 2)
+            return F, pts1, pts2, X
+        """, ["normalised camera coordinates", "taken back to pixels with k"]),
     "pipeline returns F transposed": ("lab11.ex6", """
         _tvr = two_view_reconstruction
         def two_view_reconstruction(img1, img2, K):
