@@ -290,7 +290,7 @@ def apply_homography_negative_scale(t):
         return passed(measured("wrong for H itself too: the other checks judge that"))
     try:
         return judge_homography_warp(t, "apply_homography(image, -H)", t.call("apply_homography", source, -H),
-                                     source, -H)
+                                     source, H)   # (the same picture as H's: -H is the same homography)
     except Fail as failure:
         # (right for H, wrong for -H: only the sign differs, so the code depends on it -- every w = h31 x +
         # h32 y + h33 is negative under -H)

@@ -914,7 +914,7 @@ def draw_vertical(t):
     judge_drawing(t, what + " (x = 100 and y = 40, b and a of rounding size)", got, image, NEAR_AXIS_LINES)
     what = "draw_epipolar_lines(image, [[0, 1, -150], [0, 1, 30], [1, 0, 25], [0, 1, -60]]) on a 160 x 120 image"
     got = _drawn(t, what, image, MISSING_LINES, measured(
-        "The first three lines, y = 150, y = -30 and x = -25, miss the image (it has 120 rows and 160 columns), "
+        "Each of the first three lines, y = 150, y = -30 and x = -25, misses the image (it has 120 rows and 160 columns), "
         "as the epipolar line of a point whose match is out of view does; the last, y = 60, is inside it. ")
         + measured("A line outside the image draws nothing; the others are drawn as ever."))
     judge_drawing(t, what + " (y = 150, y = -30 and x = -25 miss the image)", got, image, MISSING_LINES)
