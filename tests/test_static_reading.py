@@ -1189,3 +1189,22 @@ def essential(E):
 ])
 def test_an_svd_whose_factors_are_used_as_needed_is_not_read(source):
     assert SVD_FACTOR not in one(source)
+
+
+def test_a_value_assigned_to_the_loop_variable_and_dropped_is_named():
+    """`for x, K in ((x1, K1), (x2, K2)): x = x @ inv(K).T` changes neither x1 nor x2; read later in the turn,
+    or kept by an append, the value is used."""
+    loop = """
+        def essential_8point(x1, x2, K1, K2):
+            kept = []
+            for x, K in ((x1, K1), (x2, K2)):
+                x = x @ np.linalg.inv(K).T
+                {after}
+            return x1, x2, kept
+        """
+    wanted = "a value assigned to the loop variable and dropped"
+    assert one(loop.format(after="")) == {wanted}
+    assert "`x1`, `x2` stay as they were" in next(f.sentence for f in read_source(textwrap.dedent(loop.format(after="")))
+                                                 .findings["essential_8point"] if f.mistake == wanted)
+    assert wanted not in one(loop.format(after="kept.append(x)"))
+    assert wanted not in one(loop.format(after="x[0] = 1"))   # (read: x[0] = ... writes into the array x holds)

@@ -243,6 +243,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _pose_never_chosen(name, function)
     found += _distortion_in_pixels(name, function)
     found += _loop_variable_rebinds(name, function)
+    found += _loop_variable_assigned_in_vain(name, function)
     found += _value_of_an_earlier_loop(name, function)
     found += _running_halves(name, function)
     found += _norm_of_every_pair_at_once(name, function)
@@ -1762,6 +1763,42 @@ def _kept_per_turn(loop: ast.For) -> set:
     appended = {a.id for n in ast.walk(loop) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
                 and n.func.attr == "append" for a in n.args if isinstance(a, ast.Name)}
     return computed & appended
+
+
+def _loop_variable_assigned_in_vain(name, function) -> list[Finding]:
+    """``for x, K in ((x1, K1), (x2, K2)): x = x @ inv(K).T`` and nothing reads ``x`` after it in the turn: the
+    value assigned to the loop variable is dropped when the next turn binds it again, so the items looped over
+    (x1, x2) are not changed (a list, or names assigned one by one, keep them)."""
+    for loop in _nodes(function):
+        if not isinstance(loop, ast.For) or loop.orelse:
+            continue
+        targets = {t.id for t in ast.walk(loop.target) if isinstance(t, ast.Name)}
+        body = [node for statement in loop.body for node in ast.walk(statement)]
+        for assign in body:
+            if not (isinstance(assign, ast.Assign) and len(assign.targets) == 1
+                    and isinstance(assign.targets[0], ast.Name) and assign.targets[0].id in targets):
+                continue
+            variable = assign.targets[0].id
+            end = (assign.end_lineno, assign.end_col_offset)
+            if any(isinstance(n, ast.Name) and n.id == variable and isinstance(n.ctx, ast.Load)
+                   and (n.lineno, n.col_offset) > end for n in body) \
+                    or any(isinstance(n, (ast.Yield, ast.YieldFrom, ast.Return, ast.Nonlocal, ast.Global)) for n in body):
+                continue
+            # (what the loop went over, where it is a literal of names: the items that stay unchanged)
+            items = loop.iter.elts if isinstance(loop.iter, (ast.Tuple, ast.List)) else []
+            position = [t.id for t in (loop.target.elts if isinstance(loop.target, ast.Tuple) else [loop.target])
+                        if isinstance(t, ast.Name)].index(variable) if isinstance(loop.target, (ast.Tuple, ast.Name)) else None
+            names = [ast.unparse(item.elts[position] if isinstance(item, ast.Tuple) and position is not None
+                                 and position < len(item.elts) else item) for item in items] if position is not None else []
+            unchanged = f"{', '.join(f'`{n}`' for n in names)} stay as they were" if names else \
+                "the items looped over stay as they were"
+            line = _line(assign)
+            return [Finding(name, line, "a value assigned to the loop variable and dropped",
+                            f"{name} (line {line}) assigns `{ast.unparse(assign)[:80]}` to `{variable}`, the variable of "
+                            f"the loop at line {_line(loop)}, and nothing reads it after in the turn: the next turn binds "
+                            f"`{variable}` again, so the value is dropped and {unchanged}. Keep the results (append them "
+                            "to a list, or assign each name on its own line)")]
+    return []
 
 
 def _loop_variable_rebinds(name, function) -> list[Finding]:
