@@ -33,6 +33,9 @@ def numpy_error(operation) -> str:
     ((120, 160, 3), (120, 160), "grey in, grey out"),
     ((120, 160), (120, 160, 3), "BGR in, BGR out"),
     ((120, 160, 1), (120, 160), "channel axis of length 1"),
+    ((120,), (120, 160), "indexed on its last axis"),
+    ((16, 20, 2), (4, 20, 2), "16 = 4 x 4"),
+    ((9, 2), (3, 2), "9 = 3 x 3"),
 ])
 def test_a_recognised_form_is_named_from_the_shape(got, expected, words):
     form = shape_form(got, expected)
@@ -45,6 +48,7 @@ def test_a_recognised_form_is_named_from_the_shape(got, expected, words):
     ((4, 4), (3, 3)), ((2, 2), (4, 4)), ((3, 3, 3), (3, 3)), ((12, 5), (None, 2)), ((7,), (3, 3)), ((2, 2), (2,)),
     ((12, 1, 3), (None, 2)),
     ((3, 3, 3), (3, 3)), ((120, 160, 2), (120, 160)), ((120, 160, 3), (None, 160)),   # no image of a known size
+    ((16, 20, 3), (4, 20, 2)), ((9,), (3,)),   # a square count with other items; a flat 9 (a 3 x 3 flattened?)
 ])
 def test_a_form_no_rule_knows_is_left_to_the_description(got, expected):
     assert shape_form(got, expected) is None

@@ -139,6 +139,13 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
     channels = _channels_form(got, expected)
     if channels is not None:
         return channels
+    # (two axes at least: a flat 9 where 3 are asked may as well be a 3 x 3 matrix flattened)
+    if len(got) == len(expected) >= 2 and expected[0] is not None and expected[0] > 1 \
+            and got[0] == expected[0] ** 2 and _fits(got[1:], expected[1:]):
+        n = expected[0]
+        return Form(measured(f"it looks like one result for every pair of items of two length-{n} inputs, {got[0]} = "
+                             f"{n} x {n} where {n} are asked: loops nested where the two go in step make them (zip(a, b) "
+                             "pairs them item by item)"), "a result for every pair of items that go in step")
     if len(got) == len(expected) >= 3 and None not in expected and got != expected \
             and sorted(got) == sorted(expected) and len(set(expected)) == len(expected):
         # (each length once: which axis went where is read from the lengths alone)
@@ -175,6 +182,10 @@ def _channels_form(got: tuple, expected: tuple) -> Form | None:
     if len(expected) == 2 and len(got) == 3 and got[:2] == expected and got[2] in (3, 4):
         return Form(f"it looks like the channels are not kept: {got[2]} channels where a grey (H, W) image is "
                     f"asked ({rule}: grey in, grey out)", "the channels are not kept")
+    if len(expected) == 2 and got == expected[:1]:   # (H,) for (H, W): `out[..., 0]` of a grey image
+        return Form(measured("it looks like one value per row, (H,): a grey (H, W) image indexed on its last axis (`[..., 0]`, "
+                             "`[:, :, 0]`, meant for a colour channel) keeps a single column of it"),
+                    "a grey image indexed on its last axis (one column kept)")
     if len(expected) == 3 and expected[2] == 3 and got == expected[:2]:
         return Form(f"it looks like the channels are not kept: a grey (H, W) image where a BGR (H, W, 3) one is "
                     f"asked ({rule}: BGR in, BGR out)", "the channels are not kept")

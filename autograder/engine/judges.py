@@ -488,6 +488,9 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
         if resized:
             t.fail(f"{what} returned shape {got.shape}, the input's size times the transform's scale; expected "
                    f"{expected_shape}: {resized}", mistake=RESIZED)
+        form = shape_form(got.shape, expected_shape) if got.ndim < len(expected_shape) else None
+        if form is not None:   # (an axis lost, not a size: what the form tells, not the size rule)
+            t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: {form.sentence}", mistake=form.mistake)
         size_rule = "" if dsize else ": warps keep the input's size (content that leaves the frame is cut off)"
         t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}{size_rule}")
     got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)

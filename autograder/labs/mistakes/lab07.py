@@ -6,6 +6,15 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 MISTAKES = {
     # the API's rule: a function that takes an image returns its channel count (shapes named by
     # autograder.engine.forms); a grey image made BGR to "see it in colour", a colour one made grey
+    # the blind set 1204b's 07/02: a grey image given a channel axis that cv2.warpAffine drops, then indexed
+    "rotate taking the first channel of a grey warp": ("lab07.ex2", """
+        def rotate(image, angle_deg=45):
+            img = image if image.ndim == 3 else image[:, :, np.newaxis]
+            h, w = img.shape[:2]
+            M = cv2.getRotationMatrix2D(((w - 1) / 2.0, (h - 1) / 2.0), float(angle_deg), 1.0)
+            out = cv2.warpAffine(img, M, (w, h), flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+            return out if image.ndim == 3 else out[..., 0]
+        """, ["indexed on its last axis", "keeps a single column"]),
     "translate by slicing, no case for a shift past the image": ("lab07.ex1", """
         def translate(image, tx=100, ty=50):
             h, w = image.shape[:2]

@@ -280,6 +280,18 @@ MISTAKES = {
         def undistort_image(image, K, dist):
             return cv2.undistort(image, K, -np.asarray(dist, float))
         """, ["sign"]),
+    # the blind set 1204b's 10/08: the focal lengths and the distances looped over nested, not in step
+    "dolly zoom projecting every distance with every focal length": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X = np.atleast_2d(np.asarray(points, dtype=np.float64))
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            focal_lengths = f0 * distances / z0
+            frames = []
+            for f in focal_lengths:
+                for d in distances:
+                    frames.append(perspective_project(X + [0.0, 0.0, d - z0], f))
+            return focal_lengths, np.stack(frames)
+        """, ["one result for every pair of items", "zip(a, b)"]),
     "dolly zoom projecting every frame with the last focal length": ("lab10.ext2", """
         def dolly_zoom(points, f0, z0, distances):
             X = np.asarray(points, dtype=np.float64)
