@@ -4340,3 +4340,18 @@ def test_a_chain_of_matrices_replaced_at_every_step_is_multiplied_instead():
     assert ("H = step[j]", "H = step[j] @ H") in changes and ("H = step[j]", "H @= step[j]") in changes
     assert not any(after.endswith("@ total") or after == "total @= step[j]" for _, after in changes)
     assert ("G @= S", "G = S") in changes
+
+
+def test_points_divided_by_another_value_than_their_last_coordinate_are_divided_by_it():
+    """`homogeneous[:, :2] / depth` (the Z before K was applied) where `homogeneous[:, 2:3]` belongs: the divisor
+    is made the points' own last coordinate; one that already is stays."""
+    source = textwrap.dedent("""
+        def graded(X, K):
+            depth = X[:, 2:3]
+            homogeneous = (X / depth) @ K.T
+            right = homogeneous[:, :2] / homogeneous[:, 2:3]
+            return homogeneous[:, :2] / depth, right
+    """)
+    changes = _shown_changes(source, "dehomogenise")
+    assert ("homogeneous[:, :2] / depth", "homogeneous[:, :2] / homogeneous[:, 2:3]") in changes
+    assert not any(before == "homogeneous[:, :2] / homogeneous[:, 2:3]" for before, _ in changes)

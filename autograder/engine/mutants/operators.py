@@ -645,6 +645,8 @@ def _make_loop_index(node, payload):
 
 
 def _make_dehomogenise(node, payload):
+    if isinstance(payload, tuple):   # x[:, :2] / d -> x[:, :2] / x[:, 2:3]: the divisor made the last coordinate
+        return _make_dehomogenise(node.left, payload[1])
     # x[:, :2] -> x[:, :2] / x[:, 2:3]: the points divided by their last coordinate
     last = copy.deepcopy(node)
     bound = ast.Slice(ast.Constant(payload), ast.Constant(payload + 1))
@@ -2632,6 +2634,15 @@ def _student_changes(node, parent, parents, words):
         if isinstance(last, ast.Slice) and last.lower is None and last.step is None \
                 and isinstance(last.upper, ast.Constant) and last.upper.value in (2, 3):
             yield "dehomogenise", last.upper.value, ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) and isinstance(node.left, ast.Subscript):
+        # `x[:, :2] / depth` -> `x[:, :2] / x[:, 2:3]`: points divided by another value than their own last
+        # coordinate (the Z of the points before K was applied, where K's w belongs)
+        last = node.left.slice.elts[-1] if isinstance(node.left.slice, ast.Tuple) and node.left.slice.elts \
+            else node.left.slice
+        if isinstance(last, ast.Slice) and last.lower is None and last.step is None \
+                and isinstance(last.upper, ast.Constant) and last.upper.value in (2, 3) \
+                and ast.dump(node.right) != ast.dump(_make_dehomogenise(node.left, last.upper.value).right):
+            yield "dehomogenise", ("divisor", last.upper.value), ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult):
         # `pts @ M[:, :3].T` (or `M[:, :3] @ X`) where the homogeneous 1 belongs: M's last column missing,
         # added as a row (points in rows, or a single point) or as a column (points in columns)
