@@ -4355,3 +4355,20 @@ def test_points_divided_by_another_value_than_their_last_coordinate_are_divided_
     changes = _shown_changes(source, "dehomogenise")
     assert ("homogeneous[:, :2] / depth", "homogeneous[:, :2] / homogeneous[:, 2:3]") in changes
     assert not any(before == "homogeneous[:, :2] / homogeneous[:, 2:3]" for before, _ in changes)
+
+
+def test_a_table_started_at_zero_before_its_argmin_is_started_at_infinity():
+    """`costs = np.zeros(...)` filled only where a match exists, then `np.argmin(costs, axis=0)`: the unfilled
+    entries (0) win; started at np.inf they lose. A zeros array no minimum is taken of has no such change."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(d, shape, x):
+            costs = np.zeros((d,) + shape)
+            best = np.zeros_like(x)
+            sums = np.zeros(shape)
+            return np.argmin(costs, axis=0), best.min(), sums
+    """)
+    changes = _shown_changes(source, "fill_inf")
+    assert ("np.zeros((d,) + shape)", "np.full((d,) + shape, np.inf)") in changes
+    assert ("np.zeros_like(x)", "np.full_like(x, np.inf, dtype=np.float64)") in changes
+    assert not any(before == "np.zeros(shape)" for before, _ in changes)

@@ -1208,3 +1208,13 @@ def test_a_value_assigned_to_the_loop_variable_and_dropped_is_named():
                                                  .findings["essential_8point"] if f.mistake == wanted)
     assert wanted not in one(loop.format(after="kept.append(x)"))
     assert wanted not in one(loop.format(after="x[0] = 1"))   # (read: x[0] = ... writes into the array x holds)
+
+
+def test_the_fisheye_lens_model_is_named_where_the_calibrations_belongs():
+    code = """
+        def undistort_image(image, K, dist):
+            return cv2.{call}(image, K, np.asarray(dist, np.float64).ravel()[:4]{more})
+        """
+    wanted = "the fisheye lens model used for the calibration's distortion"
+    assert wanted in one(code.format(call="fisheye.undistortImage", more=", Knew=K"))
+    assert wanted not in one(code.format(call="undistort", more=""))

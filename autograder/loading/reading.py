@@ -244,6 +244,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _distortion_in_pixels(name, function)
     found += _loop_variable_rebinds(name, function)
     found += _loop_variable_assigned_in_vain(name, function)
+    found += _fisheye_model(name, function)
     found += _value_of_an_earlier_loop(name, function)
     found += _running_halves(name, function)
     found += _norm_of_every_pair_at_once(name, function)
@@ -1763,6 +1764,21 @@ def _kept_per_turn(loop: ast.For) -> set:
     appended = {a.id for n in ast.walk(loop) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
                 and n.func.attr == "append" for a in n.args if isinstance(a, ast.Name)}
     return computed & appended
+
+
+def _fisheye_model(name, function) -> list[Finding]:
+    """A call of ``cv2.fisheye.*``: OpenCV's fisheye model bends rays by their angle (theta_d = theta (1 + k1 theta^2
+    + ...), four coefficients), another lens than the one a calibration's (k1, k2, p1, p2, k3) describe --
+    the model of the course's cv2.calibrateCamera, cv2.undistort and cv2.projectPoints."""
+    for node in _nodes(function):
+        if isinstance(node, ast.Call) and _attribute_path(node.func).startswith(("cv2.fisheye.", "cv.fisheye.")):
+            line = _line(node)
+            return [Finding(name, line, "the fisheye lens model used for the calibration's distortion",
+                            f"{name} (line {line}) calls `{_attribute_path(node.func)}`: the fisheye model bends each ray "
+                            "by its angle from the axis, with four coefficients of its own, where the distortion "
+                            "(k1, k2, p1, p2, k3) is that of cv2.calibrateCamera's lens model; use the functions of "
+                            "that model (cv2.undistort, cv2.projectPoints, cv2.undistortPoints)")]
+    return []
 
 
 def _loop_variable_assigned_in_vain(name, function) -> list[Finding]:

@@ -111,6 +111,7 @@ OPERATORS = {
     "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
+    "fill_inf": ("inf", "zero", "start", "unfilled"),   # costs = np.zeros(s) -> np.full(s, np.inf) before an argmin
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs
     "reduced": ("mean", "average", "one value", "every point"),   # z = X[:, 2] -> X[:, 2].mean(): a column, its mean meant
@@ -1146,6 +1147,35 @@ def _make_size_given(node, payload):
     return new
 
 
+def _make_fill_inf(node, payload):
+    # np.zeros(s) -> np.full(s, np.inf); np.zeros_like(x) -> np.full_like(x, np.inf, dtype=np.float64)
+    if _dotted(node.func).endswith("zeros_like"):
+        return ast.Call(_name("np.full_like"), [copy.deepcopy(node.args[0]), _name("np.inf")],
+                        [ast.keyword("dtype", _name("np.float64"))])
+    return ast.Call(_name("np.full"), [copy.deepcopy(node.args[0]), _name("np.inf")], [])
+
+
+def _minimised(assign, parents) -> bool:
+    """Whether ``assign`` (`costs = np.zeros(...)`) binds a name whose smallest entries the def later takes
+    (`np.argmin(costs, ...)`, `costs.argmin()`, `np.min(costs)`)."""
+    if not (len(assign.targets) == 1 and isinstance(assign.targets[0], ast.Name)):
+        return False
+    fn = assign
+    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        fn = parents[id(fn)][0]
+    if not hasattr(fn, "_minimised"):   # (read once per def: every zeros asks)
+        minimised = set()
+        for n in ast.walk(fn):
+            if isinstance(n, ast.Call) and n.args and _dotted(n.func).rsplit(".", 1)[-1] in ("argmin", "nanargmin", "min", "amin") \
+                    and isinstance(n.args[0], ast.Name):
+                minimised.add(n.args[0].id)
+            if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute) and n.func.attr in ("argmin", "min") \
+                    and isinstance(n.func.value, ast.Name):
+                minimised.add(n.func.value.id)
+        fn._minimised = minimised
+    return assign.targets[0].id in fn._minimised
+
+
 def _make_accumulate(node, payload):
     if payload == "assign":   # total += x -> total = x
         return ast.Assign([copy.deepcopy(node.target)], copy.deepcopy(node.value))
@@ -1257,7 +1287,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "negate": _make_negate, "logic": _make_logic,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -3473,6 +3503,10 @@ def _logic_changes(node, parent, parents):
             and any(isinstance(part, ast.Slice) for part in ast.walk(node.targets[0].slice)) \
             and isinstance(node.value, (ast.Name, ast.Constant)):
         yield "accumulate", "Mult", ""   # a block set to a scale where it was to be scaled: T[:2, :2] = s
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.zeros", "np.zeros_like", "numpy.zeros", "numpy.zeros_like") \
+            and node.args and isinstance(parents.get(id(node), (None,))[0], ast.Assign) \
+            and _minimised(parents[id(node)][0], parents):
+        yield "fill_inf", None, ""   # a table whose unfilled entries must lose an argmin started at 0, where they win
     running = _restarted(node, parents)
     if running:
         yield "carry", running, ""
