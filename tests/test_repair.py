@@ -4372,3 +4372,17 @@ def test_a_table_started_at_zero_before_its_argmin_is_started_at_infinity():
     assert ("np.zeros((d,) + shape)", "np.full((d,) + shape, np.inf)") in changes
     assert ("np.zeros_like(x)", "np.full_like(x, np.inf, dtype=np.float64)") in changes
     assert not any(before == "np.zeros(shape)" for before, _ in changes)
+
+
+def test_a_penalty_for_any_jump_is_made_one_for_its_size():
+    """`s * (labels[:, None] != labels[None, :])` (the Potts model) where the jump's size is paid, `s * |d - d'|`;
+    a comparison not weighing anything is no penalty."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(labels, s, a, b):
+            penalty = s * (labels[:, None] != labels[None, :])
+            changed = a != b
+            return penalty, changed
+    """)
+    changes = _shown_changes(source, "jump_size")
+    assert changes == [("labels[:, None] != labels[None, :]", "np.abs(labels[:, None] - labels[None, :])")]
