@@ -1744,38 +1744,6 @@ def project_onto_image_behind(t):
 NAN_TO_ZERO = calls("np.nan_to_num")
 
 
-DRAWS_A_POINT_NOT_FINITE = "draw_points draws a point that is not finite"
-
-
-def name_draw_points_stray(t: Trial, image, pts, stray):
-    """Fail naming draw_points when, given the very points project_onto_image returned, it draws the same
-    stray pixels: they are draw_points' own (an effect measured on it, whatever project_onto_image's code):
-    the points off the image clipped into it, or a row that is not finite (NaN behind the camera) drawn."""
-    try:
-        own = t.probe("draw_points/the returned points", lambda: t.call("draw_points", image.copy(), pts))
-    except StudentFailure:
-        return
-    if not (isinstance(own, np.ndarray) and own.shape == image.shape):
-        return
-    again = np.any(own != image, axis=-1) & stray
-    if again.sum() < 0.8 * stray.sum():
-        return
-    said = (f"project_onto_image(image, P, points), point 3 behind the camera: {int(stray.sum())} pixels are drawn "
-            "where none of the returned points is, and draw_points(image, pts), given the very points returned, "
-            "draws them too: ")
-    if clipped_into_view(image.shape, pts, stray, 3):
-        t.fail(measured(said + "your draw_points draws the points off the image at its border (moved to the nearest "
-                               "border pixel, clipped into it); a point off the image draws only the part of its "
-                               "circle inside the image, nothing when it is farther than the radius."),
-               mistake=CLIPPED_INTO_VIEW)
-    if np.isfinite(pts).all():
-        return
-    rows = ", ".join(str(i) for i in np.flatnonzero(~np.isfinite(pts).all(axis=1)))
-    t.fail(measured(said + f"your draw_points draws the row(s) {rows} that are not finite ({format_matrix(pts[3])}) "
-                           "somewhere in the image. Draw only the finite points (a NaN turned into a number -- cast "
-                           "to int, replaced by 0 -- lands in the image)."), mistake=DRAWS_A_POINT_NOT_FINITE)
-
-
 @ex5.check("project_onto_image draws nothing where none of its points is (a point behind the camera)", points=1)
 def project_onto_image_draws_its_points(t):
     """One call's two results agree: the image shows a circle at each finite returned point and nothing
@@ -1804,17 +1772,20 @@ def project_onto_image_draws_its_points(t):
     ys, xs = np.nonzero(stray)
     at = (int(round(xs.mean())), int(round(ys.mean())))
     corner = max(at) <= 6 and not np.isfinite(pts[3]).all()
+    via_draw_points = bool(calls("draw_points").found(code_of(t).reachable(["project_onto_image"])))
     t.images("project_onto_image(image, P, points)[0]", "point 3 is behind the camera", input=image, yours=drawn)
-    if not corner:
-        name_draw_points_stray(t, image, pts, stray)
     t.fail(measured(f"project_onto_image(image, P, points), point 3 behind the camera: {int(stray.sum())} pixels "
                     f"are drawn around (x, y) = {at}, where none of the returned points is (row 3 is "
                     f"{format_matrix(pts[3])})")
            + (measured(": the point whose projection is NaN is drawn at the corner (0, 0)")
               + (from_code(", where np.nan_to_num puts it (NaN becomes 0): draw only the finite points.")
                  if NAN_TO_ZERO.found(code_of(t).reachable(["project_onto_image"])) else ".") if corner else
-              measured(". The image and the points returned should agree: draw the points you return.")),
-           mistake="a point behind the camera is drawn" if corner else "the drawing is not of the returned points")
+              (measured(". The image and the points returned should agree: draw the points you return.")
+               if not via_draw_points else
+               from_code(". Your project_onto_image draws with your draw_points: what draw_points draws for these "
+                         "points (off the image, or not finite) is the place to look."))),
+           mistake="a point behind the camera is drawn" if corner else
+           "" if via_draw_points else "the drawing is not of the returned points")
 
 
 # ================================================================== ext1 calibration
