@@ -5,6 +5,7 @@ reference's on the failing inputs, the other calls and confirmation inputs."""
 from __future__ import annotations
 
 import ast
+import dataclasses
 import re
 import textwrap
 from pathlib import Path
@@ -4386,3 +4387,32 @@ def test_a_penalty_for_any_jump_is_made_one_for_its_size():
     """)
     changes = _shown_changes(source, "jump_size")
     assert changes == [("labels[:, None] != labels[None, :]", "np.abs(labels[:, None] - labels[None, :])")]
+
+
+def test_a_change_comparing_a_value_with_its_own_length_is_never_a_fix():
+    """`column < len(patterns)` made `depth < len(depth)` by two names changed: true wherever the depths stay
+    below the image's height, so right on the inputs tried, and meaningless; a comparison the student wrote
+    that way is not held against other changes."""
+    source = textwrap.dedent("""
+        def graded(column, patterns, depth):
+            lit = (column >= 0) & (column < len(patterns))
+            return lit
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    both = [m for m in student.mutants("graded") if m.operator == "other_name"]
+    column, bound = (next(m for m in both if student.fix(m).changes[0][1:] == pair)
+                     for pair in (("column < len(patterns)", "depth < len(patterns)"), ("len(patterns)", "len(depth)")))
+    paired = dataclasses.replace(column, edits=column.edits + bound.edits)
+    assert student.compares_with_its_own_size(paired)
+    assert not student.compares_with_its_own_size(column) and not student.compares_with_its_own_size(bound)
+
+
+def test_a_bound_counted_by_len_is_counted_along_the_second_axis():
+    """`column < len(patterns)` with patterns (n_bits, width): len counts the patterns, the columns were meant;
+    a len not compared with anything (a loop's count) has no such change."""
+    source = textwrap.dedent("""
+        def graded(column, patterns):
+            lit = (column >= 0) & (column < len(patterns))
+            return lit, range(len(patterns))
+    """)
+    assert _shown_changes(source, "len_axis") == [("len(patterns)", "patterns.shape[1]")]

@@ -112,7 +112,8 @@ OPERATORS = {
     "accumulate": ("accumulat", "+=", "sum", "add"),   # total = x -> total += x in a loop, and back
     "magnitude": ("abs", "magnitude", "absolute"),   # np.argmin(values) -> np.argmin(np.abs(values))
     "fill_inf": ("inf", "zero", "start", "unfilled"),
-    "jump_size": ("jump", "abs", "difference", "penalty"),   # s * (a != b) -> s * np.abs(a - b): a jump's size   # costs = np.zeros(s) -> np.full(s, np.inf) before an argmin
+    "jump_size": ("jump", "abs", "difference", "penalty"),   # s * (a != b) -> s * np.abs(a - b): a jump's size
+    "len_axis": ("len", "axis", "column", "shape"),   # len(patterns) -> patterns.shape[1]: len counts the rows   # costs = np.zeros(s) -> np.full(s, np.inf) before an argmin
     "carry": ("each", "again", "running", "restart"),   # out = draw(image.copy(), l) -> out = draw(out, l) in a loop
     "summary": ("mean", "centroid", "average", "one point"),   # dst[0] -> dst_mean: one item where the mean belongs
     "reduced": ("mean", "average", "one value", "every point"),   # z = X[:, 2] -> X[:, 2].mean(): a column, its mean meant
@@ -1148,6 +1149,11 @@ def _make_size_given(node, payload):
     return new
 
 
+def _make_len_axis(node, payload):
+    # len(x) -> x.shape[1]: the length along the second axis
+    return ast.Subscript(ast.Attribute(copy.deepcopy(node.args[0]), "shape", ast.Load()), ast.Constant(1), ast.Load())
+
+
 def _make_jump_size(node, payload):
     # (a != b) -> np.abs(a - b): a jump of k paid k times, not once
     return ast.Call(_name("np.abs"), [ast.BinOp(copy.deepcopy(node.left), ast.Sub(), copy.deepcopy(node.comparators[0]))], [])
@@ -1293,7 +1299,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "negate": _make_negate, "logic": _make_logic,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -3513,6 +3519,9 @@ def _logic_changes(node, parent, parents):
             and node.args and isinstance(parents.get(id(node), (None,))[0], ast.Assign) \
             and _minimised(parents[id(node)][0], parents):
         yield "fill_inf", None, ""   # a table whose unfilled entries must lose an argmin started at 0, where they win
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "len" and len(node.args) == 1 \
+            and isinstance(node.args[0], ast.Name) and isinstance(parent, ast.Compare):
+        yield "len_axis", None, ""   # a bound counted along the first axis (rows) where the second (columns) is
     if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], ast.NotEq) \
             and isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.Mult):
         yield "jump_size", None, ""   # a penalty for any change (Potts) where one for its size belongs

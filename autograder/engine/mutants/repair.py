@@ -743,6 +743,34 @@ class _Student:
                 and isinstance(divided, ast.Name) and divided.id == node.value.id
         return False
 
+    def compares_with_its_own_size(self, mutant) -> bool:
+        """Whether the mutant makes a comparison of a value with its own length or shape (`depth < len(depth)`,
+        from `column < len(patterns)` by two names changed): values against the count of those values mean
+        nothing, and such a change mends only by being true on the inputs tried (a bound that never binds)."""
+        def own_sized(fn) -> set:
+            found = set()
+            for node in ast.walk(fn):
+                if not isinstance(node, ast.Compare):
+                    continue
+                sides = [node.left, *node.comparators]
+                bare = {side.id for side in sides if isinstance(side, ast.Name)}
+                sized = {part.args[0].id for side in sides for part in ast.walk(side)
+                         if isinstance(part, ast.Call) and _call_name(part) == "len" and part.args
+                         and isinstance(part.args[0], ast.Name)}
+                sized |= {part.value.id for side in sides for part in ast.walk(side)
+                          if isinstance(part, ast.Attribute) and part.attr in ("shape", "size")
+                          and isinstance(part.value, ast.Name)}
+                if bare & sized:
+                    found.add(ast.unparse(node))
+            return found
+        where = mutant.edits[0][0]
+        try:
+            mutated = _defs(mutated_defs(self.tree, mutant.edits, self.text)).get(where)
+        except (ValueError, SyntaxError):
+            return False
+        own = _defs(self.tree).get(where)
+        return mutated is not None and own is not None and bool(own_sized(mutated) - own_sized(own))
+
     def bypasses(self, mutant) -> bool:
         """Whether the mutant puts another name where the only reading of a value the def computes was
         (`normalised @ K.T` -> `X @ K.T`, `normalised` read nowhere else): it mends by skipping a step, which
@@ -2316,7 +2344,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
-        if fix.changes[0][0] in lines or _dehomogenisation_dropped(fix) or student.skips_a_right_step(mutant):
+        if fix.changes[0][0] in lines or _dehomogenisation_dropped(fix) or student.skips_a_right_step(mutant) \
+                or student.compares_with_its_own_size(mutant):
             continue
         if (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
                 and not variant.writes_inputs(mutant) and not variant.guard_untested(mutant, failing) \
@@ -2458,6 +2487,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     for index, both in enumerate(combined):
         if clock.left() <= 0 or (shown and index >= len(side)):
             break
+        if student.compares_with_its_own_size(both):
+            continue
         values = variant.answers(both, failing, inputs)
         if values is None or variant.fix(both) is None:
             continue
