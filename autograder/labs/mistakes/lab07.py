@@ -6,6 +6,18 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 MISTAKES = {
     # the API's rule: a function that takes an image returns its channel count (shapes named by
     # autograder.engine.forms); a grey image made BGR to "see it in colour", a colour one made grey
+    # the blind set 1204b's 07/08: the 1 in the rows' first column, the unknowns read as [x, y, 1]
+    "affine_lstsq with the ones column first": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src, dst = np.asarray(src, dtype=np.float64), np.asarray(dst, dtype=np.float64)
+            M = np.zeros((2 * len(src), 6))
+            M[0::2, 0] = 1.0
+            M[0::2, 1:3] = src
+            M[1::2, 3] = 1.0
+            M[1::2, 4:6] = src
+            params = np.linalg.lstsq(M, dst.reshape(-1), rcond=None)[0]
+            return params.reshape(2, 3)
+        """, ["the translation first"]),
     # the blind set 1204b's 07/02: a grey image given a channel axis that cv2.warpAffine drops, then indexed
     "rotate taking the first channel of a grey warp": ("lab07.ex2", """
         def rotate(image, angle_deg=45):
