@@ -27,6 +27,26 @@ _STITCH_CANVAS = """
             size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)"""
 
 MISTAKES = {
+    # the blind set 1204b's 08/03: the denormalising similarity inverted by hand, its translation not scaled
+    "homography_dlt inverting T_dst by hand without scaling its translation": ("lab08.ex2", """
+        def homography_dlt(src, dst):
+            src, dst = np.asarray(src, np.float64), np.asarray(dst, np.float64)
+            def similarity(p):
+                c = p.mean(axis=0)
+                s = np.sqrt(2) / np.linalg.norm(p - c, axis=1).mean()
+                return np.array([[s, 0.0, -s * c[0]], [0.0, s, -s * c[1]], [0.0, 0.0, 1.0]])
+            T1, T2 = similarity(src), similarity(dst)
+            a = (np.column_stack([src, np.ones(len(src))]) @ T1.T)[:, :2]
+            b = (np.column_stack([dst, np.ones(len(dst))]) @ T2.T)[:, :2]
+            rows = []
+            for (x, y), (u, v) in zip(a, b):
+                rows.append([x, y, 1, 0, 0, 0, -u * x, -u * y, -u])
+                rows.append([0, 0, 0, x, y, 1, -v * x, -v * y, -v])
+            Hn = np.linalg.svd(np.array(rows))[2][-1].reshape(3, 3)
+            s, tx, ty = T2[0, 0], T2[0, 2], T2[1, 2]
+            T2_inverse = np.array([[1.0 / s, 0.0, -tx], [0.0, 1.0 / s, -ty], [0.0, 0.0, 1.0]])
+            return T2_inverse @ Hn @ T1
+        """, ["its translation not divided by the scale"]),
     # the blind set 1204b's 08/01: an own inverse map keeping only the pixels whose source has w > 0
     "apply_homography keeping only w > 0": ("lab08.ex1", """
         def apply_homography(image, H, dsize=None):
