@@ -126,6 +126,8 @@ SHAPES = [
      lambda n: "def f(x, y):\n" + "    for x in y:\n        y = x\n" * n + "    return x\n", 500),
     ("static reading", "a fundamental matrix bound and given again and again",
      lambda n: "def f(a, K):\n" + "    F = fundamental_8point(a, a)\n    cv2.recoverPose(F, a, a, K)\n" * n, 250),
+    ("static reading", "a loop variable assigned again and again",
+     lambda n: "def f(xs, K):\n    for x, k in ((xs, K), (xs, K)):\n" + "        x = x @ k\n" * n, 400),
     ("static reading", "a chain of helpers",
      lambda n: "".join(f"def f{i}(x):\n    return f{i + 1}(x)\n" for i in range(n)), 200),
 ]

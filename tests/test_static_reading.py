@@ -1218,3 +1218,13 @@ def test_the_fisheye_lens_model_is_named_where_the_calibrations_belongs():
     wanted = "the fisheye lens model used for the calibration's distortion"
     assert wanted in one(code.format(call="fisheye.undistortImage", more=", Knew=K"))
     assert wanted not in one(code.format(call="undistort", more=""))
+
+
+def test_a_loop_variable_assigned_and_read_after_the_loop_is_not_dropped():
+    """The last turn's value read after the loop (`for x in xs: x = f(x)` then `return x`) is used."""
+    assert "a value assigned to the loop variable and dropped" not in one("""
+        def f(xs):
+            for x in xs:
+                x = x * 2
+            return x
+        """)

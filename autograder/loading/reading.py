@@ -1782,36 +1782,39 @@ def _fisheye_model(name, function) -> list[Finding]:
 
 
 def _loop_variable_assigned_in_vain(name, function) -> list[Finding]:
-    """``for x, K in ((x1, K1), (x2, K2)): x = x @ inv(K).T`` and nothing reads ``x`` after it in the turn: the
-    value assigned to the loop variable is dropped when the next turn binds it again, so the items looped over
-    (x1, x2) are not changed (a list, or names assigned one by one, keep them)."""
+    """``for x, K in ((x1, K1), (x2, K2)): x = x @ inv(K).T`` and nothing reads ``x`` after it, in the turn or after
+    the loop: the value assigned to the loop variable is dropped when the next turn binds it again, so the items
+    looped over (x1, x2) are not changed (a list, or names assigned one by one, keep them). (Each name's last
+    reading is found once: linear in the function's size.)"""
+    last_read: dict[str, tuple] = {}
+    for node in _nodes(function):
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
+            last_read[node.id] = max(last_read.get(node.id, (0, 0)), (node.lineno, node.col_offset))
     for loop in _nodes(function):
         if not isinstance(loop, ast.For) or loop.orelse:
             continue
-        targets = {t.id for t in ast.walk(loop.target) if isinstance(t, ast.Name)}
-        body = [node for statement in loop.body for node in ast.walk(statement)]
-        for assign in body:
+        elements = loop.target.elts if isinstance(loop.target, ast.Tuple) else [loop.target]
+        targets = [t.id if isinstance(t, ast.Name) else None for t in elements]
+        for assign in (node for statement in loop.body for node in ast.walk(statement)):
+            if isinstance(assign, (ast.Yield, ast.YieldFrom, ast.Return, ast.Nonlocal, ast.Global)):
+                break   # (a value handed out or kept beyond the turn)
             if not (isinstance(assign, ast.Assign) and len(assign.targets) == 1
                     and isinstance(assign.targets[0], ast.Name) and assign.targets[0].id in targets):
                 continue
             variable = assign.targets[0].id
-            end = (assign.end_lineno, assign.end_col_offset)
-            if any(isinstance(n, ast.Name) and n.id == variable and isinstance(n.ctx, ast.Load)
-                   and (n.lineno, n.col_offset) > end for n in body) \
-                    or any(isinstance(n, (ast.Yield, ast.YieldFrom, ast.Return, ast.Nonlocal, ast.Global)) for n in body):
-                continue
-            # (what the loop went over, where it is a literal of names: the items that stay unchanged)
+            if last_read.get(variable, (0, 0)) > (assign.end_lineno, assign.end_col_offset):
+                continue   # (read after it: later in the turn, or after the loop)
+            # (what the loop went over, where it is a literal: the items that stay unchanged)
+            position = targets.index(variable)
             items = loop.iter.elts if isinstance(loop.iter, (ast.Tuple, ast.List)) else []
-            position = [t.id for t in (loop.target.elts if isinstance(loop.target, ast.Tuple) else [loop.target])
-                        if isinstance(t, ast.Name)].index(variable) if isinstance(loop.target, (ast.Tuple, ast.Name)) else None
-            names = [ast.unparse(item.elts[position] if isinstance(item, ast.Tuple) and position is not None
-                                 and position < len(item.elts) else item) for item in items] if position is not None else []
+            names = [ast.unparse(item.elts[position] if isinstance(item, ast.Tuple) and position < len(item.elts)
+                                 else item) for item in items if isinstance(item, ast.Tuple) or len(targets) == 1]
             unchanged = f"{', '.join(f'`{n}`' for n in names)} stay as they were" if names else \
                 "the items looped over stay as they were"
             line = _line(assign)
             return [Finding(name, line, "a value assigned to the loop variable and dropped",
                             f"{name} (line {line}) assigns `{ast.unparse(assign)[:80]}` to `{variable}`, the variable of "
-                            f"the loop at line {_line(loop)}, and nothing reads it after in the turn: the next turn binds "
+                            f"the loop at line {_line(loop)}, and nothing reads it after: the next turn binds "
                             f"`{variable}` again, so the value is dropped and {unchanged}. Keep the results (append them "
                             "to a list, or assign each name on its own line)")]
     return []
