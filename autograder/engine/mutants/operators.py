@@ -2683,7 +2683,8 @@ def _student_changes(node, parent, parents, words):
             else node.left.slice
         if isinstance(last, ast.Slice) and last.lower is None and last.step is None \
                 and isinstance(last.upper, ast.Constant) and last.upper.value in (2, 3) \
-                and ast.dump(node.right) != ast.dump(_make_dehomogenise(node.left, last.upper.value).right):
+                and not (isinstance(node.right, ast.Subscript) and ast.dump(node.right.value) == ast.dump(node.left.value)):
+            # (a divisor read from the points themselves, `x[:, 2]`, is theirs already: its axis is another slip)
             yield "dehomogenise", ("divisor", last.upper.value), ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.MatMult):
         # `pts @ M[:, :3].T` (or `M[:, :3] @ X`) where the homogeneous 1 belongs: M's last column missing,
