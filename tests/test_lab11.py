@@ -1,11 +1,13 @@
 """Lab 11: the reference passes, the skeleton scores 0, usual mistakes are named."""
 
+import numpy as np
 import pytest
 
 from autograder.engine.runner import grade
 from autograder.labs.mistakes.lab11 import MISTAKES
 from conftest import (THREE_ROW_TRIANGULATION, assert_all_not_implemented, assert_full_marks,
                       assert_mistake_named, check_results, graded_case, mutant)
+from fixtures import lab11 as truth
 
 MODULE = "lab11_two_view"
 
@@ -266,10 +268,6 @@ def test_points_indexed_by_an_estimators_mask_are_its_inliers_only_when_the_mask
 def test_the_truth_behind_no_point_or_points_seen_by_one_camera_only_is_empty_not_an_error():
     """A pipeline that keeps no correct match (0 of its points land inside image 2) is judged, never a grader
     error: cv2.remap refuses an empty map, so the truth's bilinear sampling asks it for no point."""
-    import numpy as np
-
-    from fixtures import lab11 as truth
-
     pair = truth.rendered_pair(seed=3)
     X, pts2, valid = truth.true_correspondences(pair, np.zeros((0, 2)))
     assert X.shape == (0, 3) and pts2.shape == (0, 2) and valid.shape == (0,)

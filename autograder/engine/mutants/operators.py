@@ -1172,9 +1172,7 @@ def _minimised(assign, parents) -> bool:
     (`np.argmin(costs, ...)`, `costs.argmin()`, `np.min(costs)`)."""
     if not (len(assign.targets) == 1 and isinstance(assign.targets[0], ast.Name)):
         return False
-    fn = assign
-    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
-        fn = parents[id(fn)][0]
+    fn = _def_of(assign, parents)
     if not hasattr(fn, "_minimised"):   # (read once per def: every zeros asks)
         minimised = set()
         for n in ast.walk(fn):
@@ -3438,14 +3436,19 @@ def _chained_product(assign, parents) -> bool:
     if not isinstance(assign.targets[0], ast.Name):
         return False
     name = assign.targets[0].id
-    fn = assign
-    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
-        fn = parents[id(fn)][0]
+    fn = _def_of(assign, parents)
     if not hasattr(fn, "_identities"):   # (read once per def: every assignment in a loop asks)
         fn._identities = [(n.targets[0].id, n.lineno) for n in ast.walk(fn)
                           if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Name)
                           and isinstance(n.value, ast.Call) and _dotted(n.value.func).rsplit(".", 1)[-1] in ("eye", "identity")]
     return any(started == name and line < assign.lineno for started, line in fn._identities)
+
+
+def _def_of(node, parents):
+    """The def holding ``node`` (the outermost node reached, where none does)."""
+    while id(node) in parents and not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        node = parents[id(node)][0]
+    return node
 
 
 def _in_loop(node, parents) -> bool:
@@ -3574,9 +3577,7 @@ def _parts(node, parents) -> list:
     if not (isinstance(node, ast.Call) and node.args and isinstance(node.args[0], ast.Name)
             and _dotted(node.func).rsplit(".", 1)[-1] in _WHOLE):
         return []
-    fn = node
-    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
-        fn = parents[id(fn)][0]
+    fn = _def_of(node, parents)
     if not hasattr(fn, "_parts_index"):
         parts = {}
         for sub in ast.walk(fn):
@@ -3609,9 +3610,7 @@ def _summaries(node, parents) -> list:
     if not (isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name)
             and _constant_index(node.slice) is not None):
         return []
-    fn = node
-    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
-        fn = parents[id(fn)][0]
+    fn = _def_of(node, parents)
     before = [name for line, name in _index(fn, parents)[1].get(node.value.id, ()) if line < node.lineno]
     return before[-2:]   # (the latest: a long function's every mean would make many changes per item)
 
@@ -3646,9 +3645,7 @@ def _restarted(node, parents) -> str | None:
     running = statement.targets[0].id
     if running == source.id or any(isinstance(n, ast.Name) and n.id == running for n in ast.walk(statement.value)):
         return None
-    fn = statement
-    while id(fn) in parents and not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
-        fn = parents[id(fn)][0]
+    fn = _def_of(statement, parents)
     # (made before the loop from the same input: `out = image.copy()`, `out = np.array(image)`)
     made = any(line < statement.lineno and source.id in read for line, read in _index(fn, parents)[0].get(running, ()))
     return running if made else None
