@@ -2117,6 +2117,35 @@ def test_a_change_that_works_around_a_step_left_out_is_no_repair():
     """)["project"])
 
 
+PADDED = """
+    def scale(image, sx=1.5, sy=1.5):
+        height, width = image.shape[:2]
+        new_w, new_h = max(int(np.ceil(width * sx)), 1), max(int(np.ceil(height * sy)), 1)
+        scaled = cv2.warpAffine(image, np.float32([[sx, 0, 0], [0, sy, 0]]), (new_w, new_h))
+        part = scaled[:height, :width]
+        missing_rows, missing_cols = height - part.shape[0], width - part.shape[1]
+        return cv2.copyMakeBorder(part, 0, missing_cols, 0, missing_rows, cv2.BORDER_CONSTANT, value=0)
+"""
+
+
+def test_a_size_dropped_where_the_code_goes_on_to_fit_the_value_to_it_is_no_repair():
+    """The blind set 1204b's 07/04: a canvas of the student's own size, cropped and padded back, with the
+    paddings in the wrong order. `dsize` -> None makes the crop and the padding do nothing, and the
+    answers come right: a compensation. The same size dropped where the warp is returned at once (a
+    canvas widened to fit the whole shear) is the slip itself, and stays a repair."""
+    before = _defs_of(PADDED)["scale"]
+    assert repair._disconnects(before, _defs_of(PADDED.replace("(new_w, new_h))", "None)"))["scale"])
+    assert not repair._disconnects(before, _defs_of(PADDED.replace(
+        "missing_cols, 0, missing_rows", "missing_rows, 0, missing_cols"))["scale"])
+    widened = """
+        def shear(image, s=0.5):
+            h, w = image.shape[:2]
+            out_w = w + int(abs(s) * h)
+            return cv2.warpAffine(image, np.float32([[1, s, 0], [0, 1, 0]]), (out_w, h))
+    """
+    assert not repair._disconnects(_defs_of(widened)["shear"], _defs_of(widened.replace("(out_w, h)", "(w, h)"))["shear"])
+
+
 def test_a_float_mask_divided_by_255_is_mended_by_the_division_taken_out_not_a_product(tmp_path):
     """The mask scaled as an 8-bit image: on the checks' 0/1 masks `* 255` clipped to [0, 1] mends the
     blend as exactly as taking the division out; on a soft mask only the latter does."""
@@ -2633,6 +2662,28 @@ def test_names_unpacked_as_written_are_never_exchanged_by_a_repair():
     assert "(x, y)" in refused, refused
     assert "(i, (X, Y, Z))" in refused, refused   # (a point's coordinates in capitals, in a nested tuple)
     assert "w, h = image.shape[:2]" in kept, kept
+
+
+def test_sizes_named_by_the_axis_they_measure_are_not_exchanged():
+    """`missing_rows, missing_cols = height - ..., width - ...`: each name says the axis of its value (a word
+    of it), so exchanging the names or the values mends a later swap by making the names lie; names that
+    say nothing of an axis may be exchanged."""
+    source = textwrap.dedent("""
+        def graded(image, part):
+            height, width = image.shape[:2]
+            missing_rows, missing_cols = height - part.shape[0], width - part.shape[1]
+            first, second = height - part.shape[0], width - part.shape[1]
+            return missing_rows, missing_cols, first, second
+    """)
+    student = repair._Student(source, ast.parse(source), ["graded"])
+    student.reference_parts = frozenset()
+    swaps = [m for m in student.mutants("graded") if m.operator == "swap_items" and student.fix(m)
+             and student.fix(m).changes[0][0] in (4, 5)]
+    refused = {(student.fix(m).changes[0][0], student.fix(m).changes[0][1]) for m in swaps if student.reorders_api_results(m)}
+    kept = {(student.fix(m).changes[0][0], student.fix(m).changes[0][1]) for m in swaps if not student.reorders_api_results(m)}
+    assert {line for line, _ in refused} == {4}, (refused, kept)
+    assert any(line == 5 for line, _ in kept), kept
+    assert len(refused) >= 2, refused   # (the names exchanged, and the values)
 
 
 def test_a_fix_downstream_of_another_in_the_same_def_is_dropped():

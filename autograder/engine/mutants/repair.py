@@ -259,7 +259,8 @@ def _disconnects(before, after, helpers_changed=frozenset(), own=frozenset()) ->
     function returns a name that value reads (`inv(T) @ P` -> `P`: T then reaches nothing) or changes a
     helper that computes one (T made the identity). The answers come right; the step is still missing.
     So does a change after which a parameter the function used no longer reaches its answers, or a
-    value it computed with a def of the student's own (``own``: the module's defs)."""
+    value it computed with a def of the student's own (``own``: the module's defs), or a size it
+    computed for a value whose size it goes on to read (:func:`_size_step_emptied`)."""
     # A parameter whose value reached the answers and no longer does: the change makes the caller's
     # argument irrelevant (a penalty `s` replaced by `block_size`, which happens to suit the inputs).
     # A helper of the student's whose result no longer does: the student wrote it for that step, and
@@ -267,7 +268,7 @@ def _disconnects(before, after, helpers_changed=frozenset(), own=frozenset()) ->
     # normalised by U; the raw points in the rows where the cameras were never conditioned).
     parameters = {a.arg for a in (*before.args.posonlyargs, *before.args.args, *before.args.kwonlyargs)}
     dropped = _live(before) - _live(after)
-    if dropped & (parameters | _own_results(before, frozenset(own))):
+    if dropped & (parameters | _own_results(before, frozenset(own))) or _size_step_emptied(before, dropped):
         return True
     left, feeding = _left_out(before)
     if not left:
@@ -535,13 +536,13 @@ class _Student:
                                                                                     node.iter):
                             return True
                     continue
-                if not (names(before) != names(after) and sorted(names(before)) == sorted(names(after))):
+                targets = [t.id for t in getattr(node.targets[0], "elts", ()) if isinstance(t, ast.Name)]
+                if not (names(before) != names(after) and sorted(names(before)) == sorted(names(after))) \
+                        or names(before) != targets[:len(names(before))]:
                     # (or the value's items exchanged under names that say their order: `x, y = (Y, X)` for a
                     # right `x, y = (X, Y)` compensates as a relabelling does)
                     if isinstance(node, ast.Assign) and isinstance(node.value, ast.Tuple) \
-                            and _in_known_order([t.id for t in getattr(node.targets[0], "elts", ())
-                                                 if isinstance(t, ast.Name)], node.value) \
-                            and mutant.edits[0][2] in _EXCHANGES | {"swap_items"}:
+                            and _in_known_order(targets, node.value) and mutant.edits[0][2] in _EXCHANGES | {"swap_items"}:
                         return True
                     continue
                 if isinstance(node.value, ast.Call) and _call_name(node.value) in self.api:
@@ -674,22 +675,7 @@ class _Student:
         return self._sizes[where]
 
     def _sized(self, where: str) -> set:
-        nodes, _ = self._walk(where)
-        assigned = [n for n in nodes if isinstance(n, (ast.Assign, ast.AugAssign, ast.AnnAssign)) and n.value is not None]
-        names: set = set()
-        for _ in range(4):   # (a few rounds: `h, w = shape[:2]`, `cx = w / 2`, `tx = cx - s * cx`)
-            before = len(names)
-            for node in assigned:
-                if _reads_size(node.value, names):
-                    # (names bound whole, `w` and `h, w`: an entry set from a size, `M[0, 2] = cx`, does not
-                    # make the whole matrix a size)
-                    targets = node.targets if isinstance(node, ast.Assign) else [node.target]
-                    names |= {t.id for target in targets
-                              for t in (target.elts if isinstance(target, (ast.Tuple, ast.List)) else [target])
-                              if isinstance(t, ast.Name)}
-            if len(names) == before:
-                break
-        return names
+        return _sized_names(self._walk(where)[0])
 
     def colours_with_a_size(self, mutant) -> bool:
         """Whether the mutant gives an OpenCV drawing call, as its colour, a name computed from an image's
@@ -1562,6 +1548,13 @@ _AXES = (("h", "w"), ("h", "w", "c"), ("height", "width"), ("height", "width", "
 _DISTORTION = (("k1", "k2", "p1", "p2"), ("k1", "k2", "p1", "p2", "k3"))
 _X_NAMES = {"x", "u", "col", "column", "xs", "us", "cols", "x_img", "px"}
 _Y_NAMES = {"y", "v", "row", "ys", "vs", "rows", "y_img", "py"}
+_X_WORDS = {"width", "cols", "columns", "ncols"}   # words that say an axis within a longer name (`missing_cols`)
+_Y_WORDS = {"height", "rows", "nrows"}
+
+
+def _on_axis(name: str, axis: set) -> bool:
+    """Whether ``name`` (lowered) is one of ``axis``'s names, or has one of its words between underscores."""
+    return name in axis or any(word in (_X_WORDS | _Y_WORDS) & axis for word in re.split(r"[_\d]+", name))
 
 
 def _in_known_order(names, value) -> bool:
@@ -1580,6 +1573,10 @@ def _in_known_order(names, value) -> bool:
         # (`col, row = u / w, v / w`: each name says the axis of the value it takes -- x, u, col; y, v, row)
         read = [next((n.id.lower() for n in ast.walk(e) if isinstance(n, ast.Name)), "") for e in value.elts]
         if all(name in axis and given in axis for name, given, axis in zip(lowered, read, (_X_NAMES, _Y_NAMES))):
+            return True
+        # (or by a word of each, in either order: `missing_rows, missing_cols = height - ..., width - ...`)
+        axes = (_X_NAMES | _X_WORDS, _Y_NAMES | _Y_WORDS)
+        if all(any(_on_axis(name, axis) and _on_axis(given, axis) for axis in axes) for name, given in zip(lowered, read)):
             return True
     text = ast.unparse(value)
     if re.search(r"\.shape\b|\bnp\.shape\(", text):
@@ -1856,6 +1853,53 @@ def _widened(call, defaults=(), factors=(4.0,)) -> list:
 # the colour's position among an OpenCV drawing function's arguments
 _COLOUR_AT = {"line": 3, "arrowedLine": 3, "rectangle": 3, "circle": 3, "drawMarker": 2, "ellipse": 6,
               "polylines": 3, "fillPoly": 2, "fillConvexPoly": 2, "putText": 5}
+
+
+def _bound_names(node) -> set:
+    """The names an assignment binds whole (`w`, `h, w`; not `M` of `M[0, 2] = cx`)."""
+    targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+    return {t.id for target in targets for t in (target.elts if isinstance(target, (ast.Tuple, ast.List)) else [target])
+            if isinstance(t, ast.Name)}
+
+
+def _sized_names(nodes) -> set:
+    """The names the assignments among ``nodes`` compute from an array's size (directly or through one another)."""
+    assigned = [n for n in nodes if isinstance(n, (ast.Assign, ast.AugAssign, ast.AnnAssign)) and n.value is not None]
+    names: set = set()
+    for _ in range(4):   # (a few rounds: `h, w = shape[:2]`, `cx = w / 2`, `tx = cx - s * cx`)
+        before = len(names)
+        for node in assigned:
+            if _reads_size(node.value, names):
+                names |= _bound_names(node)
+        if len(names) == before:
+            break
+    return names
+
+
+def _size_step_emptied(before, dropped: set) -> bool:
+    """Whether ``dropped`` (names a change leaves unused) holds a size ``before`` computes for a value it
+    makes (`scaled = cv2.warpAffine(image, M, (new_w, new_h))`) and then reads the size of that value
+    or of one made from it (`part = scaled[:h, :w]`, `part.shape[0]`): the student's own steps fit
+    the value to the size they chose, so a change that lets the value take another size (`dsize` ->
+    None, the input's) leaves those steps nothing to do -- a compensation, not the slip. (A size
+    computed for what is returned at once, `return cv2.warpAffine(image, M, (out_w, h))`, is the
+    slip itself when the answer must keep the input's size.)"""
+    nodes = list(ast.walk(before))
+    sizes = dropped & _sized_names(nodes)
+    if not sizes:
+        return False
+    assignments = sorted((n for n in nodes if isinstance(n, (ast.Assign, ast.AnnAssign)) and n.value is not None),
+                         key=lambda n: n.lineno)
+    reads = lambda node: {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}  # noqa: E731
+    made = set()   # the values made with those sizes, and those made from them
+    for node in assignments:
+        if reads(node.value) & (sizes | made):
+            made |= _bound_names(node) - _sized_names([node])
+    made -= sizes
+    return any((isinstance(n, ast.Attribute) and n.attr in ("shape", "size") and isinstance(n.value, ast.Name)
+                and n.value.id in made)
+               or (isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "len" and n.args
+                   and isinstance(n.args[0], ast.Name) and n.args[0].id in made) for n in nodes)
 
 
 def _reads_size(node, names) -> bool:

@@ -18,6 +18,20 @@ MISTAKES = {
             params = np.linalg.lstsq(M, dst.reshape(-1), rcond=None)[0]
             return params.reshape(2, 3)
         """, ["the translation first"]),
+    # the blind set 1204b's 07/04: the paddings given as (top, right, left, bottom) -- told at the padding,
+    # not at the warp whose size, dropped, would leave the crop and the padding nothing to do
+    "scale padding the missing columns at the bottom": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            height, width = image.shape[:2]
+            if sx <= 0 or sy <= 0:
+                return _warp(image, scaling_matrix(sx, sy))
+            new_w, new_h = max(int(np.ceil(width * sx)), 1), max(int(np.ceil(height * sy)), 1)
+            scaled = cv2.warpAffine(image, np.float32([[sx, 0, 0], [0, sy, 0]]), (new_w, new_h),
+                                    flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+            part = scaled[:height, :width]
+            missing_rows, missing_cols = height - part.shape[0], width - part.shape[1]
+            return cv2.copyMakeBorder(part, 0, missing_cols, 0, missing_rows, cv2.BORDER_CONSTANT, value=0)
+        """, ["`cv2.copyMakeBorder(part, 0, missing_rows, 0, missing_cols, ...)`"]),
     # the blind set 1204b's 07/02: a grey image given a channel axis that cv2.warpAffine drops, then indexed
     "rotate taking the first channel of a grey warp": ("lab07.ex2", """
         def rotate(image, angle_deg=45):
