@@ -34,12 +34,12 @@ def triangulate(P1, P2, pts1, pts2):
     for i in range(len(pts1)):
         A = np.zeros((4, 4))
         views = ((P1, pts1[i]), (P2, pts2[i]))
-        for i, (P, (x, y)) in enumerate(views):     # two equations per view
-            A[2 * i] = x * P[2] - P[0]
-            A[2 * i + 1] = y * P[2] - P[1]
+        for k, (P, (x, y)) in enumerate(views):     # two equations per view
+            A[2 * k] = x * P[2] - P[0]
+            A[2 * k + 1] = y * P[2] - P[1]
         _, _, Vt = np.linalg.svd(A)
         X = Vt[-1]                                   # null vector of A
-        points[i] = X[:3] / X[3]
+        points[i] = X[:3] / max(X[3], 1e-12)
     return points
 
 

@@ -86,12 +86,22 @@ def essential_from_fundamental(F, K1, K2):
 
 def essential_8point(pts1, pts2, K1, K2):
     """The 8-point algorithm on normalised coordinates, then singular values forced to (1, 1, 0)."""
-    x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
-    x2 = _homogeneous(pts2) @ np.linalg.inv(K2).T
-    E = _eight_point_core(x1, x2)
+    def normalised(pts, K):
+        # x_hat = K^-1 (u, v, 1) written out: y from K's second row, then x with the skew.
+        K = np.asarray(K, dtype=np.float64)
+        K = K / K[2, 2]
+        pts = np.asarray(pts, dtype=np.float64).reshape(-1, 2)
+        fx, skew, cx = K[0]
+        fy, cy = K[1, 1], K[1, 2]
+        y = (cy - pts[:, 1]) / fy
+        x = (pts[:, 0] - cx - skew * y) / fx
+        return np.column_stack([x, y, np.ones(len(pts))])
+
+    x1, x2 = normalised(pts1, K1), normalised(pts2, K2)
+    A = np.array([np.kron(p2, p1) for p1, p2 in zip(x1, x2)])    # one row kron(x2, x1) per pair
+    E = np.linalg.svd(A)[2][-1].reshape(3, 3)                   # null vector, row by row
     U, _, Vt = np.linalg.svd(E)
-    E = U @ np.diag([1.0, 1.0, 0.0]) @ Vt
-    return np.linalg.inv(K2).T @ E @ np.linalg.inv(K1)
+    return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
 
 
 def _eight_point_core(x1, x2):

@@ -342,7 +342,8 @@ def gray_code_patterns(width, n_bits):
     """
     width, n_bits = int(width), int(n_bits)
     u = np.arange(width)
-    k = np.floor(u * (2 ** n_bits / width)).astype(np.int64)    # stripe of each column
+    edges = np.linspace(0, width, 2 ** n_bits + 1)             # stripe borders
+    k = np.digitize(u, edges)                                  # stripe of each column
     gray = k ^ (k >> 1)
     patterns = np.zeros((n_bits, width), dtype=np.uint8)
     for i in range(n_bits):                                    # row 0: most significant bit
