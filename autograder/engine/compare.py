@@ -338,6 +338,35 @@ def warp_error(got, source, M, dsize=None, good_enough: float = 0.0, inside=None
     return best
 
 
+# A warp's pixel convention (the centre of a pixel or its corner at (0, 0)) moves the image by at most
+# half a pixel, which warp_error forgives; a whole pixel more is a slip (a border added and not taken
+# back, a shift split into int() and a remainder). Measured (benchmarks/whole_pixel_shift.py, the lab 7
+# and 8 checks' images and maps): legitimate warps -- bilinear, nearest, cubic, Lanczos, a float32 map,
+# either half-pixel convention -- fit the expected image moved by a whole pixel at best 1.56 times
+# worse than within half a pixel; warps off by a whole pixel fit it at least 1.45 times better (0.68).
+WHOLE_PIXEL_OFFSETS = [(dx, dy) for dx in (-1, 0, 1) for dy in (-1, 0, 1) if dx or dy]
+WHOLE_PIXEL_RATIO = 0.75   # the moved fit at most this share of the best fit within half a pixel
+WHOLE_PIXEL_FLOOR = 0.3    # grey levels: a fit within half a pixel nearer than this is exact
+
+
+def whole_pixel_shift(got, source, M, dsize=None, inside=None) -> tuple[int, int, float, float] | None:
+    """``(dx, dy, within, moved)`` when ``got`` is ``source`` warped by ``M`` and then moved by a whole
+    pixel (dx, dy in -1, 0, 1), as measured by the mean blurred difference: ``moved`` from the warp so
+    moved, ``within`` from the nearest warp within half a pixel (:func:`warp_error`); None when no
+    whole-pixel move fits clearly better (:data:`WHOLE_PIXEL_RATIO`)."""
+    from fixtures.images import as_homography, coverage, warp
+
+    H = as_homography(M)
+    if inside is None:
+        inside, _ = coverage(H, source.shape, dsize)
+    within = warp_error(got, source, M, dsize, inside=inside)
+    if not np.isfinite(within) or within < WHOLE_PIXEL_FLOOR:
+        return None
+    moved, dx, dy = min((blurred_difference(got, warp(source, np.array([[1, 0, dx], [0, 1, dy], [0, 0, 1]]) @ H, dsize),
+                                            inside), dx, dy) for dx, dy in WHOLE_PIXEL_OFFSETS)
+    return (dx, dy, within, moved) if moved < WHOLE_PIXEL_RATIO * within else None
+
+
 def fill_fraction(got, outside) -> float:
     """Fraction of the pixels that should be black fill (``outside``) that are not 0."""
     outside = np.asarray(outside, dtype=bool)

@@ -38,7 +38,7 @@ from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, ment
                     size_given_as_shape)
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, rows_left_out, rows_left_out_words,
-                      warp_error)
+                      warp_error, whole_pixel_shift)
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
 
@@ -496,6 +496,16 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
     got = t.expect_array(got, what, shape=expected_shape, dtype=np.uint8)
     error = warp_error(got, source, M, dsize, good_enough=IMAGE_TOLERANCE / 2, inside=inside)
     if error <= IMAGE_TOLERANCE:
+        moved = whole_pixel_shift(got, source, M, dsize, inside)
+        if moved is not None:
+            dx, dy, within, nearer = moved
+            return partial(0.5, measured(
+                f"{what}: the image content is right but a whole pixel off: it is the expected image moved by "
+                f"{_pixels(dx, 'right', 'left')}{' and ' if dx and dy else ''}{_pixels(dy, 'down', 'up')} "
+                f"({nearer:.1f} grey levels from that, {within:.1f} from the expected image at best). Where a pixel "
+                "is (its centre or its corner at (0, 0)) moves an image by half a pixel at most; look for a pixel "
+                "added or lost on the way: a border added and not taken back, a shift split into a whole part and "
+                "a remainder that do not add up."), mistake=WHOLE_PIXEL_OFF)
         nonblack = fill_fraction(got, outside)
         if nonblack > FILL_TOLERANCE:
             held = fill_held(got, source, M, dsize, outside)
@@ -545,6 +555,13 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
            "(see the pictures).")
+
+
+WHOLE_PIXEL_OFF = "the image is a whole pixel off"
+
+
+def _pixels(offset: int, positive: str, negative: str) -> str:
+    return "" if not offset else f"1 px {positive if offset > 0 else negative}"
 
 
 FORWARD_MAPPED = ("the image is mapped forward: each source pixel is sent to the output and copied there, "

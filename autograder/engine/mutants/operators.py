@@ -1229,6 +1229,9 @@ def _make_logic(node, payload):
 
 def _make_function(node, payload):
     new = copy.deepcopy(node)
+    if isinstance(node.func, ast.Name) and node.func.id == "int" and payload.endswith(".floor"):
+        new.args = [ast.Call(_name(payload), new.args, [])]   # int(t) -> int(np.floor(t)): a whole number still
+        return new
     new.func = _name(payload)
     return new
 
@@ -2229,6 +2232,7 @@ _CV_MISTAKEN = {"estimateAffinePartial2D": "estimateAffine2D", "estimateAffine2D
 _UNARY = {"sin", "cos", "tan", "arcsin", "arccos", "arctan", "abs", "absolute", "fabs", "sqrt", "square", "exp",
           "log", "round", "rint", "floor", "ceil", "deg2rad", "rad2deg", "radians", "degrees", "int",
           "unique", "sort"}   # (and an order imposed that does not belong: np.unique sorts and drops repeats)
+_ROUNDED = {"floor", "ceil", "round", "rint", "trunc", "fix", "around"}   # a value already whole: int() of it cuts nothing
 _WHOLE_METHODS = {"mean", "sum", "max", "min", "median"}
 _WHOLE_REDUCTIONS = {"np.mean", "np.median", "np.sum", "np.max", "np.min", "np.amax", "np.amin"}
 _MISTAKEN = {"sin": "cos", "cos": "sin", "arcsin": "arccos", "arccos": "arcsin", "tan": "arctan", "arctan": "tan",
@@ -2860,6 +2864,11 @@ def _student_changes(node, parent, parents, words):
         yield "identity", f"{prefix}eye({ast.unparse(node.args[0].elts[0])})", ""
     if short in _CV_MISTAKEN and prefix in ("cv2.", "cv."):
         yield "function", prefix + _CV_MISTAKEN[short], ""
+    if dotted == "int" and len(node.args) == 1 and not node.keywords and not (
+            isinstance(node.args[0], ast.Call) and _dotted(node.args[0].func).rsplit(".", 1)[-1] in _ROUNDED):
+        # (truncation taken for the floor: int(-20.4) is -20, the whole pixels below it -21 -- a shift split into
+        # whole pixels and a remainder that do not add up for negative ones)
+        yield "function", "np.floor", ""
     if isinstance(node.func, ast.Attribute) and node.func.attr == "reshape":
         yield "transpose", "for_reshape", ""
         inner = node.func.value
