@@ -27,6 +27,15 @@ _STITCH_CANVAS = """
             size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)"""
 
 MISTAKES = {
+    # the blind set 1204c's 08/03: the identity H taken as "nothing to do", the moving image returned as it is
+    "warp_to_reference returning the moving image for the identity": ("lab08.ex2", """
+        def warp_to_reference(reference, moving, H):
+            height, width = reference.shape[:2]
+            H = np.asarray(H, dtype=np.float64)
+            if np.allclose(H, H[2, 2] * np.eye(3)):
+                return moving.copy()
+            return apply_homography(moving, H, (width, height))
+        """, ["the identity too"]),
     # the blind set 1204b's 08/03: the denormalising similarity inverted by hand, its translation not scaled
     "homography_dlt inverting T_dst by hand without scaling its translation": ("lab08.ex2", """
         def homography_dlt(src, dst):
