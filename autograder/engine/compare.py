@@ -360,6 +360,13 @@ def whole_pixel_shift(got, source, M, dsize=None, inside=None) -> tuple[int, int
     if inside is None:
         inside, _ = coverage(H, source.shape, dsize)
     within = warp_error(got, source, M, dsize, inside=inside)
+    # (and a centre taken half a pixel off in both images -- `(w / 2, h / 2)` for a rotation's centre, as
+    # OpenCV's tutorial has it -- which moves the output by (I - A) c: a whole pixel for a quarter turn)
+    for cx, cy in HALF_PIXEL_OFFSETS:
+        if within < WHOLE_PIXEL_FLOOR:
+            break
+        conjugated = np.array([[1, 0, cx], [0, 1, cy], [0, 0, 1]]) @ H @ np.array([[1, 0, -cx], [0, 1, -cy], [0, 0, 1]])
+        within = min(within, blurred_difference(got, warp(source, conjugated, dsize), inside))
     if not np.isfinite(within) or within < WHOLE_PIXEL_FLOOR:
         return None
     moved, dx, dy = min((blurred_difference(got, warp(source, np.array([[1, 0, dx], [0, 1, dy], [0, 0, 1]]) @ H, dsize),

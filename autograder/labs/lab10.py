@@ -1378,7 +1378,7 @@ def undistort_check(t):
     what = "undistort_image(image, K, dist)"
     got, error, valid = undistorted(t, what, distorted, clean, "")
     if error <= UNDISTORT_TOLERANCE:
-        return undistort_full_lens(t, error)
+        return levels_kept(t, distorted, clean, valid) or undistort_full_lens(t, error)
     renamed = new_camera_matrix_verdict(t, what, got, clean, K, dist)
     if renamed:
         return renamed
@@ -1391,6 +1391,32 @@ def undistort_check(t):
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     t.fail(f"{what} differs from the distortion-free view by {error:.0f} grey levels on average.")
+
+
+# An undistortion moves pixels and keeps their levels. A chessboard view spans black to white, so a result
+# stretched to the full range (cv2.normalize with NORM_MINMAX, an equalisation) is the view itself there:
+# the same view dimmed to levels DIM_LEVELS shows it (blind set 1204c's 10/06). Legitimate undistortions
+# (bilinear, its black border) keep the dimmed levels: linear interpolation commutes with them.
+DIM_LEVELS = (40, 167)
+
+
+def levels_kept(t: Trial, distorted, clean, valid):
+    """None when ``undistort_image`` keeps a dimmed view's grey levels; else the verdict (half the points:
+    the geometry was right on the full-range view)."""
+    low, high = DIM_LEVELS
+    dim = lambda image: (low + image.astype(np.float64) * (high - low) / 255.0).round().astype(np.uint8)  # noqa: E731
+    what = f"undistort_image(image, K, dist) on the same view dimmed to grey levels {low}-{high}"
+    got = undistorted_answer(t, what, t.call("undistort_image", dim(distorted), truth.POSE_K, truth.DIST),
+                             distorted.shape)
+    error = blurred_difference(got, dim(clean), valid)
+    if error <= UNDISTORT_TOLERANCE:
+        return None
+    seen = got[valid]
+    return partial(0.5, measured(
+        f"{what} differs from that view undistorted by {error:.0f} grey levels on average: its levels span "
+        f"{int(seen.min())}-{int(seen.max())} where the input's span {low}-{high} (on the full-range view the "
+        "result is right). Undistortion moves pixels; it does not change their grey levels."),
+        mistake="the grey levels are changed")
 
 
 # The API's distortion is OpenCV's whole model (k1, k2, p1, p2, k3). The first lens's tangential

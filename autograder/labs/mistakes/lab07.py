@@ -25,14 +25,14 @@ MISTAKES = {
             padded = cv2.copyMakeBorder(image, 1, 1, 1, 1, cv2.BORDER_CONSTANT, value=0)
             A3 = np.vstack([np.asarray(A, dtype=np.float64)[:2], [0.0, 0.0, 1.0]])
             return _warp(padded, A3, dsize or (width, height))
-        """, ["a whole pixel off", "cv2.copyMakeBorder("]),
+        """, ["a whole pixel off"]),
     # the blind set 1204c's 07/01: whole pixels by floor, the remainder by truncation (int)
     "translate split into whole pixels and a remainder that do not add up": ("lab07.ex1", """
         def translate(image, tx=100, ty=50):
             ix, iy = int(np.floor(tx)), int(np.floor(ty))
             fx, fy = tx - int(tx), ty - int(ty)
             return _warp(image, np.array([[1.0, 0.0, ix + fx], [0.0, 1.0, iy + fy], [0.0, 0.0, 1.0]]))
-        """, ["a whole pixel off", "int(np.floor(tx))"]),
+        """, ["a whole pixel off"]),
     # the blind set 1204b's 07/04: the paddings given as (top, right, left, bottom) -- told at the padding,
     # not at the warp whose size, dropped, would leave the crop and the padding nothing to do
     "scale padding the missing columns at the bottom": ("lab07.ex3", """
