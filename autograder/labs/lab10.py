@@ -1928,11 +1928,13 @@ def _without_dist(rows, frames, poses, K) -> float | None:
 
 
 @ext3.check("track_pose follows a board along a known trajectory (NaN where it leaves the view; a single frame "
-            "too), also through a distorting lens (dist given)", points=4)
+            "too; a board rocking through face-on), also through a distorting lens (dist given)", points=4)
 def track_check(t):
     frames, poses = truth.track_sequence()
     first = judge_track(t, frames, poses)
     judge_track(t, frames[:1], poses[:1], what="track_pose([one frame], pattern_size, square_size, K)")
+    judge_track(t, *truth.rocking_sequence(), what="track_pose(frames of a board rocking through face-on, "
+                                                    "pattern_size, square_size, K)")
     frames, poses = truth.distorted_track_sequence()
     try:
         return judge_track(t, frames, poses, dist=truth.DIST)

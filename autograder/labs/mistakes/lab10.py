@@ -20,6 +20,19 @@ _DECOMPOSE = """
         """
 
 MISTAKES = {
+    # the blind set 1204c's 10/08: rvec taken for -rvec where it points away from the previous frame's
+    "track_pose keeping rvec on the previous frame's side": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            rows, previous = [], None
+            for frame in frames:
+                rvec, tvec, _ = estimate_pose(frame, pattern_size, square_size, K, dist)
+                if previous is not None and np.all(np.isfinite(rvec)) and np.dot(rvec, previous) < 0:
+                    rvec = -rvec
+                if np.all(np.isfinite(rvec)):
+                    previous = rvec
+                rows.append(np.concatenate([rvec, tvec]))
+            return np.array(rows, dtype=np.float64).reshape(-1, 6)
+        """, ["a board rocking through face-on", "the pose is off by"]),
     # the blind set 1204c's 10/06: the undistorted image stretched to the full range afterwards
     "undistort_image stretching the result to 0..255": ("lab10.ext1", """
         def undistort_image(image, K, dist):
