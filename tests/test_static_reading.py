@@ -1228,3 +1228,19 @@ def test_a_loop_variable_assigned_and_read_after_the_loop_is_not_dropped():
                 x = x * 2
             return x
         """)
+
+
+def test_a_value_compared_with_a_literal_by_identity_is_named_and_none_by_identity_is_not():
+    """The blind set 1204c's 08/04: `method is "orb"` fails for the caller's equal string (another object);
+    `is None`, `is True` are right, and `==` is what the finding asks for."""
+    code = """
+        def match_features(img1, img2, method="sift"):
+            if {test}:
+                return 1
+            return 2
+        """
+    wanted = "a value compared with a literal by identity (is)"
+    for test in ('method is "orb"', "'sift' is not method", "ratio is 0.75"):
+        assert wanted in one(code.format(test=test)), test
+    for test in ("method is None", "method is True", 'method == "orb"', "method is other"):
+        assert wanted not in one(code.format(test=test)), test

@@ -245,6 +245,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _loop_variable_rebinds(name, function)
     found += _loop_variable_assigned_in_vain(name, function)
     found += _fisheye_model(name, function)
+    found += _identity_with_a_literal(name, function)
     found += _value_of_an_earlier_loop(name, function)
     found += _running_halves(name, function)
     found += _norm_of_every_pair_at_once(name, function)
@@ -1778,6 +1779,30 @@ def _fisheye_model(name, function) -> list[Finding]:
                             "by its angle from the axis, with four coefficients of its own, where the distortion "
                             "(k1, k2, p1, p2, k3) is that of cv2.calibrateCamera's lens model; use the functions of "
                             "that model (cv2.undistort, cv2.projectPoints, cv2.undistortPoints)")]
+    return []
+
+
+def _identity_with_a_literal(name, function) -> list[Finding]:
+    """`method is "orb"` (or `is not`, a number or a string on either side): `is` asks whether two names hold one
+    object, not equal values. A literal and an equal value made at run time -- the caller's argument, a string
+    joined or read from a file -- are two objects, so the test fails where `==` holds (Python warns: "is" with
+    a literal). None, True, False and the Ellipsis are single objects: `is` is right for them."""
+    for node in _nodes(function):
+        if not isinstance(node, ast.Compare) or not any(isinstance(op, (ast.Is, ast.IsNot)) for op in node.ops):
+            continue
+        sides = [node.left, *node.comparators]
+        literal = next((side for side in sides if isinstance(side, ast.Constant)
+                        and isinstance(side.value, (str, bytes, int, float, complex))
+                        and not isinstance(side.value, bool)), None)
+        if literal is None:
+            continue
+        line = _line(node)
+        text = ast.unparse(node)
+        equal = text.replace(" is not ", " != ").replace(" is ", " == ")
+        return [Finding(name, line, "a value compared with a literal by identity (is)",
+                        f"{name} (line {line}) tests `{text}`: `is` asks whether both are one object, not whether "
+                        f"they are equal, and {ast.unparse(literal)} made at run time (the caller's argument) is another "
+                        f"object of the same value, so the test fails; compare values: `{equal}`")]
     return []
 
 

@@ -27,6 +27,27 @@ _STITCH_CANVAS = """
             size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)"""
 
 MISTAKES = {
+    # the blind set 1204c's 08/04: the method told by identity, `is "orb"`, false for the caller's equal string
+    "match_features choosing ORB by identity": ("lab08.ext1", """
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            if method is "orb":
+                detector, norm = cv2.ORB_create(nfeatures=2000), cv2.NORM_HAMMING
+            elif method == "sift":
+                detector, norm = cv2.SIFT_create(), cv2.NORM_L2
+            else:
+                raise ValueError(f"unknown method {method!r}")
+            g1 = img1 if img1.ndim == 2 else cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY)
+            g2 = img2 if img2.ndim == 2 else cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY)
+            k1, d1 = detector.detectAndCompute(g1, None)
+            k2, d2 = detector.detectAndCompute(g2, None)
+            if d1 is None or d2 is None or len(k1) < 2 or len(k2) < 2:
+                return np.zeros((0, 2)), np.zeros((0, 2))
+            pairs = cv2.BFMatcher(norm).knnMatch(d1, d2, k=2)
+            good = [p[0] for p in pairs if len(p) == 2 and p[0].distance < ratio * p[1].distance]
+            pts1 = np.float64([k1[m.queryIdx].pt for m in good]).reshape(-1, 2)
+            pts2 = np.float64([k2[m.trainIdx].pt for m in good]).reshape(-1, 2)
+            return pts1, pts2
+        """, ["`is` asks whether both are one object"]),
     # the blind set 1204c's 08/03: the identity H taken as "nothing to do", the moving image returned as it is
     "warp_to_reference returning the moving image for the identity": ("lab08.ex2", """
         def warp_to_reference(reference, moving, H):
