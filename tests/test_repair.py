@@ -4467,3 +4467,28 @@ def test_a_bound_counted_by_len_is_counted_along_the_second_axis():
             return lit, range(len(patterns))
     """)
     assert _shown_changes(source, "len_axis") == [("len(patterns)", "patterns.shape[1]")]
+
+
+def test_a_number_given_where_an_array_is_reduced_is_no_repair():
+    """The blind set 1204c's 12/03: `d > np.nanmin(d)` mended by `np.nanmin(baseline)` on inputs whose disparities
+    all exceed the baseline: the minimum of one number is that number, a threshold nobody writes so. The array
+    itself given there (`np.nanmin(depth)`) is judged as ever."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, dtype=np.float64)
+            depth = np.zeros_like(d)
+            valid = d > np.nanmin(d)
+            depth[valid] = f * baseline / d[valid]
+            return depth
+    """)
+    student = repair._Student(source, ast.parse(source), ["depth_from_disparity"])
+    inputs = [("depth_from_disparity", (np.array([10.0, 0.0]), 500.0, 0.1), {})]
+    numbers = repair._numbers_given(student, "depth_from_disparity", inputs)
+    assert numbers == {"f", "baseline"}
+    names = [m for m in student.mutants("depth_from_disparity") if m.operator == "other_name"
+             and student.fix(m) and "np.nanmin(" in student.fix(m).changes[0][2]]
+    told = {student.fix(m).changes[0][2]: student.reduces_a_number(m, numbers) for m in names}
+    assert told.get("np.nanmin(baseline)") is True, told
+    assert not any(value for text, value in told.items() if "baseline" not in text and "(f)" not in text), told

@@ -885,6 +885,19 @@ class _Student:
         cache[where] = guarded
         return guarded
 
+    def reduces_a_number(self, mutant, numbers: set) -> bool:
+        """Whether the mutant puts a parameter that is a single number on every call (``numbers``) where an
+        array is reduced (`np.nanmin(d)` -> `np.nanmin(baseline)`): the minimum of one number is the number,
+        a threshold nobody writes so -- right by coincidence where the data never falls below it."""
+        where, ordinal, operator, payload = mutant.edits[0]
+        if operator != "other_name" or len(mutant.edits) != 1 or payload not in numbers:
+            return False
+        nodes, parents = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        parent, field, index = parents.get(id(node), (None, None, None))
+        return isinstance(parent, ast.Call) and field == "args" and index == 0 \
+            and _dotted(parent.func).rsplit(".", 1)[-1] in _REDUCTIONS
+
     def skips_a_right_step(self, mutant) -> bool:
         """Whether the mutant reads, in place of a name, its earlier form that its last assignment above was
         made from, by a step the reference writes too, names aside (`F / norm(F)` -> `Fn / norm(F)` after `F = T2.T @ Fn
@@ -2355,6 +2368,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # may be the fourth nearest).
         ruled_out.difference_update(m.key for _, m in near + slightly if m.key not in judged)
     fixes, lines, halfway = [], set(), set()
+    numbers = _numbers_given(student, function, inputs)
     shown = [(mutant, variant.fix(mutant)) for mutant in candidates]
     # The smallest change of the text first: the student's slip is a few characters (`R.T` for `R`),
     # where a change that compensates for it elsewhere on the line rewrites more (`c @ R.T`).
@@ -2389,7 +2403,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
         if fix.changes[0][0] in lines or _dehomogenisation_dropped(fix) or student.skips_a_right_step(mutant) \
-                or student.compares_with_its_own_size(mutant):
+                or student.compares_with_its_own_size(mutant) or student.reduces_a_number(mutant, numbers):
             continue
         if (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
                 and not variant.writes_inputs(mutant) and not variant.guard_untested(mutant, failing) \
@@ -2531,7 +2545,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     for index, both in enumerate(combined):
         if clock.left() <= 0 or (shown and index >= len(side)):
             break
-        if student.compares_with_its_own_size(both):
+        if student.compares_with_its_own_size(both) \
+                or any(student.reduces_a_number(replace(both, edits=(edit,)), numbers) for edit in both.edits):
             continue
         values = variant.answers(both, failing, inputs)
         if values is None or variant.fix(both) is None:
@@ -2565,6 +2580,24 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
 
 
 _STACKING = ("column_stack", "hstack", "vstack", "concatenate", "stack", "append", "dstack", "c_", "r_", "pad")
+
+
+_REDUCTIONS = {"min", "max", "amin", "amax", "nanmin", "nanmax", "mean", "nanmean", "median", "nanmedian", "sum",
+               "nansum", "std", "ptp", "percentile", "nanpercentile"}
+
+
+def _numbers_given(student, function: str, inputs) -> set:
+    """The parameters of ``function`` given a single number (not an array) on every one of ``inputs``."""
+    fn = _defs(student.tree).get(function)
+    if fn is None or not inputs:
+        return set()
+    names = [a.arg for a in (*fn.args.posonlyargs, *fn.args.args)]
+    numbers = set()
+    for position, name in enumerate(names):
+        values = [call[1][position] if position < len(call[1]) else call[2].get(name, None) for call in inputs]
+        if all(isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) for v in values):
+            numbers.add(name)
+    return numbers
 
 
 def _near_shape(value, reference) -> bool:
