@@ -521,7 +521,7 @@ def warp_to_reference_check(t):
     # The identity is an H like any other (a view already in the reference's frame): the moving image still
     # comes back in the reference's size -- a shortcut returning it as it is keeps its own (blind set 1204c's 08/03).
     moving = np.ascontiguousarray(reference[20:140, 30:190])
-    what = "warp_to_reference(reference, moving, H=np.eye(3)) with a moving image smaller than the reference"
+    what = "warp_to_reference(reference, moving, the identity H) with a moving image smaller than the reference"
     got = t.call("warp_to_reference", reference, moving, np.eye(3))
     if isinstance(got, np.ndarray) and got.shape[:2] == moving.shape[:2]:
         t.fail(f"{what} returned shape {got.shape}, the moving image's size; expected {reference.shape}: the output "
