@@ -179,6 +179,28 @@ MISTAKES = {
             return _reference_draw_points(image, pts, radius, color)
         """, ["grey image comes back grey"]),
     # views shrunk for a faster detection, the corners left in the shrunk views' pixels
+    # the blind set 1204c's 09/08: every view's corners refined on the first view's image (grey for gray): the
+    # object points, built row by row, are right and are not told to be in the wrong order
+    "calibrate refining every view's corners on the first view": ("lab09.ext1", """
+        def calibrate(images, pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float32)
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size
+            grey = cv2.cvtColor(images[0], cv2.COLOR_BGR2GRAY) if images[0].ndim == 3 else images[0]
+            height, width = grey.shape
+            criteria = (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3)
+            object_points, image_points = [], []
+            for image in images:
+                gray = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+                found, corners = cv2.findChessboardCorners(gray, (cols, rows))
+                if not found:
+                    continue
+                corners = cv2.cornerSubPix(grey, corners, (5, 5), (-1, -1), criteria)
+                object_points.append(objp)
+                image_points.append(corners)
+            rms, K, dist, _, _ = cv2.calibrateCamera(object_points, image_points, (width, height), None, None)
+            return K, dist.ravel()[:5], float(rms)
+        """, ["the object points do not correspond to the detected corners"]),
     "calibrate finding corners on views shrunk to a third": ("lab09.ext1", """
         _calibrate_right = calibrate
         def calibrate(images, pattern_size, square_size):
