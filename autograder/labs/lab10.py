@@ -386,7 +386,8 @@ def weak_mistakes(X, f, z_avg=None):
         "f is applied twice (x = f^2 X / z_avg)": f * truth.weak_perspective(X, f, z_avg),
         "the default depth is the mean of every coordinate (X.mean()); it is the mean depth, "
         "X[:, 2].mean()": truth.weak_perspective(X, f, X.mean() if z_avg is None else z_avg),
-        "the points are not scaled by f / z_avg (that is orthographic projection)": truth.orthographic(X),
+        "the answer is the orthographic projection (X, Y): the scale f / z_avg does not reach it (not applied, or "
+        "cancelled: a factor on the whole projection matrix scales w too, and the division undoes it)": truth.orthographic(X),
         "the scale is inverted: it is f / z_avg, not z_avg / f":
             X[:, :2] * ((X[:, 2].mean() if z_avg is None else z_avg) / f),
     }

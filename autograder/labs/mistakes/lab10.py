@@ -84,6 +84,16 @@ MISTAKES = {
                     z_avg = 0.5 * (z_avg + depths[i])
             return _weak_right(points, f, z_avg)
         """, ["at every turn of the loop of line", "not their mean"]),
+    # the blind set 1204c's 10/02: the magnification put on the whole orthographic matrix, w scaled with it
+    "weak perspective scaling the whole projection matrix": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X = np.atleast_2d(np.asarray(points, dtype=np.float64))
+            z = X[:, 2].mean() if z_avg is None else float(z_avg)
+            M = (f / z) * np.array([[1.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 0, 1.0]])
+            homogeneous = np.column_stack([X, np.ones(len(X))]) @ M.T
+            x = homogeneous[:, :2] / homogeneous[:, 2:3]
+            return x[0] if np.ndim(points) == 1 else x
+        """, ["the scale f / z_avg does not reach it"]),
     "weak perspective = perspective": ("lab10.ex2", """
         def weak_perspective_project(points, f, z_avg=None):
             return perspective_project(points, f)
