@@ -1244,3 +1244,19 @@ def test_a_value_compared_with_a_literal_by_identity_is_named_and_none_by_identi
         assert wanted in one(code.format(test=test)), test
     for test in ("method is None", "method is True", 'method == "orb"', "method is other"):
         assert wanted not in one(code.format(test=test)), test
+
+
+def test_a_rotation_matrix_given_back_to_itself_through_rodrigues_is_named():
+    """The blind set 1204c's 09/03: `R, _ = cv2.Rodrigues(R)` "accepts a rotation vector too" by turning every 3x3
+    R into its vector. Guarded by R's shape, or a vector made under another name (for cv2.projectPoints), it
+    is right."""
+    wanted = "a rotation matrix turned into a rotation vector by cv2.Rodrigues"
+    code = """
+        def camera_matrix(K, R, t):
+            {body}
+            return K @ np.hstack([R, np.reshape(t, (3, 1))])
+        """
+    assert wanted in one(code.format(body="R, _ = cv2.Rodrigues(R)"))
+    assert wanted in one(code.format(body="R = cv2.Rodrigues(R)[0]"))
+    assert wanted not in one(code.format(body="R = cv2.Rodrigues(R)[0] if np.size(R) == 3 else R"))
+    assert wanted not in one(code.format(body="rvec, _ = cv2.Rodrigues(R)"))

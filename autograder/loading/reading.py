@@ -246,6 +246,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _loop_variable_assigned_in_vain(name, function)
     found += _fisheye_model(name, function)
     found += _identity_with_a_literal(name, function)
+    found += _rotation_matrix_made_a_vector(name, function)
     found += _value_of_an_earlier_loop(name, function)
     found += _running_halves(name, function)
     found += _norm_of_every_pair_at_once(name, function)
@@ -1779,6 +1780,42 @@ def _fisheye_model(name, function) -> list[Finding]:
                             "by its angle from the axis, with four coefficients of its own, where the distortion "
                             "(k1, k2, p1, p2, k3) is that of cv2.calibrateCamera's lens model; use the functions of "
                             "that model (cv2.undistort, cv2.projectPoints, cv2.undistortPoints)")]
+    return []
+
+
+_ROTATION_MATRICES = {"R", "R1", "R2", "rotation", "R_rect"}   # the API's 3x3 rotation matrices, by name
+
+
+def _rotation_matrix_made_a_vector(name, function) -> list[Finding]:
+    """`R, _ = cv2.Rodrigues(R)` on a parameter the API gives as a 3x3 rotation matrix, with no test of its
+    shape before: cv2.Rodrigues converts both ways, so a 3x3 matrix comes back as its (3, 1) rotation
+    vector (a "rotation vector accepted too" that turns every matrix given into a vector)."""
+    parameters = {a.arg for a in function.args.args + function.args.posonlyargs + function.args.kwonlyargs}
+    rotations = parameters & _ROTATION_MATRICES
+    if not rotations:
+        return []
+    guarded = any(isinstance(node, (ast.If, ast.IfExp)) and any(
+        isinstance(n, ast.Name) and n.id in rotations for n in ast.walk(node.test)) for node in _nodes(function))
+    if guarded:
+        return []
+    for assign in _nodes(function):
+        # (assigned back to the same name -- `R, _ = cv2.Rodrigues(R)`, `R = cv2.Rodrigues(R)[0]`: the matrix replaced;
+        # a rotation vector made from R under another name, for cv2.projectPoints, is right)
+        if not (isinstance(assign, ast.Assign) and len(assign.targets) == 1):
+            continue
+        target = assign.targets[0]
+        first = target.elts[0] if isinstance(target, (ast.Tuple, ast.List)) and target.elts else target
+        node = assign.value.value if isinstance(assign.value, ast.Subscript) else assign.value
+        if isinstance(first, ast.Name) and isinstance(node, ast.Call) \
+                and _attribute_path(node.func) in ("cv2.Rodrigues", "cv.Rodrigues") \
+                and node.args and first.id in rotations \
+                and first.id in {n.id for n in ast.walk(node.args[0]) if isinstance(n, ast.Name)}:
+            line = _line(node)
+            return [Finding(name, line, "a rotation matrix turned into a rotation vector by cv2.Rodrigues",
+                            f"{name} (line {line}) calls `{ast.unparse(node)}` on every {first.id}: cv2.Rodrigues "
+                            f"converts both ways, so the 3x3 rotation matrix {first.id} comes back as its (3, 1) "
+                            "rotation vector; convert only what is a vector (size 3), or not at all where the matrix "
+                            "is given")]
     return []
 
 

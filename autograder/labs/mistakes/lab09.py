@@ -14,6 +14,14 @@ DROPS_BEHIND = """
 
 
 MISTAKES = {
+    # the blind set 1204c's 09/03: "a rotation vector accepted too", every 3x3 R turned into its vector
+    "camera_matrix passing R through cv2.Rodrigues": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            K = np.asarray(K, dtype=np.float64)
+            R, _ = cv2.Rodrigues(np.asarray(R, dtype=np.float64))
+            t = np.asarray(t, dtype=np.float64).reshape(3, 1)
+            return K @ np.hstack([R, t])
+        """, ["cv2.Rodrigues converts both ways"]),
     # the blind set 1201d's 09/06: the rays stacked along the first axis
     # the blind set 1201e's 09/07: the 1 of (1 + f / Z) dropped
     "aperture offsets scaled by f / Z": ("lab09.ex4", """
