@@ -4492,3 +4492,28 @@ def test_a_number_given_where_an_array_is_reduced_is_no_repair():
     told = {student.fix(m).changes[0][2]: student.reduces_a_number(m, numbers) for m in names}
     assert told.get("np.nanmin(baseline)") is True, told
     assert not any(value for text, value in told.items() if "baseline" not in text and "(f)" not in text), told
+
+
+def test_a_change_that_throws_away_a_drawing_is_no_repair_and_a_copy_is_tried_in_the_original_s_place():
+    """The blind set 1204c's 08/05: lines drawn on `canvas`, circles on its copy `out`, `out` returned. Returning
+    `canvas` keeps the lines and throws the circles away (out, drawn on, no longer reaches the answer); drawing
+    the lines on `out` is the fix, and the operators offer the copy where the original is written."""
+    source = textwrap.dedent("""
+        import cv2
+        import numpy as np
+
+        def draw_matches(img1, img2, pts1, pts2):
+            canvas = np.hstack([img1, img2])
+            out = canvas.copy()
+            for a, b in zip(pts1, pts2):
+                cv2.line(canvas, a, b, (0, 255, 0), 1)
+                cv2.circle(out, a, 3, (0, 0, 255), 1)
+            return out
+    """)
+    before = _defs_of(source)["draw_matches"]
+    assert repair._disconnects(before, _defs_of(source.replace("return out", "return canvas"))["draw_matches"])
+    assert not repair._disconnects(before, _defs_of(source.replace("cv2.line(canvas", "cv2.line(out"))["draw_matches"])
+    student = repair._Student(source, ast.parse(source), ["draw_matches"])
+    made = {student.fix(m).changes[0][2] for m in student.mutants("draw_matches") if m.operator == "other_name"
+            and student.fix(m)}
+    assert "cv2.line(out, a, b, (0, 255, 0), 1)" in made, made

@@ -5732,6 +5732,30 @@ def twin_names(a: str, b: str) -> bool:
         frozenset((x, y)) in _TWIN_WORDS for x, y in zip(parts_a, parts_b) if x != y)
 
 
+def _copies_of(name: str, words, line: int) -> set:
+    """The locals defined above ``line`` as a copy of ``name`` (`out = canvas.copy()`, `np.copy(canvas)`), and the
+    one ``name`` is a copy of."""
+    def copied(value):
+        if isinstance(value, ast.Call) and isinstance(value.func, ast.Attribute) and value.func.attr == "copy" \
+                and not value.args and isinstance(value.func.value, ast.Name):
+            return value.func.value.id
+        if isinstance(value, ast.Call) and _dotted(value.func) in ("np.copy", "numpy.copy", "copy.copy", "copy.deepcopy") \
+                and value.args and isinstance(value.args[0], ast.Name):
+            return value.args[0].id
+        return None
+    found = set()
+    for other, defs in words.definitions.items():
+        for at, value, index in defs:
+            if at >= line or index is not None:
+                continue
+            source = copied(value)
+            if source == name and other != name:
+                found.add(other)
+            if other == name and source and source != name:
+                found.add(source)
+    return found
+
+
 def _name_changes(node: ast.Name, words: _Words, what, line):
     if node.id in ("np", "cv2", "math", "None", "True", "False"):
         return
@@ -5761,6 +5785,12 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
                    and any(at < line for at, _, _ in words.definitions[name])}
         listed = {other for other, _ in others}
         others += [(other, f"`{other}`") for other in sorted(unread) if other not in listed]
+        # (and a copy of the name made above, or the name it copies: `cv2.line(canvas, ...)` where the copy `out =
+        # canvas.copy()` the circles are drawn on, and returned, belongs -- told alike, so not among the others)
+        copies = _copies_of(node.id, words, line)
+        unread |= copies   # (tried first, with the loop variables nothing reads)
+        listed = {other for other, _ in others}
+        others += [(other, f"`{other}`") for other in sorted(copies) if other not in listed]
     # Two names told alike (`img2`, and its float copy told as `img2` too): only the one of the
     # replaced name's kind (a parameter for a parameter, a local for a local) is that mistake; the
     # other one also drops the copy's conversion, which its sentence would not say.

@@ -259,7 +259,8 @@ def _disconnects(before, after, helpers_changed=frozenset(), own=frozenset()) ->
     function returns a name that value reads (`inv(T) @ P` -> `P`: T then reaches nothing) or changes a
     helper that computes one (T made the identity). The answers come right; the step is still missing.
     So does a change after which a parameter the function used no longer reaches its answers, or a
-    value it computed with a def of the student's own (``own``: the module's defs), or a size it
+    value it computed with a def of the student's own (``own``: the module's defs), an image it drew on
+    (:func:`_drawn_on`: `return out` -> `return canvas` throws away the circles drawn on `out`), or a size it
     computed for a value whose size it goes on to read (:func:`_size_step_emptied`)."""
     # A parameter whose value reached the answers and no longer does: the change makes the caller's
     # argument irrelevant (a penalty `s` replaced by `block_size`, which happens to suit the inputs).
@@ -268,7 +269,8 @@ def _disconnects(before, after, helpers_changed=frozenset(), own=frozenset()) ->
     # normalised by U; the raw points in the rows where the cameras were never conditioned).
     parameters = {a.arg for a in (*before.args.posonlyargs, *before.args.args, *before.args.kwonlyargs)}
     dropped = _live(before) - _live(after)
-    if dropped & (parameters | _own_results(before, frozenset(own))) or _size_step_emptied(before, dropped):
+    if dropped & (parameters | _own_results(before, frozenset(own)) | _drawn_on(before)) \
+            or _size_step_emptied(before, dropped):
         return True
     left, feeding = _left_out(before)
     if not left:
@@ -1887,6 +1889,13 @@ def _sized_names(nodes) -> set:
         if len(names) == before:
             break
     return names
+
+
+def _drawn_on(fn) -> set[str]:
+    """The names ``fn`` draws on with OpenCV (the image a cv2.line, cv2.circle, ... is given first)."""
+    return {node.args[0].id for node in ast.walk(fn) if isinstance(node, ast.Call) and node.args
+            and isinstance(node.args[0], ast.Name) and _dotted(node.func).startswith(("cv2.", "cv."))
+            and _dotted(node.func).rsplit(".", 1)[-1] in _COLOUR_AT}
 
 
 def _size_step_emptied(before, dropped: set) -> bool:

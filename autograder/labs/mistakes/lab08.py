@@ -27,6 +27,22 @@ _STITCH_CANVAS = """
             size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)"""
 
 MISTAKES = {
+    # the blind set 1204c's 08/05: the lines drawn on the canvas, the circles on its copy, and the copy returned
+    "draw_matches drawing the lines on the canvas it does not return": ("lab08.ex3", """
+        def draw_matches(img1, img2, pts1, pts2):
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)
+            canvas[:h1, :w1] = img1 if img1.ndim == 3 else cv2.cvtColor(img1, cv2.COLOR_GRAY2BGR)
+            canvas[:h2, w1:] = img2 if img2.ndim == 3 else cv2.cvtColor(img2, cv2.COLOR_GRAY2BGR)
+            out = canvas.copy()
+            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                a, b = (int(round(x1)), int(round(y1))), (int(round(x2 + w1)), int(round(y2)))
+                cv2.line(canvas, a, b, (0, 255, 0), 1, cv2.LINE_AA)
+                cv2.circle(out, a, 3, (0, 0, 255), 1, cv2.LINE_AA)
+                cv2.circle(out, b, 3, (0, 0, 255), 1, cv2.LINE_AA)
+            return out
+        """, ["none of the"]),
     # the blind set 1204c's 08/04: the method told by identity, `is "orb"`, false for the caller's equal string
     "match_features choosing ORB by identity": ("lab08.ext1", """
         def match_features(img1, img2, ratio=0.75, method="sift"):
