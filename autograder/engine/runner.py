@@ -41,6 +41,7 @@ from ..loading.submission import load_submission
 from ..sandbox import cache, confine
 from ..sandbox.supervisor import CallOutcome, Limits, Sandbox
 from .checks import Fail, StudentFailure, Trial, Verdict
+from .conventions import STATE_BETWEEN_CALLS
 from .claims import measured, rewritten, without_guessed_cause
 from .forms import exception_form
 from .inputs import Inputs
@@ -585,6 +586,19 @@ def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: T
     return replace(verdict, message=f"{lead} {sentence}{newline}{rest}", mistake=finding.mistake, hint="")
 
 
+def _named_by_fresh_start(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
+    """A failed verdict named as state kept between calls when the failing call, made first in the
+    student's module imported anew, answers right (:mod:`autograder.engine.fresh_start`). Never costs
+    the verdict (logged)."""
+    from . import fresh_start
+
+    try:
+        return fresh_start.named(verdict, trial)
+    except Exception as exc:  # noqa: BLE001 - naming is a bonus: the verdict stands without it
+        _log_grader_error(check, exc)
+        return verdict
+
+
 def _named_by_error_model(verdict: Verdict, check: Check, trial: Trial, raised: bool = False) -> Verdict:
     """A failed verdict named by the error model (:mod:`autograder.engine.mutants`): a mutant of the
     reference confirmed on the student's inputs (``raised``: one raising the student's exception).
@@ -981,29 +995,35 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     inherited = False   # a failure another of the student's functions causes is not this one's mistake
     if status in (FAILED, PARTIAL) and student_failure in ("", "exception"):
         verdict, inherited = _told_if_inherited(verdict, check, trial)
-    if student_failure == "exception" and not verdict.mistake and not inherited:
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
+        # (an answer an earlier call's leftovers decided: what the check measured describes the stale
+        # answer, a change of the code would only work around it -- nothing else names it)
+        verdict = _named_by_fresh_start(verdict, check, trial)
+    # (named apart: inherited from another function, or decided by an earlier call -- nothing else names it)
+    apart = inherited or verdict.mistake == STATE_BETWEEN_CALLS
+    if student_failure == "exception" and not verdict.mistake and not apart:
         # A change of their code confirmed to mend the exception comes before the NumPy forms'
         # reading of its message, which guesses which operand is wrong ("keep it a column").
         verdict = _named_by_repair(verdict, check, trial, tb)
     if student_failure == "exception" and not verdict.mistake:
         verdict = _named_by_exception(verdict, trial, tb)
-    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure == "" and not inherited:
+    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure == "" and not apart:
         verdict = _named_by_misread_output(verdict, trial)
     if reading is not None and status in (FAILED, PARTIAL) and student_failure in ("", "exception") \
-            and not inherited:
+            and not apart:
         verdict = _named_by_reading(verdict, reading, check, trial)
-    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not inherited:
+    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not apart:
         verdict = _named_by_defaults(verdict, trial)
-    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not inherited:
+    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not apart:
         verdict = _named_by_strings(verdict, check, trial)
-    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not apart:
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
-    if status in (FAILED, PARTIAL) and student_failure == "" and not inherited:   # (an exception's: above)
+    if status in (FAILED, PARTIAL) and student_failure == "" and not apart:   # (an exception's: above)
         verdict = _named_by_repair(verdict, check, trial)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") \
-            and not inherited and "looks like" not in str(verdict.message).lower():
+            and not apart and "looks like" not in str(verdict.message).lower():
         verdict = _named_by_unused_parameter(verdict, trial)   # true, but not confirmed
-    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited \
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not apart \
             and verdict.mistake not in _unused_mistakes():
         # what the student's expressions held: the operands an exception refused, where an answer of the
         # wrong shape was made (after the error model: a place is no cause, and a name set here would

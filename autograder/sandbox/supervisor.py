@@ -732,14 +732,16 @@ class Sandbox:
         return outcome
 
     def call_variant(self, module: str, source: str, function: str, calls, *, timeout: float,
-                     forbid=(), trace: bool = False) -> CallOutcome:
+                     forbid=(), trace: bool = False, fresh: bool = False) -> CallOutcome:
         """Call ``function`` of a variant of the student's ``module`` -- its defs in ``source`` (the
         grader's rewrite of the student's own code) executed over a copy of the module -- on each
         ``(args, kwargs)`` of ``calls``. The value is a list: each call's result or ``{"__error__":
         "Type: text"}``. Not billed to the student: the caller bounds the time (``timeout``, and the
         submission's deadline); meant for a :meth:`companion`, whose faults cost the student's own
         worker nothing. ``trace`` with ``source`` "" (the student's code as it is): the value is
-        ``{"values": [...], "lines": [...]}``, with the lines of the module's file the calls ran."""
+        ``{"values": [...], "lines": [...]}``, with the lines of the module's file the calls ran.
+        ``fresh`` (``source`` ""): the student's module file executed anew for these calls alone, as a
+        first call finds it (what earlier calls left in the module is not there)."""
         imported = self.import_module(module)
         if not imported.ok:
             return imported
@@ -748,7 +750,7 @@ class Sandbox:
             return self._over_budget(f"{function}() (a variant)")
         request = {"op": "variant", "module": module, "source": source, "function": function,
                    "calls": [[list(args), dict(kwargs)] for args, kwargs in calls],
-                   "forbid": list(forbid), "cpu_seconds": timeout + 1.0, "trace": bool(trace)}
+                   "forbid": list(forbid), "cpu_seconds": timeout + 1.0, "trace": bool(trace), "fresh": bool(fresh)}
         return self._request(request, timeout, f"{function}() (a variant)")
 
     def working_pids(self) -> list[tuple[int, float]]:

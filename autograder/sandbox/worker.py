@@ -53,6 +53,23 @@ _settrace = sys.settrace
 _TRACED_LINES = 20_000   # the lines of the student's file a traced call reports, at most
 
 
+def _file_bytes(path: str, limit: int = 8 * 2**20) -> bytes:
+    """A file's bytes, at most ``limit``, read with the functions kept at start (a student's
+    module may replace ``open``)."""
+    fd = _open(path, os.O_RDONLY)
+    try:
+        chunks, size = [], 0
+        while size <= limit:
+            chunk = _read(fd, 1 << 20)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+        return b"".join(chunks)[:limit]
+    finally:
+        _close(fd)
+
+
 def _same_draws() -> None:
     """OpenCV's own random generator (cv2.drawMatches' colours, cv2.randu) set to one state before
     every call: a call's answer does not depend on the calls before it, so a variant of the student's
@@ -523,26 +540,34 @@ class Worker:
         The variant is the imported module with the defs in ``source`` (the grader's rewrite of
         the student's own functions: one small change, to see whether it repairs the answers)
         executed over a copy of its namespace; every function of the copy sees the copy, so a
-        changed helper is the one the unchanged functions call. The module itself is left as it
-        was. The value is one entry per call: its result, or ``{"__error__": "Type: text"}``.
+        changed helper is the one the unchanged functions call. With ``"fresh": true`` it is the
+        module's own file executed anew, in a namespace of its own (the module as a first call finds
+        it: no cache or list an earlier call filled). The module itself is left as it was. The value
+        is one entry per call: its result, or ``{"__error__": "Type: text"}``.
         """
         try:
             base = self.load(request["module"])
         except BaseException:  # the parent imports first; this is a fallback
             return self.handle_import(request["module"])
         start = time.perf_counter()
+        fresh = bool(request.get("fresh"))
         try:   # (what the import left under the module's name may be any object of the student's)
             variant = _ModuleType(str(getattr(base, "__name__", request["module"])))
             own = vars(base)
             space = vars(variant)
-            space.update(own)
-            _exec(_compile(request["source"], getattr(base, "__file__", None) or "<variant>", "exec"), space)
+            if fresh:   # the module's whole file run anew: nothing an earlier call left in it is there
+                space.update({key: own[key] for key in ("__file__", "__package__", "__spec__", "__loader__")
+                              if key in own})
+                _exec(_compile(_file_bytes(own["__file__"]), own["__file__"], "exec"), space)
+            else:
+                space.update(own)
+                _exec(_compile(request["source"], getattr(base, "__file__", None) or "<variant>", "exec"), space)
         except BaseException as exc:  # noqa: BLE001 - a rewrite that cannot run is no variant
             return failure("exception", f"the variant did not run: {_exception_line(exc)}")
         # A helper the rewrite leaves as it was, calling nothing it changed, answers the same arguments
         # as it did for the variant before: its answer is kept and given again (a panorama's feature
         # matching, run once for the many changes of its compositing, instead of once for each).
-        unchanged = _unchanged(own, space) if request["source"] else set()
+        unchanged = _unchanged(own, space) if request["source"] and not fresh else set()
         forbid = tuple(request.get("forbid") or ())
         for key, value in list(space.items()):   # the copy's functions read the copy's globals
             if isinstance(value, _FunctionType) and value.__globals__ is own:
@@ -558,7 +583,8 @@ class Worker:
         self.modules[key] = variant   # so that the tripwires reach names it imported itself
         restore = self.install_tripwires(request.get("forbid") or [])
         values, modified = [], []
-        traced = _LineTrace(getattr(base, "__file__", None)) if request.get("trace") and not request["source"] else None
+        traced = _LineTrace(getattr(base, "__file__", None)) \
+            if request.get("trace") and not request["source"] and not fresh else None
         try:
             for number, (args, kwargs) in enumerate(request.get("calls", ())):
                 self.forbidden_called = []

@@ -83,6 +83,16 @@ MISTAKES = {
             moved = [cv2.warpAffine(channel, M, size) for channel in (r, g, b)]
             return cv2.merge(moved)
         """, ["the colour channels are reversed", "in r, g, b order"]),
+    # the blind set 1204c's 07/03: a cache keyed by less than the answer depends on (the size, not the angle)
+    "rotate caching its matrix by the image size": ("lab07.ex2", """
+        _MATRICES = {}
+        def rotate(image, angle_deg=45):
+            h, w = image.shape[:2]
+            if (w, h) not in _MATRICES:
+                _MATRICES[(w, h)] = cv2.getRotationMatrix2D(((w - 1) / 2.0, (h - 1) / 2.0), float(angle_deg), 1.0)
+            return cv2.warpAffine(image, _MATRICES[(w, h)], (w, h), flags=cv2.INTER_LINEAR,
+                                  borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+        """, ["keeps something between calls", "`_MATRICES`"]),
     "translation_matrix returning one module-level array": ("lab07.ex1", """
         _IDENTITY = np.eye(3)
         def translation_matrix(tx, ty):
