@@ -18,7 +18,7 @@ from fixtures.images import photo
 from ..engine import conventions
 from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, Verdict, passed
-from ..engine.claims import calls_any, from_code, guard, measured
+from ..engine.claims import calls_any, from_code, guard, guessed, measured
 from ..engine.compare import format_arrays_apart
 from ..engine.judges import (Probe, call_probe, digits_apart, entries_misplaced, judge_matrix, judge_parameter_used, judge_warp, reads,
                       name_mistake, warp_probe)
@@ -475,7 +475,8 @@ def fit_probe(t: Trial, function: str) -> Probe:
                       shape=(2, 3), distance=lambda a, b: point_error(a, b, region), tolerance=1.0)
 
 
-ENTRIES_MISPLACED = "the solved unknowns put into the matrix in another order than the equations use them"
+# (a cause guessed from the entries' places: a change of the student's code confirmed to mend it says where)
+ENTRIES_MISPLACED = guessed("the solved unknowns put into the matrix in another order than the equations use them")
 
 
 def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
@@ -494,9 +495,9 @@ def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
     if misplaced:
         # measured: each returned entry is one of the expected six, all of them once
         t.fail(f"{what} holds the six right numbers, in other places: " + measured(
-            f"{misplaced}. The solved unknowns are put into A in another order than the equations use them (is "
-            "the solution vector reshaped in its own order, (a, b, c, d, tx, ty) say, where A is [[a, b, tx], "
-            "[c, d, ty]]?)") + f"\nIt returned\n{shown}\nexpected\n{wanted}", mistake=ENTRIES_MISPLACED)
+            f"{misplaced}; it looks like {ENTRIES_MISPLACED} (is the solution vector reshaped in its own order, "
+            "(a, b, c, d, tx, ty) say, where A is [[a, b, tx], [c, d, ty]]?)") + f"\nIt returned\n{shown}\nexpected\n{wanted}",
+            mistake=ENTRIES_MISPLACED)
     t.fail(f"{what} sends the points up to {digits_apart(error, tolerance)} px away from where the "
            f"true map sends them (at most {tolerance:.3g} px expected).\nIt returned\n{shown}\n"
            f"expected\n{wanted}")

@@ -833,26 +833,37 @@ class _Student:
         look, not the value."""
         return all(self._read_by_guards_only(where, ordinal) for where, ordinal, _, _ in mutant.edits)
 
-    def _read_by_guards_only(self, where: str, ordinal: int) -> bool:
+    def steers_a_branch(self, mutant) -> bool:
+        """Whether the mutant changes a value computed from the inputs that the def reads only in the tests
+        of its branches (`e1, e2 = src[1] - src[0], src[2] - src[0]` read only by `if e1[0] * e2[1] - ... > 0:`,
+        whose body reorders `src`): the change mends by making the code take the other way, so the slip is
+        in a branch, where a change inside it mends it too (`src, dst = src[order], dst[order]`)."""
+        return all(self._read_by_guards_only(where, ordinal, raising=False, computed=True)
+                   for where, ordinal, _, _ in mutant.edits)
+
+    def _read_by_guards_only(self, where: str, ordinal: int, raising: bool = True, computed: bool = False) -> bool:
         nodes, parents = self._walk(where)
         statement = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
         while statement is not None and not isinstance(statement, ast.stmt):
             statement = parents.get(id(statement), (None,))[0]
         if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1):
             return False
+        if computed and not any(isinstance(n, ast.Name) for n in ast.walk(statement.value)):
+            return False   # (a threshold written as a number, read by a test: the number may be the slip)
         made = [n for n in ast.walk(statement.targets[0]) if isinstance(n, ast.Name)]
-        guarded = self._guard_only_names(where)
+        guarded = self._guard_only_names(where, raising)
         return bool(made) and all(n.id in guarded for n in made)
 
-    def _guard_only_names(self, where: str) -> set:
-        """The def's names read only in the tests of guards that raise, directly or through names made of
-        them (`e1` read only to make `area`, `area` only in `if area <= 0: raise`). Memoised per def."""
+    def _guard_only_names(self, where: str, raising: bool = True) -> set:
+        """The def's names read only in the tests of guards that raise (``raising``; else of any branch),
+        directly or through names made of them (`e1` read only to make `area`, `area` only in `if area <= 0:
+        raise`). Memoised per def."""
         cache = self.__dict__.setdefault("_guarded", {})
-        if where in cache:
-            return cache[where]
+        if (where, raising) in cache:
+            return cache[(where, raising)]
         nodes, parents = self._walk(where)
-        in_tests = {id(n) for guard in nodes if isinstance(guard, ast.If) and any(isinstance(b, ast.Raise)
-                                                                                   for b in guard.body)
+        in_tests = {id(n) for guard in nodes if isinstance(guard, ast.If) and (
+                        not raising or any(isinstance(b, ast.Raise) for b in guard.body))
                     for n in ast.walk(guard.test)}
         reads: dict = {}   # name -> [(read in a guard's test, the names the statement reading it makes)]
         for node in nodes:
@@ -884,7 +895,7 @@ class _Student:
                 waits[waiting].discard(name)
                 if not waits[waiting]:
                     ready.append(waiting)
-        cache[where] = guarded
+        cache[(where, raising)] = guarded
         return guarded
 
     def reduces_a_number(self, mutant, numbers: set) -> bool:
@@ -2403,7 +2414,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                     and not student.colours_with_a_size(m)),
                    key=lambda pair: (pair[0].key not in known, not student.removes_a_mask_guard(pair[0]),
                                      not (refused_type and _converts(pair[0])),
-                                     pair[0].key not in exactly,
+                                     pair[0].key not in exactly, student.steers_a_branch(pair[0]),
                                      student.bypasses(pair[0]), pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
                                      _inside_a_dropped_term(pair[1], dropped),
@@ -2440,8 +2451,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # whose first x is below their first y, the line's removal every point set)
         for mutant in partly:
             _refuted(trial, student.fix(mutant), function)
-    # (and a change inside a step is told alone beside one skipping the step: the skip leaves its slip)
+    # (and a change inside a step is told alone beside one skipping the step: the skip leaves its slip; a
+    # change inside a branch beside one steering the code round the branch, likewise)
     fixes = [pair for pair in fixes if not student.bypasses(pair[0])] or fixes
+    fixes = [pair for pair in fixes if not student.steers_a_branch(pair[0])] or fixes
     passing = passing_functions(trial)
     fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:

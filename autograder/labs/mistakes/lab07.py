@@ -93,6 +93,19 @@ MISTAKES = {
             return cv2.warpAffine(image, _MATRICES[(w, h)], (w, h), flags=cv2.INTER_LINEAR,
                                   borderMode=cv2.BORDER_CONSTANT, borderValue=0)
         """, ["keeps something between calls", "`_MATRICES`"]),
+    # the blind set 1204c's 07/06: one side of the correspondences reordered (the repair steering round the
+    # branch -- the orientation test made 0 -- is not the one told)
+    "affine_from_points reordering the source triangle only": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            src = np.asarray(src, dtype=np.float64)
+            dst = np.asarray(dst, dtype=np.float64)
+            e1, e2 = src[1] - src[0], src[2] - src[0]
+            if e1[0] * e2[1] - e1[1] * e2[0] > 0:
+                order = [0, 2, 1]
+                src = src[order]
+            S = np.hstack([src, np.ones((3, 1))])
+            return np.linalg.solve(S, dst).T
+        """, ["`src, dst = (src[order], dst[order])`"]),
     "translation_matrix returning one module-level array": ("lab07.ex1", """
         _IDENTITY = np.eye(3)
         def translation_matrix(tx, ty):
