@@ -386,6 +386,10 @@ class MatchingMistakes:
     def __call__(self) -> dict:
         return truth.matching_mistakes(self.scene, self.block_size, self.cost)
 
+    def matched(self) -> np.ndarray:
+        """A right winner-take-all matcher's map of the scene (its blocks centred on their pixels)."""
+        return truth.winner_take_all(self.scene, self.block_size, self.cost)
+
     def probe(self, t: Trial) -> Probe:
         scene = truth.random_dot_scene(**self.PROBE_SCENE)
         columns = np.arange(scene.judged.shape[1])[None, :] >= scene.max_disparity
@@ -482,6 +486,41 @@ def name_disparity_scale(t: Trial, what: str, got, judged, threshold, max_dispar
                + FIXED_POINT_KEPT + ", before comparing with max_disparity.", mistake=FIXED_POINT)
 
 
+MAP_MOVED = "the disparity map is moved by whole pixels (the block is not centred on its pixel)"
+MOVES = 8          # pixels a map is tried moved by, each way (a 17 x 17 block's half)
+MOVED_AGREES = 0.5   # a moved map disagrees with a block matcher's at most this share of what it does unmoved
+MOVED_AT_MOST = 0.25   # and at most this share of the pixels (another recipe's map, moved, is still near it)
+
+
+def map_moved(got, matched, searched) -> tuple[int, int, float, float] | None:
+    """``(dx, dy, apart, as_is)`` when ``got`` moved by ``dx`` px right and ``dy`` down (up to :data:`MOVES`)
+    is ``matched`` -- a winner-take-all block matcher's map of the same pair -- on the ``searched`` pixels
+    both cover: ``apart`` the share of them more than a pixel off, at most :data:`MOVED_AGREES` times
+    ``as_is``, the share unmoved; None otherwise. Measured against a matcher's map, not the truth: a
+    matcher's errors at depth edges spread as far as a moved block does."""
+    height, width = matched.shape
+
+    def apart(dx, dy) -> float:
+        rows, columns = slice(max(0, dy), height + min(0, dy)), slice(max(0, dx), width + min(0, dx))
+        part = got[max(0, -dy):height + min(0, -dy), max(0, -dx):width + min(0, -dx)]
+        inside = searched[rows, columns]
+        with np.errstate(invalid="ignore"):
+            return float(np.mean(~(np.abs(part - matched[rows, columns]) <= 1.0)[inside])) if inside.any() else 1.0
+
+    as_is = apart(0, 0)
+    best = min(((apart(dx, dy), abs(dx) + abs(dy), dx, dy) for dy in range(-MOVES, MOVES + 1)
+                for dx in range(-MOVES, MOVES + 1) if (dx, dy) != (0, 0)))
+    return (best[2], best[3], best[0], as_is) if best[0] <= min(MOVED_AGREES * as_is, MOVED_AT_MOST) else None
+
+
+def _moved_words(dx: int, dy: int, how: str = "") -> str:
+    """`3 px right and 3 px down`; with ``how`` "away": where the value comes from (`3 px to the left and
+    3 px up`)."""
+    parts = [f"{abs(dx)} px " + ("to the " if how else "") + ("right" if dx > 0 else "left") if dx else "",
+             f"{abs(dy)} px " + ("down" if dy > 0 else "up") if dy else ""]
+    return " and ".join(part for part in parts if part)
+
+
 def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=None, mistakes=None):
     gt, thr = (scene.judged if judged is None else judged), scene.threshold
     finite = np.nan_to_num(got.astype(np.float64), nan=0.0, posinf=0.0, neginf=0.0)
@@ -494,6 +533,17 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=N
                    "it looks like an off-by-one error in the disparity index (d runs from 0).",
                    mistake="the disparity index is off by one")
     name_disparity_scale(t, what, finite, gt, thr, scene.max_disparity)
+    matched = getattr(mistakes, "matched", None)
+    moved = map_moved(finite, matched(), (gt > 0) & (np.arange(gt.shape[1])[None, :] >= scene.max_disparity)) \
+        if matched is not None else None
+    if moved is not None:
+        dx, dy, apart, as_is = moved
+        t.fail(f"{what}: the map is moved: " + measured(
+            f"taken {_moved_words(dx, dy)}, it is a block matcher's map of the pair ({apart:.0%} of the pixels "
+            f"more than a pixel off, {as_is:.0%} as it is): each pixel holds the disparity found for the pixel "
+            f"{_moved_words(-dx, -dy, 'away')} -- the block compared for pixel (x, y) is not centred on (x, y) "
+            "(a block from its corner, a padding on one side only), or the map is written at an offset."),
+            mistake=MAP_MOVED)
     values = finite[gt > 0]
     if values.size and np.ptp(values) < 1e-9:
         t.fail(f"{what}: every pixel got the same disparity ({values[0]:g}).")
