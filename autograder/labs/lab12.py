@@ -2733,7 +2733,13 @@ def pattern_mistakes(width, n_bits) -> dict:
         "the columns are numbered from 1 (u = 1 .. width, column u shows column u + 1's code); u runs from 0: "
         "k = (u * 2**n_bits) // width for u = 0 .. width - 1":
             _patterns_of(((np.arange(width) + 1) * (1 << n_bits)) // width, n_bits),
+        STRIPE_ONE_TOO_LARGE: _patterns_of((np.arange(width) * (1 << n_bits)) // width + 1, n_bits),
     }
+
+
+# (on a width that is a multiple of 2**n_bits, the same patterns as the columns numbered from 1: the probe tells)
+STRIPE_ONE_TOO_LARGE = ("the stripe index is one too large: column u shows the code of stripe k + 1, k = floor(u * "
+                        "2**n_bits / width) (np.digitize, for one, numbers its bins from 1)")
 
 
 PATTERN_PROBE = (97, 5)   # a size on which every mistake of pattern_mistakes shows in many columns
@@ -2744,18 +2750,22 @@ def name_pattern_mistake(t: Trial, what, got, width, n_bits):
     different mistakes give the same patterns, so a small example is checked again at
     :data:`PATTERN_PROBE` with the student's function."""
     expected = truth.gray_code_patterns(width, n_bits)
-    for mistake, wrong in pattern_mistakes(width, n_bits).items():
-        if not np.array_equal(got, wrong):
-            continue
-        if int(np.sum(np.any(wrong != expected, axis=0))) < 3:
-            try:
-                again = t.call("gray_code_patterns", *PATTERN_PROBE)
-            except StudentFailure:
-                return
-            if not (isinstance(again, np.ndarray) and again.shape == PATTERN_PROBE[::-1]
-                    and np.array_equal(again, pattern_mistakes(*PATTERN_PROBE)[mistake])):
-                return
-        t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    candidates = pattern_mistakes(width, n_bits)
+    matching = [mistake for mistake, wrong in candidates.items() if np.array_equal(got, wrong)]
+    if not matching:
+        return
+    # (a mistake shown in a few columns only, or two that give these very patterns: the probe tells)
+    if len(matching) > 1 or int(np.sum(np.any(candidates[matching[0]] != expected, axis=0))) < 3:
+        try:
+            again = t.call("gray_code_patterns", *PATTERN_PROBE)
+        except StudentFailure:
+            return
+        probed = pattern_mistakes(*PATTERN_PROBE)
+        matching = [mistake for mistake in matching if isinstance(again, np.ndarray)
+                    and again.shape == PATTERN_PROBE[::-1] and np.array_equal(again, probed[mistake])]
+        if len(matching) != 1:
+            return
+    t.fail(f"{what} is wrong: it looks like {matching[0]}.", mistake=matching[0])
 
 
 def judge_patterns(t: Trial, width, n_bits):

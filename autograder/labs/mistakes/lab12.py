@@ -34,6 +34,17 @@ _DP = """
 """
 
 MISTAKES = {
+    # the blind set 1204c's 12/07: np.digitize's bins counted from 1 (on gray_code_patterns(16, 4) the same
+    # patterns as columns numbered from 1: told apart on the probe)
+    "gray code stripes by np.digitize, counted from 1": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            width, n_bits = int(width), int(n_bits)
+            u = np.arange(width)
+            k = np.digitize(u, np.linspace(0, width, 2 ** n_bits + 1))
+            gray = k ^ (k >> 1)
+            shifts = np.arange(n_bits - 1, -1, -1)[:, None]
+            return (((gray[None, :] >> shifts) & 1) * 255).astype(np.uint8)
+        """, ["the stripe index is one too large"]),
     # the blind set 1204c's 12/05: the integral image padded at the end only, so each block sum is the block
     # whose corner is the pixel (the map moved by half a block)
     "block_matching summing blocks from their corner": ("lab12.ex4", """
