@@ -475,6 +475,30 @@ def fit_probe(t: Trial, function: str) -> Probe:
                       shape=(2, 3), distance=lambda a, b: point_error(a, b, region), tolerance=1.0)
 
 
+def _vector_laid_out(function) -> bool:
+    """A matrix written out of a vector's entries (`[[p[0], p[1], p[2]], [p[3], p[4], p[5]]]`): three or more
+    entries of one name indexed by numbers in one literal."""
+    def entries(node) -> list:   # (the literal's own entries, its rows' too: not those inside a sum)
+        found = []
+        for item in node.elts:
+            if isinstance(item, (ast.List, ast.Tuple)):
+                found += entries(item)
+            elif isinstance(item, ast.Subscript) and isinstance(item.value, ast.Name) \
+                    and isinstance(item.slice, ast.Constant) and isinstance(item.slice.value, int):
+                found.append((item.value.id, item.slice.value))
+        return found
+
+    for node in ast.walk(function):
+        if isinstance(node, (ast.List, ast.Tuple)) and isinstance(node.ctx, ast.Load):
+            picked = set(entries(node))
+            if any(sum(name == other for other, _ in picked) >= 3 for name, _ in picked):
+                return True
+    return False
+
+
+# The solved unknowns are laid out by the code: reshaped, or written out entry by entry.
+PLACES_UNKNOWNS = calls(".reshape") | calls("np.reshape") | Predicate("writes the matrix out of a vector's entries",
+                                                                      _vector_laid_out)
 # (a cause guessed from the entries' places: a change of the student's code confirmed to mend it says where)
 ENTRIES_MISPLACED = guessed("the solved unknowns put into the matrix in another order than the equations use them")
 
@@ -492,6 +516,12 @@ def judge_affine_fit(t: Trial, what: str, got, expected, src, dst):
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     shown, wanted = format_arrays_apart(got, expected, 6)
     misplaced = entries_misplaced(got, expected)
+    # (a cause about how the unknowns are placed only where the code places them: a solve giving A.T whole
+    # -- `np.linalg.solve(S, dst).T` -- has its entries misplaced by another step, its rows paired wrongly)
+    places = PLACES_UNKNOWNS.holds(code_of(t).reachable([what.partition("(")[0]]))
+    if misplaced and not places:
+        t.fail(f"{what} holds the six right numbers, in other places: " + measured(f"{misplaced}.")
+               + f"\nIt returned\n{shown}\nexpected\n{wanted}")
     if misplaced:
         # measured: each returned entry is one of the expected six, all of them once
         t.fail(f"{what} holds the six right numbers, in other places: " + measured(

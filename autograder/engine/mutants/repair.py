@@ -1318,6 +1318,25 @@ def take_back_refuted(results, refuted) -> None:
             result.mistake = other.mistake if not result.mistake else result.mistake
 
 
+def _undoes_a_step(student, mutant, fix: Fix) -> bool:
+    """Whether a change mends by making a step of the code do nothing: steering round a branch
+    (:meth:`_Student.steers_a_branch`) or writing a permutation as the identity (`order = [0, 2, 1]` ->
+    `[0, 1, 2]`): the step's own slip stays, where a change inside it mends it."""
+    return student.steers_a_branch(mutant) or any(_identity_order(after) and not _identity_order(before)
+                                                  for _, before, after in fix.changes)
+
+
+def _identity_order(text: str) -> bool:
+    """Whether ``text`` holds a literal list or tuple 0, 1, ..., n - 1 (n >= 2) of integers in order."""
+    try:
+        tree = ast.parse(text.strip().rstrip(":"), mode="exec")
+    except SyntaxError:
+        return False
+    return any(isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) >= 2
+               and [getattr(e, "value", None) for e in node.elts] == list(range(len(node.elts)))
+               for node in ast.walk(tree))
+
+
 def _dotted_call(call: ast.Call) -> str:
     """`cv2.cornerSubPix`, `matcher.compute`: the function a call calls, as written."""
     return ast.unparse(call.func) if len(ast.unparse(call.func)) <= 40 else "the call"
@@ -2414,7 +2433,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                     and not student.colours_with_a_size(m)),
                    key=lambda pair: (pair[0].key not in known, not student.removes_a_mask_guard(pair[0]),
                                      not (refused_type and _converts(pair[0])),
-                                     pair[0].key not in exactly, student.steers_a_branch(pair[0]),
+                                     pair[0].key not in exactly, _undoes_a_step(student, *pair),
                                      student.bypasses(pair[0]), pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
                                      _inside_a_dropped_term(pair[1], dropped),
@@ -2454,7 +2473,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # (and a change inside a step is told alone beside one skipping the step: the skip leaves its slip; a
     # change inside a branch beside one steering the code round the branch, likewise)
     fixes = [pair for pair in fixes if not student.bypasses(pair[0])] or fixes
-    fixes = [pair for pair in fixes if not student.steers_a_branch(pair[0])] or fixes
+    fixes = [pair for pair in fixes if not _undoes_a_step(student, *pair)] or fixes
     passing = passing_functions(trial)
     fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:
