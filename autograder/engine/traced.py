@@ -656,11 +656,18 @@ def _item_named(recording, expressions, where) -> Form | None:
         if not isinstance(node, ast.Subscript) or isinstance(node.slice, (ast.Slice, ast.Tuple)):
             continue
         size, index = recording.length(node.value), recording.number(node.slice)
+        if size is None and isinstance(node.value, (ast.List, ast.Tuple)) \
+                and not any(isinstance(item, ast.Starred) for item in node.value.elts):
+            size = len(node.value.elts)   # (a literal table: its length is written out)
         if size is None or index is None or index != int(index) or -size <= index < size:
             continue
         numbered = f"numbered 0 to {size - 1}" if size else "none at all"
+        # (an index counted in steps -- `angle // 90` -- and never wrapped: the table is meant to be gone round)
+        counted = any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.FloorDiv) for n in ast.walk(node.slice)) \
+            and not any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Mod) for n in ast.walk(node.slice))
+        wraps = f"; a count of steps goes round a table of {size} taken `% {size}`" if counted and size else ""
         return Form(f"{_quote(node.slice)} is {int(index)} in {_quote(node)} {where}: {_quote(node.value)} holds "
-                    f"{size} item{'s' if size != 1 else ''}, {numbered}", INDEX)
+                    f"{size} item{'s' if size != 1 else ''}, {numbered}{wraps}", INDEX)
     return None
 
 

@@ -106,6 +106,20 @@ MISTAKES = {
             S = np.hstack([src, np.ones((3, 1))])
             return np.linalg.solve(S, dst).T
         """, ["`src, dst = (src[order], dst[order])`"]),
+    # the blind set 1204c's 07/02: a literal table of quarter turns indexed by angle // 90, never wrapped
+    "rotation_matrix's quarter-turn table indexed past its end": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            if angle_deg % 90 == 0:
+                cos, sin = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)][int(angle_deg // 90)]
+            else:
+                theta = np.deg2rad(angle_deg)
+                cos, sin = np.cos(theta), np.sin(theta)
+            R = np.array([[cos, sin], [-sin, cos]])
+            c = np.asarray(center, dtype=np.float64)
+            M = np.eye(3)
+            M[:2, :2], M[:2, 2] = R, c - R @ c
+            return M
+        """, ["`int(angle_deg // 90)` is 4", "holds 4 items", "`% 4`"]),
     "translation_matrix returning one module-level array": ("lab07.ex1", """
         _IDENTITY = np.eye(3)
         def translation_matrix(tx, ty):
