@@ -383,6 +383,10 @@ _ZERO_DIVISION = re.compile(r"ZeroDivisionError|division by zero|divide by zero"
 ZERO_DIVISOR = "a division by a value that is 0 on this input"
 _NOT_SQUARE = re.compile(r"Last 2 dimensions of the array must be square")
 _MASK_ASSIGNMENT = re.compile(r"boolean array indexing assignment (?:requires a 0 or 1-dimensional input|cannot assign)")
+_MASK_INDEX = re.compile(r"boolean index did not match indexed array along (?:axis|dimension) (\d+); "
+                         r"(?:size of axis|dimension) is (\d+) but (?:size of )?corresponding boolean "
+                         r"(?:axis|dimension) is (\d+)")
+WINDOW_CUT = "a window sliced past the image's edge (a negative start, or an end past it) is cut short"
 ASSERTION = "the code's own assert fails on this input"
 _UNPACK = re.compile(r"(?:not enough|too many) values to unpack \(expected (\d+)")
 _SQUARE_ONLY = frozenset({"solve", "inv", "det", "eig", "eigvals", "cholesky", "matrix_power", "slogdet"})
@@ -420,6 +424,9 @@ def explain_raised(code, recording: Recording, fn, line: int, message: str, fram
         return _square_named(recording, expressions, where)
     if _MASK_ASSIGNMENT.search(message):
         return _masked_assignment_named(recording, statement, where)
+    found = _MASK_INDEX.search(message)
+    if found:
+        return _mask_index_named(recording, expressions, fn, line, where)
     found = _TOO_MANY_INDICES.search(message)
     if found:
         return _indexed_named(recording, expressions, int(found.group(1)), where, fn, statement)
@@ -648,6 +655,41 @@ def _masked_assignment_named(recording, statement, where) -> Form | None:
     return Form(f"in {_quote(statement)} {where}, the right side has shape {_shape_text(value)}, a value for every entry "
                 f"of the array, where `{_quote(statement.targets[0])[1:-1]}` takes one value per entry {_quote(mask)} "
                 f"selects{select}", MISTAKE)
+
+
+def _mask_index_named(recording, expressions, fn, line: int, where) -> Form | None:
+    """`window[mask]` with the mask's shape not the array's: the shapes, and where the array is a slice of
+    another made before (`window = out[cy - r:cy + r + 1, cx - r:cx + r + 1]`), the bound that cut it -- a
+    start below 0 counts from the axis' end, an end past the axis stops at it."""
+    for node in expressions:
+        if not isinstance(node, ast.Subscript):
+            continue
+        shape, mask = recording.shape(node.value), recording.shape(node.slice)
+        if shape is None or mask is None or recording.dtype(node.slice) != "bool" or tuple(shape[:len(mask)]) == tuple(mask):
+            continue
+        said = (f"in {_quote(node)} {where}, {_quote(node.value)} has shape {_shape_text(shape)} and the mask "
+                f"{_quote(node.slice)} {_shape_text(mask)}")
+        given = _last_given(fn, node.value.id, line) if isinstance(node.value, ast.Name) else None
+        sliced = given[0] if given is not None and isinstance(given[0], ast.Subscript) else None
+        whole = recording.shape(sliced.value) if sliced is not None else None
+        parts = (sliced.slice.elts if isinstance(sliced.slice, ast.Tuple) else [sliced.slice]) if sliced is not None else []
+        for axis, part in enumerate(parts):
+            if not isinstance(part, ast.Slice) or whole is None or axis >= len(whole):
+                continue
+            start = recording.number(part.lower) if part.lower is not None else None
+            stop = recording.number(part.upper) if part.upper is not None else None
+            if start is not None and start < 0:
+                return Form(said + f": {_quote(node.value)} is {_quote(sliced)} (line {given[1]}), where "
+                            f"{_quote(part.lower)} is {int(start)}" + measured(
+                                ": a slice's start below 0 counts from the axis' end, so the window is cut (here "
+                                "to nothing); clip the window to the image, and the mask with it"), WINDOW_CUT)
+            if stop is not None and stop > whole[axis]:
+                return Form(said + f": {_quote(node.value)} is {_quote(sliced)} (line {given[1]}), where "
+                            f"{_quote(part.upper)} is {int(stop)} on an axis of {whole[axis]}" + measured(
+                                ": a slice stops at the axis' end, so the window is cut short; clip the window to "
+                                "the image, and the mask with it"), WINDOW_CUT)
+        return Form(said, MISTAKE)
+    return None
 
 
 def _item_named(recording, expressions, where) -> Form | None:

@@ -14,6 +14,22 @@ DROPS_BEHIND = """
 
 
 MISTAKES = {
+    # the blind set 1204c's 09/06: a disc pasted through a window never clipped to the image
+    "draw_points pasting a disc through an unclipped window": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            r = int(radius)
+            value = tuple(int(c) for c in color) if out.ndim == 3 else int(color[0])
+            dy, dx = np.mgrid[-r:r + 1, -r:r + 1]
+            disc = dx * dx + dy * dy <= r * r
+            for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                if not (np.isfinite(x) and np.isfinite(y)):
+                    continue
+                cx, cy = int(round(x)), int(round(y))
+                window = out[cy - r:cy + r + 1, cx - r:cx + r + 1]
+                window[disc] = value
+            return out
+        """, ["the window is cut", "clip the window to the image"]),
     # the blind set 1204c's 09/03: "a rotation vector accepted too", every 3x3 R turned into its vector
     "camera_matrix passing R through cv2.Rodrigues": ("lab09.ex3", """
         def camera_matrix(K, R, t):
