@@ -784,6 +784,13 @@ def _make_regroup(node, payload):
         inner = node.left
         return ast.BinOp(ast.BinOp(copy.deepcopy(inner.left), node.op, copy.deepcopy(node.right)), inner.op,
                          copy.deepcopy(inner.right))
+    if payload in ("factor_last", "factor_first"):   # (a - b) * c -> a - b * c, or a * c - b
+        inner = node.left
+        if payload == "factor_last":
+            return ast.BinOp(copy.deepcopy(inner.left), inner.op,
+                             ast.BinOp(copy.deepcopy(inner.right), node.op, copy.deepcopy(node.right)))
+        return ast.BinOp(ast.BinOp(copy.deepcopy(inner.left), node.op, copy.deepcopy(node.right)), inner.op,
+                         copy.deepcopy(inner.right))
     if payload == "flat":   # a - (b + c) -> a - b + c
         inner = node.right
         return ast.BinOp(ast.BinOp(copy.deepcopy(node.left), node.op, copy.deepcopy(inner.left)), inner.op,
@@ -2797,6 +2804,10 @@ def _student_changes(node, parent, parents, words):
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and isinstance(node.left, ast.BinOp) \
             and isinstance(node.left.op, (ast.FloorDiv, ast.Div)):
         yield "regroup", "floor_last", ""   # `(2 ** n // w) * u` for `2 ** n * u // w`
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div)) and isinstance(node.left, ast.BinOp) \
+            and isinstance(node.left.op, (ast.Add, ast.Sub)):
+        yield "regroup", "factor_last", ""    # `(ideal - A) * s` for `ideal - A * s`: the factor of one term
+        yield "regroup", "factor_first", ""   # `(x - c) * s` for `x * s - c`
     if isinstance(parent, ast.For) and parent.iter is node:
         yield from _loop_order_changes(node)
     if isinstance(node, ast.Compare) and len(node.ops) == 1:

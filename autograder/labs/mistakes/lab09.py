@@ -14,6 +14,18 @@ DROPS_BEHIND = """
 
 
 MISTAKES = {
+    # the blind set 1204c's 09/05: the spread factor applied to the whole difference, the ideal projection too
+    "aperture spread applied to the ideal projection too": ("lab09.ex4", """
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            X, _ = _points(points)
+            rng = np.random.default_rng(seed)
+            radius = aperture * np.sqrt(rng.uniform(0.0, 1.0, size=(len(X), n_rays)))
+            angle = rng.uniform(0.0, 2 * np.pi, size=(len(X), n_rays))
+            A = np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=-1)
+            ideal = pinhole_project(X, f)
+            spread = 1.0 + f / X[:, 2]
+            return (ideal[:, None, :] - A) * spread[:, None, None]
+        """, ["`ideal[:, None, :] - A * spread[:, None, None]`"]),
     # the blind set 1204c's 09/06: a disc pasted through a window never clipped to the image
     "draw_points pasting a disc through an unclipped window": ("lab09.ex5", """
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
