@@ -3016,6 +3016,10 @@ def _threshold_changes(node: ast.Compare):
     """A validity test with the wrong threshold or strictness (`d >= 1` where `d > 0` belongs: a
     sub-pixel disparity is valid): the same direction, the threshold one either side or 0."""
     threshold = node.comparators[0]
+    if _reduction_of(threshold, node.left):
+        # (`d > np.nanmin(d)`: a threshold the data sets -- its own smallest value -- where a fixed one belongs)
+        yield "compare", (type(node.ops[0]).__name__, 0), ""
+        return
     if not (isinstance(threshold, ast.Constant) and type(threshold.value) in (int, float)):
         return
     value = threshold.value
@@ -3024,6 +3028,19 @@ def _threshold_changes(node: ast.Compare):
         if other != value and (other >= 0 or value < 0):
             for operator in (strict, loose):
                 yield "compare", (operator, type(value)(other)), ""
+
+
+_TO_ONE_VALUE = {"min", "amin", "nanmin", "max", "amax", "nanmax", "mean", "nanmean", "median", "nanmedian"}
+
+
+def _reduction_of(node, array) -> bool:
+    """`np.nanmin(d)`, `d.min()`, `np.median(d)`: a reduction of ``array`` (the same code) to one value."""
+    if not isinstance(node, ast.Call) or _dotted(node.func).rsplit(".", 1)[-1] not in _TO_ONE_VALUE:
+        return False
+    reduced = node.args[0] if node.args and not (isinstance(node.func, ast.Attribute)
+                                                 and ast.dump(node.func.value) == ast.dump(array)) else \
+        node.func.value if isinstance(node.func, ast.Attribute) else None
+    return reduced is not None and ast.dump(reduced) == ast.dump(array)
 
 
 _FILLED = {"zeros", "ones", "empty", "full", "zeros_like", "ones_like", "empty_like", "full_like"}

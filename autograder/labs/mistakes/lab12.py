@@ -34,6 +34,15 @@ _DP = """
 """
 
 MISTAKES = {
+    # the blind set 1204c's 12/03: validity judged against the map's own smallest value, not 0
+    "depth_from_disparity valid above the map's minimum": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, dtype=np.float64)
+            valid = np.isfinite(d) & (d > np.nanmin(d))
+            depth = np.zeros_like(d)
+            np.divide(float(f) * float(baseline), d, out=depth, where=valid)
+            return depth
+        """, ["`d > 0`"]),
     # the blind set 1204c's 12/07: np.digitize's bins counted from 1 (on gray_code_patterns(16, 4) the same
     # patterns as columns numbered from 1: told apart on the probe)
     "gray code stripes by np.digitize, counted from 1": ("lab12.ex6", """
