@@ -41,7 +41,6 @@ from ..loading.submission import load_submission
 from ..sandbox import cache, confine
 from ..sandbox.supervisor import CallOutcome, Limits, Sandbox
 from .checks import Fail, StudentFailure, Trial, Verdict
-from .conventions import STATE_BETWEEN_CALLS
 from .claims import measured, rewritten, without_guessed_cause
 from .forms import exception_form
 from .inputs import Inputs
@@ -586,6 +585,16 @@ def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: T
     return replace(verdict, message=f"{lead} {sentence}{newline}{rest}", mistake=finding.mistake, hint="")
 
 
+def _state_read(reading: Reading | None, check: Check, trial: Trial) -> bool:
+    """Whether the reading of the code finds state kept between calls in the functions the check called."""
+    from ..loading.reading import STATE_KEPT
+
+    if reading is None:
+        return False
+    called = functions_called(check)
+    return any(f.mistake in STATE_KEPT for f in findings_for(reading, called, bool(trial.whole_numbers & called)))
+
+
 def _named_by_fresh_start(verdict: Verdict, check: Check, trial: Trial) -> Verdict:
     """A failed verdict named as state kept between calls when the failing call, made first in the
     student's module imported anew, answers right (:mod:`autograder.engine.fresh_start`). Never costs
@@ -992,38 +1001,41 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         tb = ""
         _log_grader_error(check, exc)
     _remember_check(check, trial)
-    inherited = False   # a failure another of the student's functions causes is not this one's mistake
+    # a failure another of the student's functions causes is not this one's mistake, nor one an earlier
+    # call's leftovers decided
+    inherited = False
     if status in (FAILED, PARTIAL) and student_failure in ("", "exception"):
         verdict, inherited = _told_if_inherited(verdict, check, trial)
-    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited \
+            and not _state_read(reading, check, trial):
         # (an answer an earlier call's leftovers decided: what the check measured describes the stale
-        # answer, a change of the code would only work around it -- nothing else names it)
-        verdict = _named_by_fresh_start(verdict, check, trial)
-    # (named apart: inherited from another function, or decided by an earlier call -- nothing else names it)
-    apart = inherited or verdict.mistake == STATE_BETWEEN_CALLS
-    if student_failure == "exception" and not verdict.mistake and not apart:
+        # answer, a change of the code would only work around it -- nothing else names it; where the
+        # reading of the code finds the state itself, it tells it)
+        stale = _named_by_fresh_start(verdict, check, trial)
+        inherited, verdict = stale is not verdict, stale
+    if student_failure == "exception" and not verdict.mistake and not inherited:
         # A change of their code confirmed to mend the exception comes before the NumPy forms'
         # reading of its message, which guesses which operand is wrong ("keep it a column").
         verdict = _named_by_repair(verdict, check, trial, tb)
     if student_failure == "exception" and not verdict.mistake:
         verdict = _named_by_exception(verdict, trial, tb)
-    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure == "" and not apart:
+    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure == "" and not inherited:
         verdict = _named_by_misread_output(verdict, trial)
     if reading is not None and status in (FAILED, PARTIAL) and student_failure in ("", "exception") \
-            and not apart:
+            and not inherited:
         verdict = _named_by_reading(verdict, reading, check, trial)
-    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not apart:
+    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_defaults(verdict, trial)
-    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not apart:
+    if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_strings(verdict, check, trial)
-    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not apart:
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited:
         verdict = _named_by_error_model(verdict, check, trial, raised=student_failure == "exception")
-    if status in (FAILED, PARTIAL) and student_failure == "" and not apart:   # (an exception's: above)
+    if status in (FAILED, PARTIAL) and student_failure == "" and not inherited:   # (an exception's: above)
         verdict = _named_by_repair(verdict, check, trial)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure in ("", "exception") \
-            and not apart and "looks like" not in str(verdict.message).lower():
+            and not inherited and "looks like" not in str(verdict.message).lower():
         verdict = _named_by_unused_parameter(verdict, trial)   # true, but not confirmed
-    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not apart \
+    if status in (FAILED, PARTIAL) and student_failure in ("", "exception") and not inherited \
             and verdict.mistake not in _unused_mistakes():
         # what the student's expressions held: the operands an exception refused, where an answer of the
         # wrong shape was made (after the error model: a place is no cause, and a name set here would

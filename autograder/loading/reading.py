@@ -2199,6 +2199,10 @@ def _result_rounded(name, function) -> list[Finding]:
     return []
 
 
+# The findings of state a function keeps between calls, read in its code: a failure they cause is told by them
+# (not by making the call again in a fresh module, autograder.engine.fresh_start, which only measures it).
+STATE_KEPT = frozenset({"a container outside the function keeps what earlier calls put in",
+                        "an array of the module changed in place"})
 GROWS = frozenset({"append", "extend", "insert", "appendleft"})   # (a list grown: a cache's dict is no mistake)
 
 
