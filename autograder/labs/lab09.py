@@ -22,7 +22,8 @@ from ..engine import strategies as st
 from ..engine import judges
 from ..engine import defaults_given
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
-from ..engine.claims import THIRD_COORDINATE, checklist, divides_by, evidenced, from_code, guard, look_at, measured
+from ..engine.claims import (THIRD_COORDINATE, checklist, divides_by, evidenced, from_code, guard, guessed, look_at,
+                             measured)
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
 from ..engine.hints import (Hint, Predicate, _resolved, _scope, call_in_a_loop, calls, code_of, expr, matmul_of, mentions,
                             nan_behind)
@@ -1796,6 +1797,7 @@ OBJECT_POINTS_ROW_BY_ROW = (expr("np.mgrid[0:_[0], 0:_[1]].T.reshape(-1, 2)")
                             | expr("np.mgrid[0:w, 0:h].T.reshape(-1, 2)")).saying(
     "builds the object points with np.mgrid[0:cols, 0:rows].T.reshape(-1, 2)")
 ROWS_FIRST = ("r", "h", "ny", "n_rows", "nrows", "height")
+OBJECT_POINTS_ORDER = guessed("the object points are in the wrong order")
 
 
 def _pattern_read_rows_first(function) -> bool:
@@ -1913,13 +1915,14 @@ def judge_calibration(t: Trial, images, K_true, pattern):
     if rms > 1.0:
         # (the order is guessed only where the code does not build them row by row: corners refined on
         # another view's image match no object points either -- the blind set 1204c's 09/08)
+        # (and the order is a guess: a change of the code confirmed to mend it -- a coordinate left unscaled
+        # in a loop building them row by row -- takes its place, and the recipe's hint with it)
         ordered = OBJECT_POINTS_ROW_BY_ROW.found(code_of(t).reachable(["calibrate"]))
         t.fail(f"{what}: the reprojection error is {rms:.2f} px (a good calibration on these clean "
                "views has < 0.1 px): the object points do not correspond to the detected corners"
-               + ("; " if ordered else " (they are in the wrong order, e.g. column by column, or for another "
-                  "pattern_size); ") + OBJECT_POINTS_HINT.said(t),
-               mistake="the object points do not correspond to the corners" if ordered
-               else "the object points are in the wrong order")
+               + ("." if ordered else f": it looks like {OBJECT_POINTS_ORDER} (column by column, say, or for "
+                  "another pattern_size)."), hint=OBJECT_POINTS_HINT.said(t),
+               mistake="the object points do not correspond to the corners" if ordered else OBJECT_POINTS_ORDER)
     if np.abs(K[:2, 2] - K_true[1::-1, 2]).max() < 3.0 and c_error.max() > 3.0:
         t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
                "(rows, cols)? OpenCV wants (width, height).", mistake="the principal point is swapped")

@@ -3520,12 +3520,14 @@ def _beside(verdict) -> bool:
     """Whether a repair may be told beside the check's own name of the mistake: not beside a name that
     already points into the code (a reading of it -- :func:`..claims.from_code` --, a line) nor one a repair
     made."""
-    from ..claims import READ_IN_CODE
+    from ..claims import GUESSED, READ_IN_CODE
     from ..inplace import MISTAKE as CHANGED_IN_PLACE
 
     message = str(verdict.message)
     if verdict.mistake in READ_IN_CODE:   # (a name said after reading the code points into it already)
         return False
+    if verdict.mistake in GUESSED:   # (a cause guessed from measures: a confirmed change takes its place)
+        return True
     # (nor beside a caller's array changed in place, measured where the effect shows: the write is the slip,
     # and a change elsewhere that mends the second call's answers -- a rounding made a floor -- compensates)
     return BESIDE_NAMES and not verdict.mistake.startswith(MISTAKE) and verdict.mistake != CHANGED_IN_PLACE \

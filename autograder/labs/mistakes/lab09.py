@@ -14,6 +14,26 @@ DROPS_BEHIND = """
 
 
 MISTAKES = {
+    # the blind set 1204d's 09/05: object points built row by row in a loop, the row coordinate left unscaled
+    # (not told "in the wrong order": the change that mends it takes that guess's place)
+    "calibrate scaling one coordinate of the object points only": ("lab09.ext1", """
+        def calibrate(images, pattern_size, square_size):
+            cols, rows = pattern_size
+            board = np.zeros((cols * rows, 3), np.float32)
+            for j in range(rows):
+                for i in range(cols):
+                    board[j * cols + i] = (i * square_size, j, 0.0)
+            object_points, image_points = [], []
+            for image in images:
+                grey = image if image.ndim == 2 else cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)
+                found, corners = cv2.findChessboardCorners(grey, (cols, rows))
+                if found:
+                    object_points.append(board)
+                    image_points.append(corners)
+            h, w = images[0].shape[:2]
+            rms, K, dist, _, _ = cv2.calibrateCamera(object_points, image_points, (w, h), None, None)
+            return K, dist.ravel()[:5], float(rms)
+        """, ["`(i * square_size, j * square_size, 0.0)`"]),
     # the blind set 1204c's 09/05: the spread factor applied to the whole difference, the ideal projection too
     "aperture spread applied to the ideal projection too": ("lab09.ex4", """
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
