@@ -876,6 +876,9 @@ def _spread(got, ideal):
     return d, np.sqrt((d ** 2).mean(axis=1))                 # distances, RMS per point
 
 
+SPREAD_FOCAL = "the blur disc's scale (1 + f / Z) is made with another focal length than f"
+
+
 @ex4.check("simulate_aperture: rays spread over the blur disc around the ideal projection", points=3)
 def aperture_statistics(t):
     X = truth.points_in_front(43, n=6, z_range=(1.0, 8.0))
@@ -934,6 +937,19 @@ def aperture_statistics(t):
         t.fail(f"{what}: the rays fill only the inner half of the blur disc (at most {ratio.max():.2f} "
                "radii from the ideal projection)" + (f": it looks like {cause}; it is the pinhole's radius"
                                                        if cause else "") + ".", mistake=cause)
+    own = rms / np.maximum(d.max(axis=1), 1e-300)   # the spread against the disc the rays do fill
+    if np.all((own > 0.6) & (own < 0.8)) and (np.all(ratio < 0.9) or np.all(ratio > 1.1)):
+        # (a uniform disc of another size: its radius, measured per point, says which focal length made it)
+        made_with = (d.max(axis=1) / aperture - 1.0) * X[:, 2]   # c of a radius aperture * (1 + c / Z)
+        c = float(np.median(made_with))
+        same = np.all(np.abs(made_with - c) <= 0.05 * max(abs(c), 1.0))
+        c = round(c) if abs(c - round(c)) <= 0.02 * max(abs(c), 1.0) else float(f"{c:.3g}")   # (the farthest of
+        # 4000 rays lands a thousandth short of the disc's edge)
+        t.fail(f"{what}: the rays fill a disc {'smaller' if ratio.max() < 1 else 'larger'} than the blur disc, "
+               f"evenly: their farthest lands {ratio.min():.2f}..{ratio.max():.2f} radii from the ideal projection"
+               + (measured(f"; each disc's radius is aperture * (1 + c / Z) with c = {c:g} for every point, where "
+                           f"c is the focal length f = {APERTURE_F:g}") if same else "") + ".",
+               mistake=SPREAD_FOCAL if same else "")
     if np.any(per_point < 0.5) or np.any(per_point > 0.8):
         t.fail(f"{what}: the rays fill the blur disc unevenly (RMS distance {per_point.min():.2f}.."
                f"{per_point.max():.2f} radii; uniform over the disc gives 0.71).",

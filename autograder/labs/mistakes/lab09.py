@@ -14,6 +14,18 @@ DROPS_BEHIND = """
 
 
 MISTAKES = {
+    # the blind set 1204d's 09/03: the blur scale made with f = 1 (the sheet's example) whatever f is
+    "aperture spread 1 + 1 / Z whatever the focal length": ("lab09.ex4", """
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            X, _ = _points(points)
+            rng = np.random.default_rng(seed)
+            radius = aperture * np.sqrt(rng.uniform(0.0, 1.0, size=(len(X), n_rays)))
+            angle = rng.uniform(0.0, 2 * np.pi, size=(len(X), n_rays))
+            A = np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=-1)
+            ideal = pinhole_project(X, f)
+            spread = 1.0 + 1.0 / X[:, 2]
+            return ideal[:, None, :] - A * spread[:, None, None]
+        """, ["aperture * (1 + c / Z) with c = 1"]),
     # the blind set 1204d's 09/05: object points built row by row in a loop, the row coordinate left unscaled
     # (not told "in the wrong order": the change that mends it takes that guess's place)
     "calibrate scaling one coordinate of the object points only": ("lab09.ext1", """
