@@ -2804,10 +2804,10 @@ def _student_changes(node, parent, parents, words):
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and isinstance(node.left, ast.BinOp) \
             and isinstance(node.left.op, (ast.FloorDiv, ast.Div)):
         yield "regroup", "floor_last", ""   # `(2 ** n // w) * u` for `2 ** n * u // w`
-    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div)) and isinstance(node.left, ast.BinOp) \
-            and isinstance(node.left.op, (ast.Add, ast.Sub)):
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div, ast.MatMult)) \
+            and isinstance(node.left, ast.BinOp) and isinstance(node.left.op, (ast.Add, ast.Sub)):
         yield "regroup", "factor_last", ""    # `(ideal - A) * s` for `ideal - A * s`: the factor of one term
-        yield "regroup", "factor_first", ""   # `(x - c) * s` for `x * s - c`
+        yield "regroup", "factor_first", ""   # `(x - c) * s` for `x * s - c`; `(X + p4) @ M.T` for `X @ M.T + p4`
     if isinstance(parent, ast.For) and parent.iter is node:
         yield from _loop_order_changes(node)
     if isinstance(node, ast.Compare) and len(node.ops) == 1:

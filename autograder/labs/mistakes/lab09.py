@@ -14,6 +14,14 @@ DROPS_BEHIND = """
 
 
 MISTAKES = {
+    # the blind set 1204d's 09/08: P's last column added to the point before the product, not after it
+    "project adding p4 before multiplying by M": ("lab09.ex3", """
+        def project(P, points):
+            P = np.asarray(P, dtype=np.float64)
+            X, single = _points(points)
+            M, p4 = P[:, :3], P[:, 3]
+            return _divide((X + p4) @ M.T, single)
+        """, ["`X @ M.T + p4`"]),
     # the blind set 1204d's 09/03: the blur scale made with f = 1 (the sheet's example) whatever f is
     "aperture spread 1 + 1 / Z whatever the focal length": ("lab09.ex4", """
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
