@@ -1707,11 +1707,14 @@ def project_onto_image_off_the_frame(t):
 def project_onto_image_any_camera(t):
     """The cameras ``project`` is checked with beyond the usual set-up (P at another scale, P[2, 3] = 0
     and < 0), through project_onto_image: the same camera gives the same points in both functions."""
-    image = photo("chelsea", (320, 240))
+    # (on a photo the size of a camera's frame: the image drawn on is the one given, at its own size)
+    image = photo("chelsea", (960, 720))
     for name, P, X in other_cameras():
         got = t.call("project_onto_image", image, P, X)
         if not (isinstance(got, (tuple, list)) and len(got) == 2):
             t.fail("project_onto_image should return a pair (image, pts)")
+        t.expect_array(got[0], f"project_onto_image(960x720 image, {name}, points)[0] (the image)",
+                       shape=image.shape, dtype=image.dtype)
         judge_points(t, f"project_onto_image(image, {name}, points)[1] (the points)", got[1],
                      truth.homogeneous_project(P, X), project_mistakes(P, X), tolerance=1e-6,
                      probe=points_probe(t, "project_onto_image"))

@@ -2158,6 +2158,16 @@ def _changes(node, parents, words: _Words, line):
     if words.student and isinstance(node, ast.If) and not node.orelse and len(node.body) == 1 \
             and isinstance(node.body[0], ast.Raise) and node.body[0].exc is not None:
         yield "drop_statement", None, ""   # a test of its own that refuses valid input (`matrix_rank(F) != 2`)
+    if words.student and isinstance(node, ast.If) and not node.orelse and len(node.body) >= 2 \
+            and all(isinstance(s, ast.Assign) and all(isinstance(x, ast.Name) for x in s.targets) for s in node.body) \
+            and isinstance(parent, (ast.FunctionDef, ast.For, ast.While, ast.With)):
+        # a special case of its own that replaces values the general way made (`canvas = cv2.resize(...)` and
+        # `marks = pts * scale` for a wide image: the answer no longer the size it was given)
+        made = {s.targets[0].id for s in node.body if len(s.targets) == 1}
+        before = {n.id for s in getattr(parent, "body", ()) if getattr(s, "lineno", node.lineno) < node.lineno
+                  for n in ast.walk(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+        if made & before:
+            yield "drop_statement", None, ""
     if isinstance(node, ast.Assign) and len(node.targets) == 1:
         yield from _line_name_changes(node, words, line)
     yield from _in_place_changes(node, words)

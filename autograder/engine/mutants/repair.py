@@ -1223,6 +1223,12 @@ class _Student:
             # (a test of the student's own that raises, taken out whole: "removing `if ...: raise ...`")
             test = " ".join(ast.unparse(edited.test).split())
             return (edited.lineno, f"if {test}: raise ...", "pass") if len(test) <= _SHOWN else None
+        if operator == "drop_statement" and isinstance(edited, ast.If):
+            # (a special case of the student's own taken out whole: "removing `if ...: ...`", its lines said)
+            test = " ".join(ast.unparse(edited.test).split())
+            last = max(getattr(s, "end_lineno", None) or s.lineno for s in edited.body)
+            return (edited.lineno, f"if {test}: ... (lines {edited.lineno}-{last})", "pass") \
+                if len(test) <= _SHOWN else None
         context = edited
         while isinstance(context, (ast.Name, ast.Constant, ast.Attribute, ast.keyword, ast.Slice)) \
                 or (isinstance(context, ast.expr) and _width(context) < 12):
@@ -2304,6 +2310,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # The check's own name of the mistake, where it quotes the student's code ("your code fixes signs
     # with np.sign"), says where to look first.
     runnable = student.quoted_first(runnable, said)
+    if all(_sized_otherwise(variant.students[i], references[i]) for i in failing):
+        # An answer of another size (an image shrunk, a map cropped): only code that makes or reads a size can
+        # mend it -- those changes first (a resize for wide images, taken out whole, is far down the list).
+        sized = [m for m in runnable if _SIZE_CODE.search(str(student.fix(m).changes if student.fix(m) else ""))]
+        runnable = sized + [m for m in runnable if m not in sized]
     if any(_rows_for_columns(variant.students[i], references[i]) for i in failing):
         # An answer with rows and columns exchanged (a canvas sized (height, width)): the exchanges
         # of twins first, wherever they are (`(y_max - y_min, x_max - x_min)`, `w, h = shape[:2]`).
@@ -2824,6 +2835,17 @@ def _ties_only(fix: "Fix") -> bool:
     _, before, after = fix.changes[0]
     loose = lambda text: re.sub(r"([<>])=", r"\1", text)  # noqa: E731
     return before != after and loose(before) == loose(after)
+
+
+_SIZE_CODE = re.compile(r"\.shape\b|\bresize\b|\breshape\b|\bpad\b|\bpyr(?:Down|Up)\b|\bdsize\b|\blen\(|\[[^\]]*:")
+
+
+def _sized_otherwise(answer, reference) -> bool:
+    """Whether the answer's first array has another shape than the reference's (of as many axes)."""
+    first = lambda value: value[0] if isinstance(value, (tuple, list)) and value else value  # noqa: E731
+    got, want = first(answer), first(reference)
+    return isinstance(got, np.ndarray) and isinstance(want, np.ndarray) and got.ndim == want.ndim \
+        and got.shape != want.shape
 
 
 def _rows_for_columns(answer, reference) -> bool:
