@@ -657,6 +657,24 @@ class _Student:
                 node = None if isinstance(parent, ast.stmt) else parent
         return made
 
+    def test_taken_out(self, guard) -> Fix | None:
+        """A guard of :meth:`guards` (its test made True or False) told as the test taken out: its block
+        always run, or never (None when the test is not an ``if``'s)."""
+        where, ordinal, _, value = guard.edits[0]
+        nodes, parents = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        holder = parents.get(id(node), (None,))[0] if node is not None else None
+        if not isinstance(holder, ast.If):
+            return None
+        test = " ".join(ast.unparse(holder.test).split())
+        if len(test) > _SHOWN:
+            return None
+        last = max(getattr(s, "end_lineno", None) or s.lineno for s in holder.body)
+        said = (f"taking out the test `if {test}:` (line {holder.lineno}{{inside}}) so that its block always runs"
+                if value else f"taking out the block under `if {test}:` (lines {holder.lineno}-{last}{{inside}}), "
+                              "which runs where it should not")
+        return Fix(((holder.lineno, f"if {test}:", said),), where, "guard", guard.edits)
+
     def reads_size(self, mutant) -> bool:
         """Whether one of the mutant's changes is in a statement that reads an array's size: its
         ``.shape`` or ``.size``, ``len(...)``, or a name computed from them in the same def (`h, w =
@@ -2455,12 +2473,22 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if fix.changes[0][0] in lines or _dehomogenisation_dropped(fix) or student.skips_a_right_step(mutant) \
                 or student.compares_with_its_own_size(mutant) or student.reduces_a_number(mutant, numbers):
             continue
-        if (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
-                and not variant.writes_inputs(mutant) and not variant.guard_untested(mutant, failing) \
-                and not student.steers_round_a_guard(mutant) and not student.narrows_a_mask_guard(mutant) \
-                and not variant.breaks_other_checks(mutant):
+        confirmed = (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
+            and not variant.writes_inputs(mutant)
+        untested = confirmed and variant.guard_untested(mutant, failing)
+        if confirmed and not untested and not student.steers_round_a_guard(mutant) \
+                and not student.narrows_a_mask_guard(mutant) and not variant.breaks_other_checks(mutant):
             fixes.append((mutant, fix))
             lines.add(fix.changes[0][0])
+        elif untested and getattr(variant, "untested_guard", None) is not None:
+            # (the test made constant is confirmed as the change was: the test itself is where the answers go
+            # wrong -- `if p1 != 0 and p2 != 0:` leaves out terms that are 0 anyway where it would be false --
+            # and taking it out is told, not one of the ways of rewriting it)
+            guard = variant.untested_guard
+            told = student.test_taken_out(guard)
+            if told is not None and not variant.breaks_other_checks(guard):
+                fixes.append((guard, told))
+                lines.add(told.changes[0][0])
         elif clock.left() > 0 and not (mutant.key in variant.checked and not variant.other_checks()):
             ruled_out.add(mutant.key)   # (one the check passed with waits for another check to confirm it)
             halfway.add(mutant.key)     # right on the failing inputs, not on all: half of a slip made twice?
@@ -3246,6 +3274,7 @@ class _Variants:
         before cv2.circle, which clips): the change is not confirmed as the slip."""
         if self.student.raising_guard(mutant, getattr(self.trial, "raised_lines", ())):
             return False   # (the student's own test raised on a valid input: that test is the slip, not a guard)
+        self.untested_guard = None
         for guard in self.student.guards(mutant):
             values = self.answers(guard, failing, self.inputs)
             if values is None or self.clock.left() <= 0:
@@ -3257,6 +3286,7 @@ class _Variants:
                     return True   # (a guard not replayed, out of replays, is as untested)
             elif all(self.right(v, self.references[i], self.students[i]) for v, i in zip(values, failing)) \
                     and self.confirmed(guard, failing) and not self._righter_elsewhere(mutant, guard):
+                self.untested_guard = guard   # (confirmed itself: the test is where the answers go wrong)
                 return True   # (as the change was: right on the confirmation inputs too)
         return False
 

@@ -14,6 +14,23 @@ DROPS_BEHIND = """
 
 
 MISTAKES = {
+    # the blind set 1204d's 09/06: the tangential terms added only when both coefficients are non-zero
+    "distortion's tangential terms only when both are non-zero": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64)
+            single = pts.ndim == 1
+            pts = np.atleast_2d(pts)
+            k1, k2, p1, p2, k3 = (list(np.asarray(dist, dtype=np.float64).ravel()) + [0.0] * 5)[:5]
+            x, y = pts[:, 0], pts[:, 1]
+            r2 = x ** 2 + y ** 2
+            factor = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3))
+            xd, yd = x * factor, y * factor
+            if p1 != 0 and p2 != 0:
+                xd = xd + 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x ** 2)
+                yd = yd + p1 * (r2 + 2.0 * y ** 2) + 2.0 * p2 * x * y
+            out = np.stack([xd, yd], axis=1)
+            return out[0] if single else out
+        """, ["taking out the test `if p1 != 0 and p2 != 0:`"]),
     # the blind set 1204d's 09/08: P's last column added to the point before the product, not after it
     "project adding p4 before multiplying by M": ("lab09.ex3", """
         def project(P, points):
