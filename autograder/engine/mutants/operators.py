@@ -135,6 +135,7 @@ OPERATORS = {
     "convert_if": ("grey", "gray", "channel", "already", "ndim"),   # cvtColor(f, BGR2GRAY) -> ... if f.ndim == 3 else f
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),
+    "from_end": ("end", "last", "-1"),                # Vt[len(A) - 1] -> Vt[-1]
     "drop_flag": ("flag", "cv2.", "remov", "|"),          # INTER_LINEAR | WARP_INVERSE_MAP -> INTER_LINEAR                 # m1 & m2 -> m1 | m2, a and b -> a or b
     "literal": ("argument", "value", "flag"),         # cv2.computeCorrespondEpilines(p, 2, F) -> (p, 1, F)
     "boolean_mask": ("mask", "boolean", "index"),   # pts[mask.ravel()] -> pts[mask.ravel().astype(bool)]
@@ -1228,6 +1229,10 @@ def _make_negate(node, payload):
     return ast.UnaryOp(ast.Not(), copy.deepcopy(node))   # x > t -> not x > t
 
 
+def _make_from_end(node, payload):
+    return ast.UnaryOp(ast.USub(), copy.deepcopy(node.right))   # len(A) - 1 -> -1: counted from the end
+
+
 def _make_logic(node, payload):
     new = copy.deepcopy(node)   # m1 & m2 <-> m1 | m2, a and b <-> a or b
     new.op = getattr(ast, payload)()
@@ -1307,7 +1312,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic, "from_end": _make_from_end,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -2808,6 +2813,10 @@ def _student_changes(node, parent, parents, words):
         yield "regroup", "last", ""      # `a + b << 2` is `(a + b) << 2`: `a + (b << 2)` was meant
     # (and `u * (2 ** n / w)`: the factor rounded first, so an exact integer u * 2 ** n / w comes out a hair
     # below it and its floor one less)
+    if words.student and isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) \
+            and isinstance(node.right, ast.Constant) and type(node.right.value) is int and node.right.value > 0 \
+            and _size_of_something(node.left) and _indexes_with(node, parent):
+        yield "from_end", None, ""   # `Vt[len(A) - 1]` for `Vt[-1]`: the end counted with another array's size
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and isinstance(node.right, ast.BinOp) \
             and isinstance(node.right.op, (ast.FloorDiv, ast.Div)):
         yield "regroup", "first", ""     # `u * (2 ** n // w)` for `u * 2 ** n // w`: the floor taken first
@@ -3020,6 +3029,21 @@ def _made_by_product(name: str, parents) -> bool:
                  for target in node.targets if isinstance(target, ast.Name)}
         entry = _PRODUCTS[id(parents)] = (parents, names)
     return name in entry[1]
+
+
+def _size_of_something(node) -> bool:
+    """`len(A)`, `A.shape[0]`, `A.size`: a size read from an array."""
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "len":
+        return True
+    if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Attribute) and node.value.attr == "shape":
+        return True
+    return isinstance(node, ast.Attribute) and node.attr == "size"
+
+
+def _indexes_with(node, parent) -> bool:
+    """Whether ``node`` is an index of a subscript (alone, or one of a tuple's)."""
+    return isinstance(parent, ast.Subscript) and parent.slice is node or (
+        isinstance(parent, ast.Tuple) and node in parent.elts)
 
 
 def _threshold_changes(node: ast.Compare):

@@ -20,6 +20,21 @@ _DECOMPOSE = """
         """
 
 MISTAKES = {
+    # the blind set 1204d's 10/08: the null vector's row counted with A's number of rows (right for N = 6 only)
+    "DLT null vector indexed by A's row count": ("lab10.ex4", """
+        def camera_matrix_dlt(points3d, points2d):
+            X = np.asarray(points3d, dtype=np.float64)
+            x = np.asarray(points2d, dtype=np.float64)
+            T = _normalising_transform(x)
+            U = _normalising_transform(X)
+            xn = (np.column_stack([x, np.ones(len(x))]) @ T.T)[:, :2]
+            Xn = np.column_stack([X, np.ones(len(X))]) @ U.T
+            zeros = np.zeros_like(Xn)
+            A = np.vstack([np.hstack([Xn, zeros, -xn[:, :1] * Xn]), np.hstack([zeros, Xn, -xn[:, 1:] * Xn])])
+            p = np.linalg.svd(A)[2][len(A) - 1]
+            P = np.linalg.inv(T) @ p.reshape(3, 4) @ U
+            return P / np.linalg.norm(P)
+        """, ["`len(A) - 1`"]),
     # the blind set 1204c's 10/08: rvec taken for -rvec where it points away from the previous frame's
     "track_pose keeping rvec on the previous frame's side": ("lab10.ext3", """
         def track_pose(frames, pattern_size, square_size, K, dist=None):
