@@ -136,6 +136,7 @@ OPERATORS = {
     "negate": ("not", "condition", "invert", "opposite"),   # if x > t: -> if not x > t:, not m -> m
     "logic": ("and", "or", "&", "|"),
     "from_end": ("end", "last", "-1"),                # Vt[len(A) - 1] -> Vt[-1]
+    "frame_cross": ("cross", "orthogonal", "axis"),   # e3 = mean / |mean| -> np.cross(e1, e2)
     "drop_flag": ("flag", "cv2.", "remov", "|"),          # INTER_LINEAR | WARP_INVERSE_MAP -> INTER_LINEAR                 # m1 & m2 -> m1 | m2, a and b -> a or b
     "literal": ("argument", "value", "flag"),         # cv2.computeCorrespondEpilines(p, 2, F) -> (p, 1, F)
     "boolean_mask": ("mask", "boolean", "index"),   # pts[mask.ravel()] -> pts[mask.ravel().astype(bool)]
@@ -1229,6 +1230,13 @@ def _make_negate(node, payload):
     return ast.UnaryOp(ast.Not(), copy.deepcopy(node))   # x > t -> not x > t
 
 
+def _make_frame_cross(node, payload):
+    new = copy.deepcopy(node)   # e3 = mean / |mean| -> e3 = np.cross(e1, e2): a frame's axis from the other two
+    first, second = payload
+    new.value = ast.Call(_name("np.cross"), [ast.Name(first, ast.Load()), ast.Name(second, ast.Load())], [])
+    return new
+
+
 def _make_from_end(node, payload):
     return ast.UnaryOp(ast.USub(), copy.deepcopy(node.right))   # len(A) - 1 -> -1: counted from the end
 
@@ -1312,7 +1320,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "translation_scaled", "exact_constant")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
-         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic, "from_end": _make_from_end,
+         "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic, "from_end": _make_from_end, "frame_cross": _make_frame_cross,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -2813,6 +2821,9 @@ def _student_changes(node, parent, parents, words):
         yield "regroup", "last", ""      # `a + b << 2` is `(a + b) << 2`: `a + (b << 2)` was meant
     # (and `u * (2 ** n / w)`: the factor rounded first, so an exact integer u * 2 ** n / w comes out a hair
     # below it and its floor one less)
+    if words.student and isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+        for first, second in _frame_partners(node.targets[0].id, node, words.fn):
+            yield "frame_cross", (first, second), ""   # a rotation's row not made orthogonal to the other two
     if words.student and isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) \
             and isinstance(node.right, ast.Constant) and type(node.right.value) is int and node.right.value > 0 \
             and _size_of_something(node.left) and _indexes_with(node, parent):
@@ -3029,6 +3040,27 @@ def _made_by_product(name: str, parents) -> bool:
                  for target in node.targets if isinstance(target, ast.Name)}
         entry = _PRODUCTS[id(parents)] = (parents, names)
     return name in entry[1]
+
+
+_ROWS_STACKED = {"vstack", "array", "stack", "row_stack", "column_stack"}
+
+
+def _frame_partners(name: str, assignment, fn) -> list[tuple[str, str]]:
+    """For a name stacked with two others into a 3 x 3 matrix (`np.vstack([e1, e2, e3])`) whose value here is
+    not a cross product: the two others in the cyclic order that makes it their cross product (e3 = e1 x e2,
+    e1 = e2 x e3, e2 = e3 x e1), when the others are assigned in the def."""
+    if isinstance(assignment.value, ast.Call) and _dotted(assignment.value.func).rsplit(".", 1)[-1] == "cross":
+        return []
+    found = []
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in _ROWS_STACKED and node.args \
+                and isinstance(node.args[0], (ast.List, ast.Tuple)) and len(node.args[0].elts) == 3 \
+                and all(isinstance(e, ast.Name) for e in node.args[0].elts) and getattr(node, "lineno", 0) > assignment.lineno:
+            names = [e.id for e in node.args[0].elts]
+            if name in names and len(set(names)) == 3:
+                k = names.index(name)
+                found.append((names[(k + 1) % 3], names[(k + 2) % 3]))
+    return found[:1]
 
 
 def _size_of_something(node) -> bool:
