@@ -750,6 +750,13 @@ def t_against_p(P, K, R, tv) -> tuple[str, str] | None:
         if abs(c + 1) <= 1e-6:
             return (f"{told}: " + measured("t has the opposite sign (K and R come from -P, t from P: negate P before "
                                            "solving for t too)"), "t is solved from P while K and R come from -P")
+        if c > 0 and abs(np.linalg.norm(tv) - 1.0) <= 1e-6:
+            # (the right direction, made of length 1: as an essential matrix's t is, known only up to scale)
+            return (f"{told}: " + measured(f"t points the right way but has length 1, where P's is {np.linalg.norm(own):.4g}: "
+                                           "t is normalised to unit length; P fixes its scale (K[2, 2] = 1), keep it"),
+                    "t is normalised to unit length")
+        if c > 0:
+            return (f"{told}: " + measured(f"t points the right way, {c:.4g} times as long"), "t is rescaled")
     return f"{told}: t must be solved from the same P as K and R, t = K^-1 P[:, 3] / s", \
         "t does not come from the same P as K and R"
 

@@ -1163,6 +1163,14 @@ class _Student:
         read = {n.id for n in ast.walk(step.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
         if payload not in read:
             return ()
+        statement = node
+        while statement is not None and not isinstance(statement, ast.stmt):
+            statement = parents.get(id(statement), (None,))[0]
+        if any(isinstance(n, ast.Name) and n.id == node.id and isinstance(n.ctx, ast.Load) and n.lineno > step.lineno
+               and not (statement is not None and statement.lineno <= n.lineno <= (statement.end_lineno or statement.lineno))
+               for n in nodes):
+            return ()   # (the value is read elsewhere too -- `shift` moving the points and making a focal length --:
+            # the step is needed there, and the change is of this one use of it)
         if _stacks(step.value, payload):
             return ()   # (a name made by stacking a column onto the other -- `Xh = [pts | 1]` -- holds it: its
             # column read from the other, `pts[:, -1]` for `Xh[:, -1]`, is another column, no step skipped)

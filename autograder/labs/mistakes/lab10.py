@@ -20,6 +20,13 @@ _DECOMPOSE = """
         """
 
 MISTAKES = {
+    # the blind set 1204d's 10/03: the translation made of length 1, as an essential matrix's would be
+    "decomposition normalising t to unit length": ("lab10.ex5", """
+        _decompose_right = decompose_camera_matrix
+        def decompose_camera_matrix(P):
+            K, R, t = _decompose_right(P)
+            return K, R, t / np.linalg.norm(t)
+        """, ["t is normalised to unit length"]),
     # the blind set 1204d's 10/08: the null vector's row counted with A's number of rows (right for N = 6 only)
     "DLT null vector indexed by A's row count": ("lab10.ex4", """
         def camera_matrix_dlt(points3d, points2d):
