@@ -22,6 +22,7 @@ from __future__ import annotations
 import ast
 from dataclasses import replace
 
+from ..loading.parsing import TooLarge, parse
 from .conventions import STATE_BETWEEN_CALLS
 
 # Calls whose value is a new container: a name bound to one at the top of a module can hold state.
@@ -77,8 +78,8 @@ def holders(source: str, function: str) -> list[tuple[str, int]]:
     its parameters with a mutable default, attributes it sets on a module-level def or class. Empty
     when there is none, or the source does not parse."""
     try:
-        tree = ast.parse(source)
-    except (SyntaxError, ValueError, RecursionError, MemoryError):
+        tree = parse(source)   # (the student's text: within the bounds, under the parse lock)
+    except (SyntaxError, ValueError, RecursionError, MemoryError, TooLarge):
         return []
     top: dict[str, int] = {}
     for node in tree.body:

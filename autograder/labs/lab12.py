@@ -534,8 +534,11 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=N
                    mistake="the disparity index is off by one")
     name_disparity_scale(t, what, finite, gt, thr, scene.max_disparity)
     matched = getattr(mistakes, "matched", None)
+    # (a map of the right image's pixels -- the left image shifted where the right one belongs -- is moved by the
+    # disparity, the same on a plane: its own check tells it from the code)
+    rolled_back = any(map(_left_image_rolled_back, code_of(t).reachable([judged_function(what)])))
     moved = map_moved(finite, matched(), (gt > 0) & (np.arange(gt.shape[1])[None, :] >= scene.max_disparity)) \
-        if matched is not None else None
+        if matched is not None and not rolled_back else None
     if moved is not None:
         dx, dy, apart, as_is = moved
         t.fail(f"{what}: the map is moved: " + measured(
@@ -2738,8 +2741,8 @@ def pattern_mistakes(width, n_bits) -> dict:
 
 
 # (on a width that is a multiple of 2**n_bits, the same patterns as the columns numbered from 1: the probe tells)
-STRIPE_ONE_TOO_LARGE = ("the stripe index is one too large: column u shows the code of stripe k + 1, k = floor(u * "
-                        "2**n_bits / width) (np.digitize, for one, numbers its bins from 1)")
+STRIPE_ONE_TOO_LARGE = measured("the stripe index is one too large: column u shows the code of stripe k + 1, k = "
+                                "floor(u * 2**n_bits / width) (np.digitize, for one, numbers its bins from 1)")
 
 
 PATTERN_PROBE = (97, 5)   # a size on which every mistake of pattern_mistakes shows in many columns

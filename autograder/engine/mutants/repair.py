@@ -1361,8 +1361,8 @@ def _undoes_a_step(student, mutant, fix: Fix) -> bool:
 def _identity_order(text: str) -> bool:
     """Whether ``text`` holds a literal list or tuple 0, 1, ..., n - 1 (n >= 2) of integers in order."""
     try:
-        tree = ast.parse(text.strip().rstrip(":"), mode="exec")
-    except SyntaxError:
+        tree = parse(text.strip().rstrip(":"))
+    except (SyntaxError, ValueError, RecursionError, MemoryError):
         return False
     return any(isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) >= 2
                and [getattr(e, "value", None) for e in node.elts] == list(range(len(node.elts)))
