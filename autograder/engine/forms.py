@@ -195,6 +195,31 @@ def _channels_form(got: tuple, expected: tuple) -> Form | None:
 COLOURS_LOST = "the colours are lost: a grey copy used where the colour image belongs"
 
 
+CHANNEL_COPIED = "one colour channel copied into all three"
+_CHANNEL_NAMES = ("blue", "green", "red")
+
+
+def channel_copied(got, expected, inside=None) -> str:
+    """A sentence when ``got``'s three equal channels are one channel of the ``expected`` colour image (not
+    its grey version): that channel made all three; "" otherwise."""
+    import cv2
+
+    if not (isinstance(got, np.ndarray) and isinstance(expected, np.ndarray) and got.shape == expected.shape
+            and got.ndim == 3 and got.shape[2] == 3):
+        return ""
+    mask = np.ones(got.shape[:2], bool) if inside is None else np.asarray(inside, bool)
+    if not mask.any():
+        return ""
+    plane = got[..., 0].astype(np.float64)[mask]
+    grey = cv2.cvtColor(np.ascontiguousarray(expected), cv2.COLOR_BGR2GRAY).astype(np.float64)[mask]
+    apart = [float(np.mean(np.abs(plane - expected[..., c].astype(np.float64)[mask]))) for c in range(3)]
+    best = int(np.argmin(apart))
+    if apart[best] <= 2.0 and apart[best] < 0.25 * float(np.mean(np.abs(plane - grey))):
+        return measured(f"its three channels are all the input's {_CHANNEL_NAMES[best]} channel (channel {best}) "
+                        "warped: one channel made all three, where each output channel is warped from its own")
+    return ""
+
+
 def colours_lost(got, images) -> str:
     """A sentence when ``got`` is a BGR image whose three channels are equal while one of the colour
     ``images`` it was made from has channels that differ: a grey copy (made for a comparison or a

@@ -33,7 +33,8 @@ from fixtures.images import as_homography, coverage, warp
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
 from .claims import calls_any, checklist, from_code, measured, seen_in_code
-from .forms import COLOURS_LOST, UNIT_RANGE_CAST, colours_lost, shape_form, unit_range_cast
+from .forms import (CHANNEL_COPIED, COLOURS_LOST, UNIT_RANGE_CAST, channel_copied, colours_lost, shape_form,
+                    unit_range_cast)
 from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, mentions, parameter_flows,
                     size_given_as_shape)
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
@@ -472,6 +473,9 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
                          if got.shape == expected_shape else "")
     grey = colours_lost(got, [source]) if isinstance(got, np.ndarray) and got.shape == expected_shape else ""
     if grey and not colours_lost(expected, [source]):
+        copied = channel_copied(got, expected, inside)
+        if copied:
+            t.fail(f"{what}: {copied}.", mistake=CHANNEL_COPIED)
         t.fail(f"{what}: {grey}.", mistake=COLOURS_LOST)
     if isinstance(got, np.ndarray) and got.shape != expected_shape:
         if got.shape[:2] == expected_shape[1::-1] and height != width:   # (a square frame shows no swap)

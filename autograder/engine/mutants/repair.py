@@ -857,7 +857,21 @@ class _Student:
         whose body reorders `src`): the change mends by making the code take the other way, so the slip is
         in a branch, where a change inside it mends it too (`src, dst = src[order], dst[order]`)."""
         return all(self._read_by_guards_only(where, ordinal, raising=False, computed=True)
-                   for where, ordinal, _, _ in mutant.edits)
+                   or self._in_a_branch_test(where, ordinal) for where, ordinal, _, _ in mutant.edits)
+
+    def _in_a_branch_test(self, where: str, ordinal: int) -> bool:
+        """Whether the node changed is inside the test of an ``if`` (`img1.shape[1]` in `if cx2 < img1.shape[1] / 2:`)
+        whose branch does more than raise: a change there mends by taking the other way."""
+        nodes, parents = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        while node is not None and id(node) in parents:
+            parent, field, _ = parents[id(node)]
+            if isinstance(parent, ast.If) and field == "test":
+                return not (len(parent.body) == 1 and isinstance(parent.body[0], ast.Raise))
+            if isinstance(parent, ast.stmt):
+                return False
+            node = parent
+        return False
 
     def _read_by_guards_only(self, where: str, ordinal: int, raising: bool = True, computed: bool = False) -> bool:
         nodes, parents = self._walk(where)
@@ -1348,6 +1362,22 @@ def take_back_refuted(results, refuted) -> None:
             lead, _, tail = result.message.partition("\n")
             result.message = f"{lead} {HEAD}{told(other)}" + ("\n" + tail if tail or newline else "")
             result.mistake = other.mistake if not result.mistake else result.mistake
+
+
+def student_steers(trial, repair: Repair) -> bool:
+    """Whether every fix of ``repair`` mends by making a step of the student's code do nothing
+    (:func:`_undoes_a_step`)."""
+    student = _student_code(trial)
+    if student is None:
+        return False
+    return all(_undoes_a_step(student, _as_mutant(fix), fix) for fix in repair.fixes)
+
+
+def _as_mutant(fix: Fix):
+    """A stand-in mutant for a fix (its edits), for the readings of the student's code that take one."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(edits=fix.edits)
 
 
 def _undoes_a_step(student, mutant, fix: Fix) -> bool:
@@ -3707,6 +3737,8 @@ def named_by_repair(verdict, trial, traceback_text: str = ""):
         else name_by_repair(trial)
     if repair is None:
         return verdict
+    if by_hand and repair.fixes and student_steers(trial, repair):
+        return verdict   # (beside the check's own name, a change that only steers the code round a branch adds nothing)
     repair = _upstream(repair, trial)
     # (what later checks take as known is what is told: a compensation dropped here is no fix for them)
     found = trial.sandbox.shared.setdefault("repair found", {})

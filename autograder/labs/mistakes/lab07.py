@@ -120,6 +120,18 @@ MISTAKES = {
             M[:2, :2], M[:2, 2] = R, c - R @ c
             return M
         """, ["`int(angle_deg // 90)` is 4", "holds 4 items", "`% 4`"]),
+    # the blind set 1204d's 07/06: a colour image warped plane by plane, the first plane every time
+    "shear warping the first channel into every channel": ("lab07.ex4", """
+        def shear(image, s=0.5):
+            M = np.float32([[1, s, 0], [0, 1, 0]])
+            size = (image.shape[1], image.shape[0])
+            if image.ndim == 2:
+                return cv2.warpAffine(image, M, size)
+            out = np.empty_like(image)
+            for c in range(image.shape[2]):
+                out[..., c] = cv2.warpAffine(image[..., 0], M, size)
+            return out
+        """, ["all the input's blue channel (channel 0)"]),
     "translation_matrix returning one module-level array": ("lab07.ex1", """
         _IDENTITY = np.eye(3)
         def translation_matrix(tx, ty):
