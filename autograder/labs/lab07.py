@@ -605,6 +605,9 @@ ex6 = lab.exercise("ex6", "Least-squares affine transformation", functions=["aff
 lab.forbid("affine_lstsq", "cv2.estimateAffine2D", "cv2.estimateAffinePartial2D")
 
 
+INVERSE_FITTED = "the inverse map (dst -> src) fitted by least squares, then inverted"
+
+
 def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
     what = f"affine_lstsq(src, dst) with N={len(src)}"
     got = t.expect_array(t.call("affine_lstsq", src, dst), what, shape=(2, 3), kind="iuf", finite=True)
@@ -623,6 +626,14 @@ def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
                            max(0.5, 100 * tolerance), truth=least_squares, probe=fit_probe(t, "affine_lstsq"))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    if point_error(got, truth.inverse_fit_inverted(src, dst), src) <= 1e-3 * tolerance:
+        # (to the digit: a least squares of its own kind, near the right one on mild noise)
+        t.fail(f"{what} is not the least-squares fit: it sends a source point {digits_apart(error, tolerance)} px "
+               "away from where the least-squares fit sends it; " + measured(
+                   "it is, to the digit, the least-squares map from dst to src, inverted: that fit minimises the "
+                   "residuals in the source image, where the least-squares map src -> dst minimises them in the "
+                   "target image (the sheet's system: [x y 1] rows of src, x' y' of dst on the right)"),
+               mistake=INVERSE_FITTED)
     residual = float(np.sqrt(np.mean(np.sum((truth.apply_affine(got, src) - dst) ** 2, axis=1))))
     best = float(np.sqrt(np.mean(np.sum((truth.apply_affine(least_squares, src) - dst) ** 2, axis=1))))
     # The residual grows only to second order in the error: quoted only when the digits show it.

@@ -132,6 +132,13 @@ MISTAKES = {
                 out[..., c] = cv2.warpAffine(image[..., 0], M, size)
             return out
         """, ["all the input's blue channel (channel 0)"]),
+    # the blind set 1204d's 07/08: the map dst -> src fitted and inverted (least squares in the other image)
+    "affine_lstsq fitting the inverse map and inverting it": ("lab07.ex6", """
+        _lstsq_right = affine_lstsq
+        def affine_lstsq(src, dst):
+            back = np.vstack([_lstsq_right(dst, src), [0.0, 0.0, 1.0]])
+            return np.linalg.inv(back)[:2]
+        """, ["the least-squares map from dst to src, inverted"]),
     "translation_matrix returning one module-level array": ("lab07.ex1", """
         _IDENTITY = np.eye(3)
         def translation_matrix(tx, ty):
