@@ -434,7 +434,8 @@ def distance(a, b, lenient: bool = False, projective: bool = False) -> float:
         if x.size == 0 or nan_x.all():
             continue
         raw = float(np.mean(np.abs(x[~nan_x] - y[~nan_y])))
-        if projective and x.ndim == 2 and x.size <= 16 and not nan_x.any():
+        if projective and (x.ndim == 2 and x.size <= 16 or x.ndim == 1 and x.size in (3, 4)) and not nan_x.any():
+            # (a small matrix, or a homogeneous vector: an epipole, a line, a point of P^3)
             raw = min(raw, _up_to_scale(x, y))
         worst = max(worst, raw)
     return worst

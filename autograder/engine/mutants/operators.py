@@ -137,6 +137,8 @@ OPERATORS = {
     "logic": ("and", "or", "&", "|"),
     "from_end": ("end", "last", "-1"),                # Vt[len(A) - 1] -> Vt[-1]
     "frame_cross": ("cross", "orthogonal", "axis"),   # e3 = mean / |mean| -> np.cross(e1, e2)
+    "whole_vector": ("homogeneous", "divid", "third"),   # np.append(e[:2], 1.0) -> e / e[2]
+    "quadrant": ("arctan2", "quadrant", "atan2"),   # np.arctan(b / a) -> np.arctan2(b, a)
     "drop_flag": ("flag", "cv2.", "remov", "|"),          # INTER_LINEAR | WARP_INVERSE_MAP -> INTER_LINEAR                 # m1 & m2 -> m1 | m2, a and b -> a or b
     "literal": ("argument", "value", "flag"),         # cv2.computeCorrespondEpilines(p, 2, F) -> (p, 1, F)
     "boolean_mask": ("mask", "boolean", "index"),   # pts[mask.ravel()] -> pts[mask.ravel().astype(bool)]
@@ -1237,6 +1239,17 @@ def _make_frame_cross(node, payload):
     return new
 
 
+def _make_whole_vector(node, payload):
+    # np.append(e[:2], 1.0) -> e, or e / e[2]: a homogeneous vector kept whole (or divided), not its third entry replaced
+    return _parse(payload).body[0].value
+
+
+def _make_quadrant(node, payload):
+    # np.arctan(b / a) -> np.arctan2(b, a): the angle's quadrant from the signs of both
+    ratio = node.args[0]
+    return ast.Call(_name(payload), [copy.deepcopy(ratio.left), copy.deepcopy(ratio.right)], [])
+
+
 def _make_from_end(node, payload):
     return ast.UnaryOp(ast.USub(), copy.deepcopy(node.right))   # len(A) - 1 -> -1: counted from the end
 
@@ -1321,6 +1334,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic, "from_end": _make_from_end, "frame_cross": _make_frame_cross,
+         "whole_vector": _make_whole_vector, "quadrant": _make_quadrant,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -2821,6 +2835,15 @@ def _student_changes(node, parent, parents, words):
         yield "regroup", "last", ""      # `a + b << 2` is `(a + b) << 2`: `a + (b << 2)` was meant
     # (and `u * (2 ** n / w)`: the factor rounded first, so an exact integer u * 2 ** n / w comes out a hair
     # below it and its floor one less)
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.arctan", "numpy.arctan", "math.atan") \
+            and len(node.args) == 1 and isinstance(node.args[0], ast.BinOp) and isinstance(node.args[0].op, ast.Div):
+        yield "quadrant", "math.atan2" if _dotted(node.func) == "math.atan" else "np.arctan2", \
+            "the angle is taken with arctan of a ratio, which loses its quadrant (arctan2 keeps it)"
+    if words.student:
+        vector = _third_entry_replaced(node)
+        if vector:
+            yield "whole_vector", f"{vector} / {vector}[2]", ""   # its third entry divided out
+            yield "whole_vector", vector, ""                        # or kept, homogeneous
     if words.student and isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
         for first, second in _frame_partners(node.targets[0].id, node, words.fn):
             yield "frame_cross", (first, second), ""   # a rotation's row not made orthogonal to the other two
@@ -3040,6 +3063,33 @@ def _made_by_product(name: str, parents) -> bool:
                  for target in node.targets if isinstance(target, ast.Name)}
         entry = _PRODUCTS[id(parents)] = (parents, names)
     return name in entry[1]
+
+
+def _third_entry_replaced(node) -> str:
+    """The name ``v`` of `np.append(v[:2], 1.0)`, `np.hstack([v[:2], 1])`, `np.array([v[0], v[1], 1.0])`: a 3-vector's
+    first two entries with a constant for its third (a homogeneous vector's scale thrown away); "" otherwise."""
+    if not isinstance(node, ast.Call):
+        return ""
+    name = _dotted(node.func).rsplit(".", 1)[-1]
+    parts = node.args
+    if name == "append" and len(parts) == 2:
+        pieces = list(parts)
+    elif name in ("hstack", "concatenate", "array") and len(parts) == 1 and isinstance(parts[0], (ast.List, ast.Tuple)):
+        pieces = list(parts[0].elts)
+    else:
+        return ""
+    if not pieces or not isinstance(pieces[-1], ast.Constant) or not isinstance(pieces[-1].value, (int, float)):
+        return ""
+    head = pieces[:-1]
+    if len(head) == 1 and isinstance(head[0], ast.Subscript) and isinstance(head[0].value, ast.Name) \
+            and isinstance(head[0].slice, ast.Slice) and head[0].slice.lower is None \
+            and isinstance(head[0].slice.upper, ast.Constant) and head[0].slice.upper.value == 2:
+        return head[0].value.id
+    if len(head) == 2 and all(isinstance(h, ast.Subscript) and isinstance(h.value, ast.Name) for h in head) \
+            and head[0].value.id == head[1].value.id \
+            and [getattr(h.slice, "value", None) for h in head] == [0, 1]:
+        return head[0].value.id
+    return ""
 
 
 _ROWS_STACKED = {"vstack", "array", "stack", "row_stack", "column_stack"}

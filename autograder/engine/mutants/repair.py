@@ -3520,6 +3520,10 @@ class _Variants:
         """:func:`naming.distance`, up to scale and sign where :meth:`right` judges so: an essential
         matrix mended is the reference's up to sign, and its plain distance says it is as far as the
         student's own."""
+        if isinstance(value, (tuple, list)) and isinstance(reference, (tuple, list)) and len(value) == len(reference) > 1 \
+                and all(isinstance(v, np.ndarray) for v in value):
+            # (each part's distance summed: a change mending one part of a pair -- one epipole of two -- is nearer)
+            return float(sum(naming.distance(v, r, projective=self.projective) for v, r in zip(value, reference)))
         return naming.distance(value, reference, projective=self.projective)
 
     def right(self, value, reference, student=None, confirming: bool = False) -> bool:

@@ -45,6 +45,23 @@ _WITHOUT_K = _MATCHED + """            inliers = mask.ravel().astype(bool)
 """
 
 MISTAKES = {
+    # the blind set 1204d's 11/02: the line's normal angle from arctan of a ratio, its quadrant lost
+    "epipolar lines rebuilt from arctan(b / a)": ("lab11.ex2", """
+        def epipolar_lines(F, pts1):
+            F = np.asarray(F, dtype=np.float64)
+            pts = np.asarray(pts1, dtype=np.float64).reshape(-1, 2)
+            raw = (F @ np.column_stack([pts, np.ones(len(pts))]).T).T
+            a, b, c = raw[:, 0], raw[:, 1], raw[:, 2]
+            theta = np.arctan(b / a)
+            return np.column_stack([np.cos(theta), np.sin(theta), c / np.hypot(a, b)])
+        """, ["`np.arctan2(b, a)`"]),
+    # the blind set 1204d's 11/07: the null vectors' third entries replaced by 1
+    "epipoles made homogeneous by replacing the third entry": ("lab11.ex5", """
+        def epipoles(F):
+            U, _, Vt = np.linalg.svd(np.asarray(F, np.float64))
+            e1, e2 = Vt[-1], U[:, -1]
+            return np.append(e1[:2], 1.0), np.append(e2[:2], 1.0)
+        """, ["`np.append(e1[:2], 1.0)` to `e1`"]),
     # ---------------------------------------------------------------- ex1
     "triangulation with x where y belongs in the second row": ("lab11.ex1", """
         def triangulate(P1, P2, pts1, pts2):
