@@ -797,11 +797,17 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     tolerance = at_precision(1e-9 * scale, scale)
     if max_abs_error(got, expected) <= tolerance:
         return
+    fractions = valid & (np.abs(expected - np.round(expected)) > 1e-6 * max(scale, 1.0))
+    if got.dtype.kind in "iub" and fractions.any():
+        # (an integer array: every depth cut to a whole number -- np.vectorize takes its type from the first
+        # value, an int 0 for an invalid pixel, say -- whatever factor the few values tried happen to show)
+        t.fail(f"{what} returned an array of {got.dtype} where the depths have fractions (Z = f b / d): "
+               + measured("every depth is cut to a whole number; the depths are floats"), mistake=INTEGER_DEPTHS)
     mistake = name_mistake(t, got, truth.depth_mistakes(disparity, f, baseline), max_abs_error,
                            1e-6 * scale, truth=expected, probe=depth_probe(t))
     if mistake:
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
-    factor = constant_factor(got, expected)
+    factor = constant_factor(got, expected) if int(valid.sum()) >= 3 else None   # (two values: any factor fits)
     if factor is not None:
         t.fail(f"{what}: the depths are {factor_words(factor)} the expected at every pixel (Z = f b / d, in "
                "the baseline's unit).", mistake=SCALED_DEPTHS)
@@ -810,6 +816,7 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
 
 
 SCALED_DEPTHS = "the depths are off by a constant factor"
+INTEGER_DEPTHS = "the depths are an integer array (every depth cut to a whole number)"
 SCALED_POINTS = "the points are off by a constant factor"
 
 
